@@ -449,8 +449,10 @@ def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
     both for a folder without a readable meta.json object (the session's own error, if any, says why)."""
     import json
 
+    from pdrlearn.textfile import read_text
+
     try:
-        meta = json.loads((Path(folder) / "meta.json").read_text())
+        meta = json.loads(read_text(Path(folder) / "meta.json"))
     except (OSError, ValueError):
         return None, None
     if not isinstance(meta, dict):
@@ -472,8 +474,10 @@ def meta_settings(folder: str | os.PathLike) -> dict[str, object]:
     readable meta.json object."""
     import json
 
+    from pdrlearn.textfile import read_text
+
     try:
-        meta = json.loads((Path(folder) / "meta.json").read_text())
+        meta = json.loads(read_text(Path(folder) / "meta.json"))
     except (OSError, ValueError):
         return {}
     if not isinstance(meta, dict):

@@ -9,6 +9,7 @@ import numpy as np
 from pdrlearn.atomic import atomic_file
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
+from pdrlearn.mplconfig import ensure_config_dir
 
 #: PNG text chunk (key, value) that marks a figure of ``pdrlearn plot`` (:func:`plot_session`), so that
 #: ``plot --force`` replaces only such a figure (decision B26, ``cli.common.file_kind``).
@@ -44,6 +45,7 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, figsize=None, layout=None, **s
     ``matplotlib.figure.Figure`` on its own Agg canvas), as ``pyplot.subplots`` gives them (``subplots``: its
     ``sharex``, ``squeeze``, ``height_ratios`` ...), without ``matplotlib.use`` or pyplot: the user's backend (a
     notebook's inline one) is left as it was, and the figure is in no pyplot list (nothing to close)."""
+    ensure_config_dir()  # decision B226: no matplotlib noise when the home folder cannot be written
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -53,6 +55,7 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, figsize=None, layout=None, **s
 
 
 def _figure(nrows: int, height: float = 2.0):
+    ensure_config_dir()  # decision B226
     import matplotlib.pyplot as plt
 
     # constrained layout: the title and a figure legend take the room they need above the panels (a fixed

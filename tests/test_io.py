@@ -173,7 +173,7 @@ def test_bad_meta_and_steps(tmp_path):
         read_session(d)
     (tmp_path / "bad" / "meta.json").write_text("{}")
     (tmp_path / "bad" / "steps.csv").write_text("start_ms,stop\n1,2\n")
-    with pytest.raises(DataError, match=r"steps.csv.*missing column\(s\) end_s"):
+    with pytest.raises(DataError, match=r"steps.csv.*missing column\(s\) end_ms"):  # as written, in ms (B222)
         read_session(d)
     (tmp_path / "bad" / "steps.csv").write_text("start_ms,end_ms\n10,5\n")
     with pytest.raises(DataError, match="end before they start"):

@@ -518,7 +518,7 @@ def write_report(result: dict, report_dir: Path) -> None:
     note_written(report_dir, in_place=True)  # decision B96: for the line of an interrupted evaluate
     (report_dir / "report.json").write_text(json.dumps(json_safe(result), indent=2))
     (report_dir / "report.md").write_text(
-        f"# Step characterization of user {result['user']}\n\n" + markdown_tables(result)
+        f"# Step characterization of user {result['user']}\n\n" + markdown_tables(result), encoding="utf-8"
     )
     for task, r in result["tasks"].items():
         plot_confusions(task, r, report_dir / f"confusion_{task}.png")

@@ -27,6 +27,7 @@ from pathlib import Path
 
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import ModelError, shell_quote
+from pdrlearn.textfile import read_text
 
 log = logging.getLogger(__name__)
 
@@ -176,7 +177,7 @@ def read_manifest(path) -> dict:
         raise ModelError(f"{path}: missing {MANIFEST}; not a model directory written by 'pdrlearn train' (pass "
                          f"that folder, or retrain if its manifest was deleted){hint}")
     try:
-        manifest = json.loads(mf.read_text())
+        manifest = json.loads(read_text(mf))
     except (OSError, json.JSONDecodeError) as exc:
         raise ModelError(f"{mf}: unreadable manifest ({exc}); retrain the model") from None
     if isinstance(manifest, dict) and manifest.get("schema") == "pdrlearn-bundle":

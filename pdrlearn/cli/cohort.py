@@ -159,7 +159,8 @@ def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
     tmp = out / ".cohort_summary.csv.tmp"
     df.to_csv(tmp, index=False)
     tmp.replace(out / "cohort_summary.csv")
-    (out / "cohort_summary.md").write_text(_blank_missing(df).to_markdown(index=False, floatfmt=".4g") + "\n")
+    (out / "cohort_summary.md").write_text(_blank_missing(df).to_markdown(index=False, floatfmt=".4g") + "\n",
+                                           encoding="utf-8")
     return df
 
 

@@ -11,6 +11,7 @@ from pdrlearn.atomic import expect_unchanged
 from pdrlearn.cohort import is_session_dir as is_session_folder
 from pdrlearn.cohort import session_files
 from pdrlearn.errors import DataError, output_error
+from pdrlearn.textfile import read_text
 
 
 def json_default(o):
@@ -111,7 +112,7 @@ _MANIFEST_KINDS = {("schema", "pdrlearn-bundle"): "a runtime bundle",
 def manifest_kind(folder: Path) -> str | None:
     """``"a runtime bundle"`` or ``"a model directory"`` from ``folder/manifest.json`` (None: neither, unreadable)."""
     try:
-        m = json.loads((folder / "manifest.json").read_text())
+        m = json.loads(read_text(folder / "manifest.json"))
     except (OSError, ValueError):
         return None
     if not isinstance(m, dict):
@@ -150,7 +151,7 @@ def folder_kind(folder: Path) -> str | None:
         return "track-all"
     if all((folder / n).is_file() for n in _TRACK_FILES):
         try:
-            summary = json.loads((folder / "summary.json").read_text())
+            summary = json.loads(read_text(folder / "summary.json"))
         except (OSError, ValueError):
             return None
         if not isinstance(summary, dict):
@@ -261,7 +262,7 @@ def file_kind(path: Path) -> str | None:
         if suffix == ".json":
             from pdrlearn.waist.params import SCHEMA
 
-            d = json.loads(path.read_text())
+            d = json.loads(read_text(path))
             return "params" if isinstance(d, dict) and d.get("schema") == SCHEMA else None
         if suffix in (".png", ".pdf", ".svg"):  # decision L70: a figure in any of plot's formats
             from pdrlearn.plots import is_plot_figure

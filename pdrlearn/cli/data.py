@@ -8,6 +8,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import DPI_HELP, FORCE_HELP, console, existed, json_safe, out_file, print_json, replaced
+from pdrlearn.textfile import read_text
 
 
 def info(
@@ -167,7 +168,7 @@ def _steps_to_shade(source: str, session):
                             "or a `pdrlearn track`/`run` output folder")
         summary = path / "summary.json"
         try:
-            made_from = json.loads(summary.read_text()).get("session") if summary.is_file() else None
+            made_from = json.loads(read_text(summary)).get("session") if summary.is_file() else None
         except (OSError, ValueError, AttributeError):
             made_from = None
         if isinstance(made_from, str) and made_from != session.name:

@@ -10,6 +10,7 @@ import typer
 
 from pdrlearn.cli.common import print_json, split_list
 from pdrlearn.errors import DataError, shell_quote
+from pdrlearn.textfile import read_text
 
 
 def _mapping_file(path: Path | None) -> dict:
@@ -18,7 +19,7 @@ def _mapping_file(path: Path | None) -> dict:
     if path is None:
         return {}
     try:
-        m = json.loads(Path(path).read_text())
+        m = json.loads(read_text(Path(path)))
     except OSError as exc:
         raise DataError(f"{path}: cannot read the mapping file ({exc.strerror})") from None
     except json.JSONDecodeError as exc:
@@ -213,7 +214,7 @@ def import_command(
     elif out.is_dir() and any(out.iterdir()):
         meta = out / "meta.json"
         try:
-            old_meta = json.loads(meta.read_text())
+            old_meta = json.loads(read_text(meta))
             ours = "imported" in old_meta
         except (OSError, ValueError, TypeError):
             ours = False
@@ -310,7 +311,7 @@ def _split_written(folder: Path) -> bool:
         if not (p.is_dir() and re.fullmatch(r"part\d+", p.name)):
             return False
         try:
-            meta = json.loads((p / "meta.json").read_text())
+            meta = json.loads(read_text(p / "meta.json"))
         except (OSError, ValueError):
             return False
         if not isinstance(meta, dict) or "imported" not in meta:

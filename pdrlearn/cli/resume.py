@@ -12,6 +12,8 @@ import os
 import shutil
 from pathlib import Path
 
+from pdrlearn.textfile import read_text
+
 #: the record in each session's output folder (hidden: no table or report reads it)
 RECORD = ".track-all-session.json"
 
@@ -61,7 +63,7 @@ def reusable(sources: list[Path], rel: str, key: str, inputs: dict) -> tuple[Pat
     for src in sources:
         folder = src / rel
         try:
-            rec = json.loads((folder / RECORD).read_text())
+            rec = json.loads(read_text(folder / RECORD))
         except (OSError, ValueError):
             continue
         if (isinstance(rec, dict) and rec.get("key") == key and rec.get("input_sha256") == inputs

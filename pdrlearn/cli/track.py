@@ -26,6 +26,7 @@ from pdrlearn.cli.common import (
     walk_line,
 )
 from pdrlearn.errors import DataError
+from pdrlearn.textfile import read_text
 
 
 def _write_csv(df, path: Path) -> None:
@@ -385,7 +386,7 @@ def read_params(params: Path):
     """The parsed ``--params`` JSON (a calibration file of ``pdrlearn calibrate`` or plasys settings), read once per
     file; one error line naming the file when it cannot be read."""
     try:
-        par = json.loads(Path(params).read_text())
+        par = json.loads(read_text(Path(params)))
     except (OSError, json.JSONDecodeError) as exc:
         raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
                         "pass the file written by `pdrlearn calibrate`") from None

@@ -34,6 +34,7 @@ from pdrlearn.runtime.bundle import (
     load_bundle,
     sha256_file,
 )
+from pdrlearn.textfile import read_text
 
 log = logging.getLogger(__name__)
 
@@ -176,7 +177,7 @@ def rebuild_step_graph(bundle_dir: str | Path, out_dir: str | Path | None = None
         if rel.endswith(".onnx"):
             onnx_models[rel] = onnx.load(str(src / rel))
         elif rel.endswith(".json"):
-            json_files[rel] = _json.loads((src / rel).read_text())
+            json_files[rel] = _json.loads(read_text(src / rel))
         elif rel.endswith(".npz"):
             npz_files[rel] = b.npz(rel)  # numeric arrays only, one line otherwise (decision B125)
         else:

@@ -46,6 +46,7 @@ from pdrlearn.io.validate import (
     time_unit_candidates,
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
+from pdrlearn.textfile import decode, duplicate_message, gzip_hint, read_text
 
 log = logging.getLogger(__name__)
 
@@ -194,10 +195,22 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> p
         df = pd.read_csv(path, dtype=dict.fromkeys(text_columns, str) or None, **dialect)
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
-    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+    except UnicodeDecodeError:
+        decode(path, path.read_bytes())  # decision B221: raises the one line naming the first byte not UTF-8
+        raise DataError(f"{path}: not UTF-8 text; save it as UTF-8 (decision B221)") from None
+    except pd.errors.ParserError as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise DataError(f"{path}: not a valid CSV ({first}); fix or re-export the file") from None
+    names = [str(c).strip() for c in df.columns]
+    if not df.index.equals(pd.RangeIndex(len(df))) and len(names) > 1 and not names[0].startswith("#"):
+        # pandas took the extra fields of each row as an index (a one-name header, a comment line above the real
+        # header, is left to the column checks, which name it)
+        raise DataError(f"{path}: rows have more fields than the header's {len(df.columns)} names "
+                        f"({','.join(names)}): decimal commas in a comma-separated file, "
+                        "or a comma ending each row? quote the decimal-comma values or separate the fields with ';', "
+                        "and remove commas at the ends of rows (decision B225)")
     df.columns = [str(c).strip() for c in df.columns]
+    _refuse_us_thousands(df, path, comma=dialect.get("decimal") == ",")
 
     def text() -> pd.DataFrame:  # the cells as written, for decision B112 (read only when a column may need it)
         raw = pd.read_csv(path, dtype=str, **dialect)
@@ -206,6 +219,47 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> p
 
     _decimal_comma_columns(df, text, comma=dialect.get("decimal") == ",")
     return df
+
+
+def session_table(path: str | os.PathLike) -> pd.DataFrame:
+    """:func:`read_table` for a session folder's files (sensor files, steps.csv, trajectory.csv, label tables):
+    column names matched in any case (decision B222: ``TIMESTAMP,X,Y,Z`` and ``START_MS`` are read as the
+    lower-case names, as the lean runtime and ``pdrlearn import`` read them), and a name given twice refused in
+    one line (decision B223: ``timestamp,x,x,y,z`` had silently used the first ``x``)."""
+    df = read_table(path)
+    names = [str(c) for c in df.columns]
+    if any(re.fullmatch(r"(.+)\.\d+", c) and re.fullmatch(r"(.+)\.\d+", c)[1] in names for c in names):
+        # pandas renamed a repeated name (x, x.1): the header as written says which
+        raw = pd.read_csv(path, header=None, nrows=1, dtype=str, keep_default_na=False, **_csv_dialect(Path(path)))
+        names = [str(c).strip() for c in raw.iloc[0]]
+    dup = duplicate_message(path, names, ",".join(names))
+    if dup:
+        raise DataError(dup)
+    df.attrs["header"] = [str(c) for c in df.columns]  # as written, for the messages (check_columns)
+    df.columns = [c.lower() for c in df.columns]
+    return df
+
+
+#: decision B225: a number whose commas group thousands as US spreadsheets write them (``1,000``, ``12,345.5``)
+_US_GROUPED = r"[+-]?\d{1,3}(?:,\d{3})+(?:\.\d*)?"
+
+
+def _refuse_us_thousands(df: pd.DataFrame, path: Path, *, comma: bool) -> None:
+    """Decision B225: in a file whose numbers have decimal points (a column read as numbers with fractions), a
+    text column whose values with a comma all group thousands (``"1,000"``, US Excel's ``#,##0``) is refused in
+    one line naming it: B24 would read ``1,000`` as a decimal comma (1.0), and the advice was to sort the file."""
+    if comma or not any(df[c].dtype.kind == "f" and (df[c].dropna() % 1 != 0).any() for c in df.columns):
+        return
+    for c in df.columns:
+        if df[c].dtype.kind in "biufc":
+            continue
+        cells = df[c].dropna().astype(str).str.strip()
+        grouped = cells[cells.str.contains(",", regex=False)]
+        if len(grouped) and grouped.str.fullmatch(_US_GROUPED).all():
+            line = int(np.flatnonzero(cells.index == grouped.index[0])[0]) + 2
+            raise DataError(f"{path}: column {str(c).strip()} holds {grouped.iloc[0]!r} (line {line}) beside decimal "
+                            "points in other columns: a comma grouping thousands (US spreadsheet format #,##0)? "
+                            "save the column as plain numbers without thousands separators (decision B225)")
 
 
 #: a number written with a decimal comma (or an integer): what a text column of a ';' / tab file must hold
@@ -328,7 +382,7 @@ def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np
     spec = SENSORS[name]
     if not path.is_file():
         raise DataError(f"{path}: file not found")
-    df = read_table(path)
+    df = session_table(path)  # decisions B222, B223
     check_columns(df, ("timestamp", *spec.columns), str(path))
     _refuse_datetimes(df["timestamp"], path)
     return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=ends_mid_line(path))
@@ -658,10 +712,10 @@ def _s_to_ms(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def _read_steps(path: Path) -> pd.DataFrame:
-    raw = read_table(path)
+    raw = session_table(path)  # decisions B222, B223
     check_last_row(raw, path, str(path))  # decision B205: a label table cut mid-row
+    check_columns(raw, tuple(c[:-2] + "_ms" for c in STEP_COLUMNS), f"{path} (times in ms)")  # as written (B222)
     df = _ms_to_s(raw, str(path))
-    check_columns(df, STEP_COLUMNS, f"{path} (times in ms: start_ms,end_ms)")
     se = check_numeric(df, STEP_COLUMNS, str(path))
     bad = np.flatnonzero(se[:, 1] < se[:, 0])
     if bad.size:
@@ -678,7 +732,7 @@ def _read_steps(path: Path) -> pd.DataFrame:
 
 
 def _read_trajectory(path: Path, scale: float) -> pd.DataFrame:
-    df = read_table(path)
+    df = session_table(path)  # decisions B222, B223
     check_last_row(df, path, str(path))  # decision B205
     check_columns(df, ("timestamp", "x", "y", "z"), str(path))
     arr = check_numeric(df, ("timestamp", "x", "y", "z"), str(path))
@@ -766,6 +820,9 @@ def export_import_hint(folder: Path) -> str:
     exports in ``folder`` into a session (paths quoted, B92), or "" when it holds none. Two or more exports:
     the file whose name says foot (UNIT_NAME_WORDS) is imported as the foot unit, the one that says waist with
     ``--unit waist --merge``; names that say neither are listed with both commands left to the user."""
+    gz = gzip_hint(folder, SENSORS)  # decision B224
+    if gz:
+        return gz
     exports = sorted((p for p in folder.glob("*.csv") if _looks_like_export(p)),
                      key=lambda p: (-p.stat().st_size, p.name))  # the largest first
     if not exports:
@@ -1034,7 +1091,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     meta_path = folder / "meta.json"
     if meta_path.exists():
         try:
-            meta = json.loads(meta_path.read_text())
+            meta = json.loads(read_text(meta_path))
         except json.JSONDecodeError as exc:
             raise DataError(f"{meta_path}: invalid JSON (line {exc.lineno}); fix or delete the file") from None
         if not isinstance(meta, dict):
@@ -1103,7 +1160,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     for p in sorted(folder.glob("*.csv")):
         if p.stem in SENSORS or p.stem in LABEL_FILES:
             continue
-        table = read_table(p)
+        table = session_table(p)  # decisions B222, B223
         if _not_labels(p, table, folder):  # decision B74: a copy of a sensor file, or a sensor stream
             continue
         check_label_table(table, p.stem, str(p))

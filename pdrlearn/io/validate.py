@@ -51,7 +51,8 @@ def check_columns(df: pd.DataFrame, required: tuple[str, ...], where: str) -> No
     missing = [c for c in required if c not in df.columns]
     if missing:
         raise DataError(
-            f"{where}: missing column(s) {', '.join(missing)} (header is {','.join(map(str, df.columns))}; "
+            f"{where}: missing column(s) {', '.join(missing)} (header is "
+            f"{','.join(map(str, df.attrs.get('header', df.columns)))}; "
             f"expected {','.join(required)})"
         )
 

@@ -110,8 +110,10 @@ def run_visit_map(folder: Path) -> dict[str, str] | None:
     changes to be changes.csv's; None without one."""
     import json
 
+    from pdrlearn.textfile import read_text
+
     try:
-        vm = json.loads((Path(folder) / "run.json").read_text()).get("options", {}).get("visit_map")
+        vm = json.loads(read_text(Path(folder) / "run.json")).get("options", {}).get("visit_map")
     except (OSError, ValueError, AttributeError):
         return None
     return vm.get("visits") if isinstance(vm, dict) else None
@@ -158,6 +160,9 @@ def plot_batch(sessions: pd.DataFrame, path: Path, *, dpi: float | None = None) 
     """A figure of each tracked session's distance (m) and gait speed (m/s), one bar per session coloured by
     its group, a failed session named on the axis with "failed" and no bar; saved at ``path``. False (no
     figure) when no session has either value."""
+    from pdrlearn.mplconfig import ensure_config_dir
+
+    ensure_config_dir()  # decision B226: no matplotlib noise when the home folder cannot be written
     import matplotlib
     from matplotlib.patches import Rectangle
 

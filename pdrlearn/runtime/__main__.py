@@ -96,11 +96,11 @@ def _write(out: Path, steps, start_s: float | None) -> None:
     have = list(dict.fromkeys(k for r in rows for k in r))
     cols = [c for c in STEP_COLUMNS if c in have] + [c for c in have if c not in STEP_COLUMNS]
     cols = cols or ["start_s", "end_s", "length_m", "heading_rad"]
-    with (out / "steps.csv").open("w", newline="") as f:
+    with (out / "steps.csv").open("w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, fieldnames=cols)
         w.writeheader()
         w.writerows({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in r.items()} for r in rows)
-    with (out / "trajectory.csv").open("w", newline="") as f:
+    with (out / "trajectory.csv").open("w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
         w.writerow(["t", "x", "y", "z"])
         if steps:

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError, ModelError, shell_quote
+from pdrlearn.textfile import read_text
 
 log = logging.getLogger(__name__)
 
@@ -263,7 +264,7 @@ class Bundle:
         is a one-line :class:`ModelError` (decision B125, as :meth:`npz`), whatever its checksum says."""
         if rel not in self._cache:
             try:
-                self._cache[rel] = json.loads(self.file(rel).read_text())
+                self._cache[rel] = json.loads(read_text(self.file(rel)))
             except (UnicodeDecodeError, json.JSONDecodeError) as exc:
                 raise self._bad_file(rel, "a JSON file", exc) from None
         out = self._cache[rel]
@@ -388,7 +389,7 @@ def bundle_kind(path: str | Path) -> str | None:
     """The ``schema`` of the bundle folder ``path`` (None when it has no readable manifest): how ``pdrlearn run``
     tells a waist-only bundle from a foot one before loading it."""
     try:
-        m = json.loads((Path(path) / MANIFEST).read_text())
+        m = json.loads(read_text(Path(path) / MANIFEST))
     except (OSError, ValueError):
         return None
     return m.get("schema") if isinstance(m, dict) else None
@@ -397,7 +398,7 @@ def bundle_kind(path: str | Path) -> str | None:
 def _is_waist_calibration(path: Path) -> bool:
     """Whether ``path`` is a JSON file of a waist pipeline's parameters (``pdrlearn calibrate``'s PARAMS.json)."""
     try:
-        d = json.loads(path.read_text()) if path.is_file() and path.suffix.lower() == ".json" else None
+        d = json.loads(read_text(path)) if path.is_file() and path.suffix.lower() == ".json" else None
     except (OSError, UnicodeDecodeError, ValueError):
         return False
     return isinstance(d, dict) and str(d.get("pipeline", "")).startswith("waist")
@@ -416,7 +417,7 @@ def read_manifest(path: str | Path, *, schema: str = SCHEMA_NAME) -> dict:
     if not mpath.is_file():
         raise _fail(path, f"no {MANIFEST}; give the folder written by 'pdrlearn export'")
     try:
-        manifest = json.loads(mpath.read_text())
+        manifest = json.loads(read_text(mpath))
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise _fail(path, f"{MANIFEST} is not valid JSON ({exc}); re-export the bundle") from None
     found = manifest.get("schema") if isinstance(manifest, dict) else None
@@ -446,7 +447,7 @@ def verify_files(path: Path, manifest: dict) -> None:
     sha_file = path / MANIFEST_SHA
     if not sha_file.is_file():
         raise _fail(path, f"{MANIFEST_SHA} is missing; copy the whole bundle folder")
-    if sha_file.read_text().split()[0:1] != [sha256_file(path / MANIFEST)]:
+    if read_text(sha_file).split()[0:1] != [sha256_file(path / MANIFEST)]:
         raise _fail(path, f"{MANIFEST} was altered (sha256 differs from {MANIFEST_SHA}); "
                           "restore the original bundle or re-export it")
     for rel, digest in files.items():

@@ -2,8 +2,9 @@
 
 :func:`replay_chunks` cuts recorded streams into pushes (decision E28; ``pdrlearn run`` and the lean command
 ``python -m pdrlearn.runtime`` use it). :func:`read_streams` reads the sensor files of a PLASYS session folder
-(``<sensor>.csv``: ``timestamp,x,y,z``, thesis ch.4.3.3; timestamps in ms unless ``meta.json`` declares
-``units.timestamp`` s, us or ns, decision D1) without pandas. It reads sessions as ``pdrlearn simulate``,
+(``<sensor>.csv``: ``timestamp,x,y,z``, thesis ch.4.3.3, the columns found by name in any order and case, decision
+B222; UTF-8, decision B221; timestamps in ms unless ``meta.json`` declares ``units.timestamp`` s, us or ns, decision
+D1) without pandas. It reads sessions as ``pdrlearn simulate``,
 ``import-csv`` and ``write_session`` write them; it repairs nothing: a file the full reader would have to fix
 (decimal commas, a sample-counter clock, per-unit clocks, other value units) is refused in one line that
 names the full install's ``pdrlearn run``.
@@ -18,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
+from pdrlearn.textfile import duplicate_message, gzip_hint, header_names, read_text
 
 log = logging.getLogger(__name__)
 
@@ -60,7 +62,9 @@ def read_meta(folder: Path) -> dict:
     if not path.is_file():
         return {}
     try:
-        meta = json.loads(path.read_text())
+        meta = json.loads(read_text(path))
+    except DataError:  # decision B221: not UTF-8, its own line
+        raise
     except (ValueError, UnicodeDecodeError) as exc:
         raise DataError(f"{path}: not valid JSON ({str(exc).splitlines()[0]}); fix it or remove it") from None
     if not isinstance(meta, dict):
@@ -80,18 +84,39 @@ def _time_scale(meta: dict, where: Path) -> float:
     return TIME_SCALES[word]
 
 
+#: a PLASYS sensor file's value columns by their number (thesis ch.4.3.3: ``timestamp,x,y,z``; force and barometer
+#: files ``timestamp,x``)
+VALUE_COLUMNS = {1: ("x",), 3: ("x", "y", "z")}
+
+
 def _read_csv(path: Path, n_values: int, scale: float) -> tuple[np.ndarray, np.ndarray]:
-    head = path.open().readline().strip().lower()
-    if not head.startswith("timestamp,"):
+    """One sensor file's ``(t_s, values)``, its columns taken by name in any order (decision B222: a file written
+    ``timestamp,z,x,y`` had been read by position, its z as x, and tracked 38.7 m of an 89.9 m walk)."""
+    lines = read_text(path).splitlines()  # decision B221: UTF-8 (a BOM accepted), else one line
+    head = lines[0] if lines else ""
+    names, want = header_names(head), ("timestamp", *VALUE_COLUMNS[n_values])
+    dup = duplicate_message(path, names, head)
+    if dup:
+        raise DataError(dup)
+    if "timestamp" not in names:
         raise DataError(f"{path}: the first line is {head[:40]!r}, not the header 'timestamp,x,...' of a PLASYS "
                         f"sensor file; {FULL_READER}")
+    if sorted(names) != sorted(want):
+        raise DataError(f"{path}: columns {','.join(names)}, expected {','.join(want)} (in any order); {FULL_READER}")
+    rows = [line for line in lines[1:] if line.strip()]
+    if not rows:
+        raise DataError(f"{path}: no data rows under the header; re-record the file or remove it")
     try:
-        a = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2, dtype=np.float64)
+        a = np.loadtxt(rows, delimiter=",", ndmin=2, dtype=np.float64)
     except ValueError as exc:
         raise DataError(f"{path}: {str(exc).splitlines()[0]} (the lean reader reads plain comma-separated numbers); "
                         f"{FULL_READER}") from None
-    if a.shape[1] != 1 + n_values:
-        raise DataError(f"{path}: {a.shape[1]} columns, expected timestamp and {n_values} value(s); {FULL_READER}")
+    if a.shape[1] != len(names):
+        raise DataError(f"{path}: {a.shape[1]} values per row under a header of {len(names)} columns (decimal "
+                        f"commas in a comma-separated file?); {FULL_READER}")
+    order = [names.index(c) for c in want]
+    if order != list(range(len(want))):  # decision B222: by name, as the full reader (C order kept, as loadtxt's)
+        a = np.ascontiguousarray(a[:, order])
     return a[:, 0] * scale, a[:, 1:]
 
 
@@ -117,7 +142,8 @@ def read_streams(folder, bundle) -> tuple[dict, dict]:
         width = 1 if name.startswith(("fForce", "wBarometer")) else 3
         streams[name] = _read_csv(path, width, scale)
     if not streams:
-        raise MissingSensorError(f"{folder}: no sensor file the bundle reads ({', '.join([*required, *optional])})")
+        raise MissingSensorError(f"{folder}: no sensor file the bundle reads ({', '.join([*required, *optional])})"
+                                 f"{gzip_hint(folder, [*required, *optional])}")
     return streams, meta
 
 

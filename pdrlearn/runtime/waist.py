@@ -21,6 +21,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.runtime.fixes import FixInput
+from pdrlearn.textfile import read_text
 
 log = logging.getLogger(__name__)
 
@@ -653,7 +654,7 @@ def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
     if rel not in m["files"]:
         raise _fail(path, f"manifest.json names params '{rel}', which it does not list; re-export the bundle")
     try:
-        p = json.loads((path / rel).read_text())
+        p = json.loads(read_text(path / rel))
     except (OSError, ValueError) as exc:
         raise _fail(path, f"{rel} is not valid JSON ({exc}); re-export the bundle") from None
     bad = [k for k in PARAM_KEYS if not isinstance(p.get(k), int | float) or not math.isfinite(p[k])]

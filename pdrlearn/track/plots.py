@@ -40,6 +40,9 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
     """The figure of :func:`plot_paths` (not saved): ``(pyplot, figure)``; its axes: the plan view, then the
     altitude panel when there is one. The figure is a :func:`pdrlearn.plots.new_figure` (decision E88: the
     matplotlib backend, e.g. a notebook's, is left as it was; the figure shows itself in a notebook cell)."""
+    from pdrlearn.mplconfig import ensure_config_dir
+
+    ensure_config_dir()  # decision B226: no matplotlib noise when the home folder cannot be written
     import matplotlib.pyplot as plt
     from matplotlib.patches import Circle
 

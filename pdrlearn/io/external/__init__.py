@@ -47,8 +47,10 @@ def fetched_by(folder: Path) -> str | None:
     else (a user's session, a folder of other files, a datasets/real session converted by hand)."""
     import json
 
+    from pdrlearn.textfile import read_text
+
     try:
-        meta = json.loads((Path(folder) / "meta.json").read_text())
+        meta = json.loads(read_text(Path(folder) / "meta.json"))
     except (OSError, ValueError):
         return None
     sdist = meta.get("source_sdist") if isinstance(meta, dict) else None

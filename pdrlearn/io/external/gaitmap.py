@@ -184,7 +184,7 @@ def _ts(t: float) -> str:
 
 
 def _write_xyz(path: Path, t_ms: np.ndarray, v: np.ndarray) -> None:
-    with open(path, "w") as f:
+    with open(path, "w", encoding="utf-8") as f:
         f.write("timestamp,x,y,z\n")
         for ti, row in zip(t_ms, v, strict=True):
             f.write(f"{_ts(ti)},{_num(row[0])},{_num(row[1])},{_num(row[2])}\n")

@@ -34,6 +34,7 @@ import pandas as pd
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
 from pdrlearn.io.external.pypi import Sdist
+from pdrlearn.textfile import read_text
 
 SDIST = Sdist("mobgap", "1.2.0", "26f3ec1173f74ad873d13dabe0fd75dde8554720595ebc39159ee18dbea31351")
 
@@ -445,7 +446,7 @@ def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lam
                         f"sdist folder")
     meta_path = src_root / PARTICIPANTS
     try:
-        participants = json.loads(meta_path.read_text())
+        participants = json.loads(read_text(meta_path))
     except FileNotFoundError:
         raise DataError(f"{meta_path}: missing; pass the extracted mobgap-{SDIST.version} sdist folder") from None
     except json.JSONDecodeError as exc:

@@ -1,0 +1,76 @@
+"""Reading the text files pdrlearn reads - meta.json, bundle manifests, parameter files, CSV headers - as UTF-8
+whatever the locale (decision B221), with the standard library alone (the lean runtime imports it).
+
+``open()`` and ``Path.read_text()`` without ``encoding=`` decode with the locale's encoding: under ``LC_ALL=C`` a
+UTF-8 ``meta.json`` holding "Düsseldorf" raised a ``UnicodeDecodeError`` traceback, and on Windows (cp1252) it
+would be read as mojibake without a word. Here every file is UTF-8; a byte order mark (Windows Notepad's "UTF-8
+with BOM") is accepted (``utf-8-sig``), and a file that is not UTF-8 is refused in one line naming it and the fix.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from pdrlearn.errors import DataError, shell_quote
+
+#: the codec of every text file pdrlearn reads: UTF-8, a leading byte order mark accepted (decision B221)
+ENCODING = "utf-8-sig"
+
+
+def not_utf8_message(path, data: bytes, exc: UnicodeDecodeError) -> str:
+    """Decision B221's one line for a file that is not UTF-8: where the first bad byte is, and the fix."""
+    line = data.count(b"\n", 0, exc.start) + 1
+    return (f"{path}: not UTF-8 text (byte 0x{data[exc.start]:02x} on line {line} is not UTF-8: saved as "
+            "Latin-1, Windows-1252 or UTF-16?); save it as UTF-8 (decision B221)")
+
+
+def decode(path, data: bytes) -> str:
+    """``data`` (the bytes of ``path``) as text: UTF-8 with an optional BOM, else decision B221's one line."""
+    try:
+        return data.decode(ENCODING)
+    except UnicodeDecodeError as exc:
+        raise DataError(not_utf8_message(path, data, exc)) from None
+
+
+def read_text(path) -> str:
+    """The text of the file ``path``: UTF-8 (a BOM accepted) under any locale, else one line (decision B221)."""
+    return decode(path, Path(path).read_bytes())
+
+
+def read_json(path):
+    """The JSON value of ``path`` read as :func:`read_text` reads it. Invalid JSON raises ``ValueError``
+    (``json.JSONDecodeError``) for the caller's own message; a file that is not UTF-8 raises :class:`DataError`
+    (decision B221), which callers re-raise before their JSON message."""
+    return json.loads(read_text(path))
+
+
+def header_names(head: str) -> list[str]:
+    """The column names of a comma-separated header line as every reader matches them: surrounding spaces
+    dropped, case folded (decision B222: ``TIMESTAMP,X`` is ``timestamp,x`` for the full reader, this one and
+    ``pdrlearn import`` alike)."""
+    return [c.strip().lower() for c in head.split(",")]
+
+
+def duplicate_message(path, names, header: str) -> str | None:
+    """Decision B223's line for a header naming a column twice (a merged export's ``timestamp,x,x,y,z``), which a
+    reader would otherwise resolve by taking one of them; ``None`` when every name is once. Names compare as
+    :func:`header_names` folds them."""
+    seen = [str(n).strip().lower() for n in names]
+    dup = next((n for i, n in enumerate(seen) if n in seen[:i]), None)
+    if dup is None:
+        return None
+    return (f"{path}: column {dup!r} appears {seen.count(dup)} times in the header ({header.strip()}); keep one "
+            f"column of each name (rename or delete the others; decision B223)")
+
+
+def gzip_hint(folder, stems) -> str:
+    """Decision B224: "; ..." saying that ``folder`` holds sensor files gzip-compressed (``fAccelerometer.csv.gz``),
+    which a session reader does not open, and what to do; "" when it holds none of ``stems``."""
+    found = sorted(p.name for p in Path(folder).glob("*.csv.gz") if p.name[:-len(".csv.gz")] in stems)
+    if not found:
+        return ""
+    names = ", ".join(found[:3]) + (f" and {len(found) - 3} more" if len(found) > 3 else "")
+    return (f"; {names} {'is' if len(found) == 1 else 'are'} gzip-compressed, and a session folder's files are "
+            f"read as plain CSV: decompress them (gunzip {shell_quote(str(Path(folder)))}/*.csv.gz); `pdrlearn "
+            "import FILE.csv.gz` reads a compressed one-CSV lab export (decision B224)")
