@@ -38,6 +38,14 @@ def test_forward_walk_has_no_backward_stride(tmp_path, capsys):
     assert d["n_backward_strides"] == 0
 
 
+@pytest.mark.parametrize(("route", "seed"), [("straight:10, turn:180, straight:10", 5),
+                                             ("straight:5, turn:90, straight:5, turn:-90, straight:5", 20)])
+def test_a_turn_on_the_spot_is_no_backward_stride(tmp_path, capsys, route, seed):
+    """L203 amended (a feature-tour trial, session 27): user 5's 180 deg turn made two turn strides (120 and 60 deg)
+    whose short chords point backward (-0.25 / -0.15 m) and were counted backward; user 20's two 90 deg turns 3."""
+    assert _track(tmp_path, capsys, route, seed)["n_backward_strides"] == 0
+
+
 def test_lower_back_track_has_none(tmp_path, capsys):
     sim = tmp_path / "w"
     assert main(["simulate", "--scenario", "A", "--user-seed", "3561", "--out", str(sim)]) == 0

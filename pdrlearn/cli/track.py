@@ -103,7 +103,8 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
                                "from each file (decision B81).")
 ALIGN_UNITS_OPT = typer.Option(False, "--align-units", help="plasys, offline, foot + waist: move the waist unit's "
                                "clock onto the foot's by the steps both detect (offset and drift, "
-                               "pdrlearn.steps.align_units; an offset under a step period; decision L162).")
+                               "pdrlearn.steps.align_units; reliable for offsets under half a step period, about "
+                               "0.25 s: a larger one can be read one step period off; decision L162).")
 CLOCK_OFFSET_OPT = typer.Option(None, "--clock-offset", metavar="SECONDS", help="plasys, foot + waist: the waist "
                                 "unit's clock offset, known by hand (t_waist = t_foot + SECONDS: 0.3 when the waist "
                                 "clock reads 0.3 s late), removed before tracking, offline or streamed; instead of "

@@ -281,12 +281,19 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
     return float(length.median()) if len(length) else None
 
 
+#: decision L203 (amended): a stride turning this much (deg) or more is a turn, not backward travel (L119's turn cue)
+BACKWARD_MAX_TURN_DEG = 30.0
+
+
 def backward_strides(steps: pd.DataFrame) -> int | None:
     """Decision L203: ``n_backward_strides``, the foot track's strides whose ``raw_length_m`` is negative (the
     stride's displacement points backward along the foot's forward axis: backward travel), with or without a model
     (a model-free track leaves ``direction`` empty and its ``length_m`` positive, L65); the 0 m rows of a foot gap
-    (``gap_s`` > 0, L67) and ``impossible`` strides (L97) left out, as :func:`median_stride_length`. None for a
-    lower-back track (no raw length per step) or a table without ``raw_length_m``."""
+    (``gap_s`` > 0, L67) and ``impossible`` strides (L97) left out, as :func:`median_stride_length`; amended in the
+    same session (a feature-tour trial): a stride turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot,
+    whose short chord can point anywhere (user 5's ``straight:10, turn:180, straight:10``: two turn strides of 120 and
+    60 deg with -0.25 / -0.15 m), not backward travel. None for a lower-back track (no raw length per step) or a table
+    without ``raw_length_m``."""
     units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
     if units != {"foot"} or "raw_length_m" not in steps:
         return None
@@ -294,6 +301,9 @@ def backward_strides(steps: pd.DataFrame) -> int | None:
     keep = ~(steps["gap_s"].to_numpy(float) > 0) if "gap_s" in steps else np.ones(len(steps), bool)
     if "impossible" in steps:
         keep &= ~steps["impossible"].eq(True).to_numpy(bool)
+    if "turn_angle_rad" in steps:  # L203 amended: a turning stride is no backward travel
+        turn = np.abs(np.degrees(steps["turn_angle_rad"].to_numpy(float)))
+        keep &= ~(turn >= BACKWARD_MAX_TURN_DEG)
     return int(((raw < 0) & keep).sum())
 
 
