@@ -229,6 +229,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``"turns"``: W127, sparing a step that turns the pelvis by more than 15 deg),
       ``contact_shift`` (decision W131, on: every kept contact judged once more by W23's weight-shift test with the
       side read at the contact, turns spared; offline only),
+      ``realtime_contact_shift`` (decision W166, off: W131's test inside each realtime decision window, for
+      ``realtime`` and the live trackers; measured and not adopted),
       ``weak_fill`` (decision W148, off: a weak step on the decided alternating side where the alternation and the
       local rhythm ask for one; offline only),
       ``parity_fill`` (decision W152, off: a contact without a vertical maximum between two kept contacts of one
