@@ -127,8 +127,8 @@ SESSIONS: tuple[Column, ...] = (
     ("n_bouts", "count", "integer", "rows of bouts.csv (L124)"),
     ("n_bouts_out_of_range", "count", "integer", "bouts of bouts.csv whose gait_out_of_range is true (L195)"),
     ("n_backward_strides", "count", "integer", "foot: strides whose raw length is negative, turning under 30 deg "
-                                               "(backward travel, with or without a model; L203); empty on the lower "
-                                               "back"),
+                                               "(backward travel, with or without a model; a replay: strides classed "
+                                               "backward; L203); empty on the lower back"),
     ("n_cv_strides", "count", "integer", "steady straight level forward strides stride_time_cv_pct is computed over"),
     ("n_detected", "count", "integer", "lower back: detected contacts scored"),
     ("n_pauses", "count", "integer", "stands of about 1 s or more inside the walk (L104)"),

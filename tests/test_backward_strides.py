@@ -52,3 +52,16 @@ def test_lower_back_track_has_none(tmp_path, capsys):
     capsys.readouterr()
     assert main(["track", str(sim), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "tw"), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["n_backward_strides"] is None
+
+
+def test_a_replay_counts_the_strides_its_model_classes_backward(tmp_path, capsys):
+    """L203 amended (the feature tour, session 27): `pdrlearn run` left ``n_backward_strides`` empty (its table has
+    no raw length); it counts the strides its bundle classes backward (signed ``length_m``): 6 of 6 here."""
+    from pathlib import Path
+
+    bundle = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
+    sim = tmp_path / "back"
+    assert main(["simulate", "--route", "stand:3, backward:10, stand:3", "--user-seed", "11", "--out", str(sim)]) == 0
+    capsys.readouterr()
+    assert main(["run", str(bundle), str(sim), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["n_backward_strides"] == 6

@@ -295,9 +295,12 @@ def backward_strides(steps: pd.DataFrame) -> int | None:
     60 deg with -0.25 / -0.15 m), not backward travel. None for a lower-back track (no raw length per step) or a table
     without ``raw_length_m``."""
     units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
-    if units != {"foot"} or "raw_length_m" not in steps:
+    # L203 amended: a replayed table (`pdrlearn run`) has no raw length; its signed ``length_m`` (negative only for a
+    # stride classed backward, thesis eq. 61's sign) counts instead
+    column = "raw_length_m" if "raw_length_m" in steps else "length_m"
+    if units != {"foot"} or column not in steps:
         return None
-    raw = steps["raw_length_m"].to_numpy(float)
+    raw = steps[column].to_numpy(float)
     keep = ~(steps["gap_s"].to_numpy(float) > 0) if "gap_s" in steps else np.ones(len(steps), bool)
     if "impossible" in steps:
         keep &= ~steps["impossible"].eq(True).to_numpy(bool)
