@@ -200,27 +200,32 @@ def outside(values=(False, True, "rhythm")) -> None:
               + ", ".join(f"sit_veto={v!r} {n}" for v, n in tot.items()))
 
 
-def rhythm() -> None:
-    """Decision W109: (a), (b) on fresh users 910-949, (c) on the real recordings, sit_veto="rhythm" against
-    no veto; then the Test11 contacts outside the reference bouts (information)."""
-    users = range(910, 950)
+def _measure(value: str, users: range, decision: str, *, strict: bool, shown: tuple = (False, True, "rhythm")) -> None:
+    """One sit-veto candidate's adoption rule, measured: (a), (b) on fresh ``users``, (c) on the real recordings,
+    ``sit_veto=value`` against no veto; then the Test11 contacts outside the reference bouts (information)."""
     m0: dict = {}
     m1: dict = {}
     print("(a) without the veto")
     before = count(users, m0)
-    print('(a) with sit_veto="rhythm"')
-    after = count(users, m1, sit_veto="rhythm")
+    print(f'(a) with sit_veto="{value}"')
+    after = count(users, m1, sit_veto=value)
     ok_a = True
     for p in PIPELINES:
         removed = 100.0 * (before[p] - after[p]) / max(before[p], 1)
         ok_a &= removed >= 80.0
         print(f"(a) {p}: in-transfer contacts {before[p]} -> {after[p]}, removed {removed:.1f} % "
               f"({'met' if removed >= 80.0 else 'NOT met'}: >= 80 %); true contacts matched {m0[p]} -> {m1[p]}")
-    ok_b = walks(users, "rhythm")
-    ok_c = real("rhythm")
-    print(f"W109: (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, "
+    ok_b = walks(users, value)
+    ok_c = real(value, strict=strict)
+    print(f"{decision}: (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, "
           f"(c) {'met' if ok_c else 'NOT met'} -> {'ADOPT' if ok_a and ok_b and ok_c else 'not adopted'}")
-    outside()
+    outside(shown)
+
+
+def rhythm() -> None:
+    """Decision W109: (a), (b) on fresh users 910-949, (c) on the real recordings, sit_veto="rhythm" against
+    no veto; then the Test11 contacts outside the reference bouts (information)."""
+    _measure("rhythm", range(910, 950), "W109", strict=False)
 
 
 def today() -> None:
@@ -232,24 +237,7 @@ def today() -> None:
 def alternation() -> None:
     """Decision W180's rule, measured once (W181): (a), (b) on fresh users 3460-3499, (c) on the real recordings,
     sit_veto="alternation" against no veto; then the Test11 contacts outside the reference bouts (information)."""
-    users = range(3460, 3500)
-    m0: dict = {}
-    m1: dict = {}
-    print("(a) without the veto")
-    before = count(users, m0)
-    print('(a) with sit_veto="alternation"')
-    after = count(users, m1, sit_veto="alternation")
-    ok_a = True
-    for p in PIPELINES:
-        removed = 100.0 * (before[p] - after[p]) / max(before[p], 1)
-        ok_a &= removed >= 80.0
-        print(f"(a) {p}: in-transfer contacts {before[p]} -> {after[p]}, removed {removed:.1f} % "
-              f"({'met' if removed >= 80.0 else 'NOT met'}: >= 80 %); true contacts matched {m0[p]} -> {m1[p]}")
-    ok_b = walks(users, "alternation")
-    ok_c = real("alternation", strict=True)
-    print(f"W180: (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, "
-          f"(c) {'met' if ok_c else 'NOT met'} -> {'ADOPT' if ok_a and ok_b and ok_c else 'not adopted'}")
-    outside((False, "rhythm", "alternation"))
+    _measure("alternation", range(3460, 3500), "W180", strict=True, shown=(False, "rhythm", "alternation"))
 
 
 def where() -> None:

@@ -276,3 +276,23 @@ def push_waist(tr, s, chunks) -> list:
     if i < len(a.t):
         out += tr.push(a.t[i:], a.values[i:], g.values[i:])
     return out + tr.flush()
+
+
+def gap_dtw_terrain_case():
+    """User 5's foot DTW terrain model trained with C4's gap temperature (its probabilities stay under L18's 0.95
+    gate, the case L184 and L189 were measured on; C67's calibrated default passes more strides) and scenario D at
+    fast speed, both simulated with device errors as experiments/localization.py does."""
+    from functools import partial
+
+    import pdrlearn.classify.training as training
+    from pdrlearn.classify import train_user
+    from pdrlearn.sim import simulate
+
+    sim = partial(simulate, device_errors=True)
+    kept, training.DTW_CALIBRATION = training.DTW_CALIBRATION, "gap"
+    try:
+        model = train_user([sim("terrain", user_seed=5, speed="normal")], tasks=["terrain"], methods=["dtw"],
+                           units=["foot"], cv=2, distance_calibration=False)
+    finally:
+        training.DTW_CALIBRATION = kept
+    return model, sim("D", user_seed=5, speed="fast")

@@ -6,14 +6,11 @@ their integrated heights (+1.09 m on user 5 fast, altitude 3.93 -> 4.86 m for 3.
 
 from __future__ import annotations
 
-from functools import partial
-
 import numpy as np
 import pytest
 
 import pdrlearn.track.plasys as plasys
 from pdrlearn.kernels.distance import LEVEL_DZ_M, unclassed_level_dz
-from pdrlearn.sim import simulate
 from pdrlearn.track.evaluate import evaluate_track
 
 
@@ -30,17 +27,9 @@ def test_unclassed_level_dz_levels_only_the_unclassed_strides():
 def soft_terrain_case():
     """User 5's DTW terrain model (probabilities below the gate) and scenario D at fast speed, as the trial's: DTW
     with C4's gap temperature, as in session 26 (C67's calibrated temperature passes more strides through the gate)."""
-    import pdrlearn.classify.training as training
-    from pdrlearn.classify import train_user
+    from tests.runtime_helpers import gap_dtw_terrain_case
 
-    sim = partial(simulate, device_errors=True)  # as experiments/localization.py
-    kept, training.DTW_CALIBRATION = training.DTW_CALIBRATION, "gap"
-    try:
-        model = train_user([sim("terrain", user_seed=5, speed="normal")], tasks=["terrain"], methods=["dtw"],
-                           units=["foot"], cv=2, distance_calibration=False)
-    finally:
-        training.DTW_CALIBRATION = kept
-    return model, sim("D", user_seed=5, speed="fast")
+    return gap_dtw_terrain_case()
 
 
 @pytest.mark.slow

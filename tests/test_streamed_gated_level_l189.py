@@ -32,21 +32,14 @@ def test_one_stride_call_is_the_array_function():
 def soft_terrain_case(tmp_path_factory):
     """User 5's DTW terrain model (probabilities below the gate), exported to a bundle, and scenario D fast: DTW
     with C4's gap temperature, as L189 measured it (C67's calibrated temperature passes more strides)."""
-    import pdrlearn.classify.training as training
-    from pdrlearn.classify import train_user
     from pdrlearn.export.from_model import export_model
+    from tests.runtime_helpers import gap_dtw_terrain_case
 
-    sim = partial(simulate, device_errors=True)  # as experiments/localization.py
-    kept, training.DTW_CALIBRATION = training.DTW_CALIBRATION, "gap"
-    try:
-        model = train_user([sim("terrain", user_seed=5, speed="normal")], tasks=["terrain"], methods=["dtw"],
-                           units=["foot"], cv=2, distance_calibration=False)
-    finally:
-        training.DTW_CALIBRATION = kept
+    model, d = gap_dtw_terrain_case()
     root = tmp_path_factory.mktemp("l189")
     model.save(root / "model")
     export_model(root / "model", root / "bundle")
-    return model, root / "bundle", sim("D", user_seed=5, speed="fast")
+    return model, root / "bundle", d
 
 
 def _live(bundle, d, monkeypatch, on: bool):

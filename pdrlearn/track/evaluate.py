@@ -13,6 +13,7 @@ import pandas as pd
 
 from pdrlearn.io.session import Session
 from pdrlearn.track.base import TrackResult
+from pdrlearn.track.clinical import PAUSE_MAX_TURN_DEG
 
 
 def match_by_overlap(est: pd.DataFrame, ref: pd.DataFrame, *, min_iou: float = 0.5) -> list[tuple[int, int]]:
@@ -281,8 +282,8 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
     return float(length.median()) if len(length) else None
 
 
-#: decision L203 (amended): a stride turning this much (deg) or more is a turn, not backward travel (L119's turn cue)
-BACKWARD_MAX_TURN_DEG = 30.0
+#: decision L203 (amended): a stride turning this much (deg) or more is a turn, not backward travel: L119's turn cue
+BACKWARD_MAX_TURN_DEG = PAUSE_MAX_TURN_DEG
 
 
 def backward_strides(steps: pd.DataFrame) -> int | None:
