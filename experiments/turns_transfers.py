@@ -3,7 +3,9 @@
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_transfers.py sim    # users 3530-3559
      ... experiments/turns_transfers.py real   # datasets/real + datasets/external mobgap Test11 turns.csv
-Output: experiments/results/turns_transfers_sim.txt, turns_transfers_real.txt (the printed lines)
+     ... experiments/turns_transfers.py sim28  # decision L208's rule: users 3870-3899, both turn timings
+Output: experiments/results/turns_transfers_sim.txt, turns_transfers_real.txt (the printed lines); L208 / L209:
+turns_timing_sim.txt, turns_timing_real.txt (``real`` prints both timings since L208)
 
 Simulated truth. A turn: the route's one turn; its truth start / end are where the waist unit's true heading
 (trajectory.csv ``heading_rad``, unwrapped, a 1 s moving mean: one stride's pelvis rotation averaged out) has gone
@@ -30,12 +32,17 @@ from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT, transfer_summar
 
 logging.disable(logging.WARNING)
 
+#: decision L208: turns.csv's timings compared (L200's rows, L208's heading 5-95 %)
+TIMINGS = ("rows", "heading")
 USERS = range(3530, 3560)
 #: (route, sit_start_s, sit_end_s) by user % 3: a TUG with a 180 deg turn on the spot, a walk with a 180 deg pivot,
 #: a 90 deg turn with a chair sit inside the route
 ROUTES = (("straight:3, turn:180, straight:3", 5.0, 5.0),
           ("straight:8, pivot:180, straight:8", 5.0, 5.0),
           ("straight:5, turn:90, straight:5, sit:8, straight:3", 0.0, 0.0))
+#: decision L208's fresh users and routes (by user % 4): L201's three and a 360 deg turn on the spot
+USERS28 = range(3870, 3900)
+ROUTES28 = ROUTES + (("straight:5, turn:360, straight:5", 0.0, 0.0),)
 TRACKS = {"plasys": lambda s: track_plasys(s), "plasys-stream": lambda s: track_streaming(s, method="M2"),
           "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum"),
           "waist-pll": lambda s: track_waist(s, pipeline="waist-pll")}
@@ -57,32 +64,40 @@ def med(x) -> str:
     return f"{np.median(x):+.2f}" if x.size else "n/a"
 
 
-def sim() -> None:
-    turn_err = {k: [] for k in TRACKS}
+def sim(users=USERS, routes=ROUTES, timings=("rows",)) -> None:
+    turn_err = {(k, m): [] for k in TRACKS for m in timings}
+    counts = {k: [] for k in TRACKS}  # decision L208's check: turns and angles the same under every timing
     tr_err = {k: {SIT_TO_STAND: [], STAND_TO_SIT: []} for k in ("waist-pendulum", "waist-pll")}
     tr_count = {k: [0, 0, 0] for k in tr_err}  # truth, matched, detected
     tug = {k: [] for k in tr_err}
-    for u in USERS:
-        route, s0, s1 = ROUTES[u % 3]
+    for u in users:
+        route, s0, s1 = routes[u % len(routes)]
         speed = "slow" if (u // 3) % 2 else "normal"
         s = simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, seed=u, sit_start_s=s0,
                           sit_end_s=s1)
         ta, tb, ang = true_turn(s)
-        truth_tr = s.extras["transfers"]
+        truth_tr = s.extras.get("transfers", pd.DataFrame(columns=["start_s", "seated_s", "rise_s", "end_s"]))
         line = [f"user {u} {speed} [{route}] sit {s0:g}/{s1:g}: truth turn {ta:.2f}-{tb:.2f} s "
                 f"({tb - ta:.2f} s) {ang:+.1f} deg"]
         for name, fn in TRACKS.items():
             res = fn(s)
-            tt = turn_table(res.steps, detected_bouts(res.steps))
-            if not len(tt):
-                line.append(f"  {name}: no turn")
-                turn_err[name].append((np.nan,) * 4)
-            else:
-                mid = 0.5 * (tt["start_s"] + tt["end_s"]).to_numpy(float)
-                r = tt.iloc[int(np.argmin(np.abs(mid - 0.5 * (ta + tb))))]
+            tabs = {m: turn_table(res.steps, detected_bouts(res.steps), timing=m) for m in timings}
+            ref = tabs[timings[0]]
+            counts[name].append(all(len(t) == len(ref) and np.array_equal(t["angle_deg"], ref["angle_deg"])
+                                    for t in tabs.values()))
+            # the nearest turn by the first timing's midpoints: the same turn (row) under every timing
+            i_near = (int(np.argmin(np.abs(0.5 * (ref["start_s"] + ref["end_s"]).to_numpy(float) - 0.5 * (ta + tb))))
+                      if len(ref) else None)
+            for m, tt in tabs.items():
+                tag = name if len(timings) == 1 else f"{name} [{m}]"
+                if i_near is None:
+                    line.append(f"  {tag}: no turn")
+                    turn_err[(name, m)].append((np.nan,) * 4)
+                    continue
+                r = tt.iloc[i_near]
                 e = (r.start_s - ta, r.end_s - tb, r.duration_s - (tb - ta), r.angle_deg - ang)
-                turn_err[name].append(e)
-                line.append(f"  {name}: {len(tt)} turn(s); nearest {r.start_s:.2f}-{r.end_s:.2f} s "
+                turn_err[(name, m)].append(e)
+                line.append(f"  {tag}: {len(tt)} turn(s); nearest {r.start_s:.2f}-{r.end_s:.2f} s "
                             f"({r.duration_s:.2f} s) {r.angle_deg:+.1f} deg, peak {r.peak_rate_dps:.0f} deg/s; "
                             f"errors start {e[0]:+.2f} end "
                             f"{e[1]:+.2f} duration {e[2]:+.2f} s angle {e[3]:+.1f} deg")
@@ -120,10 +135,12 @@ def sim() -> None:
                         + f"; tug_time_s {summ['tug_time_s']} (truth {t_tug})")
         print("\n".join(line), flush=True)
     print("\nTURNS (median signed error, median |error|; over the users with a turn detected):")
-    for name, e in turn_err.items():
+    for (name, m), e in turn_err.items():
         a = np.array(e, float)
         n = int(np.isfinite(a[:, 0]).sum())
-        print(f"{name}: {n}/{len(a)} turns found; start {med(a[:, 0])} s (|.| {med(np.abs(a[:, 0]))}), end "
+        tag = name if len(timings) == 1 else f"{name} [{m}] (turns and angles equal across timings in "
+        tag += "" if len(timings) == 1 else f"{sum(counts[name])}/{len(counts[name])} sessions)"
+        print(f"{tag}: {n}/{len(a)} turns found; start {med(a[:, 0])} s (|.| {med(np.abs(a[:, 0]))}), end "
               f"{med(a[:, 1])} s (|.| {med(np.abs(a[:, 1]))}), duration {med(a[:, 2])} s (|.| {med(np.abs(a[:, 2]))}),"
               f" angle {med(a[:, 3])} deg (|.| {med(np.abs(a[:, 3]))})")
     print("TRANSFERS (median signed error, median |error|):")
@@ -138,35 +155,51 @@ def sim() -> None:
               f"{med(g)} s (|.| {med(np.abs(g))})")
 
 
+def sim28() -> None:
+    """Decision L208's adoption rule: fresh users 3870-3899, both timings from the same tracks."""
+    sim(USERS28, ROUTES28, TIMINGS)
+
+
 def real() -> None:
     folders = [Path("datasets/real") / n for n in ("mobgap_HA001_Test11_Trial1",)]
     folders += [Path("datasets/external") / n for n in ("mobgap_HA002_Test11_Trial1", "mobgap_MS001_Test11_Trial1")]
+    pooled = {}
     for f in folders:
         s = read_session(f)
         ref = s.extras["turns"]
         big = ref[ref["angle_deg"].abs() >= 80]
         for name in ("waist-pendulum", "waist-pll"):
             res = track_waist(s, pipeline=name)
-            tt = turn_table(res.steps, detected_bouts(res.steps))
-            err, found = [], 0
-            for r in big.itertuples():
-                m = tt[(tt["start_s"] <= r.end_s) & (tt["end_s"] >= r.start_s)] if len(tt) else tt
-                if not len(m):
-                    continue
-                found += 1
-                d = m.iloc[int(np.argmax(m["angle_deg"].abs().to_numpy()))]
-                err.append((d.duration_s - (r.end_s - r.start_s), abs(d.angle_deg) - abs(r.angle_deg),
-                            float(np.sign(d.angle_deg) == np.sign(r.angle_deg)), d.start_s - r.start_s,
-                            d.end_s - r.end_s))
-            a = np.array(err, float).reshape(-1, 5)
-            print(f"{f.name} {name}: reference turns >= 80 deg {len(big)} (of {len(ref)}), detected turns {len(tt)}, "
-                  f"overlapping {found}; duration error median {med(a[:, 0])} s (|.| {med(np.abs(a[:, 0]))}), "
-                  f"start {med(a[:, 3])} s, end {med(a[:, 4])} s, |angle| error median {med(a[:, 1])} deg "
-                  f"(|.| {med(np.abs(a[:, 1]))}), sign agreement {np.mean(a[:, 2]) if len(a) else float('nan'):.2f}; "
-                  f"transfers detected {len(res.info['transfers'])} "
-                  f"({', '.join(t['kind'] + ' ' + format(t['start_s'], '.1f') for t in res.info['transfers'])})",
-                  flush=True)
+            for timing in TIMINGS:
+                tt = turn_table(res.steps, detected_bouts(res.steps), timing=timing)
+                pooled.setdefault((name, timing), []).extend(_real_line(f, name, timing, big, ref, res, tt))
+    for (name, timing), d in pooled.items():  # decision L208's rule: the pooled median |duration error|
+        print(f"pooled {name} [{timing}]: {len(d)} overlapped reference turns; duration error median {med(d)} s "
+              f"(|.| {med(np.abs(np.asarray(d, float)))})")
+
+
+def _real_line(f, name, timing, big, ref, res, tt) -> list[float]:
+    """Print one recording's line for one pipeline and timing; return its duration errors (s)."""
+    err, found = [], 0
+    for r in big.itertuples():
+        m = tt[(tt["start_s"] <= r.end_s) & (tt["end_s"] >= r.start_s)] if len(tt) else tt
+        if not len(m):
+            continue
+        found += 1
+        d = m.iloc[int(np.argmax(m["angle_deg"].abs().to_numpy()))]
+        err.append((d.duration_s - (r.end_s - r.start_s), abs(d.angle_deg) - abs(r.angle_deg),
+                    float(np.sign(d.angle_deg) == np.sign(r.angle_deg)), d.start_s - r.start_s,
+                    d.end_s - r.end_s))
+    a = np.array(err, float).reshape(-1, 5)
+    print(f"{f.name} {name} [{timing}]: reference turns >= 80 deg {len(big)} (of {len(ref)}), detected turns "
+          f"{len(tt)}, overlapping {found}; duration error median {med(a[:, 0])} s (|.| {med(np.abs(a[:, 0]))}), "
+          f"start {med(a[:, 3])} s, end {med(a[:, 4])} s, |angle| error median {med(a[:, 1])} deg "
+          f"(|.| {med(np.abs(a[:, 1]))}), sign agreement {np.mean(a[:, 2]) if len(a) else float('nan'):.2f}; "
+          f"transfers detected {len(res.info['transfers'])} "
+          f"({', '.join(t['kind'] + ' ' + format(t['start_s'], '.1f') for t in res.info['transfers'])})",
+          flush=True)
+    return a[:, 0].tolist()
 
 
 if __name__ == "__main__":
-    {"sim": sim, "real": real}[sys.argv[1]]()
+    {"sim": sim, "sim28": sim28, "real": real}[sys.argv[1]]()

@@ -219,12 +219,51 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
     return st, out
 
 
+#: decision L208: turns.csv's timings: "rows" (L200: the first and last summed rows' start / end), "heading" (where
+#: the turn's heading, spread over its rows' spans, has gone TURN_TIMING_FRACTIONS of its angle)
+TURN_TIMINGS = ("rows", "heading")
+TURN_TIMING = "rows"
+#: decision L208: the fractions of a turn's angle at which "heading" timing starts and ends it (L201's truth
+#: definition of a simulated turn: the body's heading 5 % to 95 % of its change)
+TURN_TIMING_FRACTIONS = (0.05, 0.95)
+
+
+def heading_crossings(dh: np.ndarray, start: np.ndarray, end: np.ndarray, angle: float,
+                      fractions: tuple[float, float] = TURN_TIMING_FRACTIONS) -> tuple[float, float]:
+    """Decision L208: the first times (s) at which a heading made of the changes ``dh`` (deg), each spread linearly
+    over ``[start, end]`` (an instant where ``end <= start``), has gone ``fractions`` of ``angle`` (deg, non-zero,
+    the changes' sum) from its value before ``start.min()``; the heading is linear between the spans' knots."""
+    dh, start, end = (np.asarray(a, float) for a in (dh, start, end))
+    end = np.maximum(end, start)
+    knots = np.unique(np.r_[start, end])
+    width = end - start
+    lin = width > 0
+
+    def level(tau: np.ndarray, right: bool) -> np.ndarray:
+        d = tau[:, None] - start[None, :]
+        step = (d >= 0) if right else (d > 0)
+        f = np.where(lin, np.clip(d / np.where(lin, width, 1.0), 0.0, 1.0), step)
+        return (f * dh).sum(axis=1) * math.copysign(1.0, angle)
+
+    after, before = level(knots, True), level(knots, False)  # at each knot and just before it (an instant's jump)
+    out = []
+    for frac in fractions:
+        target = frac * abs(angle)
+        k = int(np.argmax(after >= target - 1e-9 * abs(angle)))
+        if k > 0 and before[k] >= target and before[k] > after[k - 1]:  # crossed on the linear piece before knot k
+            a = (target - after[k - 1]) / (before[k] - after[k - 1])
+            out.append(float(knots[k - 1] + a * (knots[k] - knots[k - 1])))
+        else:
+            out.append(float(knots[k]))
+    return out[0], out[1]
+
+
 #: turns.csv's columns (decision L200), in order
 TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "peak_rate_dps", "n_rows", "bout")
 
 
 def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
-               min_deg: float = TURN_COUNT_MIN_DEG) -> pd.DataFrame:
+               min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
@@ -232,7 +271,14 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     time between the starts of two of its rows (the rate :data:`TURN_RATE_MIN_DPS` is judged on), ``n_rows`` the
     rows it spans and ``bout`` the number of the ``bouts`` row (bouts.csv, L124) whose span holds the turn's first
     turning row (empty outside every bout, or without ``bouts``). The times are the rows' times: a foot row's
-    ``start_s`` is the rest before its stride, a lower-back row's its initial contact."""
+    ``start_s`` is the rest before its stride, a lower-back row's its initial contact.
+
+    ``timing`` (decision L208; None = :data:`TURN_TIMING`): ``"rows"`` the times above (L200); ``"heading"``
+    ``start_s`` / ``end_s`` where the turn's heading, each interval's change spread over its row's span, has gone
+    :data:`TURN_TIMING_FRACTIONS` of the angle (:func:`heading_crossings`)."""
+    timing = TURN_TIMING if timing is None else timing
+    if timing not in TURN_TIMINGS:
+        raise ValueError(f"turn_table timing must be one of {TURN_TIMINGS}, not {timing!r}")
     st, spans = _turn_spans(steps)
     rows = []
     if spans:
@@ -241,6 +287,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         h = np.degrees(_heading(st))
         with np.errstate(invalid="ignore", divide="ignore"):
             rate = np.abs(np.diff(h)) / np.diff(t)
+        # a row's span: its end, else the next row's start (L200's end of a turn), else none (an instant)
+        nxt = np.r_[t[1:], t[-1]]
+        span_end = np.where(np.isfinite(end) & (end > t), end, np.maximum(nxt, t))
         b_lo, b_hi, b_no = (np.zeros(0),) * 3
         if bouts is not None and len(bouts):
             b_lo, b_hi = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
@@ -252,6 +301,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             t0 = float(t[first + 1])
             t1 = float(end[last]) if np.isfinite(end[last]) and end[last] > t[last] else float(
                 t[min(last + 1, len(t) - 1)])
+            if timing == "heading":  # decision L208: interval j's change spread over row j + 1's span
+                j = np.arange(first, last)
+                t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], angle, TURN_TIMING_FRACTIONS)
             r = rate[a:b][np.isfinite(rate[a:b])]
             tf = t[a + 1]
             inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
