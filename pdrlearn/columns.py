@@ -178,6 +178,7 @@ SESSIONS: tuple[Column, ...] = (
     ("median_turn_angle_deg", "deg", "number", "median absolute angle of turns.csv's turns (L200)"),
     ("median_turn_peak_rate_dps", "deg/s", "number", "median peak turning rate of turns.csv's turns (L200)"),
     ("turn_time_s", "s", "number", "turns.csv's durations summed (L200)"),
+    ("median_turn_mean_rate_dps", "deg/s", "number", "median mean turning rate of turns.csv's turns (L209)"),
     ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers (transfers.csv, W182); empty on a foot "
                                            "track (a foot unit does not see the trunk)"),
     ("n_stand_to_sit", "count", "integer", "lower back: stand-to-sit transfers (W182); empty on a foot track"),
@@ -259,14 +260,16 @@ BOUTS: tuple[Column, ...] = (
 #: decision L200: a track's turns.csv, one row per turn of at least turn_count_min_deg (foot and lower back)
 TURNS: tuple[Column, ...] = (
     ("turn", "index", "integer", "the turn's number in the session, from 1"),
-    ("start_s", "s", "number", "the start of the first row whose heading change the turn sums (a foot row: the rest "
-                               "before its stride; a lower-back row: its contact), on the session's clock"),
-    ("end_s", "s", "number", "the end of the last such row"),
+    ("start_s", "s", "number", "where the turn's heading, each row's change spread over the row's span, has gone 5 % "
+                               "of its angle (L208, L209), on the session's clock"),
+    ("end_s", "s", "number", "where that heading has gone 95 % of the angle (L208, L209)"),
     ("duration_s", "s", "number", "end_s - start_s"),
     ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181)"),
     ("peak_rate_dps", "deg/s", "number", "largest |heading change| / time between two of its rows' starts"),
     ("n_rows", "count", "integer", "rows of steps.csv the turn spans"),
     ("bout", "index", "integer", "the bouts.csv bout holding the turn; empty outside every bout"),
+    ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s (90 % of |angle_deg|) / "
+                                         "duration_s (L209); empty for a turn of no duration"),
 )
 
 #: decision W182: a lower-back track's transfers.csv (a foot track writes none)

@@ -1,5 +1,6 @@
-"""Decisions L200, L202: turns.csv (each turn's start, end, duration, signed angle, peak rate, bout) and its summary
-keys, on a hand-made step table and a simulated TUG tracked by the command line (foot: no transfers.csv)."""
+"""Decisions L200, L202, L208, L209: turns.csv (each turn's start, end, duration, signed angle, peak and mean rate,
+bout) and its summary keys, on a hand-made step table and a simulated TUG tracked by the command line (foot: no
+transfers.csv); the turn timed by its heading (5 % to 95 % of the angle, the default) or by its rows (L200)."""
 
 from __future__ import annotations
 
@@ -14,7 +15,16 @@ from pdrlearn.columns import TURNS, undocumented
 from pdrlearn.io import write_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track.clinical import TURN_SUMMARY_KEYS, TURN_TABLE_COLUMNS, turn_rows, turn_summary, turn_table, turns
+from pdrlearn.track.clinical import (
+    TURN_SUMMARY_KEYS,
+    TURN_TABLE_COLUMNS,
+    TURN_TIMING,
+    heading_crossings,
+    turn_rows,
+    turn_summary,
+    turn_table,
+    turns,
+)
 
 
 def _table(dh_deg, dt=1.0):
@@ -30,7 +40,7 @@ def test_one_row_per_counted_turn_with_its_rows_times():
     # counted: under turn_count_min_deg), straight
     dh = [0, 0, 0, 60, 60, 60, 0, 0, 0, 0, -45, -45, 0, 0, 0, 40, 0, 0]
     st = _table(dh)
-    tt = turn_table(st)
+    tt = turn_table(st, timing="rows")  # L200's timing (an option since L209)
     assert list(tt.columns) == list(TURN_TABLE_COLUMNS)
     angles, first = turn_rows(st)
     assert len(tt) == int((np.abs(angles) >= 80).sum()) == 2  # exactly turn_count's turns
@@ -46,6 +56,39 @@ def test_one_row_per_counted_turn_with_its_rows_times():
     assert set(s) == set(TURN_SUMMARY_KEYS)
     assert s["median_turn_duration_s"] == pytest.approx(np.median([2.8, 1.8]))
     assert s["median_turn_angle_deg"] == pytest.approx(135.0) and s["turn_time_s"] == pytest.approx(4.6)
+    # the whole angle over the rows' span: 180 / 2.8 and 90 / 1.8 deg/s
+    assert tt["mean_rate_dps"].tolist() == pytest.approx([180 / 2.8, 90 / 1.8])
+    assert s["median_turn_mean_rate_dps"] == pytest.approx(np.median([180 / 2.8, 50.0]))
+
+
+def test_heading_timing_is_the_default_and_moves_only_the_times():
+    """L208 / L209: the turn starts where its heading, each row's change spread over the row's span, has gone 5 % of
+    the angle and ends at 95 %; angles, counts, peak rates, rows and bouts are the rows timing's."""
+    assert TURN_TIMING == "heading"
+    st = _table([0, 0, 0, 60, 60, 60, 0, 0, 0, 0, -45, -45, 0, 0, 0, 40, 0, 0])
+    tt, rows = turn_table(st), turn_table(st, timing="rows")
+    # 180 deg over rows 4-6 (each 0.8 s): 9 deg 0.12 s into row 4, 171 deg 0.68 s into row 6
+    assert tt.loc[0, ["start_s", "end_s", "duration_s"]].tolist() == pytest.approx([4.12, 6.68, 2.56])
+    assert tt.loc[1, ["start_s", "end_s"]].tolist() == pytest.approx([11.08, 12.72])  # -90 over rows 11-12
+    # the heading turns 90 % of the angle between the two times
+    assert tt["mean_rate_dps"].tolist() == pytest.approx([0.9 * 180 / 2.56, 0.9 * 90 / 1.64])
+    same = ["turn", "angle_deg", "peak_rate_dps", "n_rows"]
+    pd.testing.assert_frame_equal(tt[same], rows[same])
+    assert (tt["duration_s"] < rows["duration_s"]).all()
+    with pytest.raises(ValueError, match="timing"):
+        turn_table(st, timing="steps")
+
+
+def test_heading_crossings_spread_and_instant_changes():
+    # a right 90 over 2 s: 5 % at 0.1 s, 95 % at 1.9 s
+    assert heading_crossings([-90.0], [0.0], [2.0], -90.0) == pytest.approx((0.1, 1.9))
+    # 10 deg over [0, 1] s then 170 deg at once at 1 s (a row without a span): 9 deg at 0.9 s, 171 deg at 1 s
+    assert heading_crossings([10.0, 170.0], [0.0, 1.0], [1.0, 1.0], 180.0) == pytest.approx((0.9, 1.0))
+    # overlapping spans add: 100 deg over [0, 2] and 100 deg over [1, 3]; 10 deg at 0.2 s, 190 deg at 2.8 s
+    assert heading_crossings([100.0, 100.0], [0.0, 1.0], [2.0, 3.0], 200.0) == pytest.approx((0.2, 2.8))
+    # a slower opposite row inside the turn: the first crossing counts
+    assert heading_crossings([60.0, -10.0, 50.0], [0.0, 1.0, 2.0], [1.0, 2.0, 3.0], 100.0) == pytest.approx(
+        (5 / 60, 2.0 + 45 / 50))
 
 
 def test_bout_column_names_the_bouts_row_and_no_turn_gives_none():
@@ -77,8 +120,13 @@ def test_track_writes_turns_and_foot_has_no_transfers(tug, tmp_path, capsys):
     assert undocumented("turns.csv", tt.columns) == [] and [c[0] for c in TURNS] == list(tt.columns)
     assert len(tt) == 1 and tt["angle_deg"].iloc[0] == pytest.approx(180.0, abs=5.0)
     assert tt["bout"].iloc[0] == 1
-    # the true turn (the waist unit's heading, 5 % to 95 % of the change) runs 17.10-19.45 s for this user
-    assert tt["start_s"].iloc[0] <= 17.10 + 0.5 and tt["end_s"].iloc[0] >= 19.45 - 0.5
+    # the true turn (the waist unit's heading, 5 % to 95 % of the change) runs 17.10-19.45 s for this user; L209:
+    # the heading timing is within 0.5 s of both ends, the rows' timing (L200) reads the turn over 1.5 s longer
+    assert tt["start_s"].iloc[0] == pytest.approx(17.10, abs=0.5) and tt["end_s"].iloc[0] == pytest.approx(19.45,
+                                                                                                         abs=0.5)
+    by_rows = turn_table(pd.read_csv(out / "steps.csv"), timing="rows")
+    assert by_rows["duration_s"].iloc[0] > (19.45 - 17.10) + 1.5
+    assert tt["mean_rate_dps"].iloc[0] == pytest.approx(0.9 * abs(tt["angle_deg"].iloc[0]) / tt["duration_s"].iloc[0])
     summary = json.loads((out / "summary.json").read_text())
     assert summary["median_turn_duration_s"] == pytest.approx(tt["duration_s"].iloc[0])
     assert summary["turn_count"] == len(tt)

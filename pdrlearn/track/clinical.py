@@ -222,7 +222,9 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
 #: decision L208: turns.csv's timings: "rows" (L200: the first and last summed rows' start / end), "heading" (where
 #: the turn's heading, spread over its rows' spans, has gone TURN_TIMING_FRACTIONS of its angle)
 TURN_TIMINGS = ("rows", "heading")
-TURN_TIMING = "rows"
+#: decision L209: L208's rule met (fresh users 3870-3899, median |duration error| foot 1.82 -> 0.35 s, streamed foot
+#: 2.41 -> 0.19 s, waist-pendulum 1.30 -> 0.74 s, waist-pll 4.45 -> 0.91 s; turns and angles unchanged)
+TURN_TIMING = "heading"
 #: decision L208: the fractions of a turn's angle at which "heading" timing starts and ends it (L201's truth
 #: definition of a simulated turn: the body's heading 5 % to 95 % of its change)
 TURN_TIMING_FRACTIONS = (0.05, 0.95)
@@ -259,7 +261,8 @@ def heading_crossings(dh: np.ndarray, start: np.ndarray, end: np.ndarray, angle:
 
 
 #: turns.csv's columns (decision L200), in order
-TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "peak_rate_dps", "n_rows", "bout")
+TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "peak_rate_dps", "n_rows", "bout",
+                      "mean_rate_dps")
 
 
 def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
@@ -271,7 +274,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     time between the starts of two of its rows (the rate :data:`TURN_RATE_MIN_DPS` is judged on), ``n_rows`` the
     rows it spans and ``bout`` the number of the ``bouts`` row (bouts.csv, L124) whose span holds the turn's first
     turning row (empty outside every bout, or without ``bouts``). The times are the rows' times: a foot row's
-    ``start_s`` is the rest before its stride, a lower-back row's its initial contact.
+    ``start_s`` is the rest before its stride, a lower-back row's its initial contact. ``mean_rate_dps`` (decision
+    L209): the heading change between ``start_s`` and ``end_s`` / ``duration_s`` (the whole |angle| under
+    ``"rows"``, the 5-95 % part under ``"heading"``); empty for a turn of no duration.
 
     ``timing`` (decision L208; None = :data:`TURN_TIMING`): ``"rows"`` the times above (L200); ``"heading"``
     ``start_s`` / ``end_s`` where the turn's heading, each interval's change spread over its row's span, has gone
@@ -307,9 +312,12 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             r = rate[a:b][np.isfinite(rate[a:b])]
             tf = t[a + 1]
             inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
+            # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
+            share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if timing == "heading" else 1.0
             rows.append({"turn": len(rows) + 1, "start_s": t0, "end_s": t1, "duration_s": t1 - t0,
                          "angle_deg": angle, "peak_rate_dps": float(r.max()) if r.size else np.nan,
-                         "n_rows": int(last - first), "bout": int(b_no[inside[0]]) if inside.size else pd.NA})
+                         "n_rows": int(last - first), "bout": int(b_no[inside[0]]) if inside.size else pd.NA,
+                         "mean_rate_dps": share * abs(angle) / (t1 - t0) if t1 > t0 else np.nan})
     out = pd.DataFrame(rows, columns=list(TURN_TABLE_COLUMNS))
     out["bout"] = out["bout"].astype("Int64")
     return out
@@ -318,17 +326,25 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
 def turn_summary(table: pd.DataFrame) -> dict:
     """Decision L200: the summary keys of a :func:`turn_table`: ``median_turn_duration_s``,
     ``median_turn_angle_deg`` (of |angle|), ``median_turn_peak_rate_dps``, ``turn_time_s`` (their durations
-    summed); None without a turn."""
+    summed), ``median_turn_mean_rate_dps`` (L209; of the turns with one); None without a turn."""
     if not len(table):
         return dict.fromkeys(TURN_SUMMARY_KEYS)
     return {"median_turn_duration_s": float(table["duration_s"].median()),
             "median_turn_angle_deg": float(table["angle_deg"].abs().median()),
             "median_turn_peak_rate_dps": float(table["peak_rate_dps"].median()),
-            "turn_time_s": float(table["duration_s"].sum())}
+            "turn_time_s": float(table["duration_s"].sum()),
+            "median_turn_mean_rate_dps": _median_or_none(table["mean_rate_dps"])}
+
+
+def _median_or_none(x: pd.Series) -> float | None:
+    x = x.to_numpy(float)
+    x = x[np.isfinite(x)]
+    return float(np.median(x)) if x.size else None
 
 
 #: decision L200: :func:`turn_summary`'s keys
-TURN_SUMMARY_KEYS = ("median_turn_duration_s", "median_turn_angle_deg", "median_turn_peak_rate_dps", "turn_time_s")
+TURN_SUMMARY_KEYS = ("median_turn_duration_s", "median_turn_angle_deg", "median_turn_peak_rate_dps", "turn_time_s",
+                     "median_turn_mean_rate_dps")
 
 
 def _level_forward(steps: pd.DataFrame) -> np.ndarray:
