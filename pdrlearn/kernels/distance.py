@@ -30,8 +30,9 @@ SUSTAINED_SLOPE = False
 #: Decision L189 (an option, measured and not adopted by its rule (d): one real level walk ended 0.061 m higher):
 #: ``track --streaming`` and the runtime give L184's level rule (:func:`unclassed_level_dz`) to an M3 stride whose
 #: terrain class the confidence gate (L18) dropped, as offline M3 does (``plasys.GATED_LEVEL_DZ``).
-#: ``"summed"`` (decision L206): L39's threshold on the summed dz of a run of such strides
-#: (:func:`summed_level_step`) instead of each stride's own dz. False (the default): raw heights.
+#: ``"summed"`` (decision L206; measured in L207, not adopted: a real level walk ends higher and two real stair climbs
+#: read lower): L39's threshold on the summed dz of a run of such strides (:func:`summed_level_step`) instead of each
+#: stride's own dz. False (the default): raw heights.
 STREAMED_GATED_LEVEL_DZ = False
 
 
