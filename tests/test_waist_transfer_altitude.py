@@ -54,3 +54,18 @@ def test_held_altitude_takes_out_the_change_inside_its_windows():
     again, _ = held_altitude(t, p, at, [(9.0, 11.0), (10.5, 12.0)])  # overlapping windows merge: not taken twice
     assert np.allclose(again, held)
     assert np.array_equal(held_altitude(t, p, at, [])[0], raw)
+
+
+def test_the_live_tracker_keeps_a_transfers_rise():
+    """Decision W188: the live lower-back trackers have no W174 (W104's flexion events need the whole recording's
+    walking upright): the seated TUG's stand-up stays in the live altitude, while offline holds it in
+    ``transfer_dz_m``. Pins the limitation W188 records (a live W174 would change this test)."""
+    from pdrlearn.waist import WaistTracker
+    from tests.test_runtime_waist import _push_with_barometer
+
+    s = _sim("straight:3, turn:180, straight:3", 11, sit_start_s=5.0, sit_end_s=5.0)  # the trial's r/tug
+    rise = float(s.extras["transfers"]["drop_m"].iloc[0])
+    live = _push_with_barometer(WaistTracker(20.0, meta=s.meta, frame=s.require_frame("waist")), s,
+                                [20] * (len(s["wAccelerometer"].t) // 20 + 1))
+    assert live and live[-1].z == pytest.approx(rise, abs=0.15)  # the live track climbed the stand-up
+    assert abs(evaluate_track(track_waist(s, pipeline="waist-pendulum"), s)["altitude_change_m"]) < 0.15

@@ -29,7 +29,10 @@ SLOPE_RUN_STRIDES = 6
 SUSTAINED_SLOPE = False
 #: Decision L189 (an option, measured and not adopted by its rule (d): one real level walk ended 0.061 m higher):
 #: ``track --streaming`` and the runtime give L184's level rule (:func:`unclassed_level_dz`) to an M3 stride whose
-#: terrain class the confidence gate (L18) dropped, as offline M3 does (``plasys.GATED_LEVEL_DZ``)
+#: terrain class the confidence gate (L18) dropped, as offline M3 does (``plasys.GATED_LEVEL_DZ``).
+#: ``"summed"`` (decision L206; measured in L207, not adopted: a real level walk ends higher and two real stair climbs
+#: read lower): L39's threshold on the summed dz of a run of such strides (:func:`summed_level_step`) instead of each
+#: stride's own dz. False (the default): raw heights.
 STREAMED_GATED_LEVEL_DZ = False
 
 
@@ -125,6 +128,36 @@ def unclassed_level_dz_one(dz: float, classed: bool) -> float:
     same function on a 1-element array, so the same threshold; L144's sustained slope (off by default) needs a run of
     strides, which one stride never is."""
     return float(unclassed_level_dz(np.array([dz], dtype=np.float64), np.array([classed]))[0])
+
+
+def summed_level_step(dz: float, classed: bool, run_dz: float) -> tuple[float, float]:
+    """Decision L206, one stride: a stride without a terrain class (``classed`` False) whose own |dz| is under
+    L39's :data:`LEVEL_DZ_M` extends the run of such strides, whose summed raw dz so far is ``run_dz`` (m); it is
+    levelled (0) iff the run's summed dz including it stays under :data:`LEVEL_DZ_M` in absolute value (L39's
+    threshold on the run's sum; thesis ch. 7.2.2: a flat step keeps its altitude). Any other stride keeps ``dz`` and
+    ends the run. Returns (the stride's dz, the run's summed dz after it: 0.0 when the run ended)."""
+    if classed or not abs(dz) < LEVEL_DZ_M:
+        return dz, 0.0
+    run_dz += dz
+    return (0.0 if abs(run_dz) < LEVEL_DZ_M else dz), run_dz
+
+
+def streamed_gated_level_dz(dz: np.ndarray, classed: np.ndarray, mode=None) -> np.ndarray:
+    """The streamed paths' level rule for strides without a terrain class, by ``mode`` (default
+    :data:`STREAMED_GATED_LEVEL_DZ`): True = :func:`unclassed_level_dz` per stride (decision L189), ``"summed"`` =
+    :func:`summed_level_step` along the strides in order (decision L206), False = the heights unchanged. A new array."""
+    mode = STREAMED_GATED_LEVEL_DZ if mode is None else mode
+    dz = np.asarray(dz, dtype=np.float64)
+    if mode is True:
+        return unclassed_level_dz(dz, classed)
+    if mode == "summed":
+        out, run = dz.copy(), 0.0
+        for i, (d, c) in enumerate(zip(dz.tolist(), np.asarray(classed, dtype=bool).tolist(), strict=True)):
+            out[i], run = summed_level_step(d, c, run)
+        return out
+    if mode is False:
+        return dz.copy()
+    raise ValueError(f"STREAMED_GATED_LEVEL_DZ {mode!r}: must be False, True or 'summed' (decisions L189, L206)")
 
 
 def apply_level_gain(disp: np.ndarray, gain: float, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:

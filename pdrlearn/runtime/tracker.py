@@ -31,6 +31,7 @@ from pdrlearn.kernels.distance import (
     applicable_calibration,
     apply_level_gain_one,
     calibrated_stride_sd,
+    summed_level_step,
     unclassed_level_dz_one,
 )
 from pdrlearn.kernels.fixes import wrap_angle
@@ -606,6 +607,7 @@ class Tracker(FixInput):
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
+        self._gated_run_dz = 0.0  # decision L206: the summed dz of the current run of gated level strides (m)
         self._row_gaps, self._heights = [], HeightLog()  # decisions E46, E47 (E75: typed arrays)
         self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
         self.waist_bridge = bool(waist_bridge)  # decisions L91 / L99 (the default)
@@ -1606,7 +1608,10 @@ class Tracker(FixInput):
                 confident_one(get("direction"), pget("direction"), g), confident_one(get("length"), pget("length"), g),
                 bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=pget("length"),
                 sigma_rel=self._sigma_rel)
-        if terrain is None and _distance.STREAMED_GATED_LEVEL_DZ and "terrain" in self.classifiers:
+        if _distance.STREAMED_GATED_LEVEL_DZ == "summed" and "terrain" in self.classifiers:
+            # decision L206: L39's rule on the summed dz of the run of gated strides (one kernel with streamed)
+            dz, self._gated_run_dz = summed_level_step(dz, terrain is not None, self._gated_run_dz)
+        elif terrain is None and _distance.STREAMED_GATED_LEVEL_DZ is True and "terrain" in self.classifiers:
             dz = unclassed_level_dz_one(dz, False)  # decision L189 (offline's L184): no terrain class, L39's rule
         impossible = impossible_stride_one(length, dz, t1 - t0)
         if impossible:  # decision L94: never summed, as pdrlearn track

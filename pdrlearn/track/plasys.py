@@ -1424,8 +1424,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
               for f, d, L in zip(foot_headed, disp, length, strict=True)]
     if method == "M3" and KD.STREAMED_GATED_LEVEL_DZ and "terrain" not in untrained and "terrain" in rule_classes:
-        # decision L189 (offline's L184, the same function): a stride whose terrain class the gate dropped is level
-        dz = unclassed_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
+        # decision L189 (offline's L184, the same function) / L206 (the run's summed dz): a gated stride is level
+        dz = KD.streamed_gated_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
     length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
     if posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
         warnings.append(posture_warning(int(posture.sum()), float(strides[posture][0, 0]),
