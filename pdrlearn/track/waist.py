@@ -15,6 +15,7 @@ heading            A-HE tip-to-tail (or ellipse closed     vertical gyro, integr
 
 from __future__ import annotations
 
+import functools
 import json
 import logging
 
@@ -79,6 +80,7 @@ from pdrlearn.waist.plausibility import (
     micro_bout_message,
     micro_bouts,
     not_alternating_message,
+    pll_excess,
     step_counts,
     still_yaw_rate,
     still_yaw_rate_message,
@@ -633,11 +635,18 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
+    pendulum = functools.cache(lambda: _pendulum_steps(imu, p, thr, o))  # W139 and W186 read it once
     ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0],  # W100, W116
-                                    pendulum=lambda: _pendulum_steps(imu, p, thr, o),  # W139
+                                    pendulum=pendulum,  # W139
                                     stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])))  # W155
     if ratio_line:
         warnings.append(ratio_line)
+    excess = None
+    if pipeline == "waist-pll" and not realtime and p.source == "defaults" and not ratio_line:  # decision W186
+        excess, excess_line = pll_excess(steps["length_m"].to_numpy(float), steps["frequency_hz"].to_numpy(float),
+                                         pendulum()["length_m"].to_numpy(float))
+        if excess_line:
+            warnings.append(excess_line)
     micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
@@ -662,6 +671,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "alternation_index": alternation,
         "alternation_pairs": pairs,
         "walk_ratio": ratio,
+        "pll_pendulum_ratio": excess,  # decision W186
         "calibration_cadence_ratio": cadence_ratio,
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,
