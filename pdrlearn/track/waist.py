@@ -361,7 +361,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
-                   "gait_check": False, "weak_fill": False,
+                   "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "realtime_contact_shift": False}  # W166: measured, not adopted
 #: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
@@ -412,8 +412,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
-                gait_check: bool | None = None, weak_fill: bool | None = None, pivot_steps: bool | None = None,
-                parity_fill: bool | str | None = None, realtime_contact_shift: bool | None = None, detector=None,
+                gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
+                pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
+                realtime_contact_shift: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -485,6 +486,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gait_check : with calibrated params that record their walks' gait: one warning line when this walk's median
         cadence is outside x0.75-x1.33 of the calibration's (decision W140: an option, its adoption rule was not met;
         ``info["calibration_cadence_ratio"]`` carries the ratio either way); default False
+    pll_check : offline, uncalibrated waist-pll: one warning line when its distance is over 1.5 x the pendulum model's
+        reading of the same session (decision W186: an option, its adoption rule was not met - fast plain walks
+        warned too; ``info["pll_pendulum_ratio"]`` carries the ratio either way); default False
     weak_fill : pendulum, offline detector: a weak step on the decided alternating side where the alternation and the
         local rhythm ask for one (decision W148, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``weak_fill``; measured and not adopted); default False
@@ -527,7 +531,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
-             "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check,
+             "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift}
     o = resolve_options(p, given)
@@ -645,7 +649,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if pipeline == "waist-pll" and not realtime and p.source == "defaults" and not ratio_line:  # decision W186
         excess, excess_line = pll_excess(steps["length_m"].to_numpy(float), steps["frequency_hz"].to_numpy(float),
                                          pendulum()["length_m"].to_numpy(float))
-        if excess_line:
+        if excess_line and bool(o["pll_check"]):  # W186's line: an option (its adoption rule was not met)
             warnings.append(excess_line)
     micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
                                                  steps["has_next"].to_numpy(bool)))
