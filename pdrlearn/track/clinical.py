@@ -252,7 +252,11 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             t0 = float(t[first + 1])
             t1 = float(end[last]) if np.isfinite(end[last]) and end[last] > t[last] else float(
                 t[min(last + 1, len(t) - 1)])
-            r = rate[a:b][np.isfinite(rate[a:b])]
+            r = rate[a:b]
+            if not t1 > t0:  # decision L205: the turn ends after the track's last row (W187's final stop): its end
+                t1 = np.nan  # and its rate over the last interval (which holds the final stop's rotation) are unknown
+                r = np.where(np.arange(a, b) == len(t) - 2, np.nan, r)
+            r = r[np.isfinite(r)]
             tf = t[a + 1]
             inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
             rows.append({"turn": len(rows) + 1, "start_s": t0, "end_s": t1, "duration_s": t1 - t0,
@@ -269,10 +273,12 @@ def turn_summary(table: pd.DataFrame) -> dict:
     summed); None without a turn."""
     if not len(table):
         return dict.fromkeys(TURN_SUMMARY_KEYS)
-    return {"median_turn_duration_s": float(table["duration_s"].median()),
+    known = table["duration_s"].dropna()  # decision L205: a turn ending after the last row has no duration
+    rates = table["peak_rate_dps"].dropna()
+    return {"median_turn_duration_s": float(known.median()) if len(known) else None,
             "median_turn_angle_deg": float(table["angle_deg"].abs().median()),
-            "median_turn_peak_rate_dps": float(table["peak_rate_dps"].median()),
-            "turn_time_s": float(table["duration_s"].sum())}
+            "median_turn_peak_rate_dps": float(rates.median()) if len(rates) else None,
+            "turn_time_s": float(known.sum()) if len(known) else None}
 
 
 #: decision L200: :func:`turn_summary`'s keys

@@ -288,10 +288,13 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
 
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
-                   resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0) -> pd.DataFrame:
+                   resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
+                   integrate_end: bool = False) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
-    carry over between walking sequences; a sequence-closing contact keeps the last heading."""
+    carry over between walking sequences; a sequence-closing contact keeps the last heading, except the last one
+    with the gyro method, ``integrate_stops`` and ``integrate_end`` (decision W187): it adds the rotation from its
+    contact to the end of the recording (a turn on the spot after the last step)."""
     n = len(steps)
     headings = np.full(n, np.nan)
     turning = np.zeros(n, dtype=int)
@@ -334,6 +337,9 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
             headings[seq[:-1]] = hd
             current = float(hd[-1])
         headings[seq[-1]] = current
+    if method == "gyro" and integrate_stops and integrate_end and seqs:  # W187: W72's integral over the final stop
+        last = seqs[-1][-1]
+        headings[last] = current + K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
     return steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
 
 
@@ -363,7 +369,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
-                   "realtime_contact_shift": False}  # W166: measured, not adopted
+                   "realtime_contact_shift": False,  # W166: measured, not adopted
+                   "integrate_end": False}  # W187
 #: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
 #: (a stand of half the local period, not a walk's edge) is decided once the three steps after it are known
 CAUSAL_PAUSE_STEPS = "standing"
@@ -414,7 +421,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
-                realtime_contact_shift: bool | None = None, detector=None,
+                realtime_contact_shift: bool | None = None, integrate_end: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -435,6 +442,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     integrate_stops : gyro heading: also integrate the rate between walking sequences (turns made while
         standing or during undetected steps); default True since decision W73 (seed 003 integrates only during
         walking: ``False``)
+    integrate_end : with ``integrate_stops``, gyro heading, offline: the last closing contact also takes the rotation
+        from it to the end of the recording (a turn on the spot after the last step; decision W187)
     turn_factor : shorten steps during which the pelvis turns, ``x cos(turn)`` (decision W19; the papers'
         models assume straight steps); default True
     rhythm : offline IC detector (pendulum, and the PLL's IC refinement): complete walking sequences at
@@ -533,7 +542,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
-             "realtime_contact_shift": realtime_contact_shift}
+             "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -607,7 +616,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
-                           slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
+                           slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
+                           integrate_end=bool(o["integrate_end"]) and not realtime)  # W187: offline only
     steps = steps.assign(stairs=stairs)
     warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
     n_st = len(steps)
