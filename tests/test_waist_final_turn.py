@@ -40,3 +40,14 @@ def test_the_realtime_track_does_not_integrate_the_final_stop():
     on = track_waist(s, pipeline="waist-pendulum", realtime=True, integrate_end=True)
     off = track_waist(s, pipeline="waist-pendulum", realtime=True, integrate_end=False)
     np.testing.assert_array_equal(on.steps["heading_rad"], off.steps["heading_rad"])
+
+
+def test_a_lone_contact_inside_the_final_turn_keeps_the_rotation_before_it():
+    """W187 after its measurement: user 3641's walk ends with a lone contact found inside the turn (the last step at
+    18.14 s, a contact at 21.21 s); the final heading takes the whole turn, not only the rotation after that contact."""
+    s = simulate_path(parse_route("straight:10, turn:180, stand:3"), UserProfile.from_seed(3641), speed="slow",
+                      seed=3641, rate_hz=100.0)
+    res = track_waist(s, pipeline="waist-pendulum", integrate_end=True)
+    has_next = res.steps["has_next"].to_numpy(bool)
+    assert not has_next[-1] and not has_next[-2]  # a lone contact after the walk's closing contact
+    assert abs(abs(res.steps["heading_rad"].iloc[-1]) - np.pi) < np.radians(30.0)

@@ -321,6 +321,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
                 per_seq.append(hd)
             else:
                 per_seq.append(np.zeros(0))
+        gyro_end = current  # W187: the gyro heading at the last contact, with every stop before it integrated
     else:
         raw = np.full(n, np.nan)
         for seq in seqs:
@@ -338,8 +339,8 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
             current = float(hd[-1])
         headings[seq[-1]] = current
     if method == "gyro" and integrate_stops and integrate_end and seqs:  # W187: W72's integral over the final stop
-        last = seqs[-1][-1]
-        headings[last] = current + K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
+        last = seqs[-1][-1]  # (a lone last contact, too: its stop's rotation is in gyro_end, not in ``current``)
+        headings[last] = gyro_end + K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
     return steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
 
 
