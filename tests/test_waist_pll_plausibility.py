@@ -166,3 +166,25 @@ def test_the_pll_walk_ratio_reads_the_pendulum_under_the_tracks_contact_shift(mo
     track_waist(s, pipeline="waist-pll", contact_shift=False)
     track_waist(s, pipeline="waist-pll")
     assert seen == [False, True]
+
+
+def test_a_tug_that_waist_pll_reads_far_longer_than_the_pendulum_reports_the_ratio_and_warns_with_pll_check():
+    """W186 (session 27 trial `tour` finding 3): the trial's TUG (user 3531, 6.3 m walked) reads 11.89 m on
+    uncalibrated waist-pll. ``info["pll_pendulum_ratio"]`` reports its distance over the pendulum's reading of the same
+    session; the line (naming the cause and ``--pipeline waist-pendulum``) comes with the option ``pll_check`` only
+    (its adoption rule was not met: fast plain walks warned too); a normal walk stays under the ratio."""
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.waist.plausibility import PLL_EXCESS_RATIO
+
+    tug = simulate_path(parse_route("straight:3, turn:180, straight:3"), UserProfile.from_seed(3531), speed="normal",
+                        seed=0, rate_hz=100.0, sit_start_s=3.0, sit_end_s=3.0)
+    plain = track_waist(tug, pipeline="waist-pll")
+    assert plain.info["pll_pendulum_ratio"] > PLL_EXCESS_RATIO
+    assert not _lines(plain, "W186")  # an option, off by default
+    checked = track_waist(tug, pipeline="waist-pll", pll_check=True)
+    (line,) = _lines(checked, "W186")
+    assert "--pipeline waist-pendulum" in line and "a turn on the spot" in line
+    assert checked.steps["length_m"].sum() == plain.steps["length_m"].sum()  # a line, no step changes
+    walk = track_waist(_walk(3531, 0), pipeline="waist-pll", pll_check=True)
+    assert walk.info["pll_pendulum_ratio"] < PLL_EXCESS_RATIO and not _lines(walk, "W186")
+    assert track_waist(tug, pipeline="waist-pendulum").info["pll_pendulum_ratio"] is None  # pll only

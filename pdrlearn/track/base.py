@@ -238,6 +238,8 @@ def get_pipeline(name: str) -> Pipeline:
       inside one walking sequence of the other contacts, decision W159; offline only),
       ``gait_check`` (decision W140, off: with calibrated params, warn when the walk's median cadence is outside
       x0.75-x1.33 of the calibration walks'),
+      ``pll_check`` (decision W186, off: an uncalibrated offline waist-pll track warns when it reads over 1.5 x the
+      pendulum model's distance on the same session),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
       turn on a 0.2 m radius; both pipelines),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered

@@ -306,10 +306,15 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             t0 = float(t[first + 1])
             t1 = float(end[last]) if np.isfinite(end[last]) and end[last] > t[last] else float(
                 t[min(last + 1, len(t) - 1)])
+            ends_after_last = not t1 > t0  # decision L205: the turn ends after the track's last row (W187)
             if timing == "heading":  # decision L208: interval j's change spread over row j + 1's span
                 j = np.arange(first, last)
                 t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], angle, TURN_TIMING_FRACTIONS)
-            r = rate[a:b][np.isfinite(rate[a:b])]
+            r = rate[a:b]
+            if ends_after_last:  # decision L205: its end and its rate over the last interval (which holds the final
+                t1 = np.nan  # stop's rotation) are unknown
+                r = np.where(np.arange(a, b) == len(t) - 2, np.nan, r)
+            r = r[np.isfinite(r)]
             tf = t[a + 1]
             inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
             # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
@@ -329,10 +334,12 @@ def turn_summary(table: pd.DataFrame) -> dict:
     summed), ``median_turn_mean_rate_dps`` (L209; of the turns with one); None without a turn."""
     if not len(table):
         return dict.fromkeys(TURN_SUMMARY_KEYS)
-    return {"median_turn_duration_s": float(table["duration_s"].median()),
+    known = table["duration_s"].dropna()  # decision L205: a turn ending after the last row has no duration
+    rates = table["peak_rate_dps"].dropna()
+    return {"median_turn_duration_s": float(known.median()) if len(known) else None,
             "median_turn_angle_deg": float(table["angle_deg"].abs().median()),
-            "median_turn_peak_rate_dps": float(table["peak_rate_dps"].median()),
-            "turn_time_s": float(table["duration_s"].sum()),
+            "median_turn_peak_rate_dps": float(rates.median()) if len(rates) else None,
+            "turn_time_s": float(known.sum()) if len(known) else None,
             "median_turn_mean_rate_dps": _median_or_none(table["mean_rate_dps"])}
 
 

@@ -15,6 +15,7 @@ heading            A-HE tip-to-tail (or ellipse closed     vertical gyro, integr
 
 from __future__ import annotations
 
+import functools
 import json
 import logging
 
@@ -79,6 +80,7 @@ from pdrlearn.waist.plausibility import (
     micro_bout_message,
     micro_bouts,
     not_alternating_message,
+    pll_excess,
     step_counts,
     still_yaw_rate,
     still_yaw_rate_message,
@@ -286,10 +288,13 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
 
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
-                   resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0) -> pd.DataFrame:
+                   resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
+                   integrate_end: bool = False) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
-    carry over between walking sequences; a sequence-closing contact keeps the last heading."""
+    carry over between walking sequences; a sequence-closing contact keeps the last heading, except the last one
+    with the gyro method, ``integrate_stops`` and ``integrate_end`` (decision W187): it adds the rotation from its
+    contact to the end of the recording (a turn on the spot after the last step)."""
     n = len(steps)
     headings = np.full(n, np.nan)
     turning = np.zeros(n, dtype=int)
@@ -316,6 +321,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
                 per_seq.append(hd)
             else:
                 per_seq.append(np.zeros(0))
+        gyro_end = current  # W187: the gyro heading at the last contact, with every stop before it integrated
     else:
         raw = np.full(n, np.nan)
         for seq in seqs:
@@ -332,6 +338,9 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
             headings[seq[:-1]] = hd
             current = float(hd[-1])
         headings[seq[-1]] = current
+    if method == "gyro" and integrate_stops and integrate_end and seqs:  # W187: W72's integral over the final stop
+        last = seqs[-1][-1]  # (a lone last contact, too: its stop's rotation is in gyro_end, not in ``current``)
+        headings[last] = gyro_end + K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
     return steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
 
 
@@ -359,9 +368,10 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
-                   "gait_check": False, "weak_fill": False,
+                   "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
-                   "realtime_contact_shift": False}  # W166: measured, not adopted
+                   "realtime_contact_shift": False,  # W166: measured, not adopted
+                   "integrate_end": False}  # W187
 #: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
 #: (a stand of half the local period, not a walk's edge) is decided once the three steps after it are known
 CAUSAL_PAUSE_STEPS = "standing"
@@ -410,8 +420,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
-                gait_check: bool | None = None, weak_fill: bool | None = None, pivot_steps: bool | None = None,
-                parity_fill: bool | str | None = None, realtime_contact_shift: bool | None = None, detector=None,
+                gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
+                pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
+                realtime_contact_shift: bool | None = None, integrate_end: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -432,6 +443,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     integrate_stops : gyro heading: also integrate the rate between walking sequences (turns made while
         standing or during undetected steps); default True since decision W73 (seed 003 integrates only during
         walking: ``False``)
+    integrate_end : with ``integrate_stops``, gyro heading, offline: the last closing contact also takes the rotation
+        from it to the end of the recording (a turn on the spot after the last step; decision W187)
     turn_factor : shorten steps during which the pelvis turns, ``x cos(turn)`` (decision W19; the papers'
         models assume straight steps); default True
     rhythm : offline IC detector (pendulum, and the PLL's IC refinement): complete walking sequences at
@@ -483,6 +496,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gait_check : with calibrated params that record their walks' gait: one warning line when this walk's median
         cadence is outside x0.75-x1.33 of the calibration's (decision W140: an option, its adoption rule was not met;
         ``info["calibration_cadence_ratio"]`` carries the ratio either way); default False
+    pll_check : offline, uncalibrated waist-pll: one warning line when its distance is over 1.5 x the pendulum model's
+        reading of the same session (decision W186: an option, its adoption rule was not met - fast plain walks
+        warned too; ``info["pll_pendulum_ratio"]`` carries the ratio either way); default False
     weak_fill : pendulum, offline detector: a weak step on the decided alternating side where the alternation and the
         local rhythm ask for one (decision W148, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``weak_fill``; measured and not adopted); default False
@@ -525,9 +541,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
-             "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check,
+             "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
-             "realtime_contact_shift": realtime_contact_shift}
+             "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -601,7 +617,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
-                           slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
+                           slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
+                           integrate_end=bool(o["integrate_end"]) and not realtime)  # W187: offline only
     steps = steps.assign(stairs=stairs)
     warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
     n_st = len(steps)
@@ -633,11 +650,18 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
+    pendulum = functools.cache(lambda: _pendulum_steps(imu, p, thr, o))  # W139 and W186 read it once
     ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0],  # W100, W116
-                                    pendulum=lambda: _pendulum_steps(imu, p, thr, o),  # W139
+                                    pendulum=pendulum,  # W139
                                     stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])))  # W155
     if ratio_line:
         warnings.append(ratio_line)
+    excess = None
+    if pipeline == "waist-pll" and not realtime and p.source == "defaults" and not ratio_line:  # decision W186
+        excess, excess_line = pll_excess(steps["length_m"].to_numpy(float), steps["frequency_hz"].to_numpy(float),
+                                         pendulum()["length_m"].to_numpy(float))
+        if excess_line and bool(o["pll_check"]):  # W186's line: an option (its adoption rule was not met)
+            warnings.append(excess_line)
     micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
@@ -662,6 +686,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "alternation_index": alternation,
         "alternation_pairs": pairs,
         "walk_ratio": ratio,
+        "pll_pendulum_ratio": excess,  # decision W186
         "calibration_cadence_ratio": cadence_ratio,
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,

@@ -173,6 +173,41 @@ PLL_WALK_RATIO_BASIS = ("waist-pll's step length is a line in its step frequency
                         "simulated short-step walks read +51 to +574 % long on waist-pll): ")
 
 
+#: decision W186: an uncalibrated waist-pll track reading more than this times the pendulum model's distance on the same
+#: session warns (W139's size of error worth a line, "> +50 % long"; a priori, not fitted)
+PLL_EXCESS_RATIO = 1.5
+#: decision W186: the pendulum reading needs at least this many steps with a length to be compared
+PLL_EXCESS_MIN_STEPS = 5
+#: decision W186: a step whose frequency is over this times the track's median counts as a short contact interval
+PLL_FAST_STEP_FACTOR = 1.5
+
+
+def pll_excess(pll_length_m: np.ndarray, pll_frequency_hz: np.ndarray, pendulum_length_m: np.ndarray
+               ) -> tuple[float | None, str | None]:
+    """Decision W186: ``(ratio, line)`` - waist-pll's distance (the sum of ``pll_length_m``) over the pendulum
+    model's reading of the same session (``pendulum_length_m``; None with fewer than :data:`PLL_EXCESS_MIN_STEPS`
+    steps with a length or none at all) and the warning line when the ratio exceeds :data:`PLL_EXCESS_RATIO` (None
+    otherwise). The line counts the pll steps with a frequency over :data:`PLL_FAST_STEP_FACTOR` x the median:
+    the short contact intervals its frequency line (seed 000 sec. II-D) reads as fast, long steps."""
+    pend = np.abs(np.asarray(pendulum_length_m, dtype=np.float64))
+    pend_m = float(np.nansum(pend))
+    if int(np.sum(pend > 0)) < PLL_EXCESS_MIN_STEPS or pend_m <= 0:
+        return None, None
+    pll_m = float(np.nansum(np.abs(np.asarray(pll_length_m, dtype=np.float64))))
+    ratio = pll_m / pend_m
+    if ratio <= PLL_EXCESS_RATIO:
+        return ratio, None
+    f = np.asarray(pll_frequency_hz, dtype=np.float64)
+    f = f[np.isfinite(f) & (f > 0)]
+    n_fast = int(np.sum(f > PLL_FAST_STEP_FACTOR * np.median(f))) if f.size else 0
+    return ratio, (f"waist-pll reads {pll_m:.2f} m, {ratio:.2f} x the pendulum model's {pend_m:.2f} m on the same "
+                   f"session ({n_fast} of {f.size} pll steps at over {PLL_FAST_STEP_FACTOR:g} x its median step "
+                   "frequency): its step length is a line in each step's frequency (seed 000), so short contact "
+                   "intervals - rising from a chair, a turn on the spot, starting and stopping (a TUG) - read as "
+                   "fast, long steps; track with --pipeline waist-pendulum, or calibrate this walker "
+                   "('pdrlearn calibrate DIR --distance M') (decision W186)")
+
+
 def running_cadence(length: float | None, cadence: float | None, height_m: float = WALK_RATIO_HEIGHT_M) -> bool:
     """Decision W177: whether an uncalibrated waist track's median step ``length`` (m) at its median ``cadence``
     (steps/min) is a fast gait W178 names running first - the cadence above L95's range and the speed length x
