@@ -210,3 +210,22 @@ def test_wrong_layout_is_one_line(tmp_path, monkeypatch):
         hapt.read_pickle(root / hapt.PICKLE, sha256=digest)
     with pytest.raises(DataError, match=r"missing; pass the extracted kcc2020"):
         hapt.convert(tmp_path / "nothing", tmp_path / "ext")
+
+
+def test_spectral_reference_of_the_experiment():
+    """H6: experiments/hapt.py's weak cadence reference is the dominant 1.2-3 Hz frequency of the acceleration along
+    the segment's mean specific force (any phone tilt), and a segment counts the contacts inside its borders."""
+    import importlib.util
+    from pathlib import Path
+
+    spec = importlib.util.spec_from_file_location(
+        "hapt_experiment", Path(__file__).resolve().parents[1] / "experiments" / "hapt.py")
+    exp = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(exp)
+    fs, t = 50.0, np.arange(0, 12, 1 / 50.0)
+    up = np.array([0.8, 0.0, 0.6])  # gravity on two axes: a tilted phone
+    side = np.array([0.0, 1.0, 0.0])
+    acc = (G * up + np.outer(1.5 * np.sin(2 * np.pi * 1.75 * t), up) + np.outer(2.0 * np.sin(2 * np.pi * 0.875 * t),
+                                                                               side))
+    assert exp.spectral_step_hz(acc, fs) == pytest.approx(1.75, abs=0.02)  # the 0.875 Hz sway lies below the band
+    assert exp.count_in(np.array([0.9, 1.0, 2.0, 3.0, 3.01]), 1.0, 3.0) == 3
