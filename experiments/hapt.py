@@ -13,7 +13,7 @@ options (uncalibrated) and with `sit_veto="rhythm"` (decision W109):
 
 No pipeline behaviour is changed here (findings only). One core.
 
-Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/hapt.py [--root datasets/external]
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/hapt.py [--root datasets/hapt]
 Output: experiments/results/hapt.md
 """
 from __future__ import annotations
@@ -131,7 +131,7 @@ def tables(static: pd.DataFrame, trans: pd.DataFrame, gait: pd.DataFrame) -> lis
 
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--root", type=Path, default=Path("datasets/external"))
+    ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
     ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt.md"))
     a = ap.parse_args(argv)
     static, trans, gait, refused, cpu = run(a.root)

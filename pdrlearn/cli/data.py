@@ -217,7 +217,7 @@ def fetch(
 
         pdrlearn fetch gaitmap --out datasets/external
 
-        pdrlearn fetch hapt --out datasets/external
+        pdrlearn fetch hapt --out datasets/hapt
     """
     from pdrlearn.io.external import fetch as fetch_source
 
