@@ -342,7 +342,8 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.waist.transfers import transfer_summary
 
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
-    out.update(turn_summary(turn_table(result.steps)))  # decision L200: each turn's duration, angle, peak rate
+    # decision L200: each turn's duration, angle, peak rate (L210: a lower-back track's yaw-rate turns)
+    out.update(turn_summary(turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"))))
     out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W183: chair transfers, TUG
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
