@@ -260,8 +260,11 @@ def heading_crossings(dh: np.ndarray, start: np.ndarray, end: np.ndarray, angle:
     return out[0], out[1]
 
 
-#: decision L210: a lower-back track's turns re-timed by the El-Gohary turn of its yaw rate (``info["yaw_turns"]``)
-TURN_YAW_TIMING = False
+#: decision L210: a lower-back track's turns re-timed by the El-Gohary turn of its yaw rate (``info["yaw_turns"]``);
+#: L211: L210's rule met (fresh users 3900-3939, median |start / end / duration error| waist-pendulum 2.62 / 1.31 /
+#: 1.33 -> 0.45 / 0.43 / 0.88 s, waist-pll 3.23 / 2.50 / 1.77 -> 0.78 / 1.04 / 0.83 s; 13 mobgap INDIP turns,
+#: waist-pendulum 0.93 / 0.59 / 2.36 -> 0.85 / 0.32 / 0.90 s; turns and angles unchanged)
+TURN_YAW_TIMING = True
 
 
 def yaw_turn_times(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None) -> tuple[float, float] | None:

@@ -887,6 +887,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary["info"].pop("transfers", None)  # decision W182: the rows are transfers.csv's, not the summary's
+    summary["info"].pop("yaw_turns", None)  # decision L210: they time turns.csv's turns; not the summary's
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
         summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
