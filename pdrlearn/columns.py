@@ -261,15 +261,18 @@ BOUTS: tuple[Column, ...] = (
 TURNS: tuple[Column, ...] = (
     ("turn", "index", "integer", "the turn's number in the session, from 1"),
     ("start_s", "s", "number", "where the turn's heading, each row's change spread over the row's span, has gone 5 % "
-                               "of its angle (L208, L209), on the session's clock"),
-    ("end_s", "s", "number", "where that heading has gone 95 % of the angle (L208, L209)"),
+                               "of its angle (L208, L209), on the session's clock; a lower-back track's turn matched "
+                               "by a turn of its yaw rate: that turn's start, last sample under 5 deg/s (L210, L211)"),
+    ("end_s", "s", "number", "where that heading has gone 95 % of the angle (L208, L209); a lower-back turn matched by "
+                             "a yaw-rate turn: its end, first sample under 5 deg/s after it (L210, L211)"),
     ("duration_s", "s", "number", "end_s - start_s"),
     ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181)"),
     ("peak_rate_dps", "deg/s", "number", "largest |heading change| / time between two of its rows' starts"),
     ("n_rows", "count", "integer", "rows of steps.csv the turn spans"),
     ("bout", "index", "integer", "the bouts.csv bout holding the turn; empty outside every bout"),
-    ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s (90 % of |angle_deg|) / "
-                                         "duration_s (L209); empty for a turn of no duration"),
+    ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s (90 % of |angle_deg|; all of it "
+                                         "for a turn timed by the yaw rate, L210) / duration_s (L209); empty for a "
+                                         "turn of no duration"),
 )
 
 #: decision W182: a lower-back track's transfers.csv (a foot track writes none)

@@ -260,13 +260,36 @@ def heading_crossings(dh: np.ndarray, start: np.ndarray, end: np.ndarray, angle:
     return out[0], out[1]
 
 
+#: decision L210: a lower-back track's turns re-timed by the El-Gohary turn of its yaw rate (``info["yaw_turns"]``);
+#: L211: L210's rule met (fresh users 3900-3939, median |start / end / duration error| waist-pendulum 2.62 / 1.31 /
+#: 1.33 -> 0.45 / 0.43 / 0.88 s, waist-pll 3.23 / 2.50 / 1.77 -> 0.78 / 1.04 / 0.83 s; 13 mobgap INDIP turns,
+#: waist-pendulum 0.93 / 0.59 / 2.36 -> 0.85 / 0.32 / 0.90 s; turns and angles unchanged)
+TURN_YAW_TIMING = True
+
+
+def yaw_turn_times(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None) -> tuple[float, float] | None:
+    """Decision L210: the ``(start_s, end_s)`` of the yaw-rate turn (records of
+    :data:`pdrlearn.waist.heading.YAW_TURN_KEYS`) that times a counted turn of ``angle`` deg whose rows span
+    ``[lo, hi]`` s: of those whose peak lies in the span and whose angle has the turn's sign, the one of largest
+    |angle|; None without one."""
+    if yaw is None or not len(yaw):
+        return None
+    peak, ang = yaw["peak_s"].to_numpy(float), yaw["angle_deg"].to_numpy(float)
+    cand = np.flatnonzero((peak >= lo) & (peak <= hi) & (np.sign(ang) == math.copysign(1.0, angle)))
+    if not cand.size:
+        return None
+    k = cand[int(np.argmax(np.abs(ang[cand])))]
+    return float(yaw["start_s"].iloc[k]), float(yaw["end_s"].iloc[k])
+
+
 #: turns.csv's columns (decision L200), in order
 TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "peak_rate_dps", "n_rows", "bout",
                       "mean_rate_dps")
 
 
 def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
-               min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None) -> pd.DataFrame:
+               min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None,
+               yaw_turns=None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
@@ -280,10 +303,17 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
 
     ``timing`` (decision L208; None = :data:`TURN_TIMING`): ``"rows"`` the times above (L200); ``"heading"``
     ``start_s`` / ``end_s`` where the turn's heading, each interval's change spread over its row's span, has gone
-    :data:`TURN_TIMING_FRACTIONS` of the angle (:func:`heading_crossings`)."""
-    timing = TURN_TIMING if timing is None else timing
-    if timing not in TURN_TIMINGS:
-        raise ValueError(f"turn_table timing must be one of {TURN_TIMINGS}, not {timing!r}")
+    :data:`TURN_TIMING_FRACTIONS` of the angle (:func:`heading_crossings`); ``"yaw"`` (decision L210) ``"heading"``'s
+    times, except that a turn matched by one of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``: the
+    El-Gohary turns of its yaw rate) takes that turn's start and end (:func:`yaw_turn_times`; its rows' span from
+    the start of the row before its first heading change to the end of its last row). Default: ``"yaw"`` when
+    ``yaw_turns`` is given and :data:`TURN_YAW_TIMING`, else :data:`TURN_TIMING`."""
+    if timing is None:
+        timing = "yaw" if yaw_turns is not None and TURN_YAW_TIMING else TURN_TIMING
+    if timing not in (*TURN_TIMINGS, "yaw"):
+        raise ValueError(f"turn_table timing must be one of {(*TURN_TIMINGS, 'yaw')}, not {timing!r}")
+    yaw = pd.DataFrame(list(yaw_turns or []), columns=["start_s", "end_s", "peak_s", "angle_deg"]) \
+        if timing == "yaw" else None
     st, spans = _turn_spans(steps)
     rows = []
     if spans:
@@ -307,21 +337,25 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             t1 = float(end[last]) if np.isfinite(end[last]) and end[last] > t[last] else float(
                 t[min(last + 1, len(t) - 1)])
             ends_after_last = not t1 > t0  # decision L205: the turn ends after the track's last row (W187)
-            if timing == "heading":  # decision L208: interval j's change spread over row j + 1's span
+            share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if timing != "rows" else 1.0
+            if timing != "rows":  # decision L208: interval j's change spread over row j + 1's span
                 j = np.arange(first, last)
                 t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], angle, TURN_TIMING_FRACTIONS)
+            timed = yaw_turn_times(float(t[first]), float(span_end[last]), angle, yaw)  # decision L210
+            if timed is not None:
+                (t0, t1), share = timed, 1.0  # El-Gohary's boundaries hold the whole turn
+            elif ends_after_last:  # decision L205: without the yaw rate its end is unknown
+                t1 = np.nan
             r = rate[a:b]
-            if ends_after_last:  # decision L205: its end and its rate over the last interval (which holds the final
-                t1 = np.nan  # stop's rotation) are unknown
+            if ends_after_last:  # L205: the last interval's rate holds the final stop's rotation
                 r = np.where(np.arange(a, b) == len(t) - 2, np.nan, r)
             r = r[np.isfinite(r)]
             tf = t[a + 1]
             inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
-            # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
-            share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if timing == "heading" else 1.0
             rows.append({"turn": len(rows) + 1, "start_s": t0, "end_s": t1, "duration_s": t1 - t0,
                          "angle_deg": angle, "peak_rate_dps": float(r.max()) if r.size else np.nan,
                          "n_rows": int(last - first), "bout": int(b_no[inside[0]]) if inside.size else pd.NA,
+                         # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
                          "mean_rate_dps": share * abs(angle) / (t1 - t0) if t1 > t0 else np.nan})
     out = pd.DataFrame(rows, columns=list(TURN_TABLE_COLUMNS))
     out["bout"] = out["bout"].astype("Int64")

@@ -57,6 +57,7 @@ from pdrlearn.waist.heading import (
     harmonic_directions,
     untracked_turn,
     untracked_turn_message,
+    yaw_turns,
 )
 from pdrlearn.waist.lengths import (
     PAUSE_STEPS_VALUES,  # noqa: F401  (the pause_steps option's values, here since W122)
@@ -692,6 +693,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_vetoed_contacts": n_vetoed,
         "n_unvaulted_contacts": n_unvaulted,
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
+        "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)
