@@ -474,7 +474,11 @@ def walk_line(summary: dict) -> str | None:
 
     n, cv = summary.get("n_pauses", 0), summary.get("stride_time_cv_pct")
     n_bouts = summary.get("n_bouts", summary["n_walking_bouts"])
-    return (f"{n_bouts} walking bout(s), {n} pause(s) of >= 1 s"
+    # decision L217: n_bouts (bouts.csv's rows, the bout rule's) is THE bout count; L104's n_walking_bouts (pauses
+    # + 1) is named beside it when another rule (--bout-rule mobgap, --bout-min-strides) gives a different count
+    other = (f" (bouts.csv; {summary['n_walking_bouts']} between the pauses)"
+             if n_bouts != summary["n_walking_bouts"] else "")
+    return (f"{n_bouts} walking bout(s){other}, {n} pause(s) of >= 1 s"
             + (f" ({summary['pause_time_s']:.1f} s in all)" if n else "")
             + f", {summary.get('turn_count', 0)} turn(s) of >= {summary.get('turn_count_min_deg', 80):g} deg"
             + _cv_phrase(summary, cv, CV_MIN_STRIDES))
