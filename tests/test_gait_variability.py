@@ -112,3 +112,16 @@ def test_one_bout_count_under_the_mobgap_rule(tmp_path, capsys):
     assert s["n_bouts"] == len(bouts) == 1 and s["n_walking_bouts"] == s["n_pauses"] + 1 == 2
     assert "1 walking bout(s) (bouts.csv; 2 between the pauses), 1 pause(s)" in out
     assert {"n_cv_strides", "stride_time_cv_pct", "stride_length_cv_pct"} <= set(bouts.columns)
+
+
+def test_asymmetry_under_the_floor_is_not_read_as_symmetric():
+    """L216 (trial finding 2): an index under L121's 20 % floor gives None, and the reason must not read as
+    "symmetric": the lower back also misses real asymmetries (a simulated 24.7 % read 19.9 % on users 3960-3979)."""
+    from pdrlearn.track.clinical import step_time_asymmetry_report
+
+    t = np.cumsum(np.r_[0.0, np.tile([0.50, 0.56], 8)])  # SI 11.3 %: under the floor
+    small = step_time_asymmetry_report(pd.DataFrame({"start_s": t[:-1], "end_s": t[1:], "has_next": True,
+                                                     "unit": "waist"}))
+    assert small["step_time_asymmetry_pct"] is None and small["raw_pct"] == pytest.approx(100 * 0.06 / 0.53)
+    assert "no evidence of symmetry" in small["reason"] and "can also miss a real asymmetry" in small["reason"]
+    assert "-8.4 to +17.0 points" in small["reason"] and "L216" in small["reason"]

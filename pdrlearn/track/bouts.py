@@ -24,8 +24,16 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
-from pdrlearn.track.clinical import (CV_BOUT_MIN_STRIDES, PAUSE_MIN_S, TURN_COUNT_MIN_DEG, _steady_rows, bout_rows,
-                                     cv_pct, steady_stride_lengths, turn_rows)
+from pdrlearn.track.clinical import (
+    CV_BOUT_MIN_STRIDES,
+    PAUSE_MIN_S,
+    TURN_COUNT_MIN_DEG,
+    _steady_rows,
+    bout_rows,
+    cv_pct,
+    steady_stride_lengths,
+    turn_rows,
+)
 
 #: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key)
 BOUT_COLUMNS = ("session", "subject", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m",
