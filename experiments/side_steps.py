@@ -1,0 +1,82 @@
+"""Decisions L218 / L219: what the tracks make of side steps (simulator decision S49). Fresh simulated users 3980-3999
+walk ``straight:10, side:3, straight:10`` (a walk, 3 m side-stepping left, a walk) and ``side:-4`` (4 m to the right
+only); ``plasys`` (foot, defaults), ``waist-pendulum`` and ``waist-pll`` track them. Per route and pipeline: the
+median (min-max) over the users of the track's distance and the reference's, the final position error, the track's
+end point in the start frame (forward x, left y; truth beside it), the heading change start to end, the turns of
+turns.csv (L200; number and median |angle|), the steps counted (both feet) against the true contacts, and how many
+tracks give decision L219's sideways line.
+
+    PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/side_steps.py [--out experiments/results/side_steps.txt]
+"""
+
+from __future__ import annotations
+
+import logging
+import sys
+
+import numpy as np
+
+from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
+from pdrlearn.track import get_pipeline
+from pdrlearn.track.clinical import turn_table
+from pdrlearn.track.evaluate import evaluate_track
+
+USERS = range(3980, 4000)
+ROUTES = ("straight:10, side:3, straight:10", "side:-4")
+PIPELINES = ("plasys", "waist-pendulum", "waist-pll")
+COLUMNS = ("distance_m", "distance_ref_m", "final_position_error_m", "end_x_m", "end_y_m", "true_x_m", "true_y_m",
+           "heading_change_deg", "n_turns", "median_turn_deg", "steps", "true_steps")
+
+
+def _end(traj, t0: float, t1: float, heading0: float) -> tuple[float, float]:
+    """The displacement t0 -> t1 of a trajectory (t, x, y) in the frame of ``heading0`` (forward, left)."""
+    p = [np.array([np.interp(t, traj["t"], traj[c]) for c in ("x", "y")]) for t in (t0, t1)]
+    d = p[1] - p[0]
+    c, s = np.cos(heading0), np.sin(heading0)
+    return float(c * d[0] + s * d[1]), float(-s * d[0] + c * d[1])
+
+
+def measure(route: str, pipeline: str, user: int) -> tuple[dict, bool]:
+    s = simulate_path(parse_route(route), UserProfile.from_seed(user), rate_hz=20.0, seed=1, scenario="route")
+    res = get_pipeline(pipeline)(s)
+    ev = evaluate_track(res, s)
+    tr, gt, st = res.trajectory, s.trajectory, res.steps
+    t0, t1 = float(tr["t"].iloc[0]), float(tr["t"].iloc[-1])
+    h = st["heading_rad"].to_numpy(float) if len(st) else np.zeros(1)
+    h0 = float(h[0])  # the track's own start heading (the waist tracks start at 0, the foot one at the compass's)
+    g0 = float(np.interp(t0, gt["t"], gt["heading_rad"]))
+    turns = turn_table(st)
+    row = {"distance_m": ev["distance_m"], "distance_ref_m": ev.get("distance_ref_m", np.nan),
+           "final_position_error_m": ev.get("final_position_error_m", np.nan),
+           "heading_change_deg": float(np.degrees(np.unwrap(h)[-1] - h0)),
+           "n_turns": len(turns), "median_turn_deg": float(turns["angle_deg"].abs().median()) if len(turns) else 0.0,
+           "steps": ev.get("n_steps_both_feet") or np.nan, "true_steps": len(s.extras["ics"])}
+    row["end_x_m"], row["end_y_m"] = _end(tr, t0, t1, h0)
+    row["true_x_m"], row["true_y_m"] = _end(gt, t0, t1, g0)
+    side_line = any("decision L219" in w for w in res.info.get("warnings", []))
+    return row, side_line
+
+
+def main(out: str | None = None) -> None:
+    logging.disable(logging.WARNING)
+    lines = [f"users {USERS.start}-{USERS.stop - 1}, seed 1, 20 Hz; median (min..max) over the users"]
+    for route in ROUTES:
+        for p in PIPELINES:
+            rows, warned = [], 0
+            for u in USERS:
+                r, w = measure(route, p, u)
+                rows.append(r)
+                warned += w
+            lines.append(f"{route!r} {p}: L219 line on {warned} of {len(rows)} tracks")
+            for c in COLUMNS:
+                v = np.array([r[c] for r in rows], float)
+                lines.append(f"    {c:24s} {np.nanmedian(v):8.2f} ({np.nanmin(v):.2f}..{np.nanmax(v):.2f})")
+            print("\n".join(lines[-len(COLUMNS) - 1:]), flush=True)
+    if out:
+        with open(out, "w") as f:
+            f.write("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main(sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else None)
