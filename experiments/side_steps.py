@@ -1,10 +1,10 @@
-"""Decisions L218 / L219: what the tracks make of side steps (simulator decision S49). Fresh simulated users 3980-3999
-walk ``straight:10, side:3, straight:10`` (a walk, 3 m side-stepping left, a walk) and ``side:-4`` (4 m to the right
-only); ``plasys`` (foot, defaults), ``waist-pendulum`` and ``waist-pll`` track them. Per route and pipeline: the
-median (min-max) over the users of the track's distance and the reference's, the final position error, the track's
-end point in the start frame (forward x, left y; truth beside it), the heading change start to end, the turns of
-turns.csv (L200; number and median |angle|), the steps counted (both feet) against the true contacts, and how many
-tracks give decision L219's sideways line.
+"""Decisions L218 / L219: what the tracks make of side steps (simulator decision S49). Fresh simulated users
+3980-3999 walk ``straight:10, side:3, straight:10`` (a walk, 3 m side-stepping left, a walk), ``side:-4`` (4 m to
+the right only) and ``straight:23`` (a control); ``plasys`` (foot, defaults), ``waist-pendulum`` and ``waist-pll``
+track them. Per route and pipeline: the median (min-max) over the users of the track's distance and the
+reference's, the final position error, the track's end point in the truth's start frame (forward x, left y; truth
+beside it), the heading change start to end, the turns of turns.csv (L200; number and median |angle|), the steps
+counted (both feet) against the true contacts, and how many tracks give decision L219's sideways line.
 
     PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/side_steps.py [--out experiments/results/side_steps.txt]
 """
@@ -23,7 +23,7 @@ from pdrlearn.track.clinical import turn_table
 from pdrlearn.track.evaluate import evaluate_track
 
 USERS = range(3980, 4000)
-ROUTES = ("straight:10, side:3, straight:10", "side:-4")
+ROUTES = ("straight:10, side:3, straight:10", "side:-4", "straight:23")  # the last: a control without side steps
 PIPELINES = ("plasys", "waist-pendulum", "waist-pll")
 COLUMNS = ("distance_m", "distance_ref_m", "final_position_error_m", "end_x_m", "end_y_m", "true_x_m", "true_y_m",
            "heading_change_deg", "n_turns", "median_turn_deg", "steps", "true_steps")
@@ -44,15 +44,15 @@ def measure(route: str, pipeline: str, user: int) -> tuple[dict, bool]:
     tr, gt, st = res.trajectory, s.trajectory, res.steps
     t0, t1 = float(tr["t"].iloc[0]), float(tr["t"].iloc[-1])
     h = st["heading_rad"].to_numpy(float) if len(st) else np.zeros(1)
-    h0 = float(h[0])  # the track's own start heading (the waist tracks start at 0, the foot one at the compass's)
-    g0 = float(np.interp(t0, gt["t"], gt["heading_rad"]))
+    g0 = float(np.interp(t0, gt["t"], gt["heading_rad"]))  # both ends in the truth's start frame (forward, left):
+    # the simulated walker starts facing east (0), where the waist tracks start and the foot track's compass points
     turns = turn_table(st)
     row = {"distance_m": ev["distance_m"], "distance_ref_m": ev.get("distance_ref_m", np.nan),
            "final_position_error_m": ev.get("final_position_error_m", np.nan),
-           "heading_change_deg": float(np.degrees(np.unwrap(h)[-1] - h0)),
+           "heading_change_deg": float(np.degrees(np.unwrap(h)[-1] - h[0])),
            "n_turns": len(turns), "median_turn_deg": float(turns["angle_deg"].abs().median()) if len(turns) else 0.0,
            "steps": ev.get("n_steps_both_feet") or np.nan, "true_steps": len(s.extras["ics"])}
-    row["end_x_m"], row["end_y_m"] = _end(tr, t0, t1, h0)
+    row["end_x_m"], row["end_y_m"] = _end(tr, t0, t1, g0)
     row["true_x_m"], row["true_y_m"] = _end(gt, t0, t1, g0)
     side_line = any("decision L219" in w for w in res.info.get("warnings", []))
     return row, side_line

@@ -1057,6 +1057,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         head = fd.foot_heading(initial_heading) + lateral
     else:
         raise DataError(f"plasys: heading '{hsrc}' is not waist, foot or fused")
+    if hsrc in ("waist", "fused"):  # decision L219: a side-stepping stretch is put along the body's facing
+        from pdrlearn.track.sideways import sideways_warnings
+
+        warnings += sideways_warnings(session, lambda a, b: (
+            "the heading comes from the waist unit, which follows where the body faces, so the track puts these "
+            "strides along the facing and can turn the walk around them"))
     if cfg["rules"] and hsrc in ("foot", "fused"):  # decision L65: offline as the streamed L37 - a stride whose
         # sign the rules turned against its measured x (a turnaround classed forward) goes along its displacement
         head = head + np.where((length != 0) & ((length < 0) != (disp[:, 0] < 0)), np.pi, 0.0)

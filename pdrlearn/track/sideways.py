@@ -1,0 +1,51 @@
+"""Side steps: every pipeline tracks a sideways stretch as if it went where the body faces (decision L219).
+
+A lower-back unit gives a step's length and the unit's heading, not the way the step went, so a side step is
+counted as forward distance; the foot track's fused heading takes the waist compass's facing and puts the side
+strides along it. The cue is the foot unit's ZUPT stride: its horizontal displacement points sideways from the
+foot's facing (:func:`pdrlearn.track.frame_inference.foot_travel_angles`). Only with a foot unit and its declared
+frame. A run of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides gives one warning line; nothing is
+changed (L218 measured what the tracks make of it).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.track.frame_inference import foot_travel_angles
+
+#: decision L219: a stride whose displacement points 60-120 deg from the foot's facing travels sideways (a forward
+#: or backward stride points within a few degrees of it, toe-out included; a side step at 90 deg)
+SIDE_ANGLE_DEG = (60.0, 120.0)
+#: decision L219: shorter strides are not judged (a shuffle on the spot, a stepping turn's small steps)
+SIDE_MIN_STRIDE_M = 0.15
+#: decision L219: fewer consecutive sideways strides are no side-stepping stretch (a 90 deg stepping turn's step)
+MIN_SIDE_STRIDES = 3
+
+
+def sideways_runs(t0: np.ndarray, t1: np.ndarray, angle: np.ndarray, length: np.ndarray) -> list[tuple[int, int]]:
+    """Runs ``(first, last)`` of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides (angle rad from the
+    foot's facing, left +; length m)."""
+    a = np.degrees(np.abs(np.asarray(angle, float)))
+    side = (a >= SIDE_ANGLE_DEG[0]) & (a <= SIDE_ANGLE_DEG[1]) & (np.asarray(length, float) > SIDE_MIN_STRIDE_M)
+    edges = np.flatnonzero(np.diff(np.r_[0, side.astype(int), 0]))
+    return [(int(a_), int(b_ - 1)) for a_, b_ in zip(edges[::2], edges[1::2], strict=True)
+            if b_ - a_ >= MIN_SIDE_STRIDES]
+
+
+def sideways_warnings(session, consequence) -> list[str]:
+    """Decision L219's lines: one per sideways run of the session's foot unit. ``consequence(t0, t1)`` is the
+    pipeline's half sentence on what its track did over that span."""
+    strides = foot_travel_angles(session)
+    if strides is None:
+        return []
+    t0, t1, angle, length = strides
+    out = []
+    for a, b in sideways_runs(t0, t1, angle, length):
+        ang = np.degrees(angle[a:b + 1])
+        way = "left" if np.median(ang) > 0 else "right"
+        out.append(f"{b - a + 1} foot strides at {t0[a]:.1f}-{t1[b]:.1f} s travel sideways to the {way} "
+                   f"({length[a:b + 1].sum():.1f} m by the foot unit's ZUPT strides, median "
+                   f"{np.median(np.abs(ang)):.0f} deg from the foot's facing): {consequence(t0[a], t1[b])} "
+                   "(decision L219)")
+    return out
