@@ -7,6 +7,7 @@ beside it), the heading change start to end, the turns of turns.csv (L200; numbe
 counted (both feet) against the true contacts, and how many tracks give decision L219's sideways line.
 
     PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/side_steps.py [--out experiments/results/side_steps.txt]
+    PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/side_steps.py --controls   # L219 (b), (c)
 """
 
 from __future__ import annotations
@@ -78,5 +79,37 @@ def main(out: str | None = None) -> None:
             f.write("\n".join(lines) + "\n")
 
 
+CONTROLS = ("A", "C", "D", "straight:5, backward:6, straight:5")
+
+
+def controls() -> None:
+    """Decision L219's criteria (b) and (c): tracks with a sideways line on walks without side steps."""
+    from pathlib import Path
+
+    from pdrlearn.io import read_session
+    from pdrlearn.sim import simulate
+
+    logging.disable(logging.WARNING)
+    for c in CONTROLS:
+        n, warned = 0, {p: 0 for p in PIPELINES}
+        for u in USERS:
+            s = (simulate(c, u, rate_hz=20.0, seed=1) if len(c) == 1 else
+                 simulate_path(parse_route(c), UserProfile.from_seed(u), rate_hz=20.0, seed=1, scenario="route"))
+            n += 1
+            for p in PIPELINES:
+                warned[p] += any("decision L219" in w for w in get_pipeline(p)(s).info["warnings"])
+        print(f"{c!r}, users {USERS.start}-{USERS.stop - 1}: " + ", ".join(f"{p} {w} of {n}" for p, w in warned.items())
+              + " tracks with an L219 line", flush=True)
+    real = sorted({d.resolve(): d for d in [*Path("datasets/real").glob("gaitmap_*"),
+                                            *Path("datasets/external").glob("gaitmap_*")]}.values())
+    for d in real:
+        s = read_session(d)
+        lines = [w for w in get_pipeline("plasys")(s).info["warnings"] if "decision L219" in w]
+        print(f"{d}: plasys {len(lines)} L219 line(s)", flush=True)
+
+
 if __name__ == "__main__":
-    main(sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else None)
+    if "--controls" in sys.argv[1:]:
+        controls()
+    else:
+        main(sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else None)
