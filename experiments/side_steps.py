@@ -8,6 +8,7 @@ counted (both feet) against the true contacts, and how many tracks give decision
 
     PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/side_steps.py [--out experiments/results/side_steps.txt]
     PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/side_steps.py --controls   # L219 (b), (c)
+    PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/side_steps.py --candidate  # L219's adoption rule
 """
 
 from __future__ import annotations
@@ -22,6 +23,8 @@ from pdrlearn.sim.route import parse_route
 from pdrlearn.track import get_pipeline
 from pdrlearn.track.clinical import turn_table
 from pdrlearn.track.evaluate import evaluate_track
+from pdrlearn.track.frame_inference import foot_travel_angles
+from pdrlearn.track.sideways import sideways_runs
 
 USERS = range(3980, 4000)
 ROUTES = ("straight:10, side:3, straight:10", "side:-4", "straight:23")  # the last: a control without side steps
@@ -105,11 +108,57 @@ def controls() -> None:
     for d in real:
         s = read_session(d)
         lines = [w for w in get_pipeline("plasys")(s).info["warnings"] if "decision L219" in w]
-        print(f"{d}: plasys {len(lines)} L219 line(s)", flush=True)
+        # the cue itself (plasys says it only with a waist heading; these recordings have no waist unit)
+        strides = foot_travel_angles(s)
+        runs = "no declared foot frame" if strides is None else (
+            f"{len(sideways_runs(*strides[2:]))} sideways run(s) in {len(strides[0])} strides, max |angle| of the "
+            f"strides "
+            f"over 0.15 m {np.degrees(np.abs(strides[2][strides[3] > 0.15])).max(initial=0):.0f} deg")
+        print(f"{d}: plasys {len(lines)} L219 line(s); cue: {runs}", flush=True)
+
+
+def candidate() -> None:
+    """Decision L219's adoption rule for ``plasys.SIDE_TRAVEL_HEADING``: (1), (2) on the side routes, (3) on the
+    controls (distance and final position with the option off and on)."""
+    from pdrlearn.sim import simulate
+    from pdrlearn.track import plasys
+
+    logging.disable(logging.WARNING)
+
+    def run(route: str, user: int, on: bool) -> dict:
+        plasys.SIDE_TRAVEL_HEADING = on
+        try:
+            s = (simulate(route, user, rate_hz=20.0, seed=1) if len(route) == 1 else
+                 simulate_path(parse_route(route), UserProfile.from_seed(user), rate_hz=20.0, seed=1,
+                               scenario="route"))
+            res = get_pipeline("plasys")(s)
+            ev = evaluate_track(res, s)
+            return {"err": ev.get("final_position_error_m", np.nan), "dist": ev["distance_m"],
+                    "end": res.trajectory[["x", "y"]].to_numpy(float)[-1],
+                    "line": any("decision L219" in w for w in res.info["warnings"])}
+        finally:
+            plasys.SIDE_TRAVEL_HEADING = False
+
+    for route in ROUTES[:2]:
+        off = [run(route, u, False) for u in USERS]
+        on = [run(route, u, True) for u in USERS]
+        e0, e1 = np.array([r["err"] for r in off]), np.array([r["err"] for r in on])
+        print(f"{route!r} plasys final_position_error_m: off median {np.median(e0):.2f} (max {e0.max():.2f}), on "
+              f"median {np.median(e1):.2f} (max {e1.max():.2f}); largest growth {np.max(e1 - e0):+.2f} m; distance "
+              f"on median {np.median([r['dist'] for r in on]):.2f} m; L219 lines on {sum(r['line'] for r in on)}",
+              flush=True)
+    for route in (*CONTROLS, ROUTES[2]):
+        same = 0
+        for u in USERS:
+            a, b = run(route, u, False), run(route, u, True)
+            same += abs(a["dist"] - b["dist"]) <= 1e-9 and bool(np.all(np.abs(a["end"] - b["end"]) <= 1e-9))
+        print(f"{route!r}: plasys identical with the option on in {same} of {len(USERS)} tracks", flush=True)
 
 
 if __name__ == "__main__":
-    if "--controls" in sys.argv[1:]:
+    if "--candidate" in sys.argv[1:]:
+        candidate()
+    elif "--controls" in sys.argv[1:]:
         controls()
     else:
         main(sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else None)

@@ -23,7 +23,7 @@ SIDE_MIN_STRIDE_M = 0.15
 MIN_SIDE_STRIDES = 3
 
 
-def sideways_runs(t0: np.ndarray, t1: np.ndarray, angle: np.ndarray, length: np.ndarray) -> list[tuple[int, int]]:
+def sideways_runs(angle: np.ndarray, length: np.ndarray) -> list[tuple[int, int]]:
     """Runs ``(first, last)`` of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides (angle rad from the
     foot's facing, left +; length m)."""
     a = np.degrees(np.abs(np.asarray(angle, float)))
@@ -41,7 +41,7 @@ def sideways_warnings(session, consequence) -> list[str]:
         return []
     t0, t1, angle, length = strides
     out = []
-    for a, b in sideways_runs(t0, t1, angle, length):
+    for a, b in sideways_runs(angle, length):
         ang = np.degrees(angle[a:b + 1])
         way = "left" if np.median(ang) > 0 else "right"
         out.append(f"{b - a + 1} foot strides at {t0[a]:.1f}-{t1[b]:.1f} s travel sideways to the {way} "
@@ -49,3 +49,18 @@ def sideways_warnings(session, consequence) -> list[str]:
                    f"{np.median(np.abs(ang)):.0f} deg from the foot's facing): {consequence(t0[a], t1[b])} "
                    "(decision L219)")
     return out
+
+
+def side_travel_extra(lateral: np.ndarray, length: np.ndarray) -> np.ndarray:
+    """Decision L219's candidate for the foot track's waist / fused heading: per stride, the part of its travel angle
+    ``lateral`` (rad from the foot's facing) that the waist heading does not see - inside a sideways run
+    (:func:`sideways_runs`) the angle minus the median angle of the other strides (the foot's usual offset from the
+    walking direction), elsewhere 0 (those strides are tracked as before)."""
+    lateral = np.asarray(lateral, float)
+    side = np.zeros(len(lateral), dtype=bool)
+    for a, b in sideways_runs(lateral, length):
+        side[a:b + 1] = True
+    if not side.any():
+        return np.zeros(len(lateral))
+    usual = float(np.median(lateral[~side])) if (~side).any() else 0.0
+    return np.where(side, lateral - usual, 0.0)
