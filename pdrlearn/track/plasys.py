@@ -499,9 +499,9 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
 #: decision L84: "fused" fits the waist magnetometer's horizontal hard-iron offset from the walk (not adopted:
 #: the rule's measurement is in docs/decisions/localization.md); ``track_plasys(hard_iron_fit=True)`` turns it on
 HARD_IRON_FIT = False
-#: decision L219's candidate (adoption rule in L219): with the waist / fused heading, a sideways run's travel angle
-#: (minus the foot's usual offset) is added after the waist heading instead of fused into it
-SIDE_TRAVEL_HEADING = False
+#: decision L219 (adopted by its rule): with the waist / fused heading, a sideways run's travel angle (minus the
+#: foot's usual offset) is added after the waist heading instead of fused into it; False = before L219
+SIDE_TRAVEL_HEADING = True
 #: L84's gates, fixed before measuring: the walk's stride headings spread enough (resultant length), enough
 #: strides, and an offset no larger than the fitted horizontal field
 HARD_IRON_MAX_RESULTANT = 0.5
@@ -1033,7 +1033,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         hsrc = "foot"
     lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
     side_extra = np.zeros(len(lateral))
-    if hsrc in ("waist", "fused") and SIDE_TRAVEL_HEADING:  # decision L219's candidate: a sideways run's travel
+    if hsrc in ("waist", "fused") and SIDE_TRAVEL_HEADING:  # decision L219: a sideways run's travel
         from pdrlearn.track.sideways import side_travel_extra  # angle is added after the waist heading, not fused
 
         side_extra = side_travel_extra(lateral, np.hypot(disp[:, 0], disp[:, 1]))
@@ -1061,7 +1061,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if hsrc == "fused":
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s)
-        head = head + side_extra  # decision L219's candidate (0 without a sideways run)
+        head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
         head = fd.foot_heading(initial_heading) + lateral
     else:

@@ -1,11 +1,12 @@
-"""Side steps: every pipeline tracks a sideways stretch as if it went where the body faces (decision L219).
+"""Side steps (decisions L218, L219): the lower-back pipelines track a sideways stretch as forward distance.
 
 A lower-back unit gives a step's length and the unit's heading, not the way the step went, so a side step is
-counted as forward distance; the foot track's fused heading takes the waist compass's facing and puts the side
-strides along it. The cue is the foot unit's ZUPT stride: its horizontal displacement points sideways from the
-foot's facing (:func:`pdrlearn.track.frame_inference.foot_travel_angles`). Only with a foot unit and its declared
-frame. A run of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides gives one warning line; nothing is
-changed (L218 measured what the tracks make of it).
+counted as forward distance. The cue is the foot unit's ZUPT stride: its horizontal displacement points sideways from
+the foot's facing (:func:`pdrlearn.track.frame_inference.foot_travel_angles`). Only with a foot unit and its declared
+frame. A run of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides gives one warning line
+(:func:`sideways_warnings`); the waist steps are not changed. The foot track's fused heading used to take the waist
+compass's facing for these strides' direction; :func:`side_travel_extra` adds their travel angle after it
+(``plasys.SIDE_TRAVEL_HEADING``, adopted by L219's rule), and with it off ``plasys`` gives the line too.
 """
 
 from __future__ import annotations
@@ -52,7 +53,7 @@ def sideways_warnings(session, consequence) -> list[str]:
 
 
 def side_travel_extra(lateral: np.ndarray, length: np.ndarray) -> np.ndarray:
-    """Decision L219's candidate for the foot track's waist / fused heading: per stride, the part of its travel angle
+    """Decision L219 for the foot track's waist / fused heading: per stride, the part of its travel angle
     ``lateral`` (rad from the foot's facing) that the waist heading does not see - inside a sideways run
     (:func:`sideways_runs`) the angle minus the median angle of the other strides (the foot's usual offset from the
     walking direction), elsewhere 0 (those strides are tracked as before)."""
