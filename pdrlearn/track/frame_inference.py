@@ -228,6 +228,32 @@ def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     return acc_s.t[i0], acc_s.t[i1], asym
 
 
+def foot_travel_angles(session) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
+    """Start and end time (s), travel angle (rad from the foot's facing, left +) and horizontal length (m) of each
+    rest-to-rest ZUPT stride of the session's foot unit (:func:`stride_displacements`), in its declared frame's
+    forward / left axes (decision L219: a side step travels about 90 deg from the facing); None without a foot unit
+    or a declared foot frame (an inferred one assumes forward walking)."""
+    from pdrlearn.displace.foot import inertial_stance
+    from pdrlearn.signal.filters import interp_rows
+
+    acc_n, gyr_n = UNIT_STREAMS["foot"]
+    frame = session.frames.get("foot")
+    if frame is None or acc_n not in session.streams or gyr_n not in session.streams:
+        return None
+    acc_s, gyr_s = session.streams[acc_n], session.streams[gyr_n]
+    if len(acc_s) < 8 or len(gyr_s) < 2 or not np.isfinite(acc_s.rate_hz):
+        return None
+    acc, gyr, fs = acc_s.values, interp_rows(acc_s.t, gyr_s.t, gyr_s.values), float(acc_s.rate_hz)
+    if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
+        return None
+    stance = inertial_stance(acc, gyr, fs)
+    i0, i1 = rest_to_rest(stance, fs)
+    disp = stride_displacements(acc, gyr, fs, stance)
+    m = frame.matrix()
+    fwd, left = disp @ _unit(m[0]), disp @ _unit(m[1])
+    return acc_s.t[i0], acc_s.t[i1], np.arctan2(left, fwd), np.hypot(fwd, left)
+
+
 def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
     """Frame of a foot unit from its specific force (m/s^2) and angular rate (rad/s) on one clock (fs Hz).
 

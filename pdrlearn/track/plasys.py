@@ -499,6 +499,9 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
 #: decision L84: "fused" fits the waist magnetometer's horizontal hard-iron offset from the walk (not adopted:
 #: the rule's measurement is in docs/decisions/localization.md); ``track_plasys(hard_iron_fit=True)`` turns it on
 HARD_IRON_FIT = False
+#: decision L219 (adopted by its rule): with the waist / fused heading, a sideways run's travel angle (minus the
+#: foot's usual offset) is added after the waist heading instead of fused into it; False = before L219
+SIDE_TRAVEL_HEADING = True
 #: L84's gates, fixed before measuring: the walk's stride headings spread enough (resultant length), enough
 #: strides, and an offset no larger than the fitted horizontal field
 HARD_IRON_MAX_RESULTANT = 0.5
@@ -1029,12 +1032,17 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         warnings.append(no_waist_heading(session))
         hsrc = "foot"
     lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
+    side_extra = np.zeros(len(lateral))
+    if hsrc in ("waist", "fused") and SIDE_TRAVEL_HEADING:  # decision L219: a sideways run's travel
+        from pdrlearn.track.sideways import side_travel_extra  # angle is added after the waist heading, not fused
+
+        side_extra = side_travel_extra(lateral, np.hypot(disp[:, 0], disp[:, 1]))
+    relative = fd.foot_heading(0.0) + lateral - side_extra
     if hsrc in ("waist", "fused"):
         work.require_cover("fAccelerometer", "wAccelerometer")  # B21: the waist heading is read at the strides
         hard_iron = None
         if hsrc == "fused" and (HARD_IRON_FIT if hard_iron_fit is None else hard_iron_fit):  # decision L84
-            hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, fd.foot_heading(0.0) + lateral,
-                                                            keep=~in_gap)
+            hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, relative, keep=~in_gap)
         # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
         rest = waist_rest_bias(work)  # decision W125: W105's check on the waist unit this heading turns by
         bias_line = None if rest is None else still_yaw_rate_message(rest[0], TWO_UNIT_FIX)
@@ -1048,15 +1056,23 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)
         compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
-            work, strides, fd.foot_heading(0.0) + lateral, ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD))
+            work, strides, relative, ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD))
         warnings += [compass_line] if compass_line else []
         if hsrc == "fused":
-            head = fuse_by_segment(fd.foot_heading(0.0) + lateral, head, strides["start_s"].to_numpy(float),
+            head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s)
+        head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
         head = fd.foot_heading(initial_heading) + lateral
     else:
         raise DataError(f"plasys: heading '{hsrc}' is not waist, foot or fused")
+    if hsrc in ("waist", "fused") and not SIDE_TRAVEL_HEADING:  # decision L219: a side-stepping stretch is put
+        # along the body's facing
+        from pdrlearn.track.sideways import sideways_warnings
+
+        warnings += sideways_warnings(session, lambda a, b: (
+            "the heading comes from the waist unit, which follows where the body faces, so the track puts these "
+            "strides along the facing and can turn the walk around them"))
     if cfg["rules"] and hsrc in ("foot", "fused"):  # decision L65: offline as the streamed L37 - a stride whose
         # sign the rules turned against its measured x (a turnaround classed forward) goes along its displacement
         head = head + np.where((length != 0) & ((length < 0) != (disp[:, 0] < 0)), np.pi, 0.0)

@@ -38,6 +38,7 @@ from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, regi
 from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
+from pdrlearn.track.sideways import sideways_warnings
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.backward import backward_warnings
@@ -622,6 +623,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                            integrate_end=bool(o["integrate_end"]) and not realtime)  # W187: offline only
     steps = steps.assign(stairs=stairs)
     warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
+    ev_s, len_s = steps["event_s"].to_numpy(float), steps["length_m"].to_numpy(float)
+    warnings.extend(sideways_warnings(session, lambda a, b: (  # decision L219: side steps are counted forward
+        "the lower-back pipelines count every step as forward distance, so the track's "
+        f"{np.nansum(len_s[(ev_s >= a) & (ev_s <= b)]):.1f} m of steps over this span go along its heading, not "
+        "sideways")))
     n_st = len(steps)
     held = transfer_windows(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool),
                             0.5 * ALTITUDE_SMOOTH_S)  # decision W174: a transfer's height change is the transfer's
