@@ -1,4 +1,4 @@
-"""Issue 4: the lower-back contacts detected while the wearer stands (UCI HAPT) against the walking ones (decision W189).
+"""Issue 4: the lower-back contacts detected while the wearer stands (UCI HAPT) vs the walking ones (decision W189).
 
 `diagnose` (no behaviour change; print, don't tune): every contact of the default offline `waist-pendulum` on each
 HAPT recording, labelled by the activity segment it falls in (H4's borders), with
@@ -11,7 +11,11 @@ HAPT recording, labelled by the activity segment it falls in (H4's borders), wit
 - W20's side (decided or not).
 The same features for mobgap Test11's contacts inside / outside the reference walking bouts (bouts.csv level wb).
 
-Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_stand.py diagnose
+`measure`: decision W189's adoption rule for `stand_veto`, measured once, option on vs off: (a), (b) on HAPT (the
+default `waist-pendulum` against `stand_veto=True`, experiments/hapt.py's run), (c) on fresh simulated users 4060-4099.
+(d), the mobgap rows, is `experiments/waist.py --external datasets/external --no-real [--stand-veto]`.
+
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_stand.py diagnose | measure
 """
 from __future__ import annotations
 
@@ -208,8 +212,100 @@ def diagnose(root: Path, ext: Path) -> None:
     print(m.assign(weak=m.amp_v_n < 0.5).groupby(["group", "short"]).weak.agg(["size", "mean"]).round(3).to_string())
 
 
+SIM_USERS = range(4060, 4100)  # the lead's fresh users for W189
+SIM_ROUTES = {  # name: (route, simulate_path keywords) -- W109's plain walks, W174's TUG, W111's daily route
+    "walk": ("stand:3, straight:14, stand:3", {}),
+    "walk-turn": ("straight:8, turn:180, straight:8", {}),
+    "tug": ("straight:3, turn:180, straight:3", {"speed": "slow", "scenario": "route", "sit_start_s": 5.0,
+                                                 "sit_end_s": 5.0}),
+    "daily": ("stand:3, straight:6, turn:180, straight:4, stand:4, straight:3, turn:-90, straight:5, sit:10, "
+              "straight:4, turn:-135, straight:4, stand:3", {}),
+}
+TOL_S = 0.25
+
+
+def matched_truth(ev: np.ndarray, truth: np.ndarray) -> np.ndarray:
+    """Per true contact: the index of the detected contact matched to it within TOL_S (one-to-one, nearest first,
+    :func:`pdrlearn.steps.evaluate.score_events`'s greedy matching), -1 if none."""
+    out = np.full(truth.size, -1)
+    used = np.zeros(ev.size, bool)
+    pairs = sorted((abs(e - t), i, j) for i, t in enumerate(truth) for j, e in enumerate(ev) if abs(e - t) <= TOL_S)
+    for _, i, j in pairs:
+        if out[i] < 0 and not used[j]:
+            out[i], used[j] = j, True
+    return out
+
+
+def sim_check() -> bool:
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    ok = True
+    for name, (route, kw) in SIM_ROUTES.items():
+        lost, lost_short, tp0, tp1, walks_lost, dropped = 0, 0, 0, 0, 0, 0
+        for u in SIM_USERS:
+            s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
+            truth = s.extras["ics"]["ic_s"].to_numpy(float)
+            off = track_waist(s, pipeline="waist-pendulum").steps
+            on = track_waist(s, pipeline="waist-pendulum", stand_veto=True)
+            e0, e1 = off["event_s"].to_numpy(float), on.steps["event_s"].to_numpy(float)
+            m0, m1 = matched_truth(e0, truth), matched_truth(e1, truth)
+            _, rlen = runs_of(off["has_next"].to_numpy(bool))
+            gone = (m0 >= 0) & (m1 < 0)
+            tp0, tp1, dropped = tp0 + int((m0 >= 0).sum()), tp1 + int((m1 >= 0).sum()), dropped + len(e0) - len(e1)
+            lost += int(gone.sum())
+            lost_short += int((rlen[m0[gone]] <= 3).sum()) if gone.any() else 0
+            walks_lost += bool(gone.any())
+            if gone.any():
+                print(f"(c) user {u} {name}: lost true contacts at {np.round(truth[gone], 2).tolist()} s "
+                      f"(run lengths {rlen[m0[gone]].tolist()})", flush=True)
+        if name == "daily":
+            good = lost <= 2 and lost == lost_short
+        else:
+            good = lost == 0
+        ok &= good
+        print(f"(c) {name}: {len(SIM_USERS)} walks, true contacts matched {tp0} -> {tp1}, lost {lost} "
+              f"(in runs <= 3: {lost_short}) in {walks_lost} walks; contacts dropped {dropped} "
+              f"({'met' if good else 'NOT met'})", flush=True)
+    return ok
+
+
+def measure(root: Path) -> None:
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import hapt as H  # experiments/hapt.py
+
+    cfgs = [c for c in H.configs(True) if c[1] == "waist-pendulum" and not c[2].get("sit_veto")]
+    static, _, gait, refused, cpu = H.run(root, cfgs)
+    print(f"HAPT: {static.session.nunique()} recordings, {cpu:.0f} s CPU; refused {len(refused)}")
+    base, cand = cfgs[0][0], cfgs[1][0]
+    rate = {}
+    for cfg, d in static.groupby("cfg"):
+        rate[cfg] = 60.0 * d.n.sum() / d.dur_s.sum()
+        per = {a: 60.0 * x.n.sum() / x.dur_s.sum() for a, x in d.groupby("activity")}
+        print(f"(a) {cfg}: static contacts {d.n.sum()} in {d.dur_s.sum() / 60:.1f} min, {rate[cfg]:.3f} per min "
+              f"(" + ", ".join(f"{a} {v:.2f}" for a, v in per.items()) + ")")
+    cut = 100.0 * (1.0 - rate[cand] / rate[base])
+    ok_a = cut >= 30.0
+    print(f"(a) pooled static contacts per minute {rate[base]:.3f} -> {rate[cand]:.3f}, down {cut:.1f} % "
+          f"({'met' if ok_a else 'NOT met'}: >= 30 %)")
+    g0, g1 = gait[gait.cfg == base], gait[gait.cfg == cand]
+    med0, med1 = 100 * g0.ratio.median(), 100 * g1.ratio.median()
+    s0, s1 = 100 * g0.groupby("user").ratio.median(), 100 * g1.groupby("user").ratio.median()
+    worst = (s1 - s0).min()
+    ok_b = med1 >= med0 - 0.5 and worst >= -0.5
+    print(f"(b) gait segments {len(g0)} / {len(g1)}: median detected/spectral - 1 {med0:+.2f} -> {med1:+.2f} %; "
+          f"per-subject medians: largest drop {worst:+.2f} points (user {int((s1 - s0).idxmin())}), subjects "
+          f"changed {int(((s1 - s0).abs() > 1e-9).sum())} of {len(s0)} ({'met' if ok_b else 'NOT met'})")
+    ok_c = sim_check()
+    print(f"W189 (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, (c) "
+          f"{'met' if ok_c else 'NOT met'}; (d): experiments/waist.py --external datasets/external --no-real "
+          "[--stand-veto]")
+
+
 if __name__ == "__main__":
     if sys.argv[1:2] == ["diagnose"]:
         diagnose(Path("datasets/hapt"), Path("datasets/external"))
+    elif sys.argv[1:2] == ["measure"]:
+        measure(Path("datasets/hapt"))
     else:
-        raise SystemExit("usage: waist_stand.py diagnose")
+        raise SystemExit("usage: waist_stand.py diagnose | measure")
