@@ -302,7 +302,38 @@ def measure(root: Path) -> None:
           "[--stand-veto]")
 
 
+def after() -> None:
+    """Looked at after W189's run (no change made from it): where the TUG's dropped contacts lie (in a simulated
+    transfer, else elsewhere) and the dropped runs' lengths; the users are W189's, so nothing here is fresh."""
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    route, kw = SIM_ROUTES["tug"]
+    n_in, n_out, lens = 0, 0, []
+    for u in SIM_USERS:
+        s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
+        tr = s.extras["transfers"]
+        off = track_waist(s, pipeline="waist-pendulum").steps
+        e1 = track_waist(s, pipeline="waist-pendulum", stand_veto=True).steps["event_s"].to_numpy(float)
+        e0 = off["event_s"].to_numpy(float)
+        rid, rlen = runs_of(off["has_next"].to_numpy(bool))
+        gone = np.array([np.abs(e1 - e).min() > 1e-9 if e1.size else True for e in e0], bool)
+        inside = np.zeros(e0.size, bool)
+        for a, b in zip(tr.start_s, tr.end_s, strict=True):
+            inside |= (e0 >= a) & (e0 <= b)
+        n_in, n_out = n_in + int((gone & inside).sum()), n_out + int((gone & ~inside).sum())
+        lens += [int(rlen[rid == r][0]) for r in np.unique(rid[gone])]
+        if gone.any():
+            print(f"user {u}: dropped {np.round(e0[gone], 2).tolist()} s, in a transfer {(gone & inside).sum()}, "
+                  f"contacts {e0.size}", flush=True)
+    print(f"TUG users {SIM_USERS.start}-{SIM_USERS.stop - 1}: dropped {n_in + n_out}, inside a simulated transfer "
+          f"{n_in}, elsewhere {n_out}; dropped run lengths {sorted(lens)}")
+
+
 if __name__ == "__main__":
+    if sys.argv[1:2] == ["after"]:
+        after()
+        raise SystemExit
     if sys.argv[1:2] == ["diagnose"]:
         diagnose(Path("datasets/hapt"), Path("datasets/external"))
     elif sys.argv[1:2] == ["measure"]:
