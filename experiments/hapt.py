@@ -35,6 +35,8 @@ from pdrlearn.track.waist import track_waist
 logging.disable(logging.WARNING)
 
 CONFIGS = (("waist-pendulum", None), ("waist-pendulum", "rhythm"), ("waist-pll", None), ("waist-pll", "rhythm"))
+#: ``--stand-veto``: decision W189's option (offline waist-pendulum only), one more row
+STAND_VETO = ("waist-pendulum stand_veto", "waist-pendulum", {"stand_veto": True})
 BAND_HZ = (1.2, 3.0)  # the brief's spectral reference band (72-180 steps/min)
 MIN_GAIT_S = 10.0
 NFFT = 4096  # zero padding: 50 Hz / 4096 = 0.012 Hz bins (the resolution is still 1 / duration)
@@ -56,7 +58,14 @@ def count_in(ev: np.ndarray, a: float, b: float) -> int:
     return int(((ev >= a) & (ev <= b)).sum())
 
 
-def run(root: Path) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, list[str], float]:
+def configs(stand_veto: bool = False) -> list[tuple[str, str, dict]]:
+    """(label, pipeline, track_waist options) of each configuration; W189's ``stand_veto`` row after the default
+    pendulum's when asked."""
+    out = [(f"{pipe}{' sit_veto=rhythm' if veto else ''}", pipe, {"sit_veto": veto}) for pipe, veto in CONFIGS]
+    return out[:1] + [STAND_VETO] + out[1:] if stand_veto else out
+
+
+def run(root: Path, cfgs: list | None = None) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, list[str], float]:
     folders = sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir())
     if not folders:
         raise SystemExit(f"{root}: no hapt_u*_r* sessions; run `pdrlearn fetch hapt --out {root}` first")
@@ -69,10 +78,9 @@ def run(root: Path) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, list[str]
         act["start_s"], act["end_s"] = act.start_ms / 1000.0, (act.end_ms + 20) / 1000.0  # H4: end inclusive
         acc_s = s["wAccelerometer"]  # the reference needs no frame: vertical = the segment's mean specific force
         t, acc, fs = acc_s.t, acc_s.values, acc_s.rate_hz
-        for pipe, veto in CONFIGS:
-            cfg = f"{pipe}{' sit_veto=rhythm' if veto else ''}"
+        for cfg, pipe, kw in cfgs or configs():
             try:
-                ev = track_waist(s, pipeline=pipe, sit_veto=veto).steps["event_s"].to_numpy(float)
+                ev = track_waist(s, pipeline=pipe, **kw).steps["event_s"].to_numpy(float)
             except DataError as exc:
                 msg = str(exc).split("does not fix the axes (")[-1].split(");")[0]
                 refused.append(f"{folder.name} {cfg}: {msg}")
@@ -133,12 +141,14 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
     ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt.md"))
+    ap.add_argument("--stand-veto", action="store_true",
+                    help="add decision W189's `stand_veto` row (offline waist-pendulum); give another --out")
     a = ap.parse_args(argv)
-    static, trans, gait, refused, cpu = run(a.root)
+    static, trans, gait, refused, cpu = run(a.root, configs(a.stand_veto))
     done = pd.concat([static, trans, gait])
     lines = ["# Waist pipelines on UCI HAPT (phone on a belt): false steps and cadence by activity", "",
              f"{done.session.nunique()} recordings tracked, {done.user.nunique()} subjects; "
-             f"{cpu:.0f} s CPU on one core for 4 configurations (tracking + reference).", "",
+             f"{cpu:.0f} s CPU on one core for {static.cfg.nunique()} configurations (tracking + reference).", "",
              *tables(static, trans, gait), "",
              "Refused recordings (DataError, not counted above): " + (str(len(refused)) if refused else "none")]
     lines += [f"- {r}" for r in refused]

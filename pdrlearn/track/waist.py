@@ -90,6 +90,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio_message,
 )
 from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
+from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.transfers import chair_transfers
 
@@ -373,7 +374,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "realtime_contact_shift": False,  # W166: measured, not adopted
-                   "integrate_end": False}  # W187
+                   "integrate_end": False,  # W187
+                   "stand_veto": False}  # W189
 #: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
 #: (a stand of half the local period, not a walk's edge) is decided once the three steps after it are known
 CAUSAL_PAUSE_STEPS = "standing"
@@ -424,7 +426,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
-                realtime_contact_shift: bool | None = None, integrate_end: bool | None = None, detector=None,
+                realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
+                stand_veto: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -492,6 +495,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         whose step vaults the pelvis by less than a quarter of its neighbours' (a weight shift while standing, no
         step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); ``"turns"``: the same, sparing a contact whose
         step turns the pelvis by more than 15 deg (a turn on the spot vaults little; decision W127); default False
+    stand_veto : pendulum, offline detector (the realtime one and ``waist-pll`` ignore it): drop a whole walking run
+        (contacts chained by ``has_next``) whose median vertical bounce is under a third of the recording's median
+        contact bounce: standing sway, no walking (decision W189, :func:`pdrlearn.waist.posture.stand_veto`);
+        default False
     contact_shift : pendulum, offline detector: every kept contact judged once more by W23's weight-shift test with the
         side read at the contact, turns spared (decision W131, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``contact_shift``); default True, ``False`` restores the detector before W131
@@ -545,7 +552,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
-             "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end}
+             "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
+             "stand_veto": stand_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -585,6 +593,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
+    n_weak_run = 0
+    if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
+        steps = drop_weak_runs(steps, imu)
+        n_weak_run = steps.attrs["n_weak_run"]
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
@@ -698,6 +710,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,
         "n_unvaulted_contacts": n_unvaulted,
+        "n_weak_run_contacts": n_weak_run,
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }

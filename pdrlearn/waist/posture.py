@@ -20,6 +20,9 @@ Decision W119: :func:`vault_veto` drops a contact whose step does not vault the 
 a pendulum step raises the pelvis, h ~ s^2 / (8 L), seed 003 eq. 1); not the trunk's posture, but the same
 mechanism of dropping contacts. Decision W127: with ``spare_turns`` it keeps a contact whose step turns the pelvis
 (a turn on the spot vaults little, like a weight shift).
+
+Decision W189: :func:`stand_veto` drops a whole walking run whose median vertical bounce is under a third of the
+recording's median contact bounce (standing sway chains contacts with the bounce of none of the wearer's steps).
 """
 
 from __future__ import annotations
@@ -220,3 +223,18 @@ def vault_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
         drop &= ~K.turning_step_mask(np.where(has_next, K.integrate_rate(imu.t, imu.w_z - gyro_bias_rps, ev, nxt),
                                               0.0))
     return drop_contacts(steps, ~drop, "n_unvaulted")
+
+
+def stand_veto(steps: pd.DataFrame, imu: WaistIMU) -> pd.DataFrame:
+    """``steps`` without the walking runs (contacts chained by ``has_next``) whose median bounce
+    (:func:`~pdrlearn.kernels.waist.contact_bounce`) is under :data:`~pdrlearn.kernels.waist.WEAK_RUN_FRAC` of the
+    median bounce of all the contacts (:func:`~pdrlearn.kernels.waist.weak_run_mask`; decision W189).
+    ``attrs["n_weak_run"]`` counts the dropped."""
+    if steps.empty:
+        out = steps.copy()
+        out.attrs["n_weak_run"] = 0
+        return out
+    ev = steps["event_s"].to_numpy(float)
+    idx = np.clip(np.round((ev - imu.t[0]) * imu.fs).astype(int), 0, len(imu.t) - 1)
+    drop = K.weak_run_mask(K.contact_bounce(imu.acc_v, imu.fs, idx), steps["has_next"].to_numpy(bool))
+    return drop_contacts(steps, ~drop, "n_weak_run")
