@@ -80,7 +80,8 @@ def test_the_default_is_still_no_veto_and_an_upright_walk_is_unchanged():
 
 def test_a_bad_sit_veto_value_names_alternation():
     s = simulate_path([Stand(3.0), Straight(6.0), Stand(3.0)], UserProfile.from_seed(541), rate_hz=100, seed=541)
-    with pytest.raises(DataError, match=r'"rhythm", "alternation" \(decisions W104, W109, W180\)') as e:
+    values = r'"rhythm", "alternation", "opposite" \(decisions W104, W109, W180, W184\)'  # W184 added "opposite"
+    with pytest.raises(DataError, match=values) as e:
         track_waist(s, pipeline="waist-pendulum", sit_veto="Alternation")
     assert "\n" not in str(e.value)
 
