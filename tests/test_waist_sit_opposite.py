@@ -1,6 +1,7 @@
 """Decision W184: `sit_veto="opposite"` - W109's rhythm veto that also spares an undecided contact between two
 contacts of its walking sequence on opposite decided sides (`undecided_between(..., opposite=True)`: an extra contact
-inside a left/right pair); W180's same-side case is not spared by this value."""
+inside a left/right pair); W180's same-side case is not spared by this value. W185: W184's rule met, the default of
+offline tracks (realtime tracks keep no veto unless they set it)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
 from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
+from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO, track_waist
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.events import steps_from_events
 from pdrlearn.waist.plausibility import contact_lateral_velocity
@@ -94,14 +95,35 @@ def test_the_opposite_veto_removes_a_simulated_sit_to_stand_and_reads_the_params
     pd.testing.assert_frame_equal(via.steps, on.steps)
 
 
-def test_an_upright_walk_is_unchanged_and_the_default_is_no_veto():
+def test_an_upright_walk_is_unchanged():
     s = simulate_path([Stand(3.0), Straight(14.0), Stand(3.0)], UserProfile.from_seed(541), speed="normal",
                       rate_hz=100, seed=541)
     off = track_waist(s, pipeline="waist-pendulum", sit_veto=False)
     on = track_waist(s, pipeline="waist-pendulum", sit_veto="opposite")
     pd.testing.assert_frame_equal(on.steps, off.steps)
     assert on.info["n_vetoed_contacts"] == 0
-    assert OPTION_DEFAULTS["sit_veto"] is False  # W185: measured, the rule not met
+
+
+@pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
+def test_opposite_is_the_offline_default_and_realtime_keeps_no_veto(pipeline):
+    """W185: W184's rule met, so an offline track without `sit_veto` is `"opposite"`; a realtime track without it
+    stays unvetoed (REALTIME_SIT_VETO), and the option given (argument or PARAMS.json) is applied either way."""
+    s = simulate_path(parse_route("straight:10, sit:20, straight:10"), UserProfile.from_seed(621), rate_hz=100,
+                      seed=621)
+    assert OPTION_DEFAULTS["sit_veto"] == "opposite" and REALTIME_SIT_VETO is False
+    default = track_waist(s, pipeline=pipeline)
+    pd.testing.assert_frame_equal(default.steps, track_waist(s, pipeline=pipeline, sit_veto="opposite").steps)
+    assert default.info["n_vetoed_contacts"] > 0
+    off = track_waist(s, pipeline=pipeline, params={"options": {"sit_veto": False}})
+    pd.testing.assert_frame_equal(off.steps, track_waist(s, pipeline=pipeline, sit_veto=False).steps)
+    assert off.info["n_vetoed_contacts"] == 0 and len(off.steps) > len(default.steps)
+    if pipeline == "waist-pendulum":  # realtime is the pendulum's causal detector
+        rt = track_waist(s, pipeline=pipeline, realtime=True)
+        assert rt.info["n_vetoed_contacts"] == 0
+        pd.testing.assert_frame_equal(rt.steps, track_waist(s, pipeline=pipeline, realtime=True,
+                                                            sit_veto=False).steps)
+        for given in ({"sit_veto": "opposite"}, {"params": {"options": {"sit_veto": "opposite"}}}):
+            assert track_waist(s, pipeline=pipeline, realtime=True, **given).info["n_vetoed_contacts"] > 0
 
 
 def test_a_bad_sit_veto_value_lists_every_value():
@@ -124,3 +146,4 @@ def test_the_opposite_veto_keeps_ha002s_step_between_opposite_side_contacts():
         return bool(np.abs(e - 31.74).min() < 0.005)
 
     assert not kept("rhythm") and not kept("alternation") and kept("opposite")
+    assert kept(None)  # the offline default since W185

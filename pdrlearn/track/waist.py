@@ -358,10 +358,13 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
+                   "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "weak_fill": False,
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
-                   "realtime_contact_shift": False}  # W166: measured, not adopted
+                   "realtime_contact_shift": False}  # W166: measured, not adopted; sit_veto: W185, offline only
+#: decision W185: the ``sit_veto`` value of a ``realtime`` track that does not set it (W184's rule adopted
+#: ``"opposite"`` for offline tracks only)
+REALTIME_SIT_VETO = False
 #: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
 #: (a stand of half the local period, not a walk's edge) is decided once the three steps after it are known
 CAUSAL_PAUSE_STEPS = "standing"
@@ -463,9 +466,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         upright (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`);
         ``"rhythm"``: the same, sparing the contacts that alternate left/right with a neighbour of their walking
         sequence (decision W109); ``"alternation"``: as ``"rhythm"``, sparing also an undecided contact (no W20 side)
-        between two same-side contacts of its sequence (decision W180); ``"opposite"``: as ``"rhythm"``, sparing
-        also an undecided contact between two opposite-side contacts of its sequence (decision W184); ``False``
-        (default): no veto
+        between two same-side contacts of its sequence (decision W180); ``"opposite"`` (the default of offline
+        tracks since W185): as ``"rhythm"``, sparing also an undecided contact between two opposite-side contacts of
+        its sequence (decision W184); ``False``: no veto (the default with ``realtime``, W185)
     realtime_contact_shift : pendulum, realtime: W131's ``contact_shift`` inside each W31 decision window too (no added
         latency; decision W166: measured, not adopted -- Test11's pooled calibrated bout median vs the strides rose
         13.280 -> 13.556 %); default False. The live trackers read it from the PARAMS.json / bundle options
@@ -534,6 +537,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "realtime_contact_shift": realtime_contact_shift}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
+    if realtime and sit_veto is None and (p.options or {}).get("sit_veto") is None:
+        o["sit_veto"] = REALTIME_SIT_VETO  # W185: the adopted veto is the offline default only
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
     smoothing = check_length_smoothing(o["length_smoothing"])  # W56
