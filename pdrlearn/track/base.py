@@ -218,9 +218,11 @@ def get_pipeline(name: str) -> Pipeline:
       ``stairs_length`` (decision W91, off; ``"climbs"``: W108's climbs only, W156), ``stairs_climb`` (decision
       W108, off: stairs only inside a climb above the barometer's still noise, z only on stairs), ``slow_turn_rps``
       (decision W82, off),
-      ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104, off:
+      ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104:
       no contact around a sit-to-stand's trunk-flexion peak; ``"rhythm"``: W109, sparing left/right step pairs;
-      ``"alternation"``: W180, also an undecided contact between two same-side contacts of its sequence),
+      ``"alternation"``: W180, also an undecided contact between two same-side contacts of its sequence;
+      ``"opposite"``, the offline default since W185 (off with ``realtime``): W184, instead an undecided contact
+      between two opposite-side contacts of its sequence),
       ``pause_steps`` (decision W111, off: a step over 1.5 local periods keeps one period's length;
       ``"progression"``: W122, a step with a standstill in it keeps at most the trunk's travel over it;
       ``"standing"``, the offline default since W134: W122 only for a still run of half a local step period, not a

@@ -370,12 +370,15 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
+                   "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
-                   "realtime_contact_shift": False,  # W166: measured, not adopted
+                   "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
                    "stand_veto": False}  # W189
+#: decision W185: the ``sit_veto`` value of a ``realtime`` track that does not set it (W184's rule adopted
+#: ``"opposite"`` for offline tracks only)
+REALTIME_SIT_VETO = False
 #: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
 #: (a stand of half the local period, not a walk's edge) is decided once the three steps after it are known
 CAUSAL_PAUSE_STEPS = "standing"
@@ -386,8 +389,9 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                                                           "parity_fill"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
-#: sparing also an undecided contact between two same-side contacts of its sequence
-SIT_VETO_VALUES = (False, True, "rhythm", "alternation")
+#: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
+#: undecided contact between two opposite-side contacts of its sequence
+SIT_VETO_VALUES = (False, True, "rhythm", "alternation", "opposite")
 #: decision W156: ``stairs_length`` - False (no bound), True (W91's proposed steps, W108's under ``stairs_climb``) or
 #: "climbs" (only the steps inside W108's climbs)
 STAIRS_LENGTH_VALUES = (False, True, "climbs")
@@ -396,7 +400,8 @@ PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
-CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180"), "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
+CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
+                  "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159")}
 
@@ -479,7 +484,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         upright (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`);
         ``"rhythm"``: the same, sparing the contacts that alternate left/right with a neighbour of their walking
         sequence (decision W109); ``"alternation"``: as ``"rhythm"``, sparing also an undecided contact (no W20 side)
-        between two same-side contacts of its sequence (decision W180); ``False`` (default): no veto
+        between two same-side contacts of its sequence (decision W180); ``"opposite"`` (the default of offline
+        tracks since W185): as ``"rhythm"``, sparing also an undecided contact between two opposite-side contacts of
+        its sequence (decision W184); ``False``: no veto (the default with ``realtime``, W185)
     realtime_contact_shift : pendulum, realtime: W131's ``contact_shift`` inside each W31 decision window too (no added
         latency; decision W166: measured, not adopted -- Test11's pooled calibrated bout median vs the strides rose
         13.280 -> 13.556 %); default False. The live trackers read it from the PARAMS.json / bundle options
@@ -556,6 +563,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "stand_veto": stand_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
+    if realtime and sit_veto is None and (p.options or {}).get("sit_veto") is None:
+        o["sit_veto"] = REALTIME_SIT_VETO  # W185: the adopted veto is the offline default only
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
     smoothing = check_length_smoothing(o["length_smoothing"])  # W56
@@ -604,9 +613,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     transfers = chair_transfers(imu, steps)  # decision W182: each sit-to-stand / stand-to-sit (W104's events)
     n_vetoed = 0
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
-        # W180: and an undecided contact inside an alternating sequence
-        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation"),
-                              keep_between=o["sit_veto"] == "alternation")
+        # W180: and an undecided contact inside an alternating sequence; W184: or inside a left/right pair
+        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation", "opposite"),
+                              keep_between={"alternation": True, "opposite": "opposite"}.get(o["sit_veto"], False))
         n_vetoed = steps.attrs["n_vetoed"]
     else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
         warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"]))

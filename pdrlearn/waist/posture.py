@@ -15,6 +15,9 @@ walking sequence (W20's sides): a transfer or a bend is sagittal and shifts no w
 
 Decision W180: ``keep_between`` also spares an undecided contact (no W20 side) between two contacts of its walking
 sequence on the same decided side: in ... L ? L ... the undecided one is the right foot of an alternating sequence.
+Decision W184: ``keep_between="opposite"`` spares instead an undecided contact between two contacts of its sequence on
+opposite decided sides (... L ? R ...: an extra contact inside a left/right pair; the veto cannot tell which of the
+three is the step).
 
 Decision W119: :func:`vault_veto` drops a contact whose step does not vault the pelvis (a weight shift while standing:
 a pendulum step raises the pelvis, h ~ s^2 / (8 L), seed 003 eq. 1); not the trunk's posture, but the same
@@ -125,25 +128,29 @@ def alternating_pairs(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:
     return np.append(pair, False) | np.insert(pair, 0, False)
 
 
-def undecided_between(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:
+def undecided_between(side: np.ndarray, has_next: np.ndarray, *, opposite: bool = False) -> np.ndarray:
     """Per contact: True when its side is undecided (0) and its two neighbours are consecutive contacts of its
     walking sequence (``has_next`` of the one before and of itself) on the same decided side: in ... L ? L ... the
-    undecided contact is the other foot of an alternating sequence (decision W180)."""
+    undecided contact is the other foot of an alternating sequence (decision W180). With ``opposite`` the two
+    neighbours are on opposite decided sides instead: in ... L ? R ... it is an extra contact inside a left/right
+    pair (decision W184)."""
     side = np.asarray(side, dtype=int)
     hn = np.asarray(has_next, dtype=bool)
     out = np.zeros(side.size, dtype=bool)
     if side.size >= 3:
-        out[1:-1] = (side[1:-1] == 0) & hn[:-2] & hn[1:-1] & (side[:-2] != 0) & (side[:-2] == side[2:])
+        product = side[:-2] * side[2:]  # +1 same decided side, -1 opposite decided sides, 0 one undecided
+        out[1:-1] = (side[1:-1] == 0) & hn[:-2] & hn[1:-1] & (product == (-1 if opposite else 1))
     return out
 
 
 def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = False,
-                  keep_between: bool = False) -> pd.DataFrame:
+                  keep_between: bool | str = False) -> pd.DataFrame:
     """``steps`` without the contacts inside a trunk-flexion event (:func:`flexion_events`) or within
     :data:`TRANSFER_HALF_S` of its peak (decision W104); with ``keep_rhythm`` (decision W109) the contacts of
     that window that form a left/right pair with a neighbour (:func:`alternating_pairs`, W20's sides of the pelvis's
     lateral velocity at the contacts) are kept; with ``keep_between`` as well (decision W180) so are the undecided
-    contacts between two same-side neighbours of their sequence (:func:`undecided_between`).
+    contacts between two same-side neighbours of their sequence (:func:`undecided_between`); with
+    ``keep_between="opposite"`` (decision W184) those between two opposite-side neighbours instead.
     ``attrs["n_vetoed"]`` counts the dropped."""
     if steps.empty:
         out = steps.copy()
@@ -159,7 +166,7 @@ def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = Fal
         if keep_rhythm:
             veto &= ~alternating_pairs(side, has_next)
         if keep_between:
-            veto &= ~undecided_between(side, has_next)
+            veto &= ~undecided_between(side, has_next, opposite=keep_between == "opposite")
     return drop_contacts(steps, ~veto, "n_vetoed")
 
 
