@@ -4,7 +4,7 @@
     PYTHONPATH=<checkout> .venv/bin/python experiments/aided_streamed.py --cache DIR --out OUT.csv [--users 4000-4019]
     .venv/bin/python experiments/aided_streamed.py --compare BASE.csv CAND.csv
 
-The sessions (``pdrlearn simulate --route "R1, R1"``) and the unaided tracks (``pdrlearn track [--streaming]``, no
+The sessions (the simulator on the route R1 twice) and the unaided tracks (``pdrlearn track [--streaming]``, no
 model) are written once into DIR and reused; the fixes are fused by ``aid_track`` of the checkout on PYTHONPATH, so
 run the script once with the baseline and once with the candidate checkout, then ``--compare``. Fixes: the pelvis
 truth every 60 s + N(0, 1 m) per axis, ``accuracy_m`` 2, in the track's frame (origin = the truth at the track's first
