@@ -147,7 +147,7 @@ class FixConfig:
     sigma_length_rel: float = 0.05
     sigma_length_m: float = 0.02
     sigma_heading_rad: float = math.radians(5.0)
-    yaw_feedback: str | None = "last"
+    yaw_feedback: str | None = "chord"  # decision D24 (seed 004 eq. 28, j = 0: "last")
     scale_feedback: bool = False
     heading_drift_rad: float = math.radians(0.3)
     initial_sigma_m: float = math.sqrt(P_P0_M2)
@@ -192,6 +192,7 @@ class StepFixState:
         self.seg_rows: list[int] = []
         self.seg_head: list[float] = []
         self.anchor_xy, self.anchor_row, self.l_start = self.x.copy(), 0, np.zeros(2)
+        self.P_anchor = self.P.copy()
         self.prev_t = float(t0)
         self.yaw_corrections = 0
 
@@ -229,7 +230,12 @@ class StepFixState:
             dth = wrap_angle(theta_bar - np.asarray(self.seg_head))
             chord = float(np.hypot(*np.sum(stretched, axis=0)))
             geo = 2.0 * sigma**2 / max(chord, 0.5) ** 2
-            if c.yaw_feedback == "last":
+            if c.yaw_feedback == "chord":  # decision D24: the segment's rotation onto the fixes (eq. 26's ends)
+                est, obs = np.sum(inc, axis=0), np.sum(stretched, axis=0)
+                innov = float(wrap_angle(np.arctan2(obs[1], obs[0]) - np.arctan2(est[1], est[0])))
+                q_seg = 0.5 * float(np.trace(self.P - self.P_anchor))
+                r = (2.0 * sigma**2 + q_seg) / max(chord, 0.5) ** 2
+            elif c.yaw_feedback == "last":
                 innov, r = float(dth[-1]), c.sigma_heading_rad**2 + geo
             else:
                 w = lens / max(lens.sum(), 1e-9)
@@ -249,6 +255,7 @@ class StepFixState:
                 self.p_scale *= 1.0 - gain
         self.x, self.P, _, _ = kf_update(self.x, self.P, z, np.array([sigma]))  # seed 004 eqs. 20-22
         self.anchor_xy, self.anchor_row, self.l_start = self.x.copy(), row, z - self.x
+        self.P_anchor = self.P.copy()
         self.seg_inc, self.seg_rows, self.seg_head = [], [], []
         return rows, pos
 
