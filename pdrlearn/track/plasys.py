@@ -44,6 +44,7 @@ from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import gaps as KG
+from pdrlearn.kernels import sideways as KSW
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
@@ -1443,6 +1444,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         # decision L189 (offline's L184, the same function) / L206 (the run's summed dz): a gated stride is level
         dz = KD.streamed_gated_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
     length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
+    if KSW.STREAMED_SIDE_TRAVEL:  # decision E124: a side-stepping stretch's strides headed by the waist go along
+        side = KSW.SideRun()  # their travel angle from the run's third stride on (the runtime's call, stride by stride)
+        for i in np.flatnonzero(~(in_gap | posture | foot_headed)):
+            place[i] += side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]))
     if posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
         warnings.append(posture_warning(int(posture.sum()), float(strides[posture][0, 0]),
                                         float(strides[posture][-1, 1])))
