@@ -13,6 +13,8 @@ within 1e-9 m) with E124's rule off and on. ``--candidate`` prints the side rout
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import logging
 import sys
@@ -52,7 +54,8 @@ def track(s, path: str, tmp: Path) -> dict:
     src, out = tmp / "session", tmp / "run"
     if not src.exists():
         write_session(s, src)
-    assert cli(["run", str(BUNDLE), str(src), "--out", str(out), "--force"]) == 0
+    with contextlib.redirect_stdout(io.StringIO()):  # run's summary lines
+        assert cli(["run", str(BUNDLE), str(src), "--out", str(out), "--force"]) == 0
     summ = json.loads((out / "summary.json").read_text())
     traj = np.loadtxt(out / "trajectory.csv", delimiter=",", skiprows=1, usecols=(1, 2))
     return {"err": summ.get("final_position_error_m", np.nan), "dist": summ["distance_m"], "end": traj[-1]}

@@ -81,11 +81,15 @@ class SideRun:
         self.pending: list[float] = []  # those of the current run's sideways strides before it is one
         self.count = 0  # consecutive sideways strides up to the last one
 
-    def stride(self, dx: float, dy: float, length: float) -> float:
-        """The angle (rad) to add to the direction of the stride with horizontal displacement ``(dx, dy)`` m (the
-        step frame, x along the foot's facing) and rules ``length`` m."""
-        angle = travel_angle(dx, dy)
-        if not bool(is_sideways(angle, math.hypot(dx, dy))):
+    def stride(self, dx: float, dy: float, length: float, frame: float = 0.0) -> float:
+        """The angle (rad) to add to the direction of the stride with horizontal displacement ``(dx, dy)`` m in its
+        step frame, whose x points ``frame`` rad from the foot's facing at the stride's start (the foot's sixth
+        levelled value, :func:`pdrlearn.kernels.window.levelled_units`; 0: the foot's own frame), and rules
+        ``length`` m."""
+        c, s = math.cos(frame), math.sin(frame)
+        fx, fy = c * dx - s * dy, s * dx + c * dy  # the displacement in the foot's frame (offline's ``disp``)
+        angle = travel_angle(fx, fy)
+        if not bool(is_sideways(angle, math.hypot(fx, fy))):
             self.others += self.pending if self.count < MIN_SIDE_STRIDES else []
             self.others.append(angle)
             self.pending, self.count = [], 0
@@ -96,4 +100,11 @@ class SideRun:
             return 0.0
         self.pending = []
         usual = float(np.median(self.others)) if self.others else 0.0
-        return angle - usual + reversed_by_rules(True, dx, length)
+        return angle - usual + reversed_by_rules(True, fx, length)
+
+
+def step_frame(levelled) -> float:
+    """The step frame's direction (rad) from the foot's facing at the stride's start (decision L34's sixth value of
+    the foot's levelled tuple; 0 without it)."""
+    foot = levelled["foot"]
+    return float(foot[5]) if len(foot) > 5 else 0.0

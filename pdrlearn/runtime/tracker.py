@@ -1627,7 +1627,7 @@ class Tracker(FixInput):
         if not foot_headed and _sideways.STREAMED_SIDE_TRAVEL:  # decision E124 (track --streaming's call)
             if self._side is None:
                 self._side = _sideways.SideRun()
-            direction += self._side.stride(dx, dy, length)
+            direction += self._side.stride(dx, dy, length, _sideways.step_frame(lev))
         x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
         if not math.isfinite(direction + x + y + z):  # decision E38: NaN / inf fail (also inf - inf)
             self._non_finite(t0, t1, heading, direction, (x, y, z), (length, dz))
