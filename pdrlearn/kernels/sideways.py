@@ -25,8 +25,8 @@ SIDE_MIN_STRIDE_M = 0.15
 #: decision L219: fewer consecutive sideways strides are no side-stepping stretch (a 90 deg stepping turn's step)
 MIN_SIDE_STRIDES = 3
 #: decision E124: the streamed foot tracker headed by the waist gyroscope (``track --streaming``, ``pdrlearn run``,
-#: ``Tracker``) places a side-stepping stretch's strides along their travel angle (:class:`SideRun`; adopted by E124's rule,
-#: measured in E125); False = before E124
+#: ``Tracker``) places a side-stepping stretch's strides along their travel angle (:class:`SideRun`; adopted by
+#: E124's rule, measured in E125); False = before E124
 STREAMED_SIDE_TRAVEL = True
 
 
