@@ -44,6 +44,7 @@ from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import gaps as KG
+from pdrlearn.kernels import sideways as KSW
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
@@ -1382,6 +1383,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     fa_t, fa_v = streams["fAccelerometer"]
     has_force = "fForceA" in streams and "fForceB" in streams
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
+    frame = np.zeros(len(table))  # decision E124: each stride's step frame from the foot's facing
     posture = np.zeros(len(table), dtype=bool)  # decision B131: strides skipped as the runtime skips them
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
     imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
@@ -1416,6 +1418,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             force = force_at(fa_t[a:b], [streams[n] for n in ("fForceA", "fForceB")]) if has_force else None
             ic[i] = stride_contact(fa_t[a:b], fa_v[a:b, :3], force)
         place[i] = SK.placement_offset(lev, heading, disp[i])  # decision L34
+        frame[i] = KSW.step_frame(lev)  # decision E124: the step frame's direction from the foot's facing
         foot_headed[i] = SK.headed_by_foot(lev, heading)
         if i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps):  # L90: no foot pivot over a foot gap;
             if bridged:  # L91: the waist's turn over the whole pause
@@ -1443,6 +1446,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         # decision L189 (offline's L184, the same function) / L206 (the run's summed dz): a gated stride is level
         dz = KD.streamed_gated_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
     length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
+    if KSW.STREAMED_SIDE_TRAVEL:  # decision E124: a side-stepping stretch's strides headed by the waist go along
+        side = KSW.SideRun()  # their travel angle from the run's third stride on (the runtime's call, stride by stride)
+        for i in np.flatnonzero(~(in_gap | posture | foot_headed)):
+            place[i] += side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]))
     if posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
         warnings.append(posture_warning(int(posture.sum()), float(strides[posture][0, 0]),
                                         float(strides[posture][-1, 1])))
