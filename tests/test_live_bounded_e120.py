@@ -46,15 +46,8 @@ def _feed(session, monkeypatch, *, drift=0.0, offset_s=0.0):
     streams = {}
     for n in clocks.SENSORS:
         st = session.streams[n]
-        t = st.t * (1.0 + drift) + offset_s if n.startswith("w") else st.t
-        streams[n] = (t, st.values)
-    cc = clocks.ClockCheck()
-    for push in replay_chunks(streams, 1.0):
-        for n in clocks.SENSORS:
-            if len(push[n][0]):
-                cc.feed(n, *push[n])
-        cc.check()
-    cc.check(final=True)
+        streams[n] = (st.t * (1.0 + drift) + offset_s if n.startswith("w") else st.t, st.values)
+    cc = clocks.replay_check(streams, 1.0)
     return cc, seen
 
 

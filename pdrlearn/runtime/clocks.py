@@ -232,6 +232,22 @@ class ClockCheck:
             self._add_foot(self._foot.flush())
 
 
+def replay_check(streams: dict, chunk_s: float = 1.0) -> ClockCheck:
+    """The live check on a recording's ``{sensor: (t, values)}`` replayed in ``chunk_s`` pushes (E28's cut), fed as
+    :class:`~pdrlearn.runtime.Tracker` feeds it, then ``check(final=True)``: for measurements and tests of the check
+    alone (decision E120)."""
+    from pdrlearn.runtime.replay import replay_chunks
+
+    cc = ClockCheck()
+    for push in replay_chunks({n: streams[n] for n in SENSORS if n in streams}, chunk_s):
+        for n, (t, v) in push.items():
+            if len(t):
+                cc.feed(n, t, v)
+        cc.check()
+    cc.check(final=True)
+    return cc
+
+
 def waist_on_foot_clock(samples: dict, offset_s: float) -> dict:
     """Decision L177: ``samples`` (sensor -> ``(t, values)``) with the waist sensors' times moved to ``t - offset_s``
     (L161's model, no drift); anything that is no (t, values) pair is passed on for the push's checks to name."""
@@ -251,4 +267,4 @@ def offset_remedy(offset_s: float) -> str:
     return f"a new Tracker(..., waist_clock_offset_s={offset_s:.3f})" if math.isfinite(offset_s) else "Tracker(...)"
 
 
-__all__ = ["ClockCheck", "UNIT_OFFSET_WARN_S", "offset_remedy", "waist_on_foot_clock"]
+__all__ = ["ClockCheck", "UNIT_OFFSET_WARN_S", "offset_remedy", "replay_check", "waist_on_foot_clock"]
