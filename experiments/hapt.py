@@ -2,7 +2,8 @@
 
 HAPT has activity labels per sample but no contacts and no distances (docs/external-data.md, HAPT), so this
 measures only what needs no step reference, per activity class, for `waist-pendulum` and `waist-pll` with default
-options (uncalibrated) and with `sit_veto="rhythm"` (decision W109):
+options (uncalibrated) but no sit veto (the default when hapt.md was measured, before W185) and with
+`sit_veto="rhythm"` (decision W109):
 
 - SITTING / STANDING / LYING segments: detected contacts per minute (every one is a false step; ideal 0);
 - each postural-transition segment (stand_to_sit ...): contacts inside it (ideal about 0-1);
@@ -34,9 +35,10 @@ from pdrlearn.track.waist import track_waist
 
 logging.disable(logging.WARNING)
 
-CONFIGS = (("waist-pendulum", None), ("waist-pendulum", "rhythm"), ("waist-pll", None), ("waist-pll", "rhythm"))
+#: no sit veto or W109's: hapt.md was measured before W185 made sit_veto="opposite" the offline default
+CONFIGS = (("waist-pendulum", False), ("waist-pendulum", "rhythm"), ("waist-pll", False), ("waist-pll", "rhythm"))
 #: ``--stand-veto``: decision W189's option (offline waist-pendulum only), one more row
-STAND_VETO = ("waist-pendulum stand_veto", "waist-pendulum", {"stand_veto": True})
+STAND_VETO = ("waist-pendulum stand_veto", "waist-pendulum", {"stand_veto": True, "sit_veto": False})  # before W185
 BAND_HZ = (1.2, 3.0)  # the brief's spectral reference band (72-180 steps/min)
 MIN_GAIT_S = 10.0
 NFFT = 4096  # zero padding: 50 Hz / 4096 = 0.012 Hz bins (the resolution is still 1 / duration)

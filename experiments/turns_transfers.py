@@ -53,9 +53,10 @@ ROUTES210 = (("stand:3, straight:8, turn:90, straight:8, stand:3", 0.0, 0.0), RO
              ("stand:3, straight:8, turn:180, straight:8, stand:3", 0.0, 0.0),
              ("stand:3, straight:5, turn:360, straight:5, stand:3", 0.0, 0.0))
 TIMINGS210 = ("heading", "yaw")
+# the lower-back tracks without a sit veto: as measured, before W185
 TRACKS = {"plasys": lambda s: track_plasys(s), "plasys-stream": lambda s: track_streaming(s, method="M2"),
-          "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum"),
-          "waist-pll": lambda s: track_waist(s, pipeline="waist-pll")}
+          "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum", sit_veto=False),
+          "waist-pll": lambda s: track_waist(s, pipeline="waist-pll", sit_veto=False)}
 
 
 def true_turn(session) -> tuple[float, float, float]:
@@ -212,7 +213,7 @@ def real(timings=TIMINGS, same_rows: bool = False) -> None:
         ref = s.extras["turns"]
         big = ref[ref["angle_deg"].abs() >= 80]
         for name in ("waist-pendulum", "waist-pll"):
-            res = track_waist(s, pipeline=name)
+            res = track_waist(s, pipeline=name, sit_veto=False)  # as measured, before W185
             first = None
             for timing in timings:
                 tt = turn_table(res.steps, detected_bouts(res.steps), timing=timing,

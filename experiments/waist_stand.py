@@ -49,8 +49,9 @@ def runs_of(has_next: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def features(session, **track_kw) -> pd.DataFrame:
-    """The per-contact features of the module docstring (offline waist-pendulum, defaults + ``track_kw``)."""
-    st = track_waist(session, pipeline="waist-pendulum", **track_kw).steps
+    """The per-contact features of the module docstring (offline waist-pendulum, defaults + ``track_kw``; no sit veto
+    unless asked: as measured, before W185)."""
+    st = track_waist(session, pipeline="waist-pendulum", **{"sit_veto": False, **track_kw}).steps
     imu = waist_imu(session)
     thr, sigma, _ = gate_threshold(imu)
     fs = imu.fs
@@ -246,8 +247,8 @@ def sim_check() -> bool:
         for u in SIM_USERS:
             s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
-            off = track_waist(s, pipeline="waist-pendulum").steps
-            on = track_waist(s, pipeline="waist-pendulum", stand_veto=True)
+            off = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps  # as measured, before W185
+            on = track_waist(s, pipeline="waist-pendulum", stand_veto=True, sit_veto=False)
             e0, e1 = off["event_s"].to_numpy(float), on.steps["event_s"].to_numpy(float)
             m0, m1 = matched_truth(e0, truth), matched_truth(e1, truth)
             _, rlen = runs_of(off["has_next"].to_numpy(bool))
@@ -313,8 +314,8 @@ def after() -> None:
     for u in SIM_USERS:
         s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
         tr = s.extras["transfers"]
-        off = track_waist(s, pipeline="waist-pendulum").steps
-        e1 = track_waist(s, pipeline="waist-pendulum", stand_veto=True).steps["event_s"].to_numpy(float)
+        off = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps  # as measured, before W185
+        e1 = track_waist(s, pipeline="waist-pendulum", stand_veto=True, sit_veto=False).steps["event_s"].to_numpy(float)
         e0 = off["event_s"].to_numpy(float)
         rid, rlen = runs_of(off["has_next"].to_numpy(bool))
         gone = np.array([np.abs(e1 - e).min() > 1e-9 if e1.size else True for e in e0], bool)

