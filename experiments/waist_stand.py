@@ -358,7 +358,42 @@ def after() -> None:
           f"{n_in}, elsewhere {n_out}; dropped run lengths {sorted(lens)}")
 
 
+def after_turns(root: Path) -> None:
+    """Looked at after W191's run (no change made from it): the HAPT static contacts W189's veto drops and
+    ``"turns"`` keeps, by their label, and where their runs' turning steps (> 15 deg, W127) lie."""
+    from pdrlearn.waist.posture import turning_steps
+
+    spared, where, turns = [], [], []
+    for folder in sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir()):
+        s = read_session(folder)
+        try:
+            off = track_waist(s, pipeline="waist-pendulum").steps
+        except DataError:
+            continue
+        ev = off["event_s"].to_numpy(float)
+        e_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).steps["event_s"].to_numpy(float)
+        e_turn = track_waist(s, pipeline="waist-pendulum", stand_veto="turns").steps["event_s"].to_numpy(float)
+        act = pd.read_csv(folder / "activities.csv")
+        lab = np.array([group_of(a) for a in label(ev, act)])
+        rid = K.run_ids(off["has_next"].to_numpy(bool))
+        turning = turning_steps(off, waist_imu(s))
+        kept = np.isin(ev, e_turn) & ~np.isin(ev, e_true)
+        spared += lab[kept].tolist()
+        for r in np.unique(rid[kept & (lab == "static")]):  # the runs that keep a static contact
+            m = (rid == r) & turning
+            where += lab[m].tolist()
+            turns.append(int(m.sum()))
+    print("contacts dropped by stand_veto=true, kept by \"turns\", by label:",
+          pd.Series(spared).value_counts().to_dict())
+    per_run = pd.Series(turns).value_counts().sort_index().to_dict()
+    print(f"runs keeping a static contact: {len(turns)}; turning steps per run {per_run}; "
+          f"the turning steps' labels {pd.Series(where).value_counts().to_dict()}")
+
+
 if __name__ == "__main__":
+    if sys.argv[1:2] == ["after-turns"]:
+        after_turns(Path("datasets/hapt"))
+        raise SystemExit
     if sys.argv[1:2] == ["after"]:
         after()
         raise SystemExit
