@@ -37,7 +37,7 @@ logging.disable(logging.WARNING)
 
 #: no sit veto or W109's: hapt.md was measured before W185 made sit_veto="opposite" the offline default
 CONFIGS = (("waist-pendulum", False), ("waist-pendulum", "rhythm"), ("waist-pll", False), ("waist-pll", "rhythm"))
-#: ``--stand-veto``: decision W189's option (offline waist-pendulum only), one more row
+#: ``--stand-veto [turns]``: decision W189's option (W191's value "turns"; offline waist-pendulum only), one more row
 STAND_VETO = ("waist-pendulum stand_veto", "waist-pendulum", {"stand_veto": True, "sit_veto": False})  # before W185
 BAND_HZ = (1.2, 3.0)  # the brief's spectral reference band (72-180 steps/min)
 MIN_GAIT_S = 10.0
@@ -60,11 +60,15 @@ def count_in(ev: np.ndarray, a: float, b: float) -> int:
     return int(((ev >= a) & (ev <= b)).sum())
 
 
-def configs(stand_veto: bool = False) -> list[tuple[str, str, dict]]:
-    """(label, pipeline, track_waist options) of each configuration; W189's ``stand_veto`` row after the default
-    pendulum's when asked."""
+def configs(stand_veto: bool | str = False) -> list[tuple[str, str, dict]]:
+    """(label, pipeline, track_waist options) of each configuration; W189's ``stand_veto`` row (W191's ``"turns"``
+    when given that value) after the default pendulum's when asked."""
     out = [(f"{pipe}{' sit_veto=rhythm' if veto else ''}", pipe, {"sit_veto": veto}) for pipe, veto in CONFIGS]
-    return out[:1] + [STAND_VETO] + out[1:] if stand_veto else out
+    if not stand_veto:
+        return out
+    row = STAND_VETO if stand_veto is True else (f"{STAND_VETO[0]}={stand_veto}", "waist-pendulum",
+                                                 {"stand_veto": stand_veto, "sit_veto": False})
+    return out[:1] + [row] + out[1:]
 
 
 def run(root: Path, cfgs: list | None = None) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, list[str], float]:
@@ -143,10 +147,12 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
     ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt.md"))
-    ap.add_argument("--stand-veto", action="store_true",
-                    help="add decision W189's `stand_veto` row (offline waist-pendulum); give another --out")
+    ap.add_argument("--stand-veto", nargs="?", const="true", default=None, choices=("true", "turns"),
+                    help="add decision W189's `stand_veto` row (offline waist-pendulum; `turns`: W191's value); "
+                         "give another --out")
     a = ap.parse_args(argv)
-    static, trans, gait, refused, cpu = run(a.root, configs(a.stand_veto))
+    veto = {None: False, "true": True}.get(a.stand_veto, a.stand_veto)
+    static, trans, gait, refused, cpu = run(a.root, configs(veto))
     done = pd.concat([static, trans, gait])
     lines = ["# Waist pipelines on UCI HAPT (phone on a belt): false steps and cadence by activity", "",
              f"{done.session.nunique()} recordings tracked, {done.user.nunique()} subjects; "

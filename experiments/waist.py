@@ -412,9 +412,9 @@ def main() -> None:
     ap.add_argument("--length-smoothing", default="none", choices=("none", "mobgap", "hampel", "seconds"),
                     help="length_smoothing of the offline waist-pendulum rows (decision W56; not the default): "
                          "prints only, experiments/results is written for the defaults alone")
-    ap.add_argument("--stand-veto", action="store_true",
-                    help="decision W189's stand_veto on the offline waist-pendulum rows (not the default): prints "
-                         "only, experiments/results is written for the defaults alone")
+    ap.add_argument("--stand-veto", nargs="?", const="true", default=None, choices=("true", "turns"),
+                    help="decision W189's stand_veto (`turns`: W191's value) on the offline waist-pendulum rows (not "
+                         "the default): prints only, experiments/results is written for the defaults alone")
     ap.add_argument("--no-real", action="store_true",
                     help="only the --external tables (skip datasets/real and the simulation)")
     args = ap.parse_args()
@@ -429,7 +429,8 @@ def main() -> None:
     if args.stand_veto:  # W189: the option on the offline pendulum rows, results not overwritten
         import tempfile
 
-        CONFIGS[:] = [(lbl, pl, {**o, "stand_veto": True}) if pl == "waist-pendulum" and not o.get("realtime")
+        veto = True if args.stand_veto == "true" else args.stand_veto
+        CONFIGS[:] = [(lbl, pl, {**o, "stand_veto": veto}) if pl == "waist-pendulum" and not o.get("realtime")
                       else (lbl, pl, o) for lbl, pl, o in CONFIGS]
         out = Path(tempfile.mkdtemp(prefix="waist_stand_veto_"))
     out.mkdir(parents=True, exist_ok=True)

@@ -15,7 +15,11 @@ The same features for mobgap Test11's contacts inside / outside the reference wa
 default `waist-pendulum` against `stand_veto=True`, experiments/hapt.py's run), (c) on fresh simulated users 4060-4099.
 (d), the mobgap rows, is `experiments/waist.py --external datasets/external --no-real [--stand-veto]`.
 
-Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_stand.py diagnose | measure
+`measure-turns`: decision W191's rule for `stand_veto="turns"` (a weak run with a step turning the pelvis kept): (a),
+(b) the same; (c) fresh users 4180-4239, W189's routes and the TUG with `bounce="pendulum"`, no lost true contact
+outside a simulated chair transfer and outside a 1-contact run. (d): the same waist.py run with `--stand-veto turns`.
+
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_stand.py diagnose | measure | measure-turns
 """
 from __future__ import annotations
 
@@ -223,6 +227,9 @@ SIM_ROUTES = {  # name: (route, simulate_path keywords) -- W109's plain walks, W
               "straight:4, turn:-135, straight:4, stand:3", {}),
 }
 TOL_S = 0.25
+W191_USERS = range(4180, 4240)  # the lead's fresh users for W191
+W191_ROUTES = {**SIM_ROUTES,  # W189's routes and the TUG's slow turn on the spot with the pendulum bounce
+               "tug-pendulum": (SIM_ROUTES["tug"][0], {**SIM_ROUTES["tug"][1], "bounce": "pendulum"})}
 
 
 def matched_truth(ev: np.ndarray, truth: np.ndarray) -> np.ndarray:
@@ -237,18 +244,30 @@ def matched_truth(ev: np.ndarray, truth: np.ndarray) -> np.ndarray:
     return out
 
 
-def sim_check() -> bool:
+def in_transfer(t: np.ndarray, session) -> np.ndarray:
+    """Per time: inside a simulated chair transfer (transfers.csv, start_s to end_s; none without a sit)."""
+    tr = session.extras.get("transfers")
+    inside = np.zeros(t.size, bool)
+    if tr is not None:
+        for a, b in zip(tr.start_s, tr.end_s, strict=True):
+            inside |= (t >= a) & (t <= b)
+    return inside
+
+
+def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W189") -> bool:
+    """(c) of W189's rule (``decision="W189"``) or of W191's (no lost true contact outside a simulated transfer and
+    outside a 1-contact run, every route): the offline pendulum with ``stand_veto=value`` vs off."""
     from pdrlearn.sim import UserProfile, simulate_path
     from pdrlearn.sim.route import parse_route
 
     ok = True
-    for name, (route, kw) in SIM_ROUTES.items():
-        lost, lost_short, tp0, tp1, walks_lost, dropped = 0, 0, 0, 0, 0, 0
-        for u in SIM_USERS:
+    for name, (route, kw) in routes.items():
+        lost, lost_short, lost_counted, tp0, tp1, walks_lost, dropped = 0, 0, 0, 0, 0, 0, 0
+        for u in users:
             s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
             off = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps  # as measured, before W185
-            on = track_waist(s, pipeline="waist-pendulum", stand_veto=True, sit_veto=False)
+            on = track_waist(s, pipeline="waist-pendulum", stand_veto=value, sit_veto=False)
             e0, e1 = off["event_s"].to_numpy(float), on.steps["event_s"].to_numpy(float)
             m0, m1 = matched_truth(e0, truth), matched_truth(e1, truth)
             _, rlen = runs_of(off["has_next"].to_numpy(bool))
@@ -256,26 +275,35 @@ def sim_check() -> bool:
             tp0, tp1, dropped = tp0 + int((m0 >= 0).sum()), tp1 + int((m1 >= 0).sum()), dropped + len(e0) - len(e1)
             lost += int(gone.sum())
             lost_short += int((rlen[m0[gone]] <= 3).sum()) if gone.any() else 0
+            counted = gone & ~in_transfer(truth, s)
+            if counted.any():
+                counted[counted] = rlen[m0[counted]] > 1
+            lost_counted += int(counted.sum())
             walks_lost += bool(gone.any())
             if gone.any():
                 print(f"(c) user {u} {name}: lost true contacts at {np.round(truth[gone], 2).tolist()} s "
-                      f"(run lengths {rlen[m0[gone]].tolist()})", flush=True)
-        if name == "daily":
+                      f"(run lengths {rlen[m0[gone]].tolist()}, in a transfer "
+                      f"{in_transfer(truth[gone], s).astype(int).tolist()})", flush=True)
+        if decision == "W191":
+            good = lost_counted == 0
+        elif name == "daily":
             good = lost <= 2 and lost == lost_short
         else:
             good = lost == 0
         ok &= good
-        print(f"(c) {name}: {len(SIM_USERS)} walks, true contacts matched {tp0} -> {tp1}, lost {lost} "
-              f"(in runs <= 3: {lost_short}) in {walks_lost} walks; contacts dropped {dropped} "
-              f"({'met' if good else 'NOT met'})", flush=True)
+        print(f"(c) {name}: {len(users)} walks, true contacts matched {tp0} -> {tp1}, lost {lost} "
+              f"(in runs <= 3: {lost_short}; outside a transfer and a 1-contact run: {lost_counted}) in {walks_lost} "
+              f"walks; contacts dropped {dropped} ({'met' if good else 'NOT met'})", flush=True)
     return ok
 
 
-def measure(root: Path) -> None:
+def measure(root: Path, value=True, decision: str = "W189") -> None:
+    """The adoption rule of ``decision`` (W189: ``stand_veto=True``, users 4060-4099; W191: ``"turns"``, users
+    4180-4239 and the TUG with the pendulum bounce too)."""
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     import hapt as H  # experiments/hapt.py
 
-    cfgs = [c for c in H.configs(True) if c[1] == "waist-pendulum" and not c[2].get("sit_veto")]
+    cfgs = [c for c in H.configs(value) if c[1] == "waist-pendulum" and not c[2].get("sit_veto")]
     static, _, gait, refused, cpu = H.run(root, cfgs)
     print(f"HAPT: {static.session.nunique()} recordings, {cpu:.0f} s CPU; refused {len(refused)}")
     base, cand = cfgs[0][0], cfgs[1][0]
@@ -297,10 +325,10 @@ def measure(root: Path) -> None:
     print(f"(b) gait segments {len(g0)} / {len(g1)}: median detected/spectral - 1 {med0:+.2f} -> {med1:+.2f} %; "
           f"per-subject medians: largest drop {worst:+.2f} points (user {int((s1 - s0).idxmin())}), subjects "
           f"changed {int(((s1 - s0).abs() > 1e-9).sum())} of {len(s0)} ({'met' if ok_b else 'NOT met'})")
-    ok_c = sim_check()
-    print(f"W189 (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, (c) "
+    ok_c = sim_check(value, W191_USERS, W191_ROUTES, "W191") if decision == "W191" else sim_check()
+    print(f"{decision} (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, (c) "
           f"{'met' if ok_c else 'NOT met'}; (d): experiments/waist.py --external datasets/external --no-real "
-          "[--stand-veto]")
+          f"[--stand-veto{' turns' if value == 'turns' else ''}]")
 
 
 def after() -> None:
@@ -331,7 +359,42 @@ def after() -> None:
           f"{n_in}, elsewhere {n_out}; dropped run lengths {sorted(lens)}")
 
 
+def after_turns(root: Path) -> None:
+    """Looked at after W191's run (no change made from it): the HAPT static contacts W189's veto drops and
+    ``"turns"`` keeps, by their label, and where their runs' turning steps (> 15 deg, W127) lie."""
+    from pdrlearn.waist.posture import turning_steps
+
+    spared, where, turns = [], [], []
+    for folder in sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir()):
+        s = read_session(folder)
+        try:
+            off = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps  # as measured, before W185
+        except DataError:
+            continue
+        ev = off["event_s"].to_numpy(float)
+        e_true, e_turn = (track_waist(s, pipeline="waist-pendulum", stand_veto=v, sit_veto=False).steps["event_s"]
+                          .to_numpy(float) for v in (True, "turns"))
+        act = pd.read_csv(folder / "activities.csv")
+        lab = np.array([group_of(a) for a in label(ev, act)])
+        rid = K.run_ids(off["has_next"].to_numpy(bool))
+        turning = turning_steps(off, waist_imu(s))
+        kept = np.isin(ev, e_turn) & ~np.isin(ev, e_true)
+        spared += lab[kept].tolist()
+        for r in np.unique(rid[kept & (lab == "static")]):  # the runs that keep a static contact
+            m = (rid == r) & turning
+            where += lab[m].tolist()
+            turns.append(int(m.sum()))
+    print("contacts dropped by stand_veto=true, kept by \"turns\", by label:",
+          pd.Series(spared).value_counts().to_dict())
+    per_run = pd.Series(turns).value_counts().sort_index().to_dict()
+    print(f"runs keeping a static contact: {len(turns)}; turning steps per run {per_run}; "
+          f"the turning steps' labels {pd.Series(where).value_counts().to_dict()}")
+
+
 if __name__ == "__main__":
+    if sys.argv[1:2] == ["after-turns"]:
+        after_turns(Path("datasets/hapt"))
+        raise SystemExit
     if sys.argv[1:2] == ["after"]:
         after()
         raise SystemExit
@@ -339,5 +402,7 @@ if __name__ == "__main__":
         diagnose(Path("datasets/hapt"), Path("datasets/external"))
     elif sys.argv[1:2] == ["measure"]:
         measure(Path("datasets/hapt"))
+    elif sys.argv[1:2] == ["measure-turns"]:  # W191
+        measure(Path("datasets/hapt"), "turns", "W191")
     else:
-        raise SystemExit("usage: waist_stand.py diagnose | measure")
+        raise SystemExit("usage: waist_stand.py diagnose | measure | measure-turns | after")

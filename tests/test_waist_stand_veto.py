@@ -94,3 +94,57 @@ def test_a_plain_walk_keeps_every_contact_and_a_bad_value_is_refused():
 def test_the_live_trackers_name_it_as_not_applied():
     p = WaistParams(options={"stand_veto": True})
     assert "stand_veto=true" in (unapplied_options_line(p) or "")
+
+
+def test_w191_the_mask_spares_a_whole_weak_run_holding_a_spared_contact():
+    has_next = np.array([True, True, False, True, False, True, False, True, True, False])
+    b = np.array([1.0, 1.2, 0.9, 0.2, 0.2, 0.2, 0.1, 1.0, 1.1, 1.0])  # median 0.95: runs 1 and 2 are weak
+    base = K.weak_run_mask(b, has_next)
+    assert base.tolist() == [False] * 3 + [True] * 4 + [False] * 3
+    spare = np.zeros(10, bool)
+    spare[3] = True  # run 1's first contact turns: the whole run kept, its closing contact too; run 2 still dropped
+    assert K.weak_run_mask(b, has_next, spare=spare).tolist() == [False] * 5 + [True] * 2 + [False] * 3
+    spare[:] = False
+    spare[0] = True  # sparing inside a strong run changes nothing
+    assert K.weak_run_mask(b, has_next, spare=spare).tolist() == base.tolist()
+    assert K.weak_run_mask(b, has_next, spare=np.zeros(10, bool)).tolist() == base.tolist()
+
+
+def _sway_imu(turn_deg: float, bias_rps: float = 0.0):
+    """W189's hand-made walk then sway, the sway's step from 13.0 s to 13.5 s turning the pelvis ``turn_deg``."""
+    t = np.arange(0, 20, 1 / FS)
+    amp = np.where(t < 10, 2.0, 0.2)
+    w_z = np.full(t.size, bias_rps)
+    w_z[(t >= 13.0) & (t < 13.5)] += np.radians(turn_deg) / 0.5
+    imu = SimpleNamespace(t=t, fs=FS, acc_v=amp * np.sin(2 * np.pi * 2.0 * t), w_z=w_z)
+    walk, sway = np.arange(0.5, 9.6, 0.5), np.arange(12.0, 16.1, 0.5)
+    return imu, steps_from_events(t, np.round(np.r_[walk, sway] * FS).astype(int)), sway.size
+
+
+def test_w191_spare_turns_keeps_a_weak_run_with_a_step_turning_the_pelvis_over_15_deg():
+    for turn, kept in ((22.5, True), (-30.0, True), (14.0, False), (-14.0, False), (0.0, False)):
+        imu, steps, n_sway = _sway_imu(turn)
+        assert stand_veto(steps, imu).attrs["n_weak_run"] == n_sway  # W189 alone does not look at the gyroscope
+        assert stand_veto(steps, imu, spare_turns=True).attrs["n_weak_run"] == (0 if kept else n_sway), turn
+    # the gyroscope bias is taken off before the turn is measured (0.6 rad/s turns a 0.5 s step 17 deg)
+    imu, steps, n_sway = _sway_imu(0.0, bias_rps=0.6)
+    assert stand_veto(steps, imu, spare_turns=True).attrs["n_weak_run"] == 0
+    assert stand_veto(steps, imu, spare_turns=True, gyro_bias_rps=0.6).attrs["n_weak_run"] == n_sway
+
+
+def test_w191_turns_end_to_end_where_it_applies_and_the_values_refused():
+    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
+    on = track_waist(s, pipeline="waist-pendulum", stand_veto="turns")
+    assert on.info["options"]["stand_veto"] == "turns"
+    n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
+    assert 0 <= on.info["n_weak_run_contacts"] <= n_true  # "turns" only ever keeps more
+    for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
+        a, b = track_waist(s, **kw), track_waist(s, stand_veto="turns", **kw)
+        np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
+        assert b.info["n_weak_run_contacts"] == 0
+    for bad in ("Turns", "yes", 2):
+        with pytest.raises(DataError, match=r"stand_veto .* is not one of false, true, \"turns\" \(decisions W189, "
+                                            r"W191\)") as e:
+            track_waist(s, pipeline="waist-pendulum", stand_veto=bad)
+        assert "\n" not in str(e.value)
+    assert "stand_veto" in (unapplied_options_line(WaistParams(options={"stand_veto": "turns"})) or "")

@@ -1191,15 +1191,23 @@ def run_ids(has_next: np.ndarray) -> np.ndarray:
     return np.concatenate([[0], np.cumsum(~h[:-1])]).astype(int)
 
 
-def weak_run_mask(bounce: np.ndarray, has_next: np.ndarray, *, frac: float = WEAK_RUN_FRAC) -> np.ndarray:
+def weak_run_mask(bounce: np.ndarray, has_next: np.ndarray, *, frac: float = WEAK_RUN_FRAC,
+                  spare: np.ndarray | None = None) -> np.ndarray:
     """Contacts of a walking run (:func:`run_ids`) whose median ``bounce`` is under ``frac`` times the median bounce
-    of all the contacts: a run without a walker's vertical bounce is standing sway, no walking (decision W189)."""
+    of all the contacts: a run without a walker's vertical bounce is standing sway, no walking (decision W189).
+    ``spare`` (per contact, optional): a run holding any spared contact is never flagged, the whole run kept
+    (decision W191: a run with a step that turns the pelvis)."""
     b = np.asarray(bounce, dtype=np.float64)
     if not b.size:
         return np.zeros(0, dtype=bool)
     rid = run_ids(has_next)
     run_med = np.array([np.median(b[rid == r]) for r in range(rid[-1] + 1)])
-    return run_med[rid] < frac * float(np.median(b))
+    weak = run_med[rid] < frac * float(np.median(b))
+    if spare is not None:
+        spared_runs = np.zeros(rid[-1] + 1, dtype=bool)
+        spared_runs[rid[np.asarray(spare, dtype=bool)]] = True
+        weak &= ~spared_runs[rid]
+    return weak
 
 
 #: W127: a step whose pelvis turns by more than this (deg, IC to next IC) is a turning step, which W119's veto

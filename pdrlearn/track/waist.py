@@ -386,7 +386,7 @@ CAUSAL_PAUSE_STEPS = "standing"
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
-                                                          "parity_fill"))
+                                                          "parity_fill", "stand_veto"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -399,11 +399,14 @@ STAIRS_LENGTH_VALUES = (False, True, "climbs")
 PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
+#: the values of the ``stand_veto`` option: off, W189's veto, W191's veto sparing a run with a turning step
+STAND_VETO_VALUES = (False, True, "turns")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
-                  "parity_fill": (PARITY_FILL_VALUES, "W152, W159")}
+                  "parity_fill": (PARITY_FILL_VALUES, "W152, W159"),
+                  "stand_veto": (STAND_VETO_VALUES, "W189, W191")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -432,7 +435,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
-                stand_veto: bool | None = None, detector=None,
+                stand_veto: bool | str | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -505,7 +508,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     stand_veto : pendulum, offline detector (the realtime one and ``waist-pll`` ignore it): drop a whole walking run
         (contacts chained by ``has_next``) whose median vertical bounce is under a third of the recording's median
         contact bounce: standing sway, no walking (decision W189, :func:`pdrlearn.waist.posture.stand_veto`);
-        default False
+        ``"turns"``: the same, sparing a run with a step that turns the pelvis by more than 15 deg (W127's test; a
+        slow turn on the spot bounces little; decision W191); default False
     contact_shift : pendulum, offline detector: every kept contact judged once more by W23's weight-shift test with the
         side read at the contact, turns spared (decision W131, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``contact_shift``); default True, ``False`` restores the detector before W131
@@ -604,7 +608,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
     n_weak_run = 0
     if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
-        steps = drop_weak_runs(steps, imu)
+        steps = drop_weak_runs(steps, imu, spare_turns=o["stand_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
         n_weak_run = steps.attrs["n_weak_run"]
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step

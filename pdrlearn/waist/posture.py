@@ -26,6 +26,7 @@ mechanism of dropping contacts. Decision W127: with ``spare_turns`` it keeps a c
 
 Decision W189: :func:`stand_veto` drops a whole walking run whose median vertical bounce is under a third of the
 recording's median contact bounce (standing sway chains contacts with the bounce of none of the wearer's steps).
+Decision W191: with ``spare_turns`` a weak run holding a step that turns the pelvis (W127's test) is kept.
 """
 
 from __future__ import annotations
@@ -226,22 +227,36 @@ def vault_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
         h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc[i], idx[i + 1])
     drop = K.low_vault_mask(h, use, ~has_next)
     if spare_turns and drop.any():  # W127: the pelvis's turn over the step, IC to the next IC
-        nxt = np.append(ev[1:], ev[-1])
-        drop &= ~K.turning_step_mask(np.where(has_next, K.integrate_rate(imu.t, imu.w_z - gyro_bias_rps, ev, nxt),
-                                              0.0))
+        drop &= ~turning_steps(steps, imu, gyro_bias_rps)
     return drop_contacts(steps, ~drop, "n_unvaulted")
 
 
-def stand_veto(steps: pd.DataFrame, imu: WaistIMU) -> pd.DataFrame:
+def turning_steps(steps: pd.DataFrame, imu: WaistIMU, gyro_bias_rps: float = 0.0) -> np.ndarray:
+    """Per contact: whether its step (IC to the next IC; a sequence-closing contact has none) turns the pelvis by
+    more than :data:`~pdrlearn.kernels.waist.TURN_STEP_DEG` (the vertical rate less ``gyro_bias_rps``, integrated:
+    :func:`~pdrlearn.kernels.waist.turning_step_mask`; decisions W127, W191)."""
+    ev = steps["event_s"].to_numpy(float)
+    has_next = steps["has_next"].to_numpy(bool)
+    nxt = np.append(ev[1:], ev[-1])
+    return K.turning_step_mask(np.where(has_next, K.integrate_rate(imu.t, imu.w_z - gyro_bias_rps, ev, nxt), 0.0))
+
+
+def stand_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
+               gyro_bias_rps: float = 0.0) -> pd.DataFrame:
     """``steps`` without the walking runs (contacts chained by ``has_next``) whose median bounce
     (:func:`~pdrlearn.kernels.waist.contact_bounce`) is under :data:`~pdrlearn.kernels.waist.WEAK_RUN_FRAC` of the
     median bounce of all the contacts (:func:`~pdrlearn.kernels.waist.weak_run_mask`; decision W189).
-    ``attrs["n_weak_run"]`` counts the dropped."""
+    ``attrs["n_weak_run"]`` counts the dropped.
+
+    ``spare_turns`` (decision W191): a weak run holding a step that turns the pelvis (:func:`turning_steps`, W127's
+    15 deg, the vertical rate less ``gyro_bias_rps``) is kept whole: a slow turn on the spot bounces little, and
+    standing does not turn the pelvis."""
     if steps.empty:
         out = steps.copy()
         out.attrs["n_weak_run"] = 0
         return out
     ev = steps["event_s"].to_numpy(float)
     idx = np.clip(np.round((ev - imu.t[0]) * imu.fs).astype(int), 0, len(imu.t) - 1)
-    drop = K.weak_run_mask(K.contact_bounce(imu.acc_v, imu.fs, idx), steps["has_next"].to_numpy(bool))
+    spare = turning_steps(steps, imu, gyro_bias_rps) if spare_turns else None
+    drop = K.weak_run_mask(K.contact_bounce(imu.acc_v, imu.fs, idx), steps["has_next"].to_numpy(bool), spare=spare)
     return drop_contacts(steps, ~drop, "n_weak_run")
