@@ -1731,6 +1731,21 @@ class Tracker(FixInput):
             proba[task] = dict(zip(clf.classes, row, strict=True))
         return classes, proba
 
+    def _foot_silent_keep(self) -> float:
+        """Decision E113: while a foot IMU stream has sent nothing for over :data:`GAP_LONG_S` (a foot gap in
+        progress, B11, not yet seen: the gap is known when the foot's samples return), the samples from the last
+        stride's end (and the last boundary) less the look-back are kept, so the waist's turn over the whole gap
+        (L91's bridge) and the stride before it are computed from the samples ``track --streaming`` reads; before,
+        ``buffer_s`` (8 s) trimmed the waist during the gap and a 30 s gap across a 180 + -90 deg turn bridged
+        only the last 8 s (-90.6 deg for +92.8). Bounded by ``max_gap_s`` (a longer jump is refused, B141) and by
+        the recording (``pdrlearn run``); ``inf`` when the foot streams (no limit from here)."""
+        foot = [self._buf[n].last for n in _FOOT_IMU if n in self._buf]
+        if not foot or not self._latest - min(foot) > GAP_LONG_S:
+            return math.inf
+        marks = [x for x in (self._prev_end, self.segmenter.last_boundary) if x is not None]
+        keep = min([*marks, min(foot)]) - _LOOK_BACK_S
+        return max(keep, self._latest - self.max_gap_s - _LOOK_BACK_S) if math.isfinite(self.max_gap_s) else keep
+
     def _trim(self) -> None:
         """Drop samples older than both the last step boundary (minus a margin) and ``buffer_s``."""
         if not self._buf:
@@ -1742,6 +1757,7 @@ class Tracker(FixInput):
             keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
         if self._prev_end is not None and any(g[2] and g[3] for g in self._foot_gaps):  # decision L91: the waist's
             keep_from = min(keep_from, self._prev_end - _LOOK_BACK_S)  # turn from the last stride's end is bridged
+        keep_from = min(keep_from, self._foot_silent_keep())  # decision E113
         if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return
         self._trims += 1  # a computed-ahead step is recomputed (decision E24)
