@@ -660,15 +660,17 @@ def _distance_gain(requested: float | None, model, fs: float, warnings: list[str
     return float(rec.get("gain", 1.0)), "model", sd
 
 
-def require_stride_cover(session: Session, names) -> None:
+def require_stride_cover(session: Session, names, command: str = "pdrlearn track") -> None:
     """Decision B21 for the stride-local kernel of the streaming runtime (``track --streaming``, ``pdrlearn
     run`` replaying a session): strides come from the foot gyroscope and each stride's samples of every other
     stream in ``names`` (foot accelerometer, force, waist, barometer) are cut and interpolated there, so each
     must cover the gyroscope's span (:meth:`~pdrlearn.io.session.Session.require_cover`): a waist
     accelerometer that stopped after 60 s of 90 s moved the sim D_u1 replay's final position by 28 m, a foot
-    accelerometer that stopped there cut its distance by 31 %, without a word."""
+    accelerometer that stopped there cut its distance by 31 %, without a word. ``command``: the one whose
+    ``--common-span`` the refusal names (decision B230)."""
     used = {n for group in GROUP_STREAMS.values() for n in group}
-    session.require_cover("fGyroscope", *(n for n in names if n in used and n != "fGyroscope" and n in session))
+    session.require_cover("fGyroscope", *(n for n in names if n in used and n != "fGyroscope" and n in session),
+                          command=command)
 
 
 def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
