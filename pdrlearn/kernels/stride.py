@@ -29,7 +29,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
 from pdrlearn.kernels.contact import MAX_STRIDE_S
 from pdrlearn.kernels.histospline import upsample_block_means
-from pdrlearn.kernels.window import TIE_S, Levelled, foot_levelled, interp, resample, segment
+from pdrlearn.kernels.window import BRIDGE_GAP_S, TIE_S, Levelled, foot_levelled, interp, resample, segment
 
 # -- length-class bounds -------------------------------------------------------------------------------
 #: Decision L59 (docs/decisions/localization.md): the ``length_bounds_source`` an export wrote before L59 when
@@ -601,8 +601,8 @@ WAIST_GAP_FOOT_HEADING = True
 def waist_heads(levelled: Levelled) -> bool:
     """Decision E114: whether heading auto takes the stride's turn from the waist gyroscope: the waist unit's
     accelerometer and gyroscope are levelled, and (:data:`WAIST_GAP_FOOT_HEADING`) their samples cover the stride,
-    from the foot's first to its last sample, without a gap over :data:`WAIST_GAP_S` (a waist dropout: its rate
-    interpolated across the gap is not a turn; a live Tracker's held waist has no sample after the stride)."""
+    from the foot's first to its last sample, without an interval over :data:`WAIST_GAP_S`. A waist dropout's rate
+    interpolated across the gap is not a turn, and a live Tracker's held waist has no sample after the stride."""
     if "waist" not in levelled or levelled["waist"][2] is None:
         return False
     if not WAIST_GAP_FOOT_HEADING or "foot" not in levelled:
@@ -610,8 +610,10 @@ def waist_heads(levelled: Levelled) -> bool:
     tw, tf = levelled["waist"][0], levelled["foot"][0]
     if not len(tw) or not len(tf):
         return False
-    lo, hi = float(tf[0]), float(tf[-1])
-    return (float(tw[0]) - lo <= WAIST_GAP_S and hi - float(tw[-1]) <= WAIST_GAP_S
+    # the waist's samples of the stride (one either side, ``segment``) reach the foot's within E36's 0.25 s (a live
+    # Tracker's held waist stops short of the stride's end) and leave no interval over WAIST_GAP_S (a recording's
+    # gap, whose far side a replay holds)
+    return (float(tw[0]) <= float(tf[0]) + BRIDGE_GAP_S and float(tw[-1]) >= float(tf[-1]) - BRIDGE_GAP_S
             and (len(tw) < 2 or float(np.max(np.diff(tw))) <= WAIST_GAP_S))
 
 
