@@ -1148,13 +1148,21 @@ class Tracker(FixInput):
                     if long else
                     f"longer than {GAP_LONG_S:g} s in a stream whose gaps do not stop the strides (B11 zeroes only a "
                     "foot stream's; E64): the strides go on with it interpolated across the gap, as `pdrlearn track` "
-                    "does, so the heading and classes of the strides across it are unreliable"
+                    "does, " + ("so a stride across it turns with the foot's gyroscope (E114) and its classes are "
+                                "unreliable" if self._waist_gap_foot_heads(names) else
+                                "so the heading and classes of the strides across it are unreliable")
                     if b - a > GAP_LONG_S else
                     f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
                     "it has an unreliable length, height change and heading, and no classes when the gap is the "
                     "foot's")
             self._warn(f"{', '.join(names)}: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s); {what} (decision E30)")
         del self._gap_marks[:-16]  # the latest few: a gap is seen by every stream within a few pushes
+
+    def _waist_gap_foot_heads(self, names) -> bool:
+        """Decision B231: whether the gap of the streams ``names`` (waist streams only) holds a waist accelerometer /
+        gyroscope gap, whose strides the foot heads (E114: heading auto, the foot unit tracked)."""
+        return (self.heading_source == "auto" and "foot" in self.units and all(n.startswith("w") for n in names)
+                and bool({"wAccelerometer", "wGyroscope"}.intersection(names)))
 
     def _bridged(self) -> bool:
         """Decision L91: a stride across a foot IMU gap turns by the waist gyroscope (the waist heads the

@@ -79,12 +79,12 @@ from pdrlearn.track.gaps import (
     drop_strides,
     gap_heading_clause,
     gap_rows,
-    gap_warnings,
     long_gaps,
     longest_gap_in,
     neighbour_heights,
     overlaps_any,
     overlaps_gaps,
+    unit_gap_warnings,
 )
 from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
 from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
@@ -910,9 +910,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     waist_heads = (heading or cfg["heading"]) in ("waist", "fused") and session.has(
         "wAccelerometer", "wGyroscope") and session.has_frame("waist")
     how = (heading or cfg["heading"]) if waist_heads else ("bridged" if bridged else "none")  # decision L92
-    warnings += gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
-                             "no displacement is counted inside them: a stride across a foot gap is one row "
-                             "of 0 m with its gap_s in steps.csv (L67)" + gap_heading_clause(foot_gaps, how))
+    warnings += unit_gap_warnings(session, foot_gaps,  # decision B231: per unit
+                                  "no displacement is counted inside them: a stride across a foot gap is one row "
+                                  "of 0 m with its gap_s in steps.csv (L67)" + gap_heading_clause(foot_gaps, how),
+                                  (heading or cfg["heading"]) if waist_heads else "foot")
     strides = drop_steps_across_gaps(strides, foot_gaps)
     if not len(strides):
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
@@ -1310,10 +1311,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
     bridged = bool(waist_bridge and heading in ("auto", "waist-gyro") and "waist" in forward
                    and "waist_gyr" in available and "waist_acc" in available)  # decisions L91 / L99
-    warnings: list[str] = gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
-                                       "no displacement is counted inside them (a stride across a foot gap moves 0 m, "
-                                       "as the runtime, E30)"
-                                       + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"))
+    waist_how = ("foot" if heading == "foot" or not ("waist" in forward and "waist_gyr" in available)
+                 else "streamed" if heading == "auto" else "waist-gyro")  # decision B231
+    warnings: list[str] = unit_gap_warnings(session, foot_gaps,
+                                            "no displacement is counted inside them (a stride across a foot gap "
+                                            "moves 0 m, as the runtime, E30)"
+                                            + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"),
+                                            waist_how)
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(no_waist_heading(session))
     elif heading in ("auto", "waist-gyro"):  # decision W125: the waist gyroscope heads the strides, as `run`'s
