@@ -65,10 +65,13 @@ def unit_gap_warnings(session: Session, foot_gaps: dict[str, list[tuple[float, f
                       waist_how: str) -> list[str]:
     """Decision B231: the gap lines of a two-unit track, per unit: the foot's gaps (``foot_gaps``) with
     ``foot_words``, the waist's (accelerometer and gyroscope, over 1 s) with :data:`WAIST_GAP_WORDS` ``[waist_how]``
-    (a waist gap moves nothing to 0 m; before, it was told "no displacement is counted inside them")."""
-    waist = long_gaps(session, ("wAccelerometer", "wGyroscope"))
-    return ((gap_warnings(foot_gaps, foot_words) if foot_gaps else [])
-            + (gap_warnings(waist, WAIST_GAP_WORDS[waist_how]) if waist else []))
+    (a waist gap moves nothing to 0 m; before, it was told "no displacement is counted inside them"). Streams with
+    the same gaps stay one line (B34): a line naming a foot stream has the foot's words (its stride is 0 m)."""
+    out = []
+    for names, g in grouped_gaps({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))}):
+        words = foot_words if any(n in foot_gaps for n in names) else WAIST_GAP_WORDS[waist_how]
+        out += gap_warnings(dict.fromkeys(names, g), words)
+    return out
 
 
 def long_gaps(session: Session, names: tuple[str, ...], *, min_gap_s: float = MIN_GAP_S,
