@@ -1059,7 +1059,8 @@ class Tracker(FixInput):
                    f"max_lag_s = {self.max_lag_s:g} s behind): the foot's strides go on without the waist unit, "
                    "their turn from the foot's gyroscope (decision E114) and their classes from the waist's last "
                    "values held (unreliable); its samples are taken again when they return, in step with the foot's "
-                   "(decision E115)")
+                   "(decision E115); a waist unit that is gone: track the foot alone, units=('foot',) (pdrlearn run "
+                   "--units foot, decision E26)")
 
     def _held_waist(self, lev: dict, t1: float) -> dict:
         """Decision E115: a stride whose end a paused waist stream did not reach is headed by the foot (E114), as a
