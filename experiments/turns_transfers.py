@@ -4,8 +4,11 @@
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_transfers.py sim    # users 3530-3559
      ... experiments/turns_transfers.py real   # datasets/real + datasets/external mobgap Test11 turns.csv
      ... experiments/turns_transfers.py sim28  # decision L208's rule: users 3870-3899, both turn timings
+     ... experiments/turns_transfers.py sim210 # decision L210's rule: users 3900-3939, heading vs yaw-rate timing
+     ... experiments/turns_transfers.py real210  # L210: the real turns, heading vs yaw-rate timing, same rows
 Output: experiments/results/turns_transfers_sim.txt, turns_transfers_real.txt (the printed lines); L208 / L209:
-turns_timing_sim.txt, turns_timing_real.txt (``real`` prints both timings since L208)
+turns_timing_sim.txt, turns_timing_real.txt (``real`` prints both timings since L208); L210 / L211:
+turns_yaw_sim.txt, turns_yaw_real.txt
 
 Simulated truth. A turn: the route's one turn; its truth start / end are where the waist unit's true heading
 (trajectory.csv ``heading_rad``, unwrapped, a 1 s moving mean: one stride's pelvis rotation averaged out) has gone
@@ -43,9 +46,17 @@ ROUTES = (("straight:3, turn:180, straight:3", 5.0, 5.0),
 #: decision L208's fresh users and routes (by user % 4): L201's three and a 360 deg turn on the spot
 USERS28 = range(3870, 3900)
 ROUTES28 = ROUTES + (("straight:5, turn:360, straight:5", 0.0, 0.0),)
+#: decision L210's fresh users, 100 Hz, pendulum bounce; routes by user % 4: on-the-spot 90 / 180 / 360 deg turns and
+#: L201's TUG; the gait by (user // 4) % 2: the user's "slow" speed or the trial's custom slow steps (0.58 s)
+USERS210 = range(3900, 3940)
+ROUTES210 = (("stand:3, straight:8, turn:90, straight:8, stand:3", 0.0, 0.0), ROUTES[0],
+             ("stand:3, straight:8, turn:180, straight:8, stand:3", 0.0, 0.0),
+             ("stand:3, straight:5, turn:360, straight:5, stand:3", 0.0, 0.0))
+TIMINGS210 = ("heading", "yaw")
+# the lower-back tracks without a sit veto: as measured, before W185
 TRACKS = {"plasys": lambda s: track_plasys(s), "plasys-stream": lambda s: track_streaming(s, method="M2"),
-          "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum"),
-          "waist-pll": lambda s: track_waist(s, pipeline="waist-pll")}
+          "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum", sit_veto=False),
+          "waist-pll": lambda s: track_waist(s, pipeline="waist-pll", sit_veto=False)}
 
 
 def true_turn(session) -> tuple[float, float, float]:
@@ -64,24 +75,46 @@ def med(x) -> str:
     return f"{np.median(x):+.2f}" if x.size else "n/a"
 
 
-def sim(users=USERS, routes=ROUTES, timings=("rows",)) -> None:
-    turn_err = {(k, m): [] for k in TRACKS for m in timings}
-    counts = {k: [] for k in TRACKS}  # decision L208's check: turns and angles the same under every timing
+def _session(u: int, route: str, s0: float, s1: float):
+    """L201 / L208's simulated session of user ``u`` (20 Hz, normal / slow by ``(u // 3) % 2``) and its label."""
+    speed = "slow" if (u // 3) % 2 else "normal"
+    return simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, seed=u, sit_start_s=s0,
+                         sit_end_s=s1), speed
+
+
+def _session210(u: int, route: str, s0: float, s1: float):
+    """Decision L210's session: 100 Hz, ``bounce="pendulum"``, slow: the user's own or custom steps (as
+    ``simulate --step-length L --step-time 0.58``)."""
+    from pdrlearn.cli.simulate import _custom_gait
+
+    user = UserProfile.from_seed(u)
+    label = "slow"
+    if (u // 4) % 2:
+        length = (0.30, 0.35, 0.40)[(u // 8) % 3]
+        user = _custom_gait(user, "slow", length, 0.58, route)
+        label = f"slow {length:g} m / 0.58 s"
+    return simulate_path(parse_route(route), user, speed="slow", rate_hz=100.0, seed=u, sit_start_s=s0,
+                         sit_end_s=s1, bounce="pendulum"), label
+
+
+def sim(users=USERS, routes=ROUTES, timings=("rows",), make=_session, tracks=None) -> None:
+    tracks = TRACKS if tracks is None else {k: TRACKS[k] for k in tracks}
+    turn_err = {(k, m): [] for k in tracks for m in timings}
+    counts = {k: [] for k in tracks}  # decision L208's check: turns and angles the same under every timing
     tr_err = {k: {SIT_TO_STAND: [], STAND_TO_SIT: []} for k in ("waist-pendulum", "waist-pll")}
     tr_count = {k: [0, 0, 0] for k in tr_err}  # truth, matched, detected
     tug = {k: [] for k in tr_err}
     for u in users:
         route, s0, s1 = routes[u % len(routes)]
-        speed = "slow" if (u // 3) % 2 else "normal"
-        s = simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, seed=u, sit_start_s=s0,
-                          sit_end_s=s1)
+        s, speed = make(u, route, s0, s1)
         ta, tb, ang = true_turn(s)
         truth_tr = s.extras.get("transfers", pd.DataFrame(columns=["start_s", "seated_s", "rise_s", "end_s"]))
         line = [f"user {u} {speed} [{route}] sit {s0:g}/{s1:g}: truth turn {ta:.2f}-{tb:.2f} s "
                 f"({tb - ta:.2f} s) {ang:+.1f} deg"]
-        for name, fn in TRACKS.items():
+        for name, fn in tracks.items():
             res = fn(s)
-            tabs = {m: turn_table(res.steps, detected_bouts(res.steps), timing=m) for m in timings}
+            tabs = {m: turn_table(res.steps, detected_bouts(res.steps), timing=m,
+                                  yaw_turns=res.info.get("yaw_turns")) for m in timings}
             ref = tabs[timings[0]]
             counts[name].append(all(len(t) == len(ref) and np.array_equal(t["angle_deg"], ref["angle_deg"])
                                     for t in tabs.values()))
@@ -160,7 +193,18 @@ def sim28() -> None:
     sim(USERS28, ROUTES28, TIMINGS)
 
 
-def real() -> None:
+def sim210() -> None:
+    """Decision L210's adoption rule: fresh users 3900-3939, heading vs yaw-rate timing from the same tracks."""
+    sim(USERS210, ROUTES210, TIMINGS210, make=_session210, tracks=("waist-pendulum", "waist-pll"))
+
+
+def real210() -> None:
+    """Decision L210's rule on the mobgap turns: each reference turn's row chosen under L208's timing, scored under
+    both."""
+    real(TIMINGS210, same_rows=True)
+
+
+def real(timings=TIMINGS, same_rows: bool = False) -> None:
     folders = [Path("datasets/real") / n for n in ("mobgap_HA001_Test11_Trial1",)]
     folders += [Path("datasets/external") / n for n in ("mobgap_HA002_Test11_Trial1", "mobgap_MS001_Test11_Trial1")]
     pooled = {}
@@ -169,24 +213,33 @@ def real() -> None:
         ref = s.extras["turns"]
         big = ref[ref["angle_deg"].abs() >= 80]
         for name in ("waist-pendulum", "waist-pll"):
-            res = track_waist(s, pipeline=name)
-            for timing in TIMINGS:
-                tt = turn_table(res.steps, detected_bouts(res.steps), timing=timing)
-                pooled.setdefault((name, timing), []).extend(_real_line(f, name, timing, big, ref, res, tt))
+            res = track_waist(s, pipeline=name, sit_veto=False)  # as measured, before W185
+            first = None
+            for timing in timings:
+                tt = turn_table(res.steps, detected_bouts(res.steps), timing=timing,
+                                yaw_turns=res.info.get("yaw_turns"))
+                first = tt if first is None or not same_rows else first
+                pooled.setdefault((name, timing), []).extend(_real_line(f, name, timing, big, ref, res, tt, first))
     for (name, timing), d in pooled.items():  # decision L208's rule: the pooled median |duration error|
-        print(f"pooled {name} [{timing}]: {len(d)} overlapped reference turns; duration error median {med(d)} s "
-              f"(|.| {med(np.abs(np.asarray(d, float)))})")
+        a = np.asarray(d, float).reshape(-1, 3)
+        print(f"pooled {name} [{timing}]: {len(a)} overlapped reference turns; duration error median "
+              f"{med(a[:, 0])} s (|.| {med(np.abs(a[:, 0]))})" + (
+                  f"; |start error| {med(np.abs(a[:, 1]))} s, |end error| {med(np.abs(a[:, 2]))} s" if same_rows
+                  else ""))
 
 
-def _real_line(f, name, timing, big, ref, res, tt) -> list[float]:
-    """Print one recording's line for one pipeline and timing; return its duration errors (s)."""
+def _real_line(f, name, timing, big, ref, res, tt, match=None) -> list[tuple[float, float, float]]:
+    """Print one recording's line for one pipeline and timing; return its (duration, start, end) errors (s).
+    ``match``: the table whose overlap picks each reference turn's row (decision L210: L208's timing; default
+    ``tt``)."""
+    match = tt if match is None else match
     err, found = [], 0
     for r in big.itertuples():
-        m = tt[(tt["start_s"] <= r.end_s) & (tt["end_s"] >= r.start_s)] if len(tt) else tt
+        m = match[(match["start_s"] <= r.end_s) & (match["end_s"] >= r.start_s)] if len(match) else match
         if not len(m):
             continue
         found += 1
-        d = m.iloc[int(np.argmax(m["angle_deg"].abs().to_numpy()))]
+        d = tt.loc[m.index[int(np.argmax(m["angle_deg"].abs().to_numpy()))]]
         err.append((d.duration_s - (r.end_s - r.start_s), abs(d.angle_deg) - abs(r.angle_deg),
                     float(np.sign(d.angle_deg) == np.sign(r.angle_deg)), d.start_s - r.start_s,
                     d.end_s - r.end_s))
@@ -198,8 +251,8 @@ def _real_line(f, name, timing, big, ref, res, tt) -> list[float]:
           f"transfers detected {len(res.info['transfers'])} "
           f"({', '.join(t['kind'] + ' ' + format(t['start_s'], '.1f') for t in res.info['transfers'])})",
           flush=True)
-    return a[:, 0].tolist()
+    return [tuple(x) for x in a[:, [0, 3, 4]].tolist()]
 
 
 if __name__ == "__main__":
-    {"sim": sim, "sim28": sim28, "real": real}[sys.argv[1]]()
+    {"sim": sim, "sim28": sim28, "real": real, "sim210": sim210, "real210": real210}[sys.argv[1]]()

@@ -61,7 +61,7 @@ def main() -> None:
         for user in USERS:
             s = simulate_path(parse_route(route), UserProfile.from_seed(user), speed=speed, rate_hz=20.0, seed=1,
                               scenario="route", sit_start_s=5.0, sit_end_s=5.0)
-            off = track_waist(s, pipeline="waist-pendulum")
+            off = track_waist(s, pipeline="waist-pendulum", sit_veto=False)  # as measured, before W185
             ev = evaluate_track(off, s)
             live = live_steps(s)
             z = np.array([st.z for st in live], dtype=float)

@@ -24,7 +24,7 @@ PLAIN = "stand:3, straight:20, stand:3"
 
 def judged(session) -> tuple[float, float | None, bool, bool]:
     """(pll distance, pll / pendulum ratio, W186 line, W139 line) of the uncalibrated waist-pll track."""
-    res = track_waist(session, pipeline="waist-pll", pll_check=True)  # the candidate as measured
+    res = track_waist(session, pipeline="waist-pll", pll_check=True, sit_veto=False)  # as measured, before W185
     w = res.info["warnings"]
     return (float(res.steps["length_m"].sum()), res.info["pll_pendulum_ratio"], any("W186" in x for x in w),
             any("W139" in x for x in w))

@@ -10,8 +10,10 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_sit.py
      ... experiments/waist_sit.py today  # decision W179: W109's (c) re-measured on today's defaults
      ... experiments/waist_sit.py alternation  # decision W180's rule (W181): users 3460-3499 and the real
                                                  recordings, sit_veto="alternation" against no veto
+     ... experiments/waist_sit.py opposite  # decision W184's rule (W185): users 3600-3639 and the real
+                                              recordings, sit_veto="opposite" against no veto
 Output: experiments/results/waist_sit_count.txt, waist_sit_veto.txt, waist_sit_real.txt, waist_sit_rhythm.txt,
-        waist_sit_today.txt, waist_sit_alternation.txt
+        waist_sit_today.txt, waist_sit_alternation.txt, waist_sit_opposite.txt
 """
 import logging
 import sys
@@ -240,6 +242,13 @@ def alternation() -> None:
     _measure("alternation", range(3460, 3500), "W180", strict=True, shown=(False, "rhythm", "alternation"))
 
 
+def opposite() -> None:
+    """Decision W184's rule, measured once (W185): (a), (b) on fresh users 3600-3639, (c) on the real recordings,
+    sit_veto="opposite" against no veto; then the Test11 contacts outside the reference bouts (information)."""
+    _measure("opposite", range(3600, 3640), "W184", strict=True,
+             shown=(False, "rhythm", "alternation", "opposite"))
+
+
 def where() -> None:
     """The contacts `sit_veto` drops on the real Test11 recordings (defaults): inside / outside the reference walking
     bouts (bouts.csv level wb) and within 0.25 s of a reference IC (ics.csv)."""
@@ -276,3 +285,5 @@ elif sys.argv[1:] == ["today"]:
     today()
 elif sys.argv[1:] == ["alternation"]:
     alternation()
+elif sys.argv[1:] == ["opposite"]:
+    opposite()

@@ -124,12 +124,14 @@ SESSIONS: tuple[Column, ...] = (
     ("median_step_time_s", "s", "number", "lower back: median contact to the next of either foot; empty on a foot "
                                           "track"),
     ("median_swing_time_s", "s", "number", "--toe-off only: median swing time"),
-    ("n_bouts", "count", "integer", "rows of bouts.csv (L124)"),
+    ("n_bouts", "count", "integer", "rows of bouts.csv under the bout rule (L124): THE bout count to report "
+                                    "(L217)"),
     ("n_bouts_out_of_range", "count", "integer", "bouts of bouts.csv whose gait_out_of_range is true (L195)"),
     ("n_backward_strides", "count", "integer", "foot: strides whose raw length is negative, turning under 30 deg "
                                                "(backward travel, with or without a model; a replay: strides classed "
                                                "backward; L203); empty on the lower back"),
-    ("n_cv_strides", "count", "integer", "steady straight level forward strides stride_time_cv_pct is computed over"),
+    ("n_cv_strides", "count", "integer", "steady straight level forward strides stride_time_cv_pct and "
+                                         "stride_length_cv_pct are computed over (L104, L212)"),
     ("n_detected", "count", "integer", "lower back: detected contacts scored"),
     ("n_pauses", "count", "integer", "stands of about 1 s or more inside the walk (L104)"),
     ("n_reference", "count", "integer", "lower back: reference contacts"),
@@ -142,7 +144,9 @@ SESSIONS: tuple[Column, ...] = (
     ("n_turns", "count", "integer", "reference turns compared (turns.csv only, L42)"),
     ("n_turns_signed", "count", "integer", "reference turns of 45 deg or more whose sign is compared (L42)"),
     ("n_unscored", "count", "integer", "lower back: contacts outside the scored span"),
-    ("n_walking_bouts", "count", "integer", "walking bouts = pauses + 1 (L104)"),
+    ("n_walking_bouts", "count", "integer", "walking bouts = n_pauses + 1 (L104's pauses, whatever --bout-rule): "
+                                            "equals n_bouts under the default rule; under --bout-rule mobgap or "
+                                            "--bout-min-strides report n_bouts (L217)"),
     ("out_of_domain_fraction", "fraction", "number",
      "with a model (track --model, run): strides outside its training range (C16, C63)"),
     ("pause_time_s", "s", "number", "total pause time (L104)"),
@@ -158,13 +162,19 @@ SESSIONS: tuple[Column, ...] = (
     ("storeys_changed_ref", "count", "integer", "net storeys in the reference"),
     ("stride_length_bias_m", "m", "number", "lower back: mean stride length error"),
     ("stride_length_composed", "count", "integer", "foot: labelled strides tiled by several tracked pieces"),
+    ("stride_length_cv_pct", "%", "number", "foot: 100 x SD / mean of the lengths of the strides of "
+                                            "stride_time_cv_pct (L212; given with 10 of them, even when L113 "
+                                            "withholds the time CV); empty on the lower back"),
     ("stride_length_mae_m", "m", "number", "mean absolute stride length error"),
     ("stride_length_mae_pct", "%", "number", "the same as a share of the reference stride length"),
     ("stride_length_mae_pct_straight", "%", "number", "the same over straight strides"),
     ("stride_length_mae_pct_turns", "%", "number", "the same over turning strides"),
     ("stride_length_matched", "count", "integer", "foot: tracked strides matched to labelled ones"),
     ("stride_time_cv_pct", "%", "number", "foot: 100 x SD / mean of steady level forward strides' times (L104, L188)"),
-    ("stride_time_cv_withheld", _ID, "text", "why the CV was withheld (L113, an option); empty otherwise"),
+    ("stride_time_cv_withheld", _ID, "text", "why there is no stride-time CV; summary.json only (an object: cause "
+                                             "lower_back (L104), too_few_strides (L215: with the straight strides "
+                                             "the level criterion dropped) or contact_scatter (L113, an option), "
+                                             "and a reason; L214); empty in sessions.csv"),
     ("stride_time_cv_within_bouts_pct", "%", "number", "foot: when the CV pools walking bouts of different rhythm "
                                                        "(L196), the CV of the strides about their own bout's mean; "
                                                        "empty otherwise"),
@@ -254,6 +264,12 @@ BOUTS: tuple[Column, ...] = (
     ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is above L95's walking range "
                                              "(leg-scaled, L148; bouts of 5+ strides; L195): running or short fast "
                                              "steps"),
+    ("n_cv_strides", "count", "integer", "the bout's strides among the session's CV strides (steady straight level "
+                                         "forward, L104 / L188); 0 on the lower back (L212)"),
+    ("stride_time_cv_pct", "%", "number", "foot: 100 x SD / mean of those strides' times, with 5 or more of them "
+                                          "(L196's minimum); empty otherwise (L212)"),
+    ("stride_length_cv_pct", "%", "number", "foot: the same of their lengths (L212); complete strides only, unlike "
+                                            "stride_length_m"),
     ("speed_m_s", "m/s", "number", "deprecated (E98): speed_mps under its old name, kept last until a later release"),
 )
 
@@ -261,15 +277,18 @@ BOUTS: tuple[Column, ...] = (
 TURNS: tuple[Column, ...] = (
     ("turn", "index", "integer", "the turn's number in the session, from 1"),
     ("start_s", "s", "number", "where the turn's heading, each row's change spread over the row's span, has gone 5 % "
-                               "of its angle (L208, L209), on the session's clock"),
-    ("end_s", "s", "number", "where that heading has gone 95 % of the angle (L208, L209)"),
+                               "of its angle (L208, L209), on the session's clock; a lower-back track's turn matched "
+                               "by a turn of its yaw rate: that turn's start, last sample under 5 deg/s (L210, L211)"),
+    ("end_s", "s", "number", "where that heading has gone 95 % of the angle (L208, L209); a lower-back turn matched by "
+                             "a yaw-rate turn: its end, first sample under 5 deg/s after it (L210, L211)"),
     ("duration_s", "s", "number", "end_s - start_s"),
     ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181)"),
     ("peak_rate_dps", "deg/s", "number", "largest |heading change| / time between two of its rows' starts"),
     ("n_rows", "count", "integer", "rows of steps.csv the turn spans"),
     ("bout", "index", "integer", "the bouts.csv bout holding the turn; empty outside every bout"),
-    ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s (90 % of |angle_deg|) / "
-                                         "duration_s (L209); empty for a turn of no duration"),
+    ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s (90 % of |angle_deg|; all of it "
+                                         "for a turn timed by the yaw rate, L210) / duration_s (L209); empty for a "
+                                         "turn of no duration"),
 )
 
 #: decision W182: a lower-back track's transfers.csv (a foot track writes none)

@@ -147,7 +147,9 @@ def test_a_fix_is_used_once_and_the_path_does_not_jump_after_the_last_one():
     steps_true, truth = synthetic_walk(7, length_m=200)
     pdr = pdr_with_drift(steps_true, 7, heading_bias_deg=25.0)
     fx = _irregular_fixes(truth, [30.0, 60.0, 85.0], sigma_m=0.66)
-    f = SporadicFixFusion(period_s=0.5).run(pdr.steps, fx)
+    # seed 004's last-step yaw feedback leaves the posterior metres from the fix (D24's chord feedback learns the
+    # 25 deg bias and ends 0.7 m from it), the case where the causal path alone would jump
+    f = SporadicFixFusion(period_s=0.5, yaw_feedback="last").run(pdr.steps, fx)
     assert f.stats_["fixes_used"] == 3
     tr = f.trajectory_
     last = int(np.flatnonzero(tr["fix_used"])[-1])

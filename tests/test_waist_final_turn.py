@@ -28,6 +28,8 @@ def test_a_turn_on_the_spot_after_the_last_step_reaches_the_final_heading_and_tu
     assert np.isnan(table["end_s"].iloc[0]) and np.isnan(table["duration_s"].iloc[0])  # L205: its end is unknown
     summary = turn_summary(table)
     assert summary["turn_time_s"] is None and summary["median_turn_duration_s"] is None
+    # L205: the last interval's rate (the final stop's rotation over one step's time) is no peak rate
+    assert np.isnan(table["peak_rate_dps"].iloc[0]) and summary["median_turn_peak_rate_dps"] is None
     assert abs(summary["median_turn_angle_deg"] - abs(table["angle_deg"].iloc[0])) < 1e-9
     assert abs(abs(after.steps["heading_rad"].iloc[-1]) - np.pi) < np.radians(30.0)
     np.testing.assert_array_equal(after.steps["length_m"], before.steps["length_m"])  # positions do not move

@@ -71,8 +71,8 @@ def test_the_measured_real_row_ha001_test11():
     """W152's (b) row: HA001 Test11 in-bout F1 0.9449 -> 0.9531 (60/64 -> 61/65 of 63): one contact added, at
     123.26 s, 0.09 s before INDIP's 123.35 s (W153: a miss between a same-side pair), none removed."""
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    off = track_waist(s, pipeline="waist-pendulum", parity_fill=False)
-    on = track_waist(s, pipeline="waist-pendulum", parity_fill=True)
+    off = track_waist(s, pipeline="waist-pendulum", sit_veto=False, parity_fill=False)
+    on = track_waist(s, pipeline="waist-pendulum", sit_veto=False, parity_fill=True)
     added = np.setdiff1d(on.steps["event_s"].round(6), off.steps["event_s"].round(6))
     assert np.setdiff1d(off.steps["event_s"].round(6), on.steps["event_s"].round(6)).size == 0
     assert added.size == 1 and abs(added[0] - 123.26) < 0.005

@@ -59,15 +59,16 @@ def test_the_measured_real_rows_ha002_bridge_dropped_ha001_kept():
     sequences): "within" does not add it (HA002 as off, 36/42 of 46); HA001's at 123.26 s lies inside a sequence and
     stays (0.9449 -> 0.9531, 60/64 -> 61/65 of 63)."""
     s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
-    r = {v: track_waist(s, pipeline="waist-pendulum", parity_fill=v).steps for v in (False, True, "within")}
+    r = {v: track_waist(s, pipeline="waist-pendulum", sit_veto=False, parity_fill=v).steps  # measured before W185
+         for v in (False, True, "within")}
     ev = {v: r[v]["event_s"].round(6).to_numpy() for v in r}
     assert np.abs(np.setdiff1d(ev[True], ev[False]) - 10.13).max() < 0.005  # W152 adds it
     np.testing.assert_array_equal(ev["within"], ev[False])
     m = step_metrics(r["within"], s)
     assert (m["n_detected"], m["n_reference"], round(m["step_f1"], 4)) == (42, 46, 0.8182)
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    off = track_waist(s, pipeline="waist-pendulum", parity_fill=False).steps
-    on = track_waist(s, pipeline="waist-pendulum", parity_fill="within").steps
+    off = track_waist(s, pipeline="waist-pendulum", sit_veto=False, parity_fill=False).steps
+    on = track_waist(s, pipeline="waist-pendulum", sit_veto=False, parity_fill="within").steps
     added = np.setdiff1d(on["event_s"].round(6), off["event_s"].round(6))
     assert added.size == 1 and abs(added[0] - 123.26) < 0.005
     m0, m1 = step_metrics(off, s), step_metrics(on, s)

@@ -134,7 +134,7 @@ def test_the_veto_removes_the_contacts_of_a_simulated_sit_to_stand():
         e = res.steps["event_s"].to_numpy(float)
         return int(((e >= tr.start_s) & (e <= tr.end_s)).sum())
 
-    off = track_waist(s, pipeline="waist-pendulum")
+    off = track_waist(s, pipeline="waist-pendulum", sit_veto=False)  # W185: off is no longer the offline default
     on = track_waist(s, pipeline="waist-pendulum", sit_veto=True)
     assert inside(off) > 0 and off.info["n_vetoed_contacts"] == 0
     assert inside(on) == 0 and on.info["n_vetoed_contacts"] == inside(off)
@@ -148,7 +148,8 @@ def test_the_veto_removes_the_contacts_of_a_simulated_sit_to_stand():
 def test_the_veto_changes_no_step_of_an_upright_walk():
     s = simulate_path([Stand(3.0), Straight(14.0), Stand(3.0)], UserProfile.from_seed(541), speed="normal",
                       rate_hz=100, seed=541)
-    on, off = track_waist(s, pipeline="waist-pendulum", sit_veto=True), track_waist(s, pipeline="waist-pendulum")
+    on = track_waist(s, pipeline="waist-pendulum", sit_veto=True)
+    off = track_waist(s, pipeline="waist-pendulum", sit_veto=False)
     pd.testing.assert_frame_equal(on.steps, off.steps)
     assert on.info["n_vetoed_contacts"] == 0
     assert not [w for w in off.info["warnings"] if "W146" in w]  # no flexion, no W146 line
@@ -178,7 +179,7 @@ def test_the_rhythm_veto_removes_a_simulated_sit_to_stand_whose_pelvis_does_not_
     s = simulate_path(parse_route("straight:10, sit:20, straight:10"), UserProfile.from_seed(621), rate_hz=100,
                       seed=621)
     tr = s.extras["transfers"].iloc[0]
-    steps = track_waist(s, pipeline="waist-pendulum").steps
+    steps = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps
     e = steps["event_s"].to_numpy(float)
     n_in = int(((e >= tr.start_s) & (e <= tr.end_s)).sum())
     out = transfer_veto(steps, waist_imu(s), keep_rhythm=True)
@@ -194,7 +195,7 @@ def test_the_rhythm_veto_keeps_the_real_steps_w104_dropped_after_standing_up():
     s = read_session(d)
     ic = pd.read_csv(d / "ics.csv")["ic_ms"].to_numpy(float) / 1000.0
     kw = {"pipeline": "waist-pendulum", "contact_shift": False, "parity_fill": False}  # W109: before W131 / W159
-    e0 = track_waist(s, **kw).steps["event_s"].to_numpy(float)
+    e0 = track_waist(s, sit_veto=False, **kw).steps["event_s"].to_numpy(float)
 
     def dropped(value):
         e1 = track_waist(s, sit_veto=value, **kw).steps["event_s"].to_numpy(float)

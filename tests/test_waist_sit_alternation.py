@@ -1,5 +1,6 @@
 """Decision W180: `sit_veto="alternation"` - W109's rhythm veto that also spares an undecided contact between two
-same-side contacts of its walking sequence (`undecided_between`); W181: measured, rule not met, an option value.
+same-side contacts of its walking sequence (`undecided_between`); W181: measured, rule not met, an option value
+(W185 made W184's "opposite" the offline default, so "off" is `sit_veto=False` here).
 W179's re-measurement of `"rhythm"` on today's defaults is pinned by its rows here too."""
 
 from __future__ import annotations
@@ -61,7 +62,7 @@ def test_the_alternation_veto_removes_a_simulated_sit_to_stand():
     s = simulate_path(parse_route("straight:10, sit:20, straight:10"), UserProfile.from_seed(621), rate_hz=100,
                       seed=621)
     tr = s.extras["transfers"].iloc[0]
-    off = track_waist(s, pipeline="waist-pendulum")
+    off = track_waist(s, pipeline="waist-pendulum", sit_veto=False)
     on = track_waist(s, pipeline="waist-pendulum", sit_veto="alternation")
     e0, e1 = off.steps["event_s"].to_numpy(float), on.steps["event_s"].to_numpy(float)
     n_in = int(((e0 >= tr.start_s) & (e0 <= tr.end_s)).sum())
@@ -69,10 +70,10 @@ def test_the_alternation_veto_removes_a_simulated_sit_to_stand():
     assert on.info["n_vetoed_contacts"] == n_in and len(e1) == len(e0) - n_in
 
 
-def test_the_default_is_still_no_veto_and_an_upright_walk_is_unchanged():
+def test_an_upright_walk_is_unchanged():  # the default: W185 (tests/test_waist_sit_opposite.py)
     s = simulate_path([Stand(3.0), Straight(14.0), Stand(3.0)], UserProfile.from_seed(541), speed="normal",
                       rate_hz=100, seed=541)
-    off = track_waist(s, pipeline="waist-pendulum")
+    off = track_waist(s, pipeline="waist-pendulum", sit_veto=False)
     on = track_waist(s, pipeline="waist-pendulum", sit_veto="alternation")
     pd.testing.assert_frame_equal(on.steps, off.steps)
     assert off.info["n_vetoed_contacts"] == 0 and on.info["n_vetoed_contacts"] == 0
@@ -80,7 +81,8 @@ def test_the_default_is_still_no_veto_and_an_upright_walk_is_unchanged():
 
 def test_a_bad_sit_veto_value_names_alternation():
     s = simulate_path([Stand(3.0), Straight(6.0), Stand(3.0)], UserProfile.from_seed(541), rate_hz=100, seed=541)
-    with pytest.raises(DataError, match=r'"rhythm", "alternation" \(decisions W104, W109, W180\)') as e:
+    values = r'"rhythm", "alternation", "opposite" \(decisions W104, W109, W180, W184\)'  # W184 added "opposite"
+    with pytest.raises(DataError, match=values) as e:
         track_waist(s, pipeline="waist-pendulum", sit_veto="Alternation")
     assert "\n" not in str(e.value)
 
@@ -122,7 +124,7 @@ def test_the_lost_ha002_step_lies_between_contacts_on_opposite_sides():
     neighbours 31.46 s / 32.25 s are on opposite decided sides - W109's literal wording ("neighbours that alternate
     with each other"), not W180's same-side reading; the next candidate, not measured here."""
     s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
-    st = track_waist(s, pipeline="waist-pendulum").steps
+    st = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps
     e, hn = st["event_s"].to_numpy(float), st["has_next"].to_numpy(bool)
     imu = waist_imu(s)
     side = K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, e), hn)

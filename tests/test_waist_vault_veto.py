@@ -135,7 +135,8 @@ def test_the_measured_real_row_ha002_test11():
     """W119's (b) row: HA002 Test11 drops 6 contacts, in-bout F1 0.8182 -> 0.8372 (36/42 -> 36/40 of 46); measured
     with the detector before W131 (``contact_shift=False``)."""
     s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
-    kw = {"pipeline": "waist-pendulum", "contact_shift": False, "parity_fill": False}  # before W131 / W159
+    kw = {"pipeline": "waist-pendulum", "contact_shift": False, "parity_fill": False,
+          "sit_veto": False}  # before W131 / W159 / W185
     off, on = track_waist(s, **kw), track_waist(s, vault_veto=True, **kw)
     assert on.info["n_unvaulted_contacts"] == len(off.steps) - len(on.steps) == 6
     m0, m1 = step_metrics(off.steps, s), step_metrics(on.steps, s)
@@ -148,11 +149,13 @@ def test_the_measured_real_rows_of_w127():
     contacts (their steps turn the pelvis 15.4-36.5 deg), F1 0.8182 as off; HA001 Test11 drops 6 (W119: 10), F1
     0.9449 -> 0.9280 (60/64 -> 58/62 of 63)."""
     s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
-    on = track_waist(s, pipeline="waist-pendulum", contact_shift=False, parity_fill=False, vault_veto="turns")
+    on = track_waist(s, pipeline="waist-pendulum", contact_shift=False, parity_fill=False, sit_veto=False,
+                     vault_veto="turns")
     assert on.info["n_unvaulted_contacts"] == 1 and on.info["options"]["vault_veto"] == "turns"
     assert round(step_metrics(on.steps, s)["step_f1"], 4) == 0.8182
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    on = track_waist(s, pipeline="waist-pendulum", contact_shift=False, parity_fill=False, vault_veto="turns")
+    on = track_waist(s, pipeline="waist-pendulum", contact_shift=False, parity_fill=False, sit_veto=False,
+                     vault_veto="turns")
     m = step_metrics(on.steps, s)
     assert on.info["n_unvaulted_contacts"] == 6
     assert (m["n_detected"], m["n_reference"], round(m["step_f1"], 4)) == (62, 63, 0.9280)

@@ -37,8 +37,11 @@ class SporadicFixFusion(ParamsMixin):
     sigma_length_rel, sigma_length_m, sigma_heading_rad : per-step process noise (see
         :class:`~pdrlearn.aid.gnss.GnssPdrFusion`).
     stretch : output the stretched trajectory between adjustments (seed 004 eq. 24).
-    yaw_feedback : ``"last"`` (the stretched yaw of the last step, seed 004 eq. 28 with j = 0),
-        ``"mean"`` (length-weighted mean correction over the segment) or ``None``.
+    yaw_feedback : ``"chord"`` (default, decision D24: the rotation from the segment's predicted chord to its
+        stretched one, fix to fix, with variance (2 sigma_fix^2 + the segment's process noise) / chord^2),
+        ``"last"`` (the stretched yaw of the last step, seed 004 eq. 28 with j = 0: a pivot stride or a step
+        walking back against the segment kicks it, D24), ``"mean"`` (length-weighted mean correction over the
+        segment) or ``None``.
     scale_feedback : also feed back the step-length scale implied by the stretched speeds (eq. 27),
         length-weighted over the segment (an extension: the paper feeds back only the yaw).
     heading_drift_rad : standard deviation (rad) of the heading-offset random walk per step.
@@ -99,8 +102,9 @@ class SporadicFixFusion(ParamsMixin):
         """
         if self.period_s is not None and not self.period_s > 0:
             raise DataError(f"SporadicFixFusion: period_s (T_p) must be > 0 s, got {self.period_s}")
-        if self.yaw_feedback not in ("last", "mean", None):
-            raise DataError(f"SporadicFixFusion: yaw_feedback '{self.yaw_feedback}' unknown; use last, mean or None")
+        if self.yaw_feedback not in ("last", "mean", "chord", None):
+            raise DataError(f"SporadicFixFusion: yaw_feedback '{self.yaw_feedback}' unknown; use chord, last, mean "
+                            "or None")
         st = check_steps(steps)
         fx = (
             pd.DataFrame(columns=["t", "x", "y", "accuracy_m"], dtype=float)

@@ -14,8 +14,10 @@ from __future__ import annotations
 
 import importlib
 import logging
+import os
 import sys
 from contextlib import contextmanager
+from pathlib import Path
 
 import typer
 
@@ -239,11 +241,31 @@ def main(argv: list[str] | None = None) -> int:
     return rc if isinstance(rc, int) else 0
 
 
+#: decision E122: the Ctrl-C line names at most this many outputs, then their count and common folder
+INTERRUPT_NAMED = 3
+
+
+def _still_there(written: list[str]) -> list[str]:
+    """Decision E122: the outputs of B96's list that still exist, without those inside another listed one (an
+    output written inside a temporary folder that was renamed since is gone; a file of a listed folder is in it)."""
+    suffix = " (written in place, maybe incomplete)"
+    entries = [(w[:-len(suffix)] if w.endswith(suffix) else w, w) for w in dict.fromkeys(written)]
+    present = [(os.path.abspath(p), w) for p, w in entries if os.path.lexists(p)]
+    folders = {p for p, _ in present}
+    return [w for p, w in present if not any(str(q) in folders for q in Path(p).parents)]
+
+
 def _interrupted(written: list[str]) -> int:
     """Decision B96: Ctrl-C ends a command with one line saying what it left (outputs are written whole or not
-    at all, atomic.py), exit code 130 (128 + SIGINT)."""
-    kept = (f"written before it: {', '.join(dict.fromkeys(written))}; nothing else" if written
-            else "nothing written")
+    at all, atomic.py), exit code 130 (128 + SIGINT). Decision E122: only outputs still there, and many of them
+    as their count and common folder (a batch of thousands of sessions stays one short line)."""
+    left = _still_there(written)
+    if len(left) > INTERRUPT_NAMED:
+        common = os.path.commonpath([os.path.abspath(w.split(" (written in place")[0]) for w in left])
+        named = f"{', '.join(left[:INTERRUPT_NAMED])} and {len(left) - INTERRUPT_NAMED} more (in {common})"
+    else:
+        named = ", ".join(left)
+    kept = f"written before it: {named}; nothing else" if left else "nothing written"
     print(f"error: interrupted (Ctrl-C); {kept}", file=sys.stderr)
     return 130
 

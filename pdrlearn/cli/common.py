@@ -474,14 +474,32 @@ def walk_line(summary: dict) -> str | None:
 
     n, cv = summary.get("n_pauses", 0), summary.get("stride_time_cv_pct")
     n_bouts = summary.get("n_bouts", summary["n_walking_bouts"])
-    return (f"{n_bouts} walking bout(s), {n} pause(s) of >= 1 s"
+    # decision L217: n_bouts (bouts.csv's rows, the bout rule's) is THE bout count; L104's n_walking_bouts (pauses
+    # + 1) is named beside it when another rule (--bout-rule mobgap, --bout-min-strides) gives a different count
+    other = (f" (bouts.csv; {summary['n_walking_bouts']} between the pauses)"
+             if n_bouts != summary["n_walking_bouts"] else "")
+    return (f"{n_bouts} walking bout(s){other}, {n} pause(s) of >= 1 s"
             + (f" ({summary['pause_time_s']:.1f} s in all)" if n else "")
             + f", {summary.get('turn_count', 0)} turn(s) of >= {summary.get('turn_count_min_deg', 80):g} deg"
-            + (f", stride-time CV {cv:.1f} % ({summary.get('n_cv_strides')} steady strides)" if cv is not None
-               else ", stride-time CV withheld (contact timing unreliable, see the warning)"
-               if summary.get("stride_time_cv_withheld")
-               else f", no stride-time CV ({summary.get('n_cv_strides', 0)} steady level forward strides, "
-                    f"{CV_MIN_STRIDES} needed)" if summary.get("n_stride_times") else ""))  # decision L188
+            + _cv_phrase(summary, cv, CV_MIN_STRIDES))
+
+
+def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
+    """Decisions L104, L188, L212, L214, L215: the walk line's stride-time (and stride-length) CV, or why there is
+    none (``stride_time_cv_withheld``'s cause)."""
+    length_cv = summary.get("stride_length_cv_pct")
+    if cv is not None:
+        return (f", stride-time CV {cv:.1f} %" + (f", stride-length CV {length_cv:.1f} %" if length_cv is not None
+                                                   else "") + f" ({summary.get('n_cv_strides')} steady strides)")
+    w = summary.get("stride_time_cv_withheld") or {}
+    if w.get("cause") == "lower_back":  # decision L214
+        return ", no stride-time CV on the lower back (its contact timing scatters too much; decision L104)"
+    if w.get("cause") == "contact_scatter" or "contact_scatter_s" in w:
+        return ", stride-time CV withheld (contact timing unreliable, see the warning)"
+    if not summary.get("n_stride_times"):
+        return ""
+    line = f", no stride-time CV ({summary.get('n_cv_strides', 0)} steady level forward strides, {needed} needed)"
+    return line + (f": {w['level_note']}" if w.get("level_note") else "")  # decision L215
 
 
 def transfer_line(summary: dict) -> str | None:

@@ -200,7 +200,8 @@ def _steps_to_shade(source: str, session):
 
 
 def fetch(
-    source: str = typer.Argument(..., help="Dataset source: mobgap or gaitmap (their example data)."),
+    source: str = typer.Argument(..., help="Dataset source: mobgap or gaitmap (their example data), hapt "
+                                           "(UCI HAPT, a phone on a belt)."),
     out: Path = typer.Option(Path("datasets/external"), "--out", "-o",
                              help="Folder that receives one session folder per recording."),
     cache: Path = typer.Option(None, "--cache", help="Download cache (default ~/.cache/pdrlearn/external)."),
@@ -215,6 +216,8 @@ def fetch(
         pdrlearn fetch mobgap --out datasets/external
 
         pdrlearn fetch gaitmap --out datasets/external
+
+        pdrlearn fetch hapt --out datasets/hapt
     """
     from pdrlearn.io.external import fetch as fetch_source
 

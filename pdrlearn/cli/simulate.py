@@ -45,7 +45,8 @@ def simulate_cmd(
         help="Your own path instead of a scenario, e.g. 'straight:10, up:12, turn:180, down:12, "
         "backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md). Rides without steps: 'lift:+9' / "
         "'lift:-9' (a lift, metres up / down), 'escalator:+6' (30 deg, 0.5 m/s, straight ahead; 1-60 m); "
-        "'trolley:20' walks 20 m pushing a trolley (decisions S45, S46).",
+        "'trolley:20' walks 20 m pushing a trolley (decisions S45, S46); 'side:3' / 'side:-3' side-steps 3 m "
+        "left / right facing ahead (S49).",
     ),
     user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty)."),

@@ -591,7 +591,7 @@ def clinical_tables(result, bouts) -> dict:
     from pdrlearn.track.clinical import turn_table
     from pdrlearn.waist.transfers import TRANSFER_COLUMNS
 
-    out = {"turns.csv": turn_table(result.steps, bouts)}
+    out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
     return out

@@ -19,6 +19,7 @@ Modules
 - :mod:`~pdrlearn.kernels.barometer` - the barometric formula and the relative altitude of a barometer (W89).
 - :mod:`~pdrlearn.kernels.dsp` - FIR design, peaks, moving mean, Butterworth zero-phase filters (scipy's, W92).
 - :mod:`~pdrlearn.kernels.waist` - the waist pipelines' kernels (contacts, pendulum, gyro heading, W27; W92).
+- :mod:`~pdrlearn.kernels.yaw_turns` - El-Gohary's turns of a lower-back yaw rate (mobgap TdElGohary; L210).
 - :mod:`~pdrlearn.kernels.ahrs` - Madgwick's IMU filter and quaternion <-> matrix (W43, W92).
 - :mod:`~pdrlearn.kernels.gaps` - stream gaps: the warning lines and the cut of a contact table (B11).
 - :mod:`~pdrlearn.kernels.waist_stream` - the waist contacts on a stream (W31, W59; the live trackers).
@@ -28,6 +29,7 @@ Modules
 - :mod:`~pdrlearn.kernels.handedness` - D11's mirrored-pair test of a foot unit, offline and live (B129).
 - :mod:`~pdrlearn.kernels.histospline` - L24's block-mean histospline without scipy (the stride kernel's, L141).
 - :mod:`~pdrlearn.kernels.geodetic` - thesis eq. 56/57 one step at a time (offline lat/lon and the live trackers, W137).
+- :mod:`~pdrlearn.kernels.sideways` - side-stepping strides: L219's rule, offline and one stride at a time (E124).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

@@ -147,7 +147,7 @@ class FixConfig:
     sigma_length_rel: float = 0.05
     sigma_length_m: float = 0.02
     sigma_heading_rad: float = math.radians(5.0)
-    yaw_feedback: str | None = "last"
+    yaw_feedback: str | None = "chord"  # decision D24 (seed 004 eq. 28, j = 0: "last")
     scale_feedback: bool = False
     heading_drift_rad: float = math.radians(0.3)
     initial_sigma_m: float = math.sqrt(P_P0_M2)
@@ -179,9 +179,19 @@ class StepFixState:
     eqs. 16-28), advanced one step at a time: :meth:`predict` for each step, :meth:`correct` with a fix. ``cfg``:
     an object with :class:`~pdrlearn.aid.sporadic.SporadicFixFusion`'s parameters (``sigma_length_rel``,
     ``sigma_length_m``, ``sigma_heading_rad``, ``yaw_feedback``, ``scale_feedback``, ``heading_drift_rad``).
-    ``x`` (2,) is the causal (real-time) estimate, ``raw`` the PDR position."""
+    ``x`` (2,) is the causal (real-time) estimate, ``raw`` the PDR position.
 
-    def __init__(self, cfg, start_xy, initial_sigma_m: float, t0: float):
+    ``segment=False`` (decision E121, the live trackers): the steps since the last adjustment are not kept, only
+    their count, sum and last increment and heading -- what the "last" yaw feedback reads (eqs. 26 and 28 for the last
+    increment) and the "chord" one (decision D24: the segment's sum before and after stretching) -- so the state stays
+    a few numbers however many steps pass without a fix; :meth:`correct` then returns no stretched rows. It needs
+    ``yaw_feedback`` "chord", "last" or None and no ``scale_feedback`` ("mean" and the scale read every step)."""
+
+    def __init__(self, cfg, start_xy, initial_sigma_m: float, t0: float, segment: bool = True):
+        if not segment and (cfg.yaw_feedback not in ("chord", "last", None) or cfg.scale_feedback):
+            raise ValueError("StepFixState(segment=False) needs yaw_feedback 'chord', 'last' or None and no "
+                             "scale_feedback")
+        self.segment = segment
         self.cfg = cfg
         self.x = np.asarray(start_xy, float).copy()
         self.P = np.eye(2) * initial_sigma_m**2
@@ -191,7 +201,9 @@ class StepFixState:
         self.seg_inc: list[np.ndarray] = []
         self.seg_rows: list[int] = []
         self.seg_head: list[float] = []
+        self._seg_n, self._seg_sum, self._seg_last, self._seg_last_head = 0, np.zeros(2), np.zeros(2), 0.0  # E121
         self.anchor_xy, self.anchor_row, self.l_start = self.x.copy(), 0, np.zeros(2)
+        self.P_anchor = self.P.copy()
         self.prev_t = float(t0)
         self.yaw_corrections = 0
 
@@ -208,9 +220,15 @@ class StepFixState:
                                     sigma_heading_rad=c.sigma_heading_rad)  # seed 004 eqs. 16-17
         self.p_off += c.heading_drift_rad**2
         self.p_scale += (0.1 * c.heading_drift_rad) ** 2  # scale random walk, 1/10 of the heading's (rad ~ rel.)
-        self.seg_inc.append(self.x - x_prev)
-        self.seg_rows.append(row)
-        self.seg_head.append(hc)
+        if self.segment:
+            self.seg_inc.append(self.x - x_prev)
+            self.seg_rows.append(row)
+            self.seg_head.append(hc)
+        else:  # decision E121: what the "last" yaw feedback reads of the segment
+            self._seg_last = self.x - x_prev
+            self._seg_sum = self._seg_sum + self._seg_last
+            self._seg_n += 1
+            self._seg_last_head = hc
         return x_prev
 
     def correct(self, z: np.ndarray, sigma: float, row: int) -> tuple[list[int], np.ndarray]:
@@ -220,6 +238,8 @@ class StepFixState:
         positions (m, (n_rows, 2))."""
         c = self.cfg
         l_end = z - self.x  # seed 004: l(k) = L_b(bar) - L_b(hat)
+        if not self.segment:
+            return self._correct_last(z, sigma, row, l_end)
         inc = np.asarray(self.seg_inc)
         stretched, _, theta_bar = stretch_segment(inc, self.l_start, l_end)
         rows = list(self.seg_rows)
@@ -229,7 +249,12 @@ class StepFixState:
             dth = wrap_angle(theta_bar - np.asarray(self.seg_head))
             chord = float(np.hypot(*np.sum(stretched, axis=0)))
             geo = 2.0 * sigma**2 / max(chord, 0.5) ** 2
-            if c.yaw_feedback == "last":
+            if c.yaw_feedback == "chord":  # decision D24: the segment's rotation onto the fixes (eq. 26's ends)
+                est, obs = np.sum(inc, axis=0), np.sum(stretched, axis=0)
+                innov = float(wrap_angle(np.arctan2(obs[1], obs[0]) - np.arctan2(est[1], est[0])))
+                q_seg = 0.5 * float(np.trace(self.P - self.P_anchor))
+                r = (2.0 * sigma**2 + q_seg) / max(chord, 0.5) ** 2
+            elif c.yaw_feedback == "last":
                 innov, r = float(dth[-1]), c.sigma_heading_rad**2 + geo
             else:
                 w = lens / max(lens.sum(), 1e-9)
@@ -247,10 +272,42 @@ class StepFixState:
                 gain = self.p_scale / (self.p_scale + r) if self.p_scale > 0 else 0.0
                 self.log_scale = float(np.clip(self.log_scale + gain * np.log(ratio), -0.7, 0.7))
                 self.p_scale *= 1.0 - gain
+        self._update(z, sigma, row)
+        return rows, pos
+
+    def _correct_last(self, z: np.ndarray, sigma: float, row: int, l_end: np.ndarray) -> tuple[list[int], np.ndarray]:
+        """:meth:`correct` without the segment's steps (decision E121): the "last" yaw feedback from the segment's
+        count m, sum and last increment -- the stretched last increment is d_m + (l(k) - l(k-m)) / m (seed 004 eq.
+        26), its heading eq. 28's, and the stretched segment's chord |sum d + l(k) - l(k-m)| -- as :meth:`correct`
+        computes them from every step (equal to rounding)."""
+        c, m = self.cfg, self._seg_n
+        if c.yaw_feedback is not None and m:
+            dl = np.asarray(l_end, float) - self.l_start
+            last = self._seg_last + dl / m  # seed 004 eq. 26
+            theta_bar = float(np.arctan2(last[1], last[0]))  # seed 004 eq. 28
+            obs = self._seg_sum + dl  # the stretched segment's sum (eq. 26 adds l(k) - l(k-m) over its steps)
+            chord = float(np.hypot(*obs))
+            geo = 2.0 * sigma**2 / max(chord, 0.5) ** 2
+            if c.yaw_feedback == "chord":  # decision D24, as :meth:`correct`
+                est = self._seg_sum
+                innov = float(wrap_angle(np.arctan2(obs[1], obs[0]) - np.arctan2(est[1], est[0])))
+                r = (2.0 * sigma**2 + 0.5 * float(np.trace(self.P - self.P_anchor))) / max(chord, 0.5) ** 2
+            else:
+                innov, r = float(wrap_angle(theta_bar - self._seg_last_head)), c.sigma_heading_rad**2 + geo
+            gain = self.p_off / (self.p_off + r)
+            self.offset = float(wrap_angle(self.offset + gain * innov))
+            self.p_off *= 1.0 - gain
+            self.yaw_corrections += 1
+        self._update(z, sigma, row)
+        return [], np.zeros((0, 2))
+
+    def _update(self, z: np.ndarray, sigma: float, row: int) -> None:
+        """The EKF update with the fix (seed 004 eqs. 20-22); the next segment starts here."""
         self.x, self.P, _, _ = kf_update(self.x, self.P, z, np.array([sigma]))  # seed 004 eqs. 20-22
         self.anchor_xy, self.anchor_row, self.l_start = self.x.copy(), row, z - self.x
+        self.P_anchor = self.P.copy()
         self.seg_inc, self.seg_rows, self.seg_head = [], [], []
-        return rows, pos
+        self._seg_n, self._seg_sum = 0, np.zeros(2)
 
 
 class LiveFixes:
@@ -283,7 +340,9 @@ class LiveFixes:
         """The fused (causal) position after one reported step and whether a fix was used at it."""
         if self.state is None:
             t0 = start_s if self.t_start is None else min(self.t_start, start_s)
-            self.state = StepFixState(self.cfg, self._start, self._sigma0, t0)
+            # decision E121: the live estimate reads no stretched rows, so the segment is kept as a few sums
+            compact = self.cfg.yaw_feedback in ("chord", "last", None) and not self.cfg.scale_feedback
+            self.state = StepFixState(self.cfg, self._start, self._sigma0, t0, segment=not compact)
             outside = [f for f in self._pending if f[0] < t0]  # before the track: never used (D17)
             self._pending = [f for f in self._pending if f[0] >= t0]
             self.outside_before = len(outside)

@@ -13,6 +13,10 @@ itself by ``L_k dpsi``, a length error ``dL`` along itself. Four zero-mean, mutu
   left after ZUPT/ZARU); the heading turns by ``b t``, also while the walker stands;
 - ``point_m``: a point error that does not accumulate (sd per axis): the tracked point (the foot at rest, one
   stride's end) is not the walker's position at that time, and one stride's own placement error.
+- ``path_rel`` (decision L220; 0 unless a regime sets it): an error proportional to the distance walked ``s_k``
+  (the summed |stride length|), sd per axis ``path_rel s_k``: a heading error that depends on the place and the
+  direction (a compass' indoor field disturbance, a hard-iron residual) repeats on every pass of a route that
+  revisits its corridors, out and back, instead of averaging out or cancelling on a closed loop.
 
 Each gives a closed form of cumulative sums (O(N)). The 1-sigma radius is ``sqrt(trace P)`` (distance root mean
 square): for a 2-D Gaussian a circle of twice that radius holds 95.4 % (round) to 98.2 % (a thin ellipse) of
@@ -26,7 +30,7 @@ import numpy as np
 
 def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: np.ndarray, t0_s: float, *,
                         displacement_rel: float, heading_walk_rad: float, bias_rps: float,
-                        point_m: float) -> np.ndarray:
+                        point_m: float, path_rel: float = 0.0) -> np.ndarray:
     """Covariance (m^2) of the horizontal position after each stride, shape (N, 2, 2).
 
     Parameters
@@ -38,6 +42,7 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
     heading_walk_rad : sd of the heading random walk's step per stride (rad).
     bias_rps : sd of the residual heading rate (rad/s).
     point_m : sd per axis of the non-accumulating point error (m).
+    path_rel : sd per axis of the error proportional to the distance walked (fraction; decision L220).
     """
     L = np.asarray(length_m, float)
     psi = np.asarray(heading_rad, float)
@@ -54,6 +59,8 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
     P = (displacement_rel ** 2 * np.sum(C ** 2, axis=1))[:, None, None] * eye + point_m ** 2 * eye
     B = np.cumsum(n * t[:, None], axis=0)  # bias: dpsi_j = b t_j, dp_k = b sum_j L_j n_j t_j
     P = P + bias_rps ** 2 * outer(B, B)
+    if path_rel:  # decision L220: the distance walked, not the displacement from the start
+        P = P + (path_rel * np.cumsum(np.abs(L)))[:, None, None] ** 2 * eye
     # random walk: dp_k = sum_{i<=k} w_i (C_k - C_{i-1}) (C_0 = 0), so its covariance is
     # sum_i (C_k - C_{i-1})(C_k - C_{i-1})^T = k C_k C_k^T - C_k S1_k^T - S1_k C_k^T + S2_k, with the cumulative
     # sums S1_k = sum_{i<=k} C_{i-1}, S2_k = sum_{i<=k} C_{i-1} C_{i-1}^T

@@ -1161,6 +1161,47 @@ def low_vault_mask(h_m: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np.n
     return np.asarray(use, dtype=bool) & np.isfinite(local) & (h < LOW_VAULT_RATIO * np.nan_to_num(local))
 
 
+#: W189: a walking run whose median bounce is under this fraction of the recording's median contact bounce is no
+#: walking (standing sway). W20's SIDE_MIN_FRAC: a cue under a third of its typical value is undecided.
+WEAK_RUN_FRAC = SIDE_MIN_FRAC
+#: W189: the bounce of a contact is read over +-this many seconds around it (W16's shortest step, 0.3 s)
+BOUNCE_HALF_S = 0.3
+#: W189: the vertical acceleration's low-pass before its range is read (Hz; seed 003 sec. 3.1's cutoff)
+BOUNCE_CUTOFF_HZ = 2.5
+
+
+def contact_bounce(acc_v: np.ndarray, fs: float, idx: np.ndarray, *, half_s: float = BOUNCE_HALF_S,
+                   cutoff_hz: float = BOUNCE_CUTOFF_HZ) -> np.ndarray:
+    """Per contact (sample indices ``idx``): the range (max - min, m/s^2) of the vertical acceleration, low-passed at
+    ``cutoff_hz`` (zero-phase third-order Butterworth), over +-``half_s`` around it -- the trunk's bounce at the
+    contact (decision W189)."""
+    idx = np.asarray(idx, dtype=int)
+    if not idx.size:
+        return np.zeros(0)
+    v = dsp.lowpass(np.asarray(acc_v, dtype=np.float64), min(cutoff_hz, 0.4 * fs), fs)
+    w = max(1, int(round(half_s * fs)))
+    return np.array([np.ptp(v[max(0, i - w):min(len(v), i + w + 1)]) for i in idx], dtype=np.float64)
+
+
+def run_ids(has_next: np.ndarray) -> np.ndarray:
+    """Per contact: the index of its walking run (contacts chained by ``has_next``: a step to the next contact)."""
+    h = np.asarray(has_next, dtype=bool)
+    if not h.size:
+        return np.zeros(0, dtype=int)
+    return np.concatenate([[0], np.cumsum(~h[:-1])]).astype(int)
+
+
+def weak_run_mask(bounce: np.ndarray, has_next: np.ndarray, *, frac: float = WEAK_RUN_FRAC) -> np.ndarray:
+    """Contacts of a walking run (:func:`run_ids`) whose median ``bounce`` is under ``frac`` times the median bounce
+    of all the contacts: a run without a walker's vertical bounce is standing sway, no walking (decision W189)."""
+    b = np.asarray(bounce, dtype=np.float64)
+    if not b.size:
+        return np.zeros(0, dtype=bool)
+    rid = run_ids(has_next)
+    run_med = np.array([np.median(b[rid == r]) for r in range(rid[-1] + 1)])
+    return run_med[rid] < frac * float(np.median(b))
+
+
 #: W127: a step whose pelvis turns by more than this (deg, IC to next IC) is a turning step, which W119's veto
 #: spares. The geometric middle, a factor 1.5 from each, of the largest turn of a straight step -- the pelvis's
 #: whole transverse rotation, 2 x 4-5 deg (Perry & Burnfield, Gait Analysis, 2010; simulator 3-5 deg amplitude,

@@ -7,6 +7,10 @@ force detector, ch.5.2; the waist PLL, seed 000 Sec. II-C) run on the pushed sam
 processors (:mod:`pdrlearn.kernels.step_events`, with the numpy low-pass), and the same estimate
 (:func:`pdrlearn.kernels.align.align_events`) reads their events: at every :data:`CHECK_EVERY_STRIDES`-th foot
 stride on the events so far and at ``flush`` on all of them, where it is the offline check's on the same samples.
+Decision E120: "the events so far" are the last :data:`WINDOW_FOOT_EVENTS` foot events (and the waist events from
+:data:`WINDOW_PAD_S` before the first of them, at most :data:`WINDOW_WAIST_EVENTS`): up to that many the estimate is
+the one over every event, as before; a longer stream reads the offset over its last window (``ref_s`` inside it,
+L198), so the work per check and the state stay bounded however long the stream runs.
 Differences from the offline check, by construction: the detectors' rate is the median interval of a stream's
 first :data:`RATE_PROBE_SAMPLES` samples (offline: of the whole recording; equal for regular sampling), the PLL
 keeps its adult range (offline, W117 reads the whole recording's rhythm and widens it above 2.4 steps/s), and the
@@ -51,6 +55,16 @@ RATE_PROBE_SAMPLES = 64
 #: decision L177 (L170's sketch): the offset is estimated again every this many foot strides (about 30 s of walking
 #: at the first, enough for L161's median offset) and at ``flush``
 CHECK_EVERY_STRIDES = 20
+#: decision E120: the estimate reads at most this many foot events, the latest (about 4.8 min of walking at a 1.1 s
+#: stride; L177's and L198's measured sessions fit in it, so their estimates are unchanged); one estimate then costs
+#: at most ~8 ms (``align_events``' grid of 801 offsets x 256 events) instead of growing with the stream
+WINDOW_FOOT_EVENTS = 256
+#: ... and the waist events from this long before the first kept foot event (s): ``align_events``' largest offset
+#: (2 s) plus its tolerance (0.12 s) and a margin for the drift term, so no match inside the window is lost ...
+WINDOW_PAD_S = 3.0
+#: ... at most this many, the latest (the waist sees both feet: about 2 per foot stride; a waist walking while the
+#: foot unit detects nothing cannot grow the list)
+WINDOW_WAIST_EVENTS = 4 * WINDOW_FOOT_EVENTS
 #: samples of a stream held before they are run through its detector (one call per block, not per sample)
 BLOCK_SAMPLES = 64
 FORCE_SENSORS = ("fForceA", "fForceB")
@@ -82,10 +96,11 @@ class ClockCheck:
     ``feed(name, t, values)`` with the raw pushed samples of ``fAccelerometer``, ``fForceA``, ``fForceB`` and
     ``wAccelerometer`` (others ignored), then ``check()`` once per push: it runs the foot detector and returns L161's
     warning line the first time the estimate is over :data:`UNIT_OFFSET_WARN_S` (None otherwise; ``final=True`` at
-    the end of the stream: all events, as the offline check). :attr:`estimate` is ``align_events``' last dict
-    (``offset_s``, ``drift``, ``matched``, ...), or None before there are 3 events of each unit. ``remedy``: the fix
-    the line names, from the estimated offset. State: the detectors' (bounded) and the event times (about two floats
-    a second of walking)."""
+    the end of the stream: all events of the window, as the offline check up to it). :attr:`estimate` is
+    ``align_events``' last dict (``offset_s``, ``drift``, ``matched``, ...), or None before there are 3 events of
+    each unit. ``remedy``: the fix the line names, from the estimated offset. State: the detectors' (bounded) and the
+    event times of the window (decision E120: at most :data:`WINDOW_FOOT_EVENTS` foot and
+    :data:`WINDOW_WAIST_EVENTS` waist events, plus those of one push)."""
 
     def __init__(self, remedy=None):
         self.remedy = remedy
@@ -96,7 +111,9 @@ class ClockCheck:
         self._with_force: bool | None = None
         self._foot_events: list[float] = []
         self._waist_events: list[float] = []
+        self._foot_seen = 0  # foot events detected so far (the window keeps the latest, E120)
         self._checked_at = 0
+        self._windowed = False  # the foot window was full once: the waist events before it are dropped too
         self.estimate: dict | None = None
         self.warned = False
 
@@ -120,9 +137,12 @@ class ClockCheck:
             self._run_foot(final=True)
         else:  # the foot samples after the whole push was fed (its force samples too: the detector is chosen once)
             self._run_foot(final=False)  # after the line too: the held samples stay one block (the state bounded)
-            if self.warned or len(self._foot_events) < self._checked_at + CHECK_EVERY_STRIDES:
+            self._trim()
+            if self.warned or self._foot_seen < self._checked_at + CHECK_EVERY_STRIDES:
                 return None
-        self._checked_at = len(self._foot_events)
+        if final:
+            self._trim()
+        self._checked_at = self._foot_seen
         try:
             self.estimate = align_events(self._foot_events, self._waist_events)
         except DataError:  # fewer than 3 events of a unit: no estimate yet
@@ -134,6 +154,24 @@ class ClockCheck:
             return None
         self.warned = True
         return line
+
+    def _trim(self) -> None:
+        """Decision E120: keep the last WINDOW_FOOT_EVENTS foot events and, once that window was full, the waist
+        events from WINDOW_PAD_S before its first one; at most WINDOW_WAIST_EVENTS waist events in any case."""
+        foot, waist = self._foot_events, self._waist_events
+        if len(foot) > WINDOW_FOOT_EVENTS:
+            del foot[:len(foot) - WINDOW_FOOT_EVENTS]
+            self._windowed = True
+        if self._windowed and foot and waist and waist[0] < foot[0] - WINDOW_PAD_S:
+            k = int(np.searchsorted(np.asarray(waist), foot[0] - WINDOW_PAD_S, side="left"))
+            del waist[:k]
+        if len(waist) > WINDOW_WAIST_EVENTS:
+            del waist[:len(waist) - WINDOW_WAIST_EVENTS]
+
+    def _add_foot(self, events) -> None:
+        times = [e[0] for e in events]
+        self._foot_events += times
+        self._foot_seen += len(times)
 
     # -- the detectors --------------------------------------------------------------------------------------
     @staticmethod
@@ -189,9 +227,25 @@ class ClockCheck:
         if self._foot is None:
             return
         if t.size:
-            self._foot_events += [e[0] for e in self._foot.process(t, v)]
+            self._add_foot(self._foot.process(t, v))
         if final:
-            self._foot_events += [e[0] for e in self._foot.flush()]
+            self._add_foot(self._foot.flush())
+
+
+def replay_check(streams: dict, chunk_s: float = 1.0) -> ClockCheck:
+    """The live check on a recording's ``{sensor: (t, values)}`` replayed in ``chunk_s`` pushes (E28's cut), fed as
+    :class:`~pdrlearn.runtime.Tracker` feeds it, then ``check(final=True)``: for measurements and tests of the check
+    alone (decision E120)."""
+    from pdrlearn.runtime.replay import replay_chunks
+
+    cc = ClockCheck()
+    for push in replay_chunks({n: streams[n] for n in SENSORS if n in streams}, chunk_s):
+        for n, (t, v) in push.items():
+            if len(t):
+                cc.feed(n, t, v)
+        cc.check()
+    cc.check(final=True)
+    return cc
 
 
 def waist_on_foot_clock(samples: dict, offset_s: float) -> dict:
@@ -213,4 +267,4 @@ def offset_remedy(offset_s: float) -> str:
     return f"a new Tracker(..., waist_clock_offset_s={offset_s:.3f})" if math.isfinite(offset_s) else "Tracker(...)"
 
 
-__all__ = ["ClockCheck", "UNIT_OFFSET_WARN_S", "offset_remedy", "waist_on_foot_clock"]
+__all__ = ["ClockCheck", "UNIT_OFFSET_WARN_S", "offset_remedy", "replay_check", "waist_on_foot_clock"]

@@ -25,6 +25,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
+from pdrlearn.kernels import sideways as _sideways
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import (
@@ -422,6 +423,7 @@ class Tracker(FixInput):
     _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
+    _side: _sideways.SideRun | None = None  # decision E124 (a bare Tracker.__new__ makes one at its first stride)
     _drop_warned = False
     drop_neighbour: bool | None = None  # decision E101 (a bare Tracker.__new__: kernels.gaps.DROP_NEIGHBOUR)
     #: decision E46: the long foot gaps (start, end) not yet behind the last emitted stride, the pending gap row
@@ -646,6 +648,7 @@ class Tracker(FixInput):
         self._gap_marks: list[list] = []
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._drop_ref: tuple | None = None  # decision L167: (displacement, duration) of the last clean stride
+        self._side = _sideways.SideRun()  # decision E124: the side-stepping stretch the strides are in
         self._drop_warned = False
         self.drop_neighbour = drop_neighbour_on(drop_neighbour)  # decision E101
         self._held: set[str] = set()
@@ -1685,8 +1688,13 @@ class Tracker(FixInput):
             self._warn(impossible_stride_warning(1, t0, t1, length, dz))
             length, dz = 0.0, 0.0
         heading = self.heading + dyaw
+        foot_headed = headed_by_foot(lev, self.heading_source)
         direction = (heading + placement_offset(lev, self.heading_source, disp)  # decision L34
-                     + reversed_by_rules(headed_by_foot(lev, self.heading_source), dx, length))  # L37
+                     + reversed_by_rules(foot_headed, dx, length))  # L37
+        if not foot_headed and _sideways.STREAMED_SIDE_TRAVEL:  # decision E124 (track --streaming's call)
+            if self._side is None:
+                self._side = _sideways.SideRun()
+            direction += self._side.stride(dx, dy, length, _sideways.step_frame(lev))
         x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
         if not math.isfinite(direction + x + y + z):  # decision E38: NaN / inf fail (also inf - inf)
             self._non_finite(t0, t1, heading, direction, (x, y, z), (length, dz))

@@ -2,7 +2,8 @@
 
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
 (your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
-:class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley` segments) and :class:`UserProfile`
+:class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side` segments)
+and :class:`UserProfile`
 (anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
 """
@@ -14,6 +15,7 @@ from pdrlearn.sim.path import (
     Footstep,
     Lift,
     Pivot,
+    Side,
     Sit,
     Slope,
     Stairs,
@@ -47,6 +49,7 @@ __all__ = [
     "Lift",
     "Escalator",
     "Trolley",
+    "Side",
     "Footstep",
     "plan_footsteps",
 ]

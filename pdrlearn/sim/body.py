@@ -78,6 +78,9 @@ KINDS = {
     "stairs_down": StepKind(0.82, 0.85, -22.0, -20.0, (0.3, -1.1), 0.09),
     "backward": StepKind(1.20, -0.30, -15.0, None, (0.30, -0.6), 0.09),
     "turn": StepKind(1.10, 0.25, 3.0, None, (0.05, -0.3), 0.05),
+    # side step (decision S49, an assumption, not from a seed): slower than a forward step (as backward), little
+    # push-off (the foot is lifted, not rolled over the toes), landing flat on the forefoot, a soft sideways impact
+    "side": StepKind(1.20, 0.30, -3.0, None, (0.30, -0.6), 0.06),
 }
 SPEED_PITCH = {"slow": 0.88, "normal": 1.0, "fast": 1.08}
 LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
@@ -415,6 +418,10 @@ REALISTIC_SWAY_ACC_MPS2 = (0.4, 0.9)  # lateral sway acceleration amplitude
 #: trunk's yaw vibration are this fraction of the free walk's (an assumption, not from a seed: the arms no longer
 #: swing to balance the pelvis's rotation and the handle holds the trunk's heading)
 PUSHING_ROTATION_GAIN = 0.5
+#: decision S49: side-stepping, the pelvic rotation about the vertical is this fraction of the free walk's and the
+#: forward surge is gone (the legs swing sideways, not forward; an assumption, not from a seed); the pelvis moves
+#: sideways with the feet (the base line between them) and keeps its bounce and sway
+SIDE_ROTATION_GAIN = 0.3
 
 
 @dataclass(frozen=True)
@@ -614,6 +621,11 @@ def pelvis_pose(
                 else None)  # decision S46 (None: sessions without a trolley bit for bit)
     if rot_gain is not None:
         yaw_osc = yaw_osc * rot_gain
+    side = [st.kind == "side" for st in steps]
+    if any(side):  # decision S49 (skipped without side steps: other sessions bit for bit)
+        side_w = np.interp(t, ev.ic, np.asarray(side, float))
+        surge = surge * (1.0 - side_w)
+        yaw_osc = yaw_osc * (1.0 - (1.0 - SIDE_ROTATION_GAIN) * side_w)
     if pelvis is None:
         roll = -env * PELVIS_ROLL_GAIN * np.radians(user.pelvis_obliquity_deg) * np.sin(np.pi * ph)
     else:  # S27: the unit leans toward the stance side (right stance: ph in (0, 1), roll > 0 = right side down)

@@ -1,7 +1,8 @@
 """Walking paths as segments, and the planner that turns them into footprints of both feet.
 
 A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`,
-:class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`).
+:class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`,
+:class:`Side`).
 :func:`plan_footsteps` walks them with a user's step
 length and returns one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet.
 Walking bouts start and end with both feet side by side (gait initiation and a closing step).
@@ -83,6 +84,14 @@ class Pivot:
     step_m: float = 0.15
 
 
+@dataclass(frozen=True)
+class Side:
+    """Side-step ``length_m`` metres (> 0 = to the left, < 0 = to the right) facing ahead (decision S49): the lead
+    foot steps sideways, the trail foot closes beside it; the heading does not change."""
+
+    length_m: float
+
+
 IRREGULAR_SHORTENING = 0.4  # an irregular step lands this fraction of a step short
 MAX_TURN_STEP_RAD = math.pi / 3  # largest heading change of one stepping-turn step
 #: decision S41: the heading change of one step of a :class:`Pivot` when its step count is not given: the real
@@ -91,6 +100,12 @@ PIVOT_STEP_RAD = math.pi / 4
 #: decision S41: the largest body-centre displacement of one pivot step (m): a turn on the spot moves the body
 #: 0.1-0.2 m per step; beyond this it is a curve (``Curve``)
 PIVOT_MAX_STEP_M = 0.3
+#: decision S49: a side step moves the lead foot (and, after the trail foot closed, the body) this fraction of the
+#: user's forward step length sideways: 0.35-0.47 m for the drawn adults (0.64-0.86 m steps), inside the 0.3-0.5 m
+#: of a comfortable lateral step (an assumption, not from a seed; the backward steps' 0.55 reused)
+SIDE_STEP_FRACTION = 0.55
+#: decision S49: standing pause (s) before and after a side-stepping stretch (a walker stops to side-step)
+SIDE_PAUSE_S = 0.3
 #: decision S37: the steepest ramp walked with level steps (30 %, 17 deg; steeper streets are climbed otherwise)
 MAX_SLOPE_GRADE = 0.30
 
@@ -134,7 +149,7 @@ class Trolley:
     gait: str = "normal"
 
 
-Segment = Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit | Lift | Escalator | Trolley
+Segment = Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit | Lift | Escalator | Trolley | Side
 
 
 @dataclass
@@ -144,7 +159,7 @@ class Footstep:
     foot: str  # "left" | "right"
     heel: np.ndarray
     yaw: float
-    kind: str  # walk | stairs_up | stairs_down | backward | turn | close
+    kind: str  # walk | stairs_up | stairs_down | backward | turn | close | side
     gait: str = "normal"
     direction: str = "forward"
     pause_before_s: float = 0.0
@@ -328,6 +343,26 @@ class _Walker:
         for s in self._progress(seg.n_steps * nominal, nominal)[0]:
             self.step(c0 + s * u, self.z, self.psi, "backward", direction="backward")
 
+    def side(self, seg: Side) -> None:
+        """Decision S49: stop, then per side step the lead foot (the left one going left) lands ``w`` sideways and
+        the trail foot closes beside it, both facing the heading (kind ``side``, direction ``forward``: the body
+        faces ahead and does not walk backward); ``w`` is :data:`SIDE_STEP_FRACTION` x the step length, with the
+        forward steps' variability, the stretch keeping its length; then stop again."""
+        self._change_direction("forward")
+        if not (math.isfinite(seg.length_m) and seg.length_m != 0):
+            raise DataError(f"{seg}: side-stepping needs a finite, non-zero distance (> 0 left, < 0 right)")
+        self.close(pause=SIDE_PAUSE_S)
+        sigma = 1.0 if seg.length_m > 0 else -1.0
+        lead = "left" if sigma > 0 else "right"
+        trail = "right" if lead == "left" else "left"
+        c0, nrm = self.c.copy(), sigma * _normal(self.psi)
+        nominal = SIDE_STEP_FRACTION * self.user.step_length(self.speed)
+        for s in self._progress(abs(seg.length_m), nominal)[0]:
+            self.step(c0 + s * nrm, self.z, self.psi, "side", foot=lead)
+            self.step(c0 + s * nrm, self.z, self.psi, "side", foot=trail)
+        self.together = True
+        self.pending_pause += SIDE_PAUSE_S
+
     def turn(self, seg: Turn) -> None:
         self._change_direction("forward")
         if abs(seg.angle_rad) < 1e-6:
@@ -399,6 +434,8 @@ def path_length(segments: list[Segment], user: UserProfile | None = None) -> flo
             total += seg.length_m
         elif isinstance(seg, Pivot):
             total += (int(seg.n_steps) or max(1, math.ceil(abs(seg.angle_rad) / PIVOT_STEP_RAD - 1e-9))) * seg.step_m
+        elif isinstance(seg, Side):  # decision S49: the body's sideways travel
+            total += abs(seg.length_m)
         elif isinstance(seg, Backward) and user is not None:
             total += seg.n_steps * 0.55 * user.step_length_m
     return total
@@ -444,6 +481,7 @@ def plan_footsteps(
         Lift: w.ride,
         Escalator: w.ride,
         Trolley: w.trolley,
+        Side: w.side,
     }
     for seg in segments:
         if isinstance(seg, Straight | Curve | Slope | Trolley) and seg.gait not in GAITS:
@@ -453,7 +491,7 @@ def plan_footsteps(
         except KeyError:
             raise DataError(
                 f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Pivot, Stand, Sit, "
-                "Lift, Escalator, Trolley"
+                "Lift, Escalator, Trolley, Side"
             ) from None
     w.close()
     return w.steps, initial, w.pending_pause, w.transfers

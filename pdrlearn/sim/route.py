@@ -17,6 +17,7 @@
 | ``lift:H`` | stand in a lift riding H metres (+H up, -H down; no steps; decision S45) |
 | ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
 | ``trolley:M[:GAIT]`` | walk M metres straight ahead pushing a trolley (damped pelvic rotation; decision S46) |
+| ``side:M`` | side-step M metres facing ahead (+M left, -M right; lead foot out, trail foot closes; decision S49) |
 
 Angles are in degrees here (the Python segments take radians).
 """
@@ -33,6 +34,7 @@ from pdrlearn.sim.path import (
     Lift,
     Pivot,
     Segment,
+    Side,
     Sit,
     Slope,
     Stairs,
@@ -45,7 +47,7 @@ from pdrlearn.sim.ride import check_rise
 from pdrlearn.sim.user import GAITS
 
 ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "pivot", "stand", "sit", "lift",
-               "escalator", "trolley")
+               "escalator", "trolley", "side")
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
 
 
@@ -127,6 +129,12 @@ def parse_route(spec: str) -> list[Segment]:
             n = int(_number(item, parts[2], integer=True)) if len(parts) > 2 else 0
             step = _number(item, parts[3], positive=False) if len(parts) > 3 else 0.15
             segments.append(Pivot(math.radians(angle), n_steps=n, step_m=step))
+        elif kind == "side":  # decision S49
+            _arity(item, parts, (1,))
+            metres = _number(item, parts[1], positive=False)
+            if metres == 0:
+                raise DataError(f"--route item {item!r}: side-stepping needs a non-zero distance (+M left, -M right)")
+            segments.append(Side(metres))
         elif kind == "sit":
             _arity(item, parts, (1,))
             segments.append(Sit(_number(item, parts[1])))

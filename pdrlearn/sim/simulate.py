@@ -197,6 +197,8 @@ def _stride_table(
         p_a = np.asarray(h_a) + _rz(y_a) @ r_sensor
         p_b = np.asarray(st.heel) + _rz(st.yaw) @ r_sensor
         length = float(np.hypot(*(p_b - p_a)[:2]))
+        # decision S49: the sideways part of the travel (> 0 = left of the heading at the stride's start)
+        lateral = float(-(p_b - p_a)[0] * math.sin(y_a) + (p_b - p_a)[1] * math.cos(y_a))
         dz = float(p_b[2] - p_a[2])
         rows.append(
             {
@@ -214,6 +216,7 @@ def _stride_table(
                 "kind": st.kind,
                 "gait": st.gait,
                 "irregular": st.irregular,
+                "lateral_m": round(lateral, 6),
             }
         )
         rows[-1]["steady"] = bool(
@@ -226,6 +229,8 @@ def _stride_table(
         )
         h_a, y_a, prev_ff = st.heel, st.yaw, ff
     df = pd.DataFrame(rows)
+    if not any(s.kind == "side" for s in steps):  # decision S49: only sessions with side steps have the column
+        df = df.drop(columns="lateral_m", errors="ignore")
     df.attrs["time_columns"] = ["start_s", "end_s", "ic_s", "tc_s"]
     return df
 

@@ -218,9 +218,11 @@ def get_pipeline(name: str) -> Pipeline:
       ``stairs_length`` (decision W91, off; ``"climbs"``: W108's climbs only, W156), ``stairs_climb`` (decision
       W108, off: stairs only inside a climb above the barometer's still noise, z only on stairs), ``slow_turn_rps``
       (decision W82, off),
-      ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104, off:
+      ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104:
       no contact around a sit-to-stand's trunk-flexion peak; ``"rhythm"``: W109, sparing left/right step pairs;
-      ``"alternation"``: W180, also an undecided contact between two same-side contacts of its sequence),
+      ``"alternation"``: W180, also an undecided contact between two same-side contacts of its sequence;
+      ``"opposite"``, the offline default since W185 (off with ``realtime``): W184, instead an undecided contact
+      between two opposite-side contacts of its sequence),
       ``pause_steps`` (decision W111, off: a step over 1.5 local periods keeps one period's length;
       ``"progression"``: W122, a step with a standstill in it keeps at most the trunk's travel over it;
       ``"standing"``, the offline default since W134: W122 only for a still run of half a local step period, not a
@@ -240,6 +242,10 @@ def get_pipeline(name: str) -> Pipeline:
       x0.75-x1.33 of the calibration walks'),
       ``pll_check`` (decision W186, off: an uncalibrated offline waist-pll track warns when it reads over 1.5 x the
       pendulum model's distance on the same session),
+      ``integrate_end`` (decision W187, off: the last step's heading takes the yaw turned on the spot after it, to
+      the recording's end; offline only),
+      ``stand_veto`` (decision W190, off: a run of contacts whose median vertical bounce is under 1/3 of the
+      recording's is no walking; offline ``waist-pendulum`` only),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
       turn on a 0.2 m radius; both pipelines),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered

@@ -24,13 +24,22 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
-from pdrlearn.track.clinical import PAUSE_MIN_S, TURN_COUNT_MIN_DEG, bout_rows, turn_rows
+from pdrlearn.track.clinical import (
+    CV_BOUT_MIN_STRIDES,
+    PAUSE_MIN_S,
+    TURN_COUNT_MIN_DEG,
+    _steady_rows,
+    bout_rows,
+    cv_pct,
+    steady_stride_lengths,
+    turn_rows,
+)
 
 #: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key)
 BOUT_COLUMNS = ("session", "subject", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m",
                 "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
                 "longest_contact_gap_s", "n_turns", "altitude_change_m", "altitude_change_before_m",
-                "gait_out_of_range")
+                "gait_out_of_range", "n_cv_strides", "stride_time_cv_pct", "stride_length_cv_pct")
 
 #: decision E98: bouts.csv's renamed columns, old name -> new (speeds are ``_mps`` as everywhere else). The old name
 #: stays readable: a :class:`BoutsTable` answers it with a FutureWarning, and the CSVs keep it as a last column
@@ -210,7 +219,11 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     row's ``pause_dz_m``, the altitude change while the unit stood before the bout (a lift or escalator ride; 0
     without that column), which is no walking bout's; ``gait_out_of_range`` (decision L195): the bout's own
     cadence or speed is above L95's walking range for a leg of ``leg_m`` (m, L148; None = the adult range), judged
-    on bouts of at least 5 strides (:func:`pdrlearn.track.gait.bout_range_flags`)."""
+    on bouts of at least 5 strides (:func:`pdrlearn.track.gait.bout_range_flags`); decision L212: ``n_cv_strides``
+    the bout's strides of the session's stride-time CV (L104 / L188's steady straight level forward strides of a
+    foot track; 0 on the lower back, L104), and over them, with at least
+    :data:`~pdrlearn.track.clinical.CV_BOUT_MIN_STRIDES` (L196's minimum), ``stride_time_cv_pct`` and
+    ``stride_length_cv_pct`` (100 x SD / mean, SD with n - 1); NaN with fewer."""
     from pdrlearn.track.gait import bout_range_flags
 
     rule = rule or BoutRule()
@@ -226,6 +239,10 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     pause_dz = np.nan_to_num(st["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in st else np.zeros(len(st))
     angles, first = turn_rows(st)
     turn_row = first[np.abs(angles) >= TURN_COUNT_MIN_DEG]
+    _, steady = _steady_rows(st)  # decision L212: the session CV's strides, each bout's own share of them
+    stride_s = st["stride_time_s"].to_numpy(float) if "stride_time_s" in st else np.full(len(st), np.nan)
+    stride_len = np.full(len(st), np.nan)
+    stride_len[steady] = steady_stride_lengths(st, steady)
     rows = []
     for a, b in bout_ranges(st, rule):
         n_strides = int((~gap[a:b]).sum()) if foot else max(b - a - 2, 0)
@@ -248,12 +265,23 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
                      "longest_contact_gap_s": float(np.diff(c).max()) if len(c) >= 2 else np.nan,
                      "n_turns": int(((turn_row >= a) & (turn_row < b)).sum()),
                      "altitude_change_m": float(dz[a:b].sum() + pause_dz[a + 1:b].sum()),
-                     "altitude_change_before_m": float(pause_dz[a])})
+                     "altitude_change_before_m": float(pause_dz[a]), **_bout_cvs(steady[a:b], stride_s[a:b],
+                                                                                  stride_len[a:b])})
     if not rows:
         return out
     table = BoutsTable(rows, columns=list(BOUT_COLUMNS))
     table["gait_out_of_range"] = bout_range_flags(table, leg_m)  # decision L195
     return table
+
+
+def _bout_cvs(steady: np.ndarray, stride_s: np.ndarray, length_m: np.ndarray) -> dict:
+    """Decision L212: a bout's ``n_cv_strides`` and, with at least CV_BOUT_MIN_STRIDES of them (L196), the
+    stride-time and stride-length CVs of its steady strides (NaN otherwise)."""
+    n = int(steady.sum())
+    t, length = stride_s[steady], length_m[steady]
+    length = length[np.isfinite(length)]
+    return {"n_cv_strides": n, "stride_time_cv_pct": cv_pct(t) if n >= CV_BOUT_MIN_STRIDES else np.nan,
+            "stride_length_cv_pct": cv_pct(length) if len(length) >= CV_BOUT_MIN_STRIDES else np.nan}
 
 
 #: a track's walking-bout totals (cohort C25): sessions.csv's columns, summed per subject in subjects.csv

@@ -29,7 +29,8 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   (L79, L188) with a stride time, not next to a pause, whose previous and next strides are such strides too
   (the strides into and out of a turn or a stop slow down; a stride time across a short stop is no rhythm);
   None with fewer than :data:`CV_MIN_STRIDES` of them. None on the lower back: its contacts scatter (on
-  simulated straight walks whose true CV is 1.7-2.1 % it gave 6.2-9.7 %).
+  simulated straight walks whose true CV is 1.7-2.1 % it gave 6.2-9.7 %). ``stride_time_cv_withheld`` says why
+  (decisions L214, L215). ``stride_length_cv_pct`` (decision L212): the same strides' lengths' CV.
 * **contact timing check** (decision L113): the same strides' swing onsets (``start_s``) recur with the gait
   period too, so with contacts timed as well as the onsets the two stride-time SDs agree. Each contact's own
   timing scatter, estimated as sqrt((SD_contacts^2 - SD_onsets^2) / 2) (independent scatter of both contacts of
@@ -93,7 +94,19 @@ CV_POOLED_FACTOR = 2.0
 #: the keys :func:`clinical_summary` gives every summary (None / 0 when the table cannot give them)
 CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
                  "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides", "stride_time_cv_withheld",
-                 "stride_time_cv_within_bouts_pct", "stride_time_cv_bouts")
+                 "stride_time_cv_within_bouts_pct", "stride_time_cv_bouts", "stride_length_cv_pct")
+
+#: decision L214: ``stride_time_cv_withheld["cause"]`` - the lower back (L104: never a CV), too few steady strides
+#: (:data:`CV_MIN_STRIDES`), or the contacts' timing scatter (L113, an option)
+CV_WITHHELD_CAUSES = ("lower_back", "too_few_strides", "contact_scatter")
+#: decision L214: L104's reason the lower back gives no stride-time CV (its simulated straight walks, true CV
+#: 1.7-2.1 %, read 6.2-9.7 %: the contacts' timing scatter, not the walker's rhythm)
+LOWER_BACK_CV_REASON = ("not given on the lower back: its initial contacts scatter too much in time for a "
+                        "stride-time CV (simulated walks of true CV 1.7-2.1 % read 6.2-9.7 %, decision L104); a "
+                        "unit on the foot gives it")
+#: decision L215: the withheld line names the level criterion (L188's |dz_m| < 0.10 m) when it removed more than
+#: this share of the straight strides (the trial's MS walk: 49 of 74 strides over 0.10 m by attitude drift)
+NOT_LEVEL_SHARE = 0.5
 
 
 def _valid(steps: pd.DataFrame) -> np.ndarray:
@@ -260,13 +273,36 @@ def heading_crossings(dh: np.ndarray, start: np.ndarray, end: np.ndarray, angle:
     return out[0], out[1]
 
 
+#: decision L210: a lower-back track's turns re-timed by the El-Gohary turn of its yaw rate (``info["yaw_turns"]``);
+#: L211: L210's rule met (fresh users 3900-3939, median |start / end / duration error| waist-pendulum 2.62 / 1.31 /
+#: 1.33 -> 0.45 / 0.43 / 0.88 s, waist-pll 3.23 / 2.50 / 1.77 -> 0.78 / 1.04 / 0.83 s; 13 mobgap INDIP turns,
+#: waist-pendulum 0.93 / 0.59 / 2.36 -> 0.85 / 0.32 / 0.90 s; turns and angles unchanged)
+TURN_YAW_TIMING = True
+
+
+def yaw_turn_times(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None) -> tuple[float, float] | None:
+    """Decision L210: the ``(start_s, end_s)`` of the yaw-rate turn (records of
+    :data:`pdrlearn.waist.heading.YAW_TURN_KEYS`) that times a counted turn of ``angle`` deg whose rows span
+    ``[lo, hi]`` s: of those whose peak lies in the span and whose angle has the turn's sign, the one of largest
+    |angle|; None without one."""
+    if yaw is None or not len(yaw):
+        return None
+    peak, ang = yaw["peak_s"].to_numpy(float), yaw["angle_deg"].to_numpy(float)
+    cand = np.flatnonzero((peak >= lo) & (peak <= hi) & (np.sign(ang) == math.copysign(1.0, angle)))
+    if not cand.size:
+        return None
+    k = cand[int(np.argmax(np.abs(ang[cand])))]
+    return float(yaw["start_s"].iloc[k]), float(yaw["end_s"].iloc[k])
+
+
 #: turns.csv's columns (decision L200), in order
 TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "peak_rate_dps", "n_rows", "bout",
                       "mean_rate_dps")
 
 
 def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
-               min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None) -> pd.DataFrame:
+               min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None,
+               yaw_turns=None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
@@ -280,10 +316,17 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
 
     ``timing`` (decision L208; None = :data:`TURN_TIMING`): ``"rows"`` the times above (L200); ``"heading"``
     ``start_s`` / ``end_s`` where the turn's heading, each interval's change spread over its row's span, has gone
-    :data:`TURN_TIMING_FRACTIONS` of the angle (:func:`heading_crossings`)."""
-    timing = TURN_TIMING if timing is None else timing
-    if timing not in TURN_TIMINGS:
-        raise ValueError(f"turn_table timing must be one of {TURN_TIMINGS}, not {timing!r}")
+    :data:`TURN_TIMING_FRACTIONS` of the angle (:func:`heading_crossings`); ``"yaw"`` (decision L210) ``"heading"``'s
+    times, except that a turn matched by one of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``: the
+    El-Gohary turns of its yaw rate) takes that turn's start and end (:func:`yaw_turn_times`; its rows' span from
+    the start of the row before its first heading change to the end of its last row). Default: ``"yaw"`` when
+    ``yaw_turns`` is given and :data:`TURN_YAW_TIMING`, else :data:`TURN_TIMING`."""
+    if timing is None:
+        timing = "yaw" if yaw_turns is not None and TURN_YAW_TIMING else TURN_TIMING
+    if timing not in (*TURN_TIMINGS, "yaw"):
+        raise ValueError(f"turn_table timing must be one of {(*TURN_TIMINGS, 'yaw')}, not {timing!r}")
+    yaw = pd.DataFrame(list(yaw_turns or []), columns=["start_s", "end_s", "peak_s", "angle_deg"]) \
+        if timing == "yaw" else None
     st, spans = _turn_spans(steps)
     rows = []
     if spans:
@@ -307,21 +350,25 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             t1 = float(end[last]) if np.isfinite(end[last]) and end[last] > t[last] else float(
                 t[min(last + 1, len(t) - 1)])
             ends_after_last = not t1 > t0  # decision L205: the turn ends after the track's last row (W187)
-            if timing == "heading":  # decision L208: interval j's change spread over row j + 1's span
+            share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if timing != "rows" else 1.0
+            if timing != "rows":  # decision L208: interval j's change spread over row j + 1's span
                 j = np.arange(first, last)
                 t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], angle, TURN_TIMING_FRACTIONS)
+            timed = yaw_turn_times(float(t[first]), float(span_end[last]), angle, yaw)  # decision L210
+            if timed is not None:
+                (t0, t1), share = timed, 1.0  # El-Gohary's boundaries hold the whole turn
+            elif ends_after_last:  # decision L205: without the yaw rate its end is unknown
+                t1 = np.nan
             r = rate[a:b]
-            if ends_after_last:  # decision L205: its end and its rate over the last interval (which holds the final
-                t1 = np.nan  # stop's rotation) are unknown
+            if ends_after_last:  # L205: the last interval's rate holds the final stop's rotation
                 r = np.where(np.arange(a, b) == len(t) - 2, np.nan, r)
             r = r[np.isfinite(r)]
             tf = t[a + 1]
             inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
-            # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
-            share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if timing == "heading" else 1.0
             rows.append({"turn": len(rows) + 1, "start_s": t0, "end_s": t1, "duration_s": t1 - t0,
                          "angle_deg": angle, "peak_rate_dps": float(r.max()) if r.size else np.nan,
                          "n_rows": int(last - first), "bout": int(b_no[inside[0]]) if inside.size else pd.NA,
+                         # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
                          "mean_rate_dps": share * abs(angle) / (t1 - t0) if t1 > t0 else np.nan})
     out = pd.DataFrame(rows, columns=list(TURN_TABLE_COLUMNS))
     out["bout"] = out["bout"].astype("Int64")
@@ -399,6 +446,45 @@ def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]
     return st["stride_time_s"].to_numpy(float)[steady], onset[steady]
 
 
+def cv_pct(x: np.ndarray) -> float:
+    """100 x SD / mean (SD with n - 1) of ``x``; NaN with fewer than 2 values or a mean not above 0 (L104's CV)."""
+    x = np.asarray(x, dtype=float)
+    return float(100.0 * x.std(ddof=1) / x.mean()) if len(x) >= 2 and x.mean() > 0 else math.nan
+
+
+def steady_stride_lengths(st: pd.DataFrame, steady: np.ndarray) -> np.ndarray:
+    """Decision L212: the stride lengths (m, |``length_m``|) of :func:`_steady_rows`' strides ``steady`` of ``st``
+    (its table in ``start_s`` order), the strides the stride-time CV is taken over; NaN for a row without a length
+    or one L94's guard made ``impossible`` (its length is zeroed, no stride's)."""
+    if "length_m" not in st:
+        return np.full(int(steady.sum()), np.nan)
+    length = np.abs(st["length_m"].to_numpy(float))
+    if "impossible" in st:
+        length = np.where(st["impossible"].astype(bool).to_numpy(), np.nan, length)
+    return length[steady]
+
+
+def _not_level(steps: pd.DataFrame) -> tuple[int, int]:
+    """Decision L215: ``(straight strides with a stride time, how many of them L188's level criterion drops)``
+    of a foot table: valid forward strides turning under 15 deg with a stride time, and those whose |``dz_m``|
+    reaches 0.10 m (:func:`pdrlearn.track.gait.stair_rows`)."""
+    from pdrlearn.track.gait import STRAIGHT_MAX_RAD, stair_rows
+
+    if "stride_time_s" not in steps or not len(steps):
+        return 0, 0
+    turn = steps["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in steps else np.zeros(len(steps))
+    with np.errstate(invalid="ignore"):
+        straight = (np.isfinite(steps["stride_time_s"].to_numpy(float)) & (np.abs(turn) < STRAIGHT_MAX_RAD)
+                    & _valid(steps))
+    if "direction" in steps:
+        straight &= (steps["direction"].astype(str) != "backward").to_numpy()
+    return int(straight.sum()), int((straight & stair_rows(steps)).sum())
+
+
+def _is_lower_back(steps: pd.DataFrame) -> bool:
+    return "unit" in steps and len(steps) > 0 and bool((steps["unit"].astype(str) == "waist").all())
+
+
 def pooled_cv(steps: pd.DataFrame, cv_pct: float) -> dict | None:
     """Decision L196: whether the stride-time CV ``cv_pct`` of ``steps`` (over :func:`_steady_rows`' strides) pools
     walking bouts of different rhythm. Per L104 bout (:func:`bout_rows`, bouts.csv's under the default definition)
@@ -474,6 +560,9 @@ def step_time_asymmetry(step_s, has_next, broken=None, *, min_steps: int = ASYMM
 #: decision L121: a lower-back step-time symmetry index under this (%) is not told apart from the detector's own
 #: left/right contact timing (symmetric simulated walkers read up to 18.8 %: session 20's trial, festination)
 ASYMMETRY_FLOOR_PCT = 20.0
+#: decision L216: how far the lower back's index was from the simulated truth (raw - true, points) on fresh users
+#: 3960-3979 (true 0.3-34.0 %; waist-pendulum, 100 Hz): said in the report's reason, not used in any computation
+ASYMMETRY_ERROR_POINTS = "-8.4 to +17.0"
 
 
 def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
@@ -484,8 +573,10 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
       foot's, which a unit on one foot does not see (L104); ``reason`` says so;
     * a **lower-back** table: :func:`step_time_asymmetry`'s index (``raw_pct``) on its alternating contacts, given
       as ``step_time_asymmetry_pct`` only when it reaches :data:`ASYMMETRY_FLOOR_PCT` (then ``reason`` says it
-      is over-read: a simulated 39.1 % read 55.2 %); under it ``None``: symmetric simulated walkers read
-      3-19 % from the contacts' timing alone (L111, the session-20 trial), so a smaller index tells nothing.
+      is misread, mostly over: a simulated 39.1 % read 55.2 %); under it ``None``: symmetric simulated walkers read
+      3-19 % from the contacts' timing alone (L111, the session-20 trial), so a smaller index tells nothing -
+      neither way: decision L216, the reason says a real asymmetry can read under it too (a simulated 24.7 % read
+      19.9 %; the index was -8.4 to +17.0 points off the truth on users 3960-3979).
       A lower-back table of something that is no walk (a wheelchair's pushes, the trial's finding 1) still
       gives contacts: the index does not check that they are steps."""
     out = {"step_time_asymmetry_pct": None, "raw_pct": None, "n_step_times": 0, "reason": None}
@@ -499,13 +590,16 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
     out["raw_pct"], out["n_step_times"] = pct, n
     if pct is None:
         out["reason"] = (f"no walking sequence with {ASYMMETRY_MIN_STEPS} step times of each foot")
-    elif pct < ASYMMETRY_FLOOR_PCT:
-        out["reason"] = (f"index {pct:.1f} % is under {ASYMMETRY_FLOOR_PCT:.0f} %: the lower back's contact timing "
-                         "alone reads up to 18.8 % on walkers whose feet step alike (decision L121)")
+    elif pct < ASYMMETRY_FLOOR_PCT:  # decision L216: not a finding of symmetry
+        out["reason"] = (f"not judged, which is no evidence of symmetry: index {pct:.1f} % is under "
+                         f"{ASYMMETRY_FLOOR_PCT:.0f} %, where the lower back's contact timing alone reads up to 18.8 % "
+                         "on walkers whose feet step alike (decision L121), and it can also miss a real asymmetry "
+                         f"(its index is {ASYMMETRY_ERROR_POINTS} points off the truth: a simulated 24.7 % read "
+                         "19.9 %, decision L216); time the steps with a unit on each foot")
     else:
         out["step_time_asymmetry_pct"] = pct
-        out["reason"] = ("asymmetric; the lower back over-reads the size (a simulated 39.1 % read 55.2 %, "
-                         "decision L121)")
+        out["reason"] = (f"asymmetric; the lower back misreads the size, mostly over (a simulated 39.1 % read 55.2 %, "
+                         f"decision L121; {ASYMMETRY_ERROR_POINTS} points off the truth, decision L216)")
     return out
 
 
@@ -514,12 +608,16 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     ``pause_time_s`` (summed), ``longest_pause_s``, ``n_walking_bouts``, ``turn_count`` (turns of at least
     ``turn_count_min_deg``), ``stride_time_cv_pct`` over ``n_cv_strides`` straight strides, withheld (decision
     L113) when the contacts' timing scatter reaches ``contact_scatter_max_s`` (s; None = the module's
-    :data:`CONTACT_SCATTER_MAX_S`, off)."""
+    :data:`CONTACT_SCATTER_MAX_S`, off). Decision L212: ``stride_length_cv_pct``, the CV of the same strides'
+    lengths (not withheld by L113: no contact timing in a length). Decision L214: with no stride-time CV,
+    ``stride_time_cv_withheld`` says why - ``{"cause", "reason", ...}``, ``cause`` one of
+    :data:`CV_WITHHELD_CAUSES` (too few strides: ``n_cv_strides``, ``needed``, and L215's ``n_straight_strides`` /
+    ``n_not_level``, the straight strides and those L188's level criterion drops)."""
     limit = CONTACT_SCATTER_MAX_S if contact_scatter_max_s is None else float(contact_scatter_max_s)
     out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "n_walking_bouts": 0,
                  "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
                  "n_cv_strides": 0, "stride_time_cv_withheld": None, "stride_time_cv_within_bouts_pct": None,
-                 "stride_time_cv_bouts": []}
+                 "stride_time_cv_bouts": [], "stride_length_cv_pct": None}
     if not len(steps) or "start_s" not in steps:
         return out
     p = pauses(steps)
@@ -527,21 +625,39 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     out["longest_pause_s"] = float(p.max()) if len(p) else None
     out["n_walking_bouts"] = int(len(p)) + 1
     out["turn_count"] = int((np.abs(turns(steps)) >= TURN_COUNT_MIN_DEG).sum())
+    if _is_lower_back(steps):  # decision L214: L104 gives no CV on the lower back; the summary says why
+        out["stride_time_cv_withheld"] = {"cause": "lower_back", "reason": LOWER_BACK_CV_REASON}
+        return out
     s, onset = _straight_stride_times(steps)
     out["n_cv_strides"] = int(len(s))
     if len(s) >= CV_MIN_STRIDES and s.mean() > 0:
         cv = float(100.0 * s.std(ddof=1) / s.mean())
+        st, steady = _steady_rows(steps)
+        length = steady_stride_lengths(st, steady)
+        length_cv = cv_pct(length[np.isfinite(length)]) if np.isfinite(length).sum() >= CV_MIN_STRIDES else math.nan
+        out["stride_length_cv_pct"] = length_cv if math.isfinite(length_cv) else None  # decision L212
         scatter = contact_scatter_s(s, onset) if np.isfinite(onset).all() else 0.0
         if scatter >= limit:  # decision L113: the contacts' timing, not the walker's rhythm
             out["stride_time_cv_withheld"] = {
-                "contact_cv_pct": cv, "swing_onset_cv_pct": float(100.0 * onset.std(ddof=1) / onset.mean()),
-                "contact_scatter_s": scatter}
+                "cause": "contact_scatter", "contact_cv_pct": cv,
+                "swing_onset_cv_pct": float(100.0 * onset.std(ddof=1) / onset.mean()), "contact_scatter_s": scatter,
+                "reason": "the initial contacts' timing scatters (decision L113)"}
         else:
             out["stride_time_cv_pct"] = cv
             pooled = pooled_cv(steps, cv)  # decision L196: a CV over bouts of different rhythm
             if pooled:
                 out["stride_time_cv_within_bouts_pct"] = pooled["within_bouts_cv_pct"]
                 out["stride_time_cv_bouts"] = pooled["bouts"]
+    elif "stride_time_s" in steps:  # decisions L214, L215: too few steady strides, and whether the level rule did it
+        n_straight, n_not_level = _not_level(steps)
+        w = {"cause": "too_few_strides", "n_cv_strides": int(len(s)), "needed": CV_MIN_STRIDES,
+             "n_straight_strides": n_straight, "n_not_level": n_not_level,
+             "level_note": None, "reason": f"{len(s)} steady level forward strides, {CV_MIN_STRIDES} needed"}
+        if n_straight and n_not_level > NOT_LEVEL_SHARE * n_straight:
+            w["level_note"] = (f"{n_not_level} of {n_straight} straight strides not level by their integrated "
+                               "height (|dz_m| >= 0.10 m, L188)")
+            w["reason"] += "; " + w["level_note"]
+        out["stride_time_cv_withheld"] = w
     return out
 
 
@@ -619,7 +735,7 @@ def stride_cv_warning(summary: dict) -> str | None:
     """Decision L113: one line when the summary's stride-time CV was withheld for the contacts' timing scatter;
     None otherwise."""
     w = summary.get("stride_time_cv_withheld")
-    if not w:
+    if not w or "contact_scatter_s" not in w:  # decision L214: the other causes are said in the walk line
         return None
     return (f"stride-time CV withheld: the initial contacts' timing scatters by ~{1000 * w['contact_scatter_s']:.0f} "
             f"ms per contact (their stride-time CV {w['contact_cv_pct']:.1f} % against {w['swing_onset_cv_pct']:.1f} % "

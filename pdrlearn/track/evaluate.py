@@ -342,7 +342,8 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.waist.transfers import transfer_summary
 
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
-    out.update(turn_summary(turn_table(result.steps)))  # decision L200: each turn's duration, angle, peak rate
+    # decision L200: each turn's duration, angle, peak rate (L210: a lower-back track's yaw-rate turns)
+    out.update(turn_summary(turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"))))
     out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W183: chair transfers, TUG
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
@@ -886,6 +887,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary["info"].pop("transfers", None)  # decision W182: the rows are transfers.csv's, not the summary's
+    summary["info"].pop("yaw_turns", None)  # decision L210: they time turns.csv's turns; not the summary's
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
         summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}

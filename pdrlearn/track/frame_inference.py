@@ -204,11 +204,10 @@ def swing_pitch_extremes(gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndar
     return down, up
 
 
-def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
-    """Start and end time (s) and swing-pitch asymmetry (toes-down minus toes-up over their sum, D9's measure of
-    :func:`infer_foot_frame`, here per stride) of each rest-to-rest stride of the session's foot unit, about the
-    left axis of its declared frame (decision W173: a forward stride pushes off toes-down, a backward one does not);
-    None without a foot unit or a declared foot frame (an inferred one assumes forward walking)."""
+def _declared_foot(session):
+    """The session's foot unit with its declared frame, for :func:`foot_push_off` and :func:`foot_travel_angles`:
+    ``(t, acc, gyr, fs, frame, stance)`` (the accelerometer's clock, the gyro resampled onto it, the ZUPT stance
+    mask); None without a foot unit, a declared foot frame, enough finite samples or a rate."""
     from pdrlearn.displace.foot import inertial_stance
     from pdrlearn.signal.filters import interp_rows
 
@@ -222,10 +221,38 @@ def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     acc, gyr, fs = acc_s.values, interp_rows(acc_s.t, gyr_s.t, gyr_s.values), float(acc_s.rate_hz)
     if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
         return None
-    i0, i1 = rest_to_rest(inertial_stance(acc, gyr, fs), fs)
+    return acc_s.t, acc, gyr, fs, frame, inertial_stance(acc, gyr, fs)
+
+
+def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Start and end time (s) and swing-pitch asymmetry (toes-down minus toes-up over their sum, D9's measure of
+    :func:`infer_foot_frame`, here per stride) of each rest-to-rest stride of the session's foot unit, about the
+    left axis of its declared frame (decision W173: a forward stride pushes off toes-down, a backward one does not);
+    None without a foot unit or a declared foot frame (an inferred one assumes forward walking)."""
+    foot = _declared_foot(session)
+    if foot is None:
+        return None
+    t, acc, gyr, fs, frame, stance = foot
+    i0, i1 = rest_to_rest(stance, fs)
     down, toes_up = swing_pitch_extremes(gyr, fs, i0, i1, _unit(frame.matrix()[1]))
     asym = (down - toes_up) / np.maximum(down + toes_up, 1e-9)
-    return acc_s.t[i0], acc_s.t[i1], asym
+    return t[i0], t[i1], asym
+
+
+def foot_travel_angles(session) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
+    """Start and end time (s), travel angle (rad from the foot's facing, left +) and horizontal length (m) of each
+    rest-to-rest ZUPT stride of the session's foot unit (:func:`stride_displacements`), in its declared frame's
+    forward / left axes (decision L219: a side step travels about 90 deg from the facing); None without a foot unit
+    or a declared foot frame (an inferred one assumes forward walking)."""
+    foot = _declared_foot(session)
+    if foot is None:
+        return None
+    t, acc, gyr, fs, frame, stance = foot
+    i0, i1 = rest_to_rest(stance, fs)
+    disp = stride_displacements(acc, gyr, fs, stance)
+    m = frame.matrix()
+    fwd, left = disp @ _unit(m[0]), disp @ _unit(m[1])
+    return t[i0], t[i1], np.arctan2(left, fwd), np.hypot(fwd, left)
 
 
 def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:

@@ -44,6 +44,7 @@ from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import gaps as KG
+from pdrlearn.kernels import sideways as KSW
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
@@ -499,6 +500,9 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
 #: decision L84: "fused" fits the waist magnetometer's horizontal hard-iron offset from the walk (not adopted:
 #: the rule's measurement is in docs/decisions/localization.md); ``track_plasys(hard_iron_fit=True)`` turns it on
 HARD_IRON_FIT = False
+#: decision L219 (adopted by its rule): with the waist / fused heading, a sideways run's travel angle (minus the
+#: foot's usual offset) is added after the waist heading instead of fused into it; False = before L219
+SIDE_TRAVEL_HEADING = True
 #: L84's gates, fixed before measuring: the walk's stride headings spread enough (resultant length), enough
 #: strides, and an offset no larger than the fitted horizontal field
 HARD_IRON_MAX_RESULTANT = 0.5
@@ -1032,12 +1036,17 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         warnings.append(no_waist_heading(session))
         hsrc = "foot"
     lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
+    side_extra = np.zeros(len(lateral))
+    if hsrc in ("waist", "fused") and SIDE_TRAVEL_HEADING:  # decision L219: a sideways run's travel
+        from pdrlearn.track.sideways import side_travel_extra  # angle is added after the waist heading, not fused
+
+        side_extra = side_travel_extra(lateral, np.hypot(disp[:, 0], disp[:, 1]))
+    relative = fd.foot_heading(0.0) + lateral - side_extra
     if hsrc in ("waist", "fused"):
         work.require_cover("fAccelerometer", "wAccelerometer")  # B21: the waist heading is read at the strides
         hard_iron = None
         if hsrc == "fused" and (HARD_IRON_FIT if hard_iron_fit is None else hard_iron_fit):  # decision L84
-            hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, fd.foot_heading(0.0) + lateral,
-                                                            keep=~in_gap)
+            hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, relative, keep=~in_gap)
         # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
         rest = waist_rest_bias(work)  # decision W125: W105's check on the waist unit this heading turns by
         bias_line = None if rest is None else still_yaw_rate_message(rest[0], TWO_UNIT_FIX)
@@ -1051,15 +1060,23 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)
         compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
-            work, strides, fd.foot_heading(0.0) + lateral, ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD))
+            work, strides, relative, ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD))
         warnings += [compass_line] if compass_line else []
         if hsrc == "fused":
-            head = fuse_by_segment(fd.foot_heading(0.0) + lateral, head, strides["start_s"].to_numpy(float),
+            head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s)
+        head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
         head = fd.foot_heading(initial_heading) + lateral
     else:
         raise DataError(f"plasys: heading '{hsrc}' is not waist, foot or fused")
+    if hsrc in ("waist", "fused") and not SIDE_TRAVEL_HEADING:  # decision L219: a side-stepping stretch is put
+        # along the body's facing
+        from pdrlearn.track.sideways import sideways_warnings
+
+        warnings += sideways_warnings(session, lambda a, b: (
+            "the heading comes from the waist unit, which follows where the body faces, so the track puts these "
+            "strides along the facing and can turn the walk around them"))
     if cfg["rules"] and hsrc in ("foot", "fused"):  # decision L65: offline as the streamed L37 - a stride whose
         # sign the rules turned against its measured x (a turnaround classed forward) goes along its displacement
         head = head + np.where((length != 0) & ((length < 0) != (disp[:, 0] < 0)), np.pi, 0.0)
@@ -1372,6 +1389,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     fa_t, fa_v = streams["fAccelerometer"]
     has_force = "fForceA" in streams and "fForceB" in streams
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
+    frame = np.zeros(len(table))  # decision E124: each stride's step frame from the foot's facing
     posture = np.zeros(len(table), dtype=bool)  # decision B131: strides skipped as the runtime skips them
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
     imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
@@ -1406,6 +1424,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             force = force_at(fa_t[a:b], [streams[n] for n in ("fForceA", "fForceB")]) if has_force else None
             ic[i] = stride_contact(fa_t[a:b], fa_v[a:b, :3], force)
         place[i] = SK.placement_offset(lev, heading, disp[i])  # decision L34
+        frame[i] = KSW.step_frame(lev)  # decision E124: the step frame's direction from the foot's facing
         foot_headed[i] = SK.headed_by_foot(lev, heading)
         if i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps):  # L90: no foot pivot over a foot gap;
             if bridged:  # L91: the waist's turn over the whole pause
@@ -1433,6 +1452,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         # decision L189 (offline's L184, the same function) / L206 (the run's summed dz): a gated stride is level
         dz = KD.streamed_gated_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
     length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
+    if KSW.STREAMED_SIDE_TRAVEL:  # decision E124: a side-stepping stretch's strides headed by the waist go along
+        side = KSW.SideRun()  # their travel angle from the run's third stride on (the runtime's call, stride by stride)
+        for i in np.flatnonzero(~(in_gap | posture | foot_headed)):
+            place[i] += side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]))
     if posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
         warnings.append(posture_warning(int(posture.sum()), float(strides[posture][0, 0]),
                                         float(strides[posture][-1, 1])))

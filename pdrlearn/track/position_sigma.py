@@ -28,6 +28,8 @@ from pdrlearn.kernels.position_sigma import position_covariance, sigma_radius
 #: one coverage scale (95.5 % of the strides, 17/20 finals within 2 sigma on those users)
 SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # plasys offline with a waist unit: foot yaw aligned to the waist compass ("fused", L17)
+    # (L220: the distance-walked term path_rel = 0.0149 was measured on top of these and not adopted, too large on
+    # routes of 3-4 loops: 20/20 finals within 2 sigma against the rule's 16-19; the kernel keeps it, 0 here)
     "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
     # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
     "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 9.6e-11, "point_m": 0.044},

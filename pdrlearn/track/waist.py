@@ -38,6 +38,7 @@ from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, regi
 from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
+from pdrlearn.track.sideways import sideways_warnings
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.backward import backward_warnings
@@ -57,6 +58,7 @@ from pdrlearn.waist.heading import (
     harmonic_directions,
     untracked_turn,
     untracked_turn_message,
+    yaw_turns,
 )
 from pdrlearn.waist.lengths import (
     PAUSE_STEPS_VALUES,  # noqa: F401  (the pause_steps option's values, here since W122)
@@ -88,6 +90,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio_message,
 )
 from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
+from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.transfers import chair_transfers
 
@@ -367,11 +370,15 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
+                   "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
-                   "realtime_contact_shift": False,  # W166: measured, not adopted
-                   "integrate_end": False}  # W187
+                   "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
+                   "integrate_end": False,  # W187
+                   "stand_veto": False}  # W189
+#: decision W185: the ``sit_veto`` value of a ``realtime`` track that does not set it (W184's rule adopted
+#: ``"opposite"`` for offline tracks only)
+REALTIME_SIT_VETO = False
 #: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
 #: (a stand of half the local period, not a walk's edge) is decided once the three steps after it are known
 CAUSAL_PAUSE_STEPS = "standing"
@@ -382,8 +389,9 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                                                           "parity_fill"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
-#: sparing also an undecided contact between two same-side contacts of its sequence
-SIT_VETO_VALUES = (False, True, "rhythm", "alternation")
+#: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
+#: undecided contact between two opposite-side contacts of its sequence
+SIT_VETO_VALUES = (False, True, "rhythm", "alternation", "opposite")
 #: decision W156: ``stairs_length`` - False (no bound), True (W91's proposed steps, W108's under ``stairs_climb``) or
 #: "climbs" (only the steps inside W108's climbs)
 STAIRS_LENGTH_VALUES = (False, True, "climbs")
@@ -392,7 +400,8 @@ PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
-CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180"), "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
+CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
+                  "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159")}
 
@@ -422,7 +431,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
-                realtime_contact_shift: bool | None = None, integrate_end: bool | None = None, detector=None,
+                realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
+                stand_veto: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -474,7 +484,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         upright (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`);
         ``"rhythm"``: the same, sparing the contacts that alternate left/right with a neighbour of their walking
         sequence (decision W109); ``"alternation"``: as ``"rhythm"``, sparing also an undecided contact (no W20 side)
-        between two same-side contacts of its sequence (decision W180); ``False`` (default): no veto
+        between two same-side contacts of its sequence (decision W180); ``"opposite"`` (the default of offline
+        tracks since W185): as ``"rhythm"``, sparing also an undecided contact between two opposite-side contacts of
+        its sequence (decision W184); ``False``: no veto (the default with ``realtime``, W185)
     realtime_contact_shift : pendulum, realtime: W131's ``contact_shift`` inside each W31 decision window too (no added
         latency; decision W166: measured, not adopted -- Test11's pooled calibrated bout median vs the strides rose
         13.280 -> 13.556 %); default False. The live trackers read it from the PARAMS.json / bundle options
@@ -490,6 +502,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         whose step vaults the pelvis by less than a quarter of its neighbours' (a weight shift while standing, no
         step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); ``"turns"``: the same, sparing a contact whose
         step turns the pelvis by more than 15 deg (a turn on the spot vaults little; decision W127); default False
+    stand_veto : pendulum, offline detector (the realtime one and ``waist-pll`` ignore it): drop a whole walking run
+        (contacts chained by ``has_next``) whose median vertical bounce is under a third of the recording's median
+        contact bounce: standing sway, no walking (decision W189, :func:`pdrlearn.waist.posture.stand_veto`);
+        default False
     contact_shift : pendulum, offline detector: every kept contact judged once more by W23's weight-shift test with the
         side read at the contact, turns spared (decision W131, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``contact_shift``); default True, ``False`` restores the detector before W131
@@ -543,9 +559,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
-             "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end}
+             "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
+             "stand_veto": stand_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
+    if realtime and sit_veto is None and (p.options or {}).get("sit_veto") is None:
+        o["sit_veto"] = REALTIME_SIT_VETO  # W185: the adopted veto is the offline default only
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
     smoothing = check_length_smoothing(o["length_smoothing"])  # W56
@@ -583,6 +602,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
+    n_weak_run = 0
+    if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
+        steps = drop_weak_runs(steps, imu)
+        n_weak_run = steps.attrs["n_weak_run"]
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
@@ -590,9 +613,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     transfers = chair_transfers(imu, steps)  # decision W182: each sit-to-stand / stand-to-sit (W104's events)
     n_vetoed = 0
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
-        # W180: and an undecided contact inside an alternating sequence
-        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation"),
-                              keep_between=o["sit_veto"] == "alternation")
+        # W180: and an undecided contact inside an alternating sequence; W184: or inside a left/right pair
+        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation", "opposite"),
+                              keep_between={"alternation": True, "opposite": "opposite"}.get(o["sit_veto"], False))
         n_vetoed = steps.attrs["n_vetoed"]
     else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
         warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"]))
@@ -621,6 +644,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                            integrate_end=bool(o["integrate_end"]) and not realtime)  # W187: offline only
     steps = steps.assign(stairs=stairs)
     warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
+    ev_s, len_s = steps["event_s"].to_numpy(float), steps["length_m"].to_numpy(float)
+    warnings.extend(sideways_warnings(session, lambda a, b: (  # decision L219: side steps are counted forward
+        "the lower-back pipelines count every step as forward distance, so the track's "
+        f"{np.nansum(len_s[(ev_s >= a) & (ev_s <= b)]):.1f} m of steps over this span go along its heading, not "
+        "sideways")))
     n_st = len(steps)
     held = transfer_windows(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool),
                             0.5 * ALTITUDE_SMOOTH_S)  # decision W174: a transfer's height change is the transfer's
@@ -691,7 +719,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,
         "n_unvaulted_contacts": n_unvaulted,
+        "n_weak_run_contacts": n_weak_run,
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
+        "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)

@@ -193,3 +193,23 @@ def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings
     diff = turn_gap(K.integrate_rate(imu.t, w, np.full(en.shape, ev[0]), en, cum=cum), hd)  # decision W80
     k = int(np.argmax(np.abs(diff)))
     return float(diff[k]), float(en[k])
+
+
+#: the columns of a track's ``info["yaw_turns"]`` records (decision L210)
+YAW_TURN_KEYS = ("start_s", "end_s", "peak_s", "angle_deg")
+
+
+def yaw_turns(imu: WaistIMU, bias_rps: float = 0.0) -> list[dict]:
+    """Decision L210: El-Gohary's turns (:func:`pdrlearn.kernels.yaw_turns.yaw_rate_turns`) of the pelvis yaw
+    rate, the vertical gyro in the gravity frame less ``bias_rps``, over the whole recording: one record each
+    (:data:`YAW_TURN_KEYS`, times in ``imu.t``'s clock; ``end_s`` the first sample under the edge rate after the
+    turn, the last sample at the recording's end)."""
+    from pdrlearn.kernels.yaw_turns import yaw_rate_turns
+
+    t = np.asarray(imu.t, dtype=float)
+    if t.size < 2:
+        return []
+    rows = yaw_rate_turns(np.degrees(imu.w_z - bias_rps), float(imu.fs))
+    last = t.size - 1
+    return [dict(zip(YAW_TURN_KEYS, (float(t[int(a)]), float(t[min(int(b), last)]), float(t[int(p)]), float(ang)),
+                     strict=True)) for a, b, p, ang in rows]

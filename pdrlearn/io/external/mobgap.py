@@ -465,12 +465,6 @@ def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lam
             for trial in sorted(mat.get(tm, test, f"data.{TIME_MEASURE}")):
                 rec = tm[test][trial]
                 sessions.append(_session(mat, rec, cohort, pid, test, trial, subject))
-    from pdrlearn.io.external import check_targets
+    from pdrlearn.io.external import write_sessions
 
-    check_targets("mobgap", [out_dir / name for name, _, _ in sessions])  # decision B35: before any is written
-    made = []
-    for name, tables, meta in sessions:
-        progress(f"writing {out_dir / name}")
-        _write(out_dir / name, tables, meta)
-        made.append(out_dir / name)
-    return made
+    return write_sessions("mobgap", out_dir, sessions, _write, progress)  # decision B35: checked before any is written

@@ -1,0 +1,111 @@
+"""Side steps in the foot tracks (decisions L219, E124): which ZUPT strides travel sideways, offline and streamed.
+
+A foot stride's travel angle is its horizontal displacement's angle from the foot's facing (``lateral``, left +,
+signed with the stride's x like the length). A stride at 60-120 deg over 0.15 m is sideways, and a run of at least
+:data:`MIN_SIDE_STRIDES` of them is a side-stepping stretch (L219). Offline (:func:`side_travel_extra`) the whole
+session's strides are known; streamed (:class:`SideRun`, E124) a stride's angle is known when it ends, so the run
+test is decided at the stride that makes it :data:`MIN_SIDE_STRIDES`: from then on each sideways stride of the run
+is placed along its travel angle, and the strides before it keep the facing (a streamed stride is never moved after
+it is emitted). Numpy only (the runtime runs it, :mod:`pdrlearn.kernels`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pdrlearn.kernels.stride import reversed_by_rules
+
+#: decision L219: a stride whose displacement points 60-120 deg from the foot's facing travels sideways (a forward
+#: or backward stride points within a few degrees of it, toe-out included; a side step at 90 deg)
+SIDE_ANGLE_DEG = (60.0, 120.0)
+#: decision L219: shorter strides are not judged (a shuffle on the spot, a stepping turn's small steps)
+SIDE_MIN_STRIDE_M = 0.15
+#: decision L219: fewer consecutive sideways strides are no side-stepping stretch (a 90 deg stepping turn's step)
+MIN_SIDE_STRIDES = 3
+#: decision E124: the streamed foot tracker headed by the waist gyroscope (``track --streaming``, ``pdrlearn run``,
+#: ``Tracker``) places a side-stepping stretch's strides along their travel angle (:class:`SideRun`; adopted by
+#: E124's rule, measured in E125); False = before E124
+STREAMED_SIDE_TRAVEL = True
+
+
+def travel_angle(dx: float, dy: float) -> float:
+    """A stride's travel angle (rad) from the foot's facing, signed with its x (the lengths' sign): offline's
+    ``lateral`` and :func:`pdrlearn.kernels.stride.placement_offset`'s."""
+    return math.atan2(dy, abs(dx)) * (-1.0 if dx < 0 else 1.0)
+
+
+def is_sideways(angle, length):
+    """Decision L219's stride test: ``angle`` rad from the foot's facing within :data:`SIDE_ANGLE_DEG` and the
+    horizontal ``length`` m over :data:`SIDE_MIN_STRIDE_M` (arrays or one stride)."""
+    a = np.degrees(np.abs(np.asarray(angle, float)))
+    return (a >= SIDE_ANGLE_DEG[0]) & (a <= SIDE_ANGLE_DEG[1]) & (np.asarray(length, float) > SIDE_MIN_STRIDE_M)
+
+
+def sideways_runs(angle: np.ndarray, length: np.ndarray) -> list[tuple[int, int]]:
+    """Runs ``(first, last)`` of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides (angle rad from the
+    foot's facing, left +; length m)."""
+    side = is_sideways(angle, length)
+    edges = np.flatnonzero(np.diff(np.r_[0, side.astype(int), 0]))
+    return [(int(a_), int(b_ - 1)) for a_, b_ in zip(edges[::2], edges[1::2], strict=True)
+            if b_ - a_ >= MIN_SIDE_STRIDES]
+
+
+def side_travel_extra(lateral: np.ndarray, length: np.ndarray) -> np.ndarray:
+    """Decision L219 for the offline foot track's waist / fused heading: per stride, the part of its travel angle
+    ``lateral`` (rad from the foot's facing) that the waist heading does not see - inside a sideways run
+    (:func:`sideways_runs`) the angle minus the median angle of the other strides (the foot's usual offset from the
+    walking direction), elsewhere 0 (those strides are tracked as before)."""
+    lateral = np.asarray(lateral, float)
+    side = np.zeros(len(lateral), dtype=bool)
+    for a, b in sideways_runs(lateral, length):
+        side[a:b + 1] = True
+    if not side.any():
+        return np.zeros(len(lateral))
+    usual = float(np.median(lateral[~side])) if (~side).any() else 0.0
+    return np.where(side, lateral - usual, 0.0)
+
+
+class SideRun:
+    """Decision E124: L219's rule one stride at a time, for a foot tracker whose strides go along the waist gyro's
+    heading (the streamed ``track --streaming`` and the runtime ``Tracker``, one implementation).
+
+    :meth:`stride` takes each measured stride as it ends and returns the angle (rad) to add to its direction: 0
+    unless it is the :data:`MIN_SIDE_STRIDES`-th or a later consecutive sideways stride (:func:`is_sideways`), then
+    its travel angle less the median travel angle of the earlier strides outside any run (the foot's usual offset,
+    :func:`side_travel_extra`'s, from the past only), plus pi when the rules gave its length the sign against its x
+    (decision L37's :func:`~pdrlearn.kernels.stride.reversed_by_rules`: the stride goes along its displacement)."""
+
+    def __init__(self) -> None:
+        self.others: list[float] = []  # travel angles of the strides outside any run so far
+        self.pending: list[float] = []  # those of the current run's sideways strides before it is one
+        self.count = 0  # consecutive sideways strides up to the last one
+
+    def stride(self, dx: float, dy: float, length: float, frame: float = 0.0) -> float:
+        """The angle (rad) to add to the direction of the stride with horizontal displacement ``(dx, dy)`` m in its
+        step frame, whose x points ``frame`` rad from the foot's facing at the stride's start (the foot's sixth
+        levelled value, :func:`pdrlearn.kernels.window.levelled_units`; 0: the foot's own frame), and rules
+        ``length`` m."""
+        c, s = math.cos(frame), math.sin(frame)
+        fx, fy = c * dx - s * dy, s * dx + c * dy  # the displacement in the foot's frame (offline's ``disp``)
+        angle = travel_angle(fx, fy)
+        if not bool(is_sideways(angle, math.hypot(fx, fy))):
+            self.others += self.pending if self.count < MIN_SIDE_STRIDES else []
+            self.others.append(angle)
+            self.pending, self.count = [], 0
+            return 0.0
+        self.count += 1
+        if self.count < MIN_SIDE_STRIDES:
+            self.pending.append(angle)
+            return 0.0
+        self.pending = []
+        usual = float(np.median(self.others)) if self.others else 0.0
+        return angle - usual + reversed_by_rules(True, fx, length)
+
+
+def step_frame(levelled) -> float:
+    """The step frame's direction (rad) from the foot's facing at the stride's start (decision L34's sixth value of
+    the foot's levelled tuple; 0 without it)."""
+    foot = levelled["foot"]
+    return float(foot[5]) if len(foot) > 5 else 0.0

@@ -1,0 +1,43 @@
+"""Side steps (decisions L218, L219): the lower-back pipelines track a sideways stretch as forward distance.
+
+A lower-back unit gives a step's length and the unit's heading, not the way the step went, so a side step is
+counted as forward distance. The cue is the foot unit's ZUPT stride: its horizontal displacement points sideways from
+the foot's facing (:func:`pdrlearn.track.frame_inference.foot_travel_angles`). Only with a foot unit and its declared
+frame. A run of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides gives one warning line
+(:func:`sideways_warnings`); the waist steps are not changed. The foot track's fused heading used to take the waist
+compass's facing for these strides' direction; :func:`side_travel_extra` adds their travel angle after it
+(``plasys.SIDE_TRAVEL_HEADING``, adopted by L219's rule), and with it off ``plasys`` gives the line too. The
+stride rule and the run test live in :mod:`pdrlearn.kernels.sideways` (decision E124: the streamed trackers run
+them one stride at a time).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.kernels.sideways import (  # noqa: F401 - re-exported: the rule lives in the kernel (E124)
+    MIN_SIDE_STRIDES,
+    SIDE_ANGLE_DEG,
+    SIDE_MIN_STRIDE_M,
+    side_travel_extra,
+    sideways_runs,
+)
+from pdrlearn.track.frame_inference import foot_travel_angles
+
+
+def sideways_warnings(session, consequence) -> list[str]:
+    """Decision L219's lines: one per sideways run of the session's foot unit. ``consequence(t0, t1)`` is the
+    pipeline's half sentence on what its track did over that span."""
+    strides = foot_travel_angles(session)
+    if strides is None:
+        return []
+    t0, t1, angle, length = strides
+    out = []
+    for a, b in sideways_runs(angle, length):
+        ang = np.degrees(angle[a:b + 1])
+        way = "left" if np.median(ang) > 0 else "right"
+        out.append(f"{b - a + 1} foot strides at {t0[a]:.1f}-{t1[b]:.1f} s travel sideways to the {way} "
+                   f"({length[a:b + 1].sum():.1f} m by the foot unit's ZUPT strides, median "
+                   f"{np.median(np.abs(ang)):.0f} deg from the foot's facing): {consequence(t0[a], t1[b])} "
+                   "(decision L219)")
+    return out

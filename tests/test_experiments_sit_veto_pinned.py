@@ -1,0 +1,35 @@
+"""Session 28 review: the lower-back measurements recorded before W185 made `sit_veto="opposite"` the offline default
+(hapt.md, W190's `waist_stand.py`, L208-L211's `turns_transfers.py`) ran with no sit veto; their scripts now say
+`sit_veto=False`, so a re-run reproduces the recorded numbers instead of silently measuring the new default."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _load(name: str):
+    spec = importlib.util.spec_from_file_location(f"_exp_{name}", ROOT / "experiments" / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_hapt_rows_name_their_sit_veto():
+    hapt = _load("hapt")
+    for label, _pipe, kw in hapt.configs(stand_veto=True):
+        assert kw.get("sit_veto") is not None, label  # None would be today's default, not what hapt.md measured
+        assert (kw["sit_veto"] == "rhythm") == ("sit_veto=rhythm" in label)
+
+
+@pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
+def test_turns_transfers_lower_back_tracks_have_no_sit_veto(monkeypatch, pipeline):
+    tt = _load("turns_transfers")
+    seen = {}
+    monkeypatch.setattr(tt, "track_waist", lambda s, **kw: seen.update(kw))
+    tt.TRACKS[pipeline](None)
+    assert seen == {"pipeline": pipeline, "sit_veto": False}

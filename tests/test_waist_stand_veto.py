@@ -1,0 +1,96 @@
+"""Decision W189: a walking run whose median vertical bounce is under a third of the recording's median contact bounce
+is standing sway, no walking (option ``stand_veto`` of the offline ``waist-pendulum``). The kernels by hand, the veto on
+a hand-made vertical acceleration, the option end to end (realtime and waist-pll ignore it; a bad value refused; the
+live trackers name it as not applied)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from pdrlearn.errors import DataError
+from pdrlearn.io import read_session
+from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
+from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
+from pdrlearn.waist import _kernels as K
+from pdrlearn.waist.events import steps_from_events
+from pdrlearn.waist.live import unapplied_options_line
+from pdrlearn.waist.params import WaistParams
+from pdrlearn.waist.posture import stand_veto
+from tests.conftest import external_session
+
+FS = 100.0
+
+
+def test_runs_and_the_weak_run_mask_by_hand():
+    has_next = np.array([True, True, False, True, False, True, False])
+    assert K.run_ids(has_next).tolist() == [0, 0, 0, 1, 1, 2, 2]
+    # recording median 1.0; run 1's median 0.2 < 1/3: dropped; runs 0 and 2 kept
+    b = np.array([1.0, 1.2, 0.9, 0.2, 0.2, 1.0, 1.1])
+    assert K.weak_run_mask(b, has_next).tolist() == [False] * 3 + [True] * 2 + [False] * 2
+    # one weak contact in a strong run is judged by its run's median, not alone (W23 / W119 judge single contacts)
+    assert not K.weak_run_mask(np.array([1.0, 0.01, 1.0, 1.0]), np.array([True, True, True, False])).any()
+    # exactly a third is kept (the rule is "under"); scale-free
+    b = np.array([3.0, 3.0, 3.0, 1.0, 1.0])
+    assert not K.weak_run_mask(b * 7.0, np.array([True, True, False, True, False])).any()
+    assert K.weak_run_mask(np.zeros(0), np.zeros(0, bool)).size == 0
+    assert K.WEAK_RUN_FRAC == K.SIDE_MIN_FRAC == pytest.approx(1.0 / 3.0)  # W20's constant, no new one
+
+
+def test_the_bounce_is_the_low_passed_vertical_range_around_the_contact():
+    t = np.arange(0, 20, 1 / FS)
+    acc = np.sin(2 * np.pi * 1.0 * t)  # 1 Hz: passes the 2.5 Hz low-pass
+    idx = np.array([500, 1000, 1500])
+    b = K.contact_bounce(acc, FS, idx)
+    # +-0.3 s of a 1 Hz sine centred anywhere spans at least 2 sin(0.3 pi) ... at most 2
+    assert np.all(b > 2 * np.sin(0.3 * np.pi) - 0.05) and np.all(b <= 2.0 + 1e-9)
+    np.testing.assert_allclose(K.contact_bounce(5 * acc, FS, idx), 5 * b)
+    assert np.allclose(K.contact_bounce(np.full(t.size, 9.81), FS, idx), 0.0)
+    assert np.all(K.contact_bounce(np.sin(2 * np.pi * 8.0 * t), FS, idx) < 0.1)  # 8 Hz jitter is no bounce
+
+
+def test_the_veto_drops_the_weak_run_only():
+    t = np.arange(0, 20, 1 / FS)
+    amp = np.where(t < 10, 2.0, 0.2)  # a walk's bounce, then sway a tenth of it
+    imu = SimpleNamespace(t=t, fs=FS, acc_v=amp * np.sin(2 * np.pi * 2.0 * t))
+    walk = np.arange(0.5, 9.6, 0.5)
+    sway = np.arange(12.0, 16.1, 0.5)
+    steps = steps_from_events(t, np.round(np.r_[walk, sway] * FS).astype(int))
+    out = stand_veto(steps, imu)
+    np.testing.assert_allclose(out["event_s"], walk)
+    assert out.attrs["n_weak_run"] == sway.size
+    assert not out["has_next"].iloc[-1] and out["end_s"].iloc[-1] == out["start_s"].iloc[-1]
+    # a recording of one run only is never dropped (its median is the recording's)
+    one = steps_from_events(t, np.round(walk * FS).astype(int))
+    assert stand_veto(one, imu).attrs["n_weak_run"] == 0
+    assert stand_veto(one.iloc[:0], imu).attrs["n_weak_run"] == 0
+
+
+def test_the_option_off_by_default_and_where_it_applies():
+    assert OPTION_DEFAULTS["stand_veto"] is False  # W190: see the measured rule
+    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
+    off = track_waist(s, pipeline="waist-pendulum")
+    on = track_waist(s, pipeline="waist-pendulum", stand_veto=True)
+    n = on.info["n_weak_run_contacts"]
+    assert n > 0 and len(off.steps) - len(on.steps) == n and off.info["n_weak_run_contacts"] == 0
+    for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
+        a, b = track_waist(s, **kw), track_waist(s, stand_veto=True, **kw)
+        np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
+        assert b.info["n_weak_run_contacts"] == 0
+
+
+def test_a_plain_walk_keeps_every_contact_and_a_bad_value_is_refused():
+    s = simulate_path([Stand(3.0), Straight(10.0), Stand(3.0)], UserProfile.from_seed(7), rate_hz=FS, seed=7)
+    off, on = track_waist(s, pipeline="waist-pendulum"), track_waist(s, pipeline="waist-pendulum", stand_veto=True)
+    np.testing.assert_array_equal(off.steps["event_s"], on.steps["event_s"])
+    for bad in ("yes", 2):
+        with pytest.raises(DataError, match="stand_veto") as e:
+            track_waist(s, pipeline="waist-pendulum", stand_veto=bad)
+        assert "\n" not in str(e.value)
+
+
+def test_the_live_trackers_name_it_as_not_applied():
+    p = WaistParams(options={"stand_veto": True})
+    assert "stand_veto=true" in (unapplied_options_line(p) or "")
