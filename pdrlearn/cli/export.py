@@ -312,6 +312,10 @@ def run(
                                      "drift over the whole recording, as `track --align-units`; decision L170). "
                                      "Without it, the units' steps over 0.2 s apart are warned about (L161)."),
     clock_offset: float = _track.CLOCK_OFFSET_OPT,
+    common_span: bool = typer.Option(False, "--common-span", help="A session whose units (or one unit's files) "
+                                     "cover different times: replay only the time all the files cover, with one "
+                                     "warning naming the seconds dropped from each file (decisions B81, B83, B230; "
+                                     "as `track --common-span`)."),
     sides: bool = typer.Option(False, "--sides", help="A waist-only bundle: each step's foot, steps.csv column "
                                "side (left / right, empty when undecided) as `track --pipeline waist-pendulum` "
                                "names it, from the streamed contacts (W138's causal side, not the offline W129 "
@@ -374,6 +378,7 @@ def run(
                  if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
                                                      ("--no-resample", no_resample), ("--align-units", align_units),
                                                      ("--clock-offset", clock_offset is not None),
+                                                     ("--common-span", common_span),
                                                      ("--warn-out-of-domain", warn_out_of_domain is not None),
                                                      ("--drop-neighbour", drop_neighbour))
                                       if v]
@@ -389,6 +394,9 @@ def run(
     bundle = load_bundle(bundle_dir)  # verified before any output
     methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
+    if protocol is not None and common_span:  # decision B230: a capture has one unit's streams, on one clock
+        raise DataError(f"run: --common-span cuts a session's files to the time all of them cover; the --protocol "
+                        f"capture {protocol} has no files: drop --common-span")
     for option, asked in (("--align-units", align_units), ("--clock-offset", clock_offset is not None)):
         if protocol is not None and asked:  # decisions L170, E112
             raise DataError(f"run: {option} moves the waist unit's clock onto the foot's; the --protocol capture "
@@ -456,7 +464,8 @@ def run(
             raise DataError("run: give a SESSION_DIR or --protocol FILE")
         from pdrlearn.io import read_session
 
-        session = read_session(session_dir, streamed=True)  # decision L77: its drops warning
+        # decision L77: its drops warning; B230: --common-span as track's (B81 / B83's cut)
+        session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse")
         rates = {n: st.rate_hz for n, st in session.streams.items()}
         where = f"session '{session.name}'"
         use, said = _units_for(bundle, units, set(session.streams), where)
@@ -465,11 +474,16 @@ def run(
         bundle.check_streams(rates if no_resample else {n: float("nan") for n in rates}, where=where, units=use)
         from pdrlearn.track.plasys import require_stride_cover
 
-        require_stride_cover(session, [*required, *optional])  # decision B21
+        # decisions L161, L170, E111: as track's; B230: a clock moved by --clock-offset / --align-units before B21's
+        # cover check (a waist clock 2 s late covers the foot's time once moved; an overhang is cut, L162)
+        moved = align_units or clock_offset is not None
+        if moved:
+            session, alignment = _unit_clocks(session, use, align_units, clock_offset)
+        require_stride_cover(session, [*required, *optional], "pdrlearn run")  # decision B21; B230: names run's
         if "foot" in use:
             _foot_checks(session)  # decisions B201, B203, as `track`
-        # decisions L161, L170, E111: as track's, once checked
-        session, alignment = _unit_clocks(session, use, align_units, clock_offset)
+        if not moved:  # L161's check on clocks the recording's cover check accepted
+            session, alignment = _unit_clocks(session, use, align_units, clock_offset)
         # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E30)
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
         # the runtime resamples at these rates and announces it in one line; a stream behind the others

@@ -430,6 +430,15 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                or o.get("detector") is not None or o.get("altitude") is not None):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
+    given_clock, clock_lines = None, []
+    # decision E111: the waist clock moved by hand, before anything reads it; B230: before B126's span check (a
+    # waist clock 2 s late covers the foot's time once moved); another pipeline is refused below (B27)
+    if o.get("clock_offset_s") is not None and pipeline == "plasys":
+        if not session.has("wAccelerometer", "wGyroscope"):
+            raise no_waist_for_clock("track", "--clock-offset", session.where)
+        from pdrlearn.track.plasys import move_waist_clock
+
+        session, given_clock = move_waist_clock(session, o["clock_offset_s"], 0.0, clock_lines, source="given")
     check_tracked_span(session, tracked_unit(pipeline))  # decision B126: the tracked unit covers the walk
     win = None
     if o.get("window") is not None:  # decision L105: inside the recording, checked before tracking
@@ -460,13 +469,6 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             from pdrlearn.displace.foot import check_settings
 
             check_settings(par, str(params))
-    given_clock, clock_lines = None, []
-    if o.get("clock_offset_s") is not None:  # decision E111: the waist clock moved by hand, before anything reads it
-        if not session.has("wAccelerometer", "wGyroscope"):
-            raise no_waist_for_clock("track", "--clock-offset", session.where)
-        from pdrlearn.track.plasys import move_waist_clock
-
-        session, given_clock = move_waist_clock(session, o["clock_offset_s"], 0.0, clock_lines, source="given")
     if o.get("resample", "native") != "native":  # decision B113: the session at the model's rate, or refused
         from pdrlearn.classify import load_model
         from pdrlearn.io.resample import at_model_rate

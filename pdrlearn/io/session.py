@@ -347,12 +347,15 @@ class Session:
             )
         return self.streams[names[0]]
 
-    def require_cover(self, master: str, *others: str, max_missing_s: float = 1.0) -> None:
+    def require_cover(self, master: str, *others: str, max_missing_s: float = 1.0,
+                      command: str = "pdrlearn track") -> None:
         """Raise :class:`DataError` when one of ``others`` starts more than ``max_missing_s`` after the
         ``master`` stream or ends more than that before it. The methods interpolate ``others`` onto the
         master's clock, and ``np.interp`` holds a stream's first/last value beyond its ends: a gyroscope that
         stopped after 6 s of a 137 s recording fed its last rate to the AHRS for 131 s without a word (waist-ic
-        F1 0.938 -> 0.594, distance -54 %). ``max_missing_s``: the gap length decision B11 reports (1 s)."""
+        F1 0.938 -> 0.594, distance -54 %). ``max_missing_s``: the gap length decision B11 reports (1 s).
+        ``command``: the command whose ``--common-span`` the line names (decision B230: ``pdrlearn run`` names its
+        own, not ``track``'s)."""
         m = self.streams.get(master)
         if m is None or len(m) == 0:
             return
@@ -368,7 +371,7 @@ class Session:
                 alone = ""
                 if m.placement and s.placement and m.placement != s.placement:  # B127: the master's unit alone
                     alone = f", or the {m.placement} unit alone with --units {m.placement} (decision B127)"
-                fix = (f"track only {lo:.2f}-{hi:.2f} s, where both have data, with `pdrlearn track --common-span` "
+                fix = (f"track only {lo:.2f}-{hi:.2f} s, where both have data, with `{command} --common-span` "
                        f"(decision B83){alone}, or re-record" if hi > lo
                        else f"they do not overlap: re-record{alone}")
                 raise DataError(

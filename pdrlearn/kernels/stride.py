@@ -29,7 +29,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
 from pdrlearn.kernels.contact import MAX_STRIDE_S
 from pdrlearn.kernels.histospline import upsample_block_means
-from pdrlearn.kernels.window import TIE_S, Levelled, foot_levelled, interp, resample, segment
+from pdrlearn.kernels.window import BRIDGE_GAP_S, TIE_S, Levelled, foot_levelled, interp, resample, segment
 
 # -- length-class bounds -------------------------------------------------------------------------------
 #: Decision L59 (docs/decisions/localization.md): the ``length_bounds_source`` an export wrote before L59 when
@@ -525,7 +525,7 @@ def stride_motion(levelled: Levelled, heading_source: str = "auto", *, t0: float
     disp = zupt_displacement(ta, a) if fine_disp is None else fine_disp
     src = heading_source
     if src == "auto":
-        src = "waist-gyro" if "waist" in levelled and levelled["waist"][2] is not None else "foot"
+        src = "waist-gyro" if waist_heads(levelled) else "foot"
     if src == "waist-gyro":
         if "waist" not in levelled or levelled["waist"][2] is None:
             raise DataError("heading 'waist-gyro' needs the waist unit's accelerometer and gyroscope")
@@ -589,8 +589,34 @@ def travel_sign(length: np.ndarray, heading: np.ndarray, direction=None) -> tupl
 def headed_by_foot(levelled: Levelled, heading_source: str) -> bool:
     """Whether :func:`stride_motion` takes this stride's heading from the foot (decision L31: only then is
     the foot's pivot before the stride added)."""
-    return heading_source == "foot" or (heading_source == "auto" and ("waist" not in levelled
-                                                                       or levelled["waist"][2] is None))
+    return heading_source == "foot" or (heading_source == "auto" and not waist_heads(levelled))
+
+
+#: decision E114: heading auto leaves the waist gyroscope for a stride whose waist samples leave a gap over this
+#: (s) inside it or at its ends (B11's 1 s, ``GAP_LONG_S``); the experiment's switch (main's kernel: False)
+WAIST_GAP_S = 1.0
+WAIST_GAP_FOOT_HEADING = True
+
+
+def waist_heads(levelled: Levelled) -> bool:
+    """Decision E114: whether heading auto takes the stride's turn from the waist gyroscope: the waist unit's
+    accelerometer and gyroscope are levelled, and (:data:`WAIST_GAP_FOOT_HEADING`) their samples cover the stride,
+    from the foot's first to its last sample, without an interval over :data:`WAIST_GAP_S`. A waist dropout's rate
+    interpolated across the gap is not a turn, and a live Tracker's held waist has no sample after the stride."""
+    if "waist" not in levelled or levelled["waist"][2] is None:
+        return False
+    if not WAIST_GAP_FOOT_HEADING or "foot" not in levelled:
+        return True
+    tw, tf = levelled["waist"][0], levelled["foot"][0]
+    if tw is None or tf is None:  # no times to judge (a caller's stand-in): the waist heads, as before E114
+        return True
+    if not len(tw) or not len(tf):
+        return False
+    # the waist's samples of the stride (one either side, ``segment``) reach the foot's within E36's 0.25 s (a live
+    # Tracker's held waist stops short of the stride's end) and leave no interval over WAIST_GAP_S (a recording's
+    # gap, whose far side a replay holds)
+    return (float(tw[0]) <= float(tf[0]) + BRIDGE_GAP_S and float(tw[-1]) >= float(tf[-1]) - BRIDGE_GAP_S
+            and (len(tw) < 2 or float(np.max(np.diff(tw))) <= WAIST_GAP_S))
 
 
 # -- rules (thesis ch.7.2.2) --------------------------------------------------------------------------

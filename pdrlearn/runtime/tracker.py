@@ -652,6 +652,9 @@ class Tracker(FixInput):
         self._drop_warned = False
         self.drop_neighbour = drop_neighbour_on(drop_neighbour)  # decision E101
         self._held: set[str] = set()
+        #: decision E115: the required waist streams that stopped while the foot strides went on (name -> the
+        #: time of its newest sample then); their samples are taken again when they return
+        self._paused: dict[str, float] = {}
         self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
         #: decision B141: a push whose timestamps jump further ahead than this (s) is refused (a clock glitch)
         self.max_gap_s = float(max_gap_s)
@@ -954,6 +957,8 @@ class Tracker(FixInput):
             self._warn(msg)
         if self._frozen_foot is not None:  # decision B213: B203's frozen foot IMU, live
             self._frozen_foot_said(self._frozen_foot.push(checked, fast))
+        if self._paused:  # decision E115: a paused waist stream that came back
+            self._unpause()
         if self._pushed_gaps:
             self._note_gaps()
         self._detect()
@@ -999,7 +1004,7 @@ class Tracker(FixInput):
                     if t0 > last and isfinite(sum(vals, t0)):
                         fast[name] = (t0, vals)
                         if t0 - last > GAP_WARN_S and t0 - last > self._gap_limit(name):
-                            if t0 - last > self.max_gap_s:  # decision B141, before any state changes
+                            if t0 - last > self.max_gap_s and not self._resumes(name, t0):  # decision B141
                                 raise self._jump_error(name, last, t0)
                             gaps = gaps or []
                             gaps.append((name, last, t0))
@@ -1025,8 +1030,8 @@ class Tracker(FixInput):
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 d = np.diff(tt)
                 i = int(np.argmax(d))
-                if d[i] > self.max_gap_s:  # decision B141: refused before the rate check and any state change
-                    raise self._jump_error(name, float(tt[i]), float(tt[i + 1]))
+                if d[i] > self.max_gap_s and not (i == 0 and self._resumes(name, float(tt[1]))):  # decision B141:
+                    raise self._jump_error(name, float(tt[i]), float(tt[i + 1]))  # before any state change
             self.inputs.check_rate(name, t)
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 for i in np.flatnonzero(d > self._gap_limit(name, d)).tolist():
@@ -1034,6 +1039,51 @@ class Tracker(FixInput):
                     gaps.append((name, float(tt[i]), float(tt[i + 1])))
         self._pushed_gaps = gaps
         return fast if some or fast else None
+
+    def _resumes(self, name: str, t: float) -> bool:
+        """Decision E115: a paused waist stream (:attr:`_paused`) whose samples return at ``t`` s in step with the
+        others (no further ahead of the newest data than ``max_lag_s``) resumes: its jump is the gap it was silent
+        for, not B141's clock glitch."""
+        return name in self._paused and t <= self._latest + self.max_lag_s
+
+    def _pausable(self, name: str) -> bool:
+        """Decision E115: a required stream of the waist unit, in a Tracker of the foot strides whose heading auto
+        takes a stride without waist samples from the foot (E114), does not stop the tracker when it stops."""
+        return name.startswith("w") and "foot" in self.units and self.heading_source == "auto"
+
+    def _pause(self, names: list[str], t: float | None) -> None:
+        """Decision E115: the required waist streams ``names`` stopped (E23): the strides go on without them, one
+        warning line; E31's held-value line is not added for them."""
+        for n in names:
+            self._paused[n] = -math.inf if t is None else float(t)
+        self._held.update(names)
+        since = "none received" if t is None else f"no samples since {t:.2f} s"
+        self._warn(f"{', '.join(names)}: {since} while the other sensors are at {self._latest:.2f} s (more than "
+                   f"max_lag_s = {self.max_lag_s:g} s behind): the foot's strides go on without the waist unit, "
+                   "their turn from the foot's gyroscope (decision E114) and their classes from the waist's last "
+                   "values held (unreliable); its samples are taken again when they return, in step with the foot's "
+                   "(decision E115); a waist unit that is gone: track the foot alone, units=('foot',) (pdrlearn run "
+                   "--units foot, decision E26)")
+
+    def _held_waist(self, lev: dict, t1: float) -> dict:
+        """Decision E115: a stride whose end a paused waist stream did not reach is headed by the foot (E114), as a
+        replay of the recording heads it (there the gap's far sample shows the gap): ``lev`` with the waist's
+        gyroscope left out of the heading (its classes were read before)."""
+        if self._paused and "waist" in lev and any(self._buf[n].last < t1 for n in self._paused if n in self._buf):
+            w = lev["waist"]
+            return {**lev, "waist": (w[0], w[1], None, *w[3:])}
+        return lev
+
+    def _unpause(self) -> None:
+        """Decision E115: each paused stream whose samples came back resumes (one line per return)."""
+        back = [n for n, t in self._paused.items() if n in self._buf and self._buf[n].last > t]
+        if back:
+            gone = min(self._paused[n] for n in back)
+            for n in back:
+                del self._paused[n]
+            self._warn(f"{', '.join(back)}: samples again by {self._latest:.2f} s (none since {gone:.2f} s); the waist "
+                       "unit heads the strides again, from the heading the foot's strides carried across the gap "
+                       "(decision E115)")
 
     def _jump_error(self, name: str, a: float, b: float) -> DataError:
         """Decision B141: the line refusing a push whose ``name`` samples jump from ``a`` to ``b`` s, more than
@@ -1102,13 +1152,21 @@ class Tracker(FixInput):
                     if long else
                     f"longer than {GAP_LONG_S:g} s in a stream whose gaps do not stop the strides (B11 zeroes only a "
                     "foot stream's; E64): the strides go on with it interpolated across the gap, as `pdrlearn track` "
-                    "does, so the heading and classes of the strides across it are unreliable"
+                    "does, " + ("so a stride across it turns with the foot's gyroscope (E114) and its classes are "
+                                "unreliable" if self._waist_gap_foot_heads(names) else
+                                "so the heading and classes of the strides across it are unreliable")
                     if b - a > GAP_LONG_S else
                     f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
                     "it has an unreliable length, height change and heading, and no classes when the gap is the "
                     "foot's")
             self._warn(f"{', '.join(names)}: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s); {what} (decision E30)")
         del self._gap_marks[:-16]  # the latest few: a gap is seen by every stream within a few pushes
+
+    def _waist_gap_foot_heads(self, names) -> bool:
+        """Decision B231: whether the gap of the streams ``names`` (waist streams only) holds a waist accelerometer /
+        gyroscope gap, whose strides the foot heads (E114: heading auto, the foot unit tracked)."""
+        return (self.heading_source == "auto" and "foot" in self.units and all(n.startswith("w") for n in names)
+                and bool({"wAccelerometer", "wGyroscope"}.intersection(names)))
 
     def _bridged(self) -> bool:
         """Decision L91: a stride across a foot IMU gap turns by the waist gyroscope (the waist heads the
@@ -1195,7 +1253,8 @@ class Tracker(FixInput):
         stream with different delays; a window cut before the waist data arrives would be wrong)."""
         if not self._pending:
             return []
-        ends = [r.last for r in self._buf.values()]
+        paused = self._paused  # decision E115: not waited for
+        ends = [r.last for n, r in self._buf.items() if n not in paused]
         required = self.required
         latest = min(ends + [-np.inf for n in required if n not in self._buf])
         # a sensor that stopped must not hold the steps forever: the thesis asks for < 2 s delay
@@ -1386,7 +1445,11 @@ class Tracker(FixInput):
         if not self._unseen and self._latest - min([r.last for r in self._buf.values()]) <= self.max_lag_s:
             return  # the common case
         required = self.required
+        paused: list[str] = []
         for n, t, grace in self._stopped(self._latest, self._first_t, self._last_times(), self._batch):
+            if n in required and t is not None and self._pausable(n):  # decision E115
+                paused.append(n)
+                continue
             msg = stopped_message(n, t, self._first_t, self._latest, self.max_lag_s, grace, n in required)
             if n in required:
                 raise DataError(msg)
@@ -1395,6 +1458,8 @@ class Tracker(FixInput):
             self.warnings.append(msg)
             log.warning("bundle %s: %s", self.bundle.path, msg)
             self._without(n)
+        if paused:
+            self._pause(paused, min(self._buf[n].last for n in paused if n in self._buf))
 
     def _last_times(self, pushed: dict[str, float] | None = None) -> dict[str, float | None]:
         """Each buffered or not yet seen required stream's newest input time (s; None: never pushed), with the
@@ -1415,8 +1480,8 @@ class Tracker(FixInput):
         any_batch = max(batch.values(), default=0.0)  # the caller's batches, for a stream not seen yet
         out = []
         for n, t in last.items():
-            if latest - (first_t if t is None else t) <= self.max_lag_s:
-                continue
+            if n in self._paused or latest - (first_t if t is None else t) <= self.max_lag_s:
+                continue  # decision E115: a paused stream is not waited for
             if n in self._ends and (t is None or t < self._ends[n]):
                 continue  # a gap in a recording (or a later start): the stream resumes, the steps wait
             rate = self.inputs.input_rates_hz.get(n)
@@ -1447,7 +1512,7 @@ class Tracker(FixInput):
                 if adv > 0.0:
                     batch[n] = adv
         for n, t, grace in self._stopped(latest, first_t, last, batch):
-            if n in self.required:
+            if n in self.required and not (t is not None and self._pausable(n)):  # decision E115: paused after it
                 raise DataError(stopped_message(n, t, first_t, latest, self.max_lag_s, grace, True))
 
     def _without(self, name: str) -> None:
@@ -1527,6 +1592,7 @@ class Tracker(FixInput):
         W, lev = self._window(t0, t1)
         classes, proba = self._classify_step(W)
         ood = DomainLog.score(self.classifiers, W) if self._domain is not None else None  # decision E105
+        lev = self._held_waist(lev, t1)  # decision E115
         disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1, fine=self._fine)
         return lev, classes, proba, disp, dyaw, ood
 
@@ -1565,6 +1631,7 @@ class Tracker(FixInput):
             streams = _Views(self._buf)
             lev = levelled_units(streams, t0, t1, available=available_groups(streams), forward=self.forward,
                                  rest_search_s=self.rest_search_s, heading=self.heading_mode, bridge_gaps=True)
+            lev = self._held_waist(lev, t1)  # decision E115
             disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1, fine=self._fine)
         else:
             lev, classes, proba, disp, dyaw, ood = spec[2] if spec is not None else self._step_core(t0, t1)
@@ -1739,6 +1806,21 @@ class Tracker(FixInput):
             proba[task] = dict(zip(clf.classes, row, strict=True))
         return classes, proba
 
+    def _foot_silent_keep(self) -> float:
+        """Decision E113: while a foot IMU stream has sent nothing for over :data:`GAP_LONG_S` (a foot gap in
+        progress, B11, not yet seen: the gap is known when the foot's samples return), the samples from the last
+        stride's end (and the last boundary) less the look-back are kept, so the waist's turn over the whole gap
+        (L91's bridge) and the stride before it are computed from the samples ``track --streaming`` reads; before,
+        ``buffer_s`` (8 s) trimmed the waist during the gap and a 30 s gap across a 180 + -90 deg turn bridged
+        only the last 8 s (-90.6 deg for +92.8). Bounded by ``max_gap_s`` (a longer jump is refused, B141) and by
+        the recording (``pdrlearn run``); ``inf`` when the foot streams (no limit from here)."""
+        foot = [self._buf[n].last for n in _FOOT_IMU if n in self._buf]
+        if not foot or not self._latest - min(foot) > GAP_LONG_S:
+            return math.inf
+        marks = [x for x in (self._prev_end, self.segmenter.last_boundary) if x is not None]
+        keep = min([*marks, min(foot)]) - _LOOK_BACK_S
+        return max(keep, self._latest - self.max_gap_s - _LOOK_BACK_S) if math.isfinite(self.max_gap_s) else keep
+
     def _trim(self) -> None:
         """Drop samples older than both the last step boundary (minus a margin) and ``buffer_s``."""
         if not self._buf:
@@ -1750,6 +1832,7 @@ class Tracker(FixInput):
             keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
         if self._prev_end is not None and any(g[2] and g[3] for g in self._foot_gaps):  # decision L91: the waist's
             keep_from = min(keep_from, self._prev_end - _LOOK_BACK_S)  # turn from the last stride's end is bridged
+        keep_from = min(keep_from, self._foot_silent_keep())  # decision E113
         if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return
         self._trims += 1  # a computed-ahead step is recomputed (decision E24)

@@ -44,6 +44,36 @@ def gap_heading_clause(foot_gaps: dict[str, list[tuple[float, float]]], how: str
             "none": "; the turn inside them is unknown (taken as 0, L90): the heading after them is uncertain"}[how]
 
 
+#: decision B231: what a waist gap (``wAccelerometer`` / ``wGyroscope``, over 1 s) does, by what heads the strides
+#: (offline ``heading``: fused / waist / foot; streamed heading auto: "streamed", asked ``waist-gyro``)
+WAIST_GAP_WORDS = {
+    "fused": "the strides go on and their lengths (the foot's) are counted; the heading inside them is the foot's "
+             "turn, fused with a waist heading that takes the gap as a rest (W34; L90's fusion): uncertain after a "
+             "long gap",
+    "waist": "the strides go on and their lengths (the foot's) are counted; the waist heading takes the gap as a "
+             "rest (W34): a turn inside them is lost",
+    "foot": "the strides go on and their lengths (the foot's) are counted; the foot heads them, the waist gap does "
+            "not touch the heading",
+    "streamed": "the strides go on and their lengths (the foot's) are counted; a stride across them turns with the "
+                "foot's gyroscope (E114), its classes read the waist interpolated across the gap",
+    "waist-gyro": "the strides go on and their lengths (the foot's) are counted; the waist gyroscope (heading "
+                  "waist-gyro) is interpolated across them: the heading of the strides across them is unreliable",
+}
+
+
+def unit_gap_warnings(session: Session, foot_gaps: dict[str, list[tuple[float, float]]], foot_words: str,
+                      waist_how: str) -> list[str]:
+    """Decision B231: the gap lines of a two-unit track, per unit: the foot's gaps (``foot_gaps``) with
+    ``foot_words``, the waist's (accelerometer and gyroscope, over 1 s) with :data:`WAIST_GAP_WORDS` ``[waist_how]``
+    (a waist gap moves nothing to 0 m; before, it was told "no displacement is counted inside them"). Streams with
+    the same gaps stay one line (B34): a line naming a foot stream has the foot's words (its stride is 0 m)."""
+    out = []
+    for names, g in grouped_gaps({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))}):
+        words = foot_words if any(n in foot_gaps for n in names) else WAIST_GAP_WORDS[waist_how]
+        out += gap_warnings(dict.fromkeys(names, g), words)
+    return out
+
+
 def long_gaps(session: Session, names: tuple[str, ...], *, min_gap_s: float = MIN_GAP_S,
               max_gap_s: float = np.inf) -> dict[str, list[tuple[float, float]]]:
     """Stream name -> ``[(start_s, end_s), ...]`` of its gaps longer than ``min_gap_s`` (s) and at most

@@ -80,12 +80,12 @@ from pdrlearn.track.gaps import (
     drop_strides,
     gap_heading_clause,
     gap_rows,
-    gap_warnings,
     long_gaps,
     longest_gap_in,
     neighbour_heights,
     overlaps_any,
     overlaps_gaps,
+    unit_gap_warnings,
 )
 from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
 from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
@@ -664,15 +664,17 @@ def _distance_gain(requested: float | None, model, fs: float, warnings: list[str
     return float(rec.get("gain", 1.0)), "model", sd
 
 
-def require_stride_cover(session: Session, names) -> None:
+def require_stride_cover(session: Session, names, command: str = "pdrlearn track") -> None:
     """Decision B21 for the stride-local kernel of the streaming runtime (``track --streaming``, ``pdrlearn
     run`` replaying a session): strides come from the foot gyroscope and each stride's samples of every other
     stream in ``names`` (foot accelerometer, force, waist, barometer) are cut and interpolated there, so each
     must cover the gyroscope's span (:meth:`~pdrlearn.io.session.Session.require_cover`): a waist
     accelerometer that stopped after 60 s of 90 s moved the sim D_u1 replay's final position by 28 m, a foot
-    accelerometer that stopped there cut its distance by 31 %, without a word."""
+    accelerometer that stopped there cut its distance by 31 %, without a word. ``command``: the one whose
+    ``--common-span`` the refusal names (decision B230)."""
     used = {n for group in GROUP_STREAMS.values() for n in group}
-    session.require_cover("fGyroscope", *(n for n in names if n in used and n != "fGyroscope" and n in session))
+    session.require_cover("fGyroscope", *(n for n in names if n in used and n != "fGyroscope" and n in session),
+                          command=command)
 
 
 def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
@@ -912,9 +914,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     waist_heads = (heading or cfg["heading"]) in ("waist", "fused") and session.has(
         "wAccelerometer", "wGyroscope") and session.has_frame("waist")
     how = (heading or cfg["heading"]) if waist_heads else ("bridged" if bridged else "none")  # decision L92
-    warnings += gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
-                             "no displacement is counted inside them: a stride across a foot gap is one row "
-                             "of 0 m with its gap_s in steps.csv (L67)" + gap_heading_clause(foot_gaps, how))
+    warnings += unit_gap_warnings(session, foot_gaps,  # decision B231: per unit
+                                  "no displacement is counted inside them: a stride across a foot gap is one row "
+                                  "of 0 m with its gap_s in steps.csv (L67)" + gap_heading_clause(foot_gaps, how),
+                                  (heading or cfg["heading"]) if waist_heads else "foot")
     strides = drop_steps_across_gaps(strides, foot_gaps)
     if not len(strides):
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
@@ -1325,10 +1328,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
     bridged = bool(waist_bridge and heading in ("auto", "waist-gyro") and "waist" in forward
                    and "waist_gyr" in available and "waist_acc" in available)  # decisions L91 / L99
-    warnings: list[str] = gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
-                                       "no displacement is counted inside them (a stride across a foot gap moves 0 m, "
-                                       "as the runtime, E30)"
-                                       + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"))
+    waist_how = ("foot" if heading == "foot" or not ("waist" in forward and "waist_gyr" in available)
+                 else "streamed" if heading == "auto" else "waist-gyro")  # decision B231
+    warnings: list[str] = unit_gap_warnings(session, foot_gaps,
+                                            "no displacement is counted inside them (a stride across a foot gap "
+                                            "moves 0 m, as the runtime, E30)"
+                                            + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"),
+                                            waist_how)
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(no_waist_heading(session))
     elif heading in ("auto", "waist-gyro"):  # decision W125: the waist gyroscope heads the strides, as `run`'s
