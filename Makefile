@@ -54,7 +54,7 @@ external: $(STAMP)
 	$(BIN)/pdrlearn fetch mobgap --out datasets/external
 	$(BIN)/pdrlearn fetch gaitmap --out datasets/external
 
-# UCI HAPT (61 waist-phone sessions, 82 MB, about 20 s to convert; docs/external-data.md, HAPT H1-H6) in a folder of
+# UCI HAPT (61 waist-phone sessions, 85 MB, about 20 s to convert; docs/external-data.md, HAPT H1-H7) in a folder of
 # its own, so the sweeps over datasets/external keep their documented sets (H7).
 hapt: $(STAMP)
 	$(BIN)/pdrlearn fetch hapt --out datasets/hapt
