@@ -762,11 +762,16 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 def add_gait_range_flag(summary: dict) -> dict:
     """Decision L195: ``gait_out_of_range`` (bool) - L95's session line fires (:func:`pdrlearn.track.gait.
     session_range_side`: above or below the walking range) or some bout lies above it (``n_bouts_out_of_range``);
-    the machine-readable form of those warnings (sessions.csv, bouts.csv per bout). Set in place; returned."""
-    from pdrlearn.track.gait import session_range_side
+    the machine-readable form of those warnings (sessions.csv, bouts.csv per bout). Set in place; returned.
+    Decision L222: None (unknown, empty in sessions.csv) when L95 had no figure to judge (no cadence and no judged
+    speed) and no bout is flagged - not False, which says "inside the range"."""
+    from pdrlearn.track.gait import _judged, session_range_side
 
-    summary["gait_out_of_range"] = bool(session_range_side(summary) is not None
-                                        or (summary.get("n_bouts_out_of_range") or 0) > 0)
+    if (summary.get("n_bouts_out_of_range") or 0) > 0 or session_range_side(summary) is not None:
+        summary["gait_out_of_range"] = True
+    else:
+        cad, speed, _ = _judged(summary)
+        summary["gait_out_of_range"] = False if cad is not None or speed is not None else None  # L222: unknown
     return summary
 
 
