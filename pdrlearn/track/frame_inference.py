@@ -103,12 +103,19 @@ class FrameInferenceError(DataError):
     walk_s: float | None = None
     up: np.ndarray | None = None
     forward: np.ndarray | None = None
+    #: decision D23 amended (L223): the foot strides the forward was measured from and their mean resultant
+    n_strides: int | None = None
+    resultant: float | None = None
 
 
-def _refuse(msg: str, up: np.ndarray | None = None, forward: np.ndarray | None = None) -> FrameInferenceError:
-    """A :class:`FrameInferenceError` carrying what was measured before giving up (decision D22)."""
+def _refuse(msg: str, up: np.ndarray | None = None, forward: np.ndarray | None = None,
+            evidence: tuple[int, float] | None = None) -> FrameInferenceError:
+    """A :class:`FrameInferenceError` carrying what was measured before giving up (decision D22; L223: the
+    strides and resultant the forward came from)."""
     err = FrameInferenceError(msg)
     err.up, err.forward = up, forward
+    if evidence is not None:
+        err.n_strides, err.resultant = evidence
     return err
 
 
@@ -122,6 +129,9 @@ class InferredFrame:
     #: the measured up and forward directions (unit vectors in sensor axes) the frame was snapped from
     up: np.ndarray | None = None
     forward: np.ndarray | None = None
+    #: decision D23 amended (L223): the foot strides the forward was measured from and their mean resultant
+    n_strides: int | None = None
+    resultant: float | None = None
 
     def describe(self) -> str:
         return ", ".join(f"{k} {v}" for k, v in self.evidence.items())
@@ -278,11 +288,11 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     ang_rot = _angle_deg(v[:, 2], left)
     if ang_rot > MAX_SNAP_DEG:
         raise _refuse(f"the foot's main rotation axis is {ang_rot:.0f} deg from the medio-lateral "
-                      f"direction of its strides (more than {MAX_SNAP_DEG:g})", up, fwd)
+                      f"direction of its strides (more than {MAX_SNAP_DEG:g})", up, fwd, (len(hor), resultant))
     i_ml, s_ml, ang_ml = _nearest_axis(left)
     if ang_ml > MAX_SNAP_DEG:
         raise _refuse(f"the medio-lateral direction is {ang_ml:.0f} deg from every sensor axis "
-                      f"(more than {MAX_SNAP_DEG:g}; a yawed mount)", up, fwd)
+                      f"(more than {MAX_SNAP_DEG:g}; a yawed mount)", up, fwd, (len(hor), resultant))
     sag = [i for i in range(3) if i != i_ml]
     lo_w, hi_w = FOOT_PITCH_WINDOW_DEG
     cand = [(i, s, float(np.degrees(np.arctan2(-s * up[i], s * fwd[i])))) for i in sag for s in (1.0, -1.0)]
@@ -292,15 +302,15 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     if len(inside) != 1:
         pitch = min((c[2] for c in cand), key=lambda p: min(abs(p - lo_w), abs(p - hi_w)))
         raise _refuse(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
-                      f"deg window that decides which axis is forward ({len(inside)} sagittal axes in it)", up, fwd)
+                      f"deg window that decides which axis is forward ({len(inside)} sagittal axes in it)", up, fwd, (len(hor), resultant))
     i_f, s_f, pitch = inside[0]
     if min(abs(pitch - lo_w), abs(pitch - hi_w)) < PITCH_MARGIN_DEG:
         raise _refuse(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
-                      "deg window that decides which axis is forward", up, fwd)
+                      "deg window that decides which axis is forward", up, fwd, (len(hor), resultant))
     i_u = next(i for i in sag if i != i_f)
     s_u = float(np.sign(up[i_u]) or 1.0)
     frame = frame_from_axes((i_f, s_f), (i_ml, s_ml), (i_u, s_u))
-    return InferredFrame("foot", frame, up=up, forward=fwd, evidence={
+    return InferredFrame("foot", frame, up=up, forward=fwd, n_strides=len(hor), resultant=resultant, evidence={
         "up": f"{'xyz'[i_u]}{'+' if s_u > 0 else '-'} (pitch {abs(pitch):.0f} deg "
               f"{'toes-down' if pitch >= 0 else 'toes-up'}, {ang_ml:.0f} deg roll/yaw)",
         "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} from {len(hor)} strides (resultant {resultant:.2f}; "
