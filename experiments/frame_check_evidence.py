@@ -20,9 +20,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from pdrlearn.io.plasys import read_session  # noqa: E402
-from pdrlearn.track.frame_inference import _turned, check_declared_frame, infer_session_frame, CHECK_SPAN_S  # noqa: E402,I001
 from pdrlearn.errors import DataError  # noqa: E402
+from pdrlearn.io.plasys import read_session  # noqa: E402
+from pdrlearn.track.frame_inference import CHECK_SPAN_S, _turned, check_declared_frame, infer_session_frame  # noqa: E402,I001
 
 #: the first part of the navigation trial's R1 (session 28): level, turns, stairs
 ROUTE = "stand:5, straight:20, turn:90, straight:15, up:17, turn:180, up:17, straight:10, turn:-90, straight:25"
@@ -43,7 +43,8 @@ def evidence(folder: Path) -> str:
         n, r = getattr(exc, "n_strides", None), getattr(exc, "resultant", None)
     right = check_declared_frame(s, "foot", frame).refuse
     rev = check_declared_frame(s, "foot", _turned(frame, {"forward", "left"})).refuse
-    return f"strides {n}, resultant {r if r is None else round(r, 2)}, right frame refused {right}, reversed refused {rev}"
+    return (f"strides {n}, resultant {r if r is None else round(r, 2)}, right frame refused {right}, "
+            f"reversed refused {rev}")
 
 
 def sim(out: Path, user: int, *args: str) -> None:

@@ -286,15 +286,15 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
 BACKWARD_MAX_TURN_DEG = PAUSE_MAX_TURN_DEG
 
 
-def backward_strides(steps: pd.DataFrame) -> int | None:
-    """Decision L203: ``n_backward_strides``, the foot track's strides whose ``raw_length_m`` is negative (the
-    stride's displacement points backward along the foot's forward axis: backward travel), with or without a model
-    (a model-free track leaves ``direction`` empty and its ``length_m`` positive, L65); the 0 m rows of a foot gap
-    (``gap_s`` > 0, L67) and ``impossible`` strides (L97) left out, as :func:`median_stride_length`; amended in the
-    same session (a feature-tour trial): a stride turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot,
-    whose short chord can point anywhere (user 5's ``straight:10, turn:180, straight:10``: two turn strides of 120 and
-    60 deg with -0.25 / -0.15 m), not backward travel. None for a lower-back track (no raw length per step) or a table
-    without ``raw_length_m``."""
+def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
+    """Decision L203: (rows,) bool, the foot track's strides that travel backward - ``raw_length_m`` negative (the
+    stride's displacement points backward along the foot's forward axis), with or without a model (a model-free
+    track leaves ``direction`` empty and its ``length_m`` positive, L65); the 0 m rows of a foot gap (``gap_s`` > 0,
+    L67) and ``impossible`` strides (L97) are not, as :func:`median_stride_length`; amended in the same session (a
+    feature-tour trial): a stride turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot, whose short
+    chord can point anywhere (user 5's ``straight:10, turn:180, straight:10``: two turn strides of 120 and 60 deg
+    with -0.25 / -0.15 m), not backward travel. None for a lower-back track (no raw length per step) or a table
+    without ``raw_length_m`` / ``length_m``."""
     units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
     # L203 amended: a replayed table (`pdrlearn run`) has no raw length; its signed ``length_m`` (negative only for a
     # stride classed backward, thesis eq. 61's sign) counts instead
@@ -308,7 +308,30 @@ def backward_strides(steps: pd.DataFrame) -> int | None:
     if "turn_angle_rad" in steps:  # L203 amended: a turning stride is no backward travel
         turn = np.abs(np.degrees(steps["turn_angle_rad"].to_numpy(float)))
         keep &= ~(turn >= BACKWARD_MAX_TURN_DEG)
-    return int(((raw < 0) & keep).sum())
+    return (raw < 0) & keep
+
+
+def add_backward_travel(steps: pd.DataFrame) -> None:
+    """Decision L224: a foot table gets steps.csv's ``backward_travel`` (bool, :func:`backward_travel`, placed right
+    after ``direction``, else before ``impossible`` / ``gap_s`` / ``unit``): the rows ``n_backward_strides`` counts,
+    so a reader of ``direction`` (the model's class, which a pivot stride of a turn can take) sees which of its
+    ``backward`` rows are counted as backward travel. In place; nothing for a lower-back table."""
+    flag = backward_travel(steps)
+    if flag is None:
+        return
+    if "backward_travel" in steps:
+        steps.drop(columns="backward_travel", inplace=True)
+    cols = list(steps.columns)
+    at = (cols.index("direction") + 1 if "direction" in cols
+          else next((cols.index(c) for c in ("impossible", "gap_s", "unit") if c in cols), len(cols)))
+    steps.insert(at, "backward_travel", flag)
+
+
+def backward_strides(steps: pd.DataFrame) -> int | None:
+    """Decision L203: ``n_backward_strides``, the number of :func:`backward_travel` strides (None where it has
+    none: a lower-back track)."""
+    flag = backward_travel(steps)
+    return None if flag is None else int(flag.sum())
 
 
 def tracked_rate_hz(session: Session, pipeline: str | None) -> float | None:
@@ -327,6 +350,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     out["n_steps"] = int(len(result.steps))
     out.update(step_counts(result.steps))  # decision L103: what n_steps counts, and the steps of both feet
     out["median_stride_length_m"] = median_stride_length(result.steps)  # decision C19: as in sessions.csv
+    add_backward_travel(result.steps)  # decision L224: steps.csv's per-row form of the count below
     out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}

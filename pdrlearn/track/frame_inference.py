@@ -302,7 +302,8 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     if len(inside) != 1:
         pitch = min((c[2] for c in cand), key=lambda p: min(abs(p - lo_w), abs(p - hi_w)))
         raise _refuse(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
-                      f"deg window that decides which axis is forward ({len(inside)} sagittal axes in it)", up, fwd, (len(hor), resultant))
+                      f"deg window that decides which axis is forward ({len(inside)} sagittal axes in it)", up, fwd,
+                      (len(hor), resultant))
     i_f, s_f, pitch = inside[0]
     if min(abs(pitch - lo_w), abs(pitch - hi_w)) < PITCH_MARGIN_DEG:
         raise _refuse(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
@@ -467,6 +468,10 @@ UNIT_STREAMS = UNIT_IMU
 #: The D10 check of a declared frame reads at most this much of a recording from its start (s): minutes of
 #: walking fix the axes as well as an hour does, and a 1 h track must not pay a second pass over its data.
 CHECK_SPAN_S = 300.0
+#: decision L223 (amends D23): D23 refuses a reversed foot forward only when the check measured it from at least
+#: this many strides (> MIN_STRIDE_M) with at least this mean resultant; set from experiments/frame_check_evidence.py
+REFUSE_MIN_STRIDES = 4
+REFUSE_MIN_RESULTANT = 0.5
 
 
 def infer_session_frame(session, placement: str, *, max_s: float | None = None) -> InferredFrame:
@@ -566,14 +571,17 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
         found = infer_session_frame(session, placement, max_s=CHECK_SPAN_S)
     except FrameInferenceError as exc:
         found, unchecked, off = None, str(exc), {}
+        evidence = (exc.n_strides, exc.resultant)
         if exc.forward is not None:  # gave up after measuring the strides' signed direction (past D9's push-off)
             up, fwd, compared = exc.up, exc.forward, ("up", "forward")
             off = directions_off(declared, up, None, OPPOSED_DEG)  # up only: which axis is forward is unknown
     except DataError as exc:
         found, unchecked, off = None, str(exc), {}
+        evidence = (None, None)
     else:
         up, fwd = found.up, found.forward
         off = frame_disagreement(declared, found)
+        evidence = (found.n_strides, found.resultant)
     rev = forward_reversal_deg(declared, up, fwd)
     reverse = rev is not None and rev > OPPOSED_DEG
     if reverse and "forward" not in off:  # the heading reversed though the axis is pitched (D22)
@@ -585,9 +593,33 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
     forced = reverse and session.frame_forced(placement)  # decision D23's override
     refuse = reverse and not forced and placement in REFUSE_REVERSED  # D23 amended: the foot only
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
+    if refuse and weak_reversal(*evidence):  # decision L223: too little evidence to refuse
+        return DeclaredCheck(weak_reversal_warning(placement, declared, origin, rev, *evidence), False, unchecked,
+                             compared)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked)
     return DeclaredCheck(msg, refuse, unchecked, compared)
+
+
+def weak_reversal(n_strides: int | None, resultant: float | None) -> bool:
+    """Decision L223: a foot forward measured from fewer than :data:`REFUSE_MIN_STRIDES` strides or with a
+    resultant under :data:`REFUSE_MIN_RESULTANT` is too little evidence for D23's refusal."""
+    if n_strides is None or resultant is None:
+        return False
+    return n_strides < REFUSE_MIN_STRIDES or resultant < REFUSE_MIN_RESULTANT
+
+
+def weak_reversal_warning(placement: str, declared: AxisFrame, origin: str, rev: float, n_strides: int,
+                          resultant: float) -> str:
+    """Decision L223: the line for a declared foot frame that reads reversed on too little evidence: the frame
+    is used, no other frame is suggested, and the likely cause (a walk slower than L95's range) is named."""
+    return (f"the {placement} unit's frame {json.dumps(declared.to_dict())} ({origin}) reads reversed against its "
+            f"data (forward {rev:.0f} deg from the strides' direction), but on too little evidence to refuse it "
+            f"(the strides' direction from {n_strides} strides of more than {MIN_STRIDE_M:g} m, resultant "
+            f"{resultant:.2f}; decision L223 refuses on at least {REFUSE_MIN_STRIDES} strides and a resultant of "
+            f"{REFUSE_MIN_RESULTANT:g}): the meta.json frame is still used. Few long strides with a common direction "
+            f"in the first {CHECK_SPAN_S:.0f} s is what a walk slower than the walking the pipelines are validated "
+            "on gives (70-160 steps/min, 0.5-2.5 m/s, decision L95): the track is then not reliable")
 
 
 def _turned(declared: AxisFrame, names: set[str]) -> AxisFrame:

@@ -297,8 +297,8 @@ def cycle_speeds(steps: pd.DataFrame) -> np.ndarray:
     time from its ``start_s`` (its rest's end, the swing's start) to the next row's ``start_s``: one gait cycle,
     as an initial contact to the next is (L66). NaN for the last row, where this row or the next is no stride
     (:func:`stride_rows`: a gap row, L67, or an ``impossible`` one, L97), or where the cycle is over
-    :data:`MAX_STRIDE_S` (a stop, L79). It gives ``median_speed_straight_mps`` (and so L95's judged speed) of a table without
-    stride times; no stride time, cadence or ``speed_mps`` column is made of it (L204)."""
+    :data:`MAX_STRIDE_S` (a stop, L79). It gives ``median_speed_straight_mps`` (and so L95's judged speed) of a
+    table without stride times; no stride time, cadence or ``speed_mps`` column is made of it (L204)."""
     n = len(steps)
     out = np.full(n, np.nan)
     if n < 2:
