@@ -747,9 +747,28 @@ def barometer_warning(summary: dict) -> str | None:
     drift = float(raw) - float(baro)
     drifted = (f" ({float(raw):+.2f} m recorded, of which {drift:+.2f} m slow drift, L172: the weather, which "
                "`--altitude fused` adds to altitude_change_m)" if abs(drift) > BAROMETER_DISAGREE_M else "")
+    closed = _closed_by_floors(summary, float(foot))
+    if closed and not fused:  # decision L225: the foot's floors close the loop; fusing would add the barometer's error
+        return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m"
+                f"{drifted} {source} by {abs(float(foot) - float(baro)):.2f} m (more than {float(limit):.2f} m){why}; "
+                f"{closed}: if the walk ended on the storey it started on, the foot's height is the right one and "
+                f"the barometer's {float(baro):+.2f} m is its own error (its climbs of 0.5 m within a minute, L172, "
+                "do not cancel), which `--altitude fused` would add to the track: keep the foot's altitude; "
+                f"otherwise {_FOOT_BLIND}{advice} (decision L225)")
     return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m"
             f"{drifted} {source} by {abs(float(foot) - float(baro)):.2f} m (more than {float(limit):.2f} m){why}; "
             f"{_FOOT_BLIND}{advice}")
+
+
+def _closed_by_floors(summary: dict, foot: float) -> str | None:
+    """Decision L225: the words for a foot track whose floors close a loop - it climbed and descended as many storeys
+    (``floors_up`` = ``floors_down`` > 0) and its altitude change is under half a storey (``storey_height_m``) - else
+    None."""
+    up, down, storey = summary.get("floors_up"), summary.get("floors_down"), summary.get("storey_height_m")
+    if not up or up != down or storey is None or not abs(foot) < 0.5 * float(storey):
+        return None
+    return (f"the foot climbed {int(up)} and descended {int(down)} storeys of {float(storey):g} m and ends "
+            f"{foot:+.2f} m from its start")
 
 
 #: decision L172: a barometric track's altitude change that its climbs do not explain by more than this (m; twice
