@@ -469,9 +469,12 @@ UNIT_STREAMS = UNIT_IMU
 #: walking fix the axes as well as an hour does, and a 1 h track must not pay a second pass over its data.
 CHECK_SPAN_S = 300.0
 #: decision L223 (amends D23): D23 refuses a reversed foot forward only when the check measured it from at least
-#: this many strides (> MIN_STRIDE_M) with at least this mean resultant; set from experiments/frame_check_evidence.py
-REFUSE_MIN_STRIDES = 4
-REFUSE_MIN_RESULTANT = 0.5
+#: this many strides (> MIN_STRIDE_M) with at least this mean resultant: the smallest count and resultant (rounded
+#: down to 0.05) of the validated-range walks of selection users 4110-4114 (scenario A: 11 strides; scenario C: 0.89)
+#: and the gaitmap foot recordings (walk4x10_left: 0.86) (experiments/frame_check_evidence.py); the 40 steps/min
+#: crawls that read reversed: 5 strides / 0.54 (the trial's), 10 / 0.62 (user 4115)
+REFUSE_MIN_STRIDES = 11
+REFUSE_MIN_RESULTANT = 0.85
 
 
 def infer_session_frame(session, placement: str, *, max_s: float | None = None) -> InferredFrame:
