@@ -67,7 +67,9 @@ def test_run_prints_and_stores_the_range_warning(tmp_path, monkeypatch, capsys):
     quiet = json.loads(capsys.readouterr().out)
     assert not [w for w in quiet["info"].get("warnings", []) if "decision L95" in w]
     real = E.evaluate_track
-    monkeypatch.setattr(E, "evaluate_track", lambda *a, **k: {**real(*a, **k), "gait_speed_mps": 3.9})
+    # decision L222: the streamed summary judges its straight strides' speed (from the gait cycle) when it has 5
+    monkeypatch.setattr(E, "evaluate_track", lambda *a, **k: {**real(*a, **k), "gait_speed_mps": 3.9,
+                                                               "median_speed_straight_mps": 3.9})
     assert main(["run", str(bundle), str(session), "--out", str(tmp_path / "o"), "--json"]) == 0
     captured = capsys.readouterr()
     out = json.loads(captured.out)
