@@ -320,7 +320,7 @@ def add_backward_travel(steps: pd.DataFrame) -> None:
     if flag is None:
         return
     if "backward_travel" in steps:
-        steps.drop(columns="backward_travel", inplace=True)
+        del steps["backward_travel"]
     cols = list(steps.columns)
     at = (cols.index("direction") + 1 if "direction" in cols
           else next((cols.index(c) for c in ("impossible", "gap_s", "unit") if c in cols), len(cols)))
