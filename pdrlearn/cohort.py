@@ -396,8 +396,19 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
 def grouped_warning(text: str, names: Sequence[str], total: int, noun: str = "sessions") -> str:
     """One warning said once for the ``names`` (of ``total`` ``noun``) that raised it, the first three named:
     ``text [21 of 23 runs: a, b, c and 18 more]`` (decision C12's batch warnings; decision C21: the report)."""
-    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
-    return f"{text} [{len(names)} of {total} {noun}: {shown}]"
+    return f"{text} [{len(names)} of {total} {noun}: {first_names(names)}]"
+
+
+def first_names(names: Sequence[str]) -> str:
+    """The first three of ``names`` and how many more: ``a, b, c and 18 more`` (:func:`grouped_warning`)."""
+    return ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+
+
+def session_warning(text: str, names: Sequence[str], total: int) -> str:
+    """Decision E118: a track-all batch warning on stderr starts with the session(s) that raised it (the first
+    three named, as :func:`grouped_warning`), then how many of the batch: ``u3841, u3842: text [2 of 6
+    sessions]``."""
+    return f"{first_names(names)}: {text} [{len(names)} of {total} sessions]"
 
 
 def session_group(rel_path: str, depth: int = 1) -> str:

@@ -112,7 +112,8 @@ SESSIONS: tuple[Column, ...] = (
     ("ic_timing_stereo_sd_ms", "ms", "number", "lower back: SD of that error"),
     ("gait_out_of_range", _ID, "true/false", "L95's walking-range warning fired: the session's median cadence or "
                                              "speed outside the (leg-scaled) range, or a bout of 5+ strides above "
-                                             "it (L195)"),
+                                             "it (L195); empty when nothing could be judged (no cadence, no judged "
+                                             "speed: L222)"),
     ("leg_length_m", "m", "number", "the walker's leg length from meta.json, by which L95's range is scaled (L148)"),
     ("leg_length_source", _ID, "text", "the meta.json key leg_length_m came from (L148)"),
     ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),

@@ -203,7 +203,7 @@ def test_a_failed_session_keeps_the_warnings_it_raised(tree, tmp_path, monkeypat
     assert bad["n_warnings"] >= 1 and "no model:" in bad["warnings"]  # was empty / dropped
     assert good["n_warnings"] >= 1 and "no model:" in good["warnings"]
     assert "failed p02/walk: " in out and "  warned before: no model:" in out
-    assert "[2 of 2 sessions: p01/walk, p02/walk]" in err  # the batch line counts the failed session too
+    assert "warning: p01/walk, p02/walk: no model:" in err and "[2 of 2 sessions]" in err  # the failed one too; E118
 
 
 def test_report_renders_a_track_all_folder(batch, tmp_path):

@@ -281,8 +281,8 @@ def test_paired_visits_give_change_scores_with_a_paired_t_interval(visit_runs):
     assert row["visit"] == 2 and row["baseline_visit"] == 1 and row["n_not_paired"] == 2
     assert row["not_paired"] == "S03; S05"
     assert "paired change from the baseline visit" in printed and "S03; S05" in printed
-    assert ("meta.json names a subject but no visit, or a visit but no subject: not paired in changes.csv (add both, "
-            "decision C22) [1 of 7 sessions: centreB/S06/visitX]") in printed
+    assert ("centreB/S06/visitX: meta.json names a subject but no visit, or a visit but no subject: not paired in "
+            "changes.csv (add both, decision C22) [1 of 7 sessions]") in printed  # decision E118: the session first
 
 
 def test_the_report_of_a_batch_shows_the_paired_changes(visit_runs, tmp_path):

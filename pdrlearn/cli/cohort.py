@@ -39,11 +39,11 @@ from pdrlearn.cohort import (
     find_sessions,
     folder_bytes,
     group_table,
-    grouped_warning,
     groups_text,
     run_cohort,
     session_group,
     session_labels,
+    session_warning,
     user_sessions,
 )
 from pdrlearn.errors import DataError, shell_quote
@@ -468,7 +468,7 @@ def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -
     for rels, texts, first in seen.values():
         shown = first if len(texts) == 1 else (f"{first} (the figures are {rels[0]}'s; each session's own are in "
                                                "sessions.csv's warnings column)")
-        log.warning("%s", grouped_warning(shown, rels, len(results)))
+        log.warning("%s", session_warning(shown, rels, len(results)))  # decision E118: the session(s) first
 
 
 def _duplicates(rels: list[str], results: list[JobResult], dirs: list[Path]) -> tuple[dict[str, str], dict[str, str]]:
@@ -550,7 +550,7 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None
         log.warning("%s", line)
     half = sessions[sessions["subject"].isna() != sessions["visit"].isna()]["path"].astype(str).tolist()
     if half:
-        log.warning("%s", grouped_warning("meta.json names a subject but no visit, or a visit but no subject: not "
+        log.warning("%s", session_warning("meta.json names a subject but no visit, or a visit but no subject: not "
                                           "paired in changes.csv (add both, decision C22)", half, len(sessions)))
     return changes, change_summary(changes)
 

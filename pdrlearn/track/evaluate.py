@@ -286,15 +286,15 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
 BACKWARD_MAX_TURN_DEG = PAUSE_MAX_TURN_DEG
 
 
-def backward_strides(steps: pd.DataFrame) -> int | None:
-    """Decision L203: ``n_backward_strides``, the foot track's strides whose ``raw_length_m`` is negative (the
-    stride's displacement points backward along the foot's forward axis: backward travel), with or without a model
-    (a model-free track leaves ``direction`` empty and its ``length_m`` positive, L65); the 0 m rows of a foot gap
-    (``gap_s`` > 0, L67) and ``impossible`` strides (L97) left out, as :func:`median_stride_length`; amended in the
-    same session (a feature-tour trial): a stride turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot,
-    whose short chord can point anywhere (user 5's ``straight:10, turn:180, straight:10``: two turn strides of 120 and
-    60 deg with -0.25 / -0.15 m), not backward travel. None for a lower-back track (no raw length per step) or a table
-    without ``raw_length_m``."""
+def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
+    """Decision L203: (rows,) bool, the foot track's strides that travel backward - ``raw_length_m`` negative (the
+    stride's displacement points backward along the foot's forward axis), with or without a model (a model-free
+    track leaves ``direction`` empty and its ``length_m`` positive, L65); the 0 m rows of a foot gap (``gap_s`` > 0,
+    L67) and ``impossible`` strides (L97) are not, as :func:`median_stride_length`; amended in the same session (a
+    feature-tour trial): a stride turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot, whose short
+    chord can point anywhere (user 5's ``straight:10, turn:180, straight:10``: two turn strides of 120 and 60 deg
+    with -0.25 / -0.15 m), not backward travel. None for a lower-back track (no raw length per step) or a table
+    without ``raw_length_m`` / ``length_m``."""
     units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
     # L203 amended: a replayed table (`pdrlearn run`) has no raw length; its signed ``length_m`` (negative only for a
     # stride classed backward, thesis eq. 61's sign) counts instead
@@ -308,7 +308,30 @@ def backward_strides(steps: pd.DataFrame) -> int | None:
     if "turn_angle_rad" in steps:  # L203 amended: a turning stride is no backward travel
         turn = np.abs(np.degrees(steps["turn_angle_rad"].to_numpy(float)))
         keep &= ~(turn >= BACKWARD_MAX_TURN_DEG)
-    return int(((raw < 0) & keep).sum())
+    return (raw < 0) & keep
+
+
+def add_backward_travel(steps: pd.DataFrame) -> None:
+    """Decision L224: a foot table gets steps.csv's ``backward_travel`` (bool, :func:`backward_travel`, placed right
+    after ``direction``, else before ``impossible`` / ``gap_s`` / ``unit``): the rows ``n_backward_strides`` counts,
+    so a reader of ``direction`` (the model's class, which a pivot stride of a turn can take) sees which of its
+    ``backward`` rows are counted as backward travel. In place; nothing for a lower-back table."""
+    flag = backward_travel(steps)
+    if flag is None:
+        return
+    if "backward_travel" in steps:
+        del steps["backward_travel"]
+    cols = list(steps.columns)
+    at = (cols.index("direction") + 1 if "direction" in cols
+          else next((cols.index(c) for c in ("impossible", "gap_s", "unit") if c in cols), len(cols)))
+    steps.insert(at, "backward_travel", flag)
+
+
+def backward_strides(steps: pd.DataFrame) -> int | None:
+    """Decision L203: ``n_backward_strides``, the number of :func:`backward_travel` strides (None where it has
+    none: a lower-back track)."""
+    flag = backward_travel(steps)
+    return None if flag is None else int(flag.sum())
 
 
 def tracked_rate_hz(session: Session, pipeline: str | None) -> float | None:
@@ -327,6 +350,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     out["n_steps"] = int(len(result.steps))
     out.update(step_counts(result.steps))  # decision L103: what n_steps counts, and the steps of both feet
     out["median_stride_length_m"] = median_stride_length(result.steps)  # decision C19: as in sessions.csv
+    add_backward_travel(result.steps)  # decision L224: steps.csv's per-row form of the count below
     out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
@@ -723,9 +747,28 @@ def barometer_warning(summary: dict) -> str | None:
     drift = float(raw) - float(baro)
     drifted = (f" ({float(raw):+.2f} m recorded, of which {drift:+.2f} m slow drift, L172: the weather, which "
                "`--altitude fused` adds to altitude_change_m)" if abs(drift) > BAROMETER_DISAGREE_M else "")
+    closed = _closed_by_floors(summary, float(foot))
+    if closed and not fused:  # decision L225: the foot's floors close the loop; fusing would add the barometer's error
+        return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m"
+                f"{drifted} {source} by {abs(float(foot) - float(baro)):.2f} m (more than {float(limit):.2f} m){why}; "
+                f"{closed}: if the walk ended on the storey it started on, the foot's height is the right one and "
+                f"the barometer's {float(baro):+.2f} m is its own error (its climbs of 0.5 m within a minute, L172, "
+                "do not cancel), which `--altitude fused` would add to the track: keep the foot's altitude; "
+                f"otherwise {_FOOT_BLIND}{advice} (decision L225)")
     return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m"
             f"{drifted} {source} by {abs(float(foot) - float(baro)):.2f} m (more than {float(limit):.2f} m){why}; "
             f"{_FOOT_BLIND}{advice}")
+
+
+def _closed_by_floors(summary: dict, foot: float) -> str | None:
+    """Decision L225: the words for a foot track whose floors close a loop - it climbed and descended as many storeys
+    (``floors_up`` = ``floors_down`` > 0) and its altitude change is under half a storey (``storey_height_m``) - else
+    None."""
+    up, down, storey = summary.get("floors_up"), summary.get("floors_down"), summary.get("storey_height_m")
+    if not up or up != down or storey is None or not abs(foot) < 0.5 * float(storey):
+        return None
+    return (f"the foot climbed {int(up)} and descended {int(down)} storeys of {float(storey):g} m and ends "
+            f"{foot:+.2f} m from its start")
 
 
 #: decision L172: a barometric track's altitude change that its climbs do not explain by more than this (m; twice
@@ -762,11 +805,16 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 def add_gait_range_flag(summary: dict) -> dict:
     """Decision L195: ``gait_out_of_range`` (bool) - L95's session line fires (:func:`pdrlearn.track.gait.
     session_range_side`: above or below the walking range) or some bout lies above it (``n_bouts_out_of_range``);
-    the machine-readable form of those warnings (sessions.csv, bouts.csv per bout). Set in place; returned."""
-    from pdrlearn.track.gait import session_range_side
+    the machine-readable form of those warnings (sessions.csv, bouts.csv per bout). Set in place; returned.
+    Decision L222: None (unknown, empty in sessions.csv) when L95 had no figure to judge (no cadence and no judged
+    speed) and no bout is flagged - not False, which says "inside the range"."""
+    from pdrlearn.track.gait import _judged, session_range_side
 
-    summary["gait_out_of_range"] = bool(session_range_side(summary) is not None
-                                        or (summary.get("n_bouts_out_of_range") or 0) > 0)
+    if (summary.get("n_bouts_out_of_range") or 0) > 0 or session_range_side(summary) is not None:
+        summary["gait_out_of_range"] = True
+    else:
+        cad, speed, _ = _judged(summary)
+        summary["gait_out_of_range"] = False if cad is not None or speed is not None else None  # L222: unknown
     return summary
 
 

@@ -103,12 +103,19 @@ class FrameInferenceError(DataError):
     walk_s: float | None = None
     up: np.ndarray | None = None
     forward: np.ndarray | None = None
+    #: decision D23 amended (L223): the foot strides the forward was measured from and their mean resultant
+    n_strides: int | None = None
+    resultant: float | None = None
 
 
-def _refuse(msg: str, up: np.ndarray | None = None, forward: np.ndarray | None = None) -> FrameInferenceError:
-    """A :class:`FrameInferenceError` carrying what was measured before giving up (decision D22)."""
+def _refuse(msg: str, up: np.ndarray | None = None, forward: np.ndarray | None = None,
+            evidence: tuple[int, float] | None = None) -> FrameInferenceError:
+    """A :class:`FrameInferenceError` carrying what was measured before giving up (decision D22; L223: the
+    strides and resultant the forward came from)."""
     err = FrameInferenceError(msg)
     err.up, err.forward = up, forward
+    if evidence is not None:
+        err.n_strides, err.resultant = evidence
     return err
 
 
@@ -122,6 +129,9 @@ class InferredFrame:
     #: the measured up and forward directions (unit vectors in sensor axes) the frame was snapped from
     up: np.ndarray | None = None
     forward: np.ndarray | None = None
+    #: decision D23 amended (L223): the foot strides the forward was measured from and their mean resultant
+    n_strides: int | None = None
+    resultant: float | None = None
 
     def describe(self) -> str:
         return ", ".join(f"{k} {v}" for k, v in self.evidence.items())
@@ -305,11 +315,11 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     ang_rot = _angle_deg(v[:, 2], left)
     if ang_rot > MAX_SNAP_DEG:
         raise _refuse(f"the foot's main rotation axis is {ang_rot:.0f} deg from the medio-lateral "
-                      f"direction of its strides (more than {MAX_SNAP_DEG:g})", up, fwd)
+                      f"direction of its strides (more than {MAX_SNAP_DEG:g})", up, fwd, (len(hor), resultant))
     i_ml, s_ml, ang_ml = _nearest_axis(left)
     if ang_ml > MAX_SNAP_DEG:
         raise _refuse(f"the medio-lateral direction is {ang_ml:.0f} deg from every sensor axis "
-                      f"(more than {MAX_SNAP_DEG:g}; a yawed mount)", up, fwd)
+                      f"(more than {MAX_SNAP_DEG:g}; a yawed mount)", up, fwd, (len(hor), resultant))
     sag = [i for i in range(3) if i != i_ml]
     lo_w, hi_w = FOOT_PITCH_WINDOW_DEG
     cand = [(i, s, float(np.degrees(np.arctan2(-s * up[i], s * fwd[i])))) for i in sag for s in (1.0, -1.0)]
@@ -319,15 +329,16 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     if len(inside) != 1:
         pitch = min((c[2] for c in cand), key=lambda p: min(abs(p - lo_w), abs(p - hi_w)))
         raise _refuse(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
-                      f"deg window that decides which axis is forward ({len(inside)} sagittal axes in it)", up, fwd)
+                      f"deg window that decides which axis is forward ({len(inside)} sagittal axes in it)", up, fwd,
+                      (len(hor), resultant))
     i_f, s_f, pitch = inside[0]
     if min(abs(pitch - lo_w), abs(pitch - hi_w)) < PITCH_MARGIN_DEG:
         raise _refuse(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
-                      "deg window that decides which axis is forward", up, fwd)
+                      "deg window that decides which axis is forward", up, fwd, (len(hor), resultant))
     i_u = next(i for i in sag if i != i_f)
     s_u = float(np.sign(up[i_u]) or 1.0)
     frame = frame_from_axes((i_f, s_f), (i_ml, s_ml), (i_u, s_u))
-    return InferredFrame("foot", frame, up=up, forward=fwd, evidence={
+    return InferredFrame("foot", frame, up=up, forward=fwd, n_strides=len(hor), resultant=resultant, evidence={
         "up": f"{'xyz'[i_u]}{'+' if s_u > 0 else '-'} (pitch {abs(pitch):.0f} deg "
               f"{'toes-down' if pitch >= 0 else 'toes-up'}, {ang_ml:.0f} deg roll/yaw)",
         "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} from {len(hor)} strides (resultant {resultant:.2f}; "
@@ -484,6 +495,13 @@ UNIT_STREAMS = UNIT_IMU
 #: The D10 check of a declared frame reads at most this much of a recording from its start (s): minutes of
 #: walking fix the axes as well as an hour does, and a 1 h track must not pay a second pass over its data.
 CHECK_SPAN_S = 300.0
+#: decision L223 (amends D23): D23 refuses a reversed foot forward only when the check measured it from at least
+#: this many strides (> MIN_STRIDE_M) with at least this mean resultant: the smallest count and resultant (rounded
+#: down to 0.05) of the validated-range walks of selection users 4110-4114 (scenario A: 11 strides; scenario C: 0.89)
+#: and the gaitmap foot recordings (walk4x10_left: 0.86) (experiments/frame_check_evidence.py); the 40 steps/min
+#: crawls that read reversed: 5 strides / 0.54 (the trial's), 10 / 0.62 (user 4115)
+REFUSE_MIN_STRIDES = 11
+REFUSE_MIN_RESULTANT = 0.85
 
 
 def infer_session_frame(session, placement: str, *, max_s: float | None = None) -> InferredFrame:
@@ -583,14 +601,17 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
         found = infer_session_frame(session, placement, max_s=CHECK_SPAN_S)
     except FrameInferenceError as exc:
         found, unchecked, off = None, str(exc), {}
+        evidence = (exc.n_strides, exc.resultant)
         if exc.forward is not None:  # gave up after measuring the strides' signed direction (past D9's push-off)
             up, fwd, compared = exc.up, exc.forward, ("up", "forward")
             off = directions_off(declared, up, None, OPPOSED_DEG)  # up only: which axis is forward is unknown
     except DataError as exc:
         found, unchecked, off = None, str(exc), {}
+        evidence = (None, None)
     else:
         up, fwd = found.up, found.forward
         off = frame_disagreement(declared, found)
+        evidence = (found.n_strides, found.resultant)
     rev = forward_reversal_deg(declared, up, fwd)
     reverse = rev is not None and rev > OPPOSED_DEG
     if reverse and "forward" not in off:  # the heading reversed though the axis is pitched (D22)
@@ -602,9 +623,33 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
     forced = reverse and session.frame_forced(placement)  # decision D23's override
     refuse = reverse and not forced and placement in REFUSE_REVERSED  # D23 amended: the foot only
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
+    if refuse and weak_reversal(*evidence):  # decision L223: too little evidence to refuse
+        return DeclaredCheck(weak_reversal_warning(placement, declared, origin, rev, *evidence), False, unchecked,
+                             compared)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked)
     return DeclaredCheck(msg, refuse, unchecked, compared)
+
+
+def weak_reversal(n_strides: int | None, resultant: float | None) -> bool:
+    """Decision L223: a foot forward measured from fewer than :data:`REFUSE_MIN_STRIDES` strides or with a
+    resultant under :data:`REFUSE_MIN_RESULTANT` is too little evidence for D23's refusal."""
+    if n_strides is None or resultant is None:
+        return False
+    return n_strides < REFUSE_MIN_STRIDES or resultant < REFUSE_MIN_RESULTANT
+
+
+def weak_reversal_warning(placement: str, declared: AxisFrame, origin: str, rev: float, n_strides: int,
+                          resultant: float) -> str:
+    """Decision L223: the line for a declared foot frame that reads reversed on too little evidence: the frame
+    is used, no other frame is suggested, and the likely cause (a walk slower than L95's range) is named."""
+    return (f"the {placement} unit's frame {json.dumps(declared.to_dict())} ({origin}) reads reversed against its "
+            f"data (forward {rev:.0f} deg from the strides' direction), but on too little evidence to refuse it "
+            f"(the strides' direction from {n_strides} strides of more than {MIN_STRIDE_M:g} m, resultant "
+            f"{resultant:.2f}; decision L223 refuses on at least {REFUSE_MIN_STRIDES} strides and a resultant of "
+            f"{REFUSE_MIN_RESULTANT:g}): the meta.json frame is still used. Few long strides with a common direction "
+            f"in the first {CHECK_SPAN_S:.0f} s is what a walk slower than the walking the pipelines are validated "
+            "on gives (70-160 steps/min, 0.5-2.5 m/s, decision L95): the track is then not reliable")
 
 
 def _turned(declared: AxisFrame, names: set[str]) -> AxisFrame:

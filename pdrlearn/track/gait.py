@@ -292,6 +292,35 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict
     return out
 
 
+def cycle_speeds(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L222: (rows,) a streamed foot stride's speed (m/s) from what it has - its |``length_m``| over the
+    time from its ``start_s`` (its rest's end, the swing's start) to the next row's ``start_s``: one gait cycle,
+    as an initial contact to the next is (L66). NaN for the last row, where this row or the next is no stride
+    (:func:`stride_rows`: a gap row, L67, or an ``impossible`` one, L97), or where the cycle is over
+    :data:`MAX_STRIDE_S` (a stop, L79). It gives ``median_speed_straight_mps`` (and so L95's judged speed) of a
+    table without stride times; no stride time, cadence or ``speed_mps`` column is made of it (L204)."""
+    n = len(steps)
+    out = np.full(n, np.nan)
+    if n < 2:
+        return out
+    start = steps["start_s"].to_numpy(float)
+    valid = stride_rows(steps)
+    dt = start[1:] - start[:-1]
+    ok = valid[:-1] & valid[1:] & np.isfinite(dt) & (dt > 0) & (dt <= MAX_STRIDE_S + 1e-9)  # L79: a stop is no stride
+    length = np.abs(steps["length_m"].to_numpy(float))[:-1]
+    out[:-1] = np.where(ok, length / np.where(ok, dt, 1.0), np.nan)
+    return out
+
+
+def _range_speeds(steps: pd.DataFrame, speed: np.ndarray) -> np.ndarray:
+    """Decision L222: a foot table whose strides have no stride time (streamed without ``--contacts``, E51) takes
+    :func:`cycle_speeds` for its straight-walking speed; any other table keeps its own ``speed_mps``."""
+    foot = "unit" not in steps or (steps["unit"] == "foot").all()
+    if foot and not np.isfinite(speed).any() and {"start_s", "length_m"} <= set(steps):
+        return cycle_speeds(steps)
+    return speed
+
+
 def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     """Decision E48: the L79 keys a streamed foot table (``pdrlearn run``, ``track --streaming``: rest-to-rest
     strides with ``start_s``, ``end_s``, ``length_m`` and ``gap_s``, no initial contact) can give:
@@ -303,7 +332,9 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     n = len(steps)
     valid = stride_rows(steps)  # decisions L67, L97
     out: dict = {}
-    _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid, np.full(n, np.nan), np.zeros(n, bool))
+    turn = np.abs(steps["turn_angle_rad"].to_numpy(float)) if "turn_angle_rad" in steps else np.full(n, np.inf)
+    _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid, cycle_speeds(steps),
+                  turn < STRAIGHT_MAX_RAD)  # decision L222: the straight strides' speed from their gait cycle
     return out
 
 
@@ -338,7 +369,8 @@ def gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
         out["median_cadence_spm"] = median_cadence(out["median_stride_time_s"], None)
     valid = stride_rows(steps)  # decisions L67, L97
     turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
-    _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid, steps["speed_mps"].to_numpy(float),
+    _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid,
+                  _range_speeds(steps, steps["speed_mps"].to_numpy(float)),  # decision L222
                   turn < STRAIGHT_MAX_RAD)
     if "stance_time_s" in steps:  # decision L73
         out["n_stance_times"] = int(np.isfinite(steps["stance_time_s"].to_numpy(float)).sum())
