@@ -1210,6 +1210,27 @@ def weak_run_mask(bounce: np.ndarray, has_next: np.ndarray, *, frac: float = WEA
     return weak
 
 
+def alternating_run_mask(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:
+    """Per contact: True when its walking run (:func:`run_ids`) holds at least two decided sides (W20's
+    :func:`step_sides`: +1 / -1, 0 undecided) and every two consecutive decided sides of the run agree with a strict
+    left/right alternation of all its contacts: opposite when an even number of contacts lies between them (none:
+    adjacent contacts), equal when an odd number does (W180's ... L ? L ...). Real steps alternate sides; standing
+    sway and weight shifts do not, or stay undecided (decision W196)."""
+    s = np.asarray(side, dtype=int)
+    if not s.size:
+        return np.zeros(0, dtype=bool)
+    rid = run_ids(has_next)
+    out = np.zeros(s.size, dtype=bool)
+    for r in range(rid[-1] + 1):
+        members = np.flatnonzero(rid == r)
+        pos = members[s[members] != 0]  # the decided contacts of the run, in order
+        if pos.size < 2:
+            continue
+        parity = np.where((np.diff(pos) % 2) == 1, -1, 1)  # -1: adjacent positions must be on opposite sides
+        out[members] = bool(np.all(s[pos[:-1]] * s[pos[1:]] == parity))
+    return out
+
+
 #: W127: a step whose pelvis turns by more than this (deg, IC to next IC) is a turning step, which W119's veto
 #: spares. The geometric middle, a factor 1.5 from each, of the largest turn of a straight step -- the pelvis's
 #: whole transverse rotation, 2 x 4-5 deg (Perry & Burnfield, Gait Analysis, 2010; simulator 3-5 deg amplitude,

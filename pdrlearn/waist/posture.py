@@ -27,6 +27,7 @@ mechanism of dropping contacts. Decision W127: with ``spare_turns`` it keeps a c
 Decision W189: :func:`stand_veto` drops a whole walking run whose median vertical bounce is under a third of the
 recording's median contact bounce (standing sway chains contacts with the bounce of none of the wearer's steps).
 Decision W191: with ``spare_turns`` a weak run holding a step that turns the pelvis (W127's test) is kept.
+Decision W196: with ``spare_alternation`` a weak run whose decided sides (W20) alternate left/right is kept.
 """
 
 from __future__ import annotations
@@ -242,7 +243,7 @@ def turning_steps(steps: pd.DataFrame, imu: WaistIMU, gyro_bias_rps: float = 0.0
 
 
 def stand_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
-               gyro_bias_rps: float = 0.0) -> pd.DataFrame:
+               gyro_bias_rps: float = 0.0, spare_alternation: bool = False) -> pd.DataFrame:
     """``steps`` without the walking runs (contacts chained by ``has_next``) whose median bounce
     (:func:`~pdrlearn.kernels.waist.contact_bounce`) is under :data:`~pdrlearn.kernels.waist.WEAK_RUN_FRAC` of the
     median bounce of all the contacts (:func:`~pdrlearn.kernels.waist.weak_run_mask`; decision W189).
@@ -250,13 +251,22 @@ def stand_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
 
     ``spare_turns`` (decision W191): a weak run holding a step that turns the pelvis (:func:`turning_steps`, W127's
     15 deg, the vertical rate less ``gyro_bias_rps``) is kept whole: a slow turn on the spot bounces little, and
-    standing does not turn the pelvis."""
+    standing does not turn the pelvis.
+
+    ``spare_alternation`` (decision W196): a weak run whose decided sides (W20's :func:`~pdrlearn.kernels.waist.
+    step_sides` of the pelvis's lateral velocity at the contacts, decided as the sit veto's, W109) alternate left /
+    right, at least two of them decided (:func:`~pdrlearn.kernels.waist.alternating_run_mask`), is kept whole: real
+    steps alternate sides, standing sway and weight shifts do not or stay undecided."""
     if steps.empty:
         out = steps.copy()
         out.attrs["n_weak_run"] = 0
         return out
     ev = steps["event_s"].to_numpy(float)
     idx = np.clip(np.round((ev - imu.t[0]) * imu.fs).astype(int), 0, len(imu.t) - 1)
+    has_next = steps["has_next"].to_numpy(bool)
     spare = turning_steps(steps, imu, gyro_bias_rps) if spare_turns else None
-    drop = K.weak_run_mask(K.contact_bounce(imu.acc_v, imu.fs, idx), steps["has_next"].to_numpy(bool), spare=spare)
+    if spare_alternation:  # W196: the run's decided sides alternate
+        spare = K.alternating_run_mask(K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, ev),
+                                                    has_next), has_next)
+    drop = K.weak_run_mask(K.contact_bounce(imu.acc_v, imu.fs, idx), has_next, spare=spare)
     return drop_contacts(steps, ~drop, "n_weak_run")
