@@ -147,8 +147,9 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
     ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt.md"))
-    ap.add_argument("--stand-veto", nargs="?", const="true", default=None, choices=("true", "turns"),
-                    help="add decision W189's `stand_veto` row (offline waist-pendulum; `turns`: W191's value); "
+    ap.add_argument("--stand-veto", nargs="?", const="true", default=None, choices=("true", "turns", "alternation"),
+                    help="add decision W189's `stand_veto` row (offline waist-pendulum; `turns`: W191's value, "
+                         "`alternation`: W196's); "
                          "give another --out")
     a = ap.parse_args(argv)
     veto = {None: False, "true": True}.get(a.stand_veto, a.stand_veto)

@@ -15,11 +15,15 @@ The same features for mobgap Test11's contacts inside / outside the reference wa
 default `waist-pendulum` against `stand_veto=True`, experiments/hapt.py's run), (c) on fresh simulated users 4060-4099.
 (d), the mobgap rows, is `experiments/waist.py --external datasets/external --no-real [--stand-veto]`.
 
+`measure-alternation`: decision W196's rule for `stand_veto="alternation"` (a weak run whose decided W20 sides
+alternate kept): W191's (a)-(c), users 4320-4379, the simulated users on today's defaults (sit_veto="opposite").
+
 `measure-turns`: decision W191's rule for `stand_veto="turns"` (a weak run with a step turning the pelvis kept): (a),
 (b) the same; (c) fresh users 4180-4239, W189's routes and the TUG with `bounce="pendulum"`, no lost true contact
 outside a simulated chair transfer and outside a 1-contact run. (d): the same waist.py run with `--stand-veto turns`.
 
-Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_stand.py diagnose | measure | measure-turns
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_stand.py diagnose | measure | measure-turns |
+     measure-alternation
 """
 from __future__ import annotations
 
@@ -230,6 +234,7 @@ TOL_S = 0.25
 W191_USERS = range(4180, 4240)  # the lead's fresh users for W191
 W191_ROUTES = {**SIM_ROUTES,  # W189's routes and the TUG's slow turn on the spot with the pendulum bounce
                "tug-pendulum": (SIM_ROUTES["tug"][0], {**SIM_ROUTES["tug"][1], "bounce": "pendulum"})}
+W196_USERS = range(4320, 4380)  # the lead's fresh users for W196 (W191's routes, today's defaults)
 
 
 def matched_truth(ev: np.ndarray, truth: np.ndarray) -> np.ndarray:
@@ -255,8 +260,9 @@ def in_transfer(t: np.ndarray, session) -> np.ndarray:
 
 
 def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W189") -> bool:
-    """(c) of W189's rule (``decision="W189"``) or of W191's (no lost true contact outside a simulated transfer and
-    outside a 1-contact run, every route): the offline pendulum with ``stand_veto=value`` vs off."""
+    """(c) of W189's rule (``decision="W189"``) or of W191's / W196's (no lost true contact outside a simulated
+    transfer and outside a 1-contact run, every route): the offline pendulum with ``stand_veto=value`` vs off;
+    W196 on today's defaults (``sit_veto="opposite"``, W185), the others with no sit veto as they were measured."""
     from pdrlearn.sim import UserProfile, simulate_path
     from pdrlearn.sim.route import parse_route
 
@@ -266,8 +272,9 @@ def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W
         for u in users:
             s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
-            off = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps  # as measured, before W185
-            on = track_waist(s, pipeline="waist-pendulum", stand_veto=value, sit_veto=False)
+            sit = {} if decision == "W196" else {"sit_veto": False}  # W189 / W191 as measured, before W185
+            off = track_waist(s, pipeline="waist-pendulum", **sit).steps
+            on = track_waist(s, pipeline="waist-pendulum", stand_veto=value, **sit)
             e0, e1 = off["event_s"].to_numpy(float), on.steps["event_s"].to_numpy(float)
             m0, m1 = matched_truth(e0, truth), matched_truth(e1, truth)
             _, rlen = runs_of(off["has_next"].to_numpy(bool))
@@ -284,7 +291,7 @@ def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W
                 print(f"(c) user {u} {name}: lost true contacts at {np.round(truth[gone], 2).tolist()} s "
                       f"(run lengths {rlen[m0[gone]].tolist()}, in a transfer "
                       f"{in_transfer(truth[gone], s).astype(int).tolist()})", flush=True)
-        if decision == "W191":
+        if decision in ("W191", "W196"):
             good = lost_counted == 0
         elif name == "daily":
             good = lost <= 2 and lost == lost_short
@@ -304,7 +311,19 @@ def measure(root: Path, value=True, decision: str = "W189") -> None:
     import hapt as H  # experiments/hapt.py
 
     cfgs = [c for c in H.configs(value) if c[1] == "waist-pendulum" and not c[2].get("sit_veto")]
-    static, _, gait, refused, cpu = H.run(root, cfgs)
+    info = []
+    if decision == "W196":  # for information, not judged: the same rows on today's default sit veto (W185)
+        info = [("waist-pendulum (defaults)", "waist-pendulum", {}),
+                (f"waist-pendulum stand_veto={value} (defaults)", "waist-pendulum", {"stand_veto": value})]
+    static, _, gait, refused, cpu = H.run(root, cfgs + info)
+    if info:
+        for cfg, d in static[static.cfg.isin([c[0] for c in info])].groupby("cfg", sort=False):
+            print(f"(a, information) {cfg}: static contacts {d.n.sum()} in {d.dur_s.sum() / 60:.1f} min, "
+                  f"{60.0 * d.n.sum() / d.dur_s.sum():.3f} per min")
+        for cfg, d in gait[gait.cfg.isin([c[0] for c in info])].groupby("cfg", sort=False):
+            print(f"(b, information) {cfg}: gait segments {len(d)}, median detected/spectral - 1 "
+                  f"{100 * d.ratio.median():+.2f} %")
+        static, gait = (x[~x.cfg.isin([c[0] for c in info])] for x in (static, gait))
     print(f"HAPT: {static.session.nunique()} recordings, {cpu:.0f} s CPU; refused {len(refused)}")
     base, cand = cfgs[0][0], cfgs[1][0]
     rate = {}
@@ -325,10 +344,11 @@ def measure(root: Path, value=True, decision: str = "W189") -> None:
     print(f"(b) gait segments {len(g0)} / {len(g1)}: median detected/spectral - 1 {med0:+.2f} -> {med1:+.2f} %; "
           f"per-subject medians: largest drop {worst:+.2f} points (user {int((s1 - s0).idxmin())}), subjects "
           f"changed {int(((s1 - s0).abs() > 1e-9).sum())} of {len(s0)} ({'met' if ok_b else 'NOT met'})")
-    ok_c = sim_check(value, W191_USERS, W191_ROUTES, "W191") if decision == "W191" else sim_check()
+    users = {"W191": W191_USERS, "W196": W196_USERS}.get(decision)
+    ok_c = sim_check(value, users, W191_ROUTES, decision) if users else sim_check()
     print(f"{decision} (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, (c) "
           f"{'met' if ok_c else 'NOT met'}; (d): experiments/waist.py --external datasets/external --no-real "
-          f"[--stand-veto{' turns' if value == 'turns' else ''}]")
+          f"[--stand-veto{'' if value is True else ' ' + value}]")
 
 
 def after() -> None:
@@ -404,5 +424,7 @@ if __name__ == "__main__":
         measure(Path("datasets/hapt"))
     elif sys.argv[1:2] == ["measure-turns"]:  # W191
         measure(Path("datasets/hapt"), "turns", "W191")
+    elif sys.argv[1:2] == ["measure-alternation"]:  # W196
+        measure(Path("datasets/hapt"), "alternation", "W196")
     else:
-        raise SystemExit("usage: waist_stand.py diagnose | measure | measure-turns | after")
+        raise SystemExit("usage: waist_stand.py diagnose | measure | measure-turns | measure-alternation | after")
