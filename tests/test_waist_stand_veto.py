@@ -143,8 +143,53 @@ def test_w191_turns_end_to_end_where_it_applies_and_the_values_refused():
         np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
         assert b.info["n_weak_run_contacts"] == 0
     for bad in ("Turns", "yes", 2):
-        with pytest.raises(DataError, match=r"stand_veto .* is not one of false, true, \"turns\" \(decisions W189, "
-                                            r"W191\)") as e:
+        with pytest.raises(DataError, match=r"stand_veto .* is not one of false, true, \"turns\", \"alternation\" "
+                                            r"\(decisions W189, W191, W196\)") as e:
             track_waist(s, pipeline="waist-pendulum", stand_veto=bad)
         assert "\n" not in str(e.value)
     assert "stand_veto" in (unapplied_options_line(WaistParams(options={"stand_veto": "turns"})) or "")
+
+
+def test_w196_the_alternating_run_mask_by_hand():
+    side = np.array([1, -1, 1, 1, 0, 1, 1, 1, 0, 0, 1, -1, 0, 1, -1, 0, 0, 1])
+    has_next = np.array([1, 1, 0, 1, 1, 0, 1, 0, 1, 1, 0, 1, 1, 0, 1, 1, 1, 0], dtype=bool)
+    # L R L kept; L ? L kept (W180: the undecided one is the other foot); L L not; one decided side not; L ? R not;
+    # R ? ? L kept (two contacts between: opposite sides)
+    want = [1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1]
+    np.testing.assert_array_equal(K.alternating_run_mask(side, has_next), np.array(want, dtype=bool))
+    assert K.alternating_run_mask(np.zeros(0), np.zeros(0, dtype=bool)).size == 0
+    # one mismatch anywhere in the run loses the whole run
+    assert not K.alternating_run_mask(np.array([1, -1, 1, -1, -1, 1]), np.ones(6, dtype=bool)).any()
+
+
+def test_w196_spare_alternation_keeps_a_weak_run_whose_sides_alternate_only():
+    t = np.arange(0, 20, 1 / FS)
+    amp = np.where(t < 10, 2.0, 0.2)
+    walk, sway = np.arange(0.5, 9.6, 0.5), np.arange(12.0, 16.1, 0.5)
+    steps = steps_from_events(t, np.round(np.r_[walk, sway] * FS).astype(int))
+    for sway_hz, kept in ((1.0, True), (0.5, False)):
+        # the pelvis sways once a stride (1 Hz for steps 0.5 s apart): sides alternate contact by contact; at 0.5 Hz
+        # the sway's contacts read L ? R ? L: no alternation
+        acc_ml = np.sin(2 * np.pi * np.where(t < 11, 1.0, sway_hz) * t)
+        imu = SimpleNamespace(t=t, fs=FS, acc_v=amp * np.sin(2 * np.pi * 2.0 * t), acc_ml=acc_ml)
+        assert stand_veto(steps, imu).attrs["n_weak_run"] == sway.size  # W189 alone does not look at the sides
+        out = stand_veto(steps, imu, spare_alternation=True)
+        assert out.attrs["n_weak_run"] == (0 if kept else sway.size), sway_hz
+        np.testing.assert_allclose(out["event_s"].iloc[:walk.size], walk)
+
+
+def test_w196_alternation_end_to_end_where_it_applies_and_the_default_off():
+    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
+    assert OPTION_DEFAULTS["stand_veto"] is False
+    on = track_waist(s, pipeline="waist-pendulum", stand_veto="alternation")
+    assert on.info["options"]["stand_veto"] == "alternation"
+    n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
+    assert 0 <= on.info["n_weak_run_contacts"] <= n_true  # "alternation" only ever keeps more
+    for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
+        a, b = track_waist(s, **kw), track_waist(s, stand_veto="alternation", **kw)
+        np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
+        assert b.info["n_weak_run_contacts"] == 0
+    with pytest.raises(DataError, match="W196") as e:
+        track_waist(s, pipeline="waist-pendulum", stand_veto="Alternation")
+    assert "\n" not in str(e.value)
+    assert "stand_veto" in (unapplied_options_line(WaistParams(options={"stand_veto": "alternation"})) or "")
