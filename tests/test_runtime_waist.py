@@ -228,7 +228,7 @@ def test_export_carries_stairs_length_into_the_waist_bundle_and_the_runtime_appl
 
 def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path, capsys):
     """Decision E107: options of the calibration the live tracker does not apply are named at `export` (and by `run`,
-    from the bundle's warnings); options at their defaults are not."""
+    from the bundle's warnings); E126: options at the live tracker's values are not, the default sit veto is."""
     cal = json.loads(sim["cal"].read_text())
     p = tmp_path / "p.json"
     p.write_text(json.dumps({**cal, "options": {"stairs_climb": True, "sit_veto": "rhythm", "pause_steps": "standing",
@@ -240,9 +240,16 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
     walk = write_session(sim["session"], tmp_path / "walk")
     assert main(["run", str(tmp_path / "b"), str(walk)]) == 0
     assert sum("E107" in ln for ln in capsys.readouterr().err.splitlines()) == 1
-    p.write_text(json.dumps({**cal, "options": {"stairs_length": True, "pause_steps": "standing"}}))
+    # E126: options at the live tracker's values are not named; "sit_veto": false is what it does
+    p.write_text(json.dumps({**cal, "options": {"stairs_length": True, "pause_steps": "standing",
+                                                "sit_veto": False}}))
     assert main(["export", str(p), "--out", str(tmp_path / "b2"), "--frame", _frame_arg(sim["session"])]) == 0
     assert "E107" not in capsys.readouterr().err
+    # E126: without it the offline default "opposite" (W185) is named, once
+    p.write_text(json.dumps({**cal, "options": {"stairs_length": True}}))
+    assert main(["export", str(p), "--out", str(tmp_path / "b3"), "--frame", _frame_arg(sim["session"])]) == 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
+    assert len(err) == 1 and err[0].count('sit_veto="opposite" (the offline default)') == 1
 
 
 def test_stairs_length_climbs_is_named_as_not_applied_live_and_the_runtime_keeps_the_default(sim, stairs3040,

@@ -142,7 +142,13 @@ def test_the_veto_removes_the_contacts_of_a_simulated_sit_to_stand():
     # W146: with the veto off, one line names those contacts and the option; none with it on
     hint = [w for w in off.info["warnings"] if "W146" in w]
     assert len(hint) == 1 and hint[0].startswith(f"{inside(off)} contact(s) lie at a trunk flexion over 25 deg")
-    assert '"sit_veto": "rhythm"' in hint[0] and not [w for w in on.info["warnings"] if "W146" in w]
+    assert "a TUG" in hint[0] and not [w for w in on.info["warnings"] if "W146" in w]  # W145's advice kept
+    # decision E126: the option named is W185's offline default, turned back on; no more W109's "rhythm"
+    assert 'remove "sit_veto": false' in hint[0] and '"sit_veto": "opposite"' in hint[0]
+    assert '"rhythm"' not in hint[0]
+    # a realtime track without the option has no veto (W185): its line says to set "opposite", not to remove false
+    rt = [w for w in track_waist(s, pipeline="waist-pendulum", realtime=True).info["warnings"] if "W146" in w]
+    assert len(rt) == 1 and '{"sit_veto": "opposite"}' in rt[0] and "remove" not in rt[0] and "a TUG" in rt[0]
 
 
 def test_the_veto_changes_no_step_of_an_upright_walk():

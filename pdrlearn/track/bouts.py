@@ -28,9 +28,9 @@ from pdrlearn.track.clinical import (
     CV_BOUT_MIN_STRIDES,
     PAUSE_MIN_S,
     TURN_COUNT_MIN_DEG,
-    _steady_rows,
     bout_rows,
     cv_pct,
+    steady_rows,
     steady_stride_lengths,
     turn_rows,
 )
@@ -239,7 +239,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     pause_dz = np.nan_to_num(st["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in st else np.zeros(len(st))
     angles, first = turn_rows(st)
     turn_row = first[np.abs(angles) >= TURN_COUNT_MIN_DEG]
-    _, steady = _steady_rows(st)  # decision L212: the session CV's strides, each bout's own share of them
+    _, steady = steady_rows(st)  # decision L212: the session CV's strides, each bout's own share of them
     stride_s = st["stride_time_s"].to_numpy(float) if "stride_time_s" in st else np.full(len(st), np.nan)
     stride_len = np.full(len(st), np.nan)
     stride_len[steady] = steady_stride_lengths(st, steady)

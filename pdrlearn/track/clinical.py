@@ -157,15 +157,16 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
     excess = d - float(np.median(d[pair]))
     if "heading_rad" in st:  # decision L119: a turn across the interval takes its time, the rest is standing
         with np.errstate(invalid="ignore"):
-            dh = np.abs(np.diff(np.degrees(_heading(st))))
+            dh = np.abs(np.diff(np.degrees(unwrapped_heading(st))))
             excess = excess - np.where(dh >= PAUSE_MAX_TURN_DEG, dh / TURN_ON_SPOT_MIN_DPS, 0.0)
     return excess, pair & (excess >= min_s)
 
 
-def _heading(steps: pd.DataFrame) -> np.ndarray:
+def unwrapped_heading(steps: pd.DataFrame) -> np.ndarray:
     """Unwrapped heading (rad) of each row, time order: a foot table's summed ``turn_angle_rad`` when every
     valid row has one (a streamed table's plus its ``pivot_rad``, the turn between strides, decision L106), else
-    ``heading_rad``."""
+    ``heading_rad``. Shared by the turn and pause rules here and :mod:`pdrlearn.track.gait`'s walking time (L194),
+    so that they all see the same heading."""
     if "turn_angle_rad" in steps and "unit" in steps and (steps["unit"] == "foot").all():
         turn = steps["turn_angle_rad"].to_numpy(float)
         if "pivot_rad" in steps:  # L106: a streamed stride's own turn leaves out the pivot before it (E51)
@@ -200,7 +201,7 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
     if len(steps) < 2 or "heading_rad" not in steps:
         return steps, []
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
-    h = np.degrees(_heading(st))
+    h = np.degrees(unwrapped_heading(st))
     t = st["start_s"].to_numpy(float)
     ok = _valid(st)
     dh, dt = np.diff(h), np.diff(t)
@@ -332,7 +333,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     if spans:
         t = st["start_s"].to_numpy(float)
         end = st["end_s"].to_numpy(float) if "end_s" in st else np.full(len(st), np.nan)
-        h = np.degrees(_heading(st))
+        h = np.degrees(unwrapped_heading(st))
         with np.errstate(invalid="ignore", divide="ignore"):
             rate = np.abs(np.diff(h)) / np.diff(t)
         # a row's span: its end, else the next row's start (L200's end of a turn), else none (an instant)
@@ -415,10 +416,12 @@ def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     return ok
 
 
-def _steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
+def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
     """A foot table in ``start_s`` order and its steady straight level forward strides with a stride time (module
     docstring, L104 / L188), the strides the stride-time CV is taken over; no row for a table without stride times
-    (a lower-back table: its contact timing scatters too much for a variability, decision L104)."""
+    (a lower-back table: its contact timing scatters too much for a variability, decision L104). Shared by the
+    session's stride-time CV here and :mod:`pdrlearn.track.bouts`' per-bout CV (L212), so both take the same
+    strides."""
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD
 
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
@@ -437,9 +440,9 @@ def _steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
 
 
 def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
-    """The stride times (s) of a foot table's steady straight strides (:func:`_steady_rows`) and the same strides'
+    """The stride times (s) of a foot table's steady straight strides (:func:`steady_rows`) and the same strides'
     swing-onset intervals (``start_s`` to the previous row's, s; decision L113); none for a lower-back table."""
-    st, steady = _steady_rows(steps)
+    st, steady = steady_rows(steps)
     if "stride_time_s" not in st:
         return np.zeros(0), np.zeros(0)
     onset = np.diff(st["start_s"].to_numpy(float), prepend=np.nan)
@@ -453,7 +456,7 @@ def cv_pct(x: np.ndarray) -> float:
 
 
 def steady_stride_lengths(st: pd.DataFrame, steady: np.ndarray) -> np.ndarray:
-    """Decision L212: the stride lengths (m, |``length_m``|) of :func:`_steady_rows`' strides ``steady`` of ``st``
+    """Decision L212: the stride lengths (m, |``length_m``|) of :func:`steady_rows`' strides ``steady`` of ``st``
     (its table in ``start_s`` order), the strides the stride-time CV is taken over; NaN for a row without a length
     or one L94's guard made ``impossible`` (its length is zeroed, no stride's)."""
     if "length_m" not in st:
@@ -486,13 +489,13 @@ def _is_lower_back(steps: pd.DataFrame) -> bool:
 
 
 def pooled_cv(steps: pd.DataFrame, cv_pct: float) -> dict | None:
-    """Decision L196: whether the stride-time CV ``cv_pct`` of ``steps`` (over :func:`_steady_rows`' strides) pools
+    """Decision L196: whether the stride-time CV ``cv_pct`` of ``steps`` (over :func:`steady_rows`' strides) pools
     walking bouts of different rhythm. Per L104 bout (:func:`bout_rows`, bouts.csv's under the default definition)
     holding at least :data:`CV_BOUT_MIN_STRIDES` of those strides: its median stride time and own CV; the
     within-bout CV = 100 x sqrt(sum of (t / its bout's mean - 1)^2 / (n - bouts)) over them. With two or more such
     bouts and ``cv_pct`` above :data:`CV_POOLED_FACTOR` x the within-bout CV: ``{"within_bouts_cv_pct", "bouts":
     [{"bout", "start_s", "n_strides", "median_stride_time_s", "cv_pct"}, ...]}``; None otherwise."""
-    st, steady = _steady_rows(steps)
+    st, steady = steady_rows(steps)
     if not steady.any():
         return None
     s = st["stride_time_s"].to_numpy(float)
@@ -632,7 +635,7 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     out["n_cv_strides"] = int(len(s))
     if len(s) >= CV_MIN_STRIDES and s.mean() > 0:
         cv = float(100.0 * s.std(ddof=1) / s.mean())
-        st, steady = _steady_rows(steps)
+        st, steady = steady_rows(steps)
         length = steady_stride_lengths(st, steady)
         length_cv = cv_pct(length[np.isfinite(length)]) if np.isfinite(length).sum() >= CV_MIN_STRIDES else math.nan
         out["stride_length_cv_pct"] = length_cv if math.isfinite(length_cv) else None  # decision L212

@@ -212,10 +212,10 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
     (median ``speed`` where ``straight``) and ``n_straight_strides``; decision L179: ``n_stair_strides``, the valid
     rows whose |``dz_m``| reaches :data:`pdrlearn.kernels.distance.LEVEL_DZ_M` (none without the column); they are
     never straight (a stair stride's horizontal speed is no walking speed)."""
-    from pdrlearn.track.clinical import _heading, pause_spans
+    from pdrlearn.track.clinical import pause_spans, unwrapped_heading
 
     # decision L194: a turn across a break is walking (L119); the rows in time order, as the pause rule takes them
-    heading = _heading(steps) if "heading_rad" in steps and steps["start_s"].is_monotonic_increasing else None
+    heading = unwrapped_heading(steps) if "heading_rad" in steps and steps["start_s"].is_monotonic_increasing else None
     pieces = walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid,
                             heading_rad=heading)
     wt = float(sum(t1 - t0 for t0, t1 in pieces)) if pieces else None

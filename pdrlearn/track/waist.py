@@ -625,7 +625,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                               keep_between={"alternation": True, "opposite": "opposite"}.get(o["sit_veto"], False))
         n_vetoed = steps.attrs["n_vetoed"]
     else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
-        warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"]))
+        warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"], realtime=realtime))
     n_unvaulted = 0
     if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)

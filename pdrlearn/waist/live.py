@@ -108,24 +108,40 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
 
 
 def unapplied_options_line(p) -> str | None:
-    """Decision E107: the line naming the options of ``p`` (its PARAMS.json ``"options"``) set away from their defaults
-    that the live tracker does not apply (:data:`LIVE_UNAPPLIED_OPTIONS`), else None."""
+    """Decision E107 (E126): the line naming the options of :data:`LIVE_UNAPPLIED_OPTIONS` whose offline value (the
+    PARAMS.json ``"options"`` of ``p``, else the offline default) differs from what the live tracker does
+    (:func:`live_value`), else None: ``sit_veto`` ``"opposite"``, the offline default (W185), is named whether given or
+    not, ``false`` (what the live tracker does) is not."""
     from pdrlearn.track.waist import OPTION_DEFAULTS
 
     given = p.options or {}
-    unapplied = [k for k in LIVE_UNAPPLIED_OPTIONS if k in given and given[k] is not None
-                 and given[k] != OPTION_DEFAULTS[k]]
-    if given.get("stairs_length") == "climbs":  # W156's value reads the whole recording's climbs (W108)
+    offline = {k: given[k] if given.get(k) is not None else OPTION_DEFAULTS[k] for k in LIVE_UNAPPLIED_OPTIONS}
+    live = {k: live_value(k) for k in LIVE_UNAPPLIED_OPTIONS}
+    unapplied = [k for k in LIVE_UNAPPLIED_OPTIONS if offline[k] != live[k]]
+    if given.get("stairs_length") == "climbs":  # W156's value reads the whole recording's climbs (W108): no bound
         unapplied.append("stairs_length")
+        offline["stairs_length"], live["stairs_length"] = "climbs", False
     if given.get("pause_steps") in (True, "progression"):  # W165: live applies "standing" (W134) and false only
-        unapplied.append("pause_steps")
+        unapplied.append("pause_steps")  # live_options turns these into false
+        offline["pause_steps"], live["pause_steps"] = given["pause_steps"], False
     if not unapplied:
         return None
-    named = ", ".join(f"{k}={json.dumps(given[k])}" for k in unapplied)
-    return (f"the PARAMS.json option{'s' if len(unapplied) > 1 else ''} {named} "
-            f"{'are' if len(unapplied) > 1 else 'is'} not applied by the live waist tracker (decision E107): it "
-            f"tracks as with {'their defaults' if len(unapplied) > 1 else 'its default'}; offline `pdrlearn track "
-            f"--params` applies {'them' if len(unapplied) > 1 else 'it'}")
+    named = ", ".join(f"{k}={json.dumps(offline[k])}{'' if given.get(k) is not None else ' (the offline default)'}"
+                      for k in unapplied)
+    as_live = ", ".join(f"{k}={json.dumps(live[k])}" for k in unapplied)
+    many = len(unapplied) > 1
+    return (f"the option{'s' if many else ''} {named} {'are' if many else 'is'} not applied by the live waist tracker "
+            f"(decision E107): it tracks as with {as_live}; offline `pdrlearn track` applies "
+            f"{'them' if many else 'it'}")
+
+
+def live_value(option: str):
+    """Decision E126: the value of the option ``option`` of :data:`LIVE_UNAPPLIED_OPTIONS` that the live tracker
+    tracks as: no sit veto (``False``, W185's ``REALTIME_SIT_VETO``, where the offline default is ``"opposite"``),
+    else the option's offline default (E107)."""
+    from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
+
+    return REALTIME_SIT_VETO if option == "sit_veto" else OPTION_DEFAULTS[option]
 
 
 class _HeldSamples:

@@ -172,16 +172,21 @@ def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = Fal
     return drop_contacts(steps, ~veto, "n_vetoed")
 
 
-def sit_veto_hint(n_flexed: int) -> list[str]:
+def sit_veto_hint(n_flexed: int, *, realtime: bool = False) -> list[str]:
     """Decision W146: one line when ``n_flexed`` contacts (those :func:`transfer_veto` would drop) lie at a
     trunk-flexion event while the veto is off (a chair rise reads as a 0 m step and splits a TUG into bouts with
-    its seated time as pauses); none without such contacts."""
+    its seated time as pauses, W145); none without such contacts. Decision E126: the option it names is W185's
+    offline default ``"opposite"``: an offline track has it unless ``sit_veto`` is false, so the line says to turn
+    it back on; a ``realtime`` track applies a veto only when one is set (W185)."""
     if not n_flexed:
         return []
+    fix = ("to drop them put \"options\": {\"sit_veto\": \"opposite\"} in the --params JSON (a realtime track "
+           "applies no sit veto unless one is set)" if realtime else
+           "to drop them turn the default sit veto back on: remove \"sit_veto\": false from the --params JSON's "
+           "\"options\" (or put \"sit_veto\": \"opposite\" there)")
     return [f"{n_flexed} contact(s) lie at a trunk flexion over {TRANSFER_PEAK_DEG:g} deg (a sit-to-stand or a bend): "
             "a chair rise reads as a 0 m step and splits the walk into bouts with the seated time as pauses (a TUG); "
-            "to drop them put \"options\": {\"sit_veto\": \"rhythm\"} in the --params JSON (decisions W104, "
-            "W109, W146)"]
+            f"{fix} (decisions W104, W146, W185)"]
 
 
 def tilt_gate(steps: pd.DataFrame, imu: WaistIMU, max_tilt_deg: float = MAX_TILT_DEG) -> pd.DataFrame:
