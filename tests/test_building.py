@@ -111,8 +111,8 @@ def test_a_disturbed_compass_warns_on_the_offline_foot_track():
 
 def test_compass_fallback_follows_the_waist_gyroscope_when_l182_warns():
     """Decision L226: with `compass_fallback=True` a fused track whose L182 line fires (30 uT) follows the waist
-    gyroscope's heading turned by one constant offset, says so instead of naming `--streaming`, and ends nearer
-    than the compass-following default; a track without the line (3 uT) is unchanged; off by default until L227."""
+    gyroscope's heading turned by one constant offset, says so instead of naming `--streaming`; a track
+    without the line (3 uT) is unchanged; off by default until L227."""
     from pdrlearn.orient.filters import WaistHeading
     from pdrlearn.track.plasys import COMPASS_GYRO_FALLBACK, _stride_heading
 
