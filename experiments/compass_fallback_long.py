@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.io.plasys import read_session
+from pdrlearn.track.evaluate import STOREY_HEIGHT_M, track_summary
 from pdrlearn.track.plasys import track_plasys
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -34,12 +35,13 @@ def simulate(out: Path, *args: str) -> None:
                    capture_output=True, env=env)
 
 
-def pair(folder: Path, **kw) -> tuple[dict, dict, bool]:
+def pair(folder: Path, storey_height_m: float = STOREY_HEIGHT_M) -> tuple[dict, dict, bool]:
     s = read_session(folder)
-    a = track_plasys(s, **kw)
-    b = track_plasys(s, compass_fallback=True, **kw)
+    a = track_plasys(s)
+    b = track_plasys(s, compass_fallback=True)
     used = bool((b.info.get("compass_check") or {}).get("gyro_fallback"))
-    return a.summary(s), b.summary(s), used
+    return (track_summary(a, s, storey_height_m=storey_height_m), track_summary(b, s, storey_height_m=storey_height_m),
+            used)
 
 
 def main() -> None:
