@@ -105,6 +105,9 @@ def test_a_disturbed_compass_warns_on_the_offline_foot_track():
         r = track_plasys(s)
         lines = [w for w in r.info["warnings"] if "decision L182" in w]
         assert (r.info["compass_check"]["median_deg"] > COMPASS_DISAGREE_DEG) == warns
+        assert len(lines) == int(warns) and all("decision L226" in w for w in lines)  # L226: the track turns to
+        # the waist gyroscope instead of naming `--streaming` / `--units foot`
+        lines = [w for w in track_plasys(s, compass_fallback=False).info["warnings"] if "decision L182" in w]
         assert len(lines) == int(warns) and all("--streaming" in w and "--units foot" in w for w in lines)
     assert track_plasys(s, streaming=True).info.get("compass_check") is None
 
@@ -112,7 +115,7 @@ def test_a_disturbed_compass_warns_on_the_offline_foot_track():
 def test_compass_fallback_follows_the_waist_gyroscope_when_l182_warns():
     """Decision L226: with `compass_fallback=True` a fused track whose L182 line fires (30 uT) follows the waist
     gyroscope's heading turned by one constant offset, says so instead of naming `--streaming`; a track
-    without the line (3 uT) is unchanged; off by default until L227."""
+    without the line (3 uT) is unchanged; the default since L227."""
     from pdrlearn.orient.filters import WaistHeading
     from pdrlearn.track.plasys import COMPASS_GYRO_FALLBACK, _stride_heading
 

@@ -557,10 +557,10 @@ def fit_waist_hard_iron(session: Session, strides: pd.DataFrame, psi: np.ndarray
 #: hard-iron model, above which an offline track that reads the compass warns: 20 deg moves a track sideways by a
 #: third of the distance, 2x the medians of default (3 uT, S33) simulated sessions (up to 9.1 deg)
 COMPASS_DISAGREE_DEG = 20.0
-#: decision L226 (candidate; its adoption rule and measurement are in docs/decisions/localization.md, L227): when
-#: L182's check warns, the fused heading's relative part is the waist gyroscope's heading (not the foot's) and its
-#: offset to the compass is one constant per stretch (not L17's +-60 s window); False = L17 as before
-COMPASS_GYRO_FALLBACK = False
+#: decision L226 (adopted by its rule, L227; docs/decisions/localization.md): when L182's check warns, the fused
+#: heading's relative part is the waist gyroscope's heading (not the foot's) and its offset to the compass is one
+#: constant per stretch (not L17's +-60 s window); False = L17 as before
+COMPASS_GYRO_FALLBACK = True
 
 
 def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
