@@ -105,5 +105,31 @@ def test_a_disturbed_compass_warns_on_the_offline_foot_track():
         r = track_plasys(s)
         lines = [w for w in r.info["warnings"] if "decision L182" in w]
         assert (r.info["compass_check"]["median_deg"] > COMPASS_DISAGREE_DEG) == warns
+        assert len(lines) == int(warns) and all("decision L226" in w for w in lines)  # L226: the track turns to
+        # the waist gyroscope instead of naming `--streaming` / `--units foot`
+        lines = [w for w in track_plasys(s, compass_fallback=False).info["warnings"] if "decision L182" in w]
         assert len(lines) == int(warns) and all("--streaming" in w and "--units foot" in w for w in lines)
     assert track_plasys(s, streaming=True).info.get("compass_check") is None
+
+
+def test_compass_fallback_follows_the_waist_gyroscope_when_l182_warns():
+    """Decision L226: with `compass_fallback=True` a fused track whose L182 line fires (30 uT) follows the waist
+    gyroscope's heading turned by one constant offset, says so instead of naming `--streaming`; a track
+    without the line (3 uT) is unchanged; the default since L227."""
+    from pdrlearn.orient.filters import WaistHeading
+    from pdrlearn.track.plasys import COMPASS_GYRO_FALLBACK, _stride_heading
+
+    route = parse_route(", ".join(["straight:15, curve:-90:1"] * 4))
+    s = simulate_path(route, UserProfile.from_seed(2972), seed=2972, mag_disturbance_ut=30.0)
+    a, b = track_plasys(s, compass_fallback=False), track_plasys(s, compass_fallback=True)
+    assert a.info["compass_check"]["gyro_fallback"] is False and b.info["compass_check"]["gyro_fallback"] is True
+    gyro = _stride_heading(WaistHeading(use_magnetometer=False).fit_session(s), b.steps)
+    d = np.angle(np.exp(1j * (b.steps["heading_rad"].to_numpy(float) - gyro)))
+    assert np.ptp(d) < 1e-6  # one constant offset
+    line = [w for w in b.info["warnings"] if "decision L182" in w]
+    assert len(line) == 1 and "decision L226" in line[0] and "--streaming" not in line[0]
+    quiet = simulate_path(route, UserProfile.from_seed(2972), seed=2972, mag_disturbance_ut=3.0)
+    c, e = track_plasys(quiet), track_plasys(quiet, compass_fallback=True)
+    assert e.info["compass_check"]["gyro_fallback"] is False
+    assert np.array_equal(c.steps["heading_rad"].to_numpy(), e.steps["heading_rad"].to_numpy())
+    assert (track_plasys(s).info["compass_check"]["gyro_fallback"] is True) == COMPASS_GYRO_FALLBACK

@@ -557,6 +557,10 @@ def fit_waist_hard_iron(session: Session, strides: pd.DataFrame, psi: np.ndarray
 #: hard-iron model, above which an offline track that reads the compass warns: 20 deg moves a track sideways by a
 #: third of the distance, 2x the medians of default (3 uT, S33) simulated sessions (up to 9.1 deg)
 COMPASS_DISAGREE_DEG = 20.0
+#: decision L226 (adopted by its rule, L227; docs/decisions/localization.md): when L182's check warns, the fused
+#: heading's relative part is the waist gyroscope's heading (not the foot's) and its offset to the compass is one
+#: constant per stretch (not L17's +-60 s window); False = L17 as before
+COMPASS_GYRO_FALLBACK = True
 
 
 def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
@@ -747,7 +751,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
                  hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
                  drop_neighbour: bool | None = None,
-                 waist_bias: bool | None = None,
+                 waist_bias: bool | None = None, compass_fallback: bool | None = None,
                  **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -815,6 +819,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     hard_iron_fit : heading "fused": fit the waist magnetometer's horizontal hard-iron offset on the walk when
         it turns enough (decision L84, :func:`fit_waist_hard_iron`; None = :data:`HARD_IRON_FIT`); the fit
         is in ``info["hard_iron"]``
+    compass_fallback : heading "fused": when L182's compass check warns, follow the waist gyroscope's heading
+        aligned to the compass by one constant offset per stretch (decision L226; None =
+        :data:`COMPASS_GYRO_FALLBACK`); ``info["compass_check"]["gyro_fallback"]`` says whether it applied
     waist_bias : heading "waist"/"fused": when W125's bias warning fires, remove the waist gyroscope's vertical-rate
         bias read at its standstills (decision W126; None = :data:`WAIST_BIAS_AT_REST`)
     contacts : streaming: give each stride its initial contact (``event_s``: the force sensors' stance onset, else
@@ -1062,7 +1069,18 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
             work, strides, relative, ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD))
         warnings += [compass_line] if compass_line else []
-        if hsrc == "fused":
+        fallback = (hsrc == "fused" and compass_line is not None
+                    and (COMPASS_GYRO_FALLBACK if compass_fallback is None else compass_fallback))
+        if compass_info is not None and hsrc == "fused":
+            compass_info["gyro_fallback"] = bool(fallback)
+        if fallback:  # decision L226: the compass's place-dependent error is not followed stretch by stretch
+            gyro = WaistHeading(use_magnetometer=False, yaw_bias=yaw_bias).fit_session(work)
+            head = fuse_by_segment(_stride_heading(gyro, strides), head, strides["start_s"].to_numpy(float),
+                                   strides["end_s"].to_numpy(float), foot_gaps, tau_s=np.inf)
+            warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
+                "; this track follows the waist gyroscope's heading, turned to the compass by one constant offset "
+                "(decision L226)")
+        elif hsrc == "fused":
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s)
         head = head + side_extra  # decision L219 (0 without a sideways run)
