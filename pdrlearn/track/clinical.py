@@ -25,7 +25,8 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   it (the stride's displacement direction of a turn on the spot is short and noisy), else ``heading_rad``.
 * **stride-time variability** (foot tracks): ``stride_time_cv_pct`` = 100 x SD / mean (SD with n - 1) of the
   stride times (initial contact to initial contact, L66) of the steady straight strides: a level (|``dz_m``|
-  under 0.10 m, L179) forward (``direction`` not backward, where a model gave it) stride turning under 15 deg
+  under 0.10 m, L179) forward (``direction`` not backward, where a model gave it; no side step of L219's
+  runs, the foot table's ``sideways`` column, L228) stride turning under 15 deg
   (L79, L188) with a stride time, not next to a pause, whose previous and next strides are such strides too
   (the strides into and out of a turn or a stop slow down; a stride time across a short stop is no rhythm);
   None with fewer than :data:`CV_MIN_STRIDES` of them. None on the lower back: its contacts scatter (on
@@ -407,9 +408,9 @@ def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     without a model, counts as forward). A stair
     stride or a backward stride has its own rhythm (the trial route's level ~1.0 s, stairs down 0.85 s, the first
     backward stride 2.0 s), so pooling them is no steady walker's variability."""
-    from pdrlearn.track.gait import stair_rows
+    from pdrlearn.track.gait import sideways_rows, stair_rows
 
-    ok = ~stair_rows(steps)
+    ok = ~stair_rows(steps) & ~sideways_rows(steps)  # decision L228: a side step is no forward stride
     if "direction" in steps:
         ok &= (steps["direction"].astype(str) != "backward").to_numpy()  # empty without a model: not backward
     return ok
