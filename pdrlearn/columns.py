@@ -175,6 +175,8 @@ SESSIONS: tuple[Column, ...] = (
                                              "lower_back (L104), too_few_strides (L215: with the straight strides "
                                              "the level criterion dropped) or contact_scatter (L113, an option), "
                                              "and a reason; L214); empty in sessions.csv"),
+    ("stride_time_cv_withheld_cause", _ID, "text", "stride_time_cv_withheld's cause: lower_back, too_few_strides or "
+                                                   "contact_scatter; empty when the CV is given (L230)"),
     ("stride_time_cv_within_bouts_pct", "%", "number", "foot: when the CV pools walking bouts of different rhythm "
                                                        "(L196), the CV of the strides about their own bout's mean; "
                                                        "empty otherwise"),
