@@ -28,5 +28,7 @@ def test_calibration_values_silence_what_they_replace():
     cal = default_params(Session(name="c", meta={"height_m": 1.8, "sensor_height_m": 1.0}))[0].to_dict()
     cal["source"] = "calibrated"
     assert _kinds(_lines(cal)) == set()
+    pendulum = {"leg_m": 1.0, "k": 1.2, "f_m": 0.0, "source": "calibrated", "pipeline": "waist-pendulum"}
+    assert _kinds(_lines(pendulum)) == set()  # its unused frequency line filled in: no line, as before
     leg_only = {"leg_m": 0.95}  # a leg length given, the step-length line still the height's default
     assert _kinds(_lines(leg_only)) == {"calibration", "height"}

@@ -328,14 +328,17 @@ def resolve_params(session: Session, params) -> tuple[WaistParams, list[str]]:
 
 def _default_lines(warnings: list[str], user: WaistParams, filled: set[str]) -> list[str]:
     """Decision B241: :func:`default_params`' lines that still hold for parameters ``user`` completed with the
-    defaults in ``filled`` (the fields it left undefined): "no per-user calibration" unless ``user`` is a
-    calibration (``source`` "calibrated"), the height line while a step-length line came from the height (``a_walk``
-    / ``b_walk`` / ``a_run`` / ``b_run`` / ``leg_m`` filled), the leg-length line while ``leg_m`` was filled. A file
-    holding only ``"options"`` keeps all three: the track is as uncalibrated as without it."""
+    defaults in ``filled`` (the fields it left undefined). None for a calibration (``source`` "calibrated", as
+    before: it holds the values its pipeline uses and fills the others, unused). Otherwise "no per-user
+    calibration", the height line while a value derived from the height (``a_walk`` / ``b_walk`` / ``a_run`` /
+    ``b_run`` / ``leg_m``) was filled and the leg-length line while ``leg_m`` was. A file holding only ``"options"``
+    keeps all three: the track is as uncalibrated as without it."""
+    if user.source == "calibrated":
+        return []
     keep = []
     for w in warnings:
         if w.startswith("no per-user calibration"):
-            ok = user.source != "calibrated"
+            ok = True
         elif w.startswith("meta.json gives no subject height"):
             ok = bool(filled & {"a_walk", "b_walk", "a_run", "b_run", "leg_m"})
         elif w.startswith(NO_SENSOR_HEIGHT):
