@@ -1104,6 +1104,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             table[c] = classes[c].to_numpy(float)
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
+    table["sideways"] = _sideways_rows(lateral, disp)  # decision L228: no steady / straight stride for the CVs
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)
@@ -1115,7 +1116,6 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
                      turn_valid=~in_gap)  # L109: a stride moved 0 m by the guard keeps its measured turn
     table["impossible"] = impossible  # decision L97: the strides L94 moved 0 m (no gait values)
-    table["sideways"] = _sideways_rows(lateral, disp)  # decision L228: no steady / straight stride for the CVs
     table["gap_s"] = longest_gap_in(table["start_s"], table["end_s"], foot_gaps)  # decision L67 (run's E37)
     table = table[[c for c in table.columns if c != "unit"] + ["unit"]]  # gap_s before unit, as run's steps.csv
     head = np.asarray(head, dtype=float)
