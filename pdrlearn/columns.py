@@ -176,6 +176,8 @@ SESSIONS: tuple[Column, ...] = (
                                              "lower_back (L104), too_few_strides (L215: with the straight strides "
                                              "the level criterion dropped) or contact_scatter (L113, an option), "
                                              "and a reason; L214); empty in sessions.csv"),
+    ("stride_time_cv_withheld_cause", _ID, "text", "stride_time_cv_withheld's cause: lower_back, too_few_strides or "
+                                                   "contact_scatter; empty when the CV is given (L230)"),
     ("stride_time_cv_within_bouts_pct", "%", "number", "foot: when the CV pools walking bouts of different rhythm "
                                                        "(L196), the CV of the strides about their own bout's mean; "
                                                        "empty otherwise"),
@@ -187,9 +189,11 @@ SESSIONS: tuple[Column, ...] = (
     ("turn_count_min_deg", "deg", "number", "the smallest turn turn_count counts"),
     ("median_turn_duration_s", "s", "number", "median duration of turns.csv's turns (L200); empty without a turn"),
     ("median_turn_angle_deg", "deg", "number", "median absolute angle of turns.csv's turns (L200)"),
-    ("median_turn_peak_rate_dps", "deg/s", "number", "median peak turning rate of turns.csv's turns (L200)"),
+    ("median_turn_peak_rate_dps", "deg/s", "number", "median peak turning rate of turns.csv's turns (L200, L229)"),
     ("turn_time_s", "s", "number", "turns.csv's durations summed (L200)"),
-    ("median_turn_mean_rate_dps", "deg/s", "number", "median mean turning rate of turns.csv's turns (L209)"),
+    ("median_turn_mean_rate_dps", "deg/s", "number", "median mean turning rate of turns.csv's turns (L209; foot: "
+                                                     "90 % of the angle over its 5-95 % timing, lower back: the whole "
+                                                     "angle over its yaw-rate timing, L229)"),
     ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers (transfers.csv, W182); empty on a foot "
                                            "track (a foot unit does not see the trunk)"),
     ("n_stand_to_sit", "count", "integer", "lower back: stand-to-sit transfers (W182); empty on a foot track"),
@@ -284,12 +288,18 @@ TURNS: tuple[Column, ...] = (
                              "a yaw-rate turn: its end, first sample under 5 deg/s after it (L210, L211)"),
     ("duration_s", "s", "number", "end_s - start_s"),
     ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181)"),
-    ("peak_rate_dps", "deg/s", "number", "largest |heading change| / time between two of its rows' starts"),
+    ("peak_rate_dps", "deg/s", "number", "largest rate of the turn's heading with each row's change spread over "
+                                         "that row's span, the heading start_s / end_s are read on (L229; a "
+                                         "foot turn's mean rate is never above it); a lower-back turn timed by its "
+                                         "yaw rate (L210): |heading change| / time between two of its rows' starts "
+                                         "(L200), about half the true peak"),
     ("n_rows", "count", "integer", "rows of steps.csv the turn spans"),
     ("bout", "index", "integer", "the bouts.csv bout holding the turn; empty outside every bout"),
-    ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s (90 % of |angle_deg|; all of it "
-                                         "for a turn timed by the yaw rate, L210) / duration_s (L209); empty for a "
-                                         "turn of no duration"),
+    ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s / duration_s (L209); per unit "
+                                         "(L229): a foot track's turn (5-95 % heading timing, L208) 90 % of "
+                                         "|angle_deg|; a lower-back turn timed by its yaw rate (L210) all of "
+                                         "|angle_deg| over that span, longer than a 5-95 % one, so it reads lower "
+                                         "than a foot track's for the same turn; empty for a turn of no duration"),
 )
 
 #: decision W182: a lower-back track's transfers.csv (a foot track writes none)

@@ -102,14 +102,17 @@ def step_scores_frame(scores):
 
 def summary_row(summary: Mapping) -> dict:
     """One track's summary.json dict as a sessions.csv row (docs/columns.md): its scalar entries as they are,
-    ``final_position`` as ``final_x_m``, ``final_y_m``, ``final_z_m``, and ``method`` from ``info``; nested entries
-    (``info``, ``bout_definition``) are left out. Shared by track-all's sessions.csv and :func:`summary_frame`."""
+    ``final_position`` as ``final_x_m``, ``final_y_m``, ``final_z_m``, ``stride_time_cv_withheld``'s ``cause`` as
+    ``stride_time_cv_withheld_cause`` (decision L230) and ``method`` from ``info``; other nested entries (``info``,
+    ``bout_definition``) are left out. Shared by track-all's sessions.csv and :func:`summary_frame`."""
     row: dict = {}
     for k, v in summary.items():
         if k == "final_position" and isinstance(v, Mapping):
             row.update({f"final_{a}_m": v.get(a) for a in ("x", "y", "z")})
         elif v is None or isinstance(v, str | int | float | bool):
             row[k] = v
+        if k == "stride_time_cv_withheld":  # decision L230: the cause, so "lower back" and "too few" differ
+            row["stride_time_cv_withheld_cause"] = v.get("cause") if isinstance(v, Mapping) else None
     row["method"] = (summary.get("info") or {}).get("method")
     return row
 

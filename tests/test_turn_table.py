@@ -20,6 +20,7 @@ from pdrlearn.track.clinical import (
     TURN_TABLE_COLUMNS,
     TURN_TIMING,
     heading_crossings,
+    spread_peak_rate,
     turn_rows,
     turn_summary,
     turn_table,
@@ -49,7 +50,8 @@ def test_one_row_per_counted_turn_with_its_rows_times():
     # the left turn sums rows 4-6: from row 4's start (4 s) to row 6's end (6.8 s)
     assert tt.loc[0, ["start_s", "end_s", "duration_s"]].tolist() == pytest.approx([4.0, 6.8, 2.8])
     assert tt.loc[1, ["start_s", "end_s"]].tolist() == pytest.approx([11.0, 12.8])
-    assert tt["peak_rate_dps"].tolist() == pytest.approx([60.0, 45.0])
+    # decision L229: each row's change over its own 0.8 s span (L200's row-to-row 60 / 45 deg/s over 1 s before)
+    assert tt["peak_rate_dps"].tolist() == pytest.approx([75.0, 56.25])
     assert tt["n_rows"].tolist() == [3, 2]
     assert tt["bout"].isna().all()  # no bouts table given
     s = turn_summary(tt)
@@ -149,3 +151,20 @@ def test_run_writes_turns_csv_as_track_streaming(tug, tmp_path):
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
     assert summary["median_turn_duration_s"] == pytest.approx(tt["duration_s"].iloc[0])
     assert not (tmp_path / "r" / "transfers.csv").exists()
+
+
+def test_the_peak_rate_is_the_spread_headings_and_never_below_the_mean():
+    """Decision L229 (trial tour finding 2): a slow turn on the spot after a stand - its first turning stride's row
+    starts 2.5 s after the last straight one - read a row-to-row peak (L200) below the 5-95 % mean rate (L208)."""
+    start = np.array([0.0, 1.3, 2.6, 3.9, 6.4, 7.75, 9.2, 10.5, 11.8])
+    end = np.r_[start[1:], 13.1]
+    end[3] = 5.3  # the stand before the turn: no row
+    dh = np.radians([0.0, 0.0, 0.0, 0.0, 120.0, 60.0, 0.0, 0.0, 0.0])
+    st = pd.DataFrame({"start_s": start, "end_s": end, "heading_rad": np.cumsum(dh), "length_m": 1.0,
+                       "unit": "foot", "turn_angle_rad": dh})
+    tt = turn_table(st)
+    assert len(tt) == 1 and tt.loc[0, "angle_deg"] == pytest.approx(180.0)
+    assert tt.loc[0, "peak_rate_dps"] == pytest.approx(120.0 / 1.35)  # row 4's change over its own span
+    assert tt.loc[0, "peak_rate_dps"] >= tt.loc[0, "mean_rate_dps"]
+    assert spread_peak_rate([30.0, 30.0], [0.0, 0.5], [1.0, 1.5]) == pytest.approx(60.0)  # overlaps add up
+    assert np.isnan(spread_peak_rate([30.0], [1.0], [1.0]))  # an instant has no rate

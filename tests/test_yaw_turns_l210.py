@@ -69,8 +69,12 @@ def test_yaw_timing_takes_the_matching_yaw_rate_turn():
     tt = turn_table(st, timing="yaw", yaw_turns=yaw)
     assert tt.loc[0, ["start_s", "end_s", "duration_s"]].tolist() == pytest.approx([6.3, 8.7, 2.4])
     assert tt.loc[0, "mean_rate_dps"] == pytest.approx(90.0 / 2.4)  # the whole angle: the boundaries hold it
-    same = ["turn", "angle_deg", "peak_rate_dps", "n_rows", "bout"]
+    same = ["turn", "angle_deg", "n_rows", "bout"]
     pd.testing.assert_frame_equal(tt[same], head[same])
+    # decision L229: a yaw-timed turn keeps L200's row-to-row peak; the heading-timed one the spread heading's
+    h = np.degrees(st["heading_rad"].to_numpy(float))
+    assert tt.loc[0, "peak_rate_dps"] == pytest.approx(np.max(np.abs(np.diff(h)) / np.diff(st["start_s"])))
+    assert head.loc[0, "peak_rate_dps"] >= head.loc[0, "mean_rate_dps"]
     # no match: L208's times
     for none in (None, [], _yaw((11.0, 12.0, 11.5, 95.0)), _yaw((6.2, 8.8, 7.4, -120.0))):
         pd.testing.assert_frame_equal(turn_table(st, timing="yaw", yaw_turns=none), head)

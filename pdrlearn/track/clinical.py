@@ -25,7 +25,8 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   it (the stride's displacement direction of a turn on the spot is short and noisy), else ``heading_rad``.
 * **stride-time variability** (foot tracks): ``stride_time_cv_pct`` = 100 x SD / mean (SD with n - 1) of the
   stride times (initial contact to initial contact, L66) of the steady straight strides: a level (|``dz_m``|
-  under 0.10 m, L179) forward (``direction`` not backward, where a model gave it) stride turning under 15 deg
+  under 0.10 m, L179) forward (``direction`` not backward, where a model gave it; no side step of L219's
+  runs, the foot table's ``sideways`` column, L228) stride turning under 15 deg
   (L79, L188) with a stride time, not next to a pause, whose previous and next strides are such strides too
   (the strides into and out of a turn or a stop slow down; a stride time across a short stop is no rhythm);
   None with fewer than :data:`CV_MIN_STRIDES` of them. None on the lower back: its contacts scatter (on
@@ -274,6 +275,22 @@ def heading_crossings(dh: np.ndarray, start: np.ndarray, end: np.ndarray, angle:
     return out[0], out[1]
 
 
+def spread_peak_rate(dh: np.ndarray, start: np.ndarray, end: np.ndarray) -> float:
+    """Decision L229: the largest |rate| (deg/s) of :func:`heading_crossings`' heading - the changes ``dh`` (deg),
+    each spread linearly over ``[start, end]`` - between two of its knots (overlapping spans add up; an instant,
+    ``end <= start``, has no rate); NaN when no change has a span. A turn's mean rate over any part of that heading
+    is never above it."""
+    dh, start, end = (np.asarray(a, float) for a in (dh, start, end))
+    lin = end > start
+    if not lin.any():
+        return math.nan
+    dh, start, end = dh[lin], start[lin], end[lin]
+    knots = np.unique(np.r_[start, end])
+    mid = 0.5 * (knots[:-1] + knots[1:])
+    cover = (start[None, :] <= mid[:, None]) & (mid[:, None] < end[None, :])
+    return float(np.abs((cover * (dh / (end - start))[None, :]).sum(axis=1)).max())
+
+
 #: decision L210: a lower-back track's turns re-timed by the El-Gohary turn of its yaw rate (``info["yaw_turns"]``);
 #: L211: L210's rule met (fresh users 3900-3939, median |start / end / duration error| waist-pendulum 2.62 / 1.31 /
 #: 1.33 -> 0.45 / 0.43 / 0.88 s, waist-pll 3.23 / 2.50 / 1.77 -> 0.78 / 1.04 / 0.83 s; 13 mobgap INDIP turns,
@@ -307,8 +324,11 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
-    their difference, ``angle_deg`` the signed angle (left +), ``peak_rate_dps`` the largest |heading change| /
-    time between the starts of two of its rows (the rate :data:`TURN_RATE_MIN_DPS` is judged on), ``n_rows`` the
+    their difference, ``angle_deg`` the signed angle (left +), ``peak_rate_dps`` the largest rate of its heading with
+    each row's change spread over that row's span, :func:`heading_crossings`' heading (decision L229; L200 took
+    |heading change| / time between two rows' starts, the rate :data:`TURN_RATE_MIN_DPS` is judged on, and read
+    below the mean on slow foot turns on the spot) - except a turn timed by the yaw rate (``"yaw"``), which keeps
+    L200's (a lower-back row's spread change overshoots the true peak), ``n_rows`` the
     rows it spans and ``bout`` the number of the ``bouts`` row (bouts.csv, L124) whose span holds the turn's first
     turning row (empty outside every bout, or without ``bouts``). The times are the rows' times: a foot row's
     ``start_s`` is the rest before its stride, a lower-back row's its initial contact. ``mean_rate_dps`` (decision
@@ -335,7 +355,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         end = st["end_s"].to_numpy(float) if "end_s" in st else np.full(len(st), np.nan)
         h = np.degrees(unwrapped_heading(st))
         with np.errstate(invalid="ignore", divide="ignore"):
-            rate = np.abs(np.diff(h)) / np.diff(t)
+            rate = np.abs(np.diff(h)) / np.diff(t)  # L200's row-to-row rate (a yaw-timed turn's peak, L229)
         # a row's span: its end, else the next row's start (L200's end of a turn), else none (an instant)
         nxt = np.r_[t[1:], t[-1]]
         span_end = np.where(np.isfinite(end) & (end > t), end, np.maximum(nxt, t))
@@ -360,14 +380,17 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                 (t0, t1), share = timed, 1.0  # El-Gohary's boundaries hold the whole turn
             elif ends_after_last:  # decision L205: without the yaw rate its end is unknown
                 t1 = np.nan
-            r = rate[a:b]
-            if ends_after_last:  # L205: the last interval's rate holds the final stop's rotation
-                r = np.where(np.arange(a, b) == len(t) - 2, np.nan, r)
-            r = r[np.isfinite(r)]
+            if timed is None:  # decision L229: the peak of the heading L208 spreads over the rows' spans (L205's
+                j = np.arange(first, last)  # last row: an instant)
+                peak = spread_peak_rate(np.diff(h)[j], t[j + 1], span_end[j + 1])
+            else:  # L229: a turn timed by the yaw rate keeps L200's peak (the lower back's spread rows overshoot)
+                r = rate[a:b]
+                r = r[np.isfinite(r)]
+                peak = float(r.max()) if r.size else np.nan
             tf = t[a + 1]
             inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
             rows.append({"turn": len(rows) + 1, "start_s": t0, "end_s": t1, "duration_s": t1 - t0,
-                         "angle_deg": angle, "peak_rate_dps": float(r.max()) if r.size else np.nan,
+                         "angle_deg": angle, "peak_rate_dps": peak,
                          "n_rows": int(last - first), "bout": int(b_no[inside[0]]) if inside.size else pd.NA,
                          # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
                          "mean_rate_dps": share * abs(angle) / (t1 - t0) if t1 > t0 else np.nan})
@@ -408,9 +431,9 @@ def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     without a model, counts as forward). A stair
     stride or a backward stride has its own rhythm (the trial route's level ~1.0 s, stairs down 0.85 s, the first
     backward stride 2.0 s), so pooling them is no steady walker's variability."""
-    from pdrlearn.track.gait import stair_rows
+    from pdrlearn.track.gait import sideways_rows, stair_rows
 
-    ok = ~stair_rows(steps)
+    ok = ~stair_rows(steps) & ~sideways_rows(steps)  # decision L228: a side step is no forward stride
     if "direction" in steps:
         ok &= (steps["direction"].astype(str) != "backward").to_numpy()  # empty without a model: not backward
     return ok

@@ -205,13 +205,21 @@ def stair_rows(steps: pd.DataFrame) -> np.ndarray:
     return np.nan_to_num(dz, nan=0.0) >= LEVEL_DZ_M
 
 
+def sideways_rows(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L228: the foot rows L219's rule found in a side-stepping run (the steps table's ``sideways``
+    column); all False without it (a lower-back table, a streamed foot table, a table from before L228)."""
+    if "sideways" not in steps:
+        return np.zeros(len(steps), bool)
+    return steps["sideways"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy(bool)
+
+
 def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight) -> None:
     """``walking_time_s``, ``gait_speed_mps`` (the rows' |length| summed over ``valid`` rows / walking time),
     ``walking_time_no_pauses_s`` and ``walking_speed_mps`` (the same distance / the walking time outside the
     pauses of :func:`pdrlearn.track.clinical.pause_spans`, decision L110), ``median_speed_straight_mps``
     (median ``speed`` where ``straight``) and ``n_straight_strides``; decision L179: ``n_stair_strides``, the valid
     rows whose |``dz_m``| reaches :data:`pdrlearn.kernels.distance.LEVEL_DZ_M` (none without the column); they are
-    never straight (a stair stride's horizontal speed is no walking speed)."""
+    never straight (a stair stride's horizontal speed is no walking speed), nor is a side step (decision L228)."""
     from pdrlearn.track.clinical import pause_spans, unwrapped_heading
 
     # decision L194: a turn across a break is walking (L119); the rows in time order, as the pause rule takes them
@@ -228,7 +236,8 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
         out["walking_speed_mps"] = dist / moving if moving > 0 else None
     stair = stair_rows(steps) & np.asarray(valid, dtype=bool)  # decision L179
     out["n_stair_strides"] = int(stair.sum())
-    sp = np.where(np.asarray(straight, dtype=bool) & ~stair, np.asarray(speed, dtype=float), np.nan)
+    sp = np.where(np.asarray(straight, dtype=bool) & ~stair & ~sideways_rows(steps),  # decision L228: no side step
+                  np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
     out["median_speed_straight_mps"] = _median(sp)
 

@@ -721,6 +721,18 @@ GAP_STRIDE_HEIGHT = True
 GATED_LEVEL_DZ = True
 
 
+def _sideways_rows(lateral: np.ndarray, disp: np.ndarray) -> np.ndarray:
+    """Decision L228: the strides of L219's sideways runs (:func:`pdrlearn.kernels.sideways.sideways_runs` over each
+    stride's travel angle ``lateral`` rad from the foot's facing and its horizontal displacement ``disp``), the
+    steps table's ``sideways`` column: a side step has its own rhythm and length, no steady walker's stride."""
+    from pdrlearn.kernels.sideways import sideways_runs
+
+    side = np.zeros(len(lateral), dtype=bool)
+    for a, b in sideways_runs(lateral, np.hypot(disp[:, 0], disp[:, 1])):
+        side[a:b + 1] = True
+    return side
+
+
 def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.ndarray,
                      warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Decision L94: a stride faster than any human moves 0 m (a gap), with one warning line for the session,
@@ -1113,6 +1125,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             table[c] = classes[c].to_numpy(float)
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
+    table["sideways"] = _sideways_rows(lateral, disp)  # decision L228: no steady / straight stride for the CVs
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)
@@ -1134,6 +1147,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                              "length_m": 0.0, "raw_length_m": np.nan,
                              "heading_rad": table["heading_rad"].to_numpy()[at - 1],
                              "dz_m": 0.0, "confidence": np.nan, "unit": "foot", "impossible": False,
+                             "sideways": False,
                              "gap_s": extra["gap_s"]})
         table = pd.concat([table, rows], ignore_index=True)
         length = np.concatenate([length, np.zeros(len(at))])

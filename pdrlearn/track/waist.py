@@ -376,6 +376,35 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
                    "stand_veto": False}  # W189
+#: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
+#: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
+SCOPED_OPTIONS = {
+    "integrate_end": ("the offline gyro heading with integrate_stops (waist-pendulum's default heading; W187)",
+                      lambda pl, rt, m, det, stops: m == "gyro" and stops and not rt),
+    "stand_veto": ("the offline waist-pendulum with its own contact detector (W189)",
+                   lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "vault_veto": ("the offline waist-pendulum (W119)",
+                   lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
+}
+
+
+def ignored_options_line(o: dict, pipeline: str, realtime: bool, method: str, detector: bool,
+                         integrate_stops: bool) -> str | None:
+    """Decision W193: one line naming the resolved options ``o`` set away from :data:`OPTION_DEFAULTS` that do
+    nothing for this track (:data:`SCOPED_OPTIONS`) and where each applies, else None (the live trackers' E107 line
+    says the same of the options they do not apply)."""
+    off = [k for k, (_, acts) in SCOPED_OPTIONS.items()
+           if o.get(k) not in (None, OPTION_DEFAULTS[k]) and not acts(pipeline, realtime, method, detector,
+                                                                    integrate_stops)]
+    if not off:
+        return None
+    here = ", ".join([pipeline] + (["--realtime"] if realtime else []) + [f"heading {method}"]
+                     + (["a detector plug-in"] if detector else []) + ([] if integrate_stops else
+                                                                       ["integrate_stops off"]))
+    named = "; ".join(f"{k}={json.dumps(o[k])} applies to {SCOPED_OPTIONS[k][0]}" for k in off)
+    return (f"option{'s' if len(off) > 1 else ''} ignored by this track ({here}): {named} (decision W193)")
+
+
 #: decision W185: the ``sit_veto`` value of a ``realtime`` track that does not set it (W184's rule adopted
 #: ``"opposite"`` for offline tracks only)
 REALTIME_SIT_VETO = False
@@ -596,6 +625,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     # the W4 gate's threshold and signal (offline: centred); W76's relative gate (not realtime); steps 35
     thr, sigma, gate_source = gate_threshold(imu, p.walk_threshold_mps2,
                                              relative=bool(o["relative_gate"]) and not realtime)
+    det_given = det is not None
     if det is not None:  # E85: a waist detector's contacts, as they are
         steps = detector_steps(det, session, imu)
         method = heading or ("gyro" if pipeline == "waist-pendulum" else "ahe")
@@ -608,6 +638,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
+    line = ignored_options_line(o, pipeline, realtime, method, det_given, integrate_stops)  # decision W193
+    warnings += [line] if line else []
     n_weak_run = 0
     if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
         steps = drop_weak_runs(steps, imu, spare_turns=o["stand_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps,

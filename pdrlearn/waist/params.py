@@ -315,10 +315,35 @@ def resolve_params(session: Session, params) -> tuple[WaistParams, list[str]]:
     if user is None:
         return base, warnings
     merged = WaistParams(**{f.name: getattr(user, f.name) for f in fields(WaistParams)})
+    filled = set()
     for f in fields(WaistParams):
         v = getattr(merged, f.name)
         if isinstance(v, float) and not np.isfinite(v):
             setattr(merged, f.name, getattr(base, f.name))
+            filled.add(f.name)
     where = str(params) if isinstance(params, str | os.PathLike) else "the waist parameters"
     line = rate_mismatch(merged, session, where)  # decision W87
-    return merged, [line] if line else []
+    return merged, _default_lines(warnings, user, filled) + ([line] if line else [])
+
+
+def _default_lines(warnings: list[str], user: WaistParams, filled: set[str]) -> list[str]:
+    """Decision B241: :func:`default_params`' lines that still hold for parameters ``user`` completed with the
+    defaults in ``filled`` (the fields it left undefined). None for a calibration (``source`` "calibrated", as
+    before: it holds the values its pipeline uses and fills the others, unused). Otherwise "no per-user
+    calibration", the height line while a value derived from the height (``a_walk`` / ``b_walk`` / ``a_run`` /
+    ``b_run`` / ``leg_m``) was filled and the leg-length line while ``leg_m`` was. A file holding only ``"options"``
+    keeps all three: the track is as uncalibrated as without it."""
+    if user.source == "calibrated":
+        return []
+    keep = []
+    for w in warnings:
+        if w.startswith("no per-user calibration"):
+            ok = True
+        elif w.startswith("meta.json gives no subject height"):
+            ok = bool(filled & {"a_walk", "b_walk", "a_run", "b_run", "leg_m"})
+        elif w.startswith(NO_SENSOR_HEIGHT):
+            ok = "leg_m" in filled
+        else:
+            ok = False
+        keep += [w] if ok else []
+    return keep
