@@ -13,6 +13,17 @@ ROOT = Path(__file__).resolve().parents[1]
 REAL = ROOT / "datasets" / "real"
 
 
+@pytest.fixture(autouse=True)
+def _logging_enabled():
+    """Experiment scripts that tests import call ``logging.disable(logging.WARNING)`` at import (their own runs want
+    quiet output); a test that imports one must not silence the warnings later tests assert (session 28: the foot
+    input and corrupted-protocol warnings read empty after `test_experiments_sit_veto_pinned` in the same worker)."""
+    import logging
+
+    yield
+    logging.disable(logging.NOTSET)
+
+
 @pytest.fixture(scope="session")
 def real_dir() -> Path:
     return REAL

@@ -53,3 +53,18 @@ def test_a_lower_back_table_has_no_column(tmp_path, capsys):
     capsys.readouterr()
     assert main(["track", str(sim), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "tw")]) == 0
     assert "backward_travel" not in pd.read_csv(tmp_path / "tw" / "steps.csv")
+
+
+def test_one_backward_rule_for_the_tracks_and_the_lean_runtime():
+    """L203 / L224: the lean runtime's steps.csv marks backward travel with the tracks' own kernel; its turn bound is
+    L119's pause turn cue."""
+    from pdrlearn.kernels.backward import BACKWARD_MAX_TURN_DEG, backward_mask, is_backward
+    from pdrlearn.track.clinical import PAUSE_MAX_TURN_DEG
+
+    assert BACKWARD_MAX_TURN_DEG == PAUSE_MAX_TURN_DEG
+    mask = backward_mask([-0.5, -0.5, -0.5, -0.5, 0.5], [0.0, 2.0, 0.0, 0.0, 0.0], [False, False, True, False, False],
+                         [0.1, 0.0, 0.0, 0.6, 0.0])
+    assert mask.tolist() == [True, False, False, False, False]
+    assert is_backward({"length_m": -0.4, "turn_angle_rad": 0.2, "gap_s": 0.0, "impossible": False})
+    assert not is_backward({"length_m": -0.4, "turn_angle_rad": 0.6})  # 34 deg: a turn
+    assert not is_backward({"length_m": 0.4, "turn_angle_rad": None})

@@ -26,7 +26,7 @@ log = logging.getLogger(__name__)
 #: Step table columns in the order of ``pdrlearn track`` (decision B14); the runtime's extra columns follow
 #: (``pdrlearn run`` and ``python -m pdrlearn.runtime`` write them so)
 STEP_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "terrain", "direction",
-                "length_class")
+                "backward_travel", "length_class")  # backward_travel: decision L224, right after direction
 
 #: a sample this close to a chunk boundary (in chunk lengths) belongs to the chunk the boundary starts (E28)
 CHUNK_TOLERANCE = 1e-9

@@ -12,8 +12,8 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.io.session import Session
+from pdrlearn.kernels.backward import BACKWARD_MAX_TURN_DEG, backward_mask  # noqa: F401  decision L203
 from pdrlearn.track.base import TrackResult
-from pdrlearn.track.clinical import PAUSE_MAX_TURN_DEG
 
 
 def match_by_overlap(est: pd.DataFrame, ref: pd.DataFrame, *, min_iou: float = 0.5) -> list[tuple[int, int]]:
@@ -282,8 +282,6 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
     return float(length.median()) if len(length) else None
 
 
-#: decision L203 (amended): a stride turning this much (deg) or more is a turn, not backward travel: L119's turn cue
-BACKWARD_MAX_TURN_DEG = PAUSE_MAX_TURN_DEG
 
 
 def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
@@ -301,14 +299,11 @@ def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
     column = "raw_length_m" if "raw_length_m" in steps else "length_m"
     if units != {"foot"} or column not in steps:
         return None
-    raw = steps[column].to_numpy(float)
-    keep = ~(steps["gap_s"].to_numpy(float) > 0) if "gap_s" in steps else np.ones(len(steps), bool)
-    if "impossible" in steps:
-        keep &= ~steps["impossible"].eq(True).to_numpy(bool)
-    if "turn_angle_rad" in steps:  # L203 amended: a turning stride is no backward travel
-        turn = np.abs(np.degrees(steps["turn_angle_rad"].to_numpy(float)))
-        keep &= ~(turn >= BACKWARD_MAX_TURN_DEG)
-    return (raw < 0) & keep
+    return backward_mask(steps[column].to_numpy(float),
+                         steps["gap_s"].to_numpy(float) if "gap_s" in steps else None,
+                         steps["impossible"].eq(True).to_numpy(bool) if "impossible" in steps else None,
+                         # L203 amended: a turning stride is no backward travel
+                         steps["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in steps else None)
 
 
 def add_backward_travel(steps: pd.DataFrame) -> None:
