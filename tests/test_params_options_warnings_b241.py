@@ -32,3 +32,18 @@ def test_calibration_values_silence_what_they_replace():
     assert _kinds(_lines(pendulum)) == set()  # its unused frequency line filled in: no line, as before
     leg_only = {"leg_m": 0.95}  # a leg length given, the step-length line still the height's default
     assert _kinds(_lines(leg_only)) == {"calibration", "height"}
+
+
+def test_calibrate_does_not_warn_that_its_own_walks_are_uncalibrated(tmp_path):
+    """B241 (session 28 fresh-clone demo): `calibrate` tracks its walks with the defaults to make the calibration;
+    the "no per-user calibration" line is not said of them."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    walk = Path(__file__).resolve().parents[1] / "datasets" / "real" / "mobgap_HA001_Test5_Trial1"
+    r = subprocess.run([sys.executable, "-m", "pdrlearn", "calibrate", str(walk), "--pipeline", "waist-pendulum",
+                        "--out", str(tmp_path / "p.json")], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-1000:]
+    assert "no per-user calibration" not in r.stderr
+    assert "decision W169" in r.stderr  # the short walk's own line stays

@@ -887,11 +887,12 @@ RELATIVE_HEADING = "waist heading relative to the start"
 
 class _NoHeadingNote(logging.Filter):
     """Drops W83's line from this module's log: a calibration tracks walks for their distance, not their heading;
-    and W155's, which advises a track's option (a calibration walk's stairs are the calibration's to judge)."""
+    W155's, which advises a track's option (a calibration walk's stairs are the calibration's to judge); and the
+    "no per-user calibration" line (B241: it is the calibration being made)."""
 
     def filter(self, record: logging.LogRecord) -> bool:
         msg = record.getMessage()
-        return RELATIVE_HEADING not in msg and "(decision W155)" not in msg
+        return RELATIVE_HEADING not in msg and "(decision W155)" not in msg and "no per-user calibration" not in msg
 
 
 def without_heading_note():
