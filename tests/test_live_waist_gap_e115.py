@@ -76,3 +76,21 @@ def test_a_waist_clock_far_ahead_is_still_refused(dropout):
     with pytest.raises(DataError, match="B141"):
         tracker.push({"wAccelerometer": (np.array([far]), np.array([[0.0, 0.0, 9.81]])),
                       "wGyroscope": (np.array([far]), np.zeros((1, 3)))})
+
+
+def test_waist_streams_that_stop_apart_pause_and_resume_once():
+    """E115 (session 28 review): the waist gyroscope stopping 0.3 s after the accelerometer is not "back" at the
+    accelerometer's last time: one pause line and one resume line (main: two of each, a false "samples again")."""
+    s = simulate_path(parse_route("straight:15, turn:90, straight:10, turn:-90, straight:15"),
+                      UserProfile.from_seed(4045), speed="normal", rate_hz=20.0, seed=4045, name="waist_drop",
+                      scenario="route")
+    g = s.trajectory
+    t, h = g["t"].to_numpy(float), np.unwrap(g["heading_rad"].to_numpy(float))
+    first = float(t[np.flatnonzero(np.abs(h - h[0]) > np.radians(30))[0]])
+    waist = [n for n in s.streams if n.startswith("w")]
+    cut = without(s, first - 5.0, first + 15.0, [n for n in waist if n != "wGyroscope"])
+    cut = without(cut, first - 4.7, first + 15.0, ["wGyroscope"])
+    tracker = Tracker(load_bundle(BUNDLE))
+    _live(cut, tracker)
+    assert sum("taken again when they return" in w for w in tracker.warnings) == 1
+    assert sum("samples again by" in w for w in tracker.warnings) == 1

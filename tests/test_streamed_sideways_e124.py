@@ -103,3 +103,20 @@ def test_run_equals_track_streaming_on_a_side_stretch(root, monkeypatch):
     finally:
         logging.disable(logging.NOTSET)
     assert abs(before[-1].y - runs[0][-1].y) > 0.5  # the rule moved the run's track
+
+
+def test_the_usual_travel_angle_reads_a_bounded_window():
+    """E124 (session 28 review): the streamed tracker's usual travel angle is the median of the latest
+    SIDE_USUAL_STRIDES strides outside any run, so its state stays bounded over a long stream (main: one float per
+    stride for the whole stream)."""
+    import math
+
+    from pdrlearn.kernels.sideways import SIDE_USUAL_STRIDES, SideRun
+
+    run = SideRun()
+    for _ in range(3 * SIDE_USUAL_STRIDES):
+        assert run.stride(1.0, 0.02, 1.0) == 0.0  # forward strides
+    assert len(run.others) == SIDE_USUAL_STRIDES
+    turns = [run.stride(0.02, 0.6, 0.6) for _ in range(4)]  # a side-stepping stretch to the left
+    assert turns[:2] == [0.0, 0.0] and all(abs(a - (math.atan2(0.6, 0.02) - math.atan2(0.02, 1.0))) < 1e-9
+                                            for a in turns[2:])

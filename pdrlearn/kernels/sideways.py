@@ -12,6 +12,7 @@ it is emitted). Numpy only (the runtime runs it, :mod:`pdrlearn.kernels`).
 from __future__ import annotations
 
 import math
+from collections import deque
 
 import numpy as np
 
@@ -67,6 +68,11 @@ def side_travel_extra(lateral: np.ndarray, length: np.ndarray) -> np.ndarray:
     return np.where(side, lateral - usual, 0.0)
 
 
+#: decision E124 (session 28 review): the foot's usual travel angle is the median of the latest this many strides
+#: outside any run (E120's window size for the live clock check); a stream shorter than that uses all of them
+SIDE_USUAL_STRIDES = 256
+
+
 class SideRun:
     """Decision E124: L219's rule one stride at a time, for a foot tracker whose strides go along the waist gyro's
     heading (the streamed ``track --streaming`` and the runtime ``Tracker``, one implementation).
@@ -78,7 +84,9 @@ class SideRun:
     (decision L37's :func:`~pdrlearn.kernels.stride.reversed_by_rules`: the stride goes along its displacement)."""
 
     def __init__(self) -> None:
-        self.others: list[float] = []  # travel angles of the strides outside any run so far
+        # travel angles of the latest strides outside any run: bounded, as E120 bounds the live clock check (a median
+        # over every stride since the start would grow with the stream; session 28 review)
+        self.others: deque[float] = deque(maxlen=SIDE_USUAL_STRIDES)
         self.pending: list[float] = []  # those of the current run's sideways strides before it is one
         self.count = 0  # consecutive sideways strides up to the last one
 
@@ -91,7 +99,7 @@ class SideRun:
         fx, fy = c * dx - s * dy, s * dx + c * dy  # the displacement in the foot's frame (offline's ``disp``)
         angle = travel_angle(fx, fy)
         if not bool(is_sideways(angle, math.hypot(fx, fy))):
-            self.others += self.pending if self.count < MIN_SIDE_STRIDES else []
+            self.others.extend(self.pending if self.count < MIN_SIDE_STRIDES else [])
             self.others.append(angle)
             self.pending, self.count = [], 0
             return 0.0

@@ -1053,9 +1053,12 @@ class Tracker(FixInput):
 
     def _pause(self, names: list[str], t: float | None) -> None:
         """Decision E115: the required waist streams ``names`` stopped (E23): the strides go on without them, one
-        warning line; E31's held-value line is not added for them."""
+        warning line (``t``: the earliest of their last samples); E31's held-value line is not added for them. Each
+        stream is taken back when it passes its OWN last sample (a stream that stopped a little later than the others
+        is not "back" at the earliest of their times)."""
         for n in names:
-            self._paused[n] = -math.inf if t is None else float(t)
+            last = self._buf[n].last if n in self._buf else None
+            self._paused[n] = -math.inf if last is None or not math.isfinite(last) else float(last)
         self._held.update(names)
         since = "none received" if t is None else f"no samples since {t:.2f} s"
         self._warn(f"{', '.join(names)}: {since} while the other sensors are at {self._latest:.2f} s (more than "
