@@ -21,15 +21,20 @@ from tests.runtime_helpers import time_chunks, without
 BUNDLE = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 
 
-@pytest.fixture(scope="module")
-def dropout(tmp_path_factory):
-    """A fresh simulated user (4045), every waist stream silent for 20 s across a 90 deg turn."""
+def _walk_with_turns():
+    """A fresh simulated user (4045) walking two 90 deg turns, and the time (s) its heading has first turned 30 deg."""
     s = simulate_path(parse_route("straight:15, turn:90, straight:10, turn:-90, straight:15"),
                       UserProfile.from_seed(4045), speed="normal", rate_hz=20.0, seed=4045, name="waist_drop",
                       scenario="route")
     g = s.trajectory
     t, h = g["t"].to_numpy(float), np.unwrap(g["heading_rad"].to_numpy(float))
-    first = float(t[np.flatnonzero(np.abs(h - h[0]) > np.radians(30))[0]])
+    return s, float(t[np.flatnonzero(np.abs(h - h[0]) > np.radians(30))[0]])
+
+
+@pytest.fixture(scope="module")
+def dropout(tmp_path_factory):
+    """Every waist stream of :func:`_walk_with_turns` silent for 20 s across its first turn."""
+    s, first = _walk_with_turns()
     cut = without(s, first - 5.0, first + 15.0, [n for n in s.streams if n.startswith("w")])
     return cut, write_session(cut, tmp_path_factory.mktemp("e115") / "waist_drop")
 
@@ -81,12 +86,7 @@ def test_a_waist_clock_far_ahead_is_still_refused(dropout):
 def test_waist_streams_that_stop_apart_pause_and_resume_once():
     """E115 (session 28 review): the waist gyroscope stopping 0.3 s after the accelerometer is not "back" at the
     accelerometer's last time: one pause line and one resume line (main: two of each, a false "samples again")."""
-    s = simulate_path(parse_route("straight:15, turn:90, straight:10, turn:-90, straight:15"),
-                      UserProfile.from_seed(4045), speed="normal", rate_hz=20.0, seed=4045, name="waist_drop",
-                      scenario="route")
-    g = s.trajectory
-    t, h = g["t"].to_numpy(float), np.unwrap(g["heading_rad"].to_numpy(float))
-    first = float(t[np.flatnonzero(np.abs(h - h[0]) > np.radians(30))[0]])
+    s, first = _walk_with_turns()
     waist = [n for n in s.streams if n.startswith("w")]
     cut = without(s, first - 5.0, first + 15.0, [n for n in waist if n != "wGyroscope"])
     cut = without(cut, first - 4.7, first + 15.0, ["wGyroscope"])

@@ -174,6 +174,12 @@ def fixes_in_step(ft: np.ndarray, prev_t: float, t_k: float, first: bool) -> np.
     return np.flatnonzero(((ft > prev_t) | (first & (ft >= prev_t))) & (ft <= t_k))
 
 
+def _geometry_var(obs: np.ndarray, sigma: float) -> float:
+    """The variance (rad^2) a fix's per-axis SD ``sigma`` adds to the heading of a stretched segment whose sum is
+    ``obs`` (two fixes at its ends; its length under 0.5 m counted as 0.5 m)."""
+    return 2.0 * sigma**2 / max(float(np.hypot(*obs)), 0.5) ** 2
+
+
 class StepFixState:
     """The state of the step-triggered position EKF with trajectory stretching and yaw / scale feedback (seed 004
     eqs. 16-28), advanced one step at a time: :meth:`predict` for each step, :meth:`correct` with a fix. ``cfg``:
@@ -247,23 +253,13 @@ class StepFixState:
         if c.yaw_feedback is not None and len(inc):
             lens = np.hypot(inc[:, 0], inc[:, 1])
             dth = wrap_angle(theta_bar - np.asarray(self.seg_head))
-            chord = float(np.hypot(*np.sum(stretched, axis=0)))
-            geo = 2.0 * sigma**2 / max(chord, 0.5) ** 2
-            if c.yaw_feedback == "chord":  # decision D24: the segment's rotation onto the fixes (eq. 26's ends)
-                est, obs = np.sum(inc, axis=0), np.sum(stretched, axis=0)
-                innov = float(wrap_angle(np.arctan2(obs[1], obs[0]) - np.arctan2(est[1], est[0])))
-                q_seg = 0.5 * float(np.trace(self.P - self.P_anchor))
-                r = (2.0 * sigma**2 + q_seg) / max(chord, 0.5) ** 2
-            elif c.yaw_feedback == "last":
-                innov, r = float(dth[-1]), c.sigma_heading_rad**2 + geo
-            else:
+            est, obs = np.sum(inc, axis=0), np.sum(stretched, axis=0)
+            if c.yaw_feedback == "mean":
                 w = lens / max(lens.sum(), 1e-9)
                 innov = float(np.arctan2(np.sum(w * np.sin(dth)), np.sum(w * np.cos(dth))))
-                r = c.sigma_heading_rad**2 / len(inc) + geo
-            gain = self.p_off / (self.p_off + r)
-            self.offset = float(wrap_angle(self.offset + gain * innov))
-            self.p_off *= 1.0 - gain
-            self.yaw_corrections += 1
+                self._feed_yaw(innov, c.sigma_heading_rad**2 / len(inc) + _geometry_var(obs, sigma))
+            else:
+                self._feed_yaw(*self._innovation(est, obs, float(dth[-1]), sigma))
         if c.scale_feedback and len(inc):
             lens = np.hypot(inc[:, 0], inc[:, 1])
             ratio = np.hypot(stretched[:, 0], stretched[:, 1]).sum() / max(lens.sum(), 1e-9)
@@ -274,6 +270,24 @@ class StepFixState:
                 self.p_scale *= 1.0 - gain
         self._update(z, sigma, row)
         return rows, pos
+
+    def _innovation(self, est: np.ndarray, obs: np.ndarray, last_dth: float, sigma: float) -> tuple[float, float]:
+        """The yaw innovation and its variance of the "chord" (decision D24: the segment's rotation from its predicted
+        sum ``est`` onto its stretched sum ``obs``, eq. 26's ends) or "last" feedback (seed 004 eq. 28: the last
+        step's stretched heading less its own, ``last_dth``) -- one computation for :meth:`correct` and its compact
+        form (E121)."""
+        if self.cfg.yaw_feedback == "chord":
+            innov = float(wrap_angle(np.arctan2(obs[1], obs[0]) - np.arctan2(est[1], est[0])))
+            q_seg = 0.5 * float(np.trace(self.P - self.P_anchor))
+            return innov, (2.0 * sigma**2 + q_seg) / max(float(np.hypot(*obs)), 0.5) ** 2
+        return last_dth, self.cfg.sigma_heading_rad**2 + _geometry_var(obs, sigma)
+
+    def _feed_yaw(self, innov: float, r: float) -> None:
+        """The heading offset's scalar Kalman update with the innovation ``innov`` (rad) of variance ``r``."""
+        gain = self.p_off / (self.p_off + r)
+        self.offset = float(wrap_angle(self.offset + gain * innov))
+        self.p_off *= 1.0 - gain
+        self.yaw_corrections += 1
 
     def _correct_last(self, z: np.ndarray, sigma: float, row: int, l_end: np.ndarray) -> tuple[list[int], np.ndarray]:
         """:meth:`correct` without the segment's steps (decision E121): the "last" yaw feedback from the segment's
@@ -286,18 +300,8 @@ class StepFixState:
             last = self._seg_last + dl / m  # seed 004 eq. 26
             theta_bar = float(np.arctan2(last[1], last[0]))  # seed 004 eq. 28
             obs = self._seg_sum + dl  # the stretched segment's sum (eq. 26 adds l(k) - l(k-m) over its steps)
-            chord = float(np.hypot(*obs))
-            geo = 2.0 * sigma**2 / max(chord, 0.5) ** 2
-            if c.yaw_feedback == "chord":  # decision D24, as :meth:`correct`
-                est = self._seg_sum
-                innov = float(wrap_angle(np.arctan2(obs[1], obs[0]) - np.arctan2(est[1], est[0])))
-                r = (2.0 * sigma**2 + 0.5 * float(np.trace(self.P - self.P_anchor))) / max(chord, 0.5) ** 2
-            else:
-                innov, r = float(wrap_angle(theta_bar - self._seg_last_head)), c.sigma_heading_rad**2 + geo
-            gain = self.p_off / (self.p_off + r)
-            self.offset = float(wrap_angle(self.offset + gain * innov))
-            self.p_off *= 1.0 - gain
-            self.yaw_corrections += 1
+            self._feed_yaw(*self._innovation(self._seg_sum, obs, float(wrap_angle(theta_bar - self._seg_last_head)),
+                                             sigma))
         self._update(z, sigma, row)
         return [], np.zeros((0, 2))
 
