@@ -133,3 +133,12 @@ def test_bad_value_refused_and_scoped(daily):
     pll = track_waist(daily, pipeline="waist-pll", contact_model="learned")
     assert any("contact_model" in w and "W203" in w for w in pll.info["warnings"])
     assert pll.info["n_rescored_contacts"] == 0
+
+
+def test_the_live_line_names_it():
+    from pdrlearn.waist.live import unapplied_options_line
+    from pdrlearn.waist.params import WaistParams
+
+    line = unapplied_options_line(WaistParams(leg_m=0.9, options={"sit_veto": False, "contact_model": "learned"}))
+    assert line is not None and 'contact_model="learned"' in line and "contact_model=false" in line
+    assert unapplied_options_line(WaistParams(leg_m=0.9, options={"sit_veto": False})) is None
