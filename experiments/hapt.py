@@ -60,9 +60,13 @@ def count_in(ev: np.ndarray, a: float, b: float) -> int:
     return int(((ev >= a) & (ev <= b)).sum())
 
 
-def configs(stand_veto: bool | str = False) -> list[tuple[str, str, dict]]:
+def configs(stand_veto: bool | str = False, contact_model: str | None = None) -> list[tuple[str, str, dict]]:
     """(label, pipeline, track_waist options) of each configuration; W189's ``stand_veto`` row (W191's ``"turns"``
-    when given that value) after the default pendulum's when asked."""
+    when given that value) after the default pendulum's when asked; with ``contact_model`` (decision W203) only two
+    rows: today's offline default pendulum (``sit_veto="opposite"``, W185) and the same with the option."""
+    if contact_model:
+        return [("waist-pendulum default", "waist-pendulum", {}),
+                (f"waist-pendulum contact_model={contact_model}", "waist-pendulum", {"contact_model": contact_model})]
     out = [(f"{pipe}{' sit_veto=rhythm' if veto else ''}", pipe, {"sit_veto": veto}) for pipe, veto in CONFIGS]
     if not stand_veto:
         return out
@@ -151,9 +155,12 @@ def main(argv=None) -> None:
                     help="add decision W189's `stand_veto` row (offline waist-pendulum; `turns`: W191's value, "
                          "`alternation`: W196's); "
                          "give another --out")
+    ap.add_argument("--contact-model", default=None, choices=("learned",),
+                    help="only today's default waist-pendulum row and decision W203's contact_model row; give "
+                         "another --out")
     a = ap.parse_args(argv)
     veto = {None: False, "true": True}.get(a.stand_veto, a.stand_veto)
-    static, trans, gait, refused, cpu = run(a.root, configs(veto))
+    static, trans, gait, refused, cpu = run(a.root, configs(veto, a.contact_model))
     done = pd.concat([static, trans, gait])
     lines = ["# Waist pipelines on UCI HAPT (phone on a belt): false steps and cadence by activity", "",
              f"{done.session.nunique()} recordings tracked, {done.user.nunique()} subjects; "

@@ -248,6 +248,8 @@ def get_pipeline(name: str) -> Pipeline:
       the recording's end; offline only),
       ``stand_veto`` (decision W190, off: a run of contacts whose median vertical bounce is under 1/3 of the
       recording's is no walking; offline ``waist-pendulum`` only; values ``"turns"`` W191, ``"alternation"`` W196),
+      ``contact_model`` (decision W204, off: ``"learned"`` keeps only the contacts a learned, calibrated re-scorer
+      gives p >= 0.5, W203; offline ``waist-pendulum`` only),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
       turn on a 0.2 m radius; both pipelines),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered

@@ -42,6 +42,7 @@ from pdrlearn.track.sideways import sideways_warnings
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.backward import backward_warnings
+from pdrlearn.waist.contact_model import CONTACT_MODEL_VALUES, rescore_contacts
 from pdrlearn.waist.events import (
     InitialContactDetector,
     gate_threshold,
@@ -375,7 +376,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
-                   "stand_veto": False}  # W189
+                   "stand_veto": False,  # W189
+                   "contact_model": False}  # W203
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -383,6 +385,8 @@ SCOPED_OPTIONS = {
                       lambda pl, rt, m, det, stops: m == "gyro" and stops and not rt),
     "stand_veto": ("the offline waist-pendulum with its own contact detector (W189)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "contact_model": ("the offline waist-pendulum with its own contact detector (W203)",
+                      lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "vault_veto": ("the offline waist-pendulum (W119)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
 }
@@ -415,7 +419,7 @@ CAUSAL_PAUSE_STEPS = "standing"
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
-                                                          "parity_fill", "stand_veto"))
+                                                          "parity_fill", "stand_veto", "contact_model"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -436,7 +440,8 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159"),
-                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196")}
+                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196"),
+                  "contact_model": (CONTACT_MODEL_VALUES, "W203")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -465,7 +470,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
-                stand_veto: bool | str | None = None, detector=None,
+                stand_veto: bool | str | None = None, contact_model: bool | str | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -541,6 +546,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``"turns"``: the same, sparing a run with a step that turns the pelvis by more than 15 deg (W127's test; a
         slow turn on the spot bounces little; decision W191); ``"alternation"``: sparing a run whose decided W20
         sides alternate left/right, at least two decided (decision W196); default False
+    contact_model : pendulum, offline detector (the realtime one and ``waist-pll`` ignore it): ``"learned"`` keeps
+        only the contacts whose calibrated probability from W203's learned re-scorer
+        (:func:`pdrlearn.waist.contact_model.rescore_contacts`) is at least 0.5, before the stand and sit vetoes;
+        default False (decision W203)
     contact_shift : pendulum, offline detector: every kept contact judged once more by W23's weight-shift test with the
         side read at the contact, turns spared (decision W131, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``contact_shift``); default True, ``False`` restores the detector before W131
@@ -595,7 +604,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
-             "stand_veto": stand_veto}
+             "stand_veto": stand_veto, "contact_model": contact_model}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     if realtime and sit_veto is None and (p.options or {}).get("sit_veto") is None:
@@ -640,6 +649,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
     line = ignored_options_line(o, pipeline, realtime, method, det_given, integrate_stops)  # decision W193
     warnings += [line] if line else []
+    n_rescored = 0
+    if o["contact_model"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W203
+        steps = rescore_contacts(steps, imu, thr, sigma, gyro_bias_rps=p.gyro_bias_rps)
+        n_rescored = steps.attrs["n_rescored"]
     n_weak_run = 0
     if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
         steps = drop_weak_runs(steps, imu, spare_turns=o["stand_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps,
@@ -759,6 +772,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_vetoed_contacts": n_vetoed,
         "n_unvaulted_contacts": n_unvaulted,
         "n_weak_run_contacts": n_weak_run,
+        "n_rescored_contacts": n_rescored,  # decision W203
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }
