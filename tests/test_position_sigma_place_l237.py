@@ -43,3 +43,8 @@ def test_the_candidate_value_is_the_documented_disturbance_over_the_horizontal_f
     # the Earth field points north (y): the heading error is the east component across it over H
     lat = [np.trapezoid(field_disturbance(pos, np.random.default_rng(k), a)[:, 0], x) / h for k in range(200)]
     assert np.var(lat) / 400.0 == pytest.approx(2 * PLACE_DIFFUSION_M2, rel=0.3)
+
+
+def test_no_regime_ships_the_diffusion_term():
+    """L238: measured on users 4700-4739 and not adopted (18/28 finals within 2 sigma, rule 90-99 %)."""
+    assert all(not p.get("path_diffusion_m2") for p in SIGMA_PARAMS.values())

@@ -11,6 +11,8 @@ on users 1160-1179 (L150), then tested on users 1180-1199 (L151): calibrated (94
 ``plasys-foot-streaming`` (streamed foot-only): the refit failed (89.5 %); it keeps L128's ``plasys-foot``
 constants, uncalibrated, too large (100 %, 20/20). It is no guarantee: magnetic disturbances,
 map constraints, real sensors worse than the simulator's and a walker other than the simulator's are outside it.
+A row whose position was held across a foot dropout (``gap_s`` > 0, no length) adds the displacement it missed,
+radius^2 + (speed x gap)^2, kept by every later row (decision E127), for every regime.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # plasys offline with a waist unit: foot yaw aligned to the waist compass ("fused", L17)
     # (L220: the distance-walked term path_rel = 0.0149 was measured on top of these and not adopted, too large on
     # routes of 3-4 loops: 20/20 finals within 2 sigma against the rule's 16-19; the kernel keeps it, 0 here)
+    # (L238: the per-metre compass term path_diffusion_m2 = PLACE_DIFFUSION_M2 was measured and not adopted, too small)
     "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
     # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
     "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 9.6e-11, "point_m": 0.044},
