@@ -17,6 +17,11 @@ itself by ``L_k dpsi``, a length error ``dL`` along itself. Four zero-mean, mutu
   (the summed |stride length|), sd per axis ``path_rel s_k``: a heading error that depends on the place and the
   direction (a compass' indoor field disturbance, a hard-iron residual) repeats on every pass of a route that
   revisits its corridors, out and back, instead of averaging out or cancelling on a closed loop.
+- ``path_diffusion_m2`` (decision L237; 0 unless a regime sets it): a random walk of the position per metre walked,
+  per-axis variance ``path_diffusion_m2 s_k``: a compass error that depends on the place, integrated along the path
+  (independent from place to place, so it does not cancel on a loop and grows like the square root of the distance).
+- ``held_var_m2`` (decision E127): per stride, an isotropic per-axis variance added at that stride and carried by
+  every later one: a row whose position was held across a sensor gap misses the displacement walked in it.
 
 Each gives a closed form of cumulative sums (O(N)). The 1-sigma radius is ``sqrt(trace P)`` (distance root mean
 square): for a 2-D Gaussian a circle of twice that radius holds 95.4 % (round) to 98.2 % (a thin ellipse) of
@@ -30,7 +35,8 @@ import numpy as np
 
 def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: np.ndarray, t0_s: float, *,
                         displacement_rel: float, heading_walk_rad: float, bias_rps: float,
-                        point_m: float, path_rel: float = 0.0) -> np.ndarray:
+                        point_m: float, path_rel: float = 0.0, path_diffusion_m2: float = 0.0,
+                        held_var_m2: np.ndarray | None = None) -> np.ndarray:
     """Covariance (m^2) of the horizontal position after each stride, shape (N, 2, 2).
 
     Parameters
@@ -43,6 +49,8 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
     bias_rps : sd of the residual heading rate (rad/s).
     point_m : sd per axis of the non-accumulating point error (m).
     path_rel : sd per axis of the error proportional to the distance walked (fraction; decision L220).
+    path_diffusion_m2 : per-axis variance per metre walked (m^2/m; decision L237).
+    held_var_m2 : per-stride per-axis variance added at the stride and kept after it (m^2; decision E127).
     """
     L = np.asarray(length_m, float)
     psi = np.asarray(heading_rad, float)
@@ -61,6 +69,13 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
     P = P + bias_rps ** 2 * outer(B, B)
     if path_rel:  # decision L220: the distance walked, not the displacement from the start
         P = P + (path_rel * np.cumsum(np.abs(L)))[:, None, None] ** 2 * eye
+    if path_diffusion_m2:  # decision L237: variance per metre walked
+        P = P + (path_diffusion_m2 * np.cumsum(np.abs(L)))[:, None, None] * eye
+    if held_var_m2 is not None:  # decision E127: a held position's missed displacement, kept by later strides
+        held = np.asarray(held_var_m2, float)
+        if held.shape != L.shape:
+            raise ValueError("held_var_m2 must have one value per stride")
+        P = P + np.cumsum(held)[:, None, None] * eye
     # random walk: dp_k = sum_{i<=k} w_i (C_k - C_{i-1}) (C_0 = 0), so its covariance is
     # sum_i (C_k - C_{i-1})(C_k - C_{i-1})^T = k C_k C_k^T - C_k S1_k^T - S1_k C_k^T + S2_k, with the cumulative
     # sums S1_k = sum_{i<=k} C_{i-1}, S2_k = sum_{i<=k} C_{i-1} C_{i-1}^T

@@ -11,6 +11,8 @@ on users 1160-1179 (L150), then tested on users 1180-1199 (L151): calibrated (94
 ``plasys-foot-streaming`` (streamed foot-only): the refit failed (89.5 %); it keeps L128's ``plasys-foot``
 constants, uncalibrated, too large (100 %, 20/20). It is no guarantee: magnetic disturbances,
 map constraints, real sensors worse than the simulator's and a walker other than the simulator's are outside it.
+A row whose position was held across a foot dropout (``gap_s`` > 0, no length) adds the displacement it missed,
+radius^2 + (speed x gap)^2, kept by every later row (decision E127), for every regime.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # plasys offline with a waist unit: foot yaw aligned to the waist compass ("fused", L17)
     # (L220: the distance-walked term path_rel = 0.0149 was measured on top of these and not adopted, too large on
     # routes of 3-4 loops: 20/20 finals within 2 sigma against the rule's 16-19; the kernel keeps it, 0 here)
+    # (L238: the per-metre compass term path_diffusion_m2 = PLACE_DIFFUSION_M2 was measured and not adopted, too small)
     "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
     # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
     "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 9.6e-11, "point_m": 0.044},
@@ -46,6 +49,32 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
 }
 
 log = logging.getLogger(__name__)
+
+#: decision L237: the candidate's per-axis variance per metre walked (m^2/m), derived, not fitted, from the
+#: simulator's documented field disturbance (S33: sd 3 uT per component, one blob per 4 m of path, 1 m wide, centres
+#: N(0, 1 m) off the path) over its horizontal Earth field 45 uT cos 55 deg: (1/4) 3^2 2 pi 1^2 / sqrt(3) / 25.81^2 / 2
+PLACE_DIFFUSION_M2 = 0.25 * 3.0 ** 2 * 2 * np.pi / np.sqrt(3.0) / (45.0 * np.cos(np.radians(55.0))) ** 2 / 2
+#: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
+#: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
+GAP_FALLBACK_SPEED_MPS = 1.4
+
+
+def held_gap_variance(steps) -> np.ndarray | None:
+    """Decision E127: per stride, the per-axis variance (m^2) its held position adds: a row with ``gap_s`` > 0 and no
+    length (the position held across a foot dropout) misses the displacement walked in the gap, up to the speed times
+    the gap in any direction: radius^2 + (v g)^2, i.e. (v g)^2 / 2 per axis. v: the median |length| / duration of the
+    track's strides without a gap (E128's speed without any). None when no row is a held gap."""
+    if "gap_s" not in steps or not len(steps):
+        return None
+    gap = pd.to_numeric(steps["gap_s"], errors="coerce").fillna(0.0).to_numpy(float)
+    length = np.abs(steps["length_m"].to_numpy(float))
+    held = (gap > 0) & ~(length > 0)
+    if not held.any():
+        return None
+    dur = steps["end_s"].to_numpy(float) - steps["start_s"].to_numpy(float)
+    walk = ~held & (gap <= 0) & np.isfinite(length) & (length > 0) & np.isfinite(dur) & (dur > 0)
+    v = float(np.median(length[walk] / dur[walk])) if walk.any() else GAP_FALLBACK_SPEED_MPS
+    return np.where(held, 0.5 * (v * gap) ** 2, 0.0)
 
 
 def sigma_regime(info: dict, session) -> str:
@@ -78,7 +107,7 @@ def sigma_per_row(steps, t, params: dict[str, float]) -> np.ndarray:
                         float(steps["start_s"].iloc[k]) if "start_s" in steps else float("nan"))
             length, heading = np.where(bad, 0.0, length), np.where(bad, 0.0, heading)
             end = pd.Series(np.where(np.isfinite(end), end, np.nan)).ffill().fillna(t0).to_numpy(float)
-        cov = position_covariance(length, heading, end, t0, **params)
+        cov = position_covariance(length, heading, end, t0, **params, held_var_m2=held_gap_variance(steps))
         r = sigma_radius(cov)
         r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
         r[bad] = np.nan

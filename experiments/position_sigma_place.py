@@ -1,0 +1,98 @@
+"""Decisions L237-L238: the offline two-unit radius (`plasys-fused`) with the compass's place-dependent error as a
+random walk per metre walked (``path_diffusion_m2``), on fresh simulated users 4700-4739.
+
+``prepare``: simulate and track (offline ``track``, no model) - long routes R1 x (2 + u mod 3), users 4700-4739; short
+level routes (L182's two, users 4700-4709) and scenarios A-D at 100 Hz (users 4700-4704). Prints no error.
+``evaluate``: today's radius (main's ``SIGMA_PARAMS``) and the candidate's from the same steps.csv, against the truth.
+
+    PYTHONPATH=<checkout> .venv/bin/python experiments/position_sigma_place.py prepare --work W
+    PYTHONPATH=<checkout> .venv/bin/python experiments/position_sigma_place.py evaluate --work W
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from aided_streamed import R1  # noqa: E402
+from position_sigma import errors  # noqa: E402
+
+from pdrlearn.track.position_sigma import PLACE_DIFFUSION_M2, SIGMA_PARAMS, sigma_per_row  # noqa: E402
+
+LONG = {u: ", ".join([R1] * (2 + u % 3)) for u in range(4700, 4740)}
+SHORT_ROUTES = ("straight:30, turn:90, straight:30", ", ".join(["straight:15, curve:-90:1"] * 8))  # L182's level walks
+SHORT = ({f"level{i}_u{u}": ("--route", r, "--user-seed", str(u)) for i, r in enumerate(SHORT_ROUTES)
+          for u in range(4700, 4710)}
+         | {f"scen{c}_u{u}": ("--scenario", c, "--rate", "100", "--user-seed", str(u)) for c in "ABCD"
+            for u in range(4700, 4705)})
+
+
+def cli(*args) -> None:
+    subprocess.run([sys.executable, "-m", "pdrlearn", *map(str, args)], check=True, capture_output=True)
+
+
+def sessions() -> dict[str, tuple[str, tuple]]:
+    out = {f"long_u{u}": ("long", ("--route", r, "--user-seed", str(u))) for u, r in LONG.items()}
+    return out | {k: ("short", a) for k, a in SHORT.items()}
+
+
+def prepare(work: Path) -> None:
+    for name, (_, args) in sessions().items():
+        sim, out = work / name, work / f"{name}.off"
+        if not (sim / "meta.json").is_file():
+            cli("simulate", *args, "--out", sim)
+        if not (out / "summary.json").is_file():
+            cli("track", sim, "--out", out)
+        print(f"prepared {name}", flush=True)
+
+
+
+def evaluate(work: Path) -> None:
+    today = dict(SIGMA_PARAMS["plasys-fused"])
+    cand = {**today, "path_diffusion_m2": PLACE_DIFFUSION_M2}
+    print(f"today {today}; candidate path_diffusion_m2 = {PLACE_DIFFUSION_M2:.5f} m^2/m")
+    res: dict = {}
+    for name, (group, _) in sessions().items():
+        sim, out = work / name, work / f"{name}.off"
+        info = json.loads((out / "summary.json").read_text()).get("info") or {}
+        warned = bool((info.get("compass_check") or {}).get("gyro_fallback"))
+        key = f"{group}{' (L182 warned)' if warned and group == 'long' else ''}"
+        tr, e = errors(sim, out)
+        e = np.hypot(e[:, 0], e[:, 1])
+        steps, t = pd.read_csv(out / "steps.csv"), pd.read_csv(out / "trajectory.csv")["t"].to_numpy(float)
+        line = []
+        for tag, par in (("today", today), ("candidate", cand)):
+            s = sigma_per_row(steps, t, par)[1:]
+            r = res.setdefault((key, tag), {"k": 0, "n": 0, "fin": [], "ratio": [], "sig": []})
+            r["k"] += int(np.sum(e <= 2 * s))
+            r["n"] += len(e)
+            r["fin"].append(bool(e[-1] <= 2 * s[-1]))
+            r["ratio"].append(e[-1] / s[-1])
+            r["sig"].append(s[-1])
+            line.append(f"{tag} 2 sigma {2 * s[-1]:.2f} m {'in' if e[-1] <= 2 * s[-1] else 'OUT'}")
+        print(f"{key} {name}: final error {e[-1]:.2f} m; " + "; ".join(line), flush=True)
+    for (key, tag), r in res.items():
+        f = sum(r["fin"])
+        print(f"{key} {tag}: finals within 2 sigma {f}/{len(r['fin'])} = {100 * f / len(r['fin']):.1f} %, strides "
+              f"{r['k']}/{r['n']} = {100 * r['k'] / r['n']:.1f} %, median final error / 1-sigma "
+              f"{np.median(r['ratio']):.3f}, median final 1-sigma {np.median(r['sig']):.2f} m")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("mode", choices=("prepare", "evaluate"))
+    ap.add_argument("--work", type=Path, required=True, help="folder for the sessions and tracks (reused)")
+    a = ap.parse_args()
+    a.work.mkdir(parents=True, exist_ok=True)
+    (prepare if a.mode == "prepare" else evaluate)(a.work)
+
+
+if __name__ == "__main__":
+    main()
