@@ -299,14 +299,18 @@ TURN_YAW_TIMING = True
 
 
 #: decision L231: a lower-back turn's angle takes the whole turns (k * 360 deg) that bring it nearest its yaw-rate
-#: turn (a step heading is wrapped: a turn done between two contacts reads +180 as -178, 360 as 0)
-TURN_YAW_BRANCH = False
+#: turn (a step heading is wrapped: a turn done between two contacts reads +180 as -178, 360 as 0); L232: L231's
+#: rule met (fresh users 4660-4699, wrong-sign turns waist-pendulum 11 -> 0, waist-pll 12 -> 1; median |angle error|
+#: 5.58 -> 2.19 / 9.38 -> 5.18 deg; mobgap waist-pendulum unchanged)
+TURN_YAW_BRANCH = True
 #: decision L233: a lower-back turns.csv also holds the yaw-rate turns of at least ``min_deg`` that no counted
-#: step-heading turn overlaps (a turn on the spot whose steps were missed), ``n_rows`` 0
+#: step-heading turn overlaps (a turn on the spot whose steps were missed), ``n_rows`` 0; L234: not adopted (its rule
+#: failed on waist-pll's extra rows, 0 -> 1, though turns found rose 30 -> 40 / 29 -> 40): an option
 TURN_YAW_ONLY = False
 #: decision L235: a yaw-timed (or yaw-only) turn's ``peak_rate_dps`` is its yaw-rate turn's peak (El-Gohary's
-#: low-passed rate), not L200's row-to-row rate
-TURN_YAW_PEAK = False
+#: low-passed rate), not L200's row-to-row rate; L236: L235's rule met (fresh users 4660-4699, median |peak error|
+#: waist-pendulum 49.79 -> 18.52, waist-pll 68.21 -> 19.75 deg/s)
+TURN_YAW_PEAK = True
 
 
 def yaw_turn_match(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None, *,
