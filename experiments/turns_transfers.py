@@ -6,9 +6,11 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_transf
      ... experiments/turns_transfers.py sim28  # decision L208's rule: users 3870-3899, both turn timings
      ... experiments/turns_transfers.py sim210 # decision L210's rule: users 3900-3939, heading vs yaw-rate timing
      ... experiments/turns_transfers.py real210  # L210: the real turns, heading vs yaw-rate timing, same rows
+     ... experiments/turns_transfers.py sim231  # decisions L231 / L233 / L235: users 4660-4699, L210's routes
+     ... experiments/turns_transfers.py real231 # the same candidates on the mobgap turns
 Output: experiments/results/turns_transfers_sim.txt, turns_transfers_real.txt (the printed lines); L208 / L209:
 turns_timing_sim.txt, turns_timing_real.txt (``real`` prints both timings since L208); L210 / L211:
-turns_yaw_sim.txt, turns_yaw_real.txt
+turns_yaw_sim.txt, turns_yaw_real.txt; L231-L236: turns_yaw2_sim.txt, turns_yaw2_real.txt
 
 Simulated truth. A turn: the route's one turn; its truth start / end are where the waist unit's true heading
 (trajectory.csv ``heading_rad``, unwrapped, a 1 s moving mean: one stride's pelvis rotation averaged out) has gone
@@ -53,6 +55,11 @@ ROUTES210 = (("stand:3, straight:8, turn:90, straight:8, stand:3", 0.0, 0.0), RO
              ("stand:3, straight:8, turn:180, straight:8, stand:3", 0.0, 0.0),
              ("stand:3, straight:5, turn:360, straight:5, stand:3", 0.0, 0.0))
 TIMINGS210 = ("heading", "yaw")
+#: decisions L231 / L233 / L235's fresh users (L210's sessions and routes) and the turn tables compared, each
+#: ``turn_table`` keywords under the yaw-rate timing: L211's default, each candidate alone, and all three
+USERS231 = range(4660, 4700)
+CONFIGS231 = {"L211": {}, "branch (L231)": {"branch": True}, "yaw-only (L233)": {"yaw_only": True},
+              "yaw peak (L235)": {"yaw_peak": True}, "all three": {"branch": True, "yaw_only": True, "yaw_peak": True}}
 # the lower-back tracks without a sit veto: as measured, before W185
 TRACKS = {"plasys": lambda s: track_plasys(s), "plasys-stream": lambda s: track_streaming(s, method="M2"),
           "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum", sit_veto=False),
@@ -68,6 +75,20 @@ def true_turn(session) -> tuple[float, float, float]:
     h0, h1 = hs[0], hs[-1]
     frac = (hs - h0) / (h1 - h0)
     return float(t[np.argmax(frac >= 0.05)]), float(t[np.argmax(frac >= 0.95)]), float(h1 - h0)
+
+
+def true_peak_dps(session, ta: float, tb: float, pad_s: float = 0.5) -> float:
+    """Decision L229's true peak rate of a simulated turn: the largest |change| of the waist unit's true heading
+    (trajectory.csv, unwrapped) over 0.1 s, from ``pad_s`` before the truth turn's start to ``pad_s`` after its
+    end."""
+    tr = session.trajectory
+    t = tr["t"].to_numpy(float)
+    h = np.degrees(np.unwrap(tr["heading_rad"].to_numpy(float)))
+    k = max(int(round(0.1 / np.median(np.diff(t)))), 1)
+    r = np.abs(h[k:] - h[:-k]) / (t[k:] - t[:-k])
+    mid = 0.5 * (t[k:] + t[:-k])
+    inside = (mid >= ta - pad_s) & (mid <= tb + pad_s)
+    return float(r[inside].max()) if inside.any() else float("nan")
 
 
 def med(x) -> str:
@@ -204,6 +225,74 @@ def real210() -> None:
     real(TIMINGS210, same_rows=True)
 
 
+def sim231() -> None:
+    """Decisions L231 / L233 / L235's rules: fresh users 4660-4699 (L210's sessions), the nearest turn of each
+    table (:data:`CONFIGS231`) against the truth: found, angle, sign, times, peak rate; and the extra rows (each
+    route has one turn)."""
+    names = ("waist-pendulum", "waist-pll")
+    err = {(n, c): [] for n in names for c in CONFIGS231}  # (start, end, duration, angle, sign ok, peak) errors
+    extra = {(n, c): 0 for n in names for c in CONFIGS231}
+    for u in USERS231:
+        route, s0, s1 = ROUTES210[u % len(ROUTES210)]
+        s, label = _session210(u, route, s0, s1)
+        ta, tb, ang = true_turn(s)
+        pk = true_peak_dps(s, ta, tb)
+        line = [f"user {u} {label} [{route}]: truth turn {ta:.2f}-{tb:.2f} s {ang:+.1f} deg, peak {pk:.0f} deg/s"]
+        for n in names:
+            res = TRACKS[n](s)
+            for c, kw in CONFIGS231.items():
+                tt = turn_table(res.steps, detected_bouts(res.steps), timing="yaw",
+                                yaw_turns=res.info.get("yaw_turns"), **kw)
+                extra[(n, c)] += max(len(tt) - 1, 0)
+                if not len(tt):
+                    err[(n, c)].append((np.nan,) * 6)
+                    line.append(f"  {n} [{c}]: no turn")
+                    continue
+                r = tt.iloc[int(np.argmin(np.abs(0.5 * (tt["start_s"] + tt["end_s"]).to_numpy(float)
+                                                 - 0.5 * (ta + tb))))]
+                e = (r.start_s - ta, r.end_s - tb, r.duration_s - (tb - ta), r.angle_deg - ang,
+                     float(np.sign(r.angle_deg) == np.sign(ang)), r.peak_rate_dps - pk)
+                err[(n, c)].append(e)
+                line.append(f"  {n} [{c}]: {len(tt)} turn(s); nearest {r.start_s:.2f}-{r.end_s:.2f} s "
+                            f"{r.angle_deg:+.1f} deg, peak {r.peak_rate_dps:.0f} deg/s, n_rows {r.n_rows}")
+        print("\n".join(line), flush=True)
+    print("\nTURNS (nearest turn; median |error| (signed median)):")
+    for (n, c), e in err.items():
+        a = np.array(e, float)
+        ok = np.isfinite(a[:, 0])
+        print(f"{n} [{c}]: {int(ok.sum())}/{len(a)} found, {extra[(n, c)]} extra rows; wrong sign "
+              f"{int((a[ok, 4] == 0).sum())}; |angle error| {med(np.abs(a[:, 3]))} deg ({med(a[:, 3])}); "
+              f"|start| {med(np.abs(a[:, 0]))} s, |end| {med(np.abs(a[:, 1]))} s, |duration| {med(np.abs(a[:, 2]))}"
+              f" s ({med(a[:, 2])}); |peak error| {med(np.abs(a[:, 5]))} deg/s ({med(a[:, 5])})")
+
+
+def real231() -> None:
+    """Decisions L231 / L233 / L235 on the mobgap turns: each INDIP turn of >= 80 deg and the overlapping row of
+    largest |angle| of each table (:data:`CONFIGS231`), pooled over the three recordings."""
+    folders = [Path("datasets/real") / n for n in ("mobgap_HA001_Test11_Trial1",)]
+    folders += [Path("datasets/external") / n for n in ("mobgap_HA002_Test11_Trial1", "mobgap_MS001_Test11_Trial1")]
+    pooled, n_det, n_ref = {}, {}, 0
+    for f in folders:
+        s = read_session(f)
+        ref = s.extras["turns"]
+        big = ref[ref["angle_deg"].abs() >= 80]
+        n_ref += len(big)
+        for name in ("waist-pendulum", "waist-pll"):
+            res = track_waist(s, pipeline=name, sit_veto=False)  # as measured, before W185
+            for c, kw in CONFIGS231.items():
+                tt = turn_table(res.steps, detected_bouts(res.steps), timing="yaw",
+                                yaw_turns=res.info.get("yaw_turns"), **kw)
+                n_det[(name, c)] = n_det.get((name, c), 0) + len(tt)
+                pooled.setdefault((name, c), []).extend(_real_line(f, f"{name} [{c}]", "yaw", big, ref, res, tt,
+                                                                   all_columns=True))
+    for (name, c), d in pooled.items():
+        a = np.asarray(d, float).reshape(-1, 5)
+        print(f"pooled {name} [{c}]: {n_det[(name, c)]} detected turns, {len(a)} of {n_ref} reference turns >= 80 "
+              f"deg overlapped; |duration error| {med(np.abs(a[:, 0]))} s ({med(a[:, 0])}), |start| "
+              f"{med(np.abs(a[:, 3]))} s, |end| {med(np.abs(a[:, 4]))} s, ||angle| error| {med(np.abs(a[:, 1]))} deg "
+              f"({med(a[:, 1])}), sign agreement {np.mean(a[:, 2]) if len(a) else float('nan'):.2f}")
+
+
 def real(timings=TIMINGS, same_rows: bool = False) -> None:
     folders = [Path("datasets/real") / n for n in ("mobgap_HA001_Test11_Trial1",)]
     folders += [Path("datasets/external") / n for n in ("mobgap_HA002_Test11_Trial1", "mobgap_MS001_Test11_Trial1")]
@@ -228,10 +317,10 @@ def real(timings=TIMINGS, same_rows: bool = False) -> None:
                   else ""))
 
 
-def _real_line(f, name, timing, big, ref, res, tt, match=None) -> list[tuple[float, float, float]]:
-    """Print one recording's line for one pipeline and timing; return its (duration, start, end) errors (s).
-    ``match``: the table whose overlap picks each reference turn's row (decision L210: L208's timing; default
-    ``tt``)."""
+def _real_line(f, name, timing, big, ref, res, tt, match=None, all_columns: bool = False) -> list[tuple]:
+    """Print one recording's line for one pipeline and timing; return its (duration, start, end) errors (s)
+    (``all_columns``: (duration, |angle| error, sign agreement, start, end)). ``match``: the table whose overlap
+    picks each reference turn's row (decision L210: L208's timing; default ``tt``)."""
     match = tt if match is None else match
     err, found = [], 0
     for r in big.itertuples():
@@ -251,8 +340,9 @@ def _real_line(f, name, timing, big, ref, res, tt, match=None) -> list[tuple[flo
           f"transfers detected {len(res.info['transfers'])} "
           f"({', '.join(t['kind'] + ' ' + format(t['start_s'], '.1f') for t in res.info['transfers'])})",
           flush=True)
-    return [tuple(x) for x in a[:, [0, 3, 4]].tolist()]
+    return [tuple(x) for x in (a if all_columns else a[:, [0, 3, 4]]).tolist()]
 
 
 if __name__ == "__main__":
-    {"sim": sim, "sim28": sim28, "real": real, "sim210": sim210, "real210": real210}[sys.argv[1]]()
+    {"sim": sim, "sim28": sim28, "real": real, "sim210": sim210, "real210": real210, "sim231": sim231,
+     "real231": real231}[sys.argv[1]]()

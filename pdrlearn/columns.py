@@ -185,7 +185,8 @@ SESSIONS: tuple[Column, ...] = (
     ("timing_resolution_s", "s", "number", "one sample period of the stream the contacts come from (L116)"),
     ("turn_angle_mae_deg", "deg", "number", "mean absolute error of the reference turns' angles (L42)"),
     ("turn_count", "count", "integer",
-     f"turns of >= {TURN_COUNT_MIN_DEG:g} deg, with their same-direction edge rows (L104, L181)"),
+     f"turns of >= {TURN_COUNT_MIN_DEG:g} deg, with their same-direction edge rows (L104, L181); a lower-back "
+     "track's: turns.csv's rows (L231, L232)"),
     ("turn_count_min_deg", "deg", "number", "the smallest turn turn_count counts"),
     ("median_turn_duration_s", "s", "number", "median duration of turns.csv's turns (L200); empty without a turn"),
     ("median_turn_angle_deg", "deg", "number", "median absolute angle of turns.csv's turns (L200)"),
@@ -287,13 +288,15 @@ TURNS: tuple[Column, ...] = (
     ("end_s", "s", "number", "where that heading has gone 95 % of the angle (L208, L209); a lower-back turn matched by "
                              "a yaw-rate turn: its end, first sample under 5 deg/s after it (L210, L211)"),
     ("duration_s", "s", "number", "end_s - start_s"),
-    ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181)"),
+    ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181); "
+                                   "a lower-back turn with the whole turns its yaw-rate turn shows (L231, L232)"),
     ("peak_rate_dps", "deg/s", "number", "largest rate of the turn's heading with each row's change spread over "
                                          "that row's span, the heading start_s / end_s are read on (L229; a "
                                          "foot turn's mean rate is never above it); a lower-back turn timed by its "
-                                         "yaw rate (L210): |heading change| / time between two of its rows' starts "
-                                         "(L200), about half the true peak"),
-    ("n_rows", "count", "integer", "rows of steps.csv the turn spans"),
+                                         "yaw rate (L210): that yaw-rate turn's peak, El-Gohary's 0.5 Hz low-passed "
+                                         "|yaw rate| (L235, L236)"),
+    ("n_rows", "count", "integer", "rows of steps.csv the turn spans; 0: a yaw-rate turn no step row holds (the "
+                                   "option of L233, off by default)"),
     ("bout", "index", "integer", "the bouts.csv bout holding the turn; empty outside every bout"),
     ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s / duration_s (L209); per unit "
                                          "(L229): a foot track's turn (5-95 % heading timing, L208) 90 % of "

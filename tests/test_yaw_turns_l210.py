@@ -66,18 +66,24 @@ def test_yaw_timing_takes_the_matching_yaw_rate_turn():
     assert head.loc[0, "start_s"] > 9.5  # L208: after the turn (on the first step after it)
     # two candidates: the larger one times the turn; one peaking after the rows and one of the other sign do not
     yaw = _yaw((6.3, 8.7, 7.5, 88.0), (6.0, 6.6, 6.3, 50.0), (11.0, 12.0, 11.5, 95.0), (6.2, 8.8, 7.4, -120.0))
-    tt = turn_table(st, timing="yaw", yaw_turns=yaw)
+    tt = turn_table(st, timing="yaw", yaw_turns=yaw, branch=False)  # L210's same-sign match
+    # decision L231 (default since L232): the -120 deg turn is admissible too, on the -270 deg branch (nearer -120
+    # than +90 is), and the larger: it times the turn and gives it that branch
+    l231 = turn_table(st, timing="yaw", yaw_turns=yaw)
+    assert l231.loc[0, ["start_s", "end_s", "angle_deg"]].tolist() == pytest.approx([6.2, 8.8, -270.0])
     assert tt.loc[0, ["start_s", "end_s", "duration_s"]].tolist() == pytest.approx([6.3, 8.7, 2.4])
     assert tt.loc[0, "mean_rate_dps"] == pytest.approx(90.0 / 2.4)  # the whole angle: the boundaries hold it
     same = ["turn", "angle_deg", "n_rows", "bout"]
     pd.testing.assert_frame_equal(tt[same], head[same])
-    # decision L229: a yaw-timed turn keeps L200's row-to-row peak; the heading-timed one the spread heading's
+    # decision L229: a yaw-timed turn kept L200's row-to-row peak (L236: the option yaw_peak=False); the
+    # heading-timed one the spread heading's
     h = np.degrees(st["heading_rad"].to_numpy(float))
-    assert tt.loc[0, "peak_rate_dps"] == pytest.approx(np.max(np.abs(np.diff(h)) / np.diff(st["start_s"])))
+    l229 = turn_table(st, timing="yaw", yaw_turns=yaw, branch=False, yaw_peak=False)
+    assert l229.loc[0, "peak_rate_dps"] == pytest.approx(np.max(np.abs(np.diff(h)) / np.diff(st["start_s"])))
     assert head.loc[0, "peak_rate_dps"] >= head.loc[0, "mean_rate_dps"]
-    # no match: L208's times
+    # no match: L208's times (without L231's whole turns, a yaw-rate turn of the other sign never matches)
     for none in (None, [], _yaw((11.0, 12.0, 11.5, 95.0)), _yaw((6.2, 8.8, 7.4, -120.0))):
-        pd.testing.assert_frame_equal(turn_table(st, timing="yaw", yaw_turns=none), head)
+        pd.testing.assert_frame_equal(turn_table(st, timing="yaw", yaw_turns=none, branch=False), head)
     with pytest.raises(ValueError, match="timing"):
         turn_table(st, timing="gyro")
 

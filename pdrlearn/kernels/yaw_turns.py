@@ -44,6 +44,13 @@ def _merge(iv: np.ndarray, gap: int) -> np.ndarray:
     return np.asarray(out, dtype=np.intp)
 
 
+def lowpassed_yaw_rate(rate_dps: np.ndarray, fs: float) -> np.ndarray:
+    """El-Gohary's low-passed yaw rate (deg/s, signed): the 0.5 Hz 4th-order Butterworth, forward and backward
+    (mobgap TdElGohary's filter), whose |peak| :func:`yaw_rate_turns` detects a turn on; decision L235: that peak is
+    a turn's peak rate."""
+    return lowpass(np.asarray(rate_dps, dtype=np.float64), YAW_TURN_LOWPASS_HZ, fs, order=YAW_TURN_LOWPASS_ORDER)
+
+
 def yaw_rate_turns(rate_dps: np.ndarray, fs: float) -> np.ndarray:
     """(k, 4) El-Gohary's turns (module docstring) of the yaw rate ``rate_dps`` (n,) deg/s sampled at ``fs`` Hz:
     each row ``start`` (index of the last sample under the edge rate before the turn, 0 at the recording's start),
@@ -55,7 +62,7 @@ def yaw_rate_turns(rate_dps: np.ndarray, fs: float) -> np.ndarray:
     empty = np.zeros((0, 4))
     if n < 2 or not np.isfinite(w).all():
         return empty
-    f = np.abs(lowpass(w, YAW_TURN_LOWPASS_HZ, fs, order=YAW_TURN_LOWPASS_ORDER))
+    f = np.abs(lowpassed_yaw_rate(w, fs))
     peaks = find_peaks(f, height=YAW_TURN_PEAK_DPS)
     below = f < YAW_TURN_EDGE_DPS
     cross = np.flatnonzero(below[1:] != below[:-1])  # i: the state changes from sample i to i + 1

@@ -298,19 +298,44 @@ def spread_peak_rate(dh: np.ndarray, start: np.ndarray, end: np.ndarray) -> floa
 TURN_YAW_TIMING = True
 
 
-def yaw_turn_times(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None) -> tuple[float, float] | None:
-    """Decision L210: the ``(start_s, end_s)`` of the yaw-rate turn (records of
-    :data:`pdrlearn.waist.heading.YAW_TURN_KEYS`) that times a counted turn of ``angle`` deg whose rows span
-    ``[lo, hi]`` s: of those whose peak lies in the span and whose angle has the turn's sign, the one of largest
-    |angle|; None without one."""
+#: decision L231: a lower-back turn's angle takes the whole turns (k * 360 deg) that bring it nearest its yaw-rate
+#: turn (a step heading is wrapped: a turn done between two contacts reads +180 as -178, 360 as 0); L232: L231's
+#: rule met (fresh users 4660-4699, wrong-sign turns waist-pendulum 11 -> 0, waist-pll 12 -> 1; median |angle error|
+#: 5.58 -> 2.19 / 9.38 -> 5.18 deg; mobgap waist-pendulum unchanged)
+TURN_YAW_BRANCH = True
+#: decision L233: a lower-back turns.csv also holds the yaw-rate turns of at least ``min_deg`` that no counted
+#: step-heading turn overlaps (a turn on the spot whose steps were missed), ``n_rows`` 0; L234: not adopted (its rule
+#: failed on waist-pll's extra rows, 0 -> 1, though turns found rose 30 -> 40 / 29 -> 40): an option
+TURN_YAW_ONLY = False
+#: decision L235: a yaw-timed (or yaw-only) turn's ``peak_rate_dps`` is its yaw-rate turn's peak (El-Gohary's
+#: low-passed rate), not L200's row-to-row rate; L236: L235's rule met (fresh users 4660-4699, median |peak error|
+#: waist-pendulum 49.79 -> 18.52, waist-pll 68.21 -> 19.75 deg/s)
+TURN_YAW_PEAK = True
+
+
+def yaw_turn_match(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None, *,
+                   branch: bool = False) -> tuple[int, float] | None:
+    """Decisions L210 / L231: the yaw-rate turn (a row of ``yaw``, records of
+    :data:`pdrlearn.waist.heading.YAW_TURN_KEYS`) that times a step-heading turn of ``angle`` deg whose rows span
+    ``[lo, hi]`` s, and the whole turns (deg, a multiple of 360) its angle takes: of those whose peak lies in the
+    span and whose angle has the sign of ``angle`` plus that shift (``branch``: the multiple of 360 deg nearest
+    their difference; else 0, L210's same-sign match), the one of largest |angle|; None without one."""
     if yaw is None or not len(yaw):
         return None
     peak, ang = yaw["peak_s"].to_numpy(float), yaw["angle_deg"].to_numpy(float)
-    cand = np.flatnonzero((peak >= lo) & (peak <= hi) & (np.sign(ang) == math.copysign(1.0, angle)))
+    shift = 360.0 * np.round((ang - angle) / 360.0) if branch else np.zeros(len(ang))
+    cand = np.flatnonzero((peak >= lo) & (peak <= hi) & (np.sign(ang) == np.copysign(1.0, angle + shift)))
     if not cand.size:
         return None
-    k = cand[int(np.argmax(np.abs(ang[cand])))]
-    return float(yaw["start_s"].iloc[k]), float(yaw["end_s"].iloc[k])
+    k = int(cand[int(np.argmax(np.abs(ang[cand])))])
+    return k, float(shift[k])
+
+
+def yaw_turn_times(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None) -> tuple[float, float] | None:
+    """Decision L210: the ``(start_s, end_s)`` of :func:`yaw_turn_match`'s same-sign yaw-rate turn; None without
+    one."""
+    m = yaw_turn_match(lo, hi, angle, yaw)
+    return None if m is None else (float(yaw["start_s"].iloc[m[0]]), float(yaw["end_s"].iloc[m[0]]))
 
 
 #: turns.csv's columns (decision L200), in order
@@ -320,7 +345,8 @@ TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "pe
 
 def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None,
-               yaw_turns=None) -> pd.DataFrame:
+               yaw_turns=None, branch: bool | None = None, yaw_only: bool | None = None,
+               yaw_peak: bool | None = None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
@@ -341,15 +367,35 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     times, except that a turn matched by one of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``: the
     El-Gohary turns of its yaw rate) takes that turn's start and end (:func:`yaw_turn_times`; its rows' span from
     the start of the row before its first heading change to the end of its last row). Default: ``"yaw"`` when
-    ``yaw_turns`` is given and :data:`TURN_YAW_TIMING`, else :data:`TURN_TIMING`."""
+    ``yaw_turns`` is given and :data:`TURN_YAW_TIMING`, else :data:`TURN_TIMING`.
+
+    Under ``"yaw"`` only (None = the module defaults): ``branch`` (decision L231, :data:`TURN_YAW_BRANCH`) a
+    step-heading turn's angle takes the whole turns :func:`yaw_turn_match` gives it (before the ``min_deg`` cut);
+    ``yaw_only`` (L233, :data:`TURN_YAW_ONLY`) a yaw-rate turn of at least ``min_deg`` whose span overlaps no
+    counted turn's rows (their span as the match's) is a row of its own: its times, angle and peak rate, ``n_rows``
+    0, ``bout`` the bout whose span holds its peak; ``yaw_peak`` (L235, :data:`TURN_YAW_PEAK`) a yaw-timed turn's
+    ``peak_rate_dps`` is its yaw-rate turn's ``peak_dps`` (El-Gohary's low-passed peak). The rows are in time
+    order."""
     if timing is None:
         timing = "yaw" if yaw_turns is not None and TURN_YAW_TIMING else TURN_TIMING
     if timing not in (*TURN_TIMINGS, "yaw"):
         raise ValueError(f"turn_table timing must be one of {(*TURN_TIMINGS, 'yaw')}, not {timing!r}")
-    yaw = pd.DataFrame(list(yaw_turns or []), columns=["start_s", "end_s", "peak_s", "angle_deg"]) \
+    branch = TURN_YAW_BRANCH if branch is None else bool(branch)
+    yaw_only = TURN_YAW_ONLY if yaw_only is None else bool(yaw_only)
+    yaw_peak = TURN_YAW_PEAK if yaw_peak is None else bool(yaw_peak)
+    yaw = pd.DataFrame(list(yaw_turns or []), columns=["start_s", "end_s", "peak_s", "angle_deg", "peak_dps"]) \
         if timing == "yaw" else None
     st, spans = _turn_spans(steps)
-    rows = []
+    rows, claimed = [], []  # claimed: the counted turns' row spans (decision L233)
+    b_lo, b_hi, b_no = (np.zeros(0),) * 3
+    if bouts is not None and len(bouts):
+        b_lo, b_hi = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
+        b_no = bouts["bout"].to_numpy()
+
+    def bout_of(tf: float):
+        inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
+        return int(b_no[inside[0]]) if inside.size else pd.NA
+
     if spans:
         t = st["start_s"].to_numpy(float)
         end = st["end_s"].to_numpy(float) if "end_s" in st else np.full(len(st), np.nan)
@@ -359,13 +405,14 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         # a row's span: its end, else the next row's start (L200's end of a turn), else none (an instant)
         nxt = np.r_[t[1:], t[-1]]
         span_end = np.where(np.isfinite(end) & (end > t), end, np.maximum(nxt, t))
-        b_lo, b_hi, b_no = (np.zeros(0),) * 3
-        if bouts is not None and len(bouts):
-            b_lo, b_hi = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
-            b_no = bouts["bout"].to_numpy()
         for angle, a, b, first, last in spans:
+            lo, hi = float(t[first]), float(span_end[last])  # decision L210's match window
+            match = yaw_turn_match(lo, hi, angle, yaw, branch=branch)
+            if match is not None:  # decision L231: the whole turns the wrapped step heading lost (0 without it)
+                angle += match[1]
             if abs(angle) < min_deg:
                 continue
+            claimed.append((lo, hi))
             # interval i turns between row i and row i + 1: the change shows in row i + 1 (a foot row's own turn)
             t0 = float(t[first + 1])
             t1 = float(end[last]) if np.isfinite(end[last]) and end[last] > t[last] else float(
@@ -374,27 +421,36 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if timing != "rows" else 1.0
             if timing != "rows":  # decision L208: interval j's change spread over row j + 1's span
                 j = np.arange(first, last)
-                t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], angle, TURN_TIMING_FRACTIONS)
-            timed = yaw_turn_times(float(t[first]), float(span_end[last]), angle, yaw)  # decision L210
-            if timed is not None:
-                (t0, t1), share = timed, 1.0  # El-Gohary's boundaries hold the whole turn
+                t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], angle - (
+                    match[1] if match is not None else 0.0), TURN_TIMING_FRACTIONS)
+            if match is not None:  # decision L210
+                (t0, t1), share = (float(yaw["start_s"].iloc[match[0]]), float(yaw["end_s"].iloc[match[0]])), 1.0
             elif ends_after_last:  # decision L205: without the yaw rate its end is unknown
                 t1 = np.nan
-            if timed is None:  # decision L229: the peak of the heading L208 spreads over the rows' spans (L205's
+            if match is None:  # decision L229: the peak of the heading L208 spreads over the rows' spans (L205's
                 j = np.arange(first, last)  # last row: an instant)
                 peak = spread_peak_rate(np.diff(h)[j], t[j + 1], span_end[j + 1])
+            elif yaw_peak:  # decision L235: the yaw-rate turn's own peak
+                peak = float(yaw["peak_dps"].iloc[match[0]])
             else:  # L229: a turn timed by the yaw rate keeps L200's peak (the lower back's spread rows overshoot)
                 r = rate[a:b]
                 r = r[np.isfinite(r)]
                 peak = float(r.max()) if r.size else np.nan
-            tf = t[a + 1]
-            inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
-            rows.append({"turn": len(rows) + 1, "start_s": t0, "end_s": t1, "duration_s": t1 - t0,
+            rows.append({"start_s": t0, "end_s": t1, "duration_s": t1 - t0,
                          "angle_deg": angle, "peak_rate_dps": peak,
-                         "n_rows": int(last - first), "bout": int(b_no[inside[0]]) if inside.size else pd.NA,
+                         "n_rows": int(last - first), "bout": bout_of(float(t[a + 1])),
                          # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
                          "mean_rate_dps": share * abs(angle) / (t1 - t0) if t1 > t0 else np.nan})
-    out = pd.DataFrame(rows, columns=list(TURN_TABLE_COLUMNS))
+    if yaw_only and yaw is not None:  # decision L233: a yaw-rate turn no counted step-heading turn overlaps
+        for y in yaw.itertuples():
+            if abs(y.angle_deg) < min_deg or any(y.start_s <= hi and y.end_s >= lo for lo, hi in claimed):
+                continue
+            dur = y.end_s - y.start_s
+            rows.append({"start_s": y.start_s, "end_s": y.end_s, "duration_s": dur, "angle_deg": y.angle_deg,
+                         "peak_rate_dps": y.peak_dps, "n_rows": 0, "bout": bout_of(y.peak_s),
+                         "mean_rate_dps": abs(y.angle_deg) / dur if dur > 0 else np.nan})
+    rows.sort(key=lambda r: r["start_s"])  # stable: step-heading turns keep their order
+    out = pd.DataFrame([{"turn": i + 1, **r} for i, r in enumerate(rows)], columns=list(TURN_TABLE_COLUMNS))
     out["bout"] = out["bout"].astype("Int64")
     return out
 

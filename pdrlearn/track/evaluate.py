@@ -362,7 +362,10 @@ def _basic(result: TrackResult, out: dict) -> None:
 
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
     # decision L200: each turn's duration, angle, peak rate (L210: a lower-back track's yaw-rate turns)
-    out.update(turn_summary(turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"))))
+    table = turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"))
+    out.update(turn_summary(table))
+    if result.info.get("yaw_turns") is not None:  # decisions L231 / L233: turns.csv's turns are turn_count's
+        out["turn_count"] = len(table)
     out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W183: chair transfers, TUG
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)

@@ -196,7 +196,7 @@ def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings
 
 
 #: the columns of a track's ``info["yaw_turns"]`` records (decision L210)
-YAW_TURN_KEYS = ("start_s", "end_s", "peak_s", "angle_deg")
+YAW_TURN_KEYS = ("start_s", "end_s", "peak_s", "angle_deg", "peak_dps")
 
 
 def yaw_turns(imu: WaistIMU, bias_rps: float = 0.0) -> list[dict]:
@@ -204,12 +204,16 @@ def yaw_turns(imu: WaistIMU, bias_rps: float = 0.0) -> list[dict]:
     rate, the vertical gyro in the gravity frame less ``bias_rps``, over the whole recording: one record each
     (:data:`YAW_TURN_KEYS`, times in ``imu.t``'s clock; ``end_s`` the first sample under the edge rate after the
     turn, the last sample at the recording's end)."""
-    from pdrlearn.kernels.yaw_turns import yaw_rate_turns
+    from pdrlearn.kernels.yaw_turns import lowpassed_yaw_rate, yaw_rate_turns
 
     t = np.asarray(imu.t, dtype=float)
     if t.size < 2:
         return []
-    rows = yaw_rate_turns(np.degrees(imu.w_z - bias_rps), float(imu.fs))
+    rate = np.degrees(imu.w_z - bias_rps)
+    rows = yaw_rate_turns(rate, float(imu.fs))
+    if not len(rows):
+        return []
+    f = np.abs(lowpassed_yaw_rate(rate, float(imu.fs)))  # decision L235: the detector's own peak, El-Gohary 2014
     last = t.size - 1
-    return [dict(zip(YAW_TURN_KEYS, (float(t[int(a)]), float(t[min(int(b), last)]), float(t[int(p)]), float(ang)),
-                     strict=True)) for a, b, p, ang in rows]
+    return [dict(zip(YAW_TURN_KEYS, (float(t[int(a)]), float(t[min(int(b), last)]), float(t[int(p)]), float(ang),
+                                     float(f[int(p)])), strict=True)) for a, b, p, ang in rows]
