@@ -139,6 +139,8 @@ def test_a_seated_starts_rise_is_vetoed_before_any_walking_contact():
 
 
 def test_a_realtime_track_with_the_option_removes_a_simulated_sit_to_stand():
+    """W201: W200's rule not met, so the option is off by default (a realtime track keeps no veto, W185)."""
+    assert OPTION_DEFAULTS["realtime_sit_veto"] is False
     s = simulate_path(parse_route("straight:10, sit:20, straight:10"), UserProfile.from_seed(621), rate_hz=100,
                       seed=621)
     tr = s.extras["transfers"].iloc[0]
@@ -148,6 +150,7 @@ def test_a_realtime_track_with_the_option_removes_a_simulated_sit_to_stand():
     n_in = int(((e0 >= tr.start_s) & (e0 <= tr.end_s)).sum())
     assert n_in > 0 and not ((e1 >= tr.start_s) & (e1 <= tr.end_s)).any()
     assert off.info["n_vetoed_contacts"] == 0 and on.info["n_vetoed_contacts"] == n_in == len(e0) - len(e1)
+    pd.testing.assert_frame_equal(track_waist(s, pipeline="waist-pendulum", realtime=True).steps, off.steps)
     via = track_waist(s, pipeline="waist-pendulum", params={"options": {"realtime": True, "realtime_sit_veto": True}})
     pd.testing.assert_frame_equal(via.steps, on.steps)
     # sit_veto false turns it off; a value given is applied causally (True: W104's veto, no sparing)
