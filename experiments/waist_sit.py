@@ -12,8 +12,10 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_sit.py
                                                  recordings, sit_veto="alternation" against no veto
      ... experiments/waist_sit.py opposite  # decision W184's rule (W185): users 3600-3639 and the real
                                               recordings, sit_veto="opposite" against no veto
+     ... experiments/waist_sit.py causal  # decision W200's rule (W201): users 4560-4599 and the real realtime
+                                            rows, realtime with realtime_sit_veto against without
 Output: experiments/results/waist_sit_count.txt, waist_sit_veto.txt, waist_sit_real.txt, waist_sit_rhythm.txt,
-        waist_sit_today.txt, waist_sit_alternation.txt, waist_sit_opposite.txt
+        waist_sit_today.txt, waist_sit_alternation.txt, waist_sit_opposite.txt, waist_sit_causal.txt
 """
 import logging
 import sys
@@ -85,8 +87,11 @@ def veto() -> None:
     walks(users, True)
 
 
-def walks(users: range, sit_veto) -> bool:
-    """(b) of W104 / W109: the walks without sitting, true contacts matched without and with ``sit_veto``."""
+def walks(users: range, sit_veto, base: dict | None = None, cand: dict | None = None) -> bool:
+    """(b) of W104 / W109: the walks without sitting, true contacts matched without and with ``sit_veto`` (W200:
+    the track options ``base`` without and ``cand`` with the candidate, if given)."""
+    base = {} if base is None else base
+    cand = {"sit_veto": sit_veto} if cand is None else cand
     lost = {p: 0 for p in PIPELINES}
     for u in users:
         for route in WALK_ROUTES:
@@ -94,8 +99,8 @@ def walks(users: range, sit_veto) -> bool:
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
             line = []
             for p in PIPELINES:
-                m0 = true_matched(track_waist(s, pipeline=p).steps["event_s"].to_numpy(float), truth)
-                r1 = track_waist(s, pipeline=p, sit_veto=sit_veto)
+                m0 = true_matched(track_waist(s, pipeline=p, **base).steps["event_s"].to_numpy(float), truth)
+                r1 = track_waist(s, pipeline=p, **cand)
                 m1 = true_matched(r1.steps["event_s"].to_numpy(float), truth)
                 lost[p] += m0 != m1
                 line.append(f"{p} matched {m0} -> {m1} (vetoed {r1.info['n_vetoed_contacts']})")
@@ -106,12 +111,15 @@ def walks(users: range, sit_veto) -> bool:
     return all(v == 0 for v in lost.values())
 
 
-def real(sit_veto=True, *, strict: bool = False) -> bool:
+def real(sit_veto=True, *, strict: bool = False, bases=(("waist-pendulum", "waist-pendulum"),
+                                                         ("waist-pll (A-HE)", "waist-pll")),
+         off: dict | None = None, on: dict | None = None, test5: bool = False) -> bool:
     """W104 (c) / W109 (c): experiments/waist.py's `real()` and `pooled()` on the mobgap recordings, without and
     with ``sit_veto``; True when no row's step_f1 and no pipeline's pooled Test11 step_f1 drops. The pooled bout
     distance-error medians are printed too. ``strict`` (W180 (c)): also every Test5 row's step_f1 unchanged, each
     pipeline's pooled Test11 step_f1 higher, and no pooled bout_err_median_pct (Test5, Test11, calibrated and
-    defaults) higher."""
+    defaults) higher. W200: ``bases`` the (label, pipeline) rows, ``off`` / ``on`` their options without / with
+    the candidate (default: none / ``sit_veto``), ``test5``: every Test5 row's step_f1 unchanged as well."""
     from pathlib import Path
 
     import pandas as pd
@@ -120,9 +128,10 @@ def real(sit_veto=True, *, strict: bool = False) -> bool:
     import waist as W  # experiments/waist.py
 
     ext = Path("datasets/external")
-    bases = (("waist-pendulum", "waist-pendulum"), ("waist-pll (A-HE)", "waist-pll"))
-    configs = [(label, pipe, {}) for label, pipe in bases]
-    configs += [(label + " +veto", pipe, {"sit_veto": sit_veto}) for label, pipe in bases]
+    off = {} if off is None else off
+    on = {"sit_veto": sit_veto} if on is None else on
+    configs = [(label, pipe, dict(off)) for label, pipe in bases]
+    configs += [(label + " +veto", pipe, dict(on)) for label, pipe in bases]
     bouts: list = []
     df = W.real(ext, W.external_runs(ext), configs=configs, bouts=bouts)
     pd.set_option("display.width", 220)
@@ -134,12 +143,12 @@ def real(sit_veto=True, *, strict: bool = False) -> bool:
         n_a = df[df.pipeline == base].set_index(key)["n_detected"]
         n_b = df[df.pipeline == base + " +veto"].set_index(key)["n_detected"]
         cmp = pd.DataFrame({"f1": a, "f1_veto": b, "diff": b - a, "n_det": n_a, "n_det_veto": n_b})
-        print(f"\n{base} (+veto: sit_veto={sit_veto!r}):")
+        print(f"\n{base} (+veto: {on}):")
         print(cmp.round(4).to_string())
         lower = int((cmp["diff"] < -1e-9).sum())
         ok &= lower == 0
         print(f"rows with a lower step_f1: {lower} of {len(cmp)}")
-        if strict:
+        if strict or test5:
             t5 = cmp[cmp.index.get_level_values("test").str.startswith("Test5")]
             moved = int((t5["diff"].abs() > 1e-9).sum())
             ok &= moved == 0
@@ -249,6 +258,38 @@ def opposite() -> None:
              shown=(False, "rhythm", "alternation", "opposite"))
 
 
+def causal() -> None:
+    """Decision W200's rule, measured once (W201): realtime tracks with ``realtime_sit_veto`` against without, (a) and
+    (b) on fresh users 4560-4599, (c) on the real realtime rows; then a seated-start TUG (information)."""
+    users = range(4560, 4600)
+    off, on = {"realtime": True, "realtime_sit_veto": False}, {"realtime": True, "realtime_sit_veto": True}
+    m0: dict = {}
+    m1: dict = {}
+    print("(a) realtime, without the veto")
+    before = count(users, m0, **off)
+    print("(a) realtime, realtime_sit_veto=True")
+    after = count(users, m1, **on)
+    ok_a = True
+    for p in PIPELINES:
+        removed = 100.0 * (before[p] - after[p]) / max(before[p], 1)
+        ok_a &= removed >= 80.0
+        print(f"(a) {p}: in-transfer contacts {before[p]} -> {after[p]}, removed {removed:.1f} % "
+              f"({'met' if removed >= 80.0 else 'NOT met'}: >= 80 %); true contacts matched {m0[p]} -> {m1[p]}")
+    ok_b = walks(users, None, off, on)
+    ok_c = real(strict=False, bases=(("waist-pendulum realtime", "waist-pendulum"),), off=off, on=on, test5=True)
+    print(f"W200: (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, "
+          f"(c) {'met' if ok_c else 'NOT met'} -> {'ADOPT' if ok_a and ok_b and ok_c else 'not adopted'}")
+    tug = {False: 0, True: 0}
+    for u in range(4560, 4580):  # information: W174's seated-start TUG
+        s = simulate_path(parse_route("straight:3, turn:180, straight:3"), UserProfile.from_seed(u), speed="slow",
+                          rate_hz=100, seed=u, scenario="route", sit_start_s=5.0, sit_end_s=5.0)
+        for flag, o in ((False, off), (True, on)):
+            ev = track_waist(s, pipeline="waist-pendulum", **o).steps["event_s"].to_numpy(float)
+            tug[flag] += int(in_transfers(ev, s.extras["transfers"]).sum())
+    print(f"(information) seated-start TUG, users 4560-4579, waist-pendulum realtime: in-transfer contacts "
+          f"{tug[False]} -> {tug[True]}")
+
+
 def where() -> None:
     """The contacts `sit_veto` drops on the real Test11 recordings (defaults): inside / outside the reference walking
     bouts (bouts.csv level wb) and within 0.25 s of a reference IC (ics.csv)."""
@@ -287,3 +328,5 @@ elif sys.argv[1:] == ["alternation"]:
     alternation()
 elif sys.argv[1:] == ["opposite"]:
     opposite()
+elif sys.argv[1:] == ["causal"]:
+    causal()

@@ -93,6 +93,7 @@ from pdrlearn.waist.plausibility import (
 from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
+from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.transfers import chair_transfers
 
 log = logging.getLogger(__name__)
@@ -377,7 +378,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
                    "stand_veto": False,  # W189
-                   "contact_model": False}  # W203
+                   "contact_model": False,  # W203
+                   "realtime_sit_veto": False}  # W200: the causal sit veto of realtime tracks
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -389,6 +391,8 @@ SCOPED_OPTIONS = {
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "vault_veto": ("the offline waist-pendulum (W119)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
+    "realtime_sit_veto": ("realtime tracks (offline tracks apply the sit veto on the whole recording; W200)",
+                          lambda pl, rt, m, det, stops: rt),
 }
 
 
@@ -470,7 +474,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
-                stand_veto: bool | str | None = None, contact_model: bool | str | None = None, detector=None,
+                stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
+                realtime_sit_veto: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -524,7 +529,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         sequence (decision W109); ``"alternation"``: as ``"rhythm"``, sparing also an undecided contact (no W20 side)
         between two same-side contacts of its sequence (decision W180); ``"opposite"`` (the default of offline
         tracks since W185): as ``"rhythm"``, sparing also an undecided contact between two opposite-side contacts of
-        its sequence (decision W184); ``False``: no veto (the default with ``realtime``, W185)
+        its sequence (decision W184); ``False``: no veto (the default with ``realtime`` unless ``realtime_sit_veto``)
+    realtime_sit_veto : with ``realtime``: apply ``sit_veto`` (``"opposite"`` unless set) causally, each contact decided
+        3.25 s after it on the samples up to then, the upright from the walking contacts so far (decision W200,
+        :func:`pdrlearn.waist.sit_causal.causal_transfer_veto`); default False: a realtime track keeps no veto unless
+        ``sit_veto`` is set, and then its veto reads the whole recording (W185)
     realtime_contact_shift : pendulum, realtime: W131's ``contact_shift`` inside each W31 decision window too (no added
         latency; decision W166: measured, not adopted -- Test11's pooled calibrated bout median vs the strides rose
         13.280 -> 13.556 %); default False. The live trackers read it from the PARAMS.json / bundle options
@@ -604,11 +613,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
-             "stand_veto": stand_veto, "contact_model": contact_model}
+             "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
-    if realtime and sit_veto is None and (p.options or {}).get("sit_veto") is None:
-        o["sit_veto"] = REALTIME_SIT_VETO  # W185: the adopted veto is the offline default only
+    causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
+    if realtime and not causal_veto and sit_veto is None and (p.options or {}).get("sit_veto") is None:
+        o["sit_veto"] = REALTIME_SIT_VETO  # W185: the whole-recording veto is the offline default only
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
     smoothing = check_length_smoothing(o["length_smoothing"])  # W56
@@ -666,8 +676,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     n_vetoed = 0
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
         # W180: and an undecided contact inside an alternating sequence; W184: or inside a left/right pair
-        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation", "opposite"),
-                              keep_between={"alternation": True, "opposite": "opposite"}.get(o["sit_veto"], False))
+        veto = causal_transfer_veto if causal_veto else transfer_veto  # W200: realtime_sit_veto, the causal form
+        steps = veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation", "opposite"),
+                     keep_between={"alternation": True, "opposite": "opposite"}.get(o["sit_veto"], False))
         n_vetoed = steps.attrs["n_vetoed"]
     else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
         warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"], realtime=realtime))

@@ -51,20 +51,69 @@ TRANSFER_PEAK_DEG = 25.0
 TRANSFER_HALF_S = 1.0
 
 
+def contact_directions(t: np.ndarray, up_body: np.ndarray, event_s: np.ndarray) -> np.ndarray:
+    """W102's direction of each contact: the AHRS's up direction in the body frame (``up_body``, one row per sample
+    time ``t``) averaged over +-:data:`TILT_HALF_WINDOW_S` around it, normalised (a pure kernel, shared by the
+    offline veto and W200's causal one)."""
+    # window means by cumulative sums: O(n) for any number of contacts
+    csum = np.vstack([np.zeros((1, 3)), np.cumsum(up_body, axis=0)])
+    lo = np.clip(np.searchsorted(t, event_s - TILT_HALF_WINDOW_S), 0, len(t) - 1)
+    hi = np.clip(np.searchsorted(t, event_s + TILT_HALF_WINDOW_S, side="right"), lo + 1, len(t))
+    d = (csum[hi] - csum[lo]) / (hi - lo)[:, None]
+    return d / np.linalg.norm(d, axis=1, keepdims=True)
+
+
+def walking_upright(d: np.ndarray, walking: np.ndarray) -> np.ndarray:
+    """W102's upright: the normalised median of the contact directions ``d`` over the ``walking`` contacts (all of
+    them when none walks)."""
+    walking = np.asarray(walking, dtype=bool)
+    if not walking.any():
+        walking = np.ones(len(d), dtype=bool)
+    up = np.median(d[walking], axis=0)
+    return up / np.linalg.norm(up)
+
+
+def sample_tilt_deg(up_body: np.ndarray, upright: np.ndarray) -> np.ndarray:
+    """Per sample: the angle (deg) between the AHRS's up direction ``up_body`` and ``upright`` (W104)."""
+    u = up_body / np.linalg.norm(up_body, axis=1, keepdims=True)
+    return np.degrees(np.arccos(np.clip(u @ upright, -1.0, 1.0)))
+
+
+def flexion_runs(t: np.ndarray, tilt: np.ndarray) -> list[tuple[float, float, float]]:
+    """W104's events: (start, peak, end) times (s) of each run of samples whose ``tilt`` exceeds
+    :data:`TRANSFER_PEAK_DEG` (a run at an edge of ``t`` ends there)."""
+    above = np.r_[False, np.asarray(tilt) > TRANSFER_PEAK_DEG, False]
+    edges = np.flatnonzero(np.diff(above.astype(int)))
+    return [(float(t[a]), float(t[a + int(np.argmax(tilt[a:b]))]), float(t[b - 1]))
+            for a, b in zip(edges[::2], edges[1::2], strict=True)]
+
+
+def near_flexion(event_s: np.ndarray, runs: list[tuple[float, float, float]]) -> np.ndarray:
+    """W104's window test: per contact, inside a run of ``runs`` or within :data:`TRANSFER_HALF_S` of its peak."""
+    e = np.asarray(event_s, dtype=float)
+    veto = np.zeros(e.size, dtype=bool)
+    for a, peak, b in runs:
+        veto |= ((e >= a) & (e <= b)) | (np.abs(e - peak) <= TRANSFER_HALF_S)
+    return veto
+
+
+def spared(side: np.ndarray, has_next: np.ndarray, keep_rhythm: bool, keep_between: bool | str) -> np.ndarray:
+    """Per contact: kept by the sit veto's sparing (W109's left/right pairs with ``keep_rhythm``; W180's undecided
+    contact between same-side neighbours with ``keep_between``, W184's between opposite-side ones with
+    ``keep_between="opposite"``), from W20's ``side`` and ``has_next``."""
+    keep = np.zeros(len(side), dtype=bool)
+    if keep_rhythm:
+        keep |= alternating_pairs(side, has_next)
+    if keep_between:
+        keep |= undecided_between(side, has_next, opposite=keep_between == "opposite")
+    return keep
+
+
 def _contact_directions(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The AHRS's up direction in the body frame averaged over +-:data:`TILT_HALF_WINDOW_S` around each contact, and
     the session's upright: the normalised median of those directions over the ``walking`` contacts (W102)."""
-    walking = np.asarray(walking, dtype=bool)
-    if not walking.any():
-        walking = np.ones(event_s.size, dtype=bool)
-    # window means by cumulative sums: O(n) for any number of contacts
-    csum = np.vstack([np.zeros((1, 3)), np.cumsum(imu.up_body, axis=0)])
-    lo = np.clip(np.searchsorted(imu.t, event_s - TILT_HALF_WINDOW_S), 0, len(imu.t) - 1)
-    hi = np.clip(np.searchsorted(imu.t, event_s + TILT_HALF_WINDOW_S, side="right"), lo + 1, len(imu.t))
-    d = (csum[hi] - csum[lo]) / (hi - lo)[:, None]
-    d /= np.linalg.norm(d, axis=1, keepdims=True)
-    up = np.median(d[walking], axis=0)
-    return d, up / np.linalg.norm(up)
+    d = contact_directions(imu.t, imu.up_body, event_s)
+    return d, walking_upright(d, walking)
 
 
 def contact_tilt_deg(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> np.ndarray:
@@ -86,12 +135,7 @@ def flexion_events(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> l
     if imu.up_body is None or event_s.size == 0:
         return []
     _, up = _contact_directions(imu, event_s, walking)
-    u = imu.up_body / np.linalg.norm(imu.up_body, axis=1, keepdims=True)
-    tilt = np.degrees(np.arccos(np.clip(u @ up, -1.0, 1.0)))
-    above = np.r_[False, tilt > TRANSFER_PEAK_DEG, False]
-    edges = np.flatnonzero(np.diff(above.astype(int)))
-    return [(float(imu.t[a]), float(imu.t[a + int(np.argmax(tilt[a:b]))]), float(imu.t[b - 1]))
-            for a, b in zip(edges[::2], edges[1::2], strict=True)]
+    return flexion_runs(imu.t, sample_tilt_deg(imu.up_body, up))
 
 
 def transfer_windows(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray, pad_s: float = 0.0
@@ -160,15 +204,10 @@ def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = Fal
         return out
     e = steps["event_s"].to_numpy(float)
     has_next = steps["has_next"].to_numpy(bool)
-    veto = np.zeros(e.size, dtype=bool)
-    for a, peak, b in flexion_events(imu, e, has_next):
-        veto |= ((e >= a) & (e <= b)) | (np.abs(e - peak) <= TRANSFER_HALF_S)
+    veto = near_flexion(e, flexion_events(imu, e, has_next))
     if (keep_rhythm or keep_between) and veto.any():
         side = K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, e), has_next)
-        if keep_rhythm:
-            veto &= ~alternating_pairs(side, has_next)
-        if keep_between:
-            veto &= ~undecided_between(side, has_next, opposite=keep_between == "opposite")
+        veto &= ~spared(side, has_next, keep_rhythm, keep_between)
     return drop_contacts(steps, ~veto, "n_vetoed")
 
 
