@@ -250,6 +250,8 @@ def get_pipeline(name: str) -> Pipeline:
       recording's is no walking; offline ``waist-pendulum`` only; values ``"turns"`` W191, ``"alternation"`` W196),
       ``contact_model`` (decision W204, off: ``"learned"`` keeps only the contacts a learned, calibrated re-scorer
       gives p >= 0.5, W203; offline ``waist-pendulum`` only),
+      ``realtime_sit_veto`` (decision W201, off: a realtime track applies the sit veto causally, each contact
+      decided 3.25 s after it with the upright of the walking contacts seen so far, W200),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
       turn on a 0.2 m radius; both pipelines),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered
