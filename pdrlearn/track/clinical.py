@@ -313,8 +313,10 @@ TURN_YAW_ONLY = False
 TURN_YAW_PEAK = True
 #: decision L255: a yaw-rate turn of at least ``min_deg`` that no counted turn overlaps is a row of its own (L233's
 #: row) when the step rows' heading over its span is on another branch (:func:`whole_turns` not 0): a full turn on
-#: the spot whose steps were missed reads ~0 deg on the rows (trial s29 finding 1)
-TURN_YAW_WHOLE = False
+#: the spot whose steps were missed reads ~0 deg on the rows (trial s29 finding 1); L256: L255's rule met (fresh users
+#: 4970-4999, 360 deg turns found waist-pendulum 3/38 -> 38/38, waist-pll 13/38 -> 37/38, no turn lost, extra rows
+#: 0 -> 0 / 5 -> 5; mobgap waist-pendulum 19 rows, 11/15 overlapped, unchanged)
+TURN_YAW_WHOLE = True
 
 
 def whole_turns(yaw_deg, step_deg: float):
