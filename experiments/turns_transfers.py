@@ -8,9 +8,12 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_transf
      ... experiments/turns_transfers.py real210  # L210: the real turns, heading vs yaw-rate timing, same rows
      ... experiments/turns_transfers.py sim231  # decisions L231 / L233 / L235: users 4660-4699, L210's routes
      ... experiments/turns_transfers.py real231 # the same candidates on the mobgap turns
+     ... experiments/turns_transfers.py sim255  # decision L255: users 4970-4999, the trial's and L210's routes
+     ... experiments/turns_transfers.py real255 # L255 on the mobgap turns
 Output: experiments/results/turns_transfers_sim.txt, turns_transfers_real.txt (the printed lines); L208 / L209:
 turns_timing_sim.txt, turns_timing_real.txt (``real`` prints both timings since L208); L210 / L211:
-turns_yaw_sim.txt, turns_yaw_real.txt; L231-L236: turns_yaw2_sim.txt, turns_yaw2_real.txt
+turns_yaw_sim.txt, turns_yaw_real.txt; L231-L236: turns_yaw2_sim.txt, turns_yaw2_real.txt; L255 / L256:
+turns_whole_sim.txt, turns_whole_real.txt
 
 Simulated truth. A turn: the route's one turn; its truth start / end are where the waist unit's true heading
 (trajectory.csv ``heading_rad``, unwrapped, a 1 s moving mean: one stride's pelvis rotation averaged out) has gone
@@ -60,6 +63,12 @@ TIMINGS210 = ("heading", "yaw")
 USERS231 = range(4660, 4700)
 CONFIGS231 = {"L211": {}, "branch (L231)": {"branch": True}, "yaw-only (L233)": {"yaw_only": True},
               "yaw peak (L235)": {"yaw_peak": True}, "all three": {"branch": True, "yaw_only": True, "yaw_peak": True}}
+#: decision L255's fresh users, the trial s29 routes (by user % 2: t2 and turn_4808, 0.2 m / 0.55 s steps) and the
+#: tables compared: today's defaults (L231 + L235) and the full turns on the spot whose steps were missed
+USERS255 = range(4970, 5000)
+ROUTES255 = ("stand:2, straight:4, turn:180, straight:4, turn:360, straight:2, stand:2",
+             "stand:3, straight:5, turn:180, straight:5, turn:360, straight:3, stand:3")
+CONFIGS255 = {"today": {}, "whole (L255)": {"whole": True}}
 # the lower-back tracks without a sit veto: as measured, before W185
 TRACKS = {"plasys": lambda s: track_plasys(s), "plasys-stream": lambda s: track_streaming(s, method="M2"),
           "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum", sit_veto=False),
@@ -89,6 +98,32 @@ def true_peak_dps(session, ta: float, tb: float, pad_s: float = 0.5) -> float:
     mid = 0.5 * (t[k:] + t[:-k])
     inside = (mid >= ta - pad_s) & (mid <= tb + pad_s)
     return float(r[inside].max()) if inside.any() else float("nan")
+
+
+def true_turns(session, route: str) -> list[tuple[float, float, float]]:
+    """Decision L255's truth of a route with several turns: per route turn (``parse_route``'s ``Turn`` items, in
+    order), L201's start / end where the waist's true heading (1 s mean, as :func:`true_turn`) has gone 5 % / 95 % of
+    its route angle beyond the earlier turns' route angles (searched after the previous turn's end), and its angle
+    the heading's change between the midpoints of the gaps to the turns around it (the recording's ends)."""
+    from pdrlearn.sim.path import Turn
+
+    tr = session.trajectory
+    t = tr["t"].to_numpy(float)
+    h = np.degrees(np.unwrap(tr["heading_rad"].to_numpy(float)))
+    w = max(int(round(1.0 / np.median(np.diff(t)))), 1)
+    hs = np.convolve(np.pad(h, (w // 2, w - 1 - w // 2), mode="edge"), np.ones(w) / w, mode="valid")
+    base, k0, spans = hs[0], 0, []
+    for seg in parse_route(route):
+        if not isinstance(seg, Turn):
+            continue
+        a = float(np.degrees(seg.angle_rad))
+        frac = (hs - base) / a
+        i0 = k0 + int(np.argmax(frac[k0:] >= 0.05))
+        i1 = i0 + int(np.argmax(frac[i0:] >= 0.95))
+        spans.append((i0, i1))
+        base, k0 = base + a, i1
+    cut = [0] + [(spans[j][1] + spans[j + 1][0]) // 2 for j in range(len(spans) - 1)] + [len(hs) - 1]
+    return [(float(t[i0]), float(t[i1]), float(hs[cut[j + 1]] - hs[cut[j]])) for j, (i0, i1) in enumerate(spans)]
 
 
 def med(x) -> str:
@@ -266,9 +301,73 @@ def sim231() -> None:
               f" s ({med(a[:, 2])}); |peak error| {med(np.abs(a[:, 5]))} deg/s ({med(a[:, 5])})")
 
 
-def real231() -> None:
+def _session255(u: int, route: str):
+    """Decision L255's trial session: as ``simulate --route ROUTE --step-length 0.2 --step-time 0.55 --bounce
+    pendulum --rate 100 --user-seed U --seed U``."""
+    from pdrlearn.cli.simulate import _custom_gait
+
+    user = _custom_gait(UserProfile.from_seed(u), "normal", 0.2, 0.55, route)
+    return simulate_path(parse_route(route), user, speed="normal", rate_hz=100.0, seed=u, bounce="pendulum")
+
+
+def sim255() -> None:
+    """Decision L255's rule: fresh users 4970-4999, each on the trial's route (:data:`ROUTES255`) and L210's
+    (:data:`ROUTES210`); each truth turn takes the overlapping row of largest |angle| not yet taken; found: its sign
+    and |angle error| < 90 deg; extra rows: the rows no truth turn took."""
+    names = ("waist-pendulum", "waist-pll")
+    err = {(n, c): [] for n in names for c in CONFIGS255}  # per truth turn: (route angle, found, errors...)
+    extra = {(n, c): 0 for n in names for c in CONFIGS255}
+    for u in USERS255:
+        for route, s in ((ROUTES255[u % 2], _session255(u, ROUTES255[u % 2])),
+                         (ROUTES210[u % 4][0], _session210(u, *ROUTES210[u % 4])[0])):
+            truth = true_turns(s, route)
+            line = [f"user {u} [{route}]: truth " + ", ".join(f"{a:.2f}-{b:.2f} s {g:+.1f} deg" for a, b, g in truth)]
+            for n in names:
+                res = TRACKS[n](s)
+                for c, kw in CONFIGS255.items():
+                    tt = turn_table(res.steps, detected_bouts(res.steps), timing="yaw",
+                                    yaw_turns=res.info.get("yaw_turns"), **kw)
+                    free = np.ones(len(tt), bool)
+                    got = []
+                    for ta, tb, g in truth:
+                        ov = np.flatnonzero(free & (tt["start_s"].to_numpy(float) <= tb)
+                                            & (tt["end_s"].to_numpy(float) >= ta)) if len(tt) else np.zeros(0, int)
+                        if not ov.size:
+                            err[(n, c)].append((round(g, -1), 0.0) + (np.nan,) * 4)
+                            got.append("-")
+                            continue
+                        k = int(ov[int(np.argmax(tt["angle_deg"].abs().to_numpy()[ov]))])
+                        free[k] = False
+                        r = tt.iloc[k]
+                        ok = float(np.sign(r.angle_deg) == np.sign(g) and abs(r.angle_deg - g) < 90.0)
+                        err[(n, c)].append((round(g, -1), ok, r.angle_deg - g, r.start_s - ta, r.end_s - tb,
+                                            r.duration_s - (tb - ta)))
+                        got.append(f"{r.start_s:.2f}-{r.end_s:.2f} s {r.angle_deg:+.1f} n_rows {r.n_rows}")
+                    extra[(n, c)] += int(free.sum())
+                    line.append(f"  {n} [{c}]: {len(tt)} row(s), {int(free.sum())} extra; " + "; ".join(got))
+            print("\n".join(line), flush=True)
+    print("\nTURNS (each truth turn's overlapping row; median |error| (signed median) of the found):")
+    for (n, c), e in err.items():
+        a = np.array(e, float)
+        ok = a[:, 1] == 1
+        full = np.abs(a[:, 0]) >= 300
+        print(f"{n} [{c}]: found {int(ok.sum())}/{len(a)}, 360 deg turns found {int((ok & full).sum())}/"
+              f"{int(full.sum())}, {extra[(n, c)]} extra rows over {2 * len(USERS255)} sessions; |angle error| "
+              f"{med(np.abs(a[ok, 2]))} deg ({med(a[ok, 2])}); |start| {med(np.abs(a[ok, 3]))} s, |end| "
+              f"{med(np.abs(a[ok, 4]))} s, |duration| {med(np.abs(a[ok, 5]))} s ({med(a[ok, 5])})")
+    for n in names:  # decision L255's rule (b): a truth turn found today and not by the candidate
+        a, b = (np.array(err[(n, c)], float)[:, 1] for c in CONFIGS255)
+        print(f"{n}: turns lost {int(((a == 1) & (b == 0)).sum())}, gained {int(((a == 0) & (b == 1)).sum())}")
+
+
+def real255() -> None:
+    """Decision L255 on the mobgap turns (:func:`real231` with :data:`CONFIGS255`)."""
+    real231(CONFIGS255)
+
+
+def real231(configs=CONFIGS231) -> None:
     """Decisions L231 / L233 / L235 on the mobgap turns: each INDIP turn of >= 80 deg and the overlapping row of
-    largest |angle| of each table (:data:`CONFIGS231`), pooled over the three recordings."""
+    largest |angle| of each table (``configs``, :data:`CONFIGS231`), pooled over the three recordings."""
     folders = [Path("datasets/real") / n for n in ("mobgap_HA001_Test11_Trial1",)]
     folders += [Path("datasets/external") / n for n in ("mobgap_HA002_Test11_Trial1", "mobgap_MS001_Test11_Trial1")]
     pooled, n_det, n_ref = {}, {}, 0
@@ -279,7 +378,7 @@ def real231() -> None:
         n_ref += len(big)
         for name in ("waist-pendulum", "waist-pll"):
             res = track_waist(s, pipeline=name, sit_veto=False)  # as measured, before W185
-            for c, kw in CONFIGS231.items():
+            for c, kw in configs.items():
                 tt = turn_table(res.steps, detected_bouts(res.steps), timing="yaw",
                                 yaw_turns=res.info.get("yaw_turns"), **kw)
                 n_det[(name, c)] = n_det.get((name, c), 0) + len(tt)
@@ -345,4 +444,4 @@ def _real_line(f, name, timing, big, ref, res, tt, match=None, all_columns: bool
 
 if __name__ == "__main__":
     {"sim": sim, "sim28": sim28, "real": real, "sim210": sim210, "real210": real210, "sim231": sim231,
-     "real231": real231}[sys.argv[1]]()
+     "real231": real231, "sim255": sim255, "real255": real255}[sys.argv[1]]()

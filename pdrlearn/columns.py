@@ -295,8 +295,10 @@ TURNS: tuple[Column, ...] = (
                                          "foot turn's mean rate is never above it); a lower-back turn timed by its "
                                          "yaw rate (L210): that yaw-rate turn's peak, El-Gohary's 0.5 Hz low-passed "
                                          "|yaw rate| (L235, L236)"),
-    ("n_rows", "count", "integer", "rows of steps.csv the turn spans; 0: a yaw-rate turn no step row holds (the "
-                                   "option of L233, off by default)"),
+    ("n_rows", "count", "integer", "rows of steps.csv the turn spans; 0: a yaw-rate turn no step row holds: on the "
+                                   "lower back a full turn on the spot whose steps were missed (L255 / L256: the "
+                                   "rows' heading over it is on another branch), or any such turn with the option "
+                                   "of L233"),
     ("bout", "index", "integer", "the bouts.csv bout holding the turn; empty outside every bout"),
     ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s / duration_s (L209); per unit "
                                          "(L229): a foot track's turn (5-95 % heading timing, L208) 90 % of "

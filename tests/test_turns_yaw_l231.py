@@ -38,8 +38,9 @@ def test_a_turn_between_two_contacts_takes_its_yaw_rate_branch():
     # L211's reading (the option branch=False): the nearest branch, -178.2 deg, unmatched, L208's late times
     old = turn_table(st, yaw_turns=yaw, branch=False)
     assert old.loc[0, "angle_deg"] == pytest.approx(-178.2) and old.loc[0, "start_s"] > 9.5
-    # a 360 deg turn wraps to ~0: no step-heading turn to resolve (L233's case); a same-sign match has no shift
-    assert turn_table(_table(360.0), yaw_turns=_yaw((6.3, 9.0, 7.6, 360.0, 120.0))).empty
+    # a 360 deg turn wraps to ~0: no step-heading turn to resolve (L233's case; L255's row, whole=False without it); a
+    # same-sign match has no shift
+    assert turn_table(_table(360.0), yaw_turns=_yaw((6.3, 9.0, 7.6, 360.0, 120.0)), whole=False).empty
     same = turn_table(_table(90.0), yaw_turns=_yaw((6.3, 9.0, 7.6, 95.0, 60.0)))
     assert same.loc[0, "angle_deg"] == pytest.approx(90.0)
     # a shift can bring a small step-heading turn over min_deg: -60 deg read for +300 deg
@@ -55,7 +56,7 @@ def test_yaw_only_turns_are_an_option():
     st = _table(0.0)  # the steps saw no turn
     yaw = _yaw((6.3, 10.3, 8.0, 360.3, 102.0), (12.0, 13.0, 12.5, 60.0, 70.0))
     assert clinical.TURN_YAW_ONLY is False  # L234: not adopted
-    assert turn_table(st, yaw_turns=yaw).empty
+    assert turn_table(st, yaw_turns=yaw, whole=False).empty  # (L256 counts this 360 deg turn by default)
     bouts = pd.DataFrame({"bout": [1, 2], "start_s": [0.0, 7.0], "end_s": [6.5, 16.0]})
     tt = turn_table(st, bouts, yaw_turns=yaw, yaw_only=True)
     assert len(tt) == 1  # 60 deg is under min_deg (80, L200)

@@ -311,6 +311,36 @@ TURN_YAW_ONLY = False
 #: low-passed rate), not L200's row-to-row rate; L236: L235's rule met (fresh users 4660-4699, median |peak error|
 #: waist-pendulum 49.79 -> 18.52, waist-pll 68.21 -> 19.75 deg/s)
 TURN_YAW_PEAK = True
+#: decision L255: a yaw-rate turn of at least ``min_deg`` that no counted turn overlaps is a row of its own (L233's
+#: row) when the step rows' heading over its span is on another branch (:func:`whole_turns` not 0): a full turn on
+#: the spot whose steps were missed reads ~0 deg on the rows (trial s29 finding 1); L256: L255's rule met (fresh users
+#: 4970-4999, 360 deg turns found waist-pendulum 3/38 -> 38/38, waist-pll 13/38 -> 37/38, no turn lost, extra rows
+#: 0 -> 0 / 5 -> 5; mobgap waist-pendulum 19 rows, 11/15 overlapped, unchanged)
+TURN_YAW_WHOLE = True
+
+
+def whole_turns(yaw_deg, step_deg: float):
+    """Decision L231: the whole turns (deg, a multiple of 360) nearest ``yaw_deg - step_deg`` - what a wrapped step
+    heading of ``step_deg`` lost against a yaw-rate angle (each of ``yaw_deg``, deg); 0 on the same branch."""
+    return 360.0 * np.round((np.asarray(yaw_deg, float) - step_deg) / 360.0)
+
+
+def rows_heading_change(steps: pd.DataFrame, lo: float, hi: float) -> float:
+    """Decision L255: the unwrapped heading change (deg) of a step table (:func:`unwrapped_heading`) from its last
+    valid row starting at or before ``lo`` to its first valid row starting at or after ``hi`` (the first / last
+    valid row where there is none); 0 without two such rows."""
+    if len(steps) < 2 or "heading_rad" not in steps:
+        return 0.0
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    h = np.degrees(unwrapped_heading(st))
+    t = st["start_s"].to_numpy(float)
+    ok = _valid(st) & np.isfinite(h) & np.isfinite(t)
+    t, h = t[ok], h[ok]
+    if len(t) < 2:
+        return 0.0
+    i0 = max(int(np.searchsorted(t, lo, side="right")) - 1, 0)
+    i1 = min(int(np.searchsorted(t, hi, side="left")), len(t) - 1)
+    return float(h[i1] - h[i0]) if i1 > i0 else 0.0
 
 
 def yaw_turn_match(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None, *,
@@ -323,7 +353,7 @@ def yaw_turn_match(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None,
     if yaw is None or not len(yaw):
         return None
     peak, ang = yaw["peak_s"].to_numpy(float), yaw["angle_deg"].to_numpy(float)
-    shift = 360.0 * np.round((ang - angle) / 360.0) if branch else np.zeros(len(ang))
+    shift = whole_turns(ang, angle) if branch else np.zeros(len(ang))
     cand = np.flatnonzero((peak >= lo) & (peak <= hi) & (np.sign(ang) == np.copysign(1.0, angle + shift)))
     if not cand.size:
         return None
@@ -346,7 +376,7 @@ TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "pe
 def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None,
                yaw_turns=None, branch: bool | None = None, yaw_only: bool | None = None,
-               yaw_peak: bool | None = None) -> pd.DataFrame:
+               yaw_peak: bool | None = None, whole: bool | None = None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
@@ -374,8 +404,10 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     ``yaw_only`` (L233, :data:`TURN_YAW_ONLY`) a yaw-rate turn of at least ``min_deg`` whose span overlaps no
     counted turn's rows (their span as the match's) is a row of its own: its times, angle and peak rate, ``n_rows``
     0, ``bout`` the bout whose span holds its peak; ``yaw_peak`` (L235, :data:`TURN_YAW_PEAK`) a yaw-timed turn's
-    ``peak_rate_dps`` is its yaw-rate turn's ``peak_dps`` (El-Gohary's low-passed peak). The rows are in time
-    order."""
+    ``peak_rate_dps`` is its yaw-rate turn's ``peak_dps`` (El-Gohary's low-passed peak); ``whole`` (L255,
+    :data:`TURN_YAW_WHOLE`) ``yaw_only``'s row, but only for a yaw-rate turn whose rows' heading change over its span
+    (:func:`rows_heading_change`) is on another branch (:func:`whole_turns` not 0: a full turn on the spot whose
+    steps were missed). The rows are in time order."""
     if timing is None:
         timing = "yaw" if yaw_turns is not None and TURN_YAW_TIMING else TURN_TIMING
     if timing not in (*TURN_TIMINGS, "yaw"):
@@ -383,6 +415,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     branch = TURN_YAW_BRANCH if branch is None else bool(branch)
     yaw_only = TURN_YAW_ONLY if yaw_only is None else bool(yaw_only)
     yaw_peak = TURN_YAW_PEAK if yaw_peak is None else bool(yaw_peak)
+    whole = TURN_YAW_WHOLE if whole is None else bool(whole)
     yaw = pd.DataFrame(list(yaw_turns or []), columns=["start_s", "end_s", "peak_s", "angle_deg", "peak_dps"]) \
         if timing == "yaw" else None
     st, spans = _turn_spans(steps)
@@ -441,10 +474,12 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                          "n_rows": int(last - first), "bout": bout_of(float(t[a + 1])),
                          # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
                          "mean_rate_dps": share * abs(angle) / (t1 - t0) if t1 > t0 else np.nan})
-    if yaw_only and yaw is not None:  # decision L233: a yaw-rate turn no counted step-heading turn overlaps
+    if (yaw_only or whole) and yaw is not None:  # decision L233: a yaw-rate turn no counted turn overlaps
         for y in yaw.itertuples():
             if abs(y.angle_deg) < min_deg or any(y.start_s <= hi and y.end_s >= lo for lo, hi in claimed):
                 continue
+            if not yaw_only and whole_turns(y.angle_deg, rows_heading_change(st, y.start_s, y.end_s)) == 0:
+                continue  # decision L255: the rows' heading follows it (the steps saw it, under the rate or 80 deg)
             dur = y.end_s - y.start_s
             rows.append({"start_s": y.start_s, "end_s": y.end_s, "duration_s": dur, "angle_deg": y.angle_deg,
                          "peak_rate_dps": y.peak_dps, "n_rows": 0, "bout": bout_of(y.peak_s),
