@@ -757,7 +757,7 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     df = pd.DataFrame([st.to_dict() for st in steps])  # the length class is length_class (B14, B142)
     if df.empty:
         df = pd.DataFrame(columns=["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "impossible",
-                                   "gap_s"])
+                                   "gap_s", "sideways"])  # L243
     first = [c for c in STEP_COLUMNS if c in df.columns]
     df = df[first + [c for c in df.columns if c not in first]]
     heading = df["heading_rad"].to_numpy(float)
