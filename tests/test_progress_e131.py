@@ -88,6 +88,7 @@ def test_run_track_and_track_all_show_a_bar_on_a_terminal_only(walks, monkeypatc
     _Bars.made = []
     assert main(["run", str(SHIPPED), str(a), "--json"]) == 0
     assert main(["track", str(a), "--out", str(walks / "track_j"), "--json"]) == 0
+    assert main(["track-all", str(walks / "all"), "--out", str(walks / "cohort_j"), "--json"]) == 0
     assert _Bars.made == []
     json.loads(capsys.readouterr().out.splitlines()[0])
 

@@ -799,7 +799,7 @@ def track_all(
     done = [0]
     # decision E131: on a terminal, a bar of the sessions done with the time left under the lines (the lines as before)
     with refused_output(out), _resumable(done), atomic_directory(out, keep_on_interrupt=True) as tmp, \
-            progress("track-all", len(found), eta=True) as advance:
+            progress("track-all", len(found), enabled=not as_json, eta=True) as advance:
 
         def progress_line(r: JobResult) -> None:
             done[0] += 1
