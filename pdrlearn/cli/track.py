@@ -417,6 +417,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
+    from pdrlearn.io.external.hapt import activities_line
+
+    labels = activities_line(session_dir)  # decision H8: HAPT's activity labels are not read; said once
+    if labels:
+        import logging
+
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, labels)
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
