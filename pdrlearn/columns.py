@@ -361,7 +361,10 @@ TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv":
                                          "steps.csv": WAIST_STEPS}
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
-                      "track's steps.csv (strides of the tracked foot) has other columns."}
+                      "track's steps.csv (strides of the tracked foot) has other columns, among them `sideways` "
+                      "(true/false: a stride of L219's side-stepping run, left out of the CVs and the straight "
+                      "speed, L228; a streamed track, `track --streaming` / `run` / `Tracker`, flags a run from its "
+                      "third stride, as decided live, L243)."}
 
 
 def expanded(table: str) -> dict[str, Column]:

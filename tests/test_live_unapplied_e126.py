@@ -14,9 +14,11 @@ def _line(options):
 
 def test_sit_veto_false_is_what_the_live_tracker_does_and_is_not_named():
     assert live_value("sit_veto") is False
-    assert _line({"sit_veto": False}) is None
+    assert "sit_veto" not in (_line({"sit_veto": False}) or "")
+    assert _line({"sit_veto": False, "contact_shift": False, "parity_fill": False}) is None  # E130: those named too
     warnings: list[str] = []
-    live_options(WaistParams(leg_m=0.9, options={"sit_veto": False}), warnings)
+    live_options(WaistParams(leg_m=0.9, options={"sit_veto": False, "contact_shift": False, "parity_fill": False}),
+                 warnings)
     assert not [w for w in warnings if "E107" in w]
 
 
@@ -25,15 +27,17 @@ def test_the_offline_default_opposite_is_named_once_given_or_not():
         line = _line(options)
         assert line is not None and line.count('sit_veto="opposite"') == 1, options
         assert "it tracks as with sit_veto=false" in line and line.count("sit_veto") == 2
-        assert ("(the offline default)" in line) == (not (options or {}).get("sit_veto"))
+        assert ('sit_veto="opposite" (the offline default)' in line) == (not (options or {}).get("sit_veto"))
     warnings: list[str] = []
     live_options(WaistParams(leg_m=0.9), warnings)
     assert len([w for w in warnings if 'sit_veto="opposite" (the offline default)' in w]) == 1
 
 
 def test_other_values_and_options_are_named_with_what_the_live_tracker_does():
-    line = _line({"stairs_climb": True, "sit_veto": "rhythm", "pause_steps": "progression"})
+    line = _line({"stairs_climb": True, "sit_veto": "rhythm", "pause_steps": "progression", "contact_shift": False,
+                  "parity_fill": False})
     assert line.startswith('the options stairs_climb=true, sit_veto="rhythm", pause_steps="progression" are not')
     assert "it tracks as with stairs_climb=false, sit_veto=false, pause_steps=false;" in line
     # at the live tracker's own values nothing differs
-    assert _line({"sit_veto": False, "stairs_climb": False, "pause_steps": "standing", "contact_shift": True}) is None
+    assert _line({"sit_veto": False, "stairs_climb": False, "pause_steps": "standing", "contact_shift": True,
+                  "realtime_contact_shift": True, "parity_fill": False}) is None

@@ -70,7 +70,7 @@ def test_lean_replay_without_the_full_install_equals_pdrlearn_run(walk, tmp_path
     assert len(lean) == len(full) == out["n_steps"] >= 10
     shared = [c for c in lean.columns if c in full.columns]
     assert {"start_s", "end_s", "length_m", "heading_rad", "x", "y", "z", "terrain", "direction",
-            "length_class", "p_terrain_up"} <= set(shared)
+            "length_class", "p_terrain_up", "sideways"} <= set(shared)  # sideways: decision L243
     assert list(lean.columns[:9]) == list(full.columns[:9])  # pdrlearn run's column order (B14)
     for c in shared:
         if full[c].dtype.kind == "f":

@@ -236,13 +236,14 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
     assert main(["export", str(p), "--out", str(tmp_path / "b"), "--frame", _frame_arg(sim["session"])]) == 0
     err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
     assert len(err) == 1 and 'stairs_climb=true, sit_veto="rhythm"' in err[0]
-    assert "pause_steps" not in err[0] and "contact_shift" not in err[0] and "stairs_length" not in err[0]
+    assert "pause_steps" not in err[0] and "stairs_length" not in err[0]
+    assert "contact_shift=true, " in err[0]  # E130: W131's shift is not applied live without realtime_contact_shift
     walk = write_session(sim["session"], tmp_path / "walk")
     assert main(["run", str(tmp_path / "b"), str(walk)]) == 0
     assert sum("E107" in ln for ln in capsys.readouterr().err.splitlines()) == 1
     # E126: options at the live tracker's values are not named; "sit_veto": false is what it does
     p.write_text(json.dumps({**cal, "options": {"stairs_length": True, "pause_steps": "standing",
-                                                "sit_veto": False}}))
+                                                "sit_veto": False, "contact_shift": False, "parity_fill": False}}))
     assert main(["export", str(p), "--out", str(tmp_path / "b2"), "--frame", _frame_arg(sim["session"])]) == 0
     assert "E107" not in capsys.readouterr().err
     # E126: without it the offline default "opposite" (W185) is named, once

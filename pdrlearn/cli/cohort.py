@@ -797,13 +797,16 @@ def track_all(
     adopted, reuse = _reusable(out, rels, keys, hashes) if resume else ([], {})
     # decision B151: a full disk stops the batch; cohort C41: a Ctrl-C leaves the sessions tracked so far, as a kill
     done = [0]
-    with refused_output(out), _resumable(done), atomic_directory(out, keep_on_interrupt=True) as tmp:
+    # decision E131: on a terminal, a bar of the sessions done with the time left under the lines (the lines as before)
+    with refused_output(out), _resumable(done), atomic_directory(out, keep_on_interrupt=True) as tmp, \
+            progress("track-all", len(found), enabled=not as_json, eta=True) as advance:
 
         def progress_line(r: JobResult) -> None:
             done[0] += 1
             what = (f"{'reused' if r.name in reuse else 'ok'}, {r.value['summary']['distance_m']:.1f} m" if r.ok
                     else f"failed: {r.error}")
             typer.echo(f"[{done[0]}/{len(found)}] {r.name}: {what} ({r.seconds:.1f} s)", err=True)
+            advance()
 
         reused = {rel: _reused(rel, *reuse[rel], tmp / rel) for rel in rels if rel in reuse}
         for r in reused.values():

@@ -378,20 +378,40 @@ def print_table(c, table) -> None:
 
 
 @contextmanager
-def progress(description: str, total: int | None, enabled: bool = True):
+def progress(description: str, total: int | None, enabled: bool = True, *, eta: bool = False, unit: str = ""):
     """A rich progress bar on stderr (silent when not a terminal or disabled); yields ``advance(n=1, total=None)``
-    (``total``: set the total once it is known, e.g. after a model is loaded; ``None`` at the start = unknown)."""
+    (``total``: set the total once it is known, e.g. after a model is loaded; ``None`` at the start = unknown).
+    ``eta``: also the time left (decision E131: the hours-long ``run``, ``track-all``); ``unit``: the counts are
+    amounts of it (``" s"`` of a recording), shown rounded."""
     from rich.console import Console
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
     console = Console(stderr=True)
     if not enabled or not console.is_terminal:
         yield lambda n=1, total=None: None
         return
-    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
-                  TimeElapsedColumn(), console=console, transient=True) as bar:
+    count = (TextColumn("{task.completed:.0f}/{task.total:.0f}" + unit) if unit
+             else TextColumn("{task.completed}/{task.total}"))
+    columns = [TextColumn("{task.description}"), BarColumn(), count, TimeElapsedColumn()]
+    with Progress(*columns, *([TimeRemainingColumn()] if eta else []), console=console, transient=True) as bar:
         task = bar.add_task(description, total=total)
         yield lambda n=1, total=None: bar.update(task, advance=n, **({} if total is None else {"total": total}))
+
+
+@contextmanager
+def clock_progress(description: str, t_first: float, t_last: float, enabled: bool = True):
+    """Decision E131: :func:`progress` over a recording's clock, ``t_first`` to ``t_last`` (s), with the time left;
+    yields ``reached(t)``: the replay has pushed the samples up to ``t`` (s, never backwards)."""
+    span = max(float(t_last) - float(t_first), 0.0)
+    with progress(description, span, enabled, eta=True, unit=" s") as advance:
+        done = [0.0]
+
+        def reached(t: float) -> None:
+            now = min(max(float(t) - float(t_first), done[0]), span)
+            advance(now - done[0])
+            done[0] = now
+
+        yield reached
 
 
 def warn_gaps(session, names, consequence: str) -> None:

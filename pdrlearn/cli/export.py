@@ -16,6 +16,7 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     INITIAL_HEADING_HELP,
     START_HELP,
+    clock_progress,
     count_phrase,
     existed,
     gait_line,
@@ -517,13 +518,18 @@ def run(
                 import logging
 
                 logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
-        with GapLines(session.name):  # decision B184: the first gap lines, then one summary line
+        bounds = [float(st.t[i]) for st in session.streams.values() if len(st) for i in (0, -1)]
+        # decision E131: the recording's seconds replayed and the time left, on a terminal (not with --json)
+        with GapLines(session.name), clock_progress(f"run {session.name}", min(bounds, default=0.0),
+                                                    max(bounds, default=0.0),
+                                                    enabled=not as_json) as reached:
             for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
                 t0 = time.perf_counter()
                 new = tracker.push(chunk)
                 if new:
                     lat.append((time.perf_counter() - t0) / len(new))
                 steps += new
+                reached(max((float(t[-1]) for t, _ in chunk.values() if len(t)), default=0.0))
             steps += tracker.flush()
         _warn_short_streams(session, tracker, steps)
         source = f"session {session.name}"
@@ -677,17 +683,19 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     k = np.floor((a.t - a.t[0]) / chunk_s).astype(np.int64)  # decision E28's chunks, counted from the first sample
     kb = None if baro is None else np.floor((baro.t - a.t[0]) / chunk_s).astype(np.int64)
     jb = 0  # the barometer samples pushed so far
-    for c in np.unique(k):
-        i = np.flatnonzero(k == c)
-        if kb is not None:  # E106: the barometer up to the chunk's end, before its motion samples
-            j1 = int(np.searchsorted(kb, c, side="right"))
-            tracker.push_barometer(baro.t[jb:j1], baro.values[jb:j1, 0])
-            jb = max(jb, j1)
-        t0 = time.perf_counter()
-        new = tracker.push(a.t[i], a.values[i], gyr[i])
-        if new:
-            lat.append((time.perf_counter() - t0) / len(new))
-        steps += new
+    with clock_progress(f"run {session.name}", a.t[0], a.t[-1], enabled=not as_json) as reached:  # decision E131
+        for c in np.unique(k):
+            i = np.flatnonzero(k == c)
+            if kb is not None:  # E106: the barometer up to the chunk's end, before its motion samples
+                j1 = int(np.searchsorted(kb, c, side="right"))
+                tracker.push_barometer(baro.t[jb:j1], baro.values[jb:j1, 0])
+                jb = max(jb, j1)
+            t0 = time.perf_counter()
+            new = tracker.push(a.t[i], a.values[i], gyr[i])
+            if new:
+                lat.append((time.perf_counter() - t0) / len(new))
+            steps += new
+            reached(a.t[i[-1]])
     if kb is not None and jb < len(kb):  # the barometer's samples after the motion's last chunk
         tracker.push_barometer(baro.t[jb:], baro.values[jb:, 0])
     steps += tracker.flush()
@@ -757,7 +765,7 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     df = pd.DataFrame([st.to_dict() for st in steps])  # the length class is length_class (B14, B142)
     if df.empty:
         df = pd.DataFrame(columns=["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "impossible",
-                                   "gap_s"])
+                                   "gap_s", "sideways"])  # L243
     first = [c for c in STEP_COLUMNS if c in df.columns]
     df = df[first + [c for c in df.columns if c not in first]]
     heading = df["heading_rad"].to_numpy(float)

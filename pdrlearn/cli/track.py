@@ -230,7 +230,7 @@ def track(
     import time
 
     from pdrlearn.atomic import atomic_directory
-    from pdrlearn.cli.common import out_folder
+    from pdrlearn.cli.common import out_folder, progress
     from pdrlearn.cli.provenance import given_options, input_hashes, model_record, run_record, write_run_json
 
     options = given_options(arguments, leave_out=("session_dir", "out", "force", "as_json"))  # for OUT/run.json
@@ -238,16 +238,21 @@ def track(
     settings = settings_of(arguments)  # decision E93: every tracking option, as track-all passes them
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
-    tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
-    with atomic_directory(out) as tmp:  # all five files or none; --force keeps the old track until then
-        summary, aided = write_track(tmp, tracked)
-        # decision L122: the session as given (not resolved), the model and its checksum, the pipeline and method
-        # used; the times only here (summary.json and the tables stay the same run to run)
-        write_run_json(tmp, run_record(
-            "track", options, session=str(session_dir), input_sha256=input_hashes(session_dir),  # decision L136
-            model=model_record(model),
-            pipeline=summary.get("pipeline"), method=summary.get("info", {}).get("method"),
-            track_time_s=round(time.perf_counter() - wall, 2), cpu_time_s=round(time.process_time() - cpu, 2)))
+    # decision E131: on a terminal, the stage (tracking, then writing) and the time spent; the offline pipelines
+    # run each recording as one call, so no time left is known
+    with progress(f"track {session_dir.name}", 2, enabled=not as_json) as advance:
+        tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
+        advance()
+        with atomic_directory(out) as tmp:  # all five files or none; --force keeps the old track until then
+            summary, aided = write_track(tmp, tracked)
+            # decision L122: the session as given (not resolved), the model and its checksum, the pipeline and
+            # method used; the times only here (summary.json and the tables stay the same run to run)
+            write_run_json(tmp, run_record(
+                "track", options, session=str(session_dir), input_sha256=input_hashes(session_dir),  # L136
+                model=model_record(model),
+                pipeline=summary.get("pipeline"), method=summary.get("info", {}).get("method"),
+                track_time_s=round(time.perf_counter() - wall, 2), cpu_time_s=round(time.process_time() - cpu, 2)))
+        advance()
     replaced(out, was)
     if as_json:
         print_json(summary)
@@ -412,6 +417,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
+    from pdrlearn.io.external.hapt import activities_line
+
+    labels = activities_line(session_dir)  # decision H8: HAPT's activity labels are not read; said once
+    if labels:
+        import logging
+
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, labels)
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85

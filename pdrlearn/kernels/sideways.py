@@ -111,6 +111,26 @@ class SideRun:
         usual = float(np.median(self.others)) if self.others else 0.0
         return angle - usual + reversed_by_rules(True, fx, length)
 
+    @property
+    def decided(self) -> bool:
+        """Decision L243: the last stride given to :meth:`stride` is the :data:`MIN_SIDE_STRIDES`-th or a later
+        consecutive sideways stride (a streamed steps table's ``sideways`` column: L228's, decided at the stride)."""
+        return self.count >= MIN_SIDE_STRIDES
+
+
+def whole_runs(decided: np.ndarray, measured: np.ndarray) -> np.ndarray:
+    """Decision L243: a streamed table's ``sideways`` flags (:attr:`SideRun.decided`, from a run's
+    :data:`MIN_SIDE_STRIDES`-th stride on) extended back over each run's first ``MIN_SIDE_STRIDES - 1`` strides,
+    the ``measured`` rows before it (a gap row, never given to :class:`SideRun`, is skipped): the whole run, as
+    offline's L228 column marks it, for a reader of the whole table (the CVs, the straight speed)."""
+    decided = np.asarray(decided, bool)
+    out = decided.copy()
+    idx = np.flatnonzero(np.asarray(measured, bool))
+    d = decided[idx]
+    for s in np.flatnonzero(d & ~np.r_[False, d[:-1]]):
+        out[idx[max(0, s - (MIN_SIDE_STRIDES - 1)):s]] = True
+    return out
+
 
 def step_frame(levelled) -> float:
     """The step frame's direction (rad) from the foot's facing at the stride's start (decision L34's sixth value of

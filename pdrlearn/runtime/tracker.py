@@ -240,6 +240,10 @@ class Step:
     #: decision L97: the last-line guard (L94) moved this stride 0 m; it is no stride for the gait parameters
     #: (no stride time, cadence, speed or walking time, as a gap row)
     impossible: bool = False
+    #: decision L243 (L228's column for the streamed tracks): the stride is the third or a later consecutive
+    #: sideways stride of L219's rule (60-120 deg from the foot's facing, over 0.15 m), decided when it ends; no
+    #: steady forward stride for the CVs and the straight speed (the run's first two strides stay False)
+    sideways: bool = False
 
     def to_dict(self) -> dict:
         """The step as one row of a steps table: the classes under their steps.csv columns (``terrain``,
@@ -263,6 +267,7 @@ class Step:
             "pivot_rad": self.pivot_rad,  # decision L106
             "impossible": self.impossible,  # decision L97
             "gap_s": self.gap_s,  # decision E37: pdrlearn run's steps.csv
+            "sideways": self.sideways,  # decision L243
         }
 
 
@@ -424,6 +429,7 @@ class Tracker(FixInput):
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _side: _sideways.SideRun | None = None  # decision E124 (a bare Tracker.__new__ makes one at its first stride)
+    _side_rows: _sideways.SideRun | None = None  # decision L243 (the same)
     _drop_warned = False
     drop_neighbour: bool | None = None  # decision E101 (a bare Tracker.__new__: kernels.gaps.DROP_NEIGHBOUR)
     #: decision E46: the long foot gaps (start, end) not yet behind the last emitted stride, the pending gap row
@@ -649,6 +655,7 @@ class Tracker(FixInput):
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._drop_ref: tuple | None = None  # decision L167: (displacement, duration) of the last clean stride
         self._side = _sideways.SideRun()  # decision E124: the side-stepping stretch the strides are in
+        self._side_rows = _sideways.SideRun()  # decision L243: the same test on every stride, for Step.sideways
         self._drop_warned = False
         self.drop_neighbour = drop_neighbour_on(drop_neighbour)  # decision E101
         self._held: set[str] = set()
@@ -1698,6 +1705,9 @@ class Tracker(FixInput):
             if self._side is None:
                 self._side = _sideways.SideRun()
             direction += self._side.stride(dx, dy, length, _sideways.step_frame(lev))
+        if self._side_rows is None:
+            self._side_rows = _sideways.SideRun()
+        self._side_rows.stride(dx, dy, length, _sideways.step_frame(lev))  # decision L243: whatever the heading
         x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
         if not math.isfinite(direction + x + y + z):  # decision E38: NaN / inf fail (also inf - inf)
             self._non_finite(t0, t1, heading, direction, (x, y, z), (length, dz))
@@ -1709,7 +1719,8 @@ class Tracker(FixInput):
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z,
                     event_s=self._contact(t0, t1) if self.contacts else math.nan,
                     turn_angle_rad=float(np.angle(np.exp(1j * turn))), impossible=impossible,
-                    pivot_rad=float(np.angle(np.exp(1j * (dyaw - turn)))))  # decision L106
+                    pivot_rad=float(np.angle(np.exp(1j * (dyaw - turn)))),  # decision L106
+                    sideways=self._side_rows.decided)  # decision L243
 
     def _contact(self, t0: float, t1: float) -> float:
         """Decisions E49 / E50: the initial contact (s) of the stride ``[t0, t1]`` from its buffered samples

@@ -319,7 +319,8 @@ class WaistStream(FixInput):
         # the waist-ic detector's defaults (W31), as ``track --pipeline waist-pendulum --realtime`` runs it
         rules = rule_contacts({"walk_threshold": self._thr, "max_step_s": self._max_step_s,
                                "rhythm": bool(self.options["rhythm"]),  # W166: W131 inside W31's window
-                               "contact_shift": bool(self.options.get("realtime_contact_shift", False))})
+                               "contact_shift": bool(self.options.get("contact_shift", True))  # E130: as replay
+                               and bool(self.options.get("realtime_contact_shift", False))})
         self._proc = RealtimeContacts(self.fs, rules, rotation=self._rot, max_step_s=self._max_step_s,
                                       on_nav=self._add)
 

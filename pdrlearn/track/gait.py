@@ -207,10 +207,18 @@ def stair_rows(steps: pd.DataFrame) -> np.ndarray:
 
 def sideways_rows(steps: pd.DataFrame) -> np.ndarray:
     """Decision L228: the foot rows L219's rule found in a side-stepping run (the steps table's ``sideways``
-    column); all False without it (a lower-back table, a streamed foot table, a table from before L228)."""
+    column); all False without it (a lower-back table, a table from before L228 / L243). A streamed foot table
+    (``track --streaming``, ``pdrlearn run``: its ``pivot_rad`` column, L106) flags a run from its third stride, as
+    decided live (L243): its first two strides are added back here (:func:`~pdrlearn.kernels.sideways.whole_runs`)."""
     if "sideways" not in steps:
         return np.zeros(len(steps), bool)
-    return steps["sideways"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy(bool)
+    flags = steps["sideways"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy(bool)
+    if "pivot_rad" not in steps:
+        return flags
+    from pdrlearn.kernels.sideways import whole_runs
+
+    gap = pd.to_numeric(steps["gap_s"], errors="coerce").fillna(0.0).to_numpy(float) if "gap_s" in steps else 0.0
+    return whole_runs(flags, np.zeros(len(steps)) + gap <= 0)
 
 
 def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight) -> None:

