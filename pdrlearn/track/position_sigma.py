@@ -33,6 +33,7 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # (L220: the distance-walked term path_rel = 0.0149 was measured on top of these and not adopted, too large on
     # routes of 3-4 loops: 20/20 finals within 2 sigma against the rule's 16-19; the kernel keeps it, 0 here)
     # (L238: the per-metre compass term path_diffusion_m2 = PLACE_DIFFUSION_M2 was measured and not adopted, too small)
+    # (L239: the bounded heading error on the route's extent, extent_heading_rad = EXTENT_HEADING_RAD, a candidate)
     "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
     # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
     "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 9.6e-11, "point_m": 0.044},
@@ -54,6 +55,16 @@ log = logging.getLogger(__name__)
 #: simulator's documented field disturbance (S33: sd 3 uT per component, one blob per 4 m of path, 1 m wide, centres
 #: N(0, 1 m) off the path) over its horizontal Earth field 45 uT cos 55 deg: (1/4) 3^2 2 pi 1^2 / sqrt(3) / 25.81^2 / 2
 PLACE_DIFFUSION_M2 = 0.25 * 3.0 ** 2 * 2 * np.pi / np.sqrt(3.0) / (45.0 * np.cos(np.radians(55.0))) ** 2 / 2
+#: decision L239: the candidate's bounded heading error (rad, sd) on the route's extent, derived, not fitted: the waist
+#: compass's heading error at a place, from the simulator's documented magnetometer - its hard-iron offset (sd 2 uT per
+#: axis, ``sim.sensors.magnetometer_readout``) and its field disturbance at a point of the path (S33: blobs of sd 3 uT
+#: per component, one per 4 m, 1 m wide, centres N(0, 1 m) off the path: variance 3^2 (1 sqrt(pi) / 4) / sqrt(3) =
+#: 2.30 uT^2 per component) - across the horizontal Earth field 45 uT cos 55 deg = 25.81 uT:
+#: sqrt(2^2 + 2.30) / 25.81 = 0.0973 rad (5.6 deg). L17's +-60 s window passes the compass's error on as a mean over
+#: the window, whose rms cannot exceed the rms of what it averages: the window bounds the heading error (it does not
+#: grow with the walk) at most at this size
+EXTENT_HEADING_RAD = float(np.sqrt(2.0 ** 2 + 3.0 ** 2 * np.sqrt(np.pi) / 4.0 / np.sqrt(3.0))
+                           / (45.0 * np.cos(np.radians(55.0))))
 #: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
 #: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
 GAP_FALLBACK_SPEED_MPS = 1.4
