@@ -20,6 +20,12 @@ itself by ``L_k dpsi``, a length error ``dL`` along itself. Four zero-mean, mutu
 - ``path_diffusion_m2`` (decision L237; 0 unless a regime sets it): a random walk of the position per metre walked,
   per-axis variance ``path_diffusion_m2 s_k``: a compass error that depends on the place, integrated along the path
   (independent from place to place, so it does not cancel on a loop and grows like the square root of the distance).
+- ``extent_heading_rad`` (decision L239; 0 unless a regime sets it): a heading error that does not grow with the walk
+  (the compass's place- and direction-dependent error as a heading aligned to it over a window passes it on), sd
+  ``extent_heading_rad``, acting on the route's extent so far ``R_k = max_{j<=k} |D_j|``: per-axis sd
+  ``extent_heading_rad R_k``. It turns the track about its start by up to that error at the farthest point and,
+  unlike ``displacement_rel``, does not return to 0 when a loop closes (the error going out is not the error coming
+  back), nor grow with the laps of a route that stays within its extent.
 - ``held_var_m2`` (decision E127): per stride, an isotropic per-axis variance added at that stride and carried by
   every later one: a row whose position was held across a sensor gap misses the displacement walked in it.
 
@@ -36,7 +42,7 @@ import numpy as np
 def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: np.ndarray, t0_s: float, *,
                         displacement_rel: float, heading_walk_rad: float, bias_rps: float,
                         point_m: float, path_rel: float = 0.0, path_diffusion_m2: float = 0.0,
-                        held_var_m2: np.ndarray | None = None) -> np.ndarray:
+                        extent_heading_rad: float = 0.0, held_var_m2: np.ndarray | None = None) -> np.ndarray:
     """Covariance (m^2) of the horizontal position after each stride, shape (N, 2, 2).
 
     Parameters
@@ -50,6 +56,7 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
     point_m : sd per axis of the non-accumulating point error (m).
     path_rel : sd per axis of the error proportional to the distance walked (fraction; decision L220).
     path_diffusion_m2 : per-axis variance per metre walked (m^2/m; decision L237).
+    extent_heading_rad : sd of the bounded heading error acting on the route's extent (rad; decision L239).
     held_var_m2 : per-stride per-axis variance added at the stride and kept after it (m^2; decision E127).
     """
     L = np.asarray(length_m, float)
@@ -71,6 +78,9 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
         P = P + (path_rel * np.cumsum(np.abs(L)))[:, None, None] ** 2 * eye
     if path_diffusion_m2:  # decision L237: variance per metre walked
         P = P + (path_diffusion_m2 * np.cumsum(np.abs(L)))[:, None, None] * eye
+    if extent_heading_rad:  # decision L239: the farthest the track has been from its start, |C_k| = |D_k|
+        extent = np.maximum.accumulate(np.hypot(C[:, 0], C[:, 1]))
+        P = P + (extent_heading_rad * extent)[:, None, None] ** 2 * eye
     if held_var_m2 is not None:  # decision E127: a held position's missed displacement, kept by later strides
         held = np.asarray(held_var_m2, float)
         if held.shape != L.shape:

@@ -33,6 +33,8 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # (L220: the distance-walked term path_rel = 0.0149 was measured on top of these and not adopted, too large on
     # routes of 3-4 loops: 20/20 finals within 2 sigma against the rule's 16-19; the kernel keeps it, 0 here)
     # (L238: the per-metre compass term path_diffusion_m2 = PLACE_DIFFUSION_M2 was measured and not adopted, too small)
+    # (L239/L240: the bounded heading error on the route's extent, extent_heading_rad = EXTENT_HEADING_RAD, measured
+    # and not adopted: all its short-route strides within 2 sigma, over the rule's 99.5 %; FUSED_EXTENT_HEADING)
     "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
     # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
     "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 9.6e-11, "point_m": 0.044},
@@ -54,6 +56,20 @@ log = logging.getLogger(__name__)
 #: simulator's documented field disturbance (S33: sd 3 uT per component, one blob per 4 m of path, 1 m wide, centres
 #: N(0, 1 m) off the path) over its horizontal Earth field 45 uT cos 55 deg: (1/4) 3^2 2 pi 1^2 / sqrt(3) / 25.81^2 / 2
 PLACE_DIFFUSION_M2 = 0.25 * 3.0 ** 2 * 2 * np.pi / np.sqrt(3.0) / (45.0 * np.cos(np.radians(55.0))) ** 2 / 2
+#: decision L239: the candidate's bounded heading error (rad, sd) on the route's extent, derived, not fitted: the waist
+#: compass's heading error at a place, from the simulator's documented magnetometer - its hard-iron offset (sd 2 uT per
+#: axis, ``sim.sensors.magnetometer_readout``) and its field disturbance at a point of the path (S33: blobs of sd 3 uT
+#: per component, one per 4 m, 1 m wide, centres N(0, 1 m) off the path: variance 3^2 (1 sqrt(pi) / 4) / sqrt(3) =
+#: 2.30 uT^2 per component) - across the horizontal Earth field 45 uT cos 55 deg = 25.81 uT:
+#: sqrt(2^2 + 2.30) / 25.81 = 0.0973 rad (5.6 deg). L17's +-60 s window passes the compass's error on as a mean over
+#: the window, whose rms cannot exceed the rms of what it averages: the window bounds the heading error (it does not
+#: grow with the walk) at most at this size
+EXTENT_HEADING_RAD = float(np.sqrt(2.0 ** 2 + 3.0 ** 2 * np.sqrt(np.pi) / 4.0 / np.sqrt(3.0))
+                           / (45.0 * np.cos(np.radians(55.0))))
+#: decision L240: L239's candidate is an option, off by default (its rule failed on the short routes only: 100 % of
+#: their strides within 2 sigma against the rule's 99.5 %); True adds ``extent_heading_rad`` = EXTENT_HEADING_RAD to
+#: the ``plasys-fused`` radius (27/29 R1 finals within 2 sigma against 18/29 without, users 5040-5079)
+FUSED_EXTENT_HEADING = False
 #: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
 #: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
 GAP_FALLBACK_SPEED_MPS = 1.4
@@ -117,6 +133,15 @@ def sigma_per_row(steps, t, params: dict[str, float]) -> np.ndarray:
     return sigma
 
 
+def sigma_params(regime: str) -> dict[str, float]:
+    """The error model of ``regime``: its :data:`SIGMA_PARAMS`, with L239's extent term on ``plasys-fused`` when
+    :data:`FUSED_EXTENT_HEADING` is set (decision L240)."""
+    params = dict(SIGMA_PARAMS[regime])
+    if regime == "plasys-fused" and FUSED_EXTENT_HEADING:
+        params["extent_heading_rad"] = EXTENT_HEADING_RAD
+    return params
+
+
 def add_position_sigma(result, session, regime: str | None = None) -> None:
     """Write ``pos_sigma_m`` (m, the 1-sigma radius ``sqrt(trace P)`` of the horizontal position, 0 at the start)
     into ``result.trajectory`` and the model used into ``result.info["position_sigma"]``. A trajectory row gets
@@ -126,7 +151,7 @@ def add_position_sigma(result, session, regime: str | None = None) -> None:
     if not len(traj):
         return
     regime = regime or sigma_regime(result.info, session)
-    params = SIGMA_PARAMS[regime]
+    params = sigma_params(regime)
     traj["pos_sigma_m"] = sigma_per_row(result.steps, traj["t"].to_numpy(float), params)
     result.info["position_sigma"] = {"model": regime, **params}
 
