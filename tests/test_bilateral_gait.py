@@ -14,7 +14,7 @@ from pdrlearn.cli import main
 from pdrlearn.errors import DataError
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track.bilateral import bilateral_gait, check_pair, cycle_table, merged_contacts, foot_events
+from pdrlearn.track.bilateral import bilateral_gait, check_pair, cycle_table, foot_events, merged_contacts
 
 ROOT = Path(__file__).resolve().parents[1]
 LEFT, RIGHT = ROOT / "datasets/real/gaitmap_level_left", ROOT / "datasets/real/gaitmap_level_right"
