@@ -54,7 +54,9 @@ def register(app: typer.Typer) -> None:
         to the other's next), step-time / stride-time / stride-length asymmetry (symmetry index and L/R ratio),
         double and single support (% of the gait cycle, from the toe-off of track --toe-off), per walk and per
         walking bout. Each folder is tracked offline with --toe-off; with labelled IC / TC events in both folders
-        (gaitmap's mocap) the same measures of the labels are given as the reference.
+        (gaitmap's mocap) the same measures of the labels are given as the reference. The two recordings must share
+        one clock (t = 0 at the same instant, as gaitmap's left / right folders): pdrlearn does not align them, and
+        refuses only contacts that do not overlap in time (decision L260).
 
         Examples:
 
@@ -63,7 +65,7 @@ def register(app: typer.Typer) -> None:
           pdrlearn gait LEFT RIGHT --out gait_out --json
         """
         from pdrlearn.atomic import atomic_directory
-        from pdrlearn.cli.common import existed, out_folder, print_json, replaced
+        from pdrlearn.cli.common import existed, out_folder, print_json, refused_output, replaced
         from pdrlearn.io.plasys import json_safe
         from pdrlearn.track.bilateral import pair_sessions
 
@@ -75,7 +77,7 @@ def register(app: typer.Typer) -> None:
             import pandas as pd
 
             was = existed(out)
-            with atomic_directory(out) as tmp:  # all four files or none
+            with refused_output(out), atomic_directory(out) as tmp:  # all four files or none (B151)
                 (tmp / "gait_summary.json").write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n")
                 res["steps"].to_csv(tmp / "gait_steps.csv", index=False)
                 res["cycles"].to_csv(tmp / "gait_cycles.csv", index=False)
