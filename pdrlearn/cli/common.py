@@ -132,6 +132,7 @@ FOLDER_KINDS = {
     "train-all": ("per-user model directories", "pdrlearn train-all"),
     "evaluate-all": ("a cohort summary", "pdrlearn evaluate-all"),
     "track-all": ("a batch of tracks (sessions.csv, groups.csv, one folder per session)", "pdrlearn track-all"),
+    "gait": ("a bilateral gait output (gait_summary.json, gait_steps.csv)", "pdrlearn gait"),  # decision L260
 }
 _TRACK_FILES = ("summary.json", "steps.csv", "trajectory.csv")
 
@@ -149,6 +150,8 @@ def folder_kind(folder: Path) -> str | None:
         return "train-all" if any(folder.glob("*/manifest.json")) else "evaluate-all"
     if (folder / "sessions.csv").is_file() and (folder / "groups.csv").is_file():
         return "track-all"
+    if (folder / "gait_summary.json").is_file() and (folder / "gait_steps.csv").is_file():
+        return "gait"
     if all((folder / n).is_file() for n in _TRACK_FILES):
         try:
             summary = json.loads(read_text(folder / "summary.json"))
