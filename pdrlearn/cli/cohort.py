@@ -697,6 +697,7 @@ def track_all(
     clock_offset: float = _track.CLOCK_OFFSET_OPT,
     units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
+    per: str = _track.PER_OPT,
     bout_rule: str = _track.BOUT_RULE_OPT,
     bout_break_s: float = _track.BOUT_BREAK_OPT,
     bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,

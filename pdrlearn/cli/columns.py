@@ -6,8 +6,8 @@ import typer
 
 
 def columns(
-    table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv, bouts.csv or "
-                                "steps.csv (lower back) (default: all)."),
+    table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv, bouts.csv, "
+                                "periods.csv or steps.csv (lower back) (default: all)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object: table -> list of {column, unit, "
                                  "type, meaning}."),
 ) -> None:
