@@ -588,11 +588,10 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
                             storey_height_m=o.get("storey_height_m", 3.0))
-    from pdrlearn.track.periods import Timeline, session_span, time_summary, unit_gaps
+    from pdrlearn.track.periods import time_accounting
 
     unit = tracked_unit(pipeline)
-    timeline = Timeline.of(whole.steps, unit_gaps(session, unit))  # decision L275: where the time went
-    summary.update(time_summary(timeline, *(win if win is not None else session_span(session, unit))))
+    summary.update(time_accounting(whole, session, unit, win))  # decision L275: where the time went
     if win is not None:
         summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
         if not len(result.steps):  # decision L276: a window without a step walked 0 s (not "unknown")

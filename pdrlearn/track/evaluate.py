@@ -913,6 +913,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
 
     summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
+    from pdrlearn.track.periods import time_accounting
+
+    summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None

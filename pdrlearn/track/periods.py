@@ -161,6 +161,20 @@ def time_summary(timeline: Timeline, a: float, b: float) -> dict:
     return {**timeline.budget(a, b), "time_span_s": float(b - a)}
 
 
+def time_accounting(result, session, unit: str | None = None, window: tuple[float, float] | None = None) -> dict:
+    """Decision L275: :func:`time_summary` of a whole-session ``result`` over ``window`` (s of the session's clock;
+    None = the tracked unit's recording), as ``track`` and ``run`` (B14: the same keys) give it; ``unit`` None:
+    the steps' own (waist when every row is the lower back's, else foot). Without a session (a live stream) every
+    key is None: no recording's extent or gaps are known."""
+    if session is None:
+        return {**{k: None for k in TIME_KEYS}, "time_span_s": None}
+    steps = result.steps
+    if unit is None:
+        unit = "waist" if "unit" in steps and len(steps) and (steps["unit"] == "waist").all() else "foot"
+    timeline = Timeline.of(steps, unit_gaps(session, unit))
+    return time_summary(timeline, *(window if window is not None else session_span(session, unit)))
+
+
 def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
                  turns: pd.DataFrame | None, storey_height_m: float = 3.0) -> pd.DataFrame:
     """Decision L277: periods.csv of a whole-session track (:data:`PERIOD_COLUMNS`, module docstring), periods of
