@@ -1,6 +1,7 @@
 """Decisions L277-L279: periods.csv of a tracked simulated session against its summary and its simulated truth.
 
-    python experiments/period_totals.py SESSION_DIR TRACK_OUT   # TRACK_OUT from `pdrlearn track ... --per P`
+    pdrlearn track SESSION_DIR --per 10min --out TRACK_OUT
+    python experiments/period_totals.py SESSION_DIR TRACK_OUT
 
 Prints the table (time columns in s), the periods' totals next to summary.json's, and per period the truth:
 distance and strides of the reference strides (steps.csv, by their middle, L105's rule), the true walking time
