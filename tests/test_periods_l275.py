@@ -4,6 +4,7 @@ window's length and adding up over windows; `track --per` writes periods.csv, wh
 from __future__ import annotations
 
 import json
+import shutil
 
 import numpy as np
 import pandas as pd
@@ -142,3 +143,18 @@ def test_per_with_window_is_refused(shift, capsys):
     assert main(["track", str(shift / "walk"), "--out", str(shift / "x"), "--per", "1h", "--window", "0,10"]) == 2
     err = capsys.readouterr().err
     assert "--per" in err and "--window" in err and not (shift / "x").exists()
+
+
+def test_track_all_stacks_the_periods(shift, tmp_path):
+    """L277: track-all --per writes each session's periods.csv and OUT/periods.csv, stacked as bouts.csv (L165)."""
+    root = tmp_path / "study"
+    root.mkdir()
+    for name in ("a", "b"):
+        shutil.copytree(shift / "walk", root / name)
+    out = tmp_path / "ta"
+    assert main(["track-all", str(root), "--out", str(out), "--per", "40s", "--jobs", "1"]) == 0
+    allp = pd.read_csv(out / "periods.csv")
+    one = pd.read_csv(out / "a" / "periods.csv")
+    assert list(allp.columns[:2]) == ["path", "visit"] and len(allp) == 2 * len(one)
+    assert allp["path"].tolist() == ["a"] * len(one) + ["b"] * len(one)
+    np.testing.assert_allclose(allp["distance_m"].to_numpy()[:len(one)], one["distance_m"].to_numpy())
