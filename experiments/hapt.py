@@ -147,9 +147,10 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
     ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt.md"))
-    ap.add_argument("--stand-veto", nargs="?", const="true", default=None, choices=("true", "turns", "alternation"),
+    ap.add_argument("--stand-veto", nargs="?", const="true", default=None,
+                    choices=("true", "turns", "alternation", "adjacent"),
                     help="add decision W189's `stand_veto` row (offline waist-pendulum; `turns`: W191's value, "
-                         "`alternation`: W196's); "
+                         "`alternation`: W196's, `adjacent`: W198's); "
                          "give another --out")
     a = ap.parse_args(argv)
     veto = {None: False, "true": True}.get(a.stand_veto, a.stand_veto)

@@ -429,14 +429,14 @@ PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 #: the values of the ``stand_veto`` option: off, W189's veto, W191's veto sparing a run with a turning step, W196's
-#: sparing a run whose decided sides alternate
-STAND_VETO_VALUES = (False, True, "turns", "alternation")
+#: sparing a run whose decided sides alternate, W198's sparing a run with walking within 3 s before and after it
+STAND_VETO_VALUES = (False, True, "turns", "alternation", "adjacent")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159"),
-                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196")}
+                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -540,7 +540,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         contact bounce: standing sway, no walking (decision W189, :func:`pdrlearn.waist.posture.stand_veto`);
         ``"turns"``: the same, sparing a run with a step that turns the pelvis by more than 15 deg (W127's test; a
         slow turn on the spot bounces little; decision W191); ``"alternation"``: sparing a run whose decided W20
-        sides alternate left/right, at least two decided (decision W196); default False
+        sides alternate left/right, at least two decided (decision W196); ``"adjacent"``: sparing a run with walking
+        strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198); default
+        False
     contact_shift : pendulum, offline detector: every kept contact judged once more by W23's weight-shift test with the
         side read at the contact, turns spared (decision W131, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``contact_shift``); default True, ``False`` restores the detector before W131
@@ -643,7 +645,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     n_weak_run = 0
     if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
         steps = drop_weak_runs(steps, imu, spare_turns=o["stand_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps,
-                               spare_alternation=o["stand_veto"] == "alternation")
+                               spare_alternation=o["stand_veto"] == "alternation",
+                               spare_adjacent=o["stand_veto"] == "adjacent")
         n_weak_run = steps.attrs["n_weak_run"]
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
