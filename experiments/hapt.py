@@ -63,7 +63,8 @@ def count_in(ev: np.ndarray, a: float, b: float) -> int:
 def configs(stand_veto: bool | str = False) -> list[tuple[str, str, dict]]:
     """(label, pipeline, track_waist options) of each configuration; W189's ``stand_veto`` row (W191's ``"turns"``
     when given that value) after the default pendulum's when asked."""
-    out = [(f"{pipe}{' sit_veto=rhythm' if veto else ''}", pipe, {"sit_veto": veto}) for pipe, veto in CONFIGS]
+    out = [(f"{pipe}{' sit_veto=rhythm' if veto else ''}", pipe, {"sit_veto": veto, "stand_veto": False})
+           for pipe, veto in CONFIGS]  # W199: hapt.md was measured with no stand veto (now "adjacent" by default)
     if not stand_veto:
         return out
     row = STAND_VETO if stand_veto is True else (f"{STAND_VETO[0]}={stand_veto}", "waist-pendulum",

@@ -49,6 +49,8 @@ from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.events import gate_threshold
 
 logging.disable(logging.WARNING)
+#: W199 made stand_veto="adjacent" the offline default; every run here was measured with the veto off unless asked
+OFF = {"stand_veto": False}
 HALF_S = 0.3  # the amplitude window, +-0.3 s: the shortest step (W16) either side
 
 
@@ -64,7 +66,7 @@ def runs_of(has_next: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def features(session, **track_kw) -> pd.DataFrame:
     """The per-contact features of the module docstring (offline waist-pendulum, defaults + ``track_kw``; no sit veto
     unless asked: as measured, before W185)."""
-    st = track_waist(session, pipeline="waist-pendulum", **{"sit_veto": False, **track_kw}).steps
+    st = track_waist(session, pipeline="waist-pendulum", **{"sit_veto": False, **OFF, **track_kw}).steps
     imu = waist_imu(session)
     thr, sigma, _ = gate_threshold(imu)
     fs = imu.fs
@@ -280,7 +282,7 @@ def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W
             s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
             sit = {} if decision in ON_DEFAULTS else {"sit_veto": False}  # W189 / W191 as measured, before W185
-            off = track_waist(s, pipeline="waist-pendulum", **sit).steps
+            off = track_waist(s, pipeline="waist-pendulum", **sit, **OFF).steps
             on = track_waist(s, pipeline="waist-pendulum", stand_veto=value, **sit)
             e0, e1 = off["event_s"].to_numpy(float), on.steps["event_s"].to_numpy(float)
             m0, m1 = matched_truth(e0, truth), matched_truth(e1, truth)
@@ -318,9 +320,10 @@ def measure(root: Path, value=True, decision: str = "W189") -> None:
     import hapt as H  # experiments/hapt.py
 
     cfgs = [c for c in H.configs(value) if c[1] == "waist-pendulum" and not c[2].get("sit_veto")]
+    cfgs = [(lbl, pl, {**OFF, **o}) for lbl, pl, o in cfgs]  # the base row off (W199's default is "adjacent")
     info = []
     if decision in ON_DEFAULTS:  # for information, not judged: the same rows on today's default sit veto (W185)
-        info = [("waist-pendulum (defaults)", "waist-pendulum", {}),
+        info = [("waist-pendulum (defaults)", "waist-pendulum", dict(OFF)),
                 (f"waist-pendulum stand_veto={value} (defaults)", "waist-pendulum", {"stand_veto": value})]
     static, _, gait, refused, cpu = H.run(root, cfgs + info)
     if info:
@@ -401,7 +404,7 @@ def after() -> None:
     for u in SIM_USERS:
         s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
         tr = s.extras["transfers"]
-        off = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps  # as measured, before W185
+        off = track_waist(s, pipeline="waist-pendulum", sit_veto=False, **OFF).steps  # as measured, before W185
         e1 = track_waist(s, pipeline="waist-pendulum", stand_veto=True, sit_veto=False).steps["event_s"].to_numpy(float)
         e0 = off["event_s"].to_numpy(float)
         rid, rlen = runs_of(off["has_next"].to_numpy(bool))
@@ -427,7 +430,7 @@ def after_turns(root: Path) -> None:
     for folder in sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir()):
         s = read_session(folder)
         try:
-            off = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps  # as measured, before W185
+            off = track_waist(s, pipeline="waist-pendulum", sit_veto=False, **OFF).steps  # as measured, before W185
         except DataError:
             continue
         ev = off["event_s"].to_numpy(float)

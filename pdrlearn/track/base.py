@@ -246,9 +246,9 @@ def get_pipeline(name: str) -> Pipeline:
       pendulum model's distance on the same session),
       ``integrate_end`` (decision W187, off: the last step's heading takes the yaw turned on the spot after it, to
       the recording's end; offline only),
-      ``stand_veto`` (decision W190, off: a run of contacts whose median vertical bounce is under 1/3 of the
-      recording's is no walking; offline ``waist-pendulum`` only; values ``"turns"`` W191, ``"alternation"`` W196,
-      ``"adjacent"`` W198),
+      ``stand_veto`` (decision W199, default ``"adjacent"``: a run of contacts whose median vertical bounce is under
+      1/3 of the recording's is no walking unless walking strides lie within 3 s before and after it, W198; offline
+      ``waist-pendulum`` only; ``true`` W190 without the sparing, ``"turns"`` W191, ``"alternation"`` W196, false off),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
       turn on a 0.2 m radius; both pipelines),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered

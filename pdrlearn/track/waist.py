@@ -375,7 +375,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
-                   "stand_veto": False}  # W189
+                   "stand_veto": "adjacent"}  # W189; W199: W198's "adjacent" adopted (offline waist-pendulum only)
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -393,8 +393,8 @@ def ignored_options_line(o: dict, pipeline: str, realtime: bool, method: str, de
     """Decision W193: one line naming the resolved options ``o`` set away from :data:`OPTION_DEFAULTS` that do
     nothing for this track (:data:`SCOPED_OPTIONS`) and where each applies, else None (the live trackers' E107 line
     says the same of the options they do not apply)."""
-    off = [k for k, (_, acts) in SCOPED_OPTIONS.items()
-           if o.get(k) not in (None, OPTION_DEFAULTS[k]) and not acts(pipeline, realtime, method, detector,
+    off = [k for k, (_, acts) in SCOPED_OPTIONS.items()  # an option set off (false) does nothing anywhere (W199)
+           if o.get(k) not in (None, False, OPTION_DEFAULTS[k]) and not acts(pipeline, realtime, method, detector,
                                                                     integrate_stops)]
     if not off:
         return None
@@ -541,8 +541,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``"turns"``: the same, sparing a run with a step that turns the pelvis by more than 15 deg (W127's test; a
         slow turn on the spot bounces little; decision W191); ``"alternation"``: sparing a run whose decided W20
         sides alternate left/right, at least two decided (decision W196); ``"adjacent"``: sparing a run with walking
-        strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198); default
-        False
+        strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198), the
+        default since W199; False: no stand veto
     contact_shift : pendulum, offline detector: every kept contact judged once more by W23's weight-shift test with the
         side read at the contact, turns spared (decision W131, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``contact_shift``); default True, ``False`` restores the detector before W131

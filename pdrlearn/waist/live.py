@@ -137,11 +137,12 @@ def unapplied_options_line(p) -> str | None:
 
 def live_value(option: str):
     """Decision E126: the value of the option ``option`` of :data:`LIVE_UNAPPLIED_OPTIONS` that the live tracker
-    tracks as: no sit veto (``False``, W185's ``REALTIME_SIT_VETO``, where the offline default is ``"opposite"``),
-    else the option's offline default (E107)."""
+    tracks as: no sit veto (``False``, W185's ``REALTIME_SIT_VETO``, where the offline default is ``"opposite"``), no
+    stand veto (``False``, where the offline default is ``"adjacent"`` since W199: the recording's median bounce is
+    known only offline, W189), else the option's offline default (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
 
-    return REALTIME_SIT_VETO if option == "sit_veto" else OPTION_DEFAULTS[option]
+    return {"sit_veto": REALTIME_SIT_VETO, "stand_veto": False}.get(option, OPTION_DEFAULTS[option])
 
 
 class _HeldSamples:
