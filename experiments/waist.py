@@ -412,8 +412,10 @@ def main() -> None:
     ap.add_argument("--length-smoothing", default="none", choices=("none", "mobgap", "hampel", "seconds"),
                     help="length_smoothing of the offline waist-pendulum rows (decision W56; not the default): "
                          "prints only, experiments/results is written for the defaults alone")
-    ap.add_argument("--stand-veto", nargs="?", const="true", default=None, choices=("true", "turns", "alternation"),
-                    help="decision W189's stand_veto (`turns`: W191's value, `alternation`: W196's) on the offline "
+    ap.add_argument("--stand-veto", nargs="?", const="true", default=None,
+                    choices=("true", "turns", "alternation", "adjacent"),
+                    help="decision W189's stand_veto (`turns`: W191's value, `alternation`: W196's, `adjacent`: "
+                         "W198's) on the offline "
                          "waist-pendulum rows (not "
                          "the default): prints only, experiments/results is written for the defaults alone")
     ap.add_argument("--contact-model", default=None, choices=("learned",),

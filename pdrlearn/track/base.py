@@ -246,8 +246,9 @@ def get_pipeline(name: str) -> Pipeline:
       pendulum model's distance on the same session),
       ``integrate_end`` (decision W187, off: the last step's heading takes the yaw turned on the spot after it, to
       the recording's end; offline only),
-      ``stand_veto`` (decision W190, off: a run of contacts whose median vertical bounce is under 1/3 of the
-      recording's is no walking; offline ``waist-pendulum`` only; values ``"turns"`` W191, ``"alternation"`` W196),
+      ``stand_veto`` (decision W199, default ``"adjacent"``: a run of contacts whose median vertical bounce is under
+      1/3 of the recording's is no walking unless walking strides lie within 3 s before and after it, W198; offline
+      ``waist-pendulum`` only; ``true`` W190 without the sparing, ``"turns"`` W191, ``"alternation"`` W196, false off),
       ``contact_model`` (decision W204, off: ``"learned"`` keeps only the contacts a learned, calibrated re-scorer
       gives p >= 0.5, W203; offline ``waist-pendulum`` only),
       ``realtime_sit_veto`` (decision W201, off: a realtime track applies the sit veto causally, each contact

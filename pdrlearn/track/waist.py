@@ -377,7 +377,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
-                   "stand_veto": False,  # W189
+                   "stand_veto": "adjacent",  # W189; W199: W198's "adjacent" adopted (offline waist-pendulum only)
                    "contact_model": False,  # W203
                    "realtime_sit_veto": False}  # W200: the causal sit veto of realtime tracks
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
@@ -401,8 +401,8 @@ def ignored_options_line(o: dict, pipeline: str, realtime: bool, method: str, de
     """Decision W193: one line naming the resolved options ``o`` set away from :data:`OPTION_DEFAULTS` that do
     nothing for this track (:data:`SCOPED_OPTIONS`) and where each applies, else None (the live trackers' E107 line
     says the same of the options they do not apply)."""
-    off = [k for k, (_, acts) in SCOPED_OPTIONS.items()
-           if o.get(k) not in (None, OPTION_DEFAULTS[k]) and not acts(pipeline, realtime, method, detector,
+    off = [k for k, (_, acts) in SCOPED_OPTIONS.items()  # an option set off (false) does nothing anywhere (W199)
+           if o.get(k) not in (None, False, OPTION_DEFAULTS[k]) and not acts(pipeline, realtime, method, detector,
                                                                     integrate_stops)]
     if not off:
         return None
@@ -437,14 +437,14 @@ PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 #: the values of the ``stand_veto`` option: off, W189's veto, W191's veto sparing a run with a turning step, W196's
-#: sparing a run whose decided sides alternate
-STAND_VETO_VALUES = (False, True, "turns", "alternation")
+#: sparing a run whose decided sides alternate, W198's sparing a run with walking within 3 s before and after it
+STAND_VETO_VALUES = (False, True, "turns", "alternation", "adjacent")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159"),
-                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196"),
+                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203")}
 
 
@@ -554,7 +554,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         contact bounce: standing sway, no walking (decision W189, :func:`pdrlearn.waist.posture.stand_veto`);
         ``"turns"``: the same, sparing a run with a step that turns the pelvis by more than 15 deg (W127's test; a
         slow turn on the spot bounces little; decision W191); ``"alternation"``: sparing a run whose decided W20
-        sides alternate left/right, at least two decided (decision W196); default False
+        sides alternate left/right, at least two decided (decision W196); ``"adjacent"``: sparing a run with walking
+        strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198), the
+        default since W199; False: no stand veto
     contact_model : pendulum, offline detector (the realtime one and ``waist-pll`` ignore it): ``"learned"`` keeps
         only the contacts whose calibrated probability from W203's learned re-scorer
         (:func:`pdrlearn.waist.contact_model.rescore_contacts`) is at least 0.5, before the stand and sit vetoes;
@@ -666,7 +668,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     n_weak_run = 0
     if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
         steps = drop_weak_runs(steps, imu, spare_turns=o["stand_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps,
-                               spare_alternation=o["stand_veto"] == "alternation")
+                               spare_alternation=o["stand_veto"] == "alternation",
+                               spare_adjacent=o["stand_veto"] == "adjacent")
         n_weak_run = steps.attrs["n_weak_run"]
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
