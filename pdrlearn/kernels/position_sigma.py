@@ -47,7 +47,8 @@ import numpy as np
 def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: np.ndarray, t0_s: float, *,
                         displacement_rel: float, heading_walk_rad: float, bias_rps: float,
                         point_m: float, path_rel: float = 0.0, path_diffusion_m2: float = 0.0,
-                        extent_heading_rad: float = 0.0, extent_return_rad: float = 0.0, held_var_m2: np.ndarray | None = None) -> np.ndarray:
+                        extent_heading_rad: float = 0.0, extent_return_rad: float = 0.0,
+                        held_var_m2: np.ndarray | None = None) -> np.ndarray:
     """Covariance (m^2) of the horizontal position after each stride, shape (N, 2, 2).
 
     Parameters
