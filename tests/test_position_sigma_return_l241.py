@@ -63,3 +63,39 @@ def test_on_the_way_back_the_term_is_the_extent_less_the_displacement_by_hand():
 
 def test_todays_fused_parameters_are_the_ones_the_walks_above_compare_with():
     assert {k: v for k, v in SIGMA_PARAMS["plasys-fused"].items() if k in TODAY} == TODAY
+
+
+def test_the_return_term_is_an_option_off_by_default_on_the_fused_radius_only(monkeypatch):
+    """L242: measured on users 5130-5169 and not adopted (20/25 long-route finals within 2 sigma, rule 90-99 %);
+    ``FUSED_EXTENT_RETURN`` adds it to ``plasys-fused`` and to no other regime."""
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from pdrlearn.track import position_sigma as ps
+
+    assert ps.FUSED_EXTENT_RETURN is False
+    assert all(not p.get("extent_return_rad") for p in SIGMA_PARAMS.values())
+    L, psi, t = _walk((10, 0.0), (10, np.pi / 2), (10, np.pi), (10, -np.pi / 2))  # a closed square
+    steps = pd.DataFrame({"start_s": t - 1.0, "end_s": t, "length_m": L, "heading_rad": psi})
+
+    def final(regime):
+        res = SimpleNamespace(trajectory=pd.DataFrame({"t": np.r_[0.0, t]}), steps=steps, info={})
+        ps.add_position_sigma(res, None, regime)
+        return res.trajectory["pos_sigma_m"].iloc[-1], res.info["position_sigma"]
+
+    off = {r: final(r) for r in ("plasys-fused", "waist")}
+    assert "extent_return_rad" not in off["plasys-fused"][1]
+    monkeypatch.setattr(ps, "FUSED_EXTENT_RETURN", True)
+    on = {r: final(r) for r in ("plasys-fused", "waist")}
+    assert on["plasys-fused"][1]["extent_return_rad"] == EXTENT_HEADING_RAD
+    assert "extent_heading_rad" not in on["plasys-fused"][1]
+    # the track's radius is the kernel's with the term (never shrinking: the largest so far); back at the start that
+    # is today's covariance plus the far corner's 10 sqrt(2) m times the heading error on both axes
+    fused = {**SIGMA_PARAMS["plasys-fused"], "extent_return_rad": EXTENT_HEADING_RAD}
+    cand = np.trace(position_covariance(L, psi, t, 0.0, **fused), axis1=1, axis2=2)
+    today = np.trace(position_covariance(L, psi, t, 0.0, **SIGMA_PARAMS["plasys-fused"]), axis1=1, axis2=2)
+    assert on["plasys-fused"][0] == pytest.approx(np.sqrt(cand.max()))
+    assert cand[-1] == pytest.approx(today[-1] + 2 * EXTENT_HEADING_RAD ** 2 * 200.0)
+    assert on["plasys-fused"][0] > off["plasys-fused"][0] + 0.5
+    assert on["waist"] == off["waist"]
