@@ -84,6 +84,9 @@ from pdrlearn.waist.plausibility import (
     micro_bouts,
     not_alternating_message,
     pll_excess,
+    pll_missed_steps_message,
+    running_cadence,
+    short_step_message,
     step_counts,
     still_yaw_rate,
     still_yaw_rate_message,
@@ -851,22 +854,35 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
     Decision W139: an offline, uncalibrated ``waist-pll`` track is judged on the steps ``pendulum()`` returns (the
     pendulum model's reading of the same session, :func:`_pendulum_steps`); ``walk_ratio`` is then theirs.
     Decision W155: the steps ``stairs(steps)`` marks as on stairs (W91 / W108) are left out: a stair step is no
-    level gait (under ``stairs_length`` its length is the tread's, and read as a shuffle)."""
+    level gait (under ``stairs_length`` its length is the tread's, and read as a shuffle).
+    Decision W207: inside W100's band, a median pendulum step under half the comfortable step for the stature warns
+    (:func:`~pdrlearn.waist.plausibility.short_step_message`; not at a running cadence, W177). Decision W208: a pll
+    track with far fewer contacts than the pendulum reading says it misses steps instead of W139's line."""
     if realtime or p.source != "defaults" or not len(steps):
         return None, None
-    pll_length = None
+    pll_length = pll_m = pendulum_m = None
+    missed = None
     if pipeline == "waist-pll" and pendulum is not None:
         level = ~stairs(steps) if stairs is not None else np.ones(len(steps), dtype=bool)
         own = steps["length_m"].to_numpy(float)[(waist_step_times(steps)[0] > 0) & level]
         pll_length = float(np.median(np.abs(own))) if own.size else None
+        pll_m = float(np.nansum(np.abs(steps["length_m"].to_numpy(float))))
+        n_pll = len(steps)
         steps = pendulum()
+        pendulum_m = float(np.nansum(np.abs(steps["length_m"].to_numpy(float))))
+        missed = pll_missed_steps_message(n_pll, len(steps), pll_m, pendulum_m)  # decision W208
     elif pipeline != "waist-pendulum":
         return None, None
     step_s = waist_step_times(steps)[0]
     if stairs is not None:  # W155: stair steps are not judged (NaN step time: left out of walk_ratio)
         step_s = np.where(stairs(steps), np.nan, step_s)
     ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), step_s)
-    return ratio, walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length)
+    # W208: a pll track that misses steps says so first (W139's line would call its short reading long)
+    line = missed or walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length,
+                                        pll_m=pll_m, pendulum_m=pendulum_m)
+    if line is None and not (ratio is not None and running_cadence(length, cadence, height_m)):
+        line = short_step_message(length, n, height_m, pll_m=pll_m, pendulum_m=pendulum_m)  # decision W207
+    return ratio, line
 
 
 def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str) -> tuple[float | None, str | None]:
