@@ -183,12 +183,12 @@ def short_step_limit(height_m: float = WALK_RATIO_HEIGHT_M) -> float:
 
 #: decision W207: why a short pendulum step is read long, and what to do (shared by the waist-pendulum and the
 #: waist-pll lines)
-SHORT_STEP_CAUSE = ("at such short steps the pelvis vaults by a few millimetres and the pendulum model (seed 003 eq. 1: "
-                    "the step length grows with the square root of the vault) reads them long whatever the cadence "
-                    "(simulated shuffling at 0.2-0.4 m/s read up to about twice the true distance), so the "
-                    "distance, speed and step lengths are not reliable even when the speed looks plausible; calibrate on this "
-                    "walker's own walk of known length ('pdrlearn calibrate DIR --distance M --out PARAMS.json', "
-                    "e.g. a 10 m walk test at this gait), then track with --params PARAMS.json, or use a foot unit")
+SHORT_STEP_CAUSE = ("at such short steps the pelvis vaults by a few millimetres and the pendulum model (seed 003 "
+                    "eq. 1: the step length grows with the square root of the vault) reads them long whatever the "
+                    "cadence (simulated shuffling at 0.2-0.42 m/s read +21 to +101 %), so the distance, speed and "
+                    "step lengths are not reliable even when the speed looks plausible; calibrate on this walker's "
+                    "own walk of known length ('pdrlearn calibrate DIR --distance M --out PARAMS.json', e.g. a 10 m "
+                    "walk test at this gait), then track with --params PARAMS.json, or use a foot unit")
 
 
 def short_step_message(length: float | None, n: int, height_m: float = WALK_RATIO_HEIGHT_M, *,
