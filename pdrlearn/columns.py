@@ -111,9 +111,10 @@ SESSIONS: tuple[Column, ...] = (
     ("ic_timing_stereo_mean_ms", "ms", "number", "lower back: mean contact time error, both feet matched"),
     ("ic_timing_stereo_sd_ms", "ms", "number", "lower back: SD of that error"),
     ("gait_out_of_range", _ID, "true/false", "L95's walking-range warning fired: the session's median cadence or "
-                                             "speed outside the (leg-scaled) range, or a bout of 5+ strides above "
-                                             "it (L195); empty when nothing could be judged (no cadence, no judged "
-                                             "speed: L222)"),
+                                             "speed outside the (leg-scaled) range, above OR below it, or a bout of "
+                                             "5+ strides above it (L195); empty when nothing could be judged (no "
+                                             "cadence, no judged speed: L222). Slow walking is judged here only: "
+                                             "bouts.csv's gait_out_of_range is the fast side alone (L248)"),
     ("leg_length_m", "m", "number", "the walker's leg length from meta.json, by which L95's range is scaled (L148)"),
     ("leg_length_source", _ID, "text", "the meta.json key leg_length_m came from (L148)"),
     ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),
@@ -127,7 +128,8 @@ SESSIONS: tuple[Column, ...] = (
     ("median_swing_time_s", "s", "number", "--toe-off only: median swing time"),
     ("n_bouts", "count", "integer", "rows of bouts.csv under the bout rule (L124): THE bout count to report "
                                     "(L217)"),
-    ("n_bouts_out_of_range", "count", "integer", "bouts of bouts.csv whose gait_out_of_range is true (L195)"),
+    ("n_bouts_out_of_range", "count", "integer", "bouts of bouts.csv whose gait_out_of_range is true: bouts ABOVE "
+                                                 "the walking range (L195); 0 on a slow session (L248)"),
     ("n_backward_strides", "count", "integer", "foot: strides whose raw length is negative, turning under 30 deg "
                                                "(backward travel, with or without a model; a replay: strides classed "
                                                "backward; L203); empty on the lower back"),
@@ -267,9 +269,12 @@ BOUTS: tuple[Column, ...] = (
     ("altitude_change_m", "m", "number", "z change over the bout"),
     ("altitude_change_before_m", "m", "number", "lower back: z change while standing before the bout (a lift or "
                                                 "escalator ride; W158), 0 for foot tracks"),
-    ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is above L95's walking range "
+    ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is ABOVE L95's walking range "
                                              "(leg-scaled, L148; bouts of 5+ strides; L195): running or short fast "
-                                             "steps"),
+                                             "steps. Never true for a slow bout (a bout's speed includes its start, "
+                                             "stop and turns): a filter on it keeps slow bouts; slow walking is the "
+                                             "session's gait_out_of_range in summary.json / sessions.csv with L95's "
+                                             "line (L248)"),
     ("n_cv_strides", "count", "integer", "the bout's strides among the session's CV strides (steady straight level "
                                          "forward, L104 / L188); 0 on the lower back (L212)"),
     ("stride_time_cv_pct", "%", "number", "foot: 100 x SD / mean of those strides' times, with 5 or more of them "

@@ -244,6 +244,8 @@ def get_pipeline(name: str) -> Pipeline:
       x0.75-x1.33 of the calibration walks'),
       ``pll_check`` (decision W186, off: an uncalibrated offline waist-pll track warns when it reads over 1.5 x the
       pendulum model's distance on the same session),
+      ``short_step_check`` (decision W207, off: an uncalibrated offline waist-pendulum track warns when its median
+      step is under half the comfortable step of the stature, a shuffle the pendulum reads long),
       ``integrate_end`` (decision W187, off: the last step's heading takes the yaw turned on the spot after it, to
       the recording's end; offline only),
       ``stand_veto`` (decision W199, default ``"adjacent"``: a run of contacts whose median vertical bounce is under

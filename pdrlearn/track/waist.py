@@ -84,6 +84,9 @@ from pdrlearn.waist.plausibility import (
     micro_bouts,
     not_alternating_message,
     pll_excess,
+    pll_missed_steps_message,
+    running_cadence,
+    short_step_message,
     step_counts,
     still_yaw_rate,
     still_yaw_rate_message,
@@ -379,7 +382,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "integrate_end": False,  # W187
                    "stand_veto": "adjacent",  # W189; W199: W198's "adjacent" adopted (offline waist-pendulum only)
                    "contact_model": False,  # W203
-                   "realtime_sit_veto": False}  # W200: the causal sit veto of realtime tracks
+                   "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
+                   "short_step_check": False}  # W207: measured, not adopted for waist-pendulum (W208: pll always)
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -393,6 +397,8 @@ SCOPED_OPTIONS = {
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
     "realtime_sit_veto": ("realtime tracks (offline tracks apply the sit veto on the whole recording; W200)",
                           lambda pl, rt, m, det, stops: rt),
+    "short_step_check": ("the offline waist-pendulum (W207; an uncalibrated offline waist-pll track is judged so by "
+                         "default, W208)", lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
 }
 
 
@@ -475,7 +481,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
-                realtime_sit_veto: bool | None = None, detector=None,
+                realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -570,6 +576,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     pll_check : offline, uncalibrated waist-pll: one warning line when its distance is over 1.5 x the pendulum model's
         reading of the same session (decision W186: an option, its adoption rule was not met - fast plain walks
         warned too; ``info["pll_pendulum_ratio"]`` carries the ratio either way); default False
+    short_step_check : offline, uncalibrated waist-pendulum: one warning line when the median step is under half the
+        comfortable step of the stature (0.5 x 0.415 x height): a shuffling gait the pendulum model reads long
+        (decision W207: an option, its adoption rule was not met - a real daily-activity recording warned; an
+        uncalibrated offline waist-pll track is judged so on the pendulum's reading by default, W208); default False
     weak_fill : pendulum, offline detector: a weak step on the decided alternating side where the alternation and the
         local rhythm ask for one (decision W148, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``weak_fill``; measured and not adopted); default False
@@ -613,6 +623,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
+             "short_step_check": short_step_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto}
@@ -746,7 +757,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
     pendulum = functools.cache(lambda: _pendulum_steps(imu, p, thr, o))  # W139 and W186 read it once
     ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0],  # W100, W116
-                                    pendulum=pendulum,  # W139
+                                    pendulum=pendulum, short_step=bool(o["short_step_check"]),  # W139, W207
                                     stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])))  # W155
     if ratio_line:
         warnings.append(ratio_line)
@@ -848,28 +859,43 @@ def detector_steps(det, session: Session, imu: WaistIMU) -> pd.DataFrame:
 
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
-                height_m: float, pendulum=None, stairs=None) -> tuple[float | None, str | None]:
+                height_m: float, pendulum=None, stairs=None, short_step: bool = False
+                ) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
     warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps).
     Decision W139: an offline, uncalibrated ``waist-pll`` track is judged on the steps ``pendulum()`` returns (the
     pendulum model's reading of the same session, :func:`_pendulum_steps`); ``walk_ratio`` is then theirs.
     Decision W155: the steps ``stairs(steps)`` marks as on stairs (W91 / W108) are left out: a stair step is no
-    level gait (under ``stairs_length`` its length is the tread's, and read as a shuffle)."""
+    level gait (under ``stairs_length`` its length is the tread's, and read as a shuffle).
+    Decision W207: with ``short_step`` (the option ``short_step_check``; always for waist-pll, W208), inside W100's
+    band, a median pendulum step under half the comfortable step for the stature warns
+    (:func:`~pdrlearn.waist.plausibility.short_step_message`; not at a running cadence, W177). Decision W208: a pll
+    track with far fewer contacts than the pendulum reading says it misses steps instead of W139's line."""
     if realtime or p.source != "defaults" or not len(steps):
         return None, None
-    pll_length = None
+    pll_length = pll_m = pendulum_m = None
+    missed = None
     if pipeline == "waist-pll" and pendulum is not None:
         level = ~stairs(steps) if stairs is not None else np.ones(len(steps), dtype=bool)
         own = steps["length_m"].to_numpy(float)[(waist_step_times(steps)[0] > 0) & level]
         pll_length = float(np.median(np.abs(own))) if own.size else None
+        pll_m = float(np.nansum(np.abs(steps["length_m"].to_numpy(float))))
+        n_pll = len(steps)
         steps = pendulum()
+        pendulum_m = float(np.nansum(np.abs(steps["length_m"].to_numpy(float))))
+        missed = pll_missed_steps_message(n_pll, len(steps), pll_m, pendulum_m)  # decision W208
     elif pipeline != "waist-pendulum":
         return None, None
     step_s = waist_step_times(steps)[0]
     if stairs is not None:  # W155: stair steps are not judged (NaN step time: left out of walk_ratio)
         step_s = np.where(stairs(steps), np.nan, step_s)
     ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), step_s)
-    return ratio, walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length)
+    # W208: a pll track that misses steps says so first (W139's line would call its short reading long)
+    line = missed or walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length,
+                                        pll_m=pll_m, pendulum_m=pendulum_m)
+    if line is None and (short_step or pll_m is not None) and not running_cadence(length, cadence, height_m):
+        line = short_step_message(length, n, height_m, pll_m=pll_m, pendulum_m=pendulum_m)  # decision W207
+    return ratio, line
 
 
 def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str) -> tuple[float | None, str | None]:
