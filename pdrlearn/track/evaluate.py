@@ -900,6 +900,11 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.track.clinical import contact_timing
 
     summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
+    from pdrlearn.track.freezes import freeze_summary, session_freezes
+
+    if result.info.get("freezes") is None:  # decision W213: a foot track's episodes, from the foot unit
+        result.info["freezes"] = session_freezes(session, pipeline or result.info.get("pipeline"))
+    summary.update(freeze_summary(result.info.get("freezes")))
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
@@ -933,6 +938,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary["info"].pop("transfers", None)  # decision W182: the rows are transfers.csv's, not the summary's
+    summary["info"].pop("freezes", None)  # decision W213: the rows are freezes.csv's
     summary["info"].pop("yaw_turns", None)  # decision L210: they time turns.csv's turns; not the summary's
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary

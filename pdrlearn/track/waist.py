@@ -90,10 +90,12 @@ from pdrlearn.waist.plausibility import (
     walk_ratio,
     walk_ratio_message,
 )
-from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
+from pdrlearn.waist.posture import drop_contacts, sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.transfers import chair_transfers
+from pdrlearn.kernels.freeze import inside_episodes
+from pdrlearn.track.freezes import session_freezes
 
 log = logging.getLogger(__name__)
 
@@ -377,7 +379,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
                    "stand_veto": False,  # W189
-                   "contact_model": False}  # W203
+                   "contact_model": False,  # W203
+                   "freeze_veto": False}  # W214
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -387,6 +390,8 @@ SCOPED_OPTIONS = {
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "contact_model": ("the offline waist-pendulum with its own contact detector (W203)",
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
+                    lambda pl, rt, m, det, stops: not rt),
     "vault_veto": ("the offline waist-pendulum (W119)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
 }
@@ -471,7 +476,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None, detector=None,
-                length_model=None) -> TrackResult:
+                length_model=None, freeze_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -546,6 +551,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``"turns"``: the same, sparing a run with a step that turns the pelvis by more than 15 deg (W127's test; a
         slow turn on the spot bounces little; decision W191); ``"alternation"``: sparing a run whose decided W20
         sides alternate left/right, at least two decided (decision W196); default False
+    freeze_veto : offline (the realtime detector ignores it): drop the contacts inside a freeze episode of the lower
+        back's freeze index (freezes.csv, :mod:`pdrlearn.track.freezes`, decision W213): trembling in place is no
+        step (decision W214); the step before a dropped contact ends its sequence; default False
     contact_model : pendulum, offline detector (the realtime one and ``waist-pll`` ignore it): ``"learned"`` keeps
         only the contacts whose calibrated probability from W203's learned re-scorer
         (:func:`pdrlearn.waist.contact_model.rescore_contacts`) is at least 0.5, before the stand and sit vetoes;
@@ -604,7 +612,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
-             "stand_veto": stand_veto, "contact_model": contact_model}
+             "stand_veto": stand_veto, "contact_model": contact_model, "freeze_veto": freeze_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     if realtime and sit_veto is None and (p.options or {}).get("sit_veto") is None:
@@ -675,6 +683,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
         n_unvaulted = steps.attrs["n_unvaulted"]
+    freezes = session_freezes(session, pipeline)  # decision W213: freezes.csv's episodes
+    n_frozen = 0
+    if o["freeze_veto"] and not realtime and len(steps):  # W214: a contact inside a freeze episode is trembling, no step
+        steps = drop_contacts(steps, ~inside_episodes(steps["event_s"].to_numpy(float),
+                                                      [(r["start_s"], r["end_s"]) for r in freezes or []]),
+                              "n_frozen")
+        n_frozen = steps.attrs["n_frozen"]
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
@@ -773,6 +788,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_unvaulted_contacts": n_unvaulted,
         "n_weak_run_contacts": n_weak_run,
         "n_rescored_contacts": n_rescored,  # decision W203
+        "n_frozen_contacts": n_frozen,  # decision W214
+        "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }
