@@ -2,8 +2,8 @@
 
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
 (your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
-:class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side`, :class:`Freeze` segments)
-and :class:`UserProfile`
+:class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side`,
+:class:`Freeze` segments) and :class:`UserProfile`
 (anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
 """

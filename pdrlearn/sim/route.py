@@ -18,7 +18,7 @@
 | ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
 | ``trolley:M[:GAIT]`` | walk M metres straight ahead pushing a trolley (damped pelvic rotation; decision S46) |
 | ``side:M`` | side-step M metres facing ahead (+M left, -M right; lead foot out, trail foot closes; decision S49) |
-| ``freeze:S[:HZ[:ACC]]`` | stop and tremble in place S seconds at HZ (3-8) with the foot's peak ACC m/s^2 (no steps; S51) |
+| ``freeze:S[:HZ[:ACC]]`` | stop, tremble in place S s at HZ (3-8) with the foot's peak ACC m/s^2 (no steps; S51) |
 
 Angles are in degrees here (the Python segments take radians).
 """
@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 
 from pdrlearn.errors import DataError
+from pdrlearn.sim.freeze import check_freeze
 from pdrlearn.sim.path import (
     Backward,
     Curve,
@@ -45,7 +46,6 @@ from pdrlearn.sim.path import (
     Trolley,
     Turn,
 )
-from pdrlearn.sim.freeze import check_freeze
 from pdrlearn.sim.ride import check_rise
 from pdrlearn.sim.user import GAITS
 

@@ -34,6 +34,7 @@ from pdrlearn.sim.body import (
     step_lengths,
     trunk_vibration_source,
 )
+from pdrlearn.sim.freeze import FreezeEpisode, freeze_foot, freeze_loads, freeze_pelvis, freeze_table
 from pdrlearn.sim.kernels import (
     angular_rate_body,
     block_mean,
@@ -41,7 +42,6 @@ from pdrlearn.sim.kernels import (
     specific_force_body,
 )
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
-from pdrlearn.sim.freeze import FreezeEpisode, freeze_foot, freeze_loads, freeze_pelvis, freeze_table
 from pdrlearn.sim.ride import Ride, ride_offset, ride_table
 from pdrlearn.sim.scenarios import SCENARIOS
 from pdrlearn.sim.transfer import session_sit_starts, session_sits, transfer_motion, transfer_starts, transfer_table

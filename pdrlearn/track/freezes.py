@@ -67,3 +67,14 @@ def freeze_summary(rows: list[dict] | None) -> dict:
     if rows is None:
         return dict.fromkeys(FREEZE_SUMMARY_KEYS)
     return {"n_freezes": len(rows), "freeze_time_s": round(float(sum(r["duration_s"] for r in rows)), 3)}
+
+
+def freeze_caveat_message(n: int, seconds: float, vetoed: bool) -> str:
+    """Decision W215: the lower-back track's line when its freeze index found episodes: what else reads as freezing
+    there, and whether the contacts inside were counted as steps (``vetoed``: W214's option)."""
+    steps = ("their contacts were dropped (freeze_veto, decision W214)" if vetoed else
+             "the contacts inside them are still counted as steps and distance (the option freeze_veto drops them, "
+             "decision W214; off by default: it also drops slow shuffling steps)")
+    return (f"{n} freeze episode(s) of {seconds:.1f} s in all (freezes.csv, the lower back's freeze index, decision "
+            f"W213); {steps}. On the lower back the index also reads very slow shuffling (0.2-0.3 m/s), festinating "
+            "walks and daily activities as freezing (decision W215): confirm a freeze with a foot unit or video")

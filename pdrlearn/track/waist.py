@@ -31,10 +31,12 @@ from pdrlearn.kernels.barometer import (  # decision W91's constants and test, s
     STAIRS_RATE_WINDOW_S,
     stairs_rate_test,
 )
+from pdrlearn.kernels.freeze import inside_episodes
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
+from pdrlearn.track.freezes import freeze_caveat_message, session_freezes
 from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
@@ -94,8 +96,6 @@ from pdrlearn.waist.posture import drop_contacts, sit_veto_hint, tilt_gate, tran
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.transfers import chair_transfers
-from pdrlearn.kernels.freeze import inside_episodes
-from pdrlearn.track.freezes import session_freezes
 
 log = logging.getLogger(__name__)
 
@@ -684,8 +684,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
         n_unvaulted = steps.attrs["n_unvaulted"]
     freezes = session_freezes(session, pipeline)  # decision W213: freezes.csv's episodes
+    if freezes:  # decision W215: on the lower back the index is a screening one; say what else it reads
+        warnings.append(freeze_caveat_message(len(freezes), sum(r["duration_s"] for r in freezes),
+                                              bool(o["freeze_veto"]) and not realtime))
     n_frozen = 0
-    if o["freeze_veto"] and not realtime and len(steps):  # W214: a contact inside a freeze episode is trembling, no step
+    if o["freeze_veto"] and not realtime and len(steps):  # W214: a contact inside a freeze is trembling, no step
         steps = drop_contacts(steps, ~inside_episodes(steps["event_s"].to_numpy(float),
                                                       [(r["start_s"], r["end_s"]) for r in freezes or []]),
                               "n_frozen")
