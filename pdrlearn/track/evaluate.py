@@ -857,6 +857,11 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
+    from pdrlearn.track.freezes import freeze_summary, session_freezes
+
+    if result.info.get("freezes") is None and session is not None:  # decision W213: a foot track's episodes
+        result.info["freezes"] = session_freezes(session, result.info.get("pipeline"))
+    out.update(freeze_summary(result.info.get("freezes")))  # W213: n_freezes, freeze_time_s (None: not computed)
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
     out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
@@ -900,11 +905,6 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.track.clinical import contact_timing
 
     summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
-    from pdrlearn.track.freezes import freeze_summary, session_freezes
-
-    if result.info.get("freezes") is None:  # decision W213: a foot track's episodes, from the foot unit
-        result.info["freezes"] = session_freezes(session, pipeline or result.info.get("pipeline"))
-    summary.update(freeze_summary(result.info.get("freezes")))
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     summary["session"] = session.name
     folder = getattr(session, "folder", None)

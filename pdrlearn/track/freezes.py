@@ -28,8 +28,9 @@ FREEZE_SUMMARY_KEYS = ("n_freezes", "freeze_time_s")
 
 
 def unit_stream(pipeline: str | None) -> str:
-    """The accelerometer a pipeline tracks: the lower back's for the waist pipelines, else the foot's."""
-    return "wAccelerometer" if str(pipeline).startswith("waist") else "fAccelerometer"
+    """The accelerometer a pipeline tracks: the lower back's for the waist pipelines (and `run`'s waist bundles),
+    else the foot's."""
+    return "wAccelerometer" if "waist" in str(pipeline) else "fAccelerometer"  # runtime-waist too
 
 
 def freezes_of(t: np.ndarray, acc: np.ndarray) -> list[dict]:
