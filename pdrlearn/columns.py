@@ -204,6 +204,9 @@ SESSIONS: tuple[Column, ...] = (
     ("median_stand_to_sit_s", "s", "number", "lower back: median stand-to-sit duration (W182)"),
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
                                   "step, one sit after the last): the rise's start to the sit's end (W183)"),
+    ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "
+                                      "band power, 1 s or longer (W213)"),
+    ("freeze_time_s", "s", "number", "freezes.csv's durations summed (W213)"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
     ("walking_time_no_pauses_s", "s", "number", "walking time without the pauses inside it (L110)"),
@@ -324,6 +327,16 @@ TRANSFERS: tuple[Column, ...] = (
     ("height_change_m", "m", "number", "the pelvis's height change from start_s to end_s (+ up)"),
 )
 
+#: decision W213: a track's freezes.csv (foot or lower back: the tracked unit's freeze index)
+FREEZES: tuple[Column, ...] = (
+    ("freeze", "index", "integer", "the episode's number in the session, from 1"),
+    ("start_s", "s", "number", "the first freezing window's centre less 0.25 s, on the session's clock"),
+    ("end_s", "s", "number", "the last freezing window's centre plus 0.25 s"),
+    ("duration_s", "s", "number", "end_s - start_s"),
+    ("peak_fi", "ratio", "number", "the largest freeze index (3-8 Hz / 0.5-3 Hz power, Moore 2008) of its 4 s "
+                                   "windows"),
+)
+
 #: a lower-back track's steps.csv (``TrackResult.steps`` of waist-pendulum / waist-pll), one row per contact of either
 #: foot; a foot track's steps.csv (strides of one foot) has other columns
 WAIST_STEPS: tuple[Column, ...] = (
@@ -363,6 +376,7 @@ WAIST_STEPS: tuple[Column, ...] = (
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
                                          "bouts.csv": BOUTS, "turns.csv": TURNS, "transfers.csv": TRANSFERS,
+                                         "freezes.csv": FREEZES,
                                          "steps.csv": WAIST_STEPS}
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "

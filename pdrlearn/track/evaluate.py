@@ -857,6 +857,11 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
+    from pdrlearn.track.freezes import freeze_summary, session_freezes
+
+    if result.info.get("freezes") is None and session is not None:  # decision W213: a foot track's episodes
+        result.info["freezes"] = session_freezes(session, result.info.get("pipeline"))
+    out.update(freeze_summary(result.info.get("freezes")))  # W213: n_freezes, freeze_time_s (None: not computed)
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
     out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
@@ -933,6 +938,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary["info"].pop("transfers", None)  # decision W182: the rows are transfers.csv's, not the summary's
+    summary["info"].pop("freezes", None)  # decision W213: the rows are freezes.csv's
     summary["info"].pop("yaw_turns", None)  # decision L210: they time turns.csv's turns; not the summary's
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary

@@ -31,10 +31,12 @@ from pdrlearn.kernels.barometer import (  # decision W91's constants and test, s
     STAIRS_RATE_WINDOW_S,
     stairs_rate_test,
 )
+from pdrlearn.kernels.freeze import inside_episodes
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
+from pdrlearn.track.freezes import freeze_caveat_message, session_freezes
 from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
@@ -93,7 +95,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio,
     walk_ratio_message,
 )
-from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
+from pdrlearn.waist.posture import drop_contacts, sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.sit_causal import causal_transfer_veto
@@ -383,7 +385,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "stand_veto": "adjacent",  # W189; W199: W198's "adjacent" adopted (offline waist-pendulum only)
                    "contact_model": False,  # W203
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
-                   "short_step_check": False}  # W207: measured, not adopted for waist-pendulum (W208: pll always)
+                   "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
+                   "freeze_veto": False}  # W214
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -393,6 +396,8 @@ SCOPED_OPTIONS = {
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "contact_model": ("the offline waist-pendulum with its own contact detector (W203)",
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
+                    lambda pl, rt, m, det, stops: not rt),
     "vault_veto": ("the offline waist-pendulum (W119)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
     "realtime_sit_veto": ("realtime tracks (offline tracks apply the sit veto on the whole recording; W200)",
@@ -482,7 +487,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
-                length_model=None) -> TrackResult:
+                length_model=None, freeze_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -563,6 +568,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         sides alternate left/right, at least two decided (decision W196); ``"adjacent"``: sparing a run with walking
         strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198), the
         default since W199; False: no stand veto
+    freeze_veto : offline (the realtime detector ignores it): drop the contacts inside a freeze episode of the lower
+        back's freeze index (freezes.csv, :mod:`pdrlearn.track.freezes`, decision W213): trembling in place is no
+        step (decision W214); the step before a dropped contact ends its sequence; default False
     contact_model : pendulum, offline detector (the realtime one and ``waist-pll`` ignore it): ``"learned"`` keeps
         only the contacts whose calibrated probability from W203's learned re-scorer
         (:func:`pdrlearn.waist.contact_model.rescore_contacts`) is at least 0.5, before the stand and sit vetoes;
@@ -626,7 +634,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "short_step_check": short_step_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
-             "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto}
+             "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
+             "freeze_veto": freeze_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -700,6 +709,16 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
         n_unvaulted = steps.attrs["n_unvaulted"]
+    freezes = session_freezes(session, pipeline)  # decision W213: freezes.csv's episodes
+    if freezes:  # decision W215: on the lower back the index is a screening one; say what else it reads
+        warnings.append(freeze_caveat_message(len(freezes), sum(r["duration_s"] for r in freezes),
+                                              bool(o["freeze_veto"]) and not realtime))
+    n_frozen = 0
+    if o["freeze_veto"] and not realtime and len(steps):  # W214: a contact inside a freeze is trembling, no step
+        steps = drop_contacts(steps, ~inside_episodes(steps["event_s"].to_numpy(float),
+                                                      [(r["start_s"], r["end_s"]) for r in freezes or []]),
+                              "n_frozen")
+        n_frozen = steps.attrs["n_frozen"]
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
@@ -798,6 +817,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_unvaulted_contacts": n_unvaulted,
         "n_weak_run_contacts": n_weak_run,
         "n_rescored_contacts": n_rescored,  # decision W203
+        "n_frozen_contacts": n_frozen,  # decision W214
+        "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }

@@ -105,7 +105,8 @@ def live_options(p, warnings: list[str], **given) -> dict:
 LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_veto", "contact_shift", "weak_fill",
                           "parity_fill", "integrate_end",  # W187: the final stop is known only offline
                           "stand_veto",  # W189: the recording's median bounce is known only offline
-                          "contact_model")  # W203: its features read the recording's medians
+                          "contact_model",  # W203: its features read the recording's medians
+                          "freeze_veto")  # W214: the freeze index's 4 s window looks 2 s ahead
 
 
 def unapplied_options_line(p) -> str | None:
