@@ -593,10 +593,11 @@ def _class_agreement(result: TrackResult, session: Session, out: dict) -> None:
 def _foot_stride_f1(result: TrackResult, session: Session, out: dict) -> None:
     """Foot tracks on sessions with ground-truth strides: ``step_f1`` (with ``step_precision`` /
     ``step_recall``) of the tracked strides against the labelled ones, matched by time overlap (IoU >= 0.5,
-    as the stride lengths). Only tracked strides whose middle lies in a labelled interval are scored (the
-    intervals of :func:`pdrlearn.steps.evaluate.reference_events`: a reference that labels part of a walk
-    leaves the rest unscored). A labelled stride that two or more tracked strides tile (a turn split at an
-    intermediate rest) counts once, and its pieces are not false positives; a rest-based segmentation
+    as the stride lengths). A tracked stride matched to a labelled one is always scored; an unmatched one only
+    when its middle lies in a labelled interval (the intervals of :func:`pdrlearn.steps.evaluate.reference_events`:
+    a reference that labels part of a walk leaves the rest unscored; decision L249). A labelled stride that two or
+    more tracked strides tile (a turn split at an intermediate rest) counts once, and its pieces are not false
+    positives; a rest-based segmentation
     (``source=detected``) is not ground truth and gives no F1 (decision L36)."""
     st = session.steps
     if st is None or not len(st) or not len(result.steps) or "unit" not in result.steps:
@@ -608,12 +609,17 @@ def _foot_stride_f1(result: TrackResult, session: Session, out: dict) -> None:
     ref = reference_events(session, "foot")
     if ref is None or not ref.ground_truth:
         return
-    mid = result.steps[["start_s", "end_s"]].to_numpy(float).mean(axis=1)
-    est = result.steps[in_intervals(mid, ref.intervals)].reset_index(drop=True)
+    est = result.steps.reset_index(drop=True)
     pairs = match_by_overlap(est, st)
     used_est, used_ref = {i for i, _ in pairs}, {j for _, j in pairs}
     tp = len(pairs) + len(_composed_strides(est, st, used_est, used_ref))  # adds the tiles to used_est
-    precision = len(used_est) / len(est) if len(est) else 0.0
+    # decision L249: a tracked stride matched to (or tiling) a labelled stride is always scored, as every labelled
+    # stride is in the recall's denominator; only an unmatched one is scored by its middle (L36's intervals). The
+    # first stride from standing starts a stance early, so its middle fell before the first IC's interval
+    mid = est[["start_s", "end_s"]].to_numpy(float).mean(axis=1)
+    scored = in_intervals(mid, ref.intervals)
+    scored[list(used_est)] = True
+    precision = len(used_est) / int(scored.sum()) if scored.any() else 0.0
     recall = tp / len(st)
     out["step_precision"], out["step_recall"] = float(precision), float(recall)
     out["step_f1"] = float(2 * precision * recall / (precision + recall)) if tp else 0.0
