@@ -37,7 +37,9 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_error_pct", "%", "number", "100 x (distance_m - distance_ref_m) / distance_ref_m"),
     ("final_position_error_m", "m", "number", "horizontal distance of the last tracked position from the true one"),
     ("walking_time_s", "s", "number", "time walking (stops over 3 s and data gaps left out, L79)"),
-    ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s"),
+    ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s: rest to rest, with gait initiation and "
+                                       "termination and ~0.3 s of standing (L250); on a walkway (first to last "
+                                       "IC) read median_speed_straight_mps"),
     ("median_cadence_spm", "steps/min", "number", "median steps per minute"),
     ("median_stride_length_m", "m", "number", "foot: median stride length (gap rows and impossible strides left "
                                               "out); empty on the lower back"),
