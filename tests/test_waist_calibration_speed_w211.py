@@ -66,3 +66,13 @@ def test_a_malformed_range_is_one_line(tmp_path):
         (tmp_path / "bad.json").write_text(json.dumps(d))
         with pytest.raises(DataError, match="cadence_range_spm"):
             load_params(tmp_path / "bad.json")
+
+
+def test_the_distance_help_names_both_walkway_conventions():
+    """Decision W212: `calibrate --help` says what --distance is on a start-to-stop walkway."""
+    from typer.testing import CliRunner
+
+    from pdrlearn.cli import app
+
+    out = CliRunner().invoke(app, ["calibrate", "--help"], env={"COLUMNS": "200"}).output
+    assert "start-to-stop walkway" in " ".join(out.split()) and "W212" in out
