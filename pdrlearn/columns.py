@@ -84,10 +84,13 @@ SESSIONS: tuple[Column, ...] = (
     ("bouts_n_step_intervals", "count", "integer", "bouts.csv's n_step_intervals summed (L164)"),
     ("bout_distance_m", "m", "number", "lower back: tracked distance inside the reference walking bouts"),
     ("bout_reference_m", "m", "number", "lower back: reference distance of those bouts"),
-    ("bout_distance_error_median_pct", "%", "number", "lower back: median per-bout distance error"),
+    ("bout_distance_error_median_pct", "%", "number", "lower back: median of |per-bout distance error|, unsigned "
+                                                      "(L251; the bias: bout_distance_error_median_signed_pct)"),
+    ("bout_distance_error_median_signed_pct", "%", "number", "lower back: median of the signed per-bout errors, "
+                                                             "100 x (tracked - reference) / reference (L251)"),
     ("bout_reference_strides_m", "m", "number", "lower back: reference stride lengths summed over the bouts"),
-    ("bout_distance_error_strides_median_pct", "%", "number", "lower back: median per-bout error against the "
-                                                              "summed reference strides"),
+    ("bout_distance_error_strides_median_pct", "%", "number", "lower back: median of |per-bout error| against "
+                                                              "the summed reference strides (unsigned, L251)"),
     ("class_agreement_strides", "count", "integer", "tracked strides matched to a labelled one (L53)"),
     ("contact_timing", _ID, "text", "contacts on 'whole samples' or 'between samples' (L116)"),
     ("direction_agreement", "fraction", "number", "matched strides whose direction class is the label's (L53)"),
@@ -169,8 +172,14 @@ SESSIONS: tuple[Column, ...] = (
                                             "stride_time_cv_pct (L212; given with 10 of them, even when L113 "
                                             "withholds the time CV); empty on the lower back"),
     ("stride_length_mae_m", "m", "number", "mean absolute stride length error"),
-    ("stride_length_mae_pct", "%", "number", "the same as a share of the reference stride length"),
-    ("stride_length_mae_pct_straight", "%", "number", "the same over straight strides"),
+    ("stride_length_mae_pct", "%", "number", "mean over the pairs of 100 x |error| / reference length (each stride "
+                                             "weighted alike, not mean |error| / mean reference; L252); foot: every "
+                                             "pair of steps.csv's ref_match (E135), the first stride from standing, "
+                                             "turns and composed strides included"),
+    ("stride_length_mae_pct_straight", "%", "number", "the same over strides the labels do not mark turn (the "
+                                                      "initiation stride included)"),
+    ("stride_length_mae_pct_steady", "%", "number", "foot: the same over strides the labels mark steady (simulated "
+                                                    "walks: no initiation, termination or turn stride; L252)"),
     ("stride_length_mae_pct_turns", "%", "number", "the same over turning strides"),
     ("stride_length_matched", "count", "integer", "foot: tracked strides matched to labelled ones"),
     ("stride_time_cv_pct", "%", "number", "foot: 100 x SD / mean of steady level forward strides' times (L104, L188)"),

@@ -615,6 +615,10 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
             out["stride_length_mae_pct_straight"] = float(100.0 * np.mean((err / np.abs(r))[~turn]))
         if turn.any():
             out["stride_length_mae_pct_turns"] = float(100.0 * np.mean((err / np.abs(r))[turn]))
+    if "steady" in session.steps:  # decision L252: a walkway reference's strides (no initiation / termination / turn)
+        steady = session.steps["steady"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy()[ri]
+        if steady.any():
+            out["stride_length_mae_pct_steady"] = float(100.0 * np.mean((err / np.abs(r))[steady]))
 
 
 #: the class columns of a tracked step table compared with the labels (steps.csv), decision L53
@@ -700,7 +704,8 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
         out["distance_error_scope"] = "reference bouts"
         out["distance_in_ref_bouts_m"] = m["bout_distance_m"]
     for k in ("stride_length_matched", "stride_length_composed", "stride_length_mae_pct",
-              "stride_length_mae_pct_straight", "stride_length_mae_pct_turns", "distance_matched_error_pct"):
+              "stride_length_mae_pct_straight", "stride_length_mae_pct_turns", "stride_length_mae_pct_steady",
+              "distance_matched_error_pct"):
         out.pop(k, None)  # step rows are not strides: the stride metric of waist_metrics replaces these
     if "n_strides" in m:  # decision C19: the reference strides scored, not strides tracked (sessions.csv's
         m["n_reference_strides"] = m.pop("n_strides")  # n_strides column was 7 on the lower back, empty on the foot)
