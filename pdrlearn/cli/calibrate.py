@@ -92,7 +92,9 @@ def register(app: typer.Typer) -> None:
         replaced(out, was)
         d = params.to_dict()
         if as_json:
-            print_json(json_safe({"out": str(out), "pipeline": pipeline, **d}))
+            from pdrlearn import __version__
+
+            print_json(json_safe({"out": str(out), "pipeline": pipeline, **d, "pdrlearn_version": __version__}))  # E136
         else:
             typer.echo(f"wrote {out}")
             if pipeline == "waist-pendulum":

@@ -108,7 +108,7 @@ class WaistParams:
         if not isinstance(d, dict):
             raise DataError(f"{where}: waist parameters must be a JSON object")
         names = {f.name for f in fields(cls)}
-        unknown = sorted(set(d) - names - {"schema", "fit"})
+        unknown = sorted(set(d) - names - {"schema", "fit", "pdrlearn_version"})  # version: decision E136
         if unknown:
             more = f" and {len(unknown) - 5} more" if len(unknown) > 5 else ""
             raise DataError(f"{where}: not a waist parameter file (unknown key(s) {', '.join(unknown[:5])}{more}); "
@@ -139,7 +139,10 @@ class WaistParams:
     def save(self, path: str | os.PathLike, *, extra: dict | None = None) -> Path:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
+        from pdrlearn import __version__
+
         d = self.to_dict()
+        d["pdrlearn_version"] = __version__  # decision E136: a calibration file is reused across trials
         if extra:
             d.update(extra)
         tmp = path.with_suffix(path.suffix + ".tmp")
