@@ -1,5 +1,6 @@
 """Cohort decision C35: the data dictionary of track-all's tables - every column of sessions.csv, groups.csv,
-subjects.csv, each session's bouts.csv and a lower-back session's steps.csv (W129) with its unit, type and meaning.
+subjects.csv, each session's bouts.csv and a lower-back session's steps.csv (W129) and a foot session's (E137) with its
+unit, type and meaning.
 The one source of ``pdrlearn columns``
 and docs/columns.md (written from it: ``pdrlearn columns > docs/columns.md``); a test tracks a batch and checks that
 every column written is here. Meanings follow docs/localization.md's table of summary.json keys (decisions L103, L104).
@@ -361,13 +362,69 @@ WAIST_STEPS: tuple[Column, ...] = (
                                      "z, ascent or floors (W174)"),
 )
 
+#: decision E137: a foot track's steps.csv (``pdrlearn track`` / ``run`` of a foot recording, plasys), one row per
+#: stride of the tracked foot; docs/localization.md's "steps.csv columns" in full
+FOOT_STEPS: tuple[Column, ...] = (
+    ("start_s", "s", "number", "the stride's start: the middle of the foot's rest before it (at most 0.3 s into a "
+                               "longer rest), on the session's clock"),
+    ("end_s", "s", "number", "the stride's end: the middle of the rest after it"),
+    ("event_s", "s", "number", "the step detector's initial contact (IC) in the stride (--streaming: empty, or the "
+                               "streamed IC with --contacts; E49-E51)"),
+    ("length_m", "m", "number", "horizontal distance the stride moved after the class rules; negative only when "
+                                "classed backward (L65); 0 for a gap row or an impossible stride"),
+    ("raw_length_m", "m", "number", "the estimate before the rules, signed with the foot's forward axis at the "
+                                    "stride start (< 0: it moved backwards in that frame)"),
+    ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
+                                     "direction, counter-clockwise)"),
+    ("dz_m", "m", "number", "the stride's height change"),
+    ("terrain", _ID, "text", "M3's terrain class (empty without a model; L18)"),
+    ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),
+    ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
+                                           "L224)"),
+    ("length_class", _ID, "text", "M3's length class (empty without a model)"),
+    ("confidence", "fraction", "number", "the class confidence (1 without a model)"),
+    ("p_<task>_<class>", "fraction", "number", "with a model: the class probabilities (one column each)"),
+    ("ood_*", _ID, "number", "with a model: the stride's out-of-training-range scores (C16)"),
+    ("window_start_s", "s", "number", "with a model: the window the classes come from (L38)"),
+    ("window_end_s", "s", "number", "the same window's end"),
+    ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228)"),
+    ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),
+    ("stride_time_s", "s", "number", "IC to IC: this event_s minus the previous stride's (empty at the first "
+                                     "stride, after a stop over 3 s, a gap row, or a missing IC; L66, L80)"),
+    ("cadence_spm", "steps/min", "number", "120 / stride_time_s (two steps per stride of one foot)"),
+    ("speed_mps", "m/s", "number", "|length_m| / stride_time_s"),
+    ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride (wrapped "
+                                        "to +-pi)"),
+    ("tc_s", "s", "number", "--toe-off only: the stride's toe-off (foot gyroscope push-off peak; L73)"),
+    ("stance_time_s", "s", "number", "--toe-off only: IC to toe-off"),
+    ("swing_time_s", "s", "number", "--toe-off only: toe-off to the next IC"),
+    ("stance_pct", "%", "number", "--toe-off only: 100 x stance_time_s / stride_time_s"),
+    ("impossible", _ID, "true/false", "the last-line guard (L94) moved the stride 0 m: no gait values (L97)"),
+    ("gap_s", "s", "number", "the longest foot-data gap inside the stride; > 0: a 0 m gap row (L67)"),
+    ("unit", _ID, "text", "the unit tracked: foot"),
+    ("x", "m", "number", "pdrlearn run: the position east at the stride's end"),
+    ("y", "m", "number", "pdrlearn run: the position north"),
+    ("z", "m", "number", "pdrlearn run: the height"),
+    ("ref_match", "index", "integer", "where the session labels stride lengths (E135): the labelled stride paired "
+                                      "with this row, its row in the session's steps.csv from 0; empty: unpaired"),
+    ("ref_length_m", "m", "number", "that labelled stride's length_m"),
+    ("ref_stride_time_s", "s", "number", "its stride time: ic - pre_ic, or the IC of the labelled stride ending "
+                                         "where it starts (E135); empty otherwise"),
+    ("ref_composed", _ID, "true/false", "the row is one of two or more tracked rows tiling one labelled stride"),
+    ("pair_length_m", "m", "number", "the pair's estimated length: |length_m|, or the tiles' vector sum on each "
+                                     "tile; stride_length_mae_* = these pairs, one per ref_match (L252)"),
+)
+
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
                                          "bouts.csv": BOUTS, "turns.csv": TURNS, "transfers.csv": TRANSFERS,
-                                         "steps.csv": WAIST_STEPS}
+                                         "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS}  # E137
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
-                      "track's steps.csv (strides of the tracked foot) has other columns."}
+                      "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
+         "steps.csv (foot)": "Foot tracks (plasys; `pdrlearn track`, `run`): one row per stride of the tracked foot "
+                             "(E137); an empty cell is a value the stride cannot have. Columns marked with an option "
+                             "or a model appear only with it."}
 
 
 def expanded(table: str) -> dict[str, Column]:
@@ -382,7 +439,9 @@ def expanded(table: str) -> dict[str, Column]:
 def undocumented(table: str, columns) -> list[str]:
     """The ``columns`` of a written ``table`` that the dictionary lacks (a test keeps this empty, C35)."""
     known = expanded(table)
-    return [c for c in columns if c not in known]
+    # decision E137: "p_<task>_<class>" / "ood_*" name a family of columns by its prefix
+    prefixes = tuple(k.split("<")[0].rstrip("*") for k in known if "<" in k or k.endswith("*"))
+    return [c for c in columns if c not in known and not (prefixes and c.startswith(prefixes))]
 
 
 def markdown(tables: list[str] | None = None) -> str:
