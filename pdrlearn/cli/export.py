@@ -861,7 +861,10 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
 
     was = existed(out)
     with atomic_directory(out) as tmp:
-        result.steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
+        from pdrlearn.track.evaluate import with_reference_columns
+
+        steps = with_reference_columns(result, session)  # decision E135: the reference pairs, as track
+        steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
         csv_table(bouts).to_csv(tmp / "bouts.csv", index=False, float_format="%.10g")  # L124, as track (E98)
         for name, table in clinical_tables(result, bouts).items():  # L200, L202: turns.csv, as track

@@ -635,7 +635,9 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
         plot_aided(result, dest / "aided.png", truth=session.trajectory,
                    title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
     _write_csv(traj, dest / "trajectory.csv")
-    _write_csv(result.steps, dest / "steps.csv")
+    from pdrlearn.track.evaluate import with_reference_columns
+
+    _write_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
     _write_csv(csv_table(tracked["bouts"]), dest / "bouts.csv")  # decision L124 (E98: the old speed_m_s last)
     for name, table in clinical_tables(result, tracked["bouts"]).items():  # decisions L200, W182
         _write_csv(table, dest / name)

@@ -242,6 +242,8 @@ def get_pipeline(name: str) -> Pipeline:
       inside one walking sequence of the other contacts, decision W159; offline only),
       ``gait_check`` (decision W140, off: with calibrated params, warn when the walk's median cadence is outside
       x0.75-x1.33 of the calibration walks'),
+      ``speed_check`` (decision W211, on: with calibrated params, warn when the walk's median cadence is more than 10 %
+      outside the calibration walks' cadence range, i.e. another walking speed),
       ``pll_check`` (decision W186, off: an uncalibrated offline waist-pll track warns when it reads over 1.5 x the
       pendulum model's distance on the same session),
       ``short_step_check`` (decision W207, off: an uncalibrated offline waist-pendulum track warns when its median

@@ -15,8 +15,10 @@ either stride's event lies outside its own window. A short rest between two stri
 little longer in a turn) no longer drops the stride time (decision L80).
 
 The summary (decision L79, waist W70): ``walking_time_s`` (the strides' span, first start to last end, less
-the rests over :data:`MAX_STRIDE_S` between strides), ``gait_speed_mps`` (``distance / walking_time_s``) and
-``median_speed_straight_mps`` (the median speed of the strides that turn less than :data:`STRAIGHT_MAX_RAD`).
+the rests over :data:`MAX_STRIDE_S` between strides), ``gait_speed_mps`` (``distance / walking_time_s``: a timed
+walk from standing, gait initiation / termination and the rows' standing included, decision L250) and
+``median_speed_straight_mps`` (the median speed of the strides that turn less than :data:`STRAIGHT_MAX_RAD`: an
+instrumented walkway's steady speed).
 """
 
 from __future__ import annotations

@@ -78,6 +78,7 @@ from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
     calibration_gait_message,
+    calibration_speed_message,
     contact_alternation,
     contact_lateral_velocity,
     contact_sides,
@@ -386,7 +387,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "contact_model": False,  # W203
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
-                   "freeze_veto": False}  # W214
+                   "freeze_veto": False,  # W214
+                   "speed_check": True}  # W211
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -482,7 +484,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
-                gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
+                gait_check: bool | None = None, speed_check: bool | None = None, pll_check: bool | None = None,
+                weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
@@ -581,6 +584,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gait_check : with calibrated params that record their walks' gait: one warning line when this walk's median
         cadence is outside x0.75-x1.33 of the calibration's (decision W140: an option, its adoption rule was not met;
         ``info["calibration_cadence_ratio"]`` carries the ratio either way); default False
+    speed_check : with calibrated params that record their walks' gait: one warning line when this walk's median
+        cadence is more than 10 % outside the calibration walks' cadence range (decision W211: another walking speed
+        biases the calibrated step length; with ``gait_check`` W140's line is given instead when both fire);
+        default True
     pll_check : offline, uncalibrated waist-pll: one warning line when its distance is over 1.5 x the pendulum model's
         reading of the same session (decision W186: an option, its adoption rule was not met - fast plain walks
         warned too; ``info["pll_pendulum_ratio"]`` carries the ratio either way); default False
@@ -632,6 +639,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "short_step_check": short_step_check,
+             "speed_check": speed_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
@@ -790,9 +798,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
         warnings.append(micro_line)
-    cadence_ratio, gait_line = _calibration_gait(steps, p, pipeline)  # decision W140
+    cadence_ratio, gait_line, speed_line = _calibration_gait(steps, p, pipeline)  # decisions W140, W211
     if gait_line and bool(o["gait_check"]):  # W140's line: an option (its adoption rule was not met)
         warnings.append(gait_line)
+    elif speed_line and bool(o["speed_check"]):  # W211: W140's band lies inside it, so one line, not two
+        warnings.append(speed_line)
     n = len(steps)
     length_model = model.name
     info = {
@@ -919,14 +929,18 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
     return ratio, line
 
 
-def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str) -> tuple[float | None, str | None]:
-    """Decision W140: ``(ratio, line)``, this track's median cadence over its calibration walks' (None: not calibrated,
-    a params file without ``gait``, or fewer than ten steps) and W140's warning line (None inside its band)."""
+def _calibration_gait(steps: pd.DataFrame, p: WaistParams,
+                      pipeline: str) -> tuple[float | None, str | None, str | None]:
+    """Decision W140: ``(ratio, line, speed line)``, this track's median cadence over its calibration walks' (None: not
+    calibrated, a params file without ``gait``, or fewer than ten steps), W140's warning line (None inside its band)
+    and W211's (None inside the calibration's cadence range +-10 %)."""
     ref = (p.gait or {}).get("median_cadence_spm") if p.source == "calibrated" else None
     cadence, n = median_cadence(steps["frequency_hz"].to_numpy(float))
     if not ref or cadence is None or n < PLAUSIBILITY_MIN_PAIRS:
-        return None, None
-    return cadence / float(ref), calibration_gait_message(p.gait, cadence, n, p.pipeline or pipeline)
+        return None, None, None
+    who = p.pipeline or pipeline
+    return (cadence / float(ref), calibration_gait_message(p.gait, cadence, n, who),
+            calibration_speed_message(p.gait, cadence, n, who))
 
 
 def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDetector:

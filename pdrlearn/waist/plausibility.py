@@ -345,18 +345,50 @@ def median_cadence(frequency_hz: np.ndarray) -> tuple[float | None, int]:
     return (60.0 * float(np.median(f)) if f.size else None), int(f.size)
 
 
-def calibration_gait(frequency_hz: np.ndarray, distance_m: float) -> dict | None:
+def calibration_gait(frequency_hz: np.ndarray, distance_m: float, walks_hz: list | None = None) -> dict | None:
     """Decision W140: the gait of the calibration walks whose counted steps have the step frequencies
     ``frequency_hz`` (Hz) and cover ``distance_m`` (the known lengths summed): ``median_cadence_spm``,
     ``step_length_m`` (the known distance over the counted steps), ``speed_mps`` (the distance over the steps'
-    summed durations ``1 / f``) and ``n_steps``; None without a step."""
+    summed durations ``1 / f``) and ``n_steps``; decision W211: ``cadence_range_spm``, the lowest and highest median
+    cadence of the walks (``walks_hz``: each walk's step frequencies; default one walk); None without a step."""
     f = np.asarray(frequency_hz, dtype=np.float64)
     f = f[np.isfinite(f) & (f > 0)]
     if not f.size:
         return None
+    per_walk = [median_cadence(w)[0] for w in (walks_hz if walks_hz is not None else [f])]
+    per_walk = [c for c in per_walk if c is not None] or [60.0 * float(np.median(f))]
     return {"median_cadence_spm": round(60.0 * float(np.median(f)), 2),
             "step_length_m": round(float(distance_m) / f.size, 4),
-            "speed_mps": round(float(distance_m) / float(np.sum(1.0 / f)), 4), "n_steps": int(f.size)}
+            "speed_mps": round(float(distance_m) / float(np.sum(1.0 / f)), 4), "n_steps": int(f.size),
+            "cadence_range_spm": [round(min(per_walk), 2), round(max(per_walk), 2)]}
+
+
+#: decision W211: a calibrated track whose median cadence is more than this fraction below the calibration walks'
+#: lowest or above their highest warns (a priori: the trial's speed bias is ~1/3 of the cadence change, +9.6 % at
+#: x0.77 and -8.2 % at x1.29, so 10 % of cadence is ~3 % of distance, a same-speed re-test's spread)
+CALIBRATION_SPEED_MARGIN = 0.10
+
+
+def calibration_speed_message(gait: dict | None, cadence: float | None, n: int, pipeline: str) -> str | None:
+    """Decision W211's one warning line when a track calibrated on walks of ``gait`` (:func:`calibration_gait`; its
+    ``cadence_range_spm``, else ``median_cadence_spm`` for both ends; None: not judged) has a median ``cadence``
+    (steps/min, over ``n`` >= :data:`PLAUSIBILITY_MIN_PAIRS` steps) outside the range widened by
+    :data:`CALIBRATION_SPEED_MARGIN` either way."""
+    gait = gait or {}
+    rng = gait.get("cadence_range_spm") or [gait.get("median_cadence_spm")] * 2
+    if rng[0] is None or cadence is None or n < PLAUSIBILITY_MIN_PAIRS or not rng[0] > 0:
+        return None
+    lo, hi = float(rng[0]) * (1.0 - CALIBRATION_SPEED_MARGIN), float(rng[1]) * (1.0 + CALIBRATION_SPEED_MARGIN)
+    if lo <= cadence <= hi:
+        return None
+    cal = f"{float(rng[0]):.0f}" if rng[0] == rng[1] else f"{float(rng[0]):.0f}-{float(rng[1]):.0f}"
+    speed = gait.get("speed_mps")
+    at = f", {float(speed):.2f} m/s" if speed is not None else ""
+    return (f"this walk's median cadence {cadence:.0f} steps/min ({n} steps) is outside the {pipeline} calibration's "
+            f"{cal} steps/min{at} by more than {100 * CALIBRATION_SPEED_MARGIN:.0f} % (decision W211): a calibration "
+            "holds near the speed it was made at (one at 1.0 m/s read +7..+10 % at 0.6 m/s and -8 % at 2.0 m/s); "
+            "calibrate on walks at several speeds ('pdrlearn calibrate SLOW NORMAL FAST -d M -d M -d M', which "
+            "separates K and F) or on a walk at this speed")
 
 
 def calibration_gait_message(gait: dict | None, cadence: float | None, n: int, pipeline: str) -> str | None:
