@@ -527,7 +527,7 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
 
 def transfer_line(summary: dict) -> str | None:
     """Decisions L200, W183: ``track``'s line of the turns' median duration and, on the lower back, the chair
-    transfers and the TUG time; None when the summary has neither a timed turn nor a transfer."""
+    transfers and the TUG time, and the freeze episodes (W213); None when the summary has none of them."""
     parts = []
     if summary.get("median_turn_duration_s") is not None:
         parts.append(f"median turn {summary['median_turn_duration_s']:.2f} s (turns.csv)")
@@ -536,6 +536,9 @@ def transfer_line(summary: dict) -> str | None:
         parts.append(f"{rise} sit-to-stand, {sit} stand-to-sit (transfers.csv)")
         if summary.get("tug_time_s") is not None:
             parts.append(f"TUG time {summary['tug_time_s']:.2f} s (rise to sit)")
+    if summary.get("n_freezes"):  # decision W213: the freeze index's episodes
+        parts.append(f"{summary['n_freezes']} freeze episode(s), {summary['freeze_time_s']:.1f} s in all "
+                     "(freezes.csv; freeze index, decision W213)")
     return ", ".join(parts) if parts else None
 
 

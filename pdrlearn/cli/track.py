@@ -630,7 +630,8 @@ def _check_relative_heading(result, session, heading0: float) -> None:
 def clinical_tables(result, bouts) -> dict:
     """The per-event tables a track writes beside bouts.csv: ``turns.csv`` (decision L200: each turn of at least
     ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
-    sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk)."""
+    sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk) and ``freezes.csv``
+    (decision W213: the freeze index's episodes of the tracked unit)."""
     import pandas as pd
 
     from pdrlearn.track.clinical import turn_table
@@ -639,6 +640,10 @@ def clinical_tables(result, bouts) -> dict:
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
+    if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
+        from pdrlearn.track.freezes import freeze_table
+
+        out["freezes.csv"] = freeze_table(result.info["freezes"])
     return out
 
 
@@ -663,7 +668,9 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
         plot_aided(result, dest / "aided.png", truth=session.trajectory,
                    title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
     _write_csv(traj, dest / "trajectory.csv")
-    _write_csv(result.steps, dest / "steps.csv")
+    from pdrlearn.track.evaluate import with_reference_columns
+
+    _write_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
     _write_csv(csv_table(tracked["bouts"]), dest / "bouts.csv")  # decision L124 (E98: the old speed_m_s last)
     for name, table in clinical_tables(result, tracked["bouts"]).items():  # decisions L200, W182
         _write_csv(table, dest / name)
@@ -717,6 +724,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
                    f"{summary['time_no_data_s']:.1f} s")
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
+               f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json")
 

@@ -15,8 +15,10 @@ either stride's event lies outside its own window. A short rest between two stri
 little longer in a turn) no longer drops the stride time (decision L80).
 
 The summary (decision L79, waist W70): ``walking_time_s`` (the strides' span, first start to last end, less
-the rests over :data:`MAX_STRIDE_S` between strides), ``gait_speed_mps`` (``distance / walking_time_s``) and
-``median_speed_straight_mps`` (the median speed of the strides that turn less than :data:`STRAIGHT_MAX_RAD`).
+the rests over :data:`MAX_STRIDE_S` between strides), ``gait_speed_mps`` (``distance / walking_time_s``: a timed
+walk from standing, gait initiation / termination and the rows' standing included, decision L250) and
+``median_speed_straight_mps`` (the median speed of the strides that turn less than :data:`STRAIGHT_MAX_RAD`: an
+instrumented walkway's steady speed).
 """
 
 from __future__ import annotations
@@ -599,8 +601,25 @@ def gait_range_warning(summary: dict) -> str | None:
         extra += ("; the waist step length is uncalibrated and the default model is not validated at slow "
                   "cadence: the distance and speed depend on a calibration on this walker's own walk of known "
                   "length ('pdrlearn calibrate DIR --distance M', e.g. a 10 m walk test)")
-    return (f"{figs}: {what}{validated}; the distance, the terrain / length classes and the floors are not "
-            f"reliable{extra}")
+    return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow)}{extra}"
+
+
+#: decision L247: what the offline foot track's distance did on simulated shuffling below L95's speed range (users
+#: 4900-4919, 0.2-0.5 m/s, no model, with and without force sensors: experiments/results/foot_slow.txt)
+SLOW_FOOT_DISTANCE = "-3.1 to +1.4 % on simulated shuffling at 0.2-0.5 m/s"
+
+
+def _unreliable(summary: dict, info: dict, slow: bool) -> str:
+    """What L95's line says is not reliable. Decision L247: a slow offline foot track without classes (the ZUPT
+    strides of a foot unit, ``plasys`` with no model, not streamed) keeps its distance, measured at
+    :data:`SLOW_FOOT_DISTANCE`; the line says so and names what stays unvalidated. Every other track: the distance
+    too (the lower back reads slow steps long, W207; a streamed foot track read +11 % at 0.2 m/s, L120)."""
+    foot = (str(summary.get("pipeline") or info.get("pipeline") or "") == "plasys" and not info.get("streaming")
+            and info.get("classes_source") is None)
+    if slow and foot:
+        return (f"the offline foot distance (ZUPT strides) stays usable ({SLOW_FOOT_DISTANCE}, no model; decision "
+                "L247), but the floors and any terrain / length classes are not validated at this speed")
+    return "the distance, the terrain / length classes and the floors are not reliable"
 
 
 def bout_range_flags(table, leg_m: float | None) -> np.ndarray:

@@ -116,6 +116,8 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
     info = {**result.info, "window": {"start_s": t0 - t_rec, "end_s": t1 - t_rec}}
     if info.get("transfers") is not None:  # decision W182: the chair transfers inside the window
         info["transfers"] = [r for r in info["transfers"] if r["start_s"] >= t0 and r["end_s"] <= t1]
+    if info.get("freezes") is not None:  # decision W213: the freeze episodes inside the window
+        info["freezes"] = [r for r in info["freezes"] if r["start_s"] >= t0 and r["end_s"] <= t1]
     if warnings:
         info["warnings"] = [*result.info.get("warnings", []), *warnings]
     if notes:  # decision L276: printed as a "note:" line by the command line
