@@ -37,7 +37,8 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_ref_m", "m", "number", "reference distance (meta.json or labels); empty without one"),
     ("distance_error_pct", "%", "number", "100 x (distance_m - distance_ref_m) / distance_ref_m"),
     ("final_position_error_m", "m", "number", "horizontal distance of the last tracked position from the true one"),
-    ("walking_time_s", "s", "number", "time walking (stops over 3 s and data gaps left out, L79)"),
+    ("walking_time_s", "s", "number", "time walking (stops over 3 s and data gaps left out, L79); with --window "
+                                      "the window's strides' (0 when it holds none, L276)"),
     ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s: rest to rest, with gait initiation and "
                                        "termination and ~0.3 s of standing (L250); on a walkway (first to last "
                                        "IC) read median_speed_straight_mps"),
@@ -158,7 +159,10 @@ SESSIONS: tuple[Column, ...] = (
                                             "--bout-min-strides report n_bouts (L217)"),
     ("out_of_domain_fraction", "fraction", "number",
      "with a model (track --model, run): strides outside its training range (C16, C63)"),
-    ("pause_time_s", "s", "number", "total pause time (L104)"),
+    ("pause_time_s", "s", "number", "total pause time (L104): the pauses between consecutive steps beyond the walk's "
+                                    "rhythm; with --window only those between the window's steps. Not a share of "
+                                    "the session's time: see time_between_steps_s (L275)"),
+    ("per_s", "s", "number", "--per only: the period of periods.csv (L277)"),
     ("pdrlearn_version", _ID, "text", "the pdrlearn version that wrote the row (run.json names the commit, L136)"),
     ("step_f1", "fraction", "number", "tracked strides / steps against the reference contacts, F1 (L36)"),
     ("step_f1_all", "fraction", "number", "lower back: F1 over every reference contact"),
@@ -196,6 +200,17 @@ SESSIONS: tuple[Column, ...] = (
                                                        "(L196), the CV of the strides about their own bout's mean; "
                                                        "empty otherwise"),
     ("terrain_agreement", "fraction", "number", "matched strides whose terrain class is the label's (L53)"),
+    ("time_between_steps_s", "s", "number", "from the first to the last step counted (L105's rule), the time "
+                                            "neither walking nor without data: standing (or sitting) between steps "
+                                            "(L275)"),
+    ("time_no_data_s", "s", "number", "the tracked unit's data gaps over 1 s (the warned ones, B11) (L275)"),
+    ("time_no_steps_s", "s", "number", "before the first step counted and after the last: no step bounds it (the "
+                                       "time before the walk, a seated stretch at a window's edge) (L275)"),
+    ("time_span_s", "s", "number", "the recording of the tracked unit from the session start, or the --window: "
+                                   "time_walking_s + time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
+    ("time_walking_s", "s", "number", "the whole session's walking pieces (walking_time_s's, L79) inside the span, "
+                                      "data gaps left out: = walking_time_s for a whole session, and windows add up "
+                                      "to it (L275)"),
     ("timing_resolution_s", "s", "number", "one sample period of the stream the contacts come from (L116)"),
     ("turn_angle_mae_deg", "deg", "number", "mean absolute error of the reference turns' angles (L42)"),
     ("turn_count", "count", "integer",
@@ -327,6 +342,34 @@ TURNS: tuple[Column, ...] = (
                                          "than a foot track's for the same turn; empty for a turn of no duration"),
 )
 
+#: decision L277: a track's periods.csv (``track --per``), one row per period of the whole session's track
+PERIODS: tuple[Column, ...] = (
+    ("session", _ID, "text", "meta.json's session name (bouts.csv's key, L165)"),
+    ("subject", _ID, "text", "meta.json's subject; empty when not given"),
+    ("period", "index", "integer", "the period's number, from 1"),
+    ("start_s", "s", "number", "the period's start on the session's clock (the recording's start + k x --per)"),
+    ("end_s", "s", "number", "its end; the last period ends with the tracked unit's recording"),
+    ("duration_s", "s", "number", "end_s - start_s"),
+    ("partial", _ID, "true/false", "the last period, shorter than --per"),
+    ("distance_m", "m", "number", "distance of the steps whose middle lies in the period (L105's rule); the periods "
+                                  "sum to the summary's distance_m (L278)"),
+    ("n_steps", "count", "integer", "those steps (rows of steps.csv, as the summary's n_steps)"),
+    ("time_walking_s", "s", "number", "the session's walking time inside the period; sums to walking_time_s (L275)"),
+    ("time_between_steps_s", "s", "number", "first to last step of the period: neither walking nor no data "
+                                            "(L275); with time_no_steps_s it sums to the summary's two"),
+    ("time_no_steps_s", "s", "number", "before the period's first step and after its last (a stop across the "
+                                       "period's edge is here in both periods, L275)"),
+    ("time_no_data_s", "s", "number", "the tracked unit's data gaps over 1 s inside the period (L275)"),
+    ("floors_up", "count", "integer", "storeys of the climbs (L127) whose last stair stride lies in the period; "
+                                      "empty when the floors come from the altitude (L64)"),
+    ("floors_down", "count", "integer", "the same, down"),
+    ("n_bouts", "count", "integer", "bouts.csv's bouts that start in the period (sums to n_bouts)"),
+    ("n_turns", "count", "integer", "turns.csv's turns that start in the period (sums to turn_count)"),
+    ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
+    ("position_sigma_end_m", "m", "number", "the position's 1-sigma at the period's end (trajectory.csv pos_sigma_m, "
+                                            "L128); empty for an aided track"),
+)
+
 #: decision W182: a lower-back track's transfers.csv (a foot track writes none)
 TRANSFERS: tuple[Column, ...] = (
     ("transfer", "index", "integer", "the transfer's number in the session, from 1"),
@@ -442,7 +485,8 @@ FOOT_STEPS: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
-                                         "bouts.csv": BOUTS, "turns.csv": TURNS, "transfers.csv": TRANSFERS,
+                                         "bouts.csv": BOUTS, "turns.csv": TURNS, "periods.csv": PERIODS,
+                                         "transfers.csv": TRANSFERS,
                                          "freezes.csv": FREEZES,
                                          "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS}  # E137
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)

@@ -7,8 +7,8 @@ import typer
 
 def columns(
     table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv, bouts.csv, "
-                                "turns.csv, transfers.csv or steps.csv (the lower back's and the foot's; 'steps.csv "
-                                "(foot)' for the foot's only) (default: all)."),
+                                "turns.csv, periods.csv, transfers.csv or steps.csv (the lower back's and the foot's; "
+                                "'steps.csv (foot)' for the foot's only) (default: all)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object: table -> list of {column, unit, "
                                  "type, meaning}."),
 ) -> None:

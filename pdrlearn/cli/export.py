@@ -800,6 +800,9 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     out = {"source": source, **evaluate_track(result, session, bouts=bouts, bout_table=bout_table,
                                               storey_height_m=storey_height_m),
            **domain_fraction(result)}  # decision E105: as track's summary (C16)
+    from pdrlearn.track.periods import time_accounting
+
+    out.update(time_accounting(result, session))  # decision L275, as track's summary (B14)
     # lat/lon with --start, as track's summary (without it track has none: no NaN keys either)
     geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
     out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}

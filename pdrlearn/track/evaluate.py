@@ -185,18 +185,30 @@ def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: fl
     stride) counts floor(|H| / h + band) storeys, the storeys of L64's band rule, so a slow altitude drift
     between climbs moves no count. Non-finite dz count as 0. ``slope`` (default ``SUSTAINED_SLOPE``, decision
     L144): the strides of a sustained slope (``kernels.distance.sustained_slope``) count as stair strides too."""
+    climbs = [n for _, n in floor_climbs(dz, storey_height_m, band, bridge, slope)]
+    up, down = sum(n for n in climbs if n > 0), -sum(n for n in climbs if n < 0)
+    return up, down, up - down
+
+
+def floor_climbs(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
+                 bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None) -> list[tuple[int, int]]:
+    """:func:`count_floors_by_climb`'s climbs that count a storey (decision L127), as ``(last, storeys)``: the index
+    of the climb's last stair stride and its storeys, + up / - down (decision L277: periods.csv places each climb's
+    storeys in the period of its last stair stride, so the periods' floors add up to the summary's)."""
     from pdrlearn.kernels import distance
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
     sloped = (distance.sustained_slope(dz) if (distance.SUSTAINED_SLOPE if slope is None else slope)
               else np.zeros(len(dz), dtype=bool))
-    counts = []
-    for stair in (np.flatnonzero((dz >= distance.LEVEL_DZ_M) | (sloped & (dz > 0))),
-                  np.flatnonzero((dz <= -distance.LEVEL_DZ_M) | (sloped & (dz < 0)))):
+    out = []
+    for sign, stair in ((1, np.flatnonzero((dz >= distance.LEVEL_DZ_M) | (sloped & (dz > 0)))),
+                        (-1, np.flatnonzero((dz <= -distance.LEVEL_DZ_M) | (sloped & (dz < 0))))):
         runs = np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []
-        counts.append(sum(int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
-                          for r in runs))
-    return counts[0], counts[1], counts[0] - counts[1]
+        for r in runs:
+            n = int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
+            if n:
+                out.append((int(r[-1]), sign * n))
+    return out
 
 
 #: decision L127: how the tracked storeys are counted on foot strides - "climb" (per climb, from the strides' dz,
@@ -972,6 +984,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
 
     summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
+    from pdrlearn.track.periods import time_accounting
+
+    summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None

@@ -230,12 +230,9 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
     (median ``speed`` where ``straight``) and ``n_straight_strides``; decision L179: ``n_stair_strides``, the valid
     rows whose |``dz_m``| reaches :data:`pdrlearn.kernels.distance.LEVEL_DZ_M` (none without the column); they are
     never straight (a stair stride's horizontal speed is no walking speed), nor is a side step (decision L228)."""
-    from pdrlearn.track.clinical import pause_spans, unwrapped_heading
+    from pdrlearn.track.clinical import pause_spans
 
-    # decision L194: a turn across a break is walking (L119); the rows in time order, as the pause rule takes them
-    heading = unwrapped_heading(steps) if "heading_rad" in steps and steps["start_s"].is_monotonic_increasing else None
-    pieces = walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid,
-                            heading_rad=heading)
+    pieces = session_walking_pieces(steps, valid)
     wt = float(sum(t1 - t0 for t0, t1 in pieces)) if pieces else None
     dist = float(np.nansum(np.abs(np.asarray(length, dtype=float))[np.asarray(valid, dtype=bool)]))
     out["walking_time_s"] = wt
@@ -250,6 +247,29 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
                   np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
     out["median_speed_straight_mps"] = _median(sp)
+
+
+def session_walking_pieces(steps: pd.DataFrame, valid=None) -> list[tuple[float, float]]:
+    """The pieces (s) of a step table's ``walking_time_s`` (:func:`walking_pieces` on the rows in their order, with
+    decision L194's heading where the rows are in time order); ``valid`` None: :func:`walking_rows`. One definition
+    for the summary's walking time and the time accounting of windows and periods (decision L275)."""
+    from pdrlearn.track.clinical import unwrapped_heading
+
+    if not len(steps):
+        return []
+    valid = walking_rows(steps) if valid is None else valid
+    # decision L194: a turn across a break is walking (L119); the rows in time order, as the pause rule takes them
+    heading = unwrapped_heading(steps) if "heading_rad" in steps and steps["start_s"].is_monotonic_increasing else None
+    return walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid,
+                          heading_rad=heading)
+
+
+def walking_rows(steps: pd.DataFrame) -> np.ndarray:
+    """(B,) bool: the rows :func:`gait_summary` times as walking - a lower-back table's contacts with a next one
+    (``has_next``, W70), any other table's :func:`stride_rows` (L67, L97)."""
+    if "has_next" in steps and "unit" in steps and len(steps) and (steps["unit"] == "waist").all():
+        return steps["has_next"].to_numpy(bool)
+    return stride_rows(steps)
 
 
 def median_cadence(median_stride_s: float | None, fallback_spm: float | None) -> float | None:
