@@ -69,7 +69,7 @@ def test_the_veto_drops_the_weak_run_only():
 
 
 def test_the_option_true_and_where_it_applies():
-    assert OPTION_DEFAULTS["stand_veto"] == "adjacent"  # W199 (W190: true was measured and not adopted)
+    assert OPTION_DEFAULTS["stand_veto"] is False  # W217 withdrew W199's "adjacent" (W190: true not adopted)
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
     off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
     on = track_waist(s, pipeline="waist-pendulum", stand_veto=True)
@@ -241,14 +241,14 @@ def test_w198_spare_adjacent_keeps_a_weak_run_between_walking_strides_only():
         assert np.isin(after, out["event_s"].to_numpy()).all()  # the strong contacts are never dropped
 
 
-def test_w199_adjacent_is_the_offline_default_where_it_applies():
+def test_w199_adjacent_where_it_applies_and_w217_the_default_off():
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    assert OPTION_DEFAULTS["stand_veto"] == "adjacent"  # W199: W198's rule met
+    assert OPTION_DEFAULTS["stand_veto"] is False  # W217: W199's default withdrawn
     on = track_waist(s, pipeline="waist-pendulum", stand_veto="adjacent")
     default = track_waist(s, pipeline="waist-pendulum")
-    np.testing.assert_array_equal(default.steps["event_s"], on.steps["event_s"])
     off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
-    assert len(off.steps) - len(default.steps) == default.info["n_weak_run_contacts"] > 0  # W190's 56.25 s contact
+    np.testing.assert_array_equal(default.steps["event_s"], off.steps["event_s"])
+    assert len(off.steps) - len(on.steps) == on.info["n_weak_run_contacts"] > 0  # W190's 56.25 s contact
     assert on.info["options"]["stand_veto"] == "adjacent"
     n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
     assert 0 <= on.info["n_weak_run_contacts"] <= n_true  # "adjacent" only ever keeps more
@@ -256,16 +256,32 @@ def test_w199_adjacent_is_the_offline_default_where_it_applies():
     assert via_params.info["options"]["stand_veto"] == "adjacent"  # the PARAMS.json option
     np.testing.assert_array_equal(via_params.steps["event_s"], on.steps["event_s"])
     for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
-        a, b = track_waist(s, stand_veto=False, **kw), track_waist(s, **kw)  # the default is not applied here
+        a, b = track_waist(s, stand_veto=False, **kw), track_waist(s, stand_veto="adjacent", **kw)  # not applied
         np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
         assert b.info["n_weak_run_contacts"] == 0
-        said = [*a.info.get("warnings", []), *b.info.get("warnings", [])]
-        assert not [w for w in said if "W193" in str(w)]  # false and the default are no option set to no effect
+        assert [w for w in b.info.get("warnings", []) if "W193" in str(w)]  # set to no effect: named
     with pytest.raises(DataError, match="W198") as e:
         track_waist(s, pipeline="waist-pendulum", stand_veto="Adjacent")
     assert "\n" not in str(e.value)
     assert 'stand_veto="adjacent"' in (unapplied_options_line(WaistParams(options={"stand_veto": "adjacent"})) or "")
-    # the live tracker applies no stand veto: the offline default is named, false (what it does) is not (E126)
-    line = unapplied_options_line(WaistParams()) or ""
-    assert 'stand_veto="adjacent" (the offline default)' in line and "stand_veto=false" in line
-    assert "stand_veto" not in (unapplied_options_line(WaistParams(options={"stand_veto": False})) or "")
+    # the live tracker applies no stand veto: the default (false) is what it does and is not named (E126)
+    assert "stand_veto" not in (unapplied_options_line(WaistParams()) or "")
+
+
+def test_w217_a_walk_before_a_simulated_freeze_is_kept_by_default():
+    """W217 (session 29 review): with W199's "adjacent" the walk before a simulated freeze (S51) was dropped with
+    the trembling (the recording's median bounce is the trembling's); the default keeps it."""
+    from pdrlearn.sim.route import parse_route
+
+    s = simulate_path(parse_route("stand:2, straight:8, freeze:10:5:10, straight:8, stand:2"),
+                      UserProfile.from_seed(4812), rate_hz=100, seed=4812, bounce="pendulum")
+    truth = s.extras["ics"]["ic_s"].to_numpy(float)
+    first = truth[truth < float(s.extras["freezes"]["start_s"].iloc[0])]
+    ev_default = track_waist(s, pipeline="waist-pendulum").steps["event_s"].to_numpy(float)
+    ev_adj = track_waist(s, pipeline="waist-pendulum", stand_veto="adjacent").steps["event_s"].to_numpy(float)
+
+    def kept(ev):
+        return int(sum(np.abs(ev - t).min() <= 0.25 for t in first)) if ev.size else 0
+
+    assert kept(ev_adj) < len(first) // 2  # the finding: W199's default lost the first walk
+    assert kept(ev_default) >= len(first) - 2  # today's default keeps it
