@@ -88,6 +88,8 @@ SESSIONS: tuple[Column, ...] = (
                                                               "summed reference strides"),
     ("class_agreement_strides", "count", "integer", "tracked strides matched to a labelled one (L53)"),
     ("contact_timing", _ID, "text", "contacts on 'whole samples' or 'between samples' (L116)"),
+    ("data_gap_time_s", "s", "number", "time inside foot-data gaps (L67's gap rows' gap_s summed): neither "
+                                       "walking_time_s nor pause_time_s (L269)"),
     ("direction_agreement", "fraction", "number", "matched strides whose direction class is the label's (L53)"),
     ("distance_error_scope", _ID, "text", "what distance_error_pct compares (W71, L82)"),
     ("distance_error_strides_pct", "%", "number", "distance error against the summed reference strides"),
@@ -145,7 +147,8 @@ SESSIONS: tuple[Column, ...] = (
     ("n_turns", "count", "integer", "reference turns compared (turns.csv only, L42)"),
     ("n_turns_signed", "count", "integer", "reference turns of 45 deg or more whose sign is compared (L42)"),
     ("n_unscored", "count", "integer", "lower back: contacts outside the scored span"),
-    ("n_walking_bouts", "count", "integer", "walking bouts = n_pauses + 1 (L104's pauses, whatever --bout-rule): "
+    ("n_walking_bouts", "count", "integer", "walking bouts = n_pauses + 1 + foot-data gaps over 1 s (L104's pauses, "
+                                            "L269's gaps, whatever --bout-rule): "
                                             "equals n_bouts under the default rule; under --bout-rule mobgap or "
                                             "--bout-min-strides report n_bouts (L217)"),
     ("out_of_domain_fraction", "fraction", "number",
@@ -263,6 +266,8 @@ BOUTS: tuple[Column, ...] = (
     ("cadence_spm", "steps/min", "number", "60 x n_step_intervals / contact_span_s (L164)"),
     ("longest_contact_gap_s", "s", "number", "longest time between two consecutive contacts in the bout; may "
                                              "exceed --bout-break-s under --bout-rule pdrlearn (L163)"),
+    ("data_gap_s", "s", "number", "foot-data gaps (L67's gap rows) inside the bout, summed; a gap longer than "
+                                  "--bout-break-s ends the bout instead (L269)"),
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),
     ("altitude_change_m", "m", "number", "z change over the bout"),
     ("altitude_change_before_m", "m", "number", "lower back: z change while standing before the bout (a lift or "
