@@ -221,7 +221,8 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     took the rest), this column says so; ``data_gap_s`` (decision L269): the foot-data gaps (L67's gap rows) inside
     the bout, summed - a gap longer than ``break_s`` ends the bout under either rule, so this holds only shorter
     ones (0 without a gap; the bout's speed and cadence then include time whose steps are not known);
-    ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104) whose first turning interval ends in the bout (a turn after a pause counts in the bout it starts);
+    ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104) whose first turning interval ends in
+    the bout (a turn after a pause counts in the bout it starts);
     ``altitude_change_m``: the rows' summed ``dz_m`` (NaN without that column) and, decision W158, the ``pause_dz_m``
     of its rows after the first (the standstills inside the bout); ``altitude_change_before_m`` (W158): the first
     row's ``pause_dz_m``, the altitude change while the unit stood before the bout (a lift or escalator ride; 0
