@@ -132,7 +132,8 @@ SESSIONS: tuple[Column, ...] = (
     ("n_bouts_out_of_range", "count", "integer", "bouts of bouts.csv whose gait_out_of_range is true (L195)"),
     ("n_backward_strides", "count", "integer", "foot: strides whose raw length is negative, turning under 30 deg "
                                                "(backward travel, with or without a model; a replay: strides classed "
-                                               "backward; L203); empty on the lower back"),
+                                               "backward; L203); side steps excluded (L270); empty on the lower "
+                                               "back"),
     ("n_cv_strides", "count", "integer", "steady straight level forward strides stride_time_cv_pct and "
                                          "stride_length_cv_pct are computed over (L104, L212)"),
     ("n_detected", "count", "integer", "lower back: detected contacts scored"),
@@ -141,6 +142,8 @@ SESSIONS: tuple[Column, ...] = (
     ("n_reference_strides", "count", "integer", "reference strides stride_length_mae_m compares"),
     ("n_stance_times", "count", "integer", "--toe-off only: strides with a stance time"),
     ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
+    ("n_side_strides", "count", "integer", "foot: strides of side-stepping runs (L219 / L228's sideways rows), "
+                                           "not counted as backward (L270); empty on the lower back"),
     ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
     ("n_straight_strides", "count", "integer", "level strides turning under 15 deg (L179)"),
     ("n_stride_times", "count", "integer", "strides with a stride time"),
