@@ -153,7 +153,8 @@ BOUT_MIN_STRIDES_OPT = typer.Option(None, "--bout-min-strides", help="Walking bo
 WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the session start (track-all: from "
                           "each session's start): track the whole session, then keep the steps whose middle lies "
                           "inside (e.g. 0,120: a 2-minute walk; decisions L105, L108). The summary, steps.csv and "
-                          "trajectory.csv are the window's; its references are cut the same way.")
+                          "trajectory.csv are the window's; its references are cut the same way. An END past "
+                          "the recording is clipped to its end, with one warning line (decision B242).")
 
 
 def track(
@@ -573,7 +574,9 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
                             storey_height_m=o.get("storey_height_m", 3.0))
     if win is not None:
-        summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
+        # decision B242: the window as tracked (an END past the recording clipped to it, info["window"])
+        summary["window_start_s"], summary["window_end_s"] = (float(result.info["window"][k])
+                                                              for k in ("start_s", "end_s"))
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi, "content_id": content_id, "bouts": bouts}
