@@ -65,9 +65,11 @@ def configs(stand_veto: bool | str = False, contact_model: str | None = None) ->
     when given that value) after the default pendulum's when asked; with ``contact_model`` (decision W203) only two
     rows: today's offline default pendulum (``sit_veto="opposite"``, W185) and the same with the option."""
     if contact_model:
-        return [("waist-pendulum default", "waist-pendulum", {}),
-                (f"waist-pendulum contact_model={contact_model}", "waist-pendulum", {"contact_model": contact_model})]
-    out = [(f"{pipe}{' sit_veto=rhythm' if veto else ''}", pipe, {"sit_veto": veto}) for pipe, veto in CONFIGS]
+        return [("waist-pendulum default", "waist-pendulum", {"stand_veto": False}),  # W204 was measured before W199
+                (f"waist-pendulum contact_model={contact_model}", "waist-pendulum",
+                 {"contact_model": contact_model, "stand_veto": False})]
+    out = [(f"{pipe}{' sit_veto=rhythm' if veto else ''}", pipe, {"sit_veto": veto, "stand_veto": False})
+           for pipe, veto in CONFIGS]  # W199: hapt.md was measured with no stand veto (now "adjacent" by default)
     if not stand_veto:
         return out
     row = STAND_VETO if stand_veto is True else (f"{STAND_VETO[0]}={stand_veto}", "waist-pendulum",
@@ -151,9 +153,10 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
     ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt.md"))
-    ap.add_argument("--stand-veto", nargs="?", const="true", default=None, choices=("true", "turns", "alternation"),
+    ap.add_argument("--stand-veto", nargs="?", const="true", default=None,
+                    choices=("true", "turns", "alternation", "adjacent"),
                     help="add decision W189's `stand_veto` row (offline waist-pendulum; `turns`: W191's value, "
-                         "`alternation`: W196's); "
+                         "`alternation`: W196's, `adjacent`: W198's); "
                          "give another --out")
     ap.add_argument("--contact-model", default=None, choices=("learned",),
                     help="only today's default waist-pendulum row and decision W203's contact_model row; give "

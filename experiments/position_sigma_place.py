@@ -1,7 +1,8 @@
-"""Decisions L237-L240: the offline two-unit radius (`plasys-fused`) with the compass's place-dependent error, on
+"""Decisions L237-L242: the offline two-unit radius (`plasys-fused`) with the compass's place-dependent error, on
 fresh simulated users: L237/L238 as a random walk per metre walked (``path_diffusion_m2``, mode ``evaluate``, users
 4700-4739); L239/L240 as a bounded heading error on the route's extent (``extent_heading_rad``, mode ``extent``, users
-5040-5079, ``--first-user 5040``).
+5040-5079, ``--first-user 5040``); L241/L242 as that error on the part of the extent the track has come back from
+(``extent_return_rad``, mode ``extent-return``, users 5130-5169, ``--first-user 5130``).
 
 ``prepare``: simulate and track (offline ``track``, no model) - long routes R1 x (2 + u mod 3), users 4700-4739; short
 level routes (L182's two, users 4700-4709) and scenarios A-D at 100 Hz (users 4700-4704). Prints no error.
@@ -12,6 +13,8 @@ against the truth.
     PYTHONPATH=<checkout> .venv/bin/python experiments/position_sigma_place.py evaluate --work W
     PYTHONPATH=<checkout> .venv/bin/python experiments/position_sigma_place.py prepare --work W2 --first-user 5040
     PYTHONPATH=<checkout> .venv/bin/python experiments/position_sigma_place.py extent --work W2 --first-user 5040
+    PYTHONPATH=<checkout> .venv/bin/python experiments/position_sigma_place.py prepare --work W3 --first-user 5130
+    PYTHONPATH=<checkout> .venv/bin/python experiments/position_sigma_place.py extent-return --work W3 --first-user 5130
 """
 
 from __future__ import annotations
@@ -37,11 +40,14 @@ from pdrlearn.track.position_sigma import (  # noqa: E402
 )
 
 SHORT_ROUTES = ("straight:30, turn:90, straight:30", ", ".join(["straight:15, curve:-90:1"] * 8))  # L182's level walks
-#: the first of the 40 users of a run: L237/L238 used 4700-4739, L239/L240 the fresh users 5040-5079
+#: the first of the 40 users of a run: L237/L238 used 4700-4739, L239/L240 the fresh users 5040-5079, L241/L242 the
+#: fresh users 5130-5169
 FIRST_USER = 4700
-#: mode -> the candidate's kernel term and value: L237's per-metre random walk, L239's bounded heading on the extent
+#: mode -> the candidate's kernel term and value: L237's per-metre random walk, L239's bounded heading on the extent,
+#: L241's same heading error on the part of the extent the track has come back from
 CANDIDATES = {"evaluate": ("path_diffusion_m2", PLACE_DIFFUSION_M2),
-              "extent": ("extent_heading_rad", EXTENT_HEADING_RAD)}
+              "extent": ("extent_heading_rad", EXTENT_HEADING_RAD),
+              "extent-return": ("extent_return_rad", EXTENT_HEADING_RAD)}
 
 
 def long_routes(u0: int) -> dict[int, str]:
@@ -121,7 +127,7 @@ def main() -> None:
     ap.add_argument("mode", choices=("prepare", *CANDIDATES))
     ap.add_argument("--work", type=Path, required=True, help="folder for the sessions and tracks (reused)")
     ap.add_argument("--first-user", type=int, default=FIRST_USER,
-                    help="first of the 40 users (L237/L238: 4700; L239/L240: 5040)")
+                    help="first of the 40 users (L237/L238: 4700; L239/L240: 5040; L241/L242: 5130)")
     a = ap.parse_args()
     a.work.mkdir(parents=True, exist_ok=True)
     if a.mode == "prepare":

@@ -45,7 +45,7 @@ def simulate(route: str, kw: dict, user: int):
 def labelled_contacts(session, truth: np.ndarray, params=None) -> tuple[np.ndarray, np.ndarray]:
     """W203's features and labels of the contacts the re-scorer sees: the offline default pendulum's without the sit
     veto (and with the same default gate as ``track_waist``: W76's relative threshold)."""
-    steps = track_waist(session, pipeline="waist-pendulum", params=params, sit_veto=False).steps
+    steps = track_waist(session, pipeline="waist-pendulum", params=params, sit_veto=False, stand_veto=False).steps
     imu = waist_imu(session)
     thr, sigma, _ = gate_threshold(imu, None if params is None else params.walk_threshold_mps2, relative=True)
     X = contact_features(steps, imu, thr, sigma, 0.0 if params is None else params.gyro_bias_rps)
@@ -93,7 +93,8 @@ def measure(users=FRESH_USERS) -> bool:
             s = simulate(route, kw, u)
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
             for k, opt in enumerate((False, "learned")):
-                ev = track_waist(s, pipeline="waist-pendulum", contact_model=opt).steps["event_s"].to_numpy(float)
+                ev = track_waist(s, pipeline="waist-pendulum", contact_model=opt,
+                                 stand_veto=False).steps["event_s"].to_numpy(float)  # W204 predates W199
                 cnt[k] += ((matched_truth(ev, truth) >= 0).sum(), ev.size, truth.size)
         tot += cnt
         f0, f1_ = f1(*cnt[0]), f1(*cnt[1])
@@ -130,10 +131,10 @@ def loso(ext: Path) -> None:
         y = np.concatenate([v for sj, rr in data.items() if sj != held for _, _, _, v in rr])
         real_model = fit_contact_model(X, y, trained_on=f"mobgap without {held}")
         for name, s, _, _ in data[held]:
-            res = track_waist(s, pipeline="waist-pendulum", sit_veto=False)
+            res = track_waist(s, pipeline="waist-pendulum", sit_veto=False, stand_veto=False)
             imu = waist_imu(s)
             thr, sigma, _ = gate_threshold(imu, None, relative=True)
-            base = track_waist(s, pipeline="waist-pendulum").steps
+            base = track_waist(s, pipeline="waist-pendulum", stand_veto=False).steps
             row = [f"{step_metrics(base, s).get('step_f1', float('nan')):.4f}"]
             for m in (sim_model, real_model):
                 kept = rescore_contacts(res.steps, imu, thr, sigma, model=m)

@@ -18,12 +18,17 @@ default `waist-pendulum` against `stand_veto=True`, experiments/hapt.py's run), 
 `measure-alternation`: decision W196's rule for `stand_veto="alternation"` (a weak run whose decided W20 sides
 alternate kept): W191's (a)-(c), users 4320-4379, the simulated users on today's defaults (sit_veto="opposite").
 
+`measure-adjacent`: decision W198's rule for `stand_veto="adjacent"` (a weak run with walking strides within 3 s
+before and after it kept): W196's (a)-(c), fresh users 4500-4559, the simulated users on today's defaults.
+`compare-external DIR`: (d) of W196 / W198, the `waist.py --external ... --stand-veto VALUE` tables written to DIR
+against the committed experiments/results/waist_external*.csv (today's defaults, the veto off).
+
 `measure-turns`: decision W191's rule for `stand_veto="turns"` (a weak run with a step turning the pelvis kept): (a),
 (b) the same; (c) fresh users 4180-4239, W189's routes and the TUG with `bounce="pendulum"`, no lost true contact
 outside a simulated chair transfer and outside a 1-contact run. (d): the same waist.py run with `--stand-veto turns`.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_stand.py diagnose | measure | measure-turns |
-     measure-alternation
+     measure-alternation | measure-adjacent | compare-external DIR
 """
 from __future__ import annotations
 
@@ -44,6 +49,8 @@ from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.events import gate_threshold
 
 logging.disable(logging.WARNING)
+#: W199 made stand_veto="adjacent" the offline default; every run here was measured with the veto off unless asked
+OFF = {"stand_veto": False}
 HALF_S = 0.3  # the amplitude window, +-0.3 s: the shortest step (W16) either side
 
 
@@ -59,7 +66,7 @@ def runs_of(has_next: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def features(session, **track_kw) -> pd.DataFrame:
     """The per-contact features of the module docstring (offline waist-pendulum, defaults + ``track_kw``; no sit veto
     unless asked: as measured, before W185)."""
-    st = track_waist(session, pipeline="waist-pendulum", **{"sit_veto": False, **track_kw}).steps
+    st = track_waist(session, pipeline="waist-pendulum", **{"sit_veto": False, **OFF, **track_kw}).steps
     imu = waist_imu(session)
     thr, sigma, _ = gate_threshold(imu)
     fs = imu.fs
@@ -235,6 +242,8 @@ W191_USERS = range(4180, 4240)  # the lead's fresh users for W191
 W191_ROUTES = {**SIM_ROUTES,  # W189's routes and the TUG's slow turn on the spot with the pendulum bounce
                "tug-pendulum": (SIM_ROUTES["tug"][0], {**SIM_ROUTES["tug"][1], "bounce": "pendulum"})}
 W196_USERS = range(4320, 4380)  # the lead's fresh users for W196 (W191's routes, today's defaults)
+W198_USERS = range(4500, 4560)  # the lead's fresh users for W198 (W191's routes, today's defaults)
+ON_DEFAULTS = ("W196", "W198")  # rules measured on today's defaults (sit_veto="opposite", W185)
 
 
 def matched_truth(ev: np.ndarray, truth: np.ndarray) -> np.ndarray:
@@ -272,8 +281,8 @@ def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W
         for u in users:
             s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
-            sit = {} if decision == "W196" else {"sit_veto": False}  # W189 / W191 as measured, before W185
-            off = track_waist(s, pipeline="waist-pendulum", **sit).steps
+            sit = {} if decision in ON_DEFAULTS else {"sit_veto": False}  # W189 / W191 as measured, before W185
+            off = track_waist(s, pipeline="waist-pendulum", **sit, **OFF).steps
             on = track_waist(s, pipeline="waist-pendulum", stand_veto=value, **sit)
             e0, e1 = off["event_s"].to_numpy(float), on.steps["event_s"].to_numpy(float)
             m0, m1 = matched_truth(e0, truth), matched_truth(e1, truth)
@@ -291,7 +300,7 @@ def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W
                 print(f"(c) user {u} {name}: lost true contacts at {np.round(truth[gone], 2).tolist()} s "
                       f"(run lengths {rlen[m0[gone]].tolist()}, in a transfer "
                       f"{in_transfer(truth[gone], s).astype(int).tolist()})", flush=True)
-        if decision in ("W191", "W196"):
+        if decision in ("W191", *ON_DEFAULTS):
             good = lost_counted == 0
         elif name == "daily":
             good = lost <= 2 and lost == lost_short
@@ -311,9 +320,10 @@ def measure(root: Path, value=True, decision: str = "W189") -> None:
     import hapt as H  # experiments/hapt.py
 
     cfgs = [c for c in H.configs(value) if c[1] == "waist-pendulum" and not c[2].get("sit_veto")]
+    cfgs = [(lbl, pl, {**OFF, **o}) for lbl, pl, o in cfgs]  # the base row off (W199's default is "adjacent")
     info = []
-    if decision == "W196":  # for information, not judged: the same rows on today's default sit veto (W185)
-        info = [("waist-pendulum (defaults)", "waist-pendulum", {}),
+    if decision in ON_DEFAULTS:  # for information, not judged: the same rows on today's default sit veto (W185)
+        info = [("waist-pendulum (defaults)", "waist-pendulum", dict(OFF)),
                 (f"waist-pendulum stand_veto={value} (defaults)", "waist-pendulum", {"stand_veto": value})]
     static, _, gait, refused, cpu = H.run(root, cfgs + info)
     if info:
@@ -344,11 +354,43 @@ def measure(root: Path, value=True, decision: str = "W189") -> None:
     print(f"(b) gait segments {len(g0)} / {len(g1)}: median detected/spectral - 1 {med0:+.2f} -> {med1:+.2f} %; "
           f"per-subject medians: largest drop {worst:+.2f} points (user {int((s1 - s0).idxmin())}), subjects "
           f"changed {int(((s1 - s0).abs() > 1e-9).sum())} of {len(s0)} ({'met' if ok_b else 'NOT met'})")
-    users = {"W191": W191_USERS, "W196": W196_USERS}.get(decision)
+    users = {"W191": W191_USERS, "W196": W196_USERS, "W198": W198_USERS}.get(decision)
     ok_c = sim_check(value, users, W191_ROUTES, decision) if users else sim_check()
     print(f"{decision} (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, (c) "
           f"{'met' if ok_c else 'NOT met'}; (d): experiments/waist.py --external datasets/external --no-real "
           f"[--stand-veto{'' if value is True else ' ' + value}]")
+
+
+def compare_external(out: Path, value: str) -> None:
+    """(d) of W196 / W198: the pooled Test11 and Test5 ``step_f1`` rows and the per-recording rows of the
+    ``experiments/waist.py --external ... --stand-veto value`` run written to ``out`` against the committed
+    experiments/results tables (today's defaults, the veto off)."""
+    res = Path(__file__).resolve().parent / "results"
+    p0, p1 = (pd.read_csv(d / "waist_external_pooled.csv") for d in (res, out))
+    key = ["test", "pipeline", "params"]
+    m = p0.merge(p1, on=key, suffixes=("_off", "_on"))
+    m = m[m.pipeline == "waist-pendulum"]
+    ok = True
+    for r in m.itertuples():
+        d = r.step_f1_on - r.step_f1_off
+        good = d >= -1e-12 if r.test == "Test11" else abs(d) < 1e-12
+        ok &= bool(good)
+        print(f"(d) pooled {r.test} waist-pendulum {r.params}: step_f1 {r.step_f1_off:.4f} -> {r.step_f1_on:.4f}")
+    e0, e1 = (pd.read_csv(d / "waist_external.csv") for d in (res, out))
+    k = ["subject", "test", "calibrated_on", "pipeline", "params"]
+    e = e0.merge(e1, on=k, suffixes=("_off", "_on"))
+    ch = e[(e.step_f1_on - e.step_f1_off).abs() > 1e-12]
+    t5 = e[e.test.str.startswith("Test5")]
+    t5_changed = int(((t5.step_f1_on - t5.step_f1_off).abs() > 1e-12).sum())
+    ok &= t5_changed == 0
+    print(f"(d) per-recording rows: {len(ch)} of {len(e)} step_f1 changed ({len(t5)} Test5 rows, {t5_changed} "
+          f"changed)")
+    for r in ch.itertuples():
+        print(f"    {r.subject} {r.test} {r.pipeline} {r.params}: step_f1 {r.step_f1_off:.4f} -> {r.step_f1_on:.4f}")
+    for r in e[(e.step_f1_all_on - e.step_f1_all_off).abs() > 1e-12].itertuples():
+        print(f"    {r.subject} {r.test} {r.pipeline} {r.params}: step_f1_all {r.step_f1_all_off:.4f} -> "
+              f"{r.step_f1_all_on:.4f}")
+    print(f"(d) stand_veto={value}: {'met' if ok else 'NOT met'}")
 
 
 def after() -> None:
@@ -362,7 +404,7 @@ def after() -> None:
     for u in SIM_USERS:
         s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
         tr = s.extras["transfers"]
-        off = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps  # as measured, before W185
+        off = track_waist(s, pipeline="waist-pendulum", sit_veto=False, **OFF).steps  # as measured, before W185
         e1 = track_waist(s, pipeline="waist-pendulum", stand_veto=True, sit_veto=False).steps["event_s"].to_numpy(float)
         e0 = off["event_s"].to_numpy(float)
         rid, rlen = runs_of(off["has_next"].to_numpy(bool))
@@ -388,7 +430,7 @@ def after_turns(root: Path) -> None:
     for folder in sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir()):
         s = read_session(folder)
         try:
-            off = track_waist(s, pipeline="waist-pendulum", sit_veto=False).steps  # as measured, before W185
+            off = track_waist(s, pipeline="waist-pendulum", sit_veto=False, **OFF).steps  # as measured, before W185
         except DataError:
             continue
         ev = off["event_s"].to_numpy(float)
@@ -426,5 +468,10 @@ if __name__ == "__main__":
         measure(Path("datasets/hapt"), "turns", "W191")
     elif sys.argv[1:2] == ["measure-alternation"]:  # W196
         measure(Path("datasets/hapt"), "alternation", "W196")
+    elif sys.argv[1:2] == ["measure-adjacent"]:  # W198
+        measure(Path("datasets/hapt"), "adjacent", "W198")
+    elif sys.argv[1:2] == ["compare-external"] and len(sys.argv) == 4:  # (d) of W196 / W198
+        compare_external(Path(sys.argv[2]), sys.argv[3])
     else:
-        raise SystemExit("usage: waist_stand.py diagnose | measure | measure-turns | measure-alternation | after")
+        raise SystemExit("usage: waist_stand.py diagnose | measure | measure-turns | measure-alternation | "
+                         "measure-adjacent | compare-external DIR VALUE | after | after-turns")

@@ -1,5 +1,6 @@
 """Cohort decision C35: the data dictionary of track-all's tables - every column of sessions.csv, groups.csv,
-subjects.csv, each session's bouts.csv and a lower-back session's steps.csv (W129) with its unit, type and meaning.
+subjects.csv, each session's bouts.csv and a lower-back session's steps.csv (W129) and a foot session's (E137) with its
+unit, type and meaning.
 The one source of ``pdrlearn columns``
 and docs/columns.md (written from it: ``pdrlearn columns > docs/columns.md``); a test tracks a batch and checks that
 every column written is here. Meanings follow docs/localization.md's table of summary.json keys (decisions L103, L104).
@@ -36,8 +37,11 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_ref_m", "m", "number", "reference distance (meta.json or labels); empty without one"),
     ("distance_error_pct", "%", "number", "100 x (distance_m - distance_ref_m) / distance_ref_m"),
     ("final_position_error_m", "m", "number", "horizontal distance of the last tracked position from the true one"),
-    ("walking_time_s", "s", "number", "time walking (stops over 3 s and data gaps left out, L79)"),
-    ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s"),
+    ("walking_time_s", "s", "number", "time walking (stops over 3 s and data gaps left out, L79); with --window "
+                                      "the window's strides' (0 when it holds none, L276)"),
+    ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s: rest to rest, with gait initiation and "
+                                       "termination and ~0.3 s of standing (L250); on a walkway (first to last "
+                                       "IC) read median_speed_straight_mps"),
     ("median_cadence_spm", "steps/min", "number", "median steps per minute"),
     ("median_stride_length_m", "m", "number", "foot: median stride length (gap rows and impossible strides left "
                                               "out); empty on the lower back"),
@@ -82,14 +86,15 @@ SESSIONS: tuple[Column, ...] = (
     ("bouts_n_step_intervals", "count", "integer", "bouts.csv's n_step_intervals summed (L164)"),
     ("bout_distance_m", "m", "number", "lower back: tracked distance inside the reference walking bouts"),
     ("bout_reference_m", "m", "number", "lower back: reference distance of those bouts"),
-    ("bout_distance_error_median_pct", "%", "number", "lower back: median per-bout distance error"),
+    ("bout_distance_error_median_pct", "%", "number", "lower back: median of |per-bout distance error|, unsigned "
+                                                      "(L251; the bias: bout_distance_error_median_signed_pct)"),
+    ("bout_distance_error_median_signed_pct", "%", "number", "lower back: median of the signed per-bout errors, "
+                                                             "100 x (tracked - reference) / reference (L251)"),
     ("bout_reference_strides_m", "m", "number", "lower back: reference stride lengths summed over the bouts"),
-    ("bout_distance_error_strides_median_pct", "%", "number", "lower back: median per-bout error against the "
-                                                              "summed reference strides"),
+    ("bout_distance_error_strides_median_pct", "%", "number", "lower back: median of |per-bout error| against "
+                                                              "the summed reference strides (unsigned, L251)"),
     ("class_agreement_strides", "count", "integer", "tracked strides matched to a labelled one (L53)"),
     ("contact_timing", _ID, "text", "contacts on 'whole samples' or 'between samples' (L116)"),
-    ("data_gap_time_s", "s", "number", "time inside foot-data gaps (L67's gap rows' gap_s summed): neither "
-                                       "walking_time_s nor pause_time_s (L269)"),
     ("direction_agreement", "fraction", "number", "matched strides whose direction class is the label's (L53)"),
     ("distance_error_scope", _ID, "text", "what distance_error_pct compares (W71, L82)"),
     ("distance_error_strides_pct", "%", "number", "distance error against the summed reference strides"),
@@ -113,9 +118,10 @@ SESSIONS: tuple[Column, ...] = (
     ("ic_timing_stereo_mean_ms", "ms", "number", "lower back: mean contact time error, both feet matched"),
     ("ic_timing_stereo_sd_ms", "ms", "number", "lower back: SD of that error"),
     ("gait_out_of_range", _ID, "true/false", "L95's walking-range warning fired: the session's median cadence or "
-                                             "speed outside the (leg-scaled) range, or a bout of 5+ strides above "
-                                             "it (L195); empty when nothing could be judged (no cadence, no judged "
-                                             "speed: L222)"),
+                                             "speed outside the (leg-scaled) range, above OR below it, or a bout of "
+                                             "5+ strides above it (L195); empty when nothing could be judged (no "
+                                             "cadence, no judged speed: L222). Slow walking is judged here only: "
+                                             "bouts.csv's gait_out_of_range is the fast side alone (L248)"),
     ("leg_length_m", "m", "number", "the walker's leg length from meta.json, by which L95's range is scaled (L148)"),
     ("leg_length_source", _ID, "text", "the meta.json key leg_length_m came from (L148)"),
     ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),
@@ -129,7 +135,8 @@ SESSIONS: tuple[Column, ...] = (
     ("median_swing_time_s", "s", "number", "--toe-off only: median swing time"),
     ("n_bouts", "count", "integer", "rows of bouts.csv under the bout rule (L124): THE bout count to report "
                                     "(L217)"),
-    ("n_bouts_out_of_range", "count", "integer", "bouts of bouts.csv whose gait_out_of_range is true (L195)"),
+    ("n_bouts_out_of_range", "count", "integer", "bouts of bouts.csv whose gait_out_of_range is true: bouts ABOVE "
+                                                 "the walking range (L195); 0 on a slow session (L248)"),
     ("n_backward_strides", "count", "integer", "foot: strides whose raw length is negative, turning under 30 deg "
                                                "(backward travel, with or without a model; a replay: strides classed "
                                                "backward; L203); side steps excluded (L270); empty on the lower "
@@ -156,7 +163,10 @@ SESSIONS: tuple[Column, ...] = (
                                             "--bout-min-strides report n_bouts (L217)"),
     ("out_of_domain_fraction", "fraction", "number",
      "with a model (track --model, run): strides outside its training range (C16, C63)"),
-    ("pause_time_s", "s", "number", "total pause time (L104)"),
+    ("pause_time_s", "s", "number", "total pause time (L104): the pauses between consecutive steps beyond the walk's "
+                                    "rhythm; with --window only those between the window's steps. Not a share of "
+                                    "the session's time: see time_between_steps_s (L275)"),
+    ("per_s", "s", "number", "--per only: the period of periods.csv (L277)"),
     ("pdrlearn_version", _ID, "text", "the pdrlearn version that wrote the row (run.json names the commit, L136)"),
     ("step_f1", "fraction", "number", "tracked strides / steps against the reference contacts, F1 (L36)"),
     ("step_f1_all", "fraction", "number", "lower back: F1 over every reference contact"),
@@ -173,8 +183,14 @@ SESSIONS: tuple[Column, ...] = (
                                             "stride_time_cv_pct (L212; given with 10 of them, even when L113 "
                                             "withholds the time CV); empty on the lower back"),
     ("stride_length_mae_m", "m", "number", "mean absolute stride length error"),
-    ("stride_length_mae_pct", "%", "number", "the same as a share of the reference stride length"),
-    ("stride_length_mae_pct_straight", "%", "number", "the same over straight strides"),
+    ("stride_length_mae_pct", "%", "number", "mean over the pairs of 100 x |error| / reference length (each stride "
+                                             "weighted alike, not mean |error| / mean reference; L252); foot: every "
+                                             "pair of steps.csv's ref_match (E135), the first stride from standing, "
+                                             "turns and composed strides included"),
+    ("stride_length_mae_pct_straight", "%", "number", "the same over strides the labels do not mark turn (the "
+                                                      "initiation stride included)"),
+    ("stride_length_mae_pct_steady", "%", "number", "foot: the same over strides the labels mark steady (simulated "
+                                                    "walks: no initiation, termination or turn stride; L252)"),
     ("stride_length_mae_pct_turns", "%", "number", "the same over turning strides"),
     ("stride_length_matched", "count", "integer", "foot: tracked strides matched to labelled ones"),
     ("stride_time_cv_pct", "%", "number", "foot: 100 x SD / mean of steady level forward strides' times (L104, L188)"),
@@ -188,6 +204,17 @@ SESSIONS: tuple[Column, ...] = (
                                                        "(L196), the CV of the strides about their own bout's mean; "
                                                        "empty otherwise"),
     ("terrain_agreement", "fraction", "number", "matched strides whose terrain class is the label's (L53)"),
+    ("time_between_steps_s", "s", "number", "from the first to the last step counted (L105's rule), the time "
+                                            "neither walking nor without data: standing (or sitting) between steps "
+                                            "(L275)"),
+    ("time_no_data_s", "s", "number", "the tracked unit's data gaps over 1 s (the warned ones, B11) (L275)"),
+    ("time_no_steps_s", "s", "number", "before the first step counted and after the last: no step bounds it (the "
+                                       "time before the walk, a seated stretch at a window's edge) (L275)"),
+    ("time_span_s", "s", "number", "the recording of the tracked unit from the session start, or the --window: "
+                                   "time_walking_s + time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
+    ("time_walking_s", "s", "number", "the whole session's walking pieces (walking_time_s's, L79) inside the span, "
+                                      "data gaps left out: = walking_time_s for a whole session, and windows add up "
+                                      "to it (L275)"),
     ("timing_resolution_s", "s", "number", "one sample period of the stream the contacts come from (L116)"),
     ("turn_angle_mae_deg", "deg", "number", "mean absolute error of the reference turns' angles (L42)"),
     ("turn_count", "count", "integer",
@@ -208,6 +235,9 @@ SESSIONS: tuple[Column, ...] = (
     ("median_stand_to_sit_s", "s", "number", "lower back: median stand-to-sit duration (W182)"),
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
                                   "step, one sit after the last): the rise's start to the sit's end (W183)"),
+    ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "
+                                      "band power, 1 s or longer (W213)"),
+    ("freeze_time_s", "s", "number", "freezes.csv's durations summed (W213)"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
     ("walking_time_no_pauses_s", "s", "number", "walking time without the pauses inside it (L110)"),
@@ -275,9 +305,12 @@ BOUTS: tuple[Column, ...] = (
     ("altitude_change_m", "m", "number", "z change over the bout"),
     ("altitude_change_before_m", "m", "number", "lower back: z change while standing before the bout (a lift or "
                                                 "escalator ride; W158), 0 for foot tracks"),
-    ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is above L95's walking range "
+    ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is ABOVE L95's walking range "
                                              "(leg-scaled, L148; bouts of 5+ strides; L195): running or short fast "
-                                             "steps"),
+                                             "steps. Never true for a slow bout (a bout's speed includes its start, "
+                                             "stop and turns): a filter on it keeps slow bouts; slow walking is the "
+                                             "session's gait_out_of_range in summary.json / sessions.csv with L95's "
+                                             "line (L248)"),
     ("n_cv_strides", "count", "integer", "the bout's strides among the session's CV strides (steady straight level "
                                          "forward, L104 / L188); 0 on the lower back (L212)"),
     ("stride_time_cv_pct", "%", "number", "foot: 100 x SD / mean of those strides' times, with 5 or more of them "
@@ -315,6 +348,34 @@ TURNS: tuple[Column, ...] = (
                                          "than a foot track's for the same turn; empty for a turn of no duration"),
 )
 
+#: decision L277: a track's periods.csv (``track --per``), one row per period of the whole session's track
+PERIODS: tuple[Column, ...] = (
+    ("session", _ID, "text", "meta.json's session name (bouts.csv's key, L165)"),
+    ("subject", _ID, "text", "meta.json's subject; empty when not given"),
+    ("period", "index", "integer", "the period's number, from 1"),
+    ("start_s", "s", "number", "the period's start on the session's clock (the recording's start + k x --per)"),
+    ("end_s", "s", "number", "its end; the last period ends with the tracked unit's recording"),
+    ("duration_s", "s", "number", "end_s - start_s"),
+    ("partial", _ID, "true/false", "the last period, shorter than --per"),
+    ("distance_m", "m", "number", "distance of the steps whose middle lies in the period (L105's rule); the periods "
+                                  "sum to the summary's distance_m (L278)"),
+    ("n_steps", "count", "integer", "those steps (rows of steps.csv, as the summary's n_steps)"),
+    ("time_walking_s", "s", "number", "the session's walking time inside the period; sums to walking_time_s (L275)"),
+    ("time_between_steps_s", "s", "number", "first to last step of the period: neither walking nor no data "
+                                            "(L275); with time_no_steps_s it sums to the summary's two"),
+    ("time_no_steps_s", "s", "number", "before the period's first step and after its last (a stop across the "
+                                       "period's edge is here in both periods, L275)"),
+    ("time_no_data_s", "s", "number", "the tracked unit's data gaps over 1 s inside the period (L275)"),
+    ("floors_up", "count", "integer", "storeys of the climbs (L127) whose last stair stride lies in the period; "
+                                      "empty when the floors come from the altitude (L64)"),
+    ("floors_down", "count", "integer", "the same, down"),
+    ("n_bouts", "count", "integer", "bouts.csv's bouts that start in the period (sums to n_bouts)"),
+    ("n_turns", "count", "integer", "turns.csv's turns that start in the period (sums to turn_count)"),
+    ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
+    ("position_sigma_end_m", "m", "number", "the position's 1-sigma at the period's end (trajectory.csv pos_sigma_m, "
+                                            "L128); empty for an aided track"),
+)
+
 #: decision W182: a lower-back track's transfers.csv (a foot track writes none)
 TRANSFERS: tuple[Column, ...] = (
     ("transfer", "index", "integer", "the transfer's number in the session, from 1"),
@@ -325,6 +386,16 @@ TRANSFERS: tuple[Column, ...] = (
     ("peak_s", "s", "number", "the trunk's largest tilt from the walking upright"),
     ("peak_tilt_deg", "deg", "number", "that tilt (W104's flexion events exceed 25 deg)"),
     ("height_change_m", "m", "number", "the pelvis's height change from start_s to end_s (+ up)"),
+)
+
+#: decision W213: a track's freezes.csv (foot or lower back: the tracked unit's freeze index)
+FREEZES: tuple[Column, ...] = (
+    ("freeze", "index", "integer", "the episode's number in the session, from 1"),
+    ("start_s", "s", "number", "the first freezing window's centre less 0.25 s, on the session's clock"),
+    ("end_s", "s", "number", "the last freezing window's centre plus 0.25 s"),
+    ("duration_s", "s", "number", "end_s - start_s"),
+    ("peak_fi", "ratio", "number", "the largest freeze index (3-8 Hz / 0.5-3 Hz power, Moore 2008) of its 4 s "
+                                   "windows"),
 )
 
 #: a lower-back track's steps.csv (``TrackResult.steps`` of waist-pendulum / waist-pll), one row per contact of either
@@ -363,16 +434,73 @@ WAIST_STEPS: tuple[Column, ...] = (
                                      "z, ascent or floors (W174)"),
 )
 
+#: decision E137: a foot track's steps.csv (``pdrlearn track`` / ``run`` of a foot recording, plasys), one row per
+#: stride of the tracked foot; docs/localization.md's "steps.csv columns" in full
+FOOT_STEPS: tuple[Column, ...] = (
+    ("start_s", "s", "number", "the stride's start: the middle of the foot's rest before it (at most 0.3 s into a "
+                               "longer rest), on the session's clock"),
+    ("end_s", "s", "number", "the stride's end: the middle of the rest after it"),
+    ("event_s", "s", "number", "the step detector's initial contact (IC) in the stride (--streaming: empty, or the "
+                               "streamed IC with --contacts; E49-E51)"),
+    ("length_m", "m", "number", "horizontal distance the stride moved after the class rules; negative only when "
+                                "classed backward (L65); 0 for a gap row or an impossible stride"),
+    ("raw_length_m", "m", "number", "the estimate before the rules, signed with the foot's forward axis at the "
+                                    "stride start (< 0: it moved backwards in that frame)"),
+    ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
+                                     "direction, counter-clockwise)"),
+    ("dz_m", "m", "number", "the stride's height change"),
+    ("terrain", _ID, "text", "M3's terrain class (empty without a model; L18)"),
+    ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),
+    ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
+                                           "L224)"),
+    ("length_class", _ID, "text", "M3's length class (empty without a model)"),
+    ("confidence", "fraction", "number", "the class confidence (1 without a model)"),
+    ("p_<task>_<class>", "fraction", "number", "with a model: the class probabilities (one column each)"),
+    ("ood_*", _ID, "number", "with a model: the stride's out-of-training-range scores (C16)"),
+    ("window_start_s", "s", "number", "with a model: the window the classes come from (L38)"),
+    ("window_end_s", "s", "number", "the same window's end"),
+    ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228); a "
+                                    "streamed track (track --streaming, run, Tracker) flags a run from its third "
+                                    "stride, as decided live (L243)"),
+    ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),
+    ("stride_time_s", "s", "number", "IC to IC: this event_s minus the previous stride's (empty at the first "
+                                     "stride, after a stop over 3 s, a gap row, or a missing IC; L66, L80)"),
+    ("cadence_spm", "steps/min", "number", "120 / stride_time_s (two steps per stride of one foot)"),
+    ("speed_mps", "m/s", "number", "|length_m| / stride_time_s"),
+    ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride (wrapped "
+                                        "to +-pi)"),
+    ("tc_s", "s", "number", "--toe-off only: the stride's toe-off (foot gyroscope push-off peak; L73)"),
+    ("stance_time_s", "s", "number", "--toe-off only: IC to toe-off"),
+    ("swing_time_s", "s", "number", "--toe-off only: toe-off to the next IC"),
+    ("stance_pct", "%", "number", "--toe-off only: 100 x stance_time_s / stride_time_s"),
+    ("impossible", _ID, "true/false", "the last-line guard (L94) moved the stride 0 m: no gait values (L97)"),
+    ("gap_s", "s", "number", "the longest foot-data gap inside the stride; > 0: a 0 m gap row (L67)"),
+    ("unit", _ID, "text", "the unit tracked: foot"),
+    ("x", "m", "number", "pdrlearn run: the position east at the stride's end"),
+    ("y", "m", "number", "pdrlearn run: the position north"),
+    ("z", "m", "number", "pdrlearn run: the height"),
+    ("ref_match", "index", "integer", "where the session labels stride lengths (E135): the labelled stride paired "
+                                      "with this row, its row in the session's steps.csv from 0; empty: unpaired"),
+    ("ref_length_m", "m", "number", "that labelled stride's length_m"),
+    ("ref_stride_time_s", "s", "number", "its stride time: ic - pre_ic, or the IC of the labelled stride ending "
+                                         "where it starts (E135); empty otherwise"),
+    ("ref_composed", _ID, "true/false", "the row is one of two or more tracked rows tiling one labelled stride"),
+    ("pair_length_m", "m", "number", "the pair's estimated length: |length_m|, or the tiles' vector sum on each "
+                                     "tile; stride_length_mae_* = these pairs, one per ref_match (L252)"),
+)
+
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
-                                         "bouts.csv": BOUTS, "turns.csv": TURNS, "transfers.csv": TRANSFERS,
-                                         "steps.csv": WAIST_STEPS}
+                                         "bouts.csv": BOUTS, "turns.csv": TURNS, "periods.csv": PERIODS,
+                                         "transfers.csv": TRANSFERS,
+                                         "freezes.csv": FREEZES,
+                                         "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS}  # E137
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
-                      "track's steps.csv (strides of the tracked foot) has other columns, among them `sideways` "
-                      "(true/false: a stride of L219's side-stepping run, left out of the CVs and the straight "
-                      "speed, L228; a streamed track, `track --streaming` / `run` / `Tracker`, flags a run from its "
-                      "third stride, as decided live, L243)."}
+                      "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
+         "steps.csv (foot)": "Foot tracks (plasys; `pdrlearn track`, `run`): one row per stride of the tracked foot "
+                             "(E137); an empty cell is a value the stride cannot have. Columns marked with an option "
+                             "or a model appear only with it."}
 
 
 def expanded(table: str) -> dict[str, Column]:
@@ -387,7 +515,9 @@ def expanded(table: str) -> dict[str, Column]:
 def undocumented(table: str, columns) -> list[str]:
     """The ``columns`` of a written ``table`` that the dictionary lacks (a test keeps this empty, C35)."""
     known = expanded(table)
-    return [c for c in columns if c not in known]
+    # decision E137: "p_<task>_<class>" / "ood_*" name a family of columns by its prefix
+    prefixes = tuple(k.split("<")[0].rstrip("*") for k in known if "<" in k or k.endswith("*"))
+    return [c for c in columns if c not in known and not (prefixes and c.startswith(prefixes))]
 
 
 def markdown(tables: list[str] | None = None) -> str:

@@ -278,6 +278,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.bouts import BOUT_PRESETS
     from pdrlearn.track.geodetic import parse_start
+    from pdrlearn.track.periods import parse_per
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
@@ -321,6 +322,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
         ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
         ("track", "window"): parse_window,  # decision L105
+        ("track", "per"): parse_per,  # decision L277
         **{(c, "bout_rule"): _one_of(BOUT_PRESETS, case=False) for c in ("track", "track-all", "run")},  # decision L163
         ("track", "units"): parse_units,  # decision B127
         ("export", "length_bounds"): two_numbers,
@@ -346,7 +348,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("export", "frame"): parse_frame,  # decision E57: the waist unit's axes, as import --frames
         ("columns", "table"): _one_of(list(COLUMN_TABLES)),  # cohort C35
     }
-    for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window",
+    for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
                 "units", "altitude", "detector", "length_model"):  # C12, L108, B127, L154, E93
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):

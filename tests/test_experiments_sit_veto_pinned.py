@@ -33,3 +33,13 @@ def test_turns_transfers_lower_back_tracks_have_no_sit_veto(monkeypatch, pipelin
     monkeypatch.setattr(tt, "track_waist", lambda s, **kw: seen.update(kw))
     tt.TRACKS[pipeline](None)
     assert seen == {"pipeline": pipeline, "sit_veto": False}
+
+
+def test_hapt_and_waist_stand_measure_with_no_stand_veto():
+    """W199 made ``stand_veto="adjacent"`` the offline default; hapt.md and waist_stand.py's runs were measured with no
+    stand veto (W190-W199), so their rows say so (the option's own row names its value)."""
+    hapt = _load("hapt")
+    for label, _pipe, kw in hapt.configs(stand_veto="adjacent"):
+        assert kw.get("stand_veto") is not None, label
+        assert (kw["stand_veto"] == "adjacent") == ("stand_veto=adjacent" in label)
+    assert _load("waist_stand").OFF == {"stand_veto": False}

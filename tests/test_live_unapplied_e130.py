@@ -16,7 +16,8 @@ from pdrlearn.waist.params import WaistParams
 
 
 def _line(options):
-    return unapplied_options_line(WaistParams(leg_m=0.9, options=options))
+    """W199's offline default ``stand_veto`` "adjacent" (not live either) set to what live does: only these named."""
+    return unapplied_options_line(WaistParams(leg_m=0.9, options={"stand_veto": False, **(options or {})}))
 
 
 def test_the_offline_defaults_of_contact_shift_and_parity_fill_are_named_with_what_live_does():

@@ -243,7 +243,8 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
     assert sum("E107" in ln for ln in capsys.readouterr().err.splitlines()) == 1
     # E126: options at the live tracker's values are not named; "sit_veto": false is what it does
     p.write_text(json.dumps({**cal, "options": {"stairs_length": True, "pause_steps": "standing",
-                                                "sit_veto": False, "contact_shift": False, "parity_fill": False}}))
+                                                "sit_veto": False, "contact_shift": False, "parity_fill": False,
+                                                "stand_veto": False}}))  # W199: not live either
     assert main(["export", str(p), "--out", str(tmp_path / "b2"), "--frame", _frame_arg(sim["session"])]) == 0
     assert "E107" not in capsys.readouterr().err
     # E126: without it the offline default "opposite" (W185) is named, once
@@ -251,6 +252,7 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
     assert main(["export", str(p), "--out", str(tmp_path / "b3"), "--frame", _frame_arg(sim["session"])]) == 0
     err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
     assert len(err) == 1 and err[0].count('sit_veto="opposite" (the offline default)') == 1
+    assert err[0].count('stand_veto="adjacent" (the offline default)') == 1  # W199's offline default, not live
 
 
 def test_stairs_length_climbs_is_named_as_not_applied_live_and_the_runtime_keeps_the_default(sim, stairs3040,

@@ -30,9 +30,9 @@ def walk(tmp_path_factory):
     s = simulate("B", 406, rate_hz=100.0)
     (d / "cal.json").write_text(json.dumps({"leg_m": 1.0, "k": 1.2, "f_m": 0.0, "source": "calibrated",
                                             "pipeline": "waist-pendulum", "rate_hz": 100.0,
-                                            # E126 / E130: as live, so E107's line does not name them
+                                            # E126 / E130 (W199): as live, so E107's line does not name them
                                             "options": {"sit_veto": False, "contact_shift": False,
-                                                        "parity_fill": False}}))
+                                                        "parity_fill": False, "stand_veto": False}}))
     frame = ",".join(f"{k}={v}" for k, v in s.require_frame("waist").to_dict().items())
     export_waist(d / "cal.json", d / "wb", frame=frame)
     a, g = s["wAccelerometer"], s["wGyroscope"]

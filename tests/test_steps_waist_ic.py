@@ -47,7 +47,8 @@ def test_offline_equals_track_waist_pendulum_contacts(real_dir, name):
     s = read_session(real_dir / name)
     steps = get_detector("waist-ic").detect(s)
     assert list(steps.columns[:5]) == list(STEPS_COLUMNS) and (steps["unit"] == "waist").all()
-    tr = track_waist(s, pipeline="waist-pendulum", sit_veto=False)  # the veto is the track's (W185), not the detector's
+    tr = track_waist(s, pipeline="waist-pendulum", sit_veto=False,  # the veto is the track's (W185), not the detector's
+                     stand_veto=False)  # W199's stand veto too
     np.testing.assert_array_equal(steps["event_s"].to_numpy(), tr.steps["event_s"].to_numpy())
     np.testing.assert_array_equal(steps["end_s"].to_numpy(), tr.steps["end_s"].to_numpy())
     # and the IC detector itself on the AHRS data, with its defaults

@@ -137,10 +137,15 @@ def test_run_contacts_fill_the_steps_and_summary_as_track_streaming(sim_a, tmp_p
     a, b = pd.read_csv(tmp_path / "r" / "steps.csv"), pd.read_csv(tmp_path / "s" / "steps.csv")
     for c in ("event_s", "stride_time_s", "cadence_spm", "speed_mps"):  # run = track --streaming (E49-E51)
         np.testing.assert_allclose(a[c], b[c], rtol=0, atol=1e-6)
+    from pdrlearn.track.evaluate import REFERENCE_COLUMNS
+
+    t = pd.read_csv(tmp_path / "t" / "steps.csv")
+    assert all(list(x.columns)[-len(REFERENCE_COLUMNS):] == list(REFERENCE_COLUMNS) for x in (a, b, t))  # E135
+    a, b, t = (x.drop(columns=list(REFERENCE_COLUMNS)) for x in (a, b, t))
     cols = list(a.columns)
     tail = ["stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad", "impossible", "gap_s", "unit"]  # L97
     assert cols.index("event_s") == 2 and cols[-7:] == tail  # track's order
-    assert list(b.columns)[-7:] == tail and list(pd.read_csv(tmp_path / "t" / "steps.csv").columns)[-7:] == tail
+    assert list(b.columns)[-7:] == tail and list(t.columns)[-7:] == tail
     assert run["n_stride_times"] == trk["n_stride_times"] == 14
     # offline's force threshold is the session's maximum's, the streamed one the stride's (E50): with the onsets
     # between the samples (steps decision 32) their medians differ by ~1 ms

@@ -127,16 +127,17 @@ def test_window_path_png_draws_the_windows_reference_from_the_tracks_start(walk)
     assert np.hypot(np.diff(gx), np.diff(gy)).sum() < 1.5 * tracked["result"].distance_m + 1.0
 
 
-def test_window_without_a_step_warns_in_one_line(walk, capsys):
-    """L107: a window that holds no step (here the 2 s stand before the walk) says so in one warning line naming
-    the window and the span of the session's steps, in summary.json's warnings too; not a silent "0 steps"."""
+def test_window_without_a_step_notes_in_one_line(walk, capsys):
+    """L107, L276: a window that holds no step (here the 2 s stand before the walk) says so in one "note:" line
+    naming the window and the span of the session's steps (summary.json's info notes too); walking 0 s, not null."""
     root, _ = walk
     capsys.readouterr()
     win, _ = _track(root, "--window", "0,1")
     err = [ln for ln in capsys.readouterr().err.splitlines() if "holds no step" in ln]
     assert win["n_steps"] == 0 and len(err) == 1, err
-    assert err[0].startswith("warning: ") and "--window 0,1 holds no step" in err[0]
+    assert err[0].startswith("note: ") and "--window 0,1 holds no step: walking 0 s, 0 m" in err[0]
     assert "the session's steps lie between " in err[0]
-    assert any("holds no step" in w for w in win["info"]["warnings"])
+    assert any("holds no step" in w for w in win["info"]["notes"]) and win["walking_time_s"] == 0.0
+    assert not any("holds no step" in w for w in win["info"].get("warnings", []))
     full, _ = _track(root, "--window", "0,20")
     assert full["n_steps"] > 0 and not any("holds no step" in w for w in full["info"].get("warnings", []))

@@ -110,8 +110,9 @@ def daily():
 
 def test_option_end_to_end_on_a_simulated_session(daily):
     assert OPTION_DEFAULTS["contact_model"] is False
-    raw = track_waist(daily, pipeline="waist-pendulum", sit_veto=False)
-    on = track_waist(daily, pipeline="waist-pendulum", sit_veto=False, contact_model="learned")
+    # the contacts the re-scorer sees: no sit or stand veto (W199's default "adjacent" would drop them first)
+    raw = track_waist(daily, pipeline="waist-pendulum", sit_veto=False, stand_veto=False)
+    on = track_waist(daily, pipeline="waist-pendulum", sit_veto=False, stand_veto=False, contact_model="learned")
     imu = waist_imu(daily)
     thr, sigma, _ = gate_threshold(imu, None, relative=True)
     p = cm.load_contact_model().proba(cm.contact_features(raw.steps, imu, thr, sigma))
@@ -121,7 +122,7 @@ def test_option_end_to_end_on_a_simulated_session(daily):
     assert raw.info["n_rescored_contacts"] == 0
     from pdrlearn.waist.params import WaistParams
 
-    par = WaistParams(options={"contact_model": "learned", "sit_veto": False})
+    par = WaistParams(options={"contact_model": "learned", "sit_veto": False, "stand_veto": False})
     np.testing.assert_allclose(track_waist(daily, pipeline="waist-pendulum", params=par).steps["event_s"],
                                on.steps["event_s"])
 

@@ -65,7 +65,8 @@ def test_calibration_gait_and_its_message():
     f = [2.0, 2.5, 2.5, float("nan"), 0.0]
     assert median_cadence(f) == (150.0, 3)
     gait = calibration_gait(f, 3.0)
-    assert gait == {"median_cadence_spm": 150.0, "step_length_m": 1.0, "speed_mps": round(3.0 / 1.3, 4), "n_steps": 3}
+    assert gait == {"median_cadence_spm": 150.0, "step_length_m": 1.0, "speed_mps": round(3.0 / 1.3, 4), "n_steps": 3,
+                    "cadence_range_spm": [150.0, 150.0]}  # W211: one walk
     assert calibration_gait([], 1.0) is None
     lo, hi = CALIBRATION_CADENCE_BAND
     assert calibration_gait_message(gait, 150.0 * lo * 1.01, 30, "waist-pll") is None

@@ -200,7 +200,8 @@ def test_the_rhythm_veto_keeps_the_real_steps_w104_dropped_after_standing_up():
     d = external_session("mobgap_HA001_Test11_Trial1")
     s = read_session(d)
     ic = pd.read_csv(d / "ics.csv")["ic_ms"].to_numpy(float) / 1000.0
-    kw = {"pipeline": "waist-pendulum", "contact_shift": False, "parity_fill": False}  # W109: before W131 / W159
+    kw = {"pipeline": "waist-pendulum", "contact_shift": False, "parity_fill": False,  # W109: before W131 / W159
+          "stand_veto": False}  # and before W199
     e0 = track_waist(s, sit_veto=False, **kw).steps["event_s"].to_numpy(float)
 
     def dropped(value):

@@ -68,10 +68,10 @@ def test_the_veto_drops_the_weak_run_only():
     assert stand_veto(one.iloc[:0], imu).attrs["n_weak_run"] == 0
 
 
-def test_the_option_off_by_default_and_where_it_applies():
-    assert OPTION_DEFAULTS["stand_veto"] is False  # W190: see the measured rule
+def test_the_option_true_and_where_it_applies():
+    assert OPTION_DEFAULTS["stand_veto"] == "adjacent"  # W199 (W190: true was measured and not adopted)
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    off = track_waist(s, pipeline="waist-pendulum")
+    off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
     on = track_waist(s, pipeline="waist-pendulum", stand_veto=True)
     n = on.info["n_weak_run_contacts"]
     assert n > 0 and len(off.steps) - len(on.steps) == n and off.info["n_weak_run_contacts"] == 0
@@ -83,7 +83,8 @@ def test_the_option_off_by_default_and_where_it_applies():
 
 def test_a_plain_walk_keeps_every_contact_and_a_bad_value_is_refused():
     s = simulate_path([Stand(3.0), Straight(10.0), Stand(3.0)], UserProfile.from_seed(7), rate_hz=FS, seed=7)
-    off, on = track_waist(s, pipeline="waist-pendulum"), track_waist(s, pipeline="waist-pendulum", stand_veto=True)
+    off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
+    on = track_waist(s, pipeline="waist-pendulum", stand_veto=True)
     np.testing.assert_array_equal(off.steps["event_s"], on.steps["event_s"])
     for bad in ("yes", 2):
         with pytest.raises(DataError, match="stand_veto") as e:
@@ -143,8 +144,8 @@ def test_w191_turns_end_to_end_where_it_applies_and_the_values_refused():
         np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
         assert b.info["n_weak_run_contacts"] == 0
     for bad in ("Turns", "yes", 2):
-        with pytest.raises(DataError, match=r"stand_veto .* is not one of false, true, \"turns\", \"alternation\" "
-                                            r"\(decisions W189, W191, W196\)") as e:
+        with pytest.raises(DataError, match=r"stand_veto .* is not one of false, true, \"turns\", \"alternation\", "
+                                            r"\"adjacent\" \(decisions W189, W191, W196, W198\)") as e:
             track_waist(s, pipeline="waist-pendulum", stand_veto=bad)
         assert "\n" not in str(e.value)
     assert "stand_veto" in (unapplied_options_line(WaistParams(options={"stand_veto": "turns"})) or "")
@@ -178,9 +179,9 @@ def test_w196_spare_alternation_keeps_a_weak_run_whose_sides_alternate_only():
         np.testing.assert_allclose(out["event_s"].iloc[:walk.size], walk)
 
 
-def test_w196_alternation_end_to_end_where_it_applies_and_the_default_off():
+def test_w196_alternation_end_to_end_where_it_applies():
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    assert OPTION_DEFAULTS["stand_veto"] is False
+    assert OPTION_DEFAULTS["stand_veto"] != "alternation"  # W197: measured, not adopted
     on = track_waist(s, pipeline="waist-pendulum", stand_veto="alternation")
     assert on.info["options"]["stand_veto"] == "alternation"
     n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
@@ -193,3 +194,78 @@ def test_w196_alternation_end_to_end_where_it_applies_and_the_default_off():
         track_waist(s, pipeline="waist-pendulum", stand_veto="Alternation")
     assert "\n" not in str(e.value)
     assert "stand_veto" in (unapplied_options_line(WaistParams(options={"stand_veto": "alternation"})) or "")
+
+
+def test_w198_the_adjacent_run_mask_by_hand():
+    # runs: 0 walking [0, 0.5, 1], 1 weak [3, 3.5], 2 walking [5.5, 6, 6.5], 3 weak [9.5], 4 weak [14], 5 walking [16]
+    t = np.array([0.0, 0.5, 1.0, 3.0, 3.5, 5.5, 6.0, 6.5, 9.5, 14.0, 16.0])
+    has_next = np.array([1, 1, 0, 1, 0, 1, 1, 0, 0, 0, 0], dtype=bool)
+    walking = np.array([1, 1, 1, 0, 0, 1, 1, 1, 0, 0, 1], dtype=bool)
+    got = K.adjacent_run_mask(t, has_next, walking, 3.0)
+    # run 1: walking 2.0 s before its first and 2.0 s after its last contact -> inside walking, kept whole;
+    # run 3: walking exactly 3.0 s before (kept: "at most"), none within 3 s after (14 is no walking) -> no;
+    # run 4: walking 2.0 s after, none within 3 s before -> no (one side is not enough);
+    # run 2 (walking itself): walking 4.5 s before, none after (9.5 is no walking) -> no; the others have no
+    # walking on one side
+    assert got.tolist() == [0, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0]
+    assert K.adjacent_run_mask(t, has_next, walking, 1.9)[[3, 4]].tolist() == [False, False]  # the bound is used
+    # a run's own walking contacts are not its neighbours
+    assert not K.adjacent_run_mask(np.array([0.0, 1.0, 2.0]), np.ones(3, bool), np.ones(3, bool), 3.0).any()
+    assert K.adjacent_run_mask(np.zeros(0), np.zeros(0, bool), np.zeros(0, bool), 3.0).size == 0
+
+
+def _inside_walk(after: np.ndarray):
+    """W189's hand-made bounce: a walk (0.5-6 s), a weak 3-contact run (8-9 s, a tenth of the walk's bounce), then the
+    strong contacts ``after``; steps chained within W16's 1.5 s."""
+    t = np.arange(0, 30, 1 / FS)
+    amp = np.where((t > 7.0) & (t < 10.0), 0.2, 2.0)
+    imu = SimpleNamespace(t=t, fs=FS, acc_v=amp * np.sin(2 * np.pi * 2.0 * t))
+    walk, sway = np.arange(0.5, 6.01, 0.5), np.array([8.0, 8.5, 9.0])
+    return imu, steps_from_events(t, np.round(np.r_[walk, sway, after] * FS).astype(int)), sway
+
+
+def test_w198_spare_adjacent_keeps_a_weak_run_between_walking_strides_only():
+    cases = ((np.arange(11.0, 14.01, 0.5), True),  # a walk 2 s after: inside walking, kept
+             (np.arange(12.0, 15.01, 0.5), True),  # exactly Mobilise-D's 3 s break after: kept
+             (np.arange(12.5, 15.51, 0.5), False),  # 3.5 s after: the walk has ended, dropped
+             (np.array([], float), False),  # walking before it only (sway after a walk stops): dropped
+             (np.array([11.0]), False),  # a lone strong contact after it is no stride, no walking
+             (np.array([11.0, 11.5]), False),  # two contacts: a step, no stride
+             (np.array([11.0, 11.5, 12.0]), True))  # three: a stride (W47), walking
+    for after, kept in cases:
+        imu, steps, sway = _inside_walk(after)
+        assert stand_veto(steps, imu).attrs["n_weak_run"] == sway.size  # W189 alone drops the weak run
+        out = stand_veto(steps, imu, spare_adjacent=True)
+        assert out.attrs["n_weak_run"] == (0 if kept else sway.size), after
+        assert np.isin(sway, out["event_s"].to_numpy()).all() == kept
+        assert np.isin(after, out["event_s"].to_numpy()).all()  # the strong contacts are never dropped
+
+
+def test_w199_adjacent_is_the_offline_default_where_it_applies():
+    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
+    assert OPTION_DEFAULTS["stand_veto"] == "adjacent"  # W199: W198's rule met
+    on = track_waist(s, pipeline="waist-pendulum", stand_veto="adjacent")
+    default = track_waist(s, pipeline="waist-pendulum")
+    np.testing.assert_array_equal(default.steps["event_s"], on.steps["event_s"])
+    off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
+    assert len(off.steps) - len(default.steps) == default.info["n_weak_run_contacts"] > 0  # W190's 56.25 s contact
+    assert on.info["options"]["stand_veto"] == "adjacent"
+    n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
+    assert 0 <= on.info["n_weak_run_contacts"] <= n_true  # "adjacent" only ever keeps more
+    via_params = track_waist(s, pipeline="waist-pendulum", params=WaistParams(options={"stand_veto": "adjacent"}))
+    assert via_params.info["options"]["stand_veto"] == "adjacent"  # the PARAMS.json option
+    np.testing.assert_array_equal(via_params.steps["event_s"], on.steps["event_s"])
+    for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
+        a, b = track_waist(s, stand_veto=False, **kw), track_waist(s, **kw)  # the default is not applied here
+        np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
+        assert b.info["n_weak_run_contacts"] == 0
+        said = [*a.info.get("warnings", []), *b.info.get("warnings", [])]
+        assert not [w for w in said if "W193" in str(w)]  # false and the default are no option set to no effect
+    with pytest.raises(DataError, match="W198") as e:
+        track_waist(s, pipeline="waist-pendulum", stand_veto="Adjacent")
+    assert "\n" not in str(e.value)
+    assert 'stand_veto="adjacent"' in (unapplied_options_line(WaistParams(options={"stand_veto": "adjacent"})) or "")
+    # the live tracker applies no stand veto: the offline default is named, false (what it does) is not (E126)
+    line = unapplied_options_line(WaistParams()) or ""
+    assert 'stand_veto="adjacent" (the offline default)' in line and "stand_veto=false" in line
+    assert "stand_veto" not in (unapplied_options_line(WaistParams(options={"stand_veto": False})) or "")

@@ -270,6 +270,9 @@ def evaluate_model(
         out["out_of_domain_fraction"] = None
         out["out_of_domain"] = {"out_of_domain_fraction": None, "note": NO_RANGES_NOTE}
         log.info(NO_RANGES_NOTE)
+    from pdrlearn import __version__
+
+    out["pdrlearn_version"] = __version__  # decision E136: which pdrlearn wrote the numbers, as track's summary (C18)
     if report_dir is not None:
         write_report(out, Path(report_dir))
         advance(1)

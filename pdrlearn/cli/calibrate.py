@@ -20,9 +20,13 @@ def register(app: typer.Typer) -> None:
                                      help="waist-pendulum (the pipeline `pdrlearn track` takes for a lower-back "
                                           "recording) or waist-pll."),
         distance: list[float] = typer.Option(None, "--distance", "-d",
-                                             help="Known walked length (m), one per folder, from the "
-                                                  "first to the last heel strike (every detected step "
-                                                  "counts); default: the folder's reference bouts."),
+                                             help="Known walked length (m), one per folder; every detected step "
+                                                  "counts, first to last heel strike. A start-to-stop walkway "
+                                                  "(stand, walk L m, stand): give L to read whole walks like it, "
+                                                  "or the first-to-last heel strike length to compare with "
+                                                  "IC-to-IC references (walkway mats, bouts); calibrate and "
+                                                  "compare on one of the two (W212). Default: the folder's "
+                                                  "reference bouts."),
         turns: float = typer.Option(None, "--turns",
                                     help="Signed full turns walked (+1 = one left 360), to fit the gyro "
                                          "bias (seed 003 eq. 2)."),
@@ -88,7 +92,9 @@ def register(app: typer.Typer) -> None:
         replaced(out, was)
         d = params.to_dict()
         if as_json:
-            print_json(json_safe({"out": str(out), "pipeline": pipeline, **d}))
+            from pdrlearn import __version__
+
+            print_json(json_safe({"out": str(out), "pipeline": pipeline, **d, "pdrlearn_version": __version__}))  # E136
         else:
             typer.echo(f"wrote {out}")
             if pipeline == "waist-pendulum":

@@ -646,18 +646,26 @@ def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
     """Decision L165: the tracked sessions' bouts.csv (``out/<path>/bouts.csv``) stacked in sessions.csv's order,
     each row led by its session's ``path`` (sessions.csv's key) and ``visit``; bouts.csv's own ``session`` and
     ``subject`` follow."""
-    import pandas as pd
-
     from pdrlearn.track.bouts import BOUT_COLUMNS, csv_table, current_names
 
-    cols = [*COMBINED_BOUT_KEYS, *BOUT_COLUMNS]
+    return csv_table(combined_table(out, rows, "bouts.csv", BOUT_COLUMNS, current_names))  # E98
+
+
+def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -> pd.DataFrame:
+    """Decision L165's stacking of one per-session table (``out/<path>/<name>``; bouts.csv, and decision L277's
+    periods.csv), in sessions.csv's order, each row led by ``path`` and ``visit``; ``read`` maps a table as read
+    (bouts.csv: E98's old names)."""
+    import pandas as pd
+
+    cols = [*COMBINED_BOUT_KEYS, *columns]
     parts = []
     for row in rows:
-        if row["status"] == "ok" and (out / row["path"] / "bouts.csv").is_file():
-            b = current_names(pd.read_csv(out / row["path"] / "bouts.csv", dtype={"session": str, "subject": str}))
+        if row["status"] == "ok" and (out / row["path"] / name).is_file():
+            b = pd.read_csv(out / row["path"] / name, dtype={"session": str, "subject": str})
+            b = read(b) if read is not None else b
             if len(b):
                 parts.append(b.assign(path=row["path"], visit=row.get("visit")))
-    return csv_table(pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols))  # E98
+    return pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols)
 
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
@@ -698,6 +706,7 @@ def track_all(
     clock_offset: float = _track.CLOCK_OFFSET_OPT,
     units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
+    per: str = _track.PER_OPT,
     bout_rule: str = _track.BOUT_RULE_OPT,
     bout_break_s: float = _track.BOUT_BREAK_OPT,
     bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,
@@ -844,6 +853,10 @@ def track_all(
         if subjects is not None:
             _write_csv_atomic(subjects, tmp / "subjects.csv")
         _write_csv_atomic(combined_bouts(tmp, rows), tmp / "bouts.csv")  # decision L165: every session's bouts
+        if settings.get("per_s") is not None:  # decision L277: every session's periods, as bouts.csv (L165)
+            from pdrlearn.track.periods import PERIOD_COLUMNS
+
+            _write_csv_atomic(combined_table(tmp, rows, "periods.csv", PERIOD_COLUMNS), tmp / "periods.csv")
         if changes is not None:  # decisions C22, C23
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")
@@ -862,7 +875,9 @@ def track_all(
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked"
                    + (f" ({len(reused)} reused from an earlier run, --resume)" if resume else "") + f"; wrote {out}/"
-                   "<session>/, sessions.csv, groups.csv, bouts.csv, " + ("" if subjects is None else "subjects.csv, ")
+                   "<session>/, sessions.csv, groups.csv, bouts.csv, "
+                   + ("periods.csv, " if settings.get("per_s") is not None else "")
+                   + ("" if subjects is None else "subjects.csv, ")
                    + ("" if changes is None else
                                                                "changes.csv, changes_summary.csv, ") + "run.json")
         print(groups_text(groups).to_markdown(index=False))

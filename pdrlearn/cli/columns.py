@@ -6,13 +6,15 @@ import typer
 
 
 def columns(
-    table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv, bouts.csv or "
-                                "steps.csv (lower back) (default: all)."),
+    table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv, bouts.csv, "
+                                "turns.csv, periods.csv, transfers.csv or steps.csv (the lower back's and the foot's; "
+                                "'steps.csv (foot)' for the foot's only) (default: all)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object: table -> list of {column, unit, "
                                  "type, meaning}."),
 ) -> None:
-    """Print every column of track-all's sessions.csv, groups.csv, subjects.csv, bouts.csv and a lower-back
-    steps.csv with its unit, type and meaning, as Markdown (docs/columns.md is this output).
+    """Print every column of track-all's sessions.csv, groups.csv, subjects.csv, bouts.csv, turns.csv,
+    transfers.csv and steps.csv (a lower-back track's and a foot track's, decision E137) with its unit, type and
+    meaning, as Markdown (docs/columns.md is this output).
 
     Examples:
 
@@ -26,7 +28,8 @@ def columns(
 
     if table is not None and table not in TABLES:
         raise DataError(f"columns {table}: not a table of track-all; give one of {', '.join(TABLES)}")
-    names = [table] if table else list(TABLES)
+    # decision E137: steps.csv is two tables, the lower back's and the foot's
+    names = ([table, "steps.csv (foot)"] if table == "steps.csv" else [table]) if table else list(TABLES)
     if as_json:
         print_json({n: [dict(zip(("column", "unit", "type", "meaning"), c, strict=True)) for c in TABLES[n]]
                     for n in names})

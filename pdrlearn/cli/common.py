@@ -132,6 +132,7 @@ FOLDER_KINDS = {
     "train-all": ("per-user model directories", "pdrlearn train-all"),
     "evaluate-all": ("a cohort summary", "pdrlearn evaluate-all"),
     "track-all": ("a batch of tracks (sessions.csv, groups.csv, one folder per session)", "pdrlearn track-all"),
+    "gait": ("a bilateral gait output (gait_summary.json, gait_steps.csv)", "pdrlearn gait"),  # decision L260
 }
 _TRACK_FILES = ("summary.json", "steps.csv", "trajectory.csv")
 
@@ -149,6 +150,8 @@ def folder_kind(folder: Path) -> str | None:
         return "train-all" if any(folder.glob("*/manifest.json")) else "evaluate-all"
     if (folder / "sessions.csv").is_file() and (folder / "groups.csv").is_file():
         return "track-all"
+    if (folder / "gait_summary.json").is_file() and (folder / "gait_steps.csv").is_file():
+        return "gait"
     if all((folder / n).is_file() for n in _TRACK_FILES):
         try:
             summary = json.loads(read_text(folder / "summary.json"))
@@ -524,7 +527,7 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
 
 def transfer_line(summary: dict) -> str | None:
     """Decisions L200, W183: ``track``'s line of the turns' median duration and, on the lower back, the chair
-    transfers and the TUG time; None when the summary has neither a timed turn nor a transfer."""
+    transfers and the TUG time, and the freeze episodes (W213); None when the summary has none of them."""
     parts = []
     if summary.get("median_turn_duration_s") is not None:
         parts.append(f"median turn {summary['median_turn_duration_s']:.2f} s (turns.csv)")
@@ -533,6 +536,9 @@ def transfer_line(summary: dict) -> str | None:
         parts.append(f"{rise} sit-to-stand, {sit} stand-to-sit (transfers.csv)")
         if summary.get("tug_time_s") is not None:
             parts.append(f"TUG time {summary['tug_time_s']:.2f} s (rise to sit)")
+    if summary.get("n_freezes"):  # decision W213: the freeze index's episodes
+        parts.append(f"{summary['n_freezes']} freeze episode(s), {summary['freeze_time_s']:.1f} s in all "
+                     "(freezes.csv; freeze index, decision W213)")
     return ", ".join(parts) if parts else None
 
 

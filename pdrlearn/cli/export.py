@@ -727,7 +727,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
                                                                        storey_height_m=storey_height_m),
                "session": session.name,
-               "pipeline": "runtime", "bundle_kind": "waist", "info": result.info,
+               "pipeline": "runtime", "bundle_kind": "waist", "info": _summary_info(result.info),
                "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": float(traj["z"].iloc[-1]),
                                   **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})},
                "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
@@ -800,6 +800,9 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     out = {"source": source, **evaluate_track(result, session, bouts=bouts, bout_table=bout_table,
                                               storey_height_m=storey_height_m),
            **domain_fraction(result)}  # decision E105: as track's summary (C16)
+    from pdrlearn.track.periods import time_accounting
+
+    out.update(time_accounting(result, session))  # decision L275, as track's summary (B14)
     # lat/lon with --start, as track's summary (without it track has none: no NaN keys either)
     geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
     out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}
@@ -816,7 +819,7 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
 
     out["rate_hz"] = tracked_rate_hz(session, "runtime") if session is not None else None  # as track's (C19)
     out["pdrlearn_version"] = __version__  # decision C18
-    out["info"] = result.info
+    out["info"] = _summary_info(result.info)
     from pdrlearn.track.evaluate import add_gait_range_flag
 
     add_gait_range_flag(out)  # decision L195, as track's summary
@@ -840,6 +843,11 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     return out
 
 
+def _summary_info(info: dict) -> dict:
+    """The track's ``info`` as summary.json holds it: freezes.csv's rows left out (decision W213, as track)."""
+    return {k: v for k, v in info.items() if k != "freezes"}
+
+
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
            record: dict, bouts) -> None:
     """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png, summary.json and run.json
@@ -856,7 +864,10 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
 
     was = existed(out)
     with atomic_directory(out) as tmp:
-        result.steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
+        from pdrlearn.track.evaluate import with_reference_columns
+
+        steps = with_reference_columns(result, session)  # decision E135: the reference pairs, as track
+        steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
         csv_table(bouts).to_csv(tmp / "bouts.csv", index=False, float_format="%.10g")  # L124, as track (E98)
         for name, table in clinical_tables(result, bouts).items():  # L200, L202: turns.csv, as track

@@ -156,6 +156,11 @@ WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the 
                           "trajectory.csv are the window's; its references are cut the same way. An END past "
                           "the recording is clipped to its end, with one warning line (decision B242).")
 
+PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv (e.g. 1h, 30min, 900): the whole "
+                       "session's track cut into periods from the recording's start, the last one shorter and marked "
+                       "partial; distance, steps, walking / between-steps / no-step / no-data time, floors, bouts, "
+                       "turns, the position sigma at the period's end (decisions L275, L277). Not with --window.")
+
 
 def track(
     session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
@@ -191,6 +196,7 @@ def track(
     clock_offset: float = CLOCK_OFFSET_OPT,
     units: str = UNITS_OPT,
     window: str = WINDOW_OPT,
+    per: str = PER_OPT,
     bout_rule: str = BOUT_RULE_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
     bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
@@ -222,6 +228,8 @@ def track(
         pdrlearn track datasets/real/mobgap_HA001_Test5_Trial1 --pipeline waist-pendulum --realtime --out out/W
 
         pdrlearn track out/sim/A_u1 --window 5,15 --out out/A_middle   # the steps between 5 s and 15 s
+
+        pdrlearn track out/sim/A_u1 --per 10s --out out/A_per   # OUT/periods.csv: totals every 10 s
 
         pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
 
@@ -286,7 +294,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
-                   common_span: bool = False, window: str | None = None, resample: bool = False,
+                   common_span: bool = False, window: str | None = None, per: str | None = None,
+                   resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
                    detector: str | None = None, length_model: str | None = None,
@@ -310,6 +319,12 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     start_ll, start_alt = start_option(start)
     heading0 = initial_heading_option(initial_heading)  # decision L98: degrees ENU -> rad
     win = parse_window(window)  # decision L105: a bad window is one line before any tracking
+    from pdrlearn.track.periods import parse_per
+
+    per_s = parse_per(per)  # decision L277
+    if per_s is not None and win is not None:
+        raise DataError("track: --per cuts the whole session's track into periods; --window keeps one part of it - "
+                        "give one of them (each row of periods.csv is what that period's --window reports)")
     if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
         raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
                         "--fixes give the track its direction; drop --initial-heading")
@@ -383,7 +398,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi,
-            "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
+            "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
+            "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
             "altitude": altitude, "align_units": align_units, "clock_offset_s": clock_offset_s}
@@ -554,7 +570,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                            fix_period_s=o["fix_period"], start=o["start_ll"])
     if o["start_alt"]:  # decision L56: the z column starts at the given altitude (as Tracker(start=(x, y, ALT)))
         result.trajectory["z"] = result.trajectory["z"] + o["start_alt"]
-    tracked_session = session
+    tracked_session, whole = session, result  # decisions L275 / L277: the whole session's track
     if win is not None:  # decision L105: the whole session tracked, then the window's steps kept
         from pdrlearn.track.window import window_track
 
@@ -573,13 +589,30 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
                             storey_height_m=o.get("storey_height_m", 3.0))
+    from pdrlearn.track.periods import time_accounting
+
+    unit = tracked_unit(pipeline)
+    summary.update(time_accounting(whole, session, unit, win))  # decision L275: where the time went
     if win is not None:
         # decision B242: the window as tracked (an END past the recording clipped to it, info["window"])
         summary["window_start_s"], summary["window_end_s"] = (float(result.info["window"][k])
                                                               for k in ("start_s", "end_s"))
+        if not len(result.steps):  # decision L276: a window without a step walked 0 s (not "unknown")
+            summary["walking_time_s"] = 0.0
+        for line in result.info.get("notes", []):
+            typer.echo(f"note: {session.where}: {line}; {summary['time_no_steps_s']:.1f} s without a step, "
+                       f"{summary['time_no_data_s']:.1f} s without data", err=True)
+    periods = None
+    if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
+        from pdrlearn.track.periods import period_table
+
+        periods = period_table(whole, session, o["per_s"], unit=unit, bouts=bouts,
+                               turns=clinical_tables(whole, bouts)["turns.csv"],
+                               storey_height_m=o.get("storey_height_m", 3.0))
+        summary["per_s"] = float(o["per_s"])
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
-            "dpi": dpi, "content_id": content_id, "bouts": bouts}
+            "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods}
 
 
 def _check_relative_heading(result, session, heading0: float) -> None:
@@ -600,7 +633,8 @@ def _check_relative_heading(result, session, heading0: float) -> None:
 def clinical_tables(result, bouts) -> dict:
     """The per-event tables a track writes beside bouts.csv: ``turns.csv`` (decision L200: each turn of at least
     ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
-    sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk)."""
+    sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk) and ``freezes.csv``
+    (decision W213: the freeze index's episodes of the tracked unit)."""
     import pandas as pd
 
     from pdrlearn.track.clinical import turn_table
@@ -609,6 +643,10 @@ def clinical_tables(result, bouts) -> dict:
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
+    if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
+        from pdrlearn.track.freezes import freeze_table
+
+        out["freezes.csv"] = freeze_table(result.info["freezes"])
     return out
 
 
@@ -633,10 +671,14 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
         plot_aided(result, dest / "aided.png", truth=session.trajectory,
                    title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
     _write_csv(traj, dest / "trajectory.csv")
-    _write_csv(result.steps, dest / "steps.csv")
+    from pdrlearn.track.evaluate import with_reference_columns
+
+    _write_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
     _write_csv(csv_table(tracked["bouts"]), dest / "bouts.csv")  # decision L124 (E98: the old speed_m_s last)
     for name, table in clinical_tables(result, tracked["bouts"]).items():  # decisions L200, W182
         _write_csv(table, dest / name)
+    if tracked.get("periods") is not None:  # decision L277
+        _write_csv(tracked["periods"], dest / "periods.csv")
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
@@ -679,8 +721,14 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         timed = transfer_line(summary)  # decisions L200, W183
         if timed:
             typer.echo(timed)
+    if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
+        typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
+                   f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
+                   f"{summary['time_no_data_s']:.1f} s")
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, "
-               f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}path.png, "
+               f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
+               f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
+               f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json")
 
 

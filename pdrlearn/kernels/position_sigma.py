@@ -26,6 +26,11 @@ itself by ``L_k dpsi``, a length error ``dL`` along itself. Four zero-mean, mutu
   ``extent_heading_rad R_k``. It turns the track about its start by up to that error at the farthest point and,
   unlike ``displacement_rel``, does not return to 0 when a loop closes (the error going out is not the error coming
   back), nor grow with the laps of a route that stays within its extent.
+- ``extent_return_rad`` (decision L241; 0 unless a regime sets it): the part of that extent term a heading error
+  held the same along the walk would not give: per-axis variance ``extent_return_rad^2 (R_k^2 - |D_k|^2)``. A heading
+  error that stays the same turns the track about its start (``displacement_rel``'s shape, on ``|D_k|``); only where
+  the track has come back from its farthest point (``|D_k| < R_k``) can the error going out differ from the error
+  coming back. 0 on a walk that only goes out from its start; ``extent_return_rad^2 R_k^2`` where a loop closes.
 - ``held_var_m2`` (decision E127): per stride, an isotropic per-axis variance added at that stride and carried by
   every later one: a row whose position was held across a sensor gap misses the displacement walked in it.
 
@@ -42,7 +47,8 @@ import numpy as np
 def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: np.ndarray, t0_s: float, *,
                         displacement_rel: float, heading_walk_rad: float, bias_rps: float,
                         point_m: float, path_rel: float = 0.0, path_diffusion_m2: float = 0.0,
-                        extent_heading_rad: float = 0.0, held_var_m2: np.ndarray | None = None) -> np.ndarray:
+                        extent_heading_rad: float = 0.0, extent_return_rad: float = 0.0,
+                        held_var_m2: np.ndarray | None = None) -> np.ndarray:
     """Covariance (m^2) of the horizontal position after each stride, shape (N, 2, 2).
 
     Parameters
@@ -57,6 +63,8 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
     path_rel : sd per axis of the error proportional to the distance walked (fraction; decision L220).
     path_diffusion_m2 : per-axis variance per metre walked (m^2/m; decision L237).
     extent_heading_rad : sd of the bounded heading error acting on the route's extent (rad; decision L239).
+    extent_return_rad : sd of the bounded heading error on the part of the extent the track has come back from (rad;
+        decision L241).
     held_var_m2 : per-stride per-axis variance added at the stride and kept after it (m^2; decision E127).
     """
     L = np.asarray(length_m, float)
@@ -78,9 +86,12 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
         P = P + (path_rel * np.cumsum(np.abs(L)))[:, None, None] ** 2 * eye
     if path_diffusion_m2:  # decision L237: variance per metre walked
         P = P + (path_diffusion_m2 * np.cumsum(np.abs(L)))[:, None, None] * eye
-    if extent_heading_rad:  # decision L239: the farthest the track has been from its start, |C_k| = |D_k|
-        extent = np.maximum.accumulate(np.hypot(C[:, 0], C[:, 1]))
+    dist = np.hypot(C[:, 0], C[:, 1])  # |C_k| = |D_k|, the displacement from the start
+    extent = np.maximum.accumulate(dist)  # the farthest the track has been from its start
+    if extent_heading_rad:  # decision L239
         P = P + (extent_heading_rad * extent)[:, None, None] ** 2 * eye
+    if extent_return_rad:  # decision L241: what a heading error held the same (on |D_k|) would not give
+        P = P + (extent_return_rad ** 2 * np.maximum(extent ** 2 - dist ** 2, 0.0))[:, None, None] * eye
     if held_var_m2 is not None:  # decision E127: a held position's missed displacement, kept by later strides
         held = np.asarray(held_var_m2, float)
         if held.shape != L.shape:

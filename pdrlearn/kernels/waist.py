@@ -1231,6 +1231,28 @@ def alternating_run_mask(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:
     return out
 
 
+def adjacent_run_mask(event_s: np.ndarray, has_next: np.ndarray, walking: np.ndarray, bound_s: float) -> np.ndarray:
+    """Per contact: True when its walking run (:func:`run_ids`) has a ``walking`` contact of another run at most
+    ``bound_s`` before its first contact AND one at most ``bound_s`` after its last contact: the run lies inside
+    walking, between two walking runs (a turn on the spot inside a walk), not at a walk's end or inside standing
+    (decision W198; the caller passes Mobilise-D's walking-bout break, ``gait_rules.MAX_BREAK_S``)."""
+    t = np.asarray(event_s, dtype=np.float64)
+    if not t.size:
+        return np.zeros(0, dtype=bool)
+    rid = run_ids(has_next)
+    w = np.asarray(walking, dtype=bool)
+    n_runs = rid[-1] + 1
+    first = np.array([t[rid == r][0] for r in range(n_runs)])
+    last = np.array([t[rid == r][-1] for r in range(n_runs)])
+    out_runs = np.zeros(n_runs, dtype=bool)
+    for r in range(n_runs):
+        other = w & (rid != r)
+        before = other & (t < first[r]) & (t >= first[r] - bound_s - 1e-9)
+        after = other & (t > last[r]) & (t <= last[r] + bound_s + 1e-9)
+        out_runs[r] = bool(before.any() and after.any())
+    return out_runs[rid]
+
+
 #: W127: a step whose pelvis turns by more than this (deg, IC to next IC) is a turning step, which W119's veto
 #: spares. The geometric middle, a factor 1.5 from each, of the largest turn of a straight step -- the pelvis's
 #: whole transverse rotation, 2 x 4-5 deg (Perry & Burnfield, Gait Analysis, 2010; simulator 3-5 deg amplitude,

@@ -2,8 +2,8 @@
 
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
 (your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
-:class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side` segments)
-and :class:`UserProfile`
+:class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side`,
+:class:`Freeze` segments) and :class:`UserProfile`
 (anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
 """
@@ -13,6 +13,7 @@ from pdrlearn.sim.path import (
     Curve,
     Escalator,
     Footstep,
+    Freeze,
     Lift,
     Pivot,
     Side,
@@ -38,6 +39,7 @@ __all__ = [
     "SPEEDS",
     "GAITS",
     "Straight",
+    "Freeze",
     "Curve",
     "Stairs",
     "Slope",

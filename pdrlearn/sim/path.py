@@ -2,7 +2,7 @@
 
 A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`,
 :class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`,
-:class:`Side`).
+:class:`Side`, :class:`Freeze`).
 :func:`plan_footsteps` walks them with a user's step
 length and returns one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet.
 Walking bouts start and end with both feet side by side (gait initiation and a closing step).
@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.sim.freeze import FREEZE_MARGIN_S, FreezeEpisode, check_freeze, draw_freeze
 from pdrlearn.sim.ride import RIDE_MARGIN_S, Ride, check_rise, draw_ride
 from pdrlearn.sim.transfer import SIT_MARGIN_S, Transfer, draw_transfer
 from pdrlearn.sim.user import GAITS, UserProfile, asymmetry_factor
@@ -149,7 +150,18 @@ class Trolley:
     gait: str = "normal"
 
 
-Segment = Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit | Lift | Escalator | Trolley | Side
+@dataclass(frozen=True)
+class Freeze:
+    """Freezing of gait (decision S51, :mod:`pdrlearn.sim.freeze`): stop, tremble in place ``duration_s`` seconds at
+    ``hz`` (3-8 Hz; None = drawn) with the foot's peak acceleration ``acc_mps2`` (None = drawn), no step."""
+
+    duration_s: float
+    hz: float | None = None
+    acc_mps2: float | None = None
+
+
+Segment = (Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit | Lift | Escalator | Trolley | Side
+           | Freeze)
 
 
 @dataclass
@@ -202,7 +214,7 @@ class _Walker:
         self.last_moved: str | None = None
         self.pending_pause = 0.0
         self.direction = "forward"
-        self.transfers: list[Transfer | Ride] = []
+        self.transfers: list[Transfer | Ride | FreezeEpisode] = []
         self.pushing = False
 
     def _heel(self, c: np.ndarray, z: float, psi: float, foot: str) -> np.ndarray:
@@ -407,6 +419,16 @@ class _Walker:
         self.pending_pause += SIT_MARGIN_S + tr.total_s + SIT_MARGIN_S
 
 
+    def freeze(self, seg: Freeze) -> None:
+        """Decision S51: feet together, then a :class:`FreezeEpisode` (trembling, no step) inside the pause before
+        the next step, with :data:`FREEZE_MARGIN_S` of standing before and after it."""
+        check_freeze(seg.duration_s, seg.hz, seg.acc_mps2, str(seg))
+        self.close()
+        fz = draw_freeze(len(self.steps), float(seg.duration_s), seg.hz, seg.acc_mps2, self.psi, self.rng,
+                         delay_s=self.pending_pause + FREEZE_MARGIN_S)
+        self.transfers.append(fz)
+        self.pending_pause += FREEZE_MARGIN_S + fz.duration_s + FREEZE_MARGIN_S
+
     def ride(self, seg: Lift | Escalator) -> None:
         """Decision S45: feet together, then a :class:`Ride` inside the pause before the next step; the planner's
         positions stay on the floor walked (the ride's displacement is added to the poses, ``ride.ride_offset``)."""
@@ -451,7 +473,7 @@ def plan_footsteps(
     irregular_rate: float = 0.0,
     variability: float = 1.0,
     step_length_asymmetry: float = 0.0,
-) -> tuple[list[Footstep], dict, float, list[Transfer | Ride]]:
+) -> tuple[list[Footstep], dict, float, list[Transfer | Ride | FreezeEpisode]]:
     """Footprints of both feet along ``segments``.
 
     ``step_length_asymmetry``: on level, curved and sloped walking the steps onto the left foot are 1 + this times
@@ -464,7 +486,7 @@ def plan_footsteps(
     end_pause_s : standing (or sitting) time requested after the last step (trailing :class:`Stand` / :class:`Sit`)
     transfers : the episodes inside the pauses: sit-down / stand-up of :class:`Sit` segments
         (:mod:`pdrlearn.sim.transfer`) and the rides of :class:`Lift` / :class:`Escalator` ones
-        (:mod:`pdrlearn.sim.ride`)
+        (:mod:`pdrlearn.sim.ride`) and the freezes of :class:`Freeze` ones (:mod:`pdrlearn.sim.freeze`, S51)
     """
     w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
@@ -482,6 +504,7 @@ def plan_footsteps(
         Escalator: w.ride,
         Trolley: w.trolley,
         Side: w.side,
+        Freeze: w.freeze,
     }
     for seg in segments:
         if isinstance(seg, Straight | Curve | Slope | Trolley) and seg.gait not in GAITS:
@@ -491,7 +514,7 @@ def plan_footsteps(
         except KeyError:
             raise DataError(
                 f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Pivot, Stand, Sit, "
-                "Lift, Escalator, Trolley, Side"
+                "Lift, Escalator, Trolley, Side, Freeze"
             ) from None
     w.close()
     return w.steps, initial, w.pending_pause, w.transfers

@@ -18,6 +18,7 @@
 | ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
 | ``trolley:M[:GAIT]`` | walk M metres straight ahead pushing a trolley (damped pelvic rotation; decision S46) |
 | ``side:M`` | side-step M metres facing ahead (+M left, -M right; lead foot out, trail foot closes; decision S49) |
+| ``freeze:S[:HZ[:ACC]]`` | stop, tremble in place S s at HZ (3-8) with the foot's peak ACC m/s^2 (no steps; S51) |
 
 Angles are in degrees here (the Python segments take radians).
 """
@@ -27,10 +28,12 @@ from __future__ import annotations
 import math
 
 from pdrlearn.errors import DataError
+from pdrlearn.sim.freeze import check_freeze
 from pdrlearn.sim.path import (
     Backward,
     Curve,
     Escalator,
+    Freeze,
     Lift,
     Pivot,
     Segment,
@@ -47,7 +50,7 @@ from pdrlearn.sim.ride import check_rise
 from pdrlearn.sim.user import GAITS
 
 ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "pivot", "stand", "sit", "lift",
-               "escalator", "trolley", "side")
+               "escalator", "trolley", "side", "freeze")
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
 
 
@@ -135,6 +138,13 @@ def parse_route(spec: str) -> list[Segment]:
             if metres == 0:
                 raise DataError(f"--route item {item!r}: side-stepping needs a non-zero distance (+M left, -M right)")
             segments.append(Side(metres))
+        elif kind == "freeze":  # decision S51: the values are checked by the planner's own line
+            _arity(item, parts, (1, 2, 3))
+            hz = _number(item, parts[2]) if len(parts) > 2 else None
+            acc = _number(item, parts[3]) if len(parts) > 3 else None
+            seg = Freeze(_number(item, parts[1]), hz, acc)
+            check_freeze(seg.duration_s, hz, acc, f"--route item {item!r}")
+            segments.append(seg)
         elif kind == "sit":
             _arity(item, parts, (1,))
             segments.append(Sit(_number(item, parts[1])))

@@ -34,6 +34,7 @@ from pdrlearn.sim.body import (
     step_lengths,
     trunk_vibration_source,
 )
+from pdrlearn.sim.freeze import FreezeEpisode, freeze_foot, freeze_loads, freeze_pelvis, freeze_table
 from pdrlearn.sim.kernels import (
     angular_rate_body,
     block_mean,
@@ -303,7 +304,8 @@ def simulate_path(
         step_length_asymmetry=float(opt["step_length_asymmetry"]),
     )
     rides = [e for e in transfers if isinstance(e, Ride)]  # decision S45: lifts and escalators
-    transfers = [e for e in transfers if not isinstance(e, Ride)]
+    freezes = [e for e in transfers if isinstance(e, FreezeEpisode)]  # decision S51: trembling in place
+    transfers = [e for e in transfers if not isinstance(e, Ride | FreezeEpisode)]
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     # decision S43: seated at the start (then a stand-up before the standstill) and / or at the end (own stream)
     sit0, sit1 = ((None, None) if not (opt["sit_start_s"] or opt["sit_end_s"]) else session_sits(
@@ -316,6 +318,7 @@ def simulate_path(
     total_s = (max(ev.end_s, lead + stand) if steps else lead + stand) + end_pause + stand
     sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
     ride_starts = transfer_starts(rides, ev.rest, lead + stand)  # decision S45: as a transfer's
+    freeze_starts = transfer_starts(freezes, ev.rest, lead + stand)  # decision S51: as a transfer's
     if sit0 or sit1:  # decision S43
         ends = session_sit_starts(sit0, sit1, total_s)
         transfers = [*([sit0] if sit0 else []), *transfers, *([sit1] if sit1 else [])]
@@ -335,6 +338,13 @@ def simulate_path(
 
     def foot_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         heel, rot = foot_pose(tt, "right", steps, ev, initial, user, vibration=1.0 if noise else 0.0)
+        if freezes:  # decision S51: the trembling foot (pitching about the unit, moving fore-aft and up)
+            dp, pitch = freeze_foot(tt, freezes, freeze_starts)
+            c, s_ = np.cos(pitch), np.sin(pitch)
+            ry = np.zeros((tt.size, 3, 3))
+            ry[:, 0, 0], ry[:, 0, 2], ry[:, 1, 1], ry[:, 2, 0], ry[:, 2, 2] = c, s_, 1.0, -s_, c
+            heel = heel + rot @ r_sensor - (rot @ ry) @ r_sensor + dp
+            rot = rot @ ry
         if rides:  # decision S45: the ride carries the standing walker
             return heel + rot @ r_sensor + ride_offset(tt, rides, ride_starts), rot
         return heel + rot @ r_sensor, rot
@@ -355,6 +365,8 @@ def simulate_path(
     )
     gyr_f, e_gf = sn.imu_readout(_to_sensor(w_body, foot_m, mis_f), sn.FOOT_GYR, s_rng, noise=noise)
     load_h, load_t = foot_loads(t100, "right", steps, ev, user)
+    if freezes:  # decision S51: the heel and forefoot loads alternate while trembling
+        load_h, load_t = freeze_loads(t100, load_h, load_t, freezes, freeze_starts)
     force_a = sn.force_readout(load_h, s_rng, noise=noise)
     force_b = sn.force_readout(load_t, s_rng, noise=noise)
 
@@ -382,6 +394,8 @@ def simulate_path(
             span=span,
             vibration_source=vib_source,
         )
+        if freezes:  # decision S51: the pelvis trembles with the legs
+            p_pel = p_pel + freeze_pelvis(tt, freezes, freeze_starts)
         if rides:  # decision S45: the ride, and the standing passenger's small sway (with the trunk's vibration)
             return p_pel + rot @ r_waist + ride_offset(tt, rides, ride_starts, sway=trunk > 0), rot
         return p_pel + rot @ r_waist, rot
@@ -472,6 +486,9 @@ def simulate_path(
     if rides:  # decision S45: only sessions with a lift or an escalator have the table
         extras["rides"] = pd.DataFrame(ride_table(rides, ride_starts))
         extras["rides"].attrs["time_columns"] = ["start_s", "end_s"]
+    if freezes:  # decision S51: only sessions with a freeze have the table
+        extras["freezes"] = pd.DataFrame(freeze_table(freezes, freeze_starts))
+        extras["freezes"].attrs["time_columns"] = ["start_s", "end_s"]
 
     meta = {
         "session": name,

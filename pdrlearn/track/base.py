@@ -242,14 +242,21 @@ def get_pipeline(name: str) -> Pipeline:
       inside one walking sequence of the other contacts, decision W159; offline only),
       ``gait_check`` (decision W140, off: with calibrated params, warn when the walk's median cadence is outside
       x0.75-x1.33 of the calibration walks'),
+      ``speed_check`` (decision W211, on: with calibrated params, warn when the walk's median cadence is more than 10 %
+      outside the calibration walks' cadence range, i.e. another walking speed),
       ``pll_check`` (decision W186, off: an uncalibrated offline waist-pll track warns when it reads over 1.5 x the
       pendulum model's distance on the same session),
+      ``short_step_check`` (decision W207, off: an uncalibrated offline waist-pendulum track warns when its median
+      step is under half the comfortable step of the stature, a shuffle the pendulum reads long),
       ``integrate_end`` (decision W187, off: the last step's heading takes the yaw turned on the spot after it, to
       the recording's end; offline only),
-      ``stand_veto`` (decision W190, off: a run of contacts whose median vertical bounce is under 1/3 of the
-      recording's is no walking; offline ``waist-pendulum`` only; values ``"turns"`` W191, ``"alternation"`` W196),
+      ``stand_veto`` (decision W199, default ``"adjacent"``: a run of contacts whose median vertical bounce is under
+      1/3 of the recording's is no walking unless walking strides lie within 3 s before and after it, W198; offline
+      ``waist-pendulum`` only; ``true`` W190 without the sparing, ``"turns"`` W191, ``"alternation"`` W196, false off),
       ``contact_model`` (decision W204, off: ``"learned"`` keeps only the contacts a learned, calibrated re-scorer
       gives p >= 0.5, W203; offline ``waist-pendulum`` only),
+      ``freeze_veto`` (decision W215, off: the offline lower-back contacts inside a freeze episode of the freeze
+      index, freezes.csv, W213, are dropped, W214),
       ``realtime_sit_veto`` (decision W201, off: a realtime track applies the sit veto causally, each contact
       decided 3.25 s after it with the upright of the walking contacts seen so far, W200),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its

@@ -15,8 +15,8 @@ new bout when two consecutive initial contacts are more than 3 s apart, at least
 ``longest_contact_gap_s``, so a bout spanning a longer gap than the break is visible under either rule.
 
 Decision L269: a foot-data gap (L67's gap row) longer than ``break_s`` ends a bout under either rule, the gap row
-in neither bout; ``data_gap_s`` sums the shorter gaps a bout holds, and summary.json's ``data_gap_time_s`` all of
-them (the time that is neither walking nor pause).
+in neither bout; ``data_gap_s`` sums the shorter gaps a bout holds (summary.json's ``time_no_data_s``, L275, is
+the session's time in data gaps).
 """
 
 from __future__ import annotations

@@ -14,8 +14,8 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   takes at :data:`TURN_ON_SPOT_MIN_DPS` is turning (a slow turn on the spot is no pause), only the excess beyond
   it is standing (decision L119: a long stand before or after a turn is a pause and the turn still counts).
 * **walking bout**: the walk between pauses: ``n_walking_bouts`` = ``n_pauses`` + 1 (0 without a row); decision
-  L269: a foot-data gap row longer than the pause threshold ends a bout too (the gap row in none), and
-  ``data_gap_time_s`` sums every gap row's ``gap_s`` (time that is neither walking nor pause).
+  L269: a foot-data gap row longer than the pause threshold ends a bout too (the gap row in none); the time in data
+  gaps is L275's ``time_no_data_s``.
 * **turn**: a run of consecutive rows whose heading changes at :data:`TURN_RATE_MIN_DPS` deg/s or more from
   one row to the next (heading change / time between the rows' starts; one slower row between two such rows
   belongs to the turn), its angle the summed (signed) change, with the change of the row just before and just
@@ -95,8 +95,7 @@ CV_BOUT_MIN_STRIDES = 5
 CV_POOLED_FACTOR = 2.0
 
 #: the keys :func:`clinical_summary` gives every summary (None / 0 when the table cannot give them)
-CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "data_gap_time_s",
-                 "turn_count",
+CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
                  "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides", "stride_time_cv_withheld",
                  "stride_time_cv_within_bouts_pct", "stride_time_cv_bouts", "stride_length_cv_pct")
 
@@ -731,7 +730,8 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
     out = {"step_time_asymmetry_pct": None, "raw_pct": None, "n_step_times": 0, "reason": None}
     if "unit" in steps and len(steps) and (steps["unit"] == "foot").all() or "stride_time_s" in steps:
         out["reason"] = ("not observable from one foot's unit: a step time runs from one foot's contact to the "
-                         "other foot's; use a lower-back unit (or a unit on each foot)")
+                         "other foot's; use a unit on each foot (pdrlearn gait LEFT_DIR RIGHT_DIR, "
+                         "decision L259) or a lower-back unit")
         return out
     from pdrlearn.track.gait import waist_step_times
 
@@ -764,7 +764,6 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     ``n_not_level``, the straight strides and those L188's level criterion drops)."""
     limit = CONTACT_SCATTER_MAX_S if contact_scatter_max_s is None else float(contact_scatter_max_s)
     out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "n_walking_bouts": 0,
-                 "data_gap_time_s": 0.0,
                  "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
                  "n_cv_strides": 0, "stride_time_cv_withheld": None, "stride_time_cv_within_bouts_pct": None,
                  "stride_time_cv_bouts": [], "stride_length_cv_pct": None}
@@ -774,7 +773,6 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     out["n_pauses"], out["pause_time_s"] = int(len(p)), float(p.sum())
     out["longest_pause_s"] = float(p.max()) if len(p) else None
     out["n_walking_bouts"] = len(bout_rows(steps))  # n_pauses + 1 without a data gap (L269: a long gap ends one)
-    out["data_gap_time_s"] = float(data_gap_lengths(steps).sum())  # decision L269: neither walking nor pause
     out["turn_count"] = int((np.abs(turns(steps)) >= TURN_COUNT_MIN_DEG).sum())
     if _is_lower_back(steps):  # decision L214: L104 gives no CV on the lower back; the summary says why
         out["stride_time_cv_withheld"] = {"cause": "lower_back", "reason": LOWER_BACK_CV_REASON}

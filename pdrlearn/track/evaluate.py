@@ -185,18 +185,30 @@ def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: fl
     stride) counts floor(|H| / h + band) storeys, the storeys of L64's band rule, so a slow altitude drift
     between climbs moves no count. Non-finite dz count as 0. ``slope`` (default ``SUSTAINED_SLOPE``, decision
     L144): the strides of a sustained slope (``kernels.distance.sustained_slope``) count as stair strides too."""
+    climbs = [n for _, n in floor_climbs(dz, storey_height_m, band, bridge, slope)]
+    up, down = sum(n for n in climbs if n > 0), -sum(n for n in climbs if n < 0)
+    return up, down, up - down
+
+
+def floor_climbs(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
+                 bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None) -> list[tuple[int, int]]:
+    """:func:`count_floors_by_climb`'s climbs that count a storey (decision L127), as ``(last, storeys)``: the index
+    of the climb's last stair stride and its storeys, + up / - down (decision L277: periods.csv places each climb's
+    storeys in the period of its last stair stride, so the periods' floors add up to the summary's)."""
     from pdrlearn.kernels import distance
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
     sloped = (distance.sustained_slope(dz) if (distance.SUSTAINED_SLOPE if slope is None else slope)
               else np.zeros(len(dz), dtype=bool))
-    counts = []
-    for stair in (np.flatnonzero((dz >= distance.LEVEL_DZ_M) | (sloped & (dz > 0))),
-                  np.flatnonzero((dz <= -distance.LEVEL_DZ_M) | (sloped & (dz < 0)))):
+    out = []
+    for sign, stair in ((1, np.flatnonzero((dz >= distance.LEVEL_DZ_M) | (sloped & (dz > 0)))),
+                        (-1, np.flatnonzero((dz <= -distance.LEVEL_DZ_M) | (sloped & (dz < 0))))):
         runs = np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []
-        counts.append(sum(int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
-                          for r in runs))
-    return counts[0], counts[1], counts[0] - counts[1]
+        for r in runs:
+            n = int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
+            if n:
+                out.append((int(r[-1]), sign * n))
+    return out
 
 
 #: decision L127: how the tracked storeys are counted on foot strides - "climb" (per climb, from the strides' dz,
@@ -521,9 +533,9 @@ def _altitude(result: TrackResult, session: Session, out: dict) -> None:
 
 
 def _composed_strides(est: pd.DataFrame, ref: pd.DataFrame, used_est: set, used_ref: set, *,
-                      tol_s: float = 0.15, min_cover: float = 0.8) -> list[tuple[int, float]]:
+                      tol_s: float = 0.15, min_cover: float = 0.8) -> list[tuple[int, float, list[int]]]:
     """Reference strides left unmatched that two or more estimated strides tile (e.g. a turn on the spot
-    split at an intermediate rest): (ref row, horizontal length of the vector sum of those strides)."""
+    split at an intermediate rest): (ref row, horizontal length of the vector sum of those strides, their rows)."""
     out = []
     es, ee = est["start_s"].to_numpy(float), est["end_s"].to_numpy(float)
     vec = est["length_m"].to_numpy(float)[:, None] * np.column_stack(
@@ -534,16 +546,37 @@ def _composed_strides(est: pd.DataFrame, ref: pd.DataFrame, used_est: set, used_
         rs, re = float(ref["start_s"].iloc[j]), float(ref["end_s"].iloc[j])
         inside = [i for i in np.flatnonzero((es >= rs - tol_s) & (ee <= re + tol_s)) if i not in used_est]
         if len(inside) >= 2 and (ee[inside].max() - es[inside].min()) >= min_cover * (re - rs):
-            out.append((j, float(np.hypot(*vec[inside].sum(axis=0)))))
+            out.append((j, float(np.hypot(*vec[inside].sum(axis=0))), [int(i) for i in inside]))
             used_est.update(int(i) for i in inside)
     return out
 
 
-def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
+def reference_stride_times(st: pd.DataFrame) -> np.ndarray:
+    """Decision E135: each labelled stride's time (s), initial contact to the same foot's previous one: ``ic_s -
+    pre_ic_s`` where the labels give both (motion capture), else ``ic_s`` less the ``ic_s`` of the labelled stride
+    that ends where this one starts (within 1 ms: a chain of strides, as a simulated walk's); NaN otherwise."""
+    n = len(st)
+    ic = st["ic_s"].to_numpy(float) if "ic_s" in st else np.full(n, np.nan)
+    t = ic - st["pre_ic_s"].to_numpy(float) if "pre_ic_s" in st else np.full(n, np.nan)
+    s, e = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
+    for k in np.flatnonzero(~np.isfinite(t)):
+        prev = np.flatnonzero(np.abs(e - s[k]) <= 1e-3)
+        if prev.size:
+            t[k] = ic[k] - ic[prev[0]]
+    return t
+
+
+def stride_pairs(result: TrackResult, session: Session) -> list[tuple[list[int], int, float]] | None:
+    """Decision E135: the (tracked rows, labelled stride, estimated length) pairs the stride-length metrics score:
+    one tracked row matched to one labelled stride with a length (IoU >= 0.5, :func:`match_by_overlap`; a gap or
+    impossible row left out, decisions E30 / L67 / L97), then the unmatched labelled strides two or more tracked rows
+    tile (:func:`_composed_strides`, the vector sum of the rows). The labelled stride is its row in ``session.steps``
+    (0 = steps.csv's first row). None without labelled stride lengths."""
     st = session.steps
     if st is None or "length_m" not in st or not st["length_m"].notna().any() or not len(result.steps):
-        return
-    ref = st[st["length_m"].notna()].reset_index(drop=True)
+        return None
+    keep = np.flatnonzero(st["length_m"].notna().to_numpy())
+    ref = st.iloc[keep].reset_index(drop=True)
     pairs = match_by_overlap(result.steps, ref)
     # decisions E30 / L67: a row across a foot-stream gap (gap_s > 0) is 0 m by rule, no estimate of the
     # labelled stride it overlaps: that stride is not scored (nor composed of its neighbours)
@@ -552,31 +585,69 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
     if "impossible" in result.steps:  # decision L97: nor is a stride the last-line guard (L94) moved 0 m
         gap = gap | result.steps["impossible"].eq(True).to_numpy(bool)
     used_est, used_ref = {i for i, _ in pairs} | set(np.flatnonzero(gap).tolist()), {j for _, j in pairs}
-    pairs = [(i, j) for i, j in pairs if not gap[i]]
-    e_list = [float(result.steps["length_m"].iloc[i]) for i, _ in pairs]
-    r_idx = [j for _, j in pairs]
-    for j, length in _composed_strides(result.steps, ref, used_est, used_ref):
-        e_list.append(length)
-        r_idx.append(j)
-    if not r_idx:
+    length = result.steps["length_m"].to_numpy(float)
+    out = [([i], int(keep[j]), float(length[i])) for i, j in pairs if not gap[i]]
+    out += [(rows, int(keep[j]), est) for j, est, rows in _composed_strides(result.steps, ref, used_est, used_ref)]
+    return out
+
+
+#: decision E135: the columns a foot track's steps.csv gets where the session labels stride lengths
+REFERENCE_COLUMNS = ("ref_match", "ref_length_m", "ref_stride_time_s", "ref_composed", "pair_length_m")
+
+
+def with_reference_columns(result: TrackResult, session: Session | None) -> pd.DataFrame:
+    """Decision E135: ``result.steps`` with :data:`REFERENCE_COLUMNS` appended on a foot track whose session labels
+    stride lengths (else unchanged): per tracked row of a :func:`stride_pairs` pair, the labelled stride's row in the
+    session's steps.csv (``ref_match``, from 0), its ``length_m`` and stride time (:func:`reference_stride_times`),
+    whether the pair is two or more tracked rows tiling one labelled stride (``ref_composed``) and the pair's
+    estimated length (``pair_length_m``: the row's |length|, or the tiles' vector sum on each of them). The summary's
+    ``stride_length_mae_m`` / ``_pct`` / ``stride_length_matched`` are these pairs, one per ``ref_match``."""
+    steps = result.steps
+    if session is None or not len(steps) or "unit" not in steps or not (steps["unit"] == "foot").all():
+        return steps
+    pairs = stride_pairs(result, session)
+    if pairs is None:
+        return steps
+    st = session.steps
+    n = len(steps)
+    match = pd.array([pd.NA] * n, dtype="Int64")
+    ref_len, ref_t, pair_len = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.nan)
+    composed = np.zeros(n, dtype=bool)
+    times = reference_stride_times(st)
+    for rows, j, est in pairs:
+        for i in rows:
+            match[i] = j
+            ref_len[i], ref_t[i], pair_len[i] = float(st["length_m"].iloc[j]), times[j], abs(est)
+            composed[i] = len(rows) > 1
+    return steps.assign(ref_match=match, ref_length_m=ref_len, ref_stride_time_s=ref_t, ref_composed=composed,
+                        pair_length_m=pair_len)
+
+
+def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
+    pairs = stride_pairs(result, session)  # decision E135: the pairs steps.csv's reference columns give
+    if not pairs:
         return
-    ri = np.array(r_idx)
-    e = np.array(e_list)
-    r = ref["length_m"].to_numpy(float)[ri]
+    e = np.array([est for _, _, est in pairs])
+    r = session.steps["length_m"].to_numpy(float)[[j for _, j, _ in pairs]]
     err = np.abs(np.abs(e) - np.abs(r))
-    out["stride_length_composed"] = int(len(r_idx) - len(pairs))
-    out["stride_length_matched"] = int(len(r_idx))
+    ri = np.array([j for _, j, _ in pairs])
+    out["stride_length_composed"] = int(sum(len(rows) > 1 for rows, _, _ in pairs))
+    out["stride_length_matched"] = int(len(pairs))
     out["stride_length_mae_m"] = float(err.mean())
     out["stride_length_mae_pct"] = float(100.0 * np.mean(err / np.abs(r)))
     # the distance over the labelled strides only: a reference that labels part of the walk (gaitmap's
     # mocap volume: 28 of 32 strides) makes distance_error_pct compare the whole track with part of it
     out["distance_matched_error_pct"] = float(100.0 * (np.abs(e).sum() / np.abs(r).sum() - 1.0))
-    if "turn" in ref:
-        turn = ref["turn"].astype(bool).to_numpy()[ri]
+    if "turn" in session.steps:
+        turn = session.steps["turn"].astype(bool).to_numpy()[ri]
         if (~turn).any():
             out["stride_length_mae_pct_straight"] = float(100.0 * np.mean((err / np.abs(r))[~turn]))
         if turn.any():
             out["stride_length_mae_pct_turns"] = float(100.0 * np.mean((err / np.abs(r))[turn]))
+    if "steady" in session.steps:  # decision L252: a walkway reference's strides (no initiation / termination / turn)
+        steady = session.steps["steady"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy()[ri]
+        if steady.any():
+            out["stride_length_mae_pct_steady"] = float(100.0 * np.mean((err / np.abs(r))[steady]))
 
 
 #: the class columns of a tracked step table compared with the labels (steps.csv), decision L53
@@ -610,10 +681,11 @@ def _class_agreement(result: TrackResult, session: Session, out: dict) -> None:
 def _foot_stride_f1(result: TrackResult, session: Session, out: dict) -> None:
     """Foot tracks on sessions with ground-truth strides: ``step_f1`` (with ``step_precision`` /
     ``step_recall``) of the tracked strides against the labelled ones, matched by time overlap (IoU >= 0.5,
-    as the stride lengths). Only tracked strides whose middle lies in a labelled interval are scored (the
-    intervals of :func:`pdrlearn.steps.evaluate.reference_events`: a reference that labels part of a walk
-    leaves the rest unscored). A labelled stride that two or more tracked strides tile (a turn split at an
-    intermediate rest) counts once, and its pieces are not false positives; a rest-based segmentation
+    as the stride lengths). A tracked stride matched to a labelled one is always scored; an unmatched one only
+    when its middle lies in a labelled interval (the intervals of :func:`pdrlearn.steps.evaluate.reference_events`:
+    a reference that labels part of a walk leaves the rest unscored; decision L249). A labelled stride that two or
+    more tracked strides tile (a turn split at an intermediate rest) counts once, and its pieces are not false
+    positives; a rest-based segmentation
     (``source=detected``) is not ground truth and gives no F1 (decision L36)."""
     st = session.steps
     if st is None or not len(st) or not len(result.steps) or "unit" not in result.steps:
@@ -625,12 +697,17 @@ def _foot_stride_f1(result: TrackResult, session: Session, out: dict) -> None:
     ref = reference_events(session, "foot")
     if ref is None or not ref.ground_truth:
         return
-    mid = result.steps[["start_s", "end_s"]].to_numpy(float).mean(axis=1)
-    est = result.steps[in_intervals(mid, ref.intervals)].reset_index(drop=True)
+    est = result.steps.reset_index(drop=True)
     pairs = match_by_overlap(est, st)
     used_est, used_ref = {i for i, _ in pairs}, {j for _, j in pairs}
     tp = len(pairs) + len(_composed_strides(est, st, used_est, used_ref))  # adds the tiles to used_est
-    precision = len(used_est) / len(est) if len(est) else 0.0
+    # decision L249: a tracked stride matched to (or tiling) a labelled stride is always scored, as every labelled
+    # stride is in the recall's denominator; only an unmatched one is scored by its middle (L36's intervals). The
+    # first stride from standing starts a stance early, so its middle fell before the first IC's interval
+    mid = est[["start_s", "end_s"]].to_numpy(float).mean(axis=1)
+    scored = in_intervals(mid, ref.intervals)
+    scored[list(used_est)] = True
+    precision = len(used_est) / int(scored.sum()) if scored.any() else 0.0
     recall = tp / len(st)
     out["step_precision"], out["step_recall"] = float(precision), float(recall)
     out["step_f1"] = float(2 * precision * recall / (precision + recall)) if tp else 0.0
@@ -656,7 +733,8 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
         out["distance_error_scope"] = "reference bouts"
         out["distance_in_ref_bouts_m"] = m["bout_distance_m"]
     for k in ("stride_length_matched", "stride_length_composed", "stride_length_mae_pct",
-              "stride_length_mae_pct_straight", "stride_length_mae_pct_turns", "distance_matched_error_pct"):
+              "stride_length_mae_pct_straight", "stride_length_mae_pct_turns", "stride_length_mae_pct_steady",
+              "distance_matched_error_pct"):
         out.pop(k, None)  # step rows are not strides: the stride metric of waist_metrics replaces these
     if "n_strides" in m:  # decision C19: the reference strides scored, not strides tracked (sessions.csv's
         m["n_reference_strides"] = m.pop("n_strides")  # n_strides column was 7 on the lower back, empty on the foot)
@@ -871,6 +949,11 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
+    from pdrlearn.track.freezes import freeze_summary, session_freezes
+
+    if result.info.get("freezes") is None and session is not None:  # decision W213: a foot track's episodes
+        result.info["freezes"] = session_freezes(session, result.info.get("pipeline"))
+    out.update(freeze_summary(result.info.get("freezes")))  # W213: n_freezes, freeze_time_s (None: not computed)
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
     out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
@@ -915,6 +998,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
 
     summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
+    from pdrlearn.track.periods import time_accounting
+
+    summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
@@ -947,6 +1033,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary["info"].pop("transfers", None)  # decision W182: the rows are transfers.csv's, not the summary's
+    summary["info"].pop("freezes", None)  # decision W213: the rows are freezes.csv's
     summary["info"].pop("yaw_turns", None)  # decision L210: they time turns.csv's turns; not the summary's
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary

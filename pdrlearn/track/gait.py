@@ -15,8 +15,10 @@ either stride's event lies outside its own window. A short rest between two stri
 little longer in a turn) no longer drops the stride time (decision L80).
 
 The summary (decision L79, waist W70): ``walking_time_s`` (the strides' span, first start to last end, less
-the rests over :data:`MAX_STRIDE_S` between strides), ``gait_speed_mps`` (``distance / walking_time_s``) and
-``median_speed_straight_mps`` (the median speed of the strides that turn less than :data:`STRAIGHT_MAX_RAD`).
+the rests over :data:`MAX_STRIDE_S` between strides), ``gait_speed_mps`` (``distance / walking_time_s``: a timed
+walk from standing, gait initiation / termination and the rows' standing included, decision L250) and
+``median_speed_straight_mps`` (the median speed of the strides that turn less than :data:`STRAIGHT_MAX_RAD`: an
+instrumented walkway's steady speed).
 """
 
 from __future__ import annotations
@@ -226,12 +228,9 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
     (median ``speed`` where ``straight``) and ``n_straight_strides``; decision L179: ``n_stair_strides``, the valid
     rows whose |``dz_m``| reaches :data:`pdrlearn.kernels.distance.LEVEL_DZ_M` (none without the column); they are
     never straight (a stair stride's horizontal speed is no walking speed), nor is a side step (decision L228)."""
-    from pdrlearn.track.clinical import pause_spans, unwrapped_heading
+    from pdrlearn.track.clinical import pause_spans
 
-    # decision L194: a turn across a break is walking (L119); the rows in time order, as the pause rule takes them
-    heading = unwrapped_heading(steps) if "heading_rad" in steps and steps["start_s"].is_monotonic_increasing else None
-    pieces = walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid,
-                            heading_rad=heading)
+    pieces = session_walking_pieces(steps, valid)
     wt = float(sum(t1 - t0 for t0, t1 in pieces)) if pieces else None
     dist = float(np.nansum(np.abs(np.asarray(length, dtype=float))[np.asarray(valid, dtype=bool)]))
     out["walking_time_s"] = wt
@@ -246,6 +245,29 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
                   np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
     out["median_speed_straight_mps"] = _median(sp)
+
+
+def session_walking_pieces(steps: pd.DataFrame, valid=None) -> list[tuple[float, float]]:
+    """The pieces (s) of a step table's ``walking_time_s`` (:func:`walking_pieces` on the rows in their order, with
+    decision L194's heading where the rows are in time order); ``valid`` None: :func:`walking_rows`. One definition
+    for the summary's walking time and the time accounting of windows and periods (decision L275)."""
+    from pdrlearn.track.clinical import unwrapped_heading
+
+    if not len(steps):
+        return []
+    valid = walking_rows(steps) if valid is None else valid
+    # decision L194: a turn across a break is walking (L119); the rows in time order, as the pause rule takes them
+    heading = unwrapped_heading(steps) if "heading_rad" in steps and steps["start_s"].is_monotonic_increasing else None
+    return walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid,
+                          heading_rad=heading)
+
+
+def walking_rows(steps: pd.DataFrame) -> np.ndarray:
+    """(B,) bool: the rows :func:`gait_summary` times as walking - a lower-back table's contacts with a next one
+    (``has_next``, W70), any other table's :func:`stride_rows` (L67, L97)."""
+    if "has_next" in steps and "unit" in steps and len(steps) and (steps["unit"] == "waist").all():
+        return steps["has_next"].to_numpy(bool)
+    return stride_rows(steps)
 
 
 def median_cadence(median_stride_s: float | None, fallback_spm: float | None) -> float | None:
@@ -577,8 +599,25 @@ def gait_range_warning(summary: dict) -> str | None:
         extra += ("; the waist step length is uncalibrated and the default model is not validated at slow "
                   "cadence: the distance and speed depend on a calibration on this walker's own walk of known "
                   "length ('pdrlearn calibrate DIR --distance M', e.g. a 10 m walk test)")
-    return (f"{figs}: {what}{validated}; the distance, the terrain / length classes and the floors are not "
-            f"reliable{extra}")
+    return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow)}{extra}"
+
+
+#: decision L247: what the offline foot track's distance did on simulated shuffling below L95's speed range (users
+#: 4900-4919, 0.2-0.5 m/s, no model, with and without force sensors: experiments/results/foot_slow.txt)
+SLOW_FOOT_DISTANCE = "-3.1 to +1.4 % on simulated shuffling at 0.2-0.5 m/s"
+
+
+def _unreliable(summary: dict, info: dict, slow: bool) -> str:
+    """What L95's line says is not reliable. Decision L247: a slow offline foot track without classes (the ZUPT
+    strides of a foot unit, ``plasys`` with no model, not streamed) keeps its distance, measured at
+    :data:`SLOW_FOOT_DISTANCE`; the line says so and names what stays unvalidated. Every other track: the distance
+    too (the lower back reads slow steps long, W207; a streamed foot track read +11 % at 0.2 m/s, L120)."""
+    foot = (str(summary.get("pipeline") or info.get("pipeline") or "") == "plasys" and not info.get("streaming")
+            and info.get("classes_source") is None)
+    if slow and foot:
+        return (f"the offline foot distance (ZUPT strides) stays usable ({SLOW_FOOT_DISTANCE}, no model; decision "
+                "L247), but the floors and any terrain / length classes are not validated at this speed")
+    return "the distance, the terrain / length classes and the floors are not reliable"
 
 
 def bout_range_flags(table, leg_m: float | None) -> np.ndarray:

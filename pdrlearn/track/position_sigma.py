@@ -35,6 +35,9 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # (L238: the per-metre compass term path_diffusion_m2 = PLACE_DIFFUSION_M2 was measured and not adopted, too small)
     # (L239/L240: the bounded heading error on the route's extent, extent_heading_rad = EXTENT_HEADING_RAD, measured
     # and not adopted: all its short-route strides within 2 sigma, over the rule's 99.5 %; FUSED_EXTENT_HEADING)
+    # (L241/L242: that error only on the part of the extent the track has come back from, extent_return_rad =
+    # EXTENT_HEADING_RAD, measured and not adopted: 20/25 long-route finals within 2 sigma, under the rule's 90 %;
+    # FUSED_EXTENT_RETURN)
     "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
     # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
     "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 9.6e-11, "point_m": 0.044},
@@ -70,6 +73,11 @@ EXTENT_HEADING_RAD = float(np.sqrt(2.0 ** 2 + 3.0 ** 2 * np.sqrt(np.pi) / 4.0 / 
 #: their strides within 2 sigma against the rule's 99.5 %); True adds ``extent_heading_rad`` = EXTENT_HEADING_RAD to
 #: the ``plasys-fused`` radius (27/29 R1 finals within 2 sigma against 18/29 without, users 5040-5079)
 FUSED_EXTENT_HEADING = False
+#: decision L242: L241's candidate is an option, off by default (its rule failed on the long routes' finals: 20/25
+#: within 2 sigma against the rule's 90-99 %, users 5130-5169; today 14/25); True adds ``extent_return_rad`` =
+#: EXTENT_HEADING_RAD to the ``plasys-fused`` radius: L239's heading error on the part of the extent the track has come
+#: back from, per axis e^2 (R_k^2 - |D_k|^2), nothing on a walk that only goes out from its start
+FUSED_EXTENT_RETURN = False
 #: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
 #: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
 GAP_FALLBACK_SPEED_MPS = 1.4
@@ -135,10 +143,13 @@ def sigma_per_row(steps, t, params: dict[str, float]) -> np.ndarray:
 
 def sigma_params(regime: str) -> dict[str, float]:
     """The error model of ``regime``: its :data:`SIGMA_PARAMS`, with L239's extent term on ``plasys-fused`` when
-    :data:`FUSED_EXTENT_HEADING` is set (decision L240)."""
+    :data:`FUSED_EXTENT_HEADING` is set (decision L240) and L241's return term when :data:`FUSED_EXTENT_RETURN` is
+    (decision L242; the two are alternatives: both set add both)."""
     params = dict(SIGMA_PARAMS[regime])
-    if regime == "plasys-fused" and FUSED_EXTENT_HEADING:
-        params["extent_heading_rad"] = EXTENT_HEADING_RAD
+    if regime == "plasys-fused":
+        for flag, term in ((FUSED_EXTENT_HEADING, "extent_heading_rad"), (FUSED_EXTENT_RETURN, "extent_return_rad")):
+            if flag:
+                params[term] = EXTENT_HEADING_RAD
     return params
 
 

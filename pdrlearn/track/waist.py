@@ -31,10 +31,12 @@ from pdrlearn.kernels.barometer import (  # decision W91's constants and test, s
     STAIRS_RATE_WINDOW_S,
     stairs_rate_test,
 )
+from pdrlearn.kernels.freeze import inside_episodes
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
+from pdrlearn.track.freezes import freeze_caveat_message, session_freezes
 from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
@@ -76,6 +78,7 @@ from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
     calibration_gait_message,
+    calibration_speed_message,
     contact_alternation,
     contact_lateral_velocity,
     contact_sides,
@@ -84,13 +87,16 @@ from pdrlearn.waist.plausibility import (
     micro_bouts,
     not_alternating_message,
     pll_excess,
+    pll_missed_steps_message,
+    running_cadence,
+    short_step_message,
     step_counts,
     still_yaw_rate,
     still_yaw_rate_message,
     walk_ratio,
     walk_ratio_message,
 )
-from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
+from pdrlearn.waist.posture import drop_contacts, sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.sit_causal import causal_transfer_veto
@@ -377,9 +383,12 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
-                   "stand_veto": False,  # W189
+                   "stand_veto": "adjacent",  # W189; W199: W198's "adjacent" adopted (offline waist-pendulum only)
                    "contact_model": False,  # W203
-                   "realtime_sit_veto": False}  # W200: the causal sit veto of realtime tracks
+                   "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
+                   "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
+                   "freeze_veto": False,  # W214
+                   "speed_check": True}  # W211
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -389,10 +398,14 @@ SCOPED_OPTIONS = {
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "contact_model": ("the offline waist-pendulum with its own contact detector (W203)",
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
+                    lambda pl, rt, m, det, stops: not rt),
     "vault_veto": ("the offline waist-pendulum (W119)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
     "realtime_sit_veto": ("realtime tracks (offline tracks apply the sit veto on the whole recording; W200)",
                           lambda pl, rt, m, det, stops: rt),
+    "short_step_check": ("the offline waist-pendulum (W207; an uncalibrated offline waist-pll track is judged so by "
+                         "default, W208)", lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
 }
 
 
@@ -401,8 +414,8 @@ def ignored_options_line(o: dict, pipeline: str, realtime: bool, method: str, de
     """Decision W193: one line naming the resolved options ``o`` set away from :data:`OPTION_DEFAULTS` that do
     nothing for this track (:data:`SCOPED_OPTIONS`) and where each applies, else None (the live trackers' E107 line
     says the same of the options they do not apply)."""
-    off = [k for k, (_, acts) in SCOPED_OPTIONS.items()
-           if o.get(k) not in (None, OPTION_DEFAULTS[k]) and not acts(pipeline, realtime, method, detector,
+    off = [k for k, (_, acts) in SCOPED_OPTIONS.items()  # an option set off (false) does nothing anywhere (W199)
+           if o.get(k) not in (None, False, OPTION_DEFAULTS[k]) and not acts(pipeline, realtime, method, detector,
                                                                     integrate_stops)]
     if not off:
         return None
@@ -437,14 +450,14 @@ PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 #: the values of the ``stand_veto`` option: off, W189's veto, W191's veto sparing a run with a turning step, W196's
-#: sparing a run whose decided sides alternate
-STAND_VETO_VALUES = (False, True, "turns", "alternation")
+#: sparing a run whose decided sides alternate, W198's sparing a run with walking within 3 s before and after it
+STAND_VETO_VALUES = (False, True, "turns", "alternation", "adjacent")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159"),
-                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196"),
+                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203")}
 
 
@@ -471,12 +484,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
-                gait_check: bool | None = None, pll_check: bool | None = None, weak_fill: bool | None = None,
+                gait_check: bool | None = None, speed_check: bool | None = None, pll_check: bool | None = None,
+                weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
-                realtime_sit_veto: bool | None = None, detector=None,
-                length_model=None) -> TrackResult:
+                realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
+                length_model=None, freeze_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -554,7 +568,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         contact bounce: standing sway, no walking (decision W189, :func:`pdrlearn.waist.posture.stand_veto`);
         ``"turns"``: the same, sparing a run with a step that turns the pelvis by more than 15 deg (W127's test; a
         slow turn on the spot bounces little; decision W191); ``"alternation"``: sparing a run whose decided W20
-        sides alternate left/right, at least two decided (decision W196); default False
+        sides alternate left/right, at least two decided (decision W196); ``"adjacent"``: sparing a run with walking
+        strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198), the
+        default since W199; False: no stand veto
+    freeze_veto : offline (the realtime detector ignores it): drop the contacts inside a freeze episode of the lower
+        back's freeze index (freezes.csv, :mod:`pdrlearn.track.freezes`, decision W213): trembling in place is no
+        step (decision W214); the step before a dropped contact ends its sequence; default False
     contact_model : pendulum, offline detector (the realtime one and ``waist-pll`` ignore it): ``"learned"`` keeps
         only the contacts whose calibrated probability from W203's learned re-scorer
         (:func:`pdrlearn.waist.contact_model.rescore_contacts`) is at least 0.5, before the stand and sit vetoes;
@@ -565,9 +584,17 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gait_check : with calibrated params that record their walks' gait: one warning line when this walk's median
         cadence is outside x0.75-x1.33 of the calibration's (decision W140: an option, its adoption rule was not met;
         ``info["calibration_cadence_ratio"]`` carries the ratio either way); default False
+    speed_check : with calibrated params that record their walks' gait: one warning line when this walk's median
+        cadence is more than 10 % outside the calibration walks' cadence range (decision W211: another walking speed
+        biases the calibrated step length; with ``gait_check`` W140's line is given instead when both fire);
+        default True
     pll_check : offline, uncalibrated waist-pll: one warning line when its distance is over 1.5 x the pendulum model's
         reading of the same session (decision W186: an option, its adoption rule was not met - fast plain walks
         warned too; ``info["pll_pendulum_ratio"]`` carries the ratio either way); default False
+    short_step_check : offline, uncalibrated waist-pendulum: one warning line when the median step is under half the
+        comfortable step of the stature (0.5 x 0.415 x height): a shuffling gait the pendulum model reads long
+        (decision W207: an option, its adoption rule was not met - a real daily-activity recording warned; an
+        uncalibrated offline waist-pll track is judged so on the pendulum's reading by default, W208); default False
     weak_fill : pendulum, offline detector: a weak step on the decided alternating side where the alternation and the
         local rhythm ask for one (decision W148, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``weak_fill``; measured and not adopted); default False
@@ -611,9 +638,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
+             "short_step_check": short_step_check,
+             "speed_check": speed_check,
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
-             "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto}
+             "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
+             "freeze_veto": freeze_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -666,7 +696,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     n_weak_run = 0
     if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
         steps = drop_weak_runs(steps, imu, spare_turns=o["stand_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps,
-                               spare_alternation=o["stand_veto"] == "alternation")
+                               spare_alternation=o["stand_veto"] == "alternation",
+                               spare_adjacent=o["stand_veto"] == "adjacent")
         n_weak_run = steps.attrs["n_weak_run"]
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
@@ -686,6 +717,16 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
         n_unvaulted = steps.attrs["n_unvaulted"]
+    freezes = session_freezes(session, pipeline)  # decision W213: freezes.csv's episodes
+    if freezes:  # decision W215: on the lower back the index is a screening one; say what else it reads
+        warnings.append(freeze_caveat_message(len(freezes), sum(r["duration_s"] for r in freezes),
+                                              bool(o["freeze_veto"]) and not realtime))
+    n_frozen = 0
+    if o["freeze_veto"] and not realtime and len(steps):  # W214: a contact inside a freeze is trembling, no step
+        steps = drop_contacts(steps, ~inside_episodes(steps["event_s"].to_numpy(float),
+                                                      [(r["start_s"], r["end_s"]) for r in freezes or []]),
+                              "n_frozen")
+        n_frozen = steps.attrs["n_frozen"]
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
@@ -743,7 +784,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
     pendulum = functools.cache(lambda: _pendulum_steps(imu, p, thr, o))  # W139 and W186 read it once
     ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0],  # W100, W116
-                                    pendulum=pendulum,  # W139
+                                    pendulum=pendulum, short_step=bool(o["short_step_check"]),  # W139, W207
                                     stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])))  # W155
     if ratio_line:
         warnings.append(ratio_line)
@@ -757,9 +798,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
         warnings.append(micro_line)
-    cadence_ratio, gait_line = _calibration_gait(steps, p, pipeline)  # decision W140
+    cadence_ratio, gait_line, speed_line = _calibration_gait(steps, p, pipeline)  # decisions W140, W211
     if gait_line and bool(o["gait_check"]):  # W140's line: an option (its adoption rule was not met)
         warnings.append(gait_line)
+    elif speed_line and bool(o["speed_check"]):  # W211: W140's band lies inside it, so one line, not two
+        warnings.append(speed_line)
     n = len(steps)
     length_model = model.name
     info = {
@@ -784,6 +827,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_unvaulted_contacts": n_unvaulted,
         "n_weak_run_contacts": n_weak_run,
         "n_rescored_contacts": n_rescored,  # decision W203
+        "n_frozen_contacts": n_frozen,  # decision W214
+        "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }
@@ -845,38 +890,57 @@ def detector_steps(det, session: Session, imu: WaistIMU) -> pd.DataFrame:
 
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
-                height_m: float, pendulum=None, stairs=None) -> tuple[float | None, str | None]:
+                height_m: float, pendulum=None, stairs=None, short_step: bool = False
+                ) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
     warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps).
     Decision W139: an offline, uncalibrated ``waist-pll`` track is judged on the steps ``pendulum()`` returns (the
     pendulum model's reading of the same session, :func:`_pendulum_steps`); ``walk_ratio`` is then theirs.
     Decision W155: the steps ``stairs(steps)`` marks as on stairs (W91 / W108) are left out: a stair step is no
-    level gait (under ``stairs_length`` its length is the tread's, and read as a shuffle)."""
+    level gait (under ``stairs_length`` its length is the tread's, and read as a shuffle).
+    Decision W207: with ``short_step`` (the option ``short_step_check``; always for waist-pll, W208), inside W100's
+    band, a median pendulum step under half the comfortable step for the stature warns
+    (:func:`~pdrlearn.waist.plausibility.short_step_message`; not at a running cadence, W177). Decision W208: a pll
+    track with far fewer contacts than the pendulum reading says it misses steps instead of W139's line."""
     if realtime or p.source != "defaults" or not len(steps):
         return None, None
-    pll_length = None
+    pll_length = pll_m = pendulum_m = None
+    missed = None
     if pipeline == "waist-pll" and pendulum is not None:
         level = ~stairs(steps) if stairs is not None else np.ones(len(steps), dtype=bool)
         own = steps["length_m"].to_numpy(float)[(waist_step_times(steps)[0] > 0) & level]
         pll_length = float(np.median(np.abs(own))) if own.size else None
+        pll_m = float(np.nansum(np.abs(steps["length_m"].to_numpy(float))))
+        n_pll = len(steps)
         steps = pendulum()
+        pendulum_m = float(np.nansum(np.abs(steps["length_m"].to_numpy(float))))
+        missed = pll_missed_steps_message(n_pll, len(steps), pll_m, pendulum_m)  # decision W208
     elif pipeline != "waist-pendulum":
         return None, None
     step_s = waist_step_times(steps)[0]
     if stairs is not None:  # W155: stair steps are not judged (NaN step time: left out of walk_ratio)
         step_s = np.where(stairs(steps), np.nan, step_s)
     ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), step_s)
-    return ratio, walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length)
+    # W208: a pll track that misses steps says so first (W139's line would call its short reading long)
+    line = missed or walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length,
+                                        pll_m=pll_m, pendulum_m=pendulum_m)
+    if line is None and (short_step or pll_m is not None) and not running_cadence(length, cadence, height_m):
+        line = short_step_message(length, n, height_m, pll_m=pll_m, pendulum_m=pendulum_m)  # decision W207
+    return ratio, line
 
 
-def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str) -> tuple[float | None, str | None]:
-    """Decision W140: ``(ratio, line)``, this track's median cadence over its calibration walks' (None: not calibrated,
-    a params file without ``gait``, or fewer than ten steps) and W140's warning line (None inside its band)."""
+def _calibration_gait(steps: pd.DataFrame, p: WaistParams,
+                      pipeline: str) -> tuple[float | None, str | None, str | None]:
+    """Decision W140: ``(ratio, line, speed line)``, this track's median cadence over its calibration walks' (None: not
+    calibrated, a params file without ``gait``, or fewer than ten steps), W140's warning line (None inside its band)
+    and W211's (None inside the calibration's cadence range +-10 %)."""
     ref = (p.gait or {}).get("median_cadence_spm") if p.source == "calibrated" else None
     cadence, n = median_cadence(steps["frequency_hz"].to_numpy(float))
     if not ref or cadence is None or n < PLAUSIBILITY_MIN_PAIRS:
-        return None, None
-    return cadence / float(ref), calibration_gait_message(p.gait, cadence, n, p.pipeline or pipeline)
+        return None, None, None
+    who = p.pipeline or pipeline
+    return (cadence / float(ref), calibration_gait_message(p.gait, cadence, n, who),
+            calibration_speed_message(p.gait, cadence, n, who))
 
 
 def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDetector:

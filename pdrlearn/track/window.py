@@ -96,14 +96,14 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
     last kept step's end. ``info["window"]`` records the window."""
     steps = result.steps
     t_rec = session.t_recording_start  # the seconds of check_window (B81's cut does not move them)
-    warnings = []
+    warnings, notes = [], []
     if len(steps):
         mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
         kept = steps[(mid >= t0) & (mid <= t1)].reset_index(drop=True)
-        if not len(kept):  # decision L107: say so, with the span the steps cover, not a silent "0 steps"
-            warnings.append(f"--window {t0 - t_rec:g},{t1 - t_rec:g} holds no step (the session's "
-                            f"steps lie between {float(steps['start_s'].min()) - t_rec:.1f} and "
-                            f"{float(steps['end_s'].max()) - t_rec:.1f} s); pick a window inside that span")
+        if not len(kept):  # decision L276 (was L107's warning): 0 m walked is an answer - one note, the steps' span
+            notes.append(f"--window {t0 - t_rec:g},{t1 - t_rec:g} holds no step: walking 0 s, 0 m (the "
+                         f"session's steps lie between {float(steps['start_s'].min()) - t_rec:.1f} and "
+                         f"{float(steps['end_s'].max()) - t_rec:.1f} s)")
         steps = kept
     else:
         warnings.append(f"--window {t0 - t_rec:g},{t1 - t_rec:g} holds no step: the track of the "
@@ -124,8 +124,12 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
     info = {**result.info, "window": {"start_s": t0 - t_rec, "end_s": t1 - t_rec}}
     if info.get("transfers") is not None:  # decision W182: the chair transfers inside the window
         info["transfers"] = [r for r in info["transfers"] if r["start_s"] >= t0 and r["end_s"] <= t1]
+    if info.get("freezes") is not None:  # decision W213: the freeze episodes inside the window
+        info["freezes"] = [r for r in info["freezes"] if r["start_s"] >= t0 and r["end_s"] <= t1]
     if warnings:
         info["warnings"] = [*result.info.get("warnings", []), *warnings]
+    if notes:  # decision L276: printed as a "note:" line by the command line
+        info["notes"] = [*result.info.get("notes", []), *notes]
     gt = session.trajectory
     if gt is not None and len(gt) and len(traj):
         tt = gt["t"].to_numpy(float)

@@ -360,7 +360,8 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     total = sum(w.distance_m for w in walks)
     n_steps = sum(len(w.f_hz) for w in walks)
     # decision W140: the gait the step length is calibrated on (a track of another cadence warns)
-    out.gait = calibration_gait(np.concatenate([w.f_hz for w in walks]) if walks else np.zeros(0), total)
+    out.gait = calibration_gait(np.concatenate([w.f_hz for w in walks]) if walks else np.zeros(0), total,
+                                [w.f_hz for w in walks])  # decision W211: each walk's cadence, the range
     if pipeline not in ("waist-pendulum", "waist-pll"):
         raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     implausible = check_gain(walks, pipeline, base)  # decision W39

@@ -14,10 +14,11 @@
   covers only part of a bout).
 - ``distance_error_pct``: distance tracked inside the reference bouts (steps whose midpoint lies in a
   bout) vs the bouts' total reference length; ``bout_distance_error_median_pct`` is the median of the
-  per-bout absolute errors. ``*_strides_*``: the same against the bout's own reference steps, its number
-  of steps (timed contacts, duplicates < 0.1 s apart merged, plus untimed ones, minus one) times half its
-  mean stride length (:func:`bout_stride_length`, decision W25): INDIP's ``Length`` is 8-27 % short in
-  bouts with untimed contacts (docs/external-data.md X2b).
+  per-bout absolute errors (unsigned), ``bout_distance_error_median_signed_pct`` of the signed ones (decision
+  L251). ``*_strides_*``: the same against the bout's own reference steps, its number of steps (timed contacts,
+  duplicates < 0.1 s apart merged, plus untimed ones, minus one) times half its mean stride length
+  (:func:`bout_stride_length`, decision W25): INDIP's ``Length`` is 8-27 % short in bouts with untimed contacts
+  (docs/external-data.md X2b).
 - ``stride_length_mae_m``: per reference stride, the sum of the tracked steps whose midpoint lies in it.
 """
 
@@ -156,6 +157,8 @@ def distance_metrics(steps: pd.DataFrame, session: Session) -> dict:
     out = {"distance_error_pct": 100.0 * (est_total - ref_total) / ref_total,
            "bout_distance_m": est_total, "bout_reference_m": ref_total,
            "bout_distance_error_median_pct": float(np.median([abs(p["error_pct"]) for p in per])),
+           # decision L251: the median above is of |error| (its sign is lost); the signed median is a bias
+           "bout_distance_error_median_signed_pct": float(np.median([p["error_pct"] for p in per])),
            "bouts": per}
     es = np.array([p["error_strides_pct"] for p in per])
     if np.isfinite(es).all():

@@ -105,7 +105,8 @@ def live_options(p, warnings: list[str], **given) -> dict:
 LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_veto", "contact_shift", "weak_fill",
                           "parity_fill", "integrate_end",  # W187: the final stop is known only offline
                           "stand_veto",  # W189: the recording's median bounce is known only offline
-                          "contact_model")  # W203: its features read the recording's medians
+                          "contact_model",  # W203: its features read the recording's medians
+                          "freeze_veto")  # W214: the freeze index's 4 s window looks 2 s ahead
 
 
 def unapplied_options_line(p) -> str | None:
@@ -141,9 +142,11 @@ def unapplied_options_line(p) -> str | None:
 def live_value(option: str, given: dict | None = None):
     """Decisions E126, E130: the value of the option ``option`` of :data:`LIVE_UNAPPLIED_OPTIONS` that the live tracker
     tracks as, under the PARAMS.json ``"options"`` ``given``: no sit veto (``False``, W185's ``REALTIME_SIT_VETO``,
-    where the offline default is ``"opposite"``); ``contact_shift`` only with ``realtime_contact_shift`` (W166, off by
-    default: ``False``); no ``parity_fill`` (``False``: W152 / W159's fill is the offline detector's only, where the
-    default is ``"within"``); else the option's offline default (E107)."""
+    where the offline default is ``"opposite"``); no stand veto (``False``, where the offline default is
+    ``"adjacent"`` since W199: the recording's median bounce is known only offline, W189); ``contact_shift`` only
+    with ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's
+    fill is the offline detector's only, where the default is ``"within"``); else the option's offline default
+    (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
 
     given = given or {}
@@ -153,6 +156,8 @@ def live_value(option: str, given: dict | None = None):
 
     if option == "sit_veto":
         return REALTIME_SIT_VETO
+    if option == "stand_veto":
+        return False
     if option == "contact_shift":  # W166: W131 inside W31's window only with realtime_contact_shift
         return bool(value("contact_shift")) and bool(value("realtime_contact_shift"))
     if option == "parity_fill":  # W159: InitialContactDetector.rule_settings keeps it offline only

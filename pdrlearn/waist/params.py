@@ -7,6 +7,7 @@ pipelines derive defaults from what the session's ``meta.json`` gives and say so
 from __future__ import annotations
 
 import json
+import math
 import os
 from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
@@ -107,7 +108,7 @@ class WaistParams:
         if not isinstance(d, dict):
             raise DataError(f"{where}: waist parameters must be a JSON object")
         names = {f.name for f in fields(cls)}
-        unknown = sorted(set(d) - names - {"schema", "fit"})
+        unknown = sorted(set(d) - names - {"schema", "fit", "pdrlearn_version"})  # version: decision E136
         if unknown:
             more = f" and {len(unknown) - 5} more" if len(unknown) > 5 else ""
             raise DataError(f"{where}: not a waist parameter file (unknown key(s) {', '.join(unknown[:5])}{more}); "
@@ -138,7 +139,10 @@ class WaistParams:
     def save(self, path: str | os.PathLike, *, extra: dict | None = None) -> Path:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
+        from pdrlearn import __version__
+
         d = self.to_dict()
+        d["pdrlearn_version"] = __version__  # decision E136: a calibration file is reused across trials
         if extra:
             d.update(extra)
         tmp = path.with_suffix(path.suffix + ".tmp")
@@ -148,9 +152,9 @@ class WaistParams:
 
 
 #: decision W140's ``gait`` record: its numbers (positive, or null when not recorded)
-GAIT_KEYS = ("median_cadence_spm", "step_length_m", "speed_mps", "n_steps")
+GAIT_KEYS = ("median_cadence_spm", "step_length_m", "speed_mps", "n_steps", "cadence_range_spm")  # range: W211
 #: decision B198: each a positive number, or null when not recorded (B206's shared check)
-GAIT_RULES = {k: Rule("number", low=0, open_low=True, none=True) for k in GAIT_KEYS}
+GAIT_RULES = {k: Rule("number", low=0, open_low=True, none=True) for k in GAIT_KEYS[:4]}
 
 
 def _check_gait(gait: dict, where: str) -> None:
@@ -163,9 +167,20 @@ def _check_gait(gait: dict, where: str) -> None:
                         f"walks holds {', '.join(GAIT_KEYS)}; fix it, set \"gait\" to null, or re-run 'pdrlearn "
                         "calibrate'")
     bad = broken(gait, GAIT_RULES)
+    rng = gait.get("cadence_range_spm")
+    if rng is not None and not _cadence_range_ok(rng):  # decision W211: [lowest, highest] walk cadence
+        bad.append(("cadence_range_spm", rng, "[lowest, highest], two positive numbers in order"))
     if bad:
         raise DataError(f"{where}: gait {broken_line(bad)} (decision W140's record of the "
                         "calibration walks); fix it, set \"gait\" to null, or re-run 'pdrlearn calibrate'")
+
+
+def _cadence_range_ok(rng) -> bool:
+    if not isinstance(rng, (list, tuple)) or len(rng) != 2:
+        return False
+    if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0 for v in rng):
+        return False
+    return rng[0] <= rng[1]
 
 
 def load_params(params) -> WaistParams | None:

@@ -167,6 +167,73 @@ def walk_ratio(length_m: np.ndarray, step_s: np.ndarray) -> tuple[float | None, 
     return length / cadence, n, length, cadence
 
 
+#: decision W207: an uncalibrated pendulum step (median) under this fraction of W6's comfortable step for the stature
+#: (``STEP_PER_HEIGHT_AT_F0`` x height at seed 000 sec. II-C's free walking frequency) warns: W100's "far under" factor
+#: (a priori, not fitted)
+SHORT_STEP_FACTOR = 0.5
+
+
+def short_step_limit(height_m: float = WALK_RATIO_HEIGHT_M) -> float:
+    """Decision W207: the median step length (m) under which an uncalibrated pendulum reading warns for a walker
+    ``height_m`` tall: :data:`SHORT_STEP_FACTOR` x W6's comfortable step ``STEP_PER_HEIGHT_AT_F0 x height``."""
+    from pdrlearn.waist.params import STEP_PER_HEIGHT_AT_F0
+
+    return SHORT_STEP_FACTOR * STEP_PER_HEIGHT_AT_F0 * float(height_m)
+
+
+#: decision W207: why a short pendulum step is read long, and what to do (shared by the waist-pendulum and the
+#: waist-pll lines)
+SHORT_STEP_CAUSE = ("at such short steps the pelvis vaults by a few millimetres and the pendulum model (seed 003 "
+                    "eq. 1: the step length grows with the square root of the vault) reads them long whatever the "
+                    "cadence (simulated shuffling at 0.2-0.42 m/s read +21 to +101 %), so the distance, speed and "
+                    "step lengths are not reliable even when the speed looks plausible; calibrate on this walker's "
+                    "own walk of known length ('pdrlearn calibrate DIR --distance M --out PARAMS.json', e.g. a 10 m "
+                    "walk test at this gait), then track with --params PARAMS.json, or use a foot unit")
+
+
+def short_step_message(length: float | None, n: int, height_m: float = WALK_RATIO_HEIGHT_M, *,
+                       pll_m: float | None = None, pendulum_m: float | None = None) -> str | None:
+    """Decision W207's one warning line when the median uncalibrated pendulum step ``length`` (m, over ``n`` >=
+    :data:`PLAUSIBILITY_MIN_PAIRS` steps with a step time) is under :func:`short_step_limit` of a walker ``height_m``
+    tall; None otherwise. Decision W208: ``pll_m`` / ``pendulum_m``, the distances of a ``waist-pll`` track and of the
+    pendulum reading of the same session it is judged on (W139); the line gives both."""
+    lim = short_step_limit(height_m)
+    if length is None or n < PLAUSIBILITY_MIN_PAIRS or length >= lim:
+        return None
+    head = (f"the uncalibrated pendulum model reads a median step of {length:.2f} m over {n} steps, under half the "
+            f"comfortable step of a walker {height_m:.2f} m tall ({lim:.2f} m; 0.415 x height, decision W6; under it "
+            "warns, decision W207): a short-stepping (shuffling) gait; ")
+    if pll_m is not None and pendulum_m is not None:  # W208
+        head = (f"waist-pll reads {pll_m:.2f} m ({_direction(pll_m, pendulum_m)} the pendulum model's {pendulum_m:.2f} "
+                "m on the same session, which its step length is judged on: decision W139, W208); " + head)
+    return head + SHORT_STEP_CAUSE
+
+
+def _direction(a: float, b: float) -> str:
+    """W208: ``a`` against ``b`` in words, so a line's direction is the reading's."""
+    return "longer than" if a > b else "shorter than" if a < b else "the same as"
+
+
+#: decision W208: an uncalibrated waist-pll track with more than this fraction fewer contacts than the pendulum
+#: detector's on the same session misses steps (W99's disagreement of two step counts, the lead's 30 %)
+PLL_MISSED_FRACTION = STEP_COUNT_DISAGREE
+
+
+def pll_missed_steps_message(n_pll: int, n_pendulum: int, pll_m: float, pendulum_m: float) -> str | None:
+    """Decision W208's one warning line when a ``waist-pll`` track has ``n_pll`` contacts, more than
+    :data:`PLL_MISSED_FRACTION` under the ``n_pendulum`` >= :data:`STEP_COUNT_MIN` of the pendulum detector on the
+    same session (its distance ``pll_m`` against the pendulum reading's ``pendulum_m``); None otherwise."""
+    if n_pendulum < STEP_COUNT_MIN or n_pendulum - n_pll <= PLL_MISSED_FRACTION * n_pendulum:
+        return None
+    return (f"waist-pll found {n_pll} steps where the pendulum model's contact detector found {n_pendulum} on the same "
+            f"session (more than {100 * PLL_MISSED_FRACTION:.0f} % fewer warns, decision W208, W99's disagreement): "
+            "its phase-locked loop loses the step rhythm of this gait (slow walking), so it misses steps; its step "
+            f"count, cadence and distance ({pll_m:.2f} m, {_direction(pll_m, pendulum_m)} the pendulum's "
+            f"{pendulum_m:.2f} m) read short and its bouts and pauses are not reliable; track with --pipeline "
+            "waist-pendulum, calibrated on this walker's own walk of known length ('pdrlearn calibrate DIR "
+            "--pipeline waist-pendulum --distance M --out PARAMS.json'), or use a foot unit")
+
+
 #: decision W139: what the walk ratio of a ``waist-pll`` track is read from, and why
 PLL_WALK_RATIO_BASIS = ("waist-pll's step length is a line in its step frequency, so its own walk ratio always looks "
                         "healthy; judged on the pendulum model's reading of the same session (decision W139; "
@@ -225,12 +292,15 @@ def running_cadence(length: float | None, cadence: float | None, height_m: float
 
 
 def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
-                       height_m: float = WALK_RATIO_HEIGHT_M, *, pll_length: float | None = None) -> str | None:
+                       height_m: float = WALK_RATIO_HEIGHT_M, *, pll_length: float | None = None,
+                       pll_m: float | None = None, pendulum_m: float | None = None) -> str | None:
     """Decision W100's one warning line for an uncalibrated waist track whose walk ratio lies outside
     :data:`WALK_RATIO_BAND` over at least :data:`PLAUSIBILITY_MIN_PAIRS` steps; None when it is inside or not
     judged. Decision W116: the band is that of a walker ``height_m`` tall (:func:`walk_ratio_scale`: a child's healthy
     walk ratio is smaller). Decision W139: ``pll_length`` (m), the median step of a ``waist-pll`` track whose
-    ``ratio``, ``length`` and ``cadence`` are the pendulum model's reading of the same session; the line says so."""
+    ``ratio``, ``length`` and ``cadence`` are the pendulum model's reading of the same session; the line says so.
+    Decision W208: with the pll track's distance ``pll_m`` and the pendulum reading's ``pendulum_m`` (m) the line gives
+    both and says "reads long" only of a pll track that reads longer than the pendulum."""
     c = walk_ratio_scale(height_m)
     lo, hi, healthy = c * WALK_RATIO_BAND[0], c * WALK_RATIO_BAND[1], c * WALK_RATIO_HEALTHY
     if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or lo <= ratio <= hi:
@@ -246,7 +316,12 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
                 "short, not long (simulated 167-200 steps/min: -41.7 to -47.6 % distance), so the distance is "
                 "probably too short")
     if pll_length is not None:  # W139
+        if pll_m is not None and pendulum_m is not None and not pll_m > pendulum_m and ratio < lo:  # W208
+            what = what.replace("and reads long (simulated festinating walks: +20 to +174 % distance)",
+                                "and is not reliable")
         what = (f"{what}; waist-pll reads a median step of {pll_length:.2f} m, the pendulum {length:.2f} m")
+        if pll_m is not None and pendulum_m is not None:  # W208: the direction is the reading's
+            what += f" (distance {pll_m:.2f} m, {_direction(pll_m, pendulum_m)} the pendulum's {pendulum_m:.2f} m)"
     return (("" if pll_length is None else PLL_WALK_RATIO_BASIS) +
             f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
             f"{n} steps; healthy gait ~{healthy:.4f} at {height_m:.2f} m tall, outside {lo:.4f}-{hi:.4f} warns, "
@@ -270,18 +345,50 @@ def median_cadence(frequency_hz: np.ndarray) -> tuple[float | None, int]:
     return (60.0 * float(np.median(f)) if f.size else None), int(f.size)
 
 
-def calibration_gait(frequency_hz: np.ndarray, distance_m: float) -> dict | None:
+def calibration_gait(frequency_hz: np.ndarray, distance_m: float, walks_hz: list | None = None) -> dict | None:
     """Decision W140: the gait of the calibration walks whose counted steps have the step frequencies
     ``frequency_hz`` (Hz) and cover ``distance_m`` (the known lengths summed): ``median_cadence_spm``,
     ``step_length_m`` (the known distance over the counted steps), ``speed_mps`` (the distance over the steps'
-    summed durations ``1 / f``) and ``n_steps``; None without a step."""
+    summed durations ``1 / f``) and ``n_steps``; decision W211: ``cadence_range_spm``, the lowest and highest median
+    cadence of the walks (``walks_hz``: each walk's step frequencies; default one walk); None without a step."""
     f = np.asarray(frequency_hz, dtype=np.float64)
     f = f[np.isfinite(f) & (f > 0)]
     if not f.size:
         return None
+    per_walk = [median_cadence(w)[0] for w in (walks_hz if walks_hz is not None else [f])]
+    per_walk = [c for c in per_walk if c is not None] or [60.0 * float(np.median(f))]
     return {"median_cadence_spm": round(60.0 * float(np.median(f)), 2),
             "step_length_m": round(float(distance_m) / f.size, 4),
-            "speed_mps": round(float(distance_m) / float(np.sum(1.0 / f)), 4), "n_steps": int(f.size)}
+            "speed_mps": round(float(distance_m) / float(np.sum(1.0 / f)), 4), "n_steps": int(f.size),
+            "cadence_range_spm": [round(min(per_walk), 2), round(max(per_walk), 2)]}
+
+
+#: decision W211: a calibrated track whose median cadence is more than this fraction below the calibration walks'
+#: lowest or above their highest warns (a priori: the trial's speed bias is ~1/3 of the cadence change, +9.6 % at
+#: x0.77 and -8.2 % at x1.29, so 10 % of cadence is ~3 % of distance, a same-speed re-test's spread)
+CALIBRATION_SPEED_MARGIN = 0.10
+
+
+def calibration_speed_message(gait: dict | None, cadence: float | None, n: int, pipeline: str) -> str | None:
+    """Decision W211's one warning line when a track calibrated on walks of ``gait`` (:func:`calibration_gait`; its
+    ``cadence_range_spm``, else ``median_cadence_spm`` for both ends; None: not judged) has a median ``cadence``
+    (steps/min, over ``n`` >= :data:`PLAUSIBILITY_MIN_PAIRS` steps) outside the range widened by
+    :data:`CALIBRATION_SPEED_MARGIN` either way."""
+    gait = gait or {}
+    rng = gait.get("cadence_range_spm") or [gait.get("median_cadence_spm")] * 2
+    if rng[0] is None or cadence is None or n < PLAUSIBILITY_MIN_PAIRS or not rng[0] > 0:
+        return None
+    lo, hi = float(rng[0]) * (1.0 - CALIBRATION_SPEED_MARGIN), float(rng[1]) * (1.0 + CALIBRATION_SPEED_MARGIN)
+    if lo <= cadence <= hi:
+        return None
+    cal = f"{float(rng[0]):.0f}" if rng[0] == rng[1] else f"{float(rng[0]):.0f}-{float(rng[1]):.0f}"
+    speed = gait.get("speed_mps")
+    at = f", {float(speed):.2f} m/s" if speed is not None else ""
+    return (f"this walk's median cadence {cadence:.0f} steps/min ({n} steps) is outside the {pipeline} calibration's "
+            f"{cal} steps/min{at} by more than {100 * CALIBRATION_SPEED_MARGIN:.0f} % (decision W211): a calibration "
+            "holds near the speed it was made at (one at 1.0 m/s read +7..+10 % at 0.6 m/s and -8 % at 2.0 m/s); "
+            "calibrate on walks at several speeds ('pdrlearn calibrate SLOW NORMAL FAST -d M -d M -d M', which "
+            "separates K and F) or on a walk at this speed")
 
 
 def calibration_gait_message(gait: dict | None, cadence: float | None, n: int, pipeline: str) -> str | None:

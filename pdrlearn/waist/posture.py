@@ -28,6 +28,8 @@ Decision W189: :func:`stand_veto` drops a whole walking run whose median vertica
 recording's median contact bounce (standing sway chains contacts with the bounce of none of the wearer's steps).
 Decision W191: with ``spare_turns`` a weak run holding a step that turns the pelvis (W127's test) is kept.
 Decision W196: with ``spare_alternation`` a weak run whose decided sides (W20) alternate left/right is kept.
+Decision W198: with ``spare_adjacent`` a weak run with walking strides within Mobilise-D's 3 s bout break before and
+after it (inside one walking bout) is kept.
 """
 
 from __future__ import annotations
@@ -37,6 +39,7 @@ import pandas as pd
 
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU
+from pdrlearn.waist.gait_rules import MAX_BREAK_S, positional_strides
 from pdrlearn.waist.plausibility import contact_lateral_velocity
 from pdrlearn.waist.steplength import pendulum_h
 
@@ -287,7 +290,8 @@ def turning_steps(steps: pd.DataFrame, imu: WaistIMU, gyro_bias_rps: float = 0.0
 
 
 def stand_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
-               gyro_bias_rps: float = 0.0, spare_alternation: bool = False) -> pd.DataFrame:
+               gyro_bias_rps: float = 0.0, spare_alternation: bool = False,
+               spare_adjacent: bool = False) -> pd.DataFrame:
     """``steps`` without the walking runs (contacts chained by ``has_next``) whose median bounce
     (:func:`~pdrlearn.kernels.waist.contact_bounce`) is under :data:`~pdrlearn.kernels.waist.WEAK_RUN_FRAC` of the
     median bounce of all the contacts (:func:`~pdrlearn.kernels.waist.weak_run_mask`; decision W189).
@@ -300,7 +304,14 @@ def stand_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
     ``spare_alternation`` (decision W196): a weak run whose decided sides (W20's :func:`~pdrlearn.kernels.waist.
     step_sides` of the pelvis's lateral velocity at the contacts, decided as the sit veto's, W109) alternate left /
     right, at least two of them decided (:func:`~pdrlearn.kernels.waist.alternating_run_mask`), is kept whole: real
-    steps alternate sides, standing sway and weight shifts do not or stay undecided."""
+    steps alternate sides, standing sway and weight shifts do not or stay undecided.
+
+    ``spare_adjacent`` (decision W198): a weak run with a walking contact (of a run that is not weak and that starts
+    or ends a stride, W47's :func:`~pdrlearn.waist.gait_rules.positional_strides`) at most
+    :data:`~pdrlearn.waist.gait_rules.MAX_BREAK_S` (Mobilise-D's walking-bout break, 3 s) before its first contact
+    AND one at most that after its last (:func:`~pdrlearn.kernels.waist.adjacent_run_mask`) is kept whole: it lies
+    inside one walking bout (a slow turn on the spot between two walks), while standing sway lies away from walking
+    on at least one side."""
     if steps.empty:
         out = steps.copy()
         out.attrs["n_weak_run"] = 0
@@ -312,5 +323,12 @@ def stand_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
     if spare_alternation:  # W196: the run's decided sides alternate
         spare = K.alternating_run_mask(K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, ev),
                                                     has_next), has_next)
-    drop = K.weak_run_mask(K.contact_bounce(imu.acc_v, imu.fs, idx), has_next, spare=spare)
+    bounce = K.contact_bounce(imu.acc_v, imu.fs, idx)
+    if spare_adjacent:  # W198: walking strides (not weak, W189's test read once) within 3 s before and after
+        a, b = positional_strides(has_next)
+        in_stride = np.zeros(ev.size, dtype=bool)
+        in_stride[a], in_stride[b] = True, True
+        walking = in_stride & ~K.weak_run_mask(bounce, has_next)
+        spare = K.adjacent_run_mask(ev, has_next, walking, MAX_BREAK_S)
+    drop = K.weak_run_mask(bounce, has_next, spare=spare)
     return drop_contacts(steps, ~drop, "n_weak_run")

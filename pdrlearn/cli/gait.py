@@ -1,0 +1,104 @@
+"""``pdrlearn gait LEFT_DIR RIGHT_DIR``: bilateral gait from two foot units of one walk (decisions L259-L263)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import typer
+
+from pdrlearn.cli.common import FORCE_HELP
+
+#: the files ``gait --out`` writes (decision L260); the output-folder kind ``gait`` is recognised by them
+GAIT_FILES = ("gait_summary.json", "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
+
+
+def _fmt(v, spec: str) -> str:
+    return "-" if v is None else format(v, spec)
+
+
+def gait_lines(summary: dict) -> list[str]:
+    """The printed lines of one :func:`pdrlearn.track.bilateral.bilateral_gait` measures dict (``walk``)."""
+    w = summary
+    lines = [f"steps left/right {w['n_steps_left']}/{w['n_steps_right']}: step time "
+             f"{_fmt(w['step_time_s_left'], '.3f')} / {_fmt(w['step_time_s_right'], '.3f')} s, symmetry index "
+             f"{_fmt(w['step_time_s_si_pct'], '.1f')} %, ratio L/R {_fmt(w['step_time_s_ratio'], '.3f')}",
+             f"stride length left/right {_fmt(w['stride_length_m_left'], '.3f')} / "
+             f"{_fmt(w['stride_length_m_right'], '.3f')} m, symmetry index {_fmt(w['stride_length_m_si_pct'], '.1f')} %"
+             f" (stride time {_fmt(w['stride_time_s_left'], '.3f')} / {_fmt(w['stride_time_s_right'], '.3f')} s)"]
+    if w["double_support_pct"] is not None:
+        lines.append(f"double support {w['double_support_pct']:.1f} % of the gait cycle, single support left/right "
+                     f"{_fmt(w['single_support_pct_left'], '.1f')} / {_fmt(w['single_support_pct_right'], '.1f')} % "
+                     f"({w['n_support_cycles']} cycles)")
+    return lines
+
+
+def _summary_json(res: dict) -> dict:
+    out = {k: res[k] for k in ("walk", "bouts", "toe_off", "reason", "sessions")}
+    ref = res.get("reference")
+    out["reference"] = None if ref is None else {k: ref[k] for k in ("walk", "bouts", "toe_off", "reason")}
+    return out
+
+
+def register(app: typer.Typer) -> None:
+    @app.command("gait")
+    def gait_cmd(
+        left_dir: Path = typer.Argument(..., help="The LEFT foot's session folder."),
+        right_dir: Path = typer.Argument(..., help="The RIGHT foot's session folder of the same walk (same clock)."),
+        out: Path = typer.Option(None, "--out", "-o", help="Folder for gait_summary.json, gait_steps.csv, "
+                                 "gait_cycles.csv and gait_bouts.csv (default: print only)."),
+        force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+        as_json: bool = typer.Option(False, "--json", help="Print gait_summary.json's object."),
+    ):
+        """Bilateral gait of one walk recorded with a unit on each foot: step time (one foot's initial contact
+        to the other's next), step-time / stride-time / stride-length asymmetry (symmetry index and L/R ratio),
+        double and single support (% of the gait cycle, from the toe-off of track --toe-off), per walk and per
+        walking bout. Each folder is tracked offline with --toe-off; with labelled IC / TC events in both folders
+        (gaitmap's mocap) the same measures of the labels are given as the reference. The two recordings must share
+        one clock (t = 0 at the same instant, as gaitmap's left / right folders): pdrlearn does not align them, and
+        refuses only contacts that do not overlap in time (decision L260).
+
+        Examples:
+
+          pdrlearn gait datasets/real/gaitmap_level_left datasets/real/gaitmap_level_right
+
+          pdrlearn gait LEFT RIGHT --out gait_out --json
+        """
+        from pdrlearn.atomic import atomic_directory
+        from pdrlearn.cli.common import existed, out_folder, print_json, refused_output, replaced
+        from pdrlearn.io.plasys import json_safe
+        from pdrlearn.track.bilateral import pair_sessions
+
+        if out is not None:
+            out_folder(out, "gait", force=force, inputs=(left_dir, right_dir))
+        res = pair_sessions(left_dir, right_dir)  # bad input fails here, before any folder is made
+        summary = json_safe(_summary_json(res))
+        if out is not None:
+            import pandas as pd
+
+            was = existed(out)
+            with refused_output(out), atomic_directory(out) as tmp:  # all four files or none (B151)
+                (tmp / "gait_summary.json").write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n")
+                res["steps"].to_csv(tmp / "gait_steps.csv", index=False)
+                res["cycles"].to_csv(tmp / "gait_cycles.csv", index=False)
+                pd.DataFrame(res["bouts"]).to_csv(tmp / "gait_bouts.csv", index=False)
+            replaced(out, was)
+        if as_json:
+            print_json(summary)
+            return
+        s = res["sessions"]
+        typer.echo(f"{s['left']['session']} + {s['right']['session']}: {s['left']['n_strides']} left and "
+                   f"{s['right']['n_strides']} right strides tracked, {len(res['bouts'])} walking bout(s)")
+        for line in gait_lines(res["walk"]):
+            typer.echo(line)
+        if res["reason"]:
+            typer.echo(res["reason"])
+        ref = res.get("reference")
+        if ref is not None:
+            typer.echo("reference (the sessions' labelled contacts):")
+            for line in gait_lines(ref["walk"]):
+                typer.echo("  " + line)
+            if ref["reason"]:
+                typer.echo("  " + ref["reason"])
+        if out is not None:
+            typer.echo(f"wrote {out}/" + ", ".join(GAIT_FILES))

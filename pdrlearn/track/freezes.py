@@ -1,0 +1,81 @@
+"""Freezing-of-gait episodes of a track: ``freezes.csv`` and ``n_freezes`` / ``freeze_time_s`` (decision W213).
+
+The freeze index (:mod:`pdrlearn.kernels.freeze`: Moore et al. 2008's bands, Baechlin et al. 2010's 4 s windows every
+0.5 s and band-power threshold) of the tracked unit's vertical acceleration: the lower back's for the waist
+pipelines, the foot's for the foot pipelines. Orientation-free, the vertical acceleration is read as the
+accelerometer's norm (gravity dominates it: for a small oscillation the norm's change is the component along
+gravity; each window's mean, gravity, is removed by the index).
+
+W213's threshold: the published global FI threshold of 1.5 (Baechlin et al. 2010, for the shank and thigh; as
+published, not verified against the paper text here) flags the foot and the lower back of simulated shuffling walks
+(0.2 m steps, FI 1.5-4) as freezing; here an episode needs an FI above :data:`UNIT_FI_THRESHOLD` (twice the
+published value), band power of at least :data:`pdrlearn.kernels.freeze.FI_POWER_MIN` and 1 s.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.kernels.freeze import FREEZE_MIN_S, freeze_episodes
+
+#: decision W213: the freeze-index threshold of a foot or lower-back unit (2 x Baechlin et al. 2010's 1.5)
+UNIT_FI_THRESHOLD = 3.0
+#: freezes.csv's columns (decision W213), in order
+FREEZE_COLUMNS = ("freeze", "start_s", "end_s", "duration_s", "peak_fi")
+#: decision W213: the summary keys of :func:`freeze_summary`
+FREEZE_SUMMARY_KEYS = ("n_freezes", "freeze_time_s")
+
+
+def unit_stream(pipeline: str | None) -> str:
+    """The accelerometer a pipeline tracks: the lower back's for the waist pipelines (and `run`'s waist bundles),
+    else the foot's."""
+    return "wAccelerometer" if "waist" in str(pipeline) else "fAccelerometer"  # runtime-waist too
+
+
+def freezes_of(t: np.ndarray, acc: np.ndarray) -> list[dict]:
+    """Freeze episodes (freezes.csv's rows) of an accelerometer's samples ``acc`` (n, 3) m/s^2 at times ``t`` (s):
+    its norm interpolated onto a uniform grid at the median sampling interval, then
+    :func:`pdrlearn.kernels.freeze.freeze_episodes` with :data:`UNIT_FI_THRESHOLD` (decision W213)."""
+    t = np.asarray(t, dtype=float)
+    if t.size < 2:
+        return []
+    dt = float(np.median(np.diff(t)))
+    if not (np.isfinite(dt) and dt > 0):
+        return []
+    grid = t[0] + dt * np.arange(int(np.floor((t[-1] - t[0]) / dt)) + 1)
+    x = np.interp(grid, t, np.linalg.norm(np.asarray(acc, dtype=float), axis=1))
+    eps = freeze_episodes(grid, x, 1.0 / dt, threshold=UNIT_FI_THRESHOLD, min_s=FREEZE_MIN_S)
+    return [{"freeze": k + 1, "start_s": round(a, 3), "end_s": round(b, 3), "duration_s": round(b - a, 3),
+             "peak_fi": round(fi, 3) if np.isfinite(fi) else None} for k, (a, b, fi) in enumerate(eps)]
+
+
+def session_freezes(session, pipeline: str | None) -> list[dict] | None:
+    """:func:`freezes_of` the tracked unit's accelerometer of ``session`` (None when the session has none)."""
+    acc = session.streams.get(unit_stream(pipeline))
+    if acc is None:
+        return None
+    return freezes_of(acc.t, acc.values)
+
+
+def freeze_table(rows: list[dict] | None) -> pd.DataFrame:
+    """freezes.csv: one row per episode (:data:`FREEZE_COLUMNS`), empty with the header when none."""
+    return pd.DataFrame(rows or [], columns=list(FREEZE_COLUMNS))
+
+
+def freeze_summary(rows: list[dict] | None) -> dict:
+    """``n_freezes`` and ``freeze_time_s`` (s in all) of the episodes; None for both when not computed."""
+    if rows is None:
+        return dict.fromkeys(FREEZE_SUMMARY_KEYS)
+    return {"n_freezes": len(rows), "freeze_time_s": round(float(sum(r["duration_s"] for r in rows)), 3)}
+
+
+def freeze_caveat_message(n: int, seconds: float, vetoed: bool) -> str:
+    """Decision W215: the lower-back track's line when its freeze index found episodes: what else reads as freezing
+    there, and whether the contacts inside were counted as steps (``vetoed``: W214's option)."""
+    steps = ("their contacts were dropped (freeze_veto, decision W214)" if vetoed else
+             "the contacts inside them are still counted as steps and distance (the option freeze_veto drops them, "
+             "decision W214; off by default: it also drops slow shuffling steps)")
+    return (f"{n} freeze episode(s) of {seconds:.1f} s in all (freezes.csv, the lower back's freeze index, decision "
+            f"W213); {steps}. On the lower back the index also reads very slow shuffling (0.2-0.3 m/s), festinating "
+            "walks and daily activities as freezing (decision W215): confirm a freeze with a foot unit or video")

@@ -1,0 +1,222 @@
+"""Where a track's time went, and its totals per period (decisions L275-L279, docs/decisions/localization.md).
+
+Decision L275 (time accounting): the time of a window ``[a, b]`` of a session's clock (``track --window``, one
+row of periods.csv, or the whole recording of the tracked unit) splits into four parts that sum to ``b - a``:
+
+* ``time_walking_s``: the whole session's walking pieces (:func:`pdrlearn.track.gait.session_walking_pieces`, the
+  pieces ``walking_time_s`` sums, decision L79) inside the window, less any data gap;
+* ``time_no_data_s``: the tracked unit's stream gaps longer than :data:`pdrlearn.kernels.gaps.MIN_GAP_S` (the gaps
+  the track warns of, decision B11) inside the window: nothing is known of what the walker did;
+* ``time_between_steps_s``: from the first to the last step counted in the window (the steps whose middle lies
+  inside, L105's rule; a gap row is no step), the time that is neither walking nor data gap: standing (or sitting)
+  between the window's steps;
+* ``time_no_steps_s``: the rest - before the window's first step and after its last (a seated stretch at the
+  window's edge, the time before the walk starts): no step of the window bounds it.
+
+Walking and data gap add up over consecutive windows (they are the whole session's, cut); between-steps and
+no-step time add up only together (a stop across a window's edge is between steps in the whole session and no-step
+time in each window holding a part of it). The session's ``time_walking_s`` is its ``walking_time_s``.
+
+Decision L277 (periods.csv, ``track --per 1h``): the whole-session track cut into consecutive periods from the
+recording's start (the last one shorter, ``partial``); each row's time columns are L275's for that period, its
+steps those whose middle lies inside (distance, n_steps), its bouts those that start inside, its turns (turns.csv)
+those whose start lies inside, its storeys those of the climbs whose last stair stride lies inside. Totals equal
+the summary's (decision L278). Not re-tracked per period: a re-track would restart the tracker's start-up (the
+foot's first rest, its heading), drop the strides across each edge and the position it reached, and cost one
+track per period.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+
+#: decision L275: the summary's time-accounting keys, which sum to ``time_span_s``
+TIME_KEYS = ("time_walking_s", "time_between_steps_s", "time_no_steps_s", "time_no_data_s")
+#: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
+PERIOD_COLUMNS = ("session", "subject", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
+                  "n_steps", *TIME_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
+                  "position_sigma_end_m")
+#: decision L277: ``--per`` units (s)
+PER_UNITS = {"s": 1.0, "min": 60.0, "m": 60.0, "h": 3600.0}
+PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
+
+def parse_per(text: str | None) -> float | None:
+    """``"1h"`` / ``"30min"`` / ``"90s"`` / ``"3600"`` -> seconds; None for None. One :class:`DataError` line for
+    anything else (decision L277)."""
+    if text is None:
+        return None
+    m = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*(s|min|m|h)?\s*", str(text))
+    per = float(m.group(1)) * PER_UNITS[m.group(2) or "s"] if m else math.nan
+    if not (math.isfinite(per) and per > 0):
+        raise DataError(f"--per {text!r}: not a positive period; {PER_USAGE}")
+    return per
+
+
+def _union(iv) -> np.ndarray:
+    """(K, 2) the union of intervals ``iv`` (rows ``(t0, t1)``), sorted and disjoint; empty ones dropped."""
+    iv = np.asarray(iv, dtype=float).reshape(-1, 2)
+    iv = iv[iv[:, 1] > iv[:, 0]]
+    if not len(iv):
+        return iv
+    iv = iv[np.argsort(iv[:, 0], kind="stable")]
+    out = [list(iv[0])]
+    for t0, t1 in iv[1:]:
+        if t0 <= out[-1][1]:
+            out[-1][1] = max(out[-1][1], t1)
+        else:
+            out.append([t0, t1])
+    return np.asarray(out)
+
+
+def _measure(iv: np.ndarray, a: float, b: float) -> float:
+    """Total length (s) of the disjoint intervals ``iv`` inside ``[a, b]``."""
+    if not len(iv) or b <= a:
+        return 0.0
+    return float(np.clip(np.minimum(iv[:, 1], b) - np.maximum(iv[:, 0], a), 0.0, None).sum())
+
+
+def _minus(iv: np.ndarray, cut: np.ndarray) -> np.ndarray:
+    """The disjoint intervals ``iv`` less the disjoint intervals ``cut``."""
+    out = []
+    for t0, t1 in iv:
+        for c0, c1 in cut:
+            if c1 <= t0 or c0 >= t1:
+                continue
+            if c0 > t0:
+                out.append((t0, c0))
+            t0 = max(t0, c1)
+            if t0 >= t1:
+                break
+        if t1 > t0:
+            out.append((t0, t1))
+    return _union(out)
+
+
+@dataclass(frozen=True)
+class Timeline:
+    """A whole-session track's time (decision L275): its walking pieces and data gaps (disjoint, s of the session's
+    clock) and its steps' spans (``start``, ``end``; ``is_step`` False on a gap row)."""
+
+    walking: np.ndarray
+    no_data: np.ndarray
+    start: np.ndarray
+    end: np.ndarray
+    is_step: np.ndarray
+
+    @classmethod
+    def of(cls, steps: pd.DataFrame, gaps) -> Timeline:
+        """From a whole-session step table and ``gaps`` (``(t0, t1)`` intervals of the tracked unit's data gaps)."""
+        from pdrlearn.track.gait import session_walking_pieces
+
+        st = steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(steps) else steps
+        no_data = _union(gaps)
+        walking = _minus(_union(session_walking_pieces(st)), no_data)
+        gap_row = (pd.to_numeric(st["gap_s"], errors="coerce").fillna(0.0).to_numpy(float) > 0 if "gap_s" in st
+                   else np.zeros(len(st), bool))
+        start = st["start_s"].to_numpy(float) if len(st) else np.zeros(0)
+        end = st["end_s"].to_numpy(float) if len(st) else np.zeros(0)
+        return cls(walking, no_data, start, end, ~gap_row)
+
+    def budget(self, a: float, b: float) -> dict:
+        """L275's four times (s) of ``[a, b]`` (:data:`TIME_KEYS`), summing to ``b - a``."""
+        walk, gap = _measure(self.walking, a, b), _measure(self.no_data, a, b)
+        mid = 0.5 * (self.start + self.end)
+        inside = self.is_step & (mid >= a) & (mid <= b)  # L105's rule: the steps the window counts
+        between = 0.0
+        if inside.any():
+            f, la = max(a, float(self.start[inside].min())), min(b, float(self.end[inside].max()))
+            if la > f:
+                between = max(0.0, (la - f) - _measure(self.walking, f, la) - _measure(self.no_data, f, la))
+        return {"time_walking_s": walk, "time_between_steps_s": between,
+                "time_no_steps_s": max(0.0, (b - a) - walk - gap - between), "time_no_data_s": gap}
+
+
+def unit_gaps(session, unit: str | None) -> list[tuple[float, float]]:
+    """The data gaps (s) the track warns of (over ``MIN_GAP_S``, decision B11) in the tracked ``unit``'s IMU streams
+    (foot: ``fAccelerometer`` / ``fGyroscope``; waist: ``wAccelerometer`` / ``wGyroscope``)."""
+    from pdrlearn.track.gaps import long_gaps
+
+    names = ("wAccelerometer", "wGyroscope") if unit == "waist" else ("fAccelerometer", "fGyroscope")
+    return [iv for g in long_gaps(session, names).values() for iv in g]
+
+
+def session_span(session, unit: str | None) -> tuple[float, float]:
+    """The whole recording of the tracked ``unit`` (s of the session's clock; the session's start, as
+    ``--window``'s seconds count from it, decision B81, to the unit's last sample)."""
+    from pdrlearn.track.units import unit_span
+
+    span = unit_span(session, unit) if unit is not None else None
+    return float(session.t_recording_start), float(span[1] if span is not None else session.t_end)
+
+
+def time_summary(timeline: Timeline, a: float, b: float) -> dict:
+    """Decision L275: the summary's :data:`TIME_KEYS` of ``[a, b]`` and ``time_span_s`` (= ``b - a``, their sum)."""
+    return {**timeline.budget(a, b), "time_span_s": float(b - a)}
+
+
+def time_accounting(result, session, unit: str | None = None, window: tuple[float, float] | None = None) -> dict:
+    """Decision L275: :func:`time_summary` of a whole-session ``result`` over ``window`` (s of the session's clock;
+    None = the tracked unit's recording), as ``track`` and ``run`` (B14: the same keys) give it; ``unit`` None:
+    the steps' own (waist when every row is the lower back's, else foot). Without a session (a live stream) every
+    key is None: no recording's extent or gaps are known."""
+    if session is None:
+        return {**{k: None for k in TIME_KEYS}, "time_span_s": None}
+    steps = result.steps
+    if unit is None:
+        unit = "waist" if "unit" in steps and len(steps) and (steps["unit"] == "waist").all() else "foot"
+    timeline = Timeline.of(steps, unit_gaps(session, unit))
+    return time_summary(timeline, *(window if window is not None else session_span(session, unit)))
+
+
+def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
+                 turns: pd.DataFrame | None, storey_height_m: float = 3.0) -> pd.DataFrame:
+    """Decision L277: periods.csv of a whole-session track (:data:`PERIOD_COLUMNS`, module docstring), periods of
+    ``per_s`` seconds from the recording's start to the tracked ``unit``'s end; ``bouts`` bouts.csv's table,
+    ``turns`` turns.csv's."""
+    from pdrlearn.track.bouts import session_key
+    from pdrlearn.track.evaluate import _climb_dz, floor_climbs
+
+    t0, t1 = session_span(session, unit)
+    steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
+        else result.steps
+    timeline = Timeline.of(steps, unit_gaps(session, unit))
+    edges = np.arange(t0, t1, per_s)
+    ends = np.minimum(edges + per_s, t1)
+    mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
+    length = steps["length_m"].abs().to_numpy(float) if len(steps) else np.zeros(0)
+    dz, bridge = _climb_dz(steps)
+    climbs = floor_climbs(dz, storey_height_m, bridge=bridge) if dz is not None else None
+    climb_t = np.array([mid[i] for i, _ in climbs]) if climbs else np.zeros(0)
+    climb_n = np.array([n for _, n in climbs]) if climbs else np.zeros(0)
+    bout_t = bouts["start_s"].to_numpy(float) if bouts is not None and len(bouts) else np.zeros(0)
+    turn_t = turns["start_s"].to_numpy(float) if turns is not None and len(turns) else np.zeros(0)
+    traj = result.trajectory
+    sigma = traj["pos_sigma_m"].to_numpy(float) if "pos_sigma_m" in traj and len(traj) else None
+    tt = traj["t"].to_numpy(float) if len(traj) else np.zeros(0)
+    rows = []
+    for k, (a, b) in enumerate(zip(edges, ends, strict=True)):
+        last = k == len(edges) - 1
+
+        def inside(t, a=a, b=b, last=last):  # each time in one period: [a, b), the last one [a, b]
+            return (t >= a) & ((t <= b) if last else (t < b))
+
+        m = inside(mid)
+        row = {**session_key(session), "period": k + 1, "start_s": float(a), "end_s": float(b),
+               "duration_s": float(b - a), "partial": bool(b - a < per_s - 1e-9),
+               "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), **timeline.budget(a, b)}
+        c = inside(climb_t)
+        row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None
+        row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None
+        row["n_bouts"], row["n_turns"] = int(inside(bout_t).sum()), int(inside(turn_t).sum())
+        row["data_gap"] = row["time_no_data_s"] > 0
+        j = int(np.searchsorted(tt, b + 1e-9, side="right")) - 1
+        row["position_sigma_end_m"] = float(sigma[j]) if sigma is not None and j >= 0 else None
+        rows.append(row)
+    return pd.DataFrame(rows, columns=list(PERIOD_COLUMNS))
