@@ -139,7 +139,8 @@ SESSIONS: tuple[Column, ...] = (
                                                  "the walking range (L195); 0 on a slow session (L248)"),
     ("n_backward_strides", "count", "integer", "foot: strides whose raw length is negative, turning under 30 deg "
                                                "(backward travel, with or without a model; a replay: strides classed "
-                                               "backward; L203); empty on the lower back"),
+                                               "backward; L203); side steps excluded (L270); empty on the lower "
+                                               "back"),
     ("n_cv_strides", "count", "integer", "steady straight level forward strides stride_time_cv_pct and "
                                          "stride_length_cv_pct are computed over (L104, L212)"),
     ("n_detected", "count", "integer", "lower back: detected contacts scored"),
@@ -148,13 +149,16 @@ SESSIONS: tuple[Column, ...] = (
     ("n_reference_strides", "count", "integer", "reference strides stride_length_mae_m compares"),
     ("n_stance_times", "count", "integer", "--toe-off only: strides with a stance time"),
     ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
+    ("n_side_strides", "count", "integer", "foot: strides of side-stepping runs (L219 / L228's sideways rows), "
+                                           "not counted as backward (L270); empty on the lower back"),
     ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
     ("n_straight_strides", "count", "integer", "level strides turning under 15 deg (L179)"),
     ("n_stride_times", "count", "integer", "strides with a stride time"),
     ("n_turns", "count", "integer", "reference turns compared (turns.csv only, L42)"),
     ("n_turns_signed", "count", "integer", "reference turns of 45 deg or more whose sign is compared (L42)"),
     ("n_unscored", "count", "integer", "lower back: contacts outside the scored span"),
-    ("n_walking_bouts", "count", "integer", "walking bouts = n_pauses + 1 (L104's pauses, whatever --bout-rule): "
+    ("n_walking_bouts", "count", "integer", "walking bouts = n_pauses + 1 + foot-data gaps over 1 s (L104's pauses, "
+                                            "L269's gaps, whatever --bout-rule): "
                                             "equals n_bouts under the default rule; under --bout-rule mobgap or "
                                             "--bout-min-strides report n_bouts (L217)"),
     ("out_of_domain_fraction", "fraction", "number",
@@ -295,6 +299,8 @@ BOUTS: tuple[Column, ...] = (
     ("cadence_spm", "steps/min", "number", "60 x n_step_intervals / contact_span_s (L164)"),
     ("longest_contact_gap_s", "s", "number", "longest time between two consecutive contacts in the bout; may "
                                              "exceed --bout-break-s under --bout-rule pdrlearn (L163)"),
+    ("data_gap_s", "s", "number", "foot-data gaps (L67's gap rows) inside the bout, summed; a gap longer than "
+                                  "--bout-break-s ends the bout instead (L269)"),
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),
     ("altitude_change_m", "m", "number", "z change over the bout"),
     ("altitude_change_before_m", "m", "number", "lower back: z change while standing before the bout (a lift or "

@@ -168,8 +168,10 @@ def test_track_all_groups_the_range_warning_of_several_sessions(tmp_path, capsys
         assert main(["track-all", str(tmp_path / "in"), "--out", str(tmp_path / "o"), "--json"]) == 0
     lines = [r.getMessage() for r in caplog.records if "decision L95" in r.getMessage() and "of 2 sessions" in
              r.getMessage()]
-    assert len(lines) == 1 and lines[0].startswith("u1163, u1164: ") and "[2 of 2 sessions]" in lines[0], lines  # E118
-    assert "(the figures are u1163's; each session's own are in sessions.csv's warnings column)" in lines[0]
+    assert len(lines) == 1 and "[2 of 2 sessions]" in lines[0], lines  # E118: the sessions first
+    # decision L271: whose figures they are is said before them
+    assert lines[0].startswith("u1163, u1164 (figures of u1163; each session's own are in its summary.json and "
+                               "sessions.csv's warnings column): "), lines
 
 
 def test_a_foot_sessions_sensor_height_is_not_the_leg():

@@ -34,9 +34,11 @@ def test_track_all_window_and_initial_heading_are_per_session(tree, tmp_path, ca
     assert main(["track-all", str(tree), "--out", str(tmp_path / "b"), *args]) == 1  # some sessions failed
     capsys.readouterr()
     s = pd.read_csv(tmp_path / "b" / "sessions.csv").set_index("path")
-    assert list(s["status"]) == ["ok", "failed", "failed"]
-    # the window counts from each session's start: the 13.6 s recording cannot hold 2-16 s (L105's check)
-    assert "--window 2,16 lies outside the recording, which lasts 13.60 s" in s.loc["b/p03", "error"]
+    assert list(s["status"]) == ["ok", "failed", "ok"]
+    # the window counts from each session's start: the 13.6 s recording's window is clipped to 2-13.6 s, said in
+    # its warnings (decision B242; refused before)
+    assert s.loc["b/p03", "window_end_s"] == pytest.approx(13.6)
+    assert "--window 2,16 ends after the recording, which lasts 13.60 s" in s.loc["b/p03", "warnings"]
     # the magnetometer's heading is absolute: --initial-heading refused for that session only (L98's check)
     assert "absolute" in s.loc["a/p02", "error"] and "drop --initial-heading" in s.loc["a/p02", "error"]
     ok = s.loc["a/p01"]

@@ -55,7 +55,6 @@ def test_window_keeps_the_steps_inside_and_cuts_the_reference(walk, pipeline, ca
 @pytest.mark.parametrize("window, message", [("15,5", "must be later than START"), ("5,5", "must be later"),
                                              ("0,nan", "finite"), ("inf,5", "finite"), ("-1,5", "before the session"),
                                              ("5", "two numbers"), ("a,b", "two numbers"),
-                                             ("0,9999", "lies outside the recording"),
                                              ("9000,9999", "lies outside the recording")])
 def test_bad_window_is_one_line_and_writes_nothing(walk, window, message, capsys):
     root, _ = walk
@@ -64,6 +63,23 @@ def test_bad_window_is_one_line_and_writes_nothing(walk, window, message, capsys
     err = capsys.readouterr().err.strip()
     assert err.startswith("error: ") and message in err and "\n" not in err, err
     assert "--window" in err and not out.exists()
+
+
+def test_a_window_past_the_end_is_clipped_with_one_line(walk, capsys):
+    """Decision B242: a window that starts inside the recording and ends after it is the recording's last part
+    (per-hour bins), said in one warning line; one wholly after the end stays refused (above)."""
+    root, s = walk
+    capsys.readouterr()
+    full, _ = _track(root)
+    dur = round(s.duration_s, 2)
+    capsys.readouterr()
+    win, _ = _track(root, "--window", "10,9999")
+    err = [ln for ln in capsys.readouterr().err.splitlines() if "--window" in ln]
+    assert len(err) == 1 and "ends after the recording" in err[0] and f"clipped to 10,{dur:.2f}" in err[0], err
+    assert win["window_start_s"] == 10.0 and win["window_end_s"] == pytest.approx(dur, abs=0.01)
+    same, _ = _track(root, "--window", f"10,{dur:.2f}")
+    assert win["n_steps"] == same["n_steps"] and win["distance_m"] == pytest.approx(same["distance_m"])
+    assert 0 < win["n_steps"] < full["n_steps"]
 
 
 def test_window_counts_from_the_recording_start_with_common_span(walk, tmp_path, capsys):

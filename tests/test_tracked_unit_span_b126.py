@@ -56,10 +56,12 @@ def test_the_window_is_checked_against_the_tracked_unit(walk, tmp_path, capsys):
 
     session = read_session(walk / "foot_short")
     assert check_window((5.0, 30.0), session) == pytest.approx((5.0, 30.0))  # the session: the waist's 40 s
+    # decision B242: a window ending past the tracked unit's recording is clipped to it (one warning line)
+    assert check_window((5.0, 30.0), session, "foot") == pytest.approx((5.0, 25.0))
     with pytest.raises(DataError, match="outside the recording, which lasts 25.00 s \\(the tracked foot unit's"):
-        check_window((5.0, 30.0), session, "foot")
+        check_window((26.0, 30.0), session, "foot")
     capsys.readouterr()
-    assert main(["track", str(walk / "foot_short"), "--units", "foot", "--window", "5,30",
+    assert main(["track", str(walk / "foot_short"), "--units", "foot", "--window", "26,30",
                  "--out", str(tmp_path / "t")]) == 2
     assert "which lasts 25.00 s (the tracked foot unit's" in capsys.readouterr().err
 

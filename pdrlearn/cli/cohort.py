@@ -466,9 +466,10 @@ def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -
             texts.add(text)
     log = logging.getLogger("pdrlearn.cli")
     for rels, texts, first in seen.values():
-        shown = first if len(texts) == 1 else (f"{first} (the figures are {rels[0]}'s; each session's own are in "
-                                               "sessions.csv's warnings column)")
-        log.warning("%s", session_warning(shown, rels, len(results)))  # decision E118: the session(s) first
+        # decision L271: whose figures a grouped line shows is said before them, not after a long text
+        note = None if len(texts) == 1 else (f"figures of {rels[0]}; each session's own are in its summary.json "
+                                             "and sessions.csv's warnings column")
+        log.warning("%s", session_warning(first, rels, len(results), note))  # decision E118: the session(s) first
 
 
 def _duplicates(rels: list[str], results: list[JobResult], dirs: list[Path]) -> tuple[dict[str, str], dict[str, str]]:

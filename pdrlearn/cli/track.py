@@ -153,7 +153,8 @@ BOUT_MIN_STRIDES_OPT = typer.Option(None, "--bout-min-strides", help="Walking bo
 WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the session start (track-all: from "
                           "each session's start): track the whole session, then keep the steps whose middle lies "
                           "inside (e.g. 0,120: a 2-minute walk; decisions L105, L108). The summary, steps.csv and "
-                          "trajectory.csv are the window's; its references are cut the same way.")
+                          "trajectory.csv are the window's; its references are cut the same way. An END past "
+                          "the recording is clipped to its end, with one warning line (decision B242).")
 
 PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv (e.g. 1h, 30min, 900): the whole "
                        "session's track cut into periods from the recording's start, the last one shorter and marked "
@@ -593,7 +594,9 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     unit = tracked_unit(pipeline)
     summary.update(time_accounting(whole, session, unit, win))  # decision L275: where the time went
     if win is not None:
-        summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
+        # decision B242: the window as tracked (an END past the recording clipped to it, info["window"])
+        summary["window_start_s"], summary["window_end_s"] = (float(result.info["window"][k])
+                                                              for k in ("start_s", "end_s"))
         if not len(result.steps):  # decision L276: a window without a step walked 0 s (not "unknown")
             summary["walking_time_s"] = 0.0
         for line in result.info.get("notes", []):

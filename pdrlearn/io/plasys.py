@@ -856,6 +856,26 @@ def export_import_hint(folder: Path) -> str:
 SPAN_TOLERANCE_S = 1.0
 
 
+def waist_clock_offset(foot: tuple[float, float], waist: tuple[float, float]) -> float | None:
+    """Decision B243: the waist clock's offset (s, ``--clock-offset``'s sign: t_waist = t_foot + offset) when the
+    foot's and the waist's spans (first, last sample) are the same length shifted by a constant - their start and
+    end offsets have one sign, agree within :data:`SPAN_TOLERANCE_S` (a clock drift of 100 ppm changes a span by
+    0.36 s per hour) and exceed it - else None. The start offset is returned (the walk's start)."""
+    start, end = waist[0] - foot[0], waist[1] - foot[1]
+    if abs(start) <= SPAN_TOLERANCE_S or abs(end - start) > SPAN_TOLERANCE_S or start * end <= 0:
+        return None
+    return float(start)
+
+
+def clock_offset_fix(offset: float, command: str) -> str:
+    """Decision B243: the refusal's first way out for a waist clock ``offset`` s off (:func:`waist_clock_offset`):
+    ``command`` (``pdrlearn track DIR``, ``pdrlearn run``) with ``--clock-offset``, named before cutting data."""
+    return (f"the same length shifted by {offset:.2f} s, as a waist clock {abs(offset):.2f} s "
+            f"{'late' if offset > 0 else 'early'} gives -- if both units recorded the whole walk, give the offset: "
+            f"`{command} --clock-offset {offset:.2f}` (decision E111; --align-units estimates only offsets under "
+            f"about 0.25 s, L162); if the waist unit really started {'later' if offset > 0 else 'earlier'}")
+
+
 def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = "refuse") -> str | None:
     """Decision B72: refuse (``mode="refuse"``) or warn about (``"warn"``, ``pdrlearn info``) a stream whose span
     is shorter than the longest span of its unit's streams (foot, waist) by more than :data:`SPAN_TOLERANCE_S`

@@ -4,7 +4,9 @@ A stride travels backward when its signed length is negative (the displacement p
 forward axis; a replayed stride's ``length_m`` is negative only for a stride classed backward, thesis eq. 61's sign),
 unless it is a 0 m gap row (L67), a stride the last-line guard moved 0 m (``impossible``, L97), or a turn: a stride
 turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot whose short chord can point anywhere (L203
-amended). Standard library and numpy only.
+amended), or a side step (decision L270): a stride of a side-stepping run (L219 / L228's ``sideways`` column; a
+streamed table's runs whole, L243) travels sideways, and its chord's small backward component (the simulator's
+``side`` item reads -0.38 to -0.44 m) is no backward travel. Standard library and numpy only.
 """
 
 from __future__ import annotations
@@ -18,10 +20,10 @@ import numpy as np
 BACKWARD_MAX_TURN_DEG = 30.0
 
 
-def backward_mask(length_m, gap_s=None, impossible=None, turn_angle_rad=None) -> np.ndarray:
+def backward_mask(length_m, gap_s=None, impossible=None, turn_angle_rad=None, sideways=None) -> np.ndarray:
     """(n,) bool: the strides of signed lengths ``length_m`` that travel backward (module docstring); ``gap_s``,
-    ``impossible`` and ``turn_angle_rad`` (n,) each optional (None: not known, no stride excluded by it; NaN turn:
-    not a turn)."""
+    ``impossible``, ``turn_angle_rad`` and ``sideways`` (the side-stepping rows, decision L270) (n,) each optional
+    (None: not known, no stride excluded by it; NaN turn: not a turn)."""
     length = np.asarray(length_m, dtype=float)
     keep = np.ones(length.shape, bool)
     if gap_s is not None:
@@ -31,15 +33,27 @@ def backward_mask(length_m, gap_s=None, impossible=None, turn_angle_rad=None) ->
     if turn_angle_rad is not None:
         with np.errstate(invalid="ignore"):
             keep &= ~(np.abs(np.degrees(np.asarray(turn_angle_rad, dtype=float))) >= BACKWARD_MAX_TURN_DEG)
+    if sideways is not None:
+        keep &= ~np.asarray(sideways, dtype=bool)  # decision L270: a side step is no backward travel
     return (length < 0) & keep
 
 
-def is_backward(row: dict) -> bool:
-    """:func:`backward_mask` of one steps-table row (a dict with ``length_m`` and optionally ``gap_s``,
-    ``impossible``, ``turn_angle_rad``), for the lean runtime's steps.csv."""
-    def num(key):
-        v = row.get(key)
-        return math.nan if v is None else float(v)
+def backward_rows(rows: list[dict]) -> list[bool]:
+    """:func:`backward_mask` of a whole steps table given as row dicts (``length_m`` and optionally ``gap_s``,
+    ``impossible``, ``turn_angle_rad``, ``sideways``; ``pivot_rad`` marks a streamed table, L106), for the lean
+    runtime's steps.csv: the same flags as ``pdrlearn run``'s (:func:`pdrlearn.track.evaluate.backward_travel`),
+    a streamed side run read whole (decisions L243, L270)."""
+    from pdrlearn.kernels.sideways import side_rows
 
-    return bool(backward_mask([num("length_m")], [num("gap_s")], [bool(row.get("impossible") or False)],
-                              [num("turn_angle_rad")])[0])
+    def num(key):
+        return [math.nan if r.get(key) is None else float(r[key]) for r in rows]
+
+    side = side_rows([bool(r.get("sideways") or False) for r in rows], num("gap_s"),
+                     streamed=any("pivot_rad" in r for r in rows))
+    return backward_mask(num("length_m"), num("gap_s"), [bool(r.get("impossible") or False) for r in rows],
+                         num("turn_angle_rad"), side).tolist()
+
+
+def is_backward(row: dict) -> bool:
+    """:func:`backward_rows` of one row (a table of one stride)."""
+    return backward_rows([row])[0]

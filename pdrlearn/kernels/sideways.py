@@ -132,6 +132,19 @@ def whole_runs(decided: np.ndarray, measured: np.ndarray) -> np.ndarray:
     return out
 
 
+def side_rows(flags, gap_s=None, *, streamed: bool = False) -> np.ndarray:
+    """Decisions L228 / L243: (n,) bool, a steps table's side-stepping rows from its ``sideways`` column ``flags``:
+    as they are for an offline table (L219's whole runs), a streamed table's (decided from a run's third stride,
+    L243) extended back over each run's first strides (:func:`whole_runs`, gap rows - ``gap_s`` > 0 - skipped).
+    One reading for the CVs and straight speed (:func:`pdrlearn.track.gait.sideways_rows`) and for backward travel
+    (decision L270, :mod:`pdrlearn.kernels.backward`)."""
+    flags = np.asarray(flags, dtype=bool)
+    if not streamed:
+        return flags
+    gap = np.zeros(len(flags)) if gap_s is None else np.nan_to_num(np.asarray(gap_s, dtype=float))
+    return whole_runs(flags, gap <= 0)
+
+
 def step_frame(levelled) -> float:
     """The step frame's direction (rad) from the foot's facing at the stride's start (decision L34's sixth value of
     the foot's levelled tuple; 0 without it)."""

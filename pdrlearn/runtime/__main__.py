@@ -94,9 +94,9 @@ def _write(out: Path, steps, start_s: float | None) -> None:
 
     rows = _rows(steps)
     if rows and all("turn_angle_rad" in r for r in rows):  # a foot replay: decision L224's column, as pdrlearn run
-        from pdrlearn.kernels.backward import is_backward
+        from pdrlearn.kernels.backward import backward_rows
 
-        rows = [{**r, "backward_travel": is_backward(r)} for r in rows]
+        rows = [{**r, "backward_travel": b} for r, b in zip(rows, backward_rows(rows), strict=True)]
     have = list(dict.fromkeys(k for r in rows for k in r))
     cols = [c for c in STEP_COLUMNS if c in have] + [c for c in have if c not in STEP_COLUMNS]
     cols = cols or ["start_s", "end_s", "length_m", "heading_rad"]

@@ -13,6 +13,10 @@ interval plus 3 s plus angle / 20 deg/s for a turn across the gap, so a Mobilise
 4.9-6.5 s without a contact. ``--bout-rule mobgap`` (:data:`BOUT_PRESETS`) is the literal rule: gap ``contact``, a
 new bout when two consecutive initial contacts are more than 3 s apart, at least 4 strides. Every row says its
 ``longest_contact_gap_s``, so a bout spanning a longer gap than the break is visible under either rule.
+
+Decision L269: a foot-data gap (L67's gap row) longer than ``break_s`` ends a bout under either rule, the gap row
+in neither bout; ``data_gap_s`` sums the shorter gaps a bout holds (summary.json's ``time_no_data_s``, L275, is
+the session's time in data gaps).
 """
 
 from __future__ import annotations
@@ -30,6 +34,8 @@ from pdrlearn.track.clinical import (
     TURN_COUNT_MIN_DEG,
     bout_rows,
     cv_pct,
+    data_gap_lengths,
+    split_at_data_gaps,
     steady_rows,
     steady_stride_lengths,
     turn_rows,
@@ -38,7 +44,7 @@ from pdrlearn.track.clinical import (
 #: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key)
 BOUT_COLUMNS = ("session", "subject", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m",
                 "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
-                "longest_contact_gap_s", "n_turns", "altitude_change_m", "altitude_change_before_m",
+                "longest_contact_gap_s", "data_gap_s", "n_turns", "altitude_change_m", "altitude_change_before_m",
                 "gait_out_of_range", "n_cv_strides", "stride_time_cv_pct", "stride_length_cv_pct")
 
 #: decision E98: bouts.csv's renamed columns, old name -> new (speeds are ``_mps`` as everywhere else). The old name
@@ -164,7 +170,7 @@ def _contact_bouts(st: pd.DataFrame, break_s: float) -> list[tuple[int, int]]:
     if not len(st):
         return []
     cuts = [0, *(np.flatnonzero(np.diff(_contact_times(st)) > break_s) + 1).tolist(), len(st)]
-    return list(zip(cuts[:-1], cuts[1:], strict=True))
+    return split_at_data_gaps(st, list(zip(cuts[:-1], cuts[1:], strict=True)), break_s)  # decision L269
 
 
 def bout_ranges(steps: pd.DataFrame, rule: BoutRule | None = None) -> list[tuple[int, int]]:
@@ -212,8 +218,11 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     steps between them (contacts - 1; 2 per stride of a tracked foot, L66); ``cadence_spm``: :func:`cadence_spm` of
     those two (NaN with fewer than 2 contacts); ``longest_contact_gap_s`` (decision L163): the longest time between
     two consecutive contacts in the bout - under the ``rhythm`` rule it may exceed ``break_s`` (a turn or the rhythm
-    took the rest), this column says so; ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104)
-    whose first turning interval ends in the bout (a turn after a pause counts in the bout it starts);
+    took the rest), this column says so; ``data_gap_s`` (decision L269): the foot-data gaps (L67's gap rows) inside
+    the bout, summed - a gap longer than ``break_s`` ends the bout under either rule, so this holds only shorter
+    ones (0 without a gap; the bout's speed and cadence then include time whose steps are not known);
+    ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104) whose first turning interval ends in
+    the bout (a turn after a pause counts in the bout it starts);
     ``altitude_change_m``: the rows' summed ``dz_m`` (NaN without that column) and, decision W158, the ``pause_dz_m``
     of its rows after the first (the standstills inside the bout); ``altitude_change_before_m`` (W158): the first
     row's ``pause_dz_m``, the altitude change while the unit stood before the bout (a lift or escalator ride; 0
@@ -232,7 +241,8 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
         return out
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     foot = _is_foot(st)
-    gap = st["gap_s"].to_numpy(float) > 0 if "gap_s" in st else np.zeros(len(st), bool)
+    gap_len = data_gap_lengths(st)  # decision L269: a bout's own (shorter) data gaps, summed as data_gap_s
+    gap = gap_len > 0
     length = st["length_m"].abs().to_numpy(float) if "length_m" in st else np.zeros(len(st))
     ic = st["event_s"].to_numpy(float) if "event_s" in st else st["start_s"].to_numpy(float)
     dz = st["dz_m"].to_numpy(float) if "dz_m" in st else np.full(len(st), np.nan)
@@ -263,6 +273,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
                      "contact_span_s": span, "n_step_intervals": intervals,
                      "cadence_spm": cadence_spm(intervals, span),
                      "longest_contact_gap_s": float(np.diff(c).max()) if len(c) >= 2 else np.nan,
+                     "data_gap_s": float(gap_len[a:b].sum()),
                      "n_turns": int(((turn_row >= a) & (turn_row < b)).sum()),
                      "altitude_change_m": float(dz[a:b].sum() + pause_dz[a + 1:b].sum()),
                      "altitude_change_before_m": float(pause_dz[a]), **_bout_cvs(steady[a:b], stride_s[a:b],

@@ -13,7 +13,9 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   interval across which the heading turns :data:`PAUSE_MAX_TURN_DEG` or more holds a turn: the time that turn
   takes at :data:`TURN_ON_SPOT_MIN_DPS` is turning (a slow turn on the spot is no pause), only the excess beyond
   it is standing (decision L119: a long stand before or after a turn is a pause and the turn still counts).
-* **walking bout**: the walk between pauses: ``n_walking_bouts`` = ``n_pauses`` + 1 (0 without a row).
+* **walking bout**: the walk between pauses: ``n_walking_bouts`` = ``n_pauses`` + 1 (0 without a row); decision
+  L269: a foot-data gap row longer than the pause threshold ends a bout too (the gap row in none); the time in data
+  gaps is L275's ``time_no_data_s``.
 * **turn**: a run of consecutive rows whose heading changes at :data:`TURN_RATE_MIN_DPS` deg/s or more from
   one row to the next (heading change / time between the rows' starts; one slower row between two such rows
   belongs to the turn), its angle the summed (signed) change, with the change of the row just before and just
@@ -136,14 +138,43 @@ def pause_spans(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> np.ndarra
 
 def bout_rows(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> list[tuple[int, int]]:
     """The walk's walking bouts (module docstring: the rows between pauses of at least ``min_s``) as
-    ``(first, last + 1)`` row ranges of the table in ``start_s`` order (decision L124's per-bout table)."""
+    ``(first, last + 1)`` row ranges of the table in ``start_s`` order (decision L124's per-bout table); decision
+    L269: a foot-data gap row longer than ``min_s`` ends a bout too (:func:`split_at_data_gaps`)."""
     if not len(steps):
         return []
-    if len(steps) < 2:
-        return [(0, 1)]
-    _, is_pause = _intervals(steps.sort_values("start_s", kind="stable").reset_index(drop=True), min_s)
-    cuts = [0, *(np.flatnonzero(is_pause) + 1).tolist(), len(steps)]
-    return list(zip(cuts[:-1], cuts[1:], strict=True))
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    if len(st) < 2:
+        return split_at_data_gaps(st, [(0, 1)], min_s)
+    _, is_pause = _intervals(st, min_s)
+    cuts = [0, *(np.flatnonzero(is_pause) + 1).tolist(), len(st)]
+    return split_at_data_gaps(st, list(zip(cuts[:-1], cuts[1:], strict=True)), min_s)
+
+
+def data_gap_lengths(steps: pd.DataFrame) -> np.ndarray:
+    """(N,) each row's foot-data gap (s; ``gap_s`` of a gap row, L67), 0 for a stride and for a table without the
+    column (a lower-back table)."""
+    if "gap_s" not in steps:
+        return np.zeros(len(steps))
+    return np.nan_to_num(pd.to_numeric(steps["gap_s"], errors="coerce").to_numpy(float))
+
+
+def split_at_data_gaps(st: pd.DataFrame, ranges: list[tuple[int, int]], break_s: float) -> list[tuple[int, int]]:
+    """Decision L269: the bout ranges ``[a, b)`` of ``st`` (rows in ``start_s`` order) cut at each gap row (L67)
+    whose ``gap_s`` is longer than the bout rule's break ``break_s``: what the walker did in a data gap longer than
+    a pause is not known to be walking, so the walks before and after it are two bouts, and the gap row itself
+    (0 m, no stride) is in neither. A shorter gap row stays in its bout (bouts.csv's ``data_gap_s`` says so)."""
+    long = data_gap_lengths(st) > break_s
+    if not long.any():
+        return ranges
+    out = []
+    for a, b in ranges:
+        for g in (np.flatnonzero(long[a:b]) + a).tolist():
+            if g > a:
+                out.append((a, g))
+            a = g + 1
+        if b > a:
+            out.append((a, b))
+    return out
 
 
 def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray, np.ndarray]:
@@ -741,7 +772,7 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     p = pauses(steps)
     out["n_pauses"], out["pause_time_s"] = int(len(p)), float(p.sum())
     out["longest_pause_s"] = float(p.max()) if len(p) else None
-    out["n_walking_bouts"] = int(len(p)) + 1
+    out["n_walking_bouts"] = len(bout_rows(steps))  # n_pauses + 1 without a data gap (L269: a long gap ends one)
     out["turn_count"] = int((np.abs(turns(steps)) >= TURN_COUNT_MIN_DEG).sum())
     if _is_lower_back(steps):  # decision L214: L104 gives no CV on the lower back; the summary says why
         out["stride_time_cv_withheld"] = {"cause": "lower_back", "reason": LOWER_BACK_CV_REASON}

@@ -304,7 +304,10 @@ def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
     feature-tour trial): a stride turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot, whose short
     chord can point anywhere (user 5's ``straight:10, turn:180, straight:10``: two turn strides of 120 and 60 deg
     with -0.25 / -0.15 m), not backward travel. None for a lower-back track (no raw length per step) or a table
-    without ``raw_length_m`` / ``length_m``."""
+    without ``raw_length_m`` / ``length_m``. Decision L270: a stride of a side-stepping run (``sideways``, L228 /
+    L243) is no backward travel either."""
+    from pdrlearn.track.gait import sideways_rows
+
     units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
     # L203 amended: a replayed table (`pdrlearn run`) has no raw length; its signed ``length_m`` (negative only for a
     # stride classed backward, thesis eq. 61's sign) counts instead
@@ -315,7 +318,8 @@ def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
                          steps["gap_s"].to_numpy(float) if "gap_s" in steps else None,
                          steps["impossible"].eq(True).to_numpy(bool) if "impossible" in steps else None,
                          # L203 amended: a turning stride is no backward travel
-                         steps["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in steps else None)
+                         steps["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in steps else None,
+                         sideways_rows(steps))  # decision L270: nor is a side step (L228's runs; L243 streamed)
 
 
 def add_backward_travel(steps: pd.DataFrame) -> None:
@@ -341,6 +345,15 @@ def backward_strides(steps: pd.DataFrame) -> int | None:
     return None if flag is None else int(flag.sum())
 
 
+def side_strides(steps: pd.DataFrame) -> int | None:
+    """Decision L270: ``n_side_strides``, the foot track's strides of side-stepping runs (L219 / L228's
+    ``sideways``, a streamed table's runs whole, L243), which ``n_backward_strides`` leaves out; None where
+    :func:`backward_travel` is None (a lower-back track)."""
+    from pdrlearn.track.gait import sideways_rows
+
+    return None if backward_travel(steps) is None else int(sideways_rows(steps).sum())
+
+
 def tracked_rate_hz(session: Session, pipeline: str | None) -> float | None:
     """Decision C19: the sampling rate (Hz) of the tracked unit's accelerometer (the lower back's for the waist
     pipelines, else the foot's): contact times, and so stride times and cadence, are resolved to one sample."""
@@ -359,6 +372,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     out["median_stride_length_m"] = median_stride_length(result.steps)  # decision C19: as in sessions.csv
     add_backward_travel(result.steps)  # decision L224: steps.csv's per-row form of the count below
     out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
+    out["n_side_strides"] = side_strides(result.steps)  # decision L270: side steps, no backward travel
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
     if last is not None and "lat" in tr:

@@ -214,13 +214,11 @@ def sideways_rows(steps: pd.DataFrame) -> np.ndarray:
     decided live (L243): its first two strides are added back here (:func:`~pdrlearn.kernels.sideways.whole_runs`)."""
     if "sideways" not in steps:
         return np.zeros(len(steps), bool)
-    flags = steps["sideways"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy(bool)
-    if "pivot_rad" not in steps:
-        return flags
-    from pdrlearn.kernels.sideways import whole_runs
+    from pdrlearn.kernels.sideways import side_rows
 
-    gap = pd.to_numeric(steps["gap_s"], errors="coerce").fillna(0.0).to_numpy(float) if "gap_s" in steps else 0.0
-    return whole_runs(flags, np.zeros(len(steps)) + gap <= 0)
+    flags = steps["sideways"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy(bool)
+    gap = pd.to_numeric(steps["gap_s"], errors="coerce").to_numpy(float) if "gap_s" in steps else None
+    return side_rows(flags, gap, streamed="pivot_rad" in steps)
 
 
 def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight) -> None:

@@ -60,7 +60,7 @@ def check_tracked_span(session: Session, unit: str) -> None:
     out at 180 s while the waist went on to 385 s was tracked "ok", 198.91 of the 425.7 m walked). The mirror
     case, the other unit stopping early, is refused where a method needs it to cover the tracked one (B21, B83);
     both name the same two ways out: ``--common-span`` (the time both cover, B83) or ``--units`` (one unit)."""
-    from pdrlearn.io.plasys import SPAN_TOLERANCE_S
+    from pdrlearn.io.plasys import SPAN_TOLERANCE_S, clock_offset_fix, waist_clock_offset
 
     other = "waist" if unit == "foot" else "foot"
     mine, theirs = unit_span(session, unit), unit_span(session, other)
@@ -73,8 +73,13 @@ def check_tracked_span(session: Session, unit: str) -> None:
                         if v > SPAN_TOLERANCE_S)
     folder = shell_quote(session.folder) if session.folder is not None else "SESSION"
     lo, hi = max(mine[0], theirs[0]), min(mine[1], theirs[1])
-    raise DataError(f"{session.where}: the tracked {unit} unit covers {mine[0]:.2f}-{mine[1]:.2f} s but the {other} "
-                    f"unit {theirs[0]:.2f}-{theirs[1]:.2f} s: it {what} the {other} unit, so the track would describe "
-                    f"only part of the walk -- track the {lo:.2f}-{hi:.2f} s both cover with "
-                    f"`pdrlearn track {folder} --common-span` (decision B83), or the {other} unit alone with "
-                    f"--units {other}, or restore the {unit} files (decision B126)")
+    head = (f"{session.where}: the tracked {unit} unit covers {mine[0]:.2f}-{mine[1]:.2f} s but the {other} "
+            f"unit {theirs[0]:.2f}-{theirs[1]:.2f} s")
+    cut = (f"track the {lo:.2f}-{hi:.2f} s both cover with `pdrlearn track {folder} --common-span` (decision B83), "
+           f"or the {other} unit alone with --units {other}")
+    offset = waist_clock_offset(mine, theirs) if unit == "foot" else None
+    if offset is not None:  # decision B243: a shifted clock - the fix that keeps the whole walk is named first
+        raise DataError(f"{head}: {clock_offset_fix(offset, f'pdrlearn track {folder}')}, {cut} (decision B126)")
+    raise DataError(f"{head}: it {what} the {other} unit, so the track would describe only part of the walk -- "
+                    f"{cut}, or restore the {unit} files (decision B126)")
+

@@ -49,8 +49,11 @@ def parse_window(text: str | None) -> tuple[float, float] | None:
 def check_window(window: tuple[float, float], session: Session, unit: str | None = None) -> tuple[float, float]:
     """The window in the session's own clock (the recording's start + START, + END; a ``--common-span`` cut,
     decision B81, does not move that start); one :class:`DataError` line
-    when it does not lie inside the recording of the tracked ``unit`` (foot / waist; None: any stream's;
-    decision B126: a foot unit that stopped at 180 s beside a waist recording to 385 s passed ``--window 5,365``)."""
+    when it starts at or after the end of the recording of the tracked ``unit`` (foot / waist; None: any stream's;
+    decision B126: a foot unit that stopped at 180 s beside a waist recording to 385 s passed ``--window 5,365``).
+    Decision B242: a window that starts inside the recording and ends after it is clipped to the recording's end,
+    with one warning line saying so (per-hour bins, ``--window 1200,1800`` of a 1614 s recording, are the
+    recording's last part; ``track-all --window`` cuts sessions of different lengths alike)."""
     from pdrlearn.track.units import unit_span
 
     start, end = window
@@ -58,9 +61,14 @@ def check_window(window: tuple[float, float], session: Session, unit: str | None
     span = unit_span(session, unit) if unit is not None else None
     dur = (span[1] if span is not None else session.t_end) - t0
     whose = f" (the tracked {unit} unit's, decision B126)" if span is not None else ""
-    if start >= dur or end > dur + 1e-6:
+    if start >= dur:
         raise DataError(f"{session.where}: --window {start:g},{end:g} lies outside the recording, which lasts "
-                        f"{dur:.2f} s{whose}; give START < END <= {dur:.2f}")
+                        f"{dur:.2f} s{whose}; give START < {dur:.2f}")
+    if end > dur + 1e-6:  # decision B242: the recording's last part, said in one line
+        logging.getLogger(__name__).warning(
+            "%s: --window %g,%g ends after the recording, which lasts %.2f s%s: the window is clipped to %g,%.2f "
+            "(%.2f s, not %g s)", session.where, start, end, dur, whose, start, dur, dur - start, end - start)
+        end = dur
     return t0 + start, t0 + end
 
 
