@@ -383,7 +383,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
-                   "stand_veto": False,  # W189; W199 adopted "adjacent", W217 withdrew it (drops a walk before a freeze)
+                   "stand_veto": False,  # W189; W199 adopted "adjacent", W217 withdrew it (a walk before a freeze)
                    "contact_model": False,  # W203
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
