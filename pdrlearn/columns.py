@@ -236,7 +236,8 @@ SESSIONS: tuple[Column, ...] = (
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
                                   "step, one sit after the last): the rise's start to the sit's end (W183)"),
     ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "
-                                      "band power, 1 s or longer (W213)"),
+                                      "band power, 1 s or longer (W213); null on a lower-back track without the "
+                                      "freeze_index option (W216: not measured)"),
     ("freeze_time_s", "s", "number", "freezes.csv's durations summed (W213)"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),

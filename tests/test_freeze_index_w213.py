@@ -84,14 +84,15 @@ def test_freeze_veto_drops_the_trembling_contacts(frozen):
     # W214 was measured without a stand veto (W217: the default again); "adjacent" (W198) drops this session's
     # trembling (a weak run, no walking bounce)
     off = track_waist(frozen, pipeline="waist-pendulum", stand_veto=False)
-    on = track_waist(frozen, pipeline="waist-pendulum", stand_veto=False, freeze_veto=True)
+    on = track_waist(frozen, pipeline="waist-pendulum", stand_veto=False, freeze_veto=True)  # W216: implies the index
     ev0, ev1 = off.steps["event_s"].to_numpy(float), on.steps["event_s"].to_numpy(float)
     assert ((ev0 > a) & (ev0 < b)).sum() >= 5  # the finding: trembling read as steps without the stand veto
     adj = track_waist(frozen, pipeline="waist-pendulum", stand_veto="adjacent").steps["event_s"].to_numpy(float)
     assert ((adj > a) & (adj < b)).sum() == 0  # W198's value drops them here (and, W217, may drop the walks too)
     assert ((ev1 > a) & (ev1 < b)).sum() == 0
     assert on.info["n_frozen_contacts"] == ev0.size - ev1.size and off.info["n_frozen_contacts"] == 0
-    assert on.info["freezes"] == off.info["freezes"] and len(on.info["freezes"]) == 1
+    assert off.info["freezes"] is None and len(on.info["freezes"]) == 1  # W216: off, the index is not computed
+    assert on.info["freezes"] == track_waist(frozen, pipeline="waist-pendulum", freeze_index=True).info["freezes"]
 
 
 def test_freeze_veto_is_named_ignored_by_a_realtime_track(frozen):
@@ -108,11 +109,85 @@ def test_track_writes_freezes_csv_and_summary(frozen, tmp_path):
 
     d = tmp_path / "s"
     write_session(frozen, d)
-    for pipeline in ("waist-pendulum", "plasys"):
+    for pipeline in ("waist-pendulum", "plasys"):  # W216: the lower back's index with --freeze-index
         out = tmp_path / pipeline
-        assert main(["track", str(d), "--pipeline", pipeline, "--out", str(out)]) == 0
+        flag = ["--freeze-index"] if pipeline == "waist-pendulum" else []
+        assert main(["track", str(d), "--pipeline", pipeline, "--out", str(out), *flag]) == 0
         table = pd.read_csv(out / "freezes.csv")
         assert list(table.columns) == list(FREEZE_COLUMNS) and len(table) == 1
         summary = json.loads((out / "summary.json").read_text())
         assert summary["n_freezes"] == 1 and summary["freeze_time_s"] == pytest.approx(table["duration_s"].sum())
         assert "freezes" not in summary["info"]
+
+
+HA001_TEST11 = "datasets/real/mobgap_HA001_Test11_Trial1"
+
+
+@pytest.mark.skipif(not __import__("os").path.isdir(HA001_TEST11), reason="real mobgap recording absent")
+def test_lower_back_freeze_index_is_opt_in_w216(tmp_path, capsys):
+    """W216: the real healthy walker's daily activities (W215: 4 false episodes, 14.5 s) read no freeze by default:
+    no freezes.csv, null keys (not measured), no line; --freeze-index (or the PARAMS option) gives the episodes."""
+    from pdrlearn.cli import main
+
+    out = tmp_path / "default"
+    assert main(["track", HA001_TEST11, "--out", str(out)]) == 0
+    printed = capsys.readouterr()
+    summary = json.loads((out / "summary.json").read_text())
+    assert not (out / "freezes.csv").exists()
+    assert "n_freezes" in summary and summary["n_freezes"] is None and summary["freeze_time_s"] is None
+    assert "freezes.csv" not in printed.out + printed.err and "freeze episode" not in printed.out + printed.err
+    assert not any("freeze" in w for w in summary["info"]["warnings"])
+    on = tmp_path / "on"
+    assert main(["track", HA001_TEST11, "--out", str(on), "--freeze-index"]) == 0
+    table = pd.read_csv(on / "freezes.csv")
+    s_on = json.loads((on / "summary.json").read_text())
+    assert s_on["n_freezes"] == len(table) == 4 and s_on["freeze_time_s"] == pytest.approx(14.5)
+    assert any("W215" in w for w in s_on["info"]["warnings"])
+    assert (s_on["n_steps"], s_on["distance_m"]) == (summary["n_steps"], summary["distance_m"])  # no step changed
+    par = tmp_path / "p.json"
+    par.write_text(json.dumps({"options": {"freeze_index": True}}))
+    via = tmp_path / "via_params"
+    assert main(["track", HA001_TEST11, "--out", str(via), "--params", str(par)]) == 0
+    assert json.loads((via / "summary.json").read_text())["n_freezes"] == 4
+
+
+def test_foot_freeze_index_stays_on_w216(frozen):
+    from pdrlearn.track import get_pipeline
+
+    res = get_pipeline("plasys")(frozen)
+    summary = res.summary(frozen)
+    assert summary["n_freezes"] == 1  # the foot's index by default, the simulated freeze found
+
+
+def test_run_waist_bundle_follows_the_option_w216(frozen):
+    from pdrlearn.track.freezes import freeze_index_on, lower_back_freezes
+
+    assert not freeze_index_on(None) and not freeze_index_on({"freeze_index": False})
+    assert freeze_index_on({"freeze_index": True}) and freeze_index_on({"freeze_veto": True})  # the veto implies it
+    assert lower_back_freezes(frozen, "runtime-waist", {}) is None
+    assert len(lower_back_freezes(frozen, "runtime-waist", {"freeze_index": True})) == 1
+
+
+def test_run_writes_the_lower_back_freezes_only_with_the_option_w216(frozen, tmp_path):
+    """W216: `run` on a waist bundle follows track: freezes.csv and the keys with the bundle's freeze_index option,
+    none (null keys) without."""
+    from pdrlearn.cli import main
+    from pdrlearn.export.waist import export_waist
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import simulate
+    from pdrlearn.waist.calibration import calibrate
+
+    frame = ",".join(f"{k}={v}" for k, v in frozen.require_frame("waist").to_dict().items())
+    cal = calibrate([simulate("A", 401, rate_hz=100.0)], "waist-pendulum", distances=[20.0])
+    cal.save(tmp_path / "cal.json")
+    d = write_session(frozen, tmp_path / "s")
+    for on in (False, True):
+        p = tmp_path / f"p{on}.json"
+        p.write_text(json.dumps({**json.loads((tmp_path / "cal.json").read_text()),
+                                 "options": {"freeze_index": on}}))
+        export_waist(p, tmp_path / f"b{on}", frame=frame)
+        out = tmp_path / f"run{on}"
+        assert main(["run", str(tmp_path / f"b{on}"), str(d), "--out", str(out)]) == 0
+        summary = json.loads((out / "summary.json").read_text())
+        assert (out / "freezes.csv").exists() is on
+        assert summary["n_freezes"] == (1 if on else None)

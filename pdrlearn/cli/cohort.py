@@ -693,6 +693,7 @@ def track_all(
     params_dir: Path = typer.Option(None, "--params-dir", metavar="DIR", help=PARAMS_DIR_HELP),
     streaming: bool = _track.STREAMING_OPT,
     realtime: bool = _track.REALTIME_OPT,
+    freeze_index: bool = _track.FREEZE_INDEX_OPT,
     reference_point: str = _track.REFERENCE_POINT_OPT,
     toe_off: bool = _track.TOE_OFF_OPT,
     contacts: bool = _track.CONTACTS_OPT,

@@ -716,8 +716,13 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     if start_ll is not None:  # decision W147: the live tracker's lat/lon of each step
         traj["lat"] = [start_ll[0]] + [s.lat for s in steps]
         traj["lon"] = [start_ll[1]] + [s.lon for s in steps]
+    from pdrlearn.track.freezes import lower_back_freezes
+
     result = TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime-waist",
-                                                          "warnings": list(tracker.warnings)})
+                                                          "warnings": list(tracker.warnings),
+                                                          # decision W216: as track's, opt-in by the options
+                                                          "freezes": lower_back_freezes(
+                                                              session, "runtime-waist", bundle.options)})
     _calibration_gait_warning(bundle.params, df, result.info["warnings"], session.name)  # decision W140
     from pdrlearn.track.position_sigma import add_position_sigma
 

@@ -68,6 +68,10 @@ STREAMING_OPT = typer.Option(False, "--streaming", help="plasys M2/M3 with the s
 REALTIME_OPT = typer.Option(False, "--realtime", help="waist-pendulum: the causal initial-contact "
                             "detector (each contact decided < 2 s after it, decision W31) instead of the "
                             "zero-lag offline one; = \"options\": {\"realtime\": true} in --params.")
+FREEZE_INDEX_OPT = typer.Option(False, "--freeze-index", help="Lower back: the freeze index's episodes "
+                                "(freezes.csv, n_freezes; decision W213), off by default there: it also reads daily "
+                                "activities and slow walks as freezing (decision W216); = \"options\": "
+                                "{\"freeze_index\": true} in --params. Foot tracks always have it.")
 REFERENCE_POINT_OPT = typer.Option(None, "--reference-point", help="plasys: the point whose path is "
                                    "tracked: sensor (the unit, default) or heel (the heel contact, lever arm "
                                    "estimated from the recording, decision L22; = \"reference_point\" in "
@@ -183,6 +187,7 @@ def track(
                                      "walking (seed 004; thins a dense stream). Default: every fix is used."),
     streaming: bool = STREAMING_OPT,
     realtime: bool = REALTIME_OPT,
+    freeze_index: bool = FREEZE_INDEX_OPT,
     reference_point: str = REFERENCE_POINT_OPT,
     toe_off: bool = TOE_OFF_OPT,
     contacts: bool = CONTACTS_OPT,
@@ -292,6 +297,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    warn_out_of_domain: float | None = None, start: str | None = None, params: Path | None = None,
                    gnss: Path | None = None, gnss_period: float | None = None, fixes: Path | None = None,
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
+                   freeze_index: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
@@ -396,6 +402,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "warn_out_of_domain": warn_out_of_domain, "start_ll": start_ll, "start_alt": start_alt,
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
+            "freeze_index": freeze_index,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
@@ -512,6 +519,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
           "params": par if pipeline == "plasys" or par is None else str(params)}
     if o["realtime"]:
         kw["realtime"] = True
+    if o.get("freeze_index") and pipeline in ("waist-pll", "waist-pendulum"):  # W216; a foot track's index is on
+        kw["freeze_index"] = True
     if pipeline != "plasys":  # decisions E84, E85: the lower-back pipelines' detector and step-length model
         if o.get("detector") is not None:
             kw["detector"] = o["detector"]

@@ -257,7 +257,9 @@ def get_pipeline(name: str) -> Pipeline:
       ``contact_model`` (decision W204, off: ``"learned"`` keeps only the contacts a learned, calibrated re-scorer
       gives p >= 0.5, W203; offline ``waist-pendulum`` only),
       ``freeze_veto`` (decision W215, off: the offline lower-back contacts inside a freeze episode of the freeze
-      index, freezes.csv, W213, are dropped, W214),
+      index, freezes.csv, W213, are dropped, W214; implies ``freeze_index``),
+      ``freeze_index`` (decision W216, off: the lower back's freeze index, W213: freezes.csv and ``n_freezes`` /
+      ``freeze_time_s``, null when off; foot tracks always compute theirs),
       ``realtime_sit_veto`` (decision W201, off: a realtime track applies the sit veto causally, each contact
       decided 3.25 s after it with the upright of the walking contacts seen so far, W200),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its

@@ -951,7 +951,8 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, session, out)
     from pdrlearn.track.freezes import freeze_summary, session_freezes
 
-    if result.info.get("freezes") is None and session is not None:  # decision W213: a foot track's episodes
+    # decision W213: a foot track's episodes; W216: a lower-back track sets "freezes" itself (None: not measured)
+    if "freezes" not in result.info and session is not None:
         result.info["freezes"] = session_freezes(session, result.info.get("pipeline"))
     out.update(freeze_summary(result.info.get("freezes")))  # W213: n_freezes, freeze_time_s (None: not computed)
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range

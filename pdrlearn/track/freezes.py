@@ -58,6 +58,19 @@ def session_freezes(session, pipeline: str | None) -> list[dict] | None:
     return freezes_of(acc.t, acc.values)
 
 
+def freeze_index_on(options: dict | None) -> bool:
+    """Decision W216: whether a lower-back track computes its freeze index - the ``freeze_index`` option, or
+    ``freeze_veto`` (W214 needs the episodes); off by default (foot tracks always compute theirs)."""
+    o = options or {}
+    return bool(o.get("freeze_index") or o.get("freeze_veto"))
+
+
+def lower_back_freezes(session, pipeline: str | None, options: dict | None) -> list[dict] | None:
+    """:func:`session_freezes` of a lower-back track when :func:`freeze_index_on` its ``options``, else None (not
+    measured: no freezes.csv, ``n_freezes`` / ``freeze_time_s`` null; decision W216)."""
+    return session_freezes(session, pipeline) if freeze_index_on(options) else None
+
+
 def freeze_table(rows: list[dict] | None) -> pd.DataFrame:
     """freezes.csv: one row per episode (:data:`FREEZE_COLUMNS`), empty with the header when none."""
     return pd.DataFrame(rows or [], columns=list(FREEZE_COLUMNS))

@@ -36,7 +36,7 @@ from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
-from pdrlearn.track.freezes import freeze_caveat_message, session_freezes
+from pdrlearn.track.freezes import freeze_caveat_message, lower_back_freezes
 from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
@@ -388,7 +388,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
-                   "speed_check": True}  # W211
+                   "speed_check": True,  # W211
+                   "freeze_index": False}  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -490,7 +491,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
-                length_model=None, freeze_veto: bool | None = None) -> TrackResult:
+                length_model=None, freeze_veto: bool | None = None,
+                freeze_index: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -573,7 +575,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         default since W199; False: no stand veto
     freeze_veto : offline (the realtime detector ignores it): drop the contacts inside a freeze episode of the lower
         back's freeze index (freezes.csv, :mod:`pdrlearn.track.freezes`, decision W213): trembling in place is no
-        step (decision W214); the step before a dropped contact ends its sequence; default False
+        step (decision W214); the step before a dropped contact ends its sequence; default False; implies
+        ``freeze_index``
+    freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
+        default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
+        ``info["freezes"]`` None and the summary keys null (not measured)
     contact_model : pendulum, offline detector (the realtime one and ``waist-pll`` ignore it): ``"learned"`` keeps
         only the contacts whose calibrated probability from W203's learned re-scorer
         (:func:`pdrlearn.waist.contact_model.rescore_contacts`) is at least 0.5, before the stand and sit vetoes;
@@ -643,7 +649,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
-             "freeze_veto": freeze_veto}
+             "freeze_veto": freeze_veto, "freeze_index": freeze_index}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -717,7 +723,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
         n_unvaulted = steps.attrs["n_unvaulted"]
-    freezes = session_freezes(session, pipeline)  # decision W213: freezes.csv's episodes
+    freezes = lower_back_freezes(session, pipeline, o)  # decisions W213, W216: freezes.csv's episodes, opt-in
     if freezes:  # decision W215: on the lower back the index is a screening one; say what else it reads
         warnings.append(freeze_caveat_message(len(freezes), sum(r["duration_s"] for r in freezes),
                                               bool(o["freeze_veto"]) and not realtime))
@@ -1059,7 +1065,7 @@ def _no_walking(session: Session, pipeline: str, p: WaistParams, o: dict, warnin
     warnings = [*warnings, no_walking_message(walk_s, "0 steps, 0 m")]
     info = {"pipeline": pipeline, "method": "", "methods": {}, "params": p.to_dict(), "params_source": p.source,
             "options": o, "warnings": warnings, "n_contacts": 0, "rate_hz": float(acc.rate_hz),
-            "no_walking": True}
+            "no_walking": True, "freezes": lower_back_freezes(session, pipeline, o)}  # W216: opt-in
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(acc.t[0]))

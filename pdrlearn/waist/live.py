@@ -75,7 +75,9 @@ def live_options(p, warnings: list[str], **given) -> dict:
     given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
              "integrate_stops": None, "turn_factor": None, "rhythm": None, "merge_fragments": None,
              "length_smoothing": None, "slow_turn_rps": None, "pivot_steps": None, "stairs_length": None,
-             "pause_steps": None, "realtime_contact_shift": None, **given}
+             "pause_steps": None, "realtime_contact_shift": None,
+             "freeze_index": None,  # W216: `run` computes the lower back's freeze index after the track, opt-in
+             **given}
     o = resolve_options(p, given)
     if o["pause_steps"] != CAUSAL_PAUSE_STEPS:  # W165: the live trackers apply W134's value, or none
         o["pause_steps"] = False
