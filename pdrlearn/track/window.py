@@ -90,6 +90,23 @@ def _inside(df: pd.DataFrame, t0: float, t1: float) -> pd.DataFrame:
     return df
 
 
+def window_episodes(rows: list[dict] | None, t0: float, t1: float, *, clip: bool) -> list[dict] | None:
+    """The episode rows (``start_s`` / ``end_s`` on the session's clock) of a window ``[t0, t1]``: with ``clip``
+    those overlapping it, cut at its edges (``duration_s`` recomputed; the other columns, e.g. the number and
+    ``peak_fi``, are the whole episode's), else those wholly inside it (decision L272). None stays None."""
+    if rows is None:
+        return None
+    if not clip:
+        return [r for r in rows if r["start_s"] >= t0 and r["end_s"] <= t1]
+    out = []
+    for r in rows:
+        a, b = max(float(r["start_s"]), t0), min(float(r["end_s"]), t1)
+        if b > a:
+            out.append({**r, "start_s": round(a, 3), "end_s": round(b, 3), "duration_s": round(b - a, 3)}
+                       if (a, b) != (r["start_s"], r["end_s"]) else r)
+    return out
+
+
 def window_track(result: TrackResult, session: Session, t0: float, t1: float) -> tuple[TrackResult, Session]:
     """The track and the session cut to ``[t0, t1]`` (the session's clock; module docstring). The trajectory keeps
     the position at the first kept step's start (the last row at or before it) and the rows after it up to the
@@ -122,10 +139,15 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         traj = traj.iloc[[max(int(np.searchsorted(t, t0, side="right")) - 1, 0)]].reset_index(drop=True) \
             if len(traj) else traj
     info = {**result.info, "window": {"start_s": t0 - t_rec, "end_s": t1 - t_rec}}
-    if info.get("transfers") is not None:  # decision W182: the chair transfers inside the window
-        info["transfers"] = [r for r in info["transfers"] if r["start_s"] >= t0 and r["end_s"] <= t1]
-    if info.get("freezes") is not None:  # decision W213: the freeze episodes inside the window
-        info["freezes"] = [r for r in info["freezes"] if r["start_s"] >= t0 and r["end_s"] <= t1]
+    if "freezes" not in info:  # decision L272: a foot track's episodes, of the whole session, then cut below
+        from pdrlearn.track.freezes import session_freezes
+
+        info["freezes"] = session_freezes(session, info.get("pipeline"))
+    # decision W182: the chair transfers wholly inside; decision L272: the freezes clipped to the window
+    info["transfers"] = window_episodes(info.get("transfers"), t0, t1, clip=False)
+    info["freezes"] = window_episodes(info["freezes"], t0, t1, clip=True)
+    if info["transfers"] is None and "transfers" not in result.info:
+        del info["transfers"]
     if warnings:
         info["warnings"] = [*result.info.get("warnings", []), *warnings]
     if notes:  # decision L276: printed as a "note:" line by the command line
