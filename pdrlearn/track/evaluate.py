@@ -605,6 +605,8 @@ def with_reference_columns(result: TrackResult, session: Session | None) -> pd.D
     steps = result.steps
     if session is None or not len(steps) or "unit" not in steps or not (steps["unit"] == "foot").all():
         return steps
+    from pdrlearn.track.window import steps_row
+
     pairs = stride_pairs(result, session)
     if pairs is None:
         return steps
@@ -616,7 +618,7 @@ def with_reference_columns(result: TrackResult, session: Session | None) -> pd.D
     times = reference_stride_times(st)
     for rows, j, est in pairs:
         for i in rows:
-            match[i] = j
+            match[i] = steps_row(session, j)  # decision E138: steps.csv's row, also under --window
             ref_len[i], ref_t[i], pair_len[i] = float(st["length_m"].iloc[j]), times[j], abs(est)
             composed[i] = len(rows) > 1
     return steps.assign(ref_match=match, ref_length_m=ref_len, ref_stride_time_s=ref_t, ref_composed=composed,

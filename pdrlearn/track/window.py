@@ -72,11 +72,24 @@ def check_window(window: tuple[float, float], session: Session, unit: str | None
     return t0 + start, t0 + end
 
 
-def _mid_inside(df: pd.DataFrame | None, t0: float, t1: float) -> pd.DataFrame | None:
+def _mid_inside_rows(df: pd.DataFrame | None, t0: float, t1: float) -> np.ndarray | None:
+    """The rows (from 0) of ``df`` whose middle lies in ``[t0, t1]``; None when ``df`` has no start/end."""
     if df is None or not {"start_s", "end_s"} <= set(df):
-        return df
+        return None
     mid = 0.5 * (df["start_s"].to_numpy(float) + df["end_s"].to_numpy(float))
-    return df[(mid >= t0) & (mid <= t1)].reset_index(drop=True)
+    return np.flatnonzero((mid >= t0) & (mid <= t1))
+
+
+def _mid_inside(df: pd.DataFrame | None, t0: float, t1: float) -> pd.DataFrame | None:
+    rows = _mid_inside_rows(df, t0, t1)
+    return df if rows is None else df.iloc[rows].reset_index(drop=True)
+
+
+def steps_row(session: Session, j: int) -> int:
+    """Decision E138: the session's steps.csv row (from 0) of row ``j`` of ``session.steps`` (a ``--window``'s cut
+    numbers its rows from 0; this undoes it)."""
+    rows = session._steps_rows
+    return int(j) if rows is None else int(rows[j])
 
 
 def _inside(df: pd.DataFrame, t0: float, t1: float) -> pd.DataFrame:
@@ -158,6 +171,7 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         gt = gt[(tt >= float(traj["t"].iloc[0]) - 1e-9) & (tt <= float(traj["t"].iloc[-1]) + 1e-9)]
         gt = gt.reset_index(drop=True) if len(gt) > 1 else None
     cut = dataclasses.replace(session, steps=_mid_inside(session.steps, t0, t1), trajectory=gt,
+                              _steps_rows=_mid_inside_rows(session.steps, t0, t1),
                               extras={k: (_inside(v, t0, t1) if isinstance(v, pd.DataFrame) else v)
                                       for k, v in session.extras.items()})
     return TrackResult(steps=steps, trajectory=traj, info=info), cut
