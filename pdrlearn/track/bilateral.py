@@ -34,6 +34,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.track.clinical import bout_rows, symmetry_index_pct
+from pdrlearn.track.flags import flag_values
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot
 EVENT_COLUMNS = ("ic_s", "tc_s", "length_m")
@@ -63,7 +64,7 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
     st = steps[ok]
     length = st["length_m"].to_numpy(float) if "length_m" in st else np.full(len(st), np.nan)
     if "impossible" in st:
-        length = np.where(st["impossible"].astype(bool).to_numpy(), np.nan, length)
+        length = np.where(flag_values(st["impossible"]), np.nan, length)
     out = pd.DataFrame({"ic_s": st[ic_col].to_numpy(float),
                         "tc_s": st["tc_s"].to_numpy(float) if "tc_s" in st else np.full(len(st), np.nan),
                         "length_m": length})

@@ -14,6 +14,7 @@ import pandas as pd
 from pdrlearn.io.session import Session
 from pdrlearn.kernels.backward import BACKWARD_MAX_TURN_DEG, backward_mask  # noqa: F401  decision L203
 from pdrlearn.track.base import TrackResult
+from pdrlearn.track.flags import flag_values
 
 
 def match_by_overlap(est: pd.DataFrame, ref: pd.DataFrame, *, min_iou: float = 0.5) -> list[tuple[int, int]]:
@@ -641,13 +642,13 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
     # mocap volume: 28 of 32 strides) makes distance_error_pct compare the whole track with part of it
     out["distance_matched_error_pct"] = float(100.0 * (np.abs(e).sum() / np.abs(r).sum() - 1.0))
     if "turn" in session.steps:
-        turn = session.steps["turn"].astype(bool).to_numpy()[ri]
+        turn = flag_values(session.steps["turn"])[ri]
         if (~turn).any():
             out["stride_length_mae_pct_straight"] = float(100.0 * np.mean((err / np.abs(r))[~turn]))
         if turn.any():
             out["stride_length_mae_pct_turns"] = float(100.0 * np.mean((err / np.abs(r))[turn]))
     if "steady" in session.steps:  # decision L252: a walkway reference's strides (no initiation / termination / turn)
-        steady = session.steps["steady"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy()[ri]
+        steady = flag_values(session.steps["steady"])[ri]
         if steady.any():
             out["stride_length_mae_pct_steady"] = float(100.0 * np.mean((err / np.abs(r))[steady]))
 
