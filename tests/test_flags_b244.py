@@ -28,3 +28,29 @@ def test_bilateral_reads_not_impossible_strings(flag):  # review S29 item 6: "Fa
     assert np.isfinite(foot_events(left)["length_m"]).all()
     assert bilateral_gait(left, right)["walk"]["stride_length_m_left"] == pytest.approx(1.2)
     assert not np.isfinite(foot_events(_foot([1.0, 2.0], ["True", "False"]))["length_m"][0])
+
+
+def _ics(start, step, n):
+    return start + step * np.arange(n)
+
+
+def test_two_walks_whose_clocks_overlap_warn_b245(caplog):
+    one = bilateral_gait(_foot(_ics(1.0, 1.1, 20), False), _foot(_ics(1.55, 1.1, 20), False))  # one walk
+    assert not [r for r in caplog.records if "B245" in r.getMessage()]
+    assert one["walk"]["n_steps_left"] > 15
+    # a short walk on one foot and a long one on the other (the review's stairs-down left + level right)
+    bilateral_gait(_foot(_ics(1.0, 1.1, 15), False), _foot(_ics(1.55, 1.1, 30), False))
+    lines = [r.getMessage() for r in caplog.records if "B245" in r.getMessage()]
+    assert len(lines) == 1 and "one walk on one clock" in lines[0]
+
+
+STAIRS, LEVEL = "datasets/real/gaitmap_stairs_down_left", "datasets/real/gaitmap_level_right"
+
+
+@pytest.mark.skipif(not __import__("os").path.isdir(STAIRS), reason="real gaitmap recordings absent")
+def test_gait_refuses_two_recordings_of_different_activities_b245(capsys):
+    from pdrlearn.cli import main
+
+    assert main(["gait", STAIRS, LEVEL]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "different recordings" in err[0] and "activity" in err[0]
