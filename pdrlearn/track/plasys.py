@@ -580,10 +580,10 @@ COMPASS_DISAGREE_DEG = 20.0
 #: heading's relative part is the waist gyroscope's heading (not the foot's) and its offset to the compass is one
 #: constant per stretch (not L17's +-60 s window); False = L17 as before
 COMPASS_GYRO_FALLBACK = True
-#: decision L266 (with L264's candidate; L265 records the measurement): the fallback's offset to the compass drifts
+#: decision L266 (adopted with L264 by its rule, L265): the fallback's offset to the compass drifts
 #: linearly per stretch (:func:`fuse_with_drift`), taking out the waist gyroscope's rate bias that one constant leaves
 #: (the heading of a 27 min shift was 75 deg off at its first stride); False = L226's one constant
-FALLBACK_DRIFT = False
+FALLBACK_DRIFT = True
 
 
 #: decision L264: L182's check fits its model on windows of this length (s) of straight strides, each on its own:
@@ -591,8 +591,8 @@ FALLBACK_DRIFT = False
 #: a foot heading that drifts over a 30-80 min shift (stairs, turns on the spot) is then judged only over the span
 #: the track relies on it, while a field that changes from place to place still disagrees inside a window
 COMPASS_CHECK_WINDOW_S = 120.0
-#: decision L264 (candidate; L265 records its measurement): True = the windowed check; False = L182's one fit
-COMPASS_CHECK_WINDOWED = False
+#: decision L264 (adopted by its rule, L265): True = the windowed check; False = L182's one fit
+COMPASS_CHECK_WINDOWED = True
 
 
 def compass_windows(t: np.ndarray, window_s: float, min_n: int) -> list[np.ndarray]:
@@ -615,6 +615,20 @@ def compass_windows(t: np.ndarray, window_s: float, min_n: int) -> list[np.ndarr
     return out
 
 
+def windowed_disagreement(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray, t: np.ndarray, *,
+                          window_s: float = COMPASS_CHECK_WINDOW_S,
+                          min_n: int = HARD_IRON_MIN_STRIDES) -> np.ndarray:
+    """Decision L264: :func:`~pdrlearn.orient._kernels.compass_disagreement`'s angles (rad), its model fitted on each
+    :func:`compass_windows` window of the strides at times ``t`` (s) on its own; in the order of ``t``."""
+    from pdrlearn.orient._kernels import compass_disagreement
+
+    ang = np.zeros(len(psi))
+    for g in compass_windows(t, window_s, min_n):
+        ang[g] = compass_disagreement(np.asarray(m_fwd, float)[g], np.asarray(m_left, float)[g],
+                                      np.asarray(psi, float)[g])[0]
+    return ang
+
+
 def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
                   keep: np.ndarray, *, windowed: bool | None = None) -> tuple[str | None, dict | None]:
     """Decision L182: (a warning line or None, ``info.compass_check``) for a track whose heading reads the waist
@@ -630,9 +644,7 @@ def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
     psi_ok = np.asarray(psi, float)[ok]
     windowed = COMPASS_CHECK_WINDOWED if windowed is None else windowed
     if windowed:  # decision L264: each window judged on its own, against the foot heading of that window only
-        groups = compass_windows(strides["start_s"].to_numpy(float)[ok], COMPASS_CHECK_WINDOW_S,
-                                 HARD_IRON_MIN_STRIDES)
-        ang = np.concatenate([compass_disagreement(mf[g], ml[g], psi_ok[g])[0] for g in groups])
+        ang = windowed_disagreement(mf, ml, psi_ok, strides["start_s"].to_numpy(float)[ok])
     else:  # decision L182: one fit over the whole walk
         ang = compass_disagreement(mf, ml, psi_ok)[0]
     angle = float(np.degrees(np.median(np.abs(ang))))
@@ -895,7 +907,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         it turns enough (decision L84, :func:`fit_waist_hard_iron`; None = :data:`HARD_IRON_FIT`); the fit
         is in ``info["hard_iron"]``
     compass_fallback : heading "fused": when L182's compass check warns, follow the waist gyroscope's heading
-        aligned to the compass by one constant offset per stretch (decision L226; None =
+        aligned to the compass by one offset per stretch (decision L226; linear in time, L266; None =
         :data:`COMPASS_GYRO_FALLBACK`); ``info["compass_check"]["gyro_fallback"]`` says whether it applied
     fallback_drift : the fallback's offset drifts linearly per stretch (decision L266; None = :data:`FALLBACK_DRIFT`)
     waist_bias : heading "waist"/"fused": when W125's bias warning fires, remove the waist gyroscope's vertical-rate
@@ -1151,12 +1163,13 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             compass_info["gyro_fallback"] = bool(fallback)
         if fallback:  # decision L226: the compass's place-dependent error is not followed stretch by stretch
             gyro = WaistHeading(use_magnetometer=False, yaw_bias=yaw_bias).fit_session(work)
+            drift = FALLBACK_DRIFT if fallback_drift is None else fallback_drift
             head = fuse_by_segment(_stride_heading(gyro, strides), head, strides["start_s"].to_numpy(float),
-                                   strides["end_s"].to_numpy(float), foot_gaps, tau_s=np.inf,
-                                   drift=FALLBACK_DRIFT if fallback_drift is None else fallback_drift)
+                                   strides["end_s"].to_numpy(float), foot_gaps, tau_s=np.inf, drift=drift)
+            turned_by = "an offset that drifts linearly (decision L226, L266)" if drift else "one constant offset " \
+                "(decision L226)"
             warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
-                "; this track follows the waist gyroscope's heading, turned to the compass by one constant offset "
-                "(decision L226)")
+                f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
         elif hsrc == "fused":
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s)
