@@ -211,7 +211,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``altitude`` (decision L154: ``"foot"``, the default, or ``"fused"`` with the waist barometer; an option),
       ``waist_bias`` (decision W126: remove the waist gyroscope bias read at rest; off by default),
       ``compass_fallback`` (decision L226: with heading ``"fused"``, follow the waist gyroscope turned to the compass
-      by one constant offset when L182's compass check warns; on by default, L227).
+      by one constant offset when L182's compass check warns; on by default, L227), ``fallback_drift`` (decision L266:
+      that offset drifts linearly in time, the waist gyroscope's rate bias; on by default, L265).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``

@@ -497,6 +497,25 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
     return np.asarray(relative) + offset
 
 
+def fuse_with_drift(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Decision L266: ``relative`` (a gyroscope heading whose rate bias was not removed: its error grows with time)
+    turned to ``absolute`` by an offset that drifts linearly in ``t`` (s): the least-squares line of the wrapped
+    difference ``absolute - relative`` about its circular mean (rad). A constant offset (L226) is the mean of a
+    drifting difference, wrong at both ends of a long recording by half the drift; a line takes the gyroscope's
+    constant rate bias out and leaves a place-dependent compass error unfollowed (it averages over the stretch)."""
+    relative, absolute, t = (np.asarray(a, dtype=float) for a in (relative, absolute, t))
+    if len(relative) < 2 or not np.ptp(t) > 0:
+        return fuse_heading(relative, absolute, t, tau_s=np.inf)
+    d = wrap_angle(absolute - relative)
+    line = np.zeros(len(d))
+    for _ in range(3):  # the line about the current offset, so a drift past +-180 deg does not wrap it away
+        centre = np.arctan2(np.mean(np.sin(d - line)), np.mean(np.cos(d - line))) + line
+        r = wrap_angle(d - centre)
+        X = np.column_stack([np.ones_like(t), t - t.mean()])
+        line = centre + X @ np.linalg.lstsq(X, r, rcond=None)[0]
+    return relative + line
+
+
 #: decision L84: "fused" fits the waist magnetometer's horizontal hard-iron offset from the walk (not adopted:
 #: the rule's measurement is in docs/decisions/localization.md); ``track_plasys(hard_iron_fit=True)`` turns it on
 HARD_IRON_FIT = False
@@ -561,10 +580,57 @@ COMPASS_DISAGREE_DEG = 20.0
 #: heading's relative part is the waist gyroscope's heading (not the foot's) and its offset to the compass is one
 #: constant per stretch (not L17's +-60 s window); False = L17 as before
 COMPASS_GYRO_FALLBACK = True
+#: decision L266 (adopted with L264 by its rule, L265): the fallback's offset to the compass drifts
+#: linearly per stretch (:func:`fuse_with_drift`), taking out the waist gyroscope's rate bias that one constant leaves
+#: (the heading of a 27 min shift was 75 deg off at its first stride); False = L226's one constant
+FALLBACK_DRIFT = True
+
+
+#: decision L264: L182's check fits its model on windows of this length (s) of straight strides, each on its own:
+#: L17's +-60 s, the span over which the fused heading itself trusts the foot's relative heading against the compass;
+#: a foot heading that drifts over a 30-80 min shift (stairs, turns on the spot) is then judged only over the span
+#: the track relies on it, while a field that changes from place to place still disagrees inside a window
+COMPASS_CHECK_WINDOW_S = 120.0
+#: decision L264 (adopted by its rule, L265): True = the windowed check; False = L182's one fit
+COMPASS_CHECK_WINDOWED = True
+
+
+def compass_windows(t: np.ndarray, window_s: float, min_n: int) -> list[np.ndarray]:
+    """Decision L264: the indices of the times ``t`` (sorted, s) cut into consecutive windows of ``window_s``
+    from the first; a window of fewer than ``min_n`` joins the one before it (the first, the one after it), so every
+    window holds at least ``min_n`` when ``len(t) >= min_n``."""
+    t = np.asarray(t, float)
+    if not len(t):
+        return []
+    key = np.floor((t - t[0]) / window_s).astype(int)
+    groups = [np.flatnonzero(key == k) for k in np.unique(key)]
+    out: list[np.ndarray] = []
+    for g in groups:
+        if out and (len(g) < min_n or len(out[-1]) < min_n):
+            out[-1] = np.concatenate([out[-1], g])
+        else:
+            out.append(g)
+    if len(out) > 1 and len(out[-1]) < min_n:
+        out[-2] = np.concatenate([out[-2], out.pop()])
+    return out
+
+
+def windowed_disagreement(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray, t: np.ndarray, *,
+                          window_s: float = COMPASS_CHECK_WINDOW_S,
+                          min_n: int = HARD_IRON_MIN_STRIDES) -> np.ndarray:
+    """Decision L264: :func:`~pdrlearn.orient._kernels.compass_disagreement`'s angles (rad), its model fitted on each
+    :func:`compass_windows` window of the strides at times ``t`` (s) on its own; in the order of ``t``."""
+    from pdrlearn.orient._kernels import compass_disagreement
+
+    ang = np.zeros(len(psi))
+    for g in compass_windows(t, window_s, min_n):
+        ang[g] = compass_disagreement(np.asarray(m_fwd, float)[g], np.asarray(m_left, float)[g],
+                                      np.asarray(psi, float)[g])[0]
+    return ang
 
 
 def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
-                  keep: np.ndarray) -> tuple[str | None, dict | None]:
+                  keep: np.ndarray, *, windowed: bool | None = None) -> tuple[str | None, dict | None]:
     """Decision L182: (a warning line or None, ``info.compass_check``) for a track whose heading reads the waist
     compass: the median |angle| (:func:`~pdrlearn.orient._kernels.compass_disagreement`) of the ``keep`` strides
     (straight, outside foot gaps) against the foot's relative heading ``psi`` (rad), with at least
@@ -575,12 +641,20 @@ def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
     if level is None or int(level[2].sum()) < HARD_IRON_MIN_STRIDES:
         return None, None
     mf, ml, ok = level
-    angle = float(np.degrees(np.median(np.abs(compass_disagreement(mf, ml, np.asarray(psi, float)[ok])[0]))))
-    info = {"median_deg": angle, "n_strides": int(ok.sum()), "limit_deg": COMPASS_DISAGREE_DEG}
+    psi_ok = np.asarray(psi, float)[ok]
+    windowed = COMPASS_CHECK_WINDOWED if windowed is None else windowed
+    if windowed:  # decision L264: each window judged on its own, against the foot heading of that window only
+        ang = windowed_disagreement(mf, ml, psi_ok, strides["start_s"].to_numpy(float)[ok])
+    else:  # decision L182: one fit over the whole walk
+        ang = compass_disagreement(mf, ml, psi_ok)[0]
+    angle = float(np.degrees(np.median(np.abs(ang))))
+    info = {"median_deg": angle, "n_strides": int(ok.sum()), "limit_deg": COMPASS_DISAGREE_DEG,
+            "window_s": COMPASS_CHECK_WINDOW_S if windowed else None}
     if not angle > COMPASS_DISAGREE_DEG:
         return None, info
+    over = f" (each {COMPASS_CHECK_WINDOW_S:g} s window on its own, L264)" if windowed else ""
     return (f"the waist compass disagrees with the foot's gyroscope heading by a median {angle:.1f} deg over "
-            f"{int(ok.sum())} straight strides, more than a hard-iron offset explains (over "
+            f"{int(ok.sum())} straight strides{over}, more than a hard-iron offset explains (over "
             f"{COMPASS_DISAGREE_DEG:g} deg warns, decision L182): a magnetic disturbance (steel, a building's "
             "structure) turns this offline track, whose heading follows the compass (L17); track with `--streaming` "
             "(the waist gyroscope's heading) or `--units foot` (the foot's own)"), info
@@ -764,6 +838,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
                  drop_neighbour: bool | None = None,
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
+                 fallback_drift: bool | None = None,
                  **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -832,8 +907,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         it turns enough (decision L84, :func:`fit_waist_hard_iron`; None = :data:`HARD_IRON_FIT`); the fit
         is in ``info["hard_iron"]``
     compass_fallback : heading "fused": when L182's compass check warns, follow the waist gyroscope's heading
-        aligned to the compass by one constant offset per stretch (decision L226; None =
+        aligned to the compass by one offset per stretch (decision L226; linear in time, L266; None =
         :data:`COMPASS_GYRO_FALLBACK`); ``info["compass_check"]["gyro_fallback"]`` says whether it applied
+    fallback_drift : the fallback's offset drifts linearly per stretch (decision L266; None = :data:`FALLBACK_DRIFT`)
     waist_bias : heading "waist"/"fused": when W125's bias warning fires, remove the waist gyroscope's vertical-rate
         bias read at its standstills (decision W126; None = :data:`WAIST_BIAS_AT_REST`)
     contacts : streaming: give each stride its initial contact (``event_s``: the force sensors' stance onset, else
@@ -1087,11 +1163,13 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             compass_info["gyro_fallback"] = bool(fallback)
         if fallback:  # decision L226: the compass's place-dependent error is not followed stretch by stretch
             gyro = WaistHeading(use_magnetometer=False, yaw_bias=yaw_bias).fit_session(work)
+            drift = FALLBACK_DRIFT if fallback_drift is None else fallback_drift
             head = fuse_by_segment(_stride_heading(gyro, strides), head, strides["start_s"].to_numpy(float),
-                                   strides["end_s"].to_numpy(float), foot_gaps, tau_s=np.inf)
+                                   strides["end_s"].to_numpy(float), foot_gaps, tau_s=np.inf, drift=drift)
+            turned_by = "an offset that drifts linearly (decision L226, L266)" if drift else "one constant offset " \
+                "(decision L226)"
             warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
-                "; this track follows the waist gyroscope's heading, turned to the compass by one constant offset "
-                "(decision L226)")
+                f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
         elif hsrc == "fused":
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s)
@@ -1211,21 +1289,25 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
 
 def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
-                    foot_gaps: dict, *, tau_s: float = 60.0) -> np.ndarray:
+                    foot_gaps: dict, *, tau_s: float = 60.0, drift: bool = False) -> np.ndarray:
     """Decision L90: :func:`fuse_heading` on each stretch of strides between two foot-IMU gaps (``fAccelerometer``
     / ``fGyroscope``, over 1 s) on its own: the foot's relative heading loses its link at such a gap (the turn
     inside it was not measured), so each stretch gets its own offset to the waist heading, from its own strides -
     the strides before a gap do not depend on anything after it, and after it the waist heading re-anchors the
     foot's. A stride belongs to the stretch after every gap that ended by its start. Without such a gap: one
-    :func:`fuse_heading` call, as before."""
+    :func:`fuse_heading` call, as before. ``drift``: each stretch's offset is :func:`fuse_with_drift`'s line
+    (decision L266) instead of :func:`fuse_heading`'s window."""
+    def one(r, a, t):
+        return fuse_with_drift(r, a, t) if drift else fuse_heading(r, a, t, tau_s=tau_s)
+
     ends = sorted(b for k, g in foot_gaps.items() if k in FOOT_IMU for _, b in g)
     if not ends or not len(relative):
-        return fuse_heading(relative, absolute, end_s, tau_s=tau_s)
+        return one(relative, absolute, end_s)
     seg = np.searchsorted(np.asarray(ends), np.asarray(start_s, float), side="right")
     out = np.empty(len(relative))
     for k in np.unique(seg):
         m = seg == k
-        out[m] = fuse_heading(np.asarray(relative)[m], np.asarray(absolute)[m], np.asarray(end_s)[m], tau_s=tau_s)
+        out[m] = one(np.asarray(relative)[m], np.asarray(absolute)[m], np.asarray(end_s)[m])
     return out
 
 

@@ -49,6 +49,10 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150)
     "plasys-streaming": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
                          "point_m": 5.1e-174},
+    # decision L267: plasys offline after L226's fallback (L182 judged the compass disturbed): the heading is the
+    # waist gyroscope's, as the streamed one, so its radius is the streamed regime's (not fitted on its own)
+    "plasys-gyro-fallback": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
+                             "point_m": 5.1e-174},
     # the lower-back pipelines (fitted on waist-pendulum; waist-pll shares them, not fitted)
     "waist": {"displacement_rel": 0.0, "heading_walk_rad": 0.0083, "bias_rps": 0.00085, "point_m": 3.1},
 }
@@ -108,6 +112,8 @@ def sigma_regime(info: dict, session) -> str:
         return "waist"
     if info.get("streaming"):  # the streamed heading is the waist gyroscope's when there is one (L99)
         return "plasys-streaming" if session.has("wGyroscope") else "plasys-foot-streaming"
+    if (info.get("compass_check") or {}).get("gyro_fallback"):  # decision L267: the heading is the waist gyroscope's
+        return "plasys-gyro-fallback"
     return "plasys-fused" if info.get("heading_source") in ("fused", "waist") else "plasys-foot"
 
 
@@ -201,8 +207,12 @@ def position_sigma_warning(summary: dict) -> str | None:
     model = (summary.get("info") or {}).get("position_sigma", {}).get("model", "?")
     if model in SIGMA_TOO_LARGE:
         return None
+    fix = ("track offline with a foot and a waist unit (the waist compass, `plasys-fused`) or give position fixes "
+           "(`track --fixes` / `--gnss`)")
+    if model == "plasys-gyro-fallback":  # decision L267: the compass was judged disturbed (L182), the track
+        fix = ("this offline track left the waist compass (L182, L226) for the waist gyroscope; give position "
+               "fixes (`track --fixes` / `--gnss`)")
     return (f"the end position's 2-sigma radius {2 * float(sigma):.0f} m is {200 * float(sigma) / float(dist):.0f} % "
             f"of the {float(dist):.0f} m walked (model {model}; over {100 * SIGMA_SHARE_WARN:.0f} % warns, decision "
             "L175): the position is not usable (a gyroscope-only heading drifts over a long walk; distance, steps "
-            "and gait are not affected); for a position, track offline with a foot and a waist unit (the waist "
-            "compass, `plasys-fused`) or give position fixes (`track --fixes` / `--gnss`)")
+            f"and gait are not affected); for a position, {fix}")
