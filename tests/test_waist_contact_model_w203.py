@@ -144,3 +144,19 @@ def test_the_live_line_names_it():
     assert line is not None and 'contact_model="learned"' in line and "contact_model=false" in line
     live = {"sit_veto": False, "contact_shift": False, "parity_fill": False}  # E126 / E130: what live does
     assert unapplied_options_line(WaistParams(leg_m=0.9, options=live)) is None
+
+
+def test_flexed_feature_is_posture_near_flexion(daily):  # review S29 item 7: one mechanism, features unchanged
+    from pdrlearn.waist import posture
+
+    assert cm.near_flexion is posture.near_flexion
+    raw = track_waist(daily, pipeline="waist-pendulum", sit_veto=False, stand_veto=False)
+    imu = waist_imu(daily)
+    thr, sigma, _ = gate_threshold(imu, None, relative=True)
+    feats = cm.contact_features(raw.steps, imu, thr, sigma)
+    ev, hn = raw.steps["event_s"].to_numpy(float), raw.steps["has_next"].to_numpy(bool)
+    old = np.zeros(ev.size, dtype=bool)  # the inline rule contact_features had before (W104's window)
+    for a, peak, b in posture.flexion_events(imu, ev, hn):
+        old |= ((ev >= a) & (ev <= b)) | (np.abs(ev - peak) <= posture.TRANSFER_HALF_S)
+    col = feats[:, list(cm.FEATURES).index("flexed")]
+    assert old.any() and np.array_equal(col, old.astype(float))

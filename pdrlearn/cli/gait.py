@@ -55,8 +55,9 @@ def register(app: typer.Typer) -> None:
         double and single support (% of the gait cycle, from the toe-off of track --toe-off), per walk and per
         walking bout. Each folder is tracked offline with --toe-off; with labelled IC / TC events in both folders
         (gaitmap's mocap) the same measures of the labels are given as the reference. The two recordings must share
-        one clock (t = 0 at the same instant, as gaitmap's left / right folders): pdrlearn does not align them, and
-        refuses only contacts that do not overlap in time (decision L260).
+        one clock (t = 0 at the same instant, as gaitmap's left / right folders): pdrlearn does not align them; it
+        refuses contacts that do not overlap in time (decision L260) and two sessions whose meta.json names different
+        activities, and warns when under 80 % of the merged contacts alternate feet (decision B245).
 
         Examples:
 

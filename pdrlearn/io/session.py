@@ -254,6 +254,9 @@ class Session:
     #: decision B113: the recording's :meth:`content_id` when this session is its copy resampled to a model's
     #: rate (``pdrlearn evaluate --resample``): the held-out check (B87) still knows the recording
     _source_id: str | None = field(default=None, repr=False, compare=False)
+    #: decision E138: when ``steps`` is a ``--window``'s cut, each row's row in the session's steps.csv (from 0);
+    #: None: the rows are steps.csv's
+    _steps_rows: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     def __repr__(self) -> str:
         """Decision B181: a short description (streams with rate and unit, duration, labels), not the arrays

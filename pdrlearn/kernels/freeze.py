@@ -27,6 +27,9 @@ FI_THRESHOLD = 1.5
 #: quiet standing is far below (a few hundredths RMS), trembling of the trial's smallest waist amplitude (0.6 m/s^2
 #: peak) far above; Baechlin's power threshold, in physical units
 FI_POWER_MIN = 0.01
+#: windows per chunk of :func:`freeze_index` (review S29: all windows of 8 h at 100 Hz at once took ~0.5 GB); the
+#: output does not depend on it
+FI_CHUNK_WINDOWS = 2000
 #: decision W213: the shortest freeze episode kept (s; one window step less gives no episode)
 FREEZE_MIN_S = 1.0
 
@@ -45,12 +48,16 @@ def freeze_index(x: np.ndarray, fs: float, *, window_s: float = FI_WINDOW_S,
     if n < 2 or x.size < n:
         return np.zeros(0, dtype=int), np.zeros(0), np.zeros(0)
     starts = np.arange(0, x.size - n + 1, hop)
-    seg = x[starts[:, None] + np.arange(n)[None, :]]
-    seg = seg - seg.mean(axis=1, keepdims=True)
-    spec = np.abs(np.fft.rfft(seg, axis=1)) ** 2 * (2.0 / n**2)  # one-sided: mean square per bin (Parseval)
     f = np.fft.rfftfreq(n, 1.0 / fs)
-    loco = spec[:, (f >= LOCOMOTOR_BAND_HZ[0]) & (f < LOCOMOTOR_BAND_HZ[1])].sum(axis=1)
-    frz = spec[:, (f >= FREEZE_BAND_HZ[0]) & (f <= FREEZE_BAND_HZ[1])].sum(axis=1)
+    in_loco = (f >= LOCOMOTOR_BAND_HZ[0]) & (f < LOCOMOTOR_BAND_HZ[1])
+    in_frz = (f >= FREEZE_BAND_HZ[0]) & (f <= FREEZE_BAND_HZ[1])
+    loco, frz = np.empty(starts.size), np.empty(starts.size)
+    for k in range(0, starts.size, FI_CHUNK_WINDOWS):  # a chunk of windows at a time: memory bounded, same output
+        seg = x[starts[k:k + FI_CHUNK_WINDOWS, None] + np.arange(n)[None, :]]
+        seg = seg - seg.mean(axis=1, keepdims=True)
+        spec = np.abs(np.fft.rfft(seg, axis=1)) ** 2 * (2.0 / n**2)  # one-sided: mean square per bin (Parseval)
+        loco[k:k + seg.shape[0]] = spec[:, in_loco].sum(axis=1)
+        frz[k:k + seg.shape[0]] = spec[:, in_frz].sum(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         fi = np.where(loco > 0, frz / np.where(loco > 0, loco, 1.0), np.where(frz > 0, np.inf, 0.0))
     return starts + n // 2, fi, loco + frz

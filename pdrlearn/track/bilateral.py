@@ -26,6 +26,7 @@ out); :func:`pair_sessions` tracks two session folders.
 
 from __future__ import annotations
 
+import logging
 import math
 from pathlib import Path
 
@@ -34,6 +35,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.track.clinical import bout_rows, symmetry_index_pct
+from pdrlearn.track.flags import flag_values
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot
 EVENT_COLUMNS = ("ic_s", "tc_s", "length_m")
@@ -41,6 +43,13 @@ EVENT_COLUMNS = ("ic_s", "tc_s", "length_m")
 #: ``instrumented_foot``)
 FOOT_META_KEYS = ("foot", "instrumented_foot")
 SIDES = ("left", "right")
+#: decision B245: the least share of the merged contacts (in the two tracks' overlap) that follow the other foot's;
+#: each stride one track misses puts one contact out of turn, so 0.8 allows one missed stride in five of each foot
+#: (gaitmap's level pair: tracked 63 / 63, mocap labels 55 / 56; two walks whose clocks overlap: stairs-down left
+#: + level right 30 / 50, stairs-up left + level right 36 / 51)
+ALTERNATION_MIN = 0.8
+#: decision B245: meta.json keys naming what was recorded; two sessions giving different values are not one walk
+WALK_META_KEYS = ("activity", "terrain_recording")
 #: decision L262: what the tracked double support is known to read (measured, experiments/bilateral_gait.py): L73's
 #: toe-off is ~21 ms early and the IC ~15 ms late against motion capture, so each double-support period is short
 SUPPORT_NOTE = ("double support reads low and single support high from foot units: the gyroscope's toe-off is "
@@ -63,7 +72,7 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
     st = steps[ok]
     length = st["length_m"].to_numpy(float) if "length_m" in st else np.full(len(st), np.nan)
     if "impossible" in st:
-        length = np.where(st["impossible"].astype(bool).to_numpy(), np.nan, length)
+        length = np.where(flag_values(st["impossible"]), np.nan, length)
     out = pd.DataFrame({"ic_s": st[ic_col].to_numpy(float),
                         "tc_s": st["tc_s"].to_numpy(float) if "tc_s" in st else np.full(len(st), np.nan),
                         "length_m": length})
@@ -161,6 +170,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
                         f"{left['ic_s'].iloc[-1]:.1f} s, right {right['ic_s'].iloc[0]:.1f}-"
                         f"{right['ic_s'].iloc[-1]:.1f} s); give the two feet of one walk, recorded on one clock")
     both = merged_contacts(left, right)
+    alternation_warning(both)
     steps, cycles = step_table(both), cycle_table(both)
     toe_off = bool(np.isfinite(both["tc_s"]).any())
     bouts = []
@@ -175,6 +185,26 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
         reason = SUPPORT_NOTE if "event_s" in left_steps else None
     return {"walk": gait_measures(both, steps, cycles), "bouts": bouts, "steps": steps, "cycles": cycles,
             "toe_off": toe_off, "reason": reason}
+
+
+def alternating_share(both: pd.DataFrame) -> tuple[int, int]:
+    """Decision B245: of the merged contacts (:func:`merged_contacts`), how many follow a contact of the other
+    foot, and how many follow one at all."""
+    side = both["side"].to_numpy()
+    return int((side[1:] != side[:-1]).sum()), max(len(side) - 1, 0)
+
+
+def alternation_warning(both: pd.DataFrame) -> str | None:
+    """Decision B245: one warning line (logged, and returned) when under :data:`ALTERNATION_MIN` of the merged
+    contacts alternate feet: two walks whose clocks overlap, not one walk on one clock."""
+    alt, n = alternating_share(both)
+    if n == 0 or alt >= ALTERNATION_MIN * n:
+        return None
+    line = (f"bilateral gait: only {alt} of {n} contacts follow the other foot's "
+            f"(one walk alternates feet; under {ALTERNATION_MIN:.0%}, decision B245): are these the two feet of one "
+            "walk on one clock? The step times and asymmetry below are not trustworthy if not")
+    logging.getLogger(__name__).warning(line)
+    return line
 
 
 def session_foot(meta: dict) -> str | None:
@@ -203,6 +233,16 @@ def check_pair(left_dir: Path, right_dir: Path, left_meta: dict, right_meta: dic
                             "session first, then the right foot's")
 
 
+def check_one_walk(left_dir: Path, right_dir: Path, left_meta: dict, right_meta: dict) -> None:
+    """Decision B245: refuse (one line) two sessions whose ``meta.json`` names different activities
+    (:data:`WALK_META_KEYS`, both given): not the two feet of one walk."""
+    for k in WALK_META_KEYS:
+        a, b = left_meta.get(k), right_meta.get(k)
+        if a is not None and b is not None and str(a).strip().lower() != str(b).strip().lower():
+            raise DataError(f"gait: {left_dir} and {right_dir} are different recordings (meta.json {k}: {a!r} / "
+                            f"{b!r}); give the two feet of one walk")
+
+
 def label_steps(session) -> pd.DataFrame | None:
     """A session's labelled strides with IC / TC times (``ic_s`` and ``tc_s``, e.g. gaitmap's mocap events; the
     simulator's ``steps.csv``) as a :func:`foot_events` table, or None without labelled ICs."""
@@ -225,6 +265,7 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     for d, s in zip((left_dir, right_dir), sessions, strict=True):
         if not s.has("fAccelerometer", "fGyroscope"):
             raise DataError(f"gait: {d} has no foot unit (fAccelerometer.csv, fGyroscope.csv); give a foot session")
+    check_one_walk(left_dir, right_dir, sessions[0].meta, sessions[1].meta)
     tracks = [track_plasys(s, toe_off=True) for s in sessions]
     out = bilateral_gait(tracks[0].steps, tracks[1].steps)
     labels = [label_steps(s) for s in sessions]

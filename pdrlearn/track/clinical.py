@@ -51,6 +51,8 @@ import math
 import numpy as np
 import pandas as pd
 
+from pdrlearn.track.flags import flag_values
+
 #: a pause is at least this much (s) longer than the walk's median row-to-row interval
 PAUSE_MIN_S = 1.0
 #: an interval across which the heading changes this much (deg) or more holds a turn: the time the turn may take
@@ -608,7 +610,7 @@ def steady_stride_lengths(st: pd.DataFrame, steady: np.ndarray) -> np.ndarray:
         return np.full(int(steady.sum()), np.nan)
     length = np.abs(st["length_m"].to_numpy(float))
     if "impossible" in st:
-        length = np.where(st["impossible"].astype(bool).to_numpy(), np.nan, length)
+        length = np.where(flag_values(st["impossible"]), np.nan, length)
     return length[steady]
 
 

@@ -14,6 +14,7 @@ import pandas as pd
 from pdrlearn.io.session import Session
 from pdrlearn.kernels.backward import BACKWARD_MAX_TURN_DEG, backward_mask  # noqa: F401  decision L203
 from pdrlearn.track.base import TrackResult
+from pdrlearn.track.flags import flag_values
 
 
 def match_by_overlap(est: pd.DataFrame, ref: pd.DataFrame, *, min_iou: float = 0.5) -> list[tuple[int, int]]:
@@ -605,6 +606,8 @@ def with_reference_columns(result: TrackResult, session: Session | None) -> pd.D
     steps = result.steps
     if session is None or not len(steps) or "unit" not in steps or not (steps["unit"] == "foot").all():
         return steps
+    from pdrlearn.track.window import steps_row
+
     pairs = stride_pairs(result, session)
     if pairs is None:
         return steps
@@ -616,7 +619,7 @@ def with_reference_columns(result: TrackResult, session: Session | None) -> pd.D
     times = reference_stride_times(st)
     for rows, j, est in pairs:
         for i in rows:
-            match[i] = j
+            match[i] = steps_row(session, j)  # decision E138: steps.csv's row, also under --window
             ref_len[i], ref_t[i], pair_len[i] = float(st["length_m"].iloc[j]), times[j], abs(est)
             composed[i] = len(rows) > 1
     return steps.assign(ref_match=match, ref_length_m=ref_len, ref_stride_time_s=ref_t, ref_composed=composed,
@@ -639,13 +642,13 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
     # mocap volume: 28 of 32 strides) makes distance_error_pct compare the whole track with part of it
     out["distance_matched_error_pct"] = float(100.0 * (np.abs(e).sum() / np.abs(r).sum() - 1.0))
     if "turn" in session.steps:
-        turn = session.steps["turn"].astype(bool).to_numpy()[ri]
+        turn = flag_values(session.steps["turn"])[ri]
         if (~turn).any():
             out["stride_length_mae_pct_straight"] = float(100.0 * np.mean((err / np.abs(r))[~turn]))
         if turn.any():
             out["stride_length_mae_pct_turns"] = float(100.0 * np.mean((err / np.abs(r))[turn]))
     if "steady" in session.steps:  # decision L252: a walkway reference's strides (no initiation / termination / turn)
-        steady = session.steps["steady"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy()[ri]
+        steady = flag_values(session.steps["steady"])[ri]
         if steady.any():
             out["stride_length_mae_pct_steady"] = float(100.0 * np.mean((err / np.abs(r))[steady]))
 

@@ -29,6 +29,7 @@ import pandas as pd
 # decision E49: one implementation (numpy only), shared with the streaming runtime, which gives each stride its
 # stride time as it emits it
 from pdrlearn.kernels.contact import MAX_STRIDE_S, TOUCH_S, stride_times  # noqa: F401
+from pdrlearn.track.flags import flag_values
 
 #: the gait columns, in the order steps.csv carries them (after the stride's own columns)
 GAIT_COLUMNS = ("stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad")
@@ -216,7 +217,7 @@ def sideways_rows(steps: pd.DataFrame) -> np.ndarray:
         return np.zeros(len(steps), bool)
     from pdrlearn.kernels.sideways import side_rows
 
-    flags = steps["sideways"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy(bool)
+    flags = flag_values(steps["sideways"])
     gap = pd.to_numeric(steps["gap_s"], errors="coerce").to_numpy(float) if "gap_s" in steps else None
     return side_rows(flags, gap, streamed="pivot_rad" in steps)
 

@@ -72,11 +72,24 @@ def check_window(window: tuple[float, float], session: Session, unit: str | None
     return t0 + start, t0 + end
 
 
-def _mid_inside(df: pd.DataFrame | None, t0: float, t1: float) -> pd.DataFrame | None:
+def _mid_inside_rows(df: pd.DataFrame | None, t0: float, t1: float) -> np.ndarray | None:
+    """The rows (from 0) of ``df`` whose middle lies in ``[t0, t1]``; None when ``df`` has no start/end."""
     if df is None or not {"start_s", "end_s"} <= set(df):
-        return df
+        return None
     mid = 0.5 * (df["start_s"].to_numpy(float) + df["end_s"].to_numpy(float))
-    return df[(mid >= t0) & (mid <= t1)].reset_index(drop=True)
+    return np.flatnonzero((mid >= t0) & (mid <= t1))
+
+
+def _mid_inside(df: pd.DataFrame | None, t0: float, t1: float) -> pd.DataFrame | None:
+    rows = _mid_inside_rows(df, t0, t1)
+    return df if rows is None else df.iloc[rows].reset_index(drop=True)
+
+
+def steps_row(session: Session, j: int) -> int:
+    """Decision E138: the session's steps.csv row (from 0) of row ``j`` of ``session.steps`` (a ``--window``'s cut
+    numbers its rows from 0; this undoes it)."""
+    rows = session._steps_rows
+    return int(j) if rows is None else int(rows[j])
 
 
 def _inside(df: pd.DataFrame, t0: float, t1: float) -> pd.DataFrame:
@@ -88,6 +101,23 @@ def _inside(df: pd.DataFrame, t0: float, t1: float) -> pd.DataFrame:
     if {"start_s", "end_s"} <= set(df):
         return df[(df["start_s"] >= t0) & (df["end_s"] <= t1)].reset_index(drop=True)
     return df
+
+
+def window_episodes(rows: list[dict] | None, t0: float, t1: float, *, clip: bool) -> list[dict] | None:
+    """The episode rows (``start_s`` / ``end_s`` on the session's clock) of a window ``[t0, t1]``: with ``clip``
+    those overlapping it, cut at its edges (``duration_s`` recomputed; the other columns, e.g. the number and
+    ``peak_fi``, are the whole episode's), else those wholly inside it (decision L272). None stays None."""
+    if rows is None:
+        return None
+    if not clip:
+        return [r for r in rows if r["start_s"] >= t0 and r["end_s"] <= t1]
+    out = []
+    for r in rows:
+        a, b = max(float(r["start_s"]), t0), min(float(r["end_s"]), t1)
+        if b > a:
+            out.append({**r, "start_s": round(a, 3), "end_s": round(b, 3), "duration_s": round(b - a, 3)}
+                       if (a, b) != (r["start_s"], r["end_s"]) else r)
+    return out
 
 
 def window_track(result: TrackResult, session: Session, t0: float, t1: float) -> tuple[TrackResult, Session]:
@@ -122,10 +152,15 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         traj = traj.iloc[[max(int(np.searchsorted(t, t0, side="right")) - 1, 0)]].reset_index(drop=True) \
             if len(traj) else traj
     info = {**result.info, "window": {"start_s": t0 - t_rec, "end_s": t1 - t_rec}}
-    if info.get("transfers") is not None:  # decision W182: the chair transfers inside the window
-        info["transfers"] = [r for r in info["transfers"] if r["start_s"] >= t0 and r["end_s"] <= t1]
-    if info.get("freezes") is not None:  # decision W213: the freeze episodes inside the window
-        info["freezes"] = [r for r in info["freezes"] if r["start_s"] >= t0 and r["end_s"] <= t1]
+    if "freezes" not in info:  # decision L272: a foot track's episodes, of the whole session, then cut below
+        from pdrlearn.track.freezes import session_freezes
+
+        info["freezes"] = session_freezes(session, info.get("pipeline"))
+    # decision W182: the chair transfers wholly inside; decision L272: the freezes clipped to the window
+    info["transfers"] = window_episodes(info.get("transfers"), t0, t1, clip=False)
+    info["freezes"] = window_episodes(info["freezes"], t0, t1, clip=True)
+    if info["transfers"] is None and "transfers" not in result.info:
+        del info["transfers"]
     if warnings:
         info["warnings"] = [*result.info.get("warnings", []), *warnings]
     if notes:  # decision L276: printed as a "note:" line by the command line
@@ -136,6 +171,7 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         gt = gt[(tt >= float(traj["t"].iloc[0]) - 1e-9) & (tt <= float(traj["t"].iloc[-1]) + 1e-9)]
         gt = gt.reset_index(drop=True) if len(gt) > 1 else None
     cut = dataclasses.replace(session, steps=_mid_inside(session.steps, t0, t1), trajectory=gt,
+                              _steps_rows=_mid_inside_rows(session.steps, t0, t1),
                               extras={k: (_inside(v, t0, t1) if isinstance(v, pd.DataFrame) else v)
                                       for k, v in session.extras.items()})
     return TrackResult(steps=steps, trajectory=traj, info=info), cut

@@ -27,12 +27,12 @@ from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU
 from pdrlearn.waist.plausibility import contact_lateral_velocity
 from pdrlearn.waist.posture import (
-    TRANSFER_HALF_S,
     TRANSFER_PEAK_DEG,
     alternating_pairs,
     contact_tilt_deg,
     drop_contacts,
     flexion_events,
+    near_flexion,
     undecided_between,
 )
 
@@ -111,9 +111,7 @@ def contact_features(steps: pd.DataFrame, imu: WaistIMU, thr: float, sigma: np.n
         return np.zeros((0, len(FEATURES)))
     idx = np.clip(np.round((ev - imu.t[0]) * imu.fs).astype(int), 0, len(imu.t) - 1)
     v_lat = contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, ev)
-    flexed = np.zeros(ev.size, dtype=bool)
-    for a, peak, b in flexion_events(imu, ev, hn):  # W104's window, as transfer_veto reads it
-        flexed |= ((ev >= a) & (ev <= b)) | (np.abs(ev - peak) <= TRANSFER_HALF_S)
+    flexed = near_flexion(ev, flexion_events(imu, ev, hn))  # W104's window, as transfer_veto reads it
     nxt = np.append(ev[1:], ev[-1])
     dyaw = np.where(hn, K.integrate_rate(imu.t, imu.w_z - gyro_bias_rps, ev, nxt), 0.0)  # W127
     return feature_matrix(ev, hn, K.contact_bounce(imu.acc_v, imu.fs, idx), v_lat, K.step_sides(v_lat, hn),
