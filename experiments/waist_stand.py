@@ -49,7 +49,8 @@ from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.events import gate_threshold
 
 logging.disable(logging.WARNING)
-#: W199 made stand_veto="adjacent" the offline default; every run here was measured with the veto off unless asked
+#: W199 made stand_veto="adjacent" the offline default (W217 withdrew it); every run here was measured with the veto
+#: off unless asked
 OFF = {"stand_veto": False}
 HALF_S = 0.3  # the amplitude window, +-0.3 s: the shortest step (W16) either side
 

@@ -9,8 +9,8 @@ from pdrlearn.waist.params import WaistParams
 
 
 def _line(options):
-    """The line for ``options`` with W199's offline default ``stand_veto`` "adjacent" (not applied live either, named
-    by tests/test_waist_stand_veto.py) set to what the live tracker does, so only the options below are named."""
+    """The line for ``options`` with ``stand_veto`` off (what the live tracker does; W199 made "adjacent" the offline
+    default, W217 withdrew it; tests/test_waist_stand_veto.py), so only the options below are named."""
     return unapplied_options_line(WaistParams(leg_m=0.9, options={"stand_veto": False, **(options or {})}))
 
 

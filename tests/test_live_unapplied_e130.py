@@ -16,7 +16,7 @@ from pdrlearn.waist.params import WaistParams
 
 
 def _line(options):
-    """W199's offline default ``stand_veto`` "adjacent" (not live either) set to what live does: only these named."""
+    """``stand_veto`` off, as live and (W217) the offline default again: only these named."""
     return unapplied_options_line(WaistParams(leg_m=0.9, options={"stand_veto": False, **(options or {})}))
 
 
