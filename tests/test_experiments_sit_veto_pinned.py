@@ -36,7 +36,8 @@ def test_turns_transfers_lower_back_tracks_have_no_sit_veto(monkeypatch, pipelin
 
 
 def test_hapt_and_waist_stand_measure_with_no_stand_veto():
-    """W199 made ``stand_veto="adjacent"`` the offline default (W217 withdrew it); hapt.md and waist_stand.py's runs were measured with no
+    """W199 made ``stand_veto="adjacent"`` the offline default (W217 withdrew it); hapt.md and waist_stand.py's runs
+    were measured with no
     stand veto (W190-W199), so their rows say so (the option's own row names its value)."""
     hapt = _load("hapt")
     for label, _pipe, kw in hapt.configs(stand_veto="adjacent"):
