@@ -49,12 +49,12 @@ def test_a_lone_contact_inside_the_final_turn_keeps_the_rotation_before_it():
     18.14 s, a contact at 21.21 s); the final heading takes the whole turn, not only the rotation after that contact."""
     s = simulate_path(parse_route("straight:10, turn:180, stand:3"), UserProfile.from_seed(3641), speed="slow",
                       seed=3641, rate_hz=100.0)
-    res = track_waist(s, pipeline="waist-pendulum", integrate_end=True, stand_veto=False)  # W199's veto drops it
+    res = track_waist(s, pipeline="waist-pendulum", integrate_end=True, stand_veto=False)  # "adjacent" drops it
     has_next = res.steps["has_next"].to_numpy(bool)
     assert not has_next[-1] and not has_next[-2]  # a lone contact after the walk's closing contact
     assert abs(abs(res.steps["heading_rad"].iloc[-1]) - np.pi) < np.radians(30.0)
-    # W199's default stand veto drops the lone contact (a weak run of one, walking before it only); the walk's last
-    # step still takes the whole turn (W187)
-    dflt = track_waist(s, pipeline="waist-pendulum", integrate_end=True)
+    # W198's stand veto (W199's default, withdrawn by W217) drops the lone contact (a weak run of one, walking before
+    # it only); the walk's last step still takes the whole turn (W187)
+    dflt = track_waist(s, pipeline="waist-pendulum", integrate_end=True, stand_veto="adjacent")
     assert dflt.info["n_weak_run_contacts"] == 1 and len(dflt.steps) == len(res.steps) - 1
     assert abs(abs(dflt.steps["heading_rad"].iloc[-1]) - np.pi) < np.radians(30.0)
