@@ -142,9 +142,17 @@ def test_cli_on_the_gaitmap_pair(tmp_path, capsys):
     ([RIGHT, LEFT], "says the right foot, given as the left"),
     ([LEFT, ROOT / "datasets/real/gaitmap_stairs_up_left"], "are both the left foot"),
     ([LEFT, ROOT / "datasets/real/mobgap_HA001_Test5_Trial1"], "has no foot unit"),
+    (["{tmp}/missing", RIGHT], "session folder not found"),
+    (["{tmp}/empty", RIGHT], "no samples (empty file)"),
 ])
 def test_cli_refusals_are_one_line(args, msg, tmp_path, capsys):
-    rc, out = _cli(["gait", *map(str, args), "--out", str(tmp_path / "g")], capsys)
+    empty = tmp_path / "empty"  # a foot session whose sensor files hold a header only
+    empty.mkdir()
+    (empty / "meta.json").write_text((LEFT / "meta.json").read_text())
+    for name in ("fAccelerometer", "fGyroscope"):
+        (empty / f"{name}.csv").write_text("timestamp,x,y,z\n")
+    args = [str(a).format(tmp=tmp_path) for a in args]
+    rc, out = _cli(["gait", *args, "--out", str(tmp_path / "g")], capsys)
     err = [x for x in out.err.splitlines() if x.startswith("error:")]
     assert rc != 0 and len(err) == 1 and msg in err[0], out.err
     assert "Traceback" not in out.err and not (tmp_path / "g").exists()
