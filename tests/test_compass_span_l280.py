@@ -85,3 +85,29 @@ def test_a_short_disturbed_loop_falls_back_by_one_constant(gates):
     np.testing.assert_allclose(r.steps["heading_rad"].to_numpy(float), const)
     gates(False)
     assert not np.allclose(track_plasys(s, fallback_drift=True).steps["heading_rad"].to_numpy(float), const)
+
+
+def test_the_3ut_r1x2_walk_l182_moved_to_the_gyroscope_falls_back_again(gates):
+    """(i) on the track: L265 (d)'s u5171 (3 uT, R1 x2, its foot heading drifting ~80 deg over 6.5 min): with the gates
+    L182's one fit judges it (23.3 deg at diagnosis) and the track follows the waist gyroscope, the line naming L280;
+    without them L264's windows (~6 deg) keep L17's fused heading."""
+    import sys
+    from pathlib import Path
+
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "experiments"))
+    from compass_check_long import R1
+
+    s = simulate_path(parse_route(", ".join([R1] * 2)), UserProfile.from_seed(5171), seed=5171, mag_disturbance_ut=3.0,
+                      scenario="route")  # as `simulate --route ... --user-seed 5171 --seed 5171`
+    gates(False)
+    off = track_plasys(s).info["compass_check"]
+    gates(True)
+    r = track_plasys(s)
+    on = r.info["compass_check"]
+    assert off["gyro_fallback"] is False and off["median_deg"] < COMPASS_DISAGREE_DEG and off["by"] == "windows"
+    assert on["gyro_fallback"] is True and on["by"] == "one fit" and on["median_deg"] > COMPASS_DISAGREE_DEG
+    line = [w for w in r.info["warnings"] if "decision L182" in w]
+    assert len(line) == 1 and "L280" in line[0]

@@ -605,8 +605,8 @@ FALLBACK_DRIFT_MIN_S = 2 * COMPASS_CHECK_WINDOW_S
 #: strides span at most this (s): the walks L182's one fit and L226's fallback were validated on (R1 x2, 6-7.5 min,
 #: L227; R1 x4, 12 min, L226), under the 26-81 min shifts where it misjudged (L264)
 COMPASS_ONE_FIT_MAX_S = 900.0
-#: decision L280 (candidate, measured by its rule): True = the two gates above; False = L264 / L266 as adopted (L265)
-COMPASS_SPAN_GATES = False
+#: decision L280 (adopted by its rule, L281): True = the two gates above; False = L264 / L266 as adopted in L265
+COMPASS_SPAN_GATES = True
 
 
 def compass_windows(t: np.ndarray, window_s: float, min_n: int) -> list[np.ndarray]:
@@ -659,7 +659,9 @@ def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
     angle, info = check_angle(mf, ml, psi_ok, t, windowed=windowed)
     if not angle > COMPASS_DISAGREE_DEG:
         return None, info
-    over = f" (each {COMPASS_CHECK_WINDOW_S:g} s window on its own, L264)" if info["by"] == "windows" else ""
+    over = {"windows": f" (each {COMPASS_CHECK_WINDOW_S:g} s window on its own, L264)",
+            "one fit": f" (one fit over a walk of at most {COMPASS_ONE_FIT_MAX_S:g} s, L280)"}[info["by"]] \
+        if windowed else ""
     return (f"the waist compass disagrees with the foot's gyroscope heading by a median {angle:.1f} deg over "
             f"{int(ok.sum())} straight strides{over}, more than a hard-iron offset explains (over "
             f"{COMPASS_DISAGREE_DEG:g} deg warns, decision L182): a magnetic disturbance (steel, a building's "
@@ -1194,8 +1196,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             drift = FALLBACK_DRIFT if fallback_drift is None else fallback_drift
             head = fuse_by_segment(_stride_heading(gyro, strides), head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=np.inf, drift=drift)
-            turned_by = "an offset that drifts linearly (decision L226, L266)" if drift else "one constant offset " \
-                "(decision L226)"
+            turned_by = "one constant offset (decision L226)"
+            if drift:
+                turned_by = "an offset that drifts linearly (decision L226, L266)" if not COMPASS_SPAN_GATES else (
+                    f"an offset that drifts linearly on a stretch of at least {FALLBACK_DRIFT_MIN_S:g} s, one constant "
+                    "on a shorter one (decision L226, L266, L280)")
             warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
                 f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
         elif hsrc == "fused":
