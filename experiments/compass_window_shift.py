@@ -46,6 +46,7 @@ def simulate(out: Path, route: str, u: int, *extra: str) -> Path:
 
 def track(s, candidate: bool, sh: float, **kw) -> dict:
     P.COMPASS_CHECK_WINDOWED = P.FALLBACK_DRIFT = candidate
+    P.COMPASS_SPAN_GATES = False  # L265's measurement was before L280's gates (L281)
     r = P.track_plasys(s, **kw)
     out = track_summary(r, s, storey_height_m=sh)
     cc = r.info.get("compass_check") or {}

@@ -497,14 +497,17 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
     return np.asarray(relative) + offset
 
 
-def fuse_with_drift(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray) -> np.ndarray:
+def fuse_with_drift(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *,
+                    min_span_s: float | None = None) -> np.ndarray:
     """Decision L266: ``relative`` (a gyroscope heading whose rate bias was not removed: its error grows with time)
     turned to ``absolute`` by an offset that drifts linearly in ``t`` (s): the least-squares line of the wrapped
     difference ``absolute - relative`` about its circular mean (rad). A constant offset (L226) is the mean of a
     drifting difference, wrong at both ends of a long recording by half the drift; a line takes the gyroscope's
-    constant rate bias out and leaves a place-dependent compass error unfollowed (it averages over the stretch)."""
+    constant rate bias out and leaves a place-dependent compass error unfollowed (it averages over the stretch).
+    ``min_span_s`` (decision L280): a stretch spanning less than this gets one constant offset (L226) - over a short
+    stretch a line fits the compass's place-dependent error, not the gyroscope's drift."""
     relative, absolute, t = (np.asarray(a, dtype=float) for a in (relative, absolute, t))
-    if len(relative) < 2 or not np.ptp(t) > 0:
+    if len(relative) < 2 or not np.ptp(t) > 0 or (min_span_s is not None and np.ptp(t) < min_span_s):
         return fuse_heading(relative, absolute, t, tau_s=np.inf)
     d = wrap_angle(absolute - relative)
     line = np.zeros(len(d))
@@ -593,6 +596,17 @@ FALLBACK_DRIFT = True
 COMPASS_CHECK_WINDOW_S = 120.0
 #: decision L264 (adopted by its rule, L265): True = the windowed check; False = L182's one fit
 COMPASS_CHECK_WINDOWED = True
+#: decision L280 (candidate; docs/decisions/localization.md): L266's line only on a fallback stretch spanning at least
+#: two of L264's windows; shorter, L226's one constant: over a 2-lap loop of ~100 s the line fitted the compass's
+#: place-dependent error (L265: u5197 0.91 -> 5.34 m) while the waist gyroscope's bias (thesis Table 14: sd 0.0005
+#: rad/s on its yaw axis) turns its heading ~3 deg per 100 s
+FALLBACK_DRIFT_MIN_S = 2 * COMPASS_CHECK_WINDOW_S
+#: decision L280: L182's one fit over the whole walk also judges (OR with L264's windows) a walk whose straight
+#: strides span at most this (s): the walks L182's one fit and L226's fallback were validated on (R1 x2, 6-7.5 min,
+#: L227; R1 x4, 12 min, L226), under the 26-81 min shifts where it misjudged (L264)
+COMPASS_ONE_FIT_MAX_S = 900.0
+#: decision L280 (adopted by its rule, L281): True = the two gates above; False = L264 / L266 as adopted in L265
+COMPASS_SPAN_GATES = True
 
 
 def compass_windows(t: np.ndarray, window_s: float, min_n: int) -> list[np.ndarray]:
@@ -635,29 +649,45 @@ def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
     compass: the median |angle| (:func:`~pdrlearn.orient._kernels.compass_disagreement`) of the ``keep`` strides
     (straight, outside foot gaps) against the foot's relative heading ``psi`` (rad), with at least
     :data:`HARD_IRON_MIN_STRIDES` of them; (None, None) without a waist magnetometer or enough strides."""
-    from pdrlearn.orient._kernels import compass_disagreement
-
     level = stride_level_field(session, strides, keep)
     if level is None or int(level[2].sum()) < HARD_IRON_MIN_STRIDES:
         return None, None
     mf, ml, ok = level
     psi_ok = np.asarray(psi, float)[ok]
     windowed = COMPASS_CHECK_WINDOWED if windowed is None else windowed
-    if windowed:  # decision L264: each window judged on its own, against the foot heading of that window only
-        ang = windowed_disagreement(mf, ml, psi_ok, strides["start_s"].to_numpy(float)[ok])
-    else:  # decision L182: one fit over the whole walk
-        ang = compass_disagreement(mf, ml, psi_ok)[0]
-    angle = float(np.degrees(np.median(np.abs(ang))))
-    info = {"median_deg": angle, "n_strides": int(ok.sum()), "limit_deg": COMPASS_DISAGREE_DEG,
-            "window_s": COMPASS_CHECK_WINDOW_S if windowed else None}
+    t = strides["start_s"].to_numpy(float)[ok]
+    angle, info = check_angle(mf, ml, psi_ok, t, windowed=windowed)
     if not angle > COMPASS_DISAGREE_DEG:
         return None, info
-    over = f" (each {COMPASS_CHECK_WINDOW_S:g} s window on its own, L264)" if windowed else ""
+    over = {"windows": f" (each {COMPASS_CHECK_WINDOW_S:g} s window on its own, L264)",
+            "one fit": f" (one fit over a walk of at most {COMPASS_ONE_FIT_MAX_S:g} s, L280)"}[info["by"]] \
+        if windowed else ""
     return (f"the waist compass disagrees with the foot's gyroscope heading by a median {angle:.1f} deg over "
             f"{int(ok.sum())} straight strides{over}, more than a hard-iron offset explains (over "
             f"{COMPASS_DISAGREE_DEG:g} deg warns, decision L182): a magnetic disturbance (steel, a building's "
             "structure) turns this offline track, whose heading follows the compass (L17); track with `--streaming` "
             "(the waist gyroscope's heading) or `--units foot` (the foot's own)"), info
+
+
+def check_angle(mf: np.ndarray, ml: np.ndarray, psi: np.ndarray, t: np.ndarray, *, windowed: bool,
+                span_gates: bool | None = None) -> tuple[float, dict]:
+    """Decisions L182 / L264 / L280: the median |angle| (deg) L182's check judges, from the straight strides' level
+    field ``mf`` / ``ml`` (uT), the foot's relative heading ``psi`` (rad) and their times ``t`` (s), and the
+    ``info.compass_check`` dict. ``windowed``: each L264 window on its own; with ``span_gates`` (None =
+    :data:`COMPASS_SPAN_GATES`) a walk spanning at most :data:`COMPASS_ONE_FIT_MAX_S` is also judged by L182's one
+    fit, and the larger median judges (L280)."""
+    from pdrlearn.orient._kernels import compass_disagreement
+
+    gates = COMPASS_SPAN_GATES if span_gates is None else span_gates
+    one = None
+    if not windowed or (gates and np.ptp(t) <= COMPASS_ONE_FIT_MAX_S):  # decision L182 / L280: one fit
+        one = float(np.degrees(np.median(np.abs(compass_disagreement(mf, ml, psi)[0]))))
+    win = float(np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t))))) if windowed else None
+    angle, by = max((a, b) for a, b in ((win, "windows"), (one, "one fit")) if a is not None)
+    info = {"median_deg": angle, "n_strides": int(len(psi)), "limit_deg": COMPASS_DISAGREE_DEG,
+            "window_s": COMPASS_CHECK_WINDOW_S if windowed else None, "by": by,
+            "median_windows_deg": win, "median_one_fit_deg": one}
+    return angle, info
 
 
 # decision L18: DEFAULT_MODEL_RULES ("bayes") and DEFAULT_MIN_CONFIDENCE (0.95), the default rule with a model's
@@ -1166,8 +1196,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             drift = FALLBACK_DRIFT if fallback_drift is None else fallback_drift
             head = fuse_by_segment(_stride_heading(gyro, strides), head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=np.inf, drift=drift)
-            turned_by = "an offset that drifts linearly (decision L226, L266)" if drift else "one constant offset " \
-                "(decision L226)"
+            turned_by = "one constant offset (decision L226)"
+            if drift:
+                turned_by = "an offset that drifts linearly (decision L226, L266)" if not COMPASS_SPAN_GATES else (
+                    f"an offset that drifts linearly on a stretch of at least {FALLBACK_DRIFT_MIN_S:g} s, one constant "
+                    "on a shorter one (decision L226, L266, L280)")
             warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
                 f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
         elif hsrc == "fused":
@@ -1298,7 +1331,9 @@ def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndar
     :func:`fuse_heading` call, as before. ``drift``: each stretch's offset is :func:`fuse_with_drift`'s line
     (decision L266) instead of :func:`fuse_heading`'s window."""
     def one(r, a, t):
-        return fuse_with_drift(r, a, t) if drift else fuse_heading(r, a, t, tau_s=tau_s)
+        if not drift:
+            return fuse_heading(r, a, t, tau_s=tau_s)
+        return fuse_with_drift(r, a, t, min_span_s=FALLBACK_DRIFT_MIN_S if COMPASS_SPAN_GATES else None)  # L280
 
     ends = sorted(b for k, g in foot_gaps.items() if k in FOOT_IMU for _, b in g)
     if not ends or not len(relative):
