@@ -111,11 +111,12 @@ def merged_contacts(left: pd.DataFrame, right: pd.DataFrame) -> pd.DataFrame:
 def step_table(both: pd.DataFrame) -> pd.DataFrame:
     """Decision L259: one row per step of :func:`merged_contacts` - ``side`` (the foot it lands on), ``bout``,
     ``start_s`` (the other foot's IC), ``ic_s``, ``step_time_s`` and (decision L284) ``swing_time_s``: the landing
-    foot's toe-off to this IC, one unit's clock (NaN without a toe-off inside the step)."""
+    foot's toe-off before this IC (its row's ``tc_s``) to the IC, one unit's clock, so no clock offset moves it (NaN
+    without that toe-off)."""
     t, side, bout = both["ic_s"].to_numpy(float), both["side"].to_numpy(), both["bout"].to_numpy(int)
     tc = both["tc_s"].to_numpy(float)
     k = np.flatnonzero((side[1:] != side[:-1]) & (bout[1:] == bout[:-1])) + 1
-    swing = np.where((tc[k] > t[k - 1]) & (tc[k] < t[k]), t[k] - tc[k], np.nan)  # L284: the swing inside the step
+    swing = np.where(tc[k] < t[k], t[k] - tc[k], np.nan)  # L284: one unit's toe-off to its IC (any clock offset)
     return pd.DataFrame({"side": side[k], "bout": bout[k], "start_s": t[k - 1], "ic_s": t[k],
                          "step_time_s": t[k] - t[k - 1], "swing_time_s": swing})
 
