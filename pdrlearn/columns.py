@@ -1,6 +1,6 @@
 """Cohort decision C35: the data dictionary of track-all's tables - every column of sessions.csv, groups.csv,
-subjects.csv, each session's bouts.csv and a lower-back session's steps.csv (W129) and a foot session's (E137) with its
-unit, type and meaning.
+subjects.csv, each session's bouts.csv and a lower-back session's steps.csv (W129) and a foot session's (E137), and
+`pdrlearn gait`'s gait_steps.csv / gait_cycles.csv / gait_bouts.csv (L287), with its unit, type and meaning.
 The one source of ``pdrlearn columns``
 and docs/columns.md (written from it: ``pdrlearn columns > docs/columns.md``); a test tracks a batch and checks that
 every column written is here. Meanings follow docs/localization.md's table of summary.json keys (decisions L103, L104).
