@@ -102,8 +102,8 @@ def simulate_cmd(
         "stride length stays the user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42)."),
     foot: str = typer.Option(
         "right", "--foot", help="The foot that carries the foot unit: right (default) or left. The same arguments "
-        "with --foot left give the other foot of the SAME walk (same events, waist and labels; meta.json clock_id "
-        "equal), so `pdrlearn gait LEFT RIGHT` can pair the two folders (decision S54)."),
+        "with --foot left give the other foot of the SAME walk (same contacts, waist and trajectory; the foot's "
+        "own strides), so `pdrlearn gait LEFT RIGHT` pairs the two folders (decision S54)."),
     paretic_side: str = typer.Option(
         "left", "--paretic-side", help="The foot whose steps --step-time-asymmetry and --step-length-asymmetry "
         "lengthen: left (default) or right (decision S55)."),

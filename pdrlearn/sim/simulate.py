@@ -624,6 +624,7 @@ def simulate(
     if scenario == "standstill":
         knobs = {**knobs, "stand_s": 30.0}
     name = f"sim_{scenario}_u{user.seed}_{speed}_s{seed}" + ("" if _drawn_user(user) else "_custom_user")
+    name += "_left" if opt["instrumented_foot"] == "left" else ""  # decision S54
     return simulate_path(
         segments, user, speed=speed, rate_hz=rate_hz, seed=int(seed), name=name, scenario=scenario, **knobs
     )

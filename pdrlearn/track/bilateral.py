@@ -53,14 +53,16 @@ ALTERNATION_MIN = 0.8
 WALK_META_KEYS = ("activity", "terrain_recording")
 #: decisions L262, L285: what the tracked double support is known to read (measured, experiments/bilateral_gait.py):
 #: L73's toe-off is early and the IC late against motion capture, so each double-support period is short; how short
-#: depends on the mount and the walker (a lateral mount: -7 pp; an instep mount: ~-20 pp, inferred), not on the rate
+#: depends on the mount and the walker (a lateral mount: -7 pp; an instep mount: 6.7 % where ~20 % is expected),
+#: not on the rate
 SUPPORT_NOTE = ("double support reads low and single support high from foot units (decisions L73, L262, L285): "
                 "against motion capture -7.2 / +3.6 percentage points per cycle on gaitmap's level walk (lateral "
                 "shoe mount; the walk 28.2 % at 204.8 Hz, 27.1 % at 102.4 Hz, mocap 34.7 %); its 4 x 10 m walk "
                 "(instep mount, no toe-off reference) reads 6.7 % where ~20 % is expected, the toe-off ~0.1 s early: "
                 "the bias depends on the mount and the walker, -7 pp is no bound")
 #: decision L283: meta.json's key naming the clock a session's timestamps are on; sessions whose values differ do
-#: not share t = 0 (gaitmap's converter, the simulator write it; a folder without it is trusted as before)
+#: not share t = 0 (gaitmap's converter writes it; simulated sessions are compared by :func:`sim_walk`, S54; any
+#: other folder without it is trusted as before)
 CLOCK_META_KEY = "clock_id"
 #: decision L284: the clock-offset check runs from this step-time symmetry index (%): below, |L - R| of 0.55 s steps
 #: is under 0.055 s = an offset under ~27 ms, within two SDs of a tracked step time (L263: SD 16.3 ms)
