@@ -14,6 +14,13 @@ two-foot simulated pair exists. What is checked: (a) the kernel on the simulator
 (b) the tracked right foot's IC timing against the true ICs (a lag common to both tracked feet cancels in
 a step time; what does not cancel is the difference of the two feet's errors), and (c) a half-tracked pair, the
 tracked right foot's ICs with the true left ICs: what mixing one tracked foot with contacts from elsewhere does.
+
+Part 3 (``--rate``, decision L285): the real level pair decimated to 102.4 Hz (every other sample) against the
+204.8 Hz pair: walk double support and each foot's IC / toe-off error against the mocap events.
+
+Part 4 (``--pairs``, decision L286): two simulated feet of one hemiparetic walk (S54 ``--foot left``, S55
+``--paretic-side``), fresh users 5530-5549, against the same sessions' labelled contacts; and the L284 clock-offset
+warning on each pair as simulated and with the left track's contacts moved by +-100 ms.
 """
 
 from __future__ import annotations
@@ -128,7 +135,123 @@ def sim() -> None:
           f"{(df['half_ratio'] - df['ratio']).abs().max():.4f}")
 
 
+def _event_errors(d: Path) -> tuple[list[float], list[float]]:
+    """Tracked IC and toe-off of one labelled foot session minus its labels (nearest, within 0.15 / 0.3 s)."""
+    s = read_session(d)
+    st = track_plasys(s, toe_off=True).steps
+    ev, tc = st["event_s"].to_numpy(float), st["tc_s"].to_numpy(float)
+    e_ic, e_tc = [], []
+    for _, r in s.steps.iterrows():
+        k = int(np.nanargmin(np.abs(ev - r["ic_s"])))
+        if abs(ev[k] - r["ic_s"]) < 0.15:
+            e_ic.append(ev[k] - r["ic_s"])
+        if np.isfinite(r.get("tc_s", np.nan)):
+            j = int(np.nanargmin(np.abs(tc - r["tc_s"])))
+            if abs(tc[j] - r["tc_s"]) < 0.3:
+                e_tc.append(tc[j] - r["tc_s"])
+    return e_ic, e_tc
+
+
+def rate() -> None:
+    import shutil
+
+    with tempfile.TemporaryDirectory() as tmp:
+        pair = {}
+        for side in ("left", "right"):
+            src, dst = ROOT / f"real/gaitmap_level_{side}", Path(tmp) / f"level102_{side}"
+            shutil.copytree(src, dst)
+            for f in ("fAccelerometer.csv", "fGyroscope.csv"):
+                pd.read_csv(src / f).iloc[::2].to_csv(dst / f, index=False)  # 204.8 -> 102.4 Hz
+            pair[side] = (src, dst)
+        for k, name in ((0, "204.8 Hz"), (1, "102.4 Hz (decimated)")):
+            res = pair_sessions(pair["left"][k], pair["right"][k])
+            w, ref = res["walk"], res["reference"]["walk"]
+            print(f"level pair {name}: DS {w['double_support_pct']:.1f} % (mocap {ref['double_support_pct']:.1f} %), "
+                  f"SS L/R {w['single_support_pct_left']:.1f}/{w['single_support_pct_right']:.1f} %, step SI "
+                  f"{w['step_time_s_si_pct']:.2f} %")
+            for side in ("left", "right"):
+                e_ic, e_tc = _event_errors(pair[side][k])
+                print(f"  {side}: IC - mocap {stat(e_ic, 1000, ' ms')}; toe-off - mocap {stat(e_tc, 1000, ' ms')}")
+    for side in ("left", "right"):
+        d = ROOT / f"external/gaitmap_walk4x10_{side}"
+        if d.is_dir():
+            e_ic, _ = _event_errors(d)
+            st = track_plasys(read_session(d), toe_off=True).steps
+            print(f"walk4x10 {side} (102.4 Hz): IC - mocap {stat(e_ic, 1000, ' ms')}; tracked swing median "
+                  f"{np.nanmedian(st['event_s'] - st['tc_s']):.3f} s, stance_pct median "
+                  f"{np.nanmedian(st['stance_pct']):.1f}")
+
+
+PAIR_USERS = range(5530, 5550)
+PAIR_ASYM = (0.0, 0.2, 0.39, 0.6)
+PAIR_GAIT = ((0.3, 0.75), (0.4, 0.65), (0.5, 0.6))  # step length (m), step time (s)
+
+
+def _shifted(steps: pd.DataFrame, dt: float) -> pd.DataFrame:
+    return steps.assign(**{c: steps[c] + dt for c in ("start_s", "end_s", "event_s", "tc_s")})
+
+
+def pairs() -> None:
+    from pdrlearn.track.bilateral import label_steps
+
+    py = sys.executable
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for u in PAIR_USERS:
+            a, side = PAIR_ASYM[u % 4], ("left", "right")[(u // 4) % 2]
+            length, step = PAIR_GAIT[u % 3]
+            dirs = {}
+            for foot in ("left", "right"):
+                dirs[foot] = Path(tmp) / f"u{u}_{foot}"
+                subprocess.run([py, "-m", "pdrlearn", "simulate", "--route", "stand:3, straight:14, stand:3",
+                                "--step-length", str(length), "--step-time", str(step), "--step-time-asymmetry",
+                                str(a), "--paretic-side", side, "--foot", foot, "--user-seed", str(u), "--rate",
+                                "100", "--out", str(dirs[foot])], check=True, capture_output=True)
+            ses = {f: read_session(d) for f, d in dirs.items()}
+            tr = {f: track_plasys(s, toe_off=True).steps for f, s in ses.items()}
+            res = bilateral_gait(tr["left"], tr["right"])
+            ref = bilateral_gait(label_steps(ses["left"]), label_steps(ses["right"]))
+            w, r = res["walk"], ref["walk"]
+            warned = {0.0: any("L284" in x for x in res["warnings"])}
+            offs = {}
+            for dt in (0.1, -0.1):
+                sh = bilateral_gait(_shifted(tr["left"], dt), tr["right"])
+                warned[dt] = any("L284" in x for x in sh["warnings"])
+                offs[dt] = sh["walk"]["clock_offset_s"]
+            ss_si = w["single_support_pct_si_pct"]
+            rows.append(dict(user=u, a=a, paretic=side, si=w["step_time_s_si_pct"], si_ref=r["step_time_s_si_pct"],
+                             ratio=w["step_time_s_ratio"], ratio_ref=r["step_time_s_ratio"], ss_si=ss_si,
+                             ss_si_ref=r["single_support_pct_si_pct"], swing_si=w["swing_time_s_si_pct"],
+                             off=w["clock_offset_s"], off_p=offs[0.1], off_m=offs[-0.1], warn0=warned[0.0],
+                             warn_p=warned[0.1], warn_m=warned[-0.1], ds=w["double_support_pct"],
+                             ds_ref=r["double_support_pct"]))
+            x = rows[-1]
+            print(f"user {u} a={a} paretic {side}: step SI {x['si']:.2f} (labels {x['si_ref']:.2f}) ratio "
+                  f"{x['ratio']:.3f} ({x['ratio_ref']:.3f}); SS SI {x['ss_si']:.2f} ({x['ss_si_ref']:.2f}); swing SI "
+                  f"{x['swing_si']:.2f}; DS {x['ds']:.1f} ({x['ds_ref']:.1f}); clock_offset {1000 * x['off']:+.0f} ms, "
+                  f"+100 ms -> {1000 * x['off_p']:+.0f}, -100 ms -> {1000 * x['off_m']:+.0f}; L284 warning as "
+                  f"simulated {x['warn0']}, +100 {x['warn_p']}, -100 {x['warn_m']}", flush=True)
+    df = pd.DataFrame(rows)
+    e_si, e_ss = df["si"] - df["si_ref"], df["ss_si"] - df["ss_si_ref"]
+    long_right = df["a"] >= 0.2
+    side_ok = ((df["ratio"] > 1) == (df["paretic"] == "left"))[long_right]
+    print(f"{len(df)} pairs: step SI tracked - labels median {e_si.median():+.2f}, max |.| {e_si.abs().max():.2f} pp; "
+          f"SS SI tracked - labels median {e_ss.median():+.2f}, max |.| {e_ss.abs().max():.2f} pp; longer step on the "
+          f"paretic side {int(side_ok.sum())} of {int(long_right.sum())}; DS tracked - labels median "
+          f"{(df['ds'] - df['ds_ref']).median():+.1f} pp")
+    print(f"L284 warning: as simulated {int(df['warn0'].sum())} of {len(df)}; +100 ms {int(df['warn_p'].sum())} of "
+          f"{len(df)}; -100 ms {int(df['warn_m'].sum())} of {len(df)}; clock_offset_s as simulated median "
+          f"{1000 * df['off'].median():+.0f} ms, max |.| {1000 * df['off'].abs().max():.0f} ms")
+    ok = (e_si.abs().max() <= 6 and e_ss.abs().max() <= 6 and bool(side_ok.all()) and not df["warn0"].any()
+          and df["warn_p"].all() and df["warn_m"].all())
+    print(f"L286 rule met: {ok}")
+
+
 if __name__ == "__main__":
     real()
     if "--sim" in sys.argv:
         sim()
+    if "--rate" in sys.argv:
+        rate()
+    if "--pairs" in sys.argv:
+        pairs()

@@ -1,6 +1,6 @@
 """Cohort decision C35: the data dictionary of track-all's tables - every column of sessions.csv, groups.csv,
-subjects.csv, each session's bouts.csv and a lower-back session's steps.csv (W129) and a foot session's (E137) with its
-unit, type and meaning.
+subjects.csv, each session's bouts.csv and a lower-back session's steps.csv (W129) and a foot session's (E137), and
+`pdrlearn gait`'s gait_steps.csv / gait_cycles.csv / gait_bouts.csv (L287), with its unit, type and meaning.
 The one source of ``pdrlearn columns``
 and docs/columns.md (written from it: ``pdrlearn columns > docs/columns.md``); a test tracks a batch and checks that
 every column written is here. Meanings follow docs/localization.md's table of summary.json keys (decisions L103, L104).
@@ -490,18 +490,74 @@ FOOT_STEPS: tuple[Column, ...] = (
                                      "tile; stride_length_mae_* = these pairs, one per ref_match (L252)"),
 )
 
+def _pair(name: str, unit: str, what: str) -> tuple[Column, ...]:
+    """Decision L287: a left / right measure of ``pdrlearn gait`` and its two asymmetry columns (L259)."""
+    return ((f"{name}_left", unit, "number", f"the left foot's mean {what}"),
+            (f"{name}_right", unit, "number", f"the right foot's mean {what}"),
+            (f"{name}_si_pct", "%", "number", "symmetry index of the two means, 100 x abs(L - R) / (0.5 x (L + R)) "
+                                              "(Robinson 1987; L259)"),
+            (f"{name}_ratio", "ratio", "number", "left / right (Patterson et al. 2010; L259)"))
+
+
+#: ``pdrlearn gait``'s gait_steps.csv (decisions L259, L284, L287): one row per step of the merged contacts
+GAIT_STEPS: tuple[Column, ...] = (
+    ("side", _ID, "text", "the foot the step lands on (left / right)"),
+    ("bout", "index", "integer", "the walking bout of the pair (L261), from 1"),
+    ("start_s", "s", "number", "the other foot's initial contact that starts the step, on the pair's clock"),
+    ("ic_s", "s", "number", "the landing foot's initial contact that ends it"),
+    ("step_time_s", "s", "number", "ic_s - start_s (L259)"),
+    ("swing_time_s", "s", "number", "the landing foot's toe-off before ic_s to ic_s, one unit's clock (L284); "
+                                    "empty without a toe-off"),
+)
+#: ``pdrlearn gait``'s gait_cycles.csv (decisions L262, L287): one row per gait cycle of either foot
+GAIT_CYCLES: tuple[Column, ...] = (
+    ("side", _ID, "text", "the foot whose cycle it is (its IC to its next IC)"),
+    ("bout", "index", "integer", "the walking bout of the pair (L261)"),
+    ("start_s", "s", "number", "the cycle's first initial contact"),
+    ("end_s", "s", "number", "the foot's next initial contact"),
+    ("stride_time_s", "s", "number", "end_s - start_s"),
+    ("double_support_pct", "%", "number", "both double-support periods of the cycle, % of it (L262; reads low from "
+                                          "foot units, L285); empty when the events are out of order"),
+    ("single_support_pct", "%", "number", "the other foot's swing, % of the cycle (L262)"),
+)
+#: ``pdrlearn gait``'s gait_bouts.csv (decisions L259-L262, L284, L287): one row per walking bout of the pair; the same
+#: keys are gait_summary.json's ``walk``
+GAIT_BOUTS: tuple[Column, ...] = (
+    ("bout", "index", "integer", "the walking bout of the pair (L261), from 1"),
+    ("start_s", "s", "number", "its first initial contact (either foot)"),
+    ("end_s", "s", "number", "its last initial contact"),
+    ("n_steps_left", "count", "integer", "steps landing on the left foot"),
+    ("n_steps_right", "count", "integer", "steps landing on the right foot"),
+    *_pair("step_time_s", "s", "step time (the other foot's IC to this foot's)"),
+    *_pair("stride_time_s", "s", "stride time (IC to IC, alternating cycles)"),
+    *_pair("stride_length_m", "m", "stride length (the foot track's length_m)"),
+    *_pair("swing_time_s", "s", "swing time (toe-off to IC, one unit's clock; L284)"),
+    ("clock_offset_s", "s", "number", "((left step - left swing) - (right step - right swing)) / 2: the left clock's "
+                                      "offset the steps imply, plus half the walker's own double-support imbalance "
+                                      "(L284; > 0 = the left unit's times late)"),
+    ("n_support_cycles", "count", "integer", "cycles with a double support"),
+    ("double_support_pct", "%", "number", "mean double support, % of the gait cycle (L262; reads low, L285)"),
+    *_pair("single_support_pct", "%", "single support (the other foot's swing), % of the gait cycle (L262)"),
+)
+
+
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
                                          "bouts.csv": BOUTS, "turns.csv": TURNS, "periods.csv": PERIODS,
                                          "transfers.csv": TRANSFERS,
                                          "freezes.csv": FREEZES,
-                                         "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS}  # E137
+                                         "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS,  # E137
+                                         "gait_steps.csv": GAIT_STEPS, "gait_cycles.csv": GAIT_CYCLES,  # L287
+                                         "gait_bouts.csv": GAIT_BOUTS}
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
          "steps.csv (foot)": "Foot tracks (plasys; `pdrlearn track`, `run`): one row per stride of the tracked foot "
                              "(E137); an empty cell is a value the stride cannot have. Columns marked with an option "
-                             "or a model appear only with it."}
+                             "or a model appear only with it.",
+         "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
+                           "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
+                           "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines."}
 
 
 def expanded(table: str) -> dict[str, Column]:

@@ -273,6 +273,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.sim import SCENARIOS, SPEEDS
     from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES
     from pdrlearn.sim.route import parse_route
+    from pdrlearn.sim.simulate import FEET
     from pdrlearn.steps.detectors import DETECTORS, get_detector
     from pdrlearn.track.altitude import ALTITUDES
     from pdrlearn.track.base import PIPELINES
@@ -339,6 +340,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("simulate", "speed"): _one_of(SPEEDS),
         ("simulate", "pelvis"): _one_of(PELVIS_MODES),
         ("simulate", "bounce"): _one_of(BOUNCE_MODES),  # decision S29
+        **{("simulate", k): _one_of(FEET) for k in ("foot", "paretic_side")},  # decisions S54, S55
         ("fetch", "source"): _one_of(SOURCES),
         ("import", "unit"): _one_of(PLACEMENTS),
         ("import", "time_unit"): time_unit,

@@ -26,6 +26,12 @@ def gait_lines(summary: dict) -> list[str]:
              f"stride length left/right {_fmt(w['stride_length_m_left'], '.3f')} / "
              f"{_fmt(w['stride_length_m_right'], '.3f')} m, symmetry index {_fmt(w['stride_length_m_si_pct'], '.1f')} %"
              f" (stride time {_fmt(w['stride_time_s_left'], '.3f')} / {_fmt(w['stride_time_s_right'], '.3f')} s)"]
+    if w.get("swing_time_s_left") is not None or w.get("swing_time_s_right") is not None:  # decision L284
+        lines.append(f"swing time left/right {_fmt(w['swing_time_s_left'], '.3f')} / "
+                     f"{_fmt(w['swing_time_s_right'], '.3f')} s, symmetry index {_fmt(w['swing_time_s_si_pct'], '.1f')}"
+                     f" %; double support before the left / right swing differs by "
+                     f"{_fmt(None if w['clock_offset_s'] is None else 2000 * w['clock_offset_s'], '+.0f')} ms "
+                     "(a clock offset shows here, L284)")
     if w["double_support_pct"] is not None:
         lines.append(f"double support {w['double_support_pct']:.1f} % of the gait cycle, single support left/right "
                      f"{_fmt(w['single_support_pct_left'], '.1f')} / {_fmt(w['single_support_pct_right'], '.1f')} % "
@@ -34,7 +40,7 @@ def gait_lines(summary: dict) -> list[str]:
 
 
 def _summary_json(res: dict) -> dict:
-    out = {k: res[k] for k in ("walk", "bouts", "toe_off", "reason", "sessions")}
+    out = {k: res[k] for k in ("walk", "bouts", "toe_off", "reason", "warnings", "sessions")}
     ref = res.get("reference")
     out["reference"] = None if ref is None else {k: ref[k] for k in ("walk", "bouts", "toe_off", "reason")}
     return out
@@ -57,7 +63,10 @@ def register(app: typer.Typer) -> None:
         (gaitmap's mocap) the same measures of the labels are given as the reference. The two recordings must share
         one clock (t = 0 at the same instant, as gaitmap's left / right folders): pdrlearn does not align them; it
         refuses contacts that do not overlap in time (decision L260) and two sessions whose meta.json names different
-        activities, and warns when under 80 % of the merged contacts alternate feet (decision B245).
+        activities, and warns when under 80 % of the merged contacts alternate feet (decision B245). Two sessions
+        whose meta.json clock_id differ are refused (decision L283); a step-time asymmetry that the swing times do not
+        share - what a clock offset gives - is warned about with the offset's size (L284), and a tracked stance under
+        55 % of the cycle (an early toe-off) too (L285); the warnings are in gait_summary.json's "warnings".
 
         Examples:
 

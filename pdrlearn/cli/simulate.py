@@ -93,13 +93,20 @@ def simulate_cmd(
         "meta.json keeps the belt frame, so the tracker's frame inference and its warnings are what this "
         "exercises (decision S34)."),
     step_time_asymmetry: float = typer.Option(
-        0.0, "--step-time-asymmetry", help="Hemiparetic gait: each step onto the left foot lasts 1 + this times "
-        "the step onto the right (symmetry ratio - 1, Patterson et al. 2010), e.g. 0.39; the cadence stays the "
-        "user's; 0 (default) to below 1 (decision S35)."),
+        0.0, "--step-time-asymmetry", help="Hemiparetic gait: each step onto the left foot (--paretic-side) lasts "
+        "1 + this times the step onto the other (symmetry ratio - 1, Patterson et al. 2010), e.g. 0.39; the "
+        "cadence stays the user's; 0 (default) to below 1 (decision S35)."),
     step_length_asymmetry: float = typer.Option(
-        0.0, "--step-length-asymmetry", help="Asymmetric steps (after a stroke, with a prosthesis): each step onto "
-        "the left foot is 1 + this times as long as the step onto the right, e.g. 0.1; the stride length stays the "
-        "user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42)."),
+        0.0, "--step-length-asymmetry", help="Asymmetric steps (after a stroke, with a prosthesis): each step "
+        "onto the left foot (--paretic-side) is 1 + this times as long as the step onto the other, e.g. 0.1; the "
+        "stride length stays the user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42)."),
+    foot: str = typer.Option(
+        "right", "--foot", help="The foot that carries the foot unit: right (default) or left. The same arguments "
+        "with --foot left give the other foot of the SAME walk (same contacts, waist and trajectory; the foot's "
+        "own strides), so `pdrlearn gait LEFT RIGHT` pairs the two folders (decision S54)."),
+    paretic_side: str = typer.Option(
+        "left", "--paretic-side", help="The foot whose steps --step-time-asymmetry and --step-length-asymmetry "
+        "lengthen: left (default) or right (decision S55)."),
     sit_start: float = typer.Option(
         0.0, "--sit-start", help=f"Start the session seated this long (s, 0-{SIT_MAX_S:g}; trunk leaning forward "
         "10-25 deg, feet flat), then stand up (a sit-to-stand) before the standstill and the walk; transfers.csv "
@@ -174,6 +181,9 @@ def simulate_cmd(
     if not (math.isfinite(step_length_asymmetry) and 0.0 <= step_length_asymmetry < STEP_LENGTH_ASYMMETRY_MAX):
         raise DataError(f"--step-length-asymmetry {step_length_asymmetry:g}: give 0 (symmetric) to below "  # S42
                         f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer than the right's)")
+    for name, v in (("--foot", foot), ("--paretic-side", paretic_side)):  # decisions S54, S55
+        if v not in ("left", "right"):
+            raise DataError(f"{name} {v!r}: give left or right")
     for name, v in (("--sit-start", sit_start), ("--sit-end", sit_end)):  # decision S43
         if not (math.isfinite(v) and 0.0 <= v <= SIT_MAX_S):
             raise DataError(f"{name} {v:g}: give the seated time in seconds, 0 (none) to {SIT_MAX_S:g}")
@@ -197,6 +207,8 @@ def simulate_cmd(
         step_length_asymmetry=step_length_asymmetry,
         sit_start_s=sit_start,
         sit_end_s=sit_end,
+        instrumented_foot=foot,
+        paretic_side=paretic_side,
     )
     label = scenario or "route"
     with progress(f"simulating {label}", total=2, enabled=not as_json) as advance:
@@ -210,7 +222,8 @@ def simulate_cmd(
                 rate_hz=rate,
                 seed=seed,
                 name=f"route_u{user_seed}_{speed}_s{seed}" + (f"_h{height:g}m" if height is not None else "") + (
-                    f"_step{custom.step_length(speed):.3g}m_{custom.step_time(speed):.3g}s" if custom else ""),
+                    f"_step{custom.step_length(speed):.3g}m_{custom.step_time(speed):.3g}s" if custom else "")
+                + ("_left" if foot == "left" else ""),  # decision S54
                 scenario="route",
                 **knobs,
             )
@@ -232,6 +245,7 @@ def simulate_cmd(
         "seed": seed,
         "rate_hz": rate,
         "duration_s": round(session.duration_s, 3),
+        "instrumented_foot": foot,  # decision S54
         "strides": 0 if st is None else int(len(st)),
         "steps_both_feet": int(len(session.extras["ics"])),
         "distance_m": round(float(session.meta["distance_m"]), 3),
@@ -244,7 +258,7 @@ def simulate_cmd(
         what = "route" if route is not None else f"scenario {scenario}"
         typer.echo(
             f"{out}: {what}, user {user_seed}, {speed}, {summary['duration_s']:.1f} s, "
-            f"{summary['strides']} strides of the right foot, {summary['distance_m']:.1f} m, "
+            f"{summary['strides']} strides of the {foot} foot, {summary['distance_m']:.1f} m, "
             f"{rate:g} Hz" + (f", steps {summary['step_length_m']:g} m in {summary['step_time_s']:g} s "
                               f"({summary['step_length_m'] / summary['step_time_s']:.2f} m/s)" if custom else "")
         )

@@ -115,11 +115,12 @@ STAIR_TOE_CLEARANCE = 2.0  # toe clearance over a stair nosing / the user's leve
 STEP_TIME_ASYMMETRY_MAX = 1.0
 
 
-def step_time_factor(foot: str, asymmetry: float) -> float:
+def step_time_factor(foot: str, asymmetry: float, affected: str = AFFECTED_FOOT) -> float:
     """Decision S35: the factor on the step time of a step landing on ``foot`` for a step-time asymmetry ``a``
     (:func:`pdrlearn.sim.user.asymmetry_factor`, shared with S42's step lengths): a = 0.39 makes each step onto the
-    affected foot (:data:`AFFECTED_FOOT`) 1.39 x the step onto the other, the stride time unchanged."""
-    return asymmetry_factor(foot, asymmetry)
+    affected foot (``affected``, default :data:`AFFECTED_FOOT`; decision S55) 1.39 x the step onto the other, the
+    stride time unchanged."""
+    return asymmetry_factor(foot, asymmetry, affected)
 
 
 @dataclass
@@ -158,11 +159,12 @@ def schedule(
     variability: float = 1.0,
     rocker: str = "hermite",
     step_time_asymmetry: float = 0.0,
+    affected: str = AFFECTED_FOOT,
 ) -> Events:
     """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters.
 
-    ``step_time_asymmetry``: the steps onto :data:`AFFECTED_FOOT` are 1 + this times as long as the others
-    (:func:`step_time_factor`, decision S35).
+    ``step_time_asymmetry``: the steps onto the ``affected`` foot (default :data:`AFFECTED_FOOT`, decision S55) are
+    1 + this times as long as the others (:func:`step_time_factor`, decision S35).
 
     ``rocker``: "hermite" (the foot is flat and still ``LOAD_FRACTION`` of the cycle after the contact) or "smooth"
     (still only ``ROCKER_FRACTION`` after it, decisions S31; the foot-flat event stays at ``LOAD_FRACTION``).
@@ -195,7 +197,7 @@ def schedule(
         ic_pitch = None if kd.contact_deg is None else np.radians(kd.contact_deg)
         d = user.step_time(speed, st.gait) * dfac * max(0.7, 1.0 + rng.normal(0.0, cv))
         if step_time_asymmetry:  # decision S35 (skipped at 0: default sessions bit for bit)
-            d *= step_time_factor(st.foot, step_time_asymmetry)
+            d *= step_time_factor(st.foot, step_time_asymmetry, affected)
         if st.irregular:
             d *= 1.3
         T = 2.0 * d

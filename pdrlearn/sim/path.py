@@ -200,9 +200,11 @@ class _Walker:
         irregular_rate: float,
         variability: float,
         length_asymmetry: float = 0.0,
+        affected: str = "left",
     ):
         self.user, self.speed, self.rng = user, speed, rng
         self.length_asymmetry = length_asymmetry
+        self.affected = affected  # decision S55: the foot whose steps are the long ones
         self.c = np.zeros(2)
         self.z = 0.0
         self.psi = heading0
@@ -286,7 +288,7 @@ class _Walker:
         if asymmetric and self.length_asymmetry:  # decision S42 (skipped at 0: default sessions bit for bit)
             first = self._next_foot()
             other = "left" if first == "right" else "right"
-            inc = np.array([asymmetry_factor(first if j % 2 == 0 else other, self.length_asymmetry)
+            inc = np.array([asymmetry_factor(first if j % 2 == 0 else other, self.length_asymmetry, self.affected)
                             for j in range(n)])
             s = np.cumsum(inc) * (length / inc.sum())
         s[:-1] += self.rng.normal(0.0, self.var * base, n - 1)
@@ -473,11 +475,13 @@ def plan_footsteps(
     irregular_rate: float = 0.0,
     variability: float = 1.0,
     step_length_asymmetry: float = 0.0,
+    paretic_side: str = "left",
 ) -> tuple[list[Footstep], dict, float, list[Transfer | Ride | FreezeEpisode]]:
     """Footprints of both feet along ``segments``.
 
-    ``step_length_asymmetry``: on level, curved and sloped walking the steps onto the left foot are 1 + this times
-    the steps onto the right, the segment's length and number of steps unchanged (decision S42).
+    ``step_length_asymmetry``: on level, curved and sloped walking the steps onto the ``paretic_side`` foot (default
+    left, decision S55) are 1 + this times the steps onto the other, the segment's length and number of steps
+    unchanged (decision S42).
 
     Returns
     -------
@@ -488,7 +492,7 @@ def plan_footsteps(
         (:mod:`pdrlearn.sim.transfer`) and the rides of :class:`Lift` / :class:`Escalator` ones
         (:mod:`pdrlearn.sim.ride`) and the freezes of :class:`Freeze` ones (:mod:`pdrlearn.sim.freeze`, S51)
     """
-    w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry)
+    w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry, paretic_side)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
     handlers = {
         Straight: w.straight,

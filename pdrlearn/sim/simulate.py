@@ -90,10 +90,16 @@ KNOBS: dict[str, object] = {
     # the session starts seated this long (s), then stands up; and / or ends seated after sitting down (S43)
     "sit_start_s": 0.0,
     "sit_end_s": 0.0,
+    # the foot that carries the foot unit: "right" (S1) or "left" - the same walk, the other foot (S54)
+    "instrumented_foot": "right",
+    # the foot whose steps the two asymmetries lengthen: "left" (S35, S42) or "right" (S55)
+    "paretic_side": "left",
 }
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
 META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry", "step_length_asymmetry",
-                      "sit_start_s", "sit_end_s")
+                      "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side")
+#: decisions S54, S55: the values of the two foot-side knobs
+FEET = ("left", "right")
 
 
 NON_NEGATIVE_KNOBS = (
@@ -127,6 +133,9 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: pelvis={out['pelvis']!r} must be one of {', '.join(PELVIS_MODES)}")
     if out["bounce"] not in BOUNCE_MODES:
         raise DataError(f"simulate: bounce={out['bounce']!r} must be one of {', '.join(BOUNCE_MODES)}")
+    for k in ("instrumented_foot", "paretic_side"):  # decisions S54, S55
+        if out[k] not in FEET:
+            raise DataError(f"simulate: {k}={out[k]!r} must be 'left' or 'right'")
     if out["rocker"] not in ROCKER_MODES:
         raise DataError(f"simulate: rocker={out['rocker']!r} must be one of {', '.join(ROCKER_MODES)}")
     mount = out["waist_mount_deg"]
@@ -151,7 +160,8 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError("simulate: mag_field_ut must be in (0, 1000) uT and mag_inclination_deg in [-90, 90]")
     if not 0 <= out["step_time_asymmetry"] < STEP_TIME_ASYMMETRY_MAX:  # decision S35
         raise DataError(f"simulate: step_time_asymmetry={out['step_time_asymmetry']!r} must be >= 0 and < "
-                        f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
+                        f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's; "
+                        "paretic_side='right' for the right foot's)")
     if not 0 <= out["step_length_asymmetry"] < STEP_LENGTH_ASYMMETRY_MAX:  # decision S42
         raise DataError(f"simulate: step_length_asymmetry={out['step_length_asymmetry']!r} must be >= 0 and < "
                         f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer)")
@@ -277,7 +287,8 @@ def simulate_path(
 
     Returns
     -------
-    Session with the eight PLASYS streams, ``steps`` (strides of the right foot), ``trajectory`` (waist
+    Session with the eight PLASYS streams, ``steps`` (strides of the instrumented foot: the right, or the left with
+    ``instrumented_foot="left"``, S54), ``trajectory`` (waist
     unit, ENU), ``extras["ics"]`` (initial contacts of both feet), ``extras["foot_trajectory"]`` and, for a
     path with :class:`~pdrlearn.sim.path.Sit`, ``extras["transfers"]`` (sit-down start to stand-up end, S36).
     """
@@ -288,9 +299,11 @@ def simulate_path(
     seed = 0 if seed is None else seed
     if not isinstance(seed, int | np.integer) or isinstance(seed, bool) or seed < 0:
         raise DataError(f"seed {seed!r}: must be a non-negative integer")
+    foot = str(opt["instrumented_foot"])  # decision S54
     if name is None:  # decision S30
         name = ("sim" if scenario == "custom" else f"sim_{scenario}") + f"_u{user.seed}_{speed}_s{seed}" + (
             "" if _drawn_user(user) else "_custom_user")
+        name += "" if foot == "right" else "_left"  # decision S54: the left foot's folder of the same walk
     noise = bool(opt["noise"])
     rng = _rng(user.seed, int(seed), scenario, speed, "walk")
     steps, initial, end_pause, transfers = plan_footsteps(
@@ -302,6 +315,7 @@ def simulate_path(
         irregular_rate=float(opt["irregular_rate"]),
         variability=float(opt["variability"]),
         step_length_asymmetry=float(opt["step_length_asymmetry"]),
+        paretic_side=str(opt["paretic_side"]),
     )
     rides = [e for e in transfers if isinstance(e, Ride)]  # decision S45: lifts and escalators
     freezes = [e for e in transfers if isinstance(e, FreezeEpisode)]  # decision S51: trembling in place
@@ -314,7 +328,8 @@ def simulate_path(
     if not steps and 2 * stand + end_pause + lead + float(opt["sit_end_s"]) < 1.0:
         raise DataError("simulate: nothing to simulate (no steps and stand_s < 1 s); add segments or stand longer")
     ev = schedule(steps, user, speed=speed, rng=rng, stand_s=lead + stand, variability=float(opt["variability"]),
-                  rocker=str(opt["rocker"]), step_time_asymmetry=float(opt["step_time_asymmetry"]))
+                  rocker=str(opt["rocker"]), step_time_asymmetry=float(opt["step_time_asymmetry"]),
+                  affected=str(opt["paretic_side"]))
     total_s = (max(ev.end_s, lead + stand) if steps else lead + stand) + end_pause + stand
     sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
     ride_starts = transfer_starts(rides, ev.rest, lead + stand)  # decision S45: as a transfer's
@@ -332,12 +347,12 @@ def simulate_path(
     t100 = block_mean(t, OVERSAMPLE)
     t_out = block_mean(t100, k_out)
 
-    # -- foot unit (right foot) --
+    # -- foot unit (the right foot, S1, or the left, S54) --
     # per-user mount: from beside the heel to the instep (decisions S19)
     r_sensor = np.array([user.foot_sensor_x_frac * user.foot_length_m, 0.0, user.foot_sensor_height_m])
 
     def foot_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        heel, rot = foot_pose(tt, "right", steps, ev, initial, user, vibration=1.0 if noise else 0.0)
+        heel, rot = foot_pose(tt, foot, steps, ev, initial, user, vibration=1.0 if noise else 0.0)
         if freezes:  # decision S51: the trembling foot (pitching about the unit, moving fore-aft and up)
             dp, pitch = freeze_foot(tt, freezes, freeze_starts)
             c, s_ = np.cos(pitch), np.sin(pitch)
@@ -360,15 +375,24 @@ def simulate_path(
     def unit(name: str) -> np.random.Generator | None:  # the user's own device (decisions S22)
         return _rng(user.seed, "device", name) if opt["device_errors"] else None
 
+    # decision S54: the left unit is another device with its own session errors; the right unit's draws are still
+    # taken from the session's stream (same shapes, values unused) so that the waist unit's are the right session's
+    f_rng = s_rng if foot == "right" else _rng(user.seed, int(seed), scenario, speed, "sensors", "left")
+    f_dev = "" if foot == "right" else "left "
     acc_f, e_af = sn.imu_readout(
-        _to_sensor(f_body, foot_m, mis_f), sn.FOOT_ACC, s_rng, noise=noise, device_rng=unit("fAccelerometer")
+        _to_sensor(f_body, foot_m, mis_f), sn.FOOT_ACC, f_rng, noise=noise, device_rng=unit(f_dev + "fAccelerometer")
     )
-    gyr_f, e_gf = sn.imu_readout(_to_sensor(w_body, foot_m, mis_f), sn.FOOT_GYR, s_rng, noise=noise)
-    load_h, load_t = foot_loads(t100, "right", steps, ev, user)
+    gyr_f, e_gf = sn.imu_readout(_to_sensor(w_body, foot_m, mis_f), sn.FOOT_GYR, f_rng, noise=noise)
+    load_h, load_t = foot_loads(t100, foot, steps, ev, user)
     if freezes:  # decision S51: the heel and forefoot loads alternate while trembling
         load_h, load_t = freeze_loads(t100, load_h, load_t, freezes, freeze_starts)
-    force_a = sn.force_readout(load_h, s_rng, noise=noise)
-    force_b = sn.force_readout(load_t, s_rng, noise=noise)
+    force_a = sn.force_readout(load_h, f_rng, noise=noise)
+    force_b = sn.force_readout(load_t, f_rng, noise=noise)
+    if foot != "right":  # decision S54: advance the session stream past the right unit's draws
+        sn.imu_readout(np.zeros_like(f_body), sn.FOOT_ACC, s_rng, noise=noise, device_rng=unit("fAccelerometer"))
+        sn.imu_readout(np.zeros_like(w_body), sn.FOOT_GYR, s_rng, noise=noise)
+        sn.force_readout(np.zeros_like(load_h), s_rng, noise=noise)
+        sn.force_readout(np.zeros_like(load_t), s_rng, noise=noise)
 
     # -- waist unit (front of the belt) --
     r_waist = np.array([0.12, 0.0, 0.0])
@@ -475,7 +499,7 @@ def simulate_path(
     if opt["step_length_asymmetry"]:  # decision S42: the per-step lengths (steps.csv's strides sum two of them)
         ics["step_length_m"] = step_lengths(steps, initial)
     ics.attrs["time_columns"] = ["ic_s"]
-    strides = _stride_table(steps, ev, initial, user, r_sensor)
+    strides = _stride_table(steps, ev, initial, user, r_sensor, foot)
     extras = {"ics": ics, "foot_trajectory": foot_traj}
     if transfers:  # decision S36: only sessions with a sit have the table (default label files unchanged)
         extras["transfers"] = pd.DataFrame(transfer_table(transfers, sit_starts))
@@ -505,7 +529,7 @@ def simulate_path(
         "height_m": user.height_m,
         "length_class_bounds_m": list(user.length_class_bounds_m),
         "length_m_definition": "horizontal displacement of the foot unit between the mid-stance instants",
-        "instrumented_foot": "right",
+        "instrumented_foot": foot,
         "clock_offset_s": float(opt["clock_offset_s"]),
         "clock_drift_ppm": float(opt["clock_drift_ppm"]),
         "time_base": "foot unit clock; labels and trajectory use it; waist = foot * (1 + drift) + offset",
@@ -600,6 +624,7 @@ def simulate(
     if scenario == "standstill":
         knobs = {**knobs, "stand_s": 30.0}
     name = f"sim_{scenario}_u{user.seed}_{speed}_s{seed}" + ("" if _drawn_user(user) else "_custom_user")
+    name += "_left" if opt["instrumented_foot"] == "left" else ""  # decision S54
     return simulate_path(
         segments, user, speed=speed, rate_hz=rate_hz, seed=int(seed), name=name, scenario=scenario, **knobs
     )

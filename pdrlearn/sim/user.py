@@ -23,14 +23,15 @@ GAIT_FACTORS = {"short": (0.55, 0.95), "normal": (1.0, 1.0), "long": (1.3, 1.08)
 AFFECTED_FOOT = "left"
 
 
-def asymmetry_factor(foot: str, asymmetry: float) -> float:
+def asymmetry_factor(foot: str, asymmetry: float, affected: str = AFFECTED_FOOT) -> float:
     """Decisions S35 (step time) and S42 (step length): the factor on a step landing on ``foot`` for an asymmetry
-    ``a`` = symmetry ratio - 1, the ratio being the step onto :data:`AFFECTED_FOOT` / the step onto the other
+    ``a`` = symmetry ratio - 1, the ratio being the step onto the ``affected`` foot (default :data:`AFFECTED_FOOT`;
+    the ``paretic_side`` knob, decision S55) / the step onto the other
     (Patterson et al. 2010, Gait Posture 31:241-246, recommend the ratio for post-stroke gait). The two factors
     2 r / (1 + r) and 2 / (1 + r) (r = 1 + a) average 1, so a stride (one step onto each foot) keeps the user's
     length and time; a = 0 gives 1.0 exactly."""
     r = 1.0 + asymmetry
-    return 2.0 * r / (1.0 + r) if foot == AFFECTED_FOOT else 2.0 / (1.0 + r)
+    return 2.0 * r / (1.0 + r) if foot == affected else 2.0 / (1.0 + r)
 
 
 # Foot-unit mounts (decisions S19): from a lateral mount below the ankle (gaitmap level recordings,

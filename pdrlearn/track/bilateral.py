@@ -26,6 +26,7 @@ out); :func:`pair_sessions` tracks two session folders.
 
 from __future__ import annotations
 
+import json
 import logging
 import math
 from pathlib import Path
@@ -50,11 +51,30 @@ SIDES = ("left", "right")
 ALTERNATION_MIN = 0.8
 #: decision B245: meta.json keys naming what was recorded; two sessions giving different values are not one walk
 WALK_META_KEYS = ("activity", "terrain_recording")
-#: decision L262: what the tracked double support is known to read (measured, experiments/bilateral_gait.py): L73's
-#: toe-off is ~21 ms early and the IC ~15 ms late against motion capture, so each double-support period is short
-SUPPORT_NOTE = ("double support reads low and single support high from foot units: the gyroscope's toe-off is "
-                "~21 ms early and the initial contact ~15 ms late against motion capture (decision L73); on "
-                "gaitmap's level walk -7.2 / +3.6 percentage points per cycle (decision L262)")
+#: decisions L262, L285: what the tracked double support is known to read (measured, experiments/bilateral_gait.py):
+#: L73's toe-off is early and the IC late against motion capture, so each double-support period is short; how short
+#: depends on the mount and the walker (a lateral mount: -7 pp; an instep mount: 6.7 % where ~20 % is expected),
+#: not on the rate
+SUPPORT_NOTE = ("double support reads low and single support high from foot units (decisions L73, L262, L285): "
+                "against motion capture -7.2 / +3.6 percentage points per cycle on gaitmap's level walk (lateral "
+                "shoe mount; the walk 28.2 % at 204.8 Hz, 27.1 % at 102.4 Hz, mocap 34.7 %); its 4 x 10 m walk "
+                "(instep mount, no toe-off reference) reads 6.7 % where ~20 % is expected, the toe-off ~0.1 s early: "
+                "the bias depends on the mount and the walker, -7 pp is no bound")
+#: decision L283: meta.json's key naming the clock a session's timestamps are on; sessions whose values differ do
+#: not share t = 0 (gaitmap's converter writes it; simulated sessions are compared by :func:`sim_walk`, S54; any
+#: other folder without it is trusted as before)
+CLOCK_META_KEY = "clock_id"
+#: decision L284: the clock-offset check runs from this step-time symmetry index (%): below, |L - R| of 0.55 s steps
+#: is under 0.055 s = an offset under ~27 ms, within two SDs of a tracked step time (L263: SD 16.3 ms)
+OFFSET_CHECK_SI_MIN = 10.0
+#: decision L284: ... and warns when the swing-time symmetry index is under this share of the step-time one: a clock
+#: offset moves every step time and no swing time (each swing is one unit's toe-off to its IC), while a walker's
+#: own step-time asymmetry comes with swing asymmetry (the simulator's S35 walker: the same index; measured L286)
+OFFSET_SWING_SHARE_MAX = 0.5
+#: decision L285: the least stance (% of the gait cycle) a walking foot is plausibly given: ~60 % at a self-selected
+#: speed and more when slower (Perry & Burnfield 2010, Gait Analysis ch. 1); 55 % leaves 10 % of double support.
+#: Below it the toe-off is likely early (the tracked support times are biased, SUPPORT_NOTE)
+STANCE_MIN_PCT = 55.0
 
 
 def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
@@ -92,11 +112,15 @@ def merged_contacts(left: pd.DataFrame, right: pd.DataFrame) -> pd.DataFrame:
 
 def step_table(both: pd.DataFrame) -> pd.DataFrame:
     """Decision L259: one row per step of :func:`merged_contacts` - ``side`` (the foot it lands on), ``bout``,
-    ``start_s`` (the other foot's IC), ``ic_s`` and ``step_time_s``."""
+    ``start_s`` (the other foot's IC), ``ic_s``, ``step_time_s`` and (decision L284) ``swing_time_s``: the landing
+    foot's toe-off before this IC (its row's ``tc_s``) to the IC, one unit's clock, so no clock offset moves it (NaN
+    without that toe-off)."""
     t, side, bout = both["ic_s"].to_numpy(float), both["side"].to_numpy(), both["bout"].to_numpy(int)
+    tc = both["tc_s"].to_numpy(float)
     k = np.flatnonzero((side[1:] != side[:-1]) & (bout[1:] == bout[:-1])) + 1
+    swing = np.where(tc[k] < t[k], t[k] - tc[k], np.nan)  # L284: one unit's toe-off to its IC (any clock offset)
     return pd.DataFrame({"side": side[k], "bout": bout[k], "start_s": t[k - 1], "ic_s": t[k],
-                         "step_time_s": t[k] - t[k - 1]})
+                         "step_time_s": t[k] - t[k - 1], "swing_time_s": swing})
 
 
 def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
@@ -143,6 +167,8 @@ def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
     out.update(_pair("step_time_s", *(_mean(steps.loc[steps["side"] == s, "step_time_s"]) for s in SIDES)))
     out.update(_pair("stride_time_s", *(_mean(cycles.loc[cycles["side"] == s, "stride_time_s"]) for s in SIDES)))
     out.update(_pair("stride_length_m", *(_mean(both.loc[both["side"] == s, "length_m"]) for s in SIDES)))
+    out.update(_pair("swing_time_s", *(_mean(steps.loc[steps["side"] == s, "swing_time_s"]) for s in SIDES)))
+    out["clock_offset_s"] = clock_offset_s(steps)
     ok = cycles["double_support_pct"].notna()
     out["n_support_cycles"] = int(ok.sum())
     out["double_support_pct"] = _mean(cycles.loc[ok, "double_support_pct"])
@@ -151,14 +177,61 @@ def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
     return out
 
 
+def clock_offset_s(steps: pd.DataFrame) -> float | None:
+    """Decision L284: the left clock's offset (s, > 0 = the left unit's times late against the right's) that the
+    steps imply when the walker's two double-support periods are equal: half the difference of the left and right
+    steps' mean (step time - swing time), i.e. of the double support before each foot's swing. A walker's own
+    double-support imbalance adds half of itself. None without swing times of both feet."""
+    ok = steps["swing_time_s"].notna()
+    d = [_mean((steps["step_time_s"] - steps["swing_time_s"])[ok & (steps["side"] == s)]) for s in SIDES]
+    return None if None in d else 0.5 * (d[0] - d[1])
+
+
+def clock_offset_warning(walk: dict) -> str | None:
+    """Decision L284: one warning line when the step times are asymmetric (symmetry index at least
+    :data:`OFFSET_CHECK_SI_MIN`) but the swing times are not (their index under :data:`OFFSET_SWING_SHARE_MAX` of
+    it): the pattern a clock offset between the two units gives, not a walker's asymmetry; the line names the
+    offset (:func:`clock_offset_s`). None otherwise or without swing times."""
+    si, swing_si, off = walk.get("step_time_s_si_pct"), walk.get("swing_time_s_si_pct"), walk.get("clock_offset_s")
+    if si is None or swing_si is None or off is None or si < OFFSET_CHECK_SI_MIN or swing_si >= (
+            OFFSET_SWING_SHARE_MAX * si):
+        return None
+    late, early = ("left", "right") if off > 0 else ("right", "left")
+    return (f"bilateral gait: step-time symmetry index {si:.1f} % but swing-time {swing_si:.1f} % (single support "
+            f"{_fmt_pct(walk.get('single_support_pct_left'))} / {_fmt_pct(walk.get('single_support_pct_right'))} "
+            f"%): a walker's step-time asymmetry comes with swing asymmetry, a clock offset does not (decision "
+            f"L284). The {late} unit's times look ~{abs(off) * 1000:.0f} ms late against the {early} one's: are the "
+            "two clocks synchronised? The step times, their asymmetry and the double support are not trustworthy "
+            "if not")
+
+
+def stance_warning(walk: dict) -> str | None:
+    """Decision L285: one warning line when a foot's tracked stance (100 - the other foot's single support, %
+    of the cycle) is under :data:`STANCE_MIN_PCT`: implausible for walking, the toe-off likely early."""
+    st = {s: None if walk.get(f"single_support_pct_{o}") is None else 100.0 - walk[f"single_support_pct_{o}"]
+          for s, o in zip(SIDES, SIDES[::-1], strict=True)}
+    low = [s for s in SIDES if st[s] is not None and st[s] < STANCE_MIN_PCT]
+    if not low:
+        return None
+    return (f"bilateral gait: tracked stance left/right {_fmt_pct(st['left'])} / {_fmt_pct(st['right'])} % of the "
+            f"gait cycle, under {STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decision L285): the "
+            "toe-off reads early here, so the double support ("
+            f"{_fmt_pct(walk.get('double_support_pct'))} %) is too low; do not report it as measured")
+
+
+def _fmt_pct(v) -> str:
+    return "-" if v is None else f"{v:.1f}"
+
+
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
     Returns ``{"walk": measures, "bouts": [measures + bout, start_s, end_s], "steps": step table, "cycles":
-    cycle table, "toe_off": bool, "reason": str | None}``; measures are :func:`gait_measures`' (None where the
-    tables cannot give them). Refuses (:class:`DataError`, one line) two tables whose contacts do not overlap in
-    time (L260: not one walk on one clock)."""
+    cycle table, "toe_off": bool, "reason": str | None, "warnings": [lines]}``; measures are :func:`gait_measures`'
+    (None where the tables cannot give them); ``warnings`` holds B245's, L284's and L285's lines (each logged).
+    Refuses (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on
+    one clock)."""
     left, right = foot_events(left_steps), foot_events(right_steps)
     for s, ev in zip(SIDES, (left, right), strict=True):
         if len(ev) < 2:
@@ -170,7 +243,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
                         f"{left['ic_s'].iloc[-1]:.1f} s, right {right['ic_s'].iloc[0]:.1f}-"
                         f"{right['ic_s'].iloc[-1]:.1f} s); give the two feet of one walk, recorded on one clock")
     both = merged_contacts(left, right)
-    alternation_warning(both)
+    warnings = [alternation_warning(both)]
     steps, cycles = step_table(both), cycle_table(both)
     toe_off = bool(np.isfinite(both["tc_s"]).any())
     bouts = []
@@ -183,8 +256,14 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
                   "(pdrlearn track --toe-off, decision L73); the step times are given")
     else:  # decision L262: a foot track's (event_s) support times carry L73's biases; a label table's do not
         reason = SUPPORT_NOTE if "event_s" in left_steps else None
-    return {"walk": gait_measures(both, steps, cycles), "bouts": bouts, "steps": steps, "cycles": cycles,
-            "toe_off": toe_off, "reason": reason}
+    walk = gait_measures(both, steps, cycles)
+    log = logging.getLogger(__name__)
+    for line in (clock_offset_warning(walk), stance_warning(walk) if "event_s" in left_steps else None):
+        if line is not None:  # L285 judges a track's toe-off, not a label table's
+            log.warning(line)
+            warnings.append(line)
+    return {"walk": walk, "bouts": bouts, "steps": steps, "cycles": cycles, "toe_off": toe_off, "reason": reason,
+            "warnings": [w for w in warnings if w is not None]}
 
 
 def alternating_share(both: pd.DataFrame) -> tuple[int, int]:
@@ -231,6 +310,40 @@ def check_pair(left_dir: Path, right_dir: Path, left_meta: dict, right_meta: dic
         if got is not None and got != want:
             raise DataError(f"gait: {d}/meta.json says the {got} foot, given as the {want}; give the left foot's "
                             "session first, then the right foot's")
+    check_clock(left_dir, right_dir, left_meta, right_meta)
+
+
+#: decision S54: the simulator's meta.json keys that fix one simulated walk's events (its ``knobs`` but
+#: ``instrumented_foot`` too): the left and the right foot's sessions of one walk give the same values
+SIM_WALK_KEYS = ("scenario", "speed", "seed", "user_seed", "user", "n_steps", "clock_offset_s", "clock_drift_ppm")
+
+
+def sim_walk(meta: dict) -> str | None:
+    """Decision S54: a simulated session's walk (``source_project`` "pdrlearn.sim") as a text of
+    :data:`SIM_WALK_KEYS` and its knobs without ``instrumented_foot``; None for any other session."""
+    if meta.get("source_project") != "pdrlearn.sim":
+        return None
+    knobs = {k: v for k, v in (meta.get("knobs") or {}).items() if k != "instrumented_foot"}
+    return "pdrlearn.sim walk " + json.dumps({**{k: meta.get(k) for k in SIM_WALK_KEYS}, "knobs": knobs},
+                                              sort_keys=True, default=str)
+
+
+def check_clock(left_dir: Path, right_dir: Path, left_meta: dict, right_meta: dict) -> None:
+    """Decision L283 (B248): refuse (one line) two sessions whose ``meta.json`` both give :data:`CLOCK_META_KEY`
+    with different values: their timestamps do not share t = 0, so no step time between them means anything. Two
+    simulated sessions without it are compared by :func:`sim_walk` (S54). Any other session without the key is
+    trusted (folders written before L283)."""
+    a, b = left_meta.get(CLOCK_META_KEY), right_meta.get(CLOCK_META_KEY)
+    fix = ("a step time needs both feet on one clock: synchronise the two recordings and give both meta.json the "
+           f"same {CLOCK_META_KEY}, or track each foot alone (pdrlearn track)")
+    if a is not None and b is not None and str(a).strip() != str(b).strip():
+        raise DataError(f"gait: {left_dir} and {right_dir} are not on one clock (meta.json {CLOCK_META_KEY}: {a!r} / "
+                        f"{b!r}); {fix}")
+    sa, sb = sim_walk(left_meta), sim_walk(right_meta)
+    if (a is None or b is None) and sa is not None and sb is not None and sa != sb:  # decision S54
+        raise DataError(f"gait: {left_dir} and {right_dir} are two different simulated walks (meta.json scenario, "
+                        "seed, user, steps or knobs differ); simulate the left foot with the right foot's arguments "
+                        "and --foot left (decision S54)")
 
 
 def check_one_walk(left_dir: Path, right_dir: Path, left_meta: dict, right_meta: dict) -> None:
@@ -241,6 +354,25 @@ def check_one_walk(left_dir: Path, right_dir: Path, left_meta: dict, right_meta:
         if a is not None and b is not None and str(a).strip().lower() != str(b).strip().lower():
             raise DataError(f"gait: {left_dir} and {right_dir} are different recordings (meta.json {k}: {a!r} / "
                             f"{b!r}); give the two feet of one walk")
+
+
+#: decision L284: the tracked and the labelled step-time symmetry index differ by more than this (percentage points):
+#: on the real level pair they differ by 1.3 pp (L263); a clock moved against its labels shows here
+REFERENCE_SI_GAP_MAX = 20.0
+
+
+def reference_warning(walk: dict, reference: dict | None) -> str | None:
+    """Decision L284: one warning line when the tracked step-time symmetry index and the labels' differ by more than
+    :data:`REFERENCE_SI_GAP_MAX` percentage points (the sensor files and their labels no longer on one clock, or the
+    tracks wrong)."""
+    if reference is None:
+        return None
+    a, b = walk.get("step_time_s_si_pct"), reference["walk"].get("step_time_s_si_pct")
+    if a is None or b is None or abs(a - b) <= REFERENCE_SI_GAP_MAX:
+        return None
+    return (f"bilateral gait: the tracked step-time symmetry index {a:.1f} % and the labelled contacts' {b:.1f} % "
+            f"differ by more than {REFERENCE_SI_GAP_MAX:.0f} points (decision L284): the sensor files and their "
+            "labels are not on one clock, or the tracks are wrong; trust neither before checking")
 
 
 def label_steps(session) -> pd.DataFrame | None:
@@ -270,6 +402,10 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     out = bilateral_gait(tracks[0].steps, tracks[1].steps)
     labels = [label_steps(s) for s in sessions]
     out["reference"] = (bilateral_gait(labels[0], labels[1]) if all(x is not None for x in labels) else None)
+    line = reference_warning(out["walk"], out["reference"])
+    if line is not None:
+        logging.getLogger(__name__).warning(line)
+        out["warnings"].append(line)
     out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps))}
                        for side, d, t in zip(SIDES, (left_dir, right_dir), tracks, strict=True)}
     return out

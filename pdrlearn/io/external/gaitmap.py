@@ -368,6 +368,9 @@ def build_session(rec: Recording, src: Path, folder: Path) -> dict:
         "subject": rec.subject,
         "session": rec.session,
         "foot": rec.foot,
+        # decision L283: the clock the timestamps are on - one source file's samples (both feet of a two-sensor file
+        # share it; the MS patient's two one-sensor files do not, G3), so ``pdrlearn gait`` refuses the MS pair
+        "clock_id": f"gaitmap example_data/{rec.file}",
         "source_files": files,
         "source_description": rec.description,
         "activity": rec.activity,
