@@ -338,7 +338,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.periods import parse_per
 
     per_s = parse_per(per)  # decision L277
-    if per_align not in ("start", "clock"):  # decision L299
+    from pdrlearn.track.clock import PER_ALIGNS
+
+    if per_align not in PER_ALIGNS:  # decision L299
         raise DataError(f"--per-align {per_align!r}: give start (periods from the recording's start) or clock "
                         "(on the clock's whole periods)")
     if per_align == "clock" and per_s is None:
