@@ -193,3 +193,19 @@ def test_run_replay_has_the_clock_columns_e144(night, tmp_path):
     _write(tmp_path / "r", result, summary, session, "s", record={}, bouts=bouts)
     assert summary["recording_start"] == "2026-12-05T02:59:30.000+01:00"
     assert pd.read_csv(tmp_path / "r" / "bouts.csv")["start_time"].notna().all()
+
+
+def test_freezes_csv_gets_them_at_a_negative_offset(tmp_path):
+    """freezes.csv (W213) through the same mechanism; the offset written (-05:00) is the one kept."""
+    s = simulate_path(parse_route("stand:3, straight:5, freeze:15:5:5, straight:5, stand:3"),
+                      UserProfile.from_seed(5303), rate_hz=20, seed=5303)
+    write_session(s, tmp_path / "fz")
+    meta = json.loads((tmp_path / "fz" / "meta.json").read_text())
+    (tmp_path / "fz" / "meta.json").write_text(json.dumps({**meta, "recording_start": "2026-12-05T02:10:00-05:00"}))
+    out = tmp_path / "o"
+    assert main(["track", str(tmp_path / "fz"), "--units", "waist", "--freeze-index", "--out", str(out)]) == 0
+    fz = pd.read_csv(tmp_path / "o" / "freezes.csv")
+    assert len(fz) == 1 and fz["start_time"].str.endswith("-05:00").all()
+    assert fz["start_time"].iloc[0] == (datetime(2026, 12, 5, 2, 10, tzinfo=timezone(timedelta(hours=-5)))
+                                        + timedelta(seconds=float(fz["start_s"].iloc[0]))).isoformat(
+        timespec="milliseconds")
