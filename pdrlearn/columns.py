@@ -10,11 +10,26 @@ from __future__ import annotations
 
 from pdrlearn.cohort import GROUP_METRICS
 from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG
+from pdrlearn.track.clock import CLOCK_COLUMNS
 
 #: (column, unit, type, meaning); ``{measure}`` in a name stands for each of :data:`GROUP_METRICS`
 Column = tuple[str, str, str, str]
 
 _ID = "-"
+#: decision L298: when the clock columns are written
+_WITH_START = ("only when the session gives its recording start (meta.json recording_start, a date-time "
+               "`pdrlearn import`, a Mobilise-D start; L298)")
+
+
+def _clock(of: str) -> Column:
+    """Decision L298: the clock column of instant column ``of`` (start_s -> start_time, ...)."""
+    return (CLOCK_COLUMNS[of], "date-time", "text", f"{of} as a clock time: ISO 8601 with milliseconds at the "
+            f"recording start's own offset (never the machine's zone); {_WITH_START}")
+
+
+def _clocks(*of: str) -> tuple[Column, ...]:
+    return tuple(_clock(c) for c in of)
+
 
 SESSIONS: tuple[Column, ...] = (
     ("path", _ID, "text", "the session folder relative to ROOT (the row's key)"),
@@ -167,6 +182,9 @@ SESSIONS: tuple[Column, ...] = (
                                     "rhythm; with --window only those between the window's steps. Not a share of "
                                     "the session's time: see time_between_steps_s (L275)"),
     ("per_s", "s", "number", "--per only: the period of periods.csv (L277)"),
+    ("per_align", _ID, "text", "--per-align clock only: clock (periods.csv cut at the clock's whole periods, L299)"),
+    ("recording_start", "date-time", "text", "the clock time of the recording's first sample, ISO 8601 at its own "
+                                             f"offset; {_WITH_START}"),
     ("pdrlearn_version", _ID, "text", "the pdrlearn version that wrote the row (run.json names the commit, L136)"),
     ("step_f1", "fraction", "number", "tracked strides / steps against the reference contacts, F1 (L36)"),
     ("step_f1_all", "fraction", "number", "lower back: F1 over every reference contact"),
@@ -318,6 +336,7 @@ BOUTS: tuple[Column, ...] = (
                                           "(L196's minimum); empty otherwise (L212)"),
     ("stride_length_cv_pct", "%", "number", "foot: the same of their lengths (L212); complete strides only, unlike "
                                             "stride_length_m"),
+    *_clocks("start_s", "end_s"),
     ("speed_m_s", "m/s", "number", "deprecated (E98): speed_mps under its old name, kept last until a later release"),
 )
 
@@ -347,6 +366,7 @@ TURNS: tuple[Column, ...] = (
                                          "|angle_deg|; a lower-back turn timed by its yaw rate (L210) all of "
                                          "|angle_deg| over that span, longer than a 5-95 % one, so it reads lower "
                                          "than a foot track's for the same turn; empty for a turn of no duration"),
+    *_clocks("start_s", "end_s"),
 )
 
 #: decision L277: a track's periods.csv (``track --per``), one row per period of the whole session's track
@@ -354,10 +374,12 @@ PERIODS: tuple[Column, ...] = (
     ("session", _ID, "text", "meta.json's session name (bouts.csv's key, L165)"),
     ("subject", _ID, "text", "meta.json's subject; empty when not given"),
     ("period", "index", "integer", "the period's number, from 1"),
-    ("start_s", "s", "number", "the period's start on the session's clock (the recording's start + k x --per)"),
+    ("start_s", "s", "number", "the period's start on the session's clock (the recording's start + k x --per; "
+                               "--per-align clock: the clock's whole periods, L299)"),
     ("end_s", "s", "number", "its end; the last period ends with the tracked unit's recording"),
     ("duration_s", "s", "number", "end_s - start_s"),
-    ("partial", _ID, "true/false", "the last period, shorter than --per"),
+    ("partial", _ID, "true/false", "a period shorter than --per: the last one; with --per-align clock also the first "
+                                   "(from the recording's start to the clock's next whole period, L299)"),
     ("distance_m", "m", "number", "distance of the steps whose middle lies in the period (L105's rule); the periods "
                                   "sum to the summary's distance_m (L278)"),
     ("n_steps", "count", "integer", "those steps (rows of steps.csv, as the summary's n_steps)"),
@@ -375,6 +397,7 @@ PERIODS: tuple[Column, ...] = (
     ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
     ("position_sigma_end_m", "m", "number", "the position's 1-sigma at the period's end (trajectory.csv pos_sigma_m, "
                                             "L128); empty for an aided track"),
+    *_clocks("start_s", "end_s"),
 )
 
 #: decision W182: a lower-back track's transfers.csv (a foot track writes none)
@@ -387,6 +410,7 @@ TRANSFERS: tuple[Column, ...] = (
     ("peak_s", "s", "number", "the trunk's largest tilt from the walking upright"),
     ("peak_tilt_deg", "deg", "number", "that tilt (W104's flexion events exceed 25 deg)"),
     ("height_change_m", "m", "number", "the pelvis's height change from start_s to end_s (+ up)"),
+    *_clocks("start_s", "end_s", "peak_s"),
 )
 
 #: decision W213: a track's freezes.csv (foot or lower back: the tracked unit's freeze index)
@@ -397,6 +421,7 @@ FREEZES: tuple[Column, ...] = (
     ("duration_s", "s", "number", "end_s - start_s"),
     ("peak_fi", "ratio", "number", "the largest freeze index (3-8 Hz / 0.5-3 Hz power, Moore 2008) of its 4 s "
                                    "windows"),
+    *_clocks("start_s", "end_s"),
 )
 
 #: a lower-back track's steps.csv (``TrackResult.steps`` of waist-pendulum / waist-pll), one row per contact of either

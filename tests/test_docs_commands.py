@@ -278,6 +278,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.altitude import ALTITUDES
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.bouts import BOUT_PRESETS
+    from pdrlearn.track.clock import PER_ALIGNS
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.periods import parse_per
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
@@ -324,6 +325,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
         ("track", "window"): parse_window,  # decision L105
         ("track", "per"): parse_per,  # decision L277
+        ("track", "per_align"): _one_of(PER_ALIGNS),  # decision L299
         **{(c, "bout_rule"): _one_of(BOUT_PRESETS, case=False) for c in ("track", "track-all", "run")},  # decision L163
         ("track", "units"): parse_units,  # decision B127
         ("export", "length_bounds"): two_numbers,
@@ -351,7 +353,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("columns", "table"): _one_of(list(COLUMN_TABLES)),  # cohort C35
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
-                "units", "altitude", "detector", "length_model"):  # C12, L108, B127, L154, E93
+                "per_align", "units", "altitude", "detector", "length_model"):  # C12, L108, B127, L154, E93
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")

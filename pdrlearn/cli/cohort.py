@@ -654,8 +654,11 @@ def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
 def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -> pd.DataFrame:
     """Decision L165's stacking of one per-session table (``out/<path>/<name>``; bouts.csv, and decision L277's
     periods.csv), in sessions.csv's order, each row led by ``path`` and ``visit``; ``read`` maps a table as read
-    (bouts.csv: E98's old names)."""
+    (bouts.csv: E98's old names). Decision L298: the sessions' clock columns follow (empty for a session without a
+    recording start)."""
     import pandas as pd
+
+    from pdrlearn.track.clock import CLOCK_COLUMNS
 
     cols = [*COMBINED_BOUT_KEYS, *columns]
     parts = []
@@ -665,7 +668,10 @@ def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -
             b = read(b) if read is not None else b
             if len(b):
                 parts.append(b.assign(path=row["path"], visit=row.get("visit")))
-    return pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols)
+    if not parts:
+        return pd.DataFrame(columns=cols)
+    df = pd.concat(parts, ignore_index=True)
+    return df[cols + [c for c in CLOCK_COLUMNS.values() if c in df]]
 
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
@@ -708,6 +714,7 @@ def track_all(
     units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
     per: str = _track.PER_OPT,
+    per_align: str = _track.PER_ALIGN_OPT,
     bout_rule: str = _track.BOUT_RULE_OPT,
     bout_break_s: float = _track.BOUT_BREAK_OPT,
     bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,

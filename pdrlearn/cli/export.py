@@ -858,15 +858,20 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
     """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png, summary.json and run.json
     (``record``, decision L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure),
     atomically: all seven or none, and ``--force`` keeps the old run until then. ``session``: the replayed session
-    (its ground truth in path.png; None for a capture)."""
+    (its ground truth in path.png; None for a capture). Decision E144: a replayed session whose meta.json gives its
+    recording start gets track's clock columns and summary ``recording_start`` (L298); a capture has no meta.json and
+    no clock start, so none."""
     import json
 
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.provenance import write_run_json
-    from pdrlearn.cli.track import clinical_tables
-    from pdrlearn.track.bouts import csv_table
+    from pdrlearn.cli.track import event_tables
+    from pdrlearn.track.clock import clock_texts, recording_start
     from pdrlearn.track.plots import plot_paths
 
+    start = recording_start(session.meta, session.where) if session is not None else None  # E144
+    if start is not None:  # decision L298: the clock time of the recording's first sample
+        summary["recording_start"] = clock_texts(start, [session.t_recording_start])[0]
     was = existed(out)
     with atomic_directory(out) as tmp:
         from pdrlearn.track.evaluate import with_reference_columns
@@ -874,8 +879,8 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         steps = with_reference_columns(result, session)  # decision E135: the reference pairs, as track
         steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
-        csv_table(bouts).to_csv(tmp / "bouts.csv", index=False, float_format="%.10g")  # L124, as track (E98)
-        for name, table in clinical_tables(result, bouts).items():  # L200, L202: turns.csv, as track
+        # L124 (E98), L200, L202: bouts.csv, turns.csv ... as track; E144: its clock columns
+        for name, table in event_tables(result, bouts, start=start).items():
             table.to_csv(tmp / name, index=False, float_format="%.10g")
         plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")

@@ -158,12 +158,18 @@ WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the 
                           "each session's start): track the whole session, then keep the steps whose middle lies "
                           "inside (e.g. 0,120: a 2-minute walk; decisions L105, L108). The summary, steps.csv and "
                           "trajectory.csv are the window's; its references are cut the same way. An END past "
-                          "the recording is clipped to its end, with one warning line (decision B242).")
+                          "the recording is clipped to its end, with one warning line (decision B242). Clock times "
+                          "(02:10,02:20 or two ISO 8601 date-times) when the session gives its start (meta.json "
+                          "recording_start or a date-time import; decision L299).")
 
 PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv (e.g. 1h, 30min, 900): the whole "
                        "session's track cut into periods from the recording's start, the last one shorter and marked "
                        "partial; distance, steps, walking / between-steps / no-step / no-data time, floors, bouts, "
                        "turns, the position sigma at the period's end (decisions L275, L277). Not with --window.")
+PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods begin: start (default: at the "
+                             "recording's start) or clock (at whole multiples of the period on the recording's clock, "
+                             "1h = the clock hours; the first and last periods partial). clock needs the session's "
+                             "start (meta.json recording_start or a date-time import; decision L299).")
 
 
 def track(
@@ -202,6 +208,7 @@ def track(
     units: str = UNITS_OPT,
     window: str = WINDOW_OPT,
     per: str = PER_OPT,
+    per_align: str = PER_ALIGN_OPT,
     bout_rule: str = BOUT_RULE_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
     bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
@@ -235,6 +242,8 @@ def track(
         pdrlearn track out/sim/A_u1 --window 5,15 --out out/A_middle   # the steps between 5 s and 15 s
 
         pdrlearn track out/sim/A_u1 --per 10s --out out/A_per   # OUT/periods.csv: totals every 10 s
+
+        pdrlearn track night --per 1h --per-align clock --out out/night_h   # clock hours (an imported night)
 
         pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
 
@@ -301,6 +310,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
+                   per_align: str = "start",
                    resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
@@ -328,6 +338,13 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.periods import parse_per
 
     per_s = parse_per(per)  # decision L277
+    from pdrlearn.track.clock import PER_ALIGNS
+
+    if per_align not in PER_ALIGNS:  # decision L299
+        raise DataError(f"--per-align {per_align!r}: give start (periods from the recording's start) or clock "
+                        "(on the clock's whole periods)")
+    if per_align == "clock" and per_s is None:
+        raise DataError("track: --per-align clock places --per's periods; give --per (e.g. --per 1h) or drop it")
     if per_s is not None and win is not None:
         raise DataError("track: --per cuts the whole session's track into periods; --window keeps one part of it - "
                         "give one of them (each row of periods.csv is what that period's --window reports)")
@@ -406,6 +423,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
+            "per_align": per_align,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
@@ -476,6 +494,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
         session, given_clock = move_waist_clock(session, o["clock_offset_s"], 0.0, clock_lines, source="given")
     check_tracked_span(session, tracked_unit(pipeline))  # decision B126: the tracked unit covers the walk
+    from pdrlearn.track.clock import clock_texts, recording_start, require_start
+
+    start = recording_start(session.meta, session.where)  # decision L298 (B254: a bad one refused before tracking)
+    clock = (require_start(session.meta, session.where, "--per-align clock")  # decisions L299, B254
+             if o.get("per_s") is not None and o.get("per_align") == "clock" else None)
     win = None
     if o.get("window") is not None:  # decision L105: inside the recording, checked before tracking
         from pdrlearn.track.window import check_window
@@ -611,17 +634,21 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         for line in result.info.get("notes", []):
             typer.echo(f"note: {session.where}: {line}; {summary['time_no_steps_s']:.1f} s without a step, "
                        f"{summary['time_no_data_s']:.1f} s without data", err=True)
+    if start is not None:  # decision L298: the clock time of the recording's first sample
+        summary["recording_start"] = clock_texts(start, [session.t_recording_start])[0]
     periods = None
     if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
         from pdrlearn.track.periods import period_table
 
         periods = period_table(whole, session, o["per_s"], unit=unit, bouts=bouts,
                                turns=clinical_tables(whole, bouts)["turns.csv"],
-                               storey_height_m=o.get("storey_height_m", 3.0))
+                               storey_height_m=o.get("storey_height_m", 3.0), clock=clock)
         summary["per_s"] = float(o["per_s"])
+        if clock is not None:
+            summary["per_align"] = "clock"
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
-            "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods}
+            "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods, "start": start}
 
 
 def _check_relative_heading(result, session, heading0: float) -> None:
@@ -637,6 +664,18 @@ def _check_relative_heading(result, session, heading0: float) -> None:
                         "magnetometer of the session); drop --initial-heading, or track with --streaming (gyroscope "
                         "heading) to set the start direction")
     result.info["initial_heading_rad"] = heading0
+
+
+def event_tables(result, bouts, periods=None, start=None) -> dict:
+    """Decision L298: every event table a track or run writes - ``bouts.csv`` (L124), :func:`clinical_tables`'s and
+    ``periods.csv`` (L277, when given) - with their clock columns when the recording's ``start`` is known."""
+    from pdrlearn.track.bouts import csv_table
+    from pdrlearn.track.clock import with_clock_columns
+
+    tables = {"bouts.csv": csv_table(bouts), **clinical_tables(result, bouts)}
+    if periods is not None:
+        tables["periods.csv"] = periods
+    return {name: with_clock_columns(table, start) for name, table in tables.items()}
 
 
 def clinical_tables(result, bouts) -> dict:
@@ -663,7 +702,6 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     """Write :func:`track_session`'s track into the existing folder ``dest`` (the caller's temporary folder):
     ``trajectory.csv``, ``steps.csv``, ``bouts.csv`` (decision L124), ``path.png`` (``aided.png`` with fixes) and
     ``summary.json``; return the summary and whether the track was aided."""
-    from pdrlearn.track.bouts import csv_table
     from pdrlearn.track.plots import plot_paths
 
     session, result, summary, pipeline, aided, dpi = (tracked[k] for k in ("session", "result", "summary",
@@ -683,11 +721,9 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     from pdrlearn.track.evaluate import with_reference_columns
 
     _write_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
-    _write_csv(csv_table(tracked["bouts"]), dest / "bouts.csv")  # decision L124 (E98: the old speed_m_s last)
-    for name, table in clinical_tables(result, tracked["bouts"]).items():  # decisions L200, W182
+    # decisions L124 (E98: the old speed_m_s last), L200, W182, L277; L298: clock columns with a recording start
+    for name, table in event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start")).items():
         _write_csv(table, dest / name)
-    if tracked.get("periods") is not None:  # decision L277
-        _write_csv(tracked["periods"], dest / "periods.csv")
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")

@@ -501,6 +501,10 @@ def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None =
         info["zone"] = f"{z} ({'given with --time-zone' if zone else 'none in the text: taken as UTC'})"
     else:
         info["zone"] = "from the text" + (" (--time-zone not used)" if zone else "")
+    off = dt.iloc[0].utcoffset()  # decision L298: the offset as recorded, for the clock columns (UTC below)
+    if off is not None:
+        mins = int(off.total_seconds() // 60)
+        info["offset"] = f"{'-' if mins < 0 else '+'}{abs(mins) // 60:02d}:{abs(mins) % 60:02d}"
     dt = dt.dt.tz_convert("UTC")
     info["first"], info["last"] = dt.iloc[0].isoformat(), dt.iloc[-1].isoformat()
     return (dt - pd.Timestamp(0, tz="UTC")).dt.total_seconds().to_numpy(dtype=float), info

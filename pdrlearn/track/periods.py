@@ -176,19 +176,21 @@ def time_accounting(result, session, unit: str | None = None, window: tuple[floa
 
 
 def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
-                 turns: pd.DataFrame | None, storey_height_m: float = 3.0) -> pd.DataFrame:
+                 turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None) -> pd.DataFrame:
     """Decision L277: periods.csv of a whole-session track (:data:`PERIOD_COLUMNS`, module docstring), periods of
     ``per_s`` seconds from the recording's start to the tracked ``unit``'s end; ``bouts`` bouts.csv's table,
-    ``turns`` turns.csv's."""
+    ``turns`` turns.csv's. Decision L299: ``clock`` (the clock time of the session's 0 s, a datetime) cuts them at
+    the clock's whole periods instead (``--per-align clock``: 1h = the clock hours), the first and last partial."""
     from pdrlearn.track.bouts import session_key
+    from pdrlearn.track.clock import clock_edges
     from pdrlearn.track.evaluate import _climb_dz, floor_climbs
 
     t0, t1 = session_span(session, unit)
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
         else result.steps
     timeline = Timeline.of(steps, unit_gaps(session, unit))
-    edges = np.arange(t0, t1, per_s)
-    ends = np.minimum(edges + per_s, t1)
+    edges = np.arange(t0, t1, per_s) if clock is None else clock_edges(t0, t1, per_s, clock)
+    ends = np.minimum(edges + per_s, t1) if clock is None else np.r_[edges[1:], t1]
     mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
     length = steps["length_m"].abs().to_numpy(float) if len(steps) else np.zeros(0)
     dz, bridge = _climb_dz(steps)

@@ -22,14 +22,21 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.track.base import TrackResult
 
-WINDOW_USAGE = "give --window START,END in seconds from the session start, e.g. --window 0,120 or 5,15"
+WINDOW_USAGE = ("give --window START,END in seconds from the session start, e.g. --window 0,120 or 5,15 (or clock "
+                "times, 02:10,02:20, when the session gives its start)")
 
 
-def parse_window(text: str | None) -> tuple[float, float] | None:
+def parse_window(text: str | None):
     """``"START,END"`` (s) -> ``(start, end)``; None for None. One :class:`DataError` line for a text that is not
-    two finite numbers with 0 <= START < END."""
+    two finite numbers with 0 <= START < END. Clock times (``02:10,02:20`` or two ISO 8601 date-times, decision
+    L299) -> a :class:`pdrlearn.track.clock.ClockWindow`, resolved per session by :func:`check_window`."""
     if text is None:
         return None
+    from pdrlearn.track.clock import parse_clock_window
+
+    clock = parse_clock_window(text)
+    if clock is not None:
+        return clock
     parts = [p.strip() for p in str(text).split(",")]
     try:
         if len(parts) != 2:
@@ -54,12 +61,16 @@ def check_window(window: tuple[float, float], session: Session, unit: str | None
     Decision B242: a window that starts inside the recording and ends after it is clipped to the recording's end,
     with one warning line saying so (per-hour bins, ``--window 1200,1800`` of a 1614 s recording, are the
     recording's last part; ``track-all --window`` cuts sessions of different lengths alike)."""
+    from pdrlearn.track.clock import ClockWindow, require_start, window_seconds
     from pdrlearn.track.units import unit_span
 
-    start, end = window
     t0 = session.t_recording_start  # B81: a --common-span cut does not move the session start (its seconds)
     span = unit_span(session, unit) if unit is not None else None
     dur = (span[1] if span is not None else session.t_end) - t0
+    if isinstance(window, ClockWindow):  # decision L299: clock times, the session's own start (B254 without one)
+        window = window_seconds(window, require_start(session.meta, session.where, f"--window {window.text}"),
+                                dur, t0, session.where)
+    start, end = window
     whose = f" (the tracked {unit} unit's, decision B126)" if span is not None else ""
     if start >= dur:
         raise DataError(f"{session.where}: --window {start:g},{end:g} lies outside the recording, which lasts "
