@@ -641,7 +641,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.signal import interp_rows
     from pdrlearn.track.base import TrackResult
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
-    from pdrlearn.track.evaluate import evaluate_track, floors_phrase
+    from pdrlearn.track.evaluate import evaluate_track, floors_phrase, summary_info
 
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
     if session_dir is None:
@@ -732,7 +732,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
                                                                        storey_height_m=storey_height_m),
                "session": session.name,
-               "pipeline": "runtime", "bundle_kind": "waist", "info": _summary_info(result.info),
+               "pipeline": "runtime", "bundle_kind": "waist", "info": summary_info(result.info),  # E141
                "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": float(traj["z"].iloc[-1]),
                                   **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})},
                "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
@@ -824,7 +824,9 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
 
     out["rate_hz"] = tracked_rate_hz(session, "runtime") if session is not None else None  # as track's (C19)
     out["pdrlearn_version"] = __version__  # decision C18
-    out["info"] = _summary_info(result.info)
+    from pdrlearn.track.evaluate import summary_info
+
+    out["info"] = summary_info(result.info)  # decision E141: what track's summary.json leaves out, one list
     from pdrlearn.track.evaluate import add_gait_range_flag
 
     add_gait_range_flag(out)  # decision L195, as track's summary
@@ -846,11 +848,6 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
                                 "p99": float(np.percentile(lat, 99) * 1e3) if lat else None},
     })
     return out
-
-
-def _summary_info(info: dict) -> dict:
-    """The track's ``info`` as summary.json holds it: freezes.csv's rows left out (decision W213, as track)."""
-    return {k: v for k, v in info.items() if k != "freezes"}
 
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
