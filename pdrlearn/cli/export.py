@@ -603,18 +603,23 @@ def _run_json(arguments: dict, wall0: float, cpu0: float):
 
 
 def _calibration_gait_warning(params, steps, warnings: list[str], where: str) -> None:
-    """Decisions W140, W141, as ``track``: with the option ``gait_check`` in the calibration's PARAMS.json, a bundle
-    calibrated on walks of another cadence than this run's steps warns (one line, logged and appended to
-    ``warnings``); a bundle without the calibration's ``gait`` is not judged."""
+    """Decisions W140, W141, W211, E142, as ``track``: a bundle calibrated on walks of another cadence than this run's
+    steps warns in one line (logged and appended to ``warnings``): W140's with the option ``gait_check`` in the
+    calibration's PARAMS.json, else W211's speed line (option ``speed_check``, on unless the PARAMS.json sets it
+    false) outside the calibration's cadence range (``gait.cadence_range_spm``; a bundle exported from a calibration
+    before W211: its ``median_cadence_spm`` for both ends, as ``track`` reads such a file) +-10 %. A bundle without the
+    calibration's ``gait`` (exported before W140) is not judged."""
     import logging
 
     from pdrlearn.waist.lengths import step_frequency
-    from pdrlearn.waist.plausibility import calibration_gait_message, median_cadence
+    from pdrlearn.waist.plausibility import calibration_line, median_cadence
 
-    if getattr(params, "source", None) != "calibrated" or not getattr(params, "gait_check", False) or not len(steps):
+    if getattr(params, "source", None) != "calibrated" or not len(steps):
         return
-    line = calibration_gait_message(getattr(params, "gait", None), *median_cadence(step_frequency(steps)),
-                                    getattr(params, "pipeline", None) or "waist-pendulum")
+    line = calibration_line(getattr(params, "gait", None), *median_cadence(step_frequency(steps)),
+                            getattr(params, "pipeline", None) or "waist-pendulum",
+                            gait_check=bool(getattr(params, "gait_check", False)),
+                            speed_check=bool(getattr(params, "speed_check", True)))
     if line:
         logging.getLogger("pdrlearn.cli").warning("%s: %s", where, line)
         warnings.append(line)
@@ -723,7 +728,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                                                           # decision W216: as track's, opt-in by the options
                                                           "freezes": lower_back_freezes(
                                                               session, "runtime-waist", bundle.options)})
-    _calibration_gait_warning(bundle.params, df, result.info["warnings"], session.name)  # decision W140
+    _calibration_gait_warning(bundle.params, df, result.info["warnings"], session.name)  # W140, W211 (E142)
     from pdrlearn.track.position_sigma import add_position_sigma
 
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines

@@ -665,7 +665,8 @@ def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
     rot = None if frame is None else np.asarray(frame, dtype=float).reshape(3, 3)
     params = SimpleNamespace(**{k: p.get(k) for k in (*PARAM_KEYS, "turn_gmm", "walk_threshold_mps2", "rate_hz",
                                                       "source", "pipeline", "gait")},  # gait: W140
-                             gait_check=bool((p.get("options") or {}).get("gait_check", False)))  # W141
+                             gait_check=bool((p.get("options") or {}).get("gait_check", False)),  # W141
+                             speed_check=bool((p.get("options") or {}).get("speed_check", True)))  # W211, E142
     return WaistBundle(path, m, params, dict(m["options"]), rot)
 
 
