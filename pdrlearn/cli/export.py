@@ -740,8 +740,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                "pipeline": "runtime", "bundle_kind": "waist", "info": summary_info(result.info),  # E141
                "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": float(traj["z"].iloc[-1]),
                                   **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})},
-               "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
-                                       "p99": float(np.percentile(lat, 99) * 1e3) if lat else None}}
+               "latency_ms_per_step": _latency(lat)}
     from pdrlearn.track.evaluate import add_gait_range_flag
 
     add_gait_range_flag(summary)  # decision L195: the flag as track's summary has it (this path warns no L95 line)
@@ -849,10 +848,17 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
         "methods": {**{t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
                     **{t: "none" for t in getattr(tracker, "unclassified", {})}},  # E26 amended, as track's
         "classes": counts,
-        "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
-                                "p99": float(np.percentile(lat, 99) * 1e3) if lat else None},
+        "latency_ms_per_step": _latency(lat),
     })
     return out
+
+
+def _latency(lat: list[float]) -> dict:
+    """``latency_ms_per_step`` of a run's summary (a foot or a waist bundle's): the median and 99th percentile (ms)
+    of the per-step push times ``lat`` (s), None without a step."""
+    import numpy as np
+
+    return {q: float(np.percentile(lat, n) * 1e3) if lat else None for q, n in (("p50", 50), ("p99", 99))}
 
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
