@@ -622,8 +622,9 @@ PARAM_KEYS = ("leg_m", "k", "f_m", "gyro_bias_rps")
 class WaistBundle:
     """A verified waist-only bundle: ``manifest`` (manifest.json), ``params`` (the resolved waist-pendulum
     parameters: ``leg_m``, ``k``, ``f_m``, ``gyro_bias_rps``, ``turn_gmm``, ``walk_threshold_mps2``, ``rate_hz``,
-    ``source``, ``pipeline``), ``options`` (the live pipeline options) and ``rotation`` (the sensor -> body FLU matrix
-    of the waist unit, None when the export was given no frame)."""
+    ``source``, ``pipeline``, the calibration's ``gait`` and its PARAMS.json options ``gait_check`` (W141) and
+    ``speed_check`` (E142, true unless set false)), ``options`` (the live pipeline options) and ``rotation`` (the
+    sensor -> body FLU matrix of the waist unit, None when the export was given no frame)."""
 
     path: Path
     manifest: dict
