@@ -603,18 +603,23 @@ def _run_json(arguments: dict, wall0: float, cpu0: float):
 
 
 def _calibration_gait_warning(params, steps, warnings: list[str], where: str) -> None:
-    """Decisions W140, W141, as ``track``: with the option ``gait_check`` in the calibration's PARAMS.json, a bundle
-    calibrated on walks of another cadence than this run's steps warns (one line, logged and appended to
-    ``warnings``); a bundle without the calibration's ``gait`` is not judged."""
+    """Decisions W140, W141, W211, E142, as ``track``: a bundle calibrated on walks of another cadence than this run's
+    steps warns in one line (logged and appended to ``warnings``): W140's with the option ``gait_check`` in the
+    calibration's PARAMS.json, else W211's speed line (option ``speed_check``, on unless the PARAMS.json sets it
+    false) outside the calibration's cadence range (``gait.cadence_range_spm``; a bundle exported from a calibration
+    before W211: its ``median_cadence_spm`` for both ends, as ``track`` reads such a file) +-10 %. A bundle without the
+    calibration's ``gait`` (exported before W140) is not judged."""
     import logging
 
     from pdrlearn.waist.lengths import step_frequency
-    from pdrlearn.waist.plausibility import calibration_gait_message, median_cadence
+    from pdrlearn.waist.plausibility import calibration_line, median_cadence
 
-    if getattr(params, "source", None) != "calibrated" or not getattr(params, "gait_check", False) or not len(steps):
+    if getattr(params, "source", None) != "calibrated" or not len(steps):
         return
-    line = calibration_gait_message(getattr(params, "gait", None), *median_cadence(step_frequency(steps)),
-                                    getattr(params, "pipeline", None) or "waist-pendulum")
+    line = calibration_line(getattr(params, "gait", None), *median_cadence(step_frequency(steps)),
+                            getattr(params, "pipeline", None) or "waist-pendulum",
+                            gait_check=bool(getattr(params, "gait_check", False)),
+                            speed_check=bool(getattr(params, "speed_check", True)))
     if line:
         logging.getLogger("pdrlearn.cli").warning("%s: %s", where, line)
         warnings.append(line)
@@ -641,7 +646,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.signal import interp_rows
     from pdrlearn.track.base import TrackResult
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
-    from pdrlearn.track.evaluate import evaluate_track, floors_phrase
+    from pdrlearn.track.evaluate import evaluate_track, floors_phrase, summary_info
 
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
     if session_dir is None:
@@ -723,7 +728,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                                                           # decision W216: as track's, opt-in by the options
                                                           "freezes": lower_back_freezes(
                                                               session, "runtime-waist", bundle.options)})
-    _calibration_gait_warning(bundle.params, df, result.info["warnings"], session.name)  # decision W140
+    _calibration_gait_warning(bundle.params, df, result.info["warnings"], session.name)  # W140, W211 (E142)
     from pdrlearn.track.position_sigma import add_position_sigma
 
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
@@ -732,11 +737,10 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
                                                                        storey_height_m=storey_height_m),
                "session": session.name,
-               "pipeline": "runtime", "bundle_kind": "waist", "info": _summary_info(result.info),
+               "pipeline": "runtime", "bundle_kind": "waist", "info": summary_info(result.info),  # E141
                "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": float(traj["z"].iloc[-1]),
                                   **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})},
-               "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
-                                       "p99": float(np.percentile(lat, 99) * 1e3) if lat else None}}
+               "latency_ms_per_step": _latency(lat)}
     from pdrlearn.track.evaluate import add_gait_range_flag
 
     add_gait_range_flag(summary)  # decision L195: the flag as track's summary has it (this path warns no L95 line)
@@ -824,7 +828,9 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
 
     out["rate_hz"] = tracked_rate_hz(session, "runtime") if session is not None else None  # as track's (C19)
     out["pdrlearn_version"] = __version__  # decision C18
-    out["info"] = _summary_info(result.info)
+    from pdrlearn.track.evaluate import summary_info
+
+    out["info"] = summary_info(result.info)  # decision E141: what track's summary.json leaves out, one list
     from pdrlearn.track.evaluate import add_gait_range_flag
 
     add_gait_range_flag(out)  # decision L195, as track's summary
@@ -842,15 +848,17 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
         "methods": {**{t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
                     **{t: "none" for t in getattr(tracker, "unclassified", {})}},  # E26 amended, as track's
         "classes": counts,
-        "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
-                                "p99": float(np.percentile(lat, 99) * 1e3) if lat else None},
+        "latency_ms_per_step": _latency(lat),
     })
     return out
 
 
-def _summary_info(info: dict) -> dict:
-    """The track's ``info`` as summary.json holds it: freezes.csv's rows left out (decision W213, as track)."""
-    return {k: v for k, v in info.items() if k != "freezes"}
+def _latency(lat: list[float]) -> dict:
+    """``latency_ms_per_step`` of a run's summary (a foot or a waist bundle's): the median and 99th percentile (ms)
+    of the per-step push times ``lat`` (s), None without a step."""
+    import numpy as np
+
+    return {q: float(np.percentile(lat, n) * 1e3) if lat else None for q, n in (("p50", 50), ("p99", 99))}
 
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,

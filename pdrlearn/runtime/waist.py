@@ -622,8 +622,9 @@ PARAM_KEYS = ("leg_m", "k", "f_m", "gyro_bias_rps")
 class WaistBundle:
     """A verified waist-only bundle: ``manifest`` (manifest.json), ``params`` (the resolved waist-pendulum
     parameters: ``leg_m``, ``k``, ``f_m``, ``gyro_bias_rps``, ``turn_gmm``, ``walk_threshold_mps2``, ``rate_hz``,
-    ``source``, ``pipeline``), ``options`` (the live pipeline options) and ``rotation`` (the sensor -> body FLU matrix
-    of the waist unit, None when the export was given no frame)."""
+    ``source``, ``pipeline``, the calibration's ``gait`` and its PARAMS.json options ``gait_check`` (W141) and
+    ``speed_check`` (E142, true unless set false)), ``options`` (the live pipeline options) and ``rotation`` (the
+    sensor -> body FLU matrix of the waist unit, None when the export was given no frame)."""
 
     path: Path
     manifest: dict
@@ -665,7 +666,8 @@ def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
     rot = None if frame is None else np.asarray(frame, dtype=float).reshape(3, 3)
     params = SimpleNamespace(**{k: p.get(k) for k in (*PARAM_KEYS, "turn_gmm", "walk_threshold_mps2", "rate_hz",
                                                       "source", "pipeline", "gait")},  # gait: W140
-                             gait_check=bool((p.get("options") or {}).get("gait_check", False)))  # W141
+                             gait_check=bool((p.get("options") or {}).get("gait_check", False)),  # W141
+                             speed_check=bool((p.get("options") or {}).get("speed_check", True)))  # W211, E142
     return WaistBundle(path, m, params, dict(m["options"]), rot)
 
 

@@ -974,6 +974,28 @@ def domain_fraction(result: TrackResult) -> dict:
     return {"out_of_domain_fraction": dom.get("out_of_domain_fraction")} if isinstance(dom, dict) else {}
 
 
+#: decision E141: the entries of a track's ``info`` that summary.json leaves out, each with the file that holds it
+#: instead (rows of a table, not summary values). One list for every writer of summary.json (``track``,
+#: ``track-all``, ``TrackResult.summary``, ``run`` of a foot or a waist bundle): :func:`summary_info`.
+SUMMARY_INFO_LEFT_OUT = {
+    "transfers": "transfers.csv (decision W182)",
+    "freezes": "freezes.csv (decision W213)",
+    "yaw_turns": "turns.csv's turn timing (decision L210)",
+}
+#: decision E141: the entries of ``info["aid"]`` that summary.json leaves out (every fix's row: aided.png's)
+SUMMARY_AID_LEFT_OUT = ("fix_table",)
+
+
+def summary_info(info: dict) -> dict:
+    """Decision E141: a track's ``info`` as summary.json holds it, a new dict: the entries of
+    :data:`SUMMARY_INFO_LEFT_OUT` dropped, and ``aid``'s :data:`SUMMARY_AID_LEFT_OUT` (``info`` is not changed)."""
+    out = {k: v for k, v in info.items() if k not in SUMMARY_INFO_LEFT_OUT}
+    aid = out.get("aid")
+    if isinstance(aid, dict) and any(k in aid for k in SUMMARY_AID_LEFT_OUT):
+        out["aid"] = {k: v for k, v in aid.items() if k not in SUMMARY_AID_LEFT_OUT}
+    return out
+
+
 def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None, bouts=None,
                   bout_table=None, storey_height_m: float = STOREY_HEIGHT_M) -> dict:
     """The summary of a track, exactly as ``pdrlearn track`` writes it to ``summary.json`` (strict JSON:
@@ -1036,12 +1058,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     for line in lines:  # decisions L95 (running / very slow walking), L113 (CV withheld), B134, B201
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
-    summary["info"].pop("transfers", None)  # decision W182: the rows are transfers.csv's, not the summary's
-    summary["info"].pop("freezes", None)  # decision W213: the rows are freezes.csv's
-    summary["info"].pop("yaw_turns", None)  # decision L210: they time turns.csv's turns; not the summary's
-    aid = summary["info"].get("aid")
-    if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
-        summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
+    summary["info"] = summary_info(summary["info"])  # decision E141: W182's, W213's, L210's rows and aid's fixes
     if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
         summary["frames_inferred"] = session.frames_inferred
     return json_safe(json.loads(json.dumps(

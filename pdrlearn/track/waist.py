@@ -77,8 +77,7 @@ from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params,
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
-    calibration_gait_message,
-    calibration_speed_message,
+    calibration_line,
     contact_alternation,
     contact_lateral_velocity,
     contact_sides,
@@ -804,11 +803,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
         warnings.append(micro_line)
-    cadence_ratio, gait_line, speed_line = _calibration_gait(steps, p, pipeline)  # decisions W140, W211
-    if gait_line and bool(o["gait_check"]):  # W140's line: an option (its adoption rule was not met)
-        warnings.append(gait_line)
-    elif speed_line and bool(o["speed_check"]):  # W211: W140's band lies inside it, so one line, not two
-        warnings.append(speed_line)
+    # decisions W140 (gait_check: an option, its adoption rule was not met), W211 (speed_check: on); one line
+    cadence_ratio, calibration = _calibration_gait(steps, p, pipeline, bool(o["gait_check"]), bool(o["speed_check"]))
+    if calibration:
+        warnings.append(calibration)
     n = len(steps)
     length_model = model.name
     info = {
@@ -935,18 +933,17 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
     return ratio, line
 
 
-def _calibration_gait(steps: pd.DataFrame, p: WaistParams,
-                      pipeline: str) -> tuple[float | None, str | None, str | None]:
-    """Decision W140: ``(ratio, line, speed line)``, this track's median cadence over its calibration walks' (None: not
-    calibrated, a params file without ``gait``, or fewer than ten steps), W140's warning line (None inside its band)
-    and W211's (None inside the calibration's cadence range +-10 %)."""
+def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str, gait_check: bool,
+                      speed_check: bool) -> tuple[float | None, str | None]:
+    """Decision W140: ``(ratio, line)``, this track's median cadence over its calibration walks' (None: not
+    calibrated, a params file without ``gait``, or fewer than ten steps) and the one calibration line under the
+    options (:func:`~pdrlearn.waist.plausibility.calibration_line`: W140's, else W211's; None: neither fires)."""
     ref = (p.gait or {}).get("median_cadence_spm") if p.source == "calibrated" else None
     cadence, n = median_cadence(steps["frequency_hz"].to_numpy(float))
     if not ref or cadence is None or n < PLAUSIBILITY_MIN_PAIRS:
-        return None, None, None
-    who = p.pipeline or pipeline
-    return (cadence / float(ref), calibration_gait_message(p.gait, cadence, n, who),
-            calibration_speed_message(p.gait, cadence, n, who))
+        return None, None
+    return cadence / float(ref), calibration_line(p.gait, cadence, n, p.pipeline or pipeline, gait_check=gait_check,
+                                                  speed_check=speed_check)
 
 
 def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDetector:

@@ -414,6 +414,17 @@ def calibration_gait_message(gait: dict | None, cadence: float | None, n: int, p
             "comparing distances or speeds")
 
 
+
+def calibration_line(gait: dict | None, cadence: float | None, n: int, pipeline: str, *, gait_check: bool = False,
+                     speed_check: bool = True) -> str | None:
+    """The one calibration line of a calibrated waist track (decisions W140, W211; E142: ``track`` and ``run`` alike):
+    W140's change-of-gait line when the option ``gait_check`` is on and it fires (its band lies outside W211's, so
+    one line, not two), else W211's speed line when ``speed_check`` (on by default) and it fires; None: neither."""
+    line = calibration_gait_message(gait, cadence, n, pipeline) if gait_check else None
+    if line is None and speed_check:
+        line = calibration_speed_message(gait, cadence, n, pipeline)
+    return line
+
 #: W105: the still period read: the first standstill of at least 2 s (thesis ch.7.2's setup standstill, as
 #: ``calibrate_standstill``), up to its first 5 s (thesis ch.4.4)
 STILL_S = (2.0, 5.0)
