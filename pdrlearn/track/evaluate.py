@@ -1038,6 +1038,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary["info"].pop("transfers", None)  # decision W182: the rows are transfers.csv's, not the summary's
     summary["info"].pop("freezes", None)  # decision W213: the rows are freezes.csv's
+    summary["info"].pop("postures", None)  # decision W222: the runs behind the posture keys; not the summary's
     summary["info"].pop("yaw_turns", None)  # decision L210: they time turns.csv's turns; not the summary's
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
