@@ -55,11 +55,11 @@ def agreement(rows: list[tuple[str, str]], classes: tuple[str, ...], est_classes
     for c in classes:
         d = df[df.truth == c]
         if not len(d):
-        continue
+            continue
         cnt = d.est.value_counts()
         same = cnt.get(c, 0) if c != "upright" else cnt.get("walking", 0) + cnt.get("standing", 0)
         out.append(f"| {c} | {len(d) * DT:.1f} | {100 * same / len(d):.1f} % | "
-               + " | ".join(f"{cnt.get(e, 0) * DT:.1f}" for e in est_classes) + " |")
+                   + " | ".join(f"{cnt.get(e, 0) * DT:.1f}" for e in est_classes) + " |")
     return out
 
 
@@ -88,8 +88,8 @@ def sim() -> list[str]:
                    f"{sit_t:.1f} s, track {sit_e:.1f} s")
         print(per[-1], file=sys.stderr, flush=True)
     return [f"# W223 (a): simulated users {USERS.start}-{USERS.stop - 1}, route '{ROUTE}', waist-pendulum defaults",
-        "", "Scored every 0.05 s outside the transfer movements; upright = walking or standing.", "",
-        *agreement(rows, ("sitting", "upright")), "", *per]
+            "", "Scored every 0.05 s outside the transfer movements; upright = walking or standing.", "",
+            *agreement(rows, ("sitting", "upright")), "", *per]
 
 
 def hapt(root: Path) -> list[str]:
@@ -103,21 +103,21 @@ def hapt(root: Path) -> list[str]:
     for folder in folders:
         s = read_session(folder)
         try:
-        res = track_waist(s, pipeline="waist-pendulum")
+            res = track_waist(s, pipeline="waist-pendulum")
         except DataError as exc:
-        refused.append(f"{folder.name}: {str(exc)[:120]}")
-        continue
+            refused.append(f"{folder.name}: {str(exc)[:120]}")
+            continue
         act = pd.read_csv(folder / "activities.csv")
         for r in act.itertuples():
-        if r.activity not in name:
-            continue
-        grid = np.arange(r.start_ms / 1000.0, (r.end_ms + 20) / 1000.0, DT)  # H4: end inclusive
-        rows += [(name[r.activity], e) for e in labels_at(res, grid)]
+            if r.activity not in name:
+                continue
+            grid = np.arange(r.start_ms / 1000.0, (r.end_ms + 20) / 1000.0, DT)  # H4: end inclusive
+            rows += [(name[r.activity], e) for e in labels_at(res, grid)]
         print(f"{folder.name} done", file=sys.stderr, flush=True)
     n = len(folders) - len(refused)
     return [f"# W223 (b): UCI HAPT, {n} recordings tracked (waist-pendulum defaults); stairs pooled into walking", "",
-        *agreement(rows, ("walking", "standing", "sitting", "lying")), "",
-        f"Refused: {len(refused)}", *[f"- {r}" for r in refused]]
+            *agreement(rows, ("walking", "standing", "sitting", "lying")), "",
+            f"Refused: {len(refused)}", *[f"- {r}" for r in refused]]
 
 
 def main(argv=None) -> None:
