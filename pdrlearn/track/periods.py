@@ -163,8 +163,7 @@ class Timeline:
                    posture_intervals(postures, _union(np.vstack([walking, no_data]))))
 
     def budget(self, a: float, b: float) -> dict:
-        """L275's four times (s) of ``[a, b]`` (:data:`TIME_KEYS`), summing to ``b - a``, and W222's
-        :data:`POSTURE_KEYS`, which sum with ``time_walking_s`` to ``b - a`` (None without the lower back)."""
+        """L275's four times (s) of ``[a, b]`` (:data:`TIME_KEYS`), summing to ``b - a``."""
         walk, gap = _measure(self.walking, a, b), _measure(self.no_data, a, b)
         mid = 0.5 * (self.start + self.end)
         inside = self.is_step & (mid >= a) & (mid <= b)  # L105's rule: the steps the window counts
@@ -174,14 +173,15 @@ class Timeline:
             if la > f:
                 between = max(0.0, (la - f) - _measure(self.walking, f, la) - _measure(self.no_data, f, la))
         return {"time_walking_s": walk, "time_between_steps_s": between,
-                "time_no_steps_s": max(0.0, (b - a) - walk - gap - between), "time_no_data_s": gap,
-                **self.posture_budget(a, b, walk)}
+                "time_no_steps_s": max(0.0, (b - a) - walk - gap - between), "time_no_data_s": gap}
 
-    def posture_budget(self, a: float, b: float, walk: float) -> dict:
-        """Decision W222: :data:`POSTURE_KEYS` of ``[a, b]`` given its walking time ``walk``: each posture's time
-        outside walking and gaps, and the rest (gaps, no upright) unknown."""
+    def posture_budget(self, a: float, b: float) -> dict:
+        """Decision W222: :data:`POSTURE_KEYS` of ``[a, b]`` (None without the lower back): each posture's time
+        outside walking and gaps, and the rest (gaps, no upright) unknown; they sum with L275's
+        ``time_walking_s`` to ``b - a``."""
         if self.postures is None:
             return dict.fromkeys(POSTURE_KEYS)
+        walk = _measure(self.walking, a, b)
         out = {f"{p}_time_s": _measure(iv, a, b) for p, iv in self.postures.items()}
         out["unknown_time_s"] = max(0.0, (b - a) - walk - sum(out.values()))
         return out
@@ -206,8 +206,9 @@ def session_span(session, unit: str | None) -> tuple[float, float]:
 
 
 def time_summary(timeline: Timeline, a: float, b: float) -> dict:
-    """Decision L275: the summary's :data:`TIME_KEYS` of ``[a, b]`` and ``time_span_s`` (= ``b - a``, their sum)."""
-    return {**timeline.budget(a, b), "time_span_s": float(b - a)}
+    """Decision L275: the summary's :data:`TIME_KEYS` of ``[a, b]`` and ``time_span_s`` (= ``b - a``, their sum);
+    decision W222: and the :data:`POSTURE_KEYS`."""
+    return {**timeline.budget(a, b), **timeline.posture_budget(a, b), "time_span_s": float(b - a)}
 
 
 def time_accounting(result, session, unit: str | None = None, window: tuple[float, float] | None = None) -> dict:
@@ -259,7 +260,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         m = inside(mid)
         row = {**session_key(session), "period": k + 1, "start_s": float(a), "end_s": float(b),
                "duration_s": float(b - a), "partial": bool(b - a < per_s - 1e-9),
-               "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), **timeline.budget(a, b)}
+               "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), **timeline.budget(a, b),
+               **timeline.posture_budget(a, b)}
         c = inside(climb_t)
         row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None

@@ -99,8 +99,8 @@ from pdrlearn.waist.plausibility import (
 from pdrlearn.waist.posture import drop_contacts, sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
-from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.posture_time import session_postures
+from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.transfers import chair_transfers
 
 log = logging.getLogger(__name__)
