@@ -17,6 +17,10 @@ Walking and data gap add up over consecutive windows (they are the whole session
 no-step time add up only together (a stop across a window's edge is between steps in the whole session and no-step
 time in each window holding a part of it). The session's ``time_walking_s`` is its ``walking_time_s``.
 
+Decision W222 (a lower-back track): the time that is not walking also splits by posture, ``standing_time_s``,
+``sitting_time_s``, ``lying_time_s`` and ``unknown_time_s`` (:data:`~pdrlearn.waist.posture_time.POSTURE_KEYS`),
+which with ``time_walking_s`` sum to ``b - a`` and add up over consecutive windows; None for a foot track.
+
 Decision L277 (periods.csv, ``track --per 1h``): the whole-session track cut into consecutive periods from the
 recording's start (the last one shorter, ``partial``); each row's time columns are L275's for that period, its
 steps those whose middle lies inside (distance, n_steps), its bouts those that start inside, its turns (turns.csv)
