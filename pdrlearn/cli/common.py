@@ -542,6 +542,17 @@ def transfer_line(summary: dict) -> str | None:
     return ", ".join(parts) if parts else None
 
 
+def posture_line(summary: dict) -> str:
+    """Decision W222: ``track``'s line of the time that is not walking, by posture (a lower-back track), or that a
+    foot-only track cannot split it (its keys are null)."""
+    if summary.get("standing_time_s") is None:
+        return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt (a foot "
+                "unit sees no trunk; decision W222)")
+    return (f"posture: standing {summary['standing_time_s']:.1f} s, sitting {summary['sitting_time_s']:.1f} s, "
+            f"lying {summary['lying_time_s']:.1f} s, unknown {summary['unknown_time_s']:.1f} s (besides walking; "
+            "trunk tilt and transfers, decision W222)")
+
+
 def _few_straight(summary: dict) -> str:
     """Decision L197: the straight strides' count when it is under L123's minimum for a speed (5): a median of
     one or two strides (a partial start stride) stands for no walk; said, not hidden (the summary keeps it)."""

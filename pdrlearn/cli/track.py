@@ -17,6 +17,7 @@ from pdrlearn.cli.common import (
     existed,
     gait_line,
     initial_heading_option,
+    posture_line,
     print_json,
     replaced,
     resample_options,
@@ -770,6 +771,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
                    f"{summary['time_no_data_s']:.1f} s")
+        typer.echo(posture_line(summary))  # decision W222: the time that is not walking, by posture
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"

@@ -980,6 +980,7 @@ def domain_fraction(result: TrackResult) -> dict:
 SUMMARY_INFO_LEFT_OUT = {
     "transfers": "transfers.csv (decision W182)",
     "freezes": "freezes.csv (decision W213)",
+    "postures": "the runs behind the posture time keys (decision W222)",
     "yaw_turns": "turns.csv's turn timing (decision L210)",
 }
 #: decision E141: the entries of ``info["aid"]`` that summary.json leaves out (every fix's row: aided.png's)

@@ -17,6 +17,10 @@ Walking and data gap add up over consecutive windows (they are the whole session
 no-step time add up only together (a stop across a window's edge is between steps in the whole session and no-step
 time in each window holding a part of it). The session's ``time_walking_s`` is its ``walking_time_s``.
 
+Decision W222 (a lower-back track): the time that is not walking also splits by posture, ``standing_time_s``,
+``sitting_time_s``, ``lying_time_s`` and ``unknown_time_s`` (:data:`~pdrlearn.waist.posture_time.POSTURE_KEYS`),
+which with ``time_walking_s`` sum to ``b - a`` and add up over consecutive windows; None for a foot track.
+
 Decision L277 (periods.csv, ``track --per 1h``): the whole-session track cut into consecutive periods from the
 recording's start (the last one shorter, ``partial``); each row's time columns are L275's for that period, its
 steps those whose middle lies inside (distance, n_steps), its bouts those that start inside, its turns (turns.csv)
@@ -36,12 +40,13 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.waist.posture_time import POSTURE_KEYS, POSTURES
 
 #: decision L275: the summary's time-accounting keys, which sum to ``time_span_s``
 TIME_KEYS = ("time_walking_s", "time_between_steps_s", "time_no_steps_s", "time_no_data_s")
 #: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
 PERIOD_COLUMNS = ("session", "subject", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
-                  "n_steps", *TIME_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
+                  "n_steps", *TIME_KEYS, *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
                   "position_sigma_end_m")
 #: decision L277: ``--per`` units (s)
 PER_UNITS = {"s": 1.0, "min": 60.0, "m": 60.0, "h": 3600.0}
@@ -99,20 +104,56 @@ def _minus(iv: np.ndarray, cut: np.ndarray) -> np.ndarray:
     return _union(out)
 
 
+def _intersect(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The intersection of two sets of disjoint sorted intervals (two pointers, O(len(x) + len(y)))."""
+    out, i, j = [], 0, 0
+    while i < len(x) and j < len(y):
+        t0, t1 = max(x[i, 0], y[j, 0]), min(x[i, 1], y[j, 1])
+        if t1 > t0:
+            out.append((t0, t1))
+        if x[i, 1] < y[j, 1]:
+            i += 1
+        else:
+            j += 1
+    return np.asarray(out, dtype=float).reshape(-1, 2)
+
+
+def _complement(iv: np.ndarray) -> np.ndarray:
+    """The disjoint sorted intervals ``iv``'s complement on the real line."""
+    bounds = np.concatenate([[-np.inf], iv.ravel(), [np.inf]])
+    return _union(bounds.reshape(-1, 2))
+
+
+def posture_intervals(postures, busy: np.ndarray) -> dict[str, np.ndarray] | None:
+    """Decision W222: per posture (:data:`~pdrlearn.waist.posture_time.POSTURES`), the disjoint intervals of a
+    lower-back track's ``info["postures"]`` runs (``[start_s, end_s, posture]``) outside ``busy`` (walking and data
+    gaps); None for None (a track without the lower back)."""
+    if postures is None:
+        return None
+    free = _complement(busy)
+    out = {}
+    for name in POSTURES:
+        out[name] = _intersect(_union([(a, b) for a, b, p in postures if p == name]), free)
+    return out
+
+
 @dataclass(frozen=True)
 class Timeline:
     """A whole-session track's time (decision L275): its walking pieces and data gaps (disjoint, s of the session's
-    clock) and its steps' spans (``start``, ``end``; ``is_step`` False on a gap row)."""
+    clock) and its steps' spans (``start``, ``end``; ``is_step`` False on a gap row); ``postures`` (decision W222)
+    the standing / sitting / lying intervals outside walking and gaps, None without the lower back."""
 
     walking: np.ndarray
     no_data: np.ndarray
     start: np.ndarray
     end: np.ndarray
     is_step: np.ndarray
+    postures: dict | None = None
 
     @classmethod
-    def of(cls, steps: pd.DataFrame, gaps) -> Timeline:
-        """From a whole-session step table and ``gaps`` (``(t0, t1)`` intervals of the tracked unit's data gaps)."""
+    def of(cls, steps: pd.DataFrame, gaps, postures=None) -> Timeline:
+        """From a whole-session step table, ``gaps`` (``(t0, t1)`` intervals of the tracked unit's data gaps) and a
+        lower-back track's ``info["postures"]`` (decision W222; None: the posture keys are None)."""
         from pdrlearn.track.gait import session_walking_pieces
 
         st = steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(steps) else steps
@@ -122,7 +163,8 @@ class Timeline:
                    else np.zeros(len(st), bool))
         start = st["start_s"].to_numpy(float) if len(st) else np.zeros(0)
         end = st["end_s"].to_numpy(float) if len(st) else np.zeros(0)
-        return cls(walking, no_data, start, end, ~gap_row)
+        return cls(walking, no_data, start, end, ~gap_row,
+                   posture_intervals(postures, _union(np.vstack([walking, no_data]))))
 
     def budget(self, a: float, b: float) -> dict:
         """L275's four times (s) of ``[a, b]`` (:data:`TIME_KEYS`), summing to ``b - a``."""
@@ -136,6 +178,17 @@ class Timeline:
                 between = max(0.0, (la - f) - _measure(self.walking, f, la) - _measure(self.no_data, f, la))
         return {"time_walking_s": walk, "time_between_steps_s": between,
                 "time_no_steps_s": max(0.0, (b - a) - walk - gap - between), "time_no_data_s": gap}
+
+    def posture_budget(self, a: float, b: float) -> dict:
+        """Decision W222: :data:`POSTURE_KEYS` of ``[a, b]`` (None without the lower back): each posture's time
+        outside walking and gaps, and the rest (gaps, no upright) unknown; they sum with L275's
+        ``time_walking_s`` to ``b - a``."""
+        if self.postures is None:
+            return dict.fromkeys(POSTURE_KEYS)
+        walk = _measure(self.walking, a, b)
+        out = {f"{p}_time_s": _measure(iv, a, b) for p, iv in self.postures.items()}
+        out["unknown_time_s"] = max(0.0, (b - a) - walk - sum(out.values()))
+        return out
 
 
 def unit_gaps(session, unit: str | None) -> list[tuple[float, float]]:
@@ -157,8 +210,9 @@ def session_span(session, unit: str | None) -> tuple[float, float]:
 
 
 def time_summary(timeline: Timeline, a: float, b: float) -> dict:
-    """Decision L275: the summary's :data:`TIME_KEYS` of ``[a, b]`` and ``time_span_s`` (= ``b - a``, their sum)."""
-    return {**timeline.budget(a, b), "time_span_s": float(b - a)}
+    """Decision L275: the summary's :data:`TIME_KEYS` of ``[a, b]`` and ``time_span_s`` (= ``b - a``, their sum);
+    decision W222: and the :data:`POSTURE_KEYS`."""
+    return {**timeline.budget(a, b), **timeline.posture_budget(a, b), "time_span_s": float(b - a)}
 
 
 def time_accounting(result, session, unit: str | None = None, window: tuple[float, float] | None = None) -> dict:
@@ -167,11 +221,11 @@ def time_accounting(result, session, unit: str | None = None, window: tuple[floa
     the steps' own (waist when every row is the lower back's, else foot). Without a session (a live stream) every
     key is None: no recording's extent or gaps are known."""
     if session is None:
-        return {**{k: None for k in TIME_KEYS}, "time_span_s": None}
+        return {**{k: None for k in (*TIME_KEYS, *POSTURE_KEYS)}, "time_span_s": None}
     steps = result.steps
     if unit is None:
         unit = "waist" if "unit" in steps and len(steps) and (steps["unit"] == "waist").all() else "foot"
-    timeline = Timeline.of(steps, unit_gaps(session, unit))
+    timeline = Timeline.of(steps, unit_gaps(session, unit), result.info.get("postures"))
     return time_summary(timeline, *(window if window is not None else session_span(session, unit)))
 
 
@@ -188,7 +242,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     t0, t1 = session_span(session, unit)
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
         else result.steps
-    timeline = Timeline.of(steps, unit_gaps(session, unit))
+    timeline = Timeline.of(steps, unit_gaps(session, unit), result.info.get("postures"))
     edges = np.arange(t0, t1, per_s) if clock is None else clock_edges(t0, t1, per_s, clock)
     ends = np.minimum(edges + per_s, t1) if clock is None else np.r_[edges[1:], t1]
     mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
@@ -212,7 +266,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         m = inside(mid)
         row = {**session_key(session), "period": k + 1, "start_s": float(a), "end_s": float(b),
                "duration_s": float(b - a), "partial": bool(b - a < per_s - 1e-9),
-               "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), **timeline.budget(a, b)}
+               "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), **timeline.budget(a, b),
+               **timeline.posture_budget(a, b)}
         c = inside(climb_t)
         row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None

@@ -98,6 +98,7 @@ from pdrlearn.waist.plausibility import (
 from pdrlearn.waist.posture import drop_contacts, sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
+from pdrlearn.waist.posture_time import session_postures
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.transfers import chair_transfers
 
@@ -834,6 +835,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_frozen_contacts": n_frozen,  # decision W214
         "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
+        "postures": session_postures(imu, steps, transfers),  # decision W222: the posture runs (not in summary.json)
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }
     for w in warnings:
@@ -1062,7 +1064,8 @@ def _no_walking(session: Session, pipeline: str, p: WaistParams, o: dict, warnin
     warnings = [*warnings, no_walking_message(walk_s, "0 steps, 0 m")]
     info = {"pipeline": pipeline, "method": "", "methods": {}, "params": p.to_dict(), "params_source": p.source,
             "options": o, "warnings": warnings, "n_contacts": 0, "rate_hz": float(acc.rate_hz),
-            "no_walking": True, "freezes": lower_back_freezes(session, pipeline, o)}  # W216: opt-in
+            "no_walking": True, "freezes": lower_back_freezes(session, pipeline, o),  # W216: opt-in
+            "postures": []}  # decision W222: no walking upright, so every instant's posture is unknown
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(acc.t[0]))
