@@ -145,7 +145,7 @@ def test_w191_turns_end_to_end_where_it_applies_and_the_values_refused():
         assert b.info["n_weak_run_contacts"] == 0
     for bad in ("Turns", "yes", 2):
         with pytest.raises(DataError, match=r"stand_veto .* is not one of false, true, \"turns\", \"alternation\", "
-                                            r"\"adjacent\" \(decisions W189, W191, W196, W198\)") as e:
+                                            r"\"adjacent\", \"walking\" \(decisions W189, W191, W196, W198, W218\)") as e:
             track_waist(s, pipeline="waist-pendulum", stand_veto=bad)
         assert "\n" not in str(e.value)
     assert "stand_veto" in (unapplied_options_line(WaistParams(options={"stand_veto": "turns"})) or "")

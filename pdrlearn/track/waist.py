@@ -451,14 +451,15 @@ PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 #: the values of the ``stand_veto`` option: off, W189's veto, W191's veto sparing a run with a turning step, W196's
-#: sparing a run whose decided sides alternate, W198's sparing a run with walking within 3 s before and after it
-STAND_VETO_VALUES = (False, True, "turns", "alternation", "adjacent")
+#: sparing a run whose decided sides alternate, W198's sparing a run with walking within 3 s before and after it,
+#: W218's "adjacent" judged against the walking stretches' bounce, the stretches never dropped
+STAND_VETO_VALUES = (False, True, "turns", "alternation", "adjacent", "walking")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159"),
-                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198"),
+                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198, W218"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203")}
 
 
@@ -703,7 +704,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
         steps = drop_weak_runs(steps, imu, spare_turns=o["stand_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps,
                                spare_alternation=o["stand_veto"] == "alternation",
-                               spare_adjacent=o["stand_veto"] == "adjacent")
+                               spare_adjacent=o["stand_veto"] in ("adjacent", "walking"),
+                               walking_reference=o["stand_veto"] == "walking")  # W218: + the walking reference
         n_weak_run = steps.attrs["n_weak_run"]
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
