@@ -304,8 +304,8 @@ def test_w218_the_walking_stretch_mask_by_hand():
     assert K.walking_stretch_mask(s, hn, t, 4).tolist() == [False] * 6 + [True] * 6
     # two same-side neighbours break it too, and so does the end of a run (has_next False)
     s = alt.copy()
-    s[6] = s[5]
-    assert not K.walking_stretch_mask(s, hn, t, 4)[:6].any()
+    s[4:] = -alt[4:]  # 3 and 4 on one side: 0-3 (2 strides) and 4-11 (6 strides)
+    assert K.walking_stretch_mask(s, hn, t, 4).tolist() == [False] * 4 + [True] * 8
     h2 = hn.copy()
     h2[5] = False
     assert K.walking_stretch_mask(alt, h2, t, 4).tolist() == [True] * 6 + [True] * 6
