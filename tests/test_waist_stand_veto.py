@@ -69,7 +69,7 @@ def test_the_veto_drops_the_weak_run_only():
 
 
 def test_the_option_true_and_where_it_applies():
-    assert OPTION_DEFAULTS["stand_veto"] is False  # W217 withdrew W199's "adjacent" (W190: true not adopted)
+    assert OPTION_DEFAULTS["stand_veto"] == "walking"  # W190: true not adopted; W219: W218's value the default
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
     off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
     on = track_waist(s, pipeline="waist-pendulum", stand_veto=True)
@@ -242,13 +242,15 @@ def test_w198_spare_adjacent_keeps_a_weak_run_between_walking_strides_only():
         assert np.isin(after, out["event_s"].to_numpy()).all()  # the strong contacts are never dropped
 
 
-def test_w199_adjacent_where_it_applies_and_w217_the_default_off():
+def test_w199_adjacent_where_it_applies_and_w219_the_default_walking():
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    assert OPTION_DEFAULTS["stand_veto"] is False  # W217: W199's default withdrawn
+    assert OPTION_DEFAULTS["stand_veto"] == "walking"  # W217 withdrew W199's "adjacent"; W219 adopted W218's value
     on = track_waist(s, pipeline="waist-pendulum", stand_veto="adjacent")
     default = track_waist(s, pipeline="waist-pendulum")
     off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
-    np.testing.assert_array_equal(default.steps["event_s"], off.steps["event_s"])
+    walking = track_waist(s, pipeline="waist-pendulum", stand_veto="walking")
+    np.testing.assert_array_equal(default.steps["event_s"], walking.steps["event_s"])
+    assert default.info["options"]["stand_veto"] == "walking"
     assert len(off.steps) - len(on.steps) == on.info["n_weak_run_contacts"] > 0  # W190's 56.25 s contact
     assert on.info["options"]["stand_veto"] == "adjacent"
     n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
@@ -265,8 +267,9 @@ def test_w199_adjacent_where_it_applies_and_w217_the_default_off():
         track_waist(s, pipeline="waist-pendulum", stand_veto="Adjacent")
     assert "\n" not in str(e.value)
     assert 'stand_veto="adjacent"' in (unapplied_options_line(WaistParams(options={"stand_veto": "adjacent"})) or "")
-    # the live tracker applies no stand veto: the default (false) is what it does and is not named (E126)
-    assert "stand_veto" not in (unapplied_options_line(WaistParams()) or "")
+    # the live tracker applies no stand veto: the offline default "walking" is named (E126, W219), false is not
+    assert 'stand_veto="walking" (the offline default)' in (unapplied_options_line(WaistParams()) or "")
+    assert "stand_veto" not in (unapplied_options_line(WaistParams(options={"stand_veto": False})) or "")
 
 
 def test_w217_a_walk_before_a_simulated_freeze_is_kept_by_default():
@@ -384,7 +387,7 @@ def test_w218_the_walk_chained_to_a_simulated_freeze_is_kept_and_the_option_name
     def kept(ev):
         return int(sum(np.abs(ev - x).min() <= 0.25 for x in truth)) if ev.size else 0
 
-    off = track_waist(s, pipeline="waist-pendulum").steps["event_s"].to_numpy(float)
+    off = track_waist(s, pipeline="waist-pendulum", stand_veto=False).steps["event_s"].to_numpy(float)
     for v in (True, "adjacent"):
         assert kept(track_waist(s, pipeline="waist-pendulum", stand_veto=v).steps["event_s"].to_numpy(float)) \
             < truth.size * 3 // 4
@@ -394,7 +397,8 @@ def test_w218_the_walk_chained_to_a_simulated_freeze_is_kept_and_the_option_name
     assert ((ev >= a) & (ev <= b)).sum() < ((off >= a) & (off <= b)).sum()  # trembling contacts dropped
     assert res.info["n_weak_run_contacts"] == len(off) - len(ev) > 0
     assert res.info["options"]["stand_veto"] == "walking"
-    assert OPTION_DEFAULTS["stand_veto"] is False
+    assert OPTION_DEFAULTS["stand_veto"] == "walking"  # W219
+    np.testing.assert_array_equal(track_waist(s, pipeline="waist-pendulum").steps["event_s"], ev)
     assert 'stand_veto="walking"' in (unapplied_options_line(WaistParams(options={"stand_veto": "walking"})) or "")
     with pytest.raises(DataError, match="W218") as e:
         track_waist(s, pipeline="waist-pendulum", stand_veto="Walking")

@@ -383,7 +383,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
-                   "stand_veto": False,  # W189; W199 adopted "adjacent", W217 withdrew it (a walk before a freeze)
+                   "stand_veto": "walking",  # W189; W199's "adjacent" withdrawn by W217; W218 / W219: "walking"
                    "contact_model": False,  # W203
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
@@ -572,8 +572,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``"turns"``: the same, sparing a run with a step that turns the pelvis by more than 15 deg (W127's test; a
         slow turn on the spot bounces little; decision W191); ``"alternation"``: sparing a run whose decided W20
         sides alternate left/right, at least two decided (decision W196); ``"adjacent"``: sparing a run with walking
-        strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198), the
-        default since W199; False: no stand veto
+        strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198; the default
+        of W199, withdrawn by W217); ``"walking"`` (the default, decisions W218 / W219): ``"adjacent"`` judged against
+        the median bounce of the walking stretches (at least 4 regular strides on decided, alternating W20 sides) and
+        the walk of a stretch never dropped (a freeze's trembling chained to it, a long standing recording);
+        False: no stand veto
     freeze_veto : offline (the realtime detector ignores it): drop the contacts inside a freeze episode of the lower
         back's freeze index (freezes.csv, :mod:`pdrlearn.track.freezes`, decision W213): trembling in place is no
         step (decision W214); the step before a dropped contact ends its sequence; default False; implies
