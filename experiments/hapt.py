@@ -154,9 +154,9 @@ def main(argv=None) -> None:
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
     ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt.md"))
     ap.add_argument("--stand-veto", nargs="?", const="true", default=None,
-                    choices=("true", "turns", "alternation", "adjacent"),
+                    choices=("true", "turns", "alternation", "adjacent", "walking"),
                     help="add decision W189's `stand_veto` row (offline waist-pendulum; `turns`: W191's value, "
-                         "`alternation`: W196's, `adjacent`: W198's); "
+                         "`alternation`: W196's, `adjacent`: W198's, `walking`: W218's); "
                          "give another --out")
     ap.add_argument("--contact-model", default=None, choices=("learned",),
                     help="only today's default waist-pendulum row and decision W203's contact_model row; give "

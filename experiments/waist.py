@@ -413,9 +413,9 @@ def main() -> None:
                     help="length_smoothing of the offline waist-pendulum rows (decision W56; not the default): "
                          "prints only, experiments/results is written for the defaults alone")
     ap.add_argument("--stand-veto", nargs="?", const="true", default=None,
-                    choices=("true", "turns", "alternation", "adjacent"),
+                    choices=("true", "turns", "alternation", "adjacent", "walking"),
                     help="decision W189's stand_veto (`turns`: W191's value, `alternation`: W196's, `adjacent`: "
-                         "W198's) on the offline "
+                         "W198's, `walking`: W218's) on the offline "
                          "waist-pendulum rows (not "
                          "the default): prints only, experiments/results is written for the defaults alone")
     ap.add_argument("--contact-model", default=None, choices=("learned",),

@@ -49,7 +49,9 @@ def simulate(route: str, kw: dict, user: int, gait: tuple[float, float] | None =
 
 
 def contacts(session, veto: bool) -> tuple[np.ndarray, dict]:
-    res = track_waist(session, pipeline="waist-pendulum", freeze_veto=veto)
+    # W215 was measured with no stand veto; W219 made stand_veto="walking" the offline default (it drops trembling
+    # chained to a walk), so the recorded numbers are reproduced with it off
+    res = track_waist(session, pipeline="waist-pendulum", freeze_veto=veto, stand_veto=False)
     return res.steps["event_s"].to_numpy(float), res.info
 
 

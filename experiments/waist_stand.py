@@ -20,15 +20,18 @@ alternate kept): W191's (a)-(c), users 4320-4379, the simulated users on today's
 
 `measure-adjacent`: decision W198's rule for `stand_veto="adjacent"` (a weak run with walking strides within 3 s
 before and after it kept): W196's (a)-(c), fresh users 4500-4559, the simulated users on today's defaults.
-`compare-external DIR`: (d) of W196 / W198, the `waist.py --external ... --stand-veto VALUE` tables written to DIR
-against the committed experiments/results/waist_external*.csv (today's defaults, the veto off).
+`measure-walking`: decision W218's rule for `stand_veto="walking"` (W198's veto judged against the bounce of the walking
+stretches, which are never dropped): W198's (a)-(c), fresh users 5300-5359, W191's routes plus W214's freeze and
+slow-shuffle routes.
+`compare-external DIR`: (d) of W196 / W198 / W218, the `waist.py --external ... --stand-veto VALUE` tables written to
+DIR against the committed experiments/results/waist_external*.csv (today's defaults, the veto off).
 
 `measure-turns`: decision W191's rule for `stand_veto="turns"` (a weak run with a step turning the pelvis kept): (a),
 (b) the same; (c) fresh users 4180-4239, W189's routes and the TUG with `bounce="pendulum"`, no lost true contact
 outside a simulated chair transfer and outside a 1-contact run. (d): the same waist.py run with `--stand-veto turns`.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_stand.py diagnose | measure | measure-turns |
-     measure-alternation | measure-adjacent | compare-external DIR
+     measure-alternation | measure-adjacent | measure-walking | compare-external DIR
 """
 from __future__ import annotations
 
@@ -244,7 +247,15 @@ W191_ROUTES = {**SIM_ROUTES,  # W189's routes and the TUG's slow turn on the spo
                "tug-pendulum": (SIM_ROUTES["tug"][0], {**SIM_ROUTES["tug"][1], "bounce": "pendulum"})}
 W196_USERS = range(4320, 4380)  # the lead's fresh users for W196 (W191's routes, today's defaults)
 W198_USERS = range(4500, 4560)  # the lead's fresh users for W198 (W191's routes, today's defaults)
-ON_DEFAULTS = ("W196", "W198")  # rules measured on today's defaults (sit_veto="opposite", W185)
+W218_USERS = range(5300, 5360)  # the lead's fresh users for W218 (W191's routes + W214's freeze and shuffle)
+#: W218: W191's routes plus W214's freeze route (the trial's gait, HZ = 3 + user mod 6, ACC by user mod 3) and W214's
+#: slow shuffle (step length / time by user mod 4); a third item: the gait by user, as ``waist_freeze_veto.simulate``
+W218_ROUTES = {**W191_ROUTES,
+               "freeze": ("stand:3, straight:4, freeze:10:{hz}:{acc}, straight:4, stand:3", {"bounce": "pendulum"},
+                          lambda u: (0.2, 0.55)),
+               "shuffle": ("stand:3, straight:8, stand:3", {"bounce": "pendulum"},
+                           lambda u: ((0.2, 0.8), (0.2, 0.55), (0.25, 0.6), (0.3, 0.65))[u % 4])}
+ON_DEFAULTS = ("W196", "W198", "W218")  # rules measured on today's defaults (sit_veto="opposite", W185)
 
 
 def matched_truth(ev: np.ndarray, truth: np.ndarray) -> np.ndarray:
@@ -273,14 +284,14 @@ def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W
     """(c) of W189's rule (``decision="W189"``) or of W191's / W196's (no lost true contact outside a simulated
     transfer and outside a 1-contact run, every route): the offline pendulum with ``stand_veto=value`` vs off;
     W196 on today's defaults (``sit_veto="opposite"``, W185), the others with no sit veto as they were measured."""
-    from pdrlearn.sim import UserProfile, simulate_path
-    from pdrlearn.sim.route import parse_route
+    from waist_freeze_veto import simulate  # W214's: a route at a given gait
 
     ok = True
-    for name, (route, kw) in routes.items():
+    for name, (route, kw, *gait) in routes.items():
         lost, lost_short, lost_counted, tp0, tp1, walks_lost, dropped = 0, 0, 0, 0, 0, 0, 0
-        for u in users:
-            s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u, **kw)
+        frozen = np.zeros(2, dtype=int)
+        for u in users:  # W214's freeze protocol: HZ = 3 + user mod 6, ACC 7 / 8.5 / 10 by user mod 3
+            s = simulate(route.format(hz=3 + u % 6, acc=(7.0, 8.5, 10.0)[u % 3]), kw, u, gait[0](u) if gait else None)
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
             sit = {} if decision in ON_DEFAULTS else {"sit_veto": False}  # W189 / W191 as measured, before W185
             off = track_waist(s, pipeline="waist-pendulum", **sit, **OFF).steps
@@ -290,6 +301,11 @@ def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W
             _, rlen = runs_of(off["has_next"].to_numpy(bool))
             gone = (m0 >= 0) & (m1 < 0)
             tp0, tp1, dropped = tp0 + int((m0 >= 0).sum()), tp1 + int((m1 >= 0).sum()), dropped + len(e0) - len(e1)
+            fz = s.extras.get("freezes")
+            if fz is not None:  # W218, information: the detected contacts inside the simulated freezes
+                for k, e in enumerate((e0, e1)):
+                    frozen[k] += sum(int(((e >= a) & (e <= b)).sum()) for a, b in zip(fz.start_s, fz.end_s,
+                                                                                        strict=True))
             lost += int(gone.sum())
             lost_short += int((rlen[m0[gone]] <= 3).sum()) if gone.any() else 0
             counted = gone & ~in_transfer(truth, s)
@@ -310,7 +326,8 @@ def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W
         ok &= good
         print(f"(c) {name}: {len(users)} walks, true contacts matched {tp0} -> {tp1}, lost {lost} "
               f"(in runs <= 3: {lost_short}; outside a transfer and a 1-contact run: {lost_counted}) in {walks_lost} "
-              f"walks; contacts dropped {dropped} ({'met' if good else 'NOT met'})", flush=True)
+              f"walks; contacts dropped {dropped} ({'met' if good else 'NOT met'})"
+              + (f"; contacts inside the freezes {frozen[0]} -> {frozen[1]}" if frozen.any() else ""), flush=True)
     return ok
 
 
@@ -355,8 +372,9 @@ def measure(root: Path, value=True, decision: str = "W189") -> None:
     print(f"(b) gait segments {len(g0)} / {len(g1)}: median detected/spectral - 1 {med0:+.2f} -> {med1:+.2f} %; "
           f"per-subject medians: largest drop {worst:+.2f} points (user {int((s1 - s0).idxmin())}), subjects "
           f"changed {int(((s1 - s0).abs() > 1e-9).sum())} of {len(s0)} ({'met' if ok_b else 'NOT met'})")
-    users = {"W191": W191_USERS, "W196": W196_USERS, "W198": W198_USERS}.get(decision)
-    ok_c = sim_check(value, users, W191_ROUTES, decision) if users else sim_check()
+    users = {"W191": W191_USERS, "W196": W196_USERS, "W198": W198_USERS, "W218": W218_USERS}.get(decision)
+    routes = W218_ROUTES if decision == "W218" else W191_ROUTES
+    ok_c = sim_check(value, users, routes, decision) if users else sim_check()
     print(f"{decision} (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, (c) "
           f"{'met' if ok_c else 'NOT met'}; (d): experiments/waist.py --external datasets/external --no-real "
           f"[--stand-veto{'' if value is True else ' ' + value}]")
@@ -471,8 +489,10 @@ if __name__ == "__main__":
         measure(Path("datasets/hapt"), "alternation", "W196")
     elif sys.argv[1:2] == ["measure-adjacent"]:  # W198
         measure(Path("datasets/hapt"), "adjacent", "W198")
+    elif sys.argv[1:2] == ["measure-walking"]:  # W218
+        measure(Path("datasets/hapt"), "walking", "W218")
     elif sys.argv[1:2] == ["compare-external"] and len(sys.argv) == 4:  # (d) of W196 / W198
         compare_external(Path(sys.argv[2]), sys.argv[3])
     else:
         raise SystemExit("usage: waist_stand.py diagnose | measure | measure-turns | measure-alternation | "
-                         "measure-adjacent | compare-external DIR VALUE | after | after-turns")
+                         "measure-adjacent | measure-walking | compare-external DIR VALUE | after | after-turns")

@@ -44,3 +44,19 @@ def test_hapt_and_waist_stand_measure_with_no_stand_veto():
         assert kw.get("stand_veto") is not None, label
         assert (kw["stand_veto"] == "adjacent") == ("stand_veto=adjacent" in label)
     assert _load("waist_stand").OFF == {"stand_veto": False}
+
+
+def test_waist_freeze_veto_measures_with_no_stand_veto(monkeypatch):
+    """W219 made ``stand_veto="walking"`` the offline default; W215's numbers (``waist_freeze_veto.py``) were measured
+    with no stand veto, so its tracks say so."""
+    fv = _load("waist_freeze_veto")
+    seen = {}
+
+    def fake(s, **kw):
+        seen.update(kw)
+        raise RuntimeError("stop")
+
+    monkeypatch.setattr(fv, "track_waist", fake)
+    with pytest.raises(RuntimeError):
+        fv.contacts(None, True)
+    assert seen["stand_veto"] is False and seen["freeze_veto"] is True

@@ -252,7 +252,8 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
     assert main(["export", str(p), "--out", str(tmp_path / "b3"), "--frame", _frame_arg(sim["session"])]) == 0
     err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
     assert len(err) == 1 and err[0].count('sit_veto="opposite" (the offline default)') == 1
-    assert "stand_veto" not in err[0]  # W217: the default is off again, what live does
+    # W219: the offline default stand veto "walking" is not applied live (W189): named, once
+    assert err[0].count('stand_veto="walking" (the offline default)') == 1
 
 
 def test_stairs_length_climbs_is_named_as_not_applied_live_and_the_runtime_keeps_the_default(sim, stairs3040,

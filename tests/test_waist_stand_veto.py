@@ -69,7 +69,7 @@ def test_the_veto_drops_the_weak_run_only():
 
 
 def test_the_option_true_and_where_it_applies():
-    assert OPTION_DEFAULTS["stand_veto"] is False  # W217 withdrew W199's "adjacent" (W190: true not adopted)
+    assert OPTION_DEFAULTS["stand_veto"] == "walking"  # W190: true not adopted; W219: W218's value the default
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
     off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
     on = track_waist(s, pipeline="waist-pendulum", stand_veto=True)
@@ -145,7 +145,8 @@ def test_w191_turns_end_to_end_where_it_applies_and_the_values_refused():
         assert b.info["n_weak_run_contacts"] == 0
     for bad in ("Turns", "yes", 2):
         with pytest.raises(DataError, match=r"stand_veto .* is not one of false, true, \"turns\", \"alternation\", "
-                                            r"\"adjacent\" \(decisions W189, W191, W196, W198\)") as e:
+                                            r"\"adjacent\", \"walking\" \(decisions W189, W191, W196, W198, "
+                                            r"W218\)") as e:
             track_waist(s, pipeline="waist-pendulum", stand_veto=bad)
         assert "\n" not in str(e.value)
     assert "stand_veto" in (unapplied_options_line(WaistParams(options={"stand_veto": "turns"})) or "")
@@ -241,13 +242,15 @@ def test_w198_spare_adjacent_keeps_a_weak_run_between_walking_strides_only():
         assert np.isin(after, out["event_s"].to_numpy()).all()  # the strong contacts are never dropped
 
 
-def test_w199_adjacent_where_it_applies_and_w217_the_default_off():
+def test_w199_adjacent_where_it_applies_and_w219_the_default_walking():
     s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    assert OPTION_DEFAULTS["stand_veto"] is False  # W217: W199's default withdrawn
+    assert OPTION_DEFAULTS["stand_veto"] == "walking"  # W217 withdrew W199's "adjacent"; W219 adopted W218's value
     on = track_waist(s, pipeline="waist-pendulum", stand_veto="adjacent")
     default = track_waist(s, pipeline="waist-pendulum")
     off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
-    np.testing.assert_array_equal(default.steps["event_s"], off.steps["event_s"])
+    walking = track_waist(s, pipeline="waist-pendulum", stand_veto="walking")
+    np.testing.assert_array_equal(default.steps["event_s"], walking.steps["event_s"])
+    assert default.info["options"]["stand_veto"] == "walking"
     assert len(off.steps) - len(on.steps) == on.info["n_weak_run_contacts"] > 0  # W190's 56.25 s contact
     assert on.info["options"]["stand_veto"] == "adjacent"
     n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
@@ -264,8 +267,9 @@ def test_w199_adjacent_where_it_applies_and_w217_the_default_off():
         track_waist(s, pipeline="waist-pendulum", stand_veto="Adjacent")
     assert "\n" not in str(e.value)
     assert 'stand_veto="adjacent"' in (unapplied_options_line(WaistParams(options={"stand_veto": "adjacent"})) or "")
-    # the live tracker applies no stand veto: the default (false) is what it does and is not named (E126)
-    assert "stand_veto" not in (unapplied_options_line(WaistParams()) or "")
+    # the live tracker applies no stand veto: the offline default "walking" is named (E126, W219), false is not
+    assert 'stand_veto="walking" (the offline default)' in (unapplied_options_line(WaistParams()) or "")
+    assert "stand_veto" not in (unapplied_options_line(WaistParams(options={"stand_veto": False})) or "")
 
 
 def test_w217_a_walk_before_a_simulated_freeze_is_kept_by_default():
@@ -285,3 +289,117 @@ def test_w217_a_walk_before_a_simulated_freeze_is_kept_by_default():
 
     assert kept(ev_adj) < len(first) // 2  # the finding: W199's default lost the first walk
     assert kept(ev_default) >= len(first) - 2  # today's default keeps it
+
+
+def test_w218_the_walking_stretch_mask_by_hand():
+    t = np.arange(12) * 0.5
+    hn = np.ones(12, bool)
+    hn[-1] = False
+    alt = np.array([1, -1] * 6)
+    # 12 contacts on alternating decided sides at a steady rhythm: 10 strides, one stretch
+    assert K.walking_stretch_mask(alt, hn, t, 4).all()
+    # 6 contacts = 4 strides (Mobilise-D's minimum) is a stretch, 5 contacts (3 strides) is not
+    assert K.walking_stretch_mask(alt[:6], np.r_[hn[:5], False], t[:6], 4).all()
+    assert not K.walking_stretch_mask(alt[:5], np.r_[hn[:4], False], t[:5], 4).any()
+    # an undecided contact breaks the chain: 0-4 (3 strides) and 6-11 (4 strides)
+    s = alt.copy()
+    s[5] = 0
+    assert K.walking_stretch_mask(s, hn, t, 4).tolist() == [False] * 6 + [True] * 6
+    # two same-side neighbours break it too, and so does the end of a run (has_next False)
+    s = alt.copy()
+    s[4:] = -alt[4:]  # 3 and 4 on one side: 0-3 (2 strides) and 4-11 (6 strides)
+    assert K.walking_stretch_mask(s, hn, t, 4).tolist() == [False] * 4 + [True] * 8
+    h2 = hn.copy()
+    h2[5] = False
+    assert K.walking_stretch_mask(alt, h2, t, 4).tolist() == [True] * 6 + [True] * 6
+    h2[4] = False
+    assert not K.walking_stretch_mask(alt, h2, t, 4)[:5].any()
+    # the rhythm is read per stride: a left / right asymmetry (0.3 / 0.7 s steps, each 40 % off their median) is
+    # regular, a stride 50 % long is not
+    t_asym = np.cumsum(np.r_[0.0, [0.3, 0.7] * 5, 0.3])
+    assert K.walking_stretch_mask(alt, hn, t_asym, 4).all()
+    t_long = t.copy()
+    t_long[6:] += 0.5  # the step 5 -> 6 takes 1.0 s: the strides 4-6 and 5-7 are 1.5 s against 1.0 s
+    got = K.walking_stretch_mask(alt, hn, t_long, 4)
+    assert got.tolist() == [True] * 6 + [True] * 6  # strides 0-4 (0..6) and 6-9 (6..11): two stretches
+    assert not K.walking_stretch_mask(alt, hn, t_long, 5).any()  # 5 strides needed: neither piece has them
+    assert K.walking_stretch_mask(np.zeros(0, int), np.zeros(0, bool), np.zeros(0), 4).size == 0
+
+
+def test_w218_the_walk_extent_and_the_reference_by_hand():
+    t = np.array([0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 8.0, 8.5])
+    hn = np.array([1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 0], bool)
+    stretch = np.array([0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0], bool)
+    strong = np.array([1, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1], bool)
+    # out from the stretch (1.0-2.0 s): 0.5 and 0.0 (within 3 s), 2.5-4.0 (within 3 s); the next run (8.0, 8.5) is
+    # another run, not reached even though strong
+    got = K.walk_extent_mask(t, hn, stretch, strong, 3.0)
+    assert got.tolist() == [True] * 9 + [False] * 2
+    # with a 1 s bound: 0.0 (within 1 s, strong too) is reached; 4.0 (strong) is not, past 3.5 (neither)
+    got = K.walk_extent_mask(t, hn, stretch, strong, 1.0)
+    assert got.tolist() == [True] * 7 + [False] * 4
+    assert not K.walk_extent_mask(t, hn, np.zeros(11, bool), strong, 3.0).any()
+    b = np.array([1.0, 2.0, 3.0, 4.0, 0.1])
+    assert K.walking_reference(b, np.array([0, 0, 1, 1, 0], bool)) == pytest.approx(3.5)
+    assert K.walking_reference(b, np.zeros(5, bool)) == pytest.approx(2.0)  # none: W189's median of all
+    # the reference and the kept contacts reach weak_run_mask: run 1 (0.2) is weak against 1.0, not against 0.2
+    has_next = np.array([True, True, False, True, True, False])
+    b = np.array([1.0, 1.0, 1.0, 0.2, 0.2, 0.2])
+    assert K.weak_run_mask(b, has_next, reference=0.2).sum() == 0
+    assert K.weak_run_mask(b, has_next, reference=1.0).tolist() == [False] * 3 + [True] * 3
+    keep = np.array([0, 0, 0, 1, 0, 0], bool)
+    assert K.weak_run_mask(b, has_next, reference=1.0, keep=keep).tolist() == [False] * 4 + [True] * 2
+
+
+def _long_standing():
+    """A walk (0.5-6 s, 12 contacts on alternating sides, bounce 2) then 20 contacts of standing sway (10-36 s, four
+    runs of five contacts 1 s apart, bounce a quarter of the walk's, always on one side): the sway outnumbers the
+    walk, so the recording's median bounce is the sway's (W189's reference)."""
+    t = np.arange(0, 40, 1 / FS)
+    walk = np.arange(0.5, 6.01, 0.5)
+    sway = np.concatenate([np.arange(a, a + 4.01, 1.0) for a in (10.0, 17.0, 24.0, 31.0)])
+    amp = np.where(t < 8.0, 2.0, 0.5)
+    imu = SimpleNamespace(t=t, fs=FS, acc_v=amp * np.sin(2 * np.pi * 2.0 * t),
+                          acc_ml=np.sin(2 * np.pi * 1.0 * t))  # the lateral velocity alternates every 0.5 s
+    return imu, steps_from_events(t, np.round(np.r_[walk, sway] * FS).astype(int)), walk, sway
+
+
+def test_w218_a_long_standing_recording_the_walking_reference_drops_the_sway():
+    imu, steps, walk, sway = _long_standing()
+    # W189's reference is the sway's own bounce: no run is weak against it, the sway stays (true and "adjacent")
+    assert stand_veto(steps, imu).attrs["n_weak_run"] == 0
+    assert stand_veto(steps, imu, spare_adjacent=True).attrs["n_weak_run"] == 0
+    out = stand_veto(steps, imu, spare_adjacent=True, walking_reference=True)
+    np.testing.assert_allclose(out["event_s"], walk)  # judged against the walk's bounce: the sway goes
+    assert out.attrs["n_weak_run"] == sway.size
+
+
+def test_w218_the_walk_chained_to_a_simulated_freeze_is_kept_and_the_option_named():
+    """W217's finding: the walk before a simulated freeze (S51) is chained to the trembling into one run whose median
+    is the trembling's; `true` and "adjacent" drop the walk, "walking" keeps it and drops the trembling after it."""
+    from pdrlearn.sim.route import parse_route
+
+    s = simulate_path(parse_route("stand:2, straight:8, freeze:10:5:10, straight:8, stand:2"),
+                      UserProfile.from_seed(4812), rate_hz=100, seed=4812, bounce="pendulum")
+    truth = s.extras["ics"]["ic_s"].to_numpy(float)
+    a, b = float(s.extras["freezes"]["start_s"].iloc[0]), float(s.extras["freezes"]["end_s"].iloc[0])
+
+    def kept(ev):
+        return int(sum(np.abs(ev - x).min() <= 0.25 for x in truth)) if ev.size else 0
+
+    off = track_waist(s, pipeline="waist-pendulum", stand_veto=False).steps["event_s"].to_numpy(float)
+    for v in (True, "adjacent"):
+        assert kept(track_waist(s, pipeline="waist-pendulum", stand_veto=v).steps["event_s"].to_numpy(float)) \
+            < truth.size * 3 // 4
+    res = track_waist(s, pipeline="waist-pendulum", stand_veto="walking")
+    ev = res.steps["event_s"].to_numpy(float)
+    assert kept(ev) == kept(off) == truth.size
+    assert ((ev >= a) & (ev <= b)).sum() < ((off >= a) & (off <= b)).sum()  # trembling contacts dropped
+    assert res.info["n_weak_run_contacts"] == len(off) - len(ev) > 0
+    assert res.info["options"]["stand_veto"] == "walking"
+    assert OPTION_DEFAULTS["stand_veto"] == "walking"  # W219
+    np.testing.assert_array_equal(track_waist(s, pipeline="waist-pendulum").steps["event_s"], ev)
+    assert 'stand_veto="walking"' in (unapplied_options_line(WaistParams(options={"stand_veto": "walking"})) or "")
+    with pytest.raises(DataError, match="W218") as e:
+        track_waist(s, pipeline="waist-pendulum", stand_veto="Walking")
+    assert "\n" not in str(e.value)

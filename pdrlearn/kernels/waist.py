@@ -1192,22 +1192,103 @@ def run_ids(has_next: np.ndarray) -> np.ndarray:
 
 
 def weak_run_mask(bounce: np.ndarray, has_next: np.ndarray, *, frac: float = WEAK_RUN_FRAC,
-                  spare: np.ndarray | None = None) -> np.ndarray:
+                  spare: np.ndarray | None = None, reference: float | None = None,
+                  keep: np.ndarray | None = None) -> np.ndarray:
     """Contacts of a walking run (:func:`run_ids`) whose median ``bounce`` is under ``frac`` times the median bounce
     of all the contacts: a run without a walker's vertical bounce is standing sway, no walking (decision W189).
     ``spare`` (per contact, optional): a run holding any spared contact is never flagged, the whole run kept
-    (decision W191: a run with a step that turns the pelvis)."""
+    (decision W191: a run with a step that turns the pelvis). ``reference`` (optional): the bounce the runs are
+    judged against instead of the median of all the contacts (decision W218: :func:`walking_reference`); ``keep``
+    (per contact, optional): contacts never flagged, the rest of their run judged as before (W218's walking
+    stretches, :func:`walking_stretch_mask`)."""
     b = np.asarray(bounce, dtype=np.float64)
     if not b.size:
         return np.zeros(0, dtype=bool)
     rid = run_ids(has_next)
     run_med = np.array([np.median(b[rid == r]) for r in range(rid[-1] + 1)])
-    weak = run_med[rid] < frac * float(np.median(b))
+    weak = run_med[rid] < frac * (float(np.median(b)) if reference is None else float(reference))
     if spare is not None:
         spared_runs = np.zeros(rid[-1] + 1, dtype=bool)
         spared_runs[rid[np.asarray(spare, dtype=bool)]] = True
         weak &= ~spared_runs[rid]
+    if keep is not None:
+        weak &= ~np.asarray(keep, dtype=bool)
     return weak
+
+
+def walking_stretch_mask(side: np.ndarray, has_next: np.ndarray, event_s: np.ndarray, min_strides: int, *,
+                         tol: float = RHYTHM_TOL) -> np.ndarray:
+    """Per contact: True inside a *walking stretch* (decision W218): at least ``min_strides`` consecutive regular
+    strides (contact k to k + 2, W47) on alternating sides -- every step of them (``has_next``) between two decided,
+    opposite sides (W20's :func:`step_sides`: +1 / -1; an undecided contact breaks the chain), and every stride within
+    ``tol`` (W18's +-35 %) of the median stride time of its alternating chain (strides, not steps: the left / right
+    asymmetry of the contact's placement cancels over a stride). The caller passes Mobilise-D's 4 strides (a bout's
+    minimum, W47). Standing sway, a weight shift or a freeze's trembling (undecided sides, S51) makes none."""
+    s = np.asarray(side, dtype=int)
+    hn = np.asarray(has_next, dtype=bool)
+    t = np.asarray(event_s, dtype=np.float64)
+    out = np.zeros(s.size, dtype=bool)
+    if s.size < 3:
+        return out
+    alt = np.append(hn[:-1] & (s[:-1] * s[1:] == -1), False)  # step i -> i + 1 alternates (W109's pair)
+    i = 0
+    while i < s.size:
+        if not alt[i]:
+            i += 1
+            continue
+        j = i
+        while alt[j]:
+            j += 1  # contacts i..j: an alternating chain
+        if j - i >= 2:
+            stride = t[i + 2:j + 1] - t[i:j - 1]  # stride k = contact k to k + 2, k = i..j - 2
+            regular = np.abs(stride - np.median(stride)) <= tol * np.median(stride) + 1e-12
+            k = 0
+            while k < stride.size:  # runs of consecutive regular strides
+                if not regular[k]:
+                    k += 1
+                    continue
+                m = k
+                while m + 1 < stride.size and regular[m + 1]:
+                    m += 1
+                if m - k + 1 >= min_strides:
+                    out[i + k:i + m + 3] = True
+                k = m + 1
+        i = j + 1
+    return out
+
+
+def walk_extent_mask(event_s: np.ndarray, has_next: np.ndarray, stretch: np.ndarray, strong: np.ndarray,
+                     bound_s: float) -> np.ndarray:
+    """Per contact: True inside the walk of a walking ``stretch`` (decision W218): the stretch's contacts and, going
+    out from it contact by contact along its own walking run (:func:`run_ids`), every contact that lies at most
+    ``bound_s`` from a stretch contact or is ``strong`` (its own bounce at least the weak fraction of the reference),
+    up to the first that is neither (a freeze's trembling or standing sway chained to the walk). The caller passes
+    Mobilise-D's 3 s bout break."""
+    t = np.asarray(event_s, dtype=np.float64)
+    st = np.asarray(stretch, dtype=bool)
+    ok = np.asarray(strong, dtype=bool).copy()
+    out = st.copy()
+    if not st.any():
+        return out
+    rid = run_ids(has_next)
+    ts = t[st]
+    ok |= np.abs(t[:, None] - ts[None, :]).min(axis=1) <= bound_s + 1e-9
+    for k in np.flatnonzero(st):
+        for step in (-1, 1):
+            j = k + step
+            while 0 <= j < t.size and rid[j] == rid[k] and not out[j] and ok[j]:
+                out[j] = True
+                j += step
+    return out
+
+
+def walking_reference(bounce: np.ndarray, walking: np.ndarray) -> float:
+    """Decision W218: the median ``bounce`` of the contacts of the walking stretches (:func:`walking_stretch_mask`),
+    the recording's walking bounce that standing or trembling contacts cannot outnumber; W189's median of all the
+    contacts when there is none."""
+    b = np.asarray(bounce, dtype=np.float64)
+    w = np.asarray(walking, dtype=bool)
+    return float(np.median(b[w])) if w.any() else float(np.median(b)) if b.size else 0.0
 
 
 def alternating_run_mask(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:

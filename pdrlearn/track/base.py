@@ -251,10 +251,11 @@ def get_pipeline(name: str) -> Pipeline:
       step is under half the comfortable step of the stature, a shuffle the pendulum reads long),
       ``integrate_end`` (decision W187, off: the last step's heading takes the yaw turned on the spot after it, to
       the recording's end; offline only),
-      ``stand_veto`` (decision W217, off; ``"adjacent"`` W198 / W199, adopted and withdrawn by W217: a run of
-      contacts whose median vertical bounce is under
-      1/3 of the recording's is no walking unless walking strides lie within 3 s before and after it, W198; offline
-      ``waist-pendulum`` only; ``true`` W190 without the sparing, ``"turns"`` W191, ``"alternation"`` W196, false off),
+      ``stand_veto`` (decisions W218 / W219, ``"walking"``: a run of contacts whose median vertical bounce is under
+      1/3 of the walking stretches' (at least 4 regular strides on alternating sides) is no walking unless walking
+      strides lie within 3 s before and after it, W198, and a stretch's walk is never dropped; offline
+      ``waist-pendulum`` only; ``"adjacent"`` W198 (W199's default, withdrawn by W217), ``true`` W190 without the
+      sparing, ``"turns"`` W191, ``"alternation"`` W196, false off),
       ``contact_model`` (decision W204, off: ``"learned"`` keeps only the contacts a learned, calibrated re-scorer
       gives p >= 0.5, W203; offline ``waist-pendulum`` only),
       ``freeze_veto`` (decision W215, off: the offline lower-back contacts inside a freeze episode of the freeze

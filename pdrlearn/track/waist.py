@@ -383,7 +383,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
-                   "stand_veto": False,  # W189; W199 adopted "adjacent", W217 withdrew it (a walk before a freeze)
+                   "stand_veto": "walking",  # W189; W199's "adjacent" withdrawn by W217; W218 / W219: "walking"
                    "contact_model": False,  # W203
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
@@ -451,14 +451,15 @@ PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 #: the values of the ``stand_veto`` option: off, W189's veto, W191's veto sparing a run with a turning step, W196's
-#: sparing a run whose decided sides alternate, W198's sparing a run with walking within 3 s before and after it
-STAND_VETO_VALUES = (False, True, "turns", "alternation", "adjacent")
+#: sparing a run whose decided sides alternate, W198's sparing a run with walking within 3 s before and after it,
+#: W218's "adjacent" judged against the walking stretches' bounce, the stretches never dropped
+STAND_VETO_VALUES = (False, True, "turns", "alternation", "adjacent", "walking")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159"),
-                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198"),
+                  "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198, W218"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203")}
 
 
@@ -571,8 +572,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``"turns"``: the same, sparing a run with a step that turns the pelvis by more than 15 deg (W127's test; a
         slow turn on the spot bounces little; decision W191); ``"alternation"``: sparing a run whose decided W20
         sides alternate left/right, at least two decided (decision W196); ``"adjacent"``: sparing a run with walking
-        strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198), the
-        default since W199; False: no stand veto
+        strides within Mobilise-D's 3 s bout break before and after it (inside one walk; decision W198; the default
+        of W199, withdrawn by W217); ``"walking"`` (the default, decisions W218 / W219): ``"adjacent"`` judged against
+        the median bounce of the walking stretches (at least 4 regular strides on decided, alternating W20 sides) and
+        the walk of a stretch never dropped (a freeze's trembling chained to it, a long standing recording);
+        False: no stand veto
     freeze_veto : offline (the realtime detector ignores it): drop the contacts inside a freeze episode of the lower
         back's freeze index (freezes.csv, :mod:`pdrlearn.track.freezes`, decision W213): trembling in place is no
         step (decision W214); the step before a dropped contact ends its sequence; default False; implies
@@ -703,7 +707,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["stand_veto"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W189
         steps = drop_weak_runs(steps, imu, spare_turns=o["stand_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps,
                                spare_alternation=o["stand_veto"] == "alternation",
-                               spare_adjacent=o["stand_veto"] == "adjacent")
+                               spare_adjacent=o["stand_veto"] in ("adjacent", "walking"),
+                               walking_reference=o["stand_veto"] == "walking")  # W218: + the walking reference
         n_weak_run = steps.attrs["n_weak_run"]
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step

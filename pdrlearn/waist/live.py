@@ -145,7 +145,7 @@ def live_value(option: str, given: dict | None = None):
     """Decisions E126, E130: the value of the option ``option`` of :data:`LIVE_UNAPPLIED_OPTIONS` that the live tracker
     tracks as, under the PARAMS.json ``"options"`` ``given``: no sit veto (``False``, W185's ``REALTIME_SIT_VETO``,
     where the offline default is ``"opposite"``); no stand veto (``False``, where the offline default is
-    ``false`` again since W217; the recording's median bounce is known only offline, W189); ``contact_shift`` only
+    ``"walking"`` since W219; the walking stretches' bounce is known only offline, W189 / W218); ``contact_shift`` only
     with ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's
     fill is the offline detector's only, where the default is ``"within"``); else the option's offline default
     (E107)."""

@@ -30,6 +30,8 @@ Decision W191: with ``spare_turns`` a weak run holding a step that turns the pel
 Decision W196: with ``spare_alternation`` a weak run whose decided sides (W20) alternate left/right is kept.
 Decision W198: with ``spare_adjacent`` a weak run with walking strides within Mobilise-D's 3 s bout break before and
 after it (inside one walking bout) is kept.
+Decision W218: with ``walking_reference`` the reference is the bounce of the walking stretches (decided alternating
+sides at a regular rhythm), which are never dropped.
 """
 
 from __future__ import annotations
@@ -39,7 +41,7 @@ import pandas as pd
 
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU
-from pdrlearn.waist.gait_rules import MAX_BREAK_S, positional_strides
+from pdrlearn.waist.gait_rules import MAX_BREAK_S, MIN_BOUT_STRIDES, positional_strides
 from pdrlearn.waist.plausibility import contact_lateral_velocity
 from pdrlearn.waist.steplength import pendulum_h
 
@@ -291,7 +293,7 @@ def turning_steps(steps: pd.DataFrame, imu: WaistIMU, gyro_bias_rps: float = 0.0
 
 def stand_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
                gyro_bias_rps: float = 0.0, spare_alternation: bool = False,
-               spare_adjacent: bool = False) -> pd.DataFrame:
+               spare_adjacent: bool = False, walking_reference: bool = False) -> pd.DataFrame:
     """``steps`` without the walking runs (contacts chained by ``has_next``) whose median bounce
     (:func:`~pdrlearn.kernels.waist.contact_bounce`) is under :data:`~pdrlearn.kernels.waist.WEAK_RUN_FRAC` of the
     median bounce of all the contacts (:func:`~pdrlearn.kernels.waist.weak_run_mask`; decision W189).
@@ -311,7 +313,16 @@ def stand_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
     :data:`~pdrlearn.waist.gait_rules.MAX_BREAK_S` (Mobilise-D's walking-bout break, 3 s) before its first contact
     AND one at most that after its last (:func:`~pdrlearn.kernels.waist.adjacent_run_mask`) is kept whole: it lies
     inside one walking bout (a slow turn on the spot between two walks), while standing sway lies away from walking
-    on at least one side."""
+    on at least one side.
+
+    ``walking_reference`` (decision W218): the runs are judged against the median bounce of the contacts of the
+    *walking stretches* (:func:`~pdrlearn.kernels.waist.walking_stretch_mask`: at least Mobilise-D's 4 strides of
+    contacts on decided, alternating sides at a regular rhythm; W189's median of all the contacts when there is none)
+    instead of all the contacts', and the walk of a walking stretch is never dropped: the stretch and, out from it
+    along its run, the contacts at most :data:`~pdrlearn.waist.gait_rules.MAX_BREAK_S` (Mobilise-D's bout break, 3 s)
+    from it or with a bounce of their own at least a third of the reference (:func:`~pdrlearn.kernels.waist.
+    walk_extent_mask`); the rest of the run is judged as before: a freeze's trembling chained to the walk before it
+    (S51, W217) or a long standing recording cannot take the walk."""
     if steps.empty:
         out = steps.copy()
         out.attrs["n_weak_run"] = 0
@@ -324,11 +335,18 @@ def stand_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
         spare = K.alternating_run_mask(K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, ev),
                                                     has_next), has_next)
     bounce = K.contact_bounce(imu.acc_v, imu.fs, idx)
+    judge = {}
+    if walking_reference:  # W218: the walking stretches' bounce is the reference, and they are never dropped
+        side = K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, ev), has_next)
+        stretch = K.walking_stretch_mask(side, has_next, ev, MIN_BOUT_STRIDES)  # Mobilise-D's 4 strides (W47)
+        ref = K.walking_reference(bounce, stretch)
+        strong = bounce >= K.WEAK_RUN_FRAC * ref
+        judge = {"reference": ref, "keep": K.walk_extent_mask(ev, has_next, stretch, strong, MAX_BREAK_S)}
     if spare_adjacent:  # W198: walking strides (not weak, W189's test read once) within 3 s before and after
         a, b = positional_strides(has_next)
         in_stride = np.zeros(ev.size, dtype=bool)
         in_stride[a], in_stride[b] = True, True
-        walking = in_stride & ~K.weak_run_mask(bounce, has_next)
+        walking = in_stride & ~K.weak_run_mask(bounce, has_next, **judge)
         spare = K.adjacent_run_mask(ev, has_next, walking, MAX_BREAK_S)
-    drop = K.weak_run_mask(bounce, has_next, spare=spare)
+    drop = K.weak_run_mask(bounce, has_next, spare=spare, **judge)
     return drop_contacts(steps, ~drop, "n_weak_run")
