@@ -63,3 +63,24 @@ def test_an_hour_seated_with_a_short_walk_is_tracked_and_a_frozen_one_refused_b2
     line = frozen_foot_imu(_frozen(night))
     assert line is not None and "no strides detected; is the foot unit moving?" in line
     assert line.endswith("(decision B203)") and "|gyro| at most 0 deg/s" in line
+
+
+def test_check_span_starts_at_the_first_walk_b252():
+    from pdrlearn.track.frame_inference import SPAN_LEAD_S, check_span
+
+    t = np.arange(0.0, 1000.0, 0.01)
+    acc = np.tile([0.0, 0.0, 9.81], (len(t), 1))
+    assert check_span(t, acc, 300.0) == (0, 30001)  # no walking: from the start, as before B252
+    acc[t >= 600.0, 2] += 2.0 * np.sin(2 * np.pi * 1.8 * t[t >= 600.0])
+    i0, i1 = check_span(t, acc, 300.0)
+    assert t[i0] == pytest.approx(600.0 - SPAN_LEAD_S) and t[i1 - 1] == pytest.approx(900.0 - SPAN_LEAD_S)
+
+
+def test_info_checks_the_axes_of_an_hour_in_bed_then_a_walk_b252():
+    """User 5651 (fresh): an hour seated, 30 m with a turn, 10 min seated (100 Hz); on main both checks said
+    'not checked' (less than 4 s of walking / 0 strides in the first 300 s)."""
+    route = parse_route("sit:3600, straight:20, turn:90, straight:10, sit:600")
+    s = simulate_path(route, UserProfile.from_seed(5651), speed="normal", rate_hz=100, seed=0)
+    checks = s.frame_checks()
+    assert checks["foot"]["status"] == "ok" and checks["waist"]["status"] == "ok"
+    assert checks["foot"]["handedness"]["verdict"] == "right-handed"

@@ -199,6 +199,42 @@ def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str], held=(
     return held_altitude(baro.t, baro.values[:, 0], t, held)
 
 
+#: decision W231: a drift of this much (m) or more left out across the rests is warned about (README: "a drift over
+#: 1 m is warned", L172's)
+PAUSE_DRIFT_WARN_M = 1.0
+
+
+def _pause_rides(baro, steps: pd.DataFrame, t0: float, z: np.ndarray, z_start: np.ndarray, z_raw: np.ndarray | None,
+                 warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Decision W231: each pause's (W158's ``pause_dz_m``: from the previous step's end, or ``t0``, to the step's
+    start) barometric change counts only where it is a ride (:func:`pdrlearn.kernels.pause_ride.pause_ride_dz`);
+    the rest, drift across a long rest, is taken out of ``z``, ``z_start`` and ``z_raw`` (W174's ``transfer_dz_m``
+    unchanged), with one warning when it is :data:`PAUSE_DRIFT_WARN_M` or more in all."""
+    from pdrlearn.kernels.pause_ride import RIDE_WINDOW_S, pause_ride_dz
+
+    ends = np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
+    starts = steps["start_s"].to_numpy(float)
+    drop = np.zeros(len(starts))
+    for j in np.flatnonzero(starts - ends > RIDE_WINDOW_S):  # a short pause counts whole (W158)
+        ride, _ = pause_ride_dz(baro.t, baro.values[:, 0], float(ends[j]), float(starts[j]))
+        drop[j] = (z_start[j] - z[j]) - ride  # the pause's own change (W174's transfers held) less its ride
+    if not drop.any():
+        return z, z_start, z_raw
+    cum = np.concatenate([[0.0], np.cumsum(drop)])  # removed up to each step's end
+    z, z_start = z - cum, z_start - cum[1:]
+    z_raw = None if z_raw is None else z_raw - cum
+    long_ = np.flatnonzero(np.abs(drop) > 0)
+    total = float(drop.sum())
+    if abs(total) >= PAUSE_DRIFT_WARN_M or np.abs(drop).max() >= PAUSE_DRIFT_WARN_M:
+        worst = int(long_[np.argmax(np.abs(drop[long_]))])
+        warnings.append(
+            f"the barometric altitude drifted {total:+.2f} m across {len(long_)} rest(s) without steps (largest "
+            f"{drop[worst]:+.2f} m over the {starts[worst] - ends[worst]:.0f} s before {starts[worst]:.1f} s), too "
+            "slowly for a lift or escalator ride (a ride changes 1.5 m within 30 s): weather or room pressure, left "
+            "out of the altitude and the floors (decision W231)")
+    return z, z_start, z_raw
+
+
 def _stairs_steps(baro, steps: pd.DataFrame, climb: bool) -> np.ndarray:
     """Decision W91: the steps proposed as on stairs - the barometric altitude changes by :data:`STAIRS_RATE_MPS`
     or more over :data:`STAIRS_RATE_WINDOW_S` centred on the step's middle (all False without a usable barometer
@@ -389,7 +425,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
                    "speed_check": True,  # W211
-                   "freeze_index": False}  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
+                   "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
+                   "pause_ride": True}  # W231: a long pause's barometric change counts only where it is a ride
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -487,7 +524,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, speed_check: bool | None = None, pll_check: bool | None = None,
                 weak_fill: bool | None = None,
-                pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
+                pivot_steps: bool | None = None, parity_fill: bool | str | None = None, pause_ride: bool | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
@@ -649,7 +686,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
-             "freeze_veto": freeze_veto, "freeze_index": freeze_index}
+             "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -765,6 +802,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     zz = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float),
                                                   steps["start_s"].to_numpy(float)]), warnings, held)
     z, z_start, z_raw = (None, None, None) if zz is None else (zz[0][:n_st + 1], zz[0][n_st + 1:], zz[1][:n_st + 1])
+    if z is not None and bool(o["pause_ride"]) and not bool(o["stairs_climb"]):  # decision W231
+        z, z_start, z_raw = _pause_rides(baro, steps, float(imu.t[0]), z, z_start, z_raw, warnings)
     if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor (pauses too)
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
         z_start, z_raw = z[:-1], None  # W174's transfer_dz_m: 0 (every change off the stairs is left out here)
