@@ -32,6 +32,7 @@ from pdrlearn.kernels.barometer import (  # decision W91's constants and test, s
     stairs_rate_test,
 )
 from pdrlearn.kernels.freeze import inside_episodes
+from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
@@ -336,12 +337,14 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
                    resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
-                   integrate_end: bool = False) -> pd.DataFrame:
+                   integrate_end: bool = False, rest_bias: bool = False) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
     carry over between walking sequences; a sequence-closing contact keeps the last heading, except the last one
     with the gyro method, ``integrate_stops`` and ``integrate_end`` (decision W187): it adds the rotation from its
-    contact to the end of the recording (a turn on the spot after the last step)."""
+    contact to the end of the recording (a turn on the spot after the last step). ``rest_bias`` (decision L296): a
+    stop over a minute long adds its moving samples' rate less the bias of its still ones
+    (:func:`pdrlearn.kernels.rest_heading.rest_rotation`), not its whole integral."""
     n = len(steps)
     headings = np.full(n, np.nan)
     turning = np.zeros(n, dtype=int)
@@ -357,9 +360,12 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         clf = TurnClassifier(**(p.turn_gmm or {}))
         per_seq = []
         current = 0.0
+        still = _rest_still(imu, seqs, ev_all) if integrate_stops and rest_bias else None  # decision L296
         for j, seq in enumerate(seqs):
             if integrate_stops and j > 0:  # turns made while standing between walking sequences
-                current += K.integrate_rate(imu.t, w, ev_all[seqs[j - 1][-1]], ev_all[seq[0]], cum=cum)
+                t_a, t_b = ev_all[seqs[j - 1][-1]], ev_all[seq[0]]
+                current += (K.integrate_rate(imu.t, w, t_a, t_b, cum=cum) if still is None
+                            else rest_rotation(imu.t, w, still, t_a, t_b, cum=cum))
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
                                        heading0=current, cum=cum, slow_turn_rps=slow_turn_rps)
@@ -389,6 +395,18 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         last = seqs[-1][-1]  # (a lone last contact, too: its stop's rotation is in gyro_end, not in ``current``)
         headings[last] = gyro_end + K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
     return steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
+
+
+def _rest_still(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray | None:
+    """Decision L296: the waist's still samples (``standstill_mask`` on the navigation-frame IMU), when some stop
+    between walking sequences lasts over :data:`~pdrlearn.kernels.rest_heading.REST_BIAS_MIN_S`; else None."""
+    from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    gaps = [ev_all[b[0]] - ev_all[a[-1]] for a, b in zip(seqs[:-1], seqs[1:], strict=True)]
+    if not gaps or max(gaps) <= REST_BIAS_MIN_S:
+        return None
+    return standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
 
 
 def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str,
@@ -426,7 +444,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "freeze_veto": False,  # W214
                    "speed_check": True,  # W211
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
-                   "pause_ride": True}  # W231: a long pause's barometric change counts only where it is a ride
+                   "pause_ride": True,  # W231: a long pause's barometric change counts only where it is a ride
+                   "rest_bias": True}  # L296: a long rest's rotation less the bias of its still samples
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -525,6 +544,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 gait_check: bool | None = None, speed_check: bool | None = None, pll_check: bool | None = None,
                 weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None, pause_ride: bool | None = None,
+                rest_bias: bool | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
@@ -686,7 +706,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
-             "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride}
+             "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
+             "rest_bias": rest_bias}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -788,7 +809,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                steps["length_m"].to_numpy(float)))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
-                           integrate_end=bool(o["integrate_end"]) and not realtime)  # W187: offline only
+                           integrate_end=bool(o["integrate_end"]) and not realtime,  # W187: offline only
+                           rest_bias=bool(o["rest_bias"]))  # decision L296
     steps = steps.assign(stairs=stairs)
     warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
     ev_s, len_s = steps["event_s"].to_numpy(float), steps["length_m"].to_numpy(float)
