@@ -356,6 +356,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     for seq in seqs:
         if len(seq) > 1:
             mean_rate[seq[:-1]] = K.mean_rate_per_stride(imu.t, w, ev_all[seq], cum=cum)
+    removed: list[tuple[float, float]] = []  # decision L296: (end of a long rest, the bias integral left out)
     if method == "gyro":
         clf = TurnClassifier(**(p.turn_gmm or {}))
         per_seq = []
@@ -364,8 +365,11 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         for j, seq in enumerate(seqs):
             if integrate_stops and j > 0:  # turns made while standing between walking sequences
                 t_a, t_b = ev_all[seqs[j - 1][-1]], ev_all[seq[0]]
-                current += (K.integrate_rate(imu.t, w, t_a, t_b, cum=cum) if still is None
-                            else rest_rotation(imu.t, w, still, t_a, t_b, cum=cum))
+                whole = K.integrate_rate(imu.t, w, t_a, t_b, cum=cum)
+                turned = whole if still is None else rest_rotation(imu.t, w, still, t_a, t_b, cum=cum)
+                if turned != whole:  # L296: the bias left out, for W74's comparison with the integrated yaw
+                    removed.append((float(t_b), whole - turned))
+                current += turned
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
                                        heading0=current, cum=cum, slow_turn_rps=slow_turn_rps)
@@ -394,7 +398,9 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     if method == "gyro" and integrate_stops and integrate_end and seqs:  # W187: W72's integral over the final stop
         last = seqs[-1][-1]  # (a lone last contact, too: its stop's rotation is in gyro_end, not in ``current``)
         headings[last] = gyro_end + K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
-    return steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
+    out = steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
+    out.attrs["rest_bias_removed"] = removed
+    return out
 
 
 def _rest_still(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray | None:
@@ -410,7 +416,7 @@ def _rest_still(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray | None:
 
 
 def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str,
-                            integrate_stops: bool, warnings: list[str]) -> float | None:
+                            integrate_stops: bool, warnings: list[str], removed=()) -> float | None:
     """Decision W74: the gyro heading's largest shortfall against the waist's integrated yaw (deg, over the steps
     that carry a length), and one warning when it reaches :data:`UNTRACKED_TURN_WARN_DEG`; None for the
     harmonic headings (absolute directions, nothing is dropped between steps)."""
@@ -419,8 +425,11 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
     moving = steps["has_next"].to_numpy(bool) & (steps["length_m"].to_numpy(float) > 0)
     if not moving.any():
         return 0.0
-    diff, t_end = untracked_turn(imu, steps["event_s"].to_numpy(float)[:1], steps["end_s"].to_numpy(float)[moving],
-                                 steps["heading_rad"].to_numpy(float)[moving], bias_rps=p.gyro_bias_rps)
+    ends = steps["end_s"].to_numpy(float)[moving]
+    heads = steps["heading_rad"].to_numpy(float)[moving]
+    for t_b, r in removed:  # decision L296: the long rests' bias the heading left out is the yaw's, not a turn
+        heads = heads + np.where(ends >= t_b, r, 0.0)
+    diff, t_end = untracked_turn(imu, steps["event_s"].to_numpy(float)[:1], ends, heads, bias_rps=p.gyro_bias_rps)
     deg = float(np.degrees(diff))
     if abs(deg) >= UNTRACKED_TURN_WARN_DEG:
         warnings.append(untracked_turn_message(deg, t_end, integrate_stops))
@@ -811,6 +820,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
                            integrate_end=bool(o["integrate_end"]) and not realtime,  # W187: offline only
                            rest_bias=bool(o["rest_bias"]))  # decision L296
+    rest_removed = steps.attrs.get("rest_bias_removed", [])
     steps = steps.assign(stairs=stairs)
     warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
     ev_s, len_s = steps["event_s"].to_numpy(float), steps["length_m"].to_numpy(float)
@@ -829,7 +839,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor (pauses too)
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
         z_start, z_raw = z[:-1], None  # W174's transfer_dz_m: 0 (every change off the stairs is left out here)
-    untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
+    untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings, rest_removed)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, gate_source))
     bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs,
