@@ -421,8 +421,9 @@ TESTS = {"foot": foot_handedness, "waist": waist_handedness}
 def unit_imu_arrays(session, placement: str, *, max_s: float | None = None
                     ) -> tuple[np.ndarray, np.ndarray, float] | None:
     """The ``placement`` unit's accelerometer and gyroscope (on the accelerometer's clock) over ``max_s`` seconds
-    from its first walk (decision B252) (default :data:`~pdrlearn.track.frame_inference.CHECK_SPAN_S`) and the rate: the input of
-    every test here; ``None`` when the unit lacks either sensor, has too few samples or non-finite values."""
+    (default :data:`~pdrlearn.track.frame_inference.CHECK_SPAN_S`) from its first walk (decision B252) and the rate:
+    the input of every test here; ``None`` when the unit lacks either sensor, has too few samples or non-finite
+    values."""
     from pdrlearn.io.sensors import UNIT_IMU
     from pdrlearn.signal.filters import interp_rows
     from pdrlearn.track.frame_inference import CHECK_SPAN_S, check_span
