@@ -99,3 +99,21 @@ def test_the_heading_is_held_across_a_seated_rest_l296():
     assert abs(across(r)) < HELD_DEG
     assert track_summary(r, s)["final_position_error_m"] < track_summary(old, s)["final_position_error_m"]
     assert not [w for w in r.info["warnings"] if "decision W74" in w]
+
+
+def test_the_radius_bias_clock_skips_the_long_rests_l297():
+    import pandas as pd
+
+    from pdrlearn.track.position_sigma import bias_clock, sigma_params, sigma_per_row
+
+    steps = pd.DataFrame({"start_s": [100.0, 101.0, 102.0, 1902.0, 1903.0], "end_s": [101.0, 102.0, 103.0, 1903.0,
+                                                                                        1904.0],
+                          "length_m": [0.7] * 5, "heading_rad": [0.0] * 5})
+    end = steps["end_s"].to_numpy(float)
+    # the 100 s before the first step and the 1799 s seated are left out; the 1 s stops are kept
+    assert bias_clock(steps, end, 0.0, 60.0).tolist() == [1.0, 2.0, 3.0, 4.0, 5.0]
+    t = np.array([0.0, 1904.0])
+    params = sigma_params("waist")
+    assert sigma_per_row(steps, t, params, 60.0)[-1] < sigma_per_row(steps, t, params)[-1]
+    bias_only = {**params, **{k: 0.0 for k in params if k != "bias_rps"}}  # the term L297 clocks: b t, here 5 s
+    assert sigma_per_row(steps, t, bias_only, 60.0)[-1] < 0.01 * sigma_per_row(steps, t, bias_only)[-1]
