@@ -420,12 +420,13 @@ TESTS = {"foot": foot_handedness, "waist": waist_handedness}
 
 def unit_imu_arrays(session, placement: str, *, max_s: float | None = None
                     ) -> tuple[np.ndarray, np.ndarray, float] | None:
-    """The ``placement`` unit's accelerometer and gyroscope (on the accelerometer's clock) over its first
-    ``max_s`` seconds (default :data:`~pdrlearn.track.frame_inference.CHECK_SPAN_S`) and the rate: the input of
-    every test here; ``None`` when the unit lacks either sensor, has too few samples or non-finite values."""
+    """The ``placement`` unit's accelerometer and gyroscope (on the accelerometer's clock) over ``max_s`` seconds
+    (default :data:`~pdrlearn.track.frame_inference.CHECK_SPAN_S`) from its first walk (decision B252) and the rate:
+    the input of every test here; ``None`` when the unit lacks either sensor, has too few samples or non-finite
+    values."""
     from pdrlearn.io.sensors import UNIT_IMU
     from pdrlearn.signal.filters import interp_rows
-    from pdrlearn.track.frame_inference import CHECK_SPAN_S
+    from pdrlearn.track.frame_inference import CHECK_SPAN_S, check_span
 
     if placement not in UNIT_IMU:
         return None
@@ -436,8 +437,8 @@ def unit_imu_arrays(session, placement: str, *, max_s: float | None = None
     if len(acc_s) < 16 or len(gyr_s) < 2 or not np.isfinite(acc_s.rate_hz):
         return None
     span = CHECK_SPAN_S if max_s is None else max_s
-    n = int(np.searchsorted(acc_s.t, acc_s.t[0] + span, side="right"))
-    acc, gyr = acc_s.values[:n], interp_rows(acc_s.t[:n], gyr_s.t, gyr_s.values)
+    i0, n = check_span(acc_s.t, acc_s.values, span)  # decision B252: from the first walk
+    acc, gyr = acc_s.values[i0:n], interp_rows(acc_s.t[i0:n], gyr_s.t, gyr_s.values)
     if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
         return None
     return acc, gyr, float(acc_s.rate_hz)

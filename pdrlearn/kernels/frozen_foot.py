@@ -34,6 +34,35 @@ def foot_imu_motion(acc: np.ndarray, gyr: np.ndarray) -> tuple[float, float]:
     return float(np.nanstd(norm)), swing_rate(gyr)
 
 
+def block_motion(t_acc: np.ndarray, acc: np.ndarray, t_gyr: np.ndarray, gyr: np.ndarray,
+                 block_s: float = LIVE_BLOCK_S) -> tuple[float, float]:
+    """Decision B251: B203's two figures (:func:`foot_imu_motion`) on each consecutive block of ``block_s`` seconds
+    (B213's :data:`LIVE_BLOCK_S`, from the first accelerometer sample; accelerometer ``acc`` (n, 3) at ``t_acc`` s,
+    gyroscope ``gyr`` (m, 3) at ``t_gyr`` s), and the largest of each over the blocks: a foot that walks in one
+    block moved, however long it sat still around it (a whole night's sd and 99th percentile of |gyro| read a 1 %
+    walk as still). A block with fewer than 4 samples of either sensor is not judged; none judged: the whole
+    recording's figures (as before B251)."""
+    t_acc, t_gyr = np.asarray(t_acc, dtype=float), np.asarray(t_gyr, dtype=float)
+    acc, gyr = np.asarray(acc, dtype=float), np.asarray(gyr, dtype=float)
+    t0 = float(t_acc[0]) if len(t_acc) else 0.0
+    ia = np.floor((t_acc - t0) / block_s).astype(np.int64)
+    ig = np.floor((t_gyr - t0) / block_s).astype(np.int64)
+    sds, swings = [], []
+    a_cut = np.searchsorted(ia, np.arange(0, int(ia.max(initial=0)) + 2))
+    g_cut = np.searchsorted(ig, np.arange(0, int(ia.max(initial=0)) + 2))
+    for k in range(len(a_cut) - 1):
+        a, g = acc[a_cut[k]:a_cut[k + 1]], gyr[g_cut[k]:g_cut[k + 1]]
+        if len(a) >= 4 and len(g) >= 4:
+            sd, swing = foot_imu_motion(a, g)
+            sds.append(sd)
+            swings.append(swing)
+    if not sds:
+        return foot_imu_motion(acc, gyr)
+    # NaN figures (all-NaN blocks) do not count as movement (foot_still), nor as a block's largest figure
+    return tuple(float(np.nanmax(v)) if np.isfinite(v).any() else float("nan") for v in (np.array(sds),
+                                                                                         np.array(swings)))
+
+
 def foot_still(sd: float, swing: float) -> bool:
     """Decision B203: the foot IMU does not move - its |acc| sd is at most B37's :data:`WALKING_ACC_STD` and B91's
     swing statistic under :data:`FOOT_NO_SWING` (a NaN figure does not count as movement, as before)."""

@@ -22,7 +22,7 @@ import numpy as np
 from pdrlearn.displace.foot import inertial_stance
 from pdrlearn.io.sensors import UNIT_IMU
 from pdrlearn.kernels.frozen_foot import (
-    foot_imu_motion,
+    block_motion,
     foot_still,
     frozen_foot_evidence,
     frozen_foot_reason,
@@ -80,11 +80,13 @@ def foot_scale_warning(stats: dict | None, where: str) -> str | None:
 
 
 def foot_motion(session) -> tuple[float, float] | None:
-    """(sd of |acc| in m/s^2, B91's swing statistic in rad/s) of the foot IMU; None without both its files."""
+    """(sd of |acc| in m/s^2, B91's swing statistic in rad/s) of the foot IMU, each the largest over B213's 10 s
+    blocks (decision B251, :func:`~pdrlearn.kernels.frozen_foot.block_motion`); None without both its files."""
     acc_n, gyr_n = UNIT_IMU["foot"]
     if not session.has(acc_n, gyr_n) or len(session.streams[acc_n]) < 4 or len(session.streams[gyr_n]) < 4:
         return None
-    return foot_imu_motion(session.streams[acc_n].values, session.streams[gyr_n].values)
+    acc, gyr = session.streams[acc_n], session.streams[gyr_n]
+    return block_motion(acc.t, acc.values, gyr.t, gyr.values)
 
 
 def frozen_foot_imu(session) -> str | None:
@@ -107,7 +109,8 @@ def frozen_foot_imu(session) -> str | None:
     found = frozen_foot_evidence(acc.values, session.streams[gyr_n].values, forces)
     if found is None:
         return None
-    n, sd, swing = found
+    n = found[0]
+    sd, swing = motion  # decision B251: the largest figures of any 10 s block (the foot never moved in any)
     return (f"{session.where}: no strides detected; is the foot unit moving? "
             + frozen_foot_reason(", ".join(f"{k}.csv" for k in names), n, sd, swing)
             + "; check the IMU and its link, and re-record (decision B203)")

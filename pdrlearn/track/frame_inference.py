@@ -492,7 +492,8 @@ INFER = {"foot": infer_foot_frame, "waist": infer_waist_frame}
 UNIT_STREAMS = UNIT_IMU
 
 
-#: The D10 check of a declared frame reads at most this much of a recording from its start (s): minutes of
+#: The D10 check of a declared frame reads at most this much of a recording from its first walk (s, decision B252's
+#: :func:`check_span`; from its start before B252): minutes of
 #: walking fix the axes as well as an hour does, and a 1 h track must not pay a second pass over its data.
 CHECK_SPAN_S = 300.0
 #: decision L223 (amends D23): D23 refuses a reversed foot forward only when the check measured it from at least
@@ -504,10 +505,37 @@ REFUSE_MIN_STRIDES = 11
 REFUSE_MIN_RESULTANT = 0.85
 
 
+#: decision B252: the check span starts this long (s) before the first walking window, one W4 window: the foot's
+#: rest before its first stride, and the waist's first steps, are in it
+SPAN_LEAD_S = 4.0
+
+
+def check_span(t: np.ndarray, acc: np.ndarray, max_s: float, *, window_s: float = 4.0,
+               walk_std: float = 0.5) -> tuple[int, int]:
+    """Decision B252: the sample range ``[i0, i1)`` of the ``max_s`` seconds a check reads: from
+    :data:`SPAN_LEAD_S` before the first window of ``window_s`` (on a grid from ``t[0]``) whose |acc| varies by more
+    than ``walk_std`` m/s^2 (the W4 motion gate of :func:`_walking_mean`), else from the start. A night starting
+    with an hour in bed has no walking in its first 300 s; its first walk does."""
+    t = np.asarray(t, dtype=float)
+    if len(t) == 0:
+        return 0, 0
+    norm = np.linalg.norm(np.asarray(acc, dtype=float), axis=1)
+    idx = np.floor((t - t[0]) / window_s).astype(np.int64)
+    cnt = np.bincount(idx)
+    s1, s2 = np.bincount(idx, norm), np.bincount(idx, norm * norm)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        m = s1 / cnt
+        sd = np.sqrt(np.maximum(s2 / cnt - m * m, 0.0))
+    moving = np.flatnonzero((cnt >= 8) & (sd >= walk_std))
+    start = t[0] if moving.size == 0 else max(t[0], t[0] + moving[0] * window_s - SPAN_LEAD_S)
+    i0 = int(np.searchsorted(t, start, side="left"))
+    return i0, int(np.searchsorted(t, start + max_s, side="right"))
+
+
 def infer_session_frame(session, placement: str, *, max_s: float | None = None) -> InferredFrame:
     """Infer the ``placement`` unit's frame from a :class:`~pdrlearn.io.Session` (the gyroscope on the
-    accelerometer's clock), from its first ``max_s`` seconds when given (default: all of it). Raises
-    :class:`FrameInferenceError` (a :class:`DataError`) with the reason."""
+    accelerometer's clock), from ``max_s`` seconds when given, from its first walk (:func:`check_span`, decision
+    B252; default: all of it). Raises :class:`FrameInferenceError` (a :class:`DataError`) with the reason."""
     from pdrlearn.signal.filters import interp_rows
 
     if placement not in INFER:
@@ -519,8 +547,8 @@ def infer_session_frame(session, placement: str, *, max_s: float | None = None) 
     acc_s, gyr_s = session.streams[acc_n], session.streams[gyr_n]
     if len(acc_s) < 8 or len(gyr_s) < 2 or not np.isfinite(acc_s.rate_hz):
         raise FrameInferenceError("too few samples")
-    n = len(acc_s) if max_s is None else int(np.searchsorted(acc_s.t, acc_s.t[0] + max_s, side="right"))
-    acc, gyr = acc_s.values[:n], interp_rows(acc_s.t[:n], gyr_s.t, gyr_s.values)
+    i0, n = (0, len(acc_s)) if max_s is None else check_span(acc_s.t, acc_s.values, max_s)  # decision B252
+    acc, gyr = acc_s.values[i0:n], interp_rows(acc_s.t[i0:n], gyr_s.t, gyr_s.values)
     if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
         raise FrameInferenceError("NaN or infinite values")
     return INFER[placement](acc, gyr, float(acc_s.rate_hz))

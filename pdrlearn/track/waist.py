@@ -32,6 +32,7 @@ from pdrlearn.kernels.barometer import (  # decision W91's constants and test, s
     stairs_rate_test,
 )
 from pdrlearn.kernels.freeze import inside_episodes
+from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
@@ -199,6 +200,42 @@ def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str], held=(
     return held_altitude(baro.t, baro.values[:, 0], t, held)
 
 
+#: decision W231: a drift of this much (m) or more left out across the rests is warned about (README: "a drift over
+#: 1 m is warned", L172's)
+PAUSE_DRIFT_WARN_M = 1.0
+
+
+def _pause_rides(baro, steps: pd.DataFrame, t0: float, z: np.ndarray, z_start: np.ndarray, z_raw: np.ndarray | None,
+                 warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Decision W231: each pause's (W158's ``pause_dz_m``: from the previous step's end, or ``t0``, to the step's
+    start) barometric change counts only where it is a ride (:func:`pdrlearn.kernels.pause_ride.pause_ride_dz`);
+    the rest, drift across a long rest, is taken out of ``z``, ``z_start`` and ``z_raw`` (W174's ``transfer_dz_m``
+    unchanged), with one warning when it is :data:`PAUSE_DRIFT_WARN_M` or more in all."""
+    from pdrlearn.kernels.pause_ride import RIDE_WINDOW_S, pause_ride_dz
+
+    ends = np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
+    starts = steps["start_s"].to_numpy(float)
+    drop = np.zeros(len(starts))
+    for j in np.flatnonzero(starts - ends > RIDE_WINDOW_S):  # a short pause counts whole (W158)
+        ride, _ = pause_ride_dz(baro.t, baro.values[:, 0], float(ends[j]), float(starts[j]))
+        drop[j] = (z_start[j] - z[j]) - ride  # the pause's own change (W174's transfers held) less its ride
+    if not drop.any():
+        return z, z_start, z_raw
+    cum = np.concatenate([[0.0], np.cumsum(drop)])  # removed up to each step's end
+    z, z_start = z - cum, z_start - cum[1:]
+    z_raw = None if z_raw is None else z_raw - cum
+    long_ = np.flatnonzero(np.abs(drop) > 0)
+    total = float(drop.sum())
+    if abs(total) >= PAUSE_DRIFT_WARN_M or np.abs(drop).max() >= PAUSE_DRIFT_WARN_M:
+        worst = int(long_[np.argmax(np.abs(drop[long_]))])
+        warnings.append(
+            f"the barometric altitude drifted {total:+.2f} m across {len(long_)} rest(s) without steps (largest "
+            f"{drop[worst]:+.2f} m over the {starts[worst] - ends[worst]:.0f} s before {starts[worst]:.1f} s), too "
+            "slowly for a lift or escalator ride (a ride changes 1.5 m within 30 s): weather or room pressure, left "
+            "out of the altitude and the floors (decision W231)")
+    return z, z_start, z_raw
+
+
 def _stairs_steps(baro, steps: pd.DataFrame, climb: bool) -> np.ndarray:
     """Decision W91: the steps proposed as on stairs - the barometric altitude changes by :data:`STAIRS_RATE_MPS`
     or more over :data:`STAIRS_RATE_WINDOW_S` centred on the step's middle (all False without a usable barometer
@@ -300,12 +337,14 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
                    resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
-                   integrate_end: bool = False) -> pd.DataFrame:
+                   integrate_end: bool = False, rest_bias: bool = False) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
     carry over between walking sequences; a sequence-closing contact keeps the last heading, except the last one
     with the gyro method, ``integrate_stops`` and ``integrate_end`` (decision W187): it adds the rotation from its
-    contact to the end of the recording (a turn on the spot after the last step)."""
+    contact to the end of the recording (a turn on the spot after the last step). ``rest_bias`` (decision L296): a
+    stop over a minute long adds its moving samples' rate less the bias of its still ones
+    (:func:`pdrlearn.kernels.rest_heading.rest_rotation`), not its whole integral."""
     n = len(steps)
     headings = np.full(n, np.nan)
     turning = np.zeros(n, dtype=int)
@@ -317,13 +356,20 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     for seq in seqs:
         if len(seq) > 1:
             mean_rate[seq[:-1]] = K.mean_rate_per_stride(imu.t, w, ev_all[seq], cum=cum)
+    removed: list[tuple[float, float]] = []  # decision L296: (end of a long rest, the bias integral left out)
     if method == "gyro":
         clf = TurnClassifier(**(p.turn_gmm or {}))
         per_seq = []
         current = 0.0
+        still = _rest_still(imu, seqs, ev_all) if integrate_stops and rest_bias else None  # decision L296
         for j, seq in enumerate(seqs):
             if integrate_stops and j > 0:  # turns made while standing between walking sequences
-                current += K.integrate_rate(imu.t, w, ev_all[seqs[j - 1][-1]], ev_all[seq[0]], cum=cum)
+                t_a, t_b = ev_all[seqs[j - 1][-1]], ev_all[seq[0]]
+                whole = K.integrate_rate(imu.t, w, t_a, t_b, cum=cum)
+                turned = whole if still is None else rest_rotation(imu.t, w, still, t_a, t_b, cum=cum)
+                if turned != whole:  # L296: the bias left out, for W74's comparison with the integrated yaw
+                    removed.append((float(t_b), whole - turned))
+                current += turned
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
                                        heading0=current, cum=cum, slow_turn_rps=slow_turn_rps)
@@ -352,11 +398,25 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     if method == "gyro" and integrate_stops and integrate_end and seqs:  # W187: W72's integral over the final stop
         last = seqs[-1][-1]  # (a lone last contact, too: its stop's rotation is in gyro_end, not in ``current``)
         headings[last] = gyro_end + K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
-    return steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
+    out = steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
+    out.attrs["rest_bias_removed"] = removed
+    return out
+
+
+def _rest_still(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray | None:
+    """Decision L296: the waist's still samples (``standstill_mask`` on the navigation-frame IMU), when some stop
+    between walking sequences lasts over :data:`~pdrlearn.kernels.rest_heading.REST_BIAS_MIN_S`; else None."""
+    from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    gaps = [ev_all[b[0]] - ev_all[a[-1]] for a, b in zip(seqs[:-1], seqs[1:], strict=True)]
+    if not gaps or max(gaps) <= REST_BIAS_MIN_S:
+        return None
+    return standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
 
 
 def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str,
-                            integrate_stops: bool, warnings: list[str]) -> float | None:
+                            integrate_stops: bool, warnings: list[str], removed=()) -> float | None:
     """Decision W74: the gyro heading's largest shortfall against the waist's integrated yaw (deg, over the steps
     that carry a length), and one warning when it reaches :data:`UNTRACKED_TURN_WARN_DEG`; None for the
     harmonic headings (absolute directions, nothing is dropped between steps)."""
@@ -365,8 +425,11 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
     moving = steps["has_next"].to_numpy(bool) & (steps["length_m"].to_numpy(float) > 0)
     if not moving.any():
         return 0.0
-    diff, t_end = untracked_turn(imu, steps["event_s"].to_numpy(float)[:1], steps["end_s"].to_numpy(float)[moving],
-                                 steps["heading_rad"].to_numpy(float)[moving], bias_rps=p.gyro_bias_rps)
+    ends = steps["end_s"].to_numpy(float)[moving]
+    heads = steps["heading_rad"].to_numpy(float)[moving]
+    for t_b, r in removed:  # decision L296: the long rests' bias the heading left out is the yaw's, not a turn
+        heads = heads + np.where(ends >= t_b, r, 0.0)
+    diff, t_end = untracked_turn(imu, steps["event_s"].to_numpy(float)[:1], ends, heads, bias_rps=p.gyro_bias_rps)
     deg = float(np.degrees(diff))
     if abs(deg) >= UNTRACKED_TURN_WARN_DEG:
         warnings.append(untracked_turn_message(deg, t_end, integrate_stops))
@@ -389,7 +452,9 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
                    "speed_check": True,  # W211
-                   "freeze_index": False}  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
+                   "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
+                   "pause_ride": True,  # W231: a long pause's barometric change counts only where it is a ride
+                   "rest_bias": True}  # L296: a long rest's rotation less the bias of its still samples
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -488,7 +553,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, speed_check: bool | None = None, pll_check: bool | None = None,
                 weak_fill: bool | None = None,
-                pivot_steps: bool | None = None, parity_fill: bool | str | None = None,
+                pivot_steps: bool | None = None, parity_fill: bool | str | None = None, pause_ride: bool | None = None,
+                rest_bias: bool | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
@@ -653,7 +719,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
-             "freeze_veto": freeze_veto, "freeze_index": freeze_index}
+             "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
+             "rest_bias": rest_bias}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -756,7 +823,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                steps["length_m"].to_numpy(float)))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
-                           integrate_end=bool(o["integrate_end"]) and not realtime)  # W187: offline only
+                           integrate_end=bool(o["integrate_end"]) and not realtime,  # W187: offline only
+                           rest_bias=bool(o["rest_bias"]))  # decision L296
+    rest_removed = steps.attrs.get("rest_bias_removed", [])
     steps = steps.assign(stairs=stairs)
     warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
     ev_s, len_s = steps["event_s"].to_numpy(float), steps["length_m"].to_numpy(float)
@@ -770,10 +839,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     zz = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float),
                                                   steps["start_s"].to_numpy(float)]), warnings, held)
     z, z_start, z_raw = (None, None, None) if zz is None else (zz[0][:n_st + 1], zz[0][n_st + 1:], zz[1][:n_st + 1])
+    if z is not None and bool(o["pause_ride"]) and not bool(o["stairs_climb"]):  # decision W231
+        z, z_start, z_raw = _pause_rides(baro, steps, float(imu.t[0]), z, z_start, z_raw, warnings)
     if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor (pauses too)
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
         z_start, z_raw = z[:-1], None  # W174's transfer_dz_m: 0 (every change off the stairs is left out here)
-    untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
+    untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings, rest_removed)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, gate_source))
     bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs,

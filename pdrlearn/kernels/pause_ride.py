@@ -1,0 +1,48 @@
+"""A lift or escalator ride during a standstill, told from the weather's drift across a long rest (decision W231 in
+docs/decisions/waist.md), numpy only.
+
+W158 books a lower-back track's whole barometric change while the unit stood between two steps as ``pause_dz_m``
+(a lift or escalator ride). Across an hour seated the pressure drifts with the weather and the room (the trial
+`night`: -4.68 m over 3600 s, two phantom floors down). A ride is fast: its change is the change of the spans where
+the altitude moves :data:`RIDE_MIN_M` within :data:`RIDE_WINDOW_S`; the rest of a long pause is drift.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.kernels.barometer import STAIR_CLIMB_MIN_M, relative_altitude
+
+#: decision W231: a pause longer than this (s) has its ride told from its drift; the change of a shorter pause counts
+#: whole, as W158 (a storey's drift within it: the weather's 0.3 hPa/h, ~0.04 m per minute, decision S4 / L172)
+RIDE_WINDOW_S = 30.0
+#: decision W231: a ride moves the altitude at least this much (m) within :data:`RIDE_WINDOW_S`: W108's half storey,
+#: i.e. 0.05 m/s, a 3 m storey in a minute (L172: "a storey is climbed in well under a minute"). The slowest rides
+#: are 3x faster (a platform lift's 0.15 m/s, as recalled of the Machinery Directive's platform lifts; an escalator's
+#: 0.5 m/s on 30 deg is 0.25 m/s up, sim.ride); weather drift is 40x slower (the trial's 4.7 m/h is 0.0013 m/s, a
+#: storm's 3 hPa/h ~7 m/h). The barometer's wander (W89's simulator: 0.3 m sd, 10 s) changes 1.5 m in 30 s at 3.5 sd
+RIDE_MIN_M = STAIR_CLIMB_MIN_M
+#: decision W231: the altitude is read on this grid (s) inside a long pause
+RIDE_GRID_S = 1.0
+
+
+def pause_ride_dz(t: np.ndarray, p_hpa: np.ndarray, a: float, b: float) -> tuple[float, float]:
+    """Decision W231: ``(ride, whole)``: the barometric altitude change (m) from ``a`` to ``b`` (s) that is a ride
+    and the whole change (W158's ``pause_dz_m``). A pause up to :data:`RIDE_WINDOW_S` long is all ride. In a longer
+    one, every span of :data:`RIDE_WINDOW_S` (on a :data:`RIDE_GRID_S` grid) whose altitude changes by
+    :data:`RIDE_MIN_M` or more is marked, and the ride is the change over the marked grid intervals (their union:
+    a long lift ride is several windows); the rest is drift."""
+    grid = np.append(np.arange(a, b, RIDE_GRID_S), b)
+    h = relative_altitude(t, p_hpa, grid)
+    whole = float(h[-1] - h[0])
+    if b - a <= RIDE_WINDOW_S or len(grid) < 3:
+        return whole, whole
+    k = int(round(RIDE_WINDOW_S / RIDE_GRID_S))
+    if len(grid) <= k:
+        return whole, whole
+    fast = np.flatnonzero(np.abs(h[k:] - h[:-k]) >= RIDE_MIN_M)  # windows i .. i + k that move a half storey
+    cover = np.zeros(len(grid), dtype=np.int64)  # intervals i .. i + k - 1 of each fast window
+    np.add.at(cover, fast, 1)
+    np.add.at(cover, fast + k, -1)
+    inside = np.cumsum(cover)[:-1] > 0
+    return float(np.diff(h)[inside].sum()), whole

@@ -1,0 +1,53 @@
+"""The rotation of a waist unit across a long rest without steps, its gyroscope's bias taken from the rest itself
+(decision L296 in docs/decisions/localization.md), numpy only.
+
+W72 (``integrate_stops``) adds the vertical rate integrated from a walking sequence's last contact to the next one's
+first, so a turn made standing carries into the heading. Across an hour seated that integral is the gyroscope's bias
+times an hour: the simulated waist's bias random walk (5e-5 rad/s/sqrt(s), docs/decisions S12) integrates to ~6 rad
+(1 sd) over 3600 s, a calibrated constant bias cannot remove it, and the trial `night` saw a 113 deg "turn" in 0.3 s
+after each sit. While the unit is still the body does not turn: its rate there is the bias. So across a rest longer
+than :data:`REST_BIAS_MIN_S`, the still samples (``standstill_mask``) add nothing, and the moving ones (standing up,
+a turn on the spot) add their rate less the bias of the still samples around them (:data:`BIAS_BLOCK_S` blocks).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.kernels.waist import integrate_rate
+
+#: decision L296: a stop longer than this (s) has its bias taken from its own still samples; over a shorter one
+#: the rate is integrated whole (W72): the bias walk's integral over a minute is 5e-5 * 60^1.5 / sqrt(3) = 0.013 rad
+#: (0.8 deg, 1 sd), under the heading's other errors, and the stop's still samples are too few for a better bias
+REST_BIAS_MIN_S = 60.0
+#: decision L296: the bias is the mean rate of the still samples of consecutive blocks this long (s), interpolated to
+#: the moving samples (the bias walk changes by 5e-5 * sqrt(30) = 2.7e-4 rad/s in a block, 0.016 deg/s)
+BIAS_BLOCK_S = 30.0
+#: decision L296: a block gives a bias only with this much (s) of still samples
+BIAS_MIN_STILL_S = 1.0
+
+
+def rest_rotation(t: np.ndarray, w: np.ndarray, still: np.ndarray, t0: float, t1: float, *,
+                  cum: np.ndarray | None = None) -> float:
+    """Decision L296: the rotation (rad) of the vertical rate ``w`` (rad/s, at ``t`` s) from ``t0`` to ``t1``:
+    W72's integral when the stop lasts up to :data:`REST_BIAS_MIN_S` or has no block with :data:`BIAS_MIN_STILL_S`
+    of still samples (``still``, bool per sample); else the sum over its moving samples of the rate less the bias
+    (the mean rate of each :data:`BIAS_BLOCK_S` block's still samples, interpolated in time). ``cum``:
+    :func:`pdrlearn.kernels.waist.rate_integral` of ``(t, w)``, for the short stops."""
+    if t1 - t0 <= REST_BIAS_MIN_S:
+        return integrate_rate(t, w, t0, t1, cum=cum)
+    a, b = int(np.searchsorted(t, t0, side="left")), int(np.searchsorted(t, t1, side="right"))
+    tt, ww, st = t[a:b], w[a:b], np.asarray(still[a:b], dtype=bool)
+    if len(tt) < 2:
+        return integrate_rate(t, w, t0, t1, cum=cum)
+    dt = np.gradient(tt)
+    block = np.floor((tt - tt[0]) / BIAS_BLOCK_S).astype(np.int64)
+    n_still = np.bincount(block, weights=st * dt)
+    s_rate = np.bincount(block, weights=np.where(st, ww, 0.0) * dt)
+    ok = n_still >= BIAS_MIN_STILL_S
+    if not ok.any():
+        return integrate_rate(t, w, t0, t1, cum=cum)
+    t_still = np.bincount(block, weights=np.where(st, tt, 0.0) * dt)
+    centres, bias = t_still[ok] / n_still[ok], s_rate[ok] / n_still[ok]
+    moving = ~st
+    return float(np.sum((ww[moving] - np.interp(tt[moving], centres, bias)) * dt[moving]))
