@@ -264,6 +264,10 @@ def get_pipeline(name: str) -> Pipeline:
       ``freeze_time_s``, null when off; foot tracks always compute theirs),
       ``realtime_sit_veto`` (decision W201, off: a realtime track applies the sit veto causally, each contact
       decided 3.25 s after it with the upright of the walking contacts seen so far, W200),
+      ``pause_ride`` (decision W231, on: a lower-back pause longer than 30 s keeps its barometric change only where
+      it changes 1.5 m or more within 30 s, a lift or escalator ride; drift across a rest is left out and warned),
+      ``rest_bias`` (decision L296, on: across a rest over 60 s the waist gyroscope's bias is taken from the rest's
+      own still samples, which add no heading),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
       turn on a 0.2 m radius; both pipelines),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered
