@@ -687,9 +687,8 @@ def clinical_tables(result, bouts) -> dict:
     import pandas as pd
 
     from pdrlearn.track.clinical import turn_table
-    from pdrlearn.waist.transfers import TRANSFER_COLUMNS
-
     from pdrlearn.track.grade import ramp_table
+    from pdrlearn.waist.transfers import TRANSFER_COLUMNS
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)

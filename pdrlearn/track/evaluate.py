@@ -196,13 +196,13 @@ def floor_climbs(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STO
     """:func:`count_floors_by_climb`'s climbs that count a storey (decision L127), as ``(last, storeys)``: the index
     of the climb's last stair stride and its storeys, + up / - down (decision L277: periods.csv places each climb's
     storeys in the period of its last stair stride, so the periods' floors add up to the summary's)."""
-    from pdrlearn.kernels import distance
 
     return [(int(r[-1]), n) for r, n in _climb_runs(dz, storey_height_m, band, bridge, slope)]
 
 
-def _climb_runs(dz, storey_height_m: float, band: float, bridge: int, slope: bool | None):
-    """:func:`floor_climbs`' climbs as ``(stair rows, storeys)`` (decision L127; L302 reads their rows)."""
+def _climb_runs(dz, storey_height_m: float, band: float, bridge: int, slope: bool | None, every: bool = False):
+    """:func:`floor_climbs`' climbs as ``(stair rows, storeys)`` (decision L127; L302 reads their rows); ``every``:
+    also the climbs under a storey (storeys 0, sign lost; decision L303 reads their rows)."""
     from pdrlearn.kernels import distance
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
@@ -214,7 +214,7 @@ def _climb_runs(dz, storey_height_m: float, band: float, bridge: int, slope: boo
         runs = np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []
         for r in runs:
             n = int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
-            if n:
+            if n or every:
                 out.append((r, sign * n))
     return out
 
@@ -237,6 +237,24 @@ def climb_kind(dz, pause_dz, length, rows) -> str:
         return "rides"
     run = float(np.sum(np.abs(length[span])))
     return "ramps" if run > 0 and 100.0 * abs(walked) / run < STAIR_MIN_GRADE_PCT else "stairs"
+
+
+def ramp_climb_rows(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L303: the rows of the climbs (L127's runs of stair rows and the rows bridged between them, any height,
+    :func:`_climb_runs` with ``every``) that :func:`climb_kind` calls ``"ramps"``: walked under
+    :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` of rise over horizontal run. All False where floors are not
+    counted per climb."""
+    out = np.zeros(len(steps), bool)
+    dz, bridge = _climb_dz(steps)
+    if dz is None:
+        return out
+    walked = np.nan_to_num(steps["dz_m"].to_numpy(float))
+    pause = np.nan_to_num(steps["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in steps else np.zeros(len(dz))
+    length = np.nan_to_num(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.zeros(len(dz))
+    for rows, _ in _climb_runs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True):
+        if climb_kind(walked, pause, length, rows) == "ramps":
+            out[int(rows[0]):int(rows[-1]) + 1] = True
+    return out
 
 
 def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M) -> dict:
