@@ -27,15 +27,15 @@ def test_four_runs_with_landings_are_one_ramp_and_a_stair_breaks_it():
     run = [(1.3, 1.3 * 0.0833)] * 7
     landing = [(1.5, 0.0)]
     rows = run + landing + run + landing + run + landing + run
-    length, dz = (np.array(c) for c in zip(*rows))
+    length, dz = (np.array(c) for c in zip(*rows, strict=True))
     (ramp,) = ramp_runs(length, dz)
     assert (ramp["n_runs"], ramp["landings"], ramp["direction"]) == (4, 3, "up")
     assert ramp["mean_grade_pct"] == pytest.approx(8.33) and ramp["landing_m"] == pytest.approx(4.5)
     assert ramp["horizontal_run_m"] == pytest.approx(4 * 7 * 1.3) and ramp["rise_m"] == pytest.approx(dz.sum())
     stair = [(0.56, 0.34)]
-    length, dz = (np.array(c) for c in zip(*(run + stair + run)))
+    length, dz = (np.array(c) for c in zip(*(run + stair + run), strict=True))
     assert [r["n_runs"] for r in ramp_runs(length, dz)] == [1, 1]  # a stair stride is no landing
-    length, dz = (np.array(c) for c in zip(*(run + [(4.0, 0.0)] + [(1.3, -0.11)] * 7)))
+    length, dz = (np.array(c) for c in zip(*(run + [(4.0, 0.0)] + [(1.3, -0.11)] * 7), strict=True))
     assert [r["direction"] for r in ramp_runs(length, dz)] == ["up", "down"]
     assert ramp_runs(np.full(5, 1.3), np.full(5, 0.01)) == []  # 0.8 %: level
 
