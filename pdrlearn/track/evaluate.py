@@ -226,17 +226,19 @@ CLIMB_KINDS = ("stairs", "ramps", "rides")
 def climb_kind(dz, pause_dz, length, rows) -> str:
     """Decision L302: what climbed one climb of :func:`floor_climbs` (its ``rows``, first to last stair row, of the
     rows' walking height change ``dz``, standstill change ``pause_dz`` (W158) and horizontal ``length``): ``"rides"``
-    when the standstills before its rows carry more than half its height (a lift or escalator ride), ``"ramps"``
-    when its walked rise over its horizontal run is under
-    :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` (a ramp or a hill, not a stair), else ``"stairs"``."""
+    when the standstills from its first to its last stair row carry more than half its height (a lift or escalator
+    ride), ``"ramps"`` when its stair rows' rise over their horizontal run is under
+    :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` (a ramp or a hill, not a stair), else ``"stairs"`` - the stair
+    rows alone, as a landing's and a U-turn's bridged rows would flatten a stairwell (L302's measurement)."""
     from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
 
+    rows = np.asarray(rows, dtype=int)
     span = slice(int(rows[0]), int(rows[-1]) + 1)
     walked, ride = float(np.sum(dz[span])), float(np.sum(pause_dz[span]))
     if abs(ride) > abs(walked + ride) / 2:
         return "rides"
-    run = float(np.sum(np.abs(length[span])))
-    return "ramps" if run > 0 and 100.0 * abs(walked) / run < STAIR_MIN_GRADE_PCT else "stairs"
+    run = float(np.sum(np.abs(length[rows])))
+    return "ramps" if run > 0 and 100.0 * abs(float(np.sum(dz[rows]))) / run < STAIR_MIN_GRADE_PCT else "stairs"
 
 
 def ramp_climb_rows(steps: pd.DataFrame) -> np.ndarray:
