@@ -57,6 +57,9 @@ def test_floors_split_by_what_climbed_sum_to_the_floor_counts():
     assert (got["floors_up_stairs"], got["floors_up_ramps"], got["floors_up_rides"]) == (1, 0, 0)
     lift = _steps(np.full(10, 0.7), np.zeros(10), np.r_[np.zeros(5), 3.0, np.zeros(4)], unit="waist")
     assert floors_by_kind(lift)["floors_up_rides"] == 1 and floors_by_kind(lift)["floors_up_stairs"] == 0
+    well = _steps(np.r_[np.full(8, 0.6), np.full(3, 2.0), np.full(8, 0.6)],  # L302: the landing's rows left out
+                  np.r_[np.full(8, 0.17), np.zeros(3), np.full(8, 0.17)], unit="waist")
+    assert floors_by_kind(well)["floors_up_stairs"] == 1  # span 17 %, stair rows 28 %
     down = _steps(np.full(110, 1.4), np.full(110, -0.112))
     assert floors_by_kind(down)["floors_down_ramps"] == 4
     assert set(floors_by_kind(_steps([], [])).values()) == {None}
