@@ -619,6 +619,7 @@ RAMPS: tuple[Column, ...] = (
     ("mean_grade_pct", "%", "number", "100 x rise_m / horizontal_run_m"),
     ("max_run_grade_pct", "%", "number", "the steepest run's own mean grade"),
     ("n_steps", "count", "integer", "rows of steps.csv from the first run's first to the last run's last"),
+    *_clocks("start_s", "end_s"),
 )
 
 
