@@ -126,6 +126,21 @@ SESSIONS: tuple[Column, ...] = (
     ("floors_down", "count", "integer", "storeys descended (3.0 m or --storey-height; L127)"),
     ("floors_down_ref", "count", "integer", "storeys descended in the reference"),
     ("floors_up", "count", "integer", "storeys climbed"),
+    ("floors_up_stairs", "count", "integer", "floors_up's storeys of climbs on stairs (L302: rise over run 20 % or "
+                                             "more, walked); floors_up = stairs + ramps + rides"),
+    ("floors_up_ramps", "count", "integer", "floors_up's storeys of climbs walked under 20 % (a ramp or a hill; "
+                                            "L302)"),
+    ("floors_up_rides", "count", "integer", "floors_up's storeys of climbs carried mostly while standing (a lift or "
+                                            "escalator ride, W158's pause_dz_m; L302)"),
+    ("floors_down_stairs", "count", "integer", "floors_down's storeys on stairs (L302)"),
+    ("floors_down_ramps", "count", "integer", "floors_down's storeys walked under 20 % (L302)"),
+    ("floors_down_rides", "count", "integer", "floors_down's storeys ridden (L302)"),
+    ("grade_source", _ID, "text", "where grade_pct and the ramps come from: fused (foot, --altitude fused) or "
+                                  "barometer (lower back); empty: a foot track's own altitude, which L39 levels "
+                                  "(L300)"),
+    ("distance_along_slope_m", "m", "number", "distance along the walked surface, sum of sqrt(length^2 + dz^2); "
+                                              "empty without a grade_source (L300)"),
+    ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a grade_source"),
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
     ("ic_timing_mean_ms", "ms", "number", "lower back: mean initial-contact time error against the reference"),
@@ -440,6 +455,10 @@ FREEZES: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+#: decision L300: steps.csv's grade column, foot and lower back
+_GRADE_PCT: Column = ("grade_pct", "%", "number", "100 x dz_m / |length_m|, + up (L300); empty unless the altitude "
+                      "is barometric (grade_source), on a row under 0.2 m, a gap row or an impossible stride")
+
 #: a lower-back track's steps.csv (``TrackResult.steps`` of waist-pendulum / waist-pll), one row per contact of either
 #: foot; a foot track's steps.csv (strides of one foot) has other columns
 WAIST_STEPS: tuple[Column, ...] = (
@@ -471,6 +490,7 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("dz_m", "m", "number", "barometric altitude change over the step (W89; 0 without a usable barometer)"),
     ("pause_dz_m", "m", "number", "barometric altitude change while standing before the step (a lift ride; W158), "
                                   "0 inside a walking sequence"),
+    _GRADE_PCT,
     ("transfer_dz_m", "m", "number", "barometric altitude change inside a sit-to-stand or stand-to-sit (a trunk "
                                      "flexion over 25 deg, W104) since the previous row: the transfer's, not in "
                                      "z, ascent or floors (W174)"),
@@ -491,6 +511,7 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
                                      "direction, counter-clockwise)"),
     ("dz_m", "m", "number", "the stride's height change"),
+    _GRADE_PCT,
     ("terrain", _ID, "text", "M3's terrain class (empty without a model; L18)"),
     ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),
     ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
@@ -582,11 +603,31 @@ GAIT_BOUTS: tuple[Column, ...] = (
 )
 
 
+#: decision L301: ``ramps.csv`` (``track`` / ``run``), one row per ramp: runs of consistent grade and their landings
+RAMPS: tuple[Column, ...] = (
+    ("ramp", "index", "integer", "the ramp's number, from 1 in walking order"),
+    ("start_s", "s", "number", "its first row's start_s"),
+    ("end_s", "s", "number", "its last row's end_s"),
+    ("direction", _ID, "text", "up or down"),
+    ("n_runs", "count", "integer", "runs of 2 m or more whose rows' grade is 3-20 % of one sign (L301)"),
+    ("landings", "count", "integer", "level stretches of at most 3.5 m between two runs (n_runs - 1); a single "
+                                     "stride reading under 3 % inside a steady slope counts as one"),
+    ("horizontal_run_m", "m", "number", "horizontal length of the runs (landings left out)"),
+    ("landing_m", "m", "number", "horizontal length of the landings"),
+    ("along_slope_m", "m", "number", "length of the runs along the surface, sum of sqrt(length^2 + dz^2)"),
+    ("rise_m", "m", "number", "the runs' height change (signed)"),
+    ("mean_grade_pct", "%", "number", "100 x rise_m / horizontal_run_m"),
+    ("max_run_grade_pct", "%", "number", "the steepest run's own mean grade"),
+    ("n_steps", "count", "integer", "rows of steps.csv from the first run's first to the last run's last"),
+    *_clocks("start_s", "end_s"),
+)
+
+
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
                                          "bouts.csv": BOUTS, "turns.csv": TURNS, "periods.csv": PERIODS,
                                          "transfers.csv": TRANSFERS,
-                                         "freezes.csv": FREEZES,
+                                         "freezes.csv": FREEZES, "ramps.csv": RAMPS,  # L301
                                          "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS,  # E137
                                          "gait_steps.csv": GAIT_STEPS, "gait_cycles.csv": GAIT_CYCLES,  # L287
                                          "gait_bouts.csv": GAIT_BOUTS}

@@ -683,13 +683,15 @@ def clinical_tables(result, bouts) -> dict:
     """The per-event tables a track writes beside bouts.csv: ``turns.csv`` (decision L200: each turn of at least
     ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
     sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk) and ``freezes.csv``
-    (decision W213: the freeze index's episodes of the tracked unit)."""
+    (decision W213: the freeze index's episodes of the tracked unit), and ``ramps.csv`` (decision L301)."""
     import pandas as pd
 
     from pdrlearn.track.clinical import turn_table
+    from pdrlearn.track.grade import ramp_table
     from pdrlearn.waist.transfers import TRANSFER_COLUMNS
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
+    out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
     if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
@@ -772,7 +774,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
                    f"{summary['time_no_data_s']:.1f} s")
         typer.echo(posture_line(summary))  # decision W222: the time that is not walking, by posture
-    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, "
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "

@@ -196,6 +196,13 @@ def floor_climbs(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STO
     """:func:`count_floors_by_climb`'s climbs that count a storey (decision L127), as ``(last, storeys)``: the index
     of the climb's last stair stride and its storeys, + up / - down (decision L277: periods.csv places each climb's
     storeys in the period of its last stair stride, so the periods' floors add up to the summary's)."""
+
+    return [(int(r[-1]), n) for r, n in _climb_runs(dz, storey_height_m, band, bridge, slope)]
+
+
+def _climb_runs(dz, storey_height_m: float, band: float, bridge: int, slope: bool | None, every: bool = False):
+    """:func:`floor_climbs`' climbs as ``(stair rows, storeys)`` (decision L127; L302 reads their rows); ``every``:
+    also the climbs under a storey (storeys 0, sign lost; decision L303 reads their rows)."""
     from pdrlearn.kernels import distance
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
@@ -207,8 +214,66 @@ def floor_climbs(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STO
         runs = np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []
         for r in runs:
             n = int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
-            if n:
-                out.append((int(r[-1]), sign * n))
+            if n or every:
+                out.append((r, sign * n))
+    return out
+
+
+#: decision L302: what a climb's storeys climbed, the keys floors_up_<kind> / floors_down_<kind> split L127's count by
+CLIMB_KINDS = ("stairs", "ramps", "rides")
+
+
+def climb_kind(dz, pause_dz, length, rows) -> str:
+    """Decision L302: what climbed one climb of :func:`floor_climbs` (its ``rows``, first to last stair row, of the
+    rows' walking height change ``dz``, standstill change ``pause_dz`` (W158) and horizontal ``length``): ``"rides"``
+    when the standstills from its first to its last stair row carry more than half its height (a lift or escalator
+    ride), ``"ramps"`` when its stair rows' rise over their horizontal run is under
+    :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` (a ramp or a hill, not a stair), else ``"stairs"`` - the stair
+    rows alone, as a landing's and a U-turn's bridged rows would flatten a stairwell (L302's measurement)."""
+    from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
+
+    rows = np.asarray(rows, dtype=int)
+    span = slice(int(rows[0]), int(rows[-1]) + 1)
+    walked, ride = float(np.sum(dz[span])), float(np.sum(pause_dz[span]))
+    if abs(ride) > abs(walked + ride) / 2:
+        return "rides"
+    run = float(np.sum(np.abs(length[rows])))
+    return "ramps" if run > 0 and 100.0 * abs(float(np.sum(dz[rows]))) / run < STAIR_MIN_GRADE_PCT else "stairs"
+
+
+def ramp_climb_rows(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L303: the rows of the climbs (L127's runs of stair rows and the rows bridged between them, any height,
+    :func:`_climb_runs` with ``every``) that :func:`climb_kind` calls ``"ramps"``: walked under
+    :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` of rise over horizontal run. All False where floors are not
+    counted per climb."""
+    out = np.zeros(len(steps), bool)
+    dz, bridge = _climb_dz(steps)
+    if dz is None:
+        return out
+    walked = np.nan_to_num(steps["dz_m"].to_numpy(float))
+    pause = np.nan_to_num(steps["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in steps else np.zeros(len(dz))
+    length = np.nan_to_num(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.zeros(len(dz))
+    for rows, _ in _climb_runs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True):
+        if climb_kind(walked, pause, length, rows) == "ramps":
+            out[int(rows[0]):int(rows[-1]) + 1] = True
+    return out
+
+
+def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M) -> dict:
+    """Decision L302: ``floors_up_<kind>`` / ``floors_down_<kind>`` for each of :data:`CLIMB_KINDS`, the storeys of
+    L127's climbs (:func:`floor_climbs` on :func:`_climb_dz`) by :func:`climb_kind`, so each direction's sum is
+    ``floors_up`` / ``floors_down``; None for every key where the floors are not counted per climb."""
+    dz, bridge = _climb_dz(steps)
+    out = {f"floors_{d}_{k}": None for d in ("up", "down") for k in CLIMB_KINDS}
+    if dz is None:
+        return out
+    out.update({k: 0 for k in out})
+    walked = np.nan_to_num(steps["dz_m"].to_numpy(float))
+    pause = np.nan_to_num(steps["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in steps else np.zeros(len(dz))
+    length = np.nan_to_num(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.zeros(len(dz))
+    for rows, n in _climb_runs(dz, storey_height_m, STOREY_BAND, bridge, None):
+        key = f"floors_{'up' if n > 0 else 'down'}_{climb_kind(walked, pause, length, rows)}"
+        out[key] += abs(n)
     return out
 
 
@@ -398,7 +463,12 @@ def _basic(result: TrackResult, out: dict) -> None:
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)
     _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=dz, bridge=bridge)
+    out.update(floors_by_kind(result.steps, out.get("storey_height_m", STOREY_HEIGHT_M)))  # decision L302
     _ascent(result, out)
+    from pdrlearn.track.grade import add_grade, grade_summary
+
+    add_grade(result.steps, result.info)  # decision L300: steps.csv's grade_pct
+    out.update(grade_summary(result.steps, result.info))  # decisions L300, L301
 
 
 def _ascent(result: TrackResult, out: dict) -> None:

@@ -197,15 +197,26 @@ SUMMARY_KEYS = ("n_stride_times", "median_stride_time_s", "median_cadence_spm", 
                 "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps", "n_stair_strides")
 
 
-def stair_rows(steps: pd.DataFrame) -> np.ndarray:
+#: decision L303 (an option; its adoption rule is in docs/decisions/localization.md): a row of a climb walked under
+#: 20 % of rise over run (a ramp or a hill, :func:`pdrlearn.track.evaluate.ramp_climb_rows`) is no stair row
+RAMP_NOT_STAIR = False
+
+
+def stair_rows(steps: pd.DataFrame, ramp_not_stair: bool | None = None) -> np.ndarray:
     """Decision L179: the rows that climb or descend a stair, |``dz_m``| >= ``LEVEL_DZ_M`` (0.10 m, half a stair
-    rise: L39's level rule, as the simulator's terrain label, decision S3); all False without ``dz_m``."""
+    rise: L39's level rule, as the simulator's terrain label, decision S3); all False without ``dz_m``.
+    ``ramp_not_stair`` (default :data:`RAMP_NOT_STAIR`, decision L303): the rows of a ramp climb left out."""
     from pdrlearn.kernels.distance import LEVEL_DZ_M
 
     if "dz_m" not in steps:
         return np.zeros(len(steps), bool)
     dz = np.abs(pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float))
-    return np.nan_to_num(dz, nan=0.0) >= LEVEL_DZ_M
+    stair = np.nan_to_num(dz, nan=0.0) >= LEVEL_DZ_M
+    if RAMP_NOT_STAIR if ramp_not_stair is None else ramp_not_stair:
+        from pdrlearn.track.evaluate import ramp_climb_rows
+
+        stair &= ~ramp_climb_rows(steps)
+    return stair
 
 
 def sideways_rows(steps: pd.DataFrame) -> np.ndarray:

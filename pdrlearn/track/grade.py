@@ -1,0 +1,186 @@
+"""Decisions L300-L302: the grade of a walked slope - steps.csv's per-row ``grade_pct`` (rise over horizontal run,
+signed), the ramps table (``ramps.csv``: runs of consistent grade joined across their landings), the summary's
+``distance_along_slope_m`` / ``n_ramps`` / ``grade_source``, and the floor counts split by what climbed (stairs,
+ramps, rides: ``floors_up_stairs`` ...), whose sums are L127's ``floors_up`` / ``floors_down``.
+
+A grade is read only where the altitude measures a slope: a lower-back track with its barometer (W89) or a foot
+track with ``--altitude fused`` (L154). A foot track's own altitude does not: L39 levels every stride under 0.10 m
+(a 1:12 ramp stride of 1.2 m rises 0.10 m) and a terrain model's flat class keeps the altitude (thesis ch. 7.2.2),
+so its ``grade_pct`` is empty and ``grade_source`` is None (decision L300)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+#: decision L300: a row shorter than this (m, horizontal) has no grade - a turn on the spot or a shuffle moves a few
+#: cm, and its height change over it would read as a wall (a 2 cm barometric step over 5 cm is 40 %)
+GRADE_MIN_LENGTH_M = 0.2
+#: decision L301: a ramp row's (smoothed) grade is at least this in size (%): above a level walkway's 1:48 = 2.1 %
+#: cross-slope bound (ADA 2010 sec. 403.3) and below the 1:20 = 5 % that makes a walking surface a ramp (sec. 405),
+#: so a 1:20 route measured a little low (trial s30 F7: 4.74 % for 5 %) still is one
+RAMP_MIN_GRADE_PCT = 3.0
+#: decision L301: a climb steeper than this (%, rise over horizontal run) is a stair, not a ramp: the steepest ramp
+#: allowed is 1:12 = 8.33 % (ADA 2010 sec. 405.2) and a stair's riser over tread is ~60 % (0.17 / 0.28 m, the
+#: simulator's stair, S3); a waist track's stair steps, whose horizontal length the pendulum overestimates, measured
+#: 30 % (decision L301's measurement)
+STAIR_MIN_GRADE_PCT = 20.0
+#: decision L301: a run of ramp rows is a ramp run when its horizontal length is at least this (m): two foot strides
+RAMP_MIN_RUN_M = 2.0
+#: decision L301: a level stretch of at most this horizontal length (m) between two runs of one sign is a landing of
+#: one ramp (ADA 2010 sec. 405.7.3: a landing is at least 60 in = 1.52 m long; two of them with a turn)
+LANDING_MAX_M = 3.5
+#: decision L301: rows of the centred window the ramp rows are judged on - a foot stride alone; a lower-back step with
+#: its two neighbours (its barometric height change over one 0.7 m step is noise of several %, L300's measurement)
+GRADE_WINDOW_ROWS = {"foot": 1, "waist": 3}
+
+RAMP_COLUMNS = ("ramp", "start_s", "end_s", "direction", "n_runs", "landings", "horizontal_run_m", "landing_m",
+                "along_slope_m", "rise_m", "mean_grade_pct", "max_run_grade_pct", "n_steps")
+
+
+def grade_source(steps: pd.DataFrame, info: dict | None) -> str | None:
+    """Decision L300: where the rows' altitude measures a slope - ``"fused"`` (a foot track fused with the waist
+    barometer, L154), ``"barometer"`` (a lower-back track whose barometer was read: its ``dz_m`` is not all 0, W90) -
+    or None (a foot track's own altitude, which L39 / the terrain classes level; mixed or empty tables)."""
+    if not len(steps) or "dz_m" not in steps or "length_m" not in steps:
+        return None
+    units = set(steps["unit"].astype(str)) if "unit" in steps else {"foot"}
+    if units == {"foot"}:
+        return "fused" if (info or {}).get("altitude_source") == "fused" else None
+    if units == {"waist"}:
+        dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)
+        return "barometer" if np.any(np.nan_to_num(dz) != 0) else None
+    return None
+
+
+def grades_pct(length, dz, min_length_m: float = GRADE_MIN_LENGTH_M) -> np.ndarray:
+    """Decision L300: ``100 dz / |length|`` per row (%, + up), NaN where ``|length| < min_length_m`` or either is
+    not finite. A pure kernel."""
+    length = np.abs(np.asarray(length, dtype=float))
+    dz = np.asarray(dz, dtype=float)
+    ok = np.isfinite(length) & np.isfinite(dz) & (length >= min_length_m)
+    return np.where(ok, 100.0 * np.where(ok, dz, 0.0) / np.where(ok, length, 1.0), np.nan)
+
+
+def add_grade(steps: pd.DataFrame, info: dict | None) -> str | None:
+    """Steps.csv's ``grade_pct`` (decision L300), in place: :func:`grades_pct` where :func:`grade_source` names the
+    altitude, empty (NaN) on every row where it does not; gap rows (``gap_s`` > 0) and impossible strides empty.
+    Returns the source."""
+    if not len(steps):
+        return None
+    src = grade_source(steps, info)
+    if src is None:
+        steps["grade_pct"] = np.nan
+        return None
+    g = grades_pct(pd.to_numeric(steps["length_m"], errors="coerce"), pd.to_numeric(steps["dz_m"], errors="coerce"))
+    steps["grade_pct"] = np.where(_valid(steps), g, np.nan)
+    return src
+
+
+def _valid(steps: pd.DataFrame) -> np.ndarray:
+    ok = np.ones(len(steps), bool)
+    if "gap_s" in steps:
+        ok &= ~(pd.to_numeric(steps["gap_s"], errors="coerce").to_numpy(float) > 0)
+    if "impossible" in steps:
+        ok &= ~steps["impossible"].eq(True).to_numpy(bool)
+    return ok
+
+
+def along_slope_m(length, dz) -> float:
+    """Decision L300: the distance along the walked surface, ``sum sqrt(length^2 + dz^2)`` (m) over the finite rows."""
+    d = np.hypot(np.asarray(length, dtype=float), np.asarray(dz, dtype=float))
+    return float(np.nansum(d))
+
+
+def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE_PCT,
+              stair_grade_pct: float = STAIR_MIN_GRADE_PCT, min_run_m: float = RAMP_MIN_RUN_M,
+              landing_max_m: float = LANDING_MAX_M) -> list[dict]:
+    """Decision L301: the ramps of rows (horizontal ``length`` m, height change ``dz`` m, walking order) - a pure
+    kernel. A row is a ramp row of sign s when the grade of the centred ``window`` rows around it (their summed dz
+    over their summed |length|) is at least ``min_grade_pct`` in size, under ``stair_grade_pct`` (steeper: a stair),
+    and its own |length| reaches :data:`GRADE_MIN_LENGTH_M`; consecutive ramp rows of one sign with at least
+    ``min_run_m`` of horizontal length are a run; runs of one sign separated by at most ``landing_max_m`` of rows
+    that are no ramp rows of the other sign or stair rows are one ramp, the rows between them its landings. Each
+    ramp: its first and last row (``first``, ``last``), ``runs`` (``(first, last)`` per run) and the table's
+    numbers (:data:`RAMP_COLUMNS` but ``ramp`` and the times)."""
+    length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
+    dz = np.nan_to_num(np.asarray(dz, dtype=float))
+    n = len(length)
+    if not n:
+        return []
+    half = max(int(window), 1) // 2
+    csum_l, csum_z = np.concatenate([[0.0], np.cumsum(length)]), np.concatenate([[0.0], np.cumsum(dz)])
+    lo, hi = np.clip(np.arange(n) - half, 0, n), np.clip(np.arange(n) + half + 1, 0, n)
+    wl, wz = csum_l[hi] - csum_l[lo], csum_z[hi] - csum_z[lo]
+    g = np.where(wl > 0, 100.0 * wz / np.where(wl > 0, wl, 1.0), 0.0)
+    own = np.where(length >= GRADE_MIN_LENGTH_M, 100.0 * dz / np.where(length > 0, length, 1.0), np.inf)
+    stair = np.abs(own) >= stair_grade_pct
+    sign = np.where((np.abs(g) >= min_grade_pct) & (np.abs(g) < stair_grade_pct) & ~stair
+                    & (length >= GRADE_MIN_LENGTH_M), np.sign(g), 0).astype(int)
+    runs = []
+    i = 0
+    while i < n:
+        if sign[i] == 0:
+            i += 1
+            continue
+        j = i
+        while j + 1 < n and sign[j + 1] == sign[i]:
+            j += 1
+        if length[i:j + 1].sum() >= min_run_m:
+            runs.append((i, j, int(sign[i])))
+        i = j + 1
+    ramps: list[list[tuple[int, int, int]]] = []
+    for r in runs:
+        if ramps:
+            p = ramps[-1][-1]
+            between = slice(p[1] + 1, r[0])
+            if (p[2] == r[2] and length[between].sum() <= landing_max_m
+                    and not np.any(stair[between] | (sign[between] == -r[2]))):
+                ramps[-1].append(r)
+                continue
+        ramps.append([r])
+    out = []
+    for rs in ramps:
+        rows = np.concatenate([np.arange(a, b + 1) for a, b, _ in rs])
+        run_l, rise = float(length[rows].sum()), float(dz[rows].sum())
+        grades = [100.0 * dz[a:b + 1].sum() / length[a:b + 1].sum() for a, b, _ in rs]
+        out.append({"first": rs[0][0], "last": rs[-1][1], "runs": [(a, b) for a, b, _ in rs],
+                    "direction": "up" if rs[0][2] > 0 else "down", "n_runs": len(rs), "landings": len(rs) - 1,
+                    "horizontal_run_m": run_l,
+                    "landing_m": float(length[rs[0][0]:rs[-1][1] + 1].sum() - run_l),
+                    "along_slope_m": float(np.hypot(length[rows], dz[rows]).sum()), "rise_m": rise,
+                    "mean_grade_pct": 100.0 * rise / run_l,
+                    "max_run_grade_pct": float(max(grades, key=abs)), "n_steps": int(rs[-1][1] - rs[0][0] + 1)})
+    return out
+
+
+def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
+    """``ramps.csv`` (decision L301): one row per ramp of :func:`ramp_runs` on the rows' ``length_m`` / ``dz_m``
+    (numbered from 1, with its first row's ``start_s`` and last row's ``end_s``); no rows (the header alone) where
+    :func:`grade_source` is None."""
+    src = grade_source(steps, info)
+    if src is None:
+        return pd.DataFrame(columns=list(RAMP_COLUMNS))
+    valid = _valid(steps)
+    length = np.where(valid, pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float), 0.0)
+    dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
+    unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
+    rows = []
+    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1)), start=1):
+        rows.append({"ramp": k, "start_s": float(steps["start_s"].iloc[r["first"]]),
+                     "end_s": float(steps["end_s"].iloc[r["last"]]),
+                     **{c: r[c] for c in RAMP_COLUMNS if c in r}})
+    return pd.DataFrame(rows, columns=list(RAMP_COLUMNS))
+
+
+def grade_summary(steps: pd.DataFrame, info: dict | None) -> dict:
+    """Decision L300: ``grade_source`` (:func:`grade_source`), ``distance_along_slope_m`` (:func:`along_slope_m` of
+    the valid rows; None without a source) and ``n_ramps`` (rows of :func:`ramp_table`; None without a source)."""
+    src = grade_source(steps, info)
+    if src is None:
+        return {"grade_source": None, "distance_along_slope_m": None, "n_ramps": None}
+    valid = _valid(steps)
+    length = pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float)[valid]
+    dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)[valid]
+    return {"grade_source": src, "distance_along_slope_m": along_slope_m(length, dz),
+            "n_ramps": int(len(ramp_table(steps, info)))}
