@@ -67,11 +67,13 @@ MIN_WALK_S = 4.0
 MIN_AP_POWER_RATIO = 1.5
 MIN_PHASE_MARGIN_DEG = 15.0
 #: Waist: walking is rhythmic. The autocorrelation of the vertical acceleration over the walking windows
-#: must peak at a lag of RHYTHM_LAG_S (a step or a stride period: 0.3-1.0 s) at least MIN_RHYTHM_SIGMA white-
-#: noise standard deviations (1/sqrt(N), Bartlett) above zero: a significance level, not fitted to data
+#: must peak at a lag of RHYTHM_LAG_S (a step or a stride period: 0.3-2.0 s; decision W226: a hemiparetic
+#: walker's steps alternate short / long, so the signal repeats at the stride only, up to 2 s = 60 steps/min,
+#: under L95's 70 steps/min floor, and half the 4 s window) at least MIN_RHYTHM_SIGMA white-
+#: noise standard deviations (1/sqrt(N (n - L) / n) at lag L, Bartlett) above zero: a significance level, not fitted to data
 #: (gravity + N(0, 1.5) m/s^2 white noise, 10-300 s at 20-100 Hz: at most 4.2 in 2250 recordings; the 9
 #: mobgap lower-back sessions 12.7-24.8, simulated scenarios 17.6-78; docs/frames.md).
-RHYTHM_LAG_S = (0.3, 1.0)
+RHYTHM_LAG_S = (0.3, 2.0)
 MIN_RHYTHM_SIGMA = 8.0
 #: A declared (or source_project) frame contradicts the data (decision D10) when one of its body directions
 #: lies more than this many degrees from the direction measured in the data. A nearest-axis declaration is
@@ -401,7 +403,9 @@ def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: 
     rhythm = 0.0
     if ac[0] > 0 and sel.any():
         r = ac / ac[0] * n / (n - lags)  # normalised, unbiased
-        rhythm = float(r[sel].max() * np.sqrt(covered.sum()))
+        # decision W226: the noise of the unbiased estimate at lag L is 1/sqrt(N (n - L) / n) (Bartlett on the
+        # N (n - L) / n sample pairs the windows hold at that lag), so a long lag (a slow stride) is no easier
+        rhythm = float((r[sel] * np.sqrt(covered.sum() * (n - lags[sel]) / n)).max())
     if fast_out is not None:
         fast_out.append((n_fast, n_walk))
     return C, z, float(covered.sum()) / fs, rhythm
