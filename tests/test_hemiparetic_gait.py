@@ -34,3 +34,31 @@ def test_info_checks_the_waist_axes_of_a_slow_asymmetric_walk(hemi10, capsys, mo
     assert "not contradicted by the data" in line and "no walking rhythm" not in line, line
     monkeypatch.setattr(frame_inference, "RHYTHM_LAG_S", (0.3, 1.0))  # the search before W226
     assert "no walking rhythm" in _waist_axes(capsys, hemi10)
+
+
+def test_calibration_covers_its_widened_cadence_range():
+    """W227 (W211's band): inside the calibration walks' range +-10 % is covered, outside not, unjudged is None."""
+    from pdrlearn.waist.plausibility import CALIBRATION_SPEED_MARGIN as m
+    from pdrlearn.waist.plausibility import calibration_covers, calibration_speed_message
+
+    gait = {"median_cadence_spm": 84.5, "cadence_range_spm": [83.0, 86.0]}
+    assert calibration_covers(gait, 86.0 * (1 + m) * 0.99, 30) is True
+    assert calibration_covers(gait, 83.0 * (1 - m) * 0.99, 30) is False
+    assert calibration_speed_message(gait, 83.0 * (1 - m) * 0.99, 30, "waist-pendulum") is not None
+    assert calibration_covers(gait, 85.0, 5) is None and calibration_covers(None, 85.0, 30) is None
+
+
+@pytest.mark.parametrize("covers,calibrated", [(True, True), (False, False), (None, False)])
+def test_a_slow_walk_calibrated_at_its_gait_says_so(covers, calibrated):
+    """W227: L95's slow line of a lower-back track calibrated on walks at this cadence says the distance is
+    calibrated at this gait (the classes and floors stay unvalidated); outside the range, or unjudged, it keeps
+    "not reliable"."""
+    from pdrlearn.track.gait import gait_range_warning
+
+    info = {"pipeline": "waist-pendulum", "params_source": "calibrated", "calibration_covers_cadence": covers}
+    line = gait_range_warning({"median_cadence_spm": 86.0, "median_speed_straight_mps": 0.45,
+                               "n_straight_strides": 50, "info": info})
+    assert "slower than the walking" in line
+    assert ("distance and speed are calibrated at this gait" in line) is calibrated
+    assert ("the distance, the terrain / length classes and the floors are not reliable" in line) is not calibrated
+    assert "floors are not validated" in line or not calibrated

@@ -299,7 +299,7 @@ def waist_step_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.nd
     return np.where(ok, dt, np.nan), has_next, touched
 
 
-def waist_gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
+def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> dict:
     """Decision W70: the gait summary of a waist steps table (one row per initial contact, ``start_s`` this
     contact, ``end_s`` the next, ``has_next``): step time ``end_s - start_s`` of a contact with a next one (at
     most half of :data:`MAX_STRIDE_S`), ``median_cadence_spm`` = median of 60 / step time (``cadence_from``
@@ -319,15 +319,39 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict
     k0, k2 = positional_strides(has_next)
     k0, k2 = k0[~(touched[k0] | touched[k0 + 1])], k2[~(touched[k0] | touched[k0 + 1])]  # no spurious contact
     stride = st[k2] - st[k0] if len(k0) else np.zeros(0)
-    stride = stride[(stride > 0) & (stride <= MAX_STRIDE_S + 1e-9)]
+    ok = (stride > 0) & (stride <= MAX_STRIDE_S + 1e-9)
+    k0, stride = k0[ok], stride[ok]
+    straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
+    if _waist_medians_from(cadence_from) == "strides":  # decisions W224/W225: a stride's speed, unimodal
+        speed = np.full(len(st), np.nan)
+        speed[k0] = (length[k0] + length[k0 + 1]) / stride  # one step of each foot over the stride's time
+        # the stride is straight when both its steps are; a stair or side step (L179, L228) as its second step
+        # leaves it out as its first step's row does in _speed_fields
+        second = np.zeros(len(st), bool)
+        second[:-1] = ~straight[1:] | stair_rows(steps)[1:] | sideways_rows(steps)[1:]
+        straight = straight & ~second
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": _median(stride),
-                 "median_cadence_spm": (median_cadence(_median(stride), _median(cadence)) if cadence_from == "strides"
-                                        else _median(cadence)),  # L176's candidate: an option, not adopted
+                 "median_cadence_spm": (median_cadence(_median(stride), _median(cadence))
+                                        if _waist_medians_from(cadence_from) == "strides"
+                                        else _median(cadence)),  # W225: L176's formula is the default
                  "median_speed_mps": _median(speed),
                  "median_step_time_s": _median(step)}
-    straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
     _speed_fields(out, steps, length, has_next, speed, straight)
     return out
+
+
+#: decisions W224/W225: the medians a lower-back summary takes by default - ``"strides"`` (cadence 120 / the median
+#: stride time, speeds of the strides: robust to a hemiparetic walk's alternating short and long steps) or W70's
+#: ``"steps"`` (the median of 60 / step time and of length / step time: an option)
+WAIST_MEDIANS_FROM = "steps"
+
+
+def _waist_medians_from(cadence_from: str | None) -> str:
+    """W224: ``cadence_from`` of a lower-back summary (None: :data:`WAIST_MEDIANS_FROM`); one clear error otherwise."""
+    how = WAIST_MEDIANS_FROM if cadence_from is None else cadence_from
+    if how not in ("steps", "strides"):
+        raise ValueError(f"cadence_from={cadence_from!r}: give 'steps' or 'strides' (decision W224)")
+    return how
 
 
 def cycle_speeds(steps: pd.DataFrame) -> np.ndarray:
@@ -376,7 +400,7 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     return out
 
 
-def gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
+def gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> dict:
     """Medians over the strides that have them: ``median_stride_time_s``, ``median_cadence_spm``,
     ``median_speed_mps`` and ``n_stride_times`` (how many strides have a stride time); decision L79 adds
     ``walking_time_s``, ``gait_speed_mps`` (distance / walking time: the clinical walking speed),
@@ -612,12 +636,19 @@ def _unreliable(summary: dict, info: dict, slow: bool) -> str:
     """What L95's line says is not reliable. Decision L247: a slow offline foot track without classes (the ZUPT
     strides of a foot unit, ``plasys`` with no model, not streamed) keeps its distance, measured at
     :data:`SLOW_FOOT_DISTANCE`; the line says so and names what stays unvalidated. Every other track: the distance
-    too (the lower back reads slow steps long, W207; a streamed foot track read +11 % at 0.2 m/s, L120)."""
+    too (the lower back reads slow steps long, W207; a streamed foot track read +11 % at 0.2 m/s, L120). Decision
+    W227: a lower-back track calibrated at this gait (``info["calibration_covers_cadence"]``, W211's range covers its
+    cadence) says its distance and speed are calibrated at this gait; the classes and floors stay unvalidated."""
     foot = (str(summary.get("pipeline") or info.get("pipeline") or "") == "plasys" and not info.get("streaming")
             and info.get("classes_source") is None)
     if slow and foot:
         return (f"the offline foot distance (ZUPT strides) stays usable ({SLOW_FOOT_DISTANCE}, no model; decision "
                 "L247), but the floors and any terrain / length classes are not validated at this speed")
+    if slow and info.get("params_source") == "calibrated" and info.get("calibration_covers_cadence") is True:
+        # decision W227: the walker calibrated on walks at this cadence (W211's range +-10 % covers it)
+        return ("the distance and speed are calibrated at this gait (this walk's cadence lies inside the lower-back "
+                "calibration walks' cadence range +-10 %, decisions W211, W227), but the terrain / length classes "
+                "and the floors are not validated at this speed")
     return "the distance, the terrain / length classes and the floors are not reliable"
 
 

@@ -77,6 +77,7 @@ from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params,
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
+    calibration_covers,
     calibration_gait_message,
     calibration_speed_message,
     contact_alternation,
@@ -804,7 +805,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
         warnings.append(micro_line)
-    cadence_ratio, gait_line, speed_line = _calibration_gait(steps, p, pipeline)  # decisions W140, W211
+    cadence_ratio, gait_line, speed_line, covers = _calibration_gait(steps, p, pipeline)  # decisions W140, W211
     if gait_line and bool(o["gait_check"]):  # W140's line: an option (its adoption rule was not met)
         warnings.append(gait_line)
     elif speed_line and bool(o["speed_check"]):  # W211: W140's band lies inside it, so one line, not two
@@ -828,6 +829,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "walk_ratio": ratio,
         "pll_pendulum_ratio": excess,  # decision W186
         "calibration_cadence_ratio": cadence_ratio,
+        "calibration_covers_cadence": covers,  # decision W227: L95's slow line names a calibration at this gait
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,
         "n_unvaulted_contacts": n_unvaulted,
@@ -936,17 +938,18 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
 
 
 def _calibration_gait(steps: pd.DataFrame, p: WaistParams,
-                      pipeline: str) -> tuple[float | None, str | None, str | None]:
-    """Decision W140: ``(ratio, line, speed line)``, this track's median cadence over its calibration walks' (None: not
-    calibrated, a params file without ``gait``, or fewer than ten steps), W140's warning line (None inside its band)
-    and W211's (None inside the calibration's cadence range +-10 %)."""
+                      pipeline: str) -> tuple[float | None, str | None, str | None, bool | None]:
+    """Decision W140: ``(ratio, line, speed line, covers)``, this track's median cadence over its calibration walks'
+    (None: not calibrated, a params file without ``gait``, or fewer than ten steps), W140's warning line (None inside
+    its band), W211's (None inside the calibration's cadence range +-10 %) and W227's verdict whether that range
+    covers this walk (:func:`~pdrlearn.waist.plausibility.calibration_covers`; None: not judged)."""
     ref = (p.gait or {}).get("median_cadence_spm") if p.source == "calibrated" else None
     cadence, n = median_cadence(steps["frequency_hz"].to_numpy(float))
     if not ref or cadence is None or n < PLAUSIBILITY_MIN_PAIRS:
-        return None, None, None
+        return None, None, None, None
     who = p.pipeline or pipeline
     return (cadence / float(ref), calibration_gait_message(p.gait, cadence, n, who),
-            calibration_speed_message(p.gait, cadence, n, who))
+            calibration_speed_message(p.gait, cadence, n, who), calibration_covers(p.gait, cadence, n))
 
 
 def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDetector:
