@@ -62,3 +62,45 @@ def test_a_slow_walk_calibrated_at_its_gait_says_so(covers, calibrated):
     assert ("distance and speed are calibrated at this gait" in line) is calibrated
     assert ("the distance, the terrain / length classes and the floors are not reliable" in line) is not calibrated
     assert "floors are not validated" in line or not calibrated
+
+
+def test_leg_summary_counts_steps_by_side_and_reads_the_asymmetry():
+    """W228 by hand: a lower-back table's sides counted (undecided apart); steps alternating 0.8 / 0.4 s read the
+    symmetry index 100 x 0.4 / 0.6 = 66.7 % (from 20 % it is given); a foot table has no per-leg count."""
+    import numpy as np
+    import pandas as pd
+
+    from pdrlearn.track.clinical import LEG_KEYS, leg_summary
+
+    st = np.cumsum([0.0] + [0.8, 0.4] * 8)
+    waist = pd.DataFrame({"start_s": st, "end_s": np.append(st[1:], st[-1]), "length_m": 0.4, "unit": "waist",
+                          "has_next": [True] * (len(st) - 1) + [False],
+                          "side": (["left", "right"] * 9)[:len(st) - 1] + [""]})
+    g = leg_summary(waist)
+    assert set(g) == set(LEG_KEYS)
+    assert (g["n_steps_left"], g["n_steps_right"], g["n_steps_side_undecided"]) == (8, 8, 1)
+    assert g["step_time_asymmetry_pct"] == pytest.approx(200 / 3) and "asymmetric" in g["step_time_asymmetry_reason"]
+    foot = waist.assign(unit="foot").drop(columns="side")
+    f = leg_summary(foot)
+    assert f["n_steps_left"] is None and f["step_time_asymmetry_pct"] is None
+    assert "not observable from one foot" in f["step_time_asymmetry_reason"]
+    assert leg_summary(waist.iloc[:0])["n_steps_left"] is None
+
+
+def test_track_all_writes_the_per_leg_counts_and_asymmetry(hemi10, tmp_path):
+    """W228: the trial's walk in sessions.csv: 24 / 24 steps by side, the lower back's step-time index given."""
+    import json
+    import shutil
+
+    import pandas as pd
+
+    d = tmp_path / "in" / "hemi10"
+    shutil.copytree(hemi10, d, ignore=shutil.ignore_patterns("f*.csv"))  # the lower-back unit only
+    assert main(["track-all", str(tmp_path / "in"), "--out", str(tmp_path / "o")]) == 0
+    row = pd.read_csv(tmp_path / "o" / "sessions.csv").iloc[0]
+    assert row["pipeline"].startswith("waist")
+    assert row["n_steps_left"] + row["n_steps_right"] + row["n_steps_side_undecided"] == row["n_steps"]
+    assert abs(row["n_steps_left"] - row["n_steps_right"]) <= 2
+    assert row["step_time_asymmetry_pct"] >= 20 and row["step_time_asymmetry_raw_pct"] >= 20
+    summary = json.loads(next((tmp_path / "o").rglob("summary.json")).read_text())
+    assert summary["n_steps_left"] == row["n_steps_left"] and summary["step_time_asymmetry_reason"]
