@@ -42,11 +42,14 @@ SESSIONS: tuple[Column, ...] = (
     ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s: rest to rest, with gait initiation and "
                                        "termination and ~0.3 s of standing (L250); on a walkway (first to last "
                                        "IC) read median_speed_straight_mps"),
-    ("median_cadence_spm", "steps/min", "number", "median steps per minute"),
+    ("median_cadence_spm", "steps/min", "number", "median steps per minute: 120 / the median stride time (a stride "
+                                                  "holds a step of each foot, so alternating short / long steps "
+                                                  "do not bias it; lower back since W225)"),
     ("median_stride_length_m", "m", "number", "foot: median stride length (gap rows and impossible strides left "
                                               "out); empty on the lower back"),
     ("median_stride_time_s", "s", "number", "median initial contact to the same foot's next"),
-    ("median_speed_mps", "m/s", "number", "median per-stride (lower back: per-step) speed"),
+    ("median_speed_mps", "m/s", "number", "median per-stride speed (lower back: two consecutive steps over their "
+                                         "stride time, W225)"),
     ("n_warnings", "count", "integer", "warnings the session raised"),
     ("warnings", _ID, "text", "those warnings, separated by ' | '"),
     ("content_id", _ID, "text", "fingerprint of the sensor data (B87): equal for copies of one recording"),

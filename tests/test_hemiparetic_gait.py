@@ -107,3 +107,28 @@ def test_track_all_writes_the_per_leg_counts_and_asymmetry(hemi10, tmp_path):
     assert row["step_time_asymmetry_pct"] >= 20 and row["step_time_asymmetry_raw_pct"] >= 20
     summary = json.loads(next((tmp_path / "o").rglob("summary.json")).read_text())
     assert summary["n_steps_left"] == row["n_steps_left"] and summary["step_time_asymmetry_reason"]
+
+
+def test_lower_back_cadence_and_speed_come_from_strides(tmp_path, capsys):
+    """W225 on the trial's severe command (user 5526, A 0.75): the summary's cadence is near the truth of ics.csv
+    (W70's step median read 91.0 for 74.7), and L95's slow line fires (it was hidden by 91.0 and 0.56 m/s)."""
+    import json
+
+    import numpy as np
+    import pandas as pd
+
+    from pdrlearn.track.bouts import cadence_spm
+
+    sim, out = tmp_path / "c075", tmp_path / "c075_wp"
+    assert main(["simulate", "--route", "stand:3, straight:12, stand:3", "--step-length", "0.3", "--step-time", "0.8",
+                 "--step-time-asymmetry", "0.75", "--bounce", "pendulum", "--pelvis", "realistic", "--rate", "100",
+                 "--user-seed", "5526", "--out", str(sim)]) == 0
+    capsys.readouterr()
+    assert main(["track", str(sim), "--pipeline", "waist-pendulum", "--out", str(out)]) == 0
+    err = capsys.readouterr().err
+    ic = np.sort(pd.read_csv(sim / "ics.csv")["ic_ms"].to_numpy(float)) / 1000
+    truth = cadence_spm(len(ic) - 1, ic[-1] - ic[0])
+    s = json.loads((out / "summary.json").read_text())
+    assert abs(s["median_cadence_spm"] - truth) < 3.0, (s["median_cadence_spm"], truth)
+    assert s["median_speed_straight_mps"] < 0.5 and s["gait_out_of_range"] is True
+    assert "slower than the walking the pipelines were validated on" in err
