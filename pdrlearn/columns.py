@@ -57,11 +57,14 @@ SESSIONS: tuple[Column, ...] = (
     ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s: rest to rest, with gait initiation and "
                                        "termination and ~0.3 s of standing (L250); on a walkway (first to last "
                                        "IC) read median_speed_straight_mps"),
-    ("median_cadence_spm", "steps/min", "number", "median steps per minute"),
+    ("median_cadence_spm", "steps/min", "number", "median steps per minute: 120 / the median stride time (a stride "
+                                                  "holds a step of each foot, so alternating short / long steps "
+                                                  "do not bias it; lower back since W225)"),
     ("median_stride_length_m", "m", "number", "foot: median stride length (gap rows and impossible strides left "
                                               "out); empty on the lower back"),
     ("median_stride_time_s", "s", "number", "median initial contact to the same foot's next"),
-    ("median_speed_mps", "m/s", "number", "median per-stride (lower back: per-step) speed"),
+    ("median_speed_mps", "m/s", "number", "median per-stride speed (lower back: two consecutive steps over their "
+                                         "stride time, W225)"),
     ("n_warnings", "count", "integer", "warnings the session raised"),
     ("warnings", _ID, "text", "those warnings, separated by ' | '"),
     ("content_id", _ID, "text", "fingerprint of the sensor data (B87): equal for copies of one recording"),
@@ -182,8 +185,21 @@ SESSIONS: tuple[Column, ...] = (
     ("n_side_strides", "count", "integer", "foot: strides of side-stepping runs (L219 / L228's sideways rows), "
                                            "not counted as backward (L270); empty on the lower back"),
     ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
+    ("n_steps_left", "count", "integer", "lower back: steps whose side (W129's pelvis sway) is the left foot "
+                                         "(W228); empty on a foot track (n_strides_one_foot)"),
+    ("n_steps_right", "count", "integer", "lower back: steps of the right foot (W228); empty on a foot track"),
+    ("n_steps_side_undecided", "count", "integer", "lower back: steps whose side was undecided (W228; left + right "
+                                                   "+ undecided = n_steps); empty on a foot track"),
+    ("n_step_time_asymmetry_steps", "count", "integer", "lower back: step times step_time_asymmetry_raw_pct is "
+                                                        "computed over (L121, W228); 0 on a foot track"),
     ("n_straight_strides", "count", "integer", "level strides turning under 15 deg (L179)"),
     ("n_stride_times", "count", "integer", "strides with a stride time"),
+    ("step_time_asymmetry_pct", "%", "number", "lower back: step-time symmetry index 100 x |a - b| / (0.5 x (a + b)) "
+                                               "of the alternating steps, given only from 20 % (L121, L216; the size "
+                                               "is misread, mostly over); empty under it and on a foot track (W228)"),
+    ("step_time_asymmetry_raw_pct", "%", "number", "lower back: that index however small; under 20 % no finding "
+                                                   "either way (symmetric simulated walkers read up to 18.8 %, L121)"),
+    ("step_time_asymmetry_reason", _ID, "text", "why step_time_asymmetry_pct is given or empty (L121, L216, W228)"),
     ("n_turns", "count", "integer", "reference turns compared (turns.csv only, L42)"),
     ("n_turns_signed", "count", "integer", "reference turns of 45 deg or more whose sign is compared (L42)"),
     ("n_unscored", "count", "integer", "lower back: contacts outside the scored span"),

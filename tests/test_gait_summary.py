@@ -72,8 +72,8 @@ def test_waist_summary_from_the_step_times():
     length = np.where(has_next, 0.6, 0.0)
     t = pd.DataFrame({"start_s": st, "end_s": en, "has_next": has_next, "length_m": length, "unit": "waist",
                       "turning": [0, 0, 0, 1, 0, 0, 0, 0]})
-    g = gait_summary(t)
-    assert all(g[k] == v for k, v in waist_gait_summary(t).items())  # the waist rule, for a waist table
+    g = gait_summary(t, cadence_from="steps")  # W70's step medians (an option since W225)
+    assert all(g[k] == v for k, v in waist_gait_summary(t, "steps").items())  # the waist rule, for a waist table
     assert g["median_step_time_s"] == pytest.approx(0.5)
     assert g["median_cadence_spm"] == pytest.approx(120.0)
     assert g["median_speed_mps"] == pytest.approx(1.2)
@@ -82,18 +82,28 @@ def test_waist_summary_from_the_step_times():
     assert g["walking_time_s"] == pytest.approx(2.1 + 1.0)  # the 3.9 s between the sequences is a stop
     assert g["gait_speed_mps"] == pytest.approx(6 * 0.6 / 3.1)
     assert g["n_straight_strides"] == 5  # the turning step left out
+    # W225 (the default): strides 1.0, 1.1, 1.1, 1.0 s -> 120 / 1.05; stride speeds 1.2 / stride time; a stride
+    # is straight when both its steps are (the stride 1.0 -> 2.1 s holds the turning step)
+    d = gait_summary(t)
+    assert all(d[k] == v for k, v in waist_gait_summary(t).items())
+    assert d["median_cadence_spm"] == pytest.approx(120 / 1.05)
+    assert d["median_speed_mps"] == pytest.approx((1.2 + 1.2 / 1.1) / 2)
+    assert d["n_straight_strides"] == 3 and d["median_speed_straight_mps"] == pytest.approx(1.2)
+    assert {k: d[k] for k in ("median_step_time_s", "median_stride_time_s", "walking_time_s", "gait_speed_mps")} \
+        == {k: g[k] for k in ("median_step_time_s", "median_stride_time_s", "walking_time_s", "gait_speed_mps")}
     # W27: a fragment merged into its neighbour (its length 0, the neighbour's the whole step) and its
     # neighbours give no step time or stride through them; the walking time and gait speed keep them
     m = t.assign(merged=[False, False, False, False, False, False, True, False],
                  length_m=[0.6, 0.6, 0.6, 0.6, 0.0, 1.2, 0.0, 0.0])
-    gm = gait_summary(m)
+    gm = gait_summary(m, cadence_from="steps")
     assert gm["median_step_time_s"] == pytest.approx(0.5) and gm["median_speed_mps"] == pytest.approx(1.2)
     assert gm["n_stride_times"] == 3 and gm["gait_speed_mps"] == pytest.approx(g["gait_speed_mps"])
+    assert gait_summary(m)["median_speed_mps"] == pytest.approx(1.2 / 1.1)  # the strides 0-1.0, 0.5-1.6, 1.0-2.1 s
 
 
 def test_median_cadence_of_an_asymmetric_gait_from_the_strides_option():
-    # L176 (an option, not adopted): a hemiparetic walk's steps alternate 0.4 / 0.8 s (bimodal): 60 / step time
-    # has its median on one mode (150 or 75 steps/min) or between them; the strides are all 1.2 s
+    # L176's formula (W225: the lower back's default): a hemiparetic walk's steps alternate 0.4 / 0.8 s (bimodal):
+    # 60 / step time has its median on one mode (150 or 75 steps/min) or between them; the strides are all 1.2 s
     from pdrlearn.track.bouts import cadence_spm
 
     st = np.cumsum([0.0, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8])
@@ -102,7 +112,12 @@ def test_median_cadence_of_an_asymmetric_gait_from_the_strides_option():
     g = gait_summary(waist, cadence_from="strides")
     true = cadence_spm(len(st) - 1, st[-1] - st[0])
     assert true == pytest.approx(100.0) and g["median_cadence_spm"] == pytest.approx(true)
-    assert gait_summary(waist)["median_cadence_spm"] == pytest.approx(112.5)  # the default: W70's step-time median
+    assert gait_summary(waist)["median_cadence_spm"] == pytest.approx(true)  # W225: the default
+    assert gait_summary(waist, cadence_from="steps")["median_cadence_spm"] == pytest.approx(112.5)  # W70's option
+    # W225: the stride speed (0.5 + 0.5) / 1.2 s; the step speeds 1.25 / 0.625 m/s put their median between modes
+    assert gait_summary(waist)["median_speed_mps"] == pytest.approx(1.0 / 1.2)
+    with pytest.raises(ValueError, match="W224"):
+        gait_summary(waist, cadence_from="stride")
     # the foot's summary: the same function of its median stride time (strides of 1.1 and 1.3 s, median 1.2 s)
     t = _foot_table().assign(stride_time_s=[np.nan, 1.1, 1.3, 1.1, 1.3, 1.1, 1.3, np.nan])
     assert gait_summary(t, cadence_from="strides")["median_cadence_spm"] == pytest.approx(100.0)

@@ -187,7 +187,7 @@ def spanned_warning(count: int, spanned: int, det, has_force: bool = False) -> s
 def cadence_range_warning(table, meta: dict | None, unit: str) -> str | None:
     """Decision steps 44: L95's walking-range line (:func:`pdrlearn.track.gait.gait_range_warning`, leg-scaled by
     L148) on the cadence of the detections ``table`` (``event_s``, s): a foot table's strides give 120 / their
-    median stride time (L176's formula), a waist table's steps 60 / their median step time; intervals longer than
+    median stride time (L176's formula), a waist table's too, over two consecutive steps (W225); intervals longer than
     :data:`pdrlearn.kernels.contact.MAX_STRIDE_S` (half of it for a step) are pauses, not strides. Only the cadence
     is judged (no speed without a track); None inside the range or with fewer than L123's minimum intervals."""
     import numpy as np
@@ -201,10 +201,13 @@ def cadence_range_warning(table, meta: dict | None, unit: str) -> str | None:
     t = t[np.isfinite(t)]
     dt = np.diff(t)
     per_stride = 1 if unit == "foot" else 2  # a foot table's interval is a stride, a waist table's a step
-    dt = dt[(dt > 0) & (dt <= MAX_STRIDE_S / per_stride + 1e-9)]
+    ok = (dt > 0) & (dt <= MAX_STRIDE_S / per_stride + 1e-9)
+    if unit != "foot":  # decision W225: two consecutive steps make a stride (alternating short / long steps)
+        dt, ok = dt[:-1] + dt[1:], ok[:-1] & ok[1:]
+    dt = dt[ok]
     if len(dt) < MIN_STRAIGHT_FOR_RANGE:  # L123's minimum count for a judged median
         return None
-    cad = median_cadence(float(np.median(dt)) * per_stride, None)  # L176: 120 / the median stride time
+    cad = median_cadence(float(np.median(dt)), None)  # L176: 120 / the median stride time
     line = gait_range_warning({"median_cadence_spm": cad, **leg_length(meta)})
     if line is None:
         return None

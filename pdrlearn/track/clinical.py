@@ -754,6 +754,32 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
     return out
 
 
+#: decision W228: the per-leg keys of every summary (None where the table cannot give them): the lower back's steps
+#: by ``side`` (W129's sway side; ``""`` undecided) and :func:`step_time_asymmetry_report`'s figures
+LEG_KEYS = ("n_steps_left", "n_steps_right", "n_steps_side_undecided", "step_time_asymmetry_pct",
+            "step_time_asymmetry_raw_pct", "n_step_time_asymmetry_steps", "step_time_asymmetry_reason")
+
+
+def leg_summary(steps: pd.DataFrame) -> dict:
+    """Decision W228: :data:`LEG_KEYS` of a tracked step table. A lower-back table (every row ``unit`` waist) with
+    W129's ``side`` column: its rows counted by side (``n_steps_left``, ``n_steps_right`` and the rows whose side
+    was undecided, ``n_steps_side_undecided``; they add up to ``n_steps``); any other table None (a foot unit sees
+    one foot: ``n_strides_one_foot``). The step-time asymmetry: :func:`step_time_asymmetry_report` (L121, L216) -
+    ``step_time_asymmetry_pct`` only from :data:`ASYMMETRY_FLOOR_PCT`, the raw index, its step times and the
+    reason (a foot table's: not observable)."""
+    out: dict = dict.fromkeys(LEG_KEYS)
+    if not len(steps) or "start_s" not in steps:
+        return out
+    rep = step_time_asymmetry_report(steps)
+    out.update(step_time_asymmetry_pct=rep["step_time_asymmetry_pct"], step_time_asymmetry_raw_pct=rep["raw_pct"],
+               n_step_time_asymmetry_steps=rep["n_step_times"], step_time_asymmetry_reason=rep["reason"])
+    if _is_lower_back(steps) and "side" in steps:
+        side = steps["side"].fillna("").astype(str).to_numpy()
+        out["n_steps_left"], out["n_steps_right"] = int((side == "left").sum()), int((side == "right").sum())
+        out["n_steps_side_undecided"] = int(len(side) - out["n_steps_left"] - out["n_steps_right"])
+    return out
+
+
 def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None = None) -> dict:
     """Decision L104: :data:`CLINICAL_KEYS` of a tracked step table (module docstring): ``n_pauses``,
     ``pause_time_s`` (summed), ``longest_pause_s``, ``n_walking_bouts``, ``turn_count`` (turns of at least

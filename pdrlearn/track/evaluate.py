@@ -449,10 +449,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.track.gait import gait_summary
 
     out.update(gait_summary(result.steps))
-    from pdrlearn.track.clinical import clinical_summary, turn_summary, turn_table
+    from pdrlearn.track.clinical import clinical_summary, leg_summary, turn_summary, turn_table
     from pdrlearn.waist.transfers import transfer_summary
 
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
+    out.update(leg_summary(result.steps))  # decision W228: steps per leg, the lower back's step-time asymmetry
     # decision L200: each turn's duration, angle, peak rate (L210: a lower-back track's yaw-rate turns)
     table = turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"))
     out.update(turn_summary(table))

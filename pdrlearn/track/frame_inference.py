@@ -68,10 +68,16 @@ MIN_AP_POWER_RATIO = 1.5
 MIN_PHASE_MARGIN_DEG = 15.0
 #: Waist: walking is rhythmic. The autocorrelation of the vertical acceleration over the walking windows
 #: must peak at a lag of RHYTHM_LAG_S (a step or a stride period: 0.3-1.0 s) at least MIN_RHYTHM_SIGMA white-
-#: noise standard deviations (1/sqrt(N), Bartlett) above zero: a significance level, not fitted to data
+#: noise standard deviations (1/sqrt(N (n - L) / n) at lag L, Bartlett; decision W226) above zero: a significance
+#: level, not fitted to data
 #: (gravity + N(0, 1.5) m/s^2 white noise, 10-300 s at 20-100 Hz: at most 4.2 in 2250 recordings; the 9
 #: mobgap lower-back sessions 12.7-24.8, simulated scenarios 17.6-78; docs/frames.md).
 RHYTHM_LAG_S = (0.3, 1.0)
+#: decision W226: without a step rhythm, the lags searched for a stride rhythm alone (s): a hemiparetic walker's
+#: steps alternate short / long, so the signal repeats at the stride only; up to 2 s = 60 steps/min (under L95's
+#: 70 steps/min floor) and half the 4 s window. Such a walk is named, not axis-checked: the test reads the step
+#: frequency (a simulated A 0.75 walk with a realistic pelvis read forward 74 deg off)
+STRIDE_ONLY_LAG_S = (1.0, 2.0)
 MIN_RHYTHM_SIGMA = 8.0
 #: A declared (or source_project) frame contradicts the data (decision D10) when one of its body directions
 #: lies more than this many degrees from the direction measured in the data. A nearest-axis declaration is
@@ -357,8 +363,24 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
 FAST_BAND_HZ, MAX_FAST_FRACTION = 4.5, 0.5
 
 
+def _lag_sigma(ac: np.ndarray, n_covered: int, fs: float, lag_s: tuple[float, float]) -> tuple[float, float | None]:
+    """``(sigma, lag_s)``: the highest normalised unbiased autocorrelation ``ac`` (summed over windows of ``len(ac)``
+    samples covering ``n_covered``) at a lag within ``lag_s`` (s), in units of its white-noise standard deviation
+    there, and that lag; decision W226: at lag L the unbiased estimate rests on N (n - L) / n sample pairs, so its
+    noise is 1/sqrt(N (n - L) / n) (Bartlett), and a long lag is no easier to pass. ``(0.0, None)`` without any."""
+    n = len(ac)
+    lags = np.arange(n)
+    sel = (lags >= lag_s[0] * fs) & (lags <= lag_s[1] * fs) & (lags < n)
+    if not (ac[0] > 0 and sel.any()):
+        return 0.0, None
+    sig = ac[sel] / ac[0] * n / (n - lags[sel]) * np.sqrt(n_covered * (n - lags[sel]) / n)
+    k = int(np.argmax(sig))
+    return float(sig[k]), float(lags[sel][k] / fs)
+
+
 def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: float = 4.0,
-                  walk_std: float = 0.5, fast_out: list | None = None) -> tuple[np.ndarray, np.ndarray, float, float]:
+                  walk_std: float = 0.5, fast_out: list | None = None,
+                  stride_out: list | None = None) -> tuple[np.ndarray, np.ndarray, float, float]:
     """Summed cross-spectra at step frequency over walking windows, and their gait rhythm.
 
     Returns ``C`` (2, 2) real horizontal cross-power and ``z`` (2,) complex horizontal x vertical
@@ -396,12 +418,9 @@ def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: 
         C += np.real(np.outer(H, np.conj(H)))
         z += H * np.conj(V[k])
         covered[a:a + n] = True
-    lags = np.arange(n)
-    sel = (lags >= RHYTHM_LAG_S[0] * fs) & (lags <= RHYTHM_LAG_S[1] * fs)
-    rhythm = 0.0
-    if ac[0] > 0 and sel.any():
-        r = ac / ac[0] * n / (n - lags)  # normalised, unbiased
-        rhythm = float(r[sel].max() * np.sqrt(covered.sum()))
+    rhythm = _lag_sigma(ac, covered.sum(), fs, RHYTHM_LAG_S)[0]
+    if stride_out is not None:  # decision W226: the stride rhythm alone, and its lag (s)
+        stride_out.append(_lag_sigma(ac, covered.sum(), fs, STRIDE_ONLY_LAG_S))
     if fast_out is not None:
         fast_out.append((n_fast, n_walk))
     return C, z, float(covered.sum()) / fs, rhythm
@@ -441,7 +460,8 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     b[1] = _unit(b[1] - (b[1] @ b[0]) * b[0])
     B = np.column_stack(b)
     fast: list = []
-    C, z, walk_s, rhythm = _step_spectra(acc @ up, acc @ B, fs, fast_out=fast)
+    stride: list = []
+    C, z, walk_s, rhythm = _step_spectra(acc @ up, acc @ B, fs, fast_out=fast, stride_out=stride)
     # half a sample of tolerance: one 4 s window of walking covers 400 samples, which at a rate of 100.000000000001 Hz
     # (a clock in ms read back) are 3.99999999999996 s; it was refused as "less than 4 s" (review of W61)
     if walk_s < MIN_WALK_S - 0.5 / fs:
@@ -449,10 +469,19 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
                                   "m/s^2 in 4 s windows)")
         err.walk_s = walk_s  # W61: a waist track of such a recording has no steps to place
         raise err
+    if rhythm < MIN_RHYTHM_SIGMA and stride and stride[0][0] >= MIN_RHYTHM_SIGMA:  # decision W226
+        raise FrameInferenceError(f"the vertical acceleration of the {walk_s:.0f} s that move repeats at a stride of "
+                                  f"{stride[0][1]:.2f} s (autocorrelation {stride[0][0]:.1f} noise standard "
+                                  f"deviations) but at no step period of {RHYTHM_LAG_S[0]:g}-{RHYTHM_LAG_S[1]:g} s "
+                                  f"({rhythm:.1f} < {MIN_RHYTHM_SIGMA:g}): alternating short and long steps (an "
+                                  "asymmetric gait) or very slow walking, on which this test, which reads the step "
+                                  "frequency, is not validated (decision W226)")
     if rhythm < MIN_RHYTHM_SIGMA:
         raise FrameInferenceError(f"no walking rhythm: the vertical acceleration of the {walk_s:.0f} s that move "
                                   f"repeats at no step or stride period of {RHYTHM_LAG_S[0]:g}-{RHYTHM_LAG_S[1]:g} s "
-                                  f"(autocorrelation {rhythm:.1f} < {MIN_RHYTHM_SIGMA:g} noise standard deviations)")
+                                  f"(autocorrelation {rhythm:.1f} < {MIN_RHYTHM_SIGMA:g} noise standard deviations)"
+                                  + (f" nor at a stride of {STRIDE_ONLY_LAG_S[0]:g}-{STRIDE_ONLY_LAG_S[1]:g} s "
+                                     f"({stride[0][0]:.1f}; decision W226)" if stride else ""))
     n_fast, n_walk = fast[0]  # after the rhythm check: noise has no rhythm, and no step band
     if n_walk and n_fast > MAX_FAST_FRACTION * n_walk:  # decision B79
         raise FrameInferenceError(f"the vertical acceleration peaks above 3 Hz (over 180 steps/min) in {n_fast} of "

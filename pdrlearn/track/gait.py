@@ -310,16 +310,19 @@ def waist_step_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.nd
     return np.where(ok, dt, np.nan), has_next, touched
 
 
-def waist_gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
+def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> dict:
     """Decision W70: the gait summary of a waist steps table (one row per initial contact, ``start_s`` this
     contact, ``end_s`` the next, ``has_next``): step time ``end_s - start_s`` of a contact with a next one (at
-    most half of :data:`MAX_STRIDE_S`), ``median_cadence_spm`` = median of 60 / step time (``cadence_from``
-    ``"strides"``: :func:`median_cadence` of the stride times, decision L176's candidate, not adopted),
-    ``median_speed_mps`` = median of ``length_m`` / step time, ``median_stride_time_s`` from contact k to
+    most half of :data:`MAX_STRIDE_S`), ``median_stride_time_s`` from contact k to
     k + 2 inside a walking sequence (the same foot's next contact, W47), the straight steps those with
     ``turning`` 0 (the pipeline's turn flag; every step when the table has none). A W27 fragment (``merged``)
     and its two neighbours give no step time (the neighbour carries the merged step's length over part of
-    its time), nor a stride time through them; walking time and gait speed keep them."""
+    its time), nor a stride time through them; walking time and gait speed keep them. Decisions W224/W225 (default,
+    ``cadence_from`` None or ``"strides"``): ``median_cadence_spm`` = :func:`median_cadence` of the stride times
+    (L176's formula; the step-time median without a stride time) and ``median_speed_mps`` /
+    ``median_speed_straight_mps`` the medians of the stride speed (|length k| + |length k + 1|) / stride time (straight:
+    both steps); ``"steps"``: W70's medians of 60 / step time and of ``length_m`` / step time (an option: on
+    alternating short / long steps they land on the short steps' mode)."""
     from pdrlearn.waist.gait_rules import positional_strides
 
     st = steps["start_s"].to_numpy(float)
@@ -330,15 +333,40 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict
     k0, k2 = positional_strides(has_next)
     k0, k2 = k0[~(touched[k0] | touched[k0 + 1])], k2[~(touched[k0] | touched[k0 + 1])]  # no spurious contact
     stride = st[k2] - st[k0] if len(k0) else np.zeros(0)
-    stride = stride[(stride > 0) & (stride <= MAX_STRIDE_S + 1e-9)]
+    ok = (stride > 0) & (stride <= MAX_STRIDE_S + 1e-9)
+    k0, stride = k0[ok], stride[ok]
+    straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
+    if _waist_medians_from(cadence_from) == "strides":  # decisions W224/W225: a stride's speed, unimodal
+        speed = np.full(len(st), np.nan)
+        speed[k0] = (length[k0] + length[k0 + 1]) / stride  # one step of each foot over the stride's time
+        # the stride is straight when both its steps are; a stair or side step (L179, L228) as its second step
+        # leaves it out as its first step's row does in _speed_fields
+        second = np.zeros(len(st), bool)
+        second[:-1] = ~straight[1:] | stair_rows(steps)[1:] | sideways_rows(steps)[1:]
+        straight = straight & ~second
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": _median(stride),
-                 "median_cadence_spm": (median_cadence(_median(stride), _median(cadence)) if cadence_from == "strides"
-                                        else _median(cadence)),  # L176's candidate: an option, not adopted
+                 "median_cadence_spm": (median_cadence(_median(stride), _median(cadence))
+                                        if _waist_medians_from(cadence_from) == "strides"
+                                        else _median(cadence)),  # W225: L176's formula is the default
                  "median_speed_mps": _median(speed),
                  "median_step_time_s": _median(step)}
-    straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
     _speed_fields(out, steps, length, has_next, speed, straight)
     return out
+
+
+#: decisions W224/W225: the medians a lower-back summary takes by default - ``"strides"`` (cadence 120 / the median
+#: stride time, speeds of the strides: robust to a hemiparetic walk's alternating short and long steps; adopted by
+#: W225's rule: simulated A 0.4-0.95 walks' median |cadence error| 3.60 -> 0.44 steps/min on waist-pendulum) or W70's
+#: ``"steps"`` (the median of 60 / step time and of length / step time: an option)
+WAIST_MEDIANS_FROM = "strides"
+
+
+def _waist_medians_from(cadence_from: str | None) -> str:
+    """W224: ``cadence_from`` of a lower-back summary (None: :data:`WAIST_MEDIANS_FROM`); one clear error otherwise."""
+    how = WAIST_MEDIANS_FROM if cadence_from is None else cadence_from
+    if how not in ("steps", "strides"):
+        raise ValueError(f"cadence_from={cadence_from!r}: give 'steps' or 'strides' (decision W224)")
+    return how
 
 
 def cycle_speeds(steps: pd.DataFrame) -> np.ndarray:
@@ -387,7 +415,7 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     return out
 
 
-def gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
+def gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> dict:
     """Medians over the strides that have them: ``median_stride_time_s``, ``median_cadence_spm``,
     ``median_speed_mps`` and ``n_stride_times`` (how many strides have a stride time); decision L79 adds
     ``walking_time_s``, ``gait_speed_mps`` (distance / walking time: the clinical walking speed),
@@ -397,9 +425,10 @@ def gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
     table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70); a foot table without
     gait columns (``--streaming``, ``pdrlearn run`` before E51) :func:`streamed_gait_summary` (E48: walking time
     and gait speed only). Every table gets the same keys, None and 0 where it cannot give them, so every
-    summary has them (``run``'s summary carries every key of ``track``'s, B14). ``cadence_from="strides"``: decision
-    L176's candidate, ``median_cadence_spm`` = 120 / the median stride time for foot and waist alike (not adopted:
-    it moved symmetric waist walks' cadence by up to 2.35 steps/min, over its 1.0 rule)."""
+    summary has them (``run``'s summary carries every key of ``track``'s, B14). ``cadence_from``: a lower-back
+    table's medians (:func:`waist_gait_summary`; None: :data:`WAIST_MEDIANS_FROM`, strides since W225); a foot
+    table's cadence is the median of its strides' 120 / stride time, or with ``"strides"`` L176's 120 / the median
+    stride time (an option: equal but for an even count's middle pair)."""
     out: dict = {k: (0 if k.startswith("n_") else None) for k in SUMMARY_KEYS}
     if not len(steps):
         return out
@@ -414,7 +443,7 @@ def gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
     for key, col in (("median_stride_time_s", "stride_time_s"), ("median_cadence_spm", "cadence_spm"),
                      ("median_speed_mps", "speed_mps")):
         out[key] = _median(steps[col].to_numpy(float))
-    if cadence_from == "strides":  # decision L176's candidate (an option: it failed its rule)
+    if cadence_from == "strides":  # decision L176's formula on the foot (an option; W225 adopted it on the waist)
         out["median_cadence_spm"] = median_cadence(out["median_stride_time_s"], None)
     valid = stride_rows(steps)  # decisions L67, L97
     turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
@@ -623,12 +652,19 @@ def _unreliable(summary: dict, info: dict, slow: bool) -> str:
     """What L95's line says is not reliable. Decision L247: a slow offline foot track without classes (the ZUPT
     strides of a foot unit, ``plasys`` with no model, not streamed) keeps its distance, measured at
     :data:`SLOW_FOOT_DISTANCE`; the line says so and names what stays unvalidated. Every other track: the distance
-    too (the lower back reads slow steps long, W207; a streamed foot track read +11 % at 0.2 m/s, L120)."""
+    too (the lower back reads slow steps long, W207; a streamed foot track read +11 % at 0.2 m/s, L120). Decision
+    W227: a lower-back track calibrated at this gait (``info["calibration_covers_cadence"]``, W211's range covers its
+    cadence) says its distance and speed are calibrated at this gait; the classes and floors stay unvalidated."""
     foot = (str(summary.get("pipeline") or info.get("pipeline") or "") == "plasys" and not info.get("streaming")
             and info.get("classes_source") is None)
     if slow and foot:
         return (f"the offline foot distance (ZUPT strides) stays usable ({SLOW_FOOT_DISTANCE}, no model; decision "
                 "L247), but the floors and any terrain / length classes are not validated at this speed")
+    if slow and info.get("params_source") == "calibrated" and info.get("calibration_covers_cadence") is True:
+        # decision W227: the walker calibrated on walks at this cadence (W211's range +-10 % covers it)
+        return ("the distance and speed are calibrated at this gait (this walk's cadence lies inside the lower-back "
+                "calibration walks' cadence range +-10 %, decisions W211, W227), but the terrain / length classes "
+                "and the floors are not validated at this speed")
     return "the distance, the terrain / length classes and the floors are not reliable"
 
 

@@ -78,6 +78,7 @@ from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params,
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
+    calibration_covers,
     calibration_line,
     contact_alternation,
     contact_lateral_velocity,
@@ -881,7 +882,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if micro_line:
         warnings.append(micro_line)
     # decisions W140 (gait_check: an option, its adoption rule was not met), W211 (speed_check: on); one line
-    cadence_ratio, calibration = _calibration_gait(steps, p, pipeline, bool(o["gait_check"]), bool(o["speed_check"]))
+    cadence_ratio, calibration, covers = _calibration_gait(steps, p, pipeline, bool(o["gait_check"]),
+                                                           bool(o["speed_check"]))
     if calibration:
         warnings.append(calibration)
     n = len(steps)
@@ -903,6 +905,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "walk_ratio": ratio,
         "pll_pendulum_ratio": excess,  # decision W186
         "calibration_cadence_ratio": cadence_ratio,
+        "calibration_covers_cadence": covers,  # decision W227: L95's slow line names a calibration at this gait
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,
         "n_unvaulted_contacts": n_unvaulted,
@@ -1012,16 +1015,19 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
 
 
 def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str, gait_check: bool,
-                      speed_check: bool) -> tuple[float | None, str | None]:
-    """Decision W140: ``(ratio, line)``, this track's median cadence over its calibration walks' (None: not
-    calibrated, a params file without ``gait``, or fewer than ten steps) and the one calibration line under the
-    options (:func:`~pdrlearn.waist.plausibility.calibration_line`: W140's, else W211's; None: neither fires)."""
+                      speed_check: bool) -> tuple[float | None, str | None, bool | None]:
+    """Decision W140: ``(ratio, line, covers)``, this track's median cadence over its calibration walks' (None: not
+    calibrated, a params file without ``gait``, or fewer than ten steps), the one calibration line under the options
+    (:func:`~pdrlearn.waist.plausibility.calibration_line`: W140's, else W211's; None: neither fires) and W227's
+    verdict whether the calibration's cadence range covers this walk
+    (:func:`~pdrlearn.waist.plausibility.calibration_covers`; None: not judged)."""
     ref = (p.gait or {}).get("median_cadence_spm") if p.source == "calibrated" else None
     cadence, n = median_cadence(steps["frequency_hz"].to_numpy(float))
     if not ref or cadence is None or n < PLAUSIBILITY_MIN_PAIRS:
-        return None, None
-    return cadence / float(ref), calibration_line(p.gait, cadence, n, p.pipeline or pipeline, gait_check=gait_check,
-                                                  speed_check=speed_check)
+        return None, None, None
+    line = calibration_line(p.gait, cadence, n, p.pipeline or pipeline, gait_check=gait_check,
+                            speed_check=speed_check)
+    return cadence / float(ref), line, calibration_covers(p.gait, cadence, n)
 
 
 def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDetector:

@@ -369,6 +369,20 @@ def calibration_gait(frequency_hz: np.ndarray, distance_m: float, walks_hz: list
 CALIBRATION_SPEED_MARGIN = 0.10
 
 
+def calibration_covers(gait: dict | None, cadence: float | None, n: int) -> bool | None:
+    """Decision W211's band, W227's verdict: True when the median ``cadence`` (steps/min, over ``n`` >=
+    :data:`PLAUSIBILITY_MIN_PAIRS` steps) of a track calibrated on walks of ``gait`` (:func:`calibration_gait`; its
+    ``cadence_range_spm``, else ``median_cadence_spm`` for both ends) lies inside that range widened by
+    :data:`CALIBRATION_SPEED_MARGIN` either way, False outside it, None when not judged (no calibration gait, no
+    cadence, too few steps)."""
+    gait = gait or {}
+    rng = gait.get("cadence_range_spm") or [gait.get("median_cadence_spm")] * 2
+    if rng[0] is None or cadence is None or n < PLAUSIBILITY_MIN_PAIRS or not rng[0] > 0:
+        return None
+    lo, hi = float(rng[0]) * (1.0 - CALIBRATION_SPEED_MARGIN), float(rng[1]) * (1.0 + CALIBRATION_SPEED_MARGIN)
+    return bool(lo <= cadence <= hi)
+
+
 def calibration_speed_message(gait: dict | None, cadence: float | None, n: int, pipeline: str) -> str | None:
     """Decision W211's one warning line when a track calibrated on walks of ``gait`` (:func:`calibration_gait`; its
     ``cadence_range_spm``, else ``median_cadence_spm`` for both ends; None: not judged) has a median ``cadence``
@@ -376,10 +390,7 @@ def calibration_speed_message(gait: dict | None, cadence: float | None, n: int, 
     :data:`CALIBRATION_SPEED_MARGIN` either way."""
     gait = gait or {}
     rng = gait.get("cadence_range_spm") or [gait.get("median_cadence_spm")] * 2
-    if rng[0] is None or cadence is None or n < PLAUSIBILITY_MIN_PAIRS or not rng[0] > 0:
-        return None
-    lo, hi = float(rng[0]) * (1.0 - CALIBRATION_SPEED_MARGIN), float(rng[1]) * (1.0 + CALIBRATION_SPEED_MARGIN)
-    if lo <= cadence <= hi:
+    if calibration_covers(gait, cadence, n) is not False:
         return None
     cal = f"{float(rng[0]):.0f}" if rng[0] == rng[1] else f"{float(rng[0]):.0f}-{float(rng[1]):.0f}"
     speed = gait.get("speed_mps")
