@@ -1,0 +1,57 @@
+"""Decision W229: a ramp's barometric climb is not the weather's drift (trial s30 "ramp", finding 2)."""
+
+import numpy as np
+import pytest
+
+from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent, drift_free_altitude
+
+
+def _ramp_walk(rises, level_s=60.0, climb_s=5.0, dt=0.55, drift_m_per_s=0.0, noise=0.0, seed=0):
+    """Steps every ``dt`` s: each rise (m) climbed in ``climb_s`` s, then ``level_s`` s level; a weather drift."""
+    t, z, now, h = [0.0], [0.0], 0.0, 0.0
+    for r in rises:
+        for k in range(1, int(climb_s / dt) + 1):
+            t.append(now + k * dt)
+            z.append(h + r * k / int(climb_s / dt))
+        now, h = t[-1], z[-1]
+        for k in range(1, int(level_s / dt) + 1):
+            t.append(now + k * dt)
+            z.append(h)
+        now = t[-1]
+    t, z = np.array(t), np.array(z)
+    z = z + drift_m_per_s * t + np.random.default_rng(seed).normal(0.0, noise, len(t))
+    return t, z
+
+
+def test_a_ramp_climb_of_0_4_m_in_5_s_is_not_drift():
+    """L172 dropped what of a climb had not crossed the 0.5 m band within a minute (the trial's CURB: 0.45 m
+    climbed, ascent 0.0, altitude_drift_m 0.455; R12UP's last 0.48 m); W229 keeps it and drops only the slow part."""
+    t, z = _ramp_walk([0.45])
+    assert ascent_descent(z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S) == pytest.approx((0.45, 0.0), abs=1e-9)
+    t, z = _ramp_walk([0.75, 0.75, 0.75, 0.75])  # R12UP: four 1:12 runs with landings
+    up, down = ascent_descent(z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S)
+    assert up == pytest.approx(3.0, abs=1e-9) and down == 0.0
+
+
+def test_a_closed_ramp_loop_counts_its_whole_climb_and_descent():
+    """The zigzag counts from turning point to turning point: 2.25 m up and down in 0.75 m runs (R12), with the
+    simulated barometer's 1-s averaged noise (0.13 m / sqrt(20), W89), within 0.15 m each (L172: ~1.8 / 1.6 m)."""
+    t, z = _ramp_walk([0.75, 0.75, 0.75, -0.75, -0.75, -0.75], level_s=8.0, noise=0.13 / np.sqrt(20))
+    up, down = ascent_descent(z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S)
+    assert up == pytest.approx(2.25, abs=0.15) and down == pytest.approx(2.25, abs=0.15)
+    assert up - down == pytest.approx(z[-1] - z[0], abs=0.01)
+
+
+def test_the_weather_drift_is_still_dropped_and_a_climb_kept_on_it():
+    """The weather's 0.3 hPa/h (~0.04 m per minute, S4) on an hour of level walking is drift; a 1 m climb in 10 s
+    on top of it is a climb; a slow 0.2 m per minute is drift too."""
+    t = np.arange(0.0, 3600.0, 0.55)
+    z = 0.04 * t / 60.0 + np.random.default_rng(1).normal(0.0, 0.03, len(t))
+    up, down = ascent_descent(z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S)
+    assert up < 0.6 and down < 0.6
+    assert (drift_free_altitude(z, t)[-1] - z[0]) == pytest.approx(0.0, abs=0.3)
+    climb = z + np.clip((t - 1800.0) / 10.0, 0.0, 1.0)
+    up2, _ = ascent_descent(climb, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S)
+    assert up2 - up == pytest.approx(1.0, abs=0.15)  # the noise at its top and foot: up to ~3 SDs
+    slow = 0.2 * t[t < 600] / 60.0
+    assert drift_free_altitude(slow, t[t < 600])[-1] == pytest.approx(0.0)
