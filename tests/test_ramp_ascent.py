@@ -55,3 +55,17 @@ def test_the_weather_drift_is_still_dropped_and_a_climb_kept_on_it():
     assert up2 - up == pytest.approx(1.0, abs=0.15)  # the noise at its top and foot: up to ~3 SDs
     slow = 0.2 * t[t < 600] / 60.0
     assert drift_free_altitude(slow, t[t < 600])[-1] == pytest.approx(0.0)
+
+
+def test_a_step_of_1_3_m_is_a_pressure_transient():
+    """Decision W230: a step's barometric change over 0.5 m (HA002 Test11: -1.28 m in one step) is held level, and
+    every later altitude with it; a standstill's change (a lift ride, W158's pause) and stair steps are kept."""
+    from pdrlearn.kernels.barometer import MAX_STEP_DZ_M, hold_step_jumps
+
+    z_start = np.array([0.0, 0.17, 0.34, 3.34, 2.06])  # steps 0-2 climb risers, a 3 m ride before step 3
+    z = np.array([0.0, 0.17, 0.34, 0.51, 2.06, 2.06])  # step 3 drops 1.28 m; step 4 level
+    z2, zs2, jumped = hold_step_jumps(z, z_start)
+    assert MAX_STEP_DZ_M == 0.5 and jumped.tolist() == [False, False, False, True, False]
+    assert z2[1:] - zs2 == pytest.approx([0.17, 0.17, 0.17, 0.0, 0.0])  # each step's dz_m
+    assert zs2 - z2[:-1] == pytest.approx([0.0, 0.0, 0.0, 2.83, 0.0])  # each pause's (the ride kept)
+    assert z2[-1] == pytest.approx(3.34)

@@ -183,6 +183,27 @@ NO_BAROMETER = ("no barometer (wBarometer.csv): a lower-back track has no altitu
                 "are counted, also on stairs")
 
 
+def _hold_jumps(steps: pd.DataFrame, z: np.ndarray, z_start: np.ndarray, z_raw: np.ndarray, warnings: list[str]
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """Decision W230: the steps whose barometric change exceeds :data:`~pdrlearn.kernels.barometer.MAX_STEP_DZ_M`
+    held level (:func:`~pdrlearn.kernels.barometer.hold_step_jumps`; ``z_raw``, W174's, shifted alike) and one
+    line naming them; returns ``(z, z_start, z_raw, number held)``."""
+    from pdrlearn.kernels.barometer import MAX_STEP_DZ_M, hold_step_jumps
+
+    z2, zs2, jumped = hold_step_jumps(z, z_start)
+    if not jumped.any():
+        return z, z_start, z_raw, 0
+    shift = z - z2
+    dz = (z[1:] - z_start)[jumped]
+    at = steps["end_s"].to_numpy(float)[jumped]
+    shown = ", ".join(f"{d:+.2f} m at {a:.1f} s" for d, a in zip(dz[:5], at[:5], strict=True))
+    warnings.append(f"{int(jumped.sum())} step(s) changed the barometric altitude by more than {MAX_STEP_DZ_M:.1f} m "
+                    f"each ({shown}{', ...' if len(dz) > 5 else ''}): a walking step climbs a riser or two (0.15-0.18 m "
+                    f"each), so these are pressure transients (a door, a draught, wind), not climbs: their "
+                    f"{float(dz.sum()):+.2f} m is left out of the altitude, the floors and the ascent (decision W230)")
+    return z2, zs2, z_raw - shift, int(jumped.sum())
+
+
 def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str], held=()
               ) -> tuple[np.ndarray, np.ndarray] | None:
     """Decision W89: the altitude (m, relative to ``t[0]``) at the times ``t`` from the waist barometer ``baro``
@@ -765,6 +786,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     zz = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float),
                                                   steps["start_s"].to_numpy(float)]), warnings, held)
     z, z_start, z_raw = (None, None, None) if zz is None else (zz[0][:n_st + 1], zz[0][n_st + 1:], zz[1][:n_st + 1])
+    jumps = None
+    if z is not None:  # decision W230: a step cannot climb more than MAX_STEP_DZ_M; a larger change is the air's
+        z, z_start, z_raw, jumps = _hold_jumps(steps, z, z_start, z_raw, warnings)
     if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor (pauses too)
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
         z_start, z_raw = z[:-1], None  # W174's transfer_dz_m: 0 (every change off the stairs is left out here)
@@ -834,6 +858,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_weak_run_contacts": n_weak_run,
         "n_rescored_contacts": n_rescored,  # decision W203
         "n_frozen_contacts": n_frozen,  # decision W214
+        "barometer_jump_steps": jumps,  # decision W230: steps held level (a pressure transient); None: no altitude
         "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
