@@ -1,5 +1,5 @@
-"""Decisions W229 / W230's measurement (adoption rule in docs/decisions/waist.md, W229): the barometric ascent / descent of
-L172 (``git show main:pdrlearn/kernels/altitude_check.py``) against W229's (this tree) on the same tracks' z.
+"""Decisions W229 / W230's measurement (adoption rules in docs/decisions/waist.md): the barometric ascent /
+descent of L172 (``git show main:pdrlearn/kernels/altitude_check.py``) against W229's (this tree) on the same tracks' z.
 
 Fresh simulated users 5600-5623 (ramps, stairs, lift, level, 2 km) tracked with ``waist-pendulum`` and the foot
 with ``altitude="fused"`` (no model), and the nine mobgap lower-back recordings (``waist-pendulum``). One line per

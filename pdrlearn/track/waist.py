@@ -198,8 +198,8 @@ def _hold_jumps(steps: pd.DataFrame, z: np.ndarray, z_start: np.ndarray, z_raw: 
     at = steps["end_s"].to_numpy(float)[jumped]
     shown = ", ".join(f"{d:+.2f} m at {a:.1f} s" for d, a in zip(dz[:5], at[:5], strict=True))
     warnings.append(f"{int(jumped.sum())} step(s) changed the barometric altitude by more than {MAX_STEP_DZ_M:.1f} m "
-                    f"each ({shown}{', ...' if len(dz) > 5 else ''}): a walking step climbs a riser or two (0.15-0.18 m "
-                    f"each), so these are pressure transients (a door, a draught, wind), not climbs: their "
+                    f"each ({shown}{', ...' if len(dz) > 5 else ''}): a walking step climbs a riser or two "
+                    "(0.15-0.18 m each), so these are pressure transients (a door, a draught, wind), not climbs: their "
                     f"{float(dz.sum()):+.2f} m is left out of the altitude, the floors and the ascent (decision W230)")
     return z2, zs2, z_raw - shift, int(jumped.sum())
 
