@@ -37,9 +37,17 @@ ROUTES = {
     "LIFT": "stand:3, straight:5, lift:+3, straight:5, stand:3",
     "LEVEL": "stand:3, straight:40, turn:180, straight:40, stand:3",
 }
-PLAN = ([(u, r) for u in range(5600, 5612) for r in ("R12", "R20", "R12UP", "CURB")]
-        + [(u, r) for u in range(5612, 5618) for r in ("STAIRS", "LIFT")]
-        + [(u, "LEVEL") for u in range(5618, 5622)] + [(u, "WALK2K") for u in range(5622, 5624)])
+
+def _plan(ramps, stairs, level, walk) -> list[tuple[int, str]]:
+    return ([(u, r) for u in ramps for r in ("R12", "R20", "R12UP", "CURB")]
+            + [(u, r) for u in stairs for r in ("STAIRS", "LIFT")]
+            + [(u, "LEVEL") for u in level] + [(u, "WALK2K") for u in walk])
+
+
+#: W229's first candidate (one centred span) and W230, users 5600-5623; ``--second``: W229's second candidate (two
+#: one-sided spans), fresh users 5624-5640, and its rule's thresholds (W229 in docs/decisions/waist.md)
+PLAN = _plan(range(5600, 5612), range(5612, 5618), range(5618, 5622), range(5622, 5624))
+PLAN2 = _plan(range(5624, 5632), range(5632, 5638), range(5638, 5640), range(5640, 5641))
 REAL = sorted(Path("datasets/external").glob("mobgap_*"))
 
 
@@ -68,10 +76,11 @@ def _climbs(kernel, res) -> tuple[float, float]:
 
 
 def main() -> int:
+    second = "--second" in sys.argv[1:]
     logging.disable(logging.WARNING)
     old = _old_kernel()
     rows = []
-    for u, r in PLAN:
+    for u, r in PLAN2 if second else PLAN:
         s = (simulate("walk", UserProfile.from_seed(u), "normal", seed=u, length_m=2000.0) if r == "WALK2K" else
              simulate_path(parse_route(ROUTES[r]), UserProfile.from_seed(u), seed=u))
         tu, td = _truth(s)
@@ -104,12 +113,22 @@ def main() -> int:
                     continue
                 eb = np.median([abs(x[5][k] - x[3 + k]) / x[3 + k] for x in sel]) * 100
                 ea = np.median([abs(x[6][k] - x[3 + k]) / x[3 + k] for x in sel]) * 100
-                good = ea <= 5.0 and ea <= eb
+                ab = np.median([abs(x[6][k] - x[3 + k]) for x in sel])
+                if not second:
+                    good = ea <= 5.0 and ea <= eb
+                elif r == "CURB":  # the second rule: 0.06 m on a 0.45 m climb
+                    good = ab <= 0.06
+                else:
+                    good = ea <= 7.0 and ea <= eb + 1.0
                 ok &= good
-                print(f"  {r:6s} {pipe:14s} {name:7s} {eb:6.2f} % -> {ea:6.2f} % {'ok' if good else 'FAILS'}")
-    worse = [(x[0], x[1], x[2], abs(x[5][0] - x[3]), abs(x[6][0] - x[3])) for x in rows
-             if x[1] in ("STAIRS", "LIFT") and abs(x[6][0] - x[3]) > abs(x[5][0] - x[3]) + 0.05]
-    print(f"(2) stairs / lift tracks with |ascent error| > before + 0.05 m: {len(worse)} {worse}")
+                print(f"  {r:6s} {pipe:14s} {name:7s} {eb:6.2f} % -> {ea:6.2f} % (median |error| after {ab:.3f} m) "
+                      f"{'ok' if good else 'FAILS'}")
+    tol = 0.10 if second else 0.05
+    worse = [(x[0], x[1], x[2], round(abs(x[5][0] - x[3]), 3), round(abs(x[6][0] - x[3]), 3)) for x in rows
+             if x[1] in ("STAIRS", "LIFT") and any(abs(x[6][k] - x[3 + k]) > abs(x[5][k] - x[3 + k]) + tol
+                                                   for k in ((0, 1) if second else (0,)))]
+    print(f"(2) stairs / lift tracks with |ascent{' or descent' if second else ''} error| > before + {tol:.2f} m: "
+          f"{len(worse)} {worse}")
     ok &= not worse
     flat = [(x[0], x[1], x[2], round(sum(x[6]), 3)) for x in rows if x[1] in ("LEVEL", "WALK2K")]
     bad = [f for f in flat if f[3] > 0.5]

@@ -69,3 +69,11 @@ def test_a_step_of_1_3_m_is_a_pressure_transient():
     assert z2[1:] - zs2 == pytest.approx([0.17, 0.17, 0.17, 0.0, 0.0])  # each step's dz_m
     assert zs2 - z2[:-1] == pytest.approx([0.0, 0.0, 0.0, 2.83, 0.0])  # each pause's (the ride kept)
     assert z2[-1] == pytest.approx(3.34)
+
+
+def test_a_stair_flight_up_and_straight_back_down_is_not_drift():
+    """W229's first candidate read the rate over one centred span: up 2.89 m and at once back down cancelled there
+    and half of each flight became drift (fresh users 5612-5617: ascent 1.36-1.77 of 2.89 m). Two one-sided spans."""
+    t = np.arange(0.0, 40.0, 0.5)
+    z = np.interp(t, [0.0, 10.0, 18.5, 19.0, 27.5, 40.0], [0.0, 0.0, 2.89, 2.89, 0.0, 0.0])
+    assert ascent_descent(z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S) == pytest.approx((2.89, 2.89), abs=1e-9)

@@ -124,31 +124,39 @@ CLIMB_WINDOW_S = 60.0
 #: Decision W229: the rate (m/s) under which a barometric change is the weather's drift, not a climb: L172's own
 #: bound, :data:`ASCENT_BAND_BARO_M` per :data:`CLIMB_WINDOW_S` (0.5 m per minute, 12x the 0.3 hPa/h drift, S4)
 DRIFT_RATE_M_PER_S = ASCENT_BAND_BARO_M / CLIMB_WINDOW_S
-#: Decision W229: the span (s) over which that rate is read around each change: half L172's window, so a change
-#: of 0.25 m within 30 s is a climb; the 1-s averaged altitude's noise (0.13 m / sqrt(20) at 20 Hz, W89) gives a
-#: rate SD of ~0.0014 m/s there, 1/6 of the bound
+#: Decision W229: the span (s) over which that rate is read before and after each change: half L172's window, so
+#: a change of 0.25 m within 30 s is a climb; the 1-s averaged altitude's noise (0.13 m / sqrt(20) at 20 Hz, W89)
+#: gives a rate SD of ~0.0014 m/s there, 1/6 of the bound
 DRIFT_RATE_SPAN_S = CLIMB_WINDOW_S / 2
+
+
+#: Decision W229: the barometric ascent / descent with times read the drift by its rate (:func:`drift_free_altitude`)
+#: and count turning point to turning point; False: L172's band crossed within the window
+DRIFT_BY_RATE = True
 
 
 def drift_free_altitude(z: np.ndarray, t: np.ndarray, rate_m_s: float = DRIFT_RATE_M_PER_S,
                         span_s: float = DRIFT_RATE_SPAN_S) -> np.ndarray:
     """Decision W229: the altitudes ``z`` (m) at the times ``t`` (s, increasing) without the weather's slow drift.
-    Each change between two samples is read against the altitude's mean rate over ``span_s`` centred on it (at
-    least the interval itself: a standstill's ride is read over the stand): a change whose rate is under
-    ``rate_m_s`` is drift and removed, any other (a climb, a ramp, a ride, and the noise around them) is kept.
-    A climb of 0.4 m in 5 s is kept whole, however long the walk stays level after it (L172 dropped what of a
-    climb had not crossed its band when its window ran out). Returns z rebuilt from the kept changes (same start)."""
+    Each change between two samples is read against the altitude's mean rate over ``span_s`` ending at its end
+    and over ``span_s`` starting at its start (at least the interval itself: a standstill's ride is read over the
+    stand); when both are under ``rate_m_s`` it is drift and removed, else (a climb, a ramp, a ride, and the noise
+    around them) it is kept. Two one-sided spans, not one centred: a climb straight up and back down (a stair
+    flight, a turn, the flight down) cancels in a centred mean. A climb of 0.4 m in 5 s is kept whole, however
+    long the walk stays level after it (L172 dropped what of a climb had not crossed its band when its window ran
+    out). Returns z rebuilt from the kept changes (same start)."""
     z = np.asarray(z, dtype=float).ravel()
     t = np.asarray(t, dtype=float).ravel()
     if len(z) < 2:
         return z.copy()
-    mid = 0.5 * (t[1:] + t[:-1])
-    lo = np.minimum(t[:-1], mid - span_s / 2)
-    hi = np.maximum(t[1:], mid + span_s / 2)
-    lo, hi = np.maximum(lo, t[0]), np.minimum(hi, t[-1])
-    rate = np.abs(np.interp(hi, t, z) - np.interp(lo, t, z)) / np.maximum(hi - lo, 1e-9)
-    d = np.diff(z)
-    return np.concatenate([[z[0]], z[0] + np.cumsum(np.where(rate >= rate_m_s, d, 0.0))])
+    a, b = t[:-1], t[1:]
+
+    def rate(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        lo, hi = np.maximum(lo, t[0]), np.minimum(hi, t[-1])
+        return np.abs(np.interp(hi, t, z) - np.interp(lo, t, z)) / np.maximum(hi - lo, 1e-9)
+
+    fast = np.maximum(rate(np.minimum(a, b - span_s), b), rate(a, np.maximum(b, a + span_s))) >= rate_m_s
+    return np.concatenate([[z[0]], z[0] + np.cumsum(np.where(fast, np.diff(z), 0.0))])
 
 
 def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = None,
@@ -158,11 +166,14 @@ def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = No
     rise and every drop), and the last level's difference to the final z is counted at the end, so ascent -
     descent is the net change exactly. Non-finite values are skipped.
 
-    Decision L172, as amended by W229: with the times ``t`` (s) and ``window_s`` (L172's window; the drift rate
-    is ``band_m`` per ``window_s``) the weather's slow drift is first taken out (:func:`drift_free_altitude`),
-    then the swings of at least ``band_m`` are counted whole, from turning point to turning point (a zigzag: a
-    climb's top is counted when z has come ``band_m`` down from it, so no part of a climb under the band is
-    lost), and the end's remainder too; ascent - descent is the net change without the drift."""
+    Decision L172: with the times ``t`` (s) and ``window_s`` the band must be crossed within ``window_s``: where
+    z has not moved ``band_m`` from the last counted level after ``window_s``, that level follows z (it becomes
+    z as it was ``window_s`` earlier), so a slow drift is dropped, and nothing is counted at the end.
+    Decision W229 (:data:`DRIFT_BY_RATE`): instead the weather's slow drift is first taken out by its rate
+    (:func:`drift_free_altitude`; the rate bound is ``band_m`` per ``window_s``), then the swings of at least
+    ``band_m`` are counted whole, from turning point to turning point (a zigzag: a climb's top is counted when z
+    has come ``band_m`` down from it, so no part of a climb under the band is lost), and the end's remainder too;
+    ascent - descent is the net change without the drift."""
     z = np.asarray(z, dtype=float).ravel()
     keep = np.isfinite(z)
     z = z[keep]
@@ -171,18 +182,22 @@ def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = No
     if band_m <= 0:
         d = np.diff(z)
         return float(d[d > 0].sum()) + 0.0, float(-d[d < 0].sum()) + 0.0
-    if t is not None and window_s is not None:  # decision W229
-        tt = np.asarray(t, dtype=float).ravel()[keep]
+    bounded = t is not None and window_s is not None
+    tt = np.asarray(t, dtype=float).ravel()[keep] if bounded else np.zeros(len(z))
+    if bounded and DRIFT_BY_RATE:  # decision W229
         return _zigzag(drift_free_altitude(z, tt, band_m / window_s, window_s / 2), band_m)
     up = down = 0.0
-    ref = float(z[0])  # the last counted level
-    for i in range(1, len(z) + 1):
+    ref, r = float(z[0]), 0  # the last counted level and its sample
+    for i in range(1, len(z) + (0 if bounded else 1)):
         last = i == len(z)
         v = float(z[-1]) if last else float(z[i])
         if v - ref >= (0.0 if last else band_m):
-            up, ref = up + v - ref, v
+            up, ref, r = up + v - ref, v, i
         elif ref - v >= (0.0 if last else band_m):
-            down, ref = down + ref - v, v
+            down, ref, r = down + ref - v, v, i
+        elif bounded and tt[i] - tt[r] > window_s:  # decision L172: not crossed within the window: follow z
+            r = int(np.searchsorted(tt, tt[i] - window_s))
+            ref = float(z[r])
     return up, down
 
 
