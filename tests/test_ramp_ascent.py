@@ -77,3 +77,26 @@ def test_a_stair_flight_up_and_straight_back_down_is_not_drift():
     t = np.arange(0.0, 40.0, 0.5)
     z = np.interp(t, [0.0, 10.0, 18.5, 19.0, 27.5, 40.0], [0.0, 0.0, 2.89, 2.89, 0.0, 0.0])
     assert ascent_descent(z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S) == pytest.approx((2.89, 2.89), abs=1e-9)
+
+
+def test_ha002_test11_names_its_pressure_transient(caplog):
+    """Decision W230 (trial s30 finding 4): the real level lab recording mobgap HA002 Test11 Trial1 has two steps of
+    -1.28 / -1.19 m (W108's transient); the lower-back track names them in one line, its altitude unchanged by
+    default; the option ``step_bound`` holds them level."""
+    from pathlib import Path
+
+    from pdrlearn.io.plasys import read_session
+    from pdrlearn.track.waist import track_waist
+
+    folder = Path(__file__).resolve().parents[1] / "datasets" / "external" / "mobgap_HA002_Test11_Trial1"
+    if not folder.is_dir():
+        pytest.skip("datasets/external not linked")
+    session = read_session(folder)
+    res = track_waist(session, pipeline="waist-pendulum")
+    lines = [w for w in res.info["warnings"] if "decision W230" in w]
+    assert len(lines) == 1 and lines[0].startswith("2 step(s) changed the barometric altitude by more than 0.5 m")
+    assert "step_bound" in lines[0] and res.info["barometer_jump_steps"] == 2
+    dz = res.steps["dz_m"].to_numpy(float)
+    assert (np.abs(dz) > 1.0).sum() == 2
+    held = track_waist(session, pipeline="waist-pendulum", params={"options": {"step_bound": True}})
+    assert np.abs(held.steps["dz_m"].to_numpy(float)).max() <= 0.5

@@ -679,7 +679,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
-             "freeze_veto": freeze_veto, "freeze_index": freeze_index}
+             "freeze_veto": freeze_veto, "freeze_index": freeze_index,
+             "step_bound": None}  # W230: a PARAMS.json option only
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
