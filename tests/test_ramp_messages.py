@@ -47,3 +47,21 @@ def test_simulate_help_lists_the_ramp_item():
 
     out = CliRunner().invoke(app, ["simulate", "--help"], terminal_width=200).output
     assert "'slope:M:PCT'" in out and "1:12 ramp" in out
+
+
+def test_the_barometer_line_reads_the_net_change_on_a_closed_ramp_loop():
+    """L290 (trial s30 finding 1): the trial's closed 1:12 loop (user 5560): the foot without a model ends ~0.7 m up;
+    the barometer's net change is ~0 and L172's climbs read +0.41 m, inside the limit; the check now compares the
+    net change less the slow drift, and the line fires."""
+    run = "slope:9:{g}, straight:1.5, slope:9:{g}, straight:1.5, slope:9:{g}"
+    route = (f"stand:3, straight:5, {run.format(g=8.33)}, straight:5, turn:180, straight:5, {run.format(g=-8.33)}, "
+             "straight:5, stand:3")
+    s = simulate_path(parse_route(route), UserProfile.from_seed(5560), seed=0)
+    res = track_plasys(s)
+    summary = {**track_summary(res, s), "info": res.info}
+    from pdrlearn.track.evaluate import barometer_warning
+
+    assert summary["altitude_change_m"] > 0.5
+    assert summary["barometer_climb_change_m"] == pytest.approx(summary["barometer_altitude_change_m"], abs=0.1)
+    line = barometer_warning(summary)
+    assert line is not None and line.startswith(f"foot altitude change {summary['altitude_change_m']:+.2f} m disagrees")
