@@ -108,5 +108,7 @@ def test_an_output_the_system_refuses_is_one_error_line(model, tmp_path, capsys)
     for argv in (["track", model["terrain"], "--method", "M2", "--out", "/proc/pdrlearn_test_out"],
                  ["steps", model["terrain"], "--out", "/proc/pdrlearn_test_out.csv"]):
         rc = main([str(a) for a in argv])
-        err = capsys.readouterr().err.strip().splitlines()
+        # decision L290: M2's foot (+0.34 m) and the barometer's net (-0.28 m) on this 8.5 m up-and-down exercise
+        # differ by 0.61 m, over L145's 0.58 m: that warning comes before the write; the error is still one line
+        err = [e for e in capsys.readouterr().err.strip().splitlines() if not e.startswith("warning: ")]
         assert rc == 2 and len(err) == 1 and err[0].startswith("error: /proc/"), err  # decision B152: was 1

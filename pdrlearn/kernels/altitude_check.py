@@ -13,6 +13,8 @@ Numpy only: ``pdrlearn track`` (offline, ``--streaming``) and the streaming runt
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from pdrlearn.kernels.distance import LEVEL_DZ_M
@@ -55,6 +57,16 @@ def integrated_altitude_check(dz: np.ndarray, levelled: bool = True, raw_dz: np.
            f"{_ACCURACY}, so it may be drift, not stairs; a model with terrain classes (`pdrlearn train`) "
            "decides which strides climb")
     return msg, info
+
+
+def fused_altitude_line(msg: str, fused_m: float) -> str:
+    """Decision L292: L69's line (:func:`integrated_altitude_check`) of a track whose altitude was then fused with
+    the waist barometer (L154): it quotes the reported (fused) altitude change, the foot's own after it."""
+    m = re.match(r"altitude change ([+-]\d+\.\d\d) m is the foot's integrated height without terrain classes", msg)
+    if m is None:
+        return msg
+    return (f"altitude change {fused_m:+.2f} m (fused with the waist barometer, L154) is built on the foot's "
+            f"integrated height without terrain classes ({m.group(1)} m)" + msg[m.end():])
 
 
 def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str | None, dict]:
@@ -109,6 +121,45 @@ ASCENT_BAND_BARO_M = 0.5
 CLIMB_WINDOW_S = 60.0
 
 
+#: Decision W229: the rate (m/s) under which a barometric change is the weather's drift, not a climb: L172's own
+#: bound, :data:`ASCENT_BAND_BARO_M` per :data:`CLIMB_WINDOW_S` (0.5 m per minute, 12x the 0.3 hPa/h drift, S4)
+DRIFT_RATE_M_PER_S = ASCENT_BAND_BARO_M / CLIMB_WINDOW_S
+#: Decision W229: the span (s) over which that rate is read before and after each change: half L172's window, so
+#: a change of 0.25 m within 30 s is a climb; the 1-s averaged altitude's noise (0.13 m / sqrt(20) at 20 Hz, W89)
+#: gives a rate SD of ~0.0014 m/s there, 1/6 of the bound
+DRIFT_RATE_SPAN_S = CLIMB_WINDOW_S / 2
+
+
+#: Decision W229 (an option, measured and not adopted: CURB's 0.45 m on waist-pendulum read 0.063 m off, its rule
+#: 0.06 m): True = the barometric ascent / descent with times read the drift by its rate (:func:`drift_free_altitude`)
+#: and count turning point to turning point; False (the default): L172's band crossed within the window
+DRIFT_BY_RATE = False
+
+
+def drift_free_altitude(z: np.ndarray, t: np.ndarray, rate_m_s: float = DRIFT_RATE_M_PER_S,
+                        span_s: float = DRIFT_RATE_SPAN_S) -> np.ndarray:
+    """Decision W229: the altitudes ``z`` (m) at the times ``t`` (s, increasing) without the weather's slow drift.
+    Each change between two samples is read against the altitude's mean rate over ``span_s`` ending at its end
+    and over ``span_s`` starting at its start (at least the interval itself: a standstill's ride is read over the
+    stand); when both are under ``rate_m_s`` it is drift and removed, else (a climb, a ramp, a ride, and the noise
+    around them) it is kept. Two one-sided spans, not one centred: a climb straight up and back down (a stair
+    flight, a turn, the flight down) cancels in a centred mean. A climb of 0.4 m in 5 s is kept whole, however
+    long the walk stays level after it (L172 dropped what of a climb had not crossed its band when its window ran
+    out). Returns z rebuilt from the kept changes (same start)."""
+    z = np.asarray(z, dtype=float).ravel()
+    t = np.asarray(t, dtype=float).ravel()
+    if len(z) < 2:
+        return z.copy()
+    a, b = t[:-1], t[1:]
+
+    def rate(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        lo, hi = np.maximum(lo, t[0]), np.minimum(hi, t[-1])
+        return np.abs(np.interp(hi, t, z) - np.interp(lo, t, z)) / np.maximum(hi - lo, 1e-9)
+
+    fast = np.maximum(rate(np.minimum(a, b - span_s), b), rate(a, np.maximum(b, a + span_s))) >= rate_m_s
+    return np.concatenate([[z[0]], z[0] + np.cumsum(np.where(fast, np.diff(z), 0.0))])
+
+
 def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = None,
                    window_s: float | None = None) -> tuple[float, float]:
     """Decision L146: the cumulative ascent and descent (m, both >= 0) of the altitudes ``z`` (walking order):
@@ -118,8 +169,12 @@ def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = No
 
     Decision L172: with the times ``t`` (s) and ``window_s`` the band must be crossed within ``window_s``: where
     z has not moved ``band_m`` from the last counted level after ``window_s``, that level follows z (it becomes
-    z as it was ``window_s`` earlier), so a slow drift (the weather's pressure trend) is dropped, and nothing is
-    counted at the end; ascent - descent is then the net change without the drift."""
+    z as it was ``window_s`` earlier), so a slow drift is dropped, and nothing is counted at the end.
+    Decision W229 (:data:`DRIFT_BY_RATE`): instead the weather's slow drift is first taken out by its rate
+    (:func:`drift_free_altitude`; the rate bound is ``band_m`` per ``window_s``), then the swings of at least
+    ``band_m`` are counted whole, from turning point to turning point (a zigzag: a climb's top is counted when z
+    has come ``band_m`` down from it, so no part of a climb under the band is lost), and the end's remainder too;
+    ascent - descent is the net change without the drift."""
     z = np.asarray(z, dtype=float).ravel()
     keep = np.isfinite(z)
     z = z[keep]
@@ -130,6 +185,8 @@ def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = No
         return float(d[d > 0].sum()) + 0.0, float(-d[d < 0].sum()) + 0.0
     bounded = t is not None and window_s is not None
     tt = np.asarray(t, dtype=float).ravel()[keep] if bounded else np.zeros(len(z))
+    if bounded and DRIFT_BY_RATE:  # decision W229
+        return _zigzag(drift_free_altitude(z, tt, band_m / window_s, window_s / 2), band_m)
     up = down = 0.0
     ref, r = float(z[0]), 0  # the last counted level and its sample
     for i in range(1, len(z) + (0 if bounded else 1)):
@@ -142,4 +199,24 @@ def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = No
         elif bounded and tt[i] - tt[r] > window_s:  # decision L172: not crossed within the window: follow z
             r = int(np.searchsorted(tt, tt[i] - window_s))
             ref = float(z[r])
+    return up, down
+
+
+def _zigzag(z: np.ndarray, band_m: float) -> tuple[float, float]:
+    """Decision W229: the ascent and descent of ``z`` between its turning points, a turning point being an extreme
+    that z then leaves by ``band_m`` the other way; the remainder to the last value is counted at the end."""
+    up = down = 0.0
+    ref = ext = float(z[0])  # the last turning point, the extreme since
+    sign = 0
+    for v in map(float, z[1:]):
+        if sign == 0:
+            if abs(v - ref) >= band_m:
+                sign, ext = (1 if v > ref else -1), v
+        elif (v - ext) * sign > 0:
+            ext = v
+        elif (ext - v) * sign >= band_m:
+            up, down = (up + ext - ref, down) if sign > 0 else (up, down + ref - ext)
+            ref, ext, sign = ext, v, -sign
+    for a, b in ((ref, ext), (ext, float(z[-1]))):
+        up, down = up + max(b - a, 0.0), down + max(a - b, 0.0)
     return up, down

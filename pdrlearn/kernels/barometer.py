@@ -266,6 +266,26 @@ def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noi
     return out
 
 
+#: Decision W230: the largest barometric height change (m) one walking step can make. A step climbs one riser
+#: (0.15-0.18 m, L39; the simulator's 0.17 m), two at a time ~0.36 m; 0.5 m is ~3 risers and L146's whole ascent
+#: band in one step. A larger change inside a step (HA002 Test11's level floor: -1.28 and -1.19 m at 141-142 s,
+#: W108's pressure transient) is the air, not the walker; rides happen while standing (W158's pause_dz_m).
+MAX_STEP_DZ_M = 0.5
+
+
+def hold_step_jumps(z: np.ndarray, z_start: np.ndarray, max_dz: float = MAX_STEP_DZ_M
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Decision W230: ``z`` (n+1,) the altitude at the track's start and each step's end, ``z_start`` (n,) at each
+    step's start (W158). A step whose change (end minus start) exceeds ``max_dz`` in size is held level: its
+    change is taken out of it and of every later altitude (the pauses' changes, W158, are kept). Returns
+    ``(z, z_start, jumped)`` with ``jumped`` the (n,) mask of the steps held."""
+    z = np.asarray(z, dtype=float)
+    zs = np.asarray(z_start, dtype=float)
+    dz = z[1:] - zs
+    jumped = np.abs(np.nan_to_num(dz)) > max_dz
+    cut = np.cumsum(np.where(jumped, dz, 0.0))
+    return z - np.concatenate([[0.0], cut]), zs - np.concatenate([[0.0], cut[:-1]]), jumped
+
 
 #: decision L154: the fused altitude's model of the barometer's wander, a first-order Gauss-Markov error of this SD
 #: (m; W108: the real belt barometer wanders ~0.3 m on level walks, its still-period SD 0.06-0.65 m) and

@@ -30,6 +30,7 @@ import math
 from pdrlearn.errors import DataError
 from pdrlearn.sim.freeze import check_freeze
 from pdrlearn.sim.path import (
+    MAX_SLOPE_GRADE,
     Backward,
     Curve,
     Escalator,
@@ -109,7 +110,11 @@ def parse_route(spec: str) -> list[Segment]:
             segments.append(Curve(math.radians(angle), _number(item, parts[2]), gait=_gait(item, parts, 3)))
         elif kind == "slope":
             _arity(item, parts, (2, 3))
-            grade = _number(item, parts[2], positive=False) / 100.0
+            pct = _number(item, parts[2], positive=False)
+            if not abs(pct) <= 100 * MAX_SLOPE_GRADE:  # decision S56: the route's unit (percent), named
+                raise DataError(f"--route item {item!r}: PCT must be within +-{100 * MAX_SLOPE_GRADE:g} % "
+                                "(S37: a steeper ramp is not walked with level steps)")
+            grade = pct / 100.0
             segments.append(Slope(_number(item, parts[1]), grade, gait=_gait(item, parts, 3)))
         elif kind in ("up", "down"):
             _arity(item, parts, (1, 3))

@@ -66,3 +66,7 @@ def apply_altitude(result, session, altitude: str) -> None:
     set_strides_dz(result, fused)
     result.info["altitude_source"] = "fused"
     result.info["foot_altitude_change_m"] = float(foot.sum())
+    from pdrlearn.kernels.altitude_check import fused_altitude_line
+
+    warnings = result.info.get("warnings") or []  # decision L292: L69's line quotes the reported altitude
+    warnings[:] = [fused_altitude_line(w, float(np.sum(fused))) for w in warnings]

@@ -833,13 +833,21 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
             if not any("decision B188" in w for w in (result.info or {}).get("warnings", [])):
                 out["barometer_implausible"] = lines[0]
             return
-        from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent
+        from pdrlearn.kernels.altitude_check import (
+            ASCENT_BAND_BARO_M,
+            CLIMB_WINDOW_S,
+            ascent_descent,
+            drift_free_altitude,
+        )
 
         span = [float(steps["start_s"].min()), float(steps["end_s"].max())]
         out["barometer_altitude_change_m"] = float(relative_altitude(b.t, b.values[:, 0], span)[1])
         at = np.unique(np.concatenate([span[:1], steps["end_s"].to_numpy(float)]))  # the strides' ends, in order
-        up, down = ascent_descent(relative_altitude(b.t, b.values[:, 0], at), ASCENT_BAND_BARO_M, at, CLIMB_WINDOW_S)
-        out["barometer_climb_change_m"] = float(up - down)  # decision L172: without the weather's slow drift
+        z = relative_altitude(b.t, b.values[:, 0], at)
+        up, down = ascent_descent(z, ASCENT_BAND_BARO_M, at, CLIMB_WINDOW_S)
+        # decision L290 (L172): the barometer's NET change without the weather's slow drift (W229's rate), not the
+        # climbs' up - down, which left a band's remainder of each climb out (a 1:12 loop: +0.41 m for -0.01 m)
+        out["barometer_climb_change_m"] = float(drift_free_altitude(z, at)[-1] - z[0]) if len(z) else 0.0
         out["barometer_ascent_m"], out["barometer_descent_m"] = float(up), float(down)  # decision L180: the climbs
         out["barometer_drift_m"] = out["barometer_altitude_change_m"] - out["barometer_climb_change_m"]
         out["barometer_disagree_limit_m"] = BAROMETER_DISAGREE_M + BAROMETER_DRIFT_M_PER_H * (span[1] - span[0]) / 3600

@@ -1012,9 +1012,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                                                         raw_dz=raw_dz)  # L69, L145
             res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", []), *([msg] if msg else [])]
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
-            if msg:
-                log.warning("%s: %s", session.where, msg)
-        apply_altitude(res, session, altitude)  # decision L154
+        at = len(res.info["warnings"]) - 1 if no_classes and msg else None
+        apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
+        if at is not None:
+            log.warning("%s: %s", session.where, res.info["warnings"][at])
         return res
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
@@ -1314,10 +1315,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             "lever_arm_m": None if fd.lever_arm_ is None else [round(float(v), 4) for v in fd.lever_arm_],
             "altitude_check": altitude_check, "terrain_dz_check": terrain_check,  # decisions L69, C28
             "warnings": warnings}
-    for w in warnings:
-        log.warning("%s: %s", session.where, w)
     res = TrackResult(steps=table, trajectory=traj, info=info)
-    apply_altitude(res, session, altitude)  # decision L154
+    logged = len(warnings)  # apply_altitude logs its own lines
+    apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
+    for w in warnings[:logged]:
+        log.warning("%s: %s", session.where, w)
     return res
 
 

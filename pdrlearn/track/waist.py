@@ -185,6 +185,32 @@ NO_BAROMETER = ("no barometer (wBarometer.csv): a lower-back track has no altitu
                 "are counted, also on stairs")
 
 
+def _hold_jumps(steps: pd.DataFrame, z: np.ndarray, z_start: np.ndarray, z_raw: np.ndarray, warnings: list[str],
+                hold: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """Decision W230: one line naming the steps whose barometric change exceeds
+    :data:`~pdrlearn.kernels.barometer.MAX_STEP_DZ_M`; with ``hold`` (option ``step_bound``) they are held level
+    (:func:`~pdrlearn.kernels.barometer.hold_step_jumps`; ``z_raw``, W174's, shifted alike). Returns ``(z, z_start,
+    z_raw, number of such steps)``."""
+    from pdrlearn.kernels.barometer import MAX_STEP_DZ_M, hold_step_jumps
+
+    z2, zs2, jumped = hold_step_jumps(z, z_start)
+    if not jumped.any():
+        return z, z_start, z_raw, 0
+    dz = (z[1:] - z_start)[jumped]
+    at = steps["end_s"].to_numpy(float)[jumped]
+    shown = ", ".join(f"{d:+.2f} m at {a:.1f} s" for d, a in zip(dz[:5], at[:5], strict=True))
+    done = ("held level (option step_bound): their change is left out of the altitude, the floors and the ascent"
+            if hold else "the altitude, floors and ascent include it; the option step_bound (PARAMS.json "
+            "\"options\") holds such steps level, though the pressure's return then reads as a climb")
+    warnings.append(f"{int(jumped.sum())} step(s) changed the barometric altitude by more than {MAX_STEP_DZ_M:.1f} m "
+                    f"each ({shown}{', ...' if len(dz) > 5 else ''}), {float(dz.sum()):+.2f} m in all: a walking "
+                    "step climbs a riser or two (0.15-0.18 m each), so these are pressure transients (a door, a "
+                    f"draught, wind), not climbs; {done} (decision W230)")
+    if not hold:
+        return z, z_start, z_raw, int(jumped.sum())
+    return z2, zs2, z_raw - (z - z2), int(jumped.sum())
+
+
 def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str], held=()
               ) -> tuple[np.ndarray, np.ndarray] | None:
     """Decision W89: the altitude (m, relative to ``t[0]``) at the times ``t`` from the waist barometer ``baro``
@@ -453,6 +479,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
                    "speed_check": True,  # W211
+                   "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
                    "pause_ride": True,  # W231: a long pause's barometric change counts only where it is a ride
                    "rest_bias": True}  # L296: a long rest's rotation less the bias of its still samples
@@ -598,6 +625,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     stairs_length : a step on stairs (the barometric altitude changes by 0.1 m/s or more) is at most the
         0.30 m tread long (decision W91's candidate; default False); ``"climbs"``: only the steps inside W108's
         climbs (decision W156's candidate)
+    step_bound : (PARAMS.json option) a step whose barometric change exceeds 0.5 m is held level (decision W230's
+        candidate; default False: HA002 Test11's transient returns and then reads as a climb); such steps are
+        named in a warning either way
     stairs_climb : a step is on stairs (column ``stairs``) only inside a climb of at least 1.5 m and 3 sqrt(2)
         still-period altitude SDs, and the altitude changes only on such steps (decision W108's candidate;
         default False: it failed its rule on one real level recording)
@@ -721,7 +751,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
-             "rest_bias": rest_bias}
+             "rest_bias": rest_bias, "step_bound": None}  # W230: a PARAMS.json option only
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -842,6 +872,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     z, z_start, z_raw = (None, None, None) if zz is None else (zz[0][:n_st + 1], zz[0][n_st + 1:], zz[1][:n_st + 1])
     if z is not None and bool(o["pause_ride"]) and not bool(o["stairs_climb"]):  # decision W231
         z, z_start, z_raw = _pause_rides(baro, steps, float(imu.t[0]), z, z_start, z_raw, warnings)
+    jumps = None
+    if z is not None:  # decision W230: a step cannot climb more than MAX_STEP_DZ_M; a larger change is the air's
+        z, z_start, z_raw, jumps = _hold_jumps(steps, z, z_start, z_raw, warnings, bool(o["step_bound"]))
     if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor (pauses too)
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
         z_start, z_raw = z[:-1], None  # W174's transfer_dz_m: 0 (every change off the stairs is left out here)
@@ -912,6 +945,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_weak_run_contacts": n_weak_run,
         "n_rescored_contacts": n_rescored,  # decision W203
         "n_frozen_contacts": n_frozen,  # decision W214
+        "barometer_jump_steps": jumps,  # decision W230: steps held level (a pressure transient); None: no altitude
         "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
         "postures": session_postures(imu, steps, transfers),  # decision W222: the posture runs (not in summary.json)

@@ -105,6 +105,7 @@ def live_options(p, warnings: list[str], **given) -> dict:
 #: applied (``stairs_length`` since E107) or do not concern the live tracker (``realtime``; ``refine_ic`` and
 #: ``resolve_signs`` are waist-pll / harmonic-heading options; ``relative_gate`` off is the live fixed gate).
 LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_veto", "contact_shift", "weak_fill",
+                          "step_bound",  # W230: the runtime does not bound a step's barometric change
                           "parity_fill", "integrate_end",  # W187: the final stop is known only offline
                           "stand_veto",  # W189: the recording's median bounce is known only offline
                           "contact_model",  # W203: its features read the recording's medians
