@@ -192,7 +192,12 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
     ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt_transfers.md"))
+    ap.add_argument("--w233", action="store_true",
+                    help="decision W233's rule: the candidate (transfers.HEIGHT_HALF_S = W104's 1 s) on fresh "
+                         "simulated users 5740-5759 (turns_transfers.py's sim, before and after) and on HAPT")
     a = ap.parse_args(argv)
+    if a.w233:
+        return w233(a.root)
     rows, labs, diag, refused, cpu = run(a.root)
     lines = ["# Transfers (W182) of offline waist-pendulum on UCI HAPT (decision W232)", "",
              f"{labs.session.nunique()} recordings tracked; {cpu:.0f} s CPU on one core. Match: peak_s inside a "
@@ -203,6 +208,29 @@ def main(argv=None) -> None:
     text = "\n".join(lines) + "\n"
     print(text)
     a.out.write_text(text + NOTES)
+
+
+def w233(root: Path) -> None:
+    """Decision W233's one measurement: (a) simulated users 5740-5759 today vs the candidate, (b) HAPT."""
+    import importlib.util
+
+    from pdrlearn.waist import posture, transfers
+
+    spec = importlib.util.spec_from_file_location("turns_transfers", Path(__file__).parent / "turns_transfers.py")
+    tt = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tt)
+    out = Path("experiments/results/hapt_transfers_w233.md")
+    lines = ["# Decision W233's rule: transfers' height change over at least +-1 s (W104) around the peak", ""]
+    for label, half in (("today", None), ("candidate", posture.TRANSFER_HALF_S)):
+        transfers.HEIGHT_HALF_S = half
+        print(f"== (a) simulated users 5740-5759, {label} ==", flush=True)
+        tt.sim(users=range(5740, 5760), tracks=("waist-pendulum",))
+        rows, labs, diag, _, _ = run(root)
+        lines += [f"## (b) HAPT, {label} (HEIGHT_HALF_S = {half})", "", *tables(rows, labs, diag)[:16], ""]
+    transfers.HEIGHT_HALF_S = None
+    text = "\n".join(lines) + "\n"
+    print(text)
+    out.write_text(text)
 
 
 NOTES = """
