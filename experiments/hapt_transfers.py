@@ -39,7 +39,7 @@ from pdrlearn.io.plasys import read_session
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.posture import TRANSFER_PEAK_DEG, _contact_directions, sample_tilt_deg
-from pdrlearn.waist.transfers import HEIGHT_MIN_M, movement_bounds, height_change_m
+from pdrlearn.waist.transfers import HEIGHT_MIN_M, height_change_m, movement_bounds
 
 logging.disable(logging.WARNING)
 
@@ -130,8 +130,8 @@ def run(root: Path):
         r, tr = match(pd.DataFrame(res.info["transfers"], columns=["kind", "start_s", "end_s", "peak_s"]), lab)
         tr["session"] = folder.name
         r["session"] = folder.name
-        r["lab_start"] = r.label.map(lambda j: lab.start_s.get(j, np.nan))
-        r["lab_end"] = r.label.map(lambda j: lab.end_s.get(j, np.nan))
+        r["lab_start"] = r.label.map(lab.start_s).astype(float)  # NaN for an unmatched row (label -1)
+        r["lab_end"] = r.label.map(lab.end_s).astype(float)
         rows.append(r)
         labs.append(tr)
         diag += [{**d, "session": folder.name} for d in diagnose(s, res.steps, tr)]
@@ -226,7 +226,7 @@ def w233(root: Path) -> None:
         print(f"== (a) simulated users 5740-5759, {label} ==", flush=True)
         tt.sim(users=range(5740, 5760), tracks=("waist-pendulum",))
         rows, labs, diag, _, _ = run(root)
-        lines += [f"## (b) HAPT, {label} (HEIGHT_HALF_S = {half})", "", *tables(rows, labs, diag)[:16], ""]
+        lines += [f"## (b) HAPT, {label} (HEIGHT_HALF_S = {half})", "", *tables(rows, labs, diag)[:24], ""]
     transfers.HEIGHT_HALF_S = None
     text = "\n".join(lines) + "\n"
     print(text)
