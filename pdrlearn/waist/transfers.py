@@ -39,6 +39,9 @@ RATE_WINDOW_S = 0.25
 #: decision W182: a rise or a sit moves the pelvis by this much (m) or more; standing hip height (~0.9 m) less a
 #: chair seat (~0.45 m) is ~0.45 m, half of a low 0.40 m is taken; a bend moves it less
 HEIGHT_MIN_M = 0.20
+#: decision W233's candidate (measured, see its text): the height change over at least this (s) on each side of the tilt
+#: peak (W104's TRANSFER_HALF_S); None = over W182's movement bounds only
+HEIGHT_HALF_S: float | None = None
 SIT_TO_STAND, STAND_TO_SIT = "sit-to-stand", "stand-to-sit"
 #: transfers.csv's columns (decision W182), in order
 TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_s", "peak_tilt_deg",
@@ -102,7 +105,11 @@ def chair_transfers(imu: WaistIMU, steps: pd.DataFrame) -> pd.DataFrame:
             for _, t_peak, _ in events:
                 peak = int(np.clip(np.searchsorted(imu.t, t_peak), 0, len(imu.t) - 1))
                 a, b = movement_bounds(imu.t, tilt, peak, imu.fs)
-                dz = height_change_m(imu.t, imu.acc_v, a, b)
+                ha, hb = a, b
+                if HEIGHT_HALF_S is not None:  # decision W233: at least W104's +-1 s around the peak
+                    ha = min(a, int(np.searchsorted(imu.t, t_peak - HEIGHT_HALF_S)))
+                    hb = max(b, min(int(np.searchsorted(imu.t, t_peak + HEIGHT_HALF_S)), len(imu.t) - 1))
+                dz = height_change_m(imu.t, imu.acc_v, ha, hb)
                 if abs(dz) < HEIGHT_MIN_M:
                     continue
                 t0, t1 = float(imu.t[a]), float(imu.t[b])
