@@ -71,8 +71,7 @@ def main() -> None:
     res = {k: [] for k in ("r12", "up", "down", "level", "hill")}
     for u in us:
         g = 3 + (u - us[0]) % 13
-        for key, route, truth in (("r12", R12, 0.0), ("up", UP, None), ("down", DOWN, None),
-                                  ("hill", HILL.format(g=g), 0.0)):
+        for key, route in (("r12", R12), ("up", UP), ("down", DOWN), ("hill", HILL.format(g=g))):
             v = sim(route, u)
             res[key].append(v)
             line(f"{key} u{u}" + (f" {g}%" if key == "hill" else ""), v)
