@@ -27,6 +27,15 @@ SLOPE_DZ_M = 0.04
 SLOPE_RUN_STRIDES = 6
 #: Decision L144: whether L39's level rule and L127's floor count keep a sustained slope (the measured candidate)
 SUSTAINED_SLOPE = False
+#: Decision L304 (candidate, measured in L305): L39's threshold applied to the mean |dz| of a run of at least
+#: RUN_MEAN_STRIDES consecutive strides whose height changes share a sign and are each >= RUN_MEMBER_DZ_M (m), so a
+#: slope's strides are kept or levelled together whichever way the foot's integration bias pushes them (L291).
+#: 0.05 m = half L39's 0.10 m (as L39 is half a stair stride's rise); 3 strides: the shortest run that is more than
+#: a stride and its two neighbours, within one 9 m run of a 1:12 ramp (6-7 strides). None of them fitted.
+RUN_MEMBER_DZ_M = 0.05
+RUN_MEAN_STRIDES = 3
+#: Decision L304: whether L39's level rule keeps the strides of such a run whose mean |dz| >= LEVEL_DZ_M
+RUN_MEAN_LEVEL = False
 #: Decision L189 (an option, measured and not adopted by its rule (d): one real level walk ended 0.061 m higher):
 #: ``track --streaming`` and the runtime give L184's level rule (:func:`unclassed_level_dz`) to an M3 stride whose
 #: terrain class the confidence gate (L18) dropped, as offline M3 does (``plasys.GATED_LEVEL_DZ``).
@@ -104,15 +113,35 @@ def sustained_slope(dz: np.ndarray, *, slope_dz_m: float = SLOPE_DZ_M, run: int 
     return mask
 
 
-def level_dz(dz: np.ndarray, *, level_dz_m: float = LEVEL_DZ_M, slope: bool | None = None) -> np.ndarray:
+def run_mean_kept(dz: np.ndarray, *, level_dz_m: float = LEVEL_DZ_M, member_dz_m: float = RUN_MEMBER_DZ_M,
+                  run: int = RUN_MEAN_STRIDES) -> np.ndarray:
+    """Decision L304: boolean mask of the strides (``dz`` m, walking order) inside a run of at least ``run``
+    consecutive strides whose height changes share a sign, are each at least ``member_dz_m`` in size, and whose mean
+    |dz| reaches L39's ``level_dz_m``: L39's threshold judged on the run, not on each stride (L291)."""
+    dz = np.nan_to_num(np.asarray(dz, dtype=np.float64).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
+    sign = np.where(dz >= member_dz_m, 1, np.where(dz <= -member_dz_m, -1, 0))
+    mask = np.zeros(len(dz), dtype=bool)
+    edges = np.flatnonzero(np.diff(sign)) + 1
+    for a, b in zip(np.r_[0, edges], np.r_[edges, len(dz)], strict=True):
+        if sign[a] != 0 and b - a >= run and np.abs(dz[a:b]).mean() >= level_dz_m:
+            mask[a:b] = True
+    return mask
+
+
+def level_dz(dz: np.ndarray, *, level_dz_m: float = LEVEL_DZ_M, slope: bool | None = None,
+             run_mean: bool | None = None) -> np.ndarray:
     """Height changes ``dz`` (m) with the level strides' (|dz| < ``level_dz_m``, half a stair rise) set to 0:
     the altitude rule of the thesis (ch. 7.2.2: a flat step keeps its altitude) decided by the stride's own
     height change where there are no terrain classes (decision L39). ``slope`` (default
-    :data:`SUSTAINED_SLOPE`, decision L144): a stride of a :func:`sustained_slope` keeps its height. A new array."""
+    :data:`SUSTAINED_SLOPE`, decision L144): a stride of a :func:`sustained_slope` keeps its height. ``run_mean``
+    (default :data:`RUN_MEAN_LEVEL`, decision L304): a stride of a :func:`run_mean_kept` run keeps its height. A new
+    array."""
     dz = np.asarray(dz, dtype=np.float64)
     level = np.abs(dz) < level_dz_m
     if SUSTAINED_SLOPE if slope is None else slope:
         level &= ~sustained_slope(dz)
+    if RUN_MEAN_LEVEL if run_mean is None else run_mean:
+        level &= ~run_mean_kept(dz, level_dz_m=level_dz_m)
     return np.where(level, 0.0, dz)
 
 
