@@ -255,7 +255,8 @@ SESSIONS: tuple[Column, ...] = (
     ("terrain_agreement", "fraction", "number", "matched strides whose terrain class is the label's (L53)"),
     ("time_between_steps_s", "s", "number", "from the first to the last step counted (L105's rule), the time "
                                             "neither walking nor without data: standing (or sitting) between steps "
-                                            "(L275)"),
+                                            "(L275; a lower-back track splits it and time_no_steps_s by "
+                                            "posture: standing_time_s / sitting_time_s / lying_time_s, W222)"),
     ("time_no_data_s", "s", "number", "the tracked unit's data gaps over 1 s (the warned ones, B11) (L275)"),
     ("time_no_steps_s", "s", "number", "before the first step counted and after the last: no step bounds it (the "
                                        "time before the walk, a seated stretch at a window's edge) (L275)"),
@@ -364,7 +365,8 @@ BOUTS: tuple[Column, ...] = (
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),
     ("altitude_change_m", "m", "number", "z change over the bout"),
     ("altitude_change_before_m", "m", "number", "lower back: z change while standing before the bout (a lift or "
-                                                "escalator ride; W158), 0 for foot tracks"),
+                                                "escalator ride; W158; of a pause over 30 s only the 1.5 m "
+                                                "within 30 s rides, W231), 0 for foot tracks"),
     ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is ABOVE L95's walking range "
                                              "(leg-scaled, L148; bouts of 5+ strides; L195): running or short fast "
                                              "steps. Never true for a slow bout (a bout's speed includes its start, "
@@ -504,7 +506,8 @@ WAIST_STEPS: tuple[Column, ...] = (
                           "it (W20, W129; 99 % agree with INDIP's foot where decided); empty with --realtime; "
                           "`run WAIST_BUNDLE --sides`: the streamed contact's causal side (W138, E103, E110)"),
     ("dz_m", "m", "number", "barometric altitude change over the step (W89; 0 without a usable barometer)"),
-    ("pause_dz_m", "m", "number", "barometric altitude change while standing before the step (a lift ride; W158), "
+    ("pause_dz_m", "m", "number", "barometric altitude change while standing before the step (a lift ride; W158; "
+                                  "of a pause over 30 s only the 1.5 m within 30 s rides, W231), "
                                   "0 inside a walking sequence"),
     _GRADE_PCT,
     ("transfer_dz_m", "m", "number", "barometric altitude change inside a sit-to-stand or stand-to-sit (a trunk "
