@@ -137,7 +137,8 @@ def foot_placement_warning(stats: dict | None, where: str) -> str | None:
     if not stats or not stats["walking"] or not stats["swing_rad_s"] < FOOT_NO_SWING:
         return None
     return (f"{where}: no foot-flat rests found: the foot unit (fAccelerometer.csv, fGyroscope.csv) walks but never "
-            f"swings like a foot (at most {np.degrees(stats['swing_rad_s']):.0f} deg/s, 99th percentile of |gyro|; a "
+            f"swings like a foot (at most {np.degrees(stats['swing_rad_s']):.0f} deg/s, 99th percentile of |gyro| "
+            "in any 10 s block; a "
             f"walking foot exceeds {np.degrees(FOOT_NO_SWING):.0f}), so the rests its ZUPT finds are not foot-flats "
             "and its distance is meaningless: is this unit on the foot? (pocket/waist/shank placements are not "
             "supported for the foot unit: mount it on the shoe, instep, heel or side; a lower-back unit's data go "
