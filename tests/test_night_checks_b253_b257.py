@@ -3,7 +3,8 @@
 B251 made B203's frozen-foot test judge B213's 10 s blocks. The same whole-session figures hid real faults on a night
 with a short walk: B201's mis-scaled foot accelerometer and B134's foot unit that is not on the foot (decision B253:
 "walks" and "swings" are the largest 10 s block's), and B91's swapped foot / waist files (decision B256: each unit's
-largest 10 s block swing rate). Each test fails on main (the whole night read still, so no line).
+largest 10 s block swing rate), and B37's gyroscope read 57.3 times too small (decision B257: the largest 10 s
+block figures). Each test fails on main (the whole night read still, so no line).
 """
 
 from __future__ import annotations
@@ -72,3 +73,13 @@ def test_swapped_foot_and_waist_files_are_refused_on_a_night_b256(night):
                     wAccelerometer=("fAccelerometer", 1.0), wGyroscope=("fGyroscope", 1.0))
     line = unit_mixup(swapped)
     assert line is not None and "the foot and waist files look swapped" in line and "(decision B91)" in line
+
+
+def test_a_gyroscope_57_times_too_small_is_refused_on_a_night_b257(night):
+    from pdrlearn.errors import DataError
+    from pdrlearn.kernels.units import check_imu_pair
+
+    a, g = night.streams["fAccelerometer"], night.streams["fGyroscope"]
+    check_imu_pair(a.t, a.values, g.t, g.values, "foot", "a", "g")  # as recorded: passes
+    with pytest.raises(DataError, match="rad/s converted as deg/s"):
+        check_imu_pair(a.t, a.values, g.t, g.values / 57.29577951308232, "foot", "a", "g")
