@@ -102,7 +102,8 @@ def info(
                                   "too few foot-flat samples for an |acc|")
                 + f" ({100 * rests['rest_fraction']:.0f} % of the samples; at rest an accelerometer reads 1 g, so "
                 "the difference is its scale error, decision B133); swing "
-                f"{rests['swing_rad_s'] * 57.29577951308232:.0f} deg/s (99th percentile of |gyro|, B91)", markup=False)
+                f"{rests['swing_rad_s'] * 57.29577951308232:.0f} deg/s (99th percentile of |gyro|, largest 10 s "
+                "block, B91, B253)", markup=False)
     if summary.get("waist_leg_length"):  # decision B155
         c.print(f"waist step length: {summary['waist_leg_length']}", markup=False)
     c.print(f"labels: {json.dumps(json_safe(summary['labels']))}", markup=False)  # JSON, like the frames line

@@ -1,8 +1,9 @@
 """Decision B91: foot and waist files swapped, or one recording given as both units, told from the signals.
 
 A foot unit swings forward at several hundred deg/s every stride; a waist unit turns with the pelvis and the
-walking direction, a few tens of deg/s. The statistic is the 99th percentile of the gyroscope magnitude over the
-unit's whole recording (:func:`swing_rate`). The units are swapped when the foot unit's stays below
+walking direction, a few tens of deg/s. The statistic is the 99th percentile of the gyroscope magnitude
+(:func:`swing_rate`), the largest over the unit's consecutive 10 s blocks (decision B256: a whole night reads
+still). The units are swapped when the foot unit's stays below
 :data:`FOOT_NO_SWING` and the waist unit's exceeds :data:`WAIST_SWINGS`: a foot that never swings beside a
 waist that does. A standing-only recording has both low and is never called swapped.
 """
@@ -12,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from pdrlearn.io.sensors import UNIT_IMU
+from pdrlearn.kernels.frozen_foot import block_swing_rate
 from pdrlearn.kernels.units import (  # noqa: F401 - B91's rule, shared with the runtime (B119)
     FOOT_NO_SWING,
     SAME_RTOL,
@@ -53,13 +55,15 @@ def unit_mixup(session) -> str | None:
                else "write the waist unit's own recording to wAccelerometer.csv and wGyroscope.csv")
         return (f"the foot unit ({foot}) and the waist unit ({waist}) hold the same data (one recording given as "
                 f"both units; decision B91): {fix}, or remove the waist files to track the foot alone")
-    f99, w99 = swing_rate(s[fg].values), swing_rate(s[wg].values)
+    # decision B256: each unit's largest swing of any 10 s block (B251's blocks): a night's whole-session 99th
+    # percentile reads a foot that walked 1 % of the time as a waist that never swung, hiding the swap
+    f99, w99 = block_swing_rate(s[fg].t, s[fg].values), block_swing_rate(s[wg].t, s[wg].values)
     if swapped_units(f99, w99):
         fix = (f"import {waist} as the foot unit (--unit foot) and {foot} with --unit waist --merge, into a new "
                "--out" if imported else "swap the f* and w* files (fAccelerometer.csv <-> wAccelerometer.csv, "
                "fGyroscope.csv <-> wGyroscope.csv) and their \"frames\" entries in meta.json")
         deg = np.degrees
         return (f"the foot and waist files look swapped: the foot unit ({foot}) turns at {deg(f99):.0f} deg/s "
-                f"(99th percentile of |gyro|) while the waist unit ({waist}) swings at {deg(w99):.0f} deg/s, as a "
-                f"foot does (decision B91); {fix}")
+                f"(99th percentile of |gyro|, largest 10 s block) while the waist unit ({waist}) swings at "
+                f"{deg(w99):.0f} deg/s, as a foot does (decision B91); {fix}")
     return None

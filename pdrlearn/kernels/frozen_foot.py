@@ -34,6 +34,19 @@ def foot_imu_motion(acc: np.ndarray, gyr: np.ndarray) -> tuple[float, float]:
     return float(np.nanstd(norm)), swing_rate(gyr)
 
 
+def block_cuts(t: np.ndarray, t0: float, n_blocks: int, block_s: float = LIVE_BLOCK_S) -> np.ndarray:
+    """Decision B251: the first index of each of ``n_blocks`` consecutive blocks of ``block_s`` seconds from ``t0``
+    in sorted times ``t`` (s), and the end: block ``k`` is ``[cuts[k]:cuts[k + 1]]``."""
+    idx = np.floor((np.asarray(t, dtype=float) - t0) / block_s).astype(np.int64)
+    return np.searchsorted(idx, np.arange(0, n_blocks + 1))
+
+
+def n_blocks(t: np.ndarray, t0: float, block_s: float = LIVE_BLOCK_S) -> int:
+    """How many ``block_s`` blocks from ``t0`` the times ``t`` (s) reach."""
+    t = np.asarray(t, dtype=float)
+    return int(np.floor((t[-1] - t0) / block_s)) + 1 if len(t) else 0
+
+
 def block_motion(t_acc: np.ndarray, acc: np.ndarray, t_gyr: np.ndarray, gyr: np.ndarray,
                  block_s: float = LIVE_BLOCK_S) -> tuple[float, float]:
     """Decision B251: B203's two figures (:func:`foot_imu_motion`) on each consecutive block of ``block_s`` seconds
@@ -41,16 +54,14 @@ def block_motion(t_acc: np.ndarray, acc: np.ndarray, t_gyr: np.ndarray, gyr: np.
     gyroscope ``gyr`` (m, 3) at ``t_gyr`` s), and the largest of each over the blocks: a foot that walks in one
     block moved, however long it sat still around it (a whole night's sd and 99th percentile of |gyro| read a 1 %
     walk as still). A block with fewer than 4 samples of either sensor is not judged; none judged: the whole
-    recording's figures (as before B251)."""
+    recording's figures (as before B251). Also B134's and B201's "walks" and "swings" (decision B253)."""
     t_acc, t_gyr = np.asarray(t_acc, dtype=float), np.asarray(t_gyr, dtype=float)
     acc, gyr = np.asarray(acc, dtype=float), np.asarray(gyr, dtype=float)
     t0 = float(t_acc[0]) if len(t_acc) else 0.0
-    ia = np.floor((t_acc - t0) / block_s).astype(np.int64)
-    ig = np.floor((t_gyr - t0) / block_s).astype(np.int64)
+    nb = max(n_blocks(t_acc, t0, block_s), 1)
+    a_cut, g_cut = block_cuts(t_acc, t0, nb, block_s), block_cuts(t_gyr, t0, nb, block_s)
     sds, swings = [], []
-    a_cut = np.searchsorted(ia, np.arange(0, int(ia.max(initial=0)) + 2))
-    g_cut = np.searchsorted(ig, np.arange(0, int(ia.max(initial=0)) + 2))
-    for k in range(len(a_cut) - 1):
+    for k in range(nb):
         a, g = acc[a_cut[k]:a_cut[k + 1]], gyr[g_cut[k]:g_cut[k + 1]]
         if len(a) >= 4 and len(g) >= 4:
             sd, swing = foot_imu_motion(a, g)
@@ -58,9 +69,27 @@ def block_motion(t_acc: np.ndarray, acc: np.ndarray, t_gyr: np.ndarray, gyr: np.
             swings.append(swing)
     if not sds:
         return foot_imu_motion(acc, gyr)
+    return _largest(sds), _largest(swings)
+
+
+def _largest(values: list[float]) -> float:
     # NaN figures (all-NaN blocks) do not count as movement (foot_still), nor as a block's largest figure
-    return tuple(float(np.nanmax(v)) if np.isfinite(v).any() else float("nan") for v in (np.array(sds),
-                                                                                         np.array(swings)))
+    v = np.asarray(values, dtype=float)
+    return float(np.nanmax(v)) if np.isfinite(v).any() else float("nan")
+
+
+def block_swing_rate(t: np.ndarray, gyr: np.ndarray, block_s: float = LIVE_BLOCK_S) -> float:
+    """Decision B256: B91's swing statistic (:func:`~pdrlearn.kernels.units.swing_rate`) of gyroscope ``gyr``
+    (n, 3) at ``t`` s, the largest over B251's consecutive ``block_s`` blocks from its first sample with 4 samples
+    or more (none: the whole recording's, as before): a unit swings if it swings in any block, however long it sat
+    still around it."""
+    t, gyr = np.asarray(t, dtype=float), np.asarray(gyr, dtype=float)
+    if len(t) == 0:
+        return swing_rate(gyr)
+    nb = n_blocks(t, float(t[0]), block_s)
+    cut = block_cuts(t, float(t[0]), nb, block_s)
+    rates = [swing_rate(gyr[cut[k]:cut[k + 1]]) for k in range(nb) if cut[k + 1] - cut[k] >= 4]
+    return _largest(rates) if rates else swing_rate(gyr)
 
 
 def foot_still(sd: float, swing: float) -> bool:

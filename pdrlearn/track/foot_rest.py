@@ -27,7 +27,7 @@ from pdrlearn.kernels.frozen_foot import (
     frozen_foot_evidence,
     frozen_foot_reason,
 )
-from pdrlearn.kernels.units import FOOT_NO_SWING, STANDARD_GRAVITY, WALKING_ACC_STD, swing_rate
+from pdrlearn.kernels.units import FOOT_NO_SWING, STANDARD_GRAVITY, WALKING_ACC_STD
 from pdrlearn.signal import interp_rows
 
 #: fewer rest samples than this: no figure (nothing to judge)
@@ -45,7 +45,8 @@ REST_SCALE_TOL = 0.07
 def foot_rest_stats(session) -> dict | None:
     """The foot unit's rest figures: ``rest_acc_g`` (median |acc| over the detected foot-flat samples, in g;
     None with fewer than :data:`MIN_REST_SAMPLES`), ``rest_fraction``, ``swing_rad_s`` (B91's statistic) and
-    ``walking`` (B37's sd of |acc| over :data:`WALKING_ACC_STD`). None without both foot IMU streams. |acc| and
+    ``walking`` (B37's sd of |acc| over :data:`WALKING_ACC_STD`), the two the largest of any 10 s block (decision
+    B253, :func:`~pdrlearn.kernels.frozen_foot.block_motion`). None without both foot IMU streams. |acc| and
     |gyro| do not depend on the axes, so no frame is needed."""
     acc_n, gyr_n = UNIT_IMU["foot"]
     if not session.has(acc_n, gyr_n):
@@ -58,9 +59,11 @@ def foot_rest_stats(session) -> dict | None:
     norm = np.linalg.norm(acc, axis=1)
     rest = inertial_stance(acc, gyr, float(acc_s.rate_hz))
     ok = np.isfinite(norm) & rest
+    # decision B253: "walks" and "swings" are B251's largest figures of any 10 s block (a night's whole-session sd
+    # and 99th percentile read a short walk as still, hiding B134's and B201's faults)
+    sd, swing = block_motion(acc_s.t, acc, gyr_s.t, gyr_s.values)
     return {"rest_acc_g": float(np.median(norm[ok]) / STANDARD_GRAVITY) if ok.sum() >= MIN_REST_SAMPLES else None,
-            "rest_fraction": float(rest.mean()), "swing_rad_s": swing_rate(gyr_s.values),
-            "walking": bool(np.nanstd(norm) > WALKING_ACC_STD)}
+            "rest_fraction": float(rest.mean()), "swing_rad_s": swing, "walking": bool(sd > WALKING_ACC_STD)}
 
 
 def foot_scale_warning(stats: dict | None, where: str) -> str | None:
@@ -134,7 +137,8 @@ def foot_placement_warning(stats: dict | None, where: str) -> str | None:
     if not stats or not stats["walking"] or not stats["swing_rad_s"] < FOOT_NO_SWING:
         return None
     return (f"{where}: no foot-flat rests found: the foot unit (fAccelerometer.csv, fGyroscope.csv) walks but never "
-            f"swings like a foot (at most {np.degrees(stats['swing_rad_s']):.0f} deg/s, 99th percentile of |gyro|; a "
+            f"swings like a foot (at most {np.degrees(stats['swing_rad_s']):.0f} deg/s, 99th percentile of |gyro| "
+            "in any 10 s block; a "
             f"walking foot exceeds {np.degrees(FOOT_NO_SWING):.0f}), so the rests its ZUPT finds are not foot-flats "
             "and its distance is meaningless: is this unit on the foot? (pocket/waist/shank placements are not "
             "supported for the foot unit: mount it on the shoe, instep, heel or side; a lower-back unit's data go "
