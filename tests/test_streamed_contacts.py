@@ -143,9 +143,10 @@ def test_run_contacts_fill_the_steps_and_summary_as_track_streaming(sim_a, tmp_p
     assert all(list(x.columns)[-len(REFERENCE_COLUMNS):] == list(REFERENCE_COLUMNS) for x in (a, b, t))  # E135
     a, b, t = (x.drop(columns=list(REFERENCE_COLUMNS)) for x in (a, b, t))
     cols = list(a.columns)
-    tail = ["stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad", "impossible", "gap_s", "unit"]  # L97
-    assert cols.index("event_s") == 2 and cols[-7:] == tail  # track's order
-    assert list(b.columns)[-7:] == tail and list(t.columns)[-7:] == tail
+    tail = ["stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad", "impossible", "gap_s", "unit",  # L97
+            "grade_pct"]  # L300
+    assert cols.index("event_s") == 2 and cols[-8:] == tail  # track's order
+    assert list(b.columns)[-8:] == tail and list(t.columns)[-8:] == tail
     assert run["n_stride_times"] == trk["n_stride_times"] == 14
     # offline's force threshold is the session's maximum's, the streamed one the stride's (E50): with the onsets
     # between the samples (steps decision 32) their medians differ by ~1 ms
