@@ -267,14 +267,16 @@ SESSIONS: tuple[Column, ...] = (
                                       "to it (L275)"),
     ("standing_time_s", "s", "number", "lower back: the span's time standing still, outside walking and data gaps "
                                        "(trunk tilt from the walking upright under 15 deg, or a chair transfer's "
-                                       "standing side, W222); empty for a foot track (it needs the trunk)"),
+                                       "standing side, W222); empty for a foot track and for "
+                                       "`run` of a waist bundle (E145)"),
     ("sitting_time_s", "s", "number", "lower back: the time seated (between a stand-to-sit and a sit-to-stand, or "
-                                      "tilt 15-60 deg without a transfer to go by, W222); empty for a foot track"),
+                                      "tilt 15-60 deg without a transfer to go by, W222); empty for a foot track "
+                                      "and for `run` of a waist bundle (E145)"),
     ("lying_time_s", "s", "number", "lower back: the time lying (trunk tilt >= 60 deg from the walking upright, "
-                                    "W222); empty for a foot track"),
+                                    "W222); empty for a foot track and for `run` of a waist bundle (E145)"),
     ("unknown_time_s", "s", "number", "lower back: the rest, data gaps and time without a walking upright; "
                                       "time_walking_s + standing + sitting + lying + unknown = time_span_s (W222); "
-                                      "empty for a foot track"),
+                                      "empty for a foot track and for `run` of a waist bundle (E145)"),
     ("timing_resolution_s", "s", "number", "one sample period of the stream the contacts come from (L116)"),
     ("turn_angle_mae_deg", "deg", "number", "mean absolute error of the reference turns' angles (L42)"),
     ("turn_count", "count", "integer",
@@ -433,11 +435,15 @@ PERIODS: tuple[Column, ...] = (
                                        "period's edge is here in both periods, L275)"),
     ("time_no_data_s", "s", "number", "the tracked unit's data gaps over 1 s inside the period (L275)"),
     ("standing_time_s", "s", "number", "lower back: time standing in the period, outside walking and gaps (W222); "
-                                       "the periods sum to the summary's; empty for a foot track"),
-    ("sitting_time_s", "s", "number", "lower back: time seated in the period (W222); empty for a foot track"),
-    ("lying_time_s", "s", "number", "lower back: time lying in the period (W222); empty for a foot track"),
+                                       "the periods sum to the summary's; empty for a foot track and for `run` of "
+                                       "a waist bundle (E145)"),
+    ("sitting_time_s", "s", "number", "lower back: time seated in the period (W222); empty for a foot track and "
+                                      "for `run` of a waist bundle (E145)"),
+    ("lying_time_s", "s", "number", "lower back: time lying in the period (W222); empty for a foot track and for "
+                                    "`run` of a waist bundle (E145)"),
     ("unknown_time_s", "s", "number", "lower back: the period's data gaps and time without a walking upright; with "
-                                      "time_walking_s and the three postures it sums to duration_s (W222)"),
+                                      "time_walking_s and the three postures it sums to duration_s (W222); "
+                                      "empty for a foot track and for `run` of a waist bundle (E145)"),
     ("floors_up", "count", "integer", "storeys of the climbs (L127) whose last stair stride lies in the period; "
                                       "empty when the floors come from the altitude (L64)"),
     ("floors_down", "count", "integer", "the same, down"),

@@ -209,3 +209,28 @@ def test_freezes_csv_gets_them_at_a_negative_offset(tmp_path):
     assert fz["start_time"].iloc[0] == (datetime(2026, 12, 5, 2, 10, tzinfo=timezone(timedelta(hours=-5)))
                                         + timedelta(seconds=float(fz["start_s"].iloc[0]))).isoformat(
         timespec="milliseconds")
+
+
+def test_a_null_recording_start_is_no_start_b258():
+    """Review F6: an exporter's ``"recording_start": null`` refused every track of the session (B254's line)."""
+    imported = {"time": {"origin_s": 1796435970.0, "datetime": {"offset": "-05:00", "first": "x"}}}
+    assert recording_start({"recording_start": None}) is None  # main: DataError
+    assert recording_start({"recording_start": None, "imported": imported}).isoformat() == "2026-12-04T20:59:30-05:00"
+    # the default where: not "meta.json: meta.json recording_start"
+    with pytest.raises(DataError, match=r"^meta\.json recording_start 12 is not an ISO 8601"):
+        recording_start({"recording_start": 12})
+    with pytest.raises(DataError, match=r"^s: meta\.json recording_start 12 is not"):
+        recording_start({"recording_start": 12}, "s")
+
+
+def test_a_reversed_time_of_day_window_past_the_end_is_refused_b259():
+    """Review F5: ``01:00:30,00:59:55`` on a 90 s recording from 00:59:50 was read as 40 s to the next day's
+    00:59:55 (86405 s) and clipped to the recording: a typo turned into another window."""
+    start = datetime(2026, 12, 5, 0, 59, 50, tzinfo=UTC)
+    with pytest.raises(DataError, match=r"^s: --window 01:00:30,00:59:55 ends at 2026-12-06T00:59:55\+00:00, after "
+                                        r"midnight and after the recording's end.*END before START\?.*B259"):
+        window_seconds(ClockWindow("01:00:30,00:59:55", "01:00:30", "00:59:55"), start, 90.0, 0.0, "s")
+    # crossing midnight inside the recording, and an END past the end on the same day (B242's clip), still work
+    late = datetime(2026, 12, 5, 23, 40, tzinfo=UTC)
+    assert window_seconds(ClockWindow("23:50,00:10", "23:50", "00:10"), late, 3600.0, 0.0, "s") == (600.0, 1800.0)
+    assert window_seconds(ClockWindow("23:50,23:59", "23:50", "23:59"), late, 900.0, 0.0, "s") == (600.0, 1140.0)

@@ -16,8 +16,10 @@ from pdrlearn.waist.params import WaistParams
 
 
 def _line(options):
-    """``stand_veto`` off, as live and (W217) the offline default again: only these named."""
-    return unapplied_options_line(WaistParams(leg_m=0.9, options={"stand_veto": False, **(options or {})}))
+    """``stand_veto`` off, as live and (W217) the offline default again, ``pause_ride`` and ``rest_bias`` off, as live
+    (E145): only these named."""
+    return unapplied_options_line(WaistParams(leg_m=0.9, options={"stand_veto": False, "pause_ride": False,
+                                                                 "rest_bias": False, **(options or {})}))
 
 
 def test_the_offline_defaults_of_contact_shift_and_parity_fill_are_named_with_what_live_does():

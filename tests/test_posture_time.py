@@ -118,3 +118,32 @@ def test_a_foot_track_says_the_split_needs_the_lower_back(sat, capsys):
     summary = json.loads((out / "summary.json").read_text())
     assert all(summary[k] is None for k in POSTURE_KEYS)
     assert pd.read_csv(out / "periods.csv")[list(POSTURE_KEYS)].isna().all().all()
+
+
+def test_a_non_finite_up_direction_is_unknown_not_standing_w234():
+    """Review F4: NaN tilt failed both thresholds and was coded standing (and poisoned the cumulative sums after it:
+    main gave one standing run over the whole 20 s)."""
+    t = np.arange(0.0, 20.0, 0.01)
+    up = np.tile([0.0, 0.0, 1.0], (t.size, 1))
+    up[500:1500] = np.nan  # 5-15 s without an up direction
+    tilt = averaged_tilt_deg(t, up, np.array([0.0, 0.0, 1.0]))
+    assert np.isnan(tilt[(t > 6.1) & (t < 13.9)]).all() and tilt[(t < 4.9) | (t > 15.1)] == pytest.approx(0.0)
+    code = label_postures(t, tilt, np.zeros(t.size, dtype=bool), _transfers(("stand-to-sit", 8.0)))
+    assert (code[(t > 6.1) & (t < 13.9)] == 0).all()  # a transfer does not name a posture without an up direction
+    runs = posture_runs(t, code)
+    assert [r[2] for r in runs] == ["standing", "sitting"] and not [r for r in runs if 6.1 < r[0] < 13.9]
+    steps = pd.DataFrame({"start_s": [0.0], "end_s": [0.5], "length_m": [0.0], "heading_rad": [0.0]})
+    assert Timeline.of(steps, [], runs).posture_budget(0.0, 19.99)["unknown_time_s"] > 7.0  # main: 0
+
+
+def test_the_posture_keys_say_run_of_a_waist_bundle_writes_them_empty_e145():
+    """Review F3: ``run`` of a waist bundle writes null posture keys (its live tracker has no posture runs); the
+    dictionary and track's line said null meant a foot track only."""
+    from pdrlearn.cli.common import posture_line
+    from pdrlearn.columns import PERIODS, SESSIONS
+
+    for table in (SESSIONS, PERIODS):
+        desc = {c[0]: c[3] for c in table}
+        for k in POSTURE_KEYS:
+            assert "empty for a foot track and for `run` of a waist bundle (E145)" in desc[k], k
+    assert "`run` of a waist bundle has no posture runs" in posture_line(dict.fromkeys(POSTURE_KEYS))

@@ -32,7 +32,8 @@ def walk(tmp_path_factory):
                                             "pipeline": "waist-pendulum", "rate_hz": 100.0,
                                             # E126 / E130 (W199): as live, so E107's line does not name them
                                             "options": {"sit_veto": False, "contact_shift": False,
-                                                        "parity_fill": False, "stand_veto": False}}))
+                                                        "parity_fill": False, "stand_veto": False,
+                                                        "pause_ride": False, "rest_bias": False}}))  # E145
     frame = ",".join(f"{k}={v}" for k, v in s.require_frame("waist").to_dict().items())
     export_waist(d / "cal.json", d / "wb", frame=frame)
     a, g = s["wAccelerometer"], s["wGyroscope"]

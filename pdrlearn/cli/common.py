@@ -544,10 +544,12 @@ def transfer_line(summary: dict) -> str | None:
 
 def posture_line(summary: dict) -> str:
     """Decision W222: ``track``'s line of the time that is not walking, by posture (a lower-back track), or that a
-    foot-only track cannot split it (its keys are null)."""
+    foot-only track cannot split it (its keys are null). Decision E145: ``run`` of a waist bundle writes the keys null
+    too (the live tracker has no posture runs) and prints no such line; the line names both."""
     if summary.get("standing_time_s") is None:
-        return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt (a foot "
-                "unit sees no trunk; decision W222)")
+        return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt in an "
+                "offline `pdrlearn track` (a foot unit sees no trunk; `run` of a waist bundle has no posture runs; "
+                "decisions W222, E145)")
     return (f"posture: standing {summary['standing_time_s']:.1f} s, sitting {summary['sitting_time_s']:.1f} s, "
             f"lying {summary['lying_time_s']:.1f} s, unknown {summary['unknown_time_s']:.1f} s (besides walking; "
             "trunk tilt and transfers, decision W222)")

@@ -56,12 +56,14 @@ def _offset(text: str | None):
 
 def recording_start(meta: dict | None, where: str = "meta.json") -> datetime | None:
     """Decision L298: the clock time of the session's 0 s from its ``meta`` (module docstring), or None. A
-    ``recording_start`` that is not an ISO 8601 date-time is one :class:`DataError` line (decision B254)."""
+    ``recording_start`` that is not an ISO 8601 date-time is one :class:`DataError` line (decision B254); a JSON
+    ``null`` (an exporter's "unknown") is read as absent (decision B258)."""
     meta = meta if isinstance(meta, dict) else {}
-    if START_KEY in meta:
+    if meta.get(START_KEY) is not None:  # decision B258: "recording_start": null is no start, not a bad one
         got = _parse_iso(meta[START_KEY]) if isinstance(meta[START_KEY], str) else None
         if got is None:
-            raise DataError(f"{where}: meta.json {START_KEY} {meta[START_KEY]!r} is not an ISO 8601 date-time; write "
+            key = f"{where} {START_KEY}" if str(where).endswith("meta.json") else f"{where}: meta.json {START_KEY}"
+            raise DataError(f"{key} {meta[START_KEY]!r} is not an ISO 8601 date-time; write "
                             f"e.g. \"{START_KEY}\": \"2026-12-05T02:13:00+01:00\" (decision B254)")
         return got
     imported = meta.get("imported")
@@ -179,11 +181,17 @@ def window_seconds(window: ClockWindow, start: datetime, duration_s: float, t_re
     a = _instant(window.start, rec0, start, window.text, where)
     b = _instant(window.end, a, start, window.text, where)
     sa, sb = (a - rec0).total_seconds(), (b - rec0).total_seconds()
+    rec1 = rec0 + timedelta(seconds=duration_s)
     if sa < 0 or sa >= duration_s:
-        rec1 = rec0 + timedelta(seconds=duration_s)
         raise DataError(f"{where}: --window {window.text} starts at {a.isoformat(timespec='seconds')}, outside the "
                         f"recording ({rec0.isoformat(timespec='seconds')} to {rec1.isoformat(timespec='seconds')}); "
                         "give clock times inside it (decision B255)")
     if sb <= sa:
         raise DataError(f"--window {window.text!r}: END must be later than START; give START,END (decision B255)")
+    if _TIME_OF_DAY.fullmatch(window.end) and b.date() > a.date() and sb > duration_s:
+        # decision B259: a time-of-day END read on the next day AND past the recording's end is a reversed window
+        raise DataError(f"{where}: --window {window.text} ends at {b.isoformat(timespec='seconds')}, after midnight "
+                        f"and after the recording's end ({rec1.isoformat(timespec='seconds')}): END before START? "
+                        "a time-of-day window (23:50,00:10) crosses midnight only inside the recording; give "
+                        "START,END in order (decisions B255, B259)")
     return sa, sb

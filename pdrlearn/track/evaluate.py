@@ -1061,6 +1061,7 @@ SUMMARY_INFO_LEFT_OUT = {
     "freezes": "freezes.csv (decision W213)",
     "postures": "the runs behind the posture time keys (decision W222)",
     "yaw_turns": "turns.csv's turn timing (decision L210)",
+    "rest_bias_rests": "the position radius's clock (decision L306)",
 }
 #: decision E141: the entries of ``info["aid"]`` that summary.json leaves out (every fix's row: aided.png's)
 SUMMARY_AID_LEFT_OUT = ("fix_table",)

@@ -117,23 +117,35 @@ def sigma_regime(info: dict, session) -> str:
     return "plasys-fused" if info.get("heading_source") in ("fused", "waist") else "plasys-foot"
 
 
-def bias_clock(steps, end: np.ndarray, t0: float, rest_s: float) -> np.ndarray:
+def bias_clock(steps, end: np.ndarray, t0: float, rest_s: float, rests=None) -> np.ndarray:
     """Decision L297: the steps' end times with every rest longer than ``rest_s`` taken out (between two steps: from a
     step's ``end_s`` to the next one's ``start_s``; before the first step: from the track's start ``t0``): the clock
     of the model's residual heading rate when the heading takes the bias of such a rest from the rest itself (L296;
-    before the first step the heading has not started), so it does not turn by ``b t`` across it."""
+    before the first step the heading has not started), so it does not turn by ``b t`` across it. ``rests``
+    (decision L306): the (start, end) spans L296 took the bias out of; when given, a rest between two steps is taken
+    out only if it overlaps one of them (a rest whose heading still integrates the bias keeps its clock)."""
     if "start_s" not in steps or not len(end):
         return end
-    gap = steps["start_s"].to_numpy(float) - np.concatenate([[t0], end[:-1]])
-    skip = np.where(np.isfinite(gap) & (gap > rest_s), gap, 0.0)
+    prev = np.concatenate([[t0], end[:-1]])
+    start = steps["start_s"].to_numpy(float)
+    gap = start - prev
+    long = np.isfinite(gap) & (gap > rest_s)
+    if rests is not None:  # decision L306: only the rests L296 corrected (and the lead-in: no heading yet)
+        spans = np.asarray(rests, float).reshape(-1, 2)
+        corrected = np.array([bool(np.any((np.minimum(b, spans[:, 1]) - np.maximum(a, spans[:, 0])) > 0))
+                              for a, b in zip(prev, start, strict=True)], dtype=bool)
+        corrected[0] = True
+        long &= corrected
+    skip = np.where(long, gap, 0.0)
     return end - np.cumsum(skip)
 
 
-def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = None) -> np.ndarray:
+def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = None, rests=None) -> np.ndarray:
     """The 1-sigma radius (m) at each time ``t`` (a track's trajectory times, the first its start) of a track
     with ``steps`` (steps.csv columns ``length_m``, ``heading_rad``, ``end_s``) under the model ``params``: the
     covariance after the last stride that ended at or before the time, 0 at the start, never decreasing.
-    ``rest_s`` (decision L297): the bias term's clock skips the rests longer than this (:func:`bias_clock`)."""
+    ``rest_s`` (decision L297): the bias term's clock skips the rests longer than this (:func:`bias_clock`); with
+    ``rests`` (decision L306) only those of them that overlap these (start, end) spans."""
     t = np.asarray(t, float)
     sigma = np.zeros(len(t))
     if len(steps) and len(t):
@@ -150,7 +162,7 @@ def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = Non
                         float(steps["start_s"].iloc[k]) if "start_s" in steps else float("nan"))
             length, heading = np.where(bad, 0.0, length), np.where(bad, 0.0, heading)
             end = pd.Series(np.where(np.isfinite(end), end, np.nan)).ffill().fillna(t0).to_numpy(float)
-        clock = end if rest_s is None else bias_clock(steps, end, t0, rest_s)  # decision L297
+        clock = end if rest_s is None else bias_clock(steps, end, t0, rest_s, rests)  # L297, L306
         cov = position_covariance(length, heading, clock, t0, **params, held_var_m2=held_gap_variance(steps))
         r = sigma_radius(cov)
         r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
@@ -183,13 +195,12 @@ def add_position_sigma(result, session, regime: str | None = None) -> None:
         return
     regime = regime or sigma_regime(result.info, session)
     params = sigma_params(regime)
-    rest_s = None
-    if str(result.info.get("pipeline", "")).startswith("waist-") and (result.info.get("options") or {}).get(
-            "rest_bias") and (result.info.get("options") or {}).get("integrate_stops"):
+    rest_s, rests = None, result.info.get("rest_bias_rests")
+    if rests is not None:  # decision L306: L296 was in force on this heading (the gyro one; not `run`'s live one)
         from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
 
         rest_s = REST_BIAS_MIN_S  # decision L297: L296's rests turn the heading by their moving samples only
-    traj["pos_sigma_m"] = sigma_per_row(result.steps, traj["t"].to_numpy(float), params, rest_s)
+    traj["pos_sigma_m"] = sigma_per_row(result.steps, traj["t"].to_numpy(float), params, rest_s, rests)
     result.info["position_sigma"] = {"model": regime, **params}
 
 

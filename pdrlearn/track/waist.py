@@ -384,11 +384,13 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         if len(seq) > 1:
             mean_rate[seq[:-1]] = K.mean_rate_per_stride(imu.t, w, ev_all[seq], cum=cum)
     removed: list[tuple[float, float]] = []  # decision L296: (end of a long rest, the bias integral left out)
+    rests: list[tuple[float, float]] | None = None  # decision L306: the (start, end) of the rests L296 corrected
     if method == "gyro":
         clf = TurnClassifier(**(p.turn_gmm or {}))
         per_seq = []
         current = 0.0
         still = _rest_still(imu, seqs, ev_all) if integrate_stops and rest_bias else None  # decision L296
+        rests = [] if integrate_stops and rest_bias else None
         for j, seq in enumerate(seqs):
             if integrate_stops and j > 0:  # turns made while standing between walking sequences
                 t_a, t_b = ev_all[seqs[j - 1][-1]], ev_all[seq[0]]
@@ -396,6 +398,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
                 turned = whole if still is None else rest_rotation(imu.t, w, still, t_a, t_b, cum=cum)
                 if turned != whole:  # L296: the bias left out, for W74's comparison with the integrated yaw
                     removed.append((float(t_b), whole - turned))
+                    rests.append((float(t_a), float(t_b)))  # decision L306: what L297's clock may skip
                 current += turned
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
@@ -427,6 +430,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         headings[last] = gyro_end + K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
     out = steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
     out.attrs["rest_bias_removed"] = removed
+    out.attrs["rest_bias_rests"] = rests  # None: L296 not in force (not the gyro heading, or an option off)
     return out
 
 
@@ -857,6 +861,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                            integrate_end=bool(o["integrate_end"]) and not realtime,  # W187: offline only
                            rest_bias=bool(o["rest_bias"]))  # decision L296
     rest_removed = steps.attrs.get("rest_bias_removed", [])
+    rest_spans = steps.attrs.get("rest_bias_rests")  # decision L306
     steps = steps.assign(stairs=stairs)
     warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
     ev_s, len_s = steps["event_s"].to_numpy(float), steps["length_m"].to_numpy(float)
@@ -949,6 +954,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
         "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
         "postures": session_postures(imu, steps, transfers),  # decision W222: the posture runs (not in summary.json)
+        # decision L306: the rests whose bias L296 took out (L297's sigma clock skips these only); None: L296 not
+        # in force on this heading (not in summary.json)
+        "rest_bias_rests": None if rest_spans is None else [[a, b] for a, b in rest_spans],
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }
     for w in warnings:

@@ -16,7 +16,8 @@ is not walking:
 
 Walking and the data gaps are the track's own (decision L275's pieces and gaps, :mod:`pdrlearn.track.periods`):
 this module labels every instant of the recording, and the time accounting counts a posture only outside the
-walking pieces and the gaps. Without an upright (no contact, no AHRS up direction) every instant is unknown.
+walking pieces and the gaps. Without an upright (no contact, no AHRS up direction) every instant is unknown, and
+so is an instant whose averaged up direction is not finite (W234).
 
 Not from a seed (the thesis only names Lee & Mase 2002 as classifying sitting, standing and walking): the thresholds
 are this module's choices (W222), set before measuring.
@@ -47,17 +48,27 @@ POSTURES = (STANDING, SITTING, LYING)
 POSTURE_KEYS = ("standing_time_s", "sitting_time_s", "lying_time_s", "unknown_time_s")
 _CODE = {STANDING: 1, SITTING: 2, LYING: 3}
 _NAME = {v: k for k, v in _CODE.items()}
+#: decision W234: the code of an instant without a posture (a non-finite tilt); it has no run, so the time
+#: accounting counts it unknown
+_UNKNOWN = 0
 
 
 def averaged_tilt_deg(t: np.ndarray, up_body: np.ndarray, upright: np.ndarray,
                       half_s: float = POSTURE_HALF_WINDOW_S) -> np.ndarray:
     """Per sample: the angle (deg) between ``upright`` and the up direction ``up_body`` averaged over +-``half_s``
-    (window means by cumulative sums, as :func:`pdrlearn.waist.posture.contact_directions`; a pure kernel)."""
-    csum = np.vstack([np.zeros((1, 3)), np.cumsum(up_body, axis=0)])
+    (window means by cumulative sums, as :func:`pdrlearn.waist.posture.contact_directions`; a pure kernel).
+    Decision W234: a non-finite up direction is left out of the windows (it would poison every later cumulative
+    sum); a sample whose window holds none finite gets a NaN tilt, which :func:`label_postures` codes unknown."""
+    up = np.asarray(up_body, dtype=float)
+    ok = np.isfinite(up).all(axis=1)
+    csum = np.vstack([np.zeros((1, 3)), np.cumsum(np.where(ok[:, None], up, 0.0), axis=0)])
+    cnt = np.r_[0, np.cumsum(ok)]
     lo = np.clip(np.searchsorted(t, t - half_s), 0, len(t) - 1)
     hi = np.clip(np.searchsorted(t, t + half_s, side="right"), lo + 1, len(t))
-    d = (csum[hi] - csum[lo]) / (hi - lo)[:, None]
-    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    n = (cnt[hi] - cnt[lo]).astype(float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        d = (csum[hi] - csum[lo]) / np.where(n > 0, n, np.nan)[:, None]
+        d /= np.linalg.norm(d, axis=1, keepdims=True)
     return np.degrees(np.arccos(np.clip(d @ upright, -1.0, 1.0)))
 
 
@@ -68,10 +79,10 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
 
 
 def label_postures(t: np.ndarray, tilt: np.ndarray, walking: np.ndarray, transfers: pd.DataFrame) -> np.ndarray:
-    """Per sample: 1 standing, 2 sitting, 3 lying (module docstring; a pure kernel). ``tilt`` is the averaged tilt
-    (deg), ``walking`` (bool) the samples inside a walking contact's step, ``transfers`` W182's rows (``kind``,
-    ``start_s``, ``end_s``, ``peak_s``); a walking sample gets its tilt's label (the time accounting counts walking
-    apart)."""
+    """Per sample: 1 standing, 2 sitting, 3 lying, 0 unknown (module docstring; a pure kernel). ``tilt`` is the
+    averaged tilt (deg), ``walking`` (bool) the samples inside a walking contact's step, ``transfers`` W182's rows
+    (``kind``, ``start_s``, ``end_s``, ``peak_s``); a walking sample gets its tilt's label (the time accounting counts
+    walking apart). Decision W234: a non-finite tilt (no up direction) is unknown (0), transfers or not."""
     tilt = np.asarray(tilt, dtype=float)
     lying = tilt >= LYING_TILT_DEG
     code = np.where(lying, _CODE[LYING], np.where(tilt >= SITTING_TILT_DEG, _CODE[SITTING], _CODE[STANDING]))
@@ -93,17 +104,19 @@ def label_postures(t: np.ndarray, tilt: np.ndarray, walking: np.ndarray, transfe
                 votes.add(SITTING if kinds[inside[j]] == SIT_TO_STAND else STANDING)
             if len(votes) == 1:
                 code[cuts[j]:cuts[j + 1]] = _CODE[votes.pop()]
+    code[~np.isfinite(tilt)] = _UNKNOWN  # decision W234: no up direction, no posture (W222's "unknown")
     return code
 
 
 def posture_runs(t: np.ndarray, code: np.ndarray) -> list[list]:
     """``[start_s, end_s, posture]`` of each run of equal labels (a run ends where the next starts; the last at
-    ``t[-1]``)."""
+    ``t[-1]``); an unknown run (W234) has no row."""
     if not t.size:
         return []
     edges = np.r_[0, np.flatnonzero(np.diff(code)) + 1]
     ends = np.r_[t[edges[1:]], t[-1]]
-    return [[float(t[i]), float(e), _NAME[int(code[i])]] for i, e in zip(edges, ends, strict=True)]
+    return [[float(t[i]), float(e), _NAME[int(code[i])]] for i, e in zip(edges, ends, strict=True)
+            if int(code[i]) != _UNKNOWN]
 
 
 def session_postures(imu: WaistIMU, steps: pd.DataFrame, transfers: pd.DataFrame) -> list[list]:
