@@ -463,7 +463,7 @@ def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro:
     |acc| there outside :data:`STILL_ACC_RANGE` is refused (gravity removed although the mean vector passed
     B30, or a wrong unit). B37: a gyroscope whose 99th percentile |rate| is under
     :data:`WALKING_GYRO_P99` while the accelerometer shows movement is refused (rad/s data converted as deg/s);
-    both figures are the largest of any 10 s block (decision B257, B251's blocks).
+    both figures are the whole recording's (B257's largest-block figures withdrawn: they refuse a still, noisy unit).
     """
     if acc.shape[0] < 10 or gyro.shape[0] < 10:
         return
@@ -471,17 +471,13 @@ def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro:
     gn = np.linalg.norm(gyro, axis=1)
     if not (np.all(np.isfinite(an)) and np.all(np.isfinite(gn))):
         return
-    from pdrlearn.kernels.frozen_foot import block_motion  # decision B257 (frozen_foot imports this module)
-
-    # decision B257: |acc| sd and the 99th percentile |rate|, each the largest of B251's 10 s blocks: a night's
-    # whole-session figures read a short walk as still, so a gyroscope 57.3 times too small passed unseen
-    astd, p99 = block_motion(acc_t, acc, gyro_t, gyro)
+    p99 = float(np.percentile(gn, 99))
+    astd = float(np.std(an))  # whole-recording figures (decision B257: the largest 10 s block's withdrawn)
     bound = WALKING_GYRO_P99.get(placement, 0.1)
     if astd > WALKING_ACC_STD and p99 < bound:
         raise DataError(
             f"{where_gyro}: the 99th percentile |rate| is {p99:.3g} rad/s while the accelerometer shows movement "
-            f"(|acc| std {astd:.2g} m/s^2; each the largest of any 10 s block), far under a moving {placement}'s "
-            f"(over {bound:g} rad/s): the values "
+            f"(|acc| std {astd:.2g} m/s^2), far under a moving {placement}'s (over {bound:g} rad/s): the values "
             f"look like rad/s converted as deg/s (57.3 times too small); {gyro_fix}"
         )
     ratio, rms_tilt = tilt_rate_ratio(acc_t, acc, gyro_t, gyro)
