@@ -104,6 +104,25 @@ def test_two_different_simulated_walks_are_refused(hemi):
         check_clock(Path("l"), Path("r"), other.meta, hemi["right"].meta)
 
 
+def test_a_paretic_side_without_asymmetry_is_the_same_walk_l307():
+    """L307 (review F7): --paretic-side right on one foot only, with both asymmetries zero, changes nothing in the
+    walk (the same contacts and trajectory), so the pair is one walk; with a step-time asymmetry the two sides are
+    two different walks and still refused."""
+    def sim(foot, **knobs):
+        return simulate_path(parse_route("stand:2, straight:6, stand:2"), UserProfile.from_seed(5532), rate_hz=20.0,
+                             seed=4, scenario="route", instrumented_foot=foot, **knobs)
+
+    left, right, plain = sim("left", paretic_side="right"), sim("right"), sim("right", paretic_side="right")
+    assert left.meta["knobs"]["paretic_side"] == "right" and "paretic_side" not in right.meta["knobs"]
+    assert plain.extras["ics"].equals(right.extras["ics"]) and plain.trajectory.equals(right.trajectory)
+    check_clock(Path("l"), Path("r"), left.meta, right.meta)  # one walk (refused before L307)
+    check_clock(Path("l"), Path("r"), right.meta, left.meta)
+    asym_l = sim("left", paretic_side="right", step_time_asymmetry=0.2)
+    with pytest.raises(DataError, match="two different simulated walks"):
+        check_clock(Path("l"), Path("r"), asym_l.meta, sim("right", step_time_asymmetry=0.2).meta)
+    check_clock(Path("l"), Path("r"), asym_l.meta, sim("right", paretic_side="right", step_time_asymmetry=0.2).meta)
+
+
 def test_paretic_side_right_lengthens_the_right_steps(hemi):
     """S55: --paretic-side right: the steps onto the right foot are 1.39 x the left's (S35's ratio, mirrored); the
     step-length asymmetry follows the same side."""

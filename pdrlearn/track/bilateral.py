@@ -318,12 +318,20 @@ def check_pair(left_dir: Path, right_dir: Path, left_meta: dict, right_meta: dic
 SIM_WALK_KEYS = ("scenario", "speed", "seed", "user_seed", "user", "n_steps", "clock_offset_s", "clock_drift_ppm")
 
 
+#: decision L307: the simulator knobs ``paretic_side`` acts through (S35, S42, S55): with both zero it changes nothing
+SIM_ASYMMETRY_KNOBS = ("step_time_asymmetry", "step_length_asymmetry")
+
+
 def sim_walk(meta: dict) -> str | None:
     """Decision S54: a simulated session's walk (``source_project`` "pdrlearn.sim") as a text of
-    :data:`SIM_WALK_KEYS` and its knobs without ``instrumented_foot``; None for any other session."""
+    :data:`SIM_WALK_KEYS` and its knobs without ``instrumented_foot``, and without ``paretic_side`` when every one
+    of :data:`SIM_ASYMMETRY_KNOBS` is zero or absent (decision L307: it then has no effect); None for any other
+    session."""
     if meta.get("source_project") != "pdrlearn.sim":
         return None
     knobs = {k: v for k, v in (meta.get("knobs") or {}).items() if k != "instrumented_foot"}
+    if not any(knobs.get(k) for k in SIM_ASYMMETRY_KNOBS):  # decision L307
+        knobs.pop("paretic_side", None)
     return "pdrlearn.sim walk " + json.dumps({**{k: meta.get(k) for k in SIM_WALK_KEYS}, "knobs": knobs},
                                               sort_keys=True, default=str)
 

@@ -241,6 +241,15 @@ def climb_kind(dz, pause_dz, length, rows) -> str:
     return "ramps" if run > 0 and 100.0 * abs(float(np.sum(dz[rows]))) / run < STAIR_MIN_GRADE_PCT else "stairs"
 
 
+def _climb_inputs(steps: pd.DataFrame):
+    """:func:`climb_kind`'s per-row inputs from the steps, NaN read as 0: the walking height change ``dz_m``, the
+    standstill change ``pause_dz_m`` (W158) and the horizontal ``length_m``, zeros for a missing column - one reading
+    for decisions L302 (:func:`floors_by_kind`) and L303 (:func:`ramp_climb_rows`)."""
+    def column(name):
+        return np.nan_to_num(steps[name].to_numpy(float)) if name in steps else np.zeros(len(steps))
+    return column("dz_m"), column("pause_dz_m"), column("length_m")
+
+
 def ramp_climb_rows(steps: pd.DataFrame) -> np.ndarray:
     """Decision L303: the rows of the climbs (L127's runs of stair rows and the rows bridged between them, any height,
     :func:`_climb_runs` with ``every``) that :func:`climb_kind` calls ``"ramps"``: walked under
@@ -250,9 +259,7 @@ def ramp_climb_rows(steps: pd.DataFrame) -> np.ndarray:
     dz, bridge = _climb_dz(steps)
     if dz is None:
         return out
-    walked = np.nan_to_num(steps["dz_m"].to_numpy(float))
-    pause = np.nan_to_num(steps["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in steps else np.zeros(len(dz))
-    length = np.nan_to_num(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.zeros(len(dz))
+    walked, pause, length = _climb_inputs(steps)
     for rows, _ in _climb_runs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True):
         if climb_kind(walked, pause, length, rows) == "ramps":
             out[int(rows[0]):int(rows[-1]) + 1] = True
@@ -268,9 +275,7 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
     if dz is None:
         return out
     out.update({k: 0 for k in out})
-    walked = np.nan_to_num(steps["dz_m"].to_numpy(float))
-    pause = np.nan_to_num(steps["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in steps else np.zeros(len(dz))
-    length = np.nan_to_num(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.zeros(len(dz))
+    walked, pause, length = _climb_inputs(steps)
     for rows, n in _climb_runs(dz, storey_height_m, STOREY_BAND, bridge, None):
         key = f"floors_{'up' if n > 0 else 'down'}_{climb_kind(walked, pause, length, rows)}"
         out[key] += abs(n)

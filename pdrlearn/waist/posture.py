@@ -56,16 +56,28 @@ TRANSFER_PEAK_DEG = 25.0
 TRANSFER_HALF_S = 1.0
 
 
+def window_directions(t: np.ndarray, up_body: np.ndarray, centre_s: np.ndarray, half_s: float) -> np.ndarray:
+    """The AHRS's up direction in the body frame (``up_body``, one row per sample time ``t``) averaged over
+    +-``half_s`` around each time of ``centre_s``, normalised (a pure kernel: W102's contact directions, W222's
+    posture tilt). Decision W234: a non-finite up direction is left out of the windows (it would poison every later
+    cumulative sum); a window with none finite gives a NaN direction."""
+    # window means by cumulative sums: O(n) for any number of windows
+    up = np.asarray(up_body, dtype=float)
+    ok = np.isfinite(up).all(axis=1)
+    csum = np.vstack([np.zeros((1, 3)), np.cumsum(np.where(ok[:, None], up, 0.0), axis=0)])
+    cnt = np.r_[0, np.cumsum(ok)]
+    lo = np.clip(np.searchsorted(t, centre_s - half_s), 0, len(t) - 1)
+    hi = np.clip(np.searchsorted(t, centre_s + half_s, side="right"), lo + 1, len(t))
+    n = (cnt[hi] - cnt[lo]).astype(float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        d = (csum[hi] - csum[lo]) / np.where(n > 0, n, np.nan)[:, None]
+        return d / np.linalg.norm(d, axis=1, keepdims=True)
+
+
 def contact_directions(t: np.ndarray, up_body: np.ndarray, event_s: np.ndarray) -> np.ndarray:
-    """W102's direction of each contact: the AHRS's up direction in the body frame (``up_body``, one row per sample
-    time ``t``) averaged over +-:data:`TILT_HALF_WINDOW_S` around it, normalised (a pure kernel, shared by the
-    offline veto and W200's causal one)."""
-    # window means by cumulative sums: O(n) for any number of contacts
-    csum = np.vstack([np.zeros((1, 3)), np.cumsum(up_body, axis=0)])
-    lo = np.clip(np.searchsorted(t, event_s - TILT_HALF_WINDOW_S), 0, len(t) - 1)
-    hi = np.clip(np.searchsorted(t, event_s + TILT_HALF_WINDOW_S, side="right"), lo + 1, len(t))
-    d = (csum[hi] - csum[lo]) / (hi - lo)[:, None]
-    return d / np.linalg.norm(d, axis=1, keepdims=True)
+    """W102's direction of each contact: :func:`window_directions` over +-:data:`TILT_HALF_WINDOW_S` around it (a
+    pure kernel, shared by the offline veto and W200's causal one)."""
+    return window_directions(t, up_body, event_s, TILT_HALF_WINDOW_S)
 
 
 def walking_upright(d: np.ndarray, walking: np.ndarray) -> np.ndarray:

@@ -28,8 +28,9 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from pdrlearn.signal import runs
 from pdrlearn.waist.ahrs import WaistIMU
-from pdrlearn.waist.posture import contact_directions, walking_upright
+from pdrlearn.waist.posture import contact_directions, walking_upright, window_directions
 from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT
 
 #: decision W222: the up direction is averaged over +- this (s) before its tilt is read: a posture lasts seconds,
@@ -56,26 +57,11 @@ _UNKNOWN = 0
 def averaged_tilt_deg(t: np.ndarray, up_body: np.ndarray, upright: np.ndarray,
                       half_s: float = POSTURE_HALF_WINDOW_S) -> np.ndarray:
     """Per sample: the angle (deg) between ``upright`` and the up direction ``up_body`` averaged over +-``half_s``
-    (window means by cumulative sums, as :func:`pdrlearn.waist.posture.contact_directions`; a pure kernel).
-    Decision W234: a non-finite up direction is left out of the windows (it would poison every later cumulative
-    sum); a sample whose window holds none finite gets a NaN tilt, which :func:`label_postures` codes unknown."""
-    up = np.asarray(up_body, dtype=float)
-    ok = np.isfinite(up).all(axis=1)
-    csum = np.vstack([np.zeros((1, 3)), np.cumsum(np.where(ok[:, None], up, 0.0), axis=0)])
-    cnt = np.r_[0, np.cumsum(ok)]
-    lo = np.clip(np.searchsorted(t, t - half_s), 0, len(t) - 1)
-    hi = np.clip(np.searchsorted(t, t + half_s, side="right"), lo + 1, len(t))
-    n = (cnt[hi] - cnt[lo]).astype(float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        d = (csum[hi] - csum[lo]) / np.where(n > 0, n, np.nan)[:, None]
-        d /= np.linalg.norm(d, axis=1, keepdims=True)
+    (:func:`pdrlearn.waist.posture.window_directions` at every sample; a pure kernel). Decision W234: a non-finite up
+    direction is left out of the windows; a sample whose window holds none finite gets a NaN tilt, which
+    :func:`label_postures` codes unknown."""
+    d = window_directions(t, up_body, t, half_s)
     return np.degrees(np.arccos(np.clip(d @ upright, -1.0, 1.0)))
-
-
-def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
-    """``[a, b)`` index runs where ``mask`` is True."""
-    edges = np.flatnonzero(np.diff(np.r_[0, mask.astype(np.int8), 0]))
-    return list(zip(edges[::2], edges[1::2], strict=True))
 
 
 def label_postures(t: np.ndarray, tilt: np.ndarray, walking: np.ndarray, transfers: pd.DataFrame) -> np.ndarray:
@@ -93,7 +79,7 @@ def label_postures(t: np.ndarray, tilt: np.ndarray, walking: np.ndarray, transfe
     rest = ~((np.asarray(walking, dtype=bool) & ~moving) | lying)
     peaks = np.searchsorted(t, tr["peak_s"].to_numpy(float)) if len(tr) else np.zeros(0, int)
     kinds = tr["kind"].to_numpy() if len(tr) else np.zeros(0, object)
-    for a, b in _runs(rest):
+    for a, b in runs(rest):
         inside = np.flatnonzero((peaks >= a) & (peaks < b))
         cuts = [a, *peaks[inside].tolist(), b]
         for j in range(len(cuts) - 1):
