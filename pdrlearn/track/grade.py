@@ -13,6 +13,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from pdrlearn.signal import runs as signal_runs
+
 #: decision L300: a row shorter than this (m, horizontal) has no grade - a turn on the spot or a shuffle moves a few
 #: cm, and its height change over it would read as a wall (a 2 cm barometric step over 5 cm is 40 %)
 GRADE_MIN_LENGTH_M = 0.2
@@ -117,18 +119,8 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     stair = np.abs(own) >= stair_grade_pct
     sign = np.where((np.abs(g) >= min_grade_pct) & (np.abs(g) < stair_grade_pct) & ~stair
                     & (length >= GRADE_MIN_LENGTH_M), np.sign(g), 0).astype(int)
-    runs = []
-    i = 0
-    while i < n:
-        if sign[i] == 0:
-            i += 1
-            continue
-        j = i
-        while j + 1 < n and sign[j + 1] == sign[i]:
-            j += 1
-        if length[i:j + 1].sum() >= min_run_m:
-            runs.append((i, j, int(sign[i])))
-        i = j + 1
+    runs = sorted((a, b - 1, s) for s in (1, -1) for a, b in signal_runs(sign == s)
+                  if length[a:b].sum() >= min_run_m)  # maximal rows of one sign, in walking order
     ramps: list[list[tuple[int, int, int]]] = []
     for r in runs:
         if ramps:
