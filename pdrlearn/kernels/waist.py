@@ -285,9 +285,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         if gate is not None:
             strong &= np.asarray(gate, dtype=bool)[cand]
         vl = None if acc_ml is None else lateral_velocity(acc_ml, fs)
-        read = cand if not side_at_contact else np.array(  # W235: the side at each candidate's contact (W129)
-            [_nearest_local_max_before(ap, p, max(0, p - ws), level=level) for p in cand], dtype=int)
-        side = None if vl is None else step_sides(vl[read], strong)
+        side = None if vl is None else candidate_sides(vl, cand, strong, ap if side_at_contact else None, ws,
+                                                       level=level)
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2, at=peak_positions(vf, cand),
                                min_step_s=min_step_s, max_step_s=max_step_s, side=side,
                                unshifted=unshifted, end_steps=end_steps,
@@ -311,6 +310,19 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         keep = inside_sequences(ic, np.isin(peaks, added), _max_gap(max_step_s, fs))
         peaks, ic = peaks[keep], ic[keep]
     return ic, fc_after(ap, peaks, fs, fc_search_s), peaks
+
+
+def candidate_sides(v_lat: np.ndarray, cand: np.ndarray, accepted: np.ndarray, ap: np.ndarray | None = None,
+                    search: int = 0, *, level: np.ndarray | None = None) -> np.ndarray:
+    """W20's side (+1 / -1 / 0, :func:`step_sides`) of each candidate vertical maximum ``cand`` (sample indices) from
+    the pelvis's lateral velocity ``v_lat`` (per sample), decided against the median at the ``accepted`` ones. Read at
+    the maximum (W20), or with ``ap`` (the AP acceleration) at the candidate's initial contact, the last AP maximum at
+    most ``search`` samples before it (W3, as every contact's IC is found; ``level``: W29's): decision W235, where
+    W129 found the side cue agrees best with the foot."""
+    cand = np.asarray(cand, dtype=np.int64)
+    at = cand if ap is None else np.array([_nearest_local_max_before(ap, p, max(0, p - search), level=level)
+                                           for p in cand], dtype=np.int64)
+    return step_sides(np.asarray(v_lat, dtype=np.float64)[at], accepted)
 
 
 def unshifted_contacts(vmax: np.ndarray, height: np.ndarray, v_at_ic: np.ndarray, fs: float, *,
