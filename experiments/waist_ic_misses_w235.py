@@ -22,6 +22,11 @@ truth). For every miss (FN) the table gives:
   W185 sit / W219 stand veto), `timing` (the candidate is a contact of the track but its IC is > 0.25 s from INDIP,
   or matched to a neighbour).
 
+Then (decision W237, read-out only) two cues besides the 2.5 Hz vertical maximum at each miss: an AP local maximum
+within 0.1 s of the INDIP contact (size / the median AP at the kept contacts), and a positive maximum of the vertical
+acceleration filtered at twice the seed's cut-off (5 Hz, same FIR order) 0-0.25 s after the contact that lies over
+0.1 s from every 2.5 Hz candidate (height / the median kept 2.5 Hz height).
+
 Per subject also: the scored INDIP contacts closer than W16's 0.3 s shortest step to the previous one, and the F1 a
 detector that finds all other contacts and no false one would reach (each such pair can give one hit at most).
 
@@ -56,6 +61,7 @@ TOL = 0.25  # decision 7: the scoring tolerance (s)
 MIN_PEAK = 0.1  # ic_offline's min_peak_mps2 (W16)
 SUBJECTS = ("HA002", "MS001", "HA001")
 W16_SHORTEST_S = 0.3  # W16: the shortest step (s)
+CUE_FRAC = 0.5  # W237 read-out: a cue at half the median or more (W23's PRUNE_HEIGHT_FRAC)
 
 
 def stages(session) -> dict:
@@ -81,9 +87,29 @@ def stages(session) -> dict:
     det = InitialContactDetector(walk_threshold=thr, max_step_s=MAX_STEP_S).detect(imu)
     ws = int(round(0.25 * fs))
     ic = np.array([K._nearest_local_max_before(ap, c, max(0, c - ws)) for c in cand], dtype=int)
-    return {"t": imu.t[cand], "ic": imu.t[ic], "h": h, "ap": ap[ic], "side": side, "strong": strong,
+    vf5 = K.fir_zero_lag(imu.acc_v - imu.acc_v.mean(), K.fir_taps(2 * 2.5, fs, int(round(0.3 * fs))))
+    return {"time": imu.t, "ap_sig": ap, "vf5": vf5, "fs": fs,
+            "t": imu.t[cand], "ic": imu.t[ic], "h": h, "ap": ap[ic], "side": side, "strong": strong,
             "pruned": pruned, "filled": filled, "rules": rules, "det": np.isin(cand, det.anchor_),
             "min_step": min_step}
+
+
+def other_cues(t: float, c: dict, med_h: float, med_ap: float) -> tuple[str, str]:
+    """W237's read-out at a miss at ``t`` (s): the largest AP local maximum within 0.1 s, and a 5 Hz vertical maximum
+    0-0.25 s after ``t`` that lies over 0.1 s from every 2.5 Hz candidate maximum (or "-")."""
+    tm, ap, v5 = c["time"], c["ap_sig"], c["vf5"]
+
+    def local_max(x: np.ndarray, lo: float, hi: float) -> np.ndarray:
+        i = np.flatnonzero((tm >= lo) & (tm <= hi))
+        i = i[(i > 0) & (i < x.size - 1)]
+        return i[(x[i] >= x[i - 1]) & (x[i] > x[i + 1])]
+
+    a = local_max(ap, t - 0.1, t + 0.1)
+    apc = "-" if a.size == 0 else (lambda j: f"{tm[j] - t:+.2f}, {ap[j] / med_ap:.2f}")(a[np.argmax(ap[a])])
+    m = local_max(v5, t, t + TOL)
+    m = m[(v5[m] > 0) & np.array([np.min(np.abs(c["t"] - tm[j])) > 0.1 for j in m], dtype=bool)]
+    v5c = "-" if m.size == 0 else (lambda j: f"{tm[j] - t:+.2f}, {v5[j] / med_h:.2f}")(m[np.argmax(v5[m])])
+    return apc, v5c
 
 
 def stage_of(i: int, c: dict, track_ic: np.ndarray) -> str:
@@ -107,6 +133,8 @@ def main(external: Path) -> None:
     tally: dict[str, dict[str, int]] = {}
     pool = [0, 0, 0]
     n_close = 0
+    cues: list[tuple] = []
+    base = [0, 0, 0]  # W237: midpoints with an AP cue, with a 5 Hz cue, midpoints
     for sub in SUBJECTS:
         s = read_session(external / f"mobgap_{sub}_Test11_Trial1")
         steps = track_waist(s, pipeline="waist-pendulum").steps
@@ -139,10 +167,20 @@ def main(external: Path) -> None:
                 cd = f"{c['t'][i]:.2f} ({c['ic'][i] - t:+.2f})"
                 vr, ar, sd = f"{c['h'][i] / med_h:.2f}", f"{c['ap'][i] / med_ap:.2f}", f"{int(c['side'][i]):+d}"
             tally[sub][st] = tally[sub].get(st, 0) + 1
+            cues.append((sub, t, st, *other_cues(t, c, med_h, med_ap)))
             print(f"| {sub} | {t:.2f} | {row['cls']} | {wb[k]} | {'y' if row['edge'] else ''} | "
                   f"{'y' if row['turn'] else ''} | {'y' if row['slow'] else ''} | {dprev:.2f} / {dnext:.2f} | {cd} | "
                   f"{vr} | {ar} | {sd} ({nb[0]}, {nb[1]}) | {st} |")
         _, rt = W.C.scored(s, track_ic)
+        allref = np.sort(it)
+        for a, b in zip(track_ic[:-1], track_ic[1:], strict=True):  # W237's base rate between kept contacts
+            mid = 0.5 * (a + b)
+            if b - a > MAX_STEP_S or np.min(np.abs(allref - mid)) <= TOL:
+                continue
+            apc, v5 = other_cues(mid, c, med_h, med_ap)
+            base[0] += apc != "-" and float(apc.split(", ")[1]) >= CUE_FRAC
+            base[1] += v5 != "-" and float(v5.split(", ")[1]) >= CUE_FRAC
+            base[2] += 1
         close = int((np.diff(rt) < W16_SHORTEST_S).sum())  # scored INDIP contacts under W16's step of the previous
         ceiling = W.C.f1(r["ref"] - close, r["ref"] - close, r["ref"])
         n_close += close
@@ -156,6 +194,21 @@ def main(external: Path) -> None:
     print("|---|" + "---|" * len(keys))
     for sub, v in tally.items():
         print(f"| {sub} | " + " | ".join(str(v.get(k, 0)) for k in keys) + " |")
+    print("\n## Other cues at each miss (W237): an AP maximum within 0.1 s of the INDIP contact (its size / the median"
+          " at the kept contacts), and a positive maximum of the vertical acceleration at twice the seed's cut-off"
+          " (5 Hz) 0-0.25 s after the contact that is no 2.5 Hz candidate (its height / the median kept 2.5 Hz"
+          " height)\n")
+    print("| subject | t s | stage | AP max (dt s, size/med) | 5 Hz vertical max (dt s, height/med) |\n"
+          "|---|---|---|---|---|")
+    for sub, t, st, apc, v5 in cues:
+        print(f"| {sub} | {t:.2f} | {st} | {apc} | {v5} |")
+    hit = [sum(1 for x in cues if x[3] != "-" and float(x[3].split(", ")[1]) >= CUE_FRAC),
+           sum(1 for x in cues if x[4] != "-" and float(x[4].split(", ")[1]) >= CUE_FRAC)]
+    print(f"\nat the {len(cues)} misses: AP maximum >= {CUE_FRAC} of the median {hit[0]}, 5 Hz vertical maximum >= "
+          f"{CUE_FRAC} of the median {hit[1]}; at the {base[2]} midpoints of consecutive track contacts "
+          f"(one sequence, no INDIP contact within 0.25 s): {base[0]} and {base[1]} "
+          f"({100 * base[0] / max(base[2], 1):.0f} % and {100 * base[1] / max(base[2], 1):.0f} %, the cues' "
+          "false-alarm base rate)")
     print(f"\npooled Test11 F1 {W.C.f1(*pool):.4f} ({'/'.join(map(str, pool))}); INDIP contacts under "
           f"{W16_SHORTEST_S} s after the previous one: {n_close}, F1 ceiling "
           f"{W.C.f1(pool[2] - n_close, pool[2] - n_close, pool[2]):.4f}")
