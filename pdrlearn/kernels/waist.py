@@ -222,8 +222,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
                unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
                turning: np.ndarray | None = None, contact_shift: bool = False,
-               spinning: np.ndarray | None = None, weak_fill: bool = False, parity: bool | str = False
-               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+               spinning: np.ndarray | None = None, weak_fill: bool = False, parity: bool | str = False,
+               side_at_contact: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
     The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
@@ -262,6 +262,9 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         two kept maxima of one decided side about two local periods apart (:func:`parity_fill`, decision W152; off
         by default); ``"within"``: such a contact only where it lies inside one walking sequence of the contacts
         without it (:func:`inside_sequences`, decision W159)
+    side_at_contact : with ``acc_ml`` and ``rhythm``, the sequence rules read each candidate maximum's W20 side at its
+        initial contact (W3's AP maximum before it, W129's cue) instead of at the maximum (decision W235; off by
+        default)
 
     Returns
     -------
@@ -274,13 +277,16 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     if min_step_s is None:  # decision W113: the shortest step follows the session's own step rhythm
         min_step_s = shortest_step_s(step_period_s(vf, fs, gate))
     dist = max(1, int(round(min_step_s * fs)))
+    ws = max(1, int(round(search_s * fs)))
+    level = ap_mean_level(ap, fs) if ap_above_mean else None
     if rhythm:  # decision W18: gaps and gate-cut sequence ends completed at the local step period
         cand = dsp.find_peaks(vf, height=0.0, distance=dist)
         strong = vf[cand] >= min_peak_mps2
         if gate is not None:
             strong &= np.asarray(gate, dtype=bool)[cand]
         vl = None if acc_ml is None else lateral_velocity(acc_ml, fs)
-        side = None if vl is None else step_sides(vl[cand], strong)
+        side = None if vl is None else candidate_sides(vl, cand, strong, ap if side_at_contact else None, ws,
+                                                       level=level)
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2, at=peak_positions(vf, cand),
                                min_step_s=min_step_s, max_step_s=max_step_s, side=side,
                                unshifted=unshifted, end_steps=end_steps,
@@ -295,8 +301,6 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         peaks = dsp.find_peaks(vf, height=min_peak_mps2, distance=dist)
         if gate is not None:
             peaks = peaks[np.asarray(gate, dtype=bool)[peaks]]
-    ws = max(1, int(round(search_s * fs)))
-    level = ap_mean_level(ap, fs) if ap_above_mean else None
     ic = np.array([_nearest_local_max_before(ap, p, max(0, p - ws), level=level) for p in peaks], dtype=int)
     if contact_shift and rhythm and acc_ml is not None and peaks.size:  # W131: W23 at the contact, every contact
         keep = unshifted_contacts(peaks, vf[peaks], lateral_velocity(acc_ml, fs)[ic], fs, max_step_s=max_step_s,
@@ -306,6 +310,19 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         keep = inside_sequences(ic, np.isin(peaks, added), _max_gap(max_step_s, fs))
         peaks, ic = peaks[keep], ic[keep]
     return ic, fc_after(ap, peaks, fs, fc_search_s), peaks
+
+
+def candidate_sides(v_lat: np.ndarray, cand: np.ndarray, accepted: np.ndarray, ap: np.ndarray | None = None,
+                    search: int = 0, *, level: np.ndarray | None = None) -> np.ndarray:
+    """W20's side (+1 / -1 / 0, :func:`step_sides`) of each candidate vertical maximum ``cand`` (sample indices) from
+    the pelvis's lateral velocity ``v_lat`` (per sample), decided against the median at the ``accepted`` ones. Read at
+    the maximum (W20), or with ``ap`` (the AP acceleration) at the candidate's initial contact, the last AP maximum at
+    most ``search`` samples before it (W3, as every contact's IC is found; ``level``: W29's): decision W235, where
+    W129 found the side cue agrees best with the foot."""
+    cand = np.asarray(cand, dtype=np.int64)
+    at = cand if ap is None else np.array([_nearest_local_max_before(ap, p, max(0, p - search), level=level)
+                                           for p in cand], dtype=np.int64)
+    return step_sides(np.asarray(v_lat, dtype=np.float64)[at], accepted)
 
 
 def unshifted_contacts(vmax: np.ndarray, height: np.ndarray, v_at_ic: np.ndarray, fs: float, *,
@@ -328,8 +345,8 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
-                     contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool | str = False
-                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                     contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool | str = False,
+                     side_at_contact: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
     the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
@@ -344,7 +361,7 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                               end_steps=end_steps, ap_above_mean=ap_above_mean, turning=turning,
                               min_step_s=min_step_s, contact_shift=contact_shift,
                               spinning=None if yaw_rate is None else yaw_rate >= CONTACT_SHIFT_TURN_RPS,
-                              weak_fill=weak_fill, parity=parity_fill)
+                              weak_fill=weak_fill, parity=parity_fill, side_at_contact=side_at_contact)
     return ic, fc, vmax, ap
 
 

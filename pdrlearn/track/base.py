@@ -241,6 +241,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``parity_fill`` (decision W152, off: a contact without a vertical maximum between two kept contacts of one
       decided side about two local periods apart, at the opposite side's lateral-sway extreme; ``"within"``: only
       inside one walking sequence of the other contacts, decision W159; offline only),
+      ``side_at_contact`` (decision W235, off: the offline detector's sequence rules read each candidate's W20 side at
+      its initial contact instead of at its vertical maximum; offline only),
       ``gait_check`` (decision W140, off: with calibrated params, warn when the walk's median cadence is outside
       x0.75-x1.33 of the calibration walks'),
       ``speed_check`` (decision W211, on: with calibrated params, warn when the walk's median cadence is more than 10 %

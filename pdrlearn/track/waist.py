@@ -482,6 +482,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
+                   "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "speed_check": True,  # W211
                    "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
@@ -496,6 +497,8 @@ SCOPED_OPTIONS = {
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "contact_model": ("the offline waist-pendulum with its own contact detector (W203)",
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "side_at_contact": ("the offline waist-pendulum with its own contact detector (W235)",
+                        lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
                     lambda pl, rt, m, det, stops: not rt),
     "vault_veto": ("the offline waist-pendulum (W119)",
@@ -591,7 +594,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
                 length_model=None, freeze_veto: bool | None = None,
-                freeze_index: bool | None = None) -> TrackResult:
+                freeze_index: bool | None = None, side_at_contact: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -716,6 +719,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         decided side about two local periods apart (decision W152, ``InitialContactDetector``'s ``parity_fill``);
         ``"within"``: only where it lies inside one walking sequence of the other contacts (decision W159's
         candidate); default False
+    side_at_contact : pendulum, offline detector: the sequence rules read each candidate's W20 side at its initial
+        contact instead of at its vertical maximum (decision W235, ``InitialContactDetector``'s ``side_at_contact``);
+        default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -755,7 +761,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
-             "rest_bias": rest_bias, "step_bound": None}  # W230: a PARAMS.json option only
+             "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
+             "side_at_contact": side_at_contact}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -1078,7 +1085,7 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
     return InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
                                   rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]),
                                   realtime_shift=bool(o["realtime_contact_shift"]),  # W166: an option
-                                  weak_fill=bool(o["weak_fill"]),
+                                  weak_fill=bool(o["weak_fill"]), side_at_contact=bool(o["side_at_contact"]),  # W235
                                   parity_fill="within" if o["parity_fill"] == "within" else bool(o["parity_fill"]))
 
 

@@ -140,6 +140,10 @@ class InitialContactDetector:
         one local period (+-35 %) from each (decision W152; off by default); ``"within"``: only where it lies inside
         one walking sequence of the other contacts (decision W159). The realtime detector and the learned stage
         ignore it (measured offline only)
+    side_at_contact : offline, with ``rhythm`` and ``alternate``: the sequence rules (W20's pruning and parity, W18's
+        side-filtered fills, W23, W28, W152) read each candidate maximum's side at its initial contact (W129's cue)
+        instead of at the maximum (decision W235; off by default). The realtime detector and the learned stage
+        ignore it (measured offline only)
 
     Attributes
     ----------
@@ -159,7 +163,9 @@ class InitialContactDetector:
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
                  min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False,
-                 parity_fill: bool | str = "within", realtime_shift: bool = False):  # W159/W160: adopted by its rule
+                 parity_fill: bool | str = "within", realtime_shift: bool = False,  # W159/W160: adopted by its rule
+                 side_at_contact: bool = False):  # W235
+        self.side_at_contact = side_at_contact
         self.realtime = realtime
         self.realtime_shift = realtime_shift
         self.parity_fill = parity_fill
@@ -193,7 +199,7 @@ class InitialContactDetector:
                                             "ap_above_mean", "turn_gate_rps", "turn_shift_rps", "min_step_s")}
         offline = not self.realtime and not self.learned
         shift = self.contact_shift and not self.learned and (not self.realtime or self.realtime_shift)  # W166
-        return kw | {"contact_shift": bool(shift),
+        return kw | {"contact_shift": bool(shift), "side_at_contact": bool(self.side_at_contact and offline),  # W235
                      "weak_fill": bool(self.weak_fill and offline),
                      "parity_fill": self.parity_fill if offline and self.parity_fill else False}
 
