@@ -118,3 +118,13 @@ def test_realtime_applies_it_and_the_live_tracker_names_it_unapplied(walkways):
     assert (on.steps["cadence_factor"] < 1.0).any()
     line = unapplied_options_line(dataclasses.replace(p, options={"cadence_law": True}))
     assert line is not None and "cadence_law=true" in line and "E107" in line
+
+
+def test_a_non_flag_value_is_refused_in_one_line(walkways):
+    from pdrlearn.errors import DataError
+    from pdrlearn.track.waist import track_waist
+
+    cal, _ = walkways
+    with pytest.raises(DataError, match="cadence_law") as exc:
+        track_waist(cal, pipeline="waist-pendulum", cadence_law="yes")
+    assert "\n" not in str(exc.value)
