@@ -501,6 +501,8 @@ WAIST_STEPS: tuple[Column, ...] = (
                                            "W134)"),
     ("pivot_factor", "fraction", "number", "waist, option pivot_steps (W150): the share of the step's length kept by "
                                            "the pivot cap (1 unless the pelvis turned 45 deg or more in the step)"),
+    ("cadence_factor", "fraction", "number", "waist-pendulum, option cadence_law (W240): the calibrated step's factor "
+                                             "sqrt(SL(f) / SL(f_cal)) of seed 000's walking line"),
     ("length_m", "m", "number", "step length (0 for a sequence-closing contact)"),
     ("frequency_hz", "Hz", "number", "1 / the step's duration"),
     ("dyaw_rad", "rad", "number", "vertical-gyro rotation during the step"),

@@ -102,6 +102,7 @@ from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.posture_time import session_postures
 from pdrlearn.waist.sit_causal import causal_transfer_veto
+from pdrlearn.waist.steplength import cadence_law_factor, calibration_cadence_hz
 from pdrlearn.waist.transfers import chair_transfers
 
 log = logging.getLogger(__name__)
@@ -326,7 +327,7 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
 
 
 def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: StepLengthModel, thr: float, *,
-                  turn_factor: bool = False, pivot_steps: bool = False) -> pd.DataFrame:
+                  turn_factor: bool = False, pivot_steps: bool = False, cadence_law: bool = False) -> pd.DataFrame:
     """Steps table with ``length_m`` from the step-length ``model`` (decision E84; 0 for sequence-closing
     contacts, plus the model's own columns: the pendulum's ``h_m``, ``g_m``, ``merged``, ``pause_factor``),
     ``frequency_hz`` and ``dyaw_rad`` (vertical-gyro rotation during the step). ``thr``: the motion gate the steps
@@ -334,7 +335,9 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
     ``turn_factor`` scales each length by :func:`~pdrlearn.waist._kernels.turning_step_factor` (W19); a W27
     fragment window of the pendulum gives its owner the rotation of the whole merged step. ``pivot_steps`` (decision
     W150's candidate) then keeps a step turning 45 deg or more at most the chord of its turn
-    (:func:`~pdrlearn.waist._kernels.pivot_step_factor`; column ``pivot_factor``)."""
+    (:func:`~pdrlearn.waist._kernels.pivot_step_factor`; column ``pivot_factor``). ``cadence_law`` (decision W240's
+    candidate) multiplies a calibrated pendulum step by :func:`~pdrlearn.waist.steplength.cadence_law_factor` about
+    the calibration cadence, after W19 and before W150 (column ``cadence_factor``)."""
     n = len(steps)
     has_next = steps["has_next"].to_numpy(bool)
     freq = step_frequency(steps)
@@ -355,6 +358,10 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
         dyaw[i] = total
     if turn_factor:
         lengths = lengths * K.turning_step_factor(dyaw)
+    if cadence_law and "g_m" in out:  # W240: the pendulum's steps only (waist-pll's length is the line itself)
+        cfac = np.where(has_next, cadence_law_factor(freq, calibration_cadence_hz(p), p), 1.0)
+        lengths = lengths * cfac
+        out = out.assign(cadence_factor=cfac)
     if pivot_steps:  # W150: a pivot step keeps at most the chord of its turn (after W19)
         factor = K.pivot_step_factor(lengths, dyaw)
         lengths = lengths * factor
@@ -475,6 +482,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
+                   "cadence_law": False,  # W240
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
                    "integrate_end": False,  # W187
                    "stand_veto": "walking",  # W189; W199's "adjacent" withdrawn by W217; W218 / W219: "walking"
@@ -505,6 +513,7 @@ SCOPED_OPTIONS = {
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
     "realtime_sit_veto": ("realtime tracks (offline tracks apply the sit veto on the whole recording; W200)",
                           lambda pl, rt, m, det, stops: rt),
+    "cadence_law": ("calibrated waist-pendulum tracks (W240)", lambda pl, rt, m, det, stops: pl == "waist-pendulum"),
     "short_step_check": ("the offline waist-pendulum (W207; an uncalibrated offline waist-pll track is judged so by "
                          "default, W208)", lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
 }
@@ -589,6 +598,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 gait_check: bool | None = None, speed_check: bool | None = None, pll_check: bool | None = None,
                 weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None, pause_ride: bool | None = None,
+                cadence_law: bool | None = None,
                 rest_bias: bool | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
@@ -715,6 +725,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     pivot_steps : a step whose pelvis turns 45 deg or more from its contact to the next keeps at most the chord of its
         turn on a 0.2 m radius, after ``turn_factor`` (decision W150's candidate, both pipelines, offline and realtime;
         steps column ``pivot_factor``; measured and not adopted); default False
+    cadence_law : a calibrated waist-pendulum step is multiplied by ``sqrt(SL(f) / SL(f_cal))``, seed 000's walking
+        line at the step's and the calibration walks' median step frequency (1.5-2.2 Hz): the geometric mean of the
+        pendulum and the cadence law (decision W240's candidate, offline and realtime; steps column
+        ``cadence_factor``); default False
     parity_fill : pendulum, offline detector: a contact without a vertical maximum between two kept contacts of one
         decided side about two local periods apart (decision W152, ``InitialContactDetector``'s ``parity_fill``);
         ``"within"``: only where it lies inside one walking sequence of the other contacts (decision W159's
@@ -757,7 +771,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "short_step_check": short_step_check,
              "speed_check": speed_check,
-             "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
+             "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill, "cadence_law": cadence_law,
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
@@ -851,7 +865,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]),
-                          pivot_steps=bool(o["pivot_steps"]))
+                          pivot_steps=bool(o["pivot_steps"]), cadence_law=bool(o["cadence_law"]))
     baro = usable_barometer(session, warnings)  # decision B188: an impossible pressure change is not read
     stairs = _stairs_steps(baro, steps, bool(o["stairs_climb"]))
     climbs = stairs if bool(o["stairs_climb"]) else _stairs_steps(baro, steps, True)  # W108's climbs, for W155

@@ -3,6 +3,7 @@ seed 001 sec. 2.2.5, seed 003 sec. 3.2) and of the gyro bias from a 360-degree w
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import re
 
@@ -27,6 +28,7 @@ from pdrlearn.waist.steplength import (
     MIN_GAIN_STRIDES,
     PIVOT_FIT_ITERATIONS,
     CalibrationWalk,
+    cadence_law_factor,
     fit_frequency,
     fit_pendulum,
     gain_standard_error,
@@ -327,10 +329,12 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     rates = []
     notes_gap: list[str] = []
     notes_count: list[str] = []
+    cadence_law = False  # decision W240: the tracks' option, read from the calibration walks' own tracks
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         with without_heading_note():  # W83: calibration does not use the heading
             res = track_waist(s, pipeline=pipeline, params=base)
+        cadence_law = cadence_law or bool(res.info.get("options", {}).get("cadence_law"))
         if not res.steps["has_next"].any():  # W61: a standing-only recording, not a model failure
             raise DataError(f"calibrate: 0 steps detected in {s.folder or s.name}; calibrate needs a walk of known "
                             "length (give a recording of walking, with --distance or bouts.csv)")
@@ -362,6 +366,10 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     # decision W140: the gait the step length is calibrated on (a track of another cadence warns)
     out.gait = calibration_gait(np.concatenate([w.f_hz for w in walks]) if walks else np.zeros(0), total,
                                 [w.f_hz for w in walks])  # decision W211: each walk's cadence, the range
+    if cadence_law and pipeline == "waist-pendulum":  # W240: the tracker's cadence factor about these walks' cadence
+        f_cal = (out.gait or {}).get("median_cadence_spm")
+        f_cal = None if f_cal is None else float(f_cal) / 60.0  # as calibration_cadence_hz reads it back
+        walks = [dataclasses.replace(w, c=w.factors() * cadence_law_factor(w.f_hz, f_cal, out)) for w in walks]
     if pipeline not in ("waist-pendulum", "waist-pll"):
         raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     implausible = check_gain(walks, pipeline, base)  # decision W39

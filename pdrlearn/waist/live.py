@@ -116,7 +116,8 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "side_at_contact",  # W235: the offline detector's sequence rules only
                           # E145: the live tracker books a whole pause as pause_dz_m (W158, not W231's ride) and
                           # integrates a whole rest (W72, not L296's rest bias); offline track applies both
-                          "pause_ride", "rest_bias")
+                          "pause_ride", "rest_bias",
+                          "cadence_law")  # W240: measured, not adopted; an option of `pdrlearn track` only
 
 
 def unapplied_options_line(p) -> str | None:

@@ -21,6 +21,9 @@ RUN_SPLIT_HZ = 2.45
 #: range keeps the length the line gives at the end (no extrapolation to 2 m steps at 5 Hz)
 WALK_MAX_HZ = 2.2
 RUN_MAX_HZ = 4.2
+#: decision W240: the lower end of seed 000 sec. II-D's linear walking range (1.5-2.2 Hz); below it the seed gives no
+#: line, so ``cadence_law`` holds a slower step at this frequency
+WALK_MIN_HZ = 1.5
 MIN_SPREAD_HZ = 0.15  # fit a slope only when the calibration walks span this much frequency (decision W8)
 # decision W27: a step shorter than this fraction of its walking sequence's median step is a fragment of a step
 # split by a spurious contact (step-time variability within a walking sequence is a few per cent, Hausdorff
@@ -56,6 +59,31 @@ def frequency_lengths(f_hz: np.ndarray, p: WaistParams, *, running: np.ndarray |
     sl = np.where(run, K.frequency_length(np.minimum(f, RUN_MAX_HZ), p.a_run, p.b_run),
                   K.frequency_length(np.minimum(f, WALK_MAX_HZ), p.a_walk, p.b_walk))
     return np.clip(sl, 0.0, None)
+
+
+def cadence_law_factor(f_hz: np.ndarray, f_cal_hz: float | None, p: WaistParams) -> np.ndarray:
+    """Decision W240 (option ``cadence_law``): each pendulum step's factor ``sqrt(SL(f) / SL(f_cal))``, ``SL`` seed
+    000 sec. II-D's walking line of ``p`` (:func:`frequency_lengths`, W118's dimensionless frequency) with both
+    frequencies held inside the linear walking range :data:`WALK_MIN_HZ`-:data:`WALK_MAX_HZ` -- the geometric mean
+    of the pendulum's length and the cadence law, both calibrated at ``f_cal_hz`` (the calibration walks' median
+    step frequency). Ones without ``f_cal_hz``, and where a line length is not positive or a frequency not finite."""
+    f = np.asarray(f_hz, dtype=np.float64)
+    ones = np.ones(f.shape)
+    if f_cal_hz is None or not np.isfinite(f_cal_hz) or not f_cal_hz > 0:
+        return ones
+    lo = WALK_MIN_HZ / p.frequency_scale()  # the range is the line's own (dimensionless, W118) frequency
+    walking = np.zeros(f.shape, dtype=bool)
+    sl = frequency_lengths(np.maximum(np.nan_to_num(f, nan=lo), lo), p, running=walking)
+    sl_cal = float(frequency_lengths(np.array([max(float(f_cal_hz), lo)]), p, running=np.zeros(1, dtype=bool))[0])
+    ok = np.isfinite(f) & (sl > 0) & (sl_cal > 0)
+    return np.where(ok, np.sqrt(np.where(ok, sl, 1.0) / (sl_cal if sl_cal > 0 else 1.0)), 1.0)
+
+
+def calibration_cadence_hz(p: WaistParams) -> float | None:
+    """Decision W240: the calibration walks' median step frequency (Hz) from W140's ``gait`` record of calibrated
+    parameters, else None (defaults: no calibration cadence)."""
+    cad = (p.gait or {}).get("median_cadence_spm") if p.source == "calibrated" else None
+    return float(cad) / 60.0 if cad is not None and float(cad) > 0 else None
 
 
 @dataclass
