@@ -81,7 +81,8 @@ def test_the_closing_step_takes_out_a_relative_scale_and_a_rotated_frame_changes
 
 def test_turns_missing_contacts_and_label_tables():
     """L310: steps in a turn or off the walk's first axis (a 90 deg turn) have no length; after a 180 deg turn the
-    walk is back on its axis and they do; a contact one track missed makes no step; labels give none."""
+    walk is back on its axis and they do; its closing step near the start is no step length and anchors nothing
+    (L311's warning); a contact one track missed makes no step; labels give none."""
     left, right = _walk(0.45, 0.36, 30, turn_at=15, turn_deg=90.0, close=False)
     st = bilateral_gait(left, right)["steps"]
     assert st["step_length_m"].iloc[:12].notna().all() and st["step_length_m"].iloc[15:].isna().all()
@@ -91,6 +92,9 @@ def test_turns_missing_contacts_and_label_tables():
     back = st.iloc[16:]
     assert back["step_length_m"].notna().all()
     assert np.allclose(back.loc[back["side"] == "left", "step_length_m"], 0.45, atol=1e-9)
+    ret = bilateral_gait(*_walk(0.45, 0.36, 30, turn_at=15, turn_deg=180.0))  # a return walk, closed near its start
+    assert np.isnan(ret["steps"]["step_length_m"].iloc[-1]) and ret["walk"]["step_length_scale_pct"] is None
+    assert any("not anchored by a closing step" in w for w in ret["warnings"])
     left, right = _walk(0.45, 0.36, 20)
     miss = right.drop(index=4).reset_index(drop=True)
     miss.loc[4, "length_m"] = 2 * (0.45 + 0.36)  # the track's next stride covers the missed one

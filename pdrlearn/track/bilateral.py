@@ -182,6 +182,15 @@ CLOSING_STRIDE_SHARE = 0.75
 CLOSURE_MIN_M = 5.0
 
 
+def closing_step(both: pd.DataFrame, steps: pd.DataFrame) -> bool:
+    """Decision L310: whether the walk's last step is a closing step (:data:`CLOSING_STRIDE_SHARE`): it ends on the
+    walk's last contact and its landing foot's last stride is short."""
+    if len(steps) < 3 or steps["ic_s"].iloc[-1] != both["ic_s"].iloc[-1]:
+        return False
+    own = both["length_m"].to_numpy(float)[both["side"].to_numpy() == both["side"].iloc[-1]]
+    return len(own) >= 3 and bool(abs(own[-1]) < CLOSING_STRIDE_SHARE * float(np.nanmedian(np.abs(own[:-1]))))
+
+
 def closure_scale(both: pd.DataFrame, steps: pd.DataFrame) -> float | None:
     """Decision L310: the relative scale error of the left track against the right one (left lengths read 1 + e
     times the right's) that the walk's closing step implies: at a standing end the two feet rest side by side, so
@@ -189,10 +198,7 @@ def closure_scale(both: pd.DataFrame, steps: pd.DataFrame) -> float | None:
     which a scale error e makes e x (the mean final position . the walking direction). None without a closing step
     (:data:`CLOSING_STRIDE_SHARE`), or when the walk ends within :data:`CLOSURE_MIN_M` of its start."""
     length = steps["step_length_m"].to_numpy(float)
-    if len(steps) < 3 or not np.isfinite(length[-1]) or steps["ic_s"].iloc[-1] != both["ic_s"].iloc[-1]:
-        return None
-    own = both["length_m"].to_numpy(float)[both["side"].to_numpy() == both["side"].iloc[-1]]
-    if len(own) < 3 or not abs(own[-1]) < CLOSING_STRIDE_SHARE * float(np.nanmedian(np.abs(own[:-1]))):
+    if not closing_step(both, steps) or not np.isfinite(length[-1]):
         return None
     x, y, d = (both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad"))
     u = np.array([np.cos(d[-1]) + np.cos(d[-2]), np.sin(d[-1]) + np.sin(d[-2])])
@@ -376,7 +382,8 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
     if scale is not None:
         both = rescaled(both, scale)
         steps = step_table(both)
-        steps.loc[steps.index[-1], "step_length_m"] = np.nan  # the anchor is no step length (feet side by side)
+    if closing_step(both, steps):  # decision L310: the feet brought side by side: no step length, anchored or not
+        steps.loc[steps.index[-1], "step_length_m"] = np.nan
     toe_off = bool(np.isfinite(both["tc_s"]).any())
     bouts = []
     for k in sorted(set(both["bout"])):
