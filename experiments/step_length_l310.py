@@ -93,8 +93,8 @@ def part_steps(tmp: Path) -> None:
         si_err.append(si_t - si_true)
         ratio_err.append(r_t - r_true)
         w = res["walk"]
-        print(f"u{u} a={a} paretic={side} {'turn' if route == TURN else 'straight'}: {len(e)} steps matched of "
-              f"{len(st)}, error median {e.median():+.3f} m SD {e.std():.3f} max|.| {e.abs().max():.3f} "
+        print(f"u{u} a={a} paretic={side} {'turn' if route == TURN else 'straight'}: {len(e)} steps with a length "
+              f"matched of {len(st)}, error median {e.median():+.3f} m SD {e.std():.3f} max|.| {e.abs().max():.3f} "
               f"(no closure: median {er.median():+.3f} SD {er.std():.3f} max|.| {er.abs().max():.3f}); "
               f"SI {si_t:.1f} % vs true {si_true:.1f} %, ratio {r_t:.3f} vs {r_true:.3f}; "
               f"scale {w['step_length_scale_pct']}", flush=True)
@@ -102,8 +102,10 @@ def part_steps(tmp: Path) -> None:
     print(f"ALL steps n={len(e)}: error median {np.median(e):+.4f} m, SD {e.std(ddof=1):.4f}, max |.| "
           f"{np.abs(e).max():.4f}; without the closing-step scale n={len(er)}: median {np.median(er):+.4f}, SD "
           f"{er.std(ddof=1):.4f}, max |.| {np.abs(er).max():.4f}")
-    print(f"SI tracked - true: median {np.median(si_err):+.2f}, max |.| {np.abs(si_err).max():.2f} points; ratio "
-          f"median {np.median(ratio_err):+.4f}, max |.| {np.abs(ratio_err).max():.4f}")
+    si, ra = np.array(si_err), np.array(ratio_err)
+    print(f"SI tracked - true over the {np.isfinite(si).sum()} walks with step lengths (L311: an unanchored walk has "
+          f"none): median {np.nanmedian(si):+.2f}, max |.| {np.nanmax(np.abs(si)):.2f} points; ratio median "
+          f"{np.nanmedian(ra):+.4f}, max |.| {np.nanmax(np.abs(ra)):.4f}")
 
 
 def true_middle(traj: pd.DataFrame) -> float:

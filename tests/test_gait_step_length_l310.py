@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.track.bilateral import STEP_AXIS_MAX_DEG, bilateral_gait
+from pdrlearn.track.bilateral import STEP_AXIS_MAX_DEG, UNANCHORED_NOTE, bilateral_gait
 from pdrlearn.track.walk_test import LOWER_BACK_NOTE, ten_metre_walk
 
 
@@ -66,35 +66,36 @@ def test_step_length_per_foot_and_its_asymmetry_on_an_exact_walk():
 
 def test_the_closing_step_takes_out_a_relative_scale_and_a_rotated_frame_changes_nothing():
     """L310: the left track reading 2 % long drifts the steps apart (0.17 m by the end) unless the closing step's
-    offset takes the relative scale out; the left unit's heading 30 deg off (no compass) is turned back."""
+    offset takes the relative scale out; the left unit's heading 30 deg off (no compass) is turned back. Without a
+    closing stride or without the opening half stride the walk is not anchored: no step length, L311's line."""
     left, right = _walk(0.45, 0.36, 40)
     res = bilateral_gait(_scaled(left, 1.02, 30.0), right)
     st = res["steps"].iloc[:-1]
     err = np.where(st["side"] == "left", st["step_length_m"] - 0.45, st["step_length_m"] - 0.36)
     print("errors with the closure", np.round(err, 4), res["walk"]["step_length_scale_pct"])
     assert np.abs(err).max() < 0.005 and res["walk"]["step_length_scale_pct"] == pytest.approx(2.0, abs=0.1)
-    open_walk = bilateral_gait(_scaled(left.iloc[:-1], 1.02, 30.0), right)  # no closing stride: nothing corrected
-    st = open_walk["steps"]
-    err = np.where(st["side"] == "left", st["step_length_m"] - 0.45, st["step_length_m"] - 0.36)
-    assert open_walk["walk"]["step_length_scale_pct"] is None and np.nanmax(np.abs(err)) > 0.1
+    for open_walk in (bilateral_gait(_scaled(left.iloc[:-1], 1.02, 30.0), right),  # no closing stride
+                      bilateral_gait(_scaled(left, 1.02, 30.0), right.iloc[1:])):  # no opening half stride
+        assert open_walk["walk"]["step_length_scale_pct"] is None and open_walk["walk"]["step_length_m_left"] is None
+        assert open_walk["steps"]["step_length_m"].isna().all() and UNANCHORED_NOTE in open_walk["warnings"]
 
 
 def test_turns_missing_contacts_and_label_tables():
-    """L310: steps in a turn or off the walk's first axis (a 90 deg turn) have no length; after a 180 deg turn the
-    walk is back on its axis and they do; its closing step near the start is no step length and anchors nothing
-    (L311's warning); a contact one track missed makes no step; labels give none."""
-    left, right = _walk(0.45, 0.36, 30, turn_at=15, turn_deg=90.0, close=False)
-    st = bilateral_gait(left, right)["steps"]
-    assert st["step_length_m"].iloc[:12].notna().all() and st["step_length_m"].iloc[15:].isna().all()
+    """L310: a walk closing off its first axis (a 90 deg turn) is not anchored; after a 180 deg turn the walk is
+    back on its axis and its steps have lengths (those in the turn none); a return walk closing near its start is
+    not anchored: no step length and L311's line; a contact one track missed makes no step; labels give none."""
+    left, right = _walk(0.45, 0.36, 30, turn_at=15, turn_deg=90.0)  # closes off the first axis: no anchor
+    ell = bilateral_gait(left, right)
+    assert ell["steps"]["step_length_m"].isna().all() and UNANCHORED_NOTE in ell["warnings"]
     assert STEP_AXIS_MAX_DEG < 90
-    left, right = _walk(0.45, 0.36, 30, turn_at=15, turn_deg=180.0, close=False)
+    left, right = _walk(0.45, 0.36, 55, turn_at=15, turn_deg=180.0)  # out 6 m, back 16 m: ends 10 m away
     st = bilateral_gait(left, right)["steps"]
-    back = st.iloc[16:]
+    back = st.iloc[16:-1]
     assert back["step_length_m"].notna().all()
     assert np.allclose(back.loc[back["side"] == "left", "step_length_m"], 0.45, atol=1e-9)
     ret = bilateral_gait(*_walk(0.45, 0.36, 30, turn_at=15, turn_deg=180.0))  # a return walk, closed near its start
-    assert np.isnan(ret["steps"]["step_length_m"].iloc[-1]) and ret["walk"]["step_length_scale_pct"] is None
-    assert any("not anchored by a closing step" in w for w in ret["warnings"])
+    assert ret["steps"]["step_length_m"].isna().all() and ret["walk"]["step_length_scale_pct"] is None
+    assert UNANCHORED_NOTE in ret["warnings"]
     left, right = _walk(0.45, 0.36, 20)
     miss = right.drop(index=4).reset_index(drop=True)
     miss.loc[4, "length_m"] = 2 * (0.45 + 0.36)  # the track's next stride covers the missed one

@@ -31,9 +31,8 @@ def gait_lines(summary: dict) -> list[str]:
         lines.append(f"step length left/right {_fmt(w['step_length_m_left'], '.3f')} / "
                      f"{_fmt(w['step_length_m_right'], '.3f')} m, symmetry index "
                      f"{_fmt(w['step_length_m_si_pct'], '.1f')} %, ratio L/R {_fmt(w['step_length_m_ratio'], '.3f')} "
-                     f"({w['n_step_lengths']} straight steps; "
-                     + ("no closing step: the two tracks' relative scale not corrected, L310)" if scale is None else
-                        f"the closing step took out a {scale:+.2f} % relative scale, L310)"))
+                     f"({w['n_step_lengths']} straight steps; the closing step took out a "
+                     f"{_fmt(scale, '+.2f')} % relative scale of the two tracks, L310)")
     if w.get("swing_time_s_left") is not None or w.get("swing_time_s_right") is not None:  # decision L284
         lines.append(f"swing time left/right {_fmt(w['swing_time_s_left'], '.3f')} / "
                      f"{_fmt(w['swing_time_s_right'], '.3f')} s, symmetry index {_fmt(w['swing_time_s_si_pct'], '.1f')}"

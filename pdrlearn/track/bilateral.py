@@ -182,13 +182,25 @@ CLOSING_STRIDE_SHARE = 0.75
 CLOSURE_MIN_M = 5.0
 
 
+def _short_stride(both: pd.DataFrame, side: str, at: int) -> bool:
+    own = np.abs(both["length_m"].to_numpy(float)[both["side"].to_numpy() == side])
+    rest = np.delete(own, at)
+    return len(own) >= 3 and bool(own[at] < CLOSING_STRIDE_SHARE * float(np.nanmedian(rest)))
+
+
+def opening_step(both: pd.DataFrame) -> bool:
+    """Decision L310: whether the walk starts from standing with the feet side by side: the foot that moves first
+    (the walk's first contact) covers one step, its first stride under :data:`CLOSING_STRIDE_SHARE` of its median
+    (a recording started mid-walk, or a track that missed that stride, does not)."""
+    return len(both) >= 3 and _short_stride(both, both["side"].iloc[0], 0)
+
+
 def closing_step(both: pd.DataFrame, steps: pd.DataFrame) -> bool:
     """Decision L310: whether the walk's last step is a closing step (:data:`CLOSING_STRIDE_SHARE`): it ends on the
     walk's last contact and its landing foot's last stride is short."""
     if len(steps) < 3 or steps["ic_s"].iloc[-1] != both["ic_s"].iloc[-1]:
         return False
-    own = both["length_m"].to_numpy(float)[both["side"].to_numpy() == both["side"].iloc[-1]]
-    return len(own) >= 3 and bool(abs(own[-1]) < CLOSING_STRIDE_SHARE * float(np.nanmedian(np.abs(own[:-1]))))
+    return _short_stride(both, both["side"].iloc[-1], -1)
 
 
 def closure_scale(both: pd.DataFrame, steps: pd.DataFrame) -> float | None:
@@ -198,7 +210,7 @@ def closure_scale(both: pd.DataFrame, steps: pd.DataFrame) -> float | None:
     which a scale error e makes e x (the mean final position . the walking direction). None without a closing step
     (:data:`CLOSING_STRIDE_SHARE`), or when the walk ends within :data:`CLOSURE_MIN_M` of its start."""
     length = steps["step_length_m"].to_numpy(float)
-    if not closing_step(both, steps) or not np.isfinite(length[-1]):
+    if not opening_step(both) or not closing_step(both, steps) or not np.isfinite(length[-1]):
         return None
     x, y, d = (both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad"))
     u = np.array([np.cos(d[-1]) + np.cos(d[-2]), np.sin(d[-1]) + np.sin(d[-2])])
@@ -341,15 +353,21 @@ def stance_warning(walk: dict) -> str | None:
             f"{_fmt_pct(walk.get('double_support_pct'))} %) is too low; do not report it as measured")
 
 
-def unanchored_warning(walk: dict) -> str | None:
-    """Decision L311: one warning line when step lengths are given without a closing step to anchor the two tracks'
-    relative scale (:func:`closure_scale`): their asymmetry then carries the tracks' relative drift."""
-    if not walk.get("n_step_lengths") or walk.get("step_length_scale_pct") is not None:
+#: decision L311: the line saying why a tracked pair has no step length (measured, experiments/step_length_l310.py)
+UNANCHORED_NOTE = ("bilateral gait: no step length: the walk is not anchored at both ends (a standing start with "
+                   "the feet side by side - the first foot's first stride a half stride - and a closing step that "
+                   "brings them side by side again at least 5 m further on; decision L311). Without both, the two "
+                   "foot tracks' relative drift is unknown: simulated return walks read the step-length symmetry "
+                   "index up to 23 points off, the real 4 x 10 m walk 110 %. Walk one straight length from standing "
+                   "to standing for a step-length asymmetry")
+
+
+def unanchored_warning(walk: dict, steps: pd.DataFrame) -> str | None:
+    """Decision L311: :data:`UNANCHORED_NOTE` for a pair of tracks (rows with positions) whose walk was not anchored
+    (:func:`closure_scale` None), so L310 gives no step length; None otherwise."""
+    if walk.get("step_length_scale_pct") is not None or not len(steps):
         return None
-    return ("bilateral gait: the step lengths are not anchored by a closing step (a standing end with the feet side "
-            "by side, at least 5 m from the start; decision L311): the two tracks' relative drift stays in them - on "
-            "simulated return walks the step-length symmetry index read up to 23 points off; walk straight and "
-            "stop with the feet together for a step-length asymmetry")
+    return UNANCHORED_NOTE
 
 
 def _fmt_pct(v) -> str:
@@ -382,7 +400,9 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
     if scale is not None:
         both = rescaled(both, scale)
         steps = step_table(both)
-    if closing_step(both, steps):  # decision L310: the feet brought side by side: no step length, anchored or not
+    if scale is None:  # decision L311: not anchored at both ends - no step length (the drift is unknown)
+        steps["step_length_m"] = np.nan
+    else:  # decision L310: the closing step brought the feet side by side: the anchor, no step length
         steps.loc[steps.index[-1], "step_length_m"] = np.nan
     toe_off = bool(np.isfinite(both["tc_s"]).any())
     bouts = []
@@ -399,7 +419,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
     log = logging.getLogger(__name__)
     for line in (clock_offset_warning(walk), stance_warning(walk) if "event_s" in left_steps else None,
-                 unanchored_warning(walk)):
+                 unanchored_warning(walk, steps) if np.isfinite(both["x_m"]).any() else None):
         if line is not None:  # L285 judges a track's toe-off, not a label table's
             log.warning(line)
             warnings.append(line)
