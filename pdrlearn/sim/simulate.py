@@ -35,6 +35,7 @@ from pdrlearn.sim.body import (
     trunk_vibration_source,
 )
 from pdrlearn.sim.freeze import FreezeEpisode, freeze_foot, freeze_loads, freeze_pelvis, freeze_table
+from pdrlearn.sim.lying import LyingEpisode, lying_angles, lying_rotation, lying_table, roll_table
 from pdrlearn.sim.kernels import (
     angular_rate_body,
     block_mean,
@@ -290,7 +291,8 @@ def simulate_path(
     Session with the eight PLASYS streams, ``steps`` (strides of the instrumented foot: the right, or the left with
     ``instrumented_foot="left"``, S54), ``trajectory`` (waist
     unit, ENU), ``extras["ics"]`` (initial contacts of both feet), ``extras["foot_trajectory"]`` and, for a
-    path with :class:`~pdrlearn.sim.path.Sit`, ``extras["transfers"]`` (sit-down start to stand-up end, S36).
+    path with :class:`~pdrlearn.sim.path.Sit`, ``extras["transfers"]`` (sit-down start to stand-up end, S36); for a
+    path with :class:`~pdrlearn.sim.path.Lie` also ``extras["lying"]`` and ``extras["rolls"]`` (S58, S59).
     """
     if speed not in SPEEDS:
         raise DataError(f"speed {speed!r}: must be one of {', '.join(SPEEDS)}")
@@ -319,7 +321,8 @@ def simulate_path(
     )
     rides = [e for e in transfers if isinstance(e, Ride)]  # decision S45: lifts and escalators
     freezes = [e for e in transfers if isinstance(e, FreezeEpisode)]  # decision S51: trembling in place
-    transfers = [e for e in transfers if not isinstance(e, Ride | FreezeEpisode)]
+    lyings = [e for e in transfers if isinstance(e, LyingEpisode)]  # decision S58: lying inside a bed-edge sit
+    transfers = [e for e in transfers if not isinstance(e, Ride | FreezeEpisode | LyingEpisode)]
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     # decision S43: seated at the start (then a stand-up before the standstill) and / or at the end (own stream)
     sit0, sit1 = ((None, None) if not (opt["sit_start_s"] or opt["sit_end_s"]) else session_sits(
@@ -334,6 +337,7 @@ def simulate_path(
     sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
     ride_starts = transfer_starts(rides, ev.rest, lead + stand)  # decision S45: as a transfer's
     freeze_starts = transfer_starts(freezes, ev.rest, lead + stand)  # decision S51: as a transfer's
+    lying_starts = transfer_starts(lyings, ev.rest, lead + stand)  # decision S58: as a transfer's
     if sit0 or sit1:  # decision S43
         ends = session_sit_starts(sit0, sit1, total_s)
         transfers = [*([sit0] if sit0 else []), *transfers, *([sit1] if sit1 else [])]
@@ -420,6 +424,8 @@ def simulate_path(
         )
         if freezes:  # decision S51: the pelvis trembles with the legs
             p_pel = p_pel + freeze_pelvis(tt, freezes, freeze_starts)
+        if lyings:  # decisions S58, S59: lying down on the bed, turning over, sitting up (body frame)
+            p_pel, rot = _lie_down(tt, p_pel, rot, lyings, lying_starts)
         if rides:  # decision S45: the ride, and the standing passenger's small sway (with the trunk's vibration)
             return p_pel + rot @ r_waist + ride_offset(tt, rides, ride_starts, sway=trunk > 0), rot
         return p_pel + rot @ r_waist, rot
@@ -513,6 +519,12 @@ def simulate_path(
     if freezes:  # decision S51: only sessions with a freeze have the table
         extras["freezes"] = pd.DataFrame(freeze_table(freezes, freeze_starts))
         extras["freezes"].attrs["time_columns"] = ["start_s", "end_s"]
+    if lyings:  # decision S58: only sessions with a lie have lying.csv and rolls.csv (S59)
+        extras["lying"] = pd.DataFrame(lying_table(lyings, lying_starts))
+        extras["lying"].attrs["time_columns"] = ["start_s", "lying_s", "rise_s", "end_s"]
+        extras["rolls"] = pd.DataFrame(roll_table(lyings, lying_starts),
+                                       columns=["start_s", "end_s", "from_posture", "to_posture", "angle_deg"])
+        extras["rolls"].attrs["time_columns"] = ["start_s", "end_s"]
 
     meta = {
         "session": name,
@@ -586,6 +598,23 @@ def _unit_motion(t: np.ndarray, pose, dt: float, chunk: int | None = None) -> tu
         parts[2].append(pos[mid].copy())
         parts[3].append(rot[mid].copy())
     return tuple(np.concatenate(p) for p in parts)
+
+
+def _lie_down(t: np.ndarray, p_pel: np.ndarray, rot: np.ndarray, lyings: list, starts: np.ndarray):
+    """Decision S58: the seated pelvis ``(p_pel, rot)`` lain down: rotated in its own frame by
+    :func:`~pdrlearn.sim.lying.lying_rotation` and slid back onto the bed along the walker's heading."""
+    yaw, pitch, roll, back = lying_angles(t, lyings, starts)
+    moving = (yaw != 0) | (pitch != 0) | (roll != 0) | (back != 0)
+    if not moving.any():
+        return p_pel, rot
+    rot, p_pel = rot.copy(), p_pel.copy()
+    rot[moving] = rot[moving] @ lying_rotation(yaw[moving], pitch[moving], roll[moving])
+    heading = np.zeros_like(t)
+    for ep, t0 in zip(lyings, starts, strict=True):
+        heading[(t >= t0) & (t <= t0 + ep.total_s)] = ep.heading_rad
+    p_pel[:, 0] -= back * np.cos(heading)
+    p_pel[:, 1] -= back * np.sin(heading)
+    return p_pel, rot
 
 
 def _yaw_of(R: np.ndarray) -> np.ndarray:
