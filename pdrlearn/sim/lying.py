@@ -56,7 +56,7 @@ ROLL_GAP_S = 5.0
 POSTURES = {"supine": 0.0, "left": 90.0, "right": -90.0, "prone": 180.0}
 #: ... and the weights of the next posture after a turn (the current one excluded; an assumption: prone is rare)
 POSTURE_WEIGHTS = {"supine": 0.35, "left": 0.3, "right": 0.3, "prone": 0.05}
-#: decision S58 / S60: the longest lying (and seated, S60) time accepted (s): one day
+#: decisions S58, S61: the longest lying (and seated, S61) time accepted (s): one day
 MAX_LIE_S = 86_400.0
 
 
