@@ -6,11 +6,12 @@ with a lying episode inside the seated time: the walker stops, sits down on the 
 sits up (lie-to-sit), sits :data:`BED_SIT_S` and stands up (S36's stand-up). No footstep happens and the foot unit
 rests on the floor (its lift onto the bed is not modelled, as S36's loads are not: a known simplification).
 
-The waist unit (decision S58), on top of the seated pelvis of S36 (its recline included), rotated in the body frame
-by ``Rz(yaw) Ry(-pitch) Rz(roll)``:
+The waist unit (decision S58), on top of the seated pelvis of S36, rotated in the body frame by
+``Ry(recline) Rz(yaw) Ry(-pitch) Rz(roll)``:
 
-* sit-to-lie over :data:`LIE_DOWN_S`: the trunk turns by ``yaw`` = +-90 deg about its up axis (to lie along the
-  bed; the side drawn) while it pitches back until it is :data:`LIE_TILT_DEG` from the vertical, and the pelvis
+* sit-to-lie over :data:`LIE_DOWN_S`: the seated recline is undone while the trunk turns by ``yaw`` = +-90 deg about
+  the vertical (to lie along the bed; the side drawn) and pitches back until it is :data:`LIE_TILT_DEG` from the
+  vertical (``pitch``, the whole tilt), and the pelvis
   slides :data:`LIE_BACK_M` back onto the bed; the three follow one C2 smoothstep, so the gravity vector in the
   waist unit goes from its up axis to horizontal; lie-to-sit is the same movement backwards (drawn separately);
 * lying supine the roll is 0; turning over (decision S59) is a roll of the trunk about the body's long axis (its up
@@ -73,6 +74,7 @@ class LyingEpisode:
     up_s: float
     yaw_rad: float
     pitch_rad: float
+    recline_rad: float
     back_m: float
     heading_rad: float
     roll_starts: tuple[float, ...]
@@ -100,7 +102,7 @@ def _pick(lo_hi: tuple[float, float], u: float) -> float:
 def draw_lying(after: int, delay_s: float, lying_s: float, turns_per_h: float | None, recline_rad: float,
                heading_rad: float, rng: np.random.Generator) -> LyingEpisode:
     """A :class:`LyingEpisode` with the module's ranges drawn from ``rng``; ``recline_rad`` is the seated pelvis's
-    own backward tilt (S36), which the lying pitch completes to the drawn :data:`LIE_TILT_DEG`."""
+    own backward tilt (S36), undone while lying down so that the drawn :data:`LIE_TILT_DEG` is the trunk's tilt."""
     u = rng.uniform(0.0, 1.0, 5)
     rate = TURNS_PER_H if turns_per_h is None else float(turns_per_h)
     starts, durations, angles, postures = [], [], [], ["supine"]
@@ -125,15 +127,16 @@ def draw_lying(after: int, delay_s: float, lying_s: float, turns_per_h: float | 
     return LyingEpisode(
         after=int(after), delay_s=float(delay_s), down_s=_pick(LIE_DOWN_S, u[0]), lying_s=float(lying_s),
         up_s=_pick(LIE_DOWN_S, u[1]), yaw_rad=math.radians(90.0 if u[2] < 0.5 else -90.0),
-        pitch_rad=math.radians(_pick(LIE_TILT_DEG, u[3])) - recline_rad, back_m=_pick(LIE_BACK_M, u[4]),
+        pitch_rad=math.radians(_pick(LIE_TILT_DEG, u[3])), recline_rad=float(recline_rad),
+        back_m=_pick(LIE_BACK_M, u[4]),
         heading_rad=float(heading_rad), roll_starts=tuple(starts), roll_durations=tuple(durations),
         roll_angles=tuple(angles), postures=tuple(postures))
 
 
 def lying_angles(t: np.ndarray, episodes: list[LyingEpisode], starts: np.ndarray) -> tuple[np.ndarray, ...]:
-    """(yaw, backward pitch, roll) (rad) and the backward slide (m) of the lying episodes at times ``t`` (a pure
-    kernel: every value depends on its own time only)."""
-    yaw, pitch, roll, back = (np.zeros_like(t) for _ in range(4))
+    """(undone recline, yaw, backward pitch, roll) (rad) and the backward slide (m) of the lying episodes at times
+    ``t`` (a pure kernel: every value depends on its own time only)."""
+    unrecline, yaw, pitch, roll, back = (np.zeros_like(t) for _ in range(5))
     for ep, t0 in zip(episodes, starts, strict=True):
         t_lie, t_up = t0 + ep.down_s, t0 + ep.down_s + ep.lying_s
         m = (t >= t0) & (t <= t_up + ep.up_s)
@@ -142,6 +145,7 @@ def lying_angles(t: np.ndarray, episodes: list[LyingEpisode], starts: np.ndarray
         tt = t[m]
         # the lying phase: 0 seated -> 1 lying; sitting up runs it backwards
         v = smoothstep(np.where(tt < t_up, (tt - t0) / ep.down_s, 1.0 - (tt - t_up) / ep.up_s))
+        unrecline[m] += ep.recline_rad * v
         yaw[m] += ep.yaw_rad * v
         pitch[m] += ep.pitch_rad * v
         back[m] += ep.back_m * v
@@ -154,12 +158,13 @@ def lying_angles(t: np.ndarray, episodes: list[LyingEpisode], starts: np.ndarray
         home = 2.0 * math.pi * round(prev / (2.0 * math.pi))
         r += (home - prev) * smoothstep((tt - t_up) / ep.up_s)
         roll[m] += r
-    return yaw, pitch, roll, back
+    return unrecline, yaw, pitch, roll, back
 
 
-def lying_rotation(yaw: np.ndarray, pitch: np.ndarray, roll: np.ndarray) -> np.ndarray:
-    """``Rz(yaw) @ Ry(-pitch) @ Rz(roll)`` (n, 3, 3): turned about the seated trunk's up axis, pitched back, rolled
-    about the lying trunk's long axis (body frame, right-multiplied onto the seated orientation)."""
+def lying_rotation(unrecline: np.ndarray, yaw: np.ndarray, pitch: np.ndarray, roll: np.ndarray) -> np.ndarray:
+    """``Ry(unrecline) @ Rz(yaw) @ Ry(-pitch) @ Rz(roll)`` (n, 3, 3): the seated recline undone, turned about the
+    vertical, pitched back, rolled about the lying trunk's long axis (body frame, right-multiplied onto the seated
+    orientation)."""
     cz, sz, cy, sy, cr, sr = np.cos(yaw), np.sin(yaw), np.cos(pitch), -np.sin(pitch), np.cos(roll), np.sin(roll)
     out = np.empty((yaw.size, 3, 3))
     # Rz(yaw) @ Ry(beta) with beta = -pitch
@@ -171,6 +176,11 @@ def lying_rotation(yaw: np.ndarray, pitch: np.ndarray, roll: np.ndarray) -> np.n
     out[:, :, 0] = a[:, :, 0] * cr[:, None] + a[:, :, 1] * sr[:, None]
     out[:, :, 1] = -a[:, :, 0] * sr[:, None] + a[:, :, 1] * cr[:, None]
     out[:, :, 2] = a[:, :, 2]
+    # Ry(unrecline) @ ...
+    cu, su = np.cos(unrecline)[:, None], np.sin(unrecline)[:, None]
+    top, bottom = out[:, 0, :].copy(), out[:, 2, :].copy()
+    out[:, 0, :] = cu * top + su * bottom
+    out[:, 2, :] = -su * top + cu * bottom
     return out
 
 

@@ -14,7 +14,7 @@
 | ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
 | ``stand:S`` | stand still S seconds |
 | ``sit:S`` | sit down on a chair, stay seated S seconds, stand up (no steps; decision S36) |
-| ``lie:S[:TURNS_PER_H]`` | sit on a bed edge, lie down S s turning over TURNS_PER_H times an hour (default 2), sit up, stand up (no steps; S58, S59) |
+| ``lie:S[:TURNS_PER_H]`` | sit on a bed edge, lie S s turning over TURNS_PER_H an hour (2), get up (no steps; S58) |
 | ``lift:H`` | stand in a lift riding H metres (+H up, -H down; no steps; decision S45) |
 | ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
 | ``trolley:M[:GAIT]`` | walk M metres straight ahead pushing a trolley (damped pelvic rotation; decision S46) |

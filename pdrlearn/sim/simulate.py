@@ -35,13 +35,13 @@ from pdrlearn.sim.body import (
     trunk_vibration_source,
 )
 from pdrlearn.sim.freeze import FreezeEpisode, freeze_foot, freeze_loads, freeze_pelvis, freeze_table
-from pdrlearn.sim.lying import LyingEpisode, lying_angles, lying_rotation, lying_table, roll_table
 from pdrlearn.sim.kernels import (
     angular_rate_body,
     block_mean,
     earth_field_enu,
     specific_force_body,
 )
+from pdrlearn.sim.lying import LyingEpisode, lying_angles, lying_rotation, lying_table, roll_table
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
 from pdrlearn.sim.ride import Ride, ride_offset, ride_table
 from pdrlearn.sim.scenarios import SCENARIOS
@@ -649,12 +649,12 @@ def _unit_motion(t: _FineGrid, pose, dt: float, chunk: int | None = None,
 def _lie_down(t: np.ndarray, p_pel: np.ndarray, rot: np.ndarray, lyings: list, starts: np.ndarray):
     """Decision S58: the seated pelvis ``(p_pel, rot)`` lain down: rotated in its own frame by
     :func:`~pdrlearn.sim.lying.lying_rotation` and slid back onto the bed along the walker's heading."""
-    yaw, pitch, roll, back = lying_angles(t, lyings, starts)
-    moving = (yaw != 0) | (pitch != 0) | (roll != 0) | (back != 0)
+    unrecline, yaw, pitch, roll, back = lying_angles(t, lyings, starts)
+    moving = (unrecline != 0) | (yaw != 0) | (pitch != 0) | (roll != 0) | (back != 0)
     if not moving.any():
         return p_pel, rot
     rot, p_pel = rot.copy(), p_pel.copy()
-    rot[moving] = rot[moving] @ lying_rotation(yaw[moving], pitch[moving], roll[moving])
+    rot[moving] = rot[moving] @ lying_rotation(unrecline[moving], yaw[moving], pitch[moving], roll[moving])
     heading = np.zeros_like(t)
     for ep, t0 in zip(lyings, starts, strict=True):
         heading[(t >= t0) & (t <= t0 + ep.total_s)] = ep.heading_rad
