@@ -8,9 +8,8 @@ import numpy as np
 import pytest
 
 from pdrlearn.errors import DataError
-from pdrlearn.sim import Straight, UserProfile, simulate_path
+from pdrlearn.sim import Lie, Straight, UserProfile, simulate_path
 from pdrlearn.sim.lying import LIE_DOWN_S, LIE_TILT_DEG, MAX_LIE_S, POSTURES, ROLL_GAP_S, draw_lying, lying_angles
-from pdrlearn.sim.path import Lie
 from pdrlearn.sim.route import parse_route
 
 
