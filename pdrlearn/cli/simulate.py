@@ -27,8 +27,9 @@ MOUNT_AXES = {"x": 0, "y": 1, "z": 2}
 #: phase; walking stance, bounce and rockers), so it is fast walking at a running speed. 2.0 m/s is about the
 #: preferred walk-to-run transition speed of adults (Hreljac 1993: 2.07 m/s; not a seed)
 RUNNING_SPEED_MPS = 2.0
-#: decision S43: `simulate --sit-start/--sit-end` (s seated at the start / end of the session): up to an hour
-SIT_MAX_S = 3600.0
+#: decision S43: `simulate --sit-start/--sit-end` (s seated at the start / end of the session); decision S61: up to a
+#: day (was an hour, S43, set when a simulated hour took ~1 GB of memory, S44; S62 cut it further), as `lie:S`
+SIT_MAX_S = 86_400.0  # = pdrlearn.sim.lying.MAX_LIE_S (tests/test_sim_lying.py)
 
 
 def simulate_cmd(
@@ -49,7 +50,9 @@ def simulate_cmd(
         "Rides without steps: 'lift:+9' / "
         "'lift:-9' (a lift, metres up / down), 'escalator:+6' (30 deg, 0.5 m/s, straight ahead; 1-60 m); "
         "'trolley:20' walks 20 m pushing a trolley (decisions S45, S46); 'side:3' / 'side:-3' side-steps 3 m "
-        "left / right facing ahead (S49).",
+        "left / right facing ahead (S49). In bed: 'lie:28800' sits on a bed edge, lies down 8 h turning over 2 "
+        "times an hour ('lie:28800:4' 4 times, 'lie:600:0' never), sits up and stands up, no steps (lying.csv, "
+        "rolls.csv; up to 86400 s; S58-S61).",
     ),
     user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty)."),
