@@ -146,6 +146,16 @@ class LiveAltitude:
         if drop > 0:
             self._t, self._p = self._t[drop:], self._p[drop:]
 
+    def ride(self, a: float, b: float) -> float | None:
+        """Decision E146: W231's ride (m) of the pause from ``a`` to ``b`` (s)
+        (:func:`pdrlearn.kernels.pause_ride.pause_ride_dz`) on the held samples (the live tracker holds them across
+        its pauses); None where :meth:`at` is None."""
+        if self.implausible is not None or self._origin_s is None or not self._t.size:
+            return None
+        from pdrlearn.kernels.pause_ride import pause_ride_dz
+
+        return pause_ride_dz(self._t, self._p, float(a), float(b))[0]
+
     def size(self) -> int:
         return int(self._t.size + self._p.size)
 

@@ -227,18 +227,13 @@ def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str], held=(
     return held_altitude(baro.t, baro.values[:, 0], t, held)
 
 
-#: decision W231: a drift of this much (m) or more left out across the rests is warned about (README: "a drift over
-#: 1 m is warned", L172's)
-PAUSE_DRIFT_WARN_M = 1.0
-
-
 def _pause_rides(baro, steps: pd.DataFrame, t0: float, z: np.ndarray, z_start: np.ndarray, z_raw: np.ndarray | None,
                  warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Decision W231: each pause's (W158's ``pause_dz_m``: from the previous step's end, or ``t0``, to the step's
     start) barometric change counts only where it is a ride (:func:`pdrlearn.kernels.pause_ride.pause_ride_dz`);
     the rest, drift across a long rest, is taken out of ``z``, ``z_start`` and ``z_raw`` (W174's ``transfer_dz_m``
-    unchanged), with one warning when it is :data:`PAUSE_DRIFT_WARN_M` or more in all."""
-    from pdrlearn.kernels.pause_ride import RIDE_WINDOW_S, pause_ride_dz
+    unchanged), with one warning (:func:`~pdrlearn.kernels.pause_ride.drift_line`)."""
+    from pdrlearn.kernels.pause_ride import RIDE_WINDOW_S, drift_line, pause_ride_dz
 
     ends = np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
     starts = steps["start_s"].to_numpy(float)
@@ -251,15 +246,9 @@ def _pause_rides(baro, steps: pd.DataFrame, t0: float, z: np.ndarray, z_start: n
     cum = np.concatenate([[0.0], np.cumsum(drop)])  # removed up to each step's end
     z, z_start = z - cum, z_start - cum[1:]
     z_raw = None if z_raw is None else z_raw - cum
-    long_ = np.flatnonzero(np.abs(drop) > 0)
-    total = float(drop.sum())
-    if abs(total) >= PAUSE_DRIFT_WARN_M or np.abs(drop).max() >= PAUSE_DRIFT_WARN_M:
-        worst = int(long_[np.argmax(np.abs(drop[long_]))])
-        warnings.append(
-            f"the barometric altitude drifted {total:+.2f} m across {len(long_)} rest(s) without steps (largest "
-            f"{drop[worst]:+.2f} m over the {starts[worst] - ends[worst]:.0f} s before {starts[worst]:.1f} s), too "
-            "slowly for a lift or escalator ride (a ride changes 1.5 m within 30 s): weather or room pressure, left "
-            "out of the altitude and the floors (decision W231)")
+    line = drift_line(drop, ends, starts)  # shared with the live tracker (decision E146)
+    if line:
+        warnings.append(line)
     return z, z_start, z_raw
 
 
