@@ -191,21 +191,12 @@ def _hold_jumps(steps: pd.DataFrame, z: np.ndarray, z_start: np.ndarray, z_raw: 
     :data:`~pdrlearn.kernels.barometer.MAX_STEP_DZ_M`; with ``hold`` (option ``step_bound``) they are held level
     (:func:`~pdrlearn.kernels.barometer.hold_step_jumps`; ``z_raw``, W174's, shifted alike). Returns ``(z, z_start,
     z_raw, number of such steps)``."""
-    from pdrlearn.kernels.barometer import MAX_STEP_DZ_M, hold_step_jumps
+    from pdrlearn.kernels.barometer import hold_step_jumps, step_jump_line
 
     z2, zs2, jumped = hold_step_jumps(z, z_start)
     if not jumped.any():
         return z, z_start, z_raw, 0
-    dz = (z[1:] - z_start)[jumped]
-    at = steps["end_s"].to_numpy(float)[jumped]
-    shown = ", ".join(f"{d:+.2f} m at {a:.1f} s" for d, a in zip(dz[:5], at[:5], strict=True))
-    done = ("held level (option step_bound): their change is left out of the altitude, the floors and the ascent"
-            if hold else "the altitude, floors and ascent include it; the option step_bound (PARAMS.json "
-            "\"options\") holds such steps level, though the pressure's return then reads as a climb")
-    warnings.append(f"{int(jumped.sum())} step(s) changed the barometric altitude by more than {MAX_STEP_DZ_M:.1f} m "
-                    f"each ({shown}{', ...' if len(dz) > 5 else ''}), {float(dz.sum()):+.2f} m in all: a walking "
-                    "step climbs a riser or two (0.15-0.18 m each), so these are pressure transients (a door, a "
-                    f"draught, wind), not climbs; {done} (decision W230)")
+    warnings.append(step_jump_line(z[1:] - z_start, steps["end_s"].to_numpy(float), hold=hold))
     if not hold:
         return z, z_start, z_raw, int(jumped.sum())
     return z2, zs2, z_raw - (z - z2), int(jumped.sum())
