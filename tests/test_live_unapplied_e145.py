@@ -1,27 +1,25 @@
-"""Decision E145 (session 30 review F2): E107's line names W231's ``pause_ride`` and L296's ``rest_bias``. The live
-waist tracker (``pdrlearn run WAIST_BUNDLE``) books a whole pause as ``pause_dz_m`` (W158) and integrates a whole
-rest (W72); offline ``track`` applies both options by default, so a night recording's phantom floors and heading
-jump live must not go without a word."""
+"""Decision E145 (session 30 review F2) as amended by E147 (session 31): E145 had E107's line name W231's
+``pause_ride`` and L296's ``rest_bias``, which the live waist tracker (``pdrlearn run WAIST_BUNDLE``) did not apply.
+Since E146 / L308 it applies both (``tests/test_live_night_e146_l308.py``), so the line names neither, given true,
+false or by default, and a waist bundle's options carry them (E147)."""
 
 from __future__ import annotations
 
-from pdrlearn.waist.live import live_options, live_value, unapplied_options_line
+from pdrlearn.waist.live import LIVE_UNAPPLIED_OPTIONS, live_options, unapplied_options_line
 from pdrlearn.waist.params import WaistParams
 
-#: the other E107 options at what the live tracker does, so that only these two can be named
+#: the other E107 options at what the live tracker does, so that nothing else is named
 _LIVE = {"stand_veto": False, "sit_veto": False, "contact_shift": False, "parity_fill": False}
 
 
-def test_pause_ride_and_rest_bias_are_named_e145():
-    assert live_value("pause_ride") is False and live_value("rest_bias") is False
-    line = unapplied_options_line(WaistParams(leg_m=0.9, options={**_LIVE, "pause_ride": True, "rest_bias": True}))
-    assert line is not None and line.startswith("the options pause_ride=true, rest_bias=true are not applied")
-    assert "it tracks as with pause_ride=false, rest_bias=false;" in line
-    default = unapplied_options_line(WaistParams(leg_m=0.9, options=_LIVE))  # the offline defaults: named too
-    assert "pause_ride=true (the offline default)" in default and "rest_bias=true (the offline default)" in default
-    assert unapplied_options_line(WaistParams(leg_m=0.9, options={**_LIVE, "pause_ride": False,
-                                                                  "rest_bias": False})) is None
+def test_pause_ride_and_rest_bias_are_applied_live_and_not_named_e147():
+    assert "pause_ride" not in LIVE_UNAPPLIED_OPTIONS and "rest_bias" not in LIVE_UNAPPLIED_OPTIONS
+    for value in (True, False, None):
+        opts = {**_LIVE, **({} if value is None else {"pause_ride": value, "rest_bias": value})}
+        assert unapplied_options_line(WaistParams(leg_m=0.9, options=opts)) is None
     warnings: list[str] = []
-    live_options(WaistParams(leg_m=0.9), warnings)
-    (e107,) = [w for w in warnings if "E107" in w]
-    assert e107.count("pause_ride=true (the offline default)") == 1 and e107.count("rest_bias=true") == 1
+    o = live_options(WaistParams(leg_m=0.9), warnings)  # the options a bundle exports (E57): the offline defaults
+    assert o["pause_ride"] is True and o["rest_bias"] is True
+    assert not [w for w in warnings if "pause_ride" in w or "rest_bias" in w]
+    o = live_options(WaistParams(leg_m=0.9, options={"pause_ride": False, "rest_bias": False}), [])
+    assert o["pause_ride"] is False and o["rest_bias"] is False
