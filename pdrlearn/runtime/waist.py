@@ -55,7 +55,8 @@ class LiveStep:
     fragment whose length its neighbour carries; ``turning``: the stride's straight (0) / turning (1) class (seed 003
     sec. 3.3); ``lat``, ``lon`` (degrees): the position at ``end_s`` when the tracker was given a geodetic start
     (decision W137), else None; ``z`` (m): the barometric altitude at ``end_s`` relative to the track's first sample
-    and ``dz_m`` its change over the step, ``pause_dz_m`` the change while standing before it (W89's,
+    (less the drift W231 left out of the pauses before it, decision E146) and ``dz_m`` its change over the step,
+    ``pause_dz_m`` the change while standing before it (a pause over 30 s: its ride only, W231 / E146; W89's,
     ``track_waist``'s ``z`` / ``dz_m`` / ``pause_dz_m``; decisions E106, W158) when barometer samples were pushed
     (:meth:`WaistStream.push_barometer`), else None; ``stairs``: W91's rate test on that altitude
     (``track_waist``'s ``stairs`` column without ``stairs_climb``; with the option ``stairs_length`` such a step is at
@@ -87,7 +88,8 @@ class WaistStream(FixInput):
     ``params``: an object with ``leg_m``, ``k``, ``f_m``, ``gyro_bias_rps``, ``turn_gmm`` (the resolved
     :class:`~pdrlearn.waist.params.WaistParams`, or the bundle's); ``options``: the resolved pipeline options
     (``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``slow_turn_rps``, ``initial_heading``,
-    ``pivot_steps``: W150);
+    ``pivot_steps``: W150; ``pause_ride``: W231 / E146 and ``rest_bias``: L296 / L308, decided at the contact after the
+    pause or rest, absent = off);
     ``rotation``: the sensor -> body FLU matrix (None: the subclass's ``_frame`` finds one); ``start``: ``(x0, y0,
     h0)`` (m, m, rad ENU); ``latlon``: the start's ``(lat, lon)`` in degrees, checked (decision W137: each step's
     ``lat``/``lon``), or None; ``sides``: W138's causal side of each contact (an option); ``warnings``: the lines so
@@ -400,7 +402,11 @@ class WaistStream(FixInput):
         while filled and self._bt.size and filled[0][1] < self._bt[0]:  # W165: gaps before the buffer
             filled.pop(0)
         if self._alt is not None and self._bt.size:  # E106: a pending step ends after the oldest sample held
-            self._alt.trim(float(self._bt[0]))
+            held = float(self._bt[0])
+            if self._ride:  # E146: W231 reads the whole open pause (before the first step too)
+                a = self._fixes.t_start if self._pause_a is None else self._pause_a
+                held = held if a is None else min(held, float(a))
+            self._alt.trim(held)
 
     # -- contacts -> steps ------------------------------------------------------------------------------
     def _feed(self, contacts: list, *, final: bool) -> list[LiveStep]:
