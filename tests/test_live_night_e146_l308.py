@@ -1,7 +1,8 @@
-"""Decisions E146 / L308 (and E147-E149, L309): the live waist tracker and `pdrlearn run WAIST_BUNDLE` apply W231's
-``pause_ride`` and L296's ``rest_bias`` as the offline track does, decided at the contact that ends the pause or rest
-(the step after it is reported then anyway, W64). Before, they kept a whole pause's barometric drift (phantom floors
-after a long sit) and integrated a whole rest's gyroscope bias (a heading jump), named only by E145's line.
+"""Decisions E146 / L308 (and E147, E148, L309): the live waist tracker and `pdrlearn run WAIST_BUNDLE` apply L296's
+``rest_bias`` (by default) and W231's ``pause_ride`` (where the PARAMS.json gives it true: E146's rule for the default
+was not met) as the offline track does, decided at the contact that ends the rest or pause (the step after it is
+reported then anyway, W64). Before, they integrated a whole rest's gyroscope bias (a heading jump) and kept a whole
+pause's barometric drift (phantom floors after a long sit) whatever the options, named only by E145's line.
 E148: `run` gives W230's step-jump line, the offline track's (one function, ``kernels.barometer.step_jump_line``).
 
 Simulated users 5920-5949 (session 31's range)."""
@@ -71,7 +72,7 @@ def _compare(out, ref, z_tol=TOL):
 
 def test_live_equals_offline_across_a_night_sit_e146_l308(night):
     ref = track_waist(night, pipeline="waist-pendulum", realtime=True)  # W231 and L296 on by default
-    out, tr = _live(night)
+    out, tr = _live(night, {"pause_ride": True})  # E146: W231 live where the PARAMS.json gives it
     _compare(out, ref)  # before E146 / L308: the live heading turned ~50 deg and z kept -6 m of drift
     t, end = np.array([o.t for o in out]), np.array([o.end_s for o in out])
     assert abs(_across(np.array([o.heading_rad for o in out]), t, end)) < HELD_DEG
@@ -81,6 +82,12 @@ def test_live_equals_offline_across_a_night_sit_e146_l308(night):
     drift = float(line.split("the barometric altitude drifted ")[1].split(" m ")[0])
     assert drift < -5.0 and "across 1 rest(s) without steps" in line
     assert not [w for w in tr.warnings if "decision W74" in w or "pause_ride" in w or "rest_bias" in w]
+    # the live defaults (L308: rest_bias applied; E146: pause_ride not, named by E107's line): the heading as offline
+    out_d, tr_d = _live(night)
+    h_d = np.array([o.heading_rad for o in out_d])
+    assert np.abs(np.angle(np.exp(1j * (h_d - ref.steps["heading_rad"].to_numpy(float))))).max() < TOL
+    assert out_d[-1].z < -5.0 and not [w for w in tr_d.warnings if "decision W231" in w]
+    assert [w for w in tr_d.warnings if "pause_ride=true (the offline default)" in w and "rest_bias" not in w]
     # the options false: W158's whole pause and W72's whole rest, live as offline (what the live tracker did before)
     off = {"pause_ride": False, "rest_bias": False}
     out_off, tr_off = _live(night, off)
@@ -93,7 +100,7 @@ def test_live_equals_offline_across_a_night_sit_e146_l308(night):
 def test_a_lift_ride_keeps_its_floor_live_e146():
     s = _sim("straight:10, stand:40, lift:+3, stand:40, straight:10", 5921)
     ref = track_waist(s, pipeline="waist-pendulum", realtime=True)
-    out, tr = _live(s)
+    out, tr = _live(s, {"pause_ride": True})
     _compare(out, ref)
     assert max(o.pause_dz_m for o in out) == pytest.approx(3.0, abs=0.5)
     assert out[-1].z == pytest.approx(3.0, abs=0.5)
@@ -105,6 +112,9 @@ def bundle(tmp_path_factory):
     d = tmp_path_factory.mktemp("e146_bundle")
     cal = calibrate([simulate("A", 5922, rate_hz=100.0)], "waist-pendulum", distances=[20.0])
     cal.save(d / "cal.json")
+    on = json.loads((d / "cal.json").read_text())
+    on["options"] = {**(on.get("options") or {}), "pause_ride": True}  # E146: W231 live where given
+    (d / "cal.json").write_text(json.dumps(on))
     s = simulate("B", 5922, rate_hz=100.0)
     export_waist(d / "cal.json", d / "wb", frame=_frame_arg(s))
     off = json.loads((d / "cal.json").read_text())

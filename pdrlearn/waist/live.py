@@ -17,10 +17,10 @@ after a turning one), and its fragment merge (W27) the next step's duration. The
 step of the walking sequence so far (the steps known then, at most :data:`FRAGMENT_CONTEXT_STEPS`), not of the
 whole sequence, and a merge is never undone. Everything else is the replay's computation, so the steps and positions
 equal ``track_waist(session, pipeline="waist-pendulum", realtime=True)`` to rounding unless a W27 decision differs
-(``merge_fragments=False``: always) or an option of :data:`LIVE_UNAPPLIED_OPTIONS` is in force. W231's ``pause_ride``
-and L296's ``rest_bias`` are applied live since decisions E146 / L308: both are decided at the contact that ends the
-pause or rest (the step is reported after it anyway, W64), on the samples the tracker holds across it. State is
-bounded: the samples since the oldest step still pending, the rows of
+(``merge_fragments=False``: always) or an option of :data:`LIVE_UNAPPLIED_OPTIONS` is in force. L296's ``rest_bias``
+is applied live since decision L308, and W231's ``pause_ride`` where the PARAMS.json gives it true (E146): both are
+decided at the contact that ends the rest or pause (the step is reported after it anyway, W64), on the samples the
+tracker holds across it. State is bounded: the samples since the oldest step still pending, the rows of
 the open walking sequence (at most :data:`FRAGMENT_CONTEXT_STEPS`) and the W31 detector's 12 s window.
 
 Decision W65: the axis frame is given (``frame`` or ``meta`` as meta.json would declare it); without one it is
@@ -80,9 +80,11 @@ def live_options(p, warnings: list[str], **given) -> dict:
              "length_smoothing": None, "slow_turn_rps": None, "pivot_steps": None, "stairs_length": None,
              "pause_steps": None, "realtime_contact_shift": None,
              "freeze_index": None,  # W216: `run` computes the lower back's freeze index after the track, opt-in
-             "pause_ride": None, "rest_bias": None,  # decisions E146, L308: applied live (a bundle's options)
+             "pause_ride": None, "rest_bias": None,  # decisions E146, L308: a bundle's options
              **given}
     o = resolve_options(p, given)
+    if given["pause_ride"] is None:  # decision E146: only as the PARAMS.json (or the caller) gives it
+        o["pause_ride"] = live_value("pause_ride", p.options)
     if o["pause_steps"] != CAUSAL_PAUSE_STEPS:  # W165: the live trackers apply W134's value, or none
         o["pause_steps"] = False
     if o["length_smoothing"] != "none":
@@ -113,8 +115,10 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "parity_fill", "integrate_end",  # W187: the final stop is known only offline
                           "stand_veto",  # W189: the recording's median bounce is known only offline
                           "contact_model",  # W203: its features read the recording's medians
-                          "freeze_veto")  # W214: the freeze index's 4 s window looks 2 s ahead
-# E145 had "pause_ride" and "rest_bias" here; E146 / L308 apply both live (E147: no longer named)
+                          "freeze_veto",  # W214: the freeze index's 4 s window looks 2 s ahead
+                          # E146: W231's ride is applied live only where the PARAMS.json gives pause_ride true (E146's
+                          # rule was not met for the default); L308 applies rest_bias live (E147: no longer named)
+                          "pause_ride")
 
 
 def unapplied_options_line(p) -> str | None:
@@ -153,8 +157,9 @@ def live_value(option: str, given: dict | None = None):
     where the offline default is ``"opposite"``); no stand veto (``False``, where the offline default is
     ``"walking"`` since W219; the walking stretches' bounce is known only offline, W189 / W218); ``contact_shift`` only
     with ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's
-    fill is the offline detector's only, where the default is ``"within"``); else the option's offline default
-    (E107)."""
+    fill is the offline detector's only, where the default is ``"within"``); ``pause_ride`` only as the PARAMS.json
+    gives it (E146: W231's ride is applied live when given true; not given: ``False``, W158's whole pause, where the
+    offline default is true); else the option's offline default (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
 
     given = given or {}
@@ -170,6 +175,8 @@ def live_value(option: str, given: dict | None = None):
         return bool(value("contact_shift")) and bool(value("realtime_contact_shift"))
     if option == "parity_fill":  # W159: InitialContactDetector.rule_settings keeps it offline only
         return False
+    if option == "pause_ride":  # E146: applied live when the PARAMS.json gives it true, else W158's whole pause
+        return bool(given["pause_ride"]) if given.get("pause_ride") is not None else False
     return OPTION_DEFAULTS[option]
 
 
