@@ -1374,12 +1374,18 @@ def still_samples(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: floa
     the acceleration magnitude is under ``acc_tol`` (m/s^2) and the mean gyroscope magnitude under ``gyr_tol``
     (rad/s) -- thesis ch.3's stance tests on magnitudes, so any frame of the same samples gives the same mask.
     The live waist trackers run it on their buffered window (decision W165)."""
+    return still_from_magnitudes(dsp.magnitude(acc), dsp.magnitude(gyr), fs, window_s=window_s, acc_tol=acc_tol,
+                                 gyr_tol=gyr_tol)
+
+
+def still_from_magnitudes(am: np.ndarray, gm: np.ndarray, fs: float, *, window_s: float = 0.25, acc_tol: float = 0.3,
+                          gyr_tol: float = 0.25) -> np.ndarray:
+    """:func:`still_samples`'s test on the magnitudes ``am`` (m/s^2) and ``gm`` (rad/s) of the acceleration and rate:
+    what the live waist tracker holds across a rest for L296's bias (decision L308)."""
     w = max(1, int(round(window_s * fs)))
-    am = dsp.magnitude(acc)
     mean = dsp.uniform_filter1d(am, w)
     var = np.maximum(dsp.uniform_filter1d(am * am, w) - mean * mean, 0.0)
-    gm = dsp.uniform_filter1d(dsp.magnitude(gyr), w)
-    return (np.sqrt(var) < acc_tol) & (gm < gyr_tol)
+    return (np.sqrt(var) < acc_tol) & (dsp.uniform_filter1d(gm, w) < gyr_tol)
 
 
 def step_still_travel(acc_h: np.ndarray, still: np.ndarray, fs: float, i0: int, i1: int) -> tuple[float, float]:

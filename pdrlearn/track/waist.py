@@ -192,21 +192,12 @@ def _hold_jumps(steps: pd.DataFrame, z: np.ndarray, z_start: np.ndarray, z_raw: 
     :data:`~pdrlearn.kernels.barometer.MAX_STEP_DZ_M`; with ``hold`` (option ``step_bound``) they are held level
     (:func:`~pdrlearn.kernels.barometer.hold_step_jumps`; ``z_raw``, W174's, shifted alike). Returns ``(z, z_start,
     z_raw, number of such steps)``."""
-    from pdrlearn.kernels.barometer import MAX_STEP_DZ_M, hold_step_jumps
+    from pdrlearn.kernels.barometer import hold_step_jumps, step_jump_line
 
     z2, zs2, jumped = hold_step_jumps(z, z_start)
     if not jumped.any():
         return z, z_start, z_raw, 0
-    dz = (z[1:] - z_start)[jumped]
-    at = steps["end_s"].to_numpy(float)[jumped]
-    shown = ", ".join(f"{d:+.2f} m at {a:.1f} s" for d, a in zip(dz[:5], at[:5], strict=True))
-    done = ("held level (option step_bound): their change is left out of the altitude, the floors and the ascent"
-            if hold else "the altitude, floors and ascent include it; the option step_bound (PARAMS.json "
-            "\"options\") holds such steps level, though the pressure's return then reads as a climb")
-    warnings.append(f"{int(jumped.sum())} step(s) changed the barometric altitude by more than {MAX_STEP_DZ_M:.1f} m "
-                    f"each ({shown}{', ...' if len(dz) > 5 else ''}), {float(dz.sum()):+.2f} m in all: a walking "
-                    "step climbs a riser or two (0.15-0.18 m each), so these are pressure transients (a door, a "
-                    f"draught, wind), not climbs; {done} (decision W230)")
+    warnings.append(step_jump_line(z[1:] - z_start, steps["end_s"].to_numpy(float), hold=hold))
     if not hold:
         return z, z_start, z_raw, int(jumped.sum())
     return z2, zs2, z_raw - (z - z2), int(jumped.sum())
@@ -228,18 +219,13 @@ def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str], held=(
     return held_altitude(baro.t, baro.values[:, 0], t, held)
 
 
-#: decision W231: a drift of this much (m) or more left out across the rests is warned about (README: "a drift over
-#: 1 m is warned", L172's)
-PAUSE_DRIFT_WARN_M = 1.0
-
-
 def _pause_rides(baro, steps: pd.DataFrame, t0: float, z: np.ndarray, z_start: np.ndarray, z_raw: np.ndarray | None,
                  warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Decision W231: each pause's (W158's ``pause_dz_m``: from the previous step's end, or ``t0``, to the step's
     start) barometric change counts only where it is a ride (:func:`pdrlearn.kernels.pause_ride.pause_ride_dz`);
     the rest, drift across a long rest, is taken out of ``z``, ``z_start`` and ``z_raw`` (W174's ``transfer_dz_m``
-    unchanged), with one warning when it is :data:`PAUSE_DRIFT_WARN_M` or more in all."""
-    from pdrlearn.kernels.pause_ride import RIDE_WINDOW_S, pause_ride_dz
+    unchanged), with one warning (:func:`~pdrlearn.kernels.pause_ride.drift_line`)."""
+    from pdrlearn.kernels.pause_ride import RIDE_WINDOW_S, drift_line, pause_ride_dz
 
     ends = np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
     starts = steps["start_s"].to_numpy(float)
@@ -252,15 +238,9 @@ def _pause_rides(baro, steps: pd.DataFrame, t0: float, z: np.ndarray, z_start: n
     cum = np.concatenate([[0.0], np.cumsum(drop)])  # removed up to each step's end
     z, z_start = z - cum, z_start - cum[1:]
     z_raw = None if z_raw is None else z_raw - cum
-    long_ = np.flatnonzero(np.abs(drop) > 0)
-    total = float(drop.sum())
-    if abs(total) >= PAUSE_DRIFT_WARN_M or np.abs(drop).max() >= PAUSE_DRIFT_WARN_M:
-        worst = int(long_[np.argmax(np.abs(drop[long_]))])
-        warnings.append(
-            f"the barometric altitude drifted {total:+.2f} m across {len(long_)} rest(s) without steps (largest "
-            f"{drop[worst]:+.2f} m over the {starts[worst] - ends[worst]:.0f} s before {starts[worst]:.1f} s), too "
-            "slowly for a lift or escalator ride (a ride changes 1.5 m within 30 s): weather or room pressure, left "
-            "out of the altitude and the floors (decision W231)")
+    line = drift_line(drop, ends, starts)  # shared with the live tracker (decision E146)
+    if line:
+        warnings.append(line)
     return z, z_start, z_raw
 
 
