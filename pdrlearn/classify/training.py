@@ -22,7 +22,15 @@ from sklearn.model_selection import GroupKFold, StratifiedKFold
 from sklearn.pipeline import Pipeline
 from sklearn.preprocessing import FunctionTransformer
 
-from pdrlearn.classify.domain import attach_ranges, domain_report, has_ranges, step_score, summarize
+from pdrlearn.classify.domain import (
+    attach_joint,
+    attach_ranges,
+    domain_report,
+    has_ranges,
+    step_joint_score,
+    step_score,
+    summarize,
+)
 from pdrlearn.classify.dtw import THESIS_REFERENCES_PER_CLASS, DTWClassifier
 from pdrlearn.classify.fusion import (
     UnitFusionClassifier,
@@ -534,6 +542,7 @@ class UserModel:
             out[f"method_{task}"] = "none"
             out[f"ood_{task}"] = np.nan  # distance to the training range (decision C16)
             out[f"ood_feature_{task}"] = None
+            out[f"ood_joint_{task}"] = np.nan  # joint score (decision C71)
             for rows, win, lost in _gap_groups(windows):
                 try:
                     m, u, proba = self._predict_task(tm, win, method, unit)
@@ -556,6 +565,9 @@ class UserModel:
                 if dist is not None:
                     out.iloc[rows, out.columns.get_loc(f"ood_{task}")] = dist[0]
                     out.iloc[rows, out.columns.get_loc(f"ood_feature_{task}")] = np.asarray(dist[1], dtype=object)
+                joint = step_joint_score(tm.models[m][u], win.X)  # decision C71
+                if joint is not None:
+                    out.iloc[rows, out.columns.get_loc(f"ood_joint_{task}")] = joint
         for (lost, n), done in gap_unclassified.items():
             log.warning("%s: %d step(s) overlapping a sensor gap lost the %s unit%s; no trained %s model runs "
                         "without %s, so they are left unclassified", session.where, n, " and ".join(lost),
@@ -1026,6 +1038,7 @@ def train_task(
         for per in tm.models.values():
             if unit in per:
                 attach_ranges(per[unit], data.X[subsets[unit][0]])
+                attach_joint(per[unit], data.X[subsets[unit][0]], data.y[subsets[unit][0]])  # decision C71
     tm.chosen = best_pair(tm.ranking())
     if tm.chosen is None:
         raise DataError(f"task {data.task}: no method could be trained ({'; '.join(tm.skipped)})")
