@@ -89,6 +89,11 @@ class FeatureRange:
 JOINT_QUANTILE = 0.99
 #: Decision C71: folds of the out-of-fold calibration of the joint threshold (fixed before measuring).
 JOINT_FOLDS = 5
+#: Decision C71: whether ``track --model`` / ``track_plasys`` compute the joint score (``ood_joint_<task>`` in the
+#: strides, ``joint_out_of_domain_fraction`` in ``info.out_of_domain``). Off: the candidate failed its adoption rule
+#: (it flagged neither the 8 % street ramp nor the 4 Hz soft foot); ``UserModel.predict_steps(joint_domain=True)``
+#: and setting this to True are the option.
+JOINT_DEFAULT = False
 
 
 @dataclass
@@ -323,6 +328,21 @@ def combine_scores(leaves, n: int) -> tuple[np.ndarray, list[str]] | None:
     return d, list(worst)
 
 
+def joint_fraction(pred, tasks) -> float | None:
+    """Decision C71: the largest task's share of checked steps whose joint score (``ood_joint_<task>`` of a
+    prediction table) exceeds 1; None when no step has one (the check is unavailable: a model trained before
+    C71)."""
+    shares = []
+    for task in tasks:
+        col = f"ood_joint_{task}"
+        if col in pred:
+            v = np.asarray(pred[col], dtype=float)
+            v = v[np.isfinite(v)]
+            if len(v):
+                shares.append(float((v > 1).mean()))
+    return max(shares) if shares else None
+
+
 def summarize(d: np.ndarray, worst: list[str], unit: str) -> dict:
     """A task's out-of-domain summary over its checked steps (``d``: :func:`step_score` per step, NaN =
     not checked): fraction, counts, the models checked, the feature most often farthest out, the largest
@@ -399,4 +419,5 @@ NO_RANGES_NOTE = ("the model stores no training ranges (trained before pdrlearn 
 __all__ = ["QUANTILES", "STEP_THRESHOLD", "FRACTION_THRESHOLD", "FeatureRange", "model_inputs", "fit_range",
            "attach_ranges", "has_ranges", "step_score", "combine_scores", "check_warn_at", "summarize", "domain_report",
            "warning_line", "session_warning_line", "DEFAULT_WARN_SHARE",
-           "NO_RANGES_NOTE"]
+           "NO_RANGES_NOTE", "JOINT_DEFAULT", "JOINT_QUANTILE", "JOINT_FOLDS", "JointDomain", "fit_joint",
+           "attach_joint", "step_joint_score", "joint_fraction"]
