@@ -22,6 +22,7 @@ before C16 have none (no check, a note).
 from __future__ import annotations
 
 import logging
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -162,8 +163,10 @@ def fit_joint(est, X: np.ndarray, y: np.ndarray) -> JointDomain:
     F, _ = model_inputs(est, X)
     F = np.asarray(F, dtype=float)
     y = np.asarray(y).astype(str)
-    center = np.nanmedian(F, axis=0)
-    lo, hi = np.nanquantile(F, QUANTILES, axis=0)
+    with warnings.catch_warnings():  # a feature NaN on every training step (a unit's missing sensor) -> 0
+        warnings.simplefilter("ignore", RuntimeWarning)
+        center = np.nan_to_num(np.nanmedian(F, axis=0))
+        lo, hi = np.nan_to_num(np.nanquantile(F, QUANTILES, axis=0))
     scale = FeatureRange("", [], np.asarray(lo), np.asarray(hi), len(F)).width()
     Z = np.nan_to_num((F - center) / scale, nan=0.0)
     order = np.argsort(y, kind="stable")  # interleave within classes so that each fold holds every class
