@@ -22,7 +22,16 @@ from sklearn.model_selection import GroupKFold, StratifiedKFold
 from sklearn.pipeline import Pipeline
 from sklearn.preprocessing import FunctionTransformer
 
-from pdrlearn.classify.domain import attach_ranges, domain_report, has_ranges, step_score, summarize
+from pdrlearn.classify.domain import (
+    attach_joint,
+    attach_ranges,
+    domain_report,
+    has_ranges,
+    joint_fraction,
+    step_joint_score,
+    step_score,
+    summarize,
+)
 from pdrlearn.classify.dtw import THESIS_REFERENCES_PER_CLASS, DTWClassifier
 from pdrlearn.classify.fusion import (
     UnitFusionClassifier,
@@ -478,6 +487,7 @@ class UserModel:
         unit: str | None = None,
         windows: str | None = None,
         warn_rate: bool = True,
+        joint_domain: bool = False,
     ) -> pd.DataFrame:
         """Classify every step of ``steps`` (default ``session.steps``).
 
@@ -489,6 +499,8 @@ class UserModel:
         With ``"track"`` the table also has the ``window_start_s``/``window_end_s`` classified.
         ``warn_rate``: log decision C18's line when a unit runs at another rate than the model was trained at
         (decision C52; ``track`` passes False and gives the line in its own warnings).
+        ``joint_domain`` (decision C71, an option: it failed its adoption rule): add ``ood_joint_<task>``, the joint
+        (Mahalanobis) domain score of each step (> 1: out; NaN for a model trained before C71).
 
         Returns a DataFrame (one row per step, same index as ``steps``) with, per trained task, the class
         column (``terrain``, ``direction``, ``length_class``; ``str``), the probabilities ``p_<task>_<class>`` and
@@ -534,6 +546,8 @@ class UserModel:
             out[f"method_{task}"] = "none"
             out[f"ood_{task}"] = np.nan  # distance to the training range (decision C16)
             out[f"ood_feature_{task}"] = None
+            if joint_domain:
+                out[f"ood_joint_{task}"] = np.nan  # joint score (decision C71, opt-in)
             for rows, win, lost in _gap_groups(windows):
                 try:
                     m, u, proba = self._predict_task(tm, win, method, unit)
@@ -556,6 +570,9 @@ class UserModel:
                 if dist is not None:
                     out.iloc[rows, out.columns.get_loc(f"ood_{task}")] = dist[0]
                     out.iloc[rows, out.columns.get_loc(f"ood_feature_{task}")] = np.asarray(dist[1], dtype=object)
+                joint = step_joint_score(tm.models[m][u], win.X) if joint_domain else None  # decision C71
+                if joint is not None:
+                    out.iloc[rows, out.columns.get_loc(f"ood_joint_{task}")] = joint
         for (lost, n), done in gap_unclassified.items():
             log.warning("%s: %d step(s) overlapping a sensor gap lost the %s unit%s; no trained %s model runs "
                         "without %s, so they are left unclassified", session.where, n, " and ".join(lost),
@@ -582,7 +599,12 @@ class UserModel:
             used = pred[f"method_{task}"].astype(str).to_numpy()[np.isfinite(d)]
             unit = ", ".join(sorted(set(used)))  # "<method>/<unit>" of the models checked
             per_task[task] = summarize(d, [str(v) for v in pred[f"ood_feature_{task}"].fillna("")], unit)
-        return domain_report(per_task, warn_at=warn_at) if per_task else None
+        if not per_task:
+            return None
+        rep = domain_report(per_task, warn_at=warn_at)
+        if any(c.startswith("ood_joint_") for c in pred.columns):  # decision C71's option
+            rep["joint_out_of_domain_fraction"] = joint_fraction(pred, self.tasks)
+        return rep
 
     @property
     def has_domain(self) -> bool:
@@ -1026,6 +1048,7 @@ def train_task(
         for per in tm.models.values():
             if unit in per:
                 attach_ranges(per[unit], data.X[subsets[unit][0]])
+                attach_joint(per[unit], data.X[subsets[unit][0]], data.y[subsets[unit][0]])  # decision C71
     tm.chosen = best_pair(tm.ranking())
     if tm.chosen is None:
         raise DataError(f"task {data.task}: no method could be trained ({'; '.join(tm.skipped)})")

@@ -357,10 +357,12 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
         from pdrlearn.classify import load_model
 
         model = load_model(model)
-    from pdrlearn.classify import UserModel
-
     # decision C51: the strides are cut already; C18's rate line is the tracker's own warning (rate_check)
-    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False) if isinstance(model, UserModel)
+    from pdrlearn.classify import UserModel, domain
+
+    # decision C71: the joint domain score only when its option is on (it failed its adoption rule)
+    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False, joint_domain=domain.JOINT_DEFAULT)
+            if isinstance(model, UserModel)
             else model.predict_steps(session, steps)).reset_index(drop=True)
     if len(pred) != len(steps):
         raise ModelError(f"model predicted {len(pred)} rows for {len(steps)} strides")
