@@ -206,8 +206,8 @@ SESSIONS: tuple[Column, ...] = (
     ("step_time_s_right", "s", "number", "lower back: mean step time onto the right foot (W250); empty on a foot "
                                          "track"),
     ("step_time_s_ratio", "ratio", "number", "lower back: step_time_s_left / step_time_s_right, > 1 the left steps "
-                                             "longer (gait's ratio L/R; W250); no finding where step_time_asymmetry_pct "
-                                             "is empty"),
+                                             "longer (gait's ratio L/R; W250); no finding where "
+                                             "step_time_asymmetry_pct is empty"),
     ("n_turns", "count", "integer", "reference turns compared (turns.csv only, L42)"),
     ("n_turns_signed", "count", "integer", "reference turns of 45 deg or more whose sign is compared (L42)"),
     ("n_unscored", "count", "integer", "lower back: contacts outside the scored span"),

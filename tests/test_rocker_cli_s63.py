@@ -19,7 +19,8 @@ def test_rocker_option_is_written_and_checked(tmp_path, capsys):
                  "--out", str(tmp_path / "s")]) == 0
     assert json.loads((tmp_path / "s" / "meta.json").read_text())["knobs"]["rocker"] == "smooth"
     capsys.readouterr()
-    assert main(["simulate", "--route", "straight:5", "--rocker", "soft", "--user-seed", "1", "--out", str(tmp_path / "b")]) == 2
+    assert main(["simulate", "--route", "straight:5", "--rocker", "soft", "--user-seed", "1",
+                 "--out", str(tmp_path / "b")]) == 2
     err = capsys.readouterr().err
     assert "--rocker 'soft': must be hermite or smooth" in err and "Traceback" not in err
 

@@ -548,9 +548,9 @@ def posture_line(summary: dict, waist_unit: bool = False) -> str:
     too (the live tracker has no posture runs) and prints no such line; the line names both. Decision L316: a foot
     track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead."""
     if summary.get("standing_time_s") is None and waist_unit:
-        return ("posture: no standing / sitting / lying split from the foot unit; this session has a lower-back unit "
-                "(wAccelerometer.csv): track it for the split, pdrlearn track DIR --pipeline waist-pendulum "
-                "(decisions W222, L316)")
+        return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt, and this "
+                "session has that unit (wAccelerometer.csv): track it for the split, pdrlearn track DIR --pipeline "
+                "waist-pendulum (decisions W222, L316)")
     if summary.get("standing_time_s") is None:
         return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt in an "
                 "offline `pdrlearn track` (a foot unit sees no trunk; `run` of a waist bundle has no posture runs; "

@@ -773,7 +773,8 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
                    f"{summary['time_no_data_s']:.1f} s")
-        typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys"))  # W222, L316: the time that is not walking, by posture
+        # decisions W222, L316: the time that is not walking, by posture
+        typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys"))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"

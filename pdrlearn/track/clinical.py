@@ -733,7 +733,8 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
     if "unit" in steps and len(steps) and (steps["unit"] == "foot").all() or "stride_time_s" in steps:
         out["reason"] = ("not observable from one foot's unit: a step time runs from one foot's contact to the "
                          "other foot's; use a unit on each foot (pdrlearn gait LEFT_DIR RIGHT_DIR, "
-                         "decision L259) or a lower-back unit (pdrlearn track DIR --pipeline waist-pendulum; decision L316)")
+                         "decision L259) or a lower-back unit (pdrlearn track DIR --pipeline waist-pendulum; "
+                         "decision L316)")
         return out
     from pdrlearn.track.gait import waist_step_times
 
