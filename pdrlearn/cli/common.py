@@ -542,10 +542,15 @@ def transfer_line(summary: dict) -> str | None:
     return ", ".join(parts) if parts else None
 
 
-def posture_line(summary: dict) -> str:
+def posture_line(summary: dict, waist_unit: bool = False) -> str:
     """Decision W222: ``track``'s line of the time that is not walking, by posture (a lower-back track), or that a
     foot-only track cannot split it (its keys are null). Decision E145: ``run`` of a waist bundle writes the keys null
-    too (the live tracker has no posture runs) and prints no such line; the line names both."""
+    too (the live tracker has no posture runs) and prints no such line; the line names both. Decision L316: a foot
+    track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead."""
+    if summary.get("standing_time_s") is None and waist_unit:
+        return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt, and this "
+                "session has that unit (wAccelerometer.csv): track it for the split, pdrlearn track DIR --pipeline "
+                "waist-pendulum (decisions W222, L316)")
     if summary.get("standing_time_s") is None:
         return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt in an "
                 "offline `pdrlearn track` (a foot unit sees no trunk; `run` of a waist bundle has no posture runs; "

@@ -87,6 +87,12 @@ def simulate_cmd(
         help="constant (default): the user's pelvis bounce on every step; pendulum: scaled by the inverted "
         "pendulum's rise for each step's length, so short slow steps bounce less (decision S29).",
     ),
+    rocker: str = typer.Option(
+        "hermite", "--rocker", help="The simulated heel rocker (initial contact -> foot flat): hermite (default) "
+        "stops the foot at foot flat, which puts a second |acc| peak ~0.1 s after the contact that real feet do not "
+        "have (steps decision 30); smooth comes to rest gradually (decision S31). Simulated feet WITHOUT force "
+        "sensors time their contacts on that peak: use smooth for foot-only step times (decision S63).",
+    ),
     heading0: float = typer.Option(
         0.0, "--heading0", help="Initial walking direction (deg, ENU: 0 = east, 90 = north, counter-clockwise), "
         "-360 to 360; the magnetometer sees it, a waist-only track does not (decision S32)."),
@@ -156,7 +162,7 @@ def simulate_cmd(
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
-    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, STEP_TIME_ASYMMETRY_MAX
+    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, ROCKER_MODES, STEP_TIME_ASYMMETRY_MAX
     from pdrlearn.sim.route import parse_route
     from pdrlearn.sim.simulate import STEP_LENGTH_ASYMMETRY_MAX
 
@@ -171,6 +177,8 @@ def simulate_cmd(
         raise DataError(f"--pelvis {pelvis!r}: must be {' or '.join(PELVIS_MODES)}")
     if bounce not in BOUNCE_MODES:  # decision S29
         raise DataError(f"--bounce {bounce!r}: must be {' or '.join(BOUNCE_MODES)}")
+    if rocker not in ROCKER_MODES:  # decisions S31, S63
+        raise DataError(f"--rocker {rocker!r}: must be {' or '.join(ROCKER_MODES)}")
     if user_seed < 0 or seed < 0:
         raise DataError("--user-seed and --seed must be non-negative integers")
     if not -90.0 <= foot_mount_pitch <= 90.0:  # beyond +-90 deg the unit would be mounted upside down
@@ -206,6 +214,7 @@ def simulate_cmd(
         noise=not no_noise,
         pelvis=pelvis,
         bounce=bounce,
+        rocker=rocker,
         heading0_deg=heading0,
         mag_disturbance_ut=mag_disturbance,
         waist_mount_deg=mount,

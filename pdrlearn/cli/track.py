@@ -281,7 +281,7 @@ def track(
     if as_json:
         print_json(summary)
         return
-    _print_summary(summary, out, aided)
+    _print_summary(summary, out, aided, waist_unit=(Path(session_dir) / "wAccelerometer.csv").is_file())  # L316
 
 
 #: decision E93: ``track``'s options that ``track-all`` does not take, and why (tests/test_track_all_options_e93.py
@@ -733,7 +733,7 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     return summary, aided
 
 
-def _print_summary(summary: dict, out: Path, aided: bool) -> None:
+def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False) -> None:
     name = summary["session"]
     if summary.get("window_start_s") is not None:  # decision L105
         name += f" [{summary['window_start_s']:g}-{summary['window_end_s']:g} s]"
@@ -773,7 +773,8 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
                    f"{summary['time_no_data_s']:.1f} s")
-        typer.echo(posture_line(summary))  # decision W222: the time that is not walking, by posture
+        # decisions W222, L316: the time that is not walking, by posture
+        typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys"))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"

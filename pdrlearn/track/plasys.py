@@ -1250,6 +1250,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         tc = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
     add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
                      turn_valid=~in_gap)  # L109: a stride moved 0 m by the guard keeps its measured turn
+    if toe_off:  # decision L315: L285's stance bound on one foot's track
+        from pdrlearn.track.gait import stance_share_warning
+
+        line = stance_share_warning(table)
+        if line:
+            warnings.append(line)
     table["impossible"] = impossible  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = longest_gap_in(table["start_s"], table["end_s"], foot_gaps)  # decision L67 (run's E37)
     table = table[[c for c in table.columns if c != "unit"] + ["unit"]]  # gap_s before unit, as run's steps.csv

@@ -901,6 +901,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     # decision W129: each contact's side; realtime: empty (W20's velocity is zero-phase over the whole recording)
     steps = steps.assign(side=np.full(len(steps), "", dtype=object) if realtime
                          else contact_sides(imu.t, imu.acc_ml, imu.fs, ev, v_at=v_at))
+    steps = steps.assign(climb=climbs)  # decision L314: W108's stair climbs, which no ramp is made of (grade.py)
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
