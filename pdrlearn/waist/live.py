@@ -114,6 +114,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "contact_model",  # W203: its features read the recording's medians
                           "freeze_veto",  # W214: the freeze index's 4 s window looks 2 s ahead
                           "side_at_contact",  # W235: the offline detector's sequence rules only
+                          "fast_fill",  # W242: the offline detector's sequence rules only
                           # E145: the live tracker books a whole pause as pause_dz_m (W158, not W231's ride) and
                           # integrates a whole rest (W72, not L296's rest bias); offline track applies both
                           "pause_ride", "rest_bias",
