@@ -19,7 +19,7 @@ import warnings
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist_side_at_contact_w235 as M  # noqa: E402  W235's measurement (a), (b), (c)
+import waist_side_at_contact_w235 as M  # noqa: E402  (the measurement of W235: real, sim, hapt)
 
 M.OPTION = "fast_fill"
 M.USERS = range(6030, 6060)  # the lead's fresh users for W242

@@ -78,3 +78,19 @@ def test_a_clean_simulated_walk_keeps_its_contacts(walk):
     on = track_waist(walk, pipeline="waist-pendulum", fast_fill=True).steps["event_s"].to_numpy(float)
     assert off.size > 10
     np.testing.assert_array_equal(on, off)
+
+
+def test_the_measured_real_row_ms001_test11_w243():
+    """W243 (W242's rule, not met on the freeze route): on MS001 Test11 the 5 Hz maximum recovers the merged step at
+    123.88 s (in-bout step_f1 0.8913 82/93 -> 0.8973 83/94 of 91); the default is unchanged."""
+    from pdrlearn.io import read_session
+    from pdrlearn.waist.evaluate import step_metrics
+    from tests.conftest import external_session
+
+    s = read_session(external_session("mobgap_MS001_Test11_Trial1"))
+    r = {v: track_waist(s, pipeline="waist-pendulum", **({"fast_fill": True} if v else {})) for v in (False, True)}
+    m = {v: step_metrics(r[v].steps, s) for v in r}
+    assert (m[False]["n_detected"], m[False]["n_reference"], round(m[False]["step_f1"], 4)) == (93, 91, 0.8913)
+    assert (m[True]["n_detected"], round(m[True]["step_f1"], 4)) == (94, 0.8973)
+    added = np.setdiff1d(r[True].steps["event_s"].to_numpy(float), r[False].steps["event_s"].to_numpy(float))
+    assert added.size == 1 and abs(added[0] - 123.88) < 0.25
