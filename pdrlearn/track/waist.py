@@ -471,6 +471,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
+                   "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "speed_check": True,  # W211
                    "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
@@ -487,6 +488,8 @@ SCOPED_OPTIONS = {
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "side_at_contact": ("the offline waist-pendulum with its own contact detector (W235)",
                         lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "fast_fill": ("the offline waist-pendulum with its own contact detector (W242)",
+                  lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
                     lambda pl, rt, m, det, stops: not rt),
     "vault_veto": ("the offline waist-pendulum (W119)",
@@ -584,7 +587,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
                 length_model=None, freeze_veto: bool | None = None,
-                freeze_index: bool | None = None, side_at_contact: bool | None = None) -> TrackResult:
+                freeze_index: bool | None = None, side_at_contact: bool | None = None,
+                fast_fill: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -716,6 +720,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     side_at_contact : pendulum, offline detector: the sequence rules read each candidate's W20 side at its initial
         contact instead of at its vertical maximum (decision W235, ``InitialContactDetector``'s ``side_at_contact``);
         default False
+    fast_fill : pendulum, offline detector: one contact where a gap between two kept contacts has room for exactly
+        one step and the vertical acceleration low-passed at twice the cut-off (5 Hz) has a maximum of its own there
+        (decision W242, ``InitialContactDetector``'s ``fast_fill``); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -756,7 +763,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
-             "side_at_contact": side_at_contact}
+             "side_at_contact": side_at_contact, "fast_fill": fast_fill}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -1081,6 +1088,7 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
                                   rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]),
                                   realtime_shift=bool(o["realtime_contact_shift"]),  # W166: an option
                                   weak_fill=bool(o["weak_fill"]), side_at_contact=bool(o["side_at_contact"]),  # W235
+                                  fast_fill=bool(o["fast_fill"]),  # W242
                                   parity_fill="within" if o["parity_fill"] == "within" else bool(o["parity_fill"]))
 
 
