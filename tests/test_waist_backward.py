@@ -64,3 +64,17 @@ def test_backward_runs_need_four_steps_inside_one_sequence():
     back[10:16] = False
     back[8:12] = True  # two steps each side of a sequence break: no run
     assert backward_runs(back, has_next) == [(1, 4)]
+
+
+def test_units_waist_on_a_foot_and_waist_session_still_warns(tmp_path):
+    """Decision W253 (trial 31 finding 1): ``track --units waist`` / ``track-all --units waist`` leave the foot files
+    out of the track, and had lost W173's line with them (+44 % distance, no word); the left-out foot unit's cue is
+    read as ``--pipeline waist-pendulum`` reads it."""
+    from pdrlearn.cli.track import track_session, track_settings
+    from pdrlearn.io import write_session
+
+    s = _sim("stand:2, backward:12, stand:2", 6140, seed=1)
+    write_session(s, tmp_path / "back")
+    res = track_session(tmp_path / "back", track_settings(units="waist"))["result"]
+    assert res.info["pipeline"].startswith("waist"), res.info["pipeline"]
+    assert len(_lines(res)) == 1, res.info["warnings"]
