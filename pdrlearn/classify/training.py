@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -845,6 +845,18 @@ def check_settings(
     return out[0], out[1], out[2]
 
 
+def check_task_methods(task_methods: Mapping[str, Sequence[str]] | None) -> dict[str, list[str]]:
+    """Decision C74: per-task method lists (``--methods direction=fusion,heuristic``), checked as ``methods`` is
+    (:func:`check_settings`): a known task, known methods, no empty list; ``{}`` for None."""
+    out: dict[str, list[str]] = {}
+    for task, methods in (task_methods or {}).items():
+        if task not in TASKS:
+            raise DataError(f"methods (--methods): unknown task {task!r} in {task}=...; choose from "
+                            f"{', '.join(TASKS)} (decision C74)")
+        out[task] = _check_choice("method", methods, METHODS)
+    return out
+
+
 #: decision B212: the fastest rate ``--resample HZ`` trains at (Hz): a ms clock's whole steps reach 1000 Hz
 #: (B161's ``IMU_MS_MAX_HZ`` less its 10 % tolerance), above every IMU the project reads (PLASYS 20 Hz, thesis
 #: ch.4.2.3; real 100 and 204.8 Hz; phones up to 500 Hz); ``--resample 1e6`` grew to 18.8 GB before it was killed
@@ -1151,6 +1163,7 @@ def train_user(
     cv_groups: str = "steps",
     length_units: Sequence[str] | None = None,
     resample_hz: float | None = None,
+    task_methods: Mapping[str, Sequence[str]] | None = None,
 ) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
 
@@ -1168,6 +1181,8 @@ def train_user(
     length_units : units of the length task only (default None: ``units``); named, they train every soft vote
         they allow, e.g. ``("foot", "waist", "fused")``: the length task as before C22 (no combined model, C8
         chooses among the soft votes), terrain and direction as ``units`` (decision C38).
+    task_methods : per-task methods, e.g. ``{"direction": ["fusion", "heuristic"]}``: those tasks train (and
+        choose among) these methods, the others ``methods`` (decision C74; ``--methods direction=fusion,...``).
     cv : folds of the stratified cross-validation that scores every model (thesis ch. 6: 10-fold);
         reduced to the smallest class size when a class has fewer steps.
     cv_groups : ``"steps"`` (default): stratified folds of steps, pooled over the sessions; ``"user"``: when the
@@ -1208,8 +1223,14 @@ def train_user(
     # decision C23: by default the combined feature vector replaces the soft vote of the svm and nn unit models;
     # units named explicitly (e.g. "foot,waist,fused,combined") train every soft vote they allow
     tasks, methods, units = (as_names(v, n) for v, n in ((tasks, "task"), (methods, "method"), (units, "unit")))
-    voted = None if units is not None else [m for m in (methods or DEFAULT_METHODS) if m not in COMBINED_METHODS]
+    named_units = units is not None
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
+    own_methods = check_task_methods(task_methods)  # decision C74
+
+    def voted_of(ms):  # decision C23's soft votes of a method list (None: units named, every soft vote)
+        return None if named_units else [m for m in ms if m not in COMBINED_METHODS]
+
+    voted = voted_of(methods)
     if length_units is not None:  # decision C38: the length task's own units (named: every soft vote they allow)
         length_units = check_length_units(length_units)
     from pdrlearn.features.windows import BOUNDARIES
@@ -1265,8 +1286,9 @@ def train_user(
             continue
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
         own = task == "length" and length_units is not None  # decision C38
-        out[task] = train_task(data, methods=methods, units=length_units if own else units, cv=cv, seed=seed,
-                               advance=advance, soft_vote_methods=None if own else voted, groups=groups,
+        ms = own_methods.get(task, methods)  # decision C74
+        out[task] = train_task(data, methods=ms, units=length_units if own else units, cv=cv, seed=seed,
+                               advance=advance, soft_vote_methods=None if own else voted_of(ms), groups=groups,
                                group_kind="session" if cv_groups == "session" else "user")
     calibration = None
     if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
@@ -1327,6 +1349,7 @@ def train_user(
             **({"cv_sessions": n_users if used != "steps" else 0} if cv_groups == "session" else {}),
             "seed": seed,
             "methods": list(methods),
+            **({"task_methods": own_methods} if own_methods else {}),  # decision C74
             "units": list(units),
             "length_units": length_units,  # the length task's own units, None = "units" (decision C38)
             # methods whose unit fused model was trained (soft vote; heuristic fusion); None = every method (C23)
