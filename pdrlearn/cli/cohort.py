@@ -17,6 +17,7 @@ from pdrlearn.cli import track as _track
 from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
+    METHODS_HELP,
     console,
     existed,
     json_safe,
@@ -26,7 +27,6 @@ from pdrlearn.cli.common import (
     progress,
     refused_output,
     replaced,
-    METHODS_HELP,
     split_choices,
     split_length_units,
     storey_height_option,
@@ -305,9 +305,7 @@ def train_all(
 
         pdrlearn train-all cohort/ --out models/ --scheduler tcp://10.0.0.5:8786
     """
-    from pdrlearn.classify.training import check_settings
-
-    from pdrlearn.classify.training import check_task_methods
+    from pdrlearn.classify.training import check_settings, check_task_methods
 
     t_list, m_list, u_list, per_task = split_choices(tasks=tasks, methods=methods, units=units)
     # bad settings fail here, once, before a cluster is started and before anything is written
@@ -324,7 +322,8 @@ def train_all(
     # leaves no model of a user who is no longer in the cohort, or who failed this time
     with refused_output(out), atomic_directory(out) as tmp:  # decision B151
         items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
-                           "methods": m_list, "task_methods": per_task, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
+                           "methods": m_list,
+                           "task_methods": per_task, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
                            "skip_bad": skip_bad, "resample_hz": resample})
                  for u in users]
         results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
