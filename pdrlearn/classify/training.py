@@ -55,6 +55,12 @@ COMBINED_METHODS = ("svm", "nn")
 UNIT_METHODS = ("heuristic", "dtw", "svm", "nn")
 #: Fewest labelled steps per class for training and CV (decision: docs/decisions/classifiers.md).
 MIN_STEPS_PER_CLASS = 5
+#: decision C75: a trained task warns when a class has fewer labelled steps than this: 12 per class is the smallest
+#: set the thesis calls sufficient, and that for its DTW templates (thesis ch. 6.2.2: "24 (12 forward and 12
+#: backward) signals ... proved to be sufficient"); its learned models had 190-260 per class (ch. 6.2.1)
+FEW_STEPS_PER_CLASS = 12
+#: decision C75: the methods that need no fitted weights (rules and templates), named by the few-steps line
+TEMPLATE_METHODS = ("heuristic", "fusion", "dtw")
 #: Tie-break order when two fused methods score alike (the thesis' best first, Tables 27, 28, 33).
 PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
 
@@ -845,6 +851,24 @@ def check_settings(
     return out[0], out[1], out[2]
 
 
+def few_steps_line(task: str, y: np.ndarray, classes: Sequence[str], chosen: tuple[str, str]) -> str | None:
+    """Decision C75: one line when a class of a trained task has fewer than :data:`FEW_STEPS_PER_CLASS` labelled
+    steps (None otherwise): its CV score rests on a handful of steps (trial 31: 6 backward of 189, the chosen
+    nn/combined scored 91.7 % in CV and 56 % on held-out backward steps)."""
+    counts = {c: int(np.sum(np.asarray(y) == c)) for c in classes}
+    few = {c: n for c, n in counts.items() if 0 < n < FEW_STEPS_PER_CLASS}
+    if not few:
+        return None
+    named = ", ".join(f"'{c}' has {n}" for c, n in few.items())
+    alt = "" if chosen[0] in TEMPLATE_METHODS else (
+        f"; or give the task the rule / template methods, e.g. --methods {task}={','.join(TEMPLATE_METHODS)} "
+        "(decision C74)")
+    return (f"task {task}: few labelled steps per class ({named} of {len(y)}; under {FEW_STEPS_PER_CLASS}, the "
+            f"fewest the thesis calls sufficient, ch. 6.2.2): the chosen {chosen[0]}/{chosen[1]}'s CV score of that "
+            f"class rests on them and may not hold on new walks; record at least {FEW_STEPS_PER_CLASS} steps of "
+            f"each class{alt} (decision C75)")
+
+
 def check_task_methods(task_methods: Mapping[str, Sequence[str]] | None) -> dict[str, list[str]]:
     """Decision C74: per-task method lists (``--methods direction=fusion,heuristic``), checked as ``methods`` is
     (:func:`check_settings`): a known task, known methods, no empty list; ``{}`` for None."""
@@ -1290,6 +1314,9 @@ def train_user(
         out[task] = train_task(data, methods=ms, units=length_units if own else units, cv=cv, seed=seed,
                                advance=advance, soft_vote_methods=None if own else voted_of(ms), groups=groups,
                                group_kind="session" if cv_groups == "session" else "user")
+        few = out[task].chosen and few_steps_line(task, data.y, out[task].classes, out[task].chosen)  # C75
+        if few:
+            log.warning("train: %s", few)
     calibration = None
     if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
         from pdrlearn.displace.calibration import calibrate_distance
