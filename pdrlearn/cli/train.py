@@ -326,6 +326,7 @@ def evaluate(
         pdrlearn evaluate out/models/u1 out/sim/u1_test --predictions-out out/eval_u1_steps.csv
     """
     from pdrlearn.classify import evaluate_model, load_model
+    from pdrlearn.classify.detected import detected_lines
     from pdrlearn.classify.evaluation import (
         evaluation_stages,
         headline,
@@ -406,6 +407,8 @@ def evaluate(
         c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(  # decision C37
             f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
             for k in r["classes"]), markup=False)
+        for line in detected_lines(r.get("detected")):  # decision C76
+            c.print(f"  {line}", markup=False)
         for s in r["skipped"]:
             c.print(f"  skipped {s}")
     c.print(f"step windows: {result.get('boundaries', model.boundaries)} boundaries, "
