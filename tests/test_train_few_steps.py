@@ -35,3 +35,18 @@ def test_few_steps_line_names_every_small_class_and_no_alternative_for_a_templat
     assert "'up' has 11, 'down' has 5 of 56" in line and "--methods" not in line
     assert few_steps_line("terrain", np.array(["flat", "up", "down"] * FEW_STEPS_PER_CLASS),
                           ["flat", "up", "down"], ("nn", "combined")) is None
+
+
+def test_a_waist_only_model_says_track_needs_the_foot_unit(caplog):
+    """Decision C77 (trial 31 finding 7): `train --units waist` wrote a model nothing could use on a waist-only
+    recording, without a word."""
+    from pdrlearn.classify.training import WAIST_ONLY_MODEL_LINE
+
+    with caplog.at_level(logging.WARNING):
+        m = train_user([labelled_session(1, 12)], tasks=["direction"], methods=["svm"], units=["waist"], cv=2)
+    assert m.tasks["direction"].chosen == ("svm", "waist")
+    assert f"train: {WAIST_ONLY_MODEL_LINE}" in caplog.text and "tracked session still needs a foot unit" in caplog.text
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):
+        train_user([labelled_session(1, 12)], tasks=["direction"], methods=["svm"], units=["foot"], cv=2)
+    assert WAIST_ONLY_MODEL_LINE not in caplog.text

@@ -61,6 +61,13 @@ MIN_STEPS_PER_CLASS = 5
 FEW_STEPS_PER_CLASS = 12
 #: decision C75: the methods that need no fitted weights (rules and templates), named by the few-steps line
 TEMPLATE_METHODS = ("heuristic", "fusion", "dtw")
+#: decision C77 (trial 31 finding 7): a model whose every chosen classifier reads the lower back only is still used
+#: by the foot pipeline alone; said once at train time
+WAIST_ONLY_MODEL_LINE = (
+    "every chosen classifier reads the lower-back unit only: `track --model` / `run` of its bundle use it in the "
+    "foot pipeline (PLASYS), so the tracked session still needs a foot unit; the lower-back pipelines (waist-pendulum, "
+    "waist-pll) take no model, so a waist-only recording is tracked without these classes and its backward steps "
+    "count forward (decisions W173, C77)")
 #: Tie-break order when two fused methods score alike (the thesis' best first, Tables 27, 28, 33).
 PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
 
@@ -1335,6 +1342,8 @@ def train_user(
         log.warning("train: skipped %s", line)
     if not out:  # decision C53 (C17 kept): a calibration-only model is a warning, not an error
         log.warning("train: %s", NO_CLASSIFIER_LINE)
+    elif all(tm.chosen and tm.chosen[1] == "waist" for tm in out.values()):  # decision C77
+        log.warning("train: %s", WAIST_ONLY_MODEL_LINE)
     by_task, used = cv_groups_used(out, cv_groups)  # decision B210
     rates: dict[str, float] = {}
     for s in sessions:
