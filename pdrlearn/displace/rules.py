@@ -1,5 +1,6 @@
-"""PLASYS step rules (thesis ch.7.2.2): terrain picks the distance, direction the sign, the length
-class clamps the distance, stairs give the altitude change."""
+"""PLASYS step rules (thesis ch.7.2.2): terrain picks the distance, direction the sign of ``length_m``, the length
+class clamps the distance, stairs give the altitude change. The track places a stride whose sign the class turned
+with its heading turned 180 deg (decision L65), so the position follows the measured displacement either way."""
 
 from __future__ import annotations
 
