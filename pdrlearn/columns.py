@@ -174,6 +174,10 @@ SESSIONS: tuple[Column, ...] = (
                                                "(backward travel, with or without a model; a replay: strides classed "
                                                "backward; L203); side steps excluded (L270); empty on the lower "
                                                "back"),
+    ("median_backward_stride_length_m", "m", "number", "foot: median |length_m| of the strides n_backward_strides "
+                                                       "counts (L326); empty without one or on the lower back"),
+    ("median_backward_speed_mps", "m/s", "number", "foot: median speed_mps of the strides n_backward_strides counts "
+                                                   "(L326); empty without one or on the lower back"),
     ("n_cv_strides", "count", "integer", "steady straight level forward strides stride_time_cv_pct and "
                                          "stride_length_cv_pct are computed over (L104, L212)"),
     ("n_detected", "count", "integer", "lower back: detected contacts scored"),

@@ -426,6 +426,25 @@ def backward_strides(steps: pd.DataFrame) -> int | None:
     return None if flag is None else int(flag.sum())
 
 
+def backward_gait(steps: pd.DataFrame) -> dict:
+    """Decision L326 (trial 31 finding 9): ``median_backward_stride_length_m`` (median |``length_m``| of the
+    :func:`backward_travel` strides) and ``median_backward_speed_mps`` (median ``speed_mps`` of those with one, L66);
+    None without backward strides, on a lower-back track, or without the column. ``median_stride_length_m`` and
+    ``gait_speed_mps`` keep pooling both ways."""
+    flag = backward_travel(steps)
+    out: dict = {"median_backward_stride_length_m": None, "median_backward_speed_mps": None}
+    if flag is None or not flag.any():
+        return out
+    back = steps[flag]
+    length = np.abs(back["length_m"].to_numpy(float)) if "length_m" in back else np.array([])
+    speed = back["speed_mps"].to_numpy(float) if "speed_mps" in back else np.array([])
+    if np.isfinite(length).any():
+        out["median_backward_stride_length_m"] = float(np.nanmedian(length))
+    if np.isfinite(speed).any():
+        out["median_backward_speed_mps"] = float(np.nanmedian(speed))
+    return out
+
+
 def side_strides(steps: pd.DataFrame) -> int | None:
     """Decision L270: ``n_side_strides``, the foot track's strides of side-stepping runs (L219 / L228's
     ``sideways``, a streamed table's runs whole, L243), which ``n_backward_strides`` leaves out; None where
@@ -454,6 +473,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     add_backward_travel(result.steps)  # decision L224: steps.csv's per-row form of the count below
     out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
     out["n_side_strides"] = side_strides(result.steps)  # decision L270: side steps, no backward travel
+    out.update(backward_gait(result.steps))  # decision L326: the backward strides' own length and speed
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
     if last is not None and "lat" in tr:

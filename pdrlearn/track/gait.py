@@ -678,13 +678,13 @@ def _unreliable(summary: dict, info: dict, slow: bool) -> str:
             and info.get("classes_source") is None)
     if slow and foot:
         return (f"the offline foot distance (ZUPT strides) stays usable ({SLOW_FOOT_DISTANCE}, no model; decision "
-                "L247), but the floors and any terrain / length classes are not validated at this speed")
+                "L247), but the floors and any terrain / direction / length classes are not validated at this speed")
     if slow and info.get("params_source") == "calibrated" and info.get("calibration_covers_cadence") is True:
         # decision W227: the walker calibrated on walks at this cadence (W211's range +-10 % covers it)
         return ("the distance and speed are calibrated at this gait (this walk's cadence lies inside the lower-back "
-                "calibration walks' cadence range +-10 %, decisions W211, W227), but the terrain / length classes "
-                "and the floors are not validated at this speed")
-    return "the distance, the terrain / length classes and the floors are not reliable"
+                "calibration walks' cadence range +-10 %, decisions W211, W227), but the terrain / direction / "
+                "length classes and the floors are not validated at this speed")
+    return "the distance, the terrain / direction / length classes and the floors are not reliable"
 
 
 def bout_range_flags(table, leg_m: float | None) -> np.ndarray:

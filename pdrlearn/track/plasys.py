@@ -1138,6 +1138,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     rule_classes = _confident(classes, gate) if cfg["rules"] else classes.assign(terrain="flat")
     applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
+    if clamp and rules == "thesis" and not (isinstance(model, str) and model == "oracle"):  # decision L325
+        from pdrlearn.displace.rules import doubled_lengths_line
+
+        keep = ~np.asarray(in_gap, bool)
+        line = doubled_lengths_line(np.hypot(disp[keep, 0], disp[keep, 1]), length[keep],
+                                    rule_classes["length_class"].to_numpy(dtype=object)[keep]
+                                    if "length_class" in rule_classes else np.full(int(keep.sum()), None))
+        warnings += [line] if line else []
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
     raw_dz = dz
     if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)

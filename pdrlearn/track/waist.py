@@ -42,6 +42,7 @@ from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
 from pdrlearn.track.sideways import sideways_warnings
+from pdrlearn.track.units import with_left_out_units
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.backward import backward_warnings
@@ -871,9 +872,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     rest_removed = steps.attrs.get("rest_bias_removed", [])
     rest_spans = steps.attrs.get("rest_bias_rests")  # decision L306
     steps = steps.assign(stairs=stairs)
-    warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
+    foot_cues = with_left_out_units(session)  # decision W253: a foot unit that --units left out still warns
+    warnings.extend(backward_warnings(steps, foot_cues))  # decision W173: backward steps are counted forward
     ev_s, len_s = steps["event_s"].to_numpy(float), steps["length_m"].to_numpy(float)
-    warnings.extend(sideways_warnings(session, lambda a, b: (  # decision L219: side steps are counted forward
+    warnings.extend(sideways_warnings(foot_cues, lambda a, b: (  # decision L219: side steps are counted forward
         "the lower-back pipelines count every step as forward distance, so the track's "
         f"{np.nansum(len_s[(ev_s >= a) & (ev_s <= b)]):.1f} m of steps over this span go along its heading, not "
         "sideways")))
