@@ -174,6 +174,10 @@ SESSIONS: tuple[Column, ...] = (
                                                "(backward travel, with or without a model; a replay: strides classed "
                                                "backward; L203); side steps excluded (L270); empty on the lower "
                                                "back"),
+    ("median_backward_stride_length_m", "m", "number", "foot: median |length_m| of the strides n_backward_strides "
+                                                       "counts (L326); empty without one or on the lower back"),
+    ("median_backward_speed_mps", "m/s", "number", "foot: median speed_mps of the strides n_backward_strides counts "
+                                                   "(L326); empty without one or on the lower back"),
     ("n_cv_strides", "count", "integer", "steady straight level forward strides stride_time_cv_pct and "
                                          "stride_length_cv_pct are computed over (L104, L212)"),
     ("n_detected", "count", "integer", "lower back: detected contacts scored"),
@@ -200,6 +204,14 @@ SESSIONS: tuple[Column, ...] = (
     ("step_time_asymmetry_raw_pct", "%", "number", "lower back: that index however small; under 20 % no finding "
                                                    "either way (symmetric simulated walkers read up to 18.8 %, L121)"),
     ("step_time_asymmetry_reason", _ID, "text", "why step_time_asymmetry_pct is given or empty (L121, L216, W228)"),
+    ("step_time_s_left", "s", "number", "lower back: mean step time onto the left foot (the step ending at a left "
+                                        "contact, W129's side; as gait's step_time_s_left; W250); empty on a foot "
+                                        "track"),
+    ("step_time_s_right", "s", "number", "lower back: mean step time onto the right foot (W250); empty on a foot "
+                                         "track"),
+    ("step_time_s_ratio", "ratio", "number", "lower back: step_time_s_left / step_time_s_right, > 1 the left steps "
+                                             "longer (gait's ratio L/R; W250); no finding where "
+                                             "step_time_asymmetry_pct is empty"),
     ("n_turns", "count", "integer", "reference turns compared (turns.csv only, L42)"),
     ("n_turns_signed", "count", "integer", "reference turns of 45 deg or more whose sign is compared (L42)"),
     ("n_unscored", "count", "integer", "lower back: contacts outside the scored span"),
@@ -508,7 +520,11 @@ WAIST_STEPS: tuple[Column, ...] = (
                                            "the pivot cap (1 unless the pelvis turned 45 deg or more in the step)"),
     ("cadence_factor", "fraction", "number", "waist-pendulum, option cadence_law (W240): the calibrated step's factor "
                                              "sqrt(SL(f) / SL(f_cal)) of seed 000's walking line"),
-    ("length_m", "m", "number", "step length (0 for a sequence-closing contact)"),
+    ("length_m", "m", "number", "step length (0 for a sequence-closing contact): the pelvis's advance from this "
+                                "contact to the next, valid summed or as a walk's typical step; NOT valid as a "
+                                "per-side step length - grouped by side it does not give each leg's step (not "
+                                "validated; a simulated walker stepping 0.604 / 0.749 m onto the left / right foot "
+                                "read 0.602 / 0.564 m by side; W251)"),
     ("frequency_hz", "Hz", "number", "1 / the step's duration"),
     ("dyaw_rad", "rad", "number", "vertical-gyro rotation during the step"),
     ("heading_rad", "rad", "number", "the step's heading (ENU, counter-clockwise from east)"),
@@ -518,6 +534,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("side", _ID, "text", "left / right foot of the contact, empty when undecided: the pelvis's lateral velocity at "
                           "it (W20, W129; 99 % agree with INDIP's foot where decided); empty with --realtime; "
                           "`run WAIST_BUNDLE --sides`: the streamed contact's causal side (W138, E103, E110)"),
+    ("climb", _ID, "true/false", "the step is inside a barometric climb of 1.5 m or more (W108: the steps its \"on "
+                                  "stairs\" warning counts); no ramp and no ramp climb is made of such steps (L314)"),
     ("dz_m", "m", "number", "barometric altitude change over the step (W89; 0 without a usable barometer)"),
     ("pause_dz_m", "m", "number", "barometric altitude change while standing before the step (a lift ride; W158; "
                                   "of a pause over 30 s only the 1.5 m within 30 s rides, W231), "

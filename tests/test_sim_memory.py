@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from pdrlearn.sim import UserProfile, simulate, simulate_path
+from pdrlearn.sim.kernels import euler_zyx
 from pdrlearn.sim.route import parse_route
 
 sim_module = importlib.import_module("pdrlearn.sim.simulate")
@@ -50,3 +51,43 @@ def test_traced_peak_of_a_long_walk():
         tracemalloc.stop()
     print(f"{s.duration_s:.0f} s walk: traced peak {peak:.1f} MB")
     assert s.duration_s > 300 and peak < 80.0
+
+
+def test_s62_grid_parts_and_output_rate_poses_are_the_whole_arrays():
+    """Decision S62: the 500 Hz grid made per part is the whole array's values (bit for bit), its block means too,
+    and `_unit_motion(pose_every=k)` keeps exactly the whole run's poses at the middle of each output block, for part
+    sizes that do and do not line up with the output blocks."""
+    n, k_fine = 25 * 4003, 25
+    whole = (np.arange(n) - 0.5 * (k_fine - 1)) / 500.0
+    grid = sim_module._FineGrid(n, 0.5 * (k_fine - 1), 500.0)
+    assert np.array_equal(grid[0:n], whole) and np.array_equal(grid[137:9001], whole[137:9001])
+    assert grid[0] == whole[0] and grid[-1] == whole[-1] and grid.size == n
+    assert np.array_equal(grid.block_means(5, chunk=997), sim_module.block_mean(whole, 5))
+
+    def pose(tt):
+        rot = euler_zyx(0.1 * tt, 0.2 * np.cos(0.7 * tt), 0.3 * np.sin(tt))  # pointwise in time, as the poses
+        return np.column_stack([np.sin(tt), tt, np.cos(tt)]), rot
+
+    every = sim_module._unit_motion(grid, pose, 1 / 500.0, chunk=10**9)
+    for chunk in (1003, 2500, 60_000):
+        for k in (1, 2, 5):
+            f, w, p, r = sim_module._unit_motion(grid, pose, 1 / 500.0, chunk=chunk, pose_every=k)
+            assert np.array_equal(p, every[2][k // 2 :: k]) and np.array_equal(r, every[3][k // 2 :: k])
+            assert f.shape == every[0].shape and w.shape == every[1].shape
+
+
+def test_s62_outputs_stay_the_pinned_numbers():
+    """Decision S62 keeps every output: a 20 Hz session of user 5970 with a sit, stairs and a freeze, summed per
+    stream (the sums printed by main before S62, commit 4bea4b83)."""
+    route = parse_route("stand:2, straight:6, sit:30, up:4, freeze:2, turn:90, straight:4, stand:2")
+    s = simulate_path(route, UserProfile.from_seed(5970), rate_hz=20.0, seed=2, scenario="route")
+    sums = {k: float(np.sum(v.values)) for k, v in s.streams.items()}
+    sums["foot_trajectory"] = float(s.extras["foot_trajectory"][["x", "y", "z", "qw"]].to_numpy().sum())
+    print({k: repr(v) for k, v in sums.items()})
+    assert sums == PINNED_S62
+
+
+#: main's sums (commit 4bea4b83, before S62) for the session of `test_s62_outputs_stay_the_pinned_numbers`
+PINNED_S62 = {"fAccelerometer": 13254.107062500001, "fGyroscope": 82.9036979750913, "fForceA": 164407.86177412706,
+              "fForceB": 185063.1438538178, "wAccelerometer": 13716.436809761344, "wGyroscope": 37.22564709730392,
+              "wMagneticField": -12267.629999999997, "wBarometer": 1364848.6752, "foot_trajectory": 9708.026736948328}

@@ -12,6 +12,7 @@ from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist.backward import MIN_BACKWARD_STEPS, backward_runs
+from tests.test_classify_training import labelled_session
 
 
 def _lines(res) -> list[str]:
@@ -64,3 +65,37 @@ def test_backward_runs_need_four_steps_inside_one_sequence():
     back[10:16] = False
     back[8:12] = True  # two steps each side of a sequence break: no run
     assert backward_runs(back, has_next) == [(1, 4)]
+
+
+def test_units_waist_on_a_foot_and_waist_session_still_warns(tmp_path):
+    """Decision W253 (trial 31 finding 1): ``track --units waist`` / ``track-all --units waist`` leave the foot files
+    out of the track, and had lost W173's line with them (+44 % distance, no word); the left-out foot unit's cue is
+    read as ``--pipeline waist-pendulum`` reads it."""
+    from pdrlearn.cli.track import track_session, track_settings
+    from pdrlearn.io import write_session
+
+    s = _sim("stand:2, backward:12, stand:2", 6140, seed=1)
+    write_session(s, tmp_path / "back")
+    res = track_session(tmp_path / "back", track_settings(units="waist"))["result"]
+    assert res.info["pipeline"].startswith("waist"), res.info["pipeline"]
+    assert len(_lines(res)) == 1, res.info["warnings"]
+
+
+def test_units_waist_with_a_foot_option_names_the_left_out_foot(tmp_path, capsys):
+    """Decision W254 (trial 31 finding 8): ``--units waist --model`` on a foot + waist session had said the folder
+    "has no fAccelerometer"; now one line naming --units and the foot option."""
+    from pdrlearn.classify import train_user
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    s = _sim("stand:2, straight:6, stand:2", 6144)
+    write_session(s, tmp_path / "walk")
+    model = train_user([labelled_session(1, 8)], tasks=["direction"], methods=["svm"], cv=2)
+    model.save(tmp_path / "model")
+    for extra, named in ((["--model", str(tmp_path / "model")], "--model"),
+                         (["--pipeline", "plasys"], "--pipeline plasys"), (["--method", "M2"], "--method")):
+        rc = main(["track", str(tmp_path / "walk"), "--units", "waist", "--out", str(tmp_path / "o"), *extra])
+        err = capsys.readouterr().err.strip()
+        assert rc == 2 and "\n" not in err and "fAccelerometer" not in err, err
+        assert f"{named} needs the foot unit (PLASYS tracks the foot), which --units waist leaves out" in err, err
+        assert err.endswith("or drop --units (decision W254)") and not (tmp_path / "o").exists()

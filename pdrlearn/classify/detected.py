@@ -97,7 +97,9 @@ def detected_score(task: str, classes, data, windows, sess_rows: dict, detected:
     from pdrlearn.track.evaluate import match_by_overlap
 
     y_true, y_pred, n_lab, n_unmatched, ran = [], [], 0, 0, False
+    per_session: dict[str, tuple[int, int]] = {}  # decision C76: session -> (first, end) rows of y_true
     for i, rows in sess_rows.items():
+        first = len(y_true)
         n_lab += len(rows)
         got = detected.session(i)
         if got is None:
@@ -114,13 +116,59 @@ def detected_score(task: str, classes, data, windows, sess_rows: dict, detected:
             if col[si] is not None and not (isinstance(col[si], float) and np.isnan(col[si])):
                 y_true.append(str(data.y[rows[li]]))
                 y_pred.append(str(col[si]))
+        if len(y_true) > first:
+            per_session[_session_key(detected.sessions[i], per_session)] = (first, len(y_true))
     if not ran:
         return None
-    m = class_metrics(np.array(y_true, dtype=str), np.array(y_pred, dtype=str), list(classes)) if y_true else {
+    yt, yp = np.array(y_true, dtype=str), np.array(y_pred, dtype=str)
+    m = class_metrics(yt, yp, list(classes)) if y_true else {
         "accuracy": float("nan"), "balanced_accuracy": float("nan"), "n_steps": 0}
-    return {"accuracy": m["accuracy"], "balanced_accuracy": m["balanced_accuracy"], "n_steps": int(len(y_true)),
-            "n_labelled": int(n_lab), "n_unmatched": int(n_unmatched), "min_iou": MIN_IOU,
-            "segmenter": "StanceSegmenter (the runtime's and track's strides)"}
+    out = {"accuracy": m["accuracy"], "balanced_accuracy": m["balanced_accuracy"], "n_steps": int(len(y_true)),
+           "n_labelled": int(n_lab), "n_unmatched": int(n_unmatched), "min_iou": MIN_IOU,
+           "segmenter": "StanceSegmenter (the runtime's and track's strides)"}
+    if y_true:  # decision C76: per class (recall, precision, confusion) and per session, as the labelled figure
+        out.update(classes=[str(c) for c in classes], per_class=m["per_class"], precision=m["precision"],
+                   confusion=m["confusion"], per_class_n={str(c): int(np.sum(yt == str(c))) for c in classes},
+                   sessions={k: {"n_steps": int(b - a),
+                                 **{f: v for f, v in class_metrics(yt[a:b], yp[a:b], list(classes)).items()
+                                    if f in ("accuracy", "per_class", "confusion")},
+                                 "per_class_n": {str(c): int(np.sum(yt[a:b] == str(c))) for c in classes}}
+                             for k, (a, b) in per_session.items()})
+    return out
+
+
+def _session_key(session, taken: dict) -> str:
+    """A session's name in ``detected.sessions`` (decision C76); its folder when two sessions share a name."""
+    name = str(session.name)
+    return name if name not in taken else str(getattr(session, "where", name))
+
+
+def detected_lines(det: dict | None) -> list[str]:
+    """Decision C76: evaluate's lines under a task's table for the detected strides (what the user gets): the
+    chosen model's recall per class with its counts, the confusion matrix, and each class's lowest session; [] when
+    nothing was scored on detected strides."""
+    if not det or not det.get("n_steps") or "per_class" not in det:
+        return []
+    classes = det["classes"]
+
+    def pct(v):
+        return "-" if v is None else f"{100 * v:.1f}"
+
+    lines = ["chosen model on the detected strides, recall % per class: " + ", ".join(
+        f"{c} {pct(det['per_class'][c])} ({round((det['per_class'][c] or 0) * det['per_class_n'][c])}/"
+        f"{det['per_class_n'][c]})" for c in classes),
+        f"confusion on the detected strides (rows: true {', '.join(classes)}; columns: predicted): "
+        f"{det['confusion']}"]
+    low = []
+    for c in classes:
+        scored = [(v["per_class"][c], k, v["per_class_n"][c]) for k, v in (det.get("sessions") or {}).items()
+                  if v["per_class"].get(c) is not None]
+        if len(scored) > 1 and min(scored)[0] < 1.0:
+            r, k, n = min(scored)
+            low.append(f"{c} {pct(r)} % ({k}, {n} steps)")
+    if low:
+        lines.append("lowest session recall on the detected strides: " + ", ".join(low))
+    return lines
 
 
 def drop_warning(task: str, labelled: float, det: dict | None, boundaries: str) -> str | None:

@@ -22,6 +22,7 @@ before C16 have none (no check, a note).
 from __future__ import annotations
 
 import logging
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -81,6 +82,141 @@ class FeatureRange:
             raise DataError(f"training range of {d.get('model')}: lo, hi and features differ in length; "
                             "retrain the model")
         return cls(str(d.get("model", "")), list(d["features"]), lo, hi, int(d.get("n_steps", 0)))
+
+
+#: Decision C71: a stride's joint score is its Mahalanobis distance to the nearest class mean in the leaf's
+#: standardized input space, divided by the out-of-fold JOINT_QUANTILE of the training strides' own distances; a
+#: stride is out of domain when its joint score exceeds 1 (fixed before measuring).
+JOINT_QUANTILE = 0.99
+#: Decision C71: folds of the out-of-fold calibration of the joint threshold (fixed before measuring).
+JOINT_FOLDS = 5
+#: Decision C71: whether ``track --model`` / ``track_plasys`` compute the joint score (``ood_joint_<task>`` in the
+#: strides, ``joint_out_of_domain_fraction`` in ``info.out_of_domain``). Off: the candidate failed its adoption rule
+#: (it flagged neither the 8 % street ramp nor the 4 Hz soft foot); ``UserModel.predict_steps(joint_domain=True)``
+#: and setting this to True are the option.
+JOINT_DEFAULT = False
+
+
+@dataclass
+class JointDomain:
+    """Decision C71: the joint (not per-feature) domain model of one leaf's inputs. ``center`` / ``scale``
+    standardize the inputs (training median, C16's 1-99 % range width); ``means`` (classes x features) are the
+    class means and ``precision`` the inverse of the Ledoit-Wolf shrunk within-class covariance (one for all
+    classes) of the standardized inputs; ``tau`` the out-of-fold :data:`JOINT_QUANTILE` of the training strides'
+    distances. Numpy only at prediction time (the lean runtime)."""
+
+    model: str
+    center: np.ndarray
+    scale: np.ndarray
+    means: np.ndarray
+    precision: np.ndarray
+    tau: float
+    n_steps: int
+
+    def distance(self, F: np.ndarray) -> np.ndarray:
+        """Per step, the Mahalanobis distance to the nearest class mean (NaN features -> the center)."""
+        Z = np.nan_to_num((np.asarray(F, dtype=float) - self.center) / self.scale, nan=0.0)
+        return _nearest_mahalanobis(Z, self.means, self.precision)
+
+    def score(self, F: np.ndarray) -> np.ndarray:
+        """Per step, the joint score: distance / ``tau`` (> 1: out of domain, decision C71)."""
+        return self.distance(F) / self.tau
+
+    def to_dict(self) -> dict:
+        return {"model": self.model, "center": self.center.tolist(), "scale": self.scale.tolist(),
+                "means": self.means.tolist(), "precision": self.precision.tolist(), "tau": float(self.tau),
+                "quantile": JOINT_QUANTILE, "n_steps": int(self.n_steps)}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> JointDomain:
+        c, s = np.asarray(d["center"], dtype=float), np.asarray(d["scale"], dtype=float)
+        m, p = np.asarray(d["means"], dtype=float), np.asarray(d["precision"], dtype=float)
+        n = len(c)
+        if s.shape != (n,) or m.ndim != 2 or m.shape[1] != n or p.shape != (n, n) or not float(d["tau"]) > 0:
+            raise DataError(f"joint domain model of {d.get('model')}: arrays of inconsistent shapes; retrain the "
+                            "model")
+        return cls(str(d.get("model", "")), c, s, m, p, float(d["tau"]), int(d.get("n_steps", 0)))
+
+
+def _nearest_mahalanobis(Z: np.ndarray, means: np.ndarray, precision: np.ndarray) -> np.ndarray:
+    D = np.empty((len(Z), len(means)))
+    for k, mu in enumerate(means):
+        R = Z - mu
+        D[:, k] = np.einsum("ij,jk,ik->i", R, precision, R)
+    return np.sqrt(np.maximum(D.min(axis=1), 0.0))
+
+
+def _joint_fit(Z: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Class means and the precision of the Ledoit-Wolf shrunk pooled within-class covariance of ``Z``."""
+    from sklearn.covariance import ledoit_wolf  # training side only: the runtime reads the stored arrays
+
+    classes = sorted(set(y.tolist()), key=str)
+    means = np.array([Z[y == c].mean(axis=0) for c in classes])
+    R = Z - means[[classes.index(v) for v in y.tolist()]]
+    cov, _ = ledoit_wolf(R, assume_centered=True)
+    return means, np.linalg.pinv(cov, hermitian=True)
+
+
+def fit_joint(est, X: np.ndarray, y: np.ndarray) -> JointDomain:
+    """Decision C71: the joint domain model of a leaf's inputs over its training windows ``X`` with labels
+    ``y``; the threshold ``tau`` from out-of-fold distances (:data:`JOINT_FOLDS` interleaved folds)."""
+    F, _ = model_inputs(est, X)
+    F = np.asarray(F, dtype=float)
+    y = np.asarray(y).astype(str)
+    with warnings.catch_warnings():  # a feature NaN on every training step (a unit's missing sensor) -> 0
+        warnings.simplefilter("ignore", RuntimeWarning)
+        center = np.nan_to_num(np.nanmedian(F, axis=0))
+        lo, hi = np.nan_to_num(np.nanquantile(F, QUANTILES, axis=0))
+    scale = FeatureRange("", [], np.asarray(lo), np.asarray(hi), len(F)).width()
+    Z = np.nan_to_num((F - center) / scale, nan=0.0)
+    order = np.argsort(y, kind="stable")  # interleave within classes so that each fold holds every class
+    fold = np.empty(len(y), dtype=int)
+    fold[order] = np.arange(len(y)) % JOINT_FOLDS
+    oof = np.full(len(y), np.nan)
+    for k in range(JOINT_FOLDS):
+        te, tr = fold == k, fold != k
+        if te.any() and len(set(y[tr].tolist())) == len(set(y.tolist())):
+            m, p = _joint_fit(Z[tr], y[tr])
+            oof[te] = _nearest_mahalanobis(Z[te], m, p)
+    means, precision = _joint_fit(Z, y)
+    ok = np.isfinite(oof)
+    tau = float(np.quantile(oof[ok], JOINT_QUANTILE)) if ok.any() else float(
+        np.quantile(_nearest_mahalanobis(Z, means, precision), JOINT_QUANTILE))
+    return JointDomain(type(est).__name__, center, scale, means, precision, max(tau, 1e-9), int(len(F)))
+
+
+def attach_joint(est, X: np.ndarray, y: np.ndarray) -> int:
+    """Decision C71: store ``training_joint_`` on every leaf of the fitted ``est`` that has none yet; returns how
+    many leaves have one. A leaf whose inputs cannot be computed keeps none."""
+    n = 0
+    for leaf, Xl in _leaves(est, X):
+        if getattr(leaf, "training_joint_", None) is None:
+            try:
+                leaf.training_joint_ = fit_joint(leaf, Xl, y)
+            except (MissingSensorError, DataError, ValueError, np.linalg.LinAlgError) as exc:
+                log.info("no joint domain model for %s: %s", type(leaf).__name__, exc)
+                continue
+        n += 1
+    return n
+
+
+def step_joint_score(est, X: np.ndarray) -> np.ndarray | None:
+    """Decision C71: per step, the joint score of the windows ``X`` (composite model: the largest over its
+    leaves); None when a leaf has no joint model (trained before C71) or its inputs cannot be computed."""
+    X = np.asarray(X, dtype=float)
+    out = np.zeros(len(X))
+    for leaf, Xl in _leaves(est, X):
+        j = getattr(leaf, "training_joint_", None)
+        if j is None:
+            return None
+        try:
+            F = model_inputs(leaf, Xl)[0]
+        except (MissingSensorError, DataError, ValueError):
+            return None
+        if F.ndim != 2 or F.shape[1] != len(j.center):
+            return None
+        out = np.maximum(out, j.score(F))
+    return out
 
 
 def _leaves(est, X: np.ndarray) -> list[tuple[object, np.ndarray]]:
@@ -195,6 +331,21 @@ def combine_scores(leaves, n: int) -> tuple[np.ndarray, list[str]] | None:
     return d, list(worst)
 
 
+def joint_fraction(pred, tasks) -> float | None:
+    """Decision C71: the largest task's share of checked steps whose joint score (``ood_joint_<task>`` of a
+    prediction table) exceeds 1; None when no step has one (the check is unavailable: a model trained before
+    C71)."""
+    shares = []
+    for task in tasks:
+        col = f"ood_joint_{task}"
+        if col in pred:
+            v = np.asarray(pred[col], dtype=float)
+            v = v[np.isfinite(v)]
+            if len(v):
+                shares.append(float((v > 1).mean()))
+    return max(shares) if shares else None
+
+
 def summarize(d: np.ndarray, worst: list[str], unit: str) -> dict:
     """A task's out-of-domain summary over its checked steps (``d``: :func:`step_score` per step, NaN =
     not checked): fraction, counts, the models checked, the feature most often farthest out, the largest
@@ -271,4 +422,5 @@ NO_RANGES_NOTE = ("the model stores no training ranges (trained before pdrlearn 
 __all__ = ["QUANTILES", "STEP_THRESHOLD", "FRACTION_THRESHOLD", "FeatureRange", "model_inputs", "fit_range",
            "attach_ranges", "has_ranges", "step_score", "combine_scores", "check_warn_at", "summarize", "domain_report",
            "warning_line", "session_warning_line", "DEFAULT_WARN_SHARE",
-           "NO_RANGES_NOTE"]
+           "NO_RANGES_NOTE", "JOINT_DEFAULT", "JOINT_QUANTILE", "JOINT_FOLDS", "JointDomain", "fit_joint",
+           "attach_joint", "step_joint_score", "joint_fraction"]

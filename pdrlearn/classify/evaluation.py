@@ -476,6 +476,9 @@ def markdown_tables(result: dict) -> str:
             "|" + "---|" * len(head),
         ]
         lines += ["| " + " | ".join(row) + " |" for row in results_table(r)]
+        from pdrlearn.classify.detected import detected_lines
+
+        lines += ["", *[f"- {line}" for line in detected_lines(r.get("detected"))]] if r.get("detected") else []
         parts.append("\n".join(lines))
     return "\n\n".join(parts) + "\n"
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -22,7 +22,16 @@ from sklearn.model_selection import GroupKFold, StratifiedKFold
 from sklearn.pipeline import Pipeline
 from sklearn.preprocessing import FunctionTransformer
 
-from pdrlearn.classify.domain import attach_ranges, domain_report, has_ranges, step_score, summarize
+from pdrlearn.classify.domain import (
+    attach_joint,
+    attach_ranges,
+    domain_report,
+    has_ranges,
+    joint_fraction,
+    step_joint_score,
+    step_score,
+    summarize,
+)
 from pdrlearn.classify.dtw import THESIS_REFERENCES_PER_CLASS, DTWClassifier
 from pdrlearn.classify.fusion import (
     UnitFusionClassifier,
@@ -55,6 +64,19 @@ COMBINED_METHODS = ("svm", "nn")
 UNIT_METHODS = ("heuristic", "dtw", "svm", "nn")
 #: Fewest labelled steps per class for training and CV (decision: docs/decisions/classifiers.md).
 MIN_STEPS_PER_CLASS = 5
+#: decision C75: a trained task warns when a class has fewer labelled steps than this: 12 per class is the smallest
+#: set the thesis calls sufficient, and that for its DTW templates (thesis ch. 6.2.2: "24 (12 forward and 12
+#: backward) signals ... proved to be sufficient"); its learned models had 190-260 per class (ch. 6.2.1)
+FEW_STEPS_PER_CLASS = 12
+#: decision C75: the methods that need no fitted weights (rules and templates), named by the few-steps line
+TEMPLATE_METHODS = ("heuristic", "fusion", "dtw")
+#: decision C77 (trial 31 finding 7): a model whose every chosen classifier reads the lower back only is still used
+#: by the foot pipeline alone; said once at train time
+WAIST_ONLY_MODEL_LINE = (
+    "every chosen classifier reads the lower-back unit only: `track --model` / `run` of its bundle use it in the "
+    "foot pipeline (PLASYS), so the tracked session still needs a foot unit; the lower-back pipelines (waist-pendulum, "
+    "waist-pll) take no model, so a waist-only recording is tracked without these classes and its backward steps "
+    "count forward (decisions W173, C77)")
 #: Tie-break order when two fused methods score alike (the thesis' best first, Tables 27, 28, 33).
 PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
 
@@ -478,6 +500,7 @@ class UserModel:
         unit: str | None = None,
         windows: str | None = None,
         warn_rate: bool = True,
+        joint_domain: bool = False,
     ) -> pd.DataFrame:
         """Classify every step of ``steps`` (default ``session.steps``).
 
@@ -489,6 +512,8 @@ class UserModel:
         With ``"track"`` the table also has the ``window_start_s``/``window_end_s`` classified.
         ``warn_rate``: log decision C18's line when a unit runs at another rate than the model was trained at
         (decision C52; ``track`` passes False and gives the line in its own warnings).
+        ``joint_domain`` (decision C71, an option: it failed its adoption rule): add ``ood_joint_<task>``, the joint
+        (Mahalanobis) domain score of each step (> 1: out; NaN for a model trained before C71).
 
         Returns a DataFrame (one row per step, same index as ``steps``) with, per trained task, the class
         column (``terrain``, ``direction``, ``length_class``; ``str``), the probabilities ``p_<task>_<class>`` and
@@ -534,6 +559,8 @@ class UserModel:
             out[f"method_{task}"] = "none"
             out[f"ood_{task}"] = np.nan  # distance to the training range (decision C16)
             out[f"ood_feature_{task}"] = None
+            if joint_domain:
+                out[f"ood_joint_{task}"] = np.nan  # joint score (decision C71, opt-in)
             for rows, win, lost in _gap_groups(windows):
                 try:
                     m, u, proba = self._predict_task(tm, win, method, unit)
@@ -556,6 +583,9 @@ class UserModel:
                 if dist is not None:
                     out.iloc[rows, out.columns.get_loc(f"ood_{task}")] = dist[0]
                     out.iloc[rows, out.columns.get_loc(f"ood_feature_{task}")] = np.asarray(dist[1], dtype=object)
+                joint = step_joint_score(tm.models[m][u], win.X) if joint_domain else None  # decision C71
+                if joint is not None:
+                    out.iloc[rows, out.columns.get_loc(f"ood_joint_{task}")] = joint
         for (lost, n), done in gap_unclassified.items():
             log.warning("%s: %d step(s) overlapping a sensor gap lost the %s unit%s; no trained %s model runs "
                         "without %s, so they are left unclassified", session.where, n, " and ".join(lost),
@@ -582,7 +612,12 @@ class UserModel:
             used = pred[f"method_{task}"].astype(str).to_numpy()[np.isfinite(d)]
             unit = ", ".join(sorted(set(used)))  # "<method>/<unit>" of the models checked
             per_task[task] = summarize(d, [str(v) for v in pred[f"ood_feature_{task}"].fillna("")], unit)
-        return domain_report(per_task, warn_at=warn_at) if per_task else None
+        if not per_task:
+            return None
+        rep = domain_report(per_task, warn_at=warn_at)
+        if any(c.startswith("ood_joint_") for c in pred.columns):  # decision C71's option
+            rep["joint_out_of_domain_fraction"] = joint_fraction(pred, self.tasks)
+        return rep
 
     @property
     def has_domain(self) -> bool:
@@ -845,6 +880,36 @@ def check_settings(
     return out[0], out[1], out[2]
 
 
+def few_steps_line(task: str, y: np.ndarray, classes: Sequence[str], chosen: tuple[str, str]) -> str | None:
+    """Decision C75: one line when a class of a trained task has fewer than :data:`FEW_STEPS_PER_CLASS` labelled
+    steps (None otherwise): its CV score rests on a handful of steps (trial 31: 6 backward of 189, the chosen
+    nn/combined scored 91.7 % in CV and 56 % on held-out backward steps)."""
+    counts = {c: int(np.sum(np.asarray(y) == c)) for c in classes}
+    few = {c: n for c, n in counts.items() if 0 < n < FEW_STEPS_PER_CLASS}
+    if not few:
+        return None
+    named = ", ".join(f"'{c}' has {n}" for c, n in few.items())
+    alt = "" if chosen[0] in TEMPLATE_METHODS else (
+        f"; or give the task the rule / template methods, e.g. --methods {task}={','.join(TEMPLATE_METHODS)} "
+        "(decision C74)")
+    return (f"task {task}: few labelled steps per class ({named} of {len(y)}; under {FEW_STEPS_PER_CLASS}, the "
+            f"fewest the thesis calls sufficient, ch. 6.2.2): the chosen {chosen[0]}/{chosen[1]}'s CV score of that "
+            f"class rests on them and may not hold on new walks; record at least {FEW_STEPS_PER_CLASS} steps of "
+            f"each class{alt} (decision C75)")
+
+
+def check_task_methods(task_methods: Mapping[str, Sequence[str]] | None) -> dict[str, list[str]]:
+    """Decision C74: per-task method lists (``--methods direction=fusion,heuristic``), checked as ``methods`` is
+    (:func:`check_settings`): a known task, known methods, no empty list; ``{}`` for None."""
+    out: dict[str, list[str]] = {}
+    for task, methods in (task_methods or {}).items():
+        if task not in TASKS:
+            raise DataError(f"methods (--methods): unknown task {task!r} in {task}=...; choose from "
+                            f"{', '.join(TASKS)} (decision C74)")
+        out[task] = _check_choice("method", methods, METHODS)
+    return out
+
+
 #: decision B212: the fastest rate ``--resample HZ`` trains at (Hz): a ms clock's whole steps reach 1000 Hz
 #: (B161's ``IMU_MS_MAX_HZ`` less its 10 % tolerance), above every IMU the project reads (PLASYS 20 Hz, thesis
 #: ch.4.2.3; real 100 and 204.8 Hz; phones up to 500 Hz); ``--resample 1e6`` grew to 18.8 GB before it was killed
@@ -1026,6 +1091,7 @@ def train_task(
         for per in tm.models.values():
             if unit in per:
                 attach_ranges(per[unit], data.X[subsets[unit][0]])
+                attach_joint(per[unit], data.X[subsets[unit][0]], data.y[subsets[unit][0]])  # decision C71
     tm.chosen = best_pair(tm.ranking())
     if tm.chosen is None:
         raise DataError(f"task {data.task}: no method could be trained ({'; '.join(tm.skipped)})")
@@ -1151,6 +1217,7 @@ def train_user(
     cv_groups: str = "steps",
     length_units: Sequence[str] | None = None,
     resample_hz: float | None = None,
+    task_methods: Mapping[str, Sequence[str]] | None = None,
 ) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
 
@@ -1168,6 +1235,8 @@ def train_user(
     length_units : units of the length task only (default None: ``units``); named, they train every soft vote
         they allow, e.g. ``("foot", "waist", "fused")``: the length task as before C22 (no combined model, C8
         chooses among the soft votes), terrain and direction as ``units`` (decision C38).
+    task_methods : per-task methods, e.g. ``{"direction": ["fusion", "heuristic"]}``: those tasks train (and
+        choose among) these methods, the others ``methods`` (decision C74; ``--methods direction=fusion,...``).
     cv : folds of the stratified cross-validation that scores every model (thesis ch. 6: 10-fold);
         reduced to the smallest class size when a class has fewer steps.
     cv_groups : ``"steps"`` (default): stratified folds of steps, pooled over the sessions; ``"user"``: when the
@@ -1208,8 +1277,14 @@ def train_user(
     # decision C23: by default the combined feature vector replaces the soft vote of the svm and nn unit models;
     # units named explicitly (e.g. "foot,waist,fused,combined") train every soft vote they allow
     tasks, methods, units = (as_names(v, n) for v, n in ((tasks, "task"), (methods, "method"), (units, "unit")))
-    voted = None if units is not None else [m for m in (methods or DEFAULT_METHODS) if m not in COMBINED_METHODS]
+    named_units = units is not None
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
+    own_methods = check_task_methods(task_methods)  # decision C74
+
+    def voted_of(ms):  # decision C23's soft votes of a method list (None: units named, every soft vote)
+        return None if named_units else [m for m in ms if m not in COMBINED_METHODS]
+
+    voted = voted_of(methods)
     if length_units is not None:  # decision C38: the length task's own units (named: every soft vote they allow)
         length_units = check_length_units(length_units)
     from pdrlearn.features.windows import BOUNDARIES
@@ -1265,9 +1340,13 @@ def train_user(
             continue
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
         own = task == "length" and length_units is not None  # decision C38
-        out[task] = train_task(data, methods=methods, units=length_units if own else units, cv=cv, seed=seed,
-                               advance=advance, soft_vote_methods=None if own else voted, groups=groups,
+        ms = own_methods.get(task, methods)  # decision C74
+        out[task] = train_task(data, methods=ms, units=length_units if own else units, cv=cv, seed=seed,
+                               advance=advance, soft_vote_methods=None if own else voted_of(ms), groups=groups,
                                group_kind="session" if cv_groups == "session" else "user")
+        few = out[task].chosen and few_steps_line(task, data.y, out[task].classes, out[task].chosen)  # C75
+        if few:
+            log.warning("train: %s", few)
     calibration = None
     if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
         from pdrlearn.displace.calibration import calibrate_distance
@@ -1286,6 +1365,8 @@ def train_user(
         log.warning("train: skipped %s", line)
     if not out:  # decision C53 (C17 kept): a calibration-only model is a warning, not an error
         log.warning("train: %s", NO_CLASSIFIER_LINE)
+    elif all(tm.chosen and tm.chosen[1] == "waist" for tm in out.values()):  # decision C77
+        log.warning("train: %s", WAIST_ONLY_MODEL_LINE)
     by_task, used = cv_groups_used(out, cv_groups)  # decision B210
     rates: dict[str, float] = {}
     for s in sessions:
@@ -1327,6 +1408,7 @@ def train_user(
             **({"cv_sessions": n_users if used != "steps" else 0} if cv_groups == "session" else {}),
             "seed": seed,
             "methods": list(methods),
+            **({"task_methods": own_methods} if own_methods else {}),  # decision C74
             "units": list(units),
             "length_units": length_units,  # the length task's own units, None = "units" (decision C38)
             # methods whose unit fused model was trained (soft vote; heuristic fusion); None = every method (C23)

@@ -17,6 +17,7 @@ from pdrlearn.cli import track as _track
 from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
+    METHODS_HELP,
     console,
     existed,
     json_safe,
@@ -90,7 +91,8 @@ def _train_job(args: dict) -> dict:
     model = train_user(sessions, tasks=args["tasks"], methods=args["methods"], units=args["units"],
                        cv=args["cv"], seed=args["seed"], user=Path(args["user_dir"]).name,
                        length_units=args.get("length_units"),  # decision C40
-                       resample_hz=args.get("resample_hz"))  # decisions C56, C62: train's refusal and resampler
+                       resample_hz=args.get("resample_hz"),  # decisions C56, C62: train's refusal and resampler
+                       task_methods=args.get("task_methods"))  # decision C74
     model.save(Path(args["out"]))
     row = {"sessions": len(sessions), **skipped, **trained_rate(model), "skipped_tasks": len(model.skipped)}
     for t, tm in model.tasks.items():
@@ -276,7 +278,7 @@ def train_all(
     serial: bool = typer.Option(False, help="Run in this process, without Dask."),
     workers: int = typer.Option(None, help="LocalCluster worker processes (default: CPU count)."),
     tasks: str = typer.Option(None, help="Comma list of terrain,direction,length (default: all labelled)."),
-    methods: str = typer.Option(None, help="Comma list of heuristic,fusion,dtw,svm,nn (default: all)."),
+    methods: str = typer.Option(None, help=METHODS_HELP),  # decision C74: train's text and per-task lists
     units: str = typer.Option(None, help="Comma list of foot,waist,fused,combined (default: all)."),
     length_units: str = typer.Option(None, "--length-units", help=LENGTH_UNITS_HELP),  # decision C40
     resample: float = train_resample_option(),  # decision C62: train's option and check
@@ -303,11 +305,12 @@ def train_all(
 
         pdrlearn train-all cohort/ --out models/ --scheduler tcp://10.0.0.5:8786
     """
-    from pdrlearn.classify.training import check_settings
+    from pdrlearn.classify.training import check_settings, check_task_methods
 
-    t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
+    t_list, m_list, u_list, per_task = split_choices(tasks=tasks, methods=methods, units=units)
     # bad settings fail here, once, before a cluster is started and before anything is written
     check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, resample_hz=resample)  # C62
+    per_task = check_task_methods(per_task)  # decision C74
     l_list = split_length_units(length_units)  # decision C40: as train's, before anything starts
     _check_workers(workers)
     _check_outside_cohort(out, cohort_dir)
@@ -319,7 +322,8 @@ def train_all(
     # leaves no model of a user who is no longer in the cohort, or who failed this time
     with refused_output(out), atomic_directory(out) as tmp:  # decision B151
         items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
-                           "methods": m_list, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
+                           "methods": m_list,
+                           "task_methods": per_task, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
                            "skip_bad": skip_bad, "resample_hz": resample})
                  for u in users]
         results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")

@@ -45,8 +45,46 @@ def split_list(value: str | None, option: str) -> list[str] | None:
 
 
 def split_choices(*, tasks: str | None, methods: str | None, units: str | None):
-    """The ``--tasks``, ``--methods`` and ``--units`` comma lists of the training commands (``None`` = all)."""
-    return split_list(tasks, "--tasks"), split_list(methods, "--methods"), split_list(units, "--units")
+    """The ``--tasks``, ``--methods`` and ``--units`` comma lists of the training commands (``None`` = all), and
+    ``--methods``' per-task lists (decision C74: :func:`split_methods`)."""
+    plain, per_task = split_methods(methods)
+    return split_list(tasks, "--tasks"), plain, split_list(units, "--units"), per_task
+
+
+#: ``--methods`` of the training commands, ``train`` and ``train-all`` (decisions C14, C74)
+METHODS_HELP = (
+    "Comma list of heuristic,fusion,dtw,svm,nn,ensemble (default: the thesis' five; ensemble = equal vote of the "
+    "unit's nn, svm and dtw, decision C14). TASK=M1,M2 gives one task its own methods: the methods after it, up to "
+    "the next TASK=, are that task's; the plain methods before any TASK= are the other tasks', e.g. "
+    "'direction=fusion,heuristic' (terrain and length: the default) or 'nn,svm,direction=fusion,heuristic' "
+    "(decision C74).")
+
+
+def split_methods(value: str | None) -> tuple[list[str] | None, dict[str, list[str]]]:
+    """Decision C74: ``--methods`` as ``(plain, per_task)``. ``"nn,svm,direction=fusion,heuristic"`` ->
+    ``(["nn", "svm"], {"direction": ["fusion", "heuristic"]})``: a ``TASK=METHOD`` item starts that task's list,
+    the plain items after it extend it; plain items before any ``TASK=`` are the other tasks' (None: none given,
+    the default methods). Names are checked by ``train_user`` (``check_task_methods``); the syntax here, in one
+    line naming the option."""
+    items = split_list(value, "--methods")
+    if items is None:
+        return None, {}
+    plain: list[str] = []
+    per_task: dict[str, list[str]] = {}
+    current = plain
+    for item in items:
+        if "=" in item:
+            task, _, method = (x.strip() for x in item.partition("="))
+            if not task or not method or "=" in method:
+                raise DataError(f"--methods {value!r}: {item!r} is not TASK=METHOD; write e.g. "
+                                "--methods direction=fusion,heuristic (decision C74)")
+            if task in per_task:
+                raise DataError(f"--methods {value!r}: task {task!r} is given twice; list all its methods after "
+                                f"one {task}= (decision C74)")
+            current = per_task[task] = [method]
+        else:
+            current.append(item)
+    return plain or None, per_task
 
 
 #: ``--length-units`` of the training commands, ``train`` and ``train-all`` (decisions C38, C40)
@@ -546,10 +584,15 @@ def transfer_line(summary: dict) -> str | None:
     return ", ".join(parts) if parts else None
 
 
-def posture_line(summary: dict) -> str:
+def posture_line(summary: dict, waist_unit: bool = False) -> str:
     """Decision W222: ``track``'s line of the time that is not walking, by posture (a lower-back track), or that a
     foot-only track cannot split it (its keys are null). Decision E145: ``run`` of a waist bundle writes the keys null
-    too (the live tracker has no posture runs) and prints no such line; the line names both."""
+    too (the live tracker has no posture runs) and prints no such line; the line names both. Decision L316: a foot
+    track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead."""
+    if summary.get("standing_time_s") is None and waist_unit:
+        return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt, and this "
+                "session has that unit (wAccelerometer.csv): track it for the split, pdrlearn track DIR --pipeline "
+                "waist-pendulum (decisions W222, L316)")
     if summary.get("standing_time_s") is None:
         return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt in an "
                 "offline `pdrlearn track` (a foot unit sees no trunk; `run` of a waist bundle has no posture runs; "

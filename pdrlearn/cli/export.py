@@ -721,10 +721,24 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     if start_ll is not None:  # decision W147: the live tracker's lat/lon of each step
         traj["lat"] = [start_ll[0]] + [s.lat for s in steps]
         traj["lon"] = [start_ll[1]] + [s.lon for s in steps]
+    from pdrlearn.kernels.barometer import step_jump_line, step_jumps
     from pdrlearn.track.freezes import lower_back_freezes
 
+    jumps = None
+    if baro is not None:  # decision E148: W230's line, as track's (the live tracker does not hold such steps)
+        jumps = int(step_jumps(df["dz_m"].to_numpy(float)).sum())
+        line = step_jump_line(df["dz_m"].to_numpy(float), df["end_s"].to_numpy(float), hold=False, live=True)
+        if line:
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
+            tracker.warnings.append(line)
     result = TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime-waist",
                                                           "warnings": list(tracker.warnings),
+                                                          "barometer_jump_steps": jumps,  # W230 (E148), as track's
+                                                          # decision L309: the rests L296 corrected live (L306)
+                                                          "rest_bias_rests": None if tracker.rest_bias_rests is None
+                                                          else [list(r) for r in tracker.rest_bias_rests],
                                                           # decision W216: as track's, opt-in by the options
                                                           "freezes": lower_back_freezes(
                                                               session, "runtime-waist", bundle.options)})

@@ -27,8 +27,9 @@ MOUNT_AXES = {"x": 0, "y": 1, "z": 2}
 #: phase; walking stance, bounce and rockers), so it is fast walking at a running speed. 2.0 m/s is about the
 #: preferred walk-to-run transition speed of adults (Hreljac 1993: 2.07 m/s; not a seed)
 RUNNING_SPEED_MPS = 2.0
-#: decision S43: `simulate --sit-start/--sit-end` (s seated at the start / end of the session): up to an hour
-SIT_MAX_S = 3600.0
+#: decision S43: `simulate --sit-start/--sit-end` (s seated at the start / end of the session); decision S61: up to a
+#: day (was an hour, S43, set when a simulated hour took ~1 GB of memory, S44; S62 cut it further), as `lie:S`
+SIT_MAX_S = 86_400.0  # = pdrlearn.sim.lying.MAX_LIE_S (tests/test_sim_lying.py)
 
 
 def simulate_cmd(
@@ -49,7 +50,9 @@ def simulate_cmd(
         "Rides without steps: 'lift:+9' / "
         "'lift:-9' (a lift, metres up / down), 'escalator:+6' (30 deg, 0.5 m/s, straight ahead; 1-60 m); "
         "'trolley:20' walks 20 m pushing a trolley (decisions S45, S46); 'side:3' / 'side:-3' side-steps 3 m "
-        "left / right facing ahead (S49).",
+        "left / right facing ahead (S49). In bed: 'lie:28800' sits on a bed edge, lies down 8 h turning over 2 "
+        "times an hour ('lie:28800:4' 4 times, 'lie:600:0' never), sits up and stands up, no steps (lying.csv, "
+        "rolls.csv; up to 86400 s; S58-S61).",
     ),
     user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty)."),
@@ -83,6 +86,12 @@ def simulate_cmd(
         "--bounce",
         help="constant (default): the user's pelvis bounce on every step; pendulum: scaled by the inverted "
         "pendulum's rise for each step's length, so short slow steps bounce less (decision S29).",
+    ),
+    rocker: str = typer.Option(
+        "hermite", "--rocker", help="The simulated heel rocker (initial contact -> foot flat): hermite (default) "
+        "stops the foot at foot flat, which puts a second |acc| peak ~0.1 s after the contact that real feet do not "
+        "have (steps decision 30); smooth comes to rest gradually (decision S31). Simulated feet WITHOUT force "
+        "sensors time their contacts on that peak: use smooth for foot-only step times (decision S63).",
     ),
     heading0: float = typer.Option(
         0.0, "--heading0", help="Initial walking direction (deg, ENU: 0 = east, 90 = north, counter-clockwise), "
@@ -153,7 +162,7 @@ def simulate_cmd(
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
-    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, STEP_TIME_ASYMMETRY_MAX
+    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, ROCKER_MODES, STEP_TIME_ASYMMETRY_MAX
     from pdrlearn.sim.route import parse_route
     from pdrlearn.sim.simulate import STEP_LENGTH_ASYMMETRY_MAX
 
@@ -168,6 +177,8 @@ def simulate_cmd(
         raise DataError(f"--pelvis {pelvis!r}: must be {' or '.join(PELVIS_MODES)}")
     if bounce not in BOUNCE_MODES:  # decision S29
         raise DataError(f"--bounce {bounce!r}: must be {' or '.join(BOUNCE_MODES)}")
+    if rocker not in ROCKER_MODES:  # decisions S31, S63
+        raise DataError(f"--rocker {rocker!r}: must be {' or '.join(ROCKER_MODES)}")
     if user_seed < 0 or seed < 0:
         raise DataError("--user-seed and --seed must be non-negative integers")
     if not -90.0 <= foot_mount_pitch <= 90.0:  # beyond +-90 deg the unit would be mounted upside down
@@ -203,6 +214,7 @@ def simulate_cmd(
         noise=not no_noise,
         pelvis=pelvis,
         bounce=bounce,
+        rocker=rocker,
         heading0_deg=heading0,
         mag_disturbance_ut=mag_disturbance,
         waist_mount_deg=mount,

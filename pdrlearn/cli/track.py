@@ -281,7 +281,7 @@ def track(
     if as_json:
         print_json(summary)
         return
-    _print_summary(summary, out, aided)
+    _print_summary(summary, out, aided, waist_unit=(Path(session_dir) / "wAccelerometer.csv").is_file())  # L316
 
 
 #: decision E93: ``track``'s options that ``track-all`` does not take, and why (tests/test_track_all_options_e93.py
@@ -446,6 +446,26 @@ def read_params(params: Path):
     return par
 
 
+def _refuse_foot_options_without_foot(pipeline: str, o: dict, session) -> None:
+    """Decision W254: ``--units waist`` left a foot unit out, and the foot pipeline was asked for (``--pipeline
+    plasys``, or a PLASYS option: ``--model``, ``--method`` ...): one line naming both ways out, instead of "no
+    fAccelerometer" about a folder that has it (trial 31 finding 8)."""
+    if not any(s.placement == "foot" for s in session._left_out.values()):
+        return
+    asked = [name for name, on in (
+        ("--pipeline plasys", pipeline == "plasys" and o.get("pipeline") == "plasys"),
+        ("--model", o.get("model") is not None), ("--method", str(o.get("method", "auto")).lower() != "auto"),
+        ("--streaming", bool(o.get("streaming"))), ("--toe-off", bool(o.get("toe_off"))),
+        ("--contacts", bool(o.get("contacts"))), ("--detector", o.get("detector") is not None),
+        ("--altitude", o.get("altitude") is not None)) if on]
+    if pipeline == "plasys":
+        what = " and ".join(asked) or "the foot pipeline"
+        raise DataError(f"track: {session.where}: {what} needs the foot unit (PLASYS tracks the foot), which --units "
+                        f"{','.join(sorted({s.placement for s in session.streams.values()}))} leaves out; drop "
+                        f"{' and '.join(asked) or '--pipeline plasys'} for a lower-back track, or drop --units "
+                        "(decision W254)")
+
+
 def track_session(session_dir: Path, settings: dict) -> dict:
     """Read and track one session with :func:`track_settings`'s options; return what :func:`write_track`
     writes (the session, the result, its summary.json dict, the pipeline, whether it was aided)."""
@@ -484,6 +504,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts
                                or o.get("detector") is not None or o.get("altitude") is not None):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
+    if pipeline in ("plasys", "auto") and session._left_out and not session.has("fAccelerometer"):
+        _refuse_foot_options_without_foot(pipeline, o, session)  # decision W254
     pipeline = resolve_pipeline(pipeline, session)
     given_clock, clock_lines = None, []
     # decision E111: the waist clock moved by hand, before anything reads it; B230: before B126's span check (a
@@ -733,7 +755,7 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     return summary, aided
 
 
-def _print_summary(summary: dict, out: Path, aided: bool) -> None:
+def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False) -> None:
     name = summary["session"]
     if summary.get("window_start_s") is not None:  # decision L105
         name += f" [{summary['window_start_s']:g}-{summary['window_end_s']:g} s]"
@@ -773,7 +795,8 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
                    f"{summary['time_no_data_s']:.1f} s")
-        typer.echo(posture_line(summary))  # decision W222: the time that is not walking, by posture
+        # decisions W222, L316: the time that is not walking, by posture
+        typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys"))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"

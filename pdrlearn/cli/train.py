@@ -11,6 +11,7 @@ import typer
 from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
+    METHODS_HELP,
     console,
     existed,
     grouped_skips,
@@ -67,11 +68,7 @@ def train(
     tasks: str = typer.Option(
         None, help="Comma list of terrain,direction,length (default: what is labelled)."
     ),
-    methods: str = typer.Option(
-        None,
-        help="Comma list of heuristic,fusion,dtw,svm,nn,ensemble (default: the thesis' five; ensemble = "
-        "equal vote of the unit's nn, svm and dtw, decision C14).",
-    ),
+    methods: str = typer.Option(None, help=METHODS_HELP),  # decisions C14, C74
     units: str = typer.Option(None, help="Comma list of foot,waist,fused,combined (default: all the data allow; "
                               "fused = soft vote of the unit models, combined = one svm/nn model on both units' "
                               "features, decisions C7, C22)."),
@@ -123,7 +120,7 @@ def train(
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
     """
     from pdrlearn.classify.spread import spread_text
-    from pdrlearn.classify.training import check_settings, train_user
+    from pdrlearn.classify.training import check_settings, check_task_methods, train_user
     from pdrlearn.features.windows import BOUNDARIES
 
     if boundaries not in BOUNDARIES:
@@ -132,20 +129,21 @@ def train(
 
     if cv_groups not in CV_GROUPS:
         raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
-    t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
+    t_list, m_list, u_list, per_task = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed,
                                          resample_hz=resample)  # C62: before any data is read
+    per_task = check_task_methods(per_task)  # decision C74: before any data is read
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)
     sessions = _read_all(data_dirs)
-    total = len(t_all) * len(m_all) * len(u_all)
+    total = sum(len(per_task.get(t, m_all)) for t in t_all) * len(u_all)
     t0 = time.perf_counter()
     with progress("training", total, enabled=not as_json) as advance:
         model = train_user(
             sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user,
             boundaries=boundaries, advance=advance, distance_calibration=distance_calibration,
-            cv_groups=cv_groups, length_units=l_list, resample_hz=resample,
+            cv_groups=cv_groups, length_units=l_list, resample_hz=resample, task_methods=per_task,
         )
     seconds = time.perf_counter() - t0
     model.save(out)
@@ -328,6 +326,7 @@ def evaluate(
         pdrlearn evaluate out/models/u1 out/sim/u1_test --predictions-out out/eval_u1_steps.csv
     """
     from pdrlearn.classify import evaluate_model, load_model
+    from pdrlearn.classify.detected import detected_lines
     from pdrlearn.classify.evaluation import (
         evaluation_stages,
         headline,
@@ -408,6 +407,8 @@ def evaluate(
         c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(  # decision C37
             f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
             for k in r["classes"]), markup=False)
+        for line in detected_lines(r.get("detected")):  # decision C76
+            c.print(f"  {line}", markup=False)
         for s in r["skipped"]:
             c.print(f"  skipped {s}")
     c.print(f"step windows: {result.get('boundaries', model.boundaries)} boundaries, "

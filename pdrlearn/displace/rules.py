@@ -1,5 +1,6 @@
-"""PLASYS step rules (thesis ch.7.2.2): terrain picks the distance, direction the sign, the length
-class clamps the distance, stairs give the altitude change."""
+"""PLASYS step rules (thesis ch.7.2.2): terrain picks the distance, direction the sign of ``length_m``, the length
+class clamps the distance, stairs give the altitude change. The track places a stride whose sign the class turned
+with its heading turned 180 deg (decision L65), so the position follows the measured displacement either way."""
 
 from __future__ import annotations
 
@@ -148,3 +149,34 @@ class StepRules:
         length = K.horizontal_part(length, dz, terrain, down_mode=self.down_mode)  # decision L51
         return pd.DataFrame({"length_m": length, "dz_m": dz, "raw_dx_m": disp[:, 0], "raw_dy_m": disp[:, 1],
                              "raw_dz_m": disp[:, 2]})
+
+
+#: decision L325: a stride whose length the length-class rule sets to more than this times its measured length is
+#: "doubled" (trial 31 finding 4: 0.70 m slow strides classed long were set to 1.62 m, x2.3)
+DOUBLED_FACTOR = 2.0
+#: decision L325: the doubled strides warn when they add more than this share to the track's measured distance:
+#: five times the default (bayes) rules' distance error on trial 31's 16 simulated tracks (within +-0.9 %), so a
+#: turn's short stride clamped up alone stays silent
+DOUBLED_SHARE = 0.05
+
+
+def doubled_lengths_line(raw_m: np.ndarray, ruled_m: np.ndarray, classes) -> str | None:
+    """Decision L325: one line when the thesis length-class clamp (``--rules thesis``) set strides to more than
+    :data:`DOUBLED_FACTOR` times their measured horizontal length ``raw_m`` (m) and those strides add more than
+    :data:`DOUBLED_SHARE` of the measured distance; None otherwise. ``ruled_m``: the rules' signed lengths;
+    ``classes``: the length class per stride (named in the line)."""
+    raw, ruled = np.abs(np.asarray(raw_m, float)), np.abs(np.asarray(ruled_m, float))
+    ok = np.isfinite(raw) & np.isfinite(ruled)
+    doubled = ok & (ruled > DOUBLED_FACTOR * raw)
+    total = float(raw[ok].sum())
+    added = float((ruled[doubled] - raw[doubled]).sum())
+    if not doubled.any() or total <= 0 or added <= DOUBLED_SHARE * total:
+        return None
+    lc = pd.Series(np.asarray(classes, dtype=object)[doubled]).dropna().value_counts()
+    named = ", ".join(f"{n} {c}" for c, n in lc.items()) or "unclassed"
+    return (f"the thesis length-class rule (--rules thesis) set {int(doubled.sum())} of {int(ok.sum())} strides to "
+            f"more than {DOUBLED_FACTOR:g}x their measured length ({named}; measured median "
+            f"{np.median(raw[doubled]):.2f} m, set to median {np.median(ruled[doubled]):.2f} m), adding "
+            f"{added:.1f} m (+{100 * added / total:.0f} % of the measured {total:.1f} m): the classes disagree with "
+            "the strides (a slow or short gait outside the training walks?); the default rules (--rules bayes) weigh "
+            "the class against the measured length (decision L325)")

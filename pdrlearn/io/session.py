@@ -257,6 +257,9 @@ class Session:
     #: decision E138: when ``steps`` is a ``--window``'s cut, each row's row in the session's steps.csv (from 0);
     #: None: the rows are steps.csv's
     _steps_rows: np.ndarray | None = field(default=None, repr=False, compare=False)
+    #: decision W253: the sensor streams ``track --units`` left out (``pdrlearn.track.units.keep_units``); the
+    #: waist track still reads the foot unit's cues from them (W173's backward, L219's sideways warnings)
+    _left_out: dict[str, Stream] = field(default_factory=dict, repr=False, compare=False)
 
     def __repr__(self) -> str:
         """Decision B181: a short description (streams with rate and unit, duration, labels), not the arrays

@@ -146,6 +146,16 @@ class LiveAltitude:
         if drop > 0:
             self._t, self._p = self._t[drop:], self._p[drop:]
 
+    def ride(self, a: float, b: float) -> float | None:
+        """Decision E146: W231's ride (m) of the pause from ``a`` to ``b`` (s)
+        (:func:`pdrlearn.kernels.pause_ride.pause_ride_dz`) on the held samples (the live tracker holds them across
+        its pauses); None where :meth:`at` is None."""
+        if self.implausible is not None or self._origin_s is None or not self._t.size:
+            return None
+        from pdrlearn.kernels.pause_ride import pause_ride_dz
+
+        return pause_ride_dz(self._t, self._p, float(a), float(b))[0]
+
     def size(self) -> int:
         return int(self._t.size + self._p.size)
 
@@ -273,6 +283,37 @@ def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noi
 MAX_STEP_DZ_M = 0.5
 
 
+def step_jumps(dz: np.ndarray, max_dz: float = MAX_STEP_DZ_M) -> np.ndarray:
+    """Decision W230: the mask of the steps whose barometric change ``dz`` (m, end minus start) exceeds ``max_dz``."""
+    return np.abs(np.nan_to_num(np.asarray(dz, dtype=float))) > max_dz
+
+
+def step_jump_line(dz: np.ndarray, end_s: np.ndarray, *, hold: bool, live: bool = False) -> str | None:
+    """Decision W230's one line naming the steps of :func:`step_jumps` (their change ``dz``, m, and end ``end_s``,
+    s), None without one: ``hold`` says they were held level (option ``step_bound``); ``live`` (decision E148:
+    ``pdrlearn run`` of a waist bundle, whose live tracker does not hold them) names offline ``track`` as where the
+    option acts.
+    Shared by the offline lower-back track and ``run``."""
+    dz, end_s = np.asarray(dz, dtype=float), np.asarray(end_s, dtype=float)
+    jumped = step_jumps(dz)
+    if not jumped.any():
+        return None
+    dz, at = dz[jumped], end_s[jumped]
+    shown = ", ".join(f"{d:+.2f} m at {a:.1f} s" for d, a in zip(dz[:5], at[:5], strict=True))
+    if hold:
+        done = "held level (option step_bound): their change is left out of the altitude, the floors and the ascent"
+    elif live:
+        done = ("the altitude, floors and ascent include it; offline `pdrlearn track` with the option step_bound "
+                "(PARAMS.json \"options\") holds such steps level, though the pressure's return then reads as a climb")
+    else:
+        done = ("the altitude, floors and ascent include it; the option step_bound (PARAMS.json \"options\") holds "
+                "such steps level, though the pressure's return then reads as a climb")
+    return (f"{int(jumped.sum())} step(s) changed the barometric altitude by more than {MAX_STEP_DZ_M:.1f} m "
+            f"each ({shown}{', ...' if len(dz) > 5 else ''}), {float(dz.sum()):+.2f} m in all: a walking "
+            "step climbs a riser or two (0.15-0.18 m each), so these are pressure transients (a door, a "
+            f"draught, wind), not climbs; {done} (decision W230)")
+
+
 def hold_step_jumps(z: np.ndarray, z_start: np.ndarray, max_dz: float = MAX_STEP_DZ_M
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Decision W230: ``z`` (n+1,) the altitude at the track's start and each step's end, ``z_start`` (n,) at each
@@ -282,7 +323,7 @@ def hold_step_jumps(z: np.ndarray, z_start: np.ndarray, max_dz: float = MAX_STEP
     z = np.asarray(z, dtype=float)
     zs = np.asarray(z_start, dtype=float)
     dz = z[1:] - zs
-    jumped = np.abs(np.nan_to_num(dz)) > max_dz
+    jumped = step_jumps(dz, max_dz)
     cut = np.cumsum(np.where(jumped, dz, 0.0))
     return z - np.concatenate([[0.0], cut]), zs - np.concatenate([[0.0], cut[:-1]]), jumped
 

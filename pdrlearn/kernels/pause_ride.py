@@ -24,6 +24,9 @@ RIDE_WINDOW_S = 30.0
 RIDE_MIN_M = STAIR_CLIMB_MIN_M
 #: decision W231: the altitude is read on this grid (s) inside a long pause
 RIDE_GRID_S = 1.0
+#: decision W231: a drift of this much (m) or more left out across the rests is warned about (README: "a drift over
+#: 1 m is warned", L172's)
+PAUSE_DRIFT_WARN_M = 1.0
 
 
 def pause_ride_dz(t: np.ndarray, p_hpa: np.ndarray, a: float, b: float) -> tuple[float, float]:
@@ -46,3 +49,21 @@ def pause_ride_dz(t: np.ndarray, p_hpa: np.ndarray, a: float, b: float) -> tuple
     np.add.at(cover, fast + k, -1)
     inside = np.cumsum(cover)[:-1] > 0
     return float(np.diff(h)[inside].sum()), whole
+
+
+def drift_line(drop, ends, starts) -> str | None:
+    """Decision W231's one warning: ``drop`` (m) the drift left out of each pause from ``ends`` to ``starts`` (s; 0
+    where nothing was), when it is :data:`PAUSE_DRIFT_WARN_M` or more in all or across one rest; else None. Shared by
+    the offline track and the live waist tracker (decision E146)."""
+    drop, ends, starts = (np.asarray(v, dtype=float) for v in (drop, ends, starts))
+    long_ = np.flatnonzero(np.abs(drop) > 0)
+    if not long_.size:
+        return None
+    total = float(drop.sum())
+    if not (abs(total) >= PAUSE_DRIFT_WARN_M or np.abs(drop).max() >= PAUSE_DRIFT_WARN_M):
+        return None
+    worst = int(long_[np.argmax(np.abs(drop[long_]))])
+    return (f"the barometric altitude drifted {total:+.2f} m across {len(long_)} rest(s) without steps (largest "
+            f"{drop[worst]:+.2f} m over the {starts[worst] - ends[worst]:.0f} s before {starts[worst]:.1f} s), too "
+            "slowly for a lift or escalator ride (a ride changes 1.5 m within 30 s): weather or room pressure, left "
+            "out of the altitude and the floors (decision W231)")

@@ -223,7 +223,7 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
                turning: np.ndarray | None = None, contact_shift: bool = False,
                spinning: np.ndarray | None = None, weak_fill: bool = False, parity: bool | str = False,
-               side_at_contact: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+               side_at_contact: bool = False, fast_fill: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
     The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
@@ -265,6 +265,9 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     side_at_contact : with ``acc_ml`` and ``rhythm``, the sequence rules read each candidate maximum's W20 side at its
         initial contact (W3's AP maximum before it, W129's cue) instead of at the maximum (decision W235; off by
         default)
+    fast_fill : with ``acc_ml`` and ``rhythm``, after W152 one contact where a gap between two kept contacts has room
+        for exactly one step and the vertical acceleration low-passed at twice ``cutoff_hz`` has a maximum of its own
+        there (:func:`fast_band_fill`, decision W242; off by default)
 
     Returns
     -------
@@ -297,6 +300,10 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
             added = parity_fill(cand, keep, side, vl, side_scale(vl[cand], strong), fs, max_step_s=max_step_s)
             added = np.setdiff1d(added, peaks)
             peaks = np.union1d(peaks, added)
+        if fast_fill and side is not None and FAST_BAND_FACTOR * cutoff_hz < 0.5 * fs:  # W242: a merged step
+            peaks = np.union1d(peaks, _fast_fill(v, vf, cand, keep, side, peaks, vl, strong, fs,
+                                                 cutoff_hz=cutoff_hz, fir_order_s=fir_order_s, min_gap=dist,
+                                                 max_step_s=max_step_s))
     else:
         peaks = dsp.find_peaks(vf, height=min_peak_mps2, distance=dist)
         if gate is not None:
@@ -310,6 +317,24 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         keep = inside_sequences(ic, np.isin(peaks, added), _max_gap(max_step_s, fs))
         peaks, ic = peaks[keep], ic[keep]
     return ic, fc_after(ap, peaks, fs, fc_search_s), peaks
+
+
+def _fast_fill(v: np.ndarray, vf: np.ndarray, cand: np.ndarray, keep: np.ndarray, side: np.ndarray, peaks: np.ndarray,
+               vl: np.ndarray, strong: np.ndarray, fs: float, *, cutoff_hz: float, fir_order_s: float,
+               min_gap: int, max_step_s: float) -> np.ndarray:
+    """W242 inside :func:`ic_offline`: :func:`fast_band_fill` on the kept contacts ``peaks`` (candidates and W152's
+    anchors; an anchor's side read as W20 reads it, at the scale of the candidates), the second band filtered as the
+    first (seed 003's FIR, the same order in seconds) at ``FAST_BAND_FACTOR`` x the cut-off. Returns the new anchors."""
+    taps = fir_taps(FAST_BAND_FACTOR * cutoff_hz, fs, int(round(fir_order_s * fs)))  # W237: twice seed 003's cut-off
+    vf_fast = fir_zero_lag(v - np.mean(v), taps)
+    scale = side_scale(vl[cand], strong)  # W20: decided at 1/3 of the median |v| at the accepted candidates
+    sd = (np.where(np.abs(vl[peaks]) >= SIDE_MIN_FRAC * scale, np.sign(vl[peaks]), 0.0) if scale > 0.0
+          else np.zeros(peaks.size)).astype(np.int8)
+    is_cand = np.isin(peaks, cand)
+    sd[is_cand] = np.asarray(side)[np.searchsorted(cand, peaks[is_cand])]
+    ref = float(np.median(vf[cand[keep]])) if np.any(keep) else float("nan")
+    added = fast_band_fill(vf_fast, cand, peaks, sd, ref, fs, min_gap=min_gap, max_step_s=max_step_s)
+    return np.setdiff1d(added, peaks)
 
 
 def candidate_sides(v_lat: np.ndarray, cand: np.ndarray, accepted: np.ndarray, ap: np.ndarray | None = None,
@@ -346,7 +371,8 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
                      contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool | str = False,
-                     side_at_contact: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                     side_at_contact: bool = False, fast_fill: bool = False
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
     the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
@@ -361,7 +387,8 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                               end_steps=end_steps, ap_above_mean=ap_above_mean, turning=turning,
                               min_step_s=min_step_s, contact_shift=contact_shift,
                               spinning=None if yaw_rate is None else yaw_rate >= CONTACT_SHIFT_TURN_RPS,
-                              weak_fill=weak_fill, parity=parity_fill, side_at_contact=side_at_contact)
+                              weak_fill=weak_fill, parity=parity_fill, side_at_contact=side_at_contact,
+                              fast_fill=fast_fill)
     return ic, fc, vmax, ap
 
 
@@ -586,17 +613,20 @@ def extend_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, s
     return out
 
 
-def _same_side_pairs(cand: np.ndarray, keep: np.ndarray, sd: np.ndarray, max_gap: int, tol: float):
-    """Decisions W148 / W152: each pair of consecutive kept candidates (``cand`` sample positions, ``keep`` mask) on
-    one decided side ``sd`` at most ``max_gap`` samples apart (W20: the alternation is broken, one opposite step is
-    missing), with the local period ``per`` around it (W18: the median of the pair's outer periods) and the window
-    ``(lo, hi)`` (samples) of a step one period (``+- tol`` periods) after the first AND one before the second.
-    Yields ``(side, per, lo, hi)``; a pair without a local period or with an empty window is skipped."""
-    sel = np.flatnonzero(keep)
-    t = cand[sel].astype(np.float64)
-    for k in range(sel.size - 1):
-        s_k = int(sd[sel[k]])
-        if s_k == 0 or int(sd[sel[k + 1]]) != s_k or t[k + 1] - t[k] > max_gap:
+def _one_step_gaps(pos: np.ndarray, sd: np.ndarray, max_gap: int, tol: float, *, same_side: bool = True):
+    """Decisions W148 / W152 / W242: each pair of consecutive kept contacts (``pos`` sample positions, increasing, their
+    W20 sides ``sd``) at most ``max_gap`` samples apart that may miss one step between them, with the local period
+    ``per`` around it (W18: the median of the pair's outer periods) and the window ``(lo, hi)`` (samples) of a step one
+    period (``+- tol`` periods) after the first AND one before the second (non-empty only for a gap of about two
+    periods). ``same_side``: only pairs on one decided side (W148 / W152: the alternation asks for the step); else
+    every pair except one on decided opposite sides (W242: one missing step would leave both on one side).
+    Yields ``(k, side, per, lo, hi)`` (``k`` the pair's first index in ``pos``, ``side`` its side)."""
+    t = np.asarray(pos, dtype=np.float64)
+    for k in range(t.size - 1):
+        s_k, s_n = int(sd[k]), int(sd[k + 1])
+        if t[k + 1] - t[k] > max_gap:
+            continue
+        if (s_k == 0 or s_n != s_k) if same_side else s_k * s_n < 0:
             continue
         p = [_local_period(t, k, -1, max_gap), _local_period(t, k + 1, +1, max_gap)]
         if not np.isfinite(p).any():
@@ -605,7 +635,16 @@ def _same_side_pairs(cand: np.ndarray, keep: np.ndarray, sd: np.ndarray, max_gap
         a1, a2 = t[k] + per, t[k + 1] - per  # the predicted times; W18's +-tol around both
         lo, hi = max(a1, a2) - tol * per, min(a1, a2) + tol * per
         if lo <= hi:
-            yield s_k, per, lo, hi
+            yield k, s_k, per, lo, hi
+
+
+def _same_side_pairs(cand: np.ndarray, keep: np.ndarray, sd: np.ndarray, max_gap: int, tol: float):
+    """Decisions W148 / W152: :func:`_one_step_gaps` of the kept candidates (``cand`` sample positions, ``keep``
+    mask) on one decided side ``sd`` (W20: the alternation is broken, one opposite step is missing). Yields
+    ``(side, per, lo, hi)``; a pair without a local period or with an empty window is skipped."""
+    sel = np.flatnonzero(keep)
+    for _k, s_k, per, lo, hi in _one_step_gaps(cand[sel], np.asarray(sd)[sel], max_gap, tol):
+        yield s_k, per, lo, hi
 
 
 def _weak_candidate(cand: np.ndarray, h: np.ndarray, keep: np.ndarray, sd: np.ndarray, want: int,
@@ -668,6 +707,52 @@ def parity_fill(cand: np.ndarray, keep: np.ndarray, side: np.ndarray, v_lat: np.
         x = a + int(np.argmax(-s_k * v[a:b + 1]))  # the opposite side's sway extreme (W20's sign convention)
         if -s_k * v[x] >= min_frac * scale:  # decided on the opposite side (W20's 1/3 of the median)
             out.append(x)
+    return np.asarray(sorted(set(out)), dtype=np.int64)
+
+
+#: W242: the second band's cut-off is twice seed 003's 2.5 Hz (W237's read-out, the same FIR order)
+FAST_BAND_FACTOR = 2.0
+#: W237: a second-band maximum over 0.1 s from every 2.5 Hz candidate maximum is its own
+FAST_OWN_S = 0.1
+#: W237 (W23's 1/2): a second-band maximum is a cue at half the median kept 2.5 Hz height or more
+FAST_HEIGHT_FRAC = 0.5
+
+
+def fast_band_fill(vf_fast: np.ndarray, cand: np.ndarray, peaks: np.ndarray, side: np.ndarray, ref_height: float,
+                   fs: float, *, min_gap: int, max_step_s: float = 1.5, tol: float = RHYTHM_TOL,
+                   own_s: float = FAST_OWN_S, frac: float = FAST_HEIGHT_FRAC) -> np.ndarray:
+    """Decision W242: one contact where the 2.5 Hz pass merged a step into a neighbour's. Between two consecutive kept
+    contacts ``peaks`` (vertical-maximum samples, increasing; W20 sides ``side``, 0 undecided) of one sequence whose gap
+    is consistent with one missing step -- a pair on one decided side (the alternation asks for one opposite step;
+    window: the gap less the shortest step ``min_gap`` samples from each end, W16 / W113), else a pair not on
+    decided opposite sides with room for exactly one step (:func:`_one_step_gaps`, W148's window: one local period
+    +-``tol`` from each) -- the highest maximum of ``vf_fast`` (the vertical acceleration low-passed at
+    twice the cut-off) inside the window that is its own (over ``own_s`` from every 2.5 Hz candidate maximum
+    ``cand``) and at least ``frac`` x ``ref_height`` (the median kept 2.5 Hz height) high. Unlike W148 (a weaker
+    2.5 Hz maximum) and W152 (the lateral sway, no vertical evidence) the evidence is a vertical bounce of its own in
+    the faster band. Returns the anchors' sample positions (int, increasing); their contacts are found as every
+    contact's (W3)."""
+    x = np.asarray(vf_fast, dtype=np.float64)
+    peaks = np.asarray(peaks, dtype=np.int64)
+    cand = np.asarray(cand, dtype=np.int64)
+    if not (np.isfinite(ref_height) and ref_height > 0.0) or peaks.size < 2:
+        return np.zeros(0, dtype=np.int64)
+    mx = dsp.find_peaks(x, height=frac * ref_height)
+    if cand.size:
+        i = np.searchsorted(cand, mx)  # cand[i - 1] < mx <= cand[i]
+        near = np.minimum(np.abs(mx - cand[np.clip(i - 1, 0, cand.size - 1)]),
+                          np.abs(mx - cand[np.clip(i, 0, cand.size - 1)]))
+        mx = mx[near > own_s * fs]
+    sd = np.asarray(side)
+    max_gap = _max_gap(max_step_s, fs)
+    win = {k: (lo, hi) for k, _s, _per, lo, hi in _one_step_gaps(peaks, sd, max_gap, tol, same_side=False)}
+    for k in np.flatnonzero((sd[:-1] != 0) & (sd[:-1] == sd[1:]) & (np.diff(peaks) <= max_gap)):
+        win[int(k)] = (peaks[k] + min_gap, peaks[k + 1] - min_gap)  # W20: one opposite step missing, W16 apart
+    out = []
+    for lo, hi in win.values():
+        m = mx[(mx >= lo) & (mx <= hi)]
+        if m.size:
+            out.append(int(m[np.argmax(x[m])]))
     return np.asarray(sorted(set(out)), dtype=np.int64)
 
 
@@ -1374,12 +1459,18 @@ def still_samples(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: floa
     the acceleration magnitude is under ``acc_tol`` (m/s^2) and the mean gyroscope magnitude under ``gyr_tol``
     (rad/s) -- thesis ch.3's stance tests on magnitudes, so any frame of the same samples gives the same mask.
     The live waist trackers run it on their buffered window (decision W165)."""
+    return still_from_magnitudes(dsp.magnitude(acc), dsp.magnitude(gyr), fs, window_s=window_s, acc_tol=acc_tol,
+                                 gyr_tol=gyr_tol)
+
+
+def still_from_magnitudes(am: np.ndarray, gm: np.ndarray, fs: float, *, window_s: float = 0.25, acc_tol: float = 0.3,
+                          gyr_tol: float = 0.25) -> np.ndarray:
+    """:func:`still_samples`'s test on the magnitudes ``am`` (m/s^2) and ``gm`` (rad/s) of the acceleration and rate:
+    what the live waist tracker holds across a rest for L296's bias (decision L308)."""
     w = max(1, int(round(window_s * fs)))
-    am = dsp.magnitude(acc)
     mean = dsp.uniform_filter1d(am, w)
     var = np.maximum(dsp.uniform_filter1d(am * am, w) - mean * mean, 0.0)
-    gm = dsp.uniform_filter1d(dsp.magnitude(gyr), w)
-    return (np.sqrt(var) < acc_tol) & (gm < gyr_tol)
+    return (np.sqrt(var) < acc_tol) & (dsp.uniform_filter1d(gm, w) < gyr_tol)
 
 
 def step_still_travel(acc_h: np.ndarray, still: np.ndarray, fs: float, i0: int, i1: int) -> tuple[float, float]:

@@ -55,7 +55,8 @@ class LiveStep:
     fragment whose length its neighbour carries; ``turning``: the stride's straight (0) / turning (1) class (seed 003
     sec. 3.3); ``lat``, ``lon`` (degrees): the position at ``end_s`` when the tracker was given a geodetic start
     (decision W137), else None; ``z`` (m): the barometric altitude at ``end_s`` relative to the track's first sample
-    and ``dz_m`` its change over the step, ``pause_dz_m`` the change while standing before it (W89's,
+    (less the drift W231 left out of the pauses before it, decision E146) and ``dz_m`` its change over the step,
+    ``pause_dz_m`` the change while standing before it (a pause over 30 s: its ride only, W231 / E146; W89's,
     ``track_waist``'s ``z`` / ``dz_m`` / ``pause_dz_m``; decisions E106, W158) when barometer samples were pushed
     (:meth:`WaistStream.push_barometer`), else None; ``stairs``: W91's rate test on that altitude
     (``track_waist``'s ``stairs`` column without ``stairs_climb``; with the option ``stairs_length`` such a step is at
@@ -87,7 +88,8 @@ class WaistStream(FixInput):
     ``params``: an object with ``leg_m``, ``k``, ``f_m``, ``gyro_bias_rps``, ``turn_gmm`` (the resolved
     :class:`~pdrlearn.waist.params.WaistParams`, or the bundle's); ``options``: the resolved pipeline options
     (``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``slow_turn_rps``, ``initial_heading``,
-    ``pivot_steps``: W150);
+    ``pivot_steps``: W150; ``pause_ride``: W231 / E146 and ``rest_bias``: L296 / L308, decided at the contact after the
+    pause or rest, absent = off);
     ``rotation``: the sensor -> body FLU matrix (None: the subclass's ``_frame`` finds one); ``start``: ``(x0, y0,
     h0)`` (m, m, rad ENU); ``latlon``: the start's ``(lat, lon)`` in degrees, checked (decision W137: each step's
     ``lat``/``lon``), or None; ``sides``: W138's causal side of each contact (an option); ``warnings``: the lines so
@@ -154,6 +156,7 @@ class WaistStream(FixInput):
         self._cur_gyro = 0.0  # track_waist's ``current`` of the gyro headings (with integrate_stops)
         self._cur_out = 0.0  # and of the reported headings
         self._stop_cum: float | None = None  # running integral at the last sequence's closing contact
+        self._rest_a = 0.0  # and its time (L308)
         self._seen_seq = False
         self._n_gaps = 0
         self._cum_first: float | None = None  # running integral at the first contact (W74)
@@ -166,6 +169,21 @@ class WaistStream(FixInput):
         self._alt = None  # decision E106: the barometric altitude (kernels.barometer.LiveAltitude), once pushed
         self._z_prev = 0.0  # the altitude at the last reported step's end (0 at the track's first sample)
         self._baro_last = -np.inf
+        # decision E146: W231's ride of a pause over RIDE_WINDOW_S, decided at its step's contact (a bundle exported
+        # before E146 has no such option: off); the drift left out: (pause start, pause end, m) and its sum
+        self._ride = bool(options.get("pause_ride", False))
+        self._pause_a: float | None = None  # the last reported row's end (the next pause's start)
+        self.pause_drifts: list[tuple[float, float, float]] = []
+        self._drift = 0.0
+        # decision L308: L296's rest bias, decided at the contact that ends the rest (the whole rest is held: the
+        # buffer keeps the samples from HEADING_LOOKBACK_ROWS rows back); the magnitudes its still test reads
+        self._rest_bias = bool(options.get("rest_bias", False)) and bool(options["integrate_stops"])
+        self._bam = np.zeros(0)
+        self._bgm = np.zeros(0)
+        self._rest_removed = 0.0  # the bias left out so far (W74 compares with the integrated yaw, as offline)
+        #: decision L309: the (start, end) of each rest L296 corrected (``track_waist``'s ``info["rest_bias_rests"]``,
+        #: L306), None when L296 is not in force
+        self.rest_bias_rests: list[tuple[float, float]] | None = [] if self._rest_bias else None
 
     # -- the axis frame (hooks: pdrlearn.waist.WaistTracker infers or checks it, W65 / B108) -------------
     def _frame_pending(self) -> bool:
@@ -188,6 +206,7 @@ class WaistStream(FixInput):
         the held samples of W65 and the W31 detector's window; bounded over any stream length (decision W64)."""
         n = 4 * self._bt.size + 6 * len(self._rows) + len(self._absorbed) + len(self._span_start)
         n += self._ba.size + self._bg.size  # W165
+        n += self._bam.size + self._bgm.size  # L308
         n += len(self._side_scale)  # W138: at most FRAGMENT_CONTEXT_STEPS
         n += self._held_size()
         n += 0 if self._alt is None else self._alt.size()  # E106: the barometer samples a pending step reads
@@ -309,6 +328,14 @@ class WaistStream(FixInput):
             return []
         out = self._feed(self._proc.flush(), final=True)
         self._warn_unused_fixes()  # decision D21
+        if self.pause_drifts:  # decision E146: W231's line, once the stream has ended (its total)
+            from pdrlearn.kernels.pause_ride import drift_line
+
+            a, b, d = (np.array(v) for v in zip(*self.pause_drifts, strict=True))
+            line = drift_line(d, a, b)
+            if line:
+                self.warnings.append(line)
+                log.warning("live waist tracker: %s", line)
         return out
 
     def _start_proc(self) -> None:
@@ -342,6 +369,9 @@ class WaistStream(FixInput):
         if self._pause:  # W165: what W134's still test and the trunk's travel read
             self._ba = np.concatenate([self._ba, acc_nav])
             self._bg = np.concatenate([self._bg, gyr_nav])
+        if self._rest_bias:  # L308: what L296's still test reads (standstill_mask: magnitudes only)
+            self._bam = np.concatenate([self._bam, np.linalg.norm(acc_nav, axis=1)])
+            self._bgm = np.concatenate([self._bgm, np.linalg.norm(gyr_nav, axis=1)])
 
     def _idx(self, ts: float) -> int:
         """Buffer index of the sample at time ``ts`` (a contact is a sample)."""
@@ -365,12 +395,18 @@ class WaistStream(FixInput):
             self._bt, self._bv, self._bw, self._bc = (a[drop:] for a in (self._bt, self._bv, self._bw, self._bc))
             if self._pause:
                 self._ba, self._bg = self._ba[drop:], self._bg[drop:]
+            if self._rest_bias:
+                self._bam, self._bgm = self._bam[drop:], self._bgm[drop:]
             self._b0 += drop
         filled = self._proc.bridge.filled
         while filled and self._bt.size and filled[0][1] < self._bt[0]:  # W165: gaps before the buffer
             filled.pop(0)
         if self._alt is not None and self._bt.size:  # E106: a pending step ends after the oldest sample held
-            self._alt.trim(float(self._bt[0]))
+            held = float(self._bt[0])
+            if self._ride:  # E146: W231 reads the whole open pause (before the first step too)
+                a = self._fixes.t_start if self._pause_a is None else self._pause_a
+                held = held if a is None else min(held, float(a))
+            self._alt.trim(held)
 
     # -- contacts -> steps ------------------------------------------------------------------------------
     def _feed(self, contacts: list, *, final: bool) -> list[LiveStep]:
@@ -424,6 +460,7 @@ class WaistStream(FixInput):
 
         if self._untracked_warned or self._cum_first is None:
             return
+        h = h + self._rest_removed  # decision L296 / L308: the long rests' bias left out is the yaw's, not a turn
         diff = np.degrees(float(turn_gap(float(np.interp(row["end"], self._bt, self._bc)) - self._cum_first, h)))
         if abs(diff) >= UNTRACKED_TURN_WARN_DEG:
             self._untracked_warned = True
@@ -498,6 +535,42 @@ class WaistStream(FixInput):
             return 1.0
         return float(K.progression_factor(np.array([disp]), np.array([length]))[0])
 
+    def _rest_turn(self, t_b: float) -> float:
+        """W72's rotation from the last sequence's closing contact to ``t_b`` (the next one's first contact); with
+        ``rest_bias`` (decision L308) L296's :func:`~pdrlearn.kernels.rest_heading.rest_rotation` on the held samples
+        of the rest, as ``track_waist``'s ``_step_headings``."""
+        whole = float(np.interp(t_b, self._bt, self._bc)) - self._stop_cum
+        if not self._rest_bias:
+            return whole
+        from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S, rest_rotation
+        from pdrlearn.kernels.waist import still_from_magnitudes
+
+        t_a = self._rest_a
+        if t_b - t_a <= REST_BIAS_MIN_S:  # W72, as offline (no still test needed)
+            return whole
+        still = still_from_magnitudes(self._bam, self._bgm, self.fs)  # standstill_mask's test (L296)
+        turned = rest_rotation(self._bt, self._bw - self.params.gyro_bias_rps, still, t_a, t_b, cum=self._bc)
+        if turned != whole:
+            self._rest_removed += whole - turned
+            self.rest_bias_rests.append((float(t_a), float(t_b)))  # decision L309: L306's spans
+        return turned
+
+    def _pause_drift(self, t_b: float, pause_dz: float) -> float:
+        """Decision E146: the drift (m) of the pause before the step starting at ``t_b`` whose whole change is
+        ``pause_dz`` (W158): that change less W231's ride when the pause lasts over RIDE_WINDOW_S, else 0."""
+        from pdrlearn.kernels.pause_ride import RIDE_WINDOW_S
+
+        t_a = self._fixes.t_start if self._pause_a is None else self._pause_a
+        if not self._ride or t_a is None or not t_b - t_a > RIDE_WINDOW_S:  # a short pause counts whole (W158)
+            return 0.0
+        ride = self._alt.ride(t_a, t_b)
+        if ride is None:
+            return 0.0
+        drop = pause_dz - ride
+        if drop:
+            self.pause_drifts.append((float(t_a), float(t_b), float(drop)))
+        return drop
+
     def _report(self, k: int) -> LiveStep:
         from pdrlearn.kernels import waist as K
 
@@ -508,7 +581,7 @@ class WaistStream(FixInput):
             self._cum_first = float(np.interp(row["t"], self._bt, self._bc))
         if k == s:  # a walking sequence starts: track_waist's ``current`` (and the turn made standing, W: opt)
             if self._seen_seq and o["integrate_stops"] and self._stop_cum is not None:
-                self._cur_gyro += float(np.interp(row["t"], self._bt, self._bc)) - self._stop_cum
+                self._cur_gyro += self._rest_turn(row["t"])
             self._seen_seq = True
             self._h_seq = None
         ids = self._seq_rows(k)
@@ -573,6 +646,7 @@ class WaistStream(FixInput):
             if self._h_seq is not None:
                 self._cur_gyro = self._cur_out = self._h_seq
             self._stop_cum = float(np.interp(row["t"], self._bt, self._bc))
+            self._rest_a = row["t"]  # L308: the rest starts at the closing contact (offline's t_a)
         stairs = self._on_stairs(row)
         # W91's option, as track_waist: at most the tread on stairs (E107); W156's "climbs" needs the whole
         # recording's climbs and is named as not applied live (unapplied_options_line)
@@ -604,6 +678,11 @@ class WaistStream(FixInput):
                 zs = self._alt.at(row["t"])
                 zs = z if zs is None else zs
                 dz, pause_dz, self._z_prev = z - zs, zs - self._z_prev, z
+                drop = self._pause_drift(row["t"], pause_dz)
+                pause_dz -= drop  # decision E146: W231's ride only; the drift leaves this and every later z
+                self._drift += drop
+                z -= self._drift
+        self._pause_a = row["end"]
         step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
                         has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon,
                         z=z, dz_m=dz, pause_dz_m=pause_dz, stairs=stairs)

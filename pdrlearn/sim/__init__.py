@@ -3,7 +3,7 @@
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
 (your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
 :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side`,
-:class:`Freeze` segments) and :class:`UserProfile`
+:class:`Freeze`, :class:`Lie` segments) and :class:`UserProfile`
 (anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
 """
@@ -14,6 +14,7 @@ from pdrlearn.sim.path import (
     Escalator,
     Footstep,
     Freeze,
+    Lie,
     Lift,
     Pivot,
     Side,
@@ -47,6 +48,7 @@ __all__ = [
     "Turn",
     "Pivot",
     "Sit",
+    "Lie",
     "Stand",
     "Lift",
     "Escalator",

@@ -2,7 +2,7 @@
 
 A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`,
 :class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`,
-:class:`Side`, :class:`Freeze`).
+:class:`Side`, :class:`Freeze`, :class:`Lie`).
 :func:`plan_footsteps` walks them with a user's step
 length and returns one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet.
 Walking bouts start and end with both feet side by side (gait initiation and a closing step).
@@ -11,12 +11,13 @@ Walking bouts start and end with both feet side by side (gait initiation and a c
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.sim.freeze import FREEZE_MARGIN_S, FreezeEpisode, check_freeze, draw_freeze
+from pdrlearn.sim.lying import BED_SIT_S, LyingEpisode, check_lie, draw_lying
 from pdrlearn.sim.ride import RIDE_MARGIN_S, Ride, check_rise, draw_ride
 from pdrlearn.sim.transfer import SIT_MARGIN_S, Transfer, draw_transfer
 from pdrlearn.sim.user import GAITS, UserProfile, asymmetry_factor
@@ -160,8 +161,17 @@ class Freeze:
     acc_mps2: float | None = None
 
 
+@dataclass(frozen=True)
+class Lie:
+    """Stop, sit down on the edge of a bed, lie down, lie ``duration_s`` seconds turning over ``turns_per_h`` times
+    an hour (None = :data:`pdrlearn.sim.lying.TURNS_PER_H`), sit up and stand up (no footstep; decisions S58, S59)."""
+
+    duration_s: float
+    turns_per_h: float | None = None
+
+
 Segment = (Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit | Lift | Escalator | Trolley | Side
-           | Freeze)
+           | Freeze | Lie)
 
 
 @dataclass
@@ -216,7 +226,7 @@ class _Walker:
         self.last_moved: str | None = None
         self.pending_pause = 0.0
         self.direction = "forward"
-        self.transfers: list[Transfer | Ride | FreezeEpisode] = []
+        self.transfers: list[Transfer | Ride | FreezeEpisode | LyingEpisode] = []
         self.pushing = False
 
     def _heel(self, c: np.ndarray, z: float, psi: float, foot: str) -> np.ndarray:
@@ -420,6 +430,19 @@ class _Walker:
         self.transfers.append(tr)
         self.pending_pause += SIT_MARGIN_S + tr.total_s + SIT_MARGIN_S
 
+    def lie(self, seg: Lie) -> None:
+        """Decisions S58, S59: feet together, then S36's :class:`Transfer` onto the bed edge whose seated time holds
+        a :class:`LyingEpisode` (sit, lie down, lie turning over, sit up, sit), inside the pause before the next step.
+        The transfer's draws come first, as a ``sit``'s, then the bed-edge sitting times and the lying's."""
+        check_lie(float(seg.duration_s), seg.turns_per_h, str(seg))
+        self.close()
+        tr = draw_transfer(len(self.steps), self.pending_pause + SIT_MARGIN_S, 0.0, self.rng)
+        before, after = (BED_SIT_S[0] + x * (BED_SIT_S[1] - BED_SIT_S[0]) for x in self.rng.uniform(0.0, 1.0, 2))
+        ep = draw_lying(len(self.steps), tr.delay_s + tr.down_s + before, float(seg.duration_s), seg.turns_per_h,
+                        tr.recline_rad, self.psi, self.rng)
+        tr = replace(tr, seat_s=before + ep.total_s + after)
+        self.transfers += [tr, ep]
+        self.pending_pause += SIT_MARGIN_S + tr.total_s + SIT_MARGIN_S
 
     def freeze(self, seg: Freeze) -> None:
         """Decision S51: feet together, then a :class:`FreezeEpisode` (trembling, no step) inside the pause before
@@ -476,7 +499,7 @@ def plan_footsteps(
     variability: float = 1.0,
     step_length_asymmetry: float = 0.0,
     paretic_side: str = "left",
-) -> tuple[list[Footstep], dict, float, list[Transfer | Ride | FreezeEpisode]]:
+) -> tuple[list[Footstep], dict, float, list[Transfer | Ride | FreezeEpisode | LyingEpisode]]:
     """Footprints of both feet along ``segments``.
 
     ``step_length_asymmetry``: on level, curved and sloped walking the steps onto the ``paretic_side`` foot (default
@@ -490,7 +513,8 @@ def plan_footsteps(
     end_pause_s : standing (or sitting) time requested after the last step (trailing :class:`Stand` / :class:`Sit`)
     transfers : the episodes inside the pauses: sit-down / stand-up of :class:`Sit` segments
         (:mod:`pdrlearn.sim.transfer`) and the rides of :class:`Lift` / :class:`Escalator` ones
-        (:mod:`pdrlearn.sim.ride`) and the freezes of :class:`Freeze` ones (:mod:`pdrlearn.sim.freeze`, S51)
+        (:mod:`pdrlearn.sim.ride`) and the freezes of :class:`Freeze` ones (:mod:`pdrlearn.sim.freeze`, S51); a
+        :class:`Lie` gives a transfer followed by its :class:`~pdrlearn.sim.lying.LyingEpisode` (S58)
     """
     w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry, paretic_side)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
@@ -509,6 +533,7 @@ def plan_footsteps(
         Trolley: w.trolley,
         Side: w.side,
         Freeze: w.freeze,
+        Lie: w.lie,
     }
     for seg in segments:
         if isinstance(seg, Straight | Curve | Slope | Trolley) and seg.gait not in GAITS:
@@ -518,7 +543,7 @@ def plan_footsteps(
         except KeyError:
             raise DataError(
                 f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Pivot, Stand, Sit, "
-                "Lift, Escalator, Trolley, Side, Freeze"
+                "Lift, Escalator, Trolley, Side, Freeze, Lie"
             ) from None
     w.close()
     return w.steps, initial, w.pending_pause, w.transfers

@@ -14,6 +14,7 @@
 | ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
 | ``stand:S`` | stand still S seconds |
 | ``sit:S`` | sit down on a chair, stay seated S seconds, stand up (no steps; decision S36) |
+| ``lie:S[:TURNS_PER_H]`` | sit on a bed edge, lie S s turning over TURNS_PER_H an hour (2), get up (no steps; S58) |
 | ``lift:H`` | stand in a lift riding H metres (+H up, -H down; no steps; decision S45) |
 | ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
 | ``trolley:M[:GAIT]`` | walk M metres straight ahead pushing a trolley (damped pelvic rotation; decision S46) |
@@ -29,12 +30,14 @@ import math
 
 from pdrlearn.errors import DataError
 from pdrlearn.sim.freeze import check_freeze
+from pdrlearn.sim.lying import check_lie
 from pdrlearn.sim.path import (
     MAX_SLOPE_GRADE,
     Backward,
     Curve,
     Escalator,
     Freeze,
+    Lie,
     Lift,
     Pivot,
     Segment,
@@ -51,7 +54,7 @@ from pdrlearn.sim.ride import check_rise
 from pdrlearn.sim.user import GAITS
 
 ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "pivot", "stand", "sit", "lift",
-               "escalator", "trolley", "side", "freeze")
+               "escalator", "trolley", "side", "freeze", "lie")
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
 
 
@@ -149,6 +152,12 @@ def parse_route(spec: str) -> list[Segment]:
             acc = _number(item, parts[3]) if len(parts) > 3 else None
             seg = Freeze(_number(item, parts[1]), hz, acc)
             check_freeze(seg.duration_s, hz, acc, f"--route item {item!r}")
+            segments.append(seg)
+        elif kind == "lie":  # decisions S58, S59: the planner's limits, named after the item
+            _arity(item, parts, (1, 2))
+            rate = _number(item, parts[2], positive=False) if len(parts) > 2 else None
+            seg = Lie(_number(item, parts[1]), rate)
+            check_lie(seg.duration_s, rate, f"--route item {item!r}")
             segments.append(seg)
         elif kind == "sit":
             _arity(item, parts, (1,))

@@ -41,6 +41,7 @@ from pdrlearn.sim.kernels import (
     earth_field_enu,
     specific_force_body,
 )
+from pdrlearn.sim.lying import LyingEpisode, lying_angles, lying_rotation, lying_table, roll_table
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
 from pdrlearn.sim.ride import Ride, ride_offset, ride_table
 from pdrlearn.sim.scenarios import SCENARIOS
@@ -290,7 +291,8 @@ def simulate_path(
     Session with the eight PLASYS streams, ``steps`` (strides of the instrumented foot: the right, or the left with
     ``instrumented_foot="left"``, S54), ``trajectory`` (waist
     unit, ENU), ``extras["ics"]`` (initial contacts of both feet), ``extras["foot_trajectory"]`` and, for a
-    path with :class:`~pdrlearn.sim.path.Sit`, ``extras["transfers"]`` (sit-down start to stand-up end, S36).
+    path with :class:`~pdrlearn.sim.path.Sit`, ``extras["transfers"]`` (sit-down start to stand-up end, S36); for a
+    path with :class:`~pdrlearn.sim.path.Lie` also ``extras["lying"]`` and ``extras["rolls"]`` (S58, S59).
     """
     if speed not in SPEEDS:
         raise DataError(f"speed {speed!r}: must be one of {', '.join(SPEEDS)}")
@@ -319,7 +321,8 @@ def simulate_path(
     )
     rides = [e for e in transfers if isinstance(e, Ride)]  # decision S45: lifts and escalators
     freezes = [e for e in transfers if isinstance(e, FreezeEpisode)]  # decision S51: trembling in place
-    transfers = [e for e in transfers if not isinstance(e, Ride | FreezeEpisode)]
+    lyings = [e for e in transfers if isinstance(e, LyingEpisode)]  # decision S58: lying inside a bed-edge sit
+    transfers = [e for e in transfers if not isinstance(e, Ride | FreezeEpisode | LyingEpisode)]
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     # decision S43: seated at the start (then a stand-up before the standstill) and / or at the end (own stream)
     sit0, sit1 = ((None, None) if not (opt["sit_start_s"] or opt["sit_end_s"]) else session_sits(
@@ -334,6 +337,7 @@ def simulate_path(
     sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
     ride_starts = transfer_starts(rides, ev.rest, lead + stand)  # decision S45: as a transfer's
     freeze_starts = transfer_starts(freezes, ev.rest, lead + stand)  # decision S51: as a transfer's
+    lying_starts = transfer_starts(lyings, ev.rest, lead + stand)  # decision S58: as a transfer's
     if sit0 or sit1:  # decision S43
         ends = session_sit_starts(sit0, sit1, total_s)
         transfers = [*([sit0] if sit0 else []), *transfers, *([sit1] if sit1 else [])]
@@ -342,9 +346,10 @@ def simulate_path(
     k_fine = OVERSAMPLE * k_out
     fine_rate = INTERNAL_RATE_HZ * OVERSAMPLE
     n_out = int(math.floor(total_s * rate_hz)) + 1
-    t = (np.arange(n_out * k_fine) - 0.5 * (k_fine - 1)) / fine_rate
+    # decision S62: the 500 Hz grid is never held whole: its parts are made where they are used (same values)
+    t = _FineGrid(n_out * k_fine, 0.5 * (k_fine - 1), fine_rate)
     dt = 1.0 / fine_rate
-    t100 = block_mean(t, OVERSAMPLE)
+    t100 = t.block_means(OVERSAMPLE)
     t_out = block_mean(t100, k_out)
 
     # -- foot unit (the right foot, S1, or the left, S54) --
@@ -364,7 +369,8 @@ def simulate_path(
             return heel + rot @ r_sensor + ride_offset(tt, rides, ride_starts), rot
         return heel + rot @ r_sensor, rot
 
-    f_body, w_body, pf100, Rf100 = _unit_motion(t, foot_unit, dt)  # decision S44: in parts of the 500 Hz grid
+    # decision S44: in parts of the 500 Hz grid; S62: the foot's pose kept at the output samples only
+    f_body, w_body, pf_out, Rf_out = _unit_motion(t, foot_unit, dt, pose_every=k_out)
     # mounting: the user's few-degree misalignment, optionally on top of a deliberate toes-down tilt
     # (an instep mount like the real gaitmap stair recordings is pitched ~50 deg)
     mis_f = _misalignment([0.0, float(opt["foot_mount_pitch_deg"]), 0.0]) @ _misalignment(user.foot_misalignment_deg)
@@ -394,6 +400,14 @@ def simulate_path(
         sn.force_readout(np.zeros_like(load_h), s_rng, noise=noise)
         sn.force_readout(np.zeros_like(load_t), s_rng, noise=noise)
 
+    def out(x: np.ndarray) -> np.ndarray:  # the output rate
+        return block_mean(x, k_out)
+
+    # decision S62: each 100 Hz reading goes to the output rate as soon as it is drawn (same values, the draws in
+    # the same order), so the 100 Hz arrays of one unit are freed before the next unit's are made
+    acc_f, gyr_f, force_a, force_b = out(acc_f), out(gyr_f), out(force_a), out(force_b)
+    del f_body, w_body, load_h, load_t
+
     # -- waist unit (front of the belt) --
     r_waist = np.array([0.12, 0.0, 0.0])
     trunk = float(opt["variability"]) if noise else 0.0  # exact physics (noise=False): no trunk vibration
@@ -420,11 +434,14 @@ def simulate_path(
         )
         if freezes:  # decision S51: the pelvis trembles with the legs
             p_pel = p_pel + freeze_pelvis(tt, freezes, freeze_starts)
+        if lyings:  # decisions S58, S59: lying down on the bed, turning over, sitting up (body frame)
+            p_pel, rot = _lie_down(tt, p_pel, rot, lyings, lying_starts)
         if rides:  # decision S45: the ride, and the standing passenger's small sway (with the trunk's vibration)
             return p_pel + rot @ r_waist + ride_offset(tt, rides, ride_starts, sway=trunk > 0), rot
         return p_pel + rot @ r_waist, rot
 
     fw_body, ww_body, p_w100, R_p100 = _unit_motion(t, waist_unit, dt)  # decision S44
+    heading_out = _yaw_of(R_p100[k_out // 2 :: k_out][:n_out])
     mis_w = _misalignment(list(opt["waist_mount_deg"])) @ _misalignment(user.waist_misalignment_deg)  # S34
     waist_mis_deg = (user.waist_misalignment_deg if not any(opt["waist_mount_deg"]) else
                      [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_w).as_rotvec())])
@@ -433,6 +450,8 @@ def simulate_path(
         _to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise, device_rng=unit("wAccelerometer")
     )
     gyr_w, e_gw = sn.imu_readout(_to_sensor(ww_body, waist_m, mis_w), sn.WAIST_GYR, s_rng, noise=noise)
+    acc_w, gyr_w = out(acc_w), out(gyr_w)  # decision S62
+    del fw_body, ww_body
     b_enu = earth_field_enu(
         float(opt["mag_field_ut"]), float(opt["mag_inclination_deg"]), float(opt["mag_declination_deg"])
     )
@@ -442,7 +461,10 @@ def simulate_path(
         coarse = sn.field_disturbance(p_w100[::10], env_rng, float(opt["mag_disturbance_ut"]))
         dist = np.column_stack([np.interp(t100, t100[::10], coarse[:, j]) for j in range(3)])
     b_body = np.einsum("nji,nj->ni", R_p100, b_enu[None, :] + dist)
+    del R_p100, dist  # decision S62
     mag_w, e_m = sn.magnetometer_readout(_to_sensor(b_body, waist_m, mis_w), s_rng, noise=noise)
+    mag_w = out(mag_w)
+    del b_body
     p0 = float(env_rng.uniform(*sn.BARO_P0_RANGE)) if noise else STANDARD_P0_HPA
     baro, e_b = sn.barometer_readout(
         pressure_hpa(sn.BUILDING_ALTITUDE_M + p_w100[:, 2], p0),
@@ -451,11 +473,10 @@ def simulate_path(
         noise=noise,
         drift_hpa_per_h=float(opt["baro_drift_hpa_per_h"]),
     )
+    baro, pw_out = out(baro), block_mean(p_w100, k_out)  # decision S62
+    del p_w100
 
     # -- output rate, clocks, dropped packets --
-    def out(x: np.ndarray) -> np.ndarray:
-        return block_mean(x, k_out)
-
     foot_keep = np.ones(n_out, dtype=bool)
     drop_rate = float(opt["drop_rate"])
     if drop_rate > 0:
@@ -464,24 +485,22 @@ def simulate_path(
     drift = float(opt["clock_drift_ppm"]) * 1e-6
     t_waist = t_out * (1.0 + drift) + float(opt["clock_offset_s"])
     streams = {
-        "fAccelerometer": Stream("fAccelerometer", t_out[foot_keep], out(acc_f)[foot_keep]),
-        "fGyroscope": Stream("fGyroscope", t_out[foot_keep], out(gyr_f)[foot_keep]),
-        "fForceA": Stream("fForceA", t_out[foot_keep], out(force_a)[foot_keep]),
-        "fForceB": Stream("fForceB", t_out[foot_keep], out(force_b)[foot_keep]),
-        "wAccelerometer": Stream("wAccelerometer", t_waist, out(acc_w)),
-        "wGyroscope": Stream("wGyroscope", t_waist, out(gyr_w)),
-        "wMagneticField": Stream("wMagneticField", t_waist, out(mag_w)),
-        "wBarometer": Stream("wBarometer", t_waist, out(baro)),
+        "fAccelerometer": Stream("fAccelerometer", t_out[foot_keep], acc_f[foot_keep]),
+        "fGyroscope": Stream("fGyroscope", t_out[foot_keep], gyr_f[foot_keep]),
+        "fForceA": Stream("fForceA", t_out[foot_keep], force_a[foot_keep]),
+        "fForceB": Stream("fForceB", t_out[foot_keep], force_b[foot_keep]),
+        "wAccelerometer": Stream("wAccelerometer", t_waist, acc_w),
+        "wGyroscope": Stream("wGyroscope", t_waist, gyr_w),
+        "wMagneticField": Stream("wMagneticField", t_waist, mag_w),
+        "wBarometer": Stream("wBarometer", t_waist, baro),
     }
 
     # -- ground truth --
-    pw_out = block_mean(p_w100, k_out)
-    heading_out = _yaw_of(R_p100[k_out // 2 :: k_out][:n_out])
     trajectory = pd.DataFrame(
         {"t": t_out, "x": pw_out[:, 0], "y": pw_out[:, 1], "z": pw_out[:, 2], "heading_rad": heading_out}
     )
-    q = Rotation.from_matrix(Rf100[k_out // 2 :: k_out][:n_out]).as_quat()  # x, y, z, w
-    pf_out = pf100[k_out // 2 :: k_out][:n_out]
+    q = Rotation.from_matrix(Rf_out[:n_out]).as_quat()  # x, y, z, w
+    pf_out = pf_out[:n_out]
     foot_traj = pd.DataFrame(
         {
             "t_s": t_out,
@@ -513,6 +532,12 @@ def simulate_path(
     if freezes:  # decision S51: only sessions with a freeze have the table
         extras["freezes"] = pd.DataFrame(freeze_table(freezes, freeze_starts))
         extras["freezes"].attrs["time_columns"] = ["start_s", "end_s"]
+    if lyings:  # decision S58: only sessions with a lie have lying.csv and rolls.csv (S59)
+        extras["lying"] = pd.DataFrame(lying_table(lyings, lying_starts))
+        extras["lying"].attrs["time_columns"] = ["start_s", "lying_s", "rise_s", "end_s"]
+        extras["rolls"] = pd.DataFrame(roll_table(lyings, lying_starts),
+                                       columns=["start_s", "end_s", "from_posture", "to_posture", "angle_deg"])
+        extras["rolls"].attrs["time_columns"] = ["start_s", "end_s"]
 
     meta = {
         "session": name,
@@ -566,26 +591,76 @@ def simulate_path(
     )
 
 
-def _unit_motion(t: np.ndarray, pose, dt: float, chunk: int | None = None) -> tuple[np.ndarray, ...]:
+class _FineGrid:
+    """Decision S62: the 500 Hz time grid ``(arange(n) - offset) / rate`` without holding it: ``grid[lo:hi]`` makes a
+    part (the same float64 values as the whole array's slice: the same elementwise arithmetic)."""
+
+    def __init__(self, n: int, offset: float, rate: float):
+        self.size, self.offset, self.rate = int(n), float(offset), float(rate)
+
+    def __getitem__(self, key):
+        if isinstance(key, slice):
+            lo, hi, step = key.indices(self.size)
+            return (np.arange(lo, hi, step) - self.offset) / self.rate
+        i = range(self.size)[key]
+        return float((np.arange(i, i + 1) - self.offset)[0] / self.rate)
+
+    def block_means(self, k: int, chunk: int = 1_000_000) -> np.ndarray:
+        """:func:`block_mean` of the whole grid, made in parts of whole blocks (each block's mean is its own)."""
+        n = self.size // k * k
+        size = max(chunk // k, 1) * k
+        return np.concatenate([block_mean(self[a:min(a + size, n)], k) for a in range(0, n, size)])
+
+
+def _unit_motion(t: _FineGrid, pose, dt: float, chunk: int | None = None,
+                 pose_every: int = 1) -> tuple[np.ndarray, ...]:
     """Decision S44: a unit's 100 Hz specific force and angular rate (block means of the 500 Hz ones), and its
     position and orientation at the middle of each 100 Hz block, from ``pose(times) -> (positions (n, 3),
     rotations (n, 3, 3))`` evaluated on parts of :data:`FINE_CHUNK` samples of the 500 Hz grid ``t`` (one more
     sample on each inner side for the differences), so that the grid's poses are never all held at once. Every value
     is the one the whole grid gives: the kernels are pointwise but for the differences, whose edge samples are
-    dropped (``tests/test_sim_memory.py``)."""
+    dropped (``tests/test_sim_memory.py``).
+
+    Decision S62: the outputs are filled in place (no list of parts and a concatenated copy), and ``pose_every = k``
+    keeps the pose only at the 100 Hz samples ``k // 2, k // 2 + k, ...`` (the middle of each output block: the
+    foot's ground truth needs no more)."""
     n, size = t.size, (chunk or FINE_CHUNK) // OVERSAMPLE * OVERSAMPLE
-    parts: list[list[np.ndarray]] = [[], [], [], []]
+    n100 = n // OVERSAMPLE
+    n_pose = len(range(pose_every // 2, n100, pose_every))
+    force, rate = np.empty((n100, 3)), np.empty((n100, 3))
+    where, turn = np.empty((n_pose, 3)), np.empty((n_pose, 3, 3))
     for a in range(0, n, size):
         b = min(a + size, n)
         lo, hi = max(a - 1, 0), min(b + 1, n)
         pos, rot = pose(t[lo:hi])
         keep = slice(a - lo, a - lo + b - a)
-        mid = slice(a - lo + OVERSAMPLE // 2, a - lo + b - a, OVERSAMPLE)
-        parts[0].append(block_mean(specific_force_body(pos, rot, dt)[keep], OVERSAMPLE))
-        parts[1].append(block_mean(angular_rate_body(rot, dt)[keep], OVERSAMPLE))
-        parts[2].append(pos[mid].copy())
-        parts[3].append(rot[mid].copy())
-    return tuple(np.concatenate(p) for p in parts)
+        i0, i1 = a // OVERSAMPLE, b // OVERSAMPLE
+        force[i0:i1] = block_mean(specific_force_body(pos, rot, dt)[keep], OVERSAMPLE)
+        rate[i0:i1] = block_mean(angular_rate_body(rot, dt)[keep], OVERSAMPLE)
+        first = i0 + (pose_every // 2 - i0) % pose_every  # the first kept 100 Hz sample of this part
+        mid = slice(a - lo + (first - i0) * OVERSAMPLE + OVERSAMPLE // 2, a - lo + b - a, OVERSAMPLE * pose_every)
+        j0 = (first - pose_every // 2) // pose_every
+        m = len(range(first, i1, pose_every))
+        where[j0:j0 + m] = pos[mid]
+        turn[j0:j0 + m] = rot[mid]
+    return force, rate, where, turn
+
+
+def _lie_down(t: np.ndarray, p_pel: np.ndarray, rot: np.ndarray, lyings: list, starts: np.ndarray):
+    """Decision S58: the seated pelvis ``(p_pel, rot)`` lain down: rotated in its own frame by
+    :func:`~pdrlearn.sim.lying.lying_rotation` and slid back onto the bed along the walker's heading."""
+    unrecline, yaw, pitch, roll, back = lying_angles(t, lyings, starts)
+    moving = (unrecline != 0) | (yaw != 0) | (pitch != 0) | (roll != 0) | (back != 0)
+    if not moving.any():
+        return p_pel, rot
+    rot, p_pel = rot.copy(), p_pel.copy()
+    rot[moving] = rot[moving] @ lying_rotation(unrecline[moving], yaw[moving], pitch[moving], roll[moving])
+    heading = np.zeros_like(t)
+    for ep, t0 in zip(lyings, starts, strict=True):
+        heading[(t >= t0) & (t <= t0 + ep.total_s)] = ep.heading_rad
+    p_pel[:, 0] -= back * np.cos(heading)
+    p_pel[:, 1] -= back * np.sin(heading)
+    return p_pel, rot
 
 
 def _yaw_of(R: np.ndarray) -> np.ndarray:

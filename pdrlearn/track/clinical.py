@@ -733,7 +733,8 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
     if "unit" in steps and len(steps) and (steps["unit"] == "foot").all() or "stride_time_s" in steps:
         out["reason"] = ("not observable from one foot's unit: a step time runs from one foot's contact to the "
                          "other foot's; use a unit on each foot (pdrlearn gait LEFT_DIR RIGHT_DIR, "
-                         "decision L259) or a lower-back unit")
+                         "decision L259) or a lower-back unit (pdrlearn track DIR --pipeline waist-pendulum; "
+                         "decision L316)")
         return out
     from pdrlearn.track.gait import waist_step_times
 
@@ -757,7 +758,32 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
 #: decision W228: the per-leg keys of every summary (None where the table cannot give them): the lower back's steps
 #: by ``side`` (W129's sway side; ``""`` undecided) and :func:`step_time_asymmetry_report`'s figures
 LEG_KEYS = ("n_steps_left", "n_steps_right", "n_steps_side_undecided", "step_time_asymmetry_pct",
-            "step_time_asymmetry_raw_pct", "n_step_time_asymmetry_steps", "step_time_asymmetry_reason")
+            "step_time_asymmetry_raw_pct", "n_step_time_asymmetry_steps", "step_time_asymmetry_reason",
+            "step_time_s_left", "step_time_s_right", "step_time_s_ratio")  # W250: the asymmetry's direction
+
+
+def side_step_times(steps: pd.DataFrame) -> dict:
+    """Decision W250: the lower back's mean step time onto each foot - the step ending at a contact of that side
+    (W129's ``side``), from the previous contact of its walking sequence (:func:`pdrlearn.track.gait.waist_step_times`:
+    no step time across a pause or through a W27 fragment) - as ``pdrlearn gait``'s ``step_time_s_left`` /
+    ``_right`` (the step landing on that foot, L259; means, as gait's) and ``step_time_s_ratio`` = left / right
+    (Patterson et al. 2010, gait's convention). Each side's mean needs :data:`ASYMMETRY_MIN_STEPS` step times, else
+    None; the ratio is given only with both."""
+    from pdrlearn.track.gait import waist_step_times
+
+    out = {"step_time_s_left": None, "step_time_s_right": None, "step_time_s_ratio": None}
+    if len(steps) < 2 or "side" not in steps:
+        return out
+    step_s, _, _ = waist_step_times(steps)
+    onto = steps["side"].fillna("").astype(str).to_numpy()[1:]  # the step from contact k - 1 lands at contact k
+    prev = step_s[:-1]
+    for s in ("left", "right"):
+        x = prev[(onto == s) & np.isfinite(prev)]
+        if len(x) >= ASYMMETRY_MIN_STEPS:
+            out[f"step_time_s_{s}"] = float(np.mean(x))
+    if out["step_time_s_left"] is not None and out["step_time_s_right"] is not None:
+        out["step_time_s_ratio"] = out["step_time_s_left"] / out["step_time_s_right"]
+    return out
 
 
 def leg_summary(steps: pd.DataFrame) -> dict:
@@ -777,6 +803,7 @@ def leg_summary(steps: pd.DataFrame) -> dict:
         side = steps["side"].fillna("").astype(str).to_numpy()
         out["n_steps_left"], out["n_steps_right"] = int((side == "left").sum()), int((side == "right").sum())
         out["n_steps_side_undecided"] = int(len(side) - out["n_steps_left"] - out["n_steps_right"])
+        out.update(side_step_times(steps))  # decision W250
     return out
 
 

@@ -223,13 +223,15 @@ def _climb_runs(dz, storey_height_m: float, band: float, bridge: int, slope: boo
 CLIMB_KINDS = ("stairs", "ramps", "rides")
 
 
-def climb_kind(dz, pause_dz, length, rows) -> str:
+def climb_kind(dz, pause_dz, length, rows, on_stairs=None) -> str:
     """Decision L302: what climbed one climb of :func:`floor_climbs` (its ``rows``, first to last stair row, of the
     rows' walking height change ``dz``, standstill change ``pause_dz`` (W158) and horizontal ``length``): ``"rides"``
     when the standstills from its first to its last stair row carry more than half its height (a lift or escalator
     ride), ``"ramps"`` when its stair rows' rise over their horizontal run is under
     :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` (a ramp or a hill, not a stair), else ``"stairs"`` - the stair
-    rows alone, as a landing's and a U-turn's bridged rows would flatten a stairwell (L302's measurement)."""
+    rows alone, as a landing's and a U-turn's bridged rows would flatten a stairwell (L302's measurement).
+    Decision L314: a climb of which more than half the stair rows are ``on_stairs`` (a lower-back track's W108 climbs,
+    :func:`pdrlearn.track.grade.climb_rows`) is "stairs" (or "rides"), whatever its grade."""
     from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
 
     rows = np.asarray(rows, dtype=int)
@@ -237,6 +239,8 @@ def climb_kind(dz, pause_dz, length, rows) -> str:
     walked, ride = float(np.sum(dz[span])), float(np.sum(pause_dz[span]))
     if abs(ride) > abs(walked + ride) / 2:
         return "rides"
+    if on_stairs is not None and 2 * int(np.count_nonzero(np.asarray(on_stairs, bool)[rows])) > len(rows):
+        return "stairs"  # decision L314
     run = float(np.sum(np.abs(length[rows])))
     return "ramps" if run > 0 and 100.0 * abs(float(np.sum(dz[rows]))) / run < STAIR_MIN_GRADE_PCT else "stairs"
 
@@ -260,8 +264,11 @@ def ramp_climb_rows(steps: pd.DataFrame) -> np.ndarray:
     if dz is None:
         return out
     walked, pause, length = _climb_inputs(steps)
+    from pdrlearn.track.grade import climb_rows
+
+    on_stairs = climb_rows(steps)  # decision L314
     for rows, _ in _climb_runs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True):
-        if climb_kind(walked, pause, length, rows) == "ramps":
+        if climb_kind(walked, pause, length, rows, on_stairs) == "ramps":
             out[int(rows[0]):int(rows[-1]) + 1] = True
     return out
 
@@ -276,8 +283,11 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
         return out
     out.update({k: 0 for k in out})
     walked, pause, length = _climb_inputs(steps)
+    from pdrlearn.track.grade import climb_rows
+
+    on_stairs = climb_rows(steps)  # decision L314
     for rows, n in _climb_runs(dz, storey_height_m, STOREY_BAND, bridge, None):
-        key = f"floors_{'up' if n > 0 else 'down'}_{climb_kind(walked, pause, length, rows)}"
+        key = f"floors_{'up' if n > 0 else 'down'}_{climb_kind(walked, pause, length, rows, on_stairs)}"
         out[key] += abs(n)
     return out
 
@@ -416,6 +426,25 @@ def backward_strides(steps: pd.DataFrame) -> int | None:
     return None if flag is None else int(flag.sum())
 
 
+def backward_gait(steps: pd.DataFrame) -> dict:
+    """Decision L326 (trial 31 finding 9): ``median_backward_stride_length_m`` (median |``length_m``| of the
+    :func:`backward_travel` strides) and ``median_backward_speed_mps`` (median ``speed_mps`` of those with one, L66);
+    None without backward strides, on a lower-back track, or without the column. ``median_stride_length_m`` and
+    ``gait_speed_mps`` keep pooling both ways."""
+    flag = backward_travel(steps)
+    out: dict = {"median_backward_stride_length_m": None, "median_backward_speed_mps": None}
+    if flag is None or not flag.any():
+        return out
+    back = steps[flag]
+    length = np.abs(back["length_m"].to_numpy(float)) if "length_m" in back else np.array([])
+    speed = back["speed_mps"].to_numpy(float) if "speed_mps" in back else np.array([])
+    if np.isfinite(length).any():
+        out["median_backward_stride_length_m"] = float(np.nanmedian(length))
+    if np.isfinite(speed).any():
+        out["median_backward_speed_mps"] = float(np.nanmedian(speed))
+    return out
+
+
 def side_strides(steps: pd.DataFrame) -> int | None:
     """Decision L270: ``n_side_strides``, the foot track's strides of side-stepping runs (L219 / L228's
     ``sideways``, a streamed table's runs whole, L243), which ``n_backward_strides`` leaves out; None where
@@ -444,6 +473,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     add_backward_travel(result.steps)  # decision L224: steps.csv's per-row form of the count below
     out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
     out["n_side_strides"] = side_strides(result.steps)  # decision L270: side steps, no backward travel
+    out.update(backward_gait(result.steps))  # decision L326: the backward strides' own length and speed
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
     if last is not None and "lat" in tr:

@@ -415,6 +415,25 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     return out
 
 
+def stance_share_warning(steps: pd.DataFrame) -> str | None:
+    """Decision L315: ``track --toe-off``'s one warning line when the foot's median ``stance_pct`` (L73) is under
+    L285's :data:`pdrlearn.track.bilateral.STANCE_MIN_PCT` (the same bound ``pdrlearn gait`` warns on): implausible
+    for walking, the toe-off (or the contact) misread. None without the column, with fewer than L123's
+    :data:`MIN_STRAIGHT_FOR_RANGE` stance times, or at or above the bound."""
+    from pdrlearn.track.bilateral import STANCE_MIN_PCT
+
+    if "stance_pct" not in steps:
+        return None
+    pct = steps["stance_pct"].to_numpy(float)
+    pct = pct[np.isfinite(pct)]
+    if len(pct) < MIN_STRAIGHT_FOR_RANGE or float(np.median(pct)) >= STANCE_MIN_PCT:
+        return None
+    return (f"toe-off: median stance {float(np.median(pct)):.1f} % of the gait cycle over {len(pct)} strides, under "
+            f"{STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decisions L285, L315): the toe-off reads early "
+            "or the contact late (a soft, low-impact foot such as a prosthesis moves the contact), so "
+            "median_stance_time_s, median_swing_time_s and median_stance_pct are not measured values here")
+
+
 def gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> dict:
     """Medians over the strides that have them: ``median_stride_time_s``, ``median_cadence_spm``,
     ``median_speed_mps`` and ``n_stride_times`` (how many strides have a stride time); decision L79 adds
@@ -659,13 +678,13 @@ def _unreliable(summary: dict, info: dict, slow: bool) -> str:
             and info.get("classes_source") is None)
     if slow and foot:
         return (f"the offline foot distance (ZUPT strides) stays usable ({SLOW_FOOT_DISTANCE}, no model; decision "
-                "L247), but the floors and any terrain / length classes are not validated at this speed")
+                "L247), but the floors and any terrain / direction / length classes are not validated at this speed")
     if slow and info.get("params_source") == "calibrated" and info.get("calibration_covers_cadence") is True:
         # decision W227: the walker calibrated on walks at this cadence (W211's range +-10 % covers it)
         return ("the distance and speed are calibrated at this gait (this walk's cadence lies inside the lower-back "
-                "calibration walks' cadence range +-10 %, decisions W211, W227), but the terrain / length classes "
-                "and the floors are not validated at this speed")
-    return "the distance, the terrain / length classes and the floors are not reliable"
+                "calibration walks' cadence range +-10 %, decisions W211, W227), but the terrain / direction / "
+                "length classes and the floors are not validated at this speed")
+    return "the distance, the terrain / direction / length classes and the floors are not reliable"
 
 
 def bout_range_flags(table, leg_m: float | None) -> np.ndarray:

@@ -96,7 +96,7 @@ def along_slope_m(length, dz) -> float:
 
 def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE_PCT,
               stair_grade_pct: float = STAIR_MIN_GRADE_PCT, min_run_m: float = RAMP_MIN_RUN_M,
-              landing_max_m: float = LANDING_MAX_M) -> list[dict]:
+              landing_max_m: float = LANDING_MAX_M, on_stairs=None) -> list[dict]:
     """Decision L301: the ramps of rows (horizontal ``length`` m, height change ``dz`` m, walking order) - a pure
     kernel. A row is a ramp row of sign s when the grade of the centred ``window`` rows around it (their summed dz
     over their summed |length|) is at least ``min_grade_pct`` in size, under ``stair_grade_pct`` (steeper: a stair),
@@ -104,7 +104,9 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     ``min_run_m`` of horizontal length are a run; runs of one sign separated by at most ``landing_max_m`` of rows
     that are no ramp rows of the other sign or stair rows are one ramp, the rows between them its landings. Each
     ramp: its first and last row (``first``, ``last``), ``runs`` (``(first, last)`` per run) and the table's
-    numbers (:data:`RAMP_COLUMNS` but ``ramp`` and the times)."""
+    numbers (:data:`RAMP_COLUMNS` but ``ramp`` and the times). ``on_stairs`` (decision L314; None: none): rows known to
+    be on stairs whatever their grade - a lower-back track's W108 climbs, whose pendulum lengths read a stair's
+    riser over a long step - are stair rows."""
     length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
     n = len(length)
@@ -117,6 +119,8 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     g = np.where(wl > 0, 100.0 * wz / np.where(wl > 0, wl, 1.0), 0.0)
     own = np.where(length >= GRADE_MIN_LENGTH_M, 100.0 * dz / np.where(length > 0, length, 1.0), np.inf)
     stair = np.abs(own) >= stair_grade_pct
+    if on_stairs is not None:  # decision L314
+        stair |= np.asarray(on_stairs, dtype=bool)
     sign = np.where((np.abs(g) >= min_grade_pct) & (np.abs(g) < stair_grade_pct) & ~stair
                     & (length >= GRADE_MIN_LENGTH_M), np.sign(g), 0).astype(int)
     runs = sorted((a, b - 1, s) for s in (1, -1) for a, b in signal_runs(sign == s)
@@ -158,11 +162,22 @@ def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
     dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
     unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
     rows = []
-    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1)), start=1):
+    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps)),
+                          start=1):
         rows.append({"ramp": k, "start_s": float(steps["start_s"].iloc[r["first"]]),
                      "end_s": float(steps["end_s"].iloc[r["last"]]),
                      **{c: r[c] for c in RAMP_COLUMNS if c in r}})
     return pd.DataFrame(rows, columns=list(RAMP_COLUMNS))
+
+
+def climb_rows(steps: pd.DataFrame) -> np.ndarray | None:
+    """Decision L314: the rows a lower-back track's W108 puts on stairs (steps.csv's ``climb``: inside a barometric
+    climb of 1.5 m or more, the steps its "N steps are on stairs" warning counts), None without the column (a foot
+    track: its strides' own grade tells a stair). No ramp is made of them (:func:`ramp_runs`) and no climb of
+    them is "ramps" (:func:`pdrlearn.track.evaluate.climb_kind`)."""
+    if "climb" not in steps:
+        return None
+    return steps["climb"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy(bool)
 
 
 def grade_summary(steps: pd.DataFrame, info: dict | None) -> dict:

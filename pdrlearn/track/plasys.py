@@ -357,10 +357,12 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
         from pdrlearn.classify import load_model
 
         model = load_model(model)
-    from pdrlearn.classify import UserModel
-
     # decision C51: the strides are cut already; C18's rate line is the tracker's own warning (rate_check)
-    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False) if isinstance(model, UserModel)
+    from pdrlearn.classify import UserModel, domain
+
+    # decision C71: the joint domain score only when its option is on (it failed its adoption rule)
+    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False, joint_domain=domain.JOINT_DEFAULT)
+            if isinstance(model, UserModel)
             else model.predict_steps(session, steps)).reset_index(drop=True)
     if len(pred) != len(steps):
         raise ModelError(f"model predicted {len(pred)} rows for {len(steps)} strides")
@@ -1136,6 +1138,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     rule_classes = _confident(classes, gate) if cfg["rules"] else classes.assign(terrain="flat")
     applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
+    if clamp and rules == "thesis" and not (isinstance(model, str) and model == "oracle"):  # decision L325
+        from pdrlearn.displace.rules import doubled_lengths_line
+
+        keep = ~np.asarray(in_gap, bool)
+        line = doubled_lengths_line(np.hypot(disp[keep, 0], disp[keep, 1]), length[keep],
+                                    rule_classes["length_class"].to_numpy(dtype=object)[keep]
+                                    if "length_class" in rule_classes else np.full(int(keep.sum()), None))
+        warnings += [line] if line else []
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
     raw_dz = dz
     if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)
@@ -1248,6 +1258,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         tc = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
     add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
                      turn_valid=~in_gap)  # L109: a stride moved 0 m by the guard keeps its measured turn
+    if toe_off:  # decision L315: L285's stance bound on one foot's track
+        from pdrlearn.track.gait import stance_share_warning
+
+        line = stance_share_warning(table)
+        if line:
+            warnings.append(line)
     table["impossible"] = impossible  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = longest_gap_in(table["start_s"], table["end_s"], foot_gaps)  # decision L67 (run's E37)
     table = table[[c for c in table.columns if c != "unit"] + ["unit"]]  # gap_s before unit, as run's steps.csv

@@ -196,7 +196,7 @@ def add_position_sigma(result, session, regime: str | None = None) -> None:
     regime = regime or sigma_regime(result.info, session)
     params = sigma_params(regime)
     rest_s, rests = None, result.info.get("rest_bias_rests")
-    if rests is not None:  # decision L306: L296 was in force on this heading (the gyro one; not `run`'s live one)
+    if rests is not None:  # decision L306: L296 was in force on this heading (gyro; `run`'s live one: L309)
         from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
 
         rest_s = REST_BIAS_MIN_S  # decision L297: L296's rests turn the heading by their moving samples only

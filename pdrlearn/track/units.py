@@ -38,7 +38,17 @@ def keep_units(session: Session, units: tuple[str, ...] | None) -> Session:
         raise DataError(f"{session.where}: --units {','.join(units)}: the session has no {' or '.join(missing)} unit "
                         f"(it has: {has}); drop --units or name a unit it has")
     streams = {k: s for k, s in session.streams.items() if s.placement in units}
-    return dataclasses.replace(session, streams=streams)
+    left_out = {k: s for k, s in session.streams.items() if s.placement not in units}  # decision W253
+    return dataclasses.replace(session, streams=streams, _left_out={**session._left_out, **left_out})
+
+
+def with_left_out_units(session: Session) -> Session:
+    """Decision W253: the session with the streams ``--units`` left out (:func:`keep_units`) put back, for the
+    checks that read another unit's cues (W173's backward, L219's sideways warnings of a waist track); the session
+    itself when nothing was left out."""
+    if not session._left_out:
+        return session
+    return dataclasses.replace(session, streams={**session._left_out, **session.streams}, _left_out={})
 
 
 def tracked_unit(pipeline: str) -> str:

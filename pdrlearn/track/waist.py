@@ -42,6 +42,7 @@ from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
 from pdrlearn.track.sideways import sideways_warnings
+from pdrlearn.track.units import with_left_out_units
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.backward import backward_warnings
@@ -192,21 +193,12 @@ def _hold_jumps(steps: pd.DataFrame, z: np.ndarray, z_start: np.ndarray, z_raw: 
     :data:`~pdrlearn.kernels.barometer.MAX_STEP_DZ_M`; with ``hold`` (option ``step_bound``) they are held level
     (:func:`~pdrlearn.kernels.barometer.hold_step_jumps`; ``z_raw``, W174's, shifted alike). Returns ``(z, z_start,
     z_raw, number of such steps)``."""
-    from pdrlearn.kernels.barometer import MAX_STEP_DZ_M, hold_step_jumps
+    from pdrlearn.kernels.barometer import hold_step_jumps, step_jump_line
 
     z2, zs2, jumped = hold_step_jumps(z, z_start)
     if not jumped.any():
         return z, z_start, z_raw, 0
-    dz = (z[1:] - z_start)[jumped]
-    at = steps["end_s"].to_numpy(float)[jumped]
-    shown = ", ".join(f"{d:+.2f} m at {a:.1f} s" for d, a in zip(dz[:5], at[:5], strict=True))
-    done = ("held level (option step_bound): their change is left out of the altitude, the floors and the ascent"
-            if hold else "the altitude, floors and ascent include it; the option step_bound (PARAMS.json "
-            "\"options\") holds such steps level, though the pressure's return then reads as a climb")
-    warnings.append(f"{int(jumped.sum())} step(s) changed the barometric altitude by more than {MAX_STEP_DZ_M:.1f} m "
-                    f"each ({shown}{', ...' if len(dz) > 5 else ''}), {float(dz.sum()):+.2f} m in all: a walking "
-                    "step climbs a riser or two (0.15-0.18 m each), so these are pressure transients (a door, a "
-                    f"draught, wind), not climbs; {done} (decision W230)")
+    warnings.append(step_jump_line(z[1:] - z_start, steps["end_s"].to_numpy(float), hold=hold))
     if not hold:
         return z, z_start, z_raw, int(jumped.sum())
     return z2, zs2, z_raw - (z - z2), int(jumped.sum())
@@ -228,18 +220,13 @@ def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str], held=(
     return held_altitude(baro.t, baro.values[:, 0], t, held)
 
 
-#: decision W231: a drift of this much (m) or more left out across the rests is warned about (README: "a drift over
-#: 1 m is warned", L172's)
-PAUSE_DRIFT_WARN_M = 1.0
-
-
 def _pause_rides(baro, steps: pd.DataFrame, t0: float, z: np.ndarray, z_start: np.ndarray, z_raw: np.ndarray | None,
                  warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Decision W231: each pause's (W158's ``pause_dz_m``: from the previous step's end, or ``t0``, to the step's
     start) barometric change counts only where it is a ride (:func:`pdrlearn.kernels.pause_ride.pause_ride_dz`);
     the rest, drift across a long rest, is taken out of ``z``, ``z_start`` and ``z_raw`` (W174's ``transfer_dz_m``
-    unchanged), with one warning when it is :data:`PAUSE_DRIFT_WARN_M` or more in all."""
-    from pdrlearn.kernels.pause_ride import RIDE_WINDOW_S, pause_ride_dz
+    unchanged), with one warning (:func:`~pdrlearn.kernels.pause_ride.drift_line`)."""
+    from pdrlearn.kernels.pause_ride import RIDE_WINDOW_S, drift_line, pause_ride_dz
 
     ends = np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
     starts = steps["start_s"].to_numpy(float)
@@ -252,15 +239,9 @@ def _pause_rides(baro, steps: pd.DataFrame, t0: float, z: np.ndarray, z_start: n
     cum = np.concatenate([[0.0], np.cumsum(drop)])  # removed up to each step's end
     z, z_start = z - cum, z_start - cum[1:]
     z_raw = None if z_raw is None else z_raw - cum
-    long_ = np.flatnonzero(np.abs(drop) > 0)
-    total = float(drop.sum())
-    if abs(total) >= PAUSE_DRIFT_WARN_M or np.abs(drop).max() >= PAUSE_DRIFT_WARN_M:
-        worst = int(long_[np.argmax(np.abs(drop[long_]))])
-        warnings.append(
-            f"the barometric altitude drifted {total:+.2f} m across {len(long_)} rest(s) without steps (largest "
-            f"{drop[worst]:+.2f} m over the {starts[worst] - ends[worst]:.0f} s before {starts[worst]:.1f} s), too "
-            "slowly for a lift or escalator ride (a ride changes 1.5 m within 30 s): weather or room pressure, left "
-            "out of the altitude and the floors (decision W231)")
+    line = drift_line(drop, ends, starts)  # shared with the live tracker (decision E146)
+    if line:
+        warnings.append(line)
     return z, z_start, z_raw
 
 
@@ -491,6 +472,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
+                   "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "speed_check": True,  # W211
                    "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
@@ -507,6 +489,8 @@ SCOPED_OPTIONS = {
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "side_at_contact": ("the offline waist-pendulum with its own contact detector (W235)",
                         lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "fast_fill": ("the offline waist-pendulum with its own contact detector (W242)",
+                  lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
                     lambda pl, rt, m, det, stops: not rt),
     "vault_veto": ("the offline waist-pendulum (W119)",
@@ -604,7 +588,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
                 length_model=None, freeze_veto: bool | None = None,
-                freeze_index: bool | None = None, side_at_contact: bool | None = None) -> TrackResult:
+                freeze_index: bool | None = None, side_at_contact: bool | None = None,
+                fast_fill: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -736,6 +721,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     side_at_contact : pendulum, offline detector: the sequence rules read each candidate's W20 side at its initial
         contact instead of at its vertical maximum (decision W235, ``InitialContactDetector``'s ``side_at_contact``);
         default False
+    fast_fill : pendulum, offline detector: one contact where a gap between two kept contacts has room for exactly
+        one step and the vertical acceleration low-passed at twice the cut-off (5 Hz) has a maximum of its own there
+        (decision W242, ``InitialContactDetector``'s ``fast_fill``); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -776,7 +764,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
-             "side_at_contact": side_at_contact}
+             "side_at_contact": side_at_contact, "fast_fill": fast_fill}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -884,9 +872,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     rest_removed = steps.attrs.get("rest_bias_removed", [])
     rest_spans = steps.attrs.get("rest_bias_rests")  # decision L306
     steps = steps.assign(stairs=stairs)
-    warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
+    foot_cues = with_left_out_units(session)  # decision W253: a foot unit that --units left out still warns
+    warnings.extend(backward_warnings(steps, foot_cues))  # decision W173: backward steps are counted forward
     ev_s, len_s = steps["event_s"].to_numpy(float), steps["length_m"].to_numpy(float)
-    warnings.extend(sideways_warnings(session, lambda a, b: (  # decision L219: side steps are counted forward
+    warnings.extend(sideways_warnings(foot_cues, lambda a, b: (  # decision L219: side steps are counted forward
         "the lower-back pipelines count every step as forward distance, so the track's "
         f"{np.nansum(len_s[(ev_s >= a) & (ev_s <= b)]):.1f} m of steps over this span go along its heading, not "
         "sideways")))
@@ -921,6 +910,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     # decision W129: each contact's side; realtime: empty (W20's velocity is zero-phase over the whole recording)
     steps = steps.assign(side=np.full(len(steps), "", dtype=object) if realtime
                          else contact_sides(imu.t, imu.acc_ml, imu.fs, ev, v_at=v_at))
+    steps = steps.assign(climb=climbs)  # decision L314: W108's stair climbs, which no ramp is made of (grade.py)
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
@@ -1100,6 +1090,7 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
                                   rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]),
                                   realtime_shift=bool(o["realtime_contact_shift"]),  # W166: an option
                                   weak_fill=bool(o["weak_fill"]), side_at_contact=bool(o["side_at_contact"]),  # W235
+                                  fast_fill=bool(o["fast_fill"]),  # W242
                                   parity_fill="within" if o["parity_fill"] == "within" else bool(o["parity_fill"]))
 
 

@@ -144,6 +144,9 @@ class InitialContactDetector:
         side-filtered fills, W23, W28, W152) read each candidate maximum's side at its initial contact (W129's cue)
         instead of at the maximum (decision W235; off by default). The realtime detector and the learned stage
         ignore it (measured offline only)
+    fast_fill : offline, with ``rhythm`` and ``alternate``: one contact where a gap between two kept contacts has room
+        for exactly one step and the vertical acceleration low-passed at twice the cut-off (5 Hz) has a maximum of
+        its own there (decision W242; off by default). The realtime detector and the learned stage ignore it
 
     Attributes
     ----------
@@ -164,8 +167,9 @@ class InitialContactDetector:
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
                  min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False,
                  parity_fill: bool | str = "within", realtime_shift: bool = False,  # W159/W160: adopted by its rule
-                 side_at_contact: bool = False):  # W235
+                 side_at_contact: bool = False, fast_fill: bool = False):  # W235, W242
         self.side_at_contact = side_at_contact
+        self.fast_fill = fast_fill
         self.realtime = realtime
         self.realtime_shift = realtime_shift
         self.parity_fill = parity_fill
@@ -200,6 +204,7 @@ class InitialContactDetector:
         offline = not self.realtime and not self.learned
         shift = self.contact_shift and not self.learned and (not self.realtime or self.realtime_shift)  # W166
         return kw | {"contact_shift": bool(shift), "side_at_contact": bool(self.side_at_contact and offline),  # W235
+                     "fast_fill": bool(self.fast_fill and offline),  # W242
                      "weak_fill": bool(self.weak_fill and offline),
                      "parity_fill": self.parity_fill if offline and self.parity_fill else False}
 

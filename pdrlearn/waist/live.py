@@ -17,10 +17,10 @@ after a turning one), and its fragment merge (W27) the next step's duration. The
 step of the walking sequence so far (the steps known then, at most :data:`FRAGMENT_CONTEXT_STEPS`), not of the
 whole sequence, and a merge is never undone. Everything else is the replay's computation, so the steps and positions
 equal ``track_waist(session, pipeline="waist-pendulum", realtime=True)`` to rounding unless a W27 decision differs
-(``merge_fragments=False``: always) or an option of :data:`LIVE_UNAPPLIED_OPTIONS` is in force: by default
-W231's ``pause_ride`` and L296's ``rest_bias`` (decision E145), so across a pause over 30 s the live altitude keeps
-W158's whole barometric change and across a rest over 60 s the live heading integrates the bias (E107's line names
-them). State is bounded: the samples since the oldest step still pending, the rows of
+(``merge_fragments=False``: always) or an option of :data:`LIVE_UNAPPLIED_OPTIONS` is in force. L296's ``rest_bias``
+is applied live since decision L308, and W231's ``pause_ride`` where the PARAMS.json gives it true (E146): both are
+decided at the contact that ends the rest or pause (the step is reported after it anyway, W64), on the samples the
+tracker holds across it. State is bounded: the samples since the oldest step still pending, the rows of
 the open walking sequence (at most :data:`FRAGMENT_CONTEXT_STEPS`) and the W31 detector's 12 s window.
 
 Decision W65: the axis frame is given (``frame`` or ``meta`` as meta.json would declare it); without one it is
@@ -80,8 +80,11 @@ def live_options(p, warnings: list[str], **given) -> dict:
              "length_smoothing": None, "slow_turn_rps": None, "pivot_steps": None, "stairs_length": None,
              "pause_steps": None, "realtime_contact_shift": None,
              "freeze_index": None,  # W216: `run` computes the lower back's freeze index after the track, opt-in
+             "pause_ride": None, "rest_bias": None,  # decisions E146, L308: a bundle's options
              **given}
     o = resolve_options(p, given)
+    if given["pause_ride"] is None:  # decision E146: only as the PARAMS.json (or the caller) gives it
+        o["pause_ride"] = live_value("pause_ride", p.options)
     if o["pause_steps"] != CAUSAL_PAUSE_STEPS:  # W165: the live trackers apply W134's value, or none
         o["pause_steps"] = False
     if o["length_smoothing"] != "none":
@@ -114,9 +117,10 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "contact_model",  # W203: its features read the recording's medians
                           "freeze_veto",  # W214: the freeze index's 4 s window looks 2 s ahead
                           "side_at_contact",  # W235: the offline detector's sequence rules only
-                          # E145: the live tracker books a whole pause as pause_dz_m (W158, not W231's ride) and
-                          # integrates a whole rest (W72, not L296's rest bias); offline track applies both
-                          "pause_ride", "rest_bias",
+                          "fast_fill",  # W242: the offline detector's sequence rules only
+                          # E146: W231's ride is applied live only where the PARAMS.json gives pause_ride true (E146's
+                          # rule was not met for the default); L308 applies rest_bias live (E147: no longer named)
+                          "pause_ride",
                           "cadence_law")  # W240: measured, not adopted; an option of `pdrlearn track` only
 
 
@@ -156,9 +160,9 @@ def live_value(option: str, given: dict | None = None):
     where the offline default is ``"opposite"``); no stand veto (``False``, where the offline default is
     ``"walking"`` since W219; the walking stretches' bounce is known only offline, W189 / W218); ``contact_shift`` only
     with ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's
-    fill is the offline detector's only, where the default is ``"within"``); no ``pause_ride`` and no ``rest_bias``
-    (``False``: the runtime keeps W158's whole pause and W72's whole rest, E145); else the option's offline default
-    (E107)."""
+    fill is the offline detector's only, where the default is ``"within"``); ``pause_ride`` only as the PARAMS.json
+    gives it (E146: W231's ride is applied live when given true; not given: ``False``, W158's whole pause, where the
+    offline default is true); else the option's offline default (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
 
     given = given or {}
@@ -174,8 +178,8 @@ def live_value(option: str, given: dict | None = None):
         return bool(value("contact_shift")) and bool(value("realtime_contact_shift"))
     if option == "parity_fill":  # W159: InitialContactDetector.rule_settings keeps it offline only
         return False
-    if option in ("pause_ride", "rest_bias"):  # E145: W231 and L296 are offline only (runtime/waist.py)
-        return False
+    if option == "pause_ride":  # E146: applied live when the PARAMS.json gives it true, else W158's whole pause
+        return bool(given["pause_ride"]) if given.get("pause_ride") is not None else False
     return OPTION_DEFAULTS[option]
 
 
