@@ -309,6 +309,11 @@ SESSIONS: tuple[Column, ...] = (
     ("median_stand_to_sit_s", "s", "number", "lower back: median stand-to-sit duration (W182)"),
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
                                   "step, one sit after the last): the rise's start to the sit's end (W183)"),
+    ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes from 2 m to 12 m of the first "
+                                         "walking bout reaching 14 m, straight (L312); empty on a shorter or "
+                                         "turning walk (L313)"),
+    ("ten_m_walk_speed_mps", "m/s", "number", "10 m / ten_m_walk_time_s (L312)"),
+    ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); empty when there is one"),
     ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "
                                       "band power, 1 s or longer (W213); null on a lower-back track without the "
                                       "freeze_index option (W216: not measured)"),
@@ -615,6 +620,9 @@ GAIT_STEPS: tuple[Column, ...] = (
     ("step_time_s", "s", "number", "ic_s - start_s (L259)"),
     ("swing_time_s", "s", "number", "the landing foot's toe-off before ic_s to ic_s, one unit's clock (L284); "
                                     "empty without a toe-off"),
+    ("step_length_m", "m", "number", "the two feet's tracked rest positions at start_s and ic_s differenced along "
+                                     "the walking direction (L310); empty in a turn, off the walk's first axis, at "
+                                     "the closing step and for labelled contacts"),
 )
 #: ``pdrlearn gait``'s gait_cycles.csv (decisions L262, L287): one row per gait cycle of either foot
 GAIT_CYCLES: tuple[Column, ...] = (
@@ -639,6 +647,11 @@ GAIT_BOUTS: tuple[Column, ...] = (
     *_pair("stride_time_s", "s", "stride time (IC to IC, alternating cycles)"),
     *_pair("stride_length_m", "m", "stride length (the foot track's length_m)"),
     *_pair("swing_time_s", "s", "swing time (toe-off to IC, one unit's clock; L284)"),
+    *_pair("step_length_m", "m", "step length (the other foot's contact to this foot's, along the walk; L310)"),
+    ("n_step_lengths", "count", "integer", "steps with a step_length_m (L310)"),
+    ("step_length_scale_pct", "%", "number", "gait_summary.json walk only: the left track's length scale against "
+                                             "the right's that the closing step implied, taken out (L310); empty "
+                                             "without a closing step"),
     ("clock_offset_s", "s", "number", "((left step - left swing) - (right step - right swing)) / 2: the left clock's "
                                       "offset the steps imply, plus half the walker's own double-support imbalance "
                                       "(L284; > 0 = the left unit's times late)"),

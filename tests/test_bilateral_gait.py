@@ -128,7 +128,9 @@ def test_cli_on_the_gaitmap_pair(tmp_path, capsys):
     assert "steps left/right 32/31" in out.out and "reference (the sessions' labelled contacts):" in out.out
     assert "double support" in out.out and "L262" in out.out
     summary = json.loads((tmp_path / "g" / "gait_summary.json").read_text())
-    assert summary["warnings"] == [] and "L284" not in out.err and "L285" not in out.err  # no false warning
+    # no false warning; L311's line says why it has no step length (a return walk: no anchor)
+    assert [w for w in summary["warnings"] if "L311" not in w] == [] and "L284" not in out.err and "L285" not in out.err
+    assert len(summary["warnings"]) == 1 and "no step length: the walk is not anchored" in summary["warnings"][0]
     w, ref = summary["walk"], summary["reference"]["walk"]
     assert abs(w["step_time_s_si_pct"] - ref["step_time_s_si_pct"]) < 3.0
     assert 20 < w["double_support_pct"] < ref["double_support_pct"] < 40  # L262: reads low

@@ -565,7 +565,8 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
 
 def transfer_line(summary: dict) -> str | None:
     """Decisions L200, W183: ``track``'s line of the turns' median duration and, on the lower back, the chair
-    transfers and the TUG time, and the freeze episodes (W213); None when the summary has none of them."""
+    transfers and the TUG time, the 10 m walk test's time (L312) and the freeze episodes (W213); None when the
+    summary has none of them."""
     parts = []
     if summary.get("median_turn_duration_s") is not None:
         parts.append(f"median turn {summary['median_turn_duration_s']:.2f} s (turns.csv)")
@@ -574,6 +575,9 @@ def transfer_line(summary: dict) -> str | None:
         parts.append(f"{rise} sit-to-stand, {sit} stand-to-sit (transfers.csv)")
         if summary.get("tug_time_s") is not None:
             parts.append(f"TUG time {summary['tug_time_s']:.2f} s (rise to sit)")
+    if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout
+        parts.append(f"10 m walk test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
+                     "(the middle 10 m of the first 14 m walk, L312)")
     if summary.get("n_freezes"):  # decision W213: the freeze index's episodes
         parts.append(f"{summary['n_freezes']} freeze episode(s), {summary['freeze_time_s']:.1f} s in all "
                      "(freezes.csv; freeze index, decision W213)")

@@ -26,6 +26,13 @@ def gait_lines(summary: dict) -> list[str]:
              f"stride length left/right {_fmt(w['stride_length_m_left'], '.3f')} / "
              f"{_fmt(w['stride_length_m_right'], '.3f')} m, symmetry index {_fmt(w['stride_length_m_si_pct'], '.1f')} %"
              f" (stride time {_fmt(w['stride_time_s_left'], '.3f')} / {_fmt(w['stride_time_s_right'], '.3f')} s)"]
+    if w.get("step_length_m_left") is not None or w.get("step_length_m_right") is not None:  # decision L310
+        scale = w.get("step_length_scale_pct")
+        lines.append(f"step length left/right {_fmt(w['step_length_m_left'], '.3f')} / "
+                     f"{_fmt(w['step_length_m_right'], '.3f')} m, symmetry index "
+                     f"{_fmt(w['step_length_m_si_pct'], '.1f')} %, ratio L/R {_fmt(w['step_length_m_ratio'], '.3f')} "
+                     f"({w['n_step_lengths']} straight steps; the closing step took out a "
+                     f"{_fmt(scale, '+.2f')} % relative scale of the two tracks, L310)")
     if w.get("swing_time_s_left") is not None or w.get("swing_time_s_right") is not None:  # decision L284
         lines.append(f"swing time left/right {_fmt(w['swing_time_s_left'], '.3f')} / "
                      f"{_fmt(w['swing_time_s_right'], '.3f')} s, symmetry index {_fmt(w['swing_time_s_si_pct'], '.1f')}"
@@ -57,7 +64,8 @@ def register(app: typer.Typer) -> None:
         as_json: bool = typer.Option(False, "--json", help="Print gait_summary.json's object."),
     ):
         """Bilateral gait of one walk recorded with a unit on each foot: step time (one foot's initial contact
-        to the other's next), step-time / stride-time / stride-length asymmetry (symmetry index and L/R ratio),
+        to the other's next), step length (the two feet's tracked positions along the walk, straight steps,
+        decision L310), step-time / step-length / stride-time / stride-length asymmetry (symmetry index and L/R ratio),
         double and single support (% of the gait cycle, from the toe-off of track --toe-off), per walk and per
         walking bout. Each folder is tracked offline with --toe-off; with labelled IC / TC events in both folders
         (gaitmap's mocap) the same measures of the labels are given as the reference. The two recordings must share

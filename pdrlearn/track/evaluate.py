@@ -495,6 +495,9 @@ def _basic(result: TrackResult, out: dict) -> None:
     if result.info.get("yaw_turns") is not None:  # decisions L231 / L233: turns.csv's turns are turn_count's
         out["turn_count"] = len(table)
     out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W183: chair transfers, TUG
+    from pdrlearn.track.walk_test import ten_metre_walk
+
+    out.update(ten_metre_walk(result.steps))  # decisions L312, L313: the 10 m walk test's middle 10 m
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)

@@ -1,0 +1,95 @@
+"""The 10-metre walk test's timing from a tracked step table (decisions L312, L313, docs/decisions/localization.md).
+
+The clinical 10MWT times the middle 10 m of a straight walkway, with zones of about 2 m to accelerate and to
+decelerate excluded (a 14 m walkway, e.g. Bohannon 1997, Age Ageing 26:15-19; the thesis and seeds give no
+protocol). From a track: the walk's positions after each row of ``steps.csv`` (``length_m`` along ``heading_rad``,
+reached at the row's contact ``event_s``) are joined by straight lines in time; the times the path passes
+:data:`ZONE_M` and :data:`ZONE_M` + :data:`TIMED_M` from the bout's start give ``ten_m_walk_time_s`` and
+``ten_m_walk_speed_mps`` = 10 m / that time. Pure functions.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.track.clinical import _is_lower_back, bout_rows
+from pdrlearn.track.flags import flag_values
+
+#: decision L312: the acceleration and the deceleration zone (m) a 10MWT leaves out on each side (Bohannon 1997:
+#: a 14 m walkway, the middle 10 m timed; 2 m each side is the common protocol, the seeds give none)
+ZONE_M = 2.0
+#: decision L312: the timed distance (m)
+TIMED_M = 10.0
+#: decision L312: the walkway's first ZONE_M + TIMED_M + ZONE_M must be straight: the straight-line distance from the
+#: bout's start to where its path reaches 14 m is at least this share of 14 m (a 90 deg turn in the middle: 0.71)
+STRAIGHT_MIN = 0.9
+#: decision L313: why a lower-back track gives no 10 m walk time (measured, experiments/step_length_l310.py)
+LOWER_BACK_NOTE = ("not given on the lower back: its step lengths read slow walkers' short steps long, so the 2 m "
+                   "and 12 m marks are passed early (simulated 0.45-1.0 m/s walkers, waist-pendulum without "
+                   "calibration: speed +34 to +164 %, decision L313); time the walk with a foot unit")
+#: the summary keys :func:`ten_metre_walk` gives (decision L312)
+KEYS = ("ten_m_walk_time_s", "ten_m_walk_speed_mps", "ten_m_walk_note")
+
+
+def _path(st: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Times, path distance, x and y of a bout's rows: the start (the first row's ``start_s``, 0 m) then each row's
+    contact (``event_s``, else its ``end_s``) at its rest position; NaN from a row without a length on."""
+    length = st["length_m"].to_numpy(float)
+    if "impossible" in st:
+        length = np.where(flag_values(st["impossible"]), np.nan, length)
+    h = st["heading_rad"].to_numpy(float) if "heading_rad" in st else np.zeros(len(st))
+    t_end = st["event_s"].to_numpy(float) if "event_s" in st else st["end_s"].to_numpy(float)
+    t_end = np.where(np.isfinite(t_end), t_end, st["end_s"].to_numpy(float))
+    t = np.concatenate([[float(st["start_s"].iloc[0])], t_end])
+    d = np.concatenate([[0.0], np.cumsum(np.abs(length))])  # NaN from a stride without a length on
+    x = np.concatenate([[0.0], np.cumsum(length * np.cos(h))])
+    y = np.concatenate([[0.0], np.cumsum(length * np.sin(h))])
+    return t, d, x, y
+
+
+def ten_metre_walk(steps: pd.DataFrame) -> dict:
+    """Decision L312: :data:`KEYS` of a tracked step table: the first walking bout (L104's bouts,
+    :func:`pdrlearn.track.clinical.bout_rows`) whose path reaches ZONE_M + TIMED_M + ZONE_M = 14 m is timed over
+    its middle 10 m (module docstring); ``ten_m_walk_note`` says why there is no time (decision L313: a walk shorter
+    than 14 m is not timed - no zone is shortened and nothing extrapolated -, nor one that turns inside its first
+    14 m or whose rows there lack a length; nor a lower-back track, :data:`LOWER_BACK_NOTE`), else None."""
+    out = dict.fromkeys(KEYS)
+    need = 2 * ZONE_M + TIMED_M
+    if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns):
+        out["ten_m_walk_note"] = "no steps"
+        return out
+    if _is_lower_back(steps):  # decision L313
+        out["ten_m_walk_note"] = LOWER_BACK_NOTE
+        return out
+    longest = 0.0
+    for a, b in bout_rows(steps):
+        t, d, x, y = _path(steps.iloc[a:b])
+        length = np.abs(steps["length_m"].to_numpy(float)[a:b])
+        known = np.concatenate([[0.0], np.cumsum(np.nan_to_num(length))])  # a stride without a length as 0 m
+        reach = np.flatnonzero(known >= need)
+        if not len(reach):
+            longest = max(longest, float(known[-1]))
+            continue
+        k = int(reach[0])
+        if not np.isfinite(d[: k + 1]).all() or not np.isfinite(t[: k + 1]).all():
+            out["ten_m_walk_note"] = ("a stride of the first 14 m has no length or no time (decision L313); "
+                                      "not timed")
+            return out
+        end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
+        if math.hypot(*end) < STRAIGHT_MIN * need:
+            out["ten_m_walk_note"] = (f"the first {need:.0f} m of the walk turn (straight-line {math.hypot(*end):.1f} "
+                                      f"m; decision L313): a 10 m walk test needs a straight walkway; not timed")
+            return out
+        t0, t1 = np.interp([ZONE_M, ZONE_M + TIMED_M], d[: k + 1], t[: k + 1])
+        if not t1 > t0:
+            out["ten_m_walk_note"] = "the rows' times do not increase (decision L313); not timed"
+            return out
+        out["ten_m_walk_time_s"], out["ten_m_walk_speed_mps"] = float(t1 - t0), float(TIMED_M / (t1 - t0))
+        return out
+    out["ten_m_walk_note"] = (f"no walking bout of {need:.0f} m ({ZONE_M:.0f} m to accelerate, {TIMED_M:.0f} m timed, "
+                              f"{ZONE_M:.0f} m to decelerate; the longest {longest:.1f} m; decision L313): a shorter "
+                              "walk is not timed - time a window of it with track --window and read gait_speed_mps")
+    return out
