@@ -38,8 +38,14 @@ from waist_freeze_veto import simulate  # noqa: E402  (W214's route at a given g
 ROOT = Path(__file__).resolve().parents[1]
 USERS = range(5800, 5860)  # the lead's fresh users for W235
 OPTION = "side_at_contact"
+ON = True  # the option's candidate value ("on"; W255: fast_fill="outside_freeze")
 MAX_SIM_DROP = 0.002  # (b) W148's bound on a pooled simulated F1
 MAX_EXTRA_FRAC = 0.0  # (b) extra contacts may rise by this fraction of the route's reference contacts (W242: 0.002)
+
+
+def _opt(on: bool) -> dict:
+    """The track keyword of the option off (False) or at its candidate value :data:`ON`."""
+    return {OPTION: ON if on else False}
 
 
 def real(external: Path) -> bool:
@@ -49,7 +55,7 @@ def real(external: Path) -> bool:
     ok = True
     for d in sorted(external.glob("mobgap_*_Test*_Trial*")):
         s = read_session(d)
-        st = {v: track_waist(s, pipeline="waist-pendulum", **{OPTION: v}).steps for v in (False, True)}
+        st = {v: track_waist(s, pipeline="waist-pendulum", **_opt(v)).steps for v in (False, True)}
         if "step_f1" not in step_metrics(st[False], s):  # no timed reference contacts
             continue
         c = {v: V.counts(st[v], s) for v in st}
@@ -78,7 +84,7 @@ def sim() -> bool:
             s = simulate(route.format(hz=3 + u % 6, acc=(7.0, 8.5, 10.0)[u % 3]), kw, u, gait[0](u) if gait else None)
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
             for v in n:
-                ev = track_waist(s, pipeline="waist-pendulum", **{OPTION: v}).steps["event_s"].to_numpy(float)
+                ev = track_waist(s, pipeline="waist-pendulum", **_opt(v)).steps["event_s"].to_numpy(float)
                 n[v] += (int((S.matched_truth(ev, truth) >= 0).sum()), ev.size, truth.size)
         f = {v: W.C.f1(*map(int, n[v])) for v in n}
         extra = {v: int(n[v][1] - n[v][0]) for v in n}
@@ -92,8 +98,8 @@ def sim() -> bool:
 
 def hapt(root: Path) -> bool:
     cfgs = [("no sit/stand veto", "waist-pendulum", {"sit_veto": False, "stand_veto": False}),
-            ("no sit/stand veto, on", "waist-pendulum", {"sit_veto": False, "stand_veto": False, OPTION: True}),
-            ("defaults", "waist-pendulum", {}), ("defaults, on", "waist-pendulum", {OPTION: True})]
+            ("no sit/stand veto, on", "waist-pendulum", {"sit_veto": False, "stand_veto": False, OPTION: ON}),
+            ("defaults", "waist-pendulum", {}), ("defaults, on", "waist-pendulum", {OPTION: ON})]
     static, _, _, refused, cpu = H.run(root, cfgs)
     print(f"## (c) HAPT static contacts per minute ({static.session.nunique()} recordings, refused {len(refused)})\n")
     rate = {}

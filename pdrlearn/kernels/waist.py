@@ -223,7 +223,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
                turning: np.ndarray | None = None, contact_shift: bool = False,
                spinning: np.ndarray | None = None, weak_fill: bool = False, parity: bool | str = False,
-               side_at_contact: bool = False, fast_fill: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+               side_at_contact: bool = False, fast_fill: bool = False,
+               frozen: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
     The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
@@ -268,6 +269,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     fast_fill : with ``acc_ml`` and ``rhythm``, after W152 one contact where a gap between two kept contacts has room
         for exactly one step and the vertical acceleration low-passed at twice ``cutoff_hz`` has a maximum of its own
         there (:func:`fast_band_fill`, decision W242; off by default)
+    frozen : (n,) bool, samples inside a freeze episode (W213's freeze index); with ``fast_fill`` no W242 contact is
+        added at such a sample (decision W255; ``None`` = none frozen)
 
     Returns
     -------
@@ -301,9 +304,11 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
             added = np.setdiff1d(added, peaks)
             peaks = np.union1d(peaks, added)
         if fast_fill and side is not None and FAST_BAND_FACTOR * cutoff_hz < 0.5 * fs:  # W242: a merged step
-            peaks = np.union1d(peaks, _fast_fill(v, vf, cand, keep, side, peaks, vl, strong, fs,
-                                                 cutoff_hz=cutoff_hz, fir_order_s=fir_order_s, min_gap=dist,
-                                                 max_step_s=max_step_s))
+            filled = _fast_fill(v, vf, cand, keep, side, peaks, vl, strong, fs, cutoff_hz=cutoff_hz,
+                                fir_order_s=fir_order_s, min_gap=dist, max_step_s=max_step_s)
+            if frozen is not None:  # W255: a 3 Hz trembling separates at 5 Hz; no fill inside a freeze
+                filled = filled[~np.asarray(frozen, dtype=bool)[filled]]
+            peaks = np.union1d(peaks, filled)
     else:
         peaks = dsp.find_peaks(vf, height=min_peak_mps2, distance=dist)
         if gate is not None:
@@ -371,13 +376,13 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
                      contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool | str = False,
-                     side_at_contact: bool = False, fast_fill: bool = False
+                     side_at_contact: bool = False, fast_fill: bool = False, frozen: np.ndarray | None = None
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
     the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
     :func:`pdrlearn.signal.lowpass`), then :func:`ic_offline`. Returns ``(ic, fc, vmax, ap)`` (``ap`` the filtered
-    AP acceleration the learned stage reads)."""
+    AP acceleration the learned stage reads); ``frozen`` as :func:`ic_offline`'s (decision W255)."""
     gate = motion_gate(acc_v, w_z, fs, walk_threshold=walk_threshold, causal=False, turn_gate_rps=turn_gate_rps)
     ap = dsp.lowpass(acc_ap, min(ap_cutoff_hz, 0.4 * fs), fs)
     yaw_rate = np.abs(rolling_mean(w_z, fs, causal=False)) if (turn_shift_rps is not None or contact_shift) else None
@@ -388,7 +393,7 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                               min_step_s=min_step_s, contact_shift=contact_shift,
                               spinning=None if yaw_rate is None else yaw_rate >= CONTACT_SHIFT_TURN_RPS,
                               weak_fill=weak_fill, parity=parity_fill, side_at_contact=side_at_contact,
-                              fast_fill=fast_fill)
+                              fast_fill=fast_fill, frozen=frozen)
     return ic, fc, vmax, ap
 
 

@@ -244,7 +244,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``side_at_contact`` (decision W235, off: the offline detector's sequence rules read each candidate's W20 side at
       its initial contact instead of at its vertical maximum; offline only),
       ``fast_fill`` (decision W242, off: one contact where a gap between two kept contacts has room for exactly one
-      step and the vertical acceleration low-passed at twice the cut-off has a maximum of its own there; offline only),
+      step and the vertical acceleration low-passed at twice the cut-off has a maximum of its own there;
+      ``"outside_freeze"``: none inside an episode of the freeze index, W213, decision W255; offline only),
       ``gait_check`` (decision W140, off: with calibrated params, warn when the walk's median cadence is outside
       x0.75-x1.33 of the calibration walks'),
       ``speed_check`` (decision W211, on: with calibrated params, warn when the walk's median cadence is more than 10 %

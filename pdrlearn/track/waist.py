@@ -48,6 +48,7 @@ from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.backward import backward_warnings
 from pdrlearn.waist.contact_model import CONTACT_MODEL_VALUES, rescore_contacts
 from pdrlearn.waist.events import (
+    FAST_FILL_OUTSIDE_FREEZE,
     InitialContactDetector,
     gate_threshold,
     refine_to_contacts,
@@ -530,7 +531,7 @@ CAUSAL_PAUSE_STEPS = "standing"
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
-                                                          "parity_fill", "stand_veto", "contact_model"))
+                                                          "parity_fill", "stand_veto", "contact_model", "fast_fill"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -547,13 +548,16 @@ VAULT_VETO_VALUES = (False, True, "turns")
 #: sparing a run whose decided sides alternate, W198's sparing a run with walking within 3 s before and after it,
 #: W218's "adjacent" judged against the walking stretches' bounce, the stretches never dropped
 STAND_VETO_VALUES = (False, True, "turns", "alternation", "adjacent", "walking")
+#: decision W255: ``fast_fill`` - False, True (W242's contacts) or "outside_freeze" (none inside a freeze episode)
+FAST_FILL_VALUES = (False, True, FAST_FILL_OUTSIDE_FREEZE)
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159"),
                   "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198, W218"),
-                  "contact_model": (CONTACT_MODEL_VALUES, "W203")}
+                  "contact_model": (CONTACT_MODEL_VALUES, "W203"),
+                  "fast_fill": (FAST_FILL_VALUES, "W242, W255")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -589,7 +593,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
                 length_model=None, freeze_veto: bool | None = None,
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
-                fast_fill: bool | None = None) -> TrackResult:
+                fast_fill: bool | str | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -723,7 +727,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         default False
     fast_fill : pendulum, offline detector: one contact where a gap between two kept contacts has room for exactly
         one step and the vertical acceleration low-passed at twice the cut-off (5 Hz) has a maximum of its own there
-        (decision W242, ``InitialContactDetector``'s ``fast_fill``); default False
+        (decision W242, ``InitialContactDetector``'s ``fast_fill``); ``"outside_freeze"``: none inside an episode of
+        the lower back's freeze index (W213; decision W255); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -1090,7 +1095,8 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
                                   rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]),
                                   realtime_shift=bool(o["realtime_contact_shift"]),  # W166: an option
                                   weak_fill=bool(o["weak_fill"]), side_at_contact=bool(o["side_at_contact"]),  # W235
-                                  fast_fill=bool(o["fast_fill"]),  # W242
+                                  fast_fill=o["fast_fill"] if o["fast_fill"] == FAST_FILL_OUTSIDE_FREEZE
+                                  else bool(o["fast_fill"]),  # W242, W255
                                   parity_fill="within" if o["parity_fill"] == "within" else bool(o["parity_fill"]))
 
 

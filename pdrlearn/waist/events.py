@@ -18,6 +18,8 @@ log = logging.getLogger(__name__)
 #: gait at the lower back stays well below that (docs/decisions/waist.md W4), so the default is lower.
 WALK_THRESHOLD_MPS2 = 0.5
 PAPER_WALK_THRESHOLD_MPS2 = 1.5  # seed 000 sec. II-B
+#: decision W255: the ``fast_fill`` value that adds W242's contacts only outside the freeze index's episodes (W213)
+FAST_FILL_OUTSIDE_FREEZE = "outside_freeze"
 
 
 def causal_lowpass_delay_s(cutoff_hz: float, fs: float, *, at_hz: float = 1.0) -> float:
@@ -146,7 +148,9 @@ class InitialContactDetector:
         ignore it (measured offline only)
     fast_fill : offline, with ``rhythm`` and ``alternate``: one contact where a gap between two kept contacts has room
         for exactly one step and the vertical acceleration low-passed at twice the cut-off (5 Hz) has a maximum of
-        its own there (decision W242; off by default). The realtime detector and the learned stage ignore it
+        its own there (decision W242; off by default); ``"outside_freeze"``: none inside an episode of the lower
+        back's freeze index (W213's, as freezes.csv finds them; decision W255). The realtime detector and the learned
+        stage ignore it
 
     Attributes
     ----------
@@ -167,7 +171,7 @@ class InitialContactDetector:
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
                  min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False,
                  parity_fill: bool | str = "within", realtime_shift: bool = False,  # W159/W160: adopted by its rule
-                 side_at_contact: bool = False, fast_fill: bool = False):  # W235, W242
+                 side_at_contact: bool = False, fast_fill: bool | str = False):  # W235, W242, W255
         self.side_at_contact = side_at_contact
         self.fast_fill = fast_fill
         self.realtime = realtime
@@ -211,7 +215,10 @@ class InitialContactDetector:
     def _offline(self, imu: WaistIMU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The offline detector's contacts (zero-lag filters, sequence rules) on ``imu``."""
         fs = imu.fs
-        ic, fc, vmax, ap = K.contacts_offline(imu.acc_v, imu.acc_ap, imu.acc_ml, imu.w_z, fs, **self.rule_settings())
+        kw = self.rule_settings()
+        if kw["fast_fill"] and self.fast_fill == FAST_FILL_OUTSIDE_FREEZE:  # W255: no W242 fill inside a freeze
+            kw["frozen"] = frozen_samples(imu)
+        ic, fc, vmax, ap = K.contacts_offline(imu.acc_v, imu.acc_ap, imu.acc_ml, imu.w_z, fs, **kw)
         if self.learned is False or self.learned is None:
             return ic, fc, vmax
         from pdrlearn.waist import learned as L  # W33: the rule outcomes are features of the learned stage
@@ -253,6 +260,17 @@ class InitialContactDetector:
         self.steps_ = steps_from_events(imu.t, ic, fc, max_step_s=self.max_step_s, detector=name)
         log.info("%s: %d initial contacts", name, len(ic))
         return self
+
+
+def frozen_samples(imu: WaistIMU) -> np.ndarray:
+    """Decision W255: the (n,) mask of ``imu``'s samples inside an episode of the lower back's freeze index (W213:
+    :func:`pdrlearn.track.freezes.freezes_of` of the accelerometer's norm, the norm of ``acc_nav`` - the specific
+    force rotated, gravity included - the episodes freezes.csv lists; its 4 s windows look 2 s ahead: offline)."""
+    from pdrlearn.kernels.freeze import inside_episodes
+    from pdrlearn.track.freezes import freezes_of  # lazy: pdrlearn.track imports this module
+
+    rows = freezes_of(imu.t, imu.acc_nav)
+    return inside_episodes(imu.t, [(r["start_s"], r["end_s"]) for r in rows])
 
 
 def _window(imu: WaistIMU, lo: int, hi: int) -> WaistIMU:
