@@ -21,6 +21,7 @@ Caveat: HAPT's phone is on a belt at the waist's side or front, not the lower ba
 No pipeline behaviour is changed here. One core.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/hapt_transfers.py [--root datasets/hapt]
+[--w233 | --w246] (W246: the lying kinds of W245, users 1-10 and 11-30 apart)
 Output: experiments/results/hapt_transfers.md
 """
 from __future__ import annotations
@@ -44,8 +45,13 @@ from pdrlearn.waist.transfers import HEIGHT_MIN_M, height_change_m, movement_bou
 logging.disable(logging.WARNING)
 
 TOL_S = 1.0  # W232's matching tolerance around a labelled transition (s)
-KIND = {"sit_to_stand": "sit-to-stand", "stand_to_sit": "stand-to-sit"}
-LYING = ("sit_to_lie", "lie_to_sit", "stand_to_lie", "lie_to_stand")
+CHAIR = {"sit_to_stand": "sit-to-stand", "stand_to_sit": "stand-to-sit"}
+#: W246: HAPT's lying labels and transfers.csv's lying kinds (W245)
+LIE = {"sit_to_lie": "sit-to-lie", "lie_to_sit": "lie-to-sit", "stand_to_lie": "stand-to-lie",
+       "lie_to_stand": "lie-to-stand"}
+LYING = tuple(LIE)
+KIND = {**CHAIR, **LIE}
+INTO_LYING = ("sit-to-lie", "stand-to-lie")
 
 
 def labels(act: pd.DataFrame) -> pd.DataFrame:
@@ -78,7 +84,9 @@ def match(rows: pd.DataFrame, lab: pd.DataFrame, tol: float = TOL_S) -> tuple[pd
             verdict.append("false")
         else:
             a = trans.at[r.label, "activity"]
-            verdict.append("lying" if a in LYING else "right" if KIND[a] == r.kind else "kind error")
+            # W232: a chair row at a lying label is counted apart; W246: a lying row is right or a kind error
+            verdict.append("lying" if a in LYING and r.kind in CHAIR.values()
+                           else "right" if KIND[a] == r.kind else "kind error")
     return rows.assign(verdict=verdict, in_activity=where), trans
 
 
@@ -90,7 +98,7 @@ def diagnose(session, steps: pd.DataFrame, trans: pd.DataFrame) -> list[dict]:
         return []
     tilt = sample_tilt_deg(imu.up_body, _contact_directions(imu, ev, steps["has_next"].to_numpy(bool))[1])
     out = []
-    for lb in trans[trans.activity.isin(list(KIND))].itertuples():
+    for lb in trans[trans.activity.isin(list(CHAIR))].itertuples():
         m = np.flatnonzero((imu.t >= lb.start_s - TOL_S) & (imu.t <= lb.end_s + TOL_S))
         if m.size == 0:
             continue
@@ -141,16 +149,20 @@ def run(root: Path):
 
 def tables(rows: pd.DataFrame, labs: pd.DataFrame, diag: pd.DataFrame) -> list[str]:
     out = ["### Recall per labelled transition kind", "",
-           "| label | labelled | right kind | other kind | recall |", "|---|---|---|---|---|"]
-    for a in (*KIND, *LYING):
+           "| label | labelled | right kind | other kind | recall | lying row, direction right |",
+           "|---|---|---|---|---|---|"]
+    for a in KIND:
         x = labs[labs.activity == a]
         hit = rows[rows.label.isin(x.index) & rows.session.isin(x.session)]
         hit = hit.merge(x[["session", "row"]].reset_index(), left_on=["session", "label"],
                         right_on=["session", "index"])
-        right = int((hit.verdict == "right").sum()) if a in KIND else 0
+        right = int((hit.verdict == "right").sum())
         other = len(hit) - right
-        rec = f"{right / len(x):.2f}" if a in KIND else f"(any row: {other / len(x):.2f})"
-        out.append(f"| {a} | {len(x)} | {right} | {other} | {rec} |")
+        rec = f"{right / max(len(x), 1):.2f}"
+        # W246: into / out of lying right, the sit / stand side aside
+        into = LIE.get(a) in INTO_LYING
+        direction = int(sum((k in INTO_LYING) == into for k in hit.kind if k in LIE.values())) if a in LIE else ""
+        out.append(f"| {a} | {len(x)} | {right} | {other} | {rec} | {direction} |")
     out += ["", "### Precision per reported kind", "",
             "| kind | reported | right | kind error | at a lying label | false | precision |",
             "|---|---|---|---|---|---|---|"]
@@ -168,6 +180,8 @@ def tables(rows: pd.DataFrame, labs: pd.DataFrame, diag: pd.DataFrame) -> list[s
             "| kind | n | start | end | duration |", "|---|---|---|---|---|"]
     for k in KIND.values():
         x = ok[ok.kind == k]
+        if not len(x):
+            continue
         ds, de = x.start_s - x.lab_start, x.end_s - x.lab_end
         dd = (x.end_s - x.start_s) - (x.lab_end - x.lab_start)
         out.append(f"| {k} | {len(x)} | " + " | ".join(f"{d.median():+.2f} ({d.abs().median():.2f})"
@@ -176,7 +190,7 @@ def tables(rows: pd.DataFrame, labs: pd.DataFrame, diag: pd.DataFrame) -> list[s
             "", "| label | n | cause | count | label dur median s | tilt median deg | |dz| median m | "
             "W182 movement median s |", "|---|---|---|---|---|---|---|---|"]
     diag = diag.assign(cause=diag.apply(cause, axis=1))
-    for a in KIND:
+    for a in CHAIR:
         x = diag[diag.activity == a]
         for c, g in x.groupby("cause"):
             out.append(f"| {a} | {len(x)} | {c} | {len(g)} | {g.dur_s.median():.2f} | {g.tilt_deg.median():.1f} | "
@@ -195,9 +209,14 @@ def main(argv=None) -> None:
     ap.add_argument("--w233", action="store_true",
                     help="decision W233's rule: the candidate (transfers.HEIGHT_HALF_S = W104's 1 s) on fresh "
                          "simulated users 5740-5759 (turns_transfers.py's sim, before and after) and on HAPT")
+    ap.add_argument("--w246", action="store_true",
+                    help="decision W246's measurement: transfers.csv with W245's lying kinds, per kind, on HAPT users "
+                         "1-10 and 11-30 apart (experiments/results/hapt_lying_transfers.md)")
     a = ap.parse_args(argv)
     if a.w233:
         return w233(a.root)
+    if a.w246:
+        return w246(a.root)
     rows, labs, diag, refused, cpu = run(a.root)
     lines = ["# Transfers (W182) of offline waist-pendulum on UCI HAPT (decision W232)", "",
              f"{labs.session.nunique()} recordings tracked; {cpu:.0f} s CPU on one core. Match: peak_s inside a "
@@ -231,6 +250,29 @@ def w233(root: Path) -> None:
     text = "\n".join(lines) + "\n"
     print(text)
     out.write_text(text)
+
+
+def user_of(session: str) -> int:
+    """HAPT's user number of a folder name ``hapt_uNN_rK``."""
+    return int(session.split("_")[1][1:])
+
+
+def w246(root: Path) -> None:
+    """Decision W246's one measurement: W232's tables with the lying kinds, users 1-10 / 11-30 / all."""
+    rows, labs, diag, refused, cpu = run(root)
+    lines = ["# Lying transfers (W245) in transfers.csv of offline waist-pendulum on UCI HAPT (decision W246)", "",
+             f"{labs.session.nunique()} recordings tracked; {cpu:.0f} s CPU on one core. W232's match (peak_s inside "
+             f"a labelled transition +-{TOL_S:g} s); nothing was tuned (W245 sets no new threshold).", ""]
+    for name, users in (("users 1-10", range(1, 11)), ("users 11-30", range(11, 31)), ("all users", range(1, 31))):
+        keep = [s for s in labs.session.unique() if user_of(s) in users]
+        lines += [f"## {name} ({len(keep)} recordings)", "",
+                  *tables(rows[rows.session.isin(keep)], labs[labs.session.isin(keep)],
+                          diag[diag.session.isin(keep)]), ""]
+    lines += ["Refused recordings (DataError): " + (str(len(refused)) if refused else "none")]
+    lines += [f"- {r}" for r in refused]
+    text = "\n".join(lines) + "\n"
+    print(text)
+    Path("experiments/results/hapt_lying_transfers.md").write_text(text + NOTES)
 
 
 NOTES = """

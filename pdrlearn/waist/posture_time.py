@@ -73,6 +73,8 @@ def label_postures(t: np.ndarray, tilt: np.ndarray, walking: np.ndarray, transfe
     lying = tilt >= LYING_TILT_DEG
     code = np.where(lying, _CODE[LYING], np.where(tilt >= SITTING_TILT_DEG, _CODE[SITTING], _CODE[STANDING]))
     moving = np.zeros(t.size, dtype=bool)  # a transfer's own contacts are no walking (W146: a rise reads as a step)
+    if len(transfers):  # decision W245: only the chair transfers vote (a lying kind is read from these labels)
+        transfers = transfers[transfers["kind"].isin((SIT_TO_STAND, STAND_TO_SIT))]
     tr = transfers.sort_values("peak_s") if len(transfers) else transfers
     for r in tr.itertuples():
         moving |= (t >= r.start_s) & (t <= r.end_s)
@@ -105,12 +107,13 @@ def posture_runs(t: np.ndarray, code: np.ndarray) -> list[list]:
             if int(code[i]) != _UNKNOWN]
 
 
-def session_postures(imu: WaistIMU, steps: pd.DataFrame, transfers: pd.DataFrame) -> list[list]:
-    """Decision W222: ``info["postures"]`` of a lower-back track - :func:`posture_runs` of :func:`label_postures`
-    on the IMU's samples, the upright from ``steps``' walking contacts (``event_s``, ``has_next``); ``[]`` when
-    there is no upright (no contact, no AHRS up direction): every instant unknown."""
+def session_labels(imu: WaistIMU, steps: pd.DataFrame, transfers: pd.DataFrame
+                   ) -> tuple[np.ndarray, np.ndarray] | None:
+    """Decision W222: ``(upright, code)`` of a lower-back track - the walking upright from ``steps``' walking
+    contacts (``event_s``, ``has_next``) and :func:`label_postures` of the averaged tilt at every IMU sample; None
+    when there is no upright (no contact, no AHRS up direction)."""
     if imu.up_body is None or not len(steps):
-        return []
+        return None
     ev = steps["event_s"].to_numpy(float)
     hn = steps["has_next"].to_numpy(bool)
     upright = walking_upright(contact_directions(imu.t, imu.up_body, ev), hn)
@@ -118,4 +121,11 @@ def session_postures(imu: WaistIMU, steps: pd.DataFrame, transfers: pd.DataFrame
     for a, b in zip(steps["start_s"].to_numpy(float)[hn], steps["end_s"].to_numpy(float)[hn], strict=True):
         walking[np.searchsorted(imu.t, a):np.searchsorted(imu.t, b, side="right")] = True
     tilt = averaged_tilt_deg(imu.t, imu.up_body, upright)
-    return posture_runs(imu.t, label_postures(imu.t, tilt, walking, transfers))
+    return upright, label_postures(imu.t, tilt, walking, transfers)
+
+
+def session_postures(imu: WaistIMU, steps: pd.DataFrame, transfers: pd.DataFrame) -> list[list]:
+    """Decision W222: ``info["postures"]`` of a lower-back track - :func:`posture_runs` of :func:`session_labels`;
+    ``[]`` when there is no upright: every instant unknown."""
+    lab = session_labels(imu, steps, transfers)
+    return [] if lab is None else posture_runs(imu.t, lab[1])
