@@ -47,6 +47,9 @@ LYING_KINDS = (SIT_TO_LIE, LIE_TO_SIT, STAND_TO_LIE, LIE_TO_STAND)
 #: decision W245: the other side's posture is read this far (s) outside the movement: W222's averaging half window,
 #: so that the averaged tilt there does not see the movement itself
 SIDE_GAP_S = POSTURE_HALF_WINDOW_S
+#: decision W247's candidate (its rule and measurement in docs/decisions/waist.md): a lying run shorter than this (s)
+#: gives no transfer; None = every run of W222's lying gives its edges
+MIN_LYING_S: float | None = None
 _KIND = {(+1, _CODE[SITTING]): SIT_TO_LIE, (+1, _CODE[STANDING]): STAND_TO_LIE,
          (-1, _CODE[SITTING]): LIE_TO_SIT, (-1, _CODE[STANDING]): LIE_TO_STAND}
 
@@ -89,6 +92,8 @@ def lying_transfer_rows(t: np.ndarray, tilt: np.ndarray, code: np.ndarray, fs: f
     for k, (a, b) in enumerate(spans):
         lo = spans[k - 1][1] if k else 0  # the non-lying piece before this run: [lo, a); after it: [b, hi)
         hi = spans[k + 1][0] if k + 1 < len(spans) else n
+        if MIN_LYING_S is not None and t[b - 1] - t[a] < MIN_LYING_S:  # decision W247's candidate
+            continue
         for edge, sign in ((a, +1), (b, -1)):
             if edge in (0, n):  # the recording starts or ends lying: that transfer was not recorded
                 continue
