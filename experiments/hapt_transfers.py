@@ -44,6 +44,7 @@ from pdrlearn.waist.transfers import HEIGHT_MIN_M, height_change_m, movement_bou
 
 logging.disable(logging.WARNING)
 
+OUT = Path("experiments/results/hapt_transfers.md")
 TOL_S = 1.0  # W232's matching tolerance around a labelled transition (s)
 CHAIR = {"sit_to_stand": "sit-to-stand", "stand_to_sit": "stand-to-sit"}
 #: W246: HAPT's lying labels and transfers.csv's lying kinds (W245)
@@ -121,8 +122,8 @@ def cause(d: dict) -> str:
     return "wrong sign" if up != (d["activity"] == "sit_to_stand") else "other (kind error / merged)"
 
 
-def run(root: Path):
-    folders = sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir())
+def run(root: Path, users=None):
+    folders = sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir() and (users is None or user_of(p.name) in users))
     if not folders:
         raise SystemExit(f"{root}: no hapt_u*_r* sessions; run `pdrlearn fetch hapt --out {root}` first")
     rows, labs, diag, refused = [], [], [], []
@@ -205,18 +206,23 @@ def tables(rows: pd.DataFrame, labs: pd.DataFrame, diag: pd.DataFrame) -> list[s
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
-    ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt_transfers.md"))
+    ap.add_argument("--out", type=Path, default=OUT)
     ap.add_argument("--w233", action="store_true",
                     help="decision W233's rule: the candidate (transfers.HEIGHT_HALF_S = W104's 1 s) on fresh "
                          "simulated users 5740-5759 (turns_transfers.py's sim, before and after) and on HAPT")
     ap.add_argument("--w246", action="store_true",
                     help="decision W246's measurement: transfers.csv with W245's lying kinds, per kind, on HAPT users "
                          "1-10 and 11-30 apart (experiments/results/hapt_lying_transfers.md)")
+    ap.add_argument("--w247", action="store_true",
+                    help="decision W247's rule: lying.MIN_LYING_S chosen on HAPT users 1-10, then users 11-30, fresh "
+                         "simulated users 5980-5999 and the mobgap recordings today vs the candidate")
     a = ap.parse_args(argv)
     if a.w233:
         return w233(a.root)
     if a.w246:
-        return w246(a.root)
+        return w246(a.root, a.out if a.out != OUT else Path("experiments/results/hapt_lying_transfers.md"))
+    if a.w247:
+        return w247(a.root)
     rows, labs, diag, refused, cpu = run(a.root)
     lines = ["# Transfers (W182) of offline waist-pendulum on UCI HAPT (decision W232)", "",
              f"{labs.session.nunique()} recordings tracked; {cpu:.0f} s CPU on one core. Match: peak_s inside a "
@@ -257,12 +263,15 @@ def user_of(session: str) -> int:
     return int(session.split("_")[1][1:])
 
 
-def w246(root: Path) -> None:
-    """Decision W246's one measurement: W232's tables with the lying kinds, users 1-10 / 11-30 / all."""
+def w246(root: Path, out: Path) -> None:
+    """Decision W246's one measurement: W232's tables with the lying kinds, users 1-10 / 11-30 / all (a recording
+    without a labelled transition is left out of the split)."""
+    from pdrlearn.waist import lying
+
     rows, labs, diag, refused, cpu = run(root)
     lines = ["# Lying transfers (W245) in transfers.csv of offline waist-pendulum on UCI HAPT (decision W246)", "",
              f"{labs.session.nunique()} recordings tracked; {cpu:.0f} s CPU on one core. W232's match (peak_s inside "
-             f"a labelled transition +-{TOL_S:g} s); nothing was tuned (W245 sets no new threshold).", ""]
+             f"a labelled transition +-{TOL_S:g} s); lying.MIN_LYING_S = {lying.MIN_LYING_S} (W247).", ""]
     for name, users in (("users 1-10", range(1, 11)), ("users 11-30", range(11, 31)), ("all users", range(1, 31))):
         keep = [s for s in labs.session.unique() if user_of(s) in users]
         lines += [f"## {name} ({len(keep)} recordings)", "",
@@ -272,7 +281,68 @@ def w246(root: Path) -> None:
     lines += [f"- {r}" for r in refused]
     text = "\n".join(lines) + "\n"
     print(text)
-    Path("experiments/results/hapt_lying_transfers.md").write_text(text + NOTES)
+    out.write_text(text + NOTES)
+
+
+W247_GRID = (2.0, 5.0, 10.0)  # W247's candidate values (s), chosen on users 1-10
+
+
+def lying_counts(rows: pd.DataFrame) -> tuple[int, int]:
+    """(right, reported) lying rows."""
+    x = rows[rows.kind.isin(list(LIE.values()))]
+    return int((x.verdict == "right").sum()), len(x)
+
+
+def w247(root: Path) -> None:
+    """Decision W247's one measurement: the value chosen on users 1-10; (a) users 11-30, (b) simulated users
+    5980-5999, (c) the mobgap recordings, today vs the candidate."""
+    import importlib.util
+
+    from pdrlearn.waist import lying
+
+    lines = ["# Decision W247's rule: lying.MIN_LYING_S (a lying run shorter than it gives no transfer)", ""]
+    adopted = lying.MIN_LYING_S  # restored at the end; "today" is W246's (None: before W247)
+
+    def say(x: str) -> None:
+        print(x, flush=True)
+        lines.append(x)
+
+    lying.MIN_LYING_S = None
+    right0, n0 = lying_counts(run(root, range(1, 11))[0])
+    say(f"selection, HAPT users 1-10: today right {right0} of {n0} lying rows")
+    chosen = None
+    for v in W247_GRID:
+        lying.MIN_LYING_S = v
+        r, n = lying_counts(run(root, range(1, 11))[0])
+        say(f"selection, HAPT users 1-10: MIN_LYING_S = {v:g} s: right {r} of {n} lying rows")
+        if r == right0:
+            chosen = v
+    say(f"chosen: {chosen}")
+    if chosen is None:
+        lying.MIN_LYING_S = adopted
+        Path("experiments/results/hapt_lying_w247.md").write_text("\n".join(lines) + "\n")
+        return
+    spec = importlib.util.spec_from_file_location("turns_transfers", Path(__file__).parent / "turns_transfers.py")
+    tt = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tt)
+    from pdrlearn.track.waist import track_waist
+
+    for label, v in (("today", None), ("candidate", chosen)):
+        lying.MIN_LYING_S = v
+        rows, labs, diag, _, _ = run(root, range(11, 31))
+        r, n = lying_counts(rows)
+        say(f"(a) HAPT users 11-30, {label} (MIN_LYING_S = {v}): right {r} of {n} lying rows, precision "
+            f"{r / max(n, 1):.2f}")
+        lines.extend(tables(rows, labs, diag)[:20])
+        say(f"(b) simulated users 5980-5999, {label}:")
+        tt.sim(users=range(5980, 6000), tracks=("waist-pendulum",))
+        kinds = []
+        for folder in sorted(Path("datasets/real").glob("mobgap_*")):
+            res = track_waist(read_session(folder), pipeline="waist-pendulum")
+            kinds += [t["kind"] for t in res.info["transfers"]]
+        say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
+    lying.MIN_LYING_S = adopted
+    Path("experiments/results/hapt_lying_w247.md").write_text("\n".join(lines) + "\n")
 
 
 NOTES = """

@@ -15,6 +15,7 @@ from pdrlearn.waist.lying import (
     LIE_TO_SIT,
     LIE_TO_STAND,
     LYING_KINDS,
+    MIN_LYING_S,
     SIT_TO_LIE,
     STAND_TO_LIE,
     lying_transfer_rows,
@@ -34,7 +35,7 @@ def _ramp(t, knots):
 def _rows(tilt, t, transfers=None, walking=None):
     tr = pd.DataFrame(columns=list(TRANSFER_COLUMNS)) if transfers is None else transfers
     code = label_postures(t, tilt, np.zeros(t.size, bool) if walking is None else walking, tr)
-    return pd.DataFrame(lying_transfer_rows(t, tilt, code, FS, np.zeros(t.size)))
+    return pd.DataFrame(lying_transfer_rows(t, tilt, code, FS, np.zeros(t.size)), columns=list(TRANSFER_COLUMNS[1:]))
 
 
 def test_the_four_kinds_their_times_and_no_row_at_the_recording_edges():
@@ -42,17 +43,27 @@ def test_the_four_kinds_their_times_and_no_row_at_the_recording_edges():
     # lying at the start (no transfer: not recorded), up to a 20 deg seat at 6-8 s (lie-to-sit), standing 3 deg,
     # down to lying at 30-32 s (stand-to-lie: 43 deg/s), up to standing at 50-52 s (lie-to-stand), a 25 deg seat,
     # down to lying at 80-82 s (sit-to-lie), lying at the end (no transfer)
-    tilt = _ramp(t, [(0, 90), (6, 90), (8, 20), (15, 20), (16, 3), (30, 3), (32, 90), (50, 90), (52, 3), (60, 3),
+    tilt = _ramp(t, [(0, 90), (16, 90), (18, 20), (25, 20), (26, 3), (30, 3), (32, 90), (50, 90), (52, 3), (60, 3),
                      (61, 25), (80, 25), (82, 90), (100, 90)])
     rows = _rows(tilt, t)
     assert rows["kind"].tolist() == [LIE_TO_SIT, STAND_TO_LIE, LIE_TO_STAND, SIT_TO_LIE]
     # the movement is where the tilt moves 10 deg/s or more (W182's mechanism); peak_s where it passes 60 deg
-    want = np.array([[6.0, 8.0], [30.0, 32.0], [50.0, 52.0], [80.0, 82.0]])
+    want = np.array([[16.0, 18.0], [30.0, 32.0], [50.0, 52.0], [80.0, 82.0]])
     assert np.abs(rows[["start_s", "end_s"]].to_numpy() - want).max() < 0.2
-    passes = [6 + 2 * 30 / 70, 30 + 2 * 57 / 87, 50 + 2 * 30 / 87, 80 + 2 * 35 / 65]
+    passes = [16 + 2 * 30 / 70, 30 + 2 * 57 / 87, 50 + 2 * 30 / 87, 80 + 2 * 35 / 65]
     assert rows["peak_s"].to_numpy() == pytest.approx(passes, abs=0.03)
     assert (rows["peak_tilt_deg"] >= LYING_TILT_DEG).all()
     assert rows["duration_s"].to_numpy() == pytest.approx((rows["end_s"] - rows["start_s"]).to_numpy())
+
+
+@pytest.mark.parametrize("lying_s", [6.0, 14.0])
+def test_a_lying_run_under_min_lying_s_gives_no_transfer_w247(lying_s):
+    t = np.arange(0.0, 60.0, 1 / FS)
+    # a phone put down for a few seconds reads lying; W247: a run under 10 s gives no row, a longer one its two
+    tilt = _ramp(t, [(0, 3), (20, 3), (21, 90), (21 + lying_s, 90), (22 + lying_s, 3), (60, 3)])
+    kinds = _rows(tilt, t)["kind"].tolist()
+    assert MIN_LYING_S == 10.0
+    assert kinds == ([] if lying_s < MIN_LYING_S else [STAND_TO_LIE, LIE_TO_STAND])
 
 
 def test_the_side_is_w222s_label_a_chair_transfer_first_and_an_unknown_side_gives_no_row():

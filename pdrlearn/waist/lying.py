@@ -7,7 +7,8 @@ second posture detector:
 
 * **where**: the instant the per-sample tilt passes 60 deg (toward lying at a lying run's start, away from it at its
   end) nearest the averaged tilt's edge, within +-:data:`~pdrlearn.waist.posture_time.POSTURE_HALF_WINDOW_S` (else
-  the averaged edge itself); a lying run at the recording's start or end has no transfer there (not seen);
+  the averaged edge itself); a lying run at the recording's start or end has no transfer there (not seen), and a
+  lying run shorter than :data:`MIN_LYING_S` (10 s, W247) has none at all;
 * **bounds**: from that instant, backward and forward for as long as the tilt moves toward (away from) lying at
   W182's :data:`~pdrlearn.waist.transfers.MOVING_DPS` or more (its rate over W182's ``RATE_WINDOW_S``): the
   mechanism of W182's :func:`~pdrlearn.waist.transfers.movement_bounds`, along one direction;
@@ -18,7 +19,7 @@ second posture detector:
 
 The row's ``peak_s`` is the instant the trunk passes 60 deg, ``peak_tilt_deg`` the largest tilt in the movement,
 ``height_change_m`` W182's double integral over the movement. Not from a seed: no threshold is new (W222's 60 deg and
-1 s, W182's 10 deg/s and 0.25 s), nothing is tuned to HAPT (W246 measures it).
+1 s, W182's 10 deg/s and 0.25 s) but W247's 10 s, chosen on HAPT users 1-10 and measured on users 11-30.
 """
 
 from __future__ import annotations
@@ -47,9 +48,10 @@ LYING_KINDS = (SIT_TO_LIE, LIE_TO_SIT, STAND_TO_LIE, LIE_TO_STAND)
 #: decision W245: the other side's posture is read this far (s) outside the movement: W222's averaging half window,
 #: so that the averaged tilt there does not see the movement itself
 SIDE_GAP_S = POSTURE_HALF_WINDOW_S
-#: decision W247's candidate (its rule and measurement in docs/decisions/waist.md): a lying run shorter than this (s)
-#: gives no transfer; None = every run of W222's lying gives its edges
-MIN_LYING_S: float | None = None
+#: decision W247 (adopted by its rule; the value chosen on HAPT users 1-10 from {2, 5, 10} s, measured on users
+#: 11-30): a run of W222's lying shorter than this (s) gives no transfer - a phone handled while it is put on or taken
+#: off reads a few seconds of lying; None = every run gives its edges
+MIN_LYING_S: float | None = 10.0
 _KIND = {(+1, _CODE[SITTING]): SIT_TO_LIE, (+1, _CODE[STANDING]): STAND_TO_LIE,
          (-1, _CODE[SITTING]): LIE_TO_SIT, (-1, _CODE[STANDING]): LIE_TO_STAND}
 
