@@ -266,11 +266,11 @@ SESSIONS: tuple[Column, ...] = (
                                       "data gaps left out: = walking_time_s for a whole session, and windows add up "
                                       "to it (L275)"),
     ("standing_time_s", "s", "number", "lower back: the span's time standing still, outside walking and data gaps "
-                                       "(trunk tilt from the walking upright under 15 deg, or a chair transfer's "
+                                       "(trunk tilt from the walking upright under 8 deg, W248, or a chair transfer's "
                                        "standing side, W222); empty for a foot track and for "
                                        "`run` of a waist bundle (E145)"),
     ("sitting_time_s", "s", "number", "lower back: the time seated (between a stand-to-sit and a sit-to-stand, or "
-                                      "tilt 15-60 deg without a transfer to go by, W222); empty for a foot track "
+                                      "tilt 8-60 deg without a transfer to go by, W222 / W248); empty for a foot track "
                                       "and for `run` of a waist bundle (E145)"),
     ("lying_time_s", "s", "number", "lower back: the time lying (trunk tilt >= 60 deg from the walking upright, "
                                     "W222); empty for a foot track and for `run` of a waist bundle (E145)"),
