@@ -216,6 +216,9 @@ def main(argv=None) -> None:
     ap.add_argument("--w247", action="store_true",
                     help="decision W247's rule: lying.MIN_LYING_S chosen on HAPT users 1-10, then users 11-30, fresh "
                          "simulated users 5980-5999 and the mobgap recordings today vs the candidate")
+    ap.add_argument("--w249", action="store_true",
+                    help="decision W249's rule: lying.SIDE_WINDOW_S chosen on HAPT users 1-10, then users 11-30, "
+                         "fresh simulated users 5980-5999 and the mobgap recordings, today vs the candidate")
     a = ap.parse_args(argv)
     if a.w233:
         return w233(a.root)
@@ -223,6 +226,8 @@ def main(argv=None) -> None:
         return w246(a.root, a.out if a.out != OUT else Path("experiments/results/hapt_lying_transfers.md"))
     if a.w247:
         return w247(a.root)
+    if a.w249:
+        return w249(a.root)
     rows, labs, diag, refused, cpu = run(a.root)
     lines = ["# Transfers (W182) of offline waist-pendulum on UCI HAPT (decision W232)", "",
              f"{labs.session.nunique()} recordings tracked; {cpu:.0f} s CPU on one core. Match: peak_s inside a "
@@ -343,6 +348,57 @@ def w247(root: Path) -> None:
         say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
     lying.MIN_LYING_S = adopted
     Path("experiments/results/hapt_lying_w247.md").write_text("\n".join(lines) + "\n")
+
+
+W249_GRID = (3.0, 5.0, 10.0)  # W249's candidate windows (s), chosen on users 1-10
+
+
+def w249(root: Path) -> None:
+    """Decision W249's one measurement: SIDE_WINDOW_S chosen on users 1-10 (the most right lying rows; ties: the
+    shorter; none above today's: dropped); (a) users 11-30, (b) simulated users 5980-5999, (c) mobgap."""
+    import importlib.util
+
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist import lying
+
+    lines = ["# Decision W249's rule: lying.SIDE_WINDOW_S (the side's posture over a window)", ""]
+
+    def say(x: str) -> None:
+        print(x, flush=True)
+        lines.append(x)
+
+    adopted = lying.SIDE_WINDOW_S
+    lying.SIDE_WINDOW_S = None
+    best = lying_counts(run(root, range(1, 11))[0]) + (None,)
+    say(f"selection, HAPT users 1-10: today right {best[0]} of {best[1]} lying rows")
+    for v in W249_GRID:
+        lying.SIDE_WINDOW_S = v
+        r, n = lying_counts(run(root, range(1, 11))[0])
+        say(f"selection, HAPT users 1-10: SIDE_WINDOW_S = {v:g} s: right {r} of {n} lying rows")
+        if r > best[0]:
+            best = (r, n, v)
+    chosen = best[2]
+    say(f"chosen: {chosen}")
+    if chosen is not None:
+        spec = importlib.util.spec_from_file_location("turns_transfers", Path(__file__).parent / "turns_transfers.py")
+        tt = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(tt)
+        for label, v in (("today", None), ("candidate", chosen)):
+            lying.SIDE_WINDOW_S = v
+            rows, labs, diag, _, _ = run(root, range(11, 31))
+            r, n = lying_counts(rows)
+            say(f"(a) HAPT users 11-30, {label} (SIDE_WINDOW_S = {v}): right {r} of {n} lying rows, precision "
+                f"{r / max(n, 1):.2f}")
+            lines.extend(tables(rows, labs, diag)[:22])
+            say(f"(b) simulated users 5980-5999, {label}:")
+            tt.sim(users=range(5980, 6000), tracks=("waist-pendulum",))
+            kinds = []
+            for folder in sorted(Path("datasets/real").glob("mobgap_*")):
+                res = track_waist(read_session(folder), pipeline="waist-pendulum")
+                kinds += [t["kind"] for t in res.info["transfers"]]
+            say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
+    lying.SIDE_WINDOW_S = adopted
+    Path("experiments/results/hapt_lying_w249.md").write_text("\n".join(lines) + "\n")
 
 
 NOTES = """

@@ -52,6 +52,10 @@ SIDE_GAP_S = POSTURE_HALF_WINDOW_S
 #: 11-30): a run of W222's lying shorter than this (s) gives no transfer - a phone handled while it is put on or taken
 #: off reads a few seconds of lying; None = every run gives its edges
 MIN_LYING_S: float | None = 10.0
+#: decision W249's candidate (its rule and measurement in docs/decisions/waist.md): the other side's posture is the
+#: one W222 gives most samples (standing or sitting) over this many seconds (s) beyond :data:`SIDE_GAP_S`, inside the
+#: non-lying piece; None = the one sample at :data:`SIDE_GAP_S`
+SIDE_WINDOW_S: float | None = None
 _KIND = {(+1, _CODE[SITTING]): SIT_TO_LIE, (+1, _CODE[STANDING]): STAND_TO_LIE,
          (-1, _CODE[SITTING]): LIE_TO_SIT, (-1, _CODE[STANDING]): LIE_TO_STAND}
 
@@ -76,6 +80,20 @@ def _along(rate: np.ndarray, j: int, sign: int) -> tuple[int, int]:
     while b < rate.size - 1 and sign * rate[b + 1] >= MOVING_DPS:
         b += 1
     return a, b
+
+
+def _side(code: np.ndarray, i: int, lo: int, hi: int, step: int, fs: float) -> int:
+    """The other side's posture code: W222's at sample ``i``, or (decision W249's candidate, :data:`SIDE_WINDOW_S`)
+    the standing / sitting code with the most samples from ``i`` over the window away from the movement (``step``
+    -1: backward), inside ``[lo, hi)``; a tie, or neither in the window, gives the code at ``i``."""
+    if SIDE_WINDOW_S is None:
+        return int(code[i])
+    w = int(round(SIDE_WINDOW_S * fs))
+    seg = code[max(i - w, lo):i + 1] if step < 0 else code[i:min(i + w + 1, hi)]
+    n_stand, n_sit = int((seg == _CODE[STANDING]).sum()), int((seg == _CODE[SITTING]).sum())
+    if n_stand == n_sit:
+        return int(code[i])
+    return _CODE[STANDING] if n_stand > n_sit else _CODE[SITTING]
 
 
 def lying_transfer_rows(t: np.ndarray, tilt: np.ndarray, code: np.ndarray, fs: float,
@@ -104,11 +122,11 @@ def lying_transfer_rows(t: np.ndarray, tilt: np.ndarray, code: np.ndarray, fs: f
             if sign > 0:  # the posture it came from
                 if s <= lo:
                     continue
-                side = int(code[max(s - gap, lo)])
+                side = _side(code, max(s - gap, lo), lo, s, -1, fs)
             else:  # the posture it went to
                 if e >= hi - 1:
                     continue
-                side = int(code[min(e + gap, hi - 1)])
+                side = _side(code, min(e + gap, hi - 1), e + 1, hi, +1, fs)
             kind = _KIND.get((sign, side))
             if kind is None:  # W234: an unknown side names no posture
                 continue
