@@ -39,18 +39,18 @@ def _rows(tilt, t, transfers=None, walking=None):
 
 
 def test_the_four_kinds_their_times_and_no_row_at_the_recording_edges():
-    t = np.arange(0.0, 100.0, 1 / FS)
-    # lying at the start (no transfer: not recorded), up to a 20 deg seat at 6-8 s (lie-to-sit), standing 3 deg,
-    # down to lying at 30-32 s (stand-to-lie: 43 deg/s), up to standing at 50-52 s (lie-to-stand), a 25 deg seat,
-    # down to lying at 80-82 s (sit-to-lie), lying at the end (no transfer)
-    tilt = _ramp(t, [(0, 90), (16, 90), (18, 20), (25, 20), (26, 3), (30, 3), (32, 90), (50, 90), (52, 3), (60, 3),
-                     (61, 25), (80, 25), (82, 90), (100, 90)])
+    t = np.arange(0.0, 110.0, 1 / FS)
+    # lying at the start (no transfer: not recorded), up to a 20 deg seat at 16-18 s (lie-to-sit), standing 3 deg,
+    # down to lying at 40-42 s (stand-to-lie: 43 deg/s), up to standing at 60-62 s (lie-to-stand), a 25 deg seat,
+    # down to lying at 95-97 s (sit-to-lie), lying at the end (no transfer)
+    tilt = _ramp(t, [(0, 90), (16, 90), (18, 20), (25, 20), (26, 3), (40, 3), (42, 90), (60, 90), (62, 3), (75, 3),
+                     (76, 25), (95, 25), (97, 90), (110, 90)])
     rows = _rows(tilt, t)
     assert rows["kind"].tolist() == [LIE_TO_SIT, STAND_TO_LIE, LIE_TO_STAND, SIT_TO_LIE]
     # the movement is where the tilt moves 10 deg/s or more (W182's mechanism); peak_s where it passes 60 deg
-    want = np.array([[16.0, 18.0], [30.0, 32.0], [50.0, 52.0], [80.0, 82.0]])
+    want = np.array([[16.0, 18.0], [40.0, 42.0], [60.0, 62.0], [95.0, 97.0]])
     assert np.abs(rows[["start_s", "end_s"]].to_numpy() - want).max() < 0.2
-    passes = [16 + 2 * 30 / 70, 30 + 2 * 57 / 87, 50 + 2 * 30 / 87, 80 + 2 * 35 / 65]
+    passes = [16 + 2 * 30 / 70, 40 + 2 * 57 / 87, 60 + 2 * 30 / 87, 95 + 2 * 35 / 65]
     assert rows["peak_s"].to_numpy() == pytest.approx(passes, abs=0.03)
     assert (rows["peak_tilt_deg"] >= LYING_TILT_DEG).all()
     assert rows["duration_s"].to_numpy() == pytest.approx((rows["end_s"] - rows["start_s"]).to_numpy())
@@ -139,3 +139,17 @@ def test_a_lower_back_track_writes_a_stand_to_lie_and_a_lie_to_stand(tmp_path):
     assert tr["transfer"].tolist() == list(range(1, len(tr) + 1))
     assert np.abs(lying[["start_s", "end_s"]].to_numpy() - [[down, down + 2], [up, up + 2]]).max() < 0.5
     assert not tr["kind"].isin([SIT_TO_STAND, STAND_TO_SIT]).any()
+
+
+def test_the_side_is_the_posture_held_over_w249s_window_not_a_brief_sit_on_the_bed(monkeypatch):
+    from pdrlearn.waist import lying
+
+    t = np.arange(0.0, 80.0, 1 / FS)
+    # standing 3 deg for 28 s, sat on the bed's edge (20 deg) for 2.5 s, then lying down; up to a 20 deg seat
+    # held 3 s before standing up (W222: tilt >= 8 deg, W248, reads sitting)
+    tilt = _ramp(t, [(0, 3), (28, 3), (28.5, 20), (31, 20), (33, 90), (50, 90), (52, 20), (55, 20), (55.5, 3),
+                     (80, 3)])
+    assert lying.SIDE_WINDOW_S == 10.0
+    assert _rows(tilt, t)["kind"].tolist() == [STAND_TO_LIE, LIE_TO_STAND]  # the posture held over 10 s
+    monkeypatch.setattr(lying, "SIDE_WINDOW_S", None)  # W245's one sample, 1 s out: inside the brief sit
+    assert _rows(tilt, t)["kind"].tolist() == [SIT_TO_LIE, LIE_TO_SIT]

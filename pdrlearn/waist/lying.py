@@ -13,13 +13,16 @@ second posture detector:
   W182's :data:`~pdrlearn.waist.transfers.MOVING_DPS` or more (its rate over W182's ``RATE_WINDOW_S``): the
   mechanism of W182's :func:`~pdrlearn.waist.transfers.movement_bounds`, along one direction;
 * **kind**: the posture on the other side, W222's label (chair transfers and tilt) of the non-lying piece next to
-  the lying run, read :data:`SIDE_GAP_S` before the movement's start (after its end) - where the averaged tilt no
-  longer sees the movement - or at the piece's farthest sample if it is shorter: sitting gives ``sit-to-lie`` /
-  ``lie-to-sit``, standing ``stand-to-lie`` / ``lie-to-stand``; an unknown side (W234) gives no row.
+  the lying run, from :data:`SIDE_GAP_S` before the movement's start (after its end) - where the averaged tilt no
+  longer sees the movement - or the piece's farthest sample if it is shorter: the posture (standing or sitting) with
+  most samples over the :data:`SIDE_WINDOW_S` (10 s, W249) beyond it, inside the piece (a tie: the one sample's);
+  sitting gives ``sit-to-lie`` / ``lie-to-sit``, standing ``stand-to-lie`` / ``lie-to-stand``; an unknown side
+  (W234) gives no row.
 
 The row's ``peak_s`` is the instant the trunk passes 60 deg, ``peak_tilt_deg`` the largest tilt in the movement,
 ``height_change_m`` W182's double integral over the movement. Not from a seed: no threshold is new (W222's 60 deg and
-1 s, W182's 10 deg/s and 0.25 s) but W247's 10 s, chosen on HAPT users 1-10 and measured on users 11-30.
+1 s, W182's 10 deg/s and 0.25 s) but W247's 10 s and W249's 10 s, each chosen on HAPT users 1-10 and measured on
+users 11-30.
 """
 
 from __future__ import annotations
@@ -52,10 +55,11 @@ SIDE_GAP_S = POSTURE_HALF_WINDOW_S
 #: 11-30): a run of W222's lying shorter than this (s) gives no transfer - a phone handled while it is put on or taken
 #: off reads a few seconds of lying; None = every run gives its edges
 MIN_LYING_S: float | None = 10.0
-#: decision W249's candidate (its rule and measurement in docs/decisions/waist.md): the other side's posture is the
-#: one W222 gives most samples (standing or sitting) over this many seconds (s) beyond :data:`SIDE_GAP_S`, inside the
-#: non-lying piece; None = the one sample at :data:`SIDE_GAP_S`
-SIDE_WINDOW_S: float | None = None
+#: decision W249 (adopted by its rule; chosen on HAPT users 1-10 from {3, 5, 10} s, measured on users 11-30): the
+#: other side's posture is the one W222 gives most samples (standing or sitting) over this many seconds beyond
+#: :data:`SIDE_GAP_S`, inside the non-lying piece - a lying down from standing often sits on the bed first; None = the
+#: one sample at :data:`SIDE_GAP_S`
+SIDE_WINDOW_S: float | None = 10.0
 _KIND = {(+1, _CODE[SITTING]): SIT_TO_LIE, (+1, _CODE[STANDING]): STAND_TO_LIE,
          (-1, _CODE[SITTING]): LIE_TO_SIT, (-1, _CODE[STANDING]): LIE_TO_STAND}
 
