@@ -21,6 +21,7 @@ Caveat: HAPT's phone is on a belt at the waist's side or front, not the lower ba
 No pipeline behaviour is changed here. One core.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/hapt_transfers.py [--root datasets/hapt]
+[--w233 | --w246] (W246: the lying kinds of W245, users 1-10 and 11-30 apart)
 Output: experiments/results/hapt_transfers.md
 """
 from __future__ import annotations
@@ -43,9 +44,15 @@ from pdrlearn.waist.transfers import HEIGHT_MIN_M, height_change_m, movement_bou
 
 logging.disable(logging.WARNING)
 
+OUT = Path("experiments/results/hapt_transfers.md")
 TOL_S = 1.0  # W232's matching tolerance around a labelled transition (s)
-KIND = {"sit_to_stand": "sit-to-stand", "stand_to_sit": "stand-to-sit"}
-LYING = ("sit_to_lie", "lie_to_sit", "stand_to_lie", "lie_to_stand")
+CHAIR = {"sit_to_stand": "sit-to-stand", "stand_to_sit": "stand-to-sit"}
+#: W246: HAPT's lying labels and transfers.csv's lying kinds (W245)
+LIE = {"sit_to_lie": "sit-to-lie", "lie_to_sit": "lie-to-sit", "stand_to_lie": "stand-to-lie",
+       "lie_to_stand": "lie-to-stand"}
+LYING = tuple(LIE)
+KIND = {**CHAIR, **LIE}
+INTO_LYING = ("sit-to-lie", "stand-to-lie")
 
 
 def labels(act: pd.DataFrame) -> pd.DataFrame:
@@ -78,7 +85,9 @@ def match(rows: pd.DataFrame, lab: pd.DataFrame, tol: float = TOL_S) -> tuple[pd
             verdict.append("false")
         else:
             a = trans.at[r.label, "activity"]
-            verdict.append("lying" if a in LYING else "right" if KIND[a] == r.kind else "kind error")
+            # W232: a chair row at a lying label is counted apart; W246: a lying row is right or a kind error
+            verdict.append("lying" if a in LYING and r.kind in CHAIR.values()
+                           else "right" if KIND[a] == r.kind else "kind error")
     return rows.assign(verdict=verdict, in_activity=where), trans
 
 
@@ -90,7 +99,7 @@ def diagnose(session, steps: pd.DataFrame, trans: pd.DataFrame) -> list[dict]:
         return []
     tilt = sample_tilt_deg(imu.up_body, _contact_directions(imu, ev, steps["has_next"].to_numpy(bool))[1])
     out = []
-    for lb in trans[trans.activity.isin(list(KIND))].itertuples():
+    for lb in trans[trans.activity.isin(list(CHAIR))].itertuples():
         m = np.flatnonzero((imu.t >= lb.start_s - TOL_S) & (imu.t <= lb.end_s + TOL_S))
         if m.size == 0:
             continue
@@ -113,8 +122,8 @@ def cause(d: dict) -> str:
     return "wrong sign" if up != (d["activity"] == "sit_to_stand") else "other (kind error / merged)"
 
 
-def run(root: Path):
-    folders = sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir())
+def run(root: Path, users=None):
+    folders = sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir() and (users is None or user_of(p.name) in users))
     if not folders:
         raise SystemExit(f"{root}: no hapt_u*_r* sessions; run `pdrlearn fetch hapt --out {root}` first")
     rows, labs, diag, refused = [], [], [], []
@@ -141,16 +150,20 @@ def run(root: Path):
 
 def tables(rows: pd.DataFrame, labs: pd.DataFrame, diag: pd.DataFrame) -> list[str]:
     out = ["### Recall per labelled transition kind", "",
-           "| label | labelled | right kind | other kind | recall |", "|---|---|---|---|---|"]
-    for a in (*KIND, *LYING):
+           "| label | labelled | right kind | other kind | recall | lying row, direction right |",
+           "|---|---|---|---|---|---|"]
+    for a in KIND:
         x = labs[labs.activity == a]
         hit = rows[rows.label.isin(x.index) & rows.session.isin(x.session)]
         hit = hit.merge(x[["session", "row"]].reset_index(), left_on=["session", "label"],
                         right_on=["session", "index"])
-        right = int((hit.verdict == "right").sum()) if a in KIND else 0
+        right = int((hit.verdict == "right").sum())
         other = len(hit) - right
-        rec = f"{right / len(x):.2f}" if a in KIND else f"(any row: {other / len(x):.2f})"
-        out.append(f"| {a} | {len(x)} | {right} | {other} | {rec} |")
+        rec = f"{right / max(len(x), 1):.2f}"
+        # W246: into / out of lying right, the sit / stand side aside
+        into = LIE.get(a) in INTO_LYING
+        direction = int(sum((k in INTO_LYING) == into for k in hit.kind if k in LIE.values())) if a in LIE else ""
+        out.append(f"| {a} | {len(x)} | {right} | {other} | {rec} | {direction} |")
     out += ["", "### Precision per reported kind", "",
             "| kind | reported | right | kind error | at a lying label | false | precision |",
             "|---|---|---|---|---|---|---|"]
@@ -168,6 +181,8 @@ def tables(rows: pd.DataFrame, labs: pd.DataFrame, diag: pd.DataFrame) -> list[s
             "| kind | n | start | end | duration |", "|---|---|---|---|---|"]
     for k in KIND.values():
         x = ok[ok.kind == k]
+        if not len(x):
+            continue
         ds, de = x.start_s - x.lab_start, x.end_s - x.lab_end
         dd = (x.end_s - x.start_s) - (x.lab_end - x.lab_start)
         out.append(f"| {k} | {len(x)} | " + " | ".join(f"{d.median():+.2f} ({d.abs().median():.2f})"
@@ -176,7 +191,7 @@ def tables(rows: pd.DataFrame, labs: pd.DataFrame, diag: pd.DataFrame) -> list[s
             "", "| label | n | cause | count | label dur median s | tilt median deg | |dz| median m | "
             "W182 movement median s |", "|---|---|---|---|---|---|---|---|"]
     diag = diag.assign(cause=diag.apply(cause, axis=1))
-    for a in KIND:
+    for a in CHAIR:
         x = diag[diag.activity == a]
         for c, g in x.groupby("cause"):
             out.append(f"| {a} | {len(x)} | {c} | {len(g)} | {g.dur_s.median():.2f} | {g.tilt_deg.median():.1f} | "
@@ -191,13 +206,28 @@ def tables(rows: pd.DataFrame, labs: pd.DataFrame, diag: pd.DataFrame) -> list[s
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
-    ap.add_argument("--out", type=Path, default=Path("experiments/results/hapt_transfers.md"))
+    ap.add_argument("--out", type=Path, default=OUT)
     ap.add_argument("--w233", action="store_true",
                     help="decision W233's rule: the candidate (transfers.HEIGHT_HALF_S = W104's 1 s) on fresh "
                          "simulated users 5740-5759 (turns_transfers.py's sim, before and after) and on HAPT")
+    ap.add_argument("--w246", action="store_true",
+                    help="decision W246's measurement: transfers.csv with W245's lying kinds, per kind, on HAPT users "
+                         "1-10 and 11-30 apart (experiments/results/hapt_lying_transfers.md)")
+    ap.add_argument("--w247", action="store_true",
+                    help="decision W247's rule: lying.MIN_LYING_S chosen on HAPT users 1-10, then users 11-30, fresh "
+                         "simulated users 5980-5999 and the mobgap recordings today vs the candidate")
+    ap.add_argument("--w249", action="store_true",
+                    help="decision W249's rule: lying.SIDE_WINDOW_S chosen on HAPT users 1-10, then users 11-30, "
+                         "fresh simulated users 5980-5999 and the mobgap recordings, today vs the candidate")
     a = ap.parse_args(argv)
     if a.w233:
         return w233(a.root)
+    if a.w246:
+        return w246(a.root, a.out if a.out != OUT else Path("experiments/results/hapt_lying_transfers.md"))
+    if a.w247:
+        return w247(a.root)
+    if a.w249:
+        return w249(a.root)
     rows, labs, diag, refused, cpu = run(a.root)
     lines = ["# Transfers (W182) of offline waist-pendulum on UCI HAPT (decision W232)", "",
              f"{labs.session.nunique()} recordings tracked; {cpu:.0f} s CPU on one core. Match: peak_s inside a "
@@ -231,6 +261,144 @@ def w233(root: Path) -> None:
     text = "\n".join(lines) + "\n"
     print(text)
     out.write_text(text)
+
+
+def user_of(session: str) -> int:
+    """HAPT's user number of a folder name ``hapt_uNN_rK``."""
+    return int(session.split("_")[1][1:])
+
+
+def w246(root: Path, out: Path) -> None:
+    """Decision W246's one measurement: W232's tables with the lying kinds, users 1-10 / 11-30 / all (a recording
+    without a labelled transition is left out of the split)."""
+    from pdrlearn.waist import lying
+
+    rows, labs, diag, refused, cpu = run(root)
+    lines = ["# Lying transfers (W245) in transfers.csv of offline waist-pendulum on UCI HAPT (decision W246)", "",
+             f"{labs.session.nunique()} recordings tracked; {cpu:.0f} s CPU on one core. W232's match (peak_s inside "
+             f"a labelled transition +-{TOL_S:g} s); lying.MIN_LYING_S = {lying.MIN_LYING_S} (W247).", ""]
+    for name, users in (("users 1-10", range(1, 11)), ("users 11-30", range(11, 31)), ("all users", range(1, 31))):
+        keep = [s for s in labs.session.unique() if user_of(s) in users]
+        lines += [f"## {name} ({len(keep)} recordings)", "",
+                  *tables(rows[rows.session.isin(keep)], labs[labs.session.isin(keep)],
+                          diag[diag.session.isin(keep)]), ""]
+    lines += ["Refused recordings (DataError): " + (str(len(refused)) if refused else "none")]
+    lines += [f"- {r}" for r in refused]
+    text = "\n".join(lines) + "\n"
+    print(text)
+    out.write_text(text + NOTES)
+
+
+W247_GRID = (2.0, 5.0, 10.0)  # W247's candidate values (s), chosen on users 1-10
+
+
+def lying_counts(rows: pd.DataFrame) -> tuple[int, int]:
+    """(right, reported) lying rows."""
+    x = rows[rows.kind.isin(list(LIE.values()))]
+    return int((x.verdict == "right").sum()), len(x)
+
+
+def w247(root: Path) -> None:
+    """Decision W247's one measurement: the value chosen on users 1-10; (a) users 11-30, (b) simulated users
+    5980-5999, (c) the mobgap recordings, today vs the candidate."""
+    import importlib.util
+
+    from pdrlearn.waist import lying
+
+    lines = ["# Decision W247's rule: lying.MIN_LYING_S (a lying run shorter than it gives no transfer)", ""]
+    adopted = lying.MIN_LYING_S  # restored at the end; "today" is W246's (None: before W247)
+
+    def say(x: str) -> None:
+        print(x, flush=True)
+        lines.append(x)
+
+    lying.MIN_LYING_S = None
+    right0, n0 = lying_counts(run(root, range(1, 11))[0])
+    say(f"selection, HAPT users 1-10: today right {right0} of {n0} lying rows")
+    chosen = None
+    for v in W247_GRID:
+        lying.MIN_LYING_S = v
+        r, n = lying_counts(run(root, range(1, 11))[0])
+        say(f"selection, HAPT users 1-10: MIN_LYING_S = {v:g} s: right {r} of {n} lying rows")
+        if r == right0:
+            chosen = v
+    say(f"chosen: {chosen}")
+    if chosen is None:
+        lying.MIN_LYING_S = adopted
+        Path("experiments/results/hapt_lying_w247.md").write_text("\n".join(lines) + "\n")
+        return
+    spec = importlib.util.spec_from_file_location("turns_transfers", Path(__file__).parent / "turns_transfers.py")
+    tt = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tt)
+    from pdrlearn.track.waist import track_waist
+
+    for label, v in (("today", None), ("candidate", chosen)):
+        lying.MIN_LYING_S = v
+        rows, labs, diag, _, _ = run(root, range(11, 31))
+        r, n = lying_counts(rows)
+        say(f"(a) HAPT users 11-30, {label} (MIN_LYING_S = {v}): right {r} of {n} lying rows, precision "
+            f"{r / max(n, 1):.2f}")
+        lines.extend(tables(rows, labs, diag)[:20])
+        say(f"(b) simulated users 5980-5999, {label}:")
+        tt.sim(users=range(5980, 6000), tracks=("waist-pendulum",))
+        kinds = []
+        for folder in sorted(Path("datasets/real").glob("mobgap_*")):
+            res = track_waist(read_session(folder), pipeline="waist-pendulum")
+            kinds += [t["kind"] for t in res.info["transfers"]]
+        say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
+    lying.MIN_LYING_S = adopted
+    Path("experiments/results/hapt_lying_w247.md").write_text("\n".join(lines) + "\n")
+
+
+W249_GRID = (3.0, 5.0, 10.0)  # W249's candidate windows (s), chosen on users 1-10
+
+
+def w249(root: Path) -> None:
+    """Decision W249's one measurement: SIDE_WINDOW_S chosen on users 1-10 (the most right lying rows; ties: the
+    shorter; none above today's: dropped); (a) users 11-30, (b) simulated users 5980-5999, (c) mobgap."""
+    import importlib.util
+
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist import lying
+
+    lines = ["# Decision W249's rule: lying.SIDE_WINDOW_S (the side's posture over a window)", ""]
+
+    def say(x: str) -> None:
+        print(x, flush=True)
+        lines.append(x)
+
+    adopted = lying.SIDE_WINDOW_S
+    lying.SIDE_WINDOW_S = None
+    best = lying_counts(run(root, range(1, 11))[0]) + (None,)
+    say(f"selection, HAPT users 1-10: today right {best[0]} of {best[1]} lying rows")
+    for v in W249_GRID:
+        lying.SIDE_WINDOW_S = v
+        r, n = lying_counts(run(root, range(1, 11))[0])
+        say(f"selection, HAPT users 1-10: SIDE_WINDOW_S = {v:g} s: right {r} of {n} lying rows")
+        if r > best[0]:
+            best = (r, n, v)
+    chosen = best[2]
+    say(f"chosen: {chosen}")
+    if chosen is not None:
+        spec = importlib.util.spec_from_file_location("turns_transfers", Path(__file__).parent / "turns_transfers.py")
+        tt = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(tt)
+        for label, v in (("today", None), ("candidate", chosen)):
+            lying.SIDE_WINDOW_S = v
+            rows, labs, diag, _, _ = run(root, range(11, 31))
+            r, n = lying_counts(rows)
+            say(f"(a) HAPT users 11-30, {label} (SIDE_WINDOW_S = {v}): right {r} of {n} lying rows, precision "
+                f"{r / max(n, 1):.2f}")
+            lines.extend(tables(rows, labs, diag)[:22])
+            say(f"(b) simulated users 5980-5999, {label}:")
+            tt.sim(users=range(5980, 6000), tracks=("waist-pendulum",))
+            kinds = []
+            for folder in sorted(Path("datasets/real").glob("mobgap_*")):
+                res = track_waist(read_session(folder), pipeline="waist-pendulum")
+                kinds += [t["kind"] for t in res.info["transfers"]]
+            say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
+    lying.SIDE_WINDOW_S = adopted
+    Path("experiments/results/hapt_lying_w249.md").write_text("\n".join(lines) + "\n")
 
 
 NOTES = """

@@ -10,7 +10,8 @@
 
 waist-pendulum, default options. Nothing is tuned here. One core.
 
-Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/posture_time.py sim|hapt [--root datasets/hapt]
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/posture_time.py sim|hapt|w248
+[--root datasets/hapt] (w248: decision W248's rule, SITTING_TILT_DEG chosen on HAPT users 1-10)
 Output: experiments/results/posture_time_sim.txt / posture_time_hapt.txt
 """
 from __future__ import annotations
@@ -92,10 +93,13 @@ def sim() -> list[str]:
             *agreement(rows, ("sitting", "upright")), "", *per]
 
 
-def hapt(root: Path) -> list[str]:
+def hapt_rows(root: Path, users=None) -> tuple[list[tuple[str, str]], list[str], int]:
+    """(truth, track label) every 0.05 s of HAPT's labelled walking / standing / sitting / lying (W223 (b)), the
+    refused recordings, and the number of folders; ``users``: HAPT user numbers (None: all)."""
     from pdrlearn.io.external.hapt import GAIT
 
-    folders = sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir())
+    folders = sorted(p for p in root.glob("hapt_u*_r*") if p.is_dir()
+                     and (users is None or int(p.name.split("_")[1][1:]) in users))
     if not folders:
         raise SystemExit(f"{root}: no hapt_u*_r* sessions; run `pdrlearn fetch hapt --out {root}` first")
     name = {"standing": "standing", "sitting": "sitting", "lying": "lying", **dict.fromkeys(GAIT, "walking")}
@@ -114,17 +118,86 @@ def hapt(root: Path) -> list[str]:
             grid = np.arange(r.start_ms / 1000.0, (r.end_ms + 20) / 1000.0, DT)  # H4: end inclusive
             rows += [(name[r.activity], e) for e in labels_at(res, grid)]
         print(f"{folder.name} done", file=sys.stderr, flush=True)
-    n = len(folders) - len(refused)
+    return rows, refused, len(folders)
+
+
+def hapt(root: Path) -> list[str]:
+    rows, refused, n_folders = hapt_rows(root)
+    n = n_folders - len(refused)
     return [f"# W223 (b): UCI HAPT, {n} recordings tracked (waist-pendulum defaults); stairs pooled into walking", "",
             *agreement(rows, ("walking", "standing", "sitting", "lying")), "",
             f"Refused: {len(refused)}", *[f"- {r}" for r in refused]]
 
 
+def shares(rows: list[tuple[str, str]]) -> dict[str, float]:
+    """Per truth class: the share (%) of its time the track labels the same (upright = walking or standing)."""
+    df = pd.DataFrame(rows, columns=["truth", "est"])
+    out = {}
+    for c, d in df.groupby("truth"):
+        same = d.est.isin(("walking", "standing")) if c == "upright" else d.est == c
+        out[c] = 100.0 * float(same.mean())
+    return out
+
+
+W248_GRID = (6.0, 8.0, 10.0, 12.0, 15.0, 20.0)  # decision W248's values (deg), chosen on HAPT users 1-10
+
+
+def w248(root: Path) -> list[str]:
+    """Decision W248's one run: SITTING_TILT_DEG chosen on HAPT users 1-10, then (a) users 11-30, (b) simulated
+    users 5980-5999, (c) the mobgap recordings, today (15 deg) vs the chosen value."""
+    from pdrlearn.waist import posture_time
+
+    today = posture_time.SITTING_TILT_DEG
+    lines = ["# Decision W248's rule: W222's SITTING_TILT_DEG re-chosen on HAPT users 1-10", ""]
+
+    def say(x: str) -> None:
+        print(x, flush=True)
+        lines.append(x)
+
+    best = None
+    for v in W248_GRID:
+        posture_time.SITTING_TILT_DEG = v
+        sh = shares(hapt_rows(root, range(1, 11))[0])
+        score = 0.5 * (sh["sitting"] + sh["standing"])
+        say(f"selection, HAPT users 1-10, {v:g} deg: sitting {sh['sitting']:.1f} %, standing {sh['standing']:.1f} %, "
+            f"mean {score:.1f} %, walking {sh['walking']:.1f} %, lying {sh['lying']:.1f} %")
+        if best is None or score > best[0] or (score == best[0] and abs(v - today) < abs(best[1] - today)):
+            best = (score, v)
+    chosen = best[1]
+    say(f"chosen: {chosen:g} deg")
+    if chosen != today:
+        global USERS
+        users, USERS = USERS, range(5980, 6000)
+        for label, v in (("today", today), ("candidate", chosen)):
+            posture_time.SITTING_TILT_DEG = v
+            sh = shares(hapt_rows(root, range(11, 31))[0])
+            say(f"(a) HAPT users 11-30, {label} {v:g} deg: sitting {sh['sitting']:.1f} %, standing "
+                f"{sh['standing']:.1f} %, mean {0.5 * (sh['sitting'] + sh['standing']):.1f} %, walking "
+                f"{sh['walking']:.1f} %, lying {sh['lying']:.1f} %")
+            sim_lines = sim()
+            say(f"(b) simulated users 5980-5999, {label} {v:g} deg:")
+            for x in sim_lines[4:8]:
+                say(x)
+            for folder in sorted(Path("datasets/real").glob("mobgap_*")):
+                res = track_waist(read_session(folder), pipeline="waist-pendulum")
+                secs = {}
+                for a, b, p in res.info.get("postures") or []:
+                    secs[p] = secs.get(p, 0.0) + b - a
+                say(f"(c) {folder.name}, {label}: " + ", ".join(f"{k} {x:.1f} s" for k, x in sorted(secs.items())))
+        USERS = users
+    posture_time.SITTING_TILT_DEG = today
+    return lines
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("sim", "hapt"))
+    ap.add_argument("what", choices=("sim", "hapt", "w248"))
     ap.add_argument("--root", type=Path, default=Path("datasets/hapt"))
     a = ap.parse_args(argv)
+    if a.what == "w248":
+        text = "\n".join(w248(a.root)) + "\n"
+        Path("experiments/results/posture_time_w248.txt").write_text(text)
+        return
     lines = sim() if a.what == "sim" else hapt(a.root)
     text = "\n".join(lines) + "\n"
     print(text)

@@ -278,11 +278,11 @@ SESSIONS: tuple[Column, ...] = (
                                       "data gaps left out: = walking_time_s for a whole session, and windows add up "
                                       "to it (L275)"),
     ("standing_time_s", "s", "number", "lower back: the span's time standing still, outside walking and data gaps "
-                                       "(trunk tilt from the walking upright under 15 deg, or a chair transfer's "
+                                       "(trunk tilt from the walking upright under 8 deg, W248, or a chair transfer's "
                                        "standing side, W222); empty for a foot track and for "
                                        "`run` of a waist bundle (E145)"),
     ("sitting_time_s", "s", "number", "lower back: the time seated (between a stand-to-sit and a sit-to-stand, or "
-                                      "tilt 15-60 deg without a transfer to go by, W222); empty for a foot track "
+                                      "tilt 8-60 deg without a transfer to go by, W222 / W248); empty for a foot track "
                                       "and for `run` of a waist bundle (E145)"),
     ("lying_time_s", "s", "number", "lower back: the time lying (trunk tilt >= 60 deg from the walking upright, "
                                     "W222); empty for a foot track and for `run` of a waist bundle (E145)"),
@@ -475,12 +475,18 @@ PERIODS: tuple[Column, ...] = (
 #: decision W182: a lower-back track's transfers.csv (a foot track writes none)
 TRANSFERS: tuple[Column, ...] = (
     ("transfer", "index", "integer", "the transfer's number in the session, from 1"),
-    ("kind", _ID, "text", "sit-to-stand (the pelvis rises 0.20 m or more) or stand-to-sit (it lowers as much)"),
-    ("start_s", "s", "number", "the trunk starts to flex (its tilt rate reaches 10 deg/s), on the session's clock"),
-    ("end_s", "s", "number", "the trunk is still again after straightening"),
+    ("kind", _ID, "text", "sit-to-stand (the pelvis rises 0.20 m or more) or stand-to-sit (it lowers as much); "
+                          "sit-to-lie, stand-to-lie, lie-to-sit or lie-to-stand: the trunk's tilt crosses 60 deg "
+                          "into or out of lying, the sit / stand side from the posture split (W245)"),
+    ("start_s", "s", "number", "the trunk starts to flex (its tilt rate reaches 10 deg/s; a lying kind: to move "
+                               "toward or away from lying), on the session's clock"),
+    ("end_s", "s", "number", "the trunk is still again after straightening (a lying kind: after the tilt stops "
+                             "moving at 10 deg/s)"),
     ("duration_s", "s", "number", "end_s - start_s"),
-    ("peak_s", "s", "number", "the trunk's largest tilt from the walking upright"),
-    ("peak_tilt_deg", "deg", "number", "that tilt (W104's flexion events exceed 25 deg)"),
+    ("peak_s", "s", "number", "the trunk's largest tilt from the walking upright (a lying kind: the tilt passes "
+                              "60 deg)"),
+    ("peak_tilt_deg", "deg", "number", "the largest tilt (W104's flexion events exceed 25 deg; a lying kind: in the "
+                                       "movement)"),
     ("height_change_m", "m", "number", "the pelvis's height change from start_s to end_s (+ up)"),
     *_clocks("start_s", "end_s", "peak_s"),
 )

@@ -147,3 +147,13 @@ def test_the_posture_keys_say_run_of_a_waist_bundle_writes_them_empty_e145():
         for k in POSTURE_KEYS:
             assert "empty for a foot track and for `run` of a waist bundle (E145)" in desc[k], k
     assert "`run` of a waist bundle has no posture runs" in posture_line(dict.fromkeys(POSTURE_KEYS))
+
+
+def test_a_seat_tilted_10_deg_without_a_transfer_reads_sitting_w248():
+    """Decision W248: SITTING_TILT_DEG re-chosen on HAPT users 1-10 (8 deg): a 10 deg seat with no transfer to go by,
+    read standing under W222's 15 deg, is sitting; standing still within a few degrees stays standing."""
+    assert SITTING_TILT_DEG == 8.0
+    t = np.arange(0.0, 40.0, 0.5)
+    tilt = np.where(t < 20, 3.0, 10.0)
+    code = label_postures(t, tilt, np.zeros(t.size, bool), _transfers())
+    assert (code[t < 20] == 1).all() and (code[t >= 20] == 2).all()

@@ -76,6 +76,7 @@ from pdrlearn.waist.lengths import (
     step_frequency,
     walking_sequences,
 )
+from pdrlearn.waist.lying import postures_and_transfers
 from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params, subject_height
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
@@ -102,7 +103,6 @@ from pdrlearn.waist.plausibility import (
 from pdrlearn.waist.posture import drop_contacts, sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
-from pdrlearn.waist.posture_time import session_postures
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.steplength import cadence_law_factor, calibration_cadence_hz
 from pdrlearn.waist.transfers import chair_transfers
@@ -942,6 +942,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         warnings.append(calibration)
     n = len(steps)
     length_model = model.name
+    # decisions W222, W245: the posture runs (from the chair transfers) and the lying transfers added to them
+    postures, transfers = postures_and_transfers(imu, steps, transfers)
     info = {
         "pipeline": pipeline,
         "method": f"{steps.attrs.get('detector', '')}/{length_model}/{method}",
@@ -968,8 +970,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_frozen_contacts": n_frozen,  # decision W214
         "barometer_jump_steps": jumps,  # decision W230: steps held level (a pressure transient); None: no altitude
         "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
-        "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
-        "postures": session_postures(imu, steps, transfers),  # decision W222: the posture runs (not in summary.json)
+        "transfers": transfers.to_dict("records"),  # decisions W182, W245: transfers.csv (not in summary.json)
+        "postures": postures,  # decision W222: the posture runs (not in summary.json)
         # decision L306: the rests whose bias L296 took out (L297's sigma clock skips these only); None: L296 not
         # in force on this heading (not in summary.json)
         "rest_bias_rests": None if rest_spans is None else [[a, b] for a, b in rest_spans],

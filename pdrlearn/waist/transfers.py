@@ -56,6 +56,13 @@ def _tilt_deg(imu: WaistIMU, up: np.ndarray) -> np.ndarray:
     return np.degrees(np.arccos(np.clip(u @ up, -1.0, 1.0)))
 
 
+def tilt_rate_dps(t: np.ndarray, tilt: np.ndarray, fs: float) -> np.ndarray:
+    """The trunk tilt's rate (deg/s), the mean over :data:`RATE_WINDOW_S` (decision W182; shared by W245's lying
+    transfers)."""
+    w = max(int(round(RATE_WINDOW_S * fs)), 1)
+    return np.convolve(np.gradient(tilt, t), np.ones(w) / w, mode="same")
+
+
 def movement_bounds(t: np.ndarray, tilt: np.ndarray, peak: int, fs: float) -> tuple[int, int]:
     """Sample indices ``(start, end)`` of the movement around the tilt peak ``peak`` (decision W182): backward from
     the peak past the samples near it where the tilt's rate (mean over :data:`RATE_WINDOW_S`) is under
@@ -63,7 +70,7 @@ def movement_bounds(t: np.ndarray, tilt: np.ndarray, peak: int, fs: float) -> tu
     trunk flexes at :data:`MOVING_DPS` or more; the first sample after them is the start. Forward alike with the
     trunk straightening (the rate at or under -:data:`MOVING_DPS`)."""
     w = max(int(round(RATE_WINDOW_S * fs)), 1)
-    rate = np.convolve(np.gradient(tilt, t), np.ones(w) / w, mode="same")
+    rate = tilt_rate_dps(t, tilt, fs)
     a = peak
     while a > 0 and peak - a < w and rate[a - 1] < MOVING_DPS:  # the top of the flexion
         a -= 1
