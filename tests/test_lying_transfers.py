@@ -146,7 +146,7 @@ def test_the_side_is_the_posture_held_over_w249s_window_not_a_brief_sit_on_the_b
 
     t = np.arange(0.0, 80.0, 1 / FS)
     # standing 3 deg for 28 s, sat on the bed's edge (20 deg) for 2.5 s, then lying down; up to a 20 deg seat
-    # held 3 s before standing up (W222: tilt >= 8 deg, W248, reads sitting)
+    # held 3 s before standing up (W222: tilt >= 15 deg reads sitting)
     tilt = _ramp(t, [(0, 3), (28, 3), (28.5, 20), (31, 20), (33, 90), (50, 90), (52, 20), (55, 20), (55.5, 3),
                      (80, 3)])
     assert lying.SIDE_WINDOW_S == 10.0

@@ -149,11 +149,11 @@ def test_the_posture_keys_say_run_of_a_waist_bundle_writes_them_empty_e145():
     assert "`run` of a waist bundle has no posture runs" in posture_line(dict.fromkeys(POSTURE_KEYS))
 
 
-def test_a_seat_tilted_10_deg_without_a_transfer_reads_sitting_w248():
-    """Decision W248: SITTING_TILT_DEG re-chosen on HAPT users 1-10 (8 deg): a 10 deg seat with no transfer to go by,
-    read standing under W222's 15 deg, is sitting; standing still within a few degrees stays standing."""
-    assert SITTING_TILT_DEG == 8.0
-    t = np.arange(0.0, 40.0, 0.5)
-    tilt = np.where(t < 20, 3.0, 10.0)
+def test_w248s_8_deg_is_not_kept_a_10_deg_lean_without_a_transfer_reads_standing_w257():
+    """Decision W257: W248's 8 deg (chosen on HAPT's belt phone) labelled seconds of the real lower back's standing
+    Test5 trials sitting, so W222's 15 deg stays: a 10 deg lean with no transfer is standing, a 20 deg seat sitting."""
+    assert SITTING_TILT_DEG == 15.0
+    t = np.arange(0.0, 60.0, 0.5)
+    tilt = np.where(t < 20, 3.0, np.where(t < 40, 10.0, 20.0))
     code = label_postures(t, tilt, np.zeros(t.size, bool), _transfers())
-    assert (code[t < 20] == 1).all() and (code[t >= 20] == 2).all()
+    assert (code[t < 40] == 1).all() and (code[t >= 40] == 2).all()
