@@ -230,14 +230,17 @@ def rescaled(both: pd.DataFrame, e: float) -> pd.DataFrame:
 
 
 def merged_contacts(left: pd.DataFrame, right: pd.DataFrame) -> pd.DataFrame:
-    """Both feet's :func:`foot_events` in time order with ``side`` and ``bout`` (1, 2 ...: decision L261, the
-    merged contacts split at L104's pauses)."""
+    """Both feet's :func:`foot_events` in time order with ``side``, ``bout`` (1, 2 ...: decision L261, the
+    merged contacts split at L104's pauses) and ``partial`` (decision L317: the bout's first and last contact, whose
+    strides start from / end at rest with the feet side by side - half strides - and count in no stride length)."""
     both = pd.concat([left.assign(side="left"), right.assign(side="right")], ignore_index=True)
     both = both.sort_values("ic_s", kind="stable").reset_index(drop=True)
     bout = np.zeros(len(both), int)
+    partial = np.zeros(len(both), bool)
     for k, (a, b) in enumerate(bout_rows(both.rename(columns={"ic_s": "start_s"})), start=1):
         bout[a:b] = k
-    return both.assign(bout=bout)
+        partial[[a, b - 1]] = True  # decision L317: gait initiation's and termination's half strides
+    return both.assign(bout=bout, partial=partial)
 
 
 def step_table(both: pd.DataFrame) -> pd.DataFrame:
@@ -297,7 +300,8 @@ def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
     out = {"n_steps_left": int((steps["side"] == "left").sum()), "n_steps_right": int((steps["side"] == "right").sum())}
     out.update(_pair("step_time_s", *(_mean(steps.loc[steps["side"] == s, "step_time_s"]) for s in SIDES)))
     out.update(_pair("stride_time_s", *(_mean(cycles.loc[cycles["side"] == s, "stride_time_s"]) for s in SIDES)))
-    out.update(_pair("stride_length_m", *(_mean(both.loc[both["side"] == s, "length_m"]) for s in SIDES)))
+    full = ~both["partial"] if "partial" in both else True  # decision L317: no initiation / termination half stride
+    out.update(_pair("stride_length_m", *(_mean(both.loc[full & (both["side"] == s), "length_m"]) for s in SIDES)))
     out.update(_pair("swing_time_s", *(_mean(steps.loc[steps["side"] == s, "swing_time_s"]) for s in SIDES)))
     if "step_length_m" in steps:  # decision L310
         out.update(_pair("step_length_m", *(_mean(steps.loc[steps["side"] == s, "step_length_m"]) for s in SIDES)))
