@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -26,3 +28,60 @@ def test_l317_initiation_and_termination_half_strides_count_in_no_stride_length(
     w = bilateral_gait(left, right)["walk"]
     assert w["stride_length_m_left"] == pytest.approx(1.4) and w["stride_length_m_right"] == pytest.approx(1.4)
     assert w["stride_length_m_si_pct"] == pytest.approx(0.0, abs=1e-9)
+
+
+def _impacts(rate=100.0, fc=None):
+    """A foot's accelerometer: 1 g at rest and a 60 m/s^2 heel-strike spike (two samples) every 1.1 s from 1 s;
+    with ``fc`` (Hz) low-passed (2nd-order Butterworth, filtfilt) as the trial softened a prosthetic foot."""
+    from scipy.signal import butter, filtfilt
+
+    t = np.arange(0, 12, 1 / rate)
+    acc = np.zeros((len(t), 3))
+    acc[:, 2] = 9.81
+    ics = 1.0 + np.arange(10) * 1.1
+    for ic in ics:
+        k = int(round(ic * rate))
+        acc[k:k + 2, 2] += 60.0
+    if fc is not None:
+        b, a = butter(2, fc / (rate / 2))
+        acc = filtfilt(b, a, acc, axis=0)
+    return t, acc, ics
+
+
+def test_l318_a_soft_impact_foot_makes_the_contacts_not_comparable():
+    """Trial finding 1: one foot low-passed at 8 Hz - its impact far less sharp - warns; two alike feet do not."""
+    from pdrlearn.track.contact_quality import SHARPNESS_RATIO_MAX, comparability_warning, impact_sharpness
+
+    sharp = impact_sharpness(*_impacts())
+    soft = impact_sharpness(*_impacts(fc=8.0))
+    assert sharp / soft > SHARPNESS_RATIO_MAX
+    line = comparability_warning(sharp, soft)
+    assert line is not None and "right foot's contacts" in line and "step times" in line
+    assert comparability_warning(sharp, 0.8 * sharp) is None
+    assert comparability_warning(None, soft) is None
+    assert impact_sharpness(np.arange(2.0), np.ones((2, 3)), [0.5]) is None
+
+
+def test_l318_gait_warns_on_a_real_pair_with_one_foot_softened(tmp_path):
+    """Gaitmap's real level pair with the right foot's accelerometer low-passed at 8 Hz (the trial's gm_soft8_right):
+    the tracked step-time SI reads ~18 % (mocap 2.3 %) with no step-time warning before L318; the real pair as
+    recorded does not warn."""
+    import shutil
+
+    from scipy.signal import butter, filtfilt
+
+    from pdrlearn.track.bilateral import pair_sessions
+
+    root = Path(__file__).resolve().parents[1] / "datasets/real"
+    left, right = root / "gaitmap_level_left", root / "gaitmap_level_right"
+    soft = tmp_path / "soft_right"
+    shutil.copytree(right, soft)
+    for f in soft.glob("fForce*.csv"):
+        f.unlink()
+    acc = pd.read_csv(soft / "fAccelerometer.csv")
+    rate = 1000.0 / np.median(np.diff(acc["timestamp"].to_numpy(float)))  # PLASYS timestamps in ms
+    b, a = butter(2, 8.0 / (0.5 * rate))
+    acc.iloc[:, 1:4] = filtfilt(b, a, acc.iloc[:, 1:4].to_numpy(float), axis=0)
+    acc.to_csv(soft / "fAccelerometer.csv", index=False)
+    assert any("L318" in w for w in pair_sessions(left, soft)["warnings"])
+    assert not any("L318" in w for w in pair_sessions(left, right)["warnings"])

@@ -35,6 +35,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.clinical import bout_rows, symmetry_index_pct
 from pdrlearn.track.flags import flag_values
 
@@ -339,8 +340,8 @@ def clock_offset_warning(walk: dict) -> str | None:
             f"{_fmt_pct(walk.get('single_support_pct_left'))} / {_fmt_pct(walk.get('single_support_pct_right'))} "
             f"%): a walker's step-time asymmetry comes with swing asymmetry, a clock offset does not (decision "
             f"L284). The {late} unit's times look ~{abs(off) * 1000:.0f} ms late against the {early} one's: are the "
-            "two clocks synchronised? The step times, their asymmetry and the double support are not trustworthy "
-            "if not")
+            f"two clocks synchronised, or do the {late} foot's contacts read late (a soft impact, decision L318)? The "
+            "step times, their asymmetry and the double support are not trustworthy if either")
 
 
 def stance_warning(walk: dict) -> str | None:
@@ -353,8 +354,9 @@ def stance_warning(walk: dict) -> str | None:
         return None
     return (f"bilateral gait: tracked stance left/right {_fmt_pct(st['left'])} / {_fmt_pct(st['right'])} % of the "
             f"gait cycle, under {STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decision L285): the "
-            "toe-off reads early here, so the double support ("
-            f"{_fmt_pct(walk.get('double_support_pct'))} %) is too low; do not report it as measured")
+            "toe-off reads early or the contact late here (a soft impact, decision L318), so the double support ("
+            f"{_fmt_pct(walk.get('double_support_pct'))} %) is too low and the step times may be off too; do not "
+            "report them as measured")
 
 
 #: decision L311: the line saying why a tracked pair has no step length (measured, experiments/step_length_l310.py)
@@ -575,10 +577,13 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     out = bilateral_gait(tracks[0].steps, tracks[1].steps)
     labels = [label_steps(s) for s in sessions]
     out["reference"] = (bilateral_gait(labels[0], labels[1]) if all(x is not None for x in labels) else None)
-    line = reference_warning(out["walk"], out["reference"])
-    if line is not None:
-        logging.getLogger(__name__).warning(line)
-        out["warnings"].append(line)
+    sharp = [impact_sharpness(s["fAccelerometer"].t, s["fAccelerometer"].values, t.steps["event_s"])
+             for s, t in zip(sessions, tracks, strict=True)]  # decision L318
+    out["walk"]["impact_sharpness_left"], out["walk"]["impact_sharpness_right"] = sharp
+    for line in (reference_warning(out["walk"], out["reference"]), comparability_warning(*sharp)):
+        if line is not None:
+            logging.getLogger(__name__).warning(line)
+            out["warnings"].append(line)
     out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps))}
                        for side, d, t in zip(SIDES, (left_dir, right_dir), tracks, strict=True)}
     return out
