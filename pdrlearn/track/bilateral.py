@@ -35,8 +35,8 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
-from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.clinical import bout_rows, symmetry_index_pct
+from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
