@@ -85,3 +85,40 @@ def test_l318_gait_warns_on_a_real_pair_with_one_foot_softened(tmp_path):
     acc.to_csv(soft / "fAccelerometer.csv", index=False)
     assert any("L318" in w for w in pair_sessions(left, soft)["warnings"])
     assert not any("L318" in w for w in pair_sessions(left, right)["warnings"])
+
+
+def test_l327_stance_time_per_foot_and_its_asymmetry():
+    """Prosthesis trial finding 7: stance per foot (its IC to its toe-off inside the cycle) and its symmetry index.
+    Left swing 0.45 s, right 0.35 s of 1.2 s cycles: stance 0.75 / 0.85 s, SI 100 x 0.1 / 0.8 = 12.5 %."""
+    from pdrlearn.cli.gait import gait_lines
+
+    r = bilateral_gait(_foot(np.arange(6) * 1.2, swing=0.45), _foot(0.6 + np.arange(6) * 1.2, swing=0.35))
+    w = r["walk"]
+    assert w["stance_time_s_left"] == pytest.approx(0.75) and w["stance_time_s_right"] == pytest.approx(0.85)
+    assert w["stance_time_s_si_pct"] == pytest.approx(12.5) and w["stance_time_s_ratio"] == pytest.approx(0.75 / 0.85)
+    assert r["cycles"]["stance_time_s"].notna().all()
+    assert any(line.startswith("stance time left/right 0.750 / 0.850 s, symmetry index 12.5 %")
+               for line in gait_lines(w))
+
+
+def test_l328_double_support_difference_printed_only_with_l284s_pattern():
+    """Prosthesis trial finding 9: a walker with asymmetric steps and swings (shared clock) gets no clock-offset
+    words; step times asymmetric with symmetric swings (L284's pattern) does."""
+    from pdrlearn.cli.gait import gait_lines
+
+    walker = bilateral_gait(_foot(np.arange(6) * 1.2, swing=0.35), _foot(0.5 + np.arange(6) * 1.2, swing=0.45))
+    assert walker["walk"]["swing_time_s_si_pct"] > 10
+    assert not any("double support before" in line for line in gait_lines(walker["walk"]))
+    offset = bilateral_gait(_foot(np.arange(6) * 1.2), _foot(0.5 + np.arange(6) * 1.2))  # swings equal
+    assert any("double support before" in line and "L284" in line for line in gait_lines(offset["walk"]))
+
+
+def test_l329_backward_walk_is_noted():
+    """Treadmill trial finding 8: a pair of foot tracks whose strides travel backward gets L329's note."""
+    from pdrlearn.track.bilateral import backward_note
+
+    back = _foot(np.arange(6) * 1.4).assign(raw_length_m=-0.85, turn_angle_rad=0.0)
+    fwd = _foot(np.arange(6) * 1.4).assign(raw_length_m=0.85, turn_angle_rad=0.0)
+    line = backward_note([back, back])
+    assert line is not None and "6 of 6 / 6 of 6" in line and "backward" in line
+    assert backward_note([fwd, fwd]) is None
