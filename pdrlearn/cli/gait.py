@@ -80,8 +80,12 @@ def register(app: typer.Typer) -> None:
         refuses contacts that do not overlap in time (decision L260) and two sessions whose meta.json names different
         activities, and warns when under 80 % of the merged contacts alternate feet (decision B245). Two sessions
         whose meta.json clock_id differ are refused (decision L283); a step-time asymmetry that the swing times do not
-        share - what a clock offset gives - is warned about with the offset's size (L284), and a tracked stance under
-        55 % of the cycle (an early toe-off) too (L285); the warnings are in gait_summary.json's "warnings".
+        share - what a clock offset or one foot's late contacts give - is warned about with the offset's size (L284),
+        a tracked stance under 55 % of the cycle (an early toe-off or a late contact) too (L285), two feet whose
+        impacts differ over 3 x in sharpness (a soft, e.g. prosthetic, foot: its step times, stance and double
+        support are not comparable, L318) and a backward walk (L329); the warnings are in gait_summary.json's
+        "warnings". Stride lengths leave out the half strides that start and end each walking bout (L317); stance
+        time per foot is given with its asymmetry (L327).
 
         Examples:
 
