@@ -637,6 +637,8 @@ GAIT_CYCLES: tuple[Column, ...] = (
     ("start_s", "s", "number", "the cycle's first initial contact"),
     ("end_s", "s", "number", "the foot's next initial contact"),
     ("stride_time_s", "s", "number", "end_s - start_s"),
+    ("stance_time_s", "s", "number", "the foot's toe-off inside the cycle - start_s, one unit's clock (L327); empty "
+                                     "without a toe-off"),
     ("double_support_pct", "%", "number", "both double-support periods of the cycle, % of it (L262; reads low from "
                                           "foot units, L285); empty when the events are out of order"),
     ("single_support_pct", "%", "number", "the other foot's swing, % of the cycle (L262)"),
@@ -653,6 +655,7 @@ GAIT_BOUTS: tuple[Column, ...] = (
     *_pair("stride_time_s", "s", "stride time (IC to IC, alternating cycles)"),
     *_pair("stride_length_m", "m", "stride length (the foot track's length_m)"),
     *_pair("swing_time_s", "s", "swing time (toe-off to IC, one unit's clock; L284)"),
+    *_pair("stance_time_s", "s", "stance time (IC to toe-off, one unit's clock; L327)"),
     *_pair("step_length_m", "m", "step length (the other foot's contact to this foot's, along the walk; L310)"),
     ("n_step_lengths", "count", "integer", "steps with a step_length_m (L310)"),
     ("step_length_scale_pct", "%", "number", "gait_summary.json walk only: the left track's length scale against "
@@ -661,6 +664,10 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("clock_offset_s", "s", "number", "((left step - left swing) - (right step - right swing)) / 2: the left clock's "
                                       "offset the steps imply, plus half the walker's own double-support imbalance "
                                       "(L284; > 0 = the left unit's times late)"),
+    ("impact_sharpness_left", "m/s^3", "number", "gait_summary.json walk only, foot tracks: the left foot's median "
+                                                 "largest |d|a|/dt| within 0.1 s of its contacts (L318)"),
+    ("impact_sharpness_right", "m/s^3", "number", "gait_summary.json walk only: the same of the right foot; over 3 x "
+                                                  "apart, the feet's contacts are not comparable (L318)"),
     ("n_support_cycles", "count", "integer", "cycles with a double support"),
     ("double_support_pct", "%", "number", "mean double support, % of the gait cycle (L262; reads low, L285)"),
     *_pair("single_support_pct", "%", "single support (the other foot's swing), % of the gait cycle (L262)"),

@@ -8,6 +8,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import FORCE_HELP
+from pdrlearn.track.bilateral import clock_offset_pattern
 
 #: the files ``gait --out`` writes (decision L260); the output-folder kind ``gait`` is recognised by them
 GAIT_FILES = ("gait_summary.json", "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
@@ -34,11 +35,17 @@ def gait_lines(summary: dict) -> list[str]:
                      f"({w['n_step_lengths']} straight steps; the closing step took out a "
                      f"{_fmt(scale, '+.2f')} % relative scale of the two tracks, L310)")
     if w.get("swing_time_s_left") is not None or w.get("swing_time_s_right") is not None:  # decision L284
-        lines.append(f"swing time left/right {_fmt(w['swing_time_s_left'], '.3f')} / "
-                     f"{_fmt(w['swing_time_s_right'], '.3f')} s, symmetry index {_fmt(w['swing_time_s_si_pct'], '.1f')}"
-                     f" %; double support before the left / right swing differs by "
-                     f"{_fmt(None if w['clock_offset_s'] is None else 2000 * w['clock_offset_s'], '+.0f')} ms "
-                     "(a clock offset shows here, L284)")
+        swing = (f"swing time left/right {_fmt(w['swing_time_s_left'], '.3f')} / "
+                 f"{_fmt(w['swing_time_s_right'], '.3f')} s, symmetry index {_fmt(w['swing_time_s_si_pct'], '.1f')} %")
+        if clock_offset_pattern(w):  # decision L328: only where L284's pattern is seen, not on every pair
+            swing += (f"; double support before the left / right swing differs by {2000 * w['clock_offset_s']:+.0f} "
+                      "ms (step times asymmetric, swing times not: a clock offset or one foot's late contacts, "
+                      "L284, L318)")
+        lines.append(swing)
+    if w.get("stance_time_s_left") is not None or w.get("stance_time_s_right") is not None:  # decision L327
+        lines.append(f"stance time left/right {_fmt(w['stance_time_s_left'], '.3f')} / "
+                     f"{_fmt(w['stance_time_s_right'], '.3f')} s, symmetry index "
+                     f"{_fmt(w['stance_time_s_si_pct'], '.1f')} %, ratio L/R {_fmt(w['stance_time_s_ratio'], '.3f')}")
     if w["double_support_pct"] is not None:
         lines.append(f"double support {w['double_support_pct']:.1f} % of the gait cycle, single support left/right "
                      f"{_fmt(w['single_support_pct_left'], '.1f')} / {_fmt(w['single_support_pct_right'], '.1f')} % "
@@ -73,8 +80,12 @@ def register(app: typer.Typer) -> None:
         refuses contacts that do not overlap in time (decision L260) and two sessions whose meta.json names different
         activities, and warns when under 80 % of the merged contacts alternate feet (decision B245). Two sessions
         whose meta.json clock_id differ are refused (decision L283); a step-time asymmetry that the swing times do not
-        share - what a clock offset gives - is warned about with the offset's size (L284), and a tracked stance under
-        55 % of the cycle (an early toe-off) too (L285); the warnings are in gait_summary.json's "warnings".
+        share - what a clock offset or one foot's late contacts give - is warned about with the offset's size (L284),
+        a tracked stance under 55 % of the cycle (an early toe-off or a late contact) too (L285), two feet whose
+        impacts differ over 3 x in sharpness (a soft, e.g. prosthetic, foot: its step times, stance and double
+        support are not comparable, L318) and a backward walk (L329); the warnings are in gait_summary.json's
+        "warnings". Stride lengths leave out the half strides that start and end each walking bout (L317); stance
+        time per foot is given with its asymmetry (L327).
 
         Examples:
 

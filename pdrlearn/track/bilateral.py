@@ -36,6 +36,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.track.clinical import bout_rows, symmetry_index_pct
+from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
@@ -230,14 +231,17 @@ def rescaled(both: pd.DataFrame, e: float) -> pd.DataFrame:
 
 
 def merged_contacts(left: pd.DataFrame, right: pd.DataFrame) -> pd.DataFrame:
-    """Both feet's :func:`foot_events` in time order with ``side`` and ``bout`` (1, 2 ...: decision L261, the
-    merged contacts split at L104's pauses)."""
+    """Both feet's :func:`foot_events` in time order with ``side``, ``bout`` (1, 2 ...: decision L261, the
+    merged contacts split at L104's pauses) and ``partial`` (decision L317: the bout's first and last contact, whose
+    strides start from / end at rest with the feet side by side - half strides - and count in no stride length)."""
     both = pd.concat([left.assign(side="left"), right.assign(side="right")], ignore_index=True)
     both = both.sort_values("ic_s", kind="stable").reset_index(drop=True)
     bout = np.zeros(len(both), int)
+    partial = np.zeros(len(both), bool)
     for k, (a, b) in enumerate(bout_rows(both.rename(columns={"ic_s": "start_s"})), start=1):
         bout[a:b] = k
-    return both.assign(bout=bout)
+        partial[[a, b - 1]] = True  # decision L317: gait initiation's and termination's half strides
+    return both.assign(bout=bout, partial=partial)
 
 
 def step_table(both: pd.DataFrame) -> pd.DataFrame:
@@ -257,7 +261,8 @@ def step_table(both: pd.DataFrame) -> pd.DataFrame:
 def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
     """Decision L262: one row per gait cycle of either foot (one IC of it to its next, in one bout, with exactly one
     IC of the other foot between them - a stride either track or label table lacks makes no cycle): ``side``,
-    ``bout``, ``start_s``, ``end_s``, ``stride_time_s``, ``double_support_pct`` and ``single_support_pct`` (module
+    ``bout``, ``start_s``, ``end_s``, ``stride_time_s``, ``stance_time_s`` (decision L327: the foot's IC to its
+    toe-off inside the cycle, NaN without one), ``double_support_pct`` and ``single_support_pct`` (module
     docstring; NaN where a toe-off is missing or the events are out of order)."""
     rows = []
     t, tc, side, bout = (both["ic_s"].to_numpy(float), both["tc_s"].to_numpy(float), both["side"].to_numpy(),
@@ -268,13 +273,16 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
             if bout[a] != bout[b] or b - a != 2:  # L262: exactly one IC of the other foot inside: it alternated
                 continue
             T = t[b] - t[a]
-            ds = ss = math.nan
+            ds = ss = stance = math.nan
             ic_f, tc_o, ic_o, tc_f, ic_next = t[a], tc[a + 1], t[a + 1], tc[b], t[b]
+            if ic_f < tc_f < ic_next:  # decision L327: the foot's own IC to its toe-off, one unit's clock
+                stance = tc_f - ic_f
             if ic_f < tc_o < ic_o < tc_f < ic_next:  # Perry & Burnfield 2010: the cycle's event order
                 ds = 100.0 * ((tc_o - ic_f) + (tc_f - ic_o)) / T
                 ss = 100.0 * (ic_o - tc_o) / T
-            rows.append((s, int(bout[a]), t[a], t[b], T, ds, ss))
-    cols = ["side", "bout", "start_s", "end_s", "stride_time_s", "double_support_pct", "single_support_pct"]
+            rows.append((s, int(bout[a]), t[a], t[b], T, stance, ds, ss))
+    cols = ["side", "bout", "start_s", "end_s", "stride_time_s", "stance_time_s", "double_support_pct",
+            "single_support_pct"]
     return pd.DataFrame(rows, columns=cols).sort_values("start_s", kind="stable").reset_index(drop=True)
 
 
@@ -297,8 +305,10 @@ def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
     out = {"n_steps_left": int((steps["side"] == "left").sum()), "n_steps_right": int((steps["side"] == "right").sum())}
     out.update(_pair("step_time_s", *(_mean(steps.loc[steps["side"] == s, "step_time_s"]) for s in SIDES)))
     out.update(_pair("stride_time_s", *(_mean(cycles.loc[cycles["side"] == s, "stride_time_s"]) for s in SIDES)))
-    out.update(_pair("stride_length_m", *(_mean(both.loc[both["side"] == s, "length_m"]) for s in SIDES)))
+    full = ~both["partial"] if "partial" in both else True  # decision L317: no initiation / termination half stride
+    out.update(_pair("stride_length_m", *(_mean(both.loc[full & (both["side"] == s), "length_m"]) for s in SIDES)))
     out.update(_pair("swing_time_s", *(_mean(steps.loc[steps["side"] == s, "swing_time_s"]) for s in SIDES)))
+    out.update(_pair("stance_time_s", *(_mean(cycles.loc[cycles["side"] == s, "stance_time_s"]) for s in SIDES)))
     if "step_length_m" in steps:  # decision L310
         out.update(_pair("step_length_m", *(_mean(steps.loc[steps["side"] == s, "step_length_m"]) for s in SIDES)))
         out["n_step_lengths"] = int(steps["step_length_m"].notna().sum())
@@ -321,22 +331,30 @@ def clock_offset_s(steps: pd.DataFrame) -> float | None:
     return None if None in d else 0.5 * (d[0] - d[1])
 
 
+def clock_offset_pattern(walk: dict) -> bool:
+    """Decision L284: the step times are asymmetric (symmetry index at least :data:`OFFSET_CHECK_SI_MIN`) but the
+    swing times are not (their index under :data:`OFFSET_SWING_SHARE_MAX` of it) - what a clock offset between the
+    two units gives (or one foot's late contacts, L318), not a walker's asymmetry; False without swing times."""
+    si, swing_si, off = walk.get("step_time_s_si_pct"), walk.get("swing_time_s_si_pct"), walk.get("clock_offset_s")
+    return not (si is None or swing_si is None or off is None or si < OFFSET_CHECK_SI_MIN
+                or swing_si >= OFFSET_SWING_SHARE_MAX * si)
+
+
 def clock_offset_warning(walk: dict) -> str | None:
     """Decision L284: one warning line when the step times are asymmetric (symmetry index at least
     :data:`OFFSET_CHECK_SI_MIN`) but the swing times are not (their index under :data:`OFFSET_SWING_SHARE_MAX` of
     it): the pattern a clock offset between the two units gives, not a walker's asymmetry; the line names the
     offset (:func:`clock_offset_s`). None otherwise or without swing times."""
-    si, swing_si, off = walk.get("step_time_s_si_pct"), walk.get("swing_time_s_si_pct"), walk.get("clock_offset_s")
-    if si is None or swing_si is None or off is None or si < OFFSET_CHECK_SI_MIN or swing_si >= (
-            OFFSET_SWING_SHARE_MAX * si):
+    if not clock_offset_pattern(walk):
         return None
+    si, swing_si, off = walk["step_time_s_si_pct"], walk["swing_time_s_si_pct"], walk["clock_offset_s"]
     late, early = ("left", "right") if off > 0 else ("right", "left")
     return (f"bilateral gait: step-time symmetry index {si:.1f} % but swing-time {swing_si:.1f} % (single support "
             f"{_fmt_pct(walk.get('single_support_pct_left'))} / {_fmt_pct(walk.get('single_support_pct_right'))} "
             f"%): a walker's step-time asymmetry comes with swing asymmetry, a clock offset does not (decision "
             f"L284). The {late} unit's times look ~{abs(off) * 1000:.0f} ms late against the {early} one's: are the "
-            "two clocks synchronised? The step times, their asymmetry and the double support are not trustworthy "
-            "if not")
+            f"two clocks synchronised, or do the {late} foot's contacts read late (a soft impact, decision L318)? The "
+            "step times, their asymmetry and the double support are not trustworthy if either")
 
 
 def stance_warning(walk: dict) -> str | None:
@@ -349,8 +367,9 @@ def stance_warning(walk: dict) -> str | None:
         return None
     return (f"bilateral gait: tracked stance left/right {_fmt_pct(st['left'])} / {_fmt_pct(st['right'])} % of the "
             f"gait cycle, under {STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decision L285): the "
-            "toe-off reads early here, so the double support ("
-            f"{_fmt_pct(walk.get('double_support_pct'))} %) is too low; do not report it as measured")
+            "toe-off reads early or the contact late here (a soft impact, decision L318), so the double support ("
+            f"{_fmt_pct(walk.get('double_support_pct'))} %) is too low and the step times may be off too; do not "
+            "report them as measured")
 
 
 #: decision L311: the line saying why a tracked pair has no step length (measured, experiments/step_length_l310.py)
@@ -544,6 +563,22 @@ def reference_warning(walk: dict, reference: dict | None) -> str | None:
             "labels are not on one clock, or the tracks are wrong; trust neither before checking")
 
 
+def backward_note(tracks: list[pd.DataFrame]) -> str | None:
+    """Decision L329 (treadmill trial finding 8): one line when either foot track has backward-travel strides
+    (:func:`pdrlearn.track.evaluate.backward_strides`, L203): the pair's timing is of backward walking, whose contact
+    and toe-off detection no measurement validated; None otherwise."""
+    from pdrlearn.track.evaluate import backward_strides
+
+    n = [backward_strides(t) for t in tracks]
+    if not any(n):
+        return None
+    counts = " / ".join(f"{k or 0} of {len(t)}" for k, t in zip(n, tracks, strict=True))
+    return (f"bilateral gait: the walk is backward ({counts} strides left / right travel backward, L203; decision "
+            "L329): its swing, stance and double support are of backward walking (the toe lands first), which no "
+            "measurement of the contact and toe-off detection covers - a symmetric simulated backward walk read "
+            "its swing 0.06-0.08 s long and a 3.5 % swing-time asymmetry its labels do not have")
+
+
 def label_steps(session) -> pd.DataFrame | None:
     """A session's labelled strides with IC / TC times (``ic_s`` and ``tc_s``, e.g. gaitmap's mocap events; the
     simulator's ``steps.csv``) as a :func:`foot_events` table, or None without labelled ICs."""
@@ -571,10 +606,14 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     out = bilateral_gait(tracks[0].steps, tracks[1].steps)
     labels = [label_steps(s) for s in sessions]
     out["reference"] = (bilateral_gait(labels[0], labels[1]) if all(x is not None for x in labels) else None)
-    line = reference_warning(out["walk"], out["reference"])
-    if line is not None:
-        logging.getLogger(__name__).warning(line)
-        out["warnings"].append(line)
+    sharp = [impact_sharpness(s["fAccelerometer"].t, s["fAccelerometer"].values, t.steps["event_s"])
+             for s, t in zip(sessions, tracks, strict=True)]  # decision L318
+    out["walk"]["impact_sharpness_left"], out["walk"]["impact_sharpness_right"] = sharp
+    for line in (reference_warning(out["walk"], out["reference"]), comparability_warning(*sharp),
+                 backward_note([t.steps for t in tracks])):
+        if line is not None:
+            logging.getLogger(__name__).warning(line)
+            out["warnings"].append(line)
     out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps))}
                        for side, d, t in zip(SIDES, (left_dir, right_dir), tracks, strict=True)}
     return out
