@@ -3,7 +3,11 @@ of the foot's own swing count), B262 (unknown meta.json keys), L319-L323 and ste
 
 from __future__ import annotations
 
+import json
+import logging
+
 import numpy as np
+import pytest
 
 from pdrlearn.kernels.frozen_foot import FORCE_LOAD_LEVEL, frozen_foot_evidence, load_onsets
 
@@ -24,3 +28,43 @@ def test_standing_force_noise_at_the_load_level_is_no_stepping_b260():
     assert load_onsets(force, [600.0]) == 7
     got = frozen_foot_evidence(still_acc, still_gyr, force)
     assert got is not None and got[0] == 7
+
+
+# --- steps 47 (trial F2): `steps` short of the foot's own rest-and-swing stride count -------------------------------
+
+@pytest.fixture(scope="module")
+def walk_a(tmp_path_factory):
+    from pdrlearn.io import read_session, write_session
+    from pdrlearn.sim import UserProfile, simulate
+
+    out = tmp_path_factory.mktemp("s31") / "A_u6110"
+    write_session(simulate("A", UserProfile.from_seed(6110), "normal", rate_hz=100.0), out)
+    return read_session(out)
+
+
+def _report(session, table, capsys, caplog):
+    from pdrlearn.cli.steps import report
+
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):
+        report(session, table, name="accel", unit="foot", tolerance=0.25, as_json=True)
+    return json.loads(capsys.readouterr().out), [r.getMessage() for r in caplog.records if "steps 47" in r.getMessage()]
+
+
+def test_steps_short_of_the_foots_own_strides_is_said_steps_47(walk_a, capsys, caplog):
+    from pdrlearn.steps import AccelStepDetector
+    from pdrlearn.steps.strides import swinging_rest_strides
+
+    table = AccelStepDetector().detect(walk_a)
+    own = swinging_rest_strides(walk_a)
+    d, lines = _report(walk_a, table, capsys, caplog)
+    assert d["count"] == own and "foot_swing_strides" not in d and not lines  # a clean walk: nothing said
+    # strides the detector missed outside any detection (trial: a vibrating foot, 49 of 51, then 23 of 51)
+    one = table.drop(index=len(table) // 2).reset_index(drop=True)
+    d, lines = _report(walk_a, one, capsys, caplog)
+    assert d["count"] == own - 1 and d["foot_swing_strides"] == own and not lines  # a stray one: the count only
+    many = table.drop(index=range(2, 2 + len(table) // 3)).reset_index(drop=True)
+    d, lines = _report(walk_a, many, capsys, caplog)
+    assert d["foot_swing_strides"] == own and len(lines) == 1 and "\n" not in lines[0], lines
+    assert f"accel kept {d['count']} strides, but the foot's own rests and swings segment {own}" in lines[0]
+    assert "`pdrlearn track DIR`" in lines[0]
