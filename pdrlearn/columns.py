@@ -119,6 +119,8 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_in_ref_bouts_m", "m", "number", "tracked distance inside the reference bouts (L82)"),
     ("distance_matched_error_pct", "%", "number", "foot: distance error over the strides matched to labels"),
     ("distance_ref_source", _ID, "text", "where distance_ref_m comes from"),
+    ("reference_travel_m", "m", "number", "set when trajectory.csv stays put while the track walks (a treadmill "
+                                          "in the lab frame): its largest distance from its start (L319)"),
     ("final_altitude_error_m", "m", "number", "z error of the last position"),
     ("final_position_error_3d_m", "m", "number", "3-D distance of the last position from the true one"),
     ("final_position_sigma_m", "m", "number", "modelled 1-sigma radius of the last position (L128; none with fixes)"),

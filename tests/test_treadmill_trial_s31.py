@@ -68,3 +68,52 @@ def test_steps_short_of_the_foots_own_strides_is_said_steps_47(walk_a, capsys, c
     assert d["foot_swing_strides"] == own and len(lines) == 1 and "\n" not in lines[0], lines
     assert f"accel kept {d['count']} strides, but the foot's own rests and swings segment {own}" in lines[0]
     assert "`pdrlearn track DIR`" in lines[0]
+
+
+# --- L319 (trial F3): a reference trajectory that does not travel (lab-frame mocap on a treadmill) ------------------
+
+@pytest.fixture(scope="module")
+def belt(tmp_path_factory):
+    """A 14 m straight walk (user 6111) and a copy whose trajectory.csv wobbles in place (the lab frame of a belt)."""
+    import pandas as pd
+
+    from pdrlearn.cli import main
+
+    base = tmp_path_factory.mktemp("belt")
+    walk = base / "walk"
+    assert main(["simulate", "--route", "stand:2, straight:14, stand:2", "--user-seed", "6111", "--rate", "100",
+                 "--out", str(walk)]) == 0
+    lab = base / "lab"
+    import shutil
+
+    shutil.copytree(walk, lab)
+    for name in ("steps.csv", "ics.csv"):
+        (lab / name).unlink(missing_ok=True)
+    tr = pd.read_csv(lab / "trajectory.csv")
+    ts = tr["timestamp"].to_numpy(float) / 1000.0
+    tr["x"], tr["y"] = 0.05 * np.sin(2 * np.pi * ts), 0.03 * np.cos(np.pi * ts)
+    tr.to_csv(lab / "trajectory.csv", index=False)
+    return walk, lab
+
+
+def _track(folder, out, capsys, caplog):
+    from pdrlearn.cli import main
+
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):
+        assert main(["track", str(folder), "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    return json.loads((out / "summary.json").read_text()), printed, [r.getMessage() for r in caplog.records]
+
+
+def test_reference_that_does_not_travel_gives_no_distance_error_l319(belt, tmp_path, capsys, caplog):
+    walk, lab = belt
+    s, printed, lines = _track(lab, tmp_path / "lab", capsys, caplog)
+    assert "distance_error_pct" not in s and "final_position_error_m" not in s, s  # was +-hundreds of %
+    assert s["reference_travel_m"] < 0.1 and s["distance_m"] > 10
+    mine = [ln for ln in lines if "decision L319" in ln]
+    assert len(mine) == 1 and "treadmill" in mine[0] and "docs/frames.md" in mine[0] and "\n" not in mine[0]
+    assert "distance error" not in printed
+    s, printed, lines = _track(walk, tmp_path / "walk", capsys, caplog)  # an ordinary walk: as before
+    assert "reference_travel_m" not in s and "final_position_error_m" in s and "distance_error_pct" in s
+    assert not [ln for ln in lines if "decision L319" in ln]
