@@ -161,6 +161,9 @@ SESSIONS: tuple[Column, ...] = (
     ("leg_length_source", _ID, "text", "the meta.json key leg_length_m came from (L148)"),
     ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),
     ("longest_pause_s", "s", "number", "the longest pause (L104)"),
+    ("belt_speed_mps", "m/s", "number", "a declared treadmill's belt speed (meta.json belt_speed_mps; L321)"),
+    ("belt_speed_error_pct", "%", "number", "100 x (median_speed_straight_mps - belt_speed_mps) / belt_speed_mps "
+                                            "(L321)"),
     ("median_speed_straight_mps", "m/s", "number", "median speed of the level strides turning under 15 deg "
                                               "(stair strides left out, L179)"),
     ("median_stance_pct", "%", "number", "--toe-off only: median stance share of the stride (L73)"),

@@ -117,3 +117,60 @@ def test_reference_that_does_not_travel_gives_no_distance_error_l319(belt, tmp_p
     s, printed, lines = _track(walk, tmp_path / "walk", capsys, caplog)  # an ordinary walk: as before
     assert "reference_travel_m" not in s and "final_position_error_m" in s and "distance_error_pct" in s
     assert not [ln for ln in lines if "decision L319" in ln]
+
+
+# --- B262 / L321 (trial F5): unknown meta.json keys are named; a declared treadmill belt speed -----------------------
+
+def _with_meta(src, dst, **extra):
+    import shutil
+
+    shutil.copytree(src, dst)
+    meta = json.loads((dst / "meta.json").read_text())
+    meta.update(extra)
+    (dst / "meta.json").write_text(json.dumps(meta))
+    return dst
+
+
+def test_unknown_meta_keys_are_named_by_info_and_track_b262(belt, tmp_path, capsys, caplog):
+    from pdrlearn.cli import main
+
+    folder = _with_meta(belt[0], tmp_path / "decl", treadmill=True, x_operator="AB", activity="treadmill walking")
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):
+        assert main(["info", str(folder)]) == 0
+    lines = [r.getMessage() for r in caplog.records if "decision B262" in r.getMessage()]
+    assert len(lines) == 1 and "'treadmill'" in lines[0] and "x_operator" not in lines[0] and "activity" not in lines[0]
+    assert "belt_speed_mps" in lines[0] and "meta.json" in lines[0]
+    _, _, lines = _track(folder, tmp_path / "t", capsys, caplog)
+    assert len([ln for ln in lines if "decision B262" in ln]) == 1
+
+
+def test_no_meta_key_the_project_writes_is_called_unknown_b262(belt):
+    from pathlib import Path
+
+    from pdrlearn.io.meta_keys import unknown_meta_keys
+
+    root = Path(__file__).resolve().parents[1] / "datasets"
+    metas = [*root.glob("real/*/meta.json"), *root.glob("external/*/meta.json"), belt[0] / "meta.json"]
+    assert len(metas) > 5
+    assert {str(m): unknown_meta_keys(json.loads(m.read_text())) for m in metas
+            if unknown_meta_keys(json.loads(m.read_text()))} == {}
+
+
+def test_declared_belt_speed_is_compared_with_the_foot_l321(belt, tmp_path, capsys, caplog):
+    from pdrlearn.cli import main
+
+    plain, _, _ = _track(belt[0], tmp_path / "plain", capsys, caplog)
+    assert "belt_speed_mps" not in plain
+    v = round(plain["median_speed_straight_mps"], 1)
+    s, printed, _ = _track(_with_meta(belt[0], tmp_path / "belt", belt_speed_mps=v), tmp_path / "t", capsys, caplog)
+    assert s["belt_speed_mps"] == v
+    assert s["belt_speed_error_pct"] == pytest.approx(100 * (s["median_speed_straight_mps"] - v) / v)
+    assert f"treadmill belt {v:.2f} m/s (meta.json belt_speed_mps)" in printed and "belt distance" in printed
+    assert s["distance_m"] == plain["distance_m"]  # no new physics
+    bad = _with_meta(belt[0], tmp_path / "bad", belt_speed_mps="fast")
+    caplog.clear()
+    assert main(["track", str(bad), "--out", str(tmp_path / "b")]) != 0
+    err = capsys.readouterr().err
+    assert "belt_speed_mps 'fast'" in err and "decision L321" in err and "Traceback" not in err
+    assert not (tmp_path / "b").exists()
