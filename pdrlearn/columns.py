@@ -432,7 +432,14 @@ PERIODS: tuple[Column, ...] = (
                                    "(from the recording's start to the clock's next whole period, L299)"),
     ("distance_m", "m", "number", "distance of the steps whose middle lies in the period (L105's rule); the periods "
                                   "sum to the summary's distance_m (L278)"),
-    ("n_steps", "count", "integer", "those steps (rows of steps.csv, as the summary's n_steps)"),
+    ("n_steps", "count", "integer", "those steps (rows of steps.csv, as the summary's n_steps): strides of the "
+                                    "tracked foot on a foot track, steps of both feet on the lower back (n_steps_counts)"),
+    ("n_steps_counts", _ID, "text", "what n_steps counts: 'strides of the tracked foot' or 'steps of both feet' (the "
+                                    "summary's, L103, L320)"),
+    ("median_stride_time_s", "s", "number", "median stride time of the period's steps, by the summary's default rule "
+                                            "(L320); empty without a stride time (a streamed track, E51)"),
+    ("median_cadence_spm", "steps/min", "number", "median cadence of the period's steps, by the summary's default "
+                                                  "rule (L176, W225; L320)"),
     ("time_walking_s", "s", "number", "the session's walking time inside the period; sums to walking_time_s (L275)"),
     ("time_between_steps_s", "s", "number", "first to last step of the period: neither walking nor no data "
                                             "(L275); with time_no_steps_s it sums to the summary's two"),

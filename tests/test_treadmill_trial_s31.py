@@ -174,3 +174,29 @@ def test_declared_belt_speed_is_compared_with_the_foot_l321(belt, tmp_path, caps
     err = capsys.readouterr().err
     assert "belt_speed_mps 'fast'" in err and "decision L321" in err and "Traceback" not in err
     assert not (tmp_path / "b").exists()
+
+
+# --- L320 (trial F7): periods.csv says what n_steps counts and gives each period's stride time and cadence ----------
+
+def test_periods_say_what_n_steps_counts_and_give_cadence_l320(belt, tmp_path):
+    import pandas as pd
+
+    from pdrlearn.cli import main
+    from pdrlearn.columns import undocumented
+
+    out = tmp_path / "per"
+    assert main(["track", str(belt[0]), "--per", "6s", "--out", str(out)]) == 0
+    per, steps = pd.read_csv(out / "periods.csv"), pd.read_csv(out / "steps.csv")
+    s = json.loads((out / "summary.json").read_text())
+    assert undocumented("periods.csv", per.columns) == []
+    assert (per["n_steps_counts"] == s["n_steps_counts"]).all() and s["n_steps_counts"] == "strides of the tracked foot"
+    assert per["n_steps"].sum() == s["n_steps"]
+    mid = 0.5 * (steps["start_s"] + steps["end_s"])
+    for _, row in per.iterrows():
+        inside = steps[(mid >= row["start_s"]) & (mid < row["end_s"])]
+        want = inside["cadence_spm"].median()
+        if np.isfinite(want):
+            assert row["median_cadence_spm"] == pytest.approx(want)
+            assert row["median_stride_time_s"] == pytest.approx(inside["stride_time_s"].median())
+        else:
+            assert not np.isfinite(row["median_cadence_spm"])
