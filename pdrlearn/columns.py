@@ -433,7 +433,8 @@ PERIODS: tuple[Column, ...] = (
     ("distance_m", "m", "number", "distance of the steps whose middle lies in the period (L105's rule); the periods "
                                   "sum to the summary's distance_m (L278)"),
     ("n_steps", "count", "integer", "those steps (rows of steps.csv, as the summary's n_steps): strides of the "
-                                    "tracked foot on a foot track, steps of both feet on the lower back (n_steps_counts)"),
+                                    "tracked foot on a foot track, steps of both feet on the lower back "
+                                    "(n_steps_counts)"),
     ("n_steps_counts", _ID, "text", "what n_steps counts: 'strides of the tracked foot' or 'steps of both feet' (the "
                                     "summary's, L103, L320)"),
     ("median_stride_time_s", "s", "number", "median stride time of the period's steps, by the summary's default rule "

@@ -468,7 +468,6 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, labels)
     from pdrlearn.io.meta_keys import unknown_keys_line
-
     from pdrlearn.track.evaluate import belt_summary
 
     belt_summary(session.meta, {}, session.where)  # decision L321: a bad belt speed refused before tracking

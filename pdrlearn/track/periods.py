@@ -46,7 +46,8 @@ from pdrlearn.waist.posture_time import POSTURE_KEYS, POSTURES
 TIME_KEYS = ("time_walking_s", "time_between_steps_s", "time_no_steps_s", "time_no_data_s")
 #: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
 PERIOD_COLUMNS = ("session", "subject", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
-                  "n_steps", "n_steps_counts", "median_stride_time_s", "median_cadence_spm", *TIME_KEYS, *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
+                  "n_steps", "n_steps_counts", "median_stride_time_s", "median_cadence_spm", *TIME_KEYS,
+                  *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
                   "position_sigma_end_m")
 #: decision L277: ``--per`` units (s)
 PER_UNITS = {"s": 1.0, "min": 60.0, "m": 60.0, "h": 3600.0}
