@@ -119,6 +119,8 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_in_ref_bouts_m", "m", "number", "tracked distance inside the reference bouts (L82)"),
     ("distance_matched_error_pct", "%", "number", "foot: distance error over the strides matched to labels"),
     ("distance_ref_source", _ID, "text", "where distance_ref_m comes from"),
+    ("reference_travel_m", "m", "number", "set when trajectory.csv stays put while the track walks (a treadmill "
+                                          "in the lab frame): its largest distance from its start (L319)"),
     ("final_altitude_error_m", "m", "number", "z error of the last position"),
     ("final_position_error_3d_m", "m", "number", "3-D distance of the last position from the true one"),
     ("final_position_sigma_m", "m", "number", "modelled 1-sigma radius of the last position (L128; none with fixes)"),
@@ -159,6 +161,9 @@ SESSIONS: tuple[Column, ...] = (
     ("leg_length_source", _ID, "text", "the meta.json key leg_length_m came from (L148)"),
     ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),
     ("longest_pause_s", "s", "number", "the longest pause (L104)"),
+    ("belt_speed_mps", "m/s", "number", "a declared treadmill's belt speed (meta.json belt_speed_mps; L321)"),
+    ("belt_speed_error_pct", "%", "number", "100 x (median_speed_straight_mps - belt_speed_mps) / belt_speed_mps "
+                                            "(L321)"),
     ("median_speed_straight_mps", "m/s", "number", "median speed of the level strides turning under 15 deg "
                                               "(stair strides left out, L179)"),
     ("median_stance_pct", "%", "number", "--toe-off only: median stance share of the stride (L73)"),
@@ -444,7 +449,15 @@ PERIODS: tuple[Column, ...] = (
                                    "(from the recording's start to the clock's next whole period, L299)"),
     ("distance_m", "m", "number", "distance of the steps whose middle lies in the period (L105's rule); the periods "
                                   "sum to the summary's distance_m (L278)"),
-    ("n_steps", "count", "integer", "those steps (rows of steps.csv, as the summary's n_steps)"),
+    ("n_steps", "count", "integer", "those steps (rows of steps.csv, as the summary's n_steps): strides of the "
+                                    "tracked foot on a foot track, steps of both feet on the lower back "
+                                    "(n_steps_counts)"),
+    ("n_steps_counts", _ID, "text", "what n_steps counts: 'strides of the tracked foot' or 'steps of both feet' (the "
+                                    "summary's, L103, L320)"),
+    ("median_stride_time_s", "s", "number", "median stride time of the period's steps, by the summary's default rule "
+                                            "(L320); empty without a stride time (a streamed track, E51)"),
+    ("median_cadence_spm", "steps/min", "number", "median cadence of the period's steps, by the summary's default "
+                                                  "rule (L176, W225; L320)"),
     ("time_walking_s", "s", "number", "the session's walking time inside the period; sums to walking_time_s (L275)"),
     ("time_between_steps_s", "s", "number", "first to last step of the period: neither walking nor no data "
                                             "(L275); with time_no_steps_s it sums to the summary's two"),

@@ -38,8 +38,11 @@ def info(
     from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats, foot_scale_warning
 
     summary["foot_rests"] = foot_rest_stats(s)  # decisions B133 (rest |acc| in g, a display), B134
+    from pdrlearn.io.meta_keys import unknown_keys_line
+
     for line in (foot_placement_warning(summary["foot_rests"], s.where),
-                 foot_scale_warning(summary["foot_rests"], s.where)):  # decision B201: a rest |acc| off 1 g
+                 foot_scale_warning(summary["foot_rests"], s.where),  # decision B201: a rest |acc| off 1 g
+                 unknown_keys_line(s.meta, s.where)):  # decision B262: meta.json keys pdrlearn does not read
         if line:
             import logging
 

@@ -117,12 +117,21 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
         result["merged_detections"] = merged
     if spanned:  # decision steps 38: strides merged into one detection (track splits them at the rests)
         result["rest_strides"] = int(len(table)) + spanned
-    if spanned > MERGED_WARN_FRAC * (len(table) + spanned):
+    own = None
+    if unit == "foot" and len(table) and per_stride:  # decision steps 47: the foot's own rest-and-swing count
+        from pdrlearn.steps.strides import swinging_rest_strides
+
+        own = swinging_rest_strides(session)
+        if own > len(table):
+            result["foot_swing_strides"] = own
+    # decision steps 47: more than steps 38's fraction of the foot's strides lie outside any detection
+    missed = own is not None and own - len(table) - spanned > MERGED_WARN_FRAC * own
+    if missed or spanned > MERGED_WARN_FRAC * (len(table) + spanned):
         import logging
 
-        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where,
-                                                   spanned_warning(len(table), spanned, detector,
-                                                                   session.has("fForceA", "fForceB")))
+        line = (short_warning(name, len(table), spanned, own) if missed
+                else spanned_warning(len(table), spanned, detector, session.has("fForceA", "fForceB")))
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
     range_line = cadence_range_warning(table, session.meta, unit)  # decision steps 44
     if range_line:
         import logging
@@ -142,7 +151,9 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     what = "strides" if unit == "foot" else "steps"
     typer.echo(f"{session.name}: {result['count']} {what} ({name})"
                + (f"; {merged} more detection(s) between the same two rests of the foot dropped (one stride each, "
-                  "as `track` integrates it; decision steps 34)" if merged else ""))
+                  "as `track` integrates it; decision steps 34)" if merged else "")
+               + (f"; the foot's own rests and swings segment {result['foot_swing_strides']} (decision steps 47)"
+                  if "foot_swing_strides" in result else ""))
     if score is not None:
         typer.echo(f"reference: {score['reference_count']} from {score['reference']}")
         if score.get("one_foot"):  # decision W96: a lower-back detector against one foot's strides
@@ -182,6 +193,24 @@ def spanned_warning(count: int, spanned: int, det, has_force: bool = False) -> s
                        "strides from its force sensors instead (decisions steps 38, steps 43)")
     return head + ("`pdrlearn track DIR` splits them at the rests (decision L96) and counts "
                    f"{count + spanned} (decision steps 38)")
+
+
+def short_warning(name: str, count: int, spanned: int, own: int) -> str:
+    """Decision steps 47: the line when a foot detector ``name`` kept ``count`` strides, more than
+    :data:`MERGED_WARN_FRAC` of the ``own`` rest-to-rest strides in which the foot swings
+    (:func:`pdrlearn.steps.strides.swinging_rest_strides`) outside any detection, ``spanned`` more merged into a
+    neighbour's (B201's "found no strides" line, for a detector that found some; it replaces steps 38's line,
+    which counts only the merged ones)."""
+    import numpy as np
+
+    from pdrlearn.kernels.units import FOOT_NO_SWING
+
+    outside = own - count - spanned
+    return (f"{name} kept {count} strides, but the foot's own rests and swings segment {own} (rest-to-rest strides "
+            f"swinging over {np.degrees(FOOT_NO_SWING):.0f} deg/s): {own - count} missed ("
+            + (f"{spanned} merged into a neighbour's detection, " if spanned else "")
+            + f"{outside} outside any detection): its thresholds did not fire (foot vibration, a weak or odd swing); "
+            "`pdrlearn track DIR` segments the strides at the foot's rests (decisions B201, steps 47)")
 
 
 def cadence_range_warning(table, meta: dict | None, unit: str) -> str | None:

@@ -487,6 +487,15 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         import logging
 
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, labels)
+    from pdrlearn.io.meta_keys import unknown_keys_line
+    from pdrlearn.track.evaluate import belt_summary
+
+    belt_summary(session.meta, {}, session.where)  # decision L321: a bad belt speed refused before tracking
+    unknown = unknown_keys_line(session.meta, session.where)  # decision B262: meta.json keys pdrlearn does not read
+    if unknown:
+        import logging
+
+        logging.getLogger("pdrlearn.cli").warning("%s", unknown)
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
@@ -785,6 +794,12 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))
     if summary.get("gait_speed_mps") is not None:  # decisions L79 / W70: the clinical walking speed
         typer.echo(gait_line(summary))
+    from pdrlearn.track.evaluate import belt_line
+
+    belt = belt_line(summary)  # decision L321: a declared treadmill
+    if belt:
+        typer.echo(belt)
+    if summary.get("gait_speed_mps") is not None:
         walk = walk_line(summary)  # decision L104
         if walk:
             typer.echo(walk)

@@ -21,6 +21,10 @@ FORCE_STEPS_MIN = 3
 FORCE_LOAD_LEVEL = 0.2
 #: the percentile of a force sensor's samples that is its load reference (``displace.foot.force_stance``)
 FORCE_REF_PERCENTILE = 95
+#: decision B260: a loaded foot is unloaded only below this fraction of its reference (hysteresis): quiet standing
+#: after a walk holds a force sensor near FORCE_LOAD_LEVEL (simulated 10 % incline: 74-119 N against a 430 N
+#: reference), whose noise crossed that one level 3 times in 7 s and read as 3 steps (B213's false "frozen IMU")
+FORCE_UNLOAD_LEVEL = 0.1
 #: decision B213: the live check judges consecutive blocks of this much stream time (s) from the first foot
 #: accelerometer sample: simulated scenario A (users 1-3, slow / normal) loads the foot once per 1.66-2.00 s with its
 #: standing ends, so a walking block holds ~5 loads (B203 needs 3), and a standing subject's one load stays one
@@ -105,15 +109,28 @@ def force_reference(force: np.ndarray) -> float:
 
 def load_onsets(forces: list[np.ndarray], refs: list[float]) -> int | None:
     """How many times the foot is loaded (either sensor above :data:`FORCE_LOAD_LEVEL` x its reference) after
-    being unloaded, over ``forces`` (each (n,) on one common clock) with references ``refs``; None when a reference
-    is not a positive finite number (no usable force sensor, as ``force_stance``)."""
+    being unloaded (both sensors below :data:`FORCE_UNLOAD_LEVEL` x their references, decision B260's hysteresis;
+    a foot between the two levels keeps its state, and the first sample counts as loaded when above the lower
+    level), over ``forces`` (each (n,) on one common clock) with references ``refs``; None when a reference is not a
+    positive finite number (no usable force sensor, as ``force_stance``)."""
     if not forces:
         return None
-    loaded = np.zeros(len(forces[0]), dtype=bool)
+    high = np.zeros(len(forces[0]), dtype=bool)
+    low = np.ones(len(forces[0]), dtype=bool)
     for f, ref in zip(forces, refs, strict=True):
         if not np.isfinite(ref) or ref <= 0:
             return None
-        loaded |= np.asarray(f, dtype=float) > FORCE_LOAD_LEVEL * ref
+        f = np.asarray(f, dtype=float)
+        high |= f > FORCE_LOAD_LEVEL * ref
+        low &= ~(f > FORCE_UNLOAD_LEVEL * ref)
+    if len(high) == 0:
+        return 0
+    # state per sample: 1 loaded (above the load level), 0 unloaded (below the unload level), else the last state
+    mark = np.where(high, 1, np.where(low, 0, -1))
+    if mark[0] < 0:
+        mark[0] = 1  # between the levels from the start: already carrying weight (standing), no onset
+    idx = np.maximum.accumulate(np.where(mark >= 0, np.arange(len(mark)), 0))
+    loaded = mark[idx] == 1
     return int(np.count_nonzero(loaded[1:] & ~loaded[:-1]))
 
 

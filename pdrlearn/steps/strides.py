@@ -19,16 +19,46 @@ def one_per_stride(table: pd.DataFrame, session: Session) -> tuple[pd.DataFrame,
     return kept, dropped
 
 
-def one_per_stride_counted(table: pd.DataFrame, session: Session) -> tuple[pd.DataFrame, int, int]:
-    """:func:`one_per_stride`, plus how many more rest-to-rest strides the kept rows cover (a detection
-    spanning several strides: strides merged, decision steps 38)."""
-    from pdrlearn.displace.foot import force_stance, inertial_stance, one_per_rest_stride
+def _foot_rests(session: Session):
+    """The foot unit's data and ``track``'s default M3 stance (the force sensors' when recorded, else the
+    accelerometer/gyroscope one)."""
+    from pdrlearn.displace.foot import force_stance, inertial_stance
     from pdrlearn.orient import unit_data
 
     foot = unit_data(session, "foot", purpose="the rests between strides")
     stance = force_stance(session, foot.t, foot.gyr)
     if stance is None:
         stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
+    return foot, stance
+
+
+def one_per_stride_counted(table: pd.DataFrame, session: Session) -> tuple[pd.DataFrame, int, int]:
+    """:func:`one_per_stride`, plus how many more rest-to-rest strides the kept rows cover (a detection
+    spanning several strides: strides merged, decision steps 38)."""
+    from pdrlearn.displace.foot import one_per_rest_stride
+
+    foot, stance = _foot_rests(session)
     ev = table["event_s"] if "event_s" in table else table["end_s"]
     rows, n_strides = one_per_rest_stride(foot.t, stance, table["start_s"], table["end_s"], ev, count_strides=True)
     return table.iloc[rows].reset_index(drop=True), int(len(table) - len(rows)), int(n_strides - len(rows))
+
+
+def swinging_rest_strides(session: Session) -> int:
+    """Decision steps 47: the foot's own stride count, without a detector: the rest-to-rest strides of ``track``'s
+    stance (:func:`pdrlearn.displace.foot.rest_to_rest` on one window over the whole session, as ``track`` splits a
+    detection at the rests, L96) whose foot swings - its largest |gyro| between the two rests reaches B91's
+    :data:`~pdrlearn.kernels.units.FOOT_NO_SWING` (a walking foot swings at several hundred deg/s; a shuffle or a
+    weight shift between two rests does not)."""
+    import numpy as np
+
+    from pdrlearn.displace.foot import rest_to_rest
+    from pdrlearn.kernels.units import FOOT_NO_SWING
+
+    foot, stance = _foot_rests(session)
+    t = np.asarray(foot.t, dtype=float)
+    if len(t) < 4:
+        return 0
+    i0, i1, _ = rest_to_rest(t, stance, np.array([t[0]]), np.array([t[-1]]))
+    gyr = np.linalg.norm(np.asarray(foot.gyr, dtype=float), axis=1)
+    peak = np.array([np.nanmax(gyr[a:b + 1]) if b > a else 0.0 for a, b in zip(i0, i1, strict=True)])
+    return int(np.count_nonzero(peak >= FOOT_NO_SWING))

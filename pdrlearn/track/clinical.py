@@ -549,6 +549,13 @@ TURN_SUMMARY_KEYS = ("median_turn_duration_s", "median_turn_angle_deg", "median_
                      "median_turn_mean_rate_dps")
 
 
+#: decision L322 (an option, off; not measured for adoption): the strides of a ramp climb (L303's
+#: :func:`pdrlearn.track.evaluate.ramp_climb_rows`: rise over run under 20 %, a steady incline such as an inclined
+#: treadmill) count as level for the stride-time and stride-length CVs (session, per bout, L196's pooling); a stair
+#: climb's strides stay out. Only the CV strides: ``n_stair_strides`` and the straight speed follow L303's own option
+CV_KEEPS_RAMPS = False
+
+
 def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     """Decision L188: the rows that walk level and forward: |``dz_m``| under ``LEVEL_DZ_M`` (0.10 m, L179's
     :func:`pdrlearn.track.gait.stair_rows`) and ``direction`` not backward (a row without a class, a track
@@ -557,7 +564,8 @@ def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     backward stride 2.0 s), so pooling them is no steady walker's variability."""
     from pdrlearn.track.gait import sideways_rows, stair_rows
 
-    ok = ~stair_rows(steps) & ~sideways_rows(steps)  # decision L228: a side step is no forward stride
+    # decision L322: with CV_KEEPS_RAMPS a ramp climb's strides are not stair strides here (L303's rule)
+    ok = ~stair_rows(steps, ramp_not_stair=True if CV_KEEPS_RAMPS else None) & ~sideways_rows(steps)  # L228
     if "direction" in steps:
         ok &= (steps["direction"].astype(str) != "backward").to_numpy()  # empty without a model: not backward
     return ok
@@ -628,7 +636,8 @@ def _not_level(steps: pd.DataFrame) -> tuple[int, int]:
                     & _valid(steps))
     if "direction" in steps:
         straight &= (steps["direction"].astype(str) != "backward").to_numpy()
-    return int(straight.sum()), int((straight & stair_rows(steps)).sum())
+    return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=True if CV_KEEPS_RAMPS else None)
+                                     ).sum())
 
 
 def _is_lower_back(steps: pd.DataFrame) -> bool:
@@ -859,7 +868,9 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
              "level_note": None, "reason": f"{len(s)} steady level forward strides, {CV_MIN_STRIDES} needed"}
         if n_straight and n_not_level > NOT_LEVEL_SHARE * n_straight:
             w["level_note"] = (f"{n_not_level} of {n_straight} straight strides not level by their integrated "
-                               "height (|dz_m| >= 0.10 m, L188)")
+                               "height (|dz_m| >= 0.10 m, L188"
+                               + ("; a steady incline's strides count with pdrlearn.track.clinical.CV_KEEPS_RAMPS, "
+                                  "L322" if not CV_KEEPS_RAMPS else "") + ")")
             w["reason"] += "; " + w["level_note"]
         out["stride_time_cv_withheld"] = w
     return out

@@ -597,18 +597,45 @@ def _reference_distance(session: Session, *, waist: bool = False) -> tuple[float
     return None, ""
 
 
+#: decision L319: a reference trajectory that travels less than this fraction of the track's own largest distance
+#: from its start (a lab-frame motion capture on a treadmill: the pelvis wobbles in place) is no reference for the
+#: distance or the final position; judged only when the track goes at least STATIONARY_REF_MIN_TRACK_M from its start
+STATIONARY_REF_FRAC = 0.1
+STATIONARY_REF_MIN_TRACK_M = 5.0
+
+
+def reference_travel(gt: pd.DataFrame, tr: pd.DataFrame) -> tuple[float, float]:
+    """Decision L319: (the reference trajectory ``gt``'s largest horizontal distance from its position at the
+    track's first time, over the track's span; the track ``tr``'s largest horizontal distance from its start), m."""
+    t0, t1 = float(tr["t"].iloc[0]), float(tr["t"].iloc[-1])
+    t = gt["t"].to_numpy(float)
+    inside = (t >= t0) & (t <= t1)
+    xy = np.column_stack([np.r_[np.interp(t0, t, gt[c].to_numpy(float)), gt[c].to_numpy(float)[inside],
+                                np.interp(t1, t, gt[c].to_numpy(float))] for c in ("x", "y")])
+    est = tr[["x", "y"]].to_numpy(float)
+    return (float(np.nanmax(np.hypot(*(xy - xy[0]).T))), float(np.nanmax(np.hypot(*(est - est[0]).T))))
+
+
 def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
     waist = bool(len(result.steps)) and "unit" in result.steps and bool((result.steps["unit"] == "waist").all())
     ref, source = _reference_distance(session, waist=waist)
     if ref is None or ref <= 0:
         return
+    gt = session.trajectory
+    tr = result.trajectory
+    still = False  # decision L319: a reference that does not travel while the track does (a treadmill's lab frame)
+    if gt is not None and len(gt) > 1 and len(tr):
+        ref_m, track_m = reference_travel(gt, tr)
+        still = track_m >= STATIONARY_REF_MIN_TRACK_M and ref_m < STATIONARY_REF_FRAC * track_m
+        if still:
+            out["reference_travel_m"] = ref_m
+    if still and source == "trajectory.csv path":  # its wobble's path is no distance walked
+        return
     out["distance_ref_m"] = ref
     out["distance_ref_source"] = source
     out["distance_error_pct"] = 100.0 * (out["distance_m"] - ref) / ref
     out["distance_error_scope"] = "whole track"  # decision W71: what distance_error_pct compares
-    gt = session.trajectory
-    tr = result.trajectory
-    if gt is not None and len(gt) > 1 and len(tr):
+    if gt is not None and len(gt) > 1 and len(tr) and not still:
         t0, t1 = float(tr["t"].iloc[0]), float(tr["t"].iloc[-1])
         g = {c: gt[c].to_numpy(float) for c in ("t", "x", "y", "z")}
         p0 = np.array([np.interp(t0, g["t"], g[c]) for c in ("x", "y", "z")])
@@ -617,6 +644,20 @@ def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
         d_true = p1 - p0
         d_est = est[-1] - est[0]
         out["final_position_error_m"] = float(np.hypot(*(d_est[:2] - d_true[:2])))  # horizontal
+
+
+def stationary_reference_warning(summary: dict) -> str | None:
+    """Decision L319: one line when the reference trajectory did not travel (``reference_travel_m``) while the
+    track walked: what was and was not compared."""
+    ref_m = summary.get("reference_travel_m")
+    if ref_m is None:
+        return None
+    kept = ("the distance error compares " + str(summary["distance_ref_source"])
+            if summary.get("distance_error_pct") is not None else "no distance error from its path")
+    return (f"the reference trajectory (trajectory.csv) goes at most {float(ref_m):.2f} m from its start while the "
+            f"track walks {float(summary.get('distance_m', 0.0)):.2f} m: a treadmill, or a walk captured in the lab "
+            "frame? On a belt the foot measures belt distance, not travel (docs/frames.md, L147); "
+            f"{kept}, and no final position error against it (decision L319)")
 
 
 def _altitude(result: TrackResult, session: Session, out: dict) -> None:
@@ -1028,12 +1069,51 @@ def add_gait_range_flag(summary: dict) -> dict:
     return summary
 
 
+#: decision L321: meta.json's declared treadmill belt speed (m/s)
+BELT_KEY = "belt_speed_mps"
+
+
+def belt_summary(meta: dict | None, summary: dict, where: str) -> dict:
+    """Decision L321: a declared treadmill (meta.json ``belt_speed_mps``, a positive number of m/s): the belt speed
+    and the foot's median straight stride speed against it (``belt_speed_error_pct``). No new physics: a belt at
+    constant speed is an inertial frame (docs/frames.md, L147), so the foot's strides are belt strides and its
+    path and distance are the belt's, not travel. Empty without the key; a bad value is one line naming it."""
+    import math
+
+    from pdrlearn.errors import DataError
+
+    v = (meta or {}).get(BELT_KEY)
+    if v is None:
+        return {}
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or not 0 < v <= 10:
+        raise DataError(f"{where}/meta.json: {BELT_KEY} {v!r}: give the treadmill's belt speed as a positive number "
+                        "of m/s (e.g. 1.0; at most 10), or remove the key (decision L321)")
+    out = {BELT_KEY: float(v)}
+    straight = summary.get("median_speed_straight_mps")
+    if straight is not None:
+        out["belt_speed_error_pct"] = 100.0 * (float(straight) - float(v)) / float(v)
+    return out
+
+
+def belt_line(summary: dict) -> str | None:
+    """Decision L321: the console line of a declared treadmill."""
+    v = summary.get(BELT_KEY)
+    if v is None:
+        return None
+    straight = summary.get("median_speed_straight_mps")
+    return (f"treadmill belt {float(v):.2f} m/s (meta.json {BELT_KEY}): "
+            + (f"the foot's straight strides {float(straight):.2f} m/s ({summary['belt_speed_error_pct']:+.1f} %)"
+               if straight is not None else "no straight strides to compare")
+            + f"; {float(summary.get('distance_m', 0.0)):.2f} m is belt distance and the path is the belt's, not "
+            "travel (docs/frames.md, decisions L147, L321)")
+
+
 def summary_warnings(summary: dict) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range and
     L195's bouts above it, decision L113's withheld stride-time CV, decision L196's CV pooled over bouts of
     different rhythm, decision L116's whole-sample rounding of the CV, decision L145's
     foot altitude against the unused barometer, decision B188's implausible barometer and decision L175's position
-    uncertainty against the distance walked."""
+    uncertainty against the distance walked, and decision L319's reference trajectory that does not travel."""
     from pdrlearn.track.clinical import pooled_cv_warning, resolution_warning, stride_cv_warning
     from pdrlearn.track.gait import bout_range_warning, gait_range_warning
     from pdrlearn.track.position_sigma import position_sigma_warning
@@ -1041,7 +1121,7 @@ def summary_warnings(summary: dict) -> list[str]:
     return [w for w in (gait_range_warning(summary), bout_range_warning(summary), stride_cv_warning(summary),
                         pooled_cv_warning(summary), resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
-                        position_sigma_warning(summary)) if w]
+                        position_sigma_warning(summary), stationary_reference_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,
@@ -1146,6 +1226,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.track.periods import time_accounting
 
     summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
+    summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where)))
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None

@@ -46,7 +46,8 @@ from pdrlearn.waist.posture_time import POSTURE_KEYS, POSTURES
 TIME_KEYS = ("time_walking_s", "time_between_steps_s", "time_no_steps_s", "time_no_data_s")
 #: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
 PERIOD_COLUMNS = ("session", "subject", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
-                  "n_steps", *TIME_KEYS, *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
+                  "n_steps", "n_steps_counts", "median_stride_time_s", "median_cadence_spm", *TIME_KEYS,
+                  *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
                   "position_sigma_end_m")
 #: decision L277: ``--per`` units (s)
 PER_UNITS = {"s": 1.0, "min": 60.0, "m": 60.0, "h": 3600.0}
@@ -229,6 +230,17 @@ def time_accounting(result, session, unit: str | None = None, window: tuple[floa
     return time_summary(timeline, *(window if window is not None else session_span(session, unit)))
 
 
+def _period_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
+    """Decision L320: the median stride time and cadence of the period's steps (``rows``), by the summary's own
+    rule (:func:`pdrlearn.track.gait.gait_summary`, its default medians) on those rows; None without a stride time."""
+    from pdrlearn.track.gait import gait_summary
+
+    if not rows.any():
+        return {"median_stride_time_s": None, "median_cadence_spm": None}
+    g = gait_summary(steps[rows].reset_index(drop=True))
+    return {"median_stride_time_s": g.get("median_stride_time_s"), "median_cadence_spm": g.get("median_cadence_spm")}
+
+
 def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
                  turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None) -> pd.DataFrame:
     """Decision L277: periods.csv of a whole-session track (:data:`PERIOD_COLUMNS`, module docstring), periods of
@@ -237,7 +249,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     the clock's whole periods instead (``--per-align clock``: 1h = the clock hours), the first and last partial."""
     from pdrlearn.track.bouts import session_key
     from pdrlearn.track.clock import clock_edges
-    from pdrlearn.track.evaluate import _climb_dz, floor_climbs
+    from pdrlearn.track.evaluate import _climb_dz, floor_climbs, step_counts
 
     t0, t1 = session_span(session, unit)
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
@@ -256,6 +268,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     traj = result.trajectory
     sigma = traj["pos_sigma_m"].to_numpy(float) if "pos_sigma_m" in traj and len(traj) else None
     tt = traj["t"].to_numpy(float) if len(traj) else np.zeros(0)
+    counts = step_counts(steps)["n_steps_counts"]  # decision L320: what n_steps counts, as the summary's
     rows = []
     for k, (a, b) in enumerate(zip(edges, ends, strict=True)):
         last = k == len(edges) - 1
@@ -266,8 +279,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         m = inside(mid)
         row = {**session_key(session), "period": k + 1, "start_s": float(a), "end_s": float(b),
                "duration_s": float(b - a), "partial": bool(b - a < per_s - 1e-9),
-               "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), **timeline.budget(a, b),
-               **timeline.posture_budget(a, b)}
+               "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), "n_steps_counts": counts,
+               **_period_gait(steps, m), **timeline.budget(a, b), **timeline.posture_budget(a, b)}
         c = inside(climb_t)
         row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None
