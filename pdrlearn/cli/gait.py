@@ -8,7 +8,6 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import FORCE_HELP
-from pdrlearn.track.bilateral import clock_offset_pattern
 
 #: the files ``gait --out`` writes (decision L260); the output-folder kind ``gait`` is recognised by them
 GAIT_FILES = ("gait_summary.json", "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
@@ -37,6 +36,8 @@ def gait_lines(summary: dict) -> list[str]:
     if w.get("swing_time_s_left") is not None or w.get("swing_time_s_right") is not None:  # decision L284
         swing = (f"swing time left/right {_fmt(w['swing_time_s_left'], '.3f')} / "
                  f"{_fmt(w['swing_time_s_right'], '.3f')} s, symmetry index {_fmt(w['swing_time_s_si_pct'], '.1f')} %")
+        from pdrlearn.track.bilateral import clock_offset_pattern  # here: `pdrlearn --help` loads no numpy
+
         if clock_offset_pattern(w):  # decision L328: only where L284's pattern is seen, not on every pair
             swing += (f"; double support before the left / right swing differs by {2000 * w['clock_offset_s']:+.0f} "
                       "ms (step times asymmetric, swing times not: a clock offset or one foot's late contacts, "
