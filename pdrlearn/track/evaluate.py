@@ -1102,7 +1102,7 @@ def belt_line(summary: dict) -> str | None:
         return None
     straight = summary.get("median_speed_straight_mps")
     return (f"treadmill belt {float(v):.2f} m/s (meta.json {BELT_KEY}): "
-            + (f"the foot's straight strides {float(straight):.2f} m/s ({summary['belt_speed_error_pct']:+.1f} %)"
+            + (f"the tracked straight strides {float(straight):.2f} m/s ({summary['belt_speed_error_pct']:+.1f} %)"
                if straight is not None else "no straight strides to compare")
             + f"; {float(summary.get('distance_m', 0.0)):.2f} m is belt distance and the path is the belt's, not "
             "travel (docs/frames.md, decisions L147, L321)")

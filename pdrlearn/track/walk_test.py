@@ -80,8 +80,9 @@ def ten_metre_walk(steps: pd.DataFrame) -> dict:
             return out
         end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
         if math.hypot(*end) < STRAIGHT_MIN * need:
-            out["ten_m_walk_note"] = (f"the first {need:.0f} m of the walk turn (straight-line {math.hypot(*end):.1f} "
-                                      f"m; decision L313): a 10 m walk test needs a straight walkway; not timed")
+            out["ten_m_walk_note"] = (f"the first {need:.0f} m of the walk are not straight: a turn or a reversal "
+                                      f"(straight-line {math.hypot(*end):.1f} m; decision L313): a 10 m walk "
+                                      "test needs a straight walkway; not timed")
             return out
         t0, t1 = np.interp([ZONE_M, ZONE_M + TIMED_M], d[: k + 1], t[: k + 1])
         if not t1 > t0:
