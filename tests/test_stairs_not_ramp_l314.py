@@ -1,6 +1,7 @@
 """Decision L314 (session 31 prosthesis trial, finding 3): a lower-back track's steps that W108 puts on stairs (its
 "N steps are on stairs" warning; steps.csv ``climb``) make no ramp (ramps.csv, ``n_ramps``) and no "ramps" climb
-(``floors_*_ramps``), whatever grade their too-long pendulum lengths give; a foot track (no ``climb``) is unchanged."""
+(``floors_*_ramps``), whatever grade their too-long pendulum lengths give; a foot track (no ``climb``) is unchanged.
+Decision L330: only under the PARAMS.json option ``climb_veto`` (off by default)."""
 
 from __future__ import annotations
 
@@ -29,10 +30,14 @@ def test_rows_on_stairs_are_no_ramp_rows():
     assert climb_kind(dz0, pause, length, rows, np.arange(20) < 9) == "ramps"  # 9 of 20: not more than half
 
 
+VETO = {"options": {"climb_veto": True}}  # decision L330: L314's veto is opt-in
+
+
 def test_climb_column_is_read_as_written():
     st = pd.DataFrame({"climb": [True, "False", "true", 0]})
-    assert climb_rows(st).tolist() == [True, False, True, False]
-    assert climb_rows(pd.DataFrame({"dz_m": [0.1]})) is None  # a foot track
+    assert climb_rows(st, VETO).tolist() == [True, False, True, False]
+    assert climb_rows(st) is None  # decision L330: no veto unless the option is set
+    assert climb_rows(pd.DataFrame({"dz_m": [0.1]}), VETO) is None  # a foot track
 
 
 @pytest.fixture(scope="module")
@@ -44,7 +49,9 @@ def stepto(tmp_path_factory):
 
 def test_waist_step_to_stairs_are_stairs_not_ramps(stepto, capsys):
     out = stepto / "waist"
-    assert main(["track", str(stepto / "sim"), "--pipeline", "waist-pendulum", "--out", str(out)]) == 0
+    (stepto / "veto.json").write_text(json.dumps(VETO))
+    assert main(["track", str(stepto / "sim"), "--pipeline", "waist-pendulum", "--params", str(stepto / "veto.json"),
+                 "--out", str(out)]) == 0
     assert "steps are on stairs" in capsys.readouterr().err  # W155's line: W108's climbs
     s = json.loads((out / "summary.json").read_text())
     s = s.get("summary", s)
@@ -54,7 +61,8 @@ def test_waist_step_to_stairs_are_stairs_not_ramps(stepto, capsys):
     assert tuple(s[k] for k in kinds) == (1, 0, 1, 0)
     assert s["n_ramps"] == 0 and len(pd.read_csv(out / "ramps.csv")) == 0
     # the same rows without the column (the code before L314) read ramps: the column is what changed it
-    assert floors_by_kind(steps.drop(columns="climb"))["floors_up_ramps"] == 1
+    assert floors_by_kind(steps.drop(columns="climb"), info=VETO)["floors_up_ramps"] == 1
+    assert floors_by_kind(steps)["floors_up_ramps"] == 1  # L330: the column alone vetoes nothing
 
 
 def test_foot_track_of_the_same_walk_has_no_climb_column(stepto):

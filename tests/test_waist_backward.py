@@ -99,3 +99,20 @@ def test_units_waist_with_a_foot_option_names_the_left_out_foot(tmp_path, capsys
         assert rc == 2 and "\n" not in err and "fAccelerometer" not in err, err
         assert f"{named} needs the foot unit (PLASYS tracks the foot), which --units waist leaves out" in err, err
         assert err.endswith("or drop --units (decision W254)") and not (tmp_path / "o").exists()
+
+
+def test_units_foot_with_a_waist_pipeline_names_the_left_out_lower_back(tmp_path, capsys):
+    """Decision W260 (session 31 review, F3), W254's mirror: ``--units foot --pipeline waist-pendulum`` on a foot +
+    waist session had said "has no wAccelerometer ... record that sensor"; now one line naming --units."""
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    write_session(_sim("stand:2, straight:6, stand:2", 6301), tmp_path / "walk")
+    for pipeline in ("waist-pendulum", "waist-pll"):
+        rc = main(["track", str(tmp_path / "walk"), "--units", "foot", "--pipeline", pipeline,
+                   "--out", str(tmp_path / "o")])
+        err = capsys.readouterr().err.strip()
+        assert rc == 2 and "\n" not in err and "record that sensor" not in err, err
+        assert f"--pipeline {pipeline} needs the lower-back unit, which --units foot leaves out" in err, err
+        assert err.endswith("or drop --units (decision W260)") and not (tmp_path / "o").exists()
+    assert main(["track", str(tmp_path / "walk"), "--units", "foot", "--out", str(tmp_path / "f")]) == 0  # foot

@@ -898,14 +898,19 @@ def few_steps_line(task: str, y: np.ndarray, classes: Sequence[str], chosen: tup
             f"each class{alt} (decision C75)")
 
 
-def check_task_methods(task_methods: Mapping[str, Sequence[str]] | None) -> dict[str, list[str]]:
+def check_task_methods(task_methods: Mapping[str, Sequence[str]] | None,
+                       tasks: Sequence[str] | None = None) -> dict[str, list[str]]:
     """Decision C74: per-task method lists (``--methods direction=fusion,heuristic``), checked as ``methods`` is
-    (:func:`check_settings`): a known task, known methods, no empty list; ``{}`` for None."""
+    (:func:`check_settings`): a known task, known methods, no empty list; ``{}`` for None. Decision C78: with
+    ``tasks`` (the checked tasks to train), an entry for a task that is not trained is refused (it was ignored)."""
     out: dict[str, list[str]] = {}
     for task, methods in (task_methods or {}).items():
         if task not in TASKS:
             raise DataError(f"methods (--methods): unknown task {task!r} in {task}=...; choose from "
                             f"{', '.join(TASKS)} (decision C74)")
+        if tasks is not None and task not in tasks:
+            raise DataError(f"methods (--methods): {task}=... is for a task that is not trained (--tasks "
+                            f"{','.join(tasks)}); add {task} to --tasks or drop {task}=... (decision C78)")
         out[task] = _check_choice("method", methods, METHODS)
     return out
 
@@ -1279,7 +1284,7 @@ def train_user(
     tasks, methods, units = (as_names(v, n) for v, n in ((tasks, "task"), (methods, "method"), (units, "unit")))
     named_units = units is not None
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
-    own_methods = check_task_methods(task_methods)  # decision C74
+    own_methods = check_task_methods(task_methods, tasks)  # decisions C74, C78
 
     def voted_of(ms):  # decision C23's soft votes of a method list (None: units named, every soft vote)
         return None if named_units else [m for m in ms if m not in COMBINED_METHODS]

@@ -309,8 +309,8 @@ def train_all(
 
     t_list, m_list, u_list, per_task = split_choices(tasks=tasks, methods=methods, units=units)
     # bad settings fail here, once, before a cluster is started and before anything is written
-    check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, resample_hz=resample)  # C62
-    per_task = check_task_methods(per_task)  # decision C74
+    t_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, resample_hz=resample)[0]
+    per_task = check_task_methods(per_task, t_all)  # decisions C74, C78 (check_settings: C62)
     l_list = split_length_units(length_units)  # decision C40: as train's, before anything starts
     _check_workers(workers)
     _check_outside_cohort(out, cohort_dir)

@@ -461,9 +461,25 @@ def _refuse_foot_options_without_foot(pipeline: str, o: dict, session) -> None:
     if pipeline == "plasys":
         what = " and ".join(asked) or "the foot pipeline"
         raise DataError(f"track: {session.where}: {what} needs the foot unit (PLASYS tracks the foot), which --units "
-                        f"{','.join(sorted({s.placement for s in session.streams.values()}))} leaves out; drop "
+                        f"{_kept_units(session)} leaves out; drop "
                         f"{' and '.join(asked) or '--pipeline plasys'} for a lower-back track, or drop --units "
                         "(decision W254)")
+
+
+def _kept_units(session) -> str:
+    """The placements ``--units`` kept (decisions W254, W260: the lines name them as given)."""
+    return ",".join(sorted({s.placement for s in session.streams.values()}))
+
+
+def _refuse_waist_pipeline_without_waist(pipeline: str, session) -> None:
+    """Decision W260, W254's mirror: ``--units foot`` left the lower-back unit out and a waist pipeline was named:
+    one line naming both ways out, instead of "has no wAccelerometer ... record that sensor" about a folder that
+    has it (session 31 review, F3)."""
+    if (pipeline.startswith("waist") and session._left_out and not session.has("wAccelerometer", "wGyroscope")
+            and any(s.placement == "waist" for s in session._left_out.values())):
+        raise DataError(f"track: {session.where}: --pipeline {pipeline} needs the lower-back unit, which --units "
+                        f"{_kept_units(session)} leaves out; drop --pipeline {pipeline} for a foot track, or drop "
+                        "--units (decision W260)")
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -515,6 +531,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     if pipeline in ("plasys", "auto") and session._left_out and not session.has("fAccelerometer"):
         _refuse_foot_options_without_foot(pipeline, o, session)  # decision W254
+    _refuse_waist_pipeline_without_waist(pipeline, session)  # decision W260
     pipeline = resolve_pipeline(pipeline, session)
     given_clock, clock_lines = None, []
     # decision E111: the waist clock moved by hand, before anything reads it; B230: before B126's span check (a

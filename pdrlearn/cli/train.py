@@ -132,7 +132,7 @@ def train(
     t_list, m_list, u_list, per_task = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed,
                                          resample_hz=resample)  # C62: before any data is read
-    per_task = check_task_methods(per_task)  # decision C74: before any data is read
+    per_task = check_task_methods(per_task, t_all)  # decisions C74, C78: before any data is read
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)

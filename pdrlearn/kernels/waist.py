@@ -333,8 +333,7 @@ def _fast_fill(v: np.ndarray, vf: np.ndarray, cand: np.ndarray, keep: np.ndarray
     taps = fir_taps(FAST_BAND_FACTOR * cutoff_hz, fs, int(round(fir_order_s * fs)))  # W237: twice seed 003's cut-off
     vf_fast = fir_zero_lag(v - np.mean(v), taps)
     scale = side_scale(vl[cand], strong)  # W20: decided at 1/3 of the median |v| at the accepted candidates
-    sd = (np.where(np.abs(vl[peaks]) >= SIDE_MIN_FRAC * scale, np.sign(vl[peaks]), 0.0) if scale > 0.0
-          else np.zeros(peaks.size)).astype(np.int8)
+    sd = step_sides(vl[peaks], None, scale=scale)
     is_cand = np.isin(peaks, cand)
     sd[is_cand] = np.asarray(side)[np.searchsorted(cand, peaks[is_cand])]
     ref = float(np.median(vf[cand[keep]])) if np.any(keep) else float("nan")
@@ -451,13 +450,15 @@ def _butter2(lo: float, hi: float | None, btype: str, fs: float) -> np.ndarray:
     return dsp.butter_sos(2, lo if hi is None else (lo, hi), fs, btype)
 
 
-def step_sides(v_at: np.ndarray, accepted: np.ndarray, *, min_frac: float = SIDE_MIN_FRAC) -> np.ndarray:
+def step_sides(v_at: np.ndarray, accepted: np.ndarray | None, *, min_frac: float = SIDE_MIN_FRAC,
+               scale: float | None = None) -> np.ndarray:
     """Side of each candidate step (+1 / -1; 0 = undecided) from the pelvis's lateral velocity at it
     (:func:`lateral_velocity`, decision W20). Decided where ``|v| >= min_frac`` x the median ``|v|`` of
-    the ``accepted`` steps (the signal's own scale). Which sign is the left foot depends on the mounting
+    the ``accepted`` steps (the signal's own scale; ``scale``, when given, is that median read elsewhere - W242's
+    anchors at the candidates' scale). Which sign is the left foot depends on the mounting
     and does not matter: only equal vs opposite sides are used."""
     v = np.asarray(v_at, dtype=np.float64)
-    scale = side_scale(v, accepted)
+    scale = side_scale(v, accepted) if scale is None else float(scale)
     if scale <= 0.0:
         return np.zeros(v.shape[0], dtype=np.int8)
     return np.where(np.abs(v) >= min_frac * scale, np.sign(v), 0.0).astype(np.int8)

@@ -174,6 +174,7 @@ class WaistStream(FixInput):
         self._ride = bool(options.get("pause_ride", False))
         self._pause_a: float | None = None  # the last reported row's end (the next pause's start)
         self.pause_drifts: list[tuple[float, float, float]] = []
+        self._drift_said = False  # decision E150: W231's line once per stream, however often flush() is called
         self._drift = 0.0
         # decision L308: L296's rest bias, decided at the contact that ends the rest (the whole rest is held: the
         # buffer keeps the samples from HEADING_LOOKBACK_ROWS rows back); the magnitudes its still test reads
@@ -328,9 +329,10 @@ class WaistStream(FixInput):
             return []
         out = self._feed(self._proc.flush(), final=True)
         self._warn_unused_fixes()  # decision D21
-        if self.pause_drifts:  # decision E146: W231's line, once the stream has ended (its total)
-            from pdrlearn.kernels.pause_ride import drift_line
+        if self.pause_drifts and not self._drift_said:  # decision E146: W231's line, once the stream has ended
+            from pdrlearn.kernels.pause_ride import drift_line  # (its total); E150: once per stream
 
+            self._drift_said = True
             a, b, d = (np.array(v) for v in zip(*self.pause_drifts, strict=True))
             line = drift_line(d, a, b)
             if line:

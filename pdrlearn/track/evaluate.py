@@ -254,7 +254,7 @@ def _climb_inputs(steps: pd.DataFrame):
     return column("dz_m"), column("pause_dz_m"), column("length_m")
 
 
-def ramp_climb_rows(steps: pd.DataFrame) -> np.ndarray:
+def ramp_climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray:
     """Decision L303: the rows of the climbs (L127's runs of stair rows and the rows bridged between them, any height,
     :func:`_climb_runs` with ``every``) that :func:`climb_kind` calls ``"ramps"``: walked under
     :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` of rise over horizontal run. All False where floors are not
@@ -266,14 +266,14 @@ def ramp_climb_rows(steps: pd.DataFrame) -> np.ndarray:
     walked, pause, length = _climb_inputs(steps)
     from pdrlearn.track.grade import climb_rows
 
-    on_stairs = climb_rows(steps)  # decision L314
+    on_stairs = climb_rows(steps, info)  # decisions L314, L330
     for rows, _ in _climb_runs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True):
         if climb_kind(walked, pause, length, rows, on_stairs) == "ramps":
             out[int(rows[0]):int(rows[-1]) + 1] = True
     return out
 
 
-def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M) -> dict:
+def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M, info: dict | None = None) -> dict:
     """Decision L302: ``floors_up_<kind>`` / ``floors_down_<kind>`` for each of :data:`CLIMB_KINDS`, the storeys of
     L127's climbs (:func:`floor_climbs` on :func:`_climb_dz`) by :func:`climb_kind`, so each direction's sum is
     ``floors_up`` / ``floors_down``; None for every key where the floors are not counted per climb."""
@@ -285,7 +285,7 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
     walked, pause, length = _climb_inputs(steps)
     from pdrlearn.track.grade import climb_rows
 
-    on_stairs = climb_rows(steps)  # decision L314
+    on_stairs = climb_rows(steps, info)  # decisions L314, L330
     for rows, n in _climb_runs(dz, storey_height_m, STOREY_BAND, bridge, None):
         key = f"floors_{'up' if n > 0 else 'down'}_{climb_kind(walked, pause, length, rows, on_stairs)}"
         out[key] += abs(n)
@@ -502,7 +502,8 @@ def _basic(result: TrackResult, out: dict) -> None:
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)
     _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=dz, bridge=bridge)
-    out.update(floors_by_kind(result.steps, out.get("storey_height_m", STOREY_HEIGHT_M)))  # decision L302
+    out.update(floors_by_kind(result.steps, out.get("storey_height_m", STOREY_HEIGHT_M),
+                             result.info))  # decision L302
     _ascent(result, out)
     from pdrlearn.track.grade import add_grade, grade_summary
 

@@ -162,7 +162,7 @@ def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
     dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
     unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
     rows = []
-    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps)),
+    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info)),
                           start=1):
         rows.append({"ramp": k, "start_s": float(steps["start_s"].iloc[r["first"]]),
                      "end_s": float(steps["end_s"].iloc[r["last"]]),
@@ -170,14 +170,18 @@ def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
     return pd.DataFrame(rows, columns=list(RAMP_COLUMNS))
 
 
-def climb_rows(steps: pd.DataFrame) -> np.ndarray | None:
+def climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray | None:
     """Decision L314: the rows a lower-back track's W108 puts on stairs (steps.csv's ``climb``: inside a barometric
     climb of 1.5 m or more, the steps its "N steps are on stairs" warning counts), None without the column (a foot
     track: its strides' own grade tells a stair). No ramp is made of them (:func:`ramp_runs`) and no climb of
-    them is "ramps" (:func:`pdrlearn.track.evaluate.climb_kind`)."""
-    if "climb" not in steps:
+    them is "ramps" (:func:`pdrlearn.track.evaluate.climb_kind`). Decision L330: only where the track's options
+    (``info["options"]``) set ``climb_veto`` - a ramp walked at a normal pace rises W108's 0.1 m/s, so the veto is
+    opt-in; None otherwise (the column is still written)."""
+    if "climb" not in steps or not ((info or {}).get("options") or {}).get("climb_veto"):
         return None
-    return steps["climb"].map(lambda v: str(v).strip().lower() in ("true", "1", "1.0")).to_numpy(bool)
+    from pdrlearn.track.flags import flag_values
+
+    return flag_values(steps["climb"])
 
 
 def grade_summary(steps: pd.DataFrame, info: dict | None) -> dict:

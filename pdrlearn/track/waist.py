@@ -478,7 +478,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
                    "pause_ride": True,  # W231: a long pause's barometric change counts only where it is a ride
-                   "rest_bias": True}  # L296: a long rest's rotation less the bias of its still samples
+                   "rest_bias": True,  # L296: a long rest's rotation less the bias of its still samples
+                   "climb_veto": False}  # L314's ramp veto from W108's climbs: opt-in (decision L330)
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -769,6 +770,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
+             "climb_veto": None,  # L330: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
