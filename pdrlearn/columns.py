@@ -554,7 +554,9 @@ WAIST_STEPS: tuple[Column, ...] = (
                           "it (W20, W129; 99 % agree with INDIP's foot where decided); empty with --realtime; "
                           "`run WAIST_BUNDLE --sides`: the streamed contact's causal side (W138, E103, E110)"),
     ("climb", _ID, "true/false", "the step is inside a barometric climb of 1.5 m or more (W108: the steps its \"on "
-                                  "stairs\" warning counts); no ramp and no ramp climb is made of such steps (L314)"),
+                                  "stairs\" warning counts); with the PARAMS.json option `climb_veto` true, no ramp "
+                                  "and no ramp climb is made of such steps (L314; opt-in since L330: a ramp walked at "
+                                  "a normal pace is such a climb)"),
     ("dz_m", "m", "number", "barometric altitude change over the step (W89; 0 without a usable barometer)"),
     ("pause_dz_m", "m", "number", "barometric altitude change while standing before the step (a lift ride; W158; "
                                   "of a pause over 30 s only the 1.5 m within 30 s rides, W231), "
