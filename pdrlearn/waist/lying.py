@@ -43,10 +43,17 @@ from pdrlearn.waist.posture_time import (
     posture_runs,
     session_labels,
 )
-from pdrlearn.waist.transfers import MOVING_DPS, TRANSFER_COLUMNS, height_change_m, tilt_rate_dps
+from pdrlearn.waist.transfers import (  # decision W245's kinds, defined beside W182's (W258's counts read them)
+    LIE_TO_SIT,
+    LIE_TO_STAND,
+    MOVING_DPS,
+    SIT_TO_LIE,
+    STAND_TO_LIE,
+    TRANSFER_COLUMNS,
+    height_change_m,
+    tilt_rate_dps,
+)
 
-#: decision W245: transfers.csv's lying kinds (into lying from / out of lying to: sitting, standing)
-SIT_TO_LIE, LIE_TO_SIT, STAND_TO_LIE, LIE_TO_STAND = "sit-to-lie", "lie-to-sit", "stand-to-lie", "lie-to-stand"
 LYING_KINDS = (SIT_TO_LIE, LIE_TO_SIT, STAND_TO_LIE, LIE_TO_STAND)
 #: decision W245: the other side's posture is read this far (s) outside the movement: W222's averaging half window,
 #: so that the averaged tilt there does not see the movement itself
