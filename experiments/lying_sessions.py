@@ -72,14 +72,35 @@ def run(user: int, route: str, root: Path) -> list[str]:
     return lines
 
 
+def table(sessions, root: Path) -> list[str]:
+    out = ["| user | what | truth | track row | start / end error (s) | verdict |", "|---|---|---|---|---|---|"]
+    for user, route in sessions:
+        out += [f"<!-- {user}: {route} -->", *run(user, route, root)]
+    return out
+
+
+def w259() -> None:
+    """Decision W259's rule, item (a): fresh users 6294-6297 (the four routes), today vs the candidate."""
+    from pdrlearn.waist import lying
+
+    fresh = [(u + 4, r) for u, r in SESSIONS]
+    for label, v in (("today", False), ("candidate", True)):
+        lying.SIDE_AFTER_CHAIR = v
+        with tempfile.TemporaryDirectory() as d:
+            rows = table(fresh, Path(d))
+        body = [r for r in rows if r.startswith("| 6") and "| session |" not in r]
+        right = sum(r.rstrip().endswith("| right |") for r in body)
+        direction = sum("| none |" not in r for r in body)
+        print(f"## W259 (a), {label} (SIDE_AFTER_CHAIR = {v}): {len(body)} truth lying transfers, right direction "
+              f"{direction}, right kind {right}", "", *rows, "", sep="\n")
+    lying.SIDE_AFTER_CHAIR = False
+
+
 def main() -> None:
-    print("| user | what | truth | track row | start / end error (s) | verdict |")
-    print("|---|---|---|---|---|---|")
+    if "--w259" in sys.argv[1:]:
+        return w259()
     with tempfile.TemporaryDirectory() as d:
-        for user, route in SESSIONS:
-            print(f"<!-- {user}: {route} -->")
-            print("\n".join(run(user, route, Path(d))))
-            sys.stdout.flush()
+        print("\n".join(table(SESSIONS, Path(d))))
 
 
 if __name__ == "__main__":
