@@ -15,7 +15,8 @@ second posture detector:
 * **kind**: the posture on the other side, W222's label (chair transfers and tilt) of the non-lying piece next to
   the lying run, from :data:`SIDE_GAP_S` before the movement's start (after its end) - where the averaged tilt no
   longer sees the movement - or the piece's farthest sample if it is shorter: the posture (standing or sitting) with
-  most samples over the :data:`SIDE_WINDOW_S` (10 s, W249) beyond it, inside the piece (a tie: the one sample's);
+  most samples over the :data:`SIDE_WINDOW_S` (10 s, W249) beyond it, inside the piece and not across a W182 chair
+  row (:data:`SIDE_AFTER_CHAIR`, W259: a seen sit on the bed's edge makes the side sitting; a tie: the one sample's);
   sitting gives ``sit-to-lie`` / ``lie-to-sit``, standing ``stand-to-lie`` / ``lie-to-stand``; an unknown side
   (W234) gives no row.
 
@@ -70,7 +71,7 @@ SIDE_WINDOW_S: float | None = 10.0
 #: decision W259's candidate (rule in its text): W249's side window stays on the lying movement's side of the
 #: nearest W182 chair row inside the non-lying piece (a sit on the bed's edge seen as a stand-to-sit makes the side
 #: sitting); False = W249's window as it was
-SIDE_AFTER_CHAIR = False
+SIDE_AFTER_CHAIR = True
 _KIND = {(+1, _CODE[SITTING]): SIT_TO_LIE, (+1, _CODE[STANDING]): STAND_TO_LIE,
          (-1, _CODE[SITTING]): LIE_TO_SIT, (-1, _CODE[STANDING]): LIE_TO_STAND}
 
