@@ -219,7 +219,12 @@ def main(argv=None) -> None:
     ap.add_argument("--w249", action="store_true",
                     help="decision W249's rule: lying.SIDE_WINDOW_S chosen on HAPT users 1-10, then users 11-30, "
                          "fresh simulated users 5980-5999 and the mobgap recordings, today vs the candidate")
+    ap.add_argument("--w259", action="store_true",
+                    help="decision W259's rule, items (b) and (c): lying.SIDE_AFTER_CHAIR on HAPT users 11-30 and the "
+                         "mobgap recordings, today vs the candidate")
     a = ap.parse_args(argv)
+    if a.w259:
+        return w259(a.root)
     if a.w233:
         return w233(a.root)
     if a.w246:
@@ -399,6 +404,33 @@ def w249(root: Path) -> None:
             say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
     lying.SIDE_WINDOW_S = adopted
     Path("experiments/results/hapt_lying_w249.md").write_text("\n".join(lines) + "\n")
+
+
+def w259(root: Path) -> None:
+    """Decision W259's rule, items (b) HAPT users 11-30 and (c) mobgap, today vs SIDE_AFTER_CHAIR."""
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist import lying
+
+    lines = ["# Decision W259's rule: lying.SIDE_AFTER_CHAIR (the side window does not cross a chair row)", ""]
+
+    def say(x: str) -> None:
+        print(x, flush=True)
+        lines.append(x)
+
+    for label, v in (("today", False), ("candidate", True)):
+        lying.SIDE_AFTER_CHAIR = v
+        rows, labs, diag, _, _ = run(root, range(11, 31))
+        r, n = lying_counts(rows)
+        say(f"(b) HAPT users 11-30, {label} (SIDE_AFTER_CHAIR = {v}): right {r} of {n} lying rows, precision "
+            f"{r / max(n, 1):.2f}")
+        lines.extend(tables(rows, labs, diag)[:22])
+        kinds = []
+        for folder in sorted(Path("datasets/real").glob("mobgap_*")):
+            res = track_waist(read_session(folder), pipeline="waist-pendulum")
+            kinds += [t["kind"] for t in res.info["transfers"]]
+        say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
+    lying.SIDE_AFTER_CHAIR = False
+    Path("experiments/results/hapt_lying_w259.md").write_text("\n".join(lines) + "\n")
 
 
 NOTES = """

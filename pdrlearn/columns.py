@@ -312,6 +312,10 @@ SESSIONS: tuple[Column, ...] = (
     ("n_stand_to_sit", "count", "integer", "lower back: stand-to-sit transfers (W182); empty on a foot track"),
     ("median_sit_to_stand_s", "s", "number", "lower back: median sit-to-stand duration (W182)"),
     ("median_stand_to_sit_s", "s", "number", "lower back: median stand-to-sit duration (W182)"),
+    ("n_lie_down", "count", "integer", "lower back: transfers into lying, sit-to-lie and stand-to-lie (transfers.csv, "
+                                       "W245, W258); empty on a foot track"),
+    ("n_get_up", "count", "integer", "lower back: transfers out of lying, lie-to-sit and lie-to-stand (W245, W258); "
+                                     "empty on a foot track"),
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
                                   "step, one sit after the last): the rise's start to the sit's end (W183)"),
     ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes from 2 m to 12 m of the first "

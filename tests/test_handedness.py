@@ -395,3 +395,22 @@ def test_a_unit_turned_in_its_holster_is_not_read_as_disagreeing_axes():
     acc, gyr, fs = _holster_turn(gyr_perm=(2, 0, 1))  # gyroscope columns really permuted: still caught
     ang, n, _, _ = turn_axis(acc, gyr, fs)
     assert n >= 3 and ang > TURN_MAX_DEG and waist_handedness(acc, gyr, fs, ratio=False).axes_differ
+
+
+# -- B263: lying down and turning over in bed are not "axes differ" -----------------------------------------------
+@pytest.mark.parametrize("user", [6290, 6293])
+def test_a_lying_session_is_not_read_as_disagreeing_axes_b263(user):
+    """Simulated `stand, straight, lie:300:30, straight, stand` (S58-S59; before B263 both read "axes differ"): the
+    sit on the bed, the lying down and the rolls turn the unit about
+    horizontal axes; no turn window is left, no verdict. The same session's gyroscope permuted on an upright walk
+    with turns is still caught (B106's and the D11 amendment's tests above)."""
+    from pdrlearn.io.handedness import turn_axis, unit_imu_arrays, waist_handedness
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    s = simulate_path(parse_route("stand:5, straight:10, lie:300:30, straight:10, stand:5"),
+                      UserProfile.from_seed(user), rate_hz=20.0, seed=user)
+    assert len(s.extras["rolls"]) >= 1
+    acc, gyr, fs = unit_imu_arrays(s, "waist")
+    assert not waist_handedness(acc, gyr, fs, ratio=False).axes_differ
+    assert turn_axis(acc, gyr, fs)[1] < 3

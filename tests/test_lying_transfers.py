@@ -3,6 +3,8 @@ W222's lying, on hand-made tilt signals and on a hand-made lower-back session th
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -35,7 +37,9 @@ def _ramp(t, knots):
 def _rows(tilt, t, transfers=None, walking=None):
     tr = pd.DataFrame(columns=list(TRANSFER_COLUMNS)) if transfers is None else transfers
     code = label_postures(t, tilt, np.zeros(t.size, bool) if walking is None else walking, tr)
-    return pd.DataFrame(lying_transfer_rows(t, tilt, code, FS, np.zeros(t.size)), columns=list(TRANSFER_COLUMNS[1:]))
+    chair = tr[["start_s", "end_s"]].to_numpy(float) if len(tr) else None  # as postures_and_transfers passes them
+    return pd.DataFrame(lying_transfer_rows(t, tilt, code, FS, np.zeros(t.size), chair),
+                        columns=list(TRANSFER_COLUMNS[1:]))
 
 
 def test_the_four_kinds_their_times_and_no_row_at_the_recording_edges():
@@ -139,6 +143,8 @@ def test_a_lower_back_track_writes_a_stand_to_lie_and_a_lie_to_stand(tmp_path):
     assert tr["transfer"].tolist() == list(range(1, len(tr) + 1))
     assert np.abs(lying[["start_s", "end_s"]].to_numpy() - [[down, down + 2], [up, up + 2]]).max() < 0.5
     assert not tr["kind"].isin([SIT_TO_STAND, STAND_TO_SIT]).any()
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["n_lie_down"] == 1 and summary["n_get_up"] == 1  # decision W258
 
 
 def test_the_side_is_the_posture_held_over_w249s_window_not_a_brief_sit_on_the_bed(monkeypatch):
@@ -153,3 +159,42 @@ def test_the_side_is_the_posture_held_over_w249s_window_not_a_brief_sit_on_the_b
     assert _rows(tilt, t)["kind"].tolist() == [STAND_TO_LIE, LIE_TO_STAND]  # the posture held over 10 s
     monkeypatch.setattr(lying, "SIDE_WINDOW_S", None)  # W245's one sample, 1 s out: inside the brief sit
     assert _rows(tilt, t)["kind"].tolist() == [SIT_TO_LIE, LIE_TO_SIT]
+
+
+def test_the_lying_kinds_are_counted_by_direction_in_the_summary_and_the_line_w258():
+    from pdrlearn.cli.common import transfer_line
+
+    rows = [(STAND_TO_SIT, 10.0), (STAND_TO_LIE, 13.0), (LIE_TO_SIT, 40.0), (SIT_TO_LIE, 50.0), (LIE_TO_STAND, 90.0),
+            (SIT_TO_STAND, 95.0)]
+    tr = pd.DataFrame([{"transfer": i + 1, "kind": k, "start_s": t0, "end_s": t0 + 2.0, "duration_s": 2.0,
+                        "peak_s": t0 + 1.0, "peak_tilt_deg": 80.0, "height_change_m": 0.0}
+                       for i, (k, t0) in enumerate(rows)])
+    s = transfer_summary(tr)
+    assert (s["n_lie_down"], s["n_get_up"], s["n_sit_to_stand"], s["n_stand_to_sit"]) == (2, 2, 1, 1)
+    assert transfer_line(s) == "1 sit-to-stand, 1 stand-to-sit, 2 lying down, 2 getting up (transfers.csv)"
+    chair = transfer_summary(tr[tr["kind"].isin([SIT_TO_STAND, STAND_TO_SIT])])
+    assert (chair["n_lie_down"], chair["n_get_up"]) == (0, 0)
+    assert transfer_line(chair) == "1 sit-to-stand, 1 stand-to-sit (transfers.csv)"  # unchanged without lying
+    only = transfer_summary(tr[tr["kind"].isin([STAND_TO_LIE])])
+    assert transfer_line(only) == "0 sit-to-stand, 0 stand-to-sit, 1 lying down, 0 getting up (transfers.csv)"
+    assert transfer_summary(None)["n_lie_down"] is None  # a foot track
+
+
+def test_a_seen_sit_on_the_bed_makes_the_side_sitting_w259(monkeypatch):
+    """W259 (adopted by its rule): W249's 10 s window does not reach back (on) across a W182 chair row: S60's bed
+    (stand-to-sit onto its edge, 2.5 s seated, lying; getting up to a 3 s sit, then sit-to-stand) reads sit-to-lie
+    and lie-to-sit, not W249's stand-side kinds beside the chair rows that say the trunk sat."""
+    from pdrlearn.waist import lying
+
+    t = np.arange(0.0, 80.0, 1 / FS)
+    tilt = _ramp(t, [(0, 3), (28, 3), (28.5, 20), (31, 20), (33, 90), (50, 90), (52, 20), (55, 20), (55.5, 3),
+                     (80, 3)])
+    chair = pd.DataFrame([{"transfer": i + 1, "kind": k, "start_s": a, "end_s": b, "duration_s": b - a,
+                           "peak_s": (a + b) / 2, "peak_tilt_deg": 30.0, "height_change_m": dz}
+                          for i, (k, a, b, dz) in enumerate([(STAND_TO_SIT, 27.5, 29.0, -0.4),
+                                                             (SIT_TO_STAND, 54.8, 56.3, 0.4)])])
+    assert lying.SIDE_AFTER_CHAIR is True
+    assert _rows(tilt, t, chair)["kind"].tolist() == [SIT_TO_LIE, LIE_TO_SIT]
+    monkeypatch.setattr(lying, "SIDE_AFTER_CHAIR", False)  # W249's window crosses the chair rows into standing
+    assert _rows(tilt, t, chair)["kind"].tolist() == [STAND_TO_LIE, LIE_TO_STAND]
+    assert _rows(tilt, t)["kind"].tolist() == [STAND_TO_LIE, LIE_TO_STAND]  # no chair row: W249 either way

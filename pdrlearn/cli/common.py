@@ -571,8 +571,10 @@ def transfer_line(summary: dict) -> str | None:
     if summary.get("median_turn_duration_s") is not None:
         parts.append(f"median turn {summary['median_turn_duration_s']:.2f} s (turns.csv)")
     rise, sit = summary.get("n_sit_to_stand"), summary.get("n_stand_to_sit")
-    if rise or sit:
-        parts.append(f"{rise} sit-to-stand, {sit} stand-to-sit (transfers.csv)")
+    down, up = summary.get("n_lie_down"), summary.get("n_get_up")
+    if rise or sit or down or up:
+        lying = f", {down} lying down, {up} getting up" if down or up else ""  # decision W258
+        parts.append(f"{rise} sit-to-stand, {sit} stand-to-sit{lying} (transfers.csv)")
         if summary.get("tug_time_s") is not None:
             parts.append(f"TUG time {summary['tug_time_s']:.2f} s (rise to sit)")
     if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout

@@ -84,6 +84,10 @@ TURN_HOP_S = 0.5
 TURN_MIN_DEG = 30.0
 TURN_MIN_WINDOWS = 3
 TURN_MAX_DEG = 30.0
+#: Decision B263: turn windows within this many seconds of a window in which the unit lies (its gravity at W222's
+#: 60 deg or more from the walking upright) are left out: W249's SIDE_WINDOW_S, the span before a lying run that
+#: holds its way into bed (a sit on the bed's edge, the lying down)
+LYING_GUARD_S = 10.0
 #: The accelerometer's mean must measure gravity for the waist test: at least half of g (m/s^2). Gravity-removed
 #: ("linear") acceleration averages to about 0 and points anywhere (the new-user trial's ph_linacc sessions
 #: scored 84-86 deg: a wrong "axes differ" without this).
@@ -399,6 +403,7 @@ def turn_axis(acc: np.ndarray, gyr: np.ndarray, fs: float) -> tuple[float, int, 
     g1, g2 = ca[st + h] - ca[st], ca[st + L] - ca[st + h]
     cos12 = np.sum(g1 * g2, axis=1) / np.maximum(np.linalg.norm(g1, axis=1) * np.linalg.norm(g2, axis=1), 1e-12)
     on = (np.linalg.norm(th, axis=1) > np.radians(TURN_MIN_DEG)) & (cos12 >= np.cos(np.radians(TURN_MAX_DEG)))
+    on &= _away_from_lying(acc, ca, st, L, fs)  # decision B263: a unit lying in bed is not a walker turning
     big = th[on]
     if len(big) < 2:
         return float("nan"), int(len(big)), -1, int(np.argmax(np.abs(g)))
@@ -413,6 +418,37 @@ def turn_axis(acc: np.ndarray, gyr: np.ndarray, fs: float) -> tuple[float, int, 
         cos = np.abs(np.sum(big * gw, axis=1)) / np.linalg.norm(big, axis=1)
         ang = float(np.median(np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))))
     return ang, int(len(big)), int(np.argmax(np.abs(u))), int(np.argmax(np.abs(g)))
+
+
+def _away_from_lying(acc: np.ndarray, ca: np.ndarray, st: np.ndarray, L: int, fs: float) -> np.ndarray:
+    """Decision B263: per window starting at ``st`` (length ``L``; ``ca`` the accelerometer's cumulative sum from
+    0), False when the unit lies in it or within :data:`LYING_GUARD_S` of such a window. Lying: either half's gravity
+    at W222's :data:`~pdrlearn.waist.posture_time.LYING_TILT_DEG` (60 deg) or more from the walking upright, the mean
+    direction of the windows whose |specific force| varies by more than :data:`WAIST_MIN_ACC_SD` (the moving windows
+    of :func:`waist_handedness`; every window's when none moves). Sitting on a bed, lying down and turning over in
+    it rotate the unit about horizontal axes, which B106's half-window test misses at a movement's edges; a walker
+    turns upright. The accelerometer alone decides, so a gyroscope whose axes are wrong is still judged in every
+    upright window away from a bed."""
+    from pdrlearn.waist.posture_time import LYING_TILT_DEG
+
+    h = L // 2
+    g1, g2 = ca[st + h] - ca[st], ca[st + L] - ca[st + h]
+    norm = np.linalg.norm(acc, axis=1)
+    c1, c2 = np.concatenate([[0.0], np.cumsum(norm)]), np.concatenate([[0.0], np.cumsum(norm ** 2)])
+    m = (c1[st + L] - c1[st]) / L
+    moving = np.sqrt(np.maximum((c2[st + L] - c2[st]) / L - m ** 2, 0.0)) > WAIST_MIN_ACC_SD
+    up = (g1 + g2)[moving].sum(axis=0) if moving.any() else (g1 + g2).sum(axis=0)
+    up = up / max(float(np.linalg.norm(up)), 1e-12)
+    lim = np.cos(np.radians(LYING_TILT_DEG))
+    lying = ~np.all([(x @ up) >= lim * np.linalg.norm(x, axis=1) for x in (g1, g2)], axis=0)
+    # the getting into bed and out of it (sitting on its edge, lying down: S58) is not a walker's turn either: the
+    # windows within LYING_GUARD_S of a lying window's span are left out too
+    t0, lt = st / fs, st[lying] / fs
+    if not lt.size:
+        return np.ones(st.size, dtype=bool)
+    k = np.searchsorted(lt, t0)
+    gap = np.minimum(np.abs(t0 - lt[np.clip(k - 1, 0, lt.size - 1)]), np.abs(lt[np.clip(k, 0, lt.size - 1)] - t0))
+    return gap > LYING_GUARD_S + L / fs
 
 
 TESTS = {"foot": foot_handedness, "waist": waist_handedness}

@@ -48,7 +48,13 @@ TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_
                     "height_change_m")
 #: decision W183: the summary keys of :func:`transfer_summary`
 TRANSFER_SUMMARY_KEYS = ("n_sit_to_stand", "n_stand_to_sit", "median_sit_to_stand_s", "median_stand_to_sit_s",
-                         "tug_time_s")
+                         "tug_time_s", "n_lie_down", "n_get_up")
+#: decision W258: the lying kinds (W245) counted by direction: into lying (``n_lie_down``) and out of it
+#: (``n_get_up``); their sit / stand side is W223's split (W257), their direction right on every HAPT label (W246)
+#: decision W245: transfers.csv's lying kinds (into lying from / out of lying to: sitting, standing), written by
+#: :mod:`pdrlearn.waist.lying`
+SIT_TO_LIE, LIE_TO_SIT, STAND_TO_LIE, LIE_TO_STAND = "sit-to-lie", "lie-to-sit", "stand-to-lie", "lie-to-stand"
+LIE_DOWN_KINDS, GET_UP_KINDS = (SIT_TO_LIE, STAND_TO_LIE), (LIE_TO_SIT, LIE_TO_STAND)
 
 
 def _tilt_deg(imu: WaistIMU, up: np.ndarray) -> np.ndarray:
@@ -140,7 +146,9 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
     rise, sit = tr[tr["kind"] == SIT_TO_STAND], tr[tr["kind"] == STAND_TO_SIT]
     out = {"n_sit_to_stand": int(len(rise)), "n_stand_to_sit": int(len(sit)),
            "median_sit_to_stand_s": float(rise["duration_s"].median()) if len(rise) else None,
-           "median_stand_to_sit_s": float(sit["duration_s"].median()) if len(sit) else None, "tug_time_s": None}
+           "median_stand_to_sit_s": float(sit["duration_s"].median()) if len(sit) else None, "tug_time_s": None,
+           "n_lie_down": int(tr["kind"].isin(LIE_DOWN_KINDS).sum()),  # decision W258
+           "n_get_up": int(tr["kind"].isin(GET_UP_KINDS).sum())}
     if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
         contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
