@@ -186,7 +186,9 @@ CLOSURE_MIN_M = 5.0
 def _short_stride(both: pd.DataFrame, side: str, at: int) -> bool:
     own = np.abs(both["length_m"].to_numpy(float)[both["side"].to_numpy() == side])
     rest = np.delete(own, at)
-    return len(own) >= 3 and bool(own[at] < CLOSING_STRIDE_SHARE * float(np.nanmedian(rest)))
+    if len(own) < 3 or not np.isfinite(rest).any():  # no other stride of this foot to compare with
+        return False
+    return bool(own[at] < CLOSING_STRIDE_SHARE * float(np.nanmedian(rest)))
 
 
 def opening_step(both: pd.DataFrame) -> bool:
