@@ -81,6 +81,10 @@ class JobResult:
     extra: dict = field(default_factory=dict)
 
 
+#: seconds to wait for a given Dask scheduler before the one-line "cannot reach" error
+SCHEDULER_TIMEOUT_S = 10
+
+
 def session_files() -> tuple[str, ...]:
     """The files that make a folder a session: ``meta.json`` and every sensor file name."""
     from pdrlearn.io.sensors import SENSORS
@@ -337,7 +341,7 @@ def run_cohort(
             cluster = _local_cluster(n_workers or os.cpu_count() or 1)
         with dask.config.set({"distributed.client.scheduler-info-interval":
                               HOUSEKEEPING_CONFIG["distributed.client.scheduler-info-interval"]}):
-            client = Client(scheduler, timeout="10s") if scheduler else Client(cluster)
+            client = Client(scheduler, timeout=f"{SCHEDULER_TIMEOUT_S}s") if scheduler else Client(cluster)
     except OSError as exc:
         raise DataError(
             f"cannot reach Dask scheduler {scheduler!r}: {exc}; check the address or omit --scheduler"

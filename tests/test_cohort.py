@@ -115,7 +115,10 @@ def test_local_cluster_leaves_port_8787_alone():
         held.close()
 
 
-def test_bad_scheduler_address():
+def test_bad_scheduler_address(monkeypatch):
+    import pdrlearn.cohort
+
+    monkeypatch.setattr(pdrlearn.cohort, "SCHEDULER_TIMEOUT_S", 1)  # the error, not the 10 s wait, is under test
     with pytest.raises(DataError, match="cannot reach Dask scheduler"):
         run_cohort(_square, [("a", 1)], scheduler="tcp://127.0.0.1:1")
 
