@@ -306,7 +306,6 @@ def lying_counts(rows: pd.DataFrame) -> tuple[int, int]:
 def w247(root: Path) -> None:
     """Decision W247's one measurement: the value chosen on users 1-10; (a) users 11-30, (b) simulated users
     5980-5999, (c) the mobgap recordings, today vs the candidate."""
-    import importlib.util
 
     from pdrlearn.waist import lying
 
@@ -332,18 +331,28 @@ def w247(root: Path) -> None:
         lying.MIN_LYING_S = adopted
         Path("experiments/results/hapt_lying_w247.md").write_text("\n".join(lines) + "\n")
         return
+    _held_out(root, lying, "MIN_LYING_S", chosen, say, lines, 20)
+    lying.MIN_LYING_S = adopted
+    Path("experiments/results/hapt_lying_w247.md").write_text("\n".join(lines) + "\n")
+
+
+def _held_out(root: Path, lying, name: str, chosen, say, lines: list, n_table_lines: int) -> None:
+    """The held-out part of W247's and W249's rules, today (None) vs ``chosen`` for ``lying.<name>``: (a) HAPT users
+    11-30, (b) simulated users 5980-5999 (experiments/turns_transfers.py), (c) the mobgap recordings' rows by kind."""
+    import importlib.util
+
+    from pdrlearn.track.waist import track_waist
+
     spec = importlib.util.spec_from_file_location("turns_transfers", Path(__file__).parent / "turns_transfers.py")
     tt = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(tt)
-    from pdrlearn.track.waist import track_waist
-
     for label, v in (("today", None), ("candidate", chosen)):
-        lying.MIN_LYING_S = v
+        setattr(lying, name, v)
         rows, labs, diag, _, _ = run(root, range(11, 31))
         r, n = lying_counts(rows)
-        say(f"(a) HAPT users 11-30, {label} (MIN_LYING_S = {v}): right {r} of {n} lying rows, precision "
+        say(f"(a) HAPT users 11-30, {label} ({name} = {v}): right {r} of {n} lying rows, precision "
             f"{r / max(n, 1):.2f}")
-        lines.extend(tables(rows, labs, diag)[:20])
+        lines.extend(tables(rows, labs, diag)[:n_table_lines])
         say(f"(b) simulated users 5980-5999, {label}:")
         tt.sim(users=range(5980, 6000), tracks=("waist-pendulum",))
         kinds = []
@@ -351,8 +360,6 @@ def w247(root: Path) -> None:
             res = track_waist(read_session(folder), pipeline="waist-pendulum")
             kinds += [t["kind"] for t in res.info["transfers"]]
         say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
-    lying.MIN_LYING_S = adopted
-    Path("experiments/results/hapt_lying_w247.md").write_text("\n".join(lines) + "\n")
 
 
 W249_GRID = (3.0, 5.0, 10.0)  # W249's candidate windows (s), chosen on users 1-10
@@ -361,9 +368,7 @@ W249_GRID = (3.0, 5.0, 10.0)  # W249's candidate windows (s), chosen on users 1-
 def w249(root: Path) -> None:
     """Decision W249's one measurement: SIDE_WINDOW_S chosen on users 1-10 (the most right lying rows; ties: the
     shorter; none above today's: dropped); (a) users 11-30, (b) simulated users 5980-5999, (c) mobgap."""
-    import importlib.util
 
-    from pdrlearn.track.waist import track_waist
     from pdrlearn.waist import lying
 
     lines = ["# Decision W249's rule: lying.SIDE_WINDOW_S (the side's posture over a window)", ""]
@@ -385,23 +390,7 @@ def w249(root: Path) -> None:
     chosen = best[2]
     say(f"chosen: {chosen}")
     if chosen is not None:
-        spec = importlib.util.spec_from_file_location("turns_transfers", Path(__file__).parent / "turns_transfers.py")
-        tt = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(tt)
-        for label, v in (("today", None), ("candidate", chosen)):
-            lying.SIDE_WINDOW_S = v
-            rows, labs, diag, _, _ = run(root, range(11, 31))
-            r, n = lying_counts(rows)
-            say(f"(a) HAPT users 11-30, {label} (SIDE_WINDOW_S = {v}): right {r} of {n} lying rows, precision "
-                f"{r / max(n, 1):.2f}")
-            lines.extend(tables(rows, labs, diag)[:22])
-            say(f"(b) simulated users 5980-5999, {label}:")
-            tt.sim(users=range(5980, 6000), tracks=("waist-pendulum",))
-            kinds = []
-            for folder in sorted(Path("datasets/real").glob("mobgap_*")):
-                res = track_waist(read_session(folder), pipeline="waist-pendulum")
-                kinds += [t["kind"] for t in res.info["transfers"]]
-            say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
+        _held_out(root, lying, "SIDE_WINDOW_S", chosen, say, lines, 22)
     lying.SIDE_WINDOW_S = adopted
     Path("experiments/results/hapt_lying_w249.md").write_text("\n".join(lines) + "\n")
 
