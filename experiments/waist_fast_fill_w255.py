@@ -10,12 +10,7 @@ Writes experiments/results/waist_fast_fill_w255.md.
 
 from __future__ import annotations
 
-import argparse
-import contextlib
-import io
-import logging
 import sys
-import warnings
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -27,17 +22,4 @@ M.USERS = range(6180, 6220)  # the lead's fresh users for W255
 M.MAX_EXTRA_FRAC = 0.002  # W242 (b): W148's 0.002 as a fraction of the route's reference contacts
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--external", type=Path, default=M.ROOT / "datasets" / "external")
-    ap.add_argument("--hapt", type=Path, default=M.ROOT / "datasets" / "hapt")
-    args = ap.parse_args()
-    warnings.filterwarnings("ignore")
-    logging.disable(logging.WARNING)
-    buf = io.StringIO()
-    with contextlib.redirect_stdout(buf):
-        print(f"# W255: {M.OPTION}, off -> {M.ON!r} (rule committed before this run)\n")
-        ok = {"a": M.real(args.external), "b": M.sim(), "c": M.hapt(args.hapt)}
-        print("W255 " + ", ".join(f"({k}) {'met' if v else 'NOT met'}" for k, v in ok.items())
-              + f": {'ADOPT' if all(ok.values()) else 'not adopted'}")
-    (M.ROOT / "experiments" / "results" / "waist_fast_fill_w255.md").write_text(buf.getvalue())
-    print(buf.getvalue(), end="")
+    M.main("W255", "waist_fast_fill_w255.md", repr(M.ON), __doc__)

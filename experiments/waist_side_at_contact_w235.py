@@ -111,8 +111,10 @@ def hapt(root: Path) -> bool:
     return ok
 
 
-if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def main(decision: str, out_name: str, on_label: str = "on", description: str | None = None) -> None:
+    """Run (a) real, (b) sim, (c) HAPT with this module's OPTION / ON / USERS and write the verdict to
+    experiments/results/OUT_NAME (shared by W235's, W242's and W255's scripts)."""
+    ap = argparse.ArgumentParser(description=(description or __doc__).split("\n")[0])
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
     ap.add_argument("--hapt", type=Path, default=ROOT / "datasets" / "hapt")
     args = ap.parse_args()
@@ -120,9 +122,13 @@ if __name__ == "__main__":
     logging.disable(logging.WARNING)
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
-        print(f"# W235: {OPTION}, off -> on (rule committed before this run)\n")
+        print(f"# {decision}: {OPTION}, off -> {on_label} (rule committed before this run)\n")
         ok = {"a": real(args.external), "b": sim(), "c": hapt(args.hapt)}
-        print("W235 " + ", ".join(f"({k}) {'met' if v else 'NOT met'}" for k, v in ok.items())
+        print(f"{decision} " + ", ".join(f"({k}) {'met' if v else 'NOT met'}" for k, v in ok.items())
               + f": {'ADOPT' if all(ok.values()) else 'not adopted'}")
-    (ROOT / "experiments" / "results" / "waist_side_at_contact_w235.md").write_text(buf.getvalue())
+    (ROOT / "experiments" / "results" / out_name).write_text(buf.getvalue())
     print(buf.getvalue(), end="")
+
+
+if __name__ == "__main__":
+    main("W235", "waist_side_at_contact_w235.md")
