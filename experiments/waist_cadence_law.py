@@ -1,4 +1,5 @@
-"""Decision W240's adoption rule for the ``cadence_law`` candidate (waist-pendulum), defaults vs candidate.
+"""Decision W240's adoption rule for the ``cadence_law`` candidate (waist-pendulum), defaults vs candidate; with
+``--candidate steady`` decision W261's rule for ``cadence_law="steady"`` (the law on steady walking steps only).
 
 Prints (rule written in docs/decisions/waist.md before this ran):
 (a)/(c) Test11 (mobgap HA001, HA002, MS001; 15 bouts) calibrated on each subject's Test5 walks (experiments/waist.py's
@@ -11,7 +12,8 @@ Prints (rule written in docs/decisions/waist.md before this ran):
     protocol, experiments/waist_pivot_steps.py): median |distance error| per scenario.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/waist_cadence_law.py --external datasets/external
-     [--users 5860-5919] [--no-sim] [--no-real] [--csv rows.csv]
+     [--users 5860-5919] [--no-sim] [--no-real] [--csv rows.csv] [--candidate law|steady]
+W261: ... --candidate steady --users 6320-6379
 """
 
 from __future__ import annotations
@@ -35,8 +37,14 @@ from pdrlearn.waist.calibration import calibrate  # noqa: E402
 from pdrlearn.waist.evaluate import distance_metrics  # noqa: E402
 from pdrlearn.waist.params import resolve_params  # noqa: E402
 
-CONFIGS = {"defaults": {}, "cadence_law": {"cadence_law": True}}
+#: the candidates: W240's law on every calibrated pendulum step, W261's on steady walking steps only
+CANDIDATES = {"law": ("cadence_law", {"cadence_law": True}), "steady": ("steady", {"cadence_law": "steady"})}
+CONFIGS = {"defaults": {}, "cadence_law": {"cadence_law": True}}  # main() sets the candidate (--candidate)
 PIPELINE = "waist-pendulum"
+
+
+def _candidate() -> str:
+    return [k for k in CONFIGS if k != "defaults"][0]
 
 
 def real(ext: Path) -> pd.DataFrame:
@@ -73,10 +81,10 @@ def real_tables(df: pd.DataFrame) -> None:
     print(tab.round(3).to_string())
     wide = tab.vs_Length.unstack("config")
     print("\nchange vs Length (candidate - defaults, points):")
-    print((wide["cadence_law"] - wide["defaults"]).round(3).to_string())
+    print((wide[_candidate()] - wide["defaults"]).round(3).to_string())
     t5 = df[df.test.str.contains("_Test5_") & df.calibrated]
     runs = t5.groupby(["config", "cal", "test"], sort=False).run_error_pct.first().unstack("config")
-    runs["change"] = runs["cadence_law"] - runs["defaults"]
+    runs["change"] = runs[_candidate()] - runs["defaults"]
     print("\n(d) Test5, each trial calibrated on the other: distance error per run (%):")
     print(runs.round(3).to_string())
     print("(d) median |distance error|: " + ", ".join(f"{c} {runs[c].abs().median():.3f} %" for c in CONFIGS))
@@ -119,7 +127,7 @@ def simulated(users: list[int], csv: Path | None = None) -> pd.DataFrame:
 
 def sim_table(sim: pd.DataFrame) -> None:
     g = sim.assign(a=sim.dist_err_pct.abs()).groupby(["scenario", "config"]).a.median().unstack("config")
-    g["change"] = g["cadence_law"] - g["defaults"]
+    g["change"] = g[_candidate()] - g["defaults"]
     print(f"\n(e) simulated users {sim.user.min()}-{sim.user.max()} ({sim.user.nunique()}), {PIPELINE} calibrated: "
           "median |distance error| (%):")
     print(g.round(3).to_string())
@@ -133,7 +141,12 @@ def main() -> None:
     ap.add_argument("--no-real", action="store_true")
     ap.add_argument("--csv", type=Path, default=None, help="write the simulated rows here after each user")
     ap.add_argument("--from-csv", type=Path, default=None, help="print (e) from rows written by --csv")
+    ap.add_argument("--candidate", choices=sorted(CANDIDATES), default="law",
+                    help="law: W240's cadence_law true; steady: W261's cadence_law \"steady\"")
     args = ap.parse_args()
+    label, opts = CANDIDATES[args.candidate]
+    CONFIGS.clear()
+    CONFIGS.update({"defaults": {}, label: opts})
     logging.disable(logging.WARNING)
     pd.set_option("display.width", 220)
     if not args.no_real:
