@@ -309,7 +309,8 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
 
 
 def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: StepLengthModel, thr: float, *,
-                  turn_factor: bool = False, pivot_steps: bool = False, cadence_law: bool | str = False) -> pd.DataFrame:
+                  turn_factor: bool = False, pivot_steps: bool = False,
+                  cadence_law: bool | str = False) -> pd.DataFrame:
     """Steps table with ``length_m`` from the step-length ``model`` (decision E84; 0 for sequence-closing
     contacts, plus the model's own columns: the pendulum's ``h_m``, ``g_m``, ``merged``, ``pause_factor``),
     ``frequency_hz`` and ``dyaw_rad`` (vertical-gyro rotation during the step). ``thr``: the motion gate the steps

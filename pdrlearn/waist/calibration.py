@@ -25,9 +25,9 @@ from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibil
     steps_missed,
 )
 from pdrlearn.waist.steplength import (
+    CADENCE_LAW_STEADY,
     MIN_GAIN_STRIDES,
     PIVOT_FIT_ITERATIONS,
-    CADENCE_LAW_STEADY,
     CalibrationWalk,
     cadence_law_factor,
     fit_frequency,

@@ -133,7 +133,8 @@ class CalibrationWalk:
 
     ``f_hz`` step frequencies (frequency model); ``g`` = ``2 sqrt(2 L h - h^2)`` per step (pendulum);
     ``c`` = the factor the tracker multiplies each step's length by (the turning-step factor of W19; ones
-    when ``None``); ``steady`` (decision W261) which steps ``cadence_law="steady"`` scales). The fits below solve the walk's distance as the tracker sums it (decision W21):
+    when ``None``); ``steady`` (decision W261): which steps ``cadence_law="steady"`` scales (None: not known). The
+    fits below solve the walk's distance as the tracker sums it (decision W21):
     ``D = sum(c (a f - b))`` and ``D = sum(c (K g + F))``. ``dpsi`` (decision W150, option ``pivot_steps``): each
     step's net rotation (rad); its pivot factor depends on the fitted length, so :func:`with_pivot_factors` gives
     the walk whose ``c`` includes it for given parameters (None: the option is off).
