@@ -35,7 +35,8 @@ from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.calibration import calibrate  # noqa: E402
 from pdrlearn.waist.evaluate import distance_metrics  # noqa: E402
-from pdrlearn.waist.params import resolve_params  # noqa: E402
+from pdrlearn.waist.params import WaistParams, resolve_params  # noqa: E402
+from pdrlearn.waist.steplength import steady_steps  # noqa: E402
 
 #: the candidates: W240's law on every calibrated pendulum step, W261's on steady walking steps only
 CANDIDATES = {"law": ("cadence_law", {"cadence_law": True}), "steady": ("steady", {"cadence_law": "steady"})}
@@ -45,6 +46,18 @@ PIPELINE = "waist-pendulum"
 
 def _candidate() -> str:
     return [k for k in CONFIGS if k != "defaults"][0]
+
+
+def _gate_counts(res) -> dict:
+    """W261 read-out (information, not part of the rule): the run's walking steps, those W261's gate calls steady,
+    and those whose window is full with its median cadence in 1.5-2.2 Hz (the gate without its CV limit)."""
+    st = res.steps
+    t, has_next = 1.0 / st["frequency_hz"].to_numpy(float), st["has_next"].to_numpy(bool)
+    scale = WaistParams.from_dict(res.info["params"]).frequency_scale()
+    return {"n_walk": int(has_next.sum()), "n_steady": int(steady_steps(t, has_next, frequency_scale=scale).sum()),
+            "n_in_range": int(steady_steps(t, has_next, frequency_scale=scale, max_cv=np.inf).sum()),
+            "median_cadence_spm": float(60.0 * np.nanmedian(st["frequency_hz"].to_numpy(float)[has_next])),
+            "cal_cadence_spm": (res.info["params"].get("gait") or {}).get("median_cadence_spm", np.nan)}
 
 
 def real(ext: Path) -> pd.DataFrame:
@@ -64,11 +77,13 @@ def real(ext: Path) -> pd.DataFrame:
             for calibrated in (True, False) if "_Test11_" in name else (True,):
                 res = PV._track(PIPELINE, opts, test, [sess(c) for c in cal_names] if calibrated else None)
                 d = distance_metrics(res.steps, test)
+                gate = _gate_counts(res)
                 for b in d["bouts"]:
                     rows.append({"config": label, "subject": name.split("_")[1], "test": name,
                                  "cal": "+".join(cal_names), "calibrated": calibrated,
                                  "run_error_pct": d["distance_error_pct"], "err_L": b["error_pct"],
-                                 "err_strides": b.get("error_strides_pct", np.nan)})
+                                 "err_strides": b.get("error_strides_pct", np.nan), "bout_s": b.get("start_s"),
+                                 **gate})
     return pd.DataFrame(rows)
 
 
@@ -88,6 +103,15 @@ def real_tables(df: pd.DataFrame) -> None:
     print("\n(d) Test5, each trial calibrated on the other: distance error per run (%):")
     print(runs.round(3).to_string())
     print("(d) median |distance error|: " + ", ".join(f"{c} {runs[c].abs().median():.3f} %" for c in CONFIGS))
+    cal11 = t11[t11.calibrated]
+    bouts = cal11.pivot_table(index=["subject", "bout_s"], columns="config", values="err_L")
+    print("\nTest11 calibrated, each bout's error vs Length (%):")
+    print(bouts.round(2).to_string())
+    g = cal11.groupby(["subject", "config"]).first()[["n_walk", "n_in_range", "n_steady", "median_cadence_spm",
+                                                         "cal_cadence_spm"]]
+    print("\nW261's gate on Test11 (information): walking steps, steps in a full window at 1.5-2.2 Hz, steady steps "
+          "(also CV <= 0.10), median cadence; and the calibration cadence (steps/min):")
+    print(g.round(1).to_string())
 
 
 def simulated(users: list[int], csv: Path | None = None) -> pd.DataFrame:
