@@ -1,4 +1,5 @@
-"""Decision W240's adoption rule for the ``cadence_law`` candidate (waist-pendulum), defaults vs candidate.
+"""Decision W240's adoption rule for the ``cadence_law`` candidate (waist-pendulum), defaults vs candidate; with
+``--candidate steady`` decision W261's rule for ``cadence_law="steady"`` (the law on steady walking steps only).
 
 Prints (rule written in docs/decisions/waist.md before this ran):
 (a)/(c) Test11 (mobgap HA001, HA002, MS001; 15 bouts) calibrated on each subject's Test5 walks (experiments/waist.py's
@@ -11,7 +12,8 @@ Prints (rule written in docs/decisions/waist.md before this ran):
     protocol, experiments/waist_pivot_steps.py): median |distance error| per scenario.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/waist_cadence_law.py --external datasets/external
-     [--users 5860-5919] [--no-sim] [--no-real] [--csv rows.csv]
+     [--users 5860-5919] [--no-sim] [--no-real] [--csv rows.csv] [--candidate law|steady]
+W261: ... --candidate steady --users 6320-6379
 """
 
 from __future__ import annotations
@@ -33,10 +35,29 @@ from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.calibration import calibrate  # noqa: E402
 from pdrlearn.waist.evaluate import distance_metrics  # noqa: E402
-from pdrlearn.waist.params import resolve_params  # noqa: E402
+from pdrlearn.waist.params import WaistParams, resolve_params  # noqa: E402
+from pdrlearn.waist.steplength import steady_steps  # noqa: E402
 
-CONFIGS = {"defaults": {}, "cadence_law": {"cadence_law": True}}
+#: the candidates: W240's law on every calibrated pendulum step, W261's on steady walking steps only
+CANDIDATES = {"law": ("cadence_law", {"cadence_law": True}), "steady": ("steady", {"cadence_law": "steady"})}
+CONFIGS = {"defaults": {}, "cadence_law": {"cadence_law": True}}  # main() sets the candidate (--candidate)
 PIPELINE = "waist-pendulum"
+
+
+def _candidate() -> str:
+    return [k for k in CONFIGS if k != "defaults"][0]
+
+
+def _gate_counts(res) -> dict:
+    """W261 read-out (information, not part of the rule): the run's walking steps, those W261's gate calls steady,
+    and those whose window is full with its median cadence in 1.5-2.2 Hz (the gate without its CV limit)."""
+    st = res.steps
+    t, has_next = 1.0 / st["frequency_hz"].to_numpy(float), st["has_next"].to_numpy(bool)
+    scale = WaistParams.from_dict(res.info["params"]).frequency_scale()
+    return {"n_walk": int(has_next.sum()), "n_steady": int(steady_steps(t, has_next, frequency_scale=scale).sum()),
+            "n_in_range": int(steady_steps(t, has_next, frequency_scale=scale, max_cv=np.inf).sum()),
+            "median_cadence_spm": float(60.0 * np.nanmedian(st["frequency_hz"].to_numpy(float)[has_next])),
+            "cal_cadence_spm": (res.info["params"].get("gait") or {}).get("median_cadence_spm", np.nan)}
 
 
 def real(ext: Path) -> pd.DataFrame:
@@ -56,11 +77,13 @@ def real(ext: Path) -> pd.DataFrame:
             for calibrated in (True, False) if "_Test11_" in name else (True,):
                 res = PV._track(PIPELINE, opts, test, [sess(c) for c in cal_names] if calibrated else None)
                 d = distance_metrics(res.steps, test)
+                gate = _gate_counts(res)
                 for b in d["bouts"]:
                     rows.append({"config": label, "subject": name.split("_")[1], "test": name,
                                  "cal": "+".join(cal_names), "calibrated": calibrated,
                                  "run_error_pct": d["distance_error_pct"], "err_L": b["error_pct"],
-                                 "err_strides": b.get("error_strides_pct", np.nan)})
+                                 "err_strides": b.get("error_strides_pct", np.nan), "bout_s": b.get("start_s"),
+                                 **gate})
     return pd.DataFrame(rows)
 
 
@@ -73,13 +96,22 @@ def real_tables(df: pd.DataFrame) -> None:
     print(tab.round(3).to_string())
     wide = tab.vs_Length.unstack("config")
     print("\nchange vs Length (candidate - defaults, points):")
-    print((wide["cadence_law"] - wide["defaults"]).round(3).to_string())
+    print((wide[_candidate()] - wide["defaults"]).round(3).to_string())
     t5 = df[df.test.str.contains("_Test5_") & df.calibrated]
     runs = t5.groupby(["config", "cal", "test"], sort=False).run_error_pct.first().unstack("config")
-    runs["change"] = runs["cadence_law"] - runs["defaults"]
+    runs["change"] = runs[_candidate()] - runs["defaults"]
     print("\n(d) Test5, each trial calibrated on the other: distance error per run (%):")
     print(runs.round(3).to_string())
     print("(d) median |distance error|: " + ", ".join(f"{c} {runs[c].abs().median():.3f} %" for c in CONFIGS))
+    cal11 = t11[t11.calibrated]
+    bouts = cal11.pivot_table(index=["subject", "bout_s"], columns="config", values="err_L")
+    print("\nTest11 calibrated, each bout's error vs Length (%):")
+    print(bouts.round(2).to_string())
+    g = cal11.groupby(["subject", "config"]).first()[["n_walk", "n_in_range", "n_steady", "median_cadence_spm",
+                                                         "cal_cadence_spm"]]
+    print("\nW261's gate on Test11 (information): walking steps, steps in a full window at 1.5-2.2 Hz, steady steps "
+          "(also CV <= 0.10), median cadence; and the calibration cadence (steps/min):")
+    print(g.round(1).to_string())
 
 
 def simulated(users: list[int], csv: Path | None = None) -> pd.DataFrame:
@@ -119,7 +151,7 @@ def simulated(users: list[int], csv: Path | None = None) -> pd.DataFrame:
 
 def sim_table(sim: pd.DataFrame) -> None:
     g = sim.assign(a=sim.dist_err_pct.abs()).groupby(["scenario", "config"]).a.median().unstack("config")
-    g["change"] = g["cadence_law"] - g["defaults"]
+    g["change"] = g[_candidate()] - g["defaults"]
     print(f"\n(e) simulated users {sim.user.min()}-{sim.user.max()} ({sim.user.nunique()}), {PIPELINE} calibrated: "
           "median |distance error| (%):")
     print(g.round(3).to_string())
@@ -133,7 +165,12 @@ def main() -> None:
     ap.add_argument("--no-real", action="store_true")
     ap.add_argument("--csv", type=Path, default=None, help="write the simulated rows here after each user")
     ap.add_argument("--from-csv", type=Path, default=None, help="print (e) from rows written by --csv")
+    ap.add_argument("--candidate", choices=sorted(CANDIDATES), default="law",
+                    help="law: W240's cadence_law true; steady: W261's cadence_law \"steady\"")
     args = ap.parse_args()
+    label, opts = CANDIDATES[args.candidate]
+    CONFIGS.clear()
+    CONFIGS.update({"defaults": {}, label: opts})
     logging.disable(logging.WARNING)
     pd.set_option("display.width", 220)
     if not args.no_real:

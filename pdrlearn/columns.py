@@ -542,7 +542,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("pivot_factor", "fraction", "number", "waist, option pivot_steps (W150): the share of the step's length kept by "
                                            "the pivot cap (1 unless the pelvis turned 45 deg or more in the step)"),
     ("cadence_factor", "fraction", "number", "waist-pendulum, option cadence_law (W240): the calibrated step's factor "
-                                             "sqrt(SL(f) / SL(f_cal)) of seed 000's walking line"),
+                                             "sqrt(SL(f) / SL(f_cal)) of seed 000's walking line; with \"steady\" "
+                                             "(W261) 1 on a step outside steady walking"),
     ("length_m", "m", "number", "step length (0 for a sequence-closing contact): the pelvis's advance from this "
                                 "contact to the next, valid summed or as a walk's typical step; NOT valid as a "
                                 "per-side step length - grouped by side it does not give each leg's step (not "

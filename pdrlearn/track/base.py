@@ -276,7 +276,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
       turn on a 0.2 m radius; both pipelines),
       ``cadence_law`` (decision W240, off: a calibrated waist-pendulum step times sqrt(SL(f) / SL(f_cal)) of seed
-      000's walking line, the calibration walks' median cadence ``f_cal``; not in the live trackers),
+      000's walking line, the calibration walks' median cadence ``f_cal``; ``"steady"``, decision W261: only on steady
+      walking steps; not in the live trackers),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered
       step-length model, docs/extending.md) (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and
       unused. With ``wBarometer`` the track's altitude is the barometer's (W89); without, one warning (W90).

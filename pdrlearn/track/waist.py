@@ -104,7 +104,7 @@ from pdrlearn.waist.posture import drop_contacts, sit_veto_hint, tilt_gate, tran
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.sit_causal import causal_transfer_veto
-from pdrlearn.waist.steplength import cadence_law_factor, calibration_cadence_hz
+from pdrlearn.waist.steplength import CADENCE_LAW_STEADY, cadence_law_factor, calibration_cadence_hz, steady_steps
 from pdrlearn.waist.transfers import chair_transfers
 
 log = logging.getLogger(__name__)
@@ -309,7 +309,8 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
 
 
 def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: StepLengthModel, thr: float, *,
-                  turn_factor: bool = False, pivot_steps: bool = False, cadence_law: bool = False) -> pd.DataFrame:
+                  turn_factor: bool = False, pivot_steps: bool = False,
+                  cadence_law: bool | str = False) -> pd.DataFrame:
     """Steps table with ``length_m`` from the step-length ``model`` (decision E84; 0 for sequence-closing
     contacts, plus the model's own columns: the pendulum's ``h_m``, ``g_m``, ``merged``, ``pause_factor``),
     ``frequency_hz`` and ``dyaw_rad`` (vertical-gyro rotation during the step). ``thr``: the motion gate the steps
@@ -319,7 +320,8 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
     W150's candidate) then keeps a step turning 45 deg or more at most the chord of its turn
     (:func:`~pdrlearn.waist._kernels.pivot_step_factor`; column ``pivot_factor``). ``cadence_law`` (decision W240's
     candidate) multiplies a calibrated pendulum step by :func:`~pdrlearn.waist.steplength.cadence_law_factor` about
-    the calibration cadence, after W19 and before W150 (column ``cadence_factor``)."""
+    the calibration cadence, after W19 and before W150 (column ``cadence_factor``); ``"steady"`` (decision W261) only
+    on the steps :func:`~pdrlearn.waist.steplength.steady_steps` calls steady (factor 1 elsewhere)."""
     n = len(steps)
     has_next = steps["has_next"].to_numpy(bool)
     freq = step_frequency(steps)
@@ -342,6 +344,8 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
         lengths = lengths * K.turning_step_factor(dyaw)
     if cadence_law and "g_m" in out:  # W240: the pendulum's steps only (waist-pll's length is the line itself)
         cfac = np.where(has_next, cadence_law_factor(freq, calibration_cadence_hz(p), p), 1.0)
+        if cadence_law == CADENCE_LAW_STEADY:  # W261: steady walking steps only (a trailing window: causal)
+            cfac = np.where(steady_steps(1.0 / freq, has_next, frequency_scale=p.frequency_scale()), cfac, 1.0)
         lengths = lengths * cfac
         out = out.assign(cadence_factor=cfac)
     if pivot_steps:  # W150: a pivot step keeps at most the chord of its turn (after W19)
@@ -532,7 +536,8 @@ CAUSAL_PAUSE_STEPS = "standing"
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
-                                                          "parity_fill", "stand_veto", "contact_model", "fast_fill"))
+                                                          "parity_fill", "stand_veto", "contact_model", "fast_fill",
+                                                          "cadence_law"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -551,6 +556,9 @@ VAULT_VETO_VALUES = (False, True, "turns")
 STAND_VETO_VALUES = (False, True, "turns", "alternation", "adjacent", "walking")
 #: decision W255: ``fast_fill`` - False, True (W242's contacts) or "outside_freeze" (none inside a freeze episode)
 FAST_FILL_VALUES = (False, True, FAST_FILL_OUTSIDE_FREEZE)
+#: decision W261: ``cadence_law`` - False, True (W240's factor on every calibrated pendulum step) or "steady" (only on
+#: steady walking steps)
+CADENCE_LAW_VALUES = (False, True, CADENCE_LAW_STEADY)
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
@@ -558,7 +566,8 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159"),
                   "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198, W218"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203"),
-                  "fast_fill": (FAST_FILL_VALUES, "W242, W255")}
+                  "fast_fill": (FAST_FILL_VALUES, "W242, W255"),
+                  "cadence_law": (CADENCE_LAW_VALUES, "W240, W261")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -587,7 +596,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 gait_check: bool | None = None, speed_check: bool | None = None, pll_check: bool | None = None,
                 weak_fill: bool | None = None,
                 pivot_steps: bool | None = None, parity_fill: bool | str | None = None, pause_ride: bool | None = None,
-                cadence_law: bool | None = None,
+                cadence_law: bool | str | None = None,
                 rest_bias: bool | None = None,
                 realtime_contact_shift: bool | None = None, integrate_end: bool | None = None,
                 stand_veto: bool | str | None = None, contact_model: bool | str | None = None,
@@ -718,7 +727,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     cadence_law : a calibrated waist-pendulum step is multiplied by ``sqrt(SL(f) / SL(f_cal))``, seed 000's walking
         line at the step's and the calibration walks' median step frequency (1.5-2.2 Hz): the geometric mean of the
         pendulum and the cadence law (decision W240's candidate, offline and realtime; steps column
-        ``cadence_factor``); default False
+        ``cadence_factor``); ``"steady"``: only on a step that closes four steps of one walking sequence whose stride
+        times vary by at most 10 % (CV) at a median cadence inside 1.5-2.2 Hz (decision W261); default False
     parity_fill : pendulum, offline detector: a contact without a vertical maximum between two kept contacts of one
         decided side about two local periods apart (decision W152, ``InitialContactDetector``'s ``parity_fill``);
         ``"within"``: only where it lies inside one walking sequence of the other contacts (decision W159's
@@ -860,7 +870,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]),
-                          pivot_steps=bool(o["pivot_steps"]), cadence_law=bool(o["cadence_law"]))
+                          pivot_steps=bool(o["pivot_steps"]),
+                          cadence_law=(o["cadence_law"] if o["cadence_law"] == CADENCE_LAW_STEADY
+                                       else bool(o["cadence_law"])))  # W240, W261
     baro = usable_barometer(session, warnings)  # decision B188: an impossible pressure change is not read
     stairs = _stairs_steps(baro, steps, bool(o["stairs_climb"]))
     climbs = stairs if bool(o["stairs_climb"]) else _stairs_steps(baro, steps, True)  # W108's climbs, for W155

@@ -25,6 +25,7 @@ from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibil
     steps_missed,
 )
 from pdrlearn.waist.steplength import (
+    CADENCE_LAW_STEADY,
     MIN_GAIN_STRIDES,
     PIVOT_FIT_ITERATIONS,
     CalibrationWalk,
@@ -33,6 +34,7 @@ from pdrlearn.waist.steplength import (
     fit_pendulum,
     gain_standard_error,
     model_lengths,
+    steady_steps,
     with_pivot_factors,
 )
 
@@ -93,12 +95,14 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     if "merged" in st:  # W27: a fragment merged into its neighbour carries no length (nor an F term)
         c = np.where(st["merged"].to_numpy(bool), 0.0, c)
     f = st["frequency_hz"].to_numpy(float)
+    steady = steady_steps(1.0 / res.steps["frequency_hz"].to_numpy(float), res.steps["has_next"].to_numpy(bool),
+                          frequency_scale=p.frequency_scale())[res.steps["has_next"].to_numpy(bool)]  # W261
     if span_s is not None and distance_m is None:
         raise DataError("calibrate: --start/--end mark the stretch whose length --distance gives; pass --distance "
                         "METERS too (the reference bouts of bouts.csv carry their own times)")
     if span_s is not None:  # W61: the measured stretch only
         keep = span_mask(session, st, span_s)
-        st, g, c, f = st[keep], g[keep], c[keep], f[keep]
+        st, g, c, f, steady = st[keep], g[keep], c[keep], f[keep], steady[keep]
         dpsi = None if dpsi is None else dpsi[keep]
         if not len(st):
             raise DataError(f"calibrate: no detected step of {session.name} lies inside --start/--end "
@@ -111,7 +115,7 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
         t0 = session.t_start
         span = (f"{session.name}: contacts {st['start_s'].min() - t0:.1f}-{st['end_s'].max() - t0:.1f} s from the "
                 "recording's start" if len(st) else session.name)
-        return [CalibrationWalk(float(distance_m), f, g, span, c, dpsi)]
+        return [CalibrationWalk(float(distance_m), f, g, span, c, dpsi, steady)]
     bouts = reference_bouts(session)
     if bouts is None:
         raise DataError(f"session '{session.name}' has no bouts.csv with reference lengths; "
@@ -121,8 +125,17 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
         m = steps_in_interval(st, b.start_s, b.end_s)
         if m.any():
             walks.append(CalibrationWalk(float(b.length_m), f[m], g[m], f"{session.name}@{b.start_s:.1f}s", c[m],
-                                         None if dpsi is None else dpsi[m]))
+                                         None if dpsi is None else dpsi[m], steady[m]))
     return walks
+
+
+def _cadence_factors(walk: CalibrationWalk, f_cal: float | None, p: WaistParams, law: bool | str) -> np.ndarray:
+    """Decisions W240, W261: the tracker's ``cadence_law`` factor of each of ``walk``'s steps (W21: calibration sums
+    what the tracker sums); with ``"steady"`` 1 on a step the tracker's :func:`steady_steps` did not call steady."""
+    fac = cadence_law_factor(walk.f_hz, f_cal, p)
+    if law == CADENCE_LAW_STEADY and walk.steady is not None:
+        fac = np.where(walk.steady, fac, 1.0)
+    return fac
 
 
 def _fit_with_pivots(walks: list[CalibrationWalk], pipeline: str, base: WaistParams, out: WaistParams
@@ -329,12 +342,12 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     rates = []
     notes_gap: list[str] = []
     notes_count: list[str] = []
-    cadence_law = False  # decision W240: the tracks' option, read from the calibration walks' own tracks
+    cadence_law: bool | str = False  # decision W240: the tracks' option, read from the calibration walks' own tracks
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         with without_heading_note():  # W83: calibration does not use the heading
             res = track_waist(s, pipeline=pipeline, params=base)
-        cadence_law = cadence_law or bool(res.info.get("options", {}).get("cadence_law"))
+        cadence_law = cadence_law or res.info.get("options", {}).get("cadence_law") or False  # W261: its value
         if not res.steps["has_next"].any():  # W61: a standing-only recording, not a model failure
             raise DataError(f"calibrate: 0 steps detected in {s.folder or s.name}; calibrate needs a walk of known "
                             "length (give a recording of walking, with --distance or bouts.csv)")
@@ -369,7 +382,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     if cadence_law and pipeline == "waist-pendulum":  # W240: the tracker's cadence factor about these walks' cadence
         f_cal = (out.gait or {}).get("median_cadence_spm")
         f_cal = None if f_cal is None else float(f_cal) / 60.0  # as calibration_cadence_hz reads it back
-        walks = [dataclasses.replace(w, c=w.factors() * cadence_law_factor(w.f_hz, f_cal, out)) for w in walks]
+        walks = [dataclasses.replace(w, c=w.factors() * _cadence_factors(w, f_cal, out, cadence_law)) for w in walks]
     if pipeline not in ("waist-pendulum", "waist-pll"):
         raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     implausible = check_gain(walks, pipeline, base)  # decision W39

@@ -122,7 +122,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           # E146: W231's ride is applied live only where the PARAMS.json gives pause_ride true (E146's
                           # rule was not met for the default); L308 applies rest_bias live (E147: no longer named)
                           "pause_ride",
-                          "cadence_law")  # W240: measured, not adopted; an option of `pdrlearn track` only
+                          "cadence_law")  # W240, W261 ("steady"): measured, not adopted; `pdrlearn track` only
 
 
 def unapplied_options_line(p) -> str | None:

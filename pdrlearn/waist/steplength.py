@@ -79,6 +79,47 @@ def cadence_law_factor(f_hz: np.ndarray, f_cal_hz: float | None, p: WaistParams)
     return np.where(ok, np.sqrt(np.where(ok, sl, 1.0) / (sl_cal if sl_cal > 0 else 1.0)), 1.0)
 
 
+#: decision W261: the value of option ``cadence_law`` that applies W240's factor only to steady walking steps
+CADENCE_LAW_STEADY = "steady"
+#: decision W261: a step is steady when it and the steps before it in its walking sequence make this many steps (two
+#: strides: each foot twice); the first three steps of a sequence are never steady, so neither are seed 004 sec.
+#: III-C's two steps before "the velocity of the user ... usually reaches a steady state"
+STEADY_WINDOW_STEPS = 4
+#: decision W261: the highest coefficient of variation of the window's stride times (contact to the same foot's next
+#: contact, the sum of two consecutive steps) for a steady window: steady walking's stride time varies a few per cent
+#: (Hausdorff 2005, J NeuroEng Rehabil 2:19), and a waist contact's timing adds about 60 ms SD (W29's HA001 IC vs
+#: INDIP, +-59 ms), ~0.08 of a 1.1 s stride for two contacts; chosen a priori, nothing fitted
+STEADY_MAX_CV = 0.10
+
+
+def steady_steps(step_s: np.ndarray, has_next: np.ndarray, *, frequency_scale: float = 1.0,
+                 window: int = STEADY_WINDOW_STEPS, max_cv: float = STEADY_MAX_CV) -> np.ndarray:
+    """Decision W261: which rows are steady walking steps -- the row and the ``window - 1`` rows before it all have a
+    next contact (one walking sequence: a sequence closes at its row without one), the coefficient of variation
+    (sample SD / mean) of their stride times (each two consecutive step times, s) is at most ``max_cv``, and their
+    median step frequency (1 / the median step time, times ``frequency_scale``: W118's dimensionless frequency) lies
+    in seed 000 sec. II-D's linear walking range :data:`WALK_MIN_HZ`-:data:`WALK_MAX_HZ`. Trailing (causal): a row is
+    decided by its own and earlier step times only, so offline and realtime tracks decide it alike."""
+    t = np.asarray(step_s, dtype=np.float64)
+    ok = np.asarray(has_next, dtype=bool) & np.isfinite(t) & (t > 0)
+    n = len(t)
+    out = np.zeros(n, dtype=bool)
+    if window < 2 or n < window:
+        return out
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    wt = sliding_window_view(np.where(ok, t, np.nan), window)  # row i + window - 1 and the window - 1 before it
+    full = sliding_window_view(ok, window).all(axis=1)
+    strides = wt[:, 1:] + wt[:, :-1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = strides.mean(axis=1)
+        cv = strides.std(axis=1, ddof=1) / mean
+        f = frequency_scale / np.median(wt, axis=1)
+    steady = full & (cv <= max_cv) & (f >= WALK_MIN_HZ) & (f <= WALK_MAX_HZ)
+    out[window - 1:] = np.where(full, steady, False)
+    return out
+
+
 def calibration_cadence_hz(p: WaistParams) -> float | None:
     """Decision W240: the calibration walks' median step frequency (Hz) from W140's ``gait`` record of calibrated
     parameters, else None (defaults: no calibration cadence)."""
@@ -92,7 +133,8 @@ class CalibrationWalk:
 
     ``f_hz`` step frequencies (frequency model); ``g`` = ``2 sqrt(2 L h - h^2)`` per step (pendulum);
     ``c`` = the factor the tracker multiplies each step's length by (the turning-step factor of W19; ones
-    when ``None``). The fits below solve the walk's distance as the tracker sums it (decision W21):
+    when ``None``); ``steady`` (decision W261): which steps ``cadence_law="steady"`` scales (None: not known). The
+    fits below solve the walk's distance as the tracker sums it (decision W21):
     ``D = sum(c (a f - b))`` and ``D = sum(c (K g + F))``. ``dpsi`` (decision W150, option ``pivot_steps``): each
     step's net rotation (rad); its pivot factor depends on the fitted length, so :func:`with_pivot_factors` gives
     the walk whose ``c`` includes it for given parameters (None: the option is off).
@@ -104,6 +146,8 @@ class CalibrationWalk:
     name: str = ""
     c: np.ndarray | None = None
     dpsi: np.ndarray | None = None
+    #: decision W261: each step's :func:`steady_steps` verdict in the tracker's steps (None: not known)
+    steady: np.ndarray | None = None
 
     def factors(self) -> np.ndarray:
         n = len(self.f_hz)
