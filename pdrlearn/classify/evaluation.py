@@ -62,7 +62,7 @@ def evaluation_stages(model, *, report: bool = False) -> int:
 def evaluate_model(
     model, sessions, *, report_dir: Path | None = None, latency: bool = True, latency_steps: int = 20,
     advance: Callable[[int], None] = lambda n=1: None, warn_out_of_domain: float | None = None,
-    step_predictions: list | None = None,
+    step_predictions: list | None = None, warn_gait_range: bool = False,
 ) -> dict:
     """Score every trained task x method x unit of ``model`` on the labelled steps of ``sessions``.
 
@@ -84,6 +84,10 @@ def evaluate_model(
     ``step_predictions``: a list to which one DataFrame per scored task is appended, a row per step the
     task's score counts (:data:`PREDICTION_COLUMNS`, then ``p_<class>`` per class: the probabilities of the model
     that classified the step, decision C42).
+
+    Decision L332: ``gait_out_of_range_sessions`` lists the sessions whose labelled strides lie outside L95's
+    walking range (:func:`pdrlearn.classify.gait_range.out_of_range_sessions`); ``warn_gait_range`` (opt-in: L332's
+    adoption rule was not met) logs one warning line naming them.
     """
     from pdrlearn.classify.domain import (
         NO_RANGES_NOTE,
@@ -118,6 +122,7 @@ def evaluate_model(
     }
     _held_out_checks(model, sessions, out, ids)  # decision C34: training sessions, another rate
     _untrained_tasks(model, windows, out)  # decision C36: labelled tasks the model has no classifier of
+    _gait_range(sessions, out, warn_gait_range)  # decision L332: sessions outside L95's walking range
     domain: dict[str, dict] = {}
     detected = DetectedPredictions(model, sessions)  # decision C49: the runtime's strides, shared by the tasks
     for task, tm in model.tasks.items():
@@ -277,6 +282,18 @@ def evaluate_model(
         write_report(out, Path(report_dir))
         advance(1)
     return out
+
+
+def _gait_range(sessions, out: dict, warn: bool) -> None:
+    """Decision L332: ``out["gait_out_of_range_sessions"]``, the sessions whose labelled gait lies outside L95's
+    walking range; with ``warn`` one warning line naming them (off by default: L332's rule was not met)."""
+    from pdrlearn.classify.gait_range import out_of_range_sessions, range_line
+
+    flagged = out_of_range_sessions(sessions)
+    out["gait_out_of_range_sessions"] = flagged
+    line = range_line(flagged, len(sessions)) if warn else None
+    if line:
+        log.warning(line)
 
 
 def absent_classes(classes, y_true) -> list[str]:

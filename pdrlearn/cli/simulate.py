@@ -50,7 +50,8 @@ def simulate_cmd(
         "Rides without steps: 'lift:+9' / "
         "'lift:-9' (a lift, metres up / down), 'escalator:+6' (30 deg, 0.5 m/s, straight ahead; 1-60 m); "
         "'trolley:20' walks 20 m pushing a trolley (decisions S45, S46); 'side:3' / 'side:-3' side-steps 3 m "
-        "left / right facing ahead (S49). In bed: 'lie:28800' sits on a bed edge, lies down 8 h turning over 2 "
+        "left / right facing ahead (S49). 'backward:8[i][/i]:direct' reverses straight out of forward walking, "
+        "no closing step or stop (S67). In bed: 'lie:28800' sits on a bed edge, lies down 8 h turning over 2 "
         "times an hour ('lie:28800:4' 4 times, 'lie:600:0' never), sits up and stands up, no steps (lying.csv, "
         "rolls.csv; up to 86400 s; S58-S61).",
     ),

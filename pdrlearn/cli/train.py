@@ -309,6 +309,10 @@ def evaluate(
         "classified it and their probability of each class (p_<class>); written atomically (decision C42)."),
     resample: bool = EVAL_RESAMPLE_OPT,
     no_resample: bool = EVAL_NO_RESAMPLE_OPT,
+    warn_gait_range: bool = typer.Option(False, "--warn-gait-range", help="Warn (one line) when sessions' labelled "
+                                         "strides walk outside the validated walking range (decision L95); off by "
+                                         "default, the sessions are always in the result as "
+                                         "gait_out_of_range_sessions (decision L332)."),
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
@@ -372,7 +376,8 @@ def evaluate(
         log_grouped(said)
         tables: list | None = [] if predictions_out is not None else None
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,
-                                warn_out_of_domain=warn_out_of_domain, step_predictions=tables)
+                                warn_out_of_domain=warn_out_of_domain, step_predictions=tables,
+                                warn_gait_range=warn_gait_range)
     result["warnings"] = list(dict.fromkeys(warned))
     if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
         raise DataError(f"evaluate: {model_dir} has no trained classifier to evaluate (training skipped every "

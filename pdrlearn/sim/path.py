@@ -63,9 +63,11 @@ class Slope:
 
 @dataclass(frozen=True)
 class Backward:
-    """``n_steps`` backward steps (the body keeps facing forward)."""
+    """``n_steps`` backward steps (the body keeps facing forward). ``direct`` (decision S67): straight out of forward
+    level walking, with no closing step and no pause - the foot that landed last steps back past the other one."""
 
     n_steps: int
+    direct: bool = False
 
 
 @dataclass(frozen=True)
@@ -361,11 +363,29 @@ class _Walker:
             self.step(c0 + s * u, z0 + seg.grade * s, self.psi, "walk", gait=seg.gait, irregular=bool(irr))
 
     def backward(self, seg: Backward) -> None:
-        self._change_direction("backward")
-        c0, u = self.c.copy(), -_ahead(self.psi)
+        reverse = self._reversal() if seg.direct else None  # decision S67
+        if reverse is None:
+            self._change_direction("backward")
+            c0, first = self.c.copy(), None
+        else:
+            c0, first = reverse
+            self.direction = "backward"
+        u = -_ahead(self.psi)
         nominal = 0.55 * self.user.step_length(self.speed)
-        for s in self._progress(seg.n_steps * nominal, nominal)[0]:
-            self.step(c0 + s * u, self.z, self.psi, "backward", direction="backward")
+        for j, s in enumerate(self._progress(seg.n_steps * nominal, nominal)[0]):
+            self.step(c0 + s * u, self.z, self.psi, "backward", direction="backward", foot=first if j == 0 else None)
+
+    def _reversal(self) -> tuple[np.ndarray, str] | None:
+        """Decision S67: where a direct reversal's backward steps are measured from - the other foot's point on the
+        walking line - and the foot that steps first (the one that landed last, in front); None unless the walker
+        is mid-way through forward level walking (feet apart, last step a ``walk``): then S64's stop applies."""
+        if self.direction != "forward" or self.together or not self.steps or self.steps[-1].kind != "walk":
+            return None
+        front = self.steps[-1].foot
+        rear = "left" if front == "right" else "right"
+        ahead = _ahead(self.psi)
+        along = float(np.dot(self.feet[rear][0][:2] - self.c, ahead))  # the rear foot, on the walking line
+        return self.c + along * ahead, front
 
     def side(self, seg: Side) -> None:
         """Decision S49: stop, then per side step the lead foot (the left one going left) lands ``w`` sideways and

@@ -9,7 +9,7 @@
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
 | ``up:N[:RISE:RUN]`` / ``down:N[:RISE:RUN]`` | climb / descend N stairs (default 0.17 m x 0.28 m) |
 | ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
-| ``backward:N`` | N backward steps |
+| ``backward:N[:direct]`` | N backward steps; ``direct``: straight out of forward walking, no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
 | ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
 | ``stand:S`` | stand still S seconds |
@@ -124,8 +124,11 @@ def parse_route(spec: str) -> list[Segment]:
             size = {} if len(parts) == 2 else {"rise_m": _number(item, parts[2]), "run_m": _number(item, parts[3])}
             segments.append(Stairs(int(_number(item, parts[1], integer=True)), up=kind == "up", **size))
         elif kind == "backward":
-            _arity(item, parts, (1,))
-            segments.append(Backward(int(_number(item, parts[1], integer=True))))
+            _arity(item, parts, (1, 2))
+            if len(parts) > 2 and parts[2].strip().lower() != "direct":  # decision S67
+                raise DataError(f"--route item {item!r}: the option after N is 'direct' (a reversal straight out "
+                                "of forward walking, no stop; decision S67), e.g. 'backward:8:direct'")
+            segments.append(Backward(int(_number(item, parts[1], integer=True)), direct=len(parts) > 2))
         elif kind == "turn":
             _arity(item, parts, (1,))
             angle = _number(item, parts[1], positive=False)

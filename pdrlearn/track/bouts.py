@@ -44,8 +44,9 @@ from pdrlearn.track.clinical import (
 #: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key)
 BOUT_COLUMNS = ("session", "subject", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m",
                 "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
-                "longest_contact_gap_s", "data_gap_s", "n_turns", "altitude_change_m", "altitude_change_before_m",
-                "gait_out_of_range", "n_cv_strides", "stride_time_cv_pct", "stride_length_cv_pct")
+                "longest_contact_gap_s", "data_gap_s", "n_turns", "direction", "backward_fraction", "altitude_change_m",
+                "altitude_change_before_m", "gait_out_of_range", "n_cv_strides", "stride_time_cv_pct",
+                "stride_length_cv_pct")
 
 #: decision E98: bouts.csv's renamed columns, old name -> new (speeds are ``_mps`` as everywhere else). The old name
 #: stays readable: a :class:`BoutsTable` answers it with a FutureWarning, and the CSVs keep it as a last column
@@ -222,7 +223,9 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     the bout, summed - a gap longer than ``break_s`` ends the bout under either rule, so this holds only shorter
     ones (0 without a gap; the bout's speed and cadence then include time whose steps are not known);
     ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104) whose first turning interval ends in
-    the bout (a turn after a pause counts in the bout it starts);
+    the bout (a turn after a pause counts in the bout it starts); decision L331: ``backward_fraction``, the
+    bout's strides that travel backward (:func:`pdrlearn.track.evaluate.backward_travel`, L203) over ``n_strides``,
+    and ``direction`` (:func:`bout_direction`: forward / backward / mixed), both None on a lower-back track;
     ``altitude_change_m``: the rows' summed ``dz_m`` (NaN without that column) and, decision W158, the ``pause_dz_m``
     of its rows after the first (the standstills inside the bout); ``altitude_change_before_m`` (W158): the first
     row's ``pause_dz_m``, the altitude change while the unit stood before the bout (a lift or escalator ride; 0
@@ -233,6 +236,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     foot track; 0 on the lower back, L104), and over them, with at least
     :data:`~pdrlearn.track.clinical.CV_BOUT_MIN_STRIDES` (L196's minimum), ``stride_time_cv_pct`` and
     ``stride_length_cv_pct`` (100 x SD / mean, SD with n - 1); NaN with fewer."""
+    from pdrlearn.track.evaluate import backward_travel
     from pdrlearn.track.gait import bout_range_flags
 
     rule = rule or BoutRule()
@@ -253,6 +257,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     stride_s = st["stride_time_s"].to_numpy(float) if "stride_time_s" in st else np.full(len(st), np.nan)
     stride_len = np.full(len(st), np.nan)
     stride_len[steady] = steady_stride_lengths(st, steady)
+    back = backward_travel(st)  # decision L331: the strides' travelled direction (L203); None on the lower back
     rows = []
     for a, b in bout_ranges(st, rule):
         n_strides = int((~gap[a:b]).sum()) if foot else max(b - a - 2, 0)
@@ -275,6 +280,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
                      "longest_contact_gap_s": float(np.diff(c).max()) if len(c) >= 2 else np.nan,
                      "data_gap_s": float(gap_len[a:b].sum()),
                      "n_turns": int(((turn_row >= a) & (turn_row < b)).sum()),
+                     **bout_direction(None if back is None else int(back[a:b].sum()), n_strides),  # decision L331
                      "altitude_change_m": float(dz[a:b].sum() + pause_dz[a + 1:b].sum()),
                      "altitude_change_before_m": float(pause_dz[a]), **_bout_cvs(steady[a:b], stride_s[a:b],
                                                                                   stride_len[a:b])})
@@ -283,6 +289,21 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     table = BoutsTable(rows, columns=list(BOUT_COLUMNS))
     table["gait_out_of_range"] = bout_range_flags(table, leg_m)  # decision L195
     return table
+
+
+#: decision L331: bouts.csv's ``direction`` values
+BOUT_DIRECTIONS = ("forward", "backward", "mixed")
+
+
+def bout_direction(n_backward: int | None, n_strides: int) -> dict:
+    """Decision L331: a bout's ``backward_fraction`` (``n_backward`` of its ``n_strides`` strides travel backward,
+    L203) and ``direction``: ``forward`` at 0, ``backward`` at 1, ``mixed`` between; both None without a count (a
+    lower-back track) or without a stride."""
+    if n_backward is None or n_strides <= 0:
+        return {"direction": None, "backward_fraction": None}
+    frac = n_backward / n_strides
+    return {"direction": BOUT_DIRECTIONS[0] if frac == 0 else BOUT_DIRECTIONS[1] if frac == 1 else BOUT_DIRECTIONS[2],
+            "backward_fraction": frac}
 
 
 def _bout_cvs(steady: np.ndarray, stride_s: np.ndarray, length_m: np.ndarray) -> dict:

@@ -615,6 +615,14 @@ def _judged(summary: dict) -> tuple[float | None, float | None, str]:
     return _finite(summary.get("median_cadence_spm")), _finite(speed), what_speed
 
 
+def range_figures(summary: dict) -> str:
+    """L95's figures of a summary as its line gives them: ``median cadence 92 steps/min, straight-walking speed
+    0.41 m/s`` (:func:`_judged`'s cadence and judged speed; either left out when not known)."""
+    cad, speed, what_speed = _judged(summary)
+    return ", ".join([*([f"median cadence {cad:.0f} steps/min"] if cad is not None else []),
+                      *([f"{what_speed} {speed:.2f} m/s"] if speed is not None else [])])
+
+
 def session_range_side(summary: dict) -> str | None:
     """Decision L95: :func:`range_side` of the summary's own figures (the session line's verdict)."""
     cad, speed, _ = _judged(summary)
@@ -632,9 +640,8 @@ def gait_range_warning(summary: dict) -> str | None:
     at least as many stair strides (``n_stair_strides``) no speed is judged, only the cadence.
     Decision W144: a cadence above the range at a speed inside it or below is named short fast steps (festination)
     or running; "looks like running" needs the speed above the range (or a cadence unknown)."""
-    cad, speed, what_speed = _judged(summary)
-    figs = ", ".join([*([f"median cadence {cad:.0f} steps/min"] if cad is not None else []),
-                      *([f"{what_speed} {speed:.2f} m/s"] if speed is not None else [])])
+    cad, speed, _ = _judged(summary)
+    figs = range_figures(summary)
     leg = _leg(summary)
     side = range_side(cad, speed, leg)  # decision L148: the leg-scaled ranges
     if side is None:
