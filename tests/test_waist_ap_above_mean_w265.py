@@ -39,3 +39,19 @@ def test_a_simulated_walk_keeps_its_steps_and_its_contacts_move_at_most_earlier(
     on = track_waist(walk, pipeline="waist-pendulum", ap_above_mean=True).steps["event_s"].to_numpy(float)
     assert off.size > 10 and on.size == off.size
     assert np.all(on <= off + 1e-9) and np.all(off - on <= 0.25 + 1e-9)
+
+
+def test_the_measured_real_row_ha002_test11_w266():
+    """W266 (W265's rule, not met): on HA002 Test11 W29's IC moves the 8.91 s maximum's contact onto INDIP's 8.62 s
+    (in-bout step_f1 0.8182 36/42 -> 0.8409 37/42 of 46); the default is unchanged."""
+    from pdrlearn.io import read_session
+    from pdrlearn.waist.evaluate import step_metrics
+    from tests.conftest import external_session
+
+    s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
+    r = {v: track_waist(s, pipeline="waist-pendulum", **({"ap_above_mean": True} if v else {})) for v in (False, True)}
+    m = {v: step_metrics(r[v].steps, s) for v in r}
+    assert (m[False]["n_detected"], m[False]["n_reference"], round(m[False]["step_f1"], 4)) == (42, 46, 0.8182)
+    assert (m[True]["n_detected"], round(m[True]["step_f1"], 4)) == (42, 0.8409)
+    on = r[True].steps["event_s"].to_numpy(float)
+    assert np.min(np.abs(on - 8.62)) < 0.25 and np.min(np.abs(r[False].steps["event_s"].to_numpy(float) - 8.62)) > 0.25
