@@ -30,6 +30,14 @@ acceleration filtered at twice the seed's cut-off (5 Hz, same FIR order) 0-0.25 
 Per subject also: the scored INDIP contacts closer than W16's 0.3 s shortest step to the previous one, and the F1 a
 detector that finds all other contacts and no false one would reach (each such pair can give one hit at most).
 
+Then (decision W265, session 32, the precision side) per subject precision and recall, and every false contact (FP)
+of the track with the detector stage that made it a contact (`fp_stage`): `2.5 Hz max` (a candidate over W16's
+0.1 m/s^2 inside the motion gate, kept by every rule), `W18 fill` (a weak candidate W18's rhythm completion added
+inside a sequence), `W28 end` (a weak candidate W28 added at a sequence end), `W152 parity` (no vertical maximum:
+W152's contact on the lateral sway); its W119 class (experiments/waist_ic_classes.py), its height / the median kept
+height, its W20 side, the intervals to the previous / next contact of the track and the nearest INDIP contact
+(dt s, `m` when that contact is matched to another detection, `-` when it is missed).
+
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_ic_misses_w235.py [--external datasets/external]
 Writes experiments/results/waist_ic_misses_w235.md.
 """
@@ -84,6 +92,7 @@ def stages(session) -> dict:
     kw = dict(min_peak=MIN_PEAK, at=at, min_step_s=min_step, max_step_s=MAX_STEP_S, side=side)
     filled = K.rhythm_complete(cand, h, strong, fs, unshifted=False, end_steps=True, **kw)
     rules = K.rhythm_complete(cand, h, strong, fs, unshifted=True, end_steps=True, **kw)
+    no_end = K.rhythm_complete(cand, h, strong, fs, unshifted=True, end_steps=False, **kw)  # W265: W18 vs W28
     det = InitialContactDetector(walk_threshold=thr, max_step_s=MAX_STEP_S).detect(imu)
     ws = int(round(0.25 * fs))
     ic = np.array([K._nearest_local_max_before(ap, c, max(0, c - ws)) for c in cand], dtype=int)
@@ -91,6 +100,7 @@ def stages(session) -> dict:
     return {"time": imu.t, "ap_sig": ap, "vf5": vf5, "fs": fs,
             "t": imu.t[cand], "ic": imu.t[ic], "h": h, "ap": ap[ic], "side": side, "strong": strong,
             "pruned": pruned, "filled": filled, "rules": rules, "det": np.isin(cand, det.anchor_),
+            "no_end": no_end, "cand": cand, "det_ic": imu.t[det.ic_], "det_anchor": det.anchor_,
             "min_step": min_step}
 
 
@@ -125,6 +135,44 @@ def stage_of(i: int, c: dict, track_ic: np.ndarray) -> str:
     return "timing"
 
 
+def fp_stage(t: float, c: dict) -> tuple[str, int | None]:
+    """W265: the detector stage that made the track's contact at IC time ``t`` (s) a contact, and its candidate index
+    (``None`` for W152's contacts, which have no vertical maximum; "not the detector's" if ``t`` is none of its ICs)."""
+    k = np.flatnonzero(np.abs(c["det_ic"] - t) < 1e-6)
+    if k.size == 0:
+        return "not the detector's", None
+    i = np.flatnonzero(c["cand"] == c["det_anchor"][k[0]])
+    if i.size == 0:
+        return "W152 parity", None
+    i = int(i[0])
+    if c["strong"][i]:
+        return "2.5 Hz max", i
+    return ("W18 fill" if c["no_end"][i] else "W28 end"), i
+
+
+def false_contacts(sub: str, s, r: dict, c: dict, track_ic: np.ndarray, med_h: float) -> dict[str, int]:
+    """W265: print every FP of ``r`` (W.classify's) with its stage and context; returns the count per stage."""
+    ics = s.extras["ics"].dropna(subset=["ic_s"]).sort_values("ic_s", kind="stable")
+    it = ics["ic_s"].to_numpy(float)
+    missed = np.array([row["t"] for row in r["fn"]])
+    n: dict[str, int] = {}
+    for row in r["fp"]:
+        t = row["t"]
+        st, i = fp_stage(t, c)
+        n[st] = n.get(st, 0) + 1
+        j = int(np.searchsorted(track_ic, t - 1e-6))
+        prev = t - track_ic[j - 1] if j > 0 else np.nan
+        nxt = track_ic[j + 1] - t if j + 1 < track_ic.size else np.nan
+        k = int(np.argmin(np.abs(it - t)))
+        mark = "-" if missed.size and np.min(np.abs(missed - it[k])) < 1e-6 else "m"
+        h = "-" if i is None else f"{c['h'][i] / med_h:.2f}"
+        sd = "-" if i is None else f"{int(c['side'][i]):+d}"
+        flags = " ".join(f for f in ("timing", "transfer", "turn", "pause", "edge", "split") if row.get(f))
+        print(f"| {sub} | {t:.2f} | {st} | {row['cls']} | {flags} | {h} | {sd} | {prev:.2f} / {nxt:.2f} | "
+              f"{it[k] - t:+.2f} {mark} |")
+    return n
+
+
 def main(external: Path) -> None:
     print("## W235: every Test11 miss of today's offline waist-pendulum, where it is lost\n")
     print("| subject | t s | class | bout | edge | turn | slow | dt prev / next s | cand t (IC dt) | v/med | "
@@ -135,6 +183,7 @@ def main(external: Path) -> None:
     n_close = 0
     cues: list[tuple] = []
     base = [0, 0, 0]  # W237: midpoints with an AP cue, with a 5 Hz cue, midpoints
+    fp_input = []  # W265: (subject, session, classify result, stages, track contacts, median kept height)
     for sub in SUBJECTS:
         s = read_session(external / f"mobgap_{sub}_Test11_Trial1")
         steps = track_waist(s, pipeline="waist-pendulum").steps
@@ -147,6 +196,7 @@ def main(external: Path) -> None:
         ics = s.extras["ics"].dropna(subset=["ic_s"]).sort_values("ic_s", kind="stable")
         it, wb = ics["ic_s"].to_numpy(float), ics["wb_id"].to_numpy()
         tally[sub] = {}
+        fp_input.append((sub, s, r, c, track_ic, med_h))
         for row in r["fn"]:
             t = row["t"]
             k = int(np.argmin(np.abs(it - t)))
@@ -212,6 +262,20 @@ def main(external: Path) -> None:
     print(f"\npooled Test11 F1 {W.C.f1(*pool):.4f} ({'/'.join(map(str, pool))}); INDIP contacts under "
           f"{W16_SHORTEST_S} s after the previous one: {n_close}, F1 ceiling "
           f"{W.C.f1(pool[2] - n_close, pool[2] - n_close, pool[2]):.4f}")
+    print("\n## W265: precision and recall per subject, and every false contact (FP) by the stage that made it\n")
+    print("| subject | F1 | precision (TP/det) | recall (TP/ref) | FP | FN |\n|---|---|---|---|---|---|")
+    for sub, _, r, *_ in fp_input:
+        print(f"| {sub} | {W.C.f1(r['tp'], r['det'], r['ref']):.4f} | {r['tp'] / r['det']:.4f} ({r['tp']}/{r['det']}) "
+              f"| {r['tp'] / r['ref']:.4f} ({r['tp']}/{r['ref']}) | {len(r['fp'])} | {len(r['fn'])} |")
+    print(f"| pooled | {W.C.f1(*pool):.4f} | {pool[0] / pool[1]:.4f} ({pool[0]}/{pool[1]}) | {pool[0] / pool[2]:.4f} "
+          f"({pool[0]}/{pool[2]}) | {pool[1] - pool[0]} | {pool[2] - pool[0]} |")
+    print("\n| subject | t s | stage | class | flags | v/med | side | dt prev / next contact s | nearest INDIP dt s |\n"
+          "|---|---|---|---|---|---|---|---|---|")
+    fp_tally = {sub: false_contacts(sub, *rest) for sub, *rest in fp_input}
+    keys = sorted({k for v in fp_tally.values() for k in v})
+    print("\n| subject | " + " | ".join(keys) + " |\n|---|" + "---|" * len(keys))
+    for sub, v in fp_tally.items():
+        print(f"| {sub} | " + " | ".join(str(v.get(k, 0)) for k in keys) + " |")
 
 
 if __name__ == "__main__":

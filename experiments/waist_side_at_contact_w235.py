@@ -41,6 +41,8 @@ OPTION = "side_at_contact"
 ON = True  # the option's candidate value ("on"; W255: fast_fill="outside_freeze")
 MAX_SIM_DROP = 0.002  # (b) W148's bound on a pooled simulated F1
 MAX_EXTRA_FRAC = 0.0  # (b) extra contacts may rise by this fraction of the route's reference contacts (W242: 0.002)
+MAX_REAL_DROP = 0.0  # (a) a Test11 subject's / Test5 recording's step_f1 may drop by this much (W265: 0.005)
+MAX_IC_RISE_S = None  # (b) with a value: the matched contacts' mean |detected - true IC| may rise this much (W265)
 
 
 def _opt(on: bool) -> dict:
@@ -60,7 +62,7 @@ def real(external: Path) -> bool:
             continue
         c = {v: V.counts(st[v], s) for v in st}
         diff = c[True][3] - c[False][3]
-        ok &= diff >= -1e-12  # no Test11 subject and no Test5 recording lower
+        ok &= diff >= -MAX_REAL_DROP - 1e-12  # no Test11 subject and no Test5 recording lower (W265: by > 0.005)
         if "_Test11_" in d.name:
             for v in c:
                 pool[v] = [a + b for a, b in zip(pool[v], c[v][:3], strict=True)]
@@ -74,24 +76,33 @@ def real(external: Path) -> bool:
 
 
 def sim() -> bool:
+    timed = MAX_IC_RISE_S is not None  # W265: the IC timing of the matched contacts too
     print(f"## (b) fresh simulated users {USERS.start}-{USERS.stop - 1}, W218's routes, off -> on\n\n"
-          "| route | F1 off (TP/det/ref) | F1 on (TP/det/ref) | extra contacts off -> on | met |\n"
-          "|---|---|---|---|---|")
+          "| route | F1 off (TP/det/ref) | F1 on (TP/det/ref) | extra contacts off -> on | "
+          + ("mean abs IC error ms off -> on | " if timed else "") + "met |\n|---|---|---|---|" + "---|" * (1 + timed))
     ok = True
     for name, (route, kw, *gait) in S.W218_ROUTES.items():
         n = {v: np.zeros(3, dtype=int) for v in (False, True)}
+        err = {v: 0.0 for v in n}  # summed |detected - true IC| of the matched contacts (s)
         for u in USERS:
             s = simulate(route.format(hz=3 + u % 6, acc=(7.0, 8.5, 10.0)[u % 3]), kw, u, gait[0](u) if gait else None)
             truth = s.extras["ics"]["ic_s"].to_numpy(float)
             for v in n:
                 ev = track_waist(s, pipeline="waist-pendulum", **_opt(v)).steps["event_s"].to_numpy(float)
-                n[v] += (int((S.matched_truth(ev, truth) >= 0).sum()), ev.size, truth.size)
+                m = S.matched_truth(ev, truth)
+                n[v] += (int((m >= 0).sum()), ev.size, truth.size)
+                err[v] += float(np.abs(ev[m[m >= 0]] - truth[m >= 0]).sum())
         f = {v: W.C.f1(*map(int, n[v])) for v in n}
         extra = {v: int(n[v][1] - n[v][0]) for v in n}
         good = f[True] >= f[False] - MAX_SIM_DROP and extra[True] <= extra[False] + MAX_EXTRA_FRAC * int(n[False][2])
+        mae = {v: err[v] / max(int(n[v][0]), 1) for v in n}
+        if timed:
+            good &= mae[True] <= mae[False] + MAX_IC_RISE_S + 1e-12
         ok &= good
         print(f"| {name} | " + " | ".join(f"{f[v]:.4f} ({'/'.join(map(str, n[v]))})" for v in n)
-              + f" | {extra[False]} -> {extra[True]} | {'yes' if good else 'NO'} |", flush=True)
+              + f" | {extra[False]} -> {extra[True]} | "
+              + (f"{1000 * mae[False]:.1f} -> {1000 * mae[True]:.1f} | " if timed else "")
+              + f"{'yes' if good else 'NO'} |", flush=True)
     print(f"\n(b) {'met' if ok else 'NOT met'}\n")
     return ok
 

@@ -43,3 +43,15 @@ def test_other_cues_read_an_ap_maximum_and_a_5hz_maximum_apart_from_the_candidat
     c["t"] = np.array([1.2])  # a 2.5 Hz candidate 0.05 s from the 5 Hz maximum: not another step
     assert M.other_cues(1.0, c, med_h=1.6, med_ap=1.0)[1] == "-"
     assert M.other_cues(2.5, c, med_h=1.6, med_ap=1.0) == ("-", "-")
+
+
+def test_the_stage_that_made_a_false_contact_w265():
+    # candidates at samples 10..50; the detector's contacts: 10 (strong), 20 (a weak W18 fill inside a sequence),
+    # 30 (a weak W28 end step: kept only with W28), and one at sample 35, no candidate (W152's contact on the sway)
+    c = {"cand": np.array([10, 20, 30, 40, 50]), "strong": np.array([True, False, False, True, False]),
+         "no_end": np.array([True, True, False, True, False]),
+         "det_ic": np.array([0.09, 0.19, 0.29, 0.33]), "det_anchor": np.array([10, 20, 30, 35])}
+    assert [M.fp_stage(t, c)[0] for t in (0.09, 0.19, 0.29, 0.33)] == ["2.5 Hz max", "W18 fill", "W28 end",
+                                                                        "W152 parity"]
+    assert M.fp_stage(0.09, c)[1] == 0 and M.fp_stage(0.33, c)[1] is None
+    assert M.fp_stage(0.5, c) == ("not the detector's", None)  # a contact the detector did not give

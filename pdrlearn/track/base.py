@@ -246,6 +246,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``fast_fill`` (decision W242, off: one contact where a gap between two kept contacts has room for exactly one
       step and the vertical acceleration low-passed at twice the cut-off has a maximum of its own there;
       ``"outside_freeze"``: none inside an episode of the freeze index, W213, decision W255; offline only),
+      ``ap_above_mean`` (decisions W29 / W265, off: the IC is the last local AP maximum in W3's 0.25 s window above the
+      AP acceleration's 2 s mean, if there is one; offline only),
       ``gait_check`` (decision W140, off: with calibrated params, warn when the walk's median cadence is outside
       x0.75-x1.33 of the calibration walks'),
       ``speed_check`` (decision W211, on: with calibrated params, warn when the walk's median cadence is more than 10 %

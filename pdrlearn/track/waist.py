@@ -478,6 +478,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "freeze_veto": False,  # W214
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
+                   "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
                    "speed_check": True,  # W211
                    "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
@@ -497,6 +498,8 @@ SCOPED_OPTIONS = {
                         lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "fast_fill": ("the offline waist-pendulum with its own contact detector (W242)",
                   lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "ap_above_mean": ("the offline waist-pendulum with its own contact detector (W29, W265)",
+                      lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
                     lambda pl, rt, m, det, stops: not rt),
     "vault_veto": ("the offline waist-pendulum (W119)",
@@ -603,7 +606,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
                 length_model=None, freeze_veto: bool | None = None,
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
-                fast_fill: bool | str | None = None) -> TrackResult:
+                fast_fill: bool | str | None = None, ap_above_mean: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -740,6 +743,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         one step and the vertical acceleration low-passed at twice the cut-off (5 Hz) has a maximum of its own there
         (decision W242, ``InitialContactDetector``'s ``fast_fill``); ``"outside_freeze"``: none inside an episode of
         the lower back's freeze index (W213; decision W255); default False
+    ap_above_mean : pendulum, offline detector: the IC is the last local AP maximum in W3's window above the AP
+        acceleration's 2 s mean, if there is one (decision W29, ``InitialContactDetector``'s ``ap_above_mean``; a
+        track option by decision W265); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -781,7 +787,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
-             "side_at_contact": side_at_contact, "fast_fill": fast_fill}
+             "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -1113,6 +1119,7 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
                                   weak_fill=bool(o["weak_fill"]), side_at_contact=bool(o["side_at_contact"]),  # W235
                                   fast_fill=o["fast_fill"] if o["fast_fill"] == FAST_FILL_OUTSIDE_FREEZE
                                   else bool(o["fast_fill"]),  # W242, W255
+                                  ap_above_mean=bool(o["ap_above_mean"]) and not realtime,  # W29, W265: offline
                                   parity_fill="within" if o["parity_fill"] == "within" else bool(o["parity_fill"]))
 
 
