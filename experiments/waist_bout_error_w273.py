@@ -114,6 +114,16 @@ def main() -> None:
         f"{int((t.foot == more).sum())} of {int((more != 'tie').sum())} bouts where the feet differ; "
         f"{int((more == 'tie').sum())} ties, of which Length is neither foot's sum in "
         f"{int(((more == 'tie') & (t.foot == '-')).sum())}")
+    for path in sorted(ext.glob("mobgap_*_Test5_*")):  # the calibration walks: the same reading of Length
+        s5 = read_session(path)
+        b5 = reference_bouts(s5)
+        if b5 is None or "foot" not in s5.steps:
+            continue
+        for b in b5.itertuples():
+            f = length_by_foot(s5, int(b.wb_id), b.start_s, b.end_s, b.length_m)
+            say(f"  {path.name} bout {b.start_s:.2f} s: Length {b.length_m:.3f} m = {f['foot']} foot's finite sum"
+                f" (closest {f['closest']:.2f} %); finite/strides left {f['l_finite/strides']}, right"
+                f" {f['r_finite/strides']}")
     say("\nper subject: median |err_L|; median |part| over the bouts; median |err_L| with the part removed (%):")
     res = []
     for subject, h in [*t.groupby("subject", sort=False), ("pooled", t)]:
