@@ -143,8 +143,9 @@ def bout_terms(steps: pd.DataFrame, session, subject: str, params: str, matched:
             kind = "count" if dm.sum() != rm.sum() else "step"
             part[f"{place}_{kind}"] += e
             if matched is not None and place == "straight" and kind == "step" and dm.sum() == 1:
-                matched.append({"subject": subject, "params": params, "tracked_m": float(dl[dm][0]),
-                                "reference_m": float(s[rm][0]), "duration_s": float(np.diff(r)[rm][0])})
+                matched.append({"subject": subject, "params": params, "start_s": b.start_s,
+                                "tracked_m": float(dl[dm][0]), "reference_m": float(s[rm][0]),
+                                "duration_s": float(np.diff(r)[rm][0])})
             n_matched_steps += int(place == "straight" and kind == "step") * int(dm.sum())
         total = tracked - b.length_m
         assert abs(sum(part.values()) - total) < 1e-9, (subject, b.start_s, part, total)
