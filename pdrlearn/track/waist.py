@@ -516,7 +516,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
                    "pause_ride": True,  # W231: a long pause's barometric change counts only where it is a ride
                    "rest_bias": True,  # L296: a long rest's rotation less the bias of its still samples
-                   "lying_heading": False,  # W269: lying in bed turns the heading by its long axis's yaw only
+                   "lying_heading": True,  # W269, W271 (adopted by W270): lying turns it by the long axis's yaw only
                    "climb_veto": False}  # L314's ramp veto from W108's climbs: opt-in (decision L330)
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``

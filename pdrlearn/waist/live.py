@@ -164,7 +164,9 @@ def live_value(option: str, given: dict | None = None):
     with ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's
     fill is the offline detector's only, where the default is ``"within"``); ``pause_ride`` only as the PARAMS.json
     gives it (E146: W231's ride is applied live when given true; not given: ``False``, W158's whole pause, where the
-    offline default is true); else the option's offline default (E107)."""
+    offline default is true); ``lying_heading`` false when the PARAMS.json gives it (W271: the live tracker labels no
+    lying; its offline default, true, is not named on every live track), else its offline default; else the option's
+    offline default (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
 
     given = given or {}
@@ -182,6 +184,8 @@ def live_value(option: str, given: dict | None = None):
         return False
     if option == "pause_ride":  # E146: applied live when the PARAMS.json gives it true, else W158's whole pause
         return bool(given["pause_ride"]) if given.get("pause_ride") is not None else False
+    if option == "lying_heading":  # W271: never applied live; named when the PARAMS.json gives it true (not its
+        return False if given.get("lying_heading") is not None else OPTION_DEFAULTS[option]  # default on every track)
     return OPTION_DEFAULTS[option]
 
 
