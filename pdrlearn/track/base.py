@@ -278,6 +278,9 @@ def get_pipeline(name: str) -> Pipeline:
       ``lying_heading`` (decisions W269 / W271, on: while lying in bed (W222's lying, 10 s or more) the gyro heading
       turns by the yaw of the trunk's long axis about gravity only, not by the vertical rate of rolling over;
       offline ``integrate_stops`` gyro heading only),
+      ``rest_frame`` (decisions W285 / W287, off: each harmonic step direction less the AHRS frame's turn about the
+      vertical over the rests over 60 s before it, the bias integral L296's still samples give; harmonic headings
+      only; measured, not adopted: W286's rule failed on the last step's own heading error),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
       turn on a 0.2 m radius; both pipelines),
       ``cadence_law`` (decision W240, off: a calibrated waist-pendulum step times sqrt(SL(f) / SL(f_cal)) of seed

@@ -358,7 +358,8 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
                    resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
-                   integrate_end: bool = False, rest_bias: bool = False, lying=None) -> pd.DataFrame:
+                   integrate_end: bool = False, rest_bias: bool = False, lying=None,
+                   rest_frame: bool = False) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
     carry over between walking sequences; a sequence-closing contact keeps the last heading, except the last one
@@ -367,7 +368,9 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     stop over a minute long adds its moving samples' rate less the bias of its still ones
     (:func:`pdrlearn.kernels.rest_heading.rest_rotation`), not its whole integral. ``lying`` (decision W269):
     ``(episodes, long_axis_rate, still)`` - inside a stop, each lying episode's movements add nothing and its lying
-    run adds the yaw of the trunk's long axis (:func:`_stop_rotation`); None: the vertical rate throughout."""
+    run adds the yaw of the trunk's long axis (:func:`_stop_rotation`); None: the vertical rate throughout.
+    ``rest_frame`` (decision W285, harmonic headings): each step's direction less the AHRS frame's turn over the rests
+    over a minute before it (:func:`_rest_frame_drifts`)."""
     n = len(steps)
     headings = np.full(n, np.nan)
     turning = np.zeros(n, dtype=int)
@@ -414,6 +417,8 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         if resolve_signs:  # decision W13: one yaw offset per worn unit fixes 180-degree sign errors
             mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
             raw = K.resolve_axis_signs(raw, np.interp(mid, imu.t, imu.yaw))
+        if rest_frame:  # decision W285: the frame's turn over a long rest (the bias) is no turn of the walk
+            raw = raw - _rest_frame_drifts(imu, seqs, ev_all)
         per_seq = [average_two(raw[seq[:-1]]) for seq in seqs]
     current = 0.0
     for seq, hd in zip(seqs, per_seq, strict=True):
@@ -449,6 +454,28 @@ def _stop_rotation(imu: WaistIMU, w: np.ndarray, still: np.ndarray | None, t_a: 
         return rotation(w, still, t_a, t_b, cum)
     return (sum(rotation(w, still, a, b, cum) for a, b in upright)
             + sum(rotation(lying[1], lying[2], a, b) for a, b in lying_runs))
+
+
+def _rest_frame_drifts(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray:
+    """Decision W285: per step (``ev_all``'s order), the AHRS frame's turn (rad) about the vertical over the rests
+    before it that its body did not make (:func:`pdrlearn.kernels.rest_heading.rest_frame_drift`): the lead-in from
+    the recording's start to the first contact and each stop between walking sequences, the rests over
+    ``REST_BIAS_MIN_S`` only (L296's bound); zeros when there is none."""
+    from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S, rest_frame_drift
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    out = np.zeros(len(ev_all))
+    if not seqs:
+        return out
+    rests = [(float(imu.t[0]), float(ev_all[seqs[0][0]]), int(seqs[0][0]))]
+    rests += [(float(ev_all[a[-1]]), float(ev_all[b[0]]), int(b[0])) for a, b in zip(seqs[:-1], seqs[1:], strict=True)]
+    if max(b - a for a, b, _ in rests) <= REST_BIAS_MIN_S:
+        return out
+    still = standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)  # L296's still samples
+    cum = K.rate_integral(imu.t, imu.w_z)  # the raw rate: the AHRS integrates the gyroscope as it is (W5)
+    for a, b, k in rests:
+        out[k:] += rest_frame_drift(imu.t, imu.w_z, still, a, b, cum=cum)
+    return out
 
 
 def _lying_heading(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame):
@@ -522,6 +549,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pause_ride": True,  # W231: a long pause's barometric change counts only where it is a ride
                    "rest_bias": True,  # L296: a long rest's rotation less the bias of its still samples
                    "lying_heading": True,  # W269, W271 (adopted by W270): lying turns it by the long axis's yaw only
+                   "rest_frame": False,  # W285: harmonic headings less the AHRS frame's turn over a long rest
                    "climb_veto": False}  # L314's ramp veto from W108's climbs: opt-in (decision L330)
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
@@ -530,6 +558,8 @@ SCOPED_OPTIONS = {
                       lambda pl, rt, m, det, stops: m == "gyro" and stops and not rt),
     "lying_heading": ("the offline gyro heading with integrate_stops (waist-pendulum's default heading; W269)",
                       lambda pl, rt, m, det, stops: m == "gyro" and stops and not rt),
+    "rest_frame": ("the harmonic headings (ahe, ellipse, ellipse-stride: waist-pll's default heading; W285)",
+                   lambda pl, rt, m, det, stops: m in HARMONIC_METHODS),
     "stand_veto": ("the offline waist-pendulum with its own contact detector (W189)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "contact_model": ("the offline waist-pendulum with its own contact detector (W203)",
@@ -828,6 +858,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
+             "rest_frame": None,  # W285: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
@@ -936,7 +967,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
                            integrate_end=bool(o["integrate_end"]) and not realtime,  # W187: offline only
-                           rest_bias=bool(o["rest_bias"]), lying=lying)  # decisions L296, W269
+                           rest_bias=bool(o["rest_bias"]), lying=lying,  # decisions L296, W269
+                           rest_frame=bool(o["rest_frame"]))  # decision W285
     rest_removed = steps.attrs.get("rest_bias_removed", [])
     rest_spans = steps.attrs.get("rest_bias_rests")  # decision L306
     steps = steps.assign(stairs=stairs)
