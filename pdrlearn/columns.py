@@ -318,6 +318,9 @@ SESSIONS: tuple[Column, ...] = (
                                      "empty on a foot track"),
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
                                   "step, one sit after the last): the rise's start to the sit's end (W183)"),
+    ("tug_time_note", _ID, "text", "lower back: why there is no tug_time_s although a sit-to-stand is followed by "
+                                   "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
+                                   "W282), pointing at --window; empty otherwise"),
     ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes from 2 m to 12 m of the first "
                                          "walking bout reaching 14 m, straight (L312); empty on a shorter or "
                                          "turning walk (L313)"),
