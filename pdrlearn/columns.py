@@ -318,6 +318,9 @@ SESSIONS: tuple[Column, ...] = (
                                      "empty on a foot track"),
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
                                   "step, one sit after the last): the rise's start to the sit's end (W183)"),
+    ("tug_time_note", _ID, "text", "lower back: why there is no tug_time_s although a sit-to-stand is followed by "
+                                   "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
+                                   "W282), pointing at --window; empty otherwise"),
     ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes from 2 m to 12 m of the first "
                                          "walking bout reaching 14 m, straight (L312); empty on a shorter or "
                                          "turning walk (L313)"),
@@ -424,7 +427,8 @@ TURNS: tuple[Column, ...] = (
                                "by a turn of its yaw rate: that turn's start, last sample under 5 deg/s (L210, L211)"),
     ("end_s", "s", "number", "where that heading has gone 95 % of the angle (L208, L209); a lower-back turn matched by "
                              "a yaw-rate turn: its end, first sample under 5 deg/s after it (L210, L211)"),
-    ("duration_s", "s", "number", "end_s - start_s"),
+    ("duration_s", "s", "number", "end_s - start_s; a lower-back turn timed by its yaw rate reads longer than its "
+                                  "5-95 % turn: about +1 s on a 180 deg turn, +0.65 s on a 90 deg one (L346)"),
     ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181); "
                                    "a lower-back turn with the whole turns its yaw-rate turn shows (L231, L232)"),
     ("peak_rate_dps", "deg/s", "number", "largest rate of the turn's heading with each row's change spread over "
@@ -441,7 +445,8 @@ TURNS: tuple[Column, ...] = (
                                          "(L229): a foot track's turn (5-95 % heading timing, L208) 90 % of "
                                          "|angle_deg|; a lower-back turn timed by its yaw rate (L210) all of "
                                          "|angle_deg| over that span, longer than a 5-95 % one, so it reads lower "
-                                         "than a foot track's for the same turn; empty for a turn of no duration"),
+                                         "than a foot track's for the same turn (about 20 % under the 5-95 % "
+                                         "mean rate, L346); empty for a turn of no duration"),
     *_clocks("start_s", "end_s"),
 )
 

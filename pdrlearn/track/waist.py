@@ -1072,6 +1072,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "rest_bias_rests": None if rest_spans is None else [[a, b] for a, b in rest_spans],
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }
+    from pdrlearn.waist import turn_steps
+
+    if turn_steps.TURN_STEPS_WARN and "event_s" in steps:  # decision W283: the steps its turns missed
+        line = turn_steps.turn_steps_warning(steps["event_s"], info["yaw_turns"], len(steps))
+        if line:
+            warnings.append(line)
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start, z_raw)

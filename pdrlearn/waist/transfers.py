@@ -48,7 +48,7 @@ TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_
                     "height_change_m")
 #: decision W183: the summary keys of :func:`transfer_summary`
 TRANSFER_SUMMARY_KEYS = ("n_sit_to_stand", "n_stand_to_sit", "median_sit_to_stand_s", "median_stand_to_sit_s",
-                         "tug_time_s", "n_lie_down", "n_get_up")
+                         "tug_time_s", "n_lie_down", "n_get_up", "tug_time_note")
 #: decision W258: the lying kinds (W245) counted by direction: into lying (``n_lie_down``) and out of it
 #: (``n_get_up``); their sit / stand side is W223's split (W257), their direction right on every HAPT label (W246)
 #: decision W245: transfers.csv's lying kinds (into lying from / out of lying to: sitting, standing), written by
@@ -149,9 +149,33 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
            "median_stand_to_sit_s": float(sit["duration_s"].median()) if len(sit) else None, "tug_time_s": None,
            "n_lie_down": int(tr["kind"].isin(LIE_DOWN_KINDS).sum()),  # decision W258
            "n_get_up": int(tr["kind"].isin(GET_UP_KINDS).sum())}
+    contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
     if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
-        contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
         if len(tr) == 2 and not ((contacts < t0).any() or (contacts > t1).any()):
             out["tug_time_s"] = t1 - t0
+    # decision W282: why not, when a rise is followed by a sit (a TUG could be timed on them)
+    pair = len(rise) and len(sit) and float(rise["start_s"].min()) < float(sit["end_s"].max())
+    out["tug_time_note"] = tug_note(tr, contacts) if out["tug_time_s"] is None and pair else None
     return out
+
+
+def tug_note(tr: pd.DataFrame, contacts: np.ndarray) -> str:
+    """Decision W282: why a transfers table ``tr`` (a sit-to-stand followed by a stand-to-sit) with step ``contacts``
+    (start times, s) has no ``tug_time_s`` (W183's rule, module docstring), in one line that points at ``--window``."""
+    rise, sit = tr[tr["kind"] == SIT_TO_STAND], tr[tr["kind"] == STAND_TO_SIT]
+    first, last = tr.iloc[0], tr.iloc[-1]
+    times = (f"the rises start at {', '.join(f'{t:.1f}' for t in rise['start_s'])} s" if len(rise) else "no rise")
+    times += f", the sits end at {', '.join(f'{t:.1f}' for t in sit['end_s'])} s" if len(sit) else ", no sit"
+    if first["kind"] != SIT_TO_STAND or last["kind"] != STAND_TO_SIT:
+        return (f"no TUG time: the recording does not start and end seated (first transfer {first['kind']} at "
+                f"{first['start_s']:.1f} s, last {last['kind']} at {last['start_s']:.1f} s; {times}); a TUG is "
+                "timed from a rise to the next sit of a session cut with --window START,END around them (W183, W282)")
+    if len(tr) > 2:
+        return (f"no TUG time: {len(tr)} transfers ({len(rise)} sit-to-stand, {len(sit)} stand-to-sit), not one "
+                f"seat-to-seat test ({times}); time each trial with --window START,END around one rise and the "
+                "next sit (W183, W282)")
+    t0, t1 = float(first["start_s"]), float(last["end_s"])
+    n0, n1 = int((contacts < t0).sum()), int((contacts > t1).sum())
+    return (f"no TUG time: {n0} step(s) before the rise at {t0:.1f} s and {n1} after the sit ending at {t1:.1f} s: "
+            "not recorded from seat to seat; --window START,END around the rise and the sit times it (W183, W282)")
