@@ -179,7 +179,7 @@ CLIMB_BRIDGE_STRIDES = 4
 
 #: decision L337 (adopted by L338's rule or not: L339): where the altitude measures a slope (L300's grade_source), a
 #: row inside a sustained grade is a climb row too, so a ramp's or hill's floors come from its whole rise
-RAMP_CLIMBS = False
+RAMP_CLIMBS = True
 #: decision L337: the centred window (strides; x STEPS_PER_STRIDE on the lower back) whose grade (summed dz over summed
 #: horizontal length) makes a row a climb row when it reaches L301's RAMP_MIN_GRADE_PCT: ~10 m, longer than a 1:12
 #: ramp run between landings (ADA 2010 sec. 405.6: 30 in of rise = 9.1 m), so a landing does not break the climb
