@@ -134,7 +134,7 @@ SESSIONS: tuple[Column, ...] = (
     ("floors_up_stairs", "count", "integer", "floors_up's storeys of climbs on stairs (L302: rise over run 20 % or "
                                              "more, walked); floors_up = stairs + ramps + rides"),
     ("floors_up_ramps", "count", "integer", "floors_up's storeys of climbs walked under 20 % (a ramp or a hill; "
-                                            "L302)"),
+                                            "L302); on a barometric or fused altitude a ramp's whole rise (L337)"),
     ("floors_up_rides", "count", "integer", "floors_up's storeys of climbs carried mostly while standing (a lift or "
                                             "escalator ride, W158's pause_dz_m; L302)"),
     ("floors_down_stairs", "count", "integer", "floors_down's storeys on stairs (L302)"),
