@@ -134,7 +134,7 @@ SESSIONS: tuple[Column, ...] = (
     ("floors_up_stairs", "count", "integer", "floors_up's storeys of climbs on stairs (L302: rise over run 20 % or "
                                              "more, walked); floors_up = stairs + ramps + rides"),
     ("floors_up_ramps", "count", "integer", "floors_up's storeys of climbs walked under 20 % (a ramp or a hill; "
-                                            "L302)"),
+                                            "L302); on a barometric or fused altitude a ramp's whole rise (L337)"),
     ("floors_up_rides", "count", "integer", "floors_up's storeys of climbs carried mostly while standing (a lift or "
                                             "escalator ride, W158's pause_dz_m; L302)"),
     ("floors_down_stairs", "count", "integer", "floors_down's storeys on stairs (L302)"),
@@ -472,6 +472,16 @@ PERIODS: tuple[Column, ...] = (
                                             "(L320); empty without a stride time (a streamed track, E51)"),
     ("median_cadence_spm", "steps/min", "number", "median cadence of the period's steps, by the summary's default "
                                                   "rule (L176, W225; L320)"),
+    ("median_stride_length_m", "m", "number", "foot: the period's median stride length, the summary's rule (gap "
+                                              "rows and impossible strides left out, C19; L340); empty on the lower "
+                                              "back"),
+    ("median_speed_mps", "m/s", "number", "the period's median per-stride speed, the summary's rule (L340)"),
+    ("stride_time_cv_pct", "%", "number", "foot: the summary's stride-time CV on the period's steady straight level "
+                                          "forward strides (L104, L340); empty under 10 of them or when withheld "
+                                          "(L113)"),
+    ("stride_length_cv_pct", "%", "number", "foot: the CV of the same strides' lengths (L212, L340); empty under 10"),
+    ("n_cv_strides", "count", "integer", "foot: the period's strides the two CVs are computed over (L340); empty "
+                                         "on the lower back"),
     ("time_walking_s", "s", "number", "the session's walking time inside the period; sums to walking_time_s (L275)"),
     ("time_between_steps_s", "s", "number", "first to last step of the period: neither walking nor no data "
                                             "(L275); with time_no_steps_s it sums to the summary's two"),
