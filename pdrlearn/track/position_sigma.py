@@ -82,6 +82,10 @@ FUSED_EXTENT_HEADING = False
 #: EXTENT_HEADING_RAD to the ``plasys-fused`` radius: L239's heading error on the part of the extent the track has come
 #: back from, per axis e^2 (R_k^2 - |D_k|^2), nothing on a walk that only goes out from its start
 FUSED_EXTENT_RETURN = False
+#: decision L334: the candidate's switch (L335 decides it): True gives a ``plasys-fused`` track with L182's compass
+#: check ``extent_heading_rad`` = the check's measured median disagreement (rad; :func:`compass_extent_rad`) in place
+#: of L239's derived EXTENT_HEADING_RAD: the direction-dependent compass error a straight march carries (trial s32)
+FUSED_COMPASS_EXTENT = False
 #: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
 #: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
 GAP_FALLBACK_SPEED_MPS = 1.4
@@ -140,10 +144,28 @@ def bias_clock(steps, end: np.ndarray, t0: float, rest_s: float, rests=None) -> 
     return end - np.cumsum(skip)
 
 
-def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = None, rests=None) -> np.ndarray:
+def reach_bound(length: np.ndarray, heading: np.ndarray, held_var_m2: np.ndarray | None = None) -> np.ndarray:
+    """Decision L333: per stride, the radius R_k = s_k + |D_k| (m) about the track's position that holds the true
+    position by construction: the walker, starting where the track starts, is at most the distance walked s_k (the
+    summed |stride length|) from the start, and the track is |D_k| from it, so |error| <= s_k + |D_k|. A held gap
+    (E127) adds the displacement it may have missed, its speed x gap (sqrt(2 ``held_var_m2``)). Never decreasing
+    (|D_k| shrinks by at most |L_k| while s_k grows by it). Pure numpy; NaN-free inputs."""
+    L = np.asarray(length, float)
+    psi = np.asarray(heading, float)
+    walked = np.cumsum(np.abs(L))
+    if held_var_m2 is not None:
+        walked = walked + np.cumsum(np.sqrt(2.0 * np.asarray(held_var_m2, float)))
+    return walked + np.hypot(np.cumsum(L * np.cos(psi)), np.cumsum(L * np.sin(psi)))
+
+
+def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = None, rests=None,
+                  bounded: dict | None = None) -> np.ndarray:
     """The 1-sigma radius (m) at each time ``t`` (a track's trajectory times, the first its start) of a track
     with ``steps`` (steps.csv columns ``length_m``, ``heading_rad``, ``end_s``) under the model ``params``: the
-    covariance after the last stride that ended at or before the time, 0 at the start, never decreasing.
+    covariance after the last stride that ended at or before the time, 0 at the start, never decreasing, and
+    (decision L333) never over half :func:`reach_bound`, so the 2-sigma circle is never wider than the circle that
+    holds the true position for certain; ``bounded`` (a dict, when given) gets ``"bounded"``: whether the last
+    stride's radius was cut to that bound.
     ``rest_s`` (decision L297): the bias term's clock skips the rests longer than this (:func:`bias_clock`); with
     ``rests`` (decision L306) only those of them that overlap these (start, end) spans."""
     t = np.asarray(t, float)
@@ -163,9 +185,14 @@ def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = Non
             length, heading = np.where(bad, 0.0, length), np.where(bad, 0.0, heading)
             end = pd.Series(np.where(np.isfinite(end), end, np.nan)).ffill().fillna(t0).to_numpy(float)
         clock = end if rest_s is None else bias_clock(steps, end, t0, rest_s, rests)  # L297, L306
-        cov = position_covariance(length, heading, clock, t0, **params, held_var_m2=held_gap_variance(steps))
+        held = held_gap_variance(steps)
+        cov = position_covariance(length, heading, clock, t0, **params, held_var_m2=held)
         r = sigma_radius(cov)
         r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
+        cap = 0.5 * reach_bound(length, heading, held)  # decision L333: 2 sigma at most the certain radius
+        if bounded is not None:
+            bounded["bounded"] = bool(r[-1] > cap[-1])
+        r = np.minimum(r, cap)
         r[bad] = np.nan
         i = np.searchsorted(end, t + 1e-9, side="right") - 1
         sigma = np.where(i >= 0, r[np.clip(i, 0, len(r) - 1)], 0.0)
@@ -173,15 +200,27 @@ def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = Non
     return sigma
 
 
-def sigma_params(regime: str) -> dict[str, float]:
+def compass_extent_rad(compass_check: dict | None) -> float:
+    """Decision L334: the heading error (rad) of a ``plasys-fused`` track's extent term: L182's judged median |angle|
+    between the waist compass and the foot's gyroscope heading (``info.compass_check.median_deg``); 0 without a
+    check (no waist magnetometer, too few straight strides) or a non-finite median."""
+    med = (compass_check or {}).get("median_deg")
+    return float(np.radians(med)) if med is not None and np.isfinite(med) and med > 0 else 0.0
+
+
+def sigma_params(regime: str, info: dict | None = None) -> dict[str, float]:
     """The error model of ``regime``: its :data:`SIGMA_PARAMS`, with L239's extent term on ``plasys-fused`` when
     :data:`FUSED_EXTENT_HEADING` is set (decision L240) and L241's return term when :data:`FUSED_EXTENT_RETURN` is
-    (decision L242; the two are alternatives: both set add both)."""
+    (decision L242; the two are alternatives: both set add both); with :data:`FUSED_COMPASS_EXTENT` set (decision
+    L334) the extent term's heading error is the track's own compass check (``info["compass_check"]``,
+    :func:`compass_extent_rad`) instead of L239's."""
     params = dict(SIGMA_PARAMS[regime])
     if regime == "plasys-fused":
         for flag, term in ((FUSED_EXTENT_HEADING, "extent_heading_rad"), (FUSED_EXTENT_RETURN, "extent_return_rad")):
             if flag:
                 params[term] = EXTENT_HEADING_RAD
+        if FUSED_COMPASS_EXTENT:  # decision L334
+            params["extent_heading_rad"] = compass_extent_rad((info or {}).get("compass_check"))
     return params
 
 
@@ -194,14 +233,16 @@ def add_position_sigma(result, session, regime: str | None = None) -> None:
     if not len(traj):
         return
     regime = regime or sigma_regime(result.info, session)
-    params = sigma_params(regime)
+    params = sigma_params(regime, result.info)
     rest_s, rests = None, result.info.get("rest_bias_rests")
     if rests is not None:  # decision L306: L296 was in force on this heading (gyro; `run`'s live one: L309)
         from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
 
         rest_s = REST_BIAS_MIN_S  # decision L297: L296's rests turn the heading by their moving samples only
-    traj["pos_sigma_m"] = sigma_per_row(result.steps, traj["t"].to_numpy(float), params, rest_s, rests)
-    result.info["position_sigma"] = {"model": regime, **params}
+    bounded: dict = {}
+    traj["pos_sigma_m"] = sigma_per_row(result.steps, traj["t"].to_numpy(float), params, rest_s, rests, bounded)
+    # decision L333: whether the end's radius is the distance bound (the model's own was wider)
+    result.info["position_sigma"] = {"model": regime, **params, "bounded": bounded.get("bounded", False)}
 
 
 def drop_position_sigma(result) -> None:
