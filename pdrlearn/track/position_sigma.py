@@ -145,17 +145,20 @@ def bias_clock(steps, end: np.ndarray, t0: float, rest_s: float, rests=None) -> 
 
 
 def reach_bound(length: np.ndarray, heading: np.ndarray, held_var_m2: np.ndarray | None = None) -> np.ndarray:
-    """Decision L333: per stride, the radius R_k = s_k + |D_k| (m) about the track's position that holds the true
-    position by construction: the walker, starting where the track starts, is at most the distance walked s_k (the
-    summed |stride length|) from the start, and the track is |D_k| from it, so |error| <= s_k + |D_k|. A held gap
-    (E127) adds the displacement it may have missed, its speed x gap (sqrt(2 ``held_var_m2``)). Never decreasing
-    (|D_k| shrinks by at most |L_k| while s_k grows by it). Pure numpy; NaN-free inputs."""
+    """Decision L333: per stride, the radius R_k = s_k + |D_k| + l_k (m) about the track's position that holds the
+    true position by construction: the walker, starting where the track starts, is at most the distance walked s_k
+    (the summed |stride length|) from the start, and the track is |D_k| from it, so |error| <= s_k + |D_k|; l_k, the
+    longest |stride| so far, is the margin for the tracked point (a foot at rest) not being the reference point (a
+    pelvis between the feet: each within half a stride of the other, at the start and now). A held gap (E127) adds
+    the displacement it may have missed, its speed x gap (sqrt(2 ``held_var_m2``)). Never decreasing (|D_k| shrinks
+    by at most |L_k| while s_k grows by it). Pure numpy; NaN-free inputs."""
     L = np.asarray(length, float)
     psi = np.asarray(heading, float)
     walked = np.cumsum(np.abs(L))
     if held_var_m2 is not None:
         walked = walked + np.cumsum(np.sqrt(2.0 * np.asarray(held_var_m2, float)))
-    return walked + np.hypot(np.cumsum(L * np.cos(psi)), np.cumsum(L * np.sin(psi)))
+    reach = np.hypot(np.cumsum(L * np.cos(psi)), np.cumsum(L * np.sin(psi)))
+    return walked + reach + np.maximum.accumulate(np.abs(L)) if len(L) else walked
 
 
 def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = None, rests=None,
