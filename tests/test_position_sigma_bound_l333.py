@@ -105,3 +105,31 @@ def test_compass_line_does_not_claim_a_disturbance_l336():
         assert "a magnetic disturbance (steel" not in line[0] and "turns this offline track" not in line[0]
         assert ("--streaming" in line[0]) is (not fallback)
         assert ("follows the waist gyroscope's heading" in line[0]) is fallback
+
+
+def test_the_fused_radius_takes_the_compass_check_l335():
+    """Decisions L334/L335: a ``plasys-fused`` track with L182's check gets ``extent_heading_rad`` = the check's median
+    (rad) on its extent; without a check it keeps L128's model; no other regime takes it; the switch turns it off."""
+    assert ps.FUSED_COMPASS_EXTENT is True
+    info = {"compass_check": {"median_deg": 8.19}}
+    assert ps.sigma_params("plasys-fused", info)["extent_heading_rad"] == pytest.approx(np.radians(8.19))
+    assert ps.sigma_params("plasys-fused", {}) == SIGMA_PARAMS["plasys-fused"]
+    assert ps.sigma_params("plasys-fused", {"compass_check": {"median_deg": float("nan")}}) == \
+        SIGMA_PARAMS["plasys-fused"]
+    for regime in set(SIGMA_PARAMS) - {"plasys-fused"}:
+        assert ps.sigma_params(regime, info) == SIGMA_PARAMS[regime]
+    st = _steps(np.ones(200), np.zeros(200))  # 200 m straight: extent 200 m
+    t = np.r_[0.0, st["end_s"]]
+
+    def final(inf):
+        res = SimpleNamespace(trajectory=pd.DataFrame({"t": t}), steps=st, info=dict(inf))
+        ps.add_position_sigma(res, None, "plasys-fused")
+        return res.trajectory["pos_sigma_m"].iloc[-1]
+
+    today = final({})
+    assert final(info) ** 2 == pytest.approx(today ** 2 + 2 * (np.radians(8.19) * 200) ** 2)
+    ps.FUSED_COMPASS_EXTENT = False
+    try:
+        assert final(info) == today
+    finally:
+        ps.FUSED_COMPASS_EXTENT = True

@@ -82,10 +82,12 @@ FUSED_EXTENT_HEADING = False
 #: EXTENT_HEADING_RAD to the ``plasys-fused`` radius: L239's heading error on the part of the extent the track has come
 #: back from, per axis e^2 (R_k^2 - |D_k|^2), nothing on a walk that only goes out from its start
 FUSED_EXTENT_RETURN = False
-#: decision L334: the candidate's switch (L335 decides it): True gives a ``plasys-fused`` track with L182's compass
-#: check ``extent_heading_rad`` = the check's measured median disagreement (rad; :func:`compass_extent_rad`) in place
-#: of L239's derived EXTENT_HEADING_RAD: the direction-dependent compass error a straight march carries (trial s32)
-FUSED_COMPASS_EXTENT = False
+#: decision L334: the candidate's switch: True gives a ``plasys-fused`` track with L182's compass check
+#: ``extent_heading_rad`` = the check's measured median disagreement (rad; :func:`compass_extent_rad`) in place of
+#: L239's derived EXTENT_HEADING_RAD: the direction-dependent compass error a straight march carries (trial s32).
+#: Decision L335: adopted, L334's rule was met (marches of 0.8-4 km, users 6320-6331: 94.0 % of the strides, 12/12
+#: finals within 2 sigma, against 68.0 %, 9/12; L128's route, users 6332-6337: 98.7 %, 6/6 against 96.1 %, 5/6)
+FUSED_COMPASS_EXTENT = True
 #: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
 #: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
 GAP_FALLBACK_SPEED_MPS = 1.4
@@ -222,8 +224,9 @@ def sigma_params(regime: str, info: dict | None = None) -> dict[str, float]:
         for flag, term in ((FUSED_EXTENT_HEADING, "extent_heading_rad"), (FUSED_EXTENT_RETURN, "extent_return_rad")):
             if flag:
                 params[term] = EXTENT_HEADING_RAD
-        if FUSED_COMPASS_EXTENT:  # decision L334
-            params["extent_heading_rad"] = compass_extent_rad((info or {}).get("compass_check"))
+        compass = compass_extent_rad((info or {}).get("compass_check")) if FUSED_COMPASS_EXTENT else 0.0
+        if compass:  # decisions L334 / L335: the track's own compass check, in place of L239's derived value
+            params["extent_heading_rad"] = compass
     return params
 
 
