@@ -24,7 +24,6 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from position_sigma import ROUTE, errors  # noqa: E402
 
-
 LONG_USERS = range(6320, 6332)
 SHORT_USERS = range(6332, 6338)
 

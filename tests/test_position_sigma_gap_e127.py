@@ -14,8 +14,13 @@ from pdrlearn.io import write_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.plasys import track_plasys
-from pdrlearn.track.position_sigma import (GAP_FALLBACK_SPEED_MPS, SIGMA_PARAMS, held_gap_variance, reach_bound,
-                                          sigma_per_row)
+from pdrlearn.track.position_sigma import (
+    GAP_FALLBACK_SPEED_MPS,
+    SIGMA_PARAMS,
+    held_gap_variance,
+    reach_bound,
+    sigma_per_row,
+)
 from tests.runtime_helpers import without
 
 BUNDLE = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
