@@ -133,3 +133,17 @@ def test_the_fused_radius_takes_the_compass_check_l335():
         assert final(info) == today
     finally:
         ps.FUSED_COMPASS_EXTENT = True
+
+
+def test_l175_line_on_a_fused_track_names_the_compass_check_not_plasys_fused():
+    """Decision L335: a ``plasys-fused`` radius wide from its compass-check term gets L175's line with the check's
+    angle as the reason and fixes as the remedy, not the advice to track with `plasys-fused` it already is."""
+    from pdrlearn.track.position_sigma import position_sigma_warning
+
+    info = {"position_sigma": {"model": "plasys-fused", "extent_heading_rad": float(np.radians(13.75))}}
+    line = position_sigma_warning({"final_position_sigma_m": 340.8, "distance_m": 1963.0, "info": info})
+    assert line is not None and "decision L335" in line and "13.8 deg" in line and "--fixes" in line
+    assert "`plasys-fused`) or" not in line and "gyroscope-only" not in line
+    info = {"position_sigma": {"model": "plasys-streaming"}}
+    line = position_sigma_warning({"final_position_sigma_m": 340.8, "distance_m": 1963.0, "info": info})
+    assert "gyroscope-only" in line and "`plasys-fused`" in line

@@ -287,10 +287,18 @@ def position_sigma_warning(summary: dict) -> str | None:
         return None
     fix = ("track offline with a foot and a waist unit (the waist compass, `plasys-fused`) or give position fixes "
            "(`track --fixes` / `--gnss`)")
+    why = "a gyroscope-only heading drifts over a long walk"
     if model == "plasys-gyro-fallback":  # decision L267: the compass was judged disturbed (L182), the track
         fix = ("this offline track left the waist compass (L182, L226) for the waist gyroscope; give position "
                "fixes (`track --fixes` / `--gnss`)")
+    elif model == "plasys-fused":  # decision L335: the track already reads the compass; its check's angle
+        ext = ((summary.get("info") or {}).get("position_sigma") or {}).get("extent_heading_rad")
+        if ext:
+            why = (f"the waist compass and the foot's gyroscope heading disagree by a median {np.degrees(ext):.1f} "
+                   "deg on this walk (L182's check), a heading error this radius carries over the route's extent, "
+                   "decision L335")
+        fix = "give position fixes (`track --fixes` / `--gnss`)"
     return (f"the end position's 2-sigma radius {2 * float(sigma):.0f} m is {200 * float(sigma) / float(dist):.0f} % "
             f"of the {float(dist):.0f} m walked (model {model}; over {100 * SIGMA_SHARE_WARN:.0f} % warns, decision "
-            "L175): the position is not usable (a gyroscope-only heading drifts over a long walk; distance, steps "
-            f"and gait are not affected); for a position, {fix}")
+            f"L175): the position is not usable ({why}; distance, steps and gait are not affected); for a position, "
+            f"{fix}")
