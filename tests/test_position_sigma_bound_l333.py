@@ -45,9 +45,24 @@ def test_a_held_gap_adds_its_missed_walk_to_the_bound():
     st = _steps([1.0] * 10 + [np.nan] + [1.0] * 10, [0.0] * 21, gap=[0.0] * 10 + [5.0] + [0.0] * 10)
     st.loc[10, "length_m"] = 0.0
     held = ps.held_gap_variance(st)
-    R = reach_bound(st["length_m"].to_numpy(float), st["heading_rad"].to_numpy(float), held)
+    L = st["length_m"].to_numpy(float)
+    R = reach_bound(L, st["heading_rad"].to_numpy(float), ps.missed_walk(L, np.zeros(len(L), bool), held))
     v = 1.0  # 1 m strides of 1 s
     assert R[-1] == pytest.approx(2 * 20.0 + v * 5.0 + 1.0)
+
+
+def test_a_stride_of_unknown_length_widens_the_bound_by_two_longest_strides():
+    """L143's stride of unknown length is modelled as 0: the bound adds twice the longest known stride for it (the
+    walk it may have been, and the track's step the model left out), so the cut stays on the safe side."""
+    L = np.r_[np.ones(5), np.nan, np.full(4, 1.5)]
+    bad = ~np.isfinite(L)
+    assert ps.missed_walk(L, bad, None).tolist() == [0.0] * 5 + [3.0] + [0.0] * 4
+    st = _steps(L, np.zeros(10))
+    flag: dict = {}
+    s = sigma_per_row(st, np.r_[0.0, st["end_s"]], {**SIGMA_PARAMS["plasys-streaming"], "bias_rps": 1.0},
+                      bounded=flag)
+    assert np.isnan(s[6]) and flag["bounded"]
+    assert 2 * s[-1] == pytest.approx(11.0 + 3.0 + 11.0 + 1.5)  # walked + unknown + |D| (model) + longest stride
 
 
 def test_the_radius_is_cut_to_half_the_bound_only_where_the_model_exceeds_it():

@@ -18,6 +18,7 @@ from pdrlearn.track.position_sigma import (
     GAP_FALLBACK_SPEED_MPS,
     SIGMA_PARAMS,
     held_gap_variance,
+    missed_walk,
     reach_bound,
     sigma_per_row,
 )
@@ -65,8 +66,9 @@ def test_the_radius_grows_across_a_held_foot_dropout_offline_streamed_and_run(dr
         assert growth > (0.8 * gap) ** 2, name
         # sigma after >= before plus the gap's growth, or L333's cut: half the radius the walk can reach
         k = int(np.flatnonzero(((steps["gap_s"] > 0) & (steps["length_m"] == 0)).to_numpy())[0])
-        cap = 0.5 * reach_bound(np.nan_to_num(steps["length_m"].to_numpy(float)),
-                                np.nan_to_num(steps["heading_rad"].to_numpy(float)), held_gap_variance(steps))[k]
+        L = np.nan_to_num(steps["length_m"].to_numpy(float))
+        cap = 0.5 * reach_bound(L, np.nan_to_num(steps["heading_rad"].to_numpy(float)),
+                                missed_walk(L, np.zeros(len(L), bool), held_gap_variance(steps)))[k]
         assert after ** 2 >= min(before ** 2 + growth, cap ** 2) - 1e-6, name
         assert after > before + 5.0, name
         assert float(traj["pos_sigma_m"].iloc[-1]) >= after, name  # kept by every later row

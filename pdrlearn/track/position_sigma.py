@@ -146,21 +146,31 @@ def bias_clock(steps, end: np.ndarray, t0: float, rest_s: float, rests=None) -> 
     return end - np.cumsum(skip)
 
 
-def reach_bound(length: np.ndarray, heading: np.ndarray, held_var_m2: np.ndarray | None = None) -> np.ndarray:
+def reach_bound(length: np.ndarray, heading: np.ndarray, missed_m: np.ndarray | None = None) -> np.ndarray:
     """Decision L333: per stride, the radius R_k = s_k + |D_k| + l_k (m) about the track's position that holds the
     true position by construction: the walker, starting where the track starts, is at most the distance walked s_k
     (the summed |stride length|) from the start, and the track is |D_k| from it, so |error| <= s_k + |D_k|; l_k, the
     longest |stride| so far, is the margin for the tracked point (a foot at rest) not being the reference point (a
-    pelvis between the feet: each within half a stride of the other, at the start and now). A held gap (E127) adds
-    the displacement it may have missed, its speed x gap (sqrt(2 ``held_var_m2``)). Never decreasing (|D_k| shrinks
-    by at most |L_k| while s_k grows by it). Pure numpy; NaN-free inputs."""
+    pelvis between the feet: each within half a stride of the other, at the start and now). ``missed_m``: per stride,
+    walk the lengths do not hold, added to s_k (:func:`missed_walk`). Never decreasing (|D_k| shrinks by at most
+    |L_k| while s_k grows by it). Pure numpy; NaN-free inputs."""
     L = np.asarray(length, float)
     psi = np.asarray(heading, float)
     walked = np.cumsum(np.abs(L))
-    if held_var_m2 is not None:
-        walked = walked + np.cumsum(np.sqrt(2.0 * np.asarray(held_var_m2, float)))
+    if missed_m is not None:
+        walked = walked + np.cumsum(np.asarray(missed_m, float))
     reach = np.hypot(np.cumsum(L * np.cos(psi)), np.cumsum(L * np.sin(psi)))
     return walked + reach + np.maximum.accumulate(np.abs(L)) if len(L) else walked
+
+
+def missed_walk(length: np.ndarray, bad: np.ndarray, held_var_m2: np.ndarray | None) -> np.ndarray:
+    """Decision L333: per stride, the walk (m) :func:`reach_bound` adds to the lengths: a held gap (E127) its speed
+    x gap (sqrt(2 ``held_var_m2``)); a stride of unknown length or heading (L143, modelled as 0) twice the track's
+    longest known |stride| (the walk it may have been, and the track's own step the model left out)."""
+    L = np.abs(np.asarray(length, float))
+    known = L[~bad & np.isfinite(L)]
+    out = np.where(bad, 2.0 * (float(known.max()) if known.size else 0.0), 0.0)
+    return out if held_var_m2 is None else out + np.sqrt(2.0 * np.asarray(held_var_m2, float))
 
 
 def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = None, rests=None,
@@ -178,6 +188,7 @@ def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = Non
     if len(steps) and len(t):
         t0 = float(t[0])
         length, heading, end = (steps[c].to_numpy(float) for c in ("length_m", "heading_rad", "end_s"))
+        raw = length
         # decision L143: a stride of unknown length, heading or end has no known displacement: its rows get NaN,
         # the later strides are modelled without it (its length taken as 0; an unknown end as the stride before's)
         bad = ~(np.isfinite(length) & np.isfinite(heading) & np.isfinite(end))
@@ -194,7 +205,7 @@ def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = Non
         cov = position_covariance(length, heading, clock, t0, **params, held_var_m2=held)
         r = sigma_radius(cov)
         r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
-        cap = 0.5 * reach_bound(length, heading, held)  # decision L333: 2 sigma at most the certain radius
+        cap = 0.5 * reach_bound(length, heading, missed_walk(raw, bad, held))  # L333: 2 sigma <= the sure radius
         if bounded is not None:
             bounded["bounded"] = bool(r[-1] > cap[-1])
         r = np.minimum(r, cap)
