@@ -12,7 +12,9 @@ on users 1160-1179 (L150), then tested on users 1180-1199 (L151): calibrated (94
 constants, uncalibrated, too large (100 %, 20/20). It is no guarantee: magnetic disturbances,
 map constraints, real sensors worse than the simulator's and a walker other than the simulator's are outside it.
 A row whose position was held across a foot dropout (``gap_s`` > 0, no length) adds the displacement it missed,
-radius^2 + (speed x gap)^2, kept by every later row (decision E127), for every regime.
+radius^2 + (speed x gap)^2, kept by every later row (decision E127), for every regime. Decision L335: a
+``plasys-fused`` track adds its own compass check's median angle as the extent heading error (marches of 0.8-4 km).
+Decision L333: every radius is cut so its 2-sigma circle never exceeds the one that surely holds the true position.
 """
 
 from __future__ import annotations
