@@ -114,6 +114,13 @@ def test_the_radius_bias_clock_skips_the_long_rests_l297():
     assert bias_clock(steps, end, 0.0, 60.0).tolist() == [1.0, 2.0, 3.0, 4.0, 5.0]
     t = np.array([0.0, 1904.0])
     params = sigma_params("waist")
-    assert sigma_per_row(steps, t, params, 60.0)[-1] < sigma_per_row(steps, t, params)[-1]
+    from pdrlearn.kernels.position_sigma import position_covariance, sigma_radius
+
+    L, psi = steps["length_m"].to_numpy(float), steps["heading_rad"].to_numpy(float)
+    clocked, plain = (sigma_radius(position_covariance(L, psi, c, 0.0, **params))[-1]
+                      for c in (bias_clock(steps, end, 0.0, 60.0), end))
+    assert clocked < plain
+    # on this 3.5 m walk both are cut to L333's bound: half of 3.5 m walked + 3.5 m from the start + a 0.7 m stride
+    assert sigma_per_row(steps, t, params, 60.0)[-1] == pytest.approx(0.5 * (3.5 + 3.5 + 0.7))
     bias_only = {**params, **{k: 0.0 for k in params if k != "bias_rps"}}  # the term L297 clocks: b t, here 5 s
     assert sigma_per_row(steps, t, bias_only, 60.0)[-1] < 0.01 * sigma_per_row(steps, t, bias_only)[-1]

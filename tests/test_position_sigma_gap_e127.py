@@ -14,7 +14,14 @@ from pdrlearn.io import write_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.plasys import track_plasys
-from pdrlearn.track.position_sigma import GAP_FALLBACK_SPEED_MPS, SIGMA_PARAMS, held_gap_variance, sigma_per_row
+from pdrlearn.track.position_sigma import (
+    GAP_FALLBACK_SPEED_MPS,
+    SIGMA_PARAMS,
+    held_gap_variance,
+    missed_walk,
+    reach_bound,
+    sigma_per_row,
+)
 from tests.runtime_helpers import without
 
 BUNDLE = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
@@ -57,7 +64,12 @@ def test_the_radius_grows_across_a_held_foot_dropout_offline_streamed_and_run(dr
         assert gap == pytest.approx(B - A, abs=1.0), name
         # v: the walker's speed, ~1 m/s or more for a normal pace; the missed displacement is metres, not a stride
         assert growth > (0.8 * gap) ** 2, name
-        assert after ** 2 >= before ** 2 + growth - 1e-6, name  # sigma after >= before plus the gap's growth
+        # sigma after >= before plus the gap's growth, or L333's cut: half the radius the walk can reach
+        k = int(np.flatnonzero(((steps["gap_s"] > 0) & (steps["length_m"] == 0)).to_numpy())[0])
+        L = np.nan_to_num(steps["length_m"].to_numpy(float))
+        cap = 0.5 * reach_bound(L, np.nan_to_num(steps["heading_rad"].to_numpy(float)),
+                                missed_walk(L, np.zeros(len(L), bool), held_gap_variance(steps)))[k]
+        assert after ** 2 >= min(before ** 2 + growth, cap ** 2) - 1e-6, name
         assert after > before + 5.0, name
         assert float(traj["pos_sigma_m"].iloc[-1]) >= after, name  # kept by every later row
     # the three agree on the growth: one formula on their own steps (speeds within 10 %)
@@ -82,7 +94,9 @@ def test_a_gap_without_walking_strides_uses_the_stated_speed():
                           "gap_s": [10.0]})
     assert held_gap_variance(steps) == pytest.approx([0.5 * (GAP_FALLBACK_SPEED_MPS * 10.0) ** 2])
     s = sigma_per_row(steps, np.array([0.0, 10.0]), SIGMA_PARAMS["plasys-fused"])
-    assert s[1] == pytest.approx(np.hypot(GAP_FALLBACK_SPEED_MPS * 10.0, np.sqrt(2) * 1.5))
+    # E127's radius, cut by L333 to half the 14 m the walker can have gone in the gap
+    assert s[1] == pytest.approx(min(np.hypot(GAP_FALLBACK_SPEED_MPS * 10.0, np.sqrt(2) * 1.5),
+                                     0.5 * GAP_FALLBACK_SPEED_MPS * 10.0))
     # a stride with a gap that was walked (a length) holds nothing; no gap column: nothing
     walked = steps.assign(length_m=[12.0])
     assert held_gap_variance(walked) is None and held_gap_variance(steps.drop(columns=["gap_s"])) is None

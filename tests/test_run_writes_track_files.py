@@ -194,6 +194,7 @@ def test_streamed_foot_only_tracks_get_their_own_sigma_model(root, walk, tmp_pat
                  "--out", str(tmp_path / "t")]) == 0
     for d in ("r", "u", "t"):
         info = json.loads((tmp_path / d / "summary.json").read_text())["info"]["position_sigma"]
-        assert info == {"model": "plasys-foot-streaming", **SIGMA_PARAMS["plasys-foot-streaming"]}, d
+        assert info == {"model": "plasys-foot-streaming", **SIGMA_PARAMS["plasys-foot-streaming"],
+                        "bounded": False}, d  # L333: whether the end's radius is the distance bound
     run, trk = (pd.read_csv(tmp_path / d / "trajectory.csv") for d in ("r", "t"))
     np.testing.assert_allclose(run["pos_sigma_m"], trk["pos_sigma_m"], atol=0.01)

@@ -666,9 +666,10 @@ def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
         if windowed else ""
     return (f"the waist compass disagrees with the foot's gyroscope heading by a median {angle:.1f} deg over "
             f"{int(ok.sum())} straight strides{over}, more than a hard-iron offset explains (over "
-            f"{COMPASS_DISAGREE_DEG:g} deg warns, decision L182): a magnetic disturbance (steel, a building's "
-            "structure) turns this offline track, whose heading follows the compass (L17); track with `--streaming` "
-            "(the waist gyroscope's heading) or `--units foot` (the foot's own)"), info
+            f"{COMPASS_DISAGREE_DEG:g} deg warns, decision L182): one of the two headings is wrong and the check "
+            "cannot tell which (a magnetic disturbance turns the compass; the foot's own yaw drifts over a walk; "
+            "decision L336); track with `--streaming` (the waist gyroscope's heading) or `--units foot` (the foot's "
+            "own) if it is the compass: this offline track's heading follows the compass (L17)"), info
 
 
 def check_angle(mf: np.ndarray, ml: np.ndarray, psi: np.ndarray, t: np.ndarray, *, windowed: bool,

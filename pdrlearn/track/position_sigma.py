@@ -12,7 +12,9 @@ on users 1160-1179 (L150), then tested on users 1180-1199 (L151): calibrated (94
 constants, uncalibrated, too large (100 %, 20/20). It is no guarantee: magnetic disturbances,
 map constraints, real sensors worse than the simulator's and a walker other than the simulator's are outside it.
 A row whose position was held across a foot dropout (``gap_s`` > 0, no length) adds the displacement it missed,
-radius^2 + (speed x gap)^2, kept by every later row (decision E127), for every regime.
+radius^2 + (speed x gap)^2, kept by every later row (decision E127), for every regime. Decision L335: a
+``plasys-fused`` track adds its own compass check's median angle as the extent heading error (marches of 0.8-4 km).
+Decision L333: every radius is cut so its 2-sigma circle never exceeds the one that surely holds the true position.
 """
 
 from __future__ import annotations
@@ -82,6 +84,12 @@ FUSED_EXTENT_HEADING = False
 #: EXTENT_HEADING_RAD to the ``plasys-fused`` radius: L239's heading error on the part of the extent the track has come
 #: back from, per axis e^2 (R_k^2 - |D_k|^2), nothing on a walk that only goes out from its start
 FUSED_EXTENT_RETURN = False
+#: decision L334: the candidate's switch: True gives a ``plasys-fused`` track with L182's compass check
+#: ``extent_heading_rad`` = the check's measured median disagreement (rad; :func:`compass_extent_rad`) in place of
+#: L239's derived EXTENT_HEADING_RAD: the direction-dependent compass error a straight march carries (trial s32).
+#: Decision L335: adopted, L334's rule was met (marches of 0.8-4 km, users 6320-6331: 94.0 % of the strides, 12/12
+#: finals within 2 sigma, against 68.0 %, 9/12; L128's route, users 6332-6337: 98.7 %, 6/6 against 96.1 %, 5/6)
+FUSED_COMPASS_EXTENT = True
 #: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
 #: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
 GAP_FALLBACK_SPEED_MPS = 1.4
@@ -140,10 +148,41 @@ def bias_clock(steps, end: np.ndarray, t0: float, rest_s: float, rests=None) -> 
     return end - np.cumsum(skip)
 
 
-def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = None, rests=None) -> np.ndarray:
+def reach_bound(length: np.ndarray, heading: np.ndarray, missed_m: np.ndarray | None = None) -> np.ndarray:
+    """Decision L333: per stride, the radius R_k = s_k + |D_k| + l_k (m) about the track's position that holds the
+    true position by construction: the walker, starting where the track starts, is at most the distance walked s_k
+    (the summed |stride length|) from the start, and the track is |D_k| from it, so |error| <= s_k + |D_k|; l_k, the
+    longest |stride| so far, is the margin for the tracked point (a foot at rest) not being the reference point (a
+    pelvis between the feet: each within half a stride of the other, at the start and now). ``missed_m``: per stride,
+    walk the lengths do not hold, added to s_k (:func:`missed_walk`). Never decreasing (|D_k| shrinks by at most
+    |L_k| while s_k grows by it). Pure numpy; NaN-free inputs."""
+    L = np.asarray(length, float)
+    psi = np.asarray(heading, float)
+    walked = np.cumsum(np.abs(L))
+    if missed_m is not None:
+        walked = walked + np.cumsum(np.asarray(missed_m, float))
+    reach = np.hypot(np.cumsum(L * np.cos(psi)), np.cumsum(L * np.sin(psi)))
+    return walked + reach + np.maximum.accumulate(np.abs(L)) if len(L) else walked
+
+
+def missed_walk(length: np.ndarray, bad: np.ndarray, held_var_m2: np.ndarray | None) -> np.ndarray:
+    """Decision L333: per stride, the walk (m) :func:`reach_bound` adds to the lengths: a held gap (E127) its speed
+    x gap (sqrt(2 ``held_var_m2``)); a stride of unknown length or heading (L143, modelled as 0) twice the track's
+    longest known |stride| (the walk it may have been, and the track's own step the model left out)."""
+    L = np.abs(np.asarray(length, float))
+    known = L[~bad & np.isfinite(L)]
+    out = np.where(bad, 2.0 * (float(known.max()) if known.size else 0.0), 0.0)
+    return out if held_var_m2 is None else out + np.sqrt(2.0 * np.asarray(held_var_m2, float))
+
+
+def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = None, rests=None,
+                  bounded: dict | None = None) -> np.ndarray:
     """The 1-sigma radius (m) at each time ``t`` (a track's trajectory times, the first its start) of a track
     with ``steps`` (steps.csv columns ``length_m``, ``heading_rad``, ``end_s``) under the model ``params``: the
-    covariance after the last stride that ended at or before the time, 0 at the start, never decreasing.
+    covariance after the last stride that ended at or before the time, 0 at the start, never decreasing, and
+    (decision L333) never over half :func:`reach_bound`, so the 2-sigma circle is never wider than the circle that
+    holds the true position for certain; ``bounded`` (a dict, when given) gets ``"bounded"``: whether the last
+    stride's radius was cut to that bound.
     ``rest_s`` (decision L297): the bias term's clock skips the rests longer than this (:func:`bias_clock`); with
     ``rests`` (decision L306) only those of them that overlap these (start, end) spans."""
     t = np.asarray(t, float)
@@ -151,6 +190,7 @@ def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = Non
     if len(steps) and len(t):
         t0 = float(t[0])
         length, heading, end = (steps[c].to_numpy(float) for c in ("length_m", "heading_rad", "end_s"))
+        raw = length
         # decision L143: a stride of unknown length, heading or end has no known displacement: its rows get NaN,
         # the later strides are modelled without it (its length taken as 0; an unknown end as the stride before's)
         bad = ~(np.isfinite(length) & np.isfinite(heading) & np.isfinite(end))
@@ -163,9 +203,14 @@ def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = Non
             length, heading = np.where(bad, 0.0, length), np.where(bad, 0.0, heading)
             end = pd.Series(np.where(np.isfinite(end), end, np.nan)).ffill().fillna(t0).to_numpy(float)
         clock = end if rest_s is None else bias_clock(steps, end, t0, rest_s, rests)  # L297, L306
-        cov = position_covariance(length, heading, clock, t0, **params, held_var_m2=held_gap_variance(steps))
+        held = held_gap_variance(steps)
+        cov = position_covariance(length, heading, clock, t0, **params, held_var_m2=held)
         r = sigma_radius(cov)
         r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
+        cap = 0.5 * reach_bound(length, heading, missed_walk(raw, bad, held))  # L333: 2 sigma <= the sure radius
+        if bounded is not None:
+            bounded["bounded"] = bool(r[-1] > cap[-1])
+        r = np.minimum(r, cap)
         r[bad] = np.nan
         i = np.searchsorted(end, t + 1e-9, side="right") - 1
         sigma = np.where(i >= 0, r[np.clip(i, 0, len(r) - 1)], 0.0)
@@ -173,15 +218,28 @@ def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = Non
     return sigma
 
 
-def sigma_params(regime: str) -> dict[str, float]:
+def compass_extent_rad(compass_check: dict | None) -> float:
+    """Decision L334: the heading error (rad) of a ``plasys-fused`` track's extent term: L182's judged median |angle|
+    between the waist compass and the foot's gyroscope heading (``info.compass_check.median_deg``); 0 without a
+    check (no waist magnetometer, too few straight strides) or a non-finite median."""
+    med = (compass_check or {}).get("median_deg")
+    return float(np.radians(med)) if med is not None and np.isfinite(med) and med > 0 else 0.0
+
+
+def sigma_params(regime: str, info: dict | None = None) -> dict[str, float]:
     """The error model of ``regime``: its :data:`SIGMA_PARAMS`, with L239's extent term on ``plasys-fused`` when
     :data:`FUSED_EXTENT_HEADING` is set (decision L240) and L241's return term when :data:`FUSED_EXTENT_RETURN` is
-    (decision L242; the two are alternatives: both set add both)."""
+    (decision L242; the two are alternatives: both set add both); with :data:`FUSED_COMPASS_EXTENT` set (decision
+    L334) the extent term's heading error is the track's own compass check (``info["compass_check"]``,
+    :func:`compass_extent_rad`) instead of L239's."""
     params = dict(SIGMA_PARAMS[regime])
     if regime == "plasys-fused":
         for flag, term in ((FUSED_EXTENT_HEADING, "extent_heading_rad"), (FUSED_EXTENT_RETURN, "extent_return_rad")):
             if flag:
                 params[term] = EXTENT_HEADING_RAD
+        compass = compass_extent_rad((info or {}).get("compass_check")) if FUSED_COMPASS_EXTENT else 0.0
+        if compass:  # decisions L334 / L335: the track's own compass check, in place of L239's derived value
+            params["extent_heading_rad"] = compass
     return params
 
 
@@ -194,14 +252,16 @@ def add_position_sigma(result, session, regime: str | None = None) -> None:
     if not len(traj):
         return
     regime = regime or sigma_regime(result.info, session)
-    params = sigma_params(regime)
+    params = sigma_params(regime, result.info)
     rest_s, rests = None, result.info.get("rest_bias_rests")
     if rests is not None:  # decision L306: L296 was in force on this heading (gyro; `run`'s live one: L309)
         from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
 
         rest_s = REST_BIAS_MIN_S  # decision L297: L296's rests turn the heading by their moving samples only
-    traj["pos_sigma_m"] = sigma_per_row(result.steps, traj["t"].to_numpy(float), params, rest_s, rests)
-    result.info["position_sigma"] = {"model": regime, **params}
+    bounded: dict = {}
+    traj["pos_sigma_m"] = sigma_per_row(result.steps, traj["t"].to_numpy(float), params, rest_s, rests, bounded)
+    # decision L333: whether the end's radius is the distance bound (the model's own was wider)
+    result.info["position_sigma"] = {"model": regime, **params, "bounded": bounded.get("bounded", False)}
 
 
 def drop_position_sigma(result) -> None:
@@ -240,10 +300,18 @@ def position_sigma_warning(summary: dict) -> str | None:
         return None
     fix = ("track offline with a foot and a waist unit (the waist compass, `plasys-fused`) or give position fixes "
            "(`track --fixes` / `--gnss`)")
+    why = "a gyroscope-only heading drifts over a long walk"
     if model == "plasys-gyro-fallback":  # decision L267: the compass was judged disturbed (L182), the track
         fix = ("this offline track left the waist compass (L182, L226) for the waist gyroscope; give position "
                "fixes (`track --fixes` / `--gnss`)")
+    elif model == "plasys-fused":  # decision L335: the track already reads the compass; its check's angle
+        ext = ((summary.get("info") or {}).get("position_sigma") or {}).get("extent_heading_rad")
+        if ext:
+            why = (f"the waist compass and the foot's gyroscope heading disagree by a median {np.degrees(ext):.1f} "
+                   "deg on this walk (L182's check), a heading error this radius carries over the route's extent, "
+                   "decision L335")
+        fix = "give position fixes (`track --fixes` / `--gnss`)"
     return (f"the end position's 2-sigma radius {2 * float(sigma):.0f} m is {200 * float(sigma) / float(dist):.0f} % "
             f"of the {float(dist):.0f} m walked (model {model}; over {100 * SIGMA_SHARE_WARN:.0f} % warns, decision "
-            "L175): the position is not usable (a gyroscope-only heading drifts over a long walk; distance, steps "
-            f"and gait are not affected); for a position, {fix}")
+            f"L175): the position is not usable ({why}; distance, steps and gait are not affected); for a position, "
+            f"{fix}")
