@@ -715,6 +715,7 @@ def track_all(
     common_span: bool = _track.COMMON_SPAN_OPT,
     align_units: bool = _track.ALIGN_UNITS_OPT,
     clock_offset: float = _track.CLOCK_OFFSET_OPT,
+    clock_drift_ppm: float = _track.CLOCK_DRIFT_OPT,
     units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
     per: str = _track.PER_OPT,

@@ -876,6 +876,42 @@ def clock_offset_fix(offset: float, command: str) -> str:
             f"about 0.25 s, L162); if the waist unit really started {'later' if offset > 0 else 'earlier'}")
 
 
+#: decision B264: the largest clock drift between the two units (ppm) that a refusal calls clock drift - a crystal's
+#: is tens of ppm and the simulator's knob goes to thousands (trial s32's 2000 ppm); a unit stopping early gives far
+#: more (a battery dead at half the walk: 500000 ppm)
+MAX_CLOCK_DRIFT_PPM = 5000.0
+
+
+def waist_clock_drift(foot: tuple[float, float], waist: tuple[float, float]) -> tuple[float, float] | None:
+    """Decision B264: ``(offset_s, drift)`` (``--clock-offset``'s and ``--clock-drift-ppm``'s model, t_waist =
+    t_foot * (1 + drift) + offset, as the simulator's clocks) when the foot's and the waist's spans (first, last
+    sample) differ at the end by more than :data:`SPAN_TOLERANCE_S` beyond their start offset and that difference is a
+    drift of at most :data:`MAX_CLOCK_DRIFT_PPM` over the foot's span (proportional to the duration: a 200 ppm drift
+    over 2.28 h is 1.64 s) - else None (B243's constant shift, or a unit that stopped far too early for a clock)."""
+    start, end = waist[0] - foot[0], waist[1] - foot[1]
+    duration = foot[1] - foot[0]
+    if abs(end - start) <= SPAN_TOLERANCE_S or not duration > 0:
+        return None
+    drift = (end - start) / duration  # t_waist - t_foot grows by drift x the time walked
+    offset = start - foot[0] * drift  # the model's offset at t_foot = 0 (its clock's origin, as --clock-offset's)
+    if abs(drift) * 1e6 > MAX_CLOCK_DRIFT_PPM:
+        return None
+    return float(offset), float(drift)
+
+
+def clock_drift_fix(offset: float, drift: float, command: str, unit: str = "foot") -> str:
+    """Decision B264: the refusal's first way out for clocks that drift apart (:func:`waist_clock_drift`): the drift
+    in ppm, then ``command`` with ``--clock-drift-ppm`` (and ``--clock-offset`` when the start is over
+    :data:`SPAN_TOLERANCE_S` off), named before the ways that cut data; ``unit``: the one that stopped first."""
+    ppm = drift * 1e6
+    given = f"--clock-drift-ppm {ppm:.0f}" + (f" --clock-offset {offset:.2f}" if abs(offset) > SPAN_TOLERANCE_S
+                                               else "")
+    return (f"the ends differ in proportion to the duration, as a waist clock running {abs(ppm):.0f} ppm "
+            f"{'fast' if ppm > 0 else 'slow'} gives (clock drift, decision B264) -- if both units recorded the whole "
+            f"walk, give the drift: `{command} {given}` (decision E111's mechanism; --align-units cannot read it, "
+            f"L162); if the {unit} unit really stopped early")
+
+
 def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = "refuse") -> str | None:
     """Decision B72: refuse (``mode="refuse"``) or warn about (``"warn"``, ``pdrlearn info``) a stream whose span
     is shorter than the longest span of its unit's streams (foot, waist) by more than :data:`SPAN_TOLERANCE_S`

@@ -381,12 +381,21 @@ class Session:
                        f"(decision B83){alone}, or re-record" if hi > lo
                        else f"they do not overlap: re-record{alone}")
                 if {m.placement, s.placement} == {"foot", "waist"}:  # decision B243: a shifted waist clock first
-                    from pdrlearn.io.plasys import clock_offset_fix, waist_clock_offset
+                    from pdrlearn.io.plasys import (
+                        clock_drift_fix,
+                        clock_offset_fix,
+                        waist_clock_drift,
+                        waist_clock_offset,
+                    )
 
                     foot, waist = (m, s) if m.placement == "foot" else (s, m)
                     offset = waist_clock_offset((float(foot.t[0]), float(foot.t[-1])),
                                                 (float(waist.t[0]), float(waist.t[-1])))
-                    fix = fix if offset is None else f"{clock_offset_fix(offset, command)}, {fix}"
+                    drift = waist_clock_drift((float(foot.t[0]), float(foot.t[-1])),
+                                              (float(waist.t[0]), float(waist.t[-1]))) if offset is None else None
+                    first = "foot" if float(foot.t[-1]) < float(waist.t[-1]) else "waist"
+                    fix = (f"{clock_offset_fix(offset, command)}, {fix}" if offset is not None else  # B243
+                           f"{clock_drift_fix(*drift, command, first)}, {fix}" if drift is not None else fix)  # B264
                 raise DataError(
                     f"{where} covers {s.t[0]:.2f}-{s.t[-1]:.2f} s but {master} {m.t[0]:.2f}-{m.t[-1]:.2f} s; "
                     f"its values would be made up for the missing {max(late, 0) + max(early, 0):.2f} s -- {fix}")

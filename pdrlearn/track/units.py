@@ -70,7 +70,13 @@ def check_tracked_span(session: Session, unit: str) -> None:
     out at 180 s while the waist went on to 385 s was tracked "ok", 198.91 of the 425.7 m walked). The mirror
     case, the other unit stopping early, is refused where a method needs it to cover the tracked one (B21, B83);
     both name the same two ways out: ``--common-span`` (the time both cover, B83) or ``--units`` (one unit)."""
-    from pdrlearn.io.plasys import SPAN_TOLERANCE_S, clock_offset_fix, waist_clock_offset
+    from pdrlearn.io.plasys import (
+        SPAN_TOLERANCE_S,
+        clock_drift_fix,
+        clock_offset_fix,
+        waist_clock_drift,
+        waist_clock_offset,
+    )
 
     other = "waist" if unit == "foot" else "foot"
     mine, theirs = unit_span(session, unit), unit_span(session, other)
@@ -90,6 +96,9 @@ def check_tracked_span(session: Session, unit: str) -> None:
     offset = waist_clock_offset(mine, theirs) if unit == "foot" else None
     if offset is not None:  # decision B243: a shifted clock - the fix that keeps the whole walk is named first
         raise DataError(f"{head}: {clock_offset_fix(offset, f'pdrlearn track {folder}')}, {cut} (decision B126)")
+    drift = waist_clock_drift(mine, theirs) if unit == "foot" else None
+    if drift is not None:  # decision B264: clocks drifting apart - the drift named first, as B243's offset
+        raise DataError(f"{head}: {clock_drift_fix(*drift, f'pdrlearn track {folder}')}, {cut} (decision B126)")
     raise DataError(f"{head}: it {what} the {other} unit, so the track would describe only part of the walk -- "
                     f"{cut}, or restore the {unit} files (decision B126)")
 
