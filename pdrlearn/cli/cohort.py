@@ -713,6 +713,7 @@ def track_all(
     altitude: str = _track.ALTITUDE_OPT,
     dpi: int = _track.DPI_OPT,
     common_span: bool = _track.COMMON_SPAN_OPT,
+    drop_partial_row: bool = _track.DROP_PARTIAL_ROW_OPT,
     align_units: bool = _track.ALIGN_UNITS_OPT,
     clock_offset: float = _track.CLOCK_OFFSET_OPT,
     clock_drift_ppm: float = _track.CLOCK_DRIFT_OPT,

@@ -106,6 +106,10 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
                                "every file and label table cut to it, with one warning naming the seconds dropped "
                                "from each file (decision B81).")
+DROP_PARTIAL_ROW_OPT = typer.Option(False, "--drop-partial-row", help="A sensor file whose last line has no line "
+                                    "break (a row cut when a unit's battery died, refused by B128): drop that last "
+                                    "line, with one warning; a file then shorter than its unit's others is still "
+                                    "refused (B72; decision B266).")
 ALIGN_UNITS_OPT = typer.Option(False, "--align-units", help="plasys, offline, foot + waist: move the waist unit's "
                                "clock onto the foot's by the steps both detect (offset and drift, "
                                "pdrlearn.steps.align_units; reliable for offsets under half a step period, about "
@@ -232,6 +236,7 @@ def track(
     altitude: str = ALTITUDE_OPT,
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
+    drop_partial_row: bool = DROP_PARTIAL_ROW_OPT,
     align_units: bool = ALIGN_UNITS_OPT,
     clock_offset: float = CLOCK_OFFSET_OPT,
     clock_drift_ppm: float = CLOCK_DRIFT_OPT,
@@ -349,7 +354,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    detector: str | None = None, length_model: str | None = None,
                    altitude: str | None = None, align_units: bool = False,
                    bout_rule: str | None = None, clock_offset: float | None = None,
-                   clock_drift_ppm: float | None = None) -> dict:
+                   clock_drift_ppm: float | None = None, drop_partial_row: bool = False) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -462,7 +467,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
             "altitude": altitude, "align_units": align_units, "clock_offset_s": clock_offset_s,
-            "clock_drift": clock_drift}
+            "clock_drift": clock_drift, "drop_partial_row": drop_partial_row}
 
 
 def read_params(params: Path):
@@ -529,7 +534,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     contacts = o["contacts"]
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
-    session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
+    session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse",
+                           drop_partial_row=bool(o.get("drop_partial_row")))  # decision B266
     from pdrlearn.io.external.hapt import activities_line
 
     labels = activities_line(session_dir)  # decision H8: HAPT's activity labels are not read; said once

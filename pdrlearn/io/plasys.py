@@ -373,8 +373,11 @@ def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale:
     return _to_stream(path, name, arr, time_scale, check_unit, (value_scale, None))
 
 
-def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np.ndarray]:
-    """One sensor CSV's name and numeric array (timestamps in the file's unit, then the value columns)."""
+def _read_raw(path: str | os.PathLike, name: str | None = None, *,
+              drop_partial_row: bool = False) -> tuple[str, np.ndarray]:
+    """One sensor CSV's name and numeric array (timestamps in the file's unit, then the value columns).
+    ``drop_partial_row`` (decision B266, ``track --drop-partial-row``): a file that does not end with a line break
+    (B128: its last row may be cut mid-row, a unit whose battery died) loses its last line, with one warning."""
     path = Path(path)
     name = name or path.stem
     if name not in SENSORS:
@@ -384,8 +387,14 @@ def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np
         raise DataError(f"{path}: file not found")
     df = session_table(path)  # decisions B222, B223
     check_columns(df, ("timestamp", *spec.columns), str(path))
+    cut = ends_mid_line(path)
+    if drop_partial_row and cut and len(df) > 1:  # decision B266: the dead battery's last row, said once
+        df = df.iloc[:-1]
+        cut = False
+        log.warning("%s: the last line (line %d) has no line break at the end, as a row cut when a battery died: "
+                    "dropped (--drop-partial-row, decision B266)", path, len(df) + 2)
     _refuse_datetimes(df["timestamp"], path)
-    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=ends_mid_line(path))
+    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=cut)
 
 
 def _refuse_datetimes(col: pd.Series, path: Path) -> None:
@@ -1120,7 +1129,8 @@ def folder_arg(folder, caller: str) -> Path:
 
 
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
-                 bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse") -> Session:
+                 bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse",
+                 drop_partial_row: bool = False) -> Session:
     """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
     uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off). ``bridge_drops``: bridge intervals of
     dropped samples up to :data:`MAX_BRIDGED_S` by linear interpolation and warn about the longer ones up to 1 s
@@ -1130,7 +1140,8 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     time span is over 1 s shorter than the others' (a file cut short) is refused (``"refuse"``), warned about
     (``"warn"``, ``pdrlearn info``) or not checked (``"off"``; decision B72); ``"common"`` (``pdrlearn track
     --common-span``) cuts every stream, and the label tables, to the time all the short unit's files cover, with
-    one warning naming the seconds dropped from each file (decision B81).
+    one warning naming the seconds dropped from each file (decision B81). ``drop_partial_row``: a sensor file
+    without a line break at the end loses its last (partial) row, with one warning (decision B266).
 
     Raises
     ------
@@ -1163,7 +1174,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     for name, spec in SENSORS.items():
         p = folder / spec.filename
         if p.exists():
-            raw[name] = _read_raw(p, name)[1]
+            raw[name] = _read_raw(p, name, drop_partial_row=drop_partial_row)[1]
     if not clocks and not _declares_integer_clock(meta, meta_path, rate):
         one_unit_counting(raw, folder, meta_path)  # decision B116: a counter on one unit needs its own clock
     scales: dict[str, float] = {}
