@@ -96,3 +96,11 @@ def test_a_slow_waist_clock_is_named_by_b21s_check_too(slow, command, capsys, tm
     info = json.loads((tmp_path / "o" / "summary.json").read_text())["info"]
     assert info["unit_alignment"]["drift"] == pytest.approx(-4e-3)
 
+
+
+def test_info_names_the_drift(sessions, capsys):
+    _, drift = sessions
+    capsys.readouterr()
+    assert main(["info", str(drift)]) == 0
+    err = capsys.readouterr().err
+    assert "clock drift of about 4000 ppm (--clock-drift-ppm 4000, B264)" in err, err

@@ -536,6 +536,9 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse",
                            drop_partial_row=bool(o.get("drop_partial_row")))  # decision B266
+    from pdrlearn.io.plasys import unit_ends
+
+    ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
     from pdrlearn.io.external.hapt import activities_line
 
     labels = activities_line(session_dir)  # decision H8: HAPT's activity labels are not read; said once
@@ -585,6 +588,9 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         session, given_clock = move_waist_clock(session, o.get("clock_offset_s") or 0.0, o.get("clock_drift") or 0.0,
                                                 clock_lines, source="given", option=given)
     check_tracked_span(session, tracked_unit(pipeline))  # decision B126: the tracked unit covers the walk
+    from pdrlearn.track.units import span_cut_s
+
+    cut_s = span_cut_s(ends_read, session, tracked_unit(pipeline))  # decision B267: B81 / B83 / L162's cuts
     from pdrlearn.track.clock import clock_texts, recording_start, require_start
 
     start = recording_start(session.meta, session.where)  # decision L298 (B254: a bad one refused before tracking)
@@ -717,6 +723,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
     unit = tracked_unit(pipeline)
     summary.update(time_accounting(whole, session, unit, win))  # decision L275: where the time went
+    summary["common_span_cut_s"] = cut_s  # decision B267: the tracked unit's seconds a common-span cut took
     if win is not None:
         # decision B242: the window as tracked (an END past the recording clipped to it, info["window"])
         summary["window_start_s"], summary["window_end_s"] = (float(result.info["window"][k])

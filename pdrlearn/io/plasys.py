@@ -1205,6 +1205,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         raise ValueError(f"spans={spans!r}: use 'refuse', 'warn', 'off' or 'common'")
     # decision B72: before a gap warning about a cut file; B81: "common" cuts the session instead of refusing
     t_uncut = min((float(s.t[0]) for s in streams.values() if len(s)), default=None)  # B81: before any cut
+    ends_uncut = unit_ends(streams) if spans == "common" else None  # decision B267: before any cut
     cut = cut_to_common_span(streams, folder) if spans == "common" else check_stream_spans(streams, folder, mode=spans)
     _warn_jitter(streams, folder)  # decision B182
     if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
@@ -1255,6 +1256,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
                       check_units=check_units)
     if spans == "common" and cut is not None:  # decision B81 / L105: --window counts from the uncut recording
         session._t_start_uncut = t_uncut
+        session._unit_ends_uncut = ends_uncut
     session._valid = session._fingerprint()  # decision B49: the entry points need not repeat this function's checks
     for label, table in [*([("steps", steps)] if steps is not None else []), *extras.items()]:
         check_label_times(table, session.t_start, session.t_end, str(folder / f"{label}.csv"))

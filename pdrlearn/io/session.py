@@ -251,6 +251,9 @@ class Session:
     #: decision B81: the recording's first sample (s) before ``read_session(spans="common")`` cut the session to
     #: its common span (None: not cut); ``track --window`` counts its seconds from it (L105)
     _t_start_uncut: float | None = field(default=None, repr=False, compare=False)
+    #: decision B267: each unit's (first, last) sample (s) before ``read_session(spans="common")`` cut the session
+    #: (None: not cut); ``track`` counts the seconds the cut took from the tracked unit (``common_span_cut_s``)
+    _unit_ends_uncut: dict | None = field(default=None, repr=False, compare=False)
     #: decision B113: the recording's :meth:`content_id` when this session is its copy resampled to a model's
     #: rate (``pdrlearn evaluate --resample``): the held-out check (B87) still knows the recording
     _source_id: str | None = field(default=None, repr=False, compare=False)
