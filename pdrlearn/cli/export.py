@@ -410,6 +410,7 @@ def run(
             raise DataError(f"run: {option} moves the waist unit's clock onto the foot's; the --protocol capture "
                             f"{protocol} carries the foot unit only (one clock): drop {option}")
     alignment = None  # decision L170: the clock offset and drift --align-units applied
+    cut_s = 0.0  # decision B267: the seconds a common-span cut took from the replayed unit (a capture: none)
     if protocol is not None:
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
@@ -474,6 +475,9 @@ def run(
 
         # decision L77: its drops warning; B230: --common-span as track's (B81 / B83's cut)
         session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse")
+        from pdrlearn.io.plasys import unit_ends
+
+        ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
         rates = {n: st.rate_hz for n, st in session.streams.items()}
         where = f"session '{session.name}'"
         use, said = _units_for(bundle, units, set(session.streams), where)
@@ -488,6 +492,9 @@ def run(
         if moved:
             session, alignment = _unit_clocks(session, use, align_units, clock_offset, clock_drift)
         require_stride_cover(session, [*required, *optional], "pdrlearn run")  # decision B21; B230: names run's
+        from pdrlearn.track.units import span_cut_s
+
+        cut_s = span_cut_s(ends_read, session, "foot" if "foot" in use else "waist")  # decision B267, as track's
         if "foot" in use:
             _foot_checks(session)  # decisions B201, B203, as `track`
         if not moved:  # L161's check on clocks the recording's cover check accepted
@@ -555,6 +562,7 @@ def run(
     # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
     table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
     summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
+    summary["common_span_cut_s"] = cut_s  # decision B267, as track's
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
     if out is not None:

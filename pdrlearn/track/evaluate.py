@@ -1233,6 +1233,10 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
     summary["pipeline"] = pipeline if pipeline is not None else result.info.get("pipeline")
     summary["rate_hz"] = tracked_rate_hz(session, summary["pipeline"])  # decision C19
+    from pdrlearn.track.units import span_cut_s
+
+    unit = "waist" if str(summary["pipeline"]).startswith("waist") else "foot"  # the tracked unit (B126)
+    summary["common_span_cut_s"] = span_cut_s(getattr(session, "_unit_ends_uncut", None), session, unit)  # decision B267
     from pdrlearn import __version__
 
     summary["pdrlearn_version"] = __version__  # decision C18: which pdrlearn wrote the numbers
