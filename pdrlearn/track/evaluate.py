@@ -1236,7 +1236,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.track.units import span_cut_s
 
     unit = "waist" if str(summary["pipeline"]).startswith("waist") else "foot"  # the tracked unit (B126)
-    summary["common_span_cut_s"] = span_cut_s(getattr(session, "_unit_ends_uncut", None), session, unit)  # decision B267
+    uncut = getattr(session, "_unit_ends_uncut", None)  # decision B267: read_session's ends before a cut
+    summary["common_span_cut_s"] = span_cut_s(uncut, session, unit)
     from pdrlearn import __version__
 
     summary["pdrlearn_version"] = __version__  # decision C18: which pdrlearn wrote the numbers
