@@ -917,8 +917,8 @@ def clock_drift_fix(offset: float, drift: float, command: str, unit: str = "foot
                                                else "")
     return (f"the ends differ in proportion to the duration, as a waist clock running {abs(ppm):.0f} ppm "
             f"{'fast' if ppm > 0 else 'slow'} gives (clock drift, decision B264) -- if both units recorded the whole "
-            f"walk, give the drift: `{command} {given}` (decision E111's mechanism; --align-units cannot read it, "
-            f"L162); if the {unit} unit really stopped early")
+            f"walk, give the drift: `{command} {given}` (decision B265, --clock-offset's mechanism, E111); if the "
+            f"{unit} unit really stopped early")
 
 
 def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = "refuse") -> str | None:
