@@ -279,6 +279,10 @@ SESSIONS: tuple[Column, ...] = (
                                        "time before the walk, a seated stretch at a window's edge) (L275)"),
     ("time_span_s", "s", "number", "the recording of the tracked unit from the session start, or the --window: "
                                    "time_walking_s + time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
+    ("common_span_cut_s", "s", "number", "the seconds of the tracked unit's recording cut away to the time both "
+                                         "units (or every file) cover: --common-span (B81, B83) or a moved waist "
+                                         "clock's overhang (L162); 0 when nothing was cut - a march cut short "
+                                         "by a dead unit shows here, not only in the warnings (B267)"),
     ("time_walking_s", "s", "number", "the whole session's walking pieces (walking_time_s's, L79) inside the span, "
                                       "data gaps left out: = walking_time_s for a whole session, and windows add up "
                                       "to it (L275)"),

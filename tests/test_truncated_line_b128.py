@@ -33,7 +33,9 @@ def test_a_file_cut_mid_line_is_named_truncated(session, tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert err == (f"error: {f}: last line incomplete (line {n} stops mid-row, no line break at the end): file "
                    "truncated? -- restore the whole file from the recording (deleting the line leaves a file cut "
-                   "short, decision B72)")
+                   "short, decision B72); if the recording itself ends there (a unit whose battery died mid-row), "
+                   f"drop that row: `pdrlearn track {cut} --drop-partial-row`, or `sed -i '$ d' {f}` (decision "
+                   "B266; B72 still refuses a file then shorter than its unit's others)")
     # a bad value in a file that ends with a line break is B-as-before: the row named, no "truncated"
     f.write_text(text.replace("\n", "\nnan,nan,nan,nan\n", 1))
     assert main(["track", str(cut), "--out", str(tmp_path / "t")]) == 2

@@ -39,10 +39,12 @@ def info(
 
     summary["foot_rests"] = foot_rest_stats(s)  # decisions B133 (rest |acc| in g, a display), B134
     from pdrlearn.io.meta_keys import unknown_keys_line
+    from pdrlearn.track.units import units_apart_line
 
     for line in (foot_placement_warning(summary["foot_rests"], s.where),
                  foot_scale_warning(summary["foot_rests"], s.where),  # decision B201: a rest |acc| off 1 g
-                 unknown_keys_line(s.meta, s.where)):  # decision B262: meta.json keys pdrlearn does not read
+                 unknown_keys_line(s.meta, s.where),  # decision B262: meta.json keys pdrlearn does not read
+                 units_apart_line(s)):  # decision B267: the units' spans differ (what track refuses or cuts)
         if line:
             import logging
 

@@ -223,21 +223,23 @@ def _units_for(bundle, units: str | None, have: set[str] | None, where: str):
     return check_units(bundle, ("foot",)), True
 
 
-def _unit_clocks(session, units, align: bool, offset_s: float | None = None):
+def _unit_clocks(session, units, align: bool, offset_s: float | None = None, drift: float | None = None):
     """Decisions L161, L170: a replay with the foot and the waist unit checks their clocks as ``track`` does (the
     same function, :func:`pdrlearn.track.plasys.unit_offset_line`, on the whole recording: the replay has it) and
     warns when the units' steps are over 0.2 s apart, naming ``run --align-units``; with ``align`` the waist clock
     is moved onto the foot's first (:func:`pdrlearn.track.plasys.align_clocks`, L162's); with ``offset_s`` (``run
-    --clock-offset``, decision E111) by that offset, as ``track --clock-offset``, and the clocks then checked. Returns
+    --clock-offset``, decision E111) by that offset, as ``track --clock-offset``, and the clocks then checked (with
+    ``drift``, ``run --clock-drift-ppm`` as a fraction, decision B265: also by that drift). Returns
     the session to replay and the alignment applied (``{"offset_s", "drift", "source", ...}``; None without ``align``
     or ``offset_s``, or when the estimate failed)."""
     import logging
 
-    from pdrlearn.cli.track import no_waist_for_clock
+    from pdrlearn.cli.track import given_clock_options, no_waist_for_clock
     from pdrlearn.track.plasys import align_clocks, move_waist_clock, unit_offset_line
 
     two = "waist" in units and session.has("fAccelerometer", "wAccelerometer", "wGyroscope")
-    for option, asked in (("--align-units", align), ("--clock-offset", offset_s is not None)):
+    given = given_clock_options(offset_s, drift)  # E111; B265: also the drift
+    for option, asked in (("--align-units", align), (given, bool(given))):
         if asked and not two:  # decision B192's line, as track's (E112: also --clock-offset's)
             raise no_waist_for_clock("run", option, session.where)
     if not two:
@@ -247,8 +249,9 @@ def _unit_clocks(session, units, align: bool, offset_s: float | None = None):
         session, alignment = align_clocks(session, lines)
     else:
         alignment = None
-        if offset_s is not None:  # decision E111: moved by hand, then checked as the recording is (L161)
-            session, alignment = move_waist_clock(session, offset_s, 0.0, lines, source="given")
+        if given:  # decision E111: moved by hand, then checked as the recording is (L161); B265: also the drift
+            session, alignment = move_waist_clock(session, offset_s or 0.0, drift or 0.0, lines, source="given",
+                                                  option=given)
         line = unit_offset_line(session, "pdrlearn run")
         lines += [line] if line else []
     for line in lines:
@@ -313,6 +316,7 @@ def run(
                                      "drift over the whole recording, as `track --align-units`; decision L170). "
                                      "Without it, the units' steps over 0.2 s apart are warned about (L161)."),
     clock_offset: float = _track.CLOCK_OFFSET_OPT,
+    clock_drift_ppm: float = _track.CLOCK_DRIFT_OPT,
     common_span: bool = typer.Option(False, "--common-span", help="A session whose units (or one unit's files) "
                                      "cover different times: replay only the time all the files cover, with one "
                                      "warning naming the seconds dropped from each file (decisions B81, B83, B230; "
@@ -362,6 +366,7 @@ def run(
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
     heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
     clock_offset = _track.clock_offset_value(clock_offset, align_units, "run")  # decision E112, as `track`
+    clock_drift = _track.clock_drift_value(clock_drift_ppm, align_units, "run")  # decision B265, as `track`
     from pdrlearn.track.bouts import bout_rule as read_bout_rule
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
 
@@ -379,6 +384,7 @@ def run(
                  if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
                                                      ("--no-resample", no_resample), ("--align-units", align_units),
                                                      ("--clock-offset", clock_offset is not None),
+                                                     ("--clock-drift-ppm", clock_drift is not None),
                                                      ("--common-span", common_span),
                                                      ("--warn-out-of-domain", warn_out_of_domain is not None),
                                                      ("--drop-neighbour", drop_neighbour))
@@ -398,11 +404,13 @@ def run(
     if protocol is not None and common_span:  # decision B230: a capture has one unit's streams, on one clock
         raise DataError(f"run: --common-span cuts a session's files to the time all of them cover; the --protocol "
                         f"capture {protocol} has no files: drop --common-span")
-    for option, asked in (("--align-units", align_units), ("--clock-offset", clock_offset is not None)):
+    for option, asked in (("--align-units", align_units), ("--clock-offset", clock_offset is not None),
+                          ("--clock-drift-ppm", clock_drift is not None)):
         if protocol is not None and asked:  # decisions L170, E112
             raise DataError(f"run: {option} moves the waist unit's clock onto the foot's; the --protocol capture "
                             f"{protocol} carries the foot unit only (one clock): drop {option}")
     alignment = None  # decision L170: the clock offset and drift --align-units applied
+    cut_s = 0.0  # decision B267: the seconds a common-span cut took from the replayed unit (a capture: none)
     if protocol is not None:
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
@@ -467,6 +475,9 @@ def run(
 
         # decision L77: its drops warning; B230: --common-span as track's (B81 / B83's cut)
         session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse")
+        from pdrlearn.io.plasys import unit_ends
+
+        ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
         rates = {n: st.rate_hz for n, st in session.streams.items()}
         where = f"session '{session.name}'"
         use, said = _units_for(bundle, units, set(session.streams), where)
@@ -477,14 +488,17 @@ def run(
 
         # decisions L161, L170, E111: as track's; B230: a clock moved by --clock-offset / --align-units before B21's
         # cover check (a waist clock 2 s late covers the foot's time once moved; an overhang is cut, L162)
-        moved = align_units or clock_offset is not None
+        moved = align_units or clock_offset is not None or clock_drift is not None  # B265: also the drift
         if moved:
-            session, alignment = _unit_clocks(session, use, align_units, clock_offset)
+            session, alignment = _unit_clocks(session, use, align_units, clock_offset, clock_drift)
         require_stride_cover(session, [*required, *optional], "pdrlearn run")  # decision B21; B230: names run's
+        from pdrlearn.track.units import span_cut_s
+
+        cut_s = span_cut_s(ends_read, session, "foot" if "foot" in use else "waist")  # decision B267, as track's
         if "foot" in use:
             _foot_checks(session)  # decisions B201, B203, as `track`
         if not moved:  # L161's check on clocks the recording's cover check accepted
-            session, alignment = _unit_clocks(session, use, align_units, clock_offset)
+            session, alignment = _unit_clocks(session, use, align_units, clock_offset, clock_drift)
         # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E30)
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
@@ -540,13 +554,15 @@ def run(
     add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot-streaming")
     if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
         result.info["initial_heading_rad"] = heading0
-    if align_units or clock_offset is not None:  # L170, E111: as track's info (L162); None: the steps did not align
+    # L170, E111, B265: as track's info (L162); None: the steps did not align
+    if align_units or clock_offset is not None or clock_drift is not None:
         result.info["unit_alignment"] = alignment
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
     result.info["out_of_domain"] = tracker.domain_report()  # decision E105: track's C16 report (flush warned C61's)
     # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
     table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
     summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
+    summary["common_span_cut_s"] = cut_s  # decision B267, as track's
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
     if out is not None:

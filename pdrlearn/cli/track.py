@@ -106,6 +106,10 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
                                "every file and label table cut to it, with one warning naming the seconds dropped "
                                "from each file (decision B81).")
+DROP_PARTIAL_ROW_OPT = typer.Option(False, "--drop-partial-row", help="A sensor file whose last line has no line "
+                                    "break (a row cut when a unit's battery died, refused by B128): drop that last "
+                                    "line, with one warning; a file then shorter than its unit's others is still "
+                                    "refused (B72; decision B266).")
 ALIGN_UNITS_OPT = typer.Option(False, "--align-units", help="plasys, offline, foot + waist: move the waist unit's "
                                "clock onto the foot's by the steps both detect (offset and drift, "
                                "pdrlearn.steps.align_units; reliable for offsets under half a step period, about "
@@ -115,6 +119,11 @@ CLOCK_OFFSET_OPT = typer.Option(None, "--clock-offset", metavar="SECONDS", help=
                                 "clock reads 0.3 s late), removed before tracking, offline or streamed; instead of "
                                 "--align-units' estimate; recorded as info.unit_alignment in summary.json "
                                 "(decisions E111, E112).")
+CLOCK_DRIFT_OPT = typer.Option(None, "--clock-drift-ppm", metavar="PPM", help="plasys, foot + waist: the waist "
+                               "unit's clock drift, known by hand (ppm, as `simulate --clock-drift-ppm`: t_waist = "
+                               "t_foot x (1 + PPM/1e6) + --clock-offset; 200 when the waist clock gains 0.72 s an "
+                               "hour), removed before tracking with --clock-offset's mechanism; the refusal of "
+                               "units whose ends drift apart names it (decisions B264, B265).")
 RESAMPLE_OPT, NO_RESAMPLE_OPT = resample_options("tracked", "with --model: ")
 
 
@@ -132,6 +141,29 @@ def clock_offset_value(clock_offset: float | None, align_units: bool, command: s
         raise DataError(f"{command}: --clock-offset {clock_offset:g} gives the waist clock's offset and "
                         "--align-units estimates it from the steps: drop one of them")
     return float(clock_offset)
+
+
+def clock_drift_value(clock_drift_ppm: float | None, align_units: bool, command: str) -> float | None:
+    """``--clock-drift-ppm`` checked (decision B265, as E112's ``--clock-offset``): a finite number of ppm within
+    ``apply_alignment``'s 10 % (100000 ppm), not with ``--align-units`` (which estimates the drift); returned as a
+    fraction (200 ppm -> 2e-4). One line naming the fix otherwise."""
+    import math
+
+    if clock_drift_ppm is None:
+        return None
+    if not math.isfinite(clock_drift_ppm) or abs(clock_drift_ppm) > 1e5:
+        raise DataError(f"{command}: --clock-drift-ppm {clock_drift_ppm}: give the waist clock's drift in ppm, a "
+                        "finite number within +-100000 (t_waist = t_foot x (1 + PPM/1e6)), e.g. --clock-drift-ppm "
+                        "200")
+    if align_units:
+        raise DataError(f"{command}: --clock-drift-ppm {clock_drift_ppm:g} gives the waist clock's drift and "
+                        "--align-units estimates it from the steps: drop one of them")
+    return float(clock_drift_ppm) * 1e-6
+
+
+def given_clock_options(offset_s: float | None, drift: float | None) -> str:
+    """The options that gave the waist clock by hand (decisions E111, B265), for the lines that name them."""
+    return " and ".join(o for o, v in (("--clock-offset", offset_s), ("--clock-drift-ppm", drift)) if v is not None)
 
 
 def no_waist_for_clock(command: str, option: str, where: str) -> DataError:
@@ -204,8 +236,10 @@ def track(
     altitude: str = ALTITUDE_OPT,
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
+    drop_partial_row: bool = DROP_PARTIAL_ROW_OPT,
     align_units: bool = ALIGN_UNITS_OPT,
     clock_offset: float = CLOCK_OFFSET_OPT,
+    clock_drift_ppm: float = CLOCK_DRIFT_OPT,
     units: str = UNITS_OPT,
     window: str = WINDOW_OPT,
     per: str = PER_OPT,
@@ -247,6 +281,8 @@ def track(
         pdrlearn track night --per 1h --per-align clock --out out/night_h   # clock hours (an imported night)
 
         pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
+
+        pdrlearn track out/sim/D_u1 --clock-drift-ppm 200 --out out/D_drift   # its waist clock gains 200 ppm
 
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
@@ -317,7 +353,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
                    detector: str | None = None, length_model: str | None = None,
                    altitude: str | None = None, align_units: bool = False,
-                   bout_rule: str | None = None, clock_offset: float | None = None) -> dict:
+                   bout_rule: str | None = None, clock_offset: float | None = None,
+                   clock_drift_ppm: float | None = None, drop_partial_row: bool = False) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -391,6 +428,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             raise DataError("track: --detector chooses the offline strides; the --streaming kernel segments its "
                             "own - drop one of them")
     clock_offset_s = clock_offset_value(clock_offset, align_units, "track")  # decision E112: before any session
+    clock_drift = clock_drift_value(clock_drift_ppm, align_units, "track")  # decision B265, as E112
     if align_units and streaming:  # decision L162 (E93: once, before a batch's first session)
         raise DataError("track: --align-units moves the waist clock by the steps of the whole recording; the "
                         "--streaming kernel cannot - drop --streaming or --align-units")
@@ -428,7 +466,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
-            "altitude": altitude, "align_units": align_units, "clock_offset_s": clock_offset_s}
+            "altitude": altitude, "align_units": align_units, "clock_offset_s": clock_offset_s,
+            "clock_drift": clock_drift, "drop_partial_row": drop_partial_row}
 
 
 def read_params(params: Path):
@@ -495,7 +534,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     contacts = o["contacts"]
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
-    session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
+    session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse",
+                           drop_partial_row=bool(o.get("drop_partial_row")))  # decision B266
+    from pdrlearn.io.plasys import unit_ends
+
+    ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
     from pdrlearn.io.external.hapt import activities_line
 
     labels = activities_line(session_dir)  # decision H8: HAPT's activity labels are not read; said once
@@ -536,13 +579,18 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     given_clock, clock_lines = None, []
     # decision E111: the waist clock moved by hand, before anything reads it; B230: before B126's span check (a
     # waist clock 2 s late covers the foot's time once moved); another pipeline is refused below (B27)
-    if o.get("clock_offset_s") is not None and pipeline == "plasys":
+    given = given_clock_options(o.get("clock_offset_s"), o.get("clock_drift"))  # E111; B265: also the drift
+    if given and pipeline == "plasys":
         if not session.has("wAccelerometer", "wGyroscope"):
-            raise no_waist_for_clock("track", "--clock-offset", session.where)
+            raise no_waist_for_clock("track", given, session.where)
         from pdrlearn.track.plasys import move_waist_clock
 
-        session, given_clock = move_waist_clock(session, o["clock_offset_s"], 0.0, clock_lines, source="given")
+        session, given_clock = move_waist_clock(session, o.get("clock_offset_s") or 0.0, o.get("clock_drift") or 0.0,
+                                                clock_lines, source="given", option=given)
     check_tracked_span(session, tracked_unit(pipeline))  # decision B126: the tracked unit covers the walk
+    from pdrlearn.track.units import span_cut_s
+
+    cut_s = span_cut_s(ends_read, session, tracked_unit(pipeline))  # decision B267: B81 / B83 / L162's cuts
     from pdrlearn.track.clock import clock_texts, recording_start, require_start
 
     start = recording_start(session.meta, session.where)  # decision L298 (B254: a bad one refused before tracking)
@@ -568,7 +616,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--detector": o.get("detector_unit") == "foot",
                                                "--altitude": o.get("altitude") is not None,
                                                "--align-units": bool(o.get("align_units")),
-                                               "--clock-offset": o.get("clock_offset_s") is not None},
+                                               "--clock-offset": o.get("clock_offset_s") is not None,
+                                               "--clock-drift-ppm": o.get("clock_drift") is not None},
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"],
                             chosen_by=chosen_by)
     if pipeline == "plasys" and isinstance(par, dict):
@@ -674,6 +723,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
     unit = tracked_unit(pipeline)
     summary.update(time_accounting(whole, session, unit, win))  # decision L275: where the time went
+    summary["common_span_cut_s"] = cut_s  # decision B267: the tracked unit's seconds a common-span cut took
     if win is not None:
         # decision B242: the window as tracked (an END past the recording clipped to it, info["window"])
         summary["window_start_s"], summary["window_end_s"] = (float(result.info["window"][k])
@@ -849,7 +899,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
                    "--toe-off", "--contacts", "--drop-neighbour", "--detector", "--altitude", "--align-units",
-                   "--clock-offset")
+                   "--clock-offset", "--clock-drift-ppm")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 

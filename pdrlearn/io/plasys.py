@@ -373,8 +373,11 @@ def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale:
     return _to_stream(path, name, arr, time_scale, check_unit, (value_scale, None))
 
 
-def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np.ndarray]:
-    """One sensor CSV's name and numeric array (timestamps in the file's unit, then the value columns)."""
+def _read_raw(path: str | os.PathLike, name: str | None = None, *,
+              drop_partial_row: bool = False) -> tuple[str, np.ndarray]:
+    """One sensor CSV's name and numeric array (timestamps in the file's unit, then the value columns).
+    ``drop_partial_row`` (decision B266, ``track --drop-partial-row``): a file that does not end with a line break
+    (B128: its last row may be cut mid-row, a unit whose battery died) loses its last line, with one warning."""
     path = Path(path)
     name = name or path.stem
     if name not in SENSORS:
@@ -384,8 +387,14 @@ def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np
         raise DataError(f"{path}: file not found")
     df = session_table(path)  # decisions B222, B223
     check_columns(df, ("timestamp", *spec.columns), str(path))
+    cut = ends_mid_line(path)
+    if drop_partial_row and cut and len(df) > 1:  # decision B266: the dead battery's last row, said once
+        df = df.iloc[:-1]
+        cut = False
+        log.warning("%s: the last line (line %d) has no line break at the end, as a row cut when a battery died: "
+                    "dropped (--drop-partial-row, decision B266)", path, len(df) + 2)
     _refuse_datetimes(df["timestamp"], path)
-    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=ends_mid_line(path))
+    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=cut)
 
 
 def _refuse_datetimes(col: pd.Series, path: Path) -> None:
@@ -876,6 +885,42 @@ def clock_offset_fix(offset: float, command: str) -> str:
             f"about 0.25 s, L162); if the waist unit really started {'later' if offset > 0 else 'earlier'}")
 
 
+#: decision B264: the largest clock drift between the two units (ppm) that a refusal calls clock drift - a crystal's
+#: is tens of ppm and the simulator's knob goes to thousands (trial s32's 2000 ppm); a unit stopping early gives far
+#: more (a battery dead at half the walk: 500000 ppm)
+MAX_CLOCK_DRIFT_PPM = 5000.0
+
+
+def waist_clock_drift(foot: tuple[float, float], waist: tuple[float, float]) -> tuple[float, float] | None:
+    """Decision B264: ``(offset_s, drift)`` (``--clock-offset``'s and ``--clock-drift-ppm``'s model, t_waist =
+    t_foot * (1 + drift) + offset, as the simulator's clocks) when the foot's and the waist's spans (first, last
+    sample) differ at the end by more than :data:`SPAN_TOLERANCE_S` beyond their start offset and that difference is a
+    drift of at most :data:`MAX_CLOCK_DRIFT_PPM` over the foot's span (proportional to the duration: a 200 ppm drift
+    over 2.28 h is 1.64 s) - else None (B243's constant shift, or a unit that stopped far too early for a clock)."""
+    start, end = waist[0] - foot[0], waist[1] - foot[1]
+    duration = foot[1] - foot[0]
+    if abs(end - start) <= SPAN_TOLERANCE_S or not duration > 0:
+        return None
+    drift = (end - start) / duration  # t_waist - t_foot grows by drift x the time walked
+    offset = start - foot[0] * drift  # the model's offset at t_foot = 0 (its clock's origin, as --clock-offset's)
+    if abs(drift) * 1e6 > MAX_CLOCK_DRIFT_PPM:
+        return None
+    return float(offset), float(drift)
+
+
+def clock_drift_fix(offset: float, drift: float, command: str, unit: str = "foot") -> str:
+    """Decision B264: the refusal's first way out for clocks that drift apart (:func:`waist_clock_drift`): the drift
+    in ppm, then ``command`` with ``--clock-drift-ppm`` (and ``--clock-offset`` when the start is over
+    :data:`SPAN_TOLERANCE_S` off), named before the ways that cut data; ``unit``: the one that stopped first."""
+    ppm = drift * 1e6
+    given = f"--clock-drift-ppm {ppm:.0f}" + (f" --clock-offset {offset:.2f}" if abs(offset) > SPAN_TOLERANCE_S
+                                               else "")
+    return (f"the ends differ in proportion to the duration, as a waist clock running {abs(ppm):.0f} ppm "
+            f"{'fast' if ppm > 0 else 'slow'} gives (clock drift, decision B264) -- if both units recorded the whole "
+            f"walk, give the drift: `{command} {given}` (decision B265, --clock-offset's mechanism, E111); if the "
+            f"{unit} unit really stopped early")
+
+
 def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = "refuse") -> str | None:
     """Decision B72: refuse (``mode="refuse"``) or warn about (``"warn"``, ``pdrlearn info``) a stream whose span
     is shorter than the longest span of its unit's streams (foot, waist) by more than :data:`SPAN_TOLERANCE_S`
@@ -1084,7 +1129,8 @@ def folder_arg(folder, caller: str) -> Path:
 
 
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
-                 bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse") -> Session:
+                 bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse",
+                 drop_partial_row: bool = False) -> Session:
     """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
     uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off). ``bridge_drops``: bridge intervals of
     dropped samples up to :data:`MAX_BRIDGED_S` by linear interpolation and warn about the longer ones up to 1 s
@@ -1094,7 +1140,8 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     time span is over 1 s shorter than the others' (a file cut short) is refused (``"refuse"``), warned about
     (``"warn"``, ``pdrlearn info``) or not checked (``"off"``; decision B72); ``"common"`` (``pdrlearn track
     --common-span``) cuts every stream, and the label tables, to the time all the short unit's files cover, with
-    one warning naming the seconds dropped from each file (decision B81).
+    one warning naming the seconds dropped from each file (decision B81). ``drop_partial_row``: a sensor file
+    without a line break at the end loses its last (partial) row, with one warning (decision B266).
 
     Raises
     ------
@@ -1127,7 +1174,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     for name, spec in SENSORS.items():
         p = folder / spec.filename
         if p.exists():
-            raw[name] = _read_raw(p, name)[1]
+            raw[name] = _read_raw(p, name, drop_partial_row=drop_partial_row)[1]
     if not clocks and not _declares_integer_clock(meta, meta_path, rate):
         one_unit_counting(raw, folder, meta_path)  # decision B116: a counter on one unit needs its own clock
     scales: dict[str, float] = {}
@@ -1158,6 +1205,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         raise ValueError(f"spans={spans!r}: use 'refuse', 'warn', 'off' or 'common'")
     # decision B72: before a gap warning about a cut file; B81: "common" cuts the session instead of refusing
     t_uncut = min((float(s.t[0]) for s in streams.values() if len(s)), default=None)  # B81: before any cut
+    ends_uncut = unit_ends(streams) if spans == "common" else None  # decision B267: before any cut
     cut = cut_to_common_span(streams, folder) if spans == "common" else check_stream_spans(streams, folder, mode=spans)
     _warn_jitter(streams, folder)  # decision B182
     if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
@@ -1208,6 +1256,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
                       check_units=check_units)
     if spans == "common" and cut is not None:  # decision B81 / L105: --window counts from the uncut recording
         session._t_start_uncut = t_uncut
+        session._unit_ends_uncut = ends_uncut
     session._valid = session._fingerprint()  # decision B49: the entry points need not repeat this function's checks
     for label, table in [*([("steps", steps)] if steps is not None else []), *extras.items()]:
         check_label_times(table, session.t_start, session.t_end, str(folder / f"{label}.csv"))

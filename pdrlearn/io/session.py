@@ -251,6 +251,9 @@ class Session:
     #: decision B81: the recording's first sample (s) before ``read_session(spans="common")`` cut the session to
     #: its common span (None: not cut); ``track --window`` counts its seconds from it (L105)
     _t_start_uncut: float | None = field(default=None, repr=False, compare=False)
+    #: decision B267: each unit's (first, last) sample (s) before ``read_session(spans="common")`` cut the session
+    #: (None: not cut); ``track`` counts the seconds the cut took from the tracked unit (``common_span_cut_s``)
+    _unit_ends_uncut: dict | None = field(default=None, repr=False, compare=False)
     #: decision B113: the recording's :meth:`content_id` when this session is its copy resampled to a model's
     #: rate (``pdrlearn evaluate --resample``): the held-out check (B87) still knows the recording
     _source_id: str | None = field(default=None, repr=False, compare=False)
@@ -381,12 +384,21 @@ class Session:
                        f"(decision B83){alone}, or re-record" if hi > lo
                        else f"they do not overlap: re-record{alone}")
                 if {m.placement, s.placement} == {"foot", "waist"}:  # decision B243: a shifted waist clock first
-                    from pdrlearn.io.plasys import clock_offset_fix, waist_clock_offset
+                    from pdrlearn.io.plasys import (
+                        clock_drift_fix,
+                        clock_offset_fix,
+                        waist_clock_drift,
+                        waist_clock_offset,
+                    )
 
                     foot, waist = (m, s) if m.placement == "foot" else (s, m)
                     offset = waist_clock_offset((float(foot.t[0]), float(foot.t[-1])),
                                                 (float(waist.t[0]), float(waist.t[-1])))
-                    fix = fix if offset is None else f"{clock_offset_fix(offset, command)}, {fix}"
+                    drift = waist_clock_drift((float(foot.t[0]), float(foot.t[-1])),
+                                              (float(waist.t[0]), float(waist.t[-1]))) if offset is None else None
+                    first = "foot" if float(foot.t[-1]) < float(waist.t[-1]) else "waist"
+                    fix = (f"{clock_offset_fix(offset, command)}, {fix}" if offset is not None else  # B243
+                           f"{clock_drift_fix(*drift, command, first)}, {fix}" if drift is not None else fix)  # B264
                 raise DataError(
                     f"{where} covers {s.t[0]:.2f}-{s.t[-1]:.2f} s but {master} {m.t[0]:.2f}-{m.t[-1]:.2f} s; "
                     f"its values would be made up for the missing {max(late, 0) + max(early, 0):.2f} s -- {fix}")

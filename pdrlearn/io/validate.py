@@ -78,10 +78,21 @@ def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str, *, cut
 
 def truncated_line_message(where: str, line: int, others: str = "", what: str = "the recording") -> str:
     """Decision B128's one line for a file whose last line ``line`` stops mid-row (B205: label tables too,
-    ``what`` naming where to restore it from)."""
+    ``what`` naming where to restore it from). Decision B266: a sensor file (``what`` the recording) may also end
+    where the recording did - a unit whose battery died mid-row, with nothing to restore - so the line also names
+    the two ways to drop that partial row: ``track --drop-partial-row`` and the shell command for the file."""
+    from pathlib import Path
+
+    from pdrlearn.errors import shell_quote
+
+    dead = ""
+    if what == "the recording":  # decision B266: a dead battery's last row
+        dead = (f"; if the recording itself ends there (a unit whose battery died mid-row), drop that row: "
+                f"`pdrlearn track {shell_quote(Path(where).parent)} --drop-partial-row`, or `sed -i '$ d' "
+                f"{shell_quote(where)}` (decision B266; B72 still refuses a file then shorter than its unit's others)")
     return (f"{where}: last line incomplete (line {line} stops mid-row, no line break at the end): file "
             f"truncated?{others} -- restore the whole file from {what} (deleting the line leaves a file "
-            "cut short, decision B72)")
+            f"cut short, decision B72){dead}")
 
 
 def check_last_row(df: pd.DataFrame, path, where: str) -> None:

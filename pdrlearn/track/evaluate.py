@@ -1284,6 +1284,11 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
     summary["pipeline"] = pipeline if pipeline is not None else result.info.get("pipeline")
     summary["rate_hz"] = tracked_rate_hz(session, summary["pipeline"])  # decision C19
+    from pdrlearn.track.units import span_cut_s
+
+    unit = "waist" if str(summary["pipeline"]).startswith("waist") else "foot"  # the tracked unit (B126)
+    uncut = getattr(session, "_unit_ends_uncut", None)  # decision B267: read_session's ends before a cut
+    summary["common_span_cut_s"] = span_cut_s(uncut, session, unit)
     from pdrlearn import __version__
 
     summary["pdrlearn_version"] = __version__  # decision C18: which pdrlearn wrote the numbers

@@ -438,14 +438,14 @@ CLOCK_OPTIONS = {"estimated": "--align-units", "given": "--clock-offset"}
 
 
 def move_waist_clock(session: Session, offset_s: float, drift: float, warnings: list[str], *,
-                     source: str, ref_s: float | None = None) -> tuple[Session, dict]:
+                     source: str, ref_s: float | None = None, option: str | None = None) -> tuple[Session, dict]:
     """The waist streams moved onto the foot clock, ``t_foot = ref_s + (t_waist - offset_s - ref_s) / (1 + drift)``
     (:func:`pdrlearn.steps.align.apply_alignment`; ``offset_s`` is the offset at foot-clock time ``ref_s``, decision
     L198; None: 0, a given drift-free offset), and what was applied: ``{"offset_s", "drift", "source"}`` (+ ``ref_s``
     when given: an estimate's)
     (``source`` ``"estimated"``: ``--align-units``' estimate, L162; ``"given"``: ``--clock-offset``, E111), with
     ``common_span_s`` when the moved clock left the units apart and the time both cover was kept (B83's cut,
-    one line in ``warnings`` naming the option)."""
+    one line in ``warnings`` naming the option: ``option``, else the source's, :data:`CLOCK_OPTIONS`)."""
     from pdrlearn.io.plasys import cut_to_common_span
     from pdrlearn.steps.align import apply_alignment
 
@@ -457,7 +457,7 @@ def move_waist_clock(session: Session, offset_s: float, drift: float, warnings: 
     cut = cut_to_common_span(aligned.streams, session.folder or Path(session.name))
     if cut is not None:
         info["common_span_s"] = [float(cut[0]), float(cut[1])]
-        warnings.append(f"{CLOCK_OPTIONS[source]} moved the waist clock by {-offset_s:+.2f} s (drift "
+        warnings.append(f"{option or CLOCK_OPTIONS[source]} moved the waist clock by {-offset_s:+.2f} s (drift "
                         f"{drift * 1e6:+.0f} ppm); tracked {cut[0]:.2f}-{cut[1]:.2f} s, where both units have data: "
                         f"dropped {cut[2]} (decision L162)")
     return aligned, info

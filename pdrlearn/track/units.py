@@ -64,13 +64,60 @@ def unit_span(session: Session, unit: str) -> tuple[float, float] | None:
     return min(float(s.t[0]) for s in ts), max(float(s.t[-1]) for s in ts)
 
 
+def span_cut_s(uncut: dict | None, session: Session, unit: str) -> float:
+    """Decision B267: the seconds of ``unit``'s recording that a cut to the units' common span took away
+    (``track --common-span``, B81 / B83, and the overhang a moved waist clock leaves, L162): its span in ``uncut``
+    (``unit_ends`` as read, before any cut) less its span in ``session`` now; 0.0 when nothing was cut."""
+    now = unit_span(session, unit)
+    if not uncut or unit not in uncut or now is None:
+        return 0.0
+    cut = (uncut[unit][1] - uncut[unit][0]) - (now[1] - now[0])
+    return round(cut, 3) if cut > 1e-6 else 0.0
+
+
+def units_apart_line(session: Session) -> str | None:
+    """Decision B267 (``pdrlearn info``): one warning line when the session's foot and waist units start or stop
+    over :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` apart - what ``track`` then refuses (B126, B21) or, with
+    ``--common-span``, cuts (B83) - naming a clock offset (B243) or drift (B264) where the spans look like one;
+    None when they agree or the session has one unit."""
+    from pdrlearn.io.plasys import SPAN_TOLERANCE_S, waist_clock_drift, waist_clock_offset
+
+    foot, waist = unit_span(session, "foot"), unit_span(session, "waist")
+    if foot is None or waist is None:
+        return None
+    start, end = waist[0] - foot[0], waist[1] - foot[1]
+    if max(abs(start), abs(end)) <= SPAN_TOLERANCE_S:
+        return None
+    offset, drift = waist_clock_offset(foot, waist), waist_clock_drift(foot, waist)
+    if offset is not None:
+        why = f"the same length shifted by {offset:.2f} s, a waist clock offset (--clock-offset {offset:.2f}, B243)"
+    elif drift is not None:
+        why = (f"the ends differ in proportion to the duration, a clock drift of about {drift[1] * 1e6:.0f} ppm "
+               f"(--clock-drift-ppm {drift[1] * 1e6:.0f}, B264)")
+    else:
+        why = "the waist unit " + " and ".join(
+            f"{verb} {abs(v):.2f} s {'after' if v > 0 else 'before'} the foot unit"
+            for verb, v in (("started", start), ("stopped", end)) if abs(v) > SPAN_TOLERANCE_S)
+    lo, hi = max(foot[0], waist[0]), min(foot[1], waist[1])
+    return (f"{session.where}: the foot unit covers {foot[0]:.2f}-{foot[1]:.2f} s and the waist unit "
+            f"{waist[0]:.2f}-{waist[1]:.2f} s: {why} -- `pdrlearn track` refuses a track that needs the unit that "
+            f"stopped short (B126, B21) and with --common-span tracks only the {lo:.2f}-{hi:.2f} s both cover "
+            "(B83; sessions.csv's common_span_cut_s counts the seconds cut, decision B267)")
+
+
 def check_tracked_span(session: Session, unit: str) -> None:
     """Decision B126: refuse, one line, a session whose tracked ``unit`` starts or stops more than
     :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` inside the other unit's recording (a foot unit whose battery ran
     out at 180 s while the waist went on to 385 s was tracked "ok", 198.91 of the 425.7 m walked). The mirror
     case, the other unit stopping early, is refused where a method needs it to cover the tracked one (B21, B83);
     both name the same two ways out: ``--common-span`` (the time both cover, B83) or ``--units`` (one unit)."""
-    from pdrlearn.io.plasys import SPAN_TOLERANCE_S, clock_offset_fix, waist_clock_offset
+    from pdrlearn.io.plasys import (
+        SPAN_TOLERANCE_S,
+        clock_drift_fix,
+        clock_offset_fix,
+        waist_clock_drift,
+        waist_clock_offset,
+    )
 
     other = "waist" if unit == "foot" else "foot"
     mine, theirs = unit_span(session, unit), unit_span(session, other)
@@ -90,6 +137,9 @@ def check_tracked_span(session: Session, unit: str) -> None:
     offset = waist_clock_offset(mine, theirs) if unit == "foot" else None
     if offset is not None:  # decision B243: a shifted clock - the fix that keeps the whole walk is named first
         raise DataError(f"{head}: {clock_offset_fix(offset, f'pdrlearn track {folder}')}, {cut} (decision B126)")
+    drift = waist_clock_drift(mine, theirs) if unit == "foot" else None
+    if drift is not None:  # decision B264: clocks drifting apart - the drift named first, as B243's offset
+        raise DataError(f"{head}: {clock_drift_fix(*drift, f'pdrlearn track {folder}')}, {cut} (decision B126)")
     raise DataError(f"{head}: it {what} the {other} unit, so the track would describe only part of the walk -- "
                     f"{cut}, or restore the {unit} files (decision B126)")
 
