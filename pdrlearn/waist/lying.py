@@ -171,11 +171,13 @@ def lying_transfer_rows(t: np.ndarray, tilt: np.ndarray, code: np.ndarray, fs: f
     return rows
 
 
-def postures_and_transfers(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame) -> tuple[list[list], pd.DataFrame]:
+def postures_and_transfers(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame,
+                           upright: np.ndarray | None = None) -> tuple[list[list], pd.DataFrame]:
     """Decisions W222 and W245: ``(info["postures"], transfers.csv)`` of a lower-back track - W222's posture runs
     from ``chair`` (W182's rows) and ``steps``' walking contacts, and ``chair`` with the lying transfers added, in
-    the order of their start, numbered from 1."""
-    lab = session_labels(imu, steps, chair)
+    the order of their start, numbered from 1. ``upright``: W277's, as
+    :func:`~pdrlearn.waist.posture_time.session_labels` takes it."""
+    lab = session_labels(imu, steps, chair, upright)
     if lab is None:
         return [], chair
     upright, code = lab
@@ -187,4 +189,4 @@ def postures_and_transfers(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFra
     both = pd.concat([*parts, pd.DataFrame(rows)], ignore_index=True)
     both = both.sort_values("start_s", kind="stable").reset_index(drop=True)
     both.insert(0, "transfer", np.arange(1, len(both) + 1))
-    return posture_runs(imu.t, code), both[list(TRANSFER_COLUMNS)]
+    return posture_runs(imu.t, code), both.reindex(columns=list(TRANSFER_COLUMNS)).fillna({"flag": ""})
