@@ -51,6 +51,7 @@ from pdrlearn.waist.transfers import (  # decision W245's kinds, defined beside 
     SIT_TO_LIE,
     STAND_TO_LIE,
     TRANSFER_COLUMNS,
+    flag_texts,
     height_change_m,
     tilt_rate_dps,
 )
@@ -189,4 +190,6 @@ def postures_and_transfers(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFra
     both = pd.concat([*parts, pd.DataFrame(rows)], ignore_index=True)
     both = both.sort_values("start_s", kind="stable").reset_index(drop=True)
     both.insert(0, "transfer", np.arange(1, len(both) + 1))
-    return posture_runs(imu.t, code), both.reindex(columns=list(TRANSFER_COLUMNS)).fillna({"flag": ""})
+    both = both.reindex(columns=list(TRANSFER_COLUMNS))
+    both["flag"] = flag_texts(both["flag"])  # decision W278: filled in by the track (flag_transfers)
+    return posture_runs(imu.t, code), both

@@ -215,7 +215,7 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
            "n_lie_down": int(tr["kind"].isin(LIE_DOWN_KINDS).sum()),  # decision W258
            "n_get_up": int(tr["kind"].isin(GET_UP_KINDS).sum()),
            "sts5_time_s": sts5_time_s(tr, steps),  # decision W279
-           "n_transfers_flagged": int((tr["flag"].fillna("").astype(str) != "").sum())}  # decision W278
+           "n_transfers_flagged": int((flag_texts(tr["flag"]) != "").sum())}  # decision W278
     if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
         contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
@@ -232,6 +232,11 @@ def upright_message(source: str, n_transfers: int) -> str:
                 "are read against the trunk's direction while standing still between transfers (decision W277)")
     return ("no walking and no still standing to take the trunk's upright from: the chair transfers and the posture "
             "times cannot be judged and are left empty (unknown; decision W277)")
+
+
+def flag_texts(column) -> np.ndarray:
+    """Decision W278: a ``flag`` column's texts, ``""`` for a missing one (rows made before W278, lying rows)."""
+    return np.array([x if isinstance(x, str) else "" for x in column], dtype=object)
 
 
 def sequence_flags(kinds, start_s, end_s, walk_s) -> list[str]:
@@ -280,8 +285,7 @@ def flag_transfers(transfers: pd.DataFrame, steps: pd.DataFrame) -> pd.DataFrame
 
 def flag_message(transfers: pd.DataFrame) -> str | None:
     """Decision W278: one line when transfers are flagged; None when none is."""
-    flags = transfers["flag"].fillna("").astype(str) if len(transfers) else pd.Series([], dtype=str)
-    bad = flags != ""
+    bad = flag_texts(transfers["flag"]) != "" if len(transfers) else np.zeros(0, dtype=bool)
     if not bad.any():
         return None
     rows = ", ".join(f"{int(r.transfer)} ({r.kind} at {r.start_s:.1f} s: {r.flag})"
@@ -300,13 +304,15 @@ def sts5_time_s(transfers: pd.DataFrame, steps: pd.DataFrame | None = None) -> f
     if len(tr) != 2 * STS_RISES:
         return None
     want = [SIT_TO_STAND, STAND_TO_SIT] * STS_RISES
-    if tr["kind"].tolist() != want or (tr["flag"].fillna("").astype(str) != "").any():
+    if tr["kind"].tolist() != want or (flag_texts(tr["flag"]) != "").any():
         return None
     t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
-    w = walking_contacts_s(steps) if steps is not None and len(steps) else np.zeros(0)
-    inside = np.zeros(w.size, dtype=bool)
-    for a, b in zip(tr["start_s"].to_numpy(float), tr["end_s"].to_numpy(float), strict=True):
-        inside |= (w >= a) & (w <= b)  # a contact inside a transfer (W146) is the rise's bounce
-    if ((w > t0) & (w < t1) & ~inside).any():
-        return None
+    if steps is not None and len(steps) and "event_s" in steps:
+        e = steps["event_s"].to_numpy(float)
+        keep = (e > t0) & (e < t1)
+        for a, b in zip(tr["start_s"].to_numpy(float), tr["end_s"].to_numpy(float), strict=True):
+            keep &= ~((e >= a) & (e <= b))  # a contact inside a transfer (W146) is the rise's bounce
+        hn = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(e), bool)
+        if walking_is_reliable(hn[keep]):  # W277's walking sequence between the rises: not one chair test
+            return None
     return t1 - t0
