@@ -10,10 +10,12 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_transf
      ... experiments/turns_transfers.py real231 # the same candidates on the mobgap turns
      ... experiments/turns_transfers.py sim255  # decision L255: users 4970-4999, the trial's and L210's routes
      ... experiments/turns_transfers.py real255 # L255 on the mobgap turns
+     ... experiments/turns_transfers.py sim345  # decision L345: users 6590-6619, El-Gohary vs 5-95 % yaw times
+     ... experiments/turns_transfers.py real345 # L345 on the mobgap turns (rows chosen under today's timing)
 Output: experiments/results/turns_transfers_sim.txt, turns_transfers_real.txt (the printed lines); L208 / L209:
 turns_timing_sim.txt, turns_timing_real.txt (``real`` prints both timings since L208); L210 / L211:
 turns_yaw_sim.txt, turns_yaw_real.txt; L231-L236: turns_yaw2_sim.txt, turns_yaw2_real.txt; L255 / L256:
-turns_whole_sim.txt, turns_whole_real.txt
+turns_whole_sim.txt, turns_whole_real.txt; L345 / L346: turns_frac_sim.txt, turns_frac_real.txt
 
 Simulated truth. A turn: the route's one turn; its truth start / end are where the waist unit's true heading
 (trajectory.csv ``heading_rad``, unwrapped, a 1 s moving mean: one stride's pelvis rotation averaged out) has gone
@@ -442,6 +444,87 @@ def _real_line(f, name, timing, big, ref, res, tt, match=None, all_columns: bool
     return [tuple(x) for x in (a if all_columns else a[:, [0, 3, 4]]).tolist()]
 
 
+#: decision L345's fresh users, routes (by user % 3: the trial's TUG, a pivot, a 90 deg turn on the spot) and the two
+#: tables compared: today's El-Gohary boundaries and the 5-95 % yaw times
+USERS345 = range(6590, 6620)
+ROUTES345 = (ROUTES[0], ("straight:8, pivot:180, straight:8", 0.0, 0.0),
+             ("stand:3, straight:5, turn:90, straight:5, stand:3", 0.0, 0.0))
+CONFIGS345 = {"El-Gohary (L211)": {"yaw_fractions": False}, "5-95 % (L345)": {"yaw_fractions": True}}
+
+
+def sim345() -> None:
+    """Decision L345's adoption rule on the simulator: per pipeline, each config's errors on the row nearest the
+    truth under today's table; mean rate error in percent of 0.90 x |true angle| / true duration."""
+    err = {(p, c): [] for p in ("waist-pendulum", "waist-pll") for c in CONFIGS345}
+    same = {p: [] for p in ("waist-pendulum", "waist-pll")}
+    for u in USERS345:
+        route, s0, s1 = ROUTES345[u % 3]
+        speed = "slow" if (u // 3) % 2 else "normal"
+        hz = 20.0 if (u // 6) % 2 == 0 else 100.0
+        s = simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, rate_hz=hz, seed=u,
+                          sit_start_s=s0, sit_end_s=s1)
+        ta, tb, ang = true_turn(s)
+        true_rate = 0.90 * abs(ang) / (tb - ta)
+        line = [f"user {u} {speed} {hz:g} Hz [{route}]: truth {ta:.2f}-{tb:.2f} s ({tb - ta:.2f} s) {ang:+.1f} deg, "
+                f"mean rate {true_rate:.1f} deg/s"]
+        for p in same:
+            res = track_waist(s, pipeline=p)
+            tabs = {c: turn_table(res.steps, detected_bouts(res.steps), yaw_turns=res.info.get("yaw_turns"), **kw)
+                    for c, kw in CONFIGS345.items()}
+            ref = tabs["El-Gohary (L211)"]
+            same[p].append(all(len(t) == len(ref) and np.array_equal(t["angle_deg"], ref["angle_deg"])
+                               for t in tabs.values()))
+            if not len(ref):
+                line.append(f"  {p}: no turn")
+                for c in CONFIGS345:
+                    err[(p, c)].append((np.nan,) * 5)
+                continue
+            i = int(np.argmin(np.abs(0.5 * (ref["start_s"] + ref["end_s"]).to_numpy(float) - 0.5 * (ta + tb))))
+            for c, tt in tabs.items():
+                r = tt.iloc[i]
+                e = (r.start_s - ta, r.end_s - tb, r.duration_s - (tb - ta), r.angle_deg - ang,
+                     100.0 * (r.mean_rate_dps - true_rate) / true_rate)
+                err[(p, c)].append(e)
+                line.append(f"  {p} [{c}]: {len(tt)} turn(s); nearest {r.start_s:.2f}-{r.end_s:.2f} s "
+                            f"({r.duration_s:.2f} s) {r.angle_deg:+.1f} deg, mean rate {r.mean_rate_dps:.1f} deg/s; "
+                            f"errors start {e[0]:+.2f} end {e[1]:+.2f} duration {e[2]:+.2f} s angle {e[3]:+.1f} deg "
+                            f"mean rate {e[4]:+.1f} %")
+        print("\n".join(line), flush=True)
+    print("\nL345 (median signed error, median |error|; the row nearest the truth under today's table):")
+    for (p, c), e in err.items():
+        a = np.array(e, float)
+        print(f"{p} [{c}]: {int(np.isfinite(a[:, 0]).sum())}/{len(a)} turns found (tables' counts and angles equal "
+              f"in {sum(same[p])}/{len(same[p])} sessions); start {med(a[:, 0])} s (|.| {med(np.abs(a[:, 0]))}), "
+              f"end {med(a[:, 1])} s (|.| {med(np.abs(a[:, 1]))}), duration {med(a[:, 2])} s "
+              f"(|.| {med(np.abs(a[:, 2]))}), angle {med(a[:, 3])} deg (|.| {med(np.abs(a[:, 3]))}), mean rate "
+              f"{med(a[:, 4])} % (|.| {med(np.abs(a[:, 4]))})")
+
+
+def real345() -> None:
+    """Decision L345's rule on the mobgap turns: each INDIP turn's row chosen under today's table, scored under
+    both."""
+    folders = [Path("datasets/real") / "mobgap_HA001_Test11_Trial1"]
+    folders += [Path("datasets/external") / n for n in ("mobgap_HA002_Test11_Trial1", "mobgap_MS001_Test11_Trial1")]
+    pooled = {}
+    for f in folders:
+        s = read_session(f)
+        ref = s.extras["turns"]
+        big = ref[ref["angle_deg"].abs() >= 80]
+        for p in ("waist-pendulum", "waist-pll"):
+            res = track_waist(s, pipeline=p)
+            tabs = {c: turn_table(res.steps, detected_bouts(res.steps), yaw_turns=res.info.get("yaw_turns"), **kw)
+                    for c, kw in CONFIGS345.items()}
+            first = tabs["El-Gohary (L211)"]
+            for c, tt in tabs.items():
+                pooled.setdefault((p, c), []).extend(_real_line(f, p, c, big, ref, res, tt, first))
+    for (p, c), d in pooled.items():
+        a = np.asarray(d, float).reshape(-1, 3)
+        print(f"pooled {p} [{c}]: {len(a)} overlapped reference turns; duration error median {med(a[:, 0])} s "
+              f"(|.| {med(np.abs(a[:, 0]))}); |start error| {med(np.abs(a[:, 1]))} s, |end error| "
+              f"{med(np.abs(a[:, 2]))} s")
+
+
 if __name__ == "__main__":
     {"sim": sim, "sim28": sim28, "real": real, "sim210": sim210, "real210": real210, "sim231": sim231,
-     "real231": real231, "sim255": sim255, "real255": real255}[sys.argv[1]]()
+     "real231": real231, "sim255": sim255, "real255": real255,
+     "sim345": sim345, "real345": real345}[sys.argv[1]]()

@@ -134,7 +134,7 @@ SESSIONS: tuple[Column, ...] = (
     ("floors_up_stairs", "count", "integer", "floors_up's storeys of climbs on stairs (L302: rise over run 20 % or "
                                              "more, walked); floors_up = stairs + ramps + rides"),
     ("floors_up_ramps", "count", "integer", "floors_up's storeys of climbs walked under 20 % (a ramp or a hill; "
-                                            "L302)"),
+                                            "L302); on a barometric or fused altitude a ramp's whole rise (L337)"),
     ("floors_up_rides", "count", "integer", "floors_up's storeys of climbs carried mostly while standing (a lift or "
                                             "escalator ride, W158's pause_dz_m; L302)"),
     ("floors_down_stairs", "count", "integer", "floors_down's storeys on stairs (L302)"),
@@ -318,6 +318,9 @@ SESSIONS: tuple[Column, ...] = (
                                      "empty on a foot track"),
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
                                   "step, one sit after the last): the rise's start to the sit's end (W183)"),
+    ("tug_time_note", _ID, "text", "lower back: why there is no tug_time_s although a sit-to-stand is followed by "
+                                   "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
+                                   "W282), pointing at --window; empty otherwise"),
     ("sts5_time_s", "s", "number", "lower back, a five-times sit-to-stand: the first rise's start to the last sit's "
                                    "end when the transfers are exactly 5 rises and 5 sits alternating from a rise, "
                                    "none flagged, no walking between (W279)"),
@@ -429,7 +432,8 @@ TURNS: tuple[Column, ...] = (
                                "by a turn of its yaw rate: that turn's start, last sample under 5 deg/s (L210, L211)"),
     ("end_s", "s", "number", "where that heading has gone 95 % of the angle (L208, L209); a lower-back turn matched by "
                              "a yaw-rate turn: its end, first sample under 5 deg/s after it (L210, L211)"),
-    ("duration_s", "s", "number", "end_s - start_s"),
+    ("duration_s", "s", "number", "end_s - start_s; a lower-back turn timed by its yaw rate reads longer than its "
+                                  "5-95 % turn: about +1 s on a 180 deg turn, +0.65 s on a 90 deg one (L346)"),
     ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181); "
                                    "a lower-back turn with the whole turns its yaw-rate turn shows (L231, L232)"),
     ("peak_rate_dps", "deg/s", "number", "largest rate of the turn's heading with each row's change spread over "
@@ -446,7 +450,8 @@ TURNS: tuple[Column, ...] = (
                                          "(L229): a foot track's turn (5-95 % heading timing, L208) 90 % of "
                                          "|angle_deg|; a lower-back turn timed by its yaw rate (L210) all of "
                                          "|angle_deg| over that span, longer than a 5-95 % one, so it reads lower "
-                                         "than a foot track's for the same turn; empty for a turn of no duration"),
+                                         "than a foot track's for the same turn (about 20 % under the 5-95 % "
+                                         "mean rate, L346); empty for a turn of no duration"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -472,6 +477,16 @@ PERIODS: tuple[Column, ...] = (
                                             "(L320); empty without a stride time (a streamed track, E51)"),
     ("median_cadence_spm", "steps/min", "number", "median cadence of the period's steps, by the summary's default "
                                                   "rule (L176, W225; L320)"),
+    ("median_stride_length_m", "m", "number", "foot: the period's median stride length, the summary's rule (gap "
+                                              "rows and impossible strides left out, C19; L340); empty on the lower "
+                                              "back"),
+    ("median_speed_mps", "m/s", "number", "the period's median per-stride speed, the summary's rule (L340)"),
+    ("stride_time_cv_pct", "%", "number", "foot: the summary's stride-time CV on the period's steady straight level "
+                                          "forward strides (L104, L340); empty under 10 of them or when withheld "
+                                          "(L113)"),
+    ("stride_length_cv_pct", "%", "number", "foot: the CV of the same strides' lengths (L212, L340); empty under 10"),
+    ("n_cv_strides", "count", "integer", "foot: the period's strides the two CVs are computed over (L340); empty "
+                                         "on the lower back"),
     ("time_walking_s", "s", "number", "the session's walking time inside the period; sums to walking_time_s (L275)"),
     ("time_between_steps_s", "s", "number", "first to last step of the period: neither walking nor no data "
                                             "(L275); with time_no_steps_s it sums to the summary's two"),

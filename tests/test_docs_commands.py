@@ -351,7 +351,8 @@ def _validators() -> dict[tuple[str, str], object]:
         ("import", "gyro_unit"): unit_word("gyro"),
         ("import", "frames"): parse_frame,
         ("export", "frame"): parse_frame,  # decision E57: the waist unit's axes, as import --frames
-        ("columns", "table"): _one_of(list(COLUMN_TABLES)),  # cohort C35
+        # cohort C35; decision L340: a table's name without .csv too
+        ("columns", "table"): _one_of([*COLUMN_TABLES, *(t[:-4] for t in COLUMN_TABLES if t.endswith(".csv"))]),
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
                 "per_align", "units", "altitude", "detector", "length_model"):  # C12, L108, B127, L154, E93

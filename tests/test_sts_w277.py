@@ -142,6 +142,7 @@ def test_five_times_sit_to_stand_without_walking_finds_every_transfer(sts, tmp_p
     assert tr["flag"].isna().all()
     summary = json.loads((out / "summary.json").read_text())
     assert summary["sts5_time_s"] == pytest.approx(truth["seated_ms"].iloc[-1] - rises[0], abs=0.5)
+    assert summary["tug_time_note"] is None  # decision W279: W282's note is for a TUG
     assert summary["n_bouts"] == 0  # the rises' false contacts are vetoed against the still upright
     assert "5 sit-to-stand, 5 stand-to-sit (transfers.csv), five-times sit-to-stand" in printed.out
     assert "decision W277" in printed.err

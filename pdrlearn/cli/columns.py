@@ -9,7 +9,8 @@ def columns(
     table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv, bouts.csv, "
                                 "turns.csv, periods.csv, transfers.csv, freezes.csv, ramps.csv, steps.csv (the lower "
                                 "back's and the foot's; 'steps.csv (foot)' for the foot's only), or gait's "
-                                "gait_steps.csv, gait_cycles.csv, gait_bouts.csv (default: all)."),
+                                "gait_steps.csv, gait_cycles.csv, gait_bouts.csv (default: all); the name "
+                                "without .csv works too."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object: table -> list of {column, unit, "
                                  "type, meaning}."),
 ) -> None:
@@ -28,6 +29,8 @@ def columns(
     from pdrlearn.columns import TABLES, markdown
     from pdrlearn.errors import DataError
 
+    if table is not None and table not in TABLES and f"{table}.csv" in TABLES:  # decision L340: a stem names its table
+        table = f"{table}.csv"
     if table is not None and table not in TABLES:
         raise DataError(f"columns {table}: not a table of track-all; give one of {', '.join(TABLES)}")
     # decision E137: steps.csv is two tables, the lower back's and the foot's

@@ -172,8 +172,16 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
         if score["ground_truth"]:
             typer.echo(f"timing error {score['timing_error_mean_s']:+.3f} "
                        f"+- {score['timing_error_sd_s']:.3f} s")
+    if unit == "waist" and detector is not None:  # decision W281: why `track` can count fewer
+        typer.echo(TRACK_COUNT_NOTE)
     if out is not None:
         typer.echo(str(out))
+
+
+#: decision W281: `steps` prints a lower-back detector's contacts; `track` keeps those of walking (trial s32 finding 4)
+TRACK_COUNT_NOTE = ("note: these are the detector's contacts; `pdrlearn track` keeps walking contacts only (it drops "
+                    "those of a rise, a sit or a bend, W104 / W185, and on waist-pendulum of standing sway, W189), "
+                    "so its steps.csv can count fewer (W281)")
 
 
 def spanned_warning(count: int, spanned: int, det, has_force: bool = False) -> str:

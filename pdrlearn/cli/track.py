@@ -693,6 +693,14 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                turns=clinical_tables(whole, bouts)["turns.csv"],
                                storey_height_m=o.get("storey_height_m", 3.0), clock=clock)
         summary["per_s"] = float(o["per_s"])
+        from pdrlearn.track.periods import constant_bounce_line
+
+        bounce = constant_bounce_line(session.meta, summary.get("info") or {})  # decision S69
+        if bounce:
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, bounce)
+            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), bounce]
         if clock is not None:
             summary["per_align"] = "clock"
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary

@@ -51,3 +51,15 @@ def rest_rotation(t: np.ndarray, w: np.ndarray, still: np.ndarray, t0: float, t1
     centres, bias = t_still[ok] / n_still[ok], s_rate[ok] / n_still[ok]
     moving = ~st
     return float(np.sum((ww[moving] - np.interp(tt[moving], centres, bias)) * dt[moving]))
+
+
+def rest_frame_drift(t: np.ndarray, w: np.ndarray, still: np.ndarray, t0: float, t1: float, *,
+                     cum: np.ndarray | None = None) -> float:
+    """Decision W285: how far (rad) the AHRS's navigation frame turned about the vertical over the rest ``[t0, t1]``
+    while the body did not: the raw vertical rate ``w``'s integral (the AHRS integrates the gyroscope as it is,
+    bias and all; no compass, W5) less the body's own rotation, L296's :func:`rest_rotation` - the bias integral of
+    the rest's still samples and the still-block bias under its moving ones. 0 for a rest up to
+    :data:`REST_BIAS_MIN_S` or one without a block of :data:`BIAS_MIN_STILL_S` still samples (no bias known)."""
+    if t1 - t0 <= REST_BIAS_MIN_S:
+        return 0.0
+    return integrate_rate(t, w, t0, t1, cum=cum) - rest_rotation(t, w, still, t0, t1, cum=cum)

@@ -28,6 +28,9 @@ YAW_TURN_MERGE_S = 0.05
 YAW_TURN_DURATION_S = (0.5, 10.0)
 #: mobgap TdElGohary ``allowed_turn_angle_deg`` lower bound (deg)
 YAW_TURN_MIN_DEG = 45.0
+#: decision L345: the centred moving mean (s) of the integrated yaw a turn's 5-95 % times are read on (L201's truth
+#: smoothing: one stride's pelvis rotation averaged out)
+YAW_TURN_SMOOTH_S = 1.0
 
 
 def _merge(iv: np.ndarray, gap: int) -> np.ndarray:
@@ -88,3 +91,34 @@ def yaw_rate_turns(rate_dps: np.ndarray, fs: float) -> np.ndarray:
     iv, ang = iv[keep], ang[keep]
     peak = np.asarray([a + int(np.argmax(f[a:b])) for a, b in iv], dtype=float)
     return np.column_stack([iv.astype(float), peak, ang]) if len(iv) else empty
+
+
+def turn_fraction_times(rate_dps: np.ndarray, fs: float, turns: np.ndarray,
+                        fractions: tuple[float, float] = (0.05, 0.95)) -> np.ndarray:
+    """Decision L345: (k, 2) sample indices where each of ``turns`` (:func:`yaw_rate_turns`' rows: start, end
+    exclusive, ...) has gone ``fractions`` of its yaw change (L208's 5 % / 95 %): the unfiltered rate ``rate_dps``
+    integrated (trapezoid) and smoothed by a :data:`YAW_TURN_SMOOTH_S` centred moving mean (edges held), its change
+    from the turn's start to its last sample; each index the first inside the turn at or beyond its fraction (the
+    turn's own start / last sample where the smoothed yaw does not change)."""
+    w = np.asarray(rate_dps, dtype=np.float64)
+    turns = np.asarray(turns, dtype=float).reshape(-1, 4)
+    if not len(turns):
+        return np.zeros((0, 2), dtype=np.intp)
+    yaw = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) / fs)])
+    k = max(int(round(YAW_TURN_SMOOTH_S * fs)), 1)
+    c = np.concatenate([[0.0], np.cumsum(np.pad(yaw, (k // 2, k - 1 - k // 2), mode="edge"))])
+    ys = (c[k:] - c[:-k]) / k  # the centred k-sample mean, O(n) (a day's recording at 100 Hz)
+    out = []
+    for a, b in turns[:, :2].astype(np.intp):
+        b = max(min(b, ys.size), a + 1)
+        seg = ys[a:b] - ys[a]
+        total = seg[-1]
+        if total == 0 or not np.isfinite(total):
+            out.append((a, b - 1))
+            continue
+        frac = seg / total
+        i0 = int(np.argmax(frac >= fractions[0])) if (frac >= fractions[0]).any() else 0
+        hit = frac[i0:] >= fractions[1]
+        i1 = i0 + int(np.argmax(hit)) if hit.any() else b - 1 - a
+        out.append((a + i0, a + i1))
+    return np.asarray(out, dtype=np.intp)

@@ -275,6 +275,12 @@ def get_pipeline(name: str) -> Pipeline:
       it changes 1.5 m or more within 30 s, a lift or escalator ride; drift across a rest is left out and warned),
       ``rest_bias`` (decision L296, on: across a rest over 60 s the waist gyroscope's bias is taken from the rest's
       own still samples, which add no heading),
+      ``lying_heading`` (decisions W269 / W271, on: while lying in bed (W222's lying, 10 s or more) the gyro heading
+      turns by the yaw of the trunk's long axis about gravity only, not by the vertical rate of rolling over;
+      offline ``integrate_stops`` gyro heading only),
+      ``rest_frame`` (decisions W285 / W287, off: each harmonic step direction less the AHRS frame's turn about the
+      vertical over the rests over 60 s before it, the bias integral L296's still samples give; harmonic headings
+      only; measured, not adopted: W286's rule failed on the last step's own heading error),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
       turn on a 0.2 m radius; both pipelines),
       ``cadence_law`` (decision W240, off: a calibrated waist-pendulum step times sqrt(SL(f) / SL(f_cal)) of seed

@@ -350,6 +350,10 @@ TURN_YAW_PEAK = True
 #: 4970-4999, 360 deg turns found waist-pendulum 3/38 -> 38/38, waist-pll 13/38 -> 37/38, no turn lost, extra rows
 #: 0 -> 0 / 5 -> 5; mobgap waist-pendulum 19 rows, 11/15 overlapped, unchanged)
 TURN_YAW_WHOLE = True
+#: decision L345: a yaw-timed (or yaw-only) lower-back turn starts / ends where its smoothed yaw has gone
+#: TURN_TIMING_FRACTIONS of its change (the yaw records' ``start_5_s`` / ``end_95_s``), not at El-Gohary's 5 deg/s
+#: boundaries, which hold the 0.5 Hz filter's tails (trial s32 finding 3: +1.1 s); results L346
+TURN_YAW_FRACTIONS = False
 
 
 def whole_turns(yaw_deg, step_deg: float):
@@ -409,7 +413,8 @@ TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "pe
 def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None,
                yaw_turns=None, branch: bool | None = None, yaw_only: bool | None = None,
-               yaw_peak: bool | None = None, whole: bool | None = None) -> pd.DataFrame:
+               yaw_peak: bool | None = None, whole: bool | None = None,
+               yaw_fractions: bool | None = None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
@@ -440,7 +445,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     ``peak_rate_dps`` is its yaw-rate turn's ``peak_dps`` (El-Gohary's low-passed peak); ``whole`` (L255,
     :data:`TURN_YAW_WHOLE`) ``yaw_only``'s row, but only for a yaw-rate turn whose rows' heading change over its span
     (:func:`rows_heading_change`) is on another branch (:func:`whole_turns` not 0: a full turn on the spot whose
-    steps were missed). The rows are in time order."""
+    steps were missed); ``yaw_fractions`` (L345, :data:`TURN_YAW_FRACTIONS`) a yaw-timed or yaw-only row's times are
+    its yaw-rate turn's ``start_5_s`` / ``end_95_s`` (El-Gohary's boundaries where a record has none) and its
+    ``mean_rate_dps`` the 5-95 % share of the angle over them, as under ``"heading"``. The rows are in time order."""
     if timing is None:
         timing = "yaw" if yaw_turns is not None and TURN_YAW_TIMING else TURN_TIMING
     if timing not in (*TURN_TIMINGS, "yaw"):
@@ -449,8 +456,14 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     yaw_only = TURN_YAW_ONLY if yaw_only is None else bool(yaw_only)
     yaw_peak = TURN_YAW_PEAK if yaw_peak is None else bool(yaw_peak)
     whole = TURN_YAW_WHOLE if whole is None else bool(whole)
-    yaw = pd.DataFrame(list(yaw_turns or []), columns=["start_s", "end_s", "peak_s", "angle_deg", "peak_dps"]) \
-        if timing == "yaw" else None
+    fractions = TURN_YAW_FRACTIONS if yaw_fractions is None else bool(yaw_fractions)
+    yaw = pd.DataFrame(list(yaw_turns or []), columns=["start_s", "end_s", "peak_s", "angle_deg", "peak_dps",
+                                                       "start_5_s", "end_95_s"]) if timing == "yaw" else None
+    if yaw is not None:  # decision L345: the times a yaw-timed row takes, and the share of the angle between them
+        yaw_share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if fractions else 1.0
+        t_on = yaw["start_5_s"].where(yaw["start_5_s"].notna(), yaw["start_s"]) if fractions else yaw["start_s"]
+        t_off = yaw["end_95_s"].where(yaw["end_95_s"].notna(), yaw["end_s"]) if fractions else yaw["end_s"]
+        yaw = yaw.assign(t_on=t_on.astype(float), t_off=t_off.astype(float))
     st, spans = _turn_spans(steps)
     rows, claimed = [], []  # claimed: the counted turns' row spans (decision L233)
     b_lo, b_hi, b_no = (np.zeros(0),) * 3
@@ -490,7 +503,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                 t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], angle - (
                     match[1] if match is not None else 0.0), TURN_TIMING_FRACTIONS)
             if match is not None:  # decision L210
-                (t0, t1), share = (float(yaw["start_s"].iloc[match[0]]), float(yaw["end_s"].iloc[match[0]])), 1.0
+                # decision L345: its 5-95 % times when TURN_YAW_FRACTIONS, else El-Gohary's boundaries
+                (t0, t1), share = (float(yaw["t_on"].iloc[match[0]]), float(yaw["t_off"].iloc[match[0]])), yaw_share
             elif ends_after_last:  # decision L205: without the yaw rate its end is unknown
                 t1 = np.nan
             if match is None:  # decision L229: the peak of the heading L208 spreads over the rows' spans (L205's
@@ -513,10 +527,10 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                 continue
             if not yaw_only and whole_turns(y.angle_deg, rows_heading_change(st, y.start_s, y.end_s)) == 0:
                 continue  # decision L255: the rows' heading follows it (the steps saw it, under the rate or 80 deg)
-            dur = y.end_s - y.start_s
-            rows.append({"start_s": y.start_s, "end_s": y.end_s, "duration_s": dur, "angle_deg": y.angle_deg,
+            dur = y.t_off - y.t_on  # decision L345: the 5-95 % times when TURN_YAW_FRACTIONS
+            rows.append({"start_s": y.t_on, "end_s": y.t_off, "duration_s": dur, "angle_deg": y.angle_deg,
                          "peak_rate_dps": y.peak_dps, "n_rows": 0, "bout": bout_of(y.peak_s),
-                         "mean_rate_dps": abs(y.angle_deg) / dur if dur > 0 else np.nan})
+                         "mean_rate_dps": yaw_share * abs(y.angle_deg) / dur if dur > 0 else np.nan})
     rows.sort(key=lambda r: r["start_s"])  # stable: step-heading turns keep their order
     out = pd.DataFrame([{"turn": i + 1, **r} for i, r in enumerate(rows)], columns=list(TURN_TABLE_COLUMNS))
     out["bout"] = out["bout"].astype("Int64")

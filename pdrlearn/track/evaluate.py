@@ -177,40 +177,57 @@ def count_floors(z, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOR
 CLIMB_BRIDGE_STRIDES = 4
 
 
+#: decision L337 (adopted by L338's rule or not: L339): where the altitude measures a slope (L300's grade_source), a
+#: row inside a sustained grade is a climb row too, so a ramp's or hill's floors come from its whole rise
+RAMP_CLIMBS = True
+#: decision L337: the centred window (strides; x STEPS_PER_STRIDE on the lower back) whose grade (summed dz over summed
+#: horizontal length) makes a row a climb row when it reaches L301's RAMP_MIN_GRADE_PCT: ~10 m, longer than a 1:12
+#: ramp run between landings (ADA 2010 sec. 405.6: 30 in of rise = 9.1 m), so a landing does not break the climb
+CLIMB_SLOPE_WINDOW_STRIDES = 7
+
+
 def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
-                          bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None) -> tuple[int, int, int]:
+                          bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None,
+                          slope_rows=None) -> tuple[int, int, int]:
     """Storeys climbed and descended counted per climb from the strides' height changes ``dz`` (m, one per
     stride in walking order): ``(floors_up, floors_down, storeys_changed)`` (decision L127). A climb up (down)
     is a run of up (down) stair strides, dz >= ``LEVEL_DZ_M`` (<= -``LEVEL_DZ_M``, L39), with at most
     ``bridge`` other strides between two of them; its height H (the sum of dz from its first to its last stair
     stride) counts floor(|H| / h + band) storeys, the storeys of L64's band rule, so a slow altitude drift
     between climbs moves no count. Non-finite dz count as 0. ``slope`` (default ``SUSTAINED_SLOPE``, decision
-    L144): the strides of a sustained slope (``kernels.distance.sustained_slope``) count as stair strides too."""
-    climbs = [n for _, n in floor_climbs(dz, storey_height_m, band, bridge, slope)]
+    L144): the strides of a sustained slope (``kernels.distance.sustained_slope``) count as stair strides too.
+    ``slope_rows`` (decision L337, :func:`climb_slope_rows`; None: none): per row +1 / -1 where a sustained grade up /
+    down makes it a climb row of that sign."""
+    climbs = [n for _, n in floor_climbs(dz, storey_height_m, band, bridge, slope, slope_rows)]
     up, down = sum(n for n in climbs if n > 0), -sum(n for n in climbs if n < 0)
     return up, down, up - down
 
 
 def floor_climbs(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
-                 bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None) -> list[tuple[int, int]]:
+                 bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None,
+                 slope_rows=None) -> list[tuple[int, int]]:
     """:func:`count_floors_by_climb`'s climbs that count a storey (decision L127), as ``(last, storeys)``: the index
     of the climb's last stair stride and its storeys, + up / - down (decision L277: periods.csv places each climb's
     storeys in the period of its last stair stride, so the periods' floors add up to the summary's)."""
 
-    return [(int(r[-1]), n) for r, n in _climb_runs(dz, storey_height_m, band, bridge, slope)]
+    return [(int(r[-1]), n) for r, n in _climb_runs(dz, storey_height_m, band, bridge, slope,
+                                                    slope_rows=slope_rows)]
 
 
-def _climb_runs(dz, storey_height_m: float, band: float, bridge: int, slope: bool | None, every: bool = False):
+def _climb_runs(dz, storey_height_m: float, band: float, bridge: int, slope: bool | None, every: bool = False,
+                slope_rows=None):
     """:func:`floor_climbs`' climbs as ``(stair rows, storeys)`` (decision L127; L302 reads their rows); ``every``:
-    also the climbs under a storey (storeys 0, sign lost; decision L303 reads their rows)."""
+    also the climbs under a storey (storeys 0, sign lost; decision L303 reads their rows); ``slope_rows`` (L337):
+    +1 / -1 rows that are climb rows of that sign whatever their own dz."""
     from pdrlearn.kernels import distance
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
     sloped = (distance.sustained_slope(dz) if (distance.SUSTAINED_SLOPE if slope is None else slope)
               else np.zeros(len(dz), dtype=bool))
+    grade = np.zeros(len(dz), dtype=int) if slope_rows is None else np.asarray(slope_rows, dtype=int).ravel()
     out = []
-    for sign, stair in ((1, np.flatnonzero((dz >= distance.LEVEL_DZ_M) | (sloped & (dz > 0)))),
-                        (-1, np.flatnonzero((dz <= -distance.LEVEL_DZ_M) | (sloped & (dz < 0))))):
+    for sign, stair in ((1, np.flatnonzero((dz >= distance.LEVEL_DZ_M) | (sloped & (dz > 0)) | (grade > 0))),
+                        (-1, np.flatnonzero((dz <= -distance.LEVEL_DZ_M) | (sloped & (dz < 0)) | (grade < 0)))):
         runs = np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []
         for r in runs:
             n = int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
@@ -254,6 +271,35 @@ def _climb_inputs(steps: pd.DataFrame):
     return column("dz_m"), column("pause_dz_m"), column("length_m")
 
 
+def climb_slope_rows(steps: pd.DataFrame, info: dict | None = None, on: bool | None = None) -> np.ndarray | None:
+    """Decision L337: per row +1 / -1 where the grade of the centred window of :data:`CLIMB_SLOPE_WINDOW_STRIDES`
+    strides (x :data:`STEPS_PER_STRIDE`) around it is at least L301's ``RAMP_MIN_GRADE_PCT`` up / down, else 0 - only
+    where the altitude measures a slope (L300's :func:`pdrlearn.track.grade.grade_source`); None there, for a table
+    not counted per climb, or when ``on`` (default :data:`RAMP_CLIMBS`) is False."""
+    from pdrlearn.track.grade import RAMP_MIN_GRADE_PCT, grade_source, window_grades_pct
+
+    if not (RAMP_CLIMBS if on is None else on) or _climb_dz(steps)[0] is None or grade_source(steps, info) is None:
+        return None
+    walked, _, length = _climb_inputs(steps)
+    g = window_grades_pct(length, walked, CLIMB_SLOPE_WINDOW_STRIDES * STEPS_PER_STRIDE[str(steps["unit"].iloc[0])]
+                          if "unit" in steps else CLIMB_SLOPE_WINDOW_STRIDES)
+    return np.where(np.abs(g) >= RAMP_MIN_GRADE_PCT, np.sign(g), 0).astype(int)
+
+
+def _kind_rows(rows, dz, slope_rows) -> np.ndarray:
+    """Decision L337: the rows :func:`climb_kind` judges a climb on - its rows (L127's stair rows) without
+    ``slope_rows``; with them, its L127 stair rows (|dz| >= ``LEVEL_DZ_M``) when they carry at least half its height
+    (a stair flight), else all its rows (a ramp, whose few noisy 0.10 m rows would read as stair steps)."""
+    from pdrlearn.kernels.distance import LEVEL_DZ_M
+
+    rows = np.asarray(rows, dtype=int)
+    if slope_rows is None:
+        return rows
+    stair = rows[np.abs(dz[rows]) >= LEVEL_DZ_M]
+    height = abs(float(np.sum(dz[int(rows[0]):int(rows[-1]) + 1])))
+    return stair if len(stair) and abs(float(np.sum(dz[stair]))) >= height / 2 else rows
+
+
 def ramp_climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray:
     """Decision L303: the rows of the climbs (L127's runs of stair rows and the rows bridged between them, any height,
     :func:`_climb_runs` with ``every``) that :func:`climb_kind` calls ``"ramps"``: walked under
@@ -267,8 +313,9 @@ def ramp_climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray
     from pdrlearn.track.grade import climb_rows
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
-    for rows, _ in _climb_runs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True):
-        if climb_kind(walked, pause, length, rows, on_stairs) == "ramps":
+    slope_rows = climb_slope_rows(steps, info)  # decision L337
+    for rows, _ in _climb_runs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True, slope_rows=slope_rows):
+        if climb_kind(walked, pause, length, _kind_rows(rows, dz, slope_rows), on_stairs) == "ramps":
             out[int(rows[0]):int(rows[-1]) + 1] = True
     return out
 
@@ -286,8 +333,10 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
     from pdrlearn.track.grade import climb_rows
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
-    for rows, n in _climb_runs(dz, storey_height_m, STOREY_BAND, bridge, None):
-        key = f"floors_{'up' if n > 0 else 'down'}_{climb_kind(walked, pause, length, rows, on_stairs)}"
+    slope_rows = climb_slope_rows(steps, info)  # decision L337
+    for rows, n in _climb_runs(dz, storey_height_m, STOREY_BAND, bridge, None, slope_rows=slope_rows):
+        kind = climb_kind(walked, pause, length, _kind_rows(rows, dz, slope_rows), on_stairs)
+        key = f"floors_{'up' if n > 0 else 'down'}_{kind}"
         out[key] += abs(n)
     return out
 
@@ -297,12 +346,13 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
 FLOOR_COUNT = "climb"
 
 
-def _floors(z, out: dict, suffix: str = "", dz=None, bridge: int = CLIMB_BRIDGE_STRIDES) -> None:
+def _floors(z, out: dict, suffix: str = "", dz=None, bridge: int = CLIMB_BRIDGE_STRIDES, slope_rows=None) -> None:
     """The floor keys (decisions L64, L127) in storeys of ``out["storey_height_m"]``: per climb from the steps'
-    ``dz`` when given (FLOOR_COUNT "climb"; ``bridge`` steps between two stair steps of a climb), else from the
-    altitude ``z``."""
+    ``dz`` when given (FLOOR_COUNT "climb"; ``bridge`` steps between two stair steps of a climb; ``slope_rows``:
+    L337's), else from the altitude ``z``."""
     h = out.get("storey_height_m", STOREY_HEIGHT_M)
-    up, down, net = count_floors_by_climb(dz, h, bridge=bridge) if dz is not None else count_floors(z, h)
+    up, down, net = (count_floors_by_climb(dz, h, bridge=bridge, slope_rows=slope_rows) if dz is not None
+                     else count_floors(z, h))
     out[f"floors_up{suffix}"], out[f"floors_down{suffix}"], out[f"storeys_changed{suffix}"] = up, down, net
 
 
@@ -501,7 +551,8 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)
-    _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=dz, bridge=bridge)
+    _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=dz, bridge=bridge,
+            slope_rows=climb_slope_rows(result.steps, result.info))  # decision L337
     out.update(floors_by_kind(result.steps, out.get("storey_height_m", STOREY_HEIGHT_M),
                              result.info))  # decision L302
     _ascent(result, out)

@@ -94,6 +94,19 @@ def along_slope_m(length, dz) -> float:
     return float(np.nansum(d))
 
 
+def window_grades_pct(length, dz, window: int = 1) -> np.ndarray:
+    """Decisions L301, L337: per row, the grade (%) of the centred ``window`` rows around it - their summed ``dz`` over
+    their summed ``|length|`` (NaN read as 0), 0 where that length is 0; clipped at the ends. A pure kernel."""
+    length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
+    dz = np.nan_to_num(np.asarray(dz, dtype=float))
+    n = len(length)
+    half = max(int(window), 1) // 2
+    csum_l, csum_z = np.concatenate([[0.0], np.cumsum(length)]), np.concatenate([[0.0], np.cumsum(dz)])
+    lo, hi = np.clip(np.arange(n) - half, 0, n), np.clip(np.arange(n) + half + 1, 0, n)
+    wl, wz = csum_l[hi] - csum_l[lo], csum_z[hi] - csum_z[lo]
+    return np.where(wl > 0, 100.0 * wz / np.where(wl > 0, wl, 1.0), 0.0)
+
+
 def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE_PCT,
               stair_grade_pct: float = STAIR_MIN_GRADE_PCT, min_run_m: float = RAMP_MIN_RUN_M,
               landing_max_m: float = LANDING_MAX_M, on_stairs=None) -> list[dict]:
@@ -112,11 +125,7 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     n = len(length)
     if not n:
         return []
-    half = max(int(window), 1) // 2
-    csum_l, csum_z = np.concatenate([[0.0], np.cumsum(length)]), np.concatenate([[0.0], np.cumsum(dz)])
-    lo, hi = np.clip(np.arange(n) - half, 0, n), np.clip(np.arange(n) + half + 1, 0, n)
-    wl, wz = csum_l[hi] - csum_l[lo], csum_z[hi] - csum_z[lo]
-    g = np.where(wl > 0, 100.0 * wz / np.where(wl > 0, wl, 1.0), 0.0)
+    g = window_grades_pct(length, dz, window)
     own = np.where(length >= GRADE_MIN_LENGTH_M, 100.0 * dz / np.where(length > 0, length, 1.0), np.inf)
     stair = np.abs(own) >= stair_grade_pct
     if on_stairs is not None:  # decision L314

@@ -44,9 +44,13 @@ from pdrlearn.waist.posture_time import POSTURE_KEYS, POSTURES
 
 #: decision L275: the summary's time-accounting keys, which sum to ``time_span_s``
 TIME_KEYS = ("time_walking_s", "time_between_steps_s", "time_no_steps_s", "time_no_data_s")
+#: decision L340: periods.csv's stride length, speed and variability, each the summary's own rule on the period's steps
+PERIOD_GAIT_KEYS = ("median_stride_length_m", "median_speed_mps", "stride_time_cv_pct", "stride_length_cv_pct",
+                    "n_cv_strides")
 #: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
 PERIOD_COLUMNS = ("session", "subject", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
-                  "n_steps", "n_steps_counts", "median_stride_time_s", "median_cadence_spm", *TIME_KEYS,
+                  "n_steps", "n_steps_counts", "median_stride_time_s", "median_cadence_spm",
+                  *PERIOD_GAIT_KEYS, *TIME_KEYS,
                   *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
                   "position_sigma_end_m")
 #: decision L277: ``--per`` units (s)
@@ -230,15 +234,52 @@ def time_accounting(result, session, unit: str | None = None, window: tuple[floa
     return time_summary(timeline, *(window if window is not None else session_span(session, unit)))
 
 
+#: decision S69: the lower-back step-length models that read the pelvis's vertical excursion (the inverted pendulum,
+#: seed 003 eq. 1), which the simulator's default bounce keeps the same on every step (S29)
+BOUNCE_LENGTH_MODELS = ("pendulum",)
+
+
+def constant_bounce_line(meta: dict, info: dict) -> str | None:
+    """Decision S69: the one line ``track --per`` adds when a lower-back track whose step length reads the pelvis's
+    bounce (:data:`BOUNCE_LENGTH_MODELS`, ``info["methods"]["length"]``) is of a session meta.json says the simulator
+    made (``source_project`` "pdrlearn.sim", with its ``knobs``) with the default constant bounce (``knobs`` has no
+    ``bounce``, S29 leaves the default out, or "constant"): its periods' step lengths cannot follow a changing stride.
+    None otherwise (a real recording, a foot track, ``--bounce pendulum``, a meta.json without knobs)."""
+    knobs = meta.get("knobs")
+    if meta.get("source_project") != "pdrlearn.sim" or not isinstance(knobs, dict):
+        return None
+    if ((info or {}).get("methods") or {}).get("length") not in BOUNCE_LENGTH_MODELS:
+        return None
+    if knobs.get("bounce", "constant") != "constant":
+        return None
+    return ("periods.csv: this simulated session's pelvis bounces the same on every step (simulate's default "
+            "constant bounce, S29) and the lower back's pendulum step length reads that bounce, so its steps stay "
+            "about as long when the simulated stride changes: a per-period trend in distance, speed or step length "
+            "is the simulator's, not the walker's (trial s32: true median stride 2.05 -> 0.87 m, waist steps "
+            "0.685-0.688 m in every period); simulate with --bounce pendulum for a study of a changing step length, "
+            "or read the foot's periods (decision S69)")
+
+
 def _period_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
     """Decision L320: the median stride time and cadence of the period's steps (``rows``), by the summary's own
-    rule (:func:`pdrlearn.track.gait.gait_summary`, its default medians) on those rows; None without a stride time."""
+    rule (:func:`pdrlearn.track.gait.gait_summary`, its default medians) on those rows; None without a stride time.
+    Decision L340: and :data:`PERIOD_GAIT_KEYS`, each by the summary's own rule on those rows - the median stride
+    length (``evaluate.median_stride_length``: foot only), the median per-stride speed (``gait_summary``), the
+    stride-time and stride-length CVs and their ``n_cv_strides`` (``clinical.clinical_summary``: steady straight level
+    forward strides, 10 needed, L104 / L212; foot only, L214)."""
+    from pdrlearn.track.clinical import clinical_summary
+    from pdrlearn.track.evaluate import median_stride_length
     from pdrlearn.track.gait import gait_summary
 
     if not rows.any():
-        return {"median_stride_time_s": None, "median_cadence_spm": None}
-    g = gait_summary(steps[rows].reset_index(drop=True))
-    return {"median_stride_time_s": g.get("median_stride_time_s"), "median_cadence_spm": g.get("median_cadence_spm")}
+        return dict.fromkeys(("median_stride_time_s", "median_cadence_spm", *PERIOD_GAIT_KEYS))
+    st = steps[rows].reset_index(drop=True)
+    g, c = gait_summary(st), clinical_summary(st)
+    return {"median_stride_time_s": g.get("median_stride_time_s"), "median_cadence_spm": g.get("median_cadence_spm"),
+            "median_stride_length_m": median_stride_length(st), "median_speed_mps": g.get("median_speed_mps"),
+            "stride_time_cv_pct": c.get("stride_time_cv_pct"), "stride_length_cv_pct": c.get("stride_length_cv_pct"),
+            "n_cv_strides": None if (c.get("stride_time_cv_withheld") or {}).get("cause") == "lower_back"
+            else c.get("n_cv_strides")}
 
 
 def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
@@ -249,7 +290,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     the clock's whole periods instead (``--per-align clock``: 1h = the clock hours), the first and last partial."""
     from pdrlearn.track.bouts import session_key
     from pdrlearn.track.clock import clock_edges
-    from pdrlearn.track.evaluate import _climb_dz, floor_climbs, step_counts
+    from pdrlearn.track.evaluate import _climb_dz, climb_slope_rows, floor_climbs, step_counts
 
     t0, t1 = session_span(session, unit)
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
@@ -260,7 +301,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
     length = steps["length_m"].abs().to_numpy(float) if len(steps) else np.zeros(0)
     dz, bridge = _climb_dz(steps)
-    climbs = floor_climbs(dz, storey_height_m, bridge=bridge) if dz is not None else None
+    climbs = (floor_climbs(dz, storey_height_m, bridge=bridge, slope_rows=climb_slope_rows(steps, result.info))
+              if dz is not None else None)  # decision L337: a ramp's climb as the summary's
     climb_t = np.array([mid[i] for i, _ in climbs]) if climbs else np.zeros(0)
     climb_n = np.array([n for _, n in climbs]) if climbs else np.zeros(0)
     bout_t = bouts["start_s"].to_numpy(float) if bouts is not None and len(bouts) else np.zeros(0)

@@ -1048,7 +1048,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                   (heading or cfg["heading"]) if waist_heads else "foot")
     strides = drop_steps_across_gaps(strides, foot_gaps)
     if not len(strides):
-        raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
+        hint = ("; the session has a lower-back unit, which sees a chair test or a standing session without foot "
+                "strides: track it with --units waist (decision B268)") if session.has(
+                    "wAccelerometer", "wGyroscope") else ""
+        raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?{hint}")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     fd_kw.update(check_foot_settings(params, "plasys params"))  # decisions B206 / B207
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)

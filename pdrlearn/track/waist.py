@@ -32,6 +32,7 @@ from pdrlearn.kernels.barometer import (  # decision W91's constants and test, s
     stairs_rate_test,
 )
 from pdrlearn.kernels.freeze import inside_episodes
+from pdrlearn.kernels.lying_heading import long_axis_yaw_rate, stop_pieces  # decision W269
 from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
@@ -76,7 +77,7 @@ from pdrlearn.waist.lengths import (
     step_frequency,
     walking_sequences,
 )
-from pdrlearn.waist.lying import postures_and_transfers
+from pdrlearn.waist.lying import postures_and_transfers, session_lying
 from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params, subject_height
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
@@ -357,14 +358,19 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
                    resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
-                   integrate_end: bool = False, rest_bias: bool = False) -> pd.DataFrame:
+                   integrate_end: bool = False, rest_bias: bool = False, lying=None,
+                   rest_frame: bool = False) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
     carry over between walking sequences; a sequence-closing contact keeps the last heading, except the last one
     with the gyro method, ``integrate_stops`` and ``integrate_end`` (decision W187): it adds the rotation from its
     contact to the end of the recording (a turn on the spot after the last step). ``rest_bias`` (decision L296): a
     stop over a minute long adds its moving samples' rate less the bias of its still ones
-    (:func:`pdrlearn.kernels.rest_heading.rest_rotation`), not its whole integral."""
+    (:func:`pdrlearn.kernels.rest_heading.rest_rotation`), not its whole integral. ``lying`` (decision W269):
+    ``(episodes, long_axis_rate, still)`` - inside a stop, each lying episode's movements add nothing and its lying
+    run adds the yaw of the trunk's long axis (:func:`_stop_rotation`); None: the vertical rate throughout.
+    ``rest_frame`` (decision W285, harmonic headings): each step's direction less the AHRS frame's turn over the rests
+    over a minute before it (:func:`_rest_frame_drifts`)."""
     n = len(steps)
     headings = np.full(n, np.nan)
     turning = np.zeros(n, dtype=int)
@@ -388,10 +394,11 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
             if integrate_stops and j > 0:  # turns made while standing between walking sequences
                 t_a, t_b = ev_all[seqs[j - 1][-1]], ev_all[seq[0]]
                 whole = K.integrate_rate(imu.t, w, t_a, t_b, cum=cum)
-                turned = whole if still is None else rest_rotation(imu.t, w, still, t_a, t_b, cum=cum)
-                if turned != whole:  # L296: the bias left out, for W74's comparison with the integrated yaw
+                turned = _stop_rotation(imu, w, still, t_a, t_b, cum, lying)
+                if turned != whole:  # L296 (W269): the bias (the lying) left out, for W74's comparison with the yaw
                     removed.append((float(t_b), whole - turned))
-                    rests.append((float(t_a), float(t_b)))  # decision L306: what L297's clock may skip
+                    if rests is not None:
+                        rests.append((float(t_a), float(t_b)))  # decision L306: what L297's clock may skip
                 current += turned
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
@@ -410,6 +417,8 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         if resolve_signs:  # decision W13: one yaw offset per worn unit fixes 180-degree sign errors
             mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
             raw = K.resolve_axis_signs(raw, np.interp(mid, imu.t, imu.yaw))
+        if rest_frame:  # decision W285: the frame's turn over a long rest (the bias) is no turn of the walk
+            raw = raw - _rest_frame_drifts(imu, seqs, ev_all)
         per_seq = [average_two(raw[seq[:-1]]) for seq in seqs]
     current = 0.0
     for seq, hd in zip(seqs, per_seq, strict=True):
@@ -420,11 +429,66 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         headings[seq[-1]] = current
     if method == "gyro" and integrate_stops and integrate_end and seqs:  # W187: W72's integral over the final stop
         last = seqs[-1][-1]  # (a lone last contact, too: its stop's rotation is in gyro_end, not in ``current``)
-        headings[last] = gyro_end + K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
+        headings[last] = gyro_end + (K.integrate_rate(imu.t, w, ev_all[last], float(imu.t[-1]), cum=cum)
+                                     if lying is None else  # decision W269: a lying night after the last step
+                                     _stop_rotation(imu, w, None, ev_all[last], float(imu.t[-1]), cum, lying))
     out = steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
     out.attrs["rest_bias_removed"] = removed
     out.attrs["rest_bias_rests"] = rests  # None: L296 not in force (not the gyro heading, or an option off)
     return out
+
+
+def _stop_rotation(imu: WaistIMU, w: np.ndarray, still: np.ndarray | None, t_a: float, t_b: float,
+                   cum: np.ndarray, lying) -> float:
+    """The heading's rotation over a stop ``[t_a, t_b]``: W72's integral of the vertical rate ``w``, or L296's
+    :func:`rest_rotation` with ``still``; with ``lying`` (decision W269, ``(episodes, long_axis_rate, still)``) only
+    over the stop's pieces outside its lying episodes, and over each lying run the long axis's yaw
+    (:func:`pdrlearn.kernels.lying_heading.long_axis_yaw_rate`) as L296 reads a rest: its still samples add nothing."""
+    def rotation(rate, mask, a, b, c=None):
+        return K.integrate_rate(imu.t, rate, a, b, cum=c) if mask is None else rest_rotation(imu.t, rate, mask, a, b,
+                                                                                             cum=c)
+    if lying is None or not lying[0]:
+        return rotation(w, still, t_a, t_b, cum)
+    upright, lying_runs = stop_pieces(t_a, t_b, lying[0])
+    if not lying_runs and upright == [(t_a, t_b)]:
+        return rotation(w, still, t_a, t_b, cum)
+    return (sum(rotation(w, still, a, b, cum) for a, b in upright)
+            + sum(rotation(lying[1], lying[2], a, b) for a, b in lying_runs))
+
+
+def _rest_frame_drifts(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray:
+    """Decision W285: per step (``ev_all``'s order), the AHRS frame's turn (rad) about the vertical over the rests
+    before it that its body did not make (:func:`pdrlearn.kernels.rest_heading.rest_frame_drift`): the lead-in from
+    the recording's start to the first contact and each stop between walking sequences, the rests over
+    ``REST_BIAS_MIN_S`` only (L296's bound); zeros when there is none."""
+    from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S, rest_frame_drift
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    out = np.zeros(len(ev_all))
+    if not seqs:
+        return out
+    rests = [(float(imu.t[0]), float(ev_all[seqs[0][0]]), int(seqs[0][0]))]
+    rests += [(float(ev_all[a[-1]]), float(ev_all[b[0]]), int(b[0])) for a, b in zip(seqs[:-1], seqs[1:], strict=True)]
+    if max(b - a for a, b, _ in rests) <= REST_BIAS_MIN_S:
+        return out
+    still = standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)  # L296's still samples
+    cum = K.rate_integral(imu.t, imu.w_z)  # the raw rate: the AHRS integrates the gyroscope as it is (W5)
+    for a, b, k in rests:
+        out[k:] += rest_frame_drift(imu.t, imu.w_z, still, a, b, cum=cum)
+    return out
+
+
+def _lying_heading(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame):
+    """Decision W269: ``(episodes, long_axis_rate, still)`` for :func:`_stop_rotation` - the lying episodes of
+    :func:`pdrlearn.waist.lying.session_lying`, the yaw rate of W102's walking upright about gravity and L296's still
+    samples - or None when the track has no lying episode (or no upright or body rate)."""
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    episodes, upright = session_lying(imu, steps, chair)
+    if not episodes or upright is None or imu.gyr_body is None:
+        return None
+    return (episodes, long_axis_yaw_rate(imu.up_body, imu.gyr_body, upright),
+            standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs))
 
 
 def _rest_still(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray | None:
@@ -484,12 +548,18 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
                    "pause_ride": True,  # W231: a long pause's barometric change counts only where it is a ride
                    "rest_bias": True,  # L296: a long rest's rotation less the bias of its still samples
+                   "lying_heading": True,  # W269, W271 (adopted by W270): lying turns it by the long axis's yaw only
+                   "rest_frame": False,  # W285: harmonic headings less the AHRS frame's turn over a long rest
                    "climb_veto": False}  # L314's ramp veto from W108's climbs: opt-in (decision L330)
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
     "integrate_end": ("the offline gyro heading with integrate_stops (waist-pendulum's default heading; W187)",
                       lambda pl, rt, m, det, stops: m == "gyro" and stops and not rt),
+    "lying_heading": ("the offline gyro heading with integrate_stops (waist-pendulum's default heading; W269)",
+                      lambda pl, rt, m, det, stops: m == "gyro" and stops and not rt),
+    "rest_frame": ("the harmonic headings (ahe, ellipse, ellipse-stride: waist-pll's default heading; W285)",
+                   lambda pl, rt, m, det, stops: m in HARMONIC_METHODS),
     "stand_veto": ("the offline waist-pendulum with its own contact detector (W189)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "contact_model": ("the offline waist-pendulum with its own contact detector (W203)",
@@ -787,6 +857,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
+             "lying_heading": None,  # W269: a PARAMS.json option only
+             "rest_frame": None,  # W285: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
@@ -895,10 +967,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
         steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
+    lying = (_lying_heading(imu, steps, transfers) if bool(o["lying_heading"]) and method == "gyro"
+             and integrate_stops and not realtime else None)  # decision W269: offline (W222's lying reads ahead)
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
                            integrate_end=bool(o["integrate_end"]) and not realtime,  # W187: offline only
-                           rest_bias=bool(o["rest_bias"]))  # decision L296
+                           rest_bias=bool(o["rest_bias"]), lying=lying,  # decisions L296, W269
+                           rest_frame=bool(o["rest_frame"]))  # decision W285
     rest_removed = steps.attrs.get("rest_bias_removed", [])
     rest_spans = steps.attrs.get("rest_bias_rests")  # decision L306
     steps = steps.assign(stairs=stairs)
@@ -1010,6 +1085,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "rest_bias_rests": None if rest_spans is None else [[a, b] for a, b in rest_spans],
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
     }
+    from pdrlearn.waist import turn_steps
+
+    if turn_steps.TURN_STEPS_WARN and "event_s" in steps:  # decision W283: the steps its turns missed
+        line = turn_steps.turn_steps_warning(steps["event_s"], info["yaw_turns"], len(steps))
+        if line:
+            warnings.append(line)
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start, z_raw)

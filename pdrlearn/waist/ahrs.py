@@ -51,6 +51,8 @@ class WaistIMU:
         (decision W102's trunk-tilt gate); None when the data came without it
     bridged : (n,) bool, samples made up inside a gap of dropped samples (W34's line or B11's rest), which are no
         evidence that the unit stood still (decision W136); None when not known (all recorded)
+    gyr_body : (n, 3) angular rate in the body frame FLU (rad/s), as the AHRS read it: the rate about the trunk's
+        long axis while lying (decision W269); None when the data came without it
     """
 
     t: np.ndarray
@@ -64,6 +66,7 @@ class WaistIMU:
     acc_ml: np.ndarray
     up_body: np.ndarray | None = None
     bridged: np.ndarray | None = None
+    gyr_body: np.ndarray | None = None
 
     @property
     def w_z(self) -> np.ndarray:
@@ -201,4 +204,4 @@ def imu_from_body(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, *, fs: float 
     log.info("AHRS: %d samples at %.1f Hz, local gravity %.3f m/s^2", len(t), fs, g)
     return WaistIMU(t=t, fs=fs, acc_nav=acc_nav, gyr_nav=gyr_nav, yaw=yaw, acc_v=acc_v,
                     acc_h=acc_nav[:, :2].copy(), acc_ap=ap, acc_ml=ml,
-                    up_body=rot.inv().apply(np.tile([0.0, 0.0, 1.0], (len(t), 1))))
+                    up_body=rot.inv().apply(np.tile([0.0, 0.0, 1.0], (len(t), 1))), gyr_body=gyr)

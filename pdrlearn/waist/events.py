@@ -278,7 +278,8 @@ def _window(imu: WaistIMU, lo: int, hi: int) -> WaistIMU:
     return WaistIMU(t=imu.t[lo:hi], fs=imu.fs, acc_nav=imu.acc_nav[lo:hi], gyr_nav=imu.gyr_nav[lo:hi],
                     yaw=imu.yaw[lo:hi], acc_v=imu.acc_v[lo:hi], acc_h=imu.acc_h[lo:hi],
                     acc_ap=imu.acc_ap[lo:hi], acc_ml=imu.acc_ml[lo:hi],
-                    up_body=None if imu.up_body is None else imu.up_body[lo:hi])
+                    up_body=None if imu.up_body is None else imu.up_body[lo:hi],
+                    gyr_body=None if imu.gyr_body is None else imu.gyr_body[lo:hi])
 
 
 def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float = WALK_THRESHOLD_MPS2,

@@ -196,15 +196,16 @@ def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings
 
 
 #: the columns of a track's ``info["yaw_turns"]`` records (decision L210)
-YAW_TURN_KEYS = ("start_s", "end_s", "peak_s", "angle_deg", "peak_dps")
+YAW_TURN_KEYS = ("start_s", "end_s", "peak_s", "angle_deg", "peak_dps", "start_5_s", "end_95_s")
 
 
 def yaw_turns(imu: WaistIMU, bias_rps: float = 0.0) -> list[dict]:
     """Decision L210: El-Gohary's turns (:func:`pdrlearn.kernels.yaw_turns.yaw_rate_turns`) of the pelvis yaw
     rate, the vertical gyro in the gravity frame less ``bias_rps``, over the whole recording: one record each
     (:data:`YAW_TURN_KEYS`, times in ``imu.t``'s clock; ``end_s`` the first sample under the edge rate after the
-    turn, the last sample at the recording's end)."""
-    from pdrlearn.kernels.yaw_turns import lowpassed_yaw_rate, yaw_rate_turns
+    turn, the last sample at the recording's end; decision L345: ``start_5_s`` / ``end_95_s`` where its smoothed yaw
+    has gone 5 % / 95 % of its change, :func:`pdrlearn.kernels.yaw_turns.turn_fraction_times`)."""
+    from pdrlearn.kernels.yaw_turns import lowpassed_yaw_rate, turn_fraction_times, yaw_rate_turns
 
     t = np.asarray(imu.t, dtype=float)
     if t.size < 2:
@@ -215,5 +216,7 @@ def yaw_turns(imu: WaistIMU, bias_rps: float = 0.0) -> list[dict]:
         return []
     f = np.abs(lowpassed_yaw_rate(rate, float(imu.fs)))  # decision L235: the detector's own peak, El-Gohary 2014
     last = t.size - 1
+    frac = turn_fraction_times(rate, float(imu.fs), rows)  # decision L345
     return [dict(zip(YAW_TURN_KEYS, (float(t[int(a)]), float(t[min(int(b), last)]), float(t[int(p)]), float(ang),
-                                     float(f[int(p)])), strict=True)) for a, b, p, ang in rows]
+                                     float(f[int(p)]), float(t[i0]), float(t[i1])), strict=True))
+            for (a, b, p, ang), (i0, i1) in zip(rows, frac, strict=True)]

@@ -120,6 +120,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "fast_fill",  # W242: the offline detector's sequence rules only
                           "ap_above_mean",  # W265: W29's IC of the offline detector only
                           "climb_veto",  # L330: W108's climbs read the whole recording (L314's veto, opt-in)
+                          "lying_heading",  # W269: W222's lying is labelled on the whole recording
                           # E146: W231's ride is applied live only where the PARAMS.json gives pause_ride true (E146's
                           # rule was not met for the default); L308 applies rest_bias live (E147: no longer named)
                           "pause_ride",
@@ -164,7 +165,9 @@ def live_value(option: str, given: dict | None = None):
     with ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's
     fill is the offline detector's only, where the default is ``"within"``); ``pause_ride`` only as the PARAMS.json
     gives it (E146: W231's ride is applied live when given true; not given: ``False``, W158's whole pause, where the
-    offline default is true); else the option's offline default (E107)."""
+    offline default is true); ``lying_heading`` false when the PARAMS.json gives it (W271: the live tracker labels no
+    lying; its offline default, true, is not named on every live track), else its offline default; else the option's
+    offline default (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
 
     given = given or {}
@@ -182,6 +185,8 @@ def live_value(option: str, given: dict | None = None):
         return False
     if option == "pause_ride":  # E146: applied live when the PARAMS.json gives it true, else W158's whole pause
         return bool(given["pause_ride"]) if given.get("pause_ride") is not None else False
+    if option == "lying_heading":  # W271: never applied live; named when the PARAMS.json gives it true (not its
+        return False if given.get("lying_heading") is not None else OPTION_DEFAULTS[option]  # default on every track)
     return OPTION_DEFAULTS[option]
 
 

@@ -99,6 +99,15 @@ def _along(rate: np.ndarray, j: int, sign: int) -> tuple[int, int]:
     return a, b
 
 
+def _edge_movement(tilt: np.ndarray, rate: np.ndarray, edge: int, sign: int, half: int) -> tuple[int, int, int]:
+    """Decision W245: ``(j, s, e)`` of a lying run's edge at sample ``edge`` (its first sample toward lying, ``sign``
+    +1; one past its last away from it, -1): the 60 deg crossing ``j`` nearest it and the movement's bounds around it
+    (shared by W269's lying episodes)."""
+    j = _crossing(tilt, edge if sign > 0 else edge - 1, sign, half)
+    s, e = _along(rate, j, sign)
+    return j, s, e
+
+
 def _side(code: np.ndarray, i: int, lo: int, hi: int, step: int, fs: float) -> int:
     """The other side's posture code: W222's at sample ``i``, or (decision W249's candidate, :data:`SIDE_WINDOW_S`)
     the standing / sitting code with the most samples from ``i`` over the window away from the movement (``step``
@@ -148,8 +157,7 @@ def lying_transfer_rows(t: np.ndarray, tilt: np.ndarray, code: np.ndarray, fs: f
         for edge, sign in ((a, +1), (b, -1)):
             if edge in (0, n):  # the recording starts or ends lying: that transfer was not recorded
                 continue
-            j = _crossing(tilt, edge if sign > 0 else edge - 1, sign, half)
-            s, e = _along(rate, j, sign)
+            j, s, e = _edge_movement(tilt, rate, edge, sign, half)
             if sign > 0:  # the posture it came from
                 if s <= lo:
                     continue
@@ -170,6 +178,41 @@ def lying_transfer_rows(t: np.ndarray, tilt: np.ndarray, code: np.ndarray, fs: f
                          "peak_tilt_deg": float(np.nanmax(tilt[s:e + 1])),
                          "height_change_m": height_change_m(t, acc_v, s, e)})
     return rows
+
+
+def lying_episodes(t: np.ndarray, tilt: np.ndarray, code: np.ndarray, fs: float) -> list[tuple[float, float, float,
+                                                                                               float]]:
+    """Decision W269 (a pure kernel): ``(start, lying, rise, end)`` (s) of each run of W222's lying (``code`` 3) that
+    lasts :data:`MIN_LYING_S` or more (W247: a shorter one is no lying down): the lying-down movement's start, its end
+    (the lying run's first sample if later), the getting-up movement's start (the run's last sample if earlier) and its
+    end, the movements W245's (:func:`_edge_movement`); at the recording's start (end) the movement was not recorded:
+    its first (last) sample."""
+    t, tilt, code = np.asarray(t, float), np.asarray(tilt, float), np.asarray(code)
+    n = t.size
+    if n < 3:
+        return []
+    rate = tilt_rate_dps(t, tilt, fs)
+    half = max(int(round(POSTURE_HALF_WINDOW_S * fs)), 1)
+    out = []
+    for a, b in runs(code == _CODE[LYING]):
+        if MIN_LYING_S is not None and t[b - 1] - t[a] < MIN_LYING_S:
+            continue
+        s0, e0 = (a, a) if a == 0 else _edge_movement(tilt, rate, a, +1, half)[1:]
+        s1, e1 = (b - 1, b - 1) if b == n else _edge_movement(tilt, rate, b, -1, half)[1:]
+        out.append((float(t[min(s0, a)]), float(t[max(e0, a)]), float(t[min(s1, b - 1)]), float(t[max(e1, b - 1)])))
+    return out
+
+
+def session_lying(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame
+                  ) -> tuple[list[tuple[float, float, float, float]], np.ndarray | None]:
+    """Decision W269: ``(episodes, upright)`` of a lower-back track - :func:`lying_episodes` of W222's labels (from
+    ``steps``' walking contacts and ``chair``, W182's rows) and W102's walking upright (the trunk's long axis in the
+    body frame); ``([], None)`` without an upright."""
+    lab = session_labels(imu, steps, chair)
+    if lab is None:
+        return [], None
+    upright, code = lab
+    return lying_episodes(imu.t, sample_tilt_deg(imu.up_body, upright), code, imu.fs), upright
 
 
 def postures_and_transfers(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame,

@@ -56,7 +56,8 @@ TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_
                     "height_change_m", "flag")
 #: decision W183: the summary keys of :func:`transfer_summary`
 TRANSFER_SUMMARY_KEYS = ("n_sit_to_stand", "n_stand_to_sit", "median_sit_to_stand_s", "median_stand_to_sit_s",
-                         "tug_time_s", "n_lie_down", "n_get_up", "sts5_time_s", "n_transfers_flagged")
+                         "tug_time_s", "n_lie_down", "n_get_up", "tug_time_note", "sts5_time_s",
+                         "n_transfers_flagged")
 #: decision W278: a transfer with walking contacts within this (s) before its start and after its end is flagged
 FLAG_WALK_S = 2.0
 #: decision W278: transfers.csv's ``flag`` texts ("" = none)
@@ -216,12 +217,38 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
            "n_get_up": int(tr["kind"].isin(GET_UP_KINDS).sum()),
            "sts5_time_s": sts5_time_s(tr, steps),  # decision W279
            "n_transfers_flagged": int((flag_texts(tr["flag"]) != "").sum())}  # decision W278
+    contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
     if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
-        contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
         if len(tr) == 2 and not ((contacts < t0).any() or (contacts > t1).any()):
             out["tug_time_s"] = t1 - t0
+    # decision W282: why not, when a rise is followed by a sit (a TUG could be timed on them)
+    pair = len(rise) and len(sit) and float(rise["start_s"].min()) < float(sit["end_s"].max())
+    # decision W279: a five-times sit-to-stand is no TUG to explain: it has its own time
+    out["tug_time_note"] = (tug_note(tr, contacts) if out["tug_time_s"] is None and pair
+                            and out["sts5_time_s"] is None else None)
     return out
+
+
+def tug_note(tr: pd.DataFrame, contacts: np.ndarray) -> str:
+    """Decision W282: why a transfers table ``tr`` (a sit-to-stand followed by a stand-to-sit) with step ``contacts``
+    (start times, s) has no ``tug_time_s`` (W183's rule, module docstring), in one line that points at ``--window``."""
+    rise, sit = tr[tr["kind"] == SIT_TO_STAND], tr[tr["kind"] == STAND_TO_SIT]
+    first, last = tr.iloc[0], tr.iloc[-1]
+    times = (f"the rises start at {', '.join(f'{t:.1f}' for t in rise['start_s'])} s" if len(rise) else "no rise")
+    times += f", the sits end at {', '.join(f'{t:.1f}' for t in sit['end_s'])} s" if len(sit) else ", no sit"
+    if first["kind"] != SIT_TO_STAND or last["kind"] != STAND_TO_SIT:
+        return (f"no TUG time: the recording does not start and end seated (first transfer {first['kind']} at "
+                f"{first['start_s']:.1f} s, last {last['kind']} at {last['start_s']:.1f} s; {times}); a TUG is "
+                "timed from a rise to the next sit of a session cut with --window START,END around them (W183, W282)")
+    if len(tr) > 2:
+        return (f"no TUG time: {len(tr)} transfers ({len(rise)} sit-to-stand, {len(sit)} stand-to-sit), not one "
+                f"seat-to-seat test ({times}); time each trial with --window START,END around one rise and the "
+                "next sit (W183, W282)")
+    t0, t1 = float(first["start_s"]), float(last["end_s"])
+    n0, n1 = int((contacts < t0).sum()), int((contacts > t1).sum())
+    return (f"no TUG time: {n0} step(s) before the rise at {t0:.1f} s and {n1} after the sit ending at {t1:.1f} s: "
+            "not recorded from seat to seat; --window START,END around the rise and the sit times it (W183, W282)")
 
 
 def upright_message(source: str, n_transfers: int) -> str:

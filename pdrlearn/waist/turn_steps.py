@@ -1,0 +1,60 @@
+"""Steps a lower-back track missed in its turns (decision W283), numpy only.
+
+A turn on the spot bounces the pelvis weakly, so its steps are often not detected (W25 / W26), while the yaw rate
+still finds and times the turn (L210, L345). Each El-Gohary yaw-rate turn of at least
+:data:`pdrlearn.track.clinical.TURN_COUNT_MIN_DEG` over its 5-95 % span (L345's ``start_5_s`` / ``end_95_s``) of
+duration D is expected to hold D / T steps, T the walk's step time (the median interval between consecutive contacts
+under :data:`STEP_GAP_MAX_S`); the contacts inside the span are its counted steps, and max(0, round(D / T - counted))
+its missing ones. Not from a seed: the rule and its thresholds are W283's, set before measuring (W284).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: decision W283: intervals between contacts shorter than this (s) are the walk's step times
+STEP_GAP_MAX_S = 1.5
+#: decision W283: no judgement with fewer step-time intervals than this
+MIN_INTERVALS = 4
+#: decision W283: warn when the turns' missing steps sum to at least this many ...
+WARN_MIN_STEPS = 2
+#: ... and to at least this share of the track's step count
+WARN_MIN_FRAC = 0.10
+#: decision W283: whether a lower-back track warns (W284: the rule's result)
+TURN_STEPS_WARN = False
+
+
+def missed_turn_steps(event_s, yaw_turns, min_deg: float = 80.0) -> list[dict]:
+    """Decision W283: per yaw-rate turn (records of ``info["yaw_turns"]``) of at least ``min_deg`` whose 5-95 % span
+    is known: ``start_s``, ``end_s`` (that span), ``expected`` (D / T), ``counted`` (contacts ``event_s`` inside)
+    and ``missing`` (module docstring); [] without enough step intervals to know T."""
+    ev = np.sort(np.asarray(event_s, dtype=float))
+    ev = ev[np.isfinite(ev)]
+    gaps = np.diff(ev)
+    gaps = gaps[(gaps > 0) & (gaps < STEP_GAP_MAX_S)]
+    if gaps.size < MIN_INTERVALS:
+        return []
+    step_s = float(np.median(gaps))
+    out = []
+    for y in yaw_turns or []:
+        a, b = y.get("start_5_s"), y.get("end_95_s")
+        if abs(y.get("angle_deg", 0.0)) < min_deg or a is None or b is None or not b > a:
+            continue
+        expected = (b - a) / step_s
+        counted = int(((ev >= a) & (ev <= b)).sum())
+        out.append({"start_s": float(a), "end_s": float(b), "expected": float(expected), "counted": counted,
+                    "missing": int(max(0, round(expected - counted)))})
+    return out
+
+
+def turn_steps_warning(event_s, yaw_turns, n_steps: int, min_deg: float = 80.0) -> str | None:
+    """Decision W283: the one warning line when the turns' missing steps (:func:`missed_turn_steps`) sum to at least
+    :data:`WARN_MIN_STEPS` and :data:`WARN_MIN_FRAC` of ``n_steps``; None otherwise."""
+    turns = [t for t in missed_turn_steps(event_s, yaw_turns, min_deg) if t["missing"]]
+    m = sum(t["missing"] for t in turns)
+    if m < WARN_MIN_STEPS or m < WARN_MIN_FRAC * max(n_steps, 1):
+        return None
+    spans = ", ".join(f"{t['start_s']:.1f}-{t['end_s']:.1f} s" for t in turns)
+    return (f"about {m} steps missed in {len(turns)} turn(s) ({spans}): a turn's steps were not detected (a turn on "
+            f"the spot bounces the pelvis weakly), so n_steps ({n_steps}), the cadence and the distance read low; the "
+            "turns' times and angles (turns.csv, yaw rate) still hold (W283)")

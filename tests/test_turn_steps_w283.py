@@ -1,0 +1,39 @@
+"""Decisions W283, W284: the steps a lower-back track's turns miss, estimated from the turn's 5-95 % span and the
+walk's step time; the warning is an option (not adopted: W284)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.waist import turn_steps
+from pdrlearn.waist.turn_steps import missed_turn_steps, turn_steps_warning
+
+
+def _turn(a, b, angle=180.0):
+    return {"start_s": a - 0.5, "end_s": b + 0.5, "peak_s": 0.5 * (a + b), "angle_deg": angle, "peak_dps": 100.0,
+            "start_5_s": a, "end_95_s": b}
+
+
+def test_a_turn_whose_steps_were_missed_is_counted_and_warned():
+    walk = np.arange(0.0, 4.01, 0.5)  # 9 contacts, 0.5 s steps
+    after = 6.5 + np.arange(0.0, 4.01, 0.5)
+    ev = np.r_[walk, after]  # the turn 4.2-6.2 s holds no contact: 2.0 s / 0.5 s = 4 steps missing
+    rows = missed_turn_steps(ev, [_turn(4.2, 6.2), _turn(20.0, 21.0, angle=45.0)])  # a 45 deg turn is not judged
+    assert len(rows) == 1 and rows[0]["counted"] == 0 and rows[0]["missing"] == 4
+    line = turn_steps_warning(ev, [_turn(4.2, 6.2)], len(ev))
+    assert line.startswith("about 4 steps missed in 1 turn(s) (4.2-6.2 s)") and "(W283)" in line
+    # the same turn stepped through: nothing missing, no line
+    stepped = np.r_[walk, np.arange(4.5, 6.01, 0.5), after]
+    assert missed_turn_steps(stepped, [_turn(4.2, 6.2)])[0]["missing"] == 0
+    assert turn_steps_warning(stepped, [_turn(4.2, 6.2)], len(stepped)) is None
+    # under 10 % of a long walk's steps: no line; too few step intervals: no judgement
+    long_walk = np.r_[np.arange(0.0, 4.01, 0.5), 6.5 + np.arange(0.0, 40.0, 0.5)]
+    assert turn_steps_warning(long_walk, [_turn(4.2, 6.2)], len(long_walk)) is None
+    assert missed_turn_steps([0.0, 0.5, 1.0], [_turn(4.2, 6.2)]) == []
+    # a record without L345's span (an older track's info) is not judged
+    old = {k: v for k, v in _turn(4.2, 6.2).items() if k not in ("start_5_s", "end_95_s")}
+    assert missed_turn_steps(ev, [old]) == []
+
+
+def test_the_warning_is_off_by_default_w284():
+    assert turn_steps.TURN_STEPS_WARN is False
