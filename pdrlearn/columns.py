@@ -325,6 +325,11 @@ SESSIONS: tuple[Column, ...] = (
     ("tug_time_note", _ID, "text", "lower back: why there is no tug_time_s although a sit-to-stand is followed by "
                                    "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
                                    "W282), pointing at --window; empty otherwise"),
+    ("sts5_time_s", "s", "number", "lower back, a five-times sit-to-stand: the first rise's start to the last sit's "
+                                   "end when the transfers are exactly 5 rises and 5 sits alternating from a rise, "
+                                   "none flagged, no walking between (W279)"),
+    ("n_transfers_flagged", "count", "integer", "lower back: transfers.csv's rows with a flag (W278: not "
+                                                "alternating, walking on both sides); empty on a foot track"),
     ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes from 2 m to 12 m of the first "
                                          "walking bout reaching 14 m, straight (L312); empty on a shorter or "
                                          "turning walk (L313)"),
@@ -529,6 +534,10 @@ TRANSFERS: tuple[Column, ...] = (
     ("peak_tilt_deg", "deg", "number", "the largest tilt (W104's flexion events exceed 25 deg; a lying kind: in the "
                                        "movement)"),
     ("height_change_m", "m", "number", "the pelvis's height change from start_s to end_s (+ up)"),
+    ("flag", _ID, "text", "why the row cannot be as read, else empty: 'not alternating' (the posture it comes from "
+                          "is not the one the row before went to, or the one it goes to not the next's), 'walking on "
+                          "both sides' (walking contacts within 2 s before and after it); flagged rows are still "
+                          "counted (W278)"),
     *_clocks("start_s", "end_s", "peak_s"),
 )
 

@@ -579,6 +579,8 @@ def transfer_line(summary: dict) -> str | None:
             parts.append(f"TUG time {summary['tug_time_s']:.2f} s (rise to sit)")
         elif summary.get("tug_time_note"):  # decision W282: why there is none, and --window
             parts.append(summary["tug_time_note"])
+        if summary.get("sts5_time_s") is not None:  # decision W279
+            parts.append(f"five-times sit-to-stand {summary['sts5_time_s']:.2f} s (first rise to last sit)")
     if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout
         parts.append(f"10 m walk test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
                      "(the middle 10 m of the first 14 m walk, L312)")

@@ -878,9 +878,9 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         walk = walk_line(summary)  # decision L104
         if walk:
             typer.echo(walk)
-        timed = transfer_line(summary)  # decisions L200, W183
-        if timed:
-            typer.echo(timed)
+    timed = transfer_line(summary)  # decisions L200, W183; W277: also without walking (a sit-to-stand test)
+    if timed:
+        typer.echo(timed)
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "

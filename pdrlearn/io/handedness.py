@@ -88,6 +88,10 @@ TURN_MAX_DEG = 30.0
 #: 60 deg or more from the walking upright) are left out: W249's SIDE_WINDOW_S, the span before a lying run that
 #: holds its way into bed (a sit on the bed's edge, the lying down)
 LYING_GUARD_S = 10.0
+#: Decision W280: a turn window whose accelerometer gravity (its first and last quarters' means) turns by this
+#: fraction of the window's net rotation or more is the unit tilting (a trunk pitching in a chair rise), not a walker
+#: turning about gravity; our choice, set before measuring
+TILT_WITH_TURN = 0.5
 #: The accelerometer's mean must measure gravity for the waist test: at least half of g (m/s^2). Gravity-removed
 #: ("linear") acceleration averages to about 0 and points anywhere (the new-user trial's ph_linacc sessions
 #: scored 84-86 deg: a wrong "axes differ" without this).
@@ -404,6 +408,7 @@ def turn_axis(acc: np.ndarray, gyr: np.ndarray, fs: float) -> tuple[float, int, 
     cos12 = np.sum(g1 * g2, axis=1) / np.maximum(np.linalg.norm(g1, axis=1) * np.linalg.norm(g2, axis=1), 1e-12)
     on = (np.linalg.norm(th, axis=1) > np.radians(TURN_MIN_DEG)) & (cos12 >= np.cos(np.radians(TURN_MAX_DEG)))
     on &= _away_from_lying(acc, ca, st, L, fs)  # decision B263: a unit lying in bed is not a walker turning
+    on &= _gravity_holds(ca, st, L, th)  # decision W280: a trunk pitching with the rotation is not a walker turning
     big = th[on]
     if len(big) < 2:
         return float("nan"), int(len(big)), -1, int(np.argmax(np.abs(g)))
@@ -418,6 +423,18 @@ def turn_axis(acc: np.ndarray, gyr: np.ndarray, fs: float) -> tuple[float, int, 
         cos = np.abs(np.sum(big * gw, axis=1)) / np.linalg.norm(big, axis=1)
         ang = float(np.median(np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))))
     return ang, int(len(big)), int(np.argmax(np.abs(u))), int(np.argmax(np.abs(g)))
+
+
+def _gravity_holds(ca: np.ndarray, st: np.ndarray, L: int, th: np.ndarray) -> np.ndarray:
+    """Decision W280: per window starting at ``st`` (length ``L``; ``ca`` the accelerometer's cumulative sum from 0,
+    ``th`` the window's rotation vector, rad), False when the accelerometer's gravity, the mean of the window's first
+    and of its last quarter, turns by :data:`TILT_WITH_TURN` of the window's net rotation or more: the unit tilts
+    with the rotation (a chair rise pitches the trunk 30-45 deg), a walker turns about gravity, which stays put,
+    whatever the gyroscope's axes."""
+    q = max(L // 4, 1)
+    a, b = ca[st + q] - ca[st], ca[st + L] - ca[st + L - q]
+    cos = np.sum(a * b, axis=1) / np.maximum(np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1), 1e-12)
+    return np.arccos(np.clip(cos, -1.0, 1.0)) < TILT_WITH_TURN * np.linalg.norm(th, axis=1)
 
 
 def _away_from_lying(acc: np.ndarray, ca: np.ndarray, st: np.ndarray, L: int, fs: float) -> np.ndarray:

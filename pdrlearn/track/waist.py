@@ -106,7 +106,7 @@ from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.steplength import CADENCE_LAW_STEADY, cadence_law_factor, calibration_cadence_hz, steady_steps
-from pdrlearn.waist.transfers import chair_transfers
+from pdrlearn.waist.transfers import chair_transfers_upright, flag_message, flag_transfers, upright_message
 
 log = logging.getLogger(__name__)
 
@@ -920,13 +920,18 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
         n_tilted = steps.attrs["n_tilted"]
-    transfers = chair_transfers(imu, steps)  # decision W182: each sit-to-stand / stand-to-sit (W104's events)
+    # decision W182: each sit-to-stand / stand-to-sit (W104's events); W277: without walking, from the still standing
+    transfers, upright, upright_source = chair_transfers_upright(imu, steps)
+    fixed_up = upright if upright_source == "still" else None  # W277: the veto and the postures read it too
+    if upright_source != "walking":
+        warnings.append(upright_message(upright_source, len(transfers)))
     n_vetoed = 0
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
         # W180: and an undecided contact inside an alternating sequence; W184: or inside a left/right pair
         veto = causal_transfer_veto if causal_veto else transfer_veto  # W200: realtime_sit_veto, the causal form
         steps = veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation", "opposite"),
-                     keep_between={"alternation": True, "opposite": "opposite"}.get(o["sit_veto"], False))
+                     keep_between={"alternation": True, "opposite": "opposite"}.get(o["sit_veto"], False),
+                     **({} if causal_veto or fixed_up is None else {"upright": fixed_up}))
         n_vetoed = steps.attrs["n_vetoed"]
     else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
         warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"], realtime=realtime))
@@ -981,7 +986,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "sideways")))
     n_st = len(steps)
     held = transfer_windows(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool),
-                            0.5 * ALTITUDE_SMOOTH_S)  # decision W174: a transfer's height change is the transfer's
+                            0.5 * ALTITUDE_SMOOTH_S, fixed_up)  # W174: a transfer's height change is the transfer's
     zz = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float),
                                                   steps["start_s"].to_numpy(float)]), warnings, held)
     z, z_start, z_raw = (None, None, None) if zz is None else (zz[0][:n_st + 1], zz[0][n_st + 1:], zz[1][:n_st + 1])
@@ -1038,7 +1043,14 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     n = len(steps)
     length_model = model.name
     # decisions W222, W245: the posture runs (from the chair transfers) and the lying transfers added to them
-    postures, transfers = postures_and_transfers(imu, steps, transfers)
+    postures, transfers = postures_and_transfers(imu, steps, transfers, fixed_up)
+    if upright_source == "none":  # decision W277: no upright, no transfer and no posture to judge: left empty
+        postures, transfers = [], None
+    else:  # decision W278: rows that cannot be as read (not alternating, walking on both sides) flagged, one line
+        transfers = flag_transfers(transfers, steps)
+        line = flag_message(transfers)
+        if line:
+            warnings.append(line)
     info = {
         "pipeline": pipeline,
         "method": f"{steps.attrs.get('detector', '')}/{length_model}/{method}",
@@ -1065,7 +1077,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_frozen_contacts": n_frozen,  # decision W214
         "barometer_jump_steps": jumps,  # decision W230: steps held level (a pressure transient); None: no altitude
         "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
-        "transfers": transfers.to_dict("records"),  # decisions W182, W245: transfers.csv (not in summary.json)
+        # decisions W182, W245: transfers.csv (not in summary.json); W277: None when no upright could be had
+        "transfers": None if transfers is None else transfers.to_dict("records"),
         "postures": postures,  # decision W222: the posture runs (not in summary.json)
         # decision L306: the rests whose bias L296 took out (L297's sigma clock skips these only); None: L296 not
         # in force on this heading (not in summary.json)

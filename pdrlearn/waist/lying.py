@@ -51,6 +51,7 @@ from pdrlearn.waist.transfers import (  # decision W245's kinds, defined beside 
     SIT_TO_LIE,
     STAND_TO_LIE,
     TRANSFER_COLUMNS,
+    flag_texts,
     height_change_m,
     tilt_rate_dps,
 )
@@ -214,11 +215,13 @@ def session_lying(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame
     return lying_episodes(imu.t, sample_tilt_deg(imu.up_body, upright), code, imu.fs), upright
 
 
-def postures_and_transfers(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame) -> tuple[list[list], pd.DataFrame]:
+def postures_and_transfers(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame,
+                           upright: np.ndarray | None = None) -> tuple[list[list], pd.DataFrame]:
     """Decisions W222 and W245: ``(info["postures"], transfers.csv)`` of a lower-back track - W222's posture runs
     from ``chair`` (W182's rows) and ``steps``' walking contacts, and ``chair`` with the lying transfers added, in
-    the order of their start, numbered from 1."""
-    lab = session_labels(imu, steps, chair)
+    the order of their start, numbered from 1. ``upright``: W277's, as
+    :func:`~pdrlearn.waist.posture_time.session_labels` takes it."""
+    lab = session_labels(imu, steps, chair, upright)
     if lab is None:
         return [], chair
     upright, code = lab
@@ -230,4 +233,6 @@ def postures_and_transfers(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFra
     both = pd.concat([*parts, pd.DataFrame(rows)], ignore_index=True)
     both = both.sort_values("start_s", kind="stable").reset_index(drop=True)
     both.insert(0, "transfer", np.arange(1, len(both) + 1))
-    return posture_runs(imu.t, code), both[list(TRANSFER_COLUMNS)]
+    both = both.reindex(columns=list(TRANSFER_COLUMNS))
+    both["flag"] = flag_texts(both["flag"])  # decision W278: filled in by the track (flag_transfers)
+    return posture_runs(imu.t, code), both

@@ -145,24 +145,26 @@ def contact_tilt_deg(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) ->
     return np.degrees(np.arccos(np.clip(d @ up, -1.0, 1.0)))
 
 
-def flexion_events(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> list[tuple[float, float, float]]:
+def flexion_events(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray, upright: np.ndarray | None = None
+                   ) -> list[tuple[float, float, float]]:
     """Trunk-flexion events (W104): (start, peak, end) times (s) of each run of samples whose up direction is
-    more than :data:`TRANSFER_PEAK_DEG` from the session's walking upright (:func:`contact_tilt_deg`'s)."""
+    more than :data:`TRANSFER_PEAK_DEG` from the session's walking upright (:func:`contact_tilt_deg`'s), or from
+    ``upright`` when given (decision W277: the still standing upright of a session without walking)."""
     event_s = np.asarray(event_s, dtype=float)
-    if imu.up_body is None or event_s.size == 0:
+    if imu.up_body is None or (event_s.size == 0 and upright is None):
         return []
-    _, up = _contact_directions(imu, event_s, walking)
+    up = upright if upright is not None else _contact_directions(imu, event_s, walking)[1]
     return flexion_runs(imu.t, sample_tilt_deg(imu.up_body, up))
 
 
-def transfer_windows(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray, pad_s: float = 0.0
-                     ) -> list[tuple[float, float]]:
+def transfer_windows(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray, pad_s: float = 0.0,
+                     upright: np.ndarray | None = None) -> list[tuple[float, float]]:
     """Decision W174: the time span (s) of each trunk-flexion event (:func:`flexion_events`): from
     :data:`TRANSFER_HALF_S` before its peak (or its start, if earlier) to :data:`TRANSFER_HALF_S` after it (or its
     end, if later), each edge widened by ``pad_s``: the sit-to-stand's (stand-to-sit's) movement, whose change of
-    height is the transfer's, not a climb."""
+    height is the transfer's, not a climb. ``upright``: W277's, as :func:`flexion_events` takes it."""
     return [(min(a, peak - TRANSFER_HALF_S) - pad_s, max(b, peak + TRANSFER_HALF_S) + pad_s)
-            for a, peak, b in flexion_events(imu, event_s, walking)]
+            for a, peak, b in flexion_events(imu, event_s, walking, upright)]
 
 
 def drop_contacts(steps: pd.DataFrame, keep: np.ndarray, count: str) -> pd.DataFrame:
@@ -207,21 +209,21 @@ def undecided_between(side: np.ndarray, has_next: np.ndarray, *, opposite: bool 
 
 
 def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = False,
-                  keep_between: bool | str = False) -> pd.DataFrame:
+                  keep_between: bool | str = False, upright: np.ndarray | None = None) -> pd.DataFrame:
     """``steps`` without the contacts inside a trunk-flexion event (:func:`flexion_events`) or within
     :data:`TRANSFER_HALF_S` of its peak (decision W104); with ``keep_rhythm`` (decision W109) the contacts of
     that window that form a left/right pair with a neighbour (:func:`alternating_pairs`, W20's sides of the pelvis's
     lateral velocity at the contacts) are kept; with ``keep_between`` as well (decision W180) so are the undecided
     contacts between two same-side neighbours of their sequence (:func:`undecided_between`); with
     ``keep_between="opposite"`` (decision W184) those between two opposite-side neighbours instead.
-    ``attrs["n_vetoed"]`` counts the dropped."""
+    ``upright``: W277's, as :func:`flexion_events` takes it. ``attrs["n_vetoed"]`` counts the dropped."""
     if steps.empty:
         out = steps.copy()
         out.attrs["n_vetoed"] = 0
         return out
     e = steps["event_s"].to_numpy(float)
     has_next = steps["has_next"].to_numpy(bool)
-    veto = near_flexion(e, flexion_events(imu, e, has_next))
+    veto = near_flexion(e, flexion_events(imu, e, has_next, upright))
     if (keep_rhythm or keep_between) and veto.any():
         side = K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, e), has_next)
         veto &= ~spared(side, has_next, keep_rhythm, keep_between)

@@ -109,18 +109,21 @@ def posture_runs(t: np.ndarray, code: np.ndarray) -> list[list]:
             if int(code[i]) != _UNKNOWN]
 
 
-def session_labels(imu: WaistIMU, steps: pd.DataFrame, transfers: pd.DataFrame
-                   ) -> tuple[np.ndarray, np.ndarray] | None:
+def session_labels(imu: WaistIMU, steps: pd.DataFrame, transfers: pd.DataFrame,
+                   upright: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray] | None:
     """Decision W222: ``(upright, code)`` of a lower-back track - the walking upright from ``steps``' walking
     contacts (``event_s``, ``has_next``) and :func:`label_postures` of the averaged tilt at every IMU sample; None
-    when there is no upright (no contact, no AHRS up direction)."""
-    if imu.up_body is None or not len(steps):
+    when there is no upright (no contact, no AHRS up direction). Decision W277: ``upright`` given (the still
+    standing upright of a session without walking) is used instead of the contacts'."""
+    if imu.up_body is None or (not len(steps) and upright is None):
         return None
-    ev = steps["event_s"].to_numpy(float)
-    hn = steps["has_next"].to_numpy(bool)
-    upright = walking_upright(contact_directions(imu.t, imu.up_body, ev), hn)
+    ev = steps["event_s"].to_numpy(float) if len(steps) else np.zeros(0)
+    hn = steps["has_next"].to_numpy(bool) if len(steps) else np.zeros(0, dtype=bool)
+    if upright is None:
+        upright = walking_upright(contact_directions(imu.t, imu.up_body, ev), hn)
     walking = np.zeros(imu.t.size, dtype=bool)
-    for a, b in zip(steps["start_s"].to_numpy(float)[hn], steps["end_s"].to_numpy(float)[hn], strict=True):
+    for a, b in (zip(steps["start_s"].to_numpy(float)[hn], steps["end_s"].to_numpy(float)[hn], strict=True)
+                 if len(steps) else ()):
         walking[np.searchsorted(imu.t, a):np.searchsorted(imu.t, b, side="right")] = True
     tilt = averaged_tilt_deg(imu.t, imu.up_body, upright)
     return upright, label_postures(imu.t, tilt, walking, transfers)

@@ -28,7 +28,15 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.waist.ahrs import WaistIMU
-from pdrlearn.waist.posture import flexion_events
+from pdrlearn.waist.posture import contact_directions, flexion_runs, walking_upright
+from pdrlearn.waist.upright import (
+    CONVERGED_DEG,
+    MAX_PASSES,
+    mean_direction,
+    standing_mask,
+    still_mask,
+    walking_is_reliable,
+)
 
 #: decision W182: the trunk still moves while its tilt changes this fast (deg/s) toward the flexion peak; a
 #: transfer's trunk flexes 30-45 deg in about a second (30-45 deg/s on average), standing or seated it rests
@@ -45,16 +53,26 @@ HEIGHT_HALF_S: float | None = None
 SIT_TO_STAND, STAND_TO_SIT = "sit-to-stand", "stand-to-sit"
 #: transfers.csv's columns (decision W182), in order
 TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_s", "peak_tilt_deg",
-                    "height_change_m")
+                    "height_change_m", "flag")
 #: decision W183: the summary keys of :func:`transfer_summary`
 TRANSFER_SUMMARY_KEYS = ("n_sit_to_stand", "n_stand_to_sit", "median_sit_to_stand_s", "median_stand_to_sit_s",
-                         "tug_time_s", "n_lie_down", "n_get_up", "tug_time_note")
+                         "tug_time_s", "n_lie_down", "n_get_up", "tug_time_note", "sts5_time_s",
+                         "n_transfers_flagged")
+#: decision W278: a transfer with walking contacts within this (s) before its start and after its end is flagged
+FLAG_WALK_S = 2.0
+#: decision W278: transfers.csv's ``flag`` texts ("" = none)
+NOT_ALTERNATING, WALKING_BOTH_SIDES = "not alternating", "walking on both sides"
+#: decision W279: the five-times sit-to-stand's number of rises
+STS_RISES = 5
 #: decision W258: the lying kinds (W245) counted by direction: into lying (``n_lie_down``) and out of it
 #: (``n_get_up``); their sit / stand side is W223's split (W257), their direction right on every HAPT label (W246)
 #: decision W245: transfers.csv's lying kinds (into lying from / out of lying to: sitting, standing), written by
 #: :mod:`pdrlearn.waist.lying`
 SIT_TO_LIE, LIE_TO_SIT, STAND_TO_LIE, LIE_TO_STAND = "sit-to-lie", "lie-to-sit", "stand-to-lie", "lie-to-stand"
 LIE_DOWN_KINDS, GET_UP_KINDS = (SIT_TO_LIE, STAND_TO_LIE), (LIE_TO_SIT, LIE_TO_STAND)
+#: decision W278: each kind's posture before and after it
+_FROM_TO = {SIT_TO_STAND: ("sit", "stand"), STAND_TO_SIT: ("stand", "sit"), SIT_TO_LIE: ("sit", "lie"),
+            LIE_TO_SIT: ("lie", "sit"), STAND_TO_LIE: ("stand", "lie"), LIE_TO_STAND: ("lie", "stand")}
 
 
 def _tilt_deg(imu: WaistIMU, up: np.ndarray) -> np.ndarray:
@@ -102,36 +120,84 @@ def height_change_m(t: np.ndarray, acc_v: np.ndarray, a: int, b: int) -> float:
     return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(tt)))
 
 
-def chair_transfers(imu: WaistIMU, steps: pd.DataFrame) -> pd.DataFrame:
-    """Decision W182: transfers.csv's rows (:data:`TRANSFER_COLUMNS`) of a lower-back track: each W104 flexion
-    event of ``steps``' contacts (``event_s``, ``has_next``) widened to its movement (:func:`movement_bounds`) and
-    classed by :func:`height_change_m`; bends (less than :data:`HEIGHT_MIN_M`) are left out."""
+def transfers_from_tilt(imu: WaistIMU, tilt: np.ndarray) -> pd.DataFrame:
+    """Decision W182: transfers.csv's rows (:data:`TRANSFER_COLUMNS`) from the trunk's per-sample ``tilt`` (deg)
+    from an upright: each W104 flexion run (:func:`~pdrlearn.waist.posture.flexion_runs`) widened to its movement
+    (:func:`movement_bounds`) and classed by :func:`height_change_m`; bends (less than :data:`HEIGHT_MIN_M`) are
+    left out."""
     rows: list[dict] = []
-    if imu.up_body is not None and len(steps) and "event_s" in steps:
-        ev = steps["event_s"].to_numpy(float)
-        walking = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(ev), bool)
-        events = flexion_events(imu, ev, walking)
-        if events:
-            from pdrlearn.waist.posture import _contact_directions
-
-            tilt = _tilt_deg(imu, _contact_directions(imu, ev, walking)[1])
-            for _, t_peak, _ in events:
-                peak = int(np.clip(np.searchsorted(imu.t, t_peak), 0, len(imu.t) - 1))
-                a, b = movement_bounds(imu.t, tilt, peak, imu.fs)
-                ha, hb = a, b
-                if HEIGHT_HALF_S is not None:  # decision W233: at least W104's +-1 s around the peak
-                    ha = min(a, int(np.searchsorted(imu.t, t_peak - HEIGHT_HALF_S)))
-                    hb = max(b, min(int(np.searchsorted(imu.t, t_peak + HEIGHT_HALF_S)), len(imu.t) - 1))
-                dz = height_change_m(imu.t, imu.acc_v, ha, hb)
-                if abs(dz) < HEIGHT_MIN_M:
-                    continue
-                t0, t1 = float(imu.t[a]), float(imu.t[b])
-                if rows and t0 < rows[-1]["end_s"]:  # one movement seen as two flexion runs: keep the first
-                    continue
-                rows.append({"transfer": len(rows) + 1, "kind": SIT_TO_STAND if dz > 0 else STAND_TO_SIT,
-                             "start_s": t0, "end_s": t1, "duration_s": t1 - t0, "peak_s": float(t_peak),
-                             "peak_tilt_deg": float(tilt[peak]), "height_change_m": dz})
+    for _, t_peak, _ in flexion_runs(imu.t, tilt):
+        peak = int(np.clip(np.searchsorted(imu.t, t_peak), 0, len(imu.t) - 1))
+        a, b = movement_bounds(imu.t, tilt, peak, imu.fs)
+        ha, hb = a, b
+        if HEIGHT_HALF_S is not None:  # decision W233: at least W104's +-1 s around the peak
+            ha = min(a, int(np.searchsorted(imu.t, t_peak - HEIGHT_HALF_S)))
+            hb = max(b, min(int(np.searchsorted(imu.t, t_peak + HEIGHT_HALF_S)), len(imu.t) - 1))
+        dz = height_change_m(imu.t, imu.acc_v, ha, hb)
+        if abs(dz) < HEIGHT_MIN_M:
+            continue
+        t0, t1 = float(imu.t[a]), float(imu.t[b])
+        if rows and t0 < rows[-1]["end_s"]:  # one movement seen as two flexion runs: keep the first
+            continue
+        rows.append({"transfer": len(rows) + 1, "kind": SIT_TO_STAND if dz > 0 else STAND_TO_SIT,
+                     "start_s": t0, "end_s": t1, "duration_s": t1 - t0, "peak_s": float(t_peak),
+                     "peak_tilt_deg": float(tilt[peak]), "height_change_m": dz, "flag": ""})
     return pd.DataFrame(rows, columns=list(TRANSFER_COLUMNS))
+
+
+def _empty() -> pd.DataFrame:
+    return pd.DataFrame([], columns=list(TRANSFER_COLUMNS))
+
+
+def still_upright_transfers(imu: WaistIMU) -> tuple[pd.DataFrame, np.ndarray | None]:
+    """Decision W277: ``(rows, upright)`` without walking - the upright first the median direction of every still
+    sample (:func:`~pdrlearn.waist.upright.still_mask`), then, up to :data:`~pdrlearn.waist.upright.MAX_PASSES`
+    times, that of the still samples which the transfers read from it call standing
+    (:func:`~pdrlearn.waist.upright.standing_mask`), until it moves by less than
+    :data:`~pdrlearn.waist.upright.CONVERGED_DEG`. ``(empty, None)`` when no still sample is standing: no
+    reliable upright."""
+    still = still_mask(imu.gyr_nav, imu.fs)
+    up = mean_direction(imu.up_body, still)
+    found = False
+    rows = _empty()
+    for _ in range(MAX_PASSES):
+        if up is None:
+            break
+        rows = transfers_from_tilt(imu, _tilt_deg(imu, up))
+        new = mean_direction(imu.up_body, standing_mask(imu.t, still, rows, SIT_TO_STAND, STAND_TO_SIT))
+        if new is None:
+            break
+        found = True
+        moved = float(np.degrees(np.arccos(np.clip(new @ up, -1.0, 1.0))))
+        up = new
+        if moved < CONVERGED_DEG:
+            break
+    if not found:
+        return _empty(), None
+    return transfers_from_tilt(imu, _tilt_deg(imu, up)), up
+
+
+def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray | None, str]:
+    """Decisions W182, W277: ``(rows, upright, source)`` of a lower-back track. ``source`` ``"walking"``: W102's
+    walking upright of ``steps``' contacts (``event_s``, ``has_next``), when they hold a walking sequence
+    (:func:`~pdrlearn.waist.upright.walking_is_reliable`); ``"still"``: else the still standing upright
+    (:func:`still_upright_transfers`); ``"none"``: neither (no rows, upright None); ``"walking"`` with no rows and
+    upright None also when the AHRS gave no up direction or there is no contact at all to go by."""
+    if imu.up_body is None:
+        return _empty(), None, "walking"
+    ev = steps["event_s"].to_numpy(float) if len(steps) and "event_s" in steps else np.zeros(0)
+    walking = (steps["has_next"].to_numpy(bool) if len(ev) and "has_next" in steps else np.ones(len(ev), bool))
+    if walking_is_reliable(walking):
+        up = walking_upright(contact_directions(imu.t, imu.up_body, ev), walking)
+        return transfers_from_tilt(imu, _tilt_deg(imu, up)), up, "walking"
+    rows, up = still_upright_transfers(imu)
+    return rows, up, "still" if up is not None else "none"
+
+
+def chair_transfers(imu: WaistIMU, steps: pd.DataFrame) -> pd.DataFrame:
+    """Decision W182: transfers.csv's rows (:data:`TRANSFER_COLUMNS`) of a lower-back track
+    (:func:`chair_transfers_upright`'s)."""
+    return chair_transfers_upright(imu, steps)[0]
 
 
 def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
@@ -148,7 +214,9 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
            "median_sit_to_stand_s": float(rise["duration_s"].median()) if len(rise) else None,
            "median_stand_to_sit_s": float(sit["duration_s"].median()) if len(sit) else None, "tug_time_s": None,
            "n_lie_down": int(tr["kind"].isin(LIE_DOWN_KINDS).sum()),  # decision W258
-           "n_get_up": int(tr["kind"].isin(GET_UP_KINDS).sum())}
+           "n_get_up": int(tr["kind"].isin(GET_UP_KINDS).sum()),
+           "sts5_time_s": sts5_time_s(tr, steps),  # decision W279
+           "n_transfers_flagged": int((flag_texts(tr["flag"]) != "").sum())}  # decision W278
     contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
     if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
@@ -156,7 +224,9 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
             out["tug_time_s"] = t1 - t0
     # decision W282: why not, when a rise is followed by a sit (a TUG could be timed on them)
     pair = len(rise) and len(sit) and float(rise["start_s"].min()) < float(sit["end_s"].max())
-    out["tug_time_note"] = tug_note(tr, contacts) if out["tug_time_s"] is None and pair else None
+    # decision W279: a five-times sit-to-stand is no TUG to explain: it has its own time
+    out["tug_time_note"] = (tug_note(tr, contacts) if out["tug_time_s"] is None and pair
+                            and out["sts5_time_s"] is None else None)
     return out
 
 
@@ -179,3 +249,97 @@ def tug_note(tr: pd.DataFrame, contacts: np.ndarray) -> str:
     n0, n1 = int((contacts < t0).sum()), int((contacts > t1).sum())
     return (f"no TUG time: {n0} step(s) before the rise at {t0:.1f} s and {n1} after the sit ending at {t1:.1f} s: "
             "not recorded from seat to seat; --window START,END around the rise and the sit times it (W183, W282)")
+
+
+def upright_message(source: str, n_transfers: int) -> str:
+    """Decision W277: the one line of a track whose upright is not the walking one (``source`` ``"still"`` or
+    ``"none"``, :func:`chair_transfers_upright`'s)."""
+    if source == "still":
+        return (f"no walking to take the trunk's upright from: the {n_transfers} chair transfers and the posture times "
+                "are read against the trunk's direction while standing still between transfers (decision W277)")
+    return ("no walking and no still standing to take the trunk's upright from: the chair transfers and the posture "
+            "times cannot be judged and are left empty (unknown; decision W277)")
+
+
+def flag_texts(column) -> np.ndarray:
+    """Decision W278: a ``flag`` column's texts, ``""`` for a missing one (rows made before W278, lying rows)."""
+    return np.array([x if isinstance(x, str) else "" for x in column], dtype=object)
+
+
+def sequence_flags(kinds, start_s, end_s, walk_s) -> list[str]:
+    """Decision W278: per transfer (in time order), ``""`` or why it cannot be as read (a pure kernel):
+    :data:`NOT_ALTERNATING` when the posture it comes from is not the one the transfer before it went to, or the one
+    it goes to not the one the next comes from (two rises in a row: both rows, one is wrong); and
+    :data:`WALKING_BOTH_SIDES` when walking contacts (``walk_s``, s) lie within :data:`FLAG_WALK_S` before its start
+    and after its end (one does not sit down or rise in mid-walk), joined by ``"; "``."""
+    kinds = list(kinds)
+    a, b = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
+    w = np.sort(np.asarray(walk_s, dtype=float))
+    out = []
+    for i, k in enumerate(kinds):
+        why = []
+        fr, to = _FROM_TO.get(k, (None, None))
+        before = _FROM_TO.get(kinds[i - 1], (None, None))[1] if i > 0 else None
+        after = _FROM_TO.get(kinds[i + 1], (None, None))[0] if i + 1 < len(kinds) else None
+        if (before is not None and fr is not None and before != fr) or (after is not None and to is not None
+                                                                          and after != to):
+            why.append(NOT_ALTERNATING)
+        n_before = np.searchsorted(w, a[i]) - np.searchsorted(w, a[i] - FLAG_WALK_S)
+        n_after = np.searchsorted(w, b[i] + FLAG_WALK_S, side="right") - np.searchsorted(w, b[i], side="right")
+        if n_before and n_after:
+            why.append(WALKING_BOTH_SIDES)
+        out.append("; ".join(why))
+    return out
+
+
+def walking_contacts_s(steps: pd.DataFrame) -> np.ndarray:
+    """Decision W278: the times (s, ``event_s``) of the contacts of walking sequences: those that start a step
+    (``has_next``) and those that end one."""
+    if not len(steps) or "event_s" not in steps:
+        return np.zeros(0)
+    hn = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(steps), bool)
+    return steps["event_s"].to_numpy(float)[hn | np.r_[False, hn[:-1]]]
+
+
+def flag_transfers(transfers: pd.DataFrame, steps: pd.DataFrame) -> pd.DataFrame:
+    """Decision W278: ``transfers`` (in time order) with the ``flag`` column of :func:`sequence_flags`; only flagged,
+    no row dropped."""
+    out = transfers.copy()
+    out["flag"] = (sequence_flags(out["kind"], out["start_s"], out["end_s"], walking_contacts_s(steps))
+                   if len(out) else pd.Series([], dtype=object))
+    return out
+
+
+def flag_message(transfers: pd.DataFrame) -> str | None:
+    """Decision W278: one line when transfers are flagged; None when none is."""
+    bad = flag_texts(transfers["flag"]) != "" if len(transfers) else np.zeros(0, dtype=bool)
+    if not bad.any():
+        return None
+    rows = ", ".join(f"{int(r.transfer)} ({r.kind} at {r.start_s:.1f} s: {r.flag})"
+                     for r in transfers[bad].itertuples())
+    return (f"{int(bad.sum())} of the {len(transfers)} transfers cannot be as read: {rows}; rises and sits must "
+            f"alternate and nobody sits or rises with walking within {FLAG_WALK_S:g} s on both sides (a turn or a "
+            "bend can read as one): they are flagged in transfers.csv's flag column and still counted (decision W278)")
+
+
+def sts5_time_s(transfers: pd.DataFrame, steps: pd.DataFrame | None = None) -> float | None:
+    """Decision W279: the five-times sit-to-stand's time, the first sit-to-stand's start to the last stand-to-sit's
+    end, when the session's transfers are exactly :data:`STS_RISES` sit-to-stand and as many stand-to-sit,
+    alternating from a rise, none flagged (W278), and no walking contact (``steps``' ``has_next``) lies between those
+    times outside the transfers; else None."""
+    tr = pd.DataFrame(transfers)
+    if len(tr) != 2 * STS_RISES:
+        return None
+    want = [SIT_TO_STAND, STAND_TO_SIT] * STS_RISES
+    if tr["kind"].tolist() != want or (flag_texts(tr["flag"]) != "").any():
+        return None
+    t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
+    if steps is not None and len(steps) and "event_s" in steps:
+        e = steps["event_s"].to_numpy(float)
+        keep = (e > t0) & (e < t1)
+        for a, b in zip(tr["start_s"].to_numpy(float), tr["end_s"].to_numpy(float), strict=True):
+            keep &= ~((e >= a) & (e <= b))  # a contact inside a transfer (W146) is the rise's bounce
+        hn = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(e), bool)
+        if walking_is_reliable(hn[keep]):  # W277's walking sequence between the rises: not one chair test
+            return None
+    return t1 - t0
