@@ -123,7 +123,7 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
     moved to the initial contact next to them when ``refine_ic`` (decision W11)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
-    st = PLLStepDetector(gate_var=walk_threshold ** 2).detect(session)
+    st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False).detect(session)  # the gate is track's
     ev = np.sort(st["event_s"].to_numpy(float)) if len(st) else np.zeros(0)
     idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
     idx = idx[walking_gate(imu, walk_threshold=walk_threshold)[idx]]
@@ -1228,9 +1228,10 @@ def relative_heading_note(start, initial_heading: float, has_magnetometer: bool)
     return line
 
 
-def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:
+def no_steps_message(thr: float, sigma: np.ndarray, source: str, fix: str | None = None) -> str:
     """Decision W76: the one line of a waist track that found no step - the motion gate (threshold and where it
-    comes from), the largest 2 s SD of the vertical acceleration the data reached, and the fix."""
+    comes from), the largest 2 s SD of the vertical acceleration the data reached, and the fix (``fix``: the
+    caller's own first remedy instead of the params JSON, e.g. the ``pll`` step detector's option, steps 48)."""
     top = float(np.nanmax(sigma)) if np.size(sigma) else 0.0
     opened = "never opened" if top < thr else "opened but no step was found in it"
     suggest = max(K.RELATIVE_GATE_FLOOR_MPS2, round(0.5 * top, 2))
@@ -1238,9 +1239,9 @@ def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:
         source, "decision W4's fixed gate")
     return (f"no steps found: the walking gate (2 s SD of the vertical acceleration >= {thr:.2f} m/s^2, {src}) "
             f"{opened}; the data's largest 2 s SD is {top:.2f} m/s^2. If the person walked with little trunk "
-            f"movement (walking aid, rollator, very slow), pass a params JSON with {{\"walk_threshold_mps2\": "
-            f"{suggest:.2f}}} ('pdrlearn track DIR --params P.json'; docs/waist.md), or try 'pdrlearn steps DIR "
-            "--detector pelvic-gyro'")
+            f"movement (walking aid, rollator, very slow), "
+            + (fix or f"pass a params JSON with {{\"walk_threshold_mps2\": {suggest:.2f}}} ('pdrlearn track DIR "
+               "--params P.json'; docs/waist.md)") + ", or try 'pdrlearn steps DIR --detector pelvic-gyro'")
 
 
 #: the columns of a waist steps table (the pendulum's; the PLL's lacks h_m and merged)
