@@ -287,7 +287,10 @@ class PLLStepDetector(StepDetector):
     steps of a bout, and the threshold is the waist motion gate's (decision W4: std 0.5 m/s^2, so
     0.25 m^2/s^4; standing < 0.1; seed 000 sec. II-B's gate is 1.5 m/s^2 for brisk walks): the slow
     daily-activity walking of the Test11 recordings has a std of 0.5-0.7 m/s^2 in places, which decision
-    6's 0.5 m^2/s^4 dropped (decision 18).
+    6's 0.5 m^2/s^4 dropped (decision 18). ``relative_gate=True`` (default, decision steps 48): :meth:`detect` lowers
+    that threshold for a session whose trunk moves little by decision W76's session-relative gate, ``track``'s
+    (``min(0.5, max(0.15, 0.5 x P90))`` of the centred 2 s SD of its own low-passed vertical acceleration); the
+    streaming detector (:meth:`online`) keeps ``gate_var``. A lower-back run with 0 steps logs W76's line.
 
     Frequency range (steps decision 6): free-running ``f0_hz``, clamped to ``f_min_hz``-``f_max_hz``;
     ``f_max_hz=None`` (the default, decision W117, docs/decisions/waist.md): offline, a session whose step rhythm
@@ -312,7 +315,7 @@ class PLLStepDetector(StepDetector):
                  gate_var: float = 0.25,  # seed 001: 1.5 m^2/s^4 for a pocket; decision 18: decision W4's
                  # waist motion gate (std 0.5 m/s^2; seed 000 sec. II-B's own is 1.5) squared
                  refine_frac: float = 0.25, placement: str = "waist",
-                 relative_gate: bool = False):  # decision steps 48: W76's session-relative gate (offline detect)
+                 relative_gate: bool = True):  # decision steps 48: W76's session-relative gate (offline detect)
         self._store(locals())
 
     def loop_params(self, period_s: float = float("nan")) -> PLLParams:
