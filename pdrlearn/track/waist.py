@@ -93,6 +93,7 @@ from pdrlearn.waist.plausibility import (
     not_alternating_message,
     pll_excess,
     pll_missed_steps_message,
+    pll_slow_excess_message,
     running_cadence,
     short_step_message,
     step_counts,
@@ -504,6 +505,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
+                   "pll_slow_check": False,  # W289: uncalibrated waist-pll over 1.25 x the pendulum at a slow gait
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "cadence_law": False,  # W240
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
@@ -828,6 +830,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
+             "pll_slow_check": None,  # W289: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
@@ -994,6 +997,14 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                          pendulum()["length_m"].to_numpy(float))
         if excess_line and bool(o["pll_check"]):  # W186's line: an option (its adoption rule was not met)
             warnings.append(excess_line)
+        elif bool(o["pll_slow_check"]):  # decision W289: at a slow gait W186's ratio over 1.25 warns
+            pend = pendulum()
+            _, n_pend, pend_length, pend_cadence = walk_ratio(pend["length_m"].to_numpy(float),
+                                                              waist_step_times(pend)[0])
+            slow_line = pll_slow_excess_message(excess, float(np.nansum(np.abs(steps["length_m"].to_numpy(float)))),
+                                                float(np.nansum(np.abs(pend["length_m"].to_numpy(float)))),
+                                                pend_length, pend_cadence, n_pend)
+            warnings += [slow_line] if slow_line else []
     micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
