@@ -295,11 +295,11 @@ def pll_slow_excess_message(ratio: float | None, pll_m: float, pendulum_m: float
     if not speed < PLL_SLOW_SPEED_MPS:
         return None
     return (f"waist-pll reads {pll_m:.2f} m, {ratio:.2f} x the pendulum model's {pendulum_m:.2f} m on the same "
-            f"session, at a slow gait (the pendulum reading: median step {length:.2f} m at {cadence:.0f} steps/min, about "
-            f"{speed:.2f} m/s): uncalibrated, waist-pll's step length is a line in its step frequency set on "
-            "normal walking, and slow walkers' steps read long on it (simulated 0.5-0.7 m/s walkers +23 to +72 %); the "
-            "distance and gait speed are not reliable: track with --pipeline waist-pendulum, or calibrate this walker "
-            "('pdrlearn calibrate DIR --distance M') (decision W289)")
+            f"session, at a slow gait (the pendulum reading: median step {length:.2f} m at {cadence:.0f} "
+            f"steps/min, about {speed:.2f} m/s): uncalibrated, waist-pll's step length is a line in its step "
+            "frequency set on normal walking, and slow walkers' steps read long on it (simulated 0.5-0.7 m/s "
+            "walkers +23 to +72 %); the distance and gait speed are not reliable: track with --pipeline "
+            "waist-pendulum, or calibrate this walker ('pdrlearn calibrate DIR --distance M') (decision W289)")
 
 
 def running_cadence(length: float | None, cadence: float | None, height_m: float = WALK_RATIO_HEIGHT_M) -> bool:
