@@ -1,0 +1,48 @@
+"""Session 32 geriatrics trial: W289 (an uncalibrated waist-pll track reading well over the pendulum at a slow gait
+says so), L349 (the 10 m walk test's short-walk note) and `simulate --help`'s slow-walker example (finding 3)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+from pdrlearn.cli import main
+from pdrlearn.track.walk_test import RUN_OUT_M, ten_metre_walk
+from pdrlearn.waist.plausibility import PLL_SLOW_EXCESS_RATIO, PLL_SLOW_SPEED_MPS, pll_slow_excess_message
+
+
+def _foot_walk(length_m: float, stride_m: float = 0.6, stride_s: float = 1.5) -> pd.DataFrame:
+    n = int(length_m / stride_m)
+    lengths = np.full(n, stride_m)
+    lengths[-1] += length_m - stride_m * n  # the last stride makes up the exact length
+    t = 2.0 + stride_s * np.arange(1, n + 1)
+    return pd.DataFrame({"start_s": t - stride_s, "end_s": t + 0.2, "event_s": t, "length_m": lengths,
+                         "heading_rad": 0.0, "unit": "foot"})
+
+
+def test_ten_metre_walk_note_rounds_down_and_asks_for_a_run_out_l349():
+    almost = ten_metre_walk(_foot_walk(13.998))
+    assert almost["ten_m_walk_time_s"] is None  # L313's threshold stays
+    note = almost["ten_m_walk_note"]
+    assert "the longest 13.99 m" in note and "14.0 m" not in note.split("decision L313")[0].replace("of 14 m", "")
+    assert "run-out" in note and "0.00 m short" in note
+    assert "run-out" in ten_metre_walk(_foot_walk(13.84))["ten_m_walk_note"]
+    far = ten_metre_walk(_foot_walk(14.0 - RUN_OUT_M - 0.75))["ten_m_walk_note"]  # a truly short walk: no run-out
+    assert "run-out" not in far and "the longest 12.25 m" in far
+    assert ten_metre_walk(_foot_walk(14.6))["ten_m_walk_time_s"] is not None
+
+
+def test_pll_slow_excess_line_fires_only_slow_and_long_w289():
+    line = pll_slow_excess_message(1.37, 27.22, 19.83, 0.40, 92.0, 50)
+    assert line and "decision W289" in line and "waist-pendulum" in line and "0.61 m/s" in line
+    assert pll_slow_excess_message(PLL_SLOW_EXCESS_RATIO, 25.0, 20.0, 0.40, 92.0, 50) is None  # not over 1.25
+    fast_len = PLL_SLOW_SPEED_MPS * 60.0 / 110.0 + 0.01
+    assert pll_slow_excess_message(1.5, 30.0, 20.0, fast_len, 110.0, 50) is None  # the pendulum reads >= 1 m/s
+    assert pll_slow_excess_message(1.5, 30.0, 20.0, 0.4, 92.0, 5) is None  # too few steps to judge (W99's 10)
+    assert pll_slow_excess_message(None, 30.0, 20.0, 0.4, 92.0, 50) is None
+
+
+def test_simulate_help_slow_walker_example_uses_the_pendulum_bounce(capsys):
+    main(["simulate", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    i = text.index("tenmwt_040")
+    assert "--bounce pendulum" in text[i - 200: i]
