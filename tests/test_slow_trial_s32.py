@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+
 from pdrlearn.cli import main
 from pdrlearn.track.walk_test import RUN_OUT_M, ten_metre_walk
 from pdrlearn.waist.plausibility import PLL_SLOW_EXCESS_RATIO, PLL_SLOW_SPEED_MPS, pll_slow_excess_message
