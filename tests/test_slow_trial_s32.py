@@ -47,3 +47,25 @@ def test_simulate_help_slow_walker_example_uses_the_pendulum_bounce(capsys):
     text = " ".join(capsys.readouterr().out.split())
     i = text.index("tenmwt_040")
     assert "--bounce pendulum" in text[i - 200: i]
+
+
+def test_pll_slow_check_is_an_option_off_by_default_w290(tmp_path):
+    """W290: W289's rule was not met (normal walks warned), so the line comes with the option only; on a 0.62 m/s
+    walker (0.4 m / 0.65 s, pendulum bounce, user 6539) that waist-pll reads well over the pendulum it fires."""
+    import dataclasses
+
+    from pdrlearn.io import read_session
+    from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
+    from pdrlearn.waist.params import resolve_params
+
+    assert OPTION_DEFAULTS["pll_slow_check"] is False
+    d = tmp_path / "w"
+    assert main(["simulate", "--route", "stand:3, straight:16, stand:3", "--step-length", "0.4", "--step-time", "0.65",
+                 "--bounce", "pendulum", "--user-seed", "6539", "--out", str(d)]) == 0
+    s = read_session(d)
+    default = track_waist(s, pipeline="waist-pll")
+    assert not any("decision W289" in w for w in default.info["warnings"])
+    assert default.info["pll_pendulum_ratio"] > PLL_SLOW_EXCESS_RATIO
+    p, _ = resolve_params(s, None)
+    checked = track_waist(s, pipeline="waist-pll", params=dataclasses.replace(p, options={"pll_slow_check": True}))
+    assert sum("decision W289" in w for w in checked.info["warnings"]) == 1
