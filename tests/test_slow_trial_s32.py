@@ -69,3 +69,22 @@ def test_pll_slow_check_is_an_option_off_by_default_w290(tmp_path):
     p, _ = resolve_params(s, None)
     checked = track_waist(s, pipeline="waist-pll", params=dataclasses.replace(p, options={"pll_slow_check": True}))
     assert sum("decision W289" in w for w in checked.info["warnings"]) == 1
+
+
+def test_slow_lower_back_line_names_bouts_and_pauses_l351():
+    from pdrlearn.track.gait import gait_range_warning
+
+    waist = gait_range_warning({"median_cadence_spm": 67.0, "gait_speed_mps": 0.4,
+                                "info": {"pipeline": "waist-pll", "params_source": "defaults"}})
+    assert "walking bouts and pauses" in waist and "decision L351" in waist
+    foot = gait_range_warning({"median_cadence_spm": 67.0, "gait_speed_mps": 0.4, "pipeline": "plasys",
+                               "info": {"pipeline": "plasys"}})
+    assert foot is not None and "L351" not in foot  # the foot's pauses were exact in the trial (20 of 20)
+
+
+def test_foot_placement_line_has_one_prefix_l352():
+    from pdrlearn.track.foot_rest import foot_placement_warning
+
+    stats = {"walking": True, "swing_rad_s": 0.5}
+    assert foot_placement_warning(stats, "").startswith("no foot-flat rests found")  # track prefixes it itself
+    assert foot_placement_warning(stats, "g/xslow").startswith("g/xslow: no foot-flat rests found")
