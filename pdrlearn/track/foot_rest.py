@@ -137,7 +137,8 @@ def foot_placement_warning(stats: dict | None, where: str) -> str | None:
     "" for none, when the caller prefixes its lines itself - decision L352: ``track`` printed it twice)."""
     if not stats or not stats["walking"] or not stats["swing_rad_s"] < FOOT_NO_SWING:
         return None
-    return (f"{where + ': ' if where else ''}no foot-flat rests found: the foot unit (fAccelerometer.csv, fGyroscope.csv) walks but never "
+    return (f"{where + ': ' if where else ''}no foot-flat rests found: the foot unit (fAccelerometer.csv, "
+            "fGyroscope.csv) walks but never "
             f"swings like a foot (at most {np.degrees(stats['swing_rad_s']):.0f} deg/s, 99th percentile of |gyro| "
             "in any 10 s block; a "
             f"walking foot exceeds {np.degrees(FOOT_NO_SWING):.0f}), so the rests its ZUPT finds are not foot-flats "
