@@ -159,7 +159,7 @@ def test_ten_metre_walk_kernel():
     assert r["ten_m_walk_note"] is None
     short = ten_metre_walk(_foot_walk(12.0))
     assert short["ten_m_walk_time_s"] is None and "no walking bout of 14 m" in short["ten_m_walk_note"]
-    assert "the longest 12.0 m" in short["ten_m_walk_note"]
+    assert "the longest 12.00 m" in short["ten_m_walk_note"]  # L349: 2 decimals
     turned = ten_metre_walk(_foot_walk(20.4, turn_after_m=7.2))
     assert turned["ten_m_walk_time_s"] is None and "turn" in turned["ten_m_walk_note"]
     late_turn = ten_metre_walk(_foot_walk(20.4, turn_after_m=15.6))  # after the 14 m: timed

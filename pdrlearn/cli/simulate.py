@@ -153,7 +153,9 @@ def simulate_cmd(
             --out out/sim/floors_u2
 
         pdrlearn simulate --route "stand:3, straight:14, stand:3" --step-length 0.3 --step-time 0.75 \\
-            --user-seed 1 --out out/sim/tenmwt_040   # a 0.4 m/s walker: 0.3 m steps at 80 steps/min
+            --bounce pendulum --user-seed 1 --out out/sim/tenmwt_040   # a 0.4 m/s walker: 0.3 m steps at
+            # 80 steps/min; --bounce pendulum: its short steps bounce the pelvis less, as a slow walker's do (the
+            # default constant bounce gives them a normal step's bounce, which the lower back reads as long steps)
 
         pdrlearn simulate --route "stand:2, straight:20, stand:2" --height 0.95 --leg-length 0.45 \\
             --step-length 0.36 --step-time 0.3 --user-seed 1 --rate 100 --out out/sim/age3   # a 3-year-old

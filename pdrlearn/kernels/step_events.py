@@ -611,10 +611,11 @@ class ForceProcessor:
         return []
 
 
-def pll_params(det, period_s: float = float("nan")) -> PLLParams:
+def pll_params(det, period_s: float = float("nan"), gate_var: float | None = None) -> PLLParams:
     """The PLL's loop parameters of the settings ``det`` (:meth:`pdrlearn.steps.PLLStepDetector.loop_params`); with
     ``f_max_hz=None`` (decision W117) its free-running frequency and upper clamp from the step period ``period_s``
-    (:func:`pdrlearn.kernels.waist.pll_range`; NaN: ``f0_hz`` and 3.2 Hz)."""
+    (:func:`pdrlearn.kernels.waist.pll_range`; NaN: ``f0_hz`` and 3.2 Hz). ``gate_var``: the activity gate's
+    variance when not ``det.gate_var`` (decision steps 48: the session-relative gate found offline)."""
     from pdrlearn.kernels.waist import PLL_F0_HZ, pll_range
 
     kd = 1.0 / math.sqrt(2.0)
@@ -625,20 +626,21 @@ def pll_params(det, period_s: float = float("nan")) -> PLLParams:
         f0 = f0 if f0_r == PLL_F0_HZ else f0_r
     return PLLParams(f0_hz=f0, kp=2 * det.damping * wn / kd, ki=wn * wn / kd,
                      f_min_hz=det.f_min_hz, f_max_hz=f_max, agc_tau_s=det.agc_tau_s,
-                     gate_window_s=det.gate_window_s, gate_var=det.gate_var,
+                     gate_window_s=det.gate_window_s, gate_var=det.gate_var if gate_var is None else gate_var,
                      refine_frac=det.refine_frac)
 
 
 class PLLProcessor:
     """:class:`pdrlearn.steps.PLLStepDetector`'s online detection (seed 000 Sec. II-C) of the settings ``det``."""
 
-    def __init__(self, det, fs: float, period_s: float = float("nan"), lowpass=NumpyLowpass, delay=numpy_delay_s):
+    def __init__(self, det, fs: float, period_s: float = float("nan"), lowpass=NumpyLowpass, delay=numpy_delay_s,
+                 gate_var: float | None = None):
         self.det = det
         self.grav = GravityTracker(fs, det.gravity_cutoff_hz, lowpass)
         self.lp = lowpass(cutoff_below(det.cutoff_hz, fs), fs, order=2)
         self.delay = delay(cutoff_below(det.cutoff_hz, fs), fs, order=2) if det.refine_frac > 0 else 0.0
         self.state = PLLState()
-        self.params = pll_params(det, period_s)
+        self.params = pll_params(det, period_s, gate_var)
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
         up, gnorm = self.grav.push(v)

@@ -188,17 +188,38 @@ def pll_range(period_s: float) -> tuple[float, float]:
     return f_r, f_r / SHORTEST_STEP_FRAC
 
 
+def mean_gravity_vertical(acc: np.ndarray) -> np.ndarray | None:
+    """The vertical acceleration of a raw accelerometer recording (n, 3): its projection on the mean gravity
+    direction, mean removed (any mounting frame); None for fewer than 3 samples or a zero mean."""
+    a = np.asarray(acc, dtype=np.float64)
+    g = a.mean(axis=0) if a.ndim == 2 and a.shape[0] else np.zeros(3)
+    if a.shape[0] < 3 or not np.linalg.norm(g) > 0.0:
+        return None
+    v = a @ (g / np.linalg.norm(g))
+    return v - v.mean()
+
+
+def accel_relative_gate(acc: np.ndarray, fs: float, base: float, *, lowpass=None,
+                        window_s: float = GATE_WINDOW_S) -> tuple[float, np.ndarray]:
+    """Decision W76's session-relative gate (:func:`relative_walk_threshold`) of a raw accelerometer recording
+    (n, 3), for the PLL step detector (decision steps 48): the threshold (m/s^2, at most ``base``) and the centred
+    ``window_s`` SD it is judged on, of the mean-gravity vertical acceleration passed through ``lowpass`` (a
+    callable on the (n,) signal: the PLL's own input filter, so the SD is the one its activity gate judges)."""
+    v = mean_gravity_vertical(acc)
+    if v is None:
+        return float(base), np.zeros(0)
+    sigma = rolling_std(v if lowpass is None else lowpass(v), fs, window_s=window_s, causal=False)
+    return relative_walk_threshold(sigma, base), sigma
+
+
 def accel_step_period_s(acc: np.ndarray, fs: float, *, gate_var: float, gate_window_s: float,
                         cutoff_hz: float = 2.5, fir_order_s: float = 0.3) -> float:
     """W113's :func:`step_period_s` of a raw accelerometer recording (n, 3) for the PLL (decision W117): the vertical
     acceleration on the mean gravity direction, W113's FIR low-pass (as :func:`ic_offline`), inside the PLL's own
     activity gate (variance over ``gate_window_s`` centred > ``gate_var``)."""
-    a = np.asarray(acc, dtype=np.float64)
-    g = a.mean(axis=0)
-    if a.shape[0] < 3 or not np.linalg.norm(g) > 0.0:
+    v = mean_gravity_vertical(acc)
+    if v is None:
         return float("nan")
-    v = a @ (g / np.linalg.norm(g))
-    v = v - v.mean()
     w = max(1, int(round(gate_window_s * fs)))
     kern = np.ones(w) / w
     var = np.convolve(v * v, kern, mode="same") - np.convolve(v, kern, mode="same") ** 2

@@ -42,7 +42,7 @@ from pdrlearn.kernels.step_events import (  # decision L177: the online processo
 )
 from pdrlearn.kernels.step_events import cutoff_below as _cutoff
 from pdrlearn.kernels.step_events import shift_events as _shift
-from pdrlearn.kernels.waist import accel_step_period_s
+from pdrlearn.kernels.waist import accel_relative_gate, accel_step_period_s
 from pdrlearn.plugins import Registry
 from pdrlearn.signal.conditioning import G, calibrate_standstill
 from pdrlearn.signal.filters import CausalLowpass, lowpass_delay_s
@@ -287,7 +287,10 @@ class PLLStepDetector(StepDetector):
     steps of a bout, and the threshold is the waist motion gate's (decision W4: std 0.5 m/s^2, so
     0.25 m^2/s^4; standing < 0.1; seed 000 sec. II-B's gate is 1.5 m/s^2 for brisk walks): the slow
     daily-activity walking of the Test11 recordings has a std of 0.5-0.7 m/s^2 in places, which decision
-    6's 0.5 m^2/s^4 dropped (decision 18).
+    6's 0.5 m^2/s^4 dropped (decision 18). ``relative_gate=True`` (default, decision steps 48): :meth:`detect` lowers
+    that threshold for a session whose trunk moves little by decision W76's session-relative gate, ``track``'s
+    (``min(0.5, max(0.15, 0.5 x P90))`` of the centred 2 s SD of its own low-passed vertical acceleration); the
+    streaming detector (:meth:`online`) keeps ``gate_var``. A lower-back run with 0 steps logs W76's line.
 
     Frequency range (steps decision 6): free-running ``f0_hz``, clamped to ``f_min_hz``-``f_max_hz``;
     ``f_max_hz=None`` (the default, decision W117, docs/decisions/waist.md): offline, a session whose step rhythm
@@ -311,7 +314,8 @@ class PLLStepDetector(StepDetector):
                  gate_window_s: float = 2.0,  # seed 001 Sec. 2.2.2 uses 4 s; decision: 2 s
                  gate_var: float = 0.25,  # seed 001: 1.5 m^2/s^4 for a pocket; decision 18: decision W4's
                  # waist motion gate (std 0.5 m/s^2; seed 000 sec. II-B's own is 1.5) squared
-                 refine_frac: float = 0.25, placement: str = "waist"):
+                 refine_frac: float = 0.25, placement: str = "waist",
+                 relative_gate: bool = True):  # decision steps 48: W76's session-relative gate (offline detect)
         self._store(locals())
 
     def loop_params(self, period_s: float = float("nan")) -> PLLParams:
@@ -326,14 +330,34 @@ class PLLStepDetector(StepDetector):
             raise DataError(f"pll: placement '{self.placement}' must be 'waist' or 'foot'")
         acc = session.require(name, purpose="the PLL step detector (vertical acceleration)")
         check_stream(acc, session)
-        if self.f_max_hz is not None or acc.t.shape[0] < 3:
+        gate_var, self.gate_ = self.gate_var, (float(np.sqrt(self.gate_var)), np.zeros(0), "fixed")
+        if acc.t.shape[0] < 3:
             return acc.t, acc.values, {}
-        fs = acc.rate_hz  # decision W117: the session's step rhythm sets the range (B182's jitter-proof rate)
-        return acc.t, acc.values, {"period_s": accel_step_period_s(acc.values, fs, gate_var=self.gate_var,
-                                                                   gate_window_s=self.gate_window_s)}
+        fs = acc.rate_hz  # B182's jitter-proof rate
+        thr, sigma = accel_relative_gate(  # judged on the PLL's own input: its low-pass of the vertical acceleration
+            acc.values, fs, float(np.sqrt(self.gate_var)), window_s=self.gate_window_s,
+            lowpass=lambda v: CausalLowpass(_cutoff(self.cutoff_hz, fs), fs, order=2).push(v))
+        if self.relative_gate:  # decision steps 48: track's gate (W76) lowers the threshold for a quiet trunk
+            gate_var = min(self.gate_var, thr * thr)
+        self.gate_ = (float(np.sqrt(gate_var)), sigma, "relative" if gate_var < self.gate_var else "fixed")
+        ctx = {"gate_var": gate_var}
+        if self.f_max_hz is None:  # decision W117: the session's step rhythm sets the range
+            ctx["period_s"] = accel_step_period_s(acc.values, fs, gate_var=gate_var, gate_window_s=self.gate_window_s)
+        return acc.t, acc.values, ctx
 
-    def _make_processor(self, fs: float, period_s: float = float("nan"), **context):
-        return PLLProcessor(self, fs, period_s, CausalLowpass, lowpass_delay_s)
+    def _make_processor(self, fs: float, period_s: float = float("nan"), gate_var: float | None = None, **context):
+        return PLLProcessor(self, fs, period_s, CausalLowpass, lowpass_delay_s, gate_var=gate_var)
+
+    def detect(self, session: Session):
+        df = super().detect(session)
+        if not len(df) and self.placement == "waist":  # decision W76 / steps 48: never 0 steps without a word
+            from pdrlearn.track.waist import no_steps_message  # lazy: pdrlearn.track imports pdrlearn.steps
+
+            thr, sigma, source = self.gate_
+            log.warning("pll: %s", no_steps_message(thr, sigma, source, fix=(
+                "pass --detector \"pll:relative_gate=true\" (decision W76's session-relative gate) or a lower "
+                "\"pll:gate_var=V\" (m^2/s^4)")))
+        return df
 
 
 def _check_detector(name: str, cls) -> type[StepDetector]:

@@ -1303,7 +1303,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats, foot_scale_warning
 
         stats = foot_rest_stats(session)
-        placement = foot_placement_warning(stats, session.where)
+        placement = foot_placement_warning(stats, "")  # L352: the loop below prefixes session.where
         scale = foot_scale_warning(stats, "")  # decision B201: the foot accelerometer's rest |acc| off 1 g
     add_gait_range_flag(summary)  # decision L195
     lines = summary_warnings(summary)

@@ -133,10 +133,12 @@ def no_strides_warning(stats: dict | None, where: str, detector: str) -> str | N
 
 
 def foot_placement_warning(stats: dict | None, where: str) -> str | None:
-    """Decision B134: one line when the foot unit walks but never swings like a foot."""
+    """Decision B134: one line when the foot unit walks but never swings like a foot (``where``: the line's prefix;
+    "" for none, when the caller prefixes its lines itself - decision L352: ``track`` printed it twice)."""
     if not stats or not stats["walking"] or not stats["swing_rad_s"] < FOOT_NO_SWING:
         return None
-    return (f"{where}: no foot-flat rests found: the foot unit (fAccelerometer.csv, fGyroscope.csv) walks but never "
+    return (f"{where + ': ' if where else ''}no foot-flat rests found: the foot unit (fAccelerometer.csv, "
+            "fGyroscope.csv) walks but never "
             f"swings like a foot (at most {np.degrees(stats['swing_rad_s']):.0f} deg/s, 99th percentile of |gyro| "
             "in any 10 s block; a "
             f"walking foot exceeds {np.degrees(FOOT_NO_SWING):.0f}), so the rests its ZUPT finds are not foot-flats "

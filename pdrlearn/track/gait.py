@@ -691,7 +691,12 @@ def _unreliable(summary: dict, info: dict, slow: bool) -> str:
         return ("the distance and speed are calibrated at this gait (this walk's cadence lies inside the lower-back "
                 "calibration walks' cadence range +-10 %, decisions W211, W227), but the terrain / direction / "
                 "length classes and the floors are not validated at this speed")
-    return "the distance, the terrain / direction / length classes and the floors are not reliable"
+    text = "the distance, the terrain / direction / length classes and the floors are not reliable"
+    if slow and str(summary.get("pipeline") or info.get("pipeline") or "").startswith("waist"):
+        # decision L351: slow lower-back contacts are missed now and then; a miss leaves a gap read as a pause
+        text += (", nor are the lower back's walking bouts and pauses (a contact missed at a slow cadence reads as a "
+                 "pause and splits a bout; decision L351)")
+    return text
 
 
 def bout_range_flags(table, leg_m: float | None) -> np.ndarray:

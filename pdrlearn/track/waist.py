@@ -93,6 +93,7 @@ from pdrlearn.waist.plausibility import (
     not_alternating_message,
     pll_excess,
     pll_missed_steps_message,
+    pll_slow_excess_message,
     running_cadence,
     short_step_message,
     step_counts,
@@ -123,7 +124,7 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
     moved to the initial contact next to them when ``refine_ic`` (decision W11)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
-    st = PLLStepDetector(gate_var=walk_threshold ** 2).detect(session)
+    st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False).detect(session)  # the gate is track's
     ev = np.sort(st["event_s"].to_numpy(float)) if len(st) else np.zeros(0)
     idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
     idx = idx[walking_gate(imu, walk_threshold=walk_threshold)[idx]]
@@ -531,6 +532,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
+                   "pll_slow_check": False,  # W289: uncalibrated waist-pll over 1.25 x the pendulum at a slow gait
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "cadence_law": False,  # W240
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
@@ -859,6 +861,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "climb_veto": None,  # L330: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
              "rest_frame": None,  # W285: a PARAMS.json option only
+             "pll_slow_check": None,  # W289: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
@@ -1031,6 +1034,14 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                          pendulum()["length_m"].to_numpy(float))
         if excess_line and bool(o["pll_check"]):  # W186's line: an option (its adoption rule was not met)
             warnings.append(excess_line)
+        elif bool(o["pll_slow_check"]):  # decision W289: at a slow gait W186's ratio over 1.25 warns
+            pend = pendulum()
+            _, n_pend, pend_length, pend_cadence = walk_ratio(pend["length_m"].to_numpy(float),
+                                                              waist_step_times(pend)[0])
+            slow_line = pll_slow_excess_message(excess, float(np.nansum(np.abs(steps["length_m"].to_numpy(float)))),
+                                                float(np.nansum(np.abs(pend["length_m"].to_numpy(float)))),
+                                                pend_length, pend_cadence, n_pend)
+            warnings += [slow_line] if slow_line else []
     micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
@@ -1279,9 +1290,10 @@ def relative_heading_note(start, initial_heading: float, has_magnetometer: bool)
     return line
 
 
-def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:
+def no_steps_message(thr: float, sigma: np.ndarray, source: str, fix: str | None = None) -> str:
     """Decision W76: the one line of a waist track that found no step - the motion gate (threshold and where it
-    comes from), the largest 2 s SD of the vertical acceleration the data reached, and the fix."""
+    comes from), the largest 2 s SD of the vertical acceleration the data reached, and the fix (``fix``: the
+    caller's own first remedy instead of the params JSON, e.g. the ``pll`` step detector's option, steps 48)."""
     top = float(np.nanmax(sigma)) if np.size(sigma) else 0.0
     opened = "never opened" if top < thr else "opened but no step was found in it"
     suggest = max(K.RELATIVE_GATE_FLOOR_MPS2, round(0.5 * top, 2))
@@ -1289,9 +1301,9 @@ def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:
         source, "decision W4's fixed gate")
     return (f"no steps found: the walking gate (2 s SD of the vertical acceleration >= {thr:.2f} m/s^2, {src}) "
             f"{opened}; the data's largest 2 s SD is {top:.2f} m/s^2. If the person walked with little trunk "
-            f"movement (walking aid, rollator, very slow), pass a params JSON with {{\"walk_threshold_mps2\": "
-            f"{suggest:.2f}}} ('pdrlearn track DIR --params P.json'; docs/waist.md), or try 'pdrlearn steps DIR "
-            "--detector pelvic-gyro'")
+            f"movement (walking aid, rollator, very slow), "
+            + (fix or f"pass a params JSON with {{\"walk_threshold_mps2\": {suggest:.2f}}} ('pdrlearn track DIR "
+               "--params P.json'; docs/waist.md)") + ", or try 'pdrlearn steps DIR --detector pelvic-gyro'")
 
 
 #: the columns of a waist steps table (the pendulum's; the PLL's lacks h_m and merged)

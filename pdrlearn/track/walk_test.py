@@ -26,6 +26,10 @@ TIMED_M = 10.0
 #: decision L312: the walkway's first ZONE_M + TIMED_M + ZONE_M must be straight: the straight-line distance from the
 #: bout's start to where its path reaches 14 m is at least this share of 14 m (a 90 deg turn in the middle: 0.71)
 STRAIGHT_MIN = 0.9
+#: decision L349: a walk whose longest bout is short of 14 m by less than this (m) is told to walk past the walkway's
+#: ends (a run-out; a foot track of a 14 m walkway read 13.84 m in the session 32 trial: 1.1 % short, inside the foot's
+#: distance error); the walk is still not timed (L313: no zone shortened, nothing extrapolated)
+RUN_OUT_M = 1.0
 #: decision L313: why a lower-back track gives no 10 m walk time (measured, experiments/step_length_l310.py)
 LOWER_BACK_NOTE = ("not given on the lower back: its step lengths read slow walkers' short steps long, so the 2 m "
                    "and 12 m marks are passed early (simulated 0.45-1.0 m/s walkers, waist-pendulum without "
@@ -90,7 +94,19 @@ def ten_metre_walk(steps: pd.DataFrame) -> dict:
             return out
         out["ten_m_walk_time_s"], out["ten_m_walk_speed_mps"] = float(t1 - t0), float(TIMED_M / (t1 - t0))
         return out
-    out["ten_m_walk_note"] = (f"no walking bout of {need:.0f} m ({ZONE_M:.0f} m to accelerate, {TIMED_M:.0f} m timed, "
-                              f"{ZONE_M:.0f} m to decelerate; the longest {longest:.1f} m; decision L313): a shorter "
-                              "walk is not timed - time a window of it with track --window and read gait_speed_mps")
+    out["ten_m_walk_note"] = short_walk_note(longest, need)
     return out
+
+
+def short_walk_note(longest: float, need: float = 2 * ZONE_M + TIMED_M) -> str:
+    """Decision L349: the note of a walk whose longest bout ``longest`` (m) is under ``need``: the longest shown
+    rounded DOWN to 2 decimals (13.998 m read "14.0 m" beside "no walking bout of 14 m"), and when it falls short by
+    under :data:`RUN_OUT_M` the advice to walk past the walkway's ends (an exact 14 m walk can track a little short)."""
+    shown = math.floor(longest * 100.0 + 1e-6) / 100.0  # + 1e-6: a cumulative sum of 12.25 m is 12.2499...
+    note = (f"no walking bout of {need:.0f} m ({ZONE_M:.0f} m to accelerate, {TIMED_M:.0f} m timed, {ZONE_M:.0f} m to "
+            f"decelerate; the longest {shown:.2f} m; decision L313): a shorter walk is not timed")
+    if need - RUN_OUT_M <= longest < need:  # L349: a 14 m walkway walked end to end can track a few cm short
+        return (note + f" - the walk tracked {need - longest:.2f} m short of {need:.0f} m: have the walker start "
+                f"and stop at least one step beyond the walkway's ends (a run-out), so the bout is longer than "
+                f"{need:.0f} m (decision L349); or time a window of it with track --window and read gait_speed_mps")
+    return note + " - time a window of it with track --window and read gait_speed_mps"

@@ -275,6 +275,33 @@ def pll_excess(pll_length_m: np.ndarray, pll_frequency_hz: np.ndarray, pendulum_
                    "('pdrlearn calibrate DIR --distance M') (decision W186)")
 
 
+#: decision W289: an uncalibrated waist-pll track reading more than this times the pendulum reading's distance at a slow
+#: gait warns (W208's rule's "more than 25 % off"; a priori, not fitted)
+PLL_SLOW_EXCESS_RATIO = 1.25
+#: decision W289: "a slow gait" - the pendulum reading's speed (median step x median cadence) under this (m/s; the lower
+#: end of the 1.0-1.4 m/s normal walkers of W207's rule; W186's fast walks, which read pll long too, are left out)
+PLL_SLOW_SPEED_MPS = 1.0
+
+
+def pll_slow_excess_message(ratio: float | None, pll_m: float, pendulum_m: float, length: float | None,
+                            cadence: float | None, n: int) -> str | None:
+    """Decision W289: the one warning line of an uncalibrated waist-pll track whose distance ``pll_m`` is more than
+    :data:`PLL_SLOW_EXCESS_RATIO` x the pendulum reading's ``pendulum_m`` (``ratio``, W186's) while that reading's own
+    speed, median step ``length`` (m) x median ``cadence`` (steps/min) / 60 over ``n`` >= :data:`STEP_COUNT_MIN` steps
+    (W100's medians), is under :data:`PLL_SLOW_SPEED_MPS`; None otherwise."""
+    if ratio is None or not ratio > PLL_SLOW_EXCESS_RATIO or length is None or cadence is None or n < STEP_COUNT_MIN:
+        return None
+    speed = length * cadence / 60.0
+    if not speed < PLL_SLOW_SPEED_MPS:
+        return None
+    return (f"waist-pll reads {pll_m:.2f} m, {ratio:.2f} x the pendulum model's {pendulum_m:.2f} m on the same "
+            f"session, at a slow gait (the pendulum reading: median step {length:.2f} m at {cadence:.0f} "
+            f"steps/min, about {speed:.2f} m/s): uncalibrated, waist-pll's step length is a line in its step "
+            "frequency set on normal walking, and slow walkers' steps read long on it (simulated 0.5-0.7 m/s "
+            "walkers +23 to +72 %); the distance and gait speed are not reliable: track with --pipeline "
+            "waist-pendulum, or calibrate this walker ('pdrlearn calibrate DIR --distance M') (decision W289)")
+
+
 def running_cadence(length: float | None, cadence: float | None, height_m: float = WALK_RATIO_HEIGHT_M) -> bool:
     """Decision W177: whether an uncalibrated waist track's median step ``length`` (m) at its median ``cadence``
     (steps/min) is a fast gait W178 names running first - the cadence above L95's range and the speed length x
