@@ -122,10 +122,13 @@ def test_compass_line_does_not_claim_a_disturbance_l336():
         assert ("follows the waist gyroscope's heading" in line[0]) is fallback
 
 
-def test_the_fused_radius_takes_the_compass_check_l335():
+def test_the_fused_radius_takes_the_compass_check_l335(monkeypatch):
     """Decisions L334/L335: a ``plasys-fused`` track with L182's check gets ``extent_heading_rad`` = the check's median
-    (rad) on its extent; without a check it keeps L128's model; no other regime takes it; the switch turns it off."""
-    assert ps.FUSED_COMPASS_EXTENT is True
+    (rad) on its extent; without a check it keeps L128's model; no other regime takes it; the switch turns it off.
+    Decision L341: the switch is off by default (the lead did not keep L335)."""
+    assert ps.FUSED_COMPASS_EXTENT is False
+    assert ps.sigma_params("plasys-fused", {"compass_check": {"median_deg": 8.19}}) == SIGMA_PARAMS["plasys-fused"]
+    monkeypatch.setattr(ps, "FUSED_COMPASS_EXTENT", True)
     info = {"compass_check": {"median_deg": 8.19}}
     assert ps.sigma_params("plasys-fused", info)["extent_heading_rad"] == pytest.approx(np.radians(8.19))
     assert ps.sigma_params("plasys-fused", {}) == SIGMA_PARAMS["plasys-fused"]
@@ -143,11 +146,8 @@ def test_the_fused_radius_takes_the_compass_check_l335():
 
     today = final({})
     assert final(info) ** 2 == pytest.approx(today ** 2 + 2 * (np.radians(8.19) * 200) ** 2)
-    ps.FUSED_COMPASS_EXTENT = False
-    try:
-        assert final(info) == today
-    finally:
-        ps.FUSED_COMPASS_EXTENT = True
+    monkeypatch.setattr(ps, "FUSED_COMPASS_EXTENT", False)
+    assert final(info) == today
 
 
 def test_l175_line_on_a_fused_track_names_the_compass_check_not_plasys_fused():

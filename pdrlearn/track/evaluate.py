@@ -1168,12 +1168,13 @@ def summary_warnings(summary: dict) -> list[str]:
     uncertainty against the distance walked, and decision L319's reference trajectory that does not travel."""
     from pdrlearn.track.clinical import pooled_cv_warning, resolution_warning, stride_cv_warning
     from pdrlearn.track.gait import bout_range_warning, gait_range_warning
-    from pdrlearn.track.position_sigma import position_sigma_warning
+    from pdrlearn.track.position_sigma import position_sigma_range_warning, position_sigma_warning
 
     return [w for w in (gait_range_warning(summary), bout_range_warning(summary), stride_cv_warning(summary),
                         pooled_cv_warning(summary), resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
-                        position_sigma_warning(summary), stationary_reference_warning(summary)) if w]
+                        position_sigma_warning(summary), position_sigma_range_warning(summary),
+                        stationary_reference_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,

@@ -88,8 +88,11 @@ FUSED_EXTENT_RETURN = False
 #: ``extent_heading_rad`` = the check's measured median disagreement (rad; :func:`compass_extent_rad`) in place of
 #: L239's derived EXTENT_HEADING_RAD: the direction-dependent compass error a straight march carries (trial s32).
 #: Decision L335: adopted, L334's rule was met (marches of 0.8-4 km, users 6320-6331: 94.0 % of the strides, 12/12
-#: finals within 2 sigma, against 68.0 %, 9/12; L128's route, users 6332-6337: 98.7 %, 6/6 against 96.1 %, 5/6)
-FUSED_COMPASS_EXTENT = True
+#: finals within 2 sigma, against 68.0 %, 9/12; L128's route, users 6332-6337: 98.7 %, 6/6 against 96.1 %, 5/6).
+#: Decision L341 (session 32 review): not kept, off: the pooled 94.0 % held 3 fallback marches the term does not touch
+#: (65.6 %); on the 9 fused marches it changed, 100 % (over the rule's 99 %), finals 1.1-8.7 x the error, and the check's
+#: angle holds the foot's own yaw drift (L336): a clean 200 m straight walk read "not usable"
+FUSED_COMPASS_EXTENT = False
 #: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
 #: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
 GAP_FALLBACK_SPEED_MPS = 1.4
@@ -284,6 +287,25 @@ SIGMA_TOO_LARGE = frozenset({"plasys-foot-streaming"})
 #: 10 m walk test (a clinician's trial) would be told its position is unusable. 100 m: about 80 s of walking, ten
 #: times a 10 m walk test and three times the distance below which that point term alone exceeds the share
 SIGMA_WARN_MIN_DISTANCE_M = 100.0
+#: decision L341: the models were fitted and checked on L129's routes of about 530 m (L128-L151); a track that walked
+#: farther than this says once that its radius is not calibrated there (a load-carriage trial: a 3.7 km march ended
+#: 387 m off with a 235 m radius, 7.9 % of its strides within 2 sigma). 600 m: the longest such route, rounded up
+SIGMA_CALIBRATED_ROUTE_M = 600.0
+
+
+def position_sigma_range_warning(summary: dict) -> str | None:
+    """Decision L341: one line when the track walked over :data:`SIGMA_CALIBRATED_ROUTE_M` and L175's line does not
+    already call the position unusable; None otherwise (no sigma, a short walk, or a model of
+    :data:`SIGMA_TOO_LARGE`, whose radius is known to be too large)."""
+    sigma, dist = summary.get("final_position_sigma_m"), summary.get("distance_m")
+    if sigma is None or dist is None or not (np.isfinite(sigma) and np.isfinite(dist)):
+        return None
+    model = (summary.get("info") or {}).get("position_sigma", {}).get("model", "?")
+    if float(dist) <= SIGMA_CALIBRATED_ROUTE_M or model in SIGMA_TOO_LARGE or position_sigma_warning(summary):
+        return None
+    return (f"the position radius (pos_sigma_m, model {model}) was calibrated on routes of about 530 m (L129); on this "
+            f"{float(dist):.0f} m walk it is not calibrated and can be several times too small (a 3.7 km march: "
+            "387 m off with a 235 m radius); read the 2-sigma circle as a lower bound (decision L341)")
 
 
 def position_sigma_warning(summary: dict) -> str | None:
