@@ -58,8 +58,9 @@ def main(users=USERS) -> None:
             if a is None or b is None:
                 if (a is None) != (b is None):
                     missing[p] += 1
-                cells.append(f"{p} {'-' if a is None else f'{a['duration_s']:.2f}'}/"
-                             f"{'-' if b is None else f'{b['duration_s']:.2f}'}")
+                da = "-" if a is None else f"{a['duration_s']:.2f}"
+                db = "-" if b is None else f"{b['duration_s']:.2f}"
+                cells.append(f"{p} {da}/{db}")
                 continue
             e = a["duration_s"] - b["duration_s"]
             err[p].append(e)
