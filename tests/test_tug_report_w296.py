@@ -47,3 +47,30 @@ def test_report_and_track_all_show_the_tug(tmp_path, capsys):
     # a report of the foot track alone has no such table
     assert main(["report", str(res / "walk"), "--out", str(tmp_path / "rep2")]) == 0
     assert CLINICAL_TEST_CAPTION not in (tmp_path / "rep2" / "report.md").read_text()
+
+
+def test_plot_draws_a_tracks_transfers(tmp_path, capsys):
+    from pdrlearn.io import read_session
+    from pdrlearn.plots import session_figure
+
+    d = tmp_path / "tug"
+    assert main(["simulate", "--route", "straight:3, turn:180, straight:3", "--sit-start", "5", "--sit-end", "5",
+                 "--user-seed", "6647", "--out", str(d)]) == 0
+    assert main(["track", str(d), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
+    transfers = pd.read_csv(tmp_path / "t" / "transfers.csv")
+    assert len(transfers) == 2
+    s = read_session(d)
+    _, fig = session_figure(s, transfers=transfers)
+    hatched = [p for p in fig.axes[0].patches if p.get_hatch() == "//"]
+    assert len(hatched) == 2 and fig._suptitle.get_text().endswith(", 2 transfer(s)")
+    # a window holding the sit only: one span, clipped to the window
+    _, fig = session_figure(s, start=float(transfers["start_s"].iloc[1]) - 1.0, transfers=transfers)
+    assert len([p for p in fig.axes[0].patches if p.get_hatch() == "//"]) == 1
+    capsys.readouterr()
+    assert main(["plot", str(d), "--steps", str(tmp_path / "t"), "--out", str(tmp_path / "p.png")]) == 0
+    assert (tmp_path / "p.png").stat().st_size > 0
+    # a transfers.csv without its columns: one line naming it, no figure
+    transfers.drop(columns=["kind"]).to_csv(tmp_path / "t" / "transfers.csv", index=False)
+    assert main(["plot", str(d), "--steps", str(tmp_path / "t"), "--out", str(tmp_path / "q.png")]) == 2
+    err = capsys.readouterr().err
+    assert "transfers.csv: no kind column" in err and not (tmp_path / "q.png").exists()

@@ -145,9 +145,34 @@ def plot(
     s = read_session(session_dir)
     check_window(start, end, s.t_end - s.t_start, str(session_dir))
     table, what = _steps_to_shade(steps, s)
-    plot_session(s, out, start=start, end=end, steps=table, steps_what=what, dpi=dpi)
+    plot_session(s, out, start=start, end=end, steps=table, steps_what=what, dpi=dpi,
+                 transfers=_transfers_to_draw(steps))  # decision W296
     replaced(out, was)
     typer.echo(str(out))
+
+
+def _transfers_to_draw(source: str):
+    """Decision W296: a lower-back track's transfers.csv when ``plot --steps`` names its output folder (None
+    otherwise: a foot track writes none); a transfers.csv without its columns is one line naming it."""
+    import pandas as pd
+
+    from pdrlearn.errors import DataError
+
+    path = Path(source) / "transfers.csv"
+    if source in ("labels", "detected") or not path.is_file():
+        return None
+    try:
+        table = pd.read_csv(path)
+    except (OSError, ValueError) as exc:
+        raise DataError(f"{path}: cannot read it as a track's transfers.csv ({type(exc).__name__}); re-run "
+                        "`pdrlearn track` to rewrite it, or remove it to plot the steps alone") from None
+    missing = [c for c in ("kind", "start_s", "end_s") if c not in table]
+    if missing:
+        raise DataError(f"{path}: no {' or '.join(missing)} column; re-run `pdrlearn track` to rewrite it, or remove "
+                        "it to plot the steps alone")
+    ok = pd.to_numeric(table["start_s"], errors="coerce").notna() & pd.to_numeric(table["end_s"],
+                                                                                   errors="coerce").notna()
+    return table[ok].astype({"start_s": float, "end_s": float})
 
 
 def _steps_to_shade(source: str, session):
