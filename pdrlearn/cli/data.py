@@ -123,7 +123,8 @@ def plot(
     end: float = typer.Option(None, help="Last second to show."),
     steps: str = typer.Option("labels", "--steps", help="Steps to shade: labels (the session's steps.csv), "
                               "detected (found by `pdrlearn steps`' default detector), or a steps table "
-                              "(`pdrlearn steps --out`, a track's steps.csv) or a `track`/`run` output folder."),
+                              "(`pdrlearn steps --out`, a track's steps.csv) or a `track`/`run` output folder "
+                              "(a lower-back track's transfers.csv is drawn too, W296)."),
     dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ) -> None:
