@@ -131,6 +131,7 @@ def test_contacts_identical_to_the_ahrs_filter(real_dir, name, monkeypatch):
             reference = _memoised(_ahrs_madgwick)  # the detector and the pipeline filter the same whole session
             monkeypatch.setattr("pdrlearn.waist.ahrs.madgwick_imu", reference)
             monkeypatch.setattr(K, "madgwick_imu", reference)
+            monkeypatch.setattr("pdrlearn.kernels.waist_stream.madgwick_imu", reference)  # the streamed filter's own
         runs[ref] = (WaistICStepDetector().detect(s), WaistICStepDetector(delay_s=1.75).detect(s),
                      get_pipeline("waist-pendulum")(s))
     (off, rt, tr), (off_r, rt_r, tr_r) = runs[False], runs[True]
