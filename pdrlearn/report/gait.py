@@ -29,7 +29,8 @@ def paired_table(walk: dict, reference: dict | None) -> pd.DataFrame:
         row = {"measure": base, "left": _num(walk[key]), "right": _num(walk[f"{base}_right"]),
                "symmetry index %": _num(walk.get(f"{base}_si_pct")), "ratio L/R": _num(walk.get(f"{base}_ratio"))}
         if reference is not None:
-            row.update({"reference left": _num(reference.get(key)), "reference right": _num(reference.get(f"{base}_right")),
+            row.update({"reference left": _num(reference.get(key)),
+                        "reference right": _num(reference.get(f"{base}_right")),
                         "reference SI %": _num(reference.get(f"{base}_si_pct"))})
         rows.append(row)
     return pd.DataFrame(rows)
@@ -60,7 +61,7 @@ def gait_section(path: Path, summary: dict, name: str):
     sessions = summary.get("sessions") if isinstance(summary.get("sessions"), dict) else {}
     names = [f"{side} {d.get('session')} ({d.get('n_strides')} strides)" for side, d in sessions.items()
              if isinstance(d, dict)]
-    text = ("bilateral gait (pdrlearn gait) of " + ", ".join(names) + "." if names else "bilateral gait (pdrlearn gait).")
+    text = "bilateral gait (pdrlearn gait)" + (" of " + ", ".join(names) if names else "") + "."
     if isinstance(summary.get("reason"), str) and summary["reason"]:
         text += " Caveat: " + summary["reason"]
     tables = [("per foot: left / right and symmetry (gait_summary.json walk"
@@ -72,5 +73,6 @@ def gait_section(path: Path, summary: dict, name: str):
         df = pd.DataFrame(bouts)
         tables.append(("walking bouts (gait_bouts.csv holds every column)", df[[c for c in BOUT_COLUMNS if c in df]]))
     warns = summary.get("warnings")
-    warns = [f"{name}: {w}" for w in (warns if isinstance(warns, list) else [warns]) if isinstance(w, str) and w.strip()]
+    warns = [f"{name}: {w}" for w in (warns if isinstance(warns, list) else [warns])
+             if isinstance(w, str) and w.strip()]
     return Section(f"Gait (bilateral) — {name}", text=text, tables=tables, warnings=warns)
