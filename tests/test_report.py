@@ -156,7 +156,8 @@ def test_report_lists_the_evaluations_warnings(results, tmp_path):
     ev = json.loads((results / "evaluation.json").read_text())
     (results / "evaluation.json").write_text(json.dumps({**ev, "warnings": [held]}))
     sections = collect(results)
-    assert sections[0].title == "Warnings" and sections[0].warnings == [f". (evaluate): {held}"]
+    # decision C80: the report's own folder is named, not "."
+    assert sections[0].title == "Warnings" and sections[0].warnings == [f"{results.resolve().name} (evaluate): {held}"]
     assert "1 warning(s) from 1 run(s)" in sections[0].text
     md = (build_report(results, tmp_path / "r") / "report.md").read_text()
     assert md.index("not held-out") < md.index("Evaluation")

@@ -176,7 +176,7 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         rows = []
         for p in tracks:
             d = _flat_scalars(_read_json(p))
-            rows.append({"run": str(p.parent.relative_to(root)) or ".", **d})
+            rows.append({**d, "run": run_label(p, root)})  # decision C80: a single track named by its session
         df = _step_count_columns(pd.DataFrame(rows))  # decision L103
         key = [c for c in TRACK_COLUMNS if c in df.columns]
         tables = [("trajectory summaries", df[key])]
@@ -189,6 +189,10 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         if tests is not None:
             tables.append(tests)
         sections.append(Section("Tracking", tables=tables))
+    for p in find("gait_summary.json"):  # decision C79: a `pdrlearn gait` output folder
+        from pdrlearn.report.gait import gait_section
+
+        sections.append(gait_section(p, _read_json(p), run_label(p, root)))
     if warned is not None:  # decision L102: first, before any table, so the caveat travels with the numbers
         sections.insert(0, warned)
     images = find("*.png")
@@ -205,8 +209,23 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
             sections.append(Section(kind, images=[(str(p.relative_to(root)), p) for p in ps]))
     if not sections:
         raise DataError(f"{root}: nothing to report (no manifest.json, evaluation.json, cohort_summary.csv, "
-                        "sessions.csv, summary.json or PNG); run pdrlearn train/evaluate/track/track-all first")
+                        "sessions.csv, summary.json, gait_summary.json or PNG); run pdrlearn "
+                        "train/evaluate/track/track-all/gait first")
     return sections
+
+
+def run_label(p: Path, root: Path) -> str:
+    """Decision C80: the name of the run whose result file ``p`` is: its folder below ``root``; the report's own
+    folder (a single track, gait output or evaluation given as ``root``) by the session its ``summary.json`` names,
+    else by the folder's name (before, every row and warning of a single-track report read ".")."""
+    rel = p.parent.relative_to(root)
+    if rel != Path("."):
+        return rel.as_posix()
+    if p.name == "summary.json":
+        session = _read_json(p).get("session")
+        if isinstance(session, str) and session.strip():
+            return session.strip()
+    return root.resolve().name
 
 
 def _batch_section(folder: Path, root: Path) -> Section:
@@ -253,7 +272,7 @@ def _run_warnings(tracks: list[Path], evaluations: list[Path], root: Path) -> Se
             warns = [warns]
         if not isinstance(warns, list):
             continue
-        run = str(p.parent.relative_to(root)) or "."
+        run = run_label(p, root)  # decision C80
         run = run if p.name == "summary.json" else f"{run} (evaluate)"
         for w in dict.fromkeys(w for w in warns if isinstance(w, str) and w.strip()):
             seen.setdefault(w, []).append(run)

@@ -612,11 +612,34 @@ def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[f
         if "foot" in st and st["foot"].nunique() >= 2:
             return float(h.groupby(st["foot"]).sum().mean()), "steps.csv height_m (mean of the feet's sums)"
         return float(h.sum()), "steps.csv height_m"
+    walked = _walking_reference(session)  # decision L357: z at standing moments, not seated vs standing
+    if walked is not None:
+        from pdrlearn.track.pelvis_reference import STRIDE_AVERAGED_ALTITUDE_SOURCE
+
+        return float(walked["z"].iloc[-1] - walked["z"].iloc[0]), STRIDE_AVERAGED_ALTITUDE_SOURCE
     gt = session.trajectory
     if gt is not None and len(gt) > 1 and "z" in gt:
         t, z = gt["t"].to_numpy(float), gt["z"].to_numpy(float)
         return float(np.interp(t1, t, z) - np.interp(t0, t, z)), "trajectory.csv z at the track's first and last time"
     return None, ""
+
+
+#: decision L357: a pelvis trajectory with labelled contacts (ics.csv) is read stride-averaged over the walking span
+STRIDE_AVERAGED_PELVIS_REFERENCE = True
+
+
+def _walking_reference(session: Session) -> pd.DataFrame | None:
+    """Decision L357: :func:`pdrlearn.track.pelvis_reference.walking_reference` of the session's trajectory and
+    labelled contacts, for a pelvis-only reference: None when the switch is off, the session lacks either, has a
+    steps.csv (its strides are the reference, or S47 chose the trajectory for its rides) or a ride (rides.csv: a lift
+    before the first or after the last contact is outside the walking span)."""
+    rides = session.extras.get("rides")
+    if not STRIDE_AVERAGED_PELVIS_REFERENCE or (session.steps is not None and len(session.steps)) or (
+            rides is not None and len(rides)):
+        return None
+    from pdrlearn.track.pelvis_reference import walking_reference
+
+    return walking_reference(session.trajectory, session.extras.get("ics"))
 
 
 def reference_altitude_track(session: Session, t0: float, t1: float) -> np.ndarray | None:
@@ -630,6 +653,9 @@ def reference_altitude_track(session: Session, t0: float, t1: float) -> np.ndarr
         if "start_s" in st:
             st = st.sort_values("start_s", kind="stable")
         return np.concatenate([[0.0], np.cumsum(st["height_m"].to_numpy(float))])
+    walked = _walking_reference(session)  # decision L357
+    if walked is not None:
+        return walked["z"].to_numpy(float)
     gt = session.trajectory
     if gt is not None and len(gt) > 1 and "z" in gt:
         t, z = gt["t"].to_numpy(float), gt["z"].to_numpy(float)
@@ -648,6 +674,11 @@ def _reference_distance(session: Session, *, waist: bool = False) -> tuple[float
             per_foot = st["length_m"].abs().groupby(st["foot"]).sum()
             return float(per_foot.max()), "steps.csv length_m (strides of both feet: the longer foot's sum, W38)"
         return float(st["length_m"].abs().sum()), "steps.csv length_m"
+    walked = _walking_reference(session)  # decision L357: no sway, no chair transfers' pelvis travel
+    if walked is not None:
+        from pdrlearn.track.pelvis_reference import STRIDE_AVERAGED_SOURCE, walked_length
+
+        return walked_length(walked), STRIDE_AVERAGED_SOURCE
     if session.trajectory is not None and len(session.trajectory) > 1:
         return path_length(session.trajectory), "trajectory.csv path"
     return None, ""
@@ -685,7 +716,7 @@ def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
         still = track_m >= STATIONARY_REF_MIN_TRACK_M and ref_m < STATIONARY_REF_FRAC * track_m
         if still:
             out["reference_travel_m"] = ref_m
-    if still and source == "trajectory.csv path":  # its wobble's path is no distance walked
+    if still and source.startswith("trajectory.csv path"):  # its wobble's path is no distance walked (L357 too)
         return
     out["distance_ref_m"] = ref
     out["distance_ref_source"] = source
