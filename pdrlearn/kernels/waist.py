@@ -375,14 +375,21 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
                      contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool | str = False,
-                     side_at_contact: bool = False, fast_fill: bool = False, frozen: np.ndarray | None = None
-                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                     side_at_contact: bool = False, fast_fill: bool = False, frozen: np.ndarray | None = None,
+                     with_ap: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
     the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
     :func:`pdrlearn.signal.lowpass`), then :func:`ic_offline`. Returns ``(ic, fc, vmax, ap)`` (``ap`` the filtered
-    AP acceleration the learned stage reads); ``frozen`` as :func:`ic_offline`'s (decision W255)."""
+    AP acceleration the learned stage reads); ``frozen`` as :func:`ic_offline`'s (decision W255). Without
+    ``with_ap`` a window whose motion gate is closed throughout returns no contacts and ``ap`` None without filtering
+    (:func:`ic_offline` keeps only maxima inside the gate, and its sequence rules add contacts only around kept ones:
+    the same empty result, for the realtime detector's windows of a long rest, W31)."""
     gate = motion_gate(acc_v, w_z, fs, walk_threshold=walk_threshold, causal=False, turn_gate_rps=turn_gate_rps)
+    if not with_ap and not gate.any():
+        fir_taps(cutoff_hz, fs, int(round(fir_order_s * fs)))  # ic_offline's check of the cut-off, as before
+        none = np.zeros(0, dtype=int)
+        return none, none.copy(), none.copy(), None
     ap = dsp.lowpass(acc_ap, min(ap_cutoff_hz, 0.4 * fs), fs)
     yaw_rate = np.abs(rolling_mean(w_z, fs, causal=False)) if (turn_shift_rps is not None or contact_shift) else None
     turning = None if turn_shift_rps is None else yaw_rate >= turn_shift_rps  # decision 29: W23 off in turns

@@ -32,7 +32,8 @@ def rule_contacts(settings: dict | None = None):
     kw = dict(settings or {})
 
     def offline(w: dict, fs: float):
-        return K.contacts_offline(w["acc_v"], w["acc_ap"], w["acc_ml"], w["gyr_nav"][:, 2], fs, **kw)[:3]
+        return K.contacts_offline(w["acc_v"], w["acc_ap"], w["acc_ml"], w["gyr_nav"][:, 2], fs, with_ap=False,
+                                  **kw)[:3]
 
     return offline
 
