@@ -290,7 +290,10 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         strong = vf[cand] >= min_peak_mps2
         if gate is not None:
             strong &= np.asarray(gate, dtype=bool)[cand]
-        vl = None if acc_ml is None else lateral_velocity(acc_ml, fs)
+        if not strong.any():  # no accepted maximum: W18-W28 and W148 keep none, W152 / W242 fill only between kept
+            none = np.zeros(0, dtype=int)  # ones, so no contact (the result of the rules, without filtering for them)
+            return none, none.copy(), cand[:0]
+        vl = None if acc_ml is None else lateral_velocity_cached(acc_ml, fs)
         side = None if vl is None else candidate_sides(vl, cand, strong, ap if side_at_contact else None, ws,
                                                        level=level)
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2, at=peak_positions(vf, cand),
@@ -315,7 +318,7 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
             peaks = peaks[np.asarray(gate, dtype=bool)[peaks]]
     ic = np.array([_nearest_local_max_before(ap, p, max(0, p - ws), level=level) for p in peaks], dtype=int)
     if contact_shift and rhythm and acc_ml is not None and peaks.size:  # W131: W23 at the contact, every contact
-        keep = unshifted_contacts(peaks, vf[peaks], lateral_velocity(acc_ml, fs)[ic], fs, max_step_s=max_step_s,
+        keep = unshifted_contacts(peaks, vf[peaks], vl[ic], fs, max_step_s=max_step_s,
                                   exempt=None if spinning is None else np.asarray(spinning, dtype=bool)[ic])
         peaks, ic = peaks[keep], ic[keep]
     if parity == "within" and rhythm and acc_ml is not None and peaks.size:  # W159: no contact across a break
@@ -448,6 +451,26 @@ def lateral_velocity(acc_ml: np.ndarray, fs: float, *, band_hz: tuple[float, flo
     lo, hi = float(band_hz[0]), float(min(band_hz[1], 0.45 * fs))
     v = np.cumsum(dsp.sosfiltfilt(_butter2(lo, hi, "bandpass", float(fs)), a)) / fs
     return dsp.sosfiltfilt(_butter2(lo, None, "high", float(fs)), v)
+
+
+_LATERAL_MEMO: dict[tuple, np.ndarray] = {}
+_LATERAL_MEMO_SIZE = 32
+
+
+def lateral_velocity_cached(acc_ml: np.ndarray, fs: float) -> np.ndarray:
+    """:func:`lateral_velocity` (default band) as a read-only array, kept for the last few inputs (keyed by their
+    bytes: the same samples give the same floats). The realtime detector (W31) reads W20's velocity of a decision
+    window inside the rules and again for W138's side of the contacts decided there (``waist_stream``)."""
+    a = np.ascontiguousarray(acc_ml, dtype=np.float64)
+    key = (float(fs), a.shape, a.tobytes())
+    v = _LATERAL_MEMO.get(key)
+    if v is None:
+        v = lateral_velocity(a, fs)
+        v.flags.writeable = False
+        if len(_LATERAL_MEMO) >= _LATERAL_MEMO_SIZE:
+            del _LATERAL_MEMO[next(iter(_LATERAL_MEMO))]  # the oldest
+        _LATERAL_MEMO[key] = v
+    return v
 
 
 @functools.lru_cache(maxsize=32)
