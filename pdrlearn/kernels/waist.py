@@ -311,7 +311,10 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         strong = vf[cand] >= min_peak_mps2
         if gate is not None:
             strong &= np.asarray(gate, dtype=bool)[cand]
-        vl = None if acc_ml is None else lateral_velocity(acc_ml, fs)
+        if not strong.any():  # no accepted maximum: W18-W28 and W148 keep none, W152 / W242 fill only between kept
+            none = np.zeros(0, dtype=int)  # ones, so no contact (the result of the rules, without filtering for them)
+            return none, none.copy(), cand[:0]
+        vl = None if acc_ml is None else lateral_velocity_cached(acc_ml, fs)
         side = None if vl is None else candidate_sides(vl, cand, strong, ap if side_at_contact else None, ws,
                                                        level=level)
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2, at=peak_positions(vf, cand),
@@ -336,7 +339,7 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
             peaks = peaks[np.asarray(gate, dtype=bool)[peaks]]
     ic = np.array([_nearest_local_max_before(ap, p, max(0, p - ws), level=level) for p in peaks], dtype=int)
     if contact_shift and rhythm and acc_ml is not None and peaks.size:  # W131: W23 at the contact, every contact
-        keep = unshifted_contacts(peaks, vf[peaks], lateral_velocity(acc_ml, fs)[ic], fs, max_step_s=max_step_s,
+        keep = unshifted_contacts(peaks, vf[peaks], vl[ic], fs, max_step_s=max_step_s,
                                   exempt=None if spinning is None else np.asarray(spinning, dtype=bool)[ic])
         peaks, ic = peaks[keep], ic[keep]
     if parity == "within" and rhythm and acc_ml is not None and peaks.size:  # W159: no contact across a break
@@ -396,14 +399,21 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
                      contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool | str = False,
-                     side_at_contact: bool = False, fast_fill: bool = False, frozen: np.ndarray | None = None
-                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                     side_at_contact: bool = False, fast_fill: bool = False, frozen: np.ndarray | None = None,
+                     with_ap: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
     the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
     :func:`pdrlearn.signal.lowpass`), then :func:`ic_offline`. Returns ``(ic, fc, vmax, ap)`` (``ap`` the filtered
-    AP acceleration the learned stage reads); ``frozen`` as :func:`ic_offline`'s (decision W255)."""
+    AP acceleration the learned stage reads); ``frozen`` as :func:`ic_offline`'s (decision W255). Without
+    ``with_ap`` a window whose motion gate is closed throughout returns no contacts and ``ap`` None without filtering
+    (:func:`ic_offline` keeps only maxima inside the gate, and its sequence rules add contacts only around kept ones:
+    the same empty result, for the realtime detector's windows of a long rest, W31)."""
     gate = motion_gate(acc_v, w_z, fs, walk_threshold=walk_threshold, causal=False, turn_gate_rps=turn_gate_rps)
+    if not with_ap and not gate.any():
+        fir_taps(cutoff_hz, fs, int(round(fir_order_s * fs)))  # ic_offline's check of the cut-off, as before
+        none = np.zeros(0, dtype=int)
+        return none, none.copy(), none.copy(), None
     ap = dsp.lowpass(acc_ap, min(ap_cutoff_hz, 0.4 * fs), fs)
     yaw_rate = np.abs(rolling_mean(w_z, fs, causal=False)) if (turn_shift_rps is not None or contact_shift) else None
     turning = None if turn_shift_rps is None else yaw_rate >= turn_shift_rps  # decision 29: W23 off in turns
@@ -464,6 +474,26 @@ def lateral_velocity(acc_ml: np.ndarray, fs: float, *, band_hz: tuple[float, flo
     return dsp.sosfiltfilt(_butter2(lo, None, "high", float(fs)), v)
 
 
+_LATERAL_MEMO: dict[tuple, np.ndarray] = {}
+_LATERAL_MEMO_SIZE = 32
+
+
+def lateral_velocity_cached(acc_ml: np.ndarray, fs: float) -> np.ndarray:
+    """:func:`lateral_velocity` (default band) as a read-only array, kept for the last few inputs (keyed by their
+    bytes: the same samples give the same floats). The realtime detector (W31) reads W20's velocity of a decision
+    window inside the rules and again for W138's side of the contacts decided there (``waist_stream``)."""
+    a = np.ascontiguousarray(acc_ml, dtype=np.float64)
+    key = (float(fs), a.shape, a.tobytes())
+    v = _LATERAL_MEMO.get(key)
+    if v is None:
+        v = lateral_velocity(a, fs)
+        v.flags.writeable = False
+        if len(_LATERAL_MEMO) >= _LATERAL_MEMO_SIZE:
+            del _LATERAL_MEMO[next(iter(_LATERAL_MEMO))]  # the oldest
+        _LATERAL_MEMO[key] = v
+    return v
+
+
 @functools.lru_cache(maxsize=32)
 def _butter2(lo: float, hi: float | None, btype: str, fs: float) -> np.ndarray:
     """Second-order Butterworth sections, designed once per setting (callers take a copy): the realtime
@@ -511,13 +541,24 @@ def _local_period(t: np.ndarray, k: int, side: int, max_gap: float, n: int = 3) 
             break
         iv.append(abs(t[j2] - t[j]))
         j = j2
-    return float(np.median(iv)) if len(iv) >= RHYTHM_MIN_STEPS - 1 else float("nan")
+    return _median_few(iv) if len(iv) >= RHYTHM_MIN_STEPS - 1 else float("nan")
+
+
+def _median_few(x: list) -> float:
+    """``float(np.median(x))`` of a few numbers, without numpy's per-call cost (the rhythm rules ask it once per
+    contact and side in every 0.25 s window of the realtime detector, W31): the middle one, or the mean of the two
+    middle ones as numpy takes it (``(a + b) / 2``); numpy's own where one is NaN."""
+    if any(v != v for v in x):
+        return float(np.median(x))
+    s = sorted(x)
+    m = len(s) // 2
+    return float(s[m]) if len(s) % 2 else float((s[m - 1] + s[m]) / 2)
 
 
 def _period_around(t: np.ndarray, k: int, max_gap: float) -> float:
     """Local step period at accepted maximum ``k``: median of the periods before and after it."""
     p = [x for x in (_local_period(t, k, -1, max_gap), _local_period(t, k, +1, max_gap)) if np.isfinite(x)]
-    return float(np.median(p)) if p else float("nan")
+    return _median_few(p) if p else float("nan")
 
 
 def _missing_steps(ratio: float, side_a: int, side_b: int) -> int:

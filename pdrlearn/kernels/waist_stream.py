@@ -32,7 +32,8 @@ def rule_contacts(settings: dict | None = None):
     kw = dict(settings or {})
 
     def offline(w: dict, fs: float):
-        return K.contacts_offline(w["acc_v"], w["acc_ap"], w["acc_ml"], w["gyr_nav"][:, 2], fs, **kw)[:3]
+        return K.contacts_offline(w["acc_v"], w["acc_ap"], w["acc_ml"], w["gyr_nav"][:, 2], fs, with_ap=False,
+                                  **kw)[:3]
 
     return offline
 
@@ -167,7 +168,7 @@ class RealtimeContacts:
         for i, f, _, tt in self.decider.decide_until(self.n, self._detect, end=end):
             lo = max(self.b0, tt - self.decider.span)
             if tt not in v_ml:  # decision W138: on the samples the contact was decided on only ([T - span, T))
-                v_ml[tt] = K.lateral_velocity(self.buf["acc_ml"][lo - self.b0:tt - self.b0], self.fs)
+                v_ml[tt] = K.lateral_velocity_cached(self.buf["acc_ml"][lo - self.b0:tt - self.b0], self.fs)
             self.decided.append((i, float(t[i - self.b0]), float(t[f - self.b0]), float(v_ml[tt][i - lo])))
 
     def _report(self, final: bool) -> list:

@@ -218,8 +218,10 @@ class InitialContactDetector:
         kw = self.rule_settings()
         if kw["fast_fill"] and self.fast_fill == FAST_FILL_OUTSIDE_FREEZE:  # W255: no W242 fill inside a freeze
             kw["frozen"] = frozen_samples(imu)
-        ic, fc, vmax, ap = K.contacts_offline(imu.acc_v, imu.acc_ap, imu.acc_ml, imu.w_z, fs, **kw)
-        if self.learned is False or self.learned is None:
+        rules_only = self.learned is False or self.learned is None  # the learned stage reads the filtered AP
+        ic, fc, vmax, ap = K.contacts_offline(imu.acc_v, imu.acc_ap, imu.acc_ml, imu.w_z, fs, with_ap=not rules_only,
+                                              **kw)
+        if rules_only:
             return ic, fc, vmax
         from pdrlearn.waist import learned as L  # W33: the rule outcomes are features of the learned stage
 
