@@ -29,8 +29,10 @@ browser:
 	      || echo "chromium could not be installed: the browser test will be skipped"; \
 	  else echo "chromium missing and not installable here: the browser test will be skipped"; fi; }
 
+# Both cores (pytest-xdist): one test file per worker at a time (--dist loadfile keeps a file's module fixtures in
+# one process), so the suite takes about half the serial time on a 2-core machine (docs/testing.md).
 test: $(STAMP) browser
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile
 
 # Line + branch coverage of pdrlearn over the default suite (config: [tool.coverage.*] in pyproject; docs/testing.md).
 # Serial (no -n): ~11 min of CPU on one core. HTML in out/coverage/index.html; the summary lists the modules that are
