@@ -585,13 +585,15 @@ SCOPED_OPTIONS = {
 
 
 def ignored_options_line(o: dict, pipeline: str, realtime: bool, method: str, detector: bool,
-                         integrate_stops: bool) -> str | None:
-    """Decision W193: one line naming the resolved options ``o`` set away from :data:`OPTION_DEFAULTS` that do
-    nothing for this track (:data:`SCOPED_OPTIONS`) and where each applies, else None (the live trackers' E107 line
-    says the same of the options they do not apply)."""
+                         integrate_stops: bool, explicit=()) -> str | None:
+    """Decision W193: one line naming the resolved options ``o`` set away from :data:`OPTION_DEFAULTS` -- or given
+    explicitly (``explicit``: the PARAMS.json's ``"options"`` keys, decision W301) -- that do nothing for this track
+    (:data:`SCOPED_OPTIONS`) and where each applies, else None (the live trackers' E107 line says the same of the
+    options they do not apply). W301: ``lying_heading``, true by default (W271), is named only where the PARAMS.json
+    gives it true, not on every ``--realtime`` / ``waist-pll`` track."""
     off = [k for k, (_, acts) in SCOPED_OPTIONS.items()  # an option set off (false) does nothing anywhere (W199)
-           if o.get(k) not in (None, False, OPTION_DEFAULTS[k]) and not acts(pipeline, realtime, method, detector,
-                                                                    integrate_stops)]
+           if o.get(k) not in (None, False) and (o.get(k) != OPTION_DEFAULTS[k] or k in explicit)
+           and not acts(pipeline, realtime, method, detector, integrate_stops)]
     if not off:
         return None
     here = ", ".join([pipeline] + (["--realtime"] if realtime else []) + [f"heading {method}"]
@@ -906,7 +908,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
-    line = ignored_options_line(o, pipeline, realtime, method, det_given, integrate_stops)  # decision W193
+    line = ignored_options_line(o, pipeline, realtime, method, det_given, integrate_stops,  # decision W193
+                                explicit={k for k, v in (p.options or {}).items() if v is not None})  # W301
     warnings += [line] if line else []
     n_rescored = 0
     if o["contact_model"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W203
