@@ -330,6 +330,17 @@ SESSIONS: tuple[Column, ...] = (
                                    "none flagged, no walking between (W279)"),
     ("n_transfers_flagged", "count", "integer", "lower back: transfers.csv's rows with a flag (W278: not "
                                                 "alternating, walking on both sides); empty on a foot track"),
+    ("tug_sit_to_stand_s", "s", "number", "lower back, with a tug_time_s: the TUG's sit-to-stand (tug_phases.csv, "
+                                          "W293); summary.json's tug_phases has each phase's start, end and "
+                                          "duration"),
+    ("tug_walk_out_s", "s", "number", "TUG: the first step after the rise to the first turn's start (W293)"),
+    ("tug_turn_s", "s", "number", "TUG: the first turn between the rise and the sit (turns.csv's timing, ~1 s longer "
+                                  "than a 5-95 % turn, L346; W293)"),
+    ("tug_walk_back_s", "s", "number", "TUG: the turn's end to the turn-to-sit's start, without one to the last step "
+                                       "before the sit (W293)"),
+    ("tug_turn_to_sit_s", "s", "number", "TUG: the last of two or more turns before the sit (W293); empty with one "
+                                         "turn"),
+    ("tug_stand_to_sit_s", "s", "number", "TUG: the stand-to-sit (W293)"),
     ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes from 2 m to 12 m of the first "
                                          "walking bout reaching 14 m, straight (L312); empty on a shorter or "
                                          "turning walk (L313)"),
@@ -541,6 +552,20 @@ TRANSFERS: tuple[Column, ...] = (
     *_clocks("start_s", "end_s", "peak_s"),
 )
 
+#: decision W293: a lower-back track's tug_phases.csv (only with a tug_time_s)
+TUG_PHASE_TABLE: tuple[Column, ...] = (
+    ("phase", _ID, "text", "sit_to_stand, walk_out, turn, walk_back, turn_to_sit, stand_to_sit, in time order; a phase "
+                           "the track cannot place has no row (turn_to_sit with one turn; the walks and the turn "
+                           "without a turn)"),
+    ("start_s", "s", "number", "sit_to_stand / stand_to_sit: its transfers.csv row's; walk_out: the first step "
+                               "after the rise; turn, turn_to_sit: their turns.csv row's; walk_back: the turn's end"),
+    ("end_s", "s", "number", "walk_out: the turn's start; walk_back: the turn-to-sit's start, else the last step "
+                             "before the sit; the others: their row's end_s"),
+    ("duration_s", "s", "number", "end_s - start_s; the phases do not tile the TUG (standing before the first step "
+                                  "or before the sit is in none)"),
+    *_clocks("start_s", "end_s"),
+)
+
 #: decision W213: a track's freezes.csv (foot or lower back: the tracked unit's freeze index)
 FREEZES: tuple[Column, ...] = (
     ("freeze", "index", "integer", "the episode's number in the session, from 1"),
@@ -750,7 +775,7 @@ RAMPS: tuple[Column, ...] = (
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
                                          "bouts.csv": BOUTS, "turns.csv": TURNS, "periods.csv": PERIODS,
-                                         "transfers.csv": TRANSFERS,
+                                         "transfers.csv": TRANSFERS, "tug_phases.csv": TUG_PHASE_TABLE,  # W293
                                          "freezes.csv": FREEZES, "ramps.csv": RAMPS,  # L301
                                          "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS,  # E137
                                          "gait_steps.csv": GAIT_STEPS, "gait_cycles.csv": GAIT_CYCLES,  # L287

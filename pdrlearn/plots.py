@@ -28,6 +28,8 @@ DEFAULT_DPI = 110
 DPI_RANGE = (20, 600)
 
 _TERRAIN_COLOURS = {"flat": "#9ecae1", "up": "#a1d99b", "down": "#fdae6b"}
+#: decision W296: a track's transfers.csv rows drawn on ``plot``'s panels, by kind (the lying kinds, W245, as one)
+_TRANSFER_COLOURS = {"sit-to-stand": "#2ca02c", "stand-to-sit": "#d62728", "lying": "#9467bd"}
 #: decision E99: a ``plot`` window longer than this (s) is drawn for display: each stream's min/max envelope over
 #: :data:`ENVELOPE_COLUMNS` time columns instead of every sample, and runs of steps of one colour (each starting
 #: within :data:`SPAN_JOIN_S` of the last one's end: a walk's strides follow each other) shaded as one span; and a
@@ -149,11 +151,11 @@ def check_window(start: float | None, end: float | None, duration_s: float, wher
 
 
 def plot_session(session: Session, out: Path, *, start: float | None = None, end: float | None = None,
-                 steps=None, steps_what: str | None = None, dpi: float | None = None) -> Path:
+                 steps=None, steps_what: str | None = None, dpi: float | None = None, transfers=None) -> Path:
     """One panel per sensor stream; steps shaded by terrain (or alternately when unknown): the labelled
-    ones, or ``steps`` (arguments of :func:`session_figure`). The format follows the suffix of ``out``
-    (PNG, PDF or SVG; ``dpi`` default :data:`DEFAULT_DPI`, decision L70)."""
-    _, fig = session_figure(session, start=start, end=end, steps=steps, steps_what=steps_what)
+    ones, or ``steps`` (arguments of :func:`session_figure`; ``transfers`` too). The format follows the suffix of
+    ``out`` (PNG, PDF or SVG; ``dpi`` default :data:`DEFAULT_DPI`, decision L70)."""
+    _, fig = session_figure(session, start=start, end=end, steps=steps, steps_what=steps_what, transfers=transfers)
     save_atomic(fig, Path(out), metadata=dict([PLOT_MARK]), dpi=dpi)
     return Path(out)
 
@@ -197,7 +199,7 @@ def steps_in_window(steps, lo: float, hi: float):
 
 
 def session_figure(session: Session, *, start: float | None = None, end: float | None = None, steps=None,
-                   steps_what: str | None = None):
+                   steps_what: str | None = None, transfers=None):
     """The figure of :func:`plot_session` (not saved): ``(pyplot, figure)``, a figure of :func:`new_figure`
     (decision E88: the backend left alone; ``pyplot.close`` of it is a no-op, the first item is kept for callers
     that close it).
@@ -206,6 +208,9 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
     shade instead of the session's labelled steps, ``steps_what`` what they are ("detected stride(s) (accel)");
     default the labelled steps. The time axis is the window ``[start, end]`` exactly (default the session),
     a step it cuts is shaded inside it only, and the title counts the steps shaded (decision L70).
+
+    ``transfers`` (decision W296): a track's transfers.csv (``kind``, ``start_s``, ``end_s``) drawn as hatched spans
+    over the steps, coloured by kind, with a legend; the title counts those in the window.
     """
     names = list(session.streams)
     t0 = session.t_start
@@ -236,6 +241,7 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
             spans.append((max(row.start_s, lo) - t0, min(row.end_s, hi) - t0, colour))
         if long:
             spans = joined_spans(*(np.array([x[j] for x in spans]) for j in (0, 1)), [x[2] for x in spans])
+    moves, kinds = transfer_spans(transfers, lo, hi, t0)
     plt, fig, axes = _figure(len(names))
     for ax, name in zip(axes, names, strict=True):
         s = session.streams[name].slice(lo, hi + 1e-9)
@@ -246,16 +252,37 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
         ax.legend(loc="upper right", fontsize=7, ncol=3)
         for a, b, colour in spans:
             ax.axvspan(a, b, color=colour, alpha=0.35, lw=0)
+        for a, b, colour in moves:  # decision W296: the transfers over the steps
+            ax.axvspan(a, b, facecolor=colour, edgecolor=colour, alpha=0.3, hatch="//", lw=1.0)
     axes[-1].set_xlim(start, end)  # decision L70: the window exactly (shared by every panel)
     axes[-1].set_xlabel("time since session start [s]")
     if shown is not None and "terrain" in shown and shown["terrain"].isin(list(_TERRAIN_COLOURS)).any():
         handles = [Rectangle((0, 0), 1, 1, color=c, alpha=0.5) for c in _TERRAIN_COLOURS.values()]
         fig.legend(handles, list(_TERRAIN_COLOURS), loc="outside lower center", ncol=3, fontsize=8,
                    title=steps_what.replace("(s)", "s"), title_fontsize=8)
+    if kinds:  # decision W296
+        handles = [Rectangle((0, 0), 1, 1, facecolor=_TRANSFER_COLOURS[k], alpha=0.4, hatch="//") for k in kinds]
+        fig.legend(handles, kinds, loc="outside upper left", ncol=len(kinds), fontsize=8,
+                   title="transfers (transfers.csv)", title_fontsize=8)
     whole = start <= 0 and end >= session.t_end - t0
     n = 0 if shown is None else len(shown)
     window = "" if whole else f", {start:g}-{end:g} s of {session.t_end - t0:.1f} s"
     cuts = f" ({cut} cut by the window)" if cut else ""
+    moved = f", {len(moves)} transfer(s)" if transfers is not None else ""
     fig.suptitle(f"{session.name}: {len(names)} stream(s){window}, {n} {steps_what}"
-                 f"{' in the window' if not whole else ''}{cuts}")
+                 f"{' in the window' if not whole else ''}{cuts}{moved}")
     return plt, fig
+
+
+def transfer_spans(transfers, lo: float, hi: float, t0: float) -> tuple[list[tuple[float, float, str]], list[str]]:
+    """Decision W296: ``(spans, kinds)`` of a transfers.csv table's rows that overlap ``[lo, hi]`` (s, the session's
+    clock): each ``(start, end, colour)`` since ``t0`` clipped to the window, and the kinds drawn (legend order)."""
+    if transfers is None or not len(transfers):
+        return [], []
+    shown, _ = steps_in_window(transfers, lo, hi)
+    spans, kinds = [], []
+    for row in shown.itertuples():
+        kind = row.kind if row.kind in ("sit-to-stand", "stand-to-sit") else "lying"
+        spans.append((max(row.start_s, lo) - t0, min(row.end_s, hi) - t0, _TRANSFER_COLOURS[kind]))
+        kinds.append(kind)
+    return spans, [k for k in _TRANSFER_COLOURS if k in kinds]

@@ -104,9 +104,12 @@ def summary_row(summary: Mapping) -> dict:
     """One track's summary.json dict as a sessions.csv row (docs/columns.md): its scalar entries as they are,
     ``final_position`` as ``final_x_m``, ``final_y_m``, ``final_z_m``, ``stride_time_cv_withheld``'s ``cause`` as
     ``stride_time_cv_withheld_cause`` (decision L230) and ``method`` from ``info``; other nested entries (``info``,
-    ``bout_definition``) are left out. Shared by track-all's sessions.csv and :func:`summary_frame`."""
+    ``bout_definition``, ``tug_phases``: W293's ``tug_*_s`` keys carry its durations) are left out. Shared by
+    track-all's sessions.csv and :func:`summary_frame`."""
     row: dict = {}
     for k, v in summary.items():
+        if k == "tug_phases":  # decision W293: an object (null without a TUG); its durations are the tug_*_s keys
+            continue
         if k == "final_position" and isinstance(v, Mapping):
             row.update({f"final_{a}_m": v.get(a) for a in ("x", "y", "z")})
         elif v is None or isinstance(v, str | int | float | bool):

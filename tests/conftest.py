@@ -49,21 +49,18 @@ def synthetic_bundle(tmp_path_factory):
 
 
 # -- sessions of `pdrlearn fetch` (datasets/external) ----------------------------------------------------
-_EXTERNAL_CONVERTED: dict[str, Path | None] = {}
+_EXTERNAL_CONVERTED: dict[str, tuple[Path, list[Path]] | None] = {}
 
 
-def external_session(name: str) -> Path:
-    """The folder of an external session (``gaitmap_*`` / ``mobgap_*``): from datasets/external when fetched,
-    else converted once per test run from the sdist already in the download cache (never downloads: tests
-    need no network); skips with the fetch command when neither exists."""
+def fetched_external(source: str) -> tuple[Path, list[Path]] | None:
+    """``fetch(source, out)`` into a temporary folder, once per test run, from the sdist already in the download
+    cache (never downloads: tests need no network): ``(out, the folders fetch returned)``, or None when the sdist
+    is not cached. Shared by every test that reads a fresh conversion (session 32: each used to convert its own,
+    ~6 s a gaitmap conversion on CI); read-only -- a test that writes copies it first."""
     import atexit
     import shutil
     import tempfile
 
-    source = name.split("_", 1)[0]
-    d = Path(__file__).resolve().parents[1] / "datasets" / "external" / name
-    if d.is_dir():
-        return d
     if source not in _EXTERNAL_CONVERTED:
         import importlib
 
@@ -71,13 +68,23 @@ def external_session(name: str) -> Path:
         from pdrlearn.io.external.pypi import default_cache_dir
 
         sdist = importlib.import_module(SOURCES[source]).SDIST
-        out = None
+        got = None
         if (default_cache_dir() / sdist.filename).is_file():
             out = Path(tempfile.mkdtemp(prefix=f"pdrlearn-{source}-"))
             atexit.register(shutil.rmtree, out, ignore_errors=True)
-            fetch(source, out)
-        _EXTERNAL_CONVERTED[source] = out
-    out = _EXTERNAL_CONVERTED[source]
-    if out is None or not (out / name).is_dir():
+            got = (out, fetch(source, out))
+        _EXTERNAL_CONVERTED[source] = got
+    return _EXTERNAL_CONVERTED[source]
+
+
+def external_session(name: str) -> Path:
+    """The folder of an external session (``gaitmap_*`` / ``mobgap_*``): from datasets/external when fetched,
+    else :func:`fetched_external`'s conversion; skips with the fetch command when neither exists."""
+    source = name.split("_", 1)[0]
+    d = Path(__file__).resolve().parents[1] / "datasets" / "external" / name
+    if d.is_dir():
+        return d
+    got = fetched_external(source)
+    if got is None or not (got[0] / name).is_dir():
         pytest.skip(f"{d} absent: run `pdrlearn fetch {source} --out datasets/external`")
-    return out / name
+    return got[0] / name

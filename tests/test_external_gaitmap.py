@@ -199,21 +199,33 @@ def test_rest_segmentation_agrees_with_datasets_real(real_dir, name):
     assert np.median(d) < 1.0 and (d < 60).mean() >= 0.9  # same borders for almost every stride
 
 
+@pytest.fixture(scope="module")
+def from_cache(tmp_path_factory) -> tuple[Path, list[Path]]:
+    """``fetch gaitmap`` = ``gaitmap.convert`` of the extracted sdist in the cache (CACHE), converted once per test
+    run (tests/conftest.py); converted here when the cache holds the extracted folder without its tarball."""
+    from tests.conftest import fetched_external
+
+    got = fetched_external("gaitmap")
+    if got is None:
+        out = tmp_path_factory.mktemp("gaitmap-new")
+        got = (out, gaitmap.convert(CACHE, out))
+    return got
+
+
 @needs_cache
-def test_new_recordings_from_the_cache(tmp_path):
-    made = gaitmap.convert(CACHE, tmp_path)
-    s = read_session(tmp_path / "gaitmap_walk4x10_right")
+def test_new_recordings_from_the_cache(from_cache):
+    out, made = from_cache
+    s = read_session(out / "gaitmap_walk4x10_right")
     assert abs(s["fAccelerometer"].rate_hz - 102.4) < 1e-6 and len(s.steps) == 7
     assert len(reference_events(s, "foot").intervals) == 4  # 4 passes through the mocap volume
-    ms = json.loads((tmp_path / "gaitmap_ms_left" / "meta.json").read_text())
+    ms = json.loads((out / "gaitmap_ms_left" / "meta.json").read_text())
     assert ms["n_samples"] == 7000 and ms["subject"]["cohort"].startswith("multiple sclerosis")
     assert len(made) == len(gaitmap.RECORDINGS)
 
 
 @needs_cache
-def test_foot_detector_on_the_new_recordings(tmp_path_factory):
-    out = tmp_path_factory.mktemp("gaitmap-new")
-    gaitmap.convert(CACHE, out)
+def test_foot_detector_on_the_new_recordings(from_cache):
+    out, _ = from_cache
     for name in ("gaitmap_walk4x10_left", "gaitmap_walk4x10_right"):  # mocap IC reference
         s = read_session(out / name)
         sc = score_steps(AccelStepDetector().detect(s), s)

@@ -27,6 +27,15 @@ def stairs(real_dir):
     return real_dir / "gaitmap_stairs_up_left"
 
 
+@pytest.fixture(scope="module")
+def tracked(stairs, tmp_path_factory):
+    """`pdrlearn track --method M1` of the stairs at the default resolution, once per module: its path.png for the
+    dpi test and its steps.csv for the shading test (each ran it before session 32)."""
+    out = tmp_path_factory.mktemp("plot_track") / "T"
+    assert main(["track", str(stairs), "--method", "M1", "--out", str(out)]) == 0
+    return out
+
+
 def test_pdf_and_svg_are_written_marked_and_replaced_only_when_ours(stairs, tmp_path, capsys):
     for suffix, head in ((".pdf", b"%PDF-"), (".svg", b"<?xml")):
         out = tmp_path / f"fig{suffix}"
@@ -44,7 +53,7 @@ def test_pdf_and_svg_are_written_marked_and_replaced_only_when_ours(stairs, tmp_
     assert err.count("\n") == 1 and "must end in .png, .pdf or .svg" in err
 
 
-def test_dpi_scales_the_plot_and_the_track_figure(stairs, tmp_path, capsys):
+def test_dpi_scales_the_plot_and_the_track_figure(stairs, tracked, tmp_path, capsys):
     assert DPI_RANGE[0] <= DEFAULT_DPI <= DPI_RANGE[1]
     sizes = {}
     for dpi in (None, 2 * DEFAULT_DPI):
@@ -53,11 +62,10 @@ def test_dpi_scales_the_plot_and_the_track_figure(stairs, tmp_path, capsys):
         sizes[dpi] = _png_size(out)
     w0, w1 = sizes[None][0], sizes[2 * DEFAULT_DPI][0]
     assert 1.9 < w1 / w0 < 2.1, sizes  # bbox "tight" rounds a few pixels
-    for dpi in (None, 55):
-        out = tmp_path / f"t{dpi}"
-        assert main(["track", str(stairs), "--method", "M1", "--out", str(out),
-                     *(["--dpi", str(dpi)] if dpi else [])]) == 0, capsys.readouterr().err
-        sizes[("track", dpi)] = _png_size(out / "path.png")
+    sizes[("track", None)] = _png_size(tracked / "path.png")
+    assert main(["track", str(stairs), "--method", "M1", "--out", str(tmp_path / "t55"), "--dpi", "55"]) == 0, \
+        capsys.readouterr().err
+    sizes[("track", 55)] = _png_size(tmp_path / "t55" / "path.png")
     assert 0.45 < sizes[("track", 55)][0] / sizes[("track", None)][0] < 0.55, sizes
     for cmd in ("plot", "track", "run"):  # the bounds of every --dpi are DPI_RANGE
         assert main([cmd, "--help"]) == 0
@@ -96,7 +104,7 @@ def test_window_is_the_axis_shading_is_clipped_and_the_title_counts_the_window(s
         plt.close(fig)
 
 
-def test_detected_and_tracked_strides_can_be_shaded(stairs, tmp_path, capsys, monkeypatch):
+def test_detected_and_tracked_strides_can_be_shaded(stairs, tracked, tmp_path, capsys, monkeypatch):
     import pdrlearn.plots as plots
     from pdrlearn.cli.steps import auto_detector
 
@@ -113,10 +121,8 @@ def test_detected_and_tracked_strides_can_be_shaded(stairs, tmp_path, capsys, mo
     n = len(det.detect(s))
     assert main(["plot", str(stairs), "--out", str(tmp_path / "d.png"), "--steps", "detected"]) == 0
     assert seen["steps_what"] == f"detected stride(s) ({det.name})" and len(seen["steps"]) == n
-    track = tmp_path / "T"
-    assert main(["track", str(stairs), "--method", "M1", "--out", str(track)]) == 0
-    rows = pd.read_csv(track / "steps.csv")
-    assert main(["plot", str(stairs), "--out", str(tmp_path / "t.svg"), "--steps", str(track)]) == 0
+    rows = pd.read_csv(tracked / "steps.csv")
+    assert main(["plot", str(stairs), "--out", str(tmp_path / "t.svg"), "--steps", str(tracked)]) == 0
     assert len(seen["steps"]) == len(rows) and "steps.csv" in seen["steps_what"]
     capsys.readouterr()
     bad = tmp_path / "bad.csv"
@@ -130,7 +136,7 @@ def test_detected_and_tracked_strides_can_be_shaded(stairs, tmp_path, capsys, mo
         assert err.count("\n") == 1 and needle in err, err
     other = tmp_path / "T2"
     other.mkdir()
-    (other / "steps.csv").write_text((track / "steps.csv").read_text())
+    (other / "steps.csv").write_text((tracked / "steps.csv").read_text())
     (other / "summary.json").write_text(json.dumps({"session": "another_walk"}))
     assert main(["plot", str(stairs), "--out", str(tmp_path / "o.png"), "--steps", str(other)]) == 0
     assert "tracked from session 'another_walk'" in capsys.readouterr().err

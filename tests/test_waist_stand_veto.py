@@ -24,6 +24,24 @@ from tests.conftest import external_session
 FS = 100.0
 
 
+@pytest.fixture(scope="module")
+def ha001():
+    """HA001 Test11 read once, and ``track_waist`` of it memoised by its keyword options: the end-to-end tests below
+    compare many of the same runs (the pendulum with ``stand_veto=True``, the realtime and waist-pll defaults), each
+    now computed once per module (track_waist is deterministic; session 32, CI time)."""
+    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
+    runs: dict = {}
+
+    def track(**kw):
+        key = tuple(sorted((k, repr(v)) for k, v in kw.items()))
+        if key not in runs:
+            runs[key] = track_waist(s, **kw)
+        return runs[key]
+
+    track.session = s
+    return track
+
+
 def test_runs_and_the_weak_run_mask_by_hand():
     has_next = np.array([True, True, False, True, False, True, False])
     assert K.run_ids(has_next).tolist() == [0, 0, 0, 1, 1, 2, 2]
@@ -68,15 +86,14 @@ def test_the_veto_drops_the_weak_run_only():
     assert stand_veto(one.iloc[:0], imu).attrs["n_weak_run"] == 0
 
 
-def test_the_option_true_and_where_it_applies():
+def test_the_option_true_and_where_it_applies(ha001):
     assert OPTION_DEFAULTS["stand_veto"] == "walking"  # W190: true not adopted; W219: W218's value the default
-    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
-    on = track_waist(s, pipeline="waist-pendulum", stand_veto=True)
+    off = ha001(pipeline="waist-pendulum", stand_veto=False)
+    on = ha001(pipeline="waist-pendulum", stand_veto=True)
     n = on.info["n_weak_run_contacts"]
     assert n > 0 and len(off.steps) - len(on.steps) == n and off.info["n_weak_run_contacts"] == 0
     for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
-        a, b = track_waist(s, **kw), track_waist(s, stand_veto=True, **kw)
+        a, b = ha001(**kw), ha001(stand_veto=True, **kw)
         np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
         assert b.info["n_weak_run_contacts"] == 0
 
@@ -133,14 +150,14 @@ def test_w191_spare_turns_keeps_a_weak_run_with_a_step_turning_the_pelvis_over_1
     assert stand_veto(steps, imu, spare_turns=True, gyro_bias_rps=0.6).attrs["n_weak_run"] == n_sway
 
 
-def test_w191_turns_end_to_end_where_it_applies_and_the_values_refused():
-    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
-    on = track_waist(s, pipeline="waist-pendulum", stand_veto="turns")
+def test_w191_turns_end_to_end_where_it_applies_and_the_values_refused(ha001):
+    s = ha001.session
+    on = ha001(pipeline="waist-pendulum", stand_veto="turns")
     assert on.info["options"]["stand_veto"] == "turns"
-    n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
+    n_true = ha001(pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
     assert 0 <= on.info["n_weak_run_contacts"] <= n_true  # "turns" only ever keeps more
     for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
-        a, b = track_waist(s, **kw), track_waist(s, stand_veto="turns", **kw)
+        a, b = ha001(**kw), ha001(stand_veto="turns", **kw)
         np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
         assert b.info["n_weak_run_contacts"] == 0
     for bad in ("Turns", "yes", 2):
@@ -180,15 +197,15 @@ def test_w196_spare_alternation_keeps_a_weak_run_whose_sides_alternate_only():
         np.testing.assert_allclose(out["event_s"].iloc[:walk.size], walk)
 
 
-def test_w196_alternation_end_to_end_where_it_applies():
-    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
+def test_w196_alternation_end_to_end_where_it_applies(ha001):
+    s = ha001.session
     assert OPTION_DEFAULTS["stand_veto"] != "alternation"  # W197: measured, not adopted
-    on = track_waist(s, pipeline="waist-pendulum", stand_veto="alternation")
+    on = ha001(pipeline="waist-pendulum", stand_veto="alternation")
     assert on.info["options"]["stand_veto"] == "alternation"
-    n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
+    n_true = ha001(pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
     assert 0 <= on.info["n_weak_run_contacts"] <= n_true  # "alternation" only ever keeps more
     for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
-        a, b = track_waist(s, **kw), track_waist(s, stand_veto="alternation", **kw)
+        a, b = ha001(**kw), ha001(stand_veto="alternation", **kw)
         np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
         assert b.info["n_weak_run_contacts"] == 0
     with pytest.raises(DataError, match="W196") as e:
@@ -242,29 +259,29 @@ def test_w198_spare_adjacent_keeps_a_weak_run_between_walking_strides_only():
         assert np.isin(after, out["event_s"].to_numpy()).all()  # the strong contacts are never dropped
 
 
-def test_w199_adjacent_where_it_applies_and_w219_the_default_walking():
-    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
+def test_w199_adjacent_where_it_applies_and_w219_the_default_walking(ha001):
+    s = ha001.session
     assert OPTION_DEFAULTS["stand_veto"] == "walking"  # W217 withdrew W199's "adjacent"; W219 adopted W218's value
-    on = track_waist(s, pipeline="waist-pendulum", stand_veto="adjacent")
-    default = track_waist(s, pipeline="waist-pendulum")
-    off = track_waist(s, pipeline="waist-pendulum", stand_veto=False)
-    walking = track_waist(s, pipeline="waist-pendulum", stand_veto="walking")
+    on = ha001(pipeline="waist-pendulum", stand_veto="adjacent")
+    default = ha001(pipeline="waist-pendulum")
+    off = ha001(pipeline="waist-pendulum", stand_veto=False)
+    walking = ha001(pipeline="waist-pendulum", stand_veto="walking")
     np.testing.assert_array_equal(default.steps["event_s"], walking.steps["event_s"])
     assert default.info["options"]["stand_veto"] == "walking"
     assert len(off.steps) - len(on.steps) == on.info["n_weak_run_contacts"] > 0  # W190's 56.25 s contact
     assert on.info["options"]["stand_veto"] == "adjacent"
-    n_true = track_waist(s, pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
+    n_true = ha001(pipeline="waist-pendulum", stand_veto=True).info["n_weak_run_contacts"]
     assert 0 <= on.info["n_weak_run_contacts"] <= n_true  # "adjacent" only ever keeps more
     via_params = track_waist(s, pipeline="waist-pendulum", params=WaistParams(options={"stand_veto": "adjacent"}))
     assert via_params.info["options"]["stand_veto"] == "adjacent"  # the PARAMS.json option
     np.testing.assert_array_equal(via_params.steps["event_s"], on.steps["event_s"])
     for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
-        a, b = track_waist(s, stand_veto=False, **kw), track_waist(s, stand_veto="adjacent", **kw)  # not applied
+        a, b = ha001(stand_veto=False, **kw), ha001(stand_veto="adjacent", **kw)  # not applied
         np.testing.assert_array_equal(a.steps["event_s"], b.steps["event_s"])
         assert b.info["n_weak_run_contacts"] == 0
         assert [w for w in b.info.get("warnings", []) if "W193" in str(w)]  # set to no effect: named
     with pytest.raises(DataError, match="W198") as e:
-        track_waist(s, pipeline="waist-pendulum", stand_veto="Adjacent")
+        ha001(pipeline="waist-pendulum", stand_veto="Adjacent")
     assert "\n" not in str(e.value)
     assert 'stand_veto="adjacent"' in (unapplied_options_line(WaistParams(options={"stand_veto": "adjacent"})) or "")
     # the live tracker applies no stand veto: the offline default "walking" is named (E126, W219), false is not

@@ -125,7 +125,8 @@ def plot(
     end: float = typer.Option(None, help="Last second to show."),
     steps: str = typer.Option("labels", "--steps", help="Steps to shade: labels (the session's steps.csv), "
                               "detected (found by `pdrlearn steps`' default detector), or a steps table "
-                              "(`pdrlearn steps --out`, a track's steps.csv) or a `track`/`run` output folder."),
+                              "(`pdrlearn steps --out`, a track's steps.csv) or a `track`/`run` output folder "
+                              "(a lower-back track's transfers.csv is drawn too, W296)."),
     dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ) -> None:
@@ -147,9 +148,34 @@ def plot(
     s = read_session(session_dir)
     check_window(start, end, s.t_end - s.t_start, str(session_dir))
     table, what = _steps_to_shade(steps, s)
-    plot_session(s, out, start=start, end=end, steps=table, steps_what=what, dpi=dpi)
+    plot_session(s, out, start=start, end=end, steps=table, steps_what=what, dpi=dpi,
+                 transfers=_transfers_to_draw(steps))  # decision W296
     replaced(out, was)
     typer.echo(str(out))
+
+
+def _transfers_to_draw(source: str):
+    """Decision W296: a lower-back track's transfers.csv when ``plot --steps`` names its output folder (None
+    otherwise: a foot track writes none); a transfers.csv without its columns is one line naming it."""
+    import pandas as pd
+
+    from pdrlearn.errors import DataError
+
+    path = Path(source) / "transfers.csv"
+    if source in ("labels", "detected") or not path.is_file():
+        return None
+    try:
+        table = pd.read_csv(path)
+    except (OSError, ValueError) as exc:
+        raise DataError(f"{path}: cannot read it as a track's transfers.csv ({type(exc).__name__}); re-run "
+                        "`pdrlearn track` to rewrite it, or remove it to plot the steps alone") from None
+    missing = [c for c in ("kind", "start_s", "end_s") if c not in table]
+    if missing:
+        raise DataError(f"{path}: no {' or '.join(missing)} column; re-run `pdrlearn track` to rewrite it, or remove "
+                        "it to plot the steps alone")
+    ok = pd.to_numeric(table["start_s"], errors="coerce").notna() & pd.to_numeric(table["end_s"],
+                                                                                   errors="coerce").notna()
+    return table[ok].astype({"start_s": float, "end_s": float})
 
 
 def _steps_to_shade(source: str, session):

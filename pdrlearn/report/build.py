@@ -183,6 +183,11 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         gait = [c for c in GAIT_COLUMNS if c in df.columns]  # decision L81: the gait parameters, own table
         if len(gait) > 1 and df[gait[1:]].notna().any().any():
             tables.append(("gait parameters", df[gait]))
+        from pdrlearn.report.tests_table import clinical_test_table
+
+        tests = clinical_test_table(df, "run")  # decision W296: TUG, its phases, transfers, turns
+        if tests is not None:
+            tables.append(tests)
         sections.append(Section("Tracking", tables=tables))
     if warned is not None:  # decision L102: first, before any table, so the caveat travels with the numbers
         sections.insert(0, warned)

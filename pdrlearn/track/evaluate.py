@@ -545,6 +545,10 @@ def _basic(result: TrackResult, out: dict) -> None:
     if result.info.get("yaw_turns") is not None:  # decisions L231 / L233: turns.csv's turns are turn_count's
         out["turn_count"] = len(table)
     out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W183: chair transfers, TUG
+    from pdrlearn.waist.tug_phases import tug_phase_summary, tug_phases
+
+    # decision W293: the TUG's phases, from the transfers, these turns and the walking contacts
+    out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, result.steps)))
     from pdrlearn.track.walk_test import ten_metre_walk
 
     out.update(ten_metre_walk(result.steps))  # decisions L312, L313: the 10 m walk test's middle 10 m

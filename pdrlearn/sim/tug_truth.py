@@ -1,0 +1,56 @@
+"""The true TUG phases of a simulated seated Timed-Up-and-Go (decision W294, docs/decisions/waist.md): what
+:func:`pdrlearn.waist.tug_phases.tug_phases` is scored against, from the simulator's own records - its transfers
+(``extras["transfers"]``), initial contacts (``extras["ics"]``) and the waist's true heading (``trajectory``)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.sim.path import Turn
+from pdrlearn.sim.route import parse_route
+
+
+def true_turn_spans(trajectory, route: str) -> list[tuple[float, float]]:
+    """Decision L201 / L255's truth of each route turn (``parse_route``'s ``Turn`` items, in order): the times (s)
+    where the waist's true heading (unwrapped, 1 s moving mean) has gone 5 % / 95 % of the turn's route angle
+    beyond the earlier turns' angles, searched from the previous turn's end."""
+    t = trajectory["t"].to_numpy(float)
+    h = np.degrees(np.unwrap(trajectory["heading_rad"].to_numpy(float)))
+    w = max(int(round(1.0 / np.median(np.diff(t)))), 1)  # L201: the 1 s mean removes the walking sway
+    hs = np.convolve(np.pad(h, (w // 2, w - 1 - w // 2), mode="edge"), np.ones(w) / w, mode="valid")
+    base, k0, out = hs[0], 0, []
+    for seg in parse_route(route):
+        if not isinstance(seg, Turn):
+            continue
+        a = float(np.degrees(seg.angle_rad))
+        frac = (hs - base) / a
+        i0 = k0 + int(np.argmax(frac[k0:] >= 0.05))
+        i1 = i0 + int(np.argmax(frac[i0:] >= 0.95))
+        out.append((float(t[i0]), float(t[i1])))
+        base, k0 = base + a, i1
+    return out
+
+
+def true_tug_phases(session, route: str) -> dict:
+    """Decision W294: the true ``{phase: {start_s, end_s, duration_s} or None}`` of a simulated seated TUG
+    (``simulate_path(..., sit_start_s=..., sit_end_s=...)`` of ``route``): sit-to-stand = the first transfer's
+    ``rise_s`` to ``end_s``, stand-to-sit = the last one's ``start_s`` to ``seated_s``, turn / turn-to-sit = the
+    first / last of :func:`true_turn_spans` (no turn-to-sit with one turn), walk out = the first true contact after
+    the rise to the turn's start, walk back = the turn's end to the turn-to-sit's start (else the last true contact
+    before the sit) - W293's boundaries on the simulator's records."""
+    from pdrlearn.waist.tug_phases import phase_span
+
+    tr = session.extras["transfers"]
+    up, seated = float(tr["end_s"].iloc[0]), float(tr["start_s"].iloc[-1])
+    ics = np.sort(session.extras["ics"]["ic_s"].to_numpy(float))
+    ics = ics[(ics > up) & (ics < seated)]
+    turns = true_turn_spans(session.trajectory, route)
+    turn = turns[0] if turns else None
+    to_sit = turns[-1] if len(turns) >= 2 else None
+    return {"sit_to_stand": phase_span(float(tr["rise_s"].iloc[0]), up),
+            "walk_out": phase_span(float(ics[0]) if ics.size else None, None if turn is None else turn[0]),
+            "turn": None if turn is None else phase_span(*turn),
+            "walk_back": (None if turn is None else
+                          phase_span(turn[1], to_sit[0] if to_sit else (float(ics[-1]) if ics.size else None))),
+            "turn_to_sit": None if to_sit is None else phase_span(*to_sit),
+            "stand_to_sit": phase_span(seated, float(tr["seated_s"].iloc[-1]))}

@@ -1,0 +1,98 @@
+"""The phases of a lower-back Timed-Up-and-Go (decision W293, docs/decisions/waist.md): sit-to-stand, walk out, turn,
+walk back, turn-to-sit and stand-to-sit, cut from the rows a track already has - transfers.csv (W182), turns.csv
+(L200 / L210) and the walking contacts (steps.csv ``start_s``) - never from a second detector.
+
+The names follow the instrumented TUG's segmentation (Salarian et al. 2010, IEEE TNSRE 18:303-310; Weiss et al.
+2011; both as recalled, not from a seed); the boundaries are this module's choice (W293):
+
+* ``sit_to_stand`` / ``stand_to_sit``: the TUG's rise and sit rows (W183's ``tug_time_s`` runs from one to the other);
+* ``turn``: the first turn whose midpoint lies between the rise's end and the sit's start; ``turn_to_sit``: the last
+  one when there are two or more;
+* ``walk_out``: the first walking contact after the rise's end to the turn's start;
+* ``walk_back``: the turn's end to the turn-to-sit's start, or without one to the last walking contact before the
+  sit's start.
+
+A phase that cannot be placed (no turn, an end not after its start) is None. Standing still before the first step
+or before the sit is in no phase.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+#: decision W293: the phases, in time order
+TUG_PHASES = ("sit_to_stand", "walk_out", "turn", "walk_back", "turn_to_sit", "stand_to_sit")
+#: decision W293: tug_phases.csv's columns, in order
+TUG_PHASE_COLUMNS = ("phase", "start_s", "end_s", "duration_s")
+#: decision W293: the summary's flat duration keys (sessions.csv keeps scalars only, C12), one per phase
+TUG_PHASE_KEYS = tuple(f"tug_{p}_s" for p in TUG_PHASES)
+#: the phases as the console line names them
+PHASE_LABELS = {"sit_to_stand": "sit-to-stand", "walk_out": "walk out", "turn": "turn", "walk_back": "walk back",
+                "turn_to_sit": "turn-to-sit", "stand_to_sit": "stand-to-sit"}
+
+
+def phase_span(start: float | None, end: float | None) -> dict | None:
+    """Decision W293: a phase's ``{start_s, end_s, duration_s}``; None when either time is missing or the end is not
+    after the start."""
+    if start is None or end is None or not np.isfinite(start) or not np.isfinite(end) or end <= start:
+        return None
+    return {"start_s": float(start), "end_s": float(end), "duration_s": float(end - start)}
+
+
+def tug_phases(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None) -> dict | None:
+    """Decision W293: ``{phase: {start_s, end_s, duration_s} or None}`` for each of :data:`TUG_PHASES` of a track's
+    transfers (a transfers.csv table or its records), ``turns`` (turns.csv) and ``steps`` (the walking contacts,
+    ``start_s``); None when the track has no TUG time (W183's :func:`~pdrlearn.waist.transfers.transfer_summary`)."""
+    from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT, TRANSFER_COLUMNS, transfer_summary
+
+    if transfers is None or transfer_summary(transfers, steps)["tug_time_s"] is None:
+        return None
+    tr = pd.DataFrame(list(transfers) if not isinstance(transfers, pd.DataFrame) else transfers,
+                      columns=list(TRANSFER_COLUMNS))
+    rise = tr[tr["kind"] == SIT_TO_STAND].iloc[0]  # W183: exactly one rise, then one sit
+    sit = tr[tr["kind"] == STAND_TO_SIT].iloc[-1]
+    up, down = float(rise["end_s"]), float(sit["start_s"])
+    contacts = np.zeros(0) if steps is None or not len(steps) else np.sort(steps["start_s"].to_numpy(float))
+    contacts = contacts[(contacts > up) & (contacts < down)]
+    tt = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s"])
+    mid = 0.5 * (tt["start_s"].to_numpy(float) + tt["end_s"].to_numpy(float))
+    inside = tt[(mid > up) & (mid < down)].sort_values("start_s")
+    turn = inside.iloc[0] if len(inside) else None
+    to_sit = inside.iloc[-1] if len(inside) >= 2 else None
+    first = float(contacts[0]) if contacts.size else None
+    last = float(contacts[-1]) if contacts.size else None
+    out = {"sit_to_stand": phase_span(float(rise["start_s"]), up),
+           "walk_out": phase_span(first, None if turn is None else float(turn["start_s"])),
+           "turn": None if turn is None else phase_span(float(turn["start_s"]), float(turn["end_s"])),
+           "walk_back": (None if turn is None else
+                         phase_span(float(turn["end_s"]), float(to_sit["start_s"]) if to_sit is not None else last)),
+           "turn_to_sit": None if to_sit is None else phase_span(float(to_sit["start_s"]), float(to_sit["end_s"])),
+           "stand_to_sit": phase_span(down, float(sit["end_s"]))}
+    return out
+
+
+def tug_phase_summary(phases: dict | None) -> dict:
+    """Decision W293: the summary's ``tug_phases`` (the object, None without a TUG) and :data:`TUG_PHASE_KEYS`
+    (each phase's duration, None when the phase is)."""
+    out = {"tug_phases": phases}
+    for phase, key in zip(TUG_PHASES, TUG_PHASE_KEYS, strict=True):
+        span = (phases or {}).get(phase)
+        out[key] = None if span is None else span["duration_s"]
+    return out
+
+
+def tug_phase_table(phases: dict | None) -> pd.DataFrame:
+    """Decision W293: tug_phases.csv's rows (:data:`TUG_PHASE_COLUMNS`), one per phase placed, in time order."""
+    rows = [{"phase": p, **phases[p]} for p in TUG_PHASES if phases and phases.get(p) is not None]
+    return pd.DataFrame(rows, columns=list(TUG_PHASE_COLUMNS))
+
+
+def tug_phase_line(summary: dict) -> str | None:
+    """Decision W293: ``track``'s one line of the TUG phases' durations; None without them."""
+    phases = summary.get("tug_phases")
+    if not phases:
+        return None
+    parts = [f"{PHASE_LABELS[p]} {phases[p]['duration_s']:.2f} s" if phases.get(p) else f"{PHASE_LABELS[p]} -"
+             for p in TUG_PHASES]
+    return "TUG phases: " + ", ".join(parts) + " (tug_phases.csv, decision W293)"
