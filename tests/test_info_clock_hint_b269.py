@@ -34,7 +34,8 @@ def _fix(text: str) -> str:
     return re.findall(r"`pdrlearn track [^`]*`", text)[0]  # the first way out named (the clock's)
 
 
-@pytest.mark.parametrize("which, flags", [(0, "--clock-drift-ppm 4000 --clock-offset 3.00"), (1, "--clock-offset 3.00")])
+@pytest.mark.parametrize("which, flags", [(0, "--clock-drift-ppm 4000 --clock-offset 3.00"),
+                                          (1, "--clock-offset 3.00")])
 def test_info_names_what_tracks_refusal_names(sessions, capsys, tmp_path, which, flags):
     folder = sessions[which]
     capsys.readouterr()

@@ -91,8 +91,8 @@ FUSED_EXTENT_RETURN = False
 #: Decision L335: adopted, L334's rule was met (marches of 0.8-4 km, users 6320-6331: 94.0 % of the strides, 12/12
 #: finals within 2 sigma, against 68.0 %, 9/12; L128's route, users 6332-6337: 98.7 %, 6/6 against 96.1 %, 5/6).
 #: Decision L341 (session 32 review): not kept, off: the pooled 94.0 % held 3 fallback marches the term does not touch
-#: (65.6 %); on the 9 fused marches it changed, 100 % (over the rule's 99 %), finals 1.1-8.7 x the error, and the check's
-#: angle holds the foot's own yaw drift (L336): a clean 200 m straight walk read "not usable"
+#: (65.6 %); on the 9 fused marches it changed, 100 % (over the rule's 99 %), finals 1.1-8.7 x the error, and the
+#: check's angle holds the foot's own yaw drift (L336): a clean 200 m straight walk read "not usable"
 FUSED_COMPASS_EXTENT = False
 #: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
 #: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
