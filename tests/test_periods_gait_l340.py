@@ -79,6 +79,7 @@ def test_constant_bounce_line_reads_meta_json_only_s69():
     info = {"methods": {"length": "pendulum"}}
     sim = {"source_project": "pdrlearn.sim", "knobs": {"noise": True}}
     assert constant_bounce_line(sim, info) is not None
+    assert "said on every simulated constant-bounce session" in constant_bounce_line(sim, info)  # review item 6
     assert constant_bounce_line({**sim, "knobs": {"bounce": "constant"}}, info) is not None
     assert constant_bounce_line({**sim, "knobs": {"bounce": "pendulum"}}, info) is None
     assert constant_bounce_line({"source_project": "mobgap"}, info) is None  # a real recording

@@ -57,7 +57,7 @@ def test_the_gyro_radius_still_skips_a_corrected_rest_l297(sit):
 
 def test_a_rest_that_fell_back_keeps_its_clock_l306(sit, monkeypatch):
     # no still sample anywhere (fidgeting, a vehicle): rest_rotation falls back to W72's whole integral
-    monkeypatch.setattr(waist_mod, "_rest_still", lambda imu, seqs, ev: np.zeros(len(imu.t), dtype=bool))
+    monkeypatch.setattr(waist_mod, "_rest_still", lambda imu, seqs, ev, *_: np.zeros(len(imu.t), dtype=bool))
     off, r_off = _final_sigma(sit, pipeline="waist-pendulum", rest_bias=False)
     on, r_on = _final_sigma(sit, pipeline="waist-pendulum")
     np.testing.assert_allclose(r_on.steps["heading_rad"], r_off.steps["heading_rad"])

@@ -107,9 +107,11 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
                                "every file and label table cut to it, with one warning naming the seconds dropped "
                                "from each file (decision B81).")
 DROP_PARTIAL_ROW_OPT = typer.Option(False, "--drop-partial-row", help="A sensor file whose last line has no line "
-                                    "break (a row cut when a unit's battery died, refused by B128): drop that last "
-                                    "line, with one warning; a file then shorter than its unit's others is still "
-                                    "refused (B72; decision B266).")
+                                    "break (a row cut when a unit's battery died; refused by B128 when the cut "
+                                    "leaves a cell empty or not a number, while a cut inside the last number is read "
+                                    "as that shorter number without a word, B270): drop that last line, with one "
+                                    "warning; a file then shorter than its unit's others is still refused (B72; "
+                                    "decision B266).")
 ALIGN_UNITS_OPT = typer.Option(False, "--align-units", help="plasys, offline, foot + waist: move the waist unit's "
                                "clock onto the foot's by the steps both detect (offset and drift, "
                                "pdrlearn.steps.align_units; reliable for offsets under half a step period, about "

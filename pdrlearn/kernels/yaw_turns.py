@@ -31,6 +31,10 @@ YAW_TURN_MIN_DEG = 45.0
 #: decision L345: the centred moving mean (s) of the integrated yaw a turn's 5-95 % times are read on (L201's truth
 #: smoothing: one stride's pelvis rotation averaged out)
 YAW_TURN_SMOOTH_S = 1.0
+#: decision L208: the fractions of a turn's angle at which it is timed (L201's truth definition of a simulated turn:
+#: the body's heading 5 % to 95 % of its change); :data:`pdrlearn.track.clinical.TURN_TIMING_FRACTIONS` is this one
+#: (defined here, the lower layer, so this numpy-only module imports nothing of ``pdrlearn.track``)
+TURN_TIMING_FRACTIONS = (0.05, 0.95)
 
 
 def _merge(iv: np.ndarray, gap: int) -> np.ndarray:
@@ -94,7 +98,7 @@ def yaw_rate_turns(rate_dps: np.ndarray, fs: float) -> np.ndarray:
 
 
 def turn_fraction_times(rate_dps: np.ndarray, fs: float, turns: np.ndarray,
-                        fractions: tuple[float, float] = (0.05, 0.95)) -> np.ndarray:
+                        fractions: tuple[float, float] = TURN_TIMING_FRACTIONS) -> np.ndarray:
     """Decision L345: (k, 2) sample indices where each of ``turns`` (:func:`yaw_rate_turns`' rows: start, end
     exclusive, ...) has gone ``fractions`` of its yaw change (L208's 5 % / 95 %): the unfiltered rate ``rate_dps``
     integrated (trapezoid) and smoothed by a :data:`YAW_TURN_SMOOTH_S` centred moving mean (edges held), its change

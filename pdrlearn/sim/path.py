@@ -364,6 +364,13 @@ class _Walker:
 
     def backward(self, seg: Backward) -> None:
         reverse = self._reversal() if seg.direct else None  # decision S67
+        if seg.direct and reverse is None and self.direction == "forward":  # decision S70: the stop it did not ask
+            import logging  # for is said (after backward steps there is none: the walker goes on stepping back)
+
+            logging.getLogger("pdrlearn.sim").warning(
+                "simulate: backward:%d:direct %s: there is no forward level walking to reverse, so it starts as "
+                "backward:%d does, with S64's stop (a closing step where the feet are apart, then 0.6 s still; "
+                "decision S70)", seg.n_steps, self._no_reversal_why(), seg.n_steps)
         if reverse is None:
             self._change_direction("backward")
             c0, first = self.c.copy(), None
@@ -386,6 +393,15 @@ class _Walker:
         ahead = _ahead(self.psi)
         along = float(np.dot(self.feet[rear][0][:2] - self.c, ahead))  # the rear foot, on the walking line
         return self.c + along * ahead, front
+
+    def _no_reversal_why(self) -> str:
+        """Decision S70: where the walker is when :meth:`_reversal` finds no forward level walking to reverse."""
+        if not self.steps:
+            return "before any step"
+        if self.together:
+            return "after a stop (feet together: standing, a turn, a sit, a side step or a ride)"
+        kind = self.steps[-1].kind
+        return "after stairs" if kind.startswith("stairs") else f"after a {kind} step"
 
     def side(self, seg: Side) -> None:
         """Decision S49: stop, then per side step the lead foot (the left one going left) lands ``w`` sideways and

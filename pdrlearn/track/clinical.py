@@ -51,6 +51,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from pdrlearn.kernels.yaw_turns import TURN_TIMING_FRACTIONS as _TURN_TIMING_FRACTIONS
 from pdrlearn.track.flags import flag_values
 
 #: a pause is at least this much (s) longer than the walk's median row-to-row interval
@@ -274,8 +275,9 @@ TURN_TIMINGS = ("rows", "heading")
 #: 2.41 -> 0.19 s, waist-pendulum 1.30 -> 0.74 s, waist-pll 4.45 -> 0.91 s; turns and angles unchanged)
 TURN_TIMING = "heading"
 #: decision L208: the fractions of a turn's angle at which "heading" timing starts and ends it (L201's truth
-#: definition of a simulated turn: the body's heading 5 % to 95 % of its change)
-TURN_TIMING_FRACTIONS = (0.05, 0.95)
+#: definition of a simulated turn: the body's heading 5 % to 95 % of its change); the lower back's yaw-rate turns
+#: (L345, :func:`pdrlearn.kernels.yaw_turns.turn_fraction_times`) share the one tuple, defined in that kernel
+TURN_TIMING_FRACTIONS = _TURN_TIMING_FRACTIONS
 
 
 def heading_crossings(dh: np.ndarray, start: np.ndarray, end: np.ndarray, angle: float,

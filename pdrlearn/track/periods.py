@@ -244,7 +244,9 @@ def constant_bounce_line(meta: dict, info: dict) -> str | None:
     bounce (:data:`BOUNCE_LENGTH_MODELS`, ``info["methods"]["length"]``) is of a session meta.json says the simulator
     made (``source_project`` "pdrlearn.sim", with its ``knobs``) with the default constant bounce (``knobs`` has no
     ``bounce``, S29 leaves the default out, or "constant"): its periods' step lengths cannot follow a changing stride.
-    None otherwise (a real recording, a foot track, ``--bounce pendulum``, a meta.json without knobs)."""
+    meta.json does not record the route (``:long`` / ``:short`` items), so the line is on every such session, whether
+    its step length changes or not, and says so (session 32 review item 6). None otherwise (a real recording, a foot
+    track, ``--bounce pendulum``, a meta.json without knobs)."""
     knobs = meta.get("knobs")
     if meta.get("source_project") != "pdrlearn.sim" or not isinstance(knobs, dict):
         return None
@@ -253,11 +255,13 @@ def constant_bounce_line(meta: dict, info: dict) -> str | None:
     if knobs.get("bounce", "constant") != "constant":
         return None
     return ("periods.csv: this simulated session's pelvis bounces the same on every step (simulate's default "
-            "constant bounce, S29) and the lower back's pendulum step length reads that bounce, so its steps stay "
-            "about as long when the simulated stride changes: a per-period trend in distance, speed or step length "
-            "is the simulator's, not the walker's (trial s32: true median stride 2.05 -> 0.87 m, waist steps "
-            "0.685-0.688 m in every period); simulate with --bounce pendulum for a study of a changing step length, "
-            "or read the foot's periods (decision S69)")
+            "constant bounce, S29) and the lower back's pendulum step length reads that bounce, so where the "
+            "simulated step length changes (:long / :short route items, --step-length) its steps stay about as long "
+            "and a per-period trend in distance, speed or step length is the simulator's, not the walker's (trial "
+            "s32: true median stride 2.05 -> 0.87 m, waist steps 0.685-0.688 m in every period); meta.json does not "
+            "record the route, so this is said on every simulated constant-bounce session, whether its step length "
+            "changes or not; simulate with --bounce pendulum for a study of a changing step length, or read the "
+            "foot's periods (decision S69)")
 
 
 def _period_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:

@@ -14,7 +14,8 @@ map constraints, real sensors worse than the simulator's and a walker other than
 A row whose position was held across a foot dropout (``gap_s`` > 0, no length) adds the displacement it missed,
 radius^2 + (speed x gap)^2, kept by every later row (decision E127), for every regime. Decision L335: a
 ``plasys-fused`` track adds its own compass check's median angle as the extent heading error (marches of 0.8-4 km).
-Decision L333: every radius is cut so its 2-sigma circle never exceeds the one that surely holds the true position.
+Decision L333: every radius is cut so its 2-sigma circle never exceeds s + |D| + l, the one that holds the true
+position when the track's distance walked s is not under the true one (decision L342).
 """
 
 from __future__ import annotations
@@ -153,7 +154,9 @@ def bias_clock(steps, end: np.ndarray, t0: float, rest_s: float, rests=None) -> 
 
 def reach_bound(length: np.ndarray, heading: np.ndarray, missed_m: np.ndarray | None = None) -> np.ndarray:
     """Decision L333: per stride, the radius R_k = s_k + |D_k| + l_k (m) about the track's position that holds the
-    true position by construction: the walker, starting where the track starts, is at most the distance walked s_k
+    true position when the track's distance walked s_k is not under the walker's (decision L342: s_k is the track's
+    own; a track that under-reads, e.g. a lower back's, can be cut below its error where the walker ended farther
+    from the start than s_k + l_k): the walker, starting where the track starts, is at most the distance walked s_k
     (the summed |stride length|) from the start, and the track is |D_k| from it, so |error| <= s_k + |D_k|; l_k, the
     longest |stride| so far, is the margin for the tracked point (a foot at rest) not being the reference point (a
     pelvis between the feet: each within half a stride of the other, at the start and now). ``missed_m``: per stride,
@@ -184,8 +187,8 @@ def sigma_per_row(steps, t, params: dict[str, float], rest_s: float | None = Non
     with ``steps`` (steps.csv columns ``length_m``, ``heading_rad``, ``end_s``) under the model ``params``: the
     covariance after the last stride that ended at or before the time, 0 at the start, never decreasing, and
     (decision L333) never over half :func:`reach_bound`, so the 2-sigma circle is never wider than the circle that
-    holds the true position for certain; ``bounded`` (a dict, when given) gets ``"bounded"``: whether the last
-    stride's radius was cut to that bound.
+    holds the true position for certain when the track's distance is not under the walker's (L342); ``bounded`` (a
+    dict, when given) gets ``"bounded"``: whether the last stride's radius was cut to that bound.
     ``rest_s`` (decision L297): the bias term's clock skips the rests longer than this (:func:`bias_clock`); with
     ``rests`` (decision L306) only those of them that overlap these (start, end) spans."""
     t = np.asarray(t, float)

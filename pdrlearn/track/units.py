@@ -78,9 +78,17 @@ def span_cut_s(uncut: dict | None, session: Session, unit: str) -> float:
 def units_apart_line(session: Session) -> str | None:
     """Decision B267 (``pdrlearn info``): one warning line when the session's foot and waist units start or stop
     over :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` apart - what ``track`` then refuses (B126, B21) or, with
-    ``--common-span``, cuts (B83) - naming a clock offset (B243) or drift (B264) where the spans look like one;
+    ``--common-span``, cuts (B83) - naming a clock offset (B243) or drift (B264) where the spans look like one, in
+    the words of ``track``'s refusal (decision B269: :func:`~pdrlearn.io.plasys.clock_offset_fix` /
+    :func:`~pdrlearn.io.plasys.clock_drift_fix`, so both name the same ``--clock-drift-ppm`` and ``--clock-offset``);
     None when they agree or the session has one unit."""
-    from pdrlearn.io.plasys import SPAN_TOLERANCE_S, waist_clock_drift, waist_clock_offset
+    from pdrlearn.io.plasys import (
+        SPAN_TOLERANCE_S,
+        clock_drift_fix,
+        clock_offset_fix,
+        waist_clock_drift,
+        waist_clock_offset,
+    )
 
     foot, waist = unit_span(session, "foot"), unit_span(session, "waist")
     if foot is None or waist is None:
@@ -89,18 +97,18 @@ def units_apart_line(session: Session) -> str | None:
     if max(abs(start), abs(end)) <= SPAN_TOLERANCE_S:
         return None
     offset, drift = waist_clock_offset(foot, waist), waist_clock_drift(foot, waist)
-    if offset is not None:
-        why = f"the same length shifted by {offset:.2f} s, a waist clock offset (--clock-offset {offset:.2f}, B243)"
-    elif drift is not None:
-        why = (f"the ends differ in proportion to the duration, a clock drift of about {drift[1] * 1e6:.0f} ppm "
-               f"(--clock-drift-ppm {drift[1] * 1e6:.0f}, B264)")
+    command = f"pdrlearn track {shell_quote(session.folder) if session.folder is not None else 'SESSION'}"
+    if offset is not None:  # B269: B243's words, as track's refusal (B126) and B21's
+        why = f"{clock_offset_fix(offset, command)}, "
+    elif drift is not None:  # B269: B264's words; the unit that stopped first, as B21's refusal names it
+        why = f"{clock_drift_fix(*drift, command, 'foot' if end > 0 else 'waist')}, "
     else:
         why = "the waist unit " + " and ".join(
             f"{verb} {abs(v):.2f} s {'after' if v > 0 else 'before'} the foot unit"
-            for verb, v in (("started", start), ("stopped", end)) if abs(v) > SPAN_TOLERANCE_S)
+            for verb, v in (("started", start), ("stopped", end)) if abs(v) > SPAN_TOLERANCE_S) + " -- "
     lo, hi = max(foot[0], waist[0]), min(foot[1], waist[1])
     return (f"{session.where}: the foot unit covers {foot[0]:.2f}-{foot[1]:.2f} s and the waist unit "
-            f"{waist[0]:.2f}-{waist[1]:.2f} s: {why} -- `pdrlearn track` refuses a track that needs the unit that "
+            f"{waist[0]:.2f}-{waist[1]:.2f} s: {why}`pdrlearn track` refuses a track that needs the unit that "
             f"stopped short (B126, B21) and with --common-span tracks only the {lo:.2f}-{hi:.2f} s both cover "
             "(B83; sessions.csv's common_span_cut_s counts the seconds cut, decision B267)")
 

@@ -360,7 +360,7 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
                    resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
                    integrate_end: bool = False, rest_bias: bool = False, lying=None,
-                   rest_frame: bool = False) -> pd.DataFrame:
+                   rest_frame: bool = False, still_mask=None) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
     carry over between walking sequences; a sequence-closing contact keeps the last heading, except the last one
@@ -371,7 +371,8 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     ``(episodes, long_axis_rate, still)`` - inside a stop, each lying episode's movements add nothing and its lying
     run adds the yaw of the trunk's long axis (:func:`_stop_rotation`); None: the vertical rate throughout.
     ``rest_frame`` (decision W285, harmonic headings): each step's direction less the AHRS frame's turn over the rests
-    over a minute before it (:func:`_rest_frame_drifts`)."""
+    over a minute before it (:func:`_rest_frame_drifts`). ``still_mask``: :func:`_still_samples`' zero-argument
+    source of L296's still samples, computed once per track and shared by L296, W269 and W285 (None: computed here)."""
     n = len(steps)
     headings = np.full(n, np.nan)
     turning = np.zeros(n, dtype=int)
@@ -389,7 +390,8 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         clf = TurnClassifier(**(p.turn_gmm or {}))
         per_seq = []
         current = 0.0
-        still = _rest_still(imu, seqs, ev_all) if integrate_stops and rest_bias else None  # decision L296
+        still = (_rest_still(imu, seqs, ev_all, still_mask) if integrate_stops and rest_bias  # decision L296
+                 else None)
         rests = [] if integrate_stops and rest_bias else None
         for j, seq in enumerate(seqs):
             if integrate_stops and j > 0:  # turns made while standing between walking sequences
@@ -419,7 +421,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
             mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
             raw = K.resolve_axis_signs(raw, np.interp(mid, imu.t, imu.yaw))
         if rest_frame:  # decision W285: the frame's turn over a long rest (the bias) is no turn of the walk
-            raw = raw - _rest_frame_drifts(imu, seqs, ev_all)
+            raw = raw - _rest_frame_drifts(imu, seqs, ev_all, still_mask)
         per_seq = [average_two(raw[seq[:-1]]) for seq in seqs]
     current = 0.0
     for seq, hd in zip(seqs, per_seq, strict=True):
@@ -457,13 +459,23 @@ def _stop_rotation(imu: WaistIMU, w: np.ndarray, still: np.ndarray | None, t_a: 
             + sum(rotation(lying[1], lying[2], a, b) for a, b in lying_runs))
 
 
-def _rest_frame_drifts(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray:
+def _still_samples(imu: WaistIMU, still_mask=None) -> np.ndarray:
+    """L296's still samples of the waist (``standstill_mask`` on the navigation-frame IMU, its defaults):
+    ``still_mask()`` when given (:func:`track_waist`'s, computed once per track and shared by L296, W269 and W285),
+    else computed now."""
+    if still_mask is not None:
+        return still_mask()
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    return standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
+
+
+def _rest_frame_drifts(imu: WaistIMU, seqs, ev_all: np.ndarray, still_mask=None) -> np.ndarray:
     """Decision W285: per step (``ev_all``'s order), the AHRS frame's turn (rad) about the vertical over the rests
     before it that its body did not make (:func:`pdrlearn.kernels.rest_heading.rest_frame_drift`): the lead-in from
     the recording's start to the first contact and each stop between walking sequences, the rests over
     ``REST_BIAS_MIN_S`` only (L296's bound); zeros when there is none."""
     from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S, rest_frame_drift
-    from pdrlearn.signal.conditioning import standstill_mask
 
     out = np.zeros(len(ev_all))
     if not seqs:
@@ -472,36 +484,33 @@ def _rest_frame_drifts(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray:
     rests += [(float(ev_all[a[-1]]), float(ev_all[b[0]]), int(b[0])) for a, b in zip(seqs[:-1], seqs[1:], strict=True)]
     if max(b - a for a, b, _ in rests) <= REST_BIAS_MIN_S:
         return out
-    still = standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)  # L296's still samples
+    still = _still_samples(imu, still_mask)  # L296's still samples
     cum = K.rate_integral(imu.t, imu.w_z)  # the raw rate: the AHRS integrates the gyroscope as it is (W5)
     for a, b, k in rests:
         out[k:] += rest_frame_drift(imu.t, imu.w_z, still, a, b, cum=cum)
     return out
 
 
-def _lying_heading(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame):
+def _lying_heading(imu: WaistIMU, steps: pd.DataFrame, chair: pd.DataFrame, still_mask=None):
     """Decision W269: ``(episodes, long_axis_rate, still)`` for :func:`_stop_rotation` - the lying episodes of
     :func:`pdrlearn.waist.lying.session_lying`, the yaw rate of W102's walking upright about gravity and L296's still
-    samples - or None when the track has no lying episode (or no upright or body rate)."""
-    from pdrlearn.signal.conditioning import standstill_mask
-
+    samples (:func:`_still_samples`) - or None when the track has no lying episode (or no upright or body rate)."""
     episodes, upright = session_lying(imu, steps, chair)
     if not episodes or upright is None or imu.gyr_body is None:
         return None
     return (episodes, long_axis_yaw_rate(imu.up_body, imu.gyr_body, upright),
-            standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs))
+            _still_samples(imu, still_mask))
 
 
-def _rest_still(imu: WaistIMU, seqs, ev_all: np.ndarray) -> np.ndarray | None:
+def _rest_still(imu: WaistIMU, seqs, ev_all: np.ndarray, still_mask=None) -> np.ndarray | None:
     """Decision L296: the waist's still samples (``standstill_mask`` on the navigation-frame IMU), when some stop
     between walking sequences lasts over :data:`~pdrlearn.kernels.rest_heading.REST_BIAS_MIN_S`; else None."""
     from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
-    from pdrlearn.signal.conditioning import standstill_mask
 
     gaps = [ev_all[b[0]] - ev_all[a[-1]] for a, b in zip(seqs[:-1], seqs[1:], strict=True)]
     if not gaps or max(gaps) <= REST_BIAS_MIN_S:
         return None
-    return standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
+    return _still_samples(imu, still_mask)
 
 
 def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str,
@@ -585,13 +594,15 @@ SCOPED_OPTIONS = {
 
 
 def ignored_options_line(o: dict, pipeline: str, realtime: bool, method: str, detector: bool,
-                         integrate_stops: bool) -> str | None:
-    """Decision W193: one line naming the resolved options ``o`` set away from :data:`OPTION_DEFAULTS` that do
-    nothing for this track (:data:`SCOPED_OPTIONS`) and where each applies, else None (the live trackers' E107 line
-    says the same of the options they do not apply)."""
+                         integrate_stops: bool, explicit=()) -> str | None:
+    """Decision W193: one line naming the resolved options ``o`` set away from :data:`OPTION_DEFAULTS` -- or given
+    explicitly (``explicit``: the PARAMS.json's ``"options"`` keys, decision W301) -- that do nothing for this track
+    (:data:`SCOPED_OPTIONS`) and where each applies, else None (the live trackers' E107 line says the same of the
+    options they do not apply). W301: ``lying_heading``, true by default (W271), is named only where the PARAMS.json
+    gives it true, not on every ``--realtime`` / ``waist-pll`` track."""
     off = [k for k, (_, acts) in SCOPED_OPTIONS.items()  # an option set off (false) does nothing anywhere (W199)
-           if o.get(k) not in (None, False, OPTION_DEFAULTS[k]) and not acts(pipeline, realtime, method, detector,
-                                                                    integrate_stops)]
+           if o.get(k) not in (None, False) and (o.get(k) != OPTION_DEFAULTS[k] or k in explicit)
+           and not acts(pipeline, realtime, method, detector, integrate_stops)]
     if not off:
         return None
     here = ", ".join([pipeline] + (["--realtime"] if realtime else []) + [f"heading {method}"]
@@ -906,7 +917,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
-    line = ignored_options_line(o, pipeline, realtime, method, det_given, integrate_stops)  # decision W193
+    line = ignored_options_line(o, pipeline, realtime, method, det_given, integrate_stops,  # decision W193
+                                explicit={k for k, v in (p.options or {}).items() if v is not None})  # W301
     warnings += [line] if line else []
     n_rescored = 0
     if o["contact_model"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W203
@@ -970,13 +982,14 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
         steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
-    lying = (_lying_heading(imu, steps, transfers) if bool(o["lying_heading"]) and method == "gyro"
+    still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: once per track (W269, W285)
+    lying = (_lying_heading(imu, steps, transfers, still_mask) if bool(o["lying_heading"]) and method == "gyro"
              and integrate_stops and not realtime else None)  # decision W269: offline (W222's lying reads ahead)
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
                            integrate_end=bool(o["integrate_end"]) and not realtime,  # W187: offline only
                            rest_bias=bool(o["rest_bias"]), lying=lying,  # decisions L296, W269
-                           rest_frame=bool(o["rest_frame"]))  # decision W285
+                           rest_frame=bool(o["rest_frame"]), still_mask=still_mask)  # decision W285
     rest_removed = steps.attrs.get("rest_bias_removed", [])
     rest_spans = steps.attrs.get("rest_bias_rests")  # decision L306
     steps = steps.assign(stairs=stairs)

@@ -127,6 +127,11 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "cadence_law")  # W240, W261 ("steady"): measured, not adopted; `pdrlearn track` only
 
 
+#: decisions W271, E151: options E107's line names only where the PARAMS.json gives them, not at their offline
+#: default: ``lying_heading`` (true offline since W271) would otherwise be named on every live track, most with no lying
+NAMED_WHEN_GIVEN = ("lying_heading",)
+
+
 def unapplied_options_line(p) -> str | None:
     """Decision E107 (E126): the line naming the options of :data:`LIVE_UNAPPLIED_OPTIONS` whose offline value (the
     PARAMS.json ``"options"`` of ``p``, else the offline default) differs from what the live tracker does
@@ -137,7 +142,8 @@ def unapplied_options_line(p) -> str | None:
     given = p.options or {}
     offline = {k: given[k] if given.get(k) is not None else OPTION_DEFAULTS[k] for k in LIVE_UNAPPLIED_OPTIONS}
     live = {k: live_value(k, given) for k in LIVE_UNAPPLIED_OPTIONS}
-    unapplied = [k for k in LIVE_UNAPPLIED_OPTIONS if offline[k] != live[k]]
+    unapplied = [k for k in LIVE_UNAPPLIED_OPTIONS if offline[k] != live[k]
+                 and (k not in NAMED_WHEN_GIVEN or given.get(k) is not None)]
     if given.get("stairs_length") == "climbs":  # W156's value reads the whole recording's climbs (W108): no bound
         unapplied.append("stairs_length")
         offline["stairs_length"], live["stairs_length"] = "climbs", False
@@ -165,8 +171,8 @@ def live_value(option: str, given: dict | None = None):
     with ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's
     fill is the offline detector's only, where the default is ``"within"``); ``pause_ride`` only as the PARAMS.json
     gives it (E146: W231's ride is applied live when given true; not given: ``False``, W158's whole pause, where the
-    offline default is true); ``lying_heading`` false when the PARAMS.json gives it (W271: the live tracker labels no
-    lying; its offline default, true, is not named on every live track), else its offline default; else the option's
+    offline default is true); ``lying_heading`` ``False`` (W271, E151: the live tracker labels no lying; E107's line
+    names its offline default only where the PARAMS.json gives it, :data:`NAMED_WHEN_GIVEN`); else the option's
     offline default (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
 
@@ -185,8 +191,8 @@ def live_value(option: str, given: dict | None = None):
         return False
     if option == "pause_ride":  # E146: applied live when the PARAMS.json gives it true, else W158's whole pause
         return bool(given["pause_ride"]) if given.get("pause_ride") is not None else False
-    if option == "lying_heading":  # W271: never applied live; named when the PARAMS.json gives it true (not its
-        return False if given.get("lying_heading") is not None else OPTION_DEFAULTS[option]  # default on every track)
+    if option == "lying_heading":  # W271, E151: never applied live (named only where given, NAMED_WHEN_GIVEN)
+        return False
     return OPTION_DEFAULTS[option]
 
 

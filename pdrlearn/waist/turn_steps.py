@@ -24,10 +24,13 @@ WARN_MIN_FRAC = 0.10
 TURN_STEPS_WARN = False
 
 
-def missed_turn_steps(event_s, yaw_turns, min_deg: float = 80.0) -> list[dict]:
-    """Decision W283: per yaw-rate turn (records of ``info["yaw_turns"]``) of at least ``min_deg`` whose 5-95 % span
-    is known: ``start_s``, ``end_s`` (that span), ``expected`` (D / T), ``counted`` (contacts ``event_s`` inside)
-    and ``missing`` (module docstring); [] without enough step intervals to know T."""
+def missed_turn_steps(event_s, yaw_turns, min_deg: float | None = None) -> list[dict]:
+    """Decision W283: per yaw-rate turn (records of ``info["yaw_turns"]``) of at least ``min_deg`` (None:
+    :data:`pdrlearn.track.clinical.TURN_COUNT_MIN_DEG`) whose 5-95 % span is known: ``start_s``, ``end_s`` (that
+    span), ``expected`` (D / T), ``counted`` (contacts ``event_s`` inside) and ``missing`` (module docstring); []
+    without enough step intervals to know T."""
+    if min_deg is None:  # the clinical turn count's bound (L104), read at call time: this module stays numpy only
+        from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG as min_deg
     ev = np.sort(np.asarray(event_s, dtype=float))
     ev = ev[np.isfinite(ev)]
     gaps = np.diff(ev)
@@ -47,7 +50,7 @@ def missed_turn_steps(event_s, yaw_turns, min_deg: float = 80.0) -> list[dict]:
     return out
 
 
-def turn_steps_warning(event_s, yaw_turns, n_steps: int, min_deg: float = 80.0) -> str | None:
+def turn_steps_warning(event_s, yaw_turns, n_steps: int, min_deg: float | None = None) -> str | None:
     """Decision W283: the one warning line when the turns' missing steps (:func:`missed_turn_steps`) sum to at least
     :data:`WARN_MIN_STEPS` and :data:`WARN_MIN_FRAC` of ``n_steps``; None otherwise."""
     turns = [t for t in missed_turn_steps(event_s, yaw_turns, min_deg) if t["missing"]]
