@@ -140,3 +140,12 @@ def test_run_drops_a_partial_row_with_the_option(tmp_path, capsys):
     assert len(err.splitlines()) == 1 and "--drop-partial-row" in err, err
     assert main(["run", str(RUN_BUNDLE), str(d), "--drop-partial-row", "--out", str(tmp_path / "o")]) == 0
     assert "(--drop-partial-row, decision B266)" in capsys.readouterr().err
+
+
+def test_columns_heading_names_the_table(capsys):
+    """Decision W306: `pdrlearn columns periods` heads its table, not track-all's."""
+    capsys.readouterr()
+    assert main(["columns", "periods"]) == 0
+    assert capsys.readouterr().out.splitlines()[0] == "# Columns of periods.csv"  # main: "track-all's tables"
+    assert main(["columns"]) == 0
+    assert "track-all's tables" not in capsys.readouterr().out.splitlines()[0]
