@@ -110,7 +110,7 @@ def test_run_refuses_a_drifting_pair_as_track_does(drift, tmp_path, capsys):
     assert main(["run", str(RUN_BUNDLE), str(drift), "--out", str(tmp_path / "refused")]) == 2  # main: 0, no word
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "clock drift" in err and "--clock-drift-ppm 4000" in err, err
-    assert "pdrlearn run " in err and "pdrlearn track" not in err, err
+    assert "pdrlearn run " in err and "pdrlearn track" not in err and "--units foot" in err, err
     assert not (tmp_path / "refused").exists()
     assert main(["run", str(RUN_BUNDLE), str(drift), "--clock-drift-ppm", "4000", "--out", str(tmp_path / "g")]) == 0
     assert json.loads((tmp_path / "g" / "summary.json").read_text())["common_span_cut_s"] == 0.0  # one walk

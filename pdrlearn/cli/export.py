@@ -502,7 +502,7 @@ def run(
 
         if "foot" in use and "waist" in use:  # decision B274: track's drift refusal (B264), beside B21's cover check
             check_tracked_span(session, "foot", f"pdrlearn run {shell_quote(bundle_dir)} {shell_quote(session_dir)}",
-                               drift_only=True)
+                               drift_only=True, alone="foot")  # the runtime needs the foot unit (E26)
         require_stride_cover(session, [*required, *optional], "pdrlearn run")  # decision B21; B230: names run's
         # decisions B267, B273: the seconds of the walk the replay does not cover (a moved waist clock mapped first)
         cut_s = span_cut_s(ends_read, session, "foot" if "foot" in use else "waist", alignment if moved else None)

@@ -134,7 +134,8 @@ def units_apart_line(session: Session) -> str | None:
             "B267 / B273)")
 
 
-def check_tracked_span(session: Session, unit: str, command: str | None = None, *, drift_only: bool = False) -> None:
+def check_tracked_span(session: Session, unit: str, command: str | None = None, *, drift_only: bool = False,
+                       alone: str | None = None) -> None:
     """Decision B126: refuse, one line, a session whose tracked ``unit`` starts or stops more than
     :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` inside the other unit's recording (a foot unit whose battery ran
     out at 180 s while the waist went on to 385 s was tracked "ok", 198.91 of the 425.7 m walked). The mirror
@@ -142,7 +143,8 @@ def check_tracked_span(session: Session, unit: str, command: str | None = None, 
     both name the same two ways out: ``--common-span`` (the time both cover, B83) or ``--units`` (one unit).
     ``command``: the command line the fixes name (``pdrlearn track FOLDER`` when None); ``drift_only``
     (``pdrlearn run``, decision B274): refuse only the ends B264 reads as a clock drift, the check ``run`` shares
-    with ``track`` beside its own cover check (B21)."""
+    with ``track`` beside its own cover check (B21); ``alone``: the unit the ``--units`` fix names (the other unit
+    when None; ``run``'s runtime needs the foot, so it names ``--units foot``)."""
     from pdrlearn.io.plasys import (
         SPAN_TOLERANCE_S,
         clock_drift_fix,
@@ -169,7 +171,7 @@ def check_tracked_span(session: Session, unit: str, command: str | None = None, 
     head = (f"{session.where}: the tracked {unit} unit covers {mine[0]:.2f}-{mine[1]:.2f} s but the {other} "
             f"unit {theirs[0]:.2f}-{theirs[1]:.2f} s")
     cut = (f"track the {lo:.2f}-{hi:.2f} s both cover with `{command} --common-span` (decision B83), "
-           f"or the {other} unit alone with --units {other}")
+           f"or the {alone or other} unit alone with --units {alone or other}")
     offset = waist_clock_offset(mine, theirs) if unit == "foot" else None
     if offset is not None and not drift_only:  # decision B243: a shifted clock - the fix that keeps the whole walk
         raise DataError(f"{head}: {clock_offset_fix(offset, command)}, {cut} (decision B126)")
