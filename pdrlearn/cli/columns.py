@@ -33,14 +33,14 @@ def columns(
     if table is not None and table not in TABLES and f"{table}.csv" in TABLES:  # decision L340: a stem names its table
         table = f"{table}.csv"
     if table is not None and table not in TABLES:
-        raise DataError(f"columns {table}: not a table of track-all; give one of {', '.join(TABLES)}")
+        raise DataError(f"columns {table}: not a table pdrlearn writes; give one of {', '.join(TABLES)}")
     # decision E137: steps.csv is two tables, the lower back's and the foot's
     names = ([table, "steps.csv (foot)"] if table == "steps.csv" else [table]) if table else list(TABLES)
     if as_json:
         print_json({n: [dict(zip(("column", "unit", "type", "meaning"), c, strict=True)) for c in TABLES[n]]
                     for n in names})
     else:
-        print(markdown(names))
+        print(markdown(names if table else None))  # decision W306: the heading names the table asked for
 
 
 def register(app: typer.Typer) -> None:

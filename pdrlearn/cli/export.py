@@ -321,6 +321,7 @@ def run(
                                      "cover different times: replay only the time all the files cover, with one "
                                      "warning naming the seconds dropped from each file (decisions B81, B83, B230; "
                                      "as `track --common-span`)."),
+    drop_partial_row: bool = _track.DROP_PARTIAL_ROW_OPT,
     sides: bool = typer.Option(False, "--sides", help="A waist-only bundle: each step's foot, steps.csv column "
                                "side (left / right, empty when undecided) as `track --pipeline waist-pendulum` "
                                "names it, from the streamed contacts (W138's causal side, not the offline W129 "
@@ -394,7 +395,8 @@ def run(
                             "(give SESSION_DIR, and --start / --initial-heading / --chunk-s / --sides / --out / "
                             "--json)")
         return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts,
-                          storey_height, start_ll, start_alt, sides=sides)  # decision L142: as the foot bundle's run
+                          storey_height, start_ll, start_alt, sides=sides,  # decision L142: as the foot bundle's run
+                          drop_partial_row=drop_partial_row)  # decision B276
     if sides:  # decision E110: W138's side is the lower-back contact's; a foot bundle tracks one foot's strides
         raise DataError(f"run: --sides gives a waist-only bundle's steps their foot; {bundle_dir} is a foot-unit "
                         "bundle, whose steps are the strides of the one foot it tracks: drop --sides")
@@ -404,6 +406,9 @@ def run(
     if protocol is not None and common_span:  # decision B230: a capture has one unit's streams, on one clock
         raise DataError(f"run: --common-span cuts a session's files to the time all of them cover; the --protocol "
                         f"capture {protocol} has no files: drop --common-span")
+    if protocol is not None and drop_partial_row:  # decision B276: as B230's --common-span
+        raise DataError(f"run: --drop-partial-row drops a session file's cut last row; the --protocol capture "
+                        f"{protocol} has no files: drop --drop-partial-row")
     for option, asked in (("--align-units", align_units), ("--clock-offset", clock_offset is not None),
                           ("--clock-drift-ppm", clock_drift is not None)):
         if protocol is not None and asked:  # decisions L170, E112
@@ -474,7 +479,8 @@ def run(
         from pdrlearn.io import read_session
 
         # decision L77: its drops warning; B230: --common-span as track's (B81 / B83's cut)
-        session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse")
+        session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse",
+                               drop_partial_row=drop_partial_row)  # decision B276: track's option, one mechanism
         from pdrlearn.io.plasys import unit_ends
 
         ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
@@ -491,10 +497,15 @@ def run(
         moved = align_units or clock_offset is not None or clock_drift is not None  # B265: also the drift
         if moved:
             session, alignment = _unit_clocks(session, use, align_units, clock_offset, clock_drift)
-        require_stride_cover(session, [*required, *optional], "pdrlearn run")  # decision B21; B230: names run's
-        from pdrlearn.track.units import span_cut_s
+        from pdrlearn.errors import shell_quote
+        from pdrlearn.track.units import check_tracked_span, span_cut_s
 
-        cut_s = span_cut_s(ends_read, session, "foot" if "foot" in use else "waist")  # decision B267, as track's
+        if "foot" in use and "waist" in use:  # decision B274: track's drift refusal (B264), beside B21's cover check
+            check_tracked_span(session, "foot", f"pdrlearn run {shell_quote(bundle_dir)} {shell_quote(session_dir)}",
+                               drift_only=True, alone="foot")  # the runtime needs the foot unit (E26)
+        require_stride_cover(session, [*required, *optional], "pdrlearn run")  # decision B21; B230: names run's
+        # decisions B267, B273: the seconds of the walk the replay does not cover (a moved waist clock mapped first)
+        cut_s = span_cut_s(ends_read, session, "foot" if "foot" in use else "waist", alignment if moved else None)
         if "foot" in use:
             _foot_checks(session)  # decisions B201, B203, as `track`
         if not moved:  # L161's check on clocks the recording's cover check accepted
@@ -643,7 +654,7 @@ def _calibration_gait_warning(params, steps, warnings: list[str], where: str) ->
 
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
                heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0,
-               start_ll=None, start_alt: float = 0.0, sides: bool = False) -> None:
+               start_ll=None, start_alt: float = 0.0, sides: bool = False, drop_partial_row: bool = False) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
@@ -667,7 +678,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
     if session_dir is None:
         raise DataError("run: give a SESSION_DIR")
-    session = read_session(session_dir, streamed=True)
+    session = read_session(session_dir, streamed=True, drop_partial_row=drop_partial_row)  # decision B276
     missing = [n for n in WAIST_SENSORS if not session.has(n)]
     if missing:
         raise MissingSensorError(f"session '{session.name}' ({session_dir}) has no {', '.join(missing)}, which the "

@@ -152,7 +152,7 @@ def simulate_cmd(
         pdrlearn simulate --route "straight:5, up:17, turn:180, down:17, backward:3" --user-seed 2 \\
             --out out/sim/floors_u2
 
-        pdrlearn simulate --route "stand:3, straight:14, stand:3" --step-length 0.3 --step-time 0.75 \\
+        pdrlearn simulate --route "stand:3, straight:16, stand:3" --step-length 0.3 --step-time 0.75 \\
             --bounce pendulum --user-seed 1 --out out/sim/tenmwt_040   # a 0.4 m/s walker: 0.3 m steps at
             # 80 steps/min; --bounce pendulum: its short steps bounce the pelvis less, as a slow walker's do (the
             # default constant bounce gives them a normal step's bounce, which the lower back reads as long steps)
@@ -338,7 +338,7 @@ def _custom_gait(user, speed: str, step_length: float | None, step_time: float |
     if route is None:
         verb = "sets" if len(given) == 1 else "set"
         raise DataError(f"simulate: {' and '.join(given)} {verb} the gait of a --route walk; the scenarios keep "
-                        "the user's own gait - use --route 'stand:3, straight:14, stand:3' (docs/simulator.md)")
+                        "the user's own gait - use --route 'stand:3, straight:16, stand:3' (docs/simulator.md)")
     for name, v, (lo, hi), unit in (("--step-length", step_length, STEP_LENGTH_RANGE_M, "m"),
                                     ("--step-time", step_time, STEP_TIME_RANGE_S, "s")):
         if v is not None and not (math.isfinite(v) and lo <= v <= hi):

@@ -111,7 +111,8 @@ DROP_PARTIAL_ROW_OPT = typer.Option(False, "--drop-partial-row", help="A sensor 
                                     "leaves a cell empty or not a number, while a cut inside the last number is read "
                                     "as that shorter number without a word, B270): drop that last line, with one "
                                     "warning; a file then shorter than its unit's others is still refused (B72; "
-                                    "decision B266).")
+                                    "decision B266). A last row without a line break is treated as cut even when its "
+                                    "values look whole, so it is dropped too (decision B276).")
 ALIGN_UNITS_OPT = typer.Option(False, "--align-units", help="plasys, offline, foot + waist: move the waist unit's "
                                "clock onto the foot's by the steps both detect (offset and drift, "
                                "pdrlearn.steps.align_units; reliable for offsets under half a step period, about "
@@ -592,7 +593,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     check_tracked_span(session, tracked_unit(pipeline))  # decision B126: the tracked unit covers the walk
     from pdrlearn.track.units import span_cut_s
 
-    cut_s = span_cut_s(ends_read, session, tracked_unit(pipeline))  # decision B267: B81 / B83 / L162's cuts
+    # decisions B267, B273: the seconds of the walk the track does not cover (a waist clock moved by hand mapped first)
+    cut_s = span_cut_s(ends_read, session, tracked_unit(pipeline), given_clock)
     from pdrlearn.track.clock import clock_texts, recording_start, require_start
 
     start = recording_start(session.meta, session.where)  # decision L298 (B254: a bad one refused before tracking)
@@ -725,7 +727,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
     unit = tracked_unit(pipeline)
     summary.update(time_accounting(whole, session, unit, win))  # decision L275: where the time went
-    summary["common_span_cut_s"] = cut_s  # decision B267: the tracked unit's seconds a common-span cut took
+    summary["common_span_cut_s"] = cut_s  # decisions B267, B273: the seconds of the walk the track does not cover
     if win is not None:
         # decision B242: the window as tracked (an END past the recording clipped to it, info["window"])
         summary["window_start_s"], summary["window_end_s"] = (float(result.info["window"][k])

@@ -252,7 +252,8 @@ class Session:
     #: its common span (None: not cut); ``track --window`` counts its seconds from it (L105)
     _t_start_uncut: float | None = field(default=None, repr=False, compare=False)
     #: decision B267: each unit's (first, last) sample (s) before ``read_session(spans="common")`` cut the session
-    #: (None: not cut); ``track`` counts the seconds the cut took from the tracked unit (``common_span_cut_s``)
+    #: (None: not cut); ``track`` counts the seconds of the walk its track does not cover (``common_span_cut_s``,
+    #: B273: :func:`pdrlearn.track.units.span_cut_s`)
     _unit_ends_uncut: dict | None = field(default=None, repr=False, compare=False)
     #: decision B113: the recording's :meth:`content_id` when this session is its copy resampled to a model's
     #: rate (``pdrlearn evaluate --resample``): the held-out check (B87) still knows the recording

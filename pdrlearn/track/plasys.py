@@ -1049,7 +1049,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                   (heading or cfg["heading"]) if waist_heads else "foot")
     strides = drop_steps_across_gaps(strides, foot_gaps)
     if not len(strides):
-        hint = ("; the session has a lower-back unit, which sees a chair test or a standing session without foot "
+        hint = (" -- the session has a lower-back unit, which sees a chair test or a standing session without foot "
                 "strides: track it with --units waist (decision B268)") if session.has(
                     "wAccelerometer", "wGyroscope") else ""
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?{hint}")

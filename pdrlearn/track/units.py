@@ -64,14 +64,41 @@ def unit_span(session: Session, unit: str) -> tuple[float, float] | None:
     return min(float(s.t[0]) for s in ts), max(float(s.t[-1]) for s in ts)
 
 
-def span_cut_s(uncut: dict | None, session: Session, unit: str) -> float:
-    """Decision B267: the seconds of ``unit``'s recording that a cut to the units' common span took away
-    (``track --common-span``, B81 / B83, and the overhang a moved waist clock leaves, L162): its span in ``uncut``
-    (``unit_ends`` as read, before any cut) less its span in ``session`` now; 0.0 when nothing was cut."""
+def walk_ends(ends: dict, clock: dict | None = None) -> tuple[float, float] | None:
+    """Decision B273: the walk a session recorded, (first, last) s: the span of both units' recordings together
+    (``ends``: :func:`~pdrlearn.io.plasys.unit_ends` as read, before any cut) when they start or stop over
+    :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` apart (B83: a dead unit or drifting clocks - the unit that went on
+    shows the walk went on), else the foot unit's (the waist's alone); ``clock``: a waist clock moved onto the
+    foot's (``{"offset_s", "drift", "ref_s"}``, ``--clock-offset`` / ``--clock-drift-ppm`` / ``--align-units``,
+    :func:`pdrlearn.track.plasys.move_waist_clock`'s formula) maps the waist's ends first. None: no unit."""
+    from pdrlearn.io.plasys import SPAN_TOLERANCE_S
+
+    if not ends:
+        return None
+    ends = dict(ends)
+    if clock and "waist" in ends:  # t_foot = ref + (t_waist - offset - ref) / (1 + drift), move_waist_clock's
+        ref, off, drift = float(clock.get("ref_s") or 0.0), float(clock["offset_s"]), float(clock.get("drift", 0.0))
+        ends["waist"] = tuple(ref + (t - off - ref) / (1.0 + drift) for t in ends["waist"])
+    if len(ends) < 2:
+        return next(iter(ends.values()))
+    (f0, f1), (w0, w1) = ends["foot"], ends["waist"]
+    if max(abs(f0 - w0), abs(f1 - w1)) <= SPAN_TOLERANCE_S:
+        return f0, f1
+    return min(f0, w0), max(f1, w1)
+
+
+def span_cut_s(uncut: dict | None, session: Session, unit: str, clock: dict | None = None) -> float:
+    """Decisions B267, B273: the seconds of the walk the track of ``unit`` does not cover - :func:`walk_ends` of
+    ``uncut`` (both units' ends as read, before any cut; ``clock`` a waist clock moved onto the foot's) less
+    ``unit``'s span in ``session`` now: a cut to the common span (``--common-span``, B81 / B83; the overhang a
+    moved waist clock leaves, L162) and the time the other unit recorded on after the tracked one stopped (the
+    foot's battery dead at 200 s of a 336 s march: 135.6 s, where B267 counted only the tracked unit's own cut
+    seconds, 0.0); 0.0 when nothing was lost."""
     now = unit_span(session, unit)
-    if not uncut or unit not in uncut or now is None:
+    walk = walk_ends(uncut, clock) if uncut else None
+    if walk is None or now is None:
         return 0.0
-    cut = (uncut[unit][1] - uncut[unit][0]) - (now[1] - now[0])
+    cut = (walk[1] - walk[0]) - (now[1] - now[0])
     return round(cut, 3) if cut > 1e-6 else 0.0
 
 
@@ -107,18 +134,25 @@ def units_apart_line(session: Session) -> str | None:
             f"{verb} {abs(v):.2f} s {'after' if v > 0 else 'before'} the foot unit"
             for verb, v in (("started", start), ("stopped", end)) if abs(v) > SPAN_TOLERANCE_S) + " -- "
     lo, hi = max(foot[0], waist[0]), min(foot[1], waist[1])
+    lost = (max(foot[1], waist[1]) - min(foot[0], waist[0])) - (hi - lo)  # decision B273: span_cut_s's count
     return (f"{session.where}: the foot unit covers {foot[0]:.2f}-{foot[1]:.2f} s and the waist unit "
             f"{waist[0]:.2f}-{waist[1]:.2f} s: {why}`pdrlearn track` refuses a track that needs the unit that "
             f"stopped short (B126, B21) and with --common-span tracks only the {lo:.2f}-{hi:.2f} s both cover "
-            "(B83; sessions.csv's common_span_cut_s counts the seconds cut, decision B267)")
+            f"(B83; sessions.csv's common_span_cut_s then reads the {lost:.2f} s of the walk not tracked, decision "
+            "B267 / B273)")
 
 
-def check_tracked_span(session: Session, unit: str) -> None:
+def check_tracked_span(session: Session, unit: str, command: str | None = None, *, drift_only: bool = False,
+                       alone: str | None = None) -> None:
     """Decision B126: refuse, one line, a session whose tracked ``unit`` starts or stops more than
     :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` inside the other unit's recording (a foot unit whose battery ran
     out at 180 s while the waist went on to 385 s was tracked "ok", 198.91 of the 425.7 m walked). The mirror
     case, the other unit stopping early, is refused where a method needs it to cover the tracked one (B21, B83);
-    both name the same two ways out: ``--common-span`` (the time both cover, B83) or ``--units`` (one unit)."""
+    both name the same two ways out: ``--common-span`` (the time both cover, B83) or ``--units`` (one unit).
+    ``command``: the command line the fixes name (``pdrlearn track FOLDER`` when None); ``drift_only``
+    (``pdrlearn run``, decision B274): refuse only the ends B264 reads as a clock drift, the check ``run`` shares
+    with ``track`` beside its own cover check (B21); ``alone``: the unit the ``--units`` fix names (the other unit
+    when None; ``run``'s runtime needs the foot, so it names ``--units foot``)."""
     from pdrlearn.io.plasys import (
         SPAN_TOLERANCE_S,
         clock_drift_fix,
@@ -134,20 +168,22 @@ def check_tracked_span(session: Session, unit: str) -> None:
     late, early = mine[0] - theirs[0], theirs[1] - mine[1]
     if max(late, early) <= SPAN_TOLERANCE_S:
         return
+    drift = waist_clock_drift(mine, theirs) if unit == "foot" else None
+    if drift_only and drift is None:
+        return
     what = " and ".join(p for p, v in ((f"started {late:.2f} s after", late), (f"stopped {early:.2f} s before", early))
                         if v > SPAN_TOLERANCE_S)
     folder = shell_quote(session.folder) if session.folder is not None else "SESSION"
+    command = command or f"pdrlearn track {folder}"
     lo, hi = max(mine[0], theirs[0]), min(mine[1], theirs[1])
     head = (f"{session.where}: the tracked {unit} unit covers {mine[0]:.2f}-{mine[1]:.2f} s but the {other} "
             f"unit {theirs[0]:.2f}-{theirs[1]:.2f} s")
-    cut = (f"track the {lo:.2f}-{hi:.2f} s both cover with `pdrlearn track {folder} --common-span` (decision B83), "
-           f"or the {other} unit alone with --units {other}")
+    cut = (f"track the {lo:.2f}-{hi:.2f} s both cover with `{command} --common-span` (decision B83), "
+           f"or the {alone or other} unit alone with --units {alone or other}")
     offset = waist_clock_offset(mine, theirs) if unit == "foot" else None
-    if offset is not None:  # decision B243: a shifted clock - the fix that keeps the whole walk is named first
-        raise DataError(f"{head}: {clock_offset_fix(offset, f'pdrlearn track {folder}')}, {cut} (decision B126)")
-    drift = waist_clock_drift(mine, theirs) if unit == "foot" else None
+    if offset is not None and not drift_only:  # decision B243: a shifted clock - the fix that keeps the whole walk
+        raise DataError(f"{head}: {clock_offset_fix(offset, command)}, {cut} (decision B126)")
     if drift is not None:  # decision B264: clocks drifting apart - the drift named first, as B243's offset
-        raise DataError(f"{head}: {clock_drift_fix(*drift, f'pdrlearn track {folder}')}, {cut} (decision B126)")
+        raise DataError(f"{head}: {clock_drift_fix(*drift, command)}, {cut} (decision B126)")
     raise DataError(f"{head}: it {what} the {other} unit, so the track would describe only part of the walk -- "
                     f"{cut}, or restore the {unit} files (decision B126)")
-

@@ -1070,7 +1070,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     postures, transfers = postures_and_transfers(imu, steps, transfers, fixed_up)
     if upright_source == "none":  # decision W277: no upright, no transfer and no posture to judge: left empty
         postures, transfers = [], None
-    else:  # decision W278: rows that cannot be as read (not alternating, walking on both sides) flagged, one line
+    else:  # decision W278: rows that cannot be taken as read (not alternating, walking on both sides) flagged, one line
         transfers = flag_transfers(transfers, steps)
         line = flag_message(transfers)
         if line:

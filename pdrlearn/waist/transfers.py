@@ -267,7 +267,7 @@ def flag_texts(column) -> np.ndarray:
 
 
 def sequence_flags(kinds, start_s, end_s, walk_s) -> list[str]:
-    """Decision W278: per transfer (in time order), ``""`` or why it cannot be as read (a pure kernel):
+    """Decision W278: per transfer (in time order), ``""`` or why it cannot be taken as read (a pure kernel):
     :data:`NOT_ALTERNATING` when the posture it comes from is not the one the transfer before it went to, or the one
     it goes to not the one the next comes from (two rises in a row: both rows, one is wrong); and
     :data:`WALKING_BOTH_SIDES` when walking contacts (``walk_s``, s) lie within :data:`FLAG_WALK_S` before its start
@@ -317,7 +317,7 @@ def flag_message(transfers: pd.DataFrame) -> str | None:
         return None
     rows = ", ".join(f"{int(r.transfer)} ({r.kind} at {r.start_s:.1f} s: {r.flag})"
                      for r in transfers[bad].itertuples())
-    return (f"{int(bad.sum())} of the {len(transfers)} transfers cannot be as read: {rows}; rises and sits must "
+    return (f"{int(bad.sum())} of the {len(transfers)} transfers cannot be taken as read: {rows}; rises and sits must "
             f"alternate and nobody sits or rises with walking within {FLAG_WALK_S:g} s on both sides (a turn or a "
             "bend can read as one): they are flagged in transfers.csv's flag column and still counted (decision W278)")
 
