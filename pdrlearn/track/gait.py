@@ -669,6 +669,22 @@ def gait_range_warning(summary: dict) -> str | None:
     return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow)}{extra}"
 
 
+def gait_speed_warning(summary: dict) -> str | None:
+    """Decision L353 (L350's candidate): one line when the summary's ``gait_speed_mps`` (distance / walking time, the
+    starts, stops, turns and pauses included) is below L95's leg-scaled speed range (L148's :func:`range_side`) while
+    L95's own judged figures are inside it (:func:`session_range_side` None: L123's straight strides are walking
+    speed); None otherwise, and None when L95 already fires (its line says it)."""
+    gait_speed = _finite(summary.get("gait_speed_mps"))
+    leg = _leg(summary)
+    if gait_speed is None or range_side(None, gait_speed, leg) != "slow" or session_range_side(summary) is not None:
+        return None
+    figs = range_figures(summary)
+    return (f"the reported gait speed {gait_speed:.2f} m/s (distance / walking time: the starts, stops, turns and "
+            f"pauses included) is below the walking the pipelines are validated on ({_validated(summary, leg)})"
+            + (f"; the judged {figs} are inside it: the strides are validated walking, the gait speed is this "
+               "walk's own" if figs else "") + " (decision L353)")
+
+
 #: decision L247: what the offline foot track's distance did on simulated shuffling below L95's speed range (users
 #: 4900-4919, 0.2-0.5 m/s, no model, with and without force sensors: experiments/results/foot_slow.txt)
 SLOW_FOOT_DISTANCE = "-3.1 to +1.4 % on simulated shuffling at 0.2-0.5 m/s"
