@@ -673,7 +673,8 @@ def gait_speed_warning(summary: dict) -> str | None:
     """Decision L353 (L350's candidate): one line when the summary's ``gait_speed_mps`` (distance / walking time, the
     starts, stops, turns and pauses included) is below L95's leg-scaled speed range (L148's :func:`range_side`) while
     L95's own judged figures are inside it (:func:`session_range_side` None: L123's straight strides are walking
-    speed); None otherwise, and None when L95 already fires (its line says it)."""
+    speed); None otherwise, and None when L95 already fires (its line says it). Adopted by L353's rule (the default of
+    :func:`pdrlearn.track.evaluate.summary_warnings`: `track`, `track-all`, `run`)."""
     gait_speed = _finite(summary.get("gait_speed_mps"))
     leg = _leg(summary)
     if gait_speed is None or range_side(None, gait_speed, leg) != "slow" or session_range_side(summary) is not None:
