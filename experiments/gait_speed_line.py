@@ -2,7 +2,10 @@
 adoption rule: fresh simulated normal walkers (users 6651-6670) and slow walkers (6671-6680) with 2-4 turns and 2-3 s
 pauses, tracked with ``--pipeline plasys`` and ``--pipeline waist-pendulum``; the real recordings with ``track DIR``.
 
-    python experiments/gait_speed_line.py WORKDIR
+    python experiments/gait_speed_line.py WORKDIR [--reread]
+
+``--reread`` reads WORKDIR's tracks of an earlier run again (no simulation, no tracking): the lines of the current
+functions on the same summaries (L353's amendment for L179's stair walks).
 
 Each track's summary.json is read and L95's line (``gait_range_warning``) and the candidate's are computed on it, the
 same functions `track` calls. Prints one row per track and the counts the rule names.
@@ -47,16 +50,17 @@ def row(name: str, s: dict, l95: bool, cand: bool) -> str:
             f" L95-slow {int(l95)}  L353 {int(cand)}")
 
 
-def main(work: Path) -> None:
+def main(work: Path, reread: bool = False) -> None:
     counts: dict = {}
     for group, users, extra in (("normal", NORMAL, []), ("slow", SLOW, SLOW_ARGS)):
         for u in users:
             sim = work / f"sim_{u}"
-            if not (sim / "meta.json").exists():
+            if not reread and not (sim / "meta.json").exists():
                 cli("simulate", "--route", route(u), "--user-seed", str(u), *extra, "--out", str(sim))
             for pipe in ("plasys", "waist-pendulum"):
                 out = work / f"tr_{u}_{pipe}"
-                cli("track", str(sim), "--pipeline", pipe, "--out", str(out), "--json")
+                if not reread:
+                    cli("track", str(sim), "--pipeline", pipe, "--out", str(out), "--json")
                 s, l95, cand = verdict(out)
                 c = counts.setdefault(group, {"tracks": 0, "L353": 0, "L95_slow": 0, "either": 0, "both": 0})
                 c["tracks"] += 1
@@ -74,7 +78,8 @@ def main(work: Path) -> None:
             continue
         seen.add(d.name)
         out = work / f"real_{d.name}"
-        cli("track", str(d), "--out", str(out), "--json")
+        if not reread:
+            cli("track", str(d), "--out", str(out), "--json")
         s, l95, cand = verdict(out)
         print(row(d.name, s, l95, cand), flush=True)
     for group, c in counts.items():
@@ -83,4 +88,4 @@ def main(work: Path) -> None:
 
 
 if __name__ == "__main__":
-    main(Path(sys.argv[1]))
+    main(Path(sys.argv[1]), "--reread" in sys.argv[2:])

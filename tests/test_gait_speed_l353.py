@@ -26,6 +26,10 @@ def test_gait_speed_line_fires_only_where_l95_is_quiet():
     # L95 already fires (straight strides slow too): its own line, no second one
     slow = {**MS001, "median_speed_straight_mps": 0.40}
     assert gait_range_warning(slow) is not None and gait_speed_warning(slow) is None
+    # L179's walk of stairs (too few straight strides, 5 or more stair strides): slow horizontally by nature
+    stairs = {**MS001, "n_straight_strides": 4, "n_stair_strides": 27}
+    assert gait_range_warning(stairs) is None and gait_speed_warning(stairs) is None
+    assert gait_speed_warning({**stairs, "n_stair_strides": 4}) is not None  # neither: L95 judges all strides
     # no gait speed: nothing to say
     assert gait_speed_warning({**MS001, "gait_speed_mps": None}) is None
 

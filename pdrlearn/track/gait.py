@@ -599,14 +599,26 @@ def _validated(summary: dict, leg: float | None) -> str:
     return text
 
 
+def _straight_judged(summary: dict) -> bool:
+    """Decision L123: the summary has :data:`MIN_STRAIGHT_FOR_RANGE` straight strides with a finite median speed."""
+    straight = summary.get("median_speed_straight_mps")
+    return straight is not None and bool(np.isfinite(straight)) and (summary.get("n_straight_strides") or 0) >= \
+        MIN_STRAIGHT_FOR_RANGE
+
+
+def _stair_walk(summary: dict) -> bool:
+    """Decision L179: too few level straight strides (L123) and at least as many stair strides: a walk of stairs,
+    whose horizontal speeds are the stairs' and the landings' turns."""
+    return not _straight_judged(summary) and (summary.get("n_stair_strides") or 0) >= MIN_STRAIGHT_FOR_RANGE
+
+
 def _judged(summary: dict) -> tuple[float | None, float | None, str]:
     """L95's figures of a summary: the median cadence and the judged speed with its name (L123, L179)."""
     speed, what_speed = summary.get("median_speed_mps"), "speed"
     straight = summary.get("median_speed_straight_mps")
-    if straight is not None and np.isfinite(straight) and (summary.get("n_straight_strides") or 0) >= \
-            MIN_STRAIGHT_FOR_RANGE:
+    if _straight_judged(summary):
         speed, what_speed = straight, "straight-walking speed"
-    elif (summary.get("n_stair_strides") or 0) >= MIN_STRAIGHT_FOR_RANGE:
+    elif _stair_walk(summary):
         # decision L179: too few level straight strides on a walk of stairs: its speeds are the stairs' and the
         # landings' turns, slow horizontally by nature; the cadence alone is judged
         speed = None
@@ -677,7 +689,8 @@ def gait_speed_warning(summary: dict) -> str | None:
     :func:`pdrlearn.track.evaluate.summary_warnings`: `track`, `track-all`, `run`)."""
     gait_speed = _finite(summary.get("gait_speed_mps"))
     leg = _leg(summary)
-    if gait_speed is None or range_side(None, gait_speed, leg) != "slow" or session_range_side(summary) is not None:
+    if gait_speed is None or range_side(None, gait_speed, leg) != "slow" or session_range_side(summary) is not None \
+            or _stair_walk(summary):  # L179: a walk of stairs is slow horizontally by nature (amended, see L353)
         return None
     figs = range_figures(summary)
     return (f"the reported gait speed {gait_speed:.2f} m/s (distance / walking time: the starts, stops, turns and "
