@@ -172,8 +172,8 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
         if score["ground_truth"]:
             typer.echo(f"timing error {score['timing_error_mean_s']:+.3f} "
                        f"+- {score['timing_error_sd_s']:.3f} s")
-    if unit == "waist" and detector is not None:  # decision W281: why `track` can count fewer
-        typer.echo(TRACK_COUNT_NOTE)
+    if unit == "waist" and detector is not None:  # decisions W281, W297: why `track` can count fewer
+        typer.echo(track_count_note(session, table))
     if out is not None:
         typer.echo(str(out))
 
@@ -182,6 +182,34 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
 TRACK_COUNT_NOTE = ("note: these are the detector's contacts; `pdrlearn track` keeps walking contacts only (it drops "
                     "those of a rise, a sit or a bend, W104 / W185, and on waist-pendulum of standing sway, W189), "
                     "so its steps.csv can count fewer (W281)")
+
+
+#: decision W297: at most this many transfer contacts' times are listed in the note
+NOTE_TIMES = 10
+
+
+def track_count_note(session, table) -> str:
+    """Decisions W281, W297: the note after a lower-back detector's count. `steps` keeps counting (and scoring) the
+    detector's raw contacts; when `track`'s default sit veto drops some of them at the chair transfers it finds
+    (:func:`pdrlearn.track.waist.transfer_contacts`: W104 / W185, W277's upright without walking), the note names
+    how many and when, and the transfers; else W281's general note."""
+    from pdrlearn.track.waist import transfer_contacts
+    from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT
+
+    try:
+        dropped, transfers = transfer_contacts(table, session) if len(table) else ((), None)
+    except DataError:  # W61: no frame to read the trunk in: the general note
+        dropped, transfers = (), None
+    if not len(dropped):
+        return TRACK_COUNT_NOTE
+    kinds = transfers["kind"].tolist() if transfers is not None and len(transfers) else []
+    times = ", ".join(f"{t:.1f}" for t in dropped[:NOTE_TIMES]) + (", ..." if len(dropped) > NOTE_TIMES else "")
+    verb = "lies" if len(dropped) == 1 else "lie"
+    return (f"note: these are the detector's contacts; {len(dropped)} of them (at {times} s) {verb} at the trunk "
+            f"flexion of a rise, a sit or a bend ({kinds.count(SIT_TO_STAND)} sit-to-stand, "
+            f"{kinds.count(STAND_TO_SIT)} stand-to-sit found; W104 / W185, W277): `pdrlearn track` drops them as no "
+            "walking (and on waist-pendulum standing sway, W189), so its steps.csv counts fewer; `steps` counts and "
+            "scores the detector's own contacts (W281, W297)")
 
 
 def spanned_warning(count: int, spanned: int, det, has_force: bool = False) -> str:

@@ -599,14 +599,26 @@ def _validated(summary: dict, leg: float | None) -> str:
     return text
 
 
+def _straight_judged(summary: dict) -> bool:
+    """Decision L123: the summary has :data:`MIN_STRAIGHT_FOR_RANGE` straight strides with a finite median speed."""
+    straight = summary.get("median_speed_straight_mps")
+    return straight is not None and bool(np.isfinite(straight)) and (summary.get("n_straight_strides") or 0) >= \
+        MIN_STRAIGHT_FOR_RANGE
+
+
+def _stair_walk(summary: dict) -> bool:
+    """Decision L179: too few level straight strides (L123) and at least as many stair strides: a walk of stairs,
+    whose horizontal speeds are the stairs' and the landings' turns."""
+    return not _straight_judged(summary) and (summary.get("n_stair_strides") or 0) >= MIN_STRAIGHT_FOR_RANGE
+
+
 def _judged(summary: dict) -> tuple[float | None, float | None, str]:
     """L95's figures of a summary: the median cadence and the judged speed with its name (L123, L179)."""
     speed, what_speed = summary.get("median_speed_mps"), "speed"
     straight = summary.get("median_speed_straight_mps")
-    if straight is not None and np.isfinite(straight) and (summary.get("n_straight_strides") or 0) >= \
-            MIN_STRAIGHT_FOR_RANGE:
+    if _straight_judged(summary):
         speed, what_speed = straight, "straight-walking speed"
-    elif (summary.get("n_stair_strides") or 0) >= MIN_STRAIGHT_FOR_RANGE:
+    elif _stair_walk(summary):
         # decision L179: too few level straight strides on a walk of stairs: its speeds are the stairs' and the
         # landings' turns, slow horizontally by nature; the cadence alone is judged
         speed = None
@@ -667,6 +679,24 @@ def gait_range_warning(summary: dict) -> str | None:
                   "cadence: the distance and speed depend on a calibration on this walker's own walk of known "
                   "length ('pdrlearn calibrate DIR --distance M', e.g. a 10 m walk test)")
     return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow)}{extra}"
+
+
+def gait_speed_warning(summary: dict) -> str | None:
+    """Decision L353 (L350's candidate): one line when the summary's ``gait_speed_mps`` (distance / walking time, the
+    starts, stops, turns and pauses included) is below L95's leg-scaled speed range (L148's :func:`range_side`) while
+    L95's own judged figures are inside it (:func:`session_range_side` None: L123's straight strides are walking
+    speed); None otherwise, and None when L95 already fires (its line says it). Adopted by L353's rule (the default of
+    :func:`pdrlearn.track.evaluate.summary_warnings`: `track`, `track-all`, `run`)."""
+    gait_speed = _finite(summary.get("gait_speed_mps"))
+    leg = _leg(summary)
+    if gait_speed is None or range_side(None, gait_speed, leg) != "slow" or session_range_side(summary) is not None \
+            or _stair_walk(summary):  # L179: a walk of stairs is slow horizontally by nature (amended, see L353)
+        return None
+    figs = range_figures(summary)
+    return (f"the reported gait speed {gait_speed:.2f} m/s (distance / walking time: the starts, stops, turns and "
+            f"pauses included) is below the walking the pipelines are validated on ({_validated(summary, leg)})"
+            + (f"; the judged {figs} are inside it: the strides are validated walking, the gait speed is this "
+               "walk's own" if figs else "") + " (decision L353)")
 
 
 #: decision L247: what the offline foot track's distance did on simulated shuffling below L95's speed range (users

@@ -102,7 +102,14 @@ from pdrlearn.waist.plausibility import (
     walk_ratio,
     walk_ratio_message,
 )
-from pdrlearn.waist.posture import drop_contacts, sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
+from pdrlearn.waist.posture import (
+    drop_contacts,
+    sit_veto_hint,
+    sit_veto_keywords,
+    tilt_gate,
+    transfer_veto,
+    transfer_windows,
+)
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.sit_causal import causal_transfer_veto
@@ -944,8 +951,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
         # W180: and an undecided contact inside an alternating sequence; W184: or inside a left/right pair
         veto = causal_transfer_veto if causal_veto else transfer_veto  # W200: realtime_sit_veto, the causal form
-        steps = veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation", "opposite"),
-                     keep_between={"alternation": True, "opposite": "opposite"}.get(o["sit_veto"], False),
+        steps = veto(steps, imu, **sit_veto_keywords(o["sit_veto"]),
                      **({} if causal_veto or fixed_up is None else {"upright": fixed_up}))
         n_vetoed = steps.attrs["n_vetoed"]
     else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
@@ -1166,10 +1172,28 @@ def detector_steps(det, session: Session, imu: WaistIMU) -> pd.DataFrame:
     """Decision E85: the waist steps table (``has_next``; ``fc_s`` NaN: the pendulum reads IC to IC, W10) of a
     detector's contacts on the AHRS's samples (the nearest sample of each
     ``event_s``; contacts further apart than :data:`MAX_STEP_S` end a sequence)."""
-    table = det.detect(session)
+    return contact_steps(det.detect(session), imu, det.name)
+
+
+def transfer_contacts(table: pd.DataFrame, session: Session) -> tuple[np.ndarray, pd.DataFrame]:
+    """Decision W297: of a lower-back detector's contacts (``table``'s ``event_s``, as `pdrlearn steps` prints
+    them), the times (s, on the AHRS's samples) that an offline `track`'s default sit veto drops (W104 / W185's
+    :func:`~pdrlearn.waist.posture.transfer_veto` with :data:`OPTION_DEFAULTS`' ``sit_veto``, against W277's
+    upright as `track` reads it), and W182 / W277's transfers.csv rows found with them."""
+    imu = waist_imu(session)
+    steps = contact_steps(table, imu)
+    transfers, upright, source = chair_transfers_upright(imu, steps)
+    kept = transfer_veto(steps, imu, **sit_veto_keywords(OPTION_DEFAULTS["sit_veto"]),
+                         **({"upright": upright} if source == "still" else {}))  # as `track`'s fixed_up (W277)
+    dropped = np.setdiff1d(steps["event_s"].to_numpy(float), kept["event_s"].to_numpy(float))
+    return dropped, transfers
+
+
+def contact_steps(table: pd.DataFrame, imu: WaistIMU, name: str = "") -> pd.DataFrame:
+    """Decision E85: :func:`detector_steps`' table of the contacts ``table`` (``event_s``)."""
     ev = np.sort(table["event_s"].to_numpy(float)) if len(table) else np.zeros(0)
     idx = np.unique(np.clip(np.round((ev - imu.t[0]) * imu.fs).astype(int), 0, len(imu.t) - 1))
-    return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector=det.name)
+    return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector=name)
 
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,

@@ -208,6 +208,14 @@ def undecided_between(side: np.ndarray, has_next: np.ndarray, *, opposite: bool 
     return out
 
 
+def sit_veto_keywords(mode) -> dict:
+    """:func:`transfer_veto`'s keywords for a value of the lower-back option ``sit_veto`` (decisions W104, W109,
+    W180, W184, W185): ``keep_rhythm`` for ``"rhythm"`` / ``"alternation"`` / ``"opposite"``, ``keep_between``
+    True for ``"alternation"`` and ``"opposite"`` for ``"opposite"``. Shared by `track` and `steps`' note (W297)."""
+    return {"keep_rhythm": mode in ("rhythm", "alternation", "opposite"),
+            "keep_between": {"alternation": True, "opposite": "opposite"}.get(mode, False)}
+
+
 def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = False,
                   keep_between: bool | str = False, upright: np.ndarray | None = None) -> pd.DataFrame:
     """``steps`` without the contacts inside a trunk-flexion event (:func:`flexion_events`) or within
