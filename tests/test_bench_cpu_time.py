@@ -11,7 +11,7 @@ pytest_plugins = ["pytester"]
 CONFTEST = Path(__file__).resolve().parent / "benchmarks" / "conftest.py"
 
 
-def test_benchmarks_record_cpu_and_wall_time(pytester):
+def test_benchmarks_record_cpu_and_wall_time(pytester, monkeypatch):
     pytester.makeconftest(CONFTEST.read_text())
     pytester.makepyfile(test_tiny="""
 import time
@@ -31,7 +31,10 @@ def test_plain():
     assert True
 """)
     out = pytester.path / "bench.json"
-    res = pytester.runpytest("-q", "-p", "no:cacheprovider", "--benchmark-enable", f"--benchmark-json={out}")
+    # under `make test`'s xdist workers pytest-benchmark reads PYTEST_XDIST_WORKER and disables the inner run
+    monkeypatch.delenv("PYTEST_XDIST_WORKER", raising=False)
+    res = pytester.runpytest("-q", "-p", "no:cacheprovider", "-p", "no:xdist", "--benchmark-enable",
+                             f"--benchmark-json={out}")
     res.assert_outcomes(passed=3)
     info = {b["name"]: b["extra_info"] for b in json.loads(out.read_text())["benchmarks"]}
     busy, sleep = info["test_busy"], info["test_sleep"]
