@@ -107,23 +107,9 @@ def true_turns(session, route: str) -> list[tuple[float, float, float]]:
     order), L201's start / end where the waist's true heading (1 s mean, as :func:`true_turn`) has gone 5 % / 95 % of
     its route angle beyond the earlier turns' route angles (searched after the previous turn's end), and its angle
     the heading's change between the midpoints of the gaps to the turns around it (the recording's ends)."""
-    from pdrlearn.sim.path import Turn
+    from pdrlearn.sim.tug_truth import turn_span_indices
 
-    tr = session.trajectory
-    t = tr["t"].to_numpy(float)
-    h = np.degrees(np.unwrap(tr["heading_rad"].to_numpy(float)))
-    w = max(int(round(1.0 / np.median(np.diff(t)))), 1)
-    hs = np.convolve(np.pad(h, (w // 2, w - 1 - w // 2), mode="edge"), np.ones(w) / w, mode="valid")
-    base, k0, spans = hs[0], 0, []
-    for seg in parse_route(route):
-        if not isinstance(seg, Turn):
-            continue
-        a = float(np.degrees(seg.angle_rad))
-        frac = (hs - base) / a
-        i0 = k0 + int(np.argmax(frac[k0:] >= 0.05))
-        i1 = i0 + int(np.argmax(frac[i0:] >= 0.95))
-        spans.append((i0, i1))
-        base, k0 = base + a, i1
+    t, hs, spans = turn_span_indices(session.trajectory, route)
     cut = [0] + [(spans[j][1] + spans[j + 1][0]) // 2 for j in range(len(spans) - 1)] + [len(hs) - 1]
     return [(float(t[i0]), float(t[i1]), float(hs[cut[j + 1]] - hs[cut[j]])) for j, (i0, i1) in enumerate(spans)]
 

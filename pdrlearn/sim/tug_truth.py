@@ -10,15 +10,16 @@ from pdrlearn.sim.path import Turn
 from pdrlearn.sim.route import parse_route
 
 
-def true_turn_spans(trajectory, route: str) -> list[tuple[float, float]]:
-    """Decision L201 / L255's truth of each route turn (``parse_route``'s ``Turn`` items, in order): the times (s)
-    where the waist's true heading (unwrapped, 1 s moving mean) has gone 5 % / 95 % of the turn's route angle
-    beyond the earlier turns' angles, searched from the previous turn's end."""
+def turn_span_indices(trajectory, route: str) -> tuple[np.ndarray, np.ndarray, list[tuple[int, int]]]:
+    """Decision L201 / L255's truth of each route turn (``parse_route``'s ``Turn`` items, in order): ``(t, hs,
+    spans)``, the samples' times, the waist's true heading (deg, unwrapped, 1 s moving mean) and per turn the sample
+    indices where it has gone 5 % / 95 % of the turn's route angle beyond the earlier turns' angles, searched from
+    the previous turn's end (shared with ``experiments/turns_transfers.py``)."""
     t = trajectory["t"].to_numpy(float)
     h = np.degrees(np.unwrap(trajectory["heading_rad"].to_numpy(float)))
     w = max(int(round(1.0 / np.median(np.diff(t)))), 1)  # L201: the 1 s mean removes the walking sway
     hs = np.convolve(np.pad(h, (w // 2, w - 1 - w // 2), mode="edge"), np.ones(w) / w, mode="valid")
-    base, k0, out = hs[0], 0, []
+    base, k0, spans = hs[0], 0, []
     for seg in parse_route(route):
         if not isinstance(seg, Turn):
             continue
@@ -26,9 +27,15 @@ def true_turn_spans(trajectory, route: str) -> list[tuple[float, float]]:
         frac = (hs - base) / a
         i0 = k0 + int(np.argmax(frac[k0:] >= 0.05))
         i1 = i0 + int(np.argmax(frac[i0:] >= 0.95))
-        out.append((float(t[i0]), float(t[i1])))
+        spans.append((i0, i1))
         base, k0 = base + a, i1
-    return out
+    return t, hs, spans
+
+
+def true_turn_spans(trajectory, route: str) -> list[tuple[float, float]]:
+    """:func:`turn_span_indices`' spans as times (s)."""
+    t, _, spans = turn_span_indices(trajectory, route)
+    return [(float(t[i0]), float(t[i1])) for i0, i1 in spans]
 
 
 def true_tug_phases(session, route: str) -> dict:
