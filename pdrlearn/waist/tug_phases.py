@@ -32,8 +32,8 @@ TUG_PHASES = ("sit_to_stand", "walk_out", "turn", "walk_back", "turn_to_sit", "s
 TUG_PHASE_COLUMNS = ("phase", "start_s", "end_s", "duration_s")
 #: decision W293: the summary's flat duration keys (sessions.csv keeps scalars only, C12), one per phase
 TUG_PHASE_KEYS = tuple(f"tug_{p}_s" for p in TUG_PHASES)
-#: decision W307: without a second turns.csv turn, take the turn-to-sit from the yaw-rate turns (W308: the result)
-TUG_YAW_TURN_TO_SIT = False
+#: decision W307: without a second turns.csv turn, take the turn-to-sit from the yaw-rate turns (W308: adopted)
+TUG_YAW_TURN_TO_SIT = True
 #: the phases as the console line names them
 PHASE_LABELS = {"sit_to_stand": "sit-to-stand", "walk_out": "walk out", "turn": "turn", "walk_back": "walk back",
                 "turn_to_sit": "turn-to-sit", "stand_to_sit": "stand-to-sit"}
