@@ -342,8 +342,8 @@ SESSIONS: tuple[Column, ...] = (
                                   "than a 5-95 % turn, L346; W293)"),
     ("tug_walk_back_s", "s", "number", "TUG: the turn's end to the turn-to-sit's start, without one to the last step "
                                        "before the sit (W293)"),
-    ("tug_turn_to_sit_s", "s", "number", "TUG: the last of two or more turns before the sit (W293); empty with one "
-                                         "turn"),
+    ("tug_turn_to_sit_s", "s", "number", "TUG: the last of two or more turns before the sit (W293), else the last "
+                                         "yaw-rate turn of 80 deg or more after the first (W307); empty without"),
     ("tug_stand_to_sit_s", "s", "number", "TUG: the stand-to-sit (W293)"),
     ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes from 2 m to 12 m of the first "
                                          "walking bout reaching 14 m, straight (L312); empty on a shorter or "
@@ -559,10 +559,11 @@ TRANSFERS: tuple[Column, ...] = (
 #: decision W293: a lower-back track's tug_phases.csv (only with a tug_time_s)
 TUG_PHASE_TABLE: tuple[Column, ...] = (
     ("phase", _ID, "text", "sit_to_stand, walk_out, turn, walk_back, turn_to_sit, stand_to_sit, in time order; a phase "
-                           "the track cannot place has no row (turn_to_sit with one turn; the walks and the turn "
-                           "without a turn)"),
+                           "the track cannot place has no row (turn_to_sit without a second turn, W307; the walks and "
+                           "the turn without a turn)"),
     ("start_s", "s", "number", "sit_to_stand / stand_to_sit: its transfers.csv row's; walk_out: the first step "
-                               "after the rise; turn, turn_to_sit: their turns.csv row's; walk_back: the turn's end"),
+                               "after the rise; turn, turn_to_sit: their turns.csv row's (turn_to_sit: else its "
+                               "yaw-rate turn's, W307); walk_back: the turn's end"),
     ("end_s", "s", "number", "walk_out: the turn's start; walk_back: the turn-to-sit's start, else the last step "
                              "before the sit; the others: their row's end_s"),
     ("duration_s", "s", "number", "end_s - start_s; the phases do not tile the TUG (standing before the first step "

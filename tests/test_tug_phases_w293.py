@@ -27,7 +27,8 @@ def _tracked(u: int, route: str, speed: str = "normal", **sit):
     s = simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, seed=u, **sit)
     res = track_waist(s, pipeline="waist-pendulum")
     turns = turn_table(res.steps, yaw_turns=res.info.get("yaw_turns"))
-    return s, tug_phases(res.info.get("transfers"), turns, res.steps)
+    # W307: as track, the yaw-rate turns can give the turn-to-sit turns.csv missed
+    return s, tug_phases(res.info.get("transfers"), turns, res.steps, yaw_turns=res.info.get("yaw_turns"))
 
 
 @pytest.mark.parametrize("u, route, speed", [(6640, TWO_TURNS, "normal"), (6641, ONE_TURN, "normal"),
@@ -40,11 +41,8 @@ def test_phases_match_the_simulator_truth(u, route, speed):
     print(f"user {u} {speed}: " + ", ".join(f"{p} {e:+.2f} s" for p, e in errors.items()))
     # the phases W293 always places on a seated TUG with a turn
     assert {"sit_to_stand", "walk_out", "turn", "walk_back", "stand_to_sit"} <= set(errors)
-    same = (got["turn_to_sit"] is None) == (truth["turn_to_sit"] is None)
-    assert same or route == TWO_TURNS  # W295: a two-turn TUG's last turn can be missing from turns.csv
-    if not same:  # W295: the walk back then ends at the last contact, the truth's at the turn-to-sit: not compared
-        assert got["walk_back"]["end_s"] < truth["walk_back"]["end_s"] + TOLERANCE_S["walk_back"]
-        errors.pop("walk_back")
+    # W295 missed the turn-to-sit of 6640 and 6642 (turns.csv's one turn); W307/W308 take it from the yaw-rate turns
+    assert (got["turn_to_sit"] is None) == (truth["turn_to_sit"] is None)
     for p, e in errors.items():
         assert abs(e) <= TOLERANCE_S[p], (p, e)
     # in time order, each inside the TUG (W183's rise start to sit end), none overlapping the next

@@ -807,7 +807,8 @@ def clinical_tables(result, bouts) -> dict:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
         from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases
 
-        phases = tug_phases(result.info["transfers"], out["turns.csv"], result.steps)  # decision W293
+        phases = tug_phases(result.info["transfers"], out["turns.csv"], result.steps,  # decision W293
+                            yaw_turns=result.info.get("yaw_turns"))  # W307
         if phases is not None:
             out["tug_phases.csv"] = tug_phase_table(phases)
     if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back

@@ -548,7 +548,8 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.waist.tug_phases import tug_phase_summary, tug_phases
 
     # decision W293: the TUG's phases, from the transfers, these turns and the walking contacts
-    out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, result.steps)))
+    out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, result.steps,
+                                            yaw_turns=result.info.get("yaw_turns"))))  # W307
     from pdrlearn.track.walk_test import ten_metre_walk
 
     out.update(ten_metre_walk(result.steps))  # decisions L312, L313: the 10 m walk test's middle 10 m

@@ -12,6 +12,11 @@ The names follow the instrumented TUG's segmentation (Salarian et al. 2010, IEEE
 * ``walk_back``: the turn's end to the turn-to-sit's start, or without one to the last walking contact before the
   sit's start.
 
+Decision W307: when turns.csv has no second turn, the turn-to-sit may come from the track's yaw-rate turns
+(``info["yaw_turns"]``, El-Gohary's, L210) - the last one of at least turns.csv's 80 deg (L200) that starts at or
+after the turn's end with its midpoint before the sit's start (:func:`yaw_turn_to_sit`; :data:`TUG_YAW_TURN_TO_SIT`).
+turns.csv itself is unchanged (L233/L234).
+
 A phase that cannot be placed (no turn, an end not after its start) is None. Standing still before the first step
 or before the sit is in no phase.
 """
@@ -27,6 +32,8 @@ TUG_PHASES = ("sit_to_stand", "walk_out", "turn", "walk_back", "turn_to_sit", "s
 TUG_PHASE_COLUMNS = ("phase", "start_s", "end_s", "duration_s")
 #: decision W293: the summary's flat duration keys (sessions.csv keeps scalars only, C12), one per phase
 TUG_PHASE_KEYS = tuple(f"tug_{p}_s" for p in TUG_PHASES)
+#: decision W307: without a second turns.csv turn, take the turn-to-sit from the yaw-rate turns (W308: adopted)
+TUG_YAW_TURN_TO_SIT = True
 #: the phases as the console line names them
 PHASE_LABELS = {"sit_to_stand": "sit-to-stand", "walk_out": "walk out", "turn": "turn", "walk_back": "walk back",
                 "turn_to_sit": "turn-to-sit", "stand_to_sit": "stand-to-sit"}
@@ -40,10 +47,29 @@ def phase_span(start: float | None, end: float | None) -> dict | None:
     return {"start_s": float(start), "end_s": float(end), "duration_s": float(end - start)}
 
 
-def tug_phases(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None) -> dict | None:
+def yaw_turn_to_sit(yaw_turns, after_s: float, before_s: float, min_deg: float | None = None) -> dict | None:
+    """Decision W307: the turn-to-sit among a track's yaw-rate turns (``info["yaw_turns"]`` records, L210): the last
+    one of |angle| >= ``min_deg`` (None: turns.csv's :data:`~pdrlearn.track.clinical.TURN_COUNT_MIN_DEG`, 80 deg,
+    L200) that starts at or after ``after_s`` (the first turn's end) and whose midpoint lies before ``before_s``
+    (the sit's start); ``{start_s, end_s}`` (El-Gohary's times, as turns.csv's, L210) or None."""
+    from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG
+
+    lim = TURN_COUNT_MIN_DEG if min_deg is None else float(min_deg)
+    found = None
+    for y in sorted(yaw_turns or [], key=lambda r: float(r["start_s"])):
+        a, b = float(y["start_s"]), float(y["end_s"])
+        if abs(float(y["angle_deg"])) >= lim and a >= after_s and 0.5 * (a + b) < before_s:
+            found = {"start_s": a, "end_s": b}
+    return found
+
+
+def tug_phases(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None, yaw_turns=None,
+               yaw_to_sit: bool | None = None) -> dict | None:
     """Decision W293: ``{phase: {start_s, end_s, duration_s} or None}`` for each of :data:`TUG_PHASES` of a track's
     transfers (a transfers.csv table or its records), ``turns`` (turns.csv) and ``steps`` (the walking contacts,
-    ``start_s``); None when the track has no TUG time (W183's :func:`~pdrlearn.waist.transfers.transfer_summary`)."""
+    ``start_s``); None when the track has no TUG time (W183's :func:`~pdrlearn.waist.transfers.transfer_summary`).
+    Decision W307: with ``yaw_to_sit`` (None: :data:`TUG_YAW_TURN_TO_SIT`) and one turns.csv turn in the TUG, the
+    turn-to-sit is :func:`yaw_turn_to_sit` of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``)."""
     from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT, TRANSFER_COLUMNS, transfer_summary
 
     if transfers is None or transfer_summary(transfers, steps)["tug_time_s"] is None:
@@ -60,6 +86,8 @@ def tug_phases(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None
     inside = tt[(mid > up) & (mid < down)].sort_values("start_s")
     turn = inside.iloc[0] if len(inside) else None
     to_sit = inside.iloc[-1] if len(inside) >= 2 else None
+    if to_sit is None and turn is not None and (TUG_YAW_TURN_TO_SIT if yaw_to_sit is None else yaw_to_sit):
+        to_sit = yaw_turn_to_sit(yaw_turns, float(turn["end_s"]), down)  # decision W307
     first = float(contacts[0]) if contacts.size else None
     last = float(contacts[-1]) if contacts.size else None
     out = {"sit_to_stand": phase_span(float(rise["start_s"]), up),
