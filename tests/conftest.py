@@ -54,9 +54,9 @@ _EXTERNAL_CONVERTED: dict[str, tuple[Path, list[Path]] | None] = {}
 
 def fetched_external(source: str) -> tuple[Path, list[Path]] | None:
     """``fetch(source, out)`` into a temporary folder, once per test process (per xdist worker), from the sdist
-    already in the download cache (never downloads: tests need no network): ``(out, the folders fetch returned)``, or None when the sdist
-    is not cached. Shared by every test that reads a fresh conversion (session 32: each used to convert its own,
-    ~6 s a gaitmap conversion on CI); read-only -- a test that writes copies it first."""
+    already in the download cache (never downloads: tests need no network): ``(out, the folders fetch returned)``, or
+    None when the sdist is not cached. Shared by every test that reads a fresh conversion (session 32: each used to
+    convert its own, ~6 s a gaitmap conversion on CI); read-only -- a test that writes copies it first."""
     import atexit
     import shutil
     import tempfile
