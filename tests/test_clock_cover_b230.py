@@ -34,7 +34,9 @@ def test_run_refuses_a_late_waist_naming_its_own_options(folders, capsys):
     assert main(["run", str(RUN_BUNDLE), str(late)]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1, err
-    assert "`pdrlearn run --common-span`" in err and "pdrlearn track" not in err  # main: track's option
+    assert "`pdrlearn run --common-span`" not in err  # decision B278: B126's line, the command with its arguments
+    assert f"`pdrlearn run {RUN_BUNDLE} {late} --common-span`" in err and "pdrlearn track" not in err  # main: track's
+    assert f"`pdrlearn run {RUN_BUNDLE} {late} --clock-offset 2.00`" in err, err  # B243's offset first, as track's
 
 
 def test_run_with_the_offset_given_replays_a_2_s_late_waist(folders, tmp_path, capsys):

@@ -476,11 +476,14 @@ def run(
     else:
         if session_dir is None:
             raise DataError("run: give a SESSION_DIR or --protocol FILE")
+        from pdrlearn.errors import shell_quote
         from pdrlearn.io import read_session
 
+        run_command = f"pdrlearn run {shell_quote(bundle_dir)} {shell_quote(session_dir)}"  # the fixes' (B274, B279)
         # decision L77: its drops warning; B230: --common-span as track's (B81 / B83's cut)
         session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse",
-                               drop_partial_row=drop_partial_row)  # decision B276: track's option, one mechanism
+                               drop_partial_row=drop_partial_row,  # decision B276: track's option, one mechanism
+                               command=run_command)  # decision B279: a cut last row names `run`'s option
         from pdrlearn.io.plasys import unit_ends
 
         ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
@@ -497,12 +500,10 @@ def run(
         moved = align_units or clock_offset is not None or clock_drift is not None  # B265: also the drift
         if moved:
             session, alignment = _unit_clocks(session, use, align_units, clock_offset, clock_drift)
-        from pdrlearn.errors import shell_quote
         from pdrlearn.track.units import check_tracked_span, span_cut_s
 
-        if "foot" in use and "waist" in use:  # decision B274: track's drift refusal (B264), beside B21's cover check
-            check_tracked_span(session, "foot", f"pdrlearn run {shell_quote(bundle_dir)} {shell_quote(session_dir)}",
-                               drift_only=True, alone="foot")  # the runtime needs the foot unit (E26)
+        if "foot" in use and "waist" in use:  # decisions B274, B278: track's span check (B126, B264), before B21's
+            check_tracked_span(session, "foot", run_command, alone="foot")  # the runtime needs the foot unit (E26)
         require_stride_cover(session, [*required, *optional], "pdrlearn run")  # decision B21; B230: names run's
         # decisions B267, B273: the seconds of the walk the replay does not cover (a moved waist clock mapped first)
         cut_s = span_cut_s(ends_read, session, "foot" if "foot" in use else "waist", alignment if moved else None)
@@ -678,7 +679,10 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
     if session_dir is None:
         raise DataError("run: give a SESSION_DIR")
-    session = read_session(session_dir, streamed=True, drop_partial_row=drop_partial_row)  # decision B276
+    from pdrlearn.errors import shell_quote
+
+    session = read_session(session_dir, streamed=True, drop_partial_row=drop_partial_row,  # decision B276
+                           command=f"pdrlearn run {shell_quote(bundle_dir)} {shell_quote(session_dir)}")  # B279
     missing = [n for n in WAIST_SENSORS if not session.has(n)]
     if missing:
         raise MissingSensorError(f"session '{session.name}' ({session_dir}) has no {', '.join(missing)}, which the "

@@ -374,10 +374,11 @@ def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale:
 
 
 def _read_raw(path: str | os.PathLike, name: str | None = None, *,
-              drop_partial_row: bool = False) -> tuple[str, np.ndarray]:
+              drop_partial_row: bool = False, command: str | None = None) -> tuple[str, np.ndarray]:
     """One sensor CSV's name and numeric array (timestamps in the file's unit, then the value columns).
     ``drop_partial_row`` (decision B266, ``track --drop-partial-row``): a file that does not end with a line break
-    (B128: its last row may be cut mid-row, a unit whose battery died) loses its last line, with one warning."""
+    (B128: its last row may be cut mid-row, a unit whose battery died) loses its last line, with one warning.
+    ``command``: the command line B128's refusal names with ``--drop-partial-row`` (decision B279)."""
     path = Path(path)
     name = name or path.stem
     if name not in SENSORS:
@@ -394,7 +395,7 @@ def _read_raw(path: str | os.PathLike, name: str | None = None, *,
         log.warning("%s: the last line (line %d) has no line break at the end, as a row cut when a battery died: "
                     "dropped (--drop-partial-row, decision B266)", path, len(df) + 2)
     _refuse_datetimes(df["timestamp"], path)
-    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=cut)
+    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=cut, command=command)
 
 
 def _refuse_datetimes(col: pd.Series, path: Path) -> None:
@@ -889,21 +890,27 @@ def clock_offset_fix(offset: float, command: str) -> str:
 #: is tens of ppm and the simulator's knob goes to thousands (trial s32's 2000 ppm); a unit stopping early gives far
 #: more (a battery dead at half the walk: 500000 ppm)
 MAX_CLOCK_DRIFT_PPM = 5000.0
+#: decision B277: how far over :data:`MAX_CLOCK_DRIFT_PPM` a drift read from the spans is still the limit's (ppm):
+#: the four ends are millisecond timestamps (B264's limit read from 5000 ppm simulated as 5000.0000000001), so the
+#: end-to-start difference is known to about 2 ms, over the shortest foot span on which a 5000 ppm drift passes B21's
+#: 1 s (200 s): 2 ms / 200 s = 10 ppm; 1.01 x the limit (5050 ppm) stays a unit that stopped early
+CLOCK_DRIFT_TOLERANCE_PPM = 10.0
 
 
 def waist_clock_drift(foot: tuple[float, float], waist: tuple[float, float]) -> tuple[float, float] | None:
     """Decision B264: ``(offset_s, drift)`` (``--clock-offset``'s and ``--clock-drift-ppm``'s model, t_waist =
     t_foot * (1 + drift) + offset, as the simulator's clocks) when the foot's and the waist's spans (first, last
     sample) differ at the end by more than :data:`SPAN_TOLERANCE_S` beyond their start offset and that difference is a
-    drift of at most :data:`MAX_CLOCK_DRIFT_PPM` over the foot's span (proportional to the duration: a 200 ppm drift
-    over 2.28 h is 1.64 s) - else None (B243's constant shift, or a unit that stopped far too early for a clock)."""
+    drift of at most :data:`MAX_CLOCK_DRIFT_PPM` (+ :data:`CLOCK_DRIFT_TOLERANCE_PPM`, B277) over the foot's span
+    (proportional to the duration: a 200 ppm drift over 2.28 h is 1.64 s) - else None (B243's constant shift, or a
+    unit that stopped far too early for a clock)."""
     start, end = waist[0] - foot[0], waist[1] - foot[1]
     duration = foot[1] - foot[0]
     if abs(end - start) <= SPAN_TOLERANCE_S or not duration > 0:
         return None
     drift = (end - start) / duration  # t_waist - t_foot grows by drift x the time walked
     offset = start - foot[0] * drift  # the model's offset at t_foot = 0 (its clock's origin, as --clock-offset's)
-    if abs(drift) * 1e6 > MAX_CLOCK_DRIFT_PPM:
+    if abs(drift) * 1e6 > MAX_CLOCK_DRIFT_PPM + CLOCK_DRIFT_TOLERANCE_PPM:  # decision B277: the limit's reading
         return None
     return float(offset), float(drift)
 
@@ -1130,7 +1137,7 @@ def folder_arg(folder, caller: str) -> Path:
 
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
                  bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse",
-                 drop_partial_row: bool = False) -> Session:
+                 drop_partial_row: bool = False, command: str | None = None) -> Session:
     """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
     uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off). ``bridge_drops``: bridge intervals of
     dropped samples up to :data:`MAX_BRIDGED_S` by linear interpolation and warn about the longer ones up to 1 s
@@ -1141,7 +1148,9 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     (``"warn"``, ``pdrlearn info``) or not checked (``"off"``; decision B72); ``"common"`` (``pdrlearn track
     --common-span``) cuts every stream, and the label tables, to the time all the short unit's files cover, with
     one warning naming the seconds dropped from each file (decision B81). ``drop_partial_row``: a sensor file
-    without a line break at the end loses its last (partial) row, with one warning (decision B266).
+    without a line break at the end loses its last (partial) row, with one warning (decision B266). ``command``: the
+    command line (``pdrlearn run BUNDLE SESSION``) that a refused cut last row names with ``--drop-partial-row``
+    (decision B279; ``pdrlearn track FOLDER`` when None).
 
     Raises
     ------
@@ -1174,7 +1183,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     for name, spec in SENSORS.items():
         p = folder / spec.filename
         if p.exists():
-            raw[name] = _read_raw(p, name, drop_partial_row=drop_partial_row)[1]
+            raw[name] = _read_raw(p, name, drop_partial_row=drop_partial_row, command=command)[1]
     if not clocks and not _declares_integer_clock(meta, meta_path, rate):
         one_unit_counting(raw, folder, meta_path)  # decision B116: a counter on one unit needs its own clock
     scales: dict[str, float] = {}

@@ -57,9 +57,11 @@ def check_columns(df: pd.DataFrame, required: tuple[str, ...], where: str) -> No
         )
 
 
-def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str, *, cut_mid_line: bool = False) -> np.ndarray:
+def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str, *, cut_mid_line: bool = False,
+                  command: str | None = None) -> np.ndarray:
     """Return ``df[columns]`` as float64, failing on non-numeric, NaN or infinite values. ``cut_mid_line``: the
-    file does not end with a line break (decision B128): a bad last row is then said to be a line cut short."""
+    file does not end with a line break (decision B128): a bad last row is then said to be a line cut short, its
+    ``--drop-partial-row`` fix naming ``command`` (decision B279; ``pdrlearn track FOLDER`` when None)."""
     out = df.loc[:, list(columns)].apply(pd.to_numeric, errors="coerce")
     arr = out.to_numpy(dtype=np.float64)
     bad = ~np.isfinite(arr)
@@ -68,7 +70,7 @@ def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str, *, cut
         if cut_mid_line and rows[-1] == len(df) - 1:  # decision B128: a copy cut mid-line, not a bad value
             others = f" (and {len(rows) - 1} other row(s) with bad values, first at line {rows[0] + 2})" \
                 if len(rows) > 1 else ""
-            raise DataError(truncated_line_message(where, len(df) + 1, others))
+            raise DataError(truncated_line_message(where, len(df) + 1, others, command=command))
         raise DataError(
             f"{where}: {len(rows)} row(s) with non-numeric, NaN or infinite values (first at line {rows[0] + 2}); "
             "remove or repair those rows"
@@ -76,19 +78,23 @@ def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str, *, cut
     return arr
 
 
-def truncated_line_message(where: str, line: int, others: str = "", what: str = "the recording") -> str:
+def truncated_line_message(where: str, line: int, others: str = "", what: str = "the recording",
+                           command: str | None = None) -> str:
     """Decision B128's one line for a file whose last line ``line`` stops mid-row (B205: label tables too,
     ``what`` naming where to restore it from). Decision B266: a sensor file (``what`` the recording) may also end
     where the recording did - a unit whose battery died mid-row, with nothing to restore - so the line also names
-    the two ways to drop that partial row: ``track --drop-partial-row`` and the shell command for the file."""
+    the two ways to drop that partial row: ``track --drop-partial-row`` and the shell command for the file.
+    Decision B279: ``command`` is the command line that was run (``pdrlearn run BUNDLE SESSION``), which the
+    ``--drop-partial-row`` fix names (``pdrlearn track FOLDER`` when None)."""
     from pathlib import Path
 
     from pdrlearn.errors import shell_quote
 
     dead = ""
     if what == "the recording":  # decision B266: a dead battery's last row
+        command = command or f"pdrlearn track {shell_quote(Path(where).parent)}"  # decision B279: the one run
         dead = (f"; if the recording itself ends there (a unit whose battery died mid-row), drop that row: "
-                f"`pdrlearn track {shell_quote(Path(where).parent)} --drop-partial-row`, or `sed -i '$ d' "
+                f"`{command} --drop-partial-row`, or `sed -i '$ d' "
                 f"{shell_quote(where)}` (decision B266; B72 still refuses a file then shorter than its unit's others)")
     return (f"{where}: last line incomplete (line {line} stops mid-row, no line break at the end): file "
             f"truncated?{others} -- restore the whole file from {what} (deleting the line leaves a file "

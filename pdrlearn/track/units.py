@@ -142,17 +142,17 @@ def units_apart_line(session: Session) -> str | None:
             "B267 / B273)")
 
 
-def check_tracked_span(session: Session, unit: str, command: str | None = None, *, drift_only: bool = False,
+def check_tracked_span(session: Session, unit: str, command: str | None = None, *,
                        alone: str | None = None) -> None:
     """Decision B126: refuse, one line, a session whose tracked ``unit`` starts or stops more than
     :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` inside the other unit's recording (a foot unit whose battery ran
     out at 180 s while the waist went on to 385 s was tracked "ok", 198.91 of the 425.7 m walked). The mirror
     case, the other unit stopping early, is refused where a method needs it to cover the tracked one (B21, B83);
     both name the same two ways out: ``--common-span`` (the time both cover, B83) or ``--units`` (one unit).
-    ``command``: the command line the fixes name (``pdrlearn track FOLDER`` when None); ``drift_only``
-    (``pdrlearn run``, decision B274): refuse only the ends B264 reads as a clock drift, the check ``run`` shares
-    with ``track`` beside its own cover check (B21); ``alone``: the unit the ``--units`` fix names (the other unit
-    when None; ``run``'s runtime needs the foot, so it names ``--units foot``)."""
+    ``command``: the command line the fixes name (``pdrlearn track FOLDER`` when None; ``pdrlearn run BUNDLE
+    SESSION``, which shares the whole check beside its own cover check B21, decisions B274, B278); ``alone``: the
+    unit the ``--units`` fix names (the other unit when None; ``run``'s runtime needs the foot, so it names
+    ``--units foot``)."""
     from pdrlearn.io.plasys import (
         SPAN_TOLERANCE_S,
         clock_drift_fix,
@@ -169,8 +169,6 @@ def check_tracked_span(session: Session, unit: str, command: str | None = None, 
     if max(late, early) <= SPAN_TOLERANCE_S:
         return
     drift = waist_clock_drift(mine, theirs) if unit == "foot" else None
-    if drift_only and drift is None:
-        return
     what = " and ".join(p for p, v in ((f"started {late:.2f} s after", late), (f"stopped {early:.2f} s before", early))
                         if v > SPAN_TOLERANCE_S)
     folder = shell_quote(session.folder) if session.folder is not None else "SESSION"
@@ -181,7 +179,7 @@ def check_tracked_span(session: Session, unit: str, command: str | None = None, 
     cut = (f"track the {lo:.2f}-{hi:.2f} s both cover with `{command} --common-span` (decision B83), "
            f"or the {alone or other} unit alone with --units {alone or other}")
     offset = waist_clock_offset(mine, theirs) if unit == "foot" else None
-    if offset is not None and not drift_only:  # decision B243: a shifted clock - the fix that keeps the whole walk
+    if offset is not None:  # decision B243: a shifted clock - the fix that keeps the whole walk
         raise DataError(f"{head}: {clock_offset_fix(offset, command)}, {cut} (decision B126)")
     if drift is not None:  # decision B264: clocks drifting apart - the drift named first, as B243's offset
         raise DataError(f"{head}: {clock_drift_fix(*drift, command)}, {cut} (decision B126)")
