@@ -103,17 +103,20 @@ class LiveAltitude:
         self._origin_s: float | None = None
         self._ref: float | None = None  # the altitude at the origin, once its window is complete
         self.implausible: tuple[float, float, float, float, float] | None = None
+        self._watch = PlausibleWatch(self.smooth_s)  # B188's check, incremental (same answers)
 
     def push(self, t: np.ndarray, p_hpa: np.ndarray):
         """Hold samples ``(t, p_hpa)`` (s increasing past the held ones, hPa); B188's finding when they make the
         held barometer implausible (the first time), else None."""
-        self._t = np.concatenate([self._t, np.asarray(t, dtype=float).ravel()])
-        self._p = np.concatenate([self._p, np.asarray(p_hpa, dtype=float).ravel()])
+        t, p = np.asarray(t, dtype=float).ravel(), np.asarray(p_hpa, dtype=float).ravel()
+        self._t = np.concatenate([self._t, t])
+        self._p = np.concatenate([self._p, p])
         if self.implausible is None:
-            found = implausible_pressure(self._t, self._p, self.smooth_s)
-            if found is not None:
-                self.implausible = found
-                return found
+            if not self._watch.push(t, p):
+                found = implausible_pressure(self._t, self._p, self.smooth_s)
+                if found is not None:
+                    self.implausible = found
+                    return found
         return None
 
     def set_origin(self, t0: float) -> None:
@@ -144,6 +147,7 @@ class LiveAltitude:
         drop = int(np.searchsorted(self._t, float(before) - 2.0 * self.smooth_s))
         drop = min(drop, self._t.size - 2)  # the last two samples stay: interpolation past the end holds
         if drop > 0:
+            self._watch.trim(int(np.count_nonzero(np.isfinite(self._t[:drop]) & np.isfinite(self._p[:drop]))))
             self._t, self._p = self._t[drop:], self._p[drop:]
 
     def ride(self, a: float, b: float) -> float | None:
@@ -194,6 +198,103 @@ def implausible_pressure(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float = ALT
     a, b = max(0, int(a) - 1), min(len(tt), int(b) + 1)
     m = a + int(np.argmax(np.abs(np.diff(pp[a:b]))))
     return float(speed[k]), float(tt[m]), float(pp[m]), float(tt[m + 1]), float(pp[m + 1])
+
+
+class PlausibleWatch:
+    """:func:`implausible_pressure`'s None, decided incrementally for :class:`LiveAltitude` (same answers): ``push``
+    the samples as they come and ``trim(k)`` when the first ``k`` finite ones are dropped; :meth:`push` returns True
+    only when the full check on the finite samples held would certainly return None. Each pair ``(i, j)`` the full
+    check compares (``j`` the first sample ``smooth_s`` after ``i``) keeps an upper bound of its speed, recomputed
+    only where a push or a trim changes its windows (the last ``2 smooth_s`` before the new samples, the first
+    ``smooth_s`` after the dropped ones). The bound covers the floating-point difference between the windows' sums
+    here (a cumulative sum over a slice) and in the full check (over every sample held): ``_sum_error``. Where it
+    cannot decide (pressures outside 100-2000 hPa, times not increasing, a stream shorter than ``smooth_s``, a speed
+    within the bound of the limit) it returns False and the caller runs the full check."""
+
+    #: the pressures (hPa) the error bound holds for; |d altitude_m / dp| <= 60 m/hPa above 100 hPa (8.3 at 1013)
+    P_MIN_HPA, P_MAX_HPA, SLOPE_M_PER_HPA = 100.0, 2000.0, 60.0
+    _U = float(np.finfo(float).eps)
+
+    def __init__(self, smooth_s: float = ALTITUDE_SMOOTH_S, max_speed_mps: float = MAX_VERTICAL_SPEED_MPS):
+        self.smooth_s, self.max_speed_mps = float(smooth_s), float(max_speed_mps)
+        self._t, self._p = np.zeros(0), np.zeros(0)  # the finite samples held
+        self._ub = np.zeros(0)  # per sample i: the bound of its pair's speed (m/s; -inf without a pair)
+        self._inv = np.zeros(0)  # (1 + 8u) / the pair's time apart (0 without a pair)
+        self._front = 0  # samples [0, _front) to recompute (their windows lost dropped samples)
+        self._done = 0  # samples [0, _done) were bounded (those after are new since)
+        self._exact = True  # False: inputs the bound does not cover (the full check decides)
+
+    def _err_m(self, n: int) -> float:
+        """Bound (m) of an altitude difference's floating-point error, windows' sums from an n-sample cumsum."""
+        mean_err = 4.0 * self._U * (n * n + n + 1.0) * self.P_MAX_HPA  # sequential cumsum, difference, division
+        return 2.0 * (self.SLOPE_M_PER_HPA * mean_err + 1e-9)  # two altitudes (+ altitude_m's own rounding)
+
+    def push(self, t: np.ndarray, p: np.ndarray) -> bool:
+        """Hold samples; True when the full check on all held would certainly return None."""
+        ok = np.isfinite(t) & np.isfinite(p)
+        t, p = t[ok], p[ok]
+        if self._exact and t.size and (
+                not np.all((p >= self.P_MIN_HPA) & (p <= self.P_MAX_HPA)) or np.any(np.diff(t) < 0)
+                or (self._t.size and t[0] < self._t[-1])):
+            self._exact = False
+            self._t = self._p = self._ub = self._inv = np.zeros(0)
+        if not self._exact:
+            return False
+        s = self.smooth_s
+        if t.size:
+            self._t, self._p = np.concatenate([self._t, t]), np.concatenate([self._p, p])
+            self._ub = np.concatenate([self._ub, np.full(t.size, -np.inf)])
+            self._inv = np.concatenate([self._inv, np.zeros(t.size)])
+        T, n = self._t, self._t.size
+        if n < 2 or T[0] + s > T[-1] or np.searchsorted(T, T[:1] + s, side="left")[0] >= n:
+            return False  # no pair (the full check compares the two ends): it decides
+        slack = 0.25 * s + 1e-9 * (1.0 + abs(float(T[-1])) + abs(float(T[0])))
+        n_old, i_s = min(self._done, n), n
+        if n_old < n:  # the windows reaching the new samples, and the pairs reading them or new pairs
+            k = min(int(np.searchsorted(T, T[n_old] - 0.5 * s - slack, side="left")), n_old)
+            i_s = 0 if k == 0 else int(np.searchsorted(T, T[k - 1] - s - slack, side="left"))
+        front = min(self._front, n)
+        if front >= i_s:
+            self._bound(0, n)
+        else:
+            if front:
+                self._bound(0, front)
+            if i_s < n:
+                self._bound(i_s, n)
+        self._front, self._done = 0, n
+        return bool(np.max(self._ub + self._err_m(n) * self._inv) < self.max_speed_mps)
+
+    def _bound(self, i0: int, i1: int) -> None:
+        """The speed bounds of the pairs from samples i0..i1-1 (the full check's windows and pairs, its arithmetic
+        on a slice)."""
+        T, P, n, s = self._t, self._p, self._t.size, self.smooth_s
+        j = np.searchsorted(T, T[i0:i1] + s, side="left")  # as implausible_pressure
+        self._ub[i0:i1], self._inv[i0:i1] = -np.inf, 0.0
+        has = j < n
+        if not has.any():
+            return
+        ii, jj = np.arange(i0, i1)[has], j[has]
+        tk = T[i0:int(jj.max()) + 1]
+        lo = np.searchsorted(T, tk - 0.5 * s, side="left")  # as _smoothed_altitude
+        hi = np.searchsorted(T, tk + 0.5 * s, side="right")
+        a, b = int(lo.min()), int(hi.max())
+        cs = np.concatenate([[0.0], np.cumsum(P[a:b])])
+        h = altitude_m((cs[hi - a] - cs[lo - a]) / (hi - lo))
+        dt = np.maximum(T[jj] - T[ii], 1e-9)
+        grow = 1.0 + 8.0 * self._U
+        self._ub[ii] = (np.abs(h[jj - i0] - h[ii - i0]) / dt + self._err_m(b - a) / dt) * grow
+        self._inv[ii] = grow / dt
+
+    def trim(self, k: int) -> None:
+        """The first ``k`` finite samples were dropped."""
+        if not self._exact or k <= 0:
+            return
+        k = min(k, self._t.size)
+        last = self._t[k - 1]
+        self._t, self._p, self._ub, self._inv = self._t[k:], self._p[k:], self._ub[k:], self._inv[k:]
+        slack = 0.25 * self.smooth_s + 1e-9 * (1.0 + abs(float(last)))
+        f = int(np.searchsorted(self._t, last + 0.5 * self.smooth_s + slack, side="right"))
+        self._front, self._done = max(self._front - k, f), max(self._done - k, 0)
 
 
 #: what an unread barometer means for a lower-back track (W89) and for a foot track (L145)
