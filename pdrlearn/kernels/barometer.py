@@ -103,17 +103,20 @@ class LiveAltitude:
         self._origin_s: float | None = None
         self._ref: float | None = None  # the altitude at the origin, once its window is complete
         self.implausible: tuple[float, float, float, float, float] | None = None
+        self._watch = PlausibleWatch(self.smooth_s)  # B188's check, incremental (same answers)
 
     def push(self, t: np.ndarray, p_hpa: np.ndarray):
         """Hold samples ``(t, p_hpa)`` (s increasing past the held ones, hPa); B188's finding when they make the
         held barometer implausible (the first time), else None."""
-        self._t = np.concatenate([self._t, np.asarray(t, dtype=float).ravel()])
-        self._p = np.concatenate([self._p, np.asarray(p_hpa, dtype=float).ravel()])
+        t, p = np.asarray(t, dtype=float).ravel(), np.asarray(p_hpa, dtype=float).ravel()
+        self._t = np.concatenate([self._t, t])
+        self._p = np.concatenate([self._p, p])
         if self.implausible is None:
-            found = implausible_pressure(self._t, self._p, self.smooth_s)
-            if found is not None:
-                self.implausible = found
-                return found
+            if not self._watch.push(t, p):
+                found = implausible_pressure(self._t, self._p, self.smooth_s)
+                if found is not None:
+                    self.implausible = found
+                    return found
         return None
 
     def set_origin(self, t0: float) -> None:
@@ -144,6 +147,7 @@ class LiveAltitude:
         drop = int(np.searchsorted(self._t, float(before) - 2.0 * self.smooth_s))
         drop = min(drop, self._t.size - 2)  # the last two samples stay: interpolation past the end holds
         if drop > 0:
+            self._watch.trim(int(np.count_nonzero(np.isfinite(self._t[:drop]) & np.isfinite(self._p[:drop]))))
             self._t, self._p = self._t[drop:], self._p[drop:]
 
     def ride(self, a: float, b: float) -> float | None:
@@ -194,6 +198,134 @@ def implausible_pressure(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float = ALT
     a, b = max(0, int(a) - 1), min(len(tt), int(b) + 1)
     m = a + int(np.argmax(np.abs(np.diff(pp[a:b]))))
     return float(speed[k]), float(tt[m]), float(pp[m]), float(tt[m + 1]), float(pp[m + 1])
+
+
+class PlausibleWatch:
+    """:func:`implausible_pressure`'s None, decided incrementally for :class:`LiveAltitude` (same answers): ``push``
+    the samples as they come and ``trim(k)`` when the first ``k`` finite ones are dropped; :meth:`push` returns True
+    only when the full check on the finite samples held would certainly return None (else the caller runs it). Each
+    pair ``(i, j)`` the full check compares (``j`` the first sample ``smooth_s`` after ``i``) keeps an upper bound of
+    its speed, recomputed only where a push or a trim changes its windows (the last ``~2 smooth_s`` before the new
+    samples, the first ``~smooth_s`` after the dropped ones): first the pressure range over those windows (both
+    means lie in it), and where that is not under the limit each pair's own speed on a slice of the samples. The
+    bounds cover the floating-point difference between a cumsum over a slice and the full check's over every sample
+    held (:meth:`_err_m`). It does not decide pressures outside 100-2000 hPa (from then on), times that decrease, a
+    stream shorter than ``smooth_s``, nor a speed within that floating-point bound of the limit."""
+
+    #: the pressures (hPa) the error bound holds for; |d altitude_m / dp| <= 60 m/hPa above 100 hPa (8.3 at 1013)
+    P_MIN_HPA, P_MAX_HPA, SLOPE_M_PER_HPA = 100.0, 2000.0, 60.0
+    _U = float(np.finfo(float).eps)
+
+    def __init__(self, smooth_s: float = ALTITUDE_SMOOTH_S, max_speed_mps: float = MAX_VERTICAL_SPEED_MPS):
+        self.smooth_s, self.max_speed_mps = float(smooth_s), float(max_speed_mps)
+        self._buf = np.zeros((4, 64))  # rows t, p (the finite samples held), ub, inv; live columns [_a, _b)
+        self._a = self._b = 0
+        # ub: per sample i the bound of its pair's speed (m/s; -inf without a pair); inv: (1 + 8u) / the pair's time
+        # apart (a bound of it), what the full check's own rounding (:meth:`_err_m`) is divided by
+        self._front = 0  # samples [0, _front) to recompute (their windows lost dropped samples)
+        self._done = 0  # samples [0, _done) were bounded (those after are new since)
+        self._exact = True  # False: inputs the bound does not cover (the full check decides)
+
+    @property
+    def _t(self) -> np.ndarray:
+        return self._buf[0, self._a:self._b]
+
+    @property
+    def _ub(self) -> np.ndarray:
+        return self._buf[2, self._a:self._b]
+
+    @property
+    def _inv(self) -> np.ndarray:
+        return self._buf[3, self._a:self._b]
+
+    def _err_m(self, n: int) -> float:
+        """Bound (m) of an altitude difference's floating-point error, windows' sums from an n-sample cumsum."""
+        mean_err = 4.0 * self._U * (n * n + n + 1.0) * self.P_MAX_HPA  # sequential cumsum, difference, division
+        return 2.0 * (self.SLOPE_M_PER_HPA * mean_err + 1e-9)  # two altitudes (+ altitude_m's own rounding)
+
+    def push(self, t: np.ndarray, p: np.ndarray) -> bool:
+        """Hold samples; True when the full check on all held would certainly return None."""
+        ok = np.isfinite(t) & np.isfinite(p)
+        if not ok.all():
+            t, p = t[ok], p[ok]
+        m = t.size
+        if self._exact and m and (
+                not (self.P_MIN_HPA <= p.min() and p.max() <= self.P_MAX_HPA) or (m > 1 and np.any(np.diff(t) < 0))
+                or (self._b > self._a and t[0] < self._buf[0, self._b - 1])):
+            self._exact = False
+            self._buf, self._a, self._b = np.zeros((4, 0)), 0, 0
+        if not self._exact:
+            return False
+        if m:
+            if self._b + m > self._buf.shape[1]:  # compact, and grow when over half full
+                live = self._buf[:, self._a:self._b]
+                if 2 * (live.shape[1] + m) > self._buf.shape[1]:
+                    self._buf = np.zeros((4, 2 * (live.shape[1] + m)))
+                self._buf[:, :live.shape[1]] = live  # live is a copy-safe slice when the buffer was replaced
+                self._a, self._b = 0, live.shape[1]
+            self._buf[0, self._b:self._b + m], self._buf[1, self._b:self._b + m] = t, p
+            self._buf[2, self._b:self._b + m], self._buf[3, self._b:self._b + m] = -np.inf, 0.0
+            self._b += m
+        T, n, s = self._t, self._b - self._a, self.smooth_s
+        if n < 2 or not T[-1] >= T[0] + s:
+            return False  # no pair (the full check compares the two ends): it decides
+        slack = 0.25 * s + 1e-9 * (1.0 + abs(float(T[-1])) + abs(float(T[0])))
+        n_old, i_s = min(self._done, n), n
+        if n_old < n:  # the windows reaching the new samples, and the pairs reading them or new pairs
+            k = min(int(np.searchsorted(T, T[n_old] - 0.5 * s - slack, side="left")), n_old)
+            i_s = 0 if k == 0 else int(np.searchsorted(T, T[k - 1] - s - slack, side="left"))
+        front = min(self._front, n)
+        if front >= i_s:
+            self._bound(0, n)
+        else:
+            if front:
+                self._bound(0, front)
+            if i_s < n:
+                self._bound(i_s, n)
+        self._front, self._done = 0, n
+        return bool(np.max(self._ub + self._err_m(n) * self._inv) < self.max_speed_mps)
+
+    def _bound(self, i0: int, i1: int) -> None:
+        """The speed bounds of the pairs from samples i0..i1-1: the pressure range over all their windows, else the
+        full check's windows and pairs, its arithmetic on a slice."""
+        T, P, n, s = self._t, self._buf[1, self._a:self._b], self._b - self._a, self.smooth_s
+        ub, inv = self._ub, self._inv
+        a0 = int(np.searchsorted(T, T[i0] - 0.5 * s - 0.25 * s, side="left"))  # every window from i0 on (slack)
+        dt_min = s - 4.0 * self._U * (abs(float(T[0])) + abs(float(T[-1])) + s)  # t_j >= fl(t_i + s)
+        if dt_min > 0.5 * s:
+            grow = 1.0 + 8.0 * self._U
+            rise = float(altitude_m(P[a0:].min()) - altitude_m(P[a0:].max()))  # both means lie in the range
+            c = (rise + self._err_m(0)) / dt_min * grow
+            if c + self._err_m(n) * grow / dt_min < self.max_speed_mps:
+                ub[i0:i1], inv[i0:i1] = c, grow / dt_min
+                return
+        j = np.searchsorted(T, T[i0:i1] + s, side="left")  # as implausible_pressure
+        ub[i0:i1], inv[i0:i1] = -np.inf, 0.0
+        has = j < n
+        if not has.any():
+            return
+        ii, jj = np.arange(i0, i1)[has], j[has]
+        tk = T[i0:int(jj.max()) + 1]
+        lo = np.searchsorted(T, tk - 0.5 * s, side="left")  # as _smoothed_altitude
+        hi = np.searchsorted(T, tk + 0.5 * s, side="right")
+        a, b = int(lo.min()), int(hi.max())
+        cs = np.concatenate([[0.0], np.cumsum(P[a:b])])
+        h = altitude_m((cs[hi - a] - cs[lo - a]) / (hi - lo))
+        dt = np.maximum(T[jj] - T[ii], 1e-9)
+        grow = 1.0 + 8.0 * self._U
+        ub[ii] = (np.abs(h[jj - i0] - h[ii - i0]) / dt + self._err_m(b - a) / dt) * grow
+        inv[ii] = grow / dt
+
+    def trim(self, k: int) -> None:
+        """The first ``k`` finite samples were dropped."""
+        if not self._exact or k <= 0:
+            return
+        k = min(k, self._b - self._a)
+        last = float(self._buf[0, self._a + k - 1])
+        self._a += k
+        slack = 0.25 * self.smooth_s + 1e-9 * (1.0 + abs(last))
+        f = int(np.searchsorted(self._t, last + 0.5 * self.smooth_s + slack, side="right"))
+        self._front, self._done = max(self._front - k, f), max(self._done - k, 0)
 
 
 #: what an unread barometer means for a lower-back track (W89) and for a foot track (L145)
