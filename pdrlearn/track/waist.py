@@ -1077,7 +1077,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if upright_source == "none":  # decision W277: no upright, no transfer and no posture to judge: left empty
         postures, transfers = [], None
     else:  # decision W278: rows that cannot be taken as read (not alternating, walking on both sides) flagged, one line
-        transfers = flag_transfers(transfers, steps)
+        # decision W311: W278's walking test reads the contacts after the offline sit veto even when the track
+        # applied none (realtime): a rise's own false contacts are no walking on both sides
+        transfers = flag_transfers(transfers, steps if bool(o["sit_veto"]) else transfer_veto(
+            steps, imu, **sit_veto_keywords(OPTION_DEFAULTS["sit_veto"]),
+            **({} if fixed_up is None else {"upright": fixed_up})))
         line = flag_message(transfers)
         if line:
             warnings.append(line)
