@@ -173,9 +173,33 @@ def _transfers_to_draw(source: str):
     if missing:
         raise DataError(f"{path}: no {' or '.join(missing)} column; re-run `pdrlearn track` to rewrite it, or remove "
                         "it to plot the steps alone")
-    ok = pd.to_numeric(table["start_s"], errors="coerce").notna() & pd.to_numeric(table["end_s"],
-                                                                                   errors="coerce").notna()
-    return table[ok].astype({"start_s": float, "end_s": float})
+    bad = bad_transfer_row(table)  # decision B280: a row that cannot be drawn as written is named, not dropped
+    if bad:
+        raise DataError(f"{path}: {bad}; re-run `pdrlearn track` to rewrite it, or remove it to plot the steps alone")
+    return table.astype({"start_s": float, "end_s": float})
+
+
+def bad_transfer_row(table) -> str:
+    """Decision B280: ``""`` or why the first bad row of a transfers.csv ``table`` cannot be drawn (its line in
+    the file, header = line 1): a kind that is none of transfers.csv's, a start_s / end_s that is not a finite
+    number, or an end before its start."""
+    import numpy as np
+    import pandas as pd
+
+    from pdrlearn.waist.transfers import GET_UP_KINDS, LIE_DOWN_KINDS, SIT_TO_STAND, STAND_TO_SIT
+
+    kinds = (SIT_TO_STAND, STAND_TO_SIT, *LIE_DOWN_KINDS, *GET_UP_KINDS)
+    a = pd.to_numeric(table["start_s"], errors="coerce").to_numpy(float)
+    b = pd.to_numeric(table["end_s"], errors="coerce").to_numpy(float)
+    for i, (k, x, y) in enumerate(zip(table["kind"], a, b, strict=True)):
+        row = f"line {i + 2} ({k}, {table['start_s'].iloc[i]}, {table['end_s'].iloc[i]})"
+        if k not in kinds:
+            return f"{row}: kind is not one of {', '.join(kinds)}"
+        if not (np.isfinite(x) and np.isfinite(y)):
+            return f"{row}: start_s and end_s must be numbers (s)"
+        if y < x:
+            return f"{row}: end_s is before start_s"
+    return ""
 
 
 def _steps_to_shade(source: str, session):

@@ -287,10 +287,11 @@ class PLLStepDetector(StepDetector):
     steps of a bout, and the threshold is the waist motion gate's (decision W4: std 0.5 m/s^2, so
     0.25 m^2/s^4; standing < 0.1; seed 000 sec. II-B's gate is 1.5 m/s^2 for brisk walks): the slow
     daily-activity walking of the Test11 recordings has a std of 0.5-0.7 m/s^2 in places, which decision
-    6's 0.5 m^2/s^4 dropped (decision 18). ``relative_gate=True`` (default, decision steps 48): :meth:`detect` lowers
-    that threshold for a session whose trunk moves little by decision W76's session-relative gate, ``track``'s
-    (``min(0.5, max(0.15, 0.5 x P90))`` of the centred 2 s SD of its own low-passed vertical acceleration); the
-    streaming detector (:meth:`online`) keeps ``gate_var``. A lower-back run with 0 steps logs W76's line.
+    6's 0.5 m^2/s^4 dropped (decision 18). ``relative_gate`` None (the default) or True (decision steps 48):
+    :meth:`detect` lowers that threshold for a session whose trunk moves little by decision W76's session-relative
+    gate, ``track``'s (``min(0.5, max(0.15, 0.5 x P90))`` of the centred 2 s SD of its own low-passed vertical
+    acceleration); the streaming detector (:meth:`online`) keeps ``gate_var`` and refuses ``relative_gate=True``
+    given explicitly (steps 49). A lower-back run with 0 steps logs W76's line.
 
     Frequency range (steps decision 6): free-running ``f0_hz``, clamped to ``f_min_hz``-``f_max_hz``;
     ``f_max_hz=None`` (the default, decision W117, docs/decisions/waist.md): offline, a session whose step rhythm
@@ -315,8 +316,18 @@ class PLLStepDetector(StepDetector):
                  gate_var: float = 0.25,  # seed 001: 1.5 m^2/s^4 for a pocket; decision 18: decision W4's
                  # waist motion gate (std 0.5 m/s^2; seed 000 sec. II-B's own is 1.5) squared
                  refine_frac: float = 0.25, placement: str = "waist",
-                 relative_gate: bool = True):  # decision steps 48: W76's session-relative gate (offline detect)
+                 relative_gate: bool | None = None):  # decision steps 48: W76's session-relative gate (offline
+        # detect); steps 49: None = steps 48's default (on offline, off streaming), True given is refused by online()
         self._store(locals())
+
+    def online(self, fs: float, **context):
+        """Decision steps 49: a streaming detector; ``relative_gate=True`` given explicitly is refused there (it reads
+        the whole session's 2 s SD, which a stream has not got): one line naming it and the fix."""
+        if self.relative_gate and "gate_var" not in context:  # detect() passes its judged gate_var
+            raise DataError("pll: relative_gate=true acts on the offline detect only (decision steps 48: it reads the "
+                            f"whole session); the streaming detector keeps gate_var={self.gate_var:g} m^2/s^4: leave "
+                            "relative_gate unset or false, or pass a lower pll:gate_var=V for a quiet trunk")
+        return super().online(fs, **context)
 
     def loop_params(self, period_s: float = float("nan")) -> PLLParams:
         """The loop's parameters; with ``f_max_hz=None`` (decision W117) its free-running frequency and upper clamp
@@ -332,12 +343,12 @@ class PLLStepDetector(StepDetector):
         check_stream(acc, session)
         gate_var, self.gate_ = self.gate_var, (float(np.sqrt(self.gate_var)), np.zeros(0), "fixed")
         if acc.t.shape[0] < 3:
-            return acc.t, acc.values, {}
+            return acc.t, acc.values, {"gate_var": gate_var}  # steps 49: detect's own gate, not a stream's
         fs = acc.rate_hz  # B182's jitter-proof rate
         thr, sigma = accel_relative_gate(  # judged on the PLL's own input: its low-pass of the vertical acceleration
             acc.values, fs, float(np.sqrt(self.gate_var)), window_s=self.gate_window_s,
             lowpass=lambda v: CausalLowpass(_cutoff(self.cutoff_hz, fs), fs, order=2).push(v))
-        if self.relative_gate:  # decision steps 48: track's gate (W76) lowers the threshold for a quiet trunk
+        if self.relative_gate is not False:  # decision steps 48: track's gate (W76) lowers it for a quiet trunk
             gate_var = min(self.gate_var, thr * thr)
         self.gate_ = (float(np.sqrt(gate_var)), sigma, "relative" if gate_var < self.gate_var else "fixed")
         ctx = {"gate_var": gate_var}

@@ -1021,8 +1021,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
         z_start, z_raw = z[:-1], None  # W174's transfer_dz_m: 0 (every change off the stairs is left out here)
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings, rest_removed)
-    if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
-        warnings.append(no_steps_message(thr, sigma, gate_source))
+    # decision W76: never 0 steps without a word; W312: but not on a chair test W277 read without walking (its line
+    # says so), and the isolated contacts a headline counts are named
+    if not steps["has_next"].to_numpy(bool).any() and not (upright_source == "still" and len(transfers)):
+        warnings.append(no_steps_message(thr, sigma, gate_source, n_contacts=len(steps)))
+    elif not steps["has_next"].to_numpy(bool).any() and len(steps):
+        warnings.append(f"the {len(steps)} contact(s) counted are isolated, none followed by another within "
+                        f"{MAX_STEP_S:g} s: the chair transfers' own movement, no step and no distance (decision W312)")
     bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs,
                                                       p.gyro_bias_rps))  # decision W105
     if bias_line:
@@ -1077,7 +1082,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if upright_source == "none":  # decision W277: no upright, no transfer and no posture to judge: left empty
         postures, transfers = [], None
     else:  # decision W278: rows that cannot be taken as read (not alternating, walking on both sides) flagged, one line
-        transfers = flag_transfers(transfers, steps)
+        # decision W311: W278's walking test reads the contacts after the offline sit veto even when the track
+        # applied none (realtime): a rise's own false contacts are no walking on both sides
+        transfers = flag_transfers(transfers, steps if bool(o["sit_veto"]) else transfer_veto(
+            steps, imu, **sit_veto_keywords(OPTION_DEFAULTS["sit_veto"]),
+            **({} if fixed_up is None else {"upright": fixed_up})))
         line = flag_message(transfers)
         if line:
             warnings.append(line)
@@ -1327,16 +1336,20 @@ def relative_heading_note(start, initial_heading: float, has_magnetometer: bool)
     return line
 
 
-def no_steps_message(thr: float, sigma: np.ndarray, source: str, fix: str | None = None) -> str:
+def no_steps_message(thr: float, sigma: np.ndarray, source: str, fix: str | None = None, n_contacts: int = 0) -> str:
     """Decision W76: the one line of a waist track that found no step - the motion gate (threshold and where it
     comes from), the largest 2 s SD of the vertical acceleration the data reached, and the fix (``fix``: the
-    caller's own first remedy instead of the params JSON, e.g. the ``pll`` step detector's option, steps 48)."""
+    caller's own first remedy instead of the params JSON, e.g. the ``pll`` step detector's option, steps 48).
+    ``n_contacts``: the isolated contacts a track's headline counts (decision W312: named, so that "N steps" and
+    "no steps found" do not contradict)."""
     top = float(np.nanmax(sigma)) if np.size(sigma) else 0.0
     opened = "never opened" if top < thr else "opened but no step was found in it"
     suggest = max(K.RELATIVE_GATE_FLOOR_MPS2, round(0.5 * top, 2))
     src = {"params": "the params' walk_threshold_mps2", "relative": "decision W76's session-relative gate"}.get(
         source, "decision W4's fixed gate")
-    return (f"no steps found: the walking gate (2 s SD of the vertical acceleration >= {thr:.2f} m/s^2, {src}) "
+    lone = (f" (the {n_contacts} contact(s) counted are isolated, none followed by another within {MAX_STEP_S:g} s:"
+            " no step between them and no distance)" if n_contacts else "")
+    return (f"no steps found{lone}: the walking gate (2 s SD of the vertical acceleration >= {thr:.2f} m/s^2, {src}) "
             f"{opened}; the data's largest 2 s SD is {top:.2f} m/s^2. If the person walked with little trunk "
             f"movement (walking aid, rollator, very slow), "
             + (fix or f"pass a params JSON with {{\"walk_threshold_mps2\": {suggest:.2f}}} ('pdrlearn track DIR "

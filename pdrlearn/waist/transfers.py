@@ -27,11 +27,13 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from pdrlearn.waist import upright as _upright
 from pdrlearn.waist.ahrs import WaistIMU
-from pdrlearn.waist.posture import contact_directions, flexion_runs, walking_upright
+from pdrlearn.waist.posture import contact_directions, flexion_runs, near_flexion, walking_upright
 from pdrlearn.waist.upright import (
     CONVERGED_DEG,
     MAX_PASSES,
+    flexion_free_walking,
     mean_direction,
     standing_mask,
     still_mask,
@@ -187,10 +189,17 @@ def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame) -> tuple[pd.Data
         return _empty(), None, "walking"
     ev = steps["event_s"].to_numpy(float) if len(steps) and "event_s" in steps else np.zeros(0)
     walking = (steps["has_next"].to_numpy(bool) if len(ev) and "has_next" in steps else np.ones(len(ev), bool))
+    still = None
+    if walking_is_reliable(walking) and _upright.FLEXION_FREE_WALKING:  # decision W309
+        still = still_upright_transfers(imu)
+        if still[1] is not None:
+            flexed = near_flexion(ev, flexion_runs(imu.t, _tilt_deg(imu, still[1])))
+            walking = flexion_free_walking(walking, flexed) if flexed.any() else walking
     if walking_is_reliable(walking):
-        up = walking_upright(contact_directions(imu.t, imu.up_body, ev), walking)
+        up = walking_upright(contact_directions(imu.t, imu.up_body, ev), steps["has_next"].to_numpy(bool)
+                             if "has_next" in steps else np.ones(len(ev), bool))
         return transfers_from_tilt(imu, _tilt_deg(imu, up)), up, "walking"
-    rows, up = still_upright_transfers(imu)
+    rows, up = still if still is not None else still_upright_transfers(imu)
     return rows, up, "still" if up is not None else "none"
 
 
