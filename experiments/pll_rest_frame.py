@@ -25,6 +25,9 @@ from pdrlearn.cli import main as cli
 from pdrlearn.io import read_session
 from pdrlearn.track import get_pipeline
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from lying_heading import errors  # noqa: E402 -- W270's end / heading errors (experiments/lying_heading.py)
+
 # W286's groups: (key, route, users, has a rest over 60 s)
 GROUPS = [
     ("a", "stand:5, straight:10, sit:600, straight:10, stand:5", range(6504, 6512), True),  # sit, walk on
@@ -35,16 +38,6 @@ GROUPS = [
     ("f", "stand:5, straight:10, turn:90, straight:10, stand:30, turn:180, straight:20, stand:5", range(6580, 6590),
      False),  # plain walks, no rest over 60 s
 ]
-
-
-def errors(result, truth: pd.DataFrame) -> tuple[float, float, np.ndarray]:
-    """(final position error m, last walking step's heading error deg, the track's x / y)."""
-    xy = result.trajectory[["x", "y"]].to_numpy(float)
-    end = truth[["x", "y"]].to_numpy(float)[-1]
-    walking = result.steps[result.steps["has_next"].to_numpy(bool)]
-    diff = float(walking["heading_rad"].iloc[-1]) - float(truth["heading_rad"].iloc[-1])
-    dh = np.degrees(np.angle(np.exp(1j * diff)))
-    return float(np.hypot(*(xy[-1] - end))), float(dh), xy
 
 
 def session(user: int, route: str, root: Path) -> dict:
