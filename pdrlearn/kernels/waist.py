@@ -474,23 +474,19 @@ def lateral_velocity(acc_ml: np.ndarray, fs: float, *, band_hz: tuple[float, flo
     return dsp.sosfiltfilt(_butter2(lo, None, "high", float(fs)), v)
 
 
-_LATERAL_MEMO: dict[tuple, np.ndarray] = {}
-_LATERAL_MEMO_SIZE = 32
-
-
 def lateral_velocity_cached(acc_ml: np.ndarray, fs: float) -> np.ndarray:
     """:func:`lateral_velocity` (default band) as a read-only array, kept for the last few inputs (keyed by their
-    bytes: the same samples give the same floats). The realtime detector (W31) reads W20's velocity of a decision
-    window inside the rules and again for W138's side of the contacts decided there (``waist_stream``)."""
+    bytes: the same samples give the same floats; the same ``functools.lru_cache`` by bytes as ``dsp``'s filter
+    start state). The realtime detector (W31) reads W20's velocity of a decision window inside the rules and again
+    for W138's side of the contacts decided there (``waist_stream``)."""
     a = np.ascontiguousarray(acc_ml, dtype=np.float64)
-    key = (float(fs), a.shape, a.tobytes())
-    v = _LATERAL_MEMO.get(key)
-    if v is None:
-        v = lateral_velocity(a, fs)
-        v.flags.writeable = False
-        if len(_LATERAL_MEMO) >= _LATERAL_MEMO_SIZE:
-            del _LATERAL_MEMO[next(iter(_LATERAL_MEMO))]  # the oldest
-        _LATERAL_MEMO[key] = v
+    return _lateral_velocity_of(float(fs), a.shape, a.tobytes())
+
+
+@functools.lru_cache(maxsize=32)
+def _lateral_velocity_of(fs: float, shape: tuple, data: bytes) -> np.ndarray:
+    v = lateral_velocity(np.frombuffer(data, dtype=np.float64).reshape(shape), fs)
+    v.flags.writeable = False
     return v
 
 
