@@ -134,7 +134,8 @@ def units_apart_line(session: Session) -> str | None:
             f"{verb} {abs(v):.2f} s {'after' if v > 0 else 'before'} the foot unit"
             for verb, v in (("started", start), ("stopped", end)) if abs(v) > SPAN_TOLERANCE_S) + " -- "
     lo, hi = max(foot[0], waist[0]), min(foot[1], waist[1])
-    lost = (max(foot[1], waist[1]) - min(foot[0], waist[0])) - (hi - lo)  # decision B273: span_cut_s's count
+    walk = walk_ends({"foot": foot, "waist": waist})  # decision B273: span_cut_s's count after --common-span
+    lost = (walk[1] - walk[0]) - (hi - lo)
     return (f"{session.where}: the foot unit covers {foot[0]:.2f}-{foot[1]:.2f} s and the waist unit "
             f"{waist[0]:.2f}-{waist[1]:.2f} s: {why}`pdrlearn track` refuses a track that needs the unit that "
             f"stopped short (B126, B21) and with --common-span tracks only the {lo:.2f}-{hi:.2f} s both cover "
