@@ -128,8 +128,8 @@ def main() -> None:
     say("\ncorrectly delimited single steps by class: tracked, pendulum before W19's cos, INDIP stride/2 (medians, m);"
         " ratios tracked / reference and pendulum / reference (medians); summed tracked - reference (m):")
 
-    def table(h: pd.DataFrame, keys: list[str]) -> str:
-        return h.groupby(keys, sort=False).agg(
+    def table(h: pd.DataFrame, keys: list[str], sort: bool = False) -> str:
+        return h.groupby(keys, sort=sort, observed=True).agg(
             n=("tracked_m", "size"), ref_m=("reference_m", "median"), tracked_m=("tracked_m", "median"),
             pendulum_m=("pendulum_m", "median"),
             tracked_over_ref=("tracked_m", lambda x: float((x / h.loc[x.index, "reference_m"]).median())),
@@ -143,7 +143,16 @@ def main() -> None:
     say(table(c, ["subject", "turns_csv", "yaw_turn"]))
     say("\nsingle steps by |dyaw| bin, calibrated, pooled over the subjects:")
     cc = m[m.params == "calibrated"].assign(dyaw_bin=pd.cut(m.dyaw_deg, [0, 10, 20, 35, 50, 90, 360], right=False))
-    say(table(cc, ["dyaw_bin"]))
+    say(table(cc, ["dyaw_bin"], sort=True))
+    say("\nsingle steps with a length by INDIP step length (m) bin, turning vs straight, calibrated, pooled: is the"
+        " over-read the turn's or the short step's?")
+    k = m[(m.params == "calibrated") & (m.tracked_m > 0)]
+    k = k.assign(turning=k["class"] == "turn step", ref_bin=pd.cut(k.reference_m, [0, 0.2, 0.3, 0.4, 0.5, 0.6, 2]))
+    say(table(k, ["turning", "ref_bin"], sort=True))
+    for turning, h in k.groupby("turning"):
+        slope = np.polyfit(np.log(h.reference_m), np.log(h.pendulum_m), 1)[0]
+        say(f"  turning={turning}: {len(h)} steps, log-log slope of the pendulum length on INDIP's {slope:.3f}"
+            " (1 = proportional)")
     say("\nsingle steps at the bouts' edges vs inside (calibrated):")
     say(table(m[m.params == "calibrated"], ["subject", "edge"]))
     text = "\n".join(out) + "\n"
