@@ -192,15 +192,20 @@ def dominance(t: pd.DataFrame, groups: dict[str, list[str]]) -> dict:
     return out
 
 
-def main() -> None:
-    ext, runs = W.test11_cli()
-    tabs, matched, cadence = [], [], {}
+def calibrated_test11(ext, runs):
+    """Per Test11 run of :func:`waist.test11_cli`: the subject, its Test11 session and the `waist-pendulum` params
+    calibrated on its Test5 walks (experiments/waist.py's protocol)."""
     for cal_names, test_name in runs:
-        subject = test_name.split("_")[1]
         test = read_session(ext / test_name)
         cal = [read_session(ext / n) for n in cal_names]
         base, _ = resolve_params(cal[0], None)
-        params = calibrate(cal, "waist-pendulum", params=base)  # experiments/waist.py's protocol
+        yield test_name.split("_")[1], test, calibrate(cal, "waist-pendulum", params=base)
+
+
+def main() -> None:
+    ext, runs = W.test11_cli()
+    tabs, matched, cadence = [], [], {}
+    for subject, test, params in calibrated_test11(ext, runs):
         cadence[subject] = params.gait["median_cadence_spm"]
         tabs.append(bout_terms(get_pipeline("waist-pendulum")(test, params=params).steps, test, subject,
                                "calibrated", matched))

@@ -32,12 +32,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402
 import waist_bout_terms as T  # noqa: E402
 
-from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
-from pdrlearn.waist.calibration import calibrate  # noqa: E402
 from pdrlearn.waist.evaluate import reference_bouts  # noqa: E402
 from pdrlearn.waist.heading import TurnClassifier  # noqa: E402
-from pdrlearn.waist.params import resolve_params  # noqa: E402
 
 RESULT = W.ROOT / "experiments" / "results" / "waist_bout_turn_w317.txt"
 SLOW = 0.9  # W211: the calibration's cadence range starts at x0.9
@@ -89,12 +86,7 @@ def classify(steps: pd.DataFrame, session, subject: str, params: str, cal_spm: f
 def main() -> None:
     ext, runs = W.test11_cli()
     bouts, singles = [], []
-    for cal_names, test_name in runs:
-        subject = test_name.split("_")[1]
-        test = read_session(ext / test_name)
-        cal = [read_session(ext / n) for n in cal_names]
-        base, _ = resolve_params(cal[0], None)
-        params = calibrate(cal, "waist-pendulum", params=base)  # experiments/waist.py's protocol
+    for subject, test, params in T.calibrated_test11(ext, runs):
         cal_spm = float(params.gait["median_cadence_spm"])
         for name, p in (("calibrated", params), ("defaults", None)):
             b, s = classify(get_pipeline("waist-pendulum")(test, params=p).steps, test, subject, name, cal_spm)
