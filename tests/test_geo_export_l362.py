@@ -118,9 +118,11 @@ def test_rows_without_lat_lon_cut_the_path(tmp_path):
                          "lat": [nan, 41.0, 41.1, nan, 41.2, nan, nan, 41.3, 41.4],
                          "lon": [nan, -8.0, -8.1, nan, -8.2, nan, nan, -8.3, nan]})
     assert [list(p) for p in geo_pieces(traj["lat"], traj["lon"])] == [[1, 2], [4], [7]]
-    assert write_geo_files(tmp_path, traj, session="s", pipeline="plasys", distance_m=3.0) == ("track.gpx",
-                                                                                              "track.geojson")
+    # a session name with a control character (meta.json "session") still gives a GPX file a reader parses
+    assert write_geo_files(tmp_path, traj, session="s\x01x", pipeline="plasys", distance_m=3.0) == (
+        "track.gpx", "track.geojson")
     trk, pts = _gpx_points(tmp_path / "track.gpx")
+    assert trk.find("g:name", NS).text == "sx"
     assert [len(s.findall("g:trkpt", NS)) for s in trk.findall("g:trkseg", NS)] == [2, 1, 1]
     assert len(pts) == int(np.isfinite(traj[["lat", "lon"]]).all(axis=1).sum())
     line = json.loads((tmp_path / "track.geojson").read_text())["features"][0]["geometry"]

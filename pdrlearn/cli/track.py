@@ -263,7 +263,7 @@ def track(
 
         pdrlearn track datasets/real/gaitmap_level_right --method M3 --model oracle --out out/track_oracle
 
-        pdrlearn track out/sim/D_u1 --method M2 --start 41.178,-8.608 --out out/D
+        pdrlearn track out/sim/D_u1 --method M2 --start 41.178,-8.608 --out out/D   # + track.gpx, track.geojson
 
         pdrlearn track out/sim/D_u1 --start 41.178,-8.608,12.5 --out out/D_alt   # z starts at 12.5 m
 

@@ -55,6 +55,12 @@ def utc_times(start: datetime | None, seconds) -> list[str] | None:
             .replace("+00:00", "Z") for s in seconds]
 
 
+def xml_text(text: str) -> str:
+    """Decision B281: ``text`` without the control characters XML 1.0 cannot hold (section 2.2: tab, line feed and
+    carriage return are the only ones below U+0020), which ElementTree would write into a file no reader parses."""
+    return "".join(c for c in str(text) if c in "\t\n\r" or ord(c) >= 0x20)
+
+
 def _coord(v: float) -> str:
     return f"{v:.{COORD_DECIMALS}f}"
 
@@ -67,7 +73,7 @@ def gpx_text(lat, lon, pieces: list[np.ndarray], *, name: str, ele=None, times: 
     root = ET.Element(f"{{{GPX_NS}}}gpx", {"version": "1.1", "creator": "pdrlearn",
                                             f"{{{_XSI}}}schemaLocation": f"{GPX_NS} {_GPX_XSD}"})
     trk = ET.SubElement(root, f"{{{GPX_NS}}}trk")
-    ET.SubElement(trk, f"{{{GPX_NS}}}name").text = name
+    ET.SubElement(trk, f"{{{GPX_NS}}}name").text = xml_text(name)
     for piece in pieces:
         seg = ET.SubElement(trk, f"{{{GPX_NS}}}trkseg")
         for i in piece:
