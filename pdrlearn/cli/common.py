@@ -481,8 +481,9 @@ def storey_height_option():
     return typer.Option(3.0, "--storey-height", metavar="M", min=0.5, max=20.0, help=STOREY_HEIGHT_HELP)
 
 
-START_HELP = ("Start coordinate LAT,LON (degrees) -> lat/lon columns; LAT,LON,ALT also gives the start's "
-              "altitude in m, where the z column starts (default 0: z = height above the start; decision L56).")
+START_HELP = ("Start coordinate LAT,LON (degrees) -> lat/lon columns and OUT/track.gpx, OUT/track.geojson for "
+              "map tools (decision L363); LAT,LON,ALT also gives the start's altitude in m, where the z column "
+              "starts (default 0: z = height above the start; decision L56) and the GPX <ele>.")
 
 
 INITIAL_HEADING_HELP = ("Direction the walker sets off in, DEG degrees in the track's ENU frame: counter-clockwise "
