@@ -31,12 +31,7 @@ Writes experiments/results/waist_gyro_cues_w321.md.
 
 from __future__ import annotations
 
-import argparse
-import contextlib
-import io
-import logging
 import sys
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -231,20 +226,11 @@ def sim() -> None:
           + ", ".join(f"{k} {np.median(v):.3f}" for k, v in agree.items()))
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
-    args = ap.parse_args()
-    warnings.filterwarnings("ignore")
-    logging.disable(logging.WARNING)
-    buf = io.StringIO()
-    with contextlib.redirect_stdout(buf):
-        print("# W321: gyroscope and medio-lateral cues at the missed lower-back contacts (read-out)\n")
-        real(args.external)
-        sim()
-    (ROOT / "experiments" / "results" / "waist_gyro_cues_w321.md").write_text(buf.getvalue())
-    print(buf.getvalue(), end="")
+def main(external: Path) -> None:
+    print("# W321: gyroscope and medio-lateral cues at the missed lower-back contacts (read-out)\n")
+    real(external)
+    sim()
 
 
 if __name__ == "__main__":
-    main()
+    M.cli_run(__doc__, main, "waist_gyro_cues_w321.md")
