@@ -18,8 +18,8 @@ def columns(
 ) -> None:
     """Print every column of track-all's sessions.csv, groups.csv, subjects.csv, a track's bouts.csv, turns.csv,
     periods.csv, transfers.csv, tug_phases.csv, tug_trials.csv, freezes.csv, ramps.csv and steps.csv (a lower-back
-    track's and a foot track's, decision E137) and gait's three tables with its unit, type and meaning, as Markdown (docs/columns.md is
-    this output).
+    track's and a foot track's, decision E137) and gait's three tables with its unit, type and meaning, as Markdown
+    (docs/columns.md is this output).
 
     Examples:
 
