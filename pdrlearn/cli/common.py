@@ -578,8 +578,8 @@ def transfer_line(summary: dict) -> str | None:
         parts.append(f"{rise} sit-to-stand, {sit} stand-to-sit{lying} (transfers.csv)")
         if summary.get("tug_time_s") is not None:
             parts.append(f"TUG time {summary['tug_time_s']:.2f} s (rise to sit)")
-        elif summary.get("tug_time_note"):  # decision W282: why there is none, and --window
-            parts.append(summary["tug_time_note"])
+        elif summary.get("tug_time_note") and not summary.get("n_tug_trials"):  # W282: why none, and --window
+            parts.append(summary["tug_time_note"])  # (W325: with trials, their own line says it)
         if summary.get("sts5_time_s") is not None:  # decision W279
             parts.append(f"five-times sit-to-stand {summary['sts5_time_s']:.2f} s (first rise to last sit)")
     if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout

@@ -797,7 +797,7 @@ def clinical_tables(result, bouts) -> dict:
     """The per-event tables a track writes beside bouts.csv: ``turns.csv`` (decision L200: each turn of at least
     ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
     sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk; with a TUG time its
-    phases, ``tug_phases.csv``, decision W293) and ``freezes.csv``
+    phases, ``tug_phases.csv``, decision W293; with a TUG trial, ``tug_trials.csv``, W325) and ``freezes.csv``
     (decision W213: the freeze index's episodes of the tracked unit), and ``ramps.csv`` (decision L301)."""
     import pandas as pd
 
@@ -809,12 +809,16 @@ def clinical_tables(result, bouts) -> dict:
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
-        from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases
+        from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases, tug_trial_table
 
         phases = tug_phases(result.info["transfers"], out["turns.csv"], result.steps,  # decision W293
                             yaw_turns=result.info.get("yaw_turns"))  # W307
         if phases is not None:
             out["tug_phases.csv"] = tug_phase_table(phases)
+        trials = tug_trial_table(result.info["transfers"], out["turns.csv"], result.steps,  # decision W325
+                                 yaw_turns=result.info.get("yaw_turns"))
+        if len(trials):
+            out["tug_trials.csv"] = trials
     if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
         from pdrlearn.track.freezes import freeze_table
 
@@ -902,11 +906,17 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
     timed = transfer_line(summary)  # decisions L200, W183; W277: also without walking (a sit-to-stand test)
     if timed:
         typer.echo(timed)
-    from pdrlearn.waist.tug_phases import tug_phase_line
+    from pdrlearn.waist.tug_phases import tug_phase_line, tug_trials_line
 
     phased = tug_phase_line(summary)  # decision W293
     if phased:
         typer.echo(phased)
+    if summary.get("n_tug_trials") and (out / "tug_trials.csv").is_file():  # decision W325: several trials
+        import pandas as pd
+
+        trials = tug_trials_line(summary, pd.read_csv(out / "tug_trials.csv"))
+        if trials:
+            typer.echo(trials)
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
@@ -918,6 +928,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
+               f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json"
