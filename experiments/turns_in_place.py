@@ -2,7 +2,8 @@
 other in opposite directions, in turns.csv of the foot and the lower back. Measured once, no tuning.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_in_place.py   # users 7140-7159
-Output: experiments/results/turns_in_place.txt (the printed lines).
+     ... experiments/turns_in_place.py l370   # decision L370's rule: the same users, other sessions
+Output: experiments/results/turns_in_place.txt, turns_in_place_l370.txt (the printed lines).
 
 Truth: L255's ``true_turns`` (the waist's true heading, 1 s mean, 5 % / 95 % of each route turn's angle). A truth
 turn is found when the turns.csv row of largest |angle| overlapping it (not taken by an earlier truth turn) has its
@@ -36,21 +37,29 @@ ROUTES = (("stand:3, turn:360, stand:3, turn:-360, stand:3", "normal"),
           ("stand:2, straight:4, turn:90, straight:4, turn:-90, straight:4, stand:2", "normal"))
 CONFIGS = {"today": {"reversal": False, "first_own": False}, "L368": {"reversal": True, "first_own": False},
            "L368+L369": {"reversal": True, "first_own": True}}
+#: decision L370's sessions: each route's turns the other way, pendulum bounce
+ROUTES370 = (("stand:3, turn:-360, stand:3, turn:360, stand:3", "normal"),
+             ("stand:3, straight:4, stand:3, turn:-360, stand:4, turn:360, stand:3", "slow"),
+             ("stand:2, straight:3, turn:-180, straight:3, stand:2", "normal"),
+             ("stand:2, straight:4, turn:-90, straight:4, turn:90, straight:4, stand:2", "normal"))
+CONFIGS370 = {"today": {"reversal": False, "first_own": False, "foot_split": False, "yaw_split": False},
+              "L370+L369": {"reversal": False, "first_own": True, "foot_split": True, "yaw_split": True}}
 TRACKS = {"plasys": track_plasys, "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum"),
           "waist-pll": lambda s: track_waist(s, pipeline="waist-pll")}
 
 
-def main() -> None:
-    err = {(n, c): [] for n in TRACKS for c in CONFIGS}  # per truth turn: (route kind, route angle, found, errors)
-    extra = {(n, c, k): 0 for n in TRACKS for c in CONFIGS for k in range(4)}
+def main(routes=ROUTES, configs=CONFIGS, knobs=None) -> None:
+    knobs = knobs or {}
+    err = {(n, c): [] for n in TRACKS for c in configs}  # per truth turn: (route kind, route angle, found, errors)
+    extra = {(n, c, k): 0 for n in TRACKS for c in configs for k in range(4)}
     for u in USERS:
-        route, speed = ROUTES[u % 4]
-        s = simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, rate_hz=100.0, seed=u)
+        route, speed = routes[u % 4]
+        s = simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, rate_hz=100.0, seed=u, **knobs)
         truth = true_turns(s, route)
         print(f"user {u} [{route}]: truth " + ", ".join(f"{a:.2f}-{b:.2f} s {g:+.1f} deg" for a, b, g in truth))
         for n, track in TRACKS.items():
             res = track(s)
-            for c, kw in CONFIGS.items():
+            for c, kw in configs.items():
                 tt = turn_table(res.steps, detected_bouts(res.steps), yaw_turns=res.info.get("yaw_turns"), **kw)
                 free = np.ones(len(tt), bool)
                 got = []
@@ -83,11 +92,14 @@ def main() -> None:
               f"{sum(extra[(n, c, k)] for k in (2, 3))}")
     for n in TRACKS:  # the rule's "loses a turn found today"
         base = np.array(err[(n, "today")], float)[:, 2]
-        for c in list(CONFIGS)[1:]:
+        for c in list(configs)[1:]:
             b = np.array(err[(n, c)], float)[:, 2]
             print(f"{n} [{c}] against today: turns lost {int(((base == 1) & (b == 0)).sum())}, gained "
                   f"{int(((base == 0) & (b == 1)).sum())}")
 
 
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:] == ["l370"]:
+        main(ROUTES370, CONFIGS370, {"bounce": "pendulum"})
+    else:
+        main()

@@ -73,6 +73,10 @@ TURN_COUNT_MIN_DEG = 80.0
 #: more against the turn's direction (a turn has one direction: El-Gohary et al. 2014, mobgap ``TdElGohary``, merge
 #: only same-direction candidates); False = L104's runs, which summed two opposite turns on the spot into one
 TURN_SPLIT_REVERSAL = False
+#: decision L370: L368's cut on a foot table (its heading the strides' own turns, :func:`_own_turns`), and a
+#: lower-back run cut between two consecutive opposite yaw-rate turns (:func:`opposite_yaw_cuts`, El-Gohary 2014)
+TURN_SPLIT_FOOT = False
+TURN_SPLIT_YAW = False
 #: decision L369: a foot table's first row's own turn is an interval of its turns (a rest row before it); False = the
 #: first stride's own turn is in no turn (a turn on the spot from standing lost its first stride)
 TURN_FIRST_OWN = False
@@ -284,18 +288,39 @@ def split_reversals(dh: np.ndarray, a: int, b: int, min_deg: float = PAUSE_MAX_T
     return out
 
 
+def opposite_yaw_cuts(yaw_turns) -> np.ndarray:
+    """Decision L370: the times (s) between each two consecutive yaw-rate turns (records with ``start_s``,
+    ``end_s``, ``angle_deg``: a track's ``info["yaw_turns"]``, L210) of opposite sign - the middle of the first's end
+    and the second's start (El-Gohary 2014: a turn ends where the low-passed rate falls under 5 deg/s)."""
+    yaw = sorted(list(yaw_turns or []), key=lambda r: r["start_s"])
+    return np.asarray([0.5 * (p["end_s"] + q["start_s"]) for p, q in zip(yaw[:-1], yaw[1:], strict=True)
+                       if p["angle_deg"] * q["angle_deg"] < 0], dtype=float)
+
+
+def _cut_at_times(t: np.ndarray, a: int, b: int, cut_s: np.ndarray) -> list[tuple[int, int]]:
+    """Decision L370: the run ``[a, b)`` of intervals (interval i from row time ``t[i]`` to ``t[i + 1]``) cut before
+    each interval after its first that spans one of ``cut_s`` (``t[i] <= c < t[i + 1]``)."""
+    cuts = sorted({i for c in cut_s for i in range(a + 1, b) if t[i] <= c < t[i + 1]})
+    edges = [a, *cuts, b]
+    return list(zip(edges[:-1], edges[1:], strict=True))
+
+
 def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = TURN_EDGES,
-                reversal: bool | None = None, first_own: bool | None = None
-                ) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
+                reversal: bool | None = None, first_own: bool | None = None, foot_split: bool | None = None,
+                cut_s=None) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
     """The table in ``start_s`` order and each turn's ``(angle deg, a, b, first, last)``: its turning intervals
     ``[a, b)`` of the row-to-row heading changes (interval i runs from row i to row i + 1) and ``[first, last)``
     the intervals summed into its angle (``a``/``b`` widened by L181's edges). ``reversal`` (decision L368, None =
     :data:`TURN_SPLIT_REVERSAL`): a run ends where the heading turns the other way (:func:`split_reversals`);
     ``first_own`` (decision L369, None = :data:`TURN_FIRST_OWN`): a foot table's returned table starts with a rest
-    row (``_lead`` True, :func:`_with_lead_row`) so that its first stride's own turn is an interval."""
+    row (``_lead`` True, :func:`_with_lead_row`) so that its first stride's own turn is an interval; ``foot_split``
+    (decision L370, None = :data:`TURN_SPLIT_FOOT`): ``reversal`` on a foot table whose heading is its strides' own
+    turns; ``cut_s`` (L370): times (s) a run is cut at (:func:`opposite_yaw_cuts`, :func:`_cut_at_times`)."""
     if len(steps) < 2 or "heading_rad" not in steps:
         return steps, []
     reversal = TURN_SPLIT_REVERSAL if reversal is None else bool(reversal)
+    if TURN_SPLIT_FOOT if foot_split is None else foot_split:  # decision L370: the foot's own yaw
+        reversal = reversal or _own_turns(steps) is not None
     first_own = TURN_FIRST_OWN if first_own is None else bool(first_own)
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     if first_own:
@@ -315,7 +340,8 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
         if on and a is None:
             a = i
         elif not on and a is not None:
-            runs += split_reversals(dh, a, i) if reversal else [(a, i)]  # decision L368
+            parts = _cut_at_times(t, a, i, np.asarray(cut_s, float)) if cut_s is not None else [(a, i)]  # L370
+            runs += [r for p in parts for r in (split_reversals(dh, *p) if reversal else [p])]  # decision L368
             a = None
     free = ok[:-1] & ok[1:] & np.isfinite(dh) & ~turning  # decision L181: an interval a turn may take in
     out = []
@@ -481,7 +507,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                yaw_turns=None, branch: bool | None = None, yaw_only: bool | None = None,
                yaw_peak: bool | None = None, whole: bool | None = None,
                yaw_fractions: bool | None = None, reversal: bool | None = None,
-               first_own: bool | None = None) -> pd.DataFrame:
+               first_own: bool | None = None, foot_split: bool | None = None,
+               yaw_split: bool | None = None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
@@ -532,7 +559,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         t_on = yaw["start_5_s"].where(yaw["start_5_s"].notna(), yaw["start_s"]) if fractions else yaw["start_s"]
         t_off = yaw["end_95_s"].where(yaw["end_95_s"].notna(), yaw["end_s"]) if fractions else yaw["end_s"]
         yaw = yaw.assign(t_on=t_on.astype(float), t_off=t_off.astype(float))
-    st, spans = _turn_spans(steps, reversal=reversal, first_own=first_own)
+    yaw_split = TURN_SPLIT_YAW if yaw_split is None else bool(yaw_split)
+    cut_s = opposite_yaw_cuts(yaw.to_dict("records")) if yaw_split and yaw is not None else None  # decision L370
+    st, spans = _turn_spans(steps, reversal=reversal, first_own=first_own, foot_split=foot_split, cut_s=cut_s)
     rows, claimed = [], []  # claimed: the counted turns' row spans (decision L233)
     b_lo, b_hi, b_no = (np.zeros(0),) * 3
     if bouts is not None and len(bouts):
