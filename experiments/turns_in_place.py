@@ -3,7 +3,8 @@ other in opposite directions, in turns.csv of the foot and the lower back. Measu
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_in_place.py   # users 7140-7159
      ... experiments/turns_in_place.py l370   # decision L370's rule: the same users, other sessions
-Output: experiments/results/turns_in_place.txt, turns_in_place_l370.txt (the printed lines).
+     ... experiments/turns_in_place.py l371   # decisions L371 / W328: the same users, a third set of sessions
+Output: experiments/results/turns_in_place.txt, turns_in_place_l370.txt, turns_in_place_l371.txt (printed lines).
 
 Truth: L255's ``true_turns`` (the waist's true heading, 1 s mean, 5 % / 95 % of each route turn's angle). A truth
 turn is found when the turns.csv row of largest |angle| overlapping it (not taken by an earlier truth turn) has its
@@ -44,17 +45,22 @@ ROUTES370 = (("stand:3, turn:-360, stand:3, turn:360, stand:3", "normal"),
              ("stand:2, straight:4, turn:-90, straight:4, turn:90, straight:4, stand:2", "normal"))
 CONFIGS370 = {"today": {"reversal": False, "first_own": False, "foot_split": False, "yaw_split": False},
               "L370+L369": {"reversal": False, "first_own": True, "foot_split": True, "yaw_split": True}}
+#: decisions L371 / W328's tables (the third sessions: 20 Hz, constant bounce, :data:`ROUTES`)
+CONFIGS371 = {"today": {"reversal": False, "first_own": False, "foot_split": False, "yaw_split": False,
+                        "yaw_angle": False},
+              "L371 / W328": {"reversal": False, "first_own": True, "foot_split": True, "yaw_split": True,
+                              "yaw_angle": True}}
 TRACKS = {"plasys": track_plasys, "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum"),
           "waist-pll": lambda s: track_waist(s, pipeline="waist-pll")}
 
 
-def main(routes=ROUTES, configs=CONFIGS, knobs=None) -> None:
+def main(routes=ROUTES, configs=CONFIGS, knobs=None, rate_hz: float = 100.0) -> None:
     knobs = knobs or {}
     err = {(n, c): [] for n in TRACKS for c in configs}  # per truth turn: (route kind, route angle, found, errors)
     extra = {(n, c, k): 0 for n in TRACKS for c in configs for k in range(4)}
     for u in USERS:
         route, speed = routes[u % 4]
-        s = simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, rate_hz=100.0, seed=u, **knobs)
+        s = simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, rate_hz=rate_hz, seed=u, **knobs)
         truth = true_turns(s, route)
         print(f"user {u} [{route}]: truth " + ", ".join(f"{a:.2f}-{b:.2f} s {g:+.1f} deg" for a, b, g in truth))
         for n, track in TRACKS.items():
@@ -101,5 +107,7 @@ def main(routes=ROUTES, configs=CONFIGS, knobs=None) -> None:
 if __name__ == "__main__":
     if sys.argv[1:] == ["l370"]:
         main(ROUTES370, CONFIGS370, {"bounce": "pendulum"})
+    elif sys.argv[1:] == ["l371"]:
+        main(ROUTES, CONFIGS371, {"bounce": "constant"}, rate_hz=20.0)
     else:
         main()

@@ -12,10 +12,12 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_transf
      ... experiments/turns_transfers.py real255 # L255 on the mobgap turns
      ... experiments/turns_transfers.py sim345  # decision L345: users 6590-6619, El-Gohary vs 5-95 % yaw times
      ... experiments/turns_transfers.py real345 # L345 on the mobgap turns (rows chosen under today's timing)
+     ... experiments/turns_transfers.py real_w328 # decision W328 on the mobgap turns (yaw cut and yaw-rate angle)
 Output: experiments/results/turns_transfers_sim.txt, turns_transfers_real.txt (the printed lines); L208 / L209:
 turns_timing_sim.txt, turns_timing_real.txt (``real`` prints both timings since L208); L210 / L211:
 turns_yaw_sim.txt, turns_yaw_real.txt; L231-L236: turns_yaw2_sim.txt, turns_yaw2_real.txt; L255 / L256:
-turns_whole_sim.txt, turns_whole_real.txt; L345 / L346: turns_frac_sim.txt, turns_frac_real.txt
+turns_whole_sim.txt, turns_whole_real.txt; L345 / L346: turns_frac_sim.txt, turns_frac_real.txt; W328:
+turns_w328_real.txt
 
 Simulated truth. A turn: the route's one turn; its truth start / end are where the waist unit's true heading
 (trajectory.csv ``heading_rad``, unwrapped, a 1 s moving mean: one stride's pelvis rotation averaged out) has gone
@@ -348,6 +350,12 @@ def sim255() -> None:
         print(f"{n}: turns lost {int(((a == 1) & (b == 0)).sum())}, gained {int(((a == 0) & (b == 1)).sum())}")
 
 
+def real_w328() -> None:
+    """Decision W328 on the mobgap turns (:func:`real231`): today's table against L370's yaw cut with the yaw-rate
+    turn's angle."""
+    real231({"today": {"yaw_split": False, "yaw_angle": False}, "W328": {"yaw_split": True, "yaw_angle": True}})
+
+
 def real255() -> None:
     """Decision L255 on the mobgap turns (:func:`real231` with :data:`CONFIGS255`)."""
     real231(CONFIGS255)
@@ -512,5 +520,5 @@ def real345() -> None:
 
 if __name__ == "__main__":
     {"sim": sim, "sim28": sim28, "real": real, "sim210": sim210, "real210": real210, "sim231": sim231,
-     "real231": real231, "sim255": sim255, "real255": real255,
+     "real231": real231, "sim255": sim255, "real255": real255, "real_w328": real_w328,
      "sim345": sim345, "real345": real345}[sys.argv[1]]()

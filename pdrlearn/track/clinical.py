@@ -71,15 +71,19 @@ TURN_EDGES = True
 TURN_COUNT_MIN_DEG = 80.0
 #: decision L368: a turn's run of turning intervals ends before an interval turning :data:`PAUSE_MAX_TURN_DEG` or
 #: more against the turn's direction (a turn has one direction: El-Gohary et al. 2014, mobgap ``TdElGohary``, merge
-#: only same-direction candidates); False = L104's runs, which summed two opposite turns on the spot into one
+#: only same-direction candidates); False = L104's runs, which summed two opposite turns on the spot into one. Not
+#: adopted on every table (users 7140-7159: waist-pll's extra rows 0 -> 1, TUG / corners |angle error| 24.61 ->
+#: 37.81 deg): an option; L370 / L371 keep it on the foot
 TURN_SPLIT_REVERSAL = False
 #: decision L370: L368's cut on a foot table (its heading the strides' own turns, :func:`_own_turns`), and a
-#: lower-back run cut between two consecutive opposite yaw-rate turns (:func:`opposite_yaw_cuts`, El-Gohary 2014)
-TURN_SPLIT_FOOT = False
-TURN_SPLIT_YAW = False
+#: lower-back run cut between two consecutive opposite yaw-rate turns (:func:`opposite_yaw_cuts`, El-Gohary 2014);
+#: L371: the foot's part adopted (users 7140-7159, 20 Hz: plasys 360 deg turns found 0/20 -> 20/20, none lost, no
+#: extra row); W328: the yaw cut adopted with the yaw-rate angle (:data:`TURN_YAW_ANGLE`)
+TURN_SPLIT_FOOT = True
+TURN_SPLIT_YAW = True
 #: decision L369: a foot table's first row's own turn is an interval of its turns (a rest row before it); False = the
-#: first stride's own turn is in no turn (a turn on the spot from standing lost its first stride)
-TURN_FIRST_OWN = False
+#: first stride's own turn is in no turn (a turn on the spot from standing lost its first stride); adopted with L371
+TURN_FIRST_OWN = True
 #: ``stride_time_cv_pct`` needs at least this many straight strides with a stride time
 CV_MIN_STRIDES = 10
 
@@ -446,6 +450,11 @@ TURN_YAW_WHOLE = True
 #: TURN_TIMING_FRACTIONS of its change (the yaw records' ``start_5_s`` / ``end_95_s``), not at El-Gohary's 5 deg/s
 #: boundaries, which hold the 0.5 Hz filter's tails (trial s32 finding 3: +1.1 s); results L346
 TURN_YAW_FRACTIONS = False
+#: decision W328: a yaw-timed lower-back turn's angle is its yaw-rate turn's (El-Gohary 2014: the yaw rate integrated
+#: over the turn), not its rows' step heading shifted by whole turns (L231); adopted (users 7140-7159, 20 Hz: 360 deg
+#: turns found waist-pendulum 16/20 -> 20/20, waist-pll 15/20 -> 20/20, TUG / corners |angle error| 3.96 -> 0.17 /
+#: 16.72 -> 0.17 deg, none lost; mobgap Test11 INDIP turns >= 80 deg overlapped 11 -> 15 / 4 -> 13 of 15)
+TURN_YAW_ANGLE = True
 
 
 def whole_turns(yaw_deg, step_deg: float):
@@ -508,7 +517,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                yaw_peak: bool | None = None, whole: bool | None = None,
                yaw_fractions: bool | None = None, reversal: bool | None = None,
                first_own: bool | None = None, foot_split: bool | None = None,
-               yaw_split: bool | None = None) -> pd.DataFrame:
+               yaw_split: bool | None = None, yaw_angle: bool | None = None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
@@ -560,6 +569,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         t_off = yaw["end_95_s"].where(yaw["end_95_s"].notna(), yaw["end_s"]) if fractions else yaw["end_s"]
         yaw = yaw.assign(t_on=t_on.astype(float), t_off=t_off.astype(float))
     yaw_split = TURN_SPLIT_YAW if yaw_split is None else bool(yaw_split)
+    yaw_angle = TURN_YAW_ANGLE if yaw_angle is None else bool(yaw_angle)
     cut_s = opposite_yaw_cuts(yaw.to_dict("records")) if yaw_split and yaw is not None else None  # decision L370
     st, spans = _turn_spans(steps, reversal=reversal, first_own=first_own, foot_split=foot_split, cut_s=cut_s)
     rows, claimed = [], []  # claimed: the counted turns' row spans (decision L233)
@@ -584,8 +594,11 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         for angle, a, b, first, last in spans:
             lo, hi = float(t[first]), float(span_end[last])  # decision L210's match window
             match = yaw_turn_match(lo, hi, angle, yaw, branch=branch)
+            rows_angle = angle  # the rows' own heading change (what L208's crossings spread)
             if match is not None:  # decision L231: the whole turns the wrapped step heading lost (0 without it)
                 angle += match[1]
+                if yaw_angle:  # decision W328: El-Gohary's angle, the yaw rate integrated over the turn
+                    angle = float(yaw["angle_deg"].iloc[match[0]])
             if abs(angle) < min_deg:
                 continue
             claimed.append((lo, hi))
@@ -597,8 +610,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if timing != "rows" else 1.0
             if timing != "rows":  # decision L208: interval j's change spread over row j + 1's span
                 j = np.arange(first, last)
-                t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], angle - (
-                    match[1] if match is not None else 0.0), TURN_TIMING_FRACTIONS)
+                t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], rows_angle,
+                                           TURN_TIMING_FRACTIONS)
             if match is not None:  # decision L210
                 # decision L345: its 5-95 % times when TURN_YAW_FRACTIONS, else El-Gohary's boundaries
                 (t0, t1), share = (float(yaw["t_on"].iloc[match[0]]), float(yaw["t_off"].iloc[match[0]])), yaw_share
