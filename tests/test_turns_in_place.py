@@ -98,3 +98,26 @@ def test_waist_opposite_turns_from_standing_are_two_rows():
         assert row.start_s < a + 0.5 and row.end_s > b - 0.5  # El-Gohary's boundaries hold the turn
     old = turn_table(res.steps, yaw_turns=res.info["yaw_turns"], yaw_split=False, yaw_angle=False)
     assert len(old) == 1  # the trial's reading: one row of about -445 deg
+
+
+def test_window_keeps_only_its_turns_and_result_turns_sees_the_yaw_rate():
+    """Decisions W329 (trial T3 F4: ``--window`` kept the lower back's turns outside it) and W330 (F7:
+    ``turn_table(result.steps)`` missed a lower-back track's turns)."""
+    from pdrlearn.track.evaluate import track_summary
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.track.window import window_track
+
+    s = simulate_path(parse_route(ROUTE), UserProfile.from_seed(7142), speed="normal", rate_hz=100.0, seed=7142)
+    res = track_waist(s, pipeline="waist-pendulum")
+    whole = res.turns()
+    assert len(whole) == 2
+    pd.testing.assert_frame_equal(turn_table(res), turn_table(res.steps, yaw_turns=res.info["yaw_turns"]))
+    cut = 0.5 * (whole.loc[0, "end_s"] + whole.loc[1, "start_s"])  # the stand between the two turns
+    first, cut_session = window_track(res, s, 0.0, cut)
+    tt = first.turns()
+    assert len(tt) == 1 and tt.loc[0, "angle_deg"] == pytest.approx(whole.loc[0, "angle_deg"])
+    summary = track_summary(first, cut_session)
+    assert summary["turn_count"] == 1
+    assert summary["median_turn_duration_s"] == pytest.approx(tt.loc[0, "duration_s"])
+    second = window_track(res, s, cut, float(s.trajectory["t"].iloc[-1]))[0].turns()
+    assert second["angle_deg"].tolist() == pytest.approx([whole.loc[1, "angle_deg"]])

@@ -519,7 +519,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                first_own: bool | None = None, foot_split: bool | None = None,
                yaw_split: bool | None = None, yaw_angle: bool | None = None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
-    tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
+    tracked step table (or of a :class:`~pdrlearn.track.base.TrackResult`, decision W330: its ``steps`` with its
+    ``info["yaw_turns"]``; ``result.turns()`` adds its bouts): ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
     change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
     their difference, ``angle_deg`` the signed angle (left +), ``peak_rate_dps`` the largest rate of its heading with
     each row's change spread over that row's span, :func:`heading_crossings`' heading (decision L229; L200 took
@@ -552,6 +553,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     its yaw-rate turn's ``start_5_s`` / ``end_95_s`` (El-Gohary's boundaries where a record has none) and its
     ``mean_rate_dps`` the 5-95 % share of the angle over them, as under ``"heading"``. ``reversal`` / ``first_own``
     (decisions L368 / L369, None = the module defaults): :func:`_turn_spans`'s. The rows are in time order."""
+    if hasattr(steps, "steps") and hasattr(steps, "info"):  # decision W330: a TrackResult, with its yaw-rate turns
+        yaw_turns = steps.info.get("yaw_turns") if yaw_turns is None else yaw_turns
+        steps = steps.steps
     if timing is None:
         timing = "yaw" if yaw_turns is not None and TURN_YAW_TIMING else TURN_TIMING
     if timing not in (*TURN_TIMINGS, "yaw"):
