@@ -521,7 +521,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table (or of a :class:`~pdrlearn.track.base.TrackResult`, decision W330: its ``steps`` with its
     ``info["yaw_turns"]``; ``result.turns()`` adds its bouts): ``start_s`` / ``end_s`` the start of the first and
-    the end of the last row whose heading change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
+    the end of the last row whose heading change the turn's angle sums (a row's ``end_s``; the next row's ``start_s``
+    where it has none), ``duration_s``
     their difference, ``angle_deg`` the signed angle (left +), ``peak_rate_dps`` the largest rate of its heading with
     each row's change spread over that row's span, :func:`heading_crossings`' heading (decision L229; L200 took
     |heading change| / time between two rows' starts, the rate :data:`TURN_RATE_MIN_DPS` is judged on, and read
