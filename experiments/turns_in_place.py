@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from turns_transfers import med, true_turns  # noqa: E402
+from turns_transfers import match_truth_rows, med, true_turns  # noqa: E402
 
 from pdrlearn.sim import UserProfile, simulate_path  # noqa: E402
 from pdrlearn.sim.route import parse_route  # noqa: E402
@@ -67,23 +67,17 @@ def main(routes=ROUTES, configs=CONFIGS, knobs=None, rate_hz: float = 100.0) -> 
             res = track(s)
             for c, kw in configs.items():
                 tt = turn_table(res.steps, detected_bouts(res.steps), yaw_turns=res.info.get("yaw_turns"), **kw)
-                free = np.ones(len(tt), bool)
                 got = []
-                for ta, tb, g in truth:
-                    ov = np.flatnonzero(free & (tt["start_s"].to_numpy(float) <= tb)
-                                        & (tt["end_s"].to_numpy(float) >= ta)) if len(tt) else np.zeros(0, int)
-                    if not ov.size:
+                matched, n_extra = match_truth_rows(tt, truth)
+                for (ta, tb, g), (r, ok) in zip(truth, matched, strict=True):
+                    if r is None:
                         err[(n, c)].append((u % 4, round(g, -1), 0.0, np.nan, np.nan))
                         got.append("-")
                         continue
-                    k = int(ov[int(np.argmax(tt["angle_deg"].abs().to_numpy()[ov]))])
-                    free[k] = False
-                    r = tt.iloc[k]
-                    ok = float(np.sign(r.angle_deg) == np.sign(g) and abs(r.angle_deg - g) < 90.0)
                     err[(n, c)].append((u % 4, round(g, -1), ok, r.angle_deg - g, r.duration_s - (tb - ta)))
                     got.append(f"{r.start_s:.2f}-{r.end_s:.2f} s {r.angle_deg:+.1f}")
-                extra[(n, c, u % 4)] += int(free.sum())
-                print(f"  {n} [{c}]: {len(tt)} row(s), {int(free.sum())} extra; " + "; ".join(got), flush=True)
+                extra[(n, c, u % 4)] += n_extra
+                print(f"  {n} [{c}]: {len(tt)} row(s), {n_extra} extra; " + "; ".join(got), flush=True)
     print("\nTURNS (found: sign and |angle error| < 90 deg; median |angle error| (signed) and duration error of "
           "the found)")
     for (n, c), e in err.items():

@@ -116,6 +116,26 @@ def true_turns(session, route: str) -> list[tuple[float, float, float]]:
     return [(float(t[i0]), float(t[i1]), float(hs[cut[j + 1]] - hs[cut[j]])) for j, (i0, i1) in enumerate(spans)]
 
 
+def match_truth_rows(tt: pd.DataFrame, truth) -> tuple[list, int]:
+    """Decision L255's matching: per truth turn ``(start, end, angle)`` the turns.csv row of largest |angle| that
+    overlaps it and no earlier truth turn took (None without one) and whether it is found (its sign and |angle error|
+    < 90 deg: 1.0 / 0.0); and the number of rows no truth turn took (the extra rows). Shared with
+    ``experiments/turns_in_place.py``."""
+    free = np.ones(len(tt), bool)
+    out = []
+    for ta, tb, g in truth:
+        ov = np.flatnonzero(free & (tt["start_s"].to_numpy(float) <= tb)
+                            & (tt["end_s"].to_numpy(float) >= ta)) if len(tt) else np.zeros(0, int)
+        if not ov.size:
+            out.append((None, 0.0))
+            continue
+        k = int(ov[int(np.argmax(tt["angle_deg"].abs().to_numpy()[ov]))])
+        free[k] = False
+        r = tt.iloc[k]
+        out.append((r, float(np.sign(r.angle_deg) == np.sign(g) and abs(r.angle_deg - g) < 90.0)))
+    return out, int(free.sum())
+
+
 def med(x) -> str:
     x = np.asarray([v for v in x if np.isfinite(v)], float)
     return f"{np.median(x):+.2f}" if x.size else "n/a"
@@ -317,24 +337,18 @@ def sim255() -> None:
                 for c, kw in CONFIGS255.items():
                     tt = turn_table(res.steps, detected_bouts(res.steps), timing="yaw",
                                     yaw_turns=res.info.get("yaw_turns"), **kw)
-                    free = np.ones(len(tt), bool)
                     got = []
-                    for ta, tb, g in truth:
-                        ov = np.flatnonzero(free & (tt["start_s"].to_numpy(float) <= tb)
-                                            & (tt["end_s"].to_numpy(float) >= ta)) if len(tt) else np.zeros(0, int)
-                        if not ov.size:
+                    matched, n_extra = match_truth_rows(tt, truth)
+                    for (ta, tb, g), (r, ok) in zip(truth, matched, strict=True):
+                        if r is None:
                             err[(n, c)].append((round(g, -1), 0.0) + (np.nan,) * 4)
                             got.append("-")
                             continue
-                        k = int(ov[int(np.argmax(tt["angle_deg"].abs().to_numpy()[ov]))])
-                        free[k] = False
-                        r = tt.iloc[k]
-                        ok = float(np.sign(r.angle_deg) == np.sign(g) and abs(r.angle_deg - g) < 90.0)
                         err[(n, c)].append((round(g, -1), ok, r.angle_deg - g, r.start_s - ta, r.end_s - tb,
                                             r.duration_s - (tb - ta)))
                         got.append(f"{r.start_s:.2f}-{r.end_s:.2f} s {r.angle_deg:+.1f} n_rows {r.n_rows}")
-                    extra[(n, c)] += int(free.sum())
-                    line.append(f"  {n} [{c}]: {len(tt)} row(s), {int(free.sum())} extra; " + "; ".join(got))
+                    extra[(n, c)] += n_extra
+                    line.append(f"  {n} [{c}]: {len(tt)} row(s), {n_extra} extra; " + "; ".join(got))
             print("\n".join(line), flush=True)
     print("\nTURNS (each truth turn's overlapping row; median |error| (signed median) of the found):")
     for (n, c), e in err.items():
