@@ -12,10 +12,12 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_transf
      ... experiments/turns_transfers.py real255 # L255 on the mobgap turns
      ... experiments/turns_transfers.py sim345  # decision L345: users 6590-6619, El-Gohary vs 5-95 % yaw times
      ... experiments/turns_transfers.py real345 # L345 on the mobgap turns (rows chosen under today's timing)
+     ... experiments/turns_transfers.py real_w328 # decision W328 on the mobgap turns (yaw cut and yaw-rate angle)
 Output: experiments/results/turns_transfers_sim.txt, turns_transfers_real.txt (the printed lines); L208 / L209:
 turns_timing_sim.txt, turns_timing_real.txt (``real`` prints both timings since L208); L210 / L211:
 turns_yaw_sim.txt, turns_yaw_real.txt; L231-L236: turns_yaw2_sim.txt, turns_yaw2_real.txt; L255 / L256:
-turns_whole_sim.txt, turns_whole_real.txt; L345 / L346: turns_frac_sim.txt, turns_frac_real.txt
+turns_whole_sim.txt, turns_whole_real.txt; L345 / L346: turns_frac_sim.txt, turns_frac_real.txt; W328:
+turns_w328_real.txt
 
 Simulated truth. A turn: the route's one turn; its truth start / end are where the waist unit's true heading
 (trajectory.csv ``heading_rad``, unwrapped, a 1 s moving mean: one stride's pelvis rotation averaged out) has gone
@@ -112,6 +114,26 @@ def true_turns(session, route: str) -> list[tuple[float, float, float]]:
     t, hs, spans = turn_span_indices(session.trajectory, route)
     cut = [0] + [(spans[j][1] + spans[j + 1][0]) // 2 for j in range(len(spans) - 1)] + [len(hs) - 1]
     return [(float(t[i0]), float(t[i1]), float(hs[cut[j + 1]] - hs[cut[j]])) for j, (i0, i1) in enumerate(spans)]
+
+
+def match_truth_rows(tt: pd.DataFrame, truth) -> tuple[list, int]:
+    """Decision L255's matching: per truth turn ``(start, end, angle)`` the turns.csv row of largest |angle| that
+    overlaps it and no earlier truth turn took (None without one) and whether it is found (its sign and |angle error|
+    < 90 deg: 1.0 / 0.0); and the number of rows no truth turn took (the extra rows). Shared with
+    ``experiments/turns_in_place.py``."""
+    free = np.ones(len(tt), bool)
+    out = []
+    for ta, tb, g in truth:
+        ov = np.flatnonzero(free & (tt["start_s"].to_numpy(float) <= tb)
+                            & (tt["end_s"].to_numpy(float) >= ta)) if len(tt) else np.zeros(0, int)
+        if not ov.size:
+            out.append((None, 0.0))
+            continue
+        k = int(ov[int(np.argmax(tt["angle_deg"].abs().to_numpy()[ov]))])
+        free[k] = False
+        r = tt.iloc[k]
+        out.append((r, float(np.sign(r.angle_deg) == np.sign(g) and abs(r.angle_deg - g) < 90.0)))
+    return out, int(free.sum())
 
 
 def med(x) -> str:
@@ -315,24 +337,18 @@ def sim255() -> None:
                 for c, kw in CONFIGS255.items():
                     tt = turn_table(res.steps, detected_bouts(res.steps), timing="yaw",
                                     yaw_turns=res.info.get("yaw_turns"), **kw)
-                    free = np.ones(len(tt), bool)
                     got = []
-                    for ta, tb, g in truth:
-                        ov = np.flatnonzero(free & (tt["start_s"].to_numpy(float) <= tb)
-                                            & (tt["end_s"].to_numpy(float) >= ta)) if len(tt) else np.zeros(0, int)
-                        if not ov.size:
+                    matched, n_extra = match_truth_rows(tt, truth)
+                    for (ta, tb, g), (r, ok) in zip(truth, matched, strict=True):
+                        if r is None:
                             err[(n, c)].append((round(g, -1), 0.0) + (np.nan,) * 4)
                             got.append("-")
                             continue
-                        k = int(ov[int(np.argmax(tt["angle_deg"].abs().to_numpy()[ov]))])
-                        free[k] = False
-                        r = tt.iloc[k]
-                        ok = float(np.sign(r.angle_deg) == np.sign(g) and abs(r.angle_deg - g) < 90.0)
                         err[(n, c)].append((round(g, -1), ok, r.angle_deg - g, r.start_s - ta, r.end_s - tb,
                                             r.duration_s - (tb - ta)))
                         got.append(f"{r.start_s:.2f}-{r.end_s:.2f} s {r.angle_deg:+.1f} n_rows {r.n_rows}")
-                    extra[(n, c)] += int(free.sum())
-                    line.append(f"  {n} [{c}]: {len(tt)} row(s), {int(free.sum())} extra; " + "; ".join(got))
+                    extra[(n, c)] += n_extra
+                    line.append(f"  {n} [{c}]: {len(tt)} row(s), {n_extra} extra; " + "; ".join(got))
             print("\n".join(line), flush=True)
     print("\nTURNS (each truth turn's overlapping row; median |error| (signed median) of the found):")
     for (n, c), e in err.items():
@@ -346,6 +362,12 @@ def sim255() -> None:
     for n in names:  # decision L255's rule (b): a truth turn found today and not by the candidate
         a, b = (np.array(err[(n, c)], float)[:, 1] for c in CONFIGS255)
         print(f"{n}: turns lost {int(((a == 1) & (b == 0)).sum())}, gained {int(((a == 0) & (b == 1)).sum())}")
+
+
+def real_w328() -> None:
+    """Decision W328 on the mobgap turns (:func:`real231`): today's table against L370's yaw cut with the yaw-rate
+    turn's angle."""
+    real231({"today": {"yaw_split": False, "yaw_angle": False}, "W328": {"yaw_split": True, "yaw_angle": True}})
 
 
 def real255() -> None:
@@ -512,5 +534,5 @@ def real345() -> None:
 
 if __name__ == "__main__":
     {"sim": sim, "sim28": sim28, "real": real, "sim210": sim210, "real210": real210, "sim231": sim231,
-     "real231": real231, "sim255": sim255, "real255": real255,
+     "real231": real231, "sim255": sim255, "real255": real255, "real_w328": real_w328,
      "sim345": sim345, "real345": real345}[sys.argv[1]]()

@@ -458,9 +458,14 @@ TURNS: tuple[Column, ...] = (
     ("end_s", "s", "number", "where that heading has gone 95 % of the angle (L208, L209); a lower-back turn matched by "
                              "a yaw-rate turn: its end, first sample under 5 deg/s after it (L210, L211)"),
     ("duration_s", "s", "number", "end_s - start_s; a lower-back turn timed by its yaw rate reads longer than its "
-                                  "5-95 % turn: about +1 s on a 180 deg turn, +0.65 s on a 90 deg one (L346)"),
+                                  "5-95 % turn: about +1 s on a 180 deg turn, +0.65 s on a 90 deg one (L346), +1.4 s "
+                                  "on a 360 deg turn on the spot (W328: +1.40 s waist-pendulum, 20 simulated turns); a "
+                                  "foot turn on the spot about +0.25 s (L371)"),
     ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181); "
-                                   "a lower-back turn with the whole turns its yaw-rate turn shows (L231, L232)"),
+                                   "a lower-back turn matched by a yaw-rate turn: that turn's angle, the yaw rate "
+                                   "integrated over it (W328; L231's whole turns before); a turn ends where the "
+                                   "heading turns the other way (foot, L371) or between two opposite yaw-rate turns "
+                                   "(lower back, W328)"),
     ("peak_rate_dps", "deg/s", "number", "largest rate of the turn's heading with each row's change spread over "
                                          "that row's span, the heading start_s / end_s are read on (L229; a "
                                          "foot turn's mean rate is never above it); a lower-back turn timed by its "

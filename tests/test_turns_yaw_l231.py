@@ -32,7 +32,7 @@ def _table(change_deg: float):
 def test_a_turn_between_two_contacts_takes_its_yaw_rate_branch():
     st, yaw = _table(181.8), _yaw((6.3, 9.0, 7.6, 180.0, 101.0))
     assert clinical.TURN_YAW_BRANCH is True  # L232
-    tt = turn_table(st, yaw_turns=yaw)
+    tt = turn_table(st, yaw_turns=yaw, yaw_angle=False)  # W328 off: L231's step-heading angle
     assert len(tt) == 1 and tt.loc[0, "angle_deg"] == pytest.approx(181.8)
     assert tt.loc[0, ["start_s", "end_s"]].tolist() == pytest.approx([6.3, 9.0])  # L210: timed by it
     # L211's reading (the option branch=False): the nearest branch, -178.2 deg, unmatched, L208's late times
@@ -41,12 +41,12 @@ def test_a_turn_between_two_contacts_takes_its_yaw_rate_branch():
     # a 360 deg turn wraps to ~0: no step-heading turn to resolve (L233's case; L255's row, whole=False without it); a
     # same-sign match has no shift
     assert turn_table(_table(360.0), yaw_turns=_yaw((6.3, 9.0, 7.6, 360.0, 120.0)), whole=False).empty
-    same = turn_table(_table(90.0), yaw_turns=_yaw((6.3, 9.0, 7.6, 95.0, 60.0)))
+    same = turn_table(_table(90.0), yaw_turns=_yaw((6.3, 9.0, 7.6, 95.0, 60.0)), yaw_angle=False)
     assert same.loc[0, "angle_deg"] == pytest.approx(90.0)
     # a shift can bring a small step-heading turn over min_deg: -60 deg read for +300 deg
     assert turn_table(_table(300.0), yaw_turns=[], branch=False, min_deg=45).loc[0, "angle_deg"] == pytest.approx(-60)
     assert turn_table(_table(300.0), yaw_turns=[], branch=False).empty
-    big = turn_table(_table(300.0), yaw_turns=_yaw((6.3, 9.0, 7.6, 298.0, 120.0)))
+    big = turn_table(_table(300.0), yaw_turns=_yaw((6.3, 9.0, 7.6, 298.0, 120.0)), yaw_angle=False)
     assert len(big) == 1 and big.loc[0, "angle_deg"] == pytest.approx(300.0)
     # foot tables and tables without yaw-rate turns do not change
     pd.testing.assert_frame_equal(turn_table(st), turn_table(st, timing="heading"))
@@ -67,7 +67,7 @@ def test_yaw_only_turns_are_an_option():
     # a yaw-rate turn overlapping a counted turn's rows is that turn's timing, not a second row; rows in time order
     st2 = _table(90.0)
     yaw2 = _yaw((1.0, 2.5, 1.8, -100.0, 80.0), (6.3, 9.0, 7.6, 92.0, 60.0))
-    tt2 = turn_table(st2, yaw_turns=yaw2, yaw_only=True)
+    tt2 = turn_table(st2, yaw_turns=yaw2, yaw_only=True, yaw_angle=False)
     assert tt2["angle_deg"].tolist() == pytest.approx([-100.0, 90.0]) and tt2["turn"].tolist() == [1, 2]
     assert tt2["n_rows"].tolist() == [0, 1]
 

@@ -66,10 +66,11 @@ def test_yaw_timing_takes_the_matching_yaw_rate_turn():
     assert head.loc[0, "start_s"] > 9.5  # L208: after the turn (on the first step after it)
     # two candidates: the larger one times the turn; one peaking after the rows and one of the other sign do not
     yaw = _yaw((6.3, 8.7, 7.5, 88.0), (6.0, 6.6, 6.3, 50.0), (11.0, 12.0, 11.5, 95.0), (6.2, 8.8, 7.4, -120.0))
-    tt = turn_table(st, timing="yaw", yaw_turns=yaw, branch=False)  # L210's same-sign match
+    # W328 off (yaw_angle=False): these pin L210 / L231's step-heading angle
+    tt = turn_table(st, timing="yaw", yaw_turns=yaw, branch=False, yaw_angle=False)  # L210's same-sign match
     # decision L231 (default since L232): the -120 deg turn is admissible too, on the -270 deg branch (nearer -120
     # than +90 is), and the larger: it times the turn and gives it that branch
-    l231 = turn_table(st, timing="yaw", yaw_turns=yaw)
+    l231 = turn_table(st, timing="yaw", yaw_turns=yaw, yaw_angle=False)
     assert l231.loc[0, ["start_s", "end_s", "angle_deg"]].tolist() == pytest.approx([6.2, 8.8, -270.0])
     assert tt.loc[0, ["start_s", "end_s", "duration_s"]].tolist() == pytest.approx([6.3, 8.7, 2.4])
     assert tt.loc[0, "mean_rate_dps"] == pytest.approx(90.0 / 2.4)  # the whole angle: the boundaries hold it

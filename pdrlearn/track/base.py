@@ -48,6 +48,17 @@ class TrackResult:
     def distance_m(self) -> float:
         return float(self.steps["length_m"].abs().sum()) if len(self.steps) else 0.0
 
+    def turns(self, bouts: pd.DataFrame | None = None) -> pd.DataFrame:
+        """Decision W330: this track's turns.csv (:func:`pdrlearn.track.clinical.turn_table`) as ``pdrlearn track``
+        writes it: a lower-back track's turns timed, split and angled by its yaw-rate turns (``info["yaw_turns"]``,
+        L210, W328), which ``turn_table(result.steps)`` alone does not see; ``bout`` numbered by ``bouts`` (None: the
+        track's detected bouts, :func:`pdrlearn.track.bouts.detected_bouts`)."""
+        from pdrlearn.track.bouts import detected_bouts
+        from pdrlearn.track.clinical import turn_table
+
+        return turn_table(self.steps, detected_bouts(self.steps) if bouts is None else bouts,
+                          yaw_turns=self.info.get("yaw_turns"))
+
     def summary(self, session, *, pipeline: str | None = None) -> dict:
         """The dict ``pdrlearn track`` writes as ``summary.json`` for this track of ``session``: distance,
         errors against the session's ground truth (``distance_error_pct``, ...), gait speed and cadence

@@ -69,6 +69,21 @@ TURN_RATE_MIN_DPS = 15.0
 TURN_EDGES = True
 #: ``turn_count`` counts turns of at least this angle (deg)
 TURN_COUNT_MIN_DEG = 80.0
+#: decision L368: a turn's run of turning intervals ends before an interval turning :data:`PAUSE_MAX_TURN_DEG` or
+#: more against the turn's direction (a turn has one direction: El-Gohary et al. 2014, mobgap ``TdElGohary``, merge
+#: only same-direction candidates); False = L104's runs, which summed two opposite turns on the spot into one. Not
+#: adopted on every table (users 7140-7159: waist-pll's extra rows 0 -> 1, TUG / corners |angle error| 24.61 ->
+#: 37.81 deg): an option; L370 / L371 keep it on the foot
+TURN_SPLIT_REVERSAL = False
+#: decision L370: L368's cut on a foot table (its heading the strides' own turns, :func:`_own_turns`), and a
+#: lower-back run cut between two consecutive opposite yaw-rate turns (:func:`opposite_yaw_cuts`, El-Gohary 2014);
+#: L371: the foot's part adopted (users 7140-7159, 20 Hz: plasys 360 deg turns found 0/20 -> 20/20, none lost, no
+#: extra row); W328: the yaw cut adopted with the yaw-rate angle (:data:`TURN_YAW_ANGLE`)
+TURN_SPLIT_FOOT = True
+TURN_SPLIT_YAW = True
+#: decision L369: a foot table's first row's own turn is an interval of its turns (a rest row before it); False = the
+#: first stride's own turn is in no turn (a turn on the spot from standing lost its first stride); adopted with L371
+TURN_FIRST_OWN = True
 #: ``stride_time_cv_pct`` needs at least this many straight strides with a stride time
 CV_MIN_STRIDES = 10
 
@@ -197,18 +212,27 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
     return excess, pair & (excess >= min_s)
 
 
-def unwrapped_heading(steps: pd.DataFrame) -> np.ndarray:
-    """Unwrapped heading (rad) of each row, time order: a foot table's summed ``turn_angle_rad`` when every
-    valid row has one (a streamed table's plus its ``pivot_rad``, the turn between strides, decision L106), else
-    ``heading_rad``. Shared by the turn and pause rules here and :mod:`pdrlearn.track.gait`'s walking time (L194),
-    so that they all see the same heading."""
+def _own_turns(steps: pd.DataFrame) -> np.ndarray | None:
+    """(N,) a foot table's strides' own turns (rad, L104: ``turn_angle_rad`` plus a streamed row's ``pivot_rad``,
+    L106; 0 on an invalid row) when every valid row has one, else None (the heading is ``heading_rad``)."""
     if "turn_angle_rad" in steps and "unit" in steps and (steps["unit"] == "foot").all():
         turn = steps["turn_angle_rad"].to_numpy(float)
         if "pivot_rad" in steps:  # L106: a streamed stride's own turn leaves out the pivot before it (E51)
             turn = turn + steps["pivot_rad"].to_numpy(float)
         ok = _valid(steps)
         if ok.any() and np.isfinite(turn[ok]).all():
-            return np.cumsum(np.where(ok, turn, 0.0))
+            return np.where(ok, turn, 0.0)
+    return None
+
+
+def unwrapped_heading(steps: pd.DataFrame) -> np.ndarray:
+    """Unwrapped heading (rad) of each row, time order: a foot table's summed ``turn_angle_rad`` when every
+    valid row has one (a streamed table's plus its ``pivot_rad``, the turn between strides, decision L106), else
+    ``heading_rad``. Shared by the turn and pause rules here and :mod:`pdrlearn.track.gait`'s walking time (L194),
+    so that they all see the same heading."""
+    turn = _own_turns(steps)
+    if turn is not None:
+        return np.cumsum(turn)
     return np.unwrap(steps["heading_rad"].to_numpy(float))
 
 
@@ -223,19 +247,88 @@ def turn_rows(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
     turning interval - the row a per-bout table (decision L124) counts the turn in. ``edges`` (decision L181): a
     turn's angle also sums the interval just before and just after its turning intervals when that interval is
     valid, turns the same way and belongs to no other turn."""
-    spans = _turn_spans(steps, min_rate_dps=min_rate_dps, edges=edges)[1]
+    st, spans = _turn_spans(steps, min_rate_dps=min_rate_dps, edges=edges)
+    lead = int(bool(len(st)) and bool(st["_lead"].iloc[0])) if "_lead" in st else 0  # decision L369's rest row
     return (np.asarray([s[0] for s in spans], dtype=float),
-            np.asarray([s[1] + 1 for s in spans], dtype=int))
+            np.asarray([s[1] + 1 - lead for s in spans], dtype=int))
 
 
-def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = TURN_EDGES
-                ) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
+def _with_lead_row(st: pd.DataFrame) -> pd.DataFrame:
+    """Decision L369: a foot table (rows in ``start_s`` order, :func:`_own_turns`) with a rest row before its first
+    row - no own turn, its heading the one before the first stride, its start one first-row span earlier (that row's
+    ``end_s`` - ``start_s``, else the next row's start) - so that the first stride's own turn is the interval from it
+    (``_lead`` True on that row); the table itself without a first row's own turn or of fewer than one row."""
+    if not len(st) or _own_turns(st) is None:
+        return st
+    first = st.iloc[0]
+    t0 = float(first["start_s"])
+    t1 = float(first["end_s"]) if "end_s" in st and np.isfinite(first["end_s"]) else math.nan
+    if not t1 > t0:
+        t1 = float(st["start_s"].iloc[1]) if len(st) > 1 else math.nan
+    if not (t1 > t0 and _valid(st)[0]):
+        return st
+    lead = first.copy()
+    lead["start_s"], lead["end_s"], lead["turn_angle_rad"] = t0 - (t1 - t0), t0, 0.0
+    if "pivot_rad" in st:
+        lead["pivot_rad"] = 0.0
+    lead["heading_rad"] = float(first["heading_rad"]) - float(_own_turns(st)[0])
+    out = pd.concat([lead.to_frame().T.astype(st.dtypes.to_dict(), errors="ignore"), st], ignore_index=True)
+    out["_lead"] = np.r_[True, np.zeros(len(st), bool)]
+    return out
+
+
+def split_reversals(dh: np.ndarray, a: int, b: int, min_deg: float = PAUSE_MAX_TURN_DEG) -> list[tuple[int, int]]:
+    """Decision L368: the turning run ``[a, b)`` of heading changes ``dh`` (deg) cut before each interval whose
+    change is at least ``min_deg`` against the turn's direction (the sign of its last such interval): each part
+    turns one way; a smaller opposite change stays in its turn."""
+    out, start, sign = [], a, 0.0
+    for i in range(a, b):
+        if np.isfinite(dh[i]) and abs(dh[i]) >= min_deg:
+            if sign and np.sign(dh[i]) != sign:
+                out.append((start, i))
+                start = i
+            sign = float(np.sign(dh[i]))
+    out.append((start, b))
+    return out
+
+
+def opposite_yaw_cuts(yaw_turns) -> np.ndarray:
+    """Decision L370: the times (s) between each two consecutive yaw-rate turns (records with ``start_s``,
+    ``end_s``, ``angle_deg``: a track's ``info["yaw_turns"]``, L210) of opposite sign - the middle of the first's end
+    and the second's start (El-Gohary 2014: a turn ends where the low-passed rate falls under 5 deg/s)."""
+    yaw = sorted(list(yaw_turns or []), key=lambda r: r["start_s"])
+    return np.asarray([0.5 * (p["end_s"] + q["start_s"]) for p, q in zip(yaw[:-1], yaw[1:], strict=True)
+                       if p["angle_deg"] * q["angle_deg"] < 0], dtype=float)
+
+
+def _cut_at_times(t: np.ndarray, a: int, b: int, cut_s: np.ndarray) -> list[tuple[int, int]]:
+    """Decision L370: the run ``[a, b)`` of intervals (interval i from row time ``t[i]`` to ``t[i + 1]``) cut before
+    each interval after its first that spans one of ``cut_s`` (``t[i] <= c < t[i + 1]``)."""
+    cuts = sorted({i for c in cut_s for i in range(a + 1, b) if t[i] <= c < t[i + 1]})
+    edges = [a, *cuts, b]
+    return list(zip(edges[:-1], edges[1:], strict=True))
+
+
+def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = TURN_EDGES,
+                reversal: bool | None = None, first_own: bool | None = None, foot_split: bool | None = None,
+                cut_s=None) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
     """The table in ``start_s`` order and each turn's ``(angle deg, a, b, first, last)``: its turning intervals
     ``[a, b)`` of the row-to-row heading changes (interval i runs from row i to row i + 1) and ``[first, last)``
-    the intervals summed into its angle (``a``/``b`` widened by L181's edges)."""
+    the intervals summed into its angle (``a``/``b`` widened by L181's edges). ``reversal`` (decision L368, None =
+    :data:`TURN_SPLIT_REVERSAL`): a run ends where the heading turns the other way (:func:`split_reversals`);
+    ``first_own`` (decision L369, None = :data:`TURN_FIRST_OWN`): a foot table's returned table starts with a rest
+    row (``_lead`` True, :func:`_with_lead_row`) so that its first stride's own turn is an interval; ``foot_split``
+    (decision L370, None = :data:`TURN_SPLIT_FOOT`): ``reversal`` on a foot table whose heading is its strides' own
+    turns; ``cut_s`` (L370): times (s) a run is cut at (:func:`opposite_yaw_cuts`, :func:`_cut_at_times`)."""
     if len(steps) < 2 or "heading_rad" not in steps:
         return steps, []
+    reversal = TURN_SPLIT_REVERSAL if reversal is None else bool(reversal)
+    if TURN_SPLIT_FOOT if foot_split is None else foot_split:  # decision L370: the foot's own yaw
+        reversal = reversal or _own_turns(steps) is not None
+    first_own = TURN_FIRST_OWN if first_own is None else bool(first_own)
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    if first_own:
+        st = _with_lead_row(st)
     h = np.degrees(unwrapped_heading(st))
     t = st["start_s"].to_numpy(float)
     ok = _valid(st)
@@ -251,7 +344,8 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
         if on and a is None:
             a = i
         elif not on and a is not None:
-            runs.append((a, i))
+            parts = _cut_at_times(t, a, i, np.asarray(cut_s, float)) if cut_s is not None else [(a, i)]  # L370
+            runs += [r for p in parts for r in (split_reversals(dh, *p) if reversal else [p])]  # decision L368
             a = None
     free = ok[:-1] & ok[1:] & np.isfinite(dh) & ~turning  # decision L181: an interval a turn may take in
     out = []
@@ -356,6 +450,11 @@ TURN_YAW_WHOLE = True
 #: TURN_TIMING_FRACTIONS of its change (the yaw records' ``start_5_s`` / ``end_95_s``), not at El-Gohary's 5 deg/s
 #: boundaries, which hold the 0.5 Hz filter's tails (trial s32 finding 3: +1.1 s); results L346
 TURN_YAW_FRACTIONS = False
+#: decision W328: a yaw-timed lower-back turn's angle is its yaw-rate turn's (El-Gohary 2014: the yaw rate integrated
+#: over the turn), not its rows' step heading shifted by whole turns (L231); adopted (users 7140-7159, 20 Hz: 360 deg
+#: turns found waist-pendulum 16/20 -> 20/20, waist-pll 15/20 -> 20/20, TUG / corners |angle error| 3.96 -> 0.17 /
+#: 16.72 -> 0.17 deg, none lost; mobgap Test11 INDIP turns >= 80 deg overlapped 11 -> 15 / 4 -> 13 of 15)
+TURN_YAW_ANGLE = True
 
 
 def whole_turns(yaw_deg, step_deg: float):
@@ -416,10 +515,14 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None,
                yaw_turns=None, branch: bool | None = None, yaw_only: bool | None = None,
                yaw_peak: bool | None = None, whole: bool | None = None,
-               yaw_fractions: bool | None = None) -> pd.DataFrame:
+               yaw_fractions: bool | None = None, reversal: bool | None = None,
+               first_own: bool | None = None, foot_split: bool | None = None,
+               yaw_split: bool | None = None, yaw_angle: bool | None = None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
-    tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
-    change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
+    tracked step table (or of a :class:`~pdrlearn.track.base.TrackResult`, decision W330: its ``steps`` with its
+    ``info["yaw_turns"]``; ``result.turns()`` adds its bouts): ``start_s`` / ``end_s`` the start of the first and
+    the end of the last row whose heading change the turn's angle sums (a row's ``end_s``; the next row's ``start_s``
+    where it has none), ``duration_s``
     their difference, ``angle_deg`` the signed angle (left +), ``peak_rate_dps`` the largest rate of its heading with
     each row's change spread over that row's span, :func:`heading_crossings`' heading (decision L229; L200 took
     |heading change| / time between two rows' starts, the rate :data:`TURN_RATE_MIN_DPS` is judged on, and read
@@ -449,7 +552,11 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     (:func:`rows_heading_change`) is on another branch (:func:`whole_turns` not 0: a full turn on the spot whose
     steps were missed); ``yaw_fractions`` (L345, :data:`TURN_YAW_FRACTIONS`) a yaw-timed or yaw-only row's times are
     its yaw-rate turn's ``start_5_s`` / ``end_95_s`` (El-Gohary's boundaries where a record has none) and its
-    ``mean_rate_dps`` the 5-95 % share of the angle over them, as under ``"heading"``. The rows are in time order."""
+    ``mean_rate_dps`` the 5-95 % share of the angle over them, as under ``"heading"``. ``reversal`` / ``first_own``
+    (decisions L368 / L369, None = the module defaults): :func:`_turn_spans`'s. The rows are in time order."""
+    if hasattr(steps, "steps") and hasattr(steps, "info"):  # decision W330: a TrackResult, with its yaw-rate turns
+        yaw_turns = steps.info.get("yaw_turns") if yaw_turns is None else yaw_turns
+        steps = steps.steps
     if timing is None:
         timing = "yaw" if yaw_turns is not None and TURN_YAW_TIMING else TURN_TIMING
     if timing not in (*TURN_TIMINGS, "yaw"):
@@ -466,7 +573,10 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         t_on = yaw["start_5_s"].where(yaw["start_5_s"].notna(), yaw["start_s"]) if fractions else yaw["start_s"]
         t_off = yaw["end_95_s"].where(yaw["end_95_s"].notna(), yaw["end_s"]) if fractions else yaw["end_s"]
         yaw = yaw.assign(t_on=t_on.astype(float), t_off=t_off.astype(float))
-    st, spans = _turn_spans(steps)
+    yaw_split = TURN_SPLIT_YAW if yaw_split is None else bool(yaw_split)
+    yaw_angle = TURN_YAW_ANGLE if yaw_angle is None else bool(yaw_angle)
+    cut_s = opposite_yaw_cuts(yaw.to_dict("records")) if yaw_split and yaw is not None else None  # decision L370
+    st, spans = _turn_spans(steps, reversal=reversal, first_own=first_own, foot_split=foot_split, cut_s=cut_s)
     rows, claimed = [], []  # claimed: the counted turns' row spans (decision L233)
     b_lo, b_hi, b_no = (np.zeros(0),) * 3
     if bouts is not None and len(bouts):
@@ -489,8 +599,11 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         for angle, a, b, first, last in spans:
             lo, hi = float(t[first]), float(span_end[last])  # decision L210's match window
             match = yaw_turn_match(lo, hi, angle, yaw, branch=branch)
+            rows_angle = angle  # the rows' own heading change (what L208's crossings spread)
             if match is not None:  # decision L231: the whole turns the wrapped step heading lost (0 without it)
                 angle += match[1]
+                if yaw_angle:  # decision W328: El-Gohary's angle, the yaw rate integrated over the turn
+                    angle = float(yaw["angle_deg"].iloc[match[0]])
             if abs(angle) < min_deg:
                 continue
             claimed.append((lo, hi))
@@ -502,8 +615,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if timing != "rows" else 1.0
             if timing != "rows":  # decision L208: interval j's change spread over row j + 1's span
                 j = np.arange(first, last)
-                t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], angle - (
-                    match[1] if match is not None else 0.0), TURN_TIMING_FRACTIONS)
+                t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], rows_angle,
+                                           TURN_TIMING_FRACTIONS)
             if match is not None:  # decision L210
                 # decision L345: its 5-95 % times when TURN_YAW_FRACTIONS, else El-Gohary's boundaries
                 (t0, t1), share = (float(yaw["t_on"].iloc[match[0]]), float(yaw["t_off"].iloc[match[0]])), yaw_share

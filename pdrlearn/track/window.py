@@ -6,7 +6,9 @@ and the track is then cut: a step (a stride of the tracked foot, a step on the l
 window when its midpoint lies inside (the accounting rule of the lower-back evaluation and calibration, W21:
 strides across either edge count once, on the side of their larger part). The session's references are cut by
 the same rule (labelled strides by their midpoint, initial contacts by their time, reference bouts and turns
-only when wholly inside), so the summary's errors compare the window with the window.
+only when wholly inside), so the summary's errors compare the window with the window. A lower-back track's yaw-rate
+turns (``info["yaw_turns"]``, L210) are cut by the steps' rule, their midpoint (decision W329), so turns.csv and the
+turn summary keys hold the window's turns only.
 """
 
 from __future__ import annotations
@@ -170,6 +172,8 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
     # decision W182: the chair transfers wholly inside; decision L272: the freezes clipped to the window
     info["transfers"] = window_episodes(info.get("transfers"), t0, t1, clip=False)
     info["freezes"] = window_episodes(info["freezes"], t0, t1, clip=True)
+    if info.get("yaw_turns") is not None:  # decision W329: a yaw-rate turn counts on the side of its larger part
+        info["yaw_turns"] = [r for r in info["yaw_turns"] if t0 <= 0.5 * (r["start_s"] + r["end_s"]) <= t1]
     if info["transfers"] is None and "transfers" not in result.info:
         del info["transfers"]
     if warnings:
