@@ -185,6 +185,9 @@ SESSIONS: tuple[Column, ...] = (
                                                    "(L326); empty without one or on the lower back"),
     ("n_cv_strides", "count", "integer", "steady straight level forward strides stride_time_cv_pct and "
                                          "stride_length_cv_pct are computed over (L104, L212)"),
+    ("n_cv_segments", "count", "integer", "foot: straight stretches (runs of 5 or more consecutive CV strides "
+                                          "between turns and stops) stride_length_cv_within_segments_pct is "
+                                          "taken over (L380)"),
     ("n_detected", "count", "integer", "lower back: detected contacts scored"),
     ("n_pauses", "count", "integer", "stands of about 1 s or more inside the walk (L104)"),
     ("n_reference", "count", "integer", "lower back: reference contacts"),
@@ -248,6 +251,9 @@ SESSIONS: tuple[Column, ...] = (
     ("stride_length_cv_pct", "%", "number", "foot: 100 x SD / mean of the lengths of the strides of "
                                             "stride_time_cv_pct (L212; given with 10 of them, even when L113 "
                                             "withholds the time CV); empty on the lower back"),
+    ("stride_length_cv_within_segments_pct", "%", "number", "foot: the CV strides' lengths about their own "
+                                                            "straight stretch's mean (L380); stride_length_cv_pct "
+                                                            "over twice this warns that it pools a change of pace"),
     ("stride_length_mae_m", "m", "number", "mean absolute stride length error"),
     ("stride_length_mae_pct", "%", "number", "mean over the pairs of 100 x |error| / reference length (each stride "
                                              "weighted alike, not mean |error| / mean reference; L252); foot: every "

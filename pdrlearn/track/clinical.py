@@ -35,7 +35,8 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   (the strides into and out of a turn or a stop slow down; a stride time across a short stop is no rhythm);
   None with fewer than :data:`CV_MIN_STRIDES` of them. None on the lower back: its contacts scatter (on
   simulated straight walks whose true CV is 1.7-2.1 % it gave 6.2-9.7 %). ``stride_time_cv_withheld`` says why
-  (decisions L214, L215). ``stride_length_cv_pct`` (decision L212): the same strides' lengths' CV.
+  (decisions L214, L215). ``stride_length_cv_pct`` (decision L212): the same strides' lengths' CV;
+  ``stride_length_cv_within_segments_pct`` (decision L380): their lengths about each straight stretch's own mean.
 * **contact timing check** (decision L113): the same strides' swing onsets (``start_s``) recur with the gait
   period too, so with contacts timed as well as the onsets the two stride-time SDs agree. Each contact's own
   timing scatter, estimated as sqrt((SD_contacts^2 - SD_onsets^2) / 2) (independent scatter of both contacts of
@@ -121,7 +122,8 @@ CV_POOLED_FACTOR = 2.0
 #: the keys :func:`clinical_summary` gives every summary (None / 0 when the table cannot give them)
 CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
                  "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides", "stride_time_cv_withheld",
-                 "stride_time_cv_within_bouts_pct", "stride_time_cv_bouts", "stride_length_cv_pct")
+                 "stride_time_cv_within_bouts_pct", "stride_time_cv_bouts", "stride_length_cv_pct",
+                 "stride_length_cv_within_segments_pct", "n_cv_segments")
 
 #: decision L214: ``stride_time_cv_withheld["cause"]`` - the lower back (L104: never a CV), too few steady strides
 #: (:data:`CV_MIN_STRIDES`), or the contacts' timing scatter (L113, an option)
@@ -818,14 +820,45 @@ def pooled_cv(steps: pd.DataFrame, cv_pct: float) -> dict | None:
     groups = [(i, a, t) for i, a, t in groups if len(t) >= CV_BOUT_MIN_STRIDES and t.mean() > 0]
     if len(groups) < 2:
         return None
-    dev = np.concatenate([t / t.mean() - 1.0 for _, _, t in groups])
-    within = float(100.0 * np.sqrt(np.sum(dev ** 2) / (len(dev) - len(groups))))
+    within = within_groups_cv_pct([t for _, _, t in groups])
     if not cv_pct > CV_POOLED_FACTOR * within:
         return None
     return {"within_bouts_cv_pct": within,
             "bouts": [{"bout": i, "start_s": float(st["start_s"].iloc[a]), "n_strides": int(len(t)),
                        "median_stride_time_s": float(np.median(t)),
                        "cv_pct": float(100.0 * t.std(ddof=1) / t.mean())} for i, a, t in groups]}
+
+
+def within_groups_cv_pct(groups: list[np.ndarray]) -> float:
+    """Decision L196: the CV (%) of values about their own group's mean, 100 x sqrt(sum of (x / its group's mean -
+    1)^2 / (n - groups)) over ``groups`` (each an array of positive values, at least one group with two); NaN
+    without a degree of freedom. L196's within-bout stride-time CV and L380's within-segment stride-length CV."""
+    groups = [np.asarray(g, float) for g in groups if len(g) and np.mean(g) > 0]
+    n = sum(len(g) for g in groups)
+    if n - len(groups) < 1:
+        return math.nan
+    dev = np.concatenate([g / g.mean() - 1.0 for g in groups])
+    return float(100.0 * np.sqrt(np.sum(dev ** 2) / (n - len(groups))))
+
+
+#: decision L380: the stride-length CV's own strides split into segments of consecutive steady strides (a straight
+#: stretch between turns and stops); a segment counts with at least this many (L196's per-bout minimum)
+CV_SEGMENT_MIN_STRIDES = CV_BOUT_MIN_STRIDES
+
+
+def segment_length_cv(st: pd.DataFrame, steady: np.ndarray) -> tuple[float, int]:
+    """Decision L380: ``(within-segment stride-length CV %, segments)`` of :func:`steady_rows`' strides ``steady``
+    of ``st`` (its table in ``start_s`` order): the strides cut into runs of consecutive steady strides (a turn, a
+    stop or a stair between two runs: the straight stretches of the walk), each run's lengths
+    (:func:`steady_stride_lengths`, finite ones) about its own mean, :func:`within_groups_cv_pct` over the runs of at
+    least :data:`CV_SEGMENT_MIN_STRIDES`; ``(NaN, 0)`` without one. A change of pace from one stretch to the next
+    (a 6MWT's slower laps) is no stride-to-stride variability."""
+    length = np.full(len(st), np.nan)
+    length[steady] = steady_stride_lengths(st, steady)
+    edges = np.flatnonzero(np.diff(np.r_[0, steady.astype(int), 0]))
+    runs = [length[a:b][np.isfinite(length[a:b])] for a, b in zip(edges[::2], edges[1::2], strict=True)]
+    runs = [r for r in runs if len(r) >= CV_SEGMENT_MIN_STRIDES]
+    return (within_groups_cv_pct(runs), len(runs)) if runs else (math.nan, 0)
 
 
 def contact_scatter_s(stride_s: np.ndarray, onset_s: np.ndarray) -> float:
@@ -989,7 +1022,8 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "n_walking_bouts": 0,
                  "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
                  "n_cv_strides": 0, "stride_time_cv_withheld": None, "stride_time_cv_within_bouts_pct": None,
-                 "stride_time_cv_bouts": [], "stride_length_cv_pct": None}
+                 "stride_time_cv_bouts": [], "stride_length_cv_pct": None,
+                 "stride_length_cv_within_segments_pct": None, "n_cv_segments": 0}
     if not len(steps) or "start_s" not in steps:
         return out
     p = pauses(steps)
@@ -1008,6 +1042,9 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
         length = steady_stride_lengths(st, steady)
         length_cv = cv_pct(length[np.isfinite(length)]) if np.isfinite(length).sum() >= CV_MIN_STRIDES else math.nan
         out["stride_length_cv_pct"] = length_cv if math.isfinite(length_cv) else None  # decision L212
+        seg_cv, n_seg = segment_length_cv(st, steady)  # decision L380: about each straight stretch's own mean
+        out["stride_length_cv_within_segments_pct"] = seg_cv if math.isfinite(seg_cv) else None
+        out["n_cv_segments"] = n_seg
         scatter = contact_scatter_s(s, onset) if np.isfinite(onset).all() else 0.0
         if scatter >= limit:  # decision L113: the contacts' timing, not the walker's rhythm
             out["stride_time_cv_withheld"] = {
@@ -1103,6 +1140,21 @@ def pooled_cv_warning(summary: dict) -> str | None:
             f"{within:.1f} % ({listed}{more}), so the session's CV measures the change of pace "
             "between bouts, not the stride-to-stride variability; take a bout's own CV with 'pdrlearn track DIR "
             "--window START,END' (bouts.csv gives the spans; decision L196)")
+
+
+def pooled_length_cv_warning(summary: dict) -> str | None:
+    """Decision L380: one line when the summary's stride-length CV exceeds :data:`CV_POOLED_FACTOR` (L196's a-priori
+    factor) x its within-segment CV over two or more straight stretches (``stride_length_cv_within_segments_pct``,
+    :func:`segment_length_cv`): the CV then measures a change of stride length between stretches (a change of
+    pace), not the stride-to-stride variability; None otherwise. The CV itself is printed as before."""
+    cv, within = summary.get("stride_length_cv_pct"), summary.get("stride_length_cv_within_segments_pct")
+    n = summary.get("n_cv_segments") or 0
+    if cv is None or within is None or n < 2 or not cv > CV_POOLED_FACTOR * within:
+        return None
+    return (f"stride-length CV {cv:.1f} % pools straight stretches of different stride length: about each "
+            f"stretch's own mean it is {within:.1f} % ({n} stretches between turns and stops), so the session's "
+            "CV measures a change of pace, not the stride-to-stride variability; periods.csv (--per) and bouts.csv "
+            "show the pace over time (decision L380)")
 
 
 def stride_cv_warning(summary: dict) -> str | None:

@@ -1199,17 +1199,20 @@ def belt_line(summary: dict) -> str | None:
 def summary_warnings(summary: dict) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
     L353's reported gait speed below it while L95's judged figures are inside, and L195's bouts above it, decision
-    L113's withheld stride-time CV, decision L196's CV pooled over bouts of different rhythm, decision L116's
+    L113's withheld stride-time CV, decision L196's CV pooled over bouts of different rhythm (L380: the stride-length
+    CV over straight stretches of different length), decision L116's
     whole-sample rounding of the CV, decision L145's foot altitude against the unused barometer, decision B188's
     implausible barometer, decision L175's position uncertainty against the distance walked (and L341's radius
     beyond its calibration routes), and decision L319's reference trajectory that does not travel."""
-    from pdrlearn.track.clinical import pooled_cv_warning, resolution_warning, stride_cv_warning
+    from pdrlearn.track.clinical import (pooled_cv_warning, pooled_length_cv_warning, resolution_warning,
+                                         stride_cv_warning)
     from pdrlearn.track.gait import bout_range_warning, gait_range_warning, gait_speed_warning
     from pdrlearn.track.position_sigma import position_sigma_range_warning, position_sigma_warning
 
     return [w for w in (gait_range_warning(summary), gait_speed_warning(summary),  # L353: adopted by its rule
                         bout_range_warning(summary), stride_cv_warning(summary),
-                        pooled_cv_warning(summary), resolution_warning(summary),
+                        pooled_cv_warning(summary), pooled_length_cv_warning(summary),  # L380
+                        resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
                         stationary_reference_warning(summary)) if w]
