@@ -1204,8 +1204,12 @@ def summary_warnings(summary: dict) -> list[str]:
     whole-sample rounding of the CV, decision L145's foot altitude against the unused barometer, decision B188's
     implausible barometer, decision L175's position uncertainty against the distance walked (and L341's radius
     beyond its calibration routes), and decision L319's reference trajectory that does not travel."""
-    from pdrlearn.track.clinical import (pooled_cv_warning, pooled_length_cv_warning, resolution_warning,
-                                         stride_cv_warning)
+    from pdrlearn.track.clinical import (
+        pooled_cv_warning,
+        pooled_length_cv_warning,
+        resolution_warning,
+        stride_cv_warning,
+    )
     from pdrlearn.track.gait import bout_range_warning, gait_range_warning, gait_speed_warning
     from pdrlearn.track.position_sigma import position_sigma_range_warning, position_sigma_warning
 
