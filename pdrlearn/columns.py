@@ -233,7 +233,10 @@ SESSIONS: tuple[Column, ...] = (
                                     "rhythm; with --window only those between the window's steps. Not a share of "
                                     "the session's time: see time_between_steps_s (L275)"),
     ("per_s", "s", "number", "--per only: the period of periods.csv (L277)"),
-    ("per_align", _ID, "text", "--per-align clock only: clock (periods.csv cut at the clock's whole periods, L299)"),
+    ("per_align", _ID, "text", "--per-align clock or first-step only: clock (periods.csv cut at the clock's whole "
+                               "periods, L299) or first-step (from the first tracked step, L381)"),
+    ("per_start_s", "s", "number", "--per only: the first period's start (the recording's or --window's start, or "
+                                   "the first step's with --per-align first-step; L381)"),
     ("recording_start", "date-time", "text", "the clock time of the recording's first sample, ISO 8601 at its own "
                                              f"offset; {_WITH_START}"),
     ("pdrlearn_version", _ID, "text", "the pdrlearn version that wrote the row (run.json names the commit, L136)"),

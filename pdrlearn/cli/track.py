@@ -201,11 +201,14 @@ WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the 
 PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv (e.g. 1h, 30min, 900): the whole "
                        "session's track cut into periods from the recording's start, the last one shorter and marked "
                        "partial; distance, steps, walking / between-steps / no-step / no-data time, floors, bouts, "
-                       "turns, the position sigma at the period's end (decisions L275, L277). Not with --window.")
+                       "turns, the position sigma at the period's end (decisions L275, L277). With --window: the "
+                       "window cut into periods from its start (decision L381).")
 PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods begin: start (default: at the "
-                             "recording's start) or clock (at whole multiples of the period on the recording's clock, "
-                             "1h = the clock hours; the first and last periods partial). clock needs the session's "
-                             "start (meta.json recording_start or a date-time import; decision L299).")
+                             "recording's start, or the --window's), first-step (at the first tracked step: a walk "
+                             "test's minutes from 'go'; decision L381) or clock (at whole multiples of the period on "
+                             "the recording's clock, 1h = the clock hours; the first and last periods partial). clock "
+                             "needs the session's start (meta.json recording_start or a date-time import; decision "
+                             "L299).")
 
 
 def track(
@@ -282,6 +285,8 @@ def track(
         pdrlearn track out/sim/A_u1 --per 10s --out out/A_per   # OUT/periods.csv: totals every 10 s
 
         pdrlearn track night --per 1h --per-align clock --out out/night_h   # clock hours (an imported night)
+
+        pdrlearn track out/sim/A_u1 --per 60 --per-align first-step --out out/A_min   # minutes from the first step
 
         pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
 
@@ -384,13 +389,11 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.clock import PER_ALIGNS
 
     if per_align not in PER_ALIGNS:  # decision L299
-        raise DataError(f"--per-align {per_align!r}: give start (periods from the recording's start) or clock "
-                        "(on the clock's whole periods)")
-    if per_align == "clock" and per_s is None:
-        raise DataError("track: --per-align clock places --per's periods; give --per (e.g. --per 1h) or drop it")
-    if per_s is not None and win is not None:
-        raise DataError("track: --per cuts the whole session's track into periods; --window keeps one part of it - "
-                        "give one of them (each row of periods.csv is what that period's --window reports)")
+        raise DataError(f"--per-align {per_align!r}: give start (periods from the recording's start), first-step "
+                        "(from the first tracked step) or clock (on the clock's whole periods)")
+    if per_align != "start" and per_s is None:
+        raise DataError(f"track: --per-align {per_align} places --per's periods; give --per (e.g. --per 1h) or drop "
+                        "it")
     if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
         raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
                         "--fixes give the track its direction; drop --initial-heading")
@@ -746,10 +749,18 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
         from pdrlearn.track.periods import period_table
 
+        from pdrlearn.track.periods import period_span
+
+        # decision L381: the window's span (its first step's with first-step), else the recording's
+        span = period_span(whole, session, unit, (summary["window_start_s"], summary["window_end_s"])
+                           if win is not None else None, first_step=o.get("per_align") == "first-step")
         periods = period_table(whole, session, o["per_s"], unit=unit, bouts=bouts,
                                turns=clinical_tables(whole, bouts)["turns.csv"],
-                               storey_height_m=o.get("storey_height_m", 3.0), clock=clock)
+                               storey_height_m=o.get("storey_height_m", 3.0), clock=clock, span=span)
         summary["per_s"] = float(o["per_s"])
+        summary["per_start_s"] = float(span[0])
+        if o.get("per_align") == "first-step":
+            summary["per_align"] = "first-step"
         from pdrlearn.track.periods import constant_bounce_line
 
         bounce = constant_bounce_line(session.meta, summary.get("info") or {})  # decision S69

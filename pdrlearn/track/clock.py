@@ -27,8 +27,9 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 
-#: ``track --per-align``: periods from the recording's start (the default) or at the clock's whole periods (L299)
-PER_ALIGNS = ("start", "clock")
+#: ``track --per-align``: periods from the recording's start (the default), at the clock's whole periods (L299) or
+#: from the first tracked step (L381: a walk test's minutes from "go")
+PER_ALIGNS = ("start", "clock", "first-step")
 #: meta.json's key for a recording start written by hand (decision L298)
 START_KEY = "recording_start"
 #: an event table's instant columns (s on the session's clock) -> their clock columns (decision L298)

@@ -286,17 +286,41 @@ def _period_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
             else c.get("n_cv_strides")}
 
 
+def period_span(result, session, unit: str | None, window: tuple[float, float] | None = None, *,
+                first_step: bool = False) -> tuple[float, float]:
+    """Decision L381: the span (s) periods.csv cuts into periods - the tracked ``unit``'s recording
+    (:func:`session_span`), or the ``window`` (``--window``, as tracked); ``first_step``: from the first tracked
+    step in it (the first row whose middle lies in the span, its ``start_s``: a walk test's "go"). No such step is
+    one :class:`DataError` line (decision B292)."""
+    from pdrlearn.errors import DataError
+
+    a, b = session_span(session, unit) if window is None else (float(window[0]), float(window[1]))
+    if not first_step:
+        return a, b
+    st = result.steps
+    if len(st):
+        mid = 0.5 * (st["start_s"].to_numpy(float) + st["end_s"].to_numpy(float))
+        inside = (mid >= a) & (mid <= b)
+        if inside.any():
+            return max(a, float(st["start_s"].to_numpy(float)[inside].min())), b
+    where = f"the window {a:g},{b:g} s" if window is not None else "the track"
+    raise DataError(f"{session.where}: --per-align first-step: {where} has no step to start the periods from; use "
+                    "--per-align start (decision B292)")
+
+
 def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
-                 turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None) -> pd.DataFrame:
+                 turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None,
+                 span: tuple[float, float] | None = None) -> pd.DataFrame:
     """Decision L277: periods.csv of a whole-session track (:data:`PERIOD_COLUMNS`, module docstring), periods of
     ``per_s`` seconds from the recording's start to the tracked ``unit``'s end; ``bouts`` bouts.csv's table,
     ``turns`` turns.csv's. Decision L299: ``clock`` (the clock time of the session's 0 s, a datetime) cuts them at
-    the clock's whole periods instead (``--per-align clock``: 1h = the clock hours), the first and last partial."""
+    the clock's whole periods instead (``--per-align clock``: 1h = the clock hours), the first and last partial.
+    Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's."""
     from pdrlearn.track.bouts import session_key
     from pdrlearn.track.clock import clock_edges
     from pdrlearn.track.evaluate import _climb_dz, climb_slope_rows, floor_climbs, step_counts
 
-    t0, t1 = session_span(session, unit)
+    t0, t1 = session_span(session, unit) if span is None else span
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
         else result.steps
     timeline = Timeline.of(steps, unit_gaps(session, unit), result.info.get("postures"))
