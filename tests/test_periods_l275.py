@@ -139,10 +139,12 @@ def test_data_gap_is_no_data_time(shift, tmp_path):
     np.testing.assert_allclose(per[list(TIME_KEYS)].sum(axis=1), per["duration_s"], atol=1e-6)
 
 
-def test_per_with_window_is_refused(shift, capsys):
-    assert main(["track", str(shift / "walk"), "--out", str(shift / "x"), "--per", "1h", "--window", "0,10"]) == 2
-    err = capsys.readouterr().err
-    assert "--per" in err and "--window" in err and not (shift / "x").exists()
+def test_per_with_window_cuts_the_window(shift):
+    """L277 refused --per with --window; L381 (session 33) cuts the window into periods from its start."""
+    assert main(["track", str(shift / "walk"), "--out", str(shift / "x"), "--per", "1h", "--window", "0,10"]) == 0
+    per = pd.read_csv(shift / "x" / "periods.csv")
+    assert len(per) == 1 and per["start_s"].iloc[0] == 0.0 and per["end_s"].iloc[0] == pytest.approx(10.0)
+    assert bool(per["partial"].iloc[0])
 
 
 def test_track_all_stacks_the_periods(shift, tmp_path):
