@@ -141,6 +141,13 @@ def train_resample_option():
 FORCE_HELP = "Replace an existing output of this command (atomically: the old one stays until the new one is complete)."
 
 
+def non_session_files(folder: Path) -> list[str]:
+    """The entries of ``folder`` a session folder does not hold (anything but its CSV and JSON files: sensor CSVs,
+    label CSVs, meta.json), sorted: what replacing or rewriting the session would lose. ``pdrlearn import``'s
+    --force / --merge and ``pdrlearn simulate --force`` (decision B292) refuse a folder holding any."""
+    return sorted(p.name for p in folder.iterdir() if not (p.is_file() and p.suffix.lower() in (".csv", ".json")))
+
+
 #: ``manifest.json`` of the two folder kinds that share that marker: (field, value) -> what the folder is
 _MANIFEST_KINDS = {("schema", "pdrlearn-bundle"): "a runtime bundle",
                    ("schema", "pdrlearn-waist-bundle"): "a runtime bundle",  # decision E57

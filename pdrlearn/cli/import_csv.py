@@ -8,7 +8,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import print_json, split_list
+from pdrlearn.cli.common import non_session_files, print_json, split_list
 from pdrlearn.errors import DataError, shell_quote
 from pdrlearn.textfile import read_text
 
@@ -36,8 +36,7 @@ def _mapping_file(path: Path | None) -> dict:
 
 #: what ``pdrlearn import`` may replace with --force, and what --merge may rewrite: the files a session
 #: folder holds (sensor CSVs, label CSVs, meta.json); anything else in the folder would be lost
-def _session_files_only(folder: Path) -> list[str]:
-    return sorted(p.name for p in folder.iterdir() if not (p.is_file() and p.suffix.lower() in (".csv", ".json")))
+_session_files_only = non_session_files
 
 
 def _import_written(meta: dict) -> set[str]:

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import json_safe, print_json, progress
+from pdrlearn.cli.common import FORCE_HELP, json_safe, non_session_files, print_json, progress
 from pdrlearn.errors import DataError
 
 #: decision S30: the step length (m) and step time (s) `simulate --step-length/--step-time` accept: from a 0.1 m
@@ -56,7 +56,9 @@ def simulate_cmd(
         "rolls.csv; up to 86400 s; S58-S61).",
     ),
     user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
-    out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty; "
+                             "--force replaces a session simulate wrote)."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP + " Only a session folder simulate wrote."),
     speed: str = typer.Option("normal", "--speed", help="slow, normal or fast."),
     rate: float = typer.Option(20.0, "--rate", help="Output rate in Hz: 100 divided by an integer (20 = PLASYS)."),
     seed: int = typer.Option(0, "--seed", help="Randomness of the walk and the sensors (>= 0)."),
@@ -144,6 +146,8 @@ def simulate_cmd(
 
         pdrlearn simulate --scenario A --user-seed 1 --out out/sim/A_u1
 
+        pdrlearn simulate --scenario A --user-seed 2 --out out/sim/A_u1 --force   # replace a simulated session
+
         pdrlearn simulate --scenario D --user-seed 7 --speed fast --rate 100 --out out/sim/D_u7 --json
 
         pdrlearn simulate --scenario walk --length-m 1000 --user-seed 3 --clock-offset 0.3 \\
@@ -206,8 +210,7 @@ def simulate_cmd(
             raise DataError(f"{name} {v:g}: give the seated time in seconds, 0 (none) to {SIT_MAX_S:g}")
     user = scaled_user(UserProfile.from_seed(user_seed), height, leg_length)  # decision S38
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
-    if out.exists() and (not out.is_dir() or any(out.iterdir())):
-        raise DataError(f"{out}: already exists and is not an empty folder; choose another --out or remove it")
+    replace = check_sim_out(out, force)  # decision B292: --force replaces a session simulate wrote
     knobs = dict(
         clock_offset_s=clock_offset_s,
         clock_drift_ppm=clock_drift_ppm,
@@ -246,7 +249,7 @@ def simulate_cmd(
                 **knobs,
             )
         advance()
-        write_session(session, out)
+        write_session(session, out, overwrite=replace)  # atomic: the old session stays until the new one is written
         advance()
     st = session.steps
     summary = {
@@ -323,6 +326,38 @@ def parse_mount(spec: str | None) -> tuple[float, float, float]:
         vec[MOUNT_AXES[axis.strip().lower()]] = math.radians(angle)
         rot = rot * Rotation.from_rotvec(vec)
     return tuple(round(float(v), 9) for v in math.degrees(1.0) * rot.as_rotvec())
+
+
+#: meta.json's ``source_project`` of a session ``pdrlearn simulate`` wrote (what --force may replace, B292)
+SIM_SOURCE = "pdrlearn.sim"
+
+
+def check_sim_out(out: Path, force: bool) -> bool:
+    """Decision B292: whether ``--out`` is an existing session folder to replace (True) or an absent / empty folder
+    (False), before any work; one :class:`DataError` line otherwise: a file, a folder in use without ``--force``, or
+    with it anything but a session simulate wrote (meta.json ``source_project`` pdrlearn.sim) holding only session
+    files (:func:`pdrlearn.cli.common.non_session_files`, as ``import --force``: nothing else is deleted)."""
+    import json
+
+    if out.exists() and not out.is_dir():
+        raise DataError(f"{out}: is a file; --out must be a folder for the simulated session")
+    if not out.is_dir() or not any(out.iterdir()):
+        return False
+    if not force:
+        raise DataError(f"{out}: already exists and is not an empty folder; choose another --out, remove it, or pass "
+                        "--force to replace a session simulate wrote")
+    try:
+        ours = json.loads((out / "meta.json").read_text(encoding="utf-8")).get("source_project") == SIM_SOURCE
+    except (OSError, ValueError, AttributeError):
+        ours = False
+    if not ours:
+        raise DataError(f"{out}: is not a session 'pdrlearn simulate' wrote (meta.json source_project "
+                        f"{SIM_SOURCE}); --force replaces only that - choose another --out")
+    other = non_session_files(out)
+    if other:
+        raise DataError(f"{out}: holds {', '.join(other[:3])} besides the session files, which --force would delete; "
+                        "move them out first or choose another --out")
+    return True
 
 
 def _custom_gait(user, speed: str, step_length: float | None, step_time: float | None, route: str | None):

@@ -160,6 +160,23 @@ def _instant(text: str, after: datetime, start: datetime, window: str, where: st
     return got
 
 
+def no_start_window_line(window: ClockWindow, where: str) -> str | None:
+    """Decision B291: the line for a clock ``window`` of two times of day on a session without a recording start -
+    read as clock times (L299), with the seconds it gives read as minutes:seconds (``0:00,6:00`` -> ``0,360``;
+    ``H:MM:SS`` as hours:minutes:seconds), the walk-test reading; None when a part is no time of day (ISO)."""
+    secs = []
+    for part in (window.start, window.end):
+        m = _TIME_OF_DAY.fullmatch(part)
+        if m is None:
+            return None
+        a, b, c = m.group(1), m.group(2), m.group(3)
+        secs.append(int(a) * 3600 + int(b) * 60 + float(c) if c is not None else int(a) * 60 + int(b))
+    return (f"{where}: --window {window.text} reads as two clock times of day (decision L299), and the session gives "
+            f"no clock time (no meta.json {START_KEY}); for a part of the walk counted from the session's start give "
+            f"seconds: --window {secs[0]:g},{secs[1]:g} (the times read as minutes:seconds; decision B291); for clock "
+            f"times, {NO_START_FIX}")
+
+
 def parse_clock_window(text: str) -> ClockWindow | None:
     """``"02:10,02:20"`` / ``"ISO,ISO"`` -> a :class:`ClockWindow`; None when the text gives no clock time (a
     ``:`` in neither part: seconds, :func:`pdrlearn.track.window.parse_window`'s)."""

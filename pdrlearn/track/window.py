@@ -70,6 +70,12 @@ def check_window(window: tuple[float, float], session: Session, unit: str | None
     span = unit_span(session, unit) if unit is not None else None
     dur = (span[1] if span is not None else session.t_end) - t0
     if isinstance(window, ClockWindow):  # decision L299: clock times, the session's own start (B254 without one)
+        from pdrlearn.track.clock import no_start_window_line, recording_start
+
+        line = no_start_window_line(window, session.where) if recording_start(session.meta, session.where) is None \
+            else None
+        if line:  # decision B291: 0:00,6:00 on a session without a clock - the seconds meant
+            raise DataError(line)
         window = window_seconds(window, require_start(session.meta, session.where, f"--window {window.text}"),
                                 dur, t0, session.where)
     start, end = window
