@@ -747,9 +747,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         summary["recording_start"] = clock_texts(start, [session.t_recording_start])[0]
     periods = None
     if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
-        from pdrlearn.track.periods import period_table
-
-        from pdrlearn.track.periods import period_span
+        from pdrlearn.track.periods import period_span, period_table
 
         # decision L381: the window's span (its first step's with first-step), else the recording's
         span = period_span(whole, session, unit, (summary["window_start_s"], summary["window_end_s"])
