@@ -171,10 +171,10 @@ def no_start_window_line(window: ClockWindow, where: str) -> str | None:
             return None
         a, b, c = m.group(1), m.group(2), m.group(3)
         secs.append(int(a) * 3600 + int(b) * 60 + float(c) if c is not None else int(a) * 60 + int(b))
-    return (f"{where}: --window {window.text} reads as two clock times of day (decision L299), and the session gives "
-            f"no clock time (no meta.json {START_KEY}); for a part of the walk counted from the session's start give "
-            f"seconds: --window {secs[0]:g},{secs[1]:g} (the times read as minutes:seconds; decision B291); for clock "
-            f"times, {NO_START_FIX}")
+    return (f"{where}: --window {window.text} needs the recording's clock time, which the session does not give "
+            f"(no meta.json {START_KEY}, no date-time import): it reads as two clock times of day (decision L299); for "
+            f"a part of the walk counted from the session's start give seconds: --window {secs[0]:g},{secs[1]:g} (the "
+            f"times read as minutes:seconds; decision B291); for clock times, {NO_START_FIX} (decision B254)")
 
 
 def parse_clock_window(text: str) -> ClockWindow | None:
