@@ -56,6 +56,7 @@ from pdrlearn.waist.events import (
     steps_from_events,
     walking_gate,
 )
+from pdrlearn.waist.foot_rest import foot_rest_keep, foot_rest_message, foot_rest_runs
 from pdrlearn.waist.heading import (
     HARMONIC_METHODS,
     UNTRACKED_TURN_WARN_DEG,
@@ -558,6 +559,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
+                   "foot_rest_veto": False,  # W336: the contacts while the foot unit makes no stride (W337)
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -696,7 +698,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
                 length_model=None, freeze_veto: bool | None = None,
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
-                fast_fill: bool | str | None = None, ap_above_mean: bool | None = None) -> TrackResult:
+                fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
+                foot_rest_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -787,6 +790,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         back's freeze index (freezes.csv, :mod:`pdrlearn.track.freezes`, decision W213): trembling in place is no
         step (decision W214); the step before a dropped contact ends its sequence; default False; implies
         ``freeze_index``
+    foot_rest_veto : with a foot unit in the session: drop each run of 4 or more lower-back contacts none within 1 s
+        of a foot stride that swings the foot (a standing passenger's bounce in a vehicle; decision W336,
+        :mod:`pdrlearn.waist.foot_rest`; such runs are always named in one warning line each); default False (W337)
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)
@@ -875,6 +881,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
+             "foot_rest_veto": foot_rest_veto,  # W336
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
@@ -970,6 +977,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                       [(r["start_s"], r["end_s"]) for r in freezes or []]),
                               "n_frozen")
         n_frozen = steps.attrs["n_frozen"]
+    foot_runs = foot_rest_runs(steps, with_left_out_units(session))  # W336: contacts while the foot does not walk
+    warnings.extend(foot_rest_message(steps, a, b, bool(o["foot_rest_veto"])) for a, b in foot_runs)
+    if foot_runs and o["foot_rest_veto"]:
+        steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
