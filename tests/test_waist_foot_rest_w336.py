@@ -43,19 +43,20 @@ def ride():
 
 @pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
 def test_a_vehicle_ride_is_named_and_dropped_with_the_option(ride, pipeline, caplog):
-    """S71's ride with the foot unit present: the default track counts the bounce as steps and says so in one line
-    naming the span; with foot_rest_veto the ride holds no contact and the distance comes back to the walk's."""
+    """S71's ride with the foot unit present: with foot_rest_veto False (the code before W337) the track counts the
+    bounce as steps and says so in one line naming the span; by default (W337) the ride holds no contact, the
+    distance comes back to the walk's and the line says they were dropped."""
     row = ride.extras["rides"].iloc[0]
     walked = float(ride.steps["length_m"].sum())
     n_true = len(ride.extras["ics"])
-    off = track_waist(ride, pipeline=pipeline)
+    off = track_waist(ride, pipeline=pipeline, foot_rest_veto=False)
     ev = off.steps["event_s"].to_numpy(float)
     inside = int(((ev > row.start_s) & (ev < row.end_s)).sum())
     lines = [w for w in off.info["warnings"] if "decision W336" in w]
     print(pipeline, "off", len(ev), "contacts,", inside, "in the ride; true", n_true, lines)
     assert inside > 20  # the phantom steps (T1 finding 1), reproduced
     assert len(lines) == 1 and "foot_rest_veto drops them" in lines[0]
-    on = track_waist(ride, pipeline=pipeline, foot_rest_veto=True)
+    on = track_waist(ride, pipeline=pipeline)  # W337: the default
     ev_on = on.steps["event_s"].to_numpy(float)
     dist = float(np.nansum(on.steps["length_m"]))
     print(pipeline, "on", len(ev_on), "contacts", round(dist, 2), "m, walked", round(walked, 2))
@@ -74,8 +75,8 @@ def test_no_foot_unit_no_line_and_a_walk_is_untouched(ride):
     assert not [w for w in res.info["warnings"] if "decision W336" in w]
     walk = simulate_path(parse_route("stand:3, straight:14, turn:180, straight:14, stand:3"),
                          UserProfile.from_seed(7183), rate_hz=100.0, seed=7183)
-    a = track_waist(walk, pipeline="waist-pendulum")
-    b = track_waist(walk, pipeline="waist-pendulum", foot_rest_veto=True)
+    a = track_waist(walk, pipeline="waist-pendulum", foot_rest_veto=False)
+    b = track_waist(walk, pipeline="waist-pendulum")
     assert not [w for w in a.info["warnings"] if "decision W336" in w]
     assert np.array_equal(a.steps["event_s"].to_numpy(), b.steps["event_s"].to_numpy())
 
@@ -84,5 +85,6 @@ def test_the_option_reaches_params_and_the_live_list():
     from pdrlearn.track.waist import OPTION_DEFAULTS
     from pdrlearn.waist.live import LIVE_UNAPPLIED_OPTIONS
 
-    assert "foot_rest_veto" in OPTION_DEFAULTS and "foot_rest_veto" in LIVE_UNAPPLIED_OPTIONS
+    assert OPTION_DEFAULTS["foot_rest_veto"] is True  # decision W337
+    assert "foot_rest_veto" in LIVE_UNAPPLIED_OPTIONS
     logging.getLogger("pdrlearn").debug("W336 option registered")

@@ -559,7 +559,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
-                   "foot_rest_veto": False,  # W336: the contacts while the foot unit makes no stride (W337)
+                   "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -792,7 +792,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``freeze_index``
     foot_rest_veto : with a foot unit in the session: drop each run of 4 or more lower-back contacts none within 1 s
         of a foot stride that swings the foot (a standing passenger's bounce in a vehicle; decision W336,
-        :mod:`pdrlearn.waist.foot_rest`; such runs are always named in one warning line each); default False (W337)
+        :mod:`pdrlearn.waist.foot_rest`; such runs are always named in one warning line each); default True
+        (decision W337), False keeps and names them
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)
