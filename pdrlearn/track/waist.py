@@ -113,6 +113,7 @@ from pdrlearn.waist.posture import (
 )
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
+from pdrlearn.waist.rhythm import arrhythmic_message, arrhythmic_sequences
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.steplength import CADENCE_LAW_STEADY, cadence_law_factor, calibration_cadence_hz, steady_steps
 from pdrlearn.waist.transfers import chair_transfers_upright, flag_message, flag_transfers, upright_message
@@ -985,6 +986,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
+    if not with_left_out_units(session).placement_streams("foot"):  # W338: phone only (W336 reads a foot unit)
+        warnings.extend(arrhythmic_message(steps, a, b, r)
+                        for a, b, r in arrhythmic_sequences(steps, imu.t, imu.acc_v, imu.fs))
     steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]),
                           pivot_steps=bool(o["pivot_steps"]),
                           cadence_law=(o["cadence_law"] if o["cadence_law"] == CADENCE_LAW_STEADY
