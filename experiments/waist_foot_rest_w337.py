@@ -112,14 +112,21 @@ def real() -> bool:
     return True
 
 
-if __name__ == "__main__":
+def verdict(decision: str, title: str, parts: dict, out_name: str, yes: str = "ADOPT", no: str = "not adopted"
+            ) -> None:
+    """Run each part (name -> callable returning met), print and write experiments/results/OUT_NAME with the
+    verdict line (shared by W339's script)."""
     warnings.filterwarnings("ignore")
     logging.disable(logging.WARNING)
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
-        print("# W337: foot_rest_veto, off -> on (rule committed before this run)\n")
-        ok = {"a": routes(), "b": rides(), "c": real()}
-        print("W337 " + ", ".join(f"({k}) {'met' if v else 'NOT met'}" for k, v in ok.items())
-              + f": {'ADOPT' if all(ok.values()) else 'not adopted'}")
-    (ROOT / "experiments" / "results" / "waist_foot_rest_w337.md").write_text(buf.getvalue())
+        print(f"# {decision}: {title} (rule committed before this run)\n")
+        ok = {k: f() for k, f in parts.items()}
+        print(f"{decision} " + ", ".join(f"({k}) {'met' if v else 'NOT met'}" for k, v in ok.items())
+              + f": {yes if all(ok.values()) else no}")
+    (ROOT / "experiments" / "results" / out_name).write_text(buf.getvalue())
     print(buf.getvalue())
+
+
+if __name__ == "__main__":
+    verdict("W337", "foot_rest_veto, off -> on", {"a": routes, "b": rides, "c": real}, "waist_foot_rest_w337.md")

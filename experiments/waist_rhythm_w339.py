@@ -8,12 +8,8 @@ Writes experiments/results/waist_rhythm_w339.md.
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
-import io
-import logging
 import sys
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -107,13 +103,5 @@ def real() -> bool:
 
 
 if __name__ == "__main__":
-    warnings.filterwarnings("ignore")
-    logging.disable(logging.WARNING)
-    buf = io.StringIO()
-    with contextlib.redirect_stdout(buf):
-        print("# W339: W338's stride-rhythm warning, phone only (rule committed before this run)\n")
-        ok = {"a": rides(), "b": walks(), "c": real()}
-        print("W339 " + ", ".join(f"({k}) {'met' if v else 'NOT met'}" for k, v in ok.items())
-              + f": {'KEEP' if all(ok.values()) else 'withdraw'}")
-    (ROOT / "experiments" / "results" / "waist_rhythm_w339.md").write_text(buf.getvalue())
-    print(buf.getvalue())
+    F.verdict("W339", "W338's stride-rhythm warning, phone only", {"a": rides, "b": walks, "c": real},
+              "waist_rhythm_w339.md", "KEEP", "withdraw")
