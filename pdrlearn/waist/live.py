@@ -129,8 +129,9 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
 
 
 #: decisions W271, E151: options E107's line names only where the PARAMS.json gives them, not at their offline
-#: default: ``lying_heading`` (true offline since W271) would otherwise be named on every live track, most with no lying
-NAMED_WHEN_GIVEN = ("lying_heading",)
+#: default: ``lying_heading`` (true offline since W271) would otherwise be named on every live track, most with no
+#: lying; ``foot_rest_veto`` (true offline since W337) acts only with a foot unit, never read live
+NAMED_WHEN_GIVEN = ("lying_heading", "foot_rest_veto")
 
 
 def unapplied_options_line(p) -> str | None:
@@ -192,8 +193,8 @@ def live_value(option: str, given: dict | None = None):
         return False
     if option == "pause_ride":  # E146: applied live when the PARAMS.json gives it true, else W158's whole pause
         return bool(given["pause_ride"]) if given.get("pause_ride") is not None else False
-    if option == "lying_heading":  # W271, E151: never applied live (named only where given, NAMED_WHEN_GIVEN)
-        return False
+    if option in ("lying_heading", "foot_rest_veto"):  # W271, E151, W337: never applied live (named only where
+        return False  # given, NAMED_WHEN_GIVEN)
     return OPTION_DEFAULTS[option]
 
 
