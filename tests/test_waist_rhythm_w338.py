@@ -1,5 +1,6 @@
 """Decision W338: a phone-only lower-back track warns where its contacts lack walking's stride rhythm (a standing
-passenger's bounce in a vehicle, S71). Users 7184-7185."""
+passenger's bounce in a vehicle, S71) - W339: its rule was not met, so only with the PARAMS.json option
+``rhythm_warning``. Users 7184-7185."""
 
 from __future__ import annotations
 
@@ -54,21 +55,26 @@ def ride():
     return simulate_path(route, UserProfile.from_seed(7184), rate_hz=100.0, seed=7184)
 
 
+ON = {"options": {"rhythm_warning": True}}  # decision W339: opt-in
+
+
 def _phone(s):
     return dataclasses.replace(keep_units(s, ("waist",)), _left_out={})
 
 
 @pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
 def test_a_phone_only_ride_is_named(ride, pipeline):
-    """Phone only: a W338 line overlapping the ride; with the foot unit in the session W336 speaks instead."""
+    """Phone only, with the option: a W338 line overlapping the ride; with the foot unit in the session W336 speaks
+    instead; without the option (W339's default) no W338 line."""
     row = ride.extras["rides"].iloc[0]
-    lines = [w for w in track_waist(_phone(ride), pipeline=pipeline).info["warnings"] if "W338" in w]
+    assert not [w for w in track_waist(_phone(ride), pipeline=pipeline).info["warnings"] if "W338" in w]
+    lines = [w for w in track_waist(_phone(ride), pipeline=pipeline, params=ON).info["warnings"] if "W338" in w]
     print(pipeline, lines)
     assert lines
     spans = [tuple(float(x) for x in w.split(" at ", 1)[1].split(" s ", 1)[0].split("-")) for w in lines]
     assert any(a < row.end_s and b > row.start_s for a, b in spans)
     assert all(b > row.start_s - 2.0 and a < row.end_s + 2.0 for a, b in spans)  # the walks are not named
-    with_foot = track_waist(ride, pipeline=pipeline).info["warnings"]
+    with_foot = track_waist(ride, pipeline=pipeline, params=ON).info["warnings"]
     assert not [w for w in with_foot if "W338" in w] and [w for w in with_foot if "W336" in w]
 
 
@@ -76,4 +82,5 @@ def test_a_phone_only_walk_is_not_named():
     walk = simulate_path(parse_route("stand:3, straight:20, turn:180, straight:20, stand:3"),
                          UserProfile.from_seed(7185), rate_hz=100.0, seed=7185)
     for pipeline in ("waist-pendulum", "waist-pll"):
-        assert not [w for w in track_waist(_phone(walk), pipeline=pipeline).info["warnings"] if "W338" in w]
+        assert not [w for w in track_waist(_phone(walk), pipeline=pipeline, params=ON).info["warnings"]
+                    if "W338" in w]

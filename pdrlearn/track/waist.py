@@ -561,6 +561,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
+                   "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -884,6 +885,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "foot_rest_veto": foot_rest_veto,  # W336
+             "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
@@ -986,7 +988,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
-    if not with_left_out_units(session).placement_streams("foot"):  # W338: phone only (W336 reads a foot unit)
+    # W338: phone only (W336 reads a foot unit); W339: measured, not kept by default (an opt-in PARAMS.json option)
+    if o["rhythm_warning"] and not with_left_out_units(session).placement_streams("foot"):
         warnings.extend(arrhythmic_message(steps, a, b, r)
                         for a, b, r in arrhythmic_sequences(steps, imu.t, imu.acc_v, imu.fs))
     steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]),
