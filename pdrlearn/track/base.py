@@ -280,6 +280,11 @@ def get_pipeline(name: str) -> Pipeline:
       gives p >= 0.5, W203; offline ``waist-pendulum`` only),
       ``freeze_veto`` (decision W215, off: the offline lower-back contacts inside a freeze episode of the freeze
       index, freezes.csv, W213, are dropped, W214; implies ``freeze_index``),
+      ``rhythm_warning`` (decisions W338 / W339, off: without a foot unit, one warning line per stretch of lower-back
+      contacts whose vertical stride regularity is under 0.4, a vehicle's bounce; W339's rule was not met),
+      ``foot_rest_veto`` (decisions W336 / W337, on: with a foot unit, a run of 4 or more lower-back contacts none
+      within 1 s of a foot stride that swings the foot is dropped, a standing passenger's bounce in a vehicle; the
+      runs are named in a warning line either way),
       ``freeze_index`` (decision W216, off: the lower back's freeze index, W213: freezes.csv and ``n_freezes`` /
       ``freeze_time_s``, null when off; foot tracks always compute theirs),
       ``realtime_sit_veto`` (decision W201, off: a realtime track applies the sit veto causally, each contact

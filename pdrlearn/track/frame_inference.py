@@ -220,16 +220,17 @@ def swing_pitch_extremes(gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndar
     return down, up
 
 
-def _declared_foot(session):
+def _declared_foot(session, *, need_frame: bool = True):
     """The session's foot unit with its declared frame, for :func:`foot_push_off` and :func:`foot_travel_angles`:
     ``(t, acc, gyr, fs, frame, stance)`` (the accelerometer's clock, the gyro resampled onto it, the ZUPT stance
-    mask); None without a foot unit, a declared foot frame, enough finite samples or a rate."""
+    mask); None without a foot unit, a declared foot frame (``need_frame=False``: frame None allowed, decision
+    W336's frame-free read), enough finite samples or a rate."""
     from pdrlearn.displace.foot import inertial_stance
     from pdrlearn.signal.filters import interp_rows
 
     acc_n, gyr_n = UNIT_STREAMS["foot"]
     frame = session.frames.get("foot")
-    if frame is None or acc_n not in session.streams or gyr_n not in session.streams:
+    if (frame is None and need_frame) or acc_n not in session.streams or gyr_n not in session.streams:
         return None
     acc_s, gyr_s = session.streams[acc_n], session.streams[gyr_n]
     if len(acc_s) < 8 or len(gyr_s) < 2 or not np.isfinite(acc_s.rate_hz):
@@ -253,6 +254,19 @@ def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     down, toes_up = swing_pitch_extremes(gyr, fs, i0, i1, _unit(frame.matrix()[1]))
     asym = (down - toes_up) / np.maximum(down + toes_up, 1e-9)
     return t[i0], t[i1], asym
+
+
+def foot_swing_strides(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Start and end time (s) and total rotation (rad, the integral of |w|) of each rest-to-rest stride of the
+    session's foot unit, in any frame (decision W336: a walking stride swings the foot, a vehicle's vibration breaking
+    the rest does not); None without a foot unit."""
+    foot = _declared_foot(session, need_frame=False)
+    if foot is None:
+        return None
+    t, _acc, gyr, fs, _frame, stance = foot
+    i0, i1 = rest_to_rest(stance, fs)
+    turn = np.concatenate([[0.0], np.cumsum(np.linalg.norm(gyr, axis=1)) / fs])
+    return t[i0], t[i1], turn[i1] - turn[i0]
 
 
 def foot_travel_angles(session) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:

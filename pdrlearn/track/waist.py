@@ -56,6 +56,7 @@ from pdrlearn.waist.events import (
     steps_from_events,
     walking_gate,
 )
+from pdrlearn.waist.foot_rest import foot_rest_keep, foot_rest_message, foot_rest_runs
 from pdrlearn.waist.heading import (
     HARMONIC_METHODS,
     UNTRACKED_TURN_WARN_DEG,
@@ -112,6 +113,7 @@ from pdrlearn.waist.posture import (
 )
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
+from pdrlearn.waist.rhythm import arrhythmic_message, arrhythmic_sequences
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.steplength import CADENCE_LAW_STEADY, cadence_law_factor, calibration_cadence_hz, steady_steps
 from pdrlearn.waist.transfers import chair_transfers_upright, flag_message, flag_transfers, upright_message
@@ -558,6 +560,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
+                   "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
+                   "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -696,7 +700,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
                 length_model=None, freeze_veto: bool | None = None,
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
-                fast_fill: bool | str | None = None, ap_above_mean: bool | None = None) -> TrackResult:
+                fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
+                foot_rest_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -787,6 +792,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         back's freeze index (freezes.csv, :mod:`pdrlearn.track.freezes`, decision W213): trembling in place is no
         step (decision W214); the step before a dropped contact ends its sequence; default False; implies
         ``freeze_index``
+    foot_rest_veto : with a foot unit in the session: drop each run of 4 or more lower-back contacts none within 1 s
+        of a foot stride that swings the foot (a standing passenger's bounce in a vehicle; decision W336,
+        :mod:`pdrlearn.waist.foot_rest`; such runs are always named in one warning line each); default True
+        (decision W337), False keeps and names them
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)
@@ -875,6 +884,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
+             "foot_rest_veto": foot_rest_veto,  # W336
+             "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
@@ -970,9 +981,17 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                       [(r["start_s"], r["end_s"]) for r in freezes or []]),
                               "n_frozen")
         n_frozen = steps.attrs["n_frozen"]
+    foot_runs = foot_rest_runs(steps, with_left_out_units(session))  # W336: contacts while the foot does not walk
+    warnings.extend(foot_rest_message(steps, a, b, bool(o["foot_rest_veto"])) for a, b in foot_runs)
+    if foot_runs and o["foot_rest_veto"]:
+        steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
+    # W338: phone only (W336 reads a foot unit); W339: measured, not kept by default (an opt-in PARAMS.json option)
+    if o["rhythm_warning"] and not with_left_out_units(session).placement_streams("foot"):
+        warnings.extend(arrhythmic_message(steps, a, b, r)
+                        for a, b, r in arrhythmic_sequences(steps, imu.t, imu.acc_v, imu.fs))
     steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]),
                           pivot_steps=bool(o["pivot_steps"]),
                           cadence_law=(o["cadence_law"] if o["cadence_law"] == CADENCE_LAW_STEADY
