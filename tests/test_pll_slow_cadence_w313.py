@@ -41,9 +41,13 @@ def _track(tmp_path, user: int, extra: list[str], options: dict | None = None):
 
 @pytest.mark.parametrize(("user", "extra", "fires"), [
     (6960, ["--step-length", "0.4", "--step-time", "0.65", "--bounce", "pendulum"], True),  # 0.62 m/s, 92 steps/min
-    (6961, [], False),  # a healthy default walker: pll / pendulum 1.34, over 1.25, at a normal cadence
+    (6965, [], False),  # a healthy default walker: pll / pendulum 1.35 at 105 steps/min, the pendulum's 0.95 m/s
 ])
 def test_w313_pll_slow_cadence_check_warns_a_slow_walker_not_a_normal_one(tmp_path, user, extra, fires):
     r = _track(tmp_path, user, extra, {"pll_slow_cadence_check": True})
     assert r.info["pll_pendulum_ratio"] > 1.25  # W289's ratio alone would judge both
     assert sum("decision W313" in w for w in r.info["warnings"]) == int(fires)
+    assert not any("decision W289" in w for w in r.info["warnings"])
+    # W289's speed judge warns both: the normal walker is one of the walks W290's rule (b) counted against it
+    both = _track(tmp_path / "both", user, extra, {"pll_slow_check": True, "pll_slow_cadence_check": True})
+    assert [("W289" in w, "W313" in w) for w in both.info["warnings"] if "pendulum model's" in w] == [(True, False)]
