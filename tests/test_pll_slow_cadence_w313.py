@@ -51,3 +51,16 @@ def test_w313_pll_slow_cadence_check_warns_a_slow_walker_not_a_normal_one(tmp_pa
     # W289's speed judge warns both: the normal walker is one of the walks W290's rule (b) counted against it
     both = _track(tmp_path / "both", user, extra, {"pll_slow_check": True, "pll_slow_cadence_check": True})
     assert [("W289" in w, "W313" in w) for w in both.info["warnings"] if "pendulum model's" in w] == [(True, False)]
+
+
+def test_w314_pll_slow_cadence_check_is_on_by_default(tmp_path):
+    """W314: W313's rule was met (slow 32 of 32 warned, normal / fast 0 of 28, real 0), so an uncalibrated offline
+    waist-pll track of a slow walker says so by default; the PARAMS.json option false turns it off."""
+    from pdrlearn.track.waist import OPTION_DEFAULTS
+
+    assert OPTION_DEFAULTS["pll_slow_cadence_check"] is True and OPTION_DEFAULTS["pll_slow_check"] is False
+    slow = ["--step-length", "0.4", "--step-time", "0.65", "--bounce", "pendulum"]
+    default = _track(tmp_path, 6960, slow)
+    assert sum("decision W313" in w for w in default.info["warnings"]) == 1
+    off = _track(tmp_path / "off", 6960, slow, {"pll_slow_cadence_check": False})
+    assert not any("decision W313" in w for w in off.info["warnings"])

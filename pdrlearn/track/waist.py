@@ -549,7 +549,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pll_slow_check": False,  # W289: uncalibrated waist-pll over 1.25 x the pendulum at a slow gait
-                   "pll_slow_cadence_check": False,  # W313: the same, the slow gait judged by the cadence
+                   "pll_slow_cadence_check": True,  # W313 / W314 (adopted): the same, the slow gait by the cadence
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "cadence_law": False,  # W240
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
