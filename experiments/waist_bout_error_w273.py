@@ -34,9 +34,7 @@ import waist_bout_terms as T  # noqa: E402
 
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
-from pdrlearn.waist.calibration import calibrate  # noqa: E402
 from pdrlearn.waist.evaluate import DUPLICATE_IC_S, reference_bouts  # noqa: E402
-from pdrlearn.waist.params import resolve_params  # noqa: E402
 
 RESULT = W.ROOT / "experiments" / "results" / "waist_bout_error_w273.txt"
 FOOT_MATCH = 0.005  # |one foot's finite stride sum / Length - 1| below which Length "is" that foot's sum (read-out)
@@ -72,12 +70,7 @@ def length_by_foot(session, wb_id: int, start_s: float, end_s: float, length_m: 
 def main() -> None:
     ext, runs = W.test11_cli()
     rows, matched = [], []
-    for cal_names, test_name in runs:
-        subject = test_name.split("_")[1]
-        test = read_session(ext / test_name)
-        cal = [read_session(ext / n) for n in cal_names]
-        base, _ = resolve_params(cal[0], None)
-        params = calibrate(cal, "waist-pendulum", params=base)  # experiments/waist.py's protocol
+    for subject, test, params in T.calibrated_test11(ext, runs):
         t = T.bout_terms(get_pipeline("waist-pendulum")(test, params=params).steps, test, subject, "calibrated",
                          matched)
         bouts = reference_bouts(test).set_index("start_s")

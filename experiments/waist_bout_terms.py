@@ -101,47 +101,66 @@ def _monotone(i_d: np.ndarray, i_r: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     return np.array(keep_d, int), np.array(keep_r, int)
 
 
+def bout_segments(steps: pd.DataFrame, session, start_s: float, end_s: float, turns: np.ndarray) -> dict:
+    """One reference bout's anchors and segments (module docstring): the tracked steps ``sel`` (by start), their
+    lengths ``dl``, the reference contacts ``r`` / ``timed`` and step lengths ``s``, the matched anchors ``i_d`` /
+    ``i_r``, the segment of each tracked step ``seg_d`` / reference step ``seg_r``, each reference step's ``in_turn``
+    and per segment k its ``place`` (edge / turn / straight), ``kind`` (count / step) and error ``e`` (m)."""
+    m = steps_in_interval(steps, start_s, end_s)
+    sel = steps[m].sort_values("start_s", kind="stable")
+    d0, dl = sel["start_s"].to_numpy(float), sel["length_m"].abs().to_numpy(float)
+    c = np.unique(np.r_[d0, sel["end_s"].to_numpy(float)])  # detected contacts: the steps' starts and ends
+    start_ix = np.searchsorted(c, d0)
+    r, timed = reference_contacts(session, start_s, end_s)
+    s = reference_step_lengths(session, r)
+    ti = np.flatnonzero(timed)
+    i_d, i_r = match_events(c, r[ti], DEFAULT_TOLERANCE_S)
+    i_d, i_r = _monotone(i_d, ti[i_r])  # detected contact index, reference contact index
+    # segment id of each tracked step / reference step: k between anchor k-1 and anchor k (0: before the first)
+    seg_d = np.searchsorted(i_d, start_ix, side="right")
+    seg_r = np.searchsorted(i_r, np.arange(s.size), side="right")
+    n_seg = i_d.size + 1
+    mid_r = 0.5 * (r[1:] + r[:-1])
+    in_turn = ((mid_r[:, None] >= turns[:, 0]) & (mid_r[:, None] <= turns[:, 1])).any(1) if len(turns) else \
+        np.zeros(s.size, bool)
+    segs = []
+    for k in range(n_seg):
+        dm, rm = seg_d == k, seg_r == k
+        if not dm.any() and not rm.any():
+            continue
+        if k == 0 or k == n_seg - 1 or (rm.size and (rm[0] or rm[-1])):  # outside the anchors, first / last step
+            place = "edge"
+        elif (in_turn & rm).any():
+            place = "turn"
+        else:
+            place = "straight"
+        segs.append({"k": k, "dm": dm, "rm": rm, "place": place,
+                     "kind": "count" if dm.sum() != rm.sum() else "step", "e": float(dl[dm].sum() - s[rm].sum())})
+    return {"sel": sel, "dl": dl, "c": c, "r": r, "timed": timed, "s": s, "i_d": i_d, "i_r": i_r, "seg_d": seg_d,
+            "seg_r": seg_r, "in_turn": in_turn, "segments": segs}
+
+
+def session_turns(session) -> np.ndarray:
+    """INDIP's turns (turns.csv) as an (n, 2) array of start / end seconds."""
+    tr = session.extras.get("turns")
+    return np.c_[tr["start_s"], tr["end_s"]] if tr is not None and len(tr) else np.zeros((0, 2))
+
+
 def bout_terms(steps: pd.DataFrame, session, subject: str, params: str, matched: list | None = None) -> pd.DataFrame:
     """One row per reference bout: its error vs ``Length`` and the additive terms (module docstring), in %.
     ``matched`` (if given) receives one dict per 1 : 1 straight step (tracked and reference length, duration)."""
-    tr = session.extras.get("turns")
-    turns = np.c_[tr["start_s"], tr["end_s"]] if tr is not None and len(tr) else np.zeros((0, 2))
+    turns = session_turns(session)
     rows = []
     for b in reference_bouts(session).itertuples():
-        m = steps_in_interval(steps, b.start_s, b.end_s)
-        sel = steps[m].sort_values("start_s", kind="stable")
-        d0, dl = sel["start_s"].to_numpy(float), sel["length_m"].abs().to_numpy(float)
-        c = np.unique(np.r_[d0, sel["end_s"].to_numpy(float)])  # detected contacts: the steps' starts and ends
-        start_ix = np.searchsorted(c, d0)
+        g = bout_segments(steps, session, b.start_s, b.end_s, turns)
+        sel, dl, s, r, timed, c = g["sel"], g["dl"], g["s"], g["r"], g["timed"], g["c"]
         tracked = float(dl.sum())
-        r, timed = reference_contacts(session, b.start_s, b.end_s)
-        s = reference_step_lengths(session, r)
-        ti = np.flatnonzero(timed)
-        i_d, i_r = match_events(c, r[ti], DEFAULT_TOLERANCE_S)
-        i_d, i_r = _monotone(i_d, ti[i_r])  # detected contact index, reference contact index
-        # segment id of each tracked step / reference step: k between anchor k-1 and anchor k (0: before the first)
-        seg_d = np.searchsorted(i_d, start_ix, side="right")
-        seg_r = np.searchsorted(i_r, np.arange(s.size), side="right")
-        n_seg = i_d.size + 1
-        mid_r = 0.5 * (r[1:] + r[:-1])
-        in_turn = ((mid_r[:, None] >= turns[:, 0]) & (mid_r[:, None] <= turns[:, 1])).any(1) if len(turns) else \
-            np.zeros(s.size, bool)
         part = dict.fromkeys(TERMS, 0.0)  # ref, then place (edge / turn / straight) x kind (count / step)
         part["ref"] = float(s.sum()) - b.length_m
         n_matched_steps = 0
-        for k in range(n_seg):
-            dm, rm = seg_d == k, seg_r == k
-            e = float(dl[dm].sum() - s[rm].sum())
-            if not dm.any() and not rm.any():
-                continue
-            if k == 0 or k == n_seg - 1 or (rm.size and (rm[0] or rm[-1])):  # outside the anchors, first / last step
-                place = "edge"
-            elif (in_turn & rm).any():
-                place = "turn"
-            else:
-                place = "straight"
-            kind = "count" if dm.sum() != rm.sum() else "step"
-            part[f"{place}_{kind}"] += e
+        for seg in g["segments"]:
+            dm, rm, place, kind = seg["dm"], seg["rm"], seg["place"], seg["kind"]
+            part[f"{place}_{kind}"] += seg["e"]
             if matched is not None and place == "straight" and kind == "step" and dm.sum() == 1:
                 matched.append({"subject": subject, "params": params, "start_s": b.start_s,
                                 "tracked_m": float(dl[dm][0]), "reference_m": float(s[rm][0]),
@@ -153,9 +172,9 @@ def bout_terms(steps: pd.DataFrame, session, subject: str, params: str, matched:
                      "tracked_m": tracked, "err_L": 100 * total / b.length_m,
                      **{t: 100 * v / b.length_m for t, v in part.items()},
                      "steps": int((sel["has_next"]).sum()), "ref_steps": int(s.size),
-                     "untimed": int((~timed).sum()), "missed": int(timed.sum() - i_r.size),
-                     "extra": int(c.size - i_d.size), "matched_1to1": n_matched_steps,
-                     "turn_steps": int(in_turn.sum())})
+                     "untimed": int((~timed).sum()), "missed": int(timed.sum() - g["i_r"].size),
+                     "extra": int(c.size - g["i_d"].size), "matched_1to1": n_matched_steps,
+                     "turn_steps": int(g["in_turn"].sum())})
     return pd.DataFrame(rows)
 
 
@@ -173,15 +192,20 @@ def dominance(t: pd.DataFrame, groups: dict[str, list[str]]) -> dict:
     return out
 
 
-def main() -> None:
-    ext, runs = W.test11_cli()
-    tabs, matched, cadence = [], [], {}
+def calibrated_test11(ext, runs):
+    """Per Test11 run of :func:`waist.test11_cli`: the subject, its Test11 session and the `waist-pendulum` params
+    calibrated on its Test5 walks (experiments/waist.py's protocol)."""
     for cal_names, test_name in runs:
-        subject = test_name.split("_")[1]
         test = read_session(ext / test_name)
         cal = [read_session(ext / n) for n in cal_names]
         base, _ = resolve_params(cal[0], None)
-        params = calibrate(cal, "waist-pendulum", params=base)  # experiments/waist.py's protocol
+        yield test_name.split("_")[1], test, calibrate(cal, "waist-pendulum", params=base)
+
+
+def main() -> None:
+    ext, runs = W.test11_cli()
+    tabs, matched, cadence = [], [], {}
+    for subject, test, params in calibrated_test11(ext, runs):
         cadence[subject] = params.gait["median_cadence_spm"]
         tabs.append(bout_terms(get_pipeline("waist-pendulum")(test, params=params).steps, test, subject,
                                "calibrated", matched))

@@ -278,14 +278,20 @@ def main(external: Path) -> None:
         print(f"| {sub} | " + " | ".join(str(v.get(k, 0)) for k in keys) + " |")
 
 
-if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def cli_run(doc: str, body, out_name: str) -> None:
+    """Parse ``--external``, run ``body(external)`` with warnings off and its printout captured, write it to
+    experiments/results/OUT_NAME and echo it (W235's read-out and W321's, experiments/waist_gyro_cues_w321.py)."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
     args = ap.parse_args()
     warnings.filterwarnings("ignore")
     logging.disable(logging.WARNING)
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
-        main(args.external)
-    (ROOT / "experiments" / "results" / "waist_ic_misses_w235.md").write_text(buf.getvalue())
+        body(args.external)
+    (ROOT / "experiments" / "results" / out_name).write_text(buf.getvalue())
     print(buf.getvalue(), end="")
+
+
+if __name__ == "__main__":
+    cli_run(__doc__, main, "waist_ic_misses_w235.md")

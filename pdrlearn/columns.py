@@ -328,7 +328,13 @@ SESSIONS: tuple[Column, ...] = (
                                   "step, one sit after the last): the rise's start to the sit's end (W183)"),
     ("tug_time_note", _ID, "text", "lower back: why there is no tug_time_s although a sit-to-stand is followed by "
                                    "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
-                                   "W282), pointing at --window; empty otherwise"),
+                                   "W282), pointing at --window - or, with TUG trials found, that each is timed in "
+                                   "tug_trials.csv (W325); empty otherwise"),
+    ("n_tug_trials", "count", "integer", "lower back: TUG trials, W183's seat-to-seat rule applied to each "
+                                         "sit-to-stand directly followed by a stand-to-sit with walking between "
+                                         "(tug_trials.csv, W325); empty on a foot track"),
+    ("tug_trials_median_s", "s", "number", "lower back: the median of tug_trials.csv's tug_time_s (W325); empty "
+                                           "without a trial"),
     ("sts5_time_s", "s", "number", "lower back, a five-times sit-to-stand: the first rise's start to the last sit's "
                                    "end when the transfers are exactly 5 rises and 5 sits alternating from a rise, "
                                    "none flagged, no walking between (W279)"),
@@ -571,6 +577,27 @@ TUG_PHASE_TABLE: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+#: decision W325: a lower-back track's tug_trials.csv (only with a TUG trial)
+TUG_TRIAL_TABLE: tuple[Column, ...] = (
+    ("trial", "count", "integer", "1, 2, ... in time order: each sit-to-stand directly followed by a stand-to-sit "
+                                  "with walking between, seated before and after, neither flagged (W183's rule per "
+                                  "segment, W325)"),
+    ("start_s", "s", "number", "the trial's sit-to-stand's start (transfers.csv)"),
+    ("end_s", "s", "number", "the trial's stand-to-sit's end (transfers.csv)"),
+    ("tug_time_s", "s", "number", "end_s - start_s (W183's TUG time of this trial; a one-trial recording's "
+                                  "summary tug_time_s)"),
+    ("tug_sit_to_stand_s", "s", "number", "W293's phases cut on this trial (as tug_phases.csv; W307's yaw-rate "
+                                          "turn-to-sit); empty for a phase the track cannot place"),
+    ("tug_walk_out_s", "s", "number", "the trial's walk out (W293)"),
+    ("tug_turn_s", "s", "number", "the trial's first turn (W293)"),
+    ("tug_walk_back_s", "s", "number", "the trial's walk back (W293)"),
+    ("tug_turn_to_sit_s", "s", "number", "the trial's turn-to-sit (W293, W307)"),
+    ("tug_stand_to_sit_s", "s", "number", "the trial's stand-to-sit (W293)"),
+    ("n_steps", "count", "integer", "steps.csv rows starting from start_s to end_s"),
+    ("n_turns", "count", "integer", "turns.csv rows whose midpoint lies between the rise's end and the sit's start"),
+    *_clocks("start_s", "end_s"),
+)
+
 #: decision W213: a track's freezes.csv (foot or lower back: the tracked unit's freeze index)
 FREEZES: tuple[Column, ...] = (
     ("freeze", "index", "integer", "the episode's number in the session, from 1"),
@@ -781,6 +808,7 @@ RAMPS: tuple[Column, ...] = (
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
                                          "bouts.csv": BOUTS, "turns.csv": TURNS, "periods.csv": PERIODS,
                                          "transfers.csv": TRANSFERS, "tug_phases.csv": TUG_PHASE_TABLE,  # W293
+                                         "tug_trials.csv": TUG_TRIAL_TABLE,  # W325
                                          "freezes.csv": FREEZES, "ramps.csv": RAMPS,  # L301
                                          "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS,  # E137
                                          "gait_steps.csv": GAIT_STEPS, "gait_cycles.csv": GAIT_CYCLES,  # L287

@@ -26,7 +26,11 @@ def test_tug_time_note_says_why_and_points_at_window():
     # two TUG trials in one recording (the trial's user 150): the count, each rise and sit, and --window
     two = _tr((SIT_TO_STAND, 5.0), (STAND_TO_SIT, 25.0), (SIT_TO_STAND, 37.0), (STAND_TO_SIT, 57.5))
     s = transfer_summary(two, pd.DataFrame({"start_s": [8.0, 20.0, 40.0, 50.0]}))
-    assert s["tug_time_s"] is None
+    # W325: these two are TUG trials, each timed in tug_trials.csv, so the note says that instead of --window
+    assert s["tug_time_s"] is None and s["n_tug_trials"] == 2 and "tug_trials.csv" in s["tug_time_note"]
+    # a step while seated between them (at 30 s): no trial, W282's note
+    s = transfer_summary(two, pd.DataFrame({"start_s": [8.0, 20.0, 30.0, 40.0, 50.0]}))
+    assert s["tug_time_s"] is None and s["n_tug_trials"] == 0
     note = s["tug_time_note"]
     assert note.startswith("no TUG time: 4 transfers (2 sit-to-stand, 2 stand-to-sit)") and "--window" in note
     assert "rises start at 5.0, 37.0 s" in note and "sits end at 26.5, 59.0 s" in note

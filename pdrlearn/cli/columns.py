@@ -7,7 +7,8 @@ import typer
 
 def columns(
     table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv, bouts.csv, "
-                                "turns.csv, periods.csv, transfers.csv, tug_phases.csv, freezes.csv, ramps.csv, "
+                                "turns.csv, periods.csv, transfers.csv, tug_phases.csv, tug_trials.csv, freezes.csv, "
+                                "ramps.csv, "
                                 "steps.csv (the lower back's and the foot's; 'steps.csv (foot)' for the foot's only), "
                                 "or gait's "
                                 "gait_steps.csv, gait_cycles.csv, gait_bouts.csv (default: all); the name "
@@ -16,9 +17,9 @@ def columns(
                                  "type, meaning}."),
 ) -> None:
     """Print every column of track-all's sessions.csv, groups.csv, subjects.csv, a track's bouts.csv, turns.csv,
-    periods.csv, transfers.csv, tug_phases.csv, freezes.csv, ramps.csv and steps.csv (a lower-back track's and a foot
-    track's, decision E137) and gait's three tables with its unit, type and meaning, as Markdown (docs/columns.md is
-    this output).
+    periods.csv, transfers.csv, tug_phases.csv, tug_trials.csv, freezes.csv, ramps.csv and steps.csv (a lower-back
+    track's and a foot track's, decision E137) and gait's three tables with its unit, type and meaning, as Markdown
+    (docs/columns.md is this output).
 
     Examples:
 

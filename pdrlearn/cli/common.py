@@ -481,8 +481,9 @@ def storey_height_option():
     return typer.Option(3.0, "--storey-height", metavar="M", min=0.5, max=20.0, help=STOREY_HEIGHT_HELP)
 
 
-START_HELP = ("Start coordinate LAT,LON (degrees) -> lat/lon columns; LAT,LON,ALT also gives the start's "
-              "altitude in m, where the z column starts (default 0: z = height above the start; decision L56).")
+START_HELP = ("Start coordinate LAT,LON (degrees) -> lat/lon columns and OUT/track.gpx, OUT/track.geojson for "
+              "map tools (decision L363); LAT,LON,ALT also gives the start's altitude in m, where the z column "
+              "starts (default 0: z = height above the start; decision L56) and the GPX <ele>.")
 
 
 INITIAL_HEADING_HELP = ("Direction the walker sets off in, DEG degrees in the track's ENU frame: counter-clockwise "
@@ -577,8 +578,8 @@ def transfer_line(summary: dict) -> str | None:
         parts.append(f"{rise} sit-to-stand, {sit} stand-to-sit{lying} (transfers.csv)")
         if summary.get("tug_time_s") is not None:
             parts.append(f"TUG time {summary['tug_time_s']:.2f} s (rise to sit)")
-        elif summary.get("tug_time_note"):  # decision W282: why there is none, and --window
-            parts.append(summary["tug_time_note"])
+        elif summary.get("tug_time_note") and not summary.get("n_tug_trials"):  # W282: why none, and --window
+            parts.append(summary["tug_time_note"])  # (W325: with trials, their own line says it)
         if summary.get("sts5_time_s") is not None:  # decision W279
             parts.append(f"five-times sit-to-stand {summary['sts5_time_s']:.2f} s (first rise to last sit)")
     if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout

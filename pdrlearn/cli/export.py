@@ -365,6 +365,9 @@ def run(
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
+    from pdrlearn.kernels.geodetic import start_has_altitude
+
+    start_ele = start_has_altitude(start)  # decision L362: track.gpx's <ele> only from a given altitude
     heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
     clock_offset = _track.clock_offset_value(clock_offset, align_units, "run")  # decision E112, as `track`
     clock_drift = _track.clock_drift_value(clock_drift_ppm, align_units, "run")  # decision B265, as `track`
@@ -396,6 +399,7 @@ def run(
                             "--json)")
         return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts,
                           storey_height, start_ll, start_alt, sides=sides,  # decision L142: as the foot bundle's run
+                          start_ele=start_ele,  # decision L363
                           drop_partial_row=drop_partial_row)  # decision B276
     if sides:  # decision E110: W138's side is the lower-back contact's; a foot bundle tracks one foot's strides
         raise DataError(f"run: --sides gives a waist-only bundle's steps their foot; {bundle_dir} is a foot-unit "
@@ -578,7 +582,7 @@ def run(
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
     if out is not None:
-        _write(out, result, summary, session, source, dpi=dpi, record=record(), bouts=table)
+        _write(out, result, summary, session, source, dpi=dpi, record=record(), bouts=table, with_ele=start_ele)
     if as_json:
         print_json(json_safe(summary))
     else:
@@ -655,7 +659,8 @@ def _calibration_gait_warning(params, steps, warnings: list[str], where: str) ->
 
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
                heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0,
-               start_ll=None, start_alt: float = 0.0, sides: bool = False, drop_partial_row: bool = False) -> None:
+               start_ll=None, start_alt: float = 0.0, sides: bool = False, drop_partial_row: bool = False,
+               start_ele: bool = False) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
@@ -790,7 +795,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
 
     add_gait_range_flag(summary)  # decision L195: the flag as track's summary has it (this path warns no L95 line)
     if out is not None:
-        _write(out, result, summary, session, summary["source"], dpi=dpi, record=record(), bouts=table)
+        _write(out, result, summary, session, summary["source"], dpi=dpi, record=record(), bouts=table,
+               with_ele=start_ele)
     if as_json:
         print_json(json_safe(summary))
         return
@@ -907,13 +913,14 @@ def _latency(lat: list[float]) -> dict:
 
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
-           record: dict, bouts) -> None:
+           record: dict, bouts, with_ele: bool = False) -> None:
     """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png, summary.json and run.json
     (``record``, decision L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure),
     atomically: all seven or none, and ``--force`` keeps the old run until then. ``session``: the replayed session
     (its ground truth in path.png; None for a capture). Decision E144: a replayed session whose meta.json gives its
     recording start gets track's clock columns and summary ``recording_start`` (L298); a capture has no meta.json and
-    no clock start, so none."""
+    no clock start, so none. Decision L363: with lat/lon (``--start``) also track's track.gpx and track.geojson
+    (``with_ele``: ``--start LAT,LON,ALT`` gave the altitude)."""
     import json
 
     from pdrlearn.atomic import atomic_directory
@@ -937,6 +944,11 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
             table.to_csv(tmp / name, index=False, float_format="%.10g")
         plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
+        from pdrlearn.track.geoexport import write_geo_files
+
+        write_geo_files(tmp, result.trajectory, session=summary.get("session") or source,  # decision L363, as track
+                        pipeline=summary.get("pipeline"), distance_m=summary.get("distance_m"), start=start,
+                        with_ele=with_ele)
         write_run_json(tmp, record)
     replaced(out, was)
 

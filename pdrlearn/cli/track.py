@@ -263,7 +263,7 @@ def track(
 
         pdrlearn track datasets/real/gaitmap_level_right --method M3 --model oracle --out out/track_oracle
 
-        pdrlearn track out/sim/D_u1 --method M2 --start 41.178,-8.608 --out out/D
+        pdrlearn track out/sim/D_u1 --method M2 --start 41.178,-8.608 --out out/D   # + track.gpx, track.geojson
 
         pdrlearn track out/sim/D_u1 --start 41.178,-8.608,12.5 --out out/D_alt   # z starts at 12.5 m
 
@@ -374,6 +374,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         raise DataError(f"track: {'--resample' if resample else '--no-resample'} compares the session's rate with "
                         "the model's: pass --model DIR, or drop it (without a model nothing depends on the rate)")
     start_ll, start_alt = start_option(start)
+    from pdrlearn.kernels.geodetic import start_has_altitude
+
     heading0 = initial_heading_option(initial_heading)  # decision L98: degrees ENU -> rad
     win = parse_window(window)  # decision L105: a bad window is one line before any tracking
     from pdrlearn.track.periods import parse_per
@@ -459,6 +461,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     return {"pipeline": pipeline, "method": method, "model": model, "rules": rules,
             "min_confidence": min_confidence, "bounds": bounds, "length_bounds_given": length_bounds is not None,
             "warn_out_of_domain": warn_out_of_domain, "start_ll": start_ll, "start_alt": start_alt,
+            "start_ele": start_has_altitude(start),  # decision L362: track.gpx's <ele> only from a given altitude
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "freeze_index": freeze_index,
@@ -759,7 +762,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             summary["per_align"] = "clock"
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
-            "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods, "start": start}
+            "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods, "start": start,
+            "start_ele": bool(o.get("start_ele"))}
 
 
 def _check_relative_heading(result, session, heading0: float) -> None:
@@ -793,7 +797,7 @@ def clinical_tables(result, bouts) -> dict:
     """The per-event tables a track writes beside bouts.csv: ``turns.csv`` (decision L200: each turn of at least
     ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
     sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk; with a TUG time its
-    phases, ``tug_phases.csv``, decision W293) and ``freezes.csv``
+    phases, ``tug_phases.csv``, decision W293; with a TUG trial, ``tug_trials.csv``, W325) and ``freezes.csv``
     (decision W213: the freeze index's episodes of the tracked unit), and ``ramps.csv`` (decision L301)."""
     import pandas as pd
 
@@ -805,12 +809,16 @@ def clinical_tables(result, bouts) -> dict:
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
-        from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases
+        from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases, tug_trial_table
 
         phases = tug_phases(result.info["transfers"], out["turns.csv"], result.steps,  # decision W293
                             yaw_turns=result.info.get("yaw_turns"))  # W307
         if phases is not None:
             out["tug_phases.csv"] = tug_phase_table(phases)
+        trials = tug_trial_table(result.info["transfers"], out["turns.csv"], result.steps,  # decision W325
+                                 yaw_turns=result.info.get("yaw_turns"))
+        if len(trials):
+            out["tug_trials.csv"] = trials
     if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
         from pdrlearn.track.freezes import freeze_table
 
@@ -847,6 +855,12 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    from pdrlearn.track.geoexport import write_geo_files
+
+    # decisions L362, L363: track.gpx and track.geojson of a track with lat/lon (a --start), none without
+    write_geo_files(dest, traj, session=session.name, pipeline=summary.get("pipeline"),
+                    distance_m=summary.get("distance_m"), start=tracked.get("start"),
+                    with_ele=bool(tracked.get("start_ele")))
     return summary, aided
 
 
@@ -892,23 +906,34 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
     timed = transfer_line(summary)  # decisions L200, W183; W277: also without walking (a sit-to-stand test)
     if timed:
         typer.echo(timed)
-    from pdrlearn.waist.tug_phases import tug_phase_line
+    from pdrlearn.waist.tug_phases import tug_phase_line, tug_trials_line
 
     phased = tug_phase_line(summary)  # decision W293
     if phased:
         typer.echo(phased)
+    if summary.get("n_tug_trials") and (out / "tug_trials.csv").is_file():  # decision W325: several trials
+        import pandas as pd
+
+        trials = tug_trials_line(summary, pd.read_csv(out / "tug_trials.csv"))
+        if trials:
+            typer.echo(trials)
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
                    f"{summary['time_no_data_s']:.1f} s")
         # decisions W222, L316: the time that is not walking, by posture
         typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys"))
+    from pdrlearn.track.geoexport import GEO_FILES
+
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
+               f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
-               f"{'aided.png, ' if aided else ''}summary.json, run.json")
+               f"{'aided.png, ' if aided else ''}summary.json, run.json"
+               # decision L363: the map files, written when the track has lat/lon (--start)
+               + "".join(f", {n}" for n in GEO_FILES if (out / n).is_file()))
 
 
 

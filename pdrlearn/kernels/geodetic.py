@@ -64,6 +64,12 @@ def parse_start(text: str, *, altitude: bool = False) -> tuple[float, float] | t
     return (lat, lon, alt) if altitude else (lat, lon)
 
 
+def start_has_altitude(text: str | None) -> bool:
+    """Whether a ``--start`` text (checked by :func:`parse_start`) gave the start's altitude, ``LAT,LON,ALT``: the
+    z column is then an elevation, written as track.gpx's ``<ele>`` (decision L362)."""
+    return text is not None and len(str(text).replace(";", ",").split(",")) == 3
+
+
 def start_coordinate(start, name: str = "start") -> tuple[tuple[float, float] | None, float]:
     """Decision L157: the ``start=`` of the Python pipelines as the CLI's ``--start LAT,LON[,ALT]``:
     ``(lat, lon)`` or ``(lat, lon, alt)`` in degrees (alt in m; a ``"LAT,LON[,ALT]"`` string too) ->

@@ -9,12 +9,13 @@ import pandas as pd
 from pdrlearn.waist.tug_phases import TUG_PHASE_KEYS
 
 #: decision W296: the columns, in order (the first, the row's name, is given by the caller)
-CLINICAL_TEST_COLUMNS = ("tug_time_s", *TUG_PHASE_KEYS, "n_sit_to_stand", "n_stand_to_sit", "median_sit_to_stand_s",
+CLINICAL_TEST_COLUMNS = ("tug_time_s", *TUG_PHASE_KEYS, "n_tug_trials", "tug_trials_median_s",  # W325
+                         "n_sit_to_stand", "n_stand_to_sit", "median_sit_to_stand_s",
                          "median_stand_to_sit_s", "n_lie_down", "n_get_up", "turn_count", "median_turn_duration_s",
                          "turn_time_s")
 #: decision W296: the table's caption
-CLINICAL_TEST_CAPTION = ("TUG, its phases (tug_phases.csv), chair transfers (transfers.csv) and turns (turns.csv); "
-                         "an empty cell: not measured")
+CLINICAL_TEST_CAPTION = ("TUG, its phases (tug_phases.csv), TUG trials (tug_trials.csv), chair transfers "
+                         "(transfers.csv) and turns (turns.csv); an empty cell: not measured")
 #: decision W296: the columns that make the table worth showing (turns alone are in the gait table's turn_count)
 _TRIGGER = ("tug_time_s", *TUG_PHASE_KEYS, "n_sit_to_stand", "n_stand_to_sit", "n_lie_down", "n_get_up")
 

@@ -45,19 +45,46 @@ def true_tug_phases(session, route: str) -> dict:
     first / last of :func:`true_turn_spans` (no turn-to-sit with one turn), walk out = the first true contact after
     the rise to the turn's start, walk back = the turn's end to the turn-to-sit's start (else the last true contact
     before the sit) - W293's boundaries on the simulator's records."""
+    tr = session.extras["transfers"]
+    return _segment_truth(session, tr.iloc[0], tr.iloc[-1], true_turn_spans(session.trajectory, route))
+
+
+def _segment_truth(session, rise, sit, turns: list[tuple[float, float]]) -> dict:
+    """W294's phases of one seat-to-seat segment: the simulator's transfers rows ``rise`` (its ``rise_s`` to
+    ``end_s``) and ``sit`` (``start_s`` to ``seated_s``) and the segment's true turn spans ``turns``."""
     from pdrlearn.waist.tug_phases import phase_span
 
-    tr = session.extras["transfers"]
-    up, seated = float(tr["end_s"].iloc[0]), float(tr["start_s"].iloc[-1])
+    up, seated = float(rise["end_s"]), float(sit["start_s"])
     ics = np.sort(session.extras["ics"]["ic_s"].to_numpy(float))
     ics = ics[(ics > up) & (ics < seated)]
-    turns = true_turn_spans(session.trajectory, route)
     turn = turns[0] if turns else None
     to_sit = turns[-1] if len(turns) >= 2 else None
-    return {"sit_to_stand": phase_span(float(tr["rise_s"].iloc[0]), up),
+    return {"sit_to_stand": phase_span(float(rise["rise_s"]), up),
             "walk_out": phase_span(float(ics[0]) if ics.size else None, None if turn is None else turn[0]),
             "turn": None if turn is None else phase_span(*turn),
             "walk_back": (None if turn is None else
                           phase_span(turn[1], to_sit[0] if to_sit else (float(ics[-1]) if ics.size else None))),
             "turn_to_sit": None if to_sit is None else phase_span(*to_sit),
-            "stand_to_sit": phase_span(seated, float(tr["seated_s"].iloc[-1]))}
+            "stand_to_sit": phase_span(seated, float(sit["seated_s"]))}
+
+
+def trials_route(trial: str, n: int, sit_s: float = 10.0) -> str:
+    """Decision W326: ``n`` TUG trials of route ``trial`` joined by ``sit:SIT_S`` (sit down, rest, rise: the trial
+    finding's two-trial recording); simulate it with ``sit_start_s`` / ``sit_end_s`` so it starts and ends seated."""
+    return f", sit:{sit_s:g}, ".join([trial] * n)
+
+
+def true_trials(session, trial: str, n: int) -> list[dict]:
+    """Decision W326: per trial of a :func:`trials_route` session (seated at both ends), ``{"start_s", "end_s",
+    "tug_time_s", "phases"}``: transfers row k's ``rise_s`` to row k+1's ``seated_s`` (W183's TUG truth per trial) and
+    :func:`true_tug_phases`' phases on that segment with the trial's own route turns."""
+    tr = session.extras["transfers"]
+    turns = true_turn_spans(session.trajectory, trials_route(trial, n))
+    per = len(turns) // n
+    out = []
+    for k in range(n):
+        rise, sit = tr.iloc[k], tr.iloc[k + 1]
+        t0, t1 = float(rise["rise_s"]), float(sit["seated_s"])
+        out.append({"start_s": t0, "end_s": t1, "tug_time_s": t1 - t0,
+                    "phases": _segment_truth(session, rise, sit, turns[k * per:(k + 1) * per])})
+    return out

@@ -10,11 +10,12 @@ from pdrlearn.kernels.geodetic import (  # noqa: F401 (L157 checks: in the kerne
     destination,
     parse_start,
     start_coordinate,
+    start_has_altitude,
     step_destination,
 )
 
 __all__ = ["EARTH_RADIUS_KM", "destination", "geodetic_track", "heading_in_radians", "parse_start", "start_coordinate",
-           "step_destination"]
+           "start_has_altitude", "step_destination"]
 
 
 def heading_in_radians(value: float, name: str) -> float:

@@ -15,7 +15,9 @@ whole movement and classed by the pelvis's height change over it:
 * **TUG time** (W183): ``tug_time_s`` is the first sit-to-stand's start to the last stand-to-sit's end, only when
   the session starts and ends seated: no step starts before that sit-to-stand's start or after that stand-to-sit's
   end (a contact inside a transfer may: W146), and no transfer lies between them (else None: the test was not
-  recorded from seat to seat).
+  recorded from seat to seat);
+* **TUG trials** (W325): the same rule applied to each sit-to-stand directly followed by a stand-to-sit with walking
+  between (:func:`tug_trial_pairs`), so two or three trials in one recording are each timed (tug_trials.csv).
 
 Not from a seed: the clinical TUG runs from rising off the chair to sitting back on it (Podsiadlo & Richardson 1991,
 J Am Geriatr Soc 39:142-148, as recalled), and the thresholds are this module's choices (W182), set before
@@ -59,7 +61,7 @@ TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_
 #: decision W183: the summary keys of :func:`transfer_summary`
 TRANSFER_SUMMARY_KEYS = ("n_sit_to_stand", "n_stand_to_sit", "median_sit_to_stand_s", "median_stand_to_sit_s",
                          "tug_time_s", "n_lie_down", "n_get_up", "tug_time_note", "sts5_time_s",
-                         "n_transfers_flagged")
+                         "n_transfers_flagged", "n_tug_trials", "tug_trials_median_s")
 #: decision W278: a transfer with walking contacts within this (s) before its start and after its end is flagged
 FLAG_WALK_S = 2.0
 #: decision W278: transfers.csv's ``flag`` texts ("" = none)
@@ -231,12 +233,45 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
         if len(tr) == 2 and not ((contacts < t0).any() or (contacts > t1).any()):
             out["tug_time_s"] = t1 - t0
+    trials = tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]), contacts)  # W325
+    times = [float(tr["end_s"].iloc[j]) - float(tr["start_s"].iloc[i]) for i, j in trials]
+    out["n_tug_trials"], out["tug_trials_median_s"] = len(trials), float(np.median(times)) if times else None
     # decision W282: why not, when a rise is followed by a sit (a TUG could be timed on them)
     pair = len(rise) and len(sit) and float(rise["start_s"].min()) < float(sit["end_s"].max())
     # decision W279: a five-times sit-to-stand is no TUG to explain: it has its own time
-    out["tug_time_note"] = (tug_note(tr, contacts) if out["tug_time_s"] is None and pair
-                            and out["sts5_time_s"] is None else None)
+    out["tug_time_note"] = (trials_note(tr, trials) if trials else tug_note(tr, contacts)) if (
+        out["tug_time_s"] is None and pair and out["sts5_time_s"] is None) else None
     return out
+
+
+def tug_trial_pairs(kinds, start_s, end_s, flags, contacts) -> list[tuple[int, int]]:
+    """Decision W325: the TUG trials of a transfers table in time order (``kinds``, ``start_s``, ``end_s``, W278's
+    ``flags`` per row) with walking ``contacts`` (start times, s), as ``(rise row, sit row)`` index pairs (a pure
+    kernel): W183's seat-to-seat rule applied per pair of consecutive rows - a sit-to-stand directly followed by a
+    stand-to-sit, neither flagged, at least one contact between the rise's end and the sit's start, and none between
+    the transfer before (or the start) and the rise's start nor between the sit's end and the next transfer (or the
+    end)."""
+    kinds = list(kinds)
+    a, b = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
+    c = np.asarray(contacts, dtype=float)
+    out = []
+    for i in range(len(kinds) - 1):
+        if kinds[i] != SIT_TO_STAND or kinds[i + 1] != STAND_TO_SIT or flags[i] or flags[i + 1]:
+            continue
+        before = b[i - 1] if i > 0 else -np.inf
+        after = a[i + 2] if i + 2 < len(kinds) else np.inf
+        seated = not (((c > before) & (c < a[i])).any() or ((c > b[i + 1]) & (c < after)).any())
+        if seated and ((c > b[i]) & (c < a[i + 1])).any():
+            out.append((i, i + 1))
+    return out
+
+
+def trials_note(tr: pd.DataFrame, trials: list[tuple[int, int]]) -> str:
+    """Decision W325: ``tug_time_note`` of a recording with TUG ``trials`` (:func:`tug_trial_pairs`) but no single
+    ``tug_time_s``: how many, their rises, and where each is timed."""
+    rises = ", ".join(f"{float(tr['start_s'].iloc[i]):.1f}" for i, _ in trials)
+    return (f"no single TUG time: {len(trials)} TUG trial(s) among {len(tr)} transfers (rises at {rises} s), each "
+            "timed in tug_trials.csv; tug_trials_median_s is their median (W183, W325)")
 
 
 def tug_note(tr: pd.DataFrame, contacts: np.ndarray) -> str:

@@ -32,6 +32,8 @@ TUG_PHASES = ("sit_to_stand", "walk_out", "turn", "walk_back", "turn_to_sit", "s
 TUG_PHASE_COLUMNS = ("phase", "start_s", "end_s", "duration_s")
 #: decision W293: the summary's flat duration keys (sessions.csv keeps scalars only, C12), one per phase
 TUG_PHASE_KEYS = tuple(f"tug_{p}_s" for p in TUG_PHASES)
+#: decision W325: tug_trials.csv's columns, in order
+TUG_TRIAL_COLUMNS = ("trial", "start_s", "end_s", "tug_time_s", *TUG_PHASE_KEYS, "n_steps", "n_turns")
 #: decision W307: without a second turns.csv turn, take the turn-to-sit from the yaw-rate turns (W308: adopted)
 TUG_YAW_TURN_TO_SIT = True
 #: the phases as the console line names them
@@ -70,20 +72,41 @@ def tug_phases(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None
     ``start_s``); None when the track has no TUG time (W183's :func:`~pdrlearn.waist.transfers.transfer_summary`).
     Decision W307: with ``yaw_to_sit`` (None: :data:`TUG_YAW_TURN_TO_SIT`) and one turns.csv turn in the TUG, the
     turn-to-sit is :func:`yaw_turn_to_sit` of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``)."""
-    from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT, TRANSFER_COLUMNS, transfer_summary
+    from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT, transfer_summary
 
     if transfers is None or transfer_summary(transfers, steps)["tug_time_s"] is None:
         return None
-    tr = pd.DataFrame(list(transfers) if not isinstance(transfers, pd.DataFrame) else transfers,
-                      columns=list(TRANSFER_COLUMNS))
+    tr = _table(transfers)
     rise = tr[tr["kind"] == SIT_TO_STAND].iloc[0]  # W183: exactly one rise, then one sit
     sit = tr[tr["kind"] == STAND_TO_SIT].iloc[-1]
+    return segment_phases(rise, sit, turns, steps, yaw_turns, yaw_to_sit)
+
+
+def _table(transfers) -> pd.DataFrame:
+    """A transfers.csv table of ``transfers`` (a table or its records)."""
+    from pdrlearn.waist.transfers import TRANSFER_COLUMNS
+
+    return pd.DataFrame(list(transfers) if not isinstance(transfers, pd.DataFrame) else transfers,
+                        columns=list(TRANSFER_COLUMNS))
+
+
+def _turns_inside(turns: pd.DataFrame | None, up: float, down: float) -> pd.DataFrame:
+    """Decision W293: the turns.csv rows whose midpoint lies between ``up`` (the rise's end) and ``down`` (the sit's
+    start), by start time."""
+    tt = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s"])
+    mid = 0.5 * (tt["start_s"].to_numpy(float) + tt["end_s"].to_numpy(float))
+    return tt[(mid > up) & (mid < down)].sort_values("start_s")
+
+
+def segment_phases(rise, sit, turns: pd.DataFrame | None, steps: pd.DataFrame | None, yaw_turns=None,
+                   yaw_to_sit: bool | None = None) -> dict:
+    """Decision W293: the phases of one seat-to-seat segment, from its ``rise`` and ``sit`` transfers.csv rows (W183's
+    TUG, or one of W325's trials), ``turns`` (turns.csv), ``steps`` (the walking contacts) and W307's ``yaw_turns``
+    / ``yaw_to_sit`` (:func:`tug_phases`)."""
     up, down = float(rise["end_s"]), float(sit["start_s"])
     contacts = np.zeros(0) if steps is None or not len(steps) else np.sort(steps["start_s"].to_numpy(float))
     contacts = contacts[(contacts > up) & (contacts < down)]
-    tt = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s"])
-    mid = 0.5 * (tt["start_s"].to_numpy(float) + tt["end_s"].to_numpy(float))
-    inside = tt[(mid > up) & (mid < down)].sort_values("start_s")
+    inside = _turns_inside(turns, up, down)
     turn = inside.iloc[0] if len(inside) else None
     to_sit = inside.iloc[-1] if len(inside) >= 2 else None
     if to_sit is None and turn is not None and (TUG_YAW_TURN_TO_SIT if yaw_to_sit is None else yaw_to_sit):
@@ -98,6 +121,40 @@ def tug_phases(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None
            "turn_to_sit": None if to_sit is None else phase_span(float(to_sit["start_s"]), float(to_sit["end_s"])),
            "stand_to_sit": phase_span(down, float(sit["end_s"]))}
     return out
+
+
+def tug_trial_table(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None, yaw_turns=None,
+                    yaw_to_sit: bool | None = None) -> pd.DataFrame:
+    """Decision W325: tug_trials.csv's rows (:data:`TUG_TRIAL_COLUMNS`), one per TUG trial
+    (:func:`~pdrlearn.waist.transfers.tug_trial_pairs`) of a track's transfers, with each trial's W293 phases
+    (:func:`segment_phases`), its walking contacts from the rise's start to the sit's end and its turns.csv turns."""
+    from pdrlearn.waist.transfers import flag_texts, tug_trial_pairs
+
+    rows = []
+    if transfers is not None:
+        tr = _table(transfers)
+        contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
+        for k, (i, j) in enumerate(tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]),
+                                                   contacts)):
+            rise, sit = tr.iloc[i], tr.iloc[j]
+            t0, t1 = float(rise["start_s"]), float(sit["end_s"])
+            phases = tug_phase_summary(segment_phases(rise, sit, turns, steps, yaw_turns, yaw_to_sit))
+            rows.append({"trial": k + 1, "start_s": t0, "end_s": t1, "tug_time_s": t1 - t0,
+                         **{key: phases[key] for key in TUG_PHASE_KEYS},
+                         "n_steps": int(((contacts >= t0) & (contacts <= t1)).sum()),
+                         "n_turns": len(_turns_inside(turns, float(rise["end_s"]), float(sit["start_s"])))})
+    return pd.DataFrame(rows, columns=list(TUG_TRIAL_COLUMNS))
+
+
+def tug_trials_line(summary: dict, table: pd.DataFrame | None = None) -> str | None:
+    """Decision W325: ``track``'s line of the TUG trials when there is no single ``tug_time_s``; None otherwise.
+    ``table``: tug_trials.csv's rows (the times listed); without it only the count and the median."""
+    n = summary.get("n_tug_trials")
+    if not n or summary.get("tug_time_s") is not None:
+        return None
+    times = "" if table is None or not len(table) else ", ".join(f"{t:.2f}" for t in table["tug_time_s"]) + " s "
+    return (f"{n} TUG trial(s): {times}(median {summary['tug_trials_median_s']:.2f} s; tug_trials.csv, "
+            "decision W325)")
 
 
 def tug_phase_summary(phases: dict | None) -> dict:

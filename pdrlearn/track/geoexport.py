@@ -1,0 +1,137 @@
+"""A track's path for map tools (decisions L362, L363, B281; docs/decisions/localization.md, bad-input.md).
+
+With a geodetic start (``--start LAT,LON[,ALT]``, so trajectory.csv has ``lat``/``lon``) ``track``, ``track-all``
+and ``run`` also write
+
+- ``track.gpx``: GPX 1.1 (https://www.topografix.com/GPX/1/1/): one ``<trk>`` named after the session, one
+  ``<trkseg>`` per unbroken run of rows with finite lat/lon, a ``<trkpt lat lon>`` per row with ``<ele>`` when the
+  start's altitude was given (``--start LAT,LON,ALT``; without it z is the height above the start, not an
+  elevation) and ``<time>`` when the session gives its recording start with a UTC offset (L298's start; GPX times
+  are UTC, so a start written without an offset, a local clock time of no known zone, gives no ``<time>``);
+- ``track.geojson``: an RFC 7946 FeatureCollection (WGS 84, positions ``[lon, lat(, ele)]``, longitude first, RFC
+  7946 section 3.1.1): the path as a LineString (a MultiLineString when rows without lat/lon cut it, B281) and
+  Point features at its start and end.
+
+Coordinates are written with 7 decimals (1e-7 degree is ~1 cm), elevations with 2 (cm). Standard library only.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import xml.etree.ElementTree as ET
+from datetime import UTC, datetime, timedelta
+from pathlib import Path
+
+import numpy as np
+
+#: the files this module writes, in the order ``track``'s "wrote" line names them
+GEO_FILES = ("track.gpx", "track.geojson")
+#: GPX 1.1's namespace and schema (https://www.topografix.com/GPX/1/1/gpx.xsd)
+GPX_NS = "http://www.topografix.com/GPX/1/1"
+_GPX_XSD = "http://www.topografix.com/GPX/1/1/gpx.xsd"
+_XSI = "http://www.w3.org/2001/XMLSchema-instance"
+COORD_DECIMALS = 7  # decision L362: 1e-7 degree ~ 1.1 cm of latitude
+ELE_DECIMALS = 2  # decision L362: cm
+
+
+def geo_pieces(lat, lon) -> list[np.ndarray]:
+    """Decision B281: the row indices of each unbroken run of rows whose ``lat`` and ``lon`` are both finite, in
+    order; a row without them cuts the path (GPX 1.1: a new track segment where reception was lost). Empty when no
+    row has them."""
+    ok = np.isfinite(np.asarray(lat, float)) & np.isfinite(np.asarray(lon, float))
+    idx = np.flatnonzero(ok)
+    if not len(idx):
+        return []
+    return np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
+
+
+def utc_times(start: datetime | None, seconds) -> list[str] | None:
+    """Decision L362: ISO 8601 UTC texts (``...Z``, milliseconds) of session times ``seconds`` after the recording
+    ``start`` (L298); None without a start or with one of no UTC offset (its zone unknown: no UTC time exists)."""
+    if start is None or start.utcoffset() is None:
+        return None
+    return [(start + timedelta(seconds=float(s))).astimezone(UTC).isoformat(timespec="milliseconds")
+            .replace("+00:00", "Z") for s in seconds]
+
+
+def xml_text(text: str) -> str:
+    """Decision B281: ``text`` without the control characters XML 1.0 cannot hold (section 2.2: tab, line feed and
+    carriage return are the only ones below U+0020), which ElementTree would write into a file no reader parses."""
+    return "".join(c for c in str(text) if c in "\t\n\r" or ord(c) >= 0x20)
+
+
+def _coord(v: float) -> str:
+    return f"{v:.{COORD_DECIMALS}f}"
+
+
+def gpx_text(lat, lon, pieces: list[np.ndarray], *, name: str, ele=None, times: list[str] | None = None) -> str:
+    """The GPX 1.1 document of the rows ``pieces`` (:func:`geo_pieces`): one ``<trk>`` called ``name`` with a
+    ``<trkseg>`` per piece; ``ele`` (m, per row) gives each point's ``<ele>`` where finite, ``times`` its
+    ``<time>`` (GPX 1.1 element order: ele, then time)."""
+    ET.register_namespace("", GPX_NS)
+    root = ET.Element(f"{{{GPX_NS}}}gpx", {"version": "1.1", "creator": "pdrlearn",
+                                            f"{{{_XSI}}}schemaLocation": f"{GPX_NS} {_GPX_XSD}"})
+    trk = ET.SubElement(root, f"{{{GPX_NS}}}trk")
+    ET.SubElement(trk, f"{{{GPX_NS}}}name").text = xml_text(name)
+    for piece in pieces:
+        seg = ET.SubElement(trk, f"{{{GPX_NS}}}trkseg")
+        for i in piece:
+            pt = ET.SubElement(seg, f"{{{GPX_NS}}}trkpt", {"lat": _coord(lat[i]), "lon": _coord(lon[i])})
+            if ele is not None and math.isfinite(ele[i]):
+                ET.SubElement(pt, f"{{{GPX_NS}}}ele").text = f"{ele[i]:.{ELE_DECIMALS}f}"
+            if times is not None:
+                ET.SubElement(pt, f"{{{GPX_NS}}}time").text = times[i]
+    ET.indent(root)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+
+
+def geojson_dict(lat, lon, pieces: list[np.ndarray], *, properties: dict, ele=None,
+                 times: list[str] | None = None) -> dict:
+    """The RFC 7946 FeatureCollection of the rows ``pieces``: the path (``properties`` on it) and Point features
+    ``start`` and ``end`` (with ``time`` when ``times``). ``ele`` is each position's third value only when every
+    point written has one (one geometry, one dimension). A piece of one point is the two-position line
+    ``[p, p]`` (RFC 7946 section 3.1.4: a LineString has two or more positions; decision B281)."""
+    rows = np.concatenate(pieces)
+    with_ele = ele is not None and bool(np.all(np.isfinite(np.asarray(ele, float)[rows])))
+
+    def pos(i: int) -> list[float]:
+        p = [round(float(lon[i]), COORD_DECIMALS), round(float(lat[i]), COORD_DECIMALS)]  # RFC 7946 3.1.1: lon first
+        return p + [round(float(ele[i]), ELE_DECIMALS)] if with_ele else p
+
+    lines = [[pos(i) for i in (piece if len(piece) > 1 else [piece[0], piece[0]])] for piece in pieces]
+    path = ({"type": "LineString", "coordinates": lines[0]} if len(lines) == 1 else
+            {"type": "MultiLineString", "coordinates": lines})  # decision B281: a cut path, RFC 7946 3.1.5
+
+    def point(role: str, i: int) -> dict:
+        props = {"session": properties.get("session"), "role": role}
+        if times is not None:
+            props["time"] = times[i]
+        return {"type": "Feature", "geometry": {"type": "Point", "coordinates": pos(i)}, "properties": props}
+
+    return {"type": "FeatureCollection",
+            "features": [{"type": "Feature", "geometry": path, "properties": properties},
+                         point("start", int(rows[0])), point("end", int(rows[-1]))]}
+
+
+def write_geo_files(dest: Path, trajectory, *, session: str, pipeline: str | None, distance_m: float | None,
+                    start: datetime | None = None, with_ele: bool = False) -> tuple[str, ...]:
+    """Decisions L362, L363: write :data:`GEO_FILES` into the folder ``dest`` (the caller's temporary folder: they
+    appear with the track's other files or not at all) from ``trajectory``'s ``t``, ``lat``, ``lon`` (and ``z``
+    as the elevation when ``with_ele``: the start's altitude was given); ``start``: the recording's clock start
+    (L298) for the points' times. Returns the names written: none when no row has lat/lon (no geodetic start)."""
+    if "lat" not in trajectory or "lon" not in trajectory:
+        return ()
+    lat, lon = (trajectory[c].to_numpy(float) for c in ("lat", "lon"))
+    pieces = geo_pieces(lat, lon)
+    if not pieces:
+        return ()
+    ele = trajectory["z"].to_numpy(float) if with_ele and "z" in trajectory else None
+    times = utc_times(start, trajectory["t"].to_numpy(float)) if "t" in trajectory else None
+    (Path(dest) / GEO_FILES[0]).write_text(gpx_text(lat, lon, pieces, name=session, ele=ele, times=times))
+    finite = distance_m is not None and math.isfinite(float(distance_m))
+    props = {"session": session, "pipeline": pipeline, "distance_m": round(float(distance_m), 3) if finite else None}
+    doc = geojson_dict(lat, lon, pieces, properties=props, ele=ele, times=times)
+    # compact (a long walk's path is thousands of positions); RFC 8259 JSON: no NaN is ever written
+    (Path(dest) / GEO_FILES[1]).write_text(json.dumps(doc, separators=(",", ":"), allow_nan=False) + "\n")
+    return GEO_FILES
