@@ -267,6 +267,8 @@ def get_pipeline(name: str) -> Pipeline:
       pendulum model's distance on the same session),
       ``pll_slow_check`` (decisions W289 / W290, off: the same at over 1.25 x while the pendulum reading is under
       1.0 m/s, a slow walker's),
+      ``pll_slow_cadence_check`` (decisions W313 / W314, on: the same at over 1.25 x while the pendulum reading's
+      median cadence is under 100 steps/min),
       ``short_step_check`` (decision W207, off: an uncalibrated offline waist-pendulum track warns when its median
       step is under half the comfortable step of the stature, a shuffle the pendulum reads long),
       ``integrate_end`` (decision W187, off: the last step's heading takes the yaw turned on the spot after it, to

@@ -551,6 +551,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pll_slow_check": False,  # W289: uncalibrated waist-pll over 1.25 x the pendulum at a slow gait
+                   "pll_slow_cadence_check": True,  # W313 / W314 (adopted): the same, the slow gait by the cadence
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "cadence_law": False,  # W240
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
@@ -891,6 +892,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "lying_heading": None,  # W269: a PARAMS.json option only
              "rest_frame": None,  # W285: a PARAMS.json option only
              "pll_slow_check": None,  # W289: a PARAMS.json option only
+             "pll_slow_cadence_check": None,  # W313: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
@@ -1077,14 +1079,16 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                          pendulum()["length_m"].to_numpy(float))
         if excess_line and bool(o["pll_check"]):  # W186's line: an option (its adoption rule was not met)
             warnings.append(excess_line)
-        elif bool(o["pll_slow_check"]):  # decision W289: at a slow gait W186's ratio over 1.25 warns
-            pend = pendulum()
+        elif bool(o["pll_slow_check"]) or bool(o["pll_slow_cadence_check"]):  # decisions W289, W313: at a slow gait
+            pend = pendulum()  # W186's ratio over 1.25 warns (the slow gait judged by the pendulum's speed / cadence)
             _, n_pend, pend_length, pend_cadence = walk_ratio(pend["length_m"].to_numpy(float),
                                                               waist_step_times(pend)[0])
-            slow_line = pll_slow_excess_message(excess, float(np.nansum(np.abs(steps["length_m"].to_numpy(float)))),
-                                                float(np.nansum(np.abs(pend["length_m"].to_numpy(float)))),
-                                                pend_length, pend_cadence, n_pend)
-            warnings += [slow_line] if slow_line else []
+            slow_lines = [pll_slow_excess_message(excess, float(np.nansum(np.abs(steps["length_m"].to_numpy(float)))),
+                                                  float(np.nansum(np.abs(pend["length_m"].to_numpy(float)))),
+                                                  pend_length, pend_cadence, n_pend, judge=judge)
+                          for judge, key in (("speed", "pll_slow_check"), ("cadence", "pll_slow_cadence_check"))
+                          if bool(o[key])]
+            warnings += [line for line in slow_lines if line][:1]  # one line when both judges are on
     micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
