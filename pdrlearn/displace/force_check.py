@@ -129,11 +129,11 @@ def checked_stance(session, foot, *, use_force: bool = True, fix: str = f"pass {
     """Decisions L365 / L366: the foot unit's zero-velocity samples on ``foot.t`` (a
     :class:`~pdrlearn.orient.UnitData`), their source, the warning lines and the (k, 2) start/end times (s) of the
     spans whose stance is the IMU's in a force stance (where a force detector's strides are not to be trusted).
-    ``use_force`` False (L366's switch, ``--ignore-force``) or no usable force sensor: the IMU's :func:`~pdrlearn.displace.foot.inertial_stance`
-    ("inertial"). Else :func:`~pdrlearn.displace.foot.force_stance` checked by :func:`check_force_stance`:
-    the failing strides take the IMU's stance ("force"), or the whole session does ("inertial (force
-    disagrees)"), with one line naming the force files, the spans, why and the fix (``fix``: the command's way
-    out)."""
+    ``use_force`` False (L366's switch, ``--ignore-force``) or no usable force sensor: the IMU's
+    :func:`~pdrlearn.displace.foot.inertial_stance` ("inertial"). Else
+    :func:`~pdrlearn.displace.foot.force_stance` checked by :func:`check_force_stance`: the failing strides take
+    the IMU's stance ("force"), or the whole session does ("inertial (force disagrees)"), with one line naming the
+    force files, the spans, why and the fix (``fix``: the command's way out)."""
     from pdrlearn.displace.foot import force_stance, inertial_stance
 
     rest = inertial_stance(foot.acc, foot.gyr, foot.fs)
