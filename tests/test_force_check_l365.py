@@ -1,0 +1,162 @@
+"""Session 33 gait-lab trial T2 (fixer F1): force insoles no longer override the foot IMU silently - decisions
+L365 (the force stance checked against the IMU's rests and swings), L366 (``--ignore-force``) and steps 52 (an
+accelerometer detector counts on the IMU's own rests). The broken copies follow the trial's recipes: an insole at
+0 N for 2 s (a BLE drop-out), 2 s of force rows missing, the other foot's insole (its contacts half a stride later)."""
+
+from __future__ import annotations
+
+import logging
+import shutil
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.displace.force_check import check_force_stance
+
+
+@pytest.fixture(scope="module")
+def walk(tmp_path_factory):
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import UserProfile, simulate
+
+    out = tmp_path_factory.mktemp("f1") / "A_u7130"
+    write_session(simulate("A", UserProfile.from_seed(7130), "normal", rate_hz=100.0), out)
+    return out
+
+
+def _copy(src, dst, edit):
+    """A copy of session ``src`` whose fForceA.csv / fForceB.csv (ms, x) are passed through ``edit``."""
+    shutil.copytree(src, dst)
+    for name in ("fForceA", "fForceB"):
+        df = pd.read_csv(dst / f"{name}.csv")
+        edit(df).to_csv(dst / f"{name}.csv", index=False)
+    return dst
+
+
+def _zero(df):  # the trial's drop_zero: both channels 0 N from 15 to 17 s
+    df.loc[(df.timestamp >= 15000) & (df.timestamp < 17000), "x"] = 0.0
+    return df
+
+
+def _drop(df):  # the trial's drop_rows: the force rows of 15-17 s missing (the IMU intact)
+    return df[(df.timestamp < 15000) | (df.timestamp >= 17000)]
+
+
+def _other_foot(df):  # the other foot's insole: its contacts half a stride (~0.55 s) later
+    x = df.x.to_numpy()
+    return df.assign(x=np.roll(x, 55))
+
+
+def _track(path, **kw):
+    from pdrlearn.io import read_session
+    from pdrlearn.track.plasys import track_plasys
+
+    return track_plasys(read_session(path), **kw)
+
+
+@pytest.fixture(scope="module")
+def clean(walk):
+    return _track(walk)
+
+
+def test_kernel_flags_unloaded_rests_loaded_swings_and_gaps():
+    t = np.arange(0, 6.0, 0.01)
+    phase = (t % 1.0)
+    rest = (phase > 0.15) & (phase < 0.45)  # foot flat inside stance (0-0.6)
+    gyr = np.where((phase > 0.65) & (phase < 0.9), 6.0, 0.2)  # the swing
+    loaded = phase < 0.6
+    assert check_force_stance(t, loaded, rest, gyr).n_bad == 0
+    chk = check_force_stance(t, loaded, rest, gyr).n_strides
+    assert chk == 5
+    zero = loaded & ~((t > 2.0) & (t < 3.0))  # 0 N for a second: the rest at 2.15-2.45 s unloaded
+    got = check_force_stance(t, zero, rest, gyr)
+    assert got.n_bad == 2 and not got.session and set(got.reasons) == {"no load in the foot's rest"}
+    stuck = check_force_stance(t, np.ones_like(loaded), rest, gyr)  # a constant force: never unloads
+    assert stuck.n_bad == 5 and stuck.session and set(stuck.reasons) == {"no unloaded swing"}
+    gap = (t > 3.5) & (t < 3.7)  # in the swing of the stride from the rest at 3.15 s to the one at 4.15 s
+    assert check_force_stance(t, loaded, rest, gyr, gap).reasons == ["a gap"]
+
+
+def test_clean_walk_keeps_the_force_stance(clean):
+    assert clean.info["stance_source"] == "force"
+    assert not [w for w in clean.info["warnings"] if "L365" in w]
+
+
+def test_force_at_zero_for_2s_is_replaced_and_said(walk, clean, tmp_path):
+    res = _track(_copy(walk, tmp_path / "zero", _zero))
+    lines = [w for w in res.info["warnings"] if "L365" in w]
+    assert len(lines) == 1 and "fForceA.csv, fForceB.csv" in lines[0] and "no load in the foot's rest" in lines[0]
+    assert "--ignore-force" in lines[0]
+    # before L365: one merged stride of ~2.5 s and one stride fewer, no warning
+    assert len(res.steps) == len(clean.steps)
+    dur = (res.steps["end_s"] - res.steps["start_s"]).to_numpy()
+    assert dur.max() < 1.6
+    assert res.distance_m == pytest.approx(clean.distance_m, rel=0.02)
+
+
+def test_a_force_gap_is_bridged_by_the_imu(walk, clean, tmp_path):
+    res = _track(_copy(walk, tmp_path / "gap", _drop))
+    assert [w for w in res.info["warnings"] if "L365" in w and "a gap" in w]
+    # before L365: the strides across the force gap moved 0 m (-10 % on the trial's 30 m walk)
+    assert len(res.steps) == len(clean.steps)
+    assert res.distance_m == pytest.approx(clean.distance_m, rel=0.02)
+    assert not [w for w in res.info["warnings"] if "fForceA has" in w]
+
+
+def test_the_other_foots_insole_falls_back_to_the_imu(walk, clean, tmp_path):
+    res = _track(_copy(walk, tmp_path / "other", _other_foot))
+    assert res.info["stance_source"] == "inertial (force disagrees)"
+    assert [w for w in res.info["warnings"] if "L365" in w and "whole session" in w]
+    assert abs(len(res.steps) - len(clean.steps)) <= 1
+    assert res.distance_m == pytest.approx(clean.distance_m, rel=0.03)
+
+
+def test_steps_accel_does_not_depend_on_force_files(walk, tmp_path, capsys):
+    import json
+
+    from pdrlearn.cli.steps import report
+    from pdrlearn.io import read_session
+    from pdrlearn.steps import AccelStepDetector
+
+    counts = []
+    for path in (walk, _copy(walk, tmp_path / "other", _other_foot)):
+        s = read_session(path)
+        report(s, AccelStepDetector().detect(s), name="accel", unit="foot", tolerance=0.25, as_json=True,
+               detector=AccelStepDetector())
+        counts.append(json.loads(capsys.readouterr().out)["count"])
+    # before steps 52: the other foot's insole set the rests, and the accel count collapsed (trial: 1 of 20)
+    assert counts[1] == counts[0] and counts[0] > 10
+
+
+def test_ignore_force_tracks_on_the_imu_alone(walk, tmp_path):
+    other = _copy(walk, tmp_path / "other", _other_foot)
+    res = _track(other, ignore_force=True)
+    assert res.info["stance_source"] == "inertial"
+    assert not [w for w in res.info["warnings"] if "L365" in w]
+    bare = tmp_path / "bare"
+    shutil.copytree(walk, bare)
+    for name in ("fForceA", "fForceB"):
+        (bare / f"{name}.csv").unlink()
+    ref = _track(bare)
+    assert len(res.steps) == len(ref.steps)
+    assert res.distance_m == pytest.approx(ref.distance_m, abs=1e-9)
+
+
+def test_ignore_force_refused_with_m2_streaming_and_a_waist_pipeline(walk, tmp_path, capsys):
+    import json
+
+    from pdrlearn.cli import main
+    from pdrlearn.errors import DataError
+
+    with pytest.raises(DataError, match="M2 is accelerometer \\+ force"):
+        _track(walk, method="M2", ignore_force=True)
+    with pytest.raises(DataError, match="offline only"):
+        _track(walk, streaming=True, ignore_force=True)
+    code = main(["track", str(walk), "--pipeline", "waist-pendulum", "--ignore-force", "--out", str(tmp_path / "w")])
+    err = capsys.readouterr().err
+    assert code == 2 and "--ignore-force applies to the plasys pipeline only" in err and "Traceback" not in err
+    assert not (tmp_path / "w").exists()
+    code = main(["track", str(walk), "--ignore-force", "--json", "--out", str(tmp_path / "t")])
+    out = capsys.readouterr().out
+    assert code == 0 and json.loads(out)["info"]["stance_source"] == "inertial"
