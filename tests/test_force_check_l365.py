@@ -5,7 +5,6 @@ accelerometer detector counts on the IMU's own rests). The broken copies follow 
 
 from __future__ import annotations
 
-import logging
 import shutil
 
 import numpy as np
@@ -160,3 +159,32 @@ def test_ignore_force_refused_with_m2_streaming_and_a_waist_pipeline(walk, tmp_p
     code = main(["track", str(walk), "--ignore-force", "--json", "--out", str(tmp_path / "t")])
     out = capsys.readouterr().out
     assert code == 0 and json.loads(out)["info"]["stance_source"] == "inertial"
+
+
+def _spike(df):  # the trial's spike: one heel sample at 4400 N (here in the stance at ~12.1 s)
+    x = df.x.to_numpy().copy()
+    if df.x.max() > 1000:  # fForceB: untouched (the _copy helper edits both files)
+        return df
+    i = int(np.searchsorted(df.timestamp.to_numpy(), 12100))
+    i += int(np.argmax(x[i:i + 60]))  # the stance's heel peak, not a swing sample
+    x[i] = 4400.0
+    return df.assign(x=x)
+
+
+def test_ref_stances_option_ignores_one_spike_steps_53(walk, tmp_path):
+    from pdrlearn.io import read_session
+    from pdrlearn.steps import AccelForceStepDetector, get_detector
+
+    clean_s, spiked = read_session(walk), read_session(_copy(walk, tmp_path / "spike", _spike))
+    assert spiked["fForceA"].values.max() == 4400.0
+
+    def events(session, k):
+        return AccelForceStepDetector(ref_stances=k).detect(session)["event_s"].to_numpy()
+
+    base = events(clean_s, 0)
+    old, new = events(spiked, 0), events(spiked, 5)
+    assert len(new) == len(base) and np.abs(new - events(clean_s, 5)).max() < 0.002  # the median shifts a little
+    # the running maximum (the default; steps 53 not adopted): every contact after the spike moves or is lost
+    assert len(old) != len(base) or np.abs(old - base).max() > 0.02
+    assert get_detector("accel-force:ref_stances=5").ref_stances == 5
+    assert AccelForceStepDetector().ref_stances == 0

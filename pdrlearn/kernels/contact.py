@@ -168,6 +168,7 @@ class ForceParams:
     off_frac: float  # below this fraction = swing (hysteresis)
     min_swing_s: float  # shortest swing (s)
     subsample: bool = False  # steps decision 32: the onset between the samples, by the crossing's line
+    ref_stances: int = 0  # steps decision 53: levels from the median peak of this many last stances (0: running max)
 
 
 @dataclass
@@ -180,6 +181,9 @@ class ForceState:
     last_event_t: float = math.nan
     prev_t: float = math.nan  # the previous sample (decision 32's crossing)
     prev_f: float = math.nan
+    peak: float = 0.0  # steps decision 53: the current stance's largest force
+    peaks: tuple = ()  # ... and the last completed stances' (at most ForceParams.ref_stances)
+    peak_median: float = math.nan  # ... and their median
 
 
 def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
@@ -187,26 +191,33 @@ def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
     """Thesis ch.5.2: while the combined heel+toe force is ~0 (swing) keep the max and min of the
     filtered acceleration; at the stance onset count a step when max - min > ``p.amp``. The event is
     the stance onset (initial contact), with ``p.subsample`` the time the line from the sample before reaches the
-    on level (steps decision 32); the window runs from the swing start to the stance onset sample."""
+    on level (steps decision 32); the window runs from the swing start to the stance onset sample. The levels are
+    fractions of the running maximum, or with ``p.ref_stances`` > 0 of the median peak of the last that many
+    completed stances (steps decision 53: one spike cannot move them; the running maximum until one has ended)."""
     out: list = []
     s = state
     for ti, ai, fi in zip(t.tolist(), a.tolist(), f.tolist(), strict=True):
         prev_t, prev_f, s.prev_t, s.prev_f = s.prev_t, s.prev_f, ti, fi
         if fi > s.fmax:
             s.fmax = fi
+        ref = s.peak_median if p.ref_stances > 0 and s.peaks else s.fmax
         if s.stance:
-            if s.fmax > 0 and fi < p.off_frac * s.fmax:
+            s.peak = max(s.peak, fi)
+            if ref > 0 and fi < p.off_frac * ref:
+                if p.ref_stances > 0:  # steps decision 53
+                    s.peaks, s.peak = (*s.peaks, s.peak)[-p.ref_stances:], 0.0
+                    s.peak_median = float(np.median(s.peaks))
                 s.stance, s.swing_t0, s.mx, s.mn = False, ti, ai, ai
         else:
             if ai > s.mx:
                 s.mx = ai
             if ai < s.mn:
                 s.mn = ai
-            if fi > p.on_frac * s.fmax:
-                s.stance = True
+            if fi > p.on_frac * ref:
+                s.stance, s.peak = True, fi
                 span = s.mx - s.mn
                 if span > p.amp and ti - s.swing_t0 >= p.min_swing_s:
-                    ic = (crossing_time(prev_t, ti, prev_f, fi, p.on_frac * s.fmax)
+                    ic = (crossing_time(prev_t, ti, prev_f, fi, p.on_frac * ref)
                           if p.subsample and prev_f == prev_f else ti)
                     out.append((ic, s.swing_t0, ti, min(1.0, span / (2.0 * p.amp)), {"amplitude": span}))
                     s.last_event_t = ti
@@ -216,6 +227,8 @@ def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
 #: AccelForceStepDetector's settings (thesis ch.5.2): stance when the combined force exceeds FORCE_ON_FRAC of its
 #: running maximum, swing below FORCE_OFF_FRAC; the swing's |acc| must span FORCE_AMP m/s^2 and last FORCE_MIN_SWING_S
 FORCE_ON_FRAC, FORCE_OFF_FRAC, FORCE_AMP, FORCE_MIN_SWING_S = 0.10, 0.05, 1.0, 0.15
+#: steps decision 53 (an option, not adopted): the levels' reference = the median peak of the last this many stances
+FORCE_REF_STANCES = 5
 
 
 def force_onset(t: np.ndarray, acc: np.ndarray, force: np.ndarray) -> float:

@@ -136,6 +136,8 @@ class AccelForceStepDetector(StepDetector):
         maximum, swing when it drops below ``force_off_frac`` ("different from zero", with hysteresis
         against sensor noise; works for forces in N or normalised)
     min_swing_s : shortest swing (s)
+    ref_stances : the levels are fractions of the median peak of the last this many stances (decision 53, an
+        option: one spike cannot move them; its adoption rule was not met); 0 (default) = of the running maximum
     subsample : the stance onset at the time the line between the sample before and the crossing sample reaches
         the on level instead of the crossing sample (decision 32); None = ``pdrlearn.kernels.contact.SUBSAMPLE``
     """
@@ -147,7 +149,8 @@ class AccelForceStepDetector(StepDetector):
 
     def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = FORCE_AMP,  # thesis ch.5.2
                  force_on_frac: float = FORCE_ON_FRAC, force_off_frac: float = FORCE_OFF_FRAC,
-                 min_swing_s: float = FORCE_MIN_SWING_S, subsample: bool | None = None):
+                 min_swing_s: float = FORCE_MIN_SWING_S, subsample: bool | None = None,
+                 ref_stances: int = 0):
         self._store(locals())
 
     def _inputs(self, session: Session):
