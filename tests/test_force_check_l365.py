@@ -178,13 +178,28 @@ def test_ref_stances_option_ignores_one_spike_steps_53(walk, tmp_path):
     clean_s, spiked = read_session(walk), read_session(_copy(walk, tmp_path / "spike", _spike))
     assert spiked["fForceA"].values.max() == 4400.0
 
-    def events(session, k):
-        return AccelForceStepDetector(ref_stances=k).detect(session)["event_s"].to_numpy()
+    def events(session, **kw):
+        return AccelForceStepDetector(**kw).detect(session)["event_s"].to_numpy()
 
-    base = events(clean_s, 0)
-    old, new = events(spiked, 0), events(spiked, 5)
-    assert len(new) == len(base) and np.abs(new - events(clean_s, 5)).max() < 0.002  # the median shifts a little
-    # the running maximum (the default; steps 53 not adopted): every contact after the spike moves or is lost
+    base = events(clean_s, ref_stances=0, confirm=False)
+    old = events(spiked, ref_stances=0, confirm=False)
+    new = events(spiked)  # steps 54's defaults: the median of 5 stance peaks, a confirmed onset
+    assert len(new) == len(base) and np.abs(new - events(clean_s)).max() < 0.002  # the median shifts a little
+    # before steps 54 (the running maximum): every contact after the spike moves or is lost
     assert len(old) != len(base) or np.abs(old - base).max() > 0.02
-    assert get_detector("accel-force:ref_stances=5").ref_stances == 5
-    assert AccelForceStepDetector().ref_stances == 0
+    assert get_detector("accel-force:ref_stances=0").ref_stances == 0
+    assert AccelForceStepDetector().ref_stances == 5 and AccelForceStepDetector().confirm
+
+
+def test_a_one_sample_spike_in_the_swing_is_no_contact_steps_54():
+    from pdrlearn.kernels.contact import ForceParams, ForceState, force_kernel
+
+    t = np.arange(0, 5.0, 0.01)
+    f = np.where((t % 1.0) < 0.6, 600.0, 0.0)
+    a = np.where((t % 1.0) > 0.7, 5.0, 0.0)  # the swing's acceleration spans the 1 m/s^2 of thesis ch.5.2
+    f[np.searchsorted(t, 2.7)] = 500.0  # one sample of load mid-swing
+    p = dict(amp=1.0, on_frac=0.1, off_frac=0.05, min_swing_s=0.05)
+    old, _ = force_kernel(t, a, f, ForceState(), ForceParams(**p))
+    new, _ = force_kernel(t, a, f, ForceState(), ForceParams(**p, ref_stances=5, confirm=True))
+    assert [round(e[0], 2) for e in new] == [1.0, 2.0, 3.0, 4.0]
+    assert 2.7 in [round(e[0], 2) for e in old]  # the running-maximum kernel counted the spike
