@@ -203,3 +203,43 @@ def test_a_one_sample_spike_in_the_swing_is_no_contact_steps_54():
     new, _ = force_kernel(t, a, f, ForceState(), ForceParams(**p, ref_stances=5, confirm=True))
     assert [round(e[0], 2) for e in new] == [1.0, 2.0, 3.0, 4.0]
     assert 2.7 in [round(e[0], 2) for e in old]  # the running-maximum kernel counted the spike
+
+
+def _adc(df):  # the trial's lab_adc: raw counts (x 2) over an unloaded offset of 250 counts
+    return df.assign(x=df.x * 2.0 + 250.0)
+
+
+def test_an_unloaded_offset_is_subtracted_and_said_b284(walk, clean, tmp_path, caplog, capsys):
+    import json
+    import logging
+
+    from pdrlearn.cli import main
+    from pdrlearn.displace.force_check import force_offsets
+    from pdrlearn.io import read_session
+    from pdrlearn.orient import unit_data
+    from pdrlearn.steps import AccelForceStepDetector
+    from pdrlearn.steps.strides import one_per_stride
+
+    adc = _copy(walk, tmp_path / "adc", _adc)
+    res = _track(adc)
+    lines = [w for w in res.info["warnings"] if "B284" in w]
+    assert len(lines) == 1 and "fForceA.csv never drops below ~25" in lines[0] and "fForceB.csv" in lines[0]
+    assert res.info["stance_source"] == "force" and len(res.steps) == len(clean.steps)
+    # before B284: accel-force found nothing on the counts ("0 strides" and advice to run accel-force)
+    capsys.readouterr()
+    with caplog.at_level(logging.WARNING):
+        code = main(["steps", str(adc), "--detector", "accel-force", "--json"])
+    got = json.loads(capsys.readouterr().out)
+    s = read_session(walk)
+    assert code == 0 and got["count"] == len(one_per_stride(AccelForceStepDetector().detect(s), s)[0]) > 10
+    assert "B284" in caplog.text
+    assert force_offsets(s, unit_data(s, "foot", purpose="test")) == {}  # a channel at 0 N in the swing: untouched
+
+
+def test_steps_accel_force_advice_is_not_the_command_just_run_b285():
+    from pdrlearn.track.foot_rest import no_strides_warning
+
+    stats = {"walking": True, "swing_rad_s": 6.0, "rest_acc_g": 1.0}
+    force = no_strides_warning(stats, "DIR", "accel-force")
+    assert "--detector accel (the IMU alone" in force and "try --detector accel-force" not in force
+    assert "try --detector accel-force with force sensors" in no_strides_warning(stats, "DIR", "accel")

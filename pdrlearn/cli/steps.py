@@ -59,6 +59,8 @@ def steps(
     session = read_session(session_dir)
     if detector == "auto":
         det = auto_detector(session)
+    if det.unit == "foot" and reads_force(det) and session.has("fAccelerometer", "fGyroscope"):
+        session = _tared(session)  # decision B284: an unloaded offset subtracted, with one line
     u = det.unit[0]  # "f" or "w": the unit's inertial streams (+ the force sensors of accel-force)
     warn_gaps(session, [f"{u}Accelerometer", f"{u}Gyroscope", *(("fForceA", "fForceB") if "force" in det.name else ())],
               "no step is detected inside them (recall counts the labelled ones as missed) - re-record or trim "
@@ -81,6 +83,19 @@ def steps(
         foot_checks(session, table, det.name, force=reads_force(det))
     report(session, table, name=det.name, unit=det.unit, tolerance=tolerance, out=out, was=was, as_json=as_json,
            detector=det)
+
+
+def _tared(session):
+    """Decision B284: ``session`` with its force sensors' unloaded offset subtracted (and the line logged)."""
+    import logging
+
+    from pdrlearn.displace.force_check import tared
+    from pdrlearn.orient import unit_data
+
+    session, line = tared(session, unit_data(session, "foot", purpose="the force sensors' unloaded offset"))
+    if line:
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+    return session
 
 
 def reads_force(detector) -> bool:

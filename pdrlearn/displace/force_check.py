@@ -183,3 +183,67 @@ def imu_strides_in(session, strides, spans: np.ndarray):
     keep = strides[~inside(strides)] if len(strides) else strides
     out = pd.concat([keep, imu[inside(imu)]], ignore_index=True)
     return out.sort_values("start_s", kind="stable").reset_index(drop=True)
+
+
+def swing_floor(t: np.ndarray, f: np.ndarray, rest: np.ndarray, gyr_norm: np.ndarray, *,
+                swing_rate: float = FOOT_NO_SWING) -> float:
+    """Decision B284 (pure kernel): a force channel's unloaded reading: the median over the IMU's swinging strides
+    (rest to rest, largest ``gyr_norm`` at least ``swing_rate``) of the channel's lowest value between the two
+    rests (the insole carries no load in the swing). NaN without a swinging stride (standing: no unloaded moment)."""
+    from pdrlearn.displace.foot import stance_runs
+
+    rr = stance_runs(np.asarray(t, dtype=float), np.asarray(rest, dtype=bool))
+    g = np.asarray(gyr_norm, dtype=float)
+    lows = [float(np.min(f[a:b])) for a, b in zip(rr[:-1, 1], rr[1:, 0], strict=True)
+            if b > a and np.max(g[a:b]) >= swing_rate]
+    return float(np.median(lows)) if lows else float("nan")
+
+
+def force_offsets(session, foot) -> dict[str, float]:
+    """Decision B284: stream name -> the unloaded offset to subtract from ``fForceA`` / ``fForceB``: the channel's
+    :func:`swing_floor` when it exceeds the accel-force detector's off level (``FORCE_OFF_FRAC`` of its 95th
+    percentile: the detector would never see a swing; raw ADC counts of FSR insoles read ~250 unloaded), else
+    nothing (a channel near 0 N is left bit for bit). ``foot``: the foot unit's :class:`~pdrlearn.orient.UnitData`."""
+    from pdrlearn.displace.foot import inertial_stance
+    from pdrlearn.kernels.contact import FORCE_OFF_FRAC
+
+    names = [n for n in ("fForceA", "fForceB") if n in session.streams and len(session.streams[n]) >= 2]
+    if not names:
+        return {}
+    t = np.asarray(foot.t, dtype=float)
+    rest = inertial_stance(foot.acc, foot.gyr, foot.fs)
+    g = np.linalg.norm(np.asarray(foot.gyr, dtype=float), axis=1)
+    out = {}
+    for n in names:
+        s = session.streams[n]
+        f = np.interp(t, s.t, s.values[:, 0])
+        floor = swing_floor(t, f, rest, g)
+        if np.isfinite(floor) and floor > FORCE_OFF_FRAC * float(np.percentile(s.values[:, 0], 95)):
+            out[n] = floor
+    return out
+
+
+def offset_line(offsets: dict[str, float]) -> str | None:
+    """Decision B284's warning: the channels whose unloaded offset was subtracted, and how to avoid it."""
+    if not offsets:
+        return None
+    parts = ", ".join(f"{n}.csv never drops below ~{v:.4g} in the foot's swings" for n, v in offsets.items())
+    return (f"{parts} (an unloaded offset: raw ADC counts of an FSR insole?): subtracted before the force thresholds "
+            "(decision B284); tare the insole or subtract its unloaded reading before `pdrlearn import` to silence "
+            "this")
+
+
+def tared(session, foot):
+    """Decision B284: ``session`` with the offsets of :func:`force_offsets` subtracted from its force streams (a
+    shallow copy; the same session when there is none) and the warning line (None without)."""
+    import copy
+
+    offsets = force_offsets(session, foot)
+    if not offsets:
+        return session, None
+    out = copy.copy(session)
+    out.streams = dict(session.streams)
+    for n, v in offsets.items():
+        s = session.streams[n]
+        out.streams[n] = type(s)(s.name, s.t, np.maximum(s.values - v, 0.0))
+    return out, offset_line(offsets)

@@ -38,7 +38,7 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.displace.foot import check_settings as check_foot_settings
-from pdrlearn.displace.force_check import checked_stance, imu_strides_in
+from pdrlearn.displace.force_check import checked_stance, imu_strides_in, tared
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
@@ -1034,6 +1034,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if ignore_force and method == "M2":  # decision L366
             raise DataError("plasys: method M2 is accelerometer + force, and ignore_force=True (--ignore-force) "
                             "leaves the force out; use --method M1 or M3, or drop --ignore-force")
+        if not ignore_force:  # decision B284: an unloaded offset (raw ADC counts) subtracted, with one line
+            session, tare_line = tared(session, foot)
+            warnings += [tare_line] if tare_line else []
         stance, stance_source, lines, imu_spans = checked_stance(session, foot, use_force=not ignore_force)  # L365/6
         warnings += lines
         if stance_source == "inertial" and not ignore_force:
