@@ -243,3 +243,45 @@ def test_steps_accel_force_advice_is_not_the_command_just_run_b285():
     force = no_strides_warning(stats, "DIR", "accel-force")
     assert "--detector accel (the IMU alone" in force and "try --detector accel-force" not in force
     assert "try --detector accel-force with force sensors" in no_strides_warning(stats, "DIR", "accel")
+
+
+def _lab_csv(walk, path, heel: str, toe: str, scale: float = 1.0):
+    """The trial's mkcsv.py recipe: one CSV of the foot IMU at 100 Hz with both forces on its times."""
+    acc, gyr = (pd.read_csv(walk / f"{n}.csv") for n in ("fAccelerometer", "fGyroscope"))
+    fa, fb = (pd.read_csv(walk / f"{n}.csv") for n in ("fForceA", "fForceB"))
+    pd.DataFrame({"time_ms": acc.timestamp, "acc_x": acc.x, "acc_y": acc.y, "acc_z": acc.z,
+                  "gyr_x": gyr.x, "gyr_y": gyr.y, "gyr_z": gyr.z,
+                  heel: np.interp(acc.timestamp, fa.timestamp, fa.x) * scale,
+                  toe: np.interp(acc.timestamp, fb.timestamp, fb.x) * scale}).to_csv(path, index=False)
+    return path
+
+
+def test_force_unit_hints_are_converted_or_refused_b286(walk, tmp_path, capsys):
+    import json
+
+    from pdrlearn.cli import main
+    from pdrlearn.io import read_session
+
+    kg = _lab_csv(walk, tmp_path / "kg.csv", "heel (kg)", "toe (kg)", scale=1 / 9.80665)
+    assert main(["import", str(kg), "--out", str(tmp_path / "kg"), "--unit", "foot", "--heel", "heel (kg)",
+                 "--toe", "toe (kg)"]) == 0
+    meta = json.loads((tmp_path / "kg" / "meta.json").read_text())
+    assert meta["units"]["fForceA"] == "N (source kgf, x 9.80665)"  # before B286: "N (source N, x 1)", 9.81x low
+    s, ref = read_session(tmp_path / "kg"), pd.read_csv(walk / "fForceA.csv")
+    assert float(s["fForceA"].values.max()) == pytest.approx(float(ref.x.max()), rel=1e-3)
+    capsys.readouterr()
+    for hint, said in (("%BW", "% body weight"), ("lbf", "is not one of N, kgf, counts")):
+        bad = _lab_csv(walk, tmp_path / f"{hint}.csv".replace("%", "p"), f"heel ({hint})", f"toe ({hint})")
+        code = main(["import", str(bad), "--out", str(tmp_path / "bad"), "--unit", "foot", "--heel",
+                     f"heel ({hint})", "--toe", f"toe ({hint})"])
+        err = capsys.readouterr().err
+        assert code == 2 and said in err and "B286" in err and "Traceback" not in err
+        assert not (tmp_path / "bad").exists()
+    mapping = tmp_path / "map.json"
+    counts = _lab_csv(walk, tmp_path / "counts.csv", "heel_raw", "toe_raw", scale=2.0)
+    mapping.write_text(json.dumps({"heel": ["heel_raw"], "toe": ["toe_raw"], "units": {"heel": "counts",
+                                                                                       "toe": "counts"}}))
+    assert main(["import", str(counts), "--out", str(tmp_path / "c"), "--unit", "foot", "--mapping",
+                 str(mapping)]) == 0, capsys.readouterr().err
+    meta = json.loads((tmp_path / "c" / "meta.json").read_text())
+    assert meta["units"]["fForceB"] == "counts (source counts, x 1)"
