@@ -285,3 +285,11 @@ def test_force_unit_hints_are_converted_or_refused_b286(walk, tmp_path, capsys):
                  str(mapping)]) == 0, capsys.readouterr().err
     meta = json.loads((tmp_path / "c" / "meta.json").read_text())
     assert meta["units"]["fForceB"] == "counts (source counts, x 1)"
+
+
+def test_auto_stays_accel_with_force(walk):
+    from pdrlearn.cli.steps import auto_detector
+    from pdrlearn.io import read_session
+
+    s = read_session(walk)
+    assert s.has("fForceA", "fForceB") and auto_detector(s).name == "accel"  # steps 52 (trial finding 9)
