@@ -218,7 +218,8 @@ def get_pipeline(name: str) -> Pipeline:
       (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84),
       ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time),
       ``drop_neighbour`` (decisions L167, E101: with ``streaming``, a stride across dropped foot samples takes the
-      length and height change of the stride before it; off by default),
+      length and height change of the stride before it; off by default), ``ignore_force`` (decision L366: offline,
+      the foot IMU alone, the force sensors left out; without it L365 checks them against the IMU),
       ``altitude`` (decision L154: ``"foot"``, the default, or ``"fused"`` with the waist barometer; an option),
       ``waist_bias`` (decision W126: remove the waist gyroscope bias read at rest; off by default),
       ``compass_fallback`` (decision L226: with heading ``"fused"``, follow the waist gyroscope turned to the compass
