@@ -354,6 +354,12 @@ SESSIONS: tuple[Column, ...] = (
                                       "band power, 1 s or longer (W213); null on a lower-back track without the "
                                       "freeze_index option (W216: not measured)"),
     ("freeze_time_s", "s", "number", "freezes.csv's durations summed (W213)"),
+    ("stepless_turns", "count", "integer", "a lower-back track's turns.csv turns whose 5-95 % span holds no detected "
+                                           "step although it lasts 2 or more of the walk's step times: a turn on the "
+                                           "spot the motion gate read as standing (W331); null on a foot track or "
+                                           "without 4 step intervals"),
+    ("turn_steps_missed", "count", "integer", "the steps the stepless_turns imply (each turn's 5-95 % duration over "
+                                              "the walk's median step time, W283), not in n_steps (W331)"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
     ("walking_time_no_pauses_s", "s", "number", "walking time without the pauses inside it (L110)"),

@@ -1130,6 +1130,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         line = turn_steps.turn_steps_warning(steps["event_s"], info["yaw_turns"], len(steps))
         if line:
             warnings.append(line)
+    if turn_steps.STEPLESS_WARN and "event_s" in steps:  # decision W331: turns on the spot with no step
+        line = turn_steps.stepless_turns_warning(steps["event_s"], info["yaw_turns"])
+        if line:
+            warnings.append(line)
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start, z_raw)
