@@ -69,3 +69,5 @@ def test_stepless_turn_summary_of_a_simulated_turn_on_the_spot():
     truth = int((ic > ic[0] + 6.0).sum())  # the turn's steps: those after the walk and its stand
     assert summary["stepless_turns"] == 1
     assert abs(summary["turn_steps_missed"] - truth) <= 2
+    assert turn_steps.STEPLESS_WARN  # W332: adopted
+    assert any("hold no detected step" in w and "(W331)" in w for w in res.info["warnings"])

@@ -66,7 +66,7 @@ def turn_steps_warning(event_s, yaw_turns, n_steps: int, min_deg: float | None =
 #: decision W331: a turn whose expected steps (D / T, W283) reach this and whose span holds no contact is stepless
 STEPLESS_MIN_STEPS = 2
 #: decision W331: whether a lower-back track warns about its stepless turns (W332: the rule's result)
-STEPLESS_WARN = False
+STEPLESS_WARN = True
 
 
 def stepless_turns(event_s, yaw_turns, min_deg: float | None = None) -> list[dict]:
