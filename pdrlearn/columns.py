@@ -602,6 +602,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("confidence", "fraction", "number", "1 for a step to a next contact, 0.5 for a sequence-closing contact"),
     ("fc_s", "s", "number", "the final contact after it (waist-pendulum); empty for the PLL's steps"),
     ("has_next", _ID, "true/false", "a next contact follows within 1.5 s: the row is a step with a length"),
+    ("still_before_s", "s", "number", "seconds the pelvis was still (L296's still samples) since the contact before: "
+                                      "standing, which the pause rule gives no turn (L372)"),
     ("h_m", "m", "number", "waist-pendulum: the pelvis's vertical excursion during the step (seed 003)"),
     ("g_m", "m", "number", "waist-pendulum: the pendulum chord 2 sqrt(2 L h - h^2) before K and F"),
     ("merged", _ID, "true/false", "waist-pendulum: a fragment whose length its neighbour carries (W27)"),
