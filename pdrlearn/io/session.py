@@ -578,6 +578,13 @@ class Session:
         return out
 
     @property
+    def frame_warnings(self) -> list[str]:
+        """Decision W334: the D10 warnings the data checks of the declared frames logged so far (one per unit, in
+        placement order, without the session's name), for summary.json's warnings."""
+        return [chk.message for _, chk in sorted(self._checked.items())
+                if getattr(chk, "message", None) and not getattr(chk, "refuse", False)]
+
+    @property
     def frames_inferred(self) -> dict[str, dict]:
         """The frames this session's commands inferred from the data so far (decision D8), as meta.json's
         ``frames`` entry would write them; empty when every frame used was declared."""

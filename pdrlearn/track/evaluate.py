@@ -1341,6 +1341,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     if mirrored:
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, mirrored)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), mirrored]
+    for line in session.frame_warnings:  # decision W334: D10's frame warning, logged by the session, kept too
+        if line not in summary["info"].get("warnings", []):
+            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary.update(domain_fraction(result))  # decision C16
     placement = scale = None
     if result.info.get("pipeline") == "plasys":  # decision B134: a foot unit that never swings is not on the foot
