@@ -13,9 +13,8 @@ import logging
 import sys
 
 import numpy as np
-from turn_steps import REAL
+from turn_steps import real_tracks
 
-from pdrlearn.io import read_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.waist import track_waist
@@ -67,9 +66,7 @@ def sim() -> None:
 
 def real() -> None:
     rows = []
-    for f in REAL:
-        s = read_session(f)
-        res = track_waist(s, pipeline="waist-pendulum")
+    for f, s, res in real_tracks():
         if "ics" not in s.extras:  # no INDIP contacts in this copy: printed, not judged
             n = len(stepless_turns(res.steps["event_s"].to_numpy(float), res.info["yaw_turns"]))
             print(f"{f.name}: no reference contacts (not judged); flagged {n}")
