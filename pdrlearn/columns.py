@@ -360,6 +360,12 @@ SESSIONS: tuple[Column, ...] = (
                                       "band power, 1 s or longer (W213); null on a lower-back track without the "
                                       "freeze_index option (W216: not measured)"),
     ("freeze_time_s", "s", "number", "freezes.csv's durations summed (W213)"),
+    ("stepless_turns", "count", "integer", "a lower-back track's turns.csv turns whose 5-95 % span holds no detected "
+                                           "step although it lasts 2 or more of the walk's step times: a turn on the "
+                                           "spot the motion gate read as standing (W331); null on a foot track or "
+                                           "without 4 step intervals"),
+    ("turn_steps_missed", "count", "integer", "the steps the stepless_turns imply (each turn's 5-95 % duration over "
+                                              "the walk's median step time, W283), not in n_steps (W331)"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
     ("walking_time_no_pauses_s", "s", "number", "walking time without the pauses inside it (L110)"),
@@ -628,6 +634,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("confidence", "fraction", "number", "1 for a step to a next contact, 0.5 for a sequence-closing contact"),
     ("fc_s", "s", "number", "the final contact after it (waist-pendulum); empty for the PLL's steps"),
     ("has_next", _ID, "true/false", "a next contact follows within 1.5 s: the row is a step with a length"),
+    ("still_before_s", "s", "number", "seconds the pelvis was still (L296's still samples) since the contact before: "
+                                      "standing, which the pause rule gives no turn (L372)"),
     ("h_m", "m", "number", "waist-pendulum: the pelvis's vertical excursion during the step (seed 003)"),
     ("g_m", "m", "number", "waist-pendulum: the pendulum chord 2 sqrt(2 L h - h^2) before K and F"),
     ("merged", _ID, "true/false", "waist-pendulum: a fragment whose length its neighbour carries (W27)"),

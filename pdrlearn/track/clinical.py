@@ -62,6 +62,8 @@ PAUSE_MAX_TURN_DEG = 30.0
 #: decision L119: the slowest turn on the spot the pause rule allows for (deg/s): a 180 deg turn in 9 s; the time
 #: of an interval's turn at this rate is turning, the rest beyond the walk's rhythm standing
 TURN_ON_SPOT_MIN_DPS = 20.0
+#: decision L372: a still stretch between two rows is standing, not a turn's time (L373: the rule's result)
+STILL_STANDING = True
 #: a row turns when its heading changes at this rate (deg/s) or more from the previous row
 TURN_RATE_MIN_DPS = 15.0
 #: decision L181: a turn also sums the same-way heading change of the row just before and just after it (a streamed
@@ -208,8 +210,36 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
     if "heading_rad" in st:  # decision L119: a turn across the interval takes its time, the rest is standing
         with np.errstate(invalid="ignore"):
             dh = np.abs(np.diff(np.degrees(unwrapped_heading(st))))
-            excess = excess - np.where(dh >= PAUSE_MAX_TURN_DEG, dh / TURN_ON_SPOT_MIN_DPS, 0.0)
+            # decision L372: at most the interval's time that was not still (a still stretch is standing)
+            allow = np.minimum(dh / TURN_ON_SPOT_MIN_DPS, np.maximum(d - still_before(st)[1:], 0.0))
+            excess = excess - np.where(dh >= PAUSE_MAX_TURN_DEG, allow, 0.0)
     return excess, pair & (excess >= min_s)
+
+
+def still_before(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L372: (N,) the seconds before each row (rows in their order; 0 for the first) that the unit was
+    known to be still since the previous row, so no turn took them: a lower-back table's ``still_before_s`` (L296's
+    still samples of the pelvis between the two contacts); a foot table's rest between the previous row's end and
+    this row's start (no stride of the tracked foot covers it), unless a streamed row's ``pivot_rad`` turned the
+    foot there by :data:`PAUSE_MAX_TURN_DEG` or more (L106); else 0 (nothing known)."""
+    n = len(steps)
+    if not STILL_STANDING:
+        return np.zeros(n)
+    if "still_before_s" in steps:
+        return np.nan_to_num(pd.to_numeric(steps["still_before_s"], errors="coerce").to_numpy(float))
+    if not is_foot_table(steps) or "end_s" not in steps or n < 2:
+        return np.zeros(n)
+    rest = np.r_[0.0, steps["start_s"].to_numpy(float)[1:] - steps["end_s"].to_numpy(float)[:-1]]
+    rest = np.maximum(np.nan_to_num(rest), 0.0)
+    if "pivot_rad" in steps:
+        pivot = np.abs(np.degrees(np.nan_to_num(steps["pivot_rad"].to_numpy(float))))
+        rest = np.where(pivot >= PAUSE_MAX_TURN_DEG, 0.0, rest)
+    return rest
+
+
+def is_foot_table(steps: pd.DataFrame) -> bool:
+    """Whether every row of a non-empty ``steps`` is a foot unit's (bouts.csv and L372 read foot tables apart)."""
+    return "unit" in steps and len(steps) > 0 and bool((steps["unit"].astype(str) == "foot").all())
 
 
 def _own_turns(steps: pd.DataFrame) -> np.ndarray | None:

@@ -550,6 +550,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decision W293: the TUG's phases, from the transfers, these turns and the walking contacts
     out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, result.steps,
                                             yaw_turns=result.info.get("yaw_turns"))))  # W307
+    from pdrlearn.waist.turn_steps import stepless_summary
+
+    # decision W331: a lower-back track's turns on the spot that hold no step, and the steps they imply
+    out.update(stepless_summary(result.steps["event_s"] if "event_s" in result.steps else [],
+                                result.info.get("yaw_turns")))
     from pdrlearn.track.walk_test import ten_metre_walk
 
     out.update(ten_metre_walk(result.steps))  # decisions L312, L313: the 10 m walk test's middle 10 m
@@ -1336,6 +1341,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     if mirrored:
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, mirrored)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), mirrored]
+    for line in session.frame_warnings:  # decision W334: D10's frame warning, logged by the session, kept too
+        if line not in summary["info"].get("warnings", []):
+            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary.update(domain_fraction(result))  # decision C16
     placement = scale = None
     if result.info.get("pipeline") == "plasys":  # decision B134: a foot unit that never swings is not on the foot

@@ -479,6 +479,22 @@ def _still_samples(imu: WaistIMU, still_mask=None) -> np.ndarray:
     return standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
 
 
+def _with_still_before(steps: pd.DataFrame, imu: WaistIMU, still: np.ndarray) -> pd.DataFrame:
+    """Decision L372: ``steps`` with ``still_before_s``, the seconds of L296's still samples ``still`` between each
+    contact (``event_s``, else ``start_s``) and the one before it in time (0 for the first): standing, which the pause
+    rule does not give a turn (L119)."""
+    if not len(steps):
+        return steps.assign(still_before_s=np.zeros(0))
+    ev = steps["event_s"].to_numpy(float) if "event_s" in steps else steps["start_s"].to_numpy(float)
+    ev = np.where(np.isfinite(ev), ev, steps["start_s"].to_numpy(float))
+    cum = np.r_[0.0, np.cumsum(np.asarray(still, dtype=float))] / imu.fs  # still seconds before each sample
+    at = cum[np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t))]
+    order = np.argsort(ev, kind="stable")
+    out = np.zeros(len(ev))
+    out[order[1:]] = np.maximum(np.diff(at[order]), 0.0)
+    return steps.assign(still_before_s=out)
+
+
 def _rest_frame_drifts(imu: WaistIMU, seqs, ev_all: np.ndarray, still_mask=None) -> np.ndarray:
     """Decision W285: per step (``ev_all``'s order), the AHRS frame's turn (rad) about the vertical over the rests
     before it that its body did not make (:func:`pdrlearn.kernels.rest_heading.rest_frame_drift`): the lead-in from
@@ -1113,6 +1129,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         line = flag_message(transfers)
         if line:
             warnings.append(line)
+    steps = _with_still_before(steps, imu, still_mask())  # decision L372: the pauses' still time
     info = {
         "pipeline": pipeline,
         "method": f"{steps.attrs.get('detector', '')}/{length_model}/{method}",
@@ -1151,6 +1168,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
 
     if turn_steps.TURN_STEPS_WARN and "event_s" in steps:  # decision W283: the steps its turns missed
         line = turn_steps.turn_steps_warning(steps["event_s"], info["yaw_turns"], len(steps))
+        if line:
+            warnings.append(line)
+    if turn_steps.STEPLESS_WARN and "event_s" in steps:  # decision W331: turns on the spot with no step
+        line = turn_steps.stepless_turns_warning(steps["event_s"], info["yaw_turns"])
         if line:
             warnings.append(line)
     for w in warnings:
