@@ -8,6 +8,7 @@ keeps its own noise (a phone barometer's ~1 Pa a sample, not an average).
 Usage::
 
     OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/floors_rate.py --users 7210-7214
+    OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/floors_rate.py --pipeline plasys --rates 100  # L378
 """
 
 from __future__ import annotations
@@ -37,13 +38,15 @@ def thinned(session, rate_hz: float):
 def station_counts(user: int, rates=RATES_HZ, pipeline: str = "waist-pendulum", route: str = STATION) -> dict:
     """``{rate: summary floor keys}`` of one simulated user's station route (seed = user)."""
     from pdrlearn.track.evaluate import track_summary
+    from pdrlearn.track.plasys import track_plasys
     from pdrlearn.track.waist import track_waist
 
     s = simulate_path(parse_route(route), UserProfile.from_seed(user), seed=user, scenario="route")
     out = {}
     for r in rates:
         t = thinned(s, r)
-        m = track_summary(track_waist(t, pipeline=pipeline), t, pipeline=pipeline)
+        res = track_plasys(t) if pipeline == "plasys" else track_waist(t, pipeline=pipeline)  # plasys: no model
+        m = track_summary(res, t, pipeline=pipeline)
         out[r] = {k: m.get(k) for k in KEYS}
     return out
 
@@ -52,11 +55,13 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--users", default="7210-7214")
     ap.add_argument("--pipeline", default="waist-pendulum")
+    ap.add_argument("--rates", default=",".join(map(str, RATES_HZ)), help="barometer rates (Hz), comma-separated")
     a = ap.parse_args()
     lo, hi = (int(v) for v in a.users.split("-"))
     right = total = 0
     for u in range(lo, hi + 1):
-        for r, m in station_counts(u, pipeline=a.pipeline).items():
+        rates = [float(v) if "." in v else int(v) for v in a.rates.split(",")]
+        for r, m in station_counts(u, rates, pipeline=a.pipeline).items():
             ok = (m["floors_up"], m["floors_down"], m["floors_up_stairs"], m["floors_up_rides"]) == (3, 3, 1, 2)
             right += ok
             total += 1

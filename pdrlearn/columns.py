@@ -76,8 +76,8 @@ SESSIONS: tuple[Column, ...] = (
     ("altitude_change_ref_m", "m", "number", "reference z change"),
     ("altitude_ref_source", _ID, "text", "where altitude_change_ref_m comes from"),
     ("altitude_error_pct", "%", "number", "altitude change error against the reference"),
-    ("barometer_unused", _ID, "true/false", "the session has wBarometer.csv that a foot track does not read (L127; "
-     "false with --altitude fused, L154)"),
+    ("barometer_unused", _ID, "true/false", "the session has wBarometer.csv that a foot track's altitude does not read "
+     "(L127; false with --altitude fused, L154); its rides are read (L378)"),
     ("barometer_altitude_change_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's altitude change "
                                                    "over the track (L145)"),
     ("barometer_disagree_limit_m", "m", "number", "how far altitude_change_m may differ from it before a warning "
@@ -147,8 +147,8 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_along_slope_m", "m", "number", "distance along the walked surface, sum of sqrt(length^2 + dz^2); "
                                               "empty without a grade_source (L300)"),
     ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a grade_source"),
-    ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / other (L377); empty "
-                                    "on a foot track"),
+    ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / other (L377; a foot "
+                                    "track's from the waist barometer, L378); empty without a barometer"),
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
     ("ic_timing_mean_ms", "ms", "number", "lower back: mean initial-contact time error against the reference"),
@@ -655,6 +655,11 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
                                      "direction, counter-clockwise)"),
     ("dz_m", "m", "number", "the stride's height change"),
+    ("pause_dz_m", "m", "number", "with a waist barometer (wBarometer.csv): its ride of 1.5 m or more in the standstill "
+                                  "before the stride (L378, W231's rule), else 0; not in dz_m nor z, counted in the "
+                                  "floors (L375)"),
+    ("ride", _ID, "text", "with a waist barometer: that ride's kind, lift / escalator / other (L376, L378); empty: "
+                          "none"),
     _GRADE_PCT,
     ("terrain", _ID, "text", "M3's terrain class (empty without a model; L18)"),
     ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),

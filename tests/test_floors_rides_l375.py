@@ -131,3 +131,18 @@ def test_kpa_pressure_error_names_the_header_hint(tmp_path, capsys):
     assert not (tmp_path / "o").exists()
     df.rename(columns={"pressure": "pressure (kPa)"}).to_csv(tmp_path / "q.csv", index=False)
     assert main(["import", str(tmp_path / "q.csv"), "--unit", "waist", "--out", str(tmp_path / "o")]) == 0
+
+
+def test_a_foot_track_counts_the_rides_of_the_waist_barometer_l378():
+    """L378: the default foot track (plasys, no model) of the station route counts 3 up / 3 down, the rides from the
+    waist barometer (before: 1 up / 0 down, its stairs only); its altitude stays the foot's own."""
+    from pdrlearn.track.plasys import track_plasys
+
+    s = _station(7223)
+    r = track_plasys(s)
+    m = track_summary(r, s)
+    assert (m["floors_up"], m["floors_down"], m["floors_up_stairs"], m["floors_up_rides"]) == (3, 3, 1, 2), m
+    assert m["n_rides"] == 2 and [x["kind"] for x in r.info["rides"]] == ["escalator", "lift"]
+    assert r.steps["pause_dz_m"].abs().max() == pytest.approx(9.0, abs=0.3)
+    assert abs(m["altitude_change_m"] - 2.9) < 0.5  # the strides' own height: the flight, not the rides
+    assert any("decision L377" in w for w in r.info["warnings"])

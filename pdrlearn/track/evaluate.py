@@ -437,7 +437,8 @@ def floors_phrase(summary: dict) -> str:
     part = f", floors up {summary.get('floors_up', 0)} / down {summary.get('floors_down', 0)}"
     if summary.get("barometer_unused"):  # a recorded barometer the foot track does not read: say it
         part += (f" (foot altitude, storeys of {summary.get('storey_height_m', STOREY_HEIGHT_M):g} m; "
-                 "wBarometer.csv not used)")
+                 + ("wBarometer.csv read for rides only, L378)" if summary.get("n_rides") is not None
+                    else "wBarometer.csv not used)"))
     return part
 
 

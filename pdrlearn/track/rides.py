@@ -18,12 +18,20 @@ def ride_rows(t: np.ndarray, p_hpa: np.ndarray, steps: pd.DataFrame, t0: float, 
     ride (rides.csv's :data:`RIDE_COLUMNS` and ``row``, the step it precedes). ``(t, p_hpa)``: the barometer (s,
     hPa); ``z`` (n+1,) the track's altitude at ``t0`` and each step's end, ``z_start`` (n,) at each step's start
     (W158: ``pause_dz_m = z_start - z[:-1]``)."""
+    pause = np.asarray(z_start, dtype=float) - np.asarray(z, dtype=float)[:-1]
+    return _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause)
+
+
+def _pause_ends(steps: pd.DataFrame, t0: float) -> np.ndarray:
+    """Where the standstill before each row starts: the previous row's end, the first row's at ``t0`` (W158)."""
+    return np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
+
+
+def _rides(t, p_hpa, ends, starts, pause) -> tuple[np.ndarray, list[dict]]:
+    """:func:`ride_rows` on the pauses from ``ends`` to ``starts`` (s) whose altitude changed by ``pause`` (m)."""
     from pdrlearn.kernels.pause_ride import RIDE_MIN_M, escalator_travel_m, ride_kind, ride_window
 
-    kinds = np.full(len(steps), "", dtype=object)
-    pause = np.asarray(z_start, dtype=float) - np.asarray(z, dtype=float)[:-1]
-    ends = np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
-    starts = steps["start_s"].to_numpy(float)
+    kinds = np.full(len(starts), "", dtype=object)
     records = []
     for j in np.flatnonzero(np.abs(np.nan_to_num(pause)) >= RIDE_MIN_M):
         a, b, duration = ride_window(t, p_hpa, float(ends[j]), float(starts[j]))
@@ -33,6 +41,40 @@ def ride_rows(t: np.ndarray, p_hpa: np.ndarray, steps: pd.DataFrame, t0: float, 
                         "duration_s": duration, "vertical_rate_mps": abs(dz) / duration,
                         "horizontal_est_m": escalator_travel_m(dz) if kind == "escalator" else None, "row": int(j)})
     return kinds, records
+
+
+def foot_rides(result, session) -> None:
+    """Decision L378: a foot track's rides from the session's waist barometer (B188's usable one; none: nothing
+    changes). Each standstill between two strides (from the previous stride's end, the first's from the track's first
+    time) changes the barometric altitude by W231's ride (``pause_ride_dz``: over 30 s only what moved 1.5 m within
+    30 s); where that is ``RIDE_MIN_M`` or more it is the stride's ``pause_dz_m`` (0 elsewhere), its ``ride`` kind
+    (L376), a record of ``info["rides"]`` (rides.csv, L377) and L376's / L377's lines. The strides' ``dz_m`` and the
+    trajectory's z are not changed."""
+    import logging
+
+    from pdrlearn.kernels.barometer import relative_altitude
+    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, RIDE_WINDOW_S, pause_ride_dz
+    from pdrlearn.track.barometer import FOOT_EFFECT, usable_barometer
+
+    steps = result.steps
+    b = usable_barometer(session, [], FOOT_EFFECT)  # B188's line is the foot's barometer check's (L145)
+    if b is None or not len(steps) or not len(result.trajectory):
+        return
+    p = b.values[:, 0]
+    ends = _pause_ends(steps, float(result.trajectory["t"].iloc[0]))
+    starts = steps["start_s"].to_numpy(float)
+    h = relative_altitude(b.t, p, np.concatenate([ends, starts]))  # one read for the short pauses (W158: whole)
+    pause = h[len(ends):] - h[:len(ends)]
+    for j in np.flatnonzero(starts - ends > RIDE_WINDOW_S):  # W231: a long pause's ride only
+        pause[j] = pause_ride_dz(b.t, p, float(ends[j]), float(starts[j]))[0]
+    pause = np.where(np.abs(pause) >= RIDE_MIN_M, pause, 0.0)
+    kinds, records = _rides(b.t, p, ends, starts, pause)
+    result.steps = steps.assign(pause_dz_m=pause, ride=kinds)
+    result.info["rides"] = records
+    lines = ride_lines(records)
+    result.info.setdefault("warnings", []).extend(lines)
+    for line in lines:
+        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
 
 
 def ride_lines(records: list[dict]) -> list[str]:

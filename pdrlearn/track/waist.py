@@ -1043,7 +1043,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = steps.assign(side=np.full(len(steps), "", dtype=object) if realtime
                          else contact_sides(imu.t, imu.acc_ml, imu.fs, ev, v_at=v_at))
     steps = steps.assign(climb=climbs)  # decision L314: W108's stair climbs, which no ramp is made of (grade.py)
-    rides: list[dict] = []
+    rides: list[dict] | None = None  # None: no barometer read (n_rides empty, no rides.csv)
     if z is not None:  # decisions L375-L377: each ride's kind (steps.csv ride), rides.csv and their lines
         from pdrlearn.track.rides import ride_lines, ride_rows
 
