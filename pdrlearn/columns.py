@@ -655,9 +655,9 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
                                      "direction, counter-clockwise)"),
     ("dz_m", "m", "number", "the stride's height change"),
-    ("pause_dz_m", "m", "number", "with a waist barometer (wBarometer.csv): its ride of 1.5 m or more in the standstill "
-                                  "before the stride (L378, W231's rule), else 0; not in dz_m nor z, counted in the "
-                                  "floors (L375)"),
+    ("pause_dz_m", "m", "number", "with a waist barometer (wBarometer.csv): its ride of 1.5 m or more in the "
+                                  "standstill before the stride (L378, W231's rule), else 0; not in dz_m nor z, "
+                                  "counted in the floors (L375)"),
     ("ride", _ID, "text", "with a waist barometer: that ride's kind, lift / escalator / other (L376, L378); empty: "
                           "none"),
     _GRADE_PCT,

@@ -1018,7 +1018,6 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
         at = len(res.info["warnings"]) - 1 if no_classes and msg else None
         apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
-        foot_rides(res, session)  # decision L378: the rides, from the waist barometer
         if at is not None:
             log.warning("%s: %s", session.where, res.info["warnings"][at])
         return res
@@ -1340,7 +1339,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     res = TrackResult(steps=table, trajectory=traj, info=info)
     logged = len(warnings)  # apply_altitude logs its own lines
     apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
-    foot_rides(res, session)  # decision L378: the rides, from the waist barometer
+    foot_rides(res, session)  # decision L378: the rides, from the waist barometer (offline only, as run's files)
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
     return res
