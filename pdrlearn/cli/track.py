@@ -809,7 +809,8 @@ def clinical_tables(result, bouts) -> dict:
     ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
     sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk; with a TUG time its
     phases, ``tug_phases.csv``, decision W293; with a TUG trial, ``tug_trials.csv``, W325) and ``freezes.csv``
-    (decision W213: the freeze index's episodes of the tracked unit), and ``ramps.csv`` (decision L301)."""
+    (decision W213: the freeze index's episodes of the tracked unit), ``ramps.csv`` (decision L301) and, on the lower
+    back with a barometer, ``rides.csv`` (decision L377)."""
     import pandas as pd
 
     from pdrlearn.track.clinical import turn_table
@@ -818,6 +819,10 @@ def clinical_tables(result, bouts) -> dict:
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+    if result.info.get("rides") is not None:  # decision L377: a lower-back track's rides
+        from pdrlearn.track.rides import ride_table
+
+        out["rides.csv"] = ride_table(result.info)
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
         from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases, tug_trial_table
@@ -941,6 +946,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
                f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
+               f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)

@@ -88,6 +88,7 @@ from pdrlearn.track.gaps import (
     unit_gap_warnings,
 )
 from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
+from pdrlearn.track.rides import foot_rides
 from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
 
 log = logging.getLogger(__name__)
@@ -1353,6 +1354,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     res = TrackResult(steps=table, trajectory=traj, info=info)
     logged = len(warnings)  # apply_altitude logs its own lines
     apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
+    foot_rides(res, session)  # decision L378: the rides, from the waist barometer (offline only, as run's files)
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
     return res

@@ -1080,6 +1080,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = steps.assign(side=np.full(len(steps), "", dtype=object) if realtime
                          else contact_sides(imu.t, imu.acc_ml, imu.fs, ev, v_at=v_at))
     steps = steps.assign(climb=climbs)  # decision L314: W108's stair climbs, which no ramp is made of (grade.py)
+    rides: list[dict] | None = None  # None: no barometer read (n_rides empty, no rides.csv)
+    if z is not None:  # decisions L375-L377: each ride's kind (steps.csv ride), rides.csv and their lines
+        from pdrlearn.track.rides import ride_lines, ride_rows
+
+        ride_kinds, rides = ride_rows(baro.t, baro.values[:, 0], steps, float(imu.t[0]), z, z_start)
+        steps = steps.assign(ride=ride_kinds)
+        warnings.extend(ride_lines(rides))
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
@@ -1163,6 +1170,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         # in force on this heading (not in summary.json)
         "rest_bias_rests": None if rest_spans is None else [[a, b] for a, b in rest_spans],
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
+        "rides": rides,  # decision L377: rides.csv (not in summary.json)
     }
     from pdrlearn.waist import turn_steps
 
