@@ -72,11 +72,16 @@ def sim() -> None:
     summarize(rows)
 
 
-def real() -> None:
-    rows = []
+def real_tracks():
+    """(folder, session, default waist-pendulum track) of each of the nine mobgap recordings (W284's; W332's too)."""
     for f in REAL:
         s = read_session(f)
-        res = track_waist(s, pipeline="waist-pendulum")
+        yield f, s, track_waist(s, pipeline="waist-pendulum")
+
+
+def real() -> None:
+    rows = []
+    for f, s, res in real_tracks():
         ev = res.steps["event_s"].to_numpy(float)
         if "ics" not in s.extras:  # no INDIP contacts in this copy: not judged, the warning printed
             line = turn_steps_warning(ev, res.info["yaw_turns"], len(res.steps))

@@ -76,8 +76,8 @@ SESSIONS: tuple[Column, ...] = (
     ("altitude_change_ref_m", "m", "number", "reference z change"),
     ("altitude_ref_source", _ID, "text", "where altitude_change_ref_m comes from"),
     ("altitude_error_pct", "%", "number", "altitude change error against the reference"),
-    ("barometer_unused", _ID, "true/false", "the session has wBarometer.csv that a foot track does not read (L127; "
-     "false with --altitude fused, L154)"),
+    ("barometer_unused", _ID, "true/false", "the session has wBarometer.csv that a foot track's altitude does not read "
+     "(L127; false with --altitude fused, L154); its rides are read (L378)"),
     ("barometer_altitude_change_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's altitude change "
                                                    "over the track (L145)"),
     ("barometer_disagree_limit_m", "m", "number", "how far altitude_change_m may differ from it before a warning "
@@ -135,8 +135,9 @@ SESSIONS: tuple[Column, ...] = (
                                              "more, walked); floors_up = stairs + ramps + rides"),
     ("floors_up_ramps", "count", "integer", "floors_up's storeys of climbs walked under 20 % (a ramp or a hill; "
                                             "L302); on a barometric or fused altitude a ramp's whole rise (L337)"),
-    ("floors_up_rides", "count", "integer", "floors_up's storeys of climbs carried mostly while standing (a lift or "
-                                            "escalator ride, W158's pause_dz_m; L302)"),
+    ("floors_up_rides", "count", "integer", "floors_up's storeys ridden: lift and escalator rides (a standstill change "
+                                            "of 1.5 m or more, W158's pause_dz_m, each a climb of its own: L375; a "
+                                            "ride of kind other counts none: L376); L302"),
     ("floors_down_stairs", "count", "integer", "floors_down's storeys on stairs (L302)"),
     ("floors_down_ramps", "count", "integer", "floors_down's storeys walked under 20 % (L302)"),
     ("floors_down_rides", "count", "integer", "floors_down's storeys ridden (L302)"),
@@ -146,6 +147,8 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_along_slope_m", "m", "number", "distance along the walked surface, sum of sqrt(length^2 + dz^2); "
                                               "empty without a grade_source (L300)"),
     ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a grade_source"),
+    ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / other (L377; a foot "
+                                    "track's from the waist barometer, L378); empty without a barometer"),
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
     ("ic_timing_mean_ms", "ms", "number", "lower back: mean initial-contact time error against the reference"),
@@ -369,6 +372,12 @@ SESSIONS: tuple[Column, ...] = (
                                       "band power, 1 s or longer (W213); null on a lower-back track without the "
                                       "freeze_index option (W216: not measured)"),
     ("freeze_time_s", "s", "number", "freezes.csv's durations summed (W213)"),
+    ("stepless_turns", "count", "integer", "a lower-back track's turns.csv turns whose 5-95 % span holds no detected "
+                                           "step although it lasts 2 or more of the walk's step times: a turn on the "
+                                           "spot the motion gate read as standing (W331); null on a foot track or "
+                                           "without 4 step intervals"),
+    ("turn_steps_missed", "count", "integer", "the steps the stepless_turns imply (each turn's 5-95 % duration over "
+                                              "the walk's median step time, W283), not in n_steps (W331)"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
     ("walking_time_no_pauses_s", "s", "number", "walking time without the pauses inside it (L110)"),
@@ -637,6 +646,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("confidence", "fraction", "number", "1 for a step to a next contact, 0.5 for a sequence-closing contact"),
     ("fc_s", "s", "number", "the final contact after it (waist-pendulum); empty for the PLL's steps"),
     ("has_next", _ID, "true/false", "a next contact follows within 1.5 s: the row is a step with a length"),
+    ("still_before_s", "s", "number", "seconds the pelvis was still (L296's still samples) since the contact before: "
+                                      "standing, which the pause rule gives no turn (L372)"),
     ("h_m", "m", "number", "waist-pendulum: the pelvis's vertical excursion during the step (seed 003)"),
     ("g_m", "m", "number", "waist-pendulum: the pendulum chord 2 sqrt(2 L h - h^2) before K and F"),
     ("merged", _ID, "true/false", "waist-pendulum: a fragment whose length its neighbour carries (W27)"),
@@ -666,6 +677,8 @@ WAIST_STEPS: tuple[Column, ...] = (
                                   "stairs\" warning counts); with the PARAMS.json option `climb_veto` true, no ramp "
                                   "and no ramp climb is made of such steps (L314; opt-in since L330: a ramp walked at "
                                   "a normal pace is such a climb)"),
+    ("ride", _ID, "text", "the kind of the ride in the standstill before the step: lift, escalator or other (L376; "
+                          "a pause_dz_m of 1.5 m or more, L375); empty: none; rides.csv has one row each"),
     ("dz_m", "m", "number", "barometric altitude change over the step (W89; 0 without a usable barometer)"),
     ("pause_dz_m", "m", "number", "barometric altitude change while standing before the step (a lift ride; W158; "
                                   "of a pause over 30 s only the 1.5 m within 30 s rides, W231), "
@@ -691,6 +704,11 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
                                      "direction, counter-clockwise)"),
     ("dz_m", "m", "number", "the stride's height change"),
+    ("pause_dz_m", "m", "number", "with a waist barometer (wBarometer.csv): its ride of 1.5 m or more in the "
+                                  "standstill before the stride (L378, W231's rule), else 0; not in dz_m nor z, "
+                                  "counted in the floors (L375)"),
+    ("ride", _ID, "text", "with a waist barometer: that ride's kind, lift / escalator / other (L376, L378); empty: "
+                          "none"),
     _GRADE_PCT,
     ("terrain", _ID, "text", "M3's terrain class (empty without a model; L18)"),
     ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),
@@ -818,12 +836,30 @@ RAMPS: tuple[Column, ...] = (
 )
 
 
+#: decision L377: ``rides.csv`` (``track`` of a lower-back unit), one row per ride while standing
+RIDES: tuple[Column, ...] = (
+    ("ride", "index", "integer", "the ride's number, from 1 in time order"),
+    ("start_s", "s", "number", "when the altitude had moved 10 % of the ride's change (L376)"),
+    ("end_s", "s", "number", "when it had moved 90 %"),
+    ("kind", _ID, "text", "lift (0.5 m/s or more vertically), escalator (0.15-0.5 m/s, at most 45 s) or other (a "
+                          "vehicle, a slow long climb: no floors counted); L376"),
+    ("dz_m", "m", "number", "the altitude change while standing (steps.csv pause_dz_m of the next step)"),
+    ("duration_s", "s", "number", "(end_s - start_s) / 0.8: the ride's duration (L376)"),
+    ("vertical_rate_mps", "m/s", "number", "|dz_m| / duration_s"),
+    ("horizontal_est_m", "m", "number", "escalator only, an estimate: |dz_m| / tan(30 deg), the horizontal travel the "
+                                        "track leaves out (a 35 deg escalator travels 18 % less); empty otherwise "
+                                        "(L377)"),
+    *_clocks("start_s", "end_s"),
+)
+
+
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
                                          "bouts.csv": BOUTS, "turns.csv": TURNS, "periods.csv": PERIODS,
                                          "transfers.csv": TRANSFERS, "tug_phases.csv": TUG_PHASE_TABLE,  # W293
                                          "tug_trials.csv": TUG_TRIAL_TABLE,  # W325
                                          "freezes.csv": FREEZES, "ramps.csv": RAMPS,  # L301
+                                         "rides.csv": RIDES,  # L377
                                          "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS,  # E137
                                          "gait_steps.csv": GAIT_STEPS, "gait_cycles.csv": GAIT_CYCLES,  # L287
                                          "gait_bouts.csv": GAIT_BOUTS}

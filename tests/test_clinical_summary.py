@@ -96,15 +96,13 @@ def test_pause_and_turn_definitions():
 def test_a_stand_then_a_turn_is_a_pause_and_a_turn():
     """L119 (session 20 rehab trial): a 40 s stand whose next stride turns 120 deg (then 60 deg) was no pause
     (heading change >= 30 deg across the interval: 'a turn on the spot') and, the 120 deg spread over 41 s, no
-    turn either. Now the turn's time at 20 deg/s (6 s) is turning, the rest of the excess standing; L379: on the foot
-    table (its strides' own turns) the turn takes the span of the stride that measured it (1.2 s), not 6 s."""
+    turn either. Now the turn's time at 20 deg/s (6 s) is turning, the rest of the excess standing."""
     t = np.r_[np.arange(6) * 1.2, 6 * 1.2 + 40.0 + np.arange(6) * 1.2]
     turn = np.zeros(len(t))
     turn[6:8] = [120.0, 60.0]  # the stride after the stand turns: how the foot tracked the trial's walk
-    foot, heading_only = _foot_table(t, turn), _foot_table(t, turn).drop(columns=["turn_angle_rad", "unit"])
-    for table, allowed in ((foot, 1.2), (heading_only, 120.0 / 20.0)):
+    for table in (_foot_table(t, turn), _foot_table(t, turn).drop(columns=["turn_angle_rad", "unit"])):
         c = clinical_summary(table)
-        assert c["n_pauses"] == 1 and c["longest_pause_s"] == pytest.approx(40.0 - allowed), c
+        assert c["n_pauses"] == 1 and c["longest_pause_s"] == pytest.approx(40.0 - 120.0 / 20.0), c
         assert c["turn_count"] == 1 and np.allclose(turns(table), [180.0])
 
 

@@ -37,3 +37,37 @@ def test_a_turn_whose_steps_were_missed_is_counted_and_warned():
 
 def test_the_warning_is_off_by_default_w284():
     assert turn_steps.TURN_STEPS_WARN is False
+
+
+def test_stepless_turns_w331_counts_a_turn_without_steps():
+    walk = np.arange(0.0, 4.01, 0.5)  # 9 contacts, 0.5 s steps
+    after = 8.0 + np.arange(0.0, 2.01, 0.5)
+    ev = np.r_[walk, after]
+    turns = [_turn(4.5, 7.5, angle=360.0), _turn(10.5, 10.8)]  # 3 s without a contact; a 0.3 s one: under 2 steps
+    assert [t["counted"] for t in turn_steps.stepless_turns(ev, turns)] == [0]
+    assert turn_steps.stepless_summary(ev, turns) == {"stepless_turns": 1, "turn_steps_missed": 6}
+    line = turn_steps.stepless_turns_warning(ev, turns)
+    assert line.startswith("1 turn(s) on the spot (4.5-7.5 s) hold no detected step") and "about 6 turning" in line
+    # one contact inside the turn: not stepless (W283's estimate is the judge of partly counted turns)
+    assert turn_steps.stepless_summary(np.r_[ev, 6.0], turns) == {"stepless_turns": 0, "turn_steps_missed": 0}
+    # a foot track (no yaw-rate turns) or too few step intervals: not judged
+    assert turn_steps.stepless_summary(ev, None) == {"stepless_turns": None, "turn_steps_missed": None}
+    assert turn_steps.stepless_summary(ev[:3], turns)["stepless_turns"] is None
+
+
+def test_stepless_turn_summary_of_a_simulated_turn_on_the_spot():
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.track.evaluate import evaluate_track
+    from pdrlearn.track.waist import track_waist
+
+    s = simulate_path(parse_route("stand:3, straight:4, stand:3, turn:360, stand:3"), UserProfile.from_seed(7162),
+                      speed="slow", rate_hz=100.0, seed=7162)
+    res = track_waist(s, pipeline="waist-pendulum")
+    summary = evaluate_track(res, s)
+    ic = s.extras["ics"]["ic_s"].to_numpy(float)
+    truth = int((ic > ic[0] + 6.0).sum())  # the turn's steps: those after the walk and its stand
+    assert summary["stepless_turns"] == 1
+    assert abs(summary["turn_steps_missed"] - truth) <= 2
+    assert turn_steps.STEPLESS_WARN  # W332: adopted
+    assert any("hold no detected step" in w and "(W331)" in w for w in res.info["warnings"])

@@ -706,6 +706,7 @@ def track_all(
     freeze_index: bool = _track.FREEZE_INDEX_OPT,
     reference_point: str = _track.REFERENCE_POINT_OPT,
     toe_off: bool = _track.TOE_OFF_OPT,
+    ignore_force: bool = _track.IGNORE_FORCE_OPT,
     contacts: bool = _track.CONTACTS_OPT,
     drop_neighbour: bool = _track.DROP_NEIGHBOUR_OPT,
     detector: str = _track.DETECTOR_OPT,

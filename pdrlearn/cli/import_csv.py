@@ -164,7 +164,7 @@ def import_command(
         merge_sessions,
         merge_span_warning,
     )
-    from pdrlearn.io.unit_check import unit_mixup
+    from pdrlearn.io.unit_check import assumed_unit_note, unit_mixup
 
     m = _mapping_file(mapping)
     if force_frame and frames is None and m.get("frames") is None:  # decision B69: it would be ignored
@@ -177,6 +177,7 @@ def import_command(
             raise DataError(f"{csv}: --split-at-clock-reset writes one session per recording and cannot take "
                             f"{', '.join(clash)} (which recording their rows belong to is not known); import without "
                             "them, then put each part's labels in its folder (ms from that part's first sample)")
+    unit_given = bool(unit or m.get("unit"))  # decision B287: an assumed unit is said
     unit = unit or m.get("unit") or "foot"
     columns: dict[str, list[str]] = {}
     for kind in KINDS:
@@ -282,6 +283,8 @@ def import_command(
             raise DataError(f"{csv}: {mixup} (nothing written)")
     existed = out.is_dir() and any(out.iterdir())
     write_session(session, out, overwrite=True)
+    if not unit_given:  # decision B287: the assumed foot unit said, and a lower back's data named
+        typer.echo(f"note: {csv}: {assumed_unit_note(session)}", err=True)
     if not as_json:
         _say(record, session, out, merge, existed)
         if split_at_clock_reset:

@@ -59,6 +59,8 @@ def steps(
     session = read_session(session_dir)
     if detector == "auto":
         det = auto_detector(session)
+    if det.unit == "foot" and reads_force(det) and session.has("fAccelerometer", "fGyroscope"):
+        session = _tared(session)  # decision B284: an unloaded offset subtracted, with one line
     u = det.unit[0]  # "f" or "w": the unit's inertial streams (+ the force sensors of accel-force)
     warn_gaps(session, [f"{u}Accelerometer", f"{u}Gyroscope", *(("fForceA", "fForceB") if "force" in det.name else ())],
               "no step is detected inside them (recall counts the labelled ones as missed) - re-record or trim "
@@ -78,20 +80,47 @@ def steps(
         table = pd.DataFrame({"start_s": [], "end_s": [], "event_s": [], "unit": pd.Series(dtype="string"),
                               "confidence": []})
     if det.unit == "foot":
-        foot_checks(session, table, det.name)
+        foot_checks(session, table, det.name, force=reads_force(det))
     report(session, table, name=det.name, unit=det.unit, tolerance=tolerance, out=out, was=was, as_json=as_json,
            detector=det)
 
 
-def foot_checks(session, table, name: str) -> None:
+def _tared(session):
+    """Decision B284: ``session`` with its force sensors' unloaded offset subtracted (and the line logged)."""
+    import logging
+
+    from pdrlearn.displace.force_check import tared
+    from pdrlearn.orient import unit_data
+
+    session, line = tared(session, unit_data(session, "foot", purpose="the force sensors' unloaded offset"))
+    if line:
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+    return session
+
+
+def reads_force(detector) -> bool:
+    """Decision steps 52: whether a foot detector reads the force sensors (its ``input_columns``); None (a table of
+    unknown origin, score-steps) counts as reading them, as ``track``'s stance does."""
+    return detector is None or any("force" in c for c in getattr(detector, "input_columns", ()))
+
+
+def foot_checks(session, table, name: str, *, force: bool = False) -> None:
     """Decisions B201, B203: a foot detector's warnings from the foot unit's rests: the accelerometer's scale
-    off 1 g, and no stride found on a foot that walks (or a frozen IMU beside force sensors that step)."""
+    off 1 g, and no stride found on a foot that walks (or a frozen IMU beside force sensors that step); with
+    ``force`` (a detector that reads them) decision L365's line when the force sensors disagree with the IMU."""
     import logging
 
     from pdrlearn.track.foot_rest import foot_rest_stats, foot_scale_warning, frozen_foot_imu, no_strides_warning
 
     stats = foot_rest_stats(session)
     lines = [foot_scale_warning(stats, session.where)]
+    if force:
+        from pdrlearn.displace.force_check import checked_stance
+        from pdrlearn.orient import unit_data
+
+        foot = unit_data(session, "foot", purpose="the rests between strides")
+        lines += [f"{session.where}: {w}" for w in checked_stance(
+            session, foot, fix="count on the IMU alone with --detector accel (decision steps 52)")[2]]
     if not len(table):
         lines.append(frozen_foot_imu(session) or no_strides_warning(stats, session.where, name))
     for line in lines:
@@ -110,8 +139,11 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     from pdrlearn.steps.strides import one_per_stride_counted
 
     merged = spanned = 0
+    # decision steps 52: a detector that reads no force (accel) counts on the foot IMU's own rests; a force-reading
+    # one, or a table of unknown origin (score-steps), on track's checked force stance (L365)
+    force = reads_force(detector)
     if unit == "foot" and len(table) and per_stride:  # decision steps 34: one row per rest-to-rest stride, as `track`
-        table, merged, spanned = one_per_stride_counted(table, session)
+        table, merged, spanned = one_per_stride_counted(table, session, force=force)
     result: dict = {"session": session.name, "detector": name, "unit": unit, "count": int(len(table))}
     if merged:
         result["merged_detections"] = merged
@@ -121,7 +153,7 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     if unit == "foot" and len(table) and per_stride:  # decision steps 47: the foot's own rest-and-swing count
         from pdrlearn.steps.strides import swinging_rest_strides
 
-        own = swinging_rest_strides(session)
+        own = swinging_rest_strides(session, force=force)
         if own > len(table):
             result["foot_swing_strides"] = own
     # decision steps 47: more than steps 38's fraction of the foot's strides lie outside any detection

@@ -81,6 +81,9 @@ TOE_OFF_OPT = typer.Option(False, "--toe-off", help="plasys, offline: add the to
                            "stance_time_s, swing_time_s, stance_pct to steps.csv (decision L73: an option, "
                            "not the default - its toe-off runs ~21 ms early against mocap, see "
                            "docs/localization.md).")
+IGNORE_FORCE_OPT = typer.Option(False, "--ignore-force", help="plasys, offline: the stance and strides from the foot "
+                                "IMU alone, the force sensors (fForceA/fForceB) left out (decision L366); without "
+                                "it they are checked against the IMU and replaced where they disagree (L365).")
 DETECTOR_OPT = typer.Option(None, "--detector", help="The steps from this step detector (a built-in or a registered "
                             "/ installed plug-in, docs/extending.md): a foot detector gives plasys its strides "
                             "(decision L149), a waist one (unit 'waist') gives the lower-back pipeline its contacts "
@@ -235,6 +238,7 @@ def track(
     freeze_index: bool = FREEZE_INDEX_OPT,
     reference_point: str = REFERENCE_POINT_OPT,
     toe_off: bool = TOE_OFF_OPT,
+    ignore_force: bool = IGNORE_FORCE_OPT,
     contacts: bool = CONTACTS_OPT,
     drop_neighbour: bool = DROP_NEIGHBOUR_OPT,
     detector: str = DETECTOR_OPT,
@@ -352,7 +356,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    gnss: Path | None = None, gnss_period: float | None = None, fixes: Path | None = None,
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
                    freeze_index: bool = False,
-                   reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
+                   reference_point: str | None = None, toe_off: bool = False, ignore_force: bool = False,
+                   contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
                    per_align: str = "start",
@@ -468,7 +473,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "freeze_index": freeze_index,
-            "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts,
+            "reference_point": reference_point, "toe_off": toe_off, "ignore_force": ignore_force,
+            "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
             "per_align": per_align,
@@ -504,6 +510,7 @@ def _refuse_foot_options_without_foot(pipeline: str, o: dict, session) -> None:
         ("--pipeline plasys", pipeline == "plasys" and o.get("pipeline") == "plasys"),
         ("--model", o.get("model") is not None), ("--method", str(o.get("method", "auto")).lower() != "auto"),
         ("--streaming", bool(o.get("streaming"))), ("--toe-off", bool(o.get("toe_off"))),
+        ("--ignore-force", bool(o.get("ignore_force"))),
         ("--contacts", bool(o.get("contacts"))), ("--detector", o.get("detector") is not None),
         ("--altitude", o.get("altitude") is not None)) if on]
     if pipeline == "plasys":
@@ -579,6 +586,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                         "foot detector (accel, accel-force or a plug-in with unit 'foot'), or a session with a waist "
                         "unit")
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts
+                               or o.get("ignore_force")
                                or o.get("detector") is not None or o.get("altitude") is not None):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     if pipeline in ("plasys", "auto") and session._left_out and not session.has("fAccelerometer"):
@@ -621,6 +629,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--min-confidence": o["min_confidence"] is not None,
                                                "--length-bounds": o["length_bounds_given"],
                                                "--streaming": streaming, "--toe-off": toe_off,
+                                               "--ignore-force": bool(o.get("ignore_force")),
                                                "--contacts": contacts,
                                                "--drop-neighbour": bool(o.get("drop_neighbour")),
                                                "--detector": o.get("detector_unit") == "foot",
@@ -681,6 +690,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             if not session.has("wAccelerometer", "wGyroscope"):  # decision B192: it had been ignored silently
                 raise no_waist_for_clock("track", "--align-units", session.where)
             kw["align"] = True  # with --streaming refused by track_settings, before any session
+        if o.get("ignore_force"):  # decision L366 (offline only: plasys refuses it with streaming=True)
+            kw["ignore_force"] = True
         if toe_off:  # decision L73
             if streaming:
                 raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "
@@ -807,7 +818,8 @@ def clinical_tables(result, bouts) -> dict:
     ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
     sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk; with a TUG time its
     phases, ``tug_phases.csv``, decision W293; with a TUG trial, ``tug_trials.csv``, W325) and ``freezes.csv``
-    (decision W213: the freeze index's episodes of the tracked unit), and ``ramps.csv`` (decision L301)."""
+    (decision W213: the freeze index's episodes of the tracked unit), ``ramps.csv`` (decision L301) and, on the lower
+    back with a barometer, ``rides.csv`` (decision L377)."""
     import pandas as pd
 
     from pdrlearn.track.clinical import turn_table
@@ -816,6 +828,10 @@ def clinical_tables(result, bouts) -> dict:
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+    if result.info.get("rides") is not None:  # decision L377: a lower-back track's rides
+        from pdrlearn.track.rides import ride_table
+
+        out["rides.csv"] = ride_table(result.info)
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
         from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases, tug_trial_table
@@ -939,6 +955,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
                f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
+               f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)
@@ -949,7 +966,8 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
-                   "--toe-off", "--contacts", "--drop-neighbour", "--detector", "--altitude", "--align-units",
+                   "--toe-off", "--ignore-force", "--contacts", "--drop-neighbour", "--detector", "--altitude",
+                   "--align-units",
                    "--clock-offset", "--clock-drift-ppm")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")

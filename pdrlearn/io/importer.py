@@ -78,12 +78,18 @@ UNITS: dict[str, dict[str, float]] = {
     "gyro": {"rad/s": 1.0, "deg/s": math.pi / 180.0},
     "mag": {"uT": 1.0, "nT": 1e-3, "gauss": 100.0, "mT": 1e3},
     "baro": {"hPa": 1.0, "Pa": 0.01, "kPa": 10.0, "mbar": 1.0},
-    "heel": {"N": 1.0}, "toe": {"N": 1.0},
+    # decision B286: force in N, kilogram-force (1 kgf = 9.80665 N, standard gravity) or unitless counts (raw ADC;
+    # the force detectors are scale-free, B284 tares an offset); %BW needs the body mass, which import does not know
+    "heel": {"N": 1.0, "kgf": STANDARD_GRAVITY, "counts": 1.0},
+    "toe": {"N": 1.0, "kgf": STANDARD_GRAVITY, "counts": 1.0},
 }
+#: decision B286: the force units refused in one line (they need the walker's body mass to become N)
+_BODY_WEIGHT_UNITS = {"%bw", "bw", "%bodyweight", "bodyweight", "xbw"}
 _UNIT_ALIASES = {
     "m/s^2": "m/s2", "m/s²": "m/s2", "ms2": "m/s2", "ms^2": "m/s2", "m/s/s": "m/s2", "mps2": "m/s2",
     "rad/sec": "rad/s", "rads": "rad/s", "deg/sec": "deg/s", "dps": "deg/s", "°/s": "deg/s", "degs": "deg/s",
     "µt": "ut", "μt": "ut", "microtesla": "ut", "millibar": "mbar",
+    "kg": "kgf", "kgf": "kgf", "kp": "kgf", "newton": "n", "newtons": "n", "count": "counts", "adc": "counts",
 }
 #: the option that gives a kind's unit (the others: the --mapping file's "units")
 _UNIT_OPTION = {"acc": "--acc-unit", "gyro": "--gyro-unit"}
@@ -282,6 +288,8 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
     table = UNITS[kind]
     by_word = {k.lower(): k for k in table}  # unit words are matched case-insensitively
     si = next(iter(table))
+    if kind in ("heel", "toe"):  # decision B286: a force unit hint is never ignored
+        _check_force_units(kind, given, columns, where, row_units, by_word)
     if given is not None:
         u = by_word.get(_unit_word(given))
         if u is None:
@@ -297,6 +305,27 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
         u = hints.pop()
         return u, table[u], "units row" if row else "header"
     return si, 1.0, "default"
+
+
+def _check_force_units(kind: str, given: str | None, columns: list[str], where: str,
+                       row_units: dict[str, str] | None, by_word: dict[str, str]) -> None:
+    """Decision B286: a force column's unit (given, units row or header hint ``heel (kg)``) that is not N, kgf or
+    counts is refused in one line (it had been ignored: ``heel (kg)`` was written as N, a 9.81x mislabel); %BW names
+    the conversion it needs."""
+    said = [(given, "given")] if given is not None else [
+        ((row_units or {}).get(c) or _header_unit(c), c) for c in columns]
+    for text, src in said:
+        if not text:
+            continue
+        w = _unit_word(text)
+        if w.replace("(", "").replace(")", "") in _BODY_WEIGHT_UNITS:
+            raise DataError(f"{where}: {kind} unit {text!r} ({src}) is % body weight, and import does not know the "
+                            "body mass: convert it to N (x mass_kg x 9.80665 / 100) or declare it as counts "
+                            "(unitless: the force detectors are scale-free) with --mapping units (decision B286)")
+        if w not in by_word:
+            raise DataError(f"{where}: {kind} unit {text!r} ({src}) is not one of {', '.join(by_word.values())}; "
+                            "convert the column, rename its unit hint, or give its unit with --mapping units "
+                            "(decision B286)")
 
 
 def _time_word(text: str) -> str:
@@ -947,7 +976,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                                     and not (c.startswith("Unnamed: ") and df[c].isna().all())]
         stem = name or path.stem
         meta: dict = {"session": f"{stem}_part{part}" if n_parts > 1 else stem, "placement": unit,
-                      "units": {s: f"{SENSORS[s].unit} (source {r['unit']}, x {r['factor']:.10g})"
+                      "units": {s: f"{'counts' if r['unit'] == 'counts' else SENSORS[s].unit} (source {r['unit']}, "
+                                   f"x {r['factor']:.10g})"
                                 for s, r in record["streams"].items()},
                       "imported": record}
         if sensor_height_m is not None:

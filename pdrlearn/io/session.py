@@ -482,8 +482,10 @@ class Session:
                     f"{acc_n} and {gyr_n} {h.describe()}: the two files disagree on the axes, which no frame can "
                     f"describe; {fix}")
         example = json.dumps({placement: EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"]).to_dict()})
+        hint = self._waist_hint(placement)  # decision B288: a "foot" unit that never swings is named as a lower back
         err = DataError(
-            f"{where} declares no axis frame for the {placement} unit{reason}; add a \"frames\" entry giving the "
+            f"{where} declares no axis frame for the {placement} unit{reason}; {hint + '; else ' if hint else ''}"
+            f"add a \"frames\" entry giving the "
             f"body direction of each of its axes (forward, backward, left, right, up, down), e.g. the thesis "
             f"mounting \"frames\": {example}"
         )
@@ -508,6 +510,16 @@ class Session:
         frame = self.frames.get(placement)
         return frame is not None and any(isinstance(r, dict) and isinstance(r.get("frame_forced"), dict)
                                          and r["frame_forced"].get("declared") == frame.to_dict() for r in recs)
+
+    def _waist_hint(self, placement: str) -> str | None:
+        """Decision B288: for a foot unit of a session without a waist unit whose gyroscope never swings, B287's
+        hint that it is a lower-back unit imported as the foot (:func:`pdrlearn.io.unit_check.no_swing_hint`)."""
+        acc_n, gyr_n = UNIT_IMU["foot"]
+        if placement != "foot" or self.has(*UNIT_IMU["waist"]) or not self.has(acc_n, gyr_n):
+            return None
+        from pdrlearn.io.unit_check import no_swing_hint
+
+        return no_swing_hint(self.streams[gyr_n].t, self.streams[gyr_n].values)
 
     def handedness(self, placement: str, *, ratio: bool = True):
         """The mirrored-data and axis-agreement tests of the ``placement`` unit
@@ -564,6 +576,13 @@ class Session:
             out[p] = {"frame": None if frame is None else frame.to_dict(), "source": source, "check": check,
                       "status": status, "handedness": None if h is None else h.to_dict()}
         return out
+
+    @property
+    def frame_warnings(self) -> list[str]:
+        """Decision W334: the D10 warnings the data checks of the declared frames logged so far (one per unit, in
+        placement order, without the session's name), for summary.json's warnings."""
+        return [chk.message for _, chk in sorted(self._checked.items())
+                if getattr(chk, "message", None) and not getattr(chk, "refuse", False)]
 
     @property
     def frames_inferred(self) -> dict[str, dict]:

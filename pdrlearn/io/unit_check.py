@@ -67,3 +67,28 @@ def unit_mixup(session) -> str | None:
                 f"(99th percentile of |gyro|, largest 10 s block) while the waist unit ({waist}) swings at "
                 f"{deg(w99):.0f} deg/s, as a foot does (decision B91); {fix}")
     return None
+
+
+def no_swing_hint(t, gyr) -> str | None:
+    """Decision B287: a hint (one clause) when a unit taken for the foot never swings as a foot does -- B91's swing
+    statistic (largest 10 s block, B256) under :data:`FOOT_NO_SWING` -- so it looks like a lower-back unit; None
+    when it swings or has no gyroscope samples."""
+    gyr = np.asarray(gyr, dtype=float)
+    if gyr.ndim != 2 or len(gyr) < 4:
+        return None
+    rate = block_swing_rate(np.asarray(t, dtype=float), gyr)
+    if not np.isfinite(rate) or rate >= FOOT_NO_SWING:
+        return None
+    return (f"its gyroscope never swings as a foot's does ({np.degrees(rate):.0f} deg/s, 99th percentile of |gyro|, "
+            f"largest 10 s block; a foot swings over {np.degrees(FOOT_NO_SWING):.0f}: B91), so it looks like a "
+            "lower-back unit: import it with --unit waist")
+
+
+def assumed_unit_note(session) -> str:
+    """Decision B287: the line ``pdrlearn import`` prints when no ``--unit`` was given: the unit it assumed (the
+    foot) and, when that unit's gyroscope never swings (:func:`no_swing_hint`), that it looks like a lower back."""
+    acc_n, gyr_n = UNIT_IMU["foot"]
+    line = f"no --unit given: imported as the foot unit ({acc_n}.csv, {gyr_n}.csv)"
+    hint = (no_swing_hint(session.streams[gyr_n].t, session.streams[gyr_n].values)
+            if session.has(acc_n, gyr_n) else None)
+    return f"{line}; {hint} (B287)" if hint else f"{line}; pass --unit waist for a lower-back unit (B287)"

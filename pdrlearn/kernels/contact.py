@@ -168,6 +168,8 @@ class ForceParams:
     off_frac: float  # below this fraction = swing (hysteresis)
     min_swing_s: float  # shortest swing (s)
     subsample: bool = False  # steps decision 32: the onset between the samples, by the crossing's line
+    ref_stances: int = 0  # steps decision 53: levels from the median peak of this many last stances (0: running max)
+    confirm: bool = False  # steps decision 54: an onset holds for the next sample too (a one-sample spike is none)
 
 
 @dataclass
@@ -180,6 +182,10 @@ class ForceState:
     last_event_t: float = math.nan
     prev_t: float = math.nan  # the previous sample (decision 32's crossing)
     prev_f: float = math.nan
+    peak: float = 0.0  # steps decision 53: the current stance's largest force
+    peaks: tuple = ()  # ... and the last completed stances' (at most ForceParams.ref_stances)
+    peak_median: float = math.nan  # ... and their median
+    pending: tuple = ()  # steps decision 54: (t before, f before, t, f) of an onset waiting for the next sample
 
 
 def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
@@ -187,35 +193,62 @@ def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
     """Thesis ch.5.2: while the combined heel+toe force is ~0 (swing) keep the max and min of the
     filtered acceleration; at the stance onset count a step when max - min > ``p.amp``. The event is
     the stance onset (initial contact), with ``p.subsample`` the time the line from the sample before reaches the
-    on level (steps decision 32); the window runs from the swing start to the stance onset sample."""
+    on level (steps decision 32); the window runs from the swing start to the stance onset sample. The levels are
+    fractions of the running maximum, or with ``p.ref_stances`` > 0 of the median peak of the last that many
+    completed stances (steps decision 53: one spike cannot move them; the running maximum until one has ended)."""
     out: list = []
     s = state
     for ti, ai, fi in zip(t.tolist(), a.tolist(), f.tolist(), strict=True):
         prev_t, prev_f, s.prev_t, s.prev_f = s.prev_t, s.prev_f, ti, fi
         if fi > s.fmax:
             s.fmax = fi
+        ref = s.peak_median if p.ref_stances > 0 and s.peaks else s.fmax
         if s.stance:
-            if s.fmax > 0 and fi < p.off_frac * s.fmax:
+            s.peak = max(s.peak, fi)
+            if ref > 0 and fi < p.off_frac * ref:
+                if p.ref_stances > 0:  # steps decision 53
+                    s.peaks, s.peak = (*s.peaks, s.peak)[-p.ref_stances:], 0.0
+                    s.peak_median = float(np.median(s.peaks))
                 s.stance, s.swing_t0, s.mx, s.mn = False, ti, ai, ai
         else:
+            above = fi > p.on_frac * ref
+            if s.pending:  # steps decision 54: the onset of the sample before holds, or was a spike
+                onset, s.pending = s.pending, ()
+                if above:
+                    _force_onset(s, p, *onset, ref, out)
+                    s.peak = max(s.peak, fi)
+                    continue
             if ai > s.mx:
                 s.mx = ai
             if ai < s.mn:
                 s.mn = ai
-            if fi > p.on_frac * s.fmax:
-                s.stance = True
-                span = s.mx - s.mn
-                if span > p.amp and ti - s.swing_t0 >= p.min_swing_s:
-                    ic = (crossing_time(prev_t, ti, prev_f, fi, p.on_frac * s.fmax)
-                          if p.subsample and prev_f == prev_f else ti)
-                    out.append((ic, s.swing_t0, ti, min(1.0, span / (2.0 * p.amp)), {"amplitude": span}))
-                    s.last_event_t = ti
+            if above:
+                if p.confirm:
+                    s.pending = (prev_t, prev_f, ti, fi)
+                else:
+                    _force_onset(s, p, prev_t, prev_f, ti, fi, ref, out)
     return out, s
+
+
+def _force_onset(s: ForceState, p: ForceParams, prev_t: float, prev_f: float, ti: float, fi: float, ref: float,
+                 out: list) -> None:
+    """:func:`force_kernel`'s stance onset at sample ``ti`` (``prev_t`` the one before): a step when the swing's
+    acceleration spans ``p.amp`` and the swing lasted ``p.min_swing_s``."""
+    s.stance, s.peak = True, fi
+    span = s.mx - s.mn
+    if span > p.amp and ti - s.swing_t0 >= p.min_swing_s:
+        ic = (crossing_time(prev_t, ti, prev_f, fi, p.on_frac * ref)
+              if p.subsample and prev_f == prev_f else ti)
+        out.append((ic, s.swing_t0, ti, min(1.0, span / (2.0 * p.amp)), {"amplitude": span}))
+        s.last_event_t = ti
 
 
 #: AccelForceStepDetector's settings (thesis ch.5.2): stance when the combined force exceeds FORCE_ON_FRAC of its
 #: running maximum, swing below FORCE_OFF_FRAC; the swing's |acc| must span FORCE_AMP m/s^2 and last FORCE_MIN_SWING_S
 FORCE_ON_FRAC, FORCE_OFF_FRAC, FORCE_AMP, FORCE_MIN_SWING_S = 0.10, 0.05, 1.0, 0.15
+#: steps decisions 53/54 (adopted with 54's confirmed onset): the levels' reference = the median peak of the last this
+#: many stances (AccelForceStepDetector's default; the streamed contacts of E50 keep the stride's running maximum)
+FORCE_REF_STANCES = 5
 
 
 def force_onset(t: np.ndarray, acc: np.ndarray, force: np.ndarray) -> float:

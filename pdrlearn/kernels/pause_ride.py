@@ -67,3 +67,53 @@ def drift_line(drop, ends, starts) -> str | None:
             f"{drop[worst]:+.2f} m over the {starts[worst] - ends[worst]:.0f} s before {starts[worst]:.1f} s), too "
             "slowly for a lift or escalator ride (a ride changes 1.5 m within 30 s): weather or room pressure, left "
             "out of the altitude and the floors (decision W231)")
+
+
+#: decision L376: a ride's window runs from where its altitude has moved this fraction of its change to where it has
+#: moved 1 - this fraction; its duration is that span / (1 - 2 x this fraction)
+RIDE_EDGE_FRACTION = 0.1
+#: decision L376: the grid (s) the altitude is read on inside a pause for the ride's window
+RIDE_WINDOW_GRID_S = 0.5
+#: decision L376: a lift moves 0.5 m/s or more vertically (passenger lifts 1-2.5 m/s, low-rise hydraulic 0.5-1 m/s,
+#: as recalled); an escalator 0.15-0.5 m/s (EN 115-1: 0.5-0.75 m/s along a 30-35 deg incline, 0.25-0.375 m/s up)
+LIFT_MIN_RATE_MPS = 0.5
+ESCALATOR_MIN_RATE_MPS = 0.15
+#: decision L376: an escalator ride lasts at most this long (s): ~11 m of rise at 0.25 m/s (station / shop escalators
+#: rise 3-10 m); a longer slow climb while standing is a vehicle's or a ride of another kind
+ESCALATOR_MAX_S = 45.0
+#: decision L377: the inclination (deg) an escalator's horizontal travel is estimated at (EN 115-1's common 30 deg)
+ESCALATOR_INCLINE_DEG = 30.0
+
+
+def ride_window(t: np.ndarray, p_hpa: np.ndarray, a: float, b: float) -> tuple[float, float, float]:
+    """Decision L376: ``(start, end, duration)`` (s) of the ride in the pause from ``a`` to ``b``: W89's altitude on a
+    :data:`RIDE_WINDOW_GRID_S` grid, ``start`` where it first moved :data:`RIDE_EDGE_FRACTION` of its whole change,
+    ``end`` where it first moved 1 - that fraction, ``duration`` = (end - start) / (1 - 2 x fraction) (the 10-90 %
+    span of a steady ride is 80 % of it), at least one grid step."""
+    grid = np.append(np.arange(a, b, RIDE_WINDOW_GRID_S), b)
+    h = relative_altitude(t, p_hpa, grid)
+    whole = float(h[-1])
+    if len(grid) < 2 or whole == 0.0:
+        return float(a), float(b), float(b - a)
+    moved = h / whole  # 0 at a, 1 at b
+    lo = grid[int(np.argmax(moved >= RIDE_EDGE_FRACTION))]
+    hi = grid[int(np.argmax(moved >= 1.0 - RIDE_EDGE_FRACTION))]
+    duration = max(float(hi - lo) / (1.0 - 2.0 * RIDE_EDGE_FRACTION), RIDE_WINDOW_GRID_S)
+    return float(lo), float(max(hi, lo)), duration
+
+
+def ride_kind(dz: float, duration_s: float) -> str:
+    """Decision L376: ``"lift"``, ``"escalator"`` or ``"other"`` from a ride's height change ``dz`` (m) and
+    :func:`ride_window`'s ``duration_s``: its vertical rate and duration against the typical lift and escalator."""
+    rate = abs(float(dz)) / max(float(duration_s), 1e-9)
+    if rate >= LIFT_MIN_RATE_MPS:
+        return "lift"
+    if rate >= ESCALATOR_MIN_RATE_MPS and duration_s <= ESCALATOR_MAX_S:
+        return "escalator"
+    return "other"
+
+
+def escalator_travel_m(dz: float) -> float:
+    """Decision L377: the horizontal travel (m) of an escalator ride of height change ``dz``, estimated at
+    :data:`ESCALATOR_INCLINE_DEG` (dz / tan 30 deg)."""
+    return abs(float(dz)) / float(np.tan(np.radians(ESCALATOR_INCLINE_DEG)))

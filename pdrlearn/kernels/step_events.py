@@ -599,7 +599,9 @@ class ForceProcessor:
         self.lp = lowpass(cutoff_below(det.cutoff_hz, fs), fs, order=det.order)
         self.state = ForceState()
         self.params = ForceParams(amp=det.threshold, on_frac=det.force_on_frac, off_frac=det.force_off_frac,
-                                  min_swing_s=det.min_swing_s, subsample=subsample_of(det))
+                                  min_swing_s=det.min_swing_s, subsample=subsample_of(det),
+                                  ref_stances=int(getattr(det, "ref_stances", 0)),
+                                  confirm=bool(getattr(det, "confirm", False)))
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
         a = self.lp.push(magnitude(v[:, :3]))

@@ -181,10 +181,16 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
             raise DataError(f"{where}: median |B| is {med:.0f}; looks like nT: divide by 1000 to get uT")
     elif spec.kind == "barometer":
         med = float(np.median(values))
+        def header(unit: str) -> str:  # decision B289: import converts a column whose header names its unit
+            return ("" if not declare else f", or name the unit in the column's header, e.g. 'pressure ({unit})', "
+                    f"which import converts (decision B289), or {declare}")
+
         if med > 20000:
-            raise DataError(f"{where}: median pressure {med:.0f} looks like Pa; divide by 100 to get hPa")
+            raise DataError(f"{where}: median pressure {med:.0f} looks like Pa; divide by 100 to get hPa"
+                            + header("Pa"))
         if 30 <= med <= 110:
-            raise DataError(f"{where}: median pressure {med:.1f} looks like kPa; multiply by 10 to get hPa")
+            raise DataError(f"{where}: median pressure {med:.1f} looks like kPa; multiply by 10 to get hPa"
+                            + header("kPa"))
         if not 300 <= med <= 1100:
             raise DataError(f"{where}: median pressure {med:.1f} hPa is outside 300-1100 hPa (thesis Table 17)")
 

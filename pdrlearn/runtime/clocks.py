@@ -33,6 +33,7 @@ from pdrlearn.kernels.contact import (
     FORCE_MIN_SWING_S,
     FORCE_OFF_FRAC,
     FORCE_ON_FRAC,
+    FORCE_REF_STANCES,
     PEAK_FRAC,
 )
 from pdrlearn.kernels.step_events import MIN_STRIDE_S, AccelProcessor, ForceProcessor, PLLProcessor
@@ -46,7 +47,8 @@ ACCEL = {"cutoff_hz": 3.0, "order": 3, "threshold": 1.7, "still_window_s": 0.08,
          "rests_only": True, "min_swing_s": 0.2, "max_swing_s": 2.5, "min_stride_s": MIN_STRIDE_S,
          "peak_frac": PEAK_FRAC, "event_cutoff_hz": EVENT_CUTOFF_HZ, "gravity": 9.80665, "subsample": None}
 FORCE = {"cutoff_hz": 3.0, "order": 3, "threshold": FORCE_AMP, "force_on_frac": FORCE_ON_FRAC,
-         "force_off_frac": FORCE_OFF_FRAC, "min_swing_s": FORCE_MIN_SWING_S, "subsample": None}
+         "force_off_frac": FORCE_OFF_FRAC, "min_swing_s": FORCE_MIN_SWING_S, "subsample": None,
+         "ref_stances": FORCE_REF_STANCES, "confirm": True}  # steps decision 54
 PLL = {"f0_hz": PLL_F0_HZ, "loop_hz": 0.5, "damping": 0.707, "f_min_hz": 0.8, "f_max_hz": None, "cutoff_hz": 5.0,
        "agc_tau_s": 1.0, "gravity_cutoff_hz": 0.3, "gate_window_s": 2.0, "gate_var": 0.25, "refine_frac": 0.25,
        "placement": "waist", "relative_gate": None}  # steps 48/49: offline detect's only; a stream keeps gate_var

@@ -3,7 +3,7 @@
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
 (your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
 :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side`,
-:class:`Freeze`, :class:`Lie` segments) and :class:`UserProfile`
+:class:`Freeze`, :class:`Lie`, :class:`Vehicle` segments) and :class:`UserProfile`
 (anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
 """
@@ -25,6 +25,7 @@ from pdrlearn.sim.path import (
     Straight,
     Trolley,
     Turn,
+    Vehicle,
     plan_footsteps,
 )
 from pdrlearn.sim.scenarios import SCENARIOS
@@ -54,6 +55,7 @@ __all__ = [
     "Escalator",
     "Trolley",
     "Side",
+    "Vehicle",
     "Footstep",
     "plan_footsteps",
 ]

@@ -21,6 +21,7 @@ from pdrlearn.sim.lying import BED_SIT_S, LyingEpisode, check_lie, draw_lying
 from pdrlearn.sim.ride import RIDE_MARGIN_S, Ride, check_rise, draw_ride
 from pdrlearn.sim.transfer import SIT_MARGIN_S, Transfer, draw_transfer
 from pdrlearn.sim.user import GAITS, UserProfile, asymmetry_factor
+from pdrlearn.sim.vehicle import check_vehicle, draw_vehicle
 
 
 # -- segments --------------------------------------------------------------------------------------
@@ -145,6 +146,16 @@ class Escalator:
 
 
 @dataclass(frozen=True)
+class Vehicle:
+    """Stand in a bus or train that drives ``duration_s`` seconds (drive off, an S-bend, stop) with a vertical
+    vibration of ``rms_mps2`` m/s^2 RMS (None = drawn): carried without a step (decision S71,
+    :mod:`pdrlearn.sim.vehicle`)."""
+
+    duration_s: float
+    rms_mps2: float | None = None
+
+
+@dataclass(frozen=True)
 class Trolley:
     """Walk ``length_m`` metres straight ahead pushing a trolley (decision S46): the hands on the handle damp the
     pelvic rotation (:data:`pdrlearn.sim.body.PUSHING_ROTATION_GAIN`); the steps are level walking steps."""
@@ -173,7 +184,7 @@ class Lie:
 
 
 Segment = (Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit | Lift | Escalator | Trolley | Side
-           | Freeze | Lie)
+           | Freeze | Lie | Vehicle)
 
 
 @dataclass
@@ -501,6 +512,16 @@ class _Walker:
         self.transfers.append(ride)
         self.pending_pause += RIDE_MARGIN_S + ride.duration_s + RIDE_MARGIN_S
 
+    def vehicle(self, seg: Vehicle) -> None:
+        """Decision S71: S45's ride (feet together, the ride inside the pause before the next step) in a vehicle,
+        turning the walker about the point between the feet."""
+        check_vehicle(seg.duration_s, seg.rms_mps2, str(seg))
+        self.close()
+        ride = draw_vehicle(len(self.steps), float(seg.duration_s), seg.rms_mps2, self.psi, self.c, self.rng,
+                            delay_s=self.pending_pause + RIDE_MARGIN_S)
+        self.transfers.append(ride)
+        self.pending_pause += RIDE_MARGIN_S + ride.duration_s + RIDE_MARGIN_S
+
 
 def path_length(segments: list[Segment], user: UserProfile | None = None) -> float:
     """Horizontal length (m) of the centre line of ``segments`` (backward steps at 0.55 step length); walked only:
@@ -570,6 +591,7 @@ def plan_footsteps(
         Side: w.side,
         Freeze: w.freeze,
         Lie: w.lie,
+        Vehicle: w.vehicle,
     }
     for seg in segments:
         if isinstance(seg, Straight | Curve | Slope | Trolley) and seg.gait not in GAITS:
@@ -579,7 +601,7 @@ def plan_footsteps(
         except KeyError:
             raise DataError(
                 f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Pivot, Stand, Sit, "
-                "Lift, Escalator, Trolley, Side, Freeze, Lie"
+                "Lift, Escalator, Trolley, Side, Freeze, Lie, Vehicle"
             ) from None
     w.close()
     return w.steps, initial, w.pending_pause, w.transfers

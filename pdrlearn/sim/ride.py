@@ -170,7 +170,8 @@ def ride_offset(t: np.ndarray, rides: list[Ride], starts: np.ndarray, *, sway: b
         tau = t - t0
         if not (tau > 0).any():
             continue
-        out += _geometry(ride, ride_distance(ride, tau))
+        if ride.kind != "vehicle":  # decision S71: a vehicle's carry is pdrlearn.sim.vehicle.vehicle_carry's
+            out += _geometry(ride, ride_distance(ride, tau))
         if sway:
             on = (tau > 0) & (tau < ride.duration_s)
             if on.any():

@@ -47,6 +47,7 @@ from pdrlearn.sim.ride import Ride, ride_offset, ride_table
 from pdrlearn.sim.scenarios import SCENARIOS
 from pdrlearn.sim.transfer import session_sit_starts, session_sits, transfer_motion, transfer_starts, transfer_table
 from pdrlearn.sim.user import SPEEDS, UserProfile
+from pdrlearn.sim.vehicle import VehicleRide, vehicle_carry
 
 log = logging.getLogger(__name__)
 
@@ -319,10 +320,10 @@ def simulate_path(
         step_length_asymmetry=float(opt["step_length_asymmetry"]),
         paretic_side=str(opt["paretic_side"]),
     )
-    rides = [e for e in transfers if isinstance(e, Ride)]  # decision S45: lifts and escalators
+    rides = [e for e in transfers if isinstance(e, Ride | VehicleRide)]  # decisions S45 (lifts, escalators), S71
     freezes = [e for e in transfers if isinstance(e, FreezeEpisode)]  # decision S51: trembling in place
     lyings = [e for e in transfers if isinstance(e, LyingEpisode)]  # decision S58: lying inside a bed-edge sit
-    transfers = [e for e in transfers if not isinstance(e, Ride | FreezeEpisode | LyingEpisode)]
+    transfers = [e for e in transfers if not isinstance(e, Ride | VehicleRide | FreezeEpisode | LyingEpisode)]
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     # decision S43: seated at the start (then a stand-up before the standstill) and / or at the end (own stream)
     sit0, sit1 = ((None, None) if not (opt["sit_start_s"] or opt["sit_end_s"]) else session_sits(
@@ -365,8 +366,9 @@ def simulate_path(
             ry[:, 0, 0], ry[:, 0, 2], ry[:, 1, 1], ry[:, 2, 0], ry[:, 2, 2] = c, s_, 1.0, -s_, c
             heel = heel + rot @ r_sensor - (rot @ ry) @ r_sensor + dp
             rot = rot @ ry
-        if rides:  # decision S45: the ride carries the standing walker
-            return heel + rot @ r_sensor + ride_offset(tt, rides, ride_starts), rot
+        if rides:  # decision S45: the ride carries the standing walker (S71: a vehicle turns them too)
+            pos, rot = vehicle_carry(tt, heel + rot @ r_sensor, rot, rides, ride_starts)
+            return pos + ride_offset(tt, rides, ride_starts), rot
         return heel + rot @ r_sensor, rot
 
     # decision S44: in parts of the 500 Hz grid; S62: the foot's pose kept at the output samples only
@@ -437,7 +439,8 @@ def simulate_path(
         if lyings:  # decisions S58, S59: lying down on the bed, turning over, sitting up (body frame)
             p_pel, rot = _lie_down(tt, p_pel, rot, lyings, lying_starts)
         if rides:  # decision S45: the ride, and the standing passenger's small sway (with the trunk's vibration)
-            return p_pel + rot @ r_waist + ride_offset(tt, rides, ride_starts, sway=trunk > 0), rot
+            pos, rot = vehicle_carry(tt, p_pel + rot @ r_waist, rot, rides, ride_starts)  # S71
+            return pos + ride_offset(tt, rides, ride_starts, sway=trunk > 0), rot
         return p_pel + rot @ r_waist, rot
 
     fw_body, ww_body, p_w100, R_p100 = _unit_motion(t, waist_unit, dt)  # decision S44

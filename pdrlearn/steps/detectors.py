@@ -20,6 +20,7 @@ from pdrlearn.kernels.contact import (
     FORCE_MIN_SWING_S,
     FORCE_OFF_FRAC,
     FORCE_ON_FRAC,
+    FORCE_REF_STANCES,
     PEAK_FRAC,
 )
 from pdrlearn.kernels.step_events import (  # decision L177: the online processors, numpy only given a low-pass
@@ -136,6 +137,10 @@ class AccelForceStepDetector(StepDetector):
         maximum, swing when it drops below ``force_off_frac`` ("different from zero", with hysteresis
         against sensor noise; works for forces in N or normalised)
     min_swing_s : shortest swing (s)
+    ref_stances : the levels are fractions of the median peak of the last this many stances (decisions 53/54: one
+        spike cannot move them); 0 = of the running maximum (before decision 54)
+    confirm : a stance onset must hold for the next sample too (decision 54: a one-sample spike is no contact;
+        False = before it)
     subsample : the stance onset at the time the line between the sample before and the crossing sample reaches
         the on level instead of the crossing sample (decision 32); None = ``pdrlearn.kernels.contact.SUBSAMPLE``
     """
@@ -147,7 +152,8 @@ class AccelForceStepDetector(StepDetector):
 
     def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = FORCE_AMP,  # thesis ch.5.2
                  force_on_frac: float = FORCE_ON_FRAC, force_off_frac: float = FORCE_OFF_FRAC,
-                 min_swing_s: float = FORCE_MIN_SWING_S, subsample: bool | None = None):
+                 min_swing_s: float = FORCE_MIN_SWING_S, subsample: bool | None = None,
+                 ref_stances: int = FORCE_REF_STANCES, confirm: bool = True):  # decision 54
         self._store(locals())
 
     def _inputs(self, session: Session):

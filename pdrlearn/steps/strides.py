@@ -8,42 +8,41 @@ import pandas as pd
 from pdrlearn.io.session import Session
 
 
-def one_per_stride(table: pd.DataFrame, session: Session) -> tuple[pd.DataFrame, int]:
+def one_per_stride(table: pd.DataFrame, session: Session, *, force: bool = True) -> tuple[pd.DataFrame, int]:
     """A foot detector's steps ``table`` reduced to the rows ``pdrlearn track`` integrates, one per rest-to-rest
     stride of ``session``'s foot unit (:func:`pdrlearn.displace.foot.one_per_rest_stride`; the rests of
     ``track``'s default M3 stance: the force sensors' when recorded, else the accelerometer/gyroscope one), and
     how many rows were dropped. ``pdrlearn steps`` and ``pdrlearn score-steps`` apply it to foot tables before
     :func:`pdrlearn.steps.score_steps` (decision steps 34); a Python caller who scores a foot detector's raw
-    table gets a lower precision when the detector fires more than once per stride."""
-    kept, dropped, _ = one_per_stride_counted(table, session)
+    table gets a lower precision when the detector fires more than once per stride. ``force`` False: the rests of
+    the foot IMU alone (decision steps 52: what ``pdrlearn steps`` uses for a detector that reads no force)."""
+    kept, dropped, _ = one_per_stride_counted(table, session, force=force)
     return kept, dropped
 
 
-def _foot_rests(session: Session):
-    """The foot unit's data and ``track``'s default M3 stance (the force sensors' when recorded, else the
-    accelerometer/gyroscope one)."""
-    from pdrlearn.displace.foot import force_stance, inertial_stance
+def _foot_rests(session: Session, force: bool = True):
+    """The foot unit's data and ``track``'s default M3 stance (the force sensors' when recorded, checked against the
+    IMU's, decision L365; else, or with ``force`` False, decision steps 52, the accelerometer/gyroscope one)."""
+    from pdrlearn.displace.force_check import checked_stance
     from pdrlearn.orient import unit_data
 
     foot = unit_data(session, "foot", purpose="the rests between strides")
-    stance = force_stance(session, foot.t, foot.gyr)
-    if stance is None:
-        stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
-    return foot, stance
+    return foot, checked_stance(session, foot, use_force=force)[0]
 
 
-def one_per_stride_counted(table: pd.DataFrame, session: Session) -> tuple[pd.DataFrame, int, int]:
+def one_per_stride_counted(table: pd.DataFrame, session: Session, *,
+                           force: bool = True) -> tuple[pd.DataFrame, int, int]:
     """:func:`one_per_stride`, plus how many more rest-to-rest strides the kept rows cover (a detection
     spanning several strides: strides merged, decision steps 38)."""
     from pdrlearn.displace.foot import one_per_rest_stride
 
-    foot, stance = _foot_rests(session)
+    foot, stance = _foot_rests(session, force)
     ev = table["event_s"] if "event_s" in table else table["end_s"]
     rows, n_strides = one_per_rest_stride(foot.t, stance, table["start_s"], table["end_s"], ev, count_strides=True)
     return table.iloc[rows].reset_index(drop=True), int(len(table) - len(rows)), int(n_strides - len(rows))
 
 
-def swinging_rest_strides(session: Session) -> int:
+def swinging_rest_strides(session: Session, *, force: bool = True) -> int:
     """Decision steps 47: the foot's own stride count, without a detector: the rest-to-rest strides of ``track``'s
     stance (:func:`pdrlearn.displace.foot.rest_to_rest` on one window over the whole session, as ``track`` splits a
     detection at the rests, L96) whose foot swings - its largest |gyro| between the two rests reaches B91's
@@ -54,7 +53,7 @@ def swinging_rest_strides(session: Session) -> int:
     from pdrlearn.displace.foot import rest_to_rest
     from pdrlearn.kernels.units import FOOT_NO_SWING
 
-    foot, stance = _foot_rests(session)
+    foot, stance = _foot_rests(session, force)
     t = np.asarray(foot.t, dtype=float)
     if len(t) < 4:
         return 0

@@ -218,7 +218,8 @@ def get_pipeline(name: str) -> Pipeline:
       (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84),
       ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time),
       ``drop_neighbour`` (decisions L167, E101: with ``streaming``, a stride across dropped foot samples takes the
-      length and height change of the stride before it; off by default),
+      length and height change of the stride before it; off by default), ``ignore_force`` (decision L366: offline,
+      the foot IMU alone, the force sensors left out; without it L365 checks them against the IMU),
       ``altitude`` (decision L154: ``"foot"``, the default, or ``"fused"`` with the waist barometer; an option),
       ``waist_bias`` (decision W126: remove the waist gyroscope bias read at rest; off by default),
       ``compass_fallback`` (decision L226: with heading ``"fused"``, follow the waist gyroscope turned to the compass
@@ -267,6 +268,8 @@ def get_pipeline(name: str) -> Pipeline:
       pendulum model's distance on the same session),
       ``pll_slow_check`` (decisions W289 / W290, off: the same at over 1.25 x while the pendulum reading is under
       1.0 m/s, a slow walker's),
+      ``pll_slow_cadence_check`` (decisions W313 / W314, on: the same at over 1.25 x while the pendulum reading's
+      median cadence is under 100 steps/min),
       ``short_step_check`` (decision W207, off: an uncalibrated offline waist-pendulum track warns when its median
       step is under half the comfortable step of the stature, a shuffle the pendulum reads long),
       ``integrate_end`` (decision W187, off: the last step's heading takes the yaw turned on the spot after it, to
@@ -280,6 +283,11 @@ def get_pipeline(name: str) -> Pipeline:
       gives p >= 0.5, W203; offline ``waist-pendulum`` only),
       ``freeze_veto`` (decision W215, off: the offline lower-back contacts inside a freeze episode of the freeze
       index, freezes.csv, W213, are dropped, W214; implies ``freeze_index``),
+      ``rhythm_warning`` (decisions W338 / W339, off: without a foot unit, one warning line per stretch of lower-back
+      contacts whose vertical stride regularity is under 0.4, a vehicle's bounce; W339's rule was not met),
+      ``foot_rest_veto`` (decisions W336 / W337, on: with a foot unit, a run of 4 or more lower-back contacts none
+      within 1 s of a foot stride that swings the foot is dropped, a standing passenger's bounce in a vehicle; the
+      runs are named in a warning line either way),
       ``freeze_index`` (decision W216, off: the lower back's freeze index, W213: freezes.csv and ``n_freezes`` /
       ``freeze_time_s``, null when off; foot tracks always compute theirs),
       ``realtime_sit_veto`` (decision W201, off: a realtime track applies the sit veto causally, each contact

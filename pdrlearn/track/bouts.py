@@ -35,6 +35,7 @@ from pdrlearn.track.clinical import (
     bout_rows,
     cv_pct,
     data_gap_lengths,
+    is_foot_table,
     split_at_data_gaps,
     steady_rows,
     steady_stride_lengths,
@@ -145,10 +146,6 @@ def bout_rule(break_s: float | None = None, min_strides: int | None = None, pres
     return BoutRule(**{**BOUT_PRESETS[name], **given})
 
 
-def _is_foot(steps: pd.DataFrame) -> bool:
-    return "unit" in steps and len(steps) > 0 and bool((steps["unit"].astype(str) == "foot").all())
-
-
 def cadence_spm(n_step_intervals: float, span_s: float) -> float:
     """Decision L164: THE cadence of pdrlearn's bout tables - steps per minute over the contact span: the
     ``n_step_intervals`` steps between a bout's first and last initial contact (contacts - 1; 2 per stride of a
@@ -244,7 +241,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     if not len(steps) or "start_s" not in steps:
         return out
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
-    foot = _is_foot(st)
+    foot = is_foot_table(st)
     gap_len = data_gap_lengths(st)  # decision L269: a bout's own (shorter) data gaps, summed as data_gap_s
     gap = gap_len > 0
     length = st["length_m"].abs().to_numpy(float) if "length_m" in st else np.zeros(len(st))

@@ -12,9 +12,7 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   pause. Rows across a foot-data gap (``gap_s`` > 0, L67) are not judged: a sensor gap is not a pause. An
   interval across which the heading turns :data:`PAUSE_MAX_TURN_DEG` or more holds a turn: the time that turn
   takes at :data:`TURN_ON_SPOT_MIN_DPS` is turning (a slow turn on the spot is no pause), only the excess beyond
-  it is standing (decision L119: a long stand before or after a turn is a pause and the turn still counts);
-  decision L379: on a foot table the turn takes at most the span of the stride that measured it
-  (:func:`turn_allowance_s`), so a rest at a cone is not 9 s short.
+  it is standing (decision L119: a long stand before or after a turn is a pause and the turn still counts).
 * **walking bout**: the walk between pauses: ``n_walking_bouts`` = ``n_pauses`` + 1 (0 without a row); decision
   L269: a foot-data gap row longer than the pause threshold ends a bout too (the gap row in none); the time in data
   gaps is L275's ``time_no_data_s``.
@@ -65,10 +63,8 @@ PAUSE_MAX_TURN_DEG = 30.0
 #: decision L119: the slowest turn on the spot the pause rule allows for (deg/s): a 180 deg turn in 9 s; the time
 #: of an interval's turn at this rate is turning, the rest beyond the walk's rhythm standing
 TURN_ON_SPOT_MIN_DPS = 20.0
-#: decision L379: how the pause rule times a turn across an interval - "assumed" (L119: its angle at
-#: :data:`TURN_ON_SPOT_MIN_DPS`) or "measured" (a foot table's turning stride's span, capped by L119's time)
-PAUSE_TURN_TIMES = ("assumed", "measured")
-PAUSE_TURN_TIME = "measured"
+#: decision L372: a still stretch between two rows is standing, not a turn's time (L373: the rule's result)
+STILL_STANDING = True
 #: a row turns when its heading changes at this rate (deg/s) or more from the previous row
 TURN_RATE_MIN_DPS = 15.0
 #: decision L181: a turn also sums the same-way heading change of the row just before and just after it (a streamed
@@ -216,32 +212,36 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
     if "heading_rad" in st:  # decision L119: a turn across the interval takes its time, the rest is standing
         with np.errstate(invalid="ignore"):
             dh = np.abs(np.diff(np.degrees(unwrapped_heading(st))))
-            excess = excess - turn_allowance_s(st, dh)
+            # decision L372: at most the interval's time that was not still (a still stretch is standing)
+            allow = np.minimum(dh / TURN_ON_SPOT_MIN_DPS, np.maximum(d - still_before(st)[1:], 0.0))
+            excess = excess - np.where(dh >= PAUSE_MAX_TURN_DEG, allow, 0.0)
     return excess, pair & (excess >= min_s)
 
 
-def turn_allowance_s(st: pd.DataFrame, dh_deg: np.ndarray, mode: str | None = None) -> np.ndarray:
-    """(N - 1,) the time (s) the turn across each row-to-row interval of ``st`` (rows in time order) may take off
-    the interval's excess; ``dh_deg`` (N - 1,) the intervals' |heading change| (deg). Decision L119: a change of
-    :data:`PAUSE_MAX_TURN_DEG` or more takes |change| / :data:`TURN_ON_SPOT_MIN_DPS`. Decision L379 (``mode``
-    "measured", None = :data:`PAUSE_TURN_TIME`): on a foot table whose heading is its strides' own turns
-    (:func:`_own_turns`) the change is the next stride's own turn, measured over that stride's span
-    (``end_s`` - ``start_s``, where turns.csv times it, L208): that span, capped by L119's time; a streamed row's
-    pivot before the stride (``pivot_rad``, L106: turned while the foot rested) keeps L119's time."""
-    dh = np.abs(np.asarray(dh_deg, float))
-    turning = dh >= PAUSE_MAX_TURN_DEG
-    assumed = np.where(turning, dh / TURN_ON_SPOT_MIN_DPS, 0.0)  # decision L119
-    mode = PAUSE_TURN_TIME if mode is None else mode
-    if mode not in PAUSE_TURN_TIMES:
-        raise ValueError(f"mode must be one of {PAUSE_TURN_TIMES}, not {mode!r}")
-    if mode == "assumed" or _own_turns(st) is None or "end_s" not in st:
-        return assumed
-    span = (st["end_s"].to_numpy(float) - st["start_s"].to_numpy(float))[1:]  # the stride carrying the turn
-    span = np.where(np.isfinite(span) & (span > 0), span, np.inf)  # no span measured: L119's time
-    pivot = np.zeros(len(dh))
-    if "pivot_rad" in st:  # decision L106: a streamed stride's pivot before it turned in the interval
-        pivot = np.abs(np.degrees(np.nan_to_num(st["pivot_rad"].to_numpy(float)[1:])))
-    return np.where(turning, np.minimum(assumed, np.minimum(span, assumed) + pivot / TURN_ON_SPOT_MIN_DPS), 0.0)
+def still_before(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L372: (N,) the seconds before each row (rows in their order; 0 for the first) that the unit was
+    known to be still since the previous row, so no turn took them: a lower-back table's ``still_before_s`` (L296's
+    still samples of the pelvis between the two contacts); a foot table's rest between the previous row's end and
+    this row's start (no stride of the tracked foot covers it), unless a streamed row's ``pivot_rad`` turned the
+    foot there by :data:`PAUSE_MAX_TURN_DEG` or more (L106); else 0 (nothing known)."""
+    n = len(steps)
+    if not STILL_STANDING:
+        return np.zeros(n)
+    if "still_before_s" in steps:
+        return np.nan_to_num(pd.to_numeric(steps["still_before_s"], errors="coerce").to_numpy(float))
+    if not is_foot_table(steps) or "end_s" not in steps or n < 2:
+        return np.zeros(n)
+    rest = np.r_[0.0, steps["start_s"].to_numpy(float)[1:] - steps["end_s"].to_numpy(float)[:-1]]
+    rest = np.maximum(np.nan_to_num(rest), 0.0)
+    if "pivot_rad" in steps:
+        pivot = np.abs(np.degrees(np.nan_to_num(steps["pivot_rad"].to_numpy(float))))
+        rest = np.where(pivot >= PAUSE_MAX_TURN_DEG, 0.0, rest)
+    return rest
+
+
+def is_foot_table(steps: pd.DataFrame) -> bool:
+    """Whether every row of a non-empty ``steps`` is a foot unit's (bouts.csv and L372 read foot tables apart)."""
+    return "unit" in steps and len(steps) > 0 and bool((steps["unit"].astype(str) == "foot").all())
 
 
 def _own_turns(steps: pd.DataFrame) -> np.ndarray | None:

@@ -188,7 +188,7 @@ CLIMB_SLOPE_WINDOW_STRIDES = 7
 
 def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
                           bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None,
-                          slope_rows=None) -> tuple[int, int, int]:
+                          slope_rows=None, parts=None) -> tuple[int, int, int]:
     """Storeys climbed and descended counted per climb from the strides' height changes ``dz`` (m, one per
     stride in walking order): ``(floors_up, floors_down, storeys_changed)`` (decision L127). A climb up (down)
     is a run of up (down) stair strides, dz >= ``LEVEL_DZ_M`` (<= -``LEVEL_DZ_M``, L39), with at most
@@ -197,43 +197,91 @@ def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: fl
     between climbs moves no count. Non-finite dz count as 0. ``slope`` (default ``SUSTAINED_SLOPE``, decision
     L144): the strides of a sustained slope (``kernels.distance.sustained_slope``) count as stair strides too.
     ``slope_rows`` (decision L337, :func:`climb_slope_rows`; None: none): per row +1 / -1 where a sustained grade up /
-    down makes it a climb row of that sign."""
-    climbs = [n for _, n in floor_climbs(dz, storey_height_m, band, bridge, slope, slope_rows)]
+    down makes it a climb row of that sign. ``parts`` (decisions L374-L376, :func:`_climb_parts`): the rows' rides and
+    W108's climb rows."""
+    climbs = [n for _, n in floor_climbs(dz, storey_height_m, band, bridge, slope, slope_rows, parts)]
     up, down = sum(n for n in climbs if n > 0), -sum(n for n in climbs if n < 0)
     return up, down, up - down
 
 
 def floor_climbs(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
                  bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None,
-                 slope_rows=None) -> list[tuple[int, int]]:
+                 slope_rows=None, parts=None) -> list[tuple[int, int]]:
     """:func:`count_floors_by_climb`'s climbs that count a storey (decision L127), as ``(last, storeys)``: the index
     of the climb's last stair stride and its storeys, + up / - down (decision L277: periods.csv places each climb's
     storeys in the period of its last stair stride, so the periods' floors add up to the summary's)."""
 
     return [(int(r[-1]), n) for r, n in _climb_runs(dz, storey_height_m, band, bridge, slope,
-                                                    slope_rows=slope_rows)]
+                                                    slope_rows=slope_rows, parts=parts)]
 
 
 def _climb_runs(dz, storey_height_m: float, band: float, bridge: int, slope: bool | None, every: bool = False,
-                slope_rows=None):
+                slope_rows=None, parts=None):
     """:func:`floor_climbs`' climbs as ``(stair rows, storeys)`` (decision L127; L302 reads their rows); ``every``:
     also the climbs under a storey (storeys 0, sign lost; decision L303 reads their rows); ``slope_rows`` (L337):
-    +1 / -1 rows that are climb rows of that sign whatever their own dz."""
+    +1 / -1 rows that are climb rows of that sign whatever their own dz. ``parts`` (:func:`_climb_parts`, decisions
+    L374, L375): the rows' rides and W108's signed climb rows; None: none of either."""
+    return [(r, n) for r, n, _ in _climbs(dz, storey_height_m, band, bridge, slope, every, slope_rows, parts)]
+
+
+def _climbs(dz, storey_height_m: float, band: float, bridge: int, slope: bool | None, every: bool = False,
+            slope_rows=None, parts=None):
+    """:func:`_climb_runs`' climbs as ``(rows, storeys, ride)``: ``ride`` the kind of a ride's climb (decisions L375,
+    L376: the one row whose standstill carried it, ``"lift"`` / ``"escalator"`` / ``"other"``, or ``"ride"`` without
+    L376's kinds), ``""`` for a walking climb. A walking climb is a run of stair rows (L127: |dz| >= ``LEVEL_DZ_M``;
+    decision L374: W108's climb rows where ``parts`` has them) bridged over at most ``bridge`` rows and never across a
+    ride; its height leaves the rides out and its storeys carry its height's sign (L374: a run whose height is of the
+    other sign counts none). An "other" ride counts no storey (L376)."""
     from pdrlearn.kernels import distance
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
-    sloped = (distance.sustained_slope(dz) if (distance.SUSTAINED_SLOPE if slope is None else slope)
+    ride, ride_kind, climb_sign = (np.zeros(len(dz)), None, None) if parts is None else parts
+    walk = dz - ride
+    sloped = (distance.sustained_slope(walk) if (distance.SUSTAINED_SLOPE if slope is None else slope)
               else np.zeros(len(dz), dtype=bool))
     grade = np.zeros(len(dz), dtype=int) if slope_rows is None else np.asarray(slope_rows, dtype=int).ravel()
+    rides = np.flatnonzero(ride != 0)
     out = []
-    for sign, stair in ((1, np.flatnonzero((dz >= distance.LEVEL_DZ_M) | (sloped & (dz > 0)) | (grade > 0))),
-                        (-1, np.flatnonzero((dz <= -distance.LEVEL_DZ_M) | (sloped & (dz < 0)) | (grade < 0)))):
-        runs = np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []
-        for r in runs:
-            n = int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
+    for sign in (1, -1):
+        base = sign * walk >= distance.LEVEL_DZ_M if climb_sign is None else climb_sign == sign  # decision L374
+        stair = np.flatnonzero(base | (sloped & (sign * walk > 0)) | (sign * grade > 0))
+        if not len(stair):
+            continue
+        cut = (np.diff(stair) > bridge + 1) | (np.searchsorted(rides, stair[1:], side="right")
+                                               > np.searchsorted(rides, stair[:-1], side="right"))  # L375
+        for r in np.split(stair, np.flatnonzero(cut) + 1):
+            height = sign * float(walk[r[0]:r[-1] + 1].sum())
+            n = int(np.floor(max(height, 0.0) / storey_height_m + band))  # decision L374: the height's sign
             if n or every:
-                out.append((r, sign * n))
-    return out
+                out.append((r, sign * n, ""))
+    for k in rides:  # decision L375: each ride a climb of its own
+        kind = "ride" if ride_kind is None else str(ride_kind[k])
+        n = 0 if kind == "other" else int(np.floor(abs(float(ride[k])) / storey_height_m + band))  # L376
+        if n or every:
+            out.append((np.array([k]), int(np.sign(ride[k])) * n, kind))
+    return sorted(out, key=lambda c: (int(c[0][-1]), c[2] == ""))
+
+
+def _climb_parts(steps: pd.DataFrame):
+    """Decisions L374, L375: ``(ride, kind, climb_sign)`` per row of the steps: ``ride`` the standstill change
+    (W158's ``pause_dz_m``) where it is W231's ``RIDE_MIN_M`` or more (a ride), else 0; ``kind`` steps.csv's ``ride``
+    column (L376; None without it); ``climb_sign`` +1 / -1 on a lower-back track's W108 climb rows (steps.csv
+    ``climb``; each run of them signed by its walking height), 0 elsewhere, None without the column or on a foot."""
+    from pdrlearn.kernels.pause_ride import RIDE_MIN_M
+
+    pause = np.nan_to_num(steps["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in steps else np.zeros(len(steps))
+    ride = np.where(np.abs(pause) >= RIDE_MIN_M, pause, 0.0)
+    kind = np.array([v if isinstance(v, str) else "" for v in steps["ride"]], dtype=object) if "ride" in steps else None
+    units = set(steps["unit"].astype(str)) if "unit" in steps else {"foot"}
+    if "climb" not in steps or units != {"waist"}:
+        return ride, kind, None
+    on = flag_values(steps["climb"])
+    walk = np.nan_to_num(steps["dz_m"].to_numpy(float)) if "dz_m" in steps else np.zeros(len(steps))
+    sign = np.zeros(len(steps), dtype=int)
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], on.astype(int), [0]])))
+    for a, b in zip(edges[::2], edges[1::2], strict=True):
+        sign[a:b] = int(np.sign(walk[a:b].sum()))
+    return ride, kind, sign
 
 
 #: decision L302: what a climb's storeys climbed, the keys floors_up_<kind> / floors_down_<kind> split L127's count by
@@ -314,8 +362,11 @@ def ramp_climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
     slope_rows = climb_slope_rows(steps, info)  # decision L337
-    for rows, _ in _climb_runs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True, slope_rows=slope_rows):
-        if climb_kind(walked, pause, length, _kind_rows(rows, dz, slope_rows), on_stairs) == "ramps":
+    parts = _climb_parts(steps)  # decisions L374, L375
+    for rows, _, ride in _climbs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True, slope_rows=slope_rows,
+                                 parts=parts):
+        if not ride and climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
+                                   on_stairs) == "ramps":
             out[int(rows[0]):int(rows[-1]) + 1] = True
     return out
 
@@ -334,8 +385,10 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
     slope_rows = climb_slope_rows(steps, info)  # decision L337
-    for rows, n in _climb_runs(dz, storey_height_m, STOREY_BAND, bridge, None, slope_rows=slope_rows):
-        kind = climb_kind(walked, pause, length, _kind_rows(rows, dz, slope_rows), on_stairs)
+    parts = _climb_parts(steps)  # decisions L374-L376: a ride is a climb of its own, "rides"
+    for rows, n, ride in _climbs(dz, storey_height_m, STOREY_BAND, bridge, None, slope_rows=slope_rows, parts=parts):
+        kind = "rides" if ride else climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
+                                               on_stairs)
         key = f"floors_{'up' if n > 0 else 'down'}_{kind}"
         out[key] += abs(n)
     return out
@@ -346,12 +399,13 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
 FLOOR_COUNT = "climb"
 
 
-def _floors(z, out: dict, suffix: str = "", dz=None, bridge: int = CLIMB_BRIDGE_STRIDES, slope_rows=None) -> None:
+def _floors(z, out: dict, suffix: str = "", dz=None, bridge: int = CLIMB_BRIDGE_STRIDES, slope_rows=None,
+            parts=None) -> None:
     """The floor keys (decisions L64, L127) in storeys of ``out["storey_height_m"]``: per climb from the steps'
     ``dz`` when given (FLOOR_COUNT "climb"; ``bridge`` steps between two stair steps of a climb; ``slope_rows``:
     L337's), else from the altitude ``z``."""
     h = out.get("storey_height_m", STOREY_HEIGHT_M)
-    up, down, net = (count_floors_by_climb(dz, h, bridge=bridge, slope_rows=slope_rows) if dz is not None
+    up, down, net = (count_floors_by_climb(dz, h, bridge=bridge, slope_rows=slope_rows, parts=parts) if dz is not None
                      else count_floors(z, h))
     out[f"floors_up{suffix}"], out[f"floors_down{suffix}"], out[f"storeys_changed{suffix}"] = up, down, net
 
@@ -383,7 +437,8 @@ def floors_phrase(summary: dict) -> str:
     part = f", floors up {summary.get('floors_up', 0)} / down {summary.get('floors_down', 0)}"
     if summary.get("barometer_unused"):  # a recorded barometer the foot track does not read: say it
         part += (f" (foot altitude, storeys of {summary.get('storey_height_m', STOREY_HEIGHT_M):g} m; "
-                 "wBarometer.csv not used)")
+                 + ("wBarometer.csv read for rides only, L378)" if summary.get("n_rides") is not None
+                    else "wBarometer.csv not used)"))
     return part
 
 
@@ -550,6 +605,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decision W293: the TUG's phases, from the transfers, these turns and the walking contacts
     out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, result.steps,
                                             yaw_turns=result.info.get("yaw_turns"))))  # W307
+    from pdrlearn.waist.turn_steps import stepless_summary
+
+    # decision W331: a lower-back track's turns on the spot that hold no step, and the steps they imply
+    out.update(stepless_summary(result.steps["event_s"] if "event_s" in result.steps else [],
+                                result.info.get("yaw_turns")))
     from pdrlearn.track.walk_test import ten_metre_walk
 
     out.update(ten_metre_walk(result.steps))  # decisions L312, L313: the 10 m walk test's middle 10 m
@@ -557,7 +617,9 @@ def _basic(result: TrackResult, out: dict) -> None:
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)
     _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=dz, bridge=bridge,
-            slope_rows=climb_slope_rows(result.steps, result.info))  # decision L337
+            slope_rows=climb_slope_rows(result.steps, result.info),  # decision L337
+            parts=_climb_parts(result.steps) if dz is not None else None)  # decisions L374-L376
+    out["n_rides"] = len(result.info["rides"]) if result.info.get("rides") is not None else None  # decision L377
     out.update(floors_by_kind(result.steps, out.get("storey_height_m", STOREY_HEIGHT_M),
                              result.info))  # decision L302
     _ascent(result, out)
@@ -1278,6 +1340,7 @@ SUMMARY_INFO_LEFT_OUT = {
     "postures": "the runs behind the posture time keys (decision W222)",
     "yaw_turns": "turns.csv's turn timing (decision L210)",
     "rest_bias_rests": "the position radius's clock (decision L306)",
+    "rides": "rides.csv (decision L377)",
 }
 #: decision E141: the entries of ``info["aid"]`` that summary.json leaves out (every fix's row: aided.png's)
 SUMMARY_AID_LEFT_OUT = ("fix_table",)
@@ -1343,6 +1406,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     if mirrored:
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, mirrored)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), mirrored]
+    for line in session.frame_warnings:  # decision W334: D10's frame warning, logged by the session, kept too
+        if line not in summary["info"].get("warnings", []):
+            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary.update(domain_fraction(result))  # decision C16
     placement = scale = None
     if result.info.get("pipeline") == "plasys":  # decision B134: a foot unit that never swings is not on the foot

@@ -128,8 +128,9 @@ def no_strides_warning(stats: dict | None, where: str, detector: str) -> str | N
             f"{np.degrees(stats['swing_rad_s']):.0f} deg/s): its thresholds did not fire"
             + (f" (the accelerometer reads {g:.3f} g at rest: check its scale, decision B201)" if g is not None
                and abs(g - 1.0) > REST_SCALE_TOL else "")
-            + "; try --detector accel-force with force sensors, or `pdrlearn track`, which segments the strides at "
-            "the foot's rests (decision B201)")
+            + ("; try --detector accel (the IMU alone; decision B285)" if "force" in detector else
+               "; try --detector accel-force with force sensors") + ", or `pdrlearn track`, which segments the strides "
+            "at the foot's rests (decision B201)")
 
 
 def foot_placement_warning(stats: dict | None, where: str) -> str | None:

@@ -62,6 +62,9 @@ MIN_RESULTANT = 0.5
 MIN_SWING_ASYMMETRY = 0.25
 #: Waist: least walking (s).
 MIN_WALK_S = 4.0
+#: decision W333: a 4 s window whose mean yaw rate about up reaches this (rad/s) turns, and is no straight walking the
+#: waist frame is judged on (steps decision 28's turning test, 0.45: the turning component of W7's mixture)
+TURNING_WINDOW_RPS = 0.45
 #: Waist: the forward axis must carry this factor more step-frequency power than the lateral one, and the
 #: forward/vertical phase (W2) must be this many degrees away from the +-90 deg of 45 deg boundary.
 MIN_AP_POWER_RATIO = 1.5
@@ -220,16 +223,17 @@ def swing_pitch_extremes(gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndar
     return down, up
 
 
-def _declared_foot(session):
+def _declared_foot(session, *, need_frame: bool = True):
     """The session's foot unit with its declared frame, for :func:`foot_push_off` and :func:`foot_travel_angles`:
     ``(t, acc, gyr, fs, frame, stance)`` (the accelerometer's clock, the gyro resampled onto it, the ZUPT stance
-    mask); None without a foot unit, a declared foot frame, enough finite samples or a rate."""
+    mask); None without a foot unit, a declared foot frame (``need_frame=False``: frame None allowed, decision
+    W336's frame-free read), enough finite samples or a rate."""
     from pdrlearn.displace.foot import inertial_stance
     from pdrlearn.signal.filters import interp_rows
 
     acc_n, gyr_n = UNIT_STREAMS["foot"]
     frame = session.frames.get("foot")
-    if frame is None or acc_n not in session.streams or gyr_n not in session.streams:
+    if (frame is None and need_frame) or acc_n not in session.streams or gyr_n not in session.streams:
         return None
     acc_s, gyr_s = session.streams[acc_n], session.streams[gyr_n]
     if len(acc_s) < 8 or len(gyr_s) < 2 or not np.isfinite(acc_s.rate_hz):
@@ -253,6 +257,19 @@ def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     down, toes_up = swing_pitch_extremes(gyr, fs, i0, i1, _unit(frame.matrix()[1]))
     asym = (down - toes_up) / np.maximum(down + toes_up, 1e-9)
     return t[i0], t[i1], asym
+
+
+def foot_swing_strides(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Start and end time (s) and total rotation (rad, the integral of |w|) of each rest-to-rest stride of the
+    session's foot unit, in any frame (decision W336: a walking stride swings the foot, a vehicle's vibration breaking
+    the rest does not); None without a foot unit."""
+    foot = _declared_foot(session, need_frame=False)
+    if foot is None:
+        return None
+    t, _acc, gyr, fs, _frame, stance = foot
+    i0, i1 = rest_to_rest(stance, fs)
+    turn = np.concatenate([[0.0], np.cumsum(np.linalg.norm(gyr, axis=1)) / fs])
+    return t[i0], t[i1], turn[i1] - turn[i0]
 
 
 def foot_travel_angles(session) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
@@ -380,7 +397,8 @@ def _lag_sigma(ac: np.ndarray, n_covered: int, fs: float, lag_s: tuple[float, fl
 
 def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: float = 4.0,
                   walk_std: float = 0.5, fast_out: list | None = None,
-                  stride_out: list | None = None) -> tuple[np.ndarray, np.ndarray, float, float]:
+                  stride_out: list | None = None, yaw_rate: np.ndarray | None = None
+                  ) -> tuple[np.ndarray, np.ndarray, float, float]:
     """Summed cross-spectra at step frequency over walking windows, and their gait rhythm.
 
     Returns ``C`` (2, 2) real horizontal cross-power and ``z`` (2,) complex horizontal x vertical
@@ -390,7 +408,8 @@ def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: 
     windows, normalised, unbiased) at a lag of :data:`RHYTHM_LAG_S`, in units of its white-noise standard
     deviation 1/sqrt(N) (Bartlett), N the samples the walking windows cover. ``fast_out`` (a list) receives the
     fraction of the walking windows whose vertical peak over 1.2-:data:`FAST_BAND_HZ` Hz lies above the band
-    (decision B79)."""
+    (decision B79). ``yaw_rate`` (rad/s about up, decision W333): a window whose mean reaches
+    :data:`TURNING_WINDOW_RPS` turns on the spot or round a corner and is left out (no straight walking)."""
     n = max(int(round(window_s * fs)), 8)
     hop = n // 2
     hann = np.hanning(n)
@@ -405,6 +424,8 @@ def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: 
     for a in range(0, len(acc_v) - n + 1, hop):
         v = acc_v[a:a + n]
         if np.std(v) < walk_std:
+            continue
+        if yaw_rate is not None and abs(float(np.mean(yaw_rate[a:a + n]))) >= TURNING_WINDOW_RPS:  # W333
             continue
         F = np.fft.rfft(v - v.mean(), 2 * n)
         ac += np.fft.irfft(F * np.conj(F), 2 * n)[:n]
@@ -443,8 +464,9 @@ def _walking_mean(acc: np.ndarray, fs: float, *, window_s: float = 4.0, walk_std
 def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
     """Frame of a waist (lower-back, belt) unit from its specific force (m/s^2) on one clock (fs Hz).
 
-    ``gyr`` is accepted for symmetry with :func:`infer_foot_frame` and not used. Raises
-    :class:`FrameInferenceError` when there is too little walking or the axes are ambiguous.
+    ``gyr`` (rad/s, same samples; or None) leaves out the windows that turn (decision W333: the yaw rate about up,
+    :data:`TURNING_WINDOW_RPS`). Raises :class:`FrameInferenceError` when there is too little (straight) walking or
+    the axes are ambiguous.
     """
     from pdrlearn.waist._kernels import forward_sign
 
@@ -461,12 +483,14 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     B = np.column_stack(b)
     fast: list = []
     stride: list = []
-    C, z, walk_s, rhythm = _step_spectra(acc @ up, acc @ B, fs, fast_out=fast, stride_out=stride)
+    yaw = None if gyr is None or np.shape(gyr) != acc.shape else np.asarray(gyr, dtype=float) @ up  # W333
+    C, z, walk_s, rhythm = _step_spectra(acc @ up, acc @ B, fs, fast_out=fast, stride_out=stride, yaw_rate=yaw)
     # half a sample of tolerance: one 4 s window of walking covers 400 samples, which at a rate of 100.000000000001 Hz
     # (a clock in ms read back) are 3.99999999999996 s; it was refused as "less than 4 s" (review of W61)
     if walk_s < MIN_WALK_S - 0.5 / fs:
         err = FrameInferenceError(f"less than {MIN_WALK_S:g} s of walking (vertical acceleration std over 0.5 "
-                                  "m/s^2 in 4 s windows)")
+                                  "m/s^2 in 4 s windows" + (", turning windows left out: W333)" if yaw is not None
+                                                            else ")"))
         err.walk_s = walk_s  # W61: a waist track of such a recording has no steps to place
         raise err
     if rhythm < MIN_RHYTHM_SIGMA and stride and stride[0][0] >= MIN_RHYTHM_SIGMA:  # decision W226

@@ -144,12 +144,14 @@ def walking_time(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_
 
 
 def walking_pieces(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_S,
-                   heading_rad=None) -> list[tuple[float, float]]:
+                   heading_rad=None, still_s=None) -> list[tuple[float, float]]:
     """The walking time's pieces ``(t0, t1)`` (s; :func:`walking_time`'s rule), in time order. With ``heading_rad``
     (each row's unwrapped heading), decision L194: a break (a gap over ``max_break_s``, or an invalid row) across
     which the heading turns by :data:`~pdrlearn.track.clinical.PAUSE_MAX_TURN_DEG` or more is a turn, not a stop,
     when it is no longer than ``max_break_s`` plus the turn's time at
-    :data:`~pdrlearn.track.clinical.TURN_ON_SPOT_MIN_DPS` (L119's rule for pauses): its time is walking."""
+    :data:`~pdrlearn.track.clinical.TURN_ON_SPOT_MIN_DPS` (L119's rule for pauses): its time is walking; with
+    ``still_s`` (each row's still seconds before it, :func:`~pdrlearn.track.clinical.still_before`), decision L372:
+    the turn's time is at most the break's time that was not still."""
     st, en = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
     ok = np.isfinite(st) & np.isfinite(en) & (en > st)
     if valid is not None:
@@ -161,7 +163,8 @@ def walking_pieces(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRID
             broken |= t0 is not None and bool(np.isfinite(en[i]) and en[i] > st[i])
             continue
         if t0 is not None and (broken or st[i] - t1 > max_break_s + 1e-9) \
-                and not _turn_bridges(h, last, i, st[i] - t1, max_break_s):
+                and not _turn_bridges(h, last, i, st[i] - t1, max_break_s,
+                                      0.0 if still_s is None else float(still_s[i])):
             pieces.append((t0, t1))
             t0 = None
         broken = False
@@ -174,14 +177,16 @@ def walking_pieces(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRID
     return [(float(a), float(b)) for a, b in pieces]
 
 
-def _turn_bridges(h, last: int | None, i: int, gap_s: float, max_break_s: float) -> bool:
-    """Decision L194: whether the break between rows ``last`` and ``i`` (``gap_s`` s) is a turn's time (L119)."""
+def _turn_bridges(h, last: int | None, i: int, gap_s: float, max_break_s: float, still_s: float = 0.0) -> bool:
+    """Decision L194: whether the break between rows ``last`` and ``i`` (``gap_s`` s) is a turn's time (L119); L372:
+    the ``still_s`` seconds of it the unit was still are no turn's."""
     from pdrlearn.track.clinical import PAUSE_MAX_TURN_DEG, TURN_ON_SPOT_MIN_DPS
 
     if h is None or last is None or not (np.isfinite(h[last]) and np.isfinite(h[i])):
         return False
     turn_deg = abs(float(np.degrees(h[i] - h[last])))
-    return turn_deg >= PAUSE_MAX_TURN_DEG and gap_s <= max_break_s + turn_deg / TURN_ON_SPOT_MIN_DPS + 1e-9
+    allow = min(turn_deg / TURN_ON_SPOT_MIN_DPS, max(gap_s - still_s, 0.0))  # decision L372
+    return turn_deg >= PAUSE_MAX_TURN_DEG and gap_s <= max_break_s + allow + 1e-9
 
 
 def _median(v) -> float | None:
@@ -263,7 +268,7 @@ def session_walking_pieces(steps: pd.DataFrame, valid=None) -> list[tuple[float,
     """The pieces (s) of a step table's ``walking_time_s`` (:func:`walking_pieces` on the rows in their order, with
     decision L194's heading where the rows are in time order); ``valid`` None: :func:`walking_rows`. One definition
     for the summary's walking time and the time accounting of windows and periods (decision L275)."""
-    from pdrlearn.track.clinical import unwrapped_heading
+    from pdrlearn.track.clinical import still_before, unwrapped_heading
 
     if not len(steps):
         return []
@@ -271,7 +276,7 @@ def session_walking_pieces(steps: pd.DataFrame, valid=None) -> list[tuple[float,
     # decision L194: a turn across a break is walking (L119); the rows in time order, as the pause rule takes them
     heading = unwrapped_heading(steps) if "heading_rad" in steps and steps["start_s"].is_monotonic_increasing else None
     return walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid,
-                          heading_rad=heading)
+                          heading_rad=heading, still_s=None if heading is None else still_before(steps))  # L372
 
 
 def walking_rows(steps: pd.DataFrame) -> np.ndarray:

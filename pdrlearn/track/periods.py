@@ -318,7 +318,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's."""
     from pdrlearn.track.bouts import session_key
     from pdrlearn.track.clock import clock_edges
-    from pdrlearn.track.evaluate import _climb_dz, climb_slope_rows, floor_climbs, step_counts
+    from pdrlearn.track.evaluate import _climb_dz, _climb_parts, climb_slope_rows, floor_climbs, step_counts
 
     t0, t1 = session_span(session, unit) if span is None else span
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
@@ -329,7 +329,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
     length = steps["length_m"].abs().to_numpy(float) if len(steps) else np.zeros(0)
     dz, bridge = _climb_dz(steps)
-    climbs = (floor_climbs(dz, storey_height_m, bridge=bridge, slope_rows=climb_slope_rows(steps, result.info))
+    climbs = (floor_climbs(dz, storey_height_m, bridge=bridge, slope_rows=climb_slope_rows(steps, result.info),
+                           parts=_climb_parts(steps))  # decisions L374-L376, as the summary's
               if dz is not None else None)  # decision L337: a ramp's climb as the summary's
     climb_t = np.array([mid[i] for i, _ in climbs]) if climbs else np.zeros(0)
     climb_n = np.array([n for _, n in climbs]) if climbs else np.zeros(0)

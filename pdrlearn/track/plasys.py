@@ -29,7 +29,6 @@ from pdrlearn.displace import (
     PRE_L41_CALIBRATION,
     FootDisplacement,
     StepRules,
-    force_stance,
     inertial_stance,
     model_distance_calibration,
     model_length_bounds,
@@ -39,6 +38,7 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.displace.foot import check_settings as check_foot_settings
+from pdrlearn.displace.force_check import checked_stance, imu_strides_in, tared
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
@@ -88,6 +88,7 @@ from pdrlearn.track.gaps import (
     unit_gap_warnings,
 )
 from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
+from pdrlearn.track.rides import foot_rides
 from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
 
 log = logging.getLogger(__name__)
@@ -293,9 +294,7 @@ def model_windows(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
     own, several = 0, 0
     if len(out) and session.has("fAccelerometer", "fGyroscope"):
         foot = unit_data(session, "foot", purpose="the model's step windows")
-        stance = force_stance(session, foot.t, foot.gyr)  # as M3: the force sensors' stance when recorded
-        if stance is None:
-            stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
+        stance = checked_stance(session, foot)[0]  # as M3: the force sensors' stance, checked (L365)
         s0, s1, rows = FootDisplacement().stride_bounds(foot, out, stance=stance)
         by = pd.DataFrame({"start_s": s0, "end_s": s1, "row": rows}).groupby("row")
         lo, hi = by["start_s"].min(), by["end_s"].max()
@@ -869,7 +868,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
                  waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
                  hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
-                 drop_neighbour: bool | None = None,
+                 drop_neighbour: bool | None = None, ignore_force: bool = False,
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
                  fallback_drift: bool | None = None,
                  **opts) -> TrackResult:
@@ -949,6 +948,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         the accelerometer impact, decisions E49/E50) and so ``stride_time_s``, ``cadence_spm``, ``speed_mps``
         and the summary's stride medians (E51; an option: E50's adoption rule was not met). Offline strides always
         have their detector's contacts
+    ignore_force : offline: the stance and strides from the foot IMU alone, the force sensors (fForceA/fForceB)
+        left out (decision L366, ``--ignore-force``; M2 then has no force and is refused). Without it the force
+        stance is checked against the IMU's rests and swings, and replaced by the IMU's where they disagree
+        (decision L365, one warning); ``info["stance_source"]`` says which
     altitude : "foot" (default, None) - the strides' own height (L39 / the terrain classes) - or "fused": fused with
         the session's waist barometer (decision L154, :func:`pdrlearn.kernels.barometer.fuse_altitude`; an option,
         its adoption rule was not met), offline and streamed; ``info["altitude_source"]`` says which
@@ -995,6 +998,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                         "across dropped samples take their neighbours' height change (L160): add streaming=True or "
                         "drop drop_neighbour")
     if streaming:
+        if ignore_force:  # decision L366: the streamed kernel's contacts read the force (E50); offline only
+            raise DataError("plasys ignore_force=True (--ignore-force) is offline only: the streamed strides take "
+                            "their contacts from the force sensors (decision E50); drop streaming=True or "
+                            "ignore_force")
         if not (isinstance(steps, str) and steps == "detector") or align:
             raise DataError("plasys streaming=True: steps and align are not streamable; leave them at their "
                             "defaults")
@@ -1023,22 +1030,31 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
-    stance = None
+    stance_source, imu_spans = "inertial", np.zeros((0, 2))
     if cfg["force"]:
-        stance = force_stance(session, foot.t, foot.gyr)
-        if stance is None:
+        if ignore_force and method == "M2":  # decision L366
+            raise DataError("plasys: method M2 is accelerometer + force, and ignore_force=True (--ignore-force) "
+                            "leaves the force out; use --method M1 or M3, or drop --ignore-force")
+        if not ignore_force:  # decision B284: an unloaded offset (raw ADC counts) subtracted, with one line
+            session, tare_line = tared(session, foot)
+            warnings += [tare_line] if tare_line else []
+        stance, stance_source, lines, imu_spans = checked_stance(session, foot, use_force=not ignore_force)  # L365/6
+        warnings += lines
+        if stance_source == "inertial" and not ignore_force:
             if method == "M2":
                 raise MissingSensorError(
                     f"session '{session.name}' has no fForceA/fForceB needed by M2 (accelerometer + force); "
                     "use --method M1 or M3, or record the force sensors")
             warnings.append("no force sensors: stance from the accelerometer/gyroscope detector")
-    stance_source = "force" if stance is not None else "inertial"
-    if stance is None:
+    else:
         stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
     kind = cfg["detector"] if stance_source == "force" or method == "M1" else "AccelStepDetector"
     strides = _detect_strides(session, kind, steps, foot.t, stance, warnings).reset_index(drop=True)
-    # decision B11: report long stream gaps; no foot stride spans a foot-stream gap
-    foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
+    if cfg["force"] and len(imu_spans) and isinstance(steps, str) and steps == "detector":
+        strides = imu_strides_in(session, strides, imu_spans)  # decision L365: the IMU's strides where force fails
+    # decision B11: report long stream gaps; no foot stride spans a foot-IMU gap (L365: a gap of the force sensors
+    # alone is bridged by the IMU's stance, and checked_stance named it; it had cut 2 s of walking as 0 m)
+    foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope"))
     bridged = bool(waist_bridge) and session.has("wGyroscope", "wAccelerometer")  # decision L91 (offline: off)
     waist_heads = (heading or cfg["heading"]) in ("waist", "fused") and session.has(
         "wAccelerometer", "wGyroscope") and session.has_frame("waist")
@@ -1338,6 +1354,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     res = TrackResult(steps=table, trajectory=traj, info=info)
     logged = len(warnings)  # apply_altitude logs its own lines
     apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
+    foot_rides(res, session)  # decision L378: the rides, from the waist barometer (offline only, as run's files)
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
     return res

@@ -56,6 +56,7 @@ from pdrlearn.waist.events import (
     steps_from_events,
     walking_gate,
 )
+from pdrlearn.waist.foot_rest import foot_rest_keep, foot_rest_message, foot_rest_runs
 from pdrlearn.waist.heading import (
     HARMONIC_METHODS,
     UNTRACKED_TURN_WARN_DEG,
@@ -112,6 +113,7 @@ from pdrlearn.waist.posture import (
 )
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
+from pdrlearn.waist.rhythm import arrhythmic_message, arrhythmic_sequences
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.steplength import CADENCE_LAW_STEADY, cadence_law_factor, calibration_cadence_hz, steady_steps
 from pdrlearn.waist.transfers import chair_transfers_upright, flag_message, flag_transfers, upright_message
@@ -477,6 +479,22 @@ def _still_samples(imu: WaistIMU, still_mask=None) -> np.ndarray:
     return standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
 
 
+def _with_still_before(steps: pd.DataFrame, imu: WaistIMU, still: np.ndarray) -> pd.DataFrame:
+    """Decision L372: ``steps`` with ``still_before_s``, the seconds of L296's still samples ``still`` between each
+    contact (``event_s``, else ``start_s``) and the one before it in time (0 for the first): standing, which the pause
+    rule does not give a turn (L119)."""
+    if not len(steps):
+        return steps.assign(still_before_s=np.zeros(0))
+    ev = steps["event_s"].to_numpy(float) if "event_s" in steps else steps["start_s"].to_numpy(float)
+    ev = np.where(np.isfinite(ev), ev, steps["start_s"].to_numpy(float))
+    cum = np.r_[0.0, np.cumsum(np.asarray(still, dtype=float))] / imu.fs  # still seconds before each sample
+    at = cum[np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t))]
+    order = np.argsort(ev, kind="stable")
+    out = np.zeros(len(ev))
+    out[order[1:]] = np.maximum(np.diff(at[order]), 0.0)
+    return steps.assign(still_before_s=out)
+
+
 def _rest_frame_drifts(imu: WaistIMU, seqs, ev_all: np.ndarray, still_mask=None) -> np.ndarray:
     """Decision W285: per step (``ev_all``'s order), the AHRS frame's turn (rad) about the vertical over the rests
     before it that its body did not make (:func:`pdrlearn.kernels.rest_heading.rest_frame_drift`): the lead-in from
@@ -549,6 +567,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pll_slow_check": False,  # W289: uncalibrated waist-pll over 1.25 x the pendulum at a slow gait
+                   "pll_slow_cadence_check": True,  # W313 / W314 (adopted): the same, the slow gait by the cadence
                    "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
                    "cadence_law": False,  # W240
                    "realtime_contact_shift": False,  # W166: measured, not adopted; sit_veto: W185, offline only
@@ -558,6 +577,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
+                   "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
+                   "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -696,7 +717,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 realtime_sit_veto: bool | None = None, short_step_check: bool | None = None, detector=None,
                 length_model=None, freeze_veto: bool | None = None,
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
-                fast_fill: bool | str | None = None, ap_above_mean: bool | None = None) -> TrackResult:
+                fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
+                foot_rest_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -787,6 +809,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         back's freeze index (freezes.csv, :mod:`pdrlearn.track.freezes`, decision W213): trembling in place is no
         step (decision W214); the step before a dropped contact ends its sequence; default False; implies
         ``freeze_index``
+    foot_rest_veto : with a foot unit in the session: drop each run of 4 or more lower-back contacts none within 1 s
+        of a foot stride that swings the foot (a standing passenger's bounce in a vehicle; decision W336,
+        :mod:`pdrlearn.waist.foot_rest`; such runs are always named in one warning line each); default True
+        (decision W337), False keeps and names them
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)
@@ -875,11 +901,14 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "realtime_contact_shift": realtime_contact_shift, "integrate_end": integrate_end,
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
+             "foot_rest_veto": foot_rest_veto,  # W336
+             "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
              "rest_frame": None,  # W285: a PARAMS.json option only
              "pll_slow_check": None,  # W289: a PARAMS.json option only
+             "pll_slow_cadence_check": None,  # W313: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
@@ -970,9 +999,17 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                                       [(r["start_s"], r["end_s"]) for r in freezes or []]),
                               "n_frozen")
         n_frozen = steps.attrs["n_frozen"]
+    foot_runs = foot_rest_runs(steps, with_left_out_units(session))  # W336: contacts while the foot does not walk
+    warnings.extend(foot_rest_message(steps, a, b, bool(o["foot_rest_veto"])) for a, b in foot_runs)
+    if foot_runs and o["foot_rest_veto"]:
+        steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
+    # W338: phone only (W336 reads a foot unit); W339: measured, not kept by default (an opt-in PARAMS.json option)
+    if o["rhythm_warning"] and not with_left_out_units(session).placement_streams("foot"):
+        warnings.extend(arrhythmic_message(steps, a, b, r)
+                        for a, b, r in arrhythmic_sequences(steps, imu.t, imu.acc_v, imu.fs))
     steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]),
                           pivot_steps=bool(o["pivot_steps"]),
                           cadence_law=(o["cadence_law"] if o["cadence_law"] == CADENCE_LAW_STEADY
@@ -1043,6 +1080,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = steps.assign(side=np.full(len(steps), "", dtype=object) if realtime
                          else contact_sides(imu.t, imu.acc_ml, imu.fs, ev, v_at=v_at))
     steps = steps.assign(climb=climbs)  # decision L314: W108's stair climbs, which no ramp is made of (grade.py)
+    rides: list[dict] | None = None  # None: no barometer read (n_rides empty, no rides.csv)
+    if z is not None:  # decisions L375-L377: each ride's kind (steps.csv ride), rides.csv and their lines
+        from pdrlearn.track.rides import ride_lines, ride_rows
+
+        ride_kinds, rides = ride_rows(baro.t, baro.values[:, 0], steps, float(imu.t[0]), z, z_start)
+        steps = steps.assign(ride=ride_kinds)
+        warnings.extend(ride_lines(rides))
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
@@ -1058,14 +1102,16 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                          pendulum()["length_m"].to_numpy(float))
         if excess_line and bool(o["pll_check"]):  # W186's line: an option (its adoption rule was not met)
             warnings.append(excess_line)
-        elif bool(o["pll_slow_check"]):  # decision W289: at a slow gait W186's ratio over 1.25 warns
-            pend = pendulum()
+        elif bool(o["pll_slow_check"]) or bool(o["pll_slow_cadence_check"]):  # decisions W289, W313: at a slow gait
+            pend = pendulum()  # W186's ratio over 1.25 warns (the slow gait judged by the pendulum's speed / cadence)
             _, n_pend, pend_length, pend_cadence = walk_ratio(pend["length_m"].to_numpy(float),
                                                               waist_step_times(pend)[0])
-            slow_line = pll_slow_excess_message(excess, float(np.nansum(np.abs(steps["length_m"].to_numpy(float)))),
-                                                float(np.nansum(np.abs(pend["length_m"].to_numpy(float)))),
-                                                pend_length, pend_cadence, n_pend)
-            warnings += [slow_line] if slow_line else []
+            slow_lines = [pll_slow_excess_message(excess, float(np.nansum(np.abs(steps["length_m"].to_numpy(float)))),
+                                                  float(np.nansum(np.abs(pend["length_m"].to_numpy(float)))),
+                                                  pend_length, pend_cadence, n_pend, judge=judge)
+                          for judge, key in (("speed", "pll_slow_check"), ("cadence", "pll_slow_cadence_check"))
+                          if bool(o[key])]
+            warnings += [line for line in slow_lines if line][:1]  # one line when both judges are on
     micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
@@ -1090,6 +1136,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         line = flag_message(transfers)
         if line:
             warnings.append(line)
+    steps = _with_still_before(steps, imu, still_mask())  # decision L372: the pauses' still time
     info = {
         "pipeline": pipeline,
         "method": f"{steps.attrs.get('detector', '')}/{length_model}/{method}",
@@ -1123,11 +1170,16 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         # in force on this heading (not in summary.json)
         "rest_bias_rests": None if rest_spans is None else [[a, b] for a, b in rest_spans],
         "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
+        "rides": rides,  # decision L377: rides.csv (not in summary.json)
     }
     from pdrlearn.waist import turn_steps
 
     if turn_steps.TURN_STEPS_WARN and "event_s" in steps:  # decision W283: the steps its turns missed
         line = turn_steps.turn_steps_warning(steps["event_s"], info["yaw_turns"], len(steps))
+        if line:
+            warnings.append(line)
+    if turn_steps.STEPLESS_WARN and "event_s" in steps:  # decision W331: turns on the spot with no step
+        line = turn_steps.stepless_turns_warning(steps["event_s"], info["yaw_turns"])
         if line:
             warnings.append(line)
     for w in warnings:

@@ -116,6 +116,8 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "stand_veto",  # W189: the recording's median bounce is known only offline
                           "contact_model",  # W203: its features read the recording's medians
                           "freeze_veto",  # W214: the freeze index's 4 s window looks 2 s ahead
+                          "foot_rest_veto",  # W336: a foot rest is judged over its whole run of contacts
+                          "rhythm_warning",  # W338: a chunk of 16 contacts is judged after its last one
                           "side_at_contact",  # W235: the offline detector's sequence rules only
                           "fast_fill",  # W242: the offline detector's sequence rules only
                           "ap_above_mean",  # W265: W29's IC of the offline detector only
@@ -128,8 +130,9 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
 
 
 #: decisions W271, E151: options E107's line names only where the PARAMS.json gives them, not at their offline
-#: default: ``lying_heading`` (true offline since W271) would otherwise be named on every live track, most with no lying
-NAMED_WHEN_GIVEN = ("lying_heading",)
+#: default: ``lying_heading`` (true offline since W271) would otherwise be named on every live track, most with no
+#: lying; ``foot_rest_veto`` (true offline since W337) acts only with a foot unit, never read live
+NAMED_WHEN_GIVEN = ("lying_heading", "foot_rest_veto")
 
 
 def unapplied_options_line(p) -> str | None:
@@ -191,8 +194,8 @@ def live_value(option: str, given: dict | None = None):
         return False
     if option == "pause_ride":  # E146: applied live when the PARAMS.json gives it true, else W158's whole pause
         return bool(given["pause_ride"]) if given.get("pause_ride") is not None else False
-    if option == "lying_heading":  # W271, E151: never applied live (named only where given, NAMED_WHEN_GIVEN)
-        return False
+    if option in ("lying_heading", "foot_rest_veto"):  # W271, E151, W337: never applied live (named only where
+        return False  # given, NAMED_WHEN_GIVEN)
     return OPTION_DEFAULTS[option]
 
 

@@ -283,23 +283,33 @@ PLL_SLOW_EXCESS_RATIO = 1.25
 PLL_SLOW_SPEED_MPS = 1.0
 
 
+#: decision W313: "a slow gait" judged by the pendulum reading's median cadence under this (steps/min): the lower end of
+#: adults' normal walking cadence (Tudor-Locke et al. 2018, Br J Sports Med 52:776-788: 100 steps/min, the heuristic
+#: threshold of moderate-intensity walking; a priori, not fitted)
+PLL_SLOW_CADENCE_SPM = 100.0
+#: decisions W289 / W313: the judges of "a slow gait" of :func:`pll_slow_excess_message` and their decision
+PLL_SLOW_JUDGES = {"speed": "W289", "cadence": "W313"}
+
+
 def pll_slow_excess_message(ratio: float | None, pll_m: float, pendulum_m: float, length: float | None,
-                            cadence: float | None, n: int) -> str | None:
+                            cadence: float | None, n: int, *, judge: str = "speed") -> str | None:
     """Decision W289: the one warning line of an uncalibrated waist-pll track whose distance ``pll_m`` is more than
     :data:`PLL_SLOW_EXCESS_RATIO` x the pendulum reading's ``pendulum_m`` (``ratio``, W186's) while that reading's own
     speed, median step ``length`` (m) x median ``cadence`` (steps/min) / 60 over ``n`` >= :data:`STEP_COUNT_MIN` steps
-    (W100's medians), is under :data:`PLL_SLOW_SPEED_MPS`; None otherwise."""
+    (W100's medians), is under :data:`PLL_SLOW_SPEED_MPS`; None otherwise. Decision W313: ``judge="cadence"`` judges
+    the gait slow by the median ``cadence`` under :data:`PLL_SLOW_CADENCE_SPM` instead of the speed."""
     if ratio is None or not ratio > PLL_SLOW_EXCESS_RATIO or length is None or cadence is None or n < STEP_COUNT_MIN:
         return None
     speed = length * cadence / 60.0
-    if not speed < PLL_SLOW_SPEED_MPS:
+    if not (cadence < PLL_SLOW_CADENCE_SPM if judge == "cadence" else speed < PLL_SLOW_SPEED_MPS):
         return None
     return (f"waist-pll reads {pll_m:.2f} m, {ratio:.2f} x the pendulum model's {pendulum_m:.2f} m on the same "
             f"session, at a slow gait (the pendulum reading: median step {length:.2f} m at {cadence:.0f} "
             f"steps/min, about {speed:.2f} m/s): uncalibrated, waist-pll's step length is a line in its step "
             "frequency set on normal walking, and slow walkers' steps read long on it (simulated 0.5-0.7 m/s "
             "walkers +23 to +72 %); the distance and gait speed are not reliable: track with --pipeline "
-            "waist-pendulum, or calibrate this walker ('pdrlearn calibrate DIR --distance M') (decision W289)")
+            "waist-pendulum, or calibrate this walker ('pdrlearn calibrate DIR --distance M') "
+            f"(decision {PLL_SLOW_JUDGES[judge]})")
 
 
 def running_cadence(length: float | None, cadence: float | None, height_m: float = WALK_RATIO_HEIGHT_M) -> bool:

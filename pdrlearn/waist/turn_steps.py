@@ -61,3 +61,44 @@ def turn_steps_warning(event_s, yaw_turns, n_steps: int, min_deg: float | None =
     return (f"about {m} steps missed in {len(turns)} turn(s) ({spans}): a turn's steps were not detected (a turn on "
             f"the spot bounces the pelvis weakly), so n_steps ({n_steps}), the cadence and the distance read low; the "
             "turns' times and angles (turns.csv, yaw rate) still hold (W283)")
+
+
+#: decision W331: a turn whose expected steps (D / T, W283) reach this and whose span holds no contact is stepless
+STEPLESS_MIN_STEPS = 2
+#: decision W331: whether a lower-back track warns about its stepless turns (W332: the rule's result)
+STEPLESS_WARN = True
+
+
+def stepless_turns(event_s, yaw_turns, min_deg: float | None = None) -> list[dict]:
+    """Decision W331: the turns of :func:`missed_turn_steps` that hold no contact at all in their 5-95 % span
+    although their duration implies at least :data:`STEPLESS_MIN_STEPS` steps (a turn on the spot the motion gate,
+    W4, read as standing); [] without a walk step time."""
+    return [t for t in missed_turn_steps(event_s, yaw_turns, min_deg)
+            if t["counted"] == 0 and round(t["expected"]) >= STEPLESS_MIN_STEPS]
+
+
+def stepless_summary(event_s, yaw_turns) -> dict:
+    """Decision W331: summary.json's ``stepless_turns`` (turns of :func:`stepless_turns`) and
+    ``turn_steps_missed`` (their D / T steps, rounded, summed); both None without yaw-rate turns (a foot track) or
+    without a walk step time to judge them by."""
+    if yaw_turns is None:
+        return {"stepless_turns": None, "turn_steps_missed": None}
+    ev = np.asarray(event_s, dtype=float)
+    gaps = np.diff(np.sort(ev[np.isfinite(ev)]))
+    if int(((gaps > 0) & (gaps < STEP_GAP_MAX_S)).sum()) < MIN_INTERVALS:
+        return {"stepless_turns": None, "turn_steps_missed": None}
+    turns = stepless_turns(event_s, yaw_turns)
+    return {"stepless_turns": len(turns), "turn_steps_missed": int(sum(round(t["expected"]) for t in turns))}
+
+
+def stepless_turns_warning(event_s, yaw_turns) -> str | None:
+    """Decision W331: one line naming the stepless turns (:func:`stepless_turns`) and the steps they imply; None
+    when there is none."""
+    turns = stepless_turns(event_s, yaw_turns)
+    if not turns:
+        return None
+    m = int(sum(round(t["expected"]) for t in turns))
+    spans = ", ".join(f"{t['start_s']:.1f}-{t['end_s']:.1f} s" for t in turns)
+    return (f"{len(turns)} turn(s) on the spot ({spans}) hold no detected step: the lower back's motion gate (W4) "
+            f"reads a turn on the spot as standing, so about {m} turning steps are not in n_steps, the cadence or "
+            "the distance (summary turn_steps_missed); the turns' times and angles (turns.csv) still hold (W331)")

@@ -1,0 +1,103 @@
+"""A lower-back track's rides (decisions L375-L377 in docs/decisions/localization.md): the standstill changes of
+the barometric altitude of half a storey or more (W158's ``pause_dz_m``, W231's ``RIDE_MIN_M``), each told a lift,
+an escalator or other by its vertical rate and duration, the ``ride`` column of steps.csv, ``rides.csv`` and their
+warning lines."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+#: decision L377: rides.csv's columns (docs/columns.md: pdrlearn.columns.RIDES)
+RIDE_COLUMNS = ("ride", "start_s", "end_s", "kind", "dz_m", "duration_s", "vertical_rate_mps", "horizontal_est_m")
+
+
+def ride_rows(t: np.ndarray, p_hpa: np.ndarray, steps: pd.DataFrame, t0: float, z: np.ndarray,
+              z_start: np.ndarray) -> tuple[np.ndarray, list[dict]]:
+    """Decisions L375, L376: per step the kind of the ride in the pause before it (``""``: none) and one record per
+    ride (rides.csv's :data:`RIDE_COLUMNS` and ``row``, the step it precedes). ``(t, p_hpa)``: the barometer (s,
+    hPa); ``z`` (n+1,) the track's altitude at ``t0`` and each step's end, ``z_start`` (n,) at each step's start
+    (W158: ``pause_dz_m = z_start - z[:-1]``)."""
+    pause = np.asarray(z_start, dtype=float) - np.asarray(z, dtype=float)[:-1]
+    return _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause)
+
+
+def _pause_ends(steps: pd.DataFrame, t0: float) -> np.ndarray:
+    """Where the standstill before each row starts: the previous row's end, the first row's at ``t0`` (W158)."""
+    return np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
+
+
+def _rides(t, p_hpa, ends, starts, pause) -> tuple[np.ndarray, list[dict]]:
+    """:func:`ride_rows` on the pauses from ``ends`` to ``starts`` (s) whose altitude changed by ``pause`` (m)."""
+    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, escalator_travel_m, ride_kind, ride_window
+
+    kinds = np.full(len(starts), "", dtype=object)
+    records = []
+    for j in np.flatnonzero(np.abs(np.nan_to_num(pause)) >= RIDE_MIN_M):
+        a, b, duration = ride_window(t, p_hpa, float(ends[j]), float(starts[j]))
+        dz = float(pause[j])
+        kinds[j] = kind = ride_kind(dz, duration)
+        records.append({"ride": len(records) + 1, "start_s": a, "end_s": b, "kind": kind, "dz_m": dz,
+                        "duration_s": duration, "vertical_rate_mps": abs(dz) / duration,
+                        "horizontal_est_m": escalator_travel_m(dz) if kind == "escalator" else None, "row": int(j)})
+    return kinds, records
+
+
+def foot_rides(result, session) -> None:
+    """Decision L378: a foot track's rides from the session's waist barometer (B188's usable one; none: nothing
+    changes). Each standstill between two strides (from the previous stride's end, the first's from the track's first
+    time) changes the barometric altitude by W231's ride (``pause_ride_dz``: over 30 s only what moved 1.5 m within
+    30 s); where that is ``RIDE_MIN_M`` or more it is the stride's ``pause_dz_m`` (0 elsewhere), its ``ride`` kind
+    (L376), a record of ``info["rides"]`` (rides.csv, L377) and L376's / L377's lines. The strides' ``dz_m`` and the
+    trajectory's z are not changed."""
+    import logging
+
+    from pdrlearn.kernels.barometer import relative_altitude
+    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, RIDE_WINDOW_S, pause_ride_dz
+    from pdrlearn.track.barometer import FOOT_EFFECT, usable_barometer
+
+    steps = result.steps
+    b = usable_barometer(session, [], FOOT_EFFECT)  # B188's line is the foot's barometer check's (L145)
+    if b is None or not len(steps) or not len(result.trajectory):
+        return
+    p = b.values[:, 0]
+    ends = _pause_ends(steps, float(result.trajectory["t"].iloc[0]))
+    starts = steps["start_s"].to_numpy(float)
+    h = relative_altitude(b.t, p, np.concatenate([ends, starts]))  # one read for the short pauses (W158: whole)
+    pause = h[len(ends):] - h[:len(ends)]
+    for j in np.flatnonzero(starts - ends > RIDE_WINDOW_S):  # W231: a long pause's ride only
+        pause[j] = pause_ride_dz(b.t, p, float(ends[j]), float(starts[j]))[0]
+    pause = np.where(np.abs(pause) >= RIDE_MIN_M, pause, 0.0)
+    kinds, records = _rides(b.t, p, ends, starts, pause)
+    result.steps = steps.assign(pause_dz_m=pause, ride=kinds)
+    result.info["rides"] = records
+    lines = ride_lines(records)
+    result.info.setdefault("warnings", []).extend(lines)
+    for line in lines:
+        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
+
+
+def ride_lines(records: list[dict]) -> list[str]:
+    """Decisions L376, L377: one line for the rides that are neither a lift nor an escalator (not counted as floors)
+    and one for the escalator rides' horizontal travel the track leaves out."""
+    lines = []
+    other = [r for r in records if r["kind"] == "other"]
+    if other:
+        shown = ", ".join(f"{r['dz_m']:+.1f} m over {r['duration_s']:.0f} s at {r['start_s']:.0f} s" for r in other[:3])
+        lines.append(f"{len(other)} barometric climb(s) while standing ({shown}{', ...' if len(other) > 3 else ''}) "
+                     "are neither a lift (0.5 m/s or more vertically) nor an escalator (0.15-0.5 m/s for at most 45 "
+                     "s): a vehicle on a hill or a ride of another kind, so they count no floors; their height stays "
+                     "in the altitude (rides.csv kind other; decision L376)")
+    esc = [r for r in records if r["kind"] == "escalator"]
+    if esc:
+        travel = sum(r["horizontal_est_m"] for r in esc)
+        lines.append(f"{len(esc)} escalator ride(s) (rides.csv) carried the walker an estimated {travel:.1f} m "
+                     "horizontally (their height / tan 30 deg) that the track leaves out: dead reckoning counts steps, "
+                     "and a ride has none, so positions after a ride are off by its travel (decision L377)")
+    return lines
+
+
+def ride_table(info: dict) -> pd.DataFrame:
+    """Decision L377: rides.csv from a track's ``info["rides"]`` (:func:`ride_rows`' records); the header alone
+    without rides (a foot track, no barometer)."""
+    return pd.DataFrame(info.get("rides") or [], columns=list(RIDE_COLUMNS))
