@@ -21,5 +21,7 @@ def test_a_rest_at_a_cone_is_its_length_and_bouts_agree(pipeline):
     assert c["n_pauses"] == 1 and c["pause_time_s"] == pytest.approx(30.0, abs=1.5), c  # was ~21 s
     b = detected_bouts(steps)
     assert len(b) == 2
-    gap = float(b["start_s"].iloc[1] - b["end_s"].iloc[0])  # bouts.csv's standing between the two bouts
-    assert abs(gap - c["pause_time_s"]) < 1.5, (gap, c["pause_time_s"])
+    # bouts.csv's gap runs from the last row to the next one: the pause plus one row interval of rhythm and the turn's
+    # start (foot 29.94 / 28.7 s, lower back 31.0 / 29.45 s on the trial's and this walk)
+    gap = float(b["start_s"].iloc[1] - b["end_s"].iloc[0])
+    assert 0.0 <= gap - c["pause_time_s"] < 2.0, (gap, c["pause_time_s"])
