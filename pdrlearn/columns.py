@@ -329,8 +329,8 @@ SESSIONS: tuple[Column, ...] = (
                                   "the sit's end (W183)"),
     ("tug_time_note", _ID, "text", "lower back: why there is no tug_time_s although a sit-to-stand is followed by "
                                    "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
-                                   "W282; no step between: a chair stand, W340), pointing at --window - or, with TUG trials found, that each is timed in "
-                                   "tug_trials.csv (W325); empty otherwise"),
+                                   "W282; no step between: a chair stand, W340), pointing at --window - or, with "
+                                   "TUG trials found, that each is timed in tug_trials.csv (W325); empty otherwise"),
     ("n_tug_trials", "count", "integer", "lower back: TUG trials, W183's seat-to-seat rule applied to each "
                                          "sit-to-stand directly followed by a stand-to-sit with walking between "
                                          "(tug_trials.csv, W325); empty on a foot track"),
