@@ -328,11 +328,12 @@ SESSIONS: tuple[Column, ...] = (
     ("n_get_up", "count", "integer", "lower back: transfers out of lying, lie-to-sit and lie-to-stand (W245, W258); "
                                      "empty on a foot track"),
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
-                                  "step, one sit after the last): the rise's start to the sit's end (W183)"),
+                                  "step, one sit after the last, a step between them: W340): the rise's start to "
+                                  "the sit's end (W183)"),
     ("tug_time_note", _ID, "text", "lower back: why there is no tug_time_s although a sit-to-stand is followed by "
                                    "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
-                                   "W282), pointing at --window - or, with TUG trials found, that each is timed in "
-                                   "tug_trials.csv (W325); empty otherwise"),
+                                   "W282; no step between: a chair stand, W340), pointing at --window - or, with "
+                                   "TUG trials found, that each is timed in tug_trials.csv (W325); empty otherwise"),
     ("n_tug_trials", "count", "integer", "lower back: TUG trials, W183's seat-to-seat rule applied to each "
                                          "sit-to-stand directly followed by a stand-to-sit with walking between "
                                          "(tug_trials.csv, W325); empty on a foot track"),

@@ -873,7 +873,7 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     from pdrlearn.track.geoexport import write_geo_files
 
-    # decisions L362, L363: track.gpx and track.geojson of a track with lat/lon (a --start), none without
+    # decisions L362, L363: track.gpx and track.geojson of a track with lat/lon (--start, geodetic fixes), none without
     write_geo_files(dest, traj, session=session.name, pipeline=summary.get("pipeline"),
                     distance_m=summary.get("distance_m"), start=tracked.get("start"),
                     with_ele=bool(tracked.get("start_ele")))
