@@ -10,7 +10,8 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.track.corridor import corridor_laps
+from pdrlearn.columns import undocumented
+from pdrlearn.track.corridor import KEYS, corridor_laps
 
 
 def _walk(rows: int = 135, step_m: float = 0.8, rest_after: int | None = None, rest_s: float = 0.0):
@@ -81,6 +82,7 @@ def test_track_corridor_writes_laps_csv_and_summary_keys(tmp_path):
         assert s["walk_test_distance_m"] == pytest.approx(45.0, abs=1.5), pipe
         laps = pd.read_csv(out / "laps.csv")
         assert list(laps["lap"]) == [1, 2, 3, 4, 5] and (laps["distance_m"].iloc[:4] == 10.0).all()
+        assert undocumented("laps.csv", laps.columns) == [] and undocumented("sessions.csv", KEYS) == []
 
 
 def test_without_corridor_nothing_changes(tmp_path):

@@ -290,7 +290,7 @@ def track(
 
         pdrlearn track night --per 1h --per-align clock --out out/night_h   # clock hours (an imported night)
 
-        pdrlearn track out/sim/6mwt_u1 --corridor 30 --out out/6mwt   # OUT/laps.csv, the 6MWT distance (L383)
+        pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
 
         pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
 
