@@ -101,5 +101,5 @@ def test_bad_corridor_is_one_line_and_no_output_b293(tmp_path, capsys, value):
     capsys.readouterr()
     assert main(["track", str(ses), f"--corridor={value}", "--out", str(tmp_path / "t")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "--corridor" in err[0] and "Traceback" not in err[0]
+    assert len(err) == 1 and "--corridor" in err[0] and "a positive number" in err[0] and "Traceback" not in err[0]
     assert not (tmp_path / "t").exists()
