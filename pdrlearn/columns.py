@@ -366,6 +366,11 @@ SESSIONS: tuple[Column, ...] = (
                                          "turning walk (L313)"),
     ("ten_m_walk_speed_mps", "m/s", "number", "10 m / ten_m_walk_time_s (L312)"),
     ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); empty when there is one"),
+    ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from the first walking bout's start (standing) to "
+                                    "where its path passes 7.62 m, straight (L387); empty on a shorter or turning "
+                                    "walk and on the lower back (L313)"),
+    ("t25fw_speed_mps", "m/s", "number", "7.62 m / t25fw_time_s (L387)"),
+    ("t25fw_note", _ID, "text", "why there is no t25fw_time_s (L387); empty when there is one"),
     ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "
                                       "band power, 1 s or longer (W213); null on a lower-back track without the "
                                       "freeze_index option (W216: not measured)"),

@@ -103,3 +103,29 @@ def test_bad_corridor_is_one_line_and_no_output_b293(tmp_path, capsys, value):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--corridor" in err[0] and "a positive number" in err[0] and "Traceback" not in err[0]
     assert not (tmp_path / "t").exists()
+
+
+def test_t25fw_from_standing_on_a_simulated_walk_l387(tmp_path, capsys):
+    """L387: a 0.5 m/s walker's 9 m walk from standing (user 7308): the foot track's time to 7.62 m within 5 % of
+    the body's (from the first true stride's start, the simulator's steps.csv, to the body's path passing 7.62 m);
+    `track` prints it; the lower back and a 6 m walk are not timed."""
+    from pdrlearn.track.walk_test import T25FW_LOWER_BACK_NOTE, t25fw
+
+    d = tmp_path / "s"
+    assert main(["simulate", "--route", "stand:3, straight:9, stand:3", "--user-seed", "7308", "--rate", "100",
+                 "--step-length", "0.35", "--step-time", "0.7", "--out", str(d)]) == 0
+    capsys.readouterr()
+    assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 0
+    out = capsys.readouterr().out
+    s = json.loads((tmp_path / "t" / "summary.json").read_text())
+    traj = pd.read_csv(d / "trajectory.csv")
+    t, x = traj["timestamp"].to_numpy(float) / 1000, traj["x"].to_numpy(float) - traj["x"].iloc[0]
+    true_s = t[np.argmax(x >= 7.62)] - pd.read_csv(d / "steps.csv")["start_ms"].min() / 1000
+    err = 100 * (s["t25fw_time_s"] / true_s - 1)
+    print(f"T25FW: tracked {s['t25fw_time_s']:.2f} s, true {true_s:.2f} s, error {err:+.2f} %")
+    assert abs(err) < 5.0 and "timed 25-foot walk" in out and s["t25fw_note"] is None
+    assert s["ten_m_walk_time_s"] is None  # 9 m: no 10 m walk (L313), but a T25FW
+    steps = pd.read_csv(tmp_path / "t" / "steps.csv")
+    assert t25fw(steps.assign(unit="waist"))["t25fw_note"] == T25FW_LOWER_BACK_NOTE
+    short = steps[steps["start_s"] < steps["start_s"].min() + 6.0 / 0.5]  # about 6 m of it
+    assert t25fw(short)["t25fw_time_s"] is None and "25 ft" in t25fw(short)["t25fw_note"]

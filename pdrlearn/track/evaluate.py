@@ -550,9 +550,10 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decision W293: the TUG's phases, from the transfers, these turns and the walking contacts
     out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, result.steps,
                                             yaw_turns=result.info.get("yaw_turns"))))  # W307
-    from pdrlearn.track.walk_test import ten_metre_walk
+    from pdrlearn.track.walk_test import t25fw, ten_metre_walk
 
     out.update(ten_metre_walk(result.steps))  # decisions L312, L313: the 10 m walk test's middle 10 m
+    out.update(t25fw(result.steps))  # decision L387: the timed 25-foot walk from standing
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)
