@@ -47,6 +47,14 @@ def test_laps_and_distance_of_a_hand_made_corridor_walk():
     assert s2["n_laps"] == 4 and any("missed turn" in w for w in w2)
 
 
+def test_window_is_the_test_span():
+    """L383: with --window the test runs over the window: its minutes count from the window's start to its end."""
+    _, s, _ = corridor_laps(_walk(), _turns([30, 60, 90, 120]), 30.0, span=(0.0, 180.0))
+    assert s["walk_test_distance_per_minute_m"] == pytest.approx([60.0, 60.0, 15.0])
+    _, late, _ = corridor_laps(_walk(), _turns([30, 60, 90, 120]), 30.0, span=(-0.5, 179.5))
+    assert len(late["walk_test_distance_per_minute_m"]) == 3 and late["walk_test_distance_m"] == pytest.approx(135.0)
+
+
 def test_missed_turn_counts_two_laps_and_warns():
     laps, s, warnings = corridor_laps(_walk(), _turns([30, 90, 120]), 30.0)
     assert s["n_laps"] == 4 and s["walk_test_distance_m"] == pytest.approx(135.0)

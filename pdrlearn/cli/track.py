@@ -776,8 +776,9 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     if o.get("corridor_m") is not None:  # decisions L383, L384: the corridor walk test of the track (or its window)
         from pdrlearn.track.corridor import corridor_laps
 
+        span = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None  # L383: the test's
         laps, keys, lines = corridor_laps(result.steps, clinical_tables(result, bouts)["turns.csv"], o["corridor_m"],
-                                          bouts)
+                                          bouts, span=span)
         summary.update(keys)
         if lines:
             import logging

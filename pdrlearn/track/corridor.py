@@ -62,10 +62,12 @@ def _rest_s(start: float, end: float, bouts: pd.DataFrame | None) -> float:
 
 
 def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
-                  bouts: pd.DataFrame | None = None) -> tuple[pd.DataFrame, dict, list[str]]:
+                  bouts: pd.DataFrame | None = None,
+                  span: tuple[float, float] | None = None) -> tuple[pd.DataFrame, dict, list[str]]:
     """Decisions L383, L384: ``(laps, summary, warnings)`` of a tracked step table walked up and down a corridor of
     ``corridor_m`` metres: laps.csv's rows (:data:`LAP_COLUMNS`), the summary's :data:`KEYS` and the warning lines
-    (missed or extra turns, a corridor length far from the tracked laps)."""
+    (missed or extra turns, a corridor length far from the tracked laps). ``span``: the test's start and end (s;
+    ``track --window``'s), else the first step's start and the last step's end."""
     out = dict.fromkeys(KEYS)
     out["corridor_m"] = float(corridor_m)
     empty = pd.DataFrame(columns=list(LAP_COLUMNS))
@@ -73,7 +75,7 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
         return empty, out, ["corridor walk test: no steps; no laps"]
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     t, d = _distance_in_time(st)
-    t0, t_end = float(t[0]), float(st["end_s"].max())
+    t0, t_end = (float(t[0]), float(st["end_s"].max())) if span is None else (float(span[0]), float(span[1]))
     contact = t[1::2]  # each row's contact
     n_row = _row_steps(st)
     turns = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s", "angle_deg"])
@@ -169,5 +171,5 @@ def corridor_line(summary: dict) -> str:
     return (f"corridor walk test ({summary['corridor_m']:g} m): {summary.get('n_laps') or 0} lap(s), "
             f"{(summary.get('walk_test_distance_m') or 0.0):.1f} m (laps x {summary['corridor_m']:g} m + the final "
             f"partial lap, laps.csv; L383)"
-            + (f"; per minute from the first step {' / '.join(f'{v:.1f}' for v in per)} m" if per else "")
+            + (f"; per minute from the test's start {' / '.join(f'{v:.1f}' for v in per)} m" if per else "")
             + (f"; fatigue index {fatigue:.2f} (last / first minute)" if fatigue is not None else ""))
