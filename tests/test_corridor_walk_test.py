@@ -12,6 +12,7 @@ import pytest
 from pdrlearn.cli import main
 from pdrlearn.columns import undocumented
 from pdrlearn.track.corridor import KEYS, corridor_laps
+from tests.cli_helpers import tracked_slow_walk
 
 
 def _walk(rows: int = 135, step_m: float = 0.8, rest_after: int | None = None, rest_s: float = 0.0):
@@ -119,15 +120,7 @@ def test_t25fw_from_standing_on_a_simulated_walk_l387(tmp_path, capsys):
     `track` prints it; the lower back and a 6 m walk are not timed."""
     from pdrlearn.track.walk_test import T25FW_LOWER_BACK_NOTE, t25fw
 
-    d = tmp_path / "s"
-    assert main(["simulate", "--route", "stand:3, straight:9, stand:3", "--user-seed", "7308", "--rate", "100",
-                 "--step-length", "0.35", "--step-time", "0.7", "--out", str(d)]) == 0
-    capsys.readouterr()
-    assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 0
-    out = capsys.readouterr().out
-    s = json.loads((tmp_path / "t" / "summary.json").read_text())
-    traj = pd.read_csv(d / "trajectory.csv")
-    t, x = traj["timestamp"].to_numpy(float) / 1000, traj["x"].to_numpy(float) - traj["x"].iloc[0]
+    out, s, t, x, d = tracked_slow_walk(tmp_path, capsys, "stand:3, straight:9, stand:3", 7308, 0.35, 0.7)
     true_s = t[np.argmax(x >= 7.62)] - pd.read_csv(d / "steps.csv")["start_ms"].min() / 1000
     err = 100 * (s["t25fw_time_s"] / true_s - 1)
     print(f"T25FW: tracked {s['t25fw_time_s']:.2f} s, true {true_s:.2f} s, error {err:+.2f} %")
