@@ -236,6 +236,16 @@ SESSIONS: tuple[Column, ...] = (
                                     "rhythm; with --window only those between the window's steps. Not a share of "
                                     "the session's time: see time_between_steps_s (L275)"),
     ("per_s", "s", "number", "--per only: the period of periods.csv (L277)"),
+    ("corridor_m", "m", "number", "--corridor only: the corridor walk test's course length (L383)"),
+    ("n_laps", "count", "integer", "--corridor only: the corridor lengths walked between cone turns (laps.csv's "
+                                   "corridor_laps summed; a missed turn counts 2, L384)"),
+    ("walk_test_distance_m", "m", "number", "--corridor only: n_laps x corridor_m + the final partial lap (its tracked "
+                                            "distance x the last lap's corridor / tracked ratio, at most corridor_m; "
+                                            "ATS 2002 as recalled, L383)"),
+    ("walk_test_distance_per_minute_m", "m", "number", "--corridor only, summary.json only (a list): the corridor "
+                                                     "distance in each full minute from the first step (L383)"),
+    ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
+                                         "(our choice, L383); empty under 2 full minutes"),
     ("per_align", _ID, "text", "--per-align clock or first-step only: clock (periods.csv cut at the clock's whole "
                                "periods, L299) or first-step (from the first tracked step, L381)"),
     ("per_start_s", "s", "number", "--per only: the first period's start (the recording's or --window's start, or "
@@ -337,11 +347,12 @@ SESSIONS: tuple[Column, ...] = (
     ("n_get_up", "count", "integer", "lower back: transfers out of lying, lie-to-sit and lie-to-stand (W245, W258); "
                                      "empty on a foot track"),
     ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
-                                  "step, one sit after the last): the rise's start to the sit's end (W183)"),
+                                  "step, one sit after the last, a step between them: W340): the rise's start to "
+                                  "the sit's end (W183)"),
     ("tug_time_note", _ID, "text", "lower back: why there is no tug_time_s although a sit-to-stand is followed by "
                                    "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
-                                   "W282), pointing at --window - or, with TUG trials found, that each is timed in "
-                                   "tug_trials.csv (W325); empty otherwise"),
+                                   "W282; no step between: a chair stand, W340), pointing at --window - or, with "
+                                   "TUG trials found, that each is timed in tug_trials.csv (W325); empty otherwise"),
     ("n_tug_trials", "count", "integer", "lower back: TUG trials, W183's seat-to-seat rule applied to each "
                                          "sit-to-stand directly followed by a stand-to-sit with walking between "
                                          "(tug_trials.csv, W325); empty on a foot track"),
@@ -368,6 +379,11 @@ SESSIONS: tuple[Column, ...] = (
                                          "turning walk (L313)"),
     ("ten_m_walk_speed_mps", "m/s", "number", "10 m / ten_m_walk_time_s (L312)"),
     ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); empty when there is one"),
+    ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from the first walking bout's start (standing) to "
+                                    "where its path passes 7.62 m, straight (L387); empty on a shorter or turning "
+                                    "walk and on the lower back (L313)"),
+    ("t25fw_speed_mps", "m/s", "number", "7.62 m / t25fw_time_s (L387)"),
+    ("t25fw_note", _ID, "text", "why there is no t25fw_time_s (L387); empty when there is one"),
     ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "
                                       "band power, 1 s or longer (W213); null on a lower-back track without the "
                                       "freeze_index option (W216: not measured)"),
@@ -835,6 +851,24 @@ RAMPS: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+#: decision L383: a track's laps.csv (``track --corridor``), one row per stretch between cone turns
+LAPS: tuple[Column, ...] = (
+    ("lap", "index", "integer", "the stretch's number, from 1 (the last one the final, partial lap)"),
+    ("start_s", "s", "number", "the first step's start or the middle of the cone turn (>= 135 deg, turns.csv) before"),
+    ("end_s", "s", "number", "the middle of the cone turn that ends it; the final lap: the last step's end"),
+    ("duration_s", "s", "number", "end_s - start_s, rests included (L384)"),
+    ("corridor_laps", "count", "integer", "corridor lengths it counts: round(tracked_m / the median stretch); 2 or "
+                                          "more a missed turn, 0 the final partial lap (L384)"),
+    ("tracked_m", "m", "number", "the track's distance over it (steps.csv's lengths)"),
+    ("distance_m", "m", "number", "corridor_laps x corridor_m, or the final lap's scaled tracked distance (L383)"),
+    ("distance_source", _ID, "text", "corridor, tracked x scale (the final lap: x the last lap's corridor / tracked "
+                                     "ratio) or tracked (no lap completed)"),
+    ("speed_m_s", "m/s", "number", "distance_m / duration_s"),
+    ("rest_s", "s", "number", "its time outside bouts.csv's walking bouts (a rest at a cone stays in its lap, L384)"),
+    ("n_steps", "count", "integer", "steps of both feet whose contact lies in it (as bouts.csv's n_steps)"),
+    *_clocks("start_s", "end_s"),
+)
+
 
 #: decision L377: ``rides.csv`` (``track`` of a lower-back unit), one row per ride while standing
 RIDES: tuple[Column, ...] = (
@@ -856,6 +890,7 @@ RIDES: tuple[Column, ...] = (
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
                                          "bouts.csv": BOUTS, "turns.csv": TURNS, "periods.csv": PERIODS,
+                                         "laps.csv": LAPS,  # L383
                                          "transfers.csv": TRANSFERS, "tug_phases.csv": TUG_PHASE_TABLE,  # W293
                                          "tug_trials.csv": TUG_TRIAL_TABLE,  # W325
                                          "freezes.csv": FREEZES, "ramps.csv": RAMPS,  # L301

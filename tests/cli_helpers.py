@@ -27,3 +27,23 @@ def json_numbers(obj, prefix: str = "") -> dict:
     if isinstance(obj, list):
         return {k2: v2 for i, v in enumerate(obj) for k2, v2 in json_numbers(v, f"{prefix}[{i}]").items()}
     return {prefix: obj} if isinstance(obj, int | float) and not isinstance(obj, bool) else {}
+
+
+def tracked_slow_walk(tmp_path: Path, capsys, route: str, user: int, step_length: float, step_time: float):
+    """Simulate ``route`` (100 Hz, fixed steps) and track it through the CLI: ``(printed, summary, t, x, session)``
+    with the body's true time (s) and forward position (m) from the simulator's trajectory.csv (the timed-walk tests,
+    decisions L313 / L387)."""
+    import json
+
+    import pandas as pd
+
+    d = tmp_path / "s"
+    assert main(["simulate", "--route", route, "--user-seed", str(user), "--rate", "100", "--step-length",
+                 str(step_length), "--step-time", str(step_time), "--out", str(d)]) == 0
+    capsys.readouterr()
+    assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 0
+    out = capsys.readouterr().out
+    summary = json.loads((tmp_path / "t" / "summary.json").read_text())
+    traj = pd.read_csv(d / "trajectory.csv")
+    return (out, summary, traj["timestamp"].to_numpy(float) / 1000,
+            traj["x"].to_numpy(float) - traj["x"].iloc[0], d)

@@ -13,6 +13,7 @@ import pytest
 from pdrlearn.cli import main
 from pdrlearn.track.bilateral import STEP_AXIS_MAX_DEG, UNANCHORED_NOTE, bilateral_gait
 from pdrlearn.track.walk_test import LOWER_BACK_NOTE, ten_metre_walk
+from tests.cli_helpers import tracked_slow_walk
 
 
 def _walk(s_left: float, s_right: float, n: int, *, turn_at: int | None = None, turn_deg: float = 0.0,
@@ -174,15 +175,7 @@ def test_ten_metre_walk_kernel():
 def test_ten_metre_walk_on_a_simulated_walk_of_known_speed(tmp_path, capsys):
     """L313: a simulated 0.5 m/s walker's 16 m walk: the foot track's middle-10-m speed within 2 % of the body's
     true crossing of 2 m and 12 m; `track` prints it and summary.json carries the keys."""
-    d = tmp_path / "s"
-    assert main(["simulate", "--route", "stand:3, straight:16, stand:3", "--user-seed", "6029", "--rate", "100",
-                 "--step-length", "0.35", "--step-time", "0.7", "--out", str(d)]) == 0
-    capsys.readouterr()
-    assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 0
-    out = capsys.readouterr().out
-    summary = json.loads((tmp_path / "t" / "summary.json").read_text())
-    traj = pd.read_csv(d / "trajectory.csv")
-    t, x = traj["timestamp"].to_numpy(float) / 1000, traj["x"].to_numpy(float) - traj["x"].iloc[0]
+    out, summary, t, x, _ = tracked_slow_walk(tmp_path, capsys, "stand:3, straight:16, stand:3", 6029, 0.35, 0.7)
     true_s = t[np.argmax(x >= 12.0)] - t[np.argmax(x >= 2.0)]
     err = 100 * (summary["ten_m_walk_speed_mps"] / (10 / true_s) - 1)
     print(f"10 m walk: tracked {summary['ten_m_walk_time_s']:.2f} s, true {true_s:.2f} s, speed error {err:+.2f} %")

@@ -130,3 +130,32 @@ def test_a_sit_without_walking_between_is_no_trial():
     summary = transfer_summary(res.info["transfers"], res.steps)
     assert summary["n_tug_trials"] == 0 and summary["tug_trials_median_s"] is None
     assert tug_trial_table(res.info["transfers"], None, res.steps).empty
+
+
+def test_a_chair_stand_without_walking_is_no_tug_w340(tmp_path, capsys):
+    """Decision W340 (review R1 finding 1): a rise and a sit with no step between (user 7310: seated, ``stand:6``,
+    seated) was given W183's ``tug_time_s`` and tug_phases.csv but 0 TUG trials; now neither: a chair stand."""
+    # the kernel: W183's one seat-to-seat pair, nothing between the rise and the sit
+    pair = pd.DataFrame([{"transfer": 1, "kind": SIT_TO_STAND, "start_s": 5.0, "end_s": 7.0, "flag": ""},
+                         {"transfer": 2, "kind": STAND_TO_SIT, "start_s": 13.0, "end_s": 15.0, "flag": ""}])
+    s = transfer_summary(pair, pd.DataFrame({"start_s": [6.0, 14.0]}))  # contacts inside the transfers (W146) only
+    assert s["tug_time_s"] is None and s["n_tug_trials"] == 0
+    assert s["tug_time_note"] == ("no TUG time: no step between the rise ending at 7.0 s and the sit starting at 13.0 "
+                                  "s: a chair stand, not a TUG (a TUG walks; if the person walked, the steps were not "
+                                  "detected) (W183, W340)")
+    walked = transfer_summary(pair, pd.DataFrame({"start_s": [6.0, 9.0, 14.0]}))
+    assert walked["tug_time_s"] == pytest.approx(10.0) and walked["n_tug_trials"] == 1
+    assert walked["tug_trials_median_s"] == walked["tug_time_s"] and walked["tug_time_note"] is None
+    # the user's case through the command
+    d = tmp_path / "s7310"
+    assert main(["simulate", "--route", "stand:6", "--sit-start", "5", "--sit-end", "5", "--user-seed", "7310",
+                 "--out", str(d)]) == 0
+    capsys.readouterr()
+    assert main(["track", str(d), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
+    out = capsys.readouterr().out
+    summary = json.loads((tmp_path / "t" / "summary.json").read_text())
+    assert (summary["n_sit_to_stand"], summary["n_stand_to_sit"], summary["n_steps"]) == (1, 1, 0)
+    assert summary["tug_time_s"] is None and summary["n_tug_trials"] == 0 and summary["tug_phases"] is None
+    assert "a chair stand, not a TUG" in summary["tug_time_note"] and "a chair stand, not a TUG" in out
+    assert "TUG time " not in out and "TUG phases" not in out and "tug_phases.csv" not in out
+    assert not (tmp_path / "t" / "tug_phases.csv").exists() and not (tmp_path / "t" / "tug_trials.csv").exists()

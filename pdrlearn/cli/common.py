@@ -592,6 +592,9 @@ def transfer_line(summary: dict) -> str | None:
     if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout
         parts.append(f"10 m walk test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
                      "(the middle 10 m of the first 14 m walk, L312)")
+    if summary.get("t25fw_time_s") is not None:  # decision L387: the first 7.62 m from standing
+        parts.append(f"timed 25-foot walk {summary['t25fw_time_s']:.2f} s, {summary['t25fw_speed_mps']:.2f} m/s "
+                     "(the first 7.62 m from standing, L387)")
     if summary.get("n_freezes"):  # decision W213: the freeze index's episodes
         parts.append(f"{summary['n_freezes']} freeze episode(s), {summary['freeze_time_s']:.1f} s in all "
                      "(freezes.csv; freeze index, decision W213)")

@@ -212,6 +212,12 @@ PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods
                              "the recording's clock, 1h = the clock hours; the first and last periods partial). clock "
                              "needs the session's start (meta.json recording_start or a date-time import; decision "
                              "L299).")
+CORRIDOR_OPT = typer.Option(None, "--corridor", metavar="METRES", help="A corridor walk test (6MWT / 2MWT) up "
+                            "and down a course of METRES (e.g. 30, the ATS 2002 6MWT's): OUT/laps.csv (the laps "
+                            "between cone turns of >= 135 deg) and the summary's walk_test_distance_m = laps x "
+                            "METRES + the final partial lap, n_laps, distance per minute from the first step, "
+                            "fatigue_index (decisions L383, L384). A 6MWT inside a longer "
+                            "recording: with --window T0,T0+360.")
 
 
 def track(
@@ -254,6 +260,7 @@ def track(
     window: str = WINDOW_OPT,
     per: str = PER_OPT,
     per_align: str = PER_ALIGN_OPT,
+    corridor: float = CORRIDOR_OPT,
     bout_rule: str = BOUT_RULE_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
     bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
@@ -291,6 +298,8 @@ def track(
         pdrlearn track night --per 1h --per-align clock --out out/night_h   # clock hours (an imported night)
 
         pdrlearn track out/sim/A_u1 --per 60 --per-align first-step --out out/A_min   # minutes from the first step
+
+        pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
 
         pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
 
@@ -360,7 +369,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
-                   per_align: str = "start",
+                   per_align: str = "start", corridor: float | None = None,
                    resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
@@ -399,6 +408,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if per_align != "start" and per_s is None:
         raise DataError(f"track: --per-align {per_align} places --per's periods; give --per (e.g. --per 1h) or drop "
                         "it")
+    from pdrlearn.track.corridor import corridor_length
+
+    corridor_m = corridor_length(corridor)  # decision B293: before any session
     if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
         raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
                         "--fixes give the track its direction; drop --initial-heading")
@@ -477,7 +489,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
-            "per_align": per_align,
+            "per_align": per_align, "corridor_m": corridor_m,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
@@ -780,9 +792,23 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             summary["info"]["warnings"] = [*summary["info"].get("warnings", []), bounce]
         if clock is not None:
             summary["per_align"] = "clock"
+    laps = None
+    if o.get("corridor_m") is not None:  # decisions L383, L384: the corridor walk test of the track (or its window)
+        from pdrlearn.track.corridor import corridor_laps
+
+        span = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None  # L383: the test's
+        laps, keys, lines = corridor_laps(result.steps, clinical_tables(result, bouts)["turns.csv"], o["corridor_m"],
+                                          bouts, span=span)
+        summary.update(keys)
+        if lines:
+            import logging
+
+            for line in lines:
+                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), *lines]
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
-            "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods, "start": start,
+            "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods, "laps": laps, "start": start,
             "start_ele": bool(o.get("start_ele"))}
 
 
@@ -801,15 +827,18 @@ def _check_relative_heading(result, session, heading0: float) -> None:
     result.info["initial_heading_rad"] = heading0
 
 
-def event_tables(result, bouts, periods=None, start=None) -> dict:
-    """Decision L298: every event table a track or run writes - ``bouts.csv`` (L124), :func:`clinical_tables`'s and
-    ``periods.csv`` (L277, when given) - with their clock columns when the recording's ``start`` is known."""
+def event_tables(result, bouts, periods=None, start=None, laps=None) -> dict:
+    """Decision L298: every event table a track or run writes - ``bouts.csv`` (L124), :func:`clinical_tables`'s,
+    ``periods.csv`` (L277, when given) and ``laps.csv`` (L383, with --corridor) - with their clock columns when the
+    recording's ``start`` is known."""
     from pdrlearn.track.bouts import csv_table
     from pdrlearn.track.clock import with_clock_columns
 
     tables = {"bouts.csv": csv_table(bouts), **clinical_tables(result, bouts)}
     if periods is not None:
         tables["periods.csv"] = periods
+    if laps is not None:
+        tables["laps.csv"] = laps
     return {name: with_clock_columns(table, start) for name, table in tables.items()}
 
 
@@ -875,14 +904,15 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
 
     _write_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
     # decisions L124 (E98: the old speed_m_s last), L200, W182, L277; L298: clock columns with a recording start
-    for name, table in event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start")).items():
+    for name, table in event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start"),
+                                     tracked.get("laps")).items():
         _write_csv(table, dest / name)
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     from pdrlearn.track.geoexport import write_geo_files
 
-    # decisions L362, L363: track.gpx and track.geojson of a track with lat/lon (a --start), none without
+    # decisions L362, L363: track.gpx and track.geojson of a track with lat/lon (--start, geodetic fixes), none without
     write_geo_files(dest, traj, session=session.name, pipeline=summary.get("pipeline"),
                     distance_m=summary.get("distance_m"), start=tracked.get("start"),
                     with_ele=bool(tracked.get("start_ele")))
@@ -942,6 +972,10 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         trials = tug_trials_line(summary, pd.read_csv(out / "tug_trials.csv"))
         if trials:
             typer.echo(trials)
+    if summary.get("corridor_m") is not None:  # decision L383: the corridor walk test
+        from pdrlearn.track.corridor import corridor_line
+
+        typer.echo(corridor_line(summary))
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
@@ -956,6 +990,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
+               f"{'laps.csv, ' if summary.get('corridor_m') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)

@@ -90,11 +90,15 @@ def require_start(meta: dict | None, where: str, option: str) -> datetime:
 
 
 def clock_texts(start: datetime, seconds) -> list[str | None]:
-    """ISO 8601 texts (milliseconds, the start's own offset) of session times ``seconds``; None where missing."""
+    """ISO 8601 texts (milliseconds, the start's own offset) of session times ``seconds``; None where missing, and
+    (decision B296) where the time falls after 9999-12-31, which no ISO 8601 / Python date holds."""
     out = []
     for s in np.asarray(pd.to_numeric(pd.Series(seconds), errors="coerce"), dtype=float):
-        out.append((start + timedelta(seconds=float(s))).isoformat(timespec="milliseconds")
-                   if math.isfinite(s) else None)
+        try:
+            out.append((start + timedelta(seconds=float(s))).isoformat(timespec="milliseconds")
+                       if math.isfinite(s) else None)
+        except OverflowError:
+            out.append(None)
     return out
 
 

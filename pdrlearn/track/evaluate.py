@@ -610,9 +610,10 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decision W331: a lower-back track's turns on the spot that hold no step, and the steps they imply
     out.update(stepless_summary(result.steps["event_s"] if "event_s" in result.steps else [],
                                 result.info.get("yaw_turns")))
-    from pdrlearn.track.walk_test import ten_metre_walk
+    from pdrlearn.track.walk_test import t25fw, ten_metre_walk
 
     out.update(ten_metre_walk(result.steps))  # decisions L312, L313: the 10 m walk test's middle 10 m
+    out.update(t25fw(result.steps))  # decision L387: the timed 25-foot walk from standing
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)

@@ -1,7 +1,8 @@
-"""A track's path for map tools (decisions L362, L363, B281; docs/decisions/localization.md, bad-input.md).
+"""A track's path for map tools (decisions L362, L363, B281, B295, B296; docs/decisions/localization.md,
+bad-input.md).
 
-With a geodetic start (``--start LAT,LON[,ALT]``, so trajectory.csv has ``lat``/``lon``) ``track``, ``track-all``
-and ``run`` also write
+With lat/lon in trajectory.csv (a geodetic start ``--start LAT,LON[,ALT]``, or an aided track's geodetic ``--gnss`` /
+``--fixes``) ``track``, ``track-all`` and ``run`` also write
 
 - ``track.gpx``: GPX 1.1 (https://www.topografix.com/GPX/1/1/): one ``<trk>`` named after the session, one
   ``<trkseg>`` per unbroken run of rows with finite lat/lon, a ``<trkpt lat lon>`` per row with ``<ele>`` when the
@@ -18,12 +19,15 @@ Coordinates are written with 7 decimals (1e-7 degree is ~1 cm), elevations with 
 from __future__ import annotations
 
 import json
+import logging
 import math
 import xml.etree.ElementTree as ET
 from datetime import UTC, datetime, timedelta
 from pathlib import Path
 
 import numpy as np
+
+log = logging.getLogger("pdrlearn.track")
 
 #: the files this module writes, in the order ``track``'s "wrote" line names them
 GEO_FILES = ("track.gpx", "track.geojson")
@@ -46,19 +50,35 @@ def geo_pieces(lat, lon) -> list[np.ndarray]:
     return np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
 
 
-def utc_times(start: datetime | None, seconds) -> list[str] | None:
+def utc_times(start: datetime | None, seconds, *, where: str = "") -> list[str] | None:
     """Decision L362: ISO 8601 UTC texts (``...Z``, milliseconds) of session times ``seconds`` after the recording
-    ``start`` (L298); None without a start or with one of no UTC offset (its zone unknown: no UTC time exists)."""
+    ``start`` (L298); None without a start or with one of no UTC offset (its zone unknown: no UTC time exists).
+    Decision B296: None too (with one warning) when a time falls outside the years 1-9999 that ISO 8601 / Python
+    dates hold (a start near 0001-01-01 or 9999-12-31): no point gets a time rather than some; ``where`` (the
+    session) begins the warning."""
     if start is None or start.utcoffset() is None:
         return None
-    return [(start + timedelta(seconds=float(s))).astimezone(UTC).isoformat(timespec="milliseconds")
-            .replace("+00:00", "Z") for s in seconds]
+    try:
+        return [(start + timedelta(seconds=float(s))).astimezone(UTC).isoformat(timespec="milliseconds")
+                .replace("+00:00", "Z") for s in seconds]
+    except OverflowError:
+        log.warning("%srecording start %s (meta.json recording_start): the track's UTC times fall outside the "
+                    "years 1-9999, so track.gpx and track.geojson have no times; correct the recording start if it "
+                    "is wrong (decision B296)", f"{where}: " if where else "", start.isoformat())
+        return None
+
+
+def _xml_char(c: str) -> bool:
+    """Decision B295: XML 1.0's Char production (section 2.2): tab, LF, CR, U+0020-U+D7FF, U+E000-U+FFFD and
+    U+10000 up; no other character (a C0 control, a lone surrogate, U+FFFE, U+FFFF) can be in a well-formed file."""
+    o = ord(c)
+    return c in "\t\n\r" or 0x20 <= o <= 0xD7FF or 0xE000 <= o <= 0xFFFD or o >= 0x10000
 
 
 def xml_text(text: str) -> str:
-    """Decision B281: ``text`` without the control characters XML 1.0 cannot hold (section 2.2: tab, line feed and
-    carriage return are the only ones below U+0020), which ElementTree would write into a file no reader parses."""
-    return "".join(c for c in str(text) if c in "\t\n\r" or ord(c) >= 0x20)
+    """Decisions B281, B295: ``text`` without the characters XML 1.0 cannot hold (:func:`_xml_char`), which
+    ElementTree would write into a file no reader parses."""
+    return "".join(c for c in str(text) if _xml_char(c))
 
 
 def _coord(v: float) -> str:
@@ -127,7 +147,7 @@ def write_geo_files(dest: Path, trajectory, *, session: str, pipeline: str | Non
     if not pieces:
         return ()
     ele = trajectory["z"].to_numpy(float) if with_ele and "z" in trajectory else None
-    times = utc_times(start, trajectory["t"].to_numpy(float)) if "t" in trajectory else None
+    times = utc_times(start, trajectory["t"].to_numpy(float), where=session) if "t" in trajectory else None
     (Path(dest) / GEO_FILES[0]).write_text(gpx_text(lat, lon, pieces, name=session, ele=ele, times=times))
     finite = distance_m is not None and math.isfinite(float(distance_m))
     props = {"session": session, "pipeline": pipeline, "distance_m": round(float(distance_m), 3) if finite else None}

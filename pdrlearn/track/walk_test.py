@@ -36,6 +36,14 @@ LOWER_BACK_NOTE = ("not given on the lower back: its step lengths read slow walk
                    "calibration: speed +34 to +164 %, decision L313); time the walk with a foot unit")
 #: the summary keys :func:`ten_metre_walk` gives (decision L312)
 KEYS = ("ten_m_walk_time_s", "ten_m_walk_speed_mps", "ten_m_walk_note")
+#: decision L387: the timed 25-foot walk's distance (m; 25 ft, the MSFC's T25FW as recalled), from standing
+T25FW_M = 7.62
+#: the summary keys :func:`t25fw` gives (decision L387)
+T25FW_KEYS = ("t25fw_time_s", "t25fw_speed_mps", "t25fw_note")
+#: decision L387: the lower back gets no T25FW for L313's reason (its step lengths move the 7.62 m mark)
+T25FW_LOWER_BACK_NOTE = ("not given on the lower back, as the 10 m walk (decision L313: its step lengths read slow "
+                         "walkers' short steps long, so the 7.62 m mark is passed early); time the walk with a foot "
+                         "unit (decision L387)")
 
 
 def _path(st: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -60,13 +68,33 @@ def ten_metre_walk(steps: pd.DataFrame) -> dict:
     its middle 10 m (module docstring); ``ten_m_walk_note`` says why there is no time (decision L313: a walk shorter
     than 14 m is not timed - no zone is shortened and nothing extrapolated -, nor one that turns inside its first
     14 m or whose rows there lack a length; nor a lower-back track, :data:`LOWER_BACK_NOTE`), else None."""
-    out = dict.fromkeys(KEYS)
-    need = 2 * ZONE_M + TIMED_M
+    return timed_walk(steps, ZONE_M, TIMED_M, KEYS, LOWER_BACK_NOTE, short_walk_note)
+
+
+def t25fw(steps: pd.DataFrame) -> dict:
+    """Decision L387: :data:`T25FW_KEYS` of a tracked step table: the timed 25-foot walk from a standing start - the
+    first walking bout whose path reaches :data:`T25FW_M` is timed from its first row's start to where its path
+    passes 7.62 m (no zone: the test starts from standing, L312's kernel with a zone of 0 m); a shorter, turning or
+    lower-back walk is not timed (L313's rules), ``t25fw_note`` says why."""
+    return timed_walk(steps, 0.0, T25FW_M, T25FW_KEYS, T25FW_LOWER_BACK_NOTE,
+                      lambda longest, need: (f"no walking bout of {need:g} m (25 ft, from standing; the longest "
+                                             f"{math.floor(longest * 100.0 + 1e-6) / 100.0:.2f} m; decision L387): "
+                                             "a shorter walk is not timed"))
+
+
+def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[str, str, str], lower_back_note: str,
+               short_note) -> dict:
+    """Decisions L312, L387: ``keys`` (time, speed, note) of the first walking bout whose path reaches ``zone_m`` +
+    ``timed_m`` + ``zone_m``, timed over the ``timed_m`` after its first ``zone_m`` (L313's refusals; ``short_note(
+    longest, need)`` the note of a walk too short)."""
+    time_key, speed_key, note_key = keys
+    out = dict.fromkeys(keys)
+    need = 2 * zone_m + timed_m
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns):
-        out["ten_m_walk_note"] = "no steps"
+        out[note_key] = "no steps"
         return out
     if _is_lower_back(steps):  # decision L313
-        out["ten_m_walk_note"] = LOWER_BACK_NOTE
+        out[note_key] = lower_back_note
         return out
     longest = 0.0
     for a, b in bout_rows(steps):
@@ -79,22 +107,22 @@ def ten_metre_walk(steps: pd.DataFrame) -> dict:
             continue
         k = int(reach[0])
         if not np.isfinite(d[: k + 1]).all() or not np.isfinite(t[: k + 1]).all():
-            out["ten_m_walk_note"] = ("a stride of the first 14 m has no length or no time (decision L313); "
-                                      "not timed")
+            out[note_key] = (f"a stride of the first {need:g} m has no length or no time (decision L313); "
+                             "not timed")
             return out
         end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
         if math.hypot(*end) < STRAIGHT_MIN * need:
-            out["ten_m_walk_note"] = (f"the first {need:.0f} m of the walk are not straight: a turn or a reversal "
-                                      f"(straight-line {math.hypot(*end):.1f} m; decision L313): a 10 m walk "
-                                      "test needs a straight walkway; not timed")
+            out[note_key] = (f"the first {need:g} m of the walk are not straight: a turn or a reversal "
+                             f"(straight-line {math.hypot(*end):.1f} m; decision L313): a {timed_m:g} m walk "
+                             "test needs a straight walkway; not timed")
             return out
-        t0, t1 = np.interp([ZONE_M, ZONE_M + TIMED_M], d[: k + 1], t[: k + 1])
+        t0, t1 = np.interp([zone_m, zone_m + timed_m], d[: k + 1], t[: k + 1])
         if not t1 > t0:
-            out["ten_m_walk_note"] = "the rows' times do not increase (decision L313); not timed"
+            out[note_key] = "the rows' times do not increase (decision L313); not timed"
             return out
-        out["ten_m_walk_time_s"], out["ten_m_walk_speed_mps"] = float(t1 - t0), float(TIMED_M / (t1 - t0))
+        out[time_key], out[speed_key] = float(t1 - t0), float(timed_m / (t1 - t0))
         return out
-    out["ten_m_walk_note"] = short_walk_note(longest, need)
+    out[note_key] = short_note(longest, need)
     return out
 
 

@@ -15,7 +15,8 @@ whole movement and classed by the pelvis's height change over it:
 * **TUG time** (W183): ``tug_time_s`` is the first sit-to-stand's start to the last stand-to-sit's end, only when
   the session starts and ends seated: no step starts before that sit-to-stand's start or after that stand-to-sit's
   end (a contact inside a transfer may: W146), and no transfer lies between them (else None: the test was not
-  recorded from seat to seat);
+  recorded from seat to seat); and at least one step lies between the rise and the sit (W340: a TUG walks; a rise
+  and a sit with nothing between are a chair stand);
 * **TUG trials** (W325): the same rule applied to each sit-to-stand directly followed by a stand-to-sit with walking
   between (:func:`tug_trial_pairs`), so two or three trials in one recording are each timed (tug_trials.csv).
 
@@ -231,7 +232,9 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
     contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
     if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
-        if len(tr) == 2 and not ((contacts < t0).any() or (contacts > t1).any()):
+        # decision W340: and a walking contact between the rise and the sit (a TUG walks; W325's trial test)
+        if len(tr) == 2 and not ((contacts < t0).any() or (contacts > t1).any()) and walked_between(
+                contacts, float(tr["end_s"].iloc[0]), float(tr["start_s"].iloc[1])):
             out["tug_time_s"] = t1 - t0
     trials = tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]), contacts)  # W325
     times = [float(tr["end_s"].iloc[j]) - float(tr["start_s"].iloc[i]) for i, j in trials]
@@ -242,6 +245,13 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
     out["tug_time_note"] = (trials_note(tr, trials) if trials else tug_note(tr, contacts)) if (
         out["tug_time_s"] is None and pair and out["sts5_time_s"] is None) else None
     return out
+
+
+def walked_between(contacts, t0: float, t1: float) -> bool:
+    """Decisions W325, W340: at least one contact (start time, s) strictly between ``t0`` (a rise's end) and ``t1``
+    (the next sit's start): the walk a TUG trial needs; without it a rise and a sit are a chair stand."""
+    c = np.asarray(contacts, dtype=float)
+    return bool(((c > t0) & (c < t1)).any())
 
 
 def tug_trial_pairs(kinds, start_s, end_s, flags, contacts) -> list[tuple[int, int]]:
@@ -261,7 +271,7 @@ def tug_trial_pairs(kinds, start_s, end_s, flags, contacts) -> list[tuple[int, i
         before = b[i - 1] if i > 0 else -np.inf
         after = a[i + 2] if i + 2 < len(kinds) else np.inf
         seated = not (((c > before) & (c < a[i])).any() or ((c > b[i + 1]) & (c < after)).any())
-        if seated and ((c > b[i]) & (c < a[i + 1])).any():
+        if seated and walked_between(c, b[i], a[i + 1]):
             out.append((i, i + 1))
     return out
 
@@ -290,6 +300,10 @@ def tug_note(tr: pd.DataFrame, contacts: np.ndarray) -> str:
                 f"seat-to-seat test ({times}); time each trial with --window START,END around one rise and the "
                 "next sit (W183, W282)")
     t0, t1 = float(first["start_s"]), float(last["end_s"])
+    if not walked_between(contacts, float(first["end_s"]), float(last["start_s"])):  # decision W340
+        return (f"no TUG time: no step between the rise ending at {float(first['end_s']):.1f} s and the sit starting "
+                f"at {float(last['start_s']):.1f} s: a chair stand, not a TUG (a TUG walks; if the person walked, the "
+                "steps were not detected) (W183, W340)")
     n0, n1 = int((contacts < t0).sum()), int((contacts > t1).sum())
     return (f"no TUG time: {n0} step(s) before the rise at {t0:.1f} s and {n1} after the sit ending at {t1:.1f} s: "
             "not recorded from seat to seat; --window START,END around the rise and the sit times it (W183, W282)")

@@ -1,0 +1,105 @@
+"""Decision L386: a track's time course in `pdrlearn report` - distance, speed and cadence per period (periods.csv,
+``track --per``), per lap (laps.csv, ``track --corridor``, L383) and the rests between walking bouts (bouts.csv) -
+as one report section per track folder holding any of them, with a figure of distance and speed over time."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.io.plasys import read_table
+
+#: decision L386: periods.csv's columns the report shows (those the file has)
+PERIOD_COLUMNS = ("period", "start_s", "end_s", "duration_s", "partial", "distance_m", "speed_m_s",
+                  "median_cadence_spm", "median_speed_mps", "time_walking_s", "n_steps", "n_steps_counts")
+#: decision L386: laps.csv's columns the report shows
+LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "distance_m", "distance_source", "speed_m_s",
+               "rest_s", "n_steps")
+#: decision L386: the rests shown are the gaps between walking bouts of at least this long (s; L104's 1 s pause)
+REST_MIN_S = 1.0
+
+
+def _read(path: Path) -> pd.DataFrame | None:
+    return read_table(path) if path.is_file() else None
+
+
+def rest_table(bouts: pd.DataFrame | None) -> pd.DataFrame | None:
+    """Decision L386: the rests of a track: each gap of at least :data:`REST_MIN_S` between one bouts.csv row's end
+    and the next one's start (``start_s``, ``end_s``, ``duration_s``); None without two bouts or without a gap."""
+    if bouts is None or len(bouts) < 2 or not {"start_s", "end_s"} <= set(bouts.columns):
+        return None
+    b = bouts.sort_values("start_s")
+    start, end = b["end_s"].to_numpy(float)[:-1], b["start_s"].to_numpy(float)[1:]
+    keep = end - start >= REST_MIN_S
+    if not keep.any():
+        return None
+    return pd.DataFrame({"rest": np.arange(1, keep.sum() + 1), "start_s": start[keep], "end_s": end[keep],
+                         "duration_s": (end - start)[keep]})
+
+
+def _with_speed(periods: pd.DataFrame) -> pd.DataFrame:
+    """periods.csv with ``speed_m_s`` = distance_m / duration_s (the period's mean speed, rests included)."""
+    out = periods.copy()
+    if {"distance_m", "duration_s"} <= set(out.columns):
+        d = pd.to_numeric(out["duration_s"], errors="coerce")
+        out["speed_m_s"] = pd.to_numeric(out["distance_m"], errors="coerce") / d.where(d > 0)
+    return out
+
+
+def time_course_section(folder: Path, label: str):
+    """Decision L386: the report section of one track ``folder`` (its periods.csv, laps.csv, bouts.csv's rests);
+    None when it has none of them."""
+    from pdrlearn.report.build import Section
+
+    periods, laps = _read(folder / "periods.csv"), _read(folder / "laps.csv")
+    rests = rest_table(_read(folder / "bouts.csv"))
+    if periods is None and laps is None and rests is None:
+        return None
+    tables, series = [], []
+    if periods is not None and len(periods):
+        p = _with_speed(periods)
+        tables.append(("per period (periods.csv)", p[[c for c in PERIOD_COLUMNS if c in p.columns]]))
+        series.append(("period", p))
+    if laps is not None and len(laps):
+        tables.append(("per lap (laps.csv)", laps[[c for c in LAP_COLUMNS if c in laps.columns]]))
+        series.append(("lap", laps))
+    if rests is not None:
+        tables.append(("rests between walking bouts (bouts.csv)", rests))
+    plots = []
+    if series:
+        name = "".join(c if c.isalnum() else "_" for c in label)[:40]
+        plots.append(("distance and speed over time (periods.csv, laps.csv)", f"time_course_{name}.png",
+                      lambda path: plot_time_course(series, rests, path)))
+    return Section(f"Time course — {label}", tables=tables, plots=plots)
+
+
+def plot_time_course(series: list[tuple[str, pd.DataFrame]], rests: pd.DataFrame | None, path: Path) -> bool:
+    """Decision L386: distance (m) and speed (m/s) of each period / lap drawn as steps over the track's time, the
+    rests shaded; False (no figure) when no row has a distance."""
+    from pdrlearn.mplconfig import ensure_config_dir
+
+    ensure_config_dir()  # decision B226
+    from pdrlearn.plots import new_figure, save_atomic
+
+    drawn = [(kind, df) for kind, df in series if {"start_s", "end_s", "distance_m"} <= set(df.columns)
+             and pd.to_numeric(df["distance_m"], errors="coerce").notna().any()]
+    if not drawn:
+        return False
+    fig, axes = new_figure(2, 1, figsize=(8, 5), sharex=True, squeeze=False)
+    for kind, df in drawn:
+        a, b = df["start_s"].to_numpy(float), df["end_s"].to_numpy(float)
+        dist = pd.to_numeric(df["distance_m"], errors="coerce").to_numpy(float)
+        speed = dist / np.where(b > a, b - a, np.nan)
+        for ax, v in ((axes[0][0], dist), (axes[1][0], speed)):
+            ax.stairs(v, np.r_[a, b[-1]], label=f"per {kind}")  # contiguous rows: each one's start, the last end
+    for ax, label in ((axes[0][0], "distance (m)"), (axes[1][0], "mean speed (m/s)")):
+        for r in (rests.itertuples() if rests is not None else []):
+            ax.axvspan(r.start_s, r.end_s, color="0.85", zorder=0)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    axes[0][0].legend(fontsize=8)
+    axes[1][0].set_xlabel("time (s; rests between bouts shaded)")
+    save_atomic(fig, Path(path))
+    return True

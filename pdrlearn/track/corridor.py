@@ -1,0 +1,175 @@
+"""A corridor walk test (6MWT / 2MWT): laps between cone turns and the corridor's distance (decisions L383, L384,
+docs/decisions/localization.md).
+
+A timed walk up and down a corridor of known length (the ATS 2002 six-minute walk test: 30 m, cones at both ends)
+is scored as the laps completed x the course length + the final partial lap (ATS 2002 guideline, as recalled). From
+a track: the laps are the stretches between cone turns (turns.csv rows of at least :data:`CONE_TURN_MIN_DEG`); each
+stretch that ends at a cone turn counts its corridor lengths, the final one its tracked distance scaled by the last
+lap's corridor / tracked ratio. Pure functions of the step table, the turn table and the bouts table.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.track.clinical import _is_lower_back, data_gap_lengths
+from pdrlearn.track.walk_test import _path
+
+#: decision L383: a turns.csv row of at least this |angle| (deg) is a cone turn (a corridor's turnaround is ~180 deg;
+#: halfway from a 90 deg corner, which ends no lap)
+CONE_TURN_MIN_DEG = 135.0
+#: decision L384: a final stretch of at least this many median stretches warns of a missed turn
+MISSED_TURN_RATIO = 1.5
+#: decision L384: the median tracked stretch outside these multiples of the corridor warns of a wrong --corridor
+CORRIDOR_RATIO_RANGE = (0.5, 2.0)
+#: decision L383: the per-minute distances' period (s; the 6MWT's minutes, from the first step)
+MINUTE_S = 60.0
+#: decision L383: laps.csv's columns
+LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "tracked_m", "distance_m", "distance_source",
+               "speed_m_s", "rest_s", "n_steps")
+#: decision L383: the summary keys :func:`corridor_walk_test` gives
+KEYS = ("corridor_m", "n_laps", "walk_test_distance_m", "walk_test_distance_per_minute_m", "fatigue_index")
+
+
+def _distance_in_time(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+    """Times and tracked path distance (m) of the whole step table: each row's start at the distance before it and
+    its contact at its cumulative length (:func:`pdrlearn.track.walk_test._path`; a row without a length as 0 m), so
+    that a rest between two rows adds no distance (decision L384)."""
+    t, d, _, _ = _path(steps)
+    cum = np.concatenate([[0.0], np.cumsum(np.nan_to_num(np.diff(d)))])  # a stride without a length adds 0 m
+    starts = steps["start_s"].to_numpy(float)
+    times = np.column_stack([starts, t[1:]]).ravel()  # start_0, contact_0, start_1, contact_1, ...
+    dist = np.column_stack([cum[:-1], cum[1:]]).ravel()
+    return np.maximum.accumulate(np.nan_to_num(times, nan=float(t[0]))), dist
+
+
+def _row_steps(steps: pd.DataFrame) -> np.ndarray:
+    """(N,) the steps each row stands for (bouts.csv's ``n_steps``, decision L124): a foot stride 2, a foot-data gap
+    row 0, a lower-back row (a contact) 1."""
+    if _is_lower_back(steps):
+        return np.ones(len(steps))
+    return np.where(data_gap_lengths(steps) > 0, 0.0, 2.0)
+
+
+def _rest_s(start: float, end: float, bouts: pd.DataFrame | None) -> float:
+    """The time of ``[start, end]`` outside every walking bout of bouts.csv (decision L384)."""
+    if bouts is None or not len(bouts):
+        return float(end - start)
+    a = np.clip(bouts["start_s"].to_numpy(float), start, end)
+    b = np.clip(bouts["end_s"].to_numpy(float), start, end)
+    return float(max(end - start - np.sum(np.maximum(b - a, 0.0)), 0.0))
+
+
+def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
+                  bouts: pd.DataFrame | None = None,
+                  span: tuple[float, float] | None = None) -> tuple[pd.DataFrame, dict, list[str]]:
+    """Decisions L383, L384: ``(laps, summary, warnings)`` of a tracked step table walked up and down a corridor of
+    ``corridor_m`` metres: laps.csv's rows (:data:`LAP_COLUMNS`), the summary's :data:`KEYS` and the warning lines
+    (missed or extra turns, a corridor length far from the tracked laps). ``span``: the test's start and end (s;
+    ``track --window``'s), else the first step's start and the last step's end."""
+    out = dict.fromkeys(KEYS)
+    out["corridor_m"] = float(corridor_m)
+    empty = pd.DataFrame(columns=list(LAP_COLUMNS))
+    if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns):
+        return empty, out, ["corridor walk test: no steps; no laps"]
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    t, d = _distance_in_time(st)
+    t0, t_end = (float(t[0]), float(st["end_s"].max())) if span is None else (float(span[0]), float(span[1]))
+    contact = t[1::2]  # each row's contact
+    n_row = _row_steps(st)
+    turns = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s", "angle_deg"])
+    cone = turns[np.abs(turns["angle_deg"].to_numpy(float)) >= CONE_TURN_MIN_DEG] if len(turns) else turns
+    mids = ((cone["start_s"].to_numpy(float) + cone["end_s"].to_numpy(float)) / 2.0) if len(cone) else np.array([])
+    mids = np.sort(mids[(mids > t0) & (mids < t_end)])
+    bounds = np.concatenate([[t0], mids, [t_end]])
+    tracked = np.diff(np.interp(bounds, t, d))  # the stretches between cone turns (and the test's ends)
+    warnings: list[str] = []
+    ref = float(np.median(tracked[:-1])) if len(tracked) > 1 else float("nan")
+    if np.isfinite(ref) and not (CORRIDOR_RATIO_RANGE[0] * corridor_m <= ref <= CORRIDOR_RATIO_RANGE[1] * corridor_m):
+        warnings.append(f"corridor walk test: the median lap tracked {ref:.1f} m against --corridor {corridor_m:g} m: "
+                        "is the corridor length right? (decision L384)")
+    # decision L384: a stretch ending at a cone turn counts round(tracked / median) corridor lengths; 0 joins the next
+    stretches: list[tuple[float, float, float, int]] = []  # (start, end, tracked, corridor laps; -1 = the final one)
+    start, acc = t0, 0.0
+    for k, m in enumerate(tracked[:-1]):
+        acc += m
+        c = int(np.floor(acc / ref + 0.5)) if ref > 0 else 0
+        if c == 0:
+            warnings.append(f"corridor walk test: the turn at {bounds[k + 1]:.1f} s came after {acc:.1f} m of a "
+                            f"{ref:.1f} m lap: counted as no lap end (an extra turn; decision L384)")
+            continue
+        if c >= 2:
+            warnings.append(f"corridor walk test: lap {len(stretches) + 1} tracked {acc:.1f} m, {c} laps of "
+                            f"{ref:.1f} m: counted as {c} laps (a missed turn; decision L384)")
+        stretches.append((start, float(bounds[k + 1]), acc, c))
+        start, acc = float(bounds[k + 1]), 0.0
+    last = acc + tracked[-1]
+    stretches.append((start, t_end, last, -1))
+    if np.isfinite(ref) and ref > 0 and last >= MISSED_TURN_RATIO * ref:
+        warnings.append(f"corridor walk test: the final stretch tracked {last:.1f} m, {last / ref:.1f} laps of "
+                        f"{ref:.1f} m: a missed turn? counted as at most one corridor length (decision L384)")
+    singles = [s for s in stretches if s[3] == 1 and s[2] > 0]
+    scale = corridor_m / singles[-1][2] if singles else 1.0  # L383: the last single lap's corridor / tracked
+    rows, known = [], [(t0, 0.0)]  # known: (time, corridor distance) at each stretch's end
+    for i, (a, b, m, c) in enumerate(stretches, start=1):
+        dist = c * corridor_m if c > 0 else min(m * scale, corridor_m)
+        source = "corridor" if c > 0 else ("tracked x scale" if singles else "tracked")
+        inside = (contact > a) & (contact <= b)
+        rows.append({"lap": i, "start_s": a, "end_s": b, "duration_s": b - a, "corridor_laps": max(c, 0),
+                     "tracked_m": m, "distance_m": dist, "distance_source": source,
+                     "speed_m_s": dist / (b - a) if b > a else float("nan"), "rest_s": _rest_s(a, b, bouts),
+                     "n_steps": int(n_row[inside].sum())})
+        known.append((b, known[-1][1] + dist))
+    laps = pd.DataFrame(rows, columns=list(LAP_COLUMNS))
+    out["n_laps"] = int(laps["corridor_laps"].sum())
+    out["walk_test_distance_m"] = float(laps["distance_m"].sum())
+    per_minute = _per_minute(t, d, stretches, laps["distance_m"].to_numpy(float), t0, t_end)
+    out["walk_test_distance_per_minute_m"] = per_minute
+    out["fatigue_index"] = per_minute[-1] / per_minute[0] if len(per_minute) >= 2 and per_minute[0] > 0 else None
+    return laps, out, warnings
+
+
+def _per_minute(t: np.ndarray, d: np.ndarray, stretches, dist: np.ndarray, t0: float, t_end: float) -> list[float]:
+    """Decision L383: the corridor distance walked in each full minute from ``t0``: inside a stretch its corridor
+    distance is shared out in proportion to its tracked distance."""
+    n = int(np.floor((t_end - t0) / MINUTE_S + 1e-9))
+    if n < 1:
+        return []
+    edges = t0 + MINUTE_S * np.arange(n + 1)
+    total = np.zeros(n + 1)
+    before = 0.0
+    for (a, b, m, _), dd in zip(stretches, dist, strict=True):
+        inside = (edges > a) & (edges <= b)
+        if m > 0:
+            share = (np.interp(edges[inside], t, d) - np.interp(a, t, d)) / m
+        else:
+            share = (edges[inside] - a) / (b - a) if b > a else np.ones(inside.sum())
+        total[inside] = before + dd * np.clip(share, 0.0, 1.0)
+        before += dd
+    return [float(v) for v in np.diff(total)]
+
+
+def corridor_length(corridor: float | None) -> float | None:
+    """Decision B293: ``--corridor``'s metres checked before any session (None: no corridor walk test)."""
+    if corridor is None:
+        return None
+    import math
+
+    from pdrlearn.errors import DataError
+
+    if not math.isfinite(corridor) or corridor <= 0:
+        raise DataError(f"--corridor {corridor:g}: give the corridor's length in metres, a positive number "
+                        "(e.g. --corridor 30 for the ATS 6MWT's 30 m course)")
+    return float(corridor)
+
+
+def corridor_line(summary: dict) -> str:
+    """Decision L383: ``track``'s line of the corridor walk test."""
+    per = summary.get("walk_test_distance_per_minute_m") or []
+    fatigue = summary.get("fatigue_index")
+    return (f"corridor walk test ({summary['corridor_m']:g} m): {summary.get('n_laps') or 0} lap(s), "
+            f"{(summary.get('walk_test_distance_m') or 0.0):.1f} m (laps x {summary['corridor_m']:g} m + the final "
+            f"partial lap, laps.csv; L383)"
+            + (f"; per minute from the test's start {' / '.join(f'{v:.1f}' for v in per)} m" if per else "")
+            + (f"; fatigue index {fatigue:.2f} (last / first minute)" if fatigue is not None else ""))
