@@ -1,13 +1,11 @@
 """Decision S74: the opt-in population bounce (the pelvis rises as much as the real lower back's population K reads
-as the step; S73 found the simulated pelvis rising about 1.19 x too little for its step)."""
+as the step; S73 found the simulated pelvis rising about 1.19 x too little for its step). The CLI knob:
+`tests/test_sim_bounce.py::test_cli_bounce_option[population]`."""
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 
-from pdrlearn.cli import main
 from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
 from pdrlearn.sim.body import BOUNCE_MODES, MID_PELVIS_BOUNCE_M, POPULATION_K, pendulum_rise
 
@@ -73,17 +71,3 @@ def test_population_bounce_leaves_the_foot_alone():
     assert not np.array_equal(a.streams["wAccelerometer"].values, b.streams["wAccelerometer"].values)
     assert "population" in BOUNCE_MODES
 
-
-def test_cli_population_bounce(tmp_path, capsys):
-    """`pdrlearn simulate --bounce population` writes the knob; a bad value's one line names all three modes."""
-    out = tmp_path / "pop"
-    code = main(["simulate", "--route", "straight:4", "--user-seed", "7415", "--bounce", "population",
-                 "--out", str(out)])
-    _, err = capsys.readouterr()
-    assert code == 0, err
-    assert json.loads((out / "meta.json").read_text())["knobs"]["bounce"] == "population"
-    code = main(["simulate", "--route", "straight:4", "--user-seed", "7415", "--bounce", "foo",
-                 "--out", str(tmp_path / "x")])
-    _, err = capsys.readouterr()
-    assert code == 2 and "constant, pendulum or population" in err and err.count("\n") == 1, err
-    assert not (tmp_path / "x").exists()
