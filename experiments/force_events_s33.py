@@ -60,12 +60,15 @@ def l388() -> None:
             truth = true_stance_pct(s.steps, st["event_s"])
             err = np.abs(st["stance_pct"].to_numpy(float) - truth)
             row += [float(np.nanmedian(err)), int(np.isfinite(st["stance_pct"]).sum()), r.info["toe_off_source"]]
-        P.FORCE_TOE_OFF = True
+        P.FORCE_TOE_OFF = False
         print(f"{u} | {row[0]:.2f} {row[1]} {row[2]} | {row[3]:.2f} {row[4]} {row[5]} | "
               f"{np.nanmedian(truth):.1f}")
 
 
 def l389() -> None:
+    import pdrlearn.displace.force_clock as FC
+
+    FC.FORCE_OFFSET_WARN = True  # the rule judged the warning as it would be on
     print("L389 user | offset 0 / +60 / +150 ms (s) | warned 0 / +60 / +150 | (+60) - (0)")
     for u in range(7356, 7362):
         s = simulate("A", UserProfile.from_seed(u), "normal", rate_hz=100.0)
@@ -76,6 +79,7 @@ def l389() -> None:
             warned.append(any("decision L389" in w for w in r.info["warnings"]))
         d = offs[1] - offs[0] if None not in offs[:2] else float("nan")
         print(f"{u} | {offs} | {warned} | {d:+.3f}")
+    FC.FORCE_OFFSET_WARN = False
 
 
 if __name__ == "__main__":

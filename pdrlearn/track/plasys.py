@@ -826,9 +826,9 @@ GAP_STRIDE_HEIGHT = True
 #: Decision L184 (adopted by its rule, experiments/gated_level_dz.py): offline M3 gives L39's level rule to the
 #: strides whose terrain class the confidence gate (L18) dropped, instead of their raw integrated height
 GATED_LEVEL_DZ = True
-#: decision L388: ``--toe-off`` with a force stance takes the insoles' drop-off as the toe-off (False: L73's gyroscope
-#: toe-off always; set by L388's measurement)
-FORCE_TOE_OFF = True
+#: decision L388 (not adopted: its rule was not met, so off): True = ``--toe-off`` with a force stance takes the
+#: insoles' drop-off as the toe-off; False = L73's gyroscope toe-off always
+FORCE_TOE_OFF = False
 
 
 def _sideways_rows(lateral: np.ndarray, disp: np.ndarray) -> np.ndarray:
