@@ -6,7 +6,8 @@ Usage:
 L388: users 7350-7355 (scenario A, normal, 100 Hz, with force), ``track_plasys(toe_off=True)`` with the force
 drop-off toe-off and with L73's gyroscope toe-off; per user the median over strides of |stance_pct - true stance %|
 (truth: the simulated steps' ``ic_s`` / ``tc_s``) and ``n_stance_times``. L389: users 7356-7361, ``force_offset_s``
-and the warning for the force shifted by 0, +60 and +150 ms. Prints the tables; writes nothing.
+and the warning for the force shifted by 0, +60 and +150 ms; L390: the same on users 7362-7367 with the
+drop-off against the gyroscope toe-off. Prints the tables; writes nothing.
 """
 
 from __future__ import annotations
@@ -65,24 +66,27 @@ def l388() -> None:
               f"{np.nanmedian(truth):.1f}")
 
 
-def l389() -> None:
+def offsets(users, from_toe_off: bool) -> None:
     import pdrlearn.displace.force_clock as FC
 
-    FC.FORCE_OFFSET_WARN = True  # the rule judged the warning as it would be on
-    print("L389 user | offset 0 / +60 / +150 ms (s) | warned 0 / +60 / +150 | (+60) - (0)")
-    for u in range(7356, 7362):
+    FC.FORCE_OFFSET_WARN = True  # the rules judged the warning as it would be on
+    FC.OFFSET_FROM_TOE_OFF = from_toe_off
+    print(f"{'L390' if from_toe_off else 'L389'} user | offset 0 / +60 / +150 ms (s) | warned 0 / +60 / +150 | "
+          "(+60) - (0)")
+    for u in users:
         s = simulate("A", UserProfile.from_seed(u), "normal", rate_hz=100.0)
         offs, warned = [], []
         for dt in (0.0, 0.06, 0.15):
             r = P.track_plasys(shifted(s, dt))
             offs.append(r.info["force_offset_s"])
-            warned.append(any("decision L389" in w for w in r.info["warnings"]))
+            warned.append(any("decision L390" in w or "decision L389" in w for w in r.info["warnings"]))
         d = offs[1] - offs[0] if None not in offs[:2] else float("nan")
         print(f"{u} | {offs} | {warned} | {d:+.3f}")
-    FC.FORCE_OFFSET_WARN = False
+    FC.FORCE_OFFSET_WARN, FC.OFFSET_FROM_TOE_OFF = False, False
 
 
 if __name__ == "__main__":
     logging.disable(logging.WARNING)
     l388()
-    l389()
+    offsets(range(7356, 7362), False)  # decision L389
+    offsets(range(7362, 7368), True)  # decision L390

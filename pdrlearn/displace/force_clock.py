@@ -18,9 +18,14 @@ import numpy as np
 PAIR_MAX_S = 0.3
 #: L389: a larger |offset| (s) is warned about: two samples at the thesis' 20 Hz (thesis ch.4.3), beyond the two
 #: detectors' clean disagreement (experiments/results/step_count.csv: accel -45..-11 ms, accel-force +12..+27 ms)
-FORCE_OFFSET_MAX_S = 0.1
-#: L389 (not adopted: two of six clean users read -58 / -67 ms, so a +150 ms shift stayed under the bound): the
-#: warning is off; ``force_offset_s`` is reported either way. True = warn above :data:`FORCE_OFFSET_MAX_S`
+L389_OFFSET_MAX_S = 0.1
+#: L390: a larger |offset| (s) is warned about: one sample period at the thesis' 20 Hz (thesis ch.4.3), ten times
+#: the clean difference of the two toe-offs (trial T2: drop-off -18.6 ms, gyroscope -14 ms against the truth)
+L390_OFFSET_MAX_S = 0.05
+#: L390: the offset from the force drop-off against the gyroscope toe-off (True) or L389's force onset against the
+#: accelerometer impact (False; L389 not adopted: two of six clean users read -58 / -67 ms)
+OFFSET_FROM_TOE_OFF = False
+#: L389 / L390: warn above the estimate's bound (``force_offset_s`` is reported either way)
 FORCE_OFFSET_WARN = False
 
 
@@ -69,25 +74,37 @@ def force_events(session):
     return df if len(df) else None
 
 
-def offset_check(session, fev, names: list[str], *, bound: float = FORCE_OFFSET_MAX_S, warn: bool | None = None
-                 ) -> tuple[float | None, str | None]:
-    """Decisions L389 / B297: (the force-to-IMU clock offset in s, rounded to 1 ms, or None; the warning line when
-    ``warn`` (None: :data:`FORCE_OFFSET_WARN`) and it exceeds ``bound``, else None). ``fev``: :func:`force_events`'
-    table; ``names`` the force streams."""
+def offset_check(session, fev, names: list[str], *, table=None, tc_gyro=None, bound: float | None = None,
+                 warn: bool | None = None) -> tuple[float | None, str | None]:
+    """Decisions L389 / L390 / B297: (the force-to-IMU clock offset in s, rounded to 1 ms, or None; the warning line
+    when ``warn`` (None: :data:`FORCE_OFFSET_WARN`) and it exceeds ``bound``, else None). ``bound`` None: the
+    estimate's (:data:`L390_OFFSET_MAX_S` or :data:`L389_OFFSET_MAX_S`). ``fev``: :func:`force_events`' table;
+    ``names``: the force streams. With :data:`OFFSET_FROM_TOE_OFF` (L390): the force drop-offs inside the strides
+    of ``table`` against their gyroscope toe-offs ``tc_gyro`` (B,); else (L389): the force onsets against the
+    accelerometer detector's impacts."""
     from pdrlearn.steps import AccelStepDetector
 
     if fev is None:
         return None, None
-    imu = AccelStepDetector().detect(session)
-    off, n = clock_offset(fev["event_s"], imu["event_s"] if len(imu) else [])
+    if bound is None:
+        bound = L390_OFFSET_MAX_S if OFFSET_FROM_TOE_OFF else L389_OFFSET_MAX_S
+    if OFFSET_FROM_TOE_OFF:  # decision L390
+        if table is None or tc_gyro is None:
+            return None, None
+        off, n = clock_offset(toe_offs_in(fev["start_s"], table["start_s"], table["event_s"]), tc_gyro)
+        what = "force drop-off - gyroscope toe-off, decision L390"
+    else:  # decision L389
+        imu = AccelStepDetector().detect(session)
+        off, n = clock_offset(fev["event_s"], imu["event_s"] if len(imu) else [])
+        what = "force onset - accelerometer impact, decision L389"
     if not n:
         return None, None
     off = round(off, 3)
     if not (FORCE_OFFSET_WARN if warn is None else warn) or abs(off) <= bound:
         return off, None
     files = ", ".join(f"{n_}.csv" for n_ in names)
-    line = (f"{files} run {off * 1000:+.0f} ms against the foot IMU's own contacts (median of {n} strides, force onset "
-            f"- accelerometer impact; more than {bound * 1000:.0f} ms, decision L389): the insoles' clock is not the "
+    line = (f"{files} run {off * 1000:+.0f} ms against the foot IMU's own events (median of {n} strides, {what}; "
+            f"more than {bound * 1000:.0f} ms): the insoles' clock is not the "
             f"IMU's - shift the insole file's timestamps by about {-off * 1000:+.0f} ms and import it again "
             "(`pdrlearn import ... --merge`), or pass --ignore-force; the force data was not shifted (B297)")
     return off, line

@@ -1045,11 +1045,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             warnings += [tare_line] if tare_line else []
         stance, stance_source, lines, imu_spans = checked_stance(session, foot, use_force=not ignore_force)  # L365/6
         warnings += lines
-        if stance_source == "force":  # decisions L389 / B297: the insoles' clock against the IMU's own contacts
+        if stance_source == "force":  # decisions L388-L390: the force detector's events (onsets, drop-offs)
             fev = force_events(session)
-            force_offset, clock_line = offset_check(session, fev, [n for n in ("fForceA", "fForceB")
-                                                                   if n in session.streams])
-            warnings += [clock_line] if clock_line else []
         if stance_source == "inertial" and not ignore_force:
             if method == "M2":
                 raise MissingSensorError(
@@ -1282,10 +1279,15 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)
     tc = None
-    if toe_off:  # decision L73: toe-off from the foot gyroscope at its native rate, stance/swing split
-        from pdrlearn.track.toeoff import toe_off_times
+    if toe_off or fev is not None:  # decision L73: toe-off from the foot gyroscope at its native rate (L390: the
+        from pdrlearn.track.toeoff import toe_off_times  # insoles' clock is checked against it)
 
         tc = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
+    if fev is not None:  # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events
+        force_offset, clock_line = offset_check(session, fev, [n for n in ("fForceA", "fForceB")
+                                                               if n in session.streams], table=table, tc_gyro=tc)
+        warnings += [clock_line] if clock_line else []
+    if toe_off:  # decision L73: the stance/swing split
         toe_off_source = "gyroscope"
         if fev is not None and FORCE_TOE_OFF:  # decision L388: the force drop-off where the insoles have one
             tf = toe_offs_in(fev["start_s"], table["start_s"], table["event_s"])
