@@ -82,7 +82,7 @@ def offsets(users, from_toe_off: bool) -> None:
             warned.append(any("decision L390" in w or "decision L389" in w for w in r.info["warnings"]))
         d = offs[1] - offs[0] if None not in offs[:2] else float("nan")
         print(f"{u} | {offs} | {warned} | {d:+.3f}")
-    FC.FORCE_OFFSET_WARN, FC.OFFSET_FROM_TOE_OFF = False, False
+    FC.FORCE_OFFSET_WARN, FC.OFFSET_FROM_TOE_OFF = True, True  # the defaults (L390 adopted)
 
 
 if __name__ == "__main__":

@@ -22,11 +22,11 @@ L389_OFFSET_MAX_S = 0.1
 #: L390: a larger |offset| (s) is warned about: one sample period at the thesis' 20 Hz (thesis ch.4.3), ten times
 #: the clean difference of the two toe-offs (trial T2: drop-off -18.6 ms, gyroscope -14 ms against the truth)
 L390_OFFSET_MAX_S = 0.05
-#: L390: the offset from the force drop-off against the gyroscope toe-off (True) or L389's force onset against the
-#: accelerometer impact (False; L389 not adopted: two of six clean users read -58 / -67 ms)
-OFFSET_FROM_TOE_OFF = False
-#: L389 / L390: warn above the estimate's bound (``force_offset_s`` is reported either way)
-FORCE_OFFSET_WARN = False
+#: L390 (adopted): the offset from the force drop-off against the gyroscope toe-off (True) or L389's force onset
+#: against the accelerometer impact (False; L389 not adopted: two of six clean users read -58 / -67 ms)
+OFFSET_FROM_TOE_OFF = True
+#: L389 / L390: warn above the estimate's bound (``force_offset_s`` is reported either way; on since L390)
+FORCE_OFFSET_WARN = True
 
 
 def clock_offset(force_ic, imu_ic, *, max_pair_s: float = PAIR_MAX_S) -> tuple[float, int]:
