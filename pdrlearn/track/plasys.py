@@ -826,6 +826,10 @@ GAP_STRIDE_HEIGHT = True
 #: Decision L184 (adopted by its rule, experiments/gated_level_dz.py): offline M3 gives L39's level rule to the
 #: strides whose terrain class the confidence gate (L18) dropped, instead of their raw integrated height
 GATED_LEVEL_DZ = True
+#: decision B297: added to L161's unit-offset line when the insoles' own clock is off (L390): the foot's contacts it
+#: compares the waist's steps with are the insoles' (trial T2 finding 8: a +150 ms insole shift blamed the waist)
+INSOLE_CLOCK_NOTE = (" - but the foot's contacts here are the force insoles', whose clock is off against the foot IMU "
+                     "(decision L390's line): re-align the insoles first")
 #: decision L388 (not adopted: its rule was not met, so off): True = ``--toe-off`` with a force stance takes the
 #: insoles' drop-off as the toe-off; False = L73's gyroscope toe-off always
 FORCE_TOE_OFF = False
@@ -1286,7 +1290,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if fev is not None:  # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events
         force_offset, clock_line = offset_check(session, fev, [n for n in ("fForceA", "fForceB")
                                                                if n in session.streams], table=table, tc_gyro=tc)
-        warnings += [clock_line] if clock_line else []
+        if clock_line:  # B297: L161's waist-vs-foot line compares with the insoles' contacts, so it says so
+            warnings[:] = [w + INSOLE_CLOCK_NOTE if "decision L161" in w else w for w in warnings]
+            warnings.append(clock_line)
     if toe_off:  # decision L73: the stance/swing split
         toe_off_source = "gyroscope"
         if fev is not None and FORCE_TOE_OFF:  # decision L388: the force drop-off where the insoles have one
