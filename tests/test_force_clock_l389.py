@@ -70,6 +70,7 @@ def test_force_offset_follows_a_shift_and_is_warned_l390(walk, tmp_path):
         assert len(lines) == 1 and "fForceA.csv, fForceB.csv" in lines[0] and "--ignore-force" in lines[0]
         assert "--merge" in lines[0] and "not shifted" in lines[0]
     assert clean.info["stance_source"] == r150.info["stance_source"] == "force"  # L365 passes the shift
+    assert "tc_s" not in clean.steps and clean.info["toe_off_source"] is None  # the check adds no --toe-off columns
 
 
 def test_the_track_cli_writes_force_offset_s_and_one_line(walk, tmp_path, capsys):

@@ -1282,19 +1282,19 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)
-    tc = None
+    tc, tc_gyro = None, None
     if toe_off or fev is not None:  # decision L73: toe-off from the foot gyroscope at its native rate (L390: the
         from pdrlearn.track.toeoff import toe_off_times  # insoles' clock is checked against it)
 
-        tc = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
+        tc_gyro = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
     if fev is not None:  # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events
         force_offset, clock_line = offset_check(session, fev, [n for n in ("fForceA", "fForceB")
-                                                               if n in session.streams], table=table, tc_gyro=tc)
+                                                               if n in session.streams], table=table, tc_gyro=tc_gyro)
         if clock_line:  # B297: L161's waist-vs-foot line compares with the insoles' contacts, so it says so
             warnings[:] = [w + INSOLE_CLOCK_NOTE if "decision L161" in w else w for w in warnings]
             warnings.append(clock_line)
-    if toe_off:  # decision L73: the stance/swing split
-        toe_off_source = "gyroscope"
+    if toe_off:  # decision L73: the stance/swing split (the toe-off columns only with --toe-off)
+        tc, toe_off_source = tc_gyro, "gyroscope"
         if fev is not None and FORCE_TOE_OFF:  # decision L388: the force drop-off where the insoles have one
             tf = toe_offs_in(fev["start_s"], table["start_s"], table["event_s"])
             toe_off_source = ("force" if np.isfinite(tf).all() else "force+gyroscope") if np.isfinite(tf).any() \
