@@ -327,3 +327,22 @@ def test_a_late_force_clock_loses_no_stride_at_the_seams_l397(tmp_path, capsys):
     assert res.distance_m == pytest.approx(clean.distance_m, rel=0.01)
     dur = (res.steps["end_s"] - res.steps["start_s"]).to_numpy()
     assert dur.max() < 1.6  # no stride spans a lost one
+
+
+def test_ignore_force_refuses_a_detector_that_reads_the_force_b299(walk, tmp_path, capsys):
+    """R2 finding 5: --ignore-force --detector accel-force took its strides from the insoles."""
+    from pdrlearn.cli import main
+    from pdrlearn.errors import DataError
+    from pdrlearn.steps import AccelForceStepDetector
+
+    for steps in ("accel-force", "accel-force:ref_stances=0", AccelForceStepDetector()):
+        with pytest.raises(DataError, match="reads fForceA/fForceB; use --detector accel .*B299"):
+            _track(walk, steps=steps, ignore_force=True)
+    for cmd in (["track", str(walk)], ["track-all", str(walk.parent)]):
+        out = tmp_path / cmd[0]
+        code = main([*cmd, "--ignore-force", "--detector", "accel-force", "--out", str(out)])
+        err = capsys.readouterr().err
+        assert code == 2 and "B299" in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+        assert not out.exists()
+    res = _track(walk, steps="accel", ignore_force=True)  # the IMU's detector stays allowed
+    assert res.info["stance_source"] == "inertial" and len(res.steps) > 10

@@ -111,6 +111,24 @@ _NO_SPANS = np.zeros((0, 2))
 IGNORE_FORCE = "--ignore-force (ignore_force=True)"
 
 
+def reads_force_refusal(steps) -> str | None:
+    """Decision B299: the one line refusing ``ignore_force=True`` (L366) with a foot detector that reads the force
+    sensors (``steps``: a registered detector's name, ``"NAME:key=value,..."``, or a
+    :class:`~pdrlearn.steps.StepDetector`; it reads them when its ``input_columns`` name a force channel), else None.
+    Without it ``--ignore-force --detector accel-force`` still took its strides from the insoles (review R2,
+    finding 5)."""
+    import pdrlearn.steps as steps_mod
+
+    if isinstance(steps, str):
+        name = steps.split(":", 1)[0].strip()
+        steps = steps_mod.DETECTORS.get(name)
+    cols = getattr(steps, "input_columns", ()) if steps is not None and not isinstance(steps, str) else ()
+    if not any(str(c).startswith("force") for c in cols):
+        return None
+    return (f"{IGNORE_FORCE} leaves the force sensors out, and the detector {steps.name} (--detector / steps=) reads "
+            f"fForceA/fForceB; use --detector accel (steps='accel') or drop --ignore-force (decision B299)")
+
+
 def _force_only_gaps(session, t: np.ndarray, names: list[str]) -> np.ndarray:
     """(n,) True at the times ``t`` inside a gap of a force stream that the foot IMU does not share."""
     def mask(stream_names) -> np.ndarray:
