@@ -7,6 +7,7 @@ import json
 import math
 
 import numpy as np
+import pytest
 
 from pdrlearn.cli import main
 from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
@@ -76,15 +77,18 @@ def test_pendulum_bounce_on_a_standstill():
     assert np.array_equal(a.streams["wAccelerometer"].values, b.streams["wAccelerometer"].values)
 
 
-def test_cli_bounce_option(tmp_path, capsys):
-    """`pdrlearn simulate --bounce pendulum` writes the knob into meta.json; a bad value is one error line."""
+@pytest.mark.parametrize("mode", ["pendulum", "population"])  # S29, S74
+def test_cli_bounce_option(tmp_path, capsys, mode):
+    """`pdrlearn simulate --bounce MODE` writes the knob into meta.json; a bad value is one error line naming the
+    three modes (S74)."""
     out = tmp_path / "pend"
-    code = main(["simulate", "--route", "straight:4", "--user-seed", "1", "--bounce", "pendulum", "--out", str(out)])
+    code = main(["simulate", "--route", "straight:4", "--user-seed", "1", "--bounce", mode, "--out", str(out)])
     _, err = capsys.readouterr()
     assert code == 0, err
-    assert json.loads((out / "meta.json").read_text())["knobs"]["bounce"] == "pendulum"
+    assert json.loads((out / "meta.json").read_text())["knobs"]["bounce"] == mode
     code = main(["simulate", "--route", "straight:4", "--user-seed", "1", "--bounce", "foo",
                  "--out", str(tmp_path / "x")])
     _, err = capsys.readouterr()
     assert code != 0 and err.startswith("error: --bounce") and err.count("\n") == 1, err
+    assert "constant, pendulum or population" in err, err
     assert not (tmp_path / "x").exists()

@@ -88,7 +88,9 @@ def simulate_cmd(
         "constant",
         "--bounce",
         help="constant (default): the user's pelvis bounce on every step; pendulum: scaled by the inverted "
-        "pendulum's rise for each step's length, so short slow steps bounce less (decision S29).",
+        "pendulum's rise for each step's length, so short slow steps bounce less (decision S29); population: "
+        "the rise that real lower backs' population K (4.587/4) reads as the step, for checking the uncalibrated "
+        "lower back (decision S74).",
     ),
     rocker: str = typer.Option(
         "hermite", "--rocker", help="The simulated heel rocker (initial contact -> foot flat): hermite (default) "
@@ -183,7 +185,7 @@ def simulate_cmd(
     if pelvis not in PELVIS_MODES:  # the simulator's own list (S27)
         raise DataError(f"--pelvis {pelvis!r}: must be {' or '.join(PELVIS_MODES)}")
     if bounce not in BOUNCE_MODES:  # decision S29
-        raise DataError(f"--bounce {bounce!r}: must be {' or '.join(BOUNCE_MODES)}")
+        raise DataError(f"--bounce {bounce!r}: must be {', '.join(BOUNCE_MODES[:-1])} or {BOUNCE_MODES[-1]}")
     if rocker not in ROCKER_MODES:  # decisions S31, S63
         raise DataError(f"--rocker {rocker!r}: must be {' or '.join(ROCKER_MODES)}")
     if user_seed < 0 or seed < 0:

@@ -411,7 +411,12 @@ PELVIS_SWAY_GAIN = 1.0
 # 0.07-0.34 m/s^2 at the stride frequency, roll -43..+52 deg from the lateral acceleration, lateral
 # acceleration 0.40-0.93 m/s^2). Drawn per user, uniform over these ranges.
 PELVIS_MODES = ("model", "realistic")
-BOUNCE_MODES = ("constant", "pendulum")  # decision S29
+BOUNCE_MODES = ("constant", "pendulum", "population")  # decisions S29, S74
+#: mobgap SlZijlstra's population factor K0 = 4.587 / 4, fitted on real lower-back recordings (decision W46); the
+#: "population" bounce (S74) rises as much as seed 003 eq. 1 with K0 reads as the step
+POPULATION_K = 4.587 / 4
+#: the middle of UserProfile.from_seed's 3-4.5 cm pelvis bounce draw: a user's bounce relative to it (S74)
+MID_PELVIS_BOUNCE_M = 0.0375
 COMFORTABLE_STEP_PER_HEIGHT = 0.415  # step length / stature at a comfortable speed (UserProfile.from_seed's mean)
 REALISTIC_ROLL_DEG = (0.4, 2.0)  # roll amplitude toward the stance side
 REALISTIC_ROLL_PHASE_DEG = (-45.0, 45.0)  # roll phase ahead of the sway acceleration
@@ -526,6 +531,16 @@ def pendulum_bounce(steps: list[Footstep], ev: Events, initial: dict, user: User
     return user.pelvis_bounce_m * pendulum_rise(s, user.leg_length_m) / max(ref, 1e-9)
 
 
+def population_bounce(steps: list[Footstep], initial: dict, user: UserProfile) -> np.ndarray:
+    """Peak-to-peak pelvis bounce (m) of each step (decision S74): ``(pelvis_bounce_m / 0.0375) x h(s_k / K0, L)``,
+    the rise that seed 003 eq. 1 with mobgap's population K0 = 4.587/4 (W46) reads as the step ``s_k`` (seed 003
+    eq. 1 solved for h, :func:`pendulum_rise`), ``L`` the waist unit's height (the leg the pipeline uses, W62),
+    scaled by the user's bounce relative to the middle of its draw so that users still differ (S73: the pendulum
+    bounce rose about 1.19 x too little for its step compared with real lower-back recordings)."""
+    s = step_lengths(steps, initial)
+    return (user.pelvis_bounce_m / MID_PELVIS_BOUNCE_M) * pendulum_rise(s / POPULATION_K, user.sensor_height_m)
+
+
 def pelvis_pose(
     t: np.ndarray,
     steps: list[Footstep],
@@ -547,14 +562,15 @@ def pelvis_pose(
 
     ``pelvis``: None = the model's sway and obliquity; :func:`realistic_pelvis` = decision S27's.
     ``bounce_mode``: ``"constant"`` = the user's ``pelvis_bounce_m`` on every step; ``"pendulum"`` = scaled per
-    step by the inverted pendulum's rise for the step's length (decision S29, :func:`pendulum_bounce`).
+    step by the inverted pendulum's rise for the step's length (decision S29, :func:`pendulum_bounce`);
+    ``"population"`` = the rise the real lower back's population K reads as the step (S74, :func:`population_bounce`).
 
     Decision S44, evaluation in parts: ``span`` = (first, last) time of the whole grid that ``t`` is a part of, and
     ``vibration_source`` = :func:`trunk_vibration_source` over that span (drawn once): every value at a time is then
     the one the whole grid gets there."""
     t_first, t_last = (float(t[0]), float(t[-1])) if span is None else span
     bounce_amp = (pendulum_bounce(steps, ev, initial, user) if bounce_mode == "pendulum"
-                  else None)
+                  else population_bounce(steps, initial, user) if bounce_mode == "population" else None)
     feet = {f: (np.asarray(h, float), y) for f, (h, y) in initial.items()}
 
     def config() -> tuple[float, ...]:

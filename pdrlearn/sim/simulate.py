@@ -83,7 +83,7 @@ KNOBS: dict[str, object] = {
     "waist_mount_deg": (0.0, 0.0, 0.0),
     "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
     "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
-    "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29)
+    "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29); "population": S74
     "rocker": "hermite",  # "smooth": a heel rocker that comes to rest gradually, no second |acc| peak (S31)
     # hemiparetic gait: the steps onto the left foot are 1 + this times the right foot's, same cadence (S35)
     "step_time_asymmetry": 0.0,
