@@ -38,7 +38,7 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.displace.foot import check_settings as check_foot_settings
-from pdrlearn.displace.force_check import checked_stance, imu_strides_in, tared
+from pdrlearn.displace.force_check import checked_stance, imu_strides_in, reads_force_refusal, tared
 from pdrlearn.displace.force_clock import force_events, offset_check, toe_offs_in
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
@@ -1035,6 +1035,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if at is not None:
             log.warning("%s: %s", session.where, res.info["warnings"][at])
         return res
+    refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
+    if refusal:
+        raise DataError(f"plasys: {refusal}")
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
