@@ -36,17 +36,19 @@ def _track(session, unit: str):
 
 
 def test_a_foot_track_reads_a_ride_before_its_first_stride_l393():
-    """L393: the lift before the first stride is the foot's ride too (before: rides.csv empty, floors down 0)."""
+    """L393: the lift before the first stride is the foot's ride too, and the reference's floors hold it (before:
+    rides.csv empty, floors down 0, floors_down_ref 0)."""
     r, m = _track(_sim("stand:3, lift:-9, stand:3, straight:10", 7460), "foot")
-    assert (m["n_rides"], m["floors_down"], m["floors_down_rides"]) == (1, 3, 3), m
+    assert (m["n_rides"], m["floors_down"], m["floors_down_rides"], m["floors_down_ref"]) == (1, 3, 3, 3), m
     assert r.info["rides"][0]["kind"] == "lift" and r.info["rides"][0]["dz_m"] == pytest.approx(-9.0, abs=0.3)
 
 
 @pytest.mark.parametrize("unit", ["foot", "waist"])
 def test_a_ride_after_the_last_step_is_read_l394(unit):
-    """L394: the lift after the last step is a ride (row n, no step) and counts its storeys (before: none)."""
+    """L394: the lift after the last step is a ride (row n, no step) and counts its storeys, the reference's too
+    (before: none, floors_up_ref 0)."""
     r, m = _track(_sim("straight:10, stand:3, lift:+9, stand:5", 7461), unit)
-    assert (m["n_rides"], m["floors_up"], m["floors_up_rides"]) == (1, 3, 3), m
+    assert (m["n_rides"], m["floors_up"], m["floors_up_rides"], m["floors_up_ref"]) == (1, 3, 3, 3), m
     assert r.info["rides"][0]["row"] == len(r.steps) and r.info["rides"][0]["kind"] == "lift"
 
 

@@ -839,7 +839,9 @@ def _altitude(result: TrackResult, session: Session, out: dict) -> None:
     ref, source = reference_altitude_change(session, float(tr["t"].iloc[0]), float(tr["t"].iloc[-1]))
     if ref is None:
         return
-    z_ref = reference_altitude_track(session, float(tr["t"].iloc[0]), float(tr["t"].iloc[-1]))
+    rides = result.info.get("rides") or []  # decisions L393, L394: the floors' span holds the rides at its edges
+    z_ref = reference_altitude_track(session, min([float(tr["t"].iloc[0])] + [float(r["start_s"]) for r in rides]),
+                                     max([float(tr["t"].iloc[-1])] + [float(r["end_s"]) for r in rides]))
     if z_ref is not None:  # decision L64: the reference's storeys, counted by the same rule
         _floors(z_ref, out, "_ref")  # L64's count on the reference altitude
     est = out["altitude_change_m"]
@@ -1162,7 +1164,7 @@ def barometer_warning(summary: dict) -> str | None:
               if ridden is None else "(wBarometer.csv, read for rides only, L378"
               + (f"; without its rides' {ridden['net']:+.2f} m, L396)" if ridden["net"] else ")"))
     if ridden is not None:
-        baro, raw = float(baro) - ridden["net"], float(raw) - ridden["net"]
+        baro, raw = float(baro) - ridden["net"], float(baro if raw is None else raw) - ridden["net"]
     advice = ("; for floors by lift or escalator track the lower back, `--pipeline waist-pendulum`; for altitude on "
               "slopes, hills and ramps " + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ")
               + "track the lower back")
