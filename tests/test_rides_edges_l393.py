@@ -99,3 +99,18 @@ def test_a_barometer_gap_inside_a_ride_is_said_b298():
     r, _ = _track(gapped, "waist")
     lines = [w for w in r.info["warnings"] if "B298" in w]
     assert len(lines) == 1 and "wBarometer.csv" in lines[0] and "ride 1" in lines[0] and "gap of 8" in lines[0]
+
+
+def test_a_ride_after_the_last_step_counts_in_its_period_l394(tmp_path):
+    """L394 with L277: periods.csv's floors add up to the summary's with a ride after the last step (before: the
+    summary's 3 up, the periods' 0)."""
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    write_session(_sim("straight:10, stand:3, lift:+9, stand:5", 7461), tmp_path / "s")
+    out = tmp_path / "t"
+    assert main(["track", str(tmp_path / "s"), "--units", "waist", "--per", "20", "--out", str(out)]) == 0
+    m = json.loads((out / "summary.json").read_text())
+    periods = pd.read_csv(out / "periods.csv")
+    assert m["floors_up"] == 3 and int(periods["floors_up"].sum()) == 3, periods
+
