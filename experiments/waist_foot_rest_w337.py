@@ -3,8 +3,8 @@
 summed |distance error|; (b) the same users standing in a vehicle ride (S71): contacts inside the ride, F1;
 (c) the real recordings with both a foot and a lower-back unit (counted).
 
-Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_foot_rest_w337.py
-Writes experiments/results/waist_foot_rest_w337.md.
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_foot_rest_w337.py [W342]
+Writes experiments/results/waist_foot_rest_w337.md (with W342: waist_foot_rest_w342.md, decision W342's re-run).
 """
 
 from __future__ import annotations
@@ -129,4 +129,7 @@ def verdict(decision: str, title: str, parts: dict, out_name: str, yes: str = "A
 
 
 if __name__ == "__main__":
-    verdict("W337", "foot_rest_veto, off -> on", {"a": routes, "b": rides, "c": real}, "waist_foot_rest_w337.md")
+    # W342 re-ran W337's rule unchanged after the stride fix: `python experiments/waist_foot_rest_w337.py W342`
+    name = sys.argv[1] if len(sys.argv) > 1 else "W337"
+    verdict(name, "foot_rest_veto, off -> on", {"a": routes, "b": rides, "c": real},
+            f"waist_foot_rest_{name.lower()}.md")

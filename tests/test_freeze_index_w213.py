@@ -83,11 +83,15 @@ def test_freeze_veto_drops_the_trembling_contacts(frozen):
     a, b = float(fz["start_s"].iloc[0]), float(fz["end_s"].iloc[0])
     # W214 was measured without a stand veto (W217: the default again); "adjacent" (W198) drops this session's
     # trembling (a weak run, no walking bounce)
-    off = track_waist(frozen, pipeline="waist-pendulum", stand_veto=False)
-    on = track_waist(frozen, pipeline="waist-pendulum", stand_veto=False, freeze_veto=True)  # W216: implies the index
+    # W337's foot_rest_veto (default on) drops the trembling too (the frozen foot does not swing, W342): off here, to
+    # see W214's freeze veto alone
+    off = track_waist(frozen, pipeline="waist-pendulum", stand_veto=False, foot_rest_veto=False)
+    on = track_waist(frozen, pipeline="waist-pendulum", stand_veto=False, freeze_veto=True,  # W216: implies the index
+                     foot_rest_veto=False)
     ev0, ev1 = off.steps["event_s"].to_numpy(float), on.steps["event_s"].to_numpy(float)
     assert ((ev0 > a) & (ev0 < b)).sum() >= 5  # the finding: trembling read as steps without the stand veto
-    adj = track_waist(frozen, pipeline="waist-pendulum", stand_veto="adjacent").steps["event_s"].to_numpy(float)
+    adj = track_waist(frozen, pipeline="waist-pendulum", stand_veto="adjacent",
+                      foot_rest_veto=False).steps["event_s"].to_numpy(float)
     assert ((adj > a) & (adj < b)).sum() == 0  # W198's value drops them here (and, W217, may drop the walks too)
     assert ((ev1 > a) & (ev1 < b)).sum() == 0
     assert on.info["n_frozen_contacts"] == ev0.size - ev1.size and off.info["n_frozen_contacts"] == 0

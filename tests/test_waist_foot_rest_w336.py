@@ -61,7 +61,9 @@ def test_a_vehicle_ride_is_named_and_dropped_with_the_option(ride, pipeline, cap
     dist = float(np.nansum(on.steps["length_m"]))
     print(pipeline, "on", len(ev_on), "contacts", round(dist, 2), "m, walked", round(walked, 2))
     assert int(((ev_on > row.start_s + 1.0) & (ev_on < row.end_s - 1.0)).sum()) == 0
-    assert abs(len(ev_on) - n_true) <= 4
+    # W342: the veto drops the ride, not the walk around it (W336's rest-to-rest strides missed the last stride before
+    # the ride, and the line dropped the walk's last contacts with it): the walk's contacts of the track without it
+    assert abs(len(ev_on) - (len(ev) - inside)) <= 2 and abs(len(ev_on) - n_true) <= 6
     assert abs(dist - walked) < 0.35 * walked
     assert any("dropped (foot_rest_veto, decision W336)" in w for w in on.info["warnings"])
 
@@ -88,3 +90,37 @@ def test_the_option_reaches_params_and_the_live_list():
     assert OPTION_DEFAULTS["foot_rest_veto"] is True  # decision W337
     assert "foot_rest_veto" in LIVE_UNAPPLIED_OPTIONS
     logging.getLogger("pdrlearn").debug("W336 option registered")
+
+
+def test_swings_are_not_lengthened_by_the_rests_around_them():
+    """Pure kernel, decision W342: rests 0-5 s, 5.7-6.2 s and 6.9-12 s at 50 Hz: two swings of 0.7 s between them.
+    D9's rest-to-rest strides run from rest middle to rest middle (2.5-5.95 s, 5.95-9.45 s: over 3 s) and are none;
+    the swings are both, from the last rest sample to the first of the next; a motion over 3 s is no swing."""
+    from pdrlearn.track.frame_inference import rest_swings, rest_to_rest
+
+    fs = 50.0
+    t = np.arange(0.0, 12.0, 1 / fs)
+    stance = (t < 5.0) | ((t >= 5.7) & (t < 6.2)) | (t >= 6.9)
+    assert len(rest_to_rest(stance, fs)[0]) == 0
+    i0, i1 = rest_swings(stance, fs)
+    assert np.allclose(t[i0], [4.98, 6.18]) and np.allclose(t[i1], [5.7, 6.9])
+    long = (t < 2.0) | (t >= 5.5)
+    assert len(rest_swings(long, fs)[0]) == 0
+
+
+@pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
+@pytest.mark.parametrize("rate_hz", [50.0, 100.0])
+def test_a_two_stride_bout_between_long_rests_keeps_its_contacts(pipeline, rate_hz):
+    """Decision W342 (the lead's finding, tests/test_track_bouts.py): user 7330 walks 4 m and 2 m between rests of
+    3-4 s; the foot strides twice in each bout. W336's rest-to-rest strides next to those rests were over 3 s and
+    dropped, so the default veto dropped the walking contacts (5 of them at 11.2-17.5 s, waist-pendulum, 50 Hz); the
+    foot's swings keep them: no W336 line, the default track equals the track without the veto, the last bout has its
+    contacts."""
+    walk = simulate_path(parse_route("stand:3, straight:4, stand:4, straight:2, stand:3"),
+                         UserProfile.from_seed(7330), rate_hz=rate_hz, seed=7330)
+    on = track_waist(walk, pipeline=pipeline)
+    off = track_waist(walk, pipeline=pipeline, foot_rest_veto=False)
+    assert not [w for w in on.info["warnings"] if "decision W336" in w]
+    assert np.array_equal(on.steps["event_s"].to_numpy(), off.steps["event_s"].to_numpy())
+    ev = on.steps["event_s"].to_numpy(float)
+    assert int((ev > walk.steps["start_s"].iloc[-2] - 0.5).sum()) >= 4

@@ -174,18 +174,41 @@ def frame_from_axes(forward: tuple[int, float], left: tuple[int, float], up: tup
     return AxisFrame(**names)
 
 
-def rest_to_rest(stance: np.ndarray, fs: float) -> tuple[np.ndarray, np.ndarray]:
-    """Start and end sample of every rest-to-rest stride: a stance-run middle to the next stance-run middle,
-    0.4-3 s long (a stride at 20-150 strides/min)."""
+#: decision D9: a stride at 20-150 strides/min lasts 0.4-3 s
+MIN_STRIDE_S, MAX_STRIDE_S = 0.4, 3.0
+
+
+def _rests(stance: np.ndarray, fs: float) -> np.ndarray | None:
     from pdrlearn.displace.foot import stance_runs
 
     rr = stance_runs(np.arange(len(stance)) / fs, stance)
-    if len(rr) < 2:
+    return rr if len(rr) >= 2 else None
+
+
+def rest_to_rest(stance: np.ndarray, fs: float) -> tuple[np.ndarray, np.ndarray]:
+    """Start and end sample of every rest-to-rest stride: a stance-run middle to the next stance-run middle,
+    0.4-3 s long (a stride at 20-150 strides/min)."""
+    rr = _rests(stance, fs)
+    if rr is None:
         return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
     mid = (rr[:, 0] + rr[:, 1] - 1) // 2
     i0, i1 = mid[:-1], mid[1:]
     dur = (i1 - i0) / fs
-    ok = (dur >= 0.4) & (dur <= 3.0)
+    ok = (dur >= MIN_STRIDE_S) & (dur <= MAX_STRIDE_S)
+    return i0[ok], i1[ok]
+
+
+def rest_swings(stance: np.ndarray, fs: float) -> tuple[np.ndarray, np.ndarray]:
+    """Start and end sample of every swing: the last sample of a stance run to the first of the next, at most
+    :data:`MAX_STRIDE_S` long (decision W342: a swing is part of a stride, D9's slowest stride bounds it). Unlike
+    :func:`rest_to_rest`, a long rest before or after does not lengthen it: a bout's first and last strides next to
+    a rest of 2 s or more are over 3 s from rest middle to rest middle, so a 2-stride bout had no rest-to-rest
+    stride at all."""
+    rr = _rests(stance, fs)
+    if rr is None:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    i0, i1 = rr[:-1, 1] - 1, rr[1:, 0]
+    ok = (i1 - i0) / fs <= MAX_STRIDE_S
     return i0[ok], i1[ok]
 
 
@@ -260,14 +283,15 @@ def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
 
 
 def foot_swing_strides(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
-    """Start and end time (s) and total rotation (rad, the integral of |w|) of each rest-to-rest stride of the
-    session's foot unit, in any frame (decision W336: a walking stride swings the foot, a vehicle's vibration breaking
-    the rest does not); None without a foot unit."""
+    """Start and end time (s) and total rotation (rad, the integral of |w|) of each swing between two rests of the
+    session's foot unit (:func:`rest_swings`, decision W342; W336 took rest-to-rest strides), in any frame (decision
+    W336: a walking stride swings the foot, a vehicle's vibration breaking the rest does not); None without a foot
+    unit."""
     foot = _declared_foot(session, need_frame=False)
     if foot is None:
         return None
     t, _acc, gyr, fs, _frame, stance = foot
-    i0, i1 = rest_to_rest(stance, fs)
+    i0, i1 = rest_swings(stance, fs)
     turn = np.concatenate([[0.0], np.cumsum(np.linalg.norm(gyr, axis=1)) / fs])
     return t[i0], t[i1], turn[i1] - turn[i0]
 
@@ -834,5 +858,5 @@ def right_handed_orientations() -> list[np.ndarray]:
 __all__ = ["FrameInferenceError", "InferredFrame", "infer_foot_frame", "infer_waist_frame", "frame_from_axes",
            "infer_session_frame", "frame_disagreement", "check_declared_frame", "declared_frame_warning",
            "DeclaredCheck", "directions_off", "forward_reversal_deg", "OPPOSED_DEG",
-           "rest_to_rest", "stride_displacements", "swing_pitch_extremes", "remount",
+           "rest_to_rest", "rest_swings", "stride_displacements", "swing_pitch_extremes", "remount",
            "right_handed_orientations", "INFER", "UNIT_STREAMS"]

@@ -2,10 +2,11 @@
 
 A standing passenger's lower back bounces with a bus or train (T1 finding 1: 149 phantom steps for 46 in a simulated
 bus), and a lower-back detector cannot tell the vehicle's 1-3 Hz bounce from a walking step. A foot unit in the same
-session can: a walking foot swings every stride, a standing one does not. The foot's strides are its rest-to-rest
-strides (the ZUPT stance of :func:`pdrlearn.displace.foot.inertial_stance`, D9's
-:func:`pdrlearn.track.frame_inference.rest_to_rest`) that turn the foot by :data:`MIN_SWING_RAD` or more in all (a
-vehicle's vibration may break the foot's rest into "strides" that do not turn it). A run of at least
+session can: a walking foot swings every stride, a standing one does not. The foot's strides are its swings between
+two rests (the ZUPT stance of :func:`pdrlearn.displace.foot.inertial_stance`,
+:func:`pdrlearn.track.frame_inference.rest_swings`, decision W342: D9's rest-to-rest strides next to a long rest are
+over 3 s and a 2-stride bout had none) that turn the foot by :data:`MIN_SWING_RAD` or more in all (a vehicle's
+vibration may break the foot's rest into "strides" that do not turn it). A run of at least
 :data:`MIN_STILL_CONTACTS` consecutive lower-back contacts none of which lies within :data:`FOOT_MARGIN_S` of such a
 stride, inside the foot's recording, is no walking: one warning line per run; the track option ``foot_rest_veto``
 drops them (W337 measured whether it is the default).
