@@ -9,6 +9,7 @@ every column written is here. Meanings follow docs/localization.md's table of su
 from __future__ import annotations
 
 from pdrlearn.cohort import GROUP_METRICS
+from pdrlearn.table_names import TABLE_NAMES
 from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG
 from pdrlearn.track.clock import CLOCK_COLUMNS
 
@@ -854,8 +855,10 @@ RAMPS: tuple[Column, ...] = (
 #: decision L383: a track's laps.csv (``track --corridor``), one row per stretch between cone turns
 LAPS: tuple[Column, ...] = (
     ("lap", "index", "integer", "the stretch's number, from 1 (the last one the final, partial lap)"),
-    ("start_s", "s", "number", "the first step's start or the middle of the cone turn (>= 135 deg, turns.csv) before"),
-    ("end_s", "s", "number", "the middle of the cone turn that ends it; the final lap: the last step's end"),
+    ("start_s", "s", "number", "the first step's start (L399, also with --window) or the middle of the cone turn "
+                               "(>= 135 deg, turns.csv) before"),
+    ("end_s", "s", "number", "the middle of the cone turn that ends it; the final lap: the last step's end (L399, "
+                             "also with --window: standing after the test is no lap's time)"),
     ("duration_s", "s", "number", "end_s - start_s, rests included (L384)"),
     ("corridor_laps", "count", "integer", "corridor lengths it counts: round(tracked_m / the median stretch); 2 or "
                                           "more a missed turn, 0 the final partial lap (L384)"),
@@ -863,7 +866,7 @@ LAPS: tuple[Column, ...] = (
     ("distance_m", "m", "number", "corridor_laps x corridor_m, or the final lap's scaled tracked distance (L383)"),
     ("distance_source", _ID, "text", "corridor, tracked x scale (the final lap: x the last lap's corridor / tracked "
                                      "ratio) or tracked (no lap completed)"),
-    ("speed_m_s", "m/s", "number", "distance_m / duration_s"),
+    ("speed_mps", "m/s", "number", "distance_m / duration_s (E98's name, as bouts.csv)"),
     ("rest_s", "s", "number", "its time outside bouts.csv's walking bouts (a rest at a cone stays in its lap, L384)"),
     ("n_steps", "count", "integer", "steps of both feet whose contact lies in it (as bouts.csv's n_steps)"),
     *_clocks("start_s", "end_s"),
@@ -887,17 +890,10 @@ RIDES: tuple[Column, ...] = (
 )
 
 
-#: every table of the dictionary, in the order shown
-TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
-                                         "bouts.csv": BOUTS, "turns.csv": TURNS, "periods.csv": PERIODS,
-                                         "laps.csv": LAPS,  # L383
-                                         "transfers.csv": TRANSFERS, "tug_phases.csv": TUG_PHASE_TABLE,  # W293
-                                         "tug_trials.csv": TUG_TRIAL_TABLE,  # W325
-                                         "freezes.csv": FREEZES, "ramps.csv": RAMPS,  # L301
-                                         "rides.csv": RIDES,  # L377
-                                         "steps.csv": WAIST_STEPS, "steps.csv (foot)": FOOT_STEPS,  # E137
-                                         "gait_steps.csv": GAIT_STEPS, "gait_cycles.csv": GAIT_CYCLES,  # L287
-                                         "gait_bouts.csv": GAIT_BOUTS}
+#: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
+TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
+    SESSIONS, GROUPS, SUBJECTS, BOUTS, TURNS, PERIODS, LAPS, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES,
+    RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",

@@ -38,7 +38,7 @@ def test_laps_and_distance_of_a_hand_made_corridor_walk():
     # L383: 4 laps x 30 m + the final 12 tracked metres x (30 / 24, the last lap's scale) = 15 m
     assert s["walk_test_distance_m"] == pytest.approx(135.0)
     assert list(laps["distance_source"]) == ["corridor"] * 4 + ["tracked x scale"]
-    assert laps["tracked_m"].iloc[0] == pytest.approx(24.0) and laps["speed_m_s"].iloc[0] == pytest.approx(1.0)
+    assert laps["tracked_m"].iloc[0] == pytest.approx(24.0) and laps["speed_mps"].iloc[0] == pytest.approx(1.0)
     assert list(laps["n_steps"]) == [60, 60, 60, 60, 30]  # both feet, as bouts.csv's
     assert s["walk_test_distance_per_minute_m"] == pytest.approx([60.0, 60.0])
     assert s["fatigue_index"] == pytest.approx(1.0)
@@ -74,7 +74,7 @@ def test_rest_at_a_cone_stays_in_its_lap():
     bouts = pd.DataFrame({"start_s": [0.0, 90.0], "end_s": [60.0, 165.0]})
     laps, s, _ = corridor_laps(_walk(rest_after=60, rest_s=30.0), _turns([30, 90, 120, 150]), 30.0, bouts)
     assert laps["duration_s"].iloc[1] == pytest.approx(60.0) and laps["rest_s"].iloc[1] == pytest.approx(30.0)
-    assert laps["speed_m_s"].iloc[1] == pytest.approx(0.5) and laps["rest_s"].iloc[0] == 0.0
+    assert laps["speed_mps"].iloc[1] == pytest.approx(0.5) and laps["rest_s"].iloc[0] == 0.0
     # minute 2 (60-120 s) holds the rest and lap 3: 30 m
     assert s["walk_test_distance_per_minute_m"][:2] == pytest.approx([60.0, 30.0])
 
@@ -130,3 +130,14 @@ def test_t25fw_from_standing_on_a_simulated_walk_l387(tmp_path, capsys):
     assert t25fw(steps.assign(unit="waist"))["t25fw_note"] == T25FW_LOWER_BACK_NOTE
     short = steps[steps["start_s"] < steps["start_s"].min() + 6.0 / 0.5]  # about 6 m of it
     assert t25fw(short)["t25fw_time_s"] is None and "25 ft" in t25fw(short)["t25fw_note"]
+
+
+def test_first_and_final_lap_span_the_steps_not_the_window_l399():
+    """L399: with a window wider than the walk, lap 1 starts at the first step and the final lap ends at the last
+    step; standing after the test is no part of the final lap (its rest_s, its speed). E98: speed_mps."""
+    bouts = pd.DataFrame({"start_s": [0.0], "end_s": [135.0]})
+    laps, s, _ = corridor_laps(_walk(), _turns([30, 60, 90, 120]), 30.0, bouts, span=(-5.0, 175.0))
+    assert laps["start_s"].iloc[0] == pytest.approx(0.0) and laps["end_s"].iloc[-1] == pytest.approx(135.0)
+    assert laps["rest_s"].iloc[-1] == pytest.approx(0.0)
+    assert laps["speed_mps"].iloc[-1] == pytest.approx(1.0) and "speed_m_s" not in laps.columns
+    assert s["walk_test_distance_per_minute_m"] == pytest.approx([55.0, 60.0, 20.0]) and s["n_laps"] == 4

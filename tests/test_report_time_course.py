@@ -25,7 +25,7 @@ def _track(folder, *, periods=True, laps=True, rest=True):
     if laps:
         pd.DataFrame({"lap": [1, 2], "start_s": [0.0, 61.0], "end_s": [61.0, 150.0], "duration_s": [61.0, 89.0],
                       "corridor_laps": [1, 0], "distance_m": [30.0, 17.5], "distance_source": ["corridor", "tracked"],
-                      "speed_m_s": [0.49, 0.2], "rest_s": [0.0, 30.0], "n_steps": [50, 40]}
+                      "speed_mps": [0.49, 0.2], "rest_s": [0.0, 30.0], "n_steps": [50, 40]}
                      ).to_csv(folder / "laps.csv", index=False)
 
 
@@ -37,6 +37,7 @@ def test_report_shows_periods_laps_and_rests_with_a_figure(tmp_path):
     assert "per period (periods.csv)" in section and "per lap (laps.csv)" in section
     assert "rests between walking bouts (bouts.csv)" in section
     assert "1.208" in section  # period 1's speed: 72.5 m / 60 s
+    assert "speed_mps" in section and "speed_m_s" not in section  # E98's name in both tables (session 33 NU 1)
     assert "time_course_walk_a.png" in section and list((tmp_path / "rep" / "img").glob("*time_course*"))
     assert "Time course" in (tmp_path / "rep" / "index.html").read_text()
 
@@ -54,3 +55,24 @@ def test_rest_table_is_the_gaps_between_bouts():
     rests = rest_table(bouts)
     assert list(rests["start_s"]) == [60.0] and list(rests["duration_s"]) == [30.0]  # the 0.5 s gap is no rest
     assert rest_table(bouts.iloc[:1]) is None
+
+
+def test_report_shows_each_tracks_walk_tests_e152(tmp_path):
+    """E152: the corridor test's keys (a list per minute too), the T25FW's and the 10 m walk's show in a walk-test
+    table with a row per track; a track without them gets an empty row, not no table."""
+    _track(tmp_path / "runs" / "walk_a")
+    s = json.loads((tmp_path / "runs" / "walk_a" / "summary.json").read_text())
+    s.update({"corridor_m": 30.0, "n_laps": 9, "walk_test_distance_m": 299.8,
+              "walk_test_distance_per_minute_m": [58.25, 50.0], "fatigue_index": 0.858,
+              "t25fw_time_s": 6.125, "t25fw_speed_mps": 1.244, "ten_m_walk_time_s": None,
+              "ten_m_walk_note": "no straight 12 m"})
+    (tmp_path / "runs" / "walk_a" / "summary.json").write_text(json.dumps(s))
+    _track(tmp_path / "runs" / "walk_b", periods=False, laps=False, rest=False)
+    assert main(["report", str(tmp_path / "runs"), "--out", str(tmp_path / "rep")]) == 0
+    md = (tmp_path / "rep" / "report.md").read_text()
+    table = md[md.index("walk tests:"):]
+    table = table[:table.index("\n\n", table.index("|"))]
+    assert "walk_test_distance_m" in table and "299.8" in table and "58.2 / 50.0" in table
+    assert "fatigue_index" in table and "0.858" in table and "6.125" in table and "no straight 12 m" in table
+    assert "walk_a" in table and "walk_b" in table
+    assert "fatigue_index" in (tmp_path / "rep" / "index.html").read_text()

@@ -4,21 +4,18 @@ from __future__ import annotations
 
 import typer
 
+from pdrlearn.table_names import TABLE_NAMES  # decision E152: the help's list is the dictionary's own
+
 
 def columns(
-    table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv, bouts.csv, "
-                                "turns.csv, periods.csv, transfers.csv, tug_phases.csv, tug_trials.csv, freezes.csv, "
-                                "ramps.csv, "
-                                "steps.csv (the lower back's and the foot's; 'steps.csv (foot)' for the foot's only), "
-                                "or gait's "
-                                "gait_steps.csv, gait_cycles.csv, gait_bouts.csv (default: all); the name "
-                                "without .csv works too."),
+    table: str = typer.Argument(None, help=f"One table: {', '.join(TABLE_NAMES)} (steps.csv: the lower back's and "
+                                "the foot's; 'steps.csv (foot)' the foot's only; default: all); the name without .csv "
+                                "works too."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object: table -> list of {column, unit, "
                                  "type, meaning}."),
 ) -> None:
-    """Print every column of track-all's sessions.csv, groups.csv, subjects.csv, a track's bouts.csv, turns.csv,
-    periods.csv, transfers.csv, tug_phases.csv, tug_trials.csv, freezes.csv, ramps.csv and steps.csv (a lower-back
-    track's and a foot track's, decision E137) and gait's three tables with its unit, type and meaning, as Markdown
+    """Print every column of the tables pdrlearn writes (TABLE lists them: track-all's, a track's, gait's; steps.csv
+    is a lower-back track's and a foot track's, decision E137) with its unit, type and meaning, as Markdown
     (docs/columns.md is this output).
 
     Examples:

@@ -25,6 +25,9 @@ SIDE_ANGLE_DEG = (60.0, 120.0)
 SIDE_MIN_STRIDE_M = 0.15
 #: decision L219: fewer consecutive sideways strides are no side-stepping stretch (a 90 deg stepping turn's step)
 MIN_SIDE_STRIDES = 3
+#: decision L400: a stride during which the foot's own heading turned by more than this (deg) is not judged (a turn on
+#: the spot's stride: no facing to measure from); the half-width of :data:`SIDE_ANGLE_DEG`'s window around 90 deg
+SIDE_MAX_TURN_DEG = (SIDE_ANGLE_DEG[1] - SIDE_ANGLE_DEG[0]) / 2.0
 #: decision E124: the streamed foot tracker headed by the waist gyroscope (``track --streaming``, ``pdrlearn run``,
 #: ``Tracker``) places a side-stepping stretch's strides along their travel angle (:class:`SideRun`; adopted by
 #: E124's rule, measured in E125); False = before E124
@@ -37,30 +40,34 @@ def travel_angle(dx: float, dy: float) -> float:
     return math.atan2(dy, abs(dx)) * (-1.0 if dx < 0 else 1.0)
 
 
-def is_sideways(angle, length):
+def is_sideways(angle, length, turn=None):
     """Decision L219's stride test: ``angle`` rad from the foot's facing within :data:`SIDE_ANGLE_DEG` and the
-    horizontal ``length`` m over :data:`SIDE_MIN_STRIDE_M` (arrays or one stride)."""
+    horizontal ``length`` m over :data:`SIDE_MIN_STRIDE_M` (arrays or one stride); decision L400: and the foot's
+    heading change ``turn`` (rad) over the stride at most :data:`SIDE_MAX_TURN_DEG` (None: not checked)."""
     a = np.degrees(np.abs(np.asarray(angle, float)))
-    return (a >= SIDE_ANGLE_DEG[0]) & (a <= SIDE_ANGLE_DEG[1]) & (np.asarray(length, float) > SIDE_MIN_STRIDE_M)
+    side = (a >= SIDE_ANGLE_DEG[0]) & (a <= SIDE_ANGLE_DEG[1]) & (np.asarray(length, float) > SIDE_MIN_STRIDE_M)
+    if turn is None:
+        return side
+    return side & ~(np.degrees(np.abs(np.asarray(turn, float))) > SIDE_MAX_TURN_DEG)  # L400 (NaN: not checked)
 
 
-def sideways_runs(angle: np.ndarray, length: np.ndarray) -> list[tuple[int, int]]:
+def sideways_runs(angle: np.ndarray, length: np.ndarray, turn: np.ndarray | None = None) -> list[tuple[int, int]]:
     """Runs ``(first, last)`` of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides (angle rad from the
-    foot's facing, left +; length m)."""
-    side = is_sideways(angle, length)
+    foot's facing, left +; length m; ``turn`` the foot's heading change over each stride, rad, L400)."""
+    side = is_sideways(angle, length, turn)
     edges = np.flatnonzero(np.diff(np.r_[0, side.astype(int), 0]))
     return [(int(a_), int(b_ - 1)) for a_, b_ in zip(edges[::2], edges[1::2], strict=True)
             if b_ - a_ >= MIN_SIDE_STRIDES]
 
 
-def side_travel_extra(lateral: np.ndarray, length: np.ndarray) -> np.ndarray:
+def side_travel_extra(lateral: np.ndarray, length: np.ndarray, turn: np.ndarray | None = None) -> np.ndarray:
     """Decision L219 for the offline foot track's waist / fused heading: per stride, the part of its travel angle
     ``lateral`` (rad from the foot's facing) that the waist heading does not see - inside a sideways run
     (:func:`sideways_runs`) the angle minus the median angle of the other strides (the foot's usual offset from the
     walking direction), elsewhere 0 (those strides are tracked as before)."""
     lateral = np.asarray(lateral, float)
     side = np.zeros(len(lateral), dtype=bool)
-    for a, b in sideways_runs(lateral, length):
+    for a, b in sideways_runs(lateral, length, turn):  # L400: a turning stride is none
         side[a:b + 1] = True
     if not side.any():
         return np.zeros(len(lateral))
@@ -90,15 +97,15 @@ class SideRun:
         self.pending: list[float] = []  # those of the current run's sideways strides before it is one
         self.count = 0  # consecutive sideways strides up to the last one
 
-    def stride(self, dx: float, dy: float, length: float, frame: float = 0.0) -> float:
+    def stride(self, dx: float, dy: float, length: float, frame: float = 0.0, turn: float | None = None) -> float:
         """The angle (rad) to add to the direction of the stride with horizontal displacement ``(dx, dy)`` m in its
         step frame, whose x points ``frame`` rad from the foot's facing at the stride's start (the foot's sixth
         levelled value, :func:`pdrlearn.kernels.window.levelled_units`; 0: the foot's own frame), and rules
-        ``length`` m."""
+        ``length`` m; ``turn`` the foot's heading change over it (rad, decision L400; None: not checked)."""
         c, s = math.cos(frame), math.sin(frame)
         fx, fy = c * dx - s * dy, s * dx + c * dy  # the displacement in the foot's frame (offline's ``disp``)
         angle = travel_angle(fx, fy)
-        if not bool(is_sideways(angle, math.hypot(fx, fy))):
+        if not bool(is_sideways(angle, math.hypot(fx, fy), turn)):
             self.others.extend(self.pending if self.count < MIN_SIDE_STRIDES else [])
             self.others.append(angle)
             self.pending, self.count = [], 0
@@ -143,6 +150,12 @@ def side_rows(flags, gap_s=None, *, streamed: bool = False) -> np.ndarray:
         return flags
     gap = np.zeros(len(flags)) if gap_s is None else np.nan_to_num(np.asarray(gap_s, dtype=float))
     return whole_runs(flags, gap <= 0)
+
+
+def foot_turn(levelled) -> float:
+    """Decision L400: the foot's heading change (rad) over the stride, its attitude change from rest to rest (the
+    fifth value of the foot's levelled tuple, :func:`pdrlearn.kernels.stride.stride_motion`'s foot heading)."""
+    return float(levelled["foot"][4])
 
 
 def step_frame(levelled) -> float:

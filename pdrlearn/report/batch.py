@@ -77,11 +77,12 @@ def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[s
     n, failed = len(sessions), sessions[sessions["status"] != "ok"]
     text = (f"{n - len(failed)} of {n} sessions tracked, {len(failed)} failed, in {len(groups)} group(s); "
             "sessions.csv and groups.csv hold every column at full precision.")
-    from pdrlearn.report.tests_table import clinical_test_table
+    from pdrlearn.report.tests_table import clinical_test_table, walk_test_table
 
-    tests = clinical_test_table(sessions, "path")  # decision W296: TUG, its phases, transfers, turns
+    tests = [t for t in (clinical_test_table(sessions, "path"),  # decision W296: TUG, its phases, transfers, turns
+                         walk_test_table(sessions, "path")) if t is not None]  # E152: corridor test, T25FW, 10MWT
     tables = [("per session", sessions[[c for c in SESSION_TABLE_COLUMNS if c in sessions.columns]]),
-              *([(f"per session: {tests[0]}", tests[1])] if tests is not None else []),
+              *[(f"per session: {t[0]}", t[1]) for t in tests],
               ("per group (mean ± sd (n) over the tracked sessions)", groups_text(groups)),
               *subject_tables(sessions, visit_map)]
     if len(failed):

@@ -175,19 +175,23 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
     if tracks:
         rows = []
         for p in tracks:
-            d = _flat_scalars(_read_json(p))
-            rows.append({**d, "run": run_label(p, root)})  # decision C80: a single track named by its session
+            raw = _read_json(p)
+            d = _flat_scalars(raw)
+            per_minute = raw.get("walk_test_distance_per_minute_m")  # decision E152: a list, kept for its table
+            rows.append({**d, "run": run_label(p, root),  # decision C80: a single track named by its session
+                         **({"walk_test_distance_per_minute_m": per_minute} if per_minute else {})})
         df = _step_count_columns(pd.DataFrame(rows))  # decision L103
         key = [c for c in TRACK_COLUMNS if c in df.columns]
         tables = [("trajectory summaries", df[key])]
         gait = [c for c in GAIT_COLUMNS if c in df.columns]  # decision L81: the gait parameters, own table
         if len(gait) > 1 and df[gait[1:]].notna().any().any():
             tables.append(("gait parameters", df[gait]))
-        from pdrlearn.report.tests_table import clinical_test_table
+        from pdrlearn.report.tests_table import clinical_test_table, walk_test_table
 
-        tests = clinical_test_table(df, "run")  # decision W296: TUG, its phases, transfers, turns
-        if tests is not None:
-            tables.append(tests)
+        for tests in (clinical_test_table(df, "run"),  # decision W296: TUG, its phases, transfers, turns
+                      walk_test_table(df, "run")):  # decision E152: the corridor test, T25FW, 10 m walk
+            if tests is not None:
+                tables.append(tests)
         sections.append(Section("Tracking", tables=tables))
         from pdrlearn.report.time_course import time_course_section
 

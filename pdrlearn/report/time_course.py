@@ -12,11 +12,11 @@ import pandas as pd
 from pdrlearn.io.plasys import read_table
 
 #: decision L386: periods.csv's columns the report shows (those the file has)
-PERIOD_COLUMNS = ("period", "start_s", "end_s", "duration_s", "partial", "distance_m", "speed_m_s",
+PERIOD_COLUMNS = ("period", "start_s", "end_s", "duration_s", "partial", "distance_m", "speed_mps",
                   "median_cadence_spm", "median_speed_mps", "time_walking_s", "n_steps", "n_steps_counts")
 #: decision L386: laps.csv's columns the report shows
-LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "distance_m", "distance_source", "speed_m_s",
-               "rest_s", "n_steps")
+LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "distance_m", "distance_source", "speed_mps",
+               "rest_s", "n_steps")  # E98's speed_mps (a laps.csv written before it: speed_m_s renamed on reading)
 #: decision L386: the rests shown are the gaps between walking bouts of at least this long (s; L104's 1 s pause)
 REST_MIN_S = 1.0
 
@@ -40,11 +40,12 @@ def rest_table(bouts: pd.DataFrame | None) -> pd.DataFrame | None:
 
 
 def _with_speed(periods: pd.DataFrame) -> pd.DataFrame:
-    """periods.csv with ``speed_m_s`` = distance_m / duration_s (the period's mean speed, rests included)."""
+    """periods.csv with ``speed_mps`` (E98's name) = distance_m / duration_s (the period's mean speed, rests
+    included)."""
     out = periods.copy()
     if {"distance_m", "duration_s"} <= set(out.columns):
         d = pd.to_numeric(out["duration_s"], errors="coerce")
-        out["speed_m_s"] = pd.to_numeric(out["distance_m"], errors="coerce") / d.where(d > 0)
+        out["speed_mps"] = pd.to_numeric(out["distance_m"], errors="coerce") / d.where(d > 0)
     return out
 
 
@@ -54,6 +55,7 @@ def time_course_section(folder: Path, label: str):
     from pdrlearn.report.build import Section
 
     periods, laps = _read(folder / "periods.csv"), _read(folder / "laps.csv")
+    laps = laps.rename(columns={"speed_m_s": "speed_mps"}) if laps is not None else None  # E98
     rests = rest_table(_read(folder / "bouts.csv"))
     if periods is None and laps is None and rests is None:
         return None

@@ -1704,10 +1704,11 @@ class Tracker(FixInput):
         if not foot_headed and _sideways.STREAMED_SIDE_TRAVEL:  # decision E124 (track --streaming's call)
             if self._side is None:
                 self._side = _sideways.SideRun()
-            direction += self._side.stride(dx, dy, length, _sideways.step_frame(lev))
+            direction += self._side.stride(dx, dy, length, _sideways.step_frame(lev), _sideways.foot_turn(lev))  # L400
         if self._side_rows is None:
             self._side_rows = _sideways.SideRun()
-        self._side_rows.stride(dx, dy, length, _sideways.step_frame(lev))  # decision L243: whatever the heading
+        self._side_rows.stride(dx, dy, length, _sideways.step_frame(lev),  # decision L243: whatever the heading
+                               _sideways.foot_turn(lev))  # L400: a turning stride is no side step
         x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
         if not math.isfinite(direction + x + y + z):  # decision E38: NaN / inf fail (also inf - inf)
             self._non_finite(t0, t1, heading, direction, (x, y, z), (length, dz))

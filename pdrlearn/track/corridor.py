@@ -27,7 +27,7 @@ CORRIDOR_RATIO_RANGE = (0.5, 2.0)
 MINUTE_S = 60.0
 #: decision L383: laps.csv's columns
 LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "tracked_m", "distance_m", "distance_source",
-               "speed_m_s", "rest_s", "n_steps")
+               "speed_mps", "rest_s", "n_steps")  # E98: speed_mps, not the old speed_m_s
 #: decision L383: the summary keys :func:`corridor_walk_test` gives
 KEYS = ("corridor_m", "n_laps", "walk_test_distance_m", "walk_test_distance_per_minute_m", "fatigue_index")
 
@@ -82,7 +82,10 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     cone = turns[np.abs(turns["angle_deg"].to_numpy(float)) >= CONE_TURN_MIN_DEG] if len(turns) else turns
     mids = ((cone["start_s"].to_numpy(float) + cone["end_s"].to_numpy(float)) / 2.0) if len(cone) else np.array([])
     mids = np.sort(mids[(mids > t0) & (mids < t_end)])
-    bounds = np.concatenate([[t0], mids, [t_end]])
+    # decision L399: lap 1 starts at the first step, the final lap ends at the last step (inside the span), so that
+    # standing before the first or after the last step is no lap's time; the minutes stay the span's (L383)
+    lap_t0, lap_end = max(t0, float(t[0])), min(t_end, float(st["end_s"].max()))
+    bounds = np.concatenate([[lap_t0], mids[(mids > lap_t0) & (mids < lap_end)], [lap_end]])
     tracked = np.diff(np.interp(bounds, t, d))  # the stretches between cone turns (and the test's ends)
     warnings: list[str] = []
     ref = float(np.median(tracked[:-1])) if len(tracked) > 1 else float("nan")
@@ -91,7 +94,7 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                         "is the corridor length right? (decision L384)")
     # decision L384: a stretch ending at a cone turn counts round(tracked / median) corridor lengths; 0 joins the next
     stretches: list[tuple[float, float, float, int]] = []  # (start, end, tracked, corridor laps; -1 = the final one)
-    start, acc = t0, 0.0
+    start, acc = lap_t0, 0.0
     for k, m in enumerate(tracked[:-1]):
         acc += m
         c = int(np.floor(acc / ref + 0.5)) if ref > 0 else 0
@@ -105,20 +108,20 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
         stretches.append((start, float(bounds[k + 1]), acc, c))
         start, acc = float(bounds[k + 1]), 0.0
     last = acc + tracked[-1]
-    stretches.append((start, t_end, last, -1))
+    stretches.append((start, lap_end, last, -1))
     if np.isfinite(ref) and ref > 0 and last >= MISSED_TURN_RATIO * ref:
         warnings.append(f"corridor walk test: the final stretch tracked {last:.1f} m, {last / ref:.1f} laps of "
                         f"{ref:.1f} m: a missed turn? counted as at most one corridor length (decision L384)")
     singles = [s for s in stretches if s[3] == 1 and s[2] > 0]
     scale = corridor_m / singles[-1][2] if singles else 1.0  # L383: the last single lap's corridor / tracked
-    rows, known = [], [(t0, 0.0)]  # known: (time, corridor distance) at each stretch's end
+    rows, known = [], [(lap_t0, 0.0)]  # known: (time, corridor distance) at each stretch's end
     for i, (a, b, m, c) in enumerate(stretches, start=1):
         dist = c * corridor_m if c > 0 else min(m * scale, corridor_m)
         source = "corridor" if c > 0 else ("tracked x scale" if singles else "tracked")
         inside = (contact > a) & (contact <= b)
         rows.append({"lap": i, "start_s": a, "end_s": b, "duration_s": b - a, "corridor_laps": max(c, 0),
                      "tracked_m": m, "distance_m": dist, "distance_source": source,
-                     "speed_m_s": dist / (b - a) if b > a else float("nan"), "rest_s": _rest_s(a, b, bouts),
+                     "speed_mps": dist / (b - a) if b > a else float("nan"), "rest_s": _rest_s(a, b, bouts),
                      "n_steps": int(n_row[inside].sum())})
         known.append((b, known[-1][1] + dist))
     laps = pd.DataFrame(rows, columns=list(LAP_COLUMNS))
@@ -147,6 +150,7 @@ def _per_minute(t: np.ndarray, d: np.ndarray, stretches, dist: np.ndarray, t0: f
             share = (edges[inside] - a) / (b - a) if b > a else np.ones(inside.sum())
         total[inside] = before + dd * np.clip(share, 0.0, 1.0)
         before += dd
+    total[edges > stretches[-1][1]] = before  # decision L399: the span's minutes after the last step (no lap) add 0 m
     return [float(v) for v in np.diff(total)]
 
 

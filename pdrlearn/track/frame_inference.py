@@ -213,22 +213,28 @@ def rest_swings(stance: np.ndarray, fs: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def stride_displacements(acc: np.ndarray, gyr: np.ndarray, fs: float, stance: np.ndarray) -> np.ndarray:
+    """ZUPT displacement (k, 3) m of every rest-to-rest stride (:func:`stride_motion`'s first value)."""
+    return stride_motion(acc, gyr, fs, stance)[0]
+
+
+def stride_motion(acc: np.ndarray, gyr: np.ndarray, fs: float, stance: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """ZUPT displacement (k, 3) m of every rest-to-rest stride (:func:`rest_to_rest`), in the sensor frame
     of its start rest.
 
     The project's stride integration (:func:`pdrlearn.displace._kernels.strapdown`: levelled by the start
     rest's specific force, attitude from the gyroscope; :func:`double_integrate` with the ZUPT at both
-    rests), rotated back from the levelled frame into the sensor axes."""
+    rests), rotated back from the levelled frame into the sensor axes; and the foot's heading change over each
+    stride (rad, CCW; the strapdown's, decision L400)."""
     from pdrlearn.displace._kernels import double_integrate, level_rotation, strapdown, stride_index
 
     i0, i1 = rest_to_rest(stance, fs)
     if not len(i0):
-        return np.zeros((0, 3))
+        return np.zeros((0, 3)), np.zeros(0)
     idx, mask = stride_index(i0, i1)
     g_body = acc[i0]
-    a_nav, _ = strapdown(acc, gyr, 1.0 / fs, idx, mask, g_body)
+    a_nav, yaw = strapdown(acc, gyr, 1.0 / fs, idx, mask, g_body)
     disp = double_integrate(a_nav, mask, 1.0 / fs)
-    return level_rotation(g_body).inv().apply(disp)
+    return level_rotation(g_body).inv().apply(disp), np.asarray(yaw, float)
 
 
 def swing_pitch_extremes(gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndarray,
@@ -296,9 +302,10 @@ def foot_swing_strides(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | N
     return t[i0], t[i1], turn[i1] - turn[i0]
 
 
-def foot_travel_angles(session) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
-    """Start and end time (s), travel angle (rad from the foot's facing, left +) and horizontal length (m) of each
-    rest-to-rest ZUPT stride of the session's foot unit (:func:`stride_displacements`), in its declared frame's
+def foot_travel_angles(session) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
+    """Start and end time (s), travel angle (rad from the foot's facing, left +), horizontal length (m) and the
+    foot's heading change (rad, L400) of each rest-to-rest ZUPT stride of the session's foot unit
+    (:func:`stride_motion`), in its declared frame's
     forward / left axes (decision L219: a side step travels about 90 deg from the facing); None without a foot unit
     or a declared foot frame (an inferred one assumes forward walking)."""
     foot = _declared_foot(session)
@@ -306,10 +313,10 @@ def foot_travel_angles(session) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.
         return None
     t, acc, gyr, fs, frame, stance = foot
     i0, i1 = rest_to_rest(stance, fs)
-    disp = stride_displacements(acc, gyr, fs, stance)
+    disp, yaw = stride_motion(acc, gyr, fs, stance)
     m = frame.matrix()
     fwd, left = disp @ _unit(m[0]), disp @ _unit(m[1])
-    return t[i0], t[i1], np.arctan2(left, fwd), np.hypot(fwd, left)
+    return t[i0], t[i1], np.arctan2(left, fwd), np.hypot(fwd, left), yaw
 
 
 def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:

@@ -835,14 +835,15 @@ INSOLE_CLOCK_NOTE = (" - but the foot's contacts here are the force insoles', wh
 FORCE_TOE_OFF = False
 
 
-def _sideways_rows(lateral: np.ndarray, disp: np.ndarray) -> np.ndarray:
+def _sideways_rows(lateral: np.ndarray, disp: np.ndarray, turn: np.ndarray | None = None) -> np.ndarray:
     """Decision L228: the strides of L219's sideways runs (:func:`pdrlearn.kernels.sideways.sideways_runs` over each
     stride's travel angle ``lateral`` rad from the foot's facing and its horizontal displacement ``disp``), the
-    steps table's ``sideways`` column: a side step has its own rhythm and length, no steady walker's stride."""
+    steps table's ``sideways`` column: a side step has its own rhythm and length, no steady walker's stride;
+    ``turn`` the foot's heading change over each stride (rad; decision L400: a turning stride is none)."""
     from pdrlearn.kernels.sideways import sideways_runs
 
     side = np.zeros(len(lateral), dtype=bool)
-    for a, b in sideways_runs(lateral, np.hypot(disp[:, 0], disp[:, 1])):
+    for a, b in sideways_runs(lateral, np.hypot(disp[:, 0], disp[:, 1]), turn):
         side[a:b + 1] = True
     return side
 
@@ -1210,7 +1211,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if hsrc in ("waist", "fused") and SIDE_TRAVEL_HEADING:  # decision L219: a sideways run's travel
         from pdrlearn.track.sideways import side_travel_extra  # angle is added after the waist heading, not fused
 
-        side_extra = side_travel_extra(lateral, np.hypot(disp[:, 0], disp[:, 1]))
+        side_extra = side_travel_extra(lateral, np.hypot(disp[:, 0], disp[:, 1]), fd.yaw_change_)  # L400
     relative = fd.foot_heading(0.0) + lateral - side_extra
     if hsrc in ("waist", "fused"):
         work.require_cover("fAccelerometer", "wAccelerometer")  # B21: the waist heading is read at the strides
@@ -1281,7 +1282,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             table[c] = classes[c].to_numpy(float)
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
-    table["sideways"] = _sideways_rows(lateral, disp)  # decision L228: no steady / straight stride for the CVs
+    table["sideways"] = _sideways_rows(lateral, disp, fd.yaw_change_)  # L228: no steady / straight stride for the CVs
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)
@@ -1609,6 +1610,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     has_force = "fForceA" in streams and "fForceB" in streams
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
     frame = np.zeros(len(table))  # decision E124: each stride's step frame from the foot's facing
+    foot_turn = np.zeros(len(table))  # decision L400: the foot's heading change over each stride
     posture = np.zeros(len(table), dtype=bool)  # decision B131: strides skipped as the runtime skips them
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
     imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
@@ -1644,6 +1646,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             ic[i] = stride_contact(fa_t[a:b], fa_v[a:b, :3], force)
         place[i] = SK.placement_offset(lev, heading, disp[i])  # decision L34
         frame[i] = KSW.step_frame(lev)  # decision E124: the step frame's direction from the foot's facing
+        foot_turn[i] = KSW.foot_turn(lev)  # decision L400
         foot_headed[i] = SK.headed_by_foot(lev, heading)
         if i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps):  # L90: no foot pivot over a foot gap;
             if bridged:  # L91: the waist's turn over the whole pause
@@ -1674,11 +1677,12 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if KSW.STREAMED_SIDE_TRAVEL:  # decision E124: a side-stepping stretch's strides headed by the waist go along
         side = KSW.SideRun()  # their travel angle from the run's third stride on (the runtime's call, stride by stride)
         for i in np.flatnonzero(~(in_gap | posture | foot_headed)):
-            place[i] += side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]))
+            place[i] += side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]),
+                                    float(foot_turn[i]))  # L400
     sideways = np.zeros(len(table), dtype=bool)  # decision L243: the runtime's Step.sideways, stride by stride
     rows = KSW.SideRun()
     for i in np.flatnonzero(~(in_gap | posture)):
-        rows.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]))
+        rows.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]), float(foot_turn[i]))
         sideways[i] = rows.decided
     if posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
         warnings.append(posture_warning(int(posture.sum()), float(strides[posture][0, 0]),

@@ -31,9 +31,9 @@ def sideways_warnings(session, consequence) -> list[str]:
     strides = foot_travel_angles(session)
     if strides is None:
         return []
-    t0, t1, angle, length = strides
+    t0, t1, angle, length, turn = strides
     out = []
-    for a, b in sideways_runs(angle, length):
+    for a, b in sideways_runs(angle, length, turn):  # decision L400: a stride of a turn on the spot is no side step
         ang = np.degrees(angle[a:b + 1])
         way = "left" if np.median(ang) > 0 else "right"
         out.append(f"{b - a + 1} foot strides at {t0[a]:.1f}-{t1[b]:.1f} s travel sideways to the {way} "

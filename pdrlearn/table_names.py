@@ -1,0 +1,15 @@
+"""The names of the tables in the data dictionary (:data:`pdrlearn.columns.TABLES`'s keys, in its order), in a module
+that imports nothing, so that the help of the columns command lists them without loading numpy (decisions C14, E152)."""
+
+from __future__ import annotations
+
+#: :data:`pdrlearn.columns.TABLES`'s keys in the order shown (built from this tuple: a table added there is added
+#: here)
+TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv", "bouts.csv", "turns.csv", "periods.csv",
+                                "laps.csv",  # L383
+                                "transfers.csv", "tug_phases.csv",  # W293
+                                "tug_trials.csv",  # W325
+                                "freezes.csv", "ramps.csv",  # L301
+                                "rides.csv",  # L377
+                                "steps.csv", "steps.csv (foot)",  # E137
+                                "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")  # L287
