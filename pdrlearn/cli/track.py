@@ -748,6 +748,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
     # decision L124: OUT/bouts.csv, the detected walking bouts; L165: keyed by the session and its subject
     bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session), leg_m=session_leg_m(session))
+    if tracked_unit(pipeline) == "waist" and len(bouts):  # decision W350: the lower back's gait quality per bout
+        from pdrlearn.waist.ahrs import waist_imu
+        from pdrlearn.waist.gait_quality import add_bout_quality
+
+        bouts = add_bout_quality(bouts, result.steps, waist_imu(session))
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
