@@ -42,14 +42,14 @@ def harmonic_ratio(stride: np.ndarray, *, odd_over_even: bool = False) -> float:
     """Harmonic ratio of one stride's acceleration (Menz et al. 2003, as recalled): the DFT of the stride (mean
     removed; bin k is the k-th harmonic of the stride frequency), amplitudes of harmonics 1..:data:`N_HARMONICS` (as
     many as the samples hold); sum of the even ones over the odd ones (AP, V), ``odd_over_even`` for ML. NaN when the
-    denominator is 0 or the stride holds fewer than 2 harmonics."""
+    denominator is (numerically) 0 or the stride holds fewer than 2 harmonics."""
     x = np.asarray(stride, dtype=np.float64)
     amp = np.abs(np.fft.rfft(x - x.mean()))[1:N_HARMONICS + 1]
     if amp.size < 2:
         return float("nan")
     odd, even = float(amp[0::2].sum()), float(amp[1::2].sum())  # amp[0] is harmonic 1 (odd)
     num, den = (odd, even) if odd_over_even else (even, odd)
-    return num / den if den > 0 else float("nan")
+    return num / den if den > 1e-9 * (num + den) else float("nan")  # a denominator of rounding noise: none
 
 
 def _rms(x: np.ndarray) -> float:
