@@ -4,6 +4,8 @@ RMS - in :data:`pdrlearn.waist.gait_quality.QUALITY_COLUMNS`; a bout under 10 st
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -74,17 +76,35 @@ def tracked(tmp_path_factory):
         for f in (root / name).glob("f*.csv"):
             f.unlink()
         assert main(["track", str(root / name), "--pipeline", "waist-pendulum", "--out", str(root / f"o{name}")]) == 0
-        out[name] = pd.read_csv(root / f"o{name}" / "bouts.csv")
+        out[name] = root / f"o{name}"
     return out
 
 
-def test_bouts_csv_holds_the_columns_and_a_limp_lowers_them(tracked):
+@pytest.fixture(scope="module")
+def tracked_bouts(tracked):
+    return {name: pd.read_csv(folder / "bouts.csv") for name, folder in tracked.items()}
+
+
+@pytest.fixture(scope="module")
+def tracked_summaries(tracked):
+    return {name: json.loads((folder / "summary.json").read_text()) for name, folder in tracked.items()}
+
+
+def test_bouts_csv_holds_the_columns_and_a_limp_lowers_them(tracked_bouts):
     assert set(QUALITY_COLUMNS) <= set(BOUT_COLUMNS)
-    for b in tracked.values():
+    for b in tracked_bouts.values():
         assert list(b.columns[:len(BOUT_COLUMNS)]) == list(BOUT_COLUMNS)
         long = b[b["n_strides"] >= MIN_STRIDES]
         assert len(long) and long[list(QUALITY_COLUMNS)].notna().all().all()
         assert b.loc[b["n_strides"] < MIN_STRIDES, list(QUALITY_COLUMNS)].isna().all().all()
-    sym, limp = (tracked[k].dropna(subset=["hr_ap"]) for k in ("symmetric", "limp"))
+    sym, limp = (tracked_bouts[k].dropna(subset=["hr_ap"]) for k in ("symmetric", "limp"))
     for col in ("hr_ap", "hr_v", "hr_ml", "step_symmetry_v"):
         assert sym[col].median() > limp[col].median(), col
+
+
+def test_summary_gives_the_bouts_medians(tracked_summaries):
+    for name, summary in tracked_summaries.items():
+        gq = summary["gait_quality"]
+        assert gq["n_bouts"] >= 1, name
+        assert set(gq) == {"n_bouts", *QUALITY_COLUMNS}
+    assert tracked_summaries["symmetric"]["gait_quality"]["hr_ap"] > tracked_summaries["limp"]["gait_quality"]["hr_ap"]

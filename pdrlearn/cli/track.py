@@ -748,7 +748,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
     # decision L124: OUT/bouts.csv, the detected walking bouts; L165: keyed by the session and its subject
     bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session), leg_m=session_leg_m(session))
-    if tracked_unit(pipeline) == "waist" and len(bouts):  # decision W350: the lower back's gait quality per bout
+    lower_back = tracked_unit(pipeline) == "waist"
+    if lower_back and len(bouts):  # decision W350: the lower back's gait quality per bout
         from pdrlearn.waist.ahrs import waist_imu
         from pdrlearn.waist.gait_quality import add_bout_quality
 
@@ -762,6 +763,10 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     unit = tracked_unit(pipeline)
     summary.update(time_accounting(whole, session, unit, win))  # decision L275: where the time went
     summary["common_span_cut_s"] = cut_s  # decisions B267, B273: the seconds of the walk the track does not cover
+    if lower_back:  # decision W350: the bouts' medians (a foot track: no key)
+        from pdrlearn.waist.gait_quality import quality_medians
+
+        summary["gait_quality"] = quality_medians(bouts)
     if win is not None:
         # decision B242: the window as tracked (an END past the recording clipped to it, info["window"])
         summary["window_start_s"], summary["window_end_s"] = (float(result.info["window"][k])

@@ -103,3 +103,11 @@ def add_bout_quality(bouts: pd.DataFrame, steps: pd.DataFrame, imu) -> pd.DataFr
     for col in QUALITY_COLUMNS:
         bouts[col] = [r[col] for r in rows]
     return bouts
+
+
+def quality_medians(bouts: pd.DataFrame) -> dict:
+    """Decision W350: summary.json's ``gait_quality``: ``n_bouts``, the bouts with values (10+ strides), and the median
+    of each of :data:`QUALITY_COLUMNS` over them (None without such a bout)."""
+    have = bouts.dropna(subset=["hr_ap"]) if "hr_ap" in bouts else bouts.iloc[:0]
+    return {"n_bouts": len(have), **{c: float(have[c].median()) if len(have) and have[c].notna().any() else None
+                                      for c in QUALITY_COLUMNS}}
