@@ -493,10 +493,9 @@ BOUTS: tuple[Column, ...] = (
     ("stride_regularity_ap", _ID, "number", "lower back: stride regularity of the anteroposterior acceleration "
                                             "(W350)"),
     ("step_symmetry_ap", _ID, "number", "lower back: step_regularity_ap / stride_regularity_ap (W350)"),
-    ("rms_ap_mps2", "m/s^2", "number", "lower back: RMS of the anteroposterior acceleration, linearly detrended "
-                                       "over the bout (W350)"),
-    ("rms_ml_mps2", "m/s^2", "number", "lower back: the same, mediolateral (W350)"),
-    ("rms_v_mps2", "m/s^2", "number", "lower back: the same, vertical (W350)"),
+    *((f"rms_{axis}_mps2", "m/s^2", "number", f"lower back: RMS of the {name} acceleration, linearly detrended over "
+                                              "the bout (W350)")
+      for axis, name in (("ap", "anteroposterior"), ("ml", "mediolateral"), ("v", "vertical"))),
     ("rms_ml_ratio", _ID, "number", "lower back: rms_ml_mps2 over the RMS of the acceleration vector: sideways sway "
                                     "(Sekine et al. 2013; W350)"),
     *_clocks("start_s", "end_s"),
