@@ -293,3 +293,56 @@ def test_auto_stays_accel_with_force(walk):
 
     s = read_session(walk)
     assert s.has("fForceA", "fForceB") and auto_detector(s).name == "accel"  # steps 52 (trial finding 9)
+
+
+def test_stitch_rows_counts_a_seam_swing_once_l397():
+    from pdrlearn.displace.force_check import stitch_rows
+
+    # the force's clock 0.3 s late: each force row lies 0.3-0.5 s after the IMU's row of the same swing
+    imu = np.array([[5.2, 6.05], [6.25, 7.15], [7.35, 8.25], [8.4, 9.3]])
+    force = np.array([[5.7, 6.1], [6.75, 7.2], [7.85, 8.3], [8.9, 9.35]])
+    # the span starts at 7.05 s: the force's event of swing 2 (7.15 s) is in it, the IMU's (6.95 s) is not
+    keep, take = stitch_rows(force, imu, np.array([False, True, True, True]), np.array([False, False, True, True]))
+    assert keep.tolist() == [True, False, False, False] and take.tolist() == [False, True, True, True]
+    # before L397 (events alone): swing 2 was in neither table's kept rows
+    none = stitch_rows(force, imu, np.zeros(4, bool), np.zeros(4, bool))
+    assert none[0].all() and not none[1].any()
+
+
+def test_a_late_force_clock_loses_no_stride_at_the_seams_l397(tmp_path, capsys):
+    """R2 finding 1: force 300 ms late -> L365's partial fallback; every force/IMU seam had lost a stride (user
+    7480: 23 strides, 27.41 m, -9.53 % for the clean 26 strides, 30.55 m). Tolerance: the same stride count and
+    the clean distance within 1 %."""
+    from pdrlearn.cli import main
+
+    src = tmp_path / "s7480"
+    assert main(["simulate", "--route", "straight:10, turn:90, straight:10, turn:90, straight:10", "--user-seed",
+                 "7480", "--out", str(src)]) == 0
+    late = _copy(src, tmp_path / "late", lambda df: df.assign(timestamp=df.timestamp + 300))
+    capsys.readouterr()
+    clean, res = _track(src), _track(late)
+    lines = [w for w in res.info["warnings"] if "L365" in w]
+    assert len(lines) == 1 and "whole session" not in lines[0]  # the partial fallback (6 of 26 strides here)
+    assert len(res.steps) == len(clean.steps)
+    assert res.distance_m == pytest.approx(clean.distance_m, rel=0.01)
+    dur = (res.steps["end_s"] - res.steps["start_s"]).to_numpy()
+    assert dur.max() < 1.6  # no stride spans a lost one
+
+
+def test_ignore_force_refuses_a_detector_that_reads_the_force_b299(walk, tmp_path, capsys):
+    """R2 finding 5: --ignore-force --detector accel-force took its strides from the insoles."""
+    from pdrlearn.cli import main
+    from pdrlearn.errors import DataError
+    from pdrlearn.steps import AccelForceStepDetector
+
+    for steps in ("accel-force", "accel-force:ref_stances=0", AccelForceStepDetector()):
+        with pytest.raises(DataError, match="reads fForceA/fForceB; use --detector accel .*B299"):
+            _track(walk, steps=steps, ignore_force=True)
+    for cmd in (["track", str(walk)], ["track-all", str(walk.parent)]):
+        out = tmp_path / cmd[0]
+        code = main([*cmd, "--ignore-force", "--detector", "accel-force", "--out", str(out)])
+        err = capsys.readouterr().err
+        assert code == 2 and "B299" in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+        assert not out.exists()
+    res = _track(walk, steps="accel", ignore_force=True)  # the IMU's detector stays allowed
+    assert res.info["stance_source"] == "inertial" and len(res.steps) > 10

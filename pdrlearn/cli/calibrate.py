@@ -70,6 +70,9 @@ def register(app: typer.Typer) -> None:
         was = existed(out)
         if turns is not None and not math.isfinite(turns):
             raise DataError(f"--turns {turns}: give the signed number of full turns walked, e.g. 1 or -2")
+        for dm in distance or []:  # one error line before any session is read or tracked (no track warning first)
+            if not (math.isfinite(dm) and dm > 0):
+                raise DataError(f"calibrate: --distance {dm} must be a positive number of metres")
         sessions = [read_session(d) for d in dirs]
         for d, s in zip(dirs, sessions, strict=True):
             if not s.has("wAccelerometer"):  # decision B28: say what calibrate is for, not "choose a method"

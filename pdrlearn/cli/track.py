@@ -449,6 +449,13 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if detector_unit == "waist" and realtime:
             raise DataError(f"track: --detector {detector}: --realtime chooses the pipeline's own causal contact "
                             "detector (decision W31); drop one of them")
+        refusal = None
+        if ignore_force:  # decision B299: before any session
+            from pdrlearn.displace.force_check import reads_force_refusal
+
+            refusal = reads_force_refusal(detector)
+        if refusal:
+            raise DataError(f"track: {refusal}")
         if streaming:
             raise DataError("track: --detector chooses the offline strides; the --streaming kernel segments its "
                             "own - drop one of them")

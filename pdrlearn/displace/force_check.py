@@ -111,6 +111,24 @@ _NO_SPANS = np.zeros((0, 2))
 IGNORE_FORCE = "--ignore-force (ignore_force=True)"
 
 
+def reads_force_refusal(steps) -> str | None:
+    """Decision B299: the one line refusing ``ignore_force=True`` (L366) with a foot detector that reads the force
+    sensors (``steps``: a registered detector's name, ``"NAME:key=value,..."``, or a
+    :class:`~pdrlearn.steps.StepDetector`; it reads them when its ``input_columns`` name a force channel), else None.
+    Without it ``--ignore-force --detector accel-force`` still took its strides from the insoles (review R2,
+    finding 5)."""
+    import pdrlearn.steps as steps_mod
+
+    if isinstance(steps, str):
+        name = steps.split(":", 1)[0].strip()
+        steps = steps_mod.DETECTORS.get(name)
+    cols = getattr(steps, "input_columns", ()) if steps is not None and not isinstance(steps, str) else ()
+    if not any(str(c).startswith("force") for c in cols):
+        return None
+    return (f"{IGNORE_FORCE} leaves the force sensors out, and the detector {steps.name} (--detector / steps=) reads "
+            f"fForceA/fForceB; use --detector accel (steps='accel') or drop --ignore-force (decision B299)")
+
+
 def _force_only_gaps(session, t: np.ndarray, names: list[str]) -> np.ndarray:
     """(n,) True at the times ``t`` inside a gap of a force stream that the foot IMU does not share."""
     def mask(stream_names) -> np.ndarray:
@@ -165,10 +183,36 @@ def checked_stance(session, foot, *, use_force: bool = True, fix: str = f"pass {
     return out, "force", [line], np.column_stack([t[chk.bad[:, 0]], t[np.minimum(chk.bad[:, 1], len(t)) - 1]])
 
 
+def stitch_rows(force: np.ndarray, imu: np.ndarray, force_in: np.ndarray, imu_in: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """Decision L397 (pure kernel): which rows of a force detector's table (``force`` (n, 2) start/end s) to keep and
+    which of the accelerometer detector's (``imu`` (m, 2)) to take, given whose event lies where the force
+    disagrees (``force_in`` (n,), ``imu_in`` (m,) bool). Rows of both tables that overlap in time are the same
+    swing (a chain of overlaps one group); a group with a row flagged takes all its IMU rows and none of its
+    force rows, any other group keeps its force rows. So a swing at the seam of a force span and an IMU span is
+    counted once, whichever side of the seam each table puts its event (L365 had lost it when the force's clock
+    ran late: neither event fell on its own side)."""
+    f = np.asarray(force, dtype=float).reshape(-1, 2)
+    m = np.asarray(imu, dtype=float).reshape(-1, 2)
+    rows = np.concatenate([f, m])
+    flag = np.concatenate([np.asarray(force_in, dtype=bool), np.asarray(imu_in, dtype=bool)])
+    order = np.argsort(rows[:, 0], kind="stable")
+    group = np.empty(len(rows), dtype=np.int64)
+    g, end = -1, -np.inf
+    for i in order:  # a row that starts before the group's latest end overlaps it
+        if rows[i, 0] >= end:
+            g += 1
+        group[i] = g
+        end = rows[i, 1] if rows[i, 0] >= end else max(end, rows[i, 1])
+    bad = np.isin(group, group[flag])
+    return ~bad[:len(f)], bad[len(f):]
+
+
 def imu_strides_in(session, strides, spans: np.ndarray):
-    """Decision L365: a force detector's ``strides`` table with its rows whose event (``event_s``, else ``end_s``)
-    lies in one of ``spans`` ((k, 2) s, where the force disagrees with the IMU) replaced by the accelerometer
-    detector's rows there (an insole that reads 0 N or stops finds no stride where the foot walks on)."""
+    """Decision L365: a force detector's ``strides`` table with its rows where the force disagrees with the IMU
+    (``spans`` (k, 2) s) replaced by the accelerometer detector's rows there (an insole that reads 0 N or stops
+    finds no stride where the foot walks on). A row is there when its event (``event_s``, else ``end_s``) lies in a
+    span, and with it every row of either table that overlaps it (:func:`stitch_rows`, decision L397)."""
     import pandas as pd
 
     from pdrlearn.steps import AccelStepDetector
@@ -177,11 +221,14 @@ def imu_strides_in(session, strides, spans: np.ndarray):
         ev = np.asarray(table["event_s"] if "event_s" in table else table["end_s"], dtype=float)
         return np.any((ev[:, None] >= spans[:, 0]) & (ev[:, None] <= spans[:, 1]), axis=1)
 
+    def windows(table) -> np.ndarray:
+        return table[["start_s", "end_s"]].to_numpy(dtype=float)
+
     imu = AccelStepDetector().detect(session)
     if not len(imu):
         return strides
-    keep = strides[~inside(strides)] if len(strides) else strides
-    out = pd.concat([keep, imu[inside(imu)]], ignore_index=True)
+    keep, take = stitch_rows(windows(strides), windows(imu), inside(strides), inside(imu))
+    out = pd.concat([strides[keep], imu[take]], ignore_index=True)
     return out.sort_values("start_s", kind="stable").reset_index(drop=True)
 
 

@@ -1230,17 +1230,38 @@ def smooth_step_lengths(start_s: np.ndarray, end_s: np.ndarray, lengths: np.ndar
     return np.where(np.isfinite(out), out, per_ic[:-1])  # no finite second under the step: its own value
 
 
-def vertical_excursion(acc_v: np.ndarray, fs: float, i0: int, i1: int) -> float:
+#: decision W348: the rate (Hz) a step's vertical acceleration is integrated at, at least: a slower record is
+#: upsampled first (the trapezoidal rule's double-integration gain at a 1.8 Hz step is 0.947 at 20 Hz, 0.998 at 100 Hz)
+EXCURSION_MIN_RATE_HZ = 100.0
+
+
+def band_limited_upsample(x: np.ndarray, factor: int) -> np.ndarray:
+    """Decision W348: the samples ``x`` at ``factor`` times their rate, ``(len(x) - 1) * factor + 1`` samples from
+    the first to the last, by zero-padding the FFT of ``x`` extended by its even reflection (periodic without a
+    jump at the ends; the sampling theorem's interpolation of a band-limited signal). ``factor`` 1: ``x``."""
+    x = np.asarray(x, dtype=np.float64)
+    if factor <= 1 or x.size < 3:
+        return x.copy()
+    ext = np.concatenate([x, x[-2:0:-1]])
+    fine = np.fft.irfft(np.fft.rfft(ext), ext.size * factor) * factor
+    return fine[:(x.size - 1) * factor + 1]
+
+
+def vertical_excursion(acc_v: np.ndarray, fs: float, i0: int, i1: int, *, min_rate_hz: float = 0.0) -> float:
     """Peak-to-peak vertical displacement (m) between samples ``i0`` and ``i1``.
 
     Double integration of the vertical acceleration (gravity removed) with zero velocity at both ends
     (seed 003 sec. 3.2: ZUPT at the IC) and equal height at both ends: the mean of the acceleration is
-    removed before the first integration and the linear drift of the position after the second.
+    removed before the first integration and the linear drift of the position after the second. Below
+    ``min_rate_hz`` the step's samples (``i0`` to ``i1`` only) are first upsampled by ``ceil(min_rate_hz / fs)``
+    (:func:`band_limited_upsample`, decision W348).
     """
     a = np.asarray(acc_v[i0:i1 + 1], dtype=np.float64)
     if a.size < 3:
         return 0.0
-    dt = 1.0 / fs
+    factor = int(np.ceil(min_rate_hz / fs - 1e-9)) if min_rate_hz > fs else 1  # W348
+    a = band_limited_upsample(a, factor)
+    dt = 1.0 / (fs * factor)
     a = a - a.mean()
     vel = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * dt)])
     vel = vel - np.linspace(vel[0], vel[-1], vel.size)

@@ -38,7 +38,8 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.displace.foot import check_settings as check_foot_settings
-from pdrlearn.displace.force_check import checked_stance, imu_strides_in, tared
+from pdrlearn.displace.force_check import checked_stance, imu_strides_in, reads_force_refusal, tared
+from pdrlearn.displace.force_clock import force_events, offset_check, toe_offs_in
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
@@ -825,6 +826,13 @@ GAP_STRIDE_HEIGHT = True
 #: Decision L184 (adopted by its rule, experiments/gated_level_dz.py): offline M3 gives L39's level rule to the
 #: strides whose terrain class the confidence gate (L18) dropped, instead of their raw integrated height
 GATED_LEVEL_DZ = True
+#: decision B297: added to L161's unit-offset line when the insoles' own clock is off (L390): the foot's contacts it
+#: compares the waist's steps with are the insoles' (trial T2 finding 8: a +150 ms insole shift blamed the waist)
+INSOLE_CLOCK_NOTE = (" - but the foot's contacts here are the force insoles', whose clock is off against the foot IMU "
+                     "(decision L390's line): re-align the insoles first")
+#: decision L388 (not adopted: its rule was not met, so off): True = ``--toe-off`` with a force stance takes the
+#: insoles' drop-off as the toe-off; False = L73's gyroscope toe-off always
+FORCE_TOE_OFF = False
 
 
 def _sideways_rows(lateral: np.ndarray, disp: np.ndarray) -> np.ndarray:
@@ -1027,10 +1035,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if at is not None:
             log.warning("%s: %s", session.where, res.info["warnings"][at])
         return res
+    refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
+    if refusal:
+        raise DataError(f"plasys: {refusal}")
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
     stance_source, imu_spans = "inertial", np.zeros((0, 2))
+    fev, force_offset = None, None  # decisions L388 / L389: the force detector's events, the insoles' clock offset
     if cfg["force"]:
         if ignore_force and method == "M2":  # decision L366
             raise DataError("plasys: method M2 is accelerometer + force, and ignore_force=True (--ignore-force) "
@@ -1040,6 +1052,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             warnings += [tare_line] if tare_line else []
         stance, stance_source, lines, imu_spans = checked_stance(session, foot, use_force=not ignore_force)  # L365/6
         warnings += lines
+        if stance_source == "force":  # decisions L388-L390: the force detector's events (onsets, drop-offs)
+            fev = force_events(session)
         if stance_source == "inertial" and not ignore_force:
             if method == "M2":
                 raise MissingSensorError(
@@ -1271,11 +1285,24 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)
-    tc = None
-    if toe_off:  # decision L73: toe-off from the foot gyroscope at its native rate, stance/swing split
-        from pdrlearn.track.toeoff import toe_off_times
+    tc, tc_gyro = None, None
+    if toe_off or fev is not None:  # decision L73: toe-off from the foot gyroscope at its native rate (L390: the
+        from pdrlearn.track.toeoff import toe_off_times  # insoles' clock is checked against it)
 
-        tc = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
+        tc_gyro = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
+    if fev is not None:  # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events
+        force_offset, clock_line = offset_check(session, fev, [n for n in ("fForceA", "fForceB")
+                                                               if n in session.streams], table=table, tc_gyro=tc_gyro)
+        if clock_line:  # B297: L161's waist-vs-foot line compares with the insoles' contacts, so it says so
+            warnings[:] = [w + INSOLE_CLOCK_NOTE if "decision L161" in w else w for w in warnings]
+            warnings.append(clock_line)
+    if toe_off:  # decision L73: the stance/swing split (the toe-off columns only with --toe-off)
+        tc, toe_off_source = tc_gyro, "gyroscope"
+        if fev is not None and FORCE_TOE_OFF:  # decision L388: the force drop-off where the insoles have one
+            tf = toe_offs_in(fev["start_s"], table["start_s"], table["event_s"])
+            toe_off_source = ("force" if np.isfinite(tf).all() else "force+gyroscope") if np.isfinite(tf).any() \
+                else "gyroscope"
+            tc = np.where(np.isfinite(tf), tf, tc)
     add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
                      turn_valid=~in_gap)  # L109: a stride moved 0 m by the guard keeps its measured turn
     if toe_off:  # decision L315: L285's stance bound on one foot's track
@@ -1327,6 +1354,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     oracle = isinstance(model, str) and model == "oracle"
     info = {"pipeline": "plasys", "method": "M3 engine, no classes" if no_classes else method,
             "heading_source": hsrc, "stance_source": stance_source,
+            "force_offset_s": force_offset,  # decision L389 (None: no force stance)
+            "toe_off_source": toe_off_source if toe_off else None,  # decision L388
             "hard_iron": hard_iron_info,  # decision L84 (None: the fit was not asked)
             "compass_check": compass_info,  # decision L182 (None: no compass heading, or too few strides)
             "steps_source": source,

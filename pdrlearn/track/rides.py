@@ -69,7 +69,12 @@ def foot_rides(result, session) -> None:
         pause[j] = pause_ride_dz(b.t, p, float(ends[j]), float(starts[j]))[0]
     pause = np.where(np.abs(pause) >= RIDE_MIN_M, pause, 0.0)
     kinds, records = _rides(b.t, p, ends, starts, pause)
-    result.steps = steps.assign(pause_dz_m=pause, ride=kinds)
+    # before the columns every track ends its steps.csv with (L97's stride_time_s ... grade_pct, E51's order)
+    at = list(steps.columns).index("stride_time_s") if "stride_time_s" in steps else len(steps.columns)
+    steps = steps.copy()
+    steps.insert(at, "pause_dz_m", pause)
+    steps.insert(at + 1, "ride", kinds)
+    result.steps = steps
     result.info["rides"] = records
     lines = ride_lines(records)
     result.info.setdefault("warnings", []).extend(lines)
