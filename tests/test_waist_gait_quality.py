@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.track.bouts import BOUT_COLUMNS
-from pdrlearn.waist.gait_quality import MIN_STRIDES, QUALITY_COLUMNS, bout_quality, harmonic_ratio
+from pdrlearn.waist.gait_quality import MIN_STRIDES, NOT_VALIDATED, QUALITY_COLUMNS, bout_quality, harmonic_ratio
 
 FS = 100.0
 
@@ -63,7 +63,8 @@ def test_a_bout_under_ten_strides_gives_null():
 @pytest.fixture(scope="module")
 def tracked(tmp_path_factory):
     """Simulated users 7550 (symmetric) and 7551 (S35 / S42 limp: steps onto the left foot 30 % longer in time and
-    length), 40 m, lower back only, tracked by ``pdrlearn track --pipeline waist-pendulum``."""
+    length), 40 m, lower back only, tracked by ``pdrlearn track --pipeline waist-pendulum --gait-quality`` (W352:
+    opt-in); the symmetric one also without the flag (``default``)."""
     from pdrlearn import sim
     from pdrlearn.cli import main
     from pdrlearn.io import write_session
@@ -75,8 +76,12 @@ def tracked(tmp_path_factory):
         write_session(sim.simulate("walk", user, length_m=40, **knobs), root / name)
         for f in (root / name).glob("f*.csv"):
             f.unlink()
-        assert main(["track", str(root / name), "--pipeline", "waist-pendulum", "--out", str(root / f"o{name}")]) == 0
+        assert main(["track", str(root / name), "--pipeline", "waist-pendulum", "--gait-quality",
+                     "--out", str(root / f"o{name}")]) == 0
         out[name] = root / f"o{name}"
+    assert main(["track", str(root / "symmetric"), "--pipeline", "waist-pendulum",
+                 "--out", str(root / "odefault")]) == 0
+    out["default"] = root / "odefault"
     return out
 
 
@@ -92,7 +97,8 @@ def tracked_summaries(tracked):
 
 def test_bouts_csv_holds_the_columns_and_a_limp_lowers_them(tracked_bouts):
     assert set(QUALITY_COLUMNS) <= set(BOUT_COLUMNS)
-    for b in tracked_bouts.values():
+    for name in ("symmetric", "limp"):
+        b = tracked_bouts[name]
         assert list(b.columns[:len(BOUT_COLUMNS)]) == list(BOUT_COLUMNS)
         long = b[b["n_strides"] >= MIN_STRIDES]
         assert len(long) and long[list(QUALITY_COLUMNS)].notna().all().all()
@@ -103,8 +109,41 @@ def test_bouts_csv_holds_the_columns_and_a_limp_lowers_them(tracked_bouts):
 
 
 def test_summary_gives_the_bouts_medians(tracked_summaries):
-    for name, summary in tracked_summaries.items():
-        gq = summary["gait_quality"]
+    for name in ("symmetric", "limp"):
+        gq = tracked_summaries[name]["gait_quality"]
         assert gq["n_bouts"] >= 1, name
         assert set(gq) == {"n_bouts", *QUALITY_COLUMNS}
     assert tracked_summaries["symmetric"]["gait_quality"]["hr_ap"] > tracked_summaries["limp"]["gait_quality"]["hr_ap"]
+
+
+def test_without_the_flag_the_columns_stay_empty_and_no_key(tracked_bouts, tracked_summaries):
+    """W352: the gait quality is opt-in; without --gait-quality bouts.csv keeps its columns (one layout) but empty,
+    and summary.json has no ``gait_quality`` and no W352 warning."""
+    b = tracked_bouts["default"]
+    assert list(b.columns[:len(BOUT_COLUMNS)]) == list(BOUT_COLUMNS)
+    assert (b["n_strides"] >= MIN_STRIDES).any()  # the flagged track of this walk filled these bouts
+    assert b[list(QUALITY_COLUMNS)].isna().all().all()
+    summary = tracked_summaries["default"]
+    assert "gait_quality" not in summary
+    assert NOT_VALIDATED not in summary.get("info", {}).get("warnings", [])
+
+
+def test_the_flag_warns_once_that_the_values_are_not_validated(tracked_summaries):
+    """W352: with --gait-quality one warning line (in summary.json's info.warnings too) says the values are not
+    validated against real recordings and to compare within a person."""
+    for name in ("symmetric", "limp"):
+        warnings = tracked_summaries[name]["info"]["warnings"]
+        assert warnings.count(NOT_VALIDATED) == 1, name
+    assert "not validated against real recordings" in NOT_VALIDATED and "within a person" in NOT_VALIDATED
+
+
+def test_the_flag_reaches_track_all():
+    """W352: ``track-all`` takes --gait-quality too and passes it on (E93's settings)."""
+    import inspect
+
+    from pdrlearn.cli.cohort import track_all
+    from pdrlearn.cli.track import settings_of, track_settings
+
+    assert inspect.signature(track_all).parameters["gait_quality"].default.default is False
+    assert track_settings()["gait_quality"] is False
+    assert settings_of({"gait_quality": True})["gait_quality"] is True
