@@ -26,8 +26,8 @@ SHOWN = ("hr_ap", "hr_v", "hr_ml", "step_symmetry_v", "step_symmetry_ap", "strid
 
 
 def bouts(folder: Path, out: Path) -> pd.DataFrame:
-    """bouts.csv of ``pdrlearn track folder --pipeline waist-pendulum`` (its rows of 10+ strides)."""
-    assert main(["track", str(folder), "--pipeline", "waist-pendulum", "--out", str(out)]) == 0
+    """bouts.csv of ``pdrlearn track folder --pipeline waist-pendulum --gait-quality`` (W352; its 10+ stride rows)."""
+    assert main(["track", str(folder), "--pipeline", "waist-pendulum", "--gait-quality", "--out", str(out)]) == 0
     b = pd.read_csv(out / "bouts.csv")
     return b[b["hr_ap"].notna()]
 

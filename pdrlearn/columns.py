@@ -479,8 +479,10 @@ BOUTS: tuple[Column, ...] = (
                                           "(L196's minimum); empty otherwise (L212)"),
     ("stride_length_cv_pct", "%", "number", "foot: the same of their lengths (L212); complete strides only, unlike "
                                             "stride_length_m"),
-    # decision W350: the lower back's gait quality, bouts of 10+ strides; empty on a foot track and shorter bouts
-    ("hr_ap", _ID, "number", "lower back, 10+ strides: anteroposterior harmonic ratio, even / odd of the first 20 "
+    # decision W350: the lower back's gait quality, bouts of 10+ strides; empty on a foot track and shorter bouts, and
+    # without track --gait-quality (W352)
+    ("hr_ap", _ID, "number", "lower back, 10+ strides, only with track --gait-quality (W352, opt-in): "
+                             "anteroposterior harmonic ratio, even / odd of the first 20 "
                              "stride harmonics, mean over strides (Menz et al. 2003; W350)"),
     ("hr_v", _ID, "number", "lower back: the vertical harmonic ratio, even / odd (W350)"),
     ("hr_ml", _ID, "number", "lower back: the mediolateral harmonic ratio, odd / even (W350)"),
