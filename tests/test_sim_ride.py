@@ -245,15 +245,8 @@ def test_cli_help_names_the_ride_items(capsys):
 def test_rides_in_parts_give_the_whole_grid_session(monkeypatch):
     """S44 with S45 / S46: the ride's offset and sway and the trolley's gain are pointwise in time, so parts of 1000
     samples of the 500 Hz grid give the whole grid's streams exactly (user 3356)."""
-    import importlib
+    from tests.sim_helpers import whole_and_parts
 
-    sim_module = importlib.import_module("pdrlearn.sim.simulate")
     route = parse_route("straight:3, lift:+6, trolley:4, escalator:-2")
-    u = UserProfile.from_seed(3356)
-    monkeypatch.setattr(sim_module, "FINE_CHUNK", 10**9)
-    whole = simulate_path(route, u, rate_hz=100.0, seed=2)
-    monkeypatch.setattr(sim_module, "FINE_CHUNK", 1000)
-    parts = simulate_path(route, u, rate_hz=100.0, seed=2)
-    for k in whole.streams:
-        assert np.array_equal(whole.streams[k].values, parts.streams[k].values), k
+    whole, parts = whole_and_parts(monkeypatch, route, UserProfile.from_seed(3356), 100.0, 2)
     assert np.array_equal(whole.trajectory.to_numpy(), parts.trajectory.to_numpy())

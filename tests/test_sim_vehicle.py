@@ -76,17 +76,10 @@ def test_a_vehicle_carries_the_standing_walker_without_a_step():
 def test_the_vibration_is_drawn_in_range_and_rides_are_pointwise(monkeypatch):
     """Without an RMS the vibration is drawn in 0.3-1.0 m/s^2 (ISO 2631-1's comfort range, as recalled); S44: the
     vehicle's carry is pointwise in time, so parts of the 500 Hz grid give the whole grid's streams (user 7181)."""
-    import importlib
+    from tests.sim_helpers import whole_and_parts
 
-    sim_module = importlib.import_module("pdrlearn.sim.simulate")
     route = [Straight(3.0), Vehicle(30.0), Straight(3.0)]
-    u = UserProfile.from_seed(7181)
-    monkeypatch.setattr(sim_module, "FINE_CHUNK", 10**9)
-    whole = simulate_path(route, u, rate_hz=50.0, seed=1)
-    monkeypatch.setattr(sim_module, "FINE_CHUNK", 1000)
-    parts = simulate_path(route, u, rate_hz=50.0, seed=1)
-    for k in whole.streams:
-        assert np.array_equal(whole.streams[k].values, parts.streams[k].values), k
+    whole, _ = whole_and_parts(monkeypatch, route, UserProfile.from_seed(7181), 50.0, 1)
     acc = whole.streams["wAccelerometer"]
     row = whole.extras["rides"].iloc[0]
     m = (acc.t > row.start_s + 5) & (acc.t < row.end_s - 5)

@@ -284,6 +284,21 @@ def _climb_parts(steps: pd.DataFrame):
     return ride, kind, sign
 
 
+def _with_after(steps: pd.DataFrame, info: dict | None, dz, parts, slope_rows):
+    """Decision L394: ``(dz, parts, slope_rows)`` with one row more per ride after the last step (``info["rides"]``'s
+    ``row`` n: a standstill that precedes no step), so its storeys count as a ride's (L375, L376)."""
+    after = [r for r in (info or {}).get("rides") or [] if int(r.get("row", -1)) >= len(steps)]
+    if dz is None or not after:
+        return dz, parts, slope_rows
+    m = len(after)
+    extra = np.array([float(r["dz_m"]) for r in after])
+    ride, kind, sign = parts
+    kinds = None if kind is None else np.concatenate([kind, np.array([r["kind"] for r in after], dtype=object)])
+    return (np.concatenate([np.asarray(dz, dtype=float), extra]),
+            (np.concatenate([ride, extra]), kinds, None if sign is None else np.concatenate([sign, np.zeros(m, int)])),
+            None if slope_rows is None else np.concatenate([np.asarray(slope_rows, dtype=int), np.zeros(m, int)]))
+
+
 #: decision L302: what a climb's storeys climbed, the keys floors_up_<kind> / floors_down_<kind> split L127's count by
 CLIMB_KINDS = ("stairs", "ramps", "rides")
 
@@ -386,6 +401,7 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
     slope_rows = climb_slope_rows(steps, info)  # decision L337
     parts = _climb_parts(steps)  # decisions L374-L376: a ride is a climb of its own, "rides"
+    dz, parts, slope_rows = _with_after(steps, info, dz, parts, slope_rows)  # decision L394
     for rows, n, ride in _climbs(dz, storey_height_m, STOREY_BAND, bridge, None, slope_rows=slope_rows, parts=parts):
         kind = "rides" if ride else climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
                                                on_stairs)
@@ -617,9 +633,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)
+    parts = _climb_parts(result.steps) if dz is not None else None  # decisions L374-L376
+    dz, parts, slope_rows = _with_after(result.steps, result.info, dz, parts,  # decision L394
+                                        climb_slope_rows(result.steps, result.info))  # decision L337
     _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=dz, bridge=bridge,
-            slope_rows=climb_slope_rows(result.steps, result.info),  # decision L337
-            parts=_climb_parts(result.steps) if dz is not None else None)  # decisions L374-L376
+            slope_rows=slope_rows, parts=parts)
     out["n_rides"] = len(result.info["rides"]) if result.info.get("rides") is not None else None  # decision L377
     out.update(floors_by_kind(result.steps, out.get("storey_height_m", STOREY_HEIGHT_M),
                              result.info))  # decision L302
@@ -821,7 +839,9 @@ def _altitude(result: TrackResult, session: Session, out: dict) -> None:
     ref, source = reference_altitude_change(session, float(tr["t"].iloc[0]), float(tr["t"].iloc[-1]))
     if ref is None:
         return
-    z_ref = reference_altitude_track(session, float(tr["t"].iloc[0]), float(tr["t"].iloc[-1]))
+    rides = result.info.get("rides") or []  # decisions L393, L394: the floors' span holds the rides at its edges
+    z_ref = reference_altitude_track(session, min([float(tr["t"].iloc[0])] + [float(r["start_s"]) for r in rides]),
+                                     max([float(tr["t"].iloc[-1])] + [float(r["end_s"]) for r in rides]))
     if z_ref is not None:  # decision L64: the reference's storeys, counted by the same rule
         _floors(z_ref, out, "_ref")  # L64's count on the reference altitude
     est = out["altitude_change_m"]
@@ -1098,11 +1118,23 @@ _FOOT_BLIND = ("the foot's height is integrated stride by stride: it misses a li
                "cause indoors: the height changes while the feet stand) and slopes and hills (L144)")
 
 
-def _climb_miss(summary: dict) -> tuple[str, float] | None:
+def _ridden(summary: dict) -> dict | None:
+    """Decision L396: a foot track's rides read from the barometer (L378; ``info["rides"]``) as their height up
+    (``"ascent"``), down (``"descent"``, positive) and net (``"net"``); None where no ride was read."""
+    rides = (summary.get("info") or {}).get("rides")
+    if rides is None:
+        return None
+    dz = [float(r["dz_m"]) for r in rides]
+    return {"ascent": sum(d for d in dz if d > 0), "descent": -sum(d for d in dz if d < 0), "net": sum(dz)}
+
+
+def _climb_miss(summary: dict, ridden: dict | None = None) -> tuple[str, float] | None:
     """Decision L180: the barometer's ascent or descent (``barometer_ascent_m`` / ``barometer_descent_m``, L172's
     climbs of 0.5 m within a minute) that the track's own (``ascent_m`` / ``descent_m``) misses by the most, as
-    (``"ascent"`` or ``"descent"``, metres missed); None without them."""
-    misses = [(k, float(summary[f"barometer_{k}_m"]) - float(summary[f"{k}_m"])) for k in ("ascent", "descent")
+    (``"ascent"`` or ``"descent"``, metres missed); None without them. Decision L396: ``ridden`` (:func:`_ridden`),
+    the rides' part of the barometer's climbs is no miss."""
+    misses = [(k, float(summary[f"barometer_{k}_m"]) - (ridden or {}).get(k, 0.0) - float(summary[f"{k}_m"]))
+              for k in ("ascent", "descent")
               if summary.get(f"barometer_{k}_m") is not None and summary.get(f"{k}_m") is not None]
     return max(misses, key=lambda m: m[1]) if misses else None
 
@@ -1127,12 +1159,17 @@ def barometer_warning(summary: dict) -> str | None:
     if baro is None or foot is None:
         return None
     fused = not summary.get("barometer_unused", True)  # decision L154: the barometer was fused into the altitude
-    source = f"(wBarometer.csv, {'fused with the strides by L154' if fused else 'not read by foot tracks'})"
+    ridden = None if fused else _ridden(summary)  # decision L396: the rides L378 read are no disagreement
+    source = (f"(wBarometer.csv, {'fused with the strides by L154' if fused else 'not read by foot tracks'})"
+              if ridden is None else "(wBarometer.csv, read for rides only, L378"
+              + (f"; without its rides' {ridden['net']:+.2f} m, L396)" if ridden["net"] else ")"))
+    if ridden is not None:
+        baro, raw = float(baro) - ridden["net"], float(baro if raw is None else raw) - ridden["net"]
     advice = ("; for floors by lift or escalator track the lower back, `--pipeline waist-pendulum`; for altitude on "
               "slopes, hills and ramps " + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ")
               + "track the lower back")
     if not abs(float(foot) - float(baro)) > float(limit):
-        miss = _climb_miss(summary)  # decision L180: the net agrees; did the foot miss a climb and its return?
+        miss = _climb_miss(summary, ridden)  # decision L180: the net agrees; did the foot miss a climb and its return?
         if miss is None or not miss[1] > float(limit):
             return None
         kind, missed = miss

@@ -318,7 +318,14 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's."""
     from pdrlearn.track.bouts import session_key
     from pdrlearn.track.clock import clock_edges
-    from pdrlearn.track.evaluate import _climb_dz, _climb_parts, climb_slope_rows, floor_climbs, step_counts
+    from pdrlearn.track.evaluate import (
+        _climb_dz,
+        _climb_parts,
+        _with_after,
+        climb_slope_rows,
+        floor_climbs,
+        step_counts,
+    )
 
     t0, t1 = session_span(session, unit) if span is None else span
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
@@ -329,10 +336,15 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
     length = steps["length_m"].abs().to_numpy(float) if len(steps) else np.zeros(0)
     dz, bridge = _climb_dz(steps)
-    climbs = (floor_climbs(dz, storey_height_m, bridge=bridge, slope_rows=climb_slope_rows(steps, result.info),
-                           parts=_climb_parts(steps))  # decisions L374-L376, as the summary's
+    # decision L394: a ride after the last step is one row more, at its middle
+    dz, parts, slope_rows = _with_after(steps, result.info, dz, _climb_parts(steps) if dz is not None else None,
+                                        climb_slope_rows(steps, result.info))
+    at = np.concatenate([mid, [0.5 * (float(r["start_s"]) + float(r["end_s"])) for r in result.info.get("rides") or []
+                               if int(r.get("row", -1)) >= len(steps)]])
+    climbs = (floor_climbs(dz, storey_height_m, bridge=bridge, slope_rows=slope_rows,
+                           parts=parts)  # decisions L374-L376, as the summary's
               if dz is not None else None)  # decision L337: a ramp's climb as the summary's
-    climb_t = np.array([mid[i] for i, _ in climbs]) if climbs else np.zeros(0)
+    climb_t = np.array([at[i] for i, _ in climbs]) if climbs else np.zeros(0)
     climb_n = np.array([n for _, n in climbs]) if climbs else np.zeros(0)
     bout_t = bouts["start_s"].to_numpy(float) if bouts is not None and len(bouts) else np.zeros(0)
     turn_t = turns["start_s"].to_numpy(float) if turns is not None and len(turns) else np.zeros(0)

@@ -13,13 +13,41 @@ RIDE_COLUMNS = ("ride", "start_s", "end_s", "kind", "dz_m", "duration_s", "verti
 
 
 def ride_rows(t: np.ndarray, p_hpa: np.ndarray, steps: pd.DataFrame, t0: float, z: np.ndarray,
-              z_start: np.ndarray) -> tuple[np.ndarray, list[dict]]:
+              z_start: np.ndarray, t_end: float | None = None) -> tuple[np.ndarray, list[dict]]:
     """Decisions L375, L376: per step the kind of the ride in the pause before it (``""``: none) and one record per
     ride (rides.csv's :data:`RIDE_COLUMNS` and ``row``, the step it precedes). ``(t, p_hpa)``: the barometer (s,
     hPa); ``z`` (n+1,) the track's altitude at ``t0`` and each step's end, ``z_start`` (n,) at each step's start
-    (W158: ``pause_dz_m = z_start - z[:-1]``)."""
+    (W158: ``pause_dz_m = z_start - z[:-1]``). Decision L394: with ``t_end`` (the recording's end) also the ride in
+    the standstill after the last step (``row`` n, no step)."""
     pause = np.asarray(z_start, dtype=float) - np.asarray(z, dtype=float)[:-1]
-    return _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause)
+    kinds, records = _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause)
+    return kinds, _after_last(t, p_hpa, steps, records, t_end)
+
+
+def _pause_dz(t, p_hpa, ends, starts) -> np.ndarray:
+    """The barometric altitude change (m) of each standstill from ``ends`` to ``starts`` (W158: the whole change; a
+    pause over W231's ``RIDE_WINDOW_S`` only its ride, ``pause_ride_dz``), 0 where under ``RIDE_MIN_M``."""
+    from pdrlearn.kernels.barometer import relative_altitude
+    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, RIDE_WINDOW_S, pause_ride_dz
+
+    ends, starts = np.asarray(ends, dtype=float), np.asarray(starts, dtype=float)
+    h = relative_altitude(t, p_hpa, np.concatenate([ends, starts]))  # one read for the short pauses (W158: whole)
+    pause = h[len(ends):] - h[:len(ends)]
+    for j in np.flatnonzero(starts - ends > RIDE_WINDOW_S):  # W231: a long pause's ride only
+        pause[j] = pause_ride_dz(t, p_hpa, float(ends[j]), float(starts[j]))[0]
+    return np.where(np.abs(pause) >= RIDE_MIN_M, pause, 0.0)
+
+
+def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float | None) -> list[dict]:
+    """Decision L394: ``records`` and the ride in the standstill from the last step's end to ``t_end`` (the
+    recording's end, at most the barometer's last time), ``row`` the number of steps (it precedes none)."""
+    if t_end is None or not len(steps) or not len(t):
+        return records
+    a, b = float(steps["end_s"].iloc[-1]), min(float(t_end), float(t[-1]))
+    if not b > a:
+        return records
+    _, extra = _rides(t, p_hpa, np.array([a]), np.array([b]), _pause_dz(t, p_hpa, [a], [b]))
+    return records + [{**r, "ride": len(records) + 1, "row": len(steps)} for r in extra]
 
 
 def _pause_ends(steps: pd.DataFrame, t0: float) -> np.ndarray:
@@ -39,21 +67,34 @@ def _rides(t, p_hpa, ends, starts, pause) -> tuple[np.ndarray, list[dict]]:
         kinds[j] = kind = ride_kind(dz, duration)
         records.append({"ride": len(records) + 1, "start_s": a, "end_s": b, "kind": kind, "dz_m": dz,
                         "duration_s": duration, "vertical_rate_mps": abs(dz) / duration,
-                        "horizontal_est_m": escalator_travel_m(dz) if kind == "escalator" else None, "row": int(j)})
+                        "horizontal_est_m": escalator_travel_m(dz) if kind == "escalator" else None, "row": int(j),
+                        "gap_s": _gap_in(t, a, b)})  # decision B298
     return kinds, records
+
+
+#: decision B298: a barometer gap longer than this (s) inside a ride is said (its duration and kind are interpolated)
+RIDE_GAP_S = 2.0
+
+
+def _gap_in(t, a: float, b: float) -> float:
+    """Decision B298: the longest interval between two barometer samples ``t`` that overlaps the ride ``[a, b]``."""
+    t = np.asarray(t, dtype=float)
+    if len(t) < 2:
+        return 0.0
+    overlap = (t[1:] > a) & (t[:-1] < b)
+    return float(np.diff(t)[overlap].max()) if overlap.any() else 0.0
 
 
 def foot_rides(result, session) -> None:
     """Decision L378: a foot track's rides from the session's waist barometer (B188's usable one; none: nothing
-    changes). Each standstill between two strides (from the previous stride's end, the first's from the track's first
-    time) changes the barometric altitude by W231's ride (``pause_ride_dz``: over 30 s only what moved 1.5 m within
+    changes). Each standstill between two strides (from the previous stride's end, the first's from the barometer's
+    first time, decision L393, and the one after the last stride to the barometer's last time, L394) changes the
+    barometric altitude by W231's ride (``pause_ride_dz``: over 30 s only what moved 1.5 m within
     30 s); where that is ``RIDE_MIN_M`` or more it is the stride's ``pause_dz_m`` (0 elsewhere), its ``ride`` kind
     (L376), a record of ``info["rides"]`` (rides.csv, L377) and L376's / L377's lines. The strides' ``dz_m`` and the
     trajectory's z are not changed."""
     import logging
 
-    from pdrlearn.kernels.barometer import relative_altitude
-    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, RIDE_WINDOW_S, pause_ride_dz
     from pdrlearn.track.barometer import FOOT_EFFECT, usable_barometer
 
     steps = result.steps
@@ -61,14 +102,13 @@ def foot_rides(result, session) -> None:
     if b is None or not len(steps) or not len(result.trajectory):
         return
     p = b.values[:, 0]
-    ends = _pause_ends(steps, float(result.trajectory["t"].iloc[0]))
+    # decision L393: the first standstill from the barometer's first time (the first stride's start hid a ride
+    # before it)
+    ends = _pause_ends(steps, min(float(b.t[0]), float(result.trajectory["t"].iloc[0])))
     starts = steps["start_s"].to_numpy(float)
-    h = relative_altitude(b.t, p, np.concatenate([ends, starts]))  # one read for the short pauses (W158: whole)
-    pause = h[len(ends):] - h[:len(ends)]
-    for j in np.flatnonzero(starts - ends > RIDE_WINDOW_S):  # W231: a long pause's ride only
-        pause[j] = pause_ride_dz(b.t, p, float(ends[j]), float(starts[j]))[0]
-    pause = np.where(np.abs(pause) >= RIDE_MIN_M, pause, 0.0)
+    pause = _pause_dz(b.t, p, ends, starts)
     kinds, records = _rides(b.t, p, ends, starts, pause)
+    records = _after_last(b.t, p, steps, records, float(b.t[-1]))  # decision L394
     # before the columns every track ends its steps.csv with (L97's stride_time_s ... grade_pct, E51's order)
     at = list(steps.columns).index("stride_time_s") if "stride_time_s" in steps else len(steps.columns)
     steps = steps.copy()
@@ -82,9 +122,31 @@ def foot_rides(result, session) -> None:
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
 
 
+def window_rides(steps: pd.DataFrame, records: list[dict] | None, t0: float, t1: float):
+    """Decision L395: a window's ``(steps, records)``: the rides whose standstill (``start_s`` to ``end_s``) lies
+    inside ``[t0, t1]``, renumbered, each ``row`` the first kept step after it (the number of kept steps: none);
+    a kept step's ride that is not one of them (a ride before the window) is no ride of the window (``pause_dz_m`` 0,
+    ``ride`` "")."""
+    if records is None:
+        return steps, None
+    starts = steps["start_s"].to_numpy(float) if len(steps) else np.zeros(0)
+    kept = [r for r in records if t0 <= float(r["start_s"]) and float(r["end_s"]) <= t1]
+    out = [{**r, "ride": k + 1, "row": int(np.searchsorted(starts, float(r["end_s"])))} for k, r in enumerate(kept)]
+    if "pause_dz_m" in steps and len(steps):
+        from pdrlearn.kernels.pause_ride import RIDE_MIN_M
+
+        gone = np.abs(np.nan_to_num(steps["pause_dz_m"].to_numpy(float))) >= RIDE_MIN_M
+        gone[[r["row"] for r in out if r["row"] < len(steps)]] = False
+        steps = steps.assign(pause_dz_m=np.where(gone, 0.0, steps["pause_dz_m"].to_numpy(float)))
+        if "ride" in steps:
+            steps = steps.assign(ride=np.where(gone, "", steps["ride"].to_numpy(object)))
+    return steps, out
+
+
 def ride_lines(records: list[dict]) -> list[str]:
-    """Decisions L376, L377: one line for the rides that are neither a lift nor an escalator (not counted as floors)
-    and one for the escalator rides' horizontal travel the track leaves out."""
+    """Decisions L376, L377: one line for the rides that are neither a lift nor an escalator (not counted as floors),
+    one per ride with a barometer gap over :data:`RIDE_GAP_S` (B298) and one for the escalator rides' horizontal
+    travel the track leaves out."""
     lines = []
     other = [r for r in records if r["kind"] == "other"]
     if other:
@@ -93,6 +155,12 @@ def ride_lines(records: list[dict]) -> list[str]:
                      "are neither a lift (0.5 m/s or more vertically) nor an escalator (0.15-0.5 m/s for at most 45 "
                      "s): a vehicle on a hill or a ride of another kind, so they count no floors; their height stays "
                      "in the altitude (rides.csv kind other; decision L376)")
+    for r in records:
+        if r.get("gap_s", 0.0) > RIDE_GAP_S:  # decision B298
+            lines.append(f"wBarometer.csv has a gap of {r['gap_s']:.1f} s inside ride {r['ride']} "
+                         f"({r['start_s']:.0f}-{r['end_s']:.0f} s): its duration ({r['duration_s']:.1f} s), rate and "
+                         f"kind ({r['kind']}) are interpolated across it; check the barometer's recording (decision "
+                         "B298)")
     esc = [r for r in records if r["kind"] == "escalator"]
     if esc:
         travel = sum(r["horizontal_est_m"] for r in esc)

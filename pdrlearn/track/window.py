@@ -171,6 +171,10 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         traj = traj.iloc[[max(int(np.searchsorted(t, t0, side="right")) - 1, 0)]].reset_index(drop=True) \
             if len(traj) else traj
     info = {**result.info, "window": {"start_s": t0 - t_rec, "end_s": t1 - t_rec}}
+    if result.info.get("rides") is not None:  # decision L395: the rides whose standstill lies inside the window
+        from pdrlearn.track.rides import window_rides
+
+        steps, info["rides"] = window_rides(steps, result.info["rides"], t0, t1)
     if "freezes" not in info:  # decision L272: a foot track's episodes, of the whole session, then cut below
         from pdrlearn.track.freezes import session_freezes
 
