@@ -480,6 +480,27 @@ BOUTS: tuple[Column, ...] = (
                                           "(L196's minimum); empty otherwise (L212)"),
     ("stride_length_cv_pct", "%", "number", "foot: the same of their lengths (L212); complete strides only, unlike "
                                             "stride_length_m"),
+    # decision W350: the lower back's gait quality, bouts of 10+ strides; empty on a foot track and shorter bouts, and
+    # without track --gait-quality (W352)
+    ("hr_ap", _ID, "number", "lower back, 10+ strides, only with track --gait-quality (W352, opt-in): "
+                             "anteroposterior harmonic ratio, even / odd of the first 20 "
+                             "stride harmonics, mean over strides (Menz et al. 2003; W350)"),
+    ("hr_v", _ID, "number", "lower back: the vertical harmonic ratio, even / odd (W350)"),
+    ("hr_ml", _ID, "number", "lower back: the mediolateral harmonic ratio, odd / even (W350)"),
+    ("step_regularity_v", _ID, "number", "lower back: peak of the vertical acceleration's unbiased autocorrelation "
+                                         "near one step (Moe-Nilssen & Helbostad 2004; W350)"),
+    ("stride_regularity_v", _ID, "number", "lower back: the same near one stride (W350)"),
+    ("step_symmetry_v", _ID, "number", "lower back: step_regularity_v / stride_regularity_v; 1 = both steps alike "
+                                       "(W350)"),
+    ("step_regularity_ap", _ID, "number", "lower back: step regularity of the anteroposterior acceleration (W350)"),
+    ("stride_regularity_ap", _ID, "number", "lower back: stride regularity of the anteroposterior acceleration "
+                                            "(W350)"),
+    ("step_symmetry_ap", _ID, "number", "lower back: step_regularity_ap / stride_regularity_ap (W350)"),
+    *((f"rms_{axis}_mps2", "m/s^2", "number", f"lower back: RMS of the {name} acceleration, linearly detrended over "
+                                              "the bout (W350)")
+      for axis, name in (("ap", "anteroposterior"), ("ml", "mediolateral"), ("v", "vertical"))),
+    ("rms_ml_ratio", _ID, "number", "lower back: rms_ml_mps2 over the RMS of the acceleration vector: sideways sway "
+                                    "(Sekine et al. 2013; W350)"),
     *_clocks("start_s", "end_s"),
     ("speed_m_s", "m/s", "number", "deprecated (E98): speed_mps under its old name, kept last until a later release"),
 )

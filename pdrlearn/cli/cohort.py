@@ -704,6 +704,7 @@ def track_all(
     streaming: bool = _track.STREAMING_OPT,
     realtime: bool = _track.REALTIME_OPT,
     freeze_index: bool = _track.FREEZE_INDEX_OPT,
+    gait_quality: bool = _track.GAIT_QUALITY_OPT,
     reference_point: str = _track.REFERENCE_POINT_OPT,
     toe_off: bool = _track.TOE_OFF_OPT,
     ignore_force: bool = _track.IGNORE_FORCE_OPT,

@@ -73,6 +73,9 @@ FREEZE_INDEX_OPT = typer.Option(False, "--freeze-index", help="Lower back: the f
                                 "(freezes.csv, n_freezes; decision W213), off by default there: it also reads daily "
                                 "activities and slow walks as freezing (decision W216); = \"options\": "
                                 "{\"freeze_index\": true} in --params. Foot tracks always have it.")
+GAIT_QUALITY_OPT = typer.Option(False, "--gait-quality", help="Lower back: fill bouts.csv's gait-quality columns "
+                                "(harmonic ratios, regularity, symmetry, RMS; decision W350) and summary.json's "
+                                "gait_quality; off by default: not validated on real recordings (W352).")
 REFERENCE_POINT_OPT = typer.Option(None, "--reference-point", help="plasys: the point whose path is "
                                    "tracked: sensor (the unit, default) or heel (the heel contact, lever arm "
                                    "estimated from the recording, decision L22; = \"reference_point\" in "
@@ -242,6 +245,7 @@ def track(
     streaming: bool = STREAMING_OPT,
     realtime: bool = REALTIME_OPT,
     freeze_index: bool = FREEZE_INDEX_OPT,
+    gait_quality: bool = GAIT_QUALITY_OPT,
     reference_point: str = REFERENCE_POINT_OPT,
     toe_off: bool = TOE_OFF_OPT,
     ignore_force: bool = IGNORE_FORCE_OPT,
@@ -364,7 +368,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    warn_out_of_domain: float | None = None, start: str | None = None, params: Path | None = None,
                    gnss: Path | None = None, gnss_period: float | None = None, fixes: Path | None = None,
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
-                   freeze_index: bool = False,
+                   freeze_index: bool = False, gait_quality: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, ignore_force: bool = False,
                    contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
@@ -491,7 +495,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "start_ele": start_has_altitude(start),  # decision L362: track.gpx's <ele> only from a given altitude
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
-            "freeze_index": freeze_index,
+            "freeze_index": freeze_index, "gait_quality": gait_quality,
             "reference_point": reference_point, "toe_off": toe_off, "ignore_force": ignore_force,
             "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi,
@@ -755,6 +759,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
     # decision L124: OUT/bouts.csv, the detected walking bouts; L165: keyed by the session and its subject
     bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session), leg_m=session_leg_m(session))
+    # decision W352: the gait quality (W350) only when asked for; without it its bouts.csv columns stay empty
+    gait_quality = tracked_unit(pipeline) == "waist" and bool(o.get("gait_quality"))
+    if gait_quality and len(bouts):  # decision W350: the lower back's gait quality per bout
+        from pdrlearn.waist.ahrs import waist_imu
+        from pdrlearn.waist.gait_quality import add_bout_quality
+
+        bouts = add_bout_quality(bouts, result.steps, waist_imu(session))
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
@@ -764,6 +775,15 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     unit = tracked_unit(pipeline)
     summary.update(time_accounting(whole, session, unit, win))  # decision L275: where the time went
     summary["common_span_cut_s"] = cut_s  # decisions B267, B273: the seconds of the walk the track does not cover
+    if gait_quality:  # decision W350: the bouts' medians (W352: no key without --gait-quality, nor on a foot track)
+        from pdrlearn.waist.gait_quality import NOT_VALIDATED, quality_medians
+
+        summary["gait_quality"] = quality_medians(bouts)
+        import logging
+
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, NOT_VALIDATED)
+        info = summary.setdefault("info", {})
+        info["warnings"] = [*info.get("warnings", []), NOT_VALIDATED]
     if win is not None:
         # decision B242: the window as tracked (an END past the recording clipped to it, info["window"])
         summary["window_start_s"], summary["window_end_s"] = (float(result.info["window"][k])

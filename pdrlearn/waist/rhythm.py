@@ -31,14 +31,26 @@ LAG_TOL = 0.2
 def stride_regularity(acc_v: np.ndarray, fs: float, step_s: float) -> float:
     """Largest normalised autocorrelation of ``acc_v`` (mean removed) at lags within :data:`LAG_TOL` of
     ``2 * step_s`` (s); NaN when the signal is shorter than two strides or flat."""
-    x = np.asarray(acc_v, dtype=np.float64)
+    return autocorrelation_peak(acc_v, fs, 2.0 * float(step_s))
+
+
+def autocorrelation_peak(x: np.ndarray, fs: float, lag_s: float, *, unbiased: bool = False) -> float:
+    """Largest autocorrelation of ``x`` (mean removed) at lags within :data:`LAG_TOL` of ``lag_s`` (s), normalised by
+    the zero-lag one; ``unbiased`` (decision W350): each lag's sum over its N - m products, as Moe-Nilssen &
+    Helbostad 2004 eq. 1 (as recalled), else over N (W338). NaN when ``x`` is shorter than twice the longest lag
+    searched or flat."""
+    x = np.asarray(x, dtype=np.float64)
     x = x - x.mean() if x.size else x
-    lag = 2.0 * float(step_s) * fs
+    lag = float(lag_s) * fs
+    if not np.isfinite(lag):
+        return float("nan")
     lo, hi = max(int(np.floor(lag * (1 - LAG_TOL))), 1), int(np.ceil(lag * (1 + LAG_TOL)))
     energy = float(x @ x)
-    if not np.isfinite(lag) or x.size <= 2 * hi or energy <= 0.0:
+    if x.size <= 2 * hi or energy <= 0.0:
         return float("nan")
-    return max(float(x[:-k] @ x[k:]) / energy for k in range(lo, hi + 1))
+    n = x.size
+    return max(float(x[:-k] @ x[k:]) / (n - k if unbiased else 1) / (energy / (n if unbiased else 1))
+               for k in range(lo, hi + 1))
 
 
 def _chunks(seq: np.ndarray) -> list[np.ndarray]:
