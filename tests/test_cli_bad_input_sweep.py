@@ -199,7 +199,7 @@ def _unframed(yaw_deg: float = 0.0):
 WARNINGS = {
     # B34: the streams with the same gap are one line
     "gap_5s": (_gap, {"steps": "fAccelerometer, fGyroscope have 1 gap", "steps-pll": "wAccelerometer, wGyroscope "
-                      "have 1 gap", "track-M2": "fAccelerometer, fGyroscope, fForceA, fForceB, wAccelerometer, "
+                      "have 1 gap", "track-M2": "fAccelerometer, fGyroscope, wAccelerometer, "  # L365: no force
                       "wGyroscope have 1 gap", "track-M3-streaming": "gap(s) longer than 1 s",
                       "track-waist-pll": "wAccelerometer, wGyroscope have 1 gap",
                       "track-waist-pendulum": "wAccelerometer, wGyroscope have 1 gap",

@@ -55,7 +55,7 @@ WARNING_CASES = {
     "track-waist-pll": (["track", "{gap}", "--pipeline", "waist-pll", "--out", "{out}/t"], "no per-user calibration"),
     "track-waist-pendulum": (["track", "{gap}", "--pipeline", "waist-pendulum", "--out", "{out}/t"], "gap(s) longer"),
     "track-plasys": (["track", "{gap}", "--method", "M2", "--out", "{out}/t"],  # B34: one line for the streams
-                     "fAccelerometer, fGyroscope, fForceA, fForceB, wAccelerometer, wGyroscope have 1 gap"),
+                     "fAccelerometer, fGyroscope, wAccelerometer, wGyroscope have 1 gap"),  # L365: no force
     "track-streaming": (["track", "{gap}", "--method", "M2", "--streaming", "--out", "{out}/t"], "gap(s) longer"),
     "track-aided": (["track", "{gap}", "--pipeline", "waist-pll", "--fixes", "{out}/fixes_ms.csv", "--out",
                      "{out}/t"], "none of the"),

@@ -106,3 +106,17 @@ def test_force_toe_off_is_the_drop_off_when_switched_on_l388(walk, monkeypatch):
     assert len(tc) > 5 and np.isin(np.round(tc, 9), np.round(offs, 9)).mean() > 0.8
     assert not np.allclose(tc, gyro.steps["tc_s"].to_numpy(float)[np.isfinite(gyro.steps["tc_s"])][:len(tc)])
     assert _track(walk, toe_off=True, ignore_force=True).info["toe_off_source"] == "gyroscope"
+
+
+def test_a_clean_20hz_walk_is_not_warned_l390_amended(tmp_path):
+    """L390 amended (session 33, the lead): both events are dated to a whole sample, so the bound is at least two
+    foot sample periods; before it, the default 20 Hz scenario A (user 1, clean insoles) read +53 ms and was warned
+    (tests/test_cli_outputs.py caught the extra line)."""
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import UserProfile, simulate
+
+    out = tmp_path / "A_u1"
+    write_session(simulate("A", UserProfile.from_seed(1), "normal", rate_hz=20.0), out)
+    r = _track(out)
+    assert r.info["force_offset_s"] is not None and abs(r.info["force_offset_s"]) <= 0.1
+    assert not any("L390" in w for w in r.info.get("warnings", []))

@@ -22,6 +22,9 @@ L389_OFFSET_MAX_S = 0.1
 #: L390: a larger |offset| (s) is warned about: one sample period at the thesis' 20 Hz (thesis ch.4.3), ten times
 #: the clean difference of the two toe-offs (trial T2: drop-off -18.6 ms, gyroscope -14 ms against the truth)
 L390_OFFSET_MAX_S = 0.05
+#: L390 (amended in session 33 by the lead): the bound is at least this many foot sample periods - both events
+#: are dated to a whole sample, so a clean 20 Hz session (scenario A, user 1) read +53 ms over the 50 ms bound
+OFFSET_MIN_SAMPLES = 2
 #: L390 (adopted): the offset from the force drop-off against the gyroscope toe-off (True) or L389's force onset
 #: against the accelerometer impact (False; L389 not adopted: two of six clean users read -58 / -67 ms)
 OFFSET_FROM_TOE_OFF = True
@@ -88,6 +91,9 @@ def offset_check(session, fev, names: list[str], *, table=None, tc_gyro=None, bo
         return None, None
     if bound is None:
         bound = L390_OFFSET_MAX_S if OFFSET_FROM_TOE_OFF else L389_OFFSET_MAX_S
+        foot = session.streams.get("fAccelerometer")
+        if foot is not None and len(foot) >= 2:  # L390 amended: each event is dated to a whole sample of its
+            bound = max(bound, OFFSET_MIN_SAMPLES * foot.period_s)  # stream (a clean 20 Hz scenario A read +53 ms)
     if OFFSET_FROM_TOE_OFF:  # decision L390
         if table is None or tc_gyro is None:
             return None, None
