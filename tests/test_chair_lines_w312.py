@@ -38,4 +38,19 @@ def test_a_chair_test_has_no_contradicting_lines(sts, tmp_path, capsys, realtime
     n = json.loads((out / "summary.json").read_text())["n_steps"]
     assert "decision W277" in err and "no steps found" not in err and "walk_threshold_mps2" not in err
     assert (f"the {n} contact(s) counted are isolated" in err) == bool(n)
-    assert n > 0 if realtime else n == 0  # realtime applies no sit veto: the rises' contacts stay counted
+    # W343: the feet stay put through a chair test, so W336's default foot_rest_veto drops a realtime track's rises
+    # too (realtime applies no sit veto); W146's "contact(s) lie at a trunk flexion ... to drop them" line would
+    # then contradict the 0 steps
+    assert n == 0
+    assert ("decision W336" in err) == realtime and "lie at a trunk flexion" not in err
+
+
+def test_a_realtime_chair_test_without_the_foot_veto_counts_and_names_the_rises(sts, tmp_path, capsys):
+    """W343: with foot_rest_veto false the realtime rises stay counted (W312's isolated line, W146's sit line)."""
+    params = tmp_path / "p.json"
+    params.write_text(json.dumps({"options": {"foot_rest_veto": False}}))
+    out = tmp_path / "o"
+    assert main(["track", str(sts), "--units", "waist", "--realtime", "--params", str(params), "--out", str(out)]) == 0
+    err = capsys.readouterr().err
+    n = json.loads((out / "summary.json").read_text())["n_steps"]
+    assert n > 0 and f"the {n} contact(s) counted are isolated" in err and "lie at a trunk flexion" in err

@@ -59,10 +59,20 @@ def test_alternation_index_of_alternating_random_and_same_side_contacts():
     assert alternation_index(np.tile([1.0, -1.0], 10), np.zeros(20, dtype=bool)) == (None, 0)  # no sequence
 
 
+def test_wheelchair_pushes_are_dropped_by_the_foot_rest_veto():
+    """W343: the simulated foot unit rests through the pushes, so W337's default foot_rest_veto drops them all with
+    W336's line (the pushes are not steps)."""
+    r = track_waist(_wheelchair(), pipeline="waist-pendulum")
+    assert len(r.steps) == 0 and not _w98(r)
+    (line,) = [w for w in r.info["warnings"] if "decision W336" in w]
+    assert "dropped (foot_rest_veto" in line
+
+
 def test_wheelchair_pushes_warn_that_the_steps_do_not_alternate():
     """Trial finding 1: the pushes are counted as steps (a known limit) but the track now says they are not
-    walking, naming the W98 index and the pelvic-gyro check."""
-    r = track_waist(_wheelchair(), pipeline="waist-pendulum")
+    walking, naming the W98 index and the pelvic-gyro check; W343: without a foot unit's veto (foot_rest_veto
+    false), as a phone-only wheelchair user's track keeps them."""
+    r = track_waist(_wheelchair(), pipeline="waist-pendulum", foot_rest_veto=False)
     assert r.info["alternation_pairs"] >= 10
     assert r.info["alternation_index"] < 0.5
     (line,) = _w98(r)

@@ -976,15 +976,16 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     fixed_up = upright if upright_source == "still" else None  # W277: the veto and the postures read it too
     if upright_source != "walking":
         warnings.append(upright_message(upright_source, len(transfers)))
-    n_vetoed = 0
+    n_vetoed, sit_hint_s = 0, None
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
         # W180: and an undecided contact inside an alternating sequence; W184: or inside a left/right pair
         veto = causal_transfer_veto if causal_veto else transfer_veto  # W200: realtime_sit_veto, the causal form
         steps = veto(steps, imu, **sit_veto_keywords(o["sit_veto"]),
                      **({} if causal_veto or fixed_up is None else {"upright": fixed_up}))
         n_vetoed = steps.attrs["n_vetoed"]
-    else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
-        warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"], realtime=realtime))
+    else:  # W146: the contacts W104's veto would drop (a TUG's chair rises), named below (W343: if still counted)
+        ev_sit = steps["event_s"].to_numpy(float)
+        sit_hint_s = ev_sit[~np.isin(ev_sit, transfer_veto(steps, imu)["event_s"].to_numpy(float))]
     n_unvaulted = 0
     if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
@@ -1003,6 +1004,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     warnings.extend(foot_rest_message(steps, a, b, bool(o["foot_rest_veto"])) for a, b in foot_runs)
     if foot_runs and o["foot_rest_veto"]:
         steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
+    if sit_hint_s is not None:  # W146's line; W343: not for the contacts a later veto (W336's foot rest) dropped
+        warnings.extend(sit_veto_hint(int(np.isin(sit_hint_s, steps["event_s"].to_numpy(float)).sum()),
+                                      realtime=realtime))
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
