@@ -20,8 +20,10 @@ def _logging_enabled():
     input and corrupted-protocol warnings read empty after `test_experiments_sit_veto_pinned` in the same worker)."""
     import logging
 
+    level = logging.getLogger("pdrlearn").level  # nor may a test leave the package logger's level raised
     yield
     logging.disable(logging.NOTSET)
+    logging.getLogger("pdrlearn").setLevel(level)
 
 
 @pytest.fixture(scope="session")

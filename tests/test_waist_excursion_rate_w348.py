@@ -3,7 +3,6 @@ upsampled band-limited to 100 Hz before the double integration (``min_rate_hz``;
 default)."""
 
 import inspect
-import logging
 
 import numpy as np
 import pytest
@@ -56,7 +55,6 @@ def test_a_simulated_20hz_walk_reads_its_pelvis_rise_closer_with_the_rule(monkey
     from pdrlearn.track.waist import track_waist
     from pdrlearn.waist.params import resolve_params
 
-    logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     user = UserProfile.from_seed(7530)
 
     def walk(rate):
