@@ -147,3 +147,19 @@ def test_the_flag_reaches_track_all():
     assert inspect.signature(track_all).parameters["gait_quality"].default.default is False
     assert track_settings()["gait_quality"] is False
     assert settings_of({"gait_quality": True})["gait_quality"] is True
+
+
+def test_the_flag_on_a_foot_track_says_it_computes_none(tmp_path):
+    """W352 amended (session 33, the lead): --gait-quality on a foot (plasys) track wrote nothing and said nothing;
+    now one warning line (also in info.warnings) names the lower-back pipeline, and no key or column is filled."""
+    from pdrlearn import sim
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    write_session(sim.simulate("walk", 7552, length_m=20), tmp_path / "s")
+    assert main(["track", str(tmp_path / "s"), "--pipeline", "plasys", "--gait-quality", "--out",
+                 str(tmp_path / "o")]) == 0
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    lines = [w for w in summary["info"]["warnings"] if w.startswith("--gait-quality:")]
+    assert len(lines) == 1 and "--pipeline waist-pendulum" in lines[0] and "gait_quality" not in summary
+    assert pd.read_csv(tmp_path / "o" / "bouts.csv")[list(QUALITY_COLUMNS)].isna().all().all()

@@ -784,6 +784,14 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, NOT_VALIDATED)
         info = summary.setdefault("info", {})
         info["warnings"] = [*info.get("warnings", []), NOT_VALIDATED]
+    elif o.get("gait_quality"):  # W352 amended: a foot track computes none; say so instead of nothing
+        import logging
+
+        line = (f"--gait-quality: the gait-quality measures are the lower back's (W350) and a {pipeline} track of the "
+                "foot computes none; track the lower-back unit for them: --pipeline waist-pendulum")
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+        info = summary.setdefault("info", {})
+        info["warnings"] = [*info.get("warnings", []), line]
     if win is not None:
         # decision B242: the window as tracked (an END past the recording clipped to it, info["window"])
         summary["window_start_s"], summary["window_end_s"] = (float(result.info["window"][k])
