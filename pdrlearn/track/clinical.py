@@ -855,10 +855,11 @@ def segment_length_cv(st: pd.DataFrame, steady: np.ndarray) -> tuple[float, int]
     (a 6MWT's slower laps) is no stride-to-stride variability."""
     length = np.full(len(st), np.nan)
     length[steady] = steady_stride_lengths(st, steady)
-    edges = np.flatnonzero(np.diff(np.r_[0, steady.astype(int), 0]))
-    runs = [length[a:b][np.isfinite(length[a:b])] for a, b in zip(edges[::2], edges[1::2], strict=True)]
-    runs = [r for r in runs if len(r) >= CV_SEGMENT_MIN_STRIDES]
-    return (within_groups_cv_pct(runs), len(runs)) if runs else (math.nan, 0)
+    from pdrlearn.signal.conditioning import runs
+
+    parts = [length[a:b][np.isfinite(length[a:b])] for a, b in runs(steady)]
+    parts = [r for r in parts if len(r) >= CV_SEGMENT_MIN_STRIDES]
+    return (within_groups_cv_pct(parts), len(parts)) if parts else (math.nan, 0)
 
 
 def contact_scatter_s(stride_s: np.ndarray, onset_s: np.ndarray) -> float:

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from pdrlearn.signal.conditioning import runs
 from pdrlearn.track.frame_inference import foot_swing_strides
 
 #: decision W336: a stride turning the foot by less than this in all (integral of |w|, rad; 0.5 rad = 29 deg) is no
@@ -44,8 +45,7 @@ def still_foot_runs(event_s: np.ndarray, strides: tuple[np.ndarray, np.ndarray, 
     a, b = t0[walk] - FOOT_MARGIN_S, t1[walk] + FOOT_MARGIN_S
     near = np.array([bool(np.any((a <= e) & (e <= b))) for e in ev])
     still = ~near & (ev >= span[0] + FOOT_MARGIN_S) & (ev <= span[1] - FOOT_MARGIN_S)
-    edges = np.flatnonzero(np.diff(np.r_[0, still.astype(int), 0]))
-    return [(int(i), int(j - 1)) for i, j in zip(edges[::2], edges[1::2], strict=True) if j - i >= MIN_STILL_CONTACTS]
+    return [(i, j - 1) for i, j in runs(still) if j - i >= MIN_STILL_CONTACTS]
 
 
 def foot_rest_runs(steps: pd.DataFrame, session) -> list[tuple[int, int]]:
