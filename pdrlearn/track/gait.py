@@ -362,7 +362,7 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> 
 
 #: decision W359: a lower-back summary's median stride and step time are grouped-data medians of the whole-sample
 #: times (:func:`pdrlearn.kernels.grouped_median.grouped_median`), not a sample value; False: the plain median
-WAIST_GROUPED_MEDIAN = False
+WAIST_GROUPED_MEDIAN = True
 
 
 def _waist_time_median(times: np.ndarray) -> float | None:
