@@ -20,6 +20,8 @@ def test_grouped_median_interpolates_inside_the_median_class():
     assert grouped_median([0.7, 0.7, 0.7]) == pytest.approx(0.7)  # one value: itself
     assert grouped_median([]) is None and grouped_median([np.nan]) is None
     assert grid_step([1.0, 1.05, 1.1, 1.1]) == pytest.approx(0.05) and grid_step([1.0, 1.0]) is None
+    # an even count split across a gap between classes: the plain median, not the lower class's edge
+    assert grouped_median([1.0, 1.0, 1.05, 1.5, 1.5, 1.55]) == pytest.approx(1.275)
     # an outlier (a missed contact) moves it no more than half a class
     assert abs(grouped_median([1.0] * 6 + [1.05] * 5 + [1.5]) - 1.0) <= 0.025 + 1e-12
 

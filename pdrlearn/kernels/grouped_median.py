@@ -35,5 +35,7 @@ def grouped_median(values: np.ndarray, width: float | None = None) -> float | No
     counts = np.bincount(k)
     cum = np.cumsum(counts)
     m = int(np.searchsorted(cum, len(v) / 2.0))  # the class that holds the middle position
+    if cum[m] == len(v) / 2.0:  # an even count split between two classes: the plain median (their midpoint)
+        return float(np.median(v))
     below = float(cum[m] - counts[m])
     return float(base + (m - 0.5) * w + w * (len(v) / 2.0 - below) / counts[m])
