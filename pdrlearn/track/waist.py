@@ -821,7 +821,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     pll_edge_lock : waist-pll with its own detector (the live tracker ignores it): the first and the last PLL peak of
         a run of peaks that pass the activity gate count only when the loop is locked at them (phase error within
         45 deg over the period ending at the peak; decision W356, W345's diagnosis: a free-running peak at a bout's
-        edge); default False
+        edge); default False (W357: measured, not adopted -- fewer extra contacts, but true edge contacts lost)
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)
