@@ -129,11 +129,13 @@ def _sequences(steps: pd.DataFrame) -> list[np.ndarray]:
 
 
 def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine_ic: bool = True,
-               rhythm: bool = True) -> pd.DataFrame:
+               rhythm: bool = True, edge_lock: bool = False) -> pd.DataFrame:
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
-    moved to the initial contact next to them when ``refine_ic`` (decision W11)."""
+    moved to the initial contact next to them when ``refine_ic`` (decision W11); ``edge_lock``: the detector's
+    W356 option (a gated run's first / last peak only when the loop is locked)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
-    st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False).detect(session)  # the gate is track's
+    st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
+                         edge_lock=edge_lock).detect(session)
     ev = np.sort(st["event_s"].to_numpy(float)) if len(st) else np.zeros(0)
     idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
     idx = idx[walking_gate(imu, walk_threshold=walk_threshold)[idx]]
@@ -577,6 +579,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
+                   "pll_edge_lock": False,  # W356: waist-pll's edge peaks only when the loop is locked
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
@@ -611,6 +614,8 @@ SCOPED_OPTIONS = {
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
                     lambda pl, rt, m, det, stops: not rt),
+    "pll_edge_lock": ("waist-pll with its own PLL detector (W356)",
+                      lambda pl, rt, m, det, stops: pl == "waist-pll" and not det),
     "vault_veto": ("the offline waist-pendulum (W119)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
     "realtime_sit_veto": ("realtime tracks (offline tracks apply the sit veto on the whole recording; W200)",
@@ -718,7 +723,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 length_model=None, freeze_veto: bool | None = None,
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
                 fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
-                foot_rest_veto: bool | None = None) -> TrackResult:
+                foot_rest_veto: bool | None = None, pll_edge_lock: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -813,6 +818,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         of a foot stride that swings the foot (a standing passenger's bounce in a vehicle; decision W336,
         :mod:`pdrlearn.waist.foot_rest`; such runs are always named in one warning line each); default True
         (decision W337), False keeps and names them
+    pll_edge_lock : waist-pll with its own detector (the live tracker ignores it): the first and the last PLL peak of
+        a run of peaks that pass the activity gate count only when the loop is locked at them (phase error within
+        45 deg over the period ending at the peak; decision W356, W345's diagnosis: a free-running peak at a bout's
+        edge); default False (W357: measured, not adopted -- fewer extra contacts, but true edge contacts lost)
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)
@@ -902,6 +911,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "foot_rest_veto": foot_rest_veto,  # W336
+             "pll_edge_lock": pll_edge_lock,  # W356
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
@@ -949,7 +959,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = det.steps_
         method = heading or "gyro"
     else:
-        steps = _pll_steps(session, imu, thr, refine_ic=refine_ic, rhythm=bool(o["rhythm"]))
+        steps = _pll_steps(session, imu, thr, refine_ic=refine_ic, rhythm=bool(o["rhythm"]),
+                           edge_lock=bool(o["pll_edge_lock"]))
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
