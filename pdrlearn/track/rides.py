@@ -143,6 +143,28 @@ def window_rides(steps: pd.DataFrame, records: list[dict] | None, t0: float, t1:
     return steps, out
 
 
+def pauses_in_z(steps: pd.DataFrame) -> bool:
+    """Whether a track's z carries its standstills' change ``pause_dz_m``: a lower-back track's does (W158: ``dz_m +
+    pause_dz_m`` sum to ``z``), a foot track's does not (its altitude is its strides' own, L378)."""
+    return bool(len(steps)) and not ("unit" in steps and bool((steps["unit"].astype(str) == "foot").all()))
+
+
+def window_first_z(traj: pd.DataFrame, whole: pd.DataFrame, kept: pd.DataFrame) -> pd.DataFrame:
+    """Decision L401: a window's trajectory (its first row the last one at or before the first kept step's start)
+    with that row's z moved by the ride :func:`window_rides` left out of the first kept step (``whole``: the kept
+    steps before it, ``kept`` after it), so ``altitude_change_m`` (last z minus first), ``ascent_m`` and
+    trajectory.csv hold the window's own change: its steps' ``dz_m`` and the ``pause_dz_m`` steps.csv keeps. Only
+    where z carries the standstills' change (:func:`pauses_in_z`); unchanged when no ride was left out."""
+    if not len(traj) or not len(kept) or "z" not in traj or "pause_dz_m" not in kept or not pauses_in_z(kept):
+        return traj
+    dropped = float(np.nan_to_num(whole["pause_dz_m"].iloc[0]) - np.nan_to_num(kept["pause_dz_m"].iloc[0]))
+    if dropped == 0.0 or float(traj["t"].iloc[0]) > float(kept["start_s"].iloc[0]) + 1e-9:
+        return traj  # no ride left out, or no row before the step (its rows already hold the ride)
+    traj = traj.copy()
+    traj.loc[0, "z"] = float(traj["z"].iloc[0]) + dropped
+    return traj
+
+
 def ride_lines(records: list[dict]) -> list[str]:
     """Decisions L376, L377: one line for the rides that are neither a lift nor an escalator (not counted as floors),
     one per ride with a barometer gap over :data:`RIDE_GAP_S` (B298) and one for the escalator rides' horizontal
