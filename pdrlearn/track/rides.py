@@ -9,19 +9,33 @@ import numpy as np
 import pandas as pd
 
 #: decision L377: rides.csv's columns (docs/columns.md: pdrlearn.columns.RIDES)
-RIDE_COLUMNS = ("ride", "start_s", "end_s", "kind", "dz_m", "duration_s", "vertical_rate_mps", "horizontal_est_m")
+RIDE_COLUMNS = ("ride", "start_s", "end_s", "kind", "dz_m", "duration_s", "vertical_rate_mps", "vibration_mps2",
+                "horizontal_est_m")
+
+#: decision L402: the accelerometers a ride's vibration is read from, the first one the session has (the waist unit
+#: stands on the legs, the foot unit on the vehicle's floor: both feel it, S71)
+VIBRATION_STREAMS = ("wAccelerometer", "fAccelerometer")
+
+
+def ride_accelerometer(session) -> tuple[np.ndarray, np.ndarray] | None:
+    """Decision L402: ``(t, acc)`` of the first of :data:`VIBRATION_STREAMS` in ``session`` with samples; None."""
+    for name in VIBRATION_STREAMS:
+        if name in session and len(session[name].t):
+            return session[name].t, session[name].values
+    return None
 
 
 def ride_rows(t: np.ndarray, p_hpa: np.ndarray, steps: pd.DataFrame, t0: float, z: np.ndarray,
-              z_start: np.ndarray, t_end: float | None = None) -> tuple[np.ndarray, list[dict]]:
+              z_start: np.ndarray, t_end: float | None = None, acc=None) -> tuple[np.ndarray, list[dict]]:
     """Decisions L375, L376: per step the kind of the ride in the pause before it (``""``: none) and one record per
     ride (rides.csv's :data:`RIDE_COLUMNS` and ``row``, the step it precedes). ``(t, p_hpa)``: the barometer (s,
     hPa); ``z`` (n+1,) the track's altitude at ``t0`` and each step's end, ``z_start`` (n,) at each step's start
     (W158: ``pause_dz_m = z_start - z[:-1]``). Decision L394: with ``t_end`` (the recording's end) also the ride in
-    the standstill after the last step (``row`` n, no step)."""
+    the standstill after the last step (``row`` n, no step). Decision L402: ``acc`` (:func:`ride_accelerometer`'s)
+    tells a vehicle's vibration."""
     pause = np.asarray(z_start, dtype=float) - np.asarray(z, dtype=float)[:-1]
-    kinds, records = _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause)
-    return kinds, _after_last(t, p_hpa, steps, records, t_end)
+    kinds, records = _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause, acc)
+    return kinds, _after_last(t, p_hpa, steps, records, t_end, acc)
 
 
 def _pause_dz(t, p_hpa, ends, starts) -> np.ndarray:
@@ -38,7 +52,7 @@ def _pause_dz(t, p_hpa, ends, starts) -> np.ndarray:
     return np.where(np.abs(pause) >= RIDE_MIN_M, pause, 0.0)
 
 
-def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float | None) -> list[dict]:
+def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float | None, acc=None) -> list[dict]:
     """Decision L394: ``records`` and the ride in the standstill from the last step's end to ``t_end`` (the
     recording's end, at most the barometer's last time), ``row`` the number of steps (it precedes none)."""
     if t_end is None or not len(steps) or not len(t):
@@ -46,7 +60,7 @@ def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float
     a, b = float(steps["end_s"].iloc[-1]), min(float(t_end), float(t[-1]))
     if not b > a:
         return records
-    _, extra = _rides(t, p_hpa, np.array([a]), np.array([b]), _pause_dz(t, p_hpa, [a], [b]))
+    _, extra = _rides(t, p_hpa, np.array([a]), np.array([b]), _pause_dz(t, p_hpa, [a], [b]), acc)
     return records + [{**r, "ride": len(records) + 1, "row": len(steps)} for r in extra]
 
 
@@ -55,18 +69,20 @@ def _pause_ends(steps: pd.DataFrame, t0: float) -> np.ndarray:
     return np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
 
 
-def _rides(t, p_hpa, ends, starts, pause) -> tuple[np.ndarray, list[dict]]:
-    """:func:`ride_rows` on the pauses from ``ends`` to ``starts`` (s) whose altitude changed by ``pause`` (m)."""
-    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, escalator_travel_m, ride_kind, ride_window
+def _rides(t, p_hpa, ends, starts, pause, acc=None) -> tuple[np.ndarray, list[dict]]:
+    """:func:`ride_rows` on the pauses from ``ends`` to ``starts`` (s) whose altitude changed by ``pause`` (m);
+    ``acc`` ``(t, (n, 3))`` or None: decision L402's vibration (NaN without)."""
+    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, escalator_travel_m, ride_kind, ride_vibration, ride_window
 
     kinds = np.full(len(starts), "", dtype=object)
     records = []
     for j in np.flatnonzero(np.abs(np.nan_to_num(pause)) >= RIDE_MIN_M):
         a, b, duration = ride_window(t, p_hpa, float(ends[j]), float(starts[j]))
         dz = float(pause[j])
-        kinds[j] = kind = ride_kind(dz, duration)
+        vib = ride_vibration(acc[0], acc[1], a, b) if acc is not None else float("nan")  # decision L402
+        kinds[j] = kind = ride_kind(dz, duration, vib)
         records.append({"ride": len(records) + 1, "start_s": a, "end_s": b, "kind": kind, "dz_m": dz,
-                        "duration_s": duration, "vertical_rate_mps": abs(dz) / duration,
+                        "duration_s": duration, "vertical_rate_mps": abs(dz) / duration, "vibration_mps2": vib,
                         "horizontal_est_m": escalator_travel_m(dz) if kind == "escalator" else None, "row": int(j),
                         "gap_s": _gap_in(t, a, b)})  # decision B298
     return kinds, records
@@ -107,8 +123,9 @@ def foot_rides(result, session) -> None:
     ends = _pause_ends(steps, min(float(b.t[0]), float(result.trajectory["t"].iloc[0])))
     starts = steps["start_s"].to_numpy(float)
     pause = _pause_dz(b.t, p, ends, starts)
-    kinds, records = _rides(b.t, p, ends, starts, pause)
-    records = _after_last(b.t, p, steps, records, float(b.t[-1]))  # decision L394
+    acc = ride_accelerometer(session)  # decision L402
+    kinds, records = _rides(b.t, p, ends, starts, pause, acc)
+    records = _after_last(b.t, p, steps, records, float(b.t[-1]), acc)  # decision L394
     # before the columns every track ends its steps.csv with (L97's stride_time_s ... grade_pct, E51's order)
     at = list(steps.columns).index("stride_time_s") if "stride_time_s" in steps else len(steps.columns)
     steps = steps.copy()
@@ -175,8 +192,8 @@ def ride_lines(records: list[dict]) -> list[str]:
         shown = ", ".join(f"{r['dz_m']:+.1f} m over {r['duration_s']:.0f} s at {r['start_s']:.0f} s" for r in other[:3])
         lines.append(f"{len(other)} barometric climb(s) while standing ({shown}{', ...' if len(other) > 3 else ''}) "
                      "are neither a lift (0.5 m/s or more vertically) nor an escalator (0.15-0.5 m/s for at most 45 "
-                     "s): a vehicle on a hill or a ride of another kind, so they count no floors; their height stays "
-                     "in the altitude (rides.csv kind other; decision L376)")
+                     "s, vibrating under 0.15 m/s^2): a vehicle on a hill or a ride of another kind, so they count no "
+                     "floors; their height stays in the altitude (rides.csv kind other; decisions L376, L402)")
     for r in records:
         if r.get("gap_s", 0.0) > RIDE_GAP_S:  # decision B298
             lines.append(f"wBarometer.csv has a gap of {r['gap_s']:.1f} s inside ride {r['ride']} "

@@ -1086,10 +1086,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = steps.assign(climb=climbs)  # decision L314: W108's stair climbs, which no ramp is made of (grade.py)
     rides: list[dict] | None = None  # None: no barometer read (n_rides empty, no rides.csv)
     if z is not None:  # decisions L375-L377: each ride's kind (steps.csv ride), rides.csv and their lines
-        from pdrlearn.track.rides import ride_lines, ride_rows
+        from pdrlearn.track.rides import ride_accelerometer, ride_lines, ride_rows
 
         ride_kinds, rides = ride_rows(baro.t, baro.values[:, 0], steps, float(imu.t[0]), z, z_start,
-                                      t_end=float(imu.t[-1]))  # L394
+                                      t_end=float(imu.t[-1]), acc=ride_accelerometer(session))  # L394, L402
         steps = steps.assign(ride=ride_kinds)
         warnings.extend(ride_lines(rides))
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
