@@ -45,8 +45,8 @@ def _track(session, pipeline: str):
 def kinds(session, pipeline: str) -> list[tuple[str, str, float]]:
     """``(off, on, vibration)`` of each ride the track reads."""
     res = _track(session, pipeline)
-    return [(ride_kind(r["dz_m"], r["duration_s"]), r["kind"], float(r["vibration_mps2"]))
-            for r in res.info.get("rides") or []]
+    return [(ride_kind(r["dz_m"], r["duration_s"]), ride_kind(r["dz_m"], r["duration_s"], r["vibration_mps2"]),
+             float(r["vibration_mps2"])) for r in res.info.get("rides") or []]
 
 
 def simulated(users, route_of, pipeline: str) -> list[tuple[int, str, list]]:

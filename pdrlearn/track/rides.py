@@ -26,16 +26,19 @@ def ride_accelerometer(session) -> tuple[np.ndarray, np.ndarray] | None:
 
 
 def ride_rows(t: np.ndarray, p_hpa: np.ndarray, steps: pd.DataFrame, t0: float, z: np.ndarray,
-              z_start: np.ndarray, t_end: float | None = None, acc=None) -> tuple[np.ndarray, list[dict]]:
+              z_start: np.ndarray, t_end: float | None = None, acc=None,
+              vibration_kind: bool = False) -> tuple[np.ndarray, list[dict]]:
     """Decisions L375, L376: per step the kind of the ride in the pause before it (``""``: none) and one record per
     ride (rides.csv's :data:`RIDE_COLUMNS` and ``row``, the step it precedes). ``(t, p_hpa)``: the barometer (s,
     hPa); ``z`` (n+1,) the track's altitude at ``t0`` and each step's end, ``z_start`` (n,) at each step's start
     (W158: ``pause_dz_m = z_start - z[:-1]``). Decision L394: with ``t_end`` (the recording's end) also the ride in
     the standstill after the last step (``row`` n, no step). Decision L402: ``acc`` (:func:`ride_accelerometer`'s)
-    tells a vehicle's vibration."""
+    gives each ride's ``vibration_mps2``; with ``vibration_kind`` (L403: opt-in, the ``ride_vibration`` option) a
+    vibrating ride is a vehicle's, kind other."""
     pause = np.asarray(z_start, dtype=float) - np.asarray(z, dtype=float)[:-1]
-    kinds, records = _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause, acc)
-    return kinds, _after_last(t, p_hpa, steps, records, t_end, acc)
+    kinds, records = _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause, acc,
+                            vibration_kind)
+    return kinds, _after_last(t, p_hpa, steps, records, t_end, acc, vibration_kind)
 
 
 def _pause_dz(t, p_hpa, ends, starts) -> np.ndarray:
@@ -52,7 +55,8 @@ def _pause_dz(t, p_hpa, ends, starts) -> np.ndarray:
     return np.where(np.abs(pause) >= RIDE_MIN_M, pause, 0.0)
 
 
-def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float | None, acc=None) -> list[dict]:
+def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float | None, acc=None,
+                vibration_kind: bool = False) -> list[dict]:
     """Decision L394: ``records`` and the ride in the standstill from the last step's end to ``t_end`` (the
     recording's end, at most the barometer's last time), ``row`` the number of steps (it precedes none)."""
     if t_end is None or not len(steps) or not len(t):
@@ -60,7 +64,7 @@ def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float
     a, b = float(steps["end_s"].iloc[-1]), min(float(t_end), float(t[-1]))
     if not b > a:
         return records
-    _, extra = _rides(t, p_hpa, np.array([a]), np.array([b]), _pause_dz(t, p_hpa, [a], [b]), acc)
+    _, extra = _rides(t, p_hpa, np.array([a]), np.array([b]), _pause_dz(t, p_hpa, [a], [b]), acc, vibration_kind)
     return records + [{**r, "ride": len(records) + 1, "row": len(steps)} for r in extra]
 
 
@@ -69,9 +73,10 @@ def _pause_ends(steps: pd.DataFrame, t0: float) -> np.ndarray:
     return np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
 
 
-def _rides(t, p_hpa, ends, starts, pause, acc=None) -> tuple[np.ndarray, list[dict]]:
+def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False) -> tuple[np.ndarray, list[dict]]:
     """:func:`ride_rows` on the pauses from ``ends`` to ``starts`` (s) whose altitude changed by ``pause`` (m);
-    ``acc`` ``(t, (n, 3))`` or None: decision L402's vibration (NaN without)."""
+    ``acc`` ``(t, (n, 3))`` or None: decision L402's vibration (NaN without), which tells the kind only with
+    ``vibration_kind`` (L403)."""
     from pdrlearn.kernels.pause_ride import RIDE_MIN_M, escalator_travel_m, ride_kind, ride_vibration, ride_window
 
     kinds = np.full(len(starts), "", dtype=object)
@@ -80,7 +85,7 @@ def _rides(t, p_hpa, ends, starts, pause, acc=None) -> tuple[np.ndarray, list[di
         a, b, duration = ride_window(t, p_hpa, float(ends[j]), float(starts[j]))
         dz = float(pause[j])
         vib = ride_vibration(acc[0], acc[1], a, b) if acc is not None else float("nan")  # decision L402
-        kinds[j] = kind = ride_kind(dz, duration, vib)
+        kinds[j] = kind = ride_kind(dz, duration, vib if vibration_kind else None)
         records.append({"ride": len(records) + 1, "start_s": a, "end_s": b, "kind": kind, "dz_m": dz,
                         "duration_s": duration, "vertical_rate_mps": abs(dz) / duration, "vibration_mps2": vib,
                         "horizontal_est_m": escalator_travel_m(dz) if kind == "escalator" else None, "row": int(j),
@@ -101,14 +106,14 @@ def _gap_in(t, a: float, b: float) -> float:
     return float(np.diff(t)[overlap].max()) if overlap.any() else 0.0
 
 
-def foot_rides(result, session) -> None:
+def foot_rides(result, session, vibration_kind: bool = False) -> None:
     """Decision L378: a foot track's rides from the session's waist barometer (B188's usable one; none: nothing
     changes). Each standstill between two strides (from the previous stride's end, the first's from the barometer's
     first time, decision L393, and the one after the last stride to the barometer's last time, L394) changes the
     barometric altitude by W231's ride (``pause_ride_dz``: over 30 s only what moved 1.5 m within
     30 s); where that is ``RIDE_MIN_M`` or more it is the stride's ``pause_dz_m`` (0 elsewhere), its ``ride`` kind
     (L376), a record of ``info["rides"]`` (rides.csv, L377) and L376's / L377's lines. The strides' ``dz_m`` and the
-    trajectory's z are not changed."""
+    trajectory's z are not changed. ``vibration_kind``: decision L402's vehicle test (L403: opt-in; Python only)."""
     import logging
 
     from pdrlearn.track.barometer import FOOT_EFFECT, usable_barometer
@@ -124,8 +129,8 @@ def foot_rides(result, session) -> None:
     starts = steps["start_s"].to_numpy(float)
     pause = _pause_dz(b.t, p, ends, starts)
     acc = ride_accelerometer(session)  # decision L402
-    kinds, records = _rides(b.t, p, ends, starts, pause, acc)
-    records = _after_last(b.t, p, steps, records, float(b.t[-1]), acc)  # decision L394
+    kinds, records = _rides(b.t, p, ends, starts, pause, acc, vibration_kind)
+    records = _after_last(b.t, p, steps, records, float(b.t[-1]), acc, vibration_kind)  # decision L394
     # before the columns every track ends its steps.csv with (L97's stride_time_s ... grade_pct, E51's order)
     at = list(steps.columns).index("stride_time_s") if "stride_time_s" in steps else len(steps.columns)
     steps = steps.copy()
@@ -189,11 +194,15 @@ def ride_lines(records: list[dict]) -> list[str]:
     lines = []
     other = [r for r in records if r["kind"] == "other"]
     if other:
+        from pdrlearn.kernels.pause_ride import VEHICLE_VIBRATION_MPS2, ride_kind
+
+        shaken = ("" if all(ride_kind(r["dz_m"], r["duration_s"]) == "other" for r in other) else
+                  f", or they vibrate like a vehicle ({VEHICLE_VIBRATION_MPS2:g} m/s^2 or more; decision L402)")
         shown = ", ".join(f"{r['dz_m']:+.1f} m over {r['duration_s']:.0f} s at {r['start_s']:.0f} s" for r in other[:3])
         lines.append(f"{len(other)} barometric climb(s) while standing ({shown}{', ...' if len(other) > 3 else ''}) "
                      "are neither a lift (0.5 m/s or more vertically) nor an escalator (0.15-0.5 m/s for at most 45 "
-                     "s, vibrating under 0.15 m/s^2): a vehicle on a hill or a ride of another kind, so they count no "
-                     "floors; their height stays in the altitude (rides.csv kind other; decisions L376, L402)")
+                     f"s){shaken}: a vehicle on a hill or a ride of another kind, so they count no floors; their "
+                     "height stays in the altitude (rides.csv kind other; decision L376)")
     for r in records:
         if r.get("gap_s", 0.0) > RIDE_GAP_S:  # decision B298
             lines.append(f"wBarometer.csv has a gap of {r['gap_s']:.1f} s inside ride {r['ride']} "
