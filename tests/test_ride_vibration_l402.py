@@ -47,11 +47,16 @@ def _track(session, options: dict | None = None):
     return r, track_summary(r, session, pipeline="waist-pendulum")
 
 
-def test_a_bus_climb_is_a_vehicle_with_the_option_l403():
+@pytest.fixture(scope="module")
+def bus():
+    return simulate_path(parse_route(BUS_UP), UserProfile.from_seed(7651), seed=7651, scenario="route")
+
+
+def test_a_bus_climb_is_a_vehicle_with_the_option_l403(bus):
     """User 7651's bus climbs 4 m at a lift's rate (S75): by default (L403: not adopted) still a lift, 1 floor up,
     its vibration in the record; with ``ride_vibration`` kind other, no floor and L376's line naming L402 (before:
     no vibration, no option)."""
-    s = simulate_path(parse_route(BUS_UP), UserProfile.from_seed(7651), seed=7651, scenario="route")
+    s = bus
     r, m = _track(s)
     (ride,) = r.info["rides"]
     assert ride["kind"] == "lift" and m["floors_up"] == 1
@@ -86,3 +91,18 @@ def test_rides_csv_has_the_vibration_and_live_names_the_option(tmp_path):
     assert "ride_vibration" in (unapplied_options_line(P()) or "")
     P.options = {}
     assert "ride_vibration" not in (unapplied_options_line(P()) or "")
+
+
+def test_a_ride_the_accelerometer_does_not_cover_is_said_b301(bus, monkeypatch):
+    """B301: with ``ride_vibration`` and an accelerometer that stopped before the ride, one line names the file and
+    says the kind is the vertical rate's (lift); without the option no line (before: no option, no line)."""
+    import pdrlearn.track.rides as rides
+
+    whole = rides.ride_accelerometer
+    monkeypatch.setattr(rides, "ride_accelerometer", lambda s: (lambda t, a, n: (t[:200], a[:200], n))(*whole(s)))
+    r, _ = _track(bus, {"ride_vibration": True})
+    assert [x["kind"] for x in r.info["rides"]] == ["lift"] and np.isnan(r.info["rides"][0]["vibration_mps2"])
+    said = [w for w in r.info["warnings"] if "B301" in w]
+    assert len(said) == 1 and "wAccelerometer.csv has no usable samples during ride 1" in said[0], said
+    r, _ = _track(bus)
+    assert not any("B301" in w for w in r.info["warnings"])

@@ -52,3 +52,14 @@ def test_a_climbing_vehicle_carries_the_walker_up_smoothly():
         assert np.max(np.abs(np.convolve(rate, np.ones(50) / 50, mode="valid"))) < 1.0
     ics = s.extras["ics"]["ic_s"].to_numpy()
     assert not np.any((ics > row.start_s) & (ics < row.end_s))
+
+
+def test_a_signed_value_that_is_not_finite_is_asked_to_be_finite_b300():
+    """B300: a route value that may be negative (a vehicle's climb, a lift's rise, a curve's angle) and is nan / inf
+    is asked to be a finite number, not "a positive number" (before: "must be a positive number")."""
+    for bad in ("vehicle:60:0.5:nan", "lift:inf", "curve:-inf:2"):
+        with pytest.raises(DataError, match="must be a finite number") as e:
+            parse_route(f"straight:3, {bad}")
+        assert "positive" not in str(e.value) and "\n" not in str(e.value)
+    with pytest.raises(DataError, match="must be a positive number"):  # a positive value keeps its line
+        parse_route("straight:inf")

@@ -138,13 +138,14 @@ def ride_vibration(t: np.ndarray, acc: np.ndarray, a: float, b: float) -> float:
     """Decision L402: the vibration (m/s^2) of the standing unit during a ride from ``a`` to ``b`` (s): the magnitude
     of the specific force ``acc`` (n, 3) at ``t`` (scaled so that its median over the ride is 1 g: any unit), cut
     into :data:`VIBRATION_WINDOW_S` windows, each detrended, and the median of their standard deviations (a shift of
-    the feet or a bag in one window does not make a ride a vehicle's). NaN with fewer than 8 samples in the ride."""
+    the feet or a bag in one window does not make a ride a vehicle's). NaN with fewer than 8 finite samples in the
+    ride (decision B301: said by :func:`pdrlearn.track.rides.ride_lines`)."""
     t = np.asarray(t, dtype=float)
-    inside = (t >= a) & (t <= b)
+    mag = np.linalg.norm(np.asarray(acc, dtype=float), axis=1)
+    inside = (t >= a) & (t <= b) & np.isfinite(mag)
     if int(inside.sum()) < 8:
         return float("nan")
-    tt = t[inside]
-    mag = np.linalg.norm(np.asarray(acc, dtype=float)[inside], axis=1)
+    tt, mag = t[inside], mag[inside]
     med = float(np.median(mag))
     if not med > 0:
         return float("nan")

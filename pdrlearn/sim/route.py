@@ -67,8 +67,9 @@ def _number(item: str, text: str, *, integer: bool = False, positive: bool = Tru
     except ValueError:
         kind = "a whole number" if integer else "a number"
         raise DataError(f"--route item {item!r}: {text!r} is not {kind}; {_USAGE}") from None
-    if not math.isfinite(value) or (positive and value <= 0):
-        raise DataError(f"--route item {item!r}: {text!r} must be a positive number; {_USAGE}")
+    if not math.isfinite(value) or (positive and value <= 0):  # B300: a signed value is asked to be finite
+        want = "a positive number" if positive else "a finite number"
+        raise DataError(f"--route item {item!r}: {text!r} must be {want}; {_USAGE}")
     return value
 
 

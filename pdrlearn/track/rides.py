@@ -17,11 +17,12 @@ RIDE_COLUMNS = ("ride", "start_s", "end_s", "kind", "dz_m", "duration_s", "verti
 VIBRATION_STREAMS = ("wAccelerometer", "fAccelerometer")
 
 
-def ride_accelerometer(session) -> tuple[np.ndarray, np.ndarray] | None:
-    """Decision L402: ``(t, acc)`` of the first of :data:`VIBRATION_STREAMS` in ``session`` with samples; None."""
+def ride_accelerometer(session) -> tuple[np.ndarray, np.ndarray, str] | None:
+    """Decision L402: ``(t, acc, name)`` of the first of :data:`VIBRATION_STREAMS` in ``session`` with samples;
+    None."""
     for name in VIBRATION_STREAMS:
         if name in session and len(session[name].t):
-            return session[name].t, session[name].values
+            return session[name].t, session[name].values, name
     return None
 
 
@@ -86,10 +87,12 @@ def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False
         dz = float(pause[j])
         vib = ride_vibration(acc[0], acc[1], a, b) if acc is not None else float("nan")  # decision L402
         kinds[j] = kind = ride_kind(dz, duration, vib if vibration_kind else None)
+        unread = (acc[2] if acc is not None else "the accelerometer") if vibration_kind and np.isnan(vib) else None
         records.append({"ride": len(records) + 1, "start_s": a, "end_s": b, "kind": kind, "dz_m": dz,
                         "duration_s": duration, "vertical_rate_mps": abs(dz) / duration, "vibration_mps2": vib,
                         "horizontal_est_m": escalator_travel_m(dz) if kind == "escalator" else None, "row": int(j),
-                        "gap_s": _gap_in(t, a, b)})  # decision B298
+                        "gap_s": _gap_in(t, a, b),  # decision B298
+                        "vibration_unread": unread})  # decision B301
     return kinds, records
 
 
@@ -209,6 +212,12 @@ def ride_lines(records: list[dict]) -> list[str]:
                          f"({r['start_s']:.0f}-{r['end_s']:.0f} s): its duration ({r['duration_s']:.1f} s), rate and "
                          f"kind ({r['kind']}) are interpolated across it; check the barometer's recording (decision "
                          "B298)")
+    for r in records:
+        if r.get("vibration_unread"):  # decision B301: the ride_vibration option could not read this ride
+            lines.append(f"{r['vibration_unread']}.csv has no usable samples during ride {r['ride']} "
+                         f"({r['start_s']:.0f}-{r['end_s']:.0f} s): the ride_vibration option cannot tell a vehicle "
+                         f"there, so its kind ({r['kind']}) is its vertical rate's alone; check that unit's recording "
+                         "(decision B301)")
     esc = [r for r in records if r["kind"] == "escalator"]
     if esc:
         travel = sum(r["horizontal_est_m"] for r in esc)
