@@ -79,16 +79,19 @@ def real() -> tuple[list, list]:
     return rides, still
 
 
+def _users(text: str) -> list[int]:
+    """``"LO-HI"`` -> the users LO to HI."""
+    lo, hi = (int(v) for v in text.split("-"))
+    return list(range(lo, hi + 1))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--vehicle-users", default="7660-7671")
-    ap.add_argument("--ride-users", default="7680-7689")
+    ap.add_argument("--vehicle-users", type=_users, default="7660-7671")
+    ap.add_argument("--ride-users", type=_users, default="7680-7689")
     a = ap.parse_args()
     logging.disable(logging.WARNING)
-    lo, hi = (int(v) for v in a.vehicle_users.split("-"))
-    vusers = range(lo, hi + 1)
-    lo, hi = (int(v) for v in a.ride_users.split("-"))
-    rusers = list(range(lo, hi + 1))
+    vusers, rusers = a.vehicle_users, a.ride_users
     print(f"threshold {VEHICLE_VIBRATION_MPS2} m/s^2")
     for p in PIPELINES:
         rows = simulated(vusers, lambda u: VEHICLE.format(rise=RISES[u % len(RISES)]), p)
