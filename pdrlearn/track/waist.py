@@ -592,7 +592,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "rest_bias": True,  # L296: a long rest's rotation less the bias of its still samples
                    "lying_heading": True,  # W269, W271 (adopted by W270): lying turns it by the long axis's yaw only
                    "rest_frame": False,  # W285: harmonic headings less the AHRS frame's turn over a long rest
-                   "climb_veto": False}  # L314's ramp veto from W108's climbs: opt-in (decision L330)
+                   "climb_veto": False,  # L314's ramp veto from W108's climbs: opt-in (decision L330)
+                   "ride_vibration": False}  # L402: a vibrating ride is a vehicle's; L403: not met, opt-in
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -915,6 +916,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
+             "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
              "rest_frame": None,  # W285: a PARAMS.json option only
              "pll_slow_check": None,  # W289: a PARAMS.json option only
@@ -1097,10 +1099,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = steps.assign(climb=climbs)  # decision L314: W108's stair climbs, which no ramp is made of (grade.py)
     rides: list[dict] | None = None  # None: no barometer read (n_rides empty, no rides.csv)
     if z is not None:  # decisions L375-L377: each ride's kind (steps.csv ride), rides.csv and their lines
-        from pdrlearn.track.rides import ride_lines, ride_rows
+        from pdrlearn.track.rides import ride_accelerometer, ride_lines, ride_rows
 
         ride_kinds, rides = ride_rows(baro.t, baro.values[:, 0], steps, float(imu.t[0]), z, z_start,
-                                      t_end=float(imu.t[-1]))  # L394
+                                      t_end=float(imu.t[-1]), acc=ride_accelerometer(session),  # L394, L402
+                                      vibration_kind=bool(o["ride_vibration"]))  # L403: opt-in
         steps = steps.assign(ride=ride_kinds)
         warnings.extend(ride_lines(rides))
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
