@@ -904,6 +904,10 @@ RIDES: tuple[Column, ...] = (
     ("dz_m", "m", "number", "the altitude change while standing (steps.csv pause_dz_m of the next step)"),
     ("duration_s", "s", "number", "(end_s - start_s) / 0.8: the ride's duration (L376)"),
     ("vertical_rate_mps", "m/s", "number", "|dz_m| / duration_s"),
+    ("vibration_mps2", "m/s^2", "number", "the median over 1 s windows of the detrended |specific force|'s SD during "
+                                          "the ride (waist accelerometer, else the foot's); with the PARAMS.json "
+                                          "option ride_vibration (L403: opt-in) 0.15 or more is a vehicle, kind "
+                                          "other (L402); empty: no accelerometer"),
     ("horizontal_est_m", "m", "number", "escalator only, an estimate: |dz_m| / tan(30 deg), the horizontal travel the "
                                         "track leaves out (a 35 deg escalator travels 18 % less); empty otherwise "
                                         "(L377)"),

@@ -278,6 +278,11 @@ def pelvic_flush(state: PelvicState, p: PelvicParams) -> list[Event]:
 
 # ---------------------------------------------------------------------------------------------------
 # phase-locked loop on vertical acceleration (seed 000 Sec. II-C, seed 001 Sec. 2.2.2)
+#: decision W356: a gated run's first / last PLL peak counts only within this phase error (deg) when ``edge_lock`` is
+#: on -- W345's printed split (97 % of the walk's matched contacts within it, 5 % of its trailing edge extras)
+EDGE_LOCK_DEG = 45.0
+
+
 @dataclass
 class PLLParams:
     f0_hz: float  # free-running frequency (seed 000/001: 1.8 Hz)
@@ -289,6 +294,8 @@ class PLLParams:
     gate_window_s: float  # activity window, centred on each peak (seed 001: 4 s)
     gate_var: float  # minimum variance of vertical acceleration (m^2/s^4; seed 001: 1.5)
     refine_frac: float  # event = largest vertical acceleration within +- refine_frac periods of the peak
+    # decision W356: a gated run's first / last peak is kept only when |phase error| <= edge_lock_deg (0: off)
+    edge_lock_deg: float = 0.0
 
 
 @dataclass
@@ -300,7 +307,10 @@ class PLLState:
     last_peak_t: float = math.nan
     buf_t: np.ndarray = field(default_factory=lambda: np.zeros(0))
     buf_v: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    pending: list = field(default_factory=list)  # [t_peak, freq_hz]
+    pending: list = field(default_factory=list)  # [t_peak, freq_hz, previous peak, phase error deg]
+    iq: tuple = (0.0, 0.0)  # W345: in-phase / quadrature sums since the last peak
+    prev_gated: bool = False  # W356: the last decided peak passed the activity gate
+    held: tuple | None = None  # W356: (event, first of its run, locked), waiting for the next peak's gate
 
 
 def pll_kernel(t: np.ndarray, v: np.ndarray, state: PLLState, p: PLLParams) -> tuple[list[Event], PLLState]:
@@ -331,9 +341,13 @@ def pll_kernel(t: np.ndarray, v: np.ndarray, state: PLLState, p: PLLParams) -> t
     two_pi = 2 * math.pi
     theta, integ, last_peak = s.theta, s.integ, s.last_peak_t
     kp, ki = p.kp, p.ki
-    sin = math.sin
+    sin, cos = math.sin, math.cos
+    acc_i, acc_q = s.iq
     for ti, xi, di in zip(t.tolist(), x.tolist(), dt.tolist(), strict=True):
-        pd = -xi * sin(theta)
+        sth = sin(theta)
+        pd = -xi * sth
+        acc_i += xi * cos(theta) * di  # decision W345: the period's in-phase / quadrature sums
+        acc_q += xi * sth * di
         integ += ki * pd * di
         if integ < i_lo:
             integ = i_lo
@@ -351,9 +365,11 @@ def pll_kernel(t: np.ndarray, v: np.ndarray, state: PLLState, p: PLLParams) -> t
             step = omega * di
             tp = ti - di + ((two_pi - th_prev) / step) * di if step > 0 else ti
             freq = 1.0 / (tp - last_peak) if last_peak == last_peak else omega / two_pi
-            s.pending.append([tp, freq, last_peak])
+            s.pending.append([tp, freq, last_peak, phase_error_deg(acc_i, acc_q)])
+            acc_i = acc_q = 0.0
             last_peak = tp
     s.theta, s.integ, s.last_peak_t, s.last_t = theta, integ, last_peak, float(t[-1])
+    s.iq = (acc_i, acc_q)
     # activity gate and event refinement need the samples up to half a gate window after each peak
     s.buf_t = np.concatenate([np.asarray(s.buf_t, dtype=float), t])
     s.buf_v = np.concatenate([np.asarray(s.buf_v, dtype=float), v])
@@ -443,32 +459,63 @@ def motion_gate_flush(state: GateState, window_s: float, var_min: float) -> list
     return out
 
 
+def phase_error_deg(i_sum: float, q_sum: float) -> float:
+    """Decision W345: the loop's phase error (deg) over one period, ``atan2(Q, I)`` of the sums of its AGC'd input
+    times the output's sine (Q) and cosine (I); 0 deg = the output's peak on the input's, the loop locked (seed 000
+    Sec. II-C: "the PLL can lock the raw acceleration data a_z"). NaN (never locked) when both sums are 0: a period
+    of no input (the AGC's zero below its power floor) has no phase."""
+    return math.degrees(math.atan2(q_sum, i_sum)) if (i_sum or q_sum) else math.nan
+
+
+def _pll_release(s: PLLState, last_of_run: bool) -> list[Event]:
+    """Decision W356: the held gated peak, kept unless it is the first or last of its gated run and unlocked."""
+    if s.held is None:
+        return []
+    ev, first, locked = s.held
+    s.held = None
+    return [ev] if locked or not (first or last_of_run) else []
+
+
 def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
-    """Activity gate (variance of ``v`` over the window centred on each peak) and event refinement."""
+    """Activity gate (variance of ``v`` over the window centred on each peak) and event refinement; with
+    ``p.edge_lock_deg`` (decision W356) each gated peak waits for the next peak's gate, so that a run's first and
+    last peaks are kept only when the loop is locked at them."""
     if not cands:
         return []
     bt, bv = s.buf_t, s.buf_v
     ok, var = centred_variance(bt, bv, np.array([c[0] for c in cands]), 0.5 * p.gate_window_s)
     out: list[Event] = []
+    lock = p.edge_lock_deg > 0
     for c, good, vi in zip(cands, ok.tolist(), var.tolist(), strict=True):
-        if not good or vi < p.gate_var:
+        gated = good and vi >= p.gate_var
+        if lock:
+            out += _pll_release(s, not gated)
+        first, s.prev_gated = not s.prev_gated, gated
+        if not gated:
             continue
-        tp, freq, prev = c
+        tp, freq, prev, phase = c
+        peak = tp
         if p.refine_frac > 0:
             r = p.refine_frac / max(freq, p.f_min_hz)
             a, b = np.searchsorted(bt, tp - r, side="left"), np.searchsorted(bt, tp + r, side="right")
             if b > a:
                 tp = float(bt[a + int(np.argmax(bv[a:b]))])
         start = prev if prev == prev and tp - prev < 2.0 / p.f_min_hz else tp - 1.0 / max(freq, p.f_min_hz)
-        out.append((tp, start, tp, min(1.0, vi / (2 * p.gate_var)), {"step_freq_hz": freq}))
+        ev = (tp, start, tp, min(1.0, vi / (2 * p.gate_var)),
+              {"step_freq_hz": freq, "pll_peak_s": peak, "phase_err_deg": phase})
+        if lock:
+            s.held = (ev, first, abs(phase) <= p.edge_lock_deg)
+        else:
+            out.append(ev)
     return out
 
 
 def pll_flush(state: PLLState, p: PLLParams) -> list[Event]:
-    """Decide the peaks still waiting for their look-ahead with the samples available."""
+    """Decide the peaks still waiting for their look-ahead with the samples available (W356: the held peak ends its
+    run)."""
     out = _pll_decide_many(state, state.pending, p)
     state.pending = []
-    return out
+    return out + _pll_release(state, True)
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -629,7 +676,8 @@ def pll_params(det, period_s: float = float("nan"), gate_var: float | None = Non
     return PLLParams(f0_hz=f0, kp=2 * det.damping * wn / kd, ki=wn * wn / kd,
                      f_min_hz=det.f_min_hz, f_max_hz=f_max, agc_tau_s=det.agc_tau_s,
                      gate_window_s=det.gate_window_s, gate_var=det.gate_var if gate_var is None else gate_var,
-                     refine_frac=det.refine_frac)
+                     refine_frac=det.refine_frac,
+                     edge_lock_deg=EDGE_LOCK_DEG if getattr(det, "edge_lock", False) else 0.0)  # W356
 
 
 class PLLProcessor:

@@ -304,6 +304,12 @@ class PLLStepDetector(StepDetector):
     (W113's autocorrelation period) is faster than 2.4 Hz free-runs at that rhythm, clamped at 1 / 0.75 of it (a
     child at 3.3-3.8 Hz); slower sessions and the streaming detector keep ``f0_hz`` / 3.2 Hz.
 
+    Edge lock (decision W356, ``edge_lock``, off; W357 measured it, not adopted): the first and the last peak of a
+    run of gated peaks count only when the loop is locked at them, the phase error over the period ending at the peak
+    within 45 deg (:data:`pdrlearn.kernels.step_events.EDGE_LOCK_DEG`; seed 000 Sec. II-C: "the PLL can lock the raw
+    acceleration data a_z"); a free-running peak at a bout's edge that the centred gate lets in is no step (W345).
+    Each gated peak then waits for the next peak's gate: one loop period more latency.
+
     Loop gains (decision): natural frequency ``loop_hz`` and damping ``damping`` of the linearised loop,
     ``kp = 2 zeta wn / Kd``, ``ki = wn^2 / Kd`` with the phase-detector gain ``Kd = 1/sqrt(2)`` of a
     unit-RMS sine input.
@@ -322,8 +328,10 @@ class PLLStepDetector(StepDetector):
                  gate_var: float = 0.25,  # seed 001: 1.5 m^2/s^4 for a pocket; decision 18: decision W4's
                  # waist motion gate (std 0.5 m/s^2; seed 000 sec. II-B's own is 1.5) squared
                  refine_frac: float = 0.25, placement: str = "waist",
-                 relative_gate: bool | None = None):  # decision steps 48: W76's session-relative gate (offline
-        # detect); steps 49: None = steps 48's default (on offline, off streaming), True given is refused by online()
+                 relative_gate: bool | None = None,  # decision steps 48: W76's session-relative gate (offline
+                 # detect); steps 49: None = steps 48's default (on offline, off streaming), True given is refused by
+                 # online()
+                 edge_lock: bool = False):  # decision W356: a gated run's first / last peak only when locked
         self._store(locals())
 
     def online(self, fs: float, **context):

@@ -129,11 +129,13 @@ def _sequences(steps: pd.DataFrame) -> list[np.ndarray]:
 
 
 def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine_ic: bool = True,
-               rhythm: bool = True) -> pd.DataFrame:
+               rhythm: bool = True, edge_lock: bool = False) -> pd.DataFrame:
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
-    moved to the initial contact next to them when ``refine_ic`` (decision W11)."""
+    moved to the initial contact next to them when ``refine_ic`` (decision W11); ``edge_lock``: the detector's
+    W356 option (a gated run's first / last peak only when the loop is locked)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
-    st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False).detect(session)  # the gate is track's
+    st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
+                         edge_lock=edge_lock).detect(session)
     ev = np.sort(st["event_s"].to_numpy(float)) if len(st) else np.zeros(0)
     idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
     idx = idx[walking_gate(imu, walk_threshold=walk_threshold)[idx]]
@@ -577,6 +579,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
+                   "pll_edge_lock": False,  # W356: waist-pll's edge peaks only when the loop is locked
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
@@ -589,7 +592,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "rest_bias": True,  # L296: a long rest's rotation less the bias of its still samples
                    "lying_heading": True,  # W269, W271 (adopted by W270): lying turns it by the long axis's yaw only
                    "rest_frame": False,  # W285: harmonic headings less the AHRS frame's turn over a long rest
-                   "climb_veto": False}  # L314's ramp veto from W108's climbs: opt-in (decision L330)
+                   "climb_veto": False,  # L314's ramp veto from W108's climbs: opt-in (decision L330)
+                   "ride_vibration": False}  # L402: a vibrating ride is a vehicle's; L403: not met, opt-in
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -611,6 +615,8 @@ SCOPED_OPTIONS = {
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
                     lambda pl, rt, m, det, stops: not rt),
+    "pll_edge_lock": ("waist-pll with its own PLL detector (W356)",
+                      lambda pl, rt, m, det, stops: pl == "waist-pll" and not det),
     "vault_veto": ("the offline waist-pendulum (W119)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
     "realtime_sit_veto": ("realtime tracks (offline tracks apply the sit veto on the whole recording; W200)",
@@ -718,7 +724,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 length_model=None, freeze_veto: bool | None = None,
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
                 fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
-                foot_rest_veto: bool | None = None) -> TrackResult:
+                foot_rest_veto: bool | None = None, pll_edge_lock: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -813,6 +819,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         of a foot stride that swings the foot (a standing passenger's bounce in a vehicle; decision W336,
         :mod:`pdrlearn.waist.foot_rest`; such runs are always named in one warning line each); default True
         (decision W337), False keeps and names them
+    pll_edge_lock : waist-pll with its own detector (the live tracker ignores it): the first and the last PLL peak of
+        a run of peaks that pass the activity gate count only when the loop is locked at them (phase error within
+        45 deg over the period ending at the peak; decision W356, W345's diagnosis: a free-running peak at a bout's
+        edge); default False (W357: measured, not adopted -- fewer extra contacts, but true edge contacts lost)
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)
@@ -902,9 +912,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "foot_rest_veto": foot_rest_veto,  # W336
+             "pll_edge_lock": pll_edge_lock,  # W356
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
+             "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
              "rest_frame": None,  # W285: a PARAMS.json option only
              "pll_slow_check": None,  # W289: a PARAMS.json option only
@@ -949,7 +961,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = det.steps_
         method = heading or "gyro"
     else:
-        steps = _pll_steps(session, imu, thr, refine_ic=refine_ic, rhythm=bool(o["rhythm"]))
+        steps = _pll_steps(session, imu, thr, refine_ic=refine_ic, rhythm=bool(o["rhythm"]),
+                           edge_lock=bool(o["pll_edge_lock"]))
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
@@ -1086,10 +1099,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = steps.assign(climb=climbs)  # decision L314: W108's stair climbs, which no ramp is made of (grade.py)
     rides: list[dict] | None = None  # None: no barometer read (n_rides empty, no rides.csv)
     if z is not None:  # decisions L375-L377: each ride's kind (steps.csv ride), rides.csv and their lines
-        from pdrlearn.track.rides import ride_lines, ride_rows
+        from pdrlearn.track.rides import ride_accelerometer, ride_lines, ride_rows
 
         ride_kinds, rides = ride_rows(baro.t, baro.values[:, 0], steps, float(imu.t[0]), z, z_start,
-                                      t_end=float(imu.t[-1]))  # L394
+                                      t_end=float(imu.t[-1]), acc=ride_accelerometer(session),  # L394, L402
+                                      vibration_kind=bool(o["ride_vibration"]))  # L403: opt-in
         steps = steps.assign(ride=ride_kinds)
         warnings.extend(ride_lines(rides))
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:

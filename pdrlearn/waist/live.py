@@ -108,8 +108,9 @@ def live_options(p, warnings: list[str], **given) -> dict:
 #: W119/W127, W131, W151, W152 look ahead -- W131 runs inside W31's window with ``realtime_contact_shift``, W166;
 #: ``pause_steps`` W111 / W122 too, but W134's "standing" is applied, W165; W102/W104's trunk posture, W108's climbs
 #: read the whole recording); ``heading`` has W82's own line and ``length_smoothing`` is refused (W56). The rest are
-#: applied (``stairs_length`` since E107) or do not concern the live tracker (``realtime``; ``refine_ic`` and
-#: ``resolve_signs`` are waist-pll / harmonic-heading options; ``relative_gate`` off is the live fixed gate).
+#: applied (``stairs_length`` since E107) or do not concern the live tracker (``realtime``; ``refine_ic``,
+#: ``pll_edge_lock`` (W356) and ``resolve_signs`` are waist-pll / harmonic-heading options; ``relative_gate`` off is
+#: the live fixed gate).
 LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_veto", "contact_shift", "weak_fill",
                           "step_bound",  # W230: the runtime does not bound a step's barometric change
                           "parity_fill", "integrate_end",  # W187: the final stop is known only offline
@@ -122,6 +123,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "fast_fill",  # W242: the offline detector's sequence rules only
                           "ap_above_mean",  # W265: W29's IC of the offline detector only
                           "climb_veto",  # L330: W108's climbs read the whole recording (L314's veto, opt-in)
+                          "ride_vibration",  # L402 / L403: the live tracker tells no ride's kind (no rides.csv)
                           "lying_heading",  # W269: W222's lying is labelled on the whole recording
                           # E146: W231's ride is applied live only where the PARAMS.json gives pause_ride true (E146's
                           # rule was not met for the default); L308 applies rest_bias live (E147: no longer named)
