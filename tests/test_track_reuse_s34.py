@@ -1,0 +1,71 @@
+"""Session 34 (I2): work a track did twice is done once, with the same outputs (steps decision 55, W353)."""
+
+from __future__ import annotations
+
+import pandas as pd
+import pytest
+
+
+@pytest.fixture(scope="module")
+def force_walk(tmp_path_factory):
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import UserProfile, simulate
+
+    out = tmp_path_factory.mktemp("reuse") / "A_u7702"
+    write_session(simulate("A", UserProfile.from_seed(7702), "normal", rate_hz=100.0), out)
+    return out
+
+
+def _counting(monkeypatch, cls, name="detect"):
+    calls = []
+    orig = getattr(cls, name)
+
+    def counted(self, *a, **k):
+        calls.append(1)
+        return orig(self, *a, **k)
+
+    monkeypatch.setattr(cls, name, counted)
+    return calls
+
+
+def test_the_force_detector_runs_once_per_plasys_track_steps_55(force_walk, monkeypatch):
+    from pdrlearn.io import read_session
+    from pdrlearn.steps import AccelForceStepDetector
+    from pdrlearn.track.plasys import track_plasys
+
+    calls = _counting(monkeypatch, AccelForceStepDetector)
+    res = track_plasys(read_session(force_walk))
+    assert res.info["stance_source"] == "force" and res.info["force_offset_s"] is not None  # L390 ran
+    assert res.info["heading_source"] in ("fused", "waist")  # L161's unit check ran on the waist unit
+    assert len(calls) == 1  # the strides' detection, reused by L390's and L161's checks (it ran three times)
+    calls.clear()
+    res = track_plasys(read_session(force_walk), align=True)  # L162: --align-units estimates from it too
+    assert res.info.get("unit_alignment") is not None and len(calls) == 1
+
+
+def test_align_estimate_takes_the_force_table_steps_55(force_walk, monkeypatch):
+    from pdrlearn.io import read_session
+    from pdrlearn.steps import AccelForceStepDetector
+    from pdrlearn.steps.align import align_estimate
+
+    session = read_session(force_walk)
+    own = align_estimate(session)
+    table = AccelForceStepDetector().detect(session)
+    calls = _counting(monkeypatch, AccelForceStepDetector)
+    assert align_estimate(session, force_table=table) == own and not calls
+    session.streams.pop("fForceA")  # without the insoles the accelerometer detector's events: the table is not used
+    assert align_estimate(session, force_table=table) == align_estimate(session) and not calls
+
+
+def test_force_events_takes_a_detected_table_steps_55(force_walk, monkeypatch):
+    from pdrlearn.displace.force_clock import force_events
+    from pdrlearn.io import read_session
+    from pdrlearn.steps import AccelForceStepDetector
+
+    session = read_session(force_walk)
+    own = force_events(session)
+    calls = _counting(monkeypatch, AccelForceStepDetector)
+    assert force_events(session, detected=own) is own and not calls
+    assert force_events(session, detected=pd.DataFrame()) is None and not calls  # a detector that failed
+    pd.testing.assert_frame_equal(force_events(session), own)
+    assert len(calls) == 1
