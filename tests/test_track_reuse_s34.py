@@ -28,6 +28,18 @@ def _counting(monkeypatch, cls, name="detect"):
     return calls
 
 
+def _counting_function(monkeypatch, module, name):
+    calls = []
+    orig = getattr(module, name)
+
+    def counted(*a, **k):
+        calls.append(1)
+        return orig(*a, **k)
+
+    monkeypatch.setattr(module, name, counted)
+    return calls
+
+
 def test_the_force_detector_runs_once_per_plasys_track_steps_55(force_walk, monkeypatch):
     from pdrlearn.io import read_session
     from pdrlearn.steps import AccelForceStepDetector
@@ -69,3 +81,47 @@ def test_force_events_takes_a_detected_table_steps_55(force_walk, monkeypatch):
     assert force_events(session, detected=pd.DataFrame()) is None and not calls  # a detector that failed
     pd.testing.assert_frame_equal(force_events(session), own)
     assert len(calls) == 1
+
+
+@pytest.fixture(scope="module")
+def waist_walk(tmp_path_factory):
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import UserProfile, simulate
+
+    out = tmp_path_factory.mktemp("reuse_w") / "walk_u7703"
+    write_session(simulate("walk", UserProfile.from_seed(7703), "normal", rate_hz=100.0, length_m=60.0), out)
+    return out
+
+
+def test_gait_quality_reads_the_tracks_own_ahrs_w353(waist_walk, tmp_path, monkeypatch):
+    import pdrlearn.waist.ahrs as ahrs
+    from pdrlearn.cli import main
+
+    calls = _counting_function(monkeypatch, ahrs, "imu_from_body")
+    assert main(["track", str(waist_walk), "--pipeline", "waist-pendulum", "--gait-quality",
+                 "--out", str(tmp_path / "t")]) == 0
+    bouts = pd.read_csv(tmp_path / "t" / "bouts.csv")
+    assert bouts["hr_ap"].notna().any()  # W350 ran on the bout
+    assert len(calls) == 1  # the track's AHRS (it ran a second time for W350)
+
+
+def test_a_kept_imu_is_the_tracks_unchanged_w353(waist_walk):
+    import numpy as np
+
+    from pdrlearn.io import read_session
+    from pdrlearn.track.waist import waist_pendulum
+    from pdrlearn.waist.ahrs import kept_imu, kept_imus, waist_imu
+
+    session = read_session(waist_walk)
+    with kept_imus() as imus:
+        waist_pendulum(session)
+    assert len(imus) == 1 and imus[0][0] is session
+    fresh = waist_imu(session)
+    kept = kept_imu(imus, session)
+    assert kept is imus[0][3]  # the track's own object, not a new run
+    for name in ("t", "acc_nav", "gyr_nav", "yaw", "acc_v", "acc_h", "acc_ap", "acc_ml", "bridged"):
+        assert np.array_equal(getattr(kept, name), getattr(fresh, name)), name  # the track changed none in place
+    assert kept_imu(imus, read_session(waist_walk)) is not kept  # another session object: computed afresh
+    assert kept_imu(imus, session, gain=0.1) is not kept
+    waist_imu(session)
+    assert len(imus) == 1  # nothing is kept outside the block

@@ -15,6 +15,8 @@ Frames: the sensor axes are mapped to the body frame FLU with the session's decl
 from __future__ import annotations
 
 import logging
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 
 import numpy as np
@@ -164,7 +166,36 @@ def waist_imu(session: Session, *, gain: float = MADGWICK_GAIN, init_s: float = 
     t, acc, gyr = body_data(session)
     imu = imu_from_body(t, acc, gyr, gain=gain, init_s=init_s)
     imu.bridged = bridged_samples(session, t)
+    kept = _KEPT.get()
+    if kept is not None:  # decision W353: inside kept_imus(), for a later reader of the same session
+        kept.append((session, float(gain), float(init_s), imu))
     return imu
+
+
+#: decision W353: the list :func:`kept_imus` collects :func:`waist_imu`'s results in (None: outside it)
+_KEPT: ContextVar[list | None] = ContextVar("pdrlearn_kept_waist_imus", default=None)
+
+
+@contextmanager
+def kept_imus():
+    """Decision W353: inside the ``with`` block every :func:`waist_imu` result is kept with its session, gain and
+    ``init_s`` in the yielded list, for :func:`kept_imu` to hand to a later reader (``track --gait-quality``'s W350
+    reads the track's own AHRS instead of running it again). Nothing is kept outside the block."""
+    kept: list = []
+    token = _KEPT.set(kept)
+    try:
+        yield kept
+    finally:
+        _KEPT.reset(token)
+
+
+def kept_imu(kept: list, session: Session, *, gain: float = MADGWICK_GAIN, init_s: float = 0.5) -> WaistIMU:
+    """Decision W353: the :class:`WaistIMU` that :func:`waist_imu` computed inside :func:`kept_imus` for this very
+    ``session`` object with these settings; else :func:`waist_imu` runs (the same numbers either way)."""
+    for s, g, i, imu in kept:
+        if s is session and g == float(gain) and i == float(init_s):
+            return imu
+    return waist_imu(session, gain=gain, init_s=init_s)
 
 
 def bridged_samples(session: Session, t: np.ndarray) -> np.ndarray:
