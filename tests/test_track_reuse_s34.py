@@ -125,3 +125,36 @@ def test_a_kept_imu_is_the_tracks_unchanged_w353(waist_walk):
     assert kept_imu(imus, session, gain=0.1) is not kept
     waist_imu(session)
     assert len(imus) == 1  # nothing is kept outside the block
+
+
+def test_a_waist_track_computes_one_standstill_mask_w354(waist_walk, monkeypatch):
+    import pdrlearn.kernels.waist as kw
+    from pdrlearn.io import read_session
+    from pdrlearn.track.waist import waist_pendulum
+
+    session = read_session(waist_walk)
+    for name in [n for n in session.streams if n.startswith("f")]:  # the lower back alone (a foot unit's own
+        session.streams.pop(name)  # rests are other masks: foot_rest_runs, W336)
+    calls = _counting_function(monkeypatch, kw, "still_samples")  # every standstill_mask call runs it
+    res = waist_pendulum(session)
+    assert "pause_factor" in res.steps  # W122 / W134's standstills were read (pause_steps "standing")
+    assert len(calls) == 1  # W122's step lengths, W105's rest rate and L296 / L372 share it (it ran three times)
+
+
+def test_the_imus_mask_is_standstill_masks_and_read_only_w354(waist_walk):
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from pdrlearn.io import read_session
+    from pdrlearn.signal.conditioning import standstill_mask
+    from pdrlearn.waist.ahrs import nav_still, waist_imu
+
+    imu = waist_imu(read_session(waist_walk))
+    still = imu.still()
+    assert still is imu.still() and nav_still(imu) is still
+    assert np.array_equal(still, standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)) and still.any()
+    with pytest.raises(ValueError):
+        still[0] = not still[0]  # shared: a reader cannot change it for the others
+    plain = SimpleNamespace(acc_nav=imu.acc_nav, gyr_nav=imu.gyr_nav, fs=imu.fs)  # a plug-in's signals: computed
+    assert np.array_equal(nav_still(plain), still)

@@ -17,7 +17,7 @@ from __future__ import annotations
 import logging
 from contextlib import contextmanager
 from contextvars import ContextVar
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -55,6 +55,8 @@ class WaistIMU:
         evidence that the unit stood still (decision W136); None when not known (all recorded)
     gyr_body : (n, 3) angular rate in the body frame FLU (rad/s), as the AHRS read it: the rate about the trunk's
         long axis while lying (decision W269); None when the data came without it
+
+    :meth:`still` is the navigation-frame standstill mask, computed once per object (decision W354).
     """
 
     t: np.ndarray
@@ -69,10 +71,33 @@ class WaistIMU:
     up_body: np.ndarray | None = None
     bridged: np.ndarray | None = None
     gyr_body: np.ndarray | None = None
+    _still: np.ndarray | None = field(default=None, init=False, repr=False, compare=False)
 
     @property
     def w_z(self) -> np.ndarray:
         return self.gyr_nav[:, 2]
+
+    def still(self) -> np.ndarray:
+        """Decision W354: :func:`~pdrlearn.signal.conditioning.standstill_mask` with its defaults on ``acc_nav``,
+        ``gyr_nav`` at ``fs`` (L296's still samples, W122's standstills), computed on the first call and shared
+        (read-only) by every later reader of this object."""
+        if self._still is None:
+            from pdrlearn.signal.conditioning import standstill_mask
+
+            still = standstill_mask(self.acc_nav, self.gyr_nav, self.fs)
+            still.setflags(write=False)
+            self._still = still
+        return self._still
+
+
+def nav_still(signals) -> np.ndarray:
+    """Decision W354: the standstill mask (``standstill_mask``, its defaults) of navigation-frame ``signals``
+    (``acc_nav``, ``gyr_nav``, ``fs``): a :class:`WaistIMU`'s own :meth:`~WaistIMU.still`, else computed."""
+    if isinstance(signals, WaistIMU):
+        return signals.still()
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    return standstill_mask(signals.acc_nav, signals.gyr_nav, signals.fs)
 
 
 def _quat_wxyz_to_rotation(q: np.ndarray) -> Rotation:
