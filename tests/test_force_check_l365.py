@@ -346,3 +346,38 @@ def test_ignore_force_refuses_a_detector_that_reads_the_force_b299(walk, tmp_pat
         assert not out.exists()
     res = _track(walk, steps="accel", ignore_force=True)  # the IMU's detector stays allowed
     assert res.info["stance_source"] == "inertial" and len(res.steps) > 10
+
+
+@pytest.fixture(scope="module")
+def stitched(tmp_path_factory):
+    """A force track that L365 stitches (user 7721, force files 300 ms late, L397's recipe)."""
+    from pdrlearn.cli import main
+
+    root = tmp_path_factory.mktemp("l405")
+    assert main(["simulate", "--route", "straight:10, turn:90, straight:10, turn:90, straight:10", "--user-seed",
+                 "7721", "--out", str(root / "s")]) == 0
+    late = _copy(root / "s", root / "late", lambda df: df.assign(timestamp=df.timestamp + 300))
+    return _track(root / "s"), _track(late)
+
+
+def test_a_stitched_track_says_whose_contact_each_row_has_l405(stitched):
+    clean, res = stitched
+    assert "contact_source" not in clean.steps  # one detector throughout: no column
+    src = res.steps["contact_source"].astype(str)
+    assert set(src) == {"force", "imu"}
+    imu = res.steps[src == "imu"]
+    assert len(imu) and len(imu) < len(res.steps)
+
+
+def test_one_source_cv_leaves_out_the_seam_stride_times_l405(stitched, monkeypatch):
+    import pdrlearn.track.clinical as C
+
+    _, res = stitched
+    st, mixed_in = C.steady_rows(res.steps)
+    src = st["contact_source"].astype(str).to_numpy()
+    seam = np.concatenate([[False], src[1:] != src[:-1]])
+    assert not C.CV_ONE_SOURCE  # L405 not adopted: off by default, the CV's strides as before
+    monkeypatch.setattr(C, "CV_ONE_SOURCE", True)
+    _, one = C.steady_rows(res.steps)
+    assert (mixed_in & seam).any() and not (one & seam).any()  # the seam strides left out
+    assert np.array_equal(one, mixed_in & ~seam)  # and nothing else

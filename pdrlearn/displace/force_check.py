@@ -212,7 +212,9 @@ def imu_strides_in(session, strides, spans: np.ndarray):
     """Decision L365: a force detector's ``strides`` table with its rows where the force disagrees with the IMU
     (``spans`` (k, 2) s) replaced by the accelerometer detector's rows there (an insole that reads 0 N or stops
     finds no stride where the foot walks on). A row is there when its event (``event_s``, else ``end_s``) lies in a
-    span, and with it every row of either table that overlaps it (:func:`stitch_rows`, decision L397)."""
+    span, and with it every row of either table that overlaps it (:func:`stitch_rows`, decision L397). Decision
+    L405: when rows of both detectors remain, ``contact_source`` says which timed each row's contact (``force`` /
+    ``imu``; the stride-time CV takes no stride time from one to the other)."""
     import pandas as pd
 
     from pdrlearn.steps import AccelStepDetector
@@ -228,7 +230,10 @@ def imu_strides_in(session, strides, spans: np.ndarray):
     if not len(imu):
         return strides
     keep, take = stitch_rows(windows(strides), windows(imu), inside(strides), inside(imu))
-    out = pd.concat([strides[keep], imu[take]], ignore_index=True)
+    force_rows, imu_rows = strides[keep], imu[take]
+    if len(force_rows) and len(imu_rows):  # decision L405: a stitched table says whose contact each row has
+        force_rows, imu_rows = force_rows.assign(contact_source="force"), imu_rows.assign(contact_source="imu")
+    out = pd.concat([force_rows, imu_rows], ignore_index=True)
     return out.sort_values("start_s", kind="stable").reset_index(drop=True)
 
 
