@@ -38,7 +38,13 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.displace.foot import check_settings as check_foot_settings
-from pdrlearn.displace.force_check import checked_stance, imu_strides_in, reads_force_refusal, tared
+from pdrlearn.displace.force_check import (
+    checked_stance,
+    imu_strides_in,
+    reads_force_refusal,
+    streamed_insole_line,
+    tared,
+)
 from pdrlearn.displace.force_clock import force_events, offset_check, toe_offs_in
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
@@ -1040,6 +1046,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
         if at is not None:
             log.warning("%s: %s", session.where, res.info["warnings"][at])
+        insole = streamed_insole_line(session, "track --streaming")  # decision L406: L365's check, told
+        if insole:
+            res.info["warnings"].append(insole)
+            log.warning("%s: %s", session.where, insole)
         return res
     refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
     if refusal:
