@@ -761,6 +761,8 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228); a "
                                     "streamed track (track --streaming, run, Tracker) flags a run from its third "
                                     "stride, as decided live (L243)"),
+    ("contact_source", _ID, "text", "a stitched track only (L365's partial fallback): force or imu, the detector "
+                                    "that timed the stride's IC (L405)"),
     ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),
     ("stride_time_s", "s", "number", "IC to IC: this event_s minus the previous stride's (empty at the first "
                                      "stride, after a stop over 3 s, a gap row, or a missing IC; L66, L80)"),

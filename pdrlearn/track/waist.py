@@ -472,13 +472,14 @@ def _stop_rotation(imu: WaistIMU, w: np.ndarray, still: np.ndarray | None, t_a: 
 
 def _still_samples(imu: WaistIMU, still_mask=None) -> np.ndarray:
     """L296's still samples of the waist (``standstill_mask`` on the navigation-frame IMU, its defaults):
-    ``still_mask()`` when given (:func:`track_waist`'s, computed once per track and shared by L296, W269 and W285),
-    else computed now."""
+    ``still_mask()`` when given (:func:`track_waist`'s, shared by L296, W269 and W285), else the IMU's own mask
+    (:func:`~pdrlearn.waist.ahrs.nav_still`: computed once per IMU object and shared with W122's step lengths,
+    decision W354)."""
     if still_mask is not None:
         return still_mask()
-    from pdrlearn.signal.conditioning import standstill_mask
+    from pdrlearn.waist.ahrs import nav_still
 
-    return standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
+    return nav_still(imu)
 
 
 def _with_still_before(steps: pd.DataFrame, imu: WaistIMU, still: np.ndarray) -> pd.DataFrame:
@@ -1042,7 +1043,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
         steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
-    still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: once per track (W269, W285)
+    still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: the IMU's own (W285, W354)
     lying = (_lying_heading(imu, steps, transfers, still_mask) if bool(o["lying_heading"]) and method == "gyro"
              and integrate_stops and not realtime else None)  # decision W269: offline (W222's lying reads ahead)
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
@@ -1082,8 +1083,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     elif not steps["has_next"].to_numpy(bool).any() and len(steps):
         warnings.append(f"the {len(steps)} contact(s) counted are isolated, none followed by another within "
                         f"{MAX_STEP_S:g} s: the chair transfers' own movement, no step and no distance (decision W312)")
-    bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs,
-                                                      p.gyro_bias_rps))  # decision W105
+    bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs, p.gyro_bias_rps,
+                                                      still=imu.still()))  # decisions W105, W354
     if bias_line:
         warnings.append(bias_line)
     note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
