@@ -238,7 +238,6 @@ def _side(rows, visit: str, measures) -> tuple[str, str | None, object]:
         return "pipelines", why, None
     row = pd.Series({"path": "; ".join(ok["path"].astype(str)), "paths": ok["path"].astype(str).tolist(),
                      "pipeline": pipelines[0] if pipelines else None, "duplicate_of": None, "n_trials": len(ok),
-                     "visit_as_written": _names(ok["visit_as_written"]) if "visit_as_written" in ok else None,
                      **{m: pd.to_numeric(ok[m], errors="coerce").mean() for m in measures}})  # C83: the trials' mean
     return "ok", "; ".join(reasons) or None, row
 
