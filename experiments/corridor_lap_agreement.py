@@ -19,9 +19,9 @@ USERS = range(7920, 7926)
 
 def track(env_path: str, walk: Path, extra: list[str], out: Path) -> tuple[dict, str]:
     """``track --corridor 30`` with ``env_path`` first on PYTHONPATH: (summary, stderr)."""
-    env = {**os.environ, "PYTHONPATH": env_path}
+    env = {**os.environ, "PYTHONPATH": env_path}  # run in env_path too: `python -m` puts the cwd first on sys.path
     done = subprocess.run([*PDR, "track", str(walk), *extra, "--corridor", "30", "--out", str(out), "--force",
-                           "--json"], capture_output=True, text=True, env=env)
+                           "--json"], capture_output=True, text=True, env=env, cwd=env_path)
     if done.returncode:
         raise SystemExit(f"track {walk}: exit {done.returncode}: {done.stderr[-2000:]}")
     s = json.loads(done.stdout)

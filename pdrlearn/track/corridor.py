@@ -21,13 +21,11 @@ from pdrlearn.track.walk_test import _path
 CONE_TURN_MIN_DEG = 135.0
 #: decision L384: a final stretch of at least this many median stretches warns of a missed turn
 MISSED_TURN_RATIO = 1.5
-#: decision L407 (amends L384's 0.5-2): the track's scale (the median stretch over its nearest whole number of
-#: corridor lengths) outside these multiples of 1 warns of a wrong --corridor; the largest tracked-distance errors L385
-#: printed on a corridor walk are +28 to +39.6 % (calibrated waist-pll), inside 1/1.5-1.5
-CORRIDOR_RATIO_RANGE = (1.0 / 1.5, 1.5)
-#: decision L407: a lap whose tracked metres are off its corridor lengths x the track's scale by more than this
-#: fraction warns (uneven legs, e.g. a 5-10-5 shuttle, or a wrong --corridor); halfway between a turn placed a stride
-#: off on a 10 m corridor (~0.14) and the 0.5 at which the lap's count changes
+#: decision L384: the median tracked stretch outside these multiples of the corridor warns of a wrong --corridor
+CORRIDOR_RATIO_RANGE = (0.5, 2.0)
+#: decision L407: a lap whose tracked metres are off its corridor lengths x the median lap by more than this fraction
+#: warns (uneven legs, e.g. a 5-10-5 shuttle, or a wrong --corridor); halfway between a turn placed a stride off on a
+#: 10 m corridor (~0.14) and the 0.5 at which L384 changes the lap's count
 LAP_AGREEMENT_TOL = 0.25
 #: decision L383: the per-minute distances' period (s; the 6MWT's minutes, from the first step)
 MINUTE_S = 60.0
@@ -94,13 +92,11 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     bounds = np.concatenate([[lap_t0], mids[(mids > lap_t0) & (mids < lap_end)], [lap_end]])
     tracked = np.diff(np.interp(bounds, t, d))  # the stretches between cone turns (and the test's ends)
     warnings: list[str] = []
-    k_track = track_scale(tracked[:-1], corridor_m)
-    ref = k_track * corridor_m  # L407: one corridor length as this track measures it
-    if np.isfinite(k_track) and not CORRIDOR_RATIO_RANGE[0] <= k_track <= CORRIDOR_RATIO_RANGE[1]:
-        warnings.append(f"corridor walk test: the laps tracked {k_track:.2f} x --corridor {corridor_m:g} m (median "
-                        f"{np.median(tracked[:-1]):.1f} m): is the corridor length right? (decisions L384, L407)")
-    # decisions L384, L407: a stretch ending at a cone turn counts round(tracked / ref) corridor lengths; 0 joins the
-    # next
+    ref = float(np.median(tracked[:-1])) if len(tracked) > 1 else float("nan")
+    if np.isfinite(ref) and not (CORRIDOR_RATIO_RANGE[0] * corridor_m <= ref <= CORRIDOR_RATIO_RANGE[1] * corridor_m):
+        warnings.append(f"corridor walk test: the median lap tracked {ref:.1f} m against --corridor {corridor_m:g} m: "
+                        "is the corridor length right? (decision L384)")
+    # decision L384: a stretch ending at a cone turn counts round(tracked / median) corridor lengths; 0 joins the next
     stretches: list[tuple[float, float, float, int]] = []  # (start, end, tracked, corridor laps; -1 = the final one)
     start, acc = lap_t0, 0.0
     for k, m in enumerate(tracked[:-1]):
@@ -119,7 +115,7 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
               > LAP_AGREEMENT_TOL]
     if uneven:
         warnings.append("corridor walk test: " + ", ".join(f"lap {i} tracked {m:.1f} m" for i, m, _ in uneven)
-                        + f" against {ref:.1f} m per --corridor {corridor_m:g} m length as this track measures it "
+                        + f" against the median lap's {ref:.1f} m per --corridor {corridor_m:g} m length "
                         f"(off by more than {LAP_AGREEMENT_TOL:.0%}): the laps disagree with the corridor (uneven "
                         "legs, e.g. a shuttle, or a wrong --corridor?); counted as whole corridor lengths (decision "
                         "L407)")
@@ -147,18 +143,6 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     out["walk_test_distance_per_minute_m"] = per_minute
     out["fatigue_index"] = per_minute[-1] / per_minute[0] if len(per_minute) >= 2 and per_minute[0] > 0 else None
     return laps, out, warnings
-
-
-def track_scale(stretches: np.ndarray, corridor_m: float) -> float:
-    """Decision L407: the track's metres per true metre on a corridor of ``corridor_m``: the median over the
-    ``stretches`` (tracked metres between cone turns) of each over its nearest whole number (at least 1) of corridor
-    lengths, so that a missed turn (two lengths) or a few laps (where L384's median lap was half a missed turn) keep
-    the scale of the single laps; NaN without a stretch."""
-    m = np.asarray(stretches, float)
-    if not len(m) or corridor_m <= 0:
-        return float("nan")
-    lengths = np.maximum(np.floor(m / corridor_m + 0.5), 1.0)
-    return float(np.median(m / (lengths * corridor_m)))
 
 
 def _per_minute(t: np.ndarray, d: np.ndarray, stretches, dist: np.ndarray, t0: float, t_end: float) -> list[float]:
