@@ -12,7 +12,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from experiments.corridor_walk_test import CAL, CONFIGS, PDR, ROUTE, run
+from experiments.corridor_walk_test import CONFIGS, PDR, ROUTE, prepare_user
 
 USERS = range(7920, 7926)
 
@@ -33,10 +33,7 @@ def main(old: str, work: Path) -> None:
     lines, fired, differ = [f"route: {ROUTE}"], 0, 0
     for u in USERS:
         p = work / f"u{u}"
-        run("simulate", "--route", ROUTE, "-u", str(u), "--bounce", "pendulum", "--out", str(p / "walk"))
-        run("simulate", "--route", CAL, "-u", str(u), "--bounce", "pendulum", "--seed", "1", "--out", str(p / "cal"))
-        for pipe in ("waist-pendulum", "waist-pll"):
-            run("calibrate", str(p / "cal"), "-p", pipe, "-d", "20", "--out", str(p / f"cal_{pipe}.json"), "--force")
+        prepare_user(u, p)
         for c, extra in CONFIGS.items():
             args = [a.format(p=p) for a in extra]
             s_new, err = track(new, p / "walk", args, p / f"new_{c.replace(' ', '_')}")
