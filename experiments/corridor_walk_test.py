@@ -36,15 +36,20 @@ def run(*args: str) -> str:
     return done.stdout
 
 
+def prepare_user(u: int, p: Path) -> None:
+    """User ``u``'s 6MWT walk (``p/walk``), its calibration walk and both lower-back calibrations under ``p``."""
+    run("simulate", "--route", ROUTE, "-u", str(u), "--bounce", "pendulum", "--out", str(p / "walk"))
+    run("simulate", "--route", CAL, "-u", str(u), "--bounce", "pendulum", "--seed", "1", "--out", str(p / "cal"))
+    for pipe in ("waist-pendulum", "waist-pll"):
+        run("calibrate", str(p / "cal"), "-p", pipe, "-d", "20", "--out", str(p / f"cal_{pipe}.json"), "--force")
+
+
 def main(work: Path) -> None:
     rows = {c: [] for c in CONFIGS}
     lines = [f"route: {ROUTE}", f"truth of walk_test_distance_m: {TRUTH_M:.0f} m"]
     for u in USERS:
         p = work / f"u{u}"
-        run("simulate", "--route", ROUTE, "-u", str(u), "--bounce", "pendulum", "--out", str(p / "walk"))
-        run("simulate", "--route", CAL, "-u", str(u), "--bounce", "pendulum", "--seed", "1", "--out", str(p / "cal"))
-        for pipe in ("waist-pendulum", "waist-pll"):
-            run("calibrate", str(p / "cal"), "-p", pipe, "-d", "20", "--out", str(p / f"cal_{pipe}.json"), "--force")
+        prepare_user(u, p)
         for c, extra in CONFIGS.items():
             s = json.loads(run("track", str(p / "walk"), *[a.format(p=p) for a in extra], "--corridor", "30",
                                "--out", str(p / c.replace(" ", "_")), "--force", "--json"))

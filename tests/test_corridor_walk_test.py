@@ -141,3 +141,22 @@ def test_first_and_final_lap_span_the_steps_not_the_window_l399():
     assert laps["rest_s"].iloc[-1] == pytest.approx(0.0)
     assert laps["speed_mps"].iloc[-1] == pytest.approx(1.0) and "speed_m_s" not in laps.columns
     assert s["walk_test_distance_per_minute_m"] == pytest.approx([55.0, 60.0, 20.0]) and s["n_laps"] == 4
+
+
+def test_uneven_legs_warn_against_the_corridor_l407():
+    """L407 (trial T3 finding 2): a 5-10-5 shuttle given --corridor 10 or 5: the laps' tracked lengths (5 and 10 m)
+    disagree with one corridor length, one warning names them; the count stays L384's (round(tracked / median))."""
+    shuttle = _walk(rows=20, step_m=1.0)
+    for corridor in (10.0, 5.0):
+        laps, s, warnings = corridor_laps(shuttle, _turns([5, 15]), corridor)
+        assert list(laps["corridor_laps"]) == [1, 1, 0]
+        assert len(warnings) == 1 and "lap 1 tracked 5.0 m, lap 2 tracked 10.0 m" in warnings[0], corridor
+        assert "against the median lap's 7.5 m" in warnings[0] and "L407" in warnings[0]
+
+
+def test_a_missed_turn_on_a_short_walk_warns_l407():
+    """L407: with two stretches, one a missed turn (30 and 60 m on a 30 m corridor), L384's median lap is 45 m and
+    both count one lap: the laps disagree by a third each way, and the line says so."""
+    laps, _, warnings = corridor_laps(_walk(rows=105, step_m=1.0), _turns([30, 90]), 30.0)
+    assert list(laps["corridor_laps"]) == [1, 1, 0]
+    assert len(warnings) == 1 and "lap 1 tracked 30.0 m, lap 2 tracked 60.0 m" in warnings[0]

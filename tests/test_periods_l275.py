@@ -160,3 +160,18 @@ def test_track_all_stacks_the_periods(shift, tmp_path):
     assert list(allp.columns[:2]) == ["path", "visit"] and len(allp) == 2 * len(one)
     assert allp["path"].tolist() == ["a"] * len(one) + ["b"] * len(one)
     np.testing.assert_allclose(allp["distance_m"].to_numpy()[:len(one)], one["distance_m"].to_numpy())
+
+
+@pytest.mark.parametrize("text", ["5m", "0.5 m"])
+def test_per_in_m_is_refused_as_metres_b305(shift, tmp_path, capsys, text):
+    """B305 (trial T3 finding 10): `--per 5m` read 5 minutes while every distance prints in metres: one line naming
+    "min", exit 2, no output folder."""
+    with pytest.raises(DataError, match="min for minutes"):
+        parse_per(text)
+    out = tmp_path / "out"
+    capsys.readouterr()
+    assert main(["track", str(shift / "walk"), "--per", text, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--per" in err[0] and "min" in err[0] and "Traceback" not in err[0]
+    assert not out.exists()
+    assert parse_per("5min") == 300.0

@@ -204,9 +204,10 @@ WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the 
                           "(02:10,02:20 or two ISO 8601 date-times) when the session gives its start (meta.json "
                           "recording_start or a date-time import; decision L299).")
 
-PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv (e.g. 1h, 30min, 900): the whole "
-                       "session's track cut into periods from the recording's start, the last one shorter and marked "
-                       "partial; distance, steps, walking / between-steps / no-step / no-data time, floors, bouts, "
+PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv (e.g. 1h, 30min, 90s, 900; 'm' is "
+                       "refused as it reads as metres: write min for minutes, decision B305): the whole session's "
+                       "track cut into periods from the recording's start, the last one shorter and marked partial; "
+                       "distance, steps, walking / between-steps / no-step / no-data time, floors, bouts, "
                        "turns, the position sigma at the period's end (decisions L275, L277). With --window: the "
                        "window cut into periods from its start (decision L381).")
 PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods begin: start (default: at the "

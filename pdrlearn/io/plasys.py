@@ -445,6 +445,22 @@ def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: 
     return Stream(name, t, values)
 
 
+def imported_rate(meta: dict) -> float | None:
+    """Decision B304: the accelerometer/gyroscope rate (Hz) that ``pdrlearn import`` recorded in meta.json's
+    ``imported`` record(s) (``streams.<name>.rate_hz``) when every such stream has the same one (within 1 %), else
+    None: a folder the import wrote at 1000 Hz, in integer ms, is then read as ms and not refused as sample counters
+    (B98), as with a top-level ``rate_hz``."""
+    recs = meta.get("imported")
+    recs = recs if isinstance(recs, list) else [recs] if isinstance(recs, dict) else []
+    rates = [v.get("rate_hz") for r in recs if isinstance(r, dict) and isinstance(r.get("streams"), dict)
+             for n, v in r["streams"].items()
+             if n in SENSORS and SENSORS[n].kind in ("accelerometer", "gyroscope") and isinstance(v, dict)]
+    if not rates or not all(isinstance(r, int | float) and not isinstance(r, bool) and math.isfinite(r) and r > 0
+                            for r in rates):
+        return None
+    return float(rates[0]) if max(rates) <= 1.01 * min(rates) else None
+
+
 def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_path: Path) -> str | None:
     """Decision B22: the one timestamp unit of a session whose meta.json declares none, from every sensor
     file at once (a unit every file's rate allows; the accelerometer and gyroscope files held to
@@ -1177,7 +1193,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     if rate is not None and (isinstance(rate, bool) or not isinstance(rate, int | float) or not math.isfinite(rate)
                              or rate <= 0):
         raise DataError(f"{meta_path}: rate_hz {rate!r} is not a positive number of Hz; fix it or remove the field")
-    rate = float(rate) if rate is not None else None
+    rate = float(rate) if rate is not None else imported_rate(meta)  # decision B304: an import's own rate
     clocks = unit_clocks(meta, meta_path)  # decision B115: per-unit rates and clock offsets
     raw = {}
     for name, spec in SENSORS.items():

@@ -723,7 +723,8 @@ CV_KEEPS_RAMPS = False
 def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     """Decision L188: the rows that walk level and forward: |``dz_m``| under ``LEVEL_DZ_M`` (0.10 m, L179's
     :func:`pdrlearn.track.gait.stair_rows`) and ``direction`` not backward (a row without a class, a track
-    without a model, counts as forward). A stair
+    without a model, counts as forward) nor travelling backward (steps.csv ``backward_travel``, L203: decision L408,
+    a model-free track's back-pedalling strides were in the CVs). A stair
     stride or a backward stride has its own rhythm (the trial route's level ~1.0 s, stairs down 0.85 s, the first
     backward stride 2.0 s), so pooling them is no steady walker's variability."""
     from pdrlearn.track.gait import sideways_rows, stair_rows
@@ -732,7 +733,10 @@ def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     ok = ~stair_rows(steps, ramp_not_stair=True if CV_KEEPS_RAMPS else None) & ~sideways_rows(steps)  # L228
     if "direction" in steps:
         ok &= (steps["direction"].astype(str) != "backward").to_numpy()  # empty without a model: not backward
-    return ok
+    from pdrlearn.track.evaluate import backward_travel
+
+    back = backward_travel(steps)  # decision L408: a model-free track's backward strides (L203) are not forward
+    return ok if back is None else ok & ~back
 
 
 def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:

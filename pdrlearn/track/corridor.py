@@ -23,6 +23,10 @@ CONE_TURN_MIN_DEG = 135.0
 MISSED_TURN_RATIO = 1.5
 #: decision L384: the median tracked stretch outside these multiples of the corridor warns of a wrong --corridor
 CORRIDOR_RATIO_RANGE = (0.5, 2.0)
+#: decision L407: a lap whose tracked metres are off its corridor lengths x the median lap by more than this fraction
+#: warns (uneven legs, e.g. a 5-10-5 shuttle, or a wrong --corridor); halfway between a turn placed a stride off on a
+#: 10 m corridor (~0.14) and the 0.5 at which L384 changes the lap's count
+LAP_AGREEMENT_TOL = 0.25
 #: decision L383: the per-minute distances' period (s; the 6MWT's minutes, from the first step)
 MINUTE_S = 60.0
 #: decision L383: laps.csv's columns
@@ -107,6 +111,14 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                             f"{ref:.1f} m: counted as {c} laps (a missed turn; decision L384)")
         stretches.append((start, float(bounds[k + 1]), acc, c))
         start, acc = float(bounds[k + 1]), 0.0
+    uneven = [(i, m, c) for i, (_, _, m, c) in enumerate(stretches, start=1) if abs(m / (c * ref) - 1.0)
+              > LAP_AGREEMENT_TOL]
+    if uneven:
+        warnings.append("corridor walk test: " + ", ".join(f"lap {i} tracked {m:.1f} m" for i, m, _ in uneven)
+                        + f" against the median lap's {ref:.1f} m per --corridor {corridor_m:g} m length "
+                        f"(off by more than {LAP_AGREEMENT_TOL:.0%}): the laps disagree with the corridor (uneven "
+                        "legs, e.g. a shuttle, or a wrong --corridor?); counted as whole corridor lengths (decision "
+                        "L407)")
     last = acc + tracked[-1]
     stretches.append((start, lap_end, last, -1))
     if np.isfinite(ref) and ref > 0 and last >= MISSED_TURN_RATIO * ref:

@@ -655,9 +655,20 @@ def range_figures(summary: dict) -> str:
 
 
 def session_range_side(summary: dict) -> str | None:
-    """Decision L95: :func:`range_side` of the summary's own figures (the session line's verdict)."""
+    """Decision L95: :func:`range_side` of the summary's own figures (the session line's verdict). Decision L409: a
+    walk of stairs (L179, no speed judged) whose gait speed lies above L95's leg-scaled speed range is fast too."""
     cad, speed, _ = _judged(summary)
-    return range_side(cad, speed, _leg(summary))
+    side = range_side(cad, speed, _leg(summary))
+    return "fast" if side is None and _stair_walk_too_fast(summary, speed) else side
+
+
+def _stair_walk_too_fast(summary: dict, speed: float | None) -> bool:
+    """Decision L409: L179 judged no speed (a walk of stairs: its horizontal speed is slow by nature) while the gait
+    speed (distance / walking time) is above L95's speed range (2.5 m/s, leg-scaled by L148): no stair walk goes that
+    fast, so the session line fires on it (a fast run read as stairs by its altitude, trial T3's 4.06 m/s)."""
+    gait_speed = _finite(summary.get("gait_speed_mps"))
+    return speed is None and _stair_walk(summary) and gait_speed is not None and \
+        gait_speed > gait_ranges(_leg(summary))[1][1]
 
 
 def gait_range_warning(summary: dict) -> str | None:
@@ -674,7 +685,7 @@ def gait_range_warning(summary: dict) -> str | None:
     cad, speed, _ = _judged(summary)
     figs = range_figures(summary)
     leg = _leg(summary)
-    side = range_side(cad, speed, leg)  # decision L148: the leg-scaled ranges
+    side = session_range_side(summary)  # decision L148: the leg-scaled ranges; L409: a stair walk's gait speed
     if side is None:
         return None
     cad_range, speed_range = gait_ranges(leg)

@@ -53,8 +53,8 @@ PERIOD_COLUMNS = ("session", "subject", "period", "start_s", "end_s", "duration_
                   *PERIOD_GAIT_KEYS, *TIME_KEYS,
                   *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
                   "position_sigma_end_m")
-#: decision L277: ``--per`` units (s)
-PER_UNITS = {"s": 1.0, "min": 60.0, "m": 60.0, "h": 3600.0}
+#: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
+PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
 
 def parse_per(text: str | None) -> float | None:
@@ -62,7 +62,11 @@ def parse_per(text: str | None) -> float | None:
     anything else (decision L277)."""
     if text is None:
         return None
-    m = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*(s|min|m|h)?\s*", str(text))
+    metres = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*m\s*", str(text))
+    if metres:  # decision B305: "5m" reads as 5 metres next to the metres the tool prints; --per is a time
+        raise DataError(f"--per {text!r}: --per is a time, and 'm' reads as metres; give {metres.group(1)}min for "
+                        f"minutes (or {metres.group(1)}s, {metres.group(1)}h)")
+    m = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*(s|min|h)?\s*", str(text))
     per = float(m.group(1)) * PER_UNITS[m.group(2) or "s"] if m else math.nan
     if not (math.isfinite(per) and per > 0):
         raise DataError(f"--per {text!r}: not a positive period; {PER_USAGE}")

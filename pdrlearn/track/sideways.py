@@ -35,9 +35,21 @@ def sideways_warnings(session, consequence) -> list[str]:
     out = []
     for a, b in sideways_runs(angle, length, turn):  # decision L400: a stride of a turn on the spot is no side step
         ang = np.degrees(angle[a:b + 1])
-        way = "left" if np.median(ang) > 0 else "right"
-        out.append(f"{b - a + 1} foot strides at {t0[a]:.1f}-{t1[b]:.1f} s travel sideways to the {way} "
+        out.append(f"{b - a + 1} foot strides at {t0[a]:.1f}-{t1[b]:.1f} s travel sideways {side_ways(ang)} "
                    f"({length[a:b + 1].sum():.1f} m by the foot unit's ZUPT strides, median "
                    f"{np.median(np.abs(ang)):.0f} deg from the foot's facing): {consequence(t0[a], t1[b])} "
                    "(decision L219)")
     return out
+
+
+def side_ways(angle_deg: np.ndarray) -> str:
+    """Decision W362: the sides a run of sideways strides went, from their travel angles (deg from the foot's facing,
+    > 0 = left, FLU): "to the left" when all went one way, else each stretch in order with its stride count ("10 to
+    the left, then 10 to the right"); the old wording named only the median's side (trial T3: "to the right" for 10
+    left + 10 right strides)."""
+    left = np.asarray(angle_deg, float) > 0
+    cuts = np.flatnonzero(np.diff(left.astype(int))) + 1
+    parts = np.split(left, cuts)
+    if len(parts) == 1:
+        return f"to the {'left' if left[0] else 'right'}"
+    return ", then ".join(f"{len(p)} to the {'left' if p[0] else 'right'}" for p in parts)
