@@ -802,6 +802,12 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("stance_time_s", "s", "number", "--toe-off only: IC to toe-off"),
     ("swing_time_s", "s", "number", "--toe-off only: toe-off to the next IC"),
     ("stance_pct", "%", "number", "--toe-off only: 100 x stance_time_s / stride_time_s"),
+    ("max_sensor_lift_m", "m", "number", "offline foot track: the sensor's highest point above the line joining its "
+                                         "two rests (gaitmap's max_sensor_lift on level ground; L421)"),
+    ("ic_angle_deg", "deg", "number", "offline foot track: the sole angle at event_s, + toes up, 0 at the starting "
+                                      "rest (gaitmap's ic_angle; L421)"),
+    ("tc_angle_deg", "deg", "number", "offline foot track with a toe-off (--toe-off): the sole angle at tc_s "
+                                      "(gaitmap's tc_angle; L421)"),
     ("impossible", _ID, "true/false", "the last-line guard (L94) moved the stride 0 m: no gait values (L97)"),
     ("gap_s", "s", "number", "the longest foot-data gap inside the stride; > 0: a 0 m gap row (L67)"),
     ("unit", _ID, "text", "the unit tracked: foot"),
