@@ -1,6 +1,5 @@
 """Decision L421: the foot track's per-stride sensor lift and sole angles (gaitmap's max_sensor_lift, ic_angle,
 tc_angle) against the simulator's truth, and the kernels on known shapes."""
-import logging
 
 import numpy as np
 import pytest
@@ -8,8 +7,6 @@ import pytest
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.plasys import track_plasys
-
-logging.disable(logging.WARNING)
 
 
 def test_max_lift_is_the_height_above_the_line_between_the_rests():

@@ -1,12 +1,9 @@
 """Decision L423: a foot track without --toe-off says on its gait line why its stance keys are empty."""
-import logging
 
 from pdrlearn.cli.common import NO_STANCE_CLAUSE, gait_line
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.plasys import track_plasys
-
-logging.disable(logging.WARNING)
 
 
 def test_the_gait_line_names_toe_off_only_when_the_stance_is_missing_for_want_of_it():
