@@ -951,10 +951,23 @@ RIDES: tuple[Column, ...] = (
 )
 
 
+#: decision E163: track-all's ``strides.csv``, every tracked session's steps.csv rows led by these columns
+STRIDES: tuple[Column, ...] = (
+    ("path", _ID, "text", "the session's sessions.csv path (its key)"),
+    ("visit", _ID, "text", "sessions.csv's visit (C82)"),
+    ("session", _ID, "text", "the session's name (summary.json session)"),
+    ("foot", _ID, "text", "left or right from the session's meta.json (foot / instrumented_foot, L260); empty where "
+                          "not known"),
+    ("turn_deg", "deg", "number", "a foot row's turn_angle_rad in degrees (left +); empty on a lower-back row"),
+    ("is_turn", _ID, "true/false", "the row overlaps one of the session's turns.csv turns (>= 80 deg) by half its own "
+                                   "span or half the turn's (L422)"),
+)
+
+
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, TURNS, PERIODS, LAPS, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE,
-    FREEZES,
+    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, STRIDES, TURNS, PERIODS, LAPS, TRANSFERS, TUG_PHASE_TABLE,
+    TUG_TRIAL_TABLE, FREEZES,
     RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
@@ -962,6 +975,9 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
          "steps.csv (foot)": "Foot tracks (plasys; `pdrlearn track`, `run`): one row per stride of the tracked foot "
                              "(E137); an empty cell is a value the stride cannot have. Columns marked with an option "
                              "or a model appear only with it.",
+         "strides.csv": "`pdrlearn track-all` (decision E163): every tracked session's steps.csv in one table, in "
+                        "sessions.csv's order; the columns below lead, then the session's own steps.csv columns "
+                        "(steps.csv / steps.csv (foot)).",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
                            "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
                            "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines."}
@@ -979,6 +995,8 @@ def expanded(table: str) -> dict[str, Column]:
 def undocumented(table: str, columns) -> list[str]:
     """The ``columns`` of a written ``table`` that the dictionary lacks (a test keeps this empty, C35)."""
     known = expanded(table)
+    if table == "strides.csv":  # decision E163: the sessions' own steps.csv columns follow the lead ones
+        known = {**expanded("steps.csv"), **expanded("steps.csv (foot)"), **known}
     if table == "changes.csv":  # decision C81: any sessions.csv number column can be a --metrics measure
         measures = [name for name, _, kind, _ in SESSIONS if kind in ("number", "integer")]
         known.update({f"{m}_{k}": ("", "", "", "") for m in measures for k in ("baseline", "change", "change_pct")})
