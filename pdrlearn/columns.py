@@ -777,6 +777,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                           "none"),
     _GRADE_PCT,
     ("terrain", _ID, "text", "M3's terrain class (empty without a model; L18)"),
+    ("terrain_dz", _ID, "text", "offline: up / down / flat from dz_m by L39's 0.10 m, with or without a model "
+                                "(not a class; empty on a gap row; L424)"),
     ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),
     ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
                                            "L224)"),

@@ -1404,6 +1404,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     logged = len(warnings)  # apply_altitude logs its own lines
     apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
     foot_rides(res, session)  # decision L378: the rides, from the waist barometer (offline only, as run's files)
+    res.steps.insert(res.steps.columns.get_loc("terrain") + 1, "terrain_dz",  # decision L424: beside the class
+                     KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
     return res
