@@ -539,13 +539,22 @@ def check_session(session) -> None:
 #: symmetrically and rounded repeats its top value twice).
 CLIP_LEVEL = {"accelerometer": 2.0 * STANDARD_GRAVITY, "gyroscope": float(np.deg2rad(250.0))}
 CLIP_RUN = 3
+#: decision B311: an axis's extreme value (at or beyond :data:`CLIP_LEVEL`) that this many samples or more sit at
+#: exactly, consecutive or not, is a pinned full-scale value: 100 Hz impacts clip one sample at a time, which B77's
+#: runs never see. An unclipped axis reaches its extreme once: its impact peaks spread over metres per second squared
+#: (rad/s for a gyroscope) while a converter's step is under 0.08 m/s^2 (12 bits at +-16 g) or 0.02 rad/s (12 bits at
+#: +-2000 deg/s), so 4 more peaks in the top step, (step / spread)^4 < 1e-6 per axis, do not happen by chance; a
+#: smooth peak repeats its top value twice (B77), a held sample once more. 5 is that argument's count, not a fit.
+CLIP_PINNED = 5
 
 
 def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
     """Decision B77: (number of samples with a clipped axis, the largest clipped |value|) of an accelerometer
     or gyroscope file: on each axis, the samples equal to the axis's maximum (or minimum) over the file, where
     that extreme is at least :data:`CLIP_LEVEL` in magnitude, in runs of :data:`CLIP_RUN` or more equal
-    consecutive samples (a sensor at its full scale repeats it; a real peak is not held)."""
+    consecutive samples (a sensor at its full scale repeats it; a real peak is not held). Decision B311: or all
+    of them when :data:`CLIP_PINNED` or more samples sit at that extreme, one at a time or not (impacts at
+    100 Hz clip single samples)."""
     level = CLIP_LEVEL.get(kind)
     v = np.asarray(values, dtype=float)
     if level is None or v.ndim != 2 or v.shape[0] < CLIP_RUN:
@@ -558,6 +567,10 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
             if not abs(ext) >= level:
                 continue
             at = col == ext
+            if np.count_nonzero(at) >= CLIP_PINNED:  # decision B311: a pinned full-scale value, runs or not
+                hit |= at
+                top = max(top, abs(float(ext)))
+                continue
             # runs of equal extreme samples: a sample counts when its run is CLIP_RUN long or more
             edges = np.diff(np.concatenate([[0], at.astype(np.int8), [0]]))
             starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
@@ -575,5 +588,6 @@ def saturation_warning(where: str, kind: str, n: int, total: int, top: float) ->
     effect = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
               if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it")
     return (f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
-            f"sensor's full scale, held for {CLIP_RUN}+ samples): {effect}, so distances and headings come out "
-            f"wrong there; record with a range above +-{rng} (decision B77)")
+            f"sensor's full scale: held for {CLIP_RUN}+ samples in a row, or reached by {CLIP_PINNED}+ samples one at a "
+            f"time): {effect}, so distances and headings come out wrong there; record with a range above +-{rng} "
+            "(decision B77, B311)")
