@@ -545,6 +545,7 @@ CLIP_RUN = 3
 #: (rad/s for a gyroscope) while a converter's step is under 0.08 m/s^2 (12 bits at +-16 g) or 0.02 rad/s (12 bits at
 #: +-2000 deg/s), so 4 more peaks in the top step, (step / spread)^4 < 1e-6 per axis, do not happen by chance; a
 #: smooth peak repeats its top value twice (B77), a held sample once more. 5 is that argument's count, not a fit.
+#: And the rail must hold more samples than any other value near it (:func:`_pinned`).
 CLIP_PINNED = 5
 
 
@@ -567,7 +568,7 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
             if not abs(ext) >= level:
                 continue
             at = col == ext
-            if np.count_nonzero(at) >= CLIP_PINNED:  # decision B311: a pinned full-scale value, runs or not
+            if _pinned(col, ext, at):  # decision B311: a pinned full-scale value, runs or not
                 hit |= at
                 top = max(top, abs(float(ext)))
                 continue
@@ -579,6 +580,19 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
                     hit[a:b] = True
                     top = max(top, abs(float(ext)))
     return int(hit.sum()), top
+
+
+def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
+    """Decision B311: ``CLIP_PINNED`` or more samples sit at the axis's extreme ``ext`` (``at``), and more than at any
+    other value in the top tenth of the axis's range: a rail piles up every sample beyond it, while the top of an
+    unclipped signal is its rarest part (an exactly periodic synthetic sine repeats its top once a cycle, its
+    shoulders twice)."""
+    k = int(np.count_nonzero(at))
+    if k < CLIP_PINNED:
+        return False
+    band = 0.1 * float(col.max() - col.min())
+    near = col[~at & (np.abs(col - ext) <= band)]
+    return k > (int(np.unique(near, return_counts=True)[1].max()) if near.size else 0)
 
 
 def saturation_warning(where: str, kind: str, n: int, total: int, top: float) -> str:
