@@ -46,6 +46,7 @@ from pdrlearn.io.validate import (
     time_unit_candidates,
 )
 from pdrlearn.kernels.clock import RETIME_RATE_TOL, retimed
+from pdrlearn.kernels.counter_wrap import counter_wraps, unwrap, wrap_message
 from pdrlearn.kernels.frames import axes_dict
 
 log = logging.getLogger(__name__)
@@ -816,6 +817,11 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
                             f"line {bad[0] + first_line}); timestamps must be numbers (or date-times) in every row"
                             + _units_row_hint(df, bad[0], first_line, (skipped or {}).get("rows", 0)))
+        bits, wraps = counter_wraps(t_num)  # decision B312: a timestamp counter that wraps around, unwrapped
+        if bits:
+            log.warning("%s", wrap_message(f"{where} ({time_column})", t_num, bits, wraps,
+                                           time_unit or "ticks", int(wraps[0]) + 1 + first_line))
+            t_num = unwrap(t_num, bits, wraps)
         if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:

@@ -422,6 +422,25 @@ def _refuse_datetimes(col: pd.Series, path: Path) -> None:
                         "session with `pdrlearn import FILE --out DIR`, which reads date-time columns (decision B154)")
 
 
+def _unwrapped(raw: dict[str, np.ndarray], folder: Path) -> dict[str, np.ndarray]:
+    """Decision B312: the sensor files whose timestamp counter wraps around (:func:`~pdrlearn.kernels.counter_wrap.
+    counter_wraps`) with their timestamps unwrapped; one warning line for the files that wrap alike (every file of
+    a recorder's counter), naming them and the first wrap."""
+    from pdrlearn.kernels.counter_wrap import counter_wraps, unwrap, wrap_message
+
+    out, alike = dict(raw), {}
+    for name, arr in raw.items():
+        bits, idx = counter_wraps(arr[:, 0])
+        if bits:
+            out[name] = np.column_stack([unwrap(arr[:, 0], bits, idx), arr[:, 1:]])
+            alike.setdefault((bits, idx.size, float(arr[idx[0], 0])), []).append((name, arr, idx))
+    for (bits, _, _), files in alike.items():
+        name, arr, idx = files[0]
+        names = ", ".join(SENSORS[n].filename for n, _, _ in files)
+        log.warning("%s", wrap_message(f"{folder}: {names}", arr[:, 0], bits, idx, "ticks", int(idx[0]) + 3))
+    return out
+
+
 def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool,
                value_unit: tuple[float, str | None] = (1.0, None)) -> Stream:
     t = arr[:, 0] * time_scale
@@ -1184,6 +1203,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         p = folder / spec.filename
         if p.exists():
             raw[name] = _read_raw(p, name, drop_partial_row=drop_partial_row, command=command)[1]
+    raw = _unwrapped(raw, folder)  # decision B312: a timestamp counter that wraps around
     if not clocks and not _declares_integer_clock(meta, meta_path, rate):
         one_unit_counting(raw, folder, meta_path)  # decision B116: a counter on one unit needs its own clock
     scales: dict[str, float] = {}
