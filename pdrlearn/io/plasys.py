@@ -26,7 +26,7 @@ from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError, GravityRemovedError, shell_quote
 from pdrlearn.io.clocks import apply_offsets, one_unit_counting, unit_clocks, unit_groups
 from pdrlearn.io.frames import frames_from_meta
-from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS
+from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS, parse_value_unit
 from pdrlearn.io.session import MAX_BRIDGED_S, STEP_COLUMNS, Session, Stream
 from pdrlearn.io.validate import (
     TIE_ROWS,
@@ -134,38 +134,22 @@ def _trajectory_scale(scales: dict[str, float], clocks: dict, meta: dict, meta_p
 
 def _value_unit(meta: dict, name: str, where: str) -> tuple[float, str | None]:
     """Factor to the SI unit and the declared unit of a sensor file's values, from ``units.<file stem>``
-    (its first word, :data:`pdrlearn.io.sensors.VALUE_UNITS`; decision B32): ``(1.0, None)`` when none is
-    declared. An unknown unit is an error naming meta.json."""
+    (its first word, :data:`pdrlearn.io.sensors.VALUE_UNITS`, or a count's size and one, decision B100; parsed by
+    :func:`pdrlearn.io.sensors.parse_value_unit`, which ``pdrlearn import``'s unit options share, B313):
+    ``(1.0, None)`` when none is declared. An unknown unit is an error naming meta.json."""
     units = meta.get("units") if meta else None
     spec = SENSORS[name]
     table = VALUE_UNITS.get(spec.kind)
     if not isinstance(units, dict) or name not in units or table is None:
         return 1.0, None
     text = str(units[name]).strip()
-    words = text.split()
-    scale = _scale_factor(words[0]) if len(words) > 1 else None  # decision B100: "0.0047884 m/s^2" per count
-    if scale is not None:
-        words = words[1:]
-    word = words[0].strip("(),;:").lower() if words else ""
-    if word not in table:
+    parsed = parse_value_unit(text, spec.kind)
+    if parsed is None:
         raise DataError(f"{where}: units.{name} {text[:40]!r} does not start with a {spec.kind} unit pdrlearn "
                         f"converts from ({', '.join(dict.fromkeys(table))}), or a scale factor and one (a raw count "
                         f"as \"0.0047884 m/s^2\" or \"1/2048 g\"); write the unit first, e.g. \"{spec.unit}\", or "
                         "remove the entry")
-    if scale is None:
-        return table[word], word
-    return scale * table[word], f"{text.split()[0]} {word}"
-
-
-def _scale_factor(token: str) -> float | None:
-    """Decision B100: a positive finite number (``0.0047884``, ``4.79e-3``) or fraction (``1/2048``) that leads a
-    declared value unit: the size of one count in that unit; ``None`` when ``token`` is not one."""
-    num, _, den = token.partition("/")
-    try:
-        v = float(num) / (float(den) if den else 1.0)
-    except (ValueError, ZeroDivisionError):
-        return None
-    return v if math.isfinite(v) and v > 0 else None
+    return parsed
 
 
 def _check_body_fields(meta: dict, where: str) -> None:
