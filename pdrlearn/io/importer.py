@@ -299,7 +299,7 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
         counted = parse_value_unit(given, sensor)  # decision B313: meta.json's units parser, "1/2048 g" too
         if counted is None:
             raise DataError(f"{where}: {kind} unit {given!r} is not one of {', '.join(table)}"
-                            + (f", nor the size of one count and one of them (\"1/2048 g\", as meta.json's \"units\" "
+                            + (", nor the size of one count and one of them (\"1/2048 g\", as meta.json's \"units\" "
                                "take; decision B313)" if kind in _UNIT_OPTION else ""))
         return counted[1], counted[0], "given"
     row = {by_word.get(_unit_word((row_units or {}).get(c) or "")) for c in columns} - {None}

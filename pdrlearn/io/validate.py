@@ -602,6 +602,6 @@ def saturation_warning(where: str, kind: str, n: int, total: int, top: float) ->
     effect = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
               if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it")
     return (f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
-            f"sensor's full scale: held for {CLIP_RUN}+ samples in a row, or reached by {CLIP_PINNED}+ samples one at a "
-            f"time): {effect}, so distances and headings come out wrong there; record with a range above +-{rng} "
+            f"sensor's full scale: held for {CLIP_RUN}+ samples in a row, or reached by {CLIP_PINNED}+ samples one at "
+            f"a time): {effect}, so distances and headings come out wrong there; record with a range above +-{rng} "
             "(decision B77, B311)")

@@ -168,8 +168,8 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
                 f"{where}: median |acc| is {whole if whole > 200 else med:.0f}, which looks like raw counts or mm/s^2; "
                 f"convert to m/s^2: {counts_per_g_hint(rest)}"
                 + _or(declare, f"declare \"units\": {{\"{spec.name}\": \"{guess}\"}} in meta.json (decision B314)")
-                + (("" if not declare else f" (here: {guess}; decision B314)" if f"| {guess})" in declare
-                    else f" or \"{guess}\" (the unit of one count, decisions B313, B314)"))
+                + ("" if not declare else f" (here: {guess}; decision B314)" if f"| {guess})" in declare
+                    else f" or \"{guess}\" (the unit of one count, decisions B313, B314)")
             )
         if not 4.0 <= med <= 25.0:
             raise DataError(f"{where}: median |acc| is {med:.2f} m/s^2 in its quietest windows "
