@@ -8,8 +8,6 @@ import json
 import subprocess
 from pathlib import Path
 
-import pytest
-
 import pdrlearn
 from pdrlearn.buildinfo import git_stamp
 from pdrlearn.cli import main
