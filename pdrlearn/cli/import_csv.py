@@ -80,9 +80,11 @@ def import_command(
                                     "'%d/%m/%Y %H:%M:%S' (needed when day and month cannot be told apart, B43)."),
     time_zone: str = typer.Option(None, "--time-zone", help="Zone of date-time text without one, e.g. +01:00 or "
                                   "Europe/Berlin (default: UTC, said in the summary; B43)."),
-    acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2, g or mg (default: the header's '(g)' or '_g', "
-                                 "else m/s2)."),
-    gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s (default: the header's, else rad/s)."),
+    acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2, g or mg, or raw counts as the size of one "
+                                 "count and a unit, '1/2048 g', as meta.json's units (B313) (default: the header's "
+                                 "'(g)' or '_g', else m/s2)."),
+    gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s, or the size of one count, '1/16.4 "
+                                  "deg/s' (B313) (default: the header's, else rad/s)."),
     frames: str = typer.Option(None, "--frames", help="The unit's axes, e.g. x=forward,y=up,z=right (default: "
                                "none; commands infer it from the data, decision D8)."),
     sensor_height: float = typer.Option(None, "--sensor-height", help="The waist unit's height above "

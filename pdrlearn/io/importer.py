@@ -24,7 +24,7 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import AxisFrame, right_handed
 from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, GRAVITY_FILE, TOTAL_ACC_FILE, _csv_dialect, read_table
-from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
+from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU, parse_value_unit
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
     CLOCK_RESET_S,
@@ -46,6 +46,7 @@ from pdrlearn.io.validate import (
     time_unit_candidates,
 )
 from pdrlearn.kernels.clock import RETIME_RATE_TOL, retimed
+from pdrlearn.kernels.counter_wrap import counter_wraps, unwrap, wrap_message
 from pdrlearn.kernels.frames import axes_dict
 
 log = logging.getLogger(__name__)
@@ -292,9 +293,15 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
         _check_force_units(kind, given, columns, where, row_units, by_word)
     if given is not None:
         u = by_word.get(_unit_word(given))
-        if u is None:
-            raise DataError(f"{where}: {kind} unit {given!r} is not one of {', '.join(table)}")
-        return u, table[u], "given"
+        if u is not None:
+            return u, table[u], "given"
+        sensor = next((s.kind for s in SENSORS.values() if s.name[1:] == KINDS[kind][0]), "")
+        counted = parse_value_unit(given, sensor)  # decision B313: meta.json's units parser, "1/2048 g" too
+        if counted is None:
+            raise DataError(f"{where}: {kind} unit {given!r} is not one of {', '.join(table)}"
+                            + (", nor the size of one count and one of them (\"1/2048 g\", as meta.json's \"units\" "
+                               "take; decision B313)" if kind in _UNIT_OPTION else ""))
+        return counted[1], counted[0], "given"
     row = {by_word.get(_unit_word((row_units or {}).get(c) or "")) for c in columns} - {None}
     hints = set(row) or {by_word.get(_header_unit(c) or "") for c in columns} - {None}
     if len(hints) > 1:  # never one of them for all the columns: some would be converted wrongly
@@ -816,6 +823,11 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
                             f"line {bad[0] + first_line}); timestamps must be numbers (or date-times) in every row"
                             + _units_row_hint(df, bad[0], first_line, (skipped or {}).get("rows", 0)))
+        bits, wraps = counter_wraps(t_num)  # decision B312: a timestamp counter that wraps around, unwrapped
+        if bits:
+            log.warning("%s", wrap_message(f"{where} ({time_column})", t_num, bits, wraps,
+                                           time_unit or "ticks", int(wraps[0]) + 1 + first_line))
+            t_num = unwrap(t_num, bits, wraps)
         if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
