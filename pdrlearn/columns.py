@@ -916,7 +916,8 @@ RIDES: tuple[Column, ...] = (
 #: decision B309: the trajectory every track and run writes (trajectory.csv of the output folder; not the session's
 #: input trajectory.csv, the path reference with ``timestamp`` in ms, D1)
 TRAJECTORY: tuple[Column, ...] = (
-    ("t", "s", "number", "the time of the position: the start, then each step's (stride's) end, on the session's clock"),
+    ("t", "s", "number", "the time of the position: the start, then each step's (stride's) end, on the session's "
+                         "clock"),
     ("x", "m", "number", "east of the start (ENU; a track with a relative heading sets off along x unless "
                          "--initial-heading turns it, L98)"),
     ("y", "m", "number", "north of the start (ENU)"),

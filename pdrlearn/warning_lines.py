@@ -25,7 +25,9 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
     before). ``track-all`` tracks each session inside it and says each distinct warning once per batch with
     the sessions it concerns (decision C12): the ~250-character "no model" line was printed per session.
     ``echo=True``: the handlers print them too (``evaluate`` keeps its printed warnings in its JSON, B95;
-    decision E154: ``read_session``, every pipeline, ``track`` and ``run`` keep theirs in their results)."""
+    decision E154: ``read_session``, every pipeline, ``track`` and ``run`` keep theirs in their results). A logger
+    silenced by its level (``setLevel(logging.ERROR)``, the README's way) still gives the collected list its warnings
+    (E154), and its handlers and their ancestors' still print none of them."""
     log_ = logging.getLogger(logger)
     messages: list[str] = []
 
@@ -36,17 +38,31 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
     def below_warning(record: logging.LogRecord) -> bool:
         return record.levelno < logging.WARNING
 
-    others = [] if echo else list(log_.handlers)
-    for h in others:
-        h.addFilter(below_warning)
+    cut = log_.getEffectiveLevel()  # E154: what the caller lets through; a record below it is collected only
+
+    def let_through(record: logging.LogRecord) -> bool:
+        return record.levelno >= cut or record.levelno < logging.WARNING
+
+    filtered = [(h, below_warning) for h in ([] if echo else log_.handlers)]
+    old_level = log_.level
+    if cut > logging.WARNING:
+        node: logging.Logger | None = log_
+        while node is not None:  # the handlers the records propagate to
+            filtered += [(h, let_through) for h in node.handlers]
+            node = node.parent if node.propagate else None
+        log_.setLevel(logging.WARNING)
+    for h, f in filtered:
+        h.addFilter(f)
     collect = _Collect(logging.WARNING)
     log_.addHandler(collect)
     try:
         yield messages
     finally:
         log_.removeHandler(collect)
-        for h in others:
-            h.removeFilter(below_warning)
+        if cut > logging.WARNING:
+            log_.setLevel(old_level)
+        for h, f in filtered:
+            h.removeFilter(f)
 
 
 def session_line(message: str, where: str | os.PathLike | Iterable[str] | None) -> str:

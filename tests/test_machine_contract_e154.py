@@ -80,6 +80,22 @@ def test_a_pipeline_keeps_the_warnings_of_reading_its_session_e154(sessions, cap
     assert all(session_line(m, str(sessions["clip"])) in res.info["warnings"] for m in logged)
 
 
+def test_a_silenced_logger_still_fills_info_warnings_e154(sessions, caplog):
+    """The README's way to silence the warnings (the logger's level) prints none and keeps them in the result."""
+    from pdrlearn.track.base import get_pipeline
+
+    log = logging.getLogger("pdrlearn")
+    old = log.level
+    log.setLevel(logging.ERROR)
+    try:
+        with caplog.at_level(logging.DEBUG):
+            res = get_pipeline("plasys")(read_session(sessions["clip"]))
+    finally:
+        log.setLevel(old)
+    assert not [r for r in caplog.records if r.levelno >= logging.WARNING]
+    assert [w for w in res.info["warnings"] if "decision B77" in w] and log.level == old
+
+
 def test_track_all_and_track_give_the_same_warnings_e154(sessions, tmp_path, capsys):
     folder = sessions["jit"]
     assert main(["track-all", str(folder.parent), "--out", str(tmp_path / "all")]) == 0
