@@ -36,7 +36,9 @@ SESSIONS: tuple[Column, ...] = (
     ("path", _ID, "text", "the session folder relative to ROOT (the row's key)"),
     ("group", _ID, "text", "the first --group-depth folder levels of path (siteA)"),
     ("subject", _ID, "text", "meta.json subject (or user, when a name); empty when not given (C22)"),
-    ("visit", _ID, "text", "meta.json visit; empty when not given (C22)"),
+    ("visit", _ID, "text", "the visit as changes.csv and subjects.csv name it (C82): meta.json visit, --visit-map "
+                           "applied and spellings of one visit made one (C28, C29); empty when not given (C22)"),
+    ("visit_as_written", _ID, "text", "meta.json visit as written (C82)"),
     ("status", _ID, "text", "ok (tracked) or failed"),
     ("error", _ID, "text", "a failed session's one-line error; empty when ok"),
     ("session", _ID, "text", "meta.json's session name"),
@@ -420,7 +422,7 @@ GROUPS: tuple[Column, ...] = (
 
 SUBJECTS: tuple[Column, ...] = (
     ("subject", _ID, "text", "meta.json subject (C25)"),
-    ("visit", _ID, "text", "meta.json visit"),
+    ("visit", _ID, "text", "the visit as changes.csv names it (C40, C82)"),
     ("group", _ID, "text", "the group(s) of the subject's sessions"),
     ("n_tracked", "count", "integer", "the subject's sessions of that visit tracked"),
     ("n_failed", "count", "integer", "those that failed"),
@@ -434,11 +436,36 @@ SUBJECTS: tuple[Column, ...] = (
     ("gait_speed_mps", "m/s", "number", "bouts distance / walking time (pooled, not a mean of bouts)"),
     ("cadence_spm", "steps/min", "number", "60 x the bouts' steps between first and last contact / their contact "
                                            "spans (bouts.csv's cadence, pooled; L164)"),
+    ("visit_as_written", _ID, "text", "meta.json visit(s) as written, ; -separated (C82)"),
+)
+
+#: decisions C22, C81-C83: track-all's changes.csv, one row per subject and later visit; ``{measure}`` stands for each
+#: measure compared (groups.csv's, or --metrics)
+CHANGES: tuple[Column, ...] = (
+    ("subject", _ID, "text", "meta.json subject (C22)"),
+    ("group", _ID, "text", "the subject's group"),
+    ("baseline_visit", _ID, "text", "the subject's baseline visit (C24, C28), as sessions.csv's visit (C82)"),
+    ("visit", _ID, "text", "the later visit compared with it"),
+    ("baseline_visit_as_written", _ID, "text", "meta.json's name(s) of the baseline visit (C82)"),
+    ("visit_as_written", _ID, "text", "meta.json's name(s) of the later visit (C82)"),
+    ("status", _ID, "text", "ok (paired), missing, failed, pipelines (C30) or duplicate (C31); several: before C83"),
+    ("reason", _ID, "text", "why a row is not ok, or what an ok row's means left out (C83)"),
+    ("baseline_n_trials", "count", "integer", "tracked sessions of the baseline visit averaged (repeated trials, C83)"),
+    ("n_trials", "count", "integer", "tracked sessions of the later visit averaged (C83)"),
+    ("baseline_path", _ID, "text", "the baseline session(s), ; -separated"),
+    ("path", _ID, "text", "the later visit's session(s), ; -separated"),
+    ("baseline_duplicate_of", _ID, "text", "other sessions holding the baseline's recording (C31)"),
+    ("duplicate_of", _ID, "text", "other sessions holding the later visit's recording (C31)"),
+    ("{measure}_baseline", "as the measure", "number", "the baseline visit's value (its trials' mean, C83)"),
+    ("{measure}_change", "as the measure", "number", "later visit minus baseline (C22)"),
+    ("{measure}_change_pct", "%", "number", "100 x change / baseline: the dual-task cost when the visits are single "
+                                            "and dual (C81); empty when the baseline is 0"),
 )
 
 BOUTS: tuple[Column, ...] = (
     ("path", _ID, "text", "track-all's OUT/bouts.csv only: the session's path, sessions.csv's key (L165)"),
-    ("visit", _ID, "text", "track-all's OUT/bouts.csv only: meta.json visit (L165)"),
+    ("visit", _ID, "text", "track-all's OUT/bouts.csv only: the session's visit as sessions.csv names it (L165, "
+                           "C82)"),
     ("session", _ID, "text", "the session's name (meta.json's session, else the folder; L165)"),
     ("subject", _ID, "text", "meta.json subject (or user); empty when not given (L165)"),
     ("bout", "index", "integer", "the bout's number in the session, from 1"),
@@ -504,6 +531,7 @@ BOUTS: tuple[Column, ...] = (
     ("rms_ml_ratio", _ID, "number", "lower back: rms_ml_mps2 over the RMS of the acceleration vector: sideways sway "
                                     "(Sekine et al. 2013; W350)"),
     *_clocks("start_s", "end_s"),
+    ("visit_as_written", _ID, "text", "track-all's OUT/bouts.csv only: meta.json visit as written (C82)"),
     ("speed_m_s", "m/s", "number", "deprecated (E98): speed_mps under its old name, kept last until a later release"),
 )
 
@@ -763,6 +791,8 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228); a "
                                     "streamed track (track --streaming, run, Tracker) flags a run from its third "
                                     "stride, as decided live (L243)"),
+    ("contact_source", _ID, "text", "a stitched track only (L365's partial fallback): force or imu, the detector "
+                                    "that timed the stride's IC (L405)"),
     ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),
     ("stride_time_s", "s", "number", "IC to IC: this event_s minus the previous stride's (empty at the first "
                                      "stride, after a stop over 3 s, a gap row, or a missing IC; L66, L80)"),
@@ -906,6 +936,10 @@ RIDES: tuple[Column, ...] = (
     ("dz_m", "m", "number", "the altitude change while standing (steps.csv pause_dz_m of the next step)"),
     ("duration_s", "s", "number", "(end_s - start_s) / 0.8: the ride's duration (L376)"),
     ("vertical_rate_mps", "m/s", "number", "|dz_m| / duration_s"),
+    ("vibration_mps2", "m/s^2", "number", "the median over 1 s windows of the detrended |specific force|'s SD during "
+                                          "the ride (waist accelerometer, else the foot's); with the PARAMS.json "
+                                          "option ride_vibration (L403: opt-in) 0.15 or more is a vehicle, kind "
+                                          "other (L402); empty: no accelerometer"),
     ("horizontal_est_m", "m", "number", "escalator only, an estimate: |dz_m| / tan(30 deg), the horizontal travel the "
                                         "track leaves out (a 35 deg escalator travels 18 % less); empty otherwise "
                                         "(L377)"),
@@ -930,8 +964,8 @@ TRAJECTORY: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, BOUTS, TURNS, PERIODS, LAPS, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES,
-    RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
+    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, TURNS, PERIODS, LAPS, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE,
+    FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
@@ -958,6 +992,9 @@ def expanded(table: str) -> dict[str, Column]:
 def undocumented(table: str, columns) -> list[str]:
     """The ``columns`` of a written ``table`` that the dictionary lacks (a test keeps this empty, C35)."""
     known = expanded(table)
+    if table == "changes.csv":  # decision C81: any sessions.csv number column can be a --metrics measure
+        measures = [name for name, _, kind, _ in SESSIONS if kind in ("number", "integer")]
+        known.update({f"{m}_{k}": ("", "", "", "") for m in measures for k in ("baseline", "change", "change_pct")})
     # decision E137: "p_<task>_<class>" / "ood_*" name a family of columns by its prefix
     prefixes = tuple(k.split("<")[0].rstrip("*") for k in known if "<" in k or k.endswith("*"))
     return [c for c in columns if c not in known and not (prefixes and c.startswith(prefixes))]
@@ -970,7 +1007,8 @@ def markdown(tables: list[str] | None = None) -> str:
              else ", ".join(dict.fromkeys(t.split(" ")[0] for t in tables)))
     lines = [f"# Columns of {title}", "",
              "Generated by `pdrlearn columns` from `pdrlearn/columns.py` (cohort decision C35); `{measure}` stands "
-             f"for each of {', '.join(GROUP_METRICS)}. Empty cell = not measured for that session (a failed "
+             f"for each of {', '.join(GROUP_METRICS)} (changes.csv: or each `track-all --metrics` measure, C81). "
+             "Empty cell = not measured for that session (a failed "
              "session, another pipeline, no reference).", ""]
     for name in tables or list(TABLES):
         lines += [f"## {name}", ""] + ([NOTES[name], ""] if name in NOTES else [])

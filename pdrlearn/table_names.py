@@ -5,7 +5,9 @@ from __future__ import annotations
 
 #: :data:`pdrlearn.columns.TABLES`'s keys in the order shown (built from this tuple: a table added there is added
 #: here)
-TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv", "bouts.csv", "turns.csv", "periods.csv",
+TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
+                                "changes.csv",  # C81
+                                "bouts.csv", "turns.csv", "periods.csv",
                                 "laps.csv",  # L383
                                 "transfers.csv", "tug_phases.csv",  # W293
                                 "tug_trials.csv",  # W325

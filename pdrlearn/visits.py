@@ -13,12 +13,52 @@ import re
 
 from pdrlearn.cohort import GROUP_METRICS, t_interval
 
-#: changes.csv's leading columns (decision C22); ``<measure>_baseline`` and ``<measure>_change`` follow per measure
-CHANGE_COLUMNS = ("subject", "group", "baseline_visit", "visit", "status", "reason", "baseline_path", "path",
+#: changes.csv's leading columns (decision C22; C82: the visits as meta.json wrote them; C83: the trials averaged);
+#: ``<measure>_baseline``, ``<measure>_change`` and ``<measure>_change_pct`` (C81) follow per measure
+CHANGE_COLUMNS = ("subject", "group", "baseline_visit", "visit", "baseline_visit_as_written", "visit_as_written",
+                  "status", "reason", "baseline_n_trials", "n_trials", "baseline_path", "path",
                   "baseline_duplicate_of", "duplicate_of")
 #: what a pair of visits is when it is not ``ok`` (C22), in the order they are looked for; a pair of tracked
-#: sessions can still be ``pipelines`` (C30) or ``duplicate`` (C31)
+#: sessions can still be ``pipelines`` (C30) or ``duplicate`` (C31). ``several`` is no longer written (decision C83:
+#: repeated trials of a visit are averaged); kept for tables written before it
 STATUSES = ("ok", "missing", "failed", "several")
+#: the measures a gait study compares most (decision C81): named in B302's / B303's line beside the full list
+COMMON_MEASURES = ("gait_speed_mps", "median_cadence_spm", "median_stride_time_s", "stride_time_cv_pct",
+                   "median_stride_length_m", "stride_length_cv_pct", "step_time_asymmetry_pct")
+
+
+def measure_columns() -> tuple[str, ...]:
+    """The number columns of sessions.csv (the data dictionary's, :data:`pdrlearn.columns.SESSIONS`): the measures
+    changes.csv can compare (decisions C81, B302)."""
+    from pdrlearn.columns import SESSIONS
+
+    return tuple(name for name, _, kind, _ in SESSIONS if kind in ("number", "integer"))
+
+
+def check_measures(metrics, option: str = "change_table(metrics=...)", extra=(), decision: str = "B302"
+                   ) -> tuple[str, ...]:
+    """``metrics`` as a tuple of names when each is a number column of sessions.csv (:func:`measure_columns`) or one of
+    ``extra`` (the columns of the table given); else decisions B302 / B303: one line naming the unknown names, the
+    nearest valid names, the common measures and where the full list is (``option`` names the parameter)."""
+    import difflib
+
+    from pdrlearn.errors import DataError
+
+    metrics = (metrics,) if isinstance(metrics, str) else tuple(metrics)
+    valid = dict.fromkeys([*measure_columns(), *extra])
+    unknown = [m for m in metrics if m not in valid]
+    if not metrics:
+        raise DataError(f"{option}: no measure given; name one or more of {', '.join(COMMON_MEASURES)} (decision "
+                        f"{decision})")
+    if unknown:
+        near = {m: [v for v in valid if str(m).lower() in v] or difflib.get_close_matches(str(m), valid, 3, 0.6)
+                for m in unknown}
+        hints = "; ".join(f"{m!r}: did you mean {', '.join(n[:3])}?" for m, n in near.items() if n)
+        raise DataError(f"{option}: unknown measure {', '.join(repr(m) for m in unknown)}" + (f" ({hints})" if hints
+                        else "") + f"; the measures are the number columns of sessions.csv, e.g. "
+                        f"{', '.join(COMMON_MEASURES)} (all {len(measure_columns())}: `pdrlearn columns "
+                        f"sessions.csv`; decision {decision})")
+    return metrics
 
 
 #: a visit name's leading word that marks it as the baseline, or as a later visit (decision C24): ``pre`` comes before
@@ -58,18 +98,48 @@ def visit_order_guess(visits) -> str | None:
             "(decision C24)")
 
 
+def _as_text(v):
+    """A label as text (a column pandas read as numbers gives ``2``, not ``2.0``), None for an empty cell."""
+    import pandas as pd
+
+    return None if pd.isna(v) else str(int(v)) if isinstance(v, float) and v.is_integer() else str(v)
+
+
+def _written(sessions):
+    """sessions.csv with ``visit`` as meta.json wrote it (decision C82: ``visit_as_written`` when the table has it,
+    ``visit`` being then the paired name; a sessions.csv written before C82 has only ``visit``, as written)."""
+    if "visit_as_written" not in sessions:
+        return sessions
+    return sessions.assign(visit=sessions["visit_as_written"])
+
+
 def _labelled(sessions):
-    """The rows of sessions.csv that name both a subject and a visit, both as text (a column pandas read as numbers
-    gives ``2``, not ``2.0``; read sessions.csv with ``dtype={"subject": str, "visit": str}`` to keep ``007``)."""
+    """The rows of sessions.csv that name both a subject and a visit (as written, C82), both as text (read
+    sessions.csv with ``dtype={"subject": str, "visit": str}`` to keep ``007``)."""
+    sessions = _written(sessions)
     named = sessions[sessions["subject"].notna() & sessions["visit"].notna()].copy()
     for c in ("subject", "visit"):
-        named[c] = named[c].map(lambda v: str(int(v)) if isinstance(v, float) and v.is_integer() else str(v))
+        named[c] = named[c].map(_as_text)
     return named
+
+
+def paired_visits(sessions, visit_map: dict[str, str] | None = None):
+    """Decision C82: per row of sessions.csv, its visit as changes.csv and subjects.csv name it - the visits as
+    written (``visit``, or ``visit_as_written`` when present) with ``visit_map`` applied and spellings of one visit
+    made one (:func:`canonical_visits`, C28, C29) over the sessions naming a subject, as those tables do; empty where
+    no visit is named. track-all writes it as sessions.csv's and bouts.csv's ``visit``, so the four tables join on
+    (subject, visit)."""
+    raw = _written(sessions)["visit"].map(_as_text)
+    named = sessions["subject"].notna() & raw.notna()
+    names = canonical_visits(raw[named], visit_map)[0] if named.any() else {}
+    rest = canonical_visits(raw[~named].dropna(), visit_map)[0]
+    return raw.map(lambda v: None if v is None else names.get(v, rest.get(v)))
 
 
 #: subjects.csv's columns (cohort C25)
 SUBJECT_COLUMNS = ("subject", "visit", "group", "n_tracked", "n_failed", "paths", "distance_m", "n_bouts",
-                   "walking_time_s", "n_steps", "n_strides", "bouts_distance_m", "gait_speed_mps", "cadence_spm")
+                   "walking_time_s", "n_steps", "n_strides", "bouts_distance_m", "gait_speed_mps", "cadence_spm",
+                   "visit_as_written")  # decision C82: last, the columns before it kept in place
 
 
 def subject_totals(sessions, visit_map: dict[str, str] | None = None):
@@ -93,10 +163,10 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
 
     if "subject" not in sessions or not sessions["subject"].notna().any():
         return None
-    named = sessions[sessions["subject"].notna()].copy()
+    named = _written(sessions)[sessions["subject"].notna()].copy()
     for c in ("subject", "visit"):
-        named[c] = named[c].map(lambda v: None if pd.isna(v) else str(int(v)) if isinstance(v, float)
-                                and v.is_integer() else str(v))
+        named[c] = named[c].map(_as_text)
+    named["visit_as_written"] = named["visit"]
     by_visit = named["visit"].notna().any()
     if by_visit:  # decision C40: the visits as changes.csv names them
         names = canonical_visits(named["visit"].dropna(), visit_map)[0]
@@ -113,7 +183,8 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
                 return pd.to_numeric(ok[col], errors="coerce").sum() if col in ok and len(ok) else np.nan
 
             t = total("bouts_time_s")
-            row = {"subject": subject, "visit": visit, "group": "; ".join(dict.fromkeys(at["group"].astype(str))),
+            row = {"subject": subject, "visit": visit, "visit_as_written": _names(at["visit_as_written"]),
+                   "group": "; ".join(dict.fromkeys(at["group"].astype(str))),
                    "n_tracked": len(ok), "n_failed": len(at) - len(ok), "paths": "; ".join(at["path"].astype(str)),
                    "distance_m": total("distance_m"), "n_bouts": total("n_bouts"), "walking_time_s": t,
                    "n_steps": total("bouts_n_steps"), "n_strides": total("bouts_n_strides"),
@@ -128,16 +199,47 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
     return out
 
 
-def _side(rows, visit: str) -> tuple[str, str | None, object]:
-    """One subject's sessions at ``visit``: (status, reason, the row when there is exactly one tracked)."""
+def _names(values) -> str | None:
+    """Labels as one cell: each once, in order, ``; ``-separated (decision C82); None when there is none."""
+    names = [v for v in dict.fromkeys(values) if isinstance(v, str)]
+    return "; ".join(names) or None
+
+
+def _side(rows, visit: str, measures) -> tuple[str, str | None, object]:
+    """One subject's sessions at ``visit``: (status, reason, the row of the visit). Decision C83: the tracked
+    sessions of a visit (repeated trials of a condition) are averaged - the row holds each measure's mean over them
+    (the trials with a value), ``paths`` / ``path`` the sessions averaged and ``n_trials`` their number; a session
+    that is a copy of another of the visit (C20's ``duplicate_of``) is counted once, a failed one left out and said
+    in the reason; trials tracked by different pipelines are ``pipelines`` (C30: not one method's mean)."""
+    import pandas as pd
+
     if rows.empty:
         return "missing", f"{visit}: no session", None
-    if len(rows) > 1:
-        return "several", f"{visit}: {len(rows)} sessions ({', '.join(rows['path'].astype(str))})", None
-    row = rows.iloc[0]
-    if row["status"] != "ok":
-        return "failed", f"{visit}: {row['path']} failed", row
-    return "ok", None, row
+    reasons = []
+    if "duplicate_of" in rows:
+        copies = rows["duplicate_of"].isin(rows["path"])
+        reasons += [f"{visit}: {p} is a copy of {d}, counted once" for p, d in zip(
+            rows.loc[copies, "path"], rows.loc[copies, "duplicate_of"], strict=True)]
+        rows = rows[~copies]
+    ok = rows[rows["status"] == "ok"]
+    failed = rows.loc[rows["status"] != "ok", "path"].astype(str).tolist()
+    if len(rows) == 1:  # one session: its row, as before C83
+        row = rows.iloc[0].copy()
+        row["n_trials"] = len(ok)
+        return ("ok", "; ".join(reasons) or None, row) if len(ok) else ("failed", f"{visit}: {failed[0]} failed", row)
+    if ok.empty:
+        return "failed", f"{visit}: {', '.join(failed)} failed", None
+    if failed:
+        reasons.append(f"{visit}: {', '.join(failed)} failed, the mean of the other {len(ok)}")
+    pipelines = [p for p in dict.fromkeys(ok["pipeline"]) if isinstance(p, str)] if "pipeline" in ok else []
+    if len(pipelines) > 1:
+        why = (f"{visit}: its trials were tracked by {', '.join(pipelines)}: a mean across pipelines is the "
+               "methods' mix; track every trial with the same --pipeline (decisions C30, C83)")
+        return "pipelines", why, None
+    row = pd.Series({"path": "; ".join(ok["path"].astype(str)), "paths": ok["path"].astype(str).tolist(),
+                     "pipeline": pipelines[0] if pipelines else None, "duplicate_of": None, "n_trials": len(ok),
+                     **{m: pd.to_numeric(ok[m], errors="coerce").mean() for m in measures}})  # C83: the trials' mean
+    return "ok", "; ".join(reasons) or None, row
 
 
 #: a visit name's leading word and the word it is a spelling of (decision C28), after case and separators are
@@ -271,11 +373,12 @@ def _pair_problem(b_row, v_row, subject_of: dict[str, str], twins: dict[str, lis
                              "(units) is the methods' difference; track both visits with the same sensors and "
                              "--pipeline (decision C30)")
     for row in (b_row, v_row):
-        others = [q for q in twins.get(str(row["path"]), []) if subject_of.get(q) != subject_of.get(str(row["path"]))]
-        if others:
-            whose = ", ".join(sorted({subject_of.get(q) or "none named" for q in others}))
-            return "duplicate", (f"{row['path']} holds the same recording as {', '.join(others)} (subject {whose}): "
-                                 "which subject it is, is not in the data (duplicate_of, decision C31)")
+        for path in row.get("paths", [str(row["path"])]):  # decision C83: each trial averaged
+            others = [q for q in twins.get(path, []) if subject_of.get(q) != subject_of.get(path)]
+            if others:
+                whose = ", ".join(sorted({subject_of.get(q) or "none named" for q in others}))
+                return "duplicate", (f"{path} holds the same recording as {', '.join(others)} (subject {whose}): "
+                                     "which subject it is, is not in the data (duplicate_of, decision C31)")
     return None
 
 
@@ -287,18 +390,25 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
     later visits of a subject are those of the subjects with its baseline (a subject without a baseline visit, or
     whose baseline nobody has a later visit of: of the most common baseline), and its own. A subject without a
     tracked session at either visit is a row too, ``status`` ``missing`` (no session), ``failed`` (its session
-    failed) or ``several`` (more than one session of the subject at that visit: which one is the visit is not in
-    the data), with the ``reason`` and empty changes -
-    listed, never dropped; a tracked pair is ``pipelines`` when the visits were tracked by different pipelines (C30)
-    and ``duplicate`` when a recording is also another subject's (C31; ``baseline_duplicate_of`` / ``duplicate_of``
-    name the other sessions holding it). A copy of the baseline recording at a later visit of the same subject
-    (C20's ``duplicate_of``) stays ``ok`` and is said in ``reason``."""
+    failed), with the ``reason`` and empty changes - listed, never dropped; several tracked sessions of a subject at
+    one visit (repeated trials of a condition) are averaged, ``n_trials`` / ``baseline_n_trials`` counting them
+    (decision C83, :func:`_side`; C22 had listed them as ``several``, unpaired); a tracked pair is ``pipelines``
+    when the visits were tracked by different pipelines (C30) and ``duplicate`` when a recording is also another
+    subject's (C31; ``baseline_duplicate_of`` / ``duplicate_of`` name the other sessions holding it). A copy of
+    the baseline recording at a later visit of the same subject (C20's ``duplicate_of``) stays ``ok`` and is said
+    in ``reason``. ``metrics``: sessions.csv's number columns compared (default groups.csv's; an unknown name is
+    one error line, decision B302); each gets ``<m>_baseline``, ``<m>_change`` and ``<m>_change_pct``
+    (:func:`pct_change`, C81). ``baseline_visit_as_written`` / ``visit_as_written``: the visits as meta.json wrote
+    them (C82)."""
     import numpy as np
     import pandas as pd
 
+    metrics = check_measures(metrics, extra=[c for c in sessions.columns if pd.api.types.is_numeric_dtype(
+        sessions[c])])  # decision B302: an unknown name is an error, not a measure silently left out
     if "subject" not in sessions or "visit" not in sessions:  # a sessions.csv written before C22
         return None
     named = _labelled(sessions)
+    named["visit_as_written"] = named["visit"]  # decision C82
     named["visit"] = named["visit"].map(canonical_visits(named["visit"], visit_map)[0])
     visits = visit_order(named["visit"])
     if len(visits) < 2:
@@ -318,11 +428,11 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
     for subject in visit_order(named["subject"]):
         mine = named[named["subject"] == subject]
         base = base_of[subject] or common
-        b_status, b_reason, b_row = _side(mine[mine["visit"] == base], base)
+        b_status, b_reason, b_row = _side(mine[mine["visit"] == base], base, measures)
         own = (later[base] or later[common]) + [v for v in mine["visit"] if v not in baselines]
         for visit in visit_order(own):
-            v_status, v_reason, v_row = _side(mine[mine["visit"] == visit], visit)
-            status = next(s for s in STATUSES[1:] + ("ok",) if s in (b_status, v_status))
+            v_status, v_reason, v_row = _side(mine[mine["visit"] == visit], visit, measures)
+            status = next(s for s in ("missing", "failed", "pipelines", "ok") if s in (b_status, v_status))
             reasons = [r for r in (b_reason, v_reason) if r]
             problem = _pair_problem(b_row, v_row, subject_of, twins) if status == "ok" else None
             if problem:
@@ -332,6 +442,10 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
                 reasons.append(f"{v_row['path']} holds the same recording as {b_row['path']} (duplicate_of)")
             row = {"subject": subject, "group": mine["group"].astype(str).iloc[0], "baseline_visit": base,
                    "visit": visit, "status": status, "reason": "; ".join(reasons) or None,
+                   **{f"{k}visit_as_written": _names(mine.loc[mine["visit"] == w, "visit_as_written"])
+                      for k, w in (("baseline_", base), ("", visit))},
+                   **{f"{k}n_trials": None if r is None else r["n_trials"] for k, r in (("baseline_", b_row),
+                                                                                         ("", v_row))},
                    "baseline_path": None if b_row is None else b_row["path"],
                    "path": None if v_row is None else v_row["path"],
                    **{f"{k}duplicate_of": None if r is None else "; ".join(twins.get(str(r["path"]), [])) or None
@@ -342,9 +456,26 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
                 v = pd.to_numeric(v_row[m], errors="coerce") if both else np.nan
                 row[f"{m}_baseline"] = b
                 row[f"{m}_change"] = v - b  # later visit minus baseline (decision C22)
+                row[f"{m}_change_pct"] = pct_change(b, v)  # decision C81
             rows.append(row)
-    return pd.DataFrame(rows).reindex(columns=[*CHANGE_COLUMNS, *(f"{m}_{k}" for m in measures
-                                                                  for k in ("baseline", "change"))])
+    out = pd.DataFrame(rows).reindex(columns=[*CHANGE_COLUMNS, *(f"{m}_{k}" for m in measures for k in CHANGE_KINDS)])
+    for c in ("baseline_n_trials", "n_trials"):
+        out[c] = out[c].astype("Int64")
+    return out
+
+
+#: each measure's columns in changes.csv, in order (decisions C22, C81)
+CHANGE_KINDS = ("baseline", "change", "change_pct")
+
+
+def pct_change(baseline, later):
+    """Decision C81: 100 x (later - baseline) / baseline, the percent change - the dual-task cost when the visits are
+    the single and the dual task (session 34 trial T1, finding F5: DTC = (dual - single) / single x 100); NaN when the
+    baseline is 0 or missing."""
+    import numpy as np
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return float(np.where(baseline != 0, 100.0 * (later - baseline) / baseline, np.nan))
 
 
 def _lookalike(subject: str) -> str:
@@ -379,15 +510,23 @@ def label_warnings(sessions, visit_map: dict[str, str] | None = None) -> list[st
     return out
 
 
-def change_summary(changes, metrics=GROUP_METRICS):
+def change_measures(changes) -> list[str]:
+    """The measures of a changes.csv, in its order: those with a ``<m>_change`` column (decisions C22, C81)."""
+    return [c[:-len("_change")] for c in changes.columns if c.endswith("_change")]  # "_change_pct": its percent
+
+
+def change_summary(changes, metrics=None):
     """changes_summary.csv from changes.csv (decision C23): one row per later visit and baseline (in order; subjects
     whose baselines differ, C28, are never pooled) and measure with
     ``n_subjects`` (subjects with a change: both visits tracked and the measure present at both), ``mean_change``,
     ``sd_change`` (n - 1) and ``ci95_low`` / ``ci95_high``, the paired 95 % t-interval of the mean change (the
     one-sample interval of the differences, :func:`pdrlearn.cohort.t_interval`; empty under two subjects), and
-    ``n_not_paired`` / ``not_paired``: the subjects of that visit whose row is not ``ok`` (``;``-separated)."""
+    ``n_not_paired`` / ``not_paired``: the subjects of that visit whose row is not ``ok`` (``;``-separated). Decision
+    C81: ``mean_pct_change``, ``sd_pct_change``, ``pct_ci95_low`` / ``pct_ci95_high``, the same of the subjects'
+    percent changes (the mean dual-task cost with its interval). ``metrics``: default changes.csv's measures."""
     import pandas as pd
 
+    metrics = change_measures(changes) if metrics is None else metrics
     rows = []
     order = visit_order([*changes["visit"], *changes["baseline_visit"]])
     pairs = dict.fromkeys(zip(changes["visit"], changes["baseline_visit"], strict=True))  # decision C28
@@ -397,13 +536,18 @@ def change_summary(changes, metrics=GROUP_METRICS):
         for m in metrics:
             if f"{m}_change" not in at:
                 continue
-            d = pd.to_numeric(at[f"{m}_change"], errors="coerce").dropna()
-            mean, sd = (d.mean(), d.std()) if len(d) else (float("nan"), float("nan"))
-            low, high = t_interval(mean, sd, len(d))
-            rows.append({"visit": visit, "baseline_visit": base, "measure": m,
-                         "n_subjects": len(d), "mean_change": mean, "sd_change": sd, "ci95_low": float(low),
-                         "ci95_high": float(high), "n_not_paired": len(unpaired),
-                         "not_paired": "; ".join(unpaired) or None})
+            row = {"visit": visit, "baseline_visit": base, "measure": m}
+            for kind, name in (("change", "change"), ("change_pct", "pct_change")):  # decision C81: and the percent
+                if f"{m}_{kind}" not in at:
+                    continue
+                d = pd.to_numeric(at[f"{m}_{kind}"], errors="coerce").dropna()
+                mean, sd = (d.mean(), d.std()) if len(d) else (float("nan"), float("nan"))
+                low, high = t_interval(mean, sd, len(d))
+                pre = "" if kind == "change" else "pct_"
+                row.update({"n_subjects": len(d)} if kind == "change" else {})
+                row.update({f"mean_{name}": mean, f"sd_{name}": sd, f"{pre}ci95_low": float(low),
+                            f"{pre}ci95_high": float(high)})
+            rows.append({**row, "n_not_paired": len(unpaired), "not_paired": "; ".join(unpaired) or None})
     return pd.DataFrame(rows)
 
 
@@ -413,13 +557,17 @@ def changes_text(summary):
     paired."""
     import pandas as pd
 
-    def cell(r) -> str:
-        if pd.isna(r.mean_change):
+    def cell(mean, low, high) -> str:
+        if pd.isna(mean):
             return ""
-        return f"{r.mean_change:+.3g}" + ("" if pd.isna(r.ci95_low) else f" [{r.ci95_low:.3g}, {r.ci95_high:.3g}]")
+        return f"{mean:+.3g}" + ("" if pd.isna(low) else f" [{low:.3g}, {high:.3g}]")
 
+    nan = pd.Series(float("nan"), index=summary.index)
+    pct = [summary.get(c, nan) for c in ("mean_pct_change", "pct_ci95_low", "pct_ci95_high")]  # decision C81
     return pd.DataFrame({"visit": [f"{v} - {b}" for v, b in zip(summary["visit"], summary["baseline_visit"],
                                                                  strict=True)],
                          "measure": summary["measure"], "n_subjects": summary["n_subjects"],
-                         "mean change [95 % CI]": [cell(r) for r in summary.itertuples()],
+                         "mean change [95 % CI]": [cell(*r) for r in zip(
+                             summary["mean_change"], summary["ci95_low"], summary["ci95_high"], strict=True)],
+                         "mean % change [95 % CI]": [cell(*r) for r in zip(*pct, strict=True)],
                          "not paired": summary["not_paired"].fillna("")})

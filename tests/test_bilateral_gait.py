@@ -159,3 +159,23 @@ def test_cli_refusals_are_one_line(args, msg, tmp_path, capsys):
     err = [x for x in out.err.splitlines() if x.startswith("error:")]
     assert rc != 0 and len(err) == 1 and msg in err[0], out.err
     assert "Traceback" not in out.err and not (tmp_path / "g").exists()
+
+
+def test_gait_says_no_model_once_as_info_and_track_still_warns(caplog):
+    """Decision E153 (trial T1 finding F10): `gait` takes no model, so each foot track's "no model" warning (whose
+    advice, pass a model, it cannot follow) becomes one INFO line for the pair; `track` without a model still warns."""
+    import logging
+
+    from pdrlearn.io import read_session
+    from pdrlearn.track.bilateral import GAIT_NO_MODEL_INFO, pair_sessions
+    from pdrlearn.track.plasys import NO_MODEL_WARNING, track_plasys
+
+    with caplog.at_level(logging.INFO, logger="pdrlearn"):
+        pair_sessions(LEFT, RIGHT)
+    no_model = [r for r in caplog.records if r.levelno >= logging.WARNING and NO_MODEL_WARNING in r.getMessage()]
+    info = [r for r in caplog.records if r.levelno == logging.INFO and r.getMessage() == GAIT_NO_MODEL_INFO]
+    assert no_model == [] and len(info) == 1
+    caplog.clear()
+    with caplog.at_level(logging.INFO, logger="pdrlearn"):
+        track_plasys(read_session(LEFT))
+    assert any(r.levelno == logging.WARNING and NO_MODEL_WARNING in r.getMessage() for r in caplog.records)

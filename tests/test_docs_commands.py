@@ -260,6 +260,7 @@ def _validators() -> dict[tuple[str, str], object]:
     """(command, parameter name) -> a function that raises on a value the command refuses, from the lists the
     commands check against (so a renamed choice fails here as it would for the user)."""
     from pdrlearn.classify.training import CV_GROUPS, METHODS, check_settings
+    from pdrlearn.cli.cohort import parse_metrics
     from pdrlearn.cli.simulate import parse_mount
     from pdrlearn.columns import TABLES as COLUMN_TABLES
     from pdrlearn.displace.foot import REFERENCE_POINTS
@@ -353,6 +354,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("export", "frame"): parse_frame,  # decision E57: the waist unit's axes, as import --frames
         # cohort C35; decision L340: a table's name without .csv too
         ("columns", "table"): _one_of([*COLUMN_TABLES, *(t[:-4] for t in COLUMN_TABLES if t.endswith(".csv"))]),
+        ("track-all", "metrics"): parse_metrics,  # cohort C81, decision B303: sessions.csv's number columns
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
                 "per_align", "units", "altitude", "detector", "length_model"):  # C12, L108, B127, L154, E93

@@ -346,3 +346,76 @@ def test_ignore_force_refuses_a_detector_that_reads_the_force_b299(walk, tmp_pat
         assert not out.exists()
     res = _track(walk, steps="accel", ignore_force=True)  # the IMU's detector stays allowed
     assert res.info["stance_source"] == "inertial" and len(res.steps) > 10
+
+
+@pytest.fixture(scope="module")
+def stitched(tmp_path_factory):
+    """A force track that L365 stitches (user 7721, force files 300 ms late, L397's recipe)."""
+    from pdrlearn.cli import main
+
+    root = tmp_path_factory.mktemp("l405")
+    assert main(["simulate", "--route", "straight:10, turn:90, straight:10, turn:90, straight:10", "--user-seed",
+                 "7721", "--out", str(root / "s")]) == 0
+    late = _copy(root / "s", root / "late", lambda df: df.assign(timestamp=df.timestamp + 300))
+    return _track(root / "s"), _track(late)
+
+
+def test_a_stitched_track_says_whose_contact_each_row_has_l405(stitched):
+    clean, res = stitched
+    assert "contact_source" not in clean.steps  # one detector throughout: no column
+    src = res.steps["contact_source"].astype(str)
+    assert set(src) == {"force", "imu"}
+    imu = res.steps[src == "imu"]
+    assert len(imu) and len(imu) < len(res.steps)
+
+
+def test_one_source_cv_leaves_out_the_seam_stride_times_l405(stitched, monkeypatch):
+    import pdrlearn.track.clinical as C
+
+    _, res = stitched
+    st, mixed_in = C.steady_rows(res.steps)
+    src = st["contact_source"].astype(str).to_numpy()
+    seam = np.concatenate([[False], src[1:] != src[:-1]])
+    assert not C.CV_ONE_SOURCE  # L405 not adopted: off by default, the CV's strides as before
+    monkeypatch.setattr(C, "CV_ONE_SOURCE", True)
+    _, one = C.steady_rows(res.steps)
+    assert (mixed_in & seam).any() and not (one & seam).any()  # the seam strides left out
+    assert np.array_equal(one, mixed_in & ~seam)  # and nothing else
+
+
+@pytest.fixture(scope="module")
+def dropout(tmp_path_factory):
+    """Scenario A at 100 Hz (user 7722) and its copy with both force channels at 0 N from 15 to 17 s (L365's)."""
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import UserProfile, simulate
+
+    root = tmp_path_factory.mktemp("l406")
+    write_session(simulate("A", UserProfile.from_seed(7722), "normal", rate_hz=100.0), root / "A_u7722")
+    return root / "A_u7722", _copy(root / "A_u7722", root / "zero", _zero)
+
+
+def test_a_streamed_track_tells_l365s_disagreement_l406(dropout):
+    clean, zero = dropout
+    assert not [w for w in _track(clean, streaming=True).info["warnings"] if "L406" in w]
+    offline = _track(zero)
+    res = _track(zero, streaming=True)
+    lines = [w for w in res.info["warnings"] if "L406" in w]
+    assert len(lines) == 1 and "fForceA.csv, fForceB.csv" in lines[0] and "track --streaming" in lines[0]
+    l365 = [w for w in offline.info["warnings"] if "L365" in w][0]  # the same strides and spans as offline
+    assert l365.split("disagree with the foot IMU in ")[1].split(":")[0] in lines[0]
+    assert "pdrlearn track DIR" in lines[0] and "--ignore-force" in lines[0]
+
+
+def test_run_checks_the_insoles_as_track_does_l406(dropout, caplog):
+    import logging
+
+    from pdrlearn.cli.export import _foot_checks
+    from pdrlearn.io import read_session
+
+    clean, zero = dropout
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        _foot_checks(read_session(clean))
+        assert not [r for r in caplog.records if "L406" in r.getMessage()]
+        _foot_checks(read_session(zero))
+    lines = [r.getMessage() for r in caplog.records if "L406" in r.getMessage()]
+    assert len(lines) == 1 and "pdrlearn run's streamed contacts" in lines[0] and "fForceA.csv" in lines[0]

@@ -16,7 +16,7 @@ from pdrlearn.sim.vehicle import VEHICLE_ACC_MPS2, VEHICLE_LAT_MPS2, VEHICLE_VIB
 
 def test_vehicle_items_parse_and_bad_ones_are_one_line():
     assert parse_route("straight:5, vehicle:60, vehicle:90:0.8") == [Straight(5.0), Vehicle(60.0), Vehicle(90.0, 0.8)]
-    for bad, word in (("vehicle:5", "20-3600 s"), ("vehicle:60:9", "0-3 m/s"), ("vehicle:60:0.5:2", "takes"),
+    for bad, word in (("vehicle:5", "20-3600 s"), ("vehicle:60:9", "0-3 m/s"), ("vehicle:60:0.5:2:1", "takes"),
                       ("vehicle:x", "not a number")):
         with pytest.raises(DataError, match=word) as e:
             parse_route(f"straight:3, {bad}")

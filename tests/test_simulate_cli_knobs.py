@@ -67,7 +67,9 @@ def test_parse_mount_composes_rotations():
     (["--mag-disturbance", "500"], "give 0-90 uT"),
     (["--waist-mount", "q:90"], "'q:90' is not AXIS:DEG"),
     (["--waist-mount", "z:ninety"], "is not AXIS:DEG"),
-    (["--waist-mount", "z:90,y"], "'y' is not AXIS:DEG")])
+    (["--waist-mount", "z:90,y"], "'y' is not AXIS:DEG"),
+    (["--variability", "-1"], "--variability -1: give a finite scale >= 0"),  # decision S76
+    (["--variability", "inf"], "give a finite scale >= 0")])
 def test_bad_values_are_one_line(tmp_path, capsys, args, message):
     out = tmp_path / "bad"
     assert main(["simulate", "--route", ROUTE, "--user-seed", "1", *args, "--out", str(out)]) == 2
@@ -79,3 +81,20 @@ def test_help_names_the_options(capsys):
     main(["simulate", "--help"])
     text = capsys.readouterr().out
     assert "--heading0" in text and "--mag-disturbance" in text and "--waist-mount" in text
+    assert "--variability" in text  # decision S76
+
+
+def test_variability_is_the_python_knob(tmp_path):
+    """Decision S76 (trial T1 finding F9): `--variability` is simulate_path's knob, recorded in meta.json."""
+    route = "stand:2, straight:20, stand:2"
+    steady, dual = (tmp_path / "v0", tmp_path / "v25")
+    for out, v in ((steady, "0"), (dual, "2.5")):
+        assert main(["simulate", "--route", route, "--user-seed", "7915", "--rate", "20", "--variability", v,
+                     "--out", str(out)]) == 0
+    py = simulate_path(parse_route(route), UserProfile.from_seed(7915), rate_hz=20.0, seed=0, variability=2.5,
+                       scenario="route")
+    s0, s25 = read_session(steady), read_session(dual)
+    assert np.allclose(s25.steps["ic_s"].to_numpy(float), py.steps["ic_s"].to_numpy(float))
+    assert s0.meta["knobs"]["variability"] == 0.0 and s25.meta["knobs"]["variability"] == 2.5
+    cv = [np.std(np.diff(s.steps["ic_s"].to_numpy(float))[2:-2]) for s in (s0, s25)]
+    assert cv[1] > 5 * cv[0] + 1e-3

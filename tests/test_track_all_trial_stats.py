@@ -299,7 +299,8 @@ def test_the_report_of_a_batch_shows_the_paired_changes(visit_runs, tmp_path):
 
 def test_visit_order_is_natural_and_no_second_visit_means_no_changes():
     """C22: visits in study order (visit2 before visit10; the first is the baseline); sessions naming one visit, or
-    none, give no changes.csv; a subject with two sessions at a visit is listed as such, not averaged."""
+    none, give no changes.csv; a subject with two sessions at a visit is averaged (decision C83 amends C22, which
+    had listed it as `several`, unpaired)."""
     from pdrlearn.visits import change_table, visit_order
 
     assert visit_order(["visit10", "visit2", "baseline", "visit1"]) == ["baseline", "visit1", "visit2", "visit10"]
@@ -318,7 +319,8 @@ def test_visit_order_is_natural_and_no_second_visit_means_no_changes():
     assert change_table(rows.drop(columns=["subject", "visit"])) is None  # a sessions.csv written before C22
     rows.loc[2, "visit"] = "v2"
     got = change_table(rows)
-    assert got["status"].tolist() == ["several"] and got["reason"].iloc[0] == "v1: 2 sessions (a, b)"
+    assert got["status"].tolist() == ["ok"] and got["baseline_n_trials"].tolist() == [2]  # C83: the trials' mean
+    assert got["baseline_path"].iloc[0] == "a; b" and got["gait_speed_mps_change"].iloc[0] == pytest.approx(0.15)
     rows.loc[1, "visit"] = "v3"
     got = change_table(rows).set_index("visit")
     assert got.loc["v2", "gait_speed_mps_change"] == pytest.approx(0.2) and got.loc["v3", "baseline_path"] == "a"

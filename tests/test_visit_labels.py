@@ -100,6 +100,16 @@ def test_track_all_takes_a_visit_map_and_records_it(tmp_path, capsys):
     changes = pd.read_csv(tmp_path / "o" / "changes.csv")
     assert changes[["subject", "baseline_visit", "visit", "status"]].values.tolist() == [
         ["S1", "baseline", "week12", "ok"], ["S2", "baseline", "week12", "ok"]]
+    # decision C82: sessions.csv and bouts.csv name the visits as changes.csv / subjects.csv do, meta.json's beside
+    sessions = pd.read_csv(tmp_path / "o" / "sessions.csv").set_index("path")
+    assert sessions.loc[["S1/T0", "S1/T1", "S2/BL", "S2/T1"], ["visit", "visit_as_written"]].values.tolist() == [
+        ["baseline", "T0"], ["week12", "T1"], ["baseline", "BL"], ["week12", "T1"]]
+    bouts = pd.read_csv(tmp_path / "o" / "bouts.csv")
+    assert set(zip(bouts["path"], bouts["visit"], bouts["visit_as_written"], strict=True)) >= {
+        ("S2/BL", "baseline", "BL"), ("S1/T1", "week12", "T1")}
+    subjects = pd.read_csv(tmp_path / "o" / "subjects.csv")
+    assert subjects[["subject", "visit", "visit_as_written"]].values.tolist() == [
+        ["S1", "baseline", "T0"], ["S1", "week12", "T1"], ["S2", "baseline", "BL"], ["S2", "week12", "T1"]]
     run = json.loads((tmp_path / "o" / "run.json").read_text())
     assert run["options"]["visit_map"] == {"file": str(tmp_path / "map.json"),
                                            "visits": {"T0": "baseline", "T1": "week12"}}

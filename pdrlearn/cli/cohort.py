@@ -379,7 +379,8 @@ TRACK_LIBRARIES = ("scipy.linalg", "scipy.signal")
 #: of summary.json follow, sorted by name. Units are in the names (_m, _pct, _s, _mps, _spm). Decision C18: no
 #: wall time (run.json has it) and ``input_dir`` relative to ROOT, so a re-run or a copy elsewhere writes the same
 #: file; C19: what ``n_steps`` counts beside it, the two counts by name, the tracked unit's ``rate_hz``.
-SESSION_COLUMNS = ("path", "group", "subject", "visit", "status", "error", "session", "input_dir", "pipeline",
+SESSION_COLUMNS = ("path", "group", "subject", "visit", "visit_as_written", "status", "error", "session", "input_dir",
+                   "pipeline",
                    "method", "rate_hz", "n_steps", "n_steps_counts", "n_strides_one_foot", "n_steps_both_feet",
                    "distance_m",
                    "distance_ref_m", "distance_error_pct", "final_position_error_m", "walking_time_s",
@@ -539,7 +540,7 @@ def _run_record(root: Path, options: dict, rels: list[str], results: list[JobRes
                       cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
 
 
-def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None
+def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None, metrics=None
              ) -> tuple[pd.DataFrame | None, pd.DataFrame | None]:
     """Decisions C22, C23: changes.csv and changes_summary.csv of the batch (visit names by ``visit_map``, C29), or
     ``(None, None)`` when the sessions name fewer than two visits; then the sessions that name a subject but no
@@ -549,7 +550,7 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None
 
     from pdrlearn.visits import change_summary, change_table, label_warnings, visit_order_guess
 
-    changes = change_table(sessions, visit_map=visit_map)
+    changes = change_table(sessions, **({} if metrics is None else {"metrics": metrics}), visit_map=visit_map)
     if changes is None:
         return None, None
     log = logging.getLogger("pdrlearn.cli")
@@ -561,6 +562,23 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None
         log.warning("%s", session_warning("meta.json names a subject but no visit, or a visit but no subject: not "
                                           "paired in changes.csv (add both, decision C22)", half, len(sessions)))
     return changes, change_summary(changes)
+
+
+METRICS_HELP = ("The sessions.csv measures changes.csv compares, comma-separated (default distance_error_pct, "
+                "gait_speed_mps, median_cadence_spm, median_stride_length_m), e.g. gait_speed_mps,median_cadence_spm,"
+                "median_stride_time_s,stride_time_cv_pct,median_stride_length_m; each gets its baseline, change and "
+                "percent change (the dual-task cost when the visits are single / dual; decisions C81, B303).")
+
+
+def parse_metrics(text: str | None) -> tuple[str, ...] | None:
+    """``track-all --metrics A,B``: the names, checked before any tracking (decision B303: an unknown name is one
+    line naming it and the valid ones); None when not given."""
+    if text is None:
+        return None
+    from pdrlearn.visits import check_measures
+
+    return check_measures([m.strip() for m in text.split(",") if m.strip()], option=f"--metrics {text}",
+                          decision="B303")
 
 
 RESUME_HELP = ("Reuse the sessions an interrupted (killed, Ctrl-C) or earlier run into OUT tracked from the same input "
@@ -645,7 +663,8 @@ def subject_params(params_dir: Path, rels: list[str], subjects: list[str | None]
     return [params_dir / f"{s}.json" for s in subjects]
 
 
-#: decision L165: track-all's OUT/bouts.csv - every tracked session's bouts.csv, keyed by sessions.csv's path
+#: decision L165: track-all's OUT/bouts.csv - every tracked session's bouts.csv, keyed by sessions.csv's path (C82:
+#: its visit is sessions.csv's, the paired name; meta.json's is the last column, ``visit_as_written``)
 COMBINED_BOUT_KEYS = ("path", "visit")
 
 
@@ -655,7 +674,11 @@ def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
     ``subject`` follow."""
     from pdrlearn.track.bouts import BOUT_COLUMNS, csv_table, current_names
 
-    return csv_table(combined_table(out, rows, "bouts.csv", BOUT_COLUMNS, current_names))  # E98
+    both = csv_table(combined_table(out, rows, "bouts.csv", BOUT_COLUMNS, current_names))  # E98
+    written = {row["path"]: row.get("visit_as_written") for row in rows}
+    at = both.columns.get_loc("speed_m_s") if "speed_m_s" in both else len(both.columns)  # E98: that one kept last
+    both.insert(at, "visit_as_written", both["path"].map(written))  # decision C82
+    return both
 
 
 def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -> pd.DataFrame:
@@ -679,6 +702,20 @@ def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -
         return pd.DataFrame(columns=cols)
     df = pd.concat(parts, ignore_index=True)
     return df[cols + [c for c in CLOCK_COLUMNS.values() if c in df]]
+
+
+def _paired_visits(rows: list[dict], visit_map: dict[str, str] | None) -> None:
+    """Decision C82: each session row's ``visit`` becomes the name changes.csv and subjects.csv pair it as
+    (:func:`pdrlearn.visits.paired_visits`: ``--visit-map`` applied, spellings of one visit made one) and
+    ``visit_as_written`` keeps meta.json's, so sessions.csv, bouts.csv, subjects.csv and changes.csv join on
+    (subject, visit)."""
+    import pandas as pd
+
+    from pdrlearn.visits import paired_visits
+
+    labels = pd.DataFrame({"subject": [r["subject"] for r in rows], "visit": [r["visit"] for r in rows]})
+    for row, paired in zip(rows, paired_visits(labels, visit_map), strict=True):
+        row["visit_as_written"], row["visit"] = row["visit"], paired
 
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
@@ -739,6 +776,7 @@ def track_all(
                                    "and the visit each is, for changes.csv: a CSV of two columns raw,canonical or "
                                    "a JSON object {\"BL\": \"baseline\"}; recorded in run.json (decision C29). "
                                    "Without it, spellings of one visit (BL, Baseline) are paired as one (C28)."),
+    metrics: str = typer.Option(None, "--metrics", metavar="A,B,...", help=METRICS_HELP),
     resume: bool = typer.Option(False, "--resume", help=RESUME_HELP),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
                              "in this process (default); N > 1 = a Dask LocalCluster of N single-threaded "
@@ -763,8 +801,10 @@ def track_all(
     without both visits listed with why) and OUT/changes_summary.csv the mean change with its paired 95 %
     t-interval (decisions C22, C23): spellings of one visit (BL, Baseline, baseline) are one visit, --visit-map FILE
     names others, each subject has its own baseline, and a pair tracked by two pipelines or holding another
-    subject's recording is flagged, not paired (C28-C31). OUT/run.json records the pdrlearn version, the options
-    and each session's time (decision C18). Sessions holding identical sensor data are warned
+    subject's recording is flagged, not paired (C28-C31); repeated trials of a visit are averaged (n_trials, C83),
+    --metrics A,B names the measures compared, each with its percent change (C81), and sessions.csv's and bouts.csv's
+    visit is changes.csv's, meta.json's in visit_as_written (C82). OUT/run.json records the pdrlearn version, the
+    options and each session's time (decision C18). Sessions holding identical sensor data are warned
     (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>.json, the subject its meta.json names
     (every session needs one, checked first; decision C26). A session that cannot be tracked is reported and
     skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
@@ -788,6 +828,8 @@ def track_all(
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
 
         pdrlearn track-all study/ --out results/cal --pipeline waist-pendulum --params-dir calib/   # calib/S01.json ...
+
+        pdrlearn track-all study/ --out dtc --visit-map conditions.json --metrics gait_speed_mps,stride_time_cv_pct
     """
     # decision C18: every option as given (a new option is recorded without a change here), for run.json; taken
     # before any name is defined in this function
@@ -799,6 +841,7 @@ def track_all(
     from pdrlearn.visits import read_visit_map
 
     vmap = None if visit_map is None else read_visit_map(visit_map)  # decision C29: checked before any tracking
+    measures = parse_metrics(metrics)  # decision B303: checked before any tracking
     if vmap is not None:
         options["visit_map"] = {"file": str(visit_map), "visits": vmap}  # its content, for run.json (C18)
 
@@ -861,9 +904,10 @@ def track_all(
             row["subject"], row["visit"] = label  # decision C22: meta.json's subject and visit
             if params_dir is not None:  # decision C26: the subject's file (its name: the same for a copy, C18)
                 row["params_file"] = Path(st["params"]).name
+        _paired_visits(rows, vmap)  # decision C82: sessions.csv's and bouts.csv's visit is changes.csv's
         sessions = _sessions_table(rows)
         groups = group_table(sessions)
-        changes, summary = _changes(sessions, vmap)
+        changes, summary = _changes(sessions, vmap, measures)
         from pdrlearn.visits import subject_totals
 
         subjects = subject_totals(sessions, vmap)  # cohort C25: None when no session names a subject (C40: visits)

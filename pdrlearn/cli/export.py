@@ -610,8 +610,12 @@ def run(
 
 
 def _foot_checks(session) -> None:
-    """Decisions B203 (refused: force sensors that step beside a foot IMU that never moves) and B201 (warned: the
-    foot accelerometer's rest |acc| off 1 g), as ``track`` does, before the replay."""
+    """Decisions B203 (refused: force sensors that step beside a foot IMU that never moves), B201 (warned: the
+    foot accelerometer's rest |acc| off 1 g) and L406 (warned: insoles that disagree with the foot IMU, L365's
+    check), as ``track`` does, before the replay."""
+    import logging
+
+    from pdrlearn.displace.force_check import streamed_insole_line
     from pdrlearn.errors import DataError
     from pdrlearn.track.foot_rest import foot_rest_stats, foot_scale_warning, frozen_foot_imu
 
@@ -620,9 +624,10 @@ def _foot_checks(session) -> None:
         raise DataError(frozen)
     line = foot_scale_warning(foot_rest_stats(session), session.where)
     if line:
-        import logging
-
         logging.getLogger("pdrlearn.cli").warning("%s", line)
+    insole = streamed_insole_line(session, "pdrlearn run")
+    if insole:
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, insole)
 
 
 def _run_json(arguments: dict, wall0: float, cpu0: float):

@@ -19,7 +19,7 @@ RECORD = ".track-all-session.json"
 
 #: options that do not change a session's own output (how the batch runs or is tabled), or that the key holds by
 #: content instead of by name (the model's manifest, the calibration file's bytes)
-KEY_LEAVES_OUT = ("jobs", "group_depth", "visit_map", "resume", "params", "params_dir", "model")
+KEY_LEAVES_OUT = ("jobs", "group_depth", "visit_map", "metrics", "resume", "params", "params_dir", "model")
 
 
 def _digest(obj) -> str:

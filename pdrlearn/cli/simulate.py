@@ -67,6 +67,9 @@ def simulate_cmd(
     clock_drift_ppm: float = typer.Option(0.0, "--clock-drift-ppm", help="Waist clock drift (ppm)."),
     drop_rate: float = typer.Option(0.0, "--drop-rate", help="Fraction of foot packets lost (0-0.5)."),
     irregular_rate: float = typer.Option(0.0, "--irregular-rate", help="Fraction of irregular steps (0-1)."),
+    variability: float = typer.Option(
+        1.0, "--variability", help="Scale of the stride-to-stride variability (step length / time CV 2-3.5 % at 1, "
+        "the default; 0 = identical strides; 2.5 = a dual-task walk's ~2.5x CV; decision S76)."),
     foot_mount_pitch: float = typer.Option(
         0.0, "--foot-mount-pitch", help="Extra toes-down tilt of the foot unit (deg), e.g. 50 for an instep mount."
     ),
@@ -152,6 +155,9 @@ def simulate_cmd(
 
         pdrlearn simulate --scenario D --user-seed 7 --speed fast --rate 100 --out out/sim/D_u7 --json
 
+        pdrlearn simulate --route "stand:3, straight:60, stand:3" --speed slow --variability 2.5 \\
+            --bounce pendulum --user-seed 4 --rate 100 --out out/sim/dual_u4   # a dual-task walk: 2.5x variability
+
         pdrlearn simulate --scenario walk --length-m 1000 --user-seed 3 --clock-offset 0.3 \\
             --clock-drift-ppm 50 --drop-rate 0.01 --out out/sim/walk1km
 
@@ -195,6 +201,9 @@ def simulate_cmd(
     if not (math.isfinite(heading0) and -360.0 <= heading0 <= 360.0):  # decision S32
         raise DataError(f"--heading0 {heading0:g}: give the initial direction in degrees, -360 to 360 "
                         "(0 = east, 90 = north)")
+    if not (math.isfinite(variability) and variability >= 0.0):  # decision S76: the Python knob's own range
+        raise DataError(f"--variability {variability:g}: give a finite scale >= 0 (1 = the user's own "
+                        "stride-to-stride variability, 0 = identical strides)")
     if not (math.isfinite(mag_disturbance) and 0.0 <= mag_disturbance <= MAG_DISTURBANCE_MAX_UT):  # S33
         raise DataError(f"--mag-disturbance {mag_disturbance:g}: give 0-{MAG_DISTURBANCE_MAX_UT:g} uT")
     mount = parse_mount(waist_mount)  # decision S34
@@ -218,6 +227,7 @@ def simulate_cmd(
         clock_drift_ppm=clock_drift_ppm,
         drop_rate=drop_rate,
         irregular_rate=irregular_rate,
+        variability=variability,  # decision S76
         foot_mount_pitch_deg=foot_mount_pitch,
         noise=not no_noise,
         pelvis=pelvis,

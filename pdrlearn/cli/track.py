@@ -751,7 +751,15 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         for k in ("rules", "min_confidence", "warn_out_of_domain", "bounds", "altitude"):
             if o.get(k) is not None:
                 kw[k] = o[k]
-    result = fn(session, **kw)
+    # decision W352: the gait quality (W350) only when asked for; W353: it reads the track's own AHRS
+    gait_quality = tracked_unit(pipeline) == "waist" and bool(o.get("gait_quality"))
+    if gait_quality:
+        from pdrlearn.waist.ahrs import kept_imus
+
+        with kept_imus() as imus:
+            result = fn(session, **kw)
+    else:
+        result = fn(session, **kw)
     if given_clock is not None:  # decision E111: recorded as --align-units' estimate is (L162)
         import logging
 
@@ -787,13 +795,12 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
 
     # decision L124: OUT/bouts.csv, the detected walking bouts; L165: keyed by the session and its subject
     bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session), leg_m=session_leg_m(session))
-    # decision W352: the gait quality (W350) only when asked for; without it its bouts.csv columns stay empty
-    gait_quality = tracked_unit(pipeline) == "waist" and bool(o.get("gait_quality"))
+    # decision W352: without --gait-quality its bouts.csv columns stay empty
     if gait_quality and len(bouts):  # decision W350: the lower back's gait quality per bout
-        from pdrlearn.waist.ahrs import waist_imu
+        from pdrlearn.waist.ahrs import kept_imu
         from pdrlearn.waist.gait_quality import add_bout_quality
 
-        bouts = add_bout_quality(bouts, result.steps, waist_imu(session))
+        bouts = add_bout_quality(bouts, result.steps, kept_imu(imus, session))  # W353: the track's AHRS
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,

@@ -142,6 +142,43 @@ def _force_only_gaps(session, t: np.ndarray, names: list[str]) -> np.ndarray:
     return mask(names) & ~mask(("fAccelerometer", "fGyroscope"))
 
 
+def _disagreement(session, foot, rest: np.ndarray):
+    """Decision L365's check (shared with L406): the force streams' names and :func:`check_force_stance`'s result of
+    their load against the IMU's rests ``rest``, its swings and the force-only gaps."""
+    from pdrlearn.displace.foot import force_stance
+
+    names = [n for n in ("fForceA", "fForceB") if n in session.streams and len(session.streams[n]) >= 2]
+    loaded = force_stance(session, foot.t)  # the load alone, without the gyro's calm test
+    return names, check_force_stance(foot.t, loaded, rest, np.linalg.norm(np.asarray(foot.gyr, float), axis=1),
+                                     _force_only_gaps(session, np.asarray(foot.t, float), names))
+
+
+def streamed_insole_line(session, command: str) -> str | None:
+    """Decision L406: L365's check for a streamed foot track (``track --streaming``, ``pdrlearn run``), whose
+    contacts read the force as recorded (E50): one line when the insoles (tared as offline, B284) disagree with the
+    foot IMU, naming the files, the strides, the spans and the way out (the offline track takes the IMU's stance
+    there, L365); None when they agree, without force or without a usable foot unit. Nothing is changed."""
+    from pdrlearn.displace.foot import force_stance, inertial_stance
+    from pdrlearn.errors import DataError
+    from pdrlearn.orient import unit_data
+
+    try:
+        foot = unit_data(session, "foot", purpose=f"{command}'s insole check")
+    except DataError:
+        return None
+    session, _ = tared(session, foot)
+    if force_stance(session, foot.t, foot.gyr) is None:
+        return None
+    names, chk = _disagreement(session, foot, inertial_stance(foot.acc, foot.gyr, foot.fs))
+    if not chk.n_bad:
+        return None
+    where = "the whole session" if chk.session else spans_text(foot.t, chk.bad)
+    return (f"{', '.join(f'{n}.csv' for n in names)} disagree with the foot IMU in {chk.n_bad} of {chk.n_strides} "
+            f"strides ({where}: {', '.join(sorted(set(chk.reasons)))}): {command}'s streamed contacts read the force "
+            "as recorded (decision L406) - check the insoles, or track offline (`pdrlearn track DIR`, which takes the "
+            "IMU's stance there, L365; --ignore-force leaves the insoles out)")
+
+
 def checked_stance(session, foot, *, use_force: bool = True, fix: str = f"pass {IGNORE_FORCE} to track without them"
                    ) -> tuple[np.ndarray, str, list[str], np.ndarray]:
     """Decisions L365 / L366: the foot unit's zero-velocity samples on ``foot.t`` (a
@@ -160,10 +197,7 @@ def checked_stance(session, foot, *, use_force: bool = True, fix: str = f"pass {
     stance = force_stance(session, foot.t, foot.gyr)
     if stance is None:
         return rest, "inertial", [], _NO_SPANS
-    names = [n for n in ("fForceA", "fForceB") if n in session.streams and len(session.streams[n]) >= 2]
-    loaded = force_stance(session, foot.t)  # the load alone, without the gyro's calm test
-    chk = check_force_stance(foot.t, loaded, rest, np.linalg.norm(np.asarray(foot.gyr, float), axis=1),
-                             _force_only_gaps(session, np.asarray(foot.t, float), names))
+    names, chk = _disagreement(session, foot, rest)
     if not chk.n_bad:
         return stance, "force", [], _NO_SPANS
     files = ", ".join(f"{n}.csv" for n in names)
@@ -212,7 +246,9 @@ def imu_strides_in(session, strides, spans: np.ndarray):
     """Decision L365: a force detector's ``strides`` table with its rows where the force disagrees with the IMU
     (``spans`` (k, 2) s) replaced by the accelerometer detector's rows there (an insole that reads 0 N or stops
     finds no stride where the foot walks on). A row is there when its event (``event_s``, else ``end_s``) lies in a
-    span, and with it every row of either table that overlaps it (:func:`stitch_rows`, decision L397)."""
+    span, and with it every row of either table that overlaps it (:func:`stitch_rows`, decision L397). Decision
+    L405: when rows of both detectors remain, ``contact_source`` says which timed each row's contact (``force`` /
+    ``imu``; the stride-time CV takes no stride time from one to the other)."""
     import pandas as pd
 
     from pdrlearn.steps import AccelStepDetector
@@ -228,7 +264,10 @@ def imu_strides_in(session, strides, spans: np.ndarray):
     if not len(imu):
         return strides
     keep, take = stitch_rows(windows(strides), windows(imu), inside(strides), inside(imu))
-    out = pd.concat([strides[keep], imu[take]], ignore_index=True)
+    force_rows, imu_rows = strides[keep], imu[take]
+    if len(force_rows) and len(imu_rows):  # decision L405: a stitched table says whose contact each row has
+        force_rows, imu_rows = force_rows.assign(contact_source="force"), imu_rows.assign(contact_source="imu")
+    out = pd.concat([force_rows, imu_rows], ignore_index=True)
     return out.sort_values("start_s", kind="stable").reset_index(drop=True)
 
 

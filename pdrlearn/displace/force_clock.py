@@ -64,12 +64,16 @@ def toe_offs_in(off_s, start_s, event_s) -> np.ndarray:
     return out
 
 
-def force_events(session):
+def force_events(session, *, detected=None):
     """The accel-force detector's table on ``session`` (``event_s`` the stance onsets, ``start_s`` the force
-    drop-offs before them), None when it cannot run (no force, no strides)."""
+    drop-offs before them), None when it cannot run (no force, no strides). ``detected``: that table when the
+    caller already ran the default detector on this session (steps decision 55: it is not run again; an empty
+    table stands for a detector that failed)."""
     from pdrlearn.errors import DataError
     from pdrlearn.steps import AccelForceStepDetector
 
+    if detected is not None:
+        return detected if len(detected) else None
     try:
         df = AccelForceStepDetector().detect(session)
     except DataError:

@@ -102,9 +102,13 @@ def ride_window(t: np.ndarray, p_hpa: np.ndarray, a: float, b: float) -> tuple[f
     return float(lo), float(max(hi, lo)), duration
 
 
-def ride_kind(dz: float, duration_s: float) -> str:
+def ride_kind(dz: float, duration_s: float, vibration_mps2: float | None = None) -> str:
     """Decision L376: ``"lift"``, ``"escalator"`` or ``"other"`` from a ride's height change ``dz`` (m) and
-    :func:`ride_window`'s ``duration_s``: its vertical rate and duration against the typical lift and escalator."""
+    :func:`ride_window`'s ``duration_s``: its vertical rate and duration against the typical lift and escalator.
+    Decision L402: a ride whose :func:`ride_vibration` is :data:`VEHICLE_VIBRATION_MPS2` or more is "other" (a
+    vehicle on a hill climbs at a lift's or an escalator's rate; None / NaN: not known, the rate decides)."""
+    if vibration_mps2 is not None and float(vibration_mps2) >= VEHICLE_VIBRATION_MPS2:
+        return "other"
     rate = abs(float(dz)) / max(float(duration_s), 1e-9)
     if rate >= LIFT_MIN_RATE_MPS:
         return "lift"
@@ -117,3 +121,42 @@ def escalator_travel_m(dz: float) -> float:
     """Decision L377: the horizontal travel (m) of an escalator ride of height change ``dz``, estimated at
     :data:`ESCALATOR_INCLINE_DEG` (dz / tan 30 deg)."""
     return abs(float(dz)) / float(np.tan(np.radians(ESCALATOR_INCLINE_DEG)))
+
+
+#: decision L402: the vibration of a ride is read in windows of this many seconds, each detrended (a straight line
+#: removed: a lift's or a vehicle's slow changes of acceleration, under ~0.5 Hz, are no vibration; a bus body's 1-3
+#: Hz bounce, S71, is)
+VIBRATION_WINDOW_S = 1.0
+#: decision L402: a ride whose median windowed vibration of |specific force| is this much (m/s^2 RMS) or more is a
+#: vehicle's, not a lift's nor an escalator's: half of ISO 2631-1's 0.315 m/s^2 "not uncomfortable" bound (as
+#: recalled, not checked; public transport usually rides at 0.3-1, S71) and 8-9 x a still unit's own |a| noise
+#: (thesis Table 4: foot 0.0193, Table 12: waist 0.0175 m/s^2 sd)
+VEHICLE_VIBRATION_MPS2 = 0.15
+
+
+def ride_vibration(t: np.ndarray, acc: np.ndarray, a: float, b: float) -> float:
+    """Decision L402: the vibration (m/s^2) of the standing unit during a ride from ``a`` to ``b`` (s): the magnitude
+    of the specific force ``acc`` (n, 3) at ``t`` (scaled so that its median over the ride is 1 g: any unit), cut
+    into :data:`VIBRATION_WINDOW_S` windows, each detrended, and the median of their standard deviations (a shift of
+    the feet or a bag in one window does not make a ride a vehicle's). NaN with fewer than 8 finite samples in the
+    ride (decision B301: said by :func:`pdrlearn.track.rides.ride_lines`)."""
+    t = np.asarray(t, dtype=float)
+    mag = np.linalg.norm(np.asarray(acc, dtype=float), axis=1)
+    inside = (t >= a) & (t <= b) & np.isfinite(mag)
+    if int(inside.sum()) < 8:
+        return float("nan")
+    tt, mag = t[inside], mag[inside]
+    med = float(np.median(mag))
+    if not med > 0:
+        return float("nan")
+    mag = mag * (9.80665 / med)  # the specific force of a standing unit is 1 g
+    n_win = max(int((tt[-1] - tt[0]) // VIBRATION_WINDOW_S), 1)
+    edges = tt[0] + (tt[-1] - tt[0]) * np.arange(n_win + 1) / n_win
+    sds = []
+    for k in range(n_win):
+        w = (tt >= edges[k]) & (tt <= edges[k + 1])
+        if int(w.sum()) >= 4:
+            x, y = tt[w] - tt[w].mean(), mag[w]
+            slope = float(np.dot(x, y - y.mean()) / max(float(np.dot(x, x)), 1e-12))
+            sds.append(float(np.std(y - y.mean() - slope * x)))
+    return float(np.median(sds)) if sds else float("nan")

@@ -67,8 +67,8 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     return sessions, groups
 
 
-def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[str, str] | None = None
-                 ) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
+def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[str, str] | None = None,
+                 metrics: tuple[str, ...] | None = None) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
     """The batch section's summary line and tables: per session, per group (``mean ± sd (n)``, as track-all
     prints it), each subject's (and visit's) walking totals (cohort C42), the failed sessions with their errors and
     warnings, the paired changes (visits by ``visit_map``)."""
@@ -88,7 +88,7 @@ def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[s
     if len(failed):
         cols = ["path", "group", "error"] + [c for c in ("warnings",) if c in failed.columns]
         tables.append(("failed sessions", failed[cols].astype(object).fillna("")))
-    return text, tables + change_tables(sessions, visit_map)
+    return text, tables + change_tables(sessions, visit_map, metrics)
 
 
 def batch_warnings(sessions: pd.DataFrame) -> list[str]:
@@ -110,18 +110,30 @@ def batch_warnings(sessions: pd.DataFrame) -> list[str]:
     return lines
 
 
-def run_visit_map(folder: Path) -> dict[str, str] | None:
-    """The ``--visit-map`` a track-all run used (decision C29: its content is in OUT/run.json), for the report's
-    changes to be changes.csv's; None without one."""
+def _run_option(folder: Path, name: str):
+    """Option ``name`` of the track-all run recorded in ``folder``/run.json (decision C18), None without it."""
     import json
 
     from pdrlearn.textfile import read_text
 
     try:
-        vm = json.loads(read_text(Path(folder) / "run.json")).get("options", {}).get("visit_map")
+        return json.loads(read_text(Path(folder) / "run.json")).get("options", {}).get(name)
     except (OSError, ValueError, AttributeError):
         return None
+
+
+def run_visit_map(folder: Path) -> dict[str, str] | None:
+    """The ``--visit-map`` a track-all run used (decision C29: its content is in OUT/run.json), for the report's
+    changes to be changes.csv's; None without one."""
+    vm = _run_option(folder, "visit_map")
     return vm.get("visits") if isinstance(vm, dict) else None
+
+
+def run_metrics(folder: Path) -> tuple[str, ...] | None:
+    """The ``--metrics`` a track-all run used (decision C81, from OUT/run.json), for the report's changes to be
+    changes.csv's; None without it."""
+    given = _run_option(folder, "metrics")
+    return tuple(m.strip() for m in given.split(",") if m.strip()) if isinstance(given, str) else None
 
 
 #: cohort C42: subjects.csv's columns the report shows (``paths``, each subject's session folders, stays in the file)
@@ -143,13 +155,14 @@ def subject_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = No
              "summed)", subjects[[c for c in SUBJECT_TABLE_COLUMNS if c in subjects.columns]])]
 
 
-def change_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None) -> list[tuple[str, pd.DataFrame]]:
+def change_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None,
+                  metrics: tuple[str, ...] | None = None) -> list[tuple[str, pd.DataFrame]]:
     """Decisions C22, C23: with sessions naming a subject and two or more visits, the paired change per visit and
     measure (as track-all prints it) and the subjects not paired with why; recomputed from sessions.csv, as
     changes.csv and changes_summary.csv are (none for a sessions.csv without visits, or written before C22)."""
     from pdrlearn.visits import change_summary, change_table, changes_text
 
-    changes = change_table(sessions, visit_map=visit_map)
+    changes = change_table(sessions, **({} if metrics is None else {"metrics": metrics}), visit_map=visit_map)
     if changes is None:
         return []
     tables = [("paired change from the baseline visit (mean [95 % t-interval], n subjects; changes.csv per subject)",

@@ -240,10 +240,10 @@ def run_label(p: Path, root: Path) -> str:
 
 def _batch_section(folder: Path, root: Path) -> Section:
     """Cohort C16: the section of a track-all output folder (:mod:`pdrlearn.report.batch`)."""
-    from pdrlearn.report.batch import batch_tables, batch_warnings, plot_batch, read_batch, run_visit_map
+    from pdrlearn.report.batch import batch_tables, batch_warnings, plot_batch, read_batch, run_metrics, run_visit_map
 
     sessions, groups = read_batch(folder)
-    text, tables = batch_tables(sessions, groups, run_visit_map(folder))
+    text, tables = batch_tables(sessions, groups, run_visit_map(folder), run_metrics(folder))
     rel = folder.relative_to(root).as_posix()
     return Section(f"Batch (track-all) — {folder.resolve().name if rel == '.' else rel}", text=text, tables=tables,
                    plots=[("distance and gait speed per session (sessions.csv)", "batch_sessions.png",

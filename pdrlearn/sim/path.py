@@ -153,6 +153,7 @@ class Vehicle:
 
     duration_s: float
     rms_mps2: float | None = None
+    rise_m: float = 0.0  # decision S75: the vehicle climbs this far (m, + up) in its cruise
 
 
 @dataclass(frozen=True)
@@ -515,10 +516,10 @@ class _Walker:
     def vehicle(self, seg: Vehicle) -> None:
         """Decision S71: S45's ride (feet together, the ride inside the pause before the next step) in a vehicle,
         turning the walker about the point between the feet."""
-        check_vehicle(seg.duration_s, seg.rms_mps2, str(seg))
+        check_vehicle(seg.duration_s, seg.rms_mps2, str(seg), seg.rise_m)
         self.close()
         ride = draw_vehicle(len(self.steps), float(seg.duration_s), seg.rms_mps2, self.psi, self.c, self.rng,
-                            delay_s=self.pending_pause + RIDE_MARGIN_S)
+                            delay_s=self.pending_pause + RIDE_MARGIN_S, rise_m=float(seg.rise_m))
         self.transfers.append(ride)
         self.pending_pause += RIDE_MARGIN_S + ride.duration_s + RIDE_MARGIN_S
 

@@ -17,7 +17,7 @@
 | ``lie:S[:TURNS_PER_H]`` | sit on a bed edge, lie S s turning over TURNS_PER_H an hour (2), get up (no steps; S58) |
 | ``lift:H`` | stand in a lift riding H metres (+H up, -H down; no steps; decision S45) |
 | ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
-| ``vehicle:S[:RMS]`` | stand in a bus / train driving S s (20-3600: off, S-bend, stop), vibrating RMS m/s^2 (S71) |
+| ``vehicle:S[:RMS[:RISE]]`` | ride a bus or train for S s (20-3600), vibrating RMS (S71), climbing RISE m (S75) |
 | ``trolley:M[:GAIT]`` | walk M metres straight ahead pushing a trolley (damped pelvic rotation; decision S46) |
 | ``side:M`` | side-step M metres facing ahead (+M left, -M right; lead foot out, trail foot closes; decision S49) |
 | ``freeze:S[:HZ[:ACC]]`` | stop, tremble in place S s at HZ (3-8) with the foot's peak ACC m/s^2 (no steps; S51) |
@@ -67,8 +67,9 @@ def _number(item: str, text: str, *, integer: bool = False, positive: bool = Tru
     except ValueError:
         kind = "a whole number" if integer else "a number"
         raise DataError(f"--route item {item!r}: {text!r} is not {kind}; {_USAGE}") from None
-    if not math.isfinite(value) or (positive and value <= 0):
-        raise DataError(f"--route item {item!r}: {text!r} must be a positive number; {_USAGE}")
+    if not math.isfinite(value) or (positive and value <= 0):  # B300: a signed value is asked to be finite
+        want = "a positive number" if positive else "a finite number"
+        raise DataError(f"--route item {item!r}: {text!r} must be {want}; {_USAGE}")
     return value
 
 
@@ -109,10 +110,11 @@ def parse_route(spec: str) -> list[Segment]:
             check_rise(kind, rise, f"--route item {item!r}")
             segments.append((Lift if kind == "lift" else Escalator)(rise))
         elif kind == "vehicle":  # decision S71: the planner's limits, named after the item
-            _arity(item, parts, (1, 2))
-            rms = _number(item, parts[2], positive=False) if len(parts) > 2 else None
-            seg = Vehicle(_number(item, parts[1]), rms)
-            check_vehicle(seg.duration_s, rms, f"--route item {item!r}")
+            _arity(item, parts, (1, 2, 3))  # decision S75: vehicle:S:RMS:RISE (RMS empty: drawn) climbs RISE m
+            rms = _number(item, parts[2], positive=False) if len(parts) > 2 and parts[2].strip() else None
+            rise = _number(item, parts[3], positive=False) if len(parts) > 3 else 0.0
+            seg = Vehicle(_number(item, parts[1]), rms, rise)
+            check_vehicle(seg.duration_s, rms, f"--route item {item!r}", rise)
             segments.append(seg)
         elif kind == "curve":
             _arity(item, parts, (2, 3))

@@ -20,6 +20,11 @@ lateral acceleration of 0.5-1.5 m/s^2; vertical vibration 0.3-1.0 m/s^2 RMS draw
 comfort scale, as recalled and not checked against the text: 0.315-0.63 m/s^2 "a little uncomfortable", 0.5-1
 "fairly uncomfortable", the range public transport is usually reported in) in 1-3 Hz (a bus body's bounce on its
 suspension, about 1-2 Hz, as recalled; our choice of band).
+
+Decision S75 (opt-in, ``vehicle:S:RMS:RISE``): the vehicle climbs (RISE > 0) or descends RISE m in the middle of its
+cruise, a C2 (quintic) ramp of its altitude along the path at a peak road grade drawn in :data:`VEHICLE_GRADE` (a
+bus going up a street or a ramp), so the barometer sees a short smooth climb while the walker stands. The body is
+carried up, not pitched with the road (a standing passenger keeps upright; the grade's 2-5 deg are left out).
 """
 
 from __future__ import annotations
@@ -47,20 +52,32 @@ VEHICLE_VIB_TONES = 8  # the band is a sum of this many sinusoids of random freq
 VEHICLE_VIB_FADE_S = 1.0  # the vibration fades in over the first and out over the last second of the motion
 VEHICLE_MIN_S = 20.0  # shortest ride accepted (s): a stop-to-stop hop
 VEHICLE_MAX_S = 3600.0  # longest ride accepted (s)
+#: decision S75: peak road grade of a vehicle's climb, drawn (assumption: urban streets and ramps, 3-8 %)
+VEHICLE_GRADE = (0.03, 0.08)
+#: decision S75: the steepest grade a climb may need to fit in the cruise (a steep street; assumption)
+VEHICLE_MAX_GRADE = 0.2
+#: decision S75: the largest climb accepted (m): a hill street, far above a ride's half storey
+VEHICLE_MAX_RISE_M = 100.0
+#: decision S75: the quintic ramp's (:func:`smoothstep`) peak slope per unit of its argument: 15 / 8
+_RAMP_SLOPE = 1.875
 VEHICLE_MAX_RMS_MPS2 = 3.0  # highest vibration RMS accepted (m/s^2; ISO 2631-1's "extremely uncomfortable" > 2)
 #: the C2 bell 0 -> 1 -> 0 of the bend's heading (:func:`_bell`) has a slope of at most 3.75 per unit of its argument
 _BELL_SLOPE = 3.75
 _GRID_M = 0.05  # the path's positions are integrated on this grid of distance along it (m)
 
 
-def check_vehicle(duration_s: float, rms: float | None, what: str) -> None:
-    """One :class:`DataError` line naming ``what`` when the ride's duration or vibration RMS is out of range."""
+def check_vehicle(duration_s: float, rms: float | None, what: str, rise_m: float = 0.0) -> None:
+    """One :class:`DataError` line naming ``what`` when the ride's duration, vibration RMS or climb (S75) is out of
+    range."""
     if not (is_number(duration_s) and VEHICLE_MIN_S <= duration_s <= VEHICLE_MAX_S):
         raise DataError(f"{what}: a vehicle ride lasts {VEHICLE_MIN_S:g}-{VEHICLE_MAX_S:g} s (drive off, cruise with "
                         f"a bend, stop; decision S71), not {duration_s!r}")
     if rms is not None and not (is_number(rms) and 0.0 <= rms <= VEHICLE_MAX_RMS_MPS2):
         raise DataError(f"{what}: the vibration RMS must be 0-{VEHICLE_MAX_RMS_MPS2:g} m/s^2 (public transport is "
                         f"usually 0.3-1; decision S71), not {rms!r}")
+    if not (is_number(rise_m) and abs(rise_m) <= VEHICLE_MAX_RISE_M):
+        raise DataError(f"{what}: a vehicle's climb RISE is -{VEHICLE_MAX_RISE_M:g} to +{VEHICLE_MAX_RISE_M:g} m "
+                        f"(+ up, - down, 0 level; decision S75), not {rise_m!r}")
 
 
 @dataclass(frozen=True)
@@ -88,6 +105,8 @@ class VehicleRide:
     sway: tuple[float, float, float, float]
     kind: str = "vehicle"
     rise_m: float = 0.0
+    climb_start_m: float = 0.0
+    climb_m: float = 0.0
 
     @property
     def ramp_s(self) -> float:
@@ -145,16 +164,21 @@ class VehicleRide:
         x, y = np.interp(s, grid, xy[:, 0]), np.interp(s, grid, xy[:, 1])
         yaw = self.heading_at(s)
         up, fwd = self._vibration(tau)
+        if self.rise_m and self.climb_m > 0:  # decision S75: the climb, a quintic ramp along the path
+            up = up + self.rise_m * smoothstep((s - self.climb_start_m) / self.climb_m)
         x, y = x + fwd * np.cos(yaw), y + fwd * np.sin(yaw)
         c, sn = math.cos(self.heading_rad), math.sin(self.heading_rad)
         return np.column_stack([c * x - sn * y, sn * x + c * y, up]), yaw
 
 
 def draw_vehicle(after: int, duration_s: float, rms: float | None, heading_rad: float, centre: np.ndarray,
-                 rng: np.random.Generator, *, delay_s: float) -> VehicleRide:
+                 rng: np.random.Generator, *, delay_s: float, rise_m: float = 0.0) -> VehicleRide:
     """A :class:`VehicleRide` of ``duration_s`` seconds with the module's ranges drawn from ``rng`` (``rms`` None:
     drawn from :data:`VEHICLE_VIB_RMS_MPS2`). The cruise speed is capped so that the ramps take at most half the
-    ride, the bend's turn so that it fits in the cruise."""
+    ride, the bend's turn so that it fits in the cruise. Decision S75: ``rise_m`` != 0 climbs that far in the middle
+    of the cruise at a peak grade drawn from :data:`VEHICLE_GRADE` (steeper when the cruise is too short for it; one
+    :class:`DataError` line past :data:`VEHICLE_MAX_GRADE`). The draws are those of a level ride (the grade takes
+    the one spare uniform), so a ride without a climb is unchanged."""
     u = rng.uniform(0.0, 1.0, 10)
 
     def pick(rangeof: tuple[float, float], x: float) -> float:
@@ -176,9 +200,18 @@ def draw_vehicle(after: int, duration_s: float, rms: float | None, heading_rad: 
         t_rng.uniform(*VEHICLE_VIB_HZ, VEHICLE_VIB_TONES), t_rng.uniform(0, 2 * math.pi, VEHICLE_VIB_TONES),
         t_rng.uniform(0, 2 * math.pi, VEHICLE_VIB_TONES), strict=True))
     sway = (2 * math.pi * u[5], 2 * math.pi * u[6], *(RIDE_SWAY_HZ[0] + u[7:9] * (RIDE_SWAY_HZ[1] - RIDE_SWAY_HZ[0])))
+    climb_m = climb_start = 0.0
+    if rise_m:  # decision S75: the climb's length along the path at the drawn peak grade, fitted in the cruise
+        climb_m = min(_RAMP_SLOPE * abs(rise_m) / pick(VEHICLE_GRADE, u[9]), cruise_m)
+        if _RAMP_SLOPE * abs(rise_m) / max(climb_m, 1e-9) > VEHICLE_MAX_GRADE + 1e-9:
+            raise DataError(f"vehicle ride of {duration_s:g} s climbing {rise_m:+g} m: its cruise ({cruise_m:.0f} m) "
+                            f"is too short for a grade of at most {VEHICLE_MAX_GRADE:.0%}; give a longer ride or a "
+                            "smaller climb (decision S75)")
+        climb_start = ramp_m + 0.5 * (cruise_m - climb_m)
     return VehicleRide(int(after), float(delay_s), float(duration_s), float(heading_rad),
                        (float(centre[0]), float(centre[1])), float(speed), float(acc), float(bend), float(start),
-                       float(bend_m), float(vib), tones, tuple(float(v) for v in sway))
+                       float(bend_m), float(vib), tones, tuple(float(v) for v in sway), rise_m=float(rise_m),
+                       climb_start_m=float(climb_start), climb_m=float(climb_m))
 
 
 def vehicle_carry(t: np.ndarray, pos: np.ndarray, rot: np.ndarray, rides: list, starts: np.ndarray

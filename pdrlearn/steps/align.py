@@ -30,22 +30,26 @@ def align_units(session: Session, *, foot_detector=None, waist_detector=None, ma
 
 
 def align_estimate(session: Session, *, foot_detector=None, waist_detector=None, max_offset_s: float = 2.0,
-                   tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0) -> dict:
+                   tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0,
+                   force_table=None) -> dict:
     """Estimate the clock offset and drift between the foot and waist units of ``session``.
 
     Foot events: the accelerometer + force detector when force sensors are present, else the
     accelerometer detector; waist events: the PLL detector (both replaceable). Returns
     :func:`~pdrlearn.kernels.align.align_events`' dict (``offset_s``, ``drift``, ``ref_s`` with ``t_waist = t_foot +
     offset_s + drift * (t_foot - ref_s)``, decision L198; ``matched``, ``residual_sd_s``: decision L183's lock test);
-    details are logged; the session is left untouched.
+    details are logged; the session is left untouched. ``force_table``: the default accelerometer + force
+    detector's table on this session when the caller has it (steps decision 55: used instead of detecting again
+    when that detector is the one chosen).
     """
     from pdrlearn.steps.detectors import AccelForceStepDetector, AccelStepDetector, PLLStepDetector
 
+    reuse = foot_detector is None and force_table is not None and session.has("fForceA", "fForceB")
     if foot_detector is None:
         has_force = session.has("fForceA", "fForceB")
         foot_detector = AccelForceStepDetector() if has_force else AccelStepDetector()
     waist_detector = waist_detector or PLLStepDetector()
-    fe = foot_detector.detect(session)["event_s"].to_numpy(float)
+    fe = (force_table if reuse else foot_detector.detect(session))["event_s"].to_numpy(float)
     we = waist_detector.detect(session)["event_s"].to_numpy(float)
     res = align_events(fe, we, max_offset_s=max_offset_s, tolerance_s=tolerance_s, fit_drift=fit_drift,
                        min_span_s=min_span_s)

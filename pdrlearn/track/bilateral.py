@@ -29,6 +29,7 @@ from __future__ import annotations
 import json
 import logging
 import math
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -590,6 +591,35 @@ def label_steps(session) -> pd.DataFrame | None:
     return st
 
 
+#: decision E153: what `gait` says once (INFO) instead of each foot track's "no model" warning
+GAIT_NO_MODEL_INFO = ("gait: both feet tracked with the M3 engine without the step-class rules (gait takes no model; "
+                      "its step and stride lengths are the ZUPT strides, unclamped by length classes)")
+
+
+@contextmanager
+def no_model_as_info(line: str):
+    """Decision E153: inside the body, the plasys "no model" warning (:data:`pdrlearn.track.plasys.NO_MODEL_WARNING`)
+    is not logged; on leaving, ``line`` is logged once at INFO if it was raised. Every other record passes."""
+    from pdrlearn.track.plasys import NO_MODEL_WARNING
+
+    seen: list[bool] = []
+
+    def keep(record: logging.LogRecord) -> bool:
+        if record.levelno >= logging.WARNING and NO_MODEL_WARNING in record.getMessage():
+            seen.append(True)
+            return False
+        return True
+
+    plasys_log = logging.getLogger("pdrlearn.track.plasys")
+    plasys_log.addFilter(keep)
+    try:
+        yield
+    finally:
+        plasys_log.removeFilter(keep)
+    if seen:
+        logging.getLogger(__name__).info(line)
+
+
 def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     """Decisions L259-L263: read and track (offline plasys with ``toe_off=True``, L73) the left and the right foot's
     session folders of one walk and give :func:`bilateral_gait` of their tracks, plus ``"reference"``: the same
@@ -604,7 +634,8 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
         if not s.has("fAccelerometer", "fGyroscope"):
             raise DataError(f"gait: {d} has no foot unit (fAccelerometer.csv, fGyroscope.csv); give a foot session")
     check_one_walk(left_dir, right_dir, sessions[0].meta, sessions[1].meta)
-    tracks = [track_plasys(s, toe_off=True) for s in sessions]
+    with no_model_as_info(GAIT_NO_MODEL_INFO):  # decision E153: gait takes no model; one info line, no warning
+        tracks = [track_plasys(s, toe_off=True) for s in sessions]
     out = bilateral_gait(tracks[0].steps, tracks[1].steps)
     labels = [label_steps(s) for s in sessions]
     out["reference"] = (bilateral_gait(labels[0], labels[1]) if all(x is not None for x in labels) else None)

@@ -90,6 +90,9 @@ TURN_FIRST_OWN = True
 #: ``stride_time_cv_pct`` needs at least this many straight strides with a stride time
 CV_MIN_STRIDES = 10
 
+#: decision L405 (not adopted: opt-in): on a stitched foot track (L365's partial fallback, steps.csv
+#: ``contact_source``) the CV's strides are those whose contact and the previous one's come from one detector
+CV_ONE_SOURCE = False
 #: decision L113's candidate: a contact timing scatter (s) of this much or more withholds ``stride_time_cv_pct``
 #: (two contacts per stride time: it contributes sqrt(2) x 30 ms = 42 ms (in quadrature) to the SD of a ~1.1 s
 #: stride, 3.9 %, more than a healthy walker's CV of 1-3 %)
@@ -737,7 +740,8 @@ def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
     docstring, L104 / L188), the strides the stride-time CV is taken over; no row for a table without stride times
     (a lower-back table: its contact timing scatters too much for a variability, decision L104). Shared by the
     session's stride-time CV here and :mod:`pdrlearn.track.bouts`' per-bout CV (L212), so both take the same
-    strides."""
+    strides. Decision L405 (:data:`CV_ONE_SOURCE`): on a stitched track no row whose ``contact_source`` differs from
+    the previous row's."""
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD
 
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
@@ -752,7 +756,11 @@ def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
         ok &= ~np.concatenate([[False], is_pause]) & ~np.concatenate([is_pause, [False]])
     # steady: the strides before and after are straight strides with a stride time too (no turn, start
     # or stop next to it: the strides around a turn or a stop slow down)
-    return st, ok & np.concatenate([[False], ok[:-1]]) & np.concatenate([ok[1:], [False]])
+    steady = ok & np.concatenate([[False], ok[:-1]]) & np.concatenate([ok[1:], [False]])
+    if CV_ONE_SOURCE and "contact_source" in st and len(st) > 1:  # decision L405: no stride time from one
+        src = st["contact_source"].astype(object).to_numpy()  # detector's contact to the other's (two clocks)
+        steady &= np.concatenate([[False], (src[1:] == src[:-1]) & pd.notna(src[1:])])
+    return st, steady
 
 
 def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:

@@ -349,14 +349,28 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> 
         second = np.zeros(len(st), bool)
         second[:-1] = ~straight[1:] | stair_rows(steps)[1:] | sideways_rows(steps)[1:]
         straight = straight & ~second
-    out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": _median(stride),
-                 "median_cadence_spm": (median_cadence(_median(stride), _median(cadence))
+    stride_med, step_med = _waist_time_median(stride), _waist_time_median(step)  # decision W359
+    out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": stride_med,
+                 "median_cadence_spm": (median_cadence(stride_med, _median(cadence))
                                         if _waist_medians_from(cadence_from) == "strides"
                                         else _median(cadence)),  # W225: L176's formula is the default
                  "median_speed_mps": _median(speed),
-                 "median_step_time_s": _median(step)}
+                 "median_step_time_s": step_med}
     _speed_fields(out, steps, length, has_next, speed, straight)
     return out
+
+
+#: decision W359: a lower-back summary's median stride and step time are grouped-data medians of the whole-sample
+#: times (:func:`pdrlearn.kernels.grouped_median.grouped_median`), not a sample value; False: the plain median
+WAIST_GROUPED_MEDIAN = True
+
+
+def _waist_time_median(times: np.ndarray) -> float | None:
+    """W359: the median of a lower-back table's whole-sample stride or step times - grouped-data with
+    :data:`WAIST_GROUPED_MEDIAN`, else the plain median."""
+    from pdrlearn.kernels.grouped_median import grouped_median
+
+    return grouped_median(times) if WAIST_GROUPED_MEDIAN else _median(times)
 
 
 #: decisions W224/W225: the medians a lower-back summary takes by default - ``"strides"`` (cadence 120 / the median

@@ -38,7 +38,13 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.displace.foot import check_settings as check_foot_settings
-from pdrlearn.displace.force_check import checked_stance, imu_strides_in, reads_force_refusal, tared
+from pdrlearn.displace.force_check import (
+    checked_stance,
+    imu_strides_in,
+    reads_force_refusal,
+    streamed_insole_line,
+    tared,
+)
 from pdrlearn.displace.force_clock import force_events, offset_check, toe_offs_in
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
@@ -157,9 +163,10 @@ STEP_SOURCES = ("detector", "stance", "labels")
 
 
 def _detect_strides(session: Session, kind: str, steps, t: np.ndarray, stance: np.ndarray,
-                    warnings: list[str]) -> pd.DataFrame:
+                    warnings: list[str], seen: dict | None = None) -> pd.DataFrame:
     """Stride windows of the foot unit: ``steps`` = "detector" | "stance" | "labels", a registered foot detector's
-    name, a :class:`~pdrlearn.steps.StepDetector` or a steps table (decision L149)."""
+    name, a :class:`~pdrlearn.steps.StepDetector` or a steps table (decision L149). ``seen``: a dict that receives
+    the table of the default ``kind`` detector when it ran without an error, for reuse (steps decision 55)."""
     custom = _custom_strides(session, steps)
     if custom is not None:
         return custom
@@ -177,6 +184,8 @@ def _detect_strides(session: Session, kind: str, steps, t: np.ndarray, stance: n
 
             det = getattr(steps_mod, kind)()
             df = det.detect(session)
+            if seen is not None:
+                seen[kind] = df.copy()
             if len(df) and {"start_s", "end_s"} <= set(df.columns):
                 return df.reset_index(drop=True)
             warnings.append(f"{kind} found no steps; using the stance segmentation")
@@ -410,16 +419,17 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
     return off
 
 
-def align_clocks(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
+def align_clocks(session: Session, warnings: list[str], *, force_table=None) -> tuple[Session, dict | None]:
     """Waist streams moved onto the foot clock with the steps detected by both units (thesis ch.7.2.2:
     the gyroscope-detected steps align the units); the session unchanged when that fails. ``track --align-units``
     (L162) and ``run --align-units`` (L170) share it. Decision L186: an estimate that did not lock (L183's
-    :func:`~pdrlearn.kernels.align.offset_locked`) is not applied: the session unchanged and one line why."""
+    :func:`~pdrlearn.kernels.align.offset_locked`) is not applied: the session unchanged and one line why.
+    ``force_table``: :func:`~pdrlearn.steps.align.align_estimate`'s (steps decision 55)."""
     try:
         from pdrlearn.kernels.align import unlocked_message
         from pdrlearn.steps.align import align_estimate
 
-        est = align_estimate(session)
+        est = align_estimate(session, force_table=force_table)
         line = unlocked_message(est)
         if line is not None:  # decision L186: an unlocked estimate tells no offset (L183)
             warnings.append(line)
@@ -469,15 +479,16 @@ WAIST_BIAS_AT_REST = False
 from pdrlearn.kernels.align import UNIT_OFFSET_WARN_S  # noqa: E402, F401 (decision L161; shared with the runtime, L177)
 
 
-def unit_offset_line(session: Session, command: str = "pdrlearn track") -> str | None:
+def unit_offset_line(session: Session, command: str = "pdrlearn track", *, force_table=None) -> str | None:
     """Decision L161: the warning line when :func:`pdrlearn.steps.align_units` finds the waist unit's steps over
     :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few).
-    ``command``: the one whose ``--align-units`` the line names (``pdrlearn run``, decision L170)."""
+    ``command``: the one whose ``--align-units`` the line names (``pdrlearn run``, decision L170); ``force_table``:
+    :func:`~pdrlearn.steps.align.align_estimate`'s (steps decision 55)."""
     from pdrlearn.kernels.align import unit_offset_message
     from pdrlearn.steps.align import align_estimate
 
     try:
-        est = align_estimate(session)
+        est = align_estimate(session, force_table=force_table)
     except DataError:
         return None
     return unit_offset_message(est["offset_s"], est["drift"], command, estimate=est)  # L183: locked estimates only
@@ -1035,6 +1046,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
         if at is not None:
             log.warning("%s: %s", session.where, res.info["warnings"][at])
+        insole = streamed_insole_line(session, "track --streaming")  # decision L406: L365's check, told
+        if insole:
+            res.info["warnings"].append(insole)
+            log.warning("%s: %s", session.where, insole)
         return res
     refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
     if refusal:
@@ -1053,8 +1068,6 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             warnings += [tare_line] if tare_line else []
         stance, stance_source, lines, imu_spans = checked_stance(session, foot, use_force=not ignore_force)  # L365/6
         warnings += lines
-        if stance_source == "force":  # decisions L388-L390: the force detector's events (onsets, drop-offs)
-            fev = force_events(session)
         if stance_source == "inertial" and not ignore_force:
             if method == "M2":
                 raise MissingSensorError(
@@ -1064,7 +1077,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     else:
         stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
     kind = cfg["detector"] if stance_source == "force" or method == "M1" else "AccelStepDetector"
-    strides = _detect_strides(session, kind, steps, foot.t, stance, warnings).reset_index(drop=True)
+    seen: dict = {}  # steps decision 55: the accel-force detector's table, run once for the strides, L390 and L161
+    strides = _detect_strides(session, kind, steps, foot.t, stance, warnings, seen).reset_index(drop=True)
+    if stance_source == "force":  # decisions L388-L390: the force detector's events (onsets, drop-offs)
+        fev = force_events(session, detected=seen.get("AccelForceStepDetector"))
     if cfg["force"] and len(imu_spans) and isinstance(steps, str) and steps == "detector":
         strides = imu_strides_in(session, strides, imu_spans)  # decision L365: the IMU's strides where force fails
     # decision B11: report long stream gaps; no foot stride spans a foot-IMU gap (L365: a gap of the force sensors
@@ -1126,7 +1142,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
     if align and has_waist:  # decision L162: any method the waist heads (L13 had M3 only)
-        work, alignment = align_clocks(session, warnings)
+        work, alignment = align_clocks(session, warnings, force_table=seen.get("AccelForceStepDetector"))
     if cfg["rules"]:
         if model is None:
             raise ModelError(MODEL_NEEDED.format(what="M3 needs the step classes") + "; M1/M2 need no model")
@@ -1227,7 +1243,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                           yaw_bias=yaw_bias).fit_session(work)  # decision W126
         warnings += wh.warnings_
         if alignment is None:  # decision L161: the units' clocks checked when they were not aligned
-            offset_line = unit_offset_line(session)
+            offset_line = unit_offset_line(session, force_table=seen.get("AccelForceStepDetector"))
             warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)
         compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
@@ -1283,6 +1299,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
     table["sideways"] = _sideways_rows(lateral, disp, fd.yaw_change_)  # L228: no steady / straight stride for the CVs
+    if "contact_source" in strides:  # decision L405: a stitched track's contacts by detector (force / imu)
+        table["contact_source"] = strides["contact_source"].to_numpy(dtype=object)
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)

@@ -9,19 +9,37 @@ import numpy as np
 import pandas as pd
 
 #: decision L377: rides.csv's columns (docs/columns.md: pdrlearn.columns.RIDES)
-RIDE_COLUMNS = ("ride", "start_s", "end_s", "kind", "dz_m", "duration_s", "vertical_rate_mps", "horizontal_est_m")
+RIDE_COLUMNS = ("ride", "start_s", "end_s", "kind", "dz_m", "duration_s", "vertical_rate_mps", "vibration_mps2",
+                "horizontal_est_m")
+
+#: decision L402: the accelerometers a ride's vibration is read from, the first one the session has (the waist unit
+#: stands on the legs, the foot unit on the vehicle's floor: both feel it, S71)
+VIBRATION_STREAMS = ("wAccelerometer", "fAccelerometer")
+
+
+def ride_accelerometer(session) -> tuple[np.ndarray, np.ndarray, str] | None:
+    """Decision L402: ``(t, acc, name)`` of the first of :data:`VIBRATION_STREAMS` in ``session`` with samples;
+    None."""
+    for name in VIBRATION_STREAMS:
+        if name in session and len(session[name].t):
+            return session[name].t, session[name].values, name
+    return None
 
 
 def ride_rows(t: np.ndarray, p_hpa: np.ndarray, steps: pd.DataFrame, t0: float, z: np.ndarray,
-              z_start: np.ndarray, t_end: float | None = None) -> tuple[np.ndarray, list[dict]]:
+              z_start: np.ndarray, t_end: float | None = None, acc=None,
+              vibration_kind: bool = False) -> tuple[np.ndarray, list[dict]]:
     """Decisions L375, L376: per step the kind of the ride in the pause before it (``""``: none) and one record per
     ride (rides.csv's :data:`RIDE_COLUMNS` and ``row``, the step it precedes). ``(t, p_hpa)``: the barometer (s,
     hPa); ``z`` (n+1,) the track's altitude at ``t0`` and each step's end, ``z_start`` (n,) at each step's start
     (W158: ``pause_dz_m = z_start - z[:-1]``). Decision L394: with ``t_end`` (the recording's end) also the ride in
-    the standstill after the last step (``row`` n, no step)."""
+    the standstill after the last step (``row`` n, no step). Decision L402: ``acc`` (:func:`ride_accelerometer`'s)
+    gives each ride's ``vibration_mps2``; with ``vibration_kind`` (L403: opt-in, the ``ride_vibration`` option) a
+    vibrating ride is a vehicle's, kind other."""
     pause = np.asarray(z_start, dtype=float) - np.asarray(z, dtype=float)[:-1]
-    kinds, records = _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause)
-    return kinds, _after_last(t, p_hpa, steps, records, t_end)
+    kinds, records = _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause, acc,
+                            vibration_kind)
+    return kinds, _after_last(t, p_hpa, steps, records, t_end, acc, vibration_kind)
 
 
 def _pause_dz(t, p_hpa, ends, starts) -> np.ndarray:
@@ -38,7 +56,8 @@ def _pause_dz(t, p_hpa, ends, starts) -> np.ndarray:
     return np.where(np.abs(pause) >= RIDE_MIN_M, pause, 0.0)
 
 
-def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float | None) -> list[dict]:
+def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float | None, acc=None,
+                vibration_kind: bool = False) -> list[dict]:
     """Decision L394: ``records`` and the ride in the standstill from the last step's end to ``t_end`` (the
     recording's end, at most the barometer's last time), ``row`` the number of steps (it precedes none)."""
     if t_end is None or not len(steps) or not len(t):
@@ -46,7 +65,7 @@ def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float
     a, b = float(steps["end_s"].iloc[-1]), min(float(t_end), float(t[-1]))
     if not b > a:
         return records
-    _, extra = _rides(t, p_hpa, np.array([a]), np.array([b]), _pause_dz(t, p_hpa, [a], [b]))
+    _, extra = _rides(t, p_hpa, np.array([a]), np.array([b]), _pause_dz(t, p_hpa, [a], [b]), acc, vibration_kind)
     return records + [{**r, "ride": len(records) + 1, "row": len(steps)} for r in extra]
 
 
@@ -55,20 +74,25 @@ def _pause_ends(steps: pd.DataFrame, t0: float) -> np.ndarray:
     return np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
 
 
-def _rides(t, p_hpa, ends, starts, pause) -> tuple[np.ndarray, list[dict]]:
-    """:func:`ride_rows` on the pauses from ``ends`` to ``starts`` (s) whose altitude changed by ``pause`` (m)."""
-    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, escalator_travel_m, ride_kind, ride_window
+def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False) -> tuple[np.ndarray, list[dict]]:
+    """:func:`ride_rows` on the pauses from ``ends`` to ``starts`` (s) whose altitude changed by ``pause`` (m);
+    ``acc`` ``(t, (n, 3))`` or None: decision L402's vibration (NaN without), which tells the kind only with
+    ``vibration_kind`` (L403)."""
+    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, escalator_travel_m, ride_kind, ride_vibration, ride_window
 
     kinds = np.full(len(starts), "", dtype=object)
     records = []
     for j in np.flatnonzero(np.abs(np.nan_to_num(pause)) >= RIDE_MIN_M):
         a, b, duration = ride_window(t, p_hpa, float(ends[j]), float(starts[j]))
         dz = float(pause[j])
-        kinds[j] = kind = ride_kind(dz, duration)
+        vib = ride_vibration(acc[0], acc[1], a, b) if acc is not None else float("nan")  # decision L402
+        kinds[j] = kind = ride_kind(dz, duration, vib if vibration_kind else None)
+        unread = (acc[2] if acc is not None else "the accelerometer") if vibration_kind and np.isnan(vib) else None
         records.append({"ride": len(records) + 1, "start_s": a, "end_s": b, "kind": kind, "dz_m": dz,
-                        "duration_s": duration, "vertical_rate_mps": abs(dz) / duration,
+                        "duration_s": duration, "vertical_rate_mps": abs(dz) / duration, "vibration_mps2": vib,
                         "horizontal_est_m": escalator_travel_m(dz) if kind == "escalator" else None, "row": int(j),
-                        "gap_s": _gap_in(t, a, b)})  # decision B298
+                        "gap_s": _gap_in(t, a, b),  # decision B298
+                        "vibration_unread": unread})  # decision B301
     return kinds, records
 
 
@@ -85,14 +109,14 @@ def _gap_in(t, a: float, b: float) -> float:
     return float(np.diff(t)[overlap].max()) if overlap.any() else 0.0
 
 
-def foot_rides(result, session) -> None:
+def foot_rides(result, session, vibration_kind: bool = False) -> None:
     """Decision L378: a foot track's rides from the session's waist barometer (B188's usable one; none: nothing
     changes). Each standstill between two strides (from the previous stride's end, the first's from the barometer's
     first time, decision L393, and the one after the last stride to the barometer's last time, L394) changes the
     barometric altitude by W231's ride (``pause_ride_dz``: over 30 s only what moved 1.5 m within
     30 s); where that is ``RIDE_MIN_M`` or more it is the stride's ``pause_dz_m`` (0 elsewhere), its ``ride`` kind
     (L376), a record of ``info["rides"]`` (rides.csv, L377) and L376's / L377's lines. The strides' ``dz_m`` and the
-    trajectory's z are not changed."""
+    trajectory's z are not changed. ``vibration_kind``: decision L402's vehicle test (L403: opt-in; Python only)."""
     import logging
 
     from pdrlearn.track.barometer import FOOT_EFFECT, usable_barometer
@@ -107,8 +131,9 @@ def foot_rides(result, session) -> None:
     ends = _pause_ends(steps, min(float(b.t[0]), float(result.trajectory["t"].iloc[0])))
     starts = steps["start_s"].to_numpy(float)
     pause = _pause_dz(b.t, p, ends, starts)
-    kinds, records = _rides(b.t, p, ends, starts, pause)
-    records = _after_last(b.t, p, steps, records, float(b.t[-1]))  # decision L394
+    acc = ride_accelerometer(session)  # decision L402
+    kinds, records = _rides(b.t, p, ends, starts, pause, acc, vibration_kind)
+    records = _after_last(b.t, p, steps, records, float(b.t[-1]), acc, vibration_kind)  # decision L394
     # before the columns every track ends its steps.csv with (L97's stride_time_s ... grade_pct, E51's order)
     at = list(steps.columns).index("stride_time_s") if "stride_time_s" in steps else len(steps.columns)
     steps = steps.copy()
@@ -143,6 +168,28 @@ def window_rides(steps: pd.DataFrame, records: list[dict] | None, t0: float, t1:
     return steps, out
 
 
+def pauses_in_z(steps: pd.DataFrame) -> bool:
+    """Whether a track's z carries its standstills' change ``pause_dz_m``: a lower-back track's does (W158: ``dz_m +
+    pause_dz_m`` sum to ``z``), a foot track's does not (its altitude is its strides' own, L378)."""
+    return bool(len(steps)) and not ("unit" in steps and bool((steps["unit"].astype(str) == "foot").all()))
+
+
+def window_first_z(traj: pd.DataFrame, whole: pd.DataFrame, kept: pd.DataFrame) -> pd.DataFrame:
+    """Decision L401: a window's trajectory (its first row the last one at or before the first kept step's start)
+    with that row's z moved by the ride :func:`window_rides` left out of the first kept step (``whole``: the kept
+    steps before it, ``kept`` after it), so ``altitude_change_m`` (last z minus first), ``ascent_m`` and
+    trajectory.csv hold the window's own change: its steps' ``dz_m`` and the ``pause_dz_m`` steps.csv keeps. Only
+    where z carries the standstills' change (:func:`pauses_in_z`); unchanged when no ride was left out."""
+    if not len(traj) or not len(kept) or "z" not in traj or "pause_dz_m" not in kept or not pauses_in_z(kept):
+        return traj
+    dropped = float(np.nan_to_num(whole["pause_dz_m"].iloc[0]) - np.nan_to_num(kept["pause_dz_m"].iloc[0]))
+    if dropped == 0.0 or float(traj["t"].iloc[0]) > float(kept["start_s"].iloc[0]) + 1e-9:
+        return traj  # no ride left out, or no row before the step (its rows already hold the ride)
+    traj = traj.copy()
+    traj.loc[0, "z"] = float(traj["z"].iloc[0]) + dropped
+    return traj
+
+
 def ride_lines(records: list[dict]) -> list[str]:
     """Decisions L376, L377: one line for the rides that are neither a lift nor an escalator (not counted as floors),
     one per ride with a barometer gap over :data:`RIDE_GAP_S` (B298) and one for the escalator rides' horizontal
@@ -150,17 +197,27 @@ def ride_lines(records: list[dict]) -> list[str]:
     lines = []
     other = [r for r in records if r["kind"] == "other"]
     if other:
+        from pdrlearn.kernels.pause_ride import VEHICLE_VIBRATION_MPS2, ride_kind
+
+        shaken = ("" if all(ride_kind(r["dz_m"], r["duration_s"]) == "other" for r in other) else
+                  f", or they vibrate like a vehicle ({VEHICLE_VIBRATION_MPS2:g} m/s^2 or more; decision L402)")
         shown = ", ".join(f"{r['dz_m']:+.1f} m over {r['duration_s']:.0f} s at {r['start_s']:.0f} s" for r in other[:3])
         lines.append(f"{len(other)} barometric climb(s) while standing ({shown}{', ...' if len(other) > 3 else ''}) "
                      "are neither a lift (0.5 m/s or more vertically) nor an escalator (0.15-0.5 m/s for at most 45 "
-                     "s): a vehicle on a hill or a ride of another kind, so they count no floors; their height stays "
-                     "in the altitude (rides.csv kind other; decision L376)")
+                     f"s){shaken}: a vehicle on a hill or a ride of another kind, so they count no floors; their "
+                     "height stays in the altitude (rides.csv kind other; decision L376)")
     for r in records:
         if r.get("gap_s", 0.0) > RIDE_GAP_S:  # decision B298
             lines.append(f"wBarometer.csv has a gap of {r['gap_s']:.1f} s inside ride {r['ride']} "
                          f"({r['start_s']:.0f}-{r['end_s']:.0f} s): its duration ({r['duration_s']:.1f} s), rate and "
                          f"kind ({r['kind']}) are interpolated across it; check the barometer's recording (decision "
                          "B298)")
+    for r in records:
+        if r.get("vibration_unread"):  # decision B301: the ride_vibration option could not read this ride
+            lines.append(f"{r['vibration_unread']}.csv has no usable samples during ride {r['ride']} "
+                         f"({r['start_s']:.0f}-{r['end_s']:.0f} s): the ride_vibration option cannot tell a vehicle "
+                         f"there, so its kind ({r['kind']}) is its vertical rate's alone; check that unit's recording "
+                         "(decision B301)")
     esc = [r for r in records if r["kind"] == "escalator"]
     if esc:
         travel = sum(r["horizontal_est_m"] for r in esc)

@@ -472,13 +472,14 @@ def _stop_rotation(imu: WaistIMU, w: np.ndarray, still: np.ndarray | None, t_a: 
 
 def _still_samples(imu: WaistIMU, still_mask=None) -> np.ndarray:
     """L296's still samples of the waist (``standstill_mask`` on the navigation-frame IMU, its defaults):
-    ``still_mask()`` when given (:func:`track_waist`'s, computed once per track and shared by L296, W269 and W285),
-    else computed now."""
+    ``still_mask()`` when given (:func:`track_waist`'s, shared by L296, W269 and W285), else the IMU's own mask
+    (:func:`~pdrlearn.waist.ahrs.nav_still`: computed once per IMU object and shared with W122's step lengths,
+    decision W354)."""
     if still_mask is not None:
         return still_mask()
-    from pdrlearn.signal.conditioning import standstill_mask
+    from pdrlearn.waist.ahrs import nav_still
 
-    return standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
+    return nav_still(imu)
 
 
 def _with_still_before(steps: pd.DataFrame, imu: WaistIMU, still: np.ndarray) -> pd.DataFrame:
@@ -592,7 +593,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "rest_bias": True,  # L296: a long rest's rotation less the bias of its still samples
                    "lying_heading": True,  # W269, W271 (adopted by W270): lying turns it by the long axis's yaw only
                    "rest_frame": False,  # W285: harmonic headings less the AHRS frame's turn over a long rest
-                   "climb_veto": False}  # L314's ramp veto from W108's climbs: opt-in (decision L330)
+                   "climb_veto": False,  # L314's ramp veto from W108's climbs: opt-in (decision L330)
+                   "ride_vibration": False}  # L402: a vibrating ride is a vehicle's; L403: not met, opt-in
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -915,6 +917,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
+             "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
              "rest_frame": None,  # W285: a PARAMS.json option only
              "pll_slow_check": None,  # W289: a PARAMS.json option only
@@ -1040,7 +1043,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
         steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
-    still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: once per track (W269, W285)
+    still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: the IMU's own (W285, W354)
     lying = (_lying_heading(imu, steps, transfers, still_mask) if bool(o["lying_heading"]) and method == "gyro"
              and integrate_stops and not realtime else None)  # decision W269: offline (W222's lying reads ahead)
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
@@ -1080,8 +1083,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     elif not steps["has_next"].to_numpy(bool).any() and len(steps):
         warnings.append(f"the {len(steps)} contact(s) counted are isolated, none followed by another within "
                         f"{MAX_STEP_S:g} s: the chair transfers' own movement, no step and no distance (decision W312)")
-    bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs,
-                                                      p.gyro_bias_rps))  # decision W105
+    bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs, p.gyro_bias_rps,
+                                                      still=imu.still()))  # decisions W105, W354
     if bias_line:
         warnings.append(bias_line)
     note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
@@ -1097,10 +1100,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = steps.assign(climb=climbs)  # decision L314: W108's stair climbs, which no ramp is made of (grade.py)
     rides: list[dict] | None = None  # None: no barometer read (n_rides empty, no rides.csv)
     if z is not None:  # decisions L375-L377: each ride's kind (steps.csv ride), rides.csv and their lines
-        from pdrlearn.track.rides import ride_lines, ride_rows
+        from pdrlearn.track.rides import ride_accelerometer, ride_lines, ride_rows
 
         ride_kinds, rides = ride_rows(baro.t, baro.values[:, 0], steps, float(imu.t[0]), z, z_start,
-                                      t_end=float(imu.t[-1]))  # L394
+                                      t_end=float(imu.t[-1]), acc=ride_accelerometer(session),  # L394, L402
+                                      vibration_kind=bool(o["ride_vibration"]))  # L403: opt-in
         steps = steps.assign(ride=ride_kinds)
         warnings.extend(ride_lines(rides))
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:

@@ -141,8 +141,9 @@ def window_episodes(rows: list[dict] | None, t0: float, t1: float, *, clip: bool
 
 def window_track(result: TrackResult, session: Session, t0: float, t1: float) -> tuple[TrackResult, Session]:
     """The track and the session cut to ``[t0, t1]`` (the session's clock; module docstring). The trajectory keeps
-    the position at the first kept step's start (the last row at or before it) and the rows after it up to the
-    last kept step's end. ``info["window"]`` records the window."""
+    the position at the first kept step's start (the last row at or before it; decision L401: its altitude without
+    a ride that L395 leaves out of the window) and the rows after it up to the last kept step's end.
+    ``info["window"]`` records the window."""
     steps = result.steps
     t_rec = session.t_recording_start  # the seconds of check_window (B81's cut does not move them)
     warnings, notes = [], []
@@ -172,9 +173,11 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
             if len(traj) else traj
     info = {**result.info, "window": {"start_s": t0 - t_rec, "end_s": t1 - t_rec}}
     if result.info.get("rides") is not None:  # decision L395: the rides whose standstill lies inside the window
-        from pdrlearn.track.rides import window_rides
+        from pdrlearn.track.rides import window_first_z, window_rides
 
+        whole_steps = steps
         steps, info["rides"] = window_rides(steps, result.info["rides"], t0, t1)
+        traj = window_first_z(traj, whole_steps, steps)  # decision L401: nor the altitude of the window
     if "freezes" not in info:  # decision L272: a foot track's episodes, of the whole session, then cut below
         from pdrlearn.track.freezes import session_freezes
 

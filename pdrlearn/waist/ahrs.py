@@ -15,7 +15,9 @@ Frames: the sensor axes are mapped to the body frame FLU with the session's decl
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
+from contextlib import contextmanager
+from contextvars import ContextVar
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -53,6 +55,8 @@ class WaistIMU:
         evidence that the unit stood still (decision W136); None when not known (all recorded)
     gyr_body : (n, 3) angular rate in the body frame FLU (rad/s), as the AHRS read it: the rate about the trunk's
         long axis while lying (decision W269); None when the data came without it
+
+    :meth:`still` is the navigation-frame standstill mask, computed once per object (decision W354).
     """
 
     t: np.ndarray
@@ -67,10 +71,33 @@ class WaistIMU:
     up_body: np.ndarray | None = None
     bridged: np.ndarray | None = None
     gyr_body: np.ndarray | None = None
+    _still: np.ndarray | None = field(default=None, init=False, repr=False, compare=False)
 
     @property
     def w_z(self) -> np.ndarray:
         return self.gyr_nav[:, 2]
+
+    def still(self) -> np.ndarray:
+        """Decision W354: :func:`~pdrlearn.signal.conditioning.standstill_mask` with its defaults on ``acc_nav``,
+        ``gyr_nav`` at ``fs`` (L296's still samples, W122's standstills), computed on the first call and shared
+        (read-only) by every later reader of this object."""
+        if self._still is None:
+            from pdrlearn.signal.conditioning import standstill_mask
+
+            still = standstill_mask(self.acc_nav, self.gyr_nav, self.fs)
+            still.setflags(write=False)
+            self._still = still
+        return self._still
+
+
+def nav_still(signals) -> np.ndarray:
+    """Decision W354: the standstill mask (``standstill_mask``, its defaults) of navigation-frame ``signals``
+    (``acc_nav``, ``gyr_nav``, ``fs``): a :class:`WaistIMU`'s own :meth:`~WaistIMU.still`, else computed."""
+    if isinstance(signals, WaistIMU):
+        return signals.still()
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    return standstill_mask(signals.acc_nav, signals.gyr_nav, signals.fs)
 
 
 def _quat_wxyz_to_rotation(q: np.ndarray) -> Rotation:
@@ -164,7 +191,36 @@ def waist_imu(session: Session, *, gain: float = MADGWICK_GAIN, init_s: float = 
     t, acc, gyr = body_data(session)
     imu = imu_from_body(t, acc, gyr, gain=gain, init_s=init_s)
     imu.bridged = bridged_samples(session, t)
+    kept = _KEPT.get()
+    if kept is not None:  # decision W353: inside kept_imus(), for a later reader of the same session
+        kept.append((session, float(gain), float(init_s), imu))
     return imu
+
+
+#: decision W353: the list :func:`kept_imus` collects :func:`waist_imu`'s results in (None: outside it)
+_KEPT: ContextVar[list | None] = ContextVar("pdrlearn_kept_waist_imus", default=None)
+
+
+@contextmanager
+def kept_imus():
+    """Decision W353: inside the ``with`` block every :func:`waist_imu` result is kept with its session, gain and
+    ``init_s`` in the yielded list, for :func:`kept_imu` to hand to a later reader (``track --gait-quality``'s W350
+    reads the track's own AHRS instead of running it again). Nothing is kept outside the block."""
+    kept: list = []
+    token = _KEPT.set(kept)
+    try:
+        yield kept
+    finally:
+        _KEPT.reset(token)
+
+
+def kept_imu(kept: list, session: Session, *, gain: float = MADGWICK_GAIN, init_s: float = 0.5) -> WaistIMU:
+    """Decision W353: the :class:`WaistIMU` that :func:`waist_imu` computed inside :func:`kept_imus` for this very
+    ``session`` object with these settings; else :func:`waist_imu` runs (the same numbers either way)."""
+    for s, g, i, imu in kept:
+        if s is session and g == float(gain) and i == float(init_s):
+            return imu
+    return waist_imu(session, gain=gain, init_s=init_s)
 
 
 def bridged_samples(session: Session, t: np.ndarray) -> np.ndarray:

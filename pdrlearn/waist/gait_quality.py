@@ -34,7 +34,9 @@ N_HARMONICS = 20
 
 #: decision W352: the one warning line of ``track --gait-quality`` (the measures are opt-in until understood)
 NOT_VALIDATED = ("gait quality (--gait-quality) is not validated against real recordings: healthy mobgap walks read "
-                 "below the published healthy ranges (W352); compare within a person, not against published norms")
+                 "below the published healthy ranges (W352); compare within a person at the same walking speed "
+                 "(the same walker slowing down reads lower regularity and harmonic ratios, W360), not against "
+                 "published norms")
 #: decision W350: bouts.csv's gait-quality columns, in order
 QUALITY_COLUMNS = ("hr_ap", "hr_v", "hr_ml", "step_regularity_v", "stride_regularity_v", "step_symmetry_v",
                    "step_regularity_ap", "stride_regularity_ap", "step_symmetry_ap", "rms_ap_mps2", "rms_ml_mps2",

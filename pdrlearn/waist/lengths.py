@@ -191,10 +191,11 @@ def _still_displacements(signals, idx: np.ndarray, use: np.ndarray,
     """Decision W122: per step row (``use``; a W27 owner over its whole window) the unit's horizontal travel from
     its contact to the next when it stands still in between (:func:`~pdrlearn.signal.conditioning.standstill_mask`
     with its defaults, :func:`~pdrlearn.waist._kernels.still_displacement`), and (W134) the duration (s) of the
-    step's longest still run (:func:`~pdrlearn.waist._kernels.longest_still_run`); NaN elsewhere."""
-    from pdrlearn.signal.conditioning import standstill_mask
+    step's longest still run (:func:`~pdrlearn.waist._kernels.longest_still_run`); NaN elsewhere. The mask is the
+    track's own (:func:`~pdrlearn.waist.ahrs.nav_still`, decision W354)."""
+    from pdrlearn.waist.ahrs import nav_still
 
-    still = standstill_mask(signals.acc_nav, signals.gyr_nav, signals.fs)
+    still = nav_still(signals)
     bridged = getattr(signals, "bridged", None)
     if bridged is not None:  # W136: samples made up inside a gap of dropped samples (W34) are no standstill
         still = still & ~bridged

@@ -123,6 +123,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "fast_fill",  # W242: the offline detector's sequence rules only
                           "ap_above_mean",  # W265: W29's IC of the offline detector only
                           "climb_veto",  # L330: W108's climbs read the whole recording (L314's veto, opt-in)
+                          "ride_vibration",  # L402 / L403: the live tracker tells no ride's kind (no rides.csv)
                           "lying_heading",  # W269: W222's lying is labelled on the whole recording
                           # E146: W231's ride is applied live only where the PARAMS.json gives pause_ride true (E146's
                           # rule was not met for the default); L308 applies rest_bias live (E147: no longer named)

@@ -482,21 +482,24 @@ STILL_YAW_RATE_WARN_RPS = 0.015
 
 
 def still_yaw_rate(t: np.ndarray, acc_nav: np.ndarray, gyr_nav: np.ndarray, fs: float,
-                   bias_rps: float = 0.0, *, vertical: np.ndarray | None = None) -> tuple[float, float, float] | None:
+                   bias_rps: float = 0.0, *, vertical: np.ndarray | None = None,
+                   still: np.ndarray | None = None) -> tuple[float, float, float] | None:
     """``(rate, t0, t1)``: the mean vertical angular rate (rad/s, ``gyr_nav[:, 2]``, or ``vertical`` when given,
     less the calibrated ``bias_rps``) over the first standstill of :data:`STILL_S` (``standstill_mask``: magnitudes,
-    so any frame), and its times; None when the unit never stands still that long (decision W105)."""
+    so any frame), and its times; None when the unit never stands still that long (decision W105). ``still``: that
+    mask when the caller has it (decision W354)."""
     up = gyr_nav[:, 2] if vertical is None else np.asarray(vertical, dtype=float)
-    for a, stop in still_periods(t, acc_nav, gyr_nav, fs):
+    for a, stop in still_periods(t, acc_nav, gyr_nav, fs, still=still):
         return float(np.mean(up[a:stop])) - bias_rps, float(t[a]), float(t[stop - 1])
     return None
 
 
-def still_periods(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, fs: float):
+def still_periods(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, fs: float, *, still: np.ndarray | None = None):
     """W105's still periods: ``(start, stop)`` sample indices (stop exclusive) of each standstill of at least
-    ``STILL_S[0]`` s (``standstill_mask``), cut to its first ``STILL_S[1]`` s, in time order."""
+    ``STILL_S[0]`` s (``standstill_mask``, or ``still``, that mask already computed: W354), cut to its first
+    ``STILL_S[1]`` s, in time order."""
     lo, hi = STILL_S
-    for a, b in runs(standstill_mask(acc, gyr, fs)):
+    for a, b in runs(standstill_mask(acc, gyr, fs) if still is None else still):
         if t[b - 1] - t[a] >= lo - 1.5 / fs:
             yield a, a + int(np.searchsorted(t[a:b], t[a] + hi, side="right"))
 
