@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from pdrlearn.errors import DISK_FULL_ERRNOS, DataError, PdrlearnError, shell_quote
+from pdrlearn.warning_lines import captured_warnings  # noqa: F401  (decision E154: shared; imported from here too)
 
 log = logging.getLogger(__name__)
 
@@ -365,36 +366,6 @@ def run_cohort(
         client.close()
         if cluster is not None:
             cluster.close()
-
-
-@contextmanager
-def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterator[list[str]]:
-    """Collect the WARNING (and worse) records of ``logger`` and its children raised in the body into the
-    yielded list instead of letting the logger's handlers print them (records below WARNING pass as
-    before). ``track-all`` tracks each session inside it and says each distinct warning once per batch with
-    the sessions it concerns (decision C12): the ~250-character "no model" line was printed per session.
-    ``echo=True``: the handlers print them too (``evaluate`` keeps its printed warnings in its JSON, B95)."""
-    log_ = logging.getLogger(logger)
-    messages: list[str] = []
-
-    class _Collect(logging.Handler):
-        def emit(self, record: logging.LogRecord) -> None:
-            messages.append(record.getMessage())
-
-    def below_warning(record: logging.LogRecord) -> bool:
-        return record.levelno < logging.WARNING
-
-    others = [] if echo else list(log_.handlers)
-    for h in others:
-        h.addFilter(below_warning)
-    collect = _Collect(logging.WARNING)
-    log_.addHandler(collect)
-    try:
-        yield messages
-    finally:
-        log_.removeHandler(collect)
-        for h in others:
-            h.removeFilter(below_warning)
 
 
 def grouped_warning(text: str, names: Sequence[str], total: int, noun: str = "sessions") -> str:

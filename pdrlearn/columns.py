@@ -256,6 +256,8 @@ SESSIONS: tuple[Column, ...] = (
     ("recording_start", "date-time", "text", "the clock time of the recording's first sample, ISO 8601 at its own "
                                              f"offset; {_WITH_START}"),
     ("pdrlearn_version", _ID, "text", "the pdrlearn version that wrote the row (run.json names the commit, L136)"),
+    ("schema_version", _ID, "integer", "the version of summary.json's keys (E155): raised when a key is renamed, "
+                                       "removed or changes meaning, not when one is added"),
     ("step_f1", "fraction", "number", "tracked strides / steps against the reference contacts, F1 (L36)"),
     ("step_f1_all", "fraction", "number", "lower back: F1 over every reference contact"),
     ("step_f1_same_foot_gaps_scored", "fraction", "number", "lower back: F1 with same-foot gaps scored"),
@@ -945,17 +947,34 @@ RIDES: tuple[Column, ...] = (
 )
 
 
+#: decision B309: the trajectory every track and run writes (trajectory.csv of the output folder; not the session's
+#: input trajectory.csv, the path reference with ``timestamp`` in ms, D1)
+TRAJECTORY: tuple[Column, ...] = (
+    ("t", "s", "number", "the time of the position: the start, then each step's (stride's) end, on the session's "
+                         "clock"),
+    ("x", "m", "number", "east of the start (ENU; a track with a relative heading sets off along x unless "
+                         "--initial-heading turns it, L98)"),
+    ("y", "m", "number", "north of the start (ENU)"),
+    ("z", "m", "number", "up from the start (--start LAT,LON,ALT: the altitude, L56)"),
+    ("lat", "deg", "number", "latitude (WGS-84); empty without --start or geodetic fixes"),
+    ("lon", "deg", "number", "longitude (WGS-84); empty without --start or geodetic fixes"),
+    ("pos_sigma_m", "m", "number", "the modelled 1-sigma radius of the horizontal position (L128); not with fixes"),
+)
+
+
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, TURNS, PERIODS, LAPS, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE,
-    FREEZES,
-    RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
+    FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
          "steps.csv (foot)": "Foot tracks (plasys; `pdrlearn track`, `run`): one row per stride of the tracked foot "
                              "(E137); an empty cell is a value the stride cannot have. Columns marked with an option "
                              "or a model appear only with it.",
+         "trajectory.csv": "Every track and run (decision B309): the output's trajectory, one row per position. A "
+                           "session's own trajectory.csv (its path reference, `timestamp` in ms) is an input of "
+                           "another layout (README, Data format).",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
                            "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
                            "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines."}

@@ -14,4 +14,5 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "freezes.csv", "ramps.csv",  # L301
                                 "rides.csv",  # L377
                                 "steps.csv", "steps.csv (foot)",  # E137
+                                "trajectory.csv",  # B309
                                 "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")  # L287

@@ -396,13 +396,16 @@ def _track_job(args: dict) -> dict:
     from pdrlearn.cli.resume import write_record
     from pdrlearn.cli.track import track_session, write_track
     from pdrlearn.track.bouts import bout_totals
+    from pdrlearn.warning_lines import merged_warnings
 
     with captured_warnings() as warned:
         try:
             tracked = track_session(Path(args["session_dir"]), args["settings"])
             with atomic_directory(Path(args["out"])) as tmp:
                 summary, _ = write_track(tmp, tracked)
-                value = {"summary": summary, "warnings": list(warned), "content_id": tracked.get("content_id"),
+                # decision E154: the summary's warnings (every one track_session caught), then any later one
+                said = merged_warnings(summary.get("info", {}).get("warnings") or [], warned, args["session_dir"])
+                value = {"summary": summary, "warnings": said, "content_id": tracked.get("content_id"),
                          "bout_totals": bout_totals(tracked["bouts"])}  # cohort C25: of bouts.csv, for subjects.csv
                 # cohort C41: what made the folder and its result, for `--resume`; written last, in the folder
                 return write_record(tmp, args["resume_key"], args["input_sha256"], value)

@@ -273,6 +273,8 @@ def track(
     no_resample: bool = NO_RESAMPLE_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
+    strict: bool = typer.Option(False, "--strict", help="Exit with code 3 when the track gave any warning (the "
+                                "outputs are still written; summary.json info.warnings lists them; decision E156)."),
 ) -> None:
     """Track a session: per-step table, trajectory, path figure and summary (errors vs ground truth).
 
@@ -310,6 +312,8 @@ def track(
 
         pdrlearn track out/sim/D_u1 --clock-drift-ppm 200 --out out/D_drift   # its waist clock gains 200 ppm
 
+        pdrlearn track out/sim/D_u1 --model oracle --strict --json --out out/D_qa   # exit 3 on any warning (E156)
+
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
     arguments = dict(locals())  # decision L122: every option as given, defaults included (before any other name)
@@ -342,8 +346,17 @@ def track(
     replaced(out, was)
     if as_json:
         print_json(summary)
-        return
-    _print_summary(summary, out, aided, waist_unit=(Path(session_dir) / "wAccelerometer.csv").is_file())  # L316
+    else:
+        _print_summary(summary, out, aided, waist_unit=(Path(session_dir) / "wAccelerometer.csv").is_file())  # L316
+    warned = summary.get("info", {}).get("warnings") or []
+    if strict and warned:  # decision E156: the outputs are written; the exit code says the track warned
+        typer.echo(f"strict: {len(warned)} warning(s) (summary.json info.warnings); exit code {STRICT_EXIT}", err=True)
+        raise typer.Exit(STRICT_EXIT)
+
+
+#: decision E156: ``track --strict``'s exit code when the track gave a warning (0 ok, 1 some sessions / users
+#: failed, 2 bad input, nothing written, 3 written with warnings)
+STRICT_EXIT = 3
 
 
 #: decision E93: ``track``'s options that ``track-all`` does not take, and why (tests/test_track_all_options_e93.py
@@ -351,6 +364,7 @@ def track(
 NOT_IN_TRACK_ALL = {
     "--gnss": "a per-recording fix file", "--gnss-period": "thins --gnss", "--fixes": "a per-recording fix file",
     "--fix-period": "thins --fixes",
+    "--strict": "track-all's exit code 1 names failed sessions; sessions.csv's n_warnings counts each one's (E156)",
 }
 
 
@@ -563,7 +577,21 @@ def _refuse_waist_pipeline_without_waist(pipeline: str, session) -> None:
 
 def track_session(session_dir: Path, settings: dict) -> dict:
     """Read and track one session with :func:`track_settings`'s options; return what :func:`write_track`
-    writes (the session, the result, its summary.json dict, the pipeline, whether it was aided)."""
+    writes (the session, the result, its summary.json dict, the pipeline, whether it was aided). Decision E154:
+    every warning logged on the way (reading, tracking, the summary's checks) is in the summary's
+    ``info["warnings"]`` (and the result's), each once, as ``track-all``'s sessions.csv gives them; E155: with their
+    codes and the summary's ``schema_version``."""
+    from pdrlearn.warning_lines import captured_warnings, machine_summary
+
+    with captured_warnings(echo=True) as logged:
+        tracked = _track_session(session_dir, settings)
+    summary = machine_summary(tracked["summary"], logged, str(session_dir))  # decisions E154, E155
+    tracked["result"].info["warnings"] = list(summary["info"]["warnings"])
+    return tracked
+
+
+def _track_session(session_dir: Path, settings: dict) -> dict:
+    """:func:`track_session` without E154's capture."""
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline, resolve_pipeline
     from pdrlearn.track.evaluate import track_summary

@@ -1177,6 +1177,19 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         A missing folder, no sensor file, a malformed CSV, non-numeric/NaN values, unsorted or duplicate
         timestamps, implausible units, an empty file or a broken ``meta.json`` (one-line message).
     """
+    from pdrlearn.warning_lines import captured_warnings
+
+    with captured_warnings(echo=True) as logged:  # decision E154: the reading's warnings stay with the session
+        session = _read_session(folder, check_units=check_units, uniform_clock=uniform_clock,
+                                bridge_drops=bridge_drops, streamed=streamed, spans=spans,
+                                drop_partial_row=drop_partial_row, command=command)
+    session._read_warnings = list(logged)
+    return session
+
+
+def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed, spans, drop_partial_row,
+                  command) -> Session:
+    """:func:`read_session` without E154's capture."""
     folder = folder_arg(folder, "read_session")  # decision B179
     if not folder.exists():
         raise DataError(f"{folder}: session folder not found; pass a folder with fAccelerometer.csv etc.")

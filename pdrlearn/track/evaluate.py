@@ -1468,5 +1468,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary["info"] = summary_info(summary["info"])  # decision E141: W182's, W213's, L210's rows and aid's fixes
     if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
         summary["frames_inferred"] = session.frames_inferred
+    from pdrlearn.warning_lines import machine_summary
+
+    machine_summary(summary, [], session.where)  # decision E155 (C14: the API's summary is summary.json's)
     return json_safe(json.loads(json.dumps(
         summary, default=lambda o: o.item() if hasattr(o, "item") else str(o))))
