@@ -13,6 +13,32 @@ from pdrlearn.cohort import session_files
 from pdrlearn.errors import DataError, output_error
 from pdrlearn.textfile import read_text
 
+#: decision E157: the significant digits of the floats in track's and run's CSV files
+CSV_FLOAT_FORMAT = "%.10g"
+#: decision E164: a float column reaching this magnitude (an epoch time in seconds) is written with fixed decimals
+WIDE_FLOAT_MIN = 1e6
+#: decision E164: its decimals (microseconds of a time in seconds)
+WIDE_FLOAT_DECIMALS = 6
+
+
+def write_table_csv(df, path) -> None:
+    """Decision E164: ``df`` as track / run write their tables: floats at :data:`CSV_FLOAT_FORMAT`'s 10 significant
+    digits, except a float column whose largest finite magnitude reaches :data:`WIDE_FLOAT_MIN`, written with
+    :data:`WIDE_FLOAT_DECIMALS` fixed decimals (trailing zeros dropped): 10 digits of an epoch time in seconds
+    (1733400005.151) are whole seconds. Columns below the bound are written as before, byte for byte."""
+    import numpy as np
+
+    wide = {}
+    for c in df.columns:
+        if df[c].dtype.kind == "f":
+            v = np.asarray(df[c], dtype=float)
+            ok = np.isfinite(v)
+            if ok.any() and np.abs(v[ok]).max() >= WIDE_FLOAT_MIN:
+                txt = np.full(v.shape, "", dtype=object)
+                txt[ok] = [f"{x:.{WIDE_FLOAT_DECIMALS}f}".rstrip("0").rstrip(".") for x in v[ok].tolist()]
+                wide[c] = txt
+    (df.assign(**wide) if wide else df).to_csv(path, index=False, float_format=CSV_FLOAT_FORMAT)
+
 
 def json_default(o):
     """:func:`pdrlearn.io.plasys.json_default`, imported when used: numpy and pandas stay out of

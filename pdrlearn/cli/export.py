@@ -12,6 +12,7 @@ import typer
 
 from pdrlearn.cli import track as _track
 from pdrlearn.cli.common import (
+    CSV_FLOAT_FORMAT,
     DPI_HELP,
     FORCE_HELP,
     INITIAL_HEADING_HELP,
@@ -27,6 +28,7 @@ from pdrlearn.cli.common import (
     replaced,
     start_option,
     storey_height_option,
+    write_table_csv,
 )
 from pdrlearn.cli.gaplines import GapLines
 
@@ -939,10 +941,6 @@ def _latency(lat: list[float]) -> dict:
     return {q: float(np.percentile(lat, n) * 1e3) if lat else None for q, n in (("p50", 50), ("p99", 99))}
 
 
-#: decision E157: the significant digits of the floats in run's (and track's) CSV files
-CSV_FLOAT_FORMAT = "%.10g"
-
-
 def written_floats(value):
     """Decision E157: ``value`` (a float, or a dict / list of them, nested) with each float at the digits the CSV files
     hold (:data:`CSV_FLOAT_FORMAT`); other values unchanged. The runtime's floats differ in their last bits with the
@@ -999,11 +997,11 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         from pdrlearn.track.evaluate import with_reference_columns
 
         steps = with_reference_columns(result, session)  # decision E135: the reference pairs, as track
-        steps.to_csv(tmp / "steps.csv", index=False, float_format=CSV_FLOAT_FORMAT)
-        result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format=CSV_FLOAT_FORMAT)
+        write_table_csv(steps, tmp / "steps.csv")  # decision E164: an epoch time keeps its decimals
+        write_table_csv(result.trajectory, tmp / "trajectory.csv")
         # L124 (E98), L200, L202: bouts.csv, turns.csv ... as track; E144: its clock columns
         for name, table in event_tables(result, bouts, start=start).items():
-            table.to_csv(tmp / name, index=False, float_format=CSV_FLOAT_FORMAT)
+            write_table_csv(table, tmp / name)
         plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
         from pdrlearn.track.geoexport import write_geo_files

@@ -25,14 +25,10 @@ from pdrlearn.cli.common import (
     storey_height_option,
     transfer_line,
     walk_line,
+    write_table_csv,
 )
 from pdrlearn.errors import DataError
 from pdrlearn.textfile import read_text
-
-
-def _write_csv(df, path: Path) -> None:
-    df.to_csv(path, index=False, float_format="%.10g")
-
 
 #: The tracking options, shared by ``track`` and ``track-all`` (one declaration each, so the two commands
 #: cannot drift apart). ``--gnss``/``--fixes`` are per-recording files and belong to ``track`` only.
@@ -970,14 +966,14 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
 
         plot_aided(result, dest / "aided.png", truth=session.trajectory,
                    title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
-    _write_csv(traj, dest / "trajectory.csv")
+    write_table_csv(traj, dest / "trajectory.csv")
     from pdrlearn.track.evaluate import with_reference_columns
 
-    _write_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
+    write_table_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
     # decisions L124 (E98: the old speed_m_s last), L200, W182, L277; L298: clock columns with a recording start
     for name, table in event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start"),
                                      tracked.get("laps")).items():
-        _write_csv(table, dest / name)
+        write_table_csv(table, dest / name)
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
