@@ -247,6 +247,9 @@ SESSIONS: tuple[Column, ...] = (
                                                      "distance in each full minute from the first step (L383)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
                                          "(our choice, L383); empty under 2 full minutes"),
+    ("splits_m", "m", "number", "--splits only, summary.json only (a list): the distance marks given (L411)"),
+    ("split_times_s", "s", "number", "--splits only, summary.json only (a list): each mark's time from the first "
+                                     "step's start (splits.csv's time_s); empty for a mark beyond the path (L411)"),
     ("per_align", _ID, "text", "--per-align clock or first-step only: clock (periods.csv cut at the clock's whole "
                                "periods, L299) or first-step (from the first tracked step, L381)"),
     ("per_start_s", "s", "number", "--per only: the first period's start (the recording's or --window's start, or "
@@ -893,6 +896,16 @@ LAPS: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+#: decision L411: a track's splits.csv (``track --splits``), one row per distance mark the tracked path reaches
+SPLITS: tuple[Column, ...] = (
+    ("split", "index", "integer", "the mark's number, from 1"),
+    ("distance_m", "m", "number", "the mark: metres along the tracked path from the first step (--splits)"),
+    ("time_s", "s", "number", "when the path passes it, from the first step's start (interpolated within the stride "
+                              "that crosses it; a rest adds no distance, L411)"),
+    ("split_time_s", "s", "number", "time_s minus the previous mark's (the first: time_s)"),
+    ("speed_mps", "m/s", "number", "the metres since the previous mark / split_time_s"),
+)
+
 
 #: decision L377: ``rides.csv`` (``track`` of a lower-back unit), one row per ride while standing
 RIDES: tuple[Column, ...] = (
@@ -913,8 +926,8 @@ RIDES: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, BOUTS, TURNS, PERIODS, LAPS, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES,
-    RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
+    SESSIONS, GROUPS, SUBJECTS, BOUTS, TURNS, PERIODS, LAPS, SPLITS, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE,
+    FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
