@@ -200,6 +200,10 @@ SESSIONS: tuple[Column, ...] = (
     ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
     ("n_side_strides", "count", "integer", "foot: strides of side-stepping runs (L219 / L228's sideways rows), "
                                            "not counted as backward (L270); empty on the lower back"),
+    ("direction_changes", "count", "integer", "foot: changes of travel direction (steps.csv travel: forward / "
+                                              "backward / left / right, turn and empty rows skipped; "
+                                              "direction_changes.csv's rows, L412); a turn is not one; empty on "
+                                              "the lower back"),
     ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
     ("n_steps_left", "count", "integer", "lower back: steps whose side (W129's pelvis sway) is the left foot "
                                          "(W228); empty on a foot track (n_strides_one_foot)"),
@@ -755,6 +759,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),
     ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
                                            "L224)"),
+    ("travel", _ID, "text", "the stride's travel direction from the foot's facing (L412): forward, backward (as "
+                            "backward_travel), left / right (a side-stepping run's stride, sideways; side when "
+                            "streamed), turn (the foot turned 30 deg or more), empty (a gap, impossible or under "
+                            "0.15 m); model-free, unlike direction"),
     ("length_class", _ID, "text", "M3's length class (empty without a model)"),
     ("confidence", "fraction", "number", "the class confidence (1 without a model)"),
     ("p_<task>_<class>", "fraction", "number", "with a model: the class probabilities (one column each)"),
@@ -906,6 +914,17 @@ SPLITS: tuple[Column, ...] = (
     ("speed_mps", "m/s", "number", "the metres since the previous mark / split_time_s"),
 )
 
+#: decision L412: a foot track's direction_changes.csv, one row per change of travel direction
+DIRECTION_CHANGES: tuple[Column, ...] = (
+    ("change", "index", "integer", "the change's number, from 1"),
+    ("start_s", "s", "number", "the start of the first stride of the new travel direction"),
+    ("from_travel", _ID, "text", "the previous labelled stride's travel (steps.csv travel: forward, backward, left, "
+                                 "right, side)"),
+    ("to_travel", _ID, "text", "this stride's travel"),
+    ("row", "index", "integer", "its row of steps.csv, from 0"),
+    *_clocks("start_s"),
+)
+
 
 #: decision L377: ``rides.csv`` (``track`` of a lower-back unit), one row per ride while standing
 RIDES: tuple[Column, ...] = (
@@ -926,8 +945,8 @@ RIDES: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, BOUTS, TURNS, PERIODS, LAPS, SPLITS, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE,
-    FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
+    SESSIONS, GROUPS, SUBJECTS, BOUTS, TURNS, PERIODS, LAPS, SPLITS, DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE,
+    TUG_TRIAL_TABLE, FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",

@@ -918,6 +918,11 @@ def clinical_tables(result, bouts) -> dict:
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+    from pdrlearn.track.travel import direction_change_table
+
+    changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction
+    if changes is not None:
+        out["direction_changes.csv"] = changes
     if result.info.get("rides") is not None:  # decision L377: a lower-back track's rides
         from pdrlearn.track.rides import ride_table
 
@@ -1037,6 +1042,9 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         from pdrlearn.track.corridor import corridor_line
 
         typer.echo(corridor_line(summary))
+    if summary.get("direction_changes"):  # decision L412: changes of travel direction (a turn is none)
+        typer.echo(f"{summary['direction_changes']} change(s) of travel direction between forward, backward, left "
+                   "and right strides (steps.csv travel; direction_changes.csv)")
     if summary.get("splits_m"):  # decision L411: the split times
         from pdrlearn.track.splits import splits_line
 
@@ -1057,6 +1065,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
                f"{'laps.csv, ' if summary.get('corridor_m') is not None else ''}"
                f"{'splits.csv, ' if summary.get('splits_m') else ''}"
+               f"{'direction_changes.csv, ' if summary.get('direction_changes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)

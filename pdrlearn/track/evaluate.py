@@ -594,6 +594,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     add_backward_travel(result.steps)  # decision L224: steps.csv's per-row form of the count below
     out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
     out["n_side_strides"] = side_strides(result.steps)  # decision L270: side steps, no backward travel
+    from pdrlearn.track.travel import add_travel, direction_change_table
+
+    add_travel(result.steps)  # decision L412: each stride's travel direction (steps.csv travel)
+    changes = direction_change_table(result.steps)
+    out["direction_changes"] = None if changes is None else len(changes)  # L412: changes of travel direction
     out.update(backward_gait(result.steps))  # decision L326: the backward strides' own length and speed
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
@@ -1347,11 +1352,18 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
-    from pdrlearn.track.freezes import freeze_summary, session_freezes
+    from pdrlearn.track.freezes import foot_freezes, freeze_summary
 
     # decision W213: a foot track's episodes; W216: a lower-back track sets "freezes" itself (None: not measured)
     if "freezes" not in result.info and session is not None:
-        result.info["freezes"] = session_freezes(session, result.info.get("pipeline"))
+        # decision L413: a side shuffle the foot tracked is no freeze
+        result.info["freezes"], lines = foot_freezes(session, result.info.get("pipeline"), result.steps)
+        for line in lines:
+            import logging
+
+            logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
+        if lines:
+            result.info["warnings"] = [*result.info.get("warnings", []), *lines]
     out.update(freeze_summary(result.info.get("freezes")))  # W213: n_freezes, freeze_time_s (None: not computed)
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
     out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))

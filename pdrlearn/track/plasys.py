@@ -1283,6 +1283,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
     table["sideways"] = _sideways_rows(lateral, disp, fd.yaw_change_)  # L228: no steady / straight stride for the CVs
+    from pdrlearn.track.travel import side_labels
+
+    table["travel"] = side_labels(table["sideways"], disp[:, 1])  # decision L412: a side step's side (foot frame)
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)
