@@ -1308,7 +1308,8 @@ def summary_warnings(summary: dict) -> list[str]:
     CV over straight stretches of different length), decision L116's
     whole-sample rounding of the CV, decision L145's foot altitude against the unused barometer, decision B188's
     implausible barometer, decision L175's position uncertainty against the distance walked (and L341's radius
-    beyond its calibration routes), and decision L319's reference trajectory that does not travel."""
+    beyond its calibration routes), decision L319's reference trajectory that does not travel, and decision L414's
+    --toe-off stance times below the contacts they were checked on."""
     from pdrlearn.track.clinical import (
         pooled_cv_warning,
         pooled_length_cv_warning,
@@ -1317,6 +1318,7 @@ def summary_warnings(summary: dict) -> list[str]:
     )
     from pdrlearn.track.gait import bout_range_warning, gait_range_warning, gait_speed_warning
     from pdrlearn.track.position_sigma import position_sigma_range_warning, position_sigma_warning
+    from pdrlearn.track.toeoff import stance_range_warning  # decision L414
 
     return [w for w in (gait_range_warning(summary), gait_speed_warning(summary),  # L353: adopted by its rule
                         bout_range_warning(summary), stride_cv_warning(summary),
@@ -1324,7 +1326,7 @@ def summary_warnings(summary: dict) -> list[str]:
                         resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
-                        stationary_reference_warning(summary)) if w]
+                        stationary_reference_warning(summary), stance_range_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,
