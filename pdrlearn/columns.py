@@ -200,6 +200,10 @@ SESSIONS: tuple[Column, ...] = (
     ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
     ("n_side_strides", "count", "integer", "foot: strides of side-stepping runs (L219 / L228's sideways rows), "
                                            "not counted as backward (L270); empty on the lower back"),
+    ("n_flight_phases", "count", "integer", "foot: runs of the foot accelerometer under 0.3 g for 0.1 s or more "
+                                            "(both feet off the ground: jumps, running; W363); empty on the lower "
+                                            "back"),
+    ("flight_time_s", "s", "number", "foot: the flight phases' time in all (W363)"),
     ("direction_changes", "count", "integer", "foot: changes of travel direction (steps.csv travel: forward / "
                                               "backward / left / right, turn and empty rows skipped; "
                                               "direction_changes.csv's rows, L412); a turn is not one; empty on "

@@ -1367,6 +1367,16 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
         if lines:
             result.info["warnings"] = [*result.info.get("warnings", []), *lines]
     out.update(freeze_summary(result.info.get("freezes")))  # W213: n_freezes, freeze_time_s (None: not computed)
+    if session is not None:  # decision W363: flight phases in the foot recording (jumps, running)
+        from pdrlearn.track.flight import flight_summary
+
+        keys, line = flight_summary(session, result.info.get("pipeline"))
+        out.update(keys)
+        if line:
+            import logging
+
+            logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
+            result.info["warnings"] = [*result.info.get("warnings", []), line]
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
     out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
