@@ -18,8 +18,9 @@ def test_flight_phases_need_0_1_s_under_0_3_g():
 
 
 def test_synthetic_jumps_are_warned(tmp_path):
-    """User 7957 walking 4 m, then standing, with three synthetic jumps while standing in the foot accelerometer (push-off, 0.5 s of free fall,
-    landing, as trial T3's mkjump.py): 3 flight phases and the W363 line (main: no key, no line)."""
+    """User 7957 walking 4 m, then standing, with three synthetic jumps while standing in the foot accelerometer
+    (push-off, 0.5 s of free fall, landing, as trial T3's mkjump.py): 3 flight phases and the W363 line (main: no key,
+    no line)."""
     from pdrlearn.cli import main
     from pdrlearn.io import read_session
     from pdrlearn.track import get_pipeline
