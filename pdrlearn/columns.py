@@ -202,6 +202,14 @@ SESSIONS: tuple[Column, ...] = (
     ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
     ("n_side_strides", "count", "integer", "foot: strides of side-stepping runs (L219 / L228's sideways rows), "
                                            "not counted as backward (L270); empty on the lower back"),
+    ("n_flight_phases", "count", "integer", "foot: runs of the foot accelerometer under 0.3 g for 0.1 s or more "
+                                            "(both feet off the ground: jumps, running; W363); empty on the lower "
+                                            "back"),
+    ("flight_time_s", "s", "number", "foot: the flight phases' time in all (W363)"),
+    ("direction_changes", "count", "integer", "foot: changes of travel direction (steps.csv travel: forward / "
+                                              "backward / left / right, turn and empty rows skipped; "
+                                              "direction_changes.csv's rows, L412); a turn is not one; empty on "
+                                              "the lower back"),
     ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
     ("n_steps_left", "count", "integer", "lower back: steps whose side (W129's pelvis sway) is the left foot "
                                          "(W228); empty on a foot track (n_strides_one_foot)"),
@@ -249,6 +257,9 @@ SESSIONS: tuple[Column, ...] = (
                                                      "distance in each full minute from the first step (L383)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
                                          "(our choice, L383); empty under 2 full minutes"),
+    ("splits_m", "m", "number", "--splits only, summary.json only (a list): the distance marks given (L411)"),
+    ("split_times_s", "s", "number", "--splits only, summary.json only (a list): each mark's time from the first "
+                                     "step's start (splits.csv's time_s); empty for a mark beyond the path (L411)"),
     ("per_align", _ID, "text", "--per-align clock or first-step only: clock (periods.csv cut at the clock's whole "
                                "periods, L299) or first-step (from the first tracked step, L381)"),
     ("per_start_s", "s", "number", "--per only: the first period's start (the recording's or --window's start, or "
@@ -782,6 +793,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),
     ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
                                            "L224)"),
+    ("travel", _ID, "text", "the stride's travel direction from the foot's facing (L412): forward, backward (as "
+                            "backward_travel), left / right (a side-stepping run's stride, sideways; side when "
+                            "streamed), turn (the foot turned 30 deg or more), empty (a gap, impossible or under "
+                            "0.15 m); model-free, unlike direction"),
     ("length_class", _ID, "text", "M3's length class (empty without a model)"),
     ("confidence", "fraction", "number", "the class confidence (1 without a model)"),
     ("p_<task>_<class>", "fraction", "number", "with a model: the class probabilities (one column each)"),
@@ -925,6 +940,27 @@ LAPS: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+#: decision L411: a track's splits.csv (``track --splits``), one row per distance mark the tracked path reaches
+SPLITS: tuple[Column, ...] = (
+    ("split", "index", "integer", "the mark's number, from 1"),
+    ("distance_m", "m", "number", "the mark: metres along the tracked path from the first step (--splits)"),
+    ("time_s", "s", "number", "when the path passes it, from the first step's start (interpolated within the stride "
+                              "that crosses it; a rest adds no distance, L411)"),
+    ("split_time_s", "s", "number", "time_s minus the previous mark's (the first: time_s)"),
+    ("speed_mps", "m/s", "number", "the metres since the previous mark / split_time_s"),
+)
+
+#: decision L412: a foot track's direction_changes.csv, one row per change of travel direction
+DIRECTION_CHANGES: tuple[Column, ...] = (
+    ("change", "index", "integer", "the change's number, from 1"),
+    ("start_s", "s", "number", "the start of the first stride of the new travel direction"),
+    ("from_travel", _ID, "text", "the previous labelled stride's travel (steps.csv travel: forward, backward, left, "
+                                 "right, side)"),
+    ("to_travel", _ID, "text", "this stride's travel"),
+    ("row", "index", "integer", "its row of steps.csv, from 0"),
+    *_clocks("start_s"),
+)
+
 
 #: decision L377: ``rides.csv`` (``track`` of a lower-back unit), one row per ride while standing
 RIDES: tuple[Column, ...] = (
@@ -964,8 +1000,9 @@ TRAJECTORY: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, TURNS, PERIODS, LAPS, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE,
-    FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
+    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, TURNS, PERIODS, LAPS, SPLITS, DIRECTION_CHANGES, TRANSFERS,
+    TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, TRAJECTORY, GAIT_STEPS,
+    GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",

@@ -9,6 +9,8 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "changes.csv",  # C81
                                 "bouts.csv", "turns.csv", "periods.csv",
                                 "laps.csv",  # L383
+                                "splits.csv",  # L411
+                                "direction_changes.csv",  # L412
                                 "transfers.csv", "tug_phases.csv",  # W293
                                 "tug_trials.csv",  # W325
                                 "freezes.csv", "ramps.csv",  # L301

@@ -218,6 +218,11 @@ CORRIDOR_OPT = typer.Option(None, "--corridor", metavar="METRES", help="A corrid
                             "METRES + the final partial lap, n_laps, distance per minute from the first step, "
                             "fatigue_index (decisions L383, L384). A 6MWT inside a longer "
                             "recording: with --window T0,T0+360.")
+SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times at distances along the tracked path "
+                          "(e.g. 5,10,20: a sprint's marks, metres from the first step): OUT/splits.csv (each mark's "
+                          "time from the first step's start, interpolated within the stride that crosses it, the "
+                          "split time and mean speed since the previous mark) and a summary line; marks beyond the "
+                          "path are named in one warning (decision L411).")
 
 
 def track(
@@ -262,6 +267,7 @@ def track(
     per: str = PER_OPT,
     per_align: str = PER_ALIGN_OPT,
     corridor: float = CORRIDOR_OPT,
+    splits: str = SPLITS_OPT,
     bout_rule: str = BOUT_RULE_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
     bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
@@ -303,6 +309,8 @@ def track(
         pdrlearn track out/sim/A_u1 --per 60 --per-align first-step --out out/A_min   # minutes from the first step
 
         pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
+
+        pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
 
         pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
 
@@ -384,7 +392,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
-                   per_align: str = "start", corridor: float | None = None,
+                   per_align: str = "start", corridor: float | None = None, splits: str | None = None,
                    resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
@@ -426,6 +434,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.corridor import corridor_length
 
     corridor_m = corridor_length(corridor)  # decision B293: before any session
+    from pdrlearn.track.splits import parse_splits
+
+    splits_m = parse_splits(splits)  # decision B307: before any session
     if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
         raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
                         "--fixes give the track its direction; drop --initial-heading")
@@ -511,7 +522,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
-            "per_align": per_align, "corridor_m": corridor_m,
+            "per_align": per_align, "corridor_m": corridor_m, "splits_m": splits_m,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
@@ -873,9 +884,22 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             for line in lines:
                 logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
             summary["info"]["warnings"] = [*summary["info"].get("warnings", []), *lines]
+    splits = None
+    if o.get("splits_m"):  # decision L411: times at distance marks from the track's (or window's) first step
+        from pdrlearn.track.splits import split_table
+
+        splits, keys, lines = split_table(result.steps, o["splits_m"])
+        summary.update(keys)
+        if lines:
+            import logging
+
+            for line in lines:
+                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), *lines]
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods, "laps": laps, "start": start,
+            "splits": splits,
             "start_ele": bool(o.get("start_ele"))}
 
 
@@ -894,7 +918,7 @@ def _check_relative_heading(result, session, heading0: float) -> None:
     result.info["initial_heading_rad"] = heading0
 
 
-def event_tables(result, bouts, periods=None, start=None, laps=None) -> dict:
+def event_tables(result, bouts, periods=None, start=None, laps=None, splits=None) -> dict:
     """Decision L298: every event table a track or run writes - ``bouts.csv`` (L124), :func:`clinical_tables`'s,
     ``periods.csv`` (L277, when given) and ``laps.csv`` (L383, with --corridor) - with their clock columns when the
     recording's ``start`` is known."""
@@ -906,6 +930,8 @@ def event_tables(result, bouts, periods=None, start=None, laps=None) -> dict:
         tables["periods.csv"] = periods
     if laps is not None:
         tables["laps.csv"] = laps
+    if splits is not None:  # decision L411: --splits
+        tables["splits.csv"] = splits
     return {name: with_clock_columns(table, start) for name, table in tables.items()}
 
 
@@ -924,6 +950,11 @@ def clinical_tables(result, bouts) -> dict:
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+    from pdrlearn.track.travel import direction_change_table
+
+    changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction
+    if changes is not None:
+        out["direction_changes.csv"] = changes
     if result.info.get("rides") is not None:  # decision L377: a lower-back track's rides
         from pdrlearn.track.rides import ride_table
 
@@ -972,7 +1003,7 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     write_table_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
     # decisions L124 (E98: the old speed_m_s last), L200, W182, L277; L298: clock columns with a recording start
     for name, table in event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start"),
-                                     tracked.get("laps")).items():
+                                     tracked.get("laps"), tracked.get("splits")).items():
         write_table_csv(table, dest / name)
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
@@ -1043,6 +1074,13 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         from pdrlearn.track.corridor import corridor_line
 
         typer.echo(corridor_line(summary))
+    if summary.get("direction_changes"):  # decision L412: changes of travel direction (a turn is none)
+        typer.echo(f"{summary['direction_changes']} change(s) of travel direction between forward, backward, left "
+                   "and right strides (steps.csv travel; direction_changes.csv)")
+    if summary.get("splits_m"):  # decision L411: the split times
+        from pdrlearn.track.splits import splits_line
+
+        typer.echo(splits_line(summary))
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
@@ -1058,6 +1096,8 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
                f"{'laps.csv, ' if summary.get('corridor_m') is not None else ''}"
+               f"{'splits.csv, ' if summary.get('splits_m') else ''}"
+               f"{'direction_changes.csv, ' if summary.get('direction_changes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)

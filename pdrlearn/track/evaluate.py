@@ -594,6 +594,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     add_backward_travel(result.steps)  # decision L224: steps.csv's per-row form of the count below
     out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
     out["n_side_strides"] = side_strides(result.steps)  # decision L270: side steps, no backward travel
+    from pdrlearn.track.travel import add_travel, direction_change_table
+
+    add_travel(result.steps)  # decision L412: each stride's travel direction (steps.csv travel)
+    changes = direction_change_table(result.steps)
+    out["direction_changes"] = None if changes is None else len(changes)  # L412: changes of travel direction
     out.update(backward_gait(result.steps))  # decision L326: the backward strides' own length and speed
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
@@ -1303,7 +1308,8 @@ def summary_warnings(summary: dict) -> list[str]:
     CV over straight stretches of different length), decision L116's
     whole-sample rounding of the CV, decision L145's foot altitude against the unused barometer, decision B188's
     implausible barometer, decision L175's position uncertainty against the distance walked (and L341's radius
-    beyond its calibration routes), and decision L319's reference trajectory that does not travel."""
+    beyond its calibration routes), decision L319's reference trajectory that does not travel, and decision L414's
+    --toe-off stance times below the contacts they were checked on."""
     from pdrlearn.track.clinical import (
         pooled_cv_warning,
         pooled_length_cv_warning,
@@ -1312,6 +1318,7 @@ def summary_warnings(summary: dict) -> list[str]:
     )
     from pdrlearn.track.gait import bout_range_warning, gait_range_warning, gait_speed_warning
     from pdrlearn.track.position_sigma import position_sigma_range_warning, position_sigma_warning
+    from pdrlearn.track.toeoff import stance_range_warning  # decision L414
 
     return [w for w in (gait_range_warning(summary), gait_speed_warning(summary),  # L353: adopted by its rule
                         bout_range_warning(summary), stride_cv_warning(summary),
@@ -1319,7 +1326,7 @@ def summary_warnings(summary: dict) -> list[str]:
                         resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
-                        stationary_reference_warning(summary)) if w]
+                        stationary_reference_warning(summary), stance_range_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,
@@ -1347,12 +1354,29 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
-    from pdrlearn.track.freezes import freeze_summary, session_freezes
+    from pdrlearn.track.freezes import foot_freezes, freeze_summary
 
     # decision W213: a foot track's episodes; W216: a lower-back track sets "freezes" itself (None: not measured)
     if "freezes" not in result.info and session is not None:
-        result.info["freezes"] = session_freezes(session, result.info.get("pipeline"))
+        # decision L413: a side shuffle the foot tracked is no freeze
+        result.info["freezes"], lines = foot_freezes(session, result.info.get("pipeline"), result.steps)
+        for line in lines:
+            import logging
+
+            logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
+        if lines:
+            result.info["warnings"] = [*result.info.get("warnings", []), *lines]
     out.update(freeze_summary(result.info.get("freezes")))  # W213: n_freezes, freeze_time_s (None: not computed)
+    if session is not None:  # decision W363: flight phases in the foot recording (jumps, running)
+        from pdrlearn.track.flight import flight_summary
+
+        keys, line = flight_summary(session, result.info.get("pipeline"))
+        out.update(keys)
+        if line:
+            import logging
+
+            logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
+            result.info["warnings"] = [*result.info.get("warnings", []), line]
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
     out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty

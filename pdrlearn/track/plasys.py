@@ -1301,6 +1301,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     table["sideways"] = _sideways_rows(lateral, disp, fd.yaw_change_)  # L228: no steady / straight stride for the CVs
     if "contact_source" in strides:  # decision L405: a stitched track's contacts by detector (force / imu)
         table["contact_source"] = strides["contact_source"].to_numpy(dtype=object)
+    from pdrlearn.track.travel import side_labels
+
+    table["travel"] = side_labels(table["sideways"], disp[:, 1])  # decision L412: a side step's side (foot frame)
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)
