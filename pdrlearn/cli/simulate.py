@@ -201,9 +201,11 @@ def simulate_cmd(
     if not (math.isfinite(heading0) and -360.0 <= heading0 <= 360.0):  # decision S32
         raise DataError(f"--heading0 {heading0:g}: give the initial direction in degrees, -360 to 360 "
                         "(0 = east, 90 = north)")
-    if not (math.isfinite(variability) and variability >= 0.0):  # decision S76: the Python knob's own range
-        raise DataError(f"--variability {variability:g}: give a finite scale >= 0 (1 = the user's own "
-                        "stride-to-stride variability, 0 = identical strides)")
+    from pdrlearn.sim.simulate import VARIABILITY_MAX
+
+    if not (math.isfinite(variability) and 0.0 <= variability <= VARIABILITY_MAX):  # S76: the Python knob's range
+        raise DataError(f"--variability {variability:g}: give a finite scale from 0 to {VARIABILITY_MAX:g} (1 = the "
+                        "user's own stride-to-stride variability, 0 = identical strides)")
     if not (math.isfinite(mag_disturbance) and 0.0 <= mag_disturbance <= MAG_DISTURBANCE_MAX_UT):  # S33
         raise DataError(f"--mag-disturbance {mag_disturbance:g}: give 0-{MAG_DISTURBANCE_MAX_UT:g} uT")
     mount = parse_mount(waist_mount)  # decision S34

@@ -349,7 +349,8 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> 
         second = np.zeros(len(st), bool)
         second[:-1] = ~straight[1:] | stair_rows(steps)[1:] | sideways_rows(steps)[1:]
         straight = straight & ~second
-    stride_med, step_med = _waist_time_median(stride), _waist_time_median(step)  # decision W359
+    grid = _contact_grid(st)  # W359 amended (R1): classes one sample period of the contacts' own grid wide
+    stride_med, step_med = _waist_time_median(stride, grid), _waist_time_median(step, grid)  # decision W359
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": stride_med,
                  "median_cadence_spm": (median_cadence(stride_med, _median(cadence))
                                         if _waist_medians_from(cadence_from) == "strides"
@@ -365,12 +366,20 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> 
 WAIST_GROUPED_MEDIAN = True
 
 
-def _waist_time_median(times: np.ndarray) -> float | None:
-    """W359: the median of a lower-back table's whole-sample stride or step times - grouped-data with
-    :data:`WAIST_GROUPED_MEDIAN`, else the plain median."""
+def _contact_grid(start_s: np.ndarray) -> float | None:
+    """W359 (amended after review R1): the sample period the table's contact times sit on (None: none found)."""
+    from pdrlearn.kernels.grouped_median import sample_grid
+
+    return sample_grid(start_s) if WAIST_GROUPED_MEDIAN else None
+
+
+def _waist_time_median(times: np.ndarray, grid: float | None) -> float | None:
+    """W359: the median of a lower-back table's whole-sample stride or step times - grouped-data with classes one
+    sample period (``grid``, the contacts' own: :func:`_contact_grid`) wide under :data:`WAIST_GROUPED_MEDIAN`; the
+    plain median without a grid or with the switch off."""
     from pdrlearn.kernels.grouped_median import grouped_median
 
-    return grouped_median(times) if WAIST_GROUPED_MEDIAN else _median(times)
+    return grouped_median(times, grid) if WAIST_GROUPED_MEDIAN and grid else _median(times)
 
 
 #: decisions W224/W225: the medians a lower-back summary takes by default - ``"strides"`` (cadence 120 / the median
