@@ -1,0 +1,122 @@
+"""Batch-workflow robustness (session 34, trial T4): dangling links (B315), a thread-safe pipeline registry (B316),
+a read-only OUT checked before the work (B317), a session without strides (B318), SIGTERM and stale temporary
+folders (B319), `simulate --force`'s line and the losing concurrent writer (B320). Simulated users 8000-8019."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+
+from pdrlearn.cli import main
+
+
+@pytest.fixture(scope="module")
+def walk(tmp_path_factory) -> Path:
+    """One short simulated walk (user 8000)."""
+    from pdrlearn import sim
+    from pdrlearn.io import write_session
+
+    return write_session(sim.simulate("walk", 8000, length_m=10), tmp_path_factory.mktemp("s34") / "walk")
+
+
+def _linked_copy(walk: Path, dest: Path, dangling: dict[str, str]) -> Path:
+    """A copy of ``walk`` whose files named in ``dangling`` are symbolic links to the given missing targets."""
+    shutil.copytree(walk, dest)
+    for name, target in dangling.items():
+        (dest / name).unlink()
+        (dest / name).symlink_to(target)
+    return dest
+
+
+def test_a_dangling_sensor_link_is_one_line_naming_its_target(walk, tmp_path, capsys):
+    """B315: was read as a missing gyroscope (warning 'waist unit incomplete', rc 0, a worse track)."""
+    s = _linked_copy(walk, tmp_path / "s", {"wGyroscope.csv": "/nowhere/wGyroscope.csv"})
+    out = tmp_path / "o"
+    assert main(["track", str(s), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.strip().splitlines()[-1] == (
+        f"error: {s / 'wGyroscope.csv'}: a symbolic link to /nowhere/wGyroscope.csv, which does not exist (a storage "
+        "not mounted, or git-annex/DataLad content not fetched); fetch or mount it, or remove the link (decision B315)")
+    assert not out.exists()
+
+
+def test_a_folder_under_a_sensor_file_name_says_so(walk, tmp_path):
+    """B315: was 'file not found', which is not what is wrong."""
+    from pdrlearn.errors import DataError
+    from pdrlearn.io import read_session
+
+    s = tmp_path / "s"
+    shutil.copytree(walk, s)
+    (s / "wBarometer.csv").unlink()
+    (s / "wBarometer.csv").mkdir()
+    with pytest.raises(DataError, match=r"wBarometer.csv: is a folder, not a file; put the wBarometer.csv file there"):
+        read_session(s)
+
+
+def test_track_all_fails_sessions_of_dangling_links_instead_of_skipping_them(walk, tmp_path, capsys):
+    """B315 (T4 finding 1): a session folder that is a dangling link, and a real folder holding only dangling links,
+    were skipped (rc 0, n_sessions 1); now each is a failed session naming the link's target, exit 1."""
+    root = tmp_path / "study"
+    shutil.copytree(walk, root / "p01" / "walk")
+    (root / "p02").mkdir()
+    (root / "p02" / "walk").symlink_to("/mnt/storage_unmounted/p02/walk")
+    (root / "p03" / "walk").mkdir(parents=True)
+    for p in walk.iterdir():
+        (root / "p03" / "walk" / p.name).symlink_to(f"/annex/objects/{p.name}")
+    out = tmp_path / "o"
+    rc = main(["track-all", str(root), "--out", str(out), "--json"])
+    captured = capsys.readouterr()
+    assert rc == 1
+    summary = json.loads(captured.out)
+    assert (summary["n_sessions"], summary["n_tracked"], summary["n_failed"]) == (3, 1, 2)
+    assert "a symbolic link to /mnt/storage_unmounted/p02/walk, which does not exist" in captured.err
+    assert "a symbolic link to /annex/objects/" in captured.err
+
+
+def test_a_cold_registry_read_from_threads_is_filled_once_for_all():
+    """B316 (T4 finding 3): the first `get_pipeline` from 4 threads failed with "unknown pipeline 'plasys'; choose
+    one of" (empty list): a thread arriving during the fill saw `_loading` and read the empty registry."""
+    import threading
+    import time
+    from concurrent.futures import ThreadPoolExecutor
+
+    from pdrlearn.plugins import Registry
+
+    fills = []
+    started = threading.Event()
+
+    def fill():  # as importing the built-in pipelines' modules: takes a while, registers as it goes
+        fills.append(1)
+        started.set()
+        time.sleep(0.3)
+        reg.register("plasys", print)
+
+    reg = Registry("pipeline", "pdrlearn.test_no_such_group", load_builtins=fill)
+
+    def read(_):
+        if _:
+            started.wait(5)  # the others arrive while the first fills
+        return reg["plasys"]
+
+    with ThreadPoolExecutor(4) as ex:
+        got = list(ex.map(read, range(4)))
+    assert got == [print] * 4 and fills == [1]
+
+
+def test_get_pipeline_from_threads_in_a_fresh_interpreter():
+    """B316 with the real registry, cold in a new interpreter (trial T4's race.py: failed 6 runs of 6)."""
+    import subprocess
+    import sys
+
+    code = ("from concurrent.futures import ThreadPoolExecutor\n"
+            "from pdrlearn import get_pipeline\n"
+            "with ThreadPoolExecutor(4) as ex:\n"
+            "    got = list(ex.map(lambda _: get_pipeline('waist-pll'), range(8)))\n"
+            "print(len(set(map(id, got))))\n")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300,
+                         env={**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1])})
+    assert (run.returncode, run.stdout.strip()) == (0, "1"), run.stderr[-500:]
