@@ -120,3 +120,24 @@ def test_get_pipeline_from_threads_in_a_fresh_interpreter():
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300,
                          env={**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1])})
     assert (run.returncode, run.stdout.strip()) == (0, "1"), run.stderr[-500:]
+
+
+def test_a_read_only_output_place_is_refused_before_the_work(walk, tmp_path, monkeypatch, capsys):
+    """B317 (T4 finding 4): a read-only OUT failed after the whole track, naming `.out.tmp-PID-XXXX`; now the nearest
+    existing folder above OUT is checked first and the line names OUT (B151's line)."""
+    import pdrlearn.io as io
+
+    real_access = os.access
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    monkeypatch.setattr(os, "access", lambda p, mode, **k: False if (Path(p) == ro and mode & os.W_OK)
+                        else real_access(p, mode, **k))
+    read = []
+    monkeypatch.setattr(io, "read_session", lambda *a, **k: read.append(a))
+    out = ro / "sub" / "out"
+    assert main(["track", str(walk), "--out", str(out), "--json"]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and read == []
+    assert captured.err.strip().splitlines()[-1] == (
+        f"error: {out}: Permission denied; choose an output folder you can write to, or fix its permissions "
+        "(decision B151)")

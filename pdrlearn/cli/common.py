@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import errno
 import json
+import os
 import sys
 from contextlib import contextmanager
 from pathlib import Path
@@ -219,6 +221,20 @@ def _what(kind: str) -> str:
     return f"{what}, written by `{command}`"
 
 
+def check_writable(out: Path, parent: Path) -> None:
+    """Decision B317: ``parent`` (the nearest existing folder above ``out``, where the atomic write creates its
+    temporary sibling) must be writable before any work, or one line names ``out`` (B151's line): a read-only
+    mount failed only after a 14 s track, naming the temporary folder."""
+    if os.access(parent, os.W_OK | os.X_OK):
+        return
+    try:
+        read_only = bool(os.statvfs(parent).f_flag & os.ST_RDONLY)
+    except OSError:
+        read_only = False
+    code = errno.EROFS if read_only else errno.EACCES
+    raise output_error(OSError(code, os.strerror(code)), out)
+
+
 def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, ...] = (),
                inputs: tuple = ()) -> Path:
     """Validate an output folder of ``kind`` (a key of :data:`FOLDER_KINDS`) before any work is done
@@ -240,6 +256,7 @@ def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, 
         if parent.exists():
             if not parent.is_dir():
                 raise DataError(f"{path}: {parent} is a file, not a folder; choose another output folder")
+            check_writable(path, parent)
             break
     entries = [q for q in path.iterdir() if q.name not in allow] if path.is_dir() else []
     if entries:
@@ -338,6 +355,7 @@ def out_file(path: Path, suffixes: tuple[str, ...], kind: str, *, force: bool = 
         if parent.exists():
             if not parent.is_dir():
                 raise DataError(f"{path}: {parent} is a file, not a folder; choose another output path")
+            check_writable(path, parent)
             break
     what, command = FILE_KINDS[kind]
     if is_session_folder(path.parent) and (path.name in session_files() or path.suffix.lower() == ".csv"):
