@@ -141,3 +141,23 @@ def test_a_read_only_output_place_is_refused_before_the_work(walk, tmp_path, mon
     assert captured.err.strip().splitlines()[-1] == (
         f"error: {out}: Permission denied; choose an output folder you can write to, or fix its permissions "
         "(decision B151)")
+
+
+@pytest.fixture(scope="module")
+def still(tmp_path_factory) -> Path:
+    """60 s standing still (user 8001): no stride."""
+    from pdrlearn import sim
+    from pdrlearn.io import write_session
+
+    return write_session(sim.simulate("standstill", 8001), tmp_path_factory.mktemp("s34still") / "still")
+
+
+def test_no_strides_names_the_folder_and_exits_4(still, tmp_path, capsys):
+    """B318 (T4 finding 5): was `session 'sim_standstill_...': no strides detected`, exit 2 (bad input); a session
+    without walking is a data outcome: the line names the folder, exit 4; stdout empty, nothing written."""
+    out = tmp_path / "o"
+    assert main(["track", str(still), "--out", str(out), "--json"]) == 4
+    captured = capsys.readouterr()
+    assert captured.out == "" and not out.exists()
+    assert captured.err.strip().splitlines()[-1].startswith(f"error: {still}: no strides detected; is the foot unit "
+                                                            "moving?")
