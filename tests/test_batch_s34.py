@@ -161,3 +161,64 @@ def test_no_strides_names_the_folder_and_exits_4(still, tmp_path, capsys):
     assert captured.out == "" and not out.exists()
     assert captured.err.strip().splitlines()[-1].startswith(f"error: {still}: no strides detected; is the foot unit "
                                                             "moving?")
+
+
+def test_sigterm_is_handled_as_ctrl_c(walk, tmp_path):
+    """B319 (T4 finding 6): SIGTERM (SLURM, Snakemake) ended `track` silently (rc 143 from the kill, nothing on
+    stderr) and left `.o.tmp-PID-XXXX`; now one line, the temporary folder removed, exit 143."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "res" / "o"
+    code = ("import os, signal, sys\n"
+            "import pdrlearn.cli.track as T\n"
+            "from pdrlearn.cli import main\n"
+            "real = T.write_track\n"
+            "def write(tmp, tracked):\n"
+            "    real(tmp, tracked)\n"
+            "    os.kill(os.getpid(), signal.SIGTERM)  # while the output is being written\n"
+            "T.write_track = write\n"
+            f"sys.exit(main(['track', {str(walk)!r}, '--out', {str(out)!r}]))\n")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300,
+                         env={**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1])})
+    assert run.returncode == 143, run.stderr[-500:]
+    assert run.stderr.strip().splitlines()[-1] == "error: terminated; nothing written"
+    assert "Traceback" not in run.stderr and run.stdout == ""
+    assert list((tmp_path / "res").iterdir()) == []  # neither OUT nor its temporary folder
+
+
+def test_a_temporary_folder_of_another_pid_namespace_is_not_taken_for_stale(tmp_path, caplog):
+    """B320 (T4 finding 6): B44's kill(pid, 0) called a live writer in another PID namespace (`unshare -p`, a
+    container, another node) gone, and deleted its folder. A folder tagged with another machine/namespace is stale
+    only when marked ended by its writer (Ctrl-C, SIGTERM) or unchanged for FOREIGN_QUIET_S."""
+    import time
+
+    from pdrlearn import atomic
+
+    target = tmp_path / "o"
+    other = "0" * 8 if atomic.machine_tag() != "0" * 8 else "1" * 8
+    live = tmp_path / f".o.tmp-999999999-h{other}-live"  # a process id this namespace does not have
+    quiet = tmp_path / f".o.tmp-999999998-h{other}-quiet"
+    ended = tmp_path / f".o.tmp-999999997-h{other}-ended"
+    mine = tmp_path / f".o.tmp-999999996-h{atomic.machine_tag()}-dead"  # this namespace: checked by kill(pid, 0)
+    for p in (live, quiet, ended, mine):
+        (p / "sub").mkdir(parents=True)
+        (p / "sub" / "steps.csv").write_text("x\n")
+    past = time.time() - atomic.FOREIGN_QUIET_S - 60
+    for p in (quiet, quiet / "sub", quiet / "sub" / "steps.csv"):
+        os.utime(p, (past, past))
+    os.utime(ended, (atomic.ENDED_MTIME, atomic.ENDED_MTIME))
+    gone = atomic.clean_leftovers(target)
+    assert sorted(p.name for p in gone) == sorted(p.name for p in (quiet, ended, mine))
+    assert live.exists()
+
+
+def test_a_track_all_stopped_by_sigterm_marks_its_kept_folder_ended(tmp_path, monkeypatch):
+    """B320: the temporary folder track-all keeps on an interrupt (for --resume, C41) is marked ended."""
+    from pdrlearn import atomic
+
+    with pytest.raises(KeyboardInterrupt), atomic.atomic_directory(tmp_path / "o", keep_on_interrupt=True) as tmp:
+        (tmp / "a").mkdir()
+        raise KeyboardInterrupt
+    assert tmp.is_dir() and tmp.stat().st_mtime == atomic.ENDED_MTIME
+    assert atomic.adopt_leftovers(tmp_path / "o")  # found stale (and taken by --resume) without a process check
