@@ -139,11 +139,11 @@ def _alive(pid: int) -> bool:
     return True
 
 
-#: decision B320: a temporary folder of a writer on another machine or in another PID namespace (a container,
+#: decision B319: a temporary folder of a writer on another machine or in another PID namespace (a container,
 #: ``unshare -p``) -- whose process id ``kill(pid, 0)`` cannot check -- is stale only when nothing in it has
 #: changed for this long (24 h): a mistake would delete a live write; waiting costs only its disk space.
 FOREIGN_QUIET_S = 24 * 3600
-#: decision B320: the modification time (the epoch) a writer stopped by Ctrl-C or SIGTERM gives the temporary folder
+#: decision B319: the modification time (the epoch) a writer stopped by Ctrl-C or SIGTERM gives the temporary folder
 #: it keeps for ``--resume``: "ended", readable from any machine
 ENDED_MTIME = 0
 
@@ -157,7 +157,7 @@ def _read_first_line(path: str) -> str:
 
 
 def machine_tag() -> str:
-    """Decision B320: 8 hex digits naming where this process's id means something: the host name, the boot (Linux
+    """Decision B319: 8 hex digits naming where this process's id means something: the host name, the boot (Linux
     ``boot_id``) and the PID namespace (``/proc/self/ns/pid``). Two processes with the same tag can check each
     other with ``kill(pid, 0)``; a different tag cannot."""
     try:
@@ -169,7 +169,7 @@ def machine_tag() -> str:
 
 
 def _tmp_prefix(target: Path) -> str:
-    """The temporary folder's name before mkdtemp's random part: ``.NAME.tmp-PID-hTAG-`` (decisions B44, B320)."""
+    """The temporary folder's name before mkdtemp's random part: ``.NAME.tmp-PID-hTAG-`` (decisions B44, B319)."""
     return f".{target.name}.tmp-{os.getpid()}-h{machine_tag()}-"
 
 
@@ -185,11 +185,12 @@ def _last_change(folder: Path) -> float:
 
 
 def _stale_leftovers(target: Path) -> list[Path]:
-    """The temporary folders of an interrupted write to ``target`` whose writer has ended (decisions B44, B319,
-    B320): ``.NAME.tmp-PID-...`` marked ended (:data:`ENDED_MTIME`) by a writer stopped by Ctrl-C or SIGTERM;
-    ``.NAME.tmp-PID-hTAG-XXXX`` of this machine and PID namespace (:func:`machine_tag`) whose process is gone; of another tag, unchanged for
-    :data:`FOREIGN_QUIET_S`; ``.NAME.tmp-PID-XXXX`` of older versions whose process is gone; ``.NAME.tmp-XXXX`` of
-    older versions last changed before this process started. Newest first."""
+    """The temporary folders of an interrupted write to ``target`` whose writer has ended (decisions B44,
+    B319): ``.NAME.tmp-PID-...`` marked ended (:data:`ENDED_MTIME`) by a writer stopped by Ctrl-C or SIGTERM;
+    ``.NAME.tmp-PID-hTAG-XXXX`` of this machine and PID namespace (:func:`machine_tag`) whose process is gone;
+    of another tag, unchanged for :data:`FOREIGN_QUIET_S`; ``.NAME.tmp-PID-XXXX`` of older versions whose
+    process is gone; ``.NAME.tmp-XXXX`` of older versions last changed before this process started. Newest
+    first."""
     if not target.parent.is_dir():
         return []
     pat = re.compile(re.escape(f".{target.name}.tmp-") + r"(?:(\d+)-(?:h([0-9a-f]{8})-)?)?[^/]+$")
@@ -203,7 +204,7 @@ def _stale_leftovers(target: Path) -> list[Path]:
             mtime = p.stat().st_mtime
             if pid and mtime == ENDED_MTIME:
                 stale = True
-            elif pid and tag and tag != machine_tag():  # decision B320: its process id means nothing here
+            elif pid and tag and tag != machine_tag():  # decision B319: its process id means nothing here
                 stale = time.time() - _last_change(p) > FOREIGN_QUIET_S
             else:
                 stale = not _alive(int(pid)) if pid else mtime < _PROCESS_START
@@ -215,7 +216,7 @@ def _stale_leftovers(target: Path) -> list[Path]:
 
 
 def _mark_ended(tmp: Path) -> None:
-    """Decision B320: a temporary folder kept on an interrupt (track-all, for ``--resume``) gets the modification
+    """Decision B319: a temporary folder kept on an interrupt (track-all, for ``--resume``) gets the modification
     time :data:`ENDED_MTIME`, so that the next run -- on another node or in another container too -- knows that its
     writer has ended without checking a process id (its name and content stay as they are, for ``--resume``)."""
     try:
@@ -261,6 +262,13 @@ def adopt_leftovers(target: str | os.PathLike) -> list[Path]:
     return adopted
 
 
+def _written_meanwhile(target: Path) -> str:
+    """Decision B320: the line of the losing one of two writers to the same new output (T4 finding 10: it said
+    "changed after this command checked it ... run the command again", which then said "pass --force")."""
+    return (f"{target}: another process wrote its output there while this command ran (it was absent or empty when "
+            "checked); this command's output was not written -- keep that one, or pass --force to replace it")
+
+
 @contextmanager
 def atomic_directory(target: str | os.PathLike, *, keep_on_interrupt: bool = False) -> Iterator[Path]:
     """Yield a temporary sibling folder of ``target``; when the block succeeds it replaces ``target``.
@@ -287,14 +295,18 @@ def atomic_directory(target: str | os.PathLike, *, keep_on_interrupt: bool = Fal
         old = _set_aside(target)
         if old is not None and expected is not None and fingerprint(old) != expected:
             _put_back(old, target)
+            if not expected:  # decision B320: absent or empty when checked: another process wrote its output there
+                raise OutputChangedError(_written_meanwhile(target))
             raise OutputChangedError(f"{target}: changed after this command checked it (files added, removed or "
                                      "rewritten meanwhile); it was not replaced -- look at it and run the command "
                                      "again")
         try:
             tmp.rename(target)
-        except BaseException:
+        except BaseException as exc:
             if old is not None:  # put the previous result back under its own name
                 _put_back(old, target)
+            elif isinstance(exc, OSError) and target.is_dir() and any(target.iterdir()):  # decision B320
+                raise OutputChangedError(_written_meanwhile(target)) from None
             raise
         note_written(target)
         if old is not None:

@@ -222,3 +222,32 @@ def test_a_track_all_stopped_by_sigterm_marks_its_kept_folder_ended(tmp_path, mo
         raise KeyboardInterrupt
     assert tmp.is_dir() and tmp.stat().st_mtime == atomic.ENDED_MTIME
     assert atomic.adopt_leftovers(tmp_path / "o")  # found stale (and taken by --resume) without a process check
+
+
+def test_simulate_force_says_replaced(tmp_path, capsys):
+    """B320 (T4 finding 9): `simulate --force` replaced the session without the `replaced PATH` line the other
+    commands print."""
+    out = tmp_path / "B"
+    args = ["simulate", "--scenario", "walk", "--length-m", "5", "--user-seed", "8002", "--out", str(out), "--json"]
+    assert main(args) == 0
+    assert "replaced" not in capsys.readouterr().err
+    assert main([*args[:-1], "--force", "--json"]) == 0
+    assert f"replaced {out}" in capsys.readouterr().err.splitlines()
+
+
+def test_the_losing_concurrent_writer_says_another_process_wrote_it(tmp_path):
+    """B320 (T4 finding 10): two runs to the same new --out; the loser said "changed after this command checked it
+    ... run the command again" (which then said "pass --force"): it now says another process wrote it."""
+    from pdrlearn.atomic import OutputChangedError, atomic_directory, checked_outputs, expect_unchanged
+
+    target = tmp_path / "o"
+    with checked_outputs():
+        expect_unchanged(target)  # absent when checked
+        with pytest.raises(OutputChangedError, match=r"another process wrote its output there while this command "
+                           r"ran \(it was absent or empty when checked\); this command's output was not written -- "
+                           r"keep that one, or pass --force to replace it"), atomic_directory(target) as tmp:
+            (tmp / "summary.json").write_text("mine")
+            target.mkdir()
+            (target / "summary.json").write_text("the winner's")
+    assert (target / "summary.json").read_text() == "the winner's"
+    assert [p.name for p in tmp_path.iterdir()] == ["o"]
