@@ -251,3 +251,20 @@ def test_the_losing_concurrent_writer_says_another_process_wrote_it(tmp_path):
             (target / "summary.json").write_text("the winner's")
     assert (target / "summary.json").read_text() == "the winner's"
     assert [p.name for p in tmp_path.iterdir()] == ["o"]
+
+
+def test_shell_log_files_in_the_output_folder_are_named_with_the_fix(walk, tmp_path, capsys):
+    """E160 (T4 finding 7): `--out D > D/track.json 2> D/track.log` said "exists and does not hold a track"; the
+    folder is replaced as a whole (which would delete the logs the shell is writing), so it is still refused, now
+    naming the logs and where to put them; the files are untouched."""
+    d = tmp_path / "D"
+    d.mkdir()
+    (d / "track.json").write_text("")
+    (d / "track.log").write_text("started\n")
+    assert main(["track", str(walk), "--out", str(d), "--json"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith(f"error: {d}: holds track.json, track.log (a shell redirect's log files?), not a track ")
+    assert line.endswith(f"the output folder is replaced as a whole, which would delete them -- write the logs beside "
+                         f"it (`> {d}.json 2> {d}.log`) or into another folder (decision E160)")
+    assert sorted(p.name for p in d.iterdir()) == ["track.json", "track.log"]
+    assert (d / "track.log").read_text() == "started\n"

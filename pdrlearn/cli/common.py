@@ -235,6 +235,22 @@ def check_writable(out: Path, parent: Path) -> None:
     raise output_error(OSError(code, os.strerror(code)), out)
 
 
+#: decision E160: the suffixes of the files a shell redirect (`> D/track.json 2> D/track.log`) puts in an output folder
+LOG_SUFFIXES = (".log", ".json", ".txt", ".err", ".out")
+
+
+def _shell_logs(entries: list[Path]) -> list[str]:
+    """Decision E160: the names of ``entries`` when they are all plain files with a log's suffix (else empty)."""
+    if all(q.is_file() and not q.is_symlink() and q.suffix.lower() in LOG_SUFFIXES for q in entries):
+        return sorted(q.name for q in entries)
+    return []
+
+
+def few_names(names: list[str], k: int = 3) -> str:
+    """The first ``k`` names, then "and N more"."""
+    return ", ".join(names[:k]) + (f" and {len(names) - k} more" if len(names) > k else "")
+
+
 def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, ...] = (),
                inputs: tuple = ()) -> Path:
     """Validate an output folder of ``kind`` (a key of :data:`FOLDER_KINDS`) before any work is done
@@ -262,6 +278,11 @@ def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, 
     if entries:
         found = folder_kind(path)
         if found is None:
+            logs = _shell_logs(entries)
+            if logs:  # decision E160: `--out D > D/x.json 2> D/x.log`, the Make/Snakemake log pattern
+                raise DataError(f"{path}: holds {few_names(logs)} (a shell redirect's log files?), not {what}; the "
+                                "output folder is replaced as a whole, which would delete them -- write the logs "
+                                f"beside it (`> {path}.json 2> {path}.log`) or into another folder (decision E160)")
             raise DataError(f"{path}: exists and does not hold {what}; choose another output folder or empty it")
         if found != kind:  # --force replaces only this command's own kind of output (decision B26)
             raise DataError(f"{path}: holds {_what(found)}, not {what}; --force replaces only a previous output "
