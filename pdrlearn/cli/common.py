@@ -239,9 +239,16 @@ def check_writable(out: Path, parent: Path) -> None:
 LOG_SUFFIXES = (".log", ".json", ".txt", ".err", ".out")
 
 
+#: ... and the names no log gets: files the commands write (a lone summary.json is a partial output, B12)
+OUTPUT_FILE_NAMES = frozenset({"summary.json", "run.json", "manifest.json", "report.json", "gait_summary.json",
+                               "evaluation.json", "meta.json"})
+
+
 def _shell_logs(entries: list[Path]) -> list[str]:
-    """Decision E160: the names of ``entries`` when they are all plain files with a log's suffix (else empty)."""
-    if all(q.is_file() and not q.is_symlink() and q.suffix.lower() in LOG_SUFFIXES for q in entries):
+    """Decision E160: the names of ``entries`` when they are all plain files with a log's suffix and none is named
+    as a command's output file (else empty)."""
+    if all(q.is_file() and not q.is_symlink() and q.suffix.lower() in LOG_SUFFIXES
+           and q.name.lower() not in OUTPUT_FILE_NAMES for q in entries):
         return sorted(q.name for q in entries)
     return []
 
