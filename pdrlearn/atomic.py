@@ -186,9 +186,9 @@ def _last_change(folder: Path) -> float:
 
 def _stale_leftovers(target: Path) -> list[Path]:
     """The temporary folders of an interrupted write to ``target`` whose writer has ended (decisions B44,
-    B319): ``.NAME.tmp-PID-...`` marked ended (:data:`ENDED_MTIME`) by a writer stopped by Ctrl-C or SIGTERM;
-    ``.NAME.tmp-PID-hTAG-XXXX`` of this machine and PID namespace (:func:`machine_tag`) whose process is gone;
-    of another tag, unchanged for :data:`FOREIGN_QUIET_S`; ``.NAME.tmp-PID-XXXX`` of older versions whose
+    B319): ``.NAME.tmp-PID-hTAG-XXXX`` of this machine and PID namespace (:func:`machine_tag`) whose process is
+    gone; of another tag, marked ended (:data:`ENDED_MTIME`) by a writer stopped by Ctrl-C or SIGTERM, or unchanged
+    for :data:`FOREIGN_QUIET_S`; ``.NAME.tmp-PID-XXXX`` of older versions whose
     process is gone; ``.NAME.tmp-XXXX`` of older versions last changed before this process started. Newest
     first."""
     if not target.parent.is_dir():
@@ -202,10 +202,8 @@ def _stale_leftovers(target: Path) -> list[Path]:
         pid, tag = m.groups()
         try:
             mtime = p.stat().st_mtime
-            if pid and mtime == ENDED_MTIME:
-                stale = True
-            elif pid and tag and tag != machine_tag():  # decision B319: its process id means nothing here
-                stale = time.time() - _last_change(p) > FOREIGN_QUIET_S
+            if pid and tag and tag != machine_tag():  # decision B319: its process id means nothing here
+                stale = mtime == ENDED_MTIME or time.time() - _last_change(p) > FOREIGN_QUIET_S
             else:
                 stale = not _alive(int(pid)) if pid else mtime < _PROCESS_START
         except OSError:
@@ -258,6 +256,7 @@ def adopt_leftovers(target: str | os.PathLike) -> list[Path]:
         except OSError:  # taken by another process meanwhile: not ours to read
             mine.rmdir()
             continue
+        os.utime(mine)  # decision B319: no longer "ended" (ENDED_MTIME): this process reads it now
         adopted.append(mine)
     return adopted
 

@@ -214,14 +214,22 @@ def test_a_temporary_folder_of_another_pid_namespace_is_not_taken_for_stale(tmp_
 
 
 def test_a_track_all_stopped_by_sigterm_marks_its_kept_folder_ended(tmp_path, monkeypatch):
-    """B320: the temporary folder track-all keeps on an interrupt (for --resume, C41) is marked ended."""
+    """B319: the temporary folder track-all keeps on an interrupt (for --resume, C41) is marked ended, which a run on
+    another node (another tag) reads without a process check; the adopter's own copy is no longer marked (a resumed
+    run had deleted the folder it was reading, at its next write)."""
     from pdrlearn import atomic
 
-    with pytest.raises(KeyboardInterrupt), atomic.atomic_directory(tmp_path / "o", keep_on_interrupt=True) as tmp:
+    target = tmp_path / "o"
+    with pytest.raises(KeyboardInterrupt), atomic.atomic_directory(target, keep_on_interrupt=True) as tmp:
         (tmp / "a").mkdir()
         raise KeyboardInterrupt
     assert tmp.is_dir() and tmp.stat().st_mtime == atomic.ENDED_MTIME
-    assert atomic.adopt_leftovers(tmp_path / "o")  # found stale (and taken by --resume) without a process check
+    assert atomic.clean_leftovers(target) == []  # this machine: its writer (this process) runs
+    other = "0" * 8 if atomic.machine_tag() != "0" * 8 else "1" * 8
+    monkeypatch.setattr(atomic, "machine_tag", lambda: other)  # as seen from another node
+    adopted = atomic.adopt_leftovers(target)
+    assert len(adopted) == 1 and adopted[0].stat().st_mtime > atomic.ENDED_MTIME
+    assert atomic.clean_leftovers(target) == [] and (adopted[0] / "a").is_dir()
 
 
 def test_simulate_force_says_replaced(tmp_path, capsys):
