@@ -100,13 +100,17 @@ def is_session_dir(p: str | os.PathLike, _seen: frozenset = frozenset()) -> bool
     that ``track-all`` reports it as one without sensor files). The one test of what a session is, shared by
     ``train-all``/``evaluate-all`` (:func:`user_sessions`), ``track-all`` (:func:`find_sessions`) and the
     output-folder checks (decision C12)."""
+    from pdrlearn.io.present import present
+
     p = Path(p)
     if not p.is_dir():
         return False
     names = session_files()
-    if any((p / n).is_file() for n in names[1:]):
+    # decision B315: a sensor file that is a dangling link (content not fetched) still makes a session, whose
+    # reading then fails naming the link, instead of a folder silently skipped
+    if any(present(p / n) for n in names[1:]):
         return True
-    if not (p / names[0]).is_file():
+    if not present(p / names[0]):
         return False
     return not _session_below(p, _seen)
 
@@ -144,7 +148,12 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
 
     def walk(d: Path) -> None:
         for p in sorted(d.iterdir()):
-            if not p.is_dir() or p.name.startswith("."):
+            if p.name.startswith("."):
+                continue
+            if p.is_symlink() and not p.exists():  # decision B315: a dangling link may be a session not mounted
+                found.append(p)  # its track fails naming the link's target (exit 1), not silently skipped
+                continue
+            if not p.is_dir():
                 continue
             real = p.resolve()
             if real in seen:

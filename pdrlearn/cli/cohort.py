@@ -20,6 +20,7 @@ from pdrlearn.cli.common import (
     METHODS_HELP,
     console,
     existed,
+    few_names,
     json_safe,
     manifest_kind,
     out_folder,
@@ -629,8 +630,7 @@ PARAMS_DIR_HELP = ("Folder of per-subject calibration files, one SUBJECT.json pe
                    "(decision C26). Instead of --params.")
 
 
-def _few(names: list[str], k: int = 3) -> str:
-    return ", ".join(names[:k]) + (f" and {len(names) - k} more" if len(names) > k else "")
+_few = few_names  # shared with cli.common (decision E160's line)
 
 
 def subject_params(params_dir: Path, rels: list[str], subjects: list[str | None]) -> list[Path]:

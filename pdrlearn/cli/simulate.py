@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import FORCE_HELP, json_safe, non_session_files, print_json, progress
+from pdrlearn.cli.common import FORCE_HELP, json_safe, non_session_files, print_json, progress, replaced
 from pdrlearn.errors import DataError
 
 #: decision S30: the step length (m) and step time (s) `simulate --step-length/--step-time` accept: from a 0.1 m
@@ -265,6 +265,7 @@ def simulate_cmd(
         advance()
         write_session(session, out, overwrite=replace)  # atomic: the old session stays until the new one is written
         advance()
+    replaced(out, replace)  # decision B320: `replaced PATH` on stderr, as every other command's --force
     st = session.steps
     summary = {
         "out": str(out),

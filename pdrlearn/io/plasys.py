@@ -26,6 +26,7 @@ from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError, GravityRemovedError, shell_quote
 from pdrlearn.io.clocks import apply_offsets, one_unit_counting, unit_clocks, unit_groups
 from pdrlearn.io.frames import frames_from_meta
+from pdrlearn.io.present import check_readable, present
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS, parse_value_unit
 from pdrlearn.io.session import MAX_BRIDGED_S, STEP_COLUMNS, Session, Stream
 from pdrlearn.io.validate import (
@@ -1192,12 +1193,14 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
     """:func:`read_session` without E154's capture."""
     folder = folder_arg(folder, "read_session")  # decision B179
     if not folder.exists():
+        check_readable(folder, "folder")  # decision B315: a dangling link names its target
         raise DataError(f"{folder}: session folder not found; pass a folder with fAccelerometer.csv etc.")
     if not folder.is_dir():
         raise DataError(f"{folder}: not a folder; pass the session folder, not a file")
     meta: dict = {}
     meta_path = folder / "meta.json"
-    if meta_path.exists():
+    if present(meta_path):
+        check_readable(meta_path)  # decision B315
         try:
             meta = json.loads(read_text(meta_path))
         except json.JSONDecodeError as exc:
@@ -1214,7 +1217,8 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
     raw = {}
     for name, spec in SENSORS.items():
         p = folder / spec.filename
-        if p.exists():
+        if present(p):  # decision B315: a dangling link or a folder is there, unreadable: one line, not "missing"
+            check_readable(p)
             raw[name] = _read_raw(p, name, drop_partial_row=drop_partial_row, command=command)[1]
     raw = _unwrapped(raw, folder)  # decision B312: a timestamp counter that wraps around
     if not clocks and not _declares_integer_clock(meta, meta_path, rate):
