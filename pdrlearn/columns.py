@@ -304,6 +304,8 @@ SESSIONS: tuple[Column, ...] = (
                                        "time before the walk, a seated stretch at a window's edge) (L275)"),
     ("time_span_s", "s", "number", "the recording of the tracked unit from the session start, or the --window: "
                                    "time_walking_s + time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
+    ("steady_trim", "count", "integer", "--steady-trim: the strides left out at each end of each walking bout from "
+                                        "gait speed, cadence, the stride medians and the CVs (L415; 0: none)"),
     ("common_span_cut_s", "s", "number", "the seconds of the walk the track does not cover: both units' "
                                          "recordings together (when they start or stop over 1 s apart) less the "
                                          "tracked span - a cut to the time both units (or every file) cover "
@@ -789,6 +791,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228); a "
                                     "streamed track (track --streaming, run, Tracker) flags a run from its third "
                                     "stride, as decided live (L243)"),
+    ("steady", _ID, "true/false", "a CV stride: n_cv_strides counts these rows and stride_time_cv_pct / "
+                                  "stride_length_cv_pct are the CVs (SD with n - 1) of their stride_time_s / "
+                                  "|length_m| (steady straight level forward, L104; --steady-trim's bout ends out, "
+                                  "L415)"),
     ("contact_source", _ID, "text", "a stitched track only (L365's partial fallback): force or imu, the detector "
                                     "that timed the stride's IC (L405)"),
     ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),

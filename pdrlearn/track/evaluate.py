@@ -492,7 +492,9 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
     drop = steps["gap_s"].to_numpy(float) > 0 if "gap_s" in steps else np.zeros(len(steps), bool)
     if "impossible" in steps:
         drop = drop | steps["impossible"].eq(True).to_numpy(bool)
-    length = length[~drop]
+    from pdrlearn.track.steady import trimmed_rows
+
+    length = length[~(drop | trimmed_rows(steps))]  # decision L415: --steady-trim
     return float(length.median()) if len(length) else None
 
 
