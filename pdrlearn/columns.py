@@ -209,12 +209,17 @@ SESSIONS: tuple[Column, ...] = (
     ("n_steps_side_undecided", "count", "integer", "lower back: steps whose side was undecided (W228; left + right "
                                                    "+ undecided = n_steps); empty on a foot track"),
     ("n_step_time_asymmetry_steps", "count", "integer", "lower back: step times step_time_asymmetry_raw_pct is "
-                                                        "computed over (L121, W228); 0 on a foot track"),
+                                                        "computed over (L121, W228); a foot track with the "
+                                                        "lower-back unit too: 2 x the strides L416's index is taken "
+                                                        "over; 0 on a foot track alone"),
     ("n_straight_strides", "count", "integer", "level strides turning under 15 deg (L179)"),
     ("n_stride_times", "count", "integer", "strides with a stride time"),
     ("step_time_asymmetry_pct", "%", "number", "lower back: step-time symmetry index 100 x |a - b| / (0.5 x (a + b)) "
                                                "of the alternating steps, given only from 20 % (L121, L216; the size "
-                                               "is misread, mostly over); empty under it and on a foot track (W228)"),
+                                               "is misread, mostly over); empty under it and on a foot track (W228) "
+                                               "- but for a foot track of a session with the lower-back unit too "
+                                               "(>= 50 Hz): the foot's contacts label the lower back's, the index "
+                                               "of the two step times (L416)"),
     ("step_time_asymmetry_raw_pct", "%", "number", "lower back: that index however small; under 20 % no finding "
                                                    "either way (symmetric simulated walkers read up to 18.8 %, L121)"),
     ("step_time_asymmetry_reason", _ID, "text", "why step_time_asymmetry_pct is given or empty (L121, L216, W228)"),

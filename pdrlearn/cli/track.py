@@ -802,6 +802,9 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     if flags is not None:
         result.steps["steady"] = flags
     summary["steady_trim"] = steady_trim()
+    from pdrlearn.track.labelled_asymmetry import track_asymmetry
+
+    summary.update(track_asymmetry(tracked_session, result.steps))  # decision L416: the foot and the lower back
     from pdrlearn.track.periods import time_accounting
 
     unit = tracked_unit(pipeline)

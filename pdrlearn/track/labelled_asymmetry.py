@@ -23,7 +23,7 @@ MIN_STRIDES = 10
 LABELLED_MIN_RATE_HZ = 50.0
 #: decision L416: whether a plasys track of a session with the lower-back unit reports the index in its summary
 #: (the adoption rule's outcome; see docs/decisions/localization.md)
-LABELLED_ASYMMETRY = False
+LABELLED_ASYMMETRY = True
 
 
 def label_contacts(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS
@@ -85,3 +85,33 @@ def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = L
     out.update(step_time_asymmetry_pct=symmetry_index_pct(onto_own, onto_other), step_time_s_instrumented=onto_own,
                step_time_s_other=onto_other)
     return out
+
+
+def track_asymmetry(session, steps) -> dict:
+    """Decision L416: the summary keys (``step_time_asymmetry_pct``, ``n_step_time_asymmetry_steps``,
+    ``step_time_asymmetry_reason``) a foot track (steps with ``event_s``, every row ``unit`` foot) of ``session``
+    takes from :func:`labelled_step_asymmetry` when the session holds the lower-back unit too and
+    :data:`LABELLED_ASYMMETRY` is on; ``{}`` otherwise (the foot's "not observable" stays). The lower back's contacts:
+    the waist-pendulum pipeline's offline IC detector (``waist-ic``); a lower-back stream under
+    :data:`LABELLED_MIN_RATE_HZ` gives the reason instead of an index."""
+    if (not LABELLED_ASYMMETRY or not len(steps) or "event_s" not in steps or "unit" not in steps
+            or not (steps["unit"] == "foot").all() or not session.has("wAccelerometer", "wGyroscope")):
+        return {}
+    rate = float(session.streams["wAccelerometer"].rate_hz or 0.0)
+    if rate < LABELLED_MIN_RATE_HZ:
+        return {"step_time_asymmetry_reason": (
+            f"not given: the lower-back unit records at {rate:g} Hz, under the {LABELLED_MIN_RATE_HZ:g} Hz its "
+            "contacts need to label the other foot's steps (decision L416); a unit on each foot times them "
+            "(pdrlearn gait LEFT_DIR RIGHT_DIR)")}
+    from pdrlearn.steps.waist_ic import WaistICStepDetector
+
+    waist = WaistICStepDetector().detect(session)["event_s"].to_numpy(float)
+    res = labelled_step_asymmetry(steps["event_s"].to_numpy(float), waist)
+    if res["step_time_asymmetry_pct"] is None:
+        reason = (f"not given: {res['n_strides']} of the foot's strides hold one lower-back contact of the other "
+                  f"foot, {MIN_STRIDES} needed (decision L416)")
+    else:
+        reason = ("the lower back's contacts labelled by the foot unit's (the other foot's step in each stride, "
+                  f"median over {res['n_strides']} strides; decision L416)")
+    return {"step_time_asymmetry_pct": res["step_time_asymmetry_pct"],
+            "n_step_time_asymmetry_steps": 2 * res["n_strides"], "step_time_asymmetry_reason": reason}
