@@ -80,3 +80,19 @@ def test_bad_steady_trim_is_one_line_l415(walk, capsys, bad):
     out, err = capsys.readouterr()
     assert code == 2 and "--steady-trim" in err and err.count("\n") == 1
     assert not (walk / "bad").exists()
+
+
+def test_track_all_passes_steady_trim_l415(walk, tmp_path, capsys):
+    import shutil
+
+    shutil.copytree(walk / "u8041", tmp_path / "study" / "u8041")
+    rows = {}
+    for n in ("0", "3"):
+        code = main(["track-all", str(tmp_path / "study"), "--pipeline", "plasys", "--out", str(tmp_path / n),
+                     "--steady-trim", n])
+        _, err = capsys.readouterr()
+        assert code == 0, err
+        rows[n] = pd.read_csv(tmp_path / n / "sessions.csv").iloc[0]
+    assert rows["0"]["steady_trim"] == 0 and rows["3"]["steady_trim"] == 3
+    assert rows["3"]["n_cv_strides"] < rows["0"]["n_cv_strides"]
+    assert "steady" in pd.read_csv(tmp_path / "3" / "u8041" / "steps.csv")

@@ -95,7 +95,8 @@ def track_asymmetry(session, steps) -> dict:
     the waist-pendulum pipeline's offline IC detector (``waist-ic``); a lower-back stream under
     :data:`LABELLED_MIN_RATE_HZ` gives the reason instead of an index."""
     if (not LABELLED_ASYMMETRY or not len(steps) or "event_s" not in steps or "unit" not in steps
-            or not (steps["unit"] == "foot").all() or not session.has("wAccelerometer", "wGyroscope")):
+            or not (steps["unit"] == "foot").all() or not session.has("wAccelerometer", "wGyroscope")
+            or np.isfinite(steps["event_s"].to_numpy(float)).sum() < 2):  # a streamed table without --contacts
         return {}
     rate = float(session.streams["wAccelerometer"].rate_hz or 0.0)
     if rate < LABELLED_MIN_RATE_HZ:
