@@ -796,15 +796,11 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
                             storey_height_m=o.get("storey_height_m", 3.0))
-    from pdrlearn.track.steady import steady_flags, steady_trim
+    from pdrlearn.track.steady import steady_flags
 
     flags = steady_flags(result.steps)  # decision L415: steps.csv says which strides the CVs are taken over
     if flags is not None:
         result.steps["steady"] = flags
-    summary["steady_trim"] = steady_trim()
-    from pdrlearn.track.labelled_asymmetry import track_asymmetry
-
-    summary.update(track_asymmetry(tracked_session, result.steps))  # decision L416: the foot and the lower back
     from pdrlearn.track.periods import time_accounting
 
     unit = tracked_unit(pipeline)

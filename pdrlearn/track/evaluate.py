@@ -1438,6 +1438,11 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     unit = "waist" if str(summary["pipeline"]).startswith("waist") else "foot"  # the tracked unit (B126)
     uncut = getattr(session, "_unit_ends_uncut", None)  # decision B267: read_session's ends before a cut
     summary["common_span_cut_s"] = span_cut_s(uncut, session, unit)
+    from pdrlearn.track.labelled_asymmetry import track_asymmetry
+    from pdrlearn.track.steady import steady_trim
+
+    summary["steady_trim"] = steady_trim()  # decision L415: the bout ends left out of the steady measures
+    summary.update(track_asymmetry(session, result.steps))  # decision L416: a foot unit and the lower back together
     from pdrlearn import __version__
 
     summary["pdrlearn_version"] = __version__  # decision C18: which pdrlearn wrote the numbers
