@@ -217,12 +217,17 @@ SESSIONS: tuple[Column, ...] = (
     ("n_steps_side_undecided", "count", "integer", "lower back: steps whose side was undecided (W228; left + right "
                                                    "+ undecided = n_steps); empty on a foot track"),
     ("n_step_time_asymmetry_steps", "count", "integer", "lower back: step times step_time_asymmetry_raw_pct is "
-                                                        "computed over (L121, W228); 0 on a foot track"),
+                                                        "computed over (L121, W228); a foot track with the "
+                                                        "lower-back unit too: 2 x the strides L416's index is taken "
+                                                        "over; 0 on a foot track alone"),
     ("n_straight_strides", "count", "integer", "level strides turning under 15 deg (L179)"),
     ("n_stride_times", "count", "integer", "strides with a stride time"),
     ("step_time_asymmetry_pct", "%", "number", "lower back: step-time symmetry index 100 x |a - b| / (0.5 x (a + b)) "
                                                "of the alternating steps, given only from 20 % (L121, L216; the size "
-                                               "is misread, mostly over); empty under it and on a foot track (W228)"),
+                                               "is misread, mostly over); empty under it and on a foot track (W228) "
+                                               "- but for a foot track of a session with the lower-back unit too "
+                                               "(>= 50 Hz): the foot's contacts label the lower back's, the index "
+                                               "of the two step times (L416)"),
     ("step_time_asymmetry_raw_pct", "%", "number", "lower back: that index however small; under 20 % no finding "
                                                    "either way (symmetric simulated walkers read up to 18.8 %, L121)"),
     ("step_time_asymmetry_reason", _ID, "text", "why step_time_asymmetry_pct is given or empty (L121, L216, W228)"),
@@ -317,6 +322,8 @@ SESSIONS: tuple[Column, ...] = (
                                        "time before the walk, a seated stretch at a window's edge) (L275)"),
     ("time_span_s", "s", "number", "the recording of the tracked unit from the session start, or the --window: "
                                    "time_walking_s + time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
+    ("steady_trim", "count", "integer", "--steady-trim: the strides left out at each end of each walking bout from "
+                                        "gait speed, cadence, the stride medians and the CVs (L415; 0: none)"),
     ("common_span_cut_s", "s", "number", "the seconds of the walk the track does not cover: both units' "
                                          "recordings together (when they start or stop over 1 s apart) less the "
                                          "tracked span - a cut to the time both units (or every file) cover "
@@ -806,6 +813,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228); a "
                                     "streamed track (track --streaming, run, Tracker) flags a run from its third "
                                     "stride, as decided live (L243)"),
+    ("steady", _ID, "true/false", "a CV stride: n_cv_strides counts these rows and stride_time_cv_pct / "
+                                  "stride_length_cv_pct are the CVs (SD with n - 1) of their stride_time_s / "
+                                  "|length_m| (steady straight level forward, L104; --steady-trim's bout ends out, "
+                                  "L415)"),
     ("contact_source", _ID, "text", "a stitched track only (L365's partial fallback): force or imu, the detector "
                                     "that timed the stride's IC (L405)"),
     ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),

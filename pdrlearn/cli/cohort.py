@@ -768,6 +768,7 @@ def track_all(
     bout_rule: str = _track.BOUT_RULE_OPT,
     bout_break_s: float = _track.BOUT_BREAK_OPT,
     bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,
+    steady_trim: int = _track.STEADY_TRIM_OPT,
     resample: bool = _track.RESAMPLE_OPT,
     no_resample: bool = _track.NO_RESAMPLE_OPT,
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "

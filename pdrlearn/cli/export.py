@@ -589,6 +589,7 @@ def run(
         table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
         summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
         summary["common_span_cut_s"] = cut_s  # decision B267, as track's
+        summary["steady_trim"] = 0  # decision L415, as track's key (B14): `run` has no --steady-trim
         if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
             summary["protocol"] = protocol_stats
         keep_warnings(summary, logged, session)  # decision E154

@@ -212,6 +212,11 @@ PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods
                              "the recording's clock, 1h = the clock hours; the first and last periods partial). clock "
                              "needs the session's start (meta.json recording_start or a date-time import; decision "
                              "L299).")
+STEADY_TRIM_OPT = typer.Option(None, "--steady-trim", metavar="N", help="A steady-state rule: leave the first "
+                               "and last N strides of each walking bout out of gait speed, cadence, the stride "
+                               "time / length / speed medians and the CVs (decision L415; default 0: none, each bout's "
+                               "first two and last stride are never CV strides anyway). steps.csv's steady column "
+                               "marks the CV strides.")
 CORRIDOR_OPT = typer.Option(None, "--corridor", metavar="METRES", help="A corridor walk test (6MWT / 2MWT) up "
                             "and down a course of METRES (e.g. 30, the ATS 2002 6MWT's): OUT/laps.csv (the laps "
                             "between cone turns of >= 135 deg) and the summary's walk_test_distance_m = laps x "
@@ -271,6 +276,7 @@ def track(
     bout_rule: str = BOUT_RULE_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
     bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
+    steady_trim: int = STEADY_TRIM_OPT,
     resample: bool = RESAMPLE_OPT,
     no_resample: bool = NO_RESAMPLE_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -311,6 +317,8 @@ def track(
         pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
+
+        pdrlearn track out/sim/A_u1 --steady-trim 3 --out out/A_steady   # each bout's first / last 3 strides out
 
         pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
 
@@ -399,7 +407,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    detector: str | None = None, length_model: str | None = None,
                    altitude: str | None = None, align_units: bool = False,
                    bout_rule: str | None = None, clock_offset: float | None = None,
-                   clock_drift_ppm: float | None = None, drop_partial_row: bool = False) -> dict:
+                   clock_drift_ppm: float | None = None, drop_partial_row: bool = False,
+                   steady_trim: int | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -407,6 +416,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
     from pdrlearn.io.resample import resample_mode
     from pdrlearn.track.bouts import bout_rule as read_bout_rule
+    from pdrlearn.track.steady import check_steady_trim
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
 
@@ -527,7 +537,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
             "altitude": altitude, "align_units": align_units, "clock_offset_s": clock_offset_s,
-            "clock_drift": clock_drift, "drop_partial_row": drop_partial_row}
+            "clock_drift": clock_drift, "drop_partial_row": drop_partial_row,
+            "steady_trim": None if steady_trim is None else check_steady_trim(steady_trim)}  # decision L415
 
 
 def read_params(params: Path):
@@ -587,10 +598,12 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     writes (the session, the result, its summary.json dict, the pipeline, whether it was aided). Decision E154:
     every warning logged on the way (reading, tracking, the summary's checks) is in the summary's
     ``info["warnings"]`` (and the result's), each once, as ``track-all``'s sessions.csv gives them; E155: with their
-    codes and the summary's ``schema_version``."""
+    codes and the summary's ``schema_version``. Decision L415: the measures are computed under ``--steady-trim``
+    (:func:`pdrlearn.track.steady.steady_trim_set`)."""
+    from pdrlearn.track.steady import steady_trim_set
     from pdrlearn.warning_lines import captured_warnings, machine_summary
 
-    with captured_warnings(echo=True) as logged:
+    with captured_warnings(echo=True) as logged, steady_trim_set(settings.get("steady_trim")):
         tracked = _track_session(session_dir, settings)
     summary = machine_summary(tracked["summary"], logged, str(session_dir))  # decisions E154, E155
     tracked["result"].info["warnings"] = list(summary["info"]["warnings"])
@@ -598,7 +611,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
 
 def _track_session(session_dir: Path, settings: dict) -> dict:
-    """:func:`track_session` without E154's capture."""
+    """:func:`track_session` without E154's capture and L415's setting."""
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline, resolve_pipeline
     from pdrlearn.track.evaluate import track_summary
@@ -813,6 +826,11 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
                             storey_height_m=o.get("storey_height_m", 3.0))
+    from pdrlearn.track.steady import steady_flags
+
+    flags = steady_flags(result.steps)  # decision L415: steps.csv says which strides the CVs are taken over
+    if flags is not None:
+        result.steps["steady"] = flags
     from pdrlearn.track.periods import time_accounting
 
     unit = tracked_unit(pipeline)

@@ -492,7 +492,9 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
     drop = steps["gap_s"].to_numpy(float) > 0 if "gap_s" in steps else np.zeros(len(steps), bool)
     if "impossible" in steps:
         drop = drop | steps["impossible"].eq(True).to_numpy(bool)
-    length = length[~drop]
+    from pdrlearn.track.steady import trimmed_rows
+
+    length = length[~(drop | trimmed_rows(steps))]  # decision L415: --steady-trim
     return float(length.median()) if len(length) else None
 
 
@@ -1460,6 +1462,11 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     unit = "waist" if str(summary["pipeline"]).startswith("waist") else "foot"  # the tracked unit (B126)
     uncut = getattr(session, "_unit_ends_uncut", None)  # decision B267: read_session's ends before a cut
     summary["common_span_cut_s"] = span_cut_s(uncut, session, unit)
+    from pdrlearn.track.labelled_asymmetry import track_asymmetry
+    from pdrlearn.track.steady import steady_trim
+
+    summary["steady_trim"] = steady_trim()  # decision L415: the bout ends left out of the steady measures
+    summary.update(track_asymmetry(session, result.steps))  # decision L416: a foot unit and the lower back together
     from pdrlearn import __version__
 
     summary["pdrlearn_version"] = __version__  # decision C18: which pdrlearn wrote the numbers
