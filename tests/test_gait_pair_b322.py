@@ -16,7 +16,6 @@ from pdrlearn.cli import main
 from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
 from pdrlearn.io.session import Session, Stream
-from pdrlearn.track.bilateral import check_pair_streams
 
 ROOT = Path(__file__).resolve().parents[1]
 LEFT, RIGHT = ROOT / "datasets/real/gaitmap_level_left", ROOT / "datasets/real/gaitmap_level_right"
@@ -99,6 +98,8 @@ def _session(t0: float, dur: float, rate: float) -> Session:
 
 
 def test_pair_streams_rate_and_overlap_limits_b322():
+    from pdrlearn.track.bilateral import check_pair_streams
+
     check_pair_streams(Path("L"), Path("R"), [_session(0, 40, 204.8), _session(0.3, 41, 200.0)])  # D7's 2.4 %
     check_pair_streams(Path("L"), Path("R"), [_session(0, 40, 100), _session(15, 40, 100)])  # 25 of 40 s: 62 %
     with pytest.raises(DataError, match="overlap for 10.0 s"):

@@ -66,3 +66,11 @@ def test_foot_f1_is_pooled_per_reference_never_across_e161(step_count):
     assert pooled.loc["rest-based segmentation (NOT ground truth)", "sessions"] == 1
     text = step_count._md_foot_pooled(rows)
     assert "| shared | motion capture | 2 | 59 | 60 | 0.992 |" in text and "NOT ground truth" in text
+
+
+def test_demo_table_says_the_stair_f1_is_not_ground_truth_e161():
+    spec = importlib.util.spec_from_file_location("pdrlearn_demo_under_test", ROOT / "experiments" / "demo.py")
+    demo = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(demo)
+    assert "NOT ground truth" in demo.DEMO_F1_ROWS["stairs_steps"]
+    assert "motion capture" in demo.DEMO_F1_ROWS["foot_steps"]
