@@ -893,7 +893,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         t_all = (t_num - origin_raw) * scale
         origin = origin_raw * scale
         record: dict = {"file": path.name, "unit": unit,
-                        "time": {"column": time_column, "unit": t_unit, "source": t_how if time_column == ROW_INDEX else f"{t_source} column, unit {t_how}",
+                        "time": {"column": time_column, "unit": t_unit,
+                                 "source": t_how if time_column == ROW_INDEX else f"{t_source} column, unit {t_how}",
                                  "origin_s": origin},
                         "streams": {}, "dropped_rows": {}}
         if skipped is not None:  # decision B66
