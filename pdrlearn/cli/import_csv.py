@@ -153,6 +153,8 @@ def import_command(
             --labels bouts.csv --labels turns.csv
 
         pdrlearn import restarted.csv --out sessions/walk2 --split-at-clock-reset   # walk2/part1, walk2/part2
+
+        pdrlearn import s01_left.csv --rate 204.8 --foot left --gyro-unit deg/s --out s01_left  # no time column
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
