@@ -121,6 +121,8 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_error_strides_pct", "%", "number", "distance error against the summed reference strides"),
     ("distance_in_ref_bouts_m", "m", "number", "tracked distance inside the reference bouts (L82)"),
     ("distance_matched_error_pct", "%", "number", "foot: distance error over the strides matched to labels"),
+    ("distance_matched_m", "m", "number", "foot: summed length of the tracked strides matched to labels (L419)"),
+    ("distance_matched_ref_m", "m", "number", "foot: summed length of the labelled strides they match (L419)"),
     ("distance_ref_source", _ID, "text", "where distance_ref_m comes from"),
     ("reference_travel_m", "m", "number", "set when trajectory.csv stays put while the track walks (a treadmill "
                                           "in the lab frame): its largest distance from its start (L319)"),

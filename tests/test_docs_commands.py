@@ -349,6 +349,7 @@ def _validators() -> dict[tuple[str, str], object]:
         **{("simulate", k): _one_of(FEET) for k in ("foot", "paretic_side")},  # decisions S54, S55
         ("fetch", "source"): _one_of(SOURCES),
         ("import", "unit"): _one_of(PLACEMENTS),
+        ("import", "foot"): _one_of(FEET),  # decision B321 (the same two feet as importer.FEET)
         ("import", "time_unit"): time_unit,
         ("import", "acc_unit"): unit_word("acc"),
         ("import", "gyro_unit"): unit_word("gyro"),

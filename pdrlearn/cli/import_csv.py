@@ -106,6 +106,8 @@ def import_command(
                                   "for the units; B66)."),
     force_frame: bool = typer.Option(False, "--force-frame", help="Write the --frames axes even when the data "
                                      "contradict them (refused otherwise, B67)."),
+    foot: str = typer.Option(None, "--foot", help="The foot the unit is on, left or right, written to meta.json "
+                             "\"foot\" (pdrlearn gait checks the side given against it; B321)."),
     name: str = typer.Option(None, "--name", help="Session name, written to meta.json (default: the --out "
                              "folder's name; with --merge the session's own)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
@@ -153,6 +155,8 @@ def import_command(
             --labels bouts.csv --labels turns.csv
 
         pdrlearn import restarted.csv --out sessions/walk2 --split-at-clock-reset   # walk2/part1, walk2/part2
+
+        pdrlearn import s01_left.csv --rate 204.8 --foot left --gyro-unit deg/s --out s01_left  # no time column
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
@@ -249,7 +253,8 @@ def import_command(
               name=name or (None if merge else out.name),
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
-              drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime)
+              drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime,
+              foot=foot)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
         if len(parts) > 1:
@@ -452,8 +457,11 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         typer.echo(msg, err=True)
 
     t = record["time"]
-    err(f"time: column '{t['column']}' in {t['unit']} ({t['source']}); 0 ms = {_origin_text(t['origin_s'])} on the "
-        "export's clock")
+    if t["column"] == "(row index)":  # decision B323 (importer.ROW_INDEX; this module imports no numpy)
+        err(f"time: no time column: {t['source']}; 0 ms = the first row")
+    else:
+        err(f"time: column '{t['column']}' in {t['unit']} ({t['source']}); 0 ms = {_origin_text(t['origin_s'])} on "
+            "the export's clock")
     sk = record.get("skipped_rows")
     if sk:  # decision B66
         if sk.get("units"):

@@ -1035,6 +1035,28 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     return summary, aided
 
 
+def distance_error_phrase(summary: dict) -> str:
+    """The summary line's distance error. Decision L419 (session 34, trial T5 finding 6): when labelled strides cover
+    part of the walk (gaitmap's mocap volume: 28 of 32 strides), the like-with-like number leads - the matched
+    tracked strides against their labelled strides - and the whole-track ``distance_error_pct`` (every tracked
+    stride against the labelled strides' sum) follows with the spans it compares; otherwise as before."""
+    err = summary.get("distance_error_pct")
+    if err is None:
+        return ""
+    matched, n = summary.get("stride_length_matched"), summary.get("n_steps")
+    if summary.get("distance_matched_error_pct") is None or matched is None or n is None or matched >= n:
+        return f", distance error {err:+.2f} %"
+    spans = (f" ({summary['distance_matched_m']:.2f} m tracked vs {summary['distance_matched_ref_m']:.2f} m labelled)"
+             if summary.get("distance_matched_m") is not None and summary.get("distance_matched_ref_m") is not None
+             else "")
+    ref = summary.get("distance_ref_m")
+    whole = (f"all {n} tracked strides {summary['distance_m']:.2f} m vs the labelled strides' {ref:.2f} m: "
+             if ref is not None else f"all {n} tracked strides: ")
+    return (f", distance error {summary['distance_matched_error_pct']:+.2f} % over the {matched} strides matched to "
+            f"labels{spans}; whole track {err:+.2f} % ({whole}strides outside the labelled span count against it, "
+            "L419)")
+
+
 def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False) -> None:
     name = summary["session"]
     if summary.get("window_start_s") is not None:  # decision L105
@@ -1047,11 +1069,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                # W21: the lower-back error counts the reference bouts only; say so before the number
                + (f"; inside the reference bouts {summary['bout_distance_m']:.2f} m vs "
                   f"{summary['bout_reference_m']:.2f} m" if bouts else "")
-               + (f", distance error {err:+.2f} %" if err is not None else "")
-               + (f" (over the {summary['stride_length_matched']} labelled strides "
-                  f"{summary['distance_matched_error_pct']:+.2f} %)"  # a reference labelling part of the walk
-                  if "distance_matched_error_pct" in summary and "stride_length_matched" in summary
-                  and err is not None and summary["stride_length_matched"] < summary["n_steps"] else "")
+               + distance_error_phrase(summary)
                + (f", final position error {summary['final_position_error_m']:.2f} m horizontal"
                   if "final_position_error_m" in summary else "")
                # L52: the altitude change, with its reference when the session has one

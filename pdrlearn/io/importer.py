@@ -633,6 +633,14 @@ def _units_row_hint(df: pd.DataFrame, row: int, first_line: int, skipped: int = 
             f"--acc-unit/--gyro-unit/--time-unit for the units {'it names' if n == 1 else 'they name'})")
 
 
+#: decision B323: the time "column" of a fixed-rate export without one: its rows numbered 0, 1, 2 ... at --rate
+ROW_INDEX = "(row index)"
+
+#: decision B321: the feet ``import --foot`` writes to meta.json ``foot`` (the key :func:`pdrlearn.track.bilateral
+#: .session_foot` reads first)
+FEET = ("left", "right")
+
+
 def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str, list[str]] | None = None,
                time_column: str | None = None, time_unit: str | None = None, units: dict[str, str] | None = None,
                frame=None, sensor_height_m: float | None = None, name: str | None = None,
@@ -640,8 +648,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                subject_height_m: float | None = None, rate_hz: float | None = None,
                time_format: str | None = None, time_zone: str | None = None,
                skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
-               add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None
-               ) -> tuple[Session, dict]:
+               add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
+               foot: str | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -705,8 +713,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   subject_height_m: float | None = None, rate_hz: float | None = None,
                   time_format: str | None = None, time_zone: str | None = None,
                   skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
-                  add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None
-                  ) -> list[tuple[Session, dict]]:
+                  add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
+                  foot: str | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = Path(path)
@@ -722,6 +730,13 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                             + " (decision B186)")
     if unit not in PLACEMENTS:
         raise DataError(f"import: unit {unit!r} is not one of {', '.join(PLACEMENTS)}")
+    if foot is not None:  # decision B321
+        foot = str(foot).strip().lower()
+        if foot not in FEET:
+            raise DataError(f"import: --foot {foot!r} is not left or right (the foot the unit is on)")
+        if unit != "foot":
+            raise DataError("import: --foot names the foot a foot unit is on, and this is a --unit waist import; "
+                            "drop --foot, or import the foot unit's file with it (decision B321)")
     df = read_table(path)  # B24: ';' / tab separators and decimal commas, as every session file
     dialect = _csv_dialect(path)
     header = list(df.columns)
@@ -783,7 +798,11 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             if several:  # decision B70: say which columns compete (a Shimmer's Timestamp_Unix and TimestampSync_Unix)
                 raise DataError(f"{where}: several columns look like the time: {', '.join(several)}; name the one "
                                 "to use with --time COLUMN")
-            raise DataError(f"{where}: no timestamp column found among: {have}; name it with --time COLUMN")
+            if rate_hz is None:
+                raise DataError(f"{where}: no timestamp column found among: {have}; name it with --time COLUMN, or "
+                                "pass --rate HZ to time the rows by their number (a fixed-rate export, B323)")
+            time_column = ROW_INDEX  # decision B323: a fixed-rate export (gaitmap / NilsPod style): rows at --rate
+            t_source = "none"
     else:
         t_source = "given"
         if time_column not in header:
@@ -808,8 +827,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         raise DataError(f"{where}: no accelerometer/gyroscope columns recognised among: {have}; map them with "
                         "--acc X,Y,Z --gyro X,Y,Z (or --mapping FILE.json)")
 
-    tcol = df[time_column]
-    parsed = _datetime_seconds(tcol, where, time_format, time_zone)
+    tcol = pd.Series(np.arange(len(df)), name=ROW_INDEX) if time_column == ROW_INDEX else df[time_column]
+    parsed = None if time_column == ROW_INDEX else _datetime_seconds(tcol, where, time_format, time_zone)
     secs = None if parsed is None else parsed[0]
     if parsed is not None:
         t_num, t_unit, t_how = secs, "s", "date-time text"
@@ -853,6 +872,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             t_num, half = rows_at_rate(secs, r, where, time_column, first_line)
             t_how = (f"rows at {r:g} Hz (given with --rate) from the whole-second date-time text (the start "
                      f"placed to +/-{half * 1000:.0f} ms)")
+        elif time_column == ROW_INDEX:  # decision B323
+            t_unit, t_how = "samples", f"the row index at {r:g} Hz (given with --rate, decision B323)"
         else:
             t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
     # the origin is taken off in the file's own unit: epoch milliseconds keep their exact 10 ms steps
@@ -884,7 +905,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         t_all = (t_num - origin_raw) * scale
         origin = origin_raw * scale
         record: dict = {"file": path.name, "unit": unit,
-                        "time": {"column": time_column, "unit": t_unit, "source": f"{t_source} column, unit {t_how}",
+                        "time": {"column": time_column, "unit": t_unit,
+                                 "source": t_how if time_column == ROW_INDEX else f"{t_source} column, unit {t_how}",
                                  "origin_s": origin},
                         "streams": {}, "dropped_rows": {}}
         if skipped is not None:  # decision B66
@@ -1009,6 +1031,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"import: subject height {subject_height_m!r} is not a person's height in m "
                                 "(0.5-2.5 m; 1.75, not 175)")
             meta["height_m"] = h
+        if foot is not None:  # decision B321: `pdrlearn gait` checks the side given against it (L260)
+            meta["foot"] = foot
         frames = {}
         f = frame if isinstance(frame, AxisFrame) or frame is None else parse_frame(frame)
         if f is not None:
@@ -1075,7 +1099,7 @@ def merge_sessions(base: Session, add: Session) -> Session:
     placement = meta.get("placement")
     if placement and placement != add.meta.get("placement"):
         meta["placement"] = "foot+waist"
-    for key in ("sensor_height_m", "height_m"):
+    for key in ("sensor_height_m", "height_m", "foot"):
         if key in add.meta:
             meta[key] = add.meta[key]
     return Session(name=base.name, streams={**base.streams, **add.streams},

@@ -969,6 +969,10 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
     # the distance over the labelled strides only: a reference that labels part of the walk (gaitmap's
     # mocap volume: 28 of 32 strides) makes distance_error_pct compare the whole track with part of it
     out["distance_matched_error_pct"] = float(100.0 * (np.abs(e).sum() / np.abs(r).sum() - 1.0))
+    # decision L419: the two sums that error compares (the matched tracked strides, their labelled strides), so the
+    # printed headline can say which span each number covers
+    out["distance_matched_m"] = float(np.abs(e).sum())
+    out["distance_matched_ref_m"] = float(np.abs(r).sum())
     if "turn" in session.steps:
         turn = flag_values(session.steps["turn"])[ri]
         if (~turn).any():
@@ -1065,7 +1069,7 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
         out["distance_in_ref_bouts_m"] = m["bout_distance_m"]
     for k in ("stride_length_matched", "stride_length_composed", "stride_length_mae_pct",
               "stride_length_mae_pct_straight", "stride_length_mae_pct_turns", "stride_length_mae_pct_steady",
-              "distance_matched_error_pct"):
+              "distance_matched_error_pct", "distance_matched_m", "distance_matched_ref_m"):
         out.pop(k, None)  # step rows are not strides: the stride metric of waist_metrics replaces these
     if "n_strides" in m:  # decision C19: the reference strides scored, not strides tracked (sessions.csv's
         m["n_reference_strides"] = m.pop("n_strides")  # n_strides column was 7 on the lower back, empty on the foot)
