@@ -14,10 +14,12 @@ name, or under the set-aside name, which the error gives). Files (:func:`atomic_
 
 from __future__ import annotations
 
+import hashlib
 import logging
 import os
 import re
 import shutil
+import socket
 import tempfile
 import time
 from collections.abc import Iterator
@@ -137,26 +139,88 @@ def _alive(pid: int) -> bool:
     return True
 
 
+#: decision B319: a temporary folder of a writer on another machine or in another PID namespace (a container,
+#: ``unshare -p``) -- whose process id ``kill(pid, 0)`` cannot check -- is stale only when nothing in it has
+#: changed for this long (24 h): a mistake would delete a live write; waiting costs only its disk space.
+FOREIGN_QUIET_S = 24 * 3600
+#: decision B319: the modification time (the epoch) a writer stopped by Ctrl-C or SIGTERM gives the temporary folder
+#: it keeps for ``--resume``: "ended", readable from any machine
+ENDED_MTIME = 0
+
+
+def _read_first_line(path: str) -> str:
+    try:
+        with open(path, encoding="ascii", errors="replace") as f:
+            return f.readline().strip()
+    except OSError:
+        return ""
+
+
+def machine_tag() -> str:
+    """Decision B319: 8 hex digits naming where this process's id means something: the host name, the boot (Linux
+    ``boot_id``) and the PID namespace (``/proc/self/ns/pid``). Two processes with the same tag can check each
+    other with ``kill(pid, 0)``; a different tag cannot."""
+    try:
+        ns = os.readlink("/proc/self/ns/pid")
+    except OSError:
+        ns = ""
+    key = f"{socket.gethostname()}|{_read_first_line('/proc/sys/kernel/random/boot_id')}|{ns}"
+    return hashlib.sha1(key.encode()).hexdigest()[:8]
+
+
+def _tmp_prefix(target: Path) -> str:
+    """The temporary folder's name before mkdtemp's random part: ``.NAME.tmp-PID-hTAG-`` (decisions B44, B319)."""
+    return f".{target.name}.tmp-{os.getpid()}-h{machine_tag()}-"
+
+
+def _last_change(folder: Path) -> float:
+    """The newest modification time of ``folder`` and everything in it (a writer adds files at any depth)."""
+    newest = folder.stat().st_mtime
+    for p in folder.rglob("*"):
+        try:
+            newest = max(newest, p.lstat().st_mtime)
+        except OSError:
+            continue
+    return newest
+
+
 def _stale_leftovers(target: Path) -> list[Path]:
-    """The temporary folders of an interrupted write to ``target`` whose writer has ended (decision B44):
-    ``.NAME.tmp-PID-XXXX`` whose process is gone, ``.NAME.tmp-XXXX`` of older versions last changed before this
-    process started. Newest first."""
+    """The temporary folders of an interrupted write to ``target`` whose writer has ended (decisions B44,
+    B319): ``.NAME.tmp-PID-hTAG-XXXX`` of this machine and PID namespace (:func:`machine_tag`) whose process is
+    gone; of another tag, marked ended (:data:`ENDED_MTIME`) by a writer stopped by Ctrl-C or SIGTERM, or unchanged
+    for :data:`FOREIGN_QUIET_S`; ``.NAME.tmp-PID-XXXX`` of older versions whose
+    process is gone; ``.NAME.tmp-XXXX`` of older versions last changed before this process started. Newest
+    first."""
     if not target.parent.is_dir():
         return []
-    pat = re.compile(re.escape(f".{target.name}.tmp-") + r"(?:(\d+)-)?[^/]+$")
+    pat = re.compile(re.escape(f".{target.name}.tmp-") + r"(?:(\d+)-(?:h([0-9a-f]{8})-)?)?[^/]+$")
     found = []
     for p in target.parent.iterdir():
         m = pat.match(p.name)
         if not m or p.is_symlink() or not p.is_dir():
             continue
+        pid, tag = m.groups()
         try:
             mtime = p.stat().st_mtime
-            stale = not _alive(int(m.group(1))) if m.group(1) else mtime < _PROCESS_START
+            if pid and tag and tag != machine_tag():  # decision B319: its process id means nothing here
+                stale = mtime == ENDED_MTIME or time.time() - _last_change(p) > FOREIGN_QUIET_S
+            else:
+                stale = not _alive(int(pid)) if pid else mtime < _PROCESS_START
         except OSError:
             continue
         if stale:
             found.append((mtime, p))
     return [p for _, p in sorted(found, key=lambda x: -x[0])]
+
+
+def _mark_ended(tmp: Path) -> None:
+    """Decision B319: a temporary folder kept on an interrupt (track-all, for ``--resume``) gets the modification
+    time :data:`ENDED_MTIME`, so that the next run -- on another node or in another container too -- knows that its
+    writer has ended without checking a process id (its name and content stay as they are, for ``--resume``)."""
+    try:
+        os.utime(tmp, (ENDED_MTIME, ENDED_MTIME))
+    except OSError:
+        pass  # then found stale by its process id (this machine) or by FOREIGN_QUIET_S, as without the mark
 
 
 def clean_leftovers(target: str | os.PathLike) -> list[Path]:
@@ -186,14 +250,22 @@ def adopt_leftovers(target: str | os.PathLike) -> list[Path]:
     target = Path(target)
     adopted = []
     for p in _stale_leftovers(target):
-        mine = Path(tempfile.mkdtemp(prefix=f".{target.name}.tmp-{os.getpid()}-resumed-", dir=target.parent))
+        mine = Path(tempfile.mkdtemp(prefix=f"{_tmp_prefix(target)}resumed-", dir=target.parent))
         try:
             p.rename(mine)  # onto the empty folder just reserved: one atomic step
         except OSError:  # taken by another process meanwhile: not ours to read
             mine.rmdir()
             continue
+        os.utime(mine)  # decision B319: no longer "ended" (ENDED_MTIME): this process reads it now
         adopted.append(mine)
     return adopted
+
+
+def _written_meanwhile(target: Path) -> str:
+    """Decision B320: the line of the losing one of two writers to the same new output (T4 finding 10: it said
+    "changed after this command checked it ... run the command again", which then said "pass --force")."""
+    return (f"{target}: another process wrote its output there while this command ran (it was absent or empty when "
+            "checked); this command's output was not written -- keep that one, or pass --force to replace it")
 
 
 @contextmanager
@@ -211,7 +283,7 @@ def atomic_directory(target: str | os.PathLike, *, keep_on_interrupt: bool = Fal
     target = Path(target)
     target.parent.mkdir(parents=True, exist_ok=True)
     clean_leftovers(target)  # decision B44
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.tmp-{os.getpid()}-", dir=target.parent))
+    tmp = Path(tempfile.mkdtemp(prefix=_tmp_prefix(target), dir=target.parent))
     # mkdtemp creates 0700; the result gets the permissions a plain mkdir would give (umask applied),
     # so a model, bundle, session or report folder is readable by whoever could read its parent.
     tmp.chmod(0o777 & ~_umask())
@@ -222,21 +294,27 @@ def atomic_directory(target: str | os.PathLike, *, keep_on_interrupt: bool = Fal
         old = _set_aside(target)
         if old is not None and expected is not None and fingerprint(old) != expected:
             _put_back(old, target)
+            if not expected:  # decision B320: absent or empty when checked: another process wrote its output there
+                raise OutputChangedError(_written_meanwhile(target))
             raise OutputChangedError(f"{target}: changed after this command checked it (files added, removed or "
                                      "rewritten meanwhile); it was not replaced -- look at it and run the command "
                                      "again")
         try:
             tmp.rename(target)
-        except BaseException:
+        except BaseException as exc:
             if old is not None:  # put the previous result back under its own name
                 _put_back(old, target)
+            elif isinstance(exc, OSError) and target.is_dir() and any(target.iterdir()):  # decision B320
+                raise OutputChangedError(_written_meanwhile(target)) from None
             raise
         note_written(target)
         if old is not None:
             shutil.rmtree(old, ignore_errors=True)
-    except KeyboardInterrupt:
+    except KeyboardInterrupt:  # Ctrl-C, or SIGTERM (decision B319)
         if not keep_on_interrupt:
             shutil.rmtree(tmp, ignore_errors=True)
+        else:
+            _mark_ended(tmp)
         raise
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)

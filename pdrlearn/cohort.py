@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from pdrlearn.errors import DISK_FULL_ERRNOS, DataError, PdrlearnError, shell_quote
+from pdrlearn.warning_lines import captured_warnings  # noqa: F401  (decision E154: shared; imported from here too)
 
 log = logging.getLogger(__name__)
 
@@ -99,13 +100,17 @@ def is_session_dir(p: str | os.PathLike, _seen: frozenset = frozenset()) -> bool
     that ``track-all`` reports it as one without sensor files). The one test of what a session is, shared by
     ``train-all``/``evaluate-all`` (:func:`user_sessions`), ``track-all`` (:func:`find_sessions`) and the
     output-folder checks (decision C12)."""
+    from pdrlearn.io.present import present
+
     p = Path(p)
     if not p.is_dir():
         return False
     names = session_files()
-    if any((p / n).is_file() for n in names[1:]):
+    # decision B315: a sensor file that is a dangling link (content not fetched) still makes a session, whose
+    # reading then fails naming the link, instead of a folder silently skipped
+    if any(present(p / n) for n in names[1:]):
         return True
-    if not (p / names[0]).is_file():
+    if not present(p / names[0]):
         return False
     return not _session_below(p, _seen)
 
@@ -143,7 +148,12 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
 
     def walk(d: Path) -> None:
         for p in sorted(d.iterdir()):
-            if not p.is_dir() or p.name.startswith("."):
+            if p.name.startswith("."):
+                continue
+            if p.is_symlink() and not p.exists():  # decision B315: a dangling link may be a session not mounted
+                found.append(p)  # its track fails naming the link's target (exit 1), not silently skipped
+                continue
+            if not p.is_dir():
                 continue
             real = p.resolve()
             if real in seen:
@@ -365,36 +375,6 @@ def run_cohort(
         client.close()
         if cluster is not None:
             cluster.close()
-
-
-@contextmanager
-def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterator[list[str]]:
-    """Collect the WARNING (and worse) records of ``logger`` and its children raised in the body into the
-    yielded list instead of letting the logger's handlers print them (records below WARNING pass as
-    before). ``track-all`` tracks each session inside it and says each distinct warning once per batch with
-    the sessions it concerns (decision C12): the ~250-character "no model" line was printed per session.
-    ``echo=True``: the handlers print them too (``evaluate`` keeps its printed warnings in its JSON, B95)."""
-    log_ = logging.getLogger(logger)
-    messages: list[str] = []
-
-    class _Collect(logging.Handler):
-        def emit(self, record: logging.LogRecord) -> None:
-            messages.append(record.getMessage())
-
-    def below_warning(record: logging.LogRecord) -> bool:
-        return record.levelno < logging.WARNING
-
-    others = [] if echo else list(log_.handlers)
-    for h in others:
-        h.addFilter(below_warning)
-    collect = _Collect(logging.WARNING)
-    log_.addHandler(collect)
-    try:
-        yield messages
-    finally:
-        log_.removeHandler(collect)
-        for h in others:
-            h.removeFilter(below_warning)
 
 
 def grouped_warning(text: str, names: Sequence[str], total: int, noun: str = "sessions") -> str:

@@ -121,6 +121,8 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_error_strides_pct", "%", "number", "distance error against the summed reference strides"),
     ("distance_in_ref_bouts_m", "m", "number", "tracked distance inside the reference bouts (L82)"),
     ("distance_matched_error_pct", "%", "number", "foot: distance error over the strides matched to labels"),
+    ("distance_matched_m", "m", "number", "foot: summed length of the tracked strides matched to labels (L419)"),
+    ("distance_matched_ref_m", "m", "number", "foot: summed length of the labelled strides they match (L419)"),
     ("distance_ref_source", _ID, "text", "where distance_ref_m comes from"),
     ("reference_travel_m", "m", "number", "set when trajectory.csv stays put while the track walks (a treadmill "
                                           "in the lab frame): its largest distance from its start (L319)"),
@@ -202,6 +204,14 @@ SESSIONS: tuple[Column, ...] = (
     ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
     ("n_side_strides", "count", "integer", "foot: strides of side-stepping runs (L219 / L228's sideways rows), "
                                            "not counted as backward (L270); empty on the lower back"),
+    ("n_flight_phases", "count", "integer", "foot: runs of the foot accelerometer under 0.3 g for 0.1 s or more "
+                                            "(both feet off the ground: jumps, running; W363); empty on the lower "
+                                            "back"),
+    ("flight_time_s", "s", "number", "foot: the flight phases' time in all (W363)"),
+    ("direction_changes", "count", "integer", "foot: changes of travel direction (steps.csv travel: forward / "
+                                              "backward / left / right, turn and empty rows skipped; "
+                                              "direction_changes.csv's rows, L412); a turn is not one; empty on "
+                                              "the lower back"),
     ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
     ("n_steps_left", "count", "integer", "lower back: steps whose side (W129's pelvis sway) is the left foot "
                                          "(W228); empty on a foot track (n_strides_one_foot)"),
@@ -209,12 +219,17 @@ SESSIONS: tuple[Column, ...] = (
     ("n_steps_side_undecided", "count", "integer", "lower back: steps whose side was undecided (W228; left + right "
                                                    "+ undecided = n_steps); empty on a foot track"),
     ("n_step_time_asymmetry_steps", "count", "integer", "lower back: step times step_time_asymmetry_raw_pct is "
-                                                        "computed over (L121, W228); 0 on a foot track"),
+                                                        "computed over (L121, W228); a foot track with the "
+                                                        "lower-back unit too: 2 x the strides L416's index is taken "
+                                                        "over; 0 on a foot track alone"),
     ("n_straight_strides", "count", "integer", "level strides turning under 15 deg (L179)"),
     ("n_stride_times", "count", "integer", "strides with a stride time"),
     ("step_time_asymmetry_pct", "%", "number", "lower back: step-time symmetry index 100 x |a - b| / (0.5 x (a + b)) "
                                                "of the alternating steps, given only from 20 % (L121, L216; the size "
-                                               "is misread, mostly over); empty under it and on a foot track (W228)"),
+                                               "is misread, mostly over); empty under it and on a foot track (W228) "
+                                               "- but for a foot track of a session with the lower-back unit too "
+                                               "(>= 50 Hz): the foot's contacts label the lower back's, the index "
+                                               "of the two step times (L416)"),
     ("step_time_asymmetry_raw_pct", "%", "number", "lower back: that index however small; under 20 % no finding "
                                                    "either way (symmetric simulated walkers read up to 18.8 %, L121)"),
     ("step_time_asymmetry_reason", _ID, "text", "why step_time_asymmetry_pct is given or empty (L121, L216, W228)"),
@@ -249,6 +264,9 @@ SESSIONS: tuple[Column, ...] = (
                                                      "distance in each full minute from the first step (L383)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
                                          "(our choice, L383); empty under 2 full minutes"),
+    ("splits_m", "m", "number", "--splits only, summary.json only (a list): the distance marks given (L411)"),
+    ("split_times_s", "s", "number", "--splits only, summary.json only (a list): each mark's time from the first "
+                                     "step's start (splits.csv's time_s); empty for a mark beyond the path (L411)"),
     ("per_align", _ID, "text", "--per-align clock or first-step only: clock (periods.csv cut at the clock's whole "
                                "periods, L299) or first-step (from the first tracked step, L381)"),
     ("per_start_s", "s", "number", "--per only: the first period's start (the recording's or --window's start, or "
@@ -256,6 +274,8 @@ SESSIONS: tuple[Column, ...] = (
     ("recording_start", "date-time", "text", "the clock time of the recording's first sample, ISO 8601 at its own "
                                              f"offset; {_WITH_START}"),
     ("pdrlearn_version", _ID, "text", "the pdrlearn version that wrote the row (run.json names the commit, L136)"),
+    ("schema_version", _ID, "integer", "the version of summary.json's keys (E155): raised when a key is renamed, "
+                                       "removed or changes meaning, not when one is added"),
     ("step_f1", "fraction", "number", "tracked strides / steps against the reference contacts, F1 (L36)"),
     ("step_f1_all", "fraction", "number", "lower back: F1 over every reference contact"),
     ("step_f1_same_foot_gaps_scored", "fraction", "number", "lower back: F1 with same-foot gaps scored"),
@@ -304,6 +324,8 @@ SESSIONS: tuple[Column, ...] = (
                                        "time before the walk, a seated stretch at a window's edge) (L275)"),
     ("time_span_s", "s", "number", "the recording of the tracked unit from the session start, or the --window: "
                                    "time_walking_s + time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
+    ("steady_trim", "count", "integer", "--steady-trim: the strides left out at each end of each walking bout from "
+                                        "gait speed, cadence, the stride medians and the CVs (L415; 0: none)"),
     ("common_span_cut_s", "s", "number", "the seconds of the walk the track does not cover: both units' "
                                          "recordings together (when they start or stop over 1 s apart) less the "
                                          "tracked span - a cut to the time both units (or every file) cover "
@@ -782,6 +804,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),
     ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
                                            "L224)"),
+    ("travel", _ID, "text", "the stride's travel direction from the foot's facing (L412): forward, backward (as "
+                            "backward_travel), left / right (a side-stepping run's stride, sideways; side when "
+                            "streamed), turn (the foot turned 30 deg or more), empty (a gap, impossible or under "
+                            "0.15 m); model-free, unlike direction"),
     ("length_class", _ID, "text", "M3's length class (empty without a model)"),
     ("confidence", "fraction", "number", "the class confidence (1 without a model)"),
     ("p_<task>_<class>", "fraction", "number", "with a model: the class probabilities (one column each)"),
@@ -791,6 +817,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228); a "
                                     "streamed track (track --streaming, run, Tracker) flags a run from its third "
                                     "stride, as decided live (L243)"),
+    ("steady", _ID, "true/false", "a CV stride: n_cv_strides counts these rows and stride_time_cv_pct / "
+                                  "stride_length_cv_pct are the CVs (SD with n - 1) of their stride_time_s / "
+                                  "|length_m| (steady straight level forward, L104; --steady-trim's bout ends out, "
+                                  "L415)"),
     ("contact_source", _ID, "text", "a stitched track only (L365's partial fallback): force or imu, the detector "
                                     "that timed the stride's IC (L405)"),
     ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),
@@ -931,6 +961,27 @@ LAPS: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+#: decision L411: a track's splits.csv (``track --splits``), one row per distance mark the tracked path reaches
+SPLITS: tuple[Column, ...] = (
+    ("split", "index", "integer", "the mark's number, from 1"),
+    ("distance_m", "m", "number", "the mark: metres along the tracked path from the first step (--splits)"),
+    ("time_s", "s", "number", "when the path passes it, from the first step's start (interpolated within the stride "
+                              "that crosses it; a rest adds no distance, L411)"),
+    ("split_time_s", "s", "number", "time_s minus the previous mark's (the first: time_s)"),
+    ("speed_mps", "m/s", "number", "the metres since the previous mark / split_time_s"),
+)
+
+#: decision L412: a foot track's direction_changes.csv, one row per change of travel direction
+DIRECTION_CHANGES: tuple[Column, ...] = (
+    ("change", "index", "integer", "the change's number, from 1"),
+    ("start_s", "s", "number", "the start of the first stride of the new travel direction"),
+    ("from_travel", _ID, "text", "the previous labelled stride's travel (steps.csv travel: forward, backward, left, "
+                                 "right, side)"),
+    ("to_travel", _ID, "text", "this stride's travel"),
+    ("row", "index", "integer", "its row of steps.csv, from 0"),
+    *_clocks("start_s"),
+)
+
 
 #: decision L377: ``rides.csv`` (``track`` of a lower-back unit), one row per ride while standing
 RIDES: tuple[Column, ...] = (
@@ -966,11 +1017,26 @@ STRIDES: tuple[Column, ...] = (
 )
 
 
+#: decision B309: the trajectory every track and run writes (trajectory.csv of the output folder; not the session's
+#: input trajectory.csv, the path reference with ``timestamp`` in ms, D1)
+TRAJECTORY: tuple[Column, ...] = (
+    ("t", "s", "number", "the time of the position: the start, then each step's (stride's) end, on the session's "
+                         "clock"),
+    ("x", "m", "number", "east of the start (ENU; a track with a relative heading sets off along x unless "
+                         "--initial-heading turns it, L98)"),
+    ("y", "m", "number", "north of the start (ENU)"),
+    ("z", "m", "number", "up from the start (--start LAT,LON,ALT: the altitude, L56)"),
+    ("lat", "deg", "number", "latitude (WGS-84); empty without --start or geodetic fixes"),
+    ("lon", "deg", "number", "longitude (WGS-84); empty without --start or geodetic fixes"),
+    ("pos_sigma_m", "m", "number", "the modelled 1-sigma radius of the horizontal position (L128); not with fixes"),
+)
+
+
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, STRIDES, TURNS, PERIODS, LAPS, TRANSFERS, TUG_PHASE_TABLE,
-    TUG_TRIAL_TABLE, FREEZES,
-    RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
+    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS, DIRECTION_CHANGES,
+    TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, TRAJECTORY,
+    GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
@@ -980,6 +1046,9 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
          "strides.csv": "`pdrlearn track-all` (decision E163): every tracked session's steps.csv in one table, in "
                         "sessions.csv's order; the columns below lead, then the session's own steps.csv columns "
                         "(steps.csv / steps.csv (foot)).",
+         "trajectory.csv": "Every track and run (decision B309): the output's trajectory, one row per position. A "
+                           "session's own trajectory.csv (its path reference, `timestamp` in ms) is an input of "
+                           "another layout (README, Data format).",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
                            "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
                            "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines."}

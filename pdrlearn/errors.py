@@ -38,6 +38,14 @@ class MissingSensorError(DataError):
     """A method needs a sensor stream that the session does not have."""
 
 
+class NoStridesError(DataError):
+    """A readable session holds no stride to track (a participant who did not walk, a chair test on the foot unit):
+    a data outcome, not a wrong input or option, so the CLI exits 4 instead of 2 (decision B318); a batch counts
+    the session as failed (exit 1), as before. Still a :class:`DataError` for library callers."""
+
+    exit_code = 4
+
+
 class ModelError(PdrlearnError):
     """A model directory or bundle is missing, altered or from another schema version."""
 

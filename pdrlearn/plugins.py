@@ -11,6 +11,7 @@ reason (decision E82).
 from __future__ import annotations
 
 import logging
+import threading
 from collections.abc import Callable, MutableMapping
 from typing import Any
 
@@ -39,19 +40,27 @@ class Registry(MutableMapping):
         #: plug-in name -> why it was not loaded (decision E82)
         self.failed: dict[str, str] = {}
         self._loading = self._loaded = False
+        #: decision B316: the one-time fill under a lock (re-entrant: the built-ins' modules register while it runs)
+        self._lock = threading.RLock()
 
     # -- loading -----------------------------------------------------------------------------------
     def _load(self) -> None:
-        if self._loaded or self._loading:
+        if self._loaded:
             return
-        self._loading = True
-        try:
-            if self._load_builtins is not None:
-                self._load_builtins()
-            self._load_entry_points()
-            self._loaded = True
-        finally:
-            self._loading = False
+        # Decision B316: threads that read a cold registry together wait for the one fill; without the lock a
+        # second thread saw `_loading`, returned at once and found the registry empty ("unknown pipeline
+        # 'plasys'; choose one of" with no names). Only the filling thread itself re-enters (RLock) and returns.
+        with self._lock:
+            if self._loaded or self._loading:
+                return
+            self._loading = True
+            try:
+                if self._load_builtins is not None:
+                    self._load_builtins()
+                self._load_entry_points()
+                self._loaded = True
+            finally:
+                self._loading = False
 
     def _load_entry_points(self) -> None:
         from importlib.metadata import entry_points

@@ -11,9 +11,12 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "strides.csv",  # E163
                                 "turns.csv", "periods.csv",
                                 "laps.csv",  # L383
+                                "splits.csv",  # L411
+                                "direction_changes.csv",  # L412
                                 "transfers.csv", "tug_phases.csv",  # W293
                                 "tug_trials.csv",  # W325
                                 "freezes.csv", "ramps.csv",  # L301
                                 "rides.csv",  # L377
                                 "steps.csv", "steps.csv (foot)",  # E137
+                                "trajectory.csv",  # B309
                                 "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")  # L287

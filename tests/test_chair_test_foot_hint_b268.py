@@ -23,7 +23,7 @@ def chair_test(tmp_path_factory):
 
 
 def test_no_foot_stride_names_the_lower_back_unit_b268(chair_test, tmp_path, capsys):
-    assert main(["track", str(chair_test), "--out", str(tmp_path / "x")]) == 2
+    assert main(["track", str(chair_test), "--out", str(tmp_path / "x")]) == 4  # B318: no strides, exit 4
     err = [ln for ln in capsys.readouterr().err.strip().splitlines() if ln.startswith("error:")]
     assert len(err) == 1 and "no strides detected" in err[0]
     assert "--units waist" in err[0] and err[0].endswith("(decision B268)")

@@ -283,6 +283,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.periods import parse_per
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
+    from pdrlearn.track.splits import parse_splits
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
     from pdrlearn.waist.lengths import get_step_length
@@ -326,6 +327,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
         ("track", "window"): parse_window,  # decision L105
         ("track", "per"): parse_per,  # decision L277
+        ("track", "splits"): parse_splits,  # decision L411 (B307)
         ("track", "per_align"): _one_of(PER_ALIGNS),  # decision L299
         **{(c, "bout_rule"): _one_of(BOUT_PRESETS, case=False) for c in ("track", "track-all", "run")},  # decision L163
         ("track", "units"): parse_units,  # decision B127
@@ -347,6 +349,7 @@ def _validators() -> dict[tuple[str, str], object]:
         **{("simulate", k): _one_of(FEET) for k in ("foot", "paretic_side")},  # decisions S54, S55
         ("fetch", "source"): _one_of(SOURCES),
         ("import", "unit"): _one_of(PLACEMENTS),
+        ("import", "foot"): _one_of(FEET),  # decision B321 (the same two feet as importer.FEET)
         ("import", "time_unit"): time_unit,
         ("import", "acc_unit"): unit_word("acc"),
         ("import", "gyro_unit"): unit_word("gyro"),
@@ -357,7 +360,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track-all", "metrics"): parse_metrics,  # cohort C81, decision B303: sessions.csv's number columns
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
-                "per_align", "units", "altitude", "detector", "length_model"):  # C12, L108, B127, L154, E93
+                "per_align", "units", "altitude", "detector", "length_model", "splits"):  # C12, L108, B127, L154, E93
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")

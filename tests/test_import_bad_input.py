@@ -69,7 +69,8 @@ def test_a_header_without_rows(export, tmp_path, capsys):
      "ground (the waist pendulum's leg length, and the leg by which the walking range is scaled), and this is a foot "
      "unit's import (the default --unit foot): for a waist unit add --unit waist; for a foot unit drop it (the "
      "walker's leg: meta.json leg_length_m; decision B175)"),
-    (["--acc-unit", "furlong"], "{csv}: acc unit 'furlong' is not one of m/s2, g, mg"),
+    (["--acc-unit", "furlong"], "{csv}: acc unit 'furlong' is not one of m/s2, g, mg, nor the size of one count and "
+     "one of them (\"1/2048 g\", as meta.json's \"units\" take; decision B313)"),
     (["--time-unit", "fortnight"], "{csv}: time unit 'fortnight' is not one of ms, s, us, ns"),
     (["--frames", "{x: forward"], "--frames: not valid JSON; write e.g. x=forward,y=up,z=right"),
     (["--frames", "x=forward,y"], "--frames 'x=forward,y': write e.g. x=forward,y=up,z=right"),

@@ -102,3 +102,33 @@ def test_without_the_peer_packages_one_line(peers):
         pytest.skip("the peer packages are installed here")
     with pytest.raises(SystemExit, match="make peers"):
         peers.main([])
+
+
+def test_a_skipped_peers_previous_rows_are_kept_e162(peers, tmp_path):
+    """Decision E162 (session 34, trial T5 finding 9): ``peers.py --skip mobgap`` keeps the mobgap section, notes and
+    peers.csv rows of the previous run (it had rewritten the files without them); the run's own part is replaced."""
+    md = "\n".join(["# Peers", "", "## Lower back: mobgap vs pdrlearn", "", "| a |", "|---|", "| 1 |", "",
+                    "## Foot: gaitmap vs pdrlearn", "", "| b |", "", "## Notes", "",
+                    "- mobgap_HA001_Test5_Trial1: mobgap's reference ICs equal our ics.csv (9 / 9): same time base",
+                    "- gaitmap_lwalk, gaitmap BarthDtw (as left foot): gaitmap found no stride", ""])
+    csv = pd.DataFrame({"subject": ["HA001", None], "session": [None, "gaitmap_lwalk"], "part": ["waist", "foot"]})
+    section, notes, rows = peers.previous_part(md, csv, "mobgap")
+    assert section[0] == "## Lower back: mobgap vs pdrlearn" and "| 1 |" in section
+    assert not any(x.startswith("## Foot") for x in section)
+    assert notes == ["mobgap_HA001_Test5_Trial1: mobgap's reference ICs equal our ics.csv (9 / 9): same time base"]
+    assert rows["subject"].tolist() == ["HA001"]
+    section, notes, rows = peers.previous_part(md, csv, "gaitmap")
+    assert section[0].startswith("## Foot") and "## Notes" not in section and len(notes) == 1
+    assert rows["session"].tolist() == ["gaitmap_lwalk"]
+    assert peers.previous_part("", None, "mobgap") == (None, [], None)  # a first run keeps nothing
+
+
+def test_common_strides_compare_the_same_strides_l420(peers):
+    """Decision L420 (session 34, trial T5 finding 8): each tool's length error on the labelled strides both matched."""
+    rows = [{"session": "s", "tool": peers.OURS_SENSOR, "_sl_err": {0: 1.0, 1: 2.0, 2: 30.0, 3: 4.0}},
+            {"session": "s", "tool": "gaitmap BarthDtw", "_sl_err": {1: 3.0, 3: 5.0, 4: 7.0}},
+            {"session": "s", "tool": "gaitmap BarthDtw + RtsKalman", "_sl_err": {0: 2.0, 1: 2.0}}]
+    peers.common_strides(rows)
+    assert rows[0]["sl_common"] == 2 and rows[0]["sl_mae_common_pct"] == pytest.approx(3.0)  # strides 1 and 3
+    assert rows[1]["sl_common"] == 2 and rows[1]["sl_mae_common_pct"] == pytest.approx(4.0)
+    assert rows[2]["sl_common"] == 2 and rows[2]["sl_mae_common_pct"] == pytest.approx(2.0)  # its own common set

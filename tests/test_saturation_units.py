@@ -79,3 +79,35 @@ def test_clipped_samples_get_one_warning_naming_the_file_and_fraction(tmp_path, 
     with caplog.at_level(logging.WARNING):
         read_session(tmp_path / "c")
     assert not [r for r in caplog.records if "clipped" in r.getMessage()]  # its gyroscope peak: 2 equal samples
+
+
+def _impact_walk(seconds: float = 20.0, fs: float = 100.0, seed: int = 7980):
+    """A 100 Hz foot accelerometer at rest (gravity on +z) with one sharp heel-strike a second: a single-sample
+    spike of 45-70 m/s^2 whose neighbours reach half of it (an impact at 100 Hz peaks on one sample)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, seconds, 1.0 / fs)
+    v = np.column_stack([np.zeros_like(t), np.zeros_like(t), np.full_like(t, G)]) + rng.normal(0, 0.05, (t.size, 3))
+    for k in np.arange(50, t.size - 1, int(fs)):
+        peak = rng.uniform(45.0, 70.0)
+        v[k, 2], v[k - 1, 2], v[k + 1, 2] = peak, 0.5 * peak, 0.5 * peak
+    return t, v
+
+
+def test_single_sample_clips_at_a_pinned_full_scale_are_said_b311(tmp_path, caplog):
+    t, v = _impact_walk()
+    full = 4 * G  # a +-4 g firmware range: every impact clips one sample, never 3 in a row (B77's runs)
+    clipped = np.clip(v, -full, full)
+    n, top = clipped_samples(clipped, "accelerometer")
+    assert n == 20 and top == pytest.approx(full)  # the 20 impacts, each alone at +-4 g
+    assert clipped_samples(v, "accelerometer") == (0, 0.0)  # unclipped: each peak reaches its own height
+    few = v.copy()
+    few[np.flatnonzero(v[:, 2] > full)[:4], 2] = 80.0  # 4 samples at one extreme: under CLIP_PINNED, not said
+    assert clipped_samples(few, "accelerometer") == (0, 0.0)
+    gyr = np.zeros_like(v)
+    _write(tmp_path / "s", "fAccelerometer", t, clipped)
+    _write(tmp_path / "s", "fGyroscope", t, gyr)
+    with caplog.at_level(logging.WARNING):
+        read_session(tmp_path / "s")
+    lines = [r.getMessage() for r in caplog.records if "clipped" in r.getMessage()]
+    assert len(lines) == 1 and "fAccelerometer.csv: 20 of 2000 samples" in lines[0], lines
+    assert "reached by 5+ samples one at a time" in lines[0] and "above +-4 g (decision B77, B311)" in lines[0]

@@ -68,8 +68,9 @@ def test_parse_mount_composes_rotations():
     (["--waist-mount", "q:90"], "'q:90' is not AXIS:DEG"),
     (["--waist-mount", "z:ninety"], "is not AXIS:DEG"),
     (["--waist-mount", "z:90,y"], "'y' is not AXIS:DEG"),
-    (["--variability", "-1"], "--variability -1: give a finite scale >= 0"),  # decision S76
-    (["--variability", "inf"], "give a finite scale >= 0")])
+    (["--variability", "-1"], "--variability -1: give a finite scale from 0 to 10"),  # decision S76
+    (["--variability", "inf"], "give a finite scale from 0 to 10"),
+    (["--variability", "100"], "--variability 100: give a finite scale from 0 to 10")])  # S76 amended (review R1)
 def test_bad_values_are_one_line(tmp_path, capsys, args, message):
     out = tmp_path / "bad"
     assert main(["simulate", "--route", ROUTE, "--user-seed", "1", *args, "--out", str(out)]) == 2

@@ -47,3 +47,30 @@ def test_real_table_detector_error_row_keeps_the_columns(step_count):
     row = {"session": "x", "detector": "accel-force", "note": "DataError: no force"}
     lines = step_count._md_real(pd.DataFrame([row])).splitlines()
     assert len(_cells(lines[0])) == len(_cells(lines[2]))
+
+
+def test_foot_f1_is_pooled_per_reference_never_across_e161(step_count):
+    """Decision E161 (session 34, trial T5 finding 1): the stairs' F1, scored against a rest-based segmentation (no
+    timing: not ground truth), is pooled apart from the motion-capture level walks, and the printed table says so."""
+    rows = pd.DataFrame([
+        {"session": "gaitmap_level_left", "detector": "accel", "reference_count": 29, "scored_count": 30,
+         "recall": 1.0, "f1": 0.983, "timing_error_mean_s": 0.015},
+        {"session": "gaitmap_level_right", "detector": "accel", "reference_count": 30, "scored_count": 30,
+         "recall": 1.0, "f1": 1.0, "timing_error_mean_s": 0.019},
+        {"session": "gaitmap_stairs_down_left", "detector": "accel", "reference_count": 19, "scored_count": 19,
+         "recall": 1.0, "f1": 1.0, "timing_error_mean_s": float("nan")},
+        {"session": "gaitmap_level_left", "detector": "accel-force", "reference_count": None, "scored_count": None,
+         "recall": None, "f1": None, "timing_error_mean_s": None}])
+    pooled = step_count.foot_pooled(rows).set_index("reference")
+    assert pooled.loc["motion capture", "f1"] == pytest.approx(118 / 119)  # 2 x 59 / (60 + 59): not 0.995
+    assert pooled.loc["rest-based segmentation (NOT ground truth)", "sessions"] == 1
+    text = step_count._md_foot_pooled(rows)
+    assert "| shared | motion capture | 2 | 59 | 60 | 0.992 |" in text and "NOT ground truth" in text
+
+
+def test_demo_table_says_the_stair_f1_is_not_ground_truth_e161():
+    spec = importlib.util.spec_from_file_location("pdrlearn_demo_under_test", ROOT / "experiments" / "demo.py")
+    demo = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(demo)
+    assert "NOT ground truth" in demo.DEMO_F1_ROWS["stairs_steps"]
+    assert "motion capture" in demo.DEMO_F1_ROWS["foot_steps"]

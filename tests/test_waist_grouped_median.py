@@ -4,10 +4,11 @@ whole-sample times, so the median cadence at 20 Hz does not snap to a sample (tr
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import pdrlearn.track.gait as gait
-from pdrlearn.kernels.grouped_median import grid_step, grouped_median
+from pdrlearn.kernels.grouped_median import grid_step, grouped_median, sample_grid
 from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
 from pdrlearn.track.gait import gait_summary
 from pdrlearn.track.waist import track_waist
@@ -50,3 +51,19 @@ def test_the_switch_off_gives_the_plain_median(monkeypatch):
     monkeypatch.setattr(gait, "WAIST_GROUPED_MEDIAN", False)
     stride = gait_summary(steps)["median_stride_time_s"]
     assert abs(stride / 0.05 - round(stride / 0.05)) < 1e-6
+
+
+def test_classes_are_the_contacts_sample_period_not_the_few_stride_times_gaps():
+    """W359 amended (review R1): a short 100 Hz walk's few stride times can all lie 2-4 samples apart; the class is
+    the contacts' own sample grid (their times' common divisor), not the stride times' smallest gap."""
+    assert grouped_median([1.0, 1.0, 1.0, 1.2], 0.01) == pytest.approx(1.0 + 0.01 / 6)  # R1's case: 1.0333 by the gap
+    contacts = 12.345 + np.array([0, 54, 108, 156, 207, 260, 311]) / 100  # whole samples at 100 Hz
+    assert sample_grid(contacts) == pytest.approx(0.01)
+    assert sample_grid(contacts[:1]) is None  # one contact: no grid, the plain median
+    stride = contacts[2:] - contacts[:-2]  # 1.08, 1.02, 0.99, 1.04, 1.04 s: no two one sample apart
+    steps = pd.DataFrame({"start_s": contacts, "end_s": np.r_[contacts[1:], np.nan], "has_next": [True] * 6 + [False],
+                          "length_m": 0.7, "unit": "waist"})
+    med = gait_summary(steps)["median_stride_time_s"]
+    assert abs(med - float(np.median(stride))) <= 0.005 + 1e-9  # within half a sample of the plain median
+    assert med == pytest.approx(grouped_median(stride, 0.01)) == pytest.approx(1.0375)
+    assert grouped_median(stride) == pytest.approx(1.025)  # the stride times' own 0.02 s gap: 1.5 samples off

@@ -26,6 +26,7 @@ import logging
 from pathlib import Path
 
 from pdrlearn.atomic import atomic_directory
+from pdrlearn.buildinfo import git_stamp
 from pdrlearn.errors import ModelError, shell_quote
 from pdrlearn.textfile import read_text
 
@@ -102,6 +103,7 @@ def manifest_of(model, files: dict[str, str]) -> dict:
         "schema_version": SCHEMA_VERSION,
         "kind": "pdrlearn user model",
         "package_version": pdrlearn.__version__,
+        **git_stamp(),  # decision E158: the commit of the code that trained the model
         "versions": {
             "scikit-learn": sklearn.__version__,
             "torch": torch.__version__,

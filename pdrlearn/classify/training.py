@@ -1272,9 +1272,8 @@ def train_user(
     :class:`UserModel` with, per task, the fitted models, CV metrics and the chosen two-unit model (the best
     balanced CV accuracy among the fused and combined models, or among all when only one unit was trained).
     """
-    from datetime import UTC, datetime
-
     import pdrlearn
+    from pdrlearn.buildinfo import created_utc
 
     if not sessions:
         raise DataError("train: no sessions given; pass at least one labelled session folder")
@@ -1422,7 +1421,7 @@ def train_user(
             "boundaries": boundaries,
             "package_version": pdrlearn.__version__,
         },
-        created=datetime.now(UTC).isoformat(timespec="seconds"),
+        created=created_utc(),  # decision E159: SOURCE_DATE_EPOCH when set
         skipped=skipped,
     )
 

@@ -201,8 +201,9 @@ def main(argv: list[str] | None = None) -> int:
     from pdrlearn.atomic import checked_outputs
 
     written: list[str] = []
+    _TERMINATED.clear()
     try:
-        with _stderr_logging(), checked_outputs() as written:  # an output folder is replaced only as checked (B20)
+        with _stderr_logging(), checked_outputs() as written, _sigterm_as_interrupt():  # B20; B319
             # with standalone_mode=False click returns a command's `typer.Exit(code)` instead of raising it
             rc = app(args=_hoist_verbose(list(argv)), standalone_mode=False)
     except PdrlearnError as exc:
@@ -255,10 +256,41 @@ def _still_there(written: list[str]) -> list[str]:
     return [w for p, w in present if not any(str(q) in folders for q in Path(p).parents)]
 
 
+#: decision B319: set by the SIGTERM handler, so that the interrupt it raises is reported as "terminated", 143
+_TERMINATED: set[str] = set()
+
+
+@contextmanager
+def _sigterm_as_interrupt():
+    """Decision B319: inside the block SIGTERM (what SLURM, Snakemake, systemd and `kill` send) is handled as Ctrl-C:
+    a ``KeyboardInterrupt`` where the command is, so atomic outputs remove their temporary folders and
+    :func:`main` prints one line and returns 143 (128 + 15); it had ended the process silently, leaving a
+    temporary folder. Only in the main thread, and only where SIGTERM has its default action (a program that
+    calls :func:`main` with its own handler keeps it); the previous handler is restored after."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread() or \
+            signal.getsignal(signal.SIGTERM) is not signal.SIG_DFL:
+        yield
+        return
+
+    def terminated(signum, frame):
+        _TERMINATED.add("SIGTERM")
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def _interrupted(written: list[str]) -> int:
     """Decision B96: Ctrl-C ends a command with one line saying what it left (outputs are written whole or not
-    at all, atomic.py), exit code 130 (128 + SIGINT). Decision E122: only outputs still there, and many of them
-    as their count and common folder (a batch of thousands of sessions stays one short line)."""
+    at all, atomic.py), exit code 130 (128 + SIGINT); SIGTERM says "terminated" and exits 143 (decision B319).
+    Decision E122: only outputs still there, and many of them as their count and common folder (a batch of
+    thousands of sessions stays one short line)."""
     left = _still_there(written)
     if len(left) > INTERRUPT_NAMED:
         common = os.path.commonpath([os.path.abspath(w.split(" (written in place")[0]) for w in left])
@@ -266,6 +298,9 @@ def _interrupted(written: list[str]) -> int:
     else:
         named = ", ".join(left)
     kept = f"written before it: {named}; nothing else" if left else "nothing written"
+    if _TERMINATED:
+        print(f"error: terminated; {kept}", file=sys.stderr)
+        return 143
     print(f"error: interrupted (Ctrl-C); {kept}", file=sys.stderr)
     return 130
 

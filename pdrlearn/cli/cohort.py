@@ -20,6 +20,7 @@ from pdrlearn.cli.common import (
     METHODS_HELP,
     console,
     existed,
+    few_names,
     json_safe,
     manifest_kind,
     out_folder,
@@ -396,13 +397,16 @@ def _track_job(args: dict) -> dict:
     from pdrlearn.cli.resume import write_record
     from pdrlearn.cli.track import track_session, write_track
     from pdrlearn.track.bouts import bout_totals
+    from pdrlearn.warning_lines import merged_warnings
 
     with captured_warnings() as warned:
         try:
             tracked = track_session(Path(args["session_dir"]), args["settings"])
             with atomic_directory(Path(args["out"])) as tmp:
                 summary, _ = write_track(tmp, tracked)
-                value = {"summary": summary, "warnings": list(warned), "content_id": tracked.get("content_id"),
+                # decision E154: the summary's warnings (every one track_session caught), then any later one
+                said = merged_warnings(summary.get("info", {}).get("warnings") or [], warned, args["session_dir"])
+                value = {"summary": summary, "warnings": said, "content_id": tracked.get("content_id"),
                          "bout_totals": bout_totals(tracked["bouts"])}  # cohort C25: of bouts.csv, for subjects.csv
                 # cohort C41: what made the folder and its result, for `--resume`; written last, in the folder
                 return write_record(tmp, args["resume_key"], args["input_sha256"], value)
@@ -626,8 +630,7 @@ PARAMS_DIR_HELP = ("Folder of per-subject calibration files, one SUBJECT.json pe
                    "(decision C26). Instead of --params.")
 
 
-def _few(names: list[str], k: int = 3) -> str:
-    return ", ".join(names[:k]) + (f" and {len(names) - k} more" if len(names) > k else "")
+_few = few_names  # shared with cli.common (decision E160's line)
 
 
 def subject_params(params_dir: Path, rels: list[str], subjects: list[str | None]) -> list[Path]:
@@ -792,9 +795,11 @@ def track_all(
     per: str = _track.PER_OPT,
     per_align: str = _track.PER_ALIGN_OPT,
     corridor: float = _track.CORRIDOR_OPT,
+    splits: str = _track.SPLITS_OPT,
     bout_rule: str = _track.BOUT_RULE_OPT,
     bout_break_s: float = _track.BOUT_BREAK_OPT,
     bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,
+    steady_trim: int = _track.STEADY_TRIM_OPT,
     resample: bool = _track.RESAMPLE_OPT,
     no_resample: bool = _track.NO_RESAMPLE_OPT,
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import errno
 import json
+import os
 import sys
 from contextlib import contextmanager
 from pathlib import Path
@@ -12,6 +14,32 @@ from pdrlearn.cohort import is_session_dir as is_session_folder
 from pdrlearn.cohort import session_files
 from pdrlearn.errors import DataError, output_error
 from pdrlearn.textfile import read_text
+
+#: decision E157: the significant digits of the floats in track's and run's CSV files
+CSV_FLOAT_FORMAT = "%.10g"
+#: decision E164: a float column reaching this magnitude (an epoch time in seconds) is written with fixed decimals
+WIDE_FLOAT_MIN = 1e6
+#: decision E164: its decimals (microseconds of a time in seconds)
+WIDE_FLOAT_DECIMALS = 6
+
+
+def write_table_csv(df, path) -> None:
+    """Decision E164: ``df`` as track / run write their tables: floats at :data:`CSV_FLOAT_FORMAT`'s 10 significant
+    digits, except a float column whose largest finite magnitude reaches :data:`WIDE_FLOAT_MIN`, written with
+    :data:`WIDE_FLOAT_DECIMALS` fixed decimals (trailing zeros dropped): 10 digits of an epoch time in seconds
+    (1733400005.151) are whole seconds. Columns below the bound are written as before, byte for byte."""
+    import numpy as np
+
+    wide = {}
+    for c in df.columns:
+        if df[c].dtype.kind == "f":
+            v = np.asarray(df[c], dtype=float)
+            ok = np.isfinite(v)
+            if ok.any() and np.abs(v[ok]).max() >= WIDE_FLOAT_MIN:
+                txt = np.full(v.shape, "", dtype=object)
+                txt[ok] = [f"{x:.{WIDE_FLOAT_DECIMALS}f}".rstrip("0").rstrip(".") for x in v[ok].tolist()]
+                wide[c] = txt
+    (df.assign(**wide) if wide else df).to_csv(path, index=False, float_format=CSV_FLOAT_FORMAT)
 
 
 def json_default(o):
@@ -219,6 +247,43 @@ def _what(kind: str) -> str:
     return f"{what}, written by `{command}`"
 
 
+def check_writable(out: Path, parent: Path) -> None:
+    """Decision B317: ``parent`` (the nearest existing folder above ``out``, where the atomic write creates its
+    temporary sibling) must be writable before any work, or one line names ``out`` (B151's line): a read-only
+    mount failed only after a 14 s track, naming the temporary folder."""
+    if os.access(parent, os.W_OK | os.X_OK):
+        return
+    try:
+        read_only = bool(os.statvfs(parent).f_flag & os.ST_RDONLY)
+    except OSError:
+        read_only = False
+    code = errno.EROFS if read_only else errno.EACCES
+    raise output_error(OSError(code, os.strerror(code)), out)
+
+
+#: decision E160: the suffixes of the files a shell redirect (`> D/track.json 2> D/track.log`) puts in an output folder
+LOG_SUFFIXES = (".log", ".json", ".txt", ".err", ".out")
+
+
+#: ... and the names no log gets: files the commands write (a lone summary.json is a partial output, B12)
+OUTPUT_FILE_NAMES = frozenset({"summary.json", "run.json", "manifest.json", "report.json", "gait_summary.json",
+                               "evaluation.json", "meta.json"})
+
+
+def _shell_logs(entries: list[Path]) -> list[str]:
+    """Decision E160: the names of ``entries`` when they are all plain files with a log's suffix and none is named
+    as a command's output file (else empty)."""
+    if all(q.is_file() and not q.is_symlink() and q.suffix.lower() in LOG_SUFFIXES
+           and q.name.lower() not in OUTPUT_FILE_NAMES for q in entries):
+        return sorted(q.name for q in entries)
+    return []
+
+
+def few_names(names: list[str], k: int = 3) -> str:
+    """The first ``k`` names, then "and N more"."""
+    return ", ".join(names[:k]) + (f" and {len(names) - k} more" if len(names) > k else "")
+
+
 def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, ...] = (),
                inputs: tuple = ()) -> Path:
     """Validate an output folder of ``kind`` (a key of :data:`FOLDER_KINDS`) before any work is done
@@ -240,11 +305,17 @@ def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, 
         if parent.exists():
             if not parent.is_dir():
                 raise DataError(f"{path}: {parent} is a file, not a folder; choose another output folder")
+            check_writable(path, parent)
             break
     entries = [q for q in path.iterdir() if q.name not in allow] if path.is_dir() else []
     if entries:
         found = folder_kind(path)
         if found is None:
+            logs = _shell_logs(entries)
+            if logs:  # decision E160: `--out D > D/x.json 2> D/x.log`, the Make/Snakemake log pattern
+                raise DataError(f"{path}: holds {few_names(logs)} (a shell redirect's log files?), not {what}; the "
+                                "output folder is replaced as a whole, which would delete them -- write the logs "
+                                f"beside it (`> {path}.json 2> {path}.log`) or into another folder (decision E160)")
             raise DataError(f"{path}: exists and does not hold {what}; choose another output folder or empty it")
         if found != kind:  # --force replaces only this command's own kind of output (decision B26)
             raise DataError(f"{path}: holds {_what(found)}, not {what}; --force replaces only a previous output "
@@ -338,6 +409,7 @@ def out_file(path: Path, suffixes: tuple[str, ...], kind: str, *, force: bool = 
         if parent.exists():
             if not parent.is_dir():
                 raise DataError(f"{path}: {parent} is a file, not a folder; choose another output path")
+            check_writable(path, parent)
             break
     what, command = FILE_KINDS[kind]
     if is_session_folder(path.parent) and (path.name in session_files() or path.suffix.lower() == ".csv"):

@@ -12,6 +12,7 @@ import typer
 
 from pdrlearn.cli import track as _track
 from pdrlearn.cli.common import (
+    CSV_FLOAT_FORMAT,
     DPI_HELP,
     FORCE_HELP,
     INITIAL_HEADING_HELP,
@@ -27,6 +28,7 @@ from pdrlearn.cli.common import (
     replaced,
     start_option,
     storey_height_option,
+    write_table_csv,
 )
 from pdrlearn.cli.gaplines import GapLines
 
@@ -349,254 +351,265 @@ def run(
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
-    from pdrlearn.errors import DataError
-    from pdrlearn.io.resample import resample_mode  # decision B113: one check of the two flags, as track's
-    from pdrlearn.runtime import load_bundle
-    from pdrlearn.runtime.replay import replay_chunks  # decision E28, shared with the lean command (E76)
-    from pdrlearn.runtime.tracker import Tracker
+    from pdrlearn.warning_lines import captured_warnings
 
-    if protocol is not None and session_dir is not None:
-        raise DataError(f"run: give a SESSION_DIR ({session_dir}) or --protocol {protocol}, not both")
-    if protocol_rate is not None and protocol is None:
-        raise DataError(f"run: --protocol-rate {protocol_rate:g} is the rate of a --protocol capture; a session folder "
-                        "has timestamps (drop --protocol-rate, or give --protocol FILE)")
-    if protocol_rate is not None and not (0 < protocol_rate < float("inf")):
-        raise DataError(f"--protocol-rate {protocol_rate:g}: give the capture's sampling rate in Hz (> 0, e.g. 52)")
-    if not (chunk_s > 0 and chunk_s < float("inf")):
-        raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
-    start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
-    from pdrlearn.kernels.geodetic import start_has_altitude
+    with captured_warnings(echo=True) as logged:  # decision E154: every warning also in summary.json / --json
+        from pdrlearn.errors import DataError
+        from pdrlearn.io.resample import resample_mode  # decision B113: one check of the two flags, as track's
+        from pdrlearn.runtime import load_bundle
+        from pdrlearn.runtime.replay import replay_chunks  # decision E28, shared with the lean command (E76)
+        from pdrlearn.runtime.tracker import Tracker
 
-    start_ele = start_has_altitude(start)  # decision L362: track.gpx's <ele> only from a given altitude
-    heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
-    clock_offset = _track.clock_offset_value(clock_offset, align_units, "run")  # decision E112, as `track`
-    clock_drift = _track.clock_drift_value(clock_drift_ppm, align_units, "run")  # decision B265, as `track`
-    from pdrlearn.track.bouts import bout_rule as read_bout_rule
-    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
+        if protocol is not None and session_dir is not None:
+            raise DataError(f"run: give a SESSION_DIR ({session_dir}) or --protocol {protocol}, not both")
+        if protocol_rate is not None and protocol is None:
+            raise DataError(f"run: --protocol-rate {protocol_rate:g} is the rate of a --protocol capture; a session "
+                            "folder has timestamps (drop --protocol-rate, or give --protocol FILE)")
+        if protocol_rate is not None and not (0 < protocol_rate < float("inf")):
+            raise DataError(f"--protocol-rate {protocol_rate:g}: give the capture's sampling rate in Hz (> 0, e.g. 52)")
+        if not (chunk_s > 0 and chunk_s < float("inf")):
+            raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
+        start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
+        from pdrlearn.kernels.geodetic import start_has_altitude
 
-    bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L130, L163: as `track`, before any work
-    if dpi is not None and out is None:  # decision L70: it would be ignored
-        raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
-                        "FOLDER or drop --dpi")
-    if out is not None:
-        out_folder(out, "run", force=force, inputs=(bundle_dir, session_dir))
-    from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, bundle_kind
+        start_ele = start_has_altitude(start)  # decision L362: track.gpx's <ele> only from a given altitude
+        heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
+        clock_offset = _track.clock_offset_value(clock_offset, align_units, "run")  # decision E112, as `track`
+        clock_drift = _track.clock_drift_value(clock_drift_ppm, align_units, "run")  # decision B265, as `track`
+        from pdrlearn.track.bouts import bout_rule as read_bout_rule
+        from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
 
-    if bundle_kind(bundle_dir) == WAIST_SCHEMA_NAME:  # decision E57: a waist-only bundle
-        given = [o for o, v in (("--protocol", protocol), ("--units", units), ("--method", method),
-                                ("--rules", rules), ("--min-confidence", min_confidence))
-                 if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
-                                                     ("--no-resample", no_resample), ("--align-units", align_units),
-                                                     ("--clock-offset", clock_offset is not None),
-                                                     ("--clock-drift-ppm", clock_drift is not None),
-                                                     ("--common-span", common_span),
-                                                     ("--warn-out-of-domain", warn_out_of_domain is not None),
-                                                     ("--drop-neighbour", drop_neighbour))
-                                      if v]
-        if given:
-            raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only bundle "
-                            "(give SESSION_DIR, and --start / --initial-heading / --chunk-s / --sides / --out / "
-                            "--json)")
-        return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts,
-                          storey_height, start_ll, start_alt, sides=sides,  # decision L142: as the foot bundle's run
-                          start_ele=start_ele,  # decision L363
-                          drop_partial_row=drop_partial_row)  # decision B276
-    if sides:  # decision E110: W138's side is the lower-back contact's; a foot bundle tracks one foot's strides
-        raise DataError(f"run: --sides gives a waist-only bundle's steps their foot; {bundle_dir} is a foot-unit "
-                        "bundle, whose steps are the strides of the one foot it tracks: drop --sides")
-    bundle = load_bundle(bundle_dir)  # verified before any output
-    methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
-    steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
-    if protocol is not None and common_span:  # decision B230: a capture has one unit's streams, on one clock
-        raise DataError(f"run: --common-span cuts a session's files to the time all of them cover; the --protocol "
-                        f"capture {protocol} has no files: drop --common-span")
-    if protocol is not None and drop_partial_row:  # decision B276: as B230's --common-span
-        raise DataError(f"run: --drop-partial-row drops a session file's cut last row; the --protocol capture "
-                        f"{protocol} has no files: drop --drop-partial-row")
-    for option, asked in (("--align-units", align_units), ("--clock-offset", clock_offset is not None),
-                          ("--clock-drift-ppm", clock_drift is not None)):
-        if protocol is not None and asked:  # decisions L170, E112
-            raise DataError(f"run: {option} moves the waist unit's clock onto the foot's; the --protocol capture "
-                            f"{protocol} carries the foot unit only (one clock): drop {option}")
-    alignment = None  # decision L170: the clock offset and drift --align-units applied
-    cut_s = 0.0  # decision B267: the seconds a common-span cut took from the replayed unit (a capture: none)
-    if protocol is not None:
-        from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
+        bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L130, L163: as `track`, first
+        if dpi is not None and out is None:  # decision L70: it would be ignored
+            raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
+                            "FOLDER or drop --dpi")
+        if out is not None:
+            out_folder(out, "run", force=force, inputs=(bundle_dir, session_dir))
+        from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, bundle_kind
 
-        parser = BluetoothParser(rate_hz=bundle.rate_hz if protocol_rate is None else protocol_rate)  # E90
-        use, _ = _units_for(bundle, units, None, f"protocol {protocol}")
-        need = [s for s in bundle.sensors_of(use)[0] if not s.startswith("f")]
-        if need:
-            raise DataError(f"bundle {bundle.path} needs {', '.join(need)}, which the foot unit's "
-                            "Bluetooth protocol does not carry; replay the foot unit alone (--units foot)")
-        tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
-                          resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
-                          units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
-                          methods=methods, drop_neighbour=drop_neighbour,  # E101
-                          check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
-        if protocol == "-":
-            stream = sys.stdin
-        else:
-            p = Path(protocol)
-            if not p.is_file():
-                raise DataError(f"{p}: protocol capture not found")
-            stream = p.open()
-        with stream:
-            for line in stream:
-                t0 = time.perf_counter()
-                new = tracker.push(parser.feed(line))
-                if new:
-                    lat.append((time.perf_counter() - t0) / len(new))
-                steps += new
-            steps += tracker.push(parser.close())
-            steps += tracker.flush()
-        if not parser.stats.measurements:  # decision B193: an empty capture had tracked "0 steps, 0.00 m", exit 0
-            raise DataError(f"protocol {protocol}: no measurement sets ('$1 ax ay az$2 gx gy gz...' lines, thesis "
-                            f"ch.4.2.3; {parser.stats.corrupted} corrupted line(s)) in the capture; check the file or "
-                            "the serial port it was read from")
-        source = f"protocol {protocol}"
-        protocol_stats = {**parser.stats.to_dict(), "rate_hz": parser.rate_hz}
-        from pdrlearn.io.protocol import protocol_rate_line
+        if bundle_kind(bundle_dir) == WAIST_SCHEMA_NAME:  # decision E57: a waist-only bundle
+            given = [o for o, v in (("--protocol", protocol), ("--units", units), ("--method", method),
+                                    ("--rules", rules), ("--min-confidence", min_confidence))
+                     if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
+                                                         ("--no-resample", no_resample), ("--align-units", align_units),
+                                                         ("--clock-offset", clock_offset is not None),
+                                                         ("--clock-drift-ppm", clock_drift is not None),
+                                                         ("--common-span", common_span),
+                                                         ("--warn-out-of-domain", warn_out_of_domain is not None),
+                                                         ("--drop-neighbour", drop_neighbour))
+                                          if v]
+            if given:
+                raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only "
+                                "bundle (give SESSION_DIR, and --start / --initial-heading / --chunk-s / --sides / "
+                                "--out / --json)")
+            return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts,
+                              storey_height, start_ll, start_alt, sides=sides,  # decision L142: as the foot bundle's
+                              start_ele=start_ele,  # decision L363
+                              logged=logged,  # decision E154
+                              drop_partial_row=drop_partial_row)  # decision B276
+        if sides:  # decision E110: W138's side is the lower-back contact's; a foot bundle tracks one foot's strides
+            raise DataError(f"run: --sides gives a waist-only bundle's steps their foot; {bundle_dir} is a foot-unit "
+                            "bundle, whose steps are the strides of the one foot it tracks: drop --sides")
+        bundle = load_bundle(bundle_dir)  # verified before any output
+        methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
+        steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
+        if protocol is not None and common_span:  # decision B230: a capture has one unit's streams, on one clock
+            raise DataError(f"run: --common-span cuts a session's files to the time all of them cover; the --protocol "
+                            f"capture {protocol} has no files: drop --common-span")
+        if protocol is not None and drop_partial_row:  # decision B276: as B230's --common-span
+            raise DataError(f"run: --drop-partial-row drops a session file's cut last row; the --protocol capture "
+                            f"{protocol} has no files: drop --drop-partial-row")
+        for option, asked in (("--align-units", align_units), ("--clock-offset", clock_offset is not None),
+                              ("--clock-drift-ppm", clock_drift is not None)):
+            if protocol is not None and asked:  # decisions L170, E112
+                raise DataError(f"run: {option} moves the waist unit's clock onto the foot's; the --protocol capture "
+                                f"{protocol} carries the foot unit only (one clock): drop {option}")
+        alignment = None  # decision L170: the clock offset and drift --align-units applied
+        cut_s = 0.0  # decision B267: the seconds a common-span cut took from the replayed unit (a capture: none)
+        if protocol is not None:
+            from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
-        rate_line = protocol_rate_line(parser.streams(), parser.rate_hz, f"protocol {protocol}")  # decision E90
-        if rate_line:
-            import logging
+            parser = BluetoothParser(rate_hz=bundle.rate_hz if protocol_rate is None else protocol_rate)  # E90
+            use, _ = _units_for(bundle, units, None, f"protocol {protocol}")
+            need = [s for s in bundle.sensors_of(use)[0] if not s.startswith("f")]
+            if need:
+                raise DataError(f"bundle {bundle.path} needs {', '.join(need)}, which the foot unit's "
+                                "Bluetooth protocol does not carry; replay the foot unit alone (--units foot)")
+            tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
+                              resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
+                              units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
+                              methods=methods, drop_neighbour=drop_neighbour,  # E101
+                              check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
+            if protocol == "-":
+                stream = sys.stdin
+            else:
+                p = Path(protocol)
+                if not p.is_file():
+                    raise DataError(f"{p}: protocol capture not found")
+                stream = p.open()
+            with stream:
+                for line in stream:
+                    t0 = time.perf_counter()
+                    new = tracker.push(parser.feed(line))
+                    if new:
+                        lat.append((time.perf_counter() - t0) / len(new))
+                    steps += new
+                steps += tracker.push(parser.close())
+                steps += tracker.flush()
+            if not parser.stats.measurements:  # decision B193: an empty capture had tracked "0 steps, 0.00 m", exit 0
+                raise DataError(f"protocol {protocol}: no measurement sets ('$1 ax ay az$2 gx gy gz...' lines, "
+                                f"thesis ch.4.2.3; {parser.stats.corrupted} corrupted line(s)) in the capture; check "
+                                "the file or the serial port it was read from")
+            source = f"protocol {protocol}"
+            protocol_stats = {**parser.stats.to_dict(), "rate_hz": parser.rate_hz}
+            from pdrlearn.io.protocol import protocol_rate_line
 
-            logging.getLogger("pdrlearn.cli").warning("%s", rate_line)
-        if parser.stats.corrupted:
-            import logging  # printed as one "warning:" line by the CLI, like every warning (decision B13)
-
-            logging.getLogger(__name__).warning(
-                "%s: %d corrupted line(s) skipped (e.g. %r) of %d set(s) read", protocol,
-                parser.stats.corrupted, parser.stats.examples[0], parser.stats.sets)
-        if parser.stats.lost:  # decision E91: only numbered sets show a loss
-            import logging
-
-            logging.getLogger(__name__).warning(
-                "%s: %d set(s) lost (%.1f %% of %d; the sets' sequence numbers skip them, decision E91): the clock "
-                "leaves their time empty, as a recording's gap", protocol, parser.stats.lost,
-                100.0 * parser.stats.lost / (parser.stats.lost + parser.stats.sets),
-                parser.stats.sets + parser.stats.lost)
-    else:
-        if session_dir is None:
-            raise DataError("run: give a SESSION_DIR or --protocol FILE")
-        from pdrlearn.errors import shell_quote
-        from pdrlearn.io import read_session
-
-        run_command = f"pdrlearn run {shell_quote(bundle_dir)} {shell_quote(session_dir)}"  # the fixes' (B274, B279)
-        # decision L77: its drops warning; B230: --common-span as track's (B81 / B83's cut)
-        session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse",
-                               drop_partial_row=drop_partial_row,  # decision B276: track's option, one mechanism
-                               command=run_command)  # decision B279: a cut last row names `run`'s option
-        from pdrlearn.io.plasys import unit_ends
-
-        ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
-        rates = {n: st.rate_hz for n, st in session.streams.items()}
-        where = f"session '{session.name}'"
-        use, said = _units_for(bundle, units, set(session.streams), where)
-        required, optional = bundle.sensors_of(use)
-        rates = {n: r for n, r in rates.items() if n[0] in {u[0] for u in use}}  # a foot-only replay: no waist
-        bundle.check_streams(rates if no_resample else {n: float("nan") for n in rates}, where=where, units=use)
-        from pdrlearn.track.plasys import require_stride_cover
-
-        # decisions L161, L170, E111: as track's; B230: a clock moved by --clock-offset / --align-units before B21's
-        # cover check (a waist clock 2 s late covers the foot's time once moved; an overhang is cut, L162)
-        moved = align_units or clock_offset is not None or clock_drift is not None  # B265: also the drift
-        if moved:
-            session, alignment = _unit_clocks(session, use, align_units, clock_offset, clock_drift)
-        from pdrlearn.track.units import check_tracked_span, span_cut_s
-
-        if "foot" in use and "waist" in use:  # decisions B274, B278: track's span check (B126, B264), before B21's
-            check_tracked_span(session, "foot", run_command, alone="foot")  # the runtime needs the foot unit (E26)
-        require_stride_cover(session, [*required, *optional], "pdrlearn run")  # decision B21; B230: names run's
-        # decisions B267, B273: the seconds of the walk the replay does not cover (a moved waist clock mapped first)
-        cut_s = span_cut_s(ends_read, session, "foot" if "foot" in use else "waist", alignment if moved else None)
-        if "foot" in use:
-            _foot_checks(session)  # decisions B201, B203, as `track`
-        if not moved:  # L161's check on clocks the recording's cover check accepted
-            session, alignment = _unit_clocks(session, use, align_units, clock_offset, clock_drift)
-        # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E30)
-        # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
-        # the runtime resamples at these rates and announces it in one line; a stream behind the others
-        # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
-        # decision L177: run checked the clocks on the recording above (L170), the same numbers: no second line
-        tracker = Tracker(bundle, frames=_frames_of(session, bundle, use), clock_check=False,
-                          resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
-                          input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
-                          start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0, methods=methods,
-                          stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)},
-                          max_gap_s=math.inf,  # B141: a recording's gaps are its own (its clock checked: B73)
-                          drop_neighbour=drop_neighbour,  # E101
-                          check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
-        dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
-        if tracker.heading_source == "auto" and not said and (dropped or not (
-                session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)
-            import logging
-
-            from pdrlearn.track.plasys import NO_WAIST_HEADING, no_waist_heading
-
-            line = no_waist_heading(session)  # decision B153: an incomplete waist unit names its missing file
-            if dropped and any(n.startswith("w") and len(st) for n, st in session.streams.items()):
-                # decision E45: the session has a waist unit --units foot leaves out; not "no waist unit"
-                line = "waist unit not used (--units foot): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
-            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
-        if "waist" in tracker.units:  # decision W125: W105's check on the waist gyroscope the heading turns by
-            from pdrlearn.waist.plausibility import waist_bias_line
-
-            line = waist_bias_line(session)
-            if line:
+            rate_line = protocol_rate_line(parser.streams(), parser.rate_hz, f"protocol {protocol}")  # decision E90
+            if rate_line:
                 import logging
 
+                logging.getLogger("pdrlearn.cli").warning("%s", rate_line)
+            if parser.stats.corrupted:
+                import logging  # printed as one "warning:" line by the CLI, like every warning (decision B13)
+
+                logging.getLogger(__name__).warning(
+                    "%s: %d corrupted line(s) skipped (e.g. %r) of %d set(s) read", protocol,
+                    parser.stats.corrupted, parser.stats.examples[0], parser.stats.sets)
+            if parser.stats.lost:  # decision E91: only numbered sets show a loss
+                import logging
+
+                logging.getLogger(__name__).warning(
+                    "%s: %d set(s) lost (%.1f %% of %d; the sets' sequence numbers skip them, decision E91): the clock "
+                    "leaves their time empty, as a recording's gap", protocol, parser.stats.lost,
+                    100.0 * parser.stats.lost / (parser.stats.lost + parser.stats.sets),
+                    parser.stats.sets + parser.stats.lost)
+        else:
+            if session_dir is None:
+                raise DataError("run: give a SESSION_DIR or --protocol FILE")
+            from pdrlearn.errors import shell_quote
+            from pdrlearn.io import read_session
+
+            run_command = f"pdrlearn run {shell_quote(bundle_dir)} {shell_quote(session_dir)}"  # B274, B279
+            # decision L77: its drops warning; B230: --common-span as track's (B81 / B83's cut)
+            session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse",
+                                   drop_partial_row=drop_partial_row,  # decision B276: track's option, one mechanism
+                                   command=run_command)  # decision B279: a cut last row names `run`'s option
+            from pdrlearn.io.plasys import unit_ends
+
+            ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
+            rates = {n: st.rate_hz for n, st in session.streams.items()}
+            where = f"session '{session.name}'"
+            use, said = _units_for(bundle, units, set(session.streams), where)
+            required, optional = bundle.sensors_of(use)
+            rates = {n: r for n, r in rates.items() if n[0] in {u[0] for u in use}}  # a foot-only replay: no waist
+            bundle.check_streams(rates if no_resample else {n: float("nan") for n in rates}, where=where, units=use)
+            from pdrlearn.track.plasys import require_stride_cover
+
+            # decisions L161, L170, E111: as track's; B230: a clock moved by --clock-offset / --align-units before B21's
+            # cover check (a waist clock 2 s late covers the foot's time once moved; an overhang is cut, L162)
+            moved = align_units or clock_offset is not None or clock_drift is not None  # B265: also the drift
+            if moved:
+                session, alignment = _unit_clocks(session, use, align_units, clock_offset, clock_drift)
+            from pdrlearn.track.units import check_tracked_span, span_cut_s
+
+            if "foot" in use and "waist" in use:  # decisions B274, B278: track's span check (B126, B264), before B21's
+                check_tracked_span(session, "foot", run_command, alone="foot")  # the runtime needs the foot unit (E26)
+            require_stride_cover(session, [*required, *optional], "pdrlearn run")  # decision B21; B230: names run's
+            # decisions B267, B273: the seconds of the walk the replay does not cover (a moved waist clock mapped first)
+            cut_s = span_cut_s(ends_read, session, "foot" if "foot" in use else "waist", alignment if moved else None)
+            if "foot" in use:
+                _foot_checks(session)  # decisions B201, B203, as `track`
+            if not moved:  # L161's check on clocks the recording's cover check accepted
+                session, alignment = _unit_clocks(session, use, align_units, clock_offset, clock_drift)
+            # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E30)
+            # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
+            # the runtime resamples at these rates and announces it in one line; a stream behind the others
+            # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
+            # decision L177: run checked the clocks on the recording above (L170), the same numbers: no second line
+            tracker = Tracker(bundle, frames=_frames_of(session, bundle, use), clock_check=False,
+                              resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
+                              input_rates_hz=rates, units=use,
+                              sensors=[n for n, st in session.streams.items() if len(st)],
+                              start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0, methods=methods,
+                              stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)},
+                              max_gap_s=math.inf,  # B141: a recording's gaps are its own (its clock checked: B73)
+                              drop_neighbour=drop_neighbour,  # E101
+                              check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
+            dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
+            if tracker.heading_source == "auto" and not said and (dropped or not (
+                    session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)
+                import logging
+
+                from pdrlearn.track.plasys import NO_WAIST_HEADING, no_waist_heading
+
+                line = no_waist_heading(session)  # decision B153: an incomplete waist unit names its missing file
+                if dropped and any(n.startswith("w") and len(st) for n, st in session.streams.items()):
+                    # decision E45: the session has a waist unit --units foot leaves out; not "no waist unit"
+                    line = "waist unit not used (--units foot): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
                 logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
-        bounds = [float(st.t[i]) for st in session.streams.values() if len(st) for i in (0, -1)]
-        # decision E131: the recording's seconds replayed and the time left, on a terminal (not with --json)
-        with GapLines(session.name), clock_progress(f"run {session.name}", min(bounds, default=0.0),
-                                                    max(bounds, default=0.0),
-                                                    enabled=not as_json) as reached:
-            for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
-                t0 = time.perf_counter()
-                new = tracker.push(chunk)
-                if new:
-                    lat.append((time.perf_counter() - t0) / len(new))
-                steps += new
-                reached(max((float(t[-1]) for t, _ in chunk.values() if len(t)), default=0.0))
-            steps += tracker.flush()
-        _warn_short_streams(session, tracker, steps)
-        source = f"session {session.name}"
-    result = _result(steps, start_ll, start_alt)
-    from pdrlearn.track.position_sigma import add_position_sigma
+            if "waist" in tracker.units:  # decision W125: W105's check on the waist gyroscope the heading turns by
+                from pdrlearn.waist.plausibility import waist_bias_line
 
-    # decisions L128/L150, as `track --streaming`: the waist gyroscope's heading when the tracker uses the waist unit
-    add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot-streaming")
-    if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
-        result.info["initial_heading_rad"] = heading0
-    # L170, E111, B265: as track's info (L162); None: the steps did not align
-    if align_units or clock_offset is not None or clock_drift is not None:
-        result.info["unit_alignment"] = alignment
-    result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
-    result.info["out_of_domain"] = tracker.domain_report()  # decision E105: track's C16 report (flush warned C61's)
-    # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
-    table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
-    summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
-    summary["common_span_cut_s"] = cut_s  # decision B267, as track's
-    if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
-        summary["protocol"] = protocol_stats
-    if out is not None:
-        _write(out, result, summary, session, source, dpi=dpi, record=record(), bouts=table, with_ele=start_ele)
-    if as_json:
-        print_json(json_safe(summary))
-    else:
-        err = summary.get("distance_error_pct")
-        from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
+                line = waist_bias_line(session)
+                if line:
+                    import logging
 
-        typer.echo(f"{source}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
-                   + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
-                   f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
-                   # L64: the storeys climbed and descended, when the track changed floors
-                   + floors_phrase(summary)
-                   + (f" -> {out}" if out else ""))
-        if summary.get("gait_speed_mps") is not None:  # decisions E48 / E51: track's L79 line, what run can give
-            typer.echo(gait_line(summary, streamed=True))  # decision L204: no cadence without --contacts
+                    logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
+            bounds = [float(st.t[i]) for st in session.streams.values() if len(st) for i in (0, -1)]
+            # decision E131: the recording's seconds replayed and the time left, on a terminal (not with --json)
+            with GapLines(session.name), clock_progress(f"run {session.name}", min(bounds, default=0.0),
+                                                        max(bounds, default=0.0),
+                                                        enabled=not as_json) as reached:
+                for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
+                    t0 = time.perf_counter()
+                    new = tracker.push(chunk)
+                    if new:
+                        lat.append((time.perf_counter() - t0) / len(new))
+                    steps += new
+                    reached(max((float(t[-1]) for t, _ in chunk.values() if len(t)), default=0.0))
+                steps += tracker.flush()
+            _warn_short_streams(session, tracker, steps)
+            source = f"session {session.name}"
+        result = _result(steps, start_ll, start_alt)
+        from pdrlearn.track.position_sigma import add_position_sigma
+
+        # decisions L128/L150, as `track --streaming`: the waist gyroscope's heading when the tracker uses the waist
+        # unit
+        add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot-streaming")
+        as_written(result)  # decision E157: the summary from the tables as written, whatever the chunk size
+        if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
+            result.info["initial_heading_rad"] = heading0
+        # L170, E111, B265: as track's info (L162); None: the steps did not align
+        if align_units or clock_offset is not None or clock_drift is not None:
+            result.info["unit_alignment"] = alignment
+        result.info.update(written_floats(tracker.height_checks()))  # decision E47: track's L69 / C28 checks; E157
+        # decision E105: track's C16 report (flush warned C61's); E157: at the CSVs' digits
+        result.info["out_of_domain"] = written_floats(tracker.domain_report())
+        # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
+        table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
+        summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
+        summary["common_span_cut_s"] = cut_s  # decision B267, as track's
+        summary["steady_trim"] = 0  # decision L415, as track's key (B14): `run` has no --steady-trim
+        if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
+            summary["protocol"] = protocol_stats
+        keep_warnings(summary, logged, session)  # decision E154
+        if out is not None:  # decision E157: the push times in run.json, not summary.json
+            _write(out, result, summary, session, source, dpi=dpi, record=record(latency_ms_per_step=_latency(lat)),
+                   bouts=table, with_ele=start_ele)
+        if as_json:
+            print_json(json_safe(summary))
+        else:
+            err = summary.get("distance_error_pct")
+            from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
+
+            typer.echo(f"{source}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
+                       + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
+                       f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
+                       # L64: the storeys climbed and descended, when the track changed floors
+                       + floors_phrase(summary)
+                       + (f" -> {out}" if out else ""))
+            if summary.get("gait_speed_mps") is not None:  # decisions E48 / E51: track's L79 line, what run can give
+                typer.echo(gait_line(summary, streamed=True))  # decision L204: no cadence without --contacts
 
 
 def _foot_checks(session) -> None:
@@ -630,11 +643,11 @@ def _run_json(arguments: dict, wall0: float, cpu0: float):
     options = given_options(arguments, leave_out=("bundle_dir", "session_dir", "out", "force", "as_json"))
     session = arguments.get("session_dir")
 
-    def record() -> dict:
+    def record(**times) -> dict:  # decision E157: the push times (latency_ms_per_step) with the others, here
         return run_record("run", options, session=None if session is None else str(session),
                           bundle=model_record(arguments["bundle_dir"]),
                           track_time_s=round(time.perf_counter() - wall0, 2),
-                          cpu_time_s=round(time.process_time() - cpu0, 2))
+                          cpu_time_s=round(time.process_time() - cpu0, 2), **times)
 
     return record
 
@@ -665,7 +678,7 @@ def _calibration_gait_warning(params, steps, warnings: list[str], where: str) ->
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
                heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0,
                start_ll=None, start_alt: float = 0.0, sides: bool = False, drop_partial_row: bool = False,
-               start_ele: bool = False) -> None:
+               start_ele: bool = False, logged: list[str] | None = None) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
@@ -674,7 +687,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     (``--storey-height``, decision L142: it had been left at 3 m). ``--start LAT,LON[,ALT]`` (``start_ll``,
     ``start_alt``): the tracker's lat/lon of each step (decision W147) and z at ALT, as the foot bundle's run.
     ``sides`` (``--sides``, decision E110): the runtime's causal side of each step (E103) in steps.csv's ``side``
-    column, the offline lower-back track's name and values (``left`` / ``right`` / empty when undecided)."""
+    column, the offline lower-back track's name and values (``left`` / ``right`` / empty when undecided).
+    ``logged``: the warnings ``run`` caught so far, added to the summary's (decision E154)."""
     import numpy as np
     import pandas as pd
 
@@ -787,21 +801,23 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.track.position_sigma import add_position_sigma
 
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
+    as_written(result)  # decision E157: the summary from the tables as written, whatever the chunk size
     # L124, E73: one detection (L165: key; L195: the leg-scaled range)
     table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
                                                                        storey_height_m=storey_height_m),
                "session": session.name,
                "pipeline": "runtime", "bundle_kind": "waist", "info": summary_info(result.info),  # E141
-               "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": float(traj["z"].iloc[-1]),
-                                  **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})},
-               "latency_ms_per_step": _latency(lat)}
+               "final_position": {"x": written_floats(float(tracker.position[0])),  # decision E157
+                                  "y": written_floats(float(tracker.position[1])), "z": float(traj["z"].iloc[-1]),
+                                  **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})}}
     from pdrlearn.track.evaluate import add_gait_range_flag
 
     add_gait_range_flag(summary)  # decision L195: the flag as track's summary has it (this path warns no L95 line)
-    if out is not None:
-        _write(out, result, summary, session, summary["source"], dpi=dpi, record=record(), bouts=table,
-               with_ele=start_ele)
+    keep_warnings(summary, logged or [], session)  # decision E154
+    if out is not None:  # decision E157: the push times in run.json, not summary.json
+        _write(out, result, summary, session, summary["source"], dpi=dpi,
+               record=record(latency_ms_per_step=_latency(lat)), bouts=table, with_ele=start_ele)
     if as_json:
         print_json(json_safe(summary))
         return
@@ -870,7 +886,8 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     out.update(time_accounting(result, session))  # decision L275, as track's summary (B14)
     # lat/lon with --start, as track's summary (without it track has none: no NaN keys either)
     geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
-    out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}
+    out["final_position"] = {**dict(zip("xyz", written_floats([float(v) for v in tracker.position]), strict=True)),
+                             **geo}  # decision E157: at the CSVs' digits
     if session is not None:
         from pdrlearn.track.clinical import contact_timing
 
@@ -904,17 +921,56 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
         "methods": {**{t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
                     **{t: "none" for t in getattr(tracker, "unclassified", {})}},  # E26 amended, as track's
         "classes": counts,
-        "latency_ms_per_step": _latency(lat),
     })
     return out
 
 
+def keep_warnings(summary: dict, logged: list[str], session=None) -> None:
+    """Decision E154: the warnings ``run`` logged (its reading, the runtime's, the summary's checks) added to the
+    summary's ``info["warnings"]``, each once, without the session folder or name that starts them on stderr; E155:
+    with their codes and the summary's ``schema_version``, as ``track``'s."""
+    from pdrlearn.warning_lines import machine_summary
+
+    machine_summary(summary, logged, [] if session is None else [session.where, session.name])
+
+
 def _latency(lat: list[float]) -> dict:
-    """``latency_ms_per_step`` of a run's summary (a foot or a waist bundle's): the median and 99th percentile (ms)
-    of the per-step push times ``lat`` (s), None without a step."""
+    """``latency_ms_per_step`` of a run's run.json (decision E157; a foot or a waist bundle's): the median and 99th
+    percentile (ms) of the per-step push times ``lat`` (s), None without a step."""
     import numpy as np
 
     return {q: float(np.percentile(lat, n) * 1e3) if lat else None for q, n in (("p50", 50), ("p99", 99))}
+
+
+def written_floats(value):
+    """Decision E157: ``value`` (a float, or a dict / list of them, nested) with each float at the digits the CSV files
+    hold (:data:`CSV_FLOAT_FORMAT`); other values unchanged. The runtime's floats differ in their last bits with the
+    replay's chunk size (``--chunk-s 1`` vs ``7.3``: distance_m 89.95196841195369 vs ...381, trial T2), the written
+    tables do not."""
+    if isinstance(value, float):
+        return float(CSV_FLOAT_FORMAT % value) if math.isfinite(value) else value
+    if isinstance(value, dict):
+        return {k: written_floats(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return type(value)(written_floats(v) for v in value)
+    return value
+
+
+def as_written(result) -> None:
+    """Decision E157, in place: every float column of ``result``'s steps and trajectory at the digits the CSV files
+    write (:data:`CSV_FLOAT_FORMAT`), so that ``run``'s summary, computed from them, is the summary of the tables as
+    written and so the same for any ``--chunk-s`` (the CSV files are unchanged: they held these digits). Times (``t``,
+    ``*_s``) are left as they are: they are the samples' own, the same for every chunk size, and 10 digits of an epoch
+    time in seconds would be whole seconds."""
+    import numpy as np
+
+    for df in (result.steps, result.trajectory):
+        for c in df.columns:
+            if df[c].dtype.kind == "f" and c != "t" and not c.endswith("_s"):
+                v = np.array(df[c], dtype=float)
+                ok = np.isfinite(v)
+                v[ok] = np.char.mod(CSV_FLOAT_FORMAT, v[ok]).astype(float)
+                df[c] = v
 
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
@@ -942,11 +998,11 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         from pdrlearn.track.evaluate import with_reference_columns
 
         steps = with_reference_columns(result, session)  # decision E135: the reference pairs, as track
-        steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
-        result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
+        write_table_csv(steps, tmp / "steps.csv")  # decision E164: an epoch time keeps its decimals
+        write_table_csv(result.trajectory, tmp / "trajectory.csv")
         # L124 (E98), L200, L202: bouts.csv, turns.csv ... as track; E144: its clock columns
         for name, table in event_tables(result, bouts, start=start).items():
-            table.to_csv(tmp / name, index=False, float_format="%.10g")
+            write_table_csv(table, tmp / name)
         plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
         from pdrlearn.track.geoexport import write_geo_files

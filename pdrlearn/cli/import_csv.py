@@ -80,9 +80,11 @@ def import_command(
                                     "'%d/%m/%Y %H:%M:%S' (needed when day and month cannot be told apart, B43)."),
     time_zone: str = typer.Option(None, "--time-zone", help="Zone of date-time text without one, e.g. +01:00 or "
                                   "Europe/Berlin (default: UTC, said in the summary; B43)."),
-    acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2, g or mg (default: the header's '(g)' or '_g', "
-                                 "else m/s2)."),
-    gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s (default: the header's, else rad/s)."),
+    acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2, g or mg, or raw counts as the size of one "
+                                 "count and a unit, '1/2048 g', as meta.json's units (B313) (default: the header's "
+                                 "'(g)' or '_g', else m/s2)."),
+    gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s, or the size of one count, '1/16.4 "
+                                  "deg/s' (B313) (default: the header's, else rad/s)."),
     frames: str = typer.Option(None, "--frames", help="The unit's axes, e.g. x=forward,y=up,z=right (default: "
                                "none; commands infer it from the data, decision D8)."),
     sensor_height: float = typer.Option(None, "--sensor-height", help="The waist unit's height above "
@@ -104,6 +106,8 @@ def import_command(
                                   "for the units; B66)."),
     force_frame: bool = typer.Option(False, "--force-frame", help="Write the --frames axes even when the data "
                                      "contradict them (refused otherwise, B67)."),
+    foot: str = typer.Option(None, "--foot", help="The foot the unit is on, left or right, written to meta.json "
+                             "\"foot\" (pdrlearn gait checks the side given against it; B321)."),
     name: str = typer.Option(None, "--name", help="Session name, written to meta.json (default: the --out "
                              "folder's name; with --merge the session's own)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
@@ -151,6 +155,8 @@ def import_command(
             --labels bouts.csv --labels turns.csv
 
         pdrlearn import restarted.csv --out sessions/walk2 --split-at-clock-reset   # walk2/part1, walk2/part2
+
+        pdrlearn import s01_left.csv --rate 204.8 --foot left --gyro-unit deg/s --out s01_left  # no time column
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
@@ -247,7 +253,8 @@ def import_command(
               name=name or (None if merge else out.name),
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
-              drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime)
+              drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime,
+              foot=foot)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
         if len(parts) > 1:
@@ -450,8 +457,11 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         typer.echo(msg, err=True)
 
     t = record["time"]
-    err(f"time: column '{t['column']}' in {t['unit']} ({t['source']}); 0 ms = {_origin_text(t['origin_s'])} on the "
-        "export's clock")
+    if t["column"] == "(row index)":  # decision B323 (importer.ROW_INDEX; this module imports no numpy)
+        err(f"time: no time column: {t['source']}; 0 ms = the first row")
+    else:
+        err(f"time: column '{t['column']}' in {t['unit']} ({t['source']}); 0 ms = {_origin_text(t['origin_s'])} on "
+            "the export's clock")
     sk = record.get("skipped_rows")
     if sk:  # decision B66
         if sk.get("units"):

@@ -49,23 +49,11 @@ def software_record() -> dict:
     :data:`RECORDED_PACKAGES`' installed version (``None`` when not installed; read from the package metadata, so
     torch is not imported)."""
     import platform
-    import subprocess
     from importlib import metadata
 
-    import pdrlearn
+    from pdrlearn.buildinfo import git_state
 
-    repo = Path(pdrlearn.__file__).resolve().parent.parent
-    commit = dirty = None
-    if (repo / ".git").exists():
-        try:
-            def git(*args: str) -> str:
-                return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True,
-                                      timeout=10).stdout.strip()
-
-            commit = git("rev-parse", "HEAD")
-            dirty = bool(git("status", "--porcelain", "--untracked-files=no"))
-        except (OSError, subprocess.SubprocessError):
-            commit = dirty = None
+    commit, dirty = git_state()
     packages = {}
     for name in RECORDED_PACKAGES:
         try:

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import FORCE_HELP, json_safe, non_session_files, print_json, progress
+from pdrlearn.cli.common import FORCE_HELP, json_safe, non_session_files, print_json, progress, replaced
 from pdrlearn.errors import DataError
 
 #: decision S30: the step length (m) and step time (s) `simulate --step-length/--step-time` accept: from a 0.1 m
@@ -201,9 +201,11 @@ def simulate_cmd(
     if not (math.isfinite(heading0) and -360.0 <= heading0 <= 360.0):  # decision S32
         raise DataError(f"--heading0 {heading0:g}: give the initial direction in degrees, -360 to 360 "
                         "(0 = east, 90 = north)")
-    if not (math.isfinite(variability) and variability >= 0.0):  # decision S76: the Python knob's own range
-        raise DataError(f"--variability {variability:g}: give a finite scale >= 0 (1 = the user's own "
-                        "stride-to-stride variability, 0 = identical strides)")
+    from pdrlearn.sim.simulate import VARIABILITY_MAX
+
+    if not (math.isfinite(variability) and 0.0 <= variability <= VARIABILITY_MAX):  # S76: the Python knob's range
+        raise DataError(f"--variability {variability:g}: give a finite scale from 0 to {VARIABILITY_MAX:g} (1 = the "
+                        "user's own stride-to-stride variability, 0 = identical strides)")
     if not (math.isfinite(mag_disturbance) and 0.0 <= mag_disturbance <= MAG_DISTURBANCE_MAX_UT):  # S33
         raise DataError(f"--mag-disturbance {mag_disturbance:g}: give 0-{MAG_DISTURBANCE_MAX_UT:g} uT")
     mount = parse_mount(waist_mount)  # decision S34
@@ -263,6 +265,7 @@ def simulate_cmd(
         advance()
         write_session(session, out, overwrite=replace)  # atomic: the old session stays until the new one is written
         advance()
+    replaced(out, replace)  # decision B320: `replaced PATH` on stderr, as every other command's --force
     st = session.steps
     summary = {
         "out": str(out),

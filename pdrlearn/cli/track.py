@@ -25,14 +25,10 @@ from pdrlearn.cli.common import (
     storey_height_option,
     transfer_line,
     walk_line,
+    write_table_csv,
 )
 from pdrlearn.errors import DataError
 from pdrlearn.textfile import read_text
-
-
-def _write_csv(df, path: Path) -> None:
-    df.to_csv(path, index=False, float_format="%.10g")
-
 
 #: The tracking options, shared by ``track`` and ``track-all`` (one declaration each, so the two commands
 #: cannot drift apart). ``--gnss``/``--fixes`` are per-recording files and belong to ``track`` only.
@@ -216,12 +212,22 @@ PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods
                              "the recording's clock, 1h = the clock hours; the first and last periods partial). clock "
                              "needs the session's start (meta.json recording_start or a date-time import; decision "
                              "L299).")
+STEADY_TRIM_OPT = typer.Option(None, "--steady-trim", metavar="N", help="A steady-state rule: leave the first "
+                               "and last N strides of each walking bout out of gait speed, cadence, the stride "
+                               "time / length / speed medians and the CVs (decision L415; default 0: none, each bout's "
+                               "first two and last stride are never CV strides anyway). steps.csv's steady column "
+                               "marks the CV strides.")
 CORRIDOR_OPT = typer.Option(None, "--corridor", metavar="METRES", help="A corridor walk test (6MWT / 2MWT) up "
                             "and down a course of METRES (e.g. 30, the ATS 2002 6MWT's): OUT/laps.csv (the laps "
                             "between cone turns of >= 135 deg) and the summary's walk_test_distance_m = laps x "
                             "METRES + the final partial lap, n_laps, distance per minute from the first step, "
                             "fatigue_index (decisions L383, L384). A 6MWT inside a longer "
                             "recording: with --window T0,T0+360.")
+SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times at distances along the tracked path "
+                          "(e.g. 5,10,20: a sprint's marks, metres from the first step): OUT/splits.csv (each mark's "
+                          "time from the first step's start, interpolated within the stride that crosses it, the "
+                          "split time and mean speed since the previous mark) and a summary line; marks beyond the "
+                          "path are named in one warning (decision L411).")
 
 
 def track(
@@ -266,13 +272,17 @@ def track(
     per: str = PER_OPT,
     per_align: str = PER_ALIGN_OPT,
     corridor: float = CORRIDOR_OPT,
+    splits: str = SPLITS_OPT,
     bout_rule: str = BOUT_RULE_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
     bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
+    steady_trim: int = STEADY_TRIM_OPT,
     resample: bool = RESAMPLE_OPT,
     no_resample: bool = NO_RESAMPLE_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
+    strict: bool = typer.Option(False, "--strict", help="Exit with code 3 when the track gave any warning (the "
+                                "outputs are still written; summary.json info.warnings lists them; decision E156)."),
 ) -> None:
     """Track a session: per-step table, trajectory, path figure and summary (errors vs ground truth).
 
@@ -306,9 +316,15 @@ def track(
 
         pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
 
+        pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
+
+        pdrlearn track out/sim/A_u1 --steady-trim 3 --out out/A_steady   # each bout's first / last 3 strides out
+
         pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
 
         pdrlearn track out/sim/D_u1 --clock-drift-ppm 200 --out out/D_drift   # its waist clock gains 200 ppm
+
+        pdrlearn track out/sim/D_u1 --model oracle --strict --json --out out/D_qa   # exit 3 on any warning (E156)
 
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
@@ -342,8 +358,17 @@ def track(
     replaced(out, was)
     if as_json:
         print_json(summary)
-        return
-    _print_summary(summary, out, aided, waist_unit=(Path(session_dir) / "wAccelerometer.csv").is_file())  # L316
+    else:
+        _print_summary(summary, out, aided, waist_unit=(Path(session_dir) / "wAccelerometer.csv").is_file())  # L316
+    warned = summary.get("info", {}).get("warnings") or []
+    if strict and warned:  # decision E156: the outputs are written; the exit code says the track warned
+        typer.echo(f"strict: {len(warned)} warning(s) (summary.json info.warnings); exit code {STRICT_EXIT}", err=True)
+        raise typer.Exit(STRICT_EXIT)
+
+
+#: decision E156: ``track --strict``'s exit code when the track gave a warning (0 ok, 1 some sessions / users
+#: failed, 2 bad input, nothing written, 3 written with warnings)
+STRICT_EXIT = 3
 
 
 #: decision E93: ``track``'s options that ``track-all`` does not take, and why (tests/test_track_all_options_e93.py
@@ -351,6 +376,7 @@ def track(
 NOT_IN_TRACK_ALL = {
     "--gnss": "a per-recording fix file", "--gnss-period": "thins --gnss", "--fixes": "a per-recording fix file",
     "--fix-period": "thins --fixes",
+    "--strict": "track-all's exit code 1 names failed sessions; sessions.csv's n_warnings counts each one's (E156)",
 }
 
 
@@ -374,14 +400,15 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
-                   per_align: str = "start", corridor: float | None = None,
+                   per_align: str = "start", corridor: float | None = None, splits: str | None = None,
                    resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
                    detector: str | None = None, length_model: str | None = None,
                    altitude: str | None = None, align_units: bool = False,
                    bout_rule: str | None = None, clock_offset: float | None = None,
-                   clock_drift_ppm: float | None = None, drop_partial_row: bool = False) -> dict:
+                   clock_drift_ppm: float | None = None, drop_partial_row: bool = False,
+                   steady_trim: int | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -389,6 +416,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
     from pdrlearn.io.resample import resample_mode
     from pdrlearn.track.bouts import bout_rule as read_bout_rule
+    from pdrlearn.track.steady import check_steady_trim
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
 
@@ -416,6 +444,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.corridor import corridor_length
 
     corridor_m = corridor_length(corridor)  # decision B293: before any session
+    from pdrlearn.track.splits import parse_splits
+
+    splits_m = parse_splits(splits)  # decision B307: before any session
     if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
         raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
                         "--fixes give the track its direction; drop --initial-heading")
@@ -501,12 +532,13 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
-            "per_align": per_align, "corridor_m": corridor_m,
+            "per_align": per_align, "corridor_m": corridor_m, "splits_m": splits_m,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
             "altitude": altitude, "align_units": align_units, "clock_offset_s": clock_offset_s,
-            "clock_drift": clock_drift, "drop_partial_row": drop_partial_row}
+            "clock_drift": clock_drift, "drop_partial_row": drop_partial_row,
+            "steady_trim": None if steady_trim is None else check_steady_trim(steady_trim)}  # decision L415
 
 
 def read_params(params: Path):
@@ -563,7 +595,23 @@ def _refuse_waist_pipeline_without_waist(pipeline: str, session) -> None:
 
 def track_session(session_dir: Path, settings: dict) -> dict:
     """Read and track one session with :func:`track_settings`'s options; return what :func:`write_track`
-    writes (the session, the result, its summary.json dict, the pipeline, whether it was aided)."""
+    writes (the session, the result, its summary.json dict, the pipeline, whether it was aided). Decision E154:
+    every warning logged on the way (reading, tracking, the summary's checks) is in the summary's
+    ``info["warnings"]`` (and the result's), each once, as ``track-all``'s sessions.csv gives them; E155: with their
+    codes and the summary's ``schema_version``. Decision L415: the measures are computed under ``--steady-trim``
+    (:func:`pdrlearn.track.steady.steady_trim_set`)."""
+    from pdrlearn.track.steady import steady_trim_set
+    from pdrlearn.warning_lines import captured_warnings, machine_summary
+
+    with captured_warnings(echo=True) as logged, steady_trim_set(settings.get("steady_trim")):
+        tracked = _track_session(session_dir, settings)
+    summary = machine_summary(tracked["summary"], logged, str(session_dir))  # decisions E154, E155
+    tracked["result"].info["warnings"] = list(summary["info"]["warnings"])
+    return tracked
+
+
+def _track_session(session_dir: Path, settings: dict) -> dict:
+    """:func:`track_session` without E154's capture and L415's setting."""
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline, resolve_pipeline
     from pdrlearn.track.evaluate import track_summary
@@ -778,6 +826,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
                             storey_height_m=o.get("storey_height_m", 3.0))
+    from pdrlearn.track.steady import steady_flags
+
+    flags = steady_flags(result.steps)  # decision L415: steps.csv says which strides the CVs are taken over
+    if flags is not None:
+        result.steps["steady"] = flags
     from pdrlearn.track.periods import time_accounting
 
     unit = tracked_unit(pipeline)
@@ -849,9 +902,22 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             for line in lines:
                 logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
             summary["info"]["warnings"] = [*summary["info"].get("warnings", []), *lines]
+    splits = None
+    if o.get("splits_m"):  # decision L411: times at distance marks from the track's (or window's) first step
+        from pdrlearn.track.splits import split_table
+
+        splits, keys, lines = split_table(result.steps, o["splits_m"])
+        summary.update(keys)
+        if lines:
+            import logging
+
+            for line in lines:
+                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), *lines]
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods, "laps": laps, "start": start,
+            "splits": splits,
             "start_ele": bool(o.get("start_ele"))}
 
 
@@ -870,7 +936,7 @@ def _check_relative_heading(result, session, heading0: float) -> None:
     result.info["initial_heading_rad"] = heading0
 
 
-def event_tables(result, bouts, periods=None, start=None, laps=None) -> dict:
+def event_tables(result, bouts, periods=None, start=None, laps=None, splits=None) -> dict:
     """Decision L298: every event table a track or run writes - ``bouts.csv`` (L124), :func:`clinical_tables`'s,
     ``periods.csv`` (L277, when given) and ``laps.csv`` (L383, with --corridor) - with their clock columns when the
     recording's ``start`` is known."""
@@ -882,6 +948,8 @@ def event_tables(result, bouts, periods=None, start=None, laps=None) -> dict:
         tables["periods.csv"] = periods
     if laps is not None:
         tables["laps.csv"] = laps
+    if splits is not None:  # decision L411: --splits
+        tables["splits.csv"] = splits
     return {name: with_clock_columns(table, start) for name, table in tables.items()}
 
 
@@ -900,6 +968,11 @@ def clinical_tables(result, bouts) -> dict:
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+    from pdrlearn.track.travel import direction_change_table
+
+    changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction
+    if changes is not None:
+        out["direction_changes.csv"] = changes
     if result.info.get("rides") is not None:  # decision L377: a lower-back track's rides
         from pdrlearn.track.rides import ride_table
 
@@ -942,14 +1015,14 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
 
         plot_aided(result, dest / "aided.png", truth=session.trajectory,
                    title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
-    _write_csv(traj, dest / "trajectory.csv")
+    write_table_csv(traj, dest / "trajectory.csv")
     from pdrlearn.track.evaluate import with_reference_columns
 
-    _write_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
+    write_table_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
     # decisions L124 (E98: the old speed_m_s last), L200, W182, L277; L298: clock columns with a recording start
     for name, table in event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start"),
-                                     tracked.get("laps")).items():
-        _write_csv(table, dest / name)
+                                     tracked.get("laps"), tracked.get("splits")).items():
+        write_table_csv(table, dest / name)
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
@@ -960,6 +1033,28 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
                     distance_m=summary.get("distance_m"), start=tracked.get("start"),
                     with_ele=bool(tracked.get("start_ele")))
     return summary, aided
+
+
+def distance_error_phrase(summary: dict) -> str:
+    """The summary line's distance error. Decision L419 (session 34, trial T5 finding 6): when labelled strides cover
+    part of the walk (gaitmap's mocap volume: 28 of 32 strides), the like-with-like number leads - the matched
+    tracked strides against their labelled strides - and the whole-track ``distance_error_pct`` (every tracked
+    stride against the labelled strides' sum) follows with the spans it compares; otherwise as before."""
+    err = summary.get("distance_error_pct")
+    if err is None:
+        return ""
+    matched, n = summary.get("stride_length_matched"), summary.get("n_steps")
+    if summary.get("distance_matched_error_pct") is None or matched is None or n is None or matched >= n:
+        return f", distance error {err:+.2f} %"
+    spans = (f" ({summary['distance_matched_m']:.2f} m tracked vs {summary['distance_matched_ref_m']:.2f} m labelled)"
+             if summary.get("distance_matched_m") is not None and summary.get("distance_matched_ref_m") is not None
+             else "")
+    ref = summary.get("distance_ref_m")
+    whole = (f"all {n} tracked strides {summary['distance_m']:.2f} m vs the labelled strides' {ref:.2f} m: "
+             if ref is not None else f"all {n} tracked strides: ")
+    return (f", distance error {summary['distance_matched_error_pct']:+.2f} % over the {matched} strides matched to "
+            f"labels{spans}; whole track {err:+.2f} % ({whole}strides outside the labelled span count against it, "
+            "L419)")
 
 
 def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False) -> None:
@@ -974,11 +1069,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                # W21: the lower-back error counts the reference bouts only; say so before the number
                + (f"; inside the reference bouts {summary['bout_distance_m']:.2f} m vs "
                   f"{summary['bout_reference_m']:.2f} m" if bouts else "")
-               + (f", distance error {err:+.2f} %" if err is not None else "")
-               + (f" (over the {summary['stride_length_matched']} labelled strides "
-                  f"{summary['distance_matched_error_pct']:+.2f} %)"  # a reference labelling part of the walk
-                  if "distance_matched_error_pct" in summary and "stride_length_matched" in summary
-                  and err is not None and summary["stride_length_matched"] < summary["n_steps"] else "")
+               + distance_error_phrase(summary)
                + (f", final position error {summary['final_position_error_m']:.2f} m horizontal"
                   if "final_position_error_m" in summary else "")
                # L52: the altitude change, with its reference when the session has one
@@ -1019,6 +1110,13 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         from pdrlearn.track.corridor import corridor_line
 
         typer.echo(corridor_line(summary))
+    if summary.get("direction_changes"):  # decision L412: changes of travel direction (a turn is none)
+        typer.echo(f"{summary['direction_changes']} change(s) of travel direction between forward, backward, left "
+                   "and right strides (steps.csv travel; direction_changes.csv)")
+    if summary.get("splits_m"):  # decision L411: the split times
+        from pdrlearn.track.splits import splits_line
+
+        typer.echo(splits_line(summary))
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
@@ -1034,6 +1132,8 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
                f"{'laps.csv, ' if summary.get('corridor_m') is not None else ''}"
+               f"{'splits.csv, ' if summary.get('splits_m') else ''}"
+               f"{'direction_changes.csv, ' if summary.get('direction_changes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)

@@ -14,7 +14,6 @@ sees a half-written bundle (decision E1).
 
 from __future__ import annotations
 
-import datetime as _dt
 import json
 import logging
 from pathlib import Path
@@ -23,6 +22,7 @@ import numpy as np
 import onnx
 
 from pdrlearn.atomic import atomic_directory
+from pdrlearn.buildinfo import created_utc, git_stamp
 from pdrlearn.classify.model_dir import _json_default  # numpy scalars/arrays, paths -> JSON
 from pdrlearn.errors import ModelError
 from pdrlearn.runtime.bundle import (
@@ -47,7 +47,8 @@ def base_manifest(**fields) -> dict:
         "schema": SCHEMA_NAME,
         "schema_version": SCHEMA_VERSION,
         "package_version": pdrlearn.__version__,
-        "created_utc": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "created_utc": created_utc(),  # decision E159: SOURCE_DATE_EPOCH when set
+        **git_stamp(),  # decision E158: the commit of the code that wrote the bundle
         "user": None,
         "tasks": {},
         "sampling": {},

@@ -24,7 +24,7 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import AxisFrame, right_handed
 from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, GRAVITY_FILE, TOTAL_ACC_FILE, _csv_dialect, read_table
-from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
+from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU, parse_value_unit
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
     CLOCK_RESET_S,
@@ -46,6 +46,7 @@ from pdrlearn.io.validate import (
     time_unit_candidates,
 )
 from pdrlearn.kernels.clock import RETIME_RATE_TOL, retimed
+from pdrlearn.kernels.counter_wrap import counter_wraps, unwrap, wrap_message
 from pdrlearn.kernels.frames import axes_dict
 
 log = logging.getLogger(__name__)
@@ -292,9 +293,15 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
         _check_force_units(kind, given, columns, where, row_units, by_word)
     if given is not None:
         u = by_word.get(_unit_word(given))
-        if u is None:
-            raise DataError(f"{where}: {kind} unit {given!r} is not one of {', '.join(table)}")
-        return u, table[u], "given"
+        if u is not None:
+            return u, table[u], "given"
+        sensor = next((s.kind for s in SENSORS.values() if s.name[1:] == KINDS[kind][0]), "")
+        counted = parse_value_unit(given, sensor)  # decision B313: meta.json's units parser, "1/2048 g" too
+        if counted is None:
+            raise DataError(f"{where}: {kind} unit {given!r} is not one of {', '.join(table)}"
+                            + (", nor the size of one count and one of them (\"1/2048 g\", as meta.json's \"units\" "
+                               "take; decision B313)" if kind in _UNIT_OPTION else ""))
+        return counted[1], counted[0], "given"
     row = {by_word.get(_unit_word((row_units or {}).get(c) or "")) for c in columns} - {None}
     hints = set(row) or {by_word.get(_header_unit(c) or "") for c in columns} - {None}
     if len(hints) > 1:  # never one of them for all the columns: some would be converted wrongly
@@ -626,6 +633,14 @@ def _units_row_hint(df: pd.DataFrame, row: int, first_line: int, skipped: int = 
             f"--acc-unit/--gyro-unit/--time-unit for the units {'it names' if n == 1 else 'they name'})")
 
 
+#: decision B323: the time "column" of a fixed-rate export without one: its rows numbered 0, 1, 2 ... at --rate
+ROW_INDEX = "(row index)"
+
+#: decision B321: the feet ``import --foot`` writes to meta.json ``foot`` (the key :func:`pdrlearn.track.bilateral
+#: .session_foot` reads first)
+FEET = ("left", "right")
+
+
 def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str, list[str]] | None = None,
                time_column: str | None = None, time_unit: str | None = None, units: dict[str, str] | None = None,
                frame=None, sensor_height_m: float | None = None, name: str | None = None,
@@ -633,8 +648,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                subject_height_m: float | None = None, rate_hz: float | None = None,
                time_format: str | None = None, time_zone: str | None = None,
                skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
-               add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None
-               ) -> tuple[Session, dict]:
+               add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
+               foot: str | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -698,8 +713,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   subject_height_m: float | None = None, rate_hz: float | None = None,
                   time_format: str | None = None, time_zone: str | None = None,
                   skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
-                  add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None
-                  ) -> list[tuple[Session, dict]]:
+                  add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
+                  foot: str | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = Path(path)
@@ -715,6 +730,13 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                             + " (decision B186)")
     if unit not in PLACEMENTS:
         raise DataError(f"import: unit {unit!r} is not one of {', '.join(PLACEMENTS)}")
+    if foot is not None:  # decision B321
+        foot = str(foot).strip().lower()
+        if foot not in FEET:
+            raise DataError(f"import: --foot {foot!r} is not left or right (the foot the unit is on)")
+        if unit != "foot":
+            raise DataError("import: --foot names the foot a foot unit is on, and this is a --unit waist import; "
+                            "drop --foot, or import the foot unit's file with it (decision B321)")
     df = read_table(path)  # B24: ';' / tab separators and decimal commas, as every session file
     dialect = _csv_dialect(path)
     header = list(df.columns)
@@ -776,7 +798,11 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             if several:  # decision B70: say which columns compete (a Shimmer's Timestamp_Unix and TimestampSync_Unix)
                 raise DataError(f"{where}: several columns look like the time: {', '.join(several)}; name the one "
                                 "to use with --time COLUMN")
-            raise DataError(f"{where}: no timestamp column found among: {have}; name it with --time COLUMN")
+            if rate_hz is None:
+                raise DataError(f"{where}: no timestamp column found among: {have}; name it with --time COLUMN, or "
+                                "pass --rate HZ to time the rows by their number (a fixed-rate export, B323)")
+            time_column = ROW_INDEX  # decision B323: a fixed-rate export (gaitmap / NilsPod style): rows at --rate
+            t_source = "none"
     else:
         t_source = "given"
         if time_column not in header:
@@ -801,8 +827,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         raise DataError(f"{where}: no accelerometer/gyroscope columns recognised among: {have}; map them with "
                         "--acc X,Y,Z --gyro X,Y,Z (or --mapping FILE.json)")
 
-    tcol = df[time_column]
-    parsed = _datetime_seconds(tcol, where, time_format, time_zone)
+    tcol = pd.Series(np.arange(len(df)), name=ROW_INDEX) if time_column == ROW_INDEX else df[time_column]
+    parsed = None if time_column == ROW_INDEX else _datetime_seconds(tcol, where, time_format, time_zone)
     secs = None if parsed is None else parsed[0]
     if parsed is not None:
         t_num, t_unit, t_how = secs, "s", "date-time text"
@@ -816,6 +842,11 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
                             f"line {bad[0] + first_line}); timestamps must be numbers (or date-times) in every row"
                             + _units_row_hint(df, bad[0], first_line, (skipped or {}).get("rows", 0)))
+        bits, wraps = counter_wraps(t_num)  # decision B312: a timestamp counter that wraps around, unwrapped
+        if bits:
+            log.warning("%s", wrap_message(f"{where} ({time_column})", t_num, bits, wraps,
+                                           time_unit or "ticks", int(wraps[0]) + 1 + first_line))
+            t_num = unwrap(t_num, bits, wraps)
         if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
@@ -841,6 +872,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             t_num, half = rows_at_rate(secs, r, where, time_column, first_line)
             t_how = (f"rows at {r:g} Hz (given with --rate) from the whole-second date-time text (the start "
                      f"placed to +/-{half * 1000:.0f} ms)")
+        elif time_column == ROW_INDEX:  # decision B323
+            t_unit, t_how = "samples", f"the row index at {r:g} Hz (given with --rate, decision B323)"
         else:
             t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
     # the origin is taken off in the file's own unit: epoch milliseconds keep their exact 10 ms steps
@@ -872,7 +905,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         t_all = (t_num - origin_raw) * scale
         origin = origin_raw * scale
         record: dict = {"file": path.name, "unit": unit,
-                        "time": {"column": time_column, "unit": t_unit, "source": f"{t_source} column, unit {t_how}",
+                        "time": {"column": time_column, "unit": t_unit,
+                                 "source": t_how if time_column == ROW_INDEX else f"{t_source} column, unit {t_how}",
                                  "origin_s": origin},
                         "streams": {}, "dropped_rows": {}}
         if skipped is not None:  # decision B66
@@ -997,6 +1031,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"import: subject height {subject_height_m!r} is not a person's height in m "
                                 "(0.5-2.5 m; 1.75, not 175)")
             meta["height_m"] = h
+        if foot is not None:  # decision B321: `pdrlearn gait` checks the side given against it (L260)
+            meta["foot"] = foot
         frames = {}
         f = frame if isinstance(frame, AxisFrame) or frame is None else parse_frame(frame)
         if f is not None:
@@ -1063,7 +1099,7 @@ def merge_sessions(base: Session, add: Session) -> Session:
     placement = meta.get("placement")
     if placement and placement != add.meta.get("placement"):
         meta["placement"] = "foot+waist"
-    for key in ("sensor_height_m", "height_m"):
+    for key in ("sensor_height_m", "height_m", "foot"):
         if key in add.meta:
             meta[key] = add.meta[key]
     return Session(name=base.name, streams={**base.streams, **add.streams},

@@ -26,7 +26,8 @@ from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError, GravityRemovedError, shell_quote
 from pdrlearn.io.clocks import apply_offsets, one_unit_counting, unit_clocks, unit_groups
 from pdrlearn.io.frames import frames_from_meta
-from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS
+from pdrlearn.io.present import check_readable, present
+from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS, parse_value_unit
 from pdrlearn.io.session import MAX_BRIDGED_S, STEP_COLUMNS, Session, Stream
 from pdrlearn.io.validate import (
     TIE_ROWS,
@@ -134,38 +135,22 @@ def _trajectory_scale(scales: dict[str, float], clocks: dict, meta: dict, meta_p
 
 def _value_unit(meta: dict, name: str, where: str) -> tuple[float, str | None]:
     """Factor to the SI unit and the declared unit of a sensor file's values, from ``units.<file stem>``
-    (its first word, :data:`pdrlearn.io.sensors.VALUE_UNITS`; decision B32): ``(1.0, None)`` when none is
-    declared. An unknown unit is an error naming meta.json."""
+    (its first word, :data:`pdrlearn.io.sensors.VALUE_UNITS`, or a count's size and one, decision B100; parsed by
+    :func:`pdrlearn.io.sensors.parse_value_unit`, which ``pdrlearn import``'s unit options share, B313):
+    ``(1.0, None)`` when none is declared. An unknown unit is an error naming meta.json."""
     units = meta.get("units") if meta else None
     spec = SENSORS[name]
     table = VALUE_UNITS.get(spec.kind)
     if not isinstance(units, dict) or name not in units or table is None:
         return 1.0, None
     text = str(units[name]).strip()
-    words = text.split()
-    scale = _scale_factor(words[0]) if len(words) > 1 else None  # decision B100: "0.0047884 m/s^2" per count
-    if scale is not None:
-        words = words[1:]
-    word = words[0].strip("(),;:").lower() if words else ""
-    if word not in table:
+    parsed = parse_value_unit(text, spec.kind)
+    if parsed is None:
         raise DataError(f"{where}: units.{name} {text[:40]!r} does not start with a {spec.kind} unit pdrlearn "
                         f"converts from ({', '.join(dict.fromkeys(table))}), or a scale factor and one (a raw count "
                         f"as \"0.0047884 m/s^2\" or \"1/2048 g\"); write the unit first, e.g. \"{spec.unit}\", or "
                         "remove the entry")
-    if scale is None:
-        return table[word], word
-    return scale * table[word], f"{text.split()[0]} {word}"
-
-
-def _scale_factor(token: str) -> float | None:
-    """Decision B100: a positive finite number (``0.0047884``, ``4.79e-3``) or fraction (``1/2048``) that leads a
-    declared value unit: the size of one count in that unit; ``None`` when ``token`` is not one."""
-    num, _, den = token.partition("/")
-    try:
-        v = float(num) / (float(den) if den else 1.0)
-    except (ValueError, ZeroDivisionError):
-        return None
-    return v if math.isfinite(v) and v > 0 else None
+    return parsed
 
 
 def _check_body_fields(meta: dict, where: str) -> None:
@@ -420,6 +405,25 @@ def _refuse_datetimes(col: pd.Series, path: Path) -> None:
                         "numbers; write the times as numbers in ms (since the epoch or the recording's start, the "
                         "same clock as the session's other files and steps.csv), or turn a one-CSV export into a "
                         "session with `pdrlearn import FILE --out DIR`, which reads date-time columns (decision B154)")
+
+
+def _unwrapped(raw: dict[str, np.ndarray], folder: Path) -> dict[str, np.ndarray]:
+    """Decision B312: the sensor files whose timestamp counter wraps around (:func:`~pdrlearn.kernels.counter_wrap.
+    counter_wraps`) with their timestamps unwrapped; one warning line for the files that wrap alike (every file of
+    a recorder's counter), naming them and the first wrap."""
+    from pdrlearn.kernels.counter_wrap import counter_wraps, unwrap, wrap_message
+
+    out, alike = dict(raw), {}
+    for name, arr in raw.items():
+        bits, idx = counter_wraps(arr[:, 0])
+        if bits:
+            out[name] = np.column_stack([unwrap(arr[:, 0], bits, idx), arr[:, 1:]])
+            alike.setdefault((bits, idx.size, float(arr[idx[0], 0])), []).append((name, arr, idx))
+    for (bits, _, _), files in alike.items():
+        name, arr, idx = files[0]
+        names = ", ".join(SENSORS[n].filename for n, _, _ in files)
+        log.warning("%s", wrap_message(f"{folder}: {names}", arr[:, 0], bits, idx, "ticks", int(idx[0]) + 3))
+    return out
 
 
 def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool,
@@ -1174,14 +1178,29 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         A missing folder, no sensor file, a malformed CSV, non-numeric/NaN values, unsorted or duplicate
         timestamps, implausible units, an empty file or a broken ``meta.json`` (one-line message).
     """
+    from pdrlearn.warning_lines import captured_warnings
+
+    with captured_warnings(echo=True) as logged:  # decision E154: the reading's warnings stay with the session
+        session = _read_session(folder, check_units=check_units, uniform_clock=uniform_clock,
+                                bridge_drops=bridge_drops, streamed=streamed, spans=spans,
+                                drop_partial_row=drop_partial_row, command=command)
+    session._read_warnings = list(logged)
+    return session
+
+
+def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed, spans, drop_partial_row,
+                  command) -> Session:
+    """:func:`read_session` without E154's capture."""
     folder = folder_arg(folder, "read_session")  # decision B179
     if not folder.exists():
+        check_readable(folder, "folder")  # decision B315: a dangling link names its target
         raise DataError(f"{folder}: session folder not found; pass a folder with fAccelerometer.csv etc.")
     if not folder.is_dir():
         raise DataError(f"{folder}: not a folder; pass the session folder, not a file")
     meta: dict = {}
     meta_path = folder / "meta.json"
-    if meta_path.exists():
+    if present(meta_path):
+        check_readable(meta_path)  # decision B315
         try:
             meta = json.loads(read_text(meta_path))
         except json.JSONDecodeError as exc:
@@ -1198,8 +1217,10 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     raw = {}
     for name, spec in SENSORS.items():
         p = folder / spec.filename
-        if p.exists():
+        if present(p):  # decision B315: a dangling link or a folder is there, unreadable: one line, not "missing"
+            check_readable(p)
             raw[name] = _read_raw(p, name, drop_partial_row=drop_partial_row, command=command)[1]
+    raw = _unwrapped(raw, folder)  # decision B312: a timestamp counter that wraps around
     if not clocks and not _declares_integer_clock(meta, meta_path, rate):
         one_unit_counting(raw, folder, meta_path)  # decision B116: a counter on one unit needs its own clock
     scales: dict[str, float] = {}

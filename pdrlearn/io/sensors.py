@@ -82,3 +82,33 @@ VALUE_UNITS: dict[str, dict[str, float]] = {
                      "gauss": 100.0, "g": 100.0, "mg": 0.1, "milligauss": 0.1},
     "barometer": {"hpa": 1.0, "mbar": 1.0, "millibar": 1.0, "pa": 0.01, "kpa": 10.0, "bar": 1000.0},
 }
+
+
+def _scale_factor(token: str) -> float | None:
+    """Decision B100: a positive finite number (``0.0047884``, ``4.79e-3``) or fraction (``1/2048``) that leads a
+    declared value unit: the size of one count in that unit; ``None`` when ``token`` is not one."""
+    num, _, den = token.partition("/")
+    try:
+        v = float(num) / (float(den) if den else 1.0)
+    except (ValueError, ZeroDivisionError):
+        return None
+    return v if math.isfinite(v) and v > 0 else None
+
+
+def parse_value_unit(text: str, kind: str) -> tuple[float, str] | None:
+    """Decisions B32, B100, B313: ``(factor to the SI unit, the unit as read)`` of a declared value unit of a
+    ``kind`` sensor (``"g"``, ``"deg/s"``: the first word, :data:`VALUE_UNITS`; or the size of one count and a unit,
+    ``"1/2048 g"``, ``"0.0047884 m/s^2"``, ``"1/16.4 deg/s"``: ``"1/2048 g"`` back); ``None`` when ``text`` is
+    neither. meta.json's ``units`` and ``pdrlearn import``'s ``--acc-unit`` / ``--gyro-unit`` read units with it."""
+    table = VALUE_UNITS.get(kind, {})
+    words = str(text).strip().split()
+    scale = _scale_factor(words[0]) if len(words) > 1 else None  # decision B100: "0.0047884 m/s^2" per count
+    if scale is not None:
+        words = words[1:]
+    word = words[0].strip("(),;:").lower() if words else ""
+    if word not in table:
+        return None
+    if scale is None:
+        return table[word], word
+    return scale * table[word], f"{str(text).split()[0]} {word}"
+

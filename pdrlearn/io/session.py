@@ -264,6 +264,9 @@ class Session:
     #: decision W253: the sensor streams ``track --units`` left out (``pdrlearn.track.units.keep_units``); the
     #: waist track still reads the foot unit's cues from them (W173's backward, L219's sideways warnings)
     _left_out: dict[str, Stream] = field(default_factory=dict, repr=False, compare=False)
+    #: decision E154: the warnings logged while ``read_session`` read it (clipping B77, dropped packets B64 / B183,
+    #: jitter B182 ...); every pipeline adds them to its ``info["warnings"]``
+    _read_warnings: list[str] = field(default_factory=list, repr=False, compare=False)
 
     def __repr__(self) -> str:
         """Decision B181: a short description (streams with rate and unit, duration, labels), not the arrays

@@ -543,13 +543,23 @@ def check_session(session) -> None:
 #: symmetrically and rounded repeats its top value twice).
 CLIP_LEVEL = {"accelerometer": 2.0 * STANDARD_GRAVITY, "gyroscope": float(np.deg2rad(250.0))}
 CLIP_RUN = 3
+#: decision B311: an axis's extreme value (at or beyond :data:`CLIP_LEVEL`) that this many samples or more sit at
+#: exactly, consecutive or not, is a pinned full-scale value: 100 Hz impacts clip one sample at a time, which B77's
+#: runs never see. An unclipped axis reaches its extreme once: its impact peaks spread over metres per second squared
+#: (rad/s for a gyroscope) while a converter's step is under 0.08 m/s^2 (12 bits at +-16 g) or 0.02 rad/s (12 bits at
+#: +-2000 deg/s), so 4 more peaks in the top step, (step / spread)^4 < 1e-6 per axis, do not happen by chance; a
+#: smooth peak repeats its top value twice (B77), a held sample once more. 5 is that argument's count, not a fit.
+#: And the rail must hold more samples than any other value near it (:func:`_pinned`).
+CLIP_PINNED = 5
 
 
 def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
     """Decision B77: (number of samples with a clipped axis, the largest clipped |value|) of an accelerometer
     or gyroscope file: on each axis, the samples equal to the axis's maximum (or minimum) over the file, where
     that extreme is at least :data:`CLIP_LEVEL` in magnitude, in runs of :data:`CLIP_RUN` or more equal
-    consecutive samples (a sensor at its full scale repeats it; a real peak is not held)."""
+    consecutive samples (a sensor at its full scale repeats it; a real peak is not held). Decision B311: or all
+    of them when :data:`CLIP_PINNED` or more samples sit at that extreme, one at a time or not (impacts at
+    100 Hz clip single samples)."""
     level = CLIP_LEVEL.get(kind)
     v = np.asarray(values, dtype=float)
     if level is None or v.ndim != 2 or v.shape[0] < CLIP_RUN:
@@ -562,6 +572,10 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
             if not abs(ext) >= level:
                 continue
             at = col == ext
+            if _pinned(col, ext, at):  # decision B311: a pinned full-scale value, runs or not
+                hit |= at
+                top = max(top, abs(float(ext)))
+                continue
             # runs of equal extreme samples: a sample counts when its run is CLIP_RUN long or more
             edges = np.diff(np.concatenate([[0], at.astype(np.int8), [0]]))
             starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
@@ -572,6 +586,19 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
     return int(hit.sum()), top
 
 
+def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
+    """Decision B311: ``CLIP_PINNED`` or more samples sit at the axis's extreme ``ext`` (``at``), and more than at any
+    other value in the top tenth of the axis's range: a rail piles up every sample beyond it, while the top of an
+    unclipped signal is its rarest part (an exactly periodic synthetic sine repeats its top once a cycle, its
+    shoulders twice)."""
+    k = int(np.count_nonzero(at))
+    if k < CLIP_PINNED:
+        return False
+    band = 0.1 * float(col.max() - col.min())
+    near = col[~at & (np.abs(col - ext) <= band)]
+    return k > (int(np.unique(near, return_counts=True)[1].max()) if near.size else 0)
+
+
 def saturation_warning(where: str, kind: str, n: int, total: int, top: float) -> str:
     """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results."""
     unit = "m/s^2" if kind == "accelerometer" else "rad/s"
@@ -579,5 +606,6 @@ def saturation_warning(where: str, kind: str, n: int, total: int, top: float) ->
     effect = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
               if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it")
     return (f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
-            f"sensor's full scale, held for {CLIP_RUN}+ samples): {effect}, so distances and headings come out "
-            f"wrong there; record with a range above +-{rng} (decision B77)")
+            f"sensor's full scale: held for {CLIP_RUN}+ samples in a row, or reached by {CLIP_PINNED}+ samples one at "
+            f"a time): {effect}, so distances and headings come out wrong there; record with a range above +-{rng} "
+            "(decision B77, B311)")

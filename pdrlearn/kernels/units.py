@@ -112,6 +112,20 @@ def counts_per_g_hint(rest_norm: float) -> str:
             "the ADXL345 at +-16 g)")
 
 
+def count_unit(rest_norm: float) -> str:
+    """Decision B314: the declared unit (meta.json ``units``, ``import --acc-unit``; B100's count size) that reads an
+    accelerometer file whose |acc| at rest is ``rest_norm`` as m/s^2: ``"mg"``, ``"0.001 m/s^2"`` (mm/s^2) or
+    ``"1/N g"`` with N the :data:`PER_G_SCALES` sensitivity within 5 % of it, else N the reading itself."""
+    near = min(PER_G_SCALES, key=lambda k: abs(math.log(rest_norm / k))) if rest_norm > 0 else None
+    if near is not None and abs(rest_norm / near - 1.0) <= 0.05:
+        if near == 1000.0:
+            return "mg"
+        if near == 1000.0 * STANDARD_GRAVITY:
+            return "0.001 m/s^2"
+        return f"1/{near:.0f} g"
+    return f"1/{rest_norm:.0f} g"
+
+
 def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None,
                 t: np.ndarray | None = None) -> None:
     """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
@@ -148,9 +162,14 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
                 + _or(declare, f"declare \"units\": {{\"{spec.name}\": \"g\"}} in meta.json")
             )
         if whole > 200 or med > 200:
+            rest = med if t is not None else whole
+            guess = count_unit(rest)  # decision B314: the declaration that reads the file as it is
             raise DataError(
                 f"{where}: median |acc| is {whole if whole > 200 else med:.0f}, which looks like raw counts or mm/s^2; "
-                f"convert to m/s^2: {counts_per_g_hint(med if t is not None else whole)}"
+                f"convert to m/s^2: {counts_per_g_hint(rest)}"
+                + _or(declare, f"declare \"units\": {{\"{spec.name}\": \"{guess}\"}} in meta.json (decision B314)")
+                + ("" if not declare else f" (here: {guess}; decision B314)" if f"| {guess})" in declare
+                    else f" or \"{guess}\" (the unit of one count, decisions B313, B314)")
             )
         if not 4.0 <= med <= 25.0:
             raise DataError(f"{where}: median |acc| is {med:.2f} m/s^2 in its quietest windows "

@@ -103,13 +103,22 @@ def _write(out: Path, steps, start_s: float | None) -> None:
     with (out / "steps.csv").open("w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, fieldnames=cols)
         w.writeheader()
-        w.writerows({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in r.items()} for r in rows)
+        w.writerows({k: (_num(v) if isinstance(v, float) else v) for k, v in r.items()} for r in rows)
     with (out / "trajectory.csv").open("w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
         w.writerow(["t", "x", "y", "z"])
         if steps:
-            w.writerow([f"{start_s:.10g}", 0, 0, 0])
-        w.writerows([f"{v:.10g}" for v in (st.end_s, st.x, st.y, st.z)] for st in steps)
+            w.writerow([_num(start_s), 0, 0, 0])
+        w.writerows([_num(v) for v in (st.end_s, st.x, st.y, st.z)] for st in steps)
+
+
+def _num(v: float) -> str:
+    """A float as the CSV files hold it: 10 significant digits, but an epoch time in seconds (|v| >= 1e6) with its
+    microseconds (decision E164; the package's ``cli.common.write_table_csv``, which this lean runtime cannot import,
+    writes the same)."""
+    if abs(v) >= 1e6 and v == v and abs(v) != float("inf"):
+        return f"{v:.6f}".rstrip("0").rstrip(".")
+    return f"{v:.10g}"
 
 
 def main(argv: list[str] | None = None) -> int:

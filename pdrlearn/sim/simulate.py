@@ -104,6 +104,12 @@ META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_tim
 FEET = ("left", "right")
 
 
+#: decision S76 (amended after review R1): the largest variability scale - 10x the user's own stride-to-stride CV
+#: (2-3.5 % at 1, so 20-35 %: beyond the step-time CVs of pathological gait); at 100 a 20 m route walked 36.6 m and
+#: 1e9 overflowed and hung (R1)
+VARIABILITY_MAX = 10.0
+
+
 NON_NEGATIVE_KNOBS = (
     "variability",
     "irregular_rate",
@@ -156,6 +162,9 @@ def _check_knobs(knobs: dict) -> dict:
             raise DataError(f"simulate: {k}={v!r} must be a finite number")
         if k in NON_NEGATIVE_KNOBS and v < 0:
             raise DataError(f"simulate: {k}={v!r} must be >= 0")
+    if out["variability"] > VARIABILITY_MAX:  # decision S76 (R1)
+        raise DataError(f"simulate: variability={out['variability']!r} must be <= {VARIABILITY_MAX:g} (1 = the "
+                        "user's own stride-to-stride variability)")
     if out["irregular_rate"] > 1 or out["drop_rate"] >= 0.5:
         raise DataError("simulate: irregular_rate must be <= 1 and drop_rate < 0.5")
     if not 0 < out["mag_field_ut"] < 1000 or not -90 <= out["mag_inclination_deg"] <= 90:

@@ -107,13 +107,20 @@ def _load_builtin_pipelines() -> None:
 
 
 def _wrap(name: str, fn: Pipeline) -> Pipeline:
-    """``fn`` as every pipeline runs: the session checked once at the entry point (decisions B49/B51) and the
-    track's ``pos_sigma_m`` added (decision L128)."""
+    """``fn`` as every pipeline runs: the session checked once at the entry point (decisions B49/B51), the
+    track's ``pos_sigma_m`` added (decision L128) and every warning of the session's reading and of the tracking
+    in ``info["warnings"]`` (decision E154: most were logged only)."""
     @functools.wraps(fn)
     def with_sigma(session, *args, **kwargs) -> TrackResult:
         from pdrlearn.track.position_sigma import add_position_sigma
+        from pdrlearn.warning_lines import captured_warnings, merged_warnings
 
-        result = fn(session, *args, **kwargs)
+        with captured_warnings(echo=True) as logged:
+            result = fn(session, *args, **kwargs)
+        if isinstance(getattr(result, "info", None), dict):  # decision E154
+            result.info["warnings"] = merged_warnings(result.info.get("warnings") or [],
+                                                      [*getattr(session, "_read_warnings", []), *logged],
+                                                      getattr(session, "where", None))
         add_position_sigma(result, session)  # decision L128: every pipeline's track gets pos_sigma_m
         result.tracked = session_identity(session)  # decision B181: summary() checks the session it is given
         return result

@@ -547,6 +547,46 @@ def check_one_walk(left_dir: Path, right_dir: Path, left_meta: dict, right_meta:
                             f"{b!r}); give the two feet of one walk")
 
 
+#: decision B322: the largest relative difference of the two feet's sample rates for one walk. Two units of one walk
+#: are set up together; their rates differ by crystal tolerance (~0.01 %) and by D7's quantised-timestamp reading
+#: (integer-ms 204.8 Hz reads as 200 Hz: 2.4 %); the nearest distinct common settings are 100 / 128 / 200 / 204.8 Hz
+#: families (100 vs 128: 28 %), so 10 % passes every same-setting pair and refuses different devices or settings
+PAIR_RATE_TOLERANCE = 0.10
+#: decision B322: the least share of the shorter recording's span that the other recording's span must cover
+PAIR_MIN_OVERLAP = 0.5
+
+
+def check_pair_streams(left_dir: Path, right_dir: Path, sessions: list) -> None:
+    """Decision B322 (session 34, trial T5 finding 2): refuse (one line naming both folders) a pair whose foot
+    accelerometers' sample rates differ by more than :data:`PAIR_RATE_TOLERANCE` or whose time spans overlap by less
+    than :data:`PAIR_MIN_OVERLAP` of the shorter one: not the two feet of one walk on one clock."""
+    acc = [s["fAccelerometer"] for s in sessions]
+    rates = [a.rate_hz for a in acc]
+    if abs(rates[0] - rates[1]) > PAIR_RATE_TOLERANCE * max(rates):
+        raise DataError(f"gait: {left_dir} ({rates[0]:.4g} Hz) and {right_dir} ({rates[1]:.4g} Hz) differ in "
+                        f"sample rate by over {100 * PAIR_RATE_TOLERANCE:.0f} % (decision B322): not the two units of "
+                        "one walk; give the left and the right foot's sessions of the same walk")
+    spans = [(float(a.t[0]), float(a.t[-1])) for a in acc]
+    overlap = min(spans[0][1], spans[1][1]) - max(spans[0][0], spans[1][0])
+    shorter = min(b - a for a, b in spans)
+    if shorter > 0 and overlap < PAIR_MIN_OVERLAP * shorter:
+        raise DataError(f"gait: {left_dir} ({spans[0][0]:.1f}-{spans[0][1]:.1f} s) and {right_dir} "
+                        f"({spans[1][0]:.1f}-{spans[1][1]:.1f} s) overlap for {max(overlap, 0.0):.1f} s, under "
+                        f"{100 * PAIR_MIN_OVERLAP:.0f} % of the shorter recording (decision B322): not one walk on one "
+                        "clock; give the two feet's sessions of the same walk")
+
+
+def side_warning(left_dir: Path, right_dir: Path, metas: list[dict]) -> str | None:
+    """Decision B322: one line when a session's ``meta.json`` names no foot (:data:`FOOT_META_KEYS`): its side is
+    taken from the argument order, which nothing checks (``pdrlearn import --foot`` records it, B321)."""
+    missing = [str(d) for d, m in zip((left_dir, right_dir), metas, strict=True) if session_foot(m) is None]
+    if not missing:
+        return None
+    return (f"gait: {' and '.join(missing)} name no foot in meta.json; the side is taken from the argument order "
+            "(left first, then right), which nothing checks (decision B322): record it with `pdrlearn import --foot "
+            "left|right` or a meta.json \"foot\"")
+
+
 #: decision L284: the tracked and the labelled step-time symmetry index differ by more than this (percentage points):
 #: on the real level pair they differ by 1.3 pp (L263); a clock moved against its labels shows here
 REFERENCE_SI_GAP_MAX = 20.0
@@ -634,6 +674,10 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
         if not s.has("fAccelerometer", "fGyroscope"):
             raise DataError(f"gait: {d} has no foot unit (fAccelerometer.csv, fGyroscope.csv); give a foot session")
     check_one_walk(left_dir, right_dir, sessions[0].meta, sessions[1].meta)
+    check_pair_streams(left_dir, right_dir, sessions)  # decision B322
+    side = side_warning(left_dir, right_dir, [s.meta for s in sessions])
+    if side is not None:
+        logging.getLogger(__name__).warning(side)
     with no_model_as_info(GAIT_NO_MODEL_INFO):  # decision E153: gait takes no model; one info line, no warning
         tracks = [track_plasys(s, toe_off=True) for s in sessions]
     out = bilateral_gait(tracks[0].steps, tracks[1].steps)
@@ -642,6 +686,8 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     sharp = [impact_sharpness(s["fAccelerometer"].t, s["fAccelerometer"].values, t.steps["event_s"])
              for s, t in zip(sessions, tracks, strict=True)]  # decision L318
     out["walk"]["impact_sharpness_left"], out["walk"]["impact_sharpness_right"] = sharp
+    if side is not None:
+        out["warnings"].append(side)
     for line in (reference_warning(out["walk"], out["reference"]), comparability_warning(*sharp),
                  backward_note([t.steps for t in tracks])):
         if line is not None:

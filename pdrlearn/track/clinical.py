@@ -764,6 +764,9 @@ def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
     if CV_ONE_SOURCE and "contact_source" in st and len(st) > 1:  # decision L405: no stride time from one
         src = st["contact_source"].astype(object).to_numpy()  # detector's contact to the other's (two clocks)
         steady &= np.concatenate([[False], (src[1:] == src[:-1]) & pd.notna(src[1:])])
+    from pdrlearn.track.steady import trimmed_rows
+
+    steady &= ~trimmed_rows(st)  # decision L415: --steady-trim's first / last strides of each bout
     return st, steady
 
 

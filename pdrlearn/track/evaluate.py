@@ -492,7 +492,9 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
     drop = steps["gap_s"].to_numpy(float) > 0 if "gap_s" in steps else np.zeros(len(steps), bool)
     if "impossible" in steps:
         drop = drop | steps["impossible"].eq(True).to_numpy(bool)
-    length = length[~drop]
+    from pdrlearn.track.steady import trimmed_rows
+
+    length = length[~(drop | trimmed_rows(steps))]  # decision L415: --steady-trim
     return float(length.median()) if len(length) else None
 
 
@@ -594,6 +596,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     add_backward_travel(result.steps)  # decision L224: steps.csv's per-row form of the count below
     out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
     out["n_side_strides"] = side_strides(result.steps)  # decision L270: side steps, no backward travel
+    from pdrlearn.track.travel import add_travel, direction_change_table
+
+    add_travel(result.steps)  # decision L412: each stride's travel direction (steps.csv travel)
+    changes = direction_change_table(result.steps)
+    out["direction_changes"] = None if changes is None else len(changes)  # L412: changes of travel direction
     out.update(backward_gait(result.steps))  # decision L326: the backward strides' own length and speed
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
@@ -962,6 +969,10 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
     # the distance over the labelled strides only: a reference that labels part of the walk (gaitmap's
     # mocap volume: 28 of 32 strides) makes distance_error_pct compare the whole track with part of it
     out["distance_matched_error_pct"] = float(100.0 * (np.abs(e).sum() / np.abs(r).sum() - 1.0))
+    # decision L419: the two sums that error compares (the matched tracked strides, their labelled strides), so the
+    # printed headline can say which span each number covers
+    out["distance_matched_m"] = float(np.abs(e).sum())
+    out["distance_matched_ref_m"] = float(np.abs(r).sum())
     if "turn" in session.steps:
         turn = flag_values(session.steps["turn"])[ri]
         if (~turn).any():
@@ -1058,7 +1069,7 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
         out["distance_in_ref_bouts_m"] = m["bout_distance_m"]
     for k in ("stride_length_matched", "stride_length_composed", "stride_length_mae_pct",
               "stride_length_mae_pct_straight", "stride_length_mae_pct_turns", "stride_length_mae_pct_steady",
-              "distance_matched_error_pct"):
+              "distance_matched_error_pct", "distance_matched_m", "distance_matched_ref_m"):
         out.pop(k, None)  # step rows are not strides: the stride metric of waist_metrics replaces these
     if "n_strides" in m:  # decision C19: the reference strides scored, not strides tracked (sessions.csv's
         m["n_reference_strides"] = m.pop("n_strides")  # n_strides column was 7 on the lower back, empty on the foot)
@@ -1303,7 +1314,8 @@ def summary_warnings(summary: dict) -> list[str]:
     CV over straight stretches of different length), decision L116's
     whole-sample rounding of the CV, decision L145's foot altitude against the unused barometer, decision B188's
     implausible barometer, decision L175's position uncertainty against the distance walked (and L341's radius
-    beyond its calibration routes), and decision L319's reference trajectory that does not travel."""
+    beyond its calibration routes), decision L319's reference trajectory that does not travel, and decision L414's
+    --toe-off stance times below the contacts they were checked on."""
     from pdrlearn.track.clinical import (
         pooled_cv_warning,
         pooled_length_cv_warning,
@@ -1312,6 +1324,7 @@ def summary_warnings(summary: dict) -> list[str]:
     )
     from pdrlearn.track.gait import bout_range_warning, gait_range_warning, gait_speed_warning
     from pdrlearn.track.position_sigma import position_sigma_range_warning, position_sigma_warning
+    from pdrlearn.track.toeoff import stance_range_warning  # decision L414
 
     return [w for w in (gait_range_warning(summary), gait_speed_warning(summary),  # L353: adopted by its rule
                         bout_range_warning(summary), stride_cv_warning(summary),
@@ -1319,7 +1332,7 @@ def summary_warnings(summary: dict) -> list[str]:
                         resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
-                        stationary_reference_warning(summary)) if w]
+                        stationary_reference_warning(summary), stance_range_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,
@@ -1347,12 +1360,29 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
-    from pdrlearn.track.freezes import freeze_summary, session_freezes
+    from pdrlearn.track.freezes import foot_freezes, freeze_summary
 
     # decision W213: a foot track's episodes; W216: a lower-back track sets "freezes" itself (None: not measured)
     if "freezes" not in result.info and session is not None:
-        result.info["freezes"] = session_freezes(session, result.info.get("pipeline"))
+        # decision L413: a side shuffle the foot tracked is no freeze
+        result.info["freezes"], lines = foot_freezes(session, result.info.get("pipeline"), result.steps)
+        for line in lines:
+            import logging
+
+            logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
+        if lines:
+            result.info["warnings"] = [*result.info.get("warnings", []), *lines]
     out.update(freeze_summary(result.info.get("freezes")))  # W213: n_freezes, freeze_time_s (None: not computed)
+    if session is not None:  # decision W363: flight phases in the foot recording (jumps, running)
+        from pdrlearn.track.flight import flight_summary
+
+        keys, line = flight_summary(session, result.info.get("pipeline"))
+        out.update(keys)
+        if line:
+            import logging
+
+            logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
+            result.info["warnings"] = [*result.info.get("warnings", []), line]
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
     out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
@@ -1436,6 +1466,11 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     unit = "waist" if str(summary["pipeline"]).startswith("waist") else "foot"  # the tracked unit (B126)
     uncut = getattr(session, "_unit_ends_uncut", None)  # decision B267: read_session's ends before a cut
     summary["common_span_cut_s"] = span_cut_s(uncut, session, unit)
+    from pdrlearn.track.labelled_asymmetry import track_asymmetry
+    from pdrlearn.track.steady import steady_trim
+
+    summary["steady_trim"] = steady_trim()  # decision L415: the bout ends left out of the steady measures
+    summary.update(track_asymmetry(session, result.steps))  # decision L416: a foot unit and the lower back together
     from pdrlearn import __version__
 
     summary["pdrlearn_version"] = __version__  # decision C18: which pdrlearn wrote the numbers
@@ -1468,5 +1503,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary["info"] = summary_info(summary["info"])  # decision E141: W182's, W213's, L210's rows and aid's fixes
     if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
         summary["frames_inferred"] = session.frames_inferred
+    from pdrlearn.warning_lines import machine_summary
+
+    machine_summary(summary, [], session.where)  # decision E155 (C14: the API's summary is summary.json's)
     return json_safe(json.loads(json.dumps(
         summary, default=lambda o: o.item() if hasattr(o, "item") else str(o))))

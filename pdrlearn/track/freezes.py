@@ -58,6 +58,43 @@ def session_freezes(session, pipeline: str | None) -> list[dict] | None:
     return freezes_of(acc.t, acc.values)
 
 
+#: decision L413: an episode at least this share of whose time the foot track's side-stepping strides (L228) cover is
+#: a side shuffle, not a freeze (more than half: the strides, not the trembling, fill it; a rule, not fitted)
+SIDE_SHARE_MIN = 0.5
+
+
+def side_step_freezes(rows: list[dict] | None, steps) -> tuple[list[dict] | None, list[str]]:
+    """Decision L413: ``(kept, lines)`` - the freeze episodes ``rows`` (freezes.csv's) without those that the foot
+    track's side-stepping strides (steps.csv's ``sideways`` rows, L228: measured strides of over 0.15 m travelling
+    60-120 deg from the foot's facing) cover for at least :data:`SIDE_SHARE_MIN` of their time, renumbered; one
+    line naming each one left out. A side step lifts the foot little and lands it sharply, so its vertical
+    acceleration has more power above 3 Hz than in the 0.5-3 Hz locomotor band (the trial's rightward shuffle: freeze
+    index 3.8 against forward walking's 1.9, W213's threshold 3), which the index reads as trembling in place."""
+    if not rows or steps is None or not len(steps) or "sideways" not in steps:
+        return rows, []
+    from pdrlearn.track.gait import sideways_rows
+
+    side = steps[sideways_rows(steps)]
+    a, b = side["start_s"].to_numpy(float), side["end_s"].to_numpy(float)
+    kept, lines = [], []
+    for r in rows:
+        s0, s1 = float(r["start_s"]), float(r["end_s"])
+        covered = float(np.sum(np.clip(np.minimum(b, s1) - np.maximum(a, s0), 0.0, None)))
+        if s1 > s0 and covered >= SIDE_SHARE_MIN * (s1 - s0):
+            lines.append(f"the freeze index's episode at {s0:.1f}-{s1:.1f} s (peak {r.get('peak_fi')}) is left out of "
+                         f"freezes.csv: the foot track's strides there are a side-stepping run ({covered:.1f} s of "
+                         "sideways strides, steps.csv sideways), which the index reads as freezing (decision L413)")
+            continue
+        kept.append({**r, "freeze": len(kept) + 1})
+    return kept, lines
+
+
+def foot_freezes(session, pipeline: str | None, steps) -> tuple[list[dict] | None, list[str]]:
+    """Decisions W213, L413: a foot track's freeze episodes (:func:`session_freezes`) without its side shuffles
+    (:func:`side_step_freezes` over the track's ``steps``), and the lines naming those left out."""
+    return side_step_freezes(session_freezes(session, pipeline), steps)
+
+
 def freeze_index_on(options: dict | None) -> bool:
     """Decision W216: whether a lower-back track computes its freeze index - the ``freeze_index`` option, or
     ``freeze_veto`` (W214 needs the episodes); off by default (foot tracks always compute theirs)."""

@@ -328,10 +328,14 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> 
     ``median_speed_straight_mps`` the medians of the stride speed (|length k| + |length k + 1|) / stride time (straight:
     both steps); ``"steps"``: W70's medians of 60 / step time and of ``length_m`` / step time (an option: on
     alternating short / long steps they land on the short steps' mode)."""
+    from pdrlearn.track.steady import trimmed_rows
     from pdrlearn.waist.gait_rules import positional_strides
 
     st = steps["start_s"].to_numpy(float)
     step, has_next, touched = waist_step_times(steps)
+    trim = trimmed_rows(steps)  # decision L415: --steady-trim's first / last contacts of each bout
+    touched, has_next = touched | trim, has_next & ~trim
+    step = np.where(trim, np.nan, step)
     length = np.abs(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.full(len(st), np.nan)
     with np.errstate(invalid="ignore", divide="ignore"):
         cadence, speed = 60.0 / step, length / step
@@ -349,7 +353,8 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> 
         second = np.zeros(len(st), bool)
         second[:-1] = ~straight[1:] | stair_rows(steps)[1:] | sideways_rows(steps)[1:]
         straight = straight & ~second
-    stride_med, step_med = _waist_time_median(stride), _waist_time_median(step)  # decision W359
+    grid = _contact_grid(st)  # W359 amended (R1): classes one sample period of the contacts' own grid wide
+    stride_med, step_med = _waist_time_median(stride, grid), _waist_time_median(step, grid)  # decision W359
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": stride_med,
                  "median_cadence_spm": (median_cadence(stride_med, _median(cadence))
                                         if _waist_medians_from(cadence_from) == "strides"
@@ -365,12 +370,20 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> 
 WAIST_GROUPED_MEDIAN = True
 
 
-def _waist_time_median(times: np.ndarray) -> float | None:
-    """W359: the median of a lower-back table's whole-sample stride or step times - grouped-data with
-    :data:`WAIST_GROUPED_MEDIAN`, else the plain median."""
+def _contact_grid(start_s: np.ndarray) -> float | None:
+    """W359 (amended after review R1): the sample period the table's contact times sit on (None: none found)."""
+    from pdrlearn.kernels.grouped_median import sample_grid
+
+    return sample_grid(start_s) if WAIST_GROUPED_MEDIAN else None
+
+
+def _waist_time_median(times: np.ndarray, grid: float | None) -> float | None:
+    """W359: the median of a lower-back table's whole-sample stride or step times - grouped-data with classes one
+    sample period (``grid``, the contacts' own: :func:`_contact_grid`) wide under :data:`WAIST_GROUPED_MEDIAN`; the
+    plain median without a grid or with the switch off."""
     from pdrlearn.kernels.grouped_median import grouped_median
 
-    return grouped_median(times) if WAIST_GROUPED_MEDIAN else _median(times)
+    return grouped_median(times, grid) if WAIST_GROUPED_MEDIAN and grid else _median(times)
 
 
 #: decisions W224/W225: the medians a lower-back summary takes by default - ``"strides"`` (cadence 120 / the median
@@ -476,14 +489,17 @@ def gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> dict:
         elif "unit" in steps and (steps["unit"] == "foot").all() and {"start_s", "end_s", "length_m"} <= set(steps):
             out.update(streamed_gait_summary(steps))
         return out
-    st = steps["stride_time_s"].to_numpy(float)
+    from pdrlearn.track.steady import trimmed_rows
+
+    keep = ~trimmed_rows(steps)  # decision L415: --steady-trim leaves each bout's first / last strides out
+    st = np.where(keep, steps["stride_time_s"].to_numpy(float), np.nan)
     out["n_stride_times"] = int(np.isfinite(st).sum())
     for key, col in (("median_stride_time_s", "stride_time_s"), ("median_cadence_spm", "cadence_spm"),
                      ("median_speed_mps", "speed_mps")):
-        out[key] = _median(steps[col].to_numpy(float))
+        out[key] = _median(steps[col].to_numpy(float)[keep])
     if cadence_from == "strides":  # decision L176's formula on the foot (an option; W225 adopted it on the waist)
         out["median_cadence_spm"] = median_cadence(out["median_stride_time_s"], None)
-    valid = stride_rows(steps)  # decisions L67, L97
+    valid = stride_rows(steps) & keep  # decisions L67, L97; L415
     turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
     _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid,
                   _range_speeds(steps, steps["speed_mps"].to_numpy(float)),  # decision L222

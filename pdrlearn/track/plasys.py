@@ -46,7 +46,7 @@ from pdrlearn.displace.force_check import (
     tared,
 )
 from pdrlearn.displace.force_clock import force_events, offset_check, toe_offs_in
-from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
+from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, NoStridesError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import distance as KD
@@ -1099,7 +1099,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         hint = (" -- the session has a lower-back unit, which sees a chair test or a standing session without foot "
                 "strides: track it with --units waist (decision B268)") if session.has(
                     "wAccelerometer", "wGyroscope") else ""
-        raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?{hint}")
+        # decision B318: the session's folder (as every other error names it), and its own exit code 4
+        raise NoStridesError(f"{session.where}: no strides detected; is the foot unit moving?{hint}")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     fd_kw.update(check_foot_settings(params, "plasys params"))  # decisions B206 / B207
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
@@ -1301,6 +1302,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     table["sideways"] = _sideways_rows(lateral, disp, fd.yaw_change_)  # L228: no steady / straight stride for the CVs
     if "contact_source" in strides:  # decision L405: a stitched track's contacts by detector (force / imu)
         table["contact_source"] = strides["contact_source"].to_numpy(dtype=object)
+    from pdrlearn.track.travel import side_labels
+
+    table["travel"] = side_labels(table["sideways"], disp[:, 1])  # decision L412: a side step's side (foot frame)
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)

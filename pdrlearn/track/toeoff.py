@@ -27,6 +27,27 @@ import numpy as np
 LOWPASS_HZ = 15.0
 #: a stride votes on the axis sign only when its integrated sagittal angle reaches this (rad, 10 deg)
 MIN_VOTE_ANGLE_RAD = np.radians(10.0)
+#: decision L414: the shortest median stance time (s) at which L73 checked the stance times against a contact
+#: reference - the smaller of `track datasets/real/gaitmap_level_{left,right} --toe-off`'s medians (0.692 / 0.701 s,
+#: printed in session 34), rounded down to 0.01 s (L414's rule, fixed before reading it)
+TOE_OFF_MIN_CHECKED_STANCE_S = 0.69
+#: decision L73: the median stance-time error (ms) on those two recordings (ours - mocap), quoted in L414's line
+TOE_OFF_STANCE_BIAS_MS = (-36.9, -40.1)
+
+
+def stance_range_warning(summary: dict) -> str | None:
+    """Decision L414: one line when a ``--toe-off`` track's ``median_stance_time_s`` is below
+    :data:`TOE_OFF_MIN_CHECKED_STANCE_S`, the shortest contacts L73 checked (None otherwise, or without stance
+    times)."""
+    stance = summary.get("median_stance_time_s")
+    if stance is None or not np.isfinite(stance) or stance >= TOE_OFF_MIN_CHECKED_STANCE_S:
+        return None
+    lo, hi = TOE_OFF_STANCE_BIAS_MS
+    return (f"median stance (contact) time {stance:.3f} s is below {TOE_OFF_MIN_CHECKED_STANCE_S:.2f} s, the "
+            "shortest median contact at which --toe-off's stance times were checked against a reference (gaitmap's "
+            f"level walks with mocap, decision L73: they read {-lo:.0f}-{-hi:.0f} ms short there, a bias of the "
+            "gyroscope's push-off peak); shorter contacts (fast walking, running, sprinting) are outside that check, "
+            "and the same bias is a larger share of them (decision L414)")
 
 
 def _check(t, gyr) -> tuple[np.ndarray, np.ndarray]:

@@ -179,9 +179,12 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         steps, info["rides"] = window_rides(steps, result.info["rides"], t0, t1)
         traj = window_first_z(traj, whole_steps, steps)  # decision L401: nor the altitude of the window
     if "freezes" not in info:  # decision L272: a foot track's episodes, of the whole session, then cut below
-        from pdrlearn.track.freezes import session_freezes
+        from pdrlearn.track.freezes import foot_freezes
 
-        info["freezes"] = session_freezes(session, info.get("pipeline"))
+        info["freezes"], lines = foot_freezes(session, info.get("pipeline"), result.steps)  # L413: no side shuffle
+        for line in lines:  # one "warning:" line each (decision B13)
+            logging.getLogger(__name__).warning("%s: %s", session.where, line)
+        warnings = [*warnings, *lines]
     # decision W182: the chair transfers wholly inside; decision L272: the freezes clipped to the window
     info["transfers"] = window_episodes(info.get("transfers"), t0, t1, clip=False)
     info["freezes"] = window_episodes(info["freezes"], t0, t1, clip=True)

@@ -1,0 +1,55 @@
+"""Build stamps of what pdrlearn writes (decisions L136, E158, E159): the git commit of the code that wrote a model or
+bundle, and its creation time, which honours ``SOURCE_DATE_EPOCH`` so a re-export is byte-identical. Standard library
+only (``pdrlearn.cli`` imports stay light)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+
+def git_state() -> tuple[str | None, bool | None]:
+    """Decision L136: ``(commit, dirty)`` of the git checkout pdrlearn runs from (``dirty``: tracked files differ from
+    the commit); ``(None, None)`` for an installed copy, without git, or when git fails."""
+    import subprocess
+
+    import pdrlearn
+
+    repo = Path(pdrlearn.__file__).resolve().parent.parent
+    if not (repo / ".git").exists():
+        return None, None
+    try:
+        def git(*args: str) -> str:
+            return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True,
+                                  timeout=10).stdout.strip()
+
+        return git("rev-parse", "HEAD"), bool(git("status", "--porcelain", "--untracked-files=no"))
+    except (OSError, subprocess.SubprocessError):
+        return None, None
+
+
+def git_stamp() -> dict:
+    """Decision E158: ``{"git_commit": ..., "git_dirty": ...}`` for a model or bundle manifest, or ``{}`` (no keys)
+    outside a git checkout: ``package_version`` (0.1.0 over thousands of commits) cannot tell builds apart."""
+    commit, dirty = git_state()
+    return {} if commit is None else {"git_commit": commit, "git_dirty": dirty}
+
+
+def created_utc() -> str:
+    """Decision E159: the creation time written into a manifest, ISO 8601 to the second in UTC: now, or the time
+    ``SOURCE_DATE_EPOCH`` gives (whole seconds since 1970-01-01 UTC, reproducible-builds.org's convention), so two
+    exports of one model are byte-identical. A value that is not a whole number of seconds is one line
+    (:class:`~pdrlearn.errors.DataError`) naming the variable."""
+    import datetime as dt
+
+    text = os.environ.get("SOURCE_DATE_EPOCH")
+    if text is None or text == "":
+        return dt.datetime.now(dt.UTC).isoformat(timespec="seconds")
+    try:
+        when = dt.datetime.fromtimestamp(int(text.strip()), dt.UTC)
+    except (ValueError, OverflowError, OSError):
+        from pdrlearn.errors import DataError
+
+        raise DataError(f"SOURCE_DATE_EPOCH {text[:40]!r} is not a whole number of seconds since 1970-01-01 UTC; set "
+                        "it to one (e.g. `git log -1 --format=%ct`) or unset it (decision E159)") from None
+    return when.isoformat(timespec="seconds")

@@ -1,0 +1,56 @@
+"""Flight phases in a foot recording (decision W363, docs/decisions/waist.md): both feet off the ground.
+
+In flight the body falls freely, and an accelerometer, which measures specific force (a - g), reads about 0 g; while
+walking one foot is always on the ground and the foot unit reads about 1 g plus its swing accelerations. A run of
+samples under :data:`FLIGHT_MAX_G` lasting :data:`FLIGHT_MIN_S` or more is a flight phase: a jump or a running stride,
+which the foot pipeline would count as a walking stride. Pure functions.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: decision W363: a flight phase's accelerometer magnitude is under this (g; free fall reads 0 g; room for the foot's
+#: own acceleration relative to the falling body)
+FLIGHT_MAX_G = 0.3
+#: decision W363: the shortest flight phase (s; trial T3's "near 0 g for > 0.1 s")
+FLIGHT_MIN_S = 0.1
+#: standard gravity (m/s^2), as the unit conversion's (decision D4)
+G = 9.80665
+#: decision W363: the summary keys of :func:`flight_summary`
+KEYS = ("n_flight_phases", "flight_time_s")
+
+
+def flight_phases(t, acc) -> list[tuple[float, float]]:
+    """Decision W363: ``(start_s, end_s)`` of each run of samples of ``acc`` (n, 3) m/s^2 at times ``t`` (s) whose
+    magnitude is under :data:`FLIGHT_MAX_G` for at least :data:`FLIGHT_MIN_S`."""
+    t = np.asarray(t, float)
+    if t.size < 2:
+        return []
+    low = np.linalg.norm(np.asarray(acc, float), axis=1) < FLIGHT_MAX_G * G
+    edges = np.flatnonzero(np.diff(np.r_[0, low.astype(int), 0]))
+    dt = float(np.median(np.diff(t)))
+    out = []
+    for a, b in zip(edges[::2], edges[1::2], strict=True):  # samples a .. b-1 are low
+        start, end = float(t[a]), float(t[b - 1]) + dt
+        if end - start >= FLIGHT_MIN_S - 1e-9:
+            out.append((start, end))
+    return out
+
+
+def flight_summary(session, pipeline: str | None) -> tuple[dict, str | None]:
+    """Decision W363: ``(keys, line)`` - :data:`KEYS` of a foot track's accelerometer (None for both on a lower-back
+    track or without the stream) and the warning line when it has a flight phase."""
+    acc = session.streams.get("fAccelerometer") if "waist" not in str(pipeline) else None
+    if acc is None:
+        return dict.fromkeys(KEYS), None
+    phases = flight_phases(acc.t, acc.values)
+    total = float(sum(b - a for a, b in phases))
+    keys = {"n_flight_phases": len(phases), "flight_time_s": round(total, 3)}
+    if not phases:
+        return keys, None
+    longest = max(b - a for a, b in phases)
+    return keys, (f"{len(phases)} flight phase(s) (the foot accelerometer under {FLIGHT_MAX_G:g} g for "
+                  f"{FLIGHT_MIN_S:g} s or more, {total:.2f} s in all, the longest {longest:.2f} s): the foot left the "
+                  "ground with both feet - jumps or running; strides across them may be jumps, not walking strides, "
+                  "and their lengths and the distance are not validated (decision W363)")

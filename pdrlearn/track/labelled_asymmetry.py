@@ -1,0 +1,118 @@
+"""Decision L416: the step-time asymmetry of a walk recorded with a foot unit and a lower-back unit together.
+
+The foot unit times one foot's initial contacts precisely; the lower back sees the contacts of both feet. Each
+lower-back contact within :data:`LABEL_TOLERANCE_STEPS` of a step of a foot contact is the instrumented foot's,
+the others the other foot's; the lower back's lag behind the foot (the median over the labelled own contacts) is
+taken off the other foot's contacts, and the median phase of the other foot's contact inside the foot's strides
+gives the two step times and :func:`pdrlearn.track.clinical.symmetry_index_pct` of them (L121's index).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: decision L416: a lower-back contact within this fraction of a step (half the foot's median stride) of a foot
+#: contact is that foot's: its own contacts scatter ~0.04 s (SD) about the foot's, the other foot's lie a step away
+LABEL_TOLERANCE_STEPS = 0.25
+#: decision L416: a foot stride longer than this times the median stride (a stop, a missed contact) gives no phase
+MAX_STRIDE_FACTOR = 1.5
+#: decision L416: the fewest strides with one other-foot contact for an index (L123's minimum for a figure)
+MIN_STRIDES = 10
+#: decision L416: the lower-back stream's lowest rate (Hz) for the index (its 20 Hz contacts failed on development
+#: users 8040-8042)
+LABELLED_MIN_RATE_HZ = 50.0
+#: decision L416: whether a plasys track of a session with the lower-back unit reports the index in its summary
+#: (the adoption rule's outcome; see docs/decisions/localization.md)
+LABELLED_ASYMMETRY = True
+
+
+def label_contacts(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(foot, waist, own)``: the foot contacts and the lower-back contacts (finite, sorted, s) and (W,) bool, True
+    for a lower-back contact within ``tolerance_steps`` x half the foot's median stride of a foot contact (decision
+    L416). Fewer than 2 foot contacts: no contact is the foot's."""
+    f = np.sort(np.asarray(foot_ic_s, dtype=float)[np.isfinite(np.asarray(foot_ic_s, dtype=float))])
+    w = np.sort(np.asarray(waist_ic_s, dtype=float)[np.isfinite(np.asarray(waist_ic_s, dtype=float))])
+    if len(f) < 2 or not len(w):
+        return f, w, np.zeros(len(w), bool)
+    step = float(np.median(np.diff(f))) / 2.0
+    j = np.clip(np.searchsorted(f, w), 1, len(f) - 1)
+    near = np.where(np.abs(w - f[j - 1]) <= np.abs(w - f[j]), j - 1, j)
+    return f, w, np.abs(w - f[near]) <= tolerance_steps * step
+
+
+def other_foot_phases(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS) -> np.ndarray:
+    """(S,) the phase (0-1) of the other foot's contact inside each of the foot's strides that holds exactly one
+    (:func:`label_contacts`; the lower back's median lag behind the foot's own contacts taken off; strides over
+    :data:`MAX_STRIDE_FACTOR` x the median left out); empty without an own contact."""
+    f, w, own = label_contacts(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
+    if not own.any() or own.all():
+        return np.zeros(0)
+    j = np.clip(np.searchsorted(f, w[own]), 1, len(f) - 1)
+    near = np.where(np.abs(w[own] - f[j - 1]) <= np.abs(w[own] - f[j]), j - 1, j)
+    lag = float(np.median(w[own] - f[near]))
+    other = w[~own] - lag
+    k = np.searchsorted(f, other)
+    ok = (k >= 1) & (k < len(f))
+    other, k = other[ok], k[ok]
+    stride = f[k] - f[k - 1]
+    ok = stride <= MAX_STRIDE_FACTOR * float(np.median(np.diff(f)))
+    other, k, stride = other[ok], k[ok], stride[ok]
+    idx, counts = np.unique(k, return_counts=True)
+    single = np.isin(k, idx[counts == 1])
+    return ((other - f[k - 1]) / stride)[single]
+
+
+def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS,
+                            min_strides: int = MIN_STRIDES) -> dict:
+    """Decision L416: ``{"step_time_asymmetry_pct", "n_strides", "step_time_s_instrumented", "step_time_s_other"}``
+    of one foot's initial contacts ``foot_ic_s`` and the lower back's contacts of both feet ``waist_ic_s`` (s, one
+    clock up to a constant offset under a quarter step). With the median phase phi of the other foot's contact
+    (:func:`other_foot_phases`) and the foot's median stride T: the step onto the other foot phi T, onto the
+    instrumented foot (1 - phi) T, and their symmetry index (Robinson et al. 1987, L121). None values with fewer
+    than ``min_strides`` strides."""
+    from pdrlearn.track.clinical import symmetry_index_pct
+
+    phases = other_foot_phases(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
+    out = {"step_time_asymmetry_pct": None, "n_strides": int(len(phases)), "step_time_s_instrumented": None,
+           "step_time_s_other": None}
+    if len(phases) < min_strides:
+        return out
+    f = np.sort(np.asarray(foot_ic_s, dtype=float)[np.isfinite(np.asarray(foot_ic_s, dtype=float))])
+    stride = float(np.median(np.diff(f)))
+    phi = float(np.median(phases))
+    onto_other, onto_own = phi * stride, (1.0 - phi) * stride
+    out.update(step_time_asymmetry_pct=symmetry_index_pct(onto_own, onto_other), step_time_s_instrumented=onto_own,
+               step_time_s_other=onto_other)
+    return out
+
+
+def track_asymmetry(session, steps) -> dict:
+    """Decision L416: the summary keys (``step_time_asymmetry_pct``, ``n_step_time_asymmetry_steps``,
+    ``step_time_asymmetry_reason``) a foot track (steps with ``event_s``, every row ``unit`` foot) of ``session``
+    takes from :func:`labelled_step_asymmetry` when the session holds the lower-back unit too and
+    :data:`LABELLED_ASYMMETRY` is on; ``{}`` otherwise (the foot's "not observable" stays). The lower back's contacts:
+    the waist-pendulum pipeline's offline IC detector (``waist-ic``); a lower-back stream under
+    :data:`LABELLED_MIN_RATE_HZ` gives the reason instead of an index."""
+    if (not LABELLED_ASYMMETRY or not len(steps) or "event_s" not in steps or "unit" not in steps
+            or not (steps["unit"] == "foot").all() or not session.has("wAccelerometer", "wGyroscope")
+            or np.isfinite(steps["event_s"].to_numpy(float)).sum() < 2):  # a streamed table without --contacts
+        return {}
+    rate = float(session.streams["wAccelerometer"].rate_hz or 0.0)
+    if rate < LABELLED_MIN_RATE_HZ:
+        return {"step_time_asymmetry_reason": (
+            f"not given: the lower-back unit records at {rate:g} Hz, under the {LABELLED_MIN_RATE_HZ:g} Hz its "
+            "contacts need to label the other foot's steps (decision L416); a unit on each foot times them "
+            "(pdrlearn gait LEFT_DIR RIGHT_DIR)")}
+    from pdrlearn.steps.waist_ic import WaistICStepDetector
+
+    waist = WaistICStepDetector().detect(session)["event_s"].to_numpy(float)
+    res = labelled_step_asymmetry(steps["event_s"].to_numpy(float), waist)
+    if res["step_time_asymmetry_pct"] is None:
+        reason = (f"not given: {res['n_strides']} of the foot's strides hold one lower-back contact of the other "
+                  f"foot, {MIN_STRIDES} needed (decision L416)")
+    else:
+        reason = ("the lower back's contacts labelled by the foot unit's (the other foot's step in each stride, "
+                  f"median over {res['n_strides']} strides; decision L416)")
+    return {"step_time_asymmetry_pct": res["step_time_asymmetry_pct"],
+            "n_step_time_asymmetry_steps": 2 * res["n_strides"], "step_time_asymmetry_reason": reason}

@@ -1,0 +1,105 @@
+"""Split times at given distances along the tracked path (``track --splits 5,10,20``; decisions L411, B307,
+docs/decisions/localization.md and bad-input.md).
+
+A sprint or shuttle test is timed at distance marks (5 / 10 / 20 m). From a track: the path distance grows along
+each row of the step table from the row's start (the distance before it) to its contact (its cumulative |length|),
+and stays put between rows (a rest adds no distance) - :func:`pdrlearn.track.corridor._distance_in_time`, the
+corridor laps' own clock. The time a mark is passed is interpolated linearly within the row that crosses it, and
+counted from the first row's start. Pure functions of the step table.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+
+#: decision L411: splits.csv's columns
+SPLIT_COLUMNS = ("split", "distance_m", "time_s", "split_time_s", "speed_mps")
+#: decision L411: the summary keys :func:`split_table` gives
+KEYS = ("splits_m", "split_times_s")
+
+
+def parse_splits(text: str | None) -> tuple[float, ...] | None:
+    """Decision B307: ``--splits`` as distances in metres (``5,10,20``): positive, finite and increasing, else one
+    error line naming the option and the fix; None when not given."""
+    if text is None:
+        return None
+    parts = [p.strip() for p in str(text).split(",")]
+    fix = "give increasing distances in metres along the path from the first step, e.g. --splits 5,10,20"
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        raise DataError(f"--splits {text!r}: not a list of numbers; {fix}") from None
+    bad = [p for p, v in zip(parts, values, strict=True) if not math.isfinite(v) or v <= 0]
+    if bad:
+        raise DataError(f"--splits {text!r}: {', '.join(bad)} {'is' if len(bad) == 1 else 'are'} not a positive "
+                        f"distance; {fix}")
+    if any(b <= a for a, b in zip(values, values[1:], strict=False)):
+        raise DataError(f"--splits {text!r}: the distances do not increase; {fix}")
+    return tuple(values)
+
+
+def _crossing_times(steps: pd.DataFrame, marks: np.ndarray) -> tuple[np.ndarray, float, float]:
+    """Times (s, from the first row's start) at which the path passes each of ``marks`` (m; NaN beyond the path),
+    the path's length (m) and the first row's start (s)."""
+    from pdrlearn.track.corridor import _distance_in_time  # the corridor laps' distance clock (L384)
+
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    t, d = _distance_in_time(st)
+    out = np.full(len(marks), np.nan)
+    for i, m in enumerate(marks):
+        k = int(np.searchsorted(d, m, side="left"))  # the first point at or past the mark
+        if k >= len(d):
+            continue
+        if k == 0 or d[k] == d[k - 1]:
+            out[i] = t[k]
+        else:  # linear within the row that crosses it (its start at d[k-1], its contact at d[k])
+            out[i] = t[k - 1] + (m - d[k - 1]) / (d[k] - d[k - 1]) * (t[k] - t[k - 1])
+    return out - float(t[0]), float(d[-1]), float(t[0])
+
+
+def split_table(steps: pd.DataFrame, marks) -> tuple[pd.DataFrame, dict, list[str]]:
+    """Decision L411: ``(splits, summary, warnings)`` of a tracked step table timed at the distance ``marks`` (m):
+    splits.csv's rows (:data:`SPLIT_COLUMNS`, one per mark the path reaches), the summary's :data:`KEYS` (a mark
+    beyond the path has a None time) and one warning line naming the marks beyond the tracked path."""
+    marks = np.asarray(list(marks), float)
+    keys = {"splits_m": [float(m) for m in marks], "split_times_s": [None] * len(marks)}
+    empty = pd.DataFrame(columns=list(SPLIT_COLUMNS))
+    if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns):
+        return empty, keys, ["--splits: no steps; no split times (decision L411)"]
+    times, path_m, _ = _crossing_times(steps, marks)
+    reached = np.isfinite(times)
+    rows = []
+    prev_d, prev_t = 0.0, 0.0
+    for n, (m, t) in enumerate(zip(marks[reached], times[reached], strict=True), start=1):
+        dt = float(t - prev_t)
+        rows.append({"split": n, "distance_m": float(m), "time_s": float(t), "split_time_s": dt,
+                     "speed_mps": float((m - prev_d) / dt) if dt > 0 else float("nan")})
+        prev_d, prev_t = float(m), float(t)
+    keys["split_times_s"] = [float(t) if np.isfinite(t) else None for t in times]
+    lines = []
+    if (~reached).any():
+        beyond = ", ".join(f"{m:g}" for m in marks[~reached])
+        lines.append(f"--splits: the tracked path is {path_m:.2f} m long; no split time at {beyond} m beyond it "
+                     "(decision L411)")
+    return (pd.DataFrame(rows, columns=list(SPLIT_COLUMNS)) if rows else empty), keys, lines
+
+
+def splits_line(summary: dict) -> str | None:
+    """Decision L411: the summary's one line of split times (``splits 5 m 1.83 s, 10 m 3.35 s (+1.52 s)``), None
+    without ``--splits``."""
+    marks, times = summary.get("splits_m"), summary.get("split_times_s")
+    if not marks:
+        return None
+    parts, prev = [], None
+    for m, t in zip(marks, times or [None] * len(marks), strict=True):
+        if t is None:
+            parts.append(f"{m:g} m not reached")
+            continue
+        parts.append(f"{m:g} m {t:.2f} s" + (f" (+{t - prev:.2f} s)" if prev is not None else ""))
+        prev = t
+    return "splits from the first step: " + ", ".join(parts) + " (splits.csv)"

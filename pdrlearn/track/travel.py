@@ -1,0 +1,95 @@
+"""Each foot stride's travel direction and the changes of it (decision L412, docs/decisions/localization.md).
+
+A turn changes where the body faces (turns.csv, L200); a back-pedal after a forward run, or a side shuffle to the
+left after one to the right, changes where the body travels without turning it (trial T3 finding 7: ``turn_count`` 0).
+Each stride of a foot track gets steps.csv's ``travel`` label from what the track already decides, relative to the
+foot's facing: ``backward`` = :func:`pdrlearn.track.evaluate.backward_travel` (L203, the strides
+``n_backward_strides`` counts); ``left`` / ``right`` = a stride of a side-stepping run (L219 / L228's ``sideways``),
+to the side its displacement points in the foot's frame (the offline tracker writes it; a streamed table, whose
+runs are decided stride by stride, says ``side``); ``turn`` = a stride the foot turned through
+:data:`pdrlearn.kernels.backward.BACKWARD_MAX_TURN_DEG` or more (L203's turn on the spot); empty = a foot-gap row
+(L67), an ``impossible`` stride (L97) or one shorter than :data:`pdrlearn.kernels.sideways.SIDE_MIN_STRIDE_M`
+(L219's shuffle on the spot: no direction to read); ``forward`` = every other stride. A change of travel direction is
+a labelled stride (forward / backward / left / right / side) whose label differs from the previous labelled
+stride's (``turn`` and empty rows skipped). Pure functions of the steps table.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+#: decision L412: the labels that take part in a change of travel direction
+DIRECTIONS = ("forward", "backward", "left", "right", "side")
+#: decision L412: direction_changes.csv's columns
+CHANGE_COLUMNS = ("change", "start_s", "from_travel", "to_travel", "row")
+
+
+def side_labels(sideways, lateral_y) -> np.ndarray:
+    """Decision L412: (n,) object, ``left`` / ``right`` for the ``sideways`` strides (L228) by the sign of their
+    displacement's left component ``lateral_y`` (m, the foot's frame: y left), None elsewhere."""
+    side = np.asarray(sideways, bool)
+    return np.where(side, np.where(np.asarray(lateral_y, float) > 0, "left", "right"), None).astype(object)
+
+
+def travel_labels(steps: pd.DataFrame) -> np.ndarray | None:
+    """Decision L412: (n,) object, each foot stride's travel label (module docstring); None for a lower-back table
+    (:func:`pdrlearn.track.evaluate.backward_travel` None: no facing per step)."""
+    from pdrlearn.kernels.backward import BACKWARD_MAX_TURN_DEG
+    from pdrlearn.kernels.sideways import SIDE_MIN_STRIDE_M
+    from pdrlearn.track.evaluate import backward_travel
+    from pdrlearn.track.flags import flag_values
+    from pdrlearn.track.gait import sideways_rows
+
+    back = backward_travel(steps)
+    if back is None:
+        return None
+    n = len(steps)
+    label = np.full(n, "forward", dtype=object)
+    column = "raw_length_m" if "raw_length_m" in steps else "length_m"
+    length = np.abs(pd.to_numeric(steps[column], errors="coerce").to_numpy(float))
+    with np.errstate(invalid="ignore"):
+        label[~(length >= SIDE_MIN_STRIDE_M)] = ""  # L219's shuffle on the spot (and a NaN length)
+        if "turn_angle_rad" in steps:
+            turn = np.degrees(np.abs(pd.to_numeric(steps["turn_angle_rad"], errors="coerce").to_numpy(float)))
+            label[turn >= BACKWARD_MAX_TURN_DEG] = "turn"  # L203 amended: a turn on the spot
+    side = sideways_rows(steps)
+    given = steps["travel"].to_numpy(dtype=object) if "travel" in steps else np.full(n, None, dtype=object)
+    label[side] = [g if g in ("left", "right") else "side" for g in given[side]]
+    label[back] = "backward"
+    drop = np.zeros(n, bool)
+    if "gap_s" in steps:
+        drop |= pd.to_numeric(steps["gap_s"], errors="coerce").to_numpy(float) > 0
+    if "impossible" in steps:
+        drop |= flag_values(steps["impossible"])
+    label[drop] = ""
+    return label
+
+
+def add_travel(steps: pd.DataFrame) -> None:
+    """Decision L412: a foot table gets steps.csv's ``travel`` (:func:`travel_labels`), right after
+    ``backward_travel`` (else at the end). In place; a lower-back table unchanged; idempotent (the offline tracker's
+    ``left`` / ``right`` are kept)."""
+    label = travel_labels(steps)
+    if label is None:
+        return
+    if "travel" in steps:
+        del steps["travel"]
+    cols = list(steps.columns)
+    steps.insert(cols.index("backward_travel") + 1 if "backward_travel" in cols else len(cols), "travel", label)
+
+
+def direction_change_table(steps: pd.DataFrame) -> pd.DataFrame | None:
+    """Decision L412: direction_changes.csv (:data:`CHANGE_COLUMNS`): one row per labelled stride whose travel label
+    differs from the previous labelled stride's (``row``: its steps.csv row, from 0; ``start_s`` its start); None for
+    a lower-back table."""
+    label = travel_labels(steps)  # idempotent on a table with add_travel's column
+    if label is None:
+        return None
+    idx = [i for i, v in enumerate(label) if v in DIRECTIONS]
+    rows = []
+    for a, b in zip(idx, idx[1:], strict=False):
+        if label[a] != label[b]:
+            rows.append({"change": len(rows) + 1, "start_s": float(steps["start_s"].iloc[b]),
+                         "from_travel": label[a], "to_travel": label[b], "row": int(b)})
+    return pd.DataFrame(rows, columns=list(CHANGE_COLUMNS))

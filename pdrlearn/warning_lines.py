@@ -1,0 +1,131 @@
+"""The warnings a command or a pipeline emits, collected in one place (decision E154).
+
+Every data-quality warning is a ``logging`` record of the ``pdrlearn`` logger (CONTRIBUTING). Some of them were
+also kept in ``result.info["warnings"]`` by the code that raised them, most were not: the clipping (B77), dropped
+packets (B64 / B183), axis (D11) and jitter (B182) lines reached stderr only, so ``--json``, summary.json and the
+Python API looked clean (trial T2, session 34). :func:`captured_warnings` collects the records raised in a body;
+:func:`merged_warnings` adds them to the kept lines, each once, without the ``DIR: `` prefix that names the
+session folder on stderr (decision B34), so that a copy of a session elsewhere keeps the same lines.
+:func:`warning_code` gives each line a short stable code (decision E155): the decision it names.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import re
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+
+
+@contextmanager
+def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterator[list[str]]:
+    """Collect the WARNING (and worse) records of ``logger`` and its children raised in the body into the
+    yielded list instead of letting the logger's handlers print them (records below WARNING pass as
+    before). ``track-all`` tracks each session inside it and says each distinct warning once per batch with
+    the sessions it concerns (decision C12): the ~250-character "no model" line was printed per session.
+    ``echo=True``: the handlers print them too (``evaluate`` keeps its printed warnings in its JSON, B95;
+    decision E154: ``read_session``, every pipeline, ``track`` and ``run`` keep theirs in their results). A logger
+    silenced by its level (``setLevel(logging.ERROR)``, the README's way) still gives the collected list its warnings
+    (E154), and its handlers and their ancestors' still print none of them."""
+    log_ = logging.getLogger(logger)
+    messages: list[str] = []
+
+    class _Collect(logging.Handler):
+        def emit(self, record: logging.LogRecord) -> None:
+            messages.append(record.getMessage())
+
+    def below_warning(record: logging.LogRecord) -> bool:
+        return record.levelno < logging.WARNING
+
+    cut = log_.getEffectiveLevel()  # E154: what the caller lets through; a record below it is collected only
+
+    def let_through(record: logging.LogRecord) -> bool:
+        return record.levelno >= cut or record.levelno < logging.WARNING
+
+    filtered = [(h, below_warning) for h in ([] if echo else log_.handlers)]
+    old_level = log_.level
+    if cut > logging.WARNING:
+        node: logging.Logger | None = log_
+        while node is not None:  # the handlers the records propagate to
+            filtered += [(h, let_through) for h in node.handlers]
+            node = node.parent if node.propagate else None
+        log_.setLevel(logging.WARNING)
+    for h, f in filtered:
+        h.addFilter(f)
+    collect = _Collect(logging.WARNING)
+    log_.addHandler(collect)
+    try:
+        yield messages
+    finally:
+        log_.removeHandler(collect)
+        if cut > logging.WARNING:
+            log_.setLevel(old_level)
+        for h, f in filtered:
+            h.removeFilter(f)
+
+
+def session_line(message: str, where: str | os.PathLike | Iterable[str] | None) -> str:
+    """Decision E154: a logged line as results keep it: ``DIR: text`` -> ``text`` and ``DIR/file.csv: text`` ->
+    ``file.csv: text`` for the session folder ``where`` (stderr names it, B34; the results name the session
+    already, and a copy of the folder elsewhere gives the same lines); ``where`` may also be several names (the
+    folder and the session's name, which ``run``'s lines start with); whitespace runs made one blank, as the CLI
+    prints them."""
+    text = " ".join(message.split())
+    names = [where] if isinstance(where, str | os.PathLike) else list(where or [])
+    for name in names:
+        w = " ".join(str(name).split()).rstrip("/")
+        if not w:
+            continue
+        if text.startswith(w + ": "):
+            return text[len(w) + 2:]
+        if text.startswith(w + "/"):
+            return text[len(w) + 1:]
+    return text
+
+
+def merged_warnings(kept: Iterable[str], logged: Iterable[str],
+                    where: str | os.PathLike | Iterable[str] | None = None) -> list[str]:
+    """Decision E154: the ``kept`` lines (a result's ``info["warnings"]``, in their order) and then each
+    ``logged`` line (:func:`captured_warnings`) that is not one of them, each once; logged lines are
+    :func:`session_line`'s."""
+    out = list(dict.fromkeys(kept))
+    seen = {" ".join(k.split()) for k in out}
+    for m in logged:
+        line = session_line(m, where)
+        if line and line not in seen:
+            seen.add(line)
+            out.append(line)
+    return out
+
+
+#: decision E155: a decision id as the lines name it ("decision B77", "decisions B64, B183", "(D11)")
+_DECISION = re.compile(r"\bdecisions? ((?:[A-Z]{1,2})\d{1,3})\b")
+_BARE_ID = re.compile(r"\b((?:[BCDEGHLSWX])\d{1,3})\b")
+
+
+def warning_code(line: str) -> str:
+    """Decision E155: a short stable code of a warning line, the decision it comes from: the first id after
+    "decision(s)" (``decision B77`` -> ``B77``), else the first bare decision id it names (``L39``), else
+    ``"other"``. The text stays the message; the code is for a harness to match or allow-list."""
+    m = _DECISION.search(line) or _BARE_ID.search(line)
+    return m.group(1) if m else "other"
+
+
+#: decision E155: the version of summary.json's (and ``--json``'s) keys, ``track``'s and ``run``'s. Raise it when a
+#: key is renamed, removed or changes type or meaning (an added key keeps it); 1 = the keys of session 34.
+SUMMARY_SCHEMA_VERSION = 1
+
+
+def machine_summary(summary: dict, logged: Iterable[str], where=None) -> dict:
+    """Decisions E154, E155, in place (and returned): ``summary["info"]["warnings"]`` with every ``logged`` line
+    (:func:`merged_warnings`), ``info["warning_codes"]`` one :func:`warning_code` per line, and
+    ``schema_version`` the summary's first key. ``track``, ``track-all`` and ``run`` finish their summaries here."""
+    info = summary.setdefault("info", {})
+    info["warnings"] = merged_warnings(info.get("warnings") or [], logged, where)
+    info["warning_codes"] = [warning_code(w) for w in info["warnings"]]
+    rest = [(k, v) for k, v in summary.items() if k != "schema_version"]
+    summary.clear()
+    summary["schema_version"] = SUMMARY_SCHEMA_VERSION
+    summary.update(rest)
+    return summary
