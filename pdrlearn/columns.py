@@ -799,6 +799,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                           "none"),
     _GRADE_PCT,
     ("terrain", _ID, "text", "M3's terrain class (empty without a model; L18)"),
+    ("terrain_dz", _ID, "text", "offline: up / down / flat from dz_m by L39's 0.10 m, with or without a model "
+                                "(not a class; empty on a gap row; L424)"),
     ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224)"),
     ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
                                            "L224)"),
@@ -832,6 +834,12 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("stance_time_s", "s", "number", "--toe-off only: IC to toe-off"),
     ("swing_time_s", "s", "number", "--toe-off only: toe-off to the next IC"),
     ("stance_pct", "%", "number", "--toe-off only: 100 x stance_time_s / stride_time_s"),
+    ("max_sensor_lift_m", "m", "number", "offline foot track: the sensor's highest point above the line joining its "
+                                         "two rests (gaitmap's max_sensor_lift on level ground; L421)"),
+    ("ic_angle_deg", "deg", "number", "offline foot track: the sole angle at event_s, + toes up, 0 at the starting "
+                                      "rest (gaitmap's ic_angle; L421)"),
+    ("tc_angle_deg", "deg", "number", "offline foot track with a toe-off (--toe-off): the sole angle at tc_s "
+                                      "(gaitmap's tc_angle; L421)"),
     ("impossible", _ID, "true/false", "the last-line guard (L94) moved the stride 0 m: no gait values (L97)"),
     ("gap_s", "s", "number", "the longest foot-data gap inside the stride; > 0: a 0 m gap row (L67)"),
     ("unit", _ID, "text", "the unit tracked: foot"),
@@ -996,6 +1004,19 @@ RIDES: tuple[Column, ...] = (
 )
 
 
+#: decision E163: track-all's ``strides.csv``, every tracked session's steps.csv rows led by these columns
+STRIDES: tuple[Column, ...] = (
+    ("path", _ID, "text", "the session's sessions.csv path (its key)"),
+    ("visit", _ID, "text", "sessions.csv's visit (C82)"),
+    ("session", _ID, "text", "the session's name (summary.json session)"),
+    ("foot", _ID, "text", "left or right from the session's meta.json (foot / instrumented_foot, L260); empty where "
+                          "not known"),
+    ("turn_deg", "deg", "number", "a foot row's turn_angle_rad in degrees (left +); empty on a lower-back row"),
+    ("is_turn", _ID, "true/false", "the row overlaps one of the session's turns.csv turns (>= 80 deg) by half its own "
+                                   "span or half the turn's (L422)"),
+)
+
+
 #: decision B309: the trajectory every track and run writes (trajectory.csv of the output folder; not the session's
 #: input trajectory.csv, the path reference with ``timestamp`` in ms, D1)
 TRAJECTORY: tuple[Column, ...] = (
@@ -1013,15 +1034,18 @@ TRAJECTORY: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, TURNS, PERIODS, LAPS, SPLITS, DIRECTION_CHANGES, TRANSFERS,
-    TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, TRAJECTORY, GAIT_STEPS,
-    GAIT_CYCLES, GAIT_BOUTS), strict=True))
+    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS, DIRECTION_CHANGES,
+    TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, TRAJECTORY,
+    GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
          "steps.csv (foot)": "Foot tracks (plasys; `pdrlearn track`, `run`): one row per stride of the tracked foot "
                              "(E137); an empty cell is a value the stride cannot have. Columns marked with an option "
                              "or a model appear only with it.",
+         "strides.csv": "`pdrlearn track-all` (decision E163): every tracked session's steps.csv in one table, in "
+                        "sessions.csv's order; the columns below lead, then the session's own steps.csv columns "
+                        "(steps.csv / steps.csv (foot)).",
          "trajectory.csv": "Every track and run (decision B309): the output's trajectory, one row per position. A "
                            "session's own trajectory.csv (its path reference, `timestamp` in ms) is an input of "
                            "another layout (README, Data format).",
@@ -1042,6 +1066,8 @@ def expanded(table: str) -> dict[str, Column]:
 def undocumented(table: str, columns) -> list[str]:
     """The ``columns`` of a written ``table`` that the dictionary lacks (a test keeps this empty, C35)."""
     known = expanded(table)
+    if table == "strides.csv":  # decision E163: the sessions' own steps.csv columns follow the lead ones
+        known = {**expanded("steps.csv"), **expanded("steps.csv (foot)"), **known}
     if table == "changes.csv":  # decision C81: any sessions.csv number column can be a --metrics measure
         measures = [name for name, _, kind, _ in SESSIONS if kind in ("number", "integer")]
         known.update({f"{m}_{k}": ("", "", "", "") for m in measures for k in ("baseline", "change", "change_pct")})

@@ -7,7 +7,9 @@ from __future__ import annotations
 #: here)
 TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "changes.csv",  # C81
-                                "bouts.csv", "turns.csv", "periods.csv",
+                                "bouts.csv",
+                                "strides.csv",  # E163
+                                "turns.csv", "periods.csv",
                                 "laps.csv",  # L383
                                 "splits.csv",  # L411
                                 "direction_changes.csv",  # L412

@@ -681,6 +681,37 @@ def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
     return both
 
 
+def combined_strides(out: Path, rows: list[dict], inputs: dict[str, Path]) -> pd.DataFrame:
+    """Decisions E163 / L422: every tracked session's steps.csv (``out/<path>/steps.csv``) stacked in sessions.csv's
+    order (:func:`pdrlearn.track.pooled.session_strides`), each row led by its session's ``path``, ``visit``, the
+    session's name, its ``foot`` (meta.json of ``inputs[path]``, L260's keys; empty where not known), ``turn_deg`` and
+    ``is_turn`` (the session's turns.csv)."""
+    import json
+
+    import pandas as pd
+
+    from pdrlearn.track.bilateral import session_foot
+    from pdrlearn.track.pooled import STRIDE_KEYS, session_strides
+
+    parts = []
+    for row in rows:
+        where = out / row["path"]
+        if row["status"] != "ok" or not (where / "steps.csv").is_file():
+            continue
+        steps = pd.read_csv(where / "steps.csv")
+        if not len(steps):
+            continue
+        turns = pd.read_csv(where / "turns.csv") if (where / "turns.csv").is_file() else None
+        try:
+            meta = json.loads((Path(inputs[row["path"]]) / "meta.json").read_text())
+        except (OSError, ValueError, KeyError):
+            meta = {}
+        parts.append(session_strides(steps, turns, path=row["path"], visit=row.get("visit"),
+                                     session=row.get("session"), foot=session_foot(meta if isinstance(meta, dict)
+                                                                                   else {})))
+    return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=list(STRIDE_KEYS))
+
+
 def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -> pd.DataFrame:
     """Decision L165's stacking of one per-session table (``out/<path>/<name>``; bouts.csv, and decision L277's
     periods.csv), in sessions.csv's order, each row led by ``path`` and ``visit``; ``read`` maps a table as read
@@ -919,6 +950,8 @@ def track_all(
         if subjects is not None:
             _write_csv_atomic(subjects, tmp / "subjects.csv")
         _write_csv_atomic(combined_bouts(tmp, rows), tmp / "bouts.csv")  # decision L165: every session's bouts
+        _write_csv_atomic(combined_strides(tmp, rows, dict(zip(rels, found, strict=True))),
+                          tmp / "strides.csv")  # decision E163: every session's strides, one table
         if settings.get("per_s") is not None:  # decision L277: every session's periods, as bouts.csv (L165)
             from pdrlearn.track.periods import PERIOD_COLUMNS
 
@@ -941,7 +974,7 @@ def track_all(
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked"
                    + (f" ({len(reused)} reused from an earlier run, --resume)" if resume else "") + f"; wrote {out}/"
-                   "<session>/, sessions.csv, groups.csv, bouts.csv, "
+                   "<session>/, sessions.csv, groups.csv, bouts.csv, strides.csv, "
                    + ("periods.csv, " if settings.get("per_s") is not None else "")
                    + ("" if subjects is None else "subjects.csv, ")
                    + ("" if changes is None else

@@ -723,4 +723,19 @@ def gait_line(summary: dict, streamed: bool | None = None) -> str:
             + (f", cadence {cad:.1f} steps/min" if cad is not None else "")
             # decision L204: the streamed strides' cadence needs their initial contacts (E51's option)
             + ("; no cadence or stride time: the streamed strides have no initial contact without --contacts "
-               "(decisions E51, L204)" if cad is None and streamed else ""))
+               "(decisions E51, L204)" if cad is None and streamed else "")
+            + (NO_STANCE_CLAUSE if no_toe_off(summary) else ""))
+
+
+#: decision L423: what the gait line of an offline foot track without --toe-off adds (its summary.json has
+#: n_stance_times 0 and median_stance_time_s / median_swing_time_s / median_stance_pct null)
+NO_STANCE_CLAUSE = ("; no stance or swing times (summary.json n_stance_times 0): add --toe-off for them "
+                    "(decisions L73, L423)")
+
+
+def no_toe_off(summary: dict) -> bool:
+    """Decision L423: ``summary`` is an offline foot track's (plasys ``info.toe_off_source`` present) tracked without
+    a toe-off, so its stance keys are empty for want of ``--toe-off``, not of strides."""
+    info = summary.get("info") or {}
+    return ("toe_off_source" in info and info["toe_off_source"] is None and not info.get("streaming")
+            and not summary.get("n_stance_times") and summary.get("median_stride_time_s") is not None)

@@ -277,6 +277,8 @@ class FootDisplacement:
     start_idx_, end_idx_ : (B,) sample indices of the stride boundaries used; start_s_, end_s_ their times
     lever_arm_ : (3,) heel contact - sensor in the body frame (m) with ``reference_point="heel"``, else None;
         lever_fit_ : fraction of the heel-rocker velocity variance the rotation about it explains
+    lift_m_ : (B,) the sensor's highest point above the line joining its two rests (m, decision L421);
+        sole_pitch_deg_ (B, L) the sole angle of every stride sample (:meth:`sole_angle` reads it at a time)
     rows_ : (B,) rows of the input steps table the strides come from (dropped rows: no swing between)
     stance_ : (n,) bool stance mask;  stance_source_ : "force" or "inertial"
     """
@@ -432,10 +434,34 @@ class FootDisplacement:
             clock = (K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error, weight=weight)
                      if s2 > 0 else None)
             self.disp_ = K.double_integrate(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock)
+        self._swing_measures(a_nav, mask, dt, zm, q, idx, weight)  # decision L421
         self.lever_arm_ = None
         if self.reference_point == "heel" and B:
             self._to_heel(a_nav, mask, dt, zm, q, gyr[idx], self.stance_[idx], period, weight)
         return self
+
+    def _swing_measures(self, a_nav, mask, dt, zm, q, idx, weight) -> None:
+        """Decision L421: ``lift_m_`` (B,) the sensor's highest point above the line joining its two rests (the
+        ZUPT-corrected velocity of thesis ch.7.2.1, L21's error clock, integrated once) and ``sole_pitch_deg_``
+        (B, L) the sole angle of every stride sample (gaitmap's convention), read at a time by :meth:`sole_angle`."""
+        from pdrlearn.kernels.clearance import max_lift, sole_pitch_deg
+
+        self.idx_, self.mask_ = idx, mask
+        if not len(idx):
+            self.lift_m_, self.sole_pitch_deg_ = np.zeros(0), np.zeros((0, idx.shape[1]))
+            return
+        clock = (K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error, weight=weight)
+                 if self.accel_scale_error > 0 else None)
+        v = K.zupt_velocity(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock)
+        self.lift_m_ = max_lift(K._cumtrapz(v, dt), mask)
+        self.sole_pitch_deg_ = sole_pitch_deg(q)
+
+    def sole_angle(self, times) -> np.ndarray:
+        """Decision L421: (B,) the sole angle (deg, positive toes up, 0 at the starting rest) of each stride at
+        ``times`` (B,) s (its initial contact or toe-off); NaN where a time is NaN or outside the stride."""
+        from pdrlearn.kernels.clearance import value_at
+
+        return value_at(self.t_, self.idx_, self.mask_, self.sole_pitch_deg_, np.asarray(times, dtype=float))
 
     def _intervals(self, t: np.ndarray, period: float, idx: np.ndarray, mask: np.ndarray):
         """Decision L83: the sample intervals the strides are integrated over. Returns ``dt`` (``period``, or

@@ -189,6 +189,16 @@ def streamed_gated_level_dz(dz: np.ndarray, classed: np.ndarray, mode=None) -> n
     raise ValueError(f"STREAMED_GATED_LEVEL_DZ {mode!r}: must be False, True or 'summed' (decisions L189, L206)")
 
 
+def terrain_from_dz(dz, valid=None, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:
+    """Decision L424: (n,) object ``"up"`` / ``"down"`` / ``"flat"`` from each stride's height change ``dz`` (m) by
+    L39's level threshold (``level_dz_m``: half a stair stride's rise), None where ``valid`` (n,) bool is False."""
+    dz = np.asarray(dz, dtype=float)
+    out = np.where(dz >= level_dz_m, "up", np.where(dz <= -level_dz_m, "down", "flat")).astype(object)
+    if valid is not None:
+        out[~np.asarray(valid, dtype=bool)] = None
+    return out
+
+
 def apply_level_gain(disp: np.ndarray, gain: float, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:
     """Displacements ``disp (B, 3)`` (or one ``(3,)``) m with the horizontal part of the level strides
     (|dz| < ``level_dz_m``) multiplied by ``gain``; stair strides keep theirs (L26). A new array."""

@@ -1334,6 +1334,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         line = stance_share_warning(table)
         if line:
             warnings.append(line)
+    swing_columns(table, fd, ~in_gap & ~impossible)  # decision L421: clearance and sole angles
     table["impossible"] = impossible  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = longest_gap_in(table["start_s"], table["end_s"], foot_gaps)  # decision L67 (run's E37)
     table = table[[c for c in table.columns if c != "unit"] + ["unit"]]  # gap_s before unit, as run's steps.csv
@@ -1407,6 +1408,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     logged = len(warnings)  # apply_altitude logs its own lines
     apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
     foot_rides(res, session)  # decision L378: the rides, from the waist barometer (offline only, as run's files)
+    res.steps.insert(res.steps.columns.get_loc("terrain") + 1, "terrain_dz",  # decision L424: beside the class
+                     KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
     return res
@@ -1463,6 +1466,17 @@ def bridge_foot_yaw(fd: FootDisplacement, foot_gaps: dict, stream=None) -> None:
         if k and en[k - 1] < st[k] and over(en[k - 1], st[k]):
             gy[k] = turn(en[k - 1], st[k])
     fd.yaw_change_, fd.gap_yaw_ = yc, gy
+
+
+def swing_columns(table: pd.DataFrame, fd: FootDisplacement, valid: np.ndarray) -> None:
+    """Decision L421: ``max_sensor_lift_m`` and the sole angles ``ic_angle_deg`` (at ``event_s``) and
+    ``tc_angle_deg`` (at ``tc_s``, where the toe-off is known) of each stride row of ``table`` (the rows of ``fd``),
+    NaN on the rows not ``valid`` (a stride across a gap, one L94 moved 0 m)."""
+    valid = np.asarray(valid, dtype=bool)
+    table["max_sensor_lift_m"] = np.where(valid, fd.lift_m_, np.nan)
+    table["ic_angle_deg"] = np.where(valid, fd.sole_angle(table["event_s"].to_numpy(float)), np.nan)
+    tc = table["tc_s"].to_numpy(float) if "tc_s" in table else np.full(len(table), np.nan)
+    table["tc_angle_deg"] = np.where(valid, fd.sole_angle(tc), np.nan)
 
 
 def _level_without_classes(res: TrackResult) -> None:
