@@ -690,7 +690,7 @@ def pll_params(det, period_s: float = float("nan"), gate_var: float | None = Non
 def edge_lock_params(mode) -> dict:
     """:class:`PLLParams`' edge-lock fields of the detector's ``edge_lock`` ``mode`` (one of :data:`EDGE_LOCK_VALUES`;
     decisions W356 / W358): True or "both" judges a gated run's first and last peak, "trailing" its last only."""
-    if mode not in EDGE_LOCK_VALUES or isinstance(mode, (int, float)) and not isinstance(mode, bool):
+    if mode not in EDGE_LOCK_VALUES:
         from pdrlearn.errors import DataError
 
         raise DataError(f"pll edge_lock {mode!r} is not one of false, true, \"both\", \"trailing\" (decisions W356, "

@@ -659,7 +659,7 @@ CAUSAL_PAUSE_STEPS = "standing"
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
                                                           "parity_fill", "stand_veto", "contact_model", "fast_fill",
-                                                          "cadence_law"))
+                                                          "cadence_law", "pll_edge_lock"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
