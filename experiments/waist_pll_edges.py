@@ -11,9 +11,9 @@ nearest kept PLL peak; seed 000 Sec. II-C: locked, the output's peak lies on the
 
 ``--edge-lock`` (W356's measurement, once; W357 records it): each route tracked with the option ``pll_edge_lock`` off
 and on on the same simulated sessions; ``--edge-lock trailing`` (W358's measurement, once, users 8160-8199; W366
-records it): off and ``"trailing"`` (only a gated run's last peak judged); the rule's (a) F1, (b) extra contacts, (c) recall printed and judged; with
-``--external DIR`` also (d): `experiments/waist.py`'s `real` on its `external_runs` (mobgap), `waist-pll (A-HE)`
-off and on, every row's step F1.
+records it): off and ``"trailing"`` (only a gated run's last peak judged); the rule's (a) F1, (b) extra contacts,
+(c) recall printed and judged; with ``--external DIR`` also (d): `experiments/waist.py`'s `real` on its
+`external_runs` (mobgap), `waist-pll (A-HE)` off and on, every row's step F1.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_pll_edges.py [FIRST_USER LAST_USER+1]
      [--edge-lock [trailing] [--external datasets/external]]
