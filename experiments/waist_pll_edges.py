@@ -10,12 +10,13 @@ PLL kernel itself since W356 and read from its events' ``phase_err_deg``; the de
 nearest kept PLL peak; seed 000 Sec. II-C: locked, the output's peak lies on the input's; 0 deg = in phase).
 
 ``--edge-lock`` (W356's measurement, once; W357 records it): each route tracked with the option ``pll_edge_lock`` off
-and on on the same simulated sessions, the rule's (a) F1, (b) extra contacts, (c) recall printed and judged; with
-``--external DIR`` also (d): `experiments/waist.py`'s `real` on its `external_runs` (mobgap), `waist-pll (A-HE)`
-off and on, every row's step F1.
+and on on the same simulated sessions; ``--edge-lock trailing`` (W358's measurement, once, users 8160-8199; W366
+records it): off and ``"trailing"`` (only a gated run's last peak judged); the rule's (a) F1, (b) extra contacts,
+(c) recall printed and judged; with ``--external DIR`` also (d): `experiments/waist.py`'s `real` on its
+`external_runs` (mobgap), `waist-pll (A-HE)` off and on, every row's step F1.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_pll_edges.py [FIRST_USER LAST_USER+1]
-     [--edge-lock [--external datasets/external]]
+     [--edge-lock [trailing] [--external datasets/external]]
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ import pdrlearn.kernels.step_events as SE
 
 USERS = range(7370, 7390)  # the lead's fresh users for W345 (session 33)
 EDGE_USERS = range(7750, 7790)  # the lead's fresh users for W356 (session 34)
+TRAILING_USERS = range(8160, 8200)  # the lead's fresh users for W358 (session 34)
 _PEAKS: list[tuple[float, float]] = []  # (PLL peak time, phase error deg) of every kept PLL peak of the current track
 
 
@@ -50,7 +52,7 @@ def _new() -> dict:
             "ph_edge": [], "ph_true": [], "ph_lead": [], "ph_lag": []}
 
 
-def _add(a: dict, s, edge_lock: bool) -> None:
+def _add(a: dict, s, edge_lock: bool | str) -> None:
     """Track the simulated session ``s`` with waist-pll (``pll_edge_lock=edge_lock``) and add its counts to ``a``."""
     _PEAKS.clear()
     truth = np.sort(s.extras["ics"]["ic_s"].to_numpy(float))
@@ -122,7 +124,7 @@ def route_table(users=USERS, locks=(False,)) -> dict[str, list[dict]]:
                 for a, lock in zip(acc, locks, strict=True):
                     _add(a, s, lock)
             for a, lock in zip(acc, locks, strict=True):
-                print(_line(name + (f" (pll_edge_lock {'on' if lock else 'off'})" if len(locks) > 1 else ""),
+                print(_line(name + (f" (pll_edge_lock {_label(lock)})" if len(locks) > 1 else ""),
                             len(users), a), flush=True)
             out[name] = acc
     finally:
@@ -130,9 +132,14 @@ def route_table(users=USERS, locks=(False,)) -> dict[str, list[dict]]:
     return out
 
 
-def edge_lock_rule(users, external: Path | None) -> bool:
-    """W356's rule: (a)-(c) on the simulated routes, (d) on the mobgap recordings when ``external`` is given."""
-    res = route_table(users, locks=(False, True))
+def _label(lock: bool | str) -> str:
+    return lock if isinstance(lock, str) else ("on" if lock else "off")
+
+
+def edge_lock_rule(users, external: Path | None, mode: bool | str = True) -> bool:
+    """W356's rule (``mode`` True) or W358's (``mode`` "trailing"): the option off against ``mode``, (a)-(c) on the
+    simulated routes, (d) on the mobgap recordings when ``external`` is given."""
+    res = route_table(users, locks=(False, mode))
     ok_a = ok_c = True
     extra = [0, 0]
     for name, (off, on) in res.items():
@@ -153,7 +160,7 @@ def edge_lock_rule(users, external: Path | None) -> bool:
 
         runs = external_runs(external)
         dfs = [real(external, runs, configs=[("waist-pll (A-HE)", "waist-pll", opts)])
-               for opts in ({}, {"pll_edge_lock": True})]
+               for opts in ({}, {"pll_edge_lock": mode})]
         for (_, r0), (_, r1) in zip(dfs[0].iterrows(), dfs[1].iterrows(), strict=True):
             d = r1.step_f1 - r0.step_f1
             ok_d &= bool(d >= -0.005)
@@ -162,20 +169,21 @@ def edge_lock_rule(users, external: Path | None) -> bool:
                   flush=True)
         print(f"(d) mobgap waist-pll step F1 not lower by more than 0.005 on any row: {'met' if ok_d else 'NOT met'}")
     adopted = ok_a and ok_b and ok_c and ok_d and external is not None
-    print(f"W356: {'adopted' if adopted else 'not adopted'}")
+    print(f"{'W356' if mode is True else 'W358'} ({_label(mode)}): {'adopted' if adopted else 'not adopted'}")
     return adopted
 
 
 if __name__ == "__main__":
     ap = argparse.ArgumentParser()
     ap.add_argument("users", nargs="*", type=int, help="FIRST_USER LAST_USER+1")
-    ap.add_argument("--edge-lock", action="store_true", help="W356's rule: pll_edge_lock off and on (W357)")
+    ap.add_argument("--edge-lock", nargs="?", const=True, default=None, choices=[True, "trailing"],
+                    help="W356's rule: pll_edge_lock off and on (W357); 'trailing': W358's rule (W366)")
     ap.add_argument("--external", type=Path, default=None, help="the mobgap folder for W356's (d)")
     args = ap.parse_args()
     logging.basicConfig(level=logging.ERROR)
-    default = EDGE_USERS if args.edge_lock else USERS
+    default = {None: USERS, True: EDGE_USERS, "trailing": TRAILING_USERS}[args.edge_lock]
     users = range(args.users[0], args.users[1]) if len(args.users) > 1 else default
-    if args.edge_lock:
-        edge_lock_rule(users, args.external)
+    if args.edge_lock is not None:
+        edge_lock_rule(users, args.external, args.edge_lock)
     else:
         route_table(users)

@@ -281,6 +281,10 @@ def pelvic_flush(state: PelvicState, p: PelvicParams) -> list[Event]:
 #: decision W356: a gated run's first / last PLL peak counts only within this phase error (deg) when ``edge_lock`` is
 #: on -- W345's printed split (97 % of the walk's matched contacts within it, 5 % of its trailing edge extras)
 EDGE_LOCK_DEG = 45.0
+#: decision W358: the values of the detector's ``edge_lock`` (``pll_edge_lock``): off, both edges of a gated run judged
+#: (True, the same as "both"; W356), or only its trailing edge, its last peak (W345: 5 % of the trailing edge extras
+#: locked, but true first contacts often unlocked)
+EDGE_LOCK_VALUES = (False, True, "both", "trailing")
 
 
 @dataclass
@@ -296,6 +300,8 @@ class PLLParams:
     refine_frac: float  # event = largest vertical acceleration within +- refine_frac periods of the peak
     # decision W356: a gated run's first / last peak is kept only when |phase error| <= edge_lock_deg (0: off)
     edge_lock_deg: float = 0.0
+    # decision W358: False judges only a run's last peak (its trailing edge), its first is kept as without edge lock
+    edge_lock_leading: bool = True
 
 
 @dataclass
@@ -467,13 +473,14 @@ def phase_error_deg(i_sum: float, q_sum: float) -> float:
     return math.degrees(math.atan2(q_sum, i_sum)) if (i_sum or q_sum) else math.nan
 
 
-def _pll_release(s: PLLState, last_of_run: bool) -> list[Event]:
-    """Decision W356: the held gated peak, kept unless it is the first or last of its gated run and unlocked."""
+def _pll_release(s: PLLState, last_of_run: bool, p: PLLParams) -> list[Event]:
+    """Decision W356: the held gated peak, kept unless it is the first (W358: only when ``p.edge_lock_leading``) or
+    the last of its gated run and unlocked."""
     if s.held is None:
         return []
     ev, first, locked = s.held
     s.held = None
-    return [ev] if locked or not (first or last_of_run) else []
+    return [ev] if locked or not ((first and p.edge_lock_leading) or last_of_run) else []
 
 
 def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
@@ -489,7 +496,7 @@ def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
     for c, good, vi in zip(cands, ok.tolist(), var.tolist(), strict=True):
         gated = good and vi >= p.gate_var
         if lock:
-            out += _pll_release(s, not gated)
+            out += _pll_release(s, not gated, p)
         first, s.prev_gated = not s.prev_gated, gated
         if not gated:
             continue
@@ -515,7 +522,7 @@ def pll_flush(state: PLLState, p: PLLParams) -> list[Event]:
     run)."""
     out = _pll_decide_many(state, state.pending, p)
     state.pending = []
-    return out + _pll_release(state, True)
+    return out + _pll_release(state, True, p)
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -677,7 +684,18 @@ def pll_params(det, period_s: float = float("nan"), gate_var: float | None = Non
                      f_min_hz=det.f_min_hz, f_max_hz=f_max, agc_tau_s=det.agc_tau_s,
                      gate_window_s=det.gate_window_s, gate_var=det.gate_var if gate_var is None else gate_var,
                      refine_frac=det.refine_frac,
-                     edge_lock_deg=EDGE_LOCK_DEG if getattr(det, "edge_lock", False) else 0.0)  # W356
+                     **edge_lock_params(getattr(det, "edge_lock", False)))
+
+
+def edge_lock_params(mode) -> dict:
+    """:class:`PLLParams`' edge-lock fields of the detector's ``edge_lock`` ``mode`` (one of :data:`EDGE_LOCK_VALUES`;
+    decisions W356 / W358): True or "both" judges a gated run's first and last peak, "trailing" its last only."""
+    if mode not in EDGE_LOCK_VALUES:
+        from pdrlearn.errors import DataError
+
+        raise DataError(f"pll edge_lock {mode!r} is not one of false, true, \"both\", \"trailing\" (decisions W356, "
+                        "W358); fix the detector setting or the PARAMS.json option pll_edge_lock")
+    return {"edge_lock_deg": EDGE_LOCK_DEG if mode else 0.0, "edge_lock_leading": mode != "trailing"}
 
 
 class PLLProcessor:

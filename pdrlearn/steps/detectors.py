@@ -308,7 +308,9 @@ class PLLStepDetector(StepDetector):
     run of gated peaks count only when the loop is locked at them, the phase error over the period ending at the peak
     within 45 deg (:data:`pdrlearn.kernels.step_events.EDGE_LOCK_DEG`; seed 000 Sec. II-C: "the PLL can lock the raw
     acceleration data a_z"); a free-running peak at a bout's edge that the centred gate lets in is no step (W345).
-    Each gated peak then waits for the next peak's gate: one loop period more latency.
+    Each gated peak then waits for the next peak's gate: one loop period more latency. ``edge_lock="trailing"``
+    (decision W358) judges only a run's last peak and keeps its first (a walk's true first contact often comes
+    before the loop locks; W345: only 5 % of the trailing edge extras were locked); ``"both"`` = True.
 
     Loop gains (decision): natural frequency ``loop_hz`` and damping ``damping`` of the linearised loop,
     ``kp = 2 zeta wn / Kd``, ``ki = wn^2 / Kd`` with the phase-detector gain ``Kd = 1/sqrt(2)`` of a
@@ -331,7 +333,8 @@ class PLLStepDetector(StepDetector):
                  relative_gate: bool | None = None,  # decision steps 48: W76's session-relative gate (offline
                  # detect); steps 49: None = steps 48's default (on offline, off streaming), True given is refused by
                  # online()
-                 edge_lock: bool = False):  # decision W356: a gated run's first / last peak only when locked
+                 edge_lock: bool | str = False):  # decision W356: a gated run's first / last peak only when
+        # locked; W358: "trailing" its last only
         self._store(locals())
 
     def online(self, fs: float, **context):

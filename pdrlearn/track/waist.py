@@ -34,6 +34,7 @@ from pdrlearn.kernels.barometer import (  # decision W91's constants and test, s
 from pdrlearn.kernels.freeze import inside_episodes
 from pdrlearn.kernels.lying_heading import long_axis_yaw_rate, stop_pieces  # decision W269
 from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
+from pdrlearn.kernels.step_events import EDGE_LOCK_VALUES  # decision W358
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
@@ -129,10 +130,10 @@ def _sequences(steps: pd.DataFrame) -> list[np.ndarray]:
 
 
 def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine_ic: bool = True,
-               rhythm: bool = True, edge_lock: bool = False) -> pd.DataFrame:
+               rhythm: bool = True, edge_lock: bool | str = False) -> pd.DataFrame:
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
     moved to the initial contact next to them when ``refine_ic`` (decision W11); ``edge_lock``: the detector's
-    W356 option (a gated run's first / last peak only when the loop is locked)."""
+    W356 option (a gated run's first / last peak only when the loop is locked; W358's "trailing": its last only)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
     st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
                          edge_lock=edge_lock).detect(session)
@@ -658,7 +659,7 @@ CAUSAL_PAUSE_STEPS = "standing"
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
                                                           "parity_fill", "stand_veto", "contact_model", "fast_fill",
-                                                          "cadence_law"))
+                                                          "cadence_law", "pll_edge_lock"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -688,7 +689,8 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "stand_veto": (STAND_VETO_VALUES, "W189, W191, W196, W198, W218"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203"),
                   "fast_fill": (FAST_FILL_VALUES, "W242, W255"),
-                  "cadence_law": (CADENCE_LAW_VALUES, "W240, W261")}
+                  "cadence_law": (CADENCE_LAW_VALUES, "W240, W261"),
+                  "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -725,7 +727,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 length_model=None, freeze_veto: bool | None = None,
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
                 fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
-                foot_rest_veto: bool | None = None, pll_edge_lock: bool | None = None) -> TrackResult:
+                foot_rest_veto: bool | None = None, pll_edge_lock: bool | str | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -823,7 +825,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     pll_edge_lock : waist-pll with its own detector (the live tracker ignores it): the first and the last PLL peak of
         a run of peaks that pass the activity gate count only when the loop is locked at them (phase error within
         45 deg over the period ending at the peak; decision W356, W345's diagnosis: a free-running peak at a bout's
-        edge); default False (W357: measured, not adopted -- fewer extra contacts, but true edge contacts lost)
+        edge); default False (W357: measured, not adopted -- fewer extra contacts, but true edge contacts lost);
+        ``"trailing"`` judges only the run's last peak and keeps its first (decision W358), ``"both"`` = True
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)
@@ -963,7 +966,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "gyro"
     else:
         steps = _pll_steps(session, imu, thr, refine_ic=refine_ic, rhythm=bool(o["rhythm"]),
-                           edge_lock=bool(o["pll_edge_lock"]))
+                           edge_lock=o["pll_edge_lock"])
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")

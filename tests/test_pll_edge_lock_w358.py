@@ -1,0 +1,71 @@
+"""Decision W358 (W357's next candidate; measured by W366): ``pll_edge_lock="trailing"`` judges only a gated run's last
+PLL peak (kept only when the loop is locked at it) and keeps its first as the option off does."""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+import pytest
+
+from pdrlearn.errors import DataError
+from pdrlearn.kernels.step_events import EDGE_LOCK_DEG, EDGE_LOCK_VALUES, edge_lock_params, pll_params
+from pdrlearn.steps import PLLStepDetector
+from tests.test_pll_edge_lock_w356 import _events, _walk
+
+
+def test_trailing_drops_the_unlocked_trailing_peak_and_keeps_the_unlocked_leading_one():
+    t, v = _walk(3.0)  # W356's test signal: the centred gate lets in a free-running peak at either end
+    off, trailing, both = _events(t, v, False), _events(t, v, "trailing"), _events(t, v, True)
+    assert abs(off[0][4]["phase_err_deg"]) > EDGE_LOCK_DEG and abs(off[-1][4]["phase_err_deg"]) > EDGE_LOCK_DEG
+    assert [e[0] for e in trailing] == [e[0] for e in off[:-1]]  # the unlocked leading peak stays, the trailing goes
+    assert [e[0] for e in both] == [e[0] for e in off[1:-1]]  # W356's mode unchanged: both edges judged
+    assert [e[0] for e in _events(t, v, "both")] == [e[0] for e in both]  # "both" is True
+
+
+def test_trailing_keeps_a_locked_trailing_peak():
+    t, v = _walk(2.0)  # W356's signal whose trailing peak is locked: nothing to drop at the trailing edge
+    off, trailing = _events(t, v, False), _events(t, v, "trailing")
+    assert abs(off[-1][4]["phase_err_deg"]) <= EDGE_LOCK_DEG
+    assert [e[0] for e in trailing] == [e[0] for e in off]
+
+
+def test_trailing_is_chunk_invariant():
+    t, v = _walk(3.0, seed=5)
+    cuts = np.r_[0, np.sort(np.random.default_rng(2).choice(np.arange(1, t.size), 40, replace=False)), t.size]
+    whole = _events(t, v, "trailing")
+    chunked = _events(t, v, "trailing", chunks=list(zip(cuts[:-1], cuts[1:], strict=True)))
+    assert [e[:4] for e in chunked] == [e[:4] for e in whole]
+    assert len(whole) == len(_events(t, v, False)) - 1  # the chunks judge the same trailing peak
+
+
+def test_edge_lock_modes_and_a_bad_value_is_one_line():
+    assert EDGE_LOCK_VALUES == (False, True, "both", "trailing")
+    assert edge_lock_params(False) == {"edge_lock_deg": 0.0, "edge_lock_leading": True}
+    assert edge_lock_params(True) == edge_lock_params("both") == {"edge_lock_deg": EDGE_LOCK_DEG,
+                                                                   "edge_lock_leading": True}
+    assert pll_params(PLLStepDetector(edge_lock="trailing")).edge_lock_leading is False
+    for bad in ("leading", "true", 2):
+        with pytest.raises(DataError, match="edge_lock .* is not one of .*W358"):
+            pll_params(PLLStepDetector(edge_lock=bad))
+
+
+def test_the_default_is_off_and_the_trailing_mode_reaches_the_waist_pll_track():
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
+
+    assert OPTION_DEFAULTS["pll_edge_lock"] is False and PLLStepDetector().edge_lock is False  # W366
+    logging.disable(logging.WARNING)
+    try:
+        s = simulate_path(parse_route("stand:4, straight:12, stand:4"), UserProfile.from_seed(8160), rate_hz=100,
+                          seed=8160)
+        base = track_waist(s, pipeline="waist-pll").steps["event_s"].to_numpy(float)
+        trail = track_waist(s, pipeline="waist-pll", pll_edge_lock="trailing").steps["event_s"].to_numpy(float)
+        both = track_waist(s, pipeline="waist-pll", pll_edge_lock="both").steps["event_s"].to_numpy(float)
+        with pytest.raises(DataError, match="pll_edge_lock 'last' is not one of"):
+            track_waist(s, pipeline="waist-pll", pll_edge_lock="last")
+    finally:
+        logging.disable(logging.NOTSET)
+    assert set(trail) <= set(base) and set(both) <= set(trail)  # trailing drops a subset of what both drops
+    assert base.size - 1 <= trail.size <= base.size
