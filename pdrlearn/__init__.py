@@ -31,6 +31,7 @@ _ENTRY_POINTS = {
     "get_detector": "pdrlearn.steps", "score_steps": "pdrlearn.steps",
     "train_user": "pdrlearn.classify", "load_model": "pdrlearn.classify", "evaluate_model": "pdrlearn.classify",
     "get_pipeline": "pdrlearn.track", "TrackResult": "pdrlearn.track",
+    "write_track": "pdrlearn.track.folder",  # decision E166: track --out's folder from a TrackResult
     "load_bundle": "pdrlearn.runtime", "Tracker": "pdrlearn.runtime",
     "to_dataframe": "pdrlearn.tables",
 }

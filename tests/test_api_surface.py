@@ -96,3 +96,15 @@ def test_detector_tuple_settings_are_checked_per_element():
     with pytest.raises(ValueError, match="weights="):
         PelvicGyroStepDetector(weights=(0.25, -0.1, 0.4, 0.25))
     assert PelvicGyroStepDetector(turn_cutoff_hz=0.0).turn_cutoff_hz == 0.0  # 0 = off stays allowed
+
+
+def test_write_track_is_a_top_level_entry_point():
+    """Decision E166: ``pdrlearn.write_track`` (track --out's folder from a TrackResult) is listed before any import
+    and documented with its signature."""
+    assert "write_track" in _fresh("import pdrlearn; print(' '.join(dir(pdrlearn)))").split()
+    import inspect
+
+    import pdrlearn
+
+    assert "write_track" in pdrlearn.__all__
+    assert list(inspect.signature(pdrlearn.write_track).parameters) == ["result", "session", "out", "force"]

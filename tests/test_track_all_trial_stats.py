@@ -180,13 +180,15 @@ def test_track_records_its_options_in_run_json(site_tree, tmp_path, monkeypatch)
     runs = {o: json.loads((tmp_path / o / "run.json").read_text()) for o in ("o1", "o2", "o3", "o4")}
     timings = ("finished_utc", "track_time_s", "cpu_time_s")
     assert all(k in runs["o1"] for k in timings) and runs["o1"]["track_time_s"] >= 0
-    same = [{k: v for k, v in r.items() if k not in timings} for r in (runs["o1"], runs["o2"])]
+    # E165: the command lines differ by --out; the working directory is recorded in cwd (and only there)
+    same = [{k: v for k, v in r.items() if k not in (*timings, "argv")} for r in (runs["o1"], runs["o2"])]
     assert same[0] == same[1]
     r1 = runs["o1"]
     assert r1["command"] == "track" and r1["pdrlearn_version"] == __version__ and r1["session"] == session
     assert r1["options"]["method"] == "auto" and r1["options"]["pipeline"] == "auto" and r1["options"]["dpi"] is None
     assert r1["pipeline"] == "plasys" and r1["model"] is None and "window" in r1["options"]
-    assert str(tmp_path) not in (tmp_path / "o1" / "run.json").read_text()
+    assert r1["cwd"] == str(tmp_path) and r1["argv"] == ["pdrlearn", "track", session, "--out", "o1"]
+    assert str(tmp_path) not in json.dumps({k: v for k, v in r1.items() if k != "cwd"})
     assert runs["o3"]["options"]["method"] == "M1" and runs["o3"]["method"] == "M1"
     assert {k: v for k, v in runs["o3"]["options"].items() if k != "method"} == {
         k: v for k, v in r1["options"].items() if k != "method"}

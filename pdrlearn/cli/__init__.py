@@ -198,6 +198,17 @@ def main(argv: list[str] | None = None) -> int:
     """Console-script entry point; returns the exit code."""
     if argv is None:
         argv = sys.argv[1:]
+    from pdrlearn.cli.provenance import set_command_line
+
+    set_command_line(list(argv))  # decision E165: run.json's argv, this run's only
+    try:
+        return _main(argv)
+    finally:
+        set_command_line(None)
+
+
+def _main(argv: list[str]) -> int:
+    """:func:`main` once its command line is known."""
     from pdrlearn.atomic import checked_outputs
 
     written: list[str] = []

@@ -180,6 +180,8 @@ def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool
     if as_json:
         print_json(json_safe({"users": _blank_missing(df).to_dict(orient="records"), "n_users": len(results),
                               "n_failed": len(failed)}))
+        for r in failed:  # decision E167: on stderr too, as track-all --json's failed lines (stdout is the JSON)
+            typer.echo(f"failed {r.name}: {r.error}", err=True)
     else:
         from rich.table import Table
 

@@ -7,7 +7,28 @@ wall and CPU time) is in ``run.json`` only, so the files meant to be the same fo
 from __future__ import annotations
 
 import json
+import sys
 from pathlib import Path
+
+#: decision E165: the command line :func:`pdrlearn.cli.main` was given (``["pdrlearn", *argv]``), for run.json's
+#: ``argv``; ``None`` outside a CLI run (then ``sys.argv``, the Python process's own command line)
+_COMMAND_LINE: list[str] | None = None
+
+
+def set_command_line(argv: list[str] | None) -> None:
+    """Decision E165: remember the CLI's command line (``None``: forget it) for :func:`run_record`."""
+    global _COMMAND_LINE
+    _COMMAND_LINE = None if argv is None else ["pdrlearn", *map(str, argv)]
+
+
+def invocation() -> dict:
+    """Decision E165 (session 34, trial T4 finding 8): what resolves a relative path of the record a year on: the
+    working directory (``cwd``, absolute) and the command line as a list (``argv``: the ``pdrlearn`` command's
+    words as typed, or the Python process's ``sys.argv`` outside the CLI). In run.json only, so summary.json stays
+    the same whatever folder the command ran from."""
+    import os
+
+    return {"cwd": os.getcwd(), "argv": list(_COMMAND_LINE) if _COMMAND_LINE is not None else list(sys.argv)}
 
 
 def given_options(arguments: dict, leave_out: tuple[str, ...] = ()) -> dict:
@@ -84,15 +105,16 @@ def input_hashes(folder: Path) -> dict[str, str]:
 
 def run_record(command: str, options: dict, **fields) -> dict:
     """The run's record: ``command``, ``pdrlearn_version``, the code and libraries (:func:`software_record`, L136),
-    the command's own ``fields`` (its inputs as given, their ``input_sha256``, the model, counts), ``options``
-    (:func:`given_options`), then what differs run to run: the ``*_time_s`` fields and ``finished_utc`` (now)."""
+    the working directory and command line (:func:`invocation`, E165), the command's own ``fields`` (its inputs as
+    given, their ``input_sha256``, the model, counts), ``options`` (:func:`given_options`), then what differs run
+    to run: the ``*_time_s`` fields and ``finished_utc`` (now)."""
     from datetime import UTC, datetime
 
     from pdrlearn import __version__
 
     times = {k: fields.pop(k) for k in [k for k in fields if k.endswith("_time_s")]}
-    return {"command": command, "pdrlearn_version": __version__, **software_record(), **fields, "options": options,
-            **times,
+    return {"command": command, "pdrlearn_version": __version__, **software_record(), **invocation(), **fields,
+            "options": options, **times,
             "finished_utc": datetime.now(UTC).isoformat(timespec="seconds")}
 
 
