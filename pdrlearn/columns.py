@@ -478,8 +478,30 @@ CHANGES: tuple[Column, ...] = (
     ("duplicate_of", _ID, "text", "other sessions holding the later visit's recording (C31)"),
     ("{measure}_baseline", "as the measure", "number", "the baseline visit's value (its trials' mean, C83)"),
     ("{measure}_change", "as the measure", "number", "later visit minus baseline (C22)"),
-    ("{measure}_change_pct", "%", "number", "100 x change / baseline: the dual-task cost when the visits are single "
-                                            "and dual (C81); empty when the baseline is 0"),
+    ("{measure}_change_pct", "%", "number", "100 x change / |baseline|: the dual-task cost when the visits are "
+                                            "single and dual (C81); empty when the baseline is 0"),
+)
+
+#: decisions C23, C81, C85: track-all's changes_summary.csv, one row per later visit, baseline and measure
+CHANGES_SUMMARY: tuple[Column, ...] = (
+    ("visit", _ID, "text", "the later visit (changes.csv's visit, C82)"),
+    ("baseline_visit", _ID, "text", "the baseline it is compared with (subjects of other baselines apart, C28)"),
+    ("measure", _ID, "text", "the measure (groups.csv's, or a --metrics name, C81)"),
+    ("n_subjects", "count", "integer", "subjects with a change: both visits tracked and the measure at both (C23)"),
+    ("mean_change", "as the measure", "number", "the mean of the subjects' changes (C23)"),
+    ("sd_change", "as the measure", "number", "their standard deviation (n - 1)"),
+    ("ci95_low", "as the measure", "number", "the paired 95 % t-interval of the mean change, low; empty under two "
+                                             "subjects (C23)"),
+    ("ci95_high", "as the measure", "number", "its high end"),
+    ("n_pct_subjects", "count", "integer", "subjects with a percent change: n_subjects less those whose baseline is "
+                                           "0 (C85)"),
+    ("mean_pct_change", "%", "number", "the mean of the subjects' percent changes, 100 x change / |baseline| "
+                                       "(the mean dual-task cost; C81)"),
+    ("sd_pct_change", "%", "number", "their standard deviation (n - 1)"),
+    ("pct_ci95_low", "%", "number", "the paired 95 % t-interval of the mean percent change, low (C81)"),
+    ("pct_ci95_high", "%", "number", "its high end"),
+    ("n_not_paired", "count", "integer", "subjects of the visit whose changes.csv row is not ok (C23)"),
+    ("not_paired", _ID, "text", "those subjects, ; -separated"),
 )
 
 BOUTS: tuple[Column, ...] = (
@@ -1034,9 +1056,9 @@ TRAJECTORY: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, CHANGES, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS, DIRECTION_CHANGES,
-    TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS, TRAJECTORY,
-    GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
+    SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
+    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS,
+    TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",

@@ -7,6 +7,7 @@ from __future__ import annotations
 #: here)
 TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "changes.csv",  # C81
+                                "changes_summary.csv",  # C85
                                 "bouts.csv",
                                 "strides.csv",  # E163
                                 "turns.csv", "periods.csv",

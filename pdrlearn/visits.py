@@ -35,6 +35,24 @@ def measure_columns() -> tuple[str, ...]:
     return tuple(name for name, _, kind, _ in SESSIONS if kind in ("number", "integer"))
 
 
+def not_measures() -> tuple[str, ...]:
+    """The number columns of the data dictionary's sessions.csv that hold no one number per session (decision B326):
+    the lists summary.json alone has (``splits_m``, ``split_times_s``, ...) and ids (``schema_version``)."""
+    from pdrlearn.columns import SESSIONS
+
+    return tuple(name for name, unit, kind, text in SESSIONS if kind in ("number", "integer")
+                 and (unit == "-" or "(a list)" in text))
+
+
+def empty_measures(sessions, metrics) -> list[str]:
+    """The names of ``metrics`` no session of sessions.csv has a value of (decision B327: warned, one line, by
+    track-all; the others compared)."""
+    import pandas as pd
+
+    return [m for m in dict.fromkeys(metrics) if m not in sessions
+            or not pd.to_numeric(sessions[m], errors="coerce").notna().any()]
+
+
 def check_measures(metrics, option: str = "change_table(metrics=...)", extra=(), decision: str = "B302"
                    ) -> tuple[str, ...]:
     """``metrics`` as a tuple of names when each is a number column of sessions.csv (:func:`measure_columns`) or one of
@@ -44,12 +62,18 @@ def check_measures(metrics, option: str = "change_table(metrics=...)", extra=(),
 
     from pdrlearn.errors import DataError
 
-    metrics = (metrics,) if isinstance(metrics, str) else tuple(metrics)
+    metrics = tuple(dict.fromkeys((metrics,) if isinstance(metrics, str) else metrics))  # B326: each name once
     valid = dict.fromkeys([*measure_columns(), *extra])
     unknown = [m for m in metrics if m not in valid]
     if not metrics:
         raise DataError(f"{option}: no measure given; name one or more of {', '.join(COMMON_MEASURES)} (decision "
                         f"{decision})")
+    lists = [m for m in metrics if m in not_measures()]
+    if lists:  # decision B326: a list or a version has no change to average
+        raise DataError(f"{option}: {', '.join(repr(m) for m in lists)} "
+                        f"{'is' if len(lists) == 1 else 'are'} not a measure of one number per session (a list of "
+                        f"summary.json, or the version of its keys): leave {'it' if len(lists) == 1 else 'them'} "
+                        f"out; e.g. {', '.join(COMMON_MEASURES)} (decision B326)")
     if unknown:
         near = {m: [v for v in valid if str(m).lower() in v] or difflib.get_close_matches(str(m), valid, 3, 0.6)
                 for m in unknown}
@@ -237,7 +261,8 @@ def _side(rows, visit: str, measures) -> tuple[str, str | None, object]:
                "methods' mix; track every trial with the same --pipeline (decisions C30, C83)")
         return "pipelines", why, None
     row = pd.Series({"path": "; ".join(ok["path"].astype(str)), "paths": ok["path"].astype(str).tolist(),
-                     "pipeline": pipelines[0] if pipelines else None, "duplicate_of": None, "n_trials": len(ok),
+                     "pipeline": pipelines[0] if pipelines else None, "n_trials": len(ok),
+                     "duplicate_of": ok["duplicate_of"].tolist() if "duplicate_of" in ok else [None] * len(ok),  # C84
                      **{m: pd.to_numeric(ok[m], errors="coerce").mean() for m in measures}})  # C83: the trials' mean
     return "ok", "; ".join(reasons) or None, row
 
@@ -382,6 +407,21 @@ def _pair_problem(b_row, v_row, subject_of: dict[str, str], twins: dict[str, lis
     return None
 
 
+def _trials(row) -> list[tuple[str, object]]:
+    """A visit's row as its trials: (path, C20's ``duplicate_of``) of each session averaged (decision C83), or of its
+    one session."""
+    if "paths" in row and isinstance(row["paths"], list):
+        return list(zip(row["paths"], row["duplicate_of"], strict=True))
+    return [(str(row["path"]), row.get("duplicate_of"))]
+
+
+def _copies(b_row, v_row) -> list[tuple[str, str]]:
+    """Decision C84 (C20 with C83): (later trial, baseline trial) for each trial of the later visit that holds the
+    same recording as a trial of the baseline (its ``duplicate_of``)."""
+    base = {p for p, _ in _trials(b_row)}
+    return [(p, d) for p, d in _trials(v_row) if isinstance(d, str) and d in base]
+
+
 def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | None = None):
     """changes.csv from sessions.csv (a DataFrame), or ``None`` when the sessions naming a subject and a visit name
     fewer than two visits (decision C22). Visit names are first made one per visit (:func:`canonical_visits`,
@@ -438,8 +478,8 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
             if problem:
                 status = problem[0]
                 reasons.append(problem[1])
-            elif status == "ok" and v_row.get("duplicate_of") == b_row["path"]:  # decision C20's copy
-                reasons.append(f"{v_row['path']} holds the same recording as {b_row['path']} (duplicate_of)")
+            elif status == "ok":  # decision C20's copy; C84: of each trial averaged
+                reasons += [f"{p} holds the same recording as {d} (duplicate_of)" for p, d in _copies(b_row, v_row)]
             row = {"subject": subject, "group": mine["group"].astype(str).iloc[0], "baseline_visit": base,
                    "visit": visit, "status": status, "reason": "; ".join(reasons) or None,
                    **{f"{k}visit_as_written": _names(mine.loc[mine["visit"] == w, "visit_as_written"])
@@ -469,13 +509,17 @@ CHANGE_KINDS = ("baseline", "change", "change_pct")
 
 
 def pct_change(baseline, later):
-    """Decision C81: 100 x (later - baseline) / baseline, the percent change - the dual-task cost when the visits are
-    the single and the dual task (session 34 trial T1, finding F5: DTC = (dual - single) / single x 100); NaN when the
-    baseline is 0 or missing."""
+    """Decision C81: 100 x (later - baseline) / |baseline|, the percent change - the dual-task cost when the visits
+    are the single and the dual task (session 34 trial T1, finding F5: DTC = (dual - single) / single x 100, a
+    positive single-task value); NaN when the baseline is 0 or missing. C81 amended (review R2): over |baseline|, so a
+    negative measure (``final_x_m``) that rises has a positive change; floats or arrays (a float for floats)."""
     import numpy as np
 
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return float(np.where(baseline != 0, 100.0 * (later - baseline) / baseline, np.nan))
+    b, v = np.asarray(baseline, dtype=float), np.asarray(later, dtype=float)
+    out = np.full(np.broadcast(b, v).shape, np.nan)
+    # C81 amended (review R2): a rise of a negative measure is a positive change; np.divide's where: no 1 / 0
+    np.divide(100.0 * (v - b), np.abs(b), out=out, where=b != 0)
+    return float(out) if out.ndim == 0 else out
 
 
 def _lookalike(subject: str) -> str:
@@ -544,16 +588,23 @@ def change_summary(changes, metrics=None):
                 mean, sd = (d.mean(), d.std()) if len(d) else (float("nan"), float("nan"))
                 low, high = t_interval(mean, sd, len(d))
                 pre = "" if kind == "change" else "pct_"
-                row.update({"n_subjects": len(d)} if kind == "change" else {})
+                row.update({"n_subjects" if kind == "change" else "n_pct_subjects": len(d)})  # C85: both counts
                 row.update({f"mean_{name}": mean, f"sd_{name}": sd, f"{pre}ci95_low": float(low),
                             f"{pre}ci95_high": float(high)})
             rows.append({**row, "n_not_paired": len(unpaired), "not_paired": "; ".join(unpaired) or None})
-    return pd.DataFrame(rows)
+    return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))  # B327: its columns without a measure too
+
+
+#: changes_summary.csv's columns (decisions C23, C81; C85: ``n_pct_subjects``, the subjects of the percent change)
+SUMMARY_COLUMNS = ("visit", "baseline_visit", "measure", "n_subjects", "mean_change", "sd_change", "ci95_low",
+                   "ci95_high", "n_pct_subjects", "mean_pct_change", "sd_pct_change", "pct_ci95_low", "pct_ci95_high",
+                   "n_not_paired", "not_paired")
 
 
 def changes_text(summary):
     """changes_summary.csv as track-all prints it and a batch report shows it (decision C23): per later visit and
-    measure the subjects paired, ``mean change [low, high]`` (the paired 95 % t-interval) and the subjects not
+    measure the subjects paired, ``mean change [low, high]`` (the paired 95 % t-interval), the same of the percent
+    changes with the subjects it covers (C81, C85: ``n % change``, fewer when a baseline is 0) and the subjects not
     paired."""
     import pandas as pd
 
@@ -570,4 +621,5 @@ def changes_text(summary):
                          "mean change [95 % CI]": [cell(*r) for r in zip(
                              summary["mean_change"], summary["ci95_low"], summary["ci95_high"], strict=True)],
                          "mean % change [95 % CI]": [cell(*r) for r in zip(*pct, strict=True)],
+                         "n % change": summary.get("n_pct_subjects", nan),  # C85: a zero baseline has none
                          "not paired": summary["not_paired"].fillna("")})

@@ -551,12 +551,16 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None, me
     so are visit spellings taken as one visit, subject ids across groups and look-alike ids (C28, C32, C33)."""
     import logging
 
-    from pdrlearn.visits import change_summary, change_table, label_warnings, visit_order_guess
+    from pdrlearn.visits import change_summary, change_table, empty_measures, label_warnings, visit_order_guess
 
     changes = change_table(sessions, **({} if metrics is None else {"metrics": metrics}), visit_map=visit_map)
     if changes is None:
         return None, None
     log = logging.getLogger("pdrlearn.cli")
+    empty = [] if metrics is None else empty_measures(sessions, metrics)
+    if empty:  # decision B327: said, not silently left out; the others compared
+        log.warning("--metrics %s: no session has a value of %s, so changes.csv has no columns for %s (decision "
+                    "B327)", ",".join(metrics), ", ".join(empty), "it" if len(empty) == 1 else "them")
     guess = visit_order_guess(changes["baseline_visit"].tolist() + changes["visit"].tolist())
     for line in ([guess] if guess else []) + label_warnings(sessions, visit_map):
         log.warning("%s", line)
