@@ -55,3 +55,19 @@ def test_the_short_contact_line_says_what_it_means_l414():
     assert "running" not in line and "sprinting" not in line
     assert "one walk" in line and "0.69-0.70 s" in line and "most ordinary walks" in line
     assert line.endswith("(decision L414)")
+
+
+def test_place_column_replaces_and_inserts_after_an_anchor_or_before_another():
+    """Review R2 #14: the one helper of add_travel (L412) and add_backward_travel (L224)."""
+    from pdrlearn.track.table_columns import place_column
+
+    t = pd.DataFrame({"a": [1], "direction": ["fwd"], "gap_s": [0.0], "travel": ["x"]})
+    place_column(t, "travel", ["y"], after=("backward_travel",))
+    assert list(t.columns) == ["a", "direction", "gap_s", "travel"] and t["travel"].tolist() == ["y"]
+    place_column(t, "backward_travel", [False], after=("direction",), before=("gap_s",))
+    assert list(t.columns) == ["a", "direction", "backward_travel", "gap_s", "travel"]
+    u = t.drop(columns=["direction", "backward_travel"])
+    place_column(u, "backward_travel", [True], after=("direction",), before=("impossible", "gap_s"))
+    assert list(u.columns) == ["a", "backward_travel", "gap_s", "travel"]
+    place_column(u, "travel", ["z"], after=("backward_travel",))
+    assert list(u.columns) == ["a", "backward_travel", "travel", "gap_s"]
