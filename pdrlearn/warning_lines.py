@@ -40,8 +40,9 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
 
     cut = log_.getEffectiveLevel()  # E154: what the caller lets through; a record below it is collected only
 
-    def let_through(record: logging.LogRecord) -> bool:
-        return record.levelno >= cut or record.levelno < logging.WARNING
+    def let_through(record: logging.LogRecord) -> bool:  # E154 amended (R2): other loggers' records pass untouched
+        ours = record.name == logger or record.name.startswith(logger + ".")
+        return not ours or record.levelno >= cut or record.levelno < logging.WARNING
 
     filtered = [(h, below_warning) for h in ([] if echo else log_.handlers)]
     old_level = log_.level
@@ -102,14 +103,23 @@ def merged_warnings(kept: Iterable[str], logged: Iterable[str],
 #: decision E155: a decision id as the lines name it ("decision B77", "decisions B64, B183", "(D11)")
 _DECISION = re.compile(r"\bdecisions? ((?:[A-Z]{1,2})\d{1,3})\b")
 _BARE_ID = re.compile(r"\b((?:[BCDEGHLSWX])\d{1,3})\b")
+#: decision E168: the lead phrase of a line that names no decision ("no force sensors: ...")
+_LEAD = re.compile(r"([a-z]+(?: [a-z]+){0,3}): ")
 
 
 def warning_code(line: str) -> str:
-    """Decision E155: a short stable code of a warning line, the decision it comes from: the first id after
-    "decision(s)" (``decision B77`` -> ``B77``), else the first bare decision id it names (``L39``), else
-    ``"other"``. The text stays the message; the code is for a harness to match or allow-list."""
-    m = _DECISION.search(line) or _BARE_ID.search(line)
-    return m.group(1) if m else "other"
+    """Decisions E155, E168: a short stable code of a warning line, the decision it comes from: the LAST
+    "decision(s) X" it names (its first id: ``decisions B64, B183`` -> ``B64``; a line quoting the decision it was
+    checked against before its own, ``... decision L73 ... (decision L414)``, is ``L414``), else the last bare
+    decision id (``L39``), else the line's lead phrase of one to four lower-case words before ``: ``
+    (``no force sensors: ...`` -> ``no-force-sensors``), else ``"other"``. A line names its decision last,
+    ``(decision X)``, to be coded by it. The text stays the message; the code is for a harness to match or
+    allow-list."""
+    found = _DECISION.findall(line) or _BARE_ID.findall(line)
+    if found:
+        return found[-1]
+    lead = _LEAD.match(line)
+    return lead.group(1).replace(" ", "-") if lead else "other"
 
 
 #: decision E155: the version of summary.json's (and ``--json``'s) keys, ``track``'s and ``run``'s. Raise it when a

@@ -50,3 +50,13 @@ def test_undeclared_counts_and_mg_name_the_declaration_that_reads_them_b314(tmp_
         check_units(spec, acc / G * 1000, "f.csv", t=t)
     with pytest.raises(DataError, match=r"--acc-unit \(m/s2 \| g \| mg\) or \"1/2048 g\" \(the unit of one count"):
         import_csv(_export(tmp_path, np.round(acc / G * 2048), np.zeros_like(acc)), columns=COLUMNS, time_unit="us")
+
+
+def test_a_wrong_declaration_suggests_the_unit_of_the_raw_values_b314(tmp_path):
+    """Review R2 #11: ``--acc-unit "2048 g"`` on counts at 2048 per g suggested "1/41165425 g", worked out from the
+    values the wrong declaration had already converted; the file's own values say "1/2048 g"."""
+    acc, gyr = _imu(3000, seed=8260)
+    path = _export(tmp_path, np.round(acc / G * 2048), np.round(np.rad2deg(gyr) * 16.4))
+    with pytest.raises(DataError) as err:
+        import_csv(path, columns=COLUMNS, time_unit="us", units={"acc": "2048 g", "gyro": "1/16.4 deg/s"})
+    assert '"1/2048 g"' in str(err.value) and "41165425" not in str(err.value)

@@ -121,6 +121,25 @@ def test_schema_version_and_warning_codes_e155(sessions, tmp_path, capsys):
     assert warning_code("no id here") == "other"
 
 
+def test_each_warning_of_the_gaitmap_toe_off_track_has_its_own_code_e168():
+    """Review R2 #5: ``track gaitmap_walk4x10_left --toe-off``'s six lines were coded L39, other, L39, other, L285,
+    L73: the "no model" and altitude lines shared L39, the L414 line took the L73 it quotes first."""
+    from pdrlearn.kernels.altitude_check import integrated_altitude_check
+    from pdrlearn.track.plasys import NO_MODEL_WARNING, NO_WAIST_HEADING
+    from pdrlearn.track.toeoff import stance_range_warning
+
+    altitude, _ = integrated_altitude_check(np.array([0.2, 0.0, 0.15, 0.3]))
+    lines = [NO_MODEL_WARNING, "no force sensors: stance from the accelerometer/gyroscope detector", altitude,
+             NO_WAIST_HEADING,
+             "toe-off: median stance 54.1 % of the gait cycle over 29 strides, under 55 % (walking: ~60 %, more when "
+             "slower; decisions L285, L315): the toe-off reads early",
+             stance_range_warning({"median_stance_time_s": 0.635})]
+    codes = [warning_code(w) for w in lines]
+    assert codes == ["E153", "no-force-sensors", "L69", "no-waist-unit", "L285", "L414"]
+    assert len(set(codes)) == len(codes)
+    assert warning_code("checked against decision L73 there (decision L414)") == "L414"  # the last one named
+
+
 def test_strict_exits_3_when_the_track_warned_and_writes_the_outputs_e156(sessions, tmp_path, capsys):
     assert main(["track", str(sessions["clean"]), "--model", "oracle", "--strict", "--json",
                  "--out", str(tmp_path / "ok")]) == 0

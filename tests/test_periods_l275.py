@@ -175,3 +175,21 @@ def test_per_in_m_is_refused_as_metres_b305(shift, tmp_path, capsys, text):
     assert len(err) == 1 and "--per" in err[0] and "min" in err[0] and "Traceback" not in err[0]
     assert not out.exists()
     assert parse_per("5min") == 300.0
+
+
+@pytest.mark.parametrize("text", ["10M", "m", " M "])
+def test_per_in_metres_of_any_spelling_and_too_short_periods_are_one_line_b329(shift, tmp_path, capsys, text):
+    """Review R2 #13: `--per 10M` and a bare `--per m` got the generic line, not B305's metres line; `--per 0.0001`
+    wrote 367,801 period rows."""
+    with pytest.raises(DataError, match="'m' reads as metres"):
+        parse_per(text)
+    for short in ("0.0001", "0.05s", "0.001min"):
+        with pytest.raises(DataError, match=r"shorter than a step; give --per 0.1s or more \(decision B329\)"):
+            parse_per(short)
+    assert parse_per("0.1") == 0.1
+    out = tmp_path / "out"
+    capsys.readouterr()
+    assert main(["track", str(shift / "walk"), "--per", "0.0001", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "decision B329" in err[0] and "Traceback" not in err[0]
+    assert not out.exists()

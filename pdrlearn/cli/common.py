@@ -27,7 +27,9 @@ def write_table_csv(df, path) -> None:
     """Decision E164: ``df`` as track / run write their tables: floats at :data:`CSV_FLOAT_FORMAT`'s 10 significant
     digits, except a float column whose largest finite magnitude reaches :data:`WIDE_FLOAT_MIN`, written with
     :data:`WIDE_FLOAT_DECIMALS` fixed decimals (trailing zeros dropped): 10 digits of an epoch time in seconds
-    (1733400005.151) are whole seconds. Columns below the bound are written as before, byte for byte."""
+    (1733400005.151) are whole seconds; in such a column each value is :func:`wide_float_text`'s (E164 amended:
+    ``inf`` stays ``inf``, values under the bound keep their 10 digits). Columns below the bound are written as
+    before, byte for byte."""
     import numpy as np
 
     wide = {}
@@ -36,10 +38,21 @@ def write_table_csv(df, path) -> None:
             v = np.asarray(df[c], dtype=float)
             ok = np.isfinite(v)
             if ok.any() and np.abs(v[ok]).max() >= WIDE_FLOAT_MIN:
-                txt = np.full(v.shape, "", dtype=object)
-                txt[ok] = [f"{x:.{WIDE_FLOAT_DECIMALS}f}".rstrip("0").rstrip(".") for x in v[ok].tolist()]
-                wide[c] = txt
+                wide[c] = [None if x != x else wide_float_text(x) for x in v.tolist()]  # None: to_csv's NaN
     (df.assign(**wide) if wide else df).to_csv(path, index=False, float_format=CSV_FLOAT_FORMAT)
+
+
+def wide_float_text(x: float) -> str:
+    """Decision E164 (amended, review R2): one value of a wide float column: NaN empty (as ``to_csv`` writes it),
+    ``inf`` / ``-inf`` as ``to_csv`` writes them, a magnitude of :data:`WIDE_FLOAT_MIN` or more with
+    :data:`WIDE_FLOAT_DECIMALS` fixed decimals (trailing zeros dropped), any other value at
+    :data:`CSV_FLOAT_FORMAT` (a small non-zero value stays non-zero: ``1e-09``, not ``0`` / ``-0``). The lean
+    runtime's ``_num`` writes the same."""
+    if x != x:
+        return ""
+    if abs(x) >= WIDE_FLOAT_MIN and abs(x) != float("inf"):
+        return f"{x:.{WIDE_FLOAT_DECIMALS}f}".rstrip("0").rstrip(".")
+    return CSV_FLOAT_FORMAT % x
 
 
 def json_default(o):

@@ -201,7 +201,8 @@ WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the 
                           "recording_start or a date-time import; decision L299).")
 
 PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv (e.g. 1h, 30min, 90s, 900; 'm' is "
-                       "refused as it reads as metres: write min for minutes, decision B305): the whole session's "
+                       "refused as it reads as metres: write min for minutes, decision B305; 0.1 s at least, B329): "
+                       "the whole session's "
                        "track cut into periods from the recording's start, the last one shorter and marked partial; "
                        "distance, steps, walking / between-steps / no-step / no-data time, floors, bouts, "
                        "turns, the position sigma at the period's end (decisions L275, L277). With --window: the "

@@ -966,7 +966,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             opt = _UNIT_OPTION.get(kind, "--mapping units")
             try:
                 check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
-                            declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})", t=t)
+                            declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})", t=t, factor=factor)
             except DataError as exc:
                 removed = gravity_removed(stream.values, where, t) if kind == "acc" else None
                 if removed is not None:  # decision B164: name the phone files that hold gravity

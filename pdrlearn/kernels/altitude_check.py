@@ -55,7 +55,7 @@ def integrated_altitude_check(dz: np.ndarray, levelled: bool = True, raw_dz: np.
            f"{int(kept.sum())} of {len(dz)} strides kept a height change >= {LEVEL_DZ_M:.2f} m "
            f"{'(L39 zeroes the others)' if levelled else '(streamed: no L39 level rule, each keeps its own)'}; "
            f"{_ACCURACY}, so it may be drift, not stairs; a model with terrain classes (`pdrlearn train`) "
-           "decides which strides climb")
+           "decides which strides climb (decision L69)")
     return msg, info
 
 

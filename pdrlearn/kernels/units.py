@@ -127,7 +127,7 @@ def count_unit(rest_norm: float) -> str:
 
 
 def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None,
-                t: np.ndarray | None = None) -> None:
+                t: np.ndarray | None = None, factor: float = 1.0) -> None:
     """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
 
     ``declare`` replaces the meta.json way of declaring the unit in the messages (``pdrlearn import``: its
@@ -138,7 +138,9 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
     full scale is 2000 deg/s = 34.9 rad/s (thesis Tables 5, 13); the Earth's field is 25-65 uT;
     ambient pressure is 300-1100 hPa (thesis Table 17). The accelerometer's magnitude is judged on its quietest
     windows of the timestamps ``t`` (s; decision B78, :func:`quiet_acc_norm`), so that vigorous motion (running)
-    does not look like a unit mistake.
+    does not look like a unit mistake. ``factor``: the declared unit's factor the file's values were multiplied
+    by (``import --acc-unit``); the counts-per-g hint and the suggested declaration are worked out from the file's
+    own values (decision B314 amended, review R2).
     """
     if values.size == 0:
         return
@@ -162,7 +164,7 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
                 + _or(declare, f"declare \"units\": {{\"{spec.name}\": \"g\"}} in meta.json")
             )
         if whole > 200 or med > 200:
-            rest = med if t is not None else whole
+            rest = (med if t is not None else whole) / abs(factor)  # B314 amended: the file's raw values
             guess = count_unit(rest)  # decision B314: the declaration that reads the file as it is
             raise DataError(
                 f"{where}: median |acc| is {whole if whole > 200 else med:.0f}, which looks like raw counts or mm/s^2; "

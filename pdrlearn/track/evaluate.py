@@ -534,12 +534,9 @@ def add_backward_travel(steps: pd.DataFrame) -> None:
     flag = backward_travel(steps)
     if flag is None:
         return
-    if "backward_travel" in steps:
-        del steps["backward_travel"]
-    cols = list(steps.columns)
-    at = (cols.index("direction") + 1 if "direction" in cols
-          else next((cols.index(c) for c in ("impossible", "gap_s", "unit") if c in cols), len(cols)))
-    steps.insert(at, "backward_travel", flag)
+    from pdrlearn.track.table_columns import place_column
+
+    place_column(steps, "backward_travel", flag, after=("direction",), before=("impossible", "gap_s", "unit"))
 
 
 def backward_strides(steps: pd.DataFrame) -> int | None:

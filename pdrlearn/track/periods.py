@@ -56,20 +56,30 @@ PERIOD_COLUMNS = ("session", "subject", "period", "start_s", "end_s", "duration_
 #: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
 PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
+#: decision B329: the shortest --per (s). A period is a row of steps and strides; a step lasts 0.2 s or more even at
+#: a 300 steps/min sprint cadence, so a shorter period holds no whole step, and 0.1 s is 10 samples at the 100 Hz
+#: the sessions are recorded at. A fixed floor is checked before any session is read (one line, nothing written).
+PER_MIN_S = 0.1
+
 
 def parse_per(text: str | None) -> float | None:
     """``"1h"`` / ``"30min"`` / ``"90s"`` / ``"3600"`` -> seconds; None for None. One :class:`DataError` line for
-    anything else (decision L277)."""
+    anything else (decision L277), for metres (``5m``, ``10M``, a bare ``m``: B305, B329) and for a period under
+    :data:`PER_MIN_S` (B329)."""
     if text is None:
         return None
-    metres = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*m\s*", str(text))
+    metres = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)?\s*[mM]\s*", str(text))
     if metres:  # decision B305: "5m" reads as 5 metres next to the metres the tool prints; --per is a time
-        raise DataError(f"--per {text!r}: --per is a time, and 'm' reads as metres; give {metres.group(1)}min for "
-                        f"minutes (or {metres.group(1)}s, {metres.group(1)}h)")
+        n = metres.group(1) or "N"
+        raise DataError(f"--per {text!r}: --per is a time, and 'm' reads as metres; give {n}min for "
+                        f"minutes (or {n}s, {n}h)")
     m = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*(s|min|h)?\s*", str(text))
     per = float(m.group(1)) * PER_UNITS[m.group(2) or "s"] if m else math.nan
     if not (math.isfinite(per) and per > 0):
         raise DataError(f"--per {text!r}: not a positive period; {PER_USAGE}")
+    if per < PER_MIN_S:  # decision B329
+        raise DataError(f"--per {text!r}: {per:g} s is shorter than a step; give --per {PER_MIN_S:g}s or more "
+                        "(decision B329)")
     return per
 
 

@@ -135,7 +135,7 @@ MODEL_NEEDED = ("{what}: pass model= a trained UserModel or its directory (CLI -
 NO_MODEL_WARNING = ("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
                     "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass model= a "
                     "trained model (CLI --model DIR; `pdrlearn train`) or model='oracle' (--model oracle, labelled "
-                    "sessions) for M3")
+                    "sessions) for M3 (decision E153)")
 
 
 def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3,

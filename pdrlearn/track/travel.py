@@ -73,10 +73,9 @@ def add_travel(steps: pd.DataFrame) -> None:
     label = travel_labels(steps)
     if label is None:
         return
-    if "travel" in steps:
-        del steps["travel"]
-    cols = list(steps.columns)
-    steps.insert(cols.index("backward_travel") + 1 if "backward_travel" in cols else len(cols), "travel", label)
+    from pdrlearn.track.table_columns import place_column
+
+    place_column(steps, "travel", label, after=("backward_travel",))
 
 
 def direction_change_table(steps: pd.DataFrame) -> pd.DataFrame | None:
