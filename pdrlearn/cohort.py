@@ -80,6 +80,8 @@ class JobResult:
     #: CPU time of the process running the job while it ran (all its threads), s.
     cpu_seconds: float = 0.0
     extra: dict = field(default_factory=dict)
+    #: a failed job's :class:`pdrlearn.errors.PdrlearnError` exit code (4: no strides, B318; decision B330), else None
+    exit_code: int | None = None
 
 
 #: seconds to wait for a given Dask scheduler before the one-line "cannot reach" error
@@ -238,7 +240,7 @@ def _guarded(fn: Callable, name: str, arg, threads: int | None = 1,
             value = fn(arg)
         return done(ok=True, value=value)
     except PdrlearnError as exc:
-        return done(ok=False, error=str(exc), extra=_job_extra(exc))
+        return done(ok=False, error=str(exc), extra=_job_extra(exc), exit_code=getattr(exc, "exit_code", None))
     except OSError as exc:
         if exc.errno in DISK_FULL_ERRNOS:  # decision B151: every later job would fail alike; the batch stops
             raise

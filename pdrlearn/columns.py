@@ -325,7 +325,15 @@ SESSIONS: tuple[Column, ...] = (
     ("time_span_s", "s", "number", "the recording of the tracked unit from the session start, or the --window: "
                                    "time_walking_s + time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
     ("steady_trim", "count", "integer", "--steady-trim: the strides left out at each end of each walking bout from "
-                                        "gait speed, cadence, the stride medians and the CVs (L415; 0: none)"),
+                                        "steady_gait_speed_mps, cadence, the stride medians and the CVs (L415; "
+                                        "0: none); distance_m, walking_time_s and gait_speed_mps keep every "
+                                        "stride (L426)"),
+    ("steady_distance_m", "m", "number", "--steady-trim N > 0: the distance of the strides left in (each bout's "
+                                         "first / last N out); empty at 0 (L426)"),
+    ("steady_time_s", "s", "number", "--steady-trim N > 0: the walking time of the strides left in; empty at 0 "
+                                     "(L426)"),
+    ("steady_gait_speed_mps", "m/s", "number", "steady_distance_m / steady_time_s (--steady-trim N > 0; empty at "
+                                               "0, L426)"),
     ("common_span_cut_s", "s", "number", "the seconds of the walk the track does not cover: both units' "
                                          "recordings together (when they start or stop over 1 s apart) less the "
                                          "tracked span - a cut to the time both units (or every file) cover "

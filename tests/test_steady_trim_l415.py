@@ -52,8 +52,10 @@ def test_steady_trim_leaves_each_bouts_ends_out_l415(walk, capsys):
     # the stride medians and the walking time over the strides left: 3 fewer with a stride time at the start (the
     # first stride of a bout has none) and 3 at the end
     assert trim["n_stride_times"] == base["n_stride_times"] - 5
-    assert trim["walking_time_s"] < base["walking_time_s"] - 4 * base["median_stride_time_s"]
-    assert trim["gait_speed_mps"] > base["gait_speed_mps"]  # the speed-up and the slow-down are out
+    # L426: the trimmed time and speed under their own keys; walking_time_s / gait_speed_mps keep every stride
+    assert trim["steady_time_s"] < base["walking_time_s"] - 4 * base["median_stride_time_s"]
+    assert trim["steady_gait_speed_mps"] > base["gait_speed_mps"]  # the speed-up and the slow-down are out
+    assert trim["walking_time_s"] == base["walking_time_s"] and base["steady_time_s"] is None
     assert trim["n_cv_strides"] < base["n_cv_strides"]
     s0, s3 = steps0["steady"].astype(bool).to_numpy(), steps3["steady"].astype(bool).to_numpy()
     assert not (s3 & ~s0).any()  # the trim only leaves strides out

@@ -48,7 +48,7 @@ from pdrlearn.cohort import (
     session_warning,
     user_sessions,
 )
-from pdrlearn.errors import DataError, shell_quote
+from pdrlearn.errors import DataError, NoStridesError, shell_quote
 
 if TYPE_CHECKING:  # pandas is imported where it is used: `pdrlearn --version/--help` stay light (C14)
     import pandas as pd
@@ -607,14 +607,22 @@ def _reusable(out: Path, rels: list[str], keys: list[str], hashes: list[dict]
     return adopted, {rel: hit for rel, hit in hits.items() if hit is not None}
 
 
+def _interrupted_line(n_done: int) -> str:
+    """Cohort C41, decision B331: what an interrupted ``track-all`` keeps - the sessions done, in a temporary folder
+    beside OUT (OUT itself is not written), only when there are some."""
+    if not n_done:
+        return "track-all: interrupted before any session finished; no session is kept"
+    return (f"track-all: interrupted after {n_done} session(s); they are kept in a temporary folder beside OUT (OUT "
+            "itself is not written): run the same command with --resume to go on from there (decision C41)")
+
+
 @contextmanager
 def _resumable(done: list[int]):
     """Cohort C41: a Ctrl-C of the batch says that the sessions done so far are kept for ``--resume``."""
     try:
         yield
     except KeyboardInterrupt:
-        typer.echo(f"track-all: interrupted after {done[0]} session(s); they are kept: run the same command with "
-                   "--resume to go on from there (decision C41)", err=True)
+        typer.echo(_interrupted_line(done[0]), err=True)
         raise
 
 
@@ -845,14 +853,14 @@ def track_all(
     visit is changes.csv's, meta.json's in visit_as_written (C82). OUT/run.json records the pdrlearn version, the
     options and each session's time (decision C18). Sessions holding identical sensor data are warned
     (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>.json, the subject its meta.json names
-    (every session needs one, checked first; decision C26). A session that cannot be tracked is reported and
-    skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
+    (every session needs one, checked first; decision C26). A session that cannot be tracked is reported as
+    failed (exit 1). Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
     concerns. --resume reuses the sessions an interrupted (killed, Ctrl-C) or earlier run tracked from the same input
     files, options, model and code, tracks the rest, and writes the tables an uninterrupted run writes (decision C41).
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
     when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
-    nothing is written.
+    nothing is written; 4 when every session failed for having no stride (B318, B330).
 
     Examples:
 
@@ -933,7 +941,10 @@ def track_all(
         _batch_warnings([(rel, str(p)) for rel, p in zip(rels, found, strict=True)], results)
         failed = [r for r in results if not r.ok]
         if len(failed) == len(results):
-            raise DataError(f"every session failed; first error: {failed[0].name}: {failed[0].error}")
+            first = f"every session failed; first error: {failed[0].name}: {failed[0].error}"
+            if all(r.exit_code == NoStridesError.exit_code for r in failed):  # decision B330: a data outcome (B318)
+                raise NoStridesError(first)
+            raise DataError(first)
         dup, same = _duplicates(rels, results, found)
         rows = [_session_row(rel, session_group(rel, group_depth), r, str(p))
                 for rel, r, p in zip(rels, results, found, strict=True)]

@@ -715,6 +715,15 @@ def _few_straight(summary: dict) -> str:
     return f" (over {n} stride{'s' if n != 1 else ''} only, under the {MIN_STRAIGHT_FOR_RANGE} L95 judges; L197)"
 
 
+def _steady_clause(summary: dict) -> str:
+    """Decision L426: the steady speed of ``--steady-trim N`` with the distance and time it is computed from."""
+    speed, dist, t = (summary.get(k) for k in ("steady_gait_speed_mps", "steady_distance_m", "steady_time_s"))
+    if speed is None or dist is None or t is None:
+        return ""
+    return (f", steady speed {speed:.2f} m/s ({dist:.2f} m in {t:.2f} s: --steady-trim "
+            f"{summary.get('steady_trim')}'s bout ends out)")
+
+
 def gait_line(summary: dict, streamed: bool | None = None) -> str:
     """The console's gait line of ``track`` and ``run`` (decisions L79, W70, E48, E51): gait speed, distance and
     walking time (and the speed outside the pauses, L110), the straight strides' speed and the cadence when the
@@ -731,7 +740,7 @@ def gait_line(summary: dict, streamed: bool | None = None) -> str:
             # decision L110: the speed outside the pauses, when some pause lies inside the walking time
             + (f"; {summary['walking_speed_mps']:.2f} m/s in the {moving:.2f} s outside pauses"
                if moving is not None and summary.get("walking_speed_mps") is not None and moving < wt - 1e-9
-               else "") + ")"
+               else "") + ")" + _steady_clause(summary)
             + (f", straight strides {straight:.2f} m/s{_few_straight(summary)}" if straight is not None else "")
             + (f", cadence {cad:.1f} steps/min" if cad is not None else "")
             # decision L204: the streamed strides' cadence needs their initial contacts (E51's option)

@@ -86,7 +86,10 @@ def register(app: typer.Typer) -> None:
         impacts differ over 3 x in sharpness (a soft, e.g. prosthetic, foot: its step times, stance and double
         support are not comparable, L318) and a backward walk (L329); the warnings are in gait_summary.json's
         "warnings". Stride lengths leave out the half strides that start and end each walking bout (L317); stance
-        time per foot is given with its asymmetry (L327).
+        time per foot is given with its asymmetry (L327). A pair whose meta.json "foot" (import --foot) contradicts
+        the LEFT / RIGHT order is refused (B321), as are two feet whose rates differ by over 10 % or whose spans
+        overlap for under 50 % of the shorter (B322); with no "foot" recorded one warning says the side is taken from
+        the argument order.
 
         Examples:
 

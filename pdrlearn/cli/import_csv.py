@@ -74,8 +74,10 @@ def import_command(
                                   "inferred from the sampling rate, decision B22)."),
     rate: float = typer.Option(None, "--rate", help="The time column holds sample numbers (0, 1, 2 ...) at this "
                                "rate in Hz (decision B39; consecutive integers are refused without it or "
-                               "--time-unit); with date-times that lost their milliseconds, the rows at this "
-                               "rate, placed by them (B84, B111; refused on date-times with milliseconds)."),
+                               "--time-unit); with no time column at all (acc_x ... gyr_z only, gaitmap / "
+                               "NilsPod style), the rows are at this rate from t = 0 (B323); with date-times "
+                               "that lost their milliseconds, the rows at this rate, placed by them (B84, B111; "
+                               "refused on date-times with milliseconds)."),
     time_format: str = typer.Option(None, "--time-format", help="Format of a date-time text column, e.g. "
                                     "'%d/%m/%Y %H:%M:%S' (needed when day and month cannot be told apart, B43)."),
     time_zone: str = typer.Option(None, "--time-zone", help="Zone of date-time text without one, e.g. +01:00 or "

@@ -283,7 +283,8 @@ def track(
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
     strict: bool = typer.Option(False, "--strict", help="Exit with code 3 when the track gave any warning (the "
-                                "outputs are still written; summary.json info.warnings lists them; decision E156)."),
+                                "outputs are still written; summary.json info.warnings lists them; decision E156). "
+                                "Without it: exit 4 when the session holds no stride (B318), 2 on bad input."),
 ) -> None:
     """Track a session: per-step table, trajectory, path figure and summary (errors vs ground truth).
 

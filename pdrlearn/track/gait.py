@@ -466,7 +466,34 @@ def stance_share_warning(steps: pd.DataFrame) -> str | None:
             "median_stance_time_s, median_swing_time_s and median_stance_pct are not measured values here")
 
 
+#: decision L426: the summary's walking time / gait speed keys kept over every stride under --steady-trim (their
+#: documented meanings: gait_speed_mps = distance_m / walking_time_s); the trimmed ones go to STEADY_KEYS
+WHOLE_WALK_KEYS = ("walking_time_s", "gait_speed_mps", "walking_time_no_pauses_s", "walking_speed_mps")
+#: decision L426: ``--steady-trim N``'s own keys (None at N 0): the distance and time of the strides left in, and
+#: steady_gait_speed_mps = steady_distance_m / steady_time_s
+STEADY_KEYS = ("steady_distance_m", "steady_time_s", "steady_gait_speed_mps")
+
+
 def gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> dict:
+    """:func:`trimmed_gait_summary` under the steady-trim in force, with decision L426's split: the
+    :data:`WHOLE_WALK_KEYS` over every stride (as at ``--steady-trim 0``) and the trimmed strides' distance, time
+    and speed in :data:`STEADY_KEYS` (None when no trim is in force)."""
+    from pdrlearn.track.steady import steady_trim, steady_trim_set
+
+    out = trimmed_gait_summary(steps, cadence_from)
+    steady = dict.fromkeys(STEADY_KEYS)
+    if steady_trim() > 0:  # decision L426: the trimmed speed and time under their own keys
+        speed, time_s = out["gait_speed_mps"], out["walking_time_s"]
+        steady = {"steady_distance_m": speed * time_s if speed is not None else (0.0 if time_s == 0 else None),
+                  "steady_time_s": time_s, "steady_gait_speed_mps": speed}
+        with steady_trim_set(0):
+            whole = trimmed_gait_summary(steps, cadence_from)
+        out.update({k: whole[k] for k in WHOLE_WALK_KEYS})
+    out.update(steady)
+    return out
+
+
+def trimmed_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> dict:
     """Medians over the strides that have them: ``median_stride_time_s``, ``median_cadence_spm``,
     ``median_speed_mps`` and ``n_stride_times`` (how many strides have a stride time); decision L79 adds
     ``walking_time_s``, ``gait_speed_mps`` (distance / walking time: the clinical walking speed),

@@ -3,7 +3,9 @@ out of the steady measures (``track --steady-trim N``).
 
 The rows of a bout are :func:`pdrlearn.track.clinical.bout_rows`' (the rows between pauses and long data gaps,
 the walking bouts ``n_walking_bouts`` counts). With N > 0 the first N and the last N rows of each bout are left out
-of the summary's gait speed, walking time, cadence, stride time / stride length / speed medians
+of the summary's steady gait speed and time (decision L426: ``steady_gait_speed_mps`` / ``steady_time_s`` /
+``steady_distance_m``; ``gait_speed_mps`` and ``walking_time_s`` stay the whole walk's), cadence, stride time /
+stride length / speed medians
 (:func:`pdrlearn.track.gait.gait_summary`, :func:`pdrlearn.track.evaluate.median_stride_length`) and of the CV
 strides (:func:`pdrlearn.track.clinical.steady_rows`: ``stride_time_cv_pct``, ``stride_length_cv_pct``,
 ``n_cv_strides``, the per-bout CVs of bouts.csv). The speed-up from standing and the slow-down to a stop are no
