@@ -23,7 +23,7 @@ def test_route_side_parses_signed_metres():
 
 
 @pytest.mark.parametrize(("spec", "message"), [("side:0", "non-zero"), ("side:x", "not a number"),
-                                               ("side:nan", "positive"), ("side", "takes 1 value"),
+                                               ("side:nan", "finite"), ("side", "takes 1 value"),
                                                ("side:2:3", "takes 1 value")])
 def test_route_side_refuses_bad_items_in_one_line(spec, message):
     with pytest.raises(DataError, match=message) as err:

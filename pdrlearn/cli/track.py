@@ -828,11 +828,9 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
                             storey_height_m=o.get("storey_height_m", 3.0))
-    from pdrlearn.track.steady import steady_flags
+    from pdrlearn.track.steady import add_steady_column
 
-    flags = steady_flags(result.steps)  # decision L415: steps.csv says which strides the CVs are taken over
-    if flags is not None:
-        result.steps["steady"] = flags
+    add_steady_column(result.steps)  # decision L415: steps.csv says which strides the CVs are taken over
     from pdrlearn.track.periods import time_accounting
 
     unit = tracked_unit(pipeline)

@@ -23,7 +23,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
     from pdrlearn.track.evaluate import track_summary
     from pdrlearn.track.periods import time_accounting
-    from pdrlearn.track.steady import steady_flags
+    from pdrlearn.track.steady import add_steady_column
     from pdrlearn.track.units import tracked_unit
     from pdrlearn.warning_lines import machine_summary
 
@@ -32,9 +32,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     result = dataclasses.replace(result, steps=result.steps.copy(), info=dict(result.info))  # the caller's untouched
     bouts = detected_bouts(result.steps, None, **session_key(session), leg_m=session_leg_m(session))  # L124, L165
     summary = track_summary(result, session, pipeline=pipeline, bout_table=bouts)  # C13, C14: TrackResult.summary
-    flags = steady_flags(result.steps)  # decision L415, as track's steps.csv
-    if flags is not None:
-        result.steps["steady"] = flags
+    add_steady_column(result.steps)  # decision L415, as track's steps.csv
     summary.update(time_accounting(result, session, tracked_unit(pipeline)))  # decision L275
     summary = machine_summary(summary, [], session.where)  # decisions E154, E155
     tracked = {"session": session, "result": result, "summary": summary, "pipeline": pipeline,

@@ -83,6 +83,17 @@ def _sorted_order(steps: pd.DataFrame) -> np.ndarray:
     return steps["start_s"].reset_index(drop=True).sort_values(kind="stable").index.to_numpy()
 
 
+def add_steady_column(steps: pd.DataFrame) -> None:
+    """Decision L415, in place: ``steps["steady"]`` (:func:`steady_flags`) before L97's tail of a foot table (after
+    ``sideways``, else before ``stride_time_s``: the tail stays last, as ``run`` and ``track --streaming`` write it);
+    nothing for a table without stride times."""
+    from pdrlearn.track.table_columns import place_column
+
+    flags = steady_flags(steps)
+    if flags is not None:
+        place_column(steps, "steady", flags, after=("sideways",), before=("stride_time_s",))
+
+
 def steady_flags(steps: pd.DataFrame) -> np.ndarray | None:
     """Decision L415: steps.csv's ``steady`` column - (rows,) bool in the table's own row order, True for the strides
     the stride-time and stride-length CVs are taken over (:func:`pdrlearn.track.clinical.steady_rows` under the
