@@ -20,3 +20,15 @@ def whole_and_parts(monkeypatch, route, user, rate_hz: float, seed: int):
     for k in whole.streams:
         assert np.array_equal(whole.streams[k].values, parts.streams[k].values), k
     return whole, parts
+
+
+def straight_walk(root, uid: int, metres: float = 40.0):
+    """A fresh simulated user ``uid`` walking ``metres`` between two 3 s stands at 100 Hz (pendulum bounce), written
+    to ``root / f"u{uid}"``; returns ``root`` (the steady-trim tests of session 34)."""
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import Stand, Straight, UserProfile
+
+    s = simulate_path([Stand(3), Straight(metres), Stand(3)], UserProfile.from_seed(uid), speed="normal",
+                      rate_hz=100, seed=uid, bounce="pendulum", name=f"u{uid}")
+    write_session(s, root / f"u{uid}")
+    return root

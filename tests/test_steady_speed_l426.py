@@ -10,18 +10,13 @@ import re
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.io import write_session
-from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
+from tests.sim_helpers import straight_walk
 
 
 @pytest.fixture(scope="module")
 def walk(tmp_path_factory):
     """A fresh simulated user (8280) walking 40 m between two stands, at 100 Hz."""
-    root = tmp_path_factory.mktemp("l426")
-    s = simulate_path([Stand(3), Straight(40), Stand(3)], UserProfile.from_seed(8280), speed="normal", rate_hz=100,
-                      seed=8280, bounce="pendulum", name="u8280")
-    write_session(s, root / "u8280")
-    return root
+    return straight_walk(tmp_path_factory.mktemp("l426"), 8280)
 
 
 @pytest.mark.parametrize("trim", ["0", "3"])
