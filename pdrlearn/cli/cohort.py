@@ -700,10 +700,9 @@ def combined_strides(out: Path, rows: list[dict], inputs: dict[str, Path]) -> pd
     order (:func:`pdrlearn.track.pooled.session_strides`), each row led by its session's ``path``, ``visit``, the
     session's name, its ``foot`` (meta.json of ``inputs[path]``, L260's keys; empty where not known), ``turn_deg`` and
     ``is_turn`` (the session's turns.csv)."""
-    import json
-
     import pandas as pd
 
+    from pdrlearn.textfile import read_json
     from pdrlearn.track.bilateral import session_foot
     from pdrlearn.track.pooled import STRIDE_KEYS, session_strides
 
@@ -717,8 +716,8 @@ def combined_strides(out: Path, rows: list[dict], inputs: dict[str, Path]) -> pd
             continue
         turns = pd.read_csv(where / "turns.csv") if (where / "turns.csv").is_file() else None
         try:
-            meta = json.loads((Path(inputs[row["path"]]) / "meta.json").read_text())
-        except (OSError, ValueError, KeyError):
+            meta = read_json(Path(inputs[row["path"]]) / "meta.json")  # decision B221: UTF-8 under any locale
+        except (OSError, ValueError, KeyError, DataError):
             meta = {}
         parts.append(session_strides(steps, turns, path=row["path"], visit=row.get("visit"),
                                      session=row.get("session"), foot=session_foot(meta if isinstance(meta, dict)
