@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from pdrlearn.kernels.barometer import STAIR_CLIMB_MIN_M, relative_altitude
+from pdrlearn.kernels.units import STANDARD_GRAVITY
 
 #: decision W231: a pause longer than this (s) has its ride told from its drift; the change of a shorter pause counts
 #: whole, as W158 (a storey's drift within it: the weather's 0.3 hPa/h, ~0.04 m per minute, decision S4 / L172)
@@ -149,7 +150,7 @@ def ride_vibration(t: np.ndarray, acc: np.ndarray, a: float, b: float) -> float:
     med = float(np.median(mag))
     if not med > 0:
         return float("nan")
-    mag = mag * (9.80665 / med)  # the specific force of a standing unit is 1 g
+    mag = mag * (STANDARD_GRAVITY / med)  # the specific force of a standing unit is 1 g
     n_win = max(int((tt[-1] - tt[0]) // VIBRATION_WINDOW_S), 1)
     edges = tt[0] + (tt[-1] - tt[0]) * np.arange(n_win + 1) / n_win
     sds = []

@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from pdrlearn.kernels.units import STANDARD_GRAVITY as G  # m/s^2, the unit conversion's (decision D4)
+
 #: decision W363: a flight phase's accelerometer magnitude is under this (g; free fall reads 0 g; room for the foot's
 #: own acceleration relative to the falling body)
 FLIGHT_MAX_G = 0.3
 #: decision W363: the shortest flight phase (s; trial T3's "near 0 g for > 0.1 s")
 FLIGHT_MIN_S = 0.1
-#: standard gravity (m/s^2), as the unit conversion's (decision D4)
-G = 9.80665
 #: decision W363: the summary keys of :func:`flight_summary`
 KEYS = ("n_flight_phases", "flight_time_s")
 
@@ -27,11 +27,12 @@ def flight_phases(t, acc) -> list[tuple[float, float]]:
     t = np.asarray(t, float)
     if t.size < 2:
         return []
+    from pdrlearn.signal.conditioning import runs
+
     low = np.linalg.norm(np.asarray(acc, float), axis=1) < FLIGHT_MAX_G * G
-    edges = np.flatnonzero(np.diff(np.r_[0, low.astype(int), 0]))
     dt = float(np.median(np.diff(t)))
     out = []
-    for a, b in zip(edges[::2], edges[1::2], strict=True):  # samples a .. b-1 are low
+    for a, b in runs(low):  # samples a .. b-1 are low
         start, end = float(t[a]), float(t[b - 1]) + dt
         if end - start >= FLIGHT_MIN_S - 1e-9:
             out.append((start, end))
