@@ -40,10 +40,10 @@ def test_trailing_is_chunk_invariant():
 
 
 def test_edge_lock_modes_and_a_bad_value_is_one_line():
-    assert EDGE_LOCK_VALUES == (False, True, "both", "trailing")
-    assert edge_lock_params(False) == {"edge_lock_deg": 0.0, "edge_lock_leading": True}
+    assert EDGE_LOCK_VALUES == (False, True, "both", "trailing", "walk-end")  # W367 added "walk-end"
+    assert edge_lock_params(False) == {"edge_lock_deg": 0.0, "edge_lock_leading": True, "walk_end_var": 0.0}
     assert edge_lock_params(True) == edge_lock_params("both") == {"edge_lock_deg": EDGE_LOCK_DEG,
-                                                                   "edge_lock_leading": True}
+                                                                   "edge_lock_leading": True, "walk_end_var": 0.0}
     assert pll_params(PLLStepDetector(edge_lock="trailing")).edge_lock_leading is False
     for bad in ("leading", "true", 2):
         with pytest.raises(DataError, match="edge_lock .* is not one of .*W358"):

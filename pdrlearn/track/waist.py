@@ -133,7 +133,8 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
                rhythm: bool = True, edge_lock: bool | str = False) -> pd.DataFrame:
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
     moved to the initial contact next to them when ``refine_ic`` (decision W11); ``edge_lock``: the detector's
-    W356 option (a gated run's first / last peak only when the loop is locked; W358's "trailing": its last only)."""
+    W356 option (a gated run's first / last peak only when the loop is locked; W358's "trailing": its last only;
+    W367's "walk-end": its last only where the walk ends)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
     st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
                          edge_lock=edge_lock).detect(session)
@@ -690,7 +691,7 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203"),
                   "fast_fill": (FAST_FILL_VALUES, "W242, W255"),
                   "cadence_law": (CADENCE_LAW_VALUES, "W240, W261"),
-                  "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358")}
+                  "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -826,7 +827,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         a run of peaks that pass the activity gate count only when the loop is locked at them (phase error within
         45 deg over the period ending at the peak; decision W356, W345's diagnosis: a free-running peak at a bout's
         edge); default False (W357: measured, not adopted -- fewer extra contacts, but true edge contacts lost);
-        ``"trailing"`` judges only the run's last peak and keeps its first (decision W358), ``"both"`` = True
+        ``"trailing"`` judges only the run's last peak and keeps its first (decision W358), ``"both"`` = True;
+        ``"walk-end"`` judges a run's last peak only where the walk ends (the stride after it under W76's 0.15 m/s^2
+        SD; decision W367)
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)
