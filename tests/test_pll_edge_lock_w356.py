@@ -40,6 +40,27 @@ def _events(t, v, edge_lock: bool, chunks=None):
     return out + pll_flush(st, p)
 
 
+def track_times(user: int, modes: tuple, bad: str | None = None) -> list[np.ndarray]:
+    """waist-pll's contact times on simulated ``user``'s 12 m straight walk (standing 4 s either side) with each
+    ``pll_edge_lock`` of ``modes`` (None: the option not given); ``bad``: a value that must be one DataError line."""
+    from pdrlearn.errors import DataError
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.track.waist import track_waist
+
+    logging.disable(logging.WARNING)
+    try:
+        s = simulate_path(parse_route("stand:4, straight:12, stand:4"), UserProfile.from_seed(user), rate_hz=100,
+                          seed=user)
+        out = [track_waist(s, pipeline="waist-pll", pll_edge_lock=m).steps["event_s"].to_numpy(float) for m in modes]
+        if bad is not None:
+            with pytest.raises(DataError, match=f"pll_edge_lock '{bad}' is not one of"):
+                track_waist(s, pipeline="waist-pll", pll_edge_lock=bad)
+    finally:
+        logging.disable(logging.NOTSET)
+    return out
+
+
 def test_phase_error_is_the_angle_of_the_quadrature_and_none_without_input():
     assert phase_error_deg(1.0, 0.0) == 0.0 and phase_error_deg(0.0, 2.0) == pytest.approx(90.0)
     assert phase_error_deg(-1.0, -1.0) == pytest.approx(-135.0)

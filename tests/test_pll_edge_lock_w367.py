@@ -5,7 +5,6 @@ on (a run broken by a low-bounce turn, W366) and is kept."""
 
 from __future__ import annotations
 
-import logging
 import math
 
 import numpy as np
@@ -15,7 +14,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels.step_events import EDGE_LOCK_DEG, edge_lock_params, pll_params
 from pdrlearn.kernels.waist import RELATIVE_GATE_FLOOR_MPS2
 from pdrlearn.steps import PLLStepDetector
-from tests.test_pll_edge_lock_w356 import FS, _events, _walk
+from tests.test_pll_edge_lock_w356 import FS, _events, _walk, track_times
 
 
 def _turn_walk(seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
@@ -76,21 +75,9 @@ def test_walk_end_mode_parameters_and_a_bad_value_is_one_line():
 
 
 def test_the_default_stays_off_and_walk_end_reaches_the_waist_pll_track():
-    from pdrlearn.sim import UserProfile, simulate_path
-    from pdrlearn.sim.route import parse_route
-    from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
+    from pdrlearn.track.waist import OPTION_DEFAULTS
 
     assert OPTION_DEFAULTS["pll_edge_lock"] is False and PLLStepDetector().edge_lock is False  # W368
-    logging.disable(logging.WARNING)
-    try:
-        s = simulate_path(parse_route("stand:4, straight:12, stand:4"), UserProfile.from_seed(8359), rate_hz=100,
-                          seed=8359)
-        base = track_waist(s, pipeline="waist-pll").steps["event_s"].to_numpy(float)
-        walk_end = track_waist(s, pipeline="waist-pll", pll_edge_lock="walk-end").steps["event_s"].to_numpy(float)
-        trailing = track_waist(s, pipeline="waist-pll", pll_edge_lock="trailing").steps["event_s"].to_numpy(float)
-        with pytest.raises(DataError, match="pll_edge_lock 'walk_end' is not one of"):
-            track_waist(s, pipeline="waist-pll", pll_edge_lock="walk_end")
-    finally:
-        logging.disable(logging.NOTSET)
+    base, walk_end, trailing = track_times(8359, (None, "walk-end", "trailing"), bad="walk_end")
     assert set(trailing) <= set(walk_end) <= set(base)  # walk-end drops a subset of what trailing drops
     assert base.size - 1 <= walk_end.size <= base.size
