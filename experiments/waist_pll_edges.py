@@ -166,7 +166,7 @@ def edge_lock_rule(users, external: Path | None, mode: bool | str = True) -> boo
 
         runs = external_runs(external)
         dfs = [real(external, runs, configs=[("waist-pll (A-HE)", "waist-pll", opts)])
-               for opts in ({}, {"pll_edge_lock": mode})]
+               for opts in ({"pll_edge_lock": False}, {"pll_edge_lock": mode})]
         for (_, r0), (_, r1) in zip(dfs[0].iterrows(), dfs[1].iterrows(), strict=True):
             d = r1.step_f1 - r0.step_f1
             ok_d &= bool(d >= -0.005)

@@ -74,10 +74,12 @@ def test_walk_end_mode_parameters_and_a_bad_value_is_one_line():
         assert "\n" not in str(exc.value)
 
 
-def test_the_default_stays_off_and_walk_end_reaches_the_waist_pll_track():
+def test_the_default_is_walk_end_and_it_reaches_the_waist_pll_track():
     from pdrlearn.track.waist import OPTION_DEFAULTS
 
-    assert OPTION_DEFAULTS["pll_edge_lock"] is False and PLLStepDetector().edge_lock is False  # W368
-    base, walk_end, trailing = track_times(8359, (None, "walk-end", "trailing"), bad="walk_end")
+    # W368: adopted as the track option's default; the detector's own default (pdrlearn steps) stays off
+    assert OPTION_DEFAULTS["pll_edge_lock"] == "walk-end" and PLLStepDetector().edge_lock is False
+    base, default, walk_end, trailing = track_times(8359, (False, None, "walk-end", "trailing"), bad="walk_end")
+    np.testing.assert_array_equal(default, walk_end)
     assert set(trailing) <= set(walk_end) <= set(base)  # walk-end drops a subset of what trailing drops
     assert base.size - 1 <= walk_end.size <= base.size
