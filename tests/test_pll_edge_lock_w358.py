@@ -3,15 +3,13 @@ PLL peak (kept only when the loop is locked at it) and keeps its first as the op
 
 from __future__ import annotations
 
-import logging
-
 import numpy as np
 import pytest
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.step_events import EDGE_LOCK_DEG, EDGE_LOCK_VALUES, edge_lock_params, pll_params
 from pdrlearn.steps import PLLStepDetector
-from tests.test_pll_edge_lock_w356 import _events, _walk
+from tests.test_pll_edge_lock_w356 import _events, _walk, track_times
 
 
 def test_trailing_drops_the_unlocked_trailing_peak_and_keeps_the_unlocked_leading_one():
@@ -40,32 +38,18 @@ def test_trailing_is_chunk_invariant():
 
 
 def test_edge_lock_modes_and_a_bad_value_is_one_line():
-    assert EDGE_LOCK_VALUES == (False, True, "both", "trailing")
-    assert edge_lock_params(False) == {"edge_lock_deg": 0.0, "edge_lock_leading": True}
+    assert EDGE_LOCK_VALUES == (False, True, "both", "trailing", "walk-end")  # W367 added "walk-end"
+    assert edge_lock_params(False) == {"edge_lock_deg": 0.0, "edge_lock_leading": True, "walk_end_var": 0.0}
     assert edge_lock_params(True) == edge_lock_params("both") == {"edge_lock_deg": EDGE_LOCK_DEG,
-                                                                   "edge_lock_leading": True}
+                                                                   "edge_lock_leading": True, "walk_end_var": 0.0}
     assert pll_params(PLLStepDetector(edge_lock="trailing")).edge_lock_leading is False
     for bad in ("leading", "true", 2):
         with pytest.raises(DataError, match="edge_lock .* is not one of .*W358"):
             pll_params(PLLStepDetector(edge_lock=bad))
 
 
-def test_the_default_is_off_and_the_trailing_mode_reaches_the_waist_pll_track():
-    from pdrlearn.sim import UserProfile, simulate_path
-    from pdrlearn.sim.route import parse_route
-    from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
-
-    assert OPTION_DEFAULTS["pll_edge_lock"] is False and PLLStepDetector().edge_lock is False  # W366
-    logging.disable(logging.WARNING)
-    try:
-        s = simulate_path(parse_route("stand:4, straight:12, stand:4"), UserProfile.from_seed(8160), rate_hz=100,
-                          seed=8160)
-        base = track_waist(s, pipeline="waist-pll").steps["event_s"].to_numpy(float)
-        trail = track_waist(s, pipeline="waist-pll", pll_edge_lock="trailing").steps["event_s"].to_numpy(float)
-        both = track_waist(s, pipeline="waist-pll", pll_edge_lock="both").steps["event_s"].to_numpy(float)
-        with pytest.raises(DataError, match="pll_edge_lock 'last' is not one of"):
-            track_waist(s, pipeline="waist-pll", pll_edge_lock="last")
-    finally:
-        logging.disable(logging.NOTSET)
+def test_the_trailing_mode_reaches_the_waist_pll_track():
+    # W366: "trailing" not adopted (the default is W368's "walk-end" since session 35)
+    base, trail, both = track_times(8160, (False, "trailing", "both"), bad="last")
     assert set(trail) <= set(base) and set(both) <= set(trail)  # trailing drops a subset of what both drops
     assert base.size - 1 <= trail.size <= base.size

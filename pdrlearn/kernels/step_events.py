@@ -283,8 +283,8 @@ def pelvic_flush(state: PelvicState, p: PelvicParams) -> list[Event]:
 EDGE_LOCK_DEG = 45.0
 #: decision W358: the values of the detector's ``edge_lock`` (``pll_edge_lock``): off, both edges of a gated run judged
 #: (True, the same as "both"; W356), or only its trailing edge, its last peak (W345: 5 % of the trailing edge extras
-#: locked, but true first contacts often unlocked)
-EDGE_LOCK_VALUES = (False, True, "both", "trailing")
+#: locked, but true first contacts often unlocked); W367: "walk-end", the trailing edge dropped only where the walk ends
+EDGE_LOCK_VALUES = (False, True, "both", "trailing", "walk-end")
 
 
 @dataclass
@@ -302,6 +302,8 @@ class PLLParams:
     edge_lock_deg: float = 0.0
     # decision W358: False judges only a run's last peak (its trailing edge), its first is kept as without edge lock
     edge_lock_leading: bool = True
+    # decision W367: an unlocked last peak is kept when the variance over the stride after it reaches this (0: off)
+    walk_end_var: float = 0.0
 
 
 @dataclass
@@ -483,6 +485,17 @@ def _pll_release(s: PLLState, last_of_run: bool, p: PLLParams) -> list[Event]:
     return [ev] if locked or not ((first and p.edge_lock_leading) or last_of_run) else []
 
 
+def walk_goes_on(bt: np.ndarray, bv: np.ndarray, peak: float, freq: float, p: PLLParams) -> bool:
+    """Decision W367: the walk goes on after the PLL ``peak``: the variance of ``bv`` over the stride after it,
+    ``[peak, peak + min(2 / f, gate_window_s / 2)]`` (one stride = two steps, W47; at most the look-ahead the activity
+    gate already waits for, so every chunking has delivered it), reaches ``p.walk_end_var``. False when off (0)."""
+    if p.walk_end_var <= 0:
+        return False
+    w = min(2.0 / max(freq, p.f_min_hz), 0.5 * p.gate_window_s)
+    ok, var = centred_variance(bt, bv, np.array([peak + 0.5 * w]), 0.5 * w)
+    return bool(ok[0] and var[0] >= p.walk_end_var)
+
+
 def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
     """Activity gate (variance of ``v`` over the window centred on each peak) and event refinement; with
     ``p.edge_lock_deg`` (decision W356) each gated peak waits for the next peak's gate, so that a run's first and
@@ -510,8 +523,8 @@ def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
         start = prev if prev == prev and tp - prev < 2.0 / p.f_min_hz else tp - 1.0 / max(freq, p.f_min_hz)
         ev = (tp, start, tp, min(1.0, vi / (2 * p.gate_var)),
               {"step_freq_hz": freq, "pll_peak_s": peak, "phase_err_deg": phase})
-        if lock:
-            s.held = (ev, first, abs(phase) <= p.edge_lock_deg)
+        if lock:  # W367: with walk_end_var, an unlocked peak inside a walk that goes on counts as locked
+            s.held = (ev, first, abs(phase) <= p.edge_lock_deg or walk_goes_on(bt, bv, peak, freq, p))
         else:
             out.append(ev)
     return out
@@ -689,13 +702,18 @@ def pll_params(det, period_s: float = float("nan"), gate_var: float | None = Non
 
 def edge_lock_params(mode) -> dict:
     """:class:`PLLParams`' edge-lock fields of the detector's ``edge_lock`` ``mode`` (one of :data:`EDGE_LOCK_VALUES`;
-    decisions W356 / W358): True or "both" judges a gated run's first and last peak, "trailing" its last only."""
+    decisions W356 / W358 / W367): True or "both" judges a gated run's first and last peak, "trailing" its last only,
+    "walk-end" its last only where the walk ends (the stride after it quieter than W76's floor, W367)."""
     if mode not in EDGE_LOCK_VALUES:
         from pdrlearn.errors import DataError
 
-        raise DataError(f"pll edge_lock {mode!r} is not one of false, true, \"both\", \"trailing\" (decisions W356, "
-                        "W358); fix the detector setting or the PARAMS.json option pll_edge_lock")
-    return {"edge_lock_deg": EDGE_LOCK_DEG if mode else 0.0, "edge_lock_leading": mode != "trailing"}
+        raise DataError(f"pll edge_lock {mode!r} is not one of false, true, \"both\", \"trailing\", \"walk-end\" "
+                        "(decisions W356, W358, W367); fix the detector setting or the PARAMS.json option "
+                        "pll_edge_lock")
+    from pdrlearn.kernels.waist import RELATIVE_GATE_FLOOR_MPS2  # W367: W76's floor, no gate takes less for walking
+
+    return {"edge_lock_deg": EDGE_LOCK_DEG if mode else 0.0, "edge_lock_leading": mode not in ("trailing", "walk-end"),
+            "walk_end_var": RELATIVE_GATE_FLOOR_MPS2 ** 2 if mode == "walk-end" else 0.0}
 
 
 class PLLProcessor:

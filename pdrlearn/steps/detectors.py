@@ -311,6 +311,9 @@ class PLLStepDetector(StepDetector):
     Each gated peak then waits for the next peak's gate: one loop period more latency. ``edge_lock="trailing"``
     (decision W358) judges only a run's last peak and keeps its first (a walk's true first contact often comes
     before the loop locks; W345: only 5 % of the trailing edge extras were locked); ``"both"`` = True.
+    ``edge_lock="walk-end"`` (decision W367) judges a run's last peak only where the walk ends: an unlocked last peak
+    is kept when the vertical acceleration's SD over the stride after it reaches W76's floor 0.15 m/s^2 (a run broken
+    inside a walk, e.g. low bounce in a turn, W366); no more latency than "trailing".
 
     Loop gains (decision): natural frequency ``loop_hz`` and damping ``damping`` of the linearised loop,
     ``kp = 2 zeta wn / Kd``, ``ki = wn^2 / Kd`` with the phase-detector gain ``Kd = 1/sqrt(2)`` of a
@@ -334,7 +337,7 @@ class PLLStepDetector(StepDetector):
                  # detect); steps 49: None = steps 48's default (on offline, off streaming), True given is refused by
                  # online()
                  edge_lock: bool | str = False):  # decision W356: a gated run's first / last peak only when
-        # locked; W358: "trailing" its last only
+        # locked; W358: "trailing" its last only; W367: "walk-end" its last only where the walk ends
         self._store(locals())
 
     def online(self, fs: float, **context):

@@ -295,9 +295,10 @@ def get_pipeline(name: str) -> Pipeline:
       ``foot_rest_veto`` (decisions W336 / W337, on: with a foot unit, a run of 4 or more lower-back contacts none
       within 1 s of a foot stride that swings the foot is dropped, a standing passenger's bounce in a vehicle; the
       runs are named in a warning line either way),
-      ``pll_edge_lock`` (decisions W356 / W357, off: waist-pll keeps a gated run's first and last PLL peak only when
-      the loop is locked at it, phase error within 45 deg; a free-running peak at a bout's edge is no step, W345;
-      ``"trailing"`` judges only the run's last peak, decision W358),
+      ``pll_edge_lock`` (decisions W356 / W357: true makes waist-pll keep a gated run's first and last PLL peak only
+      when the loop is locked at it, phase error within 45 deg; a free-running peak at a bout's edge is no step, W345;
+      ``"trailing"`` judges only the run's last peak, decision W358; ``"walk-end"``, the default since W368, only a
+      last peak where the walk ends, W367; false keeps every gated peak),
       ``freeze_index`` (decision W216, off: the lower back's freeze index, W213: freezes.csv and ``n_freezes`` /
       ``freeze_time_s``, null when off; foot tracks always compute theirs),
       ``realtime_sit_veto`` (decision W201, off: a realtime track applies the sit veto causally, each contact
