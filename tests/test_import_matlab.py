@@ -167,3 +167,13 @@ def test_no_header_on_a_mat_file_is_refused(tmp_path, walk):
     scipy.io.savemat(tmp_path / "t.mat", {"acc": acc, "gyr": gyr, "fs": 100.0})
     with pytest.raises(DataError, match="--no-header is for a CSV"):
         import_csv(tmp_path / "t.mat", no_header=True)
+
+
+def test_unmapped_mat_file_names_its_arrays(tmp_path, walk, capsys):
+    """Two trials of different lengths and names no guess reads: the error lists the N x 3 arrays to name."""
+    _, acc, gyr = _lab(walk)
+    trials = {"Trial1": {"Acc": acc, "Gyr": gyr}, "Trial2": {"Acc": acc[:500], "Gyr": gyr[:500]}}
+    scipy.io.savemat(tmp_path / "data.mat", {"data": {"Test5": trials}})
+    assert main(["import", str(tmp_path / "data.mat"), "--out", str(tmp_path / "o")]) == 2
+    err = _err(capsys)
+    assert "Test5.Trial1.Acc" in err and "Test5.Trial2.Gyr (500x3)" in err and "--acc NAME --gyro NAME" in err

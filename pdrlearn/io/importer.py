@@ -23,7 +23,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import AxisFrame, right_handed
-from pdrlearn.io.matfile import expand_columns, mat_message, mat_version, read_mat_table
+from pdrlearn.io.matfile import expand_columns, mat_arrays_text, mat_message, mat_version, read_mat_table
 from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, GRAVITY_FILE, TOTAL_ACC_FILE, _csv_dialect, read_table
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU, parse_value_unit
 from pdrlearn.io.session import Session, Stream
@@ -867,6 +867,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         for kind, cols in guess_columns(header).items():
             if kind not in columns and not set(cols) & {c for v in columns.values() for c in v}:
                 columns[kind], sources[kind] = cols, "guessed"
+    if not columns and mat_record is not None:  # decision B335: name the MAT file's variables, not its columns
+        raise DataError(f"{where}: no accelerometer/gyroscope recognised among the MAT file's N x 3 arrays "
+                        f"({mat_arrays_text(mat_record)}); name them with --acc NAME --gyro NAME (decision B335)")
     if time_column is None:
         time_column = guess_time_column(header, mat=bool(mat))
         t_source = "guessed"

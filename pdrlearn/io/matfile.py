@@ -135,6 +135,13 @@ def read_mat_table(path: str | os.PathLike, wanted: list[str] = ()) -> tuple[pd.
     return pd.DataFrame(table), record
 
 
+def mat_arrays_text(record: dict, most: int = 6) -> str:
+    """Decision B335: the N x 3 arrays of a :func:`read_mat_table` record, ``NAME (N x 3)``, at most ``most``."""
+    three = [f"{k} ({v})" for k, v in record.get("variables", {}).items() if re.fullmatch(r"\d+x3|3x\d+", v)]
+    more = f" and {len(three) - most} more" if len(three) > most else ""
+    return ", ".join(three[:most]) + more if three else "none"
+
+
 def expand_columns(cols: list[str], header: list[str]) -> list[str]:
     """A mapping option's one name of an N x 3 MAT variable (``--acc acc``) as its three columns."""
     if len(cols) == 1 and cols[0].lstrip("-") not in header:
