@@ -177,3 +177,12 @@ def test_unmapped_mat_file_names_its_arrays(tmp_path, walk, capsys):
     assert main(["import", str(tmp_path / "data.mat"), "--out", str(tmp_path / "o")]) == 2
     err = _err(capsys)
     assert "Test5.Trial1.Acc" in err and "Test5.Trial2.Gyr (500x3)" in err and "--acc NAME --gyro NAME" in err
+
+
+def test_no_header_on_a_file_with_a_header_is_refused(tmp_path, walk, capsys):
+    path, _ = _headerless(tmp_path, walk)
+    named = tmp_path / "named.csv"
+    named.write_text("time,acc_x,acc_y,acc_z,gyr_x,gyr_y,gyr_z\n" + path.read_text())
+    assert main(["import", str(named), "--no-header", "--out", str(tmp_path / "o")]) == 2
+    err = _err(capsys)
+    assert "the first line is text (time, acc_x, acc_y, acc_z ...): a header line; leave --no-header out" in err

@@ -806,6 +806,11 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                         f"{' ...' if len(header) > 4 else ''}): a CSV without a header line (MATLAB writematrix / "
                         "csvwrite)? pass --no-header; its columns are then named 0, 1, 2 ... (--time 0 --acc 1,2,3 "
                         "--gyro 4,5,6; unmapped, 7 columns are read as time, acc, gyro; decision B336)")
+    first_row = [str(v).strip() for v in df.iloc[0]] if no_header and len(df) else []
+    if first_row and not any(_is_number(v) for v in first_row if v and v.lower() != "nan"):  # decision B336
+        raise DataError(f"{where}: --no-header, but the first line is text ({', '.join(first_row[:4])}"
+                        f"{' ...' if len(first_row) > 4 else ''}): a header line; leave --no-header out "
+                        "(decision B336)")
     # decision B66: the file line of data row i is i + first_line (a "sep=" line and skipped rows above it);
     # a MAT file's "line" is its row (from 1)
     first_line = (1 if mat or no_header else 2) + len(dialect.get("skiprows", ()))
