@@ -279,7 +279,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.altitude import ALTITUDES
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.bouts import BOUT_PRESETS
-    from pdrlearn.track.clock import PER_ALIGNS
+    from pdrlearn.track.clock import PER_ALIGNS, TIME_ORIGINS
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.periods import parse_per
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
@@ -329,6 +329,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "per"): parse_per,  # decision L277
         ("track", "splits"): parse_splits,  # decision L411 (B307)
         ("track", "per_align"): _one_of(PER_ALIGNS),  # decision L299
+        ("steps", "time_origin"): _one_of(TIME_ORIGINS),  # decision E173
         **{(c, "bout_rule"): _one_of(BOUT_PRESETS, case=False) for c in ("track", "track-all", "run")},  # decision L163
         ("track", "units"): parse_units,  # decision B127
         ("export", "length_bounds"): two_numbers,

@@ -57,7 +57,8 @@ def _import_written(meta: dict) -> set[str]:
 
 
 def import_command(
-    csv: Path = typer.Argument(..., help="The lab export: one CSV with a timestamp column and channel columns."),
+    csv: Path = typer.Argument(..., help="The lab export: one CSV with a timestamp column and channel columns, or "
+                               "a MATLAB v5/v7 .mat file of N x 3 arrays (B335)."),
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to write (or, with --merge, to add to)."),
     unit: str = typer.Option(None, "--unit", help="Which unit the channels are: foot or waist (default foot)."),
     time: str = typer.Option(None, "--time", help="Timestamp column (default: the one named like a time)."),
@@ -95,7 +96,9 @@ def import_command(
     subject_height: float = typer.Option(None, "--subject-height", help="The subject's height (m), written to "
                                          "meta.json height_m (default: none; commands assume 1.7 m and say so)."),
     steps: Path = typer.Option(None, "--steps", help="Labelled steps (start_ms,end_ms,terrain,... as steps.csv) in "
-                               "ms on the export's clock; written as the session's steps.csv."),
+                               "ms on the export's clock; written as the session's steps.csv. A list of initial "
+                               "contacts only (ic_ms, optional foot column: --foot picks) becomes strides from "
+                               "contact to contact, pre_ic_ms the opening one (mocap events, B338)."),
     labels: list[Path] = typer.Option(None, "--labels", help="An extra label table (ics.csv, bouts.csv, turns.csv "
                                       "...: *_ms columns on the export's clock), shifted as --steps and written "
                                       "under its file name; repeat for each (lower-back scoring uses ics.csv and "
@@ -128,6 +131,9 @@ def import_command(
                                      "Logger's Gravity.csv) added to the --acc columns sample by sample, for an "
                                      "accelerometer written without gravity (iOS Sensor Logger's Accelerometer.csv; "
                                      "B166)."),
+    no_header: bool = typer.Option(False, "--no-header", help="The CSV has no header line (MATLAB writematrix / "
+                                   "csvwrite): its columns are named 0, 1, 2 ... (--time 0 --acc 1,2,3 --gyro 4,5,6); "
+                                   "unmapped, 7 columns are time, acc, gyro and 6 acc, gyro with --rate (B336)."),
     force: bool = typer.Option(False, "--force", help="Replace a session folder that 'pdrlearn import' wrote."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object with every mapping choice."),
 ) -> None:
@@ -159,6 +165,10 @@ def import_command(
         pdrlearn import restarted.csv --out sessions/walk2 --split-at-clock-reset   # walk2/part1, walk2/part2
 
         pdrlearn import s01_left.csv --rate 204.8 --foot left --gyro-unit deg/s --out s01_left  # no time column
+
+        pdrlearn import trial.mat --acc acc --gyro gyr --acc-unit g --gyro-unit deg/s --out s01  # data.acc, data.gyr
+
+        pdrlearn import matrix.csv --no-header --time 0 --acc 1,2,3 --gyro 4,5,6 --out s01  # writematrix
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
@@ -256,7 +266,7 @@ def import_command(
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
               drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime,
-              foot=foot)
+              foot=foot, no_header=no_header)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
         if len(parts) > 1:
@@ -268,8 +278,10 @@ def import_command(
     if steps is not None:
         if base is not None and base.steps is not None:
             raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
-        session = import_steps(steps, session, record["time"]["origin_s"], relative=labels_relative)
+        session = import_steps(steps, session, record["time"]["origin_s"], relative=labels_relative, foot=foot)
         record["steps"] = {"file": Path(steps).name, "rows": len(session.steps)}
+        if "from_ics" in session.steps.attrs:  # decision B338
+            record["steps"]["from_ics"] = session.steps.attrs["from_ics"]
     if labels_relative and steps is None and not labels:
         raise DataError("import: --labels-relative says how --steps and --labels times are written; pass those "
                         "tables, or leave it out")
@@ -508,7 +520,9 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
                 "(decision B146)")
     if record.get("steps"):
         st = record["steps"]
-        err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock)")
+        built = (f", strides built from its {st['from_ics']} initial contacts: pre_ic_ms the opening one, ic_ms the "
+                 "closing one (decision B338)" if st.get("from_ics") else "")
+        err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock{built})")
     for name, lab in (record.get("labels") or {}).items():
         err(f"labels: {name} with {lab['rows']} rows from {lab['file']} (shifted to the session's clock)")
     if record["unused_columns"]:

@@ -26,6 +26,9 @@ def steps(
                                  "settings, e.g. pll:loop_hz=1.5 (decision E94)."),
     out: Path = typer.Option(None, "--out", "-o", help="Write the steps table to this CSV (times in s)."),
     tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
+    time_origin: str = typer.Option("session", "--time-origin", help="session: --out times in s from the "
+                                    "session's first sample (what score-steps reads); export: on the clock of the "
+                                    "export 'pdrlearn import' read, its first time added back (E173)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
@@ -45,6 +48,8 @@ def steps(
         pdrlearn steps out/sim/D_u1 --detector accel-force --out out/A_steps.csv
 
         pdrlearn steps datasets/real/mobgap_HA001_Test5_Trial1 --detector pll:loop_hz=1.5   # a detector setting
+
+        pdrlearn steps sessions/walk1 --out walk1_steps.csv --time-origin export   # an import's own clock
     """
     from pdrlearn.io import read_session
     from pdrlearn.steps import get_detector
@@ -53,10 +58,22 @@ def steps(
     if detector != "auto":
         det = get_detector(detector)
     check_tolerance(tolerance, "--tolerance")  # decision B167: seconds, > 0, at most 2 s
+    from pdrlearn.track.clock import TIME_ORIGINS, export_origin_s
+
+    if time_origin not in TIME_ORIGINS:
+        raise DataError(f"--time-origin {time_origin!r} is not one of {', '.join(TIME_ORIGINS)} (decision E173)")
+    if time_origin == "export" and out is None:
+        raise DataError("--time-origin export says on which clock --out writes its times; pass --out FILE.csv (the "
+                        "JSON's time_origin_s gives the origin to add) (decision E173)")
     if out is not None:
         out = out_file(out, (".csv",), "steps", force=force)
     was = out is not None and existed(out)
     session = read_session(session_dir)
+    if time_origin == "export":
+        if export_origin_s(session.meta) is None:
+            raise DataError(f"{session_dir}: --time-origin export adds back the first time of the export 'pdrlearn "
+                            "import' read, and this session was not imported (its meta.json has no imported.time."
+                            "origin_s): its times are its own; leave --time-origin out (decision E173)")
     if detector == "auto":
         det = auto_detector(session)
     if det.unit == "foot" and reads_force(det) and session.has("fAccelerometer", "fGyroscope"):
@@ -82,7 +99,7 @@ def steps(
     if det.unit == "foot":
         foot_checks(session, table, det.name, force=reads_force(det))
     report(session, table, name=det.name, unit=det.unit, tolerance=tolerance, out=out, was=was, as_json=as_json,
-           detector=det)
+           detector=det, time_origin=time_origin)
 
 
 def _tared(session):
@@ -129,11 +146,12 @@ def foot_checks(session, table, name: str, *, force: bool = False) -> None:
 
 
 def report(session, table, *, name: str, unit: str, tolerance: float, out: Path | None = None, was: bool = False,
-           as_json: bool = False, per_stride: bool = True, detector=None) -> None:
+           as_json: bool = False, per_stride: bool = True, detector=None, time_origin: str = "session") -> None:
     """Score ``table`` against ``session``'s labels and print the result (``steps`` and ``score-steps``): a foot
     table is first reduced to one row per rest-to-rest stride (decision steps 34) unless ``per_stride`` is False,
     with one warning when the kept rows cover many more rest-to-rest strides (decision steps 38; ``detector``, when
-    given, names its shortest stride there); ``out`` gets the scored table."""
+    given, names its shortest stride there); ``out`` gets the scored table, its times on the session's clock or
+    with ``time_origin="export"`` on the imported export's (decision E173)."""
     from pdrlearn.atomic import atomic_file
     from pdrlearn.steps import score_steps
     from pdrlearn.steps.strides import one_per_stride_counted
@@ -172,11 +190,18 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     score = score_steps(table, session, tolerance_s=tolerance, unit=unit)
     if score is not None:  # decision steps 41: score_steps' own dict, keys and meanings (one_foot: W96)
         result.update(score)
+    from pdrlearn.track.clock import export_origin_s, on_export_clock
+
+    origin = export_origin_s(session.meta)
+    if origin is not None:  # decision E173: where the session's 0 s lies on the imported export's clock
+        result["time_origin_s"] = origin
     if out is not None:
+        written = on_export_clock(table, origin) if time_origin == "export" else table
         with atomic_file(out) as tmp:
-            table.to_csv(tmp, index=False)
+            written.to_csv(tmp, index=False)
         replaced(out, was)
         result["out"] = str(out)
+        result["out_clock"] = time_origin
     if as_json:
         print_json(json_safe(result))
         return
@@ -206,6 +231,11 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
                        f"+- {score['timing_error_sd_s']:.3f} s")
     if unit == "waist" and detector is not None:  # decisions W281, W297: why `track` can count fewer
         typer.echo(track_count_note(session, table))
+    if out is not None and origin:  # decision E173
+        clock = ("on the export's clock (--time-origin export)" if time_origin == "export"
+                 else "from the session's first sample (add it back, or pass --time-origin export)")
+        typer.echo(f"note: {out}: times in s {clock}; the session's 0 s is {origin:.3f} s on the imported export's "
+                   "clock (decision E173)", err=True)
     if out is not None:
         typer.echo(str(out))
 

@@ -23,6 +23,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import AxisFrame, right_handed
+from pdrlearn.io.matfile import expand_columns, mat_arrays_text, mat_message, mat_version, read_mat_table
 from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, GRAVITY_FILE, TOTAL_ACC_FILE, _csv_dialect, read_table
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU, parse_value_unit
 from pdrlearn.io.session import Session, Stream
@@ -233,11 +234,16 @@ def ambiguous_columns(columns: list[str]) -> dict[str, list[str]]:
     return out
 
 
-def time_column_candidates(columns: list[str]) -> list[str]:
+def time_column_candidates(columns: list[str], *, mat: bool = False) -> list[str]:
     """The columns named like a time, by the first rule that names any: exactly a time name (``timestamp``,
     ``Time (ms)``, ``t``), else a name starting with ``time`` (``timestamp_ms``, ``time_since_start``), else one
     containing ``timestamp`` (B66: ``Shimmer_7A1F_Timestamp_Unix_CAL``), else one containing ``elapsed`` (B148:
-    Sensor Logger's ``seconds_elapsed``, which its ``time`` column wins over)."""
+    Sensor Logger's ``seconds_elapsed``, which its ``time`` column wins over). ``mat``: the names are MAT
+    struct paths, judged by their last field (``TimeMeasure1.Test11.SU.Acc_x`` is no time; decision B335)."""
+    if mat:
+        last = {c: c.rsplit(".", 1)[-1] for c in columns}
+        hits = set(time_column_candidates(list(dict.fromkeys(last.values()))))
+        return [c for c in columns if last[c] in hits]
     for hits in ([c for c in columns if _stem(c) in _TIME_NAMES],
                  [c for c in columns if _stem(c).startswith("time")],
                  [c for c in columns if "timestamp" in _stem(c)],
@@ -247,9 +253,9 @@ def time_column_candidates(columns: list[str]) -> list[str]:
     return []
 
 
-def guess_time_column(columns: list[str]) -> str | None:
+def guess_time_column(columns: list[str], *, mat: bool = False) -> str | None:
     """The one time-like column (:func:`time_column_candidates`); None when there is none or several."""
-    hits = time_column_candidates(columns)
+    hits = time_column_candidates(columns, mat=mat)
     return hits[0] if len(hits) == 1 else None
 
 
@@ -633,6 +639,39 @@ def _units_row_hint(df: pd.DataFrame, row: int, first_line: int, skipped: int = 
             f"--acc-unit/--gyro-unit/--time-unit for the units {'it names' if n == 1 else 'they name'})")
 
 
+#: decision B337: a duration written with its unit, as MATLAB's writetable writes a timetable's row times
+#: ("0.01 sec", a duration's default format 's'; "1.5 min", "2 hr" for 'm', 'h'): the suffix -> a time unit
+_DURATION = re.compile(r"\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*"
+                       r"(sec|secs|s|ms|msec|min|mins|hr|hrs|h)\s*")
+_DURATION_UNITS = {"sec": "s", "secs": "s", "s": "s", "ms": "ms", "msec": "ms", "min": "min", "mins": "min",
+                   "hr": "h", "hrs": "h", "h": "h"}
+
+
+def duration_text(col: pd.Series) -> tuple[np.ndarray, str] | None:
+    """Decision B337: (numbers, time unit) of a column whose every value is a number followed by one time unit
+    (``0.01 sec``, ``10 ms``, ``1.5 min``: MATLAB ``writetable`` of a timetable); None otherwise. Minutes and hours
+    are converted to s (the importer's time units are ms, s, us, ns)."""
+    text = col.astype(str)
+    m = text.str.fullmatch(_DURATION.pattern)
+    if col.isna().any() or not m.all():
+        return None
+    parts = text.str.extract(_DURATION.pattern)
+    words = {_DURATION_UNITS[w] for w in parts[1]}
+    if len(words) != 1:
+        return None
+    word = words.pop()
+    values = parts[0].astype(float).to_numpy()
+    scale = {"min": 60.0, "h": 3600.0}.get(word)  # minutes and hours in s
+    return (values * scale, "s") if scale else (values, word)
+
+
+#: decision B336: a headerless export's columns when none is mapped, by their count: MATLAB's
+#: ``writematrix([t acc gyr])`` (7) and ``writematrix([acc gyr])`` (6, timed by --rate)
+HEADERLESS_ORDER: dict[int, dict[str, tuple[int, ...]]] = {
+    7: {"time": (0,), "acc": (1, 2, 3), "gyro": (4, 5, 6)},
+    6: {"acc": (0, 1, 2), "gyro": (3, 4, 5)},
+}
+
 #: decision B323: the time "column" of a fixed-rate export without one: its rows numbered 0, 1, 2 ... at --rate
 ROW_INDEX = "(row index)"
 
@@ -649,7 +688,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                time_format: str | None = None, time_zone: str | None = None,
                skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
                add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
-               foot: str | None = None) -> tuple[Session, dict]:
+               foot: str | None = None, no_header: bool = False) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -686,6 +725,14 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         session's files hold "ms since the first sample" (D1), ``record["time"]["origin_s"]`` keeps the origin
         so that labels on the export's clock can be shifted alike (and ``--merge`` puts a second export of
         the same clock on the same origin)
+    no_header : the CSV has no header line (MATLAB ``writematrix``/``csvwrite``): its columns are named by their
+        index from 0 (``--time 0 --acc 1,2,3``); unmapped, they are read in :data:`HEADERLESS_ORDER` (decision
+        B336). A CSV whose header line is all numbers is refused without it.
+
+    A MATLAB v5 MAT file (``path`` ending anywhere; told by its header) is read as a table of its per-sample arrays
+    (:func:`pdrlearn.io.matfile.read_mat_table`: ``acc`` N x 3 -> ``acc_x, acc_y, acc_z``; ``--acc acc`` names
+    the three), timed by its time vector or, without one, its ``fs`` scalar; a v7.3 file is refused in one line
+    (decision B335).
 
     Returns
     -------
@@ -714,7 +761,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   time_format: str | None = None, time_zone: str | None = None,
                   skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
                   add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
-                  foot: str | None = None) -> list[tuple[Session, dict]]:
+                  foot: str | None = None, no_header: bool = False) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = Path(path)
@@ -737,12 +784,36 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if unit != "foot":
             raise DataError("import: --foot names the foot a foot unit is on, and this is a --unit waist import; "
                             "drop --foot, or import the foot unit's file with it (decision B321)")
-    df = read_table(path)  # B24: ';' / tab separators and decimal commas, as every session file
-    dialect = _csv_dialect(path)
+    mat = mat_version(path)  # decision B335: a MAT file, by its header
+    mat_record = None
+    if mat == "7.3":
+        raise DataError(mat_message(path, mat))
+    if mat:
+        if no_header:
+            raise DataError(f"{where}: --no-header is for a CSV without a header line, and this is a MAT file "
+                            "(its variables name the columns); leave --no-header out (decision B335)")
+        wanted = [c.lstrip("-") for v in (columns or {}).values() for c in v] + [time_column or ""]
+        df, mat_record = read_mat_table(path, wanted)
+        dialect = {}
+        columns = {k: expand_columns(list(v), list(df.columns)) for k, v in (columns or {}).items()}
+    else:
+        df = read_table(path, header=not no_header)  # B24: ';' / tab separators and decimal commas
+        dialect = _csv_dialect(path)
     header = list(df.columns)
     have = ", ".join(header)
-    # decision B66: the file line of data row i is i + first_line (a "sep=" line and skipped rows above it)
-    first_line = 2 + len(dialect.get("skiprows", ()))
+    if not mat and not no_header and header and all(_is_number(c) for c in header):  # decision B336
+        raise DataError(f"{where}: the first line is all numbers ({', '.join(header[:4])}"
+                        f"{' ...' if len(header) > 4 else ''}): a CSV without a header line (MATLAB writematrix / "
+                        "csvwrite)? pass --no-header; its columns are then named 0, 1, 2 ... (--time 0 --acc 1,2,3 "
+                        "--gyro 4,5,6; unmapped, 7 columns are read as time, acc, gyro; decision B336)")
+    first_row = [str(v).strip() for v in df.iloc[0]] if no_header and len(df) else []
+    if first_row and not any(_is_number(v) for v in first_row if v and v.lower() != "nan"):  # decision B336
+        raise DataError(f"{where}: --no-header, but the first line is text ({', '.join(first_row[:4])}"
+                        f"{' ...' if len(first_row) > 4 else ''}): a header line; leave --no-header out "
+                        "(decision B336)")
+    # decision B66: the file line of data row i is i + first_line (a "sep=" line and skipped rows above it);
+    # a MAT file's "line" is its row (from 1)
+    first_line = (1 if mat or no_header else 2) + len(dialect.get("skiprows", ()))
     row_units: dict[str, str] = {}
     skipped: dict | None = None
     if skip_rows is not None:
@@ -763,8 +834,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         raise DataError(f"{where}: no data rows under the header ({have}); re-export the file")
     # decision B62: pandas renames a repeated name ('ax', 'ax.1'), so the header line itself is checked
     # (unnamed columns, e.g. of a header line ending in ',,', are not names)
-    raw = [c for c in (str(c).strip() for c in pd.read_csv(path, header=None, nrows=1, dtype=str,
-                                                           keep_default_na=False, **dialect).iloc[0]) if c]
+    raw = header if mat or no_header else [
+        c for c in (str(c).strip() for c in pd.read_csv(path, header=None, nrows=1, dtype=str,
+                                                         keep_default_na=False, **dialect).iloc[0]) if c]
     if len(set(raw)) != len(raw):
         dup = sorted({c for c in raw if raw.count(c) > 1})
         raise DataError(f"{where}: column name(s) {', '.join(dup)} appear twice; rename them")
@@ -786,25 +858,41 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if mirrored:
             raise DataError(f"{where}: {mirrored}; nothing written")
     sources = {k: "given" for k in columns}
+    headerless_time = None
+    if no_header and guess:  # decision B336: the documented order of a headerless export's unmapped columns
+        order = HEADERLESS_ORDER.get(len(header), {})
+        taken = {c for v in columns.values() for c in v} | {time_column}
+        for kind, idx in order.items():
+            cols = [str(i) for i in idx]
+            if kind == "time" and time_column is None and not taken & set(cols):
+                time_column = headerless_time = cols[0]
+            elif kind != "time" and kind not in columns and not taken & set(cols):
+                columns[kind], sources[kind] = cols, "default order (--no-header, B336)"
     if guess:
         for kind, cols in guess_columns(header).items():
             if kind not in columns and not set(cols) & {c for v in columns.values() for c in v}:
                 columns[kind], sources[kind] = cols, "guessed"
+    if not columns and mat_record is not None:  # decision B335: name the MAT file's variables, not its columns
+        raise DataError(f"{where}: no accelerometer/gyroscope recognised among the MAT file's N x 3 arrays "
+                        f"({mat_arrays_text(mat_record)}); name them with --acc NAME --gyro NAME (decision B335)")
     if time_column is None:
-        time_column = guess_time_column(header)
+        time_column = guess_time_column(header, mat=bool(mat))
         t_source = "guessed"
         if time_column is None:
-            several = time_column_candidates(header)
+            several = time_column_candidates(header, mat=bool(mat))
             if several:  # decision B70: say which columns compete (a Shimmer's Timestamp_Unix and TimestampSync_Unix)
                 raise DataError(f"{where}: several columns look like the time: {', '.join(several)}; name the one "
                                 "to use with --time COLUMN")
+            if rate_hz is None and mat_record and "rate" in mat_record:  # decision B335: the MAT file's fs
+                rate_hz = mat_record["rate"]["hz"]
+                mat_record["rate"]["used"] = True
             if rate_hz is None:
                 raise DataError(f"{where}: no timestamp column found among: {have}; name it with --time COLUMN, or "
                                 "pass --rate HZ to time the rows by their number (a fixed-rate export, B323)")
             time_column = ROW_INDEX  # decision B323: a fixed-rate export (gaitmap / NilsPod style): rows at --rate
             t_source = "none"
     else:
-        t_source = "given"
+        t_source = "default order (--no-header, B336)" if time_column == headerless_time else "given"
         if time_column not in header:
             raise DataError(f"{where}: no time column {time_column!r}; the file's columns are: {have}")
     if time_column in {c for v in columns.values() for c in v}:
@@ -828,6 +916,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                         "--acc X,Y,Z --gyro X,Y,Z (or --mapping FILE.json)")
 
     tcol = pd.Series(np.arange(len(df)), name=ROW_INDEX) if time_column == ROW_INDEX else df[time_column]
+    t_duration = None
     parsed = None if time_column == ROW_INDEX else _datetime_seconds(tcol, where, time_format, time_zone)
     secs = None if parsed is None else parsed[0]
     if parsed is not None:
@@ -837,6 +926,14 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                         f"numbers ({tcol.iloc[0]} ...); leave them out")  # B63: not np.float64(0.0)
     else:
         t_num = pd.to_numeric(tcol, errors="coerce").to_numpy(dtype=float)
+        dur = duration_text(tcol) if np.isnan(t_num).any() else None
+        if dur is not None:  # decision B337: MATLAB duration text, "0.01 sec"
+            t_num, word = dur
+            if time_unit is not None and _time_word(time_unit) != word:
+                raise DataError(f"{where}: column {time_column!r} writes its unit ({tcol.iloc[0]!r} ...: {word}), "
+                                f"and --time-unit says {time_unit}; leave --time-unit out (decision B337)")
+            time_unit = word
+            t_duration = word
         bad = np.flatnonzero(~np.isfinite(t_num))
         if bad.size:
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
@@ -852,6 +949,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if rate_hz is None:
             t_unit, t_how = _time_unit(t_num, time_unit, time_column, where, row_units.get(time_column),
                                        inertial=bool(_INERTIAL & set(columns)))
+            if t_duration:  # decision B337
+                t_how = f"written after each value ({tcol.iloc[0]!r} ...: MATLAB duration text, B337)"
     if secs is not None and rate_hz is None and _whole_seconds(secs):  # decision B84: not duplicated rows
         raise DataError(_whole_seconds_message(secs, f"{where}", time_column, tcol.iloc[0]))
     if rate_hz is not None:  # decision B39: the time column holds sample numbers at rate_hz
@@ -873,7 +972,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             t_how = (f"rows at {r:g} Hz (given with --rate) from the whole-second date-time text (the start "
                      f"placed to +/-{half * 1000:.0f} ms)")
         elif time_column == ROW_INDEX:  # decision B323
-            t_unit, t_how = "samples", f"the row index at {r:g} Hz (given with --rate, decision B323)"
+            given = (f"the MAT file's {mat_record['rate']['name']}, decision B335"
+                     if mat_record and mat_record.get("rate", {}).get("used") else "given with --rate")
+            t_unit, t_how = "samples", f"the row index at {r:g} Hz ({given}, decision B323)"
         else:
             t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
     # the origin is taken off in the file's own unit: epoch milliseconds keep their exact 10 ms steps
@@ -911,6 +1012,10 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                         "streams": {}, "dropped_rows": {}}
         if skipped is not None:  # decision B66
             record["skipped_rows"] = skipped
+        if mat_record is not None:  # decision B335
+            record["mat"] = mat_record
+        if no_header:  # decision B336
+            record["no_header"] = True
         if parsed is not None:  # decision B43: what the date-time text was read as, for the summary
             record["time"]["datetime"] = parsed[1]
         streams: dict[str, Stream] = {}
@@ -1256,15 +1361,43 @@ def import_labels(paths, session: Session, origin_s: float, *, taken=(),
                    extras=extras, meta=session.meta, frames=session.frames), rows
 
 
-def import_steps(path: str | os.PathLike, session: Session, origin_s: float, *, relative: bool = False) -> Session:
+def _ic_list_strides(table: pd.DataFrame, path: Path, foot: str | None) -> pd.DataFrame:
+    """Decision B338: an IC list (``ic_ms``, optionally ``foot``) as G2 strides of the instrumented foot."""
+    from pdrlearn.io.ic_reference import ic_strides
+
+    if "foot" in table.columns:
+        sides = table["foot"].astype(str).str.strip().str.lower()
+        found = sorted(set(sides))
+        if foot is None and len(found) > 1:
+            raise DataError(f"{path}: an initial-contact list of {' and '.join(found)} contacts; pass --foot "
+                            "left|right, the foot this unit is on, to take its contacts (decision B338)")
+        if foot is not None:
+            table = table[sides == foot]
+            if table.empty:
+                raise DataError(f"{path}: no {foot} contacts in its foot column ({', '.join(found)}); check --foot "
+                                "(decision B338)")
+    out = ic_strides(table["ic_s"])
+    if out.empty:
+        raise DataError(f"{path}: {len(table)} initial contact(s) and no two consecutive ones within a stride (3 s): "
+                        "no stride to label; a foot reference needs each contact of the walk (decision B338)")
+    out.attrs["from_ics"] = int(len(table))
+    return out
+
+
+def import_steps(path: str | os.PathLike, session: Session, origin_s: float, *, relative: bool = False,
+                 foot: str | None = None) -> Session:
     """``session`` with the labelled steps of ``path`` (``start_ms,end_ms`` and ``terrain`` ... as the
     session's ``steps.csv``, times in ms on the export's clock), moved onto the session's clock (``origin_s``
-    taken off) and checked as ``read_session`` checks them (decision D12)."""
+    taken off) and checked as ``read_session`` checks them (decision D12). A table of initial contacts only
+    (``ic_ms``, and ``foot``: those of ``foot``) becomes strides the G2 way (decision B338,
+    :func:`pdrlearn.io.ic_reference.ic_strides`); ``steps.attrs["from_ics"]`` counts its contacts."""
     from pdrlearn.io.session import STEP_COLUMNS
     from pdrlearn.io.validate import check_columns, check_numeric
 
     path = Path(path)
     steps = _shifted_table(path, _label_origin(session, origin_s, relative))
+    if "ic_s" in steps.columns and not {"start_s", "end_s"} & set(steps.columns):  # decision B338
+        steps = _ic_list_strides(steps, path, foot)
     check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
     check_numeric(steps, STEP_COLUMNS, str(path))
     _check_shifted_labels(steps, path, session, origin_s, relative)

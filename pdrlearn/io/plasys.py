@@ -169,18 +169,26 @@ def _check_body_fields(meta: dict, where: str) -> None:
                 raise DataError(f"{where}: {key} {v:g} m is implausible (over {most:g} m; centimetres?); give metres")
 
 
-def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> pd.DataFrame:
+def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = (), *, header: bool = True) -> pd.DataFrame:
     """Read a CSV file with stripped column names; a missing, empty or malformed file is a one-line
-    :class:`DataError`. ``text_columns``: columns kept as written (``007`` stays ``007``, not the number 7)."""
+    :class:`DataError`. ``text_columns``: columns kept as written (``007`` stays ``007``, not the number 7).
+    ``header=False``: the file has no header line (MATLAB's ``writematrix``), its columns are named by their
+    index from 0, ``"0"``, ``"1"`` ... (decision B336)."""
+    from pdrlearn.io.matfile import mat_message, mat_version
+
     path = Path(path)
     if not path.is_file():
         raise DataError(f"{path}: file not found")
+    no_header = {} if header else {"header": None}  # decision B336
     try:
         dialect = _csv_dialect(path)
-        df = pd.read_csv(path, dtype=dict.fromkeys(text_columns, str) or None, **dialect)
+        df = pd.read_csv(path, dtype=dict.fromkeys(text_columns, str) or None, **dialect, **no_header)
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
     except UnicodeDecodeError:
+        version = mat_version(path)
+        if version:  # decision B335: a MAT file read as text says what it is
+            raise DataError(mat_message(path, version)) from None
         decode(path, path.read_bytes())  # decision B221: raises the one line naming the first byte not UTF-8
         raise DataError(f"{path}: not UTF-8 text; save it as UTF-8 (decision B221)") from None
     except pd.errors.ParserError as exc:
@@ -198,7 +206,7 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> p
     _refuse_us_thousands(df, path, comma=dialect.get("decimal") == ",")
 
     def text() -> pd.DataFrame:  # the cells as written, for decision B112 (read only when a column may need it)
-        raw = pd.read_csv(path, dtype=str, **dialect)
+        raw = pd.read_csv(path, dtype=str, **dialect, **no_header)
         raw.columns = df.columns
         return raw
 
@@ -846,6 +854,20 @@ def _phone_recipe(files: dict[str, Path]) -> str:
             "import, --merge adding each to the same unit; decision B147)")
 
 
+def _mat_import_hint(folder: Path) -> str:
+    """Decision B335: "; ..." naming the `pdrlearn import` command of a folder's MATLAB files, or ""."""
+    from pdrlearn.io.matfile import V73_FIX, mat_version
+
+    mats = sorted(p for p in folder.glob("*.mat") if p.is_file() and mat_version(p))
+    if not mats:
+        return ""
+    more = f" (and {len(mats) - 1} more .mat)" if len(mats) > 1 else ""
+    if mat_version(mats[0]) == "7.3":
+        return f"; {shell_quote(mats[0].name)}{more} is a v7.3 MAT file (HDF5): {V73_FIX} (decision B335)"
+    return (f"; a MATLAB file becomes a session with `pdrlearn import {shell_quote(mats[0])} --out SESSION`{more} "
+            "(N x 3 arrays acc, gyr and a time vector or fs; --acc/--gyro name others; decision B335)")
+
+
 def export_import_hint(folder: Path) -> str:
     """Decision B93 (D12's hint): "; ..." naming the `pdrlearn import` command(s) that turn the one-file lab
     exports in ``folder`` into a session (paths quoted, B92), or "" when it holds none. Two or more exports:
@@ -857,7 +879,7 @@ def export_import_hint(folder: Path) -> str:
     exports = sorted((p for p in folder.glob("*.csv") if _looks_like_export(p)),
                      key=lambda p: (-p.stat().st_size, p.name))  # the largest first
     if not exports:
-        return ""
+        return _mat_import_hint(folder)
     q = shell_quote
     phone = _phone_sensor_files(exports)
     if "acc" in phone and "gyro" in phone:  # decision B147: not a foot and a waist unit

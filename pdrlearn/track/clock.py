@@ -55,6 +55,33 @@ def _offset(text: str | None):
     return timezone(-d if m.group(1) == "-" else d)
 
 
+#: decision E173: ``steps --time-origin``: --out times from the session's first sample, or on the export's clock
+TIME_ORIGINS = ("session", "export")
+#: decision E173: the instant columns (s on the session's clock) ``steps --time-origin export`` moves onto the
+#: export's clock (plasys.DEFAULT_TIME_COLUMNS and the detections' ``event_s``)
+INSTANT_COLUMNS = ("start_s", "end_s", "event_s", "ic_s", "tc_s", "pre_ic_s", "fc_s")
+
+
+def export_origin_s(meta: dict | None) -> float | None:
+    """Decision E173: the time on the export's clock (s, in the unit the import read, e.g. 12.345 or s since the
+    epoch) of the session's 0 s: ``meta.json`` ``imported.time.origin_s`` of ``pdrlearn import`` (a ``--merge``: the
+    first import's, which the second shares); None for a session not imported."""
+    imported = (meta or {}).get("imported") if isinstance(meta, dict) else None
+    first = imported[0] if isinstance(imported, list) and imported else imported
+    t = first.get("time") if isinstance(first, dict) else None
+    v = t.get("origin_s") if isinstance(t, dict) else None
+    return float(v) if isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) else None
+
+
+def on_export_clock(table: pd.DataFrame, origin_s: float) -> pd.DataFrame:
+    """Decision E173: ``table`` with its :data:`INSTANT_COLUMNS` plus ``origin_s`` (the export's clock)."""
+    out = table.copy()
+    for c in INSTANT_COLUMNS:
+        if c in out.columns:
+            out[c] = (pd.to_numeric(out[c], errors="coerce") + origin_s).round(9)  # no float noise in the CSV
+    return out
+
+
 def recording_start(meta: dict | None, where: str = "meta.json") -> datetime | None:
     """Decision L298: the clock time of the session's 0 s from its ``meta`` (module docstring), or None. A
     ``recording_start`` that is not an ISO 8601 date-time is one :class:`DataError` line (decision B254); a JSON
