@@ -61,7 +61,7 @@ def swing_rest(d: Path) -> str:
     out = f"strides {len(st):3d} (median {np.median(st.end_ms - st.start_ms) / 1000:.2f} s), rest runs {inside:3d}"
     if "tc_ms" in st and st.tc_ms.notna().all():
         w = uniform_filter1d(np.linalg.norm(gyr, axis=1), max(1, int(round(0.1 * fs))), mode="nearest")
-        mins = [w[(t > c + 0.05) & (t < i - 0.05)].min() for c, i in zip(st.tc_ms / 1000, st.ic_ms / 1000)
+        mins = [w[(t > c + 0.05) & (t < i - 0.05)].min() for c, i in zip(st.tc_ms / 1000, st.ic_ms / 1000, strict=True)
                 if ((t > c + 0.05) & (t < i - 0.05)).sum() >= 3]
         out += f"; in-swing min |w| median {np.median(mins):.2f}, lowest {np.min(mins):.2f} rad/s"
     return out
