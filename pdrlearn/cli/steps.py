@@ -317,24 +317,13 @@ def cadence_range_warning(table, meta: dict | None, unit: str) -> str | None:
     median stride time (L176's formula), a waist table's too, over two consecutive steps (W225); intervals longer than
     :data:`pdrlearn.kernels.contact.MAX_STRIDE_S` (half of it for a step) are pauses, not strides. Only the cadence
     is judged (no speed without a track); None inside the range or with fewer than L123's minimum intervals."""
-    import numpy as np
-
-    from pdrlearn.kernels.contact import MAX_STRIDE_S
-    from pdrlearn.track.gait import MIN_STRAIGHT_FOR_RANGE, gait_range_warning, leg_length, median_cadence
+    from pdrlearn.track.gait import contact_cadence_spm, gait_range_warning, leg_length
 
     if "event_s" not in table or len(table) < 2:
         return None
-    t = np.sort(table["event_s"].to_numpy(float))
-    t = t[np.isfinite(t)]
-    dt = np.diff(t)
-    per_stride = 1 if unit == "foot" else 2  # a foot table's interval is a stride, a waist table's a step
-    ok = (dt > 0) & (dt <= MAX_STRIDE_S / per_stride + 1e-9)
-    if unit != "foot":  # decision W225: two consecutive steps make a stride (alternating short / long steps)
-        dt, ok = dt[:-1] + dt[1:], ok[:-1] & ok[1:]
-    dt = dt[ok]
-    if len(dt) < MIN_STRAIGHT_FOR_RANGE:  # L123's minimum count for a judged median
+    cad = contact_cadence_spm(table["event_s"].to_numpy(float), unit)  # shared with track's L431
+    if cad is None:
         return None
-    cad = median_cadence(float(np.median(dt)), None)  # L176: 120 / the median stride time
     line = gait_range_warning({"median_cadence_spm": cad, **leg_length(meta)})
     if line is None:
         return None

@@ -51,10 +51,15 @@ def force_stance(session: Session, t: np.ndarray, gyr: np.ndarray | None = None,
     return loaded & calm
 
 
+#: steps decision 61: the window (s) of the offline rest's L27 floor (the streamed segmenter keeps
+#: ``STANCE_L27_DEFAULTS["stance_floor_window_s"]``, its trailing window)
+OFFLINE_FLOOR_WINDOW_S = SK.STANCE_L27_DEFAULTS["stance_floor_window_s"]
+
+
 def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: float = 0.1,
                     acc_tol: float = 1.5, gyr_tol: float = 0.4,
                     floor_factor: float = SK.STANCE_L27_DEFAULTS["stance_floor_factor"],
-                    floor_window_s: float = SK.STANCE_L27_DEFAULTS["stance_floor_window_s"],
+                    floor_window_s: float | None = None,
                     gyr_max: float = SK.STANCE_L27_DEFAULTS["stance_gyro_max_rad_s"]) -> np.ndarray:
     """Foot-flat samples from accelerometer + gyroscope (short window, looser tolerances than
     :func:`pdrlearn.signal.standstill_mask`, whose test this reuses).
@@ -65,6 +70,7 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
     foot-flats); ``floor_factor=0`` = the fixed ``gyr_tol``.
     """
     window_s = max(window_s, 2.5 / fs)
+    floor_window_s = OFFLINE_FLOOR_WINDOW_S if floor_window_s is None else floor_window_s
     tol = gyr_tol
     if floor_factor > 0 and len(gyr):
         floor = SK.stance_floor(np.linalg.norm(np.asarray(gyr, dtype=float), axis=1), fs, mean_s=window_s,

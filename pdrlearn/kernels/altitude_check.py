@@ -59,6 +59,38 @@ def integrated_altitude_check(dz: np.ndarray, levelled: bool = True, raw_dz: np.
     return msg, info
 
 
+#: Decision L430: the steepest stair a stride may climb or descend (deg). Building codes cap a stair's pitch at 42 deg
+#: (UK Approved Document K 1.4, private stair; IBC 1011.5.2's 7 3/4 in rise on a 10 in tread is 37.8 deg); a one-tread
+#: stride on such a stair (0.20 m rise, 0.22 m going) whose length reads two stride MAEs short (2 x 0.035 m, the
+#: gaitmap level walk, decision D7) is still under 55 deg, so 60 deg leaves room for the track's own error.
+STEEPEST_STAIR_DEG = 60.0
+#: ... and how many such strides make the warning (one can be a stumble or a glitch)
+STEEP_STRIDES_MIN = 2
+
+
+def steep_stride_check(length: np.ndarray, dz: np.ndarray) -> tuple[str | None, dict]:
+    """Decision L430: ``length`` (m, horizontal) and ``dz`` (m) of a foot track's strides. A stride that changes
+    height by :data:`LEVEL_DZ_M` or more (L39) while moving less than |dz| / tan(:data:`STEEPEST_STAIR_DEG`)
+    horizontally is steeper than any stair: its ends are not the foot's rests on two treads (a slow gait's mid-swing
+    lull taken for a rest, S77, or a foot rest missed), so its height change is not a climb. With
+    :data:`STEEP_STRIDES_MIN` of them, one warning; returns ``(line or None, info)``."""
+    length = np.abs(np.nan_to_num(np.asarray(length, dtype=float)))
+    dz = np.nan_to_num(np.asarray(dz, dtype=float))
+    climb = np.abs(dz) >= LEVEL_DZ_M
+    steep = climb & (length < np.abs(dz) / np.tan(np.radians(STEEPEST_STAIR_DEG)))
+    n, k = int(climb.sum()), int(steep.sum())
+    info = {"strides_with_height": n, "steep_strides": k, "steep_dz_m": float(dz[steep].sum())}
+    if k < STEEP_STRIDES_MIN:
+        return None, info
+    return (f"{k} of the {n} strides that change height by {LEVEL_DZ_M:.2f} m or more do it over less horizontal "
+            f"travel than a {STEEPEST_STAIR_DEG:.0f} deg slope allows (median {np.median(length[steep]):.2f} m for "
+            f"{np.median(np.abs(dz[steep])):.2f} m of height; no building stair is steeper than 42 deg): these strides "
+            "do not run from one rest of the foot on a tread to the next, so their "
+            f"{dz[steep].sum():+.2f} m of height change is not a climb - on a slow gait (under ~70 steps/min) the "
+            "foot's slow mid-swing can pass for a rest and split a stride (decisions S77, L430); check the altitude "
+            "against a barometer (`--altitude fused`) or the lower back (`--pipeline waist-pendulum`)"), info
+
+
 def fused_altitude_line(msg: str, fused_m: float) -> str:
     """Decision L292: L69's line (:func:`integrated_altitude_check`) of a track whose altitude was then fused with
     the waist barometer (L154): it quotes the reported (fused) altitude change, the foot's own after it."""

@@ -9,8 +9,10 @@ from pdrlearn.kernels.altitude_check import (
     LEVEL_ALTITUDE_PER_100M_MAX_M,
     LEVEL_STRIDE_DZ_MAX_M,
     integrated_altitude_check,
+    steep_stride_check,
     terrain_dz_check,
 )
 
 __all__ = ["CONFLICT_MIN_FRACTION", "CONFLICT_MIN_STRIDES", "FLAT_ALTITUDE_M", "LEVEL_ALTITUDE_PER_100M_MAX_M",
-           "LEVEL_STRIDE_DZ_MAX_M", "integrated_altitude_check", "terrain_dz_check"]
+           "LEVEL_STRIDE_DZ_MAX_M", "integrated_altitude_check", "steep_stride_check",
+           "terrain_dz_check"]

@@ -1319,11 +1319,17 @@ def summary_warnings(summary: dict) -> list[str]:
         resolution_warning,
         stride_cv_warning,
     )
-    from pdrlearn.track.gait import bout_range_warning, gait_range_warning, gait_speed_warning
+    from pdrlearn.track.gait import (
+        bout_range_warning,
+        contact_cadence_warning,
+        gait_range_warning,
+        gait_speed_warning,
+    )
     from pdrlearn.track.position_sigma import position_sigma_range_warning, position_sigma_warning
     from pdrlearn.track.toeoff import stance_range_warning  # decision L414
 
-    return [w for w in (gait_range_warning(summary), gait_speed_warning(summary),  # L353: adopted by its rule
+    return [w for w in (gait_range_warning(summary), contact_cadence_warning(summary),  # L431
+                        gait_speed_warning(summary),  # L353: adopted by its rule
                         bout_range_warning(summary), stride_cv_warning(summary),
                         pooled_cv_warning(summary), pooled_length_cv_warning(summary),  # L380
                         resolution_warning(summary),

@@ -757,6 +757,51 @@ def gait_range_warning(summary: dict) -> str | None:
     return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow)}{extra}"
 
 
+def contact_cadence_spm(event_s, unit: str = "foot") -> float | None:
+    """Decision steps 44 (shared by L431): the cadence (steps/min) of a detections table's contacts ``event_s`` (s):
+    a foot table's consecutive contacts are a stride apart (120 / the median interval, L176's formula), a waist
+    table's a step (two consecutive intervals make a stride, W225); intervals longer than
+    :data:`pdrlearn.kernels.contact.MAX_STRIDE_S` (half of it for a step) are pauses, not strides. None with fewer
+    than L123's :data:`MIN_STRAIGHT_FOR_RANGE` intervals."""
+    from pdrlearn.kernels.contact import MAX_STRIDE_S
+
+    t = np.sort(np.asarray(event_s, dtype=float))
+    t = t[np.isfinite(t)]
+    if len(t) < 2:
+        return None
+    dt = np.diff(t)
+    per_stride = 1 if unit == "foot" else 2  # a foot table's interval is a stride, a waist table's a step
+    ok = (dt > 0) & (dt <= MAX_STRIDE_S / per_stride + 1e-9)
+    if unit != "foot":  # decision W225: two consecutive steps make a stride (alternating short / long steps)
+        dt, ok = dt[:-1] + dt[1:], ok[:-1] & ok[1:]
+    dt = dt[ok]
+    if len(dt) < MIN_STRAIGHT_FOR_RANGE:  # L123's minimum count for a judged median
+        return None
+    return median_cadence(float(np.median(dt)), None)  # L176: 120 / the median stride time
+
+
+def contact_cadence_warning(summary: dict) -> str | None:
+    """Decision L431: `track` judges L95's cadence on its foot contacts as `pdrlearn steps` does (steps decision 44,
+    :func:`contact_cadence_spm`, kept in ``info["contact_cadence_spm"]`` by the foot pipeline), so the two commands
+    agree: when the tracked strides' own figures pass L95 (:func:`session_range_side` None) but the contacts'
+    cadence lies outside the leg-scaled range, one line naming both cadences. A stride split at a false rest (a slow
+    swing's lull, S77) halves its stride time and doubles its cadence; the contacts are not split. None otherwise."""
+    cad = _finite((summary.get("info") or {}).get("contact_cadence_spm"))
+    if cad is None or session_range_side(summary) is not None:
+        return None
+    leg = _leg(summary)
+    side = range_side(cad, None, leg)
+    if side is None:
+        return None
+    own = _finite(summary.get("median_cadence_spm"))
+    line = gait_range_warning({"median_cadence_spm": cad, "leg_length_m": leg,
+                               "leg_length_source": summary.get("leg_length_source"), "info": summary.get("info")})
+    return (f"the foot's contacts: {line}" + (f" (the tracked strides' own median cadence {own:.0f} steps/min is "
+                                             "inside the range: strides were split between two contacts, as at a "
+                                             "slow swing taken for a rest, decision S77)" if own is not None else "")
+            + "; `pdrlearn steps` judges the same contacts (decision L431)")
+
+
 def gait_speed_warning(summary: dict) -> str | None:
     """Decision L353 (L350's candidate): one line when the summary's ``gait_speed_mps`` (distance / walking time, the
     starts, stops, turns and pauses included) is below L95's leg-scaled speed range (L148's :func:`range_side`) while

@@ -53,7 +53,7 @@ from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import gaps as KG
 from pdrlearn.kernels import sideways as KSW
 from pdrlearn.kernels import stride as SK
-from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
+from pdrlearn.kernels.altitude_check import integrated_altitude_check, steep_stride_check, terrain_dz_check
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
 from pdrlearn.kernels.contact import force_at, stride_contact
 from pdrlearn.kernels.distance import (
@@ -78,7 +78,14 @@ from pdrlearn.signal import lowpass
 from pdrlearn.track.altitude import apply_altitude, check_altitude, set_strides_dz
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
-from pdrlearn.track.gait import STRAIGHT_MAX_RAD, add_gait_columns, streamed_gait_columns, stride_rows, turn_rows
+from pdrlearn.track.gait import (
+    STRAIGHT_MAX_RAD,
+    add_gait_columns,
+    contact_cadence_spm,
+    streamed_gait_columns,
+    stride_rows,
+    turn_rows,
+)
 from pdrlearn.track.gaps import (
     FOOT_IMU,
     drop_steps_across_gaps,
@@ -96,6 +103,7 @@ from pdrlearn.track.gaps import (
 )
 from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
 from pdrlearn.track.rides import foot_rides
+from pdrlearn.track.sim_rocker import hermite_contact_line
 from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
 from pdrlearn.warning_lines import coded
 
@@ -890,6 +898,20 @@ def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.
     return np.where(bad, 0.0, length), np.where(bad, 0.0, dz), bad
 
 
+def _contact_cadence(seen: dict, table: pd.DataFrame, t: np.ndarray, stance: np.ndarray) -> float | None:
+    """Decision L431: the cadence of the foot's contacts as `pdrlearn steps` judges it (steps decision 44): the step
+    detector's own table when the track ran one (``seen``, steps decision 55: the accel detector of an IMU stance,
+    the accel-force detector of the insoles) reduced to one contact per rest-to-rest stride of the track's stance as
+    `steps` reduces it (steps decision 34), before the strides were cut at the rests; else the strides' contacts."""
+    from pdrlearn.displace.foot import one_per_rest_stride
+
+    det = seen.get("AccelStepDetector", seen.get("AccelForceStepDetector"))
+    if det is not None and len(det) and {"start_s", "end_s", "event_s"} <= set(det):
+        rows = one_per_rest_stride(t, stance, det["start_s"], det["end_s"], det["event_s"])
+        return contact_cadence_spm(det["event_s"].to_numpy(float)[rows])
+    return contact_cadence_spm(table["event_s"].to_numpy(float)) if "event_s" in table else None
+
+
 @register_pipeline("plasys")
 def track_plasys(session: Session, *, method: str = "auto", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
@@ -1088,6 +1110,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     else:
         stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
     kind = cfg["detector"] if stance_source == "force" or method == "M1" else "AccelStepDetector"
+    if kind == "AccelStepDetector" and isinstance(steps, str) and steps == "detector":  # decision S78
+        sim_line = hermite_contact_line(session.meta)
+        warnings += [sim_line] if sim_line else []
     seen: dict = {}  # steps decision 55: the accel-force detector's table, run once for the strides, L390 and L161
     strides = _detect_strides(session, kind, steps, foot.t, stance, warnings, seen).reset_index(drop=True)
     if stance_source == "force":  # decisions L388-L390: the force detector's events (onsets, drop-offs)
@@ -1219,6 +1244,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     length, dz, impossible = _drop_impossible(length, dz, strides["start_s"].to_numpy(float),
                                               strides["end_s"].to_numpy(float), warnings)  # decision L94
     altitude_check, terrain_check = None, None
+    msg, steep_check = steep_stride_check(np.where(in_gap | impossible, 0.0, np.hypot(disp[:, 0], disp[:, 1])), dz)
+    warnings += [msg] if msg else []  # decision L430: strides steeper than any stair
     if no_classes or "terrain" in untrained:  # decision L69: the altitude is the foot's integrated height
         msg, altitude_check = coded_altitude_check(  # decisions L69, L145
             dz, raw_dz=np.where(in_gap | impossible, 0.0, raw_dz))
@@ -1414,6 +1441,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             # decision L22: heel contact - sensor (body frame, m) when the heel is the reference point
             "lever_arm_m": None if fd.lever_arm_ is None else [round(float(v), 4) for v in fd.lever_arm_],
             "altitude_check": altitude_check, "terrain_dz_check": terrain_check,  # decisions L69, C28
+            "steep_stride_check": steep_check,  # decision L430
+            # decision L431: the contacts' cadence as `pdrlearn steps` judges it
+            "contact_cadence_spm": _contact_cadence(seen, table, foot.t, stance),
             "warnings": warnings}
     res = TrackResult(steps=table, trajectory=traj, info=info)
     logged = len(warnings)  # apply_altitude logs its own lines
