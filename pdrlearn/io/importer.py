@@ -22,6 +22,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.io.datetimes import dst_jump, dst_message, exact_seconds, localize, offset_text
 from pdrlearn.io.frames import AxisFrame, right_handed
 from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, GRAVITY_FILE, TOTAL_ACC_FILE, _csv_dialect, read_table
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU, parse_value_unit
@@ -486,9 +487,11 @@ def _time_of_day_seconds(text: pd.Series, zone: str | None) -> tuple[np.ndarray,
 
 
 def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None = None,
-                      zone: str | None = None) -> tuple[np.ndarray, dict] | None:
-    """Seconds since the epoch of a column of date-time texts (ISO 8601 and the like) and what was read
-    (``{"order": ..., "zone": ..., "first": ISO, "last": ISO}``), or None when the column is not date-times.
+                      zone: str | None = None, first_line: int = 2) -> tuple[np.ndarray, dict, float] | None:
+    """Seconds since ``base`` of a column of date-time texts (ISO 8601 and the like), what was read
+    (``{"order": ..., "zone": ..., "first": ISO, "last": ISO}``) and ``base`` (a whole second since the epoch; 0
+    for times of day), or None when the column is not date-times. Decision B341: the seconds are exact to the
+    text's resolution (``,250`` is 0.25 s), as :func:`pdrlearn.io.datetimes.exact_seconds` computes them.
 
     Decision B43: a numeric date whose day and month are both <= 12 in every row (``10/12/2020``) is refused
     unless ``time_format`` says which is which (pandas read it month first, but ``13/12/2020`` day first); an
@@ -498,7 +501,7 @@ def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None =
         return None
     text = col.astype(str)
     if time_format is None and len(text) and text.str.fullmatch(_TIME_OF_DAY).all():  # decision B86
-        return _time_of_day_seconds(text, zone)
+        return (*_time_of_day_seconds(text, zone), 0.0)
     info: dict = {}
     try:
         if time_format is not None:
@@ -530,20 +533,16 @@ def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None =
         return None
     if getattr(dt.dt, "tz", None) is None:
         z = zone or "UTC"
-        try:
-            dt = dt.dt.tz_localize(z)
-        except Exception:  # noqa: BLE001 - pandas raises several kinds for an unknown zone
-            raise DataError(f"import: --time-zone {z!r} is not a time zone (write +01:00 or Europe/Berlin)") from None
+        dt = localize(dt, z, text, where, first_line)  # decision B342: the hour repeated in autumn by the rows' order
         info["zone"] = f"{z} ({'given with --time-zone' if zone else 'none in the text: taken as UTC'})"
     else:
         info["zone"] = "from the text" + (" (--time-zone not used)" if zone else "")
-    off = dt.iloc[0].utcoffset()  # decision L298: the offset as recorded, for the clock columns (UTC below)
-    if off is not None:
-        mins = int(off.total_seconds() // 60)
-        info["offset"] = f"{'-' if mins < 0 else '+'}{abs(mins) // 60:02d}:{abs(mins) % 60:02d}"
+    if dt.iloc[0].utcoffset() is not None:  # decision L298: the offset as recorded, for the clock columns (UTC below)
+        info["offset"] = offset_text(dt.iloc[0])
     dt = dt.dt.tz_convert("UTC")
     info["first"], info["last"] = dt.iloc[0].isoformat(), dt.iloc[-1].isoformat()
-    return (dt - pd.Timestamp(0, tz="UTC")).dt.total_seconds().to_numpy(dtype=float), info
+    secs, base = exact_seconds(dt)  # decision B341: exact to the text's resolution, not float epoch seconds
+    return secs, info, base
 
 
 def parse_frame(text: str | dict | None, where: str = "--frames") -> AxisFrame | None:
@@ -828,8 +827,13 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                         "--acc X,Y,Z --gyro X,Y,Z (or --mapping FILE.json)")
 
     tcol = pd.Series(np.arange(len(df)), name=ROW_INDEX) if time_column == ROW_INDEX else df[time_column]
-    parsed = None if time_column == ROW_INDEX else _datetime_seconds(tcol, where, time_format, time_zone)
+    parsed = None if time_column == ROW_INDEX else _datetime_seconds(tcol, where, time_format, time_zone, first_line)
     secs = None if parsed is None else parsed[0]
+    base = 0.0 if parsed is None else parsed[2]  # decision B341: date-times are seconds since this whole second
+    if parsed is not None and time_zone is None and "taken as UTC" in parsed[1]["zone"]:
+        jump = dst_jump(secs)  # decision B342: local times with a daylight-saving change, before B73's clock reset
+        if jump is not None:
+            raise DataError(dst_message(secs, jump, tcol, where, time_column, first_line))
     if parsed is not None:
         t_num, t_unit, t_how = secs, "s", "date-time text"
     elif time_format is not None or time_zone is not None:
@@ -883,7 +887,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
     fix = (f"pass --split-at-clock-reset to write one session per recording, or split the export at line "
            f"{int(resets[0]) + 1 + first_line} into two files" if resets.size else "")
     if resets.size and not split:
-        raise DataError(clock_reset_message(t_num * scale, resets, f"{where} ({time_column})",
+        raise DataError(clock_reset_message(t_num * scale + base, resets, f"{where} ({time_column})",
                                             f"line {int(resets[0]) + 1 + first_line}", fix))
     if split and origin_s is not None:
         raise DataError("import: --split-at-clock-reset starts each part's clock at its own first sample; it "
@@ -901,9 +905,11 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"{where}: part {part} of {n_parts} ({lines}, between clock resets) holds {b - a} "
                                 f"row(s) over {span:.2f} s, too short to be a recording; delete those rows and import "
                                 "again (nothing written)")
-        origin_raw = float(t_num[0]) if origin_s is None else float(origin_s) / scale
+        origin_raw = float(t_num[0]) if origin_s is None else (float(origin_s) - base) / scale
+        if parsed is not None and origin_s is not None:  # decision B341: a shared origin, stored as float epoch
+            origin_raw = round(origin_raw * 1e6) / 1e6  # seconds (0.24 us steps), is exact to the microsecond
         t_all = (t_num - origin_raw) * scale
-        origin = origin_raw * scale
+        origin = origin_raw * scale + base  # decision B341: on the export's clock (s since the epoch for date-times)
         record: dict = {"file": path.name, "unit": unit,
                         "time": {"column": time_column, "unit": t_unit,
                                  "source": t_how if time_column == ROW_INDEX else f"{t_source} column, unit {t_how}",

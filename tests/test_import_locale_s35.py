@@ -1,0 +1,133 @@
+"""Trial T1 (session 35, a German lab's Excel-style CSVs): date-times imported as float epoch seconds carried noise
+that split a walking bout (B341); daylight-saving changes were misdiagnosed (B342)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.io import read_session
+
+ROOT = Path(__file__).resolve().parents[1]
+T11 = ROOT / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"  # lower back, 100 Hz, 137 s of daily-life walking
+T5 = ROOT / "datasets" / "real" / "mobgap_HA001_Test5_Trial1"  # lower back, 100 Hz, a short straight walk
+ACC = ["Beschl. X [m/s²]", "Beschl. Y [m/s²]", "Beschl. Z [m/s²]"]
+GYR = ["Drehrate X [°/s]", "Drehrate Y [°/s]", "Drehrate Z [°/s]"]
+COLS = ["--acc", ",".join(ACC), "--gyro", ",".join(GYR)]
+
+
+def _real(folder: Path):
+    if not folder.is_dir():
+        pytest.skip(f"{folder} not present")
+    return read_session(folder)
+
+
+def _german(s, path: Path, times: list[str] | None, tname: str = "Datum/Uhrzeit") -> Path:
+    """The waist unit as German Excel writes it: ';', decimal commas, a BOM, CRLF; ``times`` the time column's texts
+    (default: integer ms since the first sample under ``Zeit [ms]``)."""
+    a, w = s.streams["wAccelerometer"], s.streams["wGyroscope"]
+    t = times if times is not None else np.round((a.t - a.t[0]) * 1e3).astype(int)
+    df = pd.DataFrame({tname: t, **{c: a.values[:, i] for i, c in enumerate(ACC)},
+                       **{c: np.degrees(w.values[:, i]) for i, c in enumerate(GYR)}})
+    df.to_csv(path, sep=";", decimal=",", index=False, encoding="utf-8-sig", lineterminator="\r\n")
+    return path
+
+
+def _local(start: str, ms: np.ndarray) -> list[str]:
+    """Wall-clock texts ``dd.mm.yyyy HH:MM:SS,fff`` from ``start`` plus ``ms`` (naive: no daylight-saving change)."""
+    ts = [pd.Timestamp(start) + pd.Timedelta(milliseconds=int(m)) for m in ms]
+    return [f"{t:%d.%m.%Y %H:%M:%S},{t.microsecond // 1000:03d}" for t in ts]
+
+
+def _err(capsys) -> str:
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1, err
+    return err
+
+
+# B341 -------------------------------------------------------------------------------------------------------------
+
+def test_datetimes_give_exact_ms_and_the_bouts_of_the_ms_import(tmp_path, capsys):
+    s = _real(T11)
+    ms = np.round((s.streams["wAccelerometer"].t - s.streams["wAccelerometer"].t[0]) * 1e3).astype(int)
+    dated = _german(s, tmp_path / "datum.csv", _local("2026-12-05 14:03:11.250", ms))
+    plain = _german(s, tmp_path / "ms.csv", None, tname="Zeit [ms]")
+    assert main(["import", str(dated), "--out", str(tmp_path / "d"), "--unit", "waist", "--time", "Datum/Uhrzeit",
+                 "--time-format", "%d.%m.%Y %H:%M:%S,%f", "--time-zone", "Europe/Berlin", *COLS]) == 0
+    assert main(["import", str(plain), "--out", str(tmp_path / "m"), "--unit", "waist", "--time", "Zeit [ms]",
+                 *COLS]) == 0
+    written = pd.read_csv(tmp_path / "d" / "wAccelerometer.csv")["timestamp"].to_numpy()
+    np.testing.assert_array_equal(written, ms)  # 10000, not 9999.9999046
+    np.testing.assert_array_equal(written, pd.read_csv(tmp_path / "m" / "wAccelerometer.csv")["timestamp"])
+    assert read_session(tmp_path / "d").meta["imported"]["time"]["origin_s"] == 1796475791.25  # 13:03:11.250 UTC
+    capsys.readouterr()
+    bouts = []
+    for name in ("d", "m"):
+        assert main(["track", str(tmp_path / name), "--out", str(tmp_path / f"{name}_res")]) == 0
+        bouts.append(len(pd.read_csv(tmp_path / f"{name}_res" / "bouts.csv")))
+    assert bouts[0] == bouts[1]
+
+
+# B342 -------------------------------------------------------------------------------------------------------------
+
+def _dst_export(tmp_path: Path, first: list[str], second_start: str, name: str) -> tuple[Path, int]:
+    """T5 written with local times: ``first`` texts for its first rows, then the rest from ``second_start`` on."""
+    s = _real(T5)
+    n = len(s.streams["wAccelerometer"])
+    k = len(first)
+    rest = _local(second_start, np.arange(n - k) * 10)
+    return _german(s, tmp_path / name, [*first, *rest]), k
+
+
+def test_autumn_change_with_a_zone_is_read_by_the_rows_order(tmp_path, capsys):
+    before = _local("2026-10-25 02:59:58", np.arange(200) * 10)  # 2 s of summer time, then the hour again
+    csv, k = _dst_export(tmp_path, before, "2026-10-25 02:00:00", "okt.csv")
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time-zone", "Europe/Berlin",
+                 "--time-format", "%d.%m.%Y %H:%M:%S,%f", "--time", "Datum/Uhrzeit", *COLS]) == 0
+    got = read_session(tmp_path / "s")
+    t = got.streams["wAccelerometer"].t
+    np.testing.assert_allclose(np.diff(t), 0.01, atol=1e-9)  # one clock across the change, no jump
+    assert got.meta["imported"]["time"]["origin_s"] == pd.Timestamp("2026-10-25 00:59:58", tz="UTC").timestamp()
+
+
+def test_autumn_change_without_a_zone_is_named_not_a_clock_reset(tmp_path, capsys):
+    before = _local("2026-10-25 02:59:58", np.arange(200) * 10)
+    csv, k = _dst_export(tmp_path, before, "2026-10-25 02:00:00", "okt.csv")
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "Datum/Uhrzeit",
+                 "--time-format", "%d.%m.%Y %H:%M:%S,%f", *COLS]) == 2
+    err = _err(capsys)
+    assert f"jumps back by one hour at line {k + 2}" in err and "daylight-saving change" in err
+    assert "--time-zone Europe/Berlin" in err and "clock reset (the recorder restarted)" not in err
+    assert not (tmp_path / "s").exists()
+
+
+def test_spring_change_without_a_zone_is_named_not_left_as_a_gap(tmp_path, capsys):
+    before = _local("2026-03-29 01:59:58", np.arange(200) * 10)
+    csv, k = _dst_export(tmp_path, before, "2026-03-29 03:00:00", "maerz.csv")
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "Datum/Uhrzeit",
+                 "--time-format", "%d.%m.%Y %H:%M:%S,%f", *COLS]) == 2
+    err = _err(capsys)
+    assert f"jumps forward by one hour at line {k + 2}" in err and "--time-zone" in err
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "Datum/Uhrzeit",
+                 "--time-format", "%d.%m.%Y %H:%M:%S,%f", "--time-zone", "Europe/Berlin", *COLS]) == 0
+    np.testing.assert_allclose(np.diff(read_session(tmp_path / "s").streams["wAccelerometer"].t), 0.01, atol=1e-9)
+
+
+def test_skipped_and_unresolvable_local_times_name_the_offset(tmp_path, capsys):
+    before = _local("2026-03-29 01:59:58", np.arange(200) * 10)  # the recorder kept winter time: 02:00 does not exist
+    csv, k = _dst_export(tmp_path, before, "2026-03-29 02:00:00", "winter.csv")
+    args = ["--unit", "waist", "--time", "Datum/Uhrzeit", "--time-format", "%d.%m.%Y %H:%M:%S,%f",
+            "--time-zone", "Europe/Berlin", *COLS]
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *args]) == 2
+    err = _err(capsys)
+    assert f"(line {k + 2}) does not exist in Europe/Berlin" in err and "--time-zone +01:00" in err
+    assert "is not a time zone" not in err
+    inside = _local("2026-10-25 02:10:00", np.arange(200) * 10)  # wholly inside the repeated hour: which one?
+    csv, _ = _dst_export(tmp_path, inside, "2026-10-25 02:10:02", "twice.csv")
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *args]) == 2
+    err = _err(capsys)
+    assert "(line 2) occurs twice in Europe/Berlin" in err and "+02:00 (summer time) or +01:00" in err
