@@ -131,3 +131,93 @@ def test_skipped_and_unresolvable_local_times_name_the_offset(tmp_path, capsys):
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), *args]) == 2
     err = _err(capsys)
     assert "(line 2) occurs twice in Europe/Berlin" in err and "+02:00 (summer time) or +01:00" in err
+
+
+# B343 -------------------------------------------------------------------------------------------------------------
+
+def test_a_bracketed_units_row_is_read_for_the_units(tmp_path, capsys):
+    s = _real(T5)
+    a, w = s.streams["wAccelerometer"], s.streams["wGyroscope"]
+    names = ["Zeit", "Beschl. X", "Beschl. Y", "Beschl. Z", "Drehrate X", "Drehrate Y", "Drehrate Z"]
+    rows = [";".join(names), ";".join(["[ms]", *["[g]"] * 3, *["[°/s]"] * 3])]
+    for i in range(len(a)):
+        vals = [f"{(a.t[i] - a.t[0]) * 1e3:.0f}", *(f"{v / 9.80665:.6f}" for v in a.values[i]),
+                *(f"{np.degrees(v):.4f}" for v in w.values[i])]
+        rows.append(";".join(v.replace(".", ",") for v in vals))
+    csv = tmp_path / "einheiten.csv"
+    csv.write_text("sep=;\r\n" + "\r\n".join(rows) + "\r\n", encoding="utf-8-sig")
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--acc",
+                 "Beschl. X,Beschl. Y,Beschl. Z", "--gyro", "Drehrate X,Drehrate Y,Drehrate Z", "--time", "Zeit"]) == 0
+    rec = read_session(tmp_path / "s").meta["imported"]
+    assert rec["time"]["source"] == "given column, unit units row"
+    assert (rec["streams"]["wAccelerometer"]["unit"], rec["streams"]["wAccelerometer"]["unit_source"]) == ("g",
+                                                                                                            "units row")
+    assert (rec["streams"]["wGyroscope"]["unit"], rec["streams"]["wGyroscope"]["unit_source"]) == ("deg/s",
+                                                                                                     "units row")
+    got = read_session(tmp_path / "s").streams["wAccelerometer"].values
+    np.testing.assert_allclose(got, a.values, atol=1e-5)
+    assert "read as a units row (ms, g, °/s)" in capsys.readouterr().err
+
+
+# B344 -------------------------------------------------------------------------------------------------------------
+
+def test_cp1252_is_named_with_excel_s_save_type_and_read_with_encoding(tmp_path, capsys):
+    s = _real(T5)
+    utf8 = _german(s, tmp_path / "u.csv", None, tname="Zeit [ms]")
+    csv = tmp_path / "Gang Fuß cp1252.csv"
+    csv.write_bytes(utf8.read_text(encoding="utf-8-sig").encode("cp1252"))
+    args = ["--unit", "waist", "--time", "Zeit [ms]", *COLS]
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *args]) == 2
+    err = _err(capsys)
+    assert "not UTF-8 text (byte 0xb2 on line 1" in err and "'CSV UTF-8 (durch Trennzeichen getrennt)'" in err
+    assert "--encoding cp1252" in err and not (tmp_path / "s").exists()
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--encoding", "cp1252", *args]) == 0
+    got = read_session(tmp_path / "s")
+    assert got.meta["imported"]["streams"]["wAccelerometer"]["columns"] == ACC
+    np.testing.assert_allclose(got.streams["wAccelerometer"].values, s.streams["wAccelerometer"].values, atol=1e-6)
+    capsys.readouterr()
+    assert main(["import", str(csv), "--out", str(tmp_path / "t"), "--encoding", "klingon", *args]) == 2
+    assert "--encoding 'klingon' is not a text encoding" in _err(capsys)
+
+
+# B345 -------------------------------------------------------------------------------------------------------------
+
+def test_german_headers_are_guessed_and_subject_is_written(tmp_path, capsys):
+    s = _real(T5)
+    a, w, m, b = (s.streams[n] for n in ("wAccelerometer", "wGyroscope", "wMagneticField", "wBarometer"))
+    df = pd.DataFrame({"Zeit [ms]": np.round((a.t - a.t[0]) * 1e3).astype(int),
+                       **{c: a.values[:, i] for i, c in enumerate(ACC)},
+                       **{f"Drehrate {c} [Grad/s]": np.degrees(w.values[:, i]) for i, c in enumerate("XYZ")},
+                       **{f"Magnetfeld {c} [µT]": np.interp(a.t, m.t, m.values[:, i]) for i, c in enumerate("XYZ")},
+                       "Luftdruck [hPa]": np.interp(a.t, b.t, b.values[:, 0])})
+    csv = tmp_path / "rücken.csv"
+    df.to_csv(csv, sep=";", decimal=",", index=False, encoding="utf-8-sig")
+    assert main(["import", str(csv), "--out", str(tmp_path / "Gang 1"), "--unit", "waist", "--subject", "Weiß"]) == 0
+    got = read_session(tmp_path / "Gang 1")
+    rec = got.meta["imported"]
+    assert rec["time"]["column"] == "Zeit [ms]" and rec["unused_columns"] == []
+    assert {k: v["columns_source"] for k, v in rec["streams"].items()} == dict.fromkeys(
+        ["wAccelerometer", "wGyroscope", "wMagneticField", "wBarometer"], "guessed")
+    assert rec["streams"]["wGyroscope"]["unit"] == "deg/s"  # "Grad/s"
+    assert got.meta["subject"] == "Weiß"
+    from pdrlearn.cohort import meta_user
+
+    assert meta_user(got.meta) == "Weiß"
+
+
+# B346 -------------------------------------------------------------------------------------------------------------
+
+def test_a_decimal_comma_option_says_use_a_point(tmp_path, capsys):
+    assert main(["import", str(tmp_path / "x.csv"), "--out", str(tmp_path / "s"), "--unit", "waist",
+                 "--sensor-height", "0,982"]) == 2
+    assert "use a decimal point: --sensor-height 0.982 (decision B346)" in _err(capsys)
+
+
+def test_dotted_dates_are_day_first(tmp_path, capsys):
+    s = _real(T5)
+    ms = np.round((s.streams["wAccelerometer"].t - s.streams["wAccelerometer"].t[0]) * 1e3).astype(int)
+    csv = _german(s, tmp_path / "datum.csv", _local("2026-12-05 14:03:11.250", ms))  # 05.12.2026: both <= 12
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", *COLS]) == 0
+    assert "read day first (a dotted date, dd.mm.yyyy; decision B346)" in capsys.readouterr().err
+    rec = read_session(tmp_path / "s").meta["imported"]["time"]
+    assert rec["datetime"]["first"].startswith("2026-12-05T14:03:11.250")

@@ -110,6 +110,10 @@ def import_command(
                                      "contradict them (refused otherwise, B67)."),
     foot: str = typer.Option(None, "--foot", help="The foot the unit is on, left or right, written to meta.json "
                              "\"foot\" (pdrlearn gait checks the side given against it; B321)."),
+    subject: str = typer.Option(None, "--subject", help="The subject's id, written to meta.json \"subject\" "
+                                "(sessions.csv and subjects.csv group by it; B345)."),
+    encoding: str = typer.Option(None, "--encoding", help="The CSV's text encoding, e.g. cp1252 (German Excel's "
+                                 "plain 'CSV (Trennzeichen-getrennt)'; default utf-8, a BOM accepted; B344)."),
     name: str = typer.Option(None, "--name", help="Session name, written to meta.json (default: the --out "
                              "folder's name; with --merge the session's own)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
@@ -256,7 +260,7 @@ def import_command(
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
               drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime,
-              foot=foot)
+              foot=foot, encoding=encoding, subject=subject)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
         if len(parts) > 1:

@@ -60,19 +60,22 @@ KINDS: dict[str, tuple[str, int]] = {
 #: the kinds held to decision B144's IMU rate floor
 _INERTIAL = frozenset({"acc", "gyro"})
 #: name stems (lower case, letters and digits only) that say a column is of a kind, followed by the axis
+#: (decision B345: German names too, ``Beschl. X``, ``Beschleunigung X``, ``Drehrate X``, ``Magnetfeld X``)
 _STEMS: dict[str, tuple[str, ...]] = {
-    "acc": ("accelerometer", "acceleration", "accel", "acc", "a"),
-    "gyro": ("gyroscope", "angularvelocity", "angularrate", "rotationrate", "gyro", "gyr", "g", "w"),
-    "mag": ("magnetometer", "magneticfield", "magnetic", "mag", "m"),
+    "acc": ("accelerometer", "acceleration", "accel", "acc", "a", "beschleunigung", "beschl", "beschleunigungssensor"),
+    "gyro": ("gyroscope", "angularvelocity", "angularrate", "rotationrate", "gyro", "gyr", "g", "w", "drehrate",
+             "winkelgeschwindigkeit", "gyroskop"),
+    "mag": ("magnetometer", "magneticfield", "magnetic", "mag", "m", "magnetfeld", "magnetfeldstaerke"),
 }
 _SINGLE: dict[str, tuple[str, ...]] = {
-    "baro": ("pressure", "barometer", "baro", "airpressure"),
+    "baro": ("pressure", "barometer", "baro", "airpressure", "luftdruck", "druck"),
     "heel": ("forceheel", "heelforce", "heel", "forcea", "fsrheel"),
     "toe": ("forcetoe", "toeforce", "toe", "forceb", "fsrtoe", "forefoot", "forceforefoot"),
 }
 _TIME_NAMES = ("timestamp", "time", "t", "ts", "timems", "times", "seconds", "sec", "ms", "millis",
                "milliseconds", "elapsedtime", "sampletime", "epoch", "unixtime", "timeus", "timens",
-               "datetime", "date", "utc", "timestamputc")
+               "datetime", "date", "utc", "timestamputc",
+               "zeit", "zeitstempel", "uhrzeit", "datumuhrzeit", "datumzeit", "datum")  # decision B345: German
 
 #: accepted unit words per kind -> factor to the project's unit (time: seconds per unit)
 UNITS: dict[str, dict[str, float]] = {
@@ -91,6 +94,7 @@ _UNIT_ALIASES = {
     "m/s^2": "m/s2", "m/s²": "m/s2", "ms2": "m/s2", "ms^2": "m/s2", "m/s/s": "m/s2", "mps2": "m/s2",
     "rad/sec": "rad/s", "rads": "rad/s", "deg/sec": "deg/s", "dps": "deg/s", "°/s": "deg/s", "degs": "deg/s",
     "µt": "ut", "μt": "ut", "microtesla": "ut", "millibar": "mbar",
+    "grad/s": "deg/s", "grad/sec": "deg/s",  # decision B345: German "Grad/s" (degrees; gradians are "gon")
     "kg": "kgf", "kgf": "kgf", "kp": "kgf", "newton": "n", "newtons": "n", "count": "counts", "adc": "counts",
 }
 #: the option that gives a kind's unit (the others: the --mapping file's "units")
@@ -521,6 +525,8 @@ def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None =
                     dayfirst, info["order"] = True, "day first (a first field over 12)"
                 elif (b > 12).any():
                     info["order"] = "month first (a second field over 12)"
+                elif m.group(2) == ".":  # decision B346: dots are day first (German, most of Europe; US uses /)
+                    dayfirst, info["order"] = True, "day first (a dotted date, dd.mm.yyyy; decision B346)"
                 else:
                     dfmt, mfmt = _date_formats(text.iloc[0])
                     raise DataError(f"{where}: the dates ({text.iloc[0]!r} ...) could be day/month or month/day "
@@ -573,14 +579,28 @@ def _is_number(text) -> bool:
     return bool(re.fullmatch(r"[+-]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][+-]?\d+)?", t)) or t.lower() in ("nan", "inf")
 
 
+def _bare_unit(cell: str) -> str:
+    """Decision B343: a units-row cell without the brackets around it, as a header's unit hint is written
+    (``[m/s²]`` -> ``m/s²``, ``[m/(s^2)]`` -> ``m/(s^2)``, ``(deg/s)`` -> ``deg/s``; ``m/(s^2)`` is kept)."""
+    c = cell.strip()
+    if len(c) > 2 and (c[0], c[-1]) in (("[", "]"), ("{", "}"), ("(", ")")):
+        inner, depth = c[1:-1].strip(), 0
+        for ch in inner:  # "(m)/(s^2)" is not one pair around the unit
+            depth += {"(": 1, ")": -1}.get(ch, 0)
+            if depth < 0:
+                return c
+        return inner if depth == 0 else c
+    return c
+
+
 def units_row(df: pd.DataFrame) -> dict[str, str] | None:
     """Decision B66: column -> text of the first row under the header when it is a units row (``ms``,
-    ``m/(s^2)``, ``deg/s``, as Shimmer Consensys writes): every non-empty cell of it is text that is not a
-    number, and some column is numbers in every later row. Else None."""
+    ``m/(s^2)``, ``deg/s``, as Shimmer Consensys writes; ``[ms]`` without its brackets, B343): every non-empty
+    cell of it is text that is not a number, and some column is numbers in every later row. Else None."""
     if len(df) < 2:
         return None
     first = df.iloc[0]
-    cells = {c: str(v).strip() for c, v in first.items() if pd.notna(v) and str(v).strip()}
+    cells = {c: _bare_unit(str(v)) for c, v in first.items() if pd.notna(v) and str(v).strip()}
     if not cells or any(_is_number(v) for v in cells.values()):
         return None
     rest = df.iloc[1:]
@@ -632,6 +652,9 @@ def _units_row_hint(df: pd.DataFrame, row: int, first_line: int, skipped: int = 
             f"--acc-unit/--gyro-unit/--time-unit for the units {'it names' if n == 1 else 'they name'})")
 
 
+#: decision B344: import's further fix for a CSV that is not UTF-8 (German Excel's plain "CSV" type is cp1252)
+NOT_UTF8_IMPORT = ", or read it as it is with --encoding cp1252 (Windows-1252, what Excel's plain 'CSV' type writes)"
+
 #: decision B323: the time "column" of a fixed-rate export without one: its rows numbered 0, 1, 2 ... at --rate
 ROW_INDEX = "(row index)"
 
@@ -648,7 +671,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                time_format: str | None = None, time_zone: str | None = None,
                skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
                add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
-               foot: str | None = None) -> tuple[Session, dict]:
+               foot: str | None = None, encoding: str | None = None,
+               subject: str | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -681,6 +705,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         unit, B175)
     subject_height_m : the subject's height (m), written to ``meta.json`` ``height_m``
     name : session name (default: the CSV's stem)
+    encoding : the CSV's text encoding (``cp1252``: German Excel's plain "CSV" save type; decision B344); default
+        UTF-8, a byte order mark accepted (B221)
+    subject : the subject's id, written to ``meta.json`` ``subject`` (decision B345)
     origin_s : the export's time (s, on its clock) that becomes 0 (default: its first timestamp); the
         session's files hold "ms since the first sample" (D1), ``record["time"]["origin_s"]`` keeps the origin
         so that labels on the export's clock can be shifted alike (and ``--merge`` puts a second export of
@@ -713,7 +740,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   time_format: str | None = None, time_zone: str | None = None,
                   skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
                   add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
-                  foot: str | None = None) -> list[tuple[Session, dict]]:
+                  foot: str | None = None, encoding: str | None = None,
+                  subject: str | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = Path(path)
@@ -736,8 +764,17 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if unit != "foot":
             raise DataError("import: --foot names the foot a foot unit is on, and this is a --unit waist import; "
                             "drop --foot, or import the foot unit's file with it (decision B321)")
-    df = read_table(path)  # B24: ';' / tab separators and decimal commas, as every session file
-    dialect = _csv_dialect(path)
+    if encoding is not None:  # decision B344
+        import codecs
+
+        try:
+            encoding = codecs.lookup(str(encoding)).name
+        except LookupError:
+            raise DataError(f"import: --encoding {encoding!r} is not a text encoding (cp1252 for German Excel's "
+                            "'CSV (Trennzeichen-getrennt)', latin-1, utf-16; default utf-8)") from None
+    # B24: ';' / tab separators and decimal commas, as every session file; B344: a cp1252 file named, or read
+    df = read_table(path, encoding=encoding, not_utf8_also=NOT_UTF8_IMPORT)
+    dialect = _csv_dialect(path, encoding)
     header = list(df.columns)
     have = ", ".join(header)
     # decision B66: the file line of data row i is i + first_line (a "sep=" line and skipped rows above it)
@@ -964,7 +1001,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                                     "adding it again doubles it; leave --add-gravity out (decision B166)")
                 values = values + sign * _gravity_at(Path(add_gravity), t, cols, time_column,
                                                      None if parsed is not None else t_unit, u, unit, origin,
-                                                     drop_duplicate_timestamps)
+                                                     drop_duplicate_timestamps, encoding)
             elif add_gravity is not None and "acc" not in columns:
                 raise DataError(f"import: --add-gravity adds gravity to the accelerometer columns, and {where} has "
                                 "none mapped; map them with --acc X,Y,Z (decision B166)")
@@ -1039,6 +1076,10 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             meta["height_m"] = h
         if foot is not None:  # decision B321: `pdrlearn gait` checks the side given against it (L260)
             meta["foot"] = foot
+        if subject is not None:  # decision B345: sessions.csv / subjects.csv group by it (cohort C22)
+            if not str(subject).strip():
+                raise DataError("import: --subject is empty; give the subject's id (e.g. --subject P07)")
+            meta["subject"] = str(subject).strip()
         frames = {}
         f = frame if isinstance(frame, AxisFrame) or frame is None else parse_frame(frame)
         if f is not None:
@@ -1067,7 +1108,8 @@ def _retimed(t: np.ndarray, hz: float, where: str, time_column: str, record: dic
 
 
 def _gravity_at(path: Path, t: np.ndarray, cols: list[str], time_column: str, time_unit: str | None, acc_unit: str,
-                unit: str, origin_s: float, drop_duplicate_timestamps: bool = False) -> np.ndarray:
+                unit: str, origin_s: float, drop_duplicate_timestamps: bool = False,
+                encoding: str | None = None) -> np.ndarray:
     """Decision B166: the gravity file ``path`` (columns ``cols``, read as :func:`import_csv` reads an
     accelerometer: the same time column, unit, origin and B150 option, the accelerometer's unit) interpolated onto the
     accelerometer's times ``t`` (s). Refused when it does not cover them (another recording) or is not gravity
@@ -1077,7 +1119,7 @@ def _gravity_at(path: Path, t: np.ndarray, cols: list[str], time_column: str, ti
                         "(Sensor Logger's Gravity.csv beside Accelerometer.csv)")
     g, _ = import_csv(path, unit=unit, columns={"acc": list(cols)}, time_column=time_column, time_unit=time_unit,
                       units={"acc": acc_unit}, origin_s=origin_s, guess=False,
-                      drop_duplicate_timestamps=drop_duplicate_timestamps)
+                      drop_duplicate_timestamps=drop_duplicate_timestamps, encoding=encoding)
     acc_name = UNIT_IMU[unit][0]
     gt, gv = g[acc_name].t, g[acc_name].values
     tol = 1.5 * float(np.median(np.diff(gt))) if gt.size > 1 else 0.0
@@ -1105,7 +1147,7 @@ def merge_sessions(base: Session, add: Session) -> Session:
     placement = meta.get("placement")
     if placement and placement != add.meta.get("placement"):
         meta["placement"] = "foot+waist"
-    for key in ("sensor_height_m", "height_m", "foot"):
+    for key in ("sensor_height_m", "height_m", "foot", "subject"):
         if key in add.meta:
             meta[key] = add.meta[key]
     return Session(name=base.name, streams={**base.streams, **add.streams},
