@@ -94,26 +94,19 @@ def test_autumn_change_with_a_zone_is_read_by_the_rows_order(tmp_path, capsys):
     assert got.meta["imported"]["time"]["origin_s"] == pd.Timestamp("2026-10-25 00:59:58", tz="UTC").timestamp()
 
 
-def test_autumn_change_without_a_zone_is_named_not_a_clock_reset(tmp_path, capsys):
-    before = _local("2026-10-25 02:59:58", np.arange(200) * 10)
-    csv, k = _dst_export(tmp_path, before, "2026-10-25 02:00:00", "okt.csv")
-    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "Datum/Uhrzeit",
-                 "--time-format", "%d.%m.%Y %H:%M:%S,%f", *COLS]) == 2
+DATED = ["--unit", "waist", "--time", "Datum/Uhrzeit", "--time-format", "%d.%m.%Y %H:%M:%S,%f", *COLS]
+
+
+@pytest.mark.parametrize(("start", "after", "way"), [("2026-10-25 02:59:58", "2026-10-25 02:00:00", "back"),
+                                                      ("2026-03-29 01:59:58", "2026-03-29 03:00:00", "forward")])
+def test_a_one_hour_jump_without_a_zone_is_named_not_a_reset_or_a_gap(tmp_path, capsys, start, after, way):
+    csv, k = _dst_export(tmp_path, _local(start, np.arange(200) * 10), after, "dst.csv")
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *DATED]) == 2
     err = _err(capsys)
-    assert f"jumps back by one hour at line {k + 2}" in err and "daylight-saving change" in err
+    assert f"jumps {way} by one hour at line {k + 2}" in err and "daylight-saving change" in err
     assert "--time-zone Europe/Berlin" in err and "clock reset (the recorder restarted)" not in err
     assert not (tmp_path / "s").exists()
-
-
-def test_spring_change_without_a_zone_is_named_not_left_as_a_gap(tmp_path, capsys):
-    before = _local("2026-03-29 01:59:58", np.arange(200) * 10)
-    csv, k = _dst_export(tmp_path, before, "2026-03-29 03:00:00", "maerz.csv")
-    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "Datum/Uhrzeit",
-                 "--time-format", "%d.%m.%Y %H:%M:%S,%f", *COLS]) == 2
-    err = _err(capsys)
-    assert f"jumps forward by one hour at line {k + 2}" in err and "--time-zone" in err
-    assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "Datum/Uhrzeit",
-                 "--time-format", "%d.%m.%Y %H:%M:%S,%f", "--time-zone", "Europe/Berlin", *COLS]) == 0
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *DATED, "--time-zone", "Europe/Berlin"]) == 0
     np.testing.assert_allclose(np.diff(read_session(tmp_path / "s").streams["wAccelerometer"].t), 0.01, atol=1e-9)
 
 
