@@ -171,6 +171,8 @@ def test_cp1252_is_named_with_excel_s_save_type_and_read_with_encoding(tmp_path,
     capsys.readouterr()
     assert main(["import", str(csv), "--out", str(tmp_path / "t"), "--encoding", "klingon", *args]) == 2
     assert "--encoding 'klingon' is not a text encoding" in _err(capsys)
+    assert main(["import", str(utf8), "--out", str(tmp_path / "t"), "--encoding", "cp1252", *args]) == 2
+    assert "--encoding cp1252, but the file is UTF-8 text" in _err(capsys)  # "m/s²" would be read as "m/sÂ²"
 
 
 # B345 -------------------------------------------------------------------------------------------------------------

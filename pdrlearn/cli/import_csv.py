@@ -137,7 +137,8 @@ def import_command(
 ) -> None:
     """Turn a one-CSV lab export into a session folder (fAccelerometer.csv, fGyroscope.csv, meta.json ...).
 
-    Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX, acc_x_g ...;
+    Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX, acc_x_g, and
+    German ones: Zeit, Datum/Uhrzeit, Beschl. X, Drehrate X, Magnetfeld X, Luftdruck, B345 ...;
     units from hints such as 'AccX (g)', 'Time (ms)', 'gyr_x_dps' or 'time_s') unless given; every guess is
     printed on stderr and kept in meta.json ("imported"). Comma, semicolon and tab separated files with
     decimal commas are read (B24), and Shimmer Consensys exports: a 'sep=' first line, a units row under the

@@ -652,6 +652,18 @@ def _units_row_hint(df: pd.DataFrame, row: int, first_line: int, skipped: int = 
             f"--acc-unit/--gyro-unit/--time-unit for the units {'it names' if n == 1 else 'they name'})")
 
 
+def _utf8_beyond_ascii(path: Path) -> bool:
+    """Decision B344: ``path`` (not compressed) decodes as UTF-8 and holds characters beyond ASCII."""
+    if path.suffix.lower() in (".gz", ".bz2", ".zip", ".xz", ".zst") or not path.is_file():
+        return False
+    data = path.read_bytes()
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return False
+    return not data.isascii()
+
+
 #: decision B344: import's further fix for a CSV that is not UTF-8 (German Excel's plain "CSV" type is cp1252)
 NOT_UTF8_IMPORT = ", or read it as it is with --encoding cp1252 (Windows-1252, what Excel's plain 'CSV' type writes)"
 
@@ -772,6 +784,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         except LookupError:
             raise DataError(f"import: --encoding {encoding!r} is not a text encoding (cp1252 for German Excel's "
                             "'CSV (Trennzeichen-getrennt)', latin-1, utf-16; default utf-8)") from None
+        if not encoding.startswith("utf") and _utf8_beyond_ascii(path):  # read as cp1252, "m/s²" is "m/sÂ²"
+            raise DataError(f"{where}: --encoding {encoding}, but the file is UTF-8 text (its bytes beyond ASCII are "
+                            "UTF-8's), which the option would misread; leave --encoding out (decision B344)")
     # B24: ';' / tab separators and decimal commas, as every session file; B344: a cp1252 file named, or read
     df = read_table(path, encoding=encoding, not_utf8_also=NOT_UTF8_IMPORT)
     dialect = _csv_dialect(path, encoding)
