@@ -18,19 +18,25 @@ from pdrlearn.errors import DataError, shell_quote
 ENCODING = "utf-8-sig"
 
 
-def not_utf8_message(path, data: bytes, exc: UnicodeDecodeError) -> str:
-    """Decision B221's one line for a file that is not UTF-8: where the first bad byte is, and the fix."""
+#: decision B344: how Excel saves UTF-8 (its plain "CSV" type is the Windows code page: cp1252 in western Europe)
+EXCEL_UTF8 = ("in Excel: Save As 'CSV UTF-8 (Comma delimited)', in a German Excel 'CSV UTF-8 (durch Trennzeichen "
+              "getrennt)'")
+
+
+def not_utf8_message(path, data: bytes, exc: UnicodeDecodeError, also: str = "") -> str:
+    """Decision B221's one line for a file that is not UTF-8: where the first bad byte is, and the fix (how Excel
+    saves UTF-8, B344; ``also``: a further fix of the command, e.g. ``import --encoding``)."""
     line = data.count(b"\n", 0, exc.start) + 1
     return (f"{path}: not UTF-8 text (byte 0x{data[exc.start]:02x} on line {line} is not UTF-8: saved as "
-            "Latin-1, Windows-1252 or UTF-16?); save it as UTF-8 (decision B221)")
+            f"Latin-1, Windows-1252 or UTF-16?); save it as UTF-8 ({EXCEL_UTF8}){also} (decision B221)")
 
 
-def decode(path, data: bytes) -> str:
+def decode(path, data: bytes, also: str = "") -> str:
     """``data`` (the bytes of ``path``) as text: UTF-8 with an optional BOM, else decision B221's one line."""
     try:
         return data.decode(ENCODING)
     except UnicodeDecodeError as exc:
-        raise DataError(not_utf8_message(path, data, exc)) from None
+        raise DataError(not_utf8_message(path, data, exc, also)) from None
 
 
 def read_text(path) -> str:

@@ -19,6 +19,7 @@ the bundled recordings (decision L47).
 
 from __future__ import annotations
 
+import codecs
 import functools
 import re
 import shlex
@@ -355,6 +356,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("import", "acc_unit"): unit_word("acc"),
         ("import", "gyro_unit"): unit_word("gyro"),
         ("import", "frames"): parse_frame,
+        ("import", "encoding"): codecs.lookup,  # decision B344: a text encoding Python knows (cp1252, latin-1 ...)
         ("export", "frame"): parse_frame,  # decision E57: the waist unit's axes, as import --frames
         # cohort C35; decision L340: a table's name without .csv too
         ("columns", "table"): _one_of([*COLUMN_TABLES, *(t[:-4] for t in COLUMN_TABLES if t.endswith(".csv"))]),
@@ -384,6 +386,7 @@ FREE_TEXT = {("track", "model"), ("track-all", "model"), ("run", "protocol"), ("
              ("train-all", "scheduler"), ("evaluate-all", "scheduler"), ("report", "title"), ("import", "time"),
              ("import", "acc"), ("import", "gyro"), ("import", "mag"), ("import", "baro"), ("import", "heel"),
              ("import", "toe"), ("import", "time_format"), ("import", "time_zone"), ("import", "name"),
+             ("import", "subject"),
              ("plot", "steps")}  # labels, detected or a path (decision L70)
 
 

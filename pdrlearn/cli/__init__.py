@@ -246,11 +246,26 @@ def _main(argv: list[str]) -> int:
         ctx = getattr(exc, "ctx", None)
         command = f"pdrlearn {ctx.info_name}" if ctx is not None and ctx.parent is not None else "pdrlearn"
         hint = f" (see '{command} --help')"
-        print(f"error: {message}{hint}", file=sys.stderr)
+        print(f"error: {message}{_decimal_comma_hint(exc, argv)}{hint}", file=sys.stderr)
         return exc.exit_code
     if rc == 130:  # typer turns Ctrl-C into Exit(130), which click returns (no command exits with 130 itself)
         return _interrupted(written)
     return rc if isinstance(rc, int) else 0
+
+
+def _decimal_comma_hint(exc: Exception, argv: list[str]) -> str:
+    """Decision B346: "; use a decimal point, --opt 0.982" when a number option that click refused was written with a
+    decimal comma (``--sensor-height 0,982``, as a German keyboard writes it); "" otherwise."""
+    import re
+
+    opts = getattr(getattr(exc, "param", None), "opts", None) or []
+    for i, arg in enumerate(argv):
+        opt, eq, value = arg.partition("=")
+        if not eq:
+            opt, value = arg, argv[i + 1] if i + 1 < len(argv) else ""
+        if opt in opts and re.fullmatch(r"[+-]?\d*,\d+", value.strip()):
+            return f"; use a decimal point: {opt} {value.strip().replace(',', '.')} (decision B346)"
+    return ""
 
 
 #: decision E122: the Ctrl-C line names at most this many outputs, then their count and common folder

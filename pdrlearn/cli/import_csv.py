@@ -113,6 +113,10 @@ def import_command(
                                      "contradict them (refused otherwise, B67)."),
     foot: str = typer.Option(None, "--foot", help="The foot the unit is on, left or right, written to meta.json "
                              "\"foot\" (pdrlearn gait checks the side given against it; B321)."),
+    subject: str = typer.Option(None, "--subject", help="The subject's id, written to meta.json \"subject\" "
+                                "(sessions.csv and subjects.csv group by it; B345)."),
+    encoding: str = typer.Option(None, "--encoding", help="The CSV's text encoding, e.g. cp1252 (German Excel's "
+                                 "plain 'CSV (Trennzeichen-getrennt)'; default utf-8, a BOM accepted; B344)."),
     name: str = typer.Option(None, "--name", help="Session name, written to meta.json (default: the --out "
                              "folder's name; with --merge the session's own)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
@@ -139,7 +143,8 @@ def import_command(
 ) -> None:
     """Turn a one-CSV lab export into a session folder (fAccelerometer.csv, fGyroscope.csv, meta.json ...).
 
-    Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX, acc_x_g ...;
+    Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX, acc_x_g, and
+    German ones: Zeit, Datum/Uhrzeit, Beschl. X, Drehrate X, Magnetfeld X, Luftdruck, B345 ...;
     units from hints such as 'AccX (g)', 'Time (ms)', 'gyr_x_dps' or 'time_s') unless given; every guess is
     printed on stderr and kept in meta.json ("imported"). Comma, semicolon and tab separated files with
     decimal commas are read (B24), and Shimmer Consensys exports: a 'sep=' first line, a units row under the
@@ -266,7 +271,7 @@ def import_command(
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
               drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime,
-              foot=foot, no_header=no_header)
+              foot=foot, no_header=no_header, encoding=encoding, subject=subject)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
         if len(parts) > 1:

@@ -22,6 +22,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.io.datetimes import dst_jump, dst_message, exact_seconds, localize, offset_text
 from pdrlearn.io.frames import AxisFrame, right_handed
 from pdrlearn.io.matfile import expand_columns, mat_arrays_text, mat_message, mat_version, read_mat_table
 from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, GRAVITY_FILE, TOTAL_ACC_FILE, _csv_dialect, read_table
@@ -60,19 +61,22 @@ KINDS: dict[str, tuple[str, int]] = {
 #: the kinds held to decision B144's IMU rate floor
 _INERTIAL = frozenset({"acc", "gyro"})
 #: name stems (lower case, letters and digits only) that say a column is of a kind, followed by the axis
+#: (decision B345: German names too, ``Beschl. X``, ``Beschleunigung X``, ``Drehrate X``, ``Magnetfeld X``)
 _STEMS: dict[str, tuple[str, ...]] = {
-    "acc": ("accelerometer", "acceleration", "accel", "acc", "a"),
-    "gyro": ("gyroscope", "angularvelocity", "angularrate", "rotationrate", "gyro", "gyr", "g", "w"),
-    "mag": ("magnetometer", "magneticfield", "magnetic", "mag", "m"),
+    "acc": ("accelerometer", "acceleration", "accel", "acc", "a", "beschleunigung", "beschl", "beschleunigungssensor"),
+    "gyro": ("gyroscope", "angularvelocity", "angularrate", "rotationrate", "gyro", "gyr", "g", "w", "drehrate",
+             "winkelgeschwindigkeit", "gyroskop"),
+    "mag": ("magnetometer", "magneticfield", "magnetic", "mag", "m", "magnetfeld", "magnetfeldstaerke"),
 }
 _SINGLE: dict[str, tuple[str, ...]] = {
-    "baro": ("pressure", "barometer", "baro", "airpressure"),
+    "baro": ("pressure", "barometer", "baro", "airpressure", "luftdruck", "druck"),
     "heel": ("forceheel", "heelforce", "heel", "forcea", "fsrheel"),
     "toe": ("forcetoe", "toeforce", "toe", "forceb", "fsrtoe", "forefoot", "forceforefoot"),
 }
 _TIME_NAMES = ("timestamp", "time", "t", "ts", "timems", "times", "seconds", "sec", "ms", "millis",
                "milliseconds", "elapsedtime", "sampletime", "epoch", "unixtime", "timeus", "timens",
-               "datetime", "date", "utc", "timestamputc")
+               "datetime", "date", "utc", "timestamputc",
+               "zeit", "zeitstempel", "uhrzeit", "datumuhrzeit", "datumzeit", "datum")  # decision B345: German
 
 #: accepted unit words per kind -> factor to the project's unit (time: seconds per unit)
 UNITS: dict[str, dict[str, float]] = {
@@ -91,6 +95,7 @@ _UNIT_ALIASES = {
     "m/s^2": "m/s2", "m/s²": "m/s2", "ms2": "m/s2", "ms^2": "m/s2", "m/s/s": "m/s2", "mps2": "m/s2",
     "rad/sec": "rad/s", "rads": "rad/s", "deg/sec": "deg/s", "dps": "deg/s", "°/s": "deg/s", "degs": "deg/s",
     "µt": "ut", "μt": "ut", "microtesla": "ut", "millibar": "mbar",
+    "grad/s": "deg/s", "grad/sec": "deg/s",  # decision B345: German "Grad/s" (degrees; gradians are "gon")
     "kg": "kgf", "kgf": "kgf", "kp": "kgf", "newton": "n", "newtons": "n", "count": "counts", "adc": "counts",
 }
 #: the option that gives a kind's unit (the others: the --mapping file's "units")
@@ -492,9 +497,11 @@ def _time_of_day_seconds(text: pd.Series, zone: str | None) -> tuple[np.ndarray,
 
 
 def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None = None,
-                      zone: str | None = None) -> tuple[np.ndarray, dict] | None:
-    """Seconds since the epoch of a column of date-time texts (ISO 8601 and the like) and what was read
-    (``{"order": ..., "zone": ..., "first": ISO, "last": ISO}``), or None when the column is not date-times.
+                      zone: str | None = None, first_line: int = 2) -> tuple[np.ndarray, dict, float] | None:
+    """Seconds since ``base`` of a column of date-time texts (ISO 8601 and the like), what was read
+    (``{"order": ..., "zone": ..., "first": ISO, "last": ISO}``) and ``base`` (a whole second since the epoch; 0
+    for times of day), or None when the column is not date-times. Decision B341: the seconds are exact to the
+    text's resolution (``,250`` is 0.25 s), as :func:`pdrlearn.io.datetimes.exact_seconds` computes them.
 
     Decision B43: a numeric date whose day and month are both <= 12 in every row (``10/12/2020``) is refused
     unless ``time_format`` says which is which (pandas read it month first, but ``13/12/2020`` day first); an
@@ -504,7 +511,7 @@ def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None =
         return None
     text = col.astype(str)
     if time_format is None and len(text) and text.str.fullmatch(_TIME_OF_DAY).all():  # decision B86
-        return _time_of_day_seconds(text, zone)
+        return (*_time_of_day_seconds(text, zone), 0.0)
     info: dict = {}
     try:
         if time_format is not None:
@@ -524,6 +531,8 @@ def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None =
                     dayfirst, info["order"] = True, "day first (a first field over 12)"
                 elif (b > 12).any():
                     info["order"] = "month first (a second field over 12)"
+                elif m.group(2) == ".":  # decision B346: dots are day first (German, most of Europe; US uses /)
+                    dayfirst, info["order"] = True, "day first (a dotted date, dd.mm.yyyy; decision B346)"
                 else:
                     dfmt, mfmt = _date_formats(text.iloc[0])
                     raise DataError(f"{where}: the dates ({text.iloc[0]!r} ...) could be day/month or month/day "
@@ -536,20 +545,16 @@ def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None =
         return None
     if getattr(dt.dt, "tz", None) is None:
         z = zone or "UTC"
-        try:
-            dt = dt.dt.tz_localize(z)
-        except Exception:  # noqa: BLE001 - pandas raises several kinds for an unknown zone
-            raise DataError(f"import: --time-zone {z!r} is not a time zone (write +01:00 or Europe/Berlin)") from None
+        dt = localize(dt, z, text, where, first_line)  # decision B342: the hour repeated in autumn by the rows' order
         info["zone"] = f"{z} ({'given with --time-zone' if zone else 'none in the text: taken as UTC'})"
     else:
         info["zone"] = "from the text" + (" (--time-zone not used)" if zone else "")
-    off = dt.iloc[0].utcoffset()  # decision L298: the offset as recorded, for the clock columns (UTC below)
-    if off is not None:
-        mins = int(off.total_seconds() // 60)
-        info["offset"] = f"{'-' if mins < 0 else '+'}{abs(mins) // 60:02d}:{abs(mins) % 60:02d}"
+    if dt.iloc[0].utcoffset() is not None:  # decision L298: the offset as recorded, for the clock columns (UTC below)
+        info["offset"] = offset_text(dt.iloc[0])
     dt = dt.dt.tz_convert("UTC")
     info["first"], info["last"] = dt.iloc[0].isoformat(), dt.iloc[-1].isoformat()
-    return (dt - pd.Timestamp(0, tz="UTC")).dt.total_seconds().to_numpy(dtype=float), info
+    secs, base = exact_seconds(dt)  # decision B341: exact to the text's resolution, not float epoch seconds
+    return secs, info, base
 
 
 def parse_frame(text: str | dict | None, where: str = "--frames") -> AxisFrame | None:
@@ -580,14 +585,28 @@ def _is_number(text) -> bool:
     return bool(re.fullmatch(r"[+-]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][+-]?\d+)?", t)) or t.lower() in ("nan", "inf")
 
 
+def _bare_unit(cell: str) -> str:
+    """Decision B343: a units-row cell without the brackets around it, as a header's unit hint is written
+    (``[m/s²]`` -> ``m/s²``, ``[m/(s^2)]`` -> ``m/(s^2)``, ``(deg/s)`` -> ``deg/s``; ``m/(s^2)`` is kept)."""
+    c = cell.strip()
+    if len(c) > 2 and (c[0], c[-1]) in (("[", "]"), ("{", "}"), ("(", ")")):
+        inner, depth = c[1:-1].strip(), 0
+        for ch in inner:  # "(m)/(s^2)" is not one pair around the unit
+            depth += {"(": 1, ")": -1}.get(ch, 0)
+            if depth < 0:
+                return c
+        return inner if depth == 0 else c
+    return c
+
+
 def units_row(df: pd.DataFrame) -> dict[str, str] | None:
     """Decision B66: column -> text of the first row under the header when it is a units row (``ms``,
-    ``m/(s^2)``, ``deg/s``, as Shimmer Consensys writes): every non-empty cell of it is text that is not a
-    number, and some column is numbers in every later row. Else None."""
+    ``m/(s^2)``, ``deg/s``, as Shimmer Consensys writes; ``[ms]`` without its brackets, B343): every non-empty
+    cell of it is text that is not a number, and some column is numbers in every later row. Else None."""
     if len(df) < 2:
         return None
     first = df.iloc[0]
-    cells = {c: str(v).strip() for c, v in first.items() if pd.notna(v) and str(v).strip()}
+    cells = {c: _bare_unit(str(v)) for c, v in first.items() if pd.notna(v) and str(v).strip()}
     if not cells or any(_is_number(v) for v in cells.values()):
         return None
     rest = df.iloc[1:]
@@ -672,6 +691,22 @@ HEADERLESS_ORDER: dict[int, dict[str, tuple[int, ...]]] = {
     6: {"acc": (0, 1, 2), "gyro": (3, 4, 5)},
 }
 
+
+def _utf8_beyond_ascii(path: Path) -> bool:
+    """Decision B344: ``path`` (not compressed) decodes as UTF-8 and holds characters beyond ASCII."""
+    if path.suffix.lower() in (".gz", ".bz2", ".zip", ".xz", ".zst") or not path.is_file():
+        return False
+    data = path.read_bytes()
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return False
+    return not data.isascii()
+
+
+#: decision B344: import's further fix for a CSV that is not UTF-8 (German Excel's plain "CSV" type is cp1252)
+NOT_UTF8_IMPORT = ", or read it as it is with --encoding cp1252 (Windows-1252, what Excel's plain 'CSV' type writes)"
+
 #: decision B323: the time "column" of a fixed-rate export without one: its rows numbered 0, 1, 2 ... at --rate
 ROW_INDEX = "(row index)"
 
@@ -688,7 +723,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                time_format: str | None = None, time_zone: str | None = None,
                skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
                add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
-               foot: str | None = None, no_header: bool = False) -> tuple[Session, dict]:
+               foot: str | None = None, no_header: bool = False, encoding: str | None = None,
+               subject: str | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -721,6 +757,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         unit, B175)
     subject_height_m : the subject's height (m), written to ``meta.json`` ``height_m``
     name : session name (default: the CSV's stem)
+    encoding : the CSV's text encoding (``cp1252``: German Excel's plain "CSV" save type; decision B344); default
+        UTF-8, a byte order mark accepted (B221)
+    subject : the subject's id, written to ``meta.json`` ``subject`` (decision B345)
     origin_s : the export's time (s, on its clock) that becomes 0 (default: its first timestamp); the
         session's files hold "ms since the first sample" (D1), ``record["time"]["origin_s"]`` keeps the origin
         so that labels on the export's clock can be shifted alike (and ``--merge`` puts a second export of
@@ -761,7 +800,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   time_format: str | None = None, time_zone: str | None = None,
                   skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
                   add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
-                  foot: str | None = None, no_header: bool = False) -> list[tuple[Session, dict]]:
+                  foot: str | None = None, no_header: bool = False, encoding: str | None = None,
+                  subject: str | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = Path(path)
@@ -784,6 +824,17 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if unit != "foot":
             raise DataError("import: --foot names the foot a foot unit is on, and this is a --unit waist import; "
                             "drop --foot, or import the foot unit's file with it (decision B321)")
+    if encoding is not None:  # decision B344
+        import codecs
+
+        try:
+            encoding = codecs.lookup(str(encoding)).name
+        except LookupError:
+            raise DataError(f"import: --encoding {encoding!r} is not a text encoding (cp1252 for German Excel's "
+                            "'CSV (Trennzeichen-getrennt)', latin-1, utf-16; default utf-8)") from None
+        if not encoding.startswith("utf") and _utf8_beyond_ascii(path):  # read as cp1252, "m/s²" is "m/sÂ²"
+            raise DataError(f"{where}: --encoding {encoding}, but the file is UTF-8 text (its bytes beyond ASCII are "
+                            "UTF-8's), which the option would misread; leave --encoding out (decision B344)")
     mat = mat_version(path)  # decision B335: a MAT file, by its header
     mat_record = None
     if mat == "7.3":
@@ -797,8 +848,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         dialect = {}
         columns = {k: expand_columns(list(v), list(df.columns)) for k, v in (columns or {}).items()}
     else:
-        df = read_table(path, header=not no_header)  # B24: ';' / tab separators and decimal commas
-        dialect = _csv_dialect(path)
+        # B24: ';' / tab separators and decimal commas, as every session file; B344: a cp1252 file named, or read
+        df = read_table(path, header=not no_header, encoding=encoding, not_utf8_also=NOT_UTF8_IMPORT)
+        dialect = _csv_dialect(path, encoding)
     header = list(df.columns)
     have = ", ".join(header)
     if not mat and not no_header and header and all(_is_number(c) for c in header):  # decision B336
@@ -917,8 +969,13 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
 
     tcol = pd.Series(np.arange(len(df)), name=ROW_INDEX) if time_column == ROW_INDEX else df[time_column]
     t_duration = None
-    parsed = None if time_column == ROW_INDEX else _datetime_seconds(tcol, where, time_format, time_zone)
+    parsed = None if time_column == ROW_INDEX else _datetime_seconds(tcol, where, time_format, time_zone, first_line)
     secs = None if parsed is None else parsed[0]
+    base = 0.0 if parsed is None else parsed[2]  # decision B341: date-times are seconds since this whole second
+    if parsed is not None and time_zone is None and "taken as UTC" in parsed[1]["zone"]:
+        jump = dst_jump(secs)  # decision B342: local times with a daylight-saving change, before B73's clock reset
+        if jump is not None:
+            raise DataError(dst_message(secs, jump, tcol, where, time_column, first_line))
     if parsed is not None:
         t_num, t_unit, t_how = secs, "s", "date-time text"
     elif time_format is not None or time_zone is not None:
@@ -984,7 +1041,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
     fix = (f"pass --split-at-clock-reset to write one session per recording, or split the export at line "
            f"{int(resets[0]) + 1 + first_line} into two files" if resets.size else "")
     if resets.size and not split:
-        raise DataError(clock_reset_message(t_num * scale, resets, f"{where} ({time_column})",
+        raise DataError(clock_reset_message(t_num * scale + base, resets, f"{where} ({time_column})",
                                             f"line {int(resets[0]) + 1 + first_line}", fix))
     if split and origin_s is not None:
         raise DataError("import: --split-at-clock-reset starts each part's clock at its own first sample; it "
@@ -1002,9 +1059,11 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"{where}: part {part} of {n_parts} ({lines}, between clock resets) holds {b - a} "
                                 f"row(s) over {span:.2f} s, too short to be a recording; delete those rows and import "
                                 "again (nothing written)")
-        origin_raw = float(t_num[0]) if origin_s is None else float(origin_s) / scale
+        origin_raw = float(t_num[0]) if origin_s is None else (float(origin_s) - base) / scale
+        if parsed is not None and origin_s is not None:  # decision B341: a shared origin, stored as float epoch
+            origin_raw = round(origin_raw * 1e6) / 1e6  # seconds (0.24 us steps), is exact to the microsecond
         t_all = (t_num - origin_raw) * scale
-        origin = origin_raw * scale
+        origin = origin_raw * scale + base  # decision B341: on the export's clock (s since the epoch for date-times)
         record: dict = {"file": path.name, "unit": unit,
                         "time": {"column": time_column, "unit": t_unit,
                                  "source": t_how if time_column == ROW_INDEX else f"{t_source} column, unit {t_how}",
@@ -1063,7 +1122,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                                     "adding it again doubles it; leave --add-gravity out (decision B166)")
                 values = values + sign * _gravity_at(Path(add_gravity), t, cols, time_column,
                                                      None if parsed is not None else t_unit, u, unit, origin,
-                                                     drop_duplicate_timestamps)
+                                                     drop_duplicate_timestamps, encoding)
             elif add_gravity is not None and "acc" not in columns:
                 raise DataError(f"import: --add-gravity adds gravity to the accelerometer columns, and {where} has "
                                 "none mapped; map them with --acc X,Y,Z (decision B166)")
@@ -1138,6 +1197,10 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             meta["height_m"] = h
         if foot is not None:  # decision B321: `pdrlearn gait` checks the side given against it (L260)
             meta["foot"] = foot
+        if subject is not None:  # decision B345: sessions.csv / subjects.csv group by it (cohort C22)
+            if not str(subject).strip():
+                raise DataError("import: --subject is empty; give the subject's id (e.g. --subject P07)")
+            meta["subject"] = str(subject).strip()
         frames = {}
         f = frame if isinstance(frame, AxisFrame) or frame is None else parse_frame(frame)
         if f is not None:
@@ -1166,7 +1229,8 @@ def _retimed(t: np.ndarray, hz: float, where: str, time_column: str, record: dic
 
 
 def _gravity_at(path: Path, t: np.ndarray, cols: list[str], time_column: str, time_unit: str | None, acc_unit: str,
-                unit: str, origin_s: float, drop_duplicate_timestamps: bool = False) -> np.ndarray:
+                unit: str, origin_s: float, drop_duplicate_timestamps: bool = False,
+                encoding: str | None = None) -> np.ndarray:
     """Decision B166: the gravity file ``path`` (columns ``cols``, read as :func:`import_csv` reads an
     accelerometer: the same time column, unit, origin and B150 option, the accelerometer's unit) interpolated onto the
     accelerometer's times ``t`` (s). Refused when it does not cover them (another recording) or is not gravity
@@ -1176,7 +1240,7 @@ def _gravity_at(path: Path, t: np.ndarray, cols: list[str], time_column: str, ti
                         "(Sensor Logger's Gravity.csv beside Accelerometer.csv)")
     g, _ = import_csv(path, unit=unit, columns={"acc": list(cols)}, time_column=time_column, time_unit=time_unit,
                       units={"acc": acc_unit}, origin_s=origin_s, guess=False,
-                      drop_duplicate_timestamps=drop_duplicate_timestamps)
+                      drop_duplicate_timestamps=drop_duplicate_timestamps, encoding=encoding)
     acc_name = UNIT_IMU[unit][0]
     gt, gv = g[acc_name].t, g[acc_name].values
     tol = 1.5 * float(np.median(np.diff(gt))) if gt.size > 1 else 0.0
@@ -1204,7 +1268,7 @@ def merge_sessions(base: Session, add: Session) -> Session:
     placement = meta.get("placement")
     if placement and placement != add.meta.get("placement"):
         meta["placement"] = "foot+waist"
-    for key in ("sensor_height_m", "height_m", "foot"):
+    for key in ("sensor_height_m", "height_m", "foot", "subject"):
         if key in add.meta:
             meta[key] = add.meta[key]
     return Session(name=base.name, streams={**base.streams, **add.streams},

@@ -169,11 +169,14 @@ def _check_body_fields(meta: dict, where: str) -> None:
                 raise DataError(f"{where}: {key} {v:g} m is implausible (over {most:g} m; centimetres?); give metres")
 
 
-def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = (), *, header: bool = True) -> pd.DataFrame:
+def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = (), *, header: bool = True,
+               encoding: str | None = None, not_utf8_also: str = "") -> pd.DataFrame:
     """Read a CSV file with stripped column names; a missing, empty or malformed file is a one-line
     :class:`DataError`. ``text_columns``: columns kept as written (``007`` stays ``007``, not the number 7).
     ``header=False``: the file has no header line (MATLAB's ``writematrix``), its columns are named by their
-    index from 0, ``"0"``, ``"1"`` ... (decision B336)."""
+    index from 0, ``"0"``, ``"1"`` ... (decision B336). ``encoding``: the file's text encoding (``pdrlearn import
+    --encoding cp1252``, decision B344); default UTF-8 (a BOM accepted), else B221's line, ending with
+    ``not_utf8_also``."""
     from pdrlearn.io.matfile import mat_message, mat_version
 
     path = Path(path)
@@ -181,15 +184,18 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = (), *, h
         raise DataError(f"{path}: file not found")
     no_header = {} if header else {"header": None}  # decision B336
     try:
-        dialect = _csv_dialect(path)
+        dialect = _csv_dialect(path, encoding)
         df = pd.read_csv(path, dtype=dict.fromkeys(text_columns, str) or None, **dialect, **no_header)
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
-    except UnicodeDecodeError:
+    except UnicodeError:
         version = mat_version(path)
         if version:  # decision B335: a MAT file read as text says what it is
             raise DataError(mat_message(path, version)) from None
-        decode(path, path.read_bytes())  # decision B221: raises the one line naming the first byte not UTF-8
+        if encoding is not None:  # decision B344: not the encoding given
+            raise DataError(f"{path}: not {encoding} text (--encoding {encoding}); give the encoding the file was "
+                            "saved in (cp1252, latin-1, utf-16), or leave --encoding out for UTF-8") from None
+        decode(path, path.read_bytes(), not_utf8_also)  # decision B221: raises the one line naming the first byte
         raise DataError(f"{path}: not UTF-8 text; save it as UTF-8 (decision B221)") from None
     except pd.errors.ParserError as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
@@ -319,13 +325,20 @@ def _grouped_integer_columns(df: pd.DataFrame, text=None) -> None:
             df[c] = pd.to_numeric(cells.str.replace(".", "", regex=False)).reindex(df.index)
 
 
-def _csv_dialect(path: Path) -> dict:
+def _csv_dialect(path: Path, encoding: str | None = None) -> dict:
     """``pd.read_csv`` options for a CSV written with another separator (decision B24): a header line with
     no comma but semicolons (a spreadsheet in a decimal-comma locale) or tabs is read with that separator,
     and, when its first data line has commas and no point, with ``decimal=","`` (the fast path; a decimal-comma
-    column it misses is converted by :func:`_decimal_comma_columns`). Comma files are untouched."""
+    column it misses is converted by :func:`_decimal_comma_columns`). Comma files are untouched. An ``encoding``
+    (decision B344) is read with and passed on."""
+    enc = {"encoding": encoding} if encoding is not None else {}
+    return {**_separator_dialect(path, encoding or "utf-8"), **enc}
+
+
+def _separator_dialect(path: Path, encoding: str) -> dict:
+    """:func:`_csv_dialect`'s separator, ``sep=`` line and decimal comma."""
     try:
-        with open(path, encoding="utf-8", errors="replace") as f:
+        with open(path, encoding=encoding, errors="replace") as f:
             header, first = f.readline(), f.readline()
             declared = _sep_line(header)
             if declared is not None:  # decision B66: Excel's "sep=X" first line (Shimmer Consensys exports)

@@ -1,0 +1,84 @@
+"""Copies of pdrlearn's CSV outputs for a spreadsheet in a decimal-comma locale (decision E178).
+
+pdrlearn writes its tables (``steps.csv``, ``bouts.csv``, ``sessions.csv`` ...) comma-separated, with decimal
+points, in UTF-8 without a byte order mark, and reads them back itself (``report`` reads ``sessions.csv``; the lean
+runtime's outputs are pinned equal to ``track``'s), so they stay that way. A German (or French, Italian ...) Excel
+opens such a file with every row in column A (its list separator is ``;``), reads ``Ältere`` as ``Ã„ltere`` (no
+BOM: the Windows code page) and, told the separator, ``1.0285`` as 10285. :func:`excel_copy` writes copies Excel
+opens as they are: ``;`` separators, decimal commas in the numbers (text cells as written: ``001``,
+``2026-12-05T14:03:11.250+01:00``), UTF-8 with a BOM, CRLF line ends. Standard library only::
+
+    python -m pdrlearn.excel results/walk1 results/walk1_excel
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import re
+import sys
+from pathlib import Path
+
+from pdrlearn.errors import DataError
+from pdrlearn.textfile import read_text
+
+#: a number with a decimal point as pdrlearn writes it (``1.0285355258315103``, ``-0.5``, ``2.5e-05``); an integer,
+#: ``nan``, ``inf`` and text (dates, ids) are left as written
+_DECIMAL = re.compile(r"[+-]?(?:\d+\.\d*|\.\d+)(?:[eE][+-]?\d+)?")
+
+
+def excel_cell(cell: str) -> str:
+    """Decision E178: ``cell`` with a decimal comma when it is a number with a decimal point, else as written."""
+    return cell.replace(".", ",") if _DECIMAL.fullmatch(cell) else cell
+
+
+def excel_text(text: str) -> str:
+    """Decision E178: a comma-separated table's text as a decimal-comma spreadsheet reads it: ``;`` separators,
+    numbers with decimal commas, CRLF line ends (cells holding ``;`` or quotes are quoted, as ``csv`` writes)."""
+    out = io.StringIO()
+    w = csv.writer(out, delimiter=";", lineterminator="\r\n")
+    for row in csv.reader(io.StringIO(text)):
+        w.writerow([excel_cell(c) for c in row])
+    return out.getvalue()
+
+
+def excel_copy(src: str | Path, dst: str | Path) -> list[Path]:
+    """Decision E178: every ``*.csv`` under ``src`` (a results folder, a study's output, or one CSV file) copied into
+    ``dst`` under the same relative path as :func:`excel_text` writes it, UTF-8 with a BOM (Excel's "CSV UTF-8").
+    The originals are never changed; returns the copies written."""
+    src, dst = Path(src), Path(dst)
+    if not src.exists():
+        raise DataError(f"{src}: no such folder or file; give a folder pdrlearn wrote (track --out, track-all --out)")
+    if dst.resolve() == (src if src.is_dir() else src.parent).resolve():
+        raise DataError(f"{dst}: is the folder of the originals; give another folder for the Excel copies")
+    files = [src] if src.is_file() else sorted(p for p in src.rglob("*.csv")
+                                               if dst.resolve() not in (p.resolve(), *p.resolve().parents))
+    if not files:
+        raise DataError(f"{src}: holds no .csv file to copy")
+    written = []
+    for f in files:
+        out = dst / (f.name if src.is_file() else f.relative_to(src))
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(excel_text(read_text(f)), encoding="utf-8-sig", newline="")
+        written.append(out)
+    return written
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m pdrlearn.excel SRC DST``: :func:`excel_copy`, one line per copy; a bad input is one line, exit 2."""
+    args = sys.argv[1:] if argv is None else argv
+    if len(args) != 2 or args[0].startswith("-"):
+        print("usage: python -m pdrlearn.excel RESULTS_FOLDER EXCEL_FOLDER  (copies every CSV for a decimal-comma "
+              "Excel: ';', decimal commas, UTF-8 BOM; decision E178)", file=sys.stderr)
+        return 2
+    try:
+        written = excel_copy(args[0], args[1])
+    except DataError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    print(f"{len(written)} CSV file(s) copied for Excel (';', decimal commas, UTF-8 BOM) to {args[1]}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
