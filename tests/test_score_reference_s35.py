@@ -155,3 +155,29 @@ def test_ref_offset_out_of_the_recording_b334(sim_walk, value, words, capsys):
     assert main(["steps", str(sim_walk), "-d", "accel", "--ref-offset", value]) == 2
     out, err = capsys.readouterr()
     assert out == "" and err.startswith("error: ") and err.count("\n") == 1 and words in err
+
+
+def test_score_steps_scores_toe_offs_and_documents_every_key_steps_59(sim_walk, tmp_path, capsys):
+    from pdrlearn.columns import expanded, undocumented
+
+    ref = pd.read_csv(sim_walk / "steps.csv")
+    det = pd.DataFrame({"start_s": ref["start_ms"] / 1e3, "end_s": ref["end_ms"] / 1e3,
+                        "event_s": ref["ic_ms"] / 1e3 + 0.01, "unit": "foot", "confidence": 1.0,
+                        "tc_s": ref["tc_ms"] / 1e3 - 0.02})
+    det.to_csv(tmp_path / "det.csv", index=False)
+    events = tmp_path / "ev.csv"
+    args = ["score-steps", str(sim_walk), str(tmp_path / "det.csv"), "--all-rows", "--events-out", str(events)]
+    assert main([*args, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["tc_f1"] == 1.0 and d["tc_timing_error_mean_s"] == pytest.approx(-0.02)
+    assert undocumented("steps.json", d) == []
+    table = pd.read_csv(events)
+    assert list(table.columns) == list(expanded("events.csv")) and set(table["event"]) == {"ic", "tc"}
+    assert main([*args, "--force"]) == 0
+    out = capsys.readouterr().out
+    assert "toe-offs: precision 1.000" in out and "detected - reference" in out
+    for name in ("accel", "pelvic-gyro", "pll", "waist-ic"):
+        from pdrlearn.steps import get_detector
+
+        cols = ["start_s", "end_s", "event_s", "unit", "confidence", *get_detector(name).extra_columns]
+        assert undocumented("detections.csv", cols) == [], name

@@ -268,7 +268,7 @@ def score_notes(score: dict, tolerance: float) -> list[str]:
                      f"{score['tc_f1']:.3f} of {score['tc_reference_count']} (tolerance {tolerance:g} s); timing "
                      f"error {score['tc_timing_error_mean_s']:+.3f} +- {score['tc_timing_error_sd_s']:.3f} s")
     if score.get("reference_span_only") and score["reference_pauses"]:
-        a, b = score["reference_span_s"]
+        a, b = score["reference_start_s"], score["reference_end_s"]
         lines.append(f"scored over {a:.1f}-{b:.1f} s (first to last reference contact); no bouts.csv: the "
                      f"{score['reference_pauses']} pause(s) of the reference longer than 3 s are scored too, and "
                      f"{score['pause_detections']} detection(s) in them count as false positives; add bouts.csv "

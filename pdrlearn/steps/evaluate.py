@@ -479,7 +479,7 @@ def score_steps_events(steps: pd.DataFrame, session: Session, *, tolerance_s: fl
     if ref.span_only:  # decision steps 57: ics.csv without bouts.csv scores the reference's pauses too
         pauses = reference_pauses(ref.times)
         out["reference_span_only"] = True
-        out["reference_span_s"] = [float(ref.times.min()), float(ref.times.max())]
+        out["reference_start_s"], out["reference_end_s"] = float(ref.times.min()), float(ref.times.max())
         out["reference_pauses"] = int(len(pauses))
         out["pause_detections"] = int(in_intervals(kept, pauses + [tolerance_s, -tolerance_s]).sum())
     if unit == "foot" and ref.ground_truth:  # decision steps 59: the toe-offs, when both sides have them
@@ -543,7 +543,9 @@ def _toe_off_scores(steps: pd.DataFrame, session: Session, ref: Reference, toler
     d, r = np.sort(d[np.isfinite(d)]), np.sort(r[np.isfinite(r)])
     if not d.size or not r.size:
         return None
-    d = d[in_intervals(d, ref.intervals)]
+    # inside the labelled intervals or a labelled stride (a stride's toe-off can precede the first labelled IC)
+    strides = st[["start_s", "end_s"]].to_numpy(float) + [-tolerance_s, tolerance_s]
+    d = d[in_intervals(d, np.vstack([ref.intervals, strides]))]
     sc = score_events(d, r, tolerance_s=tolerance_s)
     keys = ("count", "reference_count", "true_positives", "false_positives", "false_negatives", "precision",
             "recall", "f1", "timing_error_mean_s", "timing_error_sd_s")
