@@ -406,6 +406,9 @@ def score_steps_command(
         pdrlearn score-steps out/sim/D_u1 out/A_steps.csv
 
         pdrlearn score-steps out/sim/D_u1 out/A_steps.csv --all-rows --tolerance 0.1 --json
+
+        pdrlearn score-steps out/sim/D_u1 out/A_steps.csv --ref-offset 5 --events-out out/A_events.csv   # a Vicon
+        clock 5 s ahead of the IMU's; one row per event for Bland-Altman plots (decisions steps 56, 59)
     """
     from pdrlearn.io import read_session
     from pdrlearn.steps.evaluate import check_tolerance
