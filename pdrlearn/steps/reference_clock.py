@@ -26,6 +26,8 @@ TIGHT_FRAC = 0.25
 MIN_GAIN = 3
 #: ... and at least this fraction of them
 MIN_GAIN_FRAC = 0.1
+#: the scan's distance matrix is built this many elements at a time (memory, not a result)
+CHUNK = 1_000_000
 #: label time columns moved by the offset: the steps table's (D1) and the extras' (bouts, ics_untimed)
 TIME_COLUMNS = (*DEFAULT_TIME_COLUMNS, "after_s", "before_s")
 
@@ -99,8 +101,6 @@ def offset_check(detected, reference, tolerance_s: float, given_s: float = 0.0) 
     error at 0, so it includes the detector's own timing bias), ``tight_window_s``, ``tight_matches_as_given``,
     ``tight_matches_at_estimate`` and ``ref_offset_suspect`` (the rule of decision steps 56); empty with fewer than
     3 events on either side."""
-    from pdrlearn.kernels.align import nearest_distance
-
     d = np.sort(np.asarray(detected, dtype=float))
     r = np.sort(np.asarray(reference, dtype=float))
     if d.size < 3 or r.size < 3:
@@ -108,8 +108,8 @@ def offset_check(detected, reference, tolerance_s: float, given_s: float = 0.0) 
     win = TIGHT_FRAC * float(tolerance_s)
     k = int(np.ceil(SCAN_S / (win / 2)))
     grid = np.arange(-k, k + 1) * (win / 2)
-    dist = nearest_distance(r[None, :] + grid[:, None], d)  # (n_grid, n_ref)
-    key = (dist <= tolerance_s).sum(axis=1) * (r.size + 1) + (dist <= win).sum(axis=1)
+    rows = max(1, CHUNK // r.size)  # grid rows at a time: an hour's 7000 contacts x 1281 shifts in pieces
+    key = np.concatenate([_scan_key(r, d, grid[i:i + rows], tolerance_s, win) for i in range(0, grid.size, rows)])
     best = np.flatnonzero(key == key.max())
     g = float(grid[best[np.argmin(np.abs(grid[best]))]])
     j = np.clip(np.searchsorted(d, r + g), 1, d.size - 1)
@@ -121,6 +121,15 @@ def offset_check(detected, reference, tolerance_s: float, given_s: float = 0.0) 
     suspect = abs(shift) > win and at - now >= max(MIN_GAIN, MIN_GAIN_FRAC * r.size)
     return {"ref_offset_estimate_s": float(given_s - shift), "tight_window_s": win,
             "tight_matches_as_given": now, "tight_matches_at_estimate": at, "ref_offset_suspect": bool(suspect)}
+
+
+def _scan_key(r: np.ndarray, d: np.ndarray, grid: np.ndarray, tolerance_s: float, win: float) -> np.ndarray:
+    """For each shift of ``grid``: the reference events ``r`` matched within ``tolerance_s``, times (n + 1), plus those
+    within ``win`` (the ranking of :func:`offset_check`)."""
+    from pdrlearn.kernels.align import nearest_distance
+
+    dist = nearest_distance(r[None, :] + grid[:, None], d)  # (n_grid, n_ref)
+    return (dist <= tolerance_s).sum(axis=1) * (r.size + 1) + (dist <= win).sum(axis=1)
 
 
 def _near(r: np.ndarray, d: np.ndarray, win: float) -> int:
