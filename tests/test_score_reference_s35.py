@@ -181,3 +181,29 @@ def test_score_steps_scores_toe_offs_and_documents_every_key_steps_59(sim_walk, 
 
         cols = ["start_s", "end_s", "event_s", "unit", "confidence", *get_detector(name).extra_columns]
         assert undocumented("detections.csv", cols) == [], name
+
+
+def test_import_labels_offset_moves_a_motion_capture_clock_steps_56(sim_walk, tmp_path, capsys):
+    """Trial T2: a Vicon event list 30 s ahead of the IMU clock was refused ("62 of 81 label times lie outside the
+    recording") with no way to give the offset; `import --labels-offset` takes it, with --ref-offset's sign."""
+    from pdrlearn.io import read_session
+
+    s = read_session(sim_walk)
+    a, w = s.streams["fAccelerometer"], s.streams["fGyroscope"]
+    pd.DataFrame({"time_s": a.t, **{f"acc_{c}": a.values[:, i] for i, c in enumerate("xyz")},
+                  **{f"gyr_{c}": w.values[:, i] for i, c in enumerate("xyz")}}).to_csv(tmp_path / "foot.csv",
+                                                                                       index=False)
+    st = pd.read_csv(sim_walk / "steps.csv")[["start_ms", "end_ms", "ic_ms"]]
+    (st + 30000.0).to_csv(tmp_path / "vicon.csv", index=False)
+    base = ["import", str(tmp_path / "foot.csv"), "--acc-unit", "m/s^2", "--gyro-unit", "rad/s"]
+    assert main([*base, "--out", str(tmp_path / "a"), "--steps", str(tmp_path / "vicon.csv")]) == 2
+    err = capsys.readouterr().err
+    assert "outside the recording" in err and "--labels-offset SECONDS" in err and err.count("\n") == 1
+    assert main([*base, "--out", str(tmp_path / "b"), "--steps", str(tmp_path / "vicon.csv"),
+                 "--labels-offset", "30"]) == 0
+    got = read_session(tmp_path / "b")
+    np.testing.assert_allclose(got.steps["ic_s"].to_numpy(), st["ic_ms"].to_numpy() / 1e3 - a.t[0], atol=1e-6)
+    assert json.loads((tmp_path / "b" / "meta.json").read_text())["imported"]["labels_offset_s"] == 30.0
+    capsys.readouterr()
+    assert main([*base, "--out", str(tmp_path / "c"), "--labels-offset", "30"]) == 2
+    assert "pass those tables" in capsys.readouterr().err
