@@ -1062,11 +1062,97 @@ TRAJECTORY: tuple[Column, ...] = (
 )
 
 
+#: decision steps 59 (trial T2 finding 9): `pdrlearn steps --out` (also score-steps' input): one row per detection
+DETECTIONS: tuple[Column, ...] = (
+    ("start_s", "s", "number", "the detection's span starts (a foot detector: the swing's start; s since the "
+                               "session's first sample, as every time below)"),
+    ("end_s", "s", "number", "the span ends (a foot detector: the rest after the swing)"),
+    ("event_s", "s", "number", "the detected event: the initial contact (scored against the reference's ic_ms)"),
+    ("unit", _ID, "text", "foot (strides of the instrumented foot) or waist (steps of both feet)"),
+    ("confidence", "0-1", "number", "the detector's confidence (accel / accel-force: the swing's amplitude over "
+                                    "twice the threshold, capped at 1)"),
+    ("amplitude", "m/s^2 or rad/s", "number", "accel, accel-force: the swing's span (max - min) of the low-passed "
+                                              "acceleration magnitude, m/s^2 (thesis ch.5.1: > 1.7 m/s^2 makes a "
+                                              "stride); pelvic-gyro: the peak pelvic rotation rate, rad/s"),
+    ("side", _ID, "text", "pelvic-gyro: left or right, from the sign of the rotation peak"),
+    ("step_freq_hz", "Hz", "number", "pll: 1 / the time since the previous step (seed 000)"),
+    ("fc_s", "s", "number", "waist-ic: the final contact (toe-off) after the initial contact"),
+    ("tc_s", "s", "number", "a track's steps.csv with --toe-off: the toe-off, scored against steps.csv tc_ms "
+                            "(steps 59)"),
+)
+#: decision steps 59: `pdrlearn steps / score-steps --events-out`
+EVENTS: tuple[Column, ...] = (
+    ("event", _ID, "text", "ic (initial contact) or tc (toe-off)"),
+    ("foot", _ID, "text", "left / right: the reference event's foot (ics.csv foot, meta.json foot of a foot unit), "
+                          "else the detection's; empty when unknown"),
+    ("detected_s", "s", "number", "the detection's time on the session's clock; empty for a missed reference event"),
+    ("reference_s", "s", "number", "the reference event's time on the session's clock (after --ref-offset); empty "
+                                   "for a false positive"),
+    ("error_s", "s", "number", "detected_s - reference_s (positive: the detection is late); matched pairs only"),
+    ("match", _ID, "text", "matched (within the tolerance, one-to-one, closest first), false_positive (a scored "
+                           "detection matching nothing) or missed (a reference event no detection matches)"),
+)
+#: decision steps 59 (trial T2 finding 9): the keys of `pdrlearn steps --json` / `score-steps --json`
+STEPS_JSON: tuple[Column, ...] = (
+    ("session", _ID, "text", "meta.json's session name"),
+    ("detector", _ID, "text", "the detector (score-steps: the detections file's name)"),
+    ("unit", _ID, "text", "foot or waist"),
+    ("count", "count", "integer", "every detection (a foot table: one per rest-to-rest stride, steps 34)"),
+    ("total_count", "count", "integer", "= count (its old alias)"),
+    ("scored_count", "count", "integer", "detections scored: inside the labelled intervals, less the unscored ones"),
+    ("reference", _ID, "text", "where the reference events come from (steps.ic_s, extras['ics'].ic_s ...)"),
+    ("reference_count", "count", "integer", "reference events"),
+    ("true_positives", "count", "integer", "matched pairs (|detected - reference| <= tolerance, one-to-one)"),
+    ("false_positives", "count", "integer", "scored detections matching no reference event"),
+    ("false_negatives", "count", "integer", "reference events matching no detection"),
+    ("precision", "0-1", "number", "true_positives / scored_count"),
+    ("recall", "0-1", "number", "true_positives / reference_count"),
+    ("f1", "0-1", "number", "2 true_positives / (scored_count + reference_count)"),
+    ("count_error_pct", "%", "number", "100 |scored_count - reference_count| / reference_count"),
+    ("timing_error_mean_s", "s", "number", "mean of detected - reference over the matched pairs (positive: "
+                                           "detections late); printed as the value before +-"),
+    ("timing_error_sd_s", "s", "number", "SD (n - 1) of detected - reference over the matched pairs; printed after "
+                                         "+-; null with one pair"),
+    ("timing_error_median_s", "s", "number", "median of detected - reference over the matched pairs"),
+    ("timing_error_abs_mean_s", "s", "number", "mean |detected - reference| over the matched pairs"),
+    ("tolerance_s", "s", "number", "the matching tolerance (--tolerance)"),
+    ("ground_truth", _ID, "true/false", "false for a detected segmentation (source=detected): no timing error"),
+    ("outside_labels", "count", "integer", "detections outside the labelled intervals (not scored)"),
+    ("unscored_untimed", "count", "integer", "detections standing for reference contacts without a time (steps 19)"),
+    ("unscored_same_foot_gap", "count", "integer", "detections in same-foot reference gaps (steps 20)"),
+    ("f1_same_foot_gaps_scored", "0-1", "number", "F1 with those counted as false positives"),
+    ("one_foot", _ID, "text", "a lower-back detector against one foot's strides: that foot (W96; recall only)"),
+    ("ref_offset_s", "s", "number", "--ref-offset: the reference clock minus the IMU clock (steps 56)"),
+    ("ref_offset_estimate_s", "s", "number", "the --ref-offset that puts the median timing error at 0, from sliding "
+                                             "the reference over +-10 s (it includes the detector's own bias; "
+                                             "steps 56)"),
+    ("ref_offset_suspect", _ID, "true/false", "true when the estimate names an offset (the warning of steps 56)"),
+    ("tight_window_s", "s", "number", "a quarter of the tolerance: the window of the two counts below"),
+    ("tight_matches_as_given", "count", "integer", "reference events with a detection within tight_window_s"),
+    ("tight_matches_at_estimate", "count", "integer", "the same with the reference moved to the estimate"),
+    ("reference_span_only", _ID, "true/false", "ics.csv without bouts.csv: first to last contact is scored, pauses "
+                                            "included (steps 57)"),
+    ("reference_start_s", "s", "number", "the first reference contact (with reference_span_only)"),
+    ("reference_end_s", "s", "number", "the last reference contact (with reference_span_only)"),
+    ("reference_pauses", "count", "integer", "gaps between reference contacts longer than 3 s"),
+    ("pause_detections", "count", "integer", "scored detections inside those gaps (false positives)"),
+    ("tc_*", "-", "number", "the toe-offs' scores when the detections have tc_s and steps.csv tc_ms (count, "
+                                "reference_count, true_positives, false_positives, false_negatives, precision, "
+                                "recall, f1, timing_error_mean_s, timing_error_sd_s; steps 59)"),
+    ("merged_detections", "count", "integer", "foot: detections dropped between the same two rests (steps 34)"),
+    ("rest_strides", "count", "integer", "foot: rest-to-rest strides the kept detections cover (steps 38)"),
+    ("foot_swing_strides", "count", "integer", "foot: the foot's own rest-and-swing strides, when more (steps 47)"),
+    ("not_scored", _ID, "text", "why a foot table was not scored (steps 58)"),
+    ("out", _ID, "text", "--out's path"),
+    ("events_out", _ID, "text", "--events-out's path"),
+)
+
+
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS,
-    TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS), strict=True))
+    TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, DETECTIONS, EVENTS, STEPS_JSON), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
@@ -1079,6 +1165,16 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
          "trajectory.csv": "Every track and run (decision B309): the output's trajectory, one row per position. A "
                            "session's own trajectory.csv (its path reference, `timestamp` in ms) is an input of "
                            "another layout (README, Data format).",
+         "detections.csv": "`pdrlearn steps --out FILE` (any name): one row per detection, times in s since the "
+                           "session's first sample; the columns after confidence depend on the detector; "
+                           "`score-steps` reads the same layout (event_s, and start_s / end_s for a foot table).",
+         "events.csv": "`pdrlearn steps` / `score-steps --events-out FILE` (decision steps 59): one row per scored "
+                       "event, for Bland-Altman plots (error_s against the mean of detected_s and reference_s); "
+                       "sorted by event, then reference time.",
+         "steps.json": "The keys of `pdrlearn steps --json` and `score-steps --json` (decisions steps 41, 56-59); "
+                       "the scores appear only when the session has a reference, NaN is written as null. Timing "
+                       "error = detected - reference (s): positive means the detector is late; `+-` in the text "
+                       "output is the SD over the matched pairs only.",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
                            "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
                            "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines."}

@@ -20,4 +20,5 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "rides.csv",  # L377
                                 "steps.csv", "steps.csv (foot)",  # E137
                                 "trajectory.csv",  # B309
-                                "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")  # L287
+                                "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv",  # L287
+                                "detections.csv", "events.csv", "steps.json")  # steps 59

@@ -173,6 +173,7 @@ FILE_KINDS = {
     "params": ("a waist parameters file", "pdrlearn calibrate"),
     "plot": ("a session plot", "pdrlearn plot"),
     "predictions": ("a step predictions table", "pdrlearn evaluate --predictions-out"),  # decision C42
+    "events": ("a matched events table", "pdrlearn steps --events-out"),  # decision steps 59
 }
 #: The columns every ``pdrlearn steps`` table starts with (the ``steps`` detectors' tables).
 STEPS_COLUMNS = ("start_s", "end_s", "event_s", "unit", "confidence")
@@ -211,7 +212,11 @@ def file_kind(path: Path) -> str | None:
                 return "steps"
             from pdrlearn.classify.evaluation import PREDICTION_COLUMNS
 
-            return "predictions" if header[:len(PREDICTION_COLUMNS)] == PREDICTION_COLUMNS else None
+            if header[:len(PREDICTION_COLUMNS)] == PREDICTION_COLUMNS:
+                return "predictions"
+            from pdrlearn.steps.evaluate import EVENT_COLUMNS
+
+            return "events" if header[:len(EVENT_COLUMNS)] == EVENT_COLUMNS else None
         if suffix == ".json":
             from pdrlearn.waist.params import SCHEMA
 

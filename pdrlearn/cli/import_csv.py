@@ -106,6 +106,10 @@ def import_command(
     labels_relative: bool = typer.Option(False, "--labels-relative", help="The --steps and --labels times are "
                                          "ms from this export's first sample (also with --merge), not on the "
                                          "export's clock (B42)."),
+    labels_offset: float = typer.Option(0.0, "--labels-offset", help="The --steps and --labels times' clock minus "
+                                        "the export's, s (a Vicon clock reading the IMU's + 5 s: 5): each time t is "
+                                        "imported at t - SECONDS; the sign of steps --ref-offset (decision steps "
+                                        "56)."),
     skip_rows: int = typer.Option(None, "--skip-rows", help="Rows directly under the header that are not data "
                                   "(default: a units row such as ms, m/(s^2), deg/s is recognised, skipped and read "
                                   "for the units; B66)."),
@@ -188,14 +192,20 @@ def import_command(
         merge_span_warning,
     )
     from pdrlearn.io.unit_check import assumed_unit_note, unit_mixup
+    from pdrlearn.steps.reference_clock import check_ref_offset
 
+    check_ref_offset(labels_offset, "--labels-offset")  # decision B333
+    if labels_offset and steps is None and not labels:
+        raise DataError("import: --labels-offset moves the --steps and --labels times; pass those tables, or leave "
+                        "it out")
     m = _mapping_file(mapping)
     if force_frame and frames is None and m.get("frames") is None:  # decision B69: it would be ignored
         raise DataError(f"{csv}: --force-frame keeps a --frames entry the data contradict (B67), and none is given; "
                         "add --frames AXES (e.g. x=forward,y=up,z=right) or drop --force-frame")
     if split_at_clock_reset:  # decision B80: labels on a clock that restarted belong to which part? not known
         clash = [o for o, given in (("--merge", merge), ("--steps", steps is not None), ("--labels", bool(labels)),
-                                    ("--labels-relative", labels_relative)) if given]
+                                    ("--labels-relative", labels_relative),
+                                    ("--labels-offset", bool(labels_offset))) if given]
         if clash:
             raise DataError(f"{csv}: --split-at-clock-reset writes one session per recording and cannot take "
                             f"{', '.join(clash)} (which recording their rows belong to is not known); import without "
@@ -283,7 +293,8 @@ def import_command(
     if steps is not None:
         if base is not None and base.steps is not None:
             raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
-        session = import_steps(steps, session, record["time"]["origin_s"], relative=labels_relative, foot=foot)
+        session = import_steps(steps, session, record["time"]["origin_s"], relative=labels_relative, foot=foot,
+                               offset_s=labels_offset)
         record["steps"] = {"file": Path(steps).name, "rows": len(session.steps)}
         if "from_ics" in session.steps.attrs:  # decision B338
             record["steps"]["from_ics"] = session.steps.attrs["from_ics"]
@@ -292,9 +303,12 @@ def import_command(
                         "tables, or leave it out")
     if labels_relative:
         record["labels_relative"] = True
+    if labels_offset:
+        record["labels_offset_s"] = labels_offset
     if labels:
         session, rows = import_labels(labels, session, record["time"]["origin_s"],
-                                      taken=() if base is None else tuple(base.extras), relative=labels_relative)
+                                      taken=() if base is None else tuple(base.extras), relative=labels_relative,
+                                      offset_s=labels_offset)
         record["labels"] = {f"{n}.csv": {"file": Path(p).name, "rows": rows[n]} for n, p in
                             zip(rows, labels, strict=True)}
     axes_warning = _check_axes(session, unit, record, csv)  # decision L71: before anything is written

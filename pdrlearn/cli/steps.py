@@ -14,6 +14,13 @@ from pdrlearn.errors import DataError
 #: neighbour's detection; a stray one is the detector's usual error (real MS patient: 2 of 74, a simulated
 #: 3-year-old at 230 steps/min: 1 of 26), the trial's merged children 15 of 22 and 25 of 26
 MERGED_WARN_FRAC = 0.1
+#: decision steps 56: the reference clock offset option of `steps` and `score-steps`
+REF_OFFSET_HELP = ("The reference clock minus the IMU clock, s: every label time t is scored at t - SECONDS (a Vicon "
+                   "clock reading the IMU clock + 5 s: --ref-offset 5; decision steps 56).")
+#: decision steps 59: the matched events table
+EVENTS_OUT_HELP = ("Write every scored event to this CSV: event (ic | tc), foot, detected_s, reference_s, error_s "
+                   "(detected - reference, s), match (matched | false_positive | missed); for Bland-Altman plots "
+                   "(decision steps 59).")
 
 
 def steps(
@@ -29,6 +36,8 @@ def steps(
     time_origin: str = typer.Option("session", "--time-origin", help="session: --out times in s from the "
                                     "session's first sample (what score-steps reads); export: on the clock of the "
                                     "export 'pdrlearn import' read, its first time added back (E173)."),
+    ref_offset: float = typer.Option(0.0, "--ref-offset", help=REF_OFFSET_HELP),
+    events_out: Path = typer.Option(None, "--events-out", help=EVENTS_OUT_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
@@ -54,6 +63,7 @@ def steps(
     from pdrlearn.io import read_session
     from pdrlearn.steps import get_detector
     from pdrlearn.steps.evaluate import check_tolerance
+    from pdrlearn.steps.reference_clock import check_ref_offset
 
     if detector != "auto":
         det = get_detector(detector)
@@ -65,8 +75,10 @@ def steps(
     if time_origin == "export" and out is None:
         raise DataError("--time-origin export says on which clock --out writes its times; pass --out FILE.csv (the "
                         "JSON's time_origin_s gives the origin to add) (decision E173)")
+    check_ref_offset(ref_offset, "--ref-offset")  # decision B333
     if out is not None:
         out = out_file(out, (".csv",), "steps", force=force)
+    events_out = _events_file(events_out, out, force)
     was = out is not None and existed(out)
     session = read_session(session_dir)
     if time_origin == "export":
@@ -99,7 +111,18 @@ def steps(
     if det.unit == "foot":
         foot_checks(session, table, det.name, force=reads_force(det))
     report(session, table, name=det.name, unit=det.unit, tolerance=tolerance, out=out, was=was, as_json=as_json,
-           detector=det, time_origin=time_origin)
+           detector=det, time_origin=time_origin, ref_offset=ref_offset,
+           events_out=events_out)
+
+
+def _events_file(events_out: Path | None, out: Path | None, force: bool) -> Path | None:
+    """Decision steps 59: ``--events-out`` checked as an output CSV before any work, not the same file as ``--out``."""
+    if events_out is None:
+        return None
+    events_out = out_file(events_out, (".csv",), "events", force=force)
+    if out is not None and events_out.resolve() == out.resolve():
+        raise DataError(f"--events-out {events_out}: the same file as --out; give the events table its own name")
+    return events_out
 
 
 def _tared(session):
@@ -146,14 +169,19 @@ def foot_checks(session, table, name: str, *, force: bool = False) -> None:
 
 
 def report(session, table, *, name: str, unit: str, tolerance: float, out: Path | None = None, was: bool = False,
-           as_json: bool = False, per_stride: bool = True, detector=None, time_origin: str = "session") -> None:
+           as_json: bool = False, per_stride: bool = True, detector=None, time_origin: str = "session",
+           ref_offset: float = 0.0, events_out: Path | None = None) -> None:
     """Score ``table`` against ``session``'s labels and print the result (``steps`` and ``score-steps``): a foot
     table is first reduced to one row per rest-to-rest stride (decision steps 34) unless ``per_stride`` is False,
     with one warning when the kept rows cover many more rest-to-rest strides (decision steps 38; ``detector``, when
     given, names its shortest stride there); ``out`` gets the scored table, its times on the session's clock or
-    with ``time_origin="export"`` on the imported export's (decision E173)."""
+    with ``time_origin="export"`` on the imported export's (decision E173); ``ref_offset``: the reference clock
+    minus the IMU clock (decision steps 56); ``events_out`` gets the events table (decision steps 59)."""
+    import logging
+
     from pdrlearn.atomic import atomic_file
-    from pdrlearn.steps import score_steps
+    from pdrlearn.steps.evaluate import score_steps_events, unscored_reason
+    from pdrlearn.steps.reference_clock import offset_line
     from pdrlearn.steps.strides import one_per_stride_counted
 
     merged = spanned = 0
@@ -187,9 +215,25 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
         import logging
 
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, range_line)
-    score = score_steps(table, session, tolerance_s=tolerance, unit=unit)
+    score, events = score_steps_events(table, session, tolerance_s=tolerance, unit=unit, ref_offset_s=ref_offset)
     if score is not None:  # decision steps 41: score_steps' own dict, keys and meanings (one_foot: W96)
         result.update(score)
+        line = offset_line(score, score["reference_count"], tolerance)  # decision steps 56
+        if line:
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+    else:
+        why = unscored_reason(session, unit)  # decision steps 58
+        if why:
+            result["not_scored"] = why
+    if events_out is not None and score is None:
+        raise DataError(f"--events-out {events_out}: {session.where} has no reference for the {unit}'s events "
+                        "(steps.csv or ics.csv); nothing written (decision steps 59)")
+    if events_out is not None:
+        was_events = existed(events_out)
+        with atomic_file(events_out) as tmp:
+            events.to_csv(tmp, index=False)
+        replaced(events_out, was_events)
+        result["events_out"] = str(events_out)
     from pdrlearn.track.clock import export_origin_s, on_export_clock
 
     origin = export_origin_s(session.meta)
@@ -227,8 +271,13 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
                       f"{score['f1_same_foot_gaps_scored']:.3f} counting them)"
                       if score["unscored_same_foot_gap"] else "") + ")")
         if score["ground_truth"]:
-            typer.echo(f"timing error {score['timing_error_mean_s']:+.3f} "
-                       f"+- {score['timing_error_sd_s']:.3f} s")
+            typer.echo(f"timing error {score['timing_error_mean_s']:+.3f} +- {score['timing_error_sd_s']:.3f} s "
+                       f"(detected - reference, mean +- SD over the {score['true_positives']} matched pairs)")
+    if score is not None:
+        for line in score_notes(score, tolerance):
+            typer.echo(line)
+    elif "not_scored" in result:
+        typer.echo(result["not_scored"])
     if unit == "waist" and detector is not None:  # decisions W281, W297: why `track` can count fewer
         typer.echo(track_count_note(session, table))
     if out is not None and origin:  # decision E173
@@ -236,8 +285,30 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
                  else "from the session's first sample (add it back, or pass --time-origin export)")
         typer.echo(f"note: {out}: times in s {clock}; the session's 0 s is {origin:.3f} s on the imported export's "
                    "clock (decision E173)", err=True)
-    if out is not None:
-        typer.echo(str(out))
+    for path in (events_out, out):
+        if path is not None:
+            typer.echo(str(path))
+
+
+def score_notes(score: dict, tolerance: float) -> list[str]:
+    """The lines after the scores: the toe-offs' (decision steps 59), the pauses of an ics.csv reference without
+    bouts.csv (decision steps 57) and the reference offset given (decision steps 56)."""
+    lines = []
+    if "tc_f1" in score:
+        lines.append(f"toe-offs: precision {score['tc_precision']:.3f}  recall {score['tc_recall']:.3f}  F1 "
+                     f"{score['tc_f1']:.3f} of {score['tc_reference_count']} (tolerance {tolerance:g} s); timing "
+                     f"error {score['tc_timing_error_mean_s']:+.3f} +- {score['tc_timing_error_sd_s']:.3f} s")
+    if score.get("reference_span_only") and score["reference_pauses"]:
+        a, b = score["reference_start_s"], score["reference_end_s"]
+        lines.append(f"scored over {a:.1f}-{b:.1f} s (first to last reference contact); no bouts.csv: the "
+                     f"{score['reference_pauses']} pause(s) of the reference longer than 3 s are scored too, and "
+                     f"{score['pause_detections']} detection(s) in them count as false positives; add bouts.csv "
+                     "(start_ms,end_ms of each walking bout) to score the walking only (decision steps 57)")
+    if score.get("ref_offset_s"):
+        off = score["ref_offset_s"]
+        lines.append(f"reference times moved by {-off:+g} s (--ref-offset {off:g}: the reference clock minus the IMU "
+                     "clock; decision steps 56)")
+    return lines
 
 
 #: decision W281: `steps` prints a lower-back detector's contacts; `track` keeps those of walking (trial s32 finding 4)
@@ -341,6 +412,9 @@ def score_steps_command(
     tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
     all_rows: bool = typer.Option(False, "--all-rows", help="Score every row of a foot table (default: one per "
                                   "rest-to-rest stride, as `pdrlearn steps`; decision steps 34)."),
+    ref_offset: float = typer.Option(0.0, "--ref-offset", help=REF_OFFSET_HELP),
+    events_out: Path = typer.Option(None, "--events-out", help=EVENTS_OUT_HELP),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
     """Score an existing detections CSV (your own detector's, or `pdrlearn steps --out`'s) against a session's
@@ -352,15 +426,21 @@ def score_steps_command(
         pdrlearn score-steps out/sim/D_u1 out/A_steps.csv
 
         pdrlearn score-steps out/sim/D_u1 out/A_steps.csv --all-rows --tolerance 0.1 --json
+
+        pdrlearn score-steps out/sim/D_u1 out/A_steps.csv --ref-offset 5 --events-out out/A_events.csv   # a Vicon
+        clock 5 s ahead of the IMU's; one row per event for Bland-Altman plots (decisions steps 56, 59)
     """
     from pdrlearn.io import read_session
     from pdrlearn.steps.evaluate import check_tolerance
+    from pdrlearn.steps.reference_clock import check_ref_offset
 
     check_tolerance(tolerance, "--tolerance")  # decision B167
+    check_ref_offset(ref_offset, "--ref-offset")  # decision B333
+    events_out = _events_file(events_out, None, force)
     table, unit = read_detections(detections, unit=unit, per_stride=not all_rows)
     session = read_session(session_dir)
     report(session, table, name=detections.name, unit=unit, tolerance=tolerance, as_json=as_json,
-           per_stride=not all_rows)
+           per_stride=not all_rows, ref_offset=ref_offset, events_out=events_out)
 
 
 def read_detections(path: Path, *, unit: str | None = None, per_stride: bool = True):

@@ -1358,8 +1358,10 @@ def _check_shifted_labels(table: pd.DataFrame, path: Path, session: Session, ori
     except DataError as exc:
         # the other reading's times: the table's plus the origin used, minus the other one's
         shift = _label_origin(session, origin_s, not relative) - _label_origin(session, origin_s, relative)
-        if not shift or "outside the recording" not in str(exc):
+        if "outside the recording" not in str(exc):
             raise
+        if not shift:
+            raise DataError(f"{exc}; {OTHER_CLOCK_HINT}") from None
         cols = [c for c in ("start_s", "end_s", "ic_s") if c in table.columns]
 
         def fits(shift: float) -> bool:
@@ -1384,16 +1386,23 @@ def _check_shifted_labels(table: pd.DataFrame, path: Path, session: Session, ori
             raise DataError(f"{exc}; moved {abs(h)} h {'later' if h > 0 else 'earlier'} they fit: the export's "
                             "date-time text has no zone and was taken as UTC: give its zone, e.g. --time-zone "
                             f"{'+' if h > 0 else '-'}{abs(h):02d}:00") from None
-        raise
+        raise DataError(f"{exc}; {OTHER_CLOCK_HINT}") from None
+
+
+#: steps decision 56: the end of the "outside the recording" line at import (trial T2 finding 1)
+OTHER_CLOCK_HINT = ("labels on another clock (a motion-capture system's): pass --labels-offset SECONDS, that clock "
+                    "minus the export's (decision steps 56)")
 
 
 def import_labels(paths, session: Session, origin_s: float, *, taken=(),
-                  relative: bool = False) -> tuple[Session, dict[str, int]]:
+                  relative: bool = False, offset_s: float = 0.0) -> tuple[Session, dict[str, int]]:
     """``session`` with the extra label tables of ``paths`` (``ics.csv``, ``bouts.csv``, ``turns.csv`` ...:
     ``*_ms`` columns in ms on the export's clock), each kept under its file name (``ics.csv`` -> the
     session's ``ics.csv``), moved onto the session's clock exactly as :func:`import_steps` moves the steps
     and checked as ``read_session`` checks them. ``taken``: label names the session already has (--merge).
     ``relative``: the times are ms from the recording's first sample, not on the export's clock (decision B42).
+    ``offset_s``: the labels' clock minus the export's (s; a motion-capture clock): each time t is taken at
+    t - ``offset_s`` (``--labels-offset``, the sign of steps decision 56's ``--ref-offset``).
     Returns the session and name -> rows."""
     from pdrlearn.io.plasys import LABEL_FILES, LABEL_TABLES, check_label_table
     from pdrlearn.io.sensors import SENSORS
@@ -1418,7 +1427,7 @@ def import_labels(paths, session: Session, origin_s: float, *, taken=(),
             log.warning("%s: no command reads a label table named %s.csv (they read %s); it is copied into the "
                         "session but not used: rename it if it is one of those", p, name,
                         ", ".join(f"{n}.csv ({', '.join(c)})" for n, c in LABEL_TABLES.items()))
-        table = _shifted_table(p, _label_origin(session, origin_s, relative))
+        table = _shifted_table(p, _label_origin(session, origin_s, relative) + offset_s)
         _check_shifted_labels(table, p, session, origin_s, relative)
         extras[name], rows[name] = table, len(table)
     return Session(name=session.name, streams=session.streams, steps=session.steps, trajectory=session.trajectory,
@@ -1449,17 +1458,18 @@ def _ic_list_strides(table: pd.DataFrame, path: Path, foot: str | None) -> pd.Da
 
 
 def import_steps(path: str | os.PathLike, session: Session, origin_s: float, *, relative: bool = False,
-                 foot: str | None = None) -> Session:
+                 foot: str | None = None, offset_s: float = 0.0) -> Session:
     """``session`` with the labelled steps of ``path`` (``start_ms,end_ms`` and ``terrain`` ... as the
     session's ``steps.csv``, times in ms on the export's clock), moved onto the session's clock (``origin_s``
-    taken off) and checked as ``read_session`` checks them (decision D12). A table of initial contacts only
-    (``ic_ms``, and ``foot``: those of ``foot``) becomes strides the G2 way (decision B338,
-    :func:`pdrlearn.io.ic_reference.ic_strides`); ``steps.attrs["from_ics"]`` counts its contacts."""
+    and ``offset_s``, as :func:`import_labels`, taken off) and checked as ``read_session`` checks them (decision
+    D12). A table of initial contacts only (``ic_ms``, and ``foot``: those of ``foot``) becomes strides the G2
+    way (decision B338, :func:`pdrlearn.io.ic_reference.ic_strides`); ``steps.attrs["from_ics"]`` counts its
+    contacts."""
     from pdrlearn.io.session import STEP_COLUMNS
     from pdrlearn.io.validate import check_columns, check_numeric
 
     path = Path(path)
-    steps = _shifted_table(path, _label_origin(session, origin_s, relative))
+    steps = _shifted_table(path, _label_origin(session, origin_s, relative) + offset_s)
     if "ic_s" in steps.columns and not {"start_s", "end_s"} & set(steps.columns):  # decision B338
         steps = _ic_list_strides(steps, path, foot)
     check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")

@@ -35,6 +35,12 @@ def offset_locked(estimate: dict) -> bool:
     return int(estimate.get("matched", 0)) >= MIN_LOCK_PAIRS and bool(sd <= LOCK_MAX_RESIDUAL_SD_S)
 
 
+def nearest_distance(times: np.ndarray, events: np.ndarray) -> np.ndarray:
+    """The distance (s) from each of ``times`` (any shape) to the nearest of the sorted ``events`` (2 or more)."""
+    idx = np.clip(np.searchsorted(events, times), 1, events.size - 1)
+    return np.minimum(np.abs(events[idx] - times), np.abs(events[idx - 1] - times))
+
+
 def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: float = 0.005,
                  tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0) -> dict:
     """Estimate ``offset_s`` (and ``drift``) so that ``foot + offset + drift * (foot - ref_s)`` meets waist events.
@@ -66,9 +72,7 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
         raise DataError(f"align_units: need at least 3 foot and 3 waist step events (got {f.size} and "
                         f"{w.size}); record a longer walk")
     grid = np.arange(-max_offset_s, max_offset_s + step_s / 2, step_s)
-    shifted = f[None, :] + grid[:, None]  # (n_grid, n_foot)
-    idx = np.clip(np.searchsorted(w, shifted), 1, w.size - 1)
-    dist = np.minimum(np.abs(w[idx] - shifted), np.abs(w[idx - 1] - shifted))
+    dist = nearest_distance(f[None, :] + grid[:, None], w)  # (n_grid, n_foot)
     ok = dist <= tolerance_s
     counts = ok.sum(axis=1)
     mean_d = np.where(counts > 0, np.where(ok, dist, 0).sum(axis=1) / np.maximum(counts, 1), np.inf)

@@ -136,6 +136,9 @@ class Reference:
         without a time (``extras["ics_untimed"]``, decision 19)
     one_foot : a lower-back detector scored against one foot's strides (no ``ics.csv``): that foot's name
         ("the labelled" when steps.csv does not say); only its contacts' recall is scored (decision W96)
+    span_only : the labelled interval is first..last initial contact of an ``ics.csv`` with no ``bouts.csv``, so
+        pauses of the reference inside it are scored (decision steps 57)
+    feet : each event's foot (left / right, "" unknown), in the order of ``times`` (the events table, steps 59)
     """
 
     times: np.ndarray
@@ -145,6 +148,8 @@ class Reference:
     ground_truth: bool = True
     from_ics: bool = False
     one_foot: str | None = None
+    span_only: bool = False
+    feet: np.ndarray | None = None
 
 
 def _span(times: np.ndarray, *more: np.ndarray) -> np.ndarray:
@@ -200,20 +205,14 @@ def reference_events(session: Session, unit: str, *,
 def _reference_events(session: Session, unit: str, tolerance_s: float) -> Reference | None:
     tol = float(tolerance_s)
     if unit == "waist" and "ics" in session.extras and "ic_s" in session.extras["ics"]:
-        ics = np.sort(session.extras["ics"]["ic_s"].dropna().to_numpy(float))
-        if ics.size == 0:
-            return None
-        bouts = session.extras.get("bouts")
-        if bouts is not None and {"start_s", "end_s"} <= set(bouts.columns):
-            b = bouts[bouts["level"].astype(str) == "wb"] if "level" in bouts else bouts
-            iv = b[["start_s", "end_s"]].to_numpy(float)
-            desc = "extras['ics'].ic_s within extras['bouts'] (wb)"
-        else:
-            iv = _span(ics)
-            desc = "extras['ics'].ic_s"
-        return Reference(ics, tol, iv + [-tol, tol], desc, from_ics=True)
+        return _ics_reference(session.extras["ics"], session, tol, "extras['ics'].ic_s", from_ics=True)
     st = session.steps
     if st is None or len(st) == 0:
+        side = ics_foot(session)  # decision steps 58: a foot detector against its own foot's contacts of ics.csv
+        if unit == "foot" and side is not None:
+            ics = session.extras["ics"]
+            return _ics_reference(ics[ics["foot"].astype(str).str.lower() == side], session, tol,
+                                  f"extras['ics'].ic_s of the {side} foot (meta.json foot; no steps.csv)")
         return None
     se = st[["start_s", "end_s"]].to_numpy(float)
     if "source" in st and (st["source"].astype(str) == "detected").all():
@@ -247,6 +246,67 @@ def _reference_events(session: Session, unit: str, tolerance_s: float) -> Refere
     ev = np.sort(se[:, 0])
     return Reference(ev, tol, _span(ev, se[:, 1]) + [-tol, tol],
                      "steps.start_s (steps.csv has no ic_ms column: each labelled stride's start is its event)")
+
+
+def _ics_reference(ics: pd.DataFrame, session: Session, tol: float, desc: str, from_ics: bool = False
+                   ) -> Reference | None:
+    """The initial contacts of ``ics`` (``ic_s``) as a reference, labelled within the walking bouts
+    (``extras["bouts"]``, level ``wb``) when given, else from the first to the last contact (decision steps 57:
+    its pauses are scored; ``span_only``)."""
+    ics = ics.dropna(subset=["ic_s"]).sort_values("ic_s", kind="stable")
+    t = ics["ic_s"].to_numpy(float)
+    if t.size == 0:
+        return None
+    feet = ics["foot"].astype(str).str.lower().to_numpy() if "foot" in ics else np.full(t.size, "")
+    bouts = session.extras.get("bouts")
+    if bouts is not None and {"start_s", "end_s"} <= set(bouts.columns):
+        b = bouts[bouts["level"].astype(str) == "wb"] if "level" in bouts else bouts
+        iv = b[["start_s", "end_s"]].to_numpy(float)
+        desc += " within extras['bouts'] (wb)"
+        span_only = False
+    else:
+        iv, span_only = _span(t), True
+    return Reference(t, tol, iv + [-tol, tol], desc, from_ics=from_ics, span_only=span_only, feet=feet)
+
+
+def ics_foot(session: Session) -> str | None:
+    """Decision steps 58: the instrumented foot's side (meta.json ``foot``) when ``ics.csv`` labels that foot's
+    contacts (a ``foot`` column holding it), else None."""
+    ics = session.extras.get("ics")
+    side = str(session.meta.get("foot") or "").strip().lower()
+    if ics is None or "ic_s" not in ics or "foot" not in ics or side not in ("left", "right"):
+        return None
+    return side if (ics["foot"].astype(str).str.lower() == side).any() else None
+
+
+def unscored_reason(session: Session, unit: str) -> str | None:
+    """Decision steps 58: why ``session`` gives a ``unit`` detector no reference although it has labels, as one
+    line (None when it has none at all, or when it is scored)."""
+    ics = session.extras.get("ics")
+    if unit != "foot" or ics is None or (session.steps is not None and len(session.steps)):
+        return None
+    if ics_foot(session) is not None:
+        return None
+    why = ("ics.csv has no foot column" if "foot" not in ics else
+           "meta.json names no foot (left or right)" if not session.meta.get("foot") else
+           f"ics.csv has no contact of the {session.meta.get('foot')} foot (meta.json foot)")
+    return (f"not scored: foot strides are scored against steps.csv (start_ms,end_ms,ic_ms per stride) or against "
+            f"the instrumented foot's contacts of ics.csv (ic_ms,foot with meta.json \"foot\": \"left\" or "
+            f"\"right\", `pdrlearn import --foot`), and {why}; or score every contact with --unit waist "
+            "(decision steps 58)")
+
+
+#: decision steps 57: an interval between two reference contacts longer than the longest stride is a pause (the
+#: Mobilise-D stride selection's maximum stride time, pdrlearn.waist.gait_rules.MAX_STRIDE_S)
+def reference_pauses(times: np.ndarray, max_gap_s: float | None = None) -> np.ndarray:
+    """``[a, b]`` rows of the gaps between consecutive reference events (sorted ``times``) longer than
+    ``max_gap_s`` (default: :data:`pdrlearn.kernels.contact.MAX_STRIDE_S`, 3 s)."""
+    from pdrlearn.kernels.contact import MAX_STRIDE_S
+
+    gap = MAX_STRIDE_S if max_gap_s is None else max_gap_s
+    t = np.sort(np.asarray(times, dtype=float))
+    i = np.flatnonzero(np.diff(t) > gap)
+    return np.column_stack([t[i], t[i + 1]]) if i.size else np.empty((0, 2))
 
 
 def in_intervals(times: np.ndarray, intervals: np.ndarray) -> np.ndarray:
@@ -335,7 +395,7 @@ def _table_events(steps, session: Session, unit: str | None) -> tuple[np.ndarray
 
 
 def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S,
-                unit: str | None = None) -> dict | None:
+                unit: str | None = None, ref_offset_s: float = 0.0) -> dict | None:
     """Score a detector's steps table against the session's labels (``None`` without labels).
 
     Only detections inside the labelled intervals are scored (see :func:`reference_events`); the result
@@ -353,20 +413,44 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     ``steps`` is scored as given. ``pdrlearn steps`` and ``pdrlearn score-steps`` first reduce a foot table to
     one row per rest-to-rest stride (:func:`pdrlearn.steps.one_per_stride`, decision steps 34/39): call it
     before this to get their numbers for a detector that fires more than once per stride.
+
+    ``ref_offset_s``: the reference clock minus the session's clock (s); every label time is moved to
+    ``t - ref_offset_s`` first (decision steps 56). The result always has ``ref_offset_s`` and, with 3 events on
+    each side, the offset check of :func:`pdrlearn.steps.reference_clock.offset_check`
+    (``ref_offset_estimate_s``, ``ref_offset_suspect`` ...). Against ``ics.csv`` contacts without ``bouts.csv``
+    (``reference_span_only``), ``pause_detections`` counts the scored detections inside the ``reference_pauses``
+    gaps of the reference longer than 3 s (decision steps 57). A foot table with ``tc_s`` against a steps.csv
+    with ``tc_ms`` also gets the toe-offs' scores, keys ``tc_*`` (decision steps 59).
     """
+    return score_steps_events(steps, session, tolerance_s=tolerance_s, unit=unit, ref_offset_s=ref_offset_s)[0]
+
+
+def score_steps_events(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S,
+                       unit: str | None = None, ref_offset_s: float = 0.0) -> tuple[dict | None, pd.DataFrame]:
+    """:func:`score_steps`' dict and the events table of decision steps 59 (one row per scored detection and per
+    reference event: :data:`EVENT_COLUMNS`; matched pairs share a row)."""
+    from pdrlearn.steps.reference_clock import check_ref_offset, offset_check, shifted_labels
+
     tolerance_s = check_tolerance(tolerance_s, "score_steps: tolerance_s")  # decision B167
+    ref_offset_s = check_ref_offset(ref_offset_s, "score_steps: ref_offset_s")  # decision B333
     ev, unit = _table_events(steps, session, unit)
+    session = shifted_labels(session, ref_offset_s, tolerance_s=tolerance_s, where="ref_offset_s")  # steps 56
     ref = reference_events(session, unit, tolerance_s=tolerance_s)
     if ref is None:
-        return None
-    ev = np.sort(ev)
+        return None, pd.DataFrame(columns=list(EVENT_COLUMNS))
+    order = np.argsort(ev, kind="stable")
+    ev = ev[order]
     inside = in_intervals(ev, ref.intervals)
     scored = ev[inside]
     untimed = (untimed_mask(scored, session, tolerance_s) if ref.from_ics
                else np.zeros(scored.size, dtype=bool))
     lost = (same_foot_gap_mask(scored, session, tolerance_s, taken=untimed) if ref.from_ics
             else np.zeros(scored.size, dtype=bool))
-    out = score_events(scored[~(untimed | lost)], ref.times, tolerance_s=ref.tolerance_s)
+    kept = scored[~(untimed | lost)]
+    out = score_events(kept, ref.times, tolerance_s=ref.tolerance_s)
+    det_feet = _table_feet(steps, unit, session)[order][inside][~(untimed | lost)]
+    ref_feet = ref.feet if ref.feet is not None else np.full(ref.times.size, _unit_foot(session, unit), dtype=object)
+    events = [event_rows(kept, ref.times, ref.tolerance_s, "ic", det_feet, ref_feet)]
     if ref.one_foot is not None:  # decision W96: the other foot's steps match nothing and are no error
         out.update(precision=float("nan"), f1=float("nan"), count_error_pct=float("nan"), one_foot=ref.one_foot)
     out["tolerance_s"] = float(tolerance_s)
@@ -383,7 +467,89 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
                                        else float("nan"))
     out["reference"] = ref.description
     out["ground_truth"] = ref.ground_truth
+    out["ref_offset_s"] = ref_offset_s
+    out["timing_error_median_s"] = float(np.median(events[0]["error_s"].dropna())) if out["true_positives"] \
+        else float("nan")
     if not ref.ground_truth:
-        for k in ("timing_error_mean_s", "timing_error_sd_s", "timing_error_abs_mean_s"):
+        for k in ("timing_error_mean_s", "timing_error_sd_s", "timing_error_abs_mean_s", "timing_error_median_s"):
             out[k] = float("nan")
-    return out
+        events = []
+    else:  # decision steps 56: does the reference look offset from the IMU clock?
+        out.update(offset_check(ev, ref.times, tolerance_s, ref_offset_s))
+    if ref.span_only:  # decision steps 57: ics.csv without bouts.csv scores the reference's pauses too
+        pauses = reference_pauses(ref.times)
+        out["reference_span_only"] = True
+        out["reference_start_s"], out["reference_end_s"] = float(ref.times.min()), float(ref.times.max())
+        out["reference_pauses"] = int(len(pauses))
+        out["pause_detections"] = int(in_intervals(kept, pauses + [tolerance_s, -tolerance_s]).sum())
+    if unit == "foot" and ref.ground_truth:  # decision steps 59: the toe-offs, when both sides have them
+        tc = _toe_off_scores(steps, session, ref, tolerance_s)
+        if tc is not None:
+            out.update(tc[0])
+            events.append(tc[1])
+    table = (pd.concat(events, ignore_index=True).sort_values(["event", "reference_s", "detected_s"],
+                                                               kind="stable", ignore_index=True)
+             if events else pd.DataFrame(columns=list(EVENT_COLUMNS)))
+    return out, table
+
+
+#: decision steps 59: the columns of ``--events-out`` (pdrlearn.columns EVENTS documents them)
+EVENT_COLUMNS = ("event", "foot", "detected_s", "reference_s", "error_s", "match")
+
+
+def event_rows(detected: np.ndarray, reference: np.ndarray, tolerance_s, event: str,
+               det_feet: np.ndarray | None = None, ref_feet: np.ndarray | None = None) -> pd.DataFrame:
+    """Decision steps 59: one row per matched pair (``match`` = ``matched``, ``error_s`` = detected - reference),
+    per unmatched detection (``false_positive``) and per unmatched reference event (``missed``)."""
+    d = np.asarray(detected, dtype=float)
+    r = np.asarray(reference, dtype=float)
+    dfeet = np.full(d.size, "", dtype=object) if det_feet is None else np.asarray(det_feet, dtype=object)
+    rfeet = np.full(r.size, "", dtype=object) if ref_feet is None else np.asarray(ref_feet, dtype=object)
+    i_d, i_r = match_events(d, r, tolerance_s)
+    fp = np.setdiff1d(np.arange(d.size), i_d)
+    fn = np.setdiff1d(np.arange(r.size), i_r)
+    nan = np.nan
+    rows = {"event": event,
+            "foot": np.concatenate([np.where(rfeet[i_r] != "", rfeet[i_r], dfeet[i_d]), dfeet[fp], rfeet[fn]]),
+            "detected_s": np.concatenate([d[i_d], d[fp], np.full(fn.size, nan)]),
+            "reference_s": np.concatenate([r[i_r], np.full(fp.size, nan), r[fn]]),
+            "error_s": np.concatenate([d[i_d] - r[i_r], np.full(fp.size + fn.size, nan)]),
+            "match": ["matched"] * i_d.size + ["false_positive"] * fp.size + ["missed"] * fn.size}
+    return pd.DataFrame(rows, columns=list(EVENT_COLUMNS))
+
+
+def _table_feet(steps: pd.DataFrame, unit: str, session: Session) -> np.ndarray:
+    """Each detection's foot: the table's ``foot`` or ``side`` column, a foot table's meta.json ``foot``, else ""."""
+    for col in ("foot", "side"):
+        if col in steps:
+            return steps[col].fillna("").astype(str).str.lower().to_numpy(dtype=object)
+    return np.full(len(steps), _unit_foot(session, unit), dtype=object)
+
+
+def _unit_foot(session: Session, unit: str) -> str:
+    """A foot unit's side (meta.json ``foot``), else ""."""
+    return str(session.meta.get("foot") or "").lower() if unit == "foot" else ""
+
+
+def _toe_off_scores(steps: pd.DataFrame, session: Session, ref: Reference, tolerance_s: float
+                    ) -> tuple[dict, pd.DataFrame] | None:
+    """Decision steps 59: the detected toe-offs (``steps.tc_s``) against the reference's (steps.csv ``tc_ms``)
+    inside the labelled intervals, :func:`score_events` keys prefixed ``tc_``; None when either side has none."""
+    st = session.steps
+    if "tc_s" not in steps or st is None or "tc_s" not in st:
+        return None
+    d = pd.to_numeric(steps["tc_s"], errors="coerce").to_numpy(float)
+    r = st["tc_s"].to_numpy(float)
+    d, r = np.sort(d[np.isfinite(d)]), np.sort(r[np.isfinite(r)])
+    if not d.size or not r.size:
+        return None
+    # inside the labelled intervals or a labelled stride (a stride's toe-off can precede the first labelled IC)
+    strides = st[["start_s", "end_s"]].to_numpy(float) + [-tolerance_s, tolerance_s]
+    d = d[in_intervals(d, np.vstack([ref.intervals, strides]))]
+    sc = score_events(d, r, tolerance_s=tolerance_s)
+    keys = ("count", "reference_count", "true_positives", "false_positives", "false_negatives", "precision",
+            "recall", "f1", "timing_error_mean_s", "timing_error_sd_s")
+    side = _unit_foot(session, "foot")
+    return ({f"tc_{k}": sc[k] for k in keys},
+            event_rows(d, r, tolerance_s, "tc", np.full(d.size, side, dtype=object),
+                       np.full(r.size, side, dtype=object)))
