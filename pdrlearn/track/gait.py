@@ -199,7 +199,8 @@ def _median(v) -> float | None:
 SUMMARY_KEYS = ("n_stride_times", "median_stride_time_s", "median_cadence_spm", "median_speed_mps",
                 "median_step_time_s", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps",
                 "n_straight_strides", "n_stance_times", "median_stance_time_s", "median_swing_time_s",
-                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps", "n_stair_strides")
+                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps", "n_stair_strides",
+                "n_stair_strides_up", "n_stair_strides_down")  # decision L432
 
 
 #: decision L303 (an option; its adoption rule is in docs/decisions/localization.md): a row of a climb walked under
@@ -258,6 +259,10 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
         out["walking_speed_mps"] = dist / moving if moving > 0 else None
     stair = stair_rows(steps) & np.asarray(valid, dtype=bool)  # decision L179
     out["n_stair_strides"] = int(stair.sum())
+    rising = np.nan_to_num(pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)) > 0 if "dz_m" in steps \
+        else np.zeros(len(steps), bool)
+    out["n_stair_strides_up"] = int((stair & rising).sum())  # decision L432: split by direction
+    out["n_stair_strides_down"] = int((stair & ~rising).sum())
     sp = np.where(np.asarray(straight, dtype=bool) & ~stair & ~sideways_rows(steps),  # decision L228: no side step
                   np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
