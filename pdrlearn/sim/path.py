@@ -73,7 +73,8 @@ def stair_size_error(rise_m: float | None, run_m: float | None) -> str | None:
         if value is None or lo <= value <= hi:
             continue
         msg = (f"a stair's {what} of {value:g} m is outside {lo:g}-{hi:g} m (metres; building codes give a rise of "
-               f"0.10-0.22 m and a going of 0.22-0.43 m, widened to half a stair and to a skipped stair; decision B347)")
+               "0.10-0.22 m and a going of 0.22-0.43 m, widened to half a stair and to a skipped stair; "
+               "decision B347)")
         if value >= 1 and lo <= value / 100 <= hi:
             msg += f": {value:g} looks like centimetres - write {value / 100:g}"
         elif what == "rise" and 0 < value < lo:

@@ -29,8 +29,10 @@ KEYS = ("n_flights_up", "n_flights_down")
 #: share of the run's median grade is a landing stride: every stair stride climbs at the stair's own grade however
 #: many stairs it takes (one step-to-step, two step-over-step, three with a skipped stair), while a stride onto or
 #: off a landing adds level ground, whose depth is at least the stair's width, >= 0.91 m (IBC 2018 sec. 1011.6 with
-#: sec. 1011.2's 36 in), to at most a stride's stair part; None: runs are not split at landing strides
-LANDING_GRADE_RATIO: float | None = 0.5
+#: sec. 1011.2's 36 in), to at most a stride's stair part; None: runs are not split at landing strides. Measured
+#: with 0.5 and not adopted (L433: a lone landing stride's stair went to the wrong flight on a 1.0 m landing): an
+#: option of :func:`flight_runs` (``landing_ratio=0.5``), off by default
+LANDING_GRADE_RATIO: float | None = None
 
 
 def flight_runs(dz, stair, bouts: list[tuple[int, int]], length=None,
