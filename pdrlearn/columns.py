@@ -213,6 +213,10 @@ SESSIONS: tuple[Column, ...] = (
                                               "direction_changes.csv's rows, L412); a turn is not one; empty on "
                                               "the lower back"),
     ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
+    ("n_stair_strides_up", "count", "integer", "n_stair_strides that climb (L432)"),
+    ("n_stair_strides_down", "count", "integer", "n_stair_strides that descend (L432)"),
+    ("n_flights_up", "count", "integer", "foot: stair flights up, stairs.csv's rows (L432); empty on the lower back"),
+    ("n_flights_down", "count", "integer", "foot: stair flights down (L432); empty on the lower back"),
     ("n_steps_left", "count", "integer", "lower back: steps whose side (W129's pelvis sway) is the left foot "
                                          "(W228); empty on a foot track (n_strides_one_foot)"),
     ("n_steps_right", "count", "integer", "lower back: steps of the right foot (W228); empty on a foot track"),
@@ -971,6 +975,27 @@ RAMPS: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+#: decision L432: ``stairs.csv`` (``track`` / ``run``), one row per stair flight of a foot track
+STAIRS: tuple[Column, ...] = (
+    ("flight", "index", "integer", "the flight's number, from 1 in walking order"),
+    ("start_s", "s", "number", "its first stride's start_s"),
+    ("end_s", "s", "number", "its last stride's end_s"),
+    ("direction", _ID, "text", "up or down"),
+    ("n_strides", "count", "integer", "consecutive stair strides of the tracked foot (|dz_m| >= 0.10 m, L179) of one "
+                                      "direction; a level stride (a landing, a turn on one), a pause of 1 s or "
+                                      "more, a data gap or a reversal ends the flight (L432)"),
+    ("height_m", "m", "number", "the strides' summed dz_m (signed, + up)"),
+    ("time_s", "s", "number", "end_s - start_s"),
+    ("cadence_spm", "steps/min", "number", "2 steps per stride of the tracked foot over time_s (L176)"),
+    ("vertical_speed_mps", "m/s", "number", "|height_m| / time_s"),
+    ("median_stride_dz_m", "m", "number", "median |dz_m| of the flight's strides"),
+    ("stride_dz_cv_pct", "%", "number", "100 x SD / mean of the strides' |dz_m| (L104's CV; empty for 1 stride)"),
+    ("n_stairs", "count", "integer", "round(|height_m| / --stair-rise); empty without it: a stride holds 2 stairs "
+                                     "step-over-step, 1 step-to-step, so strides do not count stairs (L432)"),
+    ("stairs_per_min", "1/min", "number", "60 x n_stairs / time_s; empty without --stair-rise"),
+    *_clocks("start_s", "end_s"),
+)
+
 #: decision L383: a track's laps.csv (``track --corridor``), one row per stretch between cone turns
 LAPS: tuple[Column, ...] = (
     ("lap", "index", "integer", "the stretch's number, from 1 (the last one the final, partial lap)"),
@@ -1151,8 +1176,8 @@ STEPS_JSON: tuple[Column, ...] = (
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
-    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, RIDES, WAIST_STEPS, FOOT_STEPS,
-    TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, DETECTIONS, EVENTS, STEPS_JSON), strict=True))
+    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, STAIRS, RIDES, WAIST_STEPS,
+    FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, DETECTIONS, EVENTS, STEPS_JSON), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",

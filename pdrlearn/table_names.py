@@ -17,6 +17,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "transfers.csv", "tug_phases.csv",  # W293
                                 "tug_trials.csv",  # W325
                                 "freezes.csv", "ramps.csv",  # L301
+                                "stairs.csv",  # L432
                                 "rides.csv",  # L377
                                 "steps.csv", "steps.csv (foot)",  # E137
                                 "trajectory.csv",  # B309

@@ -229,6 +229,11 @@ SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times 
                           "split time and mean speed since the previous mark) and a summary line; marks beyond the "
                           "path are named in one warning (decision L411).")
 
+STAIR_RISE_OPT = typer.Option(None, "--stair-rise", metavar="METRES", help="The stairs' rise (e.g. 0.17): "
+                              "OUT/stairs.csv (one row per stair flight of a foot track) gets n_stairs = "
+                              "round(|height| / METRES) and stairs_per_min; the count comes from the height because a "
+                              "stride holds 2 stairs step-over-step and 1 step-to-step (decision L432).")
+
 
 def track(
     session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
@@ -273,6 +278,7 @@ def track(
     per_align: str = PER_ALIGN_OPT,
     corridor: float = CORRIDOR_OPT,
     splits: str = SPLITS_OPT,
+    stair_rise: float = STAIR_RISE_OPT,
     bout_rule: str = BOUT_RULE_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
     bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
@@ -318,6 +324,8 @@ def track(
         pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
+
+        pdrlearn track out/sim/D_u1 --stair-rise 0.181 --out out/D_stairs   # OUT/stairs.csv: flights, n_stairs
 
         pdrlearn track out/sim/A_u1 --steady-trim 3 --out out/A_steady   # each bout's first / last 3 strides out
 
@@ -402,7 +410,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
                    per_align: str = "start", corridor: float | None = None, splits: str | None = None,
-                   resample: bool = False,
+                   stair_rise: float | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
                    detector: str | None = None, length_model: str | None = None,
@@ -448,6 +456,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.splits import parse_splits
 
     splits_m = parse_splits(splits)  # decision B307: before any session
+    from pdrlearn.track.stair_flights import stair_rise as check_stair_rise
+
+    stair_rise_m = check_stair_rise(stair_rise)  # decision B348: before any session
     if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
         raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
                         "--fixes give the track its direction; drop --initial-heading")
@@ -534,6 +545,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
             "per_align": per_align, "corridor_m": corridor_m, "splits_m": splits_m,
+            "stair_rise_m": stair_rise_m,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
@@ -802,6 +814,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                            fix_period_s=o["fix_period"], start=o["start_ll"])
     if o["start_alt"]:  # decision L56: the z column starts at the given altitude (as Tracker(start=(x, y, ALT)))
         result.trajectory["z"] = result.trajectory["z"] + o["start_alt"]
+    if o.get("stair_rise_m") is not None:  # decision L432: stairs.csv's n_stairs (clinical_tables reads it)
+        result.info["stair_rise_m"] = o["stair_rise_m"]
     tracked_session, whole = session, result  # decisions L275 / L277: the whole session's track
     if win is not None:  # decision L105: the whole session tracked, then the window's steps kept
         from pdrlearn.track.window import window_track
@@ -1027,6 +1041,11 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         from pdrlearn.track.splits import splits_line
 
         typer.echo(splits_line(summary))
+    if summary.get("n_flights_up") or summary.get("n_flights_down"):  # decision L432: the stair flights
+        typer.echo(f"stair flights {summary['n_flights_up']} up / {summary['n_flights_down']} down "
+                   f"({summary.get('n_stair_strides_up', 0)} / {summary.get('n_stair_strides_down', 0)} stair "
+                   "strides; stairs.csv" + ("" if (summary.get("info") or {}).get("stair_rise_m") else
+                                            ", n_stairs with --stair-rise METRES") + ")")
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
@@ -1035,7 +1054,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys"))
     from pdrlearn.track.geoexport import GEO_FILES
 
-    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, stairs.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
                f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"

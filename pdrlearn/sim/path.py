@@ -52,6 +52,37 @@ class Stairs:
     run_m: float = 0.28
 
 
+#: decision B347: the stair rise (m) the simulator accepts: building codes give 0.10-0.22 m (IBC 2018 sec. 1011.5.2:
+#: risers 4-7 in = 0.102-0.178 m; IRC 2018 R311.7.5.1: at most 7.75 in = 0.197 m; UK Approved Document K 2013
+#: Table 1.1: 150-220 mm), widened to half the lowest (a half stair per contact, the step-to-like imitation of
+#: decision L314's ``up:34:0.085:0.14``) and twice the highest (a skipped stair in one step, trial T3's
+#: ``up:1:0.34:0.58``)
+STAIR_RISE_RANGE_M = (0.05, 0.44)
+#: decision B347: the stair going (tread, m) accepted: codes give 0.22-0.43 m (IBC 2018 sec. 1011.5.2: at least 11 in
+#: = 0.279 m; IRC 2018 R311.7.5.2: at least 10 in = 0.254 m; UK Approved Document K 2013 Table 1.1: 220-425 mm),
+#: widened the same way (half of 0.22 m: L314's 0.14 m per contact; twice 0.43 m: a skipped stair); a 0.10 m tread
+#: is shorter than half a shoe (trial T3 finding 5)
+STAIR_GOING_RANGE_M = (0.11, 0.86)
+
+
+def stair_size_error(rise_m: float | None, run_m: float | None) -> str | None:
+    """Decision B347: why a stair of ``rise_m`` x ``run_m`` (m; None: not checked) is not one the simulator walks -
+    outside :data:`STAIR_RISE_RANGE_M` / :data:`STAIR_GOING_RANGE_M`, naming the range and, for a value that reads
+    as centimetres (1 or more, whose hundredth is inside the range), the metres it meant - or None."""
+    for what, value, (lo, hi) in (("rise", rise_m, STAIR_RISE_RANGE_M), ("going (tread)", run_m, STAIR_GOING_RANGE_M)):
+        if value is None or lo <= value <= hi:
+            continue
+        msg = (f"a stair's {what} of {value:g} m is outside {lo:g}-{hi:g} m (metres; building codes give a rise of "
+               "0.10-0.22 m and a going of 0.22-0.43 m, widened to half a stair and to a skipped stair; "
+               "decision B347)")
+        if value >= 1 and lo <= value / 100 <= hi:
+            msg += f": {value:g} looks like centimetres - write {value / 100:g}"
+        elif what == "rise" and 0 < value < lo:
+            msg += ": for a gentle incline use slope:M:PCT (decision S37)"
+        return msg
+    return None
+
+
 @dataclass(frozen=True)
 class Slope:
     """Walk ``length_m`` metres (horizontal) straight ahead on a ramp of ``grade`` (rise / run; > 0 uphill,
@@ -346,6 +377,9 @@ class _Walker:
         self._change_direction("forward")
         if seg.n < 1 or seg.rise_m <= 0 or seg.run_m <= 0:
             raise DataError(f"{seg}: needs n >= 1, rise_m > 0 and run_m > 0")
+        size = stair_size_error(seg.rise_m, seg.run_m)  # decision B347
+        if size:
+            raise DataError(f"{seg}: {size}")
         c0, z0, u = self.c.copy(), self.z, _ahead(self.psi)
         sign = 1.0 if seg.up else -1.0
         for j in range(1, seg.n + 1):

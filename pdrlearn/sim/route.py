@@ -51,6 +51,7 @@ from pdrlearn.sim.path import (
     Trolley,
     Turn,
     Vehicle,
+    stair_size_error,
 )
 from pdrlearn.sim.ride import check_rise
 from pdrlearn.sim.user import GAITS
@@ -133,6 +134,10 @@ def parse_route(spec: str) -> list[Segment]:
         elif kind in ("up", "down"):
             _arity(item, parts, (1, 3))
             size = {} if len(parts) == 2 else {"rise_m": _number(item, parts[2]), "run_m": _number(item, parts[3])}
+            if size:  # decision B347: a stair's size in metres, inside the building codes' range widened
+                bad = stair_size_error(size["rise_m"], size["run_m"])
+                if bad:
+                    raise DataError(f"--route item {item!r}: {bad} (up:N:RISE:GOING, e.g. 'up:12:0.17:0.29')")
             segments.append(Stairs(int(_number(item, parts[1], integer=True)), up=kind == "up", **size))
         elif kind == "backward":
             _arity(item, parts, (1, 2))

@@ -634,6 +634,9 @@ def _basic(result: TrackResult, out: dict) -> None:
 
     out.update(ten_metre_walk(result.steps))  # decisions L312, L313: the 10 m walk test's middle 10 m
     out.update(t25fw(result.steps))  # decision L387: the timed 25-foot walk from standing
+    from pdrlearn.track.stair_flights import flight_summary
+
+    out.update(flight_summary(result.steps))  # decision L432: stairs.csv's flights up and down
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)

@@ -200,7 +200,8 @@ def _median(v) -> float | None:
 SUMMARY_KEYS = ("n_stride_times", "median_stride_time_s", "median_cadence_spm", "median_speed_mps",
                 "median_step_time_s", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps",
                 "n_straight_strides", "n_stance_times", "median_stance_time_s", "median_swing_time_s",
-                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps", "n_stair_strides")
+                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps", "n_stair_strides",
+                "n_stair_strides_up", "n_stair_strides_down")  # decision L432
 
 
 #: decision L303 (an option; its adoption rule is in docs/decisions/localization.md): a row of a climb walked under
@@ -259,6 +260,10 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
         out["walking_speed_mps"] = dist / moving if moving > 0 else None
     stair = stair_rows(steps) & np.asarray(valid, dtype=bool)  # decision L179
     out["n_stair_strides"] = int(stair.sum())
+    rising = np.nan_to_num(pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)) > 0 if "dz_m" in steps \
+        else np.zeros(len(steps), bool)
+    out["n_stair_strides_up"] = int((stair & rising).sum())  # decision L432: split by direction
+    out["n_stair_strides_down"] = int((stair & ~rising).sum())
     sp = np.where(np.asarray(straight, dtype=bool) & ~stair & ~sideways_rows(steps),  # decision L228: no side step
                   np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
@@ -677,6 +682,15 @@ def _stair_walk(summary: dict) -> bool:
     return not _straight_judged(summary) and (summary.get("n_stair_strides") or 0) >= MIN_STRAIGHT_FOR_RANGE
 
 
+def _mostly_stairs(summary: dict) -> bool:
+    """Decision L435: at least :data:`MIN_STRAIGHT_FOR_RANGE` stair strides and no fewer than the straight level
+    strides L123 judges - a walk mostly of stairs, whose gait speed (distance / walking time, the flights' slow
+    horizontal progress in it) is no level walking speed, even when L123 still has enough straight strides to judge
+    (trial T3's step-to-step walk: 24 stair strides, 5 straight ones at 1.06 m/s, gait speed 0.38 m/s)."""
+    stairs = summary.get("n_stair_strides") or 0
+    return stairs >= MIN_STRAIGHT_FOR_RANGE and stairs >= (summary.get("n_straight_strides") or 0)
+
+
 def _judged(summary: dict) -> tuple[float | None, float | None, str]:
     """L95's figures of a summary: the median cadence and the judged speed with its name (L123, L179)."""
     speed, what_speed = summary.get("median_speed_mps"), "speed"
@@ -811,7 +825,7 @@ def gait_speed_warning(summary: dict) -> str | None:
     gait_speed = _finite(summary.get("gait_speed_mps"))
     leg = _leg(summary)
     if gait_speed is None or range_side(None, gait_speed, leg) != "slow" or session_range_side(summary) is not None \
-            or _stair_walk(summary):  # L179: a walk of stairs is slow horizontally by nature (amended, see L353)
+            or _stair_walk(summary) or _mostly_stairs(summary):  # L179, L435: stairs are slow horizontally by nature
         return None
     figs = range_figures(summary)
     return (f"the reported gait speed {gait_speed:.2f} m/s (distance / walking time: the starts, stops, turns and "

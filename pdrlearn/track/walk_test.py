@@ -110,6 +110,12 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
             out[note_key] = (f"a stride of the first {need:g} m has no length or no time (decision L313); "
                              "not timed")
             return out
+        n_stair = _stair_strides(steps.iloc[a:a + k])
+        if n_stair:  # decision L434: a walkway test is timed on level ground only
+            out[note_key] = (f"the first {need:g} m of the walk hold {n_stair} stair stride(s) (|dz_m| >= 0.10 m, "
+                             f"L179): a {timed_m:g} m walk test is timed on a level walkway (decision L434); not "
+                             "timed - stairs.csv has the flights")
+            return out
         end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
         if math.hypot(*end) < STRAIGHT_MIN * need:
             out[note_key] = (f"the first {need:g} m of the walk are not straight: a turn or a reversal "
@@ -124,6 +130,13 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         return out
     out[note_key] = short_note(longest, need)
     return out
+
+
+def _stair_strides(st: pd.DataFrame) -> int:
+    """Decision L434: the stair strides (L179's rows, as ``n_stair_strides`` counts them) among the rows ``st``."""
+    from pdrlearn.track.gait import stair_rows, stride_rows
+
+    return int((stair_rows(st) & stride_rows(st)).sum())
 
 
 def short_walk_note(longest: float, need: float = 2 * ZONE_M + TIMED_M) -> str:

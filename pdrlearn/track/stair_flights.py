@@ -1,0 +1,144 @@
+"""Stair flights of a foot track (decision L432, docs/decisions/localization.md): ``stairs.csv``, one row per flight.
+
+A flight is a run of consecutive stair strides of one direction: rows that L179 counts as stair strides
+(:func:`pdrlearn.track.gait.stair_rows`, |``dz_m``| >= 0.10 m) whose height changes have one sign, inside one
+walking bout (L104's bouts, :func:`pdrlearn.track.clinical.bout_rows`: a pause of a second or more, or a data gap,
+ends a flight). A level stride ends it: a landing, and a turn on a landing, whose strides are level. Unlike L127's
+storey climbs (:func:`pdrlearn.track.evaluate.floor_climbs`), which bridge a landing to count a storey, a flight is
+never bridged. A winding stair's turning stair strides stay one flight.
+
+The number of stairs cannot come from the strides: a stride of the tracked foot holds two steps, and a walker going
+step-over-step climbs one stair per step (2 per stride) while one going step-to-step (both feet on each stair, as
+many older adults do) climbs one per stride, and a skipped stair adds one more. With a known rise (``track
+--stair-rise METRES``) ``n_stairs`` = round(|height| / rise). Pure functions of a steps table.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+#: the columns of ``stairs.csv`` (decision L432); the clock columns are added with a recording start (L298)
+FLIGHT_COLUMNS = ("flight", "start_s", "end_s", "direction", "n_strides", "height_m", "time_s", "cadence_spm",
+                  "vertical_speed_mps", "median_stride_dz_m", "stride_dz_cv_pct", "n_stairs", "stairs_per_min")
+#: the summary keys of :func:`flight_summary` (decision L432)
+KEYS = ("n_flights_up", "n_flights_down")
+#: decision L433: an interior stride of a run of stair strides whose grade (|dz| / horizontal length) is under this
+#: share of the run's median grade is a landing stride: every stair stride climbs at the stair's own grade however
+#: many stairs it takes (one step-to-step, two step-over-step, three with a skipped stair), while a stride onto or
+#: off a landing adds level ground, whose depth is at least the stair's width, >= 0.91 m (IBC 2018 sec. 1011.6 with
+#: sec. 1011.2's 36 in), to at most a stride's stair part; None: runs are not split at landing strides. Measured
+#: with 0.5 and not adopted (L433: a lone landing stride's stair went to the wrong flight on a 1.0 m landing): an
+#: option of :func:`flight_runs` (``landing_ratio=0.5``), off by default
+LANDING_GRADE_RATIO: float | None = None
+
+
+def flight_runs(dz, stair, bouts: list[tuple[int, int]], length=None,
+                landing_ratio: float | None = LANDING_GRADE_RATIO) -> list[tuple[int, int, int]]:
+    """Decision L432: ``(first, last + 1, sign)`` of each run of consecutive rows that are ``stair`` rows whose
+    ``dz`` has one ``sign`` (+1 up, -1 down), never across a bout's end (``bouts``: ``(first, last + 1)`` row
+    ranges). Decision L433: with ``length`` (horizontal, m) and ``landing_ratio``, a run is also split at its landing
+    strides (:func:`landing_cuts`). A pure kernel."""
+    from pdrlearn.signal import runs
+
+    dz = np.nan_to_num(np.asarray(dz, dtype=float))
+    stair = np.asarray(stair, dtype=bool)
+    out = []
+    for a, b in bouts:
+        for sign in (1, -1):
+            for r0, r1 in runs(stair[a:b] & (sign * dz[a:b] > 0)):
+                rows = slice(a + r0, a + r1)
+                cuts = ([] if length is None or landing_ratio is None
+                        else landing_cuts(dz[rows], np.asarray(length, dtype=float)[rows], landing_ratio))
+                edges = [a + r0, *(a + r0 + c for c in cuts), a + r1]
+                out += [(e0, e1, sign) for e0, e1 in zip(edges[:-1], edges[1:], strict=True)]
+    return sorted(out)
+
+
+def landing_cuts(dz, length, ratio: float) -> list[int]:
+    """Decision L433: where a run of stair strides (height changes ``dz`` and horizontal lengths ``length``, m, in
+    walking order) is cut at a landing: its interior strides (not the first or the last, which step on or off the
+    stairs) whose grade |dz| / |length| is under ``ratio`` x the run's median grade are landing strides; two
+    consecutive ones (onto the landing, off it) are cut between, one alone (over a short landing) after it. Returns
+    the cut positions (row offsets into the run, each the first row of a new flight). A pure kernel."""
+    dz, length = np.abs(np.asarray(dz, dtype=float)), np.abs(np.asarray(length, dtype=float))
+    n = len(dz)
+    if n < 3:
+        return []
+    with np.errstate(divide="ignore", invalid="ignore"):
+        grade = np.where(length > 0, dz / length, np.inf)  # no length: no landing stride
+    shallow = np.zeros(n, bool)
+    shallow[1:-1] = grade[1:-1] < ratio * float(np.median(grade))
+    cuts, k = [], 1
+    while k < n - 1:
+        if shallow[k]:
+            cuts.append(k + 1)
+            k += 2 if shallow[k + 1] else 1  # a pair: cut between them (k + 1 is the next flight's first)
+        else:
+            k += 1
+    return cuts
+
+
+def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.DataFrame:
+    """``stairs.csv`` (decision L432): one row per :func:`flight_runs` flight of a foot track's rows (in
+    ``start_s`` order): its first row's ``start_s`` and last row's ``end_s``, ``time_s`` between them, ``height_m``
+    (the strides' summed ``dz_m``, signed), ``cadence_spm`` (2 steps per stride of the tracked foot over
+    ``time_s``, L176's 120 / stride time), ``vertical_speed_mps`` (|height| / time), the median and CV (L104's
+    :func:`pdrlearn.track.clinical.cv_pct`) of the strides' |``dz_m``|, and with ``stair_rise_m`` ``n_stairs`` =
+    round(|height| / rise) and ``stairs_per_min``. The header alone on a lower-back track (its rows are steps of
+    either foot with a barometric height) and without ``dz_m``."""
+    from pdrlearn.track.bouts import cadence_spm
+    from pdrlearn.track.clinical import _is_lower_back, bout_rows, cv_pct
+    from pdrlearn.track.gait import stair_rows, stride_rows
+
+    if not len(steps) or "dz_m" not in steps or _is_lower_back(steps):
+        return pd.DataFrame(columns=list(FLIGHT_COLUMNS))
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)  # bout_rows' row order
+    dz = pd.to_numeric(st["dz_m"], errors="coerce").to_numpy(float)
+    stair = stair_rows(st) & stride_rows(st)  # L179's n_stair_strides rows
+    start, end = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
+    rows = []
+    length = pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float) if "length_m" in st else None
+    for k, (a, b, sign) in enumerate(flight_runs(dz, stair, bout_rows(st), length), start=1):
+        t = float(end[b - 1] - start[a])
+        height = float(np.nansum(dz[a:b]))
+        size = np.abs(dz[a:b])
+        stairs = round(abs(height) / stair_rise_m) if stair_rise_m else None
+        rows.append({"flight": k, "start_s": float(start[a]), "end_s": float(end[b - 1]),
+                     "direction": "up" if sign > 0 else "down", "n_strides": int(b - a), "height_m": height,
+                     "time_s": t, "cadence_spm": cadence_spm(2 * (b - a), t),  # two steps per stride (L66)
+                     "vertical_speed_mps": abs(height) / t if t > 0 else math.nan,
+                     "median_stride_dz_m": float(np.median(size)), "stride_dz_cv_pct": cv_pct(size),
+                     "n_stairs": stairs,
+                     "stairs_per_min": 60.0 * stairs / t if stairs is not None and t > 0 else None})
+    table = pd.DataFrame(rows, columns=list(FLIGHT_COLUMNS))
+    return table.astype({"n_stairs": "Int64"}) if len(table) else table
+
+
+def flight_summary(steps: pd.DataFrame) -> dict:
+    """Decision L432: :data:`KEYS`, the flights up and down of :func:`flight_table` of a foot track's rows; None on
+    a lower-back track (no flights table)."""
+    from pdrlearn.track.clinical import _is_lower_back
+
+    if _is_lower_back(steps):
+        return dict.fromkeys(KEYS)
+    d = flight_table(steps)["direction"].astype(str)
+    return {"n_flights_up": int((d == "up").sum()), "n_flights_down": int((d == "down").sum())}
+
+
+def stair_rise(value: float | None) -> float | None:
+    """Decision B348: ``track --stair-rise METRES`` checked once, before any session: None when not given, else a
+    rise inside :data:`pdrlearn.sim.path.STAIR_RISE_RANGE_M` (one error line naming the option, the range and, for
+    a rise written in centimetres, the metres it meant)."""
+    if value is None:
+        return None
+    from pdrlearn.sim.path import stair_size_error
+
+    msg = stair_size_error(value, None)
+    if msg:
+        from pdrlearn.errors import DataError
+
+        raise DataError(f"--stair-rise {value:g}: {msg}")
+    return float(value)
