@@ -87,10 +87,13 @@ def _read_sessions(user_dir: Path, part: str, skip_bad: bool) -> tuple[list, dic
 def _train_job(args: dict) -> dict:
     """Train one user (runs on a Dask worker): read sessions, train, save; return a summary row."""
     from pdrlearn.classify import train_user
+    from pdrlearn.classify.training import default_user
 
     sessions, skipped = _read_sessions(Path(args["user_dir"]), "train", args.get("skip_bad", False))
+    # decision E175: train's name (meta.json 'user' / 'subject'), the user's folder only when the sessions name none
+    folder = None if default_user(sessions, "") else Path(args["user_dir"]).name
     model = train_user(sessions, tasks=args["tasks"], methods=args["methods"], units=args["units"],
-                       cv=args["cv"], seed=args["seed"], user=Path(args["user_dir"]).name,
+                       cv=args["cv"], seed=args["seed"], user=folder,
                        length_units=args.get("length_units"),  # decision C40
                        resample_hz=args.get("resample_hz"),  # decisions C56, C62: train's refusal and resampler
                        task_methods=args.get("task_methods"))  # decision C74
@@ -298,7 +301,8 @@ def train_all(
     Exit code 0 when every user trained, 1 when some failed (their models are missing, the summary lists
     why), 2 on bad input or when every user failed (nothing is written).
 
-    Writes MODELS/<user>/ and MODELS/cohort_summary.csv|md.
+    Writes MODELS/<user>/ and MODELS/cohort_summary.csv|md. Each model stores the user's name as train does
+    (the sessions' meta.json 'user' / 'subject'; the folder's name when they give none, decision E175).
 
     Examples:
 
