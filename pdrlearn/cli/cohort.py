@@ -21,6 +21,7 @@ from pdrlearn.cli.common import (
     console,
     existed,
     few_names,
+    json_default,
     json_safe,
     manifest_kind,
     out_folder,
@@ -414,6 +415,11 @@ def _track_job(args: dict) -> dict:
                 said = merged_warnings(summary.get("info", {}).get("warnings") or [], warned, args["session_dir"])
                 value = {"summary": summary, "warnings": said, "content_id": tracked.get("content_id"),
                          "bout_totals": bout_totals(tracked["bouts"])}  # cohort C25: of bouts.csv, for subjects.csv
+                if args.get("redact"):  # decision E176: the folder and its record, before the record's checksums
+                    from pdrlearn.redact import redact_folder, redact_json
+
+                    redact_folder(tmp, args["redact"])
+                    value = redact_json(value, args["redact"])
                 # cohort C41: what made the folder and its result, for `--resume`; written last, in the folder
                 return write_record(tmp, args["resume_key"], args["input_sha256"], value)
         except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
@@ -827,6 +833,7 @@ def track_all(
                                    "a JSON object {\"BL\": \"baseline\"}; recorded in run.json (decision C29). "
                                    "Without it, spellings of one visit (BL, Baseline) are paired as one (C28)."),
     metrics: str = typer.Option(None, "--metrics", metavar="A,B,...", help=METRICS_HELP),
+    redact_paths: bool = _track.REDACT_PATHS_OPT,  # decision E176
     resume: bool = typer.Option(False, "--resume", help=RESUME_HELP),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
                              "in this process (default); N > 1 = a Dask LocalCluster of N single-threaded "
@@ -900,6 +907,12 @@ def track_all(
         raise DataError("track-all: give --params FILE (one file for every session) or --params-dir DIR (one "
                         "SUBJECT.json per subject), not both")
     found = find_sessions(root)
+    from pdrlearn.cli.provenance import redaction
+    from pdrlearn.redact import path_forms, redact_folder, redact_json
+
+    # decision E176: ROOT, OUT and the files given, and each session folder as it is named in a warning or error
+    forms = redaction(arguments) and path_forms([*(v for v in arguments.values() if isinstance(v, Path)), *found,
+                                                 *((model,) if model not in (None, "oracle") else ())])
     # cohort C41: --resume replaces a previous output as --force does (its unchanged sessions reused)
     out_folder(out, "track-all", force=force or resume, inputs=(root, params, params_dir))
     was = existed(out)
@@ -935,7 +948,7 @@ def track_all(
         for r in reused.values():
             progress_line(r)
         items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": st, "resume_key": key,
-                        "input_sha256": h})
+                        "input_sha256": h, "redact": forms})
                  for rel, p, st, key, h in zip(rels, found, per_session, keys, hashes, strict=True) if rel not in reuse]
         tracked = iter(run_cohort(_track_job, items, serial=jobs == 1, n_workers=jobs,
                                   costs=[folder_bytes(Path(a["session_dir"])) for _, a in items],
@@ -979,18 +992,23 @@ def track_all(
         if changes is not None:  # decisions C22, C23
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")
+        if forms:  # decision E176: run.json, and the tables' error and warning cells (the sessions' own: per job)
+            run = redact_json(run, forms, default=json_default)
         write_run_json(tmp, run)
+        if forms:
+            redact_folder(tmp, forms, recursive=False)
     replaced(out, was)
     for folder in adopted:  # cohort C41: the interrupted runs' folders, now in OUT
         shutil.rmtree(folder, ignore_errors=True)
     if as_json:  # decision C19: n_sessions counts every session found, n_tracked those tracked (groups.csv's)
-        print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
+        printed = json_safe({"sessions": sessions.to_dict(orient="records"),
                               "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
                               "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run,
                               **({"n_reused": len(reused)} if resume else {}),  # cohort C41
                               **({} if subjects is None else {"subjects": subjects.to_dict(orient="records")}),
                               **({} if changes is None else {"changes": changes.to_dict(orient="records"),
-                                                             "changes_summary": summary.to_dict(orient="records")})}))
+                                                             "changes_summary": summary.to_dict(orient="records")})})
+        print_json(redact_json(printed, forms) if forms else printed)  # decision E176
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked"
                    + (f" ({len(reused)} reused from an earlier run, --resume)" if resume else "") + f"; wrote {out}/"

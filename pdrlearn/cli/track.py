@@ -58,6 +58,12 @@ def warn_ood_option(when: str = "With --model: ", model: str = "model"):
 WARN_OOD_OPT = warn_ood_option()
 START_OPT = typer.Option(None, "--start", help=START_HELP)
 PARAMS_OPT = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline.")
+#: decision E176: track's, run's, track-all's and calibrate's option (one declaration, E93)
+REDACT_PATHS_OPT = typer.Option(False, "--redact-paths", help="Write every folder the command was given, and the "
+                                "working directory, as <redacted> in its outputs (summary.json input_dir; run.json "
+                                "cwd, argv, session, root, options; warnings; track-all's hidden per-session record); "
+                                "run.json says paths_redacted. Names below ROOT, the session and subject names stay "
+                                "(docs/deploying.md, What each output holds). Decision E176.")
 STREAMING_OPT = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
                              "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm. Its strides "
                              "have no initial contact, so no stride time or cadence (summary median_cadence_spm None), "
@@ -281,6 +287,7 @@ def track(
     resample: bool = RESAMPLE_OPT,
     no_resample: bool = NO_RESAMPLE_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    redact_paths: bool = REDACT_PATHS_OPT,
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
     strict: bool = typer.Option(False, "--strict", help="Exit with code 3 when the track gave any warning (the "
                                 "outputs are still written; summary.json info.warnings lists them; decision E156). "
@@ -328,6 +335,8 @@ def track(
 
         pdrlearn track out/sim/D_u1 --model oracle --strict --json --out out/D_qa   # exit 3 on any warning (E156)
 
+        pdrlearn track walks/D --redact-paths --out out/D_share   # no folder path in any output (E176)
+
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
     arguments = dict(locals())  # decision L122: every option as given, defaults included (before any other name)
@@ -335,9 +344,10 @@ def track(
 
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.common import out_folder, progress
-    from pdrlearn.cli.provenance import given_options, input_hashes, model_record, run_record, write_run_json
+    from pdrlearn.cli.provenance import given_options, input_hashes, model_record, redaction, run_record, write_run_json
 
     options = given_options(arguments, leave_out=("session_dir", "out", "force", "as_json"))  # for OUT/run.json
+    forms = redaction(arguments)  # decision E176
     out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
     settings = settings_of(arguments)  # decision E93: every tracking option, as track-all passes them
     was = existed(out)
@@ -356,6 +366,12 @@ def track(
                 model=model_record(model),
                 pipeline=summary.get("pipeline"), method=summary.get("info", {}).get("method"),
                 track_time_s=round(time.perf_counter() - wall, 2), cpu_time_s=round(time.process_time() - cpu, 2)))
+            if forms:  # decision E176: inside the temporary folder, so no unredacted file is ever in place
+                from pdrlearn.cli.common import json_default
+                from pdrlearn.redact import redact_folder, redact_json
+
+                redact_folder(tmp, forms)
+                summary = redact_json(summary, forms, default=json_default)
         advance()
     replaced(out, was)
     if as_json:
