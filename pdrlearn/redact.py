@@ -70,18 +70,22 @@ def redact_folder(folder: Path, forms: tuple[str, ...], recursive: bool = True) 
     the command's temporary output folder (:func:`pdrlearn.atomic.atomic_directory`), so only redacted outputs are
     ever in place."""
     pattern = _pattern(forms)
+    return [] if pattern is None else rewrite_folder(folder, lambda text: pattern.sub(REDACTED, text), recursive)
+
+
+def rewrite_folder(folder: Path, rewrite, recursive: bool = True) -> list[Path]:
+    """Apply ``rewrite`` (text -> text) to every text file (:data:`TEXT_SUFFIXES`) under ``folder``, hidden ones
+    included, writing back only the files it changes (returned): E176's redaction and C86's pseudonyms."""
     changed = []
-    if pattern is None:
-        return changed
     for p in sorted(Path(folder).rglob("*") if recursive else Path(folder).iterdir()):
         if not p.is_file() or p.suffix.lower() not in TEXT_SUFFIXES:
             continue
         text = p.read_text(encoding="utf-8")
-        new = pattern.sub(REDACTED, text)
+        new = rewrite(text)
         if new != text:
             p.write_text(new, encoding="utf-8")
             changed.append(p)
     return changed
 
 
-__all__ = ["REDACTED", "path_forms", "redact_text", "redact_json", "redact_folder"]
+__all__ = ["REDACTED", "path_forms", "redact_text", "redact_json", "redact_folder", "rewrite_folder"]

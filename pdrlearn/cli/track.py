@@ -628,6 +628,16 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     return tracked
 
 
+def pseudonymous(session, names: dict[str, str]):
+    """Decision C86: ``session`` under ``track-all --subject-map``'s pseudonyms: its name and meta.json's ``subject``
+    / ``user`` (a name) replaced where the map lists them (the figure titles, summary and bouts.csv read these)."""
+    session.name = names.get(session.name, session.name)
+    for key in ("subject", "user"):
+        if isinstance(session.meta, dict) and isinstance(session.meta.get(key), str):
+            session.meta[key] = names.get(session.meta[key], session.meta[key])
+    return session
+
+
 def _track_session(session_dir: Path, settings: dict) -> dict:
     """:func:`track_session` without E154's capture and L415's setting."""
     from pdrlearn.io import read_session
@@ -642,6 +652,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse",
                            drop_partial_row=bool(o.get("drop_partial_row")))  # decision B266
+    if o.get("names"):  # decision C86: track-all --subject-map; the name the tables, figures and summary carry
+        session = pseudonymous(session, o["names"])
     from pdrlearn.io.plasys import unit_ends
 
     ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
