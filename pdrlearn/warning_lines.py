@@ -6,7 +6,9 @@ packets (B64 / B183), axis (D11) and jitter (B182) lines reached stderr only, so
 Python API looked clean (trial T2, session 34). :func:`captured_warnings` collects the records raised in a body;
 :func:`merged_warnings` adds them to the kept lines, each once, without the ``DIR: `` prefix that names the
 session folder on stderr (decision B34), so that a copy of a session elsewhere keeps the same lines.
-:func:`warning_code` gives each line a short stable code (decision E155): the decision it names.
+:func:`warning_code` gives each line a short stable code (decision E155): the decision it names. Decision E170: a
+line raised as :func:`coded` (a ``str`` that carries its code) keeps the code it was given through the logging
+records, :func:`session_line` and :func:`merged_warnings`; other lines are still coded from their text (E168).
 """
 
 from __future__ import annotations
@@ -16,6 +18,41 @@ import os
 import re
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
+
+
+class CodedLine(str):
+    """Decision E170: a warning line (the text, unchanged: it is the ``str``) with its code, :attr:`code`, attached
+    where it is raised; JSON, comparisons and ``in`` see the text only."""
+
+    code: str
+
+    def __new__(cls, text: str, code: str):
+        line = super().__new__(cls, text)
+        line.code = code
+        return line
+
+    def __reduce__(self):  # pickled (track-all's workers) with its code
+        return (CodedLine, (str(self), self.code))
+
+
+def coded(text: str, code: str) -> CodedLine:
+    """Decision E170: ``text`` as a warning line carrying ``code`` (:func:`warning_code` returns it). Give the code
+    the line's text gives by E168's convention (its last "decision X"), so that a reader of the text alone agrees."""
+    return CodedLine(text, code)
+
+
+def record_code(record: logging.LogRecord) -> str | None:
+    """Decision E170: the code a logging record carries: ``extra={"code": ...}``, else that of a :func:`coded` message
+    or argument (``log.warning("%s: %s", where, line)`` with a coded ``line``); None without one."""
+    code = getattr(record, "code", None)
+    if code is None:
+        args = record.args if isinstance(record.args, tuple) else ()
+        code = next((a.code for a in (record.msg, *args) if isinstance(a, CodedLine)), None)
+    return code
+
+
+def _with_code(text: str, code: str | None) -> str:
+    return text if code is None else CodedLine(text, code)
 
 
 @contextmanager
@@ -33,7 +70,7 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
 
     class _Collect(logging.Handler):
         def emit(self, record: logging.LogRecord) -> None:
-            messages.append(record.getMessage())
+            messages.append(_with_code(record.getMessage(), record_code(record)))  # E170: with its code
 
     def below_warning(record: logging.LogRecord) -> bool:
         return record.levelno < logging.WARNING
@@ -71,7 +108,11 @@ def session_line(message: str, where: str | os.PathLike | Iterable[str] | None) 
     ``file.csv: text`` for the session folder ``where`` (stderr names it, B34; the results name the session
     already, and a copy of the folder elsewhere gives the same lines); ``where`` may also be several names (the
     folder and the session's name, which ``run``'s lines start with); whitespace runs made one blank, as the CLI
-    prints them."""
+    prints them. A :func:`coded` message keeps its code (decision E170)."""
+    return _with_code(_session_text(message, where), getattr(message, "code", None))
+
+
+def _session_text(message: str, where) -> str:
     text = " ".join(message.split())
     names = [where] if isinstance(where, str | os.PathLike) else list(where or [])
     for name in names:
@@ -114,7 +155,9 @@ def warning_code(line: str) -> str:
     decision id (``L39``), else the line's lead phrase of one to four lower-case words before ``: ``
     (``no force sensors: ...`` -> ``no-force-sensors``), else ``"other"``. A line names its decision last,
     ``(decision X)``, to be coded by it. The text stays the message; the code is for a harness to match or
-    allow-list."""
+    allow-list. Decision E170: a :func:`coded` line's own code comes first."""
+    if getattr(line, "code", None):
+        return line.code
     found = _DECISION.findall(line) or _BARE_ID.findall(line)
     if found:
         return found[-1]
@@ -130,10 +173,16 @@ SUMMARY_SCHEMA_VERSION = 1
 def machine_summary(summary: dict, logged: Iterable[str], where=None) -> dict:
     """Decisions E154, E155, in place (and returned): ``summary["info"]["warnings"]`` with every ``logged`` line
     (:func:`merged_warnings`), ``info["warning_codes"]`` one :func:`warning_code` per line, and
-    ``schema_version`` the summary's first key. ``track``, ``track-all`` and ``run`` finish their summaries here."""
+    ``schema_version`` the summary's first key. ``track``, ``track-all`` and ``run`` finish their summaries here.
+    A line whose code the summary held already (``info["warning_codes"]``, one per line) keeps it (decision E170:
+    :func:`coded` lines made plain text by the JSON round trip of :func:`~pdrlearn.track.evaluate.track_summary`)."""
     info = summary.setdefault("info", {})
-    info["warnings"] = merged_warnings(info.get("warnings") or [], logged, where)
-    info["warning_codes"] = [warning_code(w) for w in info["warnings"]]
+    before, codes = info.get("warnings") or [], info.get("warning_codes") or []
+    # decision E170: a summary finished before (track_summary's, then JSON: plain text) keeps the codes it had
+    known = dict(zip(before, codes, strict=True)) if len(before) == len(codes) else {}
+    info["warnings"] = merged_warnings(before, logged, where)
+    info["warning_codes"] = [warning_code(w) if isinstance(w, CodedLine) else known.get(w) or warning_code(w)
+                             for w in info["warnings"]]
     rest = [(k, v) for k, v in summary.items() if k != "schema_version"]
     summary.clear()
     summary["schema_version"] = SUMMARY_SCHEMA_VERSION

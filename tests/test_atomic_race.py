@@ -137,15 +137,15 @@ def test_cli_track_force_refuses_a_folder_changed_while_it_ran(tmp_path, monkeyp
     assert main(["simulate", "-s", "A", "-u", "1", "--out", str(session), "--json"]) == 0
     out = tmp_path / "t"
     assert main(["track", str(session), "--method", "M2", "--out", str(out), "--json"]) == 0
-    import pdrlearn.cli.common as common
+    import pdrlearn.outfolder as outfolder  # decision E169: out_folder's checks are the library's
 
-    real = common.expect_unchanged
+    real = outfolder.expect_unchanged
 
     def expect_then_edit(folder):
         real(folder)
         (Path(folder) / "notes.txt").write_text("written while track ran")
 
-    monkeypatch.setattr(common, "expect_unchanged", expect_then_edit)
+    monkeypatch.setattr(outfolder, "expect_unchanged", expect_then_edit)
     capsys.readouterr()
     assert main(["track", str(session), "--method", "M2", "--out", str(out), "--force", "--json"]) == 2
     err = capsys.readouterr().err.strip().splitlines()

@@ -127,3 +127,15 @@ def test_waist_only_drops_are_not_warned_with_the_foot_advice(tmp_path, caplog):
     with caplog.at_level(logging.WARNING):
         read_session(_with_interval(tmp_path, 0.02))
     assert "`track --streaming` integrates on the timestamps" in _b64(caplog)[0]
+
+
+def test_the_foot_drops_line_is_coded_by_its_own_decision(tmp_path):
+    """Decision E170 (session 35, lead): the foot's dropped-samples line names "decisions B64, B183" and quotes
+    L83 last (the --params alternative); E168's text reader coded it L83. It is raised with its own code, B64."""
+    from pdrlearn.warning_lines import captured_warnings, warning_code
+
+    short = _with_interval(tmp_path, 0.02)
+    with captured_warnings() as lines:
+        read_session(short)
+    drops = [w for w in lines if "B183" in w]
+    assert len(drops) == 1 and warning_code(drops[0]) == "B64"

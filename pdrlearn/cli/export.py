@@ -1003,8 +1003,8 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
 
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.provenance import write_run_json
-    from pdrlearn.cli.track import event_tables
     from pdrlearn.track.clock import clock_texts, recording_start
+    from pdrlearn.track.folder import event_tables
     from pdrlearn.track.plots import plot_paths
 
     start = recording_start(session.meta, session.where) if session is not None else None  # E144

@@ -680,7 +680,8 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
                     "the timestamps, as does the offline foot with a --params file holding {\"timestamps\": true} "
                     "(decision L83/B65, not the default) - or %s and re-record", folder,
                     ", ".join(n for n, _, _ in left), count, what, max(m for _, _, m in left), 100 * frac,
-                    -100 * DROP_DISTANCE_FACTOR * frac, DROP_DISTANCE_FACTOR, DROPS_CAUSE)
+                    -100 * DROP_DISTANCE_FACTOR * frac, DROP_DISTANCE_FACTOR, DROPS_CAUSE,
+                    extra={"code": "B64"})  # E170: its own decision, not L83 it quotes last
 
 
 #: decision B64's warning when only waist streams drop samples: the waist pipelines interpolate them onto a

@@ -43,6 +43,7 @@ from pdrlearn.kernels.units import (  # noqa: F401 - re-exported: the checks liv
     quiet_acc_norm,
     tilt_rate_ratio,
 )
+from pdrlearn.warning_lines import coded
 
 log = logging.getLogger(__name__)
 
@@ -605,7 +606,7 @@ def saturation_warning(where: str, kind: str, n: int, total: int, top: float) ->
     rng = f"{top / STANDARD_GRAVITY:.3g} g" if kind == "accelerometer" else f"{np.rad2deg(top):.4g} deg/s"
     effect = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
               if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it")
-    return (f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
+    return coded(f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
             f"sensor's full scale: held for {CLIP_RUN}+ samples in a row, or reached by {CLIP_PINNED}+ samples one at "
             f"a time): {effect}, so distances and headings come out wrong there; record with a range above +-{rng} "
-            "(decision B77, B311)")
+            "(decision B77, B311)", "B77")  # decision E170

@@ -1,11 +1,17 @@
 """Decision E166 (session 34, trial T4 finding 8): :func:`write_track`, the folder ``pdrlearn track --out`` writes,
 from a :class:`~pdrlearn.track.base.TrackResult` a Python worker made (``get_pipeline(...)(session)``): the same
-files by the same code (``pdrlearn.cli.track.write_track``), atomically, with a run.json (decision L122)."""
+files by the same code (:func:`write_folder`, which ``pdrlearn track`` calls), atomically, with a run.json (decision
+L122). Decision E169 (session 35): the writer and the output-folder checks it uses are library code (this module,
+:mod:`pdrlearn.outfolder`, :mod:`pdrlearn.table_csv`, :mod:`pdrlearn.provenance`); the CLI calls them, and nothing
+here imports ``pdrlearn.cli``."""
 
 from __future__ import annotations
 
 import dataclasses
+import json
 from pathlib import Path
+
+from pdrlearn.table_csv import write_table_csv
 
 
 def write_track(result, session, out, force: bool = False) -> Path:
@@ -17,9 +23,8 @@ def write_track(result, session, out, force: bool = False) -> Path:
     ``force`` and anything else in ``out`` is refused (one :class:`~pdrlearn.errors.DataError` line, as ``track``).
     ``result`` is not changed. Returns ``out``."""
     from pdrlearn.atomic import atomic_directory
-    from pdrlearn.cli.common import out_folder
-    from pdrlearn.cli.provenance import input_hashes, run_record, write_run_json
-    from pdrlearn.cli.track import write_track as write_folder
+    from pdrlearn.outfolder import out_folder
+    from pdrlearn.provenance import input_hashes, run_record, write_run_json
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
     from pdrlearn.track.evaluate import track_summary
     from pdrlearn.track.periods import time_accounting
@@ -43,3 +48,102 @@ def write_track(result, session, out, force: bool = False) -> Path:
             "write_track", {}, session=session.where, pipeline=pipeline, method=result.info.get("method"),
             input_sha256=input_hashes(session.folder) if session.folder is not None else {}))  # L122, L136
     return out
+
+
+def event_tables(result, bouts, periods=None, start=None, laps=None, splits=None) -> dict:
+    """Decision L298: every event table a track or run writes - ``bouts.csv`` (L124), :func:`clinical_tables`'s,
+    ``periods.csv`` (L277, when given) and ``laps.csv`` (L383, with --corridor) - with their clock columns when the
+    recording's ``start`` is known."""
+    from pdrlearn.track.bouts import csv_table
+    from pdrlearn.track.clock import with_clock_columns
+
+    tables = {"bouts.csv": csv_table(bouts), **clinical_tables(result, bouts)}
+    if periods is not None:
+        tables["periods.csv"] = periods
+    if laps is not None:
+        tables["laps.csv"] = laps
+    if splits is not None:  # decision L411: --splits
+        tables["splits.csv"] = splits
+    return {name: with_clock_columns(table, start) for name, table in tables.items()}
+
+
+def clinical_tables(result, bouts) -> dict:
+    """The per-event tables a track writes beside bouts.csv: ``turns.csv`` (decision L200: each turn of at least
+    ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
+    sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk; with a TUG time its
+    phases, ``tug_phases.csv``, decision W293; with a TUG trial, ``tug_trials.csv``, W325) and ``freezes.csv``
+    (decision W213: the freeze index's episodes of the tracked unit), ``ramps.csv`` (decision L301) and, on the lower
+    back with a barometer, ``rides.csv`` (decision L377)."""
+    import pandas as pd
+
+    from pdrlearn.track.clinical import turn_table
+    from pdrlearn.track.grade import ramp_table
+    from pdrlearn.waist.transfers import TRANSFER_COLUMNS
+
+    out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
+    out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+    from pdrlearn.track.travel import direction_change_table
+
+    changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction
+    if changes is not None:
+        out["direction_changes.csv"] = changes
+    if result.info.get("rides") is not None:  # decision L377: a lower-back track's rides
+        from pdrlearn.track.rides import ride_table
+
+        out["rides.csv"] = ride_table(result.info)
+    if result.info.get("transfers") is not None:
+        out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
+        from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases, tug_trial_table
+
+        phases = tug_phases(result.info["transfers"], out["turns.csv"], result.steps,  # decision W293
+                            yaw_turns=result.info.get("yaw_turns"))  # W307
+        if phases is not None:
+            out["tug_phases.csv"] = tug_phase_table(phases)
+        trials = tug_trial_table(result.info["transfers"], out["turns.csv"], result.steps,  # decision W325
+                                 yaw_turns=result.info.get("yaw_turns"))
+        if len(trials):
+            out["tug_trials.csv"] = trials
+    if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
+        from pdrlearn.track.freezes import freeze_table
+
+        out["freezes.csv"] = freeze_table(result.info["freezes"])
+    return out
+
+
+def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
+    """Write :func:`track_session`'s track into the existing folder ``dest`` (the caller's temporary folder):
+    ``trajectory.csv``, ``steps.csv``, ``bouts.csv`` (decision L124), ``path.png`` (``aided.png`` with fixes) and
+    ``summary.json``; return the summary and whether the track was aided."""
+    from pdrlearn.track.plots import plot_paths
+
+    session, result, summary, pipeline, aided, dpi = (tracked[k] for k in ("session", "result", "summary",
+                                                                              "pipeline", "aided", "dpi"))
+    traj = result.trajectory.copy()
+    for c in ("lat", "lon"):
+        if c not in traj:
+            traj[c] = float("nan")
+    if "pos_sigma_m" in traj:  # decision L128: appended after the columns trajectory.csv always had
+        traj = traj[[c for c in traj.columns if c != "pos_sigma_m"] + ["pos_sigma_m"]]
+    if aided:
+        from pdrlearn.aid import plot_aided
+
+        plot_aided(result, dest / "aided.png", truth=session.trajectory,
+                   title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
+    write_table_csv(traj, dest / "trajectory.csv")
+    from pdrlearn.track.evaluate import with_reference_columns
+
+    write_table_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
+    # decisions L124 (E98: the old speed_m_s last), L200, W182, L277; L298: clock columns with a recording start
+    for name, table in event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start"),
+                                     tracked.get("laps"), tracked.get("splits")).items():
+        write_table_csv(table, dest / name)
+    plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
+               session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
+    (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    from pdrlearn.track.geoexport import write_geo_files
+
+    # decisions L362, L363: track.gpx and track.geojson of a track with lat/lon (--start, geodetic fixes), none without
+    write_geo_files(dest, traj, session=session.name, pipeline=summary.get("pipeline"),
+                    distance_m=summary.get("distance_m"), start=tracked.get("start"),
+                    with_ele=bool(tracked.get("start_ele")))
+    return summary, aided

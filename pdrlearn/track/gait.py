@@ -30,6 +30,7 @@ import pandas as pd
 # stride time as it emits it
 from pdrlearn.kernels.contact import MAX_STRIDE_S, TOUCH_S, stride_times  # noqa: F401
 from pdrlearn.track.flags import flag_values
+from pdrlearn.warning_lines import coded
 
 #: the gait columns, in the order steps.csv carries them (after the stride's own columns)
 GAIT_COLUMNS = ("stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad")
@@ -460,10 +461,12 @@ def stance_share_warning(steps: pd.DataFrame) -> str | None:
     pct = pct[np.isfinite(pct)]
     if len(pct) < MIN_STRAIGHT_FOR_RANGE or float(np.median(pct)) >= STANCE_MIN_PCT:
         return None
-    return (f"toe-off: median stance {float(np.median(pct)):.1f} % of the gait cycle over {len(pct)} strides, under "
+    return coded(f"toe-off: median stance {float(np.median(pct)):.1f} % of the gait cycle over {len(pct)} strides, "
+                 "under "
             f"{STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decisions L285, L315): the toe-off reads early "
             "or the contact late (a soft, low-impact foot such as a prosthesis moves the contact), so "
-            "median_stance_time_s, median_swing_time_s and median_stance_pct are not measured values here")
+            "median_stance_time_s, median_swing_time_s and median_stance_pct are not measured values here",
+                 "L285")  # decision E170: L285, the first of "decisions L285, L315" (E168)
 
 
 #: decision L426: the summary's walking time / gait speed keys kept over every stride under --steady-trim (their

@@ -9,6 +9,8 @@ gives the two step times and :func:`pdrlearn.track.clinical.symmetry_index_pct` 
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 
 #: decision L416: a lower-back contact within this fraction of a step (half the foot's median stride) of a foot
@@ -87,12 +89,65 @@ def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = L
     return out
 
 
+def _waist_ic_key(session) -> str:
+    """Decision L427: a digest of everything ``waist-ic``'s contacts of ``session`` are computed from: the lower-back
+    accelerometer's and gyroscope's timestamps and values, the session's axis frames and whether it infers them."""
+    import hashlib
+
+    h = hashlib.blake2b(digest_size=20)
+    for name in ("wAccelerometer", "wGyroscope"):
+        s = session.streams[name]
+        for a in (s.t, s.values):
+            a = np.ascontiguousarray(a)
+            h.update(repr((name, a.shape, a.dtype.str)).encode())
+            h.update(a.tobytes())
+    h.update(repr((sorted(session.frames.items()), bool(getattr(session, "infer_frames", False)))).encode())
+    return h.hexdigest()
+
+
+class _WarningCount(logging.Handler):
+    """Counts the ``pdrlearn`` logger's warnings while attached (nothing else: the records go on as before)."""
+
+    def __init__(self):
+        super().__init__(logging.WARNING)
+        self.n = 0
+
+    def emit(self, record) -> None:
+        self.n += 1
+
+
+def waist_ic_contacts(session) -> np.ndarray:
+    """Decision L427: the lower back's contacts of both feet (``event_s``, s) of ``session`` by the ``waist-ic``
+    detector (:class:`~pdrlearn.steps.waist_ic.WaistICStepDetector`, defaults), detected once per session object
+    and lower-back data: kept on the session with :func:`_waist_ic_key`'s digest of the detector's inputs and
+    returned (a copy) while the digest is the same, so a summary made again (``TrackResult.summary``, then
+    :func:`pdrlearn.write_track`) does not run the detector again. A detection that logged a warning is not kept
+    (the next one logs it again, as before)."""
+    from pdrlearn.steps.waist_ic import WaistICStepDetector
+
+    key = _waist_ic_key(session)
+    kept = getattr(session, "_waist_ic_contacts", None)
+    if kept is not None and kept[0] == key:
+        return kept[1].copy()
+    counter = _WarningCount()
+    logger = logging.getLogger("pdrlearn")
+    logger.addHandler(counter)
+    try:
+        events = WaistICStepDetector().detect(session)["event_s"].to_numpy(float)
+    finally:
+        logger.removeHandler(counter)
+    if not counter.n:
+        session._waist_ic_contacts = (key, events.copy())
+    return events
+
+
 def track_asymmetry(session, steps) -> dict:
     """Decision L416: the summary keys (``step_time_asymmetry_pct``, ``n_step_time_asymmetry_steps``,
     ``step_time_asymmetry_reason``) a foot track (steps with ``event_s``, every row ``unit`` foot) of ``session``
     takes from :func:`labelled_step_asymmetry` when the session holds the lower-back unit too and
     :data:`LABELLED_ASYMMETRY` is on; ``{}`` otherwise (the foot's "not observable" stays). The lower back's contacts:
-    the waist-pendulum pipeline's offline IC detector (``waist-ic``); a lower-back stream under
+    the waist-pendulum pipeline's offline IC detector (``waist-ic``, once per session's data: :func:`waist_ic_contacts`,
+    L427); a lower-back stream under
     :data:`LABELLED_MIN_RATE_HZ` gives the reason instead of an index."""
     if (not LABELLED_ASYMMETRY or not len(steps) or "event_s" not in steps or "unit" not in steps
             or not (steps["unit"] == "foot").all() or not session.has("wAccelerometer", "wGyroscope")
@@ -104,9 +159,7 @@ def track_asymmetry(session, steps) -> dict:
             f"not given: the lower-back unit records at {rate:g} Hz, under the {LABELLED_MIN_RATE_HZ:g} Hz its "
             "contacts need to label the other foot's steps (decision L416); a unit on each foot times them "
             "(pdrlearn gait LEFT_DIR RIGHT_DIR)")}
-    from pdrlearn.steps.waist_ic import WaistICStepDetector
-
-    waist = WaistICStepDetector().detect(session)["event_s"].to_numpy(float)
+    waist = waist_ic_contacts(session)  # decision L427: detected once per session's lower-back data
     res = labelled_step_asymmetry(steps["event_s"].to_numpy(float), waist)
     if res["step_time_asymmetry_pct"] is None:
         reason = (f"not given: {res['n_strides']} of the foot's strides hold one lower-back contact of the other "

@@ -97,12 +97,14 @@ from pdrlearn.track.gaps import (
 from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
 from pdrlearn.track.rides import foot_rides
 from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
+from pdrlearn.warning_lines import coded
 
 log = logging.getLogger(__name__)
 
 #: Warning when a foot-only session (no waist accelerometer + gyroscope, or no waist frame) is headed by the
 #: foot's own yaw: offline M2/M3 and the streamed path (decision B17), and `pdrlearn run`.
-NO_WAIST_HEADING = "no waist unit: heading from the foot's own integrated yaw (relative to the start)"
+NO_WAIST_HEADING = coded("no waist unit: heading from the foot's own integrated yaw (relative to the start)",
+                         "no-waist-unit")  # decision E170: the code E168 reads from its text
 
 
 def no_waist_heading(session) -> str:
@@ -115,9 +117,9 @@ def no_waist_heading(session) -> str:
     missing = [SENSORS[n].filename for n in UNIT_IMU["waist"] if not session.has(n)]
     if not present or not missing:
         return NO_WAIST_HEADING
-    return (f"waist unit incomplete: {' and '.join(missing)} missing ({', '.join(present)} present): "
-            f"{NO_WAIST_HEADING.removeprefix('no waist unit: ')}; add {' and '.join(missing)} to head by the waist "
-            "unit (decision B153)")
+    return coded(f"waist unit incomplete: {' and '.join(missing)} missing ({', '.join(present)} present): "
+                 f"{NO_WAIST_HEADING.removeprefix('no waist unit: ')}; add {' and '.join(missing)} to head by the "
+                 "waist unit (decision B153)", "B153")  # decision E170
 
 _M2 = {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
        "gyro_bias": "standstill", "attitude": "kalman", "heading": "fused", "rules": False, "force": True}
@@ -132,10 +134,19 @@ METHODS: dict[str, dict] = {
 #: decision B177: what to pass for the step classes, as the parameter and the CLI flag (the line fits both)
 MODEL_NEEDED = ("{what}: pass model= a trained UserModel or its directory (CLI --model DIR; `pdrlearn train`) or "
                 "model='oracle' (--model oracle) for labelled sessions")
-NO_MODEL_WARNING = ("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
-                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass model= a "
-                    "trained model (CLI --model DIR; `pdrlearn train`) or model='oracle' (--model oracle, labelled "
-                    "sessions) for M3 (decision E153)")
+NO_MODEL_WARNING = coded("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
+                         "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass model= a "
+                         "trained model (CLI --model DIR; `pdrlearn train`) or model='oracle' (--model oracle, "
+                         "labelled sessions) for M3 (decision E153)", "E153")  # decision E170
+#: decision E170: the line of a foot unit without force sensors, with its code (E168's lead phrase)
+NO_FORCE_STANCE = coded("no force sensors: stance from the accelerometer/gyroscope detector", "no-force-sensors")
+
+
+def coded_altitude_check(dz, **options) -> tuple[str | None, dict]:
+    """:func:`pdrlearn.kernels.altitude_check.integrated_altitude_check` (decision L69) with its line coded where
+    it is made (decision E170; the kernel stays numpy-only for the runtime)."""
+    msg, info = integrated_altitude_check(dz, **options)
+    return (coded(msg, "L69") if msg else msg), info
 
 
 def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3,
@@ -1038,8 +1049,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             res.info["method"] = "M3 engine, no classes"
             raw_dz = res.steps["dz_m"].to_numpy(float) if len(res.steps) else np.zeros(0)
             _level_without_classes(res)  # decision L39, as offline
-            msg, res.info["altitude_check"] = integrated_altitude_check(res.steps["dz_m"].to_numpy(float),
-                                                                        raw_dz=raw_dz)  # L69, L145
+            msg, res.info["altitude_check"] = coded_altitude_check(res.steps["dz_m"].to_numpy(float),
+                                                                   raw_dz=raw_dz)  # L69, L145
             res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", []), *([msg] if msg else [])]
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
         at = len(res.info["warnings"]) - 1 if no_classes and msg else None
@@ -1073,7 +1084,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                 raise MissingSensorError(
                     f"session '{session.name}' has no fForceA/fForceB needed by M2 (accelerometer + force); "
                     "use --method M1 or M3, or record the force sensors")
-            warnings.append("no force sensors: stance from the accelerometer/gyroscope detector")
+            warnings.append(NO_FORCE_STANCE)
     else:
         stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
     kind = cfg["detector"] if stance_source == "force" or method == "M1" else "AccelStepDetector"
@@ -1209,7 +1220,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                               strides["end_s"].to_numpy(float), warnings)  # decision L94
     altitude_check, terrain_check = None, None
     if no_classes or "terrain" in untrained:  # decision L69: the altitude is the foot's integrated height
-        msg, altitude_check = integrated_altitude_check(  # decisions L69, L145
+        msg, altitude_check = coded_altitude_check(  # decisions L69, L145
             dz, raw_dz=np.where(in_gap | impossible, 0.0, raw_dz))
         warnings += [msg] if msg else []
     elif cfg["rules"] and not (isinstance(model, str) and model == "oracle"):  # decision C28
@@ -1737,7 +1748,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             classes.loc[lost, c] = np.nan if num else None
     terrain_check, altitude_check = None, None
     if method == "M3" and "terrain" in untrained:  # decision L69 (C17): a model without terrain classes, as offline
-        msg, altitude_check = integrated_altitude_check(dz, levelled=False)
+        msg, altitude_check = coded_altitude_check(dz, levelled=False)
         warnings += [msg] if msg else []
     elif method == "M3" and not (isinstance(model, str) and model == "oracle") and "terrain" in classes:  # C28
         msg, terrain_check = terrain_dz_check(np.where(in_gap, None, classes["terrain"].to_numpy(dtype=object)),

@@ -23,6 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from pdrlearn.warning_lines import coded
+
 #: zero-phase low-pass of the sagittal rate (Hz), as gaitmap's FilteredRamppEventDetection (15 Hz on gyr_ml)
 LOWPASS_HZ = 15.0
 #: a stride votes on the axis sign only when its integrated sagittal angle reaches this (rad, 10 deg)
@@ -43,12 +45,12 @@ def stance_range_warning(summary: dict) -> str | None:
     if stance is None or not np.isfinite(stance) or stance >= TOE_OFF_MIN_CHECKED_STANCE_S:
         return None
     lo, hi = TOE_OFF_STANCE_BIAS_MS
-    return (f"median stance (contact) time {stance:.3f} s is below {TOE_OFF_MIN_CHECKED_STANCE_S:.2f} s, the "
+    return coded(f"median stance (contact) time {stance:.3f} s is below {TOE_OFF_MIN_CHECKED_STANCE_S:.2f} s, the "
             "range at which --toe-off's stance times were checked against a reference: one walk, gaitmap's level "
             f"walks with mocap at 0.69-0.70 s median contact (decision L73: {-lo:.0f}-{-hi:.0f} ms short there, a "
             "bias of the gyroscope's push-off peak); most ordinary walks have shorter contacts and get this line, "
             "which says only that their stance times were not checked, and that the same bias is a larger share "
-            "of a shorter contact (decision L414)")
+            "of a shorter contact (decision L414)", "L414")  # decision E170
 
 
 def _check(t, gyr) -> tuple[np.ndarray, np.ndarray]:
