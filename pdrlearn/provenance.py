@@ -105,10 +105,11 @@ def input_hashes(folder: Path) -> dict[str, str]:
     return {p.name: digest(p) for p in entries if p.is_file() and not p.name.startswith(".")}
 
 
-def redaction(arguments: dict) -> tuple[str, ...] | None:
+def redaction(arguments: dict, extra=()) -> tuple[str, ...] | None:
     """Decision E176: ``None`` without ``--redact-paths``; else the spellings (:func:`pdrlearn.redact.path_forms`)
     of every folder or file a command was given (its ``Path`` arguments, and ``--model`` when it is a folder, not
-    ``oracle``) and of the working directory, to redact from its outputs."""
+    ``oracle``), of the ``extra`` paths (track-all's session folders) and of the working directory, to redact from
+    its outputs."""
     if not arguments.get("redact_paths"):
         return None
     from pdrlearn.redact import path_forms
@@ -117,7 +118,7 @@ def redaction(arguments: dict) -> tuple[str, ...] | None:
     model = arguments.get("model")
     if isinstance(model, str) and model != "oracle":
         paths.append(model)
-    return path_forms(paths)
+    return path_forms([*paths, *extra])
 
 
 def run_record(command: str, options: dict, **fields) -> dict:

@@ -942,11 +942,10 @@ def track_all(
                         "SUBJECT.json per subject), not both")
     found = find_sessions(root)
     from pdrlearn.cli.provenance import redaction
-    from pdrlearn.redact import path_forms, redact_folder, redact_json
+    from pdrlearn.redact import redact_folder, redact_json
 
     # decision E176: ROOT, OUT and the files given, and each session folder as it is named in a warning or error
-    forms = redaction(arguments) and path_forms([*(v for v in arguments.values() if isinstance(v, Path)), *found,
-                                                 *((model,) if model not in (None, "oracle") else ())])
+    forms = redaction(arguments, extra=found)
     # cohort C41: --resume replaces a previous output as --force does (its unchanged sessions reused)
     out_folder(out, "track-all", force=force or resume, inputs=(root, params, params_dir))
     was = existed(out)
