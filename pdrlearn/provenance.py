@@ -105,6 +105,22 @@ def input_hashes(folder: Path) -> dict[str, str]:
     return {p.name: digest(p) for p in entries if p.is_file() and not p.name.startswith(".")}
 
 
+def redaction(arguments: dict, extra=()) -> tuple[str, ...] | None:
+    """Decision E176: ``None`` without ``--redact-paths``; else the spellings (:func:`pdrlearn.redact.path_forms`)
+    of every folder or file a command was given (its ``Path`` arguments, and ``--model`` when it is a folder, not
+    ``oracle``), of the ``extra`` paths (track-all's session folders) and of the working directory, to redact from
+    its outputs."""
+    if not arguments.get("redact_paths"):
+        return None
+    from pdrlearn.redact import path_forms
+
+    paths = [v for v in arguments.values() if isinstance(v, Path)]
+    model = arguments.get("model")
+    if isinstance(model, str) and model != "oracle":
+        paths.append(model)
+    return path_forms([*paths, *extra])
+
+
 def run_record(command: str, options: dict, **fields) -> dict:
     """The run's record: ``command``, ``pdrlearn_version``, the code and libraries (:func:`software_record`, L136),
     the working directory and command line (:func:`invocation`, E165), the command's own ``fields`` (its inputs as
@@ -115,6 +131,8 @@ def run_record(command: str, options: dict, **fields) -> dict:
     from pdrlearn import __version__
 
     times = {k: fields.pop(k) for k in [k for k in fields if k.endswith("_time_s")]}
+    if options.get("redact_paths"):  # decision E176: said at the top; the paths below are redacted when written
+        fields = {"paths_redacted": True, **fields}
     return {"command": command, "pdrlearn_version": __version__, **software_record(), **invocation(), **fields,
             "options": options, **times,
             "finished_utc": datetime.now(UTC).isoformat(timespec="seconds")}

@@ -292,6 +292,14 @@ def read_visit_map(path) -> dict[str, str]:
     """``track-all --visit-map FILE`` (decision C29): ``{visit as written in meta.json: the visit it is}``, from a JSON
     object or a CSV of two columns (name as written, canonical name; a first row ``raw,canonical`` is its header).
     Bad input: one line naming the file and the fix."""
+    fix = 'give a JSON object {"BL": "baseline", ...} or a CSV of two columns raw,canonical (decision C29)'
+    return read_name_map(path, "--visit-map", (["raw", "canonical"], ["visit", "canonical"]), fix)
+
+
+def read_name_map(path, option: str, headers: tuple[list[str], ...], fix: str) -> dict[str, str]:
+    """A map of names from a JSON object or a CSV of two columns (a first row among ``headers`` is the header), as
+    ``--visit-map`` (C29) and ``--subject-map`` (C86) read it: names stripped, a name mapped twice to different
+    names refused. Bad input: one line naming ``option``, the file, the row and ``fix``."""
     import csv
     import json
     from pathlib import Path
@@ -299,32 +307,31 @@ def read_visit_map(path) -> dict[str, str]:
     from pdrlearn.errors import DataError
 
     path = Path(path)
-    fix = ('give a JSON object {"BL": "baseline", ...} or a CSV of two columns raw,canonical (decision C29)')
     try:
         text = path.read_text(encoding="utf-8-sig")
     except (OSError, UnicodeDecodeError) as exc:
-        raise DataError(f"--visit-map {path}: cannot be read ({exc.__class__.__name__}); {fix}") from None
+        raise DataError(f"{option} {path}: cannot be read ({exc.__class__.__name__}); {fix}") from None
     if path.suffix.lower() == ".json":
         try:
             pairs = json.loads(text)
         except ValueError as exc:
-            raise DataError(f"--visit-map {path}: not JSON ({exc}); {fix}") from None
+            raise DataError(f"{option} {path}: not JSON ({exc}); {fix}") from None
         if not isinstance(pairs, dict) or not all(isinstance(v, str | int) for v in pairs.values()):
-            raise DataError(f"--visit-map {path}: not an object of names; {fix}")
+            raise DataError(f"{option} {path}: not an object of names; {fix}")
         pairs = list(pairs.items())
     else:
         rows = [r for r in csv.reader(text.splitlines()) if any(c.strip() for c in r)]
-        if rows and [c.strip().lower() for c in rows[0]] in (["raw", "canonical"], ["visit", "canonical"]):
+        if rows and [c.strip().lower() for c in rows[0]] in headers:
             rows = rows[1:]
         bad = next((i for i, r in enumerate(rows, 1) if len(r) != 2 or not all(c.strip() for c in r)), None)
         if bad is not None:
-            raise DataError(f"--visit-map {path}: row {bad} is not two names; {fix}")
+            raise DataError(f"{option} {path}: row {bad} is not two names; {fix}")
         pairs = [(a, b) for a, b in rows]
     out: dict[str, str] = {}
     for raw, canonical in pairs:
         raw, canonical = str(raw).strip(), str(canonical).strip()
         if out.get(raw, canonical) != canonical:
-            raise DataError(f"--visit-map {path}: {raw!r} is mapped to both {out[raw]!r} and {canonical!r}; keep one")
+            raise DataError(f"{option} {path}: {raw!r} is mapped to both {out[raw]!r} and {canonical!r}; keep one")
         out[raw] = canonical
     return out
 

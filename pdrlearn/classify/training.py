@@ -766,6 +766,38 @@ def _one_user(session) -> str | None:
     return meta_user(getattr(session, "meta", None) or {})
 
 
+def check_user(user: str | None, where: str = "train: --user") -> str | None:
+    """Decision B339: a blank ``user`` (``--user ""``) asked for no name and got the sessions' subject back; it is
+    refused in one line. ``None`` (not given) and a name pass through, stripped."""
+    if user is None:
+        return None
+    if not str(user).strip():
+        raise DataError(f"{where} is blank; give a name to store (a pseudonym such as P001), or leave the option out "
+                        "for the sessions' meta.json 'user' / 'subject'")
+    return str(user).strip()
+
+
+def user_pseudonyms(named: Sequence[str], user: str | None) -> dict[str, str]:
+    """Decision E174: what a given ``user`` name replaces. The users the sessions name (``named``, sorted) become
+    ``user`` (one user) or ``user-1``, ``user-2``, ... in that order (several: a pooled model keeps apart whom its
+    leave-one-user-out folds held out, without their names); ``{}`` when no name is given."""
+    if user is None:
+        return {}
+    if len(named) <= 1:
+        return dict.fromkeys(named, user)
+    return {n: f"{user}-{i}" for i, n in enumerate(named, 1)}
+
+
+def default_user(sessions, fallback: str = UNNAMED_USER) -> str:
+    """The stored name of a model trained without a given name (decisions B88, C35, E175): ``pooled: a, b`` when
+    the sessions name several users, else the one user's meta.json ``user`` / ``subject``, else ``fallback``
+    (``unnamed`` for train; train-all passes the user's folder name)."""
+    named = sorted({u for u in (session_user(s) for s in sessions) if u is not None})
+    if len(named) > 1:
+        return f"pooled: {', '.join(named)}"
+    return _one_user(sessions[0]) or fallback
+
+
 def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None,
            notes: list[str] | None = None, kind: str = "user") -> tuple[list, int]:
     """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps. With ``groups``
@@ -1266,6 +1298,10 @@ def train_user(
     distance_calibration : estimate the user's distance gain from the sessions' labelled stride lengths
         (:func:`pdrlearn.displace.calibrate_distance`, docs/decisions/localization.md L26), stored in
         ``data_summary["distance_calibration"]`` and used by PLASYS M3 with this model.
+    user : the name the model stores (decision E174): it replaces every user name the sessions' meta.json gives,
+        in ``user``, ``data_summary["users"]`` and the CV folds' held-out users (several users: ``user-1``,
+        ``user-2``, ...), so a pseudonym hides the subject everywhere; blank is refused (B339). None: the
+        sessions' own name (:func:`default_user`).
 
     Returns
     -------
@@ -1277,6 +1313,7 @@ def train_user(
 
     if not sessions:
         raise DataError("train: no sessions given; pass at least one labelled session folder")
+    user = check_user(user)  # decision B339
     strict = (tasks is not None) if strict is None else strict
     # decision C23: by default the combined feature vector replaces the soft vote of the svm and nn unit models;
     # units named explicitly (e.g. "foot,waist,fused,combined") train every soft vote they allow
@@ -1303,6 +1340,10 @@ def train_user(
     windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
     users = [session_user(s) for s in sessions]
     named = sorted({u for u in users if u is not None})  # the users the sessions name (decision C35)
+    # decision E174: a given name replaces every user name the model stores (data users, CV folds, the warning)
+    rename = user_pseudonyms(named, user)
+    users = [rename.get(u, u) for u in users]
+    named = sorted({rename.get(u, u) for u in named})
     n_users = 0
     if cv_groups == "user":
         if None in users:
@@ -1395,7 +1436,7 @@ def train_user(
         }
     return UserModel(
         # decision C35: a model pooled over users is not the first user's ("pooled: <users>")
-        user=user or (f"pooled: {', '.join(named)}" if len(named) > 1 else _one_user(sessions[0]) or UNNAMED_USER),
+        user=user if user is not None else default_user(sessions, UNNAMED_USER),
         tasks=out,
         n_samples=n_samples,
         sampling_rate_hz=rates,

@@ -9,6 +9,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_file, print_json, replaced
+from pdrlearn.cli.track import REDACT_PATHS_OPT
 from pdrlearn.errors import DataError
 
 
@@ -44,6 +45,7 @@ def register(app: typer.Typer) -> None:
                                         help="With --distance: count only the steps before this time (s from "
                                              "the recording's start), one per folder or one for all."),
         out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write (an existing file only with --force)."),
+        redact_paths: bool = REDACT_PATHS_OPT,  # decision E176: "fit" holds the folders as typed
         force: bool = typer.Option(False, "--force", help=FORCE_HELP),
         as_json: bool = typer.Option(False, "--json", help="Print the parameters as JSON."),
     ):
@@ -60,6 +62,8 @@ def register(app: typer.Typer) -> None:
           pdrlearn calibrate walk1 -d 40 --shrink --out p.json   (K shrunk toward the population K, W48)
 
           pdrlearn calibrate walk1 -d 5.01 --start 5.0 --end 11.6 --out p.json   (the measured stretch only)
+
+          pdrlearn calibrate walks/D -d 30 --redact-paths --out p.json   (its "fit" folders as <redacted>, E176)
 
         Then: pdrlearn track DIR --pipeline waist-pendulum --params p.json --out OUT
         """
@@ -91,7 +95,12 @@ def register(app: typer.Typer) -> None:
             spans = [((start or [None] * n)[k], (end or [None] * n)[k]) for k in range(n)]
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
                            fit_turns=fit_turns, shrink=shrink, spans=spans)
-        params.save(out, extra={"fit": [str(d) for d in dirs]})
+        fit: dict = {"fit": [str(d) for d in dirs]}
+        if redact_paths:  # decision E176: the folders fitted on as <redacted>, said in the file
+            from pdrlearn.redact import path_forms, redact_json
+
+            fit = {"fit": redact_json(fit["fit"], path_forms(dirs)), "paths_redacted": True}
+        params.save(out, extra=fit)
         replaced(out, was)
         d = params.to_dict()
         if as_json:

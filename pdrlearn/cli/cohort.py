@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import re
 import shutil
 from contextlib import contextmanager
@@ -21,6 +22,7 @@ from pdrlearn.cli.common import (
     console,
     existed,
     few_names,
+    json_default,
     json_safe,
     manifest_kind,
     out_folder,
@@ -87,10 +89,13 @@ def _read_sessions(user_dir: Path, part: str, skip_bad: bool) -> tuple[list, dic
 def _train_job(args: dict) -> dict:
     """Train one user (runs on a Dask worker): read sessions, train, save; return a summary row."""
     from pdrlearn.classify import train_user
+    from pdrlearn.classify.training import default_user
 
     sessions, skipped = _read_sessions(Path(args["user_dir"]), "train", args.get("skip_bad", False))
+    # decision E175: train's name (meta.json 'user' / 'subject'), the user's folder only when the sessions name none
+    folder = None if default_user(sessions, "") else Path(args["user_dir"]).name
     model = train_user(sessions, tasks=args["tasks"], methods=args["methods"], units=args["units"],
-                       cv=args["cv"], seed=args["seed"], user=Path(args["user_dir"]).name,
+                       cv=args["cv"], seed=args["seed"], user=folder,
                        length_units=args.get("length_units"),  # decision C40
                        resample_hz=args.get("resample_hz"),  # decisions C56, C62: train's refusal and resampler
                        task_methods=args.get("task_methods"))  # decision C74
@@ -298,7 +303,8 @@ def train_all(
     Exit code 0 when every user trained, 1 when some failed (their models are missing, the summary lists
     why), 2 on bad input or when every user failed (nothing is written).
 
-    Writes MODELS/<user>/ and MODELS/cohort_summary.csv|md.
+    Writes MODELS/<user>/ and MODELS/cohort_summary.csv|md. Each model stores the user's name as train does
+    (the sessions' meta.json 'user' / 'subject'; the folder's name when they give none, decision E175).
 
     Examples:
 
@@ -410,11 +416,37 @@ def _track_job(args: dict) -> dict:
                 said = merged_warnings(summary.get("info", {}).get("warnings") or [], warned, args["session_dir"])
                 value = {"summary": summary, "warnings": said, "content_id": tracked.get("content_id"),
                          "bout_totals": bout_totals(tracked["bouts"])}  # cohort C25: of bouts.csv, for subjects.csv
+                if args.get("redact"):  # decision E176: the folder and its record, before the record's checksums
+                    from pdrlearn.redact import redact_folder, redact_json
+
+                    redact_folder(tmp, args["redact"])
+                    value = redact_json(value, args["redact"])
+                names = args["settings"].get("names")
+                if names:  # decision C86: the session's files under the pseudonyms, before the record's checksums
+                    from pdrlearn.pseudonyms import rename_folder, rename_json
+
+                    rename_folder(tmp, names)
+                    value = rename_json(value, names)
                 # cohort C41: what made the folder and its result, for `--resume`; written last, in the folder
                 return write_record(tmp, args["resume_key"], args["input_sha256"], value)
         except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
             attach_to_error(exc, warnings=list(warned))
             raise
+
+
+def pseudonym_paths(rels: list[str], names: dict[str, str], source: Path) -> list[str]:
+    """Decision C86: each session's path below ROOT with its real folder names replaced; two sessions that would
+    share one path are refused in one line (B340)."""
+    from pdrlearn.pseudonyms import FIX, rename_path
+
+    out = [rename_path(rel, names) for rel in rels]
+    seen: dict[str, str] = {}
+    for rel, new in zip(rels, out, strict=True):
+        if new in seen:
+            raise DataError(f"--subject-map {source}: {seen[new]} and {rel} would both be {new}; give each folder "
+                            f"its own pseudonym; {FIX}")
+        seen[new] = rel
+    return out
 
 
 def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
@@ -823,7 +855,13 @@ def track_all(
                                    "and the visit each is, for changes.csv: a CSV of two columns raw,canonical or "
                                    "a JSON object {\"BL\": \"baseline\"}; recorded in run.json (decision C29). "
                                    "Without it, spellings of one visit (BL, Baseline) are paired as one (C28)."),
+    subject_map: Path = typer.Option(None, "--subject-map", metavar="FILE.csv", help="Pseudonyms: a CSV of two "
+                                     "columns real,pseudonym; each real name (a folder below ROOT, a meta.json "
+                                     "subject, a session name; whole names only) is written as its pseudonym in the "
+                                     "output tree, every table, each session's files and figure titles; run.json "
+                                     "keeps the map's SHA-256 only (decision C86)."),
     metrics: str = typer.Option(None, "--metrics", metavar="A,B,...", help=METRICS_HELP),
+    redact_paths: bool = _track.REDACT_PATHS_OPT,  # decision E176
     resume: bool = typer.Option(False, "--resume", help=RESUME_HELP),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
                              "in this process (default); N > 1 = a Dask LocalCluster of N single-threaded "
@@ -877,6 +915,8 @@ def track_all(
         pdrlearn track-all study/ --out results/cal --pipeline waist-pendulum --params-dir calib/   # calib/S01.json ...
 
         pdrlearn track-all study/ --out dtc --visit-map conditions.json --metrics gait_speed_mps,stride_time_cv_pct
+
+        pdrlearn track-all study/ --out share --subject-map pseudonyms.csv --redact-paths   # C86, E176
     """
     # decision C18: every option as given (a new option is recorded without a change here), for run.json; taken
     # before any name is defined in this function
@@ -891,12 +931,22 @@ def track_all(
     measures = parse_metrics(metrics)  # decision B303: checked before any tracking
     if vmap is not None:
         options["visit_map"] = {"file": str(visit_map), "visits": vmap}  # its content, for run.json (C18)
+    from pdrlearn.pseudonyms import map_sha256, read_subject_map, rename_folder, rename_json, rename_text
+
+    names = None if subject_map is None else read_subject_map(subject_map)  # decisions C86, B340: checked first
+    if names is not None:  # run.json (and the resume key) hold the map's hash, which names no one
+        options["subject_map"] = {"sha256": map_sha256(names), "n_names": len(names)}
 
     settings = settings_of(arguments)  # decision E93: every tracking option it declares, as `track` passes them
     if params is not None and params_dir is not None:  # decision C26: which file would a session use?
         raise DataError("track-all: give --params FILE (one file for every session) or --params-dir DIR (one "
                         "SUBJECT.json per subject), not both")
     found = find_sessions(root)
+    from pdrlearn.cli.provenance import redaction
+    from pdrlearn.redact import redact_folder, redact_json
+
+    # decision E176: ROOT, OUT and the files given, and each session folder as it is named in a warning or error
+    forms = redaction(arguments, extra=found)
     # cohort C41: --resume replaces a previous output as --force does (its unchanged sessions reused)
     out_folder(out, "track-all", force=force or resume, inputs=(root, params, params_dir))
     was = existed(out)
@@ -909,6 +959,10 @@ def track_all(
         files = subject_params(params_dir, rels, [s for s, _ in labels])
         parsed = {f: read_params(f) for f in dict.fromkeys(files)}
         per_session = [{**settings, "params": f, "par": parsed[f]} for f in files]
+    if names:  # decision C86: the tree, the tables' names and each session's own files under the pseudonyms
+        rels = pseudonym_paths(rels, names, subject_map)
+        labels = [(names.get(sub, sub) if isinstance(sub, str) else sub, visit) for sub, visit in labels]
+        per_session = [{**st, "names": names} for st in per_session]
     from pdrlearn.cli.provenance import input_hashes, model_record
     from pdrlearn.cli.resume import session_keys
 
@@ -932,12 +986,15 @@ def track_all(
         for r in reused.values():
             progress_line(r)
         items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": st, "resume_key": key,
-                        "input_sha256": h})
+                        "input_sha256": h, "redact": forms})
                  for rel, p, st, key, h in zip(rels, found, per_session, keys, hashes, strict=True) if rel not in reuse]
         tracked = iter(run_cohort(_track_job, items, serial=jobs == 1, n_workers=jobs,
                                   costs=[folder_bytes(Path(a["session_dir"])) for _, a in items],
                                   preload=TRACK_LIBRARIES, on_done=progress_line))
         results = [reused[rel] if rel in reused else next(tracked) for rel in rels]
+        if names:  # decision C86: a failed session's error and warnings, as a tracked one's (renamed in its job)
+            results = [r if r.ok else dataclasses.replace(r, error=rename_text(r.error, names),
+                                                          extra=rename_json(r.extra, names)) for r in results]
         _batch_warnings([(rel, str(p)) for rel, p in zip(rels, found, strict=True)], results)
         failed = [r for r in results if not r.ok]
         if len(failed) == len(results):
@@ -946,7 +1003,7 @@ def track_all(
                 raise NoStridesError(first)
             raise DataError(first)
         dup, same = _duplicates(rels, results, found)
-        rows = [_session_row(rel, session_group(rel, group_depth), r, str(p))
+        rows = [_session_row(rel, session_group(rel, group_depth), r, rename_text(str(p), names or {}))
                 for rel, r, p in zip(rels, results, found, strict=True)]
         for row, label, st in zip(rows, labels, per_session, strict=True):
             row["duplicate_of"] = dup.get(row["path"])
@@ -976,18 +1033,28 @@ def track_all(
         if changes is not None:  # decisions C22, C23
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")
+        if forms:  # decision E176: run.json, and the tables' error and warning cells (the sessions' own: per job)
+            run = redact_json(run, forms, default=json_default)
+        if names:  # decision C86: run.json's ROOT, argv and paths
+            run = rename_json(run, names, default=json_default)
         write_run_json(tmp, run)
+        if forms:
+            redact_folder(tmp, forms, recursive=False)
+        if names:
+            rename_folder(tmp, names, recursive=False)
     replaced(out, was)
     for folder in adopted:  # cohort C41: the interrupted runs' folders, now in OUT
         shutil.rmtree(folder, ignore_errors=True)
     if as_json:  # decision C19: n_sessions counts every session found, n_tracked those tracked (groups.csv's)
-        print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
+        printed = json_safe({"sessions": sessions.to_dict(orient="records"),
                               "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
                               "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run,
                               **({"n_reused": len(reused)} if resume else {}),  # cohort C41
                               **({} if subjects is None else {"subjects": subjects.to_dict(orient="records")}),
                               **({} if changes is None else {"changes": changes.to_dict(orient="records"),
-                                                             "changes_summary": summary.to_dict(orient="records")})}))
+                                                             "changes_summary": summary.to_dict(orient="records")})})
+        printed = redact_json(printed, forms) if forms else printed  # decision E176
+        print_json(rename_json(printed, names) if names else printed)  # decision C86
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked"
                    + (f" ({len(reused)} reused from an earlier run, --resume)" if resume else "") + f"; wrote {out}/"

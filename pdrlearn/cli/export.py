@@ -324,6 +324,7 @@ def run(
                                      "warning naming the seconds dropped from each file (decisions B81, B83, B230; "
                                      "as `track --common-span`)."),
     drop_partial_row: bool = _track.DROP_PARTIAL_ROW_OPT,
+    redact_paths: bool = _track.REDACT_PATHS_OPT,  # decision E176, as track's
     sides: bool = typer.Option(False, "--sides", help="A waist-only bundle: each step's foot, steps.csv column "
                                "side (left / right, empty when undecided) as `track --pipeline waist-pendulum` "
                                "names it, from the streamed contacts (W138's causal side, not the offline W129 "
@@ -348,9 +349,14 @@ def run(
         pdrlearn run out/bundle_u1_all out/sim/D_u1 --method svm --out out/run_svm   # an exported non-chosen method
 
         pdrlearn run wbundle out/sim/D_u1 --sides --out out/run_sides   # a waist bundle: each step's foot
+
+        pdrlearn run out/bundle/u1 walks/D --redact-paths --out out/run_share   # no folder path in any output (E176)
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
+    from pdrlearn.cli.provenance import redaction
+
+    redact = redaction(dict(locals()))  # decision E176
     from pdrlearn.warning_lines import captured_warnings
 
     with captured_warnings(echo=True) as logged:  # decision E154: every warning also in summary.json / --json
@@ -406,7 +412,8 @@ def run(
                               storey_height, start_ll, start_alt, sides=sides,  # decision L142: as the foot bundle's
                               start_ele=start_ele,  # decision L363
                               logged=logged,  # decision E154
-                              drop_partial_row=drop_partial_row)  # decision B276
+                              drop_partial_row=drop_partial_row,  # decision B276
+                              redact=redact)  # decision E176
         if sides:  # decision E110: W138's side is the lower-back contact's; a foot bundle tracks one foot's strides
             raise DataError(f"run: --sides gives a waist-only bundle's steps their foot; {bundle_dir} is a foot-unit "
                             "bundle, whose steps are the strides of the one foot it tracks: drop --sides")
@@ -595,9 +602,9 @@ def run(
         keep_warnings(summary, logged, session)  # decision E154
         if out is not None:  # decision E157: the push times in run.json, not summary.json
             _write(out, result, summary, session, source, dpi=dpi, record=record(latency_ms_per_step=_latency(lat)),
-                   bouts=table, with_ele=start_ele)
+                   bouts=table, with_ele=start_ele, redact=redact)
         if as_json:
-            print_json(json_safe(summary))
+            print_json(redacted(json_safe(summary), redact))
         else:
             err = summary.get("distance_error_pct")
             from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
@@ -631,6 +638,13 @@ def _foot_checks(session) -> None:
     insole = streamed_insole_line(session, "pdrlearn run")
     if insole:
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, insole)
+
+
+def redacted(obj, redact: tuple[str, ...] | None):
+    """Decision E176: ``--json``'s object with ``redact``'s paths as <redacted> (unchanged without the option)."""
+    from pdrlearn.redact import redact_json
+
+    return redact_json(obj, redact) if redact else obj
 
 
 def _run_json(arguments: dict, wall0: float, cpu0: float):
@@ -678,7 +692,8 @@ def _calibration_gait_warning(params, steps, warnings: list[str], where: str) ->
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
                heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0,
                start_ll=None, start_alt: float = 0.0, sides: bool = False, drop_partial_row: bool = False,
-               start_ele: bool = False, logged: list[str] | None = None) -> None:
+               start_ele: bool = False, logged: list[str] | None = None,
+               redact: tuple[str, ...] | None = None) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
@@ -688,7 +703,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     ``start_alt``): the tracker's lat/lon of each step (decision W147) and z at ALT, as the foot bundle's run.
     ``sides`` (``--sides``, decision E110): the runtime's causal side of each step (E103) in steps.csv's ``side``
     column, the offline lower-back track's name and values (``left`` / ``right`` / empty when undecided).
-    ``logged``: the warnings ``run`` caught so far, added to the summary's (decision E154)."""
+    ``logged``: the warnings ``run`` caught so far, added to the summary's (decision E154). ``redact``: the paths
+    ``--redact-paths`` writes as <redacted> (decision E176)."""
     import numpy as np
     import pandas as pd
 
@@ -817,9 +833,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     keep_warnings(summary, logged or [], session)  # decision E154
     if out is not None:  # decision E157: the push times in run.json, not summary.json
         _write(out, result, summary, session, summary["source"], dpi=dpi,
-               record=record(latency_ms_per_step=_latency(lat)), bouts=table, with_ele=start_ele)
+               record=record(latency_ms_per_step=_latency(lat)), bouts=table, with_ele=start_ele, redact=redact)
     if as_json:
-        print_json(json_safe(summary))
+        print_json(redacted(json_safe(summary), redact))  # decision E176
         return
     err = summary.get("distance_error_pct")
     typer.echo(f"{summary['source']}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
@@ -974,14 +990,15 @@ def as_written(result) -> None:
 
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
-           record: dict, bouts, with_ele: bool = False) -> None:
+           record: dict, bouts, with_ele: bool = False, redact: tuple[str, ...] | None = None) -> None:
     """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png, summary.json and run.json
     (``record``, decision L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure),
     atomically: all seven or none, and ``--force`` keeps the old run until then. ``session``: the replayed session
     (its ground truth in path.png; None for a capture). Decision E144: a replayed session whose meta.json gives its
     recording start gets track's clock columns and summary ``recording_start`` (L298); a capture has no meta.json and
     no clock start, so none. Decision L363: with lat/lon (``--start``) also track's track.gpx and track.geojson
-    (``with_ele``: ``--start LAT,LON,ALT`` gave the altitude)."""
+    (``with_ele``: ``--start LAT,LON,ALT`` gave the altitude). ``redact``: decision E176's paths, written as
+    <redacted> in every text file before the folder is moved into place."""
     import json
 
     from pdrlearn.atomic import atomic_directory
@@ -1011,6 +1028,10 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
                         pipeline=summary.get("pipeline"), distance_m=summary.get("distance_m"), start=start,
                         with_ele=with_ele)
         write_run_json(tmp, record)
+        if redact:  # decision E176
+            from pdrlearn.redact import redact_folder
+
+            redact_folder(tmp, redact)
     replaced(out, was)
 
 

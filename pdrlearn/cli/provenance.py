@@ -8,6 +8,7 @@ from pdrlearn.provenance import (  # noqa: F401
     input_hashes,
     invocation,
     model_record,
+    redaction,
     run_record,
     set_command_line,
     software_record,

@@ -57,6 +57,12 @@ def warn_ood_option(when: str = "With --model: ", model: str = "model"):
 WARN_OOD_OPT = warn_ood_option()
 START_OPT = typer.Option(None, "--start", help=START_HELP)
 PARAMS_OPT = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline.")
+#: decision E176: track's, run's, track-all's and calibrate's option (one declaration, E93)
+REDACT_PATHS_OPT = typer.Option(False, "--redact-paths", help="Write every folder the command was given, and the "
+                                "working directory, as <redacted> in its outputs (summary.json input_dir; run.json "
+                                "cwd, argv, session, root, options; warnings; track-all's hidden per-session record); "
+                                "run.json says paths_redacted. Names below ROOT, the session and subject names stay "
+                                "(docs/deploying.md, What each output holds). Decision E176.")
 STREAMING_OPT = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
                              "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm. Its strides "
                              "have no initial contact, so no stride time or cadence (summary median_cadence_spm None), "
@@ -286,6 +292,7 @@ def track(
     resample: bool = RESAMPLE_OPT,
     no_resample: bool = NO_RESAMPLE_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    redact_paths: bool = REDACT_PATHS_OPT,
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
     strict: bool = typer.Option(False, "--strict", help="Exit with code 3 when the track gave any warning (the "
                                 "outputs are still written; summary.json info.warnings lists them; decision E156). "
@@ -335,6 +342,8 @@ def track(
 
         pdrlearn track out/sim/D_u1 --model oracle --strict --json --out out/D_qa   # exit 3 on any warning (E156)
 
+        pdrlearn track walks/D --redact-paths --out out/D_share   # no folder path in any output (E176)
+
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
     arguments = dict(locals())  # decision L122: every option as given, defaults included (before any other name)
@@ -342,9 +351,10 @@ def track(
 
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.common import out_folder, progress
-    from pdrlearn.cli.provenance import given_options, input_hashes, model_record, run_record, write_run_json
+    from pdrlearn.cli.provenance import given_options, input_hashes, model_record, redaction, run_record, write_run_json
 
     options = given_options(arguments, leave_out=("session_dir", "out", "force", "as_json"))  # for OUT/run.json
+    forms = redaction(arguments)  # decision E176
     out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
     settings = settings_of(arguments)  # decision E93: every tracking option, as track-all passes them
     was = existed(out)
@@ -363,6 +373,12 @@ def track(
                 model=model_record(model),
                 pipeline=summary.get("pipeline"), method=summary.get("info", {}).get("method"),
                 track_time_s=round(time.perf_counter() - wall, 2), cpu_time_s=round(time.process_time() - cpu, 2)))
+            if forms:  # decision E176: inside the temporary folder, so no unredacted file is ever in place
+                from pdrlearn.cli.common import json_default
+                from pdrlearn.redact import redact_folder, redact_json
+
+                redact_folder(tmp, forms)
+                summary = redact_json(summary, forms, default=json_default)
         advance()
     replaced(out, was)
     if as_json:
@@ -623,6 +639,16 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     return tracked
 
 
+def pseudonymous(session, names: dict[str, str]):
+    """Decision C86: ``session`` under ``track-all --subject-map``'s pseudonyms: its name and meta.json's ``subject``
+    / ``user`` (a name) replaced where the map lists them (the figure titles, summary and bouts.csv read these)."""
+    session.name = names.get(session.name, session.name)
+    for key in ("subject", "user"):
+        if isinstance(session.meta, dict) and isinstance(session.meta.get(key), str):
+            session.meta[key] = names.get(session.meta[key], session.meta[key])
+    return session
+
+
 def _track_session(session_dir: Path, settings: dict) -> dict:
     """:func:`track_session` without E154's capture and L415's setting."""
     from pdrlearn.io import read_session
@@ -637,6 +663,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse",
                            drop_partial_row=bool(o.get("drop_partial_row")))  # decision B266
+    if o.get("names"):  # decision C86: track-all --subject-map; the name the tables, figures and summary carry
+        session = pseudonymous(session, o["names"])
     from pdrlearn.io.plasys import unit_ends
 
     ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut

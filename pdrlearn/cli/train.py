@@ -83,8 +83,10 @@ def train(
         "stay on one side, so a model is scored on walks it was not fitted on; decision C59).",
     ),
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
-    user: str = typer.Option(None, help="User name stored in the manifest (default: the sessions' meta.json 'user' or "
-                      "'subject', else 'unnamed'; B88)."),
+    user: str = typer.Option(None, help="User name stored in the manifest, replacing the sessions' meta.json 'user' / "
+                      "'subject' everywhere the model (and a bundle exported from it) names a user: a pseudonym such "
+                      "as P001 (several users: P001-1, P001-2, ...; decision E174). Default: the sessions' own name, "
+                      "else 'unnamed' (B88)."),
     boundaries: str = typer.Option(
         "given",
         help="Step-window boundaries: 'given' (the labelled start/end) or 'rest' (each boundary moved to the "
@@ -120,7 +122,7 @@ def train(
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
     """
     from pdrlearn.classify.spread import spread_text
-    from pdrlearn.classify.training import check_settings, check_task_methods, train_user
+    from pdrlearn.classify.training import check_settings, check_task_methods, check_user, train_user
     from pdrlearn.features.windows import BOUNDARIES
 
     if boundaries not in BOUNDARIES:
@@ -129,6 +131,7 @@ def train(
 
     if cv_groups not in CV_GROUPS:
         raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
+    user = check_user(user)  # decision B339: before any data is read
     t_list, m_list, u_list, per_task = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed,
                                          resample_hz=resample)  # C62: before any data is read

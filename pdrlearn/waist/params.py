@@ -108,7 +108,7 @@ class WaistParams:
         if not isinstance(d, dict):
             raise DataError(f"{where}: waist parameters must be a JSON object")
         names = {f.name for f in fields(cls)}
-        unknown = sorted(set(d) - names - {"schema", "fit", "pdrlearn_version"})  # version: decision E136
+        unknown = sorted(set(d) - names - {"schema", "fit", "paths_redacted", "pdrlearn_version"})  # E136; E176
         if unknown:
             more = f" and {len(unknown) - 5} more" if len(unknown) > 5 else ""
             raise DataError(f"{where}: not a waist parameter file (unknown key(s) {', '.join(unknown[:5])}{more}); "
