@@ -657,8 +657,14 @@ def _ascent(result: TrackResult, out: dict) -> None:
     walked up and down has both, its ``altitude_change_m`` ~0); a foot track's strides as they are, a barometric z
     (a lower-back track, or a foot track with ``altitude="fused"``, L154) within the hysteresis band
     ``ASCENT_BAND_BARO_M`` crossed within ``CLIMB_WINDOW_S`` (decision L172: the weather's slow drift is dropped),
-    and ``altitude_drift_m``, the barometric change so dropped (altitude_change_m minus ascent plus descent)."""
-    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent
+    and ``altitude_drift_m``, the barometric change so dropped (altitude_change_m minus ascent plus descent); decision
+    W370: only a drift the weather can make in the track's span (else climbs counted turning point to turning point)."""
+    from pdrlearn.kernels.altitude_check import (
+        ASCENT_BAND_BARO_M,
+        CLIMB_WINDOW_S,
+        ascent_descent,
+        climbs_within_weather,
+    )
 
     tr, steps = result.trajectory, result.steps
     z = tr["z"].to_numpy(float) if len(tr) and "z" in tr else np.zeros(0)
@@ -667,7 +673,9 @@ def _ascent(result: TrackResult, out: dict) -> None:
     if not barometric or "t" not in tr:
         out["ascent_m"], out["descent_m"] = ascent_descent(z, 0.0 if foot or not len(steps) else ASCENT_BAND_BARO_M)
         return
-    out["ascent_m"], out["descent_m"] = ascent_descent(z, ASCENT_BAND_BARO_M, tr["t"].to_numpy(float), CLIMB_WINDOW_S)
+    # decision W370: L172's count unless the drift it drops is more than the weather can make in the track's span
+    out["ascent_m"], out["descent_m"] = climbs_within_weather(z, tr["t"].to_numpy(float), ASCENT_BAND_BARO_M,
+                                                              CLIMB_WINDOW_S)
     out["altitude_drift_m"] = float(out.get("altitude_change_m", 0.0) - out["ascent_m"] + out["descent_m"])
 
 
