@@ -2,7 +2,7 @@
 (:func:`ascent_descent` with its 60 s window) against W370's (:func:`climbs_within_weather`) on the same tracks' z.
 
 Fresh simulated users 8482-8489 (stairs, two flights with landing pauses, step-to-step stairs, a lift, level, 2 km)
-tracked with the default lower-back pipeline and the foot with ``altitude="fused"`` (no model), and the nine mobgap
+tracked with the default lower-back pipeline (waist-pendulum) and the foot with ``altitude="fused"`` (no model), and the nine mobgap
 lower-back recordings (default pipeline). One line per track (truth, before, after) and the rule's checks.
 
     PYTHONPATH=. OMP_NUM_THREADS=1 python experiments/stair_drift_w370.py
@@ -60,7 +60,7 @@ def main() -> int:
         s = (simulate("walk", UserProfile.from_seed(u), "normal", seed=u, length_m=2000.0) if r == "WALK2K" else
              simulate_path(parse_route(ROUTES[r]), UserProfile.from_seed(u), seed=u))
         tu, td = _truth(s)
-        for pipe, res in (("waist", track_waist(s)), ("fused", track_plasys(s, altitude="fused"))):
+        for pipe, res in (("waist", track_waist(s, pipeline="waist-pendulum")), ("fused", track_plasys(s, altitude="fused"))):
             b, a = _both(res)
             span = float(res.trajectory["t"].iloc[-1] - res.trajectory["t"].iloc[0])
             rows.append((u, r, pipe, tu, td, b, a))
@@ -68,7 +68,7 @@ def main() -> int:
                   f"after {a[0]:6.3f}/{a[1]:6.3f}", flush=True)
     real = []
     for folder in REAL:
-        res = track_waist(read_session(folder))
+        res = track_waist(read_session(folder), pipeline="waist-pendulum")
         b, a = _both(res)
         span = float(res.trajectory["t"].iloc[-1] - res.trajectory["t"].iloc[0])
         real.append((b, a))
