@@ -35,7 +35,8 @@ def test_weather_rate_is_two_hpa_per_hour_in_metres():
 def test_a_short_stair_walk_books_more_drift_than_the_weather_and_says_so():
     t, z = _stairs_z()
     s = evaluate_track(_track(t, z))
-    assert s["descent_m"] == pytest.approx(2.04 - 0.24)  # L172's count as before (W370 not adopted): the flight's end is lost
+    # L172's count as before (W370 not adopted): the flight's end is lost
+    assert s["descent_m"] == pytest.approx(2.04 - 0.24)
     assert s["altitude_drift_limit_m"] == pytest.approx(altitude_check.WEATHER_RATE_MAX_M_PER_S * (t[-1] - t[0]))
     assert abs(s["altitude_drift_m"]) > s["altitude_drift_limit_m"]
     line = drift_warning(s)
