@@ -7,7 +7,7 @@
 |---|---|
 | ``straight:M[:GAIT]`` | walk M metres straight ahead; GAIT short, normal (default) or long |
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
-| ``up:N[:RISE:RUN][:step-to-step]`` / ``down:...`` | climb / descend N stairs (0.17 m x 0.28 m); ``step-to-step``: S80 |
+| ``up:N[:RISE:RUN][:step-to-step]`` / ``down:...`` | climb / descend N stairs (0.17 x 0.28 m); ``step-to-step``: S80 |
 | ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
 | ``backward:N[:direct]`` | N backward steps; ``direct``: straight out of forward walking, no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
