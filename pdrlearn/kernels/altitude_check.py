@@ -157,12 +157,14 @@ def climbs_within_weather(z: np.ndarray, t: np.ndarray, band_m: float = ASCENT_B
     remainder of climbs (the end of a flight down, the top of a flight), and the climbs are counted from turning
     point to turning point (W229's count on z as it is, the end's remainder too: ascent - descent = the net
     change)."""
+    up, down = ascent_descent(z, band_m, t, window_s)
+    if DRIFT_BY_RATE or not CLIMBS_WITHIN_WEATHER:
+        return up, down
     z = np.asarray(z, dtype=float).ravel()
     t = np.asarray(t, dtype=float).ravel()
     keep = np.isfinite(z) & np.isfinite(t)
     z, t = z[keep], t[keep]
-    up, down = ascent_descent(z, band_m, t, window_s)
-    if len(z) < 2 or DRIFT_BY_RATE or not CLIMBS_WITHIN_WEATHER:
+    if len(z) < 2:
         return up, down
     limit = WEATHER_RATE_MAX_M_PER_S * float(t[-1] - t[0])
     if limit < band_m or abs(float(z[-1] - z[0]) - up + down) > limit:
