@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from experiments.ramp_ascent_w229 import level_check
 from pdrlearn.io.plasys import read_session
 from pdrlearn.kernels import altitude_check
 from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent, climbs_within_weather
@@ -94,10 +95,7 @@ def main() -> int:
     lift = [(x[0], x[2]) for x in rows if x[1] == "LIFT" and abs(x[6][0] - x[3]) > abs(x[5][0] - x[3]) + 0.10]
     print(f"(2) lift tracks with |ascent error| > before + 0.10 m: {lift}")
     ok &= not lift
-    flat = [(x[0], x[1], x[2], round(sum(x[6]), 3)) for x in rows if x[1] in ("LEVEL", "WALK2K")]
-    bad = [f for f in flat if f[3] > 0.5]
-    print(f"(3) level / 2 km ascent + descent after: {[f[3] for f in flat]}; over 0.5 m: {bad}")
-    ok &= not bad
+    ok &= level_check(rows)  # W229's rule (3), shared
     sb, sa = sum(sum(x[0]) for x in real), sum(sum(x[1]) for x in real)
     each = [i for i, x in enumerate(real) if sum(x[1]) > sum(x[0]) + 0.5]
     print(f"(4) mobgap summed ascent + descent {sb:.3f} -> {sa:.3f} m (limit before + 1.0 m); recordings over "
