@@ -75,6 +75,15 @@ def _climbs(kernel, res) -> tuple[float, float]:
                                  new.CLIMB_WINDOW_S)
 
 
+def level_check(rows) -> bool:
+    """Rule (3) of W229 (and W370): every level and 2 km track's ascent + descent after (``rows``' element 6) <= 0.5 m;
+    printed."""
+    flat = [(x[0], x[1], x[2], round(sum(x[6]), 3)) for x in rows if x[1] in ("LEVEL", "WALK2K")]
+    bad = [f for f in flat if f[3] > 0.5]
+    print(f"(3) level / 2 km ascent + descent after: {[f[3] for f in flat]}; over 0.5 m: {bad}")
+    return not bad
+
+
 def main() -> int:
     second = "--second" in sys.argv[1:]
     logging.disable(logging.WARNING)
@@ -130,10 +139,7 @@ def main() -> int:
     print(f"(2) stairs / lift tracks with |ascent{' or descent' if second else ''} error| > before + {tol:.2f} m: "
           f"{len(worse)} {worse}")
     ok &= not worse
-    flat = [(x[0], x[1], x[2], round(sum(x[6]), 3)) for x in rows if x[1] in ("LEVEL", "WALK2K")]
-    bad = [f for f in flat if f[3] > 0.5]
-    print(f"(3) level / 2 km ascent + descent after: {[f[3] for f in flat]}; over 0.5 m: {bad}")
-    ok &= not bad
+    ok &= level_check(rows)
     sb, sa = sum(sum(x[0]) for x in real), sum(sum(x[1]) for x in real)
     ok4 = sa <= sb + 1.0
     print(f"(4) mobgap summed ascent + descent {sb:.3f} -> {sa:.3f} m (limit before + 1.0 m)")

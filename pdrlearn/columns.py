@@ -99,6 +99,8 @@ SESSIONS: tuple[Column, ...] = (
                                  "minus altitude_drift_m; L146, L172)"),
     ("altitude_drift_m", "m", "number", "barometric z (lower back, --altitude fused): the slow change that "
                                         "ascent_m / descent_m and the floors leave out (L172)"),
+    ("altitude_drift_limit_m", "m", "number", "the most the fastest weather (2 hPa/h) changes the barometric z in "
+                                              "the track's span; a larger altitude_drift_m is warned about (W371)"),
     ("bouts_distance_m", "m", "number", "bouts.csv's distance summed (C25)"),
     ("bouts_time_s", "s", "number", "bouts.csv's durations summed (C25)"),
     ("bouts_n_steps", "count", "integer", "bouts.csv's steps summed (C25)"),

@@ -84,7 +84,8 @@ def register(app: typer.Typer) -> None:
         share - what a clock offset or one foot's late contacts give - is warned about with the offset's size (L284),
         a tracked stance under 55 % of the cycle (an early toe-off or a late contact) too (L285), two feet whose
         impacts differ over 3 x in sharpness (a soft, e.g. prosthetic, foot: its step times, stance and double
-        support are not comparable, L318) and a backward walk (L329); the warnings are in gait_summary.json's
+        support are not comparable, L318), a backward walk (L329) and two feet whose stair ascent or descent
+        disagree beyond their per-stride height spread (L436, L437); the warnings are in gait_summary.json's
         "warnings". Stride lengths leave out the half strides that start and end each walking bout (L317); stance
         time per foot is given with its asymmetry (L327). A pair whose meta.json "foot" (import --foot) contradicts
         the LEFT / RIGHT order is refused (B321), as are two feet whose rates differ by over 10 % or whose spans

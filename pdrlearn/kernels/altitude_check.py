@@ -17,6 +17,7 @@ import re
 
 import numpy as np
 
+from pdrlearn.kernels.barometer import BARO_C_PER_M, BARO_EXPONENT, STANDARD_P0_HPA
 from pdrlearn.kernels.distance import LEVEL_DZ_M
 
 #: Decision L68 (experiments/level_dz.py): the largest integrated |dz| of a level stride on the gaitmap foot
@@ -166,6 +167,41 @@ DRIFT_RATE_SPAN_S = CLIMB_WINDOW_S / 2
 #: 0.06 m): True = the barometric ascent / descent with times read the drift by its rate (:func:`drift_free_altitude`)
 #: and count turning point to turning point; False (the default): L172's band crossed within the window
 DRIFT_BY_RATE = False
+
+
+#: Decision W370: the fastest weather, a pressure "rising / falling very rapidly": more than 6.0 hPa in 3 hours
+#: (the WMO pressure-tendency terms of marine forecasts) = 2 hPa/h, at the barometric formula's 1 / (C E P0) =
+#: 8.32 m/hPa at sea level (kernels.barometer, ICAO standard atmosphere): 16.6 m/h, 0.0046 m/s (0.28 m per minute)
+WEATHER_RATE_MAX_M_PER_S = 2.0 / (BARO_C_PER_M * BARO_EXPONENT * STANDARD_P0_HPA) / 3600.0
+#: Decision W370 (an option, measured and not adopted: the nine mobgap lower-back recordings' ascent + descent rose
+#: 16.629 -> 17.940 m, HA001 Test5 Trial1's by 0.687 m, over the rule's 1.0 / 0.5 m): True = a barometric track's
+#: ascent / descent are :func:`climbs_within_weather`'s; False (the default): L172's count
+CLIMBS_WITHIN_WEATHER = False
+
+
+def climbs_within_weather(z: np.ndarray, t: np.ndarray, band_m: float = ASCENT_BAND_BARO_M,
+                          window_s: float = CLIMB_WINDOW_S) -> tuple[float, float]:
+    """Decision W370 (with :data:`CLIMBS_WITHIN_WEATHER`; else L172's count as it is): the barometric ascent /
+    descent (m) of ``z`` at the times ``t`` (s): L172's (the band crossed
+    within ``window_s``, :func:`ascent_descent`) where the drift it drops (the net change less ascent plus descent)
+    is one the weather can make in the track's span at :data:`WEATHER_RATE_MAX_M_PER_S`; else - a drift larger than
+    that, or a span too short for the fastest weather to cross ``band_m`` at all - what L172 dropped was the
+    remainder of climbs (the end of a flight down, the top of a flight), and the climbs are counted from turning
+    point to turning point (W229's count on z as it is, the end's remainder too: ascent - descent = the net
+    change)."""
+    up, down = ascent_descent(z, band_m, t, window_s)
+    if DRIFT_BY_RATE or not CLIMBS_WITHIN_WEATHER:
+        return up, down
+    z = np.asarray(z, dtype=float).ravel()
+    t = np.asarray(t, dtype=float).ravel()
+    keep = np.isfinite(z) & np.isfinite(t)
+    z, t = z[keep], t[keep]
+    if len(z) < 2:
+        return up, down
+    limit = WEATHER_RATE_MAX_M_PER_S * float(t[-1] - t[0])
+    if limit < band_m or abs(float(z[-1] - z[0]) - up + down) > limit:
+        return _zigzag(z, band_m)
+    return up, down
 
 
 def drift_free_altitude(z: np.ndarray, t: np.ndarray, rate_m_s: float = DRIFT_RATE_M_PER_S,

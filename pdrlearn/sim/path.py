@@ -44,12 +44,15 @@ class Curve:
 
 @dataclass(frozen=True)
 class Stairs:
-    """Climb (``up=True``) or descend ``n`` stairs of ``rise_m`` x ``run_m``, one stair per step."""
+    """Climb (``up=True``) or descend ``n`` stairs of ``rise_m`` x ``run_m``, one stair per step (step over step,
+    a stride spans two stairs). ``step_to_step`` (decision S80): both feet on each stair, the same foot leading every
+    stair, so a stride spans one stair (the non-reciprocal gait of frail older adults)."""
 
     n: int
     up: bool = True
     rise_m: float = 0.17
     run_m: float = 0.28
+    step_to_step: bool = False
 
 
 #: decision B347: the stair rise (m) the simulator accepts: building codes give 0.10-0.22 m (IBC 2018 sec. 1011.5.2:
@@ -382,10 +385,19 @@ class _Walker:
             raise DataError(f"{seg}: {size}")
         c0, z0, u = self.c.copy(), self.z, _ahead(self.psi)
         sign = 1.0 if seg.up else -1.0
+        kind = "stairs_up" if seg.up else "stairs_down"
+        if seg.step_to_step:  # decision S80: the lead foot onto each stair, the trail foot beside it
+            self.close()
+            lead = self._next_foot()
+            trail = "left" if lead == "right" else "right"
+            for j in range(1, seg.n + 1):
+                c, z = c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m
+                self.step(c, z, self.psi, kind, foot=lead)
+                self.step(c, z, self.psi, kind, foot=trail)
+            self.together = True  # both feet on the last stair
+            return
         for j in range(1, seg.n + 1):
-            self.step(
-                c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m, self.psi, "stairs_up" if seg.up else "stairs_down"
-            )
+            self.step(c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m, self.psi, kind)
 
     def trolley(self, seg: Trolley) -> None:
         """Decision S46: a straight walk whose steps are flagged as pushing (the body model damps the pelvic

@@ -7,7 +7,7 @@
 |---|---|
 | ``straight:M[:GAIT]`` | walk M metres straight ahead; GAIT short, normal (default) or long |
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
-| ``up:N[:RISE:RUN]`` / ``down:N[:RISE:RUN]`` | climb / descend N stairs (default 0.17 m x 0.28 m) |
+| ``up:N[:RISE:RUN][:step-to-step]`` / ``down:...`` | climb / descend N stairs (0.17 x 0.28 m); ``step-to-step``: S80 |
 | ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
 | ``backward:N[:direct]`` | N backward steps; ``direct``: straight out of forward walking, no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
@@ -57,6 +57,8 @@ from pdrlearn.sim.ride import check_rise
 from pdrlearn.sim.user import GAITS
 from pdrlearn.sim.vehicle import check_vehicle
 
+#: decision S80: the stairs option of the step-to-step gait (``up:N[:RISE:RUN]:step-to-step``)
+STEP_TO_STEP = "step-to-step"
 ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "pivot", "stand", "sit", "lift",
                "escalator", "trolley", "side", "freeze", "lie", "vehicle")
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
@@ -132,13 +134,19 @@ def parse_route(spec: str) -> list[Segment]:
             grade = pct / 100.0
             segments.append(Slope(_number(item, parts[1]), grade, gait=_gait(item, parts, 3)))
         elif kind in ("up", "down"):
+            s2s = len(parts) in (3, 5) and parts[-1].strip().lower() == STEP_TO_STEP  # decision S80
+            if len(parts) in (3, 5) and not s2s and parts[-1].strip()[:1].isalpha():
+                raise DataError(f"--route item {item!r}: the option after N or RISE:RUN is '{STEP_TO_STEP}' (both "
+                                f"feet on each stair; decision S80), e.g. '{kind}:12:0.17:0.29:{STEP_TO_STEP}'")
+            parts = parts[:-1] if s2s else parts
             _arity(item, parts, (1, 3))
             size = {} if len(parts) == 2 else {"rise_m": _number(item, parts[2]), "run_m": _number(item, parts[3])}
             if size:  # decision B347: a stair's size in metres, inside the building codes' range widened
                 bad = stair_size_error(size["rise_m"], size["run_m"])
                 if bad:
                     raise DataError(f"--route item {item!r}: {bad} (up:N:RISE:GOING, e.g. 'up:12:0.17:0.29')")
-            segments.append(Stairs(int(_number(item, parts[1], integer=True)), up=kind == "up", **size))
+            segments.append(Stairs(int(_number(item, parts[1], integer=True)), up=kind == "up", step_to_step=s2s,
+                                   **size))
         elif kind == "backward":
             _arity(item, parts, (1, 2))
             if len(parts) > 2 and parts[2].strip().lower() != "direct":  # decision S67

@@ -39,6 +39,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.track.clinical import bout_rows, symmetry_index_pct
 from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
+from pdrlearn.track.foot_heights import height_warning
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
 #: rest position after the stride, its own track's frame) and ``dir_rad`` (the stride's direction) need a tracked
@@ -689,7 +690,8 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     if side is not None:
         out["warnings"].append(side)
     for line in (reference_warning(out["walk"], out["reference"]), comparability_warning(*sharp),
-                 backward_note([t.steps for t in tracks])):
+                 backward_note([t.steps for t in tracks]),
+                 height_warning(tracks[0].steps, tracks[1].steps)):  # decisions L436, L437
         if line is not None:
             logging.getLogger(__name__).warning(line)
             out["warnings"].append(line)

@@ -660,8 +660,15 @@ def _ascent(result: TrackResult, out: dict) -> None:
     walked up and down has both, its ``altitude_change_m`` ~0); a foot track's strides as they are, a barometric z
     (a lower-back track, or a foot track with ``altitude="fused"``, L154) within the hysteresis band
     ``ASCENT_BAND_BARO_M`` crossed within ``CLIMB_WINDOW_S`` (decision L172: the weather's slow drift is dropped),
-    and ``altitude_drift_m``, the barometric change so dropped (altitude_change_m minus ascent plus descent)."""
-    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent
+    and ``altitude_drift_m``, the barometric change so dropped (altitude_change_m minus ascent plus descent); decision
+    W370: only a drift the weather can make in the track's span (else climbs counted turning point to turning point)."""
+    from pdrlearn.kernels.altitude_check import (
+        ASCENT_BAND_BARO_M,
+        CLIMB_WINDOW_S,
+        WEATHER_RATE_MAX_M_PER_S,
+        ascent_descent,
+        climbs_within_weather,
+    )
 
     tr, steps = result.trajectory, result.steps
     z = tr["z"].to_numpy(float) if len(tr) and "z" in tr else np.zeros(0)
@@ -670,8 +677,14 @@ def _ascent(result: TrackResult, out: dict) -> None:
     if not barometric or "t" not in tr:
         out["ascent_m"], out["descent_m"] = ascent_descent(z, 0.0 if foot or not len(steps) else ASCENT_BAND_BARO_M)
         return
-    out["ascent_m"], out["descent_m"] = ascent_descent(z, ASCENT_BAND_BARO_M, tr["t"].to_numpy(float), CLIMB_WINDOW_S)
+    # decision W370: L172's count unless the drift it drops is more than the weather can make in the track's span
+    out["ascent_m"], out["descent_m"] = climbs_within_weather(z, tr["t"].to_numpy(float), ASCENT_BAND_BARO_M,
+                                                              CLIMB_WINDOW_S)
     out["altitude_drift_m"] = float(out.get("altitude_change_m", 0.0) - out["ascent_m"] + out["descent_m"])
+    t = tr["t"].to_numpy(float)
+    t = t[np.isfinite(t)]
+    # decision W371: the most the fastest weather changes z in the track's span (W370's rate)
+    out["altitude_drift_limit_m"] = float(WEATHER_RATE_MAX_M_PER_S * (t[-1] - t[0])) if len(t) > 1 else 0.0
 
 
 def _walked_heights(session: Session) -> pd.DataFrame | None:
@@ -1226,12 +1239,34 @@ def _closed_by_floors(summary: dict, foot: float) -> str | None:
 ALTITUDE_DRIFT_WARN_M = 1.0
 
 
+#: decision W371: a drift under this (m) is not warned about as more than the weather's: the BMP280's per-sample
+#: altitude noise (thesis Table 18: 0.0157 hPa = 0.13 m; W89)
+DRIFT_BEYOND_WEATHER_FLOOR_M = 0.13
+
+
 def drift_warning(summary: dict) -> str | None:
     """Decision L172: one line when a barometric altitude (a lower-back track, or ``altitude="fused"``) changed by
     more than :data:`ALTITUDE_DRIFT_WARN_M` slowly (``altitude_drift_m``): ``altitude_change_m`` includes it, the
-    floors and ``ascent_m`` / ``descent_m`` do not."""
+    floors and ``ascent_m`` / ``descent_m`` do not. Decision W371: when the drift is more than the fastest weather
+    makes in the track's span (``altitude_drift_limit_m``, and over :data:`DRIFT_BEYOND_WEATHER_FLOOR_M`), the line
+    says it is not the weather's: climbs' remainders L172 did not count, or the barometer's own error (only where
+    climbs were counted: ascent_m + descent_m at least L146's band)."""
+    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M
+
     drift = summary.get("altitude_drift_m")
-    if drift is None or not abs(float(drift)) > ALTITUDE_DRIFT_WARN_M:
+    limit = summary.get("altitude_drift_limit_m")
+    if drift is None:
+        return None
+    climbed = float(summary.get("ascent_m") or 0.0) + float(summary.get("descent_m") or 0.0)
+    if (limit is not None and abs(float(drift)) > max(float(limit), DRIFT_BEYOND_WEATHER_FLOOR_M)
+            and climbed >= ASCENT_BAND_BARO_M):  # decision W371: only where climbs were counted (their remainders)
+        return (f"the barometric altitude's climbs leave {float(drift):+.2f} m uncounted as slow drift "
+                f"(altitude_drift_m), more than the fastest weather (2 hPa/h) changes it in this track's span "
+                f"({float(limit):.2f} m; decision W371): it is the part of climbs under L172's 0.5 m band (the end of "
+                "a flight down, the top of a flight) or the barometer's own error, so ascent_m / descent_m may each be "
+                f"short by up to {abs(float(drift)):.2f} m (pdrlearn.kernels.altitude_check.CLIMBS_WITHIN_WEATHER = "
+                "True counts such climbs whole, W370, not adopted)")
+    if not abs(float(drift)) > ALTITUDE_DRIFT_WARN_M:
         return None
     return (f"the barometric altitude drifted {float(drift):+.2f} m slowly (less than "
             f"0.5 m per minute: the weather's pressure trend, L172): altitude_change_m "
