@@ -24,6 +24,7 @@ from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibil
     step_counts,
     steps_missed,
 )
+from pdrlearn.waist.pll_calibration import recorded_options
 from pdrlearn.waist.steplength import (
     CADENCE_LAW_STEADY,
     MIN_GAIN_STRIDES,
@@ -343,11 +344,13 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     notes_gap: list[str] = []
     notes_count: list[str] = []
     cadence_law: bool | str = False  # decision W240: the tracks' option, read from the calibration walks' own tracks
+    edge_lock = None  # decision W369: the pll_edge_lock the walks' waist-pll tracks counted their contacts with
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         with without_heading_note():  # W83: calibration does not use the heading
             res = track_waist(s, pipeline=pipeline, params=base)
         cadence_law = cadence_law or res.info.get("options", {}).get("cadence_law") or False  # W261: its value
+        edge_lock = res.info.get("options", {}).get("pll_edge_lock", edge_lock)  # W369: one value (base's options)
         if not res.steps["has_next"].any():  # W61: a standing-only recording, not a model failure
             raise DataError(f"calibrate: 0 steps detected in {s.folder or s.name}; calibrate needs a walk of known "
                             "length (give a recording of walking, with --distance or bouts.csv)")
@@ -426,5 +429,6 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         out.notes.append(how)
     out.source = "calibrated"
     out.pipeline = pipeline
+    out.options = recorded_options(out.options, pipeline, edge_lock)  # decision W369: the count's pll_edge_lock
     log.info("calibrated %s: %s", pipeline, out.notes[-1])
     return out
