@@ -76,3 +76,16 @@ def test_the_line_concerns_waist_pll_calibrations_only():
     assert edge_lock_mismatch_line(WaistParams(), "waist-pll", "walk-end") is None  # the defaults: nothing counted
     pend = WaistParams(source="calibrated", pipeline="waist-pendulum", options=None)
     assert edge_lock_mismatch_line(pend, "waist-pll", "walk-end") is None
+
+
+def test_re_calibrating_from_an_unrecorded_params_json_says_nothing_while_it_counts(walk):
+    """W369: ``calibrate --params old.json`` (a waist-pll calibration from before session 35) counts with today's
+    default and records it, without telling the user to re-calibrate while they do."""
+    from pdrlearn.waist.calibration import calibrate
+    from pdrlearn.warning_lines import captured_warnings
+
+    old = dataclasses.replace(_calibrate(walk, "waist-pll"), options=None)
+    with captured_warnings() as lines:
+        again = calibrate([walk], "waist-pll", distances=[30.0], params=old)
+    assert not [w for w in lines if "decision W369" in w]
+    assert again.options == {"pll_edge_lock": "walk-end"}

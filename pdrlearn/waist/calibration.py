@@ -24,7 +24,7 @@ from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibil
     step_counts,
     steps_missed,
 )
-from pdrlearn.waist.pll_calibration import recorded_options
+from pdrlearn.waist.pll_calibration import calibrated_here, recorded_options
 from pdrlearn.waist.steplength import (
     CADENCE_LAW_STEADY,
     MIN_GAIN_STRIDES,
@@ -336,9 +336,13 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     if spans is not None and len(spans) not in (1, len(sessions)):
         raise DataError(f"calibrate: {len(spans)} --start/--end stretches for {len(sessions)} sessions; "
                         "give one per session or one for all")
-    from pdrlearn.track.waist import track_waist, without_heading_note
+    from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist, without_heading_note
 
     base, _ = resolve_params(sessions[0], params)
+    if calibrated_here(base, pipeline) and (base.options or {}).get("pll_edge_lock") is None:
+        # decision W369: re-calibrating from a PARAMS.json that records none counts with today's default, silently
+        base = dataclasses.replace(base, options=recorded_options(base.options, pipeline,
+                                                                  OPTION_DEFAULTS["pll_edge_lock"]))
     walks: list[CalibrationWalk] = []
     rates = []
     notes_gap: list[str] = []
