@@ -175,11 +175,13 @@ def machine_summary(summary: dict, logged: Iterable[str], where=None) -> dict:
     (:func:`merged_warnings`), ``info["warning_codes"]`` one :func:`warning_code` per line, and
     ``schema_version`` the summary's first key. ``track``, ``track-all`` and ``run`` finish their summaries here.
     A line whose code the summary held already (``info["warning_codes"]``, one per line) keeps it (decision E170:
-    :func:`coded` lines made plain text by the JSON round trip of :func:`~pdrlearn.track.evaluate.track_summary`)."""
+    :func:`coded` lines made plain text by the JSON round trip of :func:`~pdrlearn.track.evaluate.track_summary`),
+    also when lines were added after it (decision E171: ``track --per / --corridor / --splits`` append theirs)."""
     info = summary.setdefault("info", {})
     before, codes = info.get("warnings") or [], info.get("warning_codes") or []
-    # decision E170: a summary finished before (track_summary's, then JSON: plain text) keeps the codes it had
-    known = dict(zip(before, codes, strict=True)) if len(before) == len(codes) else {}
+    # decision E170: a summary finished before (track_summary's, then JSON: plain text) keeps the codes it had;
+    # E171: its codes are those of its first lines (a line added later is appended), keyed by their text
+    known = dict(zip(before[:len(codes)], codes, strict=True)) if len(codes) <= len(before) else {}
     info["warnings"] = merged_warnings(before, logged, where)
     info["warning_codes"] = [warning_code(w) if isinstance(w, CodedLine) else known.get(w) or warning_code(w)
                              for w in info["warnings"]]
