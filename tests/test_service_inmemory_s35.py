@@ -1,0 +1,37 @@
+"""Trial T7's findings on in-memory sessions and API errors in a service (decisions E181, B349, E182, B350)."""
+
+from __future__ import annotations
+
+import logging
+
+import pytest
+
+from pdrlearn import get_pipeline
+from pdrlearn.errors import DataError
+from pdrlearn.io import Session
+from pdrlearn.sim import simulate
+
+
+@pytest.fixture(scope="module")
+def walk():
+    return simulate("walk", 8581, length_m=10)
+
+
+def test_session_built_in_memory_takes_the_frames_its_meta_declares_e181(walk, caplog):
+    """T7 #2: ``Session(meta=...)`` ignored meta["frames"] and tracking inferred them with a warning naming a
+    meta.json the session does not have."""
+    declared = {k: v.to_dict() for k, v in walk.frames.items()}
+    up = Session(name="up", streams=walk.streams, meta={**walk.meta, "frames": declared})
+    assert up.frames == walk.frames
+    r = get_pipeline("plasys")(up)
+    assert not [w for w in r.info["warnings"] if "declares no axis frame" in w]
+    given = Session(name="given", streams=walk.streams, meta={"frames": {"foot": declared["waist"]}},
+                    frames={"foot": walk.frames["foot"]})
+    assert given.frames == {"foot": walk.frames["foot"]}  # frames= given wins
+    with pytest.raises(DataError, match=r"session 'bad', meta: \"frames\" must be an object"):
+        Session(name="bad", streams=walk.streams, meta={"frames": ["foot"]})
+    bare = Session(name="bare", streams={k: v for k, v in walk.streams.items() if k.startswith("f")})
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        bare.require_frame("foot")
+    line = next(r.getMessage() for r in caplog.records if "declares no axis frame" in r.getMessage())
+    assert "the Session's frames=" in line and "to meta.json" not in line
