@@ -35,3 +35,23 @@ def test_session_built_in_memory_takes_the_frames_its_meta_declares_e181(walk, c
         bare.require_frame("foot")
     line = next(r.getMessage() for r in caplog.records if "declares no axis frame" in r.getMessage())
     assert "the Session's frames=" in line and "to meta.json" not in line
+
+
+def test_import_csv_and_read_stream_given_a_file_object_say_so_in_one_line_b349(tmp_path):
+    """T7 #3: ``import_csv(io.BytesIO(...))`` / ``read_stream(io.StringIO(...))`` were a bare TypeError (read_session's
+    was one line)."""
+    import io
+
+    from pdrlearn.io import read_stream
+    from pdrlearn.io.importer import import_csv
+
+    for call, arg, caller in ((import_csv, io.BytesIO(b"t,ax\n0,1\n"), "import_csv"),
+                              (read_stream, io.StringIO("timestamp,x,y,z\n"), "read_stream")):
+        with pytest.raises(DataError) as info:
+            call(arg)
+        text = str(info.value)
+        assert text.startswith(f"{caller}(<_io.") and "\n" not in text
+        assert "a str or pathlib.Path (got " in text and "write it to a file first" in text and "B349" in text
+    with pytest.raises(DataError, match=r"import_csv\(42\): expected a CSV or MAT file, a str or pathlib.Path "
+                                        r"\(got int\)$"):
+        import_csv(42)
