@@ -55,3 +55,25 @@ def test_import_csv_and_read_stream_given_a_file_object_say_so_in_one_line_b349(
     with pytest.raises(DataError, match=r"import_csv\(42\): expected a CSV or MAT file, a str or pathlib.Path "
                                         r"\(got int\)$"):
         import_csv(42)
+
+
+def test_auto_pipeline_chooses_as_the_cli_and_plasys_names_the_waist_pipeline_e182(walk):
+    """T7 #5: ``get_pipeline("auto")`` was an unknown pipeline, and plasys on a waist-only session said "choose a
+    method that does not need it" (no plasys method does)."""
+    import dataclasses
+
+    from pdrlearn.errors import MissingSensorError
+    from pdrlearn.track.base import resolve_pipeline
+
+    waist = dataclasses.replace(walk, streams={k: v for k, v in walk.streams.items() if k.startswith("w")})
+    with pytest.raises(MissingSensorError, match=r"get_pipeline\('waist-pendulum'\)"):
+        get_pipeline("plasys")(waist)
+    auto = get_pipeline("auto")
+    assert auto(walk).info["pipeline"] == resolve_pipeline("auto", walk) == "plasys"
+    r = auto(waist)
+    assert r.info["pipeline"] == "waist-pendulum"
+    assert r.trajectory.equals(get_pipeline("waist-pendulum")(waist).trajectory)
+    no_acc = dataclasses.replace(walk, streams={k: v for k, v in walk.streams.items() if k != "fAccelerometer"})
+    r = auto(no_acc)  # decision B204's line, logged by the choice, kept with the result
+    assert r.info["pipeline"] == "waist-pendulum"
+    assert any(w.startswith("fAccelerometer.csv missing: foot unit ignored") for w in r.info["warnings"])
