@@ -170,6 +170,25 @@ class _Shared:
             self.filtered = []
 
 
+def keeps_warnings(fn):
+    """Decision B350: ``fn`` (returning a dict) run inside :func:`captured_warnings` (``echo=True``: the handlers
+    still print them), its result's ``"warnings"`` the lines logged (after any it holds, each once) and
+    ``"warning_codes"`` one :func:`warning_code` per line, as a track keeps its warnings in ``info``
+    (``evaluate_model``'s printed to stderr only). The signature is ``fn``'s (``functools.wraps``)."""
+    import functools
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        with captured_warnings(echo=True) as logged:
+            out = fn(*args, **kwargs)
+        if isinstance(out, dict):
+            out["warnings"] = merged_warnings(out.get("warnings") or [], logged)
+            out["warning_codes"] = [warning_code(w) for w in out["warnings"]]
+        return out
+
+    return wrapper
+
+
 def session_line(message: str, where: str | os.PathLike | Iterable[str] | None) -> str:
     """Decision E154: a logged line as results keep it: ``DIR: text`` -> ``text`` and ``DIR/file.csv: text`` ->
     ``file.csv: text`` for the session folder ``where`` (stderr names it, B34; the results name the session

@@ -77,3 +77,20 @@ def test_auto_pipeline_chooses_as_the_cli_and_plasys_names_the_waist_pipeline_e1
     r = auto(no_acc)  # decision B204's line, logged by the choice, kept with the result
     assert r.info["pipeline"] == "waist-pendulum"
     assert any(w.startswith("fAccelerometer.csv missing: foot unit ignored") for w in r.info["warnings"])
+
+
+def test_evaluate_model_keeps_its_warnings_with_codes_b350():
+    """T7 #6: ``evaluate_model`` printed its warnings (C64's absent classes) to stderr only; its result had no
+    ``warnings``, unlike a track's ``info["warnings"]``."""
+    from pdrlearn.classify import evaluate_model, train_user
+    from pdrlearn.classify.evaluation import absent_warning
+
+    model = train_user([simulate("terrain", user_seed=8583, seed=0)], tasks=["terrain"], methods=["svm"],
+                       units=["foot"], cv=3, distance_calibration=False)
+    out = evaluate_model(model, [simulate("walk", 8583, length_m=15)], latency=False)
+    absent = out["tasks"]["terrain"]["absent_classes"]
+    assert absent  # a level walk holds no stairs step
+    line = absent_warning("terrain", absent)
+    assert line in out["warnings"]
+    assert out["warning_codes"][out["warnings"].index(line)] == "C64"
+    assert len(out["warning_codes"]) == len(out["warnings"])
