@@ -25,7 +25,15 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.datetimes import dst_jump, dst_message, exact_seconds, localize, offset_text
 from pdrlearn.io.frames import AxisFrame, right_handed
 from pdrlearn.io.matfile import expand_columns, mat_arrays_text, mat_message, mat_version, read_mat_table
-from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, GRAVITY_FILE, TOTAL_ACC_FILE, _csv_dialect, read_table
+from pdrlearn.io.plasys import (
+    _TIME_ALIASES,
+    _TIME_SCALE,
+    GRAVITY_FILE,
+    TOTAL_ACC_FILE,
+    _csv_dialect,
+    path_arg,
+    read_table,
+)
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU, parse_value_unit
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
@@ -804,7 +812,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   subject: str | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
-    path = Path(path)
+    path = path_arg(path, "import_csv_parts" if split else "import_csv", "a CSV or MAT file")  # decision B349
     where = str(path)
     if retime_hz is not None:  # decision B186
         if not (isinstance(retime_hz, int | float) and math.isfinite(retime_hz) and 0 < retime_hz <= 10000):

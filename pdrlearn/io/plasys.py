@@ -375,6 +375,7 @@ def _sep_line(line: str) -> str | None:
 def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
                 check_unit: bool = True, value_scale: float = 1.0) -> Stream:
     """Read one sensor CSV into a :class:`Stream` (timestamps converted to seconds)."""
+    path = path_arg(path, "read_stream", "a sensor CSV file")  # decision B349
     name, arr = _read_raw(path, name)
     return _to_stream(path, name, arr, time_scale, check_unit, (value_scale, None))
 
@@ -1183,12 +1184,20 @@ def _not_labels(path: Path, table: pd.DataFrame, folder: Path) -> bool:
 def folder_arg(folder, caller: str) -> Path:
     """Decision B179: a session folder argument as a Path; anything but a str / os.PathLike (``read_session(42)``
     was a bare ``TypeError`` from pathlib) is one :class:`~pdrlearn.errors.NotASessionError` line."""
-    if not isinstance(folder, str | os.PathLike):
-        from pdrlearn.errors import NotASessionError
+    from pdrlearn.errors import NotASessionError
 
-        raise NotASessionError(f"{caller}({folder!r}): expected a session folder, a str or pathlib.Path "
-                               f"(got {type(folder).__name__})")
-    return Path(folder)
+    return path_arg(folder, caller, "a session folder", NotASessionError)
+
+
+def path_arg(path, caller: str, expected: str, error: type[DataError] = DataError) -> Path:
+    """Decisions B179, B349: a path argument as a Path; anything else is one ``error`` line naming ``caller``, what
+    it ``expected`` and, for a file object (an upload in memory: ``import_csv(io.BytesIO(...))`` was a bare
+    ``TypeError``), how to pass it."""
+    if isinstance(path, str | os.PathLike):
+        return Path(path)
+    fix = ("; write it to a file first (e.g. tempfile.NamedTemporaryFile) and pass that file's path, or build the "
+           "Session from arrays (decision B349)") if hasattr(path, "read") else ""
+    raise error(f"{caller}({path!r}): expected {expected}, a str or pathlib.Path (got {type(path).__name__}){fix}")
 
 
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
