@@ -120,8 +120,8 @@ def import_command(
     subject: str = typer.Option(None, "--subject", help="The subject's id, written to meta.json \"subject\" "
                                 "(sessions.csv and subjects.csv group by it; B345)."),
     encoding: str = typer.Option(None, "--encoding", help="The CSV's text encoding, e.g. cp1252 (German Excel's "
-                                 "plain 'CSV (Trennzeichen-getrennt)'; default utf-8, a BOM accepted), also of the --steps, --labels "
-                                 "and --add-gravity tables that are not UTF-8 (B344)."),
+                                 "plain 'CSV (Trennzeichen-getrennt)'; default utf-8, a BOM accepted), also of the "
+                                 "--steps, --labels and --add-gravity tables that are not UTF-8 (B344)."),
     name: str = typer.Option(None, "--name", help="Session name, written to meta.json (default: the --out "
                              "folder's name; with --merge the session's own)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
