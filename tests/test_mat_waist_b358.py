@@ -28,7 +28,8 @@ def test_mat_lower_back_in_g_gets_no_iphone_note_b358(tmp_path, capsys):
     a, g = walk["wAccelerometer"], walk["wGyroscope"]
     acc, gyr = a.values / G, np.degrees(g.values)
     lb = {"Acc": acc, "Gyr": gyr, "Fs": 100.0}
-    scipy.io.savemat(tmp_path / "data.mat", {"data": {"TimeMeasure1": {"Test11": {"Trial1": {"SU": {"LowerBack": lb}}}}}})
+    trial = {"Trial1": {"SU": {"LowerBack": lb}}}
+    scipy.io.savemat(tmp_path / "data.mat", {"data": {"TimeMeasure1": {"Test11": trial}}})
     cmd = ["--unit", "waist", "--acc-unit", "g", "--gyro-unit", "deg/s"]
     assert main(["import", str(tmp_path / "data.mat"), "--acc", f"{P}.Acc", "--gyro", f"{P}.Gyr", *cmd,
                  "--out", str(tmp_path / "m")]) == 0
