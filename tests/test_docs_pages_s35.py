@@ -41,3 +41,12 @@ def test_stair_heights_paragraph_has_its_anchor_command_and_the_readme_link():
 
 def test_readme_intro_has_no_line_count_history():
     assert "2993 to" not in (ROOT / "README.md").read_text(encoding="utf-8")
+
+
+def test_readme_sets_up_before_its_limits():
+    """NU #11: the walking range and what is not handled come after Workflow, in a Limits section."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    setup, workflow, limits = (readme.index(h) for h in ("## Set-up", "## Workflow", "## Limits\n"))
+    assert setup < workflow < limits < readme.index("## Results")
+    assert limits < readme.index("Not handled (named so a user knows)")
+    assert limits < readme.index("about 70-160 steps/min")
