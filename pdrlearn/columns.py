@@ -1110,8 +1110,9 @@ DETECTIONS: tuple[Column, ...] = (
 #: decision steps 59: `pdrlearn steps / score-steps --events-out`
 EVENTS: tuple[Column, ...] = (
     ("event", _ID, "text", "ic (initial contact) or tc (toe-off)"),
-    ("foot", _ID, "text", "left / right: the reference event's foot (ics.csv foot, meta.json foot of a foot unit), "
-                          "else the detection's; empty when unknown"),
+    ("foot", _ID, "text", "left / right: the reference event's foot (ics.csv foot; of a foot unit meta.json foot "
+                          "or instrumented_foot, else steps.csv's one foot, B357), else the detection's; empty when "
+                          "unknown"),
     ("detected_s", "s", "number", "the detection's time on the session's clock (with steps --time-origin export: "
                                   "the export's, as --out; steps 59); empty for a missed reference event"),
     ("reference_s", "s", "number", "the reference event's time on the session's clock (after --ref-offset; with "

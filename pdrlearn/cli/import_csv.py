@@ -528,12 +528,13 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
             + (f", {dups} rows repeating a timestamp dropped (--drop-duplicate-timestamps)" if dups else "")
             + (_retimed_text(record["retimed"][sensor]) if sensor in record.get("retimed", {}) else "")
             + (f", plus the gravity of {r['gravity_added']} (--add-gravity)" if r.get("gravity_added") else ""))
-        if r.get("gravity_added") and len(neg) < 3:  # decisions B166, B146: Core Motion's sign
+        iphone = "mat" not in record  # decision B358: a MAT file is no phone app's export: no iPhone note
+        if iphone and r.get("gravity_added") and len(neg) < 3:  # decisions B166, B146: Core Motion's sign
             fix = shell_quote("--acc=" + ",".join(f"-{c}" for c in r["columns"]))
             err(f"note: gravity added from {r['gravity_added']}: Sensor Logger on iOS (Core Motion) reports gravity "
                 "as -1 g and every turn comes out mirrored unless negated: if this is an iPhone's, import again with "
                 f"{fix} (decisions B146, B166)")
-        if sensor == "wAccelerometer" and r["unit"] == "g" and len(neg) < 3:  # decision B146
+        if iphone and sensor == "wAccelerometer" and r["unit"] == "g" and len(neg) < 3:  # decision B146
             fix = shell_quote("--acc=" + ",".join(f"-{c}" for c in r["columns"]))
             err(f"note: an accelerometer in g at the waist: if this is an iPhone (Core Motion) export, it reports "
                 f"gravity as -1 g and every turn comes out mirrored unless negated: import again with {fix} "

@@ -45,7 +45,10 @@ def simulate_cmd(
         "--route",
         # decision S56: the ramp item listed; the empty [i][/i] keeps rich from reading ':M:' as an emoji code
         help="Your own path instead of a scenario, e.g. 'straight:10, up:12, turn:180, down:12, "
-        "backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md). Ramps: 'slope:M[i][/i]:PCT' walks M metres "
+        "backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md). Stairs: "
+        "'up:N[i][/i][:RISE:RUN][:step-to-step]' and 'down:N[i][/i][:RISE:RUN][:step-to-step]' (N stairs, "
+        "default 0.17 m rise x 0.28 m run; step-to-step: both feet on each stair, one stair per stride; decision "
+        "S80). Ramps: 'slope:M[i][/i]:PCT' walks M metres "
         "(horizontal) on a ramp of PCT % (-30 to 30, < 0 downhill; 'slope:9:8.33' is a 1:12 ramp; S37). "
         "Rides without steps: 'lift:+9' / "
         "'lift:-9' (a lift, metres up / down), 'escalator:+6' (30 deg, 0.5 m/s, straight ahead; 1-60 m); "

@@ -238,7 +238,9 @@ SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times 
 STAIR_RISE_OPT = typer.Option(None, "--stair-rise", metavar="METRES", help="The stairs' rise (e.g. 0.17): "
                               "OUT/stairs.csv (one row per stair flight of a foot track) gets n_stairs = "
                               "round(|height| / METRES) and stairs_per_min; the count comes from the height because a "
-                              "stride holds 2 stairs step-over-step and 1 step-to-step (decision L432).")
+                              "stride holds 2 stairs step-over-step and 1 step-to-step (decision L432). A lower-back "
+                              "track has no stair flights: no stairs.csv, and one warning says the option is not "
+                              "used (L440).")
 
 
 def track(
@@ -844,6 +846,13 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         result.trajectory["z"] = result.trajectory["z"] + o["start_alt"]
     if o.get("stair_rise_m") is not None:  # decision L432: stairs.csv's n_stairs (clinical_tables reads it)
         result.info["stair_rise_m"] = o["stair_rise_m"]
+        import logging
+
+        from pdrlearn.track.stair_flights import lower_back_rise_line
+
+        line = lower_back_rise_line(result.steps)  # decision L440: said, not ignored silently
+        if line:
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
     tracked_session, whole = session, result  # decisions L275 / L277: the whole session's track
     if win is not None:  # decision L105: the whole session tracked, then the window's steps kept
         from pdrlearn.track.window import window_track
@@ -1082,7 +1091,9 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys"))
     from pdrlearn.track.geoexport import GEO_FILES
 
-    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, stairs.csv, "
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
+               # decision L440: no stairs.csv on the lower back
+               f"{'stairs.csv, ' if (out / 'stairs.csv').is_file() else ''}"
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
                f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"

@@ -967,7 +967,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             time_column = ROW_INDEX  # decision B323: a fixed-rate export (gaitmap / NilsPod style): rows at --rate
             t_source = "none"
     else:
-        t_source = "default order (--no-header, B336)" if time_column == headerless_time else "given"
+        # decision B336: the time column of --no-header's default order (NU #13: said as a phrase, not "... column")
+        t_source = "first in the default order (--no-header, B336)" if time_column == headerless_time else "given"
         if time_column not in header:
             raise DataError(f"{where}: no time column {time_column!r}; the file's columns are: {have}")
     if time_column in {c for v in columns.values() for c in v}:
@@ -1089,7 +1090,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         origin = origin_raw * scale + base  # decision B341: on the export's clock (s since the epoch for date-times)
         record: dict = {"file": path.name, "unit": unit,
                         "time": {"column": time_column, "unit": t_unit,
-                                 "source": t_how if time_column == ROW_INDEX else f"{t_source} column, unit {t_how}",
+                                 "source": t_how if time_column == ROW_INDEX else
+                                 f"{t_source}{' column' if t_source in ('given', 'guessed') else ''}, unit {t_how}",
                                  "origin_s": origin},
                         "streams": {}, "dropped_rows": {}}
         if skipped is not None:  # decision B66

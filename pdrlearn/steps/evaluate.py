@@ -529,8 +529,18 @@ def _table_feet(steps: pd.DataFrame, unit: str, session: Session) -> np.ndarray:
 
 
 def _unit_foot(session: Session, unit: str) -> str:
-    """A foot unit's side (meta.json ``foot``), else ""."""
-    return str(session.meta.get("foot") or "").lower() if unit == "foot" else ""
+    """A foot unit's side, else "": meta.json ``foot`` or ``instrumented_foot`` (the simulator's, decision L260's
+    keys), else the one side steps.csv's ``foot`` column names (decision B357)."""
+    if unit != "foot":
+        return ""
+    from pdrlearn.track.bilateral import SIDES, session_foot
+
+    side = session_foot(session.meta if isinstance(session.meta, dict) else {})
+    st = session.steps
+    if side is None and st is not None and "foot" in st:  # decision B357: the labelled strides' one foot
+        named = {str(v).strip().lower() for v in st["foot"].dropna()}
+        side = named.pop() if len(named) == 1 and named <= set(SIDES) else None
+    return side or ""
 
 
 def _toe_off_scores(steps: pd.DataFrame, session: Session, ref: Reference, tolerance_s: float

@@ -73,7 +73,8 @@ def clinical_tables(result, bouts) -> dict:
     sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk; with a TUG time its
     phases, ``tug_phases.csv``, decision W293; with a TUG trial, ``tug_trials.csv``, W325) and ``freezes.csv``
     (decision W213: the freeze index's episodes of the tracked unit), ``ramps.csv`` (decision L301), ``stairs.csv``
-    (decision L432: the stair flights of a foot track, ``n_stairs`` from ``info["stair_rise_m"]``) and, on the lower
+    (decision L432: the stair flights of a foot track, ``n_stairs`` from ``info["stair_rise_m"]``; none on the lower
+    back, L440) and, on the lower
     back with a barometer, ``rides.csv`` (decision L377)."""
     import pandas as pd
 
@@ -83,10 +84,12 @@ def clinical_tables(result, bouts) -> dict:
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+    from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.stair_flights import flight_table
 
-    # decision L432: a foot track's stair flights (header alone on the lower back); n_stairs with --stair-rise
-    out["stairs.csv"] = flight_table(result.steps, result.info.get("stair_rise_m"))
+    if not _is_lower_back(result.steps):  # decision L440: no stairs.csv on the lower back (no flights to list)
+        # decision L432: a foot track's stair flights; n_stairs with --stair-rise
+        out["stairs.csv"] = flight_table(result.steps, result.info.get("stair_rise_m"))
     from pdrlearn.track.travel import direction_change_table
 
     changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction

@@ -128,6 +128,19 @@ def flight_summary(steps: pd.DataFrame) -> dict:
     return {"n_flights_up": int((d == "up").sum()), "n_flights_down": int((d == "down").sum())}
 
 
+#: decision L440: what ``--stair-rise`` on a lower-back track says (once, as a warning), instead of ignoring it
+LOWER_BACK_RISE_LINE = ("--stair-rise is not used: a lower-back track has no stair flights (its steps carry no "
+                        "stride height), so no stairs.csv is written; stair flights need a foot unit (decision L440)")
+
+
+def lower_back_rise_line(steps: pd.DataFrame) -> str | None:
+    """Decision L440: :data:`LOWER_BACK_RISE_LINE` for a lower-back track's ``steps`` (``--stair-rise`` given), None
+    for a foot track."""
+    from pdrlearn.track.clinical import _is_lower_back
+
+    return LOWER_BACK_RISE_LINE if _is_lower_back(steps) else None
+
+
 def stair_rise(value: float | None) -> float | None:
     """Decision B348: ``track --stair-rise METRES`` checked once, before any session: None when not given, else a
     rise inside :data:`pdrlearn.sim.path.STAIR_RISE_RANGE_M` (one error line naming the option, the range and, for
