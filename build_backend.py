@@ -9,7 +9,7 @@ sdist's stamp. Outside a checkout (an sdist) the file is left as it is. Editable
 from __future__ import annotations
 
 import json
-import subprocess
+import sys
 from pathlib import Path
 
 from setuptools import build_meta as _setuptools
@@ -22,16 +22,15 @@ STAMP = ROOT / "pdrlearn" / "_build.json"
 def _stamp() -> None:
     if not (ROOT / ".git").exists():
         return
+    sys.path.insert(0, str(ROOT))  # the source tree's pdrlearn (buildinfo is standard library only)
     try:
-        def git(*args: str) -> str:
-            return subprocess.run(["git", "-C", str(ROOT), *args], capture_output=True, text=True, check=True,
-                                  timeout=10).stdout.strip()
+        from pdrlearn.buildinfo import git_state
 
-        stamp = {"git_commit": git("rev-parse", "HEAD"),
-                 "git_dirty": bool(git("status", "--porcelain", "--untracked-files=no"))}
-    except (OSError, subprocess.SubprocessError):
-        return
-    STAMP.write_text(json.dumps(stamp) + "\n")
+        commit, dirty = git_state()
+    finally:
+        sys.path.remove(str(ROOT))
+    if commit is not None:
+        STAMP.write_text(json.dumps({"git_commit": commit, "git_dirty": dirty}) + "\n")
 
 
 def build_sdist(sdist_directory, config_settings=None):

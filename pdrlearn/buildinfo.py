@@ -36,7 +36,9 @@ def built_state() -> tuple[str | None, bool | None]:
     import json
 
     try:
-        stamp = json.loads((Path(__file__).resolve().parent / "_build.json").read_text())
+        import pdrlearn
+
+        stamp = json.loads((Path(pdrlearn.__file__).resolve().parent / "_build.json").read_text())
         commit, dirty = stamp["git_commit"], stamp["git_dirty"]
     except (OSError, ValueError, KeyError, TypeError):
         return None, None
