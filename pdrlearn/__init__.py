@@ -51,9 +51,18 @@ def __getattr__(name: str):
     if name in _SUBMODULES or name in _ENTRY_POINTS:
         import importlib
 
+        try:
+            module = importlib.import_module(f"{__name__}.{name}" if name in _SUBMODULES else _ENTRY_POINTS[name])
+        except ModuleNotFoundError as exc:  # decision B354: a runtime-only install, one line naming the lean reader
+            from pdrlearn.install import lean_import_error
+
+            err = lean_import_error(name, exc)
+            if err is None:
+                raise
+            raise err from None
         if name in _SUBMODULES:
-            return importlib.import_module(f"{__name__}.{name}")
-        value = getattr(importlib.import_module(_ENTRY_POINTS[name]), name)
+            return module
+        value = getattr(module, name)
         globals()[name] = value  # the next access is a plain attribute
         return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

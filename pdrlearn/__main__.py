@@ -2,10 +2,7 @@
 
 import sys
 
-#: the packages of the full install that a runtime-only one (numpy [+ onnxruntime], decision E76) lacks and the
-#: ``pdrlearn`` commands import (pyproject's dependencies, by import name)
-FULL_INSTALL = frozenset({"typer", "click", "rich", "pandas", "scipy", "sklearn", "torch", "cv2", "matplotlib",
-                          "dtaidistance", "onnx", "skl2onnx", "dask", "distributed", "tabulate", "joblib"})
+from pdrlearn.install import FULL_INSTALL, INSTALL_EVERYTHING, missing_full_package  # noqa: F401 (B157)
 
 
 def console() -> int:
@@ -16,12 +13,12 @@ def console() -> int:
 
         return main()
     except ModuleNotFoundError as exc:
-        name = (exc.name or "").split(".")[0]
-        if name not in FULL_INSTALL:
+        name = missing_full_package(exc)
+        if name is None:
             raise
         print(f"error: the pdrlearn command needs {name}, which is not installed (a runtime-only install); replay a "
               "session through a bundle with `python -m pdrlearn.runtime BUNDLE SESSION`, or install everything: "
-              "pip install pdrlearn", file=sys.stderr)
+              f"{INSTALL_EVERYTHING}", file=sys.stderr)
         return 2
 
 

@@ -10,14 +10,15 @@ from pathlib import Path
 
 def git_state() -> tuple[str | None, bool | None]:
     """Decision L136: ``(commit, dirty)`` of the git checkout pdrlearn runs from (``dirty``: tracked files differ from
-    the commit); ``(None, None)`` for an installed copy, without git, or when git fails."""
+    the commit); for an installed copy the build's stamp (:func:`built_state`, decision E187); ``(None, None)``
+    without either, or when git fails."""
     import subprocess
 
     import pdrlearn
 
     repo = Path(pdrlearn.__file__).resolve().parent.parent
     if not (repo / ".git").exists():
-        return None, None
+        return built_state()
     try:
         def git(*args: str) -> str:
             return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True,
@@ -26,6 +27,24 @@ def git_state() -> tuple[str | None, bool | None]:
         return git("rev-parse", "HEAD"), bool(git("status", "--porcelain", "--untracked-files=no"))
     except (OSError, subprocess.SubprocessError):
         return None, None
+
+
+def built_state() -> tuple[str | None, bool | None]:
+    """Decision E187: ``(commit, dirty)`` that the build backend (build_backend.py) stamped into
+    ``pdrlearn/_build.json`` when the wheel or sdist was built from a checkout; ``(None, None)`` without a readable
+    stamp (a copy built without git)."""
+    import json
+
+    try:
+        import pdrlearn
+
+        stamp = json.loads((Path(pdrlearn.__file__).resolve().parent / "_build.json").read_text())
+        commit, dirty = stamp["git_commit"], stamp["git_dirty"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None, None
+    if not isinstance(commit, str) or not isinstance(dirty, bool):
+        return None, None
+    return commit, dirty
 
 
 def git_stamp() -> dict:

@@ -133,3 +133,24 @@ def test_numpy_alone_runs_the_non_onnx_methods_and_refuses_svm_in_one_line(tmp_p
                        capture_output=True, text=True, timeout=300, env=env)
     assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr[-2000:]
     assert r.stderr.startswith("error: ") and "pip install onnxruntime" in r.stderr
+
+
+def test_a_top_level_name_needing_the_full_install_is_one_line_naming_the_lean_reader_b354(tmp_path):
+    r = subprocess.run([sys.executable, "-c", "from pdrlearn import read_session"], capture_output=True, text=True,
+                       timeout=120, env=lean_env(tmp_path), cwd=tmp_path)
+    assert r.returncode == 1
+    last = r.stderr.strip().splitlines()[-1]
+    assert last.startswith("ModuleNotFoundError: pdrlearn.read_session needs pandas"), r.stderr
+    assert "python -m pdrlearn.runtime BUNDLE SESSION" in last and "pdrlearn.runtime.replay.read_streams" in last
+    assert "pandas/" not in r.stderr and "During handling" not in r.stderr  # no chained traceback of the import
+    r = subprocess.run([sys.executable, "-c", "import pdrlearn, pdrlearn.runtime.replay; pdrlearn.io"],
+                       capture_output=True, text=True, timeout=120, env=lean_env(tmp_path), cwd=tmp_path)
+    assert "ModuleNotFoundError: pdrlearn.io needs pandas" in r.stderr  # a subpackage as attribute likewise
+
+
+def test_the_install_advice_names_the_wheel_or_clone_not_pypi_e185(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "pdrlearn", "--version"], capture_output=True, text=True,
+                       timeout=120, env=lean_env(tmp_path), cwd=tmp_path)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert "pip install PATH/pdrlearn-*.whl" in r.stderr and "not on PyPI" in r.stderr
+    assert "pip install pdrlearn" not in r.stderr

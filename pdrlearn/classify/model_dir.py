@@ -23,6 +23,7 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
+import warnings
 from pathlib import Path
 
 from pdrlearn.atomic import atomic_directory
@@ -235,18 +236,23 @@ def manifest_type_problem(manifest: dict) -> str | None:
 VERSIONED = {"scikit-learn": "scikit-learn", "torch": "torch", "numpy": "numpy"}
 
 
-def version_warning(path, manifest: dict) -> str | None:
-    """Decision B211 (B137's line for bundles, for model directories): one line when the model was trained by another
-    pdrlearn version or with other library versions than this Python's (``package_version``, ``versions``). It still
-    loads (the schema version is the contract, checked by :func:`read_manifest`)."""
+def release(version: str) -> str:
+    """Decision B355: a version without its PEP 440 local label (``2.13.0+cpu`` -> ``2.13.0``): the same release
+    built for another platform (PyPI's torch on Python 3.13 reports the label, ``importlib.metadata`` may not)."""
+    return str(version).split("+", 1)[0]
+
+
+def version_differences(manifest: dict) -> dict[str, str]:
+    """Decision B211: ``{name: "their version (this is ours)"}`` for pdrlearn and each library of
+    :data:`VERSIONED` whose release differs from this Python's (local labels ignored, B355)."""
     from importlib.metadata import PackageNotFoundError, version
 
     from pdrlearn import __version__
 
-    differ = []
+    differ = {}
     theirs = manifest.get("package_version")
     if theirs is not None and str(theirs) != __version__:
-        differ.append(f"pdrlearn {theirs} (this is {__version__})")
+        differ["pdrlearn"] = f"{theirs} (this is {__version__})"
     libs = manifest.get("versions")
     for name, v in (libs.items() if isinstance(libs, dict) else ()):
         if name not in VERSIONED or v is None:
@@ -255,12 +261,20 @@ def version_warning(path, manifest: dict) -> str | None:
             here = version(VERSIONED[name])
         except PackageNotFoundError:
             here = "not installed"
-        if str(v) != here:
-            differ.append(f"{name} {v} (this is {here})")
+        if release(v) != release(here):
+            differ[name] = f"{v} (this is {here})"
+    return differ
+
+
+def version_warning(path, manifest: dict) -> str | None:
+    """Decision B211 (B137's line for bundles, for model directories): one line when the model was trained by another
+    pdrlearn version or with other library versions than this Python's (``package_version``, ``versions``). It still
+    loads (the schema version is the contract, checked by :func:`read_manifest`)."""
+    differ = version_differences(manifest)
     if not differ:
         return None
-    return (f"model {path}: trained with {', '.join(differ)}; it loads (same schema version "
-            f"{manifest.get('schema_version')}), but retrain it with these versions if its classes look wrong")
+    return (f"model {path}: trained with {', '.join(f'{n} {d}' for n, d in differ.items())}; it loads (same schema "
+            f"version {manifest.get('schema_version')}), but retrain it with these versions if its classes look wrong")
 
 
 def verify_model_dir(path) -> dict:
@@ -295,10 +309,17 @@ def load_model(path):
     if line:  # decision B211
         log.warning(line)
     models: dict[str, object] = {}
+    # decision B355: scikit-learn's own InconsistentVersionWarning (a block per estimator) repeats the line above
+    sklearn_warned = "scikit-learn" in version_differences(manifest)
     for rel in manifest["files"]:
         f = path / rel
         try:
-            models[rel] = joblib.load(f)
+            with warnings.catch_warnings():
+                if sklearn_warned:
+                    from sklearn.exceptions import InconsistentVersionWarning
+
+                    warnings.filterwarnings("ignore", category=InconsistentVersionWarning)
+                models[rel] = joblib.load(f)
         except (ModuleNotFoundError, AttributeError) as exc:  # decision B173: a class the pickle names is missing
             raise ModelError(
                 f"{f}: cannot be loaded ({type(exc).__name__}: {exc}): the model holds a class this Python cannot "

@@ -285,8 +285,10 @@ def export_model(
     ----------
     model_dir : folder written by ``pdrlearn train`` (read with ``load_model``); or pass ``model``.
     out_dir : bundle folder to create (atomically).
-    methods : methods to export for every task (all their units); default: each task's chosen
-        method/unit only (the smallest bundle that classifies like ``UserModel.predict_steps``), and, when
+    methods : methods to export for every task (all their units; the bundle's ``chosen`` is the model's
+        chosen one when exported, else the best-ranked exported one, in any order given: decision E183);
+        default: each task's chosen method/unit only (the smallest bundle that classifies like
+        ``UserModel.predict_steps``), and, when
         that reads the waist, the foot model ``predict_steps`` uses on a session without the waist unit
         (``tasks[task]["foot_only"]``, decision E26; with ``methods``: the best-ranked of those methods; it
         classifies on the per-model path: a step graph of it saved no instructions).
@@ -377,11 +379,12 @@ def export_model(
         if not entries:
             skipped.append(f"{task}: nothing exportable")
             continue
-        exp_chosen = (
-            {"method": chosen[0], "unit": chosen[1]}
-            if chosen and chosen[1] in entries.get(chosen[0], {})
-            else {"method": next(iter(entries)), "unit": next(iter(next(iter(entries.values()))))}
-        )
+        if not (chosen and chosen[1] in entries.get(chosen[0], {})):
+            # decision E183: the chosen model left out, the best-ranked exported one as training chooses
+            # (decisions C8, C23, E26), whatever order --methods lists them in
+            chosen = best_pair([p for p in tm.ranking() if p[1] in entries.get(p[0], {})]) or next(
+                (m, u) for m, per in entries.items() for u in per)
+        exp_chosen = {"method": chosen[0], "unit": chosen[1]}
         for per in entries.values():
             for u, e in per.items():
                 used_units |= _units_of(e, u)

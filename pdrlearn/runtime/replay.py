@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
+from pdrlearn.install import INSTALL_EVERYTHING
 from pdrlearn.textfile import duplicate_message, gzip_hint, header_names, read_text
 
 log = logging.getLogger(__name__)
@@ -35,7 +36,7 @@ CHUNK_TOLERANCE = 1e-9
 TIME_SCALES = {"ms": 1e-3, "s": 1.0, "us": 1e-6, "ns": 1e-9}
 
 #: what a refusal of the lean reader suggests (decision E76)
-FULL_READER = "replay it with the full install's `pdrlearn run` (pip install pdrlearn), which reads and repairs more"
+FULL_READER = f"replay it with the full install's `pdrlearn run` ({INSTALL_EVERYTHING}), which reads and repairs more"
 
 
 def replay_chunks(streams: dict, chunk_s: float):

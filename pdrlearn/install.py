@@ -1,0 +1,36 @@
+"""What a runtime-only install lacks, and how to install the rest (decisions B157, E185, B354).
+
+Standard library only: ``import pdrlearn``, the ``pdrlearn`` script and the lean runtime read it in a venv with
+numpy alone.
+"""
+
+#: the packages of the full install that a runtime-only one (numpy [+ onnxruntime], decision E76) lacks and the
+#: ``pdrlearn`` commands import (pyproject's dependencies, by import name)
+FULL_INSTALL = frozenset({"typer", "click", "rich", "pandas", "scipy", "sklearn", "torch", "cv2", "matplotlib",
+                          "dtaidistance", "onnx", "skl2onnx", "dask", "distributed", "tabulate", "joblib"})
+
+#: decision E185: the distribution name is not on PyPI (trial T5: `pip index versions pdrlearn` found nothing, and
+#: a later package of that name would be someone else's), so the advice names the wheel or the clone
+INSTALL_EVERYTHING = ("pip install PATH/pdrlearn-*.whl (the wheel) or pip install PATH/TO/CLONE "
+                      "(pdrlearn is not on PyPI)")
+
+#: decision B354: where a runtime-only install reads and replays a session
+LEAN_ROUTE = ("python -m pdrlearn.runtime BUNDLE SESSION, or in Python pdrlearn.runtime.load_bundle and "
+              "pdrlearn.runtime.replay.read_streams")
+
+
+def missing_full_package(exc: ModuleNotFoundError) -> str | None:
+    """The package of :data:`FULL_INSTALL` whose absence raised ``exc``; None for any other missing module."""
+    name = (exc.name or "").split(".")[0]
+    return name if name in FULL_INSTALL else None
+
+
+def lean_import_error(what: str, exc: ModuleNotFoundError) -> ModuleNotFoundError | None:
+    """Decision B354: the one-line error of ``pdrlearn.<what>`` in a runtime-only install (``exc`` a missing
+    package of the full install), naming the lean reader; None when ``exc`` is some other missing module."""
+    name = missing_full_package(exc)
+    if name is None:
+        return None
+    return ModuleNotFoundError(f"pdrlearn.{what} needs {name}, which is not installed (a runtime-only install); "
+                               f"read and replay a session there with {LEAN_ROUTE}; or install everything: "
+                               f"{INSTALL_EVERYTHING}", name=exc.name)
