@@ -133,4 +133,5 @@ def rewrite_folder(folder: Path, rewrite, recursive: bool = True) -> list[Path]:
     return changed
 
 
-__all__ = ["REDACTED", "PATH_FIELDS", "RUN_FIELDS", "path_forms", "redact_text", "redact_json", "redact_folder", "rewrite_folder"]
+__all__ = ["REDACTED", "PATH_FIELDS", "RUN_FIELDS", "path_forms", "redact_text", "redact_json", "redact_folder",
+           "rewrite_folder"]
