@@ -87,13 +87,15 @@ def landing_cuts(dz, length, ratio: float) -> list[int]:
     return cuts
 
 
-def flight_strides(st: pd.DataFrame, min_strides: int = MIN_FLIGHT_STRIDES) -> int:
+def flight_strides(st: pd.DataFrame, min_strides: int | None = None) -> int:
     """Decision L434 (L438): the stair strides (L179's rows, as ``n_stair_strides`` counts them) of the rows ``st``
-    (one bout, in walking order) that belong to a flight of at least ``min_strides``; 0: no flight."""
+    (one bout, in walking order) that belong to a flight of at least ``min_strides`` (None:
+    :data:`MIN_FLIGHT_STRIDES`); 0: no flight."""
     from pdrlearn.track.gait import stair_rows, stride_rows
 
     dz = pd.to_numeric(st["dz_m"], errors="coerce").to_numpy(float) if "dz_m" in st else np.zeros(len(st))
-    found = flight_runs(dz, stair_rows(st) & stride_rows(st), [(0, len(st))], min_strides=min_strides)
+    found = flight_runs(dz, stair_rows(st) & stride_rows(st), [(0, len(st))],
+                        min_strides=MIN_FLIGHT_STRIDES if min_strides is None else min_strides)
     return int(sum(b - a for a, b, _ in found))
 
 
