@@ -241,6 +241,16 @@ STAIR_RISE_OPT = typer.Option(None, "--stair-rise", metavar="METRES", help="The 
                               "stride holds 2 stairs step-over-step and 1 step-to-step (decision L432).")
 
 
+def flights_line(summary: dict) -> str | None:
+    """Decision L432: the printed line of a foot track's stair flights (``track`` and ``run``), None without one."""
+    if not (summary.get("n_flights_up") or summary.get("n_flights_down")):
+        return None
+    return (f"stair flights {summary['n_flights_up']} up / {summary['n_flights_down']} down "
+            f"({summary.get('n_stair_strides_up', 0)} / {summary.get('n_stair_strides_down', 0)} stair "
+            "strides; stairs.csv" + ("" if (summary.get("info") or {}).get("stair_rise_m") else
+                                     ", n_stairs with --stair-rise METRES") + ")")
+
+
 def track(
     session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
     out: Path = typer.Option(..., "--out", "-o", help="Output folder (created; an existing track only with --force)."),
@@ -1069,11 +1079,9 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         from pdrlearn.track.splits import splits_line
 
         typer.echo(splits_line(summary))
-    if summary.get("n_flights_up") or summary.get("n_flights_down"):  # decision L432: the stair flights
-        typer.echo(f"stair flights {summary['n_flights_up']} up / {summary['n_flights_down']} down "
-                   f"({summary.get('n_stair_strides_up', 0)} / {summary.get('n_stair_strides_down', 0)} stair "
-                   "strides; stairs.csv" + ("" if (summary.get("info") or {}).get("stair_rise_m") else
-                                            ", n_stairs with --stair-rise METRES") + ")")
+    flights = flights_line(summary)  # decision L432: the stair flights
+    if flights:
+        typer.echo(flights)
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
