@@ -342,7 +342,7 @@ def track(
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
 
-        pdrlearn track out/sim/D_u1 --stair-rise 0.181 --out out/D_stairs   # OUT/stairs.csv: flights, n_stairs
+        pdrlearn track out/sim/D_u1 --stair-rise 0.181 --out out/D_stairs   # stairs.csv: 1 flight (D's turns climb)
 
         pdrlearn track out/sim/A_u1 --steady-trim 3 --out out/A_steady   # each bout's first / last 3 strides out
 

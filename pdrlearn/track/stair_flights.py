@@ -3,7 +3,9 @@
 A flight is a run of consecutive stair strides of one direction: rows that L179 counts as stair strides
 (:func:`pdrlearn.track.gait.stair_rows`, |``dz_m``| >= 0.10 m) whose height changes have one sign, inside one
 walking bout (L104's bouts, :func:`pdrlearn.track.clinical.bout_rows`: a pause of a second or more, or a data gap,
-ends a flight). A level stride ends it: a landing, and a turn on a landing, whose strides are level. Unlike L127's
+ends a flight), of at least :data:`MIN_FLIGHT_STRIDES` strides (L438: one drifting stride is no flight). A level
+stride ends it: a landing, and a turn on a landing whose strides are level (a landing turn whose strides climb, as
+scenario D's, stays in the flight). Unlike L127's
 storey climbs (:func:`pdrlearn.track.evaluate.floor_climbs`), which bridge a landing to count a storey, a flight is
 never bridged. A winding stair's turning stair strides stay one flight.
 
