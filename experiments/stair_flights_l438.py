@@ -20,6 +20,7 @@ from pathlib import Path
 import pandas as pd
 
 import pdrlearn.track.stair_flights as sf
+from experiments.stair_flights_l433 import tracked_steps
 from pdrlearn.cli import main
 from pdrlearn.track.clinical import bout_rows
 from pdrlearn.track.gait import stair_rows, stride_rows
@@ -72,12 +73,7 @@ def simulated(out: Path, users: list[int]) -> None:
     for name, (route, rise, truth) in ROUTES.items():
         res = {m: [0, 0] for m in SETTINGS}
         for u in users:
-            sim, trk = out / f"{name}_u{u}", out / f"{name}_u{u}_track"
-            if not sim.exists():
-                assert quiet(["simulate", "--route", route, "-u", str(u), "-o", str(sim)]) == 0
-            if not trk.exists():
-                quiet(["track", str(sim), "--out", str(trk)])
-            steps = pd.read_csv(trk / "steps.csv")
+            steps = tracked_steps(out, name, route, u)
             for m in SETTINGS:
                 got = [s for s, _ in flights(steps, rise, m)]
                 res[m][0] += got == truth
