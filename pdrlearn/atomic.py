@@ -58,10 +58,27 @@ class OutputChangedError(PdrlearnError):
 
 
 def _umask() -> int:
-    """The process's umask (read by setting and restoring it)."""
+    """The process's umask. Decision E180: read from ``/proc/self/status``'s ``Umask:`` line (Linux 4.7+), which
+    changes nothing; elsewhere by setting and restoring it (``os.umask`` is the only call and it is process-wide:
+    a file another thread creates in between gets 0o022's mode)."""
+    mask = _proc_umask()
+    if mask is not None:
+        return mask
     mask = os.umask(0o022)
     os.umask(mask)
     return mask
+
+
+def _proc_umask(status: str | os.PathLike = "/proc/self/status") -> int | None:
+    """Decision E180: the ``Umask:`` field (octal) of ``status``; None when the file or the field is absent."""
+    try:
+        with open(status, encoding="ascii", errors="replace") as f:
+            for line in f:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
 
 
 def fingerprint(folder: str | os.PathLike) -> frozenset:

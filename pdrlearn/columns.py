@@ -1112,9 +1112,10 @@ EVENTS: tuple[Column, ...] = (
     ("event", _ID, "text", "ic (initial contact) or tc (toe-off)"),
     ("foot", _ID, "text", "left / right: the reference event's foot (ics.csv foot, meta.json foot of a foot unit), "
                           "else the detection's; empty when unknown"),
-    ("detected_s", "s", "number", "the detection's time on the session's clock; empty for a missed reference event"),
-    ("reference_s", "s", "number", "the reference event's time on the session's clock (after --ref-offset); empty "
-                                   "for a false positive"),
+    ("detected_s", "s", "number", "the detection's time on the session's clock (with steps --time-origin export: "
+                                  "the export's, as --out; steps 59); empty for a missed reference event"),
+    ("reference_s", "s", "number", "the reference event's time on the session's clock (after --ref-offset; with "
+                                   "--time-origin export: the export's); empty for a false positive"),
     ("error_s", "s", "number", "detected_s - reference_s (positive: the detection is late); matched pairs only"),
     ("match", _ID, "text", "matched (within the tolerance, one-to-one, closest first), false_positive (a scored "
                            "detection matching nothing) or missed (a reference event no detection matches)"),

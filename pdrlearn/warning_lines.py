@@ -13,9 +13,11 @@ records, :func:`session_line` and :func:`merged_warnings`; other lines are still
 
 from __future__ import annotations
 
+import contextvars
 import logging
 import os
 import re
+import threading
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 
@@ -64,43 +66,127 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
     ``echo=True``: the handlers print them too (``evaluate`` keeps its printed warnings in its JSON, B95;
     decision E154: ``read_session``, every pipeline, ``track`` and ``run`` keep theirs in their results). A logger
     silenced by its level (``setLevel(logging.ERROR)``, the README's way) still gives the collected list its warnings
-    (E154), and its handlers and their ancestors' still print none of them."""
-    log_ = logging.getLogger(logger)
+    (E154), and its handlers and their ancestors' still print none of them.
+
+    Decision E179: only the records raised in the caller's own context are collected (a ``contextvars`` context:
+    its thread, or its asyncio task), so that pipelines running at once in threads do not get each other's
+    warnings; the level lowered and the handler filters added for a silenced logger are shared by every capture
+    running at once (:class:`_Shared`) and judge each record by the context that raised it, so that one thread's
+    capture neither hides another thread's warnings from the handlers nor lets a silenced logger's through."""
     messages: list[str] = []
-
-    class _Collect(logging.Handler):
-        def emit(self, record: logging.LogRecord) -> None:
-            messages.append(_with_code(record.getMessage(), record_code(record)))  # E170: with its code
-
-    def below_warning(record: logging.LogRecord) -> bool:
-        return record.levelno < logging.WARNING
-
-    cut = log_.getEffectiveLevel()  # E154: what the caller lets through; a record below it is collected only
-
-    def let_through(record: logging.LogRecord) -> bool:  # E154 amended (R2): other loggers' records pass untouched
-        ours = record.name == logger or record.name.startswith(logger + ".")
-        return not ours or record.levelno >= cut or record.levelno < logging.WARNING
-
-    filtered = [(h, below_warning) for h in ([] if echo else log_.handlers)]
-    old_level = log_.level
-    if cut > logging.WARNING:
-        node: logging.Logger | None = log_
-        while node is not None:  # the handlers the records propagate to
-            filtered += [(h, let_through) for h in node.handlers]
-            node = node.parent if node.propagate else None
-        log_.setLevel(logging.WARNING)
-    for h, f in filtered:
-        h.addFilter(f)
-    collect = _Collect(logging.WARNING)
-    log_.addHandler(collect)
+    collector = (messages, echo)
+    shared = _shared(logger)
+    token = _ACTIVE.set((*_ACTIVE.get(), (shared, collector)))
+    shared.enter()
     try:
         yield messages
     finally:
-        log_.removeHandler(collect)
-        if cut > logging.WARNING:
-            log_.setLevel(old_level)
-        for h, f in filtered:
-            h.removeFilter(f)
+        shared.leave()
+        _ACTIVE.reset(token)
+
+
+#: decision E179: the captures of this context (thread / asyncio task), innermost last: (shared state, collector)
+_ACTIVE: contextvars.ContextVar[tuple] = contextvars.ContextVar("pdrlearn_captures", default=())
+_SHARED: dict[str, _Shared] = {}
+_SHARED_LOCK = threading.Lock()
+
+
+def _shared(logger: str) -> _Shared:
+    with _SHARED_LOCK:
+        if logger not in _SHARED:
+            _SHARED[logger] = _Shared(logger)
+        return _SHARED[logger]
+
+
+class _Shared:
+    """Decision E179: the process-wide part of :func:`captured_warnings` for one logger, set up by the first capture
+    running and taken down by the last: one collecting handler on the logger (it hands a record to the captures of
+    the context that raised it), the logger's level lowered to WARNING when the caller silenced it (restored
+    unless changed meanwhile) and one filter on the handlers the records reach (it drops a silenced logger's
+    record below the caller's level, and, on the logger's own handlers, a record raised inside a capture without
+    ``echo``). A record raised in a context without a capture passes as if no capture ran."""
+
+    def __init__(self, logger: str):
+        self.name = logger
+        self.log = logging.getLogger(logger)
+        self.lock = threading.Lock()
+        self.count = 0
+        self.cut = logging.NOTSET
+        self.lowered = False
+        self.old_level = logging.NOTSET
+        self.filtered: list[tuple[logging.Handler, logging.Filter]] = []
+        shared = self
+
+        class _Collect(logging.Handler):
+            def emit(self, record: logging.LogRecord) -> None:
+                line = _with_code(record.getMessage(), record_code(record))  # E170: with its code
+                for owner, (messages, _echo) in _ACTIVE.get():
+                    if owner is shared:
+                        messages.append(line)
+
+        self.collect = _Collect(logging.WARNING)
+
+    def ours(self, record: logging.LogRecord) -> bool:
+        return record.name == self.name or record.name.startswith(self.name + ".")
+
+    def let_through(self, record: logging.LogRecord) -> bool:  # E154 amended (R2): other loggers' records pass
+        return not self.ours(record) or record.levelno < logging.WARNING or record.levelno >= self.cut
+
+    def own_handlers(self, record: logging.LogRecord) -> bool:  # without echo, the capture's records are its own
+        if record.levelno < logging.WARNING or not self.ours(record):
+            return True
+        silent = any(owner is self and not echo for owner, (_m, echo) in _ACTIVE.get())
+        return not silent and self.let_through(record)
+
+    def enter(self) -> None:
+        with self.lock:
+            self.count += 1
+            if self.count > 1:
+                return
+            self.cut = self.log.getEffectiveLevel()  # E154: what the caller lets through
+            self.filtered = [(h, self.own_handlers) for h in self.log.handlers]
+            self.lowered = self.cut > logging.WARNING
+            if self.lowered:
+                node = self.log.parent if self.log.propagate else None
+                while node is not None:  # the handlers the records propagate to
+                    self.filtered += [(h, self.let_through) for h in node.handlers]
+                    node = node.parent if node.propagate else None
+                self.old_level = self.log.level
+                self.log.setLevel(logging.WARNING)
+            for h, f in self.filtered:
+                h.addFilter(f)
+            self.log.addHandler(self.collect)
+
+    def leave(self) -> None:
+        with self.lock:
+            self.count -= 1
+            if self.count > 0:
+                return
+            self.log.removeHandler(self.collect)
+            if self.lowered and self.log.level == logging.WARNING:  # not if the caller set another level meanwhile
+                self.log.setLevel(self.old_level)
+            for h, f in self.filtered:
+                h.removeFilter(f)
+            self.filtered = []
+
+
+def keeps_warnings(fn):
+    """Decision B350: ``fn`` (returning a dict) run inside :func:`captured_warnings` (``echo=True``: the handlers
+    still print them), its result's ``"warnings"`` the lines logged (after any it holds, each once) and
+    ``"warning_codes"`` one :func:`warning_code` per line, as a track keeps its warnings in ``info``
+    (``evaluate_model``'s printed to stderr only). The signature is ``fn``'s (``functools.wraps``)."""
+    import functools
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        with captured_warnings(echo=True) as logged:
+            out = fn(*args, **kwargs)
+        if isinstance(out, dict):
+            out["warnings"] = merged_warnings(out.get("warnings") or [], logged)
+            out["warning_codes"] = [warning_code(w) for w in out["warnings"]]
+        return out
+
+    return wrapper
 
 
 def session_line(message: str, where: str | os.PathLike | Iterable[str] | None) -> str:
@@ -175,11 +261,13 @@ def machine_summary(summary: dict, logged: Iterable[str], where=None) -> dict:
     (:func:`merged_warnings`), ``info["warning_codes"]`` one :func:`warning_code` per line, and
     ``schema_version`` the summary's first key. ``track``, ``track-all`` and ``run`` finish their summaries here.
     A line whose code the summary held already (``info["warning_codes"]``, one per line) keeps it (decision E170:
-    :func:`coded` lines made plain text by the JSON round trip of :func:`~pdrlearn.track.evaluate.track_summary`)."""
+    :func:`coded` lines made plain text by the JSON round trip of :func:`~pdrlearn.track.evaluate.track_summary`),
+    also when lines were added after it (decision E171: ``track --per / --corridor / --splits`` append theirs)."""
     info = summary.setdefault("info", {})
     before, codes = info.get("warnings") or [], info.get("warning_codes") or []
-    # decision E170: a summary finished before (track_summary's, then JSON: plain text) keeps the codes it had
-    known = dict(zip(before, codes, strict=True)) if len(before) == len(codes) else {}
+    # decision E170: a summary finished before (track_summary's, then JSON: plain text) keeps the codes it had;
+    # E171: its codes are those of its first lines (a line added later is appended), keyed by their text
+    known = dict(zip(before[:len(codes)], codes, strict=True)) if len(codes) <= len(before) else {}
     info["warnings"] = merged_warnings(before, logged, where)
     info["warning_codes"] = [warning_code(w) if isinstance(w, CodedLine) else known.get(w) or warning_code(w)
                              for w in info["warnings"]]

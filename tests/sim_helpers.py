@@ -32,3 +32,34 @@ def straight_walk(root, uid: int, metres: float = 40.0):
                       rate_hz=100, seed=uid, bounce="pendulum", name=f"u{uid}")
     write_session(s, root / f"u{uid}")
     return root
+
+
+def quiet_walk(route: str, uid: int, seed: int, rate_hz: float = 100.0):
+    """A simulated ``route`` (``"straight:12"``) of user ``uid`` at ``rate_hz``, its warnings silenced (the import
+    tests' module fixtures; review R2, session 35)."""
+    import logging
+
+    from pdrlearn.sim import UserProfile
+    from pdrlearn.sim.route import parse_route
+
+    logging.disable(logging.WARNING)
+    try:
+        return simulate_path(parse_route(route), UserProfile.from_seed(uid), rate_hz=rate_hz, seed=seed,
+                             scenario="route")
+    finally:
+        logging.disable(logging.NOTSET)
+
+
+def lab_columns(walk, origin_s: float = 0.0, *, time="time_s", acc="acc_{}", gyr="gyr_{}", g_units: bool = False):
+    """The foot unit of ``walk`` as a lab export's table: ``time`` (s from ``origin_s``), three ``acc`` and three
+    ``gyr`` columns (``{}`` is x, y, z), in m/s^2 and rad/s or, ``g_units``, in g and deg/s (review R2, session 35)."""
+    import pandas as pd
+
+    a, g = walk["fAccelerometer"], walk["fGyroscope"]
+    av, gv = (a.values / 9.80665, np.degrees(g.values)) if g_units else (a.values, g.values)
+    df = pd.DataFrame({time: a.t - a.t[0] + origin_s})
+    for k, c in enumerate("xyz"):
+        df[acc.format(c)] = av[:, k]
+    for k, c in enumerate("xyz"):
+        df[gyr.format(c)] = gv[:, k]
+    return df

@@ -7,7 +7,6 @@ instead of losing its first row, and read with it; a timetable's ``0.01 sec`` ro
 from __future__ import annotations
 
 import json
-import logging
 
 import numpy as np
 import pandas as pd
@@ -19,20 +18,14 @@ from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
 from pdrlearn.io.importer import duration_text, import_csv
 from pdrlearn.io.plasys import read_table
-from pdrlearn.sim import UserProfile, simulate_path
-from pdrlearn.sim.route import parse_route
+from tests.sim_helpers import quiet_walk
 
 G = 9.80665
 
 
 @pytest.fixture(scope="module")
 def walk():
-    logging.disable(logging.WARNING)
-    try:
-        return simulate_path(parse_route("straight:12"), UserProfile.from_seed(8420), rate_hz=100.0, seed=3,
-                             scenario="route")
-    finally:
-        logging.disable(logging.NOTSET)
+    return quiet_walk("straight:12", 8420, seed=3)
 
 
 def _lab(walk):

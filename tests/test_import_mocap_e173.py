@@ -4,7 +4,6 @@ foot reference the G2 way at ``import --steps``, and ``steps --out`` can write i
 from __future__ import annotations
 
 import json
-import logging
 
 import numpy as np
 import pandas as pd
@@ -13,8 +12,7 @@ import pytest
 from pdrlearn.cli import main
 from pdrlearn.io import read_session
 from pdrlearn.io.ic_reference import ic_strides
-from pdrlearn.sim import UserProfile, simulate_path
-from pdrlearn.sim.route import parse_route
+from tests.sim_helpers import lab_columns, quiet_walk
 
 G = 9.80665
 ORIGIN_S = 12.345  # the export's clock at its first sample (the trial's real_left_t0)
@@ -22,24 +20,13 @@ ORIGIN_S = 12.345  # the export's clock at its first sample (the trial's real_le
 
 @pytest.fixture(scope="module")
 def walk():
-    logging.disable(logging.WARNING)
-    try:
-        return simulate_path(parse_route("straight:15"), UserProfile.from_seed(8421), rate_hz=100.0, seed=2,
-                             scenario="route")
-    finally:
-        logging.disable(logging.NOTSET)
+    return quiet_walk("straight:15", 8421, seed=2)
 
 
 def _export(walk, path):
     """The foot unit as a lab export whose clock starts at ORIGIN_S (s)."""
-    a, g = walk["fAccelerometer"], walk["fGyroscope"]
-    df = pd.DataFrame({"time_s": a.t - a.t[0] + ORIGIN_S})
-    for k, c in enumerate("xyz"):
-        df[f"acc_{c}"] = a.values[:, k]
-    for k, c in enumerate("xyz"):
-        df[f"gyr_{c}"] = g.values[:, k]
-    df.to_csv(path, index=False, float_format="%.8g")
-    return float(a.t[0])
+    lab_columns(walk, ORIGIN_S).to_csv(path, index=False, float_format="%.8g")
+    return float(walk["fAccelerometer"].t[0])
 
 
 def test_ic_strides_chain_contacts_the_g2_way():

@@ -5,7 +5,6 @@ statement no longer reads a 1000 Hz foot recording's autocorrelation decay as a 
 from __future__ import annotations
 
 import json
-import logging
 
 import numpy as np
 import pandas as pd
@@ -15,20 +14,14 @@ from scipy.interpolate import CubicSpline
 from pdrlearn.cli import main
 from pdrlearn.io import read_session
 from pdrlearn.io.validate import implausible_rhythm
-from pdrlearn.sim import UserProfile, simulate_path
-from pdrlearn.sim.route import parse_route
+from tests.sim_helpers import quiet_walk
 
 G = 9.80665
 
 
 @pytest.fixture(scope="module")
 def walk100():
-    logging.disable(logging.WARNING)
-    try:
-        return simulate_path(parse_route("straight:15"), UserProfile.from_seed(7921), rate_hz=100.0, seed=1,
-                             scenario="route")
-    finally:
-        logging.disable(logging.NOTSET)
+    return quiet_walk("straight:15", 7921, seed=1)
 
 
 def _export_1000(session, path):

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
+from pdrlearn.warning_lines import keeps_warnings
 
 log = logging.getLogger(__name__)
 
@@ -59,6 +60,7 @@ def evaluation_stages(model, *, report: bool = False) -> int:
     return 1 + sum(len(per) for tm in model.tasks.values() for per in tm.models.values()) + int(report)
 
 
+@keeps_warnings  # decision B350: its warnings in the result, "warnings" / "warning_codes"
 def evaluate_model(
     model, sessions, *, report_dir: Path | None = None, latency: bool = True, latency_steps: int = 20,
     advance: Callable[[int], None] = lambda n=1: None, warn_out_of_domain: float | None = None,

@@ -120,7 +120,8 @@ def import_command(
     subject: str = typer.Option(None, "--subject", help="The subject's id, written to meta.json \"subject\" "
                                 "(sessions.csv and subjects.csv group by it; B345)."),
     encoding: str = typer.Option(None, "--encoding", help="The CSV's text encoding, e.g. cp1252 (German Excel's "
-                                 "plain 'CSV (Trennzeichen-getrennt)'; default utf-8, a BOM accepted; B344)."),
+                                 "plain 'CSV (Trennzeichen-getrennt)'; default utf-8, a BOM accepted), also of the "
+                                 "--steps, --labels and --add-gravity tables that are not UTF-8 (B344)."),
     name: str = typer.Option(None, "--name", help="Session name, written to meta.json (default: the --out "
                              "folder's name; with --merge the session's own)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
@@ -294,7 +295,7 @@ def import_command(
         if base is not None and base.steps is not None:
             raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
         session = import_steps(steps, session, record["time"]["origin_s"], relative=labels_relative, foot=foot,
-                               offset_s=labels_offset)
+                               offset_s=labels_offset, unit=unit, encoding=encoding)
         record["steps"] = {"file": Path(steps).name, "rows": len(session.steps)}
         if "from_ics" in session.steps.attrs:  # decision B338
             record["steps"]["from_ics"] = session.steps.attrs["from_ics"]
@@ -308,7 +309,7 @@ def import_command(
     if labels:
         session, rows = import_labels(labels, session, record["time"]["origin_s"],
                                       taken=() if base is None else tuple(base.extras), relative=labels_relative,
-                                      offset_s=labels_offset)
+                                      offset_s=labels_offset, encoding=encoding)
         record["labels"] = {f"{n}.csv": {"file": Path(p).name, "rows": rows[n]} for n, p in
                             zip(rows, labels, strict=True)}
     axes_warning = _check_axes(session, unit, record, csv)  # decision L71: before anything is written

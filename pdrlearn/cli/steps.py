@@ -228,15 +228,21 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     if events_out is not None and score is None:
         raise DataError(f"--events-out {events_out}: {session.where} has no reference for the {unit}'s events "
                         "(steps.csv or ics.csv); nothing written (decision steps 59)")
+    if events_out is not None and not score["ground_truth"]:  # decision steps 59 (amended, review R2)
+        raise DataError(f"--events-out {events_out}: {session.where}'s reference is {score['reference']}, "
+                        "not event times to table; nothing written, leave "
+                        "--events-out out (decision steps 59)")
+    from pdrlearn.track.clock import export_origin_s, on_export_clock
+
+    origin = export_origin_s(session.meta)
     if events_out is not None:
+        if time_origin == "export":  # decision steps 59 (amended, review R2): on --out's clock, E173
+            events = events_on_clock(events, origin)
         was_events = existed(events_out)
         with atomic_file(events_out) as tmp:
             events.to_csv(tmp, index=False)
         replaced(events_out, was_events)
         result["events_out"] = str(events_out)
-    from pdrlearn.track.clock import export_origin_s, on_export_clock
-
-    origin = export_origin_s(session.meta)
     if origin is not None:  # decision E173: where the session's 0 s lies on the imported export's clock
         result["time_origin_s"] = origin
     if out is not None:
@@ -283,11 +289,22 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     if out is not None and origin:  # decision E173
         clock = ("on the export's clock (--time-origin export)" if time_origin == "export"
                  else "from the session's first sample (add it back, or pass --time-origin export)")
-        typer.echo(f"note: {out}: times in s {clock}; the session's 0 s is {origin:.3f} s on the imported export's "
-                   "clock (decision E173)", err=True)
+        files = f"{out} and {events_out}" if events_out is not None else str(out)
+        typer.echo(f"note: {files}: times in s {clock}; the session's 0 s is {origin:.3f} s on the imported "
+                   "export's clock (decision E173)", err=True)
     for path in (events_out, out):
         if path is not None:
             typer.echo(str(path))
+
+
+def events_on_clock(events, origin: float | None):
+    """Decision steps 59 (amended, review R2): the events table's ``detected_s`` and ``reference_s`` on the imported
+    export's clock (``origin`` added, decision E173), as ``--out`` writes them with ``--time-origin export``."""
+    if origin is None:
+        return events
+    from pdrlearn.track.clock import on_export_clock
+
+    return on_export_clock(events, origin, ("detected_s", "reference_s"))
 
 
 def score_notes(score: dict, tolerance: float) -> list[str]:

@@ -366,6 +366,7 @@ def evaluate(
     # -v logs each scored model
     from pdrlearn.cohort import captured_warnings
     from pdrlearn.io import read_session
+    from pdrlearn.warning_lines import warning_code
 
     # decision B95: the warnings printed (held-out, out-of-domain, rate ...) also go into the JSON, for `report`
     with captured_warnings(echo=True) as warned, progress("evaluating", None, enabled=not as_json) as advance:
@@ -382,6 +383,7 @@ def evaluate(
                                 warn_out_of_domain=warn_out_of_domain, step_predictions=tables,
                                 warn_gait_range=warn_gait_range)
     result["warnings"] = list(dict.fromkeys(warned))
+    result["warning_codes"] = [warning_code(w) for w in result["warnings"]]  # decision B350, as evaluate_model's
     if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
         raise DataError(f"evaluate: {model_dir} has no trained classifier to evaluate (training skipped every "
                         "task), only a distance calibration; evaluate its tracking with `pdrlearn track SESSION "

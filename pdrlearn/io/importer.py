@@ -25,7 +25,15 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.datetimes import dst_jump, dst_message, exact_seconds, localize, offset_text
 from pdrlearn.io.frames import AxisFrame, right_handed
 from pdrlearn.io.matfile import expand_columns, mat_arrays_text, mat_message, mat_version, read_mat_table
-from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, GRAVITY_FILE, TOTAL_ACC_FILE, _csv_dialect, read_table
+from pdrlearn.io.plasys import (
+    _TIME_ALIASES,
+    _TIME_SCALE,
+    GRAVITY_FILE,
+    TOTAL_ACC_FILE,
+    _csv_dialect,
+    path_arg,
+    read_table,
+)
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU, parse_value_unit
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
@@ -704,6 +712,18 @@ def _utf8_beyond_ascii(path: Path) -> bool:
     return not data.isascii()
 
 
+def label_encoding(path: Path, encoding: str | None) -> str | None:
+    """Decision B344 (amended, review R2): the encoding a ``--steps`` / ``--labels`` table is read in: UTF-8 when it
+    decodes as UTF-8 (a lab's ASCII or UTF-8 list beside a cp1252 or utf-16 export), else import's ``--encoding``."""
+    if encoding is None or not path.is_file():
+        return None
+    try:
+        path.read_bytes().decode("utf-8")
+    except UnicodeDecodeError:
+        return encoding
+    return None
+
+
 #: decision B344: import's further fix for a CSV that is not UTF-8 (German Excel's plain "CSV" type is cp1252)
 NOT_UTF8_IMPORT = ", or read it as it is with --encoding cp1252 (Windows-1252, what Excel's plain 'CSV' type writes)"
 
@@ -804,7 +824,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   subject: str | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
-    path = Path(path)
+    path = path_arg(path, "import_csv_parts" if split else "import_csv", "a CSV or MAT file")  # decision B349
     where = str(path)
     if retime_hz is not None:  # decision B186
         if not (isinstance(retime_hz, int | float) and math.isfinite(retime_hz) and 0 < retime_hz <= 10000):
@@ -843,6 +863,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if no_header:
             raise DataError(f"{where}: --no-header is for a CSV without a header line, and this is a MAT file "
                             "(its variables name the columns); leave --no-header out (decision B335)")
+        if encoding is not None:  # decision B344 (amended, review R2): a MAT file has no text encoding
+            raise DataError(f"{where}: --encoding is for a CSV's text, and this is a MAT file (binary, its own "
+                            "encoding); leave --encoding out (decision B344)")
         wanted = [c.lstrip("-") for v in (columns or {}).values() for c in v] + [time_column or ""]
         df, mat_record = read_mat_table(path, wanted)
         dialect = {}
@@ -850,7 +873,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
     else:
         # B24: ';' / tab separators and decimal commas, as every session file; B344: a cp1252 file named, or read
         df = read_table(path, header=not no_header, encoding=encoding, not_utf8_also=NOT_UTF8_IMPORT)
-        dialect = _csv_dialect(path, encoding)
+        dialect = _csv_dialect(path, encoding, header=not no_header)
     header = list(df.columns)
     have = ", ".join(header)
     if not mat and not no_header and header and all(_is_number(c) for c in header):  # decision B336
@@ -1326,12 +1349,13 @@ def merge_offset_note(base: Session, add: Session) -> str | None:
             "period (decision L162)")
 
 
-def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:
+def _shifted_table(path: Path, origin_s: float, encoding: str | None = None) -> pd.DataFrame:
     """A label table of ``path`` with its ``*_ms`` columns (ms on the export's clock) moved onto the session's
-    clock (``origin_s`` taken off) and read as seconds (``*_s``), as ``read_session`` reads label files."""
+    clock (``origin_s`` taken off) and read as seconds (``*_s``), as ``read_session`` reads label files; read with
+    ``encoding`` as :func:`label_encoding` says (decision B344)."""
     from pdrlearn.io.plasys import _ms_to_s
 
-    df = read_table(path)
+    df = read_table(path, encoding=label_encoding(path, encoding), not_utf8_also=NOT_UTF8_IMPORT)
     for c in df.columns:
         if c.endswith("_ms"):
             v = pd.to_numeric(df[c], errors="coerce")
@@ -1395,14 +1419,16 @@ OTHER_CLOCK_HINT = ("labels on another clock (a motion-capture system's): pass -
 
 
 def import_labels(paths, session: Session, origin_s: float, *, taken=(),
-                  relative: bool = False, offset_s: float = 0.0) -> tuple[Session, dict[str, int]]:
+                  relative: bool = False, offset_s: float = 0.0,
+                  encoding: str | None = None) -> tuple[Session, dict[str, int]]:
     """``session`` with the extra label tables of ``paths`` (``ics.csv``, ``bouts.csv``, ``turns.csv`` ...:
     ``*_ms`` columns in ms on the export's clock), each kept under its file name (``ics.csv`` -> the
     session's ``ics.csv``), moved onto the session's clock exactly as :func:`import_steps` moves the steps
     and checked as ``read_session`` checks them. ``taken``: label names the session already has (--merge).
     ``relative``: the times are ms from the recording's first sample, not on the export's clock (decision B42).
     ``offset_s``: the labels' clock minus the export's (s; a motion-capture clock): each time t is taken at
-    t - ``offset_s`` (``--labels-offset``, the sign of steps decision 56's ``--ref-offset``).
+    t - ``offset_s`` (``--labels-offset``, the sign of steps decision 56's ``--ref-offset``). ``encoding``: import's
+    ``--encoding``, for a table that is not UTF-8 (:func:`label_encoding`, decision B344).
     Returns the session and name -> rows."""
     from pdrlearn.io.plasys import LABEL_FILES, LABEL_TABLES, check_label_table
     from pdrlearn.io.sensors import SENSORS
@@ -1417,7 +1443,7 @@ def import_labels(paths, session: Session, origin_s: float, *, taken=(),
             raise DataError(f"{p}: '{name}.csv' is not an extra label table a session can take; {hint}")
         if name in rows or name in taken:
             raise DataError(f"{p}: the session already has {name}.csv; pass one file per name (rename one)")
-        raw = read_table(p)
+        raw = read_table(p, encoding=label_encoding(p, encoding), not_utf8_also=NOT_UTF8_IMPORT)
         if name in LABEL_TABLES:  # decision B41
             check_label_table(raw, name, str(p))
         elif not any(str(c).endswith("_ms") for c in raw.columns):
@@ -1427,20 +1453,24 @@ def import_labels(paths, session: Session, origin_s: float, *, taken=(),
             log.warning("%s: no command reads a label table named %s.csv (they read %s); it is copied into the "
                         "session but not used: rename it if it is one of those", p, name,
                         ", ".join(f"{n}.csv ({', '.join(c)})" for n, c in LABEL_TABLES.items()))
-        table = _shifted_table(p, _label_origin(session, origin_s, relative) + offset_s)
+        table = _shifted_table(p, _label_origin(session, origin_s, relative) + offset_s, encoding)
         _check_shifted_labels(table, p, session, origin_s, relative)
         extras[name], rows[name] = table, len(table)
     return Session(name=session.name, streams=session.streams, steps=session.steps, trajectory=session.trajectory,
                    extras=extras, meta=session.meta, frames=session.frames), rows
 
 
-def _ic_list_strides(table: pd.DataFrame, path: Path, foot: str | None) -> pd.DataFrame:
+def _ic_list_strides(table: pd.DataFrame, path: Path, foot: str | None, unit: str = "foot") -> pd.DataFrame:
     """Decision B338: an IC list (``ic_ms``, optionally ``foot``) as G2 strides of the instrumented foot."""
     from pdrlearn.io.ic_reference import ic_strides
 
     if "foot" in table.columns:
         sides = table["foot"].astype(str).str.strip().str.lower()
         found = sorted(set(sides))
+        if unit == "waist" and len(found) > 1:  # decision B352: --foot is refused there (B321)
+            raise DataError(f"{path}: an initial-contact list of {' and '.join(found)} contacts, the lower back's "
+                            "reference: pass it as --labels ics.csv (ic_ms,foot; the file named ics.csv) instead of "
+                            "--steps, which labels one foot's strides (decision B352)")
         if foot is None and len(found) > 1:
             raise DataError(f"{path}: an initial-contact list of {' and '.join(found)} contacts; pass --foot "
                             "left|right, the foot this unit is on, to take its contacts (decision B338)")
@@ -1458,20 +1488,22 @@ def _ic_list_strides(table: pd.DataFrame, path: Path, foot: str | None) -> pd.Da
 
 
 def import_steps(path: str | os.PathLike, session: Session, origin_s: float, *, relative: bool = False,
-                 foot: str | None = None, offset_s: float = 0.0) -> Session:
+                 foot: str | None = None, offset_s: float = 0.0, unit: str = "foot",
+                 encoding: str | None = None) -> Session:
     """``session`` with the labelled steps of ``path`` (``start_ms,end_ms`` and ``terrain`` ... as the
     session's ``steps.csv``, times in ms on the export's clock), moved onto the session's clock (``origin_s``
     and ``offset_s``, as :func:`import_labels`, taken off) and checked as ``read_session`` checks them (decision
     D12). A table of initial contacts only (``ic_ms``, and ``foot``: those of ``foot``) becomes strides the G2
     way (decision B338, :func:`pdrlearn.io.ic_reference.ic_strides`); ``steps.attrs["from_ics"]`` counts its
-    contacts."""
+    contacts; on a ``unit="waist"`` import both feet's contacts are refused, naming ``--labels ics.csv`` (decision
+    B352). ``encoding``: as :func:`import_labels`."""
     from pdrlearn.io.session import STEP_COLUMNS
     from pdrlearn.io.validate import check_columns, check_numeric
 
     path = Path(path)
-    steps = _shifted_table(path, _label_origin(session, origin_s, relative) + offset_s)
+    steps = _shifted_table(path, _label_origin(session, origin_s, relative) + offset_s, encoding)
     if "ic_s" in steps.columns and not {"start_s", "end_s"} & set(steps.columns):  # decision B338
-        steps = _ic_list_strides(steps, path, foot)
+        steps = _ic_list_strides(steps, path, foot, unit)
     check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
     check_numeric(steps, STEP_COLUMNS, str(path))
     _check_shifted_labels(steps, path, session, origin_s, relative)

@@ -184,7 +184,7 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = (), *, h
         raise DataError(f"{path}: file not found")
     no_header = {} if header else {"header": None}  # decision B336
     try:
-        dialect = _csv_dialect(path, encoding)
+        dialect = _csv_dialect(path, encoding, header=header)
         df = pd.read_csv(path, dtype=dict.fromkeys(text_columns, str) or None, **dialect, **no_header)
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
@@ -325,17 +325,18 @@ def _grouped_integer_columns(df: pd.DataFrame, text=None) -> None:
             df[c] = pd.to_numeric(cells.str.replace(".", "", regex=False)).reindex(df.index)
 
 
-def _csv_dialect(path: Path, encoding: str | None = None) -> dict:
+def _csv_dialect(path: Path, encoding: str | None = None, *, header: bool = True) -> dict:
     """``pd.read_csv`` options for a CSV written with another separator (decision B24): a header line with
     no comma but semicolons (a spreadsheet in a decimal-comma locale) or tabs is read with that separator,
     and, when its first data line has commas and no point, with ``decimal=","`` (the fast path; a decimal-comma
     column it misses is converted by :func:`_decimal_comma_columns`). Comma files are untouched. An ``encoding``
-    (decision B344) is read with and passed on."""
+    (decision B344) is read with and passed on. ``header=False`` (decision B351): the first line is data, so a
+    ``;`` or tab in it is the separator and a digit,digit in it a decimal comma."""
     enc = {"encoding": encoding} if encoding is not None else {}
-    return {**_separator_dialect(path, encoding or "utf-8"), **enc}
+    return {**_separator_dialect(path, encoding or "utf-8", header), **enc}
 
 
-def _separator_dialect(path: Path, encoding: str) -> dict:
+def _separator_dialect(path: Path, encoding: str, has_header: bool = True) -> dict:
     """:func:`_csv_dialect`'s separator, ``sep=`` line and decimal comma."""
     try:
         with open(path, encoding=encoding, errors="replace") as f:
@@ -346,6 +347,10 @@ def _separator_dialect(path: Path, encoding: str) -> dict:
     except OSError:
         return {}
     skip = {"skiprows": [0]} if declared is not None else {}
+    if not has_header and not declared:  # decision B351: a headerless file's first line is a data line
+        sep = ";" if ";" in header else "\t" if "\t" in header else None
+        comma = sep is not None and re.search(r"\d,\d", header) is not None
+        return {"sep": sep, **({"decimal": ","} if comma else {})} if sep else {}
     if declared:
         sep = declared
     elif "," in header:
@@ -375,6 +380,7 @@ def _sep_line(line: str) -> str | None:
 def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
                 check_unit: bool = True, value_scale: float = 1.0) -> Stream:
     """Read one sensor CSV into a :class:`Stream` (timestamps converted to seconds)."""
+    path = path_arg(path, "read_stream", "a sensor CSV file")  # decision B349
     name, arr = _read_raw(path, name)
     return _to_stream(path, name, arr, time_scale, check_unit, (value_scale, None))
 
@@ -1183,12 +1189,20 @@ def _not_labels(path: Path, table: pd.DataFrame, folder: Path) -> bool:
 def folder_arg(folder, caller: str) -> Path:
     """Decision B179: a session folder argument as a Path; anything but a str / os.PathLike (``read_session(42)``
     was a bare ``TypeError`` from pathlib) is one :class:`~pdrlearn.errors.NotASessionError` line."""
-    if not isinstance(folder, str | os.PathLike):
-        from pdrlearn.errors import NotASessionError
+    from pdrlearn.errors import NotASessionError
 
-        raise NotASessionError(f"{caller}({folder!r}): expected a session folder, a str or pathlib.Path "
-                               f"(got {type(folder).__name__})")
-    return Path(folder)
+    return path_arg(folder, caller, "a session folder", NotASessionError)
+
+
+def path_arg(path, caller: str, expected: str, error: type[DataError] = DataError) -> Path:
+    """Decisions B179, B349: a path argument as a Path; anything else is one ``error`` line naming ``caller``, what
+    it ``expected`` and, for a file object (an upload in memory: ``import_csv(io.BytesIO(...))`` was a bare
+    ``TypeError``), how to pass it."""
+    if isinstance(path, str | os.PathLike):
+        return Path(path)
+    fix = ("; write it to a file first (e.g. tempfile.NamedTemporaryFile) and pass that file's path, or build the "
+           "Session from arrays (decision B349)") if hasattr(path, "read") else ""
+    raise error(f"{caller}({path!r}): expected {expected}, a str or pathlib.Path (got {type(path).__name__}){fix}")
 
 
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,

@@ -268,6 +268,18 @@ class Session:
     #: jitter B182 ...); every pipeline adds them to its ``info["warnings"]``
     _read_warnings: list[str] = field(default_factory=list, repr=False, compare=False)
 
+    def __post_init__(self) -> None:
+        """Decision E181: a session built in memory with ``meta`` but no ``frames`` takes the frames its meta
+        declares (:func:`~pdrlearn.io.frames.frames_from_meta`: its ``"frames"`` entry, else a known source), as
+        :func:`pdrlearn.io.read_session` does for meta.json; before, they were ignored and inferred from the data."""
+        if not self.frames and isinstance(self.meta, dict) and self.meta:
+            from pdrlearn.io.frames import frames_from_meta
+
+            try:
+                self.frames = frames_from_meta(self.meta)
+            except DataError as exc:
+                raise DataError(f"session {self.name!r}, meta: {exc}") from None
+
     def __repr__(self) -> str:
         """Decision B181: a short description (streams with rate and unit, duration, labels), not the arrays
         and meta.json a notebook cell printed before (~10 kB per session)."""
@@ -458,8 +470,10 @@ class Session:
                 else:
                     self._inferred[placement] = found.frame
                     log.warning("%s declares no axis frame for the %s unit; inferred from the data: \"frames\": "
-                                "%s (%s); if that is wrong, add the right \"frames\" entry to meta.json", where,
-                                placement, json.dumps({placement: found.frame.to_dict()}), found.describe())
+                                "%s (%s); if that is wrong, add the right \"frames\" entry to %s", where,
+                                placement, json.dumps({placement: found.frame.to_dict()}), found.describe(),
+                                "meta.json" if self.folder is not None else  # decision E181: built in memory
+                                "the Session's frames= (or its meta's \"frames\")")
             known = self._inferred[placement]
             if isinstance(known, AxisFrame):
                 return known

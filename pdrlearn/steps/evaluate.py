@@ -474,7 +474,9 @@ def score_steps_events(steps: pd.DataFrame, session: Session, *, tolerance_s: fl
         for k in ("timing_error_mean_s", "timing_error_sd_s", "timing_error_abs_mean_s", "timing_error_median_s"):
             out[k] = float("nan")
         events = []
-    else:  # decision steps 56: does the reference look offset from the IMU clock?
+    elif ref.one_foot is None:  # decision steps 56: does the reference look offset from the IMU clock?
+        # (not against one foot's contacts, W96: the other foot's steps, half a stride away, match it shifted by
+        # one step, an alias the rule's gain cannot tell from a clock; steps 56 amended, review R2)
         out.update(offset_check(ev, ref.times, tolerance_s, ref_offset_s))
     if ref.span_only:  # decision steps 57: ics.csv without bouts.csv scores the reference's pauses too
         pauses = reference_pauses(ref.times)

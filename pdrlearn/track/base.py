@@ -322,12 +322,33 @@ def get_pipeline(name: str) -> Pipeline:
       step-length model, docs/extending.md) (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and
       unused. With ``wBarometer`` the track's altitude is the barometer's (W89); without, one warning (W90).
 
+    ``"auto"`` (decision E182): the one ``pdrlearn track --pipeline auto`` chooses for each session
+    (:func:`resolve_pipeline`); its options are those of the pipeline chosen.
+
     An unknown keyword raises ``TypeError`` naming the closest valid one (decision L43); an unknown
     ``name`` raises :class:`~pdrlearn.errors.DataError` listing the pipelines. Warnings (e.g. "no model")
     are ``logging`` records of the ``pdrlearn`` logger (also in ``result.info["warnings"]``), not Python
     ``warnings``: ``logging.getLogger("pdrlearn").setLevel(logging.ERROR)`` silences them.
     """
+    if name == "auto":  # decision E182: the CLI's --pipeline auto, chosen per session by resolve_pipeline
+        return track_auto
     try:
         return PIPELINES[name]
     except KeyError:
         raise PIPELINES.unknown(name) from None
+
+
+def track_auto(session, **options) -> TrackResult:
+    """Decision E182: ``get_pipeline("auto")``: the pipeline ``pdrlearn track --pipeline auto`` chooses for
+    ``session`` (:func:`resolve_pipeline`, the CLI's own choice: ``plasys`` with a foot unit, else
+    ``waist-pendulum``), called with ``options``; ``result.info["pipeline"]`` names the one chosen, and the choice's
+    warning (B204: foot files without fAccelerometer.csv) is in ``result.info["warnings"]``."""
+    from pdrlearn.warning_lines import captured_warnings, merged_warnings
+
+    with captured_warnings(echo=True) as logged:
+        name = resolve_pipeline("auto", session)
+    result = get_pipeline(name)(session, **options)
+    if logged and isinstance(getattr(result, "info", None), dict):
+        result.info["warnings"] = merged_warnings(result.info.get("warnings") or [], logged,
+                                                  getattr(session, "where", None))
+    return result

@@ -73,10 +73,11 @@ def export_origin_s(meta: dict | None) -> float | None:
     return float(v) if isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) else None
 
 
-def on_export_clock(table: pd.DataFrame, origin_s: float) -> pd.DataFrame:
-    """Decision E173: ``table`` with its :data:`INSTANT_COLUMNS` plus ``origin_s`` (the export's clock)."""
+def on_export_clock(table: pd.DataFrame, origin_s: float, columns: tuple[str, ...] = INSTANT_COLUMNS) -> pd.DataFrame:
+    """Decision E173: ``table`` with its ``columns`` (default :data:`INSTANT_COLUMNS`) plus ``origin_s`` (the export's
+    clock)."""
     out = table.copy()
-    for c in INSTANT_COLUMNS:
+    for c in columns:
         if c in out.columns:
             out[c] = (pd.to_numeric(out[c], errors="coerce") + origin_s).round(9)  # no float noise in the CSV
     return out

@@ -15,6 +15,7 @@ import pandas as pd
 
 from pdrlearn.track.clinical import _is_lower_back, data_gap_lengths
 from pdrlearn.track.walk_test import _path
+from pdrlearn.warning_lines import coded
 
 #: decision L383: a turns.csv row of at least this |angle| (deg) is a cone turn (a corridor's turnaround is ~180 deg;
 #: halfway from a 90 deg corner, which ends no lap)
@@ -76,7 +77,7 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     out["corridor_m"] = float(corridor_m)
     empty = pd.DataFrame(columns=list(LAP_COLUMNS))
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns):
-        return empty, out, ["corridor walk test: no steps; no laps"]
+        return empty, out, [coded("corridor walk test: no steps; no laps", "corridor-walk-test")]
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     t, d = _distance_in_time(st)
     t0, t_end = (float(t[0]), float(st["end_s"].max())) if span is None else (float(span[0]), float(span[1]))
@@ -94,8 +95,8 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     warnings: list[str] = []
     ref = float(np.median(tracked[:-1])) if len(tracked) > 1 else float("nan")
     if np.isfinite(ref) and not (CORRIDOR_RATIO_RANGE[0] * corridor_m <= ref <= CORRIDOR_RATIO_RANGE[1] * corridor_m):
-        warnings.append(f"corridor walk test: the median lap tracked {ref:.1f} m against --corridor {corridor_m:g} m: "
-                        "is the corridor length right? (decision L384)")
+        warnings.append(coded(f"corridor walk test: the median lap tracked {ref:.1f} m against --corridor "
+                              f"{corridor_m:g} m: is the corridor length right? (decision L384)", "L384"))
     # decision L384: a stretch ending at a cone turn counts round(tracked / median) corridor lengths; 0 joins the next
     stretches: list[tuple[float, float, float, int]] = []  # (start, end, tracked, corridor laps; -1 = the final one)
     start, acc = lap_t0, 0.0
@@ -103,27 +104,28 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
         acc += m
         c = int(np.floor(acc / ref + 0.5)) if ref > 0 else 0
         if c == 0:
-            warnings.append(f"corridor walk test: the turn at {bounds[k + 1]:.1f} s came after {acc:.1f} m of a "
-                            f"{ref:.1f} m lap: counted as no lap end (an extra turn; decision L384)")
+            warnings.append(coded(f"corridor walk test: the turn at {bounds[k + 1]:.1f} s came after {acc:.1f} m of "
+                                  f"a {ref:.1f} m lap: counted as no lap end (an extra turn; decision L384)", "L384"))
             continue
         if c >= 2:
-            warnings.append(f"corridor walk test: lap {len(stretches) + 1} tracked {acc:.1f} m, {c} laps of "
-                            f"{ref:.1f} m: counted as {c} laps (a missed turn; decision L384)")
+            warnings.append(coded(f"corridor walk test: lap {len(stretches) + 1} tracked {acc:.1f} m, {c} laps of "
+                                  f"{ref:.1f} m: counted as {c} laps (a missed turn; decision L384)", "L384"))
         stretches.append((start, float(bounds[k + 1]), acc, c))
         start, acc = float(bounds[k + 1]), 0.0
     uneven = [(i, m, c) for i, (_, _, m, c) in enumerate(stretches, start=1) if abs(m / (c * ref) - 1.0)
               > LAP_AGREEMENT_TOL]
     if uneven:
-        warnings.append("corridor walk test: " + ", ".join(f"lap {i} tracked {m:.1f} m" for i, m, _ in uneven)
-                        + f" against the median lap's {ref:.1f} m per --corridor {corridor_m:g} m length "
-                        f"(off by more than {LAP_AGREEMENT_TOL:.0%}): the laps disagree with the corridor (uneven "
-                        "legs, e.g. a shuttle, or a wrong --corridor?); counted as whole corridor lengths (decision "
-                        "L407)")
+        warnings.append(coded("corridor walk test: " + ", ".join(f"lap {i} tracked {m:.1f} m" for i, m, _ in uneven)
+                              + f" against the median lap's {ref:.1f} m per --corridor {corridor_m:g} m length "
+                              f"(off by more than {LAP_AGREEMENT_TOL:.0%}): the laps disagree with the corridor "
+                              "(uneven legs, e.g. a shuttle, or a wrong --corridor?); counted as whole corridor "
+                              "lengths (decision L407)", "L407"))
     last = acc + tracked[-1]
     stretches.append((start, lap_end, last, -1))
     if np.isfinite(ref) and ref > 0 and last >= MISSED_TURN_RATIO * ref:
-        warnings.append(f"corridor walk test: the final stretch tracked {last:.1f} m, {last / ref:.1f} laps of "
-                        f"{ref:.1f} m: a missed turn? counted as at most one corridor length (decision L384)")
+        warnings.append(coded(f"corridor walk test: the final stretch tracked {last:.1f} m, {last / ref:.1f} laps "
+                              f"of {ref:.1f} m: a missed turn? counted as at most one corridor length (decision L384)",
+                              "L384"))
     singles = [s for s in stretches if s[3] == 1 and s[2] > 0]
     scale = corridor_m / singles[-1][2] if singles else 1.0  # L383: the last single lap's corridor / tracked
     rows, known = [], [(lap_t0, 0.0)]  # known: (time, corridor distance) at each stretch's end

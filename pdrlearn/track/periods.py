@@ -41,6 +41,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.waist.posture_time import POSTURE_KEYS, POSTURES
+from pdrlearn.warning_lines import coded
 
 #: decision L275: the summary's time-accounting keys, which sum to ``time_span_s``
 TIME_KEYS = ("time_walking_s", "time_between_steps_s", "time_no_steps_s", "time_no_data_s")
@@ -268,14 +269,14 @@ def constant_bounce_line(meta: dict, info: dict) -> str | None:
         return None
     if knobs.get("bounce", "constant") != "constant":
         return None
-    return ("periods.csv: this simulated session's pelvis bounces the same on every step (simulate's default "
-            "constant bounce, S29) and the lower back's pendulum step length reads that bounce, so where the "
-            "simulated step length changes (:long / :short route items, --step-length) its steps stay about as long "
-            "and a per-period trend in distance, speed or step length is the simulator's, not the walker's (trial "
-            "s32: true median stride 2.05 -> 0.87 m, waist steps 0.685-0.688 m in every period); meta.json does not "
-            "record the route, so this is said on every simulated constant-bounce session, whether its step length "
-            "changes or not; simulate with --bounce pendulum for a study of a changing step length, or read the "
-            "foot's periods (decision S69)")
+    return coded("periods.csv: this simulated session's pelvis bounces the same on every step (simulate's default "
+                 "constant bounce, S29) and the lower back's pendulum step length reads that bounce, so where the "
+                 "simulated step length changes (:long / :short route items, --step-length) its steps stay about as "
+                 "long and a per-period trend in distance, speed or step length is the simulator's, not the walker's "
+                 "(trial s32: true median stride 2.05 -> 0.87 m, waist steps 0.685-0.688 m in every period); "
+                 "meta.json does not record the route, so this is said on every simulated constant-bounce session, "
+                 "whether its step length changes or not; simulate with --bounce pendulum for a study of a changing "
+                 "step length, or read the foot's periods (decision S69)", "S69")
 
 
 def _period_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:

@@ -1039,6 +1039,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                 what=f"plasys: {', '.join(asked)} set the class rules, which need the step classes"))
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
+    if not session.has("fAccelerometer") and session.has("wAccelerometer"):  # decision E182
+        raise MissingSensorError(
+            f"session '{session.name}' has no foot unit (fAccelerometer), which every plasys method needs, but a "
+            "waist unit: track it with get_pipeline('waist-pendulum') (CLI --pipeline waist-pendulum), or "
+            "get_pipeline('auto') to choose by the session as --pipeline auto does (decision E182)")
     from pdrlearn.track.foot_rest import frozen_foot_imu
 
     frozen = frozen_foot_imu(session)  # decision B203: force sensors that step beside a foot IMU that never moves

@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.warning_lines import coded
 
 #: decision L411: splits.csv's columns
 SPLIT_COLUMNS = ("split", "distance_m", "time_s", "split_time_s", "speed_mps")
@@ -70,7 +71,7 @@ def split_table(steps: pd.DataFrame, marks) -> tuple[pd.DataFrame, dict, list[st
     keys = {"splits_m": [float(m) for m in marks], "split_times_s": [None] * len(marks)}
     empty = pd.DataFrame(columns=list(SPLIT_COLUMNS))
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns):
-        return empty, keys, ["--splits: no steps; no split times (decision L411)"]
+        return empty, keys, [coded("--splits: no steps; no split times (decision L411)", "L411")]
     times, path_m, _ = _crossing_times(steps, marks)
     reached = np.isfinite(times)
     rows = []
@@ -84,8 +85,8 @@ def split_table(steps: pd.DataFrame, marks) -> tuple[pd.DataFrame, dict, list[st
     lines = []
     if (~reached).any():
         beyond = ", ".join(f"{m:g}" for m in marks[~reached])
-        lines.append(f"--splits: the tracked path is {path_m:.2f} m long; no split time at {beyond} m beyond it "
-                     "(decision L411)")
+        lines.append(coded(f"--splits: the tracked path is {path_m:.2f} m long; no split time at {beyond} m beyond "
+                           "it (decision L411)", "L411"))
     return (pd.DataFrame(rows, columns=list(SPLIT_COLUMNS)) if rows else empty), keys, lines
 
 

@@ -104,6 +104,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio,
     walk_ratio_message,
 )
+from pdrlearn.waist.pll_calibration import edge_lock_mismatch_line, recorded_keys
 from pdrlearn.waist.posture import (
     drop_contacts,
     sit_veto_hint,
@@ -975,7 +976,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
     line = ignored_options_line(o, pipeline, realtime, method, det_given, integrate_stops,  # decision W193
-                                explicit={k for k, v in (p.options or {}).items() if v is not None})  # W301
+                                explicit={k for k, v in (p.options or {}).items() if v is not None}  # W301
+                                - recorded_keys(p))  # W369: a calibration's own record is no user's choice
+    warnings += [line] if line else []
+    line = None if det_given else edge_lock_mismatch_line(p, pipeline, o["pll_edge_lock"])  # decision W369
     warnings += [line] if line else []
     n_rescored = 0
     if o["contact_model"] and pipeline == "waist-pendulum" and not realtime and detector is None:  # W203

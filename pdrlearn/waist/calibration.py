@@ -24,6 +24,7 @@ from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibil
     step_counts,
     steps_missed,
 )
+from pdrlearn.waist.pll_calibration import calibrated_here, recorded_options
 from pdrlearn.waist.steplength import (
     CADENCE_LAW_STEADY,
     MIN_GAIN_STRIDES,
@@ -335,19 +336,25 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     if spans is not None and len(spans) not in (1, len(sessions)):
         raise DataError(f"calibrate: {len(spans)} --start/--end stretches for {len(sessions)} sessions; "
                         "give one per session or one for all")
-    from pdrlearn.track.waist import track_waist, without_heading_note
+    from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist, without_heading_note
 
     base, _ = resolve_params(sessions[0], params)
+    if calibrated_here(base, pipeline) and (base.options or {}).get("pll_edge_lock") is None:
+        # decision W369: re-calibrating from a PARAMS.json that records none counts with today's default, silently
+        base = dataclasses.replace(base, options=recorded_options(base.options, pipeline,
+                                                                  OPTION_DEFAULTS["pll_edge_lock"]))
     walks: list[CalibrationWalk] = []
     rates = []
     notes_gap: list[str] = []
     notes_count: list[str] = []
     cadence_law: bool | str = False  # decision W240: the tracks' option, read from the calibration walks' own tracks
+    edge_lock = None  # decision W369: the pll_edge_lock the walks' waist-pll tracks counted their contacts with
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         with without_heading_note():  # W83: calibration does not use the heading
             res = track_waist(s, pipeline=pipeline, params=base)
         cadence_law = cadence_law or res.info.get("options", {}).get("cadence_law") or False  # W261: its value
+        edge_lock = res.info.get("options", {}).get("pll_edge_lock", edge_lock)  # W369: one value (base's options)
         if not res.steps["has_next"].any():  # W61: a standing-only recording, not a model failure
             raise DataError(f"calibrate: 0 steps detected in {s.folder or s.name}; calibrate needs a walk of known "
                             "length (give a recording of walking, with --distance or bouts.csv)")
@@ -426,5 +433,6 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         out.notes.append(how)
     out.source = "calibrated"
     out.pipeline = pipeline
+    out.options = recorded_options(out.options, pipeline, edge_lock)  # decision W369: the count's pll_edge_lock
     log.info("calibrated %s: %s", pipeline, out.notes[-1])
     return out
