@@ -48,17 +48,23 @@ def flights(steps: pd.DataFrame, ratio) -> list[int]:
     return [sign * round(abs(float(dz[a:b].sum())) / RISE) for a, b, sign in runs]
 
 
+def tracked_steps(out: Path, name: str, route: str, u: int) -> pd.DataFrame:
+    """User ``u`` walking ``route`` (simulated into ``out``, then tracked with no model; both kept for a rerun):
+    the track's steps.csv (also :mod:`experiments.stair_flights_l438`'s)."""
+    sim, trk = out / f"{name}_u{u}", out / f"{name}_u{u}_track"
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        if not sim.exists():
+            assert main(["simulate", "--route", route, "-u", str(u), "-o", str(sim)]) == 0
+        if not trk.exists():
+            main(["track", str(sim), "--out", str(trk)])
+    return pd.read_csv(trk / "steps.csv")
+
+
 def run(out: Path, users: list[int]) -> None:
     for name, (route, truth) in ROUTES.items():
         res = {"L433": [0, 0], "off": [0, 0]}
         for u in users:
-            sim, trk = out / f"{name}_u{u}", out / f"{name}_u{u}_track"
-            with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-                if not sim.exists():
-                    assert main(["simulate", "--route", route, "-u", str(u), "-o", str(sim)]) == 0
-                if not trk.exists():
-                    main(["track", str(sim), "--out", str(trk)])
-            steps = pd.read_csv(trk / "steps.csv")
+            steps = tracked_steps(out, name, route, u)
             for mode, ratio in (("L433", LANDING_GRADE_RATIO), ("off", None)):
                 got = flights(steps, ratio)
                 res[mode][0] += got == truth

@@ -984,8 +984,8 @@ STAIRS: tuple[Column, ...] = (
     ("end_s", "s", "number", "its last stride's end_s"),
     ("direction", _ID, "text", "up or down"),
     ("n_strides", "count", "integer", "consecutive stair strides of the tracked foot (|dz_m| >= 0.10 m, L179) of one "
-                                      "direction; a level stride (a landing, a turn on one), a pause of 1 s or "
-                                      "more, a data gap or a reversal ends the flight (L432)"),
+                                      "direction, 2 or more (L438); a level stride (a landing, a level turn on one), "
+                                      "a pause of 1 s or more, a data gap or a reversal ends the flight (L432)"),
     ("height_m", "m", "number", "the strides' summed dz_m (signed, + up)"),
     ("time_s", "s", "number", "end_s - start_s"),
     ("cadence_spm", "steps/min", "number", "2 steps per stride of the tracked foot over time_s (L176)"),

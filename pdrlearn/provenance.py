@@ -118,7 +118,10 @@ def redaction(arguments: dict, extra=()) -> tuple[str, ...] | None:
     model = arguments.get("model")
     if isinstance(model, str) and model != "oracle":
         paths.append(model)
-    return path_forms([*paths, *extra])
+    # E176 amended (review R3): the command line's own spellings of them (``./D``, ``walks//D``), which Path drops
+    given = {Path(p) for p in paths}
+    raw = [a for a in invocation()["argv"][1:] if a and not a.startswith("-") and Path(a) in given]
+    return path_forms([*paths, *raw, *extra])
 
 
 def run_record(command: str, options: dict, **fields) -> dict:

@@ -94,13 +94,46 @@ def test_run_and_calibrate_redact_paths(layout, tmp_path, monkeypatch, capsys):
 
 
 def test_redact_text_touches_paths_only():
-    """E176: a folder typed bare (``D``) is redacted as a whole JSON string or a path's first folder, never inside
-    a name (``sim_D_u1``) or a word of prose; an absolute folder with everything below it."""
-    from pdrlearn.redact import path_forms, redact_text
+    """E176 (amended, review R3): a folder typed bare (``D``) is redacted as the whole value of a path field or a
+    path's first folder, never as another field's value, a key, inside a name (``sim_D_u1``) or a word of prose; an
+    absolute folder with everything below it."""
+    from pdrlearn.redact import path_forms, redact_json
 
     forms = path_forms(["D", "/data/Doe/x"], cwd="/home/site/Doe")
-    text = json.dumps({"a": "D", "b": "D/meta.json: bad", "c": "sim_D_u1", "d": "Distance D ok", "e": "/data/Doe/x/s",
-                       "f": "/data/Doe/xy", "g": "ran in /home/site/Doe/D today"})
-    got = json.loads(redact_text(text, forms))
-    assert got == {"a": REDACTED, "b": f"{REDACTED}: bad", "c": "sim_D_u1", "d": "Distance D ok", "e": REDACTED,
-                   "f": "/data/Doe/xy", "g": f"ran in {REDACTED} today"}
+    obj = {"input_dir": "D", "a": "D", "D": 1, "b": "D/meta.json: bad", "c": "sim_D_u1", "d": "Distance D ok",
+           "e": "/data/Doe/x/s", "f": "/data/Doe/xy", "g": "ran in /home/site/Doe/D today", "argv": ["x", "D"]}
+    got = redact_json(obj, forms)
+    assert got == {"input_dir": REDACTED, "a": "D", "D": 1, "b": f"{REDACTED}: bad", "c": "sim_D_u1",
+                   "d": "Distance D ok", "e": REDACTED, "f": "/data/Doe/xy", "g": f"ran in {REDACTED} today",
+                   "argv": ["x", REDACTED]}
+
+
+@pytest.mark.parametrize("name", ["foot", "model", "session"])
+def test_track_redact_paths_keeps_keys_and_other_values(layout, tmp_path, monkeypatch, capsys, name):
+    """E176 amended (session 35, review R3 finding 1): a session folder named like a key or a value of the outputs
+    (``foot``: altitude_source; ``model``, ``session``: keys) redacts only the path fields; summary.json's keys and
+    values are the run's without the option, and track prints its summary (a KeyError before)."""
+    import shutil
+
+    shutil.copytree(layout / "walks" / "w", tmp_path / name)
+    monkeypatch.chdir(tmp_path)
+    assert main(["track", name, "--out", "plain", "--json"]) == 0
+    assert main(["track", name, "--out", "red", "--redact-paths"]) == 0
+    plain = json.loads((tmp_path / "plain" / "summary.json").read_text())
+    red = json.loads((tmp_path / "red" / "summary.json").read_text())
+    assert red["input_dir"] == REDACTED
+    assert {k: v for k, v in red.items() if k != "input_dir"} == {k: v for k, v in plain.items() if k != "input_dir"}
+    run = json.loads((tmp_path / "red" / "run.json").read_text())
+    assert REDACTED not in json.dumps(list(run)) and run["session"] == REDACTED
+    assert "model" in run and "session" in run
+
+
+@pytest.mark.parametrize("typed", ["./w", "walks//w", "walks/./w"])
+def test_track_redact_paths_covers_the_raw_spelling(layout, tmp_path, monkeypatch, capsys, typed):
+    """E176 amended (review R3 finding 3): the folder as typed with ``./`` or ``//``, which ``Path`` drops, is
+    redacted in run.json's argv too; no output names the patient's folder."""
+    monkeypatch.chdir(layout if typed.startswith("walks") else layout / "walks")
+    assert main(["track", typed, "--out", str(tmp_path / "red"), "--redact-paths"]) == 0
+    run = json.loads((tmp_path / "red" / "run.json").read_text())
+    assert run["argv"][2] == REDACTED and typed not in json.dumps(run)
+    assert _leaks(tmp_path / "red", layout) == []

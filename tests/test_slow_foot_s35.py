@@ -25,8 +25,8 @@ def _slow_up(uid: int, step_s: float = 1.2):
     return simulate_path(parse_route(UP), user, speed="slow", rate_hz=100.0)
 
 
-def _warnings(session) -> list[str]:
-    res = get_pipeline("plasys")(session)
+def _warnings(session, **kw) -> list[str]:
+    res = get_pipeline("plasys")(session, **kw)
     summary = res.summary(session)
     return [*summary["info"]["warnings"], *summary_warnings(summary)]
 
@@ -126,3 +126,32 @@ def test_force_free_simulated_hermite_feet_are_told_s78(rocker, force, told):
     assert len(lines) == int(told)
     if told:
         assert "--rocker smooth" in lines[0] and "S78" in lines[0]
+
+
+@pytest.mark.parametrize("case", ["real_gaitmap", "meta_not_sim"])
+def test_real_force_free_feet_are_not_told_s78(case):
+    """Decision S78 amended (session 35, review R3 finding 5): a real force-free foot recording (gaitmap's level walk,
+    no fForce files, no knobs) and a session whose meta.json names another source project (the simulator's knobs
+    kept) get no Hermite line: fails when the source_project check is removed."""
+    from pathlib import Path
+
+    from pdrlearn.io import read_session
+
+    logging.disable(logging.NOTSET)
+    if case == "real_gaitmap":
+        folder = Path(__file__).resolve().parents[1] / "datasets" / "real" / "gaitmap_level_left"
+        if not folder.is_dir():
+            pytest.skip("datasets/real not here")
+        session = read_session(folder)
+    else:
+        session = _level()
+        session.meta = {**session.meta, "source_project": "gaitmap"}
+    assert not [w for w in _warnings(session) if "Hermite heel rocker" in w]
+
+
+def test_ignore_force_on_simulated_insoles_says_so_s78():
+    """Decision S78 amended (review R3 finding 5): `--ignore-force` on a simulated session that has its insoles is told
+    the foot is tracked without force sensors, not that it has none."""
+    logging.disable(logging.NOTSET)
+    lines = [w for w in _warnings(_level(force=True), ignore_force=True) if "Hermite heel rocker" in w]
+    assert len(lines) == 1 and "has no force sensors" not in lines[0] and "--ignore-force" in lines[0]

@@ -85,3 +85,21 @@ def test_stair_rise_in_centimetres_is_one_line_b348(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "--stair-rise 17" in err and "write 0.17" in err and "Traceback" not in err
     assert not (tmp_path / "o").exists()
+
+
+def test_run_takes_stair_rise_and_prints_the_flights(tmp_path_factory, tmp_path, capsys):
+    """Decision L432 (review R3 finding 6): `run` writes stairs.csv, so it takes `--stair-rise` (the shared option)
+    and prints track's "stair flights" line; user 8632's two flights of 12 stairs."""
+    from tests.runtime_helpers import trained_dirs
+
+    bundle = trained_dirs(tmp_path_factory)["root"] / "bundle"
+    sim, out = tmp_path / "sim", tmp_path / "run"
+    assert main(["simulate", "--route", "straight:3, up:12, turn:180, up:12, straight:3", "-u", "8632",
+                 "-o", str(sim)]) == 0
+    capsys.readouterr()
+    assert main(["run", str(bundle), str(sim), "--stair-rise", "0.17", "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    t = pd.read_csv(out / "stairs.csv")
+    assert t["direction"].tolist() == ["up", "up"] and t["n_stairs"].notna().all()
+    assert "stair flights 2 up / 0 down" in printed
+    assert json.loads((out / "run.json").read_text())["options"]["stair_rise"] == 0.17

@@ -80,3 +80,52 @@ def test_malformed_subject_map_is_one_line_b340(study, tmp_path, capsys, text, s
     assert len(err) == 1 and "--subject-map" in err[0] and says in err[0]
     assert "real,pseudonym" in err[0] or "keep one" in err[0]  # the fix
     assert not (tmp_path / "ta").exists()
+
+
+def _numbers(obj, where=""):
+    """Every number of a JSON object by where it stands (keys as they are)."""
+    if isinstance(obj, dict):
+        return {k2: v for k, val in obj.items() for k2, v in _numbers(val, f"{where}/{k}").items()}
+    if isinstance(obj, list):
+        return {k2: v for i, val in enumerate(obj) for k2, v in _numbers(val, f"{where}/{i}").items()}
+    return {where: obj} if isinstance(obj, int | float) and not isinstance(obj, bool) else {}
+
+
+def test_track_all_subject_map_numeric_subject_folders(tmp_path, monkeypatch, capsys):
+    """C86 amended (session 35, review R3 finding 2): subject folders named 1 and 2 (users 8630, 8631) mapped to
+    P01, P02: the batch tracks (it failed on a renamed JSON number before), the tree and sessions.csv's paths are the
+    pseudonyms, and every number of summary.json and the tables is the run's without the map."""
+    import pandas as pd
+
+    root = tmp_path / "studyN"
+    for folder, seed in (("1", 8630), ("2", 8631)):
+        write_session(simulate("A", user_seed=seed), root / folder / "w")
+    (tmp_path / "mapN.csv").write_text("real,pseudonym\n1,P01\n2,P02\n")
+    assert main(["track-all", str(root), "--out", str(tmp_path / "plain")]) == 0
+    assert main(["track-all", str(root), "--subject-map", str(tmp_path / "mapN.csv"),
+                 "--out", str(tmp_path / "share")]) == 0
+    share, plain = tmp_path / "share", tmp_path / "plain"
+    assert sorted(p.name for p in share.iterdir() if p.is_dir()) == ["P01", "P02"]
+    assert list(pd.read_csv(share / "sessions.csv")["path"]) == ["P01/w", "P02/w"]
+    for folder, pseudo in (("1", "P01"), ("2", "P02")):
+        red = json.loads((share / pseudo / "w" / "summary.json").read_text())
+        org = json.loads((plain / folder / "w" / "summary.json").read_text())
+        assert _numbers(red) == _numbers(org) and red["distance_m"] == org["distance_m"]
+        for name in ("steps.csv", "trajectory.csv"):
+            assert (share / pseudo / "w" / name).read_text() == (plain / folder / "w" / name).read_text()
+    a, b = pd.read_csv(share / "bouts.csv"), pd.read_csv(plain / "bouts.csv")
+    numeric = [c for c in b.columns if pd.api.types.is_numeric_dtype(b[c])]
+    pd.testing.assert_frame_equal(a[numeric], b[numeric])
+
+
+def test_rename_text_numeric_names_only_as_names():
+    """C86 amended: a numeric real name is renamed as a path's folder or a name field's whole value, never a number
+    inside a message or a count."""
+    from pdrlearn.pseudonyms import rename_csv, rename_json, rename_text
+
+    names = {"1": "P01", "Doe": "P02"}
+    assert rename_text("1/w: line 1 column 32 of root/1", names) == "P01/w: line 1 column 32 of root/P01"
+    assert rename_text("Doe walked 1 km", names) == "P02 walked 1 km"
+    assert rename_json({"subject": "1", "visit": "1", "n": 1, "1/w": 1.0}, names) == {
+        "subject": "P01", "visit": "1", "n": 1, "P01/w": 1.0}
+    assert rename_csv("path,subject,n_strides\n1/w,1,1\n", names) == "path,subject,n_strides\nP01/w,P01,1\n"

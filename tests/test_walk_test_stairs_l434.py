@@ -28,3 +28,22 @@ def test_a_level_walk_is_timed_and_one_with_stairs_is_not_l434():
     # stairs after the timed span leave the test timed: 6 level strides are 7.8 m
     late = _walk(np.r_[np.zeros(6), np.full(6, -0.34)])
     assert t25fw(late)["t25fw_time_s"] is not None
+
+
+def test_one_drifting_stride_is_no_flight_and_the_walk_is_timed_l438():
+    """Decision L438 (session 35, review R3 finding 4): on a level walk one stride over 0.10 m (gaitmap_level_right's
+    +0.12 m drift) makes no stair flight and the 10 m walk and T25FW are still timed; two such strides in a row are a
+    flight and the tests are not timed."""
+    from pdrlearn.track.stair_flights import flight_table
+
+    dz = np.zeros(20)
+    dz[[4, 12]] = [0.123, 0.101]  # two lone drifting strides, as R3's gaitmap_level_right
+    drift = _walk(dz)
+    drift["length_m"] = 1.3
+    assert len(flight_table(drift)) == 0
+    assert ten_metre_walk(drift)["ten_m_walk_time_s"] is not None and t25fw(drift)["t25fw_time_s"] is not None
+    dz[5] = 0.12  # strides 4 and 5: a run of two
+    pair = _walk(dz)
+    pair["length_m"] = 1.3
+    assert list(flight_table(pair)["n_strides"]) == [2]
+    assert ten_metre_walk(pair)["ten_m_walk_time_s"] is None and "L438" in ten_metre_walk(pair)["ten_m_walk_note"]

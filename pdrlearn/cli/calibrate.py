@@ -99,7 +99,7 @@ def register(app: typer.Typer) -> None:
         if redact_paths:  # decision E176: the folders fitted on as <redacted>, said in the file
             from pdrlearn.redact import path_forms, redact_json
 
-            fit = {"fit": redact_json(fit["fit"], path_forms(dirs)), "paths_redacted": True}
+            fit = {"fit": redact_json(fit["fit"], path_forms(dirs), paths=True), "paths_redacted": True}
         params.save(out, extra=fit)
         replaced(out, was)
         d = params.to_dict()

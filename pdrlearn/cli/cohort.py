@@ -943,7 +943,7 @@ def track_all(
                         "SUBJECT.json per subject), not both")
     found = find_sessions(root)
     from pdrlearn.cli.provenance import redaction
-    from pdrlearn.redact import redact_folder, redact_json
+    from pdrlearn.redact import RUN_FIELDS, redact_folder, redact_json
 
     # decision E176: ROOT, OUT and the files given, and each session folder as it is named in a warning or error
     forms = redaction(arguments, extra=found)
@@ -1034,7 +1034,7 @@ def track_all(
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")
         if forms:  # decision E176: run.json, and the tables' error and warning cells (the sessions' own: per job)
-            run = redact_json(run, forms, default=json_default)
+            run = redact_json(run, forms, default=json_default, fields=RUN_FIELDS)
         if names:  # decision C86: run.json's ROOT, argv and paths
             run = rename_json(run, names, default=json_default)
         write_run_json(tmp, run)

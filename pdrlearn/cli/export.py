@@ -325,6 +325,7 @@ def run(
                                      "as `track --common-span`)."),
     drop_partial_row: bool = _track.DROP_PARTIAL_ROW_OPT,
     redact_paths: bool = _track.REDACT_PATHS_OPT,  # decision E176, as track's
+    stair_rise: float = _track.STAIR_RISE_OPT,  # decision L432, as track's (review R3 finding 6)
     sides: bool = typer.Option(False, "--sides", help="A waist-only bundle: each step's foot, steps.csv column "
                                "side (left / right, empty when undecided) as `track --pipeline waist-pendulum` "
                                "names it, from the streamed contacts (W138's causal side, not the offline W129 "
@@ -351,6 +352,8 @@ def run(
         pdrlearn run wbundle out/sim/D_u1 --sides --out out/run_sides   # a waist bundle: each step's foot
 
         pdrlearn run out/bundle/u1 walks/D --redact-paths --out out/run_share   # no folder path in any output (E176)
+
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --stair-rise 0.181 --out out/run_stairs   # stairs.csv n_stairs (L432)
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
@@ -386,6 +389,9 @@ def run(
         from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
 
         bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L130, L163: as `track`, first
+        from pdrlearn.track.stair_flights import stair_rise as check_stair_rise
+
+        stair_rise_m = check_stair_rise(stair_rise)  # decision B348, as `track`: before any output
         if dpi is not None and out is None:  # decision L70: it would be ignored
             raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                             "FOLDER or drop --dpi")
@@ -402,7 +408,8 @@ def run(
                                                          ("--clock-drift-ppm", clock_drift is not None),
                                                          ("--common-span", common_span),
                                                          ("--warn-out-of-domain", warn_out_of_domain is not None),
-                                                         ("--drop-neighbour", drop_neighbour))
+                                                         ("--drop-neighbour", drop_neighbour),
+                                                         ("--stair-rise", stair_rise is not None))
                                           if v]
             if given:
                 raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only "
@@ -592,6 +599,8 @@ def run(
         result.info.update(written_floats(tracker.height_checks()))  # decision E47: track's L69 / C28 checks; E157
         # decision E105: track's C16 report (flush warned C61's); E157: at the CSVs' digits
         result.info["out_of_domain"] = written_floats(tracker.domain_report())
+        if stair_rise_m is not None:  # decision L432: stairs.csv's n_stairs, as track's info
+            result.info["stair_rise_m"] = stair_rise_m
         # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
         table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
         summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
@@ -617,6 +626,9 @@ def run(
                        + (f" -> {out}" if out else ""))
             if summary.get("gait_speed_mps") is not None:  # decisions E48 / E51: track's L79 line, what run can give
                 typer.echo(gait_line(summary, streamed=True))  # decision L204: no cadence without --contacts
+            flights = _track.flights_line(summary)  # decision L432: as track's line (review R3 finding 6)
+            if flights:
+                typer.echo(flights)
 
 
 def _foot_checks(session) -> None:

@@ -243,6 +243,16 @@ STAIR_RISE_OPT = typer.Option(None, "--stair-rise", metavar="METRES", help="The 
                               "used (L440).")
 
 
+def flights_line(summary: dict) -> str | None:
+    """Decision L432: the printed line of a foot track's stair flights (``track`` and ``run``), None without one."""
+    if not (summary.get("n_flights_up") or summary.get("n_flights_down")):
+        return None
+    return (f"stair flights {summary['n_flights_up']} up / {summary['n_flights_down']} down "
+            f"({summary.get('n_stair_strides_up', 0)} / {summary.get('n_stair_strides_down', 0)} stair "
+            "strides; stairs.csv" + ("" if (summary.get("info") or {}).get("stair_rise_m") else
+                                     ", n_stairs with --stair-rise METRES") + ")")
+
+
 def track(
     session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
     out: Path = typer.Option(..., "--out", "-o", help="Output folder (created; an existing track only with --force)."),
@@ -334,7 +344,7 @@ def track(
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
 
-        pdrlearn track out/sim/D_u1 --stair-rise 0.181 --out out/D_stairs   # OUT/stairs.csv: flights, n_stairs
+        pdrlearn track out/sim/D_u1 --stair-rise 0.181 --out out/D_stairs   # stairs.csv: 1 flight (D's turns climb)
 
         pdrlearn track out/sim/A_u1 --steady-trim 3 --out out/A_steady   # each bout's first / last 3 strides out
 
@@ -1078,11 +1088,9 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         from pdrlearn.track.splits import splits_line
 
         typer.echo(splits_line(summary))
-    if summary.get("n_flights_up") or summary.get("n_flights_down"):  # decision L432: the stair flights
-        typer.echo(f"stair flights {summary['n_flights_up']} up / {summary['n_flights_down']} down "
-                   f"({summary.get('n_stair_strides_up', 0)} / {summary.get('n_stair_strides_down', 0)} stair "
-                   "strides; stairs.csv" + ("" if (summary.get("info") or {}).get("stair_rise_m") else
-                                            ", n_stairs with --stair-rise METRES") + ")")
+    flights = flights_line(summary)  # decision L432: the stair flights
+    if flights:
+        typer.echo(flights)
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "

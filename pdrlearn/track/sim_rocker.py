@@ -22,7 +22,8 @@ def hermite_contact_line(meta: dict | None) -> str | None:
         return None
     if knobs.get("rocker", "hermite") != "hermite":
         return None
-    return ("this simulated session's foot has no force sensors and simulate's default Hermite heel rocker, which "
+    return ("this simulated session's foot is tracked without force sensors (none recorded, the insoles rejected or "
+            "--ignore-force) and has simulate's default Hermite heel rocker, which "
             f"stops the foot abruptly at foot flat: its |acc| peaks again after each contact ({HERMITE_PEAK}), and "
             "the accel detector takes that peak as the contact in some strides, so contacts read up to ~+100 ms late "
             "and the stride-time CV and step-time asymmetry read high (decisions S63, S77); for force-free tests "

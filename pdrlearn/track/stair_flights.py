@@ -3,7 +3,9 @@
 A flight is a run of consecutive stair strides of one direction: rows that L179 counts as stair strides
 (:func:`pdrlearn.track.gait.stair_rows`, |``dz_m``| >= 0.10 m) whose height changes have one sign, inside one
 walking bout (L104's bouts, :func:`pdrlearn.track.clinical.bout_rows`: a pause of a second or more, or a data gap,
-ends a flight). A level stride ends it: a landing, and a turn on a landing, whose strides are level. Unlike L127's
+ends a flight), of at least :data:`MIN_FLIGHT_STRIDES` strides (L438: one drifting stride is no flight). A level
+stride ends it: a landing, and a turn on a landing whose strides are level (a landing turn whose strides climb, as
+scenario D's, stays in the flight). Unlike L127's
 storey climbs (:func:`pdrlearn.track.evaluate.floor_climbs`), which bridge a landing to count a storey, a flight is
 never bridged. A winding stair's turning stair strides stay one flight.
 
@@ -33,14 +35,18 @@ KEYS = ("n_flights_up", "n_flights_down")
 #: with 0.5 and not adopted (L433: a lone landing stride's stair went to the wrong flight on a 1.0 m landing): an
 #: option of :func:`flight_runs` (``landing_ratio=0.5``), off by default
 LANDING_GRADE_RATIO: float | None = None
+#: decision L438: the fewest consecutive stair strides of one sign that make a flight: one stride over L179's 0.10 m
+#: on a level walk is drift (L68: up to 0.47 m per stride), two in a row are a repeat (measured in L439)
+MIN_FLIGHT_STRIDES = 2
 
 
 def flight_runs(dz, stair, bouts: list[tuple[int, int]], length=None,
-                landing_ratio: float | None = LANDING_GRADE_RATIO) -> list[tuple[int, int, int]]:
-    """Decision L432: ``(first, last + 1, sign)`` of each run of consecutive rows that are ``stair`` rows whose
-    ``dz`` has one ``sign`` (+1 up, -1 down), never across a bout's end (``bouts``: ``(first, last + 1)`` row
-    ranges). Decision L433: with ``length`` (horizontal, m) and ``landing_ratio``, a run is also split at its landing
-    strides (:func:`landing_cuts`). A pure kernel."""
+                landing_ratio: float | None = LANDING_GRADE_RATIO,
+                min_strides: int = MIN_FLIGHT_STRIDES) -> list[tuple[int, int, int]]:
+    """Decision L432: ``(first, last + 1, sign)`` of each run of at least ``min_strides`` (L438) consecutive rows
+    that are ``stair`` rows whose ``dz`` has one ``sign`` (+1 up, -1 down), never across a bout's end (``bouts``:
+    ``(first, last + 1)`` row ranges). Decision L433: with ``length`` (horizontal, m) and ``landing_ratio``, a run is
+    also split at its landing strides (:func:`landing_cuts`). A pure kernel."""
     from pdrlearn.signal import runs
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
@@ -49,6 +55,8 @@ def flight_runs(dz, stair, bouts: list[tuple[int, int]], length=None,
     for a, b in bouts:
         for sign in (1, -1):
             for r0, r1 in runs(stair[a:b] & (sign * dz[a:b] > 0)):
+                if r1 - r0 < min_strides:  # decision L438: a lone stair stride is no flight
+                    continue
                 rows = slice(a + r0, a + r1)
                 cuts = ([] if length is None or landing_ratio is None
                         else landing_cuts(dz[rows], np.asarray(length, dtype=float)[rows], landing_ratio))
@@ -79,6 +87,18 @@ def landing_cuts(dz, length, ratio: float) -> list[int]:
         else:
             k += 1
     return cuts
+
+
+def flight_strides(st: pd.DataFrame, min_strides: int | None = None) -> int:
+    """Decision L434 (L438): the stair strides (L179's rows, as ``n_stair_strides`` counts them) of the rows ``st``
+    (one bout, in walking order) that belong to a flight of at least ``min_strides`` (None:
+    :data:`MIN_FLIGHT_STRIDES`); 0: no flight."""
+    from pdrlearn.track.gait import stair_rows, stride_rows
+
+    dz = pd.to_numeric(st["dz_m"], errors="coerce").to_numpy(float) if "dz_m" in st else np.zeros(len(st))
+    found = flight_runs(dz, stair_rows(st) & stride_rows(st), [(0, len(st))],
+                        min_strides=MIN_FLIGHT_STRIDES if min_strides is None else min_strides)
+    return int(sum(b - a for a, b, _ in found))
 
 
 def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.DataFrame:

@@ -17,6 +17,7 @@ import pandas as pd
 
 from pdrlearn.track.clinical import _is_lower_back, bout_rows
 from pdrlearn.track.flags import flag_values
+from pdrlearn.track.stair_flights import flight_strides
 
 #: decision L312: the acceleration and the deceleration zone (m) a 10MWT leaves out on each side (Bohannon 1997:
 #: a 14 m walkway, the middle 10 m timed; 2 m each side is the common protocol, the seeds give none)
@@ -110,11 +111,11 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
             out[note_key] = (f"a stride of the first {need:g} m has no length or no time (decision L313); "
                              "not timed")
             return out
-        n_stair = _stair_strides(steps.iloc[a:a + k])
-        if n_stair:  # decision L434: a walkway test is timed on level ground only
-            out[note_key] = (f"the first {need:g} m of the walk hold {n_stair} stair stride(s) (|dz_m| >= 0.10 m, "
-                             f"L179): a {timed_m:g} m walk test is timed on a level walkway (decision L434); not "
-                             "timed - stairs.csv has the flights")
+        n_stair = flight_strides(steps.iloc[a:a + k])
+        if n_stair:  # decision L434: a walkway test is timed on level ground only; L438: a flight, not one stride
+            out[note_key] = (f"the first {need:g} m of the walk hold a stair flight of {n_stair} stair stride(s) "
+                             f"(|dz_m| >= 0.10 m, L179; 2 or more in a row, L438): a {timed_m:g} m walk test is "
+                             "timed on a level walkway (decision L434); not timed - stairs.csv has the flights")
             return out
         end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
         if math.hypot(*end) < STRAIGHT_MIN * need:
@@ -130,13 +131,6 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         return out
     out[note_key] = short_note(longest, need)
     return out
-
-
-def _stair_strides(st: pd.DataFrame) -> int:
-    """Decision L434: the stair strides (L179's rows, as ``n_stair_strides`` counts them) among the rows ``st``."""
-    from pdrlearn.track.gait import stair_rows, stride_rows
-
-    return int((stair_rows(st) & stride_rows(st)).sum())
 
 
 def short_walk_note(longest: float, need: float = 2 * ZONE_M + TIMED_M) -> str:
