@@ -58,3 +58,15 @@ def test_track_warns_when_turning_strides_get_a_contradicted_length_class(walk_d
     assert len(lines) == 1 and "strides turning 15 deg or more" in lines[0]
     right = track_plasys(walk_d, method="M3", model=_FixedLength("labels", bounds))
     assert _c89(right) == []
+
+
+def test_c88_candidate_replaces_only_turning_strides_length_class():
+    from pdrlearn.track.turn_classes import measured_classes_on_turns
+
+    bounds = {"short": (0.0, 1.0), "normal": (1.0, 1.6), "long": (1.6, 10.0)}
+    classes = pd.DataFrame({"length_class": ["long", "long", None], "p_length_long": [0.9, 0.9, np.nan],
+                            "p_length_normal": [0.1, 0.1, np.nan], "terrain": ["flat"] * 3})
+    out = measured_classes_on_turns(classes, [1.3, 1.3, 1.3], np.deg2rad([90.0, 2.0, 90.0]), bounds)
+    assert list(out["length_class"]) == ["normal", "long", None]
+    assert out["p_length_normal"].iloc[0] == 1.0 and out["p_length_long"].iloc[0] == 0.0
+    assert out["p_length_long"].iloc[1] == 0.9 and list(classes["length_class"]) == ["long", "long", None]

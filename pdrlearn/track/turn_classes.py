@@ -49,7 +49,7 @@ def measured_classes_on_turns(classes, length_m, turn_rad, bounds):
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD
 
     out = classes.copy()
-    cls = out["length_class"].to_numpy(dtype=object)
+    cls = out["length_class"].to_numpy(dtype=object, copy=True)
     measured = measured_length_class(length_m, bounds)
     turn = np.abs(np.nan_to_num(np.asarray(turn_rad, dtype=float), nan=0.0)) >= STRAIGHT_MAX_RAD
     rows = turn & np.array([isinstance(c, str) for c in cls], bool) & np.array([m is not None for m in measured])
