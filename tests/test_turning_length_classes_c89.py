@@ -51,13 +51,33 @@ def _c89(res):
     return [w for w in res.info.get("warnings", []) if "decision C89" in w]
 
 
-def test_track_warns_when_turning_strides_get_a_contradicted_length_class(walk_d):
+def test_track_warns_when_turning_strides_get_a_contradicted_length_class(walk_d, monkeypatch):
+    from pdrlearn.track import plasys
+
     bounds = walk_d.meta["length_class_bounds_m"]
+    monkeypatch.setattr(plasys, "TURN_LENGTH_RULE", False)  # C88 off: the classifier's classes stay
     wrong = track_plasys(walk_d, method="M3", model=_FixedLength("long", bounds))
     lines = _c89(wrong)
-    assert len(lines) == 1 and "strides turning 15 deg or more" in lines[0]
+    assert len(lines) == 1 and "strides turning 15 deg or more" in lines[0] and "with care" in lines[0]
     right = track_plasys(walk_d, method="M3", model=_FixedLength("labels", bounds))
     assert _c89(right) == []
+
+
+def test_c88_turning_strides_take_their_measured_length_class_by_default(walk_d):
+    """Decision C88 (adopted): offline M3 gives a stride turning 15 deg or more the class of its measured length;
+    straight strides keep the classifier's; C89's line says the classes were replaced."""
+    from pdrlearn.track.gait import STRAIGHT_MAX_RAD
+
+    bounds = walk_d.meta["length_class_bounds_m"]
+    res = track_plasys(walk_d, method="M3", model=_FixedLength("long", bounds))
+    st = res.steps
+    turn = np.abs(np.nan_to_num(st["turn_angle_rad"].to_numpy(float))) >= STRAIGHT_MAX_RAD
+    assert turn.sum() >= 10 and (~turn).sum() >= 10
+    cls = st["length_class"].to_numpy(dtype=object)
+    assert (cls[~turn] == "long").all()
+    assert (cls[turn] != "long").mean() > 0.8  # D's corners are walked at normal length, its stairs short
+    lines = _c89(res)
+    assert len(lines) == 1 and "now comes from the measured length (decision C88)" in lines[0]
 
 
 def test_c88_candidate_replaces_only_turning_strides_length_class():

@@ -62,16 +62,18 @@ def measured_classes_on_turns(classes, length_m, turn_rad, bounds):
     return out
 
 
-def turning_length_line(n_off: int, n_turning: int, n_strides: int) -> str | None:
+def turning_length_line(n_off: int, n_turning: int, n_strides: int, *, replaced: bool = False) -> str | None:
     """Decision C89: the one warning line when :data:`TURN_DISAGREE_SHARE` or more of the classified turning strides
-    (and at least :data:`TURN_DISAGREE_MIN`) carry a length class their measured length contradicts; else None."""
+    (and at least :data:`TURN_DISAGREE_MIN`) carry a length class their measured length contradicts; else None.
+    ``replaced``: C88 gave those strides the measured class (the line says so)."""
     if n_off < TURN_DISAGREE_MIN or n_off < TURN_DISAGREE_SHARE * n_turning:
         return None
-    return (f"{n_off} of the {n_turning} strides turning 15 deg or more (of {n_strides}) got a length class their "
-            f"measured length contradicts: the calibration exercises walk straight (their only turns are short "
-            f"turnaround steps), so the length classifier's held-out accuracy does not hold on corners and its "
-            f"out-of-domain check does not see them; read length_class of turning strides with care, or compare "
-            f"raw_length_m with the model's length bounds (decision C89)")
+    what = ("their length class now comes from the measured length (decision C88)" if replaced else
+            "read length_class of turning strides with care, or compare raw_length_m with the model's length bounds")
+    return (f"{n_off} of the {n_turning} strides turning 15 deg or more (of {n_strides}) got a length class from the "
+            f"classifier that their measured length contradicts: the calibration exercises walk straight (their only "
+            f"turns are short turnaround steps), so the length classifier's held-out accuracy does not hold on "
+            f"corners and its out-of-domain check does not see them; {what} (decision C89)")
 
 
 __all__ = ["TURN_DISAGREE_SHARE", "TURN_DISAGREE_MIN", "measured_length_class", "measured_classes_on_turns",
