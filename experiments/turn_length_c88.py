@@ -36,11 +36,11 @@ def walk_rows(user: int, model) -> list[dict]:
         lo, hi = s.meta["length_class_bounds_m"]
         bounds = {"short": (0.0, lo), "normal": (lo, hi), "long": (hi, 10.0)}
         for on in (False, True):
-            plasys.TURN_LENGTH_RULE = on
+            before, plasys.TURN_LENGTH_RULE = plasys.TURN_LENGTH_RULE, on
             try:
                 res = plasys.track_plasys(s, method="M3", model=model)
             finally:
-                plasys.TURN_LENGTH_RULE = False
+                plasys.TURN_LENGTH_RULE = before
             info = res.summary(s)
             st = with_reference_columns(res, s)
             ok = st["ref_length_m"].notna().to_numpy() if "ref_length_m" in st else np.zeros(len(st), bool)
