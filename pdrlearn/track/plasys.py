@@ -912,9 +912,10 @@ def _contact_cadence(seen: dict, table: pd.DataFrame, t: np.ndarray, stance: np.
     return contact_cadence_spm(table["event_s"].to_numpy(float)) if "event_s" in table else None
 
 
-#: decision C88 (adopted by its rule): in offline M3 a stride turning 15 deg or more (L79) takes the length class of
-#: its measured length against the model's bounds instead of the classifier's (the streamed path does not yet)
-TURN_LENGTH_RULE = True
+#: decision C88: in offline M3 a stride turning 15 deg or more (L79) takes the length class of its measured length
+#: against the model's bounds instead of the classifier's. Its rule was met, but it stays off until the streamed path
+#: and the runtime apply it too (L38's offline / streamed class parity); True is the option
+TURN_LENGTH_RULE = False
 
 
 @register_pipeline("plasys")
@@ -1232,7 +1233,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if "length_class" in classes else None  # decision C89 counts the classifier's own classes
     turn_rule = bool(TURN_LENGTH_RULE and cfg["rules"] and use_bounds is not None and classified_length is not None
                      and not (isinstance(model, str) and model == "oracle"))
-    if turn_rule:  # decision C88 (adopted)
+    if turn_rule:  # decision C88 (option)
         from pdrlearn.track.turn_classes import measured_classes_on_turns
 
         classes = measured_classes_on_turns(classes, np.hypot(disp[:, 0], disp[:, 1]), fd.yaw_change_,

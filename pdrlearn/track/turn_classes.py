@@ -43,7 +43,7 @@ def turning_length_disagreement(length_class, raw_length_m, turn_rad, bounds, va
 
 
 def measured_classes_on_turns(classes, length_m, turn_rad, bounds):
-    """Decision C88 (opt-in): a copy of a stride classes table whose strides turning at least L79's 15 deg (and
+    """Decision C88 (an option): a copy of a stride classes table whose strides turning at least L79's 15 deg (and
     holding a length class) take the class of their measured length (:func:`measured_length_class`), with one-hot
     ``p_length_*`` so that the rules weigh that class; other strides unchanged."""
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD
