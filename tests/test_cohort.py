@@ -161,7 +161,7 @@ def test_train_all_dask_equals_serial(cohort, scheduler, tmp_path, capsys):
     assert main(["evaluate-all", str(tmp_path / "dask"), str(cohort), "--scheduler", scheduler, "--json"]) == 1
     ev_dask = json.loads(capsys.readouterr().out)
     assert strip(ev_serial) == strip(ev_dask)
-    accs = [u["terrain_accuracy"] for u in ev_serial["users"] if u["status"] == "ok"]
+    accs = [u["terrain_accuracy_labelled"] for u in ev_serial["users"] if u["status"] == "ok"]
     assert len(accs) == 3 and min(accs) > 0.6  # held-out sessions, chance is 1/3
     assert (tmp_path / "serial" / "eval" / "cohort_summary.md").exists()
     # piped output (no terminal): the summary as a Markdown table, not squeezed to 80 columns

@@ -89,7 +89,7 @@ def _read_sessions(user_dir: Path, part: str, skip_bad: bool) -> tuple[list, dic
 def _train_job(args: dict) -> dict:
     """Train one user (runs on a Dask worker): read sessions, train, save; return a summary row."""
     from pdrlearn.classify import train_user
-    from pdrlearn.classify.training import default_user
+    from pdrlearn.classify.training import TASKS, default_user
 
     sessions, skipped = _read_sessions(Path(args["user_dir"]), "train", args.get("skip_bad", False))
     # decision E175: train's name (meta.json 'user' / 'subject'), the user's folder only when the sessions name none
@@ -100,7 +100,8 @@ def _train_job(args: dict) -> dict:
                        resample_hz=args.get("resample_hz"),  # decisions C56, C62: train's refusal and resampler
                        task_methods=args.get("task_methods"))  # decision C74
     model.save(Path(args["out"]))
-    row = {"sessions": len(sessions), **skipped, **trained_rate(model), "skipped_tasks": len(model.skipped)}
+    row = {"sessions": len(sessions), **skipped, **trained_rate(model), "skipped_tasks": len(model.skipped),
+           "skipped_task_names": skipped_task_names(args["tasks"] or TASKS, model.tasks)}  # decision C87
     for t, tm in model.tasks.items():
         m, u = tm.chosen
         row[f"{t}_method"] = f"{m}/{u}"
@@ -131,11 +132,27 @@ def _evaluate_job(args: dict) -> dict:
     res = evaluate_model(model, sessions, latency=False)
     if not res["tasks"]:
         raise DataError(f"{args['user_dir']}: held-out sessions have no labels for the model's tasks")
-    row = {"sessions": len(sessions), **skipped}
+    row = {"sessions": len(sessions), **skipped,
+           # decision C87: the labelled tasks the model has no classifier of (evaluate's "skipped", C36), by name
+           "skipped_task_names": "; ".join(str(v).split(":", 1)[0] for v in res.get("skipped") or [])}
     for t, r in res["tasks"].items():
-        row[f"{t}_accuracy"] = r["accuracy"]
-        row[f"{t}_n_steps"] = r["n_steps"]
+        row.update(task_accuracy_columns(t, r))
     return row
+
+
+def skipped_task_names(asked, trained) -> str:
+    """Decision C87: the tasks asked for that training skipped (their reasons are on stderr and in the manifest),
+    ``"; "``-joined for the one summary cell; empty when none."""
+    return "; ".join(t for t in asked if t not in trained)
+
+
+def task_accuracy_columns(task: str, r: dict) -> dict:
+    """Decision C87: a user's evaluate-all cells of one task: the accuracy on the strides the runtime and ``track
+    --model`` detect first (what ``evaluate`` leads with, C49; empty when no detector ran), then the accuracy on the
+    labelled boundaries, each with the steps it counts."""
+    det = r.get("detected") or {}
+    return {f"{task}_accuracy_detected": det.get("accuracy"), f"{task}_n_steps_detected": det.get("n_steps"),
+            f"{task}_accuracy_labelled": r["accuracy"], f"{task}_n_steps_labelled": r["n_steps"]}
 
 
 #: decision C11: summary columns that count things, written as integers
@@ -161,7 +178,7 @@ def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
         rows.append(row)
     df = pd.DataFrame(rows)
     for c in df.columns:  # decision C11: counts stay integers (2, not 2.0) when a failed user leaves them empty
-        if c in COUNT_COLUMNS or c.endswith("_n_steps"):
+        if c in COUNT_COLUMNS or c.endswith(("_n_steps", "_n_steps_detected", "_n_steps_labelled")):  # C87
             df[c] = pd.to_numeric(df[c]).round().astype("Int64")
     out.mkdir(parents=True, exist_ok=True)
     tmp = out / ".cohort_summary.csv.tmp"

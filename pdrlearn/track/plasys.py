@@ -912,6 +912,12 @@ def _contact_cadence(seen: dict, table: pd.DataFrame, t: np.ndarray, stance: np.
     return contact_cadence_spm(table["event_s"].to_numpy(float)) if "event_s" in table else None
 
 
+#: decision C88: in offline M3 a stride turning 15 deg or more (L79) takes the length class of its measured length
+#: against the model's bounds instead of the classifier's. Its rule was met, but it stays off until the streamed path
+#: and the runtime apply it too (L38's offline / streamed class parity); True is the option
+TURN_LENGTH_RULE = False
+
+
 @register_pipeline("plasys")
 def track_plasys(session: Session, *, method: str = "auto", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
@@ -1228,6 +1234,15 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if not cfg["rules"]:
         classes["terrain"] = None
     gate = DEFAULT_MIN_CONFIDENCE if min_confidence is None else float(min_confidence)
+    classified_length = classes["length_class"].to_numpy(dtype=object, copy=True) \
+        if "length_class" in classes else None  # decision C89 counts the classifier's own classes
+    turn_rule = bool(TURN_LENGTH_RULE and cfg["rules"] and use_bounds is not None and classified_length is not None
+                     and not (isinstance(model, str) and model == "oracle"))
+    if turn_rule:  # decision C88 (option)
+        from pdrlearn.track.turn_classes import measured_classes_on_turns
+
+        classes = measured_classes_on_turns(classes, np.hypot(disp[:, 0], disp[:, 1]), fd.yaw_change_,
+                                            parse_bounds(use_bounds))
     rule_classes = _confident(classes, gate) if cfg["rules"] else classes.assign(terrain="flat")
     applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
@@ -1371,6 +1386,16 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             tc = np.where(np.isfinite(tf), tf, tc)
     add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
                      turn_valid=~in_gap)  # L109: a stride moved 0 m by the guard keeps its measured turn
+    if cfg["rules"] and use_bounds is not None and classified_length is not None and "length" not in untrained \
+            and not (isinstance(model, str) and model == "oracle"):  # decision C89: the classes on turning strides
+        from pdrlearn.track.turn_classes import turning_length_disagreement, turning_length_line
+
+        n_off, n_turn = turning_length_disagreement(classified_length, table["raw_length_m"],
+                                                    table["turn_angle_rad"], parse_bounds(use_bounds),
+                                                    ~in_gap & ~impossible)
+        line = turning_length_line(n_off, n_turn, len(table), replaced=turn_rule)
+        if line:
+            warnings.append(line)
     if toe_off:  # decision L315: L285's stance bound on one foot's track
         from pdrlearn.track.gait import stance_share_warning
 

@@ -1,0 +1,80 @@
+"""Decision C89: does the length classifier hold on the strides that turn?
+
+The calibration exercises (thesis ch. 6.1) are straight walks whose only turning strides are the short turnaround
+steps at the ends, so a walking turn (a 45 or 90 deg corner taken at normal length) is a stride the length
+classifier never learned, yet its inputs lie inside the per-feature training ranges that C16 checks (trial T6:
+``out_of_domain_fraction`` 0.04 while 14 of 75 strides of path D were called ``long``). The foot's own ZUPT
+measurement of the stride (raw_length_m, thesis ch. 5.1) places each stride in a class against the model's length
+bounds; on the turning strides (|turn_angle_rad| of at least 15 deg, the straight limit of decision L79) the share
+whose classified length class differs from that measured class tells whether the classes can be trusted there.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: decision C89: the share of disagreeing turning strides at which ``track`` warns -- C16's tested
+#: FRACTION_THRESHOLD (0.25), reused and not tuned (no measurement chose it)
+TURN_DISAGREE_SHARE = 0.25
+#: decision C89: fewest disagreeing turning strides for the line (one odd corner is no pattern)
+TURN_DISAGREE_MIN = 3
+
+
+def measured_length_class(length_m: np.ndarray, bounds: dict[str, tuple[float, float]]) -> np.ndarray:
+    """The class whose ``[lo, hi)`` bounds (``parse_bounds`` form) hold each |length|; None outside every one."""
+    a = np.abs(np.asarray(length_m, dtype=float))
+    out = np.full(len(a), None, dtype=object)
+    for name, (lo, hi) in bounds.items():
+        out[(a >= lo) & (a < hi)] = name
+    return out
+
+
+def turning_length_disagreement(length_class, raw_length_m, turn_rad, bounds, valid=None) -> tuple[int, int]:
+    """(disagreeing, classified) turning strides: strides turning at least L79's 15 deg with a classified length
+    class (and, when given, ``valid``) whose class differs from :func:`measured_length_class` of their raw length."""
+    from pdrlearn.track.gait import STRAIGHT_MAX_RAD
+
+    cls = np.asarray(length_class, dtype=object)
+    turn = np.abs(np.nan_to_num(np.asarray(turn_rad, dtype=float), nan=0.0)) >= STRAIGHT_MAX_RAD
+    have = np.array([isinstance(c, str) for c in cls], dtype=bool)
+    keep = turn & have & (np.ones(len(cls), bool) if valid is None else np.asarray(valid, bool))
+    measured = measured_length_class(raw_length_m, bounds)
+    return int(np.sum(keep & (cls != measured))), int(keep.sum())
+
+
+def measured_classes_on_turns(classes, length_m, turn_rad, bounds):
+    """Decision C88 (an option): a copy of a stride classes table whose strides turning at least L79's 15 deg (and
+    holding a length class) take the class of their measured length (:func:`measured_length_class`), with one-hot
+    ``p_length_*`` so that the rules weigh that class; other strides unchanged."""
+    from pdrlearn.track.gait import STRAIGHT_MAX_RAD
+
+    out = classes.copy()
+    cls = out["length_class"].to_numpy(dtype=object, copy=True)
+    measured = measured_length_class(length_m, bounds)
+    turn = np.abs(np.nan_to_num(np.asarray(turn_rad, dtype=float), nan=0.0)) >= STRAIGHT_MAX_RAD
+    rows = turn & np.array([isinstance(c, str) for c in cls], bool) & np.array([m is not None for m in measured])
+    cls[rows] = measured[rows]
+    out["length_class"] = cls
+    for c in [c for c in out.columns if c.startswith("p_length_")]:
+        p = out[c].to_numpy(dtype=float, copy=True)
+        p[rows] = (measured[rows] == c[len("p_length_"):]).astype(float)
+        out[c] = p
+    return out
+
+
+def turning_length_line(n_off: int, n_turning: int, n_strides: int, *, replaced: bool = False) -> str | None:
+    """Decision C89: the one warning line when :data:`TURN_DISAGREE_SHARE` or more of the classified turning strides
+    (and at least :data:`TURN_DISAGREE_MIN`) carry a length class their measured length contradicts; else None.
+    ``replaced``: C88 gave those strides the measured class (the line says so)."""
+    if n_off < TURN_DISAGREE_MIN or n_off < TURN_DISAGREE_SHARE * n_turning:
+        return None
+    what = ("their length class now comes from the measured length (decision C88)" if replaced else
+            "read length_class of turning strides with care, or compare raw_length_m with the model's length bounds")
+    return (f"{n_off} of the {n_turning} strides turning 15 deg or more (of {n_strides}) got a length class from the "
+            f"classifier that their measured length contradicts: the calibration exercises walk straight (their only "
+            f"turns are short turnaround steps), so the length classifier's held-out accuracy does not hold on "
+            f"corners and its out-of-domain check does not see them; {what} (decision C89)")
+
+
+__all__ = ["TURN_DISAGREE_SHARE", "TURN_DISAGREE_MIN", "measured_length_class", "measured_classes_on_turns",
+           "turning_length_disagreement", "turning_length_line"]
