@@ -21,6 +21,7 @@ import pandas as pd
 
 from pdrlearn.classify import train_user
 from pdrlearn.sim import simulate
+from pdrlearn.kernels import turn_length
 from pdrlearn.track import plasys
 from pdrlearn.track.evaluate import with_reference_columns
 from pdrlearn.track.gait import STRAIGHT_MAX_RAD
@@ -36,11 +37,11 @@ def walk_rows(user: int, model) -> list[dict]:
         lo, hi = s.meta["length_class_bounds_m"]
         bounds = {"short": (0.0, lo), "normal": (lo, hi), "long": (hi, 10.0)}
         for on in (False, True):
-            before, plasys.TURN_LENGTH_RULE = plasys.TURN_LENGTH_RULE, on
+            before, turn_length.TURN_LENGTH_RULE = turn_length.TURN_LENGTH_RULE, on
             try:
                 res = plasys.track_plasys(s, method="M3", model=model)
             finally:
-                plasys.TURN_LENGTH_RULE = before
+                turn_length.TURN_LENGTH_RULE = before
             info = res.summary(s)
             st = with_reference_columns(res, s)
             ok = st["ref_length_m"].notna().to_numpy() if "ref_length_m" in st else np.zeros(len(st), bool)

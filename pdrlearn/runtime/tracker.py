@@ -38,6 +38,7 @@ from pdrlearn.kernels.distance import (
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gaps import drop_neighbour_on, drop_stride_disp
+from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
     DOWN_MODES,
@@ -1676,6 +1677,11 @@ class Tracker(FixInput):
         raw_dz = dz
         if self.distance_gain != 1.0:  # decision L26 / E14, as pdrlearn track
             dx, dy, dz = apply_level_gain_one(dx, dy, dz, self.distance_gain)
+        if _turn_length.TURN_LENGTH_RULE and self.bounds is not None and "length" in classes:  # decisions C88 /
+            # C91: a turning stride's length class from its measured length, track's and track --streaming's call
+            label, lp = _turn_length.turn_length_class_one(classes["length"], proba.get("length"), math.hypot(dx, dy),
+                                                           _sideways.foot_turn(lev), self.bounds)
+            classes, proba = {**classes, "length": label}, {**proba, "length": lp}
         if self.rules == "thesis" and self.min_confidence <= 0:
             terrain = classes.get("terrain")
             length, dz = stride_rules_one(dx, dy, dz, terrain, classes.get("direction"),
