@@ -7,6 +7,8 @@ train an SVM on the fused units (L38's parity test's model), exported as a bundl
 each path's length-class agreement of the turning strides (15 deg or more, L79; truth: ``ref_length_m`` against
 the walk's bounds) and the agreement of the paths' length classes with each other (strides matched by overlap).
 
+Writes experiments/results/turn_length_paths_c91.md|csv.
+
     PYTHONPATH=. .venv/bin/python experiments/turn_length_paths_c91.py [--users 8650 8651 8652]
 """
 
@@ -29,6 +31,8 @@ from pdrlearn.sim import simulate
 from pdrlearn.track.evaluate import match_by_overlap, with_reference_columns
 from pdrlearn.track.plasys import track_plasys
 from pdrlearn.track.turn_classes import measured_length_class
+
+OUT = Path(__file__).parent / "results"
 
 
 def run_steps(bundle, s) -> pd.DataFrame:
@@ -95,14 +99,20 @@ def main() -> None:
     df = pd.DataFrame(rows)
     pd.set_option("display.width", 200)
     print(df.to_string(index=False))
+    lines = []
     for on, g in df.groupby("rule"):
         n = g["turn_n"].sum()
-        print(f"rule {'on ' if on else 'off'}: turning strides {n}; length agreement offline "
-              f"{g['offline_turn_agree'].sum() / n:.4f}, streamed {g['streamed_turn_agree'].sum() / n:.4f}, run "
-              f"{g['run_turn_agree'].sum() / n:.4f}; offline vs streamed on turning strides "
-              f"{g['off_str_turn'].sum() / g['off_str_n'].sum():.4f}, streamed vs run (all strides) "
-              f"{g['str_run'].sum() / g['str_run_n'].sum():.4f} ({g['str_run_n'].sum()})")
-
+        lines.append(f"rule {'on ' if on else 'off'}: turning strides {n}; length agreement offline "
+                     f"{g['offline_turn_agree'].sum() / n:.4f}, streamed {g['streamed_turn_agree'].sum() / n:.4f}, run "
+                     f"{g['run_turn_agree'].sum() / n:.4f}; offline vs streamed on turning strides "
+                     f"{g['off_str_turn'].sum() / g['off_str_n'].sum():.4f}, streamed vs run (all strides) "
+                     f"{g['str_run'].sum() / g['str_run_n'].sum():.4f} ({g['str_run_n'].sum()})")
+        print(lines[-1])
+    df.to_csv(OUT / "turn_length_paths_c91.csv", index=False)
+    (OUT / "turn_length_paths_c91.md").write_text(
+        "# C91: C88's turning-stride length class on every path\n\n"
+        f"`experiments/turn_length_paths_c91.py --users {' '.join(map(str, args.users))}` (decision C91)\n\n"
+        + "\n".join(f"- {x}" for x in lines) + "\n\n" + df.to_markdown(index=False) + "\n")
 
 if __name__ == "__main__":
     main()
