@@ -20,8 +20,8 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.classify import train_user
-from pdrlearn.sim import simulate
 from pdrlearn.kernels import turn_length
+from pdrlearn.sim import simulate
 from pdrlearn.track import plasys
 from pdrlearn.track.evaluate import with_reference_columns
 from pdrlearn.track.gait import STRAIGHT_MAX_RAD

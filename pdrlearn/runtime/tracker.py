@@ -26,6 +26,7 @@ import numpy as np
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import sideways as _sideways
+from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import (
@@ -38,7 +39,6 @@ from pdrlearn.kernels.distance import (
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gaps import drop_neighbour_on, drop_stride_disp
-from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
     DOWN_MODES,

@@ -29,6 +29,7 @@ import pandas as pd
 # decision E49: one implementation (numpy only), shared with the streaming runtime, which gives each stride its
 # stride time as it emits it
 from pdrlearn.kernels.contact import MAX_STRIDE_S, TOUCH_S, stride_times  # noqa: F401
+
 # decision L79: a stride turning less than STRAIGHT_MAX_RAD (|turn_angle_rad|) is straight for
 # ``median_speed_straight_mps``: 15 deg, above the straight-pass strides' -10..+11 deg and below the turnaround
 # strides' 20..121 deg of L66 (in the kernels since C91: the runtime's C88 rule reads it)
