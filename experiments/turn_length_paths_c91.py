@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from experiments.turn_length_c88 import turn_rule, walks
 from pdrlearn.classify import train_user
 from pdrlearn.export import export_model
 from pdrlearn.kernels import turn_length
@@ -36,14 +37,13 @@ OUT = Path(__file__).parent / "results"
 
 
 def run_steps(bundle, s) -> pd.DataFrame:
-    """The runtime Tracker's steps (``pdrlearn run``'s replay) as a table of the columns compared here."""
+    """The runtime Tracker's steps (``pdrlearn run``'s replay) as a steps table (``Step.to_dict`` rows)."""
     tr = Tracker(bundle)
     steps = []
     for chunk in replay_chunks({n: (st.t, st.values) for n, st in s.streams.items()}, 0.5):
         steps += tr.push(chunk)
     steps += tr.flush()
-    return pd.DataFrame({"start_s": [st.start_s for st in steps], "end_s": [st.end_s for st in steps],
-                         "length_class": [st.classes.get("length") for st in steps]})
+    return pd.DataFrame([st.to_dict() for st in steps])
 
 
 def _agree(a: pd.DataFrame, b: pd.DataFrame, rows_a=None) -> tuple[int, int]:
@@ -56,19 +56,13 @@ def _agree(a: pd.DataFrame, b: pd.DataFrame, rows_a=None) -> tuple[int, int]:
 
 def walk_rows(user: int, model, bundle) -> list[dict]:
     rows = []
-    for walk in ("D", "B"):
-        s = simulate(walk, user_seed=user, seed=3)
-        lo, hi = s.meta["length_class_bounds_m"]
-        bounds = {"short": (0.0, lo), "normal": (lo, hi), "long": (hi, 10.0)}
+    for walk, s, bounds in walks(user):
         for on in (False, True):
-            before, turn_length.TURN_LENGTH_RULE = turn_length.TURN_LENGTH_RULE, on
-            try:
+            with turn_rule(on):
                 res = {"offline": track_plasys(s, method="M3", model=model),
                        "streamed": track_plasys(s, method="M3", model=model, streaming=True)}
                 tables = {k: with_reference_columns(r, s) for k, r in res.items()}
                 tables["run"] = run_steps(bundle, s)
-            finally:
-                turn_length.TURN_LENGTH_RULE = before
             off = tables["offline"]
             turn = np.abs(np.nan_to_num(off["turn_angle_rad"].to_numpy(float))) >= turn_length.STRAIGHT_MAX_RAD
             truth = measured_length_class(off["ref_length_m"].to_numpy(float), bounds)

@@ -44,15 +44,9 @@ def user_8653(tmp_path_factory):
 
 
 def _run(bundle, s) -> pd.DataFrame:
-    from pdrlearn.runtime import Tracker
-    from pdrlearn.runtime.replay import replay_chunks
+    from experiments.turn_length_paths_c91 import run_steps
 
-    tr = Tracker(bundle)
-    steps = []
-    for chunk in replay_chunks({n: (st.t, st.values) for n, st in s.streams.items()}, 0.5):
-        steps += tr.push(chunk)
-    steps += tr.flush()
-    return pd.DataFrame([st.to_dict() for st in steps])
+    return run_steps(bundle, s)
 
 
 def test_streamed_and_run_give_turning_strides_the_same_measured_class(user_8653, monkeypatch):
@@ -65,11 +59,11 @@ def test_streamed_and_run_give_turning_strides_the_same_measured_class(user_8653
     on = _run(bundle, s)
     monkeypatch.setattr(turn_length, "TURN_LENGTH_RULE", False)
     off = _run(bundle, s)
+    assert len(on) == len(off)
     pairs = match_by_overlap(st, on, min_iou=0.5)
     assert len(pairs) >= 0.95 * len(on)
     a, b = st["length_class"].to_numpy(object), on["length_class"].to_numpy(object)
     assert all(a[i] == b[j] for i, j in pairs)
-    assert len(on) == len(off)
     changed = on["length_class"].to_numpy(object) != off["length_class"].to_numpy(object)
     assert changed.sum() >= 3  # the classifier called some corners wrong; the measured length put them right
     turn = np.abs(on["turn_angle_rad"].to_numpy(float)) + np.abs(on["pivot_rad"].to_numpy(float))
