@@ -1185,7 +1185,7 @@ COHORT_METHODS: tuple[Column, ...] = (
     ("method", _ID, "text", "the classifier method (heuristic, dtw, svm, nn, fusion, ensemble or a plug-in)"),
     ("unit", _ID, "text", "the unit it classifies from: foot, waist, fused (soft vote) or combined (both units' "
                           "features)"),
-    ("chosen", _ID, "boolean", "whether it is the task's chosen model (evaluate's tasks.<task>.chosen), the one "
+    ("chosen", _ID, "true/false", "whether it is the task's chosen model (evaluate's tasks.<task>.chosen), the one "
                                "track --model and the runtime use"),
     ("accuracy_labelled", "fraction", "number", f"accuracy on the held-out steps cut at the labelled boundaries, "
                                                 f"{_EVAL}"),
