@@ -38,7 +38,7 @@ def built_state() -> tuple[str | None, bool | None]:
     try:
         import pdrlearn
 
-        stamp = json.loads((Path(pdrlearn.__file__).resolve().parent / "_build.json").read_text())
+        stamp = json.loads((Path(pdrlearn.__file__).resolve().parent / "_build.json").read_text(encoding="utf-8"))
         commit, dirty = stamp["git_commit"], stamp["git_dirty"]
     except (OSError, ValueError, KeyError, TypeError):
         return None, None
