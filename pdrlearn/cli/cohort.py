@@ -133,7 +133,8 @@ def _evaluate_job(args: dict) -> dict:
     if not res["tasks"]:
         raise DataError(f"{args['user_dir']}: held-out sessions have no labels for the model's tasks")
     row = {"sessions": len(sessions), **skipped,
-           # decision C87: the labelled tasks the model has no classifier of (evaluate's "skipped", C36), by name
+           # decision C87 (amended, R4): the tasks evaluate did not score, by name: every "TASK: why" of its top-level
+           # "skipped" (no classifier of a labelled task, C36; no labels of a model's task; no method can run)
            "skipped_task_names": "; ".join(str(v).split(":", 1)[0] for v in res.get("skipped") or [])}
     for t, r in res["tasks"].items():
         row.update(task_accuracy_columns(t, r))
