@@ -12,19 +12,31 @@ def git_state() -> tuple[str | None, bool | None]:
     """Decision L136: ``(commit, dirty)`` of the git checkout pdrlearn runs from (``dirty``: tracked files differ from
     the commit); for an installed copy the build's stamp (:func:`built_state`, decision E187); ``(None, None)``
     without either, or when git fails."""
-    import subprocess
-
     import pdrlearn
 
     repo = Path(pdrlearn.__file__).resolve().parent.parent
     if not (repo / ".git").exists():
         return built_state()
+    return checkout_state(repo)
+
+
+def checkout_state(repo: Path, untracked_under: str | None = None) -> tuple[str | None, bool | None]:
+    """``(commit, dirty)`` of the git checkout ``repo``, ``(None, None)`` when git fails (not on PATH, "dubious
+    ownership"). ``dirty``: tracked files differ from the commit (decision L136), or, with ``untracked_under``
+    (the build stamp's ``"pdrlearn"``, decision E187 amended), an untracked file lies under that folder: setuptools
+    packs it into the wheel."""
+    import subprocess
+
     try:
         def git(*args: str) -> str:
             return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True,
                                   timeout=10).stdout.strip()
 
-        return git("rev-parse", "HEAD"), bool(git("status", "--porcelain", "--untracked-files=no"))
+        commit = git("rev-parse", "HEAD")
+        dirty = bool(git("status", "--porcelain", "--untracked-files=no"))
+        if untracked_under is not None and not dirty:
+            dirty = bool(git("status", "--porcelain", "--untracked-files=all", "--", untracked_under))
+        return commit, dirty
     except (OSError, subprocess.SubprocessError):
         return None, None
 
@@ -38,7 +50,7 @@ def built_state() -> tuple[str | None, bool | None]:
     try:
         import pdrlearn
 
-        stamp = json.loads((Path(pdrlearn.__file__).resolve().parent / "_build.json").read_text())
+        stamp = json.loads((Path(pdrlearn.__file__).resolve().parent / "_build.json").read_text(encoding="utf-8"))
         commit, dirty = stamp["git_commit"], stamp["git_dirty"]
     except (OSError, ValueError, KeyError, TypeError):
         return None, None

@@ -1177,11 +1177,50 @@ STEPS_JSON: tuple[Column, ...] = (
 )
 
 
+#: cohort C92: `evaluate-all --per-method`'s tables (pdrlearn.cohort_methods); accuracies are fractions (0-1)
+_EVAL = "as `pdrlearn evaluate --json` scores it (tasks.<task>.methods.<method>.units.<unit>)"
+COHORT_METHODS: tuple[Column, ...] = (
+    ("user", _ID, "text", "the user's folder in the cohort (cohort_summary.csv's user)"),
+    ("task", _ID, "text", "terrain, direction or length"),
+    ("method", _ID, "text", "the classifier method (heuristic, dtw, svm, nn, fusion, ensemble or a plug-in)"),
+    ("unit", _ID, "text", "the unit it classifies from: foot, waist, fused (soft vote) or combined (both units' "
+                          "features)"),
+    ("chosen", _ID, "true/false", "whether it is the task's chosen model (evaluate's tasks.<task>.chosen), the one "
+                               "track --model and the runtime use"),
+    ("accuracy_labelled", "fraction", "number", f"accuracy on the held-out steps cut at the labelled boundaries, "
+                                                f"{_EVAL}"),
+    ("balanced_accuracy_labelled", "fraction", "number", "mean recall over the classes present, on the labelled "
+                                                         "boundaries"),
+    ("n_steps_labelled", "count", "integer", "labelled steps the model classified"),
+    ("accuracy_detected", "fraction", "number", "accuracy on the strides the runtime detects (C49); on the chosen "
+                                                "row only (evaluate scores the detected strides with it alone)"),
+    ("balanced_accuracy_detected", "fraction", "number", "balanced accuracy on the detected strides; chosen row only"),
+    ("n_steps_detected", "count", "integer", "labelled steps matched to a detected stride and classified; chosen row "
+                                             "only"),
+)
+COHORT_METHODS_SUMMARY: tuple[Column, ...] = (
+    ("task", _ID, "text", "as cohort_methods.csv"),
+    ("method", _ID, "text", "as cohort_methods.csv"),
+    ("unit", _ID, "text", "as cohort_methods.csv"),
+    ("n_users", "count", "integer", "users whose evaluation scored this task x method x unit"),
+    ("accuracy_labelled_mean", "fraction", "number", "mean over those users of accuracy_labelled"),
+    ("accuracy_labelled_sd", "fraction", "number", "sample SD (n - 1) of accuracy_labelled; empty for one user"),
+    ("balanced_accuracy_labelled_mean", "fraction", "number", "mean over those users of balanced_accuracy_labelled"),
+    ("balanced_accuracy_labelled_sd", "fraction", "number", "sample SD (n - 1) of balanced_accuracy_labelled; "
+                                                            "empty for one user"),
+    ("n_steps_labelled", "count", "integer", "labelled steps summed over those users"),
+    ("n_chosen", "count", "integer", "users whose chosen model it is"),
+    ("accuracy_detected_mean", "fraction", "number", "mean accuracy_detected over the n_chosen users; empty when "
+                                                     "none chose it"),
+)
+
+
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, STAIRS, RIDES, WAIST_STEPS,
-    FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, DETECTIONS, EVENTS, STEPS_JSON), strict=True))
+    FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, DETECTIONS, EVENTS, STEPS_JSON,
+    COHORT_METHODS, COHORT_METHODS_SUMMARY), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
@@ -1204,6 +1243,8 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
                        "the scores appear only when the session has a reference, NaN is written as null. Timing "
                        "error = detected - reference (s): positive means the detector is late; `+-` in the text "
                        "output is the SD over the matched pairs only.",
+         "cohort_methods.csv": "`pdrlearn evaluate-all MODELS COHORT --per-method` (cohort decision C92): one row "
+                               "per user, task, method and unit; cohort_methods_summary.csv|md: the means over users.",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
                            "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
                            "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines."}

@@ -98,13 +98,53 @@ def _shared(logger: str) -> _Shared:
         return _SHARED[logger]
 
 
+class _Collect(logging.Handler):
+    """Decision E179: the collecting handler of one :class:`_Shared`: it hands a record to the captures of the
+    context that raised it; a record no capture of that context holds goes to logging's ``lastResort`` as it would
+    have without any capture (E179 amended, review R4)."""
+
+    def __init__(self, shared: _Shared, level: int):
+        super().__init__(level)
+        self.shared = shared
+
+    def emit(self, record: logging.LogRecord) -> None:
+        line = _with_code(record.getMessage(), record_code(record))  # E170: with its code
+        for owner, (messages, _echo) in _ACTIVE.get():
+            if owner is self.shared:
+                messages.append(line)
+        _last_resort(record, self)
+
+
+def _last_resort(record: logging.LogRecord, collector: _Collect) -> None:
+    """Decision E179 amended (review R4): with no handler configured, logging prints a record through its
+    ``lastResort`` only when no handler sits on the record's logger chain (``Logger.callHandlers``); a capture's
+    collecting handler is one, so a thread without a capture lost its warnings while another thread captured. Here a
+    record that no capture of the raising context holds reaches ``lastResort`` when the chain holds only collecting
+    handlers (the first of them does it, once) and the levels the callers set let it through. A captured record
+    (with or without ``echo``) is not printed by ``lastResort``: it is in the capture's list (decision B350)."""
+    last = logging.lastResort
+    if last is None or record.levelno < last.level:
+        return
+    chain, node = [], logging.getLogger(record.name)
+    while node is not None:  # the handlers Logger.callHandlers reaches, in its order
+        chain += node.handlers
+        node = node.parent if node.propagate else None
+    if any(not isinstance(h, _Collect) for h in chain) or chain[0] is not collector:
+        return
+    if any(owner.ours(record) for owner, _collector in _ACTIVE.get()):
+        return
+    if all(h.shared.let_through(record) for h in chain):  # a silenced logger's record stays silent (E154)
+        last.handle(record)
+
+
 class _Shared:
     """Decision E179: the process-wide part of :func:`captured_warnings` for one logger, set up by the first capture
     running and taken down by the last: one collecting handler on the logger (it hands a record to the captures of
     the context that raised it), the logger's level lowered to WARNING when the caller silenced it (restored
     unless changed meanwhile) and one filter on the handlers the records reach (it drops a silenced logger's
     record below the caller's level, and, on the logger's own handlers, a record raised inside a capture without
-    ``echo``). A record raised in a context without a capture passes as if no capture ran."""
+    ``echo``). A record raised in a context without a capture passes as if no capture ran, to logging's
+    ``lastResort`` too when no handler is configured (:func:`_last_resort`, E179 amended)."""
 
     def __init__(self, logger: str):
         self.name = logger
@@ -115,16 +155,7 @@ class _Shared:
         self.lowered = False
         self.old_level = logging.NOTSET
         self.filtered: list[tuple[logging.Handler, logging.Filter]] = []
-        shared = self
-
-        class _Collect(logging.Handler):
-            def emit(self, record: logging.LogRecord) -> None:
-                line = _with_code(record.getMessage(), record_code(record))  # E170: with its code
-                for owner, (messages, _echo) in _ACTIVE.get():
-                    if owner is shared:
-                        messages.append(line)
-
-        self.collect = _Collect(logging.WARNING)
+        self.collect = _Collect(self, logging.WARNING)
 
     def ours(self, record: logging.LogRecord) -> bool:
         return record.name == self.name or record.name.startswith(self.name + ".")

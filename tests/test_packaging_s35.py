@@ -92,3 +92,64 @@ def test_an_installed_build_names_its_commit_e187(built, tmp_path):
                        env={**os.environ, "PYTHONPATH": str(site)})
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout) == {"git_commit": built["commit"], "git_dirty": False}  # not a git checkout there
+
+
+def _stamp_tree(tmp_path: Path, *, git: bool, pkg_info: bool = False) -> Path:
+    """A small tree the build backend's ``_stamp`` runs in: build_backend.py, pdrlearn/buildinfo.py, a stale stamp;
+    with ``git`` committed to a fresh repository (clean), with ``pkg_info`` an sdist's PKG-INFO beside it."""
+    src = tmp_path / "tree"
+    (src / "pdrlearn").mkdir(parents=True)
+    shutil.copy2(ROOT / "build_backend.py", src / "build_backend.py")
+    shutil.copy2(ROOT / "pdrlearn" / "buildinfo.py", src / "pdrlearn" / "buildinfo.py")
+    (src / "pdrlearn" / "__init__.py").write_text("")
+    (src / ".gitignore").write_text("__pycache__/\npdrlearn/_build.json\n")
+    if git:
+        cmd = ["git", "-c", "user.name=t", "-c", "user.email=t@t", "-c", "commit.gpgsign=false"]
+        for args in (["init", "-q"], ["add", "."], ["commit", "-qm", "x"]):
+            subprocess.run([*cmd, *args], cwd=src, check=True, capture_output=True, timeout=60)
+    if pkg_info:
+        (src / "PKG-INFO").write_text("Metadata-Version: 2.4\nName: pdrlearn\nVersion: 0.1.0\n")
+    (src / "pdrlearn" / "_build.json").write_text('{"git_commit": "c9eaeca3OLD", "git_dirty": false}\n')
+    return src
+
+
+def _run_stamp(src: Path, path: str | None = None) -> dict | None:
+    env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
+    if path is not None:
+        env["PATH"] = path
+    r = subprocess.run([sys.executable, "-c", "import build_backend; build_backend._stamp()"], cwd=src,
+                       capture_output=True, text=True, timeout=120, env=env)
+    assert r.returncode == 0, r.stderr[-2000:]
+    stamp = src / "pdrlearn" / "_build.json"
+    return json.loads(stamp.read_text()) if stamp.exists() else None
+
+
+def _head(src: Path) -> str:
+    return subprocess.run(["git", "rev-parse", "HEAD"], cwd=src, capture_output=True, text=True,
+                          check=True).stdout.strip()
+
+
+def test_a_stale_build_stamp_is_never_shipped_e187(tmp_path):
+    """Review R4 #2a: an earlier build's _build.json stayed when git failed or .git was absent, and the build named
+    that commit. Now: a copied tree (no .git, no PKG-INFO) ships no stamp; git failing in a checkout stamps nulls;
+    an unpacked sdist (PKG-INFO) keeps its stamp."""
+    assert _run_stamp(_stamp_tree(tmp_path / "copy", git=False)) is None
+    assert _run_stamp(_stamp_tree(tmp_path / "nogit", git=True), path="/nonexistent") == {"git_commit": None,
+                                                                                          "git_dirty": None}
+    assert _run_stamp(_stamp_tree(tmp_path / "sdist", git=False, pkg_info=True)) == {"git_commit": "c9eaeca3OLD",
+                                                                                     "git_dirty": False}
+
+
+def test_the_build_stamp_counts_untracked_package_files_as_dirty_e187(tmp_path):
+    """Review R4 #2b: setuptools packs an untracked pdrlearn/*.py into the wheel, and the stamp said clean. An
+    untracked file elsewhere (not packed) leaves the stamp clean; buildinfo.git_state's runtime answer (tracked files
+    only, L136) is unchanged."""
+    src = _stamp_tree(tmp_path, git=True)
+    assert _run_stamp(src) == {"git_commit": _head(src), "git_dirty": False}
+    (src / "notes.txt").write_text("x\n")
+    assert _run_stamp(src) == {"git_commit": _head(src), "git_dirty": False}
+    (src / "pdrlearn" / "zz_untracked.py").write_text("X = 1\n")
+    assert _run_stamp(src) == {"git_commit": _head(src), "git_dirty": True}
+    from pdrlearn.buildinfo import checkout_state
+
+    assert checkout_state(src) == (_head(src), False)

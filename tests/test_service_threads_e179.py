@@ -153,3 +153,42 @@ def test_asyncio_tasks_collect_their_own_lines_e179():
         return await asyncio.gather(task("a", eb, ea), task("b", ea, eb))
 
     assert asyncio.run(main()) == [["a"], ["b"]]
+
+
+_LAST_RESORT_SCRIPT = r'''
+import logging, sys, threading
+from pdrlearn.warning_lines import captured_warnings
+log = logging.getLogger("pdrlearn.r4")
+if sys.argv[1] == "silenced":
+    logging.getLogger("pdrlearn").setLevel(logging.ERROR)
+started, done = threading.Event(), threading.Event()
+def holder(echo):
+    with captured_warnings(echo=echo) as kept:
+        log.warning("A-CAPTURED")
+        started.set(); done.wait()
+    print("A kept", kept, file=sys.stderr)
+a = threading.Thread(target=holder, args=(sys.argv[2] == "echo",)); a.start(); started.wait()
+log.warning("B-UNCAPTURED")
+log.error("B-ERROR")
+done.set(); a.join()
+log.warning("B-AFTER")
+'''
+
+
+@pytest.mark.parametrize("echo", ["plain", "echo"])
+def test_an_uncaptured_thread_still_reaches_the_last_resort_printer_e179(tmp_path, echo):
+    """Review R4 #1: with no logging configured, thread B's warning was lost while thread A captured (the capture's
+    handler kept logging's lastResort from printing it). B's lines print as without a capture; A's captured line is
+    not printed (echo or not: it is in A's list); a silenced logger's warning stays silent, its error prints."""
+    import subprocess
+    import sys
+
+    def run(mode):
+        script = tmp_path / "r4.py"
+        script.write_text(_LAST_RESORT_SCRIPT)
+        done = subprocess.run([sys.executable, str(script), mode, echo], capture_output=True, text=True, timeout=120)
+        assert done.returncode == 0, done.stderr
+        return done.stderr.splitlines()
+
+    assert run("plain") == ["B-UNCAPTURED", "B-ERROR", "A kept ['A-CAPTURED']", "B-AFTER"]
+    assert run("silenced") == ["B-ERROR", "A kept ['A-CAPTURED']"]

@@ -42,6 +42,18 @@ def test_disagreement_counts_only_classified_turning_strides():
     assert "5 of the 20 strides turning 15 deg or more (of 50)" in turning_length_line(5, 20, 50)
 
 
+def test_strides_with_no_measured_class_are_not_counted_as_contradicted():
+    """Review R4 #3: a raw length above the top bound, in a gap between bounds (the thesis' 0.45-0.46 m) or NaN has
+    no measured class, and was counted as disagreeing with any class: (4, 4) here."""
+    from pdrlearn.displace.rules import parse_bounds
+
+    bounds = parse_bounds({"short": [0, .9], "normal": [.9, 1.3], "long": [1.3, 1.8]})
+    turn = np.deg2rad([90.0] * 4)
+    assert turning_length_disagreement(["long"] * 3 + ["normal"], [1.9, 1.95, 2.0, np.nan], turn, bounds) == (0, 0)
+    gap = {"short": (0.0, 0.45), "normal": (0.46, 0.8)}
+    assert turning_length_disagreement(["short", "normal", "short"], [0.455, 0.455, 0.6], turn[:3], gap) == (1, 1)
+
+
 @pytest.fixture(scope="module")
 def walk_d():
     return simulate("D", user_seed=8619, seed=3)

@@ -291,6 +291,25 @@ def verify_model_dir(path) -> dict:
     return manifest
 
 
+#: decision B355 amended (review R4): where scikit-learn raises its InconsistentVersionWarning (estimators'
+#: ``__setstate__``, ``warnings.warn`` without stacklevel: attributed to sklearn.base)
+SKLEARN_VERSION_WARNING_MODULE = r"sklearn\.base\Z"
+
+
+def _ignore_sklearn_version_blocks() -> None:
+    """Decision B355 amended (review R4): ignore scikit-learn's InconsistentVersionWarning raised in sklearn.base
+    (a block per estimator, repeating :func:`version_warning`'s one line), by one filter added to the process's list
+    once: the first load of a model from another scikit-learn adds it, later loads find it. Not
+    ``warnings.catch_warnings()``: it saves and restores the whole process-wide list, so loads in threads at once
+    could undo each other's (or any other thread's) filters. The filter stays for the process."""
+    from sklearn.exceptions import InconsistentVersionWarning
+
+    if not any(action == "ignore" and category is InconsistentVersionWarning
+               and getattr(module, "pattern", None) == SKLEARN_VERSION_WARNING_MODULE
+               for action, _message, category, module, _line in warnings.filters):
+        warnings.filterwarnings("ignore", category=InconsistentVersionWarning, module=SKLEARN_VERSION_WARNING_MODULE)
+
+
 def load_model(path):
     """Load a model directory written by :meth:`UserModel.save` -> :class:`UserModel`.
 
@@ -309,17 +328,12 @@ def load_model(path):
     if line:  # decision B211
         log.warning(line)
     models: dict[str, object] = {}
-    # decision B355: scikit-learn's own InconsistentVersionWarning (a block per estimator) repeats the line above
-    sklearn_warned = "scikit-learn" in version_differences(manifest)
+    if "scikit-learn" in version_differences(manifest):  # decision B355: the line above says it once
+        _ignore_sklearn_version_blocks()
     for rel in manifest["files"]:
         f = path / rel
         try:
-            with warnings.catch_warnings():
-                if sklearn_warned:
-                    from sklearn.exceptions import InconsistentVersionWarning
-
-                    warnings.filterwarnings("ignore", category=InconsistentVersionWarning)
-                models[rel] = joblib.load(f)
+            models[rel] = joblib.load(f)
         except (ModuleNotFoundError, AttributeError) as exc:  # decision B173: a class the pickle names is missing
             raise ModelError(
                 f"{f}: cannot be loaded ({type(exc).__name__}: {exc}): the model holds a class this Python cannot "

@@ -133,11 +133,22 @@ def _evaluate_job(args: dict) -> dict:
     if not res["tasks"]:
         raise DataError(f"{args['user_dir']}: held-out sessions have no labels for the model's tasks")
     row = {"sessions": len(sessions), **skipped,
-           # decision C87: the labelled tasks the model has no classifier of (evaluate's "skipped", C36), by name
+           # decision C87 (amended, R4): the tasks evaluate did not score, by name: every "TASK: why" of its top-level
+           # "skipped" (no classifier of a labelled task, C36; no labels of a model's task; no method can run)
            "skipped_task_names": "; ".join(str(v).split(":", 1)[0] for v in res.get("skipped") or [])}
     for t, r in res["tasks"].items():
         row.update(task_accuracy_columns(t, r))
+    if args.get("per_method"):  # cohort C92: evaluate's own per-method scores, taken out by evaluate_all
+        from pdrlearn.cohort_methods import method_rows
+
+        row[METHOD_ROWS] = method_rows(Path(args["user_dir"]).name, res)
     return row
+
+
+#: cohort C92: the key of a user's per-method rows in an evaluate-all job's value (not a summary column)
+METHOD_ROWS = "_method_rows"
+#: cohort C92: the files evaluate-all --per-method writes beside cohort_summary.csv|md
+METHOD_FILES = ("cohort_methods.csv", "cohort_methods_summary.csv", "cohort_methods_summary.md")
 
 
 def skipped_task_names(asked, trained) -> str:
@@ -372,13 +383,23 @@ def evaluate_all(
     workers: int = typer.Option(None, help="LocalCluster worker processes."),
     skip_bad: bool = typer.Option(False, "--skip-bad-sessions", help=SKIP_BAD_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + "."),
+    per_method: bool = typer.Option(False, "--per-method", help="Also write cohort_methods.csv (every user x task "
+                                    "x method x unit, as `pdrlearn evaluate --json` scores it) and "
+                                    "cohort_methods_summary.csv|md (the means over the users) (decision C92)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
     """Evaluate every user's model on that user's held-out test/ sessions.
 
-    Example:
+    Writes OUT/cohort_summary.csv|md: per user and task, the chosen model's accuracy on the detected strides and on
+    the labelled boundaries (decision C87). --per-method also writes OUT/cohort_methods.csv, one row per user,
+    task, method and unit (evaluate's scores; the detected-stride figure on the chosen row only), and
+    OUT/cohort_methods_summary.csv|md, their means over the users per task, method and unit (decision C92).
+
+    Examples:
 
         pdrlearn evaluate-all models/ cohort/ --out results/cohort && pdrlearn report results/cohort --out report/
+
+        pdrlearn evaluate-all models/ cohort/ --out results/methods --per-method   # every classifier, C92
     """
     _check_workers(workers)
     if not models_dir.is_dir():
@@ -388,14 +409,36 @@ def evaluate_all(
     out = out_folder(out or models_dir / "eval", "evaluate-all", force=force, inputs=(models_dir, cohort_dir))
     was = existed(out)
     users = cohort_users(cohort_dir)
-    items = [(u.name, {"user_dir": str(u), "model_dir": str(models_dir / u.name), "skip_bad": skip_bad})
-             for u in users]
+    items = [(u.name, {"user_dir": str(u), "model_dir": str(models_dir / u.name), "skip_bad": skip_bad,
+                       "per_method": per_method}) for u in users]
     results = _run(_evaluate_job, items, scheduler, serial, workers, as_json, "test")
     _check_any_ok(results)
+    rows = [row for r in results if r.ok for row in r.value.pop(METHOD_ROWS, [])]
     df = _summarise(results, out)
+    _write_methods(out, rows if per_method else None)
     replaced(out, was)
     _print(df, results, f"evaluate-all: {sum(r.ok for r in results)}/{len(results)} users", as_json)
+    if per_method:  # cohort C92
+        typer.echo(f"evaluate-all: every method and unit per user in {out / METHOD_FILES[0]}, their means over the "
+                   f"users in {METHOD_FILES[1]}|md", err=True)
     _exit_if_any_failed(results)
+
+
+def _write_methods(out: Path, rows: list[dict] | None) -> None:
+    """Cohort C92: cohort_methods.csv and cohort_methods_summary.csv|md from the users' per-method ``rows``; without
+    --per-method (``None``) a previous run's files are removed, so the folder never holds another run's table."""
+    if rows is None:
+        for name in METHOD_FILES:
+            (out / name).unlink(missing_ok=True)
+        return
+    from pdrlearn.cohort_methods import methods_table, pooled_methods
+
+    methods = methods_table(rows)
+    pooled = pooled_methods(methods)
+    _write_csv_atomic(methods, out / METHOD_FILES[0])
+    _write_csv_atomic(pooled, out / METHOD_FILES[1])
+    (out / METHOD_FILES[2]).write_text(_blank_missing(pooled).to_markdown(index=False, floatfmt=".4g") + "\n",
+                                       encoding="utf-8")
 
 
 #: Modules of the tracking jobs loaded before each job's one-thread limit (see JOB_LIBRARIES).

@@ -7,7 +7,8 @@ arguments. ``pdrlearn track --pipeline NAME`` looks them up there; a new pipelin
 :mod:`pdrlearn.track.pipelines`.
 
 Warnings (no model, gaps, fallbacks) are ``logging`` records of the ``pdrlearn`` logger, not Python
-``warnings``, and are also returned in ``result.info["warnings"]``. Silence them with
+``warnings``, and are also returned in ``result.info["warnings"]``; they print on stderr through a handler you
+configure (``logging.basicConfig()``), not through Python's last-resort printer (decision B350). Silence them with
 ``logging.getLogger("pdrlearn").setLevel(logging.ERROR)``; capture them with a handler on that logger (or
 pytest's ``caplog``). ``warnings.filterwarnings`` / ``catch_warnings`` do not see them.
 

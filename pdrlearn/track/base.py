@@ -328,7 +328,9 @@ def get_pipeline(name: str) -> Pipeline:
     An unknown keyword raises ``TypeError`` naming the closest valid one (decision L43); an unknown
     ``name`` raises :class:`~pdrlearn.errors.DataError` listing the pipelines. Warnings (e.g. "no model")
     are ``logging`` records of the ``pdrlearn`` logger (also in ``result.info["warnings"]``), not Python
-    ``warnings``: ``logging.getLogger("pdrlearn").setLevel(logging.ERROR)`` silences them.
+    ``warnings``: ``logging.getLogger("pdrlearn").setLevel(logging.ERROR)`` silences them. They print on stderr
+    only through a handler you configure (``logging.basicConfig()``): with none, Python's last-resort printer does
+    not print a pipeline's warnings (decisions B350, E179 amended), read ``result.info["warnings"]``.
     """
     if name == "auto":  # decision E182: the CLI's --pipeline auto, chosen per session by resolve_pipeline
         return track_auto

@@ -31,16 +31,24 @@ def measured_length_class(length_m: np.ndarray, bounds: dict[str, tuple[float, f
 
 
 def turning_length_disagreement(length_class, raw_length_m, turn_rad, bounds, valid=None) -> tuple[int, int]:
-    """(disagreeing, classified) turning strides: strides turning at least L79's 15 deg with a classified length
-    class (and, when given, ``valid``) whose class differs from :func:`measured_length_class` of their raw length."""
+    """(disagreeing, compared) turning strides: strides turning at least L79's 15 deg with a classified length
+    class, a measured class (:func:`measured_length_class` of their raw length) and, when given, ``valid``; those
+    whose two classes differ disagree. A stride with no measured class (above the top bound, in a gap between
+    bounds, NaN) is left out: nothing contradicts its class (decision C89 amended, review R4)."""
     from pdrlearn.kernels.turn_length import turning
 
     cls = np.asarray(length_class, dtype=object)
-    turn = np.array([turning(x) for x in np.asarray(turn_rad, dtype=float)], dtype=bool)
-    have = np.array([isinstance(c, str) for c in cls], dtype=bool)
-    keep = turn & have & (np.ones(len(cls), bool) if valid is None else np.asarray(valid, bool))
     measured = measured_length_class(raw_length_m, bounds)
+    turn = np.array([turning(x) for x in np.asarray(turn_rad, dtype=float)], dtype=bool)
+    keep = turn & _named(cls) & _named(measured)
+    if valid is not None:
+        keep &= np.asarray(valid, bool)
     return int(np.sum(keep & (cls != measured))), int(keep.sum())
+
+
+def _named(classes: np.ndarray) -> np.ndarray:
+    """Which entries hold a class name (not None / NaN)."""
+    return np.array([isinstance(c, str) for c in classes], dtype=bool)
 
 
 def measured_classes_on_turns(classes, length_m, turn_rad, bounds):
