@@ -14,12 +14,14 @@ from __future__ import annotations
 
 import argparse
 import logging
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from pdrlearn.classify import train_user
+from pdrlearn.kernels import turn_length
 from pdrlearn.sim import simulate
 from pdrlearn.track import plasys
 from pdrlearn.track.evaluate import with_reference_columns
@@ -29,18 +31,31 @@ from pdrlearn.track.turn_classes import measured_length_class
 OUT = Path(__file__).parent / "results"
 
 
-def walk_rows(user: int, model) -> list[dict]:
-    rows = []
+def walks(user: int):
+    """``(walk, session, bounds)`` of the thesis walks D and B (seed 3) of ``user``; ``bounds``: the walk's length
+    classes as ``[lo, hi)`` per class (the truth of ``ref_length_m``)."""
     for walk in ("D", "B"):
         s = simulate(walk, user_seed=user, seed=3)
         lo, hi = s.meta["length_class_bounds_m"]
-        bounds = {"short": (0.0, lo), "normal": (lo, hi), "long": (hi, 10.0)}
+        yield walk, s, {"short": (0.0, lo), "normal": (lo, hi), "long": (hi, 10.0)}
+
+
+@contextmanager
+def turn_rule(on: bool):
+    """C88's switch (``kernels.turn_length.TURN_LENGTH_RULE``) set to ``on`` inside the block."""
+    before, turn_length.TURN_LENGTH_RULE = turn_length.TURN_LENGTH_RULE, on
+    try:
+        yield
+    finally:
+        turn_length.TURN_LENGTH_RULE = before
+
+
+def walk_rows(user: int, model) -> list[dict]:
+    rows = []
+    for walk, s, bounds in walks(user):
         for on in (False, True):
-            before, plasys.TURN_LENGTH_RULE = plasys.TURN_LENGTH_RULE, on
-            try:
+            with turn_rule(on):
                 res = plasys.track_plasys(s, method="M3", model=model)
-            finally:
-                plasys.TURN_LENGTH_RULE = before
             info = res.summary(s)
             st = with_reference_columns(res, s)
             ok = st["ref_length_m"].notna().to_numpy() if "ref_length_m" in st else np.zeros(len(st), bool)

@@ -270,7 +270,7 @@ def test_run_without_force_leaves_the_force_task_unclassified_as_track(root, tmp
     assert len(warn) == 1 and "length left unclassified" in warn[0] and "error" not in cap.err
 
 
-def test_without_force_a_bundle_with_a_force_free_model_uses_the_one_track_picks(root):
+def test_without_force_a_bundle_with_a_force_free_model_uses_the_one_track_picks(root, monkeypatch):
     """A two-unit session without force: with every method exported, length classifies with the best-ranked
     model that reads no force (a waist model here; every foot length model reads force), the one `track` falls
     back to; with the default bundle (chosen + foot_only, both on force) it is left unclassified, as `track`
@@ -289,6 +289,12 @@ def test_without_force_a_bundle_with_a_force_free_model_uses_the_one_track_picks
         assert set(picked[f"method_{task}"]) == {f"{c.method}/{c.unit}"}
     tr = Tracker(root / "bundle", sensors=list(two.streams))
     assert tr.step_graph is None and tr.unclassified == {"length": ["fForceA", "fForceB"]}
+    # decision C91: the model directory classifies length here (svm/waist) while this bundle leaves it unclassified;
+    # C88 would give the streamed turning strides (0.3 rad a step) one-hot length classes that the bayes rule weighs,
+    # a difference of class sources, not of the rule (tests/test_turn_length_paths_c91.py pins the rule's parity)
+    from pdrlearn.kernels import turn_length
+
+    monkeypatch.setattr(turn_length, "TURN_LENGTH_RULE", False)
     res = get_pipeline("plasys")(two, method="M3", model=str(root / "model"), streaming=True)
     steps = replay(tr, two, 0.37)
     assert len(steps) == len(res.steps) >= 20

@@ -63,11 +63,11 @@ def _c89(res):
     return [w for w in res.info.get("warnings", []) if "decision C89" in w]
 
 
-def test_track_warns_when_turning_strides_get_a_contradicted_length_class(walk_d):
-    from pdrlearn.track import plasys
+def test_track_warns_when_turning_strides_get_a_contradicted_length_class(walk_d, monkeypatch):
+    from pdrlearn.kernels import turn_length
 
     bounds = walk_d.meta["length_class_bounds_m"]
-    assert plasys.TURN_LENGTH_RULE is False  # C88 off by default: the classifier's classes stay
+    monkeypatch.setattr(turn_length, "TURN_LENGTH_RULE", False)  # C88 off: the classifier's classes stay
     wrong = track_plasys(walk_d, method="M3", model=_FixedLength("long", bounds))
     lines = _c89(wrong)
     assert len(lines) == 1 and "strides turning 15 deg or more" in lines[0] and "with care" in lines[0]
@@ -75,12 +75,9 @@ def test_track_warns_when_turning_strides_get_a_contradicted_length_class(walk_d
     assert _c89(right) == []
 
 
-def test_c88_turning_strides_take_their_measured_length_class_with_the_option(walk_d, monkeypatch):
-    """Decision C88 (met its rule, an option until the streamed path has it): offline M3 gives a stride turning 15
-    deg or more the class of its measured length; straight strides keep the classifier's; C89's line says so."""
-    from pdrlearn.track import plasys
-
-    monkeypatch.setattr(plasys, "TURN_LENGTH_RULE", True)
+def test_c88_turning_strides_take_their_measured_length_class_by_default(walk_d):
+    """Decision C88 (the default since C91: every path applies it): offline M3 gives a stride turning 15 deg or
+    more the class of its measured length; straight strides keep the classifier's; C89's line says so."""
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD
 
     bounds = walk_d.meta["length_class_bounds_m"]

@@ -30,6 +30,8 @@ Modules
 - :mod:`~pdrlearn.kernels.histospline` - L24's block-mean histospline without scipy (the stride kernel's, L141).
 - :mod:`~pdrlearn.kernels.geodetic` - thesis eq. 56/57 one step at a time (offline lat/lon and the live trackers, W137).
 - :mod:`~pdrlearn.kernels.sideways` - side-stepping strides: L219's rule, offline and one stride at a time (E124).
+- :mod:`~pdrlearn.kernels.turn_length` - a turning stride's length class from its measured length (C88; C91: track,
+  track --streaming and the runtime).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

@@ -26,6 +26,7 @@ import numpy as np
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import sideways as _sideways
+from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import (
@@ -1676,6 +1677,11 @@ class Tracker(FixInput):
         raw_dz = dz
         if self.distance_gain != 1.0:  # decision L26 / E14, as pdrlearn track
             dx, dy, dz = apply_level_gain_one(dx, dy, dz, self.distance_gain)
+        if _turn_length.TURN_LENGTH_RULE and self.bounds is not None and "length" in classes:  # decisions C88 /
+            # C91: a turning stride's length class from its measured length, track's and track --streaming's call
+            label, lp = _turn_length.turn_length_class_one(classes["length"], proba.get("length"), math.hypot(dx, dy),
+                                                           _sideways.foot_turn(lev), self.bounds)
+            classes, proba = {**classes, "length": label}, {**proba, "length": lp}
         if self.rules == "thesis" and self.min_confidence <= 0:
             terrain = classes.get("terrain")
             length, dz = stride_rules_one(dx, dy, dz, terrain, classes.get("direction"),

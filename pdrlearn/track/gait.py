@@ -29,6 +29,11 @@ import pandas as pd
 # decision E49: one implementation (numpy only), shared with the streaming runtime, which gives each stride its
 # stride time as it emits it
 from pdrlearn.kernels.contact import MAX_STRIDE_S, TOUCH_S, stride_times  # noqa: F401
+
+# decision L79: a stride turning less than STRAIGHT_MAX_RAD (|turn_angle_rad|) is straight for
+# ``median_speed_straight_mps``: 15 deg, above the straight-pass strides' -10..+11 deg and below the turnaround
+# strides' 20..121 deg of L66 (in the kernels since C91: the runtime's C88 rule reads it)
+from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD  # noqa: F401
 from pdrlearn.track.flags import flag_values
 from pdrlearn.warning_lines import coded
 
@@ -36,9 +41,6 @@ from pdrlearn.warning_lines import coded
 GAIT_COLUMNS = ("stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad")
 #: decision L73: toe-off (terminal contact) and the stance/swing split of the stride time, after GAIT_COLUMNS
 TOE_OFF_COLUMNS = ("tc_s", "stance_time_s", "swing_time_s", "stance_pct")
-#: a stride turning less than this (|turn_angle_rad|) is straight for ``median_speed_straight_mps`` (L79):
-#: 15 deg, above the straight-pass strides' -10..+11 deg and below the turnaround strides' 20..121 deg of L66
-STRAIGHT_MAX_RAD = float(np.deg2rad(15.0))
 
 
 def stride_rows(table: pd.DataFrame) -> np.ndarray:

@@ -53,6 +53,7 @@ from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import gaps as KG
 from pdrlearn.kernels import sideways as KSW
 from pdrlearn.kernels import stride as SK
+from pdrlearn.kernels import turn_length as KT
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, steep_stride_check, terrain_dz_check
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
 from pdrlearn.kernels.contact import force_at, stride_contact
@@ -912,12 +913,6 @@ def _contact_cadence(seen: dict, table: pd.DataFrame, t: np.ndarray, stance: np.
     return contact_cadence_spm(table["event_s"].to_numpy(float)) if "event_s" in table else None
 
 
-#: decision C88: in offline M3 a stride turning 15 deg or more (L79) takes the length class of its measured length
-#: against the model's bounds instead of the classifier's. Its rule was met, but it stays off until the streamed path
-#: and the runtime apply it too (L38's offline / streamed class parity); True is the option
-TURN_LENGTH_RULE = False
-
-
 @register_pipeline("plasys")
 def track_plasys(session: Session, *, method: str = "auto", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
@@ -1236,9 +1231,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     gate = DEFAULT_MIN_CONFIDENCE if min_confidence is None else float(min_confidence)
     classified_length = classes["length_class"].to_numpy(dtype=object, copy=True) \
         if "length_class" in classes else None  # decision C89 counts the classifier's own classes
-    turn_rule = bool(TURN_LENGTH_RULE and cfg["rules"] and use_bounds is not None and classified_length is not None
-                     and not (isinstance(model, str) and model == "oracle"))
-    if turn_rule:  # decision C88 (option)
+    turn_rule = bool(KT.TURN_LENGTH_RULE and cfg["rules"] and use_bounds is not None
+                     and classified_length is not None and not (isinstance(model, str) and model == "oracle"))
+    if turn_rule:  # decisions C88 / C91: a turning stride's length class from its measured length (the runtime's)
         from pdrlearn.track.turn_classes import measured_classes_on_turns
 
         classes = measured_classes_on_turns(classes, np.hypot(disp[:, 0], disp[:, 1]), fd.yaw_change_,
@@ -1771,6 +1766,12 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
+    if (KT.TURN_LENGTH_RULE and method == "M3" and use_bounds is not None and "length_class" in classes
+            and not (isinstance(model, str) and model == "oracle")):  # decisions C88 / C91: as offline and the
+        from pdrlearn.track.turn_classes import measured_classes_on_turns  # runtime, on the foot's turn (L400)
+
+        classes = measured_classes_on_turns(classes, np.hypot(disp[:, 0], disp[:, 1]), foot_turn,
+                                            parse_bounds(use_bounds))
     rule_classes = _confident(classes, gate) if method == "M3" else classes  # decision L18 / L40
     length, dz = SK.apply_stride_rules(disp, *(rule_classes[c].to_numpy(dtype=object)
                                                if method == "M3" and c in rule_classes else None  # length-only models

@@ -21,11 +21,12 @@ TURN_DISAGREE_MIN = 3
 
 
 def measured_length_class(length_m: np.ndarray, bounds: dict[str, tuple[float, float]]) -> np.ndarray:
-    """The class whose ``[lo, hi)`` bounds (``parse_bounds`` form) hold each |length|; None outside every one."""
-    a = np.abs(np.asarray(length_m, dtype=float))
-    out = np.full(len(a), None, dtype=object)
-    for name, (lo, hi) in bounds.items():
-        out[(a >= lo) & (a < hi)] = name
+    """The class whose ``[lo, hi)`` bounds (``parse_bounds`` form) hold each |length|; None outside every one
+    (:func:`pdrlearn.kernels.turn_length.measured_class_one`, the runtime's, per stride)."""
+    from pdrlearn.kernels.turn_length import measured_class_one
+
+    out = np.full(len(np.atleast_1d(length_m)), None, dtype=object)
+    out[:] = [measured_class_one(x, bounds) for x in np.asarray(length_m, dtype=float).ravel()]
     return out
 
 
@@ -34,11 +35,11 @@ def turning_length_disagreement(length_class, raw_length_m, turn_rad, bounds, va
     class, a measured class (:func:`measured_length_class` of their raw length) and, when given, ``valid``; those
     whose two classes differ disagree. A stride with no measured class (above the top bound, in a gap between
     bounds, NaN) is left out: nothing contradicts its class (decision C89 amended, review R4)."""
-    from pdrlearn.track.gait import STRAIGHT_MAX_RAD
+    from pdrlearn.kernels.turn_length import turning
 
     cls = np.asarray(length_class, dtype=object)
     measured = measured_length_class(raw_length_m, bounds)
-    turn = np.abs(np.nan_to_num(np.asarray(turn_rad, dtype=float), nan=0.0)) >= STRAIGHT_MAX_RAD
+    turn = np.array([turning(x) for x in np.asarray(turn_rad, dtype=float)], dtype=bool)
     keep = turn & _named(cls) & _named(measured)
     if valid is not None:
         keep &= np.asarray(valid, bool)
@@ -51,22 +52,25 @@ def _named(classes: np.ndarray) -> np.ndarray:
 
 
 def measured_classes_on_turns(classes, length_m, turn_rad, bounds):
-    """Decision C88 (an option): a copy of a stride classes table whose strides turning at least L79's 15 deg (and
-    holding a length class) take the class of their measured length (:func:`measured_length_class`), with one-hot
-    ``p_length_*`` so that the rules weigh that class; other strides unchanged."""
-    from pdrlearn.track.gait import STRAIGHT_MAX_RAD
+    """Decision C88: a copy of a stride classes table whose strides turning at least L79's 15 deg (and holding a
+    length class) take the class of their measured length, with one-hot ``p_length_*`` so that the rules weigh
+    that class; other strides unchanged. Stride by stride with the runtime's kernel
+    (:func:`pdrlearn.kernels.turn_length.turn_length_class_one`; decision C91: offline, streamed and run)."""
+    from pdrlearn.kernels.turn_length import turn_length_class_one
 
     out = classes.copy()
+    pcols = {c[len("p_length_"):]: c for c in out.columns if c.startswith("p_length_")}
     cls = out["length_class"].to_numpy(dtype=object, copy=True)
-    measured = measured_length_class(length_m, bounds)
-    turn = np.abs(np.nan_to_num(np.asarray(turn_rad, dtype=float), nan=0.0)) >= STRAIGHT_MAX_RAD
-    rows = turn & np.array([isinstance(c, str) for c in cls], bool) & np.array([m is not None for m in measured])
-    cls[rows] = measured[rows]
+    p = out[list(pcols.values())].to_numpy(dtype=float, copy=True) if pcols else None
+    for i, (label, length, turn) in enumerate(zip(cls, np.asarray(length_m, float), np.asarray(turn_rad, float),
+                                                  strict=True)):
+        proba = dict(zip(pcols, p[i].tolist(), strict=True)) if pcols else None
+        cls[i], proba = turn_length_class_one(label, proba, length, turn, bounds)
+        if pcols:
+            p[i] = list(proba.values())
     out["length_class"] = cls
-    for c in [c for c in out.columns if c.startswith("p_length_")]:
-        p = out[c].to_numpy(dtype=float, copy=True)
-        p[rows] = (measured[rows] == c[len("p_length_"):]).astype(float)
-        out[c] = p
+    for k, c in enumerate(pcols.values()):
+        out[c] = p[:, k]
     return out
 
 
