@@ -135,7 +135,7 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
     moved to the initial contact next to them when ``refine_ic`` (decision W11); ``edge_lock``: the detector's
     W356 option (a gated run's first / last peak only when the loop is locked; W358's "trailing": its last only;
-    W367's "walk-end": its last only where the walk ends)."""
+    W367's "walk-end": its last only where the walk ends; W372's "walk-edges": also its first where it starts)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
     st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
                          edge_lock=edge_lock).detect(session)
@@ -693,7 +693,7 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203"),
                   "fast_fill": (FAST_FILL_VALUES, "W242, W255"),
                   "cadence_law": (CADENCE_LAW_VALUES, "W240, W261"),
-                  "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367")}
+                  "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367, W372")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
