@@ -65,11 +65,12 @@ def test_walk_end_is_chunk_invariant():
 
 def test_walk_end_mode_parameters_and_a_bad_value_is_one_line():
     assert edge_lock_params("walk-end") == {"edge_lock_deg": EDGE_LOCK_DEG, "edge_lock_leading": False,
-                                            "walk_end_var": RELATIVE_GATE_FLOOR_MPS2 ** 2}  # W76's floor, squared
+                                            "walk_end_var": RELATIVE_GATE_FLOOR_MPS2 ** 2,  # W76's floor, squared
+                                            "walk_start_var": 0.0}  # W372's leading edge not judged
     assert RELATIVE_GATE_FLOOR_MPS2 == 0.15
     assert pll_params(PLLStepDetector(edge_lock="trailing")).walk_end_var == 0.0  # W358's mode unchanged
     for bad in ("walk_end", "end"):
-        with pytest.raises(DataError, match="edge_lock .* is not one of .*\"walk-end\" .*W367") as exc:
+        with pytest.raises(DataError, match="edge_lock .* is not one of .*\"walk-end\",? .*W367") as exc:
             pll_params(PLLStepDetector(edge_lock=bad))
         assert "\n" not in str(exc.value)
 
