@@ -75,14 +75,10 @@ def test_walk_end_mode_parameters_and_a_bad_value_is_one_line():
         assert "\n" not in str(exc.value)
 
 
-def test_the_default_is_walk_end_and_it_reaches_the_waist_pll_track():
-    from pdrlearn.track.waist import OPTION_DEFAULTS
-
-    # W368: adopted as the track option's default; the detector's own default (pdrlearn steps) stays off
-    assert OPTION_DEFAULTS["pll_edge_lock"] == "walk-end" and PLLStepDetector().edge_lock is False
+def test_walk_end_reaches_the_waist_pll_track():
+    # W368: adopted as the track option's default, W373 made it "walk-edges" (tests/test_pll_edge_lock_w372.py)
     # W369 (review R1 item 2): user 8160's walk ends on a free-running peak that walk-end drops (21 -> 20 contacts),
-    # so a default that did not reach the track (or a walk-end that dropped nothing) fails here
-    base, default, walk_end, trailing = track_times(8160, (False, None, "walk-end", "trailing"), bad="walk_end")
-    assert (base.size, default.size, walk_end.size, trailing.size) == (21, 20, 20, 20)
-    np.testing.assert_array_equal(default, walk_end)
+    # so a walk-end that did not reach the track (or dropped nothing) fails here
+    base, walk_end, trailing = track_times(8160, (False, "walk-end", "trailing"), bad="walk_end")
+    assert (base.size, walk_end.size, trailing.size) == (21, 20, 20)
     assert set(trailing) <= set(walk_end) < set(base)  # walk-end drops a subset of what trailing drops

@@ -18,7 +18,7 @@ from tests.test_pll_edge_lock_w356 import FS, _events, _walk, track_times
 
 #: simulated user 8700 (W372's range): its walk starts on an unlocked free-running peak after standing, which
 #: walk-edges drops (contacts: the option not given, "walk-end", "walk-edges")
-USER, COUNTS = 8700, (18, 18, 17)
+USER, COUNTS = 8700, (17, 18, 17)
 
 
 def _broken_walk(seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
@@ -81,11 +81,12 @@ def test_walk_edges_mode_parameters_and_a_bad_value_is_one_line():
         assert "\n" not in str(exc.value)
 
 
-def test_the_default_stays_walk_end_and_walk_edges_reaches_the_waist_pll_track():
+def test_the_default_is_walk_edges_and_it_reaches_the_waist_pll_track():
     from pdrlearn.track.waist import OPTION_DEFAULTS
 
-    assert OPTION_DEFAULTS["pll_edge_lock"] == "walk-end" and PLLStepDetector().edge_lock is False
+    # W373: adopted as the track option's default; the detector's own default (pdrlearn steps) stays off
+    assert OPTION_DEFAULTS["pll_edge_lock"] == "walk-edges" and PLLStepDetector().edge_lock is False
     default, walk_end, edges = track_times(USER, (None, "walk-end", "walk-edges"), bad="walk_edges")
     assert (default.size, walk_end.size, edges.size) == COUNTS
-    np.testing.assert_array_equal(default, walk_end)
+    np.testing.assert_array_equal(default, edges)
     assert set(edges) < set(walk_end)  # walk-edges drops the leading peak walk-end keeps
