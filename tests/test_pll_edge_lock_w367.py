@@ -54,12 +54,18 @@ def test_walk_end_drops_the_unlocked_trailing_peak_where_the_walk_ends_and_keeps
     assert _times(_events(t2, v2, "walk-end")) == _times(_events(t2, v2, False))
 
 
+def chunk_invariant_events(t, v, mode, seed: int) -> list:
+    """The events of ``mode`` on the whole signal, asserted equal to those of 60 random chunks of it."""
+    cuts = np.r_[0, np.sort(np.random.default_rng(seed).choice(np.arange(1, t.size), 60, replace=False)), t.size]
+    whole = _events(t, v, mode)
+    chunked = _events(t, v, mode, chunks=list(zip(cuts[:-1], cuts[1:], strict=True)))
+    assert [e[:4] for e in chunked] == [e[:4] for e in whole]
+    return whole
+
+
 def test_walk_end_is_chunk_invariant():
     t, v = _turn_walk()
-    cuts = np.r_[0, np.sort(np.random.default_rng(3).choice(np.arange(1, t.size), 60, replace=False)), t.size]
-    whole = _events(t, v, "walk-end")
-    chunked = _events(t, v, "walk-end", chunks=list(zip(cuts[:-1], cuts[1:], strict=True)))
-    assert [e[:4] for e in chunked] == [e[:4] for e in whole]
+    whole = chunk_invariant_events(t, v, "walk-end", 3)
     assert len(whole) == len(_events(t, v, False)) - 1  # the chunks judge the same edges (the turn's peak kept)
 
 
@@ -69,8 +75,13 @@ def test_walk_end_mode_parameters_and_a_bad_value_is_one_line():
                                             "walk_start_var": 0.0}  # W372's leading edge not judged
     assert RELATIVE_GATE_FLOOR_MPS2 == 0.15
     assert pll_params(PLLStepDetector(edge_lock="trailing")).walk_end_var == 0.0  # W358's mode unchanged
-    for bad in ("walk_end", "end"):
-        with pytest.raises(DataError, match="edge_lock .* is not one of .*\"walk-end\",? .*W367") as exc:
+    bad_values_are_one_line(("walk_end", "end"), "edge_lock .* is not one of .*\"walk-end\",? .*W367")
+
+
+def bad_values_are_one_line(bads, match: str) -> None:
+    """Each detector ``edge_lock`` of ``bads`` is one DataError line matching ``match``."""
+    for bad in bads:
+        with pytest.raises(DataError, match=match) as exc:
             pll_params(PLLStepDetector(edge_lock=bad))
         assert "\n" not in str(exc.value)
 

@@ -8,13 +8,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pytest
 
-from pdrlearn.errors import DataError
 from pdrlearn.kernels.step_events import EDGE_LOCK_DEG, edge_lock_params, pll_params
 from pdrlearn.kernels.waist import RELATIVE_GATE_FLOOR_MPS2
 from pdrlearn.steps import PLLStepDetector
 from tests.test_pll_edge_lock_w356 import FS, _events, _walk, track_times
+from tests.test_pll_edge_lock_w367 import bad_values_are_one_line, chunk_invariant_events
 
 #: simulated user 8700 (W372's range): its walk starts on an unlocked free-running peak after standing, which
 #: walk-edges drops (contacts: the option not given, "walk-end", "walk-edges")
@@ -63,10 +62,7 @@ def test_walk_edges_drops_the_unlocked_leading_peak_where_the_walk_starts():
 
 def test_walk_edges_is_chunk_invariant():
     t, v = _broken_walk()
-    cuts = np.r_[0, np.sort(np.random.default_rng(5).choice(np.arange(1, t.size), 60, replace=False)), t.size]
-    whole = _events(t, v, "walk-edges")
-    chunked = _events(t, v, "walk-edges", chunks=list(zip(cuts[:-1], cuts[1:], strict=True)))
-    assert [e[:4] for e in chunked] == [e[:4] for e in whole]
+    whole = chunk_invariant_events(t, v, "walk-edges", 5)
     assert len(whole) == len(_events(t, v, False)) - 1  # the chunks judge the same edges
 
 
@@ -75,10 +71,7 @@ def test_walk_edges_mode_parameters_and_a_bad_value_is_one_line():
     assert edge_lock_params("walk-edges") == {"edge_lock_deg": EDGE_LOCK_DEG, "edge_lock_leading": True,
                                               "walk_end_var": floor, "walk_start_var": floor}
     assert pll_params(PLLStepDetector(edge_lock="walk-end")).walk_start_var == 0.0  # W367's mode unchanged
-    for bad in ("walk_edges", "edges"):
-        with pytest.raises(DataError, match="edge_lock .* is not one of .*\"walk-edges\" .*W372") as exc:
-            pll_params(PLLStepDetector(edge_lock=bad))
-        assert "\n" not in str(exc.value)
+    bad_values_are_one_line(("walk_edges", "edges"), "edge_lock .* is not one of .*\"walk-edges\" .*W372")
 
 
 def test_the_default_is_walk_edges_and_it_reaches_the_waist_pll_track():
