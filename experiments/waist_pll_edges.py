@@ -13,12 +13,14 @@ nearest kept PLL peak; seed 000 Sec. II-C: locked, the output's peak lies on the
 and on on the same simulated sessions; ``--edge-lock trailing`` (W358's measurement, once, users 8160-8199; W366
 records it): off and ``"trailing"`` (only a gated run's last peak judged); ``--edge-lock walk-end`` (W367's
 measurement, once, users 8320-8359; W368 records it): off and ``"walk-end"`` (a run's last peak judged only where the
-walk ends), recall's tolerance 0.005 (W367); the rule's (a) F1, (b) extra contacts,
+walk ends), recall's tolerance 0.005 (W367); ``--edge-lock walk-edges --baseline walk-end`` (W372's measurement,
+once, users 8700-8739; W373 records it): ``"walk-end"`` against ``"walk-edges"`` (also a run's first peak judged, only
+where the walk starts after it), W367's tolerances; the rule's (a) F1, (b) extra contacts,
 (c) recall printed and judged; with ``--external DIR`` also (d): `experiments/waist.py`'s `real` on its
 `external_runs` (mobgap), `waist-pll (A-HE)` off and on, every row's step F1.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_pll_edges.py [FIRST_USER LAST_USER+1]
-     [--edge-lock [trailing|walk-end] [--external datasets/external]]
+     [--edge-lock [trailing|walk-end|walk-edges] [--baseline walk-end] [--external datasets/external]]
 """
 
 from __future__ import annotations
@@ -38,8 +40,10 @@ USERS = range(7370, 7390)  # the lead's fresh users for W345 (session 33)
 EDGE_USERS = range(7750, 7790)  # the lead's fresh users for W356 (session 34)
 TRAILING_USERS = range(8160, 8200)  # the lead's fresh users for W358 (session 34)
 WALK_END_USERS = range(8320, 8360)  # the lead's fresh users for W367 (session 35)
+WALK_EDGES_USERS = range(8700, 8740)  # the lead's fresh users for W372 (session 35)
 #: the decision of each measured mode's rule and its (c) recall tolerance (W356 / W358: 0.002; W367: 0.005)
-RULES = {True: ("W356", 0.002), "trailing": ("W358", 0.002), "walk-end": ("W367", 0.005)}
+RULES = {True: ("W356", 0.002), "trailing": ("W358", 0.002), "walk-end": ("W367", 0.005),
+         "walk-edges": ("W372", 0.005)}
 _PEAKS: list[tuple[float, float]] = []  # (PLL peak time, phase error deg) of every kept PLL peak of the current track
 
 
@@ -141,11 +145,13 @@ def _label(lock: bool | str) -> str:
     return lock if isinstance(lock, str) else ("on" if lock else "off")
 
 
-def edge_lock_rule(users, external: Path | None, mode: bool | str = True) -> bool:
-    """W356's rule (``mode`` True), W358's (``mode`` "trailing") or W367's ("walk-end"): the option off against
-    ``mode``, (a)-(c) on the simulated routes, (d) on the mobgap recordings when ``external`` is given."""
+def edge_lock_rule(users, external: Path | None, mode: bool | str = True, baseline: bool | str = False) -> bool:
+    """W356's rule (``mode`` True), W358's (``mode`` "trailing"), W367's ("walk-end") or W372's ("walk-edges",
+    ``baseline`` "walk-end"): ``baseline`` (the option off unless given) against ``mode``, (a)-(c) on the simulated
+    routes, (d) on the mobgap recordings when ``external`` is given. "off" / "on" below: ``baseline`` / ``mode``."""
     decision, rec_tol = RULES[mode]
-    res = route_table(users, locks=(False, mode))
+    print(f"{decision}: off = pll_edge_lock {_label(baseline)}, on = pll_edge_lock {_label(mode)}", flush=True)
+    res = route_table(users, locks=(baseline, mode))
     ok_a = ok_c = True
     extra = [0, 0]
     for name, (off, on) in res.items():
@@ -166,7 +172,7 @@ def edge_lock_rule(users, external: Path | None, mode: bool | str = True) -> boo
 
         runs = external_runs(external)
         dfs = [real(external, runs, configs=[("waist-pll (A-HE)", "waist-pll", opts)])
-               for opts in ({"pll_edge_lock": False}, {"pll_edge_lock": mode})]
+               for opts in ({"pll_edge_lock": baseline}, {"pll_edge_lock": mode})]
         for (_, r0), (_, r1) in zip(dfs[0].iterrows(), dfs[1].iterrows(), strict=True):
             d = r1.step_f1 - r0.step_f1
             ok_d &= bool(d >= -0.005)
@@ -182,15 +188,19 @@ def edge_lock_rule(users, external: Path | None, mode: bool | str = True) -> boo
 if __name__ == "__main__":
     ap = argparse.ArgumentParser()
     ap.add_argument("users", nargs="*", type=int, help="FIRST_USER LAST_USER+1")
-    ap.add_argument("--edge-lock", nargs="?", const=True, default=None, choices=[True, "trailing", "walk-end"],
+    ap.add_argument("--edge-lock", nargs="?", const=True, default=None,
+                    choices=[True, "trailing", "walk-end", "walk-edges"],
                     help="W356's rule: pll_edge_lock off and on (W357); 'trailing': W358's rule (W366); 'walk-end': "
-                         "W367's rule (W368)")
+                         "W367's rule (W368); 'walk-edges': W372's rule (W373, with --baseline walk-end)")
+    ap.add_argument("--baseline", default=False, choices=[False, "walk-end"],
+                    help="the pll_edge_lock compared against (default off; W372: walk-end)")
     ap.add_argument("--external", type=Path, default=None, help="the mobgap folder for W356's (d)")
     args = ap.parse_args()
     logging.basicConfig(level=logging.ERROR)
-    default = {None: USERS, True: EDGE_USERS, "trailing": TRAILING_USERS, "walk-end": WALK_END_USERS}[args.edge_lock]
+    default = {None: USERS, True: EDGE_USERS, "trailing": TRAILING_USERS, "walk-end": WALK_END_USERS,
+               "walk-edges": WALK_EDGES_USERS}[args.edge_lock]
     users = range(args.users[0], args.users[1]) if len(args.users) > 1 else default
     if args.edge_lock is not None:
-        edge_lock_rule(users, args.external, args.edge_lock)
+        edge_lock_rule(users, args.external, args.edge_lock, args.baseline)
     else:
         route_table(users)

@@ -40,18 +40,18 @@ def _w369(result) -> list[str]:
 
 
 def test_a_waist_pll_calibration_records_the_edge_lock_it_counted_with(walk, tmp_path):
-    """W369: the calibrated PARAMS.json's "options" hold pll_edge_lock (the default "walk-end", or the value the
-    calibration's options gave), kept through the file; a waist-pendulum calibration records none. Before: None."""
+    """W369: the calibrated PARAMS.json's "options" hold pll_edge_lock (the default "walk-edges", W373, or the value
+    the calibration's options gave), kept through the file; a waist-pendulum calibration records none. Before: None."""
     p = _calibrate(walk, "waist-pll")
-    assert p.options == {"pll_edge_lock": "walk-end"}
-    assert load_params(p.save(tmp_path / "PARAMS.json")).options == {"pll_edge_lock": "walk-end"}
+    assert p.options == {"pll_edge_lock": "walk-edges"}
+    assert load_params(p.save(tmp_path / "PARAMS.json")).options == {"pll_edge_lock": "walk-edges"}
     assert _calibrate(walk, "waist-pll", {"pll_edge_lock": False}).options == {"pll_edge_lock": False}
     assert _calibrate(walk, "waist-pendulum").options is None
 
 
 def test_a_track_under_another_edge_lock_than_its_calibration_says_re_calibrate(walk):
     """W369: a calibration that records no pll_edge_lock (before session 35: counted with false) applied to a
-    default ("walk-end") track, or one recording "walk-end" applied with pll_edge_lock false, gives one line; the
+    default ("walk-edges") track, or one recording "walk-edges" applied with pll_edge_lock false, gives one line; the
     calibration's own value gives none, and the record is not named as an ignored option on waist-pendulum."""
     from pdrlearn.track.waist import track_waist
 
@@ -60,10 +60,10 @@ def test_a_track_under_another_edge_lock_than_its_calibration_says_re_calibrate(
     old = dataclasses.replace(p, options=None)  # a PARAMS.json calibrated before W369
     lines = _w369(track_waist(walk, pipeline="waist-pll", params=old))
     assert len(lines) == 1 and 'records no pll_edge_lock (calibrated before session 35: false)' in lines[0]
-    assert 'this track uses "walk-end"' in lines[0] and "re-calibrate: pdrlearn calibrate" in lines[0]
+    assert 'this track uses "walk-edges"' in lines[0] and "re-calibrate: pdrlearn calibrate" in lines[0]
     assert not _w369(track_waist(walk, pipeline="waist-pll", params=old, pll_edge_lock=False))
     lines = _w369(track_waist(walk, pipeline="waist-pll", params=p, pll_edge_lock=False))
-    assert len(lines) == 1 and 'was calibrated with pll_edge_lock "walk-end"' in lines[0]
+    assert len(lines) == 1 and 'was calibrated with pll_edge_lock "walk-edges"' in lines[0]
     pend = track_waist(walk, pipeline="waist-pendulum", params=p)
     assert not _w369(pend) and not [w for w in pend.info["warnings"] if "W193" in w]
 
@@ -88,4 +88,4 @@ def test_re_calibrating_from_an_unrecorded_params_json_says_nothing_while_it_cou
     with captured_warnings() as lines:
         again = calibrate([walk], "waist-pll", distances=[30.0], params=old)
     assert not [w for w in lines if "decision W369" in w]
-    assert again.options == {"pll_edge_lock": "walk-end"}
+    assert again.options == {"pll_edge_lock": "walk-edges"}

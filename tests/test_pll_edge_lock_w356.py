@@ -95,7 +95,7 @@ def test_edge_lock_is_chunk_invariant():
 
 
 def test_the_option_reaches_the_waist_pll_track():
-    # W357: True not adopted (the default is W368's "walk-end" since session 35, tests/test_pll_edge_lock_w367.py)
+    # W357: True not adopted (the default is W373's "walk-edges" since session 35, tests/test_pll_edge_lock_w372.py)
     base, lock = track_times(7790, (False, True))
     assert set(lock) < set(base)  # edge peaks went, nothing was added
     assert lock.size == base.size - 2 == 17  # W369 (review R1 item 2): one pass drops both of 7790's run ends

@@ -38,10 +38,12 @@ def test_trailing_is_chunk_invariant():
 
 
 def test_edge_lock_modes_and_a_bad_value_is_one_line():
-    assert EDGE_LOCK_VALUES == (False, True, "both", "trailing", "walk-end")  # W367 added "walk-end"
-    assert edge_lock_params(False) == {"edge_lock_deg": 0.0, "edge_lock_leading": True, "walk_end_var": 0.0}
+    assert EDGE_LOCK_VALUES == (False, True, "both", "trailing", "walk-end", "walk-edges")  # W367, W372 added
+    assert edge_lock_params(False) == {"edge_lock_deg": 0.0, "edge_lock_leading": True, "walk_end_var": 0.0,
+                                       "walk_start_var": 0.0}
     assert edge_lock_params(True) == edge_lock_params("both") == {"edge_lock_deg": EDGE_LOCK_DEG,
-                                                                   "edge_lock_leading": True, "walk_end_var": 0.0}
+                                                                   "edge_lock_leading": True, "walk_end_var": 0.0,
+                                                                   "walk_start_var": 0.0}
     assert pll_params(PLLStepDetector(edge_lock="trailing")).edge_lock_leading is False
     for bad in ("leading", "true", 2):
         with pytest.raises(DataError, match="edge_lock .* is not one of .*W358"):
@@ -49,7 +51,7 @@ def test_edge_lock_modes_and_a_bad_value_is_one_line():
 
 
 def test_the_trailing_mode_reaches_the_waist_pll_track():
-    # W366: "trailing" not adopted (the default is W368's "walk-end" since session 35)
+    # W366: "trailing" not adopted (the default is W373's "walk-edges" since session 35)
     base, trail, both = track_times(8160, (False, "trailing", "both"), bad="last")
     assert set(trail) < set(base) and set(both) <= set(trail)  # trailing drops a subset of what both drops
     assert trail.size == base.size - 1 == 20  # W369 (review R1 item 2): 8160's trailing peak is dropped

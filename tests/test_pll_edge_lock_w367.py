@@ -54,34 +54,42 @@ def test_walk_end_drops_the_unlocked_trailing_peak_where_the_walk_ends_and_keeps
     assert _times(_events(t2, v2, "walk-end")) == _times(_events(t2, v2, False))
 
 
+def chunk_invariant_events(t, v, mode, seed: int) -> list:
+    """The events of ``mode`` on the whole signal, asserted equal to those of 60 random chunks of it."""
+    cuts = np.r_[0, np.sort(np.random.default_rng(seed).choice(np.arange(1, t.size), 60, replace=False)), t.size]
+    whole = _events(t, v, mode)
+    chunked = _events(t, v, mode, chunks=list(zip(cuts[:-1], cuts[1:], strict=True)))
+    assert [e[:4] for e in chunked] == [e[:4] for e in whole]
+    return whole
+
+
 def test_walk_end_is_chunk_invariant():
     t, v = _turn_walk()
-    cuts = np.r_[0, np.sort(np.random.default_rng(3).choice(np.arange(1, t.size), 60, replace=False)), t.size]
-    whole = _events(t, v, "walk-end")
-    chunked = _events(t, v, "walk-end", chunks=list(zip(cuts[:-1], cuts[1:], strict=True)))
-    assert [e[:4] for e in chunked] == [e[:4] for e in whole]
+    whole = chunk_invariant_events(t, v, "walk-end", 3)
     assert len(whole) == len(_events(t, v, False)) - 1  # the chunks judge the same edges (the turn's peak kept)
 
 
 def test_walk_end_mode_parameters_and_a_bad_value_is_one_line():
     assert edge_lock_params("walk-end") == {"edge_lock_deg": EDGE_LOCK_DEG, "edge_lock_leading": False,
-                                            "walk_end_var": RELATIVE_GATE_FLOOR_MPS2 ** 2}  # W76's floor, squared
+                                            "walk_end_var": RELATIVE_GATE_FLOOR_MPS2 ** 2,  # W76's floor, squared
+                                            "walk_start_var": 0.0}  # W372's leading edge not judged
     assert RELATIVE_GATE_FLOOR_MPS2 == 0.15
     assert pll_params(PLLStepDetector(edge_lock="trailing")).walk_end_var == 0.0  # W358's mode unchanged
-    for bad in ("walk_end", "end"):
-        with pytest.raises(DataError, match="edge_lock .* is not one of .*\"walk-end\" .*W367") as exc:
+    bad_values_are_one_line(("walk_end", "end"), "edge_lock .* is not one of .*\"walk-end\",? .*W367")
+
+
+def bad_values_are_one_line(bads, match: str) -> None:
+    """Each detector ``edge_lock`` of ``bads`` is one DataError line matching ``match``."""
+    for bad in bads:
+        with pytest.raises(DataError, match=match) as exc:
             pll_params(PLLStepDetector(edge_lock=bad))
         assert "\n" not in str(exc.value)
 
 
-def test_the_default_is_walk_end_and_it_reaches_the_waist_pll_track():
-    from pdrlearn.track.waist import OPTION_DEFAULTS
-
-    # W368: adopted as the track option's default; the detector's own default (pdrlearn steps) stays off
-    assert OPTION_DEFAULTS["pll_edge_lock"] == "walk-end" and PLLStepDetector().edge_lock is False
+def test_walk_end_reaches_the_waist_pll_track():
+    # W368: adopted as the track option's default, W373 made it "walk-edges" (tests/test_pll_edge_lock_w372.py)
     # W369 (review R1 item 2): user 8160's walk ends on a free-running peak that walk-end drops (21 -> 20 contacts),
-    # so a default that did not reach the track (or a walk-end that dropped nothing) fails here
-    base, default, walk_end, trailing = track_times(8160, (False, None, "walk-end", "trailing"), bad="walk_end")
-    assert (base.size, default.size, walk_end.size, trailing.size) == (21, 20, 20, 20)
-    np.testing.assert_array_equal(default, walk_end)
+    # so a walk-end that did not reach the track (or dropped nothing) fails here
+    base, walk_end, trailing = track_times(8160, (False, "walk-end", "trailing"), bad="walk_end")
+    assert (base.size, walk_end.size, trailing.size) == (21, 20, 20)
     assert set(trailing) <= set(walk_end) < set(base)  # walk-end drops a subset of what trailing drops

@@ -283,8 +283,9 @@ def pelvic_flush(state: PelvicState, p: PelvicParams) -> list[Event]:
 EDGE_LOCK_DEG = 45.0
 #: decision W358: the values of the detector's ``edge_lock`` (``pll_edge_lock``): off, both edges of a gated run judged
 #: (True, the same as "both"; W356), or only its trailing edge, its last peak (W345: 5 % of the trailing edge extras
-#: locked, but true first contacts often unlocked); W367: "walk-end", the trailing edge dropped only where the walk ends
-EDGE_LOCK_VALUES = (False, True, "both", "trailing", "walk-end")
+#: locked, but true first contacts often unlocked); W367: "walk-end", the trailing edge dropped only where the walk
+#: ends; W372: "walk-edges", "walk-end" plus the leading edge dropped only where the walk starts after it
+EDGE_LOCK_VALUES = (False, True, "both", "trailing", "walk-end", "walk-edges")
 
 
 @dataclass
@@ -304,6 +305,8 @@ class PLLParams:
     edge_lock_leading: bool = True
     # decision W367: an unlocked last peak is kept when the variance over the stride after it reaches this (0: off)
     walk_end_var: float = 0.0
+    # decision W372: an unlocked first peak is kept when the variance over the stride before it reaches this (0: off)
+    walk_start_var: float = 0.0
 
 
 @dataclass
@@ -318,7 +321,7 @@ class PLLState:
     pending: list = field(default_factory=list)  # [t_peak, freq_hz, previous peak, phase error deg]
     iq: tuple = (0.0, 0.0)  # W345: in-phase / quadrature sums since the last peak
     prev_gated: bool = False  # W356: the last decided peak passed the activity gate
-    held: tuple | None = None  # W356: (event, first of its run, locked), waiting for the next peak's gate
+    held: tuple | None = None  # W356: (event, first of its run, kept as first, kept as last), waiting for the next gate
 
 
 def pll_kernel(t: np.ndarray, v: np.ndarray, state: PLLState, p: PLLParams) -> tuple[list[Event], PLLState]:
@@ -480,20 +483,24 @@ def _pll_release(s: PLLState, last_of_run: bool, p: PLLParams) -> list[Event]:
     the last of its gated run and unlocked."""
     if s.held is None:
         return []
-    ev, first, locked = s.held
+    ev, first, keep_first, keep_last = s.held
     s.held = None
-    return [ev] if locked or not ((first and p.edge_lock_leading) or last_of_run) else []
+    return [] if (first and p.edge_lock_leading and not keep_first) or (last_of_run and not keep_last) else [ev]
 
 
-def walk_goes_on(bt: np.ndarray, bv: np.ndarray, peak: float, freq: float, p: PLLParams) -> bool:
+def walk_goes_on(bt: np.ndarray, bv: np.ndarray, peak: float, freq: float, p: PLLParams, *,
+                 before: bool = False) -> bool:
     """Decision W367: the walk goes on after the PLL ``peak``: the variance of ``bv`` over the stride after it,
     ``[peak, peak + min(2 / f, gate_window_s / 2)]`` (one stride = two steps, W47; at most the look-ahead the activity
-    gate already waits for, so every chunking has delivered it), reaches ``p.walk_end_var``. False when off (0)."""
-    if p.walk_end_var <= 0:
+    gate already waits for, so every chunking has delivered it), reaches ``p.walk_end_var``. W372 (``before``): the
+    walk was already going before it, the stride ``[peak - min(2 / f, gate_window_s / 2), peak]`` (within the half
+    window the gate reads back) reaching ``p.walk_start_var``. False when off (0)."""
+    var_min = p.walk_start_var if before else p.walk_end_var
+    if var_min <= 0:
         return False
     w = min(2.0 / max(freq, p.f_min_hz), 0.5 * p.gate_window_s)
-    ok, var = centred_variance(bt, bv, np.array([peak + 0.5 * w]), 0.5 * w)
-    return bool(ok[0] and var[0] >= p.walk_end_var)
+    ok, var = centred_variance(bt, bv, np.array([peak - 0.5 * w if before else peak + 0.5 * w]), 0.5 * w)
+    return bool(ok[0] and var[0] >= var_min)
 
 
 def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
@@ -523,8 +530,10 @@ def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
         start = prev if prev == prev and tp - prev < 2.0 / p.f_min_hz else tp - 1.0 / max(freq, p.f_min_hz)
         ev = (tp, start, tp, min(1.0, vi / (2 * p.gate_var)),
               {"step_freq_hz": freq, "pll_peak_s": peak, "phase_err_deg": phase})
-        if lock:  # W367: with walk_end_var, an unlocked peak inside a walk that goes on counts as locked
-            s.held = (ev, first, abs(phase) <= p.edge_lock_deg or walk_goes_on(bt, bv, peak, freq, p))
+        if lock:  # W367 / W372: an unlocked last (first) peak inside a walk that goes on (went on) counts as locked
+            locked = abs(phase) <= p.edge_lock_deg
+            s.held = (ev, first, locked or walk_goes_on(bt, bv, peak, freq, p, before=True),
+                      locked or walk_goes_on(bt, bv, peak, freq, p))
         else:
             out.append(ev)
     return out
@@ -702,18 +711,21 @@ def pll_params(det, period_s: float = float("nan"), gate_var: float | None = Non
 
 def edge_lock_params(mode) -> dict:
     """:class:`PLLParams`' edge-lock fields of the detector's ``edge_lock`` ``mode`` (one of :data:`EDGE_LOCK_VALUES`;
-    decisions W356 / W358 / W367): True or "both" judges a gated run's first and last peak, "trailing" its last only,
-    "walk-end" its last only where the walk ends (the stride after it quieter than W76's floor, W367)."""
+    decisions W356 / W358 / W367 / W372): True or "both" judges a gated run's first and last peak, "trailing" its last
+    only, "walk-end" its last only where the walk ends (the stride after it quieter than W76's floor, W367),
+    "walk-edges" also its first only where the walk starts after it (the stride before it that quiet, W372)."""
     if mode not in EDGE_LOCK_VALUES:
         from pdrlearn.errors import DataError
 
-        raise DataError(f"pll edge_lock {mode!r} is not one of false, true, \"both\", \"trailing\", \"walk-end\" "
-                        "(decisions W356, W358, W367); fix the detector setting or the PARAMS.json option "
-                        "pll_edge_lock")
+        raise DataError(f"pll edge_lock {mode!r} is not one of false, true, \"both\", \"trailing\", \"walk-end\", "
+                        "\"walk-edges\" (decisions W356, W358, W367, W372); fix the detector setting or the "
+                        "PARAMS.json option pll_edge_lock")
     from pdrlearn.kernels.waist import RELATIVE_GATE_FLOOR_MPS2  # W367: W76's floor, no gate takes less for walking
 
+    floor = RELATIVE_GATE_FLOOR_MPS2 ** 2
     return {"edge_lock_deg": EDGE_LOCK_DEG if mode else 0.0, "edge_lock_leading": mode not in ("trailing", "walk-end"),
-            "walk_end_var": RELATIVE_GATE_FLOOR_MPS2 ** 2 if mode == "walk-end" else 0.0}
+            "walk_end_var": floor if mode in ("walk-end", "walk-edges") else 0.0,
+            "walk_start_var": floor if mode == "walk-edges" else 0.0}  # W372: the same floor before the first peak
 
 
 class PLLProcessor:

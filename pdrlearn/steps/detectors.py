@@ -337,7 +337,8 @@ class PLLStepDetector(StepDetector):
                  # detect); steps 49: None = steps 48's default (on offline, off streaming), True given is refused by
                  # online()
                  edge_lock: bool | str = False):  # decision W356: a gated run's first / last peak only when
-        # locked; W358: "trailing" its last only; W367: "walk-end" its last only where the walk ends
+        # locked; W358: "trailing" its last only; W367: "walk-end" its last only where the walk ends; W372:
+        # "walk-edges" also its first only where the walk starts after it
         self._store(locals())
 
     def online(self, fs: float, **context):

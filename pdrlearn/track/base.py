@@ -297,8 +297,9 @@ def get_pipeline(name: str) -> Pipeline:
       runs are named in a warning line either way),
       ``pll_edge_lock`` (decisions W356 / W357: true makes waist-pll keep a gated run's first and last PLL peak only
       when the loop is locked at it, phase error within 45 deg; a free-running peak at a bout's edge is no step, W345;
-      ``"trailing"`` judges only the run's last peak, decision W358; ``"walk-end"``, the default since W368, only a
-      last peak where the walk ends, W367; false keeps every gated peak),
+      ``"trailing"`` judges only the run's last peak, decision W358; ``"walk-end"`` (W368) only a
+      last peak where the walk ends, W367; ``"walk-edges"``, the default since W373, also a first peak where the walk
+      starts after it, W372; false keeps every gated peak),
       ``freeze_index`` (decision W216, off: the lower back's freeze index, W213: freezes.csv and ``n_freezes`` /
       ``freeze_time_s``, null when off; foot tracks always compute theirs),
       ``realtime_sit_veto`` (decision W201, off: a realtime track applies the sit veto causally, each contact

@@ -135,7 +135,7 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
     moved to the initial contact next to them when ``refine_ic`` (decision W11); ``edge_lock``: the detector's
     W356 option (a gated run's first / last peak only when the loop is locked; W358's "trailing": its last only;
-    W367's "walk-end": its last only where the walk ends)."""
+    W367's "walk-end": its last only where the walk ends; W372's "walk-edges": also its first where it starts)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
     st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
                          edge_lock=edge_lock).detect(session)
@@ -583,8 +583,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
-                   "pll_edge_lock": "walk-end",  # W356 / W367: waist-pll's trailing edge where the walk ends only when
-                   # the loop is locked at it; W368: adopted
+                   "pll_edge_lock": "walk-edges",  # W356 / W367 / W372: waist-pll's edge peaks where the walk ends
+                   # (starts) only when the loop is locked at them; W368: "walk-end" adopted; W373: "walk-edges"
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
@@ -693,7 +693,7 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203"),
                   "fast_fill": (FAST_FILL_VALUES, "W242, W255"),
                   "cadence_law": (CADENCE_LAW_VALUES, "W240, W261"),
-                  "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367")}
+                  "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367, W372")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -830,8 +830,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         45 deg over the period ending at the peak; decision W356, W345's diagnosis: a free-running peak at a bout's
         edge; True / ``"both"``: W357 measured it, not adopted -- fewer extra contacts, but true edge contacts lost);
         ``"trailing"`` judges only the run's last peak and keeps its first (decision W358, not adopted, W366);
-        ``"walk-end"`` (the default, decision W368) judges a run's last peak only where the walk ends (the stride after
-        it under W76's 0.15 m/s^2 SD; decision W367); False keeps every gated peak
+        ``"walk-end"`` (decision W368) judges a run's last peak only where the walk ends (the stride after it under
+        W76's 0.15 m/s^2 SD; decision W367); ``"walk-edges"`` (the default, decision W373) also its first peak only
+        where the walk starts after it (the stride before it that quiet; decision W372); False keeps every gated peak
     freeze_index : the lower back's freeze index (decision W213): freezes.csv and ``n_freezes`` / ``freeze_time_s``;
         default False (decision W216: on the lower back it also reads daily activities and slow walks as freezing),
         ``info["freezes"]`` None and the summary keys null (not measured)

@@ -51,5 +51,5 @@ def edge_lock_mismatch_line(p, pipeline: str, edge_lock) -> str | None:
     how = (f"records no {OPTION} (calibrated before session 35: {json.dumps(cal)})" if given is None
            else f"was calibrated with {OPTION} {json.dumps(cal)}")
     return (f"the waist-pll PARAMS.json {how} and this track uses {json.dumps(edge_lock)}: the calibration counted "
-            "the walk's last contact differently, so its step lengths are about 1/N_steps off (decision W369); "
-            "re-calibrate: pdrlearn calibrate WALK --pipeline waist-pll --distance METRES")
+            "the walk's first or last contact differently, so its step lengths are about 1/N_steps off (decision "
+            "W369); re-calibrate: pdrlearn calibrate WALK --pipeline waist-pll --distance METRES")
