@@ -538,6 +538,7 @@ class Tracker(FixInput):
         self.forward = {p: forward_vector(f) for p, f in frames.items()}
         self.warnings: list[str] = []
         self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
+        self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
         self._choose_models(sensors)
         self.params = dict(m["displacement"])
@@ -1324,6 +1325,22 @@ class Tracker(FixInput):
         if p[2] == 1:
             log.warning("bundle %s: %s", self.bundle.path, self.warnings[p[3]])
 
+    def _note_turn_tally(self, label, length_m: float, turn_rad: float) -> None:
+        """Decisions C89 / C94: the classifier's length class (before C88) against the stride's measured length;
+        the one line, once it holds, is kept up to date in place (track --streaming prints the final one)."""
+        if self._turn_tally is None:
+            self._turn_tally = [_turn_length.TurnTally(), None]
+        tally = self._turn_tally
+        tally[0].add(label, length_m, turn_rad, self.bounds)
+        line = tally[0].line(replaced=_turn_length.TURN_LENGTH_RULE)
+        if line is None:
+            return
+        if tally[1] is None:
+            tally[1] = len(self.warnings)
+            self._warn(line)
+        else:
+            self.warnings[tally[1]] = line
+
     def _no_gravity(self, t0: float, t1: float) -> str:
         """Decision B123: the line for a step whose accelerometer gives no gravity to level it by (the stride
         kernel's ``gravity_rotation``): the accelerometers reading ~0 over the step and its look-back, and when."""
@@ -1677,6 +1694,8 @@ class Tracker(FixInput):
         raw_dz = dz
         if self.distance_gain != 1.0:  # decision L26 / E14, as pdrlearn track
             dx, dy, dz = apply_level_gain_one(dx, dy, dz, self.distance_gain)
+        if self.bounds is not None and "length" in classes:  # decision C94: C89's count, track --streaming's
+            self._note_turn_tally(classes["length"], math.hypot(dx, dy), _sideways.foot_turn(lev))
         if _turn_length.TURN_LENGTH_RULE and self.bounds is not None and "length" in classes:  # decisions C88 /
             # C91: a turning stride's length class from its measured length, track's and track --streaming's call
             label, lp = _turn_length.turn_length_class_one(classes["length"], proba.get("length"), math.hypot(dx, dy),
