@@ -1256,6 +1256,7 @@ class Tracker(FixInput):
         self.height_checks()  # decision E47: the end of a recording
         self._warn_unused_fixes()  # decision D21
         self._warn_out_of_domain()  # decision E105
+        self._warn_turning_lengths()  # decisions C89 / C94
         if self._carry:  # decision L134
             steps, self._carry = [*self._carry, *steps], []
         return steps
@@ -1326,20 +1327,24 @@ class Tracker(FixInput):
             log.warning("bundle %s: %s", self.bundle.path, self.warnings[p[3]])
 
     def _note_turn_tally(self, label, length_m: float, turn_rad: float) -> None:
-        """Decisions C89 / C94: the classifier's length class (before C88) against the stride's measured length;
-        the one line, once it holds, is kept up to date in place (track --streaming prints the final one)."""
+        """Decisions C89 / C94: the classifier's length class (before C88) against the stride's measured length."""
         if self._turn_tally is None:
             self._turn_tally = [_turn_length.TurnTally(), None]
+        self._turn_tally[0].add(label, length_m, turn_rad, self.bounds)
+
+    def _warn_turning_lengths(self) -> None:
+        """Decisions C89 / C94: at a flush (the end of a recording), the one line on the strides counted so far, as
+        track --streaming's at its end; a later flush with a changed count replaces it in place (and logs it)."""
         tally = self._turn_tally
-        tally[0].add(label, length_m, turn_rad, self.bounds)
-        line = tally[0].line(replaced=_turn_length.TURN_LENGTH_RULE)
-        if line is None:
+        line = None if tally is None else tally[0].line(replaced=_turn_length.TURN_LENGTH_RULE)
+        if line is None or (tally[1] is not None and self.warnings[tally[1]] == line):
             return
         if tally[1] is None:
             tally[1] = len(self.warnings)
             self._warn(line)
         else:
             self.warnings[tally[1]] = line
+            log.warning("bundle %s: %s", self.bundle.path, line)
 
     def _no_gravity(self, t0: float, t1: float) -> str:
         """Decision B123: the line for a step whose accelerometer gives no gravity to level it by (the stride
