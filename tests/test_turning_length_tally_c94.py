@@ -9,6 +9,7 @@ import pytest
 
 from pdrlearn.kernels.turn_length import TurnTally, disagrees_one
 from pdrlearn.track.turn_classes import turning_length_disagreement
+from tests.runtime_helpers import replay, svm_user_walk
 
 BOUNDS = {"short": (0.0, 1.0), "normal": (1.0, 1.6), "long": (1.6, 1.8)}
 
@@ -34,17 +35,7 @@ def test_the_one_stride_tally_counts_as_the_offline_table_function():
 def user_8740(tmp_path_factory):
     """User 8740's SVM on the fused units, its bundle, and walk D (seed 3): its classifier calls about half of D's
     corners a length class their measured length contradicts."""
-    from pdrlearn.classify import train_user
-    from pdrlearn.export import export_model
-    from pdrlearn.runtime import load_bundle
-    from pdrlearn.sim import simulate
-
-    root = tmp_path_factory.mktemp("c94")
-    cal = [simulate(e, user_seed=8740, seed=0) for e in ("terrain", "direction", "length")]
-    model = train_user(cal, methods=("svm",), units=("fused",), cv=3, user="u8740")
-    model.save(root / "model")
-    export_model(root / "model", root / "bundle")
-    return model, load_bundle(root / "bundle"), simulate("D", user_seed=8740, seed=3)
+    return svm_user_walk(tmp_path_factory.mktemp("c94"), 8740)
 
 
 def _c89(warnings) -> list[str]:
@@ -55,15 +46,12 @@ def test_streamed_and_run_print_the_same_c89_line(user_8740):
     """`track --streaming` and the runtime Tracker (`pdrlearn run`) count with the one kernel, on the classifier's
     classes before C88 replaces them: the same line, with C88 on by default (C91)."""
     from pdrlearn.runtime import Tracker
-    from pdrlearn.runtime.replay import replay_chunks
     from pdrlearn.track.plasys import track_plasys
 
     model, bundle, s = user_8740
     streamed = _c89(track_plasys(s, method="M3", model=model, streaming=True).info.get("warnings", []))
     tr = Tracker(bundle)
-    for chunk in replay_chunks({n: (st.t, st.values) for n, st in s.streams.items()}, 0.5):
-        tr.push(chunk)
-    tr.flush()
+    replay(tr, s)
     run = _c89(tr.warnings)
     assert len(streamed) == 1 and run == streamed
     assert "(decision C88)" in run[0]  # C88's default: the line says those strides now take the measured class
