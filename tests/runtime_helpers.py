@@ -200,6 +200,21 @@ def rest_dirs(tmp_path_factory) -> dict:
     return _CACHE
 
 
+def svm_user_walk(root, user: int, walk: str = "D"):
+    """A simulated user's SVM on the fused units (L38's parity model) saved under ``root / "model"``, its bundle
+    (``root / "bundle"``, loaded) and ``walk`` (seed 3): (model, bundle, session)."""
+    from pdrlearn.classify import train_user
+    from pdrlearn.export import export_model
+    from pdrlearn.runtime import load_bundle
+    from pdrlearn.sim import simulate
+
+    cal = [simulate(e, user_seed=user, seed=0) for e in ("terrain", "direction", "length")]
+    model = train_user(cal, methods=("svm",), units=("fused",), cv=3, user=f"u{user}")
+    model.save(root / "model")
+    export_model(root / "model", root / "bundle")
+    return model, load_bundle(root / "bundle"), simulate(walk, user_seed=user, seed=3)
+
+
 def replay(tracker, session, chunk_s: float = 0.5) -> list:
     """Push ``session`` into ``tracker`` in ``chunk_s`` chunks, then flush; the emitted steps."""
     t = session.streams["fAccelerometer"].t

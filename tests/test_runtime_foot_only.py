@@ -148,8 +148,10 @@ def _errors_once(capsys, argv, pattern):
 def _no_c28(err: str) -> list[str]:
     """The warning lines of ``err`` but the toy model's C28 line (``run`` gives it since decision E47, as ``track``)
     and the toy walk's L95 line (its 0.13 m/s gait speed is below the validated range; ``track --streaming``
-    says the same)."""
-    return [e for e in err.strip().splitlines() if "terrain classes contradict" not in e and "decision L95" not in e]
+    says the same) and the toy model's C89 line on its turning strides (``run`` counts it since decision C94, as
+    ``track --streaming``)."""
+    return [e for e in err.strip().splitlines()
+            if "terrain classes contradict" not in e and "decision L95" not in e and "decision C89" not in e]
 
 
 def test_run_cli_foot_only_default_option_and_track_parity(root, tmp_path, capsys):

@@ -11,6 +11,7 @@ import pytest
 from pdrlearn.kernels import turn_length
 from pdrlearn.kernels.turn_length import measured_class_one, turn_length_class_one
 from pdrlearn.track.evaluate import match_by_overlap
+from tests.runtime_helpers import svm_user_walk
 
 BOUNDS = {"short": (0.0, 1.0), "normal": (1.0, 1.6), "long": (1.6, 10.0)}
 
@@ -30,17 +31,7 @@ def test_one_stride_kernel_replaces_only_a_classified_turning_stride():
 @pytest.fixture(scope="module")
 def user_8653(tmp_path_factory):
     """User 8653's SVM on the fused units (L38's parity model), its bundle, and walk D (seed 3)."""
-    from pdrlearn.classify import train_user
-    from pdrlearn.export import export_model
-    from pdrlearn.runtime import load_bundle
-    from pdrlearn.sim import simulate
-
-    root = tmp_path_factory.mktemp("c91")
-    cal = [simulate(e, user_seed=8653, seed=0) for e in ("terrain", "direction", "length")]
-    model = train_user(cal, methods=("svm",), units=("fused",), cv=3, user="u8653")
-    model.save(root / "model")
-    export_model(root / "model", root / "bundle")
-    return model, load_bundle(root / "bundle"), simulate("D", user_seed=8653, seed=3)
+    return svm_user_walk(tmp_path_factory.mktemp("c91"), 8653)
 
 
 def _run(bundle, s) -> pd.DataFrame:

@@ -48,4 +48,55 @@ def turn_length_class_one(label, proba, length_m: float, turn_rad: float, bounds
     return measured, (None if proba is None else {c: float(c == measured) for c in proba})
 
 
-__all__ = ["STRAIGHT_MAX_RAD", "TURN_LENGTH_RULE", "measured_class_one", "turning", "turn_length_class_one"]
+def disagrees_one(label, length_m: float, turn_rad: float, bounds) -> bool | None:
+    """Decision C89: does one stride's classified length class contradict its measured length? None when the
+    stride is not compared: straight (L79), no classified class, or no measured class (R4's amendment)."""
+    if not isinstance(label, str) or not turning(turn_rad):
+        return None
+    measured = measured_class_one(length_m, bounds)
+    return None if measured is None else measured != label
+
+
+class TurnTally:
+    """Decisions C89 / C94: the classifier's length classes on turning strides, counted one stride at a time
+    (``track --streaming`` and ``pdrlearn run`` call :meth:`add` with the classifier's class before C88 replaces
+    it). ``off`` disagree, ``compared`` were compared, ``classified`` held a length class."""
+
+    def __init__(self) -> None:
+        self.off = self.compared = self.classified = 0
+
+    def add(self, label, length_m: float, turn_rad: float, bounds) -> None:
+        self.classified += isinstance(label, str)
+        d = disagrees_one(label, length_m, turn_rad, bounds)
+        if d is not None:
+            self.compared += 1
+            self.off += d
+
+    def line(self, *, replaced: bool) -> str | None:
+        """The C89 line for the strides added so far (of the strides holding a length class), else None."""
+        return turning_length_line(self.off, self.compared, self.classified, replaced=replaced)
+
+
+#: decision C89: the share of disagreeing turning strides at which ``track`` warns -- C16's tested
+#: FRACTION_THRESHOLD (0.25), reused and not tuned (no measurement chose it)
+TURN_DISAGREE_SHARE = 0.25
+#: decision C89: fewest disagreeing turning strides for the line (one odd corner is no pattern)
+TURN_DISAGREE_MIN = 3
+
+
+def turning_length_line(n_off: int, n_turning: int, n_strides: int, *, replaced: bool = False) -> str | None:
+    """Decision C89: the one warning line when :data:`TURN_DISAGREE_SHARE` or more of the classified turning strides
+    (and at least :data:`TURN_DISAGREE_MIN`) carry a length class their measured length contradicts; else None.
+    ``replaced``: C88 gave those strides the measured class (the line says so)."""
+    if n_off < TURN_DISAGREE_MIN or n_off < TURN_DISAGREE_SHARE * n_turning:
+        return None
+    what = ("their length class now comes from the measured length (decision C88)" if replaced else
+            "read length_class of turning strides with care, or compare raw_length_m with the model's length bounds")
+    return (f"{n_off} of the {n_turning} strides turning 15 deg or more (of {n_strides}) got a length class from the "
+            f"classifier that their measured length contradicts: the calibration exercises walk straight (their only "
+            f"turns are short turnaround steps), so the length classifier's held-out accuracy does not hold on "
+            f"corners and its out-of-domain check does not see them; {what} (decision C89)")
+
+
+__all__ = ["STRAIGHT_MAX_RAD", "TURN_LENGTH_RULE", "TURN_DISAGREE_SHARE", "TURN_DISAGREE_MIN", "measured_class_one",
+           "turning", "turn_length_class_one", "disagrees_one", "TurnTally", "turning_length_line"]

@@ -538,6 +538,7 @@ class Tracker(FixInput):
         self.forward = {p: forward_vector(f) for p, f in frames.items()}
         self.warnings: list[str] = []
         self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
+        self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
         self._choose_models(sensors)
         self.params = dict(m["displacement"])
@@ -1255,6 +1256,7 @@ class Tracker(FixInput):
         self.height_checks()  # decision E47: the end of a recording
         self._warn_unused_fixes()  # decision D21
         self._warn_out_of_domain()  # decision E105
+        self._warn_turning_lengths()  # decisions C89 / C94
         if self._carry:  # decision L134
             steps, self._carry = [*self._carry, *steps], []
         return steps
@@ -1323,6 +1325,26 @@ class Tracker(FixInput):
         self.warnings[p[3]] = posture_warning(p[2], p[0], p[1])
         if p[2] == 1:
             log.warning("bundle %s: %s", self.bundle.path, self.warnings[p[3]])
+
+    def _note_turn_tally(self, label, length_m: float, turn_rad: float) -> None:
+        """Decisions C89 / C94: the classifier's length class (before C88) against the stride's measured length."""
+        if self._turn_tally is None:
+            self._turn_tally = [_turn_length.TurnTally(), None]
+        self._turn_tally[0].add(label, length_m, turn_rad, self.bounds)
+
+    def _warn_turning_lengths(self) -> None:
+        """Decisions C89 / C94: at a flush (the end of a recording), the one line on the strides counted so far, as
+        track --streaming's at its end; a later flush with a changed count replaces it in place (and logs it)."""
+        tally = self._turn_tally
+        line = None if tally is None else tally[0].line(replaced=_turn_length.TURN_LENGTH_RULE)
+        if line is None or (tally[1] is not None and self.warnings[tally[1]] == line):
+            return
+        if tally[1] is None:
+            tally[1] = len(self.warnings)
+            self._warn(line)
+        else:
+            self.warnings[tally[1]] = line
+            log.warning("bundle %s: %s", self.bundle.path, line)
 
     def _no_gravity(self, t0: float, t1: float) -> str:
         """Decision B123: the line for a step whose accelerometer gives no gravity to level it by (the stride
@@ -1677,6 +1699,8 @@ class Tracker(FixInput):
         raw_dz = dz
         if self.distance_gain != 1.0:  # decision L26 / E14, as pdrlearn track
             dx, dy, dz = apply_level_gain_one(dx, dy, dz, self.distance_gain)
+        if self.bounds is not None and "length" in classes:  # decision C94: C89's count, track --streaming's
+            self._note_turn_tally(classes["length"], math.hypot(dx, dy), _sideways.foot_turn(lev))
         if _turn_length.TURN_LENGTH_RULE and self.bounds is not None and "length" in classes:  # decisions C88 /
             # C91: a turning stride's length class from its measured length, track's and track --streaming's call
             label, lp = _turn_length.turn_length_class_one(classes["length"], proba.get("length"), math.hypot(dx, dy),

@@ -1766,6 +1766,15 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
+    if (method == "M3" and use_bounds is not None and "length_class" in classes
+            and not (isinstance(model, str) and model == "oracle")):  # decision C94: C89's count, as the runtime's
+        tally = KT.TurnTally()
+        for i in np.flatnonzero(~posture):
+            tally.add(classes["length_class"].iat[i], float(np.hypot(disp[i, 0], disp[i, 1])), float(foot_turn[i]),
+                      parse_bounds(use_bounds))
+        line = tally.line(replaced=KT.TURN_LENGTH_RULE)
+        if line:
+            warnings.append(line)
     if (KT.TURN_LENGTH_RULE and method == "M3" and use_bounds is not None and "length_class" in classes
             and not (isinstance(model, str) and model == "oracle")):  # decisions C88 / C91: as offline and the
         from pdrlearn.track.turn_classes import measured_classes_on_turns  # runtime, on the foot's turn (L400)

@@ -13,11 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-#: decision C89: the share of disagreeing turning strides at which ``track`` warns -- C16's tested
-#: FRACTION_THRESHOLD (0.25), reused and not tuned (no measurement chose it)
-TURN_DISAGREE_SHARE = 0.25
-#: decision C89: fewest disagreeing turning strides for the line (one odd corner is no pattern)
-TURN_DISAGREE_MIN = 3
+from pdrlearn.kernels.turn_length import TURN_DISAGREE_MIN, TURN_DISAGREE_SHARE, turning_length_line
 
 
 def measured_length_class(length_m: np.ndarray, bounds: dict[str, tuple[float, float]]) -> np.ndarray:
@@ -35,20 +31,12 @@ def turning_length_disagreement(length_class, raw_length_m, turn_rad, bounds, va
     class, a measured class (:func:`measured_length_class` of their raw length) and, when given, ``valid``; those
     whose two classes differ disagree. A stride with no measured class (above the top bound, in a gap between
     bounds, NaN) is left out: nothing contradicts its class (decision C89 amended, review R4)."""
-    from pdrlearn.kernels.turn_length import turning
+    from pdrlearn.kernels.turn_length import disagrees_one  # decision C94: the streamed and run paths' kernel
 
-    cls = np.asarray(length_class, dtype=object)
-    measured = measured_length_class(raw_length_m, bounds)
-    turn = np.array([turning(x) for x in np.asarray(turn_rad, dtype=float)], dtype=bool)
-    keep = turn & _named(cls) & _named(measured)
-    if valid is not None:
-        keep &= np.asarray(valid, bool)
-    return int(np.sum(keep & (cls != measured))), int(keep.sum())
-
-
-def _named(classes: np.ndarray) -> np.ndarray:
-    """Which entries hold a class name (not None / NaN)."""
-    return np.array([isinstance(c, str) for c in classes], dtype=bool)
+    lengths, turns = np.asarray(raw_length_m, dtype=float).ravel(), np.asarray(turn_rad, dtype=float).ravel()
+    keep = np.ones(len(lengths), bool) if valid is None else np.asarray(valid, bool)
+    d = [disagrees_one(c, x, t, bounds) for c, x, t, k in zip(length_class, lengths, turns, keep, strict=True) if k]
+    return sum(x is True for x in d), sum(x is not None for x in d)
 
 
 def measured_classes_on_turns(classes, length_m, turn_rad, bounds):
@@ -72,20 +60,6 @@ def measured_classes_on_turns(classes, length_m, turn_rad, bounds):
     for k, c in enumerate(pcols.values()):
         out[c] = p[:, k]
     return out
-
-
-def turning_length_line(n_off: int, n_turning: int, n_strides: int, *, replaced: bool = False) -> str | None:
-    """Decision C89: the one warning line when :data:`TURN_DISAGREE_SHARE` or more of the classified turning strides
-    (and at least :data:`TURN_DISAGREE_MIN`) carry a length class their measured length contradicts; else None.
-    ``replaced``: C88 gave those strides the measured class (the line says so)."""
-    if n_off < TURN_DISAGREE_MIN or n_off < TURN_DISAGREE_SHARE * n_turning:
-        return None
-    what = ("their length class now comes from the measured length (decision C88)" if replaced else
-            "read length_class of turning strides with care, or compare raw_length_m with the model's length bounds")
-    return (f"{n_off} of the {n_turning} strides turning 15 deg or more (of {n_strides}) got a length class from the "
-            f"classifier that their measured length contradicts: the calibration exercises walk straight (their only "
-            f"turns are short turnaround steps), so the length classifier's held-out accuracy does not hold on "
-            f"corners and its out-of-domain check does not see them; {what} (decision C89)")
 
 
 __all__ = ["TURN_DISAGREE_SHARE", "TURN_DISAGREE_MIN", "measured_length_class", "measured_classes_on_turns",
