@@ -47,3 +47,12 @@ def test_bad_folders_are_one_line(tmp_path, capsys):
                                                     "--out, track-all --out)")
     assert main([str(res), str(tmp_path / "x")]) == 0
     assert "1 CSV file(s) copied for Excel" in capsys.readouterr().out
+
+
+def test_an_empty_results_folder_is_one_line_and_writes_nothing(tmp_path, capsys):
+    """E178 (lead's closing check): a results folder with no CSV is refused in one line, no copy folder left."""
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert main([str(empty), str(tmp_path / "x")]) == 2
+    assert capsys.readouterr().err.strip().endswith("holds no .csv file to copy")
+    assert not (tmp_path / "x").exists()
