@@ -118,13 +118,11 @@ def rename_path(rel: str, names: dict[str, str]) -> str:
 
 def rename_folder(folder: Path, names: dict[str, str], recursive: bool = True) -> list[Path]:
     """Every text file under ``folder`` with the real names replaced (:func:`pdrlearn.redact.rewrite_folder`)."""
-    from pdrlearn.redact import rewrite_folder
+    from pdrlearn.redact import rewrite_folder, rewrite_json_text
 
     def rewrite(text: str, p: Path) -> str:
         if p.suffix.lower() == ".json":
-            obj = json.loads(text)
-            new = rename_json(obj, names)
-            return text if new == obj else json.dumps(new, indent=2) + "\n"
+            return rewrite_json_text(text, lambda obj: rename_json(obj, names))
         if p.suffix.lower() == ".csv":
             return rename_csv(text, names)
         return "\n".join(rename_text(line, names) for line in text.split("\n"))

@@ -110,11 +110,18 @@ def redact_folder(folder: Path, forms: tuple[str, ...], recursive: bool = True) 
     def rewrite(text: str, p: Path) -> str:
         if p.suffix.lower() != ".json":
             return text_pattern.sub(REDACTED, text)
-        obj = json.loads(text)
-        new = redact_json(obj, forms, fields=RUN_FIELDS if p.name == "run.json" else PATH_FIELDS)
-        return text if new == obj else json.dumps(new, indent=2) + "\n"
+        fields = RUN_FIELDS if p.name == "run.json" else PATH_FIELDS
+        return rewrite_json_text(text, lambda obj: redact_json(obj, forms, fields=fields))
 
     return rewrite_folder(folder, rewrite, recursive)
+
+
+def rewrite_json_text(text: str, change) -> str:
+    """A JSON file's text after ``change`` (object -> object): the text as it was when nothing changed, else the
+    new object written with an indent of 2 (E176's redaction and C86's pseudonyms)."""
+    obj = json.loads(text)
+    new = change(obj)
+    return text if new == obj else json.dumps(new, indent=2) + "\n"
 
 
 def rewrite_folder(folder: Path, rewrite, recursive: bool = True) -> list[Path]:
@@ -134,4 +141,4 @@ def rewrite_folder(folder: Path, rewrite, recursive: bool = True) -> list[Path]:
 
 
 __all__ = ["REDACTED", "PATH_FIELDS", "RUN_FIELDS", "path_forms", "redact_text", "redact_json", "redact_folder",
-           "rewrite_folder"]
+           "rewrite_folder", "rewrite_json_text"]
