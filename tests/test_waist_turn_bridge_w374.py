@@ -10,6 +10,7 @@ import pytest
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.waist import contacts_offline, turn_bridge_gate
+from pdrlearn.steps.evaluate import score_events
 from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
 from pdrlearn.waist.live import LIVE_UNAPPLIED_OPTIONS
 
@@ -94,12 +95,7 @@ def _tug(user: int):
 
 
 def _matched(ev: np.ndarray, truth: np.ndarray) -> int:
-    used, n = set(), 0
-    for d, i, j in sorted((abs(e - x), i, j) for i, x in enumerate(truth) for j, e in enumerate(ev) if abs(e - x) <= 0.25):
-        if i not in used and ("d", j) not in used:
-            used |= {i, ("d", j)}
-            n += 1
-    return n
+    return int(score_events(ev, truth, tolerance_s=0.25)["true_positives"])  # one-to-one within 0.25 s
 
 
 def test_the_default_is_off_and_the_option_reaches_the_offline_pendulum_track():
