@@ -43,6 +43,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
 from waist_freeze_veto import simulate  # noqa: E402
+from waist_pll_edges import mobgap_check  # noqa: E402
 from waist_stand import TOL_S, W218_ROUTES, matched_truth  # noqa: E402
 
 from pdrlearn.kernels import waist as K  # noqa: E402
@@ -198,21 +199,8 @@ def turn_bridge_rule(users=RULE_USERS, external: Path | None = None) -> bool:
     print(f"(a) F1 not lower by more than 0.002 on any route: {'met' if ok_a else 'NOT met'}; (b) errors (missed + "
           f"extra) off {err[0]} on {err[1]}: {'met' if ok_b else 'NOT met'}; (c) recall not lower by more than 0.005 "
           f"on any route: {'met' if ok_c else 'NOT met'}", flush=True)
-    ok_d = True
-    if external is not None:
-        from waist import external_runs, real
-
-        runs = external_runs(external)
-        dfs = [real(external, runs, configs=[("waist-pendulum", "waist-pendulum", {"turn_bridge": on})])
-               for on in (False, True)]
-        for (_, r0), (_, r1) in zip(dfs[0].iterrows(), dfs[1].iterrows(), strict=True):
-            d = r1.step_f1 - r0.step_f1
-            ok_d &= bool(d >= -0.005)
-            print(f"mobgap {r0.subject} {r0.test} ({r0.params}, calibrated on {r0.calibrated_on}): step F1 off "
-                  f"{r0.step_f1:.4f} on {r1.step_f1:.4f} ({d:+.4f}); detected off {r0.n_detected} on {r1.n_detected}",
-                  flush=True)
-        print(f"(d) mobgap waist-pendulum step F1 not lower by more than 0.005 on any row: "
-              f"{'met' if ok_d else 'NOT met'}")
+    ok_d = external is not None and mobgap_check(external, ("waist-pendulum", "waist-pendulum"),
+                                                 {"turn_bridge": False}, {"turn_bridge": True})
     adopted = ok_a and ok_b and ok_c and ok_d and external is not None
     print(f"W374 (turn_bridge): {'adopted' if adopted else 'not adopted'}")
     return adopted
