@@ -17,7 +17,8 @@ each user as `waist_pll_edges.route_table` draws it), the contacts of `track_wai
   the detector's 0.1 m/s^2) or "rules" (the sequence rules or a veto dropped it);
 - extra detected contact: "timing" (an unmatched true contact 0.25-0.5 s away), "outside walking" (over 1 s from
   every true contact: standing, sitting, a transfer, a freeze), "before a bout" / "after a bout" (before its first /
-  after its last true contact, within 1 s), "in a turn" (between two true contacts one of which is a turn step),
+  after its last true contact, within 1 s), "in a turn" (between two true contacts one of which is a turn step;
+  how many of them lie between two contacts of the SAME foot is printed beside, W376),
   "within a straight" (between two true contacts of a straight).
 
 ``--turn-bridge`` (W374's rule, measured once, users 8780-8799; W375 records it): each route tracked with the option
@@ -25,8 +26,10 @@ each user as `waist_pll_edges.route_table` draws it), the contacts of `track_wai
 printed and judged; with ``--external DIR`` also (d): `experiments/waist.py`'s `real` on its `external_runs` (mobgap),
 the offline `waist-pendulum` configuration off and on, every row's (calibrated and defaults) step F1.
 
+``--with-bridge`` (W376, a read-out): the table with ``turn_bridge`` on, where its added extras lie.
+
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_pendulum_ic_places.py [FIRST LAST+1]
-     [--turn-bridge [--external datasets/external]]
+     [--turn-bridge [--external datasets/external] | --with-bridge]
 Writes its table to stdout (W374: experiments/results/waist_pendulum_ic_places_w374.txt; W375:
 experiments/results/waist_pendulum_turn_bridge_w375.txt).
 """
@@ -59,6 +62,16 @@ SLOW_S = 0.75  # < 80 steps/min (waist_ic_classes.py's slow class)
 NEAR_S = 1.0  # an extra over 1 s from every true contact lies outside walking
 MISS_PLACES = ("closing step", "bout start", "bout end", "turn", "slow / short", "straight")
 EXTRA_PLACES = ("timing", "outside walking", "before a bout", "after a bout", "in a turn", "within a straight")
+SAME_FOOT = ", same-foot pair"  # W376: an extra in a turn between two true contacts of one foot
+
+
+def _extra_line(extra: Counter) -> str:
+    """One line: each place's extras (a turn's: its count between two same-foot contacts beside)."""
+    def one(p):
+        n = extra[p] + extra[p + SAME_FOOT]
+        return f"{p} {n}" + (f" (between two same-foot true contacts {extra[p + SAME_FOOT]})" if p == "in a turn"
+                             else "")
+    return "; ".join(one(p) for p in EXTRA_PLACES)
 
 
 def sessions(name: str, users) -> list:
@@ -91,7 +104,7 @@ def places(ev: np.ndarray, ics, mx=None) -> tuple[list[tuple[str, str]], list[st
     :func:`maxima` of the session (None: the causes other than timing are "not detected")."""
     truth = ics["ic_s"].to_numpy(float)
     order = np.argsort(truth)
-    truth, kind = truth[order], ics["kind"].to_numpy(str)[order]
+    truth, kind, foot = truth[order], ics["kind"].to_numpy(str)[order], ics["foot"].to_numpy(str)[order]
     m = matched_truth(ev, truth)
     used = np.zeros(ev.size, bool)
     used[m[m >= 0]] = True
@@ -133,7 +146,7 @@ def places(ev: np.ndarray, ics, mx=None) -> tuple[list[tuple[str, str]], list[st
         elif after == truth.size or bout[after] != bout[after - 1]:
             extras.append("after a bout")
         elif "turn" in (kind[after - 1], kind[after]):
-            extras.append("in a turn")
+            extras.append("in a turn" + (SAME_FOOT if foot[after - 1] == foot[after] else ""))
         else:
             extras.append("within a straight")
     return misses, extras, int(used.sum())
@@ -147,13 +160,14 @@ def _missed(miss: Counter) -> str:
     return "; ".join(one(p) for p in MISS_PLACES)
 
 
-def table(users=USERS) -> None:
+def table(users=USERS, **options) -> None:
+    """The module docstring's table for ``users``; ``options``: track options (W376: ``turn_bridge=True``)."""
     miss_all, extra_all = Counter(), Counter()
     for name in W218_ROUTES:
         miss, extra = Counter(), Counter()
         n_true = n_det = n_tp = 0
         for s in sessions(name, users):
-            ev = track_waist(s, pipeline="waist-pendulum").steps["event_s"].to_numpy(float)
+            ev = track_waist(s, pipeline="waist-pendulum", **options).steps["event_s"].to_numpy(float)
             mi, ex, tp = places(ev, s.extras["ics"], maxima(s))
             miss.update(mi)
             extra.update(ex)
@@ -162,12 +176,12 @@ def table(users=USERS) -> None:
         print(f"\n{name}: {len(users)} users, true {n_true}, detected {n_det}, matched {n_tp}, F1 {f1:.4f}, "
               f"recall {n_tp / max(n_true, 1):.4f}; missed {n_true - n_tp}, extra {n_det - n_tp}")
         print("  missed: " + _missed(miss))
-        print("  extra: " + "; ".join(f"{p} {extra[p]}" for p in EXTRA_PLACES))
+        print("  extra: " + _extra_line(extra))
         miss_all.update(miss)
         extra_all.update(extra)
     print(f"\nall routes: missed {sum(miss_all.values())}, extra {sum(extra_all.values())}")
     print("  missed: " + _missed(miss_all))
-    print("  extra: " + "; ".join(f"{p} {extra_all[p]}" for p in EXTRA_PLACES))
+    print("  extra: " + _extra_line(extra_all))
 
 
 def _counts(ev: np.ndarray, ics) -> np.ndarray:
@@ -211,9 +225,11 @@ if __name__ == "__main__":
     ap.add_argument("users", nargs="*", type=int, help="FIRST_USER LAST_USER+1")
     ap.add_argument("--turn-bridge", action="store_true", help="W374's rule: turn_bridge off and on (W375)")
     ap.add_argument("--external", type=Path, default=None, help="the mobgap folder for W374's (d)")
+    ap.add_argument("--with-bridge", action="store_true", help="the table with turn_bridge on (W376)")
     args = ap.parse_args()
     logging.disable(logging.WARNING)
     if args.turn_bridge:
         turn_bridge_rule(range(args.users[0], args.users[1]) if len(args.users) > 1 else RULE_USERS, args.external)
     else:
-        table(range(args.users[0], args.users[1]) if len(args.users) > 1 else USERS)
+        table(range(args.users[0], args.users[1]) if len(args.users) > 1 else USERS,
+              **({"turn_bridge": True} if args.with_bridge else {}))
