@@ -34,6 +34,7 @@ EVAL_RESAMPLE_OPT, EVAL_NO_RESAMPLE_OPT = resample_options("scored")  # decision
 def find_session_dirs(paths: list[Path]) -> list[Path]:
     """Session folders among ``paths``: a folder with sensor CSVs is a session, otherwise its immediate
     sub-folders that are sessions are used."""
+    from pdrlearn.io.archive import refuse_archive_for_batch
     from pdrlearn.io.sensors import SENSORS
 
     def is_session(p: Path) -> bool:
@@ -43,6 +44,7 @@ def find_session_dirs(paths: list[Path]) -> list[Path]:
     for p in paths:
         if not p.exists():
             raise DataError(f"{p}: no such folder; pass PLASYS session folders or a folder of them")
+        refuse_archive_for_batch(p, "train")  # decision B360
         if is_session(p):
             out.append(p)
             continue
