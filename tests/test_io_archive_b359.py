@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from pdrlearn.cli import main
+from pdrlearn.cli.train import find_session_dirs
 from pdrlearn.errors import DataError
 from pdrlearn.io import read_session, read_session_zip, write_session
 from pdrlearn.sim import simulate
@@ -176,18 +177,18 @@ def test_members_over_the_size_cap_are_refused_before_and_while_unpacking_b361(f
         read_session_zip(data, max_archive_bytes=0)
 
 
-def test_one_session_commands_take_a_zip_and_batch_commands_say_to_unzip_it_b360(folder, tmp_path, capsys):
+def test_session_commands_take_a_zip_and_track_all_says_to_unzip_it_b360(folder, tmp_path, capsys):
     z = _zip(folder, tmp_path / "walk8850.zip")
     assert main(["info", str(z), "--json"]) == 0
     assert '"fAccelerometer"' in capsys.readouterr().out
     assert main(["track", str(z), "--out", str(tmp_path / "trk"), "--json"]) == 0
     capsys.readouterr()
     assert (tmp_path / "trk" / "steps.csv").is_file()
-    for argv in (["track-all", str(z), "--out", str(tmp_path / "all")],
-                 ["train", str(z), "--out", str(tmp_path / "m"), "--tasks", "terrain"]):
-        assert main(argv) == 2
-        err = capsys.readouterr().err.strip()
-        assert err.count("\n") == 0 and "a zip archive" in err and "unzip" in err and "Traceback" not in err, err
+    assert find_session_dirs([z, folder]) == [z, folder]  # train and evaluate: a zip is one session
+    assert main(["track-all", str(z), "--out", str(tmp_path / "all")]) == 2  # it searches a tree of folders
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "a zip archive" in err and "unzip" in err and "Traceback" not in err, err
+    assert not (tmp_path / "all").exists()
     (tmp_path / "bad.zip").write_bytes(b"nope")
     assert main(["info", str(tmp_path / "bad.zip")]) == 2
     assert capsys.readouterr().err.strip() == f"error: {tmp_path / 'bad.zip'}: not a zip archive; pass a session " \

@@ -45,8 +45,8 @@ def is_archive(source) -> bool:
 
 
 def refuse_archive_for_batch(path: Path, command: str) -> None:
-    """Decision B360: a batch command (``train``, ``track-all``, ``evaluate-all`` ...) reads folders of sessions, not a
-    zip: one line saying to unzip it, or to give it to a one-session command (``track``, ``info``, ``steps`` ...)."""
+    """Decision B360: ``track-all`` searches a tree of folders for sessions, not a zip: one line saying to unzip it,
+    or to give it to a command that reads one session (``track``, ``info``, ``steps`` ...)."""
     if path.suffix.lower() == ".zip" and path.is_file():
         raise DataError(f"{path}: a zip archive; `pdrlearn {command}` reads session folders: unzip it first "
                         f"(unzip {path} -d DIR), or give the zip to a one-session command such as `pdrlearn track` "
