@@ -159,6 +159,9 @@ def test_a_zip_of_a_zip_not_a_zip_and_a_text_stream_are_one_line_b362(folder, tm
         with pytest.raises(DataError) as exc:
             read_session(src)
         _one_line(exc, start)
+    xlsx = _zip(folder, tmp_path / "export.xlsx")  # a zip by content, not by name: not sniffed (B359)
+    with pytest.raises(DataError, match=r"export\.xlsx: not a folder; pass the session folder"):
+        read_session(xlsx)
 
 
 def test_members_over_the_size_cap_are_refused_before_and_while_unpacking_b361(folder, tmp_path):

@@ -33,15 +33,14 @@ DEFAULT_LABEL = "<upload>"
 
 def is_archive(source) -> bool:
     """Decision B359: whether :func:`pdrlearn.io.read_session` reads ``source`` as a zip archive: bytes, a binary
-    file object (it has ``read``), or a path that ends in ``.zip`` or is a file holding a zip archive."""
+    file object (it has ``read``), or a path ending in ``.zip`` that is not a folder. Other files are not sniffed: an
+    Excel ``.xlsx`` or a ``.jar`` is a zip archive too, and is no session."""
     if isinstance(source, bytes | bytearray | memoryview) or hasattr(source, "read"):
         return True
     if not isinstance(source, str | os.PathLike):
         return False
     path = Path(source)
-    if path.suffix.lower() == ".zip":
-        return not path.is_dir()
-    return path.is_file() and zipfile.is_zipfile(path)
+    return path.suffix.lower() == ".zip" and not path.is_dir()
 
 
 def refuse_archive_for_batch(path: Path, command: str) -> None:
