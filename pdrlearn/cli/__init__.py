@@ -224,6 +224,16 @@ def _main(argv: list[str]) -> int:
         return int(exc.exit_code or 0)
     except KeyboardInterrupt:  # Ctrl-C outside the command (while the CLI starts)
         return _interrupted(written)
+    except ModuleNotFoundError as exc:  # decision E190: a package of the `full` extra is missing: one line naming it
+        from pdrlearn.install import missing_extra_line, missing_full_package
+
+        name = missing_full_package(exc)
+        if name is None:
+            raise
+        command = next((a for a in argv if not a.startswith("-")), None)  # the root options take no value
+        print(f"error: {missing_extra_line(f'pdrlearn {command}' if command else 'pdrlearn', name)}",
+              file=sys.stderr)
+        return 2
     except typer.Abort:
         print("error: aborted", file=sys.stderr)
         return 130
