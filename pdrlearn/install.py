@@ -53,5 +53,5 @@ def lean_import_error(what: str, exc: ModuleNotFoundError) -> ModuleNotFoundErro
     if name is None:
         return None
     return ModuleNotFoundError(f"pdrlearn.{what} needs {name}, which is not installed (a runtime-only install); "
-                               f"read and replay a session there with {LEAN_ROUTE}; or install everything: "
-                               f"{INSTALL_EVERYTHING}", name=exc.name)
+                               f"read and replay a session there with {LEAN_ROUTE}; or install the "
+                               f"'{FULL_EXTRA}' extra (E189): {INSTALL_EVERYTHING}", name=exc.name)
