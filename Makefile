@@ -10,12 +10,11 @@ export MPLBACKEND := Agg
 venv: $(STAMP)
 
 # torch is pinned to the local CPU wheel (an unpinned torch pulls gigabytes of CUDA); pyproject declares a range.
-# full: the toolkit's extra (torch, scikit-learn, pandas, opencv, ...; decision E189), dev: the test tools.
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PY) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 	$(BIN)/python -m pip install -q torch==2.13.0
-	$(BIN)/python -m pip install -q -e '.[full,dev]'
+	$(BIN)/python -m pip install -q -e '.[dev]'
 	touch $(STAMP)
 
 demo: $(STAMP)

@@ -8,8 +8,7 @@ of the library's ``madgwick_imu`` (the W43 kernel on Python floats) made by ``wa
 arguments, by the library kernel; the quaternions are compared bit for bit (``np.array_equal``, max |difference|).
 numba is no dependency of pdrlearn (W67: measured, not adopted): run it in a venv that has it, e.g.
 
-  python3.11 -m venv .venv-try && .venv-try/bin/pip install torch==2.13.0
-  .venv-try/bin/pip install -e '.[full,dev]' numba
+  python3.11 -m venv .venv-try && .venv-try/bin/pip install torch==2.13.0 && .venv-try/bin/pip install -e '.[dev]' numba
   PYTHONPATH=. .venv-try/bin/python experiments/madgwick_numba.py
 """
 

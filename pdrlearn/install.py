@@ -1,28 +1,24 @@
-"""What a runtime-only install lacks, and how to install the rest (decisions B157, E185, B354, E189, E190).
+"""What a runtime-only install lacks, and how to install the rest (decisions B157, E185, B354, E190, E191).
 
 Standard library only: ``import pdrlearn``, the ``pdrlearn`` script and the lean runtime read it in a venv with
 numpy alone.
 """
 
 #: the packages of the full install that a runtime-only one (numpy [+ onnxruntime], decision E76) lacks and the
-#: ``pdrlearn`` commands import (pyproject's ``full`` extra, by import name, and what those bring: click, joblib,
-#: distributed, threadpoolctl)
+#: ``pdrlearn`` commands import (pyproject's dependencies, by import name, and what those bring that pdrlearn
+#: imports: click, joblib, distributed, threadpoolctl)
 FULL_INSTALL = frozenset({"typer", "click", "rich", "pandas", "scipy", "sklearn", "torch", "cv2", "matplotlib",
                           "dtaidistance", "onnx", "skl2onnx", "dask", "distributed", "tabulate", "joblib",
                           "threadpoolctl"})
-
-#: decision E189: the extra of pyproject.toml that holds :data:`FULL_INSTALL` (the required dependencies are the
-#: lean runtime's, numpy + onnxruntime)
-FULL_EXTRA = "full"
 
 #: the distribution to name where its import name differs (``import sklearn`` is scikit-learn's)
 DISTRIBUTION = {"sklearn": "scikit-learn", "cv2": "opencv-python-headless"}
 
 #: decision E185: the distribution name is not on PyPI (trial T5: `pip index versions pdrlearn` found nothing, and
 #: a later package of that name would be someone else's), so the advice names the wheel or the clone; decision
-#: E189: with the extra (quoted: the brackets are a shell glob)
-INSTALL_EVERYTHING = (f"pip install 'PATH/pdrlearn-*.whl[{FULL_EXTRA}]' (the wheel) or pip install "
-                      f"'PATH/TO/CLONE[{FULL_EXTRA}]' (pdrlearn is not on PyPI)")
+#: E191: installing either (without --no-deps) brings every required package, the toolkit's
+INSTALL_EVERYTHING = ("pip install PATH/pdrlearn-*.whl (the wheel) or pip install PATH/TO/CLONE "
+                      "(pdrlearn is not on PyPI)")
 
 #: decision B354: where a runtime-only install reads and replays a session
 LEAN_ROUTE = ("python -m pdrlearn.runtime BUNDLE SESSION, or in Python pdrlearn.runtime.load_bundle and "
@@ -35,15 +31,15 @@ def missing_full_package(exc: ModuleNotFoundError) -> str | None:
     return name if name in FULL_INSTALL else None
 
 
-def missing_extra_line(needer: str, name: str) -> str:
+def missing_package_line(needer: str, name: str) -> str:
     """Decision E190: the one line (without ``error:``) of ``needer`` (``the pdrlearn command``, ``pdrlearn
-    train``) when package ``name`` (an import name of :data:`FULL_INSTALL`) is not installed: which extra to
-    install, and where a runtime-only install replays a session instead."""
+    train``) when package ``name`` (an import name of :data:`FULL_INSTALL`) is not installed: how to install the
+    toolkit's dependencies (all required, E191), and where a runtime-only install replays a session instead."""
     dist = DISTRIBUTION.get(name, name)
     what = dist if dist == name else f"{dist} (import {name})"
-    return (f"{needer} needs {what}, which is not installed (a runtime-only install has numpy and onnxruntime "
-            f"only); install the '{FULL_EXTRA}' extra: {INSTALL_EVERYTHING}; or replay a session through a bundle "
-            "with `python -m pdrlearn.runtime BUNDLE SESSION`")
+    return (f"{needer} needs {what}, which is not installed; install the toolkit's dependencies: "
+            f"{INSTALL_EVERYTHING}, or make venv in the clone; a runtime-only install (numpy, onnxruntime, "
+            "pdrlearn --no-deps) replays a session through a bundle with `python -m pdrlearn.runtime BUNDLE SESSION`")
 
 
 def lean_import_error(what: str, exc: ModuleNotFoundError) -> ModuleNotFoundError | None:
@@ -53,5 +49,5 @@ def lean_import_error(what: str, exc: ModuleNotFoundError) -> ModuleNotFoundErro
     if name is None:
         return None
     return ModuleNotFoundError(f"pdrlearn.{what} needs {name}, which is not installed (a runtime-only install); "
-                               f"read and replay a session there with {LEAN_ROUTE}; or install the "
-                               f"'{FULL_EXTRA}' extra (E189): {INSTALL_EVERYTHING}", name=exc.name)
+                               f"read and replay a session there with {LEAN_ROUTE}; or install everything: "
+                               f"{INSTALL_EVERYTHING}", name=exc.name)

@@ -1,4 +1,4 @@
-"""A fresh interpreter that lacks some packages, as a runtime-only install does (decisions E76, B157, E189).
+"""A fresh interpreter that lacks some packages, as a runtime-only install does (decisions E76, B157, E191).
 
 :func:`lean_env` gives a subprocess a ``sitecustomize`` whose import finder refuses every package named (a
 ``ModuleNotFoundError`` naming it, as a venv without it raises), with the source tree on its path.
@@ -12,7 +12,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 
-#: what a lean venv (numpy, onnxruntime, pdrlearn's wheel without the `full` extra) does not have
+#: what a lean venv (numpy, onnxruntime, pdrlearn installed with --no-deps) does not have
 ABSENT = ("torch", "sklearn", "scipy", "pandas", "typer", "click", "rich", "matplotlib", "onnx", "skl2onnx",
           "joblib", "cv2", "dtaidistance", "dask", "distributed", "tabulate")
 

@@ -1,4 +1,4 @@
-"""A runtime-only install (decisions E76, B157, E189): numpy + onnxruntime and pdrlearn without its `full` extra.
+"""A runtime-only install (decisions E76, B157, E191): numpy + onnxruntime and pdrlearn installed with ``--no-deps``.
 
 A fresh interpreter whose import system refuses every package of the full install (as a lean venv lacks them:
 ``ModuleNotFoundError``) replays a simulated session through the shipped bundle with ``python -m
@@ -129,5 +129,5 @@ def test_the_install_advice_names_the_wheel_or_clone_not_pypi_e185(tmp_path):
     r = subprocess.run([sys.executable, "-m", "pdrlearn", "--version"], capture_output=True, text=True,
                        timeout=120, env=lean_env(tmp_path), cwd=tmp_path)
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
-    assert "pip install 'PATH/pdrlearn-*.whl[full]'" in r.stderr and "not on PyPI" in r.stderr  # E189: the extra
+    assert "pip install PATH/pdrlearn-*.whl" in r.stderr and "not on PyPI" in r.stderr
     assert "pip install pdrlearn" not in r.stderr
