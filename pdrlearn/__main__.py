@@ -2,12 +2,13 @@
 
 import sys
 
-from pdrlearn.install import FULL_INSTALL, INSTALL_EVERYTHING, missing_full_package  # noqa: F401 (B157)
+from pdrlearn.install import FULL_INSTALL, missing_full_package, missing_package_line  # noqa: F401 (B157)
 
 
 def console() -> int:
     """Run ``pdrlearn`` (:func:`pdrlearn.cli.main`); in a runtime-only install, where it lacks one of
-    :data:`FULL_INSTALL`, one ``error:`` line naming the lean command instead of a traceback (decision B157)."""
+    :data:`FULL_INSTALL`, one ``error:`` line naming the package, how to install the toolkit and the lean command
+    instead of a traceback (decisions B157, E190)."""
     try:
         from pdrlearn.cli import main
 
@@ -16,9 +17,7 @@ def console() -> int:
         name = missing_full_package(exc)
         if name is None:
             raise
-        print(f"error: the pdrlearn command needs {name}, which is not installed (a runtime-only install); replay a "
-              "session through a bundle with `python -m pdrlearn.runtime BUNDLE SESSION`, or install everything: "
-              f"{INSTALL_EVERYTHING}", file=sys.stderr)
+        print(f"error: {missing_package_line('the pdrlearn command', name)}", file=sys.stderr)  # decision E190
         return 2
 
 

@@ -1,16 +1,22 @@
-"""What a runtime-only install lacks, and how to install the rest (decisions B157, E185, B354).
+"""What a runtime-only install lacks, and how to install the rest (decisions B157, E185, B354, E190, E191).
 
 Standard library only: ``import pdrlearn``, the ``pdrlearn`` script and the lean runtime read it in a venv with
 numpy alone.
 """
 
 #: the packages of the full install that a runtime-only one (numpy [+ onnxruntime], decision E76) lacks and the
-#: ``pdrlearn`` commands import (pyproject's dependencies, by import name)
+#: ``pdrlearn`` commands import (pyproject's dependencies, by import name, and what those bring that pdrlearn
+#: imports: click, joblib, distributed, threadpoolctl)
 FULL_INSTALL = frozenset({"typer", "click", "rich", "pandas", "scipy", "sklearn", "torch", "cv2", "matplotlib",
-                          "dtaidistance", "onnx", "skl2onnx", "dask", "distributed", "tabulate", "joblib"})
+                          "dtaidistance", "onnx", "skl2onnx", "dask", "distributed", "tabulate", "joblib",
+                          "threadpoolctl"})
+
+#: the distribution to name where its import name differs (``import sklearn`` is scikit-learn's)
+DISTRIBUTION = {"sklearn": "scikit-learn", "cv2": "opencv-python-headless"}
 
 #: decision E185: the distribution name is not on PyPI (trial T5: `pip index versions pdrlearn` found nothing, and
-#: a later package of that name would be someone else's), so the advice names the wheel or the clone
+#: a later package of that name would be someone else's), so the advice names the wheel or the clone; decision
+#: E191: installing either (without --no-deps) brings every required package, the toolkit's
 INSTALL_EVERYTHING = ("pip install PATH/pdrlearn-*.whl (the wheel) or pip install PATH/TO/CLONE "
                       "(pdrlearn is not on PyPI)")
 
@@ -23,6 +29,17 @@ def missing_full_package(exc: ModuleNotFoundError) -> str | None:
     """The package of :data:`FULL_INSTALL` whose absence raised ``exc``; None for any other missing module."""
     name = (exc.name or "").split(".")[0]
     return name if name in FULL_INSTALL else None
+
+
+def missing_package_line(needer: str, name: str) -> str:
+    """Decision E190: the one line (without ``error:``) of ``needer`` (``the pdrlearn command``, ``pdrlearn
+    train``) when package ``name`` (an import name of :data:`FULL_INSTALL`) is not installed: how to install the
+    toolkit's dependencies (all required, E191), and where a runtime-only install replays a session instead."""
+    dist = DISTRIBUTION.get(name, name)
+    what = dist if dist == name else f"{dist} (import {name})"
+    return (f"{needer} needs {what}, which is not installed; install the toolkit's dependencies: "
+            f"{INSTALL_EVERYTHING}, or make venv in the clone; a runtime-only install (numpy, onnxruntime, "
+            "pdrlearn --no-deps) replays a session through a bundle with `python -m pdrlearn.runtime BUNDLE SESSION`")
 
 
 def lean_import_error(what: str, exc: ModuleNotFoundError) -> ModuleNotFoundError | None:

@@ -1,4 +1,4 @@
-"""A runtime-only install (decisions E76, B157): numpy + onnxruntime and pdrlearn installed with ``--no-deps``.
+"""A runtime-only install (decisions E76, B157, E191): numpy + onnxruntime and pdrlearn installed with ``--no-deps``.
 
 A fresh interpreter whose import system refuses every package of the full install (as a lean venv lacks them:
 ``ModuleNotFoundError``) replays a simulated session through the shipped bundle with ``python -m
@@ -9,10 +9,8 @@ naming that command instead of a ``typer`` traceback.
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
-import textwrap
 import tomllib
 from pathlib import Path
 
@@ -20,31 +18,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from tests.lean_helpers import ABSENT, lean_env
+
 ROOT = Path(__file__).resolve().parents[1]
 SHIPPED = ROOT / "models" / "plasys-sim-default"
-
-#: what a lean venv (numpy, onnxruntime, pdrlearn --no-deps) does not have
-ABSENT = ("torch", "sklearn", "scipy", "pandas", "typer", "click", "rich", "matplotlib", "onnx", "skl2onnx",
-          "joblib", "cv2", "dtaidistance", "dask", "distributed", "tabulate")
-
-BLOCKER = textwrap.dedent("""
-    import sys
-    ABSENT = set({absent!r})
-    class _Absent:
-        def find_spec(self, name, path=None, target=None):
-            if name.split(".")[0] in ABSENT:
-                raise ModuleNotFoundError(f"No module named {{name!r}}", name=name)
-            return None
-    sys.meta_path.insert(0, _Absent())
-""")
-
-
-def lean_env(tmp_path: Path, absent=ABSENT) -> dict:
-    """The environment of a subprocess that sees the source tree and none of ``absent`` (a sitecustomize)."""
-    site = tmp_path / "lean_site"
-    site.mkdir(exist_ok=True)
-    (site / "sitecustomize.py").write_text(BLOCKER.format(absent=tuple(absent)))
-    return {**os.environ, "PYTHONPATH": os.pathsep.join([str(site), str(ROOT)])}
 
 
 @pytest.fixture(scope="module")

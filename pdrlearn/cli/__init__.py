@@ -224,6 +224,16 @@ def _main(argv: list[str]) -> int:
         return int(exc.exit_code or 0)
     except KeyboardInterrupt:  # Ctrl-C outside the command (while the CLI starts)
         return _interrupted(written)
+    except ModuleNotFoundError as exc:  # decision E190: a package of the toolkit is missing: one line naming it
+        from pdrlearn.install import missing_full_package, missing_package_line
+
+        name = missing_full_package(exc)
+        if name is None:
+            raise
+        command = next((a for a in argv if not a.startswith("-")), None)  # the root options take no value
+        print(f"error: {missing_package_line(f'pdrlearn {command}' if command else 'pdrlearn', name)}",
+              file=sys.stderr)
+        return 2
     except typer.Abort:
         print("error: aborted", file=sys.stderr)
         return 130
