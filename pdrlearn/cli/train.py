@@ -352,8 +352,6 @@ def evaluate(
     from pdrlearn.classify.evaluation import (
         evaluation_stages,
         headline,
-        results_head,
-        results_table,
         write_predictions,
     )
     from pdrlearn.cli.common import out_file
@@ -417,21 +415,11 @@ def evaluate(
     if as_json:
         print_json(json_safe(result))
         return
-    from rich.table import Table
 
     c = console()
     for task, r in result["tasks"].items():
-        c.print(f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
-                f"{headline(r)}", markup=False)
-        tab = Table()
-        for col in results_head(r):  # decision C60: with balanced %
-            tab.add_column(col)
-        for row in results_table(r):
-            tab.add_row(*row)
-        c.print(tab)
-        c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(  # decision C37
-            f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
-            for k in r["classes"]), markup=False)
+        _task_table(c, r, f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
+                    f"{headline(r)}")
         for line in detected_lines(r.get("detected")):  # decision C76
             c.print(f"  {line}", markup=False)
         for s in r["skipped"]:
@@ -456,7 +444,6 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
         raise DataError(f"evaluate: {', '.join(given)} needs a model directory written by 'pdrlearn train'; "
                         f"{bundle_dir} is an exported runtime bundle (scored with its chosen models only): drop "
                         f"{', '.join(given)}, or evaluate the model directory the bundle was exported from")
-    from pdrlearn.classify.evaluation import results_head, results_table
     from pdrlearn.cohort import captured_warnings
     from pdrlearn.export.score import score_bundle
     from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, bundle_kind
@@ -477,24 +464,32 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
     if as_json:
         print_json(json_safe(result))
         return
-    from rich.table import Table
-
     c = console()
     for task, r in result["tasks"].items():
-        c.print(f"{task}: {r['n_steps']} strides - bundle's chosen {r['chosen']['method']}/{r['chosen']['unit']} "
-                f"{100 * r['accuracy']:.1f} % on the strides the runtime detects (matched to the labelled steps)",
-                markup=False)
-        tab = Table()
-        for col in results_head(r):
-            tab.add_column(col)
-        for row in results_table(r):
-            tab.add_row(*row)
-        c.print(tab)
-        c.print("  per class, precision / recall / F1 %: " + ", ".join(
-            f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
-            for k in r["classes"]), markup=False)
+        _task_table(c, r, f"{task}: {r['n_steps']} strides - bundle's chosen {r['chosen']['method']}/"
+                    f"{r['chosen']['unit']} {100 * r['accuracy']:.1f} % on the strides the runtime detects (matched "
+                    "to the labelled steps)")
     for s in result["skipped"]:
         c.print(f"skipped {s}", markup=False)
+
+
+def _task_table(c, r: dict, title: str) -> None:
+    """One task's evaluation: ``title``, the per-class table (decision C60: with balanced %) and the chosen model's
+    precision / recall / F1 per class (decision C37); a model directory's and a bundle's (E193) alike."""
+    from rich.table import Table
+
+    from pdrlearn.classify.evaluation import results_head, results_table
+
+    c.print(title, markup=False)
+    tab = Table()
+    for col in results_head(r):
+        tab.add_column(col)
+    for row in results_table(r):
+        tab.add_row(*row)
+    c.print(tab)
+    c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(
+        f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
+        for k in r["classes"]), markup=False)
 
 
 def _pct(v) -> str:
