@@ -168,21 +168,30 @@ def edge_lock_rule(users, external: Path | None, mode: bool | str = True, baseli
           f"{rec_tol} on any route: {'met' if ok_c else 'NOT met'}", flush=True)
     ok_d = True
     if external is not None:
-        from waist import external_runs, real
-
-        runs = external_runs(external)
-        dfs = [real(external, runs, configs=[("waist-pll (A-HE)", "waist-pll", opts)])
-               for opts in ({"pll_edge_lock": baseline}, {"pll_edge_lock": mode})]
-        for (_, r0), (_, r1) in zip(dfs[0].iterrows(), dfs[1].iterrows(), strict=True):
-            d = r1.step_f1 - r0.step_f1
-            ok_d &= bool(d >= -0.005)
-            print(f"mobgap {r0.subject} {r0.test} ({r0.params}, calibrated on {r0.calibrated_on}): step F1 off "
-                  f"{r0.step_f1:.4f} on {r1.step_f1:.4f} ({d:+.4f}); detected off {r0.n_detected} on {r1.n_detected}",
-                  flush=True)
-        print(f"(d) mobgap waist-pll step F1 not lower by more than 0.005 on any row: {'met' if ok_d else 'NOT met'}")
+        ok_d = mobgap_check(external, ("waist-pll (A-HE)", "waist-pll"), {"pll_edge_lock": baseline},
+                            {"pll_edge_lock": mode})
     adopted = ok_a and ok_b and ok_c and ok_d and external is not None
     print(f"{decision} ({_label(mode)}): {'adopted' if adopted else 'not adopted'}")
     return adopted
+
+
+def mobgap_check(external: Path, config: tuple[str, str], off: dict, on: dict, tol: float = 0.005) -> bool:
+    """The (d) of W356-W372's and W374's rules: `experiments/waist.py`'s `real` on its `external_runs` (mobgap) with the
+    configuration ``config`` (label, pipeline) under the options ``off`` and ``on``; every row's step F1 printed; True
+    iff none is lower by more than ``tol``."""
+    from waist import external_runs, real
+
+    runs = external_runs(external)
+    dfs = [real(external, runs, configs=[(*config, opts)]) for opts in (off, on)]
+    ok = True
+    for (_, r0), (_, r1) in zip(dfs[0].iterrows(), dfs[1].iterrows(), strict=True):
+        d = r1.step_f1 - r0.step_f1
+        ok &= bool(d >= -tol)
+        print(f"mobgap {r0.subject} {r0.test} ({r0.params}, calibrated on {r0.calibrated_on}): step F1 off "
+              f"{r0.step_f1:.4f} on {r1.step_f1:.4f} ({d:+.4f}); detected off {r0.n_detected} on {r1.n_detected}",
+              flush=True)
+    print(f"(d) mobgap {config[1]} step F1 not lower by more than {tol} on any row: {'met' if ok else 'NOT met'}")
+    return ok
 
 
 if __name__ == "__main__":

@@ -139,7 +139,10 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
     inside of a session folder are not searched; a folder reached again through a symbolic link is searched
     once, with a warning). ``root`` itself being a session is an error: a batch command wants a folder of
     sessions (decision C12)."""
+    from pdrlearn.io.archive import refuse_archive_for_batch
+
     root = Path(root)
+    refuse_archive_for_batch(root, "track-all")  # decision B360
     if not root.is_dir():
         raise DataError(f"{root}: folder not found; pass the folder that holds the session folders")
     if is_session_dir(root):

@@ -69,7 +69,9 @@ def _file_anchors(path: Path) -> set[str]:
 @pytest.mark.parametrize(("title", "page", "min_anchors"), [
     ("Localization", "localization.md", 8), ("Waist-only dead reckoning", "waist.md", 8),
     ("Step characterization", "characterization.md", 2), ("Cohorts", "cohort.md", 3),
-    ("Deploying a model", "deploying.md", 3)])
+    ("Deploying a model", "deploying.md", 3),
+    # session 36: Data (frames and units, import, fetch: docs/data.md), Simulator and Step detection
+    ("Data", "data.md", 5), ("Simulator", "simulator.md", 7), ("Step detection", "steps.md", 5)])
 def test_long_sections_are_overviews_linking_their_docs_page(title, page, min_anchors):
     section = _section(README.read_text(encoding="utf-8"), title)
     n_lines = section.count("\n")

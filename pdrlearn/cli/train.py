@@ -32,8 +32,9 @@ EVAL_RESAMPLE_OPT, EVAL_NO_RESAMPLE_OPT = resample_options("scored")  # decision
 
 
 def find_session_dirs(paths: list[Path]) -> list[Path]:
-    """Session folders among ``paths``: a folder with sensor CSVs is a session, otherwise its immediate
-    sub-folders that are sessions are used."""
+    """Session folders among ``paths``: a folder with sensor CSVs (or a zip of one, decision B360) is a session,
+    otherwise its immediate sub-folders that are sessions are used."""
+    from pdrlearn.io.archive import is_archive
     from pdrlearn.io.sensors import SENSORS
 
     def is_session(p: Path) -> bool:
@@ -43,7 +44,7 @@ def find_session_dirs(paths: list[Path]) -> list[Path]:
     for p in paths:
         if not p.exists():
             raise DataError(f"{p}: no such folder; pass PLASYS session folders or a folder of them")
-        if is_session(p):
+        if is_session(p) or is_archive(p):  # decision B360: a zip of a session folder is one session
             out.append(p)
             continue
         subs = sorted(q for q in p.iterdir() if is_session(q)) if p.is_dir() else []

@@ -1208,7 +1208,9 @@ def path_arg(path, caller: str, expected: str, error: type[DataError] = DataErro
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
                  bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse",
                  drop_partial_row: bool = False, command: str | None = None) -> Session:
-    """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
+    """Read a PLASYS session folder, or a zip archive of one: its path, bytes or a binary file object (decision
+    B359, :func:`pdrlearn.io.archive.read_session_zip`, which also takes the archive's name and a size cap).
+    ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
     uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off). ``bridge_drops``: bridge intervals of
     dropped samples up to :data:`MAX_BRIDGED_S` by linear interpolation and warn about the longer ones up to 1 s
     (decision B64; default :data:`BRIDGE_DROPS`); ``False`` reads the samples as recorded, without the warning
@@ -1228,8 +1230,13 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         A missing folder, no sensor file, a malformed CSV, non-numeric/NaN values, unsorted or duplicate
         timestamps, implausible units, an empty file or a broken ``meta.json`` (one-line message).
     """
+    from pdrlearn.io.archive import is_archive, read_session_zip
     from pdrlearn.warning_lines import captured_warnings
 
+    if is_archive(folder):  # decision B359: a zip of a session folder (a path, its bytes or a binary file object)
+        return read_session_zip(folder, check_units=check_units, uniform_clock=uniform_clock,
+                                bridge_drops=bridge_drops, streamed=streamed, spans=spans,
+                                drop_partial_row=drop_partial_row, command=command)
     with captured_warnings(echo=True) as logged:  # decision E154: the reading's warnings stay with the session
         session = _read_session(folder, check_units=check_units, uniform_clock=uniform_clock,
                                 bridge_drops=bridge_drops, streamed=streamed, spans=spans,

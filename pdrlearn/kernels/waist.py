@@ -55,6 +55,27 @@ def motion_gate(acc_v: np.ndarray, w_z: np.ndarray, fs: float, *, walk_threshold
     return gate
 
 
+def turn_bridge_gate(gate: np.ndarray, w_z: np.ndarray, fs: float, *, max_step_s: float = 1.5) -> np.ndarray:
+    """Decision W374: the motion ``gate`` (n,) bool also open over each El-Gohary yaw-rate turn of the levelled vertical
+    rate ``w_z`` (n,) rad/s (:func:`pdrlearn.kernels.yaw_turns.yaw_rate_turns`, L210: a turn of at least 45 deg,
+    0.5-10 s, its span from the last sample under 5 deg/s before its peak to the first one after) that lies inside a
+    walk: the gate is open within ``max_step_s`` (W47's sequence gap, one step at the slowest) before the turn's start
+    and within ``max_step_s`` after its end. A turn on the spot between two walks is stepped (the feet carry the
+    body round, short steps with a small pelvic bounce, so the 2 s SD gate closes), a turn while standing or sitting
+    has no walk on both sides. A new array; the sequence rules still decide which maxima in the span are steps.
+    Offline only: the span's end and the walk after it are read ahead."""
+    from pdrlearn.kernels.yaw_turns import yaw_rate_turns
+
+    out = np.array(gate, dtype=bool)
+    n = out.size
+    reach = max(1, int(round(max_step_s * fs)))
+    for a, b, *_ in yaw_rate_turns(np.degrees(np.asarray(w_z, dtype=np.float64)), fs):
+        a, b = int(a), int(b)
+        if gate[max(0, a - reach):a + 1].any() and gate[max(b - 1, 0):min(n, b + reach)].any():
+            out[a:b] = True
+    return out
+
+
 def motion_state(sigma_z: np.ndarray, *, walk_threshold: float, run_threshold: float = RUN_THRESHOLD_MPS2
                  ) -> np.ndarray:
     """0 = stopped, 1 = walking, 2 = running from the rolling std of vertical acceleration (m/s^2)."""
@@ -400,7 +421,8 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
                      contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool | str = False,
                      side_at_contact: bool = False, fast_fill: bool = False, frozen: np.ndarray | None = None,
-                     with_ap: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+                     with_ap: bool = True, turn_bridge: bool = False
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
     the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
@@ -408,8 +430,11 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
     AP acceleration the learned stage reads); ``frozen`` as :func:`ic_offline`'s (decision W255). Without
     ``with_ap`` a window whose motion gate is closed throughout returns no contacts and ``ap`` None without filtering
     (:func:`ic_offline` keeps only maxima inside the gate, and its sequence rules add contacts only around kept ones:
-    the same empty result, for the realtime detector's windows of a long rest, W31)."""
+    the same empty result, for the realtime detector's windows of a long rest, W31). ``turn_bridge``: the gate also
+    open over a yaw-rate turn inside a walk (:func:`turn_bridge_gate`, decision W374; off by default)."""
     gate = motion_gate(acc_v, w_z, fs, walk_threshold=walk_threshold, causal=False, turn_gate_rps=turn_gate_rps)
+    if turn_bridge:  # W374: a turn on the spot between two walks is stepped
+        gate = turn_bridge_gate(gate, w_z, fs, max_step_s=max_step_s)
     if not with_ap and not gate.any():
         fir_taps(cutoff_hz, fs, int(round(fir_order_s * fs)))  # ic_offline's check of the cut-off, as before
         none = np.zeros(0, dtype=int)

@@ -590,6 +590,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
+                   "turn_bridge": False,  # W374: the gate open over a yaw-rate turn inside a walk (offline pendulum)
                    "speed_check": True,  # W211
                    "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
@@ -618,6 +619,8 @@ SCOPED_OPTIONS = {
                   lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "ap_above_mean": ("the offline waist-pendulum with its own contact detector (W29, W265)",
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
+    "turn_bridge": ("the offline waist-pendulum with its own contact detector (W374)",
+                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
                     lambda pl, rt, m, det, stops: not rt),
     "pll_edge_lock": ("waist-pll with its own PLL detector (W356)",
@@ -730,7 +733,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 length_model=None, freeze_veto: bool | None = None,
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
                 fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
-                foot_rest_veto: bool | None = None, pll_edge_lock: bool | str | None = None) -> TrackResult:
+                foot_rest_veto: bool | None = None, pll_edge_lock: bool | str | None = None,
+                turn_bridge: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -882,6 +886,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     ap_above_mean : pendulum, offline detector: the IC is the last local AP maximum in W3's window above the AP
         acceleration's 2 s mean, if there is one (decision W29, ``InitialContactDetector``'s ``ap_above_mean``; a
         track option by decision W265); default False
+    turn_bridge : pendulum, offline detector: the motion gate is also open over a yaw-rate turn with walking on both
+        sides (decision W374, ``InitialContactDetector``'s ``turn_bridge``); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -931,7 +937,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "rest_frame": None,  # W285: a PARAMS.json option only
              "pll_slow_check": None,  # W289: a PARAMS.json option only
              "pll_slow_cadence_check": None,  # W313: a PARAMS.json option only
-             "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean}
+             "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean,
+             "turn_bridge": turn_bridge}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -1355,6 +1362,7 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
                                   fast_fill=o["fast_fill"] if o["fast_fill"] == FAST_FILL_OUTSIDE_FREEZE
                                   else bool(o["fast_fill"]),  # W242, W255
                                   ap_above_mean=bool(o["ap_above_mean"]) and not realtime,  # W29, W265: offline
+                                  turn_bridge=bool(o["turn_bridge"]) and not realtime,  # W374: offline
                                   parity_fill="within" if o["parity_fill"] == "within" else bool(o["parity_fill"]))
 
 

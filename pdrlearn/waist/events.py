@@ -118,6 +118,8 @@ class InitialContactDetector:
     turn_gate_rps : the motion gate is also open where the pelvis's mean yaw rate over the gate window reaches
         this (rad/s; decision 28 of docs/decisions/steps.md: 0.45, the turning component of W7's mixture, finds
         a TUG's turning steps but lowers MS001 Test11's F1, not adopted); ``None`` (default) = the std gate alone (W4)
+    turn_bridge : offline only: the motion gate is also open over a yaw-rate turn with walking on both sides
+        (:func:`pdrlearn.kernels.waist.turn_bridge_gate`, decision W374; off by default)
     turn_shift_rps : offline (and realtime with ``delay_s``): a maximum where the pelvis's mean yaw rate over the
         gate window (centred) reaches this (rad/s) is exempt from W23's weight-shift test (``weight_shift``;
         decision 29 of docs/decisions/steps.md: 0.45, decision 28's turning test); ``None`` (default) = W23 everywhere
@@ -171,7 +173,9 @@ class InitialContactDetector:
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
                  min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False,
                  parity_fill: bool | str = "within", realtime_shift: bool = False,  # W159/W160: adopted by its rule
-                 side_at_contact: bool = False, fast_fill: bool | str = False):  # W235, W242, W255
+                 side_at_contact: bool = False, fast_fill: bool | str = False,  # W235, W242, W255
+                 turn_bridge: bool = False):  # W374
+        self.turn_bridge = turn_bridge
         self.side_at_contact = side_at_contact
         self.fast_fill = fast_fill
         self.realtime = realtime
@@ -209,6 +213,7 @@ class InitialContactDetector:
         shift = self.contact_shift and not self.learned and (not self.realtime or self.realtime_shift)  # W166
         return kw | {"contact_shift": bool(shift), "side_at_contact": bool(self.side_at_contact and offline),  # W235
                      "fast_fill": bool(self.fast_fill and offline),  # W242
+                     "turn_bridge": bool(self.turn_bridge and offline),  # W374: reads the walk after the turn
                      "weak_fill": bool(self.weak_fill and offline),
                      "parity_fill": self.parity_fill if offline and self.parity_fill else False}
 

@@ -122,6 +122,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "side_at_contact",  # W235: the offline detector's sequence rules only
                           "fast_fill",  # W242: the offline detector's sequence rules only
                           "ap_above_mean",  # W265: W29's IC of the offline detector only
+                          "turn_bridge",  # W374: the offline gate reads the walk after the turn
                           "climb_veto",  # L330: W108's climbs read the whole recording (L314's veto, opt-in)
                           "ride_vibration",  # L402 / L403: the live tracker tells no ride's kind (no rides.csv)
                           "lying_heading",  # W269: W222's lying is labelled on the whole recording
