@@ -19,6 +19,8 @@ Usage::
     .venv/bin/python experiments/characterization.py --boundaries rest --ensemble   # + the nn/svm/dtw vote
 
 Writes experiments/results/characterization.md and .csv (``--boundaries rest``: characterization_rest.*).
+A partial run (``--users``, ``--train-walks``, ``--test-walks``, ``--cv``, ``--seed``, ``--quick`` or ``--no-real``
+not at the default) writes ``characterization*_partial.*`` instead (steps decision 67).
 The real-data CV is printed for both step-window boundary modes (decision 13, docs/decisions/features.md).
 """
 
@@ -36,6 +38,7 @@ import pandas as pd
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
 from pdrlearn.classify import evaluate_model, train_user  # noqa: E402
 from pdrlearn.classify.evaluation import ROW_ORDER  # noqa: E402
 from pdrlearn.classify.training import DEFAULT_METHODS  # noqa: E402
@@ -431,7 +434,11 @@ def real_terrain_study(cv: int, seed: int, boundaries: str = "given", methods: l
     return md, rows
 
 
-def main(argv: list[str] | None = None) -> int:
+#: the options that make a run partial (steps decision 67): a smaller protocol or the real part left out
+PARTIAL_OPTIONS = ("users", "train_walks", "test_walks", "cv", "seed", "quick", "no_real")
+
+
+def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", type=int, nargs="+", default=[1, 2], help="simulated user seeds (thesis: 2)")
     ap.add_argument("--train-walks", type=int, default=2, help="calibration exercises per task for training")
@@ -445,7 +452,20 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--ensemble", action="store_true",
                     help="also train the opt-in 'ensemble' method (decision C14); adds '_ensemble' to the file names")
     ap.add_argument("--out", type=Path, default=ROOT / "experiments" / "results")
+    return ap
+
+
+def output_stem(argv: list[str] | None = None) -> tuple[argparse.Namespace, list[str], str]:
+    """The parsed options, the options that make the run partial and the results' file stem (steps 67)."""
+    ap = build_parser()
     args = ap.parse_args(argv)
+    changed = partial_options(ap, args, PARTIAL_OPTIONS)
+    stem = "characterization" + ("_rest" if args.boundaries == "rest" else "") + ("_ensemble" if args.ensemble else "")
+    return args, changed, result_name(stem, bool(changed))
+
+
+def main(argv: list[str] | None = None) -> int:
+    args, changed, stem = output_stem(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     if args.quick:
         args.users, args.train_walks, args.test_walks = args.users[:1], 1, 1
@@ -481,10 +501,11 @@ def main(argv: list[str] | None = None) -> int:
     parts.append(f"\nTotal run time {time.perf_counter() - t0:.0f} s.")
     text = "\n".join(parts) + "\n"
     args.out.mkdir(parents=True, exist_ok=True)
-    stem = "characterization" + ("_rest" if args.boundaries == "rest" else "") + ("_ensemble" if args.ensemble else "")
     (args.out / f"{stem}.md").write_text(text)
     pd.DataFrame(rows).to_csv(args.out / f"{stem}.csv", index=False)
     print(text)
+    if changed:
+        print(partial_note(changed))
     return 0
 
 

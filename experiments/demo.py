@@ -34,7 +34,12 @@ REAL = ROOT / "datasets" / "real"
 #: truth, and its row says so
 DEMO_F1_ROWS = {"foot_steps": "real foot steps: F1 (level walk, vs motion capture)",
                 "stairs_steps": "real stairs steps: F1 (vs a rest-based segmentation, NOT ground truth)",
-                "waist_steps": "real waist steps: F1"}
+                "waist_steps": "real waist steps: F1 (PLL detector, HA001 daily activities)"}
+#: trial T1 F9 (session 36): the demo's stride-length row names its stride point and strides, so that it is not
+#: mistaken for the README results table's heel-point figures (experiments/localization.py, mocap strides) or the
+#: peers table's (detected strides)
+STRIDE_LENGTH_ROW = ("real foot stride length MAE vs mocap (gaitmap level walk, left foot; sensor point, the default; "
+                     "track's own strides), all / straight strides")
 sys.path.insert(0, str(ROOT))
 
 from pdrlearn.cli import main as cli  # noqa: E402
@@ -211,7 +216,7 @@ def main(argv: list[str] | None = None) -> int:
     ft = real["foot_track"]
     if "stride_length_mae_pct" in ft:
         straight = ft.get("stride_length_mae_pct_straight", float("nan"))
-        rows.append(("real foot stride length MAE vs mocap, all / straight strides",
+        rows.append((STRIDE_LENGTH_ROW,
                      f"{ft['stride_length_mae_pct']:.2f} % / {straight:.2f} %"))
     wt = real["waist_track"]
     if "step_f1" in wt:

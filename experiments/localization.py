@@ -8,7 +8,9 @@ Usage::
 
 Writes experiments/results/localization.md, localization_runs.csv and path figures
 experiments/results/localization_path_<scenario>.png; ``--no-sim`` (real recordings only) writes
-localization_real.md and leaves localization.md alone. Each user's step classifiers are trained on that
+localization_real.md and leaves localization.md alone. A partial run (``--users``, ``--speeds``,
+``--scenarios``, ``--quick``, ``--cal-speeds`` or ``--sensor-errors`` not at the default) writes
+``*_partial.*`` files instead and leaves the committed ones alone (steps decision 67). Each user's step classifiers are trained on that
 user's own simulated calibration exercises (terrain / direction / length) with
 ``pdrlearn.classify.train_user`` when it is available, otherwise the classes are the session's labels
 ("oracle", clearly marked). M3 is reported with both when a model exists.
@@ -19,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import sys
 import time
 from pathlib import Path
 
@@ -32,6 +35,9 @@ from pdrlearn.track.plasys import track_plasys
 from pdrlearn.track.plots import plot_paths
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
+from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+
 RESULTS = ROOT / "experiments" / "results"
 REAL = ROOT / "datasets" / "real"
 
@@ -138,7 +144,7 @@ def stride_rows(res, session, **keys) -> list[dict]:
 
 def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool,
             cache: Path | None = None, cal_speeds: tuple[str, ...] = ("normal",),
-            out: Path = RESULTS, device_errors: bool = True) -> pd.DataFrame:
+            out: Path = RESULTS, device_errors: bool = True, partial_run: bool = False) -> pd.DataFrame:
     from functools import partial
 
     from pdrlearn.sim import simulate
@@ -180,7 +186,7 @@ def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool,
                         figures.setdefault(scen, {"session": s, "paths": {}})["paths"][name] = res
                 log.info("user %d %s %s done", user, scen, speed)
     for scen, f in figures.items():
-        plot_paths(f["paths"], out / f"localization_path_{scen}.png", session=f["session"],
+        plot_paths(f["paths"], out / result_name(f"localization_path_{scen}.png", partial_run),  # steps 67 session=f["session"],
                    title=f"scenario {scen}, user 1: M1/M2/M3 vs ground truth")
     df = pd.DataFrame(rows)
     df.attrs["model_source"] = model_source
@@ -504,7 +510,11 @@ def report(sim: pd.DataFrame | None, real: pd.DataFrame, orient: list[str], args
     return "\n".join(lines) + "\n"
 
 
-def main(argv: list[str] | None = None) -> None:
+#: the options that make a run partial (steps decision 67): fewer users, speeds or scenarios than the full run's
+PARTIAL_OPTIONS = ("users", "speeds", "scenarios", "quick", "cal_speeds", "sensor_errors")
+
+
+def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--users", type=int, default=5)
     p.add_argument("--speeds", default="slow,normal,fast")
@@ -519,7 +529,20 @@ def main(argv: list[str] | None = None) -> None:
                         "(the simulator before S22, for before/after comparisons)")
     p.add_argument("--model-cache", type=Path, default=None,
                    help="save the trained user models here and reuse them on the next run")
+    return p
+
+
+def output_names(argv: list[str] | None = None) -> tuple[argparse.Namespace, list[str], object]:
+    """The parsed options, the options that make the run partial and the file-name function (steps decision 67:
+    a partial run writes ``*_partial.*``, never the committed headline files)."""
+    p = build_parser()
     args = p.parse_args(argv)
+    changed = [] if args.no_sim else partial_options(p, args, PARTIAL_OPTIONS)
+    return args, changed, lambda n: result_name(n, bool(changed))
+
+
+def main(argv: list[str] | None = None) -> None:
+    args, changed, name = output_names(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     out = args.out
     out.mkdir(parents=True, exist_ok=True)
@@ -528,9 +551,9 @@ def main(argv: list[str] | None = None) -> None:
     if not args.no_sim:
         sim = run_sim(args.users, args.speeds.split(","), args.scenarios.split(","), args.quick,
                       args.model_cache, tuple(args.cal_speeds.split(",")), out,
-                      device_errors=args.sensor_errors == "device")
-        sim.to_csv(out / "localization_runs.csv", index=False)
-        sim.attrs["strides"].to_csv(out / "localization_m3_strides.csv", index=False)
+                      device_errors=args.sensor_errors == "device", partial_run=bool(changed))
+        sim.to_csv(out / name("localization_runs.csv"), index=False)
+        sim.attrs["strides"].to_csv(out / name("localization_m3_strides.csv"), index=False)
         orient = run_orientation_tables(min(args.users, 5)) + run_orientation_scenarios(min(args.users, 5))
     real = run_real()
     real.to_csv(out / "localization_real.csv", index=False)
@@ -540,8 +563,10 @@ def main(argv: list[str] | None = None) -> None:
     text = report(sim, real, orient, argv if argv is not None else __import__("sys").argv[1:])
     # --no-sim writes the real part alone to its own file: it must not replace the simulated part of a full
     # run's localization.md (the real part of localization.md is the same rows)
-    (out / ("localization_real.md" if args.no_sim else "localization.md")).write_text(text)
+    (out / ("localization_real.md" if args.no_sim else name("localization.md"))).write_text(text)
     print(text)
+    if changed:
+        print(partial_note(changed))
 
 
 if __name__ == "__main__":

@@ -7,6 +7,8 @@ Usage:
 
 Writes experiments/results/step_count.md and step_count.csv (simulated) and step_count_real.csv (the real
 recordings: foot detectors on the foot sessions; pelvic-gyro, pll and waist-ic on the lower-back ones).
+``--users`` other than 10 is a partial run: it writes ``step_count*_partial.*`` and leaves the committed files
+alone (steps decision 67).
 ``--waist-ic N`` also scores the offline waist initial-contact detector (seed 003 + W18 rhythm completion
 + W20 left/right alternation, ``pdrlearn.waist.events``) with its variants on the real lower-back
 recordings and on simulated scenarios A-D x N users x 3 speeds at 100 Hz (step_count_waist_ic.md/csv).
@@ -27,6 +29,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import sys
 import time
 import warnings
 from pathlib import Path
@@ -39,6 +42,9 @@ from pdrlearn.sim import simulate
 from pdrlearn.steps import get_detector, score_steps
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
+from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+
 OUT = ROOT / "experiments" / "results"
 SPEEDS = ("slow", "normal", "fast")
 DETECTORS = ("accel", "accel-force", "pelvic-gyro", "pll")
@@ -294,7 +300,7 @@ def _md_foot_pooled(df: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", type=int, default=10, help="simulated users per scenario and speed")
     ap.add_argument("--real-dir", type=Path, default=ROOT / "datasets" / "real")
@@ -303,7 +309,20 @@ def main() -> None:
     ap.add_argument("--external", type=Path, default=None, metavar="DIR",
                     help="with --waist-ic: also the mobgap subjects of `pdrlearn fetch mobgap --out DIR`; "
                          "and the gaitmap foot sessions of `pdrlearn fetch gaitmap --out DIR` in the real table")
-    args = ap.parse_args()
+    return ap
+
+
+def output_names(argv: list[str] | None = None):
+    """The parsed options, the options that make the run partial (fewer simulated users than the full run's,
+    steps decision 67) and the file-name function (``*_partial.*`` for a partial run)."""
+    ap = build_parser()
+    args = ap.parse_args(argv)
+    changed = partial_options(ap, args, ("users",))
+    return args, changed, lambda n: result_name(n, bool(changed))
+
+
+def main(argv: list[str] | None = None) -> None:
+    args, changed, name = output_names(argv)
     warnings.filterwarnings("ignore")
     logging.basicConfig(level=logging.ERROR)
     t0 = time.time()
@@ -313,8 +332,8 @@ def main() -> None:
     if args.external is not None:
         rl = pd.concat([rl, external_waist(args.external), external_foot(args.external)], ignore_index=True)
     OUT.mkdir(parents=True, exist_ok=True)
-    summary.to_csv(OUT / "step_count.csv", index=False)
-    rl.to_csv(OUT / "step_count_real.csv", index=False)
+    summary.to_csv(OUT / name("step_count.csv"), index=False)
+    rl.to_csv(OUT / name("step_count_real.csv"), index=False)
     md = ["# Step detection: thesis Tables 20-21 and real recordings", "",
           f"Simulated: {args.users} users x scenarios A/B x slow/normal/fast (pdrlearn.sim, 20 Hz). "
           "Count error = sum |detected - reference| / sum reference (detected = the detections scored, "
@@ -335,14 +354,16 @@ def main() -> None:
           "MS and L-walk rows score the detector against a rest-based segmentation, not ground truth):", "",
           _md_foot_pooled(rl), "", f"Run time {time.time() - t0:.0f} s."]
     text = "\n".join(md) + "\n"
-    (OUT / "step_count.md").write_text(text)
+    (OUT / name("step_count.md")).write_text(text)
     print(text)
     if args.waist_ic > 0:
         wic = waist_ic(args.real_dir, args.waist_ic, args.external)
-        wic.to_csv(OUT / "step_count_waist_ic.csv", index=False, float_format="%.4g")
+        wic.to_csv(OUT / name("step_count_waist_ic.csv"), index=False, float_format="%.4g")
         text = _md_waist_ic(wic, args.waist_ic)
-        (OUT / "step_count_waist_ic.md").write_text(text)
+        (OUT / name("step_count_waist_ic.md")).write_text(text)
         print(text)
+    if changed:
+        print(partial_note(changed))
 
 
 if __name__ == "__main__":

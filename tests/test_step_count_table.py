@@ -74,3 +74,6 @@ def test_demo_table_says_the_stair_f1_is_not_ground_truth_e161():
     spec.loader.exec_module(demo)
     assert "NOT ground truth" in demo.DEMO_F1_ROWS["stairs_steps"]
     assert "motion capture" in demo.DEMO_F1_ROWS["foot_steps"]
+    # trial T1 F9 (session 36): the waist row names its detector, the stride-length row its stride point and strides
+    assert "PLL detector" in demo.DEMO_F1_ROWS["waist_steps"]
+    assert "sensor point" in demo.STRIDE_LENGTH_ROW and "own strides" in demo.STRIDE_LENGTH_ROW

@@ -295,7 +295,9 @@ def _streamed_gain(cal: dict) -> str:
 
 
 def evaluate(
-    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train'."),
+    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train', or a runtime bundle "
+                                     "('pdrlearn export'; its chosen models scored on the strides the runtime "
+                                     "detects, decision E193)."),
     data_dirs: list[Path] = typer.Argument(..., help="Labelled session folders (or folders of sessions)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object (tasks.<task>.accuracy on the "
                                  "labelled boundaries, tasks.<task>.detected.accuracy on the strides the runtime "
@@ -323,7 +325,9 @@ def evaluate(
     The model is scored as fitted, on the sessions given (no cross-validation): for leave-one-user-out scores
     train with `pdrlearn train ... --cv-groups user` (decisions C29, C43). Each task's first figure is the
     chosen model's accuracy on the strides the runtime and `track --model` detect (matched to the labelled
-    steps); the table scores the labelled boundaries (decision C49).
+    steps); the table scores the labelled boundaries (decision C49). A runtime bundle (e.g. the shipped
+    models/plasys-sim-default) is scored as `pdrlearn run` replays it: one row per task, its chosen model on the
+    strides the runtime detects (decision E193).
 
     Examples:
 
@@ -332,14 +336,23 @@ def evaluate(
         pdrlearn evaluate out/models/u1 out/sim/u1_test --json
 
         pdrlearn evaluate out/models/u1 out/sim/u1_test --predictions-out out/eval_u1_steps.csv
+
+        pdrlearn evaluate models/plasys-sim-default out/sim/u1_test
     """
+    from pdrlearn.outfolder import manifest_kind
+
+    if manifest_kind(Path(model_dir)) == "a runtime bundle":  # decision E193: score the shipped / exported bundle
+        from pdrlearn.export.score import MODEL_DIR_ONLY
+
+        given = [o for o, v in zip(MODEL_DIR_ONLY, (report, predictions_out, warn_out_of_domain, resample or None,
+                                                    no_resample or None, warn_gait_range or None), strict=True)
+                 if v is not None]
+        return _evaluate_bundle(model_dir, data_dirs, as_json, given)
     from pdrlearn.classify import evaluate_model, load_model
     from pdrlearn.classify.detected import detected_lines
     from pdrlearn.classify.evaluation import (
         evaluation_stages,
         headline,
-        results_head,
-        results_table,
         write_predictions,
     )
     from pdrlearn.cli.common import out_file
@@ -403,21 +416,11 @@ def evaluate(
     if as_json:
         print_json(json_safe(result))
         return
-    from rich.table import Table
 
     c = console()
     for task, r in result["tasks"].items():
-        c.print(f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
-                f"{headline(r)}", markup=False)
-        tab = Table()
-        for col in results_head(r):  # decision C60: with balanced %
-            tab.add_column(col)
-        for row in results_table(r):
-            tab.add_row(*row)
-        c.print(tab)
-        c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(  # decision C37
-            f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
-            for k in r["classes"]), markup=False)
+        _task_table(c, r, f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
+                    f"{headline(r)}")
         for line in detected_lines(r.get("detected")):  # decision C76
             c.print(f"  {line}", markup=False)
         for s in r["skipped"]:
@@ -433,6 +436,61 @@ def evaluate(
         c.print(f"report written to {report}")
     if predictions_out is not None:
         c.print(f"{result['n_predictions']} step predictions written to {predictions_out}", markup=False)
+
+
+def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, given: list[str]) -> None:
+    """Decision E193: a runtime bundle's chosen models scored on the strides the runtime detects in labelled
+    sessions (pdrlearn.export.score), printed as the model directory's table (one row per task)."""
+    if given:
+        raise DataError(f"evaluate: {', '.join(given)} needs a model directory written by 'pdrlearn train'; "
+                        f"{bundle_dir} is an exported runtime bundle (scored with its chosen models only): drop "
+                        f"{', '.join(given)}, or evaluate the model directory the bundle was exported from")
+    from pdrlearn.cohort import captured_warnings
+    from pdrlearn.export.score import score_bundle
+    from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, bundle_kind
+    from pdrlearn.warning_lines import warning_code
+
+    if bundle_kind(bundle_dir) == WAIST_SCHEMA_NAME:
+        raise DataError(f"evaluate: {bundle_dir} is a waist-only bundle, whose steps carry no classes to score; "
+                        f"give a foot-unit bundle or a model directory (track the sessions with `pdrlearn run "
+                        f"{shell_quote(bundle_dir)} SESSION --json` for their step F1 and distance)")
+    dirs = find_session_dirs(data_dirs)
+    with captured_warnings(echo=True) as warned, progress("evaluating", len(dirs), enabled=not as_json) as advance:
+        result = score_bundle(bundle_dir, dirs, advance=advance)
+    result["warnings"] = list(dict.fromkeys(warned))
+    result["warning_codes"] = [warning_code(w) for w in result["warnings"]]
+    if not result["tasks"]:
+        raise DataError("evaluate: the sessions have no labels the bundle's tasks can be scored on; "
+                        + "; ".join(result["skipped"]))
+    if as_json:
+        print_json(json_safe(result))
+        return
+    c = console()
+    for task, r in result["tasks"].items():
+        _task_table(c, r, f"{task}: {r['n_steps']} strides - bundle's chosen {r['chosen']['method']}/"
+                    f"{r['chosen']['unit']} {100 * r['accuracy']:.1f} % on the strides the runtime detects (matched "
+                    "to the labelled steps)")
+    for s in result["skipped"]:
+        c.print(f"skipped {s}", markup=False)
+
+
+def _task_table(c, r: dict, title: str) -> None:
+    """One task's evaluation: ``title``, the per-class table (decision C60: with balanced %) and the chosen model's
+    precision / recall / F1 per class (decision C37); a model directory's and a bundle's (E193) alike."""
+    from rich.table import Table
+
+    from pdrlearn.classify.evaluation import results_head, results_table
+
+    c.print(title, markup=False)
+    tab = Table()
+    for col in results_head(r):
+        tab.add_column(col)
+    for row in results_table(r):
+        tab.add_row(*row)
+    c.print(tab)
+    c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(
+        f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
+        for k in r["classes"]), markup=False)
 
 
 def _pct(v) -> str:
