@@ -739,7 +739,7 @@ def fold_fitted_vote(probas: list[np.ndarray], y_idx: np.ndarray, folds) -> np.n
     return P
 
 
-CV_GROUPS = ("steps", "user", "session")  # train's --cv-groups (decisions C29, C59)
+CV_GROUPS = ("steps", "user", "session", "block")  # train's --cv-groups (decisions C29, C59, C95)
 
 
 #: the model's user when no session names one in meta.json ``user`` / ``subject`` and ``--user`` is not given
@@ -799,14 +799,27 @@ def default_user(sessions, fallback: str = UNNAMED_USER) -> str:
 
 
 def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None,
-           notes: list[str] | None = None, kind: str = "user") -> tuple[list, int]:
+           notes: list[str] | None = None, kind: str = "user", order: np.ndarray | None = None) -> tuple[list, int]:
     """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps. With ``groups``
     (the user of each step, decision C29) and at least two users: folds of whole users (leave-one-user-out when
     there are at most ``cv`` users), unless a training fold would then lack a class (stratified, one line).
     Returns the folds and the number of users they hold out (0: stratified over steps). ``notes``: collect the
     warning lines there (the caller logs each once, decision C36) instead of logging them. ``kind``: what a group
-    is, ``"user"`` or ``"session"`` (decision C59), for the warning."""
+    is, ``"user"`` or ``"session"`` (decision C59), for the warning; ``"block"`` (decision C95): ``groups`` are the
+    steps' sessions and ``order`` their walking order, folds of contiguous blocks of each session
+    (:func:`pdrlearn.classify.blocks.block_folds`; returns the number of folds)."""
     say = notes.append if notes is not None else log.warning
+    if kind == "block" and groups is not None:
+        from pdrlearn.classify.blocks import block_folds
+
+        folds = block_folds(groups, order, cv)
+        short = [i for i, (tr, _) in enumerate(folds) if len(np.unique(y[tr])) < len(np.unique(y))]
+        if not short:
+            return folds, len(folds)
+        lack = [str(c) for c in np.unique(y) if c not in set(y[folds[short[0]][0]])]
+        say(f"task {task}: CV by blocks not possible: fold {short[0] + 1} leaves no {', '.join(lack)} step to train "
+            f"on (too few of them, all in one stretch); stratified folds over steps instead (decision C95)")
+        groups = None
     if groups is not None and len(np.unique(groups)) >= 2:
         n_users = len(np.unique(groups))
         folds = list(GroupKFold(n_splits=min(cv, n_users)).split(np.zeros(len(y)), y, groups))
@@ -832,8 +845,8 @@ def cv_groups_used(tasks: dict, asked: str) -> tuple[dict[str, str], str]:
     ``asked`` (``cv_groups_by_task`` tells a mixed model's tasks apart)."""
     by_task = {}
     for name, tm in tasks.items():
-        held = any((r.get("cv_users") or r.get("cv_sessions") or 0) > 0 for per in tm.cv.values() for r in per.values()
-                   if isinstance(r, dict))
+        held = any((r.get("cv_users") or r.get("cv_sessions") or r.get("cv_blocks") or 0) > 0  # C59, C95
+                   for per in tm.cv.values() for r in per.values() if isinstance(r, dict))
         by_task[name] = asked if asked != "steps" and held else "steps"
     used = asked if asked != "steps" and any(v == asked for v in by_task.values()) else "steps"
     return by_task, used
@@ -845,7 +858,7 @@ def _cv_entry(y, y_pred, classes, folds, cv_users: int, groups=None, kind: str =
     ``"session"``, 0 and ``cv_sessions`` the number of sessions, decision C59) and ``extra``."""
     from pdrlearn.classify.spread import fold_spread
 
-    by = {"cv_users": cv_users} if kind == "user" else {"cv_users": 0, "cv_sessions": cv_users}
+    by = ({"cv_users": cv_users} if kind == "user" else {"cv_users": 0, f"cv_{kind}s": cv_users})  # C59, C95
     return dict(class_metrics(y, y_pred, classes), folds=fold_spread(y, y_pred, folds, groups, kind=kind),
                 n_folds=len(folds), **by, **extra)
 
@@ -1016,8 +1029,8 @@ def train_task(
             continue
         folds, cv_users[unit] = _folds(data.y[mask], cv, seed, data.task,
                                        None if groups is None else groups[mask], notes=notes,
-                                       kind=group_kind)
-        if cv_users[unit]:  # folds of whole users: each fold names the users it held out (decision C43)
+                                       kind=group_kind, order=None if data.step is None else data.step[mask])
+        if cv_users[unit] and group_kind != "block":  # folds of whole users: each names whom it held out (C43)
             fold_groups[unit] = groups[mask]
         subsets[unit] = (mask, folds)
     for line in dict.fromkeys(notes):
@@ -1280,6 +1293,9 @@ def train_user(
         sessions come from two or more users (:func:`session_user`), folds of whole users (leave-one-user-out
         with at most ``cv`` users), so a model is scored on users it was not fitted on (decision C29); one user,
         or a session without a user in its meta.json: stratified folds as with ``"steps"``.
+        ``"session"``: folds of whole sessions (decision C59); ``"block"``: each session's steps cut into ``cv``
+        contiguous blocks in walking order, fold k holds out block k of every session and leaves the neighbouring
+        step on each side out of training (decision C95; works with one session per exercise).
     seed : seed of the folds, the DTW reference choice and the network initialisation.
     n_samples : samples per resampled step window.
     boundaries : ``"given"`` (default) cuts each step at its labelled ``start_s``/``end_s``; ``"rest"``
@@ -1384,11 +1400,13 @@ def train_user(
             skipped.append(str(exc))
             continue
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
+        if cv_groups == "block":  # decision C95: the folds cut each session's steps into contiguous blocks
+            groups = data.session
         own = task == "length" and length_units is not None  # decision C38
         ms = own_methods.get(task, methods)  # decision C74
         out[task] = train_task(data, methods=ms, units=length_units if own else units, cv=cv, seed=seed,
                                advance=advance, soft_vote_methods=None if own else voted_of(ms), groups=groups,
-                               group_kind="session" if cv_groups == "session" else "user")
+                               group_kind=cv_groups if cv_groups in ("session", "block") else "user")
         few = out[task].chosen and few_steps_line(task, data.y, out[task].classes, out[task].chosen)  # C75
         if few:
             log.warning("train: %s", few)
@@ -1451,6 +1469,7 @@ def train_user(
             # users in the training data when grouped by user (decision C29); sessions when by session (C59)
             "cv_users": n_users if cv_groups == "user" and used != "steps" else 0,
             **({"cv_sessions": n_users if used != "steps" else 0} if cv_groups == "session" else {}),
+            **({"cv_blocks": cv if used != "steps" else 0} if cv_groups == "block" else {}),  # decision C95
             "seed": seed,
             "methods": list(methods),
             **({"task_methods": own_methods} if own_methods else {}),  # decision C74

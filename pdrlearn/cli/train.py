@@ -80,7 +80,9 @@ def train(
         "sessions come from two or more users, named by meta.json 'user' or 'subject': folds of whole users, "
         "leave-one-user-out with at most --cv users, so the choice scores models on users they were not fitted "
         "on; one user: as 'steps'; decision C29) or 'session' (folds of whole sessions: the steps of one walk "
-        "stay on one side, so a model is scored on walks it was not fitted on; decision C59).",
+        "stay on one side, so a model is scored on walks it was not fitted on; decision C59) or 'block' (each "
+        "session cut into --cv contiguous blocks, one held out per fold with its neighbouring steps left out of "
+        "training: no stride's neighbour on the other side, and it works with one session per exercise; C95).",
     ),
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
     user: str = typer.Option(None, help="User name stored in the manifest, replacing the sessions' meta.json 'user' / "
@@ -163,6 +165,7 @@ def train(
         "cv_groups_by_task": model.settings.get("cv_groups_by_task", {}),
         "cv_users": model.settings["cv_users"],
         "cv_sessions": model.settings.get("cv_sessions", 0),  # decision C59
+        "cv_blocks": model.settings.get("cv_blocks", 0),  # decision C95
         "skipped": model.skipped,
         "distance_calibration": model.data_summary.get("distance_calibration"),
         "tasks": {
@@ -235,6 +238,8 @@ def cv_title(r: dict) -> str:
     """The CV part of a task's title line (decisions C29, C43, C59): ``10-fold CV accuracy``, ``leave-one-user-out
     CV accuracy (3 users)``, ``5-fold CV accuracy (folds of whole users, 12 users)`` or the same of sessions."""
     n, kind, groups = r["n_folds"], *_grouped(r)
+    if r.get("cv_blocks"):  # decision C95
+        return f"{n}-fold CV accuracy (contiguous blocks of each session, neighbours left out)"
     if groups and n == groups:
         return f"leave-one-{kind}-out CV accuracy ({groups} {kind}s)"
     if groups:
