@@ -40,6 +40,7 @@ from pdrlearn.classify.fusion import (
     fused_from_fitted,
     soft_vote,
 )
+from pdrlearn.classify.hyper import check_params, stored
 from pdrlearn.classify.nn import NNClassifier
 from pdrlearn.classify.svm import SVMClassifier
 from pdrlearn.errors import DataError, MissingSensorError, PdrlearnError
@@ -123,7 +124,8 @@ def _heuristic_module():
     return heuristic
 
 
-def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights: Sequence[float] | None = None):
+def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights: Sequence[float] | None = None,
+                   params: Mapping[str, Mapping[str, object]] | None = None):
     """A fresh estimator on step-window arrays for ``task`` x ``method`` x ``unit``.
 
     ``unit="fused"`` gives a :class:`UnitFusionClassifier` over the foot and waist models (``weights``
@@ -131,9 +133,12 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
     fusion with the thesis weights: Table 26 terrain, ch. 6.2.2.3 direction 0.6/0.4, Table 32 length).
     ``unit="combined"`` (svm, nn) is one classifier on the thesis' feature vector of both units (decision
     C22): terrain 17 SVM features (thesis ch. 6.1.1.1) or 72 NN inputs (ch. 6.1.1.2), direction 25
-    (ch. 6.2.1), length 29 (ch. 6.3.1).
+    (ch. 6.2.1), length 29 (ch. 6.3.1). ``params``: ``{"svm": {"C": 10.0}, "nn": {"hidden": 32}, "dtw": {...}}``,
+    the built-in estimators' settings that replace the thesis defaults (decision C96, ``train --param``).
     """
     from pdrlearn.features import make_features
+
+    params = params or {}
 
     if unit == "combined":
         if method not in COMBINED_METHODS:
@@ -147,7 +152,8 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
             raise MissingSensorError("heuristic classifiers (pdrlearn.classify.heuristic) are not available")
         return mod.make_heuristic(task, "both" if method == "fusion" else unit)
     if unit == "fused" and method not in BUILTIN_METHODS:  # decision E86: a plug-in's soft vote of its two units
-        members = [(u, make_estimator(task, method, u, seed=seed), slice(None)) for u in ("foot", "waist")]
+        members = [(u, make_estimator(task, method, u, seed=seed, params=params), slice(None))
+                   for u in ("foot", "waist")]
         return UnitFusionClassifier(members, weights=None if weights is None else list(weights), random_state=seed)
     if method not in BUILTIN_METHODS or method not in METHODS.builtin:  # decision E86: a registered plug-in
         try:
@@ -162,27 +168,29 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
     if unit == "fused":
         if method == "heuristic":
             raise DataError("heuristic has no fused unit; use method 'fusion' (heuristic fusion)")
-        members = [(u, make_estimator(task, method, u, seed=seed), slice(None)) for u in ("foot", "waist")]
+        members = [(u, make_estimator(task, method, u, seed=seed, params=params), slice(None))
+                   for u in ("foot", "waist")]
         return UnitFusionClassifier(members, weights=None if weights is None else list(weights), random_state=seed)
     if method == "svm":
         return Pipeline([("features", make_features(task, unit, "svm")),
-                         ("clf", SVMClassifier(task=task, random_state=seed))])
+                         ("clf", SVMClassifier(task=task, random_state=seed, **params.get("svm", {})))])
     if method == "ensemble":  # equal-weight soft vote of the unit's learned classifiers (decision C14)
-        members = [(m, make_estimator(task, m, unit, seed=seed), slice(None)) for m in ENSEMBLE_MEMBERS]
+        members = [(m, make_estimator(task, m, unit, seed=seed, params=params), slice(None))
+                   for m in ENSEMBLE_MEMBERS]
         return UnitFusionClassifier(members, weights=[1.0] * len(members), random_state=seed)
     if method == "nn":
         return Pipeline(
             [
                 ("features", make_features(task, unit, "nn")),
-                ("clf", NNClassifier(task=task, random_state=seed)),
+                ("clf", NNClassifier(task=task, random_state=seed, **params.get("nn", {}))),
             ]
         )
     if method == "dtw":
         return Pipeline(
             [
                 ("signals", FunctionTransformer(select_signals, kw_args={"names": DTW_SIGNALS[task][unit]})),
-                ("clf", DTWClassifier(n_references=THESIS_REFERENCES_PER_CLASS[task], random_state=seed,
-                                      calibration=DTW_CALIBRATION, rule=DTW_RULE)),
+                ("clf", DTWClassifier(**{"n_references": THESIS_REFERENCES_PER_CLASS[task], **params.get("dtw", {})},
+                                      random_state=seed, calibration=DTW_CALIBRATION, rule=DTW_RULE)),
             ]
         )
     raise METHODS.unknown(method)
@@ -1003,11 +1011,13 @@ def train_task(
     soft_vote_methods: Sequence[str] | None = None,
     groups: np.ndarray | None = None,
     group_kind: str = "user",
+    params: Mapping[str, Mapping[str, object]] | None = None,
 ) -> TaskModel:
     """Cross-validate and fit every method x unit of one task (see :func:`train_user`). ``soft_vote_methods``: the
     methods whose ``fused`` soft vote is trained when ``units`` has it (None: every method). ``groups``: the user
     of every step; folds then hold out whole users when there are two or more (decision C29); ``group_kind``
-    ``"session"``: ``groups`` name each step's session, folds hold out whole sessions (decision C59)."""
+    ``"session"``: ``groups`` name each step's session, folds hold out whole sessions (decision C59); ``"block"``:
+    contiguous blocks of each session (decision C95). ``params``: the estimators' settings (decision C96)."""
     from pdrlearn.features import TASK_CLASSES
 
     classes = np.asarray(TASK_CLASSES[data.task])
@@ -1063,7 +1073,7 @@ def train_task(
                 # probabilities (no weight is chosen on the folds, decision C14)
                 w = np.full(len(ENSEMBLE_MEMBERS), 1.0 / len(ENSEMBLE_MEMBERS))
                 P = soft_vote([oof_by[(m, unit)] for m in ENSEMBLE_MEMBERS], w)
-                template = make_estimator(data.task, "ensemble", unit, seed=seed)
+                template = make_estimator(data.task, "ensemble", unit, seed=seed, params=params)
                 est = fused_from_fitted(template.units, [tm.models[m][unit] for m in ENSEMBLE_MEMBERS], w,
                                         n_features_in=X.shape[1], random_state=seed)
                 tm.models.setdefault(method, {})[unit] = est
@@ -1076,9 +1086,9 @@ def train_task(
                 advance(1)
                 continue
             try:
-                est = make_estimator(data.task, method, unit, seed=seed)
+                est = make_estimator(data.task, method, unit, seed=seed, params=params)
                 est.fit(X, y)  # the final model first: fails fast on missing sensors
-                template = make_estimator(data.task, method, unit, seed=seed)
+                template = make_estimator(data.task, method, unit, seed=seed, params=params)
                 # C picked once by the final model's inner CV (decision C5) with folds of steps; with folds of
                 # whole users / sessions each outer training fold picks its own C (nested, decision C57), so the
                 # held-out group takes no part in choosing it
@@ -1114,14 +1124,15 @@ def train_task(
         t0 = time.perf_counter()
         if not {"foot", "waist"} <= set(oof):  # the units were trained on other step sets: redo on these
             for unit in ("foot", "waist"):
-                oof[unit] = _oof_proba(make_estimator(data.task, method, unit, seed=seed), X, y, folds, classes)
+                oof[unit] = _oof_proba(make_estimator(data.task, method, unit, seed=seed, params=params), X, y,
+                                       folds, classes)
         # unit weights from the out-of-fold probabilities of the foot and waist models (decision in
         # docs/decisions/classifiers.md), then the fused CV score of that soft vote
         yi = np.array([list(classes).index(v) for v in y])
         w = best_weights([oof["foot"], oof["waist"]], yi)
         P = (fold_fitted_vote([oof["foot"], oof["waist"]], yi, folds) if cv_users["fused"]
              else soft_vote([oof["foot"], oof["waist"]], w))  # decision C57: nested with folds of groups
-        template = make_estimator(data.task, method, "fused", seed=seed, weights=w)
+        template = make_estimator(data.task, method, "fused", seed=seed, weights=w, params=params)
         fitted = [tm.models[method][u] for u in ("foot", "waist")]
         if subsets["foot"][0].sum() != mask.sum() or subsets["waist"][0].sum() != mask.sum():
             fitted = [clone(e).fit(X, y) for _, e, _ in template.units]  # units were fitted on other steps
@@ -1268,6 +1279,7 @@ def train_user(
     length_units: Sequence[str] | None = None,
     resample_hz: float | None = None,
     task_methods: Mapping[str, Sequence[str]] | None = None,
+    params: Mapping[str, Mapping[str, object]] | None = None,
 ) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
 
@@ -1307,6 +1319,9 @@ def train_user(
         given explicitly; otherwise such tasks are skipped, listed in ``UserModel.skipped`` and logged (one
         warning each, decision C53; with no task left the model holds only the distance calibration, one more
         warning, or :class:`DataError` when there is none either).
+    params : the built-in estimators' hyperparameters, ``{"svm": {"C": 10.0}, "nn": {"hidden": 32}}`` (decision
+        C96, ``train --param``; names and checks: :data:`pdrlearn.classify.hyper.HYPERPARAMETERS`); stored in
+        ``settings["params"]``. None: the thesis defaults.
     resample_hz : resample every stream of every session to this rate (Hz) first, by the runtime's resampler
         (:func:`pdrlearn.io.resample.resample_session`); needed when the sessions were recorded at different rates
         (decision C56: without it that is a one-line :class:`DataError`, B197). The recorded rates are kept in
@@ -1337,6 +1352,7 @@ def train_user(
     named_units = units is not None
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
     own_methods = check_task_methods(task_methods, tasks)  # decisions C74, C78
+    params = check_params(params, [*methods, *(m for t in tasks for m in own_methods.get(t, ()))])  # decision C96
 
     def voted_of(ms):  # decision C23's soft votes of a method list (None: units named, every soft vote)
         return None if named_units else [m for m in ms if m not in COMBINED_METHODS]
@@ -1406,7 +1422,7 @@ def train_user(
         ms = own_methods.get(task, methods)  # decision C74
         out[task] = train_task(data, methods=ms, units=length_units if own else units, cv=cv, seed=seed,
                                advance=advance, soft_vote_methods=None if own else voted_of(ms), groups=groups,
-                               group_kind=cv_groups if cv_groups in ("session", "block") else "user")
+                               group_kind=cv_groups if cv_groups in ("session", "block") else "user", params=params)
         few = out[task].chosen and few_steps_line(task, data.y, out[task].classes, out[task].chosen)  # C75
         if few:
             log.warning("train: %s", few)
@@ -1473,6 +1489,7 @@ def train_user(
             "seed": seed,
             "methods": list(methods),
             **({"task_methods": own_methods} if own_methods else {}),  # decision C74
+            "params": stored(params),  # decision C96: the hyperparameters given (--param), {} = the defaults
             "units": list(units),
             "length_units": length_units,  # the length task's own units, None = "units" (decision C38)
             # methods whose unit fused model was trained (soft vote; heuristic fusion); None = every method (C23)

@@ -103,6 +103,12 @@ def train(
         "several users or devices: a pooled gain corrects no one's sensor.",
     ),
     resample: float = train_resample_option(),  # decisions C56, C62: train-all's too
+    param: list[str] = typer.Option(
+        None, "--param", metavar="METHOD.NAME=VALUE",
+        help="A learned classifier's hyperparameter for every task and unit, repeatable: svm.C (a number or cv), "
+        "svm.C_grid, svm.class_weight, nn.hidden, nn.learning_rate, nn.max_epochs, nn.patience, nn.weight_decay, "
+        "dtw.n_references, dtw.window (default: the thesis' values; stored in the model's settings.params; "
+        "decision C96)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -122,6 +128,8 @@ def train(
 
         pdrlearn train datasets/real/gaitmap_* --out models/gaitmap --tasks terrain \\
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
+
+        pdrlearn train calib --out models/u1_c10 --cv-groups block --param svm.C=10 --param nn.hidden=32
     """
     from pdrlearn.classify.spread import spread_text
     from pdrlearn.classify.training import check_settings, check_task_methods, check_user, train_user
@@ -138,6 +146,10 @@ def train(
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed,
                                          resample_hz=resample)  # C62: before any data is read
     per_task = check_task_methods(per_task, t_all)  # decisions C74, C78: before any data is read
+    from pdrlearn.classify.hyper import check_params_methods, parse_params
+
+    hyper = parse_params(param)  # decision C96: before any data is read
+    check_params_methods(hyper, [*m_all, *(m for ms in per_task.values() for m in ms)])
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)
@@ -148,7 +160,7 @@ def train(
         model = train_user(
             sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user,
             boundaries=boundaries, advance=advance, distance_calibration=distance_calibration,
-            cv_groups=cv_groups, length_units=l_list, resample_hz=resample, task_methods=per_task,
+            cv_groups=cv_groups, length_units=l_list, resample_hz=resample, task_methods=per_task, params=hyper,
         )
     seconds = time.perf_counter() - t0
     model.save(out)
@@ -166,6 +178,7 @@ def train(
         "cv_users": model.settings["cv_users"],
         "cv_sessions": model.settings.get("cv_sessions", 0),  # decision C59
         "cv_blocks": model.settings.get("cv_blocks", 0),  # decision C95
+        "params": model.settings.get("params", {}),  # decision C96
         "skipped": model.skipped,
         "distance_calibration": model.data_summary.get("distance_calibration"),
         "tasks": {
@@ -225,6 +238,9 @@ def train(
         c.print(f"distance calibration: gain {cal['gain']:.4f} from {cal['n_strides']} straight level strides"
                 f"{pooled} (decision L26; offline M3 applies it){_streamed_gain(cal)}")
     c.print(f"step windows: {model.boundaries} boundaries")
+    if summary["params"]:  # decision C96
+        c.print("hyperparameters: " + ", ".join(f"{m}.{n}={v}" for m, names in summary["params"].items()
+                                                for n, v in names.items()) + " (--param; the rest thesis defaults)")
     c.print(f"model written to {out} ({seconds:.1f} s)")
 
 
