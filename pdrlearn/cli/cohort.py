@@ -129,7 +129,8 @@ def _evaluate_job(args: dict) -> dict:
 
     model = load_model(Path(args["model_dir"]))
     sessions, skipped = _read_sessions(Path(args["user_dir"]), "test", args.get("skip_bad", False))
-    res = evaluate_model(model, sessions, latency=False)
+    res = evaluate_model(model, sessions, latency=False,
+                         detected_methods=bool(args.get("per_method")))  # classifiers C97: every row's detected
     if not res["tasks"]:
         raise DataError(f"{args['user_dir']}: held-out sessions have no labels for the model's tasks")
     row = {"sessions": len(sessions), **skipped,
