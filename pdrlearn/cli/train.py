@@ -129,7 +129,7 @@ def train(
         pdrlearn train datasets/real/gaitmap_* --out models/gaitmap --tasks terrain \\
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
 
-        pdrlearn train calib --out models/u1_c10 --cv-groups block --param svm.C=10 --param nn.hidden=32
+        pdrlearn train out/sim/u1 --out out/models/u1_c10 --cv-groups block --param svm.C=10 --param nn.hidden=32
     """
     from pdrlearn.classify.spread import spread_text
     from pdrlearn.classify.training import check_settings, check_task_methods, check_user, train_user
