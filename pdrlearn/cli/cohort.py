@@ -393,7 +393,7 @@ def evaluate_all(
 
     Writes OUT/cohort_summary.csv|md: per user and task, the chosen model's accuracy on the detected strides and on
     the labelled boundaries (decision C87). --per-method also writes OUT/cohort_methods.csv, one row per user,
-    task, method and unit (evaluate's scores; the detected-stride figure on the chosen row only), and
+    task, method and unit (evaluate's scores, each on the detected strides too, decision C97), and
     OUT/cohort_methods_summary.csv|md, their means over the users per task, method and unit (decision C92).
 
     Examples:
