@@ -11,22 +11,14 @@ import pytest
 
 from pdrlearn.cli import main
 from pdrlearn.columns import undocumented
-from pdrlearn.io import write_session
-from pdrlearn.sim import simulate
+from tests.sim_helpers import evaluate_per_method, terrain_cohort
 
 USERS = (8660, 8661)
 
 
 @pytest.fixture(scope="module")
 def trained(tmp_path_factory):
-    root = tmp_path_factory.mktemp("cohort_c92")
-    for u in USERS:
-        write_session(simulate("terrain", user_seed=u), root / f"u{u}" / "train" / "terrain")
-        write_session(simulate("terrain", user_seed=u, seed=7), root / f"u{u}" / "test" / "terrain")
-    models = root.parent / f"{root.name}_models"
-    assert main(["train-all", str(root), "--out", str(models), "--serial", "--methods", "heuristic,svm",
-                 "--cv", "3"]) == 0
-    return root, models
+    return terrain_cohort(tmp_path_factory.mktemp("cohort_c92"), USERS, main)
 
 
 def _same(a, b) -> bool:
@@ -36,9 +28,8 @@ def _same(a, b) -> bool:
 def test_per_method_rows_equal_evaluate_json(trained, tmp_path, capsys):
     cohort, models = trained
     out = tmp_path / "eval"
-    assert main(["evaluate-all", str(models), str(cohort), "--out", str(out), "--serial", "--per-method"]) == 0
+    rows = evaluate_per_method(models, cohort, out, main)
     capsys.readouterr()
-    rows = pd.read_csv(out / "cohort_methods.csv")
     assert not undocumented("cohort_methods.csv", rows.columns)
     assert set(rows["user"]) == {f"u{u}" for u in USERS}
     for u in USERS:

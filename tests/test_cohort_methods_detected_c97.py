@@ -12,23 +12,16 @@ import pytest
 from pdrlearn.classify import evaluate_model, load_model
 from pdrlearn.classify.detected import MIN_IOU, detected_strides
 from pdrlearn.cli import main
-from pdrlearn.io import read_session, write_session
-from pdrlearn.sim import simulate
+from pdrlearn.io import read_session
 from pdrlearn.track.evaluate import match_by_overlap
+from tests.sim_helpers import evaluate_per_method, terrain_cohort
 
 USERS = (8844, 8845)
 
 
 @pytest.fixture(scope="module")
 def trained(tmp_path_factory):
-    root = tmp_path_factory.mktemp("cohort_c97")
-    for u in USERS:
-        write_session(simulate("terrain", user_seed=u), root / f"u{u}" / "train" / "terrain")
-        write_session(simulate("terrain", user_seed=u, seed=7), root / f"u{u}" / "test" / "terrain")
-    models = root.parent / f"{root.name}_models"
-    assert main(["train-all", str(root), "--out", str(models), "--serial", "--methods", "heuristic,svm",
-                 "--cv", "3"]) == 0
-    return root, models
+    return terrain_cohort(tmp_path_factory.mktemp("cohort_c97"), USERS, main)
 
 
 def _by_hand(model, session, method, unit):
@@ -45,9 +38,8 @@ def _by_hand(model, session, method, unit):
 def test_every_method_row_has_its_own_detected_stride_accuracy(trained, tmp_path, capsys):
     cohort, models = trained
     out = tmp_path / "eval"
-    assert main(["evaluate-all", str(models), str(cohort), "--out", str(out), "--serial", "--per-method"]) == 0
+    rows = evaluate_per_method(models, cohort, out, main)
     capsys.readouterr()
-    rows = pd.read_csv(out / "cohort_methods.csv")
     assert rows["accuracy_detected"].notna().all() and (rows["n_steps_detected"] > 0).all()
     differ = 0
     for u in USERS:
