@@ -61,3 +61,19 @@ def test_cli_refuses_a_bad_param_before_reading_data(tmp_path, capsys):
     assert code == 2 and "Traceback" not in err and len(err.splitlines()) == 1
     assert "--param" in err and valid_names().split(", ")[0] in err
     assert not (tmp_path / "m").exists()
+
+
+def test_train_all_passes_cv_groups_and_params_to_every_user(tmp_path, capsys):
+    """Decision C98: train-all takes train's --cv-groups and --param (checked once, before anything is written)."""
+    from pdrlearn.io import write_session
+
+    for u in (8846, 8847):
+        write_session(simulate("length", u, seed=0), tmp_path / "cohort" / f"u{u}" / "train" / "length")
+    base = ["train-all", str(tmp_path / "cohort"), "--serial", "--tasks", "length", "--methods", "svm",
+            "--units", "foot", "--cv", "4", "--cv-groups", "block"]
+    assert main([*base, "--out", str(tmp_path / "bad"), "--param", "svm.kernel=rbf"]) == 2
+    assert "unknown name 'svm.kernel'" in capsys.readouterr().err and not (tmp_path / "bad").exists()
+    assert main([*base, "--out", str(tmp_path / "m"), "--param", "svm.C=3"]) == 0
+    for u in (8846, 8847):
+        settings = json.loads((tmp_path / "m" / f"u{u}" / "manifest.json").read_text())["settings"]
+        assert (settings["cv_groups"], settings["cv_blocks"], settings["params"]) == ("block", 4, {"svm": {"C": 3.0}})

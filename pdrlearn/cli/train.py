@@ -12,11 +12,14 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
     METHODS_HELP,
+    check_train_options,
     console,
+    cv_groups_option,
     existed,
     grouped_skips,
     json_safe,
     out_folder,
+    param_option,
     print_json,
     print_table,
     progress,
@@ -74,16 +77,7 @@ def train(
                               "features, decisions C7, C22)."),
     length_units: str = typer.Option(None, "--length-units", help=LENGTH_UNITS_HELP),
     cv: int = typer.Option(10, help="Folds of the stratified cross-validation (thesis: 10)."),
-    cv_groups: str = typer.Option(
-        "steps", "--cv-groups",
-        help="How the CV folds are drawn: 'steps' (stratified folds of the pooled steps) or 'user' (when the "
-        "sessions come from two or more users, named by meta.json 'user' or 'subject': folds of whole users, "
-        "leave-one-user-out with at most --cv users, so the choice scores models on users they were not fitted "
-        "on; one user: as 'steps'; decision C29) or 'session' (folds of whole sessions: the steps of one walk "
-        "stay on one side, so a model is scored on walks it was not fitted on; decision C59) or 'block' (each "
-        "session cut into --cv contiguous blocks, one held out per fold with its neighbouring steps left out of "
-        "training: no stride's neighbour on the other side, and it works with one session per exercise; C95).",
-    ),
+    cv_groups: str = cv_groups_option(),  # decisions C29, C59, C95 (C98: train-all's too)
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
     user: str = typer.Option(None, help="User name stored in the manifest, replacing the sessions' meta.json 'user' / "
                       "'subject' everywhere the model (and a bundle exported from it) names a user: a pseudonym such "
@@ -103,12 +97,7 @@ def train(
         "several users or devices: a pooled gain corrects no one's sensor.",
     ),
     resample: float = train_resample_option(),  # decisions C56, C62: train-all's too
-    param: list[str] = typer.Option(
-        None, "--param", metavar="METHOD.NAME=VALUE",
-        help="A learned classifier's hyperparameter for every task and unit, repeatable: svm.C (a number or cv), "
-        "svm.C_grid, svm.class_weight, nn.hidden, nn.learning_rate, nn.max_epochs, nn.patience, nn.weight_decay, "
-        "dtw.n_references, dtw.window (default: the thesis' values; stored in the model's settings.params; "
-        "decision C96)."),
+    param: list[str] = param_option(),  # decision C96 (C98: train-all's too)
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -137,19 +126,12 @@ def train(
 
     if boundaries not in BOUNDARIES:
         raise DataError(f"train: --boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
-    from pdrlearn.classify.training import CV_GROUPS
-
-    if cv_groups not in CV_GROUPS:
-        raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
     user = check_user(user)  # decision B339: before any data is read
     t_list, m_list, u_list, per_task = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed,
                                          resample_hz=resample)  # C62: before any data is read
     per_task = check_task_methods(per_task, t_all)  # decisions C74, C78: before any data is read
-    from pdrlearn.classify.hyper import check_params_methods, parse_params
-
-    hyper = parse_params(param)  # decision C96: before any data is read
-    check_params_methods(hyper, [*m_all, *(m for ms in per_task.values() for m in ms)])
+    hyper = check_train_options(cv_groups, param, m_all, per_task)  # decisions C95, C96: before any data is read
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)
