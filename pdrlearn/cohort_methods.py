@@ -2,8 +2,8 @@
 ``pdrlearn evaluate --json`` scores it (``tasks.<t>.methods.<m>.units.<u>``), and their means over the users.
 
 Nothing is scored here: the rows are read from :func:`pdrlearn.classify.evaluate_model`'s result, so the figures are
-``evaluate``'s own. The accuracy on the detected strides (decision C49) is computed by ``evaluate`` for the model the
-user gets (the task's chosen method/unit) only, so it fills the chosen row and is empty on the others.
+``evaluate``'s own. The accuracy on the detected strides (decision C49) is ``evaluate``'s for every method x unit
+(``detected_methods=True``, classifiers decision C97); a result without it fills the chosen row only.
 """
 
 from __future__ import annotations
@@ -24,17 +24,18 @@ def method_rows(user: str, result: dict) -> list[dict]:
     rows = []
     for task, r in result["tasks"].items():
         chosen = (r["chosen"]["method"], r["chosen"]["unit"]) if r.get("chosen") else None
-        det = r.get("detected") or {}
         for method, per in r["methods"].items():
             for unit, s in per["units"].items():
                 is_chosen = (method, unit) == chosen
+                # classifiers C97: each model's own detected-stride score; the chosen row the task's (the same)
+                det = (r.get("detected") if is_chosen else s.get("detected")) or {}
                 rows.append({
                     "user": user, "task": task, "method": method, "unit": unit, "chosen": is_chosen,
                     "accuracy_labelled": s["accuracy"], "balanced_accuracy_labelled": s["balanced_accuracy"],
                     "n_steps_labelled": s["n_steps"],
-                    "accuracy_detected": det.get("accuracy") if is_chosen else None,
-                    "balanced_accuracy_detected": det.get("balanced_accuracy") if is_chosen else None,
-                    "n_steps_detected": det.get("n_steps") if is_chosen else None})
+                    "accuracy_detected": det.get("accuracy"),
+                    "balanced_accuracy_detected": det.get("balanced_accuracy"),
+                    "n_steps_detected": det.get("n_steps")})
     return rows
 
 

@@ -1192,11 +1192,11 @@ COHORT_METHODS: tuple[Column, ...] = (
     ("balanced_accuracy_labelled", "fraction", "number", "mean recall over the classes present, on the labelled "
                                                          "boundaries"),
     ("n_steps_labelled", "count", "integer", "labelled steps the model classified"),
-    ("accuracy_detected", "fraction", "number", "accuracy on the strides the runtime detects (C49); on the chosen "
-                                                "row only (evaluate scores the detected strides with it alone)"),
-    ("balanced_accuracy_detected", "fraction", "number", "balanced accuracy on the detected strides; chosen row only"),
-    ("n_steps_detected", "count", "integer", "labelled steps matched to a detected stride and classified; chosen row "
-                                             "only"),
+    ("accuracy_detected", "fraction", "number", "accuracy of this model on the strides the runtime detects (C49), "
+                                                "every row (classifiers C97); empty when it cannot run on the units"),
+    ("balanced_accuracy_detected", "fraction", "number", "balanced accuracy on the detected strides (C97)"),
+    ("n_steps_detected", "count", "integer", "labelled steps matched to a detected stride and classified by this "
+                                             "model (C97)"),
 )
 COHORT_METHODS_SUMMARY: tuple[Column, ...] = (
     ("task", _ID, "text", "as cohort_methods.csv"),
@@ -1210,8 +1210,8 @@ COHORT_METHODS_SUMMARY: tuple[Column, ...] = (
                                                             "empty for one user"),
     ("n_steps_labelled", "count", "integer", "labelled steps summed over those users"),
     ("n_chosen", "count", "integer", "users whose chosen model it is"),
-    ("accuracy_detected_mean", "fraction", "number", "mean accuracy_detected over the n_chosen users; empty when "
-                                                     "none chose it"),
+    ("accuracy_detected_mean", "fraction", "number", "mean accuracy_detected over the users it was scored for "
+                                                     "(every user since classifiers C97)"),
 )
 
 

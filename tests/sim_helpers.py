@@ -63,3 +63,26 @@ def lab_columns(walk, origin_s: float = 0.0, *, time="time_s", acc="acc_{}", gyr
     for k, c in enumerate("xyz"):
         df[gyr.format(c)] = gv[:, k]
     return df
+
+
+def terrain_cohort(root, users, main):
+    """A cohort of simulated ``users`` with a terrain exercise each in ``train/`` (seed 0) and ``test/`` (seed 7),
+    trained by ``train-all --methods heuristic,svm --cv 3``; ``(cohort, models)`` (decisions C92, C97)."""
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import simulate
+
+    for u in users:
+        write_session(simulate("terrain", user_seed=u), root / f"u{u}" / "train" / "terrain")
+        write_session(simulate("terrain", user_seed=u, seed=7), root / f"u{u}" / "test" / "terrain")
+    models = root.parent / f"{root.name}_models"
+    assert main(["train-all", str(root), "--out", str(models), "--serial", "--methods", "heuristic,svm",
+                 "--cv", "3"]) == 0
+    return root, models
+
+
+def evaluate_per_method(models, cohort, out, main):
+    """``evaluate-all MODELS COHORT --out OUT --serial --per-method``; cohort_methods.csv as a DataFrame."""
+    import pandas as pd
+
+    assert main(["evaluate-all", str(models), str(cohort), "--out", str(out), "--serial", "--per-method"]) == 0
+    return pd.read_csv(out / "cohort_methods.csv")

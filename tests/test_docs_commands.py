@@ -260,6 +260,7 @@ def _one_of(choices, *, case=True, listed=False):
 def _validators() -> dict[tuple[str, str], object]:
     """(command, parameter name) -> a function that raises on a value the command refuses, from the lists the
     commands check against (so a renamed choice fails here as it would for the user)."""
+    from pdrlearn.classify.hyper import parse_params
     from pdrlearn.classify.training import CV_GROUPS, METHODS, check_settings
     from pdrlearn.cli.cohort import parse_metrics
     from pdrlearn.cli.simulate import parse_mount
@@ -370,6 +371,8 @@ def _validators() -> dict[tuple[str, str], object]:
         v[(cmd, "methods")] = settings("methods")
         v[(cmd, "units")] = settings("units")
         v[(cmd, "length_units")] = settings("units")  # decisions C38, C40: the length task's own units
+        v[(cmd, "cv_groups")] = _one_of(CV_GROUPS)  # decisions C29, C95, C98
+        v[(cmd, "param")] = lambda v: parse_params([v])  # decisions C96, C98: METHOD.NAME=VALUE
 
     def run_method(value):  # decision E52: [TASK=]METHOD[/UNIT],...; the bundle decides what it holds
         for item in value.split(","):

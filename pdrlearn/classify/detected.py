@@ -77,21 +77,38 @@ class DetectedPredictions:
     def __init__(self, model, sessions):
         self.model, self.sessions, self._cache = model, sessions, {}
 
-    def session(self, i: int) -> tuple[pd.DataFrame, pd.DataFrame] | None:
-        """``(strides, predictions)`` of session ``i`` (rows aligned), or ``None`` without detected strides."""
-        if i not in self._cache:
-            strides = detected_strides(self.sessions[i])
-            self._cache[i] = None if strides is None else (
-                strides, self.model.predict_steps(self.sessions[i], strides, windows="given",  # cut already (C51)
-                                                  warn_rate=False).reset_index(drop=True))  # evaluate says it (C52)
-        return self._cache[i]
+    def session(self, i: int, task: str | None = None, method: str | None = None,
+                unit: str | None = None) -> tuple[pd.DataFrame, pd.DataFrame] | None:
+        """``(strides, predictions)`` of session ``i`` (rows aligned), or ``None`` without detected strides.
+        ``method`` / ``unit`` (decision C97): ``task``'s classes by that model instead of the chosen one; ``None``
+        predictions when it cannot run on the session."""
+        key = i if method is None else (i, task, method, unit)
+        if key not in self._cache:
+            strides = self.session(i)[0] if method is not None and self.session(i) else detected_strides(
+                self.sessions[i])
+            self._cache[key] = None if strides is None else (strides, self._predict(i, strides, task, method, unit))
+        return self._cache[key]
+
+    def _predict(self, i, strides, task, method, unit):
+        from pdrlearn.errors import DataError
+
+        kw = {} if method is None else {"tasks": [task], "method": method, "unit": unit}
+        try:
+            return self.model.predict_steps(self.sessions[i], strides, windows="given",  # cut already (C51)
+                                            warn_rate=False, **kw).reset_index(drop=True)  # evaluate says it (C52)
+        except DataError:
+            if method is None:
+                raise
+            return None  # decision C97: this method x unit cannot run on the session's units
 
 
-def detected_score(task: str, classes, data, windows, sess_rows: dict, detected: DetectedPredictions) -> dict | None:
+def detected_score(task: str, classes, data, windows, sess_rows: dict, detected: DetectedPredictions,
+                   method: str | None = None, unit: str | None = None) -> dict | None:
     """The task's accuracy on the detected strides: each labelled step of ``data`` (rows of session ``i`` in
     ``sess_rows[i]``) matched to a detected stride and compared with that stride's predicted class. ``n_steps``
     counts the matched and classified steps, ``n_labelled`` the labelled ones, ``n_unmatched`` those no detected
-    stride matched. ``None`` when no session has a foot gyroscope (no detector runs)."""
+    stride matched. ``None`` when no session has a foot gyroscope (no detector runs). ``method`` / ``unit``
+    (decision C97): classified by that model of the task instead of the chosen one."""
     from pdrlearn.classify.training import class_metrics
     from pdrlearn.features import TASK_COLUMNS
     from pdrlearn.track.evaluate import match_by_overlap
@@ -101,8 +118,8 @@ def detected_score(task: str, classes, data, windows, sess_rows: dict, detected:
     for i, rows in sess_rows.items():
         first = len(y_true)
         n_lab += len(rows)
-        got = detected.session(i)
-        if got is None:
+        got = detected.session(i, task, method, unit)
+        if got is None or got[1] is None:
             n_unmatched += len(rows)
             continue
         ran = True

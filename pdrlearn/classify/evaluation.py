@@ -64,7 +64,7 @@ def evaluation_stages(model, *, report: bool = False) -> int:
 def evaluate_model(
     model, sessions, *, report_dir: Path | None = None, latency: bool = True, latency_steps: int = 20,
     advance: Callable[[int], None] = lambda n=1: None, warn_out_of_domain: float | None = None,
-    step_predictions: list | None = None, warn_gait_range: bool = False,
+    step_predictions: list | None = None, warn_gait_range: bool = False, detected_methods: bool = False,
 ) -> dict:
     """Score every trained task x method x unit of ``model`` on the labelled steps of ``sessions``.
 
@@ -90,6 +90,9 @@ def evaluate_model(
     Decision L332: ``gait_out_of_range_sessions`` lists the sessions whose labelled strides lie outside L95's
     walking range (:func:`pdrlearn.classify.gait_range.out_of_range_sessions`); ``warn_gait_range`` (opt-in: L332's
     adoption rule was not met) logs one warning line naming them.
+
+    ``detected_methods`` (decision C97, ``evaluate-all --per-method``): also score every method x unit on the
+    detected strides, as ``tasks.<t>.methods.<m>.units.<u>.detected`` (C49's figure of that model).
     """
     from pdrlearn.classify.domain import (
         NO_RANGES_NOTE,
@@ -261,6 +264,10 @@ def evaluate_model(
             log.warning(line)
         # decision C49: what the user gets - the same model on the strides the runtime / track detect
         res["detected"] = detected_score(task, classes, data, windows, sess_rows, detected)
+        if detected_methods:  # decision C97: the same strides and matching, classified by each model
+            for mm, per in res["methods"].items():
+                for uu, r_u in per["units"].items():
+                    r_u["detected"] = detected_score(task, classes, data, windows, sess_rows, detected, mm, uu)
         line = drop_warning(task, m["accuracy"], res["detected"], model.boundaries)
         if line:
             log.warning(line)

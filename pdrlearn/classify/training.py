@@ -40,6 +40,7 @@ from pdrlearn.classify.fusion import (
     fused_from_fitted,
     soft_vote,
 )
+from pdrlearn.classify.hyper import check_params, stored
 from pdrlearn.classify.nn import NNClassifier
 from pdrlearn.classify.svm import SVMClassifier
 from pdrlearn.errors import DataError, MissingSensorError, PdrlearnError
@@ -123,7 +124,8 @@ def _heuristic_module():
     return heuristic
 
 
-def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights: Sequence[float] | None = None):
+def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights: Sequence[float] | None = None,
+                   params: Mapping[str, Mapping[str, object]] | None = None):
     """A fresh estimator on step-window arrays for ``task`` x ``method`` x ``unit``.
 
     ``unit="fused"`` gives a :class:`UnitFusionClassifier` over the foot and waist models (``weights``
@@ -131,9 +133,12 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
     fusion with the thesis weights: Table 26 terrain, ch. 6.2.2.3 direction 0.6/0.4, Table 32 length).
     ``unit="combined"`` (svm, nn) is one classifier on the thesis' feature vector of both units (decision
     C22): terrain 17 SVM features (thesis ch. 6.1.1.1) or 72 NN inputs (ch. 6.1.1.2), direction 25
-    (ch. 6.2.1), length 29 (ch. 6.3.1).
+    (ch. 6.2.1), length 29 (ch. 6.3.1). ``params``: ``{"svm": {"C": 10.0}, "nn": {"hidden": 32}, "dtw": {...}}``,
+    the built-in estimators' settings that replace the thesis defaults (decision C96, ``train --param``).
     """
     from pdrlearn.features import make_features
+
+    params = params or {}
 
     if unit == "combined":
         if method not in COMBINED_METHODS:
@@ -147,7 +152,8 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
             raise MissingSensorError("heuristic classifiers (pdrlearn.classify.heuristic) are not available")
         return mod.make_heuristic(task, "both" if method == "fusion" else unit)
     if unit == "fused" and method not in BUILTIN_METHODS:  # decision E86: a plug-in's soft vote of its two units
-        members = [(u, make_estimator(task, method, u, seed=seed), slice(None)) for u in ("foot", "waist")]
+        members = [(u, make_estimator(task, method, u, seed=seed, params=params), slice(None))
+                   for u in ("foot", "waist")]
         return UnitFusionClassifier(members, weights=None if weights is None else list(weights), random_state=seed)
     if method not in BUILTIN_METHODS or method not in METHODS.builtin:  # decision E86: a registered plug-in
         try:
@@ -162,27 +168,29 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
     if unit == "fused":
         if method == "heuristic":
             raise DataError("heuristic has no fused unit; use method 'fusion' (heuristic fusion)")
-        members = [(u, make_estimator(task, method, u, seed=seed), slice(None)) for u in ("foot", "waist")]
+        members = [(u, make_estimator(task, method, u, seed=seed, params=params), slice(None))
+                   for u in ("foot", "waist")]
         return UnitFusionClassifier(members, weights=None if weights is None else list(weights), random_state=seed)
     if method == "svm":
         return Pipeline([("features", make_features(task, unit, "svm")),
-                         ("clf", SVMClassifier(task=task, random_state=seed))])
+                         ("clf", SVMClassifier(task=task, random_state=seed, **params.get("svm", {})))])
     if method == "ensemble":  # equal-weight soft vote of the unit's learned classifiers (decision C14)
-        members = [(m, make_estimator(task, m, unit, seed=seed), slice(None)) for m in ENSEMBLE_MEMBERS]
+        members = [(m, make_estimator(task, m, unit, seed=seed, params=params), slice(None))
+                   for m in ENSEMBLE_MEMBERS]
         return UnitFusionClassifier(members, weights=[1.0] * len(members), random_state=seed)
     if method == "nn":
         return Pipeline(
             [
                 ("features", make_features(task, unit, "nn")),
-                ("clf", NNClassifier(task=task, random_state=seed)),
+                ("clf", NNClassifier(task=task, random_state=seed, **params.get("nn", {}))),
             ]
         )
     if method == "dtw":
         return Pipeline(
             [
                 ("signals", FunctionTransformer(select_signals, kw_args={"names": DTW_SIGNALS[task][unit]})),
-                ("clf", DTWClassifier(n_references=THESIS_REFERENCES_PER_CLASS[task], random_state=seed,
-                                      calibration=DTW_CALIBRATION, rule=DTW_RULE)),
+                ("clf", DTWClassifier(**{"n_references": THESIS_REFERENCES_PER_CLASS[task], **params.get("dtw", {})},
+                                      random_state=seed, calibration=DTW_CALIBRATION, rule=DTW_RULE)),
             ]
         )
     raise METHODS.unknown(method)
@@ -739,7 +747,7 @@ def fold_fitted_vote(probas: list[np.ndarray], y_idx: np.ndarray, folds) -> np.n
     return P
 
 
-CV_GROUPS = ("steps", "user", "session")  # train's --cv-groups (decisions C29, C59)
+CV_GROUPS = ("steps", "user", "session", "block")  # train's --cv-groups (decisions C29, C59, C95)
 
 
 #: the model's user when no session names one in meta.json ``user`` / ``subject`` and ``--user`` is not given
@@ -799,14 +807,27 @@ def default_user(sessions, fallback: str = UNNAMED_USER) -> str:
 
 
 def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None,
-           notes: list[str] | None = None, kind: str = "user") -> tuple[list, int]:
+           notes: list[str] | None = None, kind: str = "user", order: np.ndarray | None = None) -> tuple[list, int]:
     """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps. With ``groups``
     (the user of each step, decision C29) and at least two users: folds of whole users (leave-one-user-out when
     there are at most ``cv`` users), unless a training fold would then lack a class (stratified, one line).
     Returns the folds and the number of users they hold out (0: stratified over steps). ``notes``: collect the
     warning lines there (the caller logs each once, decision C36) instead of logging them. ``kind``: what a group
-    is, ``"user"`` or ``"session"`` (decision C59), for the warning."""
+    is, ``"user"`` or ``"session"`` (decision C59), for the warning; ``"block"`` (decision C95): ``groups`` are the
+    steps' sessions and ``order`` their walking order, folds of contiguous blocks of each session
+    (:func:`pdrlearn.classify.blocks.block_folds`; returns the number of folds)."""
     say = notes.append if notes is not None else log.warning
+    if kind == "block" and groups is not None:
+        from pdrlearn.classify.blocks import block_folds
+
+        folds = block_folds(groups, order, cv)
+        short = [i for i, (tr, _) in enumerate(folds) if len(np.unique(y[tr])) < len(np.unique(y))]
+        if not short:
+            return folds, len(folds)
+        lack = [str(c) for c in np.unique(y) if c not in set(y[folds[short[0]][0]])]
+        say(f"task {task}: CV by blocks not possible: fold {short[0] + 1} leaves no {', '.join(lack)} step to train "
+            f"on (too few of them, all in one stretch); stratified folds over steps instead (decision C95)")
+        groups = None
     if groups is not None and len(np.unique(groups)) >= 2:
         n_users = len(np.unique(groups))
         folds = list(GroupKFold(n_splits=min(cv, n_users)).split(np.zeros(len(y)), y, groups))
@@ -832,8 +853,8 @@ def cv_groups_used(tasks: dict, asked: str) -> tuple[dict[str, str], str]:
     ``asked`` (``cv_groups_by_task`` tells a mixed model's tasks apart)."""
     by_task = {}
     for name, tm in tasks.items():
-        held = any((r.get("cv_users") or r.get("cv_sessions") or 0) > 0 for per in tm.cv.values() for r in per.values()
-                   if isinstance(r, dict))
+        held = any((r.get("cv_users") or r.get("cv_sessions") or r.get("cv_blocks") or 0) > 0  # C59, C95
+                   for per in tm.cv.values() for r in per.values() if isinstance(r, dict))
         by_task[name] = asked if asked != "steps" and held else "steps"
     used = asked if asked != "steps" and any(v == asked for v in by_task.values()) else "steps"
     return by_task, used
@@ -845,7 +866,7 @@ def _cv_entry(y, y_pred, classes, folds, cv_users: int, groups=None, kind: str =
     ``"session"``, 0 and ``cv_sessions`` the number of sessions, decision C59) and ``extra``."""
     from pdrlearn.classify.spread import fold_spread
 
-    by = {"cv_users": cv_users} if kind == "user" else {"cv_users": 0, "cv_sessions": cv_users}
+    by = ({"cv_users": cv_users} if kind == "user" else {"cv_users": 0, f"cv_{kind}s": cv_users})  # C59, C95
     return dict(class_metrics(y, y_pred, classes), folds=fold_spread(y, y_pred, folds, groups, kind=kind),
                 n_folds=len(folds), **by, **extra)
 
@@ -990,11 +1011,13 @@ def train_task(
     soft_vote_methods: Sequence[str] | None = None,
     groups: np.ndarray | None = None,
     group_kind: str = "user",
+    params: Mapping[str, Mapping[str, object]] | None = None,
 ) -> TaskModel:
     """Cross-validate and fit every method x unit of one task (see :func:`train_user`). ``soft_vote_methods``: the
     methods whose ``fused`` soft vote is trained when ``units`` has it (None: every method). ``groups``: the user
     of every step; folds then hold out whole users when there are two or more (decision C29); ``group_kind``
-    ``"session"``: ``groups`` name each step's session, folds hold out whole sessions (decision C59)."""
+    ``"session"``: ``groups`` name each step's session, folds hold out whole sessions (decision C59); ``"block"``:
+    contiguous blocks of each session (decision C95). ``params``: the estimators' settings (decision C96)."""
     from pdrlearn.features import TASK_CLASSES
 
     classes = np.asarray(TASK_CLASSES[data.task])
@@ -1016,8 +1039,8 @@ def train_task(
             continue
         folds, cv_users[unit] = _folds(data.y[mask], cv, seed, data.task,
                                        None if groups is None else groups[mask], notes=notes,
-                                       kind=group_kind)
-        if cv_users[unit]:  # folds of whole users: each fold names the users it held out (decision C43)
+                                       kind=group_kind, order=None if data.step is None else data.step[mask])
+        if cv_users[unit] and group_kind != "block":  # folds of whole users: each names whom it held out (C43)
             fold_groups[unit] = groups[mask]
         subsets[unit] = (mask, folds)
     for line in dict.fromkeys(notes):
@@ -1050,7 +1073,7 @@ def train_task(
                 # probabilities (no weight is chosen on the folds, decision C14)
                 w = np.full(len(ENSEMBLE_MEMBERS), 1.0 / len(ENSEMBLE_MEMBERS))
                 P = soft_vote([oof_by[(m, unit)] for m in ENSEMBLE_MEMBERS], w)
-                template = make_estimator(data.task, "ensemble", unit, seed=seed)
+                template = make_estimator(data.task, "ensemble", unit, seed=seed, params=params)
                 est = fused_from_fitted(template.units, [tm.models[m][unit] for m in ENSEMBLE_MEMBERS], w,
                                         n_features_in=X.shape[1], random_state=seed)
                 tm.models.setdefault(method, {})[unit] = est
@@ -1063,9 +1086,9 @@ def train_task(
                 advance(1)
                 continue
             try:
-                est = make_estimator(data.task, method, unit, seed=seed)
+                est = make_estimator(data.task, method, unit, seed=seed, params=params)
                 est.fit(X, y)  # the final model first: fails fast on missing sensors
-                template = make_estimator(data.task, method, unit, seed=seed)
+                template = make_estimator(data.task, method, unit, seed=seed, params=params)
                 # C picked once by the final model's inner CV (decision C5) with folds of steps; with folds of
                 # whole users / sessions each outer training fold picks its own C (nested, decision C57), so the
                 # held-out group takes no part in choosing it
@@ -1101,14 +1124,15 @@ def train_task(
         t0 = time.perf_counter()
         if not {"foot", "waist"} <= set(oof):  # the units were trained on other step sets: redo on these
             for unit in ("foot", "waist"):
-                oof[unit] = _oof_proba(make_estimator(data.task, method, unit, seed=seed), X, y, folds, classes)
+                oof[unit] = _oof_proba(make_estimator(data.task, method, unit, seed=seed, params=params), X, y,
+                                       folds, classes)
         # unit weights from the out-of-fold probabilities of the foot and waist models (decision in
         # docs/decisions/classifiers.md), then the fused CV score of that soft vote
         yi = np.array([list(classes).index(v) for v in y])
         w = best_weights([oof["foot"], oof["waist"]], yi)
         P = (fold_fitted_vote([oof["foot"], oof["waist"]], yi, folds) if cv_users["fused"]
              else soft_vote([oof["foot"], oof["waist"]], w))  # decision C57: nested with folds of groups
-        template = make_estimator(data.task, method, "fused", seed=seed, weights=w)
+        template = make_estimator(data.task, method, "fused", seed=seed, weights=w, params=params)
         fitted = [tm.models[method][u] for u in ("foot", "waist")]
         if subsets["foot"][0].sum() != mask.sum() or subsets["waist"][0].sum() != mask.sum():
             fitted = [clone(e).fit(X, y) for _, e, _ in template.units]  # units were fitted on other steps
@@ -1255,6 +1279,7 @@ def train_user(
     length_units: Sequence[str] | None = None,
     resample_hz: float | None = None,
     task_methods: Mapping[str, Sequence[str]] | None = None,
+    params: Mapping[str, Mapping[str, object]] | None = None,
 ) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
 
@@ -1280,6 +1305,9 @@ def train_user(
         sessions come from two or more users (:func:`session_user`), folds of whole users (leave-one-user-out
         with at most ``cv`` users), so a model is scored on users it was not fitted on (decision C29); one user,
         or a session without a user in its meta.json: stratified folds as with ``"steps"``.
+        ``"session"``: folds of whole sessions (decision C59); ``"block"``: each session's steps cut into ``cv``
+        contiguous blocks in walking order, fold k holds out block k of every session and leaves the neighbouring
+        step on each side out of training (decision C95; works with one session per exercise).
     seed : seed of the folds, the DTW reference choice and the network initialisation.
     n_samples : samples per resampled step window.
     boundaries : ``"given"`` (default) cuts each step at its labelled ``start_s``/``end_s``; ``"rest"``
@@ -1291,6 +1319,9 @@ def train_user(
         given explicitly; otherwise such tasks are skipped, listed in ``UserModel.skipped`` and logged (one
         warning each, decision C53; with no task left the model holds only the distance calibration, one more
         warning, or :class:`DataError` when there is none either).
+    params : the built-in estimators' hyperparameters, ``{"svm": {"C": 10.0}, "nn": {"hidden": 32}}`` (decision
+        C96, ``train --param``; names and checks: :data:`pdrlearn.classify.hyper.HYPERPARAMETERS`); stored in
+        ``settings["params"]``. None: the thesis defaults.
     resample_hz : resample every stream of every session to this rate (Hz) first, by the runtime's resampler
         (:func:`pdrlearn.io.resample.resample_session`); needed when the sessions were recorded at different rates
         (decision C56: without it that is a one-line :class:`DataError`, B197). The recorded rates are kept in
@@ -1321,6 +1352,7 @@ def train_user(
     named_units = units is not None
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
     own_methods = check_task_methods(task_methods, tasks)  # decisions C74, C78
+    params = check_params(params, [*methods, *(m for t in tasks for m in own_methods.get(t, ()))])  # decision C96
 
     def voted_of(ms):  # decision C23's soft votes of a method list (None: units named, every soft vote)
         return None if named_units else [m for m in ms if m not in COMBINED_METHODS]
@@ -1384,11 +1416,13 @@ def train_user(
             skipped.append(str(exc))
             continue
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
+        if cv_groups == "block":  # decision C95: the folds cut each session's steps into contiguous blocks
+            groups = data.session
         own = task == "length" and length_units is not None  # decision C38
         ms = own_methods.get(task, methods)  # decision C74
         out[task] = train_task(data, methods=ms, units=length_units if own else units, cv=cv, seed=seed,
                                advance=advance, soft_vote_methods=None if own else voted_of(ms), groups=groups,
-                               group_kind="session" if cv_groups == "session" else "user")
+                               group_kind=cv_groups if cv_groups in ("session", "block") else "user", params=params)
         few = out[task].chosen and few_steps_line(task, data.y, out[task].classes, out[task].chosen)  # C75
         if few:
             log.warning("train: %s", few)
@@ -1451,9 +1485,11 @@ def train_user(
             # users in the training data when grouped by user (decision C29); sessions when by session (C59)
             "cv_users": n_users if cv_groups == "user" and used != "steps" else 0,
             **({"cv_sessions": n_users if used != "steps" else 0} if cv_groups == "session" else {}),
+            **({"cv_blocks": cv if used != "steps" else 0} if cv_groups == "block" else {}),  # decision C95
             "seed": seed,
             "methods": list(methods),
             **({"task_methods": own_methods} if own_methods else {}),  # decision C74
+            "params": stored(params),  # decision C96: the hyperparameters given (--param), {} = the defaults
             "units": list(units),
             "length_units": length_units,  # the length task's own units, None = "units" (decision C38)
             # methods whose unit fused model was trained (soft vote; heuristic fusion); None = every method (C23)

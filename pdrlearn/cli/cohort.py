@@ -19,13 +19,16 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
     METHODS_HELP,
+    check_train_options,
     console,
+    cv_groups_option,
     existed,
     few_names,
     json_default,
     json_safe,
     manifest_kind,
     out_folder,
+    param_option,
     print_json,
     progress,
     refused_output,
@@ -98,7 +101,8 @@ def _train_job(args: dict) -> dict:
                        cv=args["cv"], seed=args["seed"], user=folder,
                        length_units=args.get("length_units"),  # decision C40
                        resample_hz=args.get("resample_hz"),  # decisions C56, C62: train's refusal and resampler
-                       task_methods=args.get("task_methods"))  # decision C74
+                       task_methods=args.get("task_methods"),  # decision C74
+                       cv_groups=args.get("cv_groups", "steps"), params=args.get("params"))  # decision C98
     model.save(Path(args["out"]))
     row = {"sessions": len(sessions), **skipped, **trained_rate(model), "skipped_tasks": len(model.skipped),
            "skipped_task_names": skipped_task_names(args["tasks"] or TASKS, model.tasks)}  # decision C87
@@ -129,7 +133,8 @@ def _evaluate_job(args: dict) -> dict:
 
     model = load_model(Path(args["model_dir"]))
     sessions, skipped = _read_sessions(Path(args["user_dir"]), "test", args.get("skip_bad", False))
-    res = evaluate_model(model, sessions, latency=False)
+    res = evaluate_model(model, sessions, latency=False,
+                         detected_methods=bool(args.get("per_method")))  # classifiers C97: every row's detected
     if not res["tasks"]:
         raise DataError(f"{args['user_dir']}: held-out sessions have no labels for the model's tasks")
     row = {"sessions": len(sessions), **skipped,
@@ -319,6 +324,8 @@ def train_all(
     length_units: str = typer.Option(None, "--length-units", help=LENGTH_UNITS_HELP),  # decision C40
     resample: float = train_resample_option(),  # decision C62: train's option and check
     cv: int = typer.Option(10, help="Cross-validation folds per user."),
+    cv_groups: str = cv_groups_option(),  # decision C98: train's option and check
+    param: list[str] = param_option(),  # decision C98: train's option and check
     seed: int = typer.Option(0, help="Seed (identical results serial or distributed)."),
     skip_bad: bool = typer.Option(False, "--skip-bad-sessions", help=SKIP_BAD_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + " (the whole models "
@@ -341,6 +348,8 @@ def train_all(
         pdrlearn train-all cohort/ --out models/ --resample 100   # users recorded at mixed rates (C56, C62)
 
         pdrlearn train-all cohort/ --out models/ --scheduler tcp://10.0.0.5:8786
+
+        pdrlearn train-all cohort/ --out models/ --cv-groups block --param svm.C=10   # C95, C96, C98
     """
     from pdrlearn.classify.training import check_settings, check_task_methods
 
@@ -348,6 +357,8 @@ def train_all(
     # bad settings fail here, once, before a cluster is started and before anything is written
     t_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, resample_hz=resample)[0]
     per_task = check_task_methods(per_task, t_all)  # decisions C74, C78 (check_settings: C62)
+    m_all = check_settings(methods=m_list)[1]
+    hyper = check_train_options(cv_groups, param, m_all, per_task)  # decision C98: train's checks, once
     l_list = split_length_units(length_units)  # decision C40: as train's, before anything starts
     _check_workers(workers)
     _check_outside_cohort(out, cohort_dir)
@@ -361,7 +372,8 @@ def train_all(
         items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
                            "methods": m_list,
                            "task_methods": per_task, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
-                           "skip_bad": skip_bad, "resample_hz": resample})
+                           "skip_bad": skip_bad, "resample_hz": resample, "cv_groups": cv_groups,
+                           "params": hyper})
                  for u in users]
         results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
         _check_any_ok(results)
@@ -392,7 +404,7 @@ def evaluate_all(
 
     Writes OUT/cohort_summary.csv|md: per user and task, the chosen model's accuracy on the detected strides and on
     the labelled boundaries (decision C87). --per-method also writes OUT/cohort_methods.csv, one row per user,
-    task, method and unit (evaluate's scores; the detected-stride figure on the chosen row only), and
+    task, method and unit (evaluate's scores, each on the detected strides too, decision C97), and
     OUT/cohort_methods_summary.csv|md, their means over the users per task, method and unit (decision C92).
 
     Examples:

@@ -142,6 +142,46 @@ def resample_options(verb: str, when: str = "") -> tuple:
                 "refuse a session recorded at another rate than the model's (decision B113).")))
 
 
+def cv_groups_option():
+    """``--cv-groups`` of ``train`` and ``train-all`` (decisions C29, C59, C95; C98: one option, one check)."""
+    import typer
+
+    return typer.Option(
+        "steps", "--cv-groups",
+        help="How the CV folds are drawn: 'steps' (stratified folds of the pooled steps) or 'user' (when the "
+        "sessions come from two or more users, named by meta.json 'user' or 'subject': folds of whole users, "
+        "leave-one-user-out with at most --cv users, so the choice scores models on users they were not fitted "
+        "on; one user: as 'steps'; decision C29) or 'session' (folds of whole sessions: the steps of one walk "
+        "stay on one side, so a model is scored on walks it was not fitted on; decision C59) or 'block' (each "
+        "session cut into --cv contiguous blocks, one held out per fold with its neighbouring steps left out of "
+        "training: no stride's neighbour on the other side, and it works with one session per exercise; C95).",
+    )
+
+
+def param_option():
+    """``--param METHOD.NAME=VALUE`` of ``train`` and ``train-all`` (decisions C96, C98)."""
+    import typer
+
+    return typer.Option(
+        None, "--param", metavar="METHOD.NAME=VALUE",
+        help="A learned classifier's hyperparameter for every task and unit, repeatable: svm.C (a number or cv), "
+        "svm.C_grid, svm.class_weight, nn.hidden, nn.learning_rate, nn.max_epochs, nn.patience, nn.weight_decay, "
+        "dtw.n_references, dtw.window (default: the thesis' values; stored in the model's settings.params; "
+        "decision C96).")
+
+
+def check_train_options(cv_groups: str, param, methods, per_task) -> dict:
+    """Decisions C95, C96, C98: ``--cv-groups`` and ``--param`` checked before any data is read; the parsed params."""
+    from pdrlearn.classify.hyper import check_params_methods, parse_params
+    from pdrlearn.classify.training import CV_GROUPS
+
+    if cv_groups not in CV_GROUPS:
+        raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
+    hyper = parse_params(param)
+    check_params_methods(hyper, [*methods, *(m for ms in per_task.values() for m in ms)])
+    return hyper
+
+
 def train_resample_option():
     """Decision C56: the ``--resample HZ`` of ``train`` and ``train-all`` (decision C62: one option, one check:
     ``classify.training.check_resample_hz`` before any data is read, ``one_rate``'s refusal of mixed rates)."""

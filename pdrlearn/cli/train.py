@@ -12,11 +12,14 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
     METHODS_HELP,
+    check_train_options,
     console,
+    cv_groups_option,
     existed,
     grouped_skips,
     json_safe,
     out_folder,
+    param_option,
     print_json,
     print_table,
     progress,
@@ -75,14 +78,7 @@ def train(
                               "features, decisions C7, C22)."),
     length_units: str = typer.Option(None, "--length-units", help=LENGTH_UNITS_HELP),
     cv: int = typer.Option(10, help="Folds of the stratified cross-validation (thesis: 10)."),
-    cv_groups: str = typer.Option(
-        "steps", "--cv-groups",
-        help="How the CV folds are drawn: 'steps' (stratified folds of the pooled steps) or 'user' (when the "
-        "sessions come from two or more users, named by meta.json 'user' or 'subject': folds of whole users, "
-        "leave-one-user-out with at most --cv users, so the choice scores models on users they were not fitted "
-        "on; one user: as 'steps'; decision C29) or 'session' (folds of whole sessions: the steps of one walk "
-        "stay on one side, so a model is scored on walks it was not fitted on; decision C59).",
-    ),
+    cv_groups: str = cv_groups_option(),  # decisions C29, C59, C95 (C98: train-all's too)
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
     user: str = typer.Option(None, help="User name stored in the manifest, replacing the sessions' meta.json 'user' / "
                       "'subject' everywhere the model (and a bundle exported from it) names a user: a pseudonym such "
@@ -102,6 +98,7 @@ def train(
         "several users or devices: a pooled gain corrects no one's sensor.",
     ),
     resample: float = train_resample_option(),  # decisions C56, C62: train-all's too
+    param: list[str] = param_option(),  # decision C96 (C98: train-all's too)
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -121,6 +118,8 @@ def train(
 
         pdrlearn train datasets/real/gaitmap_* --out models/gaitmap --tasks terrain \\
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
+
+        pdrlearn train out/sim/u1 --out out/models/u1_c10 --cv-groups block --param svm.C=10 --param nn.hidden=32
     """
     from pdrlearn.classify.spread import spread_text
     from pdrlearn.classify.training import check_settings, check_task_methods, check_user, train_user
@@ -128,15 +127,12 @@ def train(
 
     if boundaries not in BOUNDARIES:
         raise DataError(f"train: --boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
-    from pdrlearn.classify.training import CV_GROUPS
-
-    if cv_groups not in CV_GROUPS:
-        raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
     user = check_user(user)  # decision B339: before any data is read
     t_list, m_list, u_list, per_task = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed,
                                          resample_hz=resample)  # C62: before any data is read
     per_task = check_task_methods(per_task, t_all)  # decisions C74, C78: before any data is read
+    hyper = check_train_options(cv_groups, param, m_all, per_task)  # decisions C95, C96: before any data is read
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)
@@ -147,7 +143,7 @@ def train(
         model = train_user(
             sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user,
             boundaries=boundaries, advance=advance, distance_calibration=distance_calibration,
-            cv_groups=cv_groups, length_units=l_list, resample_hz=resample, task_methods=per_task,
+            cv_groups=cv_groups, length_units=l_list, resample_hz=resample, task_methods=per_task, params=hyper,
         )
     seconds = time.perf_counter() - t0
     model.save(out)
@@ -164,6 +160,8 @@ def train(
         "cv_groups_by_task": model.settings.get("cv_groups_by_task", {}),
         "cv_users": model.settings["cv_users"],
         "cv_sessions": model.settings.get("cv_sessions", 0),  # decision C59
+        "cv_blocks": model.settings.get("cv_blocks", 0),  # decision C95
+        "params": model.settings.get("params", {}),  # decision C96
         "skipped": model.skipped,
         "distance_calibration": model.data_summary.get("distance_calibration"),
         "tasks": {
@@ -223,6 +221,9 @@ def train(
         c.print(f"distance calibration: gain {cal['gain']:.4f} from {cal['n_strides']} straight level strides"
                 f"{pooled} (decision L26; offline M3 applies it){_streamed_gain(cal)}")
     c.print(f"step windows: {model.boundaries} boundaries")
+    if summary["params"]:  # decision C96
+        c.print("hyperparameters: " + ", ".join(f"{m}.{n}={v}" for m, names in summary["params"].items()
+                                                for n, v in names.items()) + " (--param; the rest thesis defaults)")
     c.print(f"model written to {out} ({seconds:.1f} s)")
 
 
@@ -236,6 +237,8 @@ def cv_title(r: dict) -> str:
     """The CV part of a task's title line (decisions C29, C43, C59): ``10-fold CV accuracy``, ``leave-one-user-out
     CV accuracy (3 users)``, ``5-fold CV accuracy (folds of whole users, 12 users)`` or the same of sessions."""
     n, kind, groups = r["n_folds"], *_grouped(r)
+    if r.get("cv_blocks"):  # decision C95
+        return f"{n}-fold CV accuracy (contiguous blocks of each session, neighbours left out)"
     if groups and n == groups:
         return f"leave-one-{kind}-out CV accuracy ({groups} {kind}s)"
     if groups:

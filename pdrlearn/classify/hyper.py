@@ -1,0 +1,145 @@
+"""``train --param METHOD.NAME=VALUE``: the built-in learned classifiers' hyperparameters (decision C96).
+
+Pure parsing and checking, no numpy: the CLI checks ``--param`` before any data is read."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping
+
+from pdrlearn.errors import DataError
+
+
+def _number(text: str, *, low: float, low_open: bool, high: float | None = None) -> float:
+    v = float(text)
+    if v != v or (v <= low if low_open else v < low) or (high is not None and v > high):
+        raise ValueError(text)
+    return v
+
+
+def _positive(text: str) -> float:
+    return _number(text, low=0.0, low_open=True)
+
+
+def _non_negative(text: str) -> float:
+    return _number(text, low=0.0, low_open=False)
+
+
+def _integer(low: int) -> Callable[[str], int]:
+    def parse(text: str) -> int:
+        v = int(text)
+        if v < low:
+            raise ValueError(text)
+        return v
+    return parse
+
+
+def _svm_c(text: str) -> float | str:
+    return "cv" if text.strip().lower() == "cv" else _positive(text)
+
+
+def _grid(text: str) -> tuple[float, ...]:
+    values = tuple(_positive(v) for v in text.split(",") if v.strip())
+    if not values:
+        raise ValueError(text)
+    return values
+
+
+def _class_weight(text: str) -> str | None:
+    v = text.strip().lower()
+    if v not in ("balanced", "none"):
+        raise ValueError(text)
+    return None if v == "none" else v
+
+
+def _window(text: str) -> float | None:
+    return None if text.strip().lower() == "none" else _number(text, low=0.0, low_open=True, high=1.0)
+
+
+#: method -> parameter -> (parse, what a valid value is and its default's source); decision C96
+HYPERPARAMETERS: dict[str, dict[str, tuple[Callable[[str], object], str]]] = {
+    "svm": {
+        "C": (_svm_c, "a number > 0 or 'cv' (default cv: the inner grid search, thesis ch. 2.4.2.2)"),
+        "C_grid": (_grid, "comma list of numbers > 0 (default 0.3,1,3,10, decision C5)"),
+        "class_weight": (_class_weight, "'balanced' or 'none' (default balanced, decision C36)"),
+    },
+    "nn": {
+        "hidden": (_integer(1), "an integer >= 1 (default 144 / 10 / 60 per task, thesis ch. 6.1.1.2, 6.2.1.2, "
+                   "6.3.1.2)"),
+        "learning_rate": (_positive, "a number > 0 (default 0.01, thesis ch. 6.1.1.2)"),
+        "max_epochs": (_integer(1), "an integer >= 1 (default 200)"),
+        "patience": (_integer(1), "an integer >= 1 (default 15)"),
+        "weight_decay": (_non_negative, "a number >= 0 (default 1e-4)"),
+    },
+    "dtw": {
+        "n_references": (_integer(2), "an integer >= 2 per class (default 36 / 12 / 30 per task, thesis ch. "
+                         "6.1.2.2, 6.2.2.2, 6.3.2.2)"),
+        "window": (_window, "a fraction in (0, 1] of the step or 'none' (default 0.1)"),
+    },
+}
+
+
+def valid_names() -> str:
+    """Every ``METHOD.NAME`` ``--param`` takes, comma-separated."""
+    return ", ".join(f"{m}.{n}" for m, names in HYPERPARAMETERS.items() for n in names)
+
+
+def parse_params(items: Iterable[str] | None) -> dict[str, dict[str, object]]:
+    """``["svm.C=10", "nn.hidden=32"]`` -> ``{"svm": {"C": 10.0}, "nn": {"hidden": 32}}``; a bad item is one
+    :class:`DataError` line naming ``--param``, the item and the valid names or values (decision C96)."""
+    out: dict[str, dict[str, object]] = {}
+    for item in items or ():
+        key, eq, text = str(item).partition("=")
+        method, dot, name = key.strip().partition(".")
+        if not eq or not dot:
+            raise DataError(f"train: --param {item!r}: write METHOD.NAME=VALUE, e.g. --param svm.C=10; valid "
+                            f"names: {valid_names()} (decision C96)")
+        spec = HYPERPARAMETERS.get(method, {}).get(name)
+        if spec is None:
+            raise DataError(f"train: --param {item!r}: unknown name {key.strip()!r}; valid names: {valid_names()} "
+                            "(decision C96)")
+        if name in out.get(method, {}):
+            raise DataError(f"train: --param {key.strip()} is given twice; give it once (decision C96)")
+        parse, valid = spec
+        try:
+            value = parse(text.strip())
+        except ValueError:
+            raise DataError(f"train: --param {item!r}: {text.strip()!r} is not {valid} (decision C96)") from None
+        out.setdefault(method, {})[name] = value
+    return out
+
+
+def check_params_methods(params: Mapping[str, Mapping[str, object]], methods: Iterable[str]) -> None:
+    """Decision C96 (C78's rule): a ``--param`` of a method that is not trained is refused; the ensemble trains its
+    members (nn, svm, dtw)."""
+    trained = set(methods)
+    if "ensemble" in trained:
+        trained |= {"nn", "svm", "dtw"}
+    for method in params:
+        if method not in trained:
+            given = ", ".join(f"{method}.{n}" for n in params[method])
+            raise DataError(f"train: --param {given}: {method} is not trained (methods: "
+                            f"{','.join(sorted(set(methods)))}); add {method} to --methods or drop the --param "
+                            "(decision C96)")
+
+
+def stored(params: Mapping[str, Mapping[str, object]]) -> dict[str, dict[str, object]]:
+    """The values as the manifest stores them (JSON: tuples as lists)."""
+    return {m: {n: list(v) if isinstance(v, tuple) else v for n, v in names.items()} for m, names in params.items()}
+
+
+def _as_text(value) -> str:
+    if value is None:
+        return "none"
+    if isinstance(value, (list, tuple)):
+        return ",".join(str(v) for v in value)
+    return str(value)
+
+
+def check_params(params: Mapping[str, Mapping[str, object]] | None,
+                 methods: Iterable[str]) -> dict[str, dict[str, object]]:
+    """``train_user(params=...)``: the API's ``{"svm": {"C": 10}}`` checked as ``--param`` is (decision C96): known
+    names, valid values, trained methods; returns the parsed values ({} for None)."""
+    items = [f"{m}.{n}={_as_text(v)}" for m, names in (params or {}).items() for n, v in (names or {}).items()]
+    out = parse_params(items)
+    check_params_methods(out, methods)
+    return out
