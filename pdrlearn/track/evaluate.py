@@ -1303,43 +1303,8 @@ def add_gait_range_flag(summary: dict) -> dict:
     return summary
 
 
-#: decision L321: meta.json's declared treadmill belt speed (m/s)
-BELT_KEY = "belt_speed_mps"
-
-
-def belt_summary(meta: dict | None, summary: dict, where: str) -> dict:
-    """Decision L321: a declared treadmill (meta.json ``belt_speed_mps``, a positive number of m/s): the belt speed
-    and the foot's median straight stride speed against it (``belt_speed_error_pct``). No new physics: a belt at
-    constant speed is an inertial frame (docs/frames.md, L147), so the foot's strides are belt strides and its
-    path and distance are the belt's, not travel. Empty without the key; a bad value is one line naming it."""
-    import math
-
-    from pdrlearn.errors import DataError
-
-    v = (meta or {}).get(BELT_KEY)
-    if v is None:
-        return {}
-    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or not 0 < v <= 10:
-        raise DataError(f"{where}/meta.json: {BELT_KEY} {v!r}: give the treadmill's belt speed as a positive number "
-                        "of m/s (e.g. 1.0; at most 10), or remove the key (decision L321)")
-    out = {BELT_KEY: float(v)}
-    straight = summary.get("median_speed_straight_mps")
-    if straight is not None:
-        out["belt_speed_error_pct"] = 100.0 * (float(straight) - float(v)) / float(v)
-    return out
-
-
-def belt_line(summary: dict) -> str | None:
-    """Decision L321: the console line of a declared treadmill."""
-    v = summary.get(BELT_KEY)
-    if v is None:
-        return None
-    straight = summary.get("median_speed_straight_mps")
-    return (f"treadmill belt {float(v):.2f} m/s (meta.json {BELT_KEY}): "
-            + (f"the tracked straight strides {float(straight):.2f} m/s ({summary['belt_speed_error_pct']:+.1f} %)"
-               if straight is not None else "no straight strides to compare")
-            + f"; {float(summary.get('distance_m', 0.0)):.2f} m is belt distance and the path is the belt's, not "
-            "travel (docs/frames.md, decisions L147, L321)")
+# decisions L321, L441: a declared treadmill (pdrlearn.track.belt; the names kept here for their callers)
+from pdrlearn.track.belt import BELT_KEY, belt_line, belt_summary  # noqa: E402, F401
 
 
 def summary_warnings(summary: dict) -> list[str]:
@@ -1496,7 +1461,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.track.periods import time_accounting
 
     summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
-    summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where)))
+    summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where),
+                                result.steps))  # decision L441: the belt strides
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None

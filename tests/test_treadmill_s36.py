@@ -1,0 +1,92 @@
+"""Session 36 treadmill trial T3 (fixer FB): L441 (the belt check over the belt's steady strides, level or inclined),
+L442 / L443 (an inclined belt and a constant-grade ramp are no stair flight), B365, steps 62. Simulated users
+8870-8879 only."""
+
+from __future__ import annotations
+
+import json
+import logging
+import shutil
+
+import numpy as np
+import pandas as pd
+import pytest
+
+
+def _strides(n=30, dz=0.12, length=1.2, t=1.2, seed=8871):
+    """A steady walk of ``n`` strides in a steps table (gait columns included), every stride rising ``dz``."""
+    rng = np.random.default_rng(seed)
+    times = t + rng.normal(0, 0.01, n)
+    start = np.r_[0.0, np.cumsum(times)[:-1]] + 3.0
+    stride = np.r_[np.nan, times[1:]]
+    return pd.DataFrame({"start_s": start, "end_s": start + times, "event_s": start + times - 0.1,
+                         "length_m": length, "dz_m": dz, "turn_angle_rad": 0.0, "heading_rad": 0.0,
+                         "stride_time_s": stride, "speed_mps": length / stride, "unit": "foot", "gap_s": 0.0})
+
+
+def test_belt_rows_take_the_steady_strides_at_the_belts_grade_l441():
+    from pdrlearn.track.belt import belt_rows, belt_speeds
+
+    incline = _strides()
+    rows = belt_rows(incline)
+    # the first stride has no stride time, its successor no steady neighbour before it, the last none after it
+    assert rows.sum() == len(incline) - 3 and not rows[:2].any() and not rows[-1]
+    assert np.allclose(belt_speeds(incline), (1.2 * np.sqrt(1 + 0.1 ** 2) / incline["stride_time_s"])[rows])
+    level = _strides(dz=0.0)
+    assert np.array_equal(belt_rows(level), rows)
+    assert np.allclose(belt_speeds(level), level["speed_mps"][rows])  # level: the horizontal speed itself
+    odd = incline.copy()
+    odd.loc[10, "dz_m"] = 0.40  # a stride off the belt's grade (a stumble, drift) is left out, and so is a turn
+    odd.loc[20, "turn_angle_rad"] = 0.5
+    got = belt_rows(odd)
+    assert not got[10] and not got[20] and not got[19] and not got[21] and got[9] and got[11]
+
+
+def test_belt_check_needs_five_belt_strides_l441():
+    from pdrlearn.track.belt import MIN_BELT_STRIDES, belt_line, belt_summary
+
+    short = _strides(n=MIN_BELT_STRIDES + 2)  # 4 belt strides
+    s = belt_summary({"belt_speed_mps": 1.0}, {"distance_m": 8.4}, "x", short)
+    assert s["n_belt_strides"] == MIN_BELT_STRIDES - 1 and "belt_speed_error_pct" not in s
+    assert "5 needed" in s["belt_check_note"] and "L441" in s["belt_check_note"]
+    assert "no belt speed check" in belt_line({**s, "distance_m": 8.4})
+    enough = _strides(n=MIN_BELT_STRIDES + 3)
+    s = belt_summary({"belt_speed_mps": 1.0}, {}, "x", enough)
+    assert s["n_belt_strides"] == MIN_BELT_STRIDES and "belt_check_note" not in s
+    assert s["belt_speed_error_pct"] == pytest.approx(100 * (s["median_speed_belt_mps"] - 1.0))
+
+
+@pytest.fixture(scope="module")
+def incline(tmp_path_factory):
+    """A 10 % slope walked from standing (user 8870) declared as a 1.0 m/s treadmill belt."""
+    from pdrlearn.cli import main
+
+    folder = tmp_path_factory.mktemp("s36") / "incl"
+    assert main(["simulate", "--route", "stand:2, slope:16:10, stand:2", "--user-seed", "8870", "--rate", "100",
+                 "--out", str(folder)]) == 0
+    meta = json.loads((folder / "meta.json").read_text())
+    (folder / "meta.json").write_text(json.dumps({**meta, "belt_speed_mps": 1.0}))
+    return folder
+
+
+def _track(folder, out, capsys, caplog, *extra):
+    from pdrlearn.cli import main
+
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):
+        assert main(["track", str(folder), "--out", str(out), *extra]) == 0
+    printed = capsys.readouterr().out
+    return json.loads((out / "summary.json").read_text()), printed, [r.getMessage() for r in caplog.records]
+
+
+def test_inclined_belt_is_checked_over_its_steady_strides_l441(incline, tmp_path, capsys, caplog):
+    s, printed, _ = _track(incline, tmp_path / "t", capsys, caplog)
+    steps = pd.read_csv(tmp_path / "t" / "steps.csv")
+    # trial T3: the inclined strides are no level straight strides, so the check read one start stride (-47.7 %)
+    assert s["n_straight_strides"] < 5 and s["n_belt_strides"] >= 5
+    rising = steps["dz_m"].iloc[2:-1]
+    assert (rising >= 0.10).all()  # every inclined stride rises over L179's 0.10 m
+    want = np.median(steps["speed_mps"].iloc[2:-1] * np.sqrt(1 + (rising / steps["length_m"].iloc[2:-1]) ** 2))
+    assert s["median_speed_belt_mps"] == pytest.approx(want)
+    assert s["belt_speed_error_pct"] == pytest.approx(100 * (want - 1.0))
+    assert f"the foot's {s['n_belt_strides']} steady straight strides at the belt's grade" in printed
