@@ -90,3 +90,15 @@ def test_inclined_belt_is_checked_over_its_steady_strides_l441(incline, tmp_path
     assert s["median_speed_belt_mps"] == pytest.approx(want)
     assert s["belt_speed_error_pct"] == pytest.approx(100 * (want - 1.0))
     assert f"the foot's {s['n_belt_strides']} steady straight strides at the belt's grade" in printed
+
+
+def test_a_constant_grade_climb_is_no_stair_flight_l443(incline, tmp_path, capsys, caplog):
+    from pdrlearn.track.stair_flights import flight_table
+
+    ramp = _strides()  # 10 %: every stride rises 0.12 m over 1.2 m
+    assert flight_table(ramp).empty  # trial T3: a 49-stride "flight" beside floors_up_stairs 0
+    stairs = _strides(dz=0.34, length=0.6)  # 57 %: a stair stays a flight
+    assert flight_table(stairs)["n_strides"].tolist() == [len(stairs)]
+    s, printed, _ = _track(incline, tmp_path / "t", capsys, caplog)
+    assert s["n_stair_strides"] >= 5 and s["n_flights_up"] == 0 and "stair flights" not in printed
+    assert pd.read_csv(tmp_path / "t" / "stairs.csv").empty
