@@ -62,7 +62,7 @@ def incline(tmp_path_factory):
     from pdrlearn.cli import main
 
     folder = tmp_path_factory.mktemp("s36") / "incl"
-    assert main(["simulate", "--route", "stand:2, slope:16:10, stand:2", "--user-seed", "8870", "--rate", "100",
+    assert main(["simulate", "--route", "stand:2, slope:30:10, stand:2", "--user-seed", "8870", "--rate", "100",
                  "--out", str(folder)]) == 0
     meta = json.loads((folder / "meta.json").read_text())
     (folder / "meta.json").write_text(json.dumps({**meta, "belt_speed_mps": 1.0}))
@@ -102,3 +102,49 @@ def test_a_constant_grade_climb_is_no_stair_flight_l443(incline, tmp_path, capsy
     s, printed, _ = _track(incline, tmp_path / "t", capsys, caplog)
     assert s["n_stair_strides"] >= 5 and s["n_flights_up"] == 0 and "stair flights" not in printed
     assert pd.read_csv(tmp_path / "t" / "stairs.csv").empty
+
+
+def _with_meta(src, dst, **extra):
+    shutil.copytree(src, dst)
+    meta = json.loads((dst / "meta.json").read_text())
+    (dst / "meta.json").write_text(json.dumps({**meta, **extra}))
+    return dst
+
+
+def test_declared_incline_counts_no_floors_or_flights_and_keeps_the_cv_l442(incline, tmp_path, capsys, caplog):
+    from pdrlearn.track.belt import declared_incline
+
+    plain, _, _ = _track(incline, tmp_path / "plain", capsys, caplog)
+    assert plain["stride_time_cv_pct"] is None and "belt_incline_pct" in plain["stride_time_cv_withheld"]["reason"]
+    folder = _with_meta(incline, tmp_path / "decl", belt_incline_pct=10)
+    s, printed, lines = _track(folder, tmp_path / "t", capsys, caplog, "--storey-height", "1.5")
+    assert s["belt_incline_pct"] == 10.0 and "L442" in s["floors_note"]
+    assert s["floors_up"] == 0 and s["floors_up_ramps"] == 0 and s["n_flights_up"] == 0
+    assert s["ascent_m"] == plain["ascent_m"]  # the belt's virtual climb is still reported
+    steady = pd.read_csv(tmp_path / "t" / "steps.csv")
+    assert s["n_cv_strides"] == int(steady["steady"].sum()) >= 5
+    assert s["stride_time_cv_pct"] == pytest.approx(steady.loc[steady["steady"], "stride_time_s"].std(ddof=1)
+                                                    / steady.loc[steady["steady"], "stride_time_s"].mean() * 100)
+    assert "at 10 % incline (belt_incline_pct" in printed
+    assert not [ln for ln in lines if "B262" in ln]  # the key is read, not "unknown"
+    assert declared_incline() is None  # the next session of a batch starts undeclared
+    high = _track(incline, tmp_path / "h", capsys, caplog, "--storey-height", "1.5")[0]
+    assert high["floors_up"] >= 1  # the same walk undeclared climbs 1.5 m storeys
+
+
+@pytest.mark.parametrize(("extra", "says"), [
+    ({"belt_incline_pct": "10"}, "belt_incline_pct '10'"), ({"belt_incline_pct": True}, "belt_incline_pct True"),
+    ({"belt_incline_pct": 55}, "at most 40"), ({"belt_incline_pct": [5, 10]}, "belt_incline_pct [5, 10]"),
+    ({"belt_incline_pct": 5, "belt_speed_mps": None}, "without belt_speed_mps")])
+def test_bad_belt_incline_is_one_line_b365(incline, tmp_path, capsys, extra, says):
+    from pdrlearn.cli import main
+
+    bad = _with_meta(incline, tmp_path / "bad", **extra)
+    if extra.get("belt_speed_mps", 0) is None:
+        meta = json.loads((bad / "meta.json").read_text())
+        meta.pop("belt_speed_mps")
+        (bad / "meta.json").write_text(json.dumps(meta))
+    assert main(["track", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert says in err and "B365" in err and "meta.json" in err and "\n" not in err and "Traceback" not in err
+    assert not (tmp_path / "o").exists()

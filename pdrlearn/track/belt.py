@@ -7,11 +7,20 @@ step, with a stride time, their neighbours such strides too (no start, stop or t
 CV's steady strides, L104), and at the belt's own grade (level or a constant incline): an inclined belt's strides
 rise every stride, so L179's level straight strides, which the check read before, left one start stride on a 10 %
 belt (trial s36 T3: -47.7 % from that one stride). No figure from fewer than :data:`MIN_BELT_STRIDES`.
+
+Decision L442: meta.json ``belt_incline_pct`` (with ``belt_speed_mps``) declares the belt's incline. The foot then
+still reports the belt's virtual climb (``altitude_change_m``, ``ascent_m``: the belt's frame, L147), but no storeys
+(the ``floors_*`` counts are 0, ``floors_note`` says why), no stair flight (stairs.csv holds the header alone) and
+the stride-time and stride-length CVs keep the incline's strides (L322's rule, as ``CV_KEEPS_RAMPS``). The declared
+incline is in force while a session is tracked (:func:`incline_scope`, a :class:`contextvars.ContextVar`, so the
+threads of ``track-all --jobs`` do not share it, as L415's steady-trim).
 """
 
 from __future__ import annotations
 
+import contextvars
 import math
+from contextlib import contextmanager
 
 import numpy as np
 import pandas as pd
@@ -21,6 +30,11 @@ BELT_KEY = "belt_speed_mps"
 #: decision L441: the fewest belt strides the belt check gives a figure from - L123's fewest straight strides to
 #: judge a walking speed (:data:`pdrlearn.track.gait.MIN_STRAIGHT_FOR_RANGE`, 5)
 MIN_BELT_STRIDES = 5
+#: decision L442: meta.json's declared belt incline (%, rise over run x 100; + up, - a decline)
+INCLINE_KEY = "belt_incline_pct"
+#: decision L442 (B365): the declared inclines accepted, %: treadmills reach 15-25 % (a few 40 %) and -3 to -10 %
+MAX_INCLINE_PCT = 40.0
+_INCLINE = contextvars.ContextVar("pdrlearn_belt_incline", default=None)
 
 
 def belt_rows(steps: pd.DataFrame) -> np.ndarray:
@@ -76,6 +90,64 @@ def belt_value(meta: dict | None, where: str) -> float | None:
     return float(v)
 
 
+def incline_value(meta: dict | None, where: str) -> float | None:
+    """Decision L442: meta.json's ``belt_incline_pct`` (%), None without it. Decision B365: a value that is no finite
+    number within +-:data:`MAX_INCLINE_PCT`, or one declared without ``belt_speed_mps``, is one line naming it."""
+    from pdrlearn.errors import DataError
+
+    v = (meta or {}).get(INCLINE_KEY)
+    if v is None:
+        return None
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or abs(v) > MAX_INCLINE_PCT:
+        raise DataError(f"{where}/meta.json: {INCLINE_KEY} {v!r}: give the treadmill's incline as a number of percent "
+                        f"(rise over run x 100, e.g. 10; at most {MAX_INCLINE_PCT:g}, negative for a decline), or "
+                        "remove the key (decisions L442, B365)")
+    belt_value(meta, where)
+    if (meta or {}).get(BELT_KEY) is None:
+        raise DataError(f"{where}/meta.json: {INCLINE_KEY} {v!r} without {BELT_KEY}: an incline is declared for a "
+                        f"treadmill belt; add \"{BELT_KEY}\" (m/s) or remove {INCLINE_KEY} (decisions L442, B365)")
+    return float(v)
+
+
+@contextmanager
+def incline_scope(value: float | None = None):
+    """Decision L442: a scope in which the tracked session's belt incline (%) is ``value`` (or what
+    :func:`set_incline` declares inside it); reset on exit, so the next session of a batch starts undeclared."""
+    token = _INCLINE.set(value)
+    try:
+        yield
+    finally:
+        _INCLINE.reset(token)
+
+
+def set_incline(value: float | None) -> None:
+    """Decision L442: the declared belt incline (%) of the session tracked inside :func:`incline_scope`."""
+    _INCLINE.set(value)
+
+
+def declared_incline() -> float | None:
+    """Decision L442: the belt incline (%) declared for the session being tracked; None: none declared."""
+    return _INCLINE.get()
+
+
+#: decision L442: the storey counts a declared inclined belt sets to 0
+FLOOR_KEYS = ("floors_up", "floors_down", "storeys_changed", *(f"floors_{d}_{k}" for d in ("up", "down")
+                                                               for k in ("stairs", "ramps", "rides")))
+
+
+def belt_floors(out: dict) -> None:
+    """Decision L442, in place: on a declared inclined belt (:func:`declared_incline`) the :data:`FLOOR_KEYS` that
+    were counted are 0 and ``floors_note`` says why; nothing otherwise."""
+    incline = declared_incline()
+    if incline is None:
+        return
+    for key in FLOOR_KEYS:
+        if out.get(key) is not None:
+            out[key] = 0
+    out["floors_note"] = (f"a treadmill belt at {incline:g} % (meta.json {INCLINE_KEY}): its climb is the belt's "
+                          "virtual climb, no storeys and no stair flight (decision L442)")
+
+
 def belt_summary(meta: dict | None, summary: dict, where: str, steps: pd.DataFrame | None = None) -> dict:
     """Decision L321: a declared treadmill (meta.json ``belt_speed_mps``, a positive number of m/s): the belt speed
     and, decision L441, the belt strides of ``steps`` (:func:`belt_rows`: ``n_belt_strides``, their median speed along
@@ -87,6 +159,9 @@ def belt_summary(meta: dict | None, summary: dict, where: str, steps: pd.DataFra
     if v is None:
         return {}
     out: dict = {BELT_KEY: v}
+    incline = incline_value(meta, where)  # decision L442
+    if incline is not None:
+        out[INCLINE_KEY] = incline
     speeds = belt_speeds(steps) if steps is not None else np.zeros(0)
     out["n_belt_strides"] = int(len(speeds))
     out["median_speed_belt_mps"] = float(np.median(speeds)) if len(speeds) else None
@@ -104,7 +179,10 @@ def belt_line(summary: dict) -> str | None:
     if v is None:
         return None
     err = summary.get("belt_speed_error_pct")
-    return (f"treadmill belt {float(v):.2f} m/s (meta.json {BELT_KEY}): "
+    incline = summary.get(INCLINE_KEY)
+    return (f"treadmill belt {float(v):.2f} m/s (meta.json {BELT_KEY}"
+            + (f", at {float(incline):g} % incline ({INCLINE_KEY}: no storeys or stair flights, L442)"
+               if incline is not None else "") + "): "
             + (f"the foot's {summary['n_belt_strides']} steady straight strides at the belt's grade "
                f"{float(summary['median_speed_belt_mps']):.2f} m/s ({err:+.1f} %)" if err is not None
                else summary.get("belt_check_note") or "no belt strides to compare")

@@ -720,6 +720,14 @@ TURN_SUMMARY_KEYS = ("median_turn_duration_s", "median_turn_angle_deg", "median_
 CV_KEEPS_RAMPS = False
 
 
+def cv_keeps_ramps() -> bool:
+    """Decisions L322, L442: whether a ramp climb's strides count for the CVs - :data:`CV_KEEPS_RAMPS`, or a declared
+    inclined treadmill belt (meta.json ``belt_incline_pct``, :func:`pdrlearn.track.belt.declared_incline`)."""
+    from pdrlearn.track.belt import declared_incline
+
+    return bool(CV_KEEPS_RAMPS) or declared_incline() is not None
+
+
 def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     """Decision L188: the rows that walk level and forward: |``dz_m``| under ``LEVEL_DZ_M`` (0.10 m, L179's
     :func:`pdrlearn.track.gait.stair_rows`) and ``direction`` not backward (a row without a class, a track
@@ -729,8 +737,9 @@ def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     backward stride 2.0 s), so pooling them is no steady walker's variability."""
     from pdrlearn.track.gait import sideways_rows, stair_rows
 
-    # decision L322: with CV_KEEPS_RAMPS a ramp climb's strides are not stair strides here (L303's rule)
-    ok = ~stair_rows(steps, ramp_not_stair=True if CV_KEEPS_RAMPS else None) & ~sideways_rows(steps)  # L228
+    # decision L322: with CV_KEEPS_RAMPS (L442: or a declared inclined belt) a ramp climb's strides are not stair
+    # strides here (L303's rule)
+    ok = ~stair_rows(steps, ramp_not_stair=True if cv_keeps_ramps() else None) & ~sideways_rows(steps)  # L228
     if "direction" in steps:
         ok &= (steps["direction"].astype(str) != "backward").to_numpy()  # empty without a model: not backward
     from pdrlearn.track.evaluate import backward_travel
@@ -812,7 +821,7 @@ def _not_level(steps: pd.DataFrame) -> tuple[int, int]:
                     & _valid(steps))
     if "direction" in steps:
         straight &= (steps["direction"].astype(str) != "backward").to_numpy()
-    return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=True if CV_KEEPS_RAMPS else None)
+    return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=True if cv_keeps_ramps() else None)
                                      ).sum())
 
 
@@ -1082,7 +1091,8 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
             w["level_note"] = (f"{n_not_level} of {n_straight} straight strides not level by their integrated "
                                "height (|dz_m| >= 0.10 m, L188"
                                + ("; a steady incline's strides count with pdrlearn.track.clinical.CV_KEEPS_RAMPS, "
-                                  "L322" if not CV_KEEPS_RAMPS else "") + ")")
+                                  "L322, or on a treadmill with meta.json belt_incline_pct, L442"
+                                  if not cv_keeps_ramps() else "") + ")")
             w["reason"] += "; " + w["level_note"]
         out["stride_time_cv_withheld"] = w
     return out

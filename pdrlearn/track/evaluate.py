@@ -648,6 +648,9 @@ def _basic(result: TrackResult, out: dict) -> None:
     out["n_rides"] = len(result.info["rides"]) if result.info.get("rides") is not None else None  # decision L377
     out.update(floors_by_kind(result.steps, out.get("storey_height_m", STOREY_HEIGHT_M),
                              result.info))  # decision L302
+    from pdrlearn.track.belt import belt_floors
+
+    belt_floors(out)  # decision L442: a declared inclined belt climbs no storeys
     _ascent(result, out)
     from pdrlearn.track.grade import add_grade, grade_summary
 
@@ -1454,9 +1457,14 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     import logging
 
     from pdrlearn.io.plasys import json_safe
+    from pdrlearn.track.belt import INCLINE_KEY, declared_incline, incline_scope, incline_value
     from pdrlearn.track.clinical import contact_timing
 
-    summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
+    incline = incline_value(session.meta, str(getattr(session, "folder", None) or session.where))  # decision L442
+    if incline is not None:
+        result.info[INCLINE_KEY] = incline  # stairs.csv reads it (clinical_tables)
+    with incline_scope(incline if declared_incline() is None else declared_incline()):
+        summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     from pdrlearn.track.periods import time_accounting
 

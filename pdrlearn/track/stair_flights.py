@@ -143,10 +143,13 @@ def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.D
 def flight_summary(steps: pd.DataFrame) -> dict:
     """Decision L432: :data:`KEYS`, the flights up and down of :func:`flight_table` of a foot track's rows; None on
     a lower-back track (no flights table)."""
+    from pdrlearn.track.belt import declared_incline
     from pdrlearn.track.clinical import _is_lower_back
 
     if _is_lower_back(steps):
         return dict.fromkeys(KEYS)
+    if declared_incline() is not None:  # decision L442: a declared inclined belt has no stair flight
+        return dict.fromkeys(KEYS, 0)
     d = flight_table(steps)["direction"].astype(str)
     return {"n_flights_up": int((d == "up").sum()), "n_flights_down": int((d == "down").sum())}
 
