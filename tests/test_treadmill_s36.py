@@ -148,3 +148,21 @@ def test_bad_belt_incline_is_one_line_b365(incline, tmp_path, capsys, extra, say
     err = capsys.readouterr().err.strip()
     assert says in err and "B365" in err and "meta.json" in err and "\n" not in err and "Traceback" not in err
     assert not (tmp_path / "o").exists()
+
+
+def test_steps_names_the_foots_own_strides_when_the_detector_finds_none_steps_62(incline, capsys, caplog):
+    from pdrlearn.cli.steps import report
+    from pdrlearn.io import read_session
+    from pdrlearn.steps import AccelStepDetector
+    from pdrlearn.steps.strides import swinging_rest_strides
+
+    session = read_session(incline)
+    empty = AccelStepDetector().detect(session).iloc[:0]  # trial T3's vibrating belt: accel kept nothing
+    own = swinging_rest_strides(session, force=False)
+    assert own >= 20
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):
+        report(session, empty, name="accel", unit="foot", tolerance=0.25, as_json=True)
+    d = json.loads(capsys.readouterr().out)
+    assert d["count"] == 0 and d["foot_swing_strides"] == own  # before: "0 strides (accel)" and nothing more
+    assert not [r for r in caplog.records if "steps 47" in r.getMessage()]  # B201's line says it, not a second one
