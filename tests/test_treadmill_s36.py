@@ -166,3 +166,35 @@ def test_steps_names_the_foots_own_strides_when_the_detector_finds_none_steps_62
     d = json.loads(capsys.readouterr().out)
     assert d["count"] == 0 and d["foot_swing_strides"] == own  # before: "0 strides (accel)" and nothing more
     assert not [r for r in caplog.records if "steps 47" in r.getMessage()]  # B201's line says it, not a second one
+
+
+def test_a_backward_walk_has_its_own_stride_time_cv_l444():
+    from pdrlearn.track.clinical import clinical_summary
+
+    back = _strides(n=25, dz=0.0).assign(direction="backward")
+    s = clinical_summary(back)
+    steady = back["stride_time_s"].to_numpy()[2:-1]  # the steady strides: neighbours with a stride time
+    assert s["stride_time_cv_direction"] == "backward" and s["n_cv_strides"] == len(steady)
+    assert s["stride_time_cv_pct"] == pytest.approx(100 * steady.std(ddof=1) / steady.mean())  # before: withheld
+    fwd = clinical_summary(back.assign(direction="forward"))
+    assert fwd["stride_time_cv_direction"] == "forward" and fwd["stride_time_cv_pct"] == s["stride_time_cv_pct"]
+    # a walk with enough forward strides keeps them alone (its backward stretch has its own rhythm)
+    mixed = pd.concat([_strides(n=15, dz=0.0), _strides(n=15, dz=0.0, seed=8873).assign(direction="backward")])
+    mixed["start_s"] = 3.0 + 1.2 * np.arange(len(mixed))
+    mixed["end_s"] = mixed["start_s"] + 1.2
+    m = clinical_summary(mixed.reset_index(drop=True))
+    assert m["stride_time_cv_direction"] == "forward" and m["n_cv_strides"] == 12
+    too_few = clinical_summary(_strides(n=8, dz=0.0).assign(direction="backward"))
+    assert too_few["stride_time_cv_pct"] is None and too_few["stride_time_cv_direction"] is None
+
+
+def test_toe_off_track_prints_its_stance_and_swing_steps_63():
+    from pdrlearn.cli.common import gait_line
+
+    base = {"gait_speed_mps": 1.0, "distance_m": 60.0, "walking_time_s": 60.0, "median_cadence_spm": 100.0,
+            "median_stride_time_s": 1.2, "info": {"toe_off_source": None}, "n_stance_times": 0}
+    assert "add --toe-off for them" in gait_line(base)  # L423, as before
+    toe = {**base, "info": {"toe_off_source": "gyro"}, "n_stance_times": 48, "median_stance_time_s": 0.727,
+           "median_swing_time_s": 0.473, "median_stance_pct": 60.57}
+    line = gait_line(toe)  # trial T3: with --toe-off the line said nothing of stance (summary.json only)
+    assert "stance 0.73 s, swing 0.47 s (60.6 % stance) over 48 strides" in line and "--toe-off" in line
