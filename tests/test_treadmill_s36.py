@@ -198,3 +198,17 @@ def test_toe_off_track_prints_its_stance_and_swing_steps_63():
            "median_swing_time_s": 0.473, "median_stance_pct": 60.57}
     line = gait_line(toe)  # trial T3: with --toe-off the line said nothing of stance (summary.json only)
     assert "stance 0.73 s, swing 0.47 s (60.6 % stance) over 48 strides" in line and "--toe-off" in line
+
+
+def test_walkway_tests_are_not_timed_on_a_declared_belt_l445(tmp_path, capsys, caplog):
+    from pdrlearn.cli import main
+
+    walk = tmp_path / "walk"
+    assert main(["simulate", "--route", "stand:2, straight:16, stand:2", "--user-seed", "8874", "--rate", "100",
+                 "--out", str(walk)]) == 0
+    plain, printed, _ = _track(walk, tmp_path / "p", capsys, caplog)
+    assert plain["ten_m_walk_time_s"] is not None and "10 m walk test" in printed  # overground: timed, as before
+    s, printed, _ = _track(_with_meta(walk, tmp_path / "belt", belt_speed_mps=1.0), tmp_path / "t", capsys, caplog)
+    for key in ("ten_m_walk", "t25fw"):  # trial T3: "10 m walk test 9.96 s ... timed 25-foot walk 8.04 s" on a belt
+        assert s[f"{key}_time_s"] is None and s[f"{key}_speed_mps"] is None and "L445" in s[f"{key}_note"]
+    assert "10 m walk test" not in printed and "25-foot" not in printed

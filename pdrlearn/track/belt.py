@@ -148,6 +148,24 @@ def belt_floors(out: dict) -> None:
                           "virtual climb, no storeys and no stair flight (decision L442)")
 
 
+def belt_walk_tests(meta: dict | None, out: dict) -> None:
+    """Decision L445, in place: on a declared treadmill (meta.json ``belt_speed_mps``) the walkway tests - the 10 m
+    walk (L312) and the timed 25-foot walk (L387), :data:`pdrlearn.track.walk_test.KEYS` / ``T25FW_KEYS`` - are not
+    timed: each times a walk overground from standing, and on a belt the walk's speed is the belt's; their notes say
+    so. Nothing without the key (its value is checked by :func:`belt_value` elsewhere)."""
+    v = (meta or {}).get(BELT_KEY)
+    if v is None or isinstance(v, bool) or not isinstance(v, int | float):
+        return
+    from pdrlearn.track.walk_test import KEYS, T25FW_KEYS
+
+    for time_key, speed_key, note_key in (KEYS, T25FW_KEYS):
+        if note_key not in out and time_key not in out:
+            continue
+        out[time_key] = out[speed_key] = None
+        out[note_key] = (f"a treadmill belt (meta.json {BELT_KEY} {float(v):g} m/s): a walkway test times a walk "
+                         "overground, and on the belt the walking speed is the belt's; not timed (decision L445)")
+
+
 def belt_summary(meta: dict | None, summary: dict, where: str, steps: pd.DataFrame | None = None) -> dict:
     """Decision L321: a declared treadmill (meta.json ``belt_speed_mps``, a positive number of m/s): the belt speed
     and, decision L441, the belt strides of ``steps`` (:func:`belt_rows`: ``n_belt_strides``, their median speed along

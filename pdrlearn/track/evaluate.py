@@ -1369,6 +1369,10 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
+    if session is not None:
+        from pdrlearn.track.belt import belt_walk_tests
+
+        belt_walk_tests(session.meta, out)  # decision L445: no walkway test on a declared treadmill
     from pdrlearn.track.freezes import foot_freezes, freeze_summary
 
     # decision W213: a foot track's episodes; W216: a lower-back track sets "freezes" itself (None: not measured)
