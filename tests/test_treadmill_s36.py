@@ -197,7 +197,7 @@ def test_toe_off_track_prints_its_stance_and_swing_steps_63():
     toe = {**base, "info": {"toe_off_source": "gyro"}, "n_stance_times": 48, "median_stance_time_s": 0.727,
            "median_swing_time_s": 0.473, "median_stance_pct": 60.57}
     line = gait_line(toe)  # trial T3: with --toe-off the line said nothing of stance (summary.json only)
-    assert "stance 0.73 s, swing 0.47 s (60.6 % stance) over 48 strides" in line and "--toe-off" in line
+    assert "stance 0.73 s, swing 0.47 s (60.6 % stance) over 48 strides (decisions L73" in line
 
 
 def test_walkway_tests_are_not_timed_on_a_declared_belt_l445(tmp_path, capsys, caplog):
@@ -212,3 +212,24 @@ def test_walkway_tests_are_not_timed_on_a_declared_belt_l445(tmp_path, capsys, c
     for key in ("ten_m_walk", "t25fw"):  # trial T3: "10 m walk test 9.96 s ... timed 25-foot walk 8.04 s" on a belt
         assert s[f"{key}_time_s"] is None and s[f"{key}_speed_mps"] is None and "L445" in s[f"{key}_note"]
     assert "10 m walk test" not in printed and "25-foot" not in printed
+
+
+def test_length_class_bounds_stay_the_users_under_step_length_s81(tmp_path):
+    import pandas as pd
+
+    from pdrlearn.cli import main
+    from pdrlearn.sim import UserProfile
+
+    runs = {}
+    for name, extra in (("own", []), ("belt", ["--step-length", "0.5"])):
+        out = tmp_path / name
+        assert main(["simulate", "--route", "stand:2, straight:12, stand:2", "--user-seed", "8875", "--rate", "100",
+                     "--out", str(out), *extra]) == 0
+        runs[name] = (json.loads((out / "meta.json").read_text()), pd.read_csv(out / "steps.csv"))
+    own, belt = runs["own"][0], runs["belt"][0]
+    # trial T3: [1.03, 1.53] on the calibration, [0.775, 1.15] on the 0.5 m belt walk of the same user
+    assert belt["length_class_bounds_m"] == own["length_class_bounds_m"]
+    assert belt["user"]["class_step_length_m"] == own["user"]["step_length_m"] != belt["user"]["step_length_m"]
+    assert "class_step_length_m" not in own["user"]  # an ordinary session's meta.json is as before
+    assert (runs["belt"][1]["length_class"] == "short").all()  # 1.0 m strides are short for this user
+    assert UserProfile(**belt["user"]).length_class_bounds_m == tuple(own["length_class_bounds_m"])

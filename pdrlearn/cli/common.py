@@ -585,7 +585,7 @@ def stance_clause(summary: dict) -> str:
         return ""
     pct = summary.get("median_stance_pct")
     return (f"; stance {stance:.2f} s, swing {swing:.2f} s" + (f" ({pct:.1f} % stance)" if pct is not None else "")
-            + f" over {n} strides (--toe-off, decisions L73, steps 63)")
+            + f" over {n} strides (decisions L73, steps 63)")
 
 
 #: decision L423: what the gait line of an offline foot track without --toe-off adds (its summary.json has
