@@ -233,3 +233,36 @@ def test_length_class_bounds_stay_the_users_under_step_length_s81(tmp_path):
     assert "class_step_length_m" not in own["user"]  # an ordinary session's meta.json is as before
     assert (runs["belt"][1]["length_class"] == "short").all()  # 1.0 m strides are short for this user
     assert UserProfile(**belt["user"]).length_class_bounds_m == tuple(own["length_class_bounds_m"])
+
+
+def test_calibrate_belt_takes_belt_speed_times_the_contact_span_w378_b366(tmp_path, capsys):
+    import re
+
+    from pdrlearn.cli import main
+
+    walk = tmp_path / "belt"
+    assert main(["simulate", "--route", "stand:3, straight:24, stand:3", "--step-length", "0.6", "--step-time", "0.6",
+                 "--bounce", "pendulum", "--user-seed", "8876", "--rate", "100", "--out", str(walk)]) == 0
+    meta = json.loads((walk / "meta.json").read_text())
+    (walk / "meta.json").write_text(json.dumps({**meta, "belt_speed_mps": 1.0}))
+    capsys.readouterr()
+    assert main(["calibrate", str(walk), "--belt", "--start", "6", "--end", "24", "-o", str(tmp_path / "b.json")]) == 0
+    belt = json.loads((tmp_path / "b.json").read_text())
+    note = [n for n in belt["notes"] if "W378" in n]
+    assert len(note) == 1, belt["notes"]
+    m = re.search(r"1\.00 m/s x ([\d.]+) s of contacts .* = ([\d.]+) m of belt", note[0])
+    assert m and float(m.group(2)) == pytest.approx(float(m.group(1)), abs=0.06)
+    # the manual recipe it replaces (docs/frames.md): --distance = belt speed x the contacts' span, same fit
+    span = [n for n in belt["notes"] if "--distance" in n]
+    assert not span
+    manual = tmp_path / "d.json"
+    assert main(["calibrate", str(walk), "-d", m.group(2), "--start", "6", "--end", "24", "-o", str(manual)]) == 0
+    assert json.loads(manual.read_text())["k"] == pytest.approx(belt["k"], rel=1e-3)
+    capsys.readouterr()
+    assert main(["calibrate", str(walk), "--belt", "-d", "10", "-o", str(tmp_path / "x.json")]) == 2  # not both
+    assert "not both" in capsys.readouterr().err and not (tmp_path / "x.json").exists()
+    (walk / "meta.json").write_text(json.dumps(meta))  # B366: no belt speed declared
+    assert main(["calibrate", str(walk), "--belt", "-o", str(tmp_path / "y.json")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--belt needs meta.json belt_speed_mps" in err and "B366" in err and "\n" not in err
+    assert not (tmp_path / "y.json").exists()
