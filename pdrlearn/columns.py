@@ -172,8 +172,16 @@ SESSIONS: tuple[Column, ...] = (
     ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),
     ("longest_pause_s", "s", "number", "the longest pause (L104)"),
     ("belt_speed_mps", "m/s", "number", "a declared treadmill's belt speed (meta.json belt_speed_mps; L321)"),
-    ("belt_speed_error_pct", "%", "number", "100 x (median_speed_straight_mps - belt_speed_mps) / belt_speed_mps "
-                                            "(L321)"),
+    ("belt_speed_error_pct", "%", "number", "100 x (median_speed_belt_mps - belt_speed_mps) / belt_speed_mps "
+                                            "(L321); empty under 5 belt strides (L441)"),
+    ("stride_time_cv_direction", _ID, "text", "forward, or backward when the CVs are a backward walk's (fewer than "
+                                              "10 steady forward strides, L444); empty without CV strides"),
+    ("belt_incline_pct", "%", "number", "a declared treadmill's incline (meta.json belt_incline_pct; L442)"),
+    ("floors_note", _ID, "text", "why the floors are 0: a declared inclined treadmill belt climbs no storeys (L442)"),
+    ("n_belt_strides", "count", "integer", "a declared treadmill: the steady straight strides at the belt's grade, "
+                                           "level or inclined, that the belt check reads (L441)"),
+    ("median_speed_belt_mps", "m/s", "number", "median speed along the belt of the n_belt_strides (L441)"),
+    ("belt_check_note", _ID, "text", "why there is no belt_speed_error_pct on a declared treadmill (L441)"),
     ("median_speed_straight_mps", "m/s", "number", "median speed of the level strides turning under 15 deg "
                                               "(stair strides left out, L179)"),
     ("median_stance_pct", "%", "number", "--toe-off only: median stance share of the stride (L73)"),

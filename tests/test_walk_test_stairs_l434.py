@@ -45,5 +45,6 @@ def test_one_drifting_stride_is_no_flight_and_the_walk_is_timed_l438():
     dz[5] = 0.12  # strides 4 and 5: a run of two
     pair = _walk(dz)
     pair["length_m"] = 1.3
+    pair.loc[[4, 5], "length_m"] = 0.4  # decision L443: a stair's grade (30 %); at 1.3 m (9 %) the pair is a ramp
     assert list(flight_table(pair)["n_strides"]) == [2]
     assert ten_metre_walk(pair)["ten_m_walk_time_s"] is None and "L438" in ten_metre_walk(pair)["ten_m_walk_note"]

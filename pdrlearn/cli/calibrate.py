@@ -44,6 +44,10 @@ def register(app: typer.Typer) -> None:
         end: list[float] = typer.Option(None, "--end",
                                         help="With --distance: count only the steps before this time (s from "
                                              "the recording's start), one per folder or one for all."),
+        belt: bool = typer.Option(False, "--belt",
+                                  help="Treadmill walks: each walk's distance is its meta.json belt_speed_mps x "
+                                       "the span of its counted contacts, first to last (with --start/--end: "
+                                       "inside them); instead of --distance (decision W378)."),
         out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write (an existing file only with --force)."),
         redact_paths: bool = REDACT_PATHS_OPT,  # decision E176: "fit" holds the folders as typed
         force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -64,6 +68,9 @@ def register(app: typer.Typer) -> None:
           pdrlearn calibrate walk1 -d 5.01 --start 5.0 --end 11.6 --out p.json   (the measured stretch only)
 
           pdrlearn calibrate walks/D -d 30 --redact-paths --out p.json   (its "fit" folders as <redacted>, E176)
+
+          A treadmill walk with meta.json belt_speed_mps: calibrate DIR --belt --start 20 --end 50 -o p.json
+          (distance = belt speed x the contacts' span, W378)
 
         Then: pdrlearn track DIR --pipeline waist-pendulum --params p.json --out OUT
         """
@@ -94,7 +101,7 @@ def register(app: typer.Typer) -> None:
                                 "as many of each (or only one of the two)")
             spans = [((start or [None] * n)[k], (end or [None] * n)[k]) for k in range(n)]
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
-                           fit_turns=fit_turns, shrink=shrink, spans=spans)
+                           fit_turns=fit_turns, shrink=shrink, spans=spans, belt=belt)
         fit: dict = {"fit": [str(d) for d in dirs]}
         if redact_paths:  # decision E176: the folders fitted on as <redacted>, said in the file
             from pdrlearn.redact import path_forms, redact_json

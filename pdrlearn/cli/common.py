@@ -510,7 +510,9 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
     length_cv = summary.get("stride_length_cv_pct")
     if cv is not None:
         return (f", stride-time CV {cv:.1f} %" + (f", stride-length CV {length_cv:.1f} %" if length_cv is not None
-                                                   else "") + f" ({summary.get('n_cv_strides')} steady strides)")
+                                                   else "") + f" ({summary.get('n_cv_strides')} steady "
+                + ("backward " if summary.get("stride_time_cv_direction") == "backward" else "")  # decision L444
+                + "strides)")
     w = summary.get("stride_time_cv_withheld") or {}
     if w.get("cause") == "lower_back":  # decision L214
         return ", no stride-time CV on the lower back (its contact timing scatters too much; decision L104)"
@@ -612,7 +614,18 @@ def gait_line(summary: dict, streamed: bool | None = None) -> str:
             # decision L204: the streamed strides' cadence needs their initial contacts (E51's option)
             + ("; no cadence or stride time: the streamed strides have no initial contact without --contacts "
                "(decisions E51, L204)" if cad is None and streamed else "")
-            + (NO_STANCE_CLAUSE if no_toe_off(summary) else ""))
+            + (NO_STANCE_CLAUSE if no_toe_off(summary) else stance_clause(summary)))
+
+
+def stance_clause(summary: dict) -> str:
+    """Decision steps 63: what the gait line adds when the track has stance times (``track --toe-off``, L73): the
+    median stance and swing times and stance share over ``n_stance_times`` strides; "" without them."""
+    n, stance, swing = (summary.get(k) for k in ("n_stance_times", "median_stance_time_s", "median_swing_time_s"))
+    if not n or stance is None or swing is None:
+        return ""
+    pct = summary.get("median_stance_pct")
+    return (f"; stance {stance:.2f} s, swing {swing:.2f} s" + (f" ({pct:.1f} % stance)" if pct is not None else "")
+            + f" over {n} strides (decisions L73, steps 63)")
 
 
 #: decision L423: what the gait line of an offline foot track without --toe-off adds (its summary.json has

@@ -410,6 +410,7 @@ def _custom_gait(user, speed: str, step_length: float | None, step_time: float |
     changes = {}
     if step_length is not None:
         changes["step_length_m"] = step_length / f_len
+        changes["class_step_length_m"] = user.step_length_m  # decision S81: the length classes stay the user's
     if step_time is not None:
         changes["step_time_s"] = step_time / f_time
     return dataclasses.replace(user, **changes)

@@ -196,14 +196,17 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     if spanned:  # decision steps 38: strides merged into one detection (track splits them at the rests)
         result["rest_strides"] = int(len(table)) + spanned
     own = None
-    if unit == "foot" and len(table) and per_stride:  # decision steps 47: the foot's own rest-and-swing count
+    # decision steps 47: the foot's own rest-and-swing count; steps 62: also when the detector found nothing (a
+    # vibrating belt: "0 strides" without a word before)
+    if unit == "foot" and per_stride:
         from pdrlearn.steps.strides import swinging_rest_strides
 
         own = swinging_rest_strides(session, force=force)
         if own > len(table):
             result["foot_swing_strides"] = own
     # decision steps 47: more than steps 38's fraction of the foot's strides lie outside any detection
-    missed = own is not None and own - len(table) - spanned > MERGED_WARN_FRAC * own
+    # (none when it found nothing: B201's "found no strides" line says so, steps 62)
+    missed = own is not None and len(table) > 0 and own - len(table) - spanned > MERGED_WARN_FRAC * own
     if missed or spanned > MERGED_WARN_FRAC * (len(table) + spanned):
         import logging
 

@@ -641,10 +641,12 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     ``info["warnings"]`` (and the result's), each once, as ``track-all``'s sessions.csv gives them; E155: with their
     codes and the summary's ``schema_version``. Decision L415: the measures are computed under ``--steady-trim``
     (:func:`pdrlearn.track.steady.steady_trim_set`)."""
+    from pdrlearn.track.belt import incline_scope
     from pdrlearn.track.steady import steady_trim_set
     from pdrlearn.warning_lines import captured_warnings, machine_summary
 
-    with captured_warnings(echo=True) as logged, steady_trim_set(settings.get("steady_trim")):
+    # decision L442: _track_session declares the session's belt incline inside this scope
+    with captured_warnings(echo=True) as logged, steady_trim_set(settings.get("steady_trim")), incline_scope():
         tracked = _track_session(session_dir, settings)
     summary = machine_summary(tracked["summary"], logged, str(session_dir))  # decisions E154, E155
     tracked["result"].info["warnings"] = list(summary["info"]["warnings"])
@@ -691,6 +693,9 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     from pdrlearn.track.evaluate import belt_summary
 
     belt_summary(session.meta, {}, session.where)  # decision L321: a bad belt speed refused before tracking
+    from pdrlearn.track.belt import incline_value, set_incline
+
+    set_incline(incline_value(session.meta, session.where))  # decision L442 (B365: a bad value refused here)
     unknown = unknown_keys_line(session.meta, session.where)  # decision B262: meta.json keys pdrlearn does not read
     if unknown:
         import logging

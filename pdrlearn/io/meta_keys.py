@@ -15,6 +15,7 @@ READ = frozenset({
     "n_turns", "terrain_counts", "caveats", "knobs", "source_project", "source_sdist", "same_sensor_data_as",
     "duplicate_of", "note", "protocol_stats",
     "belt_speed_mps",  # decision L321: a declared treadmill's belt speed
+    "belt_incline_pct",  # decision L442: a declared treadmill's incline
 })
 #: keys the simulator and the importers write as provenance (read by people, not by the pipelines)
 WRITTEN = frozenset({

@@ -75,6 +75,9 @@ class UserProfile:
         the floor in the swing of a level step (m); see decisions S23
     shoe_toe_allowance_m : length of the shoe's sole beyond the tip of the toes (m); the push-off rolls over
         the front of the sole (decisions S25)
+    class_step_length_m : the user's own step length (m) when ``step_length_m`` is a walk's override
+        (``simulate --step-length``, S30): the stride-length class bounds stay this user's (decision S81); None
+        (the default, not written by :meth:`to_dict`): ``step_length_m`` is the user's own
     """
 
     seed: int
@@ -103,6 +106,7 @@ class UserProfile:
     foot_sensor_height_m: float = 0.06
     toe_clearance_m: float = 0.013
     shoe_toe_allowance_m: float = 0.02
+    class_step_length_m: float | None = None
 
     @classmethod
     def from_seed(cls, seed: int) -> UserProfile:
@@ -203,7 +207,10 @@ class UserProfile:
         The thesis (ch.6.3) sets the bounds per user from the calibration exercises; the bounds are the
         midpoints between this user's mean short, normal and long stride lengths at normal speed.
         """
-        s, n, l_ = (self.stride_length("normal", g) for g in GAITS)
+        # decision S81: from the user's own step, not a walk's --step-length override (one user, one set of bounds)
+        own = replace(self, step_length_m=self.class_step_length_m, class_step_length_m=None) \
+            if self.class_step_length_m is not None else self
+        s, n, l_ = (own.stride_length("normal", g) for g in GAITS)
         return (round(0.5 * (s + n), 4), round(0.5 * (n + l_), 4))
 
     def length_class(self, length_m: float) -> str:
@@ -211,4 +218,7 @@ class UserProfile:
         return "short" if length_m <= lo else ("normal" if length_m <= hi else "long")
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        d = asdict(self)
+        if d["class_step_length_m"] is None:  # decision S81: written only for an overridden step length
+            del d["class_step_length_m"]
+        return d

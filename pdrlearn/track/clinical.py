@@ -122,7 +122,7 @@ CV_POOLED_FACTOR = 2.0
 CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
                  "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides", "stride_time_cv_withheld",
                  "stride_time_cv_within_bouts_pct", "stride_time_cv_bouts", "stride_length_cv_pct",
-                 "stride_length_cv_within_segments_pct", "n_cv_segments")
+                 "stride_length_cv_within_segments_pct", "n_cv_segments", "stride_time_cv_direction")
 
 #: decision L214: ``stride_time_cv_withheld["cause"]`` - the lower back (L104: never a CV), too few steady strides
 #: (:data:`CV_MIN_STRIDES`), or the contacts' timing scatter (L113, an option)
@@ -720,6 +720,14 @@ TURN_SUMMARY_KEYS = ("median_turn_duration_s", "median_turn_angle_deg", "median_
 CV_KEEPS_RAMPS = False
 
 
+def cv_keeps_ramps() -> bool:
+    """Decisions L322, L442: whether a ramp climb's strides count for the CVs - :data:`CV_KEEPS_RAMPS`, or a declared
+    inclined treadmill belt (meta.json ``belt_incline_pct``, :func:`pdrlearn.track.belt.declared_incline`)."""
+    from pdrlearn.track.belt import declared_incline
+
+    return bool(CV_KEEPS_RAMPS) or declared_incline() is not None
+
+
 def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     """Decision L188: the rows that walk level and forward: |``dz_m``| under ``LEVEL_DZ_M`` (0.10 m, L179's
     :func:`pdrlearn.track.gait.stair_rows`) and ``direction`` not backward (a row without a class, a track
@@ -727,16 +735,29 @@ def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     a model-free track's back-pedalling strides were in the CVs). A stair
     stride or a backward stride has its own rhythm (the trial route's level ~1.0 s, stairs down 0.85 s, the first
     backward stride 2.0 s), so pooling them is no steady walker's variability."""
+    return _level(steps) & ~backward_rows(steps)
+
+
+def _level(steps: pd.DataFrame) -> np.ndarray:
+    """L188's level rows, either direction: not a stair stride (L322 / L442: a ramp's with :func:`cv_keeps_ramps`),
+    not a side step (L228)."""
     from pdrlearn.track.gait import sideways_rows, stair_rows
 
-    # decision L322: with CV_KEEPS_RAMPS a ramp climb's strides are not stair strides here (L303's rule)
-    ok = ~stair_rows(steps, ramp_not_stair=True if CV_KEEPS_RAMPS else None) & ~sideways_rows(steps)  # L228
+    # decision L322: with CV_KEEPS_RAMPS (L442: or a declared inclined belt) a ramp climb's strides are not stair
+    # strides here (L303's rule)
+    return ~stair_rows(steps, ramp_not_stair=True if cv_keeps_ramps() else None) & ~sideways_rows(steps)  # L228
+
+
+def backward_rows(steps: pd.DataFrame) -> np.ndarray:
+    """(B,) bool: the rows L188 calls backward - ``direction`` backward (a model's class) or travelling backward
+    (L203 / L408's ``backward_travel`` of a model-free track)."""
+    out = np.zeros(len(steps), bool)
     if "direction" in steps:
-        ok &= (steps["direction"].astype(str) != "backward").to_numpy()  # empty without a model: not backward
+        out |= (steps["direction"].astype(str) == "backward").to_numpy()  # empty without a model: not backward
     from pdrlearn.track.evaluate import backward_travel
 
     back = backward_travel(steps)  # decision L408: a model-free track's backward strides (L203) are not forward
-    return ok if back is None else ok & ~back
+    return out if back is None else out | np.asarray(back, dtype=bool)
 
 
 def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
@@ -754,7 +775,31 @@ def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
     s = st["stride_time_s"].to_numpy(float)
     turn = st["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in st else np.zeros(len(s))
     with np.errstate(invalid="ignore"):
-        ok = np.isfinite(s) & (np.abs(turn) < STRAIGHT_MAX_RAD) & _valid(st) & _level_forward(st)
+        straight = np.isfinite(s) & (np.abs(turn) < STRAIGHT_MAX_RAD) & _valid(st) & _level(st)
+    back = backward_rows(st)
+    steady = _steady(st, straight & ~back)
+    if steady.sum() < CV_MIN_STRIDES:  # decision L444: a backward walk (a backward belt) has its own CV
+        backward = _steady(st, straight & back)
+        if backward.sum() >= CV_MIN_STRIDES:
+            return st, backward
+    return st, steady
+
+
+def cv_direction(steps: pd.DataFrame) -> str | None:
+    """Decision L444: ``"backward"`` when :func:`steady_rows` took the backward strides (fewer than
+    :data:`CV_MIN_STRIDES` steady forward ones, at least as many steady backward ones), ``"forward"`` when it took
+    forward strides, None when it took none."""
+    st, steady = steady_rows(steps)
+    if not steady.any():
+        return None
+    return "backward" if backward_rows(st)[steady].all() else "forward"
+
+
+def _steady(st: pd.DataFrame, ok: np.ndarray) -> np.ndarray:
+    """L104's steady strides of ``st`` (in ``start_s`` order) among the straight level strides ``ok`` of one
+    direction (L444): neither next to a pause nor to a row that is not such a stride, L405's one source, L415's
+    trim."""
+    ok = np.array(ok, dtype=bool)
     if len(st) > 1:  # a stride time across a pause (IC to IC over a short stop, L80) is no stride's rhythm
         _, is_pause = _intervals(st)
         ok &= ~np.concatenate([[False], is_pause]) & ~np.concatenate([is_pause, [False]])
@@ -767,7 +812,7 @@ def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
     from pdrlearn.track.steady import trimmed_rows
 
     steady &= ~trimmed_rows(st)  # decision L415: --steady-trim's first / last strides of each bout
-    return st, steady
+    return steady
 
 
 def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
@@ -812,7 +857,7 @@ def _not_level(steps: pd.DataFrame) -> tuple[int, int]:
                     & _valid(steps))
     if "direction" in steps:
         straight &= (steps["direction"].astype(str) != "backward").to_numpy()
-    return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=True if CV_KEEPS_RAMPS else None)
+    return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=True if cv_keeps_ramps() else None)
                                      ).sum())
 
 
@@ -1039,7 +1084,7 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
                  "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
                  "n_cv_strides": 0, "stride_time_cv_withheld": None, "stride_time_cv_within_bouts_pct": None,
                  "stride_time_cv_bouts": [], "stride_length_cv_pct": None,
-                 "stride_length_cv_within_segments_pct": None, "n_cv_segments": 0}
+                 "stride_length_cv_within_segments_pct": None, "n_cv_segments": 0, "stride_time_cv_direction": None}
     if not len(steps) or "start_s" not in steps:
         return out
     p = pauses(steps)
@@ -1052,6 +1097,7 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
         return out
     s, onset = _straight_stride_times(steps)
     out["n_cv_strides"] = int(len(s))
+    out["stride_time_cv_direction"] = cv_direction(steps) if len(s) else None  # decision L444
     if len(s) >= CV_MIN_STRIDES and s.mean() > 0:
         cv = float(100.0 * s.std(ddof=1) / s.mean())
         st, steady = steady_rows(steps)
@@ -1082,7 +1128,8 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
             w["level_note"] = (f"{n_not_level} of {n_straight} straight strides not level by their integrated "
                                "height (|dz_m| >= 0.10 m, L188"
                                + ("; a steady incline's strides count with pdrlearn.track.clinical.CV_KEEPS_RAMPS, "
-                                  "L322" if not CV_KEEPS_RAMPS else "") + ")")
+                                  "L322, or on a treadmill with meta.json belt_incline_pct, L442"
+                                  if not cv_keeps_ramps() else "") + ")")
             w["reason"] += "; " + w["level_note"]
         out["stride_time_cv_withheld"] = w
     return out

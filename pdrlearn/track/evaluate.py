@@ -648,6 +648,9 @@ def _basic(result: TrackResult, out: dict) -> None:
     out["n_rides"] = len(result.info["rides"]) if result.info.get("rides") is not None else None  # decision L377
     out.update(floors_by_kind(result.steps, out.get("storey_height_m", STOREY_HEIGHT_M),
                              result.info))  # decision L302
+    from pdrlearn.track.belt import belt_floors
+
+    belt_floors(out)  # decision L442: a declared inclined belt climbs no storeys
     _ascent(result, out)
     from pdrlearn.track.grade import add_grade, grade_summary
 
@@ -1303,43 +1306,8 @@ def add_gait_range_flag(summary: dict) -> dict:
     return summary
 
 
-#: decision L321: meta.json's declared treadmill belt speed (m/s)
-BELT_KEY = "belt_speed_mps"
-
-
-def belt_summary(meta: dict | None, summary: dict, where: str) -> dict:
-    """Decision L321: a declared treadmill (meta.json ``belt_speed_mps``, a positive number of m/s): the belt speed
-    and the foot's median straight stride speed against it (``belt_speed_error_pct``). No new physics: a belt at
-    constant speed is an inertial frame (docs/frames.md, L147), so the foot's strides are belt strides and its
-    path and distance are the belt's, not travel. Empty without the key; a bad value is one line naming it."""
-    import math
-
-    from pdrlearn.errors import DataError
-
-    v = (meta or {}).get(BELT_KEY)
-    if v is None:
-        return {}
-    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or not 0 < v <= 10:
-        raise DataError(f"{where}/meta.json: {BELT_KEY} {v!r}: give the treadmill's belt speed as a positive number "
-                        "of m/s (e.g. 1.0; at most 10), or remove the key (decision L321)")
-    out = {BELT_KEY: float(v)}
-    straight = summary.get("median_speed_straight_mps")
-    if straight is not None:
-        out["belt_speed_error_pct"] = 100.0 * (float(straight) - float(v)) / float(v)
-    return out
-
-
-def belt_line(summary: dict) -> str | None:
-    """Decision L321: the console line of a declared treadmill."""
-    v = summary.get(BELT_KEY)
-    if v is None:
-        return None
-    straight = summary.get("median_speed_straight_mps")
-    return (f"treadmill belt {float(v):.2f} m/s (meta.json {BELT_KEY}): "
-            + (f"the tracked straight strides {float(straight):.2f} m/s ({summary['belt_speed_error_pct']:+.1f} %)"
-               if straight is not None else "no straight strides to compare")
-            + f"; {float(summary.get('distance_m', 0.0)):.2f} m is belt distance and the path is the belt's, not "
-            "travel (docs/frames.md, decisions L147, L321)")
+# decisions L321, L441: a declared treadmill (pdrlearn.track.belt; the names kept here for their callers)
+from pdrlearn.track.belt import BELT_KEY, belt_line, belt_summary  # noqa: E402, F401
 
 
 def summary_warnings(summary: dict) -> list[str]:
@@ -1401,6 +1369,10 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
+    if session is not None:
+        from pdrlearn.track.belt import belt_walk_tests
+
+        belt_walk_tests(session.meta, out)  # decision L445: no walkway test on a declared treadmill
     from pdrlearn.track.freezes import foot_freezes, freeze_summary
 
     # decision W213: a foot track's episodes; W216: a lower-back track sets "freezes" itself (None: not measured)
@@ -1489,14 +1461,20 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     import logging
 
     from pdrlearn.io.plasys import json_safe
+    from pdrlearn.track.belt import INCLINE_KEY, declared_incline, incline_scope, incline_value
     from pdrlearn.track.clinical import contact_timing
 
-    summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
+    incline = incline_value(session.meta, str(getattr(session, "folder", None) or session.where))  # decision L442
+    if incline is not None:
+        result.info[INCLINE_KEY] = incline  # stairs.csv reads it (clinical_tables)
+    with incline_scope(incline if declared_incline() is None else declared_incline()):
+        summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     from pdrlearn.track.periods import time_accounting
 
     summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
-    summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where)))
+    summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where),
+                                result.steps))  # decision L441: the belt strides
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None

@@ -89,7 +89,9 @@ def clinical_tables(result, bouts) -> dict:
 
     if not _is_lower_back(result.steps):  # decision L440: no stairs.csv on the lower back (no flights to list)
         # decision L432: a foot track's stair flights; n_stairs with --stair-rise
-        out["stairs.csv"] = flight_table(result.steps, result.info.get("stair_rise_m"))
+        # decision L442: a declared inclined belt (info["belt_incline_pct"]) has no stair flight: the header alone
+        out["stairs.csv"] = flight_table(result.steps if result.info.get("belt_incline_pct") is None
+                                         else result.steps.iloc[:0], result.info.get("stair_rise_m"))
     from pdrlearn.track.travel import direction_change_table
 
     changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction

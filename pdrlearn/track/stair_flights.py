@@ -102,7 +102,8 @@ def flight_strides(st: pd.DataFrame, min_strides: int | None = None) -> int:
 
 
 def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.DataFrame:
-    """``stairs.csv`` (decision L432): one row per :func:`flight_runs` flight of a foot track's rows (in
+    """``stairs.csv`` (decision L432): one row per :func:`flight_runs` flight of a foot track's rows (decision L443:
+    not of the climbs L302 calls ramps, :func:`pdrlearn.track.evaluate.ramp_climb_rows`) (in
     ``start_s`` order): its first row's ``start_s`` and last row's ``end_s``, ``time_s`` between them, ``height_m``
     (the strides' summed ``dz_m``, signed), ``cadence_spm`` (2 steps per stride of the tracked foot over
     ``time_s``, L176's 120 / stride time), ``vertical_speed_mps`` (|height| / time), the median and CV (L104's
@@ -117,7 +118,9 @@ def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.D
         return pd.DataFrame(columns=list(FLIGHT_COLUMNS))
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)  # bout_rows' row order
     dz = pd.to_numeric(st["dz_m"], errors="coerce").to_numpy(float)
-    stair = stair_rows(st) & stride_rows(st)  # L179's n_stair_strides rows
+    # L179's n_stair_strides rows; decision L443: less a climb L302 calls "ramps" (under 20 % rise over run), as
+    # floors_up_stairs / floors_up_ramps count it - a ramp, a hill or an inclined belt is no stair flight
+    stair = stair_rows(st, ramp_not_stair=True) & stride_rows(st)
     start, end = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
     rows = []
     length = pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float) if "length_m" in st else None
@@ -140,10 +143,13 @@ def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.D
 def flight_summary(steps: pd.DataFrame) -> dict:
     """Decision L432: :data:`KEYS`, the flights up and down of :func:`flight_table` of a foot track's rows; None on
     a lower-back track (no flights table)."""
+    from pdrlearn.track.belt import declared_incline
     from pdrlearn.track.clinical import _is_lower_back
 
     if _is_lower_back(steps):
         return dict.fromkeys(KEYS)
+    if declared_incline() is not None:  # decision L442: a declared inclined belt has no stair flight
+        return dict.fromkeys(KEYS, 0)
     d = flight_table(steps)["direction"].astype(str)
     return {"n_flights_up": int((d == "up").sum()), "n_flights_down": int((d == "down").sum())}
 

@@ -307,10 +307,31 @@ MIN_CALIBRATION_STEPS = 20
 _FITTED_NOTE = {"waist-pendulum": r"K = ", "waist-pll": r"height \S+ m -> SL = "}
 
 
+def belt_distance(session: Session, steps, span_s=None) -> tuple[float, str]:
+    """Decision W378: a treadmill walk's calibration distance (m) - meta.json ``belt_speed_mps`` (L321) x the span of
+    the lower back's counted contacts ``steps`` (rows with a next contact) inside ``span_s`` (W61), first to last,
+    as ``--distance`` counts them (W21) - and its note. One line (B366) without the key or without a step."""
+    from pdrlearn.track.belt import BELT_KEY, belt_value
+
+    where = str(session.folder or session.name)
+    v = belt_value(session.meta, where)
+    if v is None:
+        raise DataError(f"calibrate: --belt needs meta.json {BELT_KEY} in {where} (the treadmill's belt speed, m/s); "
+                        "declare it, or give the walked length with --distance (decisions W378, B366)")
+    st = steps[span_mask(session, steps, span_s)] if span_s is not None else steps
+    if not len(st):
+        raise DataError(f"calibrate: --belt: no detected step of {session.name} lies inside --start/--end; widen the "
+                        "stretch (decisions W378, B366)")
+    t0, t1 = float(st["start_s"].min()), float(st["end_s"].max())
+    d = v * (t1 - t0)
+    return d, (f"--belt: {session.name} {v:.2f} m/s x {t1 - t0:.1f} s of contacts ({t0 - session.t_start:.1f}-"
+               f"{t1 - session.t_start:.1f} s) = {d:.2f} m of belt (decision W378)")
+
+
 def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] | None = None,
               turns: float | None = None, fit_turns: bool = False, params=None, shrink: bool = False,
-              tau_k: float | None = None, spans: list[tuple[float | None, float | None]] | None = None
-              ) -> WaistParams:
+              tau_k: float | None = None, spans: list[tuple[float | None, float | None]] | None = None,
+              belt: bool = False) -> WaistParams:
     """Fit the step-length parameters of ``pipeline`` (with ``turns``, the gyro bias; with ``fit_turns``,
     the straight/turning mixture, decision W14).
 
@@ -324,6 +345,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         :data:`~pdrlearn.waist.params.TAU_K`). K's standard error is recorded in ``k_shrinkage`` either way.
     spans : with ``distances``: per session (or one for all) the ``(start, end)`` seconds from the recording's
         start whose steps the distance covers (decision W61); None = every detected step.
+    belt : decision W378 (``calibrate --belt``): each session is a treadmill walk (meta.json ``belt_speed_mps``,
+        L321) and its distance the belt speed x the span of its counted contacts (first to last, inside ``spans``),
+        the belt distance the walker covered between them; not with ``distances``.
     """
     if not sessions:
         raise DataError("calibrate: give at least one session folder")
@@ -349,6 +373,10 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     notes_count: list[str] = []
     cadence_law: bool | str = False  # decision W240: the tracks' option, read from the calibration walks' own tracks
     edge_lock = None  # decision W369: the pll_edge_lock the walks' waist-pll tracks counted their contacts with
+    if belt and distances is not None:
+        raise DataError("calibrate: --belt takes each walk's distance from meta.json belt_speed_mps x its contact "
+                        "span; give --belt or --distance, not both (decision W378)")
+    belt_notes: list[str] = []
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         with without_heading_note():  # W83: calibration does not use the heading
@@ -359,6 +387,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
             raise DataError(f"calibrate: 0 steps detected in {s.folder or s.name}; calibrate needs a walk of known "
                             "length (give a recording of walking, with --distance or bouts.csv)")
         span = None if spans is None else spans[i if len(spans) > 1 else 0]
+        if belt:  # decision W378: the belt distance between the first and the last counted contact
+            d, note = belt_distance(s, res.steps[res.steps["has_next"]], span)
+            belt_notes.append(note)
         walks += calibration_walks(s, pipeline, distance_m=d, params=base, result=res, span_s=span)
         if d is not None:  # decision W99: cross-check the walk's contact count with the pelvic gyro
             counted = res.steps[res.steps["has_next"]]
@@ -399,6 +430,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         out.k, out.k_shrinkage, shrunk = shrink_pendulum_gain(fitted, out.k, out.f_m, how, shrink=shrink, tau=tau_k)
     for n in implausible + notes_count:
         log.warning("calibrate: %s", n)
+    out.notes += belt_notes  # decision W378
     if distances is not None:  # decision W21: the known length must span the counted steps
         out.notes += [f"--distance {w.distance_m:g} m counted over {len(w.f_hz)} steps, {w.name} (give the "
                       "length from the first to the last heel strike)" for w in walks]
