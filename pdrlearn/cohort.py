@@ -393,12 +393,13 @@ def first_names(names: Sequence[str]) -> str:
     return ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
 
 
-def session_warning(text: str, names: Sequence[str], total: int, note: str | None = None) -> str:
+def session_warning(text: str, names: Sequence[str], total: int, note: str | None = None,
+                    noun: str = "sessions") -> str:
     """Decision E118: a track-all batch warning on stderr starts with the session(s) that raised it (the first
     three named, as :func:`grouped_warning`), then how many of the batch: ``u3841, u3842: text [2 of 6
     sessions]``. Decision L271: ``note`` (whose figures the text holds) follows the names, before the figures:
-    ``u3841, u3842 (note): text [...]``."""
-    return f"{first_names(names)}{f' ({note})' if note else ''}: {text} [{len(names)} of {total} sessions]"
+    ``u3841, u3842 (note): text [...]``. Cohort C105: evaluate-all's users, ``noun="users"``."""
+    return f"{first_names(names)}{f' ({note})' if note else ''}: {text} [{len(names)} of {total} {noun}]"
 
 
 def session_group(rel_path: str, depth: int = 1) -> str:

@@ -1223,12 +1223,56 @@ COHORT_METHODS_SUMMARY: tuple[Column, ...] = (
 )
 
 
+#: cohort C106: the classifier tasks cohort_summary.csv has columns of (pdrlearn.classify.training.TASKS, not imported
+#: here: it loads scikit-learn)
+COHORT_TASKS = ("terrain", "direction", "length")
+
+
+def _per_task(name: str, unit: str, kind: str, meaning: str) -> tuple[Column, ...]:
+    """Cohort C106: one cohort_summary.csv column per task of :data:`COHORT_TASKS` (``<task>`` in ``name``)."""
+    return tuple((name.replace("<task>", t), unit, kind, meaning) for t in COHORT_TASKS)
+
+
+#: cohort C106: `train-all`'s and `evaluate-all`'s cohort_summary.csv (pdrlearn.cli.cohort); one row per user
+COHORT_SUMMARY: tuple[Column, ...] = (
+    ("user", _ID, "text", "the user's folder in COHORT (and the model's folder in MODELS): the row's key"),
+    ("subject", _ID, "text", "the subject the user's sessions' meta.json name, as track-all's sessions.csv subject "
+                             "(C22); '; '-joined when several; empty when none is named or the user failed (C107)"),
+    ("status", _ID, "text", "ok or failed"),
+    ("seconds", "s", "number", "wall time of the user's job"),
+    ("cpu_seconds", "s", "number", "CPU time of the process that ran the job, while it ran"),
+    ("error", _ID, "text", "a failed user's one-line error; empty when ok (the column only when some user failed)"),
+    ("sessions", "count", "integer", "sessions read (train-all: train/; evaluate-all: test/)"),
+    ("skipped_sessions", "count", "integer", "sessions --skip-bad-sessions left out (C11; only with the option)"),
+    ("skipped", _ID, "text", "those sessions, 'name: error; ...' (C11; only with the option)"),
+    ("rate_hz", "Hz", "number", "train-all: the rate the model was trained at (foot accelerometer's, else the "
+                                "waist's; C62)"),
+    ("recorded_hz", _ID, "text", "train-all --resample: the rates the sessions were recorded at, '20 / 100' (C62)"),
+    ("skipped_tasks", "count", "integer", "train-all: tasks asked for that training skipped (C87)"),
+    ("skipped_task_names", _ID, "text", "the tasks skipped (train-all) or not scored (evaluate-all), '; '-joined "
+                                        "(C87)"),
+    *_per_task("<task>_method", _ID, "text", "train-all: the task's chosen model, method/unit (heuristic/foot)"),
+    *_per_task("<task>_cv_accuracy", "fraction", "number", "train-all: the chosen model's cross-validated accuracy"),
+    *_per_task("<task>_n_steps", "count", "integer", "train-all: labelled steps the task was trained on"),
+    *_per_task("<task>_accuracy_detected", "fraction", "number", "evaluate-all: the chosen model's accuracy on the "
+                                                                 "strides the runtime detects (C49, C87)"),
+    *_per_task("<task>_n_steps_detected", "count", "integer", "evaluate-all: labelled steps matched to a detected "
+                                                              "stride"),
+    *_per_task("<task>_accuracy_labelled", "fraction", "number", "evaluate-all: accuracy on the held-out steps cut "
+                                                                 "at the labelled boundaries"),
+    *_per_task("<task>_n_steps_labelled", "count", "integer", "evaluate-all: labelled steps scored"),
+    *_per_task("<task>_classes_absent", _ID, "text", "evaluate-all: the task's classes the test steps hold none of, "
+                                                     "'; '-joined (classifiers C64): the accuracies do not cover "
+                                                     "them; empty when every class is present (C105)"),
+)
+
+
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, STAIRS, RIDES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, DETECTIONS, EVENTS, STEPS_JSON,
-    COHORT_METHODS, COHORT_METHODS_SUMMARY), strict=True))
+    COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
@@ -1251,6 +1295,11 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
                        "the scores appear only when the session has a reference, NaN is written as null. Timing "
                        "error = detected - reference (s): positive means the detector is late; `+-` in the text "
                        "output is the SD over the matched pairs only.",
+         "cohort_summary.csv": "`pdrlearn train-all COHORT --out MODELS` (MODELS/cohort_summary.csv) and "
+                               "`pdrlearn evaluate-all MODELS COHORT` (OUT/cohort_summary.csv), decision C106: one "
+                               "row per user; train-all writes the train-all columns, evaluate-all the evaluate-all "
+                               "ones, each task's only when some user trained or scored it. Join to track-all's "
+                               "tables on subject (C107).",
          "cohort_methods.csv": "`pdrlearn evaluate-all MODELS COHORT --per-method` (cohort decision C92): one row "
                                "per user, task, method and unit; cohort_methods_summary.csv|md: the means over users.",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "

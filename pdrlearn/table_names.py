@@ -23,4 +23,5 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "trajectory.csv",  # B309
                                 "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv",  # L287
                                 "detections.csv", "events.csv", "steps.json",  # steps 59
+                                "cohort_summary.csv",  # cohort C106
                                 "cohort_methods.csv", "cohort_methods_summary.csv")  # cohort C92

@@ -18,7 +18,7 @@ def test_task_accuracy_columns_put_the_detected_figure_first():
     r = {"accuracy": 1.0, "n_steps": 50, "detected": {"accuracy": 0.92, "n_steps": 48}}
     cols = task_accuracy_columns("terrain", r)
     assert list(cols) == ["terrain_accuracy_detected", "terrain_n_steps_detected", "terrain_accuracy_labelled",
-                          "terrain_n_steps_labelled"]
+                          "terrain_n_steps_labelled", "terrain_classes_absent"]  # cohort C105: the last
     assert cols["terrain_accuracy_detected"] == 0.92 and cols["terrain_accuracy_labelled"] == 1.0
     assert task_accuracy_columns("length", {"accuracy": 0.9, "n_steps": 3, "detected": None})[
         "length_accuracy_detected"] is None
@@ -46,7 +46,7 @@ def test_cohort_summaries_name_the_accuracy_and_the_skipped_tasks(cohort, tmp_pa
     assert "terrain_accuracy" not in ev
     keys = [k for k in ev if k.startswith("terrain_")]
     assert keys == ["terrain_accuracy_detected", "terrain_n_steps_detected", "terrain_accuracy_labelled",
-                    "terrain_n_steps_labelled"]
+                    "terrain_n_steps_labelled", "terrain_classes_absent"]  # cohort C105
     assert 0 < ev["terrain_accuracy_detected"] <= 1 and ev["terrain_n_steps_detected"] > 10
     assert ev["skipped_task_names"] == "direction; length"
     table = pd.read_csv(models / "eval" / "cohort_summary.csv")

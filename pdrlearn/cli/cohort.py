@@ -86,7 +86,14 @@ def _read_sessions(user_dir: Path, part: str, skip_bad: bool) -> tuple[list, dic
     if not sessions:
         raise DataError(f"{user_dir}: every session is bad ({len(bad)}); first: {bad[0]}")
     extra = {"skipped_sessions": len(bad), "skipped": bad} if skip_bad else {}
-    return sessions, extra
+    return sessions, {"subject": paths_subject(paths), **extra}
+
+
+def paths_subject(paths) -> str | None:
+    """Cohort C107: the subject the sessions' meta.json name, as track-all's sessions.csv ``subject`` (C22's
+    :func:`pdrlearn.cohort.session_labels`), ``"; "``-joined when they name several; None when they name none."""
+    names = [s for s, _ in (session_labels(p) for p in paths) if s]
+    return "; ".join(dict.fromkeys(names)) or None
 
 
 def _train_job(args: dict) -> dict:
@@ -131,10 +138,16 @@ def _evaluate_job(args: dict) -> dict:
     """Evaluate one user's model on that user's held-out sessions (``test/``)."""
     from pdrlearn.classify import evaluate_model, load_model
 
-    model = load_model(Path(args["model_dir"]))
-    sessions, skipped = _read_sessions(Path(args["user_dir"]), "test", args.get("skip_bad", False))
-    res = evaluate_model(model, sessions, latency=False,
-                         detected_methods=bool(args.get("per_method")))  # classifiers C97: every row's detected
+    # cohort C105: the job's warnings (C64's absent classes among them) go back with its row, said once per batch
+    with captured_warnings() as warned:
+        try:
+            model = load_model(Path(args["model_dir"]))
+            sessions, skipped = _read_sessions(Path(args["user_dir"]), "test", args.get("skip_bad", False))
+            res = evaluate_model(model, sessions, latency=False,
+                                 detected_methods=bool(args.get("per_method")))  # classifiers C97: every row's detected
+        except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
+            attach_to_error(exc, warnings=list(dict.fromkeys(warned)))
+            raise
     if not res["tasks"]:
         raise DataError(f"{args['user_dir']}: held-out sessions have no labels for the model's tasks")
     row = {"sessions": len(sessions), **skipped,
@@ -143,6 +156,8 @@ def _evaluate_job(args: dict) -> dict:
            "skipped_task_names": "; ".join(str(v).split(":", 1)[0] for v in res.get("skipped") or [])}
     for t, r in res["tasks"].items():
         row.update(task_accuracy_columns(t, r))
+    row[JOB_NOTES] = {"absent_classes": {t: r.get("absent_classes", []) for t, r in res["tasks"].items()},
+                      "warnings": list(dict.fromkeys(warned))}  # cohort C105: for --json and the batch's lines
     if args.get("per_method"):  # cohort C92: evaluate's own per-method scores, taken out by evaluate_all
         from pdrlearn.cohort_methods import method_rows
 
@@ -152,6 +167,8 @@ def _evaluate_job(args: dict) -> dict:
 
 #: cohort C92: the key of a user's per-method rows in an evaluate-all job's value (not a summary column)
 METHOD_ROWS = "_method_rows"
+#: cohort C105: the key of a user's absent classes and warnings in an evaluate-all job's value (not a summary column)
+JOB_NOTES = "_notes"
 #: cohort C92: the files evaluate-all --per-method writes beside cohort_summary.csv|md
 METHOD_FILES = ("cohort_methods.csv", "cohort_methods_summary.csv", "cohort_methods_summary.md")
 
@@ -168,7 +185,9 @@ def task_accuracy_columns(task: str, r: dict) -> dict:
     labelled boundaries, each with the steps it counts."""
     det = r.get("detected") or {}
     return {f"{task}_accuracy_detected": det.get("accuracy"), f"{task}_n_steps_detected": det.get("n_steps"),
-            f"{task}_accuracy_labelled": r["accuracy"], f"{task}_n_steps_labelled": r["n_steps"]}
+            f"{task}_accuracy_labelled": r["accuracy"], f"{task}_n_steps_labelled": r["n_steps"],
+            # cohort C105: classifiers C64's classes the test steps hold none of (the accuracies do not cover them)
+            f"{task}_classes_absent": "; ".join(r.get("absent_classes") or []) or None}
 
 
 #: decision C11: summary columns that count things, written as integers
@@ -193,6 +212,8 @@ def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
             row["error"] = r.error
         rows.append(row)
     df = pd.DataFrame(rows)
+    if "subject" in df:  # cohort C107: the subject meta.json names, beside the folder's user
+        df.insert(1, "subject", df.pop("subject"))
     for c in df.columns:  # decision C11: counts stay integers (2, not 2.0) when a failed user leaves them empty
         if c in COUNT_COLUMNS or c.endswith(("_n_steps", "_n_steps_detected", "_n_steps_labelled")):  # C87
             df[c] = pd.to_numeric(df[c]).round().astype("Int64")
@@ -211,13 +232,16 @@ def _blank_missing(df: pd.DataFrame) -> pd.DataFrame:
     return df.astype(object).where(df.notna(), None)
 
 
-def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool) -> None:
+def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool,
+           notes: dict[str, dict] | None = None) -> None:
     import pandas as pd
 
     failed = [r for r in results if not r.ok]
     if as_json:
-        print_json(json_safe({"users": _blank_missing(df).to_dict(orient="records"), "n_users": len(results),
-                              "n_failed": len(failed)}))
+        users = _blank_missing(df).to_dict(orient="records")
+        if notes is not None:  # cohort C105: each user's absent classes (C64) and warnings
+            users = [{**u, **notes.get(u["user"], {})} for u in users]
+        print_json(json_safe({"users": users, "n_users": len(results), "n_failed": len(failed)}))
         for r in failed:  # decision E167: on stderr too, as track-all --json's failed lines (stdout is the JSON)
             typer.echo(f"failed {r.name}: {r.error}", err=True)
     else:
@@ -426,10 +450,12 @@ def evaluate_all(
     results = _run(_evaluate_job, items, scheduler, serial, workers, as_json, "test")
     _check_any_ok(results)
     rows = [row for r in results if r.ok for row in r.value.pop(METHOD_ROWS, [])]
+    notes = {r.name: r.value.pop(JOB_NOTES) if r.ok else {"warnings": r.extra.get("warnings", [])} for r in results}
+    said_once([(name, n["warnings"]) for name, n in notes.items()], len(results), "users")  # cohort C105
     df = _summarise(results, out)
     _write_methods(out, rows if per_method else None)
     replaced(out, was)
-    _print(df, results, f"evaluate-all: {sum(r.ok for r in results)}/{len(results)} users", as_json)
+    _print(df, results, f"evaluate-all: {sum(r.ok for r in results)}/{len(results)} users", as_json, notes)
     if per_method:  # cohort C92
         typer.echo(f"evaluate-all: every method and unit per user in {out / METHOD_FILES[0]}, their means over the "
                    f"users in {METHOD_FILES[1]}|md", err=True)
@@ -569,22 +595,31 @@ _NUMBER = re.compile(r"[-+]?\d+(?:\.\d+)?")
 def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -> None:
     """Each distinct warning once, with how many sessions raised it and the first of them (decision C12).
     A warning naming its session folder first (``DIR: message``, decision B34) is grouped by the message."""
+    said_once([(rel, job_warnings(r, given)) for (rel, given), r in zip(sessions, results, strict=True)],
+              len(results))  # cohort C15: a failed session's warnings too
+
+
+def said_once(warned: list[tuple[str, list[str]]], total: int, noun: str = "sessions") -> None:
+    """Decision C12: each distinct warning of ``warned`` (``(name, its lines)`` per session, or per user with
+    ``noun="users"``: cohort C105) said once on stderr, the names that raised it first (E118) and how many of the
+    ``total``."""
     import logging
 
     seen: dict[str, tuple[list[str], set[str], str]] = {}
-    for (rel, given), r in zip(sessions, results, strict=True):
-        for text in job_warnings(r, given):  # cohort C15: a failed session's warnings too
+    for name, lines in warned:
+        for text in lines:
             # decision L148: one warning whose figures differ per session (L95's cadence and speed) is one group
-            rels, texts, _ = seen.setdefault(_NUMBER.sub("#", text), ([], set(), text))
-            if rel not in rels:
-                rels.append(rel)
+            names, texts, _ = seen.setdefault(_NUMBER.sub("#", text), ([], set(), text))
+            if name not in names:
+                names.append(name)
             texts.add(text)
     log = logging.getLogger("pdrlearn.cli")
-    for rels, texts, first in seen.values():
+    for names, texts, first in seen.values():
         # decision L271: whose figures a grouped line shows is said before them, not after a long text
-        note = None if len(texts) == 1 else (f"figures of {rels[0]}; each session's own are in its summary.json "
-                                             "and sessions.csv's warnings column")
-        log.warning("%s", session_warning(first, rels, len(results), note))  # decision E118: the session(s) first
+        note = None if len(texts) == 1 else (f"figures of {names[0]}; each session's own are in its summary.json "
+                                             "and sessions.csv's warnings column" if noun == "sessions" else
+                                             f"figures of {names[0]}; each user's own are in --json's warnings")
+        log.warning("%s", session_warning(first, names, total, note, noun))  # decision E118: the names first
 
 
 def _duplicates(rels: list[str], results: list[JobResult], dirs: list[Path]) -> tuple[dict[str, str], dict[str, str]]:
