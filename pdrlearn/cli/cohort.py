@@ -427,9 +427,11 @@ def evaluate_all(
     """Evaluate every user's model on that user's held-out test/ sessions.
 
     Writes OUT/cohort_summary.csv|md: per user and task, the chosen model's accuracy on the detected strides and on
-    the labelled boundaries (decision C87). --per-method also writes OUT/cohort_methods.csv, one row per user,
-    task, method and unit (evaluate's scores, each on the detected strides too, decision C97), and
-    OUT/cohort_methods_summary.csv|md, their means over the users per task, method and unit (decision C92).
+    the labelled boundaries (decision C87), and <task>_classes_absent, the classes the user's test data hold no step
+    of (their accuracy is unmeasured; warned once per batch, C105). --per-method also writes
+    OUT/cohort_methods.csv, one row per user, task, method and unit (evaluate's scores, each on the detected
+    strides too, decision C97), and OUT/cohort_methods_summary.csv|md, their means over the users per task, method
+    and unit (decision C92).
 
     Examples:
 
