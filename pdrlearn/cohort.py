@@ -406,7 +406,7 @@ def session_group(rel_path: str, depth: int = 1) -> str:
     return "/".join(parts[:min(depth, len(parts) - 1)]) or "."
 
 
-def meta_user_key(meta: dict) -> str | None:
+def meta_user_key(meta: dict, where: str | os.PathLike | None = None) -> str | None:
     """The user a session was recorded from, by its ``meta.json`` (decision C29): ``user`` (a string, or an object
     with ``id`` or ``seed``, as the simulator writes) or ``subject`` (a string, or an object with ``id`` or
     ``participant_id``, as the mobgap converter writes), as ``user:anna`` / ``subject.id:7``; ``None`` when it
@@ -415,8 +415,9 @@ def meta_user_key(meta: dict) -> str | None:
     ``{"cohort": "MS", "participant_id": "001"}`` are two people: ``subject.cohort:HA.participant_id:001``)."""
     for key, ids in (("user", ("id", "seed")), ("subject", ("id", "participant_id"))):
         v = meta.get(key)
-        if isinstance(v, str) and v.strip():
-            return f"{key}:{v.strip()}"
+        text = id_text(meta, key, where)  # decision C99: a whole number is its text
+        if text:
+            return f"{key}:{text}"
         if isinstance(v, dict):
             for k in ids:
                 if v.get(k) is not None and str(v[k]).strip():
@@ -430,15 +431,40 @@ def meta_user_key(meta: dict) -> str | None:
 SUBJECT_SCOPES = ("study", "site", "centre", "center", "cohort")
 
 
-def meta_user(meta: dict) -> str | None:
+def meta_user(meta: dict, where: str | os.PathLike | None = None) -> str | None:
     """A session's user or subject by name (decisions B88, C48): ``user`` / ``subject`` text as written (``anna``),
     else :func:`meta_user_key`'s name of an object (``user.seed:3`` for a simulated session); ``None`` when the
     meta.json names none. The one-user model's name, and track-all's ``subject`` (cohort C22)."""
     for key in ("user", "subject"):
-        v = meta.get(key)
-        if isinstance(v, str) and v.strip():
-            return v.strip()
-    return meta_user_key(meta)
+        text = id_text(meta, key, where)  # decision C99: a whole number is its text
+        if text:
+            return text
+    return meta_user_key(meta, where)
+
+
+def id_text(meta: dict, key: str, where: str | os.PathLike | None = None) -> str | None:
+    """Decision C99: meta.json's ``key`` (``user`` / ``subject``) as an id's text - a string stripped, a whole JSON
+    number as its digits (``8830`` -> ``"8830"``; a roster-driven script writes ids as numbers); None when absent,
+    blank or an object (:func:`meta_user_key` names an object). Decision B363: a ``subject`` that is a fractional
+    number, true/false or a list is refused in one line naming the file (``where``: the session folder)."""
+    v = meta.get(key)
+    if isinstance(v, str):
+        return v.strip() or None
+    if isinstance(v, int) and not isinstance(v, bool):
+        return str(v)
+    if key == "subject" and isinstance(v, bool | float | list):
+        file = "meta.json" if where is None else f"{Path(where) / 'meta.json'}"
+        kind = "true/false" if isinstance(v, bool) else "a list" if isinstance(v, list) else "a fractional number"
+        raise DataError(f"{file}: \"subject\": {json_text(v)} is {kind}, not an id; write the id as text "
+                        f"(\"subject\": \"P01\") or a whole number (decision B363)")
+    return None
+
+
+def json_text(v) -> str:
+    """``v`` as JSON writes it (``true``, ``8830.5``, ``[1, 2]``), for an error line."""
+    import json
+
+    return json.dumps(v)
 
 
 def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
@@ -458,7 +484,7 @@ def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
     visit = meta.get("visit")
     if isinstance(visit, bool) or not isinstance(visit, str | int | float) or not str(visit).strip():
         visit = None
-    return meta_user(meta), None if visit is None else str(visit).strip()
+    return meta_user(meta, folder), None if visit is None else str(visit).strip()
 
 
 #: Decision L137: meta.json fields that only name a session (who, which visit, what it is called, notes), not

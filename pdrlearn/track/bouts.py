@@ -188,7 +188,7 @@ def session_key(session) -> dict:
 
     if session is None:
         return {"session": None, "subject": None}
-    return {"session": session.name, "subject": meta_user(session.meta or {})}
+    return {"session": session.name, "subject": meta_user(session.meta or {}, getattr(session, "folder", None))}
 
 
 def session_leg_m(session) -> float | None:
