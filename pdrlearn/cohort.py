@@ -481,10 +481,16 @@ def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
         return None, None
     if not isinstance(meta, dict):
         return None, None
+    return meta_user(meta, folder), meta_visit(meta)
+
+
+def meta_visit(meta: dict) -> str | None:
+    """Cohort C22: meta.json's ``visit`` as text (a number as its text), None when it names none (C100: also a single
+    track's summary.json and bouts.csv ``visit``)."""
     visit = meta.get("visit")
     if isinstance(visit, bool) or not isinstance(visit, str | int | float) or not str(visit).strip():
-        visit = None
-    return meta_user(meta, folder), None if visit is None else str(visit).strip()
+        return None
+    return str(visit).strip()
 
 
 #: Decision L137: meta.json fields that only name a session (who, which visit, what it is called, notes), not
@@ -582,3 +588,4 @@ def groups_text(groups):
             shown[m] = [("" if pd.isna(mu) else f"{mu:.3g}" + ("" if pd.isna(sd) else f" ± {sd:.2g}") + f" ({n})")
                         for mu, sd, n in zip(groups[f"{m}_mean"], groups[f"{m}_sd"], groups[f"{m}_n"], strict=True)]
     return shown
+

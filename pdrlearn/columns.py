@@ -35,7 +35,8 @@ def _clocks(*of: str) -> tuple[Column, ...]:
 SESSIONS: tuple[Column, ...] = (
     ("path", _ID, "text", "the session folder relative to ROOT (the row's key)"),
     ("group", _ID, "text", "the first --group-depth folder levels of path (siteA)"),
-    ("subject", _ID, "text", "meta.json subject (or user, when a name); empty when not given (C22)"),
+    ("subject", _ID, "text", "meta.json subject (or user, when a name; a whole number as its text, C99); empty "
+                             "when not given (C22; also a track's summary.json, C100)"),
     ("visit", _ID, "text", "the visit as changes.csv and subjects.csv name it (C82): meta.json visit, --visit-map "
                            "applied and spellings of one visit made one (C28, C29); empty when not given (C22)"),
     ("visit_as_written", _ID, "text", "meta.json visit as written (C82)"),
@@ -520,10 +521,11 @@ CHANGES_SUMMARY: tuple[Column, ...] = (
 
 BOUTS: tuple[Column, ...] = (
     ("path", _ID, "text", "track-all's OUT/bouts.csv only: the session's path, sessions.csv's key (L165)"),
-    ("visit", _ID, "text", "track-all's OUT/bouts.csv only: the session's visit as sessions.csv names it (L165, "
-                           "C82)"),
+    ("visit", _ID, "text", "a track's bouts.csv: meta.json's visit, empty when not given (C100); track-all's "
+                           "OUT/bouts.csv: the session's visit as sessions.csv names it (L165, C82)"),
     ("session", _ID, "text", "the session's name (meta.json's session, else the folder; L165)"),
-    ("subject", _ID, "text", "meta.json subject (or user); empty when not given (L165)"),
+    ("subject", _ID, "text", "meta.json subject (or user; a whole number as its text, C99); empty when not given "
+                             "(L165)"),
     ("bout", "index", "integer", "the bout's number in the session, from 1"),
     ("start_s", "s", "number", "start (first step's start), on the session's clock"),
     ("end_s", "s", "number", "end (last step's end), on the session's clock"),
@@ -631,6 +633,8 @@ TURNS: tuple[Column, ...] = (
 PERIODS: tuple[Column, ...] = (
     ("session", _ID, "text", "meta.json's session name (bouts.csv's key, L165)"),
     ("subject", _ID, "text", "meta.json's subject; empty when not given"),
+    ("visit", _ID, "text", "meta.json's visit, empty when not given (C100); track-all's OUT/periods.csv: "
+                           "sessions.csv's visit (C82)"),
     ("period", "index", "integer", "the period's number, from 1"),
     ("start_s", "s", "number", "the period's start on the session's clock (the recording's start + k x --per; "
                                "--per-align clock: the clock's whole periods, L299)"),
@@ -1066,6 +1070,7 @@ STRIDES: tuple[Column, ...] = (
     ("path", _ID, "text", "the session's sessions.csv path (its key)"),
     ("visit", _ID, "text", "sessions.csv's visit (C82)"),
     ("session", _ID, "text", "the session's name (summary.json session)"),
+    ("subject", _ID, "text", "sessions.csv's subject (C100)"),
     ("foot", _ID, "text", "left or right from the session's meta.json (foot / instrumented_foot, L260); empty where "
                           "not known"),
     ("turn_deg", "deg", "number", "a foot row's turn_angle_rad in degrees (left +); empty on a lower-back row"),

@@ -63,3 +63,33 @@ def test_a_subject_id_without_user_and_a_refused_one(tmp_path):
         (tmp_path / "meta.json").write_text(json.dumps({"subject": bad, "visit": 1}))
         with pytest.raises(DataError, match=r"meta\.json: \"subject\": .* not an id; write the id as text .*B363"):
             session_labels(tmp_path)
+
+
+def test_every_pooled_table_and_a_session_folder_carries_subject_and_visit(batch):
+    """C100: strides.csv had no subject (a stride-level model joined on path first), a session's summary.json no
+    subject or visit and its bouts.csv no visit."""
+    _, out = batch
+    ids = {"subject": str, "visit": str}
+    sessions = pd.read_csv(out / "sessions.csv", dtype=ids).set_index("path")
+    for table in ("strides.csv", "bouts.csv"):
+        pooled = pd.read_csv(out / table, dtype=ids)
+        assert {"subject", "visit"} <= set(pooled.columns), table
+        assert (pooled["subject"] == pooled["path"].map(sessions["subject"])).all(), table
+        assert (pooled["visit"] == pooled["path"].map(sessions["visit"])).all(), table
+    summary = json.loads((out / "S10/visit2/summary.json").read_text())
+    assert (summary["subject"], summary["visit"]) == ("10", "2")
+    bouts = pd.read_csv(out / "S10/visit2/bouts.csv", dtype=ids)
+    assert list(bouts.columns[:4]) == ["session", "subject", "visit", "bout"]
+    assert set(bouts["visit"]) == {"2"} and set(bouts["subject"]) == {"10"}
+
+
+def test_a_single_track_prints_and_writes_subject_and_visit(batch, tmp_path, capsys):
+    """C100: ``track --json`` and its summary.json name meta.json's subject and visit (a cluster array job of one
+    track per session could not tell the visits apart)."""
+    root, _ = batch
+    capsys.readouterr()
+    assert main(["track", str(root / "S9/visit1"), "--out", str(tmp_path / "t"), "--json"]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert (printed["subject"], printed["visit"]) == ("9", "1")
+    written = json.loads((tmp_path / "t" / "summary.json").read_text())
+    assert (written["subject"], written["visit"]) == ("9", "1")

@@ -790,7 +790,8 @@ def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
 def combined_strides(out: Path, rows: list[dict], inputs: dict[str, Path]) -> pd.DataFrame:
     """Decisions E163 / L422: every tracked session's steps.csv (``out/<path>/steps.csv``) stacked in sessions.csv's
     order (:func:`pdrlearn.track.pooled.session_strides`), each row led by its session's ``path``, ``visit``, the
-    session's name, its ``foot`` (meta.json of ``inputs[path]``, L260's keys; empty where not known), ``turn_deg`` and
+    session's name, its ``subject`` (C100),
+    its ``foot`` (meta.json of ``inputs[path]``, L260's keys; empty where not known), ``turn_deg`` and
     ``is_turn`` (the session's turns.csv)."""
     import pandas as pd
 
@@ -812,8 +813,8 @@ def combined_strides(out: Path, rows: list[dict], inputs: dict[str, Path]) -> pd
         except (OSError, ValueError, KeyError, DataError):
             meta = {}
         parts.append(session_strides(steps, turns, path=row["path"], visit=row.get("visit"),
-                                     session=row.get("session"), foot=session_foot(meta if isinstance(meta, dict)
-                                                                                   else {})))
+                                     session=row.get("session"), subject=row.get("subject"),  # decision C100
+                                     foot=session_foot(meta if isinstance(meta, dict) else {})))
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=list(STRIDE_KEYS))
 
 
@@ -826,7 +827,7 @@ def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -
 
     from pdrlearn.track.clock import CLOCK_COLUMNS
 
-    cols = [*COMBINED_BOUT_KEYS, *columns]
+    cols = [*COMBINED_BOUT_KEYS, *(c for c in columns if c not in COMBINED_BOUT_KEYS)]  # C100: the table's visit
     parts = []
     for row in rows:
         if row["status"] == "ok" and (out / row["path"] / name).is_file():

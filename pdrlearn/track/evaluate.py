@@ -1498,6 +1498,10 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
     summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where)))
     summary["session"] = session.name
+    from pdrlearn.track.bouts import session_key
+
+    key = session_key(session)  # decision C100: meta.json's subject and visit, as bouts.csv's
+    summary["subject"], summary["visit"] = key["subject"], key["visit"]
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
     summary["pipeline"] = pipeline if pipeline is not None else result.info.get("pipeline")
