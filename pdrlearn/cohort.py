@@ -585,7 +585,21 @@ def groups_text(groups):
     shown = groups[["group", "n_tracked", "n_failed"]].copy()
     for m in GROUP_METRICS:
         if f"{m}_mean" in groups:
-            shown[m] = [("" if pd.isna(mu) else f"{mu:.3g}" + ("" if pd.isna(sd) else f" ± {sd:.2g}") + f" ({n})")
+            shown[m] = [("" if pd.isna(mu) else plain_number(mu) + ("" if pd.isna(sd) else
+                                                                      f" ± {plain_number(sd, 2)}") + f" ({n})")
                         for mu, sd, n in zip(groups[f"{m}_mean"], groups[f"{m}_sd"], groups[f"{m}_n"], strict=True)]
     return shown
 
+
+def plain_number(x: float, digits: int = 3, sign: bool = False) -> str:
+    """Decision C101: ``x`` to ``digits`` significant digits in plain decimals, never in scientific notation
+    (``2070``, not ``2.07e+03``; ``0.000123``, not ``1.23e-04``; trailing zeros dropped as by ``%g``), as
+    track-all's printed summaries show numbers; ``sign``: a leading ``+`` on a positive value. ``nan`` / ``inf``
+    as Python writes them."""
+    import math
+
+    if not math.isfinite(x) or x == 0:
+        return f"{x:+g}" if sign else f"{x:g}"
+    decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
+    text = f"{x:{'+' if sign else ''}.{decimals}f}"
+    return text.rstrip("0").rstrip(".") if "." in text else text  # as %g: no trailing zeros

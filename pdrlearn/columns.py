@@ -494,7 +494,9 @@ CHANGES: tuple[Column, ...] = (
     ("{measure}_baseline", "as the measure", "number", "the baseline visit's value (its trials' mean, C83)"),
     ("{measure}_change", "as the measure", "number", "later visit minus baseline (C22)"),
     ("{measure}_change_pct", "%", "number", "100 x change / |baseline|: the dual-task cost when the visits are "
-                                            "single and dual (C81); empty when the baseline is 0"),
+                                            "single and dual (C81); empty when the baseline is 0; not written "
+                                            "for a percent error, distance_error_pct or any *error*_pct / *mae*_pct "
+                                            "(its change is in points, C101)"),
 )
 
 #: decisions C23, C81, C85: track-all's changes_summary.csv, one row per later visit, baseline and measure
@@ -511,7 +513,7 @@ CHANGES_SUMMARY: tuple[Column, ...] = (
     ("n_pct_subjects", "count", "integer", "subjects with a percent change: n_subjects less those whose baseline is "
                                            "0 (C85)"),
     ("mean_pct_change", "%", "number", "the mean of the subjects' percent changes, 100 x change / |baseline| "
-                                       "(the mean dual-task cost; C81)"),
+                                       "(the mean dual-task cost; C81); empty for a percent error (C101)"),
     ("sd_pct_change", "%", "number", "their standard deviation (n - 1)"),
     ("pct_ci95_low", "%", "number", "the paired 95 % t-interval of the mean percent change, low (C81)"),
     ("pct_ci95_high", "%", "number", "its high end"),

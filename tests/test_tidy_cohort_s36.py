@@ -93,3 +93,32 @@ def test_a_single_track_prints_and_writes_subject_and_visit(batch, tmp_path, cap
     assert (printed["subject"], printed["visit"]) == ("9", "1")
     written = json.loads((tmp_path / "t" / "summary.json").read_text())
     assert (written["subject"], written["visit"]) == ("9", "1")
+
+
+def test_no_percent_change_of_a_percent_error_and_no_scientific_notation():
+    """C101: the default changes table gave ``distance_error_pct_change_pct`` (+7746 % for an error going from 0.1 %
+    to 7.8 %) and printed ``+2.07e+03 [-3.96e+03, 8.11e+03]``; a percent error keeps its change in points only, and
+    the printed summary is in plain decimals."""
+    from pdrlearn.visits import change_summary, change_table, changes_text
+
+    rows = [{"path": f"{s}/{v}", "group": s, "subject": s, "visit": v, "status": "ok", "pipeline": "plasys",
+             "duplicate_of": None, "distance_error_pct": e, "gait_speed_mps": g,
+             "median_cadence_spm": 3000.0 if v == "visit1" else 1170.0,
+             "stride_length_mae_pct": abs(e)}
+            for s, (e1, e2) in (("S1", (0.1, 7.8)), ("S2", (-0.2, 0.4)), ("S3", (0.05, -9.0)))
+            for v, e, g in (("visit1", e1, 1.2), ("visit2", e2, 1.0 + len(s) / 100))]
+    sessions = pd.DataFrame(rows)
+    changes = change_table(sessions, metrics=("distance_error_pct", "gait_speed_mps", "median_cadence_spm",
+                                              "stride_length_mae_pct"))
+    assert "distance_error_pct_change" in changes and "distance_error_pct_change_pct" not in changes
+    assert "stride_length_mae_pct_change_pct" not in changes and "gait_speed_mps_change_pct" in changes
+    default = change_table(sessions)
+    assert "distance_error_pct_change_pct" not in default and "gait_speed_mps_change_pct" in default
+    summary = change_summary(changes)
+    err = summary[summary["measure"] == "distance_error_pct"].iloc[0]
+    assert pd.isna(err["mean_pct_change"]) and err["mean_change"] == pytest.approx((7.7 + 0.6 - 9.05) / 3)
+    text = changes_text(summary).to_string()
+    assert "e+" not in text and "e-" not in text
+    assert "-1830 [-1830, -1830]" in text  # median_cadence_spm, not -1.83e+03
+    assert "nan" not in changes_text(summary).to_markdown(index=False).lower()
+
