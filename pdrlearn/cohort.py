@@ -135,7 +135,8 @@ def _subfolders(p: Path) -> list[Path]:
 
 
 def find_sessions(root: str | os.PathLike) -> list[Path]:
-    """Every session folder under ``root`` at any depth (sorted by relative path; hidden folders and the
+    """Every session folder under ``root`` at any depth (in natural order of their relative paths, folder by folder:
+    ``S2`` before ``S10``, decision C102; hidden folders and the
     inside of a session folder are not searched; a folder reached again through a symbolic link is searched
     once, with a warning). ``root`` itself being a session is an error: a batch command wants a folder of
     sessions (decision C12)."""
@@ -149,7 +150,7 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
     seen = {root.resolve(): root}  # a folder reached again through a symbolic link (a loop: forever) is walked once
 
     def walk(d: Path) -> None:
-        for p in sorted(d.iterdir()):
+        for p in sorted(d.iterdir(), key=lambda p: natural_key(p.name)):  # decision C102
             if p.name.startswith("."):
                 continue
             if p.is_symlink() and not p.exists():  # decision B315: a dangling link may be a session not mounted
@@ -549,7 +550,7 @@ GROUP_METRICS = ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "
 
 
 def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
-    """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (sorted) with
+    """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (natural order, C102) with
     ``n_tracked`` (sessions tracked; decision C19: was ``n_sessions``, which ``track-all --json`` uses for every
     session found), ``n_failed``, and for each metric column that has a value in some tracked session
     ``<metric>_n`` (sessions with a value), ``_mean``, ``_sd`` (sample standard deviation, n - 1; empty for
@@ -559,7 +560,7 @@ def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
     import pandas as pd
 
     ok = sessions[sessions["status"] == "ok"]
-    groups = sorted(sessions["group"].astype(str).unique())
+    groups = sorted(sessions["group"].astype(str).unique(), key=natural_key)  # decision C102
     out = pd.DataFrame({"group": groups})
     out["n_tracked"] = [int((ok["group"].astype(str) == g).sum()) for g in groups]
     out["n_failed"] = [int(((sessions["group"].astype(str) == g) & (sessions["status"] != "ok")).sum())
@@ -603,3 +604,12 @@ def plain_number(x: float, digits: int = 3, sign: bool = False) -> str:
     decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
     text = f"{x:{'+' if sign else ''}.{decimals}f}"
     return text.rstrip("0").rstrip(".") if "." in text else text  # as %g: no trailing zeros
+
+
+def natural_key(text: str) -> tuple:
+    """Decision C102: the sort key of a name in natural order - runs of digits compared as numbers (``S2`` < ``S9`` <
+    ``S10``, ``visit2`` < ``visit10``), then the text itself (so ``S01`` and ``S1`` keep one order). Every pooled
+    table of track-all lists its rows in this order (sessions by their folders, groups, subjects and visits)."""
+    import re
+
+    return [(0, int(t), "") if t.isdigit() else (1, 0, t) for t in re.split(r"(\d+)", text) if t], text

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 
-from pdrlearn.cohort import GROUP_METRICS, t_interval
+from pdrlearn.cohort import GROUP_METRICS, natural_key, t_interval
 
 #: changes.csv's leading columns (decision C22; C82: the visits as meta.json wrote them; C83: the trials averaged);
 #: ``<measure>_baseline``, ``<measure>_change`` and ``<measure>_change_pct`` (C81) follow per measure
@@ -105,7 +105,7 @@ def visit_order(visits) -> list[str]:
     ``visit10``, ``week4`` before ``week12``, ``1`` before ``2``), then by the text; the first is the baseline
     (decision C22)."""
     def key(v: str):
-        return _word_rank(v), [(0, int(t), "") if t.isdigit() else (1, 0, t) for t in re.split(r"(\d+)", v) if t], v
+        return _word_rank(v), *natural_key(v)  # decision C102: the natural order every table uses
 
     return sorted({str(v) for v in visits}, key=key)
 

@@ -122,3 +122,17 @@ def test_no_percent_change_of_a_percent_error_and_no_scientific_notation():
     assert "-1830 [-1830, -1830]" in text  # median_cadence_spm, not -1.83e+03
     assert "nan" not in changes_text(summary).to_markdown(index=False).lower()
 
+
+
+def test_every_pooled_table_lists_subjects_in_natural_order(batch):
+    """C102: sessions.csv, bouts.csv, strides.csv and groups.csv listed S10, S2, S9 (text order) while subjects.csv
+    listed 2, 9, 10 (natural order); now all are S2 < S9 < S10."""
+    _, out = batch
+    natural = ["S2", "S9", "S10"]
+    for table in ("sessions.csv", "bouts.csv", "strides.csv"):
+        paths = pd.read_csv(out / table, dtype={"path": str})["path"]
+        assert list(dict.fromkeys(p.split("/")[0] for p in paths)) == natural, table
+    assert pd.read_csv(out / "groups.csv")["group"].tolist() == natural
+    assert pd.read_csv(out / "subjects.csv", dtype={"subject": str})["subject"].drop_duplicates().tolist() == [
+        "2", "9", "10"]
+    assert pd.read_csv(out / "changes.csv", dtype={"subject": str})["subject"].tolist() == ["2", "9", "10"]
