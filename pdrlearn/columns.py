@@ -137,7 +137,8 @@ SESSIONS: tuple[Column, ...] = (
     ("final_y_m", "m", "number", "last tracked position, y"),
     ("final_z_m", "m", "number", "last tracked position, z (up)"),
     ("floors_down", "count", "integer", "storeys descended (3.0 m or --storey-height; L127)"),
-    ("floors_down_ref", "count", "integer", "storeys descended in the reference"),
+    ("floors_down_ref", "count", "integer", "storeys descended in the reference; empty without a reference "
+                                            "altitude track (C103)"),
     ("floors_up", "count", "integer", "storeys climbed"),
     ("floors_up_stairs", "count", "integer", "floors_up's storeys of climbs on stairs (L302: rise over run 20 % or "
                                              "more, walked); floors_up = stairs + ramps + rides"),
@@ -157,7 +158,8 @@ SESSIONS: tuple[Column, ...] = (
     ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a grade_source"),
     ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / other (L377; a foot "
                                     "track's from the waist barometer, L378); empty without a barometer"),
-    ("floors_up_ref", "count", "integer", "storeys climbed in the reference"),
+    ("floors_up_ref", "count", "integer", "storeys climbed in the reference; empty when the reference has no "
+                                          "altitude track (0: it has one, and no storey was climbed; C103)"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
     ("ic_timing_mean_ms", "ms", "number", "lower back: mean initial-contact time error against the reference"),
     ("ic_timing_sd_ms", "ms", "number", "lower back: SD of that error"),
@@ -291,7 +293,8 @@ SESSIONS: tuple[Column, ...] = (
     ("stereo_recall", "fraction", "number", "lower back: recall with both feet matched"),
     ("storey_height_m", "m", "number", "the storey height floors are counted in"),
     ("storeys_changed", "count", "integer", "net storeys (up minus down)"),
-    ("storeys_changed_ref", "count", "integer", "net storeys in the reference"),
+    ("storeys_changed_ref", "count", "integer", "net storeys in the reference; empty without a reference altitude "
+                                                "track (C103)"),
     ("stride_length_bias_m", "m", "number", "lower back: mean stride length error"),
     ("stride_length_composed", "count", "integer", "foot: labelled strides tiled by several tracked pieces"),
     ("stride_length_cv_pct", "%", "number", "foot: 100 x SD / mean of the lengths of the strides of "

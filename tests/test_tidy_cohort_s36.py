@@ -136,3 +136,38 @@ def test_every_pooled_table_lists_subjects_in_natural_order(batch):
     assert pd.read_csv(out / "subjects.csv", dtype={"subject": str})["subject"].drop_duplicates().tolist() == [
         "2", "9", "10"]
     assert pd.read_csv(out / "changes.csv", dtype={"subject": str})["subject"].tolist() == ["2", "9", "10"]
+
+
+def test_float_cells_have_no_exponent_and_no_float_noise(tmp_path):
+    """C103: steps.csv / strides.csv held ``-8.067625715e-05`` beside plain decimals, and the pooled tables' full
+    precision ``8.700000000000001``; one writer, 10 significant digits in plain decimals."""
+    from pdrlearn.table_csv import float_text, write_table_csv
+
+    assert float_text(-8.067625715e-05) == "-0.00008067625715" and float_text(8.700000000000001) == "8.7"
+    assert float_text(1.5e-05, digits=None) == "0.000015" and float_text(1e-09) == "0.000000001"
+    df = pd.DataFrame({"turn_angle_rad": [-8.067625715e-05, 0.5, float("nan")], "length_m": [8.700000000000001,
+                                                                                            1.0, 2.0]})
+    write_table_csv(df, tmp_path / "t.csv")
+    text = (tmp_path / "t.csv").read_text()
+    assert text == "turn_angle_rad,length_m\n-0.00008067625715,8.7\n0.5,1\n,2\n"
+    back = pd.read_csv(tmp_path / "t.csv")
+    assert back["turn_angle_rad"].iloc[0] == pytest.approx(-8.067625715e-05, rel=1e-12)
+
+
+def test_pooled_tables_and_steps_out_write_plain_decimals(batch, tmp_path):
+    """C103: track-all's pooled tables and ``steps --out`` are written as a track's tables (10 significant digits,
+    no exponent); sessions.csv keeps its full precision, without an exponent either."""
+    import re
+
+    root, out = batch
+    number = re.compile(r"^-?\d+(\.\d+)?$")
+    for table in ("strides.csv", "bouts.csv"):
+        cells = pd.read_csv(out / table, dtype=str, keep_default_na=False).to_numpy().ravel()
+        floats = [c for c in cells if re.fullmatch(r"-?[\d.]+(e[-+]\d+)?", c)]
+        assert floats and all(number.match(c) for c in floats), table
+        assert all(len(c.lstrip("-").replace(".", "").lstrip("0")) <= 10 for c in floats), table
+    assert "e-0" not in (out / "sessions.csv").read_text()
+    assert main(["steps", str(root / "S2/visit1"), "--out", str(tmp_path / "s.csv")]) == 0
+    cells = pd.read_csv(tmp_path / "s.csv", dtype=str, keep_default_na=False).to_numpy().ravel()
+    assert all(len(c.lstrip("-").replace(".", "").lstrip("0")) <= 10 for c in cells if number.match(c))
+

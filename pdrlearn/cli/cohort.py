@@ -855,9 +855,18 @@ def _paired_visits(rows: list[dict], visit_map: dict[str, str] | None) -> None:
         row["visit_as_written"], row["visit"] = row["visit"], paired
 
 
-def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
+def _write_csv_atomic(df: pd.DataFrame, path: Path, pooled: bool = False) -> None:
+    """One table of track-all, atomically. Decision C103: ``pooled`` (bouts.csv, strides.csv, periods.csv: the
+    sessions' own tables stacked) as each session's is written (:func:`pdrlearn.table_csv.write_table_csv`, 10
+    significant digits); the others at full precision (groups.csv = a groupby of sessions.csv as read back, C18);
+    both in plain decimals, never ``1e-05``."""
+    from pdrlearn.table_csv import positional_columns, write_table_csv
+
     tmp = path.with_name(f".{path.name}.tmp")
-    df.to_csv(tmp, index=False)  # full precision: groups.csv = a groupby of sessions.csv as read back
+    if pooled:
+        write_table_csv(df, tmp)
+    else:
+        df.assign(**positional_columns(df, digits=None)).to_csv(tmp, index=False)
     tmp.replace(path)
 
 
@@ -1084,13 +1093,14 @@ def track_all(
         _write_csv_atomic(groups, tmp / "groups.csv")
         if subjects is not None:
             _write_csv_atomic(subjects, tmp / "subjects.csv")
-        _write_csv_atomic(combined_bouts(tmp, rows), tmp / "bouts.csv")  # decision L165: every session's bouts
+        _write_csv_atomic(combined_bouts(tmp, rows), tmp / "bouts.csv", pooled=True)  # L165: every session's bouts
         _write_csv_atomic(combined_strides(tmp, rows, dict(zip(rels, found, strict=True))),
-                          tmp / "strides.csv")  # decision E163: every session's strides, one table
+                          tmp / "strides.csv", pooled=True)  # decision E163: every session's strides, one table
         if settings.get("per_s") is not None:  # decision L277: every session's periods, as bouts.csv (L165)
             from pdrlearn.track.periods import PERIOD_COLUMNS
 
-            _write_csv_atomic(combined_table(tmp, rows, "periods.csv", PERIOD_COLUMNS), tmp / "periods.csv")
+            _write_csv_atomic(combined_table(tmp, rows, "periods.csv", PERIOD_COLUMNS), tmp / "periods.csv",
+                              pooled=True)
         if changes is not None:  # decisions C22, C23
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")

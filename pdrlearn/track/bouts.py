@@ -195,6 +195,13 @@ def session_key(session) -> dict:
             "visit": meta_visit(meta)}
 
 
+def session_ids(session) -> dict:
+    """Decision C100: summary.json's ``subject`` and ``visit`` - meta.json's, as bouts.csv's (:func:`session_key`);
+    None when not named (or no session). ``track``, ``run`` and track-all's sessions write them."""
+    key = session_key(session)
+    return {"subject": key["subject"], "visit": key["visit"]}
+
+
 def session_leg_m(session) -> float | None:
     """Decision L195: the walker's leg length (m) from the session's meta.json (:func:`pdrlearn.track.gait.leg_length`,
     L148), by which each bout's walking range is scaled; None without a body measure (or without a session)."""

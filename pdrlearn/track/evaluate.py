@@ -1498,10 +1498,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
     summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where)))
     summary["session"] = session.name
-    from pdrlearn.track.bouts import session_key
+    from pdrlearn.track.bouts import session_ids
 
-    key = session_key(session)  # decision C100: meta.json's subject and visit, as bouts.csv's
-    summary["subject"], summary["visit"] = key["subject"], key["visit"]
+    summary.update(session_ids(session))  # decision C100: meta.json's subject and visit, as bouts.csv's
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
     summary["pipeline"] = pipeline if pipeline is not None else result.info.get("pipeline")
