@@ -171,3 +171,36 @@ def test_pooled_tables_and_steps_out_write_plain_decimals(batch, tmp_path):
     cells = pd.read_csv(tmp_path / "s.csv", dtype=str, keep_default_na=False).to_numpy().ravel()
     assert all(len(c.lstrip("-").replace(".", "").lstrip("0")) <= 10 for c in cells if number.match(c))
 
+
+def test_import_writes_the_visit_and_refuses_an_empty_one(tmp_path, capsys):
+    """B364: ``import`` had ``--subject`` but no ``--visit``, so a visit could only be set by editing meta.json; now
+    ``--visit`` writes it (kept by ``--merge``), and an empty one is one line, nothing written."""
+    from tests.sim_helpers import lab_columns, quiet_walk
+
+    lab_columns(quiet_walk("straight:8", 8863, seed=2)).to_csv(tmp_path / "u.csv", index=False)
+    imp = ["import", str(tmp_path / "u.csv"), "--acc-unit", "m/s^2", "--gyro-unit", "rad/s"]
+    assert main([*imp, "--subject", "030", "--visit", "visit2", "--out", str(tmp_path / "a")]) == 0
+    meta = json.loads((tmp_path / "a" / "meta.json").read_text())
+    assert (meta["subject"], meta["visit"]) == ("030", "visit2")
+    from pdrlearn.cohort import session_labels
+
+    assert session_labels(tmp_path / "a") == ("030", "visit2")
+    capsys.readouterr()
+    assert main([*imp, "--visit", " ", "--out", str(tmp_path / "b")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: import: --visit is empty; give the visit")
+    assert err.count("\n") == 1 and "Traceback" not in err and not (tmp_path / "b").exists()
+
+
+def test_simulate_writes_subject_and_visit(tmp_path, capsys):
+    """B364: ``simulate --subject / --visit`` write meta.json's ids (a study built without editing JSON); blank is
+    one line before anything is simulated."""
+    sim = ["simulate", "--route", "stand:1, straight:4, stand:1", "-u", "8864", "--rate", "100"]
+    assert main([*sim, "--subject", "030", "--visit", "2", "--out", str(tmp_path / "s")]) == 0
+    meta = json.loads((tmp_path / "s" / "meta.json").read_text())
+    assert (meta["subject"], meta["visit"]) == ("030", "2")
+    capsys.readouterr()
+    assert main([*sim, "--subject", "", "--out", str(tmp_path / "t")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: simulate: --subject is empty; give the subject's id") and "B364" in err
+    assert err.count("\n") == 1 and not (tmp_path / "t").exists()
