@@ -1476,6 +1476,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where),
                                 result.steps))  # decision L441: the belt strides
     summary["session"] = session.name
+    from pdrlearn.track.bouts import session_ids
+
+    summary.update(session_ids(session))  # decision C100: meta.json's subject and visit, as bouts.csv's
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
     summary["pipeline"] = pipeline if pipeline is not None else result.info.get("pipeline")
