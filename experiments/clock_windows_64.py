@@ -8,8 +8,6 @@ from __future__ import annotations
 
 import logging
 
-import numpy as np
-
 from pdrlearn.kernels.align import align_events, untrusted_reason
 from pdrlearn.sim import simulate_path
 from pdrlearn.sim.route import parse_route

@@ -42,7 +42,7 @@ def nearest_distance(times: np.ndarray, events: np.ndarray) -> np.ndarray:
 
 
 #: steps decision 64: the foot events are cut into windows of at most this span (foot clock, s; 60 s x 250 ppm = 15 ms
-#: of drift inside one, under the 0.12 s matching tolerance); None or a recording inside one window: one offset
+#: of drift inside one, under the 0.12 s matching tolerance); L446 checks the estimate against these windows
 ALIGN_WINDOW_S = 60.0
 #: ... a window with fewer foot events than this tells no offset (L183's least lock, MIN_LOCK_PAIRS)
 MIN_WINDOW_EVENTS = MIN_LOCK_PAIRS
@@ -89,7 +89,8 @@ def _refine(f: np.ndarray, w: np.ndarray, o: float, drift: float, ref: float, to
     return o, drift, ref, pairs_f, pairs_w
 
 
-def _line(t: np.ndarray, o: np.ndarray, n: np.ndarray, fit_drift: bool, min_span_s: float) -> tuple[float, float, float]:
+def _line(t: np.ndarray, o: np.ndarray, n: np.ndarray, fit_drift: bool,
+          min_span_s: float) -> tuple[float, float, float]:
     """Steps decision 64: the clock line ``(offset at ref, drift, ref)`` through window offsets ``o`` at times ``t``
     weighted by their event counts ``n`` (their weighted mean when they span under ``min_span_s``)."""
     ref = float(np.average(t, weights=n))
@@ -112,7 +113,7 @@ def window_offsets(f: np.ndarray, w: np.ndarray, *, window_s: float, max_offset_
             starts.append(i)
     bounds = [*starts, f.size]
     t_acc, o_acc, n_acc, bad = [], [], [], 0
-    for a, b in zip(bounds[:-1], bounds[1:]):
+    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
         fw = f[a:b]
         if fw.size < MIN_WINDOW_EVENTS:
             continue
@@ -146,7 +147,7 @@ def step_period(w: np.ndarray) -> float:
 
 def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: float = 0.005,
                  tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0,
-                 window_s: float | None = ALIGN_WINDOW_S) -> dict:
+                 window_s: float | None = None) -> dict:
     """Estimate ``offset_s`` (and ``drift``) so that ``foot + offset + drift * (foot - ref_s)`` meets waist events.
 
     Every foot stride event should coincide with one waist step event (the waist sees both feet), so the
@@ -160,9 +161,11 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
     t = 0: +184649 s on an epoch-ms clock); a constant shift by ``offset_s`` (``waist_clock_offset_s``,
     ``--clock-offset``) is the best drift-free alignment.
 
-    Steps decision 64: a recording longer than ``window_s`` is estimated window by window (:func:`window_offsets`):
-    the offset closest to 0 at the recording's start, then followed along the recording across step periods, so a
-    drift that moves the clock by more than half a step over hours is not read as the other foot's offset.
+    Steps decision 64 (an option, not adopted: decisions 64, 66): with ``window_s``, a recording longer than it is
+    estimated window by window (:func:`window_offsets`): the offset closest to 0 at the recording's start, then
+    followed along the recording across step periods, so a drift that moves the clock by more than half a step over
+    hours is not read as the other foot's offset. Without it the windows of :data:`ALIGN_WINDOW_S` are still
+    estimated, for decision L446's check of the one-offset line (:func:`untrusted_reason`).
 
     Limitation (docs/decisions/steps.md): a walk's step events are periodic, so offsets that differ by
     one step period (~0.5 s) match almost as well; bout starts and ends break the tie only when the
@@ -181,10 +184,11 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
         raise DataError(f"align_units: need at least 3 foot and 3 waist step events (got {f.size} and "
                         f"{w.size}); record a longer walk")
     wins = None
-    if window_s is not None and np.ptp(f) > window_s:  # steps decision 64
-        wins = window_offsets(f, w, window_s=window_s, max_offset_s=max_offset_s, step_s=step_s,
+    span = ALIGN_WINDOW_S if window_s is None else window_s
+    if np.ptp(f) > span:  # steps decision 64's windows: the estimate with window_s, L446's check always
+        wins = window_offsets(f, w, window_s=span, max_offset_s=max_offset_s, step_s=step_s,
                               tolerance_s=tolerance_s, fit_drift=fit_drift, min_span_s=min_span_s)
-    if wins is not None and wins["line"] is not None:
+    if window_s is not None and wins is not None and wins["line"] is not None:
         o, drift, ref = wins["line"]
     else:  # one window: the offset closest to 0 of the most matches (ties -> the smallest mean distance)
         heads = _grid_heads(f, w, 0.0, max_offset_s, step_s, tolerance_s)
