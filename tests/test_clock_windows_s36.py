@@ -35,6 +35,10 @@ def test_a_drift_past_half_a_step_is_followed_from_the_start_64():
     old = align_events(foot, waist)  # the default: one offset, a step off here, and L446 says it cannot be trusted
     assert abs(old["offset_s"] - (0.1 + 1000e-6 * old["ref_s"])) > 0.1
     assert "from the fitted clock" in untrusted_reason(old)
+    # L446's line names the windows' clock (steps 64's line at the clock's 0) as the likely fix
+    line = untrusted_message(old)
+    off0, ppm = (float(line.rsplit(flag, 1)[1].split()[0]) for flag in ("read --clock-offset", "--clock-drift-ppm"))
+    assert off0 == pytest.approx(0.1, abs=0.03) and ppm == pytest.approx(1000, abs=50)
 
 
 def test_a_drift_not_followable_between_walks_is_flagged_l446():

@@ -202,7 +202,9 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
     return {"offset_s": o, "drift": drift, "ref_s": ref, "matched": int(pairs_f.size), "foot_events": int(f.size),
             "residual_sd_s": float(resid.std()) if resid.size > 1 else float("nan"), "windows": n_win,
             "windows_inconsistent": 0 if wins is None else int(wins["inconsistent"]),
-            "window_residual_max_s": far, "step_period_s": step_period(w)}
+            "window_residual_max_s": far, "step_period_s": step_period(w),
+            # decision L446: the accepted windows' line (steps 64), named in the untrusted line as the likely clock
+            "window_line": None if wins is None or wins["line"] is None else [float(v) for v in wins["line"]]}
 
 
 #: decision L446: an estimate matching fewer than this fraction of the foot events cannot be trusted (bout ends cost at
@@ -236,10 +238,17 @@ def untrusted_message(estimate: dict, option: str = "--align-units") -> str | No
         return None
     head = (f"{option} kept the unit clocks" if option else "the unit clocks could not be checked")
     period = float(estimate.get("step_period_s", float("nan")))
+    line = estimate.get("window_line")
+    hint = ""
+    if line is not None and int(estimate.get("windows_inconsistent", 0)) <= int(estimate.get("windows", 1)) / 4:
+        off0, drift, ref = line  # steps 64's windows followed from the recording's start: at the clock's 0 (E111)
+        hint = (f"; the walking windows followed from the recording's start read --clock-offset "
+                f"{off0 - drift * ref:.3f} --clock-drift-ppm {drift * 1e6:.0f} (right if the units were started "
+                "within half a step of each other, steps decision 64)")
     return (f"{head}: the clock estimate cannot be trusted ({why}; it read {float(estimate['offset_s']):+.2f} s, "
             f"drift {float(estimate['drift']) * 1e6:+.0f} ppm, with a {period:.2f} s step period, and offsets a step "
             "apart look alike, decision L446); if the clocks are offset, give them by hand: --clock-offset SECONDS "
-            "--clock-drift-ppm PPM (the waist clock at the recording's start and its drift, decisions E111, B265)")
+            f"--clock-drift-ppm PPM (the waist clock at its 0 and its drift, decisions E111, B265){hint}")
 
 
 def unit_offset_message(offset_s: float, drift: float, command: str = "pdrlearn track",
