@@ -55,3 +55,15 @@ def test_a_clock_warning_empties_an_index_the_labels_would_give_l447(walks):
         out = track_asymmetry(s, steps, ["another warning", line])
         assert out["step_time_asymmetry_pct"] is None and out["n_step_time_asymmetry_steps"] == 0
         assert "decision L447" in out["step_time_asymmetry_reason"]
+
+
+def test_align_units_clock_labels_the_contacts_l447(walks, tmp_path):
+    """With --align-units' estimate applied, the index labels the lower back's contacts on the aligned clock (it had
+    read them on the waist's own clock: 4 strides labelled, no index), as --clock-offset's moved session does."""
+    out = {}
+    for name, extra in (("align", ["--align-units"]), ("given", ["--clock-offset", "0.3"])):
+        assert main(["track", str(walks / "offset"), "--out", str(tmp_path / name), *extra]) == 0
+        out[name] = json.loads((tmp_path / name / "summary.json").read_text())
+    assert out["align"]["info"]["unit_alignment"]["source"] == "estimated"
+    assert out["align"]["step_time_asymmetry_pct"] is not None and out["align"]["step_time_asymmetry_pct"] < 10
+    assert out["given"]["step_time_asymmetry_pct"] < 10  # the symmetric walker either way (0.19 % / 2.61 % read)

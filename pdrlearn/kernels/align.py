@@ -27,6 +27,12 @@ MIN_LOCK_PAIRS = 5
 LOCK_MAX_RESIDUAL_SD_S = 0.05
 
 
+def to_foot_clock(t_waist, offset_s: float, drift: float = 0.0, ref_s: float = 0.0):
+    """Waist-clock times moved onto the foot clock: ``ref_s + (t_waist - offset_s - ref_s) / (1 + drift)`` (the
+    module's model solved for ``t_f``; ``apply_alignment`` and decision L447's contacts share it)."""
+    return ref_s + (t_waist - offset_s - ref_s) / (1.0 + drift)
+
+
 def offset_locked(estimate: dict) -> bool:
     """Decision L183: whether :func:`align_events`' ``estimate`` locked the two event trains (enough matched events,
     matched tighter than chance); an estimate that did not (a queue's start-stop shuffles, 1-2 strides a bout) tells

@@ -1514,7 +1514,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
 
     summary["steady_trim"] = steady_trim()  # decision L415: the bout ends left out of the steady measures
     # decision L416: a foot unit and the lower back together (L447: not on clocks said to be offset)
-    summary.update(track_asymmetry(session, result.steps, result.info.get("warnings", ())))
+    summary.update(track_asymmetry(session, result.steps, result.info.get("warnings", ()),
+                                   result.info.get("unit_alignment")))
     from pdrlearn import __version__
 
     summary["pdrlearn_version"] = __version__  # decision C18: which pdrlearn wrote the numbers
