@@ -135,7 +135,8 @@ def _subfolders(p: Path) -> list[Path]:
 
 
 def find_sessions(root: str | os.PathLike) -> list[Path]:
-    """Every session folder under ``root`` at any depth (sorted by relative path; hidden folders and the
+    """Every session folder under ``root`` at any depth (in natural order of their relative paths, folder by folder:
+    ``S2`` before ``S10``, decision C102; hidden folders and the
     inside of a session folder are not searched; a folder reached again through a symbolic link is searched
     once, with a warning). ``root`` itself being a session is an error: a batch command wants a folder of
     sessions (decision C12)."""
@@ -152,7 +153,7 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
     seen = {root.resolve(): root}  # a folder reached again through a symbolic link (a loop: forever) is walked once
 
     def walk(d: Path) -> None:
-        for p in sorted(d.iterdir()):
+        for p in sorted(d.iterdir(), key=lambda p: natural_key(p.name)):  # decision C102
             if p.name.startswith("."):
                 continue
             if p.is_symlink() and not p.exists():  # decision B315: a dangling link may be a session not mounted
@@ -410,7 +411,7 @@ def session_group(rel_path: str, depth: int = 1) -> str:
     return "/".join(parts[:min(depth, len(parts) - 1)]) or "."
 
 
-def meta_user_key(meta: dict) -> str | None:
+def meta_user_key(meta: dict, where: str | os.PathLike | None = None) -> str | None:
     """The user a session was recorded from, by its ``meta.json`` (decision C29): ``user`` (a string, or an object
     with ``id`` or ``seed``, as the simulator writes) or ``subject`` (a string, or an object with ``id`` or
     ``participant_id``, as the mobgap converter writes), as ``user:anna`` / ``subject.id:7``; ``None`` when it
@@ -419,8 +420,9 @@ def meta_user_key(meta: dict) -> str | None:
     ``{"cohort": "MS", "participant_id": "001"}`` are two people: ``subject.cohort:HA.participant_id:001``)."""
     for key, ids in (("user", ("id", "seed")), ("subject", ("id", "participant_id"))):
         v = meta.get(key)
-        if isinstance(v, str) and v.strip():
-            return f"{key}:{v.strip()}"
+        text = id_text(meta, key, where)  # decision C99: a whole number is its text
+        if text:
+            return f"{key}:{text}"
         if isinstance(v, dict):
             for k in ids:
                 if v.get(k) is not None and str(v[k]).strip():
@@ -434,15 +436,40 @@ def meta_user_key(meta: dict) -> str | None:
 SUBJECT_SCOPES = ("study", "site", "centre", "center", "cohort")
 
 
-def meta_user(meta: dict) -> str | None:
+def meta_user(meta: dict, where: str | os.PathLike | None = None) -> str | None:
     """A session's user or subject by name (decisions B88, C48): ``user`` / ``subject`` text as written (``anna``),
     else :func:`meta_user_key`'s name of an object (``user.seed:3`` for a simulated session); ``None`` when the
     meta.json names none. The one-user model's name, and track-all's ``subject`` (cohort C22)."""
     for key in ("user", "subject"):
-        v = meta.get(key)
-        if isinstance(v, str) and v.strip():
-            return v.strip()
-    return meta_user_key(meta)
+        text = id_text(meta, key, where)  # decision C99: a whole number is its text
+        if text:
+            return text
+    return meta_user_key(meta, where)
+
+
+def id_text(meta: dict, key: str, where: str | os.PathLike | None = None) -> str | None:
+    """Decision C99: meta.json's ``key`` (``user`` / ``subject``) as an id's text - a string stripped, a whole JSON
+    number as its digits (``8830`` -> ``"8830"``; a roster-driven script writes ids as numbers); None when absent,
+    blank or an object (:func:`meta_user_key` names an object). Decision B363: a ``subject`` that is a fractional
+    number, true/false or a list is refused in one line naming the file (``where``: the session folder)."""
+    v = meta.get(key)
+    if isinstance(v, str):
+        return v.strip() or None
+    if isinstance(v, int) and not isinstance(v, bool):
+        return str(v)
+    if key == "subject" and isinstance(v, bool | float | list):
+        file = "meta.json" if where is None else f"{Path(where) / 'meta.json'}"
+        kind = "true/false" if isinstance(v, bool) else "a list" if isinstance(v, list) else "a fractional number"
+        raise DataError(f"{file}: \"subject\": {json_text(v)} is {kind}, not an id; write the id as text "
+                        f"(\"subject\": \"P01\") or a whole number (decision B363)")
+    return None
+
+
+def json_text(v) -> str:
+    """``v`` as JSON writes it (``true``, ``8830.5``, ``[1, 2]``), for an error line."""
+    import json
+
+    return json.dumps(v)
 
 
 def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
@@ -459,10 +486,16 @@ def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
         return None, None
     if not isinstance(meta, dict):
         return None, None
+    return meta_user(meta, folder), meta_visit(meta)
+
+
+def meta_visit(meta: dict) -> str | None:
+    """Cohort C22: meta.json's ``visit`` as text (a number as its text), None when it names none (C100: also a single
+    track's summary.json and bouts.csv ``visit``)."""
     visit = meta.get("visit")
     if isinstance(visit, bool) or not isinstance(visit, str | int | float) or not str(visit).strip():
-        visit = None
-    return meta_user(meta), None if visit is None else str(visit).strip()
+        return None
+    return str(visit).strip()
 
 
 #: Decision L137: meta.json fields that only name a session (who, which visit, what it is called, notes), not
@@ -521,7 +554,7 @@ GROUP_METRICS = ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "
 
 
 def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
-    """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (sorted) with
+    """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (natural order, C102) with
     ``n_tracked`` (sessions tracked; decision C19: was ``n_sessions``, which ``track-all --json`` uses for every
     session found), ``n_failed``, and for each metric column that has a value in some tracked session
     ``<metric>_n`` (sessions with a value), ``_mean``, ``_sd`` (sample standard deviation, n - 1; empty for
@@ -531,7 +564,7 @@ def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
     import pandas as pd
 
     ok = sessions[sessions["status"] == "ok"]
-    groups = sorted(sessions["group"].astype(str).unique())
+    groups = sorted(sessions["group"].astype(str).unique(), key=natural_key)  # decision C102
     out = pd.DataFrame({"group": groups})
     out["n_tracked"] = [int((ok["group"].astype(str) == g).sum()) for g in groups]
     out["n_failed"] = [int(((sessions["group"].astype(str) == g) & (sessions["status"] != "ok")).sum())
@@ -557,6 +590,30 @@ def groups_text(groups):
     shown = groups[["group", "n_tracked", "n_failed"]].copy()
     for m in GROUP_METRICS:
         if f"{m}_mean" in groups:
-            shown[m] = [("" if pd.isna(mu) else f"{mu:.3g}" + ("" if pd.isna(sd) else f" ± {sd:.2g}") + f" ({n})")
+            shown[m] = [("" if pd.isna(mu) else plain_number(mu) + ("" if pd.isna(sd) else
+                                                                      f" ± {plain_number(sd, 2)}") + f" ({n})")
                         for mu, sd, n in zip(groups[f"{m}_mean"], groups[f"{m}_sd"], groups[f"{m}_n"], strict=True)]
     return shown
+
+
+def plain_number(x: float, digits: int = 3, sign: bool = False) -> str:
+    """Decision C101: ``x`` to ``digits`` significant digits in plain decimals, never in scientific notation
+    (``2070``, not ``2.07e+03``; ``0.000123``, not ``1.23e-04``; trailing zeros dropped as by ``%g``), as
+    track-all's printed summaries show numbers; ``sign``: a leading ``+`` on a positive value. ``nan`` / ``inf``
+    as Python writes them."""
+    import math
+
+    if not math.isfinite(x) or x == 0:
+        return f"{x:+g}" if sign else f"{x:g}"
+    decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
+    text = f"{x:{'+' if sign else ''}.{decimals}f}"
+    return text.rstrip("0").rstrip(".") if "." in text else text  # as %g: no trailing zeros
+
+
+def natural_key(text: str) -> tuple:
+    """Decision C102: the sort key of a name in natural order - runs of digits compared as numbers (``S2`` < ``S9`` <
+    ``S10``, ``visit2`` < ``visit10``), then the text itself (so ``S01`` and ``S1`` keep one order). Every pooled
+    table of track-all lists its rows in this order (sessions by their folders, groups, subjects and visits)."""
+    import re
+
+    return [(0, int(t), "") if t.isdigit() else (1, 0, t) for t in re.split(r"(\d+)", text) if t], text

@@ -35,7 +35,8 @@ def _clocks(*of: str) -> tuple[Column, ...]:
 SESSIONS: tuple[Column, ...] = (
     ("path", _ID, "text", "the session folder relative to ROOT (the row's key)"),
     ("group", _ID, "text", "the first --group-depth folder levels of path (siteA)"),
-    ("subject", _ID, "text", "meta.json subject (or user, when a name); empty when not given (C22)"),
+    ("subject", _ID, "text", "meta.json subject (or user, when a name; a whole number as its text, C99); empty "
+                             "when not given (C22; also a track's summary.json, C100)"),
     ("visit", _ID, "text", "the visit as changes.csv and subjects.csv name it (C82): meta.json visit, --visit-map "
                            "applied and spellings of one visit made one (C28, C29); empty when not given (C22)"),
     ("visit_as_written", _ID, "text", "meta.json visit as written (C82)"),
@@ -136,7 +137,8 @@ SESSIONS: tuple[Column, ...] = (
     ("final_y_m", "m", "number", "last tracked position, y"),
     ("final_z_m", "m", "number", "last tracked position, z (up)"),
     ("floors_down", "count", "integer", "storeys descended (3.0 m or --storey-height; L127)"),
-    ("floors_down_ref", "count", "integer", "storeys descended in the reference"),
+    ("floors_down_ref", "count", "integer", "storeys descended in the reference; empty without a reference "
+                                            "altitude track (C103)"),
     ("floors_up", "count", "integer", "storeys climbed"),
     ("floors_up_stairs", "count", "integer", "floors_up's storeys of climbs on stairs (L302: rise over run 20 % or "
                                              "more, walked); floors_up = stairs + ramps + rides"),
@@ -156,7 +158,8 @@ SESSIONS: tuple[Column, ...] = (
     ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a grade_source"),
     ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / other (L377; a foot "
                                     "track's from the waist barometer, L378); empty without a barometer"),
-    ("floors_up_ref", "count", "integer", "storeys climbed in the reference"),
+    ("floors_up_ref", "count", "integer", "storeys climbed in the reference; empty when the reference has no "
+                                          "altitude track (0: it has one, and no storey was climbed; C103)"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
     ("ic_timing_mean_ms", "ms", "number", "lower back: mean initial-contact time error against the reference"),
     ("ic_timing_sd_ms", "ms", "number", "lower back: SD of that error"),
@@ -298,7 +301,8 @@ SESSIONS: tuple[Column, ...] = (
     ("stereo_recall", "fraction", "number", "lower back: recall with both feet matched"),
     ("storey_height_m", "m", "number", "the storey height floors are counted in"),
     ("storeys_changed", "count", "integer", "net storeys (up minus down)"),
-    ("storeys_changed_ref", "count", "integer", "net storeys in the reference"),
+    ("storeys_changed_ref", "count", "integer", "net storeys in the reference; empty without a reference altitude "
+                                                "track (C103)"),
     ("stride_length_bias_m", "m", "number", "lower back: mean stride length error"),
     ("stride_length_composed", "count", "integer", "foot: labelled strides tiled by several tracked pieces"),
     ("stride_length_cv_pct", "%", "number", "foot: 100 x SD / mean of the lengths of the strides of "
@@ -501,7 +505,9 @@ CHANGES: tuple[Column, ...] = (
     ("{measure}_baseline", "as the measure", "number", "the baseline visit's value (its trials' mean, C83)"),
     ("{measure}_change", "as the measure", "number", "later visit minus baseline (C22)"),
     ("{measure}_change_pct", "%", "number", "100 x change / |baseline|: the dual-task cost when the visits are "
-                                            "single and dual (C81); empty when the baseline is 0"),
+                                            "single and dual (C81); empty when the baseline is 0; not written "
+                                            "for a percent error, distance_error_pct or any *error*_pct / *mae*_pct "
+                                            "(its change is in points, C101)"),
 )
 
 #: decisions C23, C81, C85: track-all's changes_summary.csv, one row per later visit, baseline and measure
@@ -518,7 +524,7 @@ CHANGES_SUMMARY: tuple[Column, ...] = (
     ("n_pct_subjects", "count", "integer", "subjects with a percent change: n_subjects less those whose baseline is "
                                            "0 (C85)"),
     ("mean_pct_change", "%", "number", "the mean of the subjects' percent changes, 100 x change / |baseline| "
-                                       "(the mean dual-task cost; C81)"),
+                                       "(the mean dual-task cost; C81); empty for a percent error (C101)"),
     ("sd_pct_change", "%", "number", "their standard deviation (n - 1)"),
     ("pct_ci95_low", "%", "number", "the paired 95 % t-interval of the mean percent change, low (C81)"),
     ("pct_ci95_high", "%", "number", "its high end"),
@@ -528,10 +534,11 @@ CHANGES_SUMMARY: tuple[Column, ...] = (
 
 BOUTS: tuple[Column, ...] = (
     ("path", _ID, "text", "track-all's OUT/bouts.csv only: the session's path, sessions.csv's key (L165)"),
-    ("visit", _ID, "text", "track-all's OUT/bouts.csv only: the session's visit as sessions.csv names it (L165, "
-                           "C82)"),
+    ("visit", _ID, "text", "a track's bouts.csv: meta.json's visit, empty when not given (C100); track-all's "
+                           "OUT/bouts.csv: the session's visit as sessions.csv names it (L165, C82)"),
     ("session", _ID, "text", "the session's name (meta.json's session, else the folder; L165)"),
-    ("subject", _ID, "text", "meta.json subject (or user); empty when not given (L165)"),
+    ("subject", _ID, "text", "meta.json subject (or user; a whole number as its text, C99); empty when not given "
+                             "(L165)"),
     ("bout", "index", "integer", "the bout's number in the session, from 1"),
     ("start_s", "s", "number", "start (first step's start), on the session's clock"),
     ("end_s", "s", "number", "end (last step's end), on the session's clock"),
@@ -639,6 +646,8 @@ TURNS: tuple[Column, ...] = (
 PERIODS: tuple[Column, ...] = (
     ("session", _ID, "text", "meta.json's session name (bouts.csv's key, L165)"),
     ("subject", _ID, "text", "meta.json's subject; empty when not given"),
+    ("visit", _ID, "text", "meta.json's visit, empty when not given (C100); track-all's OUT/periods.csv: "
+                           "sessions.csv's visit (C82)"),
     ("period", "index", "integer", "the period's number, from 1"),
     ("start_s", "s", "number", "the period's start on the session's clock (the recording's start + k x --per; "
                                "--per-align clock: the clock's whole periods, L299)"),
@@ -1074,6 +1083,7 @@ STRIDES: tuple[Column, ...] = (
     ("path", _ID, "text", "the session's sessions.csv path (its key)"),
     ("visit", _ID, "text", "sessions.csv's visit (C82)"),
     ("session", _ID, "text", "the session's name (summary.json session)"),
+    ("subject", _ID, "text", "sessions.csv's subject (C100)"),
     ("foot", _ID, "text", "left or right from the session's meta.json (foot / instrumented_foot, L260); empty where "
                           "not known"),
     ("turn_deg", "deg", "number", "a foot row's turn_angle_rad in degrees (left +); empty on a lower-back row"),

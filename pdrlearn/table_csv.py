@@ -27,17 +27,52 @@ def write_table_csv(df, path) -> None:
             ok = np.isfinite(v)
             if ok.any() and np.abs(v[ok]).max() >= WIDE_FLOAT_MIN:
                 wide[c] = [None if x != x else wide_float_text(x) for x in v.tolist()]  # None: to_csv's NaN
+    wide.update(positional_columns(df.drop(columns=list(wide)), digits=10))  # decision C103: no 1e-05
     (df.assign(**wide) if wide else df).to_csv(path, index=False, float_format=CSV_FLOAT_FORMAT)
+
+
+#: decision C103: below this magnitude ``%g`` (and Python's repr) write a float in scientific notation
+EXPONENT_BELOW = 1e-4
+
+
+def float_text(x: float, digits: int | None = 10) -> str:
+    """Decision C103: one float as every CSV table of pdrlearn writes it - ``digits`` significant digits (``%.10g``,
+    E157; ``None``: Python's shortest round-trip repr, the full precision of track-all's sessions.csv), always in
+    plain decimals: ``-0.00008067625715``, not ``-8.067625715e-05`` (R's readr and a spreadsheet read both, a
+    reader's eye only one); the same value, and byte for byte the same text for every value %g writes without an
+    exponent. NaN empty, ``inf`` / ``-inf`` as ``to_csv`` writes them."""
+    from decimal import Decimal
+
+    if x != x:
+        return ""
+    text = repr(float(x)) if digits is None else f"{x:.{digits}g}"
+    return format(Decimal(text), "f") if "e" in text and abs(x) != float("inf") else text
+
+
+def positional_columns(df, digits: int | None = 10) -> dict:
+    """Decision C103: the float columns of ``df`` that ``%g`` / repr would write with an exponent somewhere (a finite
+    non-zero value under :data:`EXPONENT_BELOW`, or of 1e15 or more), each as :func:`float_text` cells (None for NaN:
+    ``to_csv``'s empty cell); ``df.assign(**...)`` writes them in plain decimals, the other columns unchanged."""
+    import numpy as np
+
+    out = {}
+    for c in df.columns:
+        if df[c].dtype.kind == "f":
+            v = np.abs(np.asarray(df[c], dtype=float))
+            ok = np.isfinite(v) & (v > 0)
+            if ok.any() and ((v[ok] < EXPONENT_BELOW).any() or (v[ok] >= 1e15).any()):
+                out[c] = [None if x != x else float_text(x, digits) for x in df[c].tolist()]
+    return out
 
 
 def wide_float_text(x: float) -> str:
     """Decision E164 (amended, review R2): one value of a wide float column: NaN empty (as ``to_csv`` writes it),
     ``inf`` / ``-inf`` as ``to_csv`` writes them, a magnitude of :data:`WIDE_FLOAT_MIN` or more with
     :data:`WIDE_FLOAT_DECIMALS` fixed decimals (trailing zeros dropped), any other value at
-    :data:`CSV_FLOAT_FORMAT` (a small non-zero value stays non-zero: ``1e-09``, not ``0`` / ``-0``). The lean
-    runtime's ``_num`` writes the same."""
+    :data:`CSV_FLOAT_FORMAT` (a small non-zero value stays non-zero: ``0.000000001``, not ``0`` / ``-0``; C103: not
+    ``1e-09``). The lean runtime's ``_num`` writes the same."""
     if x != x:
         return ""
     if abs(x) >= WIDE_FLOAT_MIN and abs(x) != float("inf"):
         return f"{x:.{WIDE_FLOAT_DECIMALS}f}".rstrip("0").rstrip(".")
-    return CSV_FLOAT_FORMAT % x
+    return float_text(x)  # decision C103: a small value in plain decimals

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 
-from pdrlearn.cohort import GROUP_METRICS, t_interval
+from pdrlearn.cohort import GROUP_METRICS, natural_key, t_interval
 
 #: changes.csv's leading columns (decision C22; C82: the visits as meta.json wrote them; C83: the trials averaged);
 #: ``<measure>_baseline``, ``<measure>_change`` and ``<measure>_change_pct`` (C81) follow per measure
@@ -105,7 +105,7 @@ def visit_order(visits) -> list[str]:
     ``visit10``, ``week4`` before ``week12``, ``1`` before ``2``), then by the text; the first is the baseline
     (decision C22)."""
     def key(v: str):
-        return _word_rank(v), [(0, int(t), "") if t.isdigit() else (1, 0, t) for t in re.split(r"(\d+)", v) if t], v
+        return _word_rank(v), *natural_key(v)  # decision C102: the natural order every table uses
 
     return sorted({str(v) for v in visits}, key=key)
 
@@ -503,16 +503,28 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
                 v = pd.to_numeric(v_row[m], errors="coerce") if both else np.nan
                 row[f"{m}_baseline"] = b
                 row[f"{m}_change"] = v - b  # later visit minus baseline (decision C22)
-                row[f"{m}_change_pct"] = pct_change(b, v)  # decision C81
+                if "change_pct" in change_kinds(m):  # decision C101: none of a percent error
+                    row[f"{m}_change_pct"] = pct_change(b, v)  # decision C81
             rows.append(row)
-    out = pd.DataFrame(rows).reindex(columns=[*CHANGE_COLUMNS, *(f"{m}_{k}" for m in measures for k in CHANGE_KINDS)])
+    out = pd.DataFrame(rows).reindex(columns=[*CHANGE_COLUMNS, *(f"{m}_{k}" for m in measures
+                                                                 for k in change_kinds(m))])
     for c in ("baseline_n_trials", "n_trials"):
         out[c] = out[c].astype("Int64")
     return out
 
 
-#: each measure's columns in changes.csv, in order (decisions C22, C81)
+#: each measure's columns in changes.csv, in order (decisions C22, C81; C101: a percent error has no ``change_pct``)
 CHANGE_KINDS = ("baseline", "change", "change_pct")
+#: decision C101: a measure that is itself a percent error against a reference (``distance_error_pct``, signed;
+#: ``stride_length_mae_pct``, unsigned): its change is in percentage points; a percent change of it (a ratio of a
+#: ratio, near 0 for a good track: +7746 % in trial T4) is no outcome
+ERROR_PCT = re.compile(r"(?:error|mae)\w*_pct$")
+
+
+def change_kinds(measure: str) -> tuple[str, ...]:
+    """changes.csv's columns of ``measure`` (:data:`CHANGE_KINDS`), without ``change_pct`` for a percent error
+    (:data:`ERROR_PCT`, decision C101: its absolute change is kept)."""
+    return CHANGE_KINDS[:2] if ERROR_PCT.search(measure) else CHANGE_KINDS
 
 
 def pct_change(baseline, later):
@@ -615,10 +627,13 @@ def changes_text(summary):
     paired."""
     import pandas as pd
 
-    def cell(mean, low, high) -> str:
+    from pdrlearn.cohort import plain_number
+
+    def cell(mean, low, high) -> str:  # decision C101: no scientific notation
         if pd.isna(mean):
             return ""
-        return f"{mean:+.3g}" + ("" if pd.isna(low) else f" [{low:.3g}, {high:.3g}]")
+        return plain_number(mean, sign=True) + ("" if pd.isna(low) else
+                                                f" [{plain_number(low)}, {plain_number(high)}]")
 
     nan = pd.Series(float("nan"), index=summary.index)
     pct = [summary.get(c, nan) for c in ("mean_pct_change", "pct_ci95_low", "pct_ci95_high")]  # decision C81
@@ -628,5 +643,6 @@ def changes_text(summary):
                          "mean change [95 % CI]": [cell(*r) for r in zip(
                              summary["mean_change"], summary["ci95_low"], summary["ci95_high"], strict=True)],
                          "mean % change [95 % CI]": [cell(*r) for r in zip(*pct, strict=True)],
-                         "n % change": summary.get("n_pct_subjects", nan),  # C85: a zero baseline has none
+                         "n % change": ["" if pd.isna(n) else int(n) for n in  # C85: a zero baseline: 0
+                                        summary.get("n_pct_subjects", nan)],  # C101: a percent error none at all
                          "not paired": summary["not_paired"].fillna("")})

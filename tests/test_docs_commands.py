@@ -389,7 +389,7 @@ FREE_TEXT = {("track", "model"), ("track-all", "model"), ("run", "protocol"), ("
              ("train-all", "scheduler"), ("evaluate-all", "scheduler"), ("report", "title"), ("import", "time"),
              ("import", "acc"), ("import", "gyro"), ("import", "mag"), ("import", "baro"), ("import", "heel"),
              ("import", "toe"), ("import", "time_format"), ("import", "time_zone"), ("import", "name"),
-             ("import", "subject"),
+             ("import", "subject"), ("import", "visit"), ("simulate", "subject"), ("simulate", "visit"),  # B364
              ("plot", "steps")}  # labels, detected or a path (decision L70)
 
 

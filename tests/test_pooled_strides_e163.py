@@ -28,7 +28,7 @@ def test_track_all_writes_one_strides_table_with_the_session_and_foot(batch):
     pooled = pd.read_csv(batch / "strides.csv")
     per = {p: pd.read_csv(batch / p / "steps.csv") for p in ("u8107", "u8108")}
     assert len(pooled) == sum(len(s) for s in per.values())
-    assert list(pooled.columns[:6]) == ["path", "visit", "session", "foot", "turn_deg", "is_turn"]
+    assert list(pooled.columns[:7]) == ["path", "visit", "session", "subject", "foot", "turn_deg", "is_turn"]  # C100
     assert undocumented("strides.csv", pooled.columns) == []
     for p, steps in per.items():
         mine = pooled[pooled["path"] == p].reset_index(drop=True)

@@ -762,7 +762,7 @@ def session_user(session) -> str | None:
     (:func:`pdrlearn.cohort.meta_user_key`, which track-all's changes.csv reads too, cohort C22)."""
     from pdrlearn.cohort import meta_user_key
 
-    return meta_user_key(getattr(session, "meta", None) or {})
+    return meta_user_key(getattr(session, "meta", None) or {}, getattr(session, "folder", None))
 
 
 def _one_user(session) -> str | None:
@@ -771,7 +771,7 @@ def _one_user(session) -> str | None:
     object itself); None when it names none (:func:`pdrlearn.cohort.meta_user`, track-all's subject, C22)."""
     from pdrlearn.cohort import meta_user
 
-    return meta_user(getattr(session, "meta", None) or {})
+    return meta_user(getattr(session, "meta", None) or {}, getattr(session, "folder", None))
 
 
 def check_user(user: str | None, where: str = "train: --user") -> str | None:

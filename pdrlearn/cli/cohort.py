@@ -839,7 +839,8 @@ def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
 def combined_strides(out: Path, rows: list[dict], inputs: dict[str, Path]) -> pd.DataFrame:
     """Decisions E163 / L422: every tracked session's steps.csv (``out/<path>/steps.csv``) stacked in sessions.csv's
     order (:func:`pdrlearn.track.pooled.session_strides`), each row led by its session's ``path``, ``visit``, the
-    session's name, its ``foot`` (meta.json of ``inputs[path]``, L260's keys; empty where not known), ``turn_deg`` and
+    session's name, its ``subject`` (C100),
+    its ``foot`` (meta.json of ``inputs[path]``, L260's keys; empty where not known), ``turn_deg`` and
     ``is_turn`` (the session's turns.csv)."""
     import pandas as pd
 
@@ -861,8 +862,8 @@ def combined_strides(out: Path, rows: list[dict], inputs: dict[str, Path]) -> pd
         except (OSError, ValueError, KeyError, DataError):
             meta = {}
         parts.append(session_strides(steps, turns, path=row["path"], visit=row.get("visit"),
-                                     session=row.get("session"), foot=session_foot(meta if isinstance(meta, dict)
-                                                                                   else {})))
+                                     session=row.get("session"), subject=row.get("subject"),  # decision C100
+                                     foot=session_foot(meta if isinstance(meta, dict) else {})))
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=list(STRIDE_KEYS))
 
 
@@ -875,7 +876,7 @@ def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -
 
     from pdrlearn.track.clock import CLOCK_COLUMNS
 
-    cols = [*COMBINED_BOUT_KEYS, *columns]
+    cols = [*COMBINED_BOUT_KEYS, *(c for c in columns if c not in COMBINED_BOUT_KEYS)]  # C100: the table's visit
     parts = []
     for row in rows:
         if row["status"] == "ok" and (out / row["path"] / name).is_file():
@@ -903,9 +904,18 @@ def _paired_visits(rows: list[dict], visit_map: dict[str, str] | None) -> None:
         row["visit_as_written"], row["visit"] = row["visit"], paired
 
 
-def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
+def _write_csv_atomic(df: pd.DataFrame, path: Path, pooled: bool = False) -> None:
+    """One table of track-all, atomically. Decision C103: ``pooled`` (bouts.csv, strides.csv, periods.csv: the
+    sessions' own tables stacked) as each session's is written (:func:`pdrlearn.table_csv.write_table_csv`, 10
+    significant digits); the others at full precision (groups.csv = a groupby of sessions.csv as read back, C18);
+    both in plain decimals, never ``1e-05``."""
+    from pdrlearn.table_csv import positional_columns, write_table_csv
+
     tmp = path.with_name(f".{path.name}.tmp")
-    df.to_csv(tmp, index=False)  # full precision: groups.csv = a groupby of sessions.csv as read back
+    if pooled:
+        write_table_csv(df, tmp)
+    else:
+        df.assign(**positional_columns(df, digits=None)).to_csv(tmp, index=False)
     tmp.replace(path)
 
 
@@ -1132,13 +1142,14 @@ def track_all(
         _write_csv_atomic(groups, tmp / "groups.csv")
         if subjects is not None:
             _write_csv_atomic(subjects, tmp / "subjects.csv")
-        _write_csv_atomic(combined_bouts(tmp, rows), tmp / "bouts.csv")  # decision L165: every session's bouts
+        _write_csv_atomic(combined_bouts(tmp, rows), tmp / "bouts.csv", pooled=True)  # L165: every session's bouts
         _write_csv_atomic(combined_strides(tmp, rows, dict(zip(rels, found, strict=True))),
-                          tmp / "strides.csv")  # decision E163: every session's strides, one table
+                          tmp / "strides.csv", pooled=True)  # decision E163: every session's strides, one table
         if settings.get("per_s") is not None:  # decision L277: every session's periods, as bouts.csv (L165)
             from pdrlearn.track.periods import PERIOD_COLUMNS
 
-            _write_csv_atomic(combined_table(tmp, rows, "periods.csv", PERIOD_COLUMNS), tmp / "periods.csv")
+            _write_csv_atomic(combined_table(tmp, rows, "periods.csv", PERIOD_COLUMNS), tmp / "periods.csv",
+                              pooled=True)
         if changes is not None:  # decisions C22, C23
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")

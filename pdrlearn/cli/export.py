@@ -725,7 +725,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.runtime.waist import WAIST_SENSORS, WaistTracker, load_waist_bundle
     from pdrlearn.signal import interp_rows
     from pdrlearn.track.base import TrackResult
-    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
+    from pdrlearn.track.bouts import detected_bouts, session_ids, session_key, session_leg_m
     from pdrlearn.track.evaluate import evaluate_track, floors_phrase, summary_info
 
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
@@ -834,7 +834,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
                                                                        storey_height_m=storey_height_m),
-               "session": session.name,
+               "session": session.name, **session_ids(session),  # decision C100, as track's
                "pipeline": "runtime", "bundle_kind": "waist", "info": summary_info(result.info),  # E141
                "final_position": {"x": written_floats(float(tracker.position[0])),  # decision E157
                                   "y": written_floats(float(tracker.position[1])), "z": float(traj["z"].iloc[-1]),
@@ -917,10 +917,12 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     out["final_position"] = {**dict(zip("xyz", written_floats([float(v) for v in tracker.position]), strict=True)),
                              **geo}  # decision E157: at the CSVs' digits
     if session is not None:
+        from pdrlearn.track.bouts import session_ids
         from pdrlearn.track.clinical import contact_timing
 
         out.update(contact_timing(session, result.steps))  # decision L116, as track's summary
         out["session"] = session.name
+        out.update(session_ids(session))  # decision C100: meta.json's subject and visit, as track's
         # cohort C13: the folder tracked, as track's summary.json (copies of a session share its name)
         out["input_dir"] = str(session.folder.resolve()) if session.folder is not None else None
     out["pipeline"] = "runtime"

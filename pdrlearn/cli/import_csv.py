@@ -119,6 +119,8 @@ def import_command(
                              "\"foot\" (pdrlearn gait checks the side given against it; B321)."),
     subject: str = typer.Option(None, "--subject", help="The subject's id, written to meta.json \"subject\" "
                                 "(sessions.csv and subjects.csv group by it; B345)."),
+    visit: str = typer.Option(None, "--visit", help="The visit's name, written to meta.json \"visit\" (track-all "
+                              "pairs each subject's visits by it in changes.csv; B364)."),
     encoding: str = typer.Option(None, "--encoding", help="The CSV's text encoding, e.g. cp1252 (German Excel's "
                                  "plain 'CSV (Trennzeichen-getrennt)'; default utf-8, a BOM accepted), also of the "
                                  "--steps, --labels and --add-gravity tables that are not UTF-8 (B344)."),
@@ -282,7 +284,8 @@ def import_command(
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
               drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime,
-              foot=foot, no_header=no_header, encoding=encoding, subject=subject)
+              foot=foot, no_header=no_header, encoding=encoding, subject=subject,
+              visit=visit)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
         if len(parts) > 1:

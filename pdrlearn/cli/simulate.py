@@ -146,6 +146,10 @@ def simulate_cmd(
         f"{LEG_PER_HEIGHT_RANGE[0]:g}-{LEG_PER_HEIGHT_RANGE[1]:g} x the height; default the user's own proportion, "
         "0.53)."),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
+    subject: str = typer.Option(None, "--subject", help="The subject's id, written to meta.json \"subject\" "
+                                "(track-all's sessions.csv and subjects.csv group by it; B364)."),
+    visit: str = typer.Option(None, "--visit", help="The visit's name, written to meta.json \"visit\" (track-all "
+                              "pairs each subject's visits by it in changes.csv; B364)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
     """Simulate a foot + waist session (thesis scenarios and calibration exercises) with ground truth.
@@ -179,7 +183,11 @@ def simulate_cmd(
             --out out/sim/mall_u2   # a lift up three storeys, a trolley pushed, an escalator down (S45, S46)
     """
     from pdrlearn.io import write_session
+    from pdrlearn.io.meta_keys import label_option
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
+
+    labels = {k: label_option(v, "simulate", f"--{k}", what, example, "B364") for k, v, what, example in (
+        ("subject", subject, "subject's id", "P07"), ("visit", visit, "visit's name", "visit1"))}
     from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, ROCKER_MODES, STEP_TIME_ASYMMETRY_MAX
     from pdrlearn.sim.route import parse_route
     from pdrlearn.sim.simulate import STEP_LENGTH_ASYMMETRY_MAX
@@ -266,6 +274,7 @@ def simulate_cmd(
                 **knobs,
             )
         advance()
+        session.meta.update({k: v for k, v in labels.items() if v is not None})  # decision B364: no JSON editing
         write_session(session, out, overwrite=replace)  # atomic: the old session stays until the new one is written
         advance()
     replaced(out, replace)  # decision B320: `replaced PATH` on stderr, as every other command's --force

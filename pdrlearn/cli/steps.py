@@ -235,6 +235,7 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
         raise DataError(f"--events-out {events_out}: {session.where}'s reference is {score['reference']}, "
                         "not event times to table; nothing written, leave "
                         "--events-out out (decision steps 59)")
+    from pdrlearn.table_csv import write_table_csv
     from pdrlearn.track.clock import export_origin_s, on_export_clock
 
     origin = export_origin_s(session.meta)
@@ -243,7 +244,7 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
             events = events_on_clock(events, origin)
         was_events = existed(events_out)
         with atomic_file(events_out) as tmp:
-            events.to_csv(tmp, index=False)
+            write_table_csv(events, tmp)  # decision C103: as track's tables, no float noise
         replaced(events_out, was_events)
         result["events_out"] = str(events_out)
     if origin is not None:  # decision E173: where the session's 0 s lies on the imported export's clock
@@ -251,7 +252,7 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     if out is not None:
         written = on_export_clock(table, origin) if time_origin == "export" else table
         with atomic_file(out) as tmp:
-            written.to_csv(tmp, index=False)
+            write_table_csv(written, tmp)  # decision C103: 8.7, not 8.700000000000001
         replaced(out, was)
         result["out"] = str(out)
         result["out_clock"] = time_origin

@@ -123,7 +123,9 @@ DROP_PARTIAL_ROW_OPT = typer.Option(False, "--drop-partial-row", help="A sensor 
 ALIGN_UNITS_OPT = typer.Option(False, "--align-units", help="plasys, offline, foot + waist: move the waist unit's "
                                "clock onto the foot's by the steps both detect (offset and drift, "
                                "pdrlearn.steps.align_units; reliable for offsets under half a step period, about "
-                               "0.25 s: a larger one can be read one step period off; decision L162).")
+                               "0.25 s: a larger one can be read one step period off; decision L162; an estimate "
+                               "that cannot be trusted, as a long recording's drift past half a step, is not applied "
+                               "and one line says so: give --clock-offset / --clock-drift-ppm, decision L446).")
 CLOCK_OFFSET_OPT = typer.Option(None, "--clock-offset", metavar="SECONDS", help="plasys, foot + waist: the waist "
                                 "unit's clock offset, known by hand (t_waist = t_foot + SECONDS: 0.3 when the waist "
                                 "clock reads 0.3 s late), removed before tracking, offline or streamed; instead of "

@@ -744,7 +744,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
                add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
                foot: str | None = None, no_header: bool = False, encoding: str | None = None,
-               subject: str | None = None) -> tuple[Session, dict]:
+               subject: str | None = None, visit: str | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -780,6 +780,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     encoding : the CSV's text encoding (``cp1252``: German Excel's plain "CSV" save type; decision B344); default
         UTF-8, a byte order mark accepted (B221)
     subject : the subject's id, written to ``meta.json`` ``subject`` (decision B345)
+    visit : the visit's name, written to ``meta.json`` ``visit`` (decision B364; track-all pairs visits, C22)
     origin_s : the export's time (s, on its clock) that becomes 0 (default: its first timestamp); the
         session's files hold "ms since the first sample" (D1), ``record["time"]["origin_s"]`` keeps the origin
         so that labels on the export's clock can be shifted alike (and ``--merge`` puts a second export of
@@ -821,7 +822,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
                   add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
                   foot: str | None = None, no_header: bool = False, encoding: str | None = None,
-                  subject: str | None = None) -> list[tuple[Session, dict]]:
+                  subject: str | None = None, visit: str | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = path_arg(path, "import_csv_parts" if split else "import_csv", "a CSV or MAT file")  # decision B349
@@ -1222,10 +1223,13 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             meta["height_m"] = h
         if foot is not None:  # decision B321: `pdrlearn gait` checks the side given against it (L260)
             meta["foot"] = foot
-        if subject is not None:  # decision B345: sessions.csv / subjects.csv group by it (cohort C22)
-            if not str(subject).strip():
-                raise DataError("import: --subject is empty; give the subject's id (e.g. --subject P07)")
-            meta["subject"] = str(subject).strip()
+        from pdrlearn.io.meta_keys import label_option
+
+        for key, given, what, example, decision in (("subject", subject, "subject's id", "P07", "B345"),
+                                                    ("visit", visit, "visit's name", "visit1", "B364")):
+            text = label_option(given, "import", f"--{key}", what, example, decision)  # sessions.csv groups by it
+            if text is not None:  # (cohort C22): the subject's, and its visits paired (B364)
+                meta[key] = text
         frames = {}
         f = frame if isinstance(frame, AxisFrame) or frame is None else parse_frame(frame)
         if f is not None:
@@ -1293,7 +1297,7 @@ def merge_sessions(base: Session, add: Session) -> Session:
     placement = meta.get("placement")
     if placement and placement != add.meta.get("placement"):
         meta["placement"] = "foot+waist"
-    for key in ("sensor_height_m", "height_m", "foot", "subject"):
+    for key in ("sensor_height_m", "height_m", "foot", "subject", "visit"):
         if key in add.meta:
             meta[key] = add.meta[key]
     return Session(name=base.name, streams={**base.streams, **add.streams},

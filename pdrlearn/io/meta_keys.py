@@ -49,3 +49,17 @@ def unknown_keys_line(meta: dict | None, where: str) -> str | None:
             if any("treadmill" in k.lower() or "belt" in k.lower() for k in keys) else "")
     return (f"{where}/meta.json: key(s) {', '.join(repr(k) for k in keys)} not read by pdrlearn (a typo, or a "
             f"setting it does not have){hint}; prefix your own notes with x_ to keep this quiet (decision B262)")
+
+
+def label_option(value, where: str, option: str, what: str, example: str, decision: str) -> str | None:
+    """Decisions B345 (``import --subject``), B364 (``import --visit``, ``simulate --subject`` / ``--visit``): a
+    subject id or visit name given on the command line, stripped, for meta.json (track-all pairs visits by them,
+    cohort C22); None when not given; blank is one line naming the option (``where``: the command)."""
+    if value is None:
+        return None
+    from pdrlearn.errors import DataError
+
+    text = str(value).strip()
+    if not text:
+        raise DataError(f"{where}: {option} is empty; give the {what} (e.g. {option} {example}; decision {decision})")
+    return text

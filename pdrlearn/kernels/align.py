@@ -27,6 +27,12 @@ MIN_LOCK_PAIRS = 5
 LOCK_MAX_RESIDUAL_SD_S = 0.05
 
 
+def to_foot_clock(t_waist, offset_s: float, drift: float = 0.0, ref_s: float = 0.0):
+    """Waist-clock times moved onto the foot clock: ``ref_s + (t_waist - offset_s - ref_s) / (1 + drift)`` (the
+    module's model solved for ``t_f``; ``apply_alignment`` and decision L447's contacts share it)."""
+    return ref_s + (t_waist - offset_s - ref_s) / (1.0 + drift)
+
+
 def offset_locked(estimate: dict) -> bool:
     """Decision L183: whether :func:`align_events`' ``estimate`` locked the two event trains (enough matched events,
     matched tighter than chance); an estimate that did not (a queue's start-stop shuffles, 1-2 strides a bout) tells
@@ -41,8 +47,113 @@ def nearest_distance(times: np.ndarray, events: np.ndarray) -> np.ndarray:
     return np.minimum(np.abs(events[idx] - times), np.abs(events[idx - 1] - times))
 
 
+#: steps decision 64: the foot events are cut into windows of at most this span (foot clock, s; 60 s x 250 ppm = 15 ms
+#: of drift inside one, under the 0.12 s matching tolerance); L446 checks the estimate against these windows
+ALIGN_WINDOW_S = 60.0
+#: ... a window with fewer foot events than this tells no offset (L183's least lock, MIN_LOCK_PAIRS)
+MIN_WINDOW_EVENTS = MIN_LOCK_PAIRS
+#: ... and a window whose offset lies further than this (s) from the line of the windows before it is inconsistent
+#: (a quarter of a 0.55 s step period: halfway between the right branch and the half-period point)
+WINDOW_JUMP_S = 0.15
+
+
+def _grid_heads(f: np.ndarray, w: np.ndarray, centre: float, max_offset_s: float, step_s: float,
+                tolerance_s: float) -> np.ndarray:
+    """The candidate offsets of foot events ``f`` against waist events ``w`` on a grid of ``step_s`` over
+    ``centre`` +-``max_offset_s``: the local optimum (smallest mean distance) of each run of adjacent offsets whose
+    matched count is within 10 % of the best (a walk's periodic steps give one run per step period)."""
+    grid = centre + np.arange(-max_offset_s, max_offset_s + step_s / 2, step_s)
+    dist = nearest_distance(f[None, :] + grid[:, None], w)  # (n_grid, n_foot)
+    ok = dist <= tolerance_s
+    counts = ok.sum(axis=1)
+    mean_d = np.where(counts > 0, np.where(ok, dist, 0).sum(axis=1) / np.maximum(counts, 1), np.inf)
+    cand = np.flatnonzero(counts >= counts.max() - max(1, int(0.1 * f.size)))
+    groups = np.split(cand, np.flatnonzero(np.diff(cand) > 1) + 1)
+    return grid[[g[np.argmin(mean_d[g])] for g in groups]]
+
+
+def _refine(f: np.ndarray, w: np.ndarray, o: float, drift: float, ref: float, tolerance_s: float, fit_drift: bool,
+            min_span_s: float) -> tuple[float, float, float, np.ndarray, np.ndarray]:
+    """The least-squares clock line over the foot events matched within ``tolerance_s`` of the line ``o + drift * (f -
+    ref)`` (two passes to settle the matching): ``(offset_s, drift, ref_s, matched foot, matched waist)``."""
+    pairs_f = pairs_w = np.zeros(0)
+    for _ in range(2):
+        pred = f + o + drift * (f - ref)
+        j = np.clip(np.searchsorted(w, pred), 1, w.size - 1)
+        jj = np.where(np.abs(w[j] - pred) < np.abs(w[j - 1] - pred), j, j - 1)
+        m = np.abs(w[jj] - pred) <= tolerance_s
+        pairs_f, pairs_w = f[m], w[jj[m]]
+        if pairs_f.size < 2:
+            break
+        d = pairs_w - pairs_f
+        new_ref = float(pairs_f.mean())  # decision L198: the fit's origin inside the recording, not the clock's 0
+        if fit_drift and pairs_f.size >= 5 and np.ptp(pairs_f) >= min_span_s:
+            drift, o = (float(v) for v in np.polyfit(pairs_f - new_ref, d, 1))
+        else:
+            o, drift = float(np.median(d)), 0.0
+        ref = new_ref
+    return o, drift, ref, pairs_f, pairs_w
+
+
+def _line(t: np.ndarray, o: np.ndarray, n: np.ndarray, fit_drift: bool,
+          min_span_s: float) -> tuple[float, float, float]:
+    """Steps decision 64: the clock line ``(offset at ref, drift, ref)`` through window offsets ``o`` at times ``t``
+    weighted by their event counts ``n`` (their weighted mean when they span under ``min_span_s``)."""
+    ref = float(np.average(t, weights=n))
+    if fit_drift and t.size >= 2 and np.ptp(t) >= min_span_s:
+        drift, off = np.polyfit(t - ref, o, 1, w=np.sqrt(n))
+        return float(off), float(drift), ref
+    return float(np.average(o, weights=n)), 0.0, ref
+
+
+def window_offsets(f: np.ndarray, w: np.ndarray, *, window_s: float, max_offset_s: float, step_s: float,
+                   tolerance_s: float, fit_drift: bool, min_span_s: float) -> dict:
+    """Steps decision 64: the offsets of the foot events' windows of at most ``window_s`` (with
+    :data:`MIN_WINDOW_EVENTS` or more), unwrapped across step periods from the recording's start: the first window's
+    candidate closest to 0, every later one's closest to the line of the accepted windows before it (its grid centred
+    there); a window more than :data:`WINDOW_JUMP_S` from that line is inconsistent and left out. Returns ``t``,
+    ``offset``, ``n`` (accepted windows), ``inconsistent`` (count) and ``line`` (offset, drift, ref) or None."""
+    starts = [0]
+    for i in range(1, f.size):
+        if f[i] - f[starts[-1]] > window_s:
+            starts.append(i)
+    bounds = [*starts, f.size]
+    t_acc, o_acc, n_acc, bad = [], [], [], 0
+    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+        fw = f[a:b]
+        if fw.size < MIN_WINDOW_EVENTS:
+            continue
+        tc = float(fw.mean())
+        if not o_acc:  # the recording's start: the units were started together (the old rule)
+            heads = _grid_heads(fw, w, 0.0, max_offset_s, step_s, tolerance_s)
+            o = float(heads[np.argmin(np.abs(heads))])
+        else:
+            lo, dr, ref = _line(np.array(t_acc), np.array(o_acc), np.array(n_acc), fit_drift, min_span_s)
+            pred = lo + dr * (tc - ref)
+            heads = _grid_heads(fw, w, pred, max_offset_s, step_s, tolerance_s)
+            o = float(heads[np.argmin(np.abs(heads - pred))])
+            if abs(o - pred) > WINDOW_JUMP_S:
+                bad += 1
+                continue
+        t_acc.append(tc)
+        o_acc.append(o)
+        n_acc.append(fw.size)
+    line = _line(np.array(t_acc), np.array(o_acc), np.array(n_acc), fit_drift, min_span_s) if t_acc else None
+    return {"t": np.array(t_acc), "offset": np.array(o_acc), "n": np.array(n_acc), "inconsistent": bad,
+            "line": line}
+
+
+def step_period(w: np.ndarray) -> float:
+    """Steps decision 64: the waist's step period (s), the median interval between its events under 1.5 s (a walk's;
+    the longer ones are pauses); NaN without such intervals."""
+    d = np.diff(w)
+    d = d[(d > 0) & (d < 1.5)]
+    return float(np.median(d)) if d.size else float("nan")
+
+
 def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: float = 0.005,
-                 tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0) -> dict:
+                 tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0,
+                 window_s: float | None = None) -> dict:
     """Estimate ``offset_s`` (and ``drift``) so that ``foot + offset + drift * (foot - ref_s)`` meets waist events.
 
     Every foot stride event should coincide with one waist step event (the waist sees both feet), so the
@@ -56,54 +167,94 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
     t = 0: +184649 s on an epoch-ms clock); a constant shift by ``offset_s`` (``waist_clock_offset_s``,
     ``--clock-offset``) is the best drift-free alignment.
 
+    Steps decision 64 (an option, not adopted: decisions 64, 66): with ``window_s``, a recording longer than it is
+    estimated window by window (:func:`window_offsets`): the offset closest to 0 at the recording's start, then
+    followed along the recording across step periods, so a drift that moves the clock by more than half a step over
+    hours is not read as the other foot's offset. Without it the windows of :data:`ALIGN_WINDOW_S` are still
+    estimated, for decision L446's check of the one-offset line (:func:`untrusted_reason`).
+
     Limitation (docs/decisions/steps.md): a walk's step events are periodic, so offsets that differ by
     one step period (~0.5 s) match almost as well; bout starts and ends break the tie only when the
-    waist and the foot see them differently. The estimate is reliable for offsets below half a step
-    period and for changes of the offset (relative alignment).
+    waist and the foot see them differently. The estimate is reliable when the offset at the recording's start is
+    below half a step period (decision 64) and for changes of the offset (relative alignment).
 
     Returns
     -------
     dict with ``offset_s`` (at ``ref_s``), ``drift`` (s/s), ``ref_s`` (foot clock, s), ``matched`` (pairs),
-    ``foot_events``, ``residual_sd_s``.
+    ``foot_events``, ``residual_sd_s``, ``windows`` / ``windows_inconsistent`` (decision 64's windows with enough
+    events, and those left out; 1 / 0 for one window), ``step_period_s`` (:func:`step_period`).
     """
     f = np.sort(np.asarray(foot_times, dtype=float))
     w = np.sort(np.asarray(waist_times, dtype=float))
     if f.size < 3 or w.size < 3:
         raise DataError(f"align_units: need at least 3 foot and 3 waist step events (got {f.size} and "
                         f"{w.size}); record a longer walk")
-    grid = np.arange(-max_offset_s, max_offset_s + step_s / 2, step_s)
-    dist = nearest_distance(f[None, :] + grid[:, None], w)  # (n_grid, n_foot)
-    ok = dist <= tolerance_s
-    counts = ok.sum(axis=1)
-    mean_d = np.where(counts > 0, np.where(ok, dist, 0).sum(axis=1) / np.maximum(counts, 1), np.inf)
-    # most matches wins; ties -> the smallest |offset| (the units are roughly synchronised: the phone
-    # timestamps both streams), then the smallest mean distance
-    best_count = counts.max()
-    cand = np.flatnonzero(counts >= best_count - max(1, int(0.1 * f.size)))
-    # keep the local optimum (smallest mean distance) of each run of adjacent candidates
-    groups = np.split(cand, np.flatnonzero(np.diff(cand) > 1) + 1)
-    heads = [g[np.argmin(mean_d[g])] for g in groups]
-    o = float(grid[min(heads, key=lambda i: abs(grid[i]))])
-    # least-squares refinement over the matched pairs (two passes to settle the matching)
-    drift, ref = 0.0, float(f[0])
-    pairs_f = pairs_w = np.zeros(0)
-    for _ in range(2):
-        pred = f + o + drift * (f - ref)
-        j = np.clip(np.searchsorted(w, pred), 1, w.size - 1)
-        jj = np.where(np.abs(w[j] - pred) < np.abs(w[j - 1] - pred), j, j - 1)
-        m = np.abs(w[jj] - pred) <= tolerance_s
-        pairs_f, pairs_w = f[m], w[jj[m]]
-        if pairs_f.size < 2:
-            break
-        d = pairs_w - pairs_f
-        ref = float(pairs_f.mean())  # decision L198: the fit's origin inside the recording, not the clock's 0
-        if fit_drift and pairs_f.size >= 5 and np.ptp(pairs_f) >= min_span_s:
-            drift, o = (float(v) for v in np.polyfit(pairs_f - ref, d, 1))
-        else:
-            o, drift = float(np.median(d)), 0.0
+    wins = None
+    span = ALIGN_WINDOW_S if window_s is None else window_s
+    if np.ptp(f) > span:  # steps decision 64's windows: the estimate with window_s, L446's check always
+        wins = window_offsets(f, w, window_s=span, max_offset_s=max_offset_s, step_s=step_s,
+                              tolerance_s=tolerance_s, fit_drift=fit_drift, min_span_s=min_span_s)
+    if window_s is not None and wins is not None and wins["line"] is not None:
+        o, drift, ref = wins["line"]
+    else:  # one window: the offset closest to 0 of the most matches (ties -> the smallest mean distance)
+        heads = _grid_heads(f, w, 0.0, max_offset_s, step_s, tolerance_s)
+        o, drift, ref = float(heads[np.argmin(np.abs(heads))]), 0.0, float(f[0])
+    o, drift, ref, pairs_f, pairs_w = _refine(f, w, o, drift, ref, tolerance_s, fit_drift, min_span_s)
     resid = (pairs_w - pairs_f) - (o + drift * (pairs_f - ref)) if pairs_f.size else np.zeros(0)
+    n_win = 1 if wins is None else int(wins["offset"].size + wins["inconsistent"])
+    # decision L446: how far the accepted windows lie from the final line (s)
+    far = (float(np.max(np.abs(wins["offset"] - (o + drift * (wins["t"] - ref)))))
+           if wins is not None and wins["offset"].size else 0.0)
     return {"offset_s": o, "drift": drift, "ref_s": ref, "matched": int(pairs_f.size), "foot_events": int(f.size),
-            "residual_sd_s": float(resid.std()) if resid.size > 1 else float("nan")}
+            "residual_sd_s": float(resid.std()) if resid.size > 1 else float("nan"), "windows": n_win,
+            "windows_inconsistent": 0 if wins is None else int(wins["inconsistent"]),
+            "window_residual_max_s": far, "step_period_s": step_period(w),
+            # decision L446: the accepted windows' line (steps 64), named in the untrusted line as the likely clock
+            "window_line": None if wins is None or wins["line"] is None else [float(v) for v in wins["line"]]}
+
+
+#: decision L446: an estimate matching fewer than this fraction of the foot events cannot be trusted (bout ends cost at
+#: most ~20 % of a walk's strides; under 60 % the line follows only part of the recording)
+MIN_MATCHED_FRACTION = 0.6
+
+
+def untrusted_reason(estimate: dict) -> str | None:
+    """Decision L446: why :func:`align_events`' ``estimate`` cannot be trusted (too few foot events matched, walking
+    windows inconsistent with the clock line, a window a quarter step from the final line), with its numbers; None
+    when it can. Only estimates that locked (L183, :func:`offset_locked`) are asked."""
+    matched, n = int(estimate.get("matched", 0)), int(estimate.get("foot_events", 0))
+    wins, bad = int(estimate.get("windows", 1)), int(estimate.get("windows_inconsistent", 0))
+    far = float(estimate.get("window_residual_max_s", 0.0))
+    why = []
+    if n and matched < MIN_MATCHED_FRACTION * n:
+        why.append(f"{matched} of {n} foot events matched (at least {MIN_MATCHED_FRACTION:.0%} needed)")
+    if bad > wins / 4:
+        why.append(f"{bad} of {wins} walking windows jumped over {WINDOW_JUMP_S:g} s from the clock line (the "
+                   "clock moved about half a step between walks)")
+    if far > WINDOW_JUMP_S:
+        why.append(f"a window lies {far:.2f} s from the fitted clock (over {WINDOW_JUMP_S:g} s)")
+    return "; ".join(why) or None
+
+
+def untrusted_message(estimate: dict, option: str = "--align-units") -> str | None:
+    """Decision L446: the line saying that ``estimate`` cannot be trusted and what to do (``option`` kept the clocks,
+    or None for L161's check without it); None when it can be trusted."""
+    why = untrusted_reason(estimate)
+    if why is None:
+        return None
+    head = (f"{option} kept the unit clocks" if option else "the unit clocks could not be checked")
+    period = float(estimate.get("step_period_s", float("nan")))
+    line = estimate.get("window_line")
+    hint = ""
+    if line is not None and int(estimate.get("windows_inconsistent", 0)) <= int(estimate.get("windows", 1)) / 4:
+        off0, drift, ref = line  # steps 64's windows followed from the recording's start: at the clock's 0 (E111)
+        hint = (f"; the walking windows followed from the recording's start read --clock-offset "
+                f"{off0 - drift * ref:.3f} --clock-drift-ppm {drift * 1e6:.0f} (right if the units were started "
+                "within half a step of each other, steps decision 64)")
+    return (f"{head}: the clock estimate cannot be trusted ({why}; it read {float(estimate['offset_s']):+.2f} s, "
+            f"drift {float(estimate['drift']) * 1e6:+.0f} ppm, with a {period:.2f} s step period, and offsets a step "
+            "apart look alike, decision L446); if the clocks are offset, give them by hand: --clock-offset SECONDS "
+            f"--clock-drift-ppm PPM (the waist clock at its 0 and its drift, decisions E111, B265){hint}")
 
 
 def unit_offset_message(offset_s: float, drift: float, command: str = "pdrlearn track",

@@ -116,9 +116,9 @@ def _num(v: float) -> str:
     """A float as the CSV files hold it: 10 significant digits, but an epoch time in seconds (|v| >= 1e6) with its
     microseconds (decision E164; the package's ``cli.common.write_table_csv``, which this lean runtime cannot import,
     writes the same)."""
-    if abs(v) >= 1e6 and v == v and abs(v) != float("inf"):
-        return f"{v:.6f}".rstrip("0").rstrip(".")
-    return f"{v:.10g}"
+    from pdrlearn.table_csv import wide_float_text
+
+    return wide_float_text(v) if v == v else "nan"  # decisions E164, C103: the package's own, no exponent
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -14,7 +14,10 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
-from pdrlearn.kernels.align import align_events  # noqa: F401 (numpy only, shared with the runtime: L177)
+from pdrlearn.kernels.align import (
+    align_events,  # noqa: F401 (numpy only, shared with the runtime: L177)
+    to_foot_clock,
+)
 
 log = logging.getLogger(__name__)
 
@@ -68,5 +71,5 @@ def apply_alignment(session: Session, offset_s: float, drift: float = 0.0, ref_s
                         "re-run align_units")
     for s in out.streams.values():
         if s.placement == "waist":
-            s.t = ref_s + (s.t - offset_s - ref_s) / (1.0 + drift)
+            s.t = to_foot_clock(s.t, offset_s, drift, ref_s)
     return out

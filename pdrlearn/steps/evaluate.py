@@ -435,6 +435,10 @@ def score_steps_events(steps: pd.DataFrame, session: Session, *, tolerance_s: fl
     ref_offset_s = check_ref_offset(ref_offset_s, "score_steps: ref_offset_s")  # decision B333
     ev, unit = _table_events(steps, session, unit)
     session = shifted_labels(session, ref_offset_s, tolerance_s=tolerance_s, where="ref_offset_s")  # steps 56
+    if unit == "waist":  # decision W380: the lower back's steps against labels on the simulated waist clock
+        from pdrlearn.steps.reference_clock import waist_clock_labels
+
+        session = waist_clock_labels(session)
     ref = reference_events(session, unit, tolerance_s=tolerance_s)
     if ref is None:
         return None, pd.DataFrame(columns=list(EVENT_COLUMNS))

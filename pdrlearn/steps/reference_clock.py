@@ -44,13 +44,31 @@ def check_ref_offset(value, where: str = "ref_offset_s") -> float:
     return off
 
 
-def _shift(df, offset_s: float):
+def _shift(df, offset_s: float, scale: float = 1.0):
+    """``df`` with its label times ``t`` moved to ``t * scale - offset_s``."""
     if df is None:
         return None
     out = df.copy()
     for col in TIME_COLUMNS:
         if col in out:
-            out[col] = out[col] - offset_s
+            out[col] = out[col] * scale - offset_s
+    return out
+
+
+def waist_clock_labels(session: Session) -> Session:
+    """Decision W380: ``session`` with its labels (steps.csv, ics.csv, bouts.csv ...: kept on the foot clock) moved
+    onto the waist clock of a simulated session whose ``meta.json`` gives one (the simulator's ``clock_offset_s`` and
+    ``clock_drift_ppm``: ``waist = foot * (1 + drift) + offset``), for scoring the lower back's steps; its meta then
+    holds 0 for both, so a second call moves nothing. The session itself when both are 0 or absent (bit for bit)."""
+    meta = session.meta or {}
+    off, ppm = float(meta.get("clock_offset_s") or 0.0), float(meta.get("clock_drift_ppm") or 0.0)
+    if off == 0 and ppm == 0:
+        return session
+    out = copy.copy(session)
+    scale = 1.0 + ppm * 1e-6  # the simulator's waist clock (pdrlearn.sim.simulate: t_out * (1 + drift) + offset)
+    out.steps = _shift(session.steps, -off, scale)
+    out.extras = {k: _shift(v, -off, scale) for k, v in session.extras.items()}
+    out.meta = {**meta, "clock_offset_s": 0.0, "clock_drift_ppm": 0.0}
     return out
 
 

@@ -43,9 +43,10 @@ from pdrlearn.track.clinical import (
 )
 from pdrlearn.waist.gait_quality import QUALITY_COLUMNS
 
-#: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key)
-BOUT_COLUMNS = ("session", "subject", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m",
-                "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
+#: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key;
+#: C100: and ``visit``)
+BOUT_COLUMNS = ("session", "subject", "visit", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides",
+                "distance_m", "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
                 "longest_contact_gap_s", "data_gap_s", "n_turns", "direction", "backward_fraction", "altitude_change_m",
                 "altitude_change_before_m", "gait_out_of_range", "n_cv_strides", "stride_time_cv_pct",
                 "stride_length_cv_pct", *QUALITY_COLUMNS)  # decision W350: a lower-back track's gait quality
@@ -182,13 +183,23 @@ def bout_ranges(steps: pd.DataFrame, rule: BoutRule | None = None) -> list[tuple
 
 def session_key(session) -> dict:
     """Decision L165: bouts.csv's key columns of a :class:`~pdrlearn.io.Session` - its name and meta.json's subject
-    (:func:`pdrlearn.cohort.meta_user`, as track-all's ``subject``; None when meta.json names none). ``session``
-    None (``run --protocol``: a live stream, no session folder): both None."""
-    from pdrlearn.cohort import meta_user
+    (:func:`pdrlearn.cohort.meta_user`, as track-all's ``subject``; None when meta.json names none) and, decision
+    C100, meta.json's visit (:func:`pdrlearn.cohort.meta_visit`). ``session`` None (``run --protocol``: a live
+    stream, no session folder): all None."""
+    from pdrlearn.cohort import meta_user, meta_visit
 
     if session is None:
-        return {"session": None, "subject": None}
-    return {"session": session.name, "subject": meta_user(session.meta or {})}
+        return {"session": None, "subject": None, "visit": None}
+    meta = session.meta or {}
+    return {"session": session.name, "subject": meta_user(meta, getattr(session, "folder", None)),
+            "visit": meta_visit(meta)}
+
+
+def session_ids(session) -> dict:
+    """Decision C100: summary.json's ``subject`` and ``visit`` - meta.json's, as bouts.csv's (:func:`session_key`);
+    None when not named (or no session). ``track``, ``run`` and track-all's sessions write them."""
+    key = session_key(session)
+    return {"subject": key["subject"], "visit": key["visit"]}
 
 
 def session_leg_m(session) -> float | None:
@@ -200,11 +211,13 @@ def session_leg_m(session) -> float | None:
 
 
 def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session: str | None = None,
-                   subject: str | None = None, leg_m: float | None = None) -> pd.DataFrame:
+                   subject: str | None = None, visit: str | None = None, leg_m: float | None = None
+                   ) -> pd.DataFrame:
     """One row per detected walking bout of a track's step table (:data:`BOUT_COLUMNS`, module docstring).
 
-    ``session`` / ``subject``: the session's name and meta.json's subject, repeated on every row (decision L165,
-    empty when not given); ``n_steps``: steps of both feet, as summary.json's ``n_steps_both_feet`` (decision L103:
+    ``session`` / ``subject`` / ``visit``: the session's name and meta.json's subject (decision L165) and visit
+    (C100), repeated on every row (empty when not given); ``n_steps``: steps of both feet, as summary.json's
+    ``n_steps_both_feet`` (decision L103:
     a foot track's 2 per stride of the tracked foot, an estimate; a lower-back track's detected steps);
     ``n_strides``: a foot track's strides (rows that are no foot-data gap, L67), a lower-back track's strides from
     contact k to k + 2 as mobgap forms them (its rows are its contacts, the last one a 0 m row: ``n_steps`` - 2);
@@ -269,7 +282,8 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
         span = float(c[-1] - c[0]) if len(c) >= 2 else 0.0
         intervals = (2 if foot else 1) * max(len(c) - 1, 0)
         n_len = n_strides if foot else n_steps - 1  # L166: a foot row is a stride; a lower-back row a step
-        rows.append({"session": session, "subject": subject, "bout": len(rows) + 1, "start_s": t0, "end_s": t1,
+        rows.append({"session": session, "subject": subject, "visit": visit, "bout": len(rows) + 1, "start_s": t0,
+                     "end_s": t1,
                      "duration_s": dur, "n_steps": n_steps, "n_strides": n_strides, "distance_m": dist,
                      "speed_mps": dist / dur if dur > 0 else np.nan,
                      "stride_length_m": (1 if foot else 2) * dist / n_len if n_len > 0 else np.nan,

@@ -1072,8 +1072,10 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
     :func:`_stride_lengths`' overlap match of one waist step with one stride (decision W49)."""
     if not len(result.steps) or "unit" not in result.steps or not (result.steps["unit"] == "waist").all():
         return
+    from pdrlearn.steps.reference_clock import waist_clock_labels
     from pdrlearn.waist.evaluate import stride_metrics, waist_metrics
 
+    session = waist_clock_labels(session)  # decision W380: the labels on the simulated waist clock
     refs = "ics" in session.extras or "bouts" in session.extras
     m = waist_metrics(result.steps, session) if refs else stride_metrics(result.steps, session)
     if "distance_error_pct" in m:  # the bouts, not the sum of overlapping stride lengths, are the reference
@@ -1476,6 +1478,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where),
                                 result.steps))  # decision L441: the belt strides
     summary["session"] = session.name
+    from pdrlearn.track.bouts import session_ids
+
+    summary.update(session_ids(session))  # decision C100: meta.json's subject and visit, as bouts.csv's
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
     summary["pipeline"] = pipeline if pipeline is not None else result.info.get("pipeline")
@@ -1489,7 +1494,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.track.steady import steady_trim
 
     summary["steady_trim"] = steady_trim()  # decision L415: the bout ends left out of the steady measures
-    summary.update(track_asymmetry(session, result.steps))  # decision L416: a foot unit and the lower back together
+    # decision L416: a foot unit and the lower back together (L447: not on clocks said to be offset)
+    summary.update(track_asymmetry(session, result.steps, result.info.get("warnings", ()),
+                                   result.info.get("unit_alignment")))
     from pdrlearn import __version__
 
     summary["pdrlearn_version"] = __version__  # decision C18: which pdrlearn wrote the numbers

@@ -141,18 +141,36 @@ def waist_ic_contacts(session) -> np.ndarray:
     return events
 
 
-def track_asymmetry(session, steps) -> dict:
+#: decision L447: the words of the warnings that say the two units' clocks are offset (L161) or could not be checked
+#: (L446); the cross measures of the two units are then left empty
+CLOCK_WARNINGS = ("decision L161", "decision L446")
+
+
+def clock_warning(warnings) -> str | None:
+    """Decision L447: the first of ``warnings`` that says the unit clocks are offset or unknown, None without one."""
+    return next((w for w in warnings or () if any(k in str(w) for k in CLOCK_WARNINGS)), None)
+
+
+def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) -> dict:
     """Decision L416: the summary keys (``step_time_asymmetry_pct``, ``n_step_time_asymmetry_steps``,
     ``step_time_asymmetry_reason``) a foot track (steps with ``event_s``, every row ``unit`` foot) of ``session``
     takes from :func:`labelled_step_asymmetry` when the session holds the lower-back unit too and
     :data:`LABELLED_ASYMMETRY` is on; ``{}`` otherwise (the foot's "not observable" stays). The lower back's contacts:
     the waist-pendulum pipeline's offline IC detector (``waist-ic``, once per session's data: :func:`waist_ic_contacts`,
     L427); a lower-back stream under
-    :data:`LABELLED_MIN_RATE_HZ` gives the reason instead of an index."""
+    :data:`LABELLED_MIN_RATE_HZ` gives the reason instead of an index, and so do ``warnings`` (the track's) holding
+    a clock warning (decision L447: :func:`clock_warning`). ``alignment``: the track's ``info["unit_alignment"]``;
+    an estimate it applied (``source`` "estimated", ``--align-units``) moves the lower back's contacts onto the foot
+    clock as it moved the track's waist streams (L447; a given clock moved the session itself before tracking)."""
     if (not LABELLED_ASYMMETRY or not len(steps) or "event_s" not in steps or "unit" not in steps
             or not (steps["unit"] == "foot").all() or not session.has("wAccelerometer", "wGyroscope")
             or np.isfinite(steps["event_s"].to_numpy(float)).sum() < 2):  # a streamed table without --contacts
         return {}
+    if clock_warning(warnings) is not None:  # decision L447: the other foot's steps are labelled by the clocks
+        return {"step_time_asymmetry_pct": None, "n_step_time_asymmetry_steps": 0, "step_time_asymmetry_reason": (
+            "not given: the foot and lower-back unit clocks are offset or could not be checked (see the clock "
+            "warning, decisions L161, L446), so the lower back's contacts cannot be labelled by the foot's; align "
+            "the clocks (--align-units, or --clock-offset / --clock-drift-ppm) for the index (decision L447)")}
     rate = float(session.streams["wAccelerometer"].rate_hz or 0.0)
     if rate < LABELLED_MIN_RATE_HZ:
         return {"step_time_asymmetry_reason": (
@@ -160,6 +178,11 @@ def track_asymmetry(session, steps) -> dict:
             "contacts need to label the other foot's steps (decision L416); a unit on each foot times them "
             "(pdrlearn gait LEFT_DIR RIGHT_DIR)")}
     waist = waist_ic_contacts(session)  # decision L427: detected once per session's lower-back data
+    if alignment and alignment.get("source") == "estimated":  # decision L447: --align-units' clock, as the track's
+        from pdrlearn.kernels.align import to_foot_clock
+
+        waist = to_foot_clock(waist, float(alignment["offset_s"]), float(alignment["drift"]),
+                              float(alignment.get("ref_s", 0.0)))
     res = labelled_step_asymmetry(steps["event_s"].to_numpy(float), waist)
     if res["step_time_asymmetry_pct"] is None:
         reason = (f"not given: {res['n_strides']} of the foot's strides hold one lower-back contact of the other "

@@ -49,7 +49,7 @@ TIME_KEYS = ("time_walking_s", "time_between_steps_s", "time_no_steps_s", "time_
 PERIOD_GAIT_KEYS = ("median_stride_length_m", "median_speed_mps", "stride_time_cv_pct", "stride_length_cv_pct",
                     "n_cv_strides")
 #: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
-PERIOD_COLUMNS = ("session", "subject", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
+PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
                   "n_steps", "n_steps_counts", "median_stride_time_s", "median_cadence_spm",
                   *PERIOD_GAIT_KEYS, *TIME_KEYS,
                   *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",

@@ -446,12 +446,13 @@ def align_clocks(session: Session, warnings: list[str], *, force_table=None) -> 
     :func:`~pdrlearn.kernels.align.offset_locked`) is not applied: the session unchanged and one line why.
     ``force_table``: :func:`~pdrlearn.steps.align.align_estimate`'s (steps decision 55)."""
     try:
-        from pdrlearn.kernels.align import unlocked_message
+        from pdrlearn.kernels.align import unlocked_message, untrusted_message
         from pdrlearn.steps.align import align_estimate
 
         est = align_estimate(session, force_table=force_table)
-        line = unlocked_message(est)
-        if line is not None:  # decision L186: an unlocked estimate tells no offset (L183)
+        # decision L186: an unlocked estimate tells no offset (L183); L446: nor does one that cannot be trusted
+        line = unlocked_message(est) or untrusted_message(est)
+        if line is not None:
             warnings.append(line)
             return session, None
         return move_waist_clock(session, est["offset_s"], est["drift"], warnings, source="estimated",
@@ -511,6 +512,10 @@ def unit_offset_line(session: Session, command: str = "pdrlearn track", *, force
         est = align_estimate(session, force_table=force_table)
     except DataError:
         return None
+    from pdrlearn.kernels.align import offset_locked, untrusted_message
+
+    if offset_locked(est) and (line := untrusted_message(est, None)) is not None:  # decision L446: no offset named
+        return line
     return unit_offset_message(est["offset_s"], est["drift"], command, estimate=est)  # L183: locked estimates only
 
 
@@ -1296,7 +1301,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading,
                           yaw_bias=yaw_bias).fit_session(work)  # decision W126
         warnings += wh.warnings_
-        if alignment is None:  # decision L161: the units' clocks checked when they were not aligned
+        # decision L161: the units' clocks checked when they were not aligned (L446: not again after --align-units
+        # said why it kept them)
+        if alignment is None and not align:
             offset_line = unit_offset_line(session, force_table=seen.get("AccelForceStepDetector"))
             warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)

@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 #: the columns leading strides.csv, before the session's own steps.csv columns
-STRIDE_KEYS = ("path", "visit", "session", "foot", "turn_deg", "is_turn")
+STRIDE_KEYS = ("path", "visit", "session", "subject", "foot", "turn_deg", "is_turn")  # C100: subject, as bouts.csv
 #: decision L422: a row belongs to a turns.csv turn when their overlap is at least this share of the row's own span
 #: or of the turn's (a turn inside one long stride; a stride wholly inside a turn)
 TURN_OVERLAP_SHARE = 0.5
@@ -29,10 +29,11 @@ def turn_membership(start_s, end_s, turns: pd.DataFrame | None) -> np.ndarray:
 
 
 def session_strides(steps: pd.DataFrame, turns: pd.DataFrame | None, *, path: str, visit, session,
-                    foot: str | None) -> pd.DataFrame:
+                    foot: str | None, subject=None) -> pd.DataFrame:
     """One session's strides.csv rows: :data:`STRIDE_KEYS` then its steps.csv columns. ``turn_deg`` is a foot row's
     ``turn_angle_rad`` in degrees (empty on a lower-back table, which has no per-row turn of its own)."""
-    lead = pd.DataFrame({"path": path, "visit": visit, "session": session, "foot": foot}, index=steps.index)
+    lead = pd.DataFrame({"path": path, "visit": visit, "session": session, "subject": subject, "foot": foot},
+                        index=steps.index)
     lead["turn_deg"] = (np.degrees(steps["turn_angle_rad"].to_numpy(float)) if "turn_angle_rad" in steps
                         else np.nan)
     lead["is_turn"] = turn_membership(steps["start_s"], steps["end_s"], turns)
