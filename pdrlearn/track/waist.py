@@ -591,7 +591,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
-                   "turn_bridge": False,  # W374: the gate open over a yaw-rate turn inside a walk (offline pendulum)
+                   "turn_bridge": TURN_BRIDGE_SIDE,  # W374: the gate open over a yaw-rate turn inside a walk
+                   # (offline pendulum); W384 / W385: adopted as "side", its added contacts only where the side alternates
                    "speed_check": True,  # W211
                    "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
@@ -891,8 +892,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         acceleration's 2 s mean, if there is one (decision W29, ``InitialContactDetector``'s ``ap_above_mean``; a
         track option by decision W265); default False
     turn_bridge : pendulum, offline detector: the motion gate is also open over a yaw-rate turn with walking on both
-        sides (decision W374, ``InitialContactDetector``'s ``turn_bridge``); ``"side"``: and a contact in the bridged
-        span only where its W20 side alternates (decision W384); default False
+        sides (decision W374, ``InitialContactDetector``'s ``turn_bridge``); ``"side"`` (the default, decisions W384 /
+        W385): the contacts without the bridge and those the bridge adds where their W20 side is decided and
+        alternates
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
