@@ -592,7 +592,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
                    "turn_bridge": TURN_BRIDGE_SIDE,  # W374: the gate open over a yaw-rate turn inside a walk
-                   # (offline pendulum); W384 / W385: adopted as "side", its added contacts only where the side alternates
+                   # (offline pendulum); W384 / W385: adopted as "side", its added contacts where the side alternates
                    "speed_check": True,  # W211
                    "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
