@@ -177,8 +177,8 @@ def live_value(option: str, given: dict | None = None):
     with ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's
     fill is the offline detector's only, where the default is ``"within"``); no ``turn_bridge`` (``False``: W374's
     bridge reads the walk after the turn, where the offline default is ``"side"`` since W385); ``pause_ride`` only as
-    the PARAMS.json gives it (E146: W231's ride is applied live when given true; not given: ``False``, W158's whole pause, where the
-    offline default is true); ``lying_heading`` ``False`` (W271, E151: the live tracker labels no lying; E107's line
+    the PARAMS.json gives it (E146: W231's ride is applied live when given true; not given: ``False``, W158's whole
+    pause, where the offline default is true); ``lying_heading`` ``False`` (W271, E151: the live tracker labels no lying; E107's line
     names its offline default only where the PARAMS.json gives it, :data:`NAMED_WHEN_GIVEN`); else the option's
     offline default (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
