@@ -14,6 +14,7 @@ from pdrlearn.kernels.waist import alternating_bridged, bridge_additions, contac
 from pdrlearn.steps.evaluate import score_events
 from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
 from pdrlearn.waist.live import live_value, unapplied_options_line
+from tests.test_waist_turn_bridge_w374 import _tug, _turn_rate  # W374's hand-made turn and simulated TUG
 
 FS = 100.0
 
@@ -45,15 +46,6 @@ def test_bridge_additions_keeps_every_default_contact_and_adds_no_duplicate():
     assert ap == "ap"
 
 
-def _turn_rate(n: int, a_s: float, b_s: float, deg: float = 180.0) -> np.ndarray:
-    t = np.arange(n) / FS
-    w = np.zeros(n)
-    inside = (t >= a_s) & (t < b_s)
-    dur = b_s - a_s
-    w[inside] = np.radians(deg) * np.pi / (2 * dur) * np.sin(np.pi * (t[inside] - a_s) / dur)
-    return w
-
-
 TURN_S = 6.0
 
 
@@ -83,14 +75,6 @@ def test_side_keeps_the_bridged_steps_with_a_weight_shift_and_drops_the_bounces_
     assert second(res[True]).size >= 3  # the swaying half's steps, found by the bridge ...
     np.testing.assert_array_equal(second(res["side"]), second(res[True]))  # ... alternate, and are kept
     assert set(res[False]) <= set(res["side"])  # every contact without the bridge is kept
-
-
-def _tug(user: int):
-    from pdrlearn.sim import UserProfile, simulate_path
-    from pdrlearn.sim.route import parse_route
-
-    return simulate_path(parse_route("straight:3, turn:180, straight:3"), UserProfile.from_seed(user), rate_hz=100,
-                         seed=user, speed="slow", scenario="route", sit_start_s=5.0, sit_end_s=5.0)
 
 
 def test_the_default_is_side_on_the_offline_track_and_not_applied_live():
