@@ -26,10 +26,13 @@ each user as `waist_pll_edges.route_table` draws it), the contacts of `track_wai
 printed and judged; with ``--external DIR`` also (d): `experiments/waist.py`'s `real` on its `external_runs` (mobgap),
 the offline `waist-pendulum` configuration off and on, every row's (calibrated and defaults) step F1.
 
+``--bridge-side`` (W384's rule, measured once, users 8930-8949; W385 records it): the same, ``turn_bridge`` off against
+``"side"`` (the bridge's added contacts only where their W20 side is decided and alternates).
+
 ``--with-bridge`` (W376, a read-out): the table with ``turn_bridge`` on, where its added extras lie.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_pendulum_ic_places.py [FIRST LAST+1]
-     [--turn-bridge [--external datasets/external] | --with-bridge]
+     [--turn-bridge [--external datasets/external] | --bridge-side [--external datasets/external] | --with-bridge]
 Writes its table to stdout (W374: experiments/results/waist_pendulum_ic_places_w374.txt; W375:
 experiments/results/waist_pendulum_turn_bridge_w375.txt).
 """
@@ -57,6 +60,7 @@ from pdrlearn.waist.events import gate_threshold  # noqa: E402
 
 USERS = range(8760, 8780)  # the lead's fresh users for W374's diagnosis (session 36)
 RULE_USERS = range(8780, 8800)  # the lead's fresh users for W374's rule (session 36)
+SIDE_USERS = range(8930, 8950)  # the lead's fresh users for W384's rule (session 36; 8910-8929 for its diagnosis)
 BOUT_GAP_S = 1.5  # W47: a step to the next contact within 1.5 s chains a walking sequence
 SLOW_S = 0.75  # < 80 steps/min (waist_ic_classes.py's slow class)
 NEAR_S = 1.0  # an extra over 1 s from every true contact lies outside walking
@@ -190,15 +194,16 @@ def _counts(ev: np.ndarray, ics) -> np.ndarray:
     return np.array([truth.size, ev.size, int((matched_truth(ev, np.sort(truth)) >= 0).sum())])
 
 
-def turn_bridge_rule(users=RULE_USERS, external: Path | None = None) -> bool:
-    """W374's rule: ``turn_bridge`` off against on, (a)-(c) per route of W218, (d) on the mobgap recordings."""
+def turn_bridge_rule(users=RULE_USERS, external: Path | None = None, on=True, decision: str = "W374") -> bool:
+    """W374's rule: ``turn_bridge`` off against ``on`` (W384: ``"side"``), (a)-(c) per route of W218, (d) on the mobgap
+    recordings."""
     ok_a = ok_c = True
     err = np.zeros(2, dtype=int)
     for name in W218_ROUTES:
         c = np.zeros((2, 3), dtype=int)
         for s in sessions(name, users):
-            for k, on in enumerate((False, True)):
-                ev = track_waist(s, pipeline="waist-pendulum", turn_bridge=on).steps["event_s"].to_numpy(float)
+            for k, value in enumerate((False, on)):
+                ev = track_waist(s, pipeline="waist-pendulum", turn_bridge=value).steps["event_s"].to_numpy(float)
                 c[k] += _counts(ev, s.extras["ics"])
         f1 = 2 * c[:, 2] / np.maximum(c[:, 0] + c[:, 1], 1)
         rec = c[:, 2] / np.maximum(c[:, 0], 1)
@@ -214,9 +219,9 @@ def turn_bridge_rule(users=RULE_USERS, external: Path | None = None) -> bool:
           f"extra) off {err[0]} on {err[1]}: {'met' if ok_b else 'NOT met'}; (c) recall not lower by more than 0.005 "
           f"on any route: {'met' if ok_c else 'NOT met'}", flush=True)
     ok_d = external is not None and mobgap_check(external, ("waist-pendulum", "waist-pendulum"),
-                                                 {"turn_bridge": False}, {"turn_bridge": True})
+                                                 {"turn_bridge": False}, {"turn_bridge": on})
     adopted = ok_a and ok_b and ok_c and ok_d and external is not None
-    print(f"W374 (turn_bridge): {'adopted' if adopted else 'not adopted'}")
+    print(f"{decision} (turn_bridge={on}): {'adopted' if adopted else 'not adopted'}")
     return adopted
 
 
@@ -226,9 +231,13 @@ if __name__ == "__main__":
     ap.add_argument("--turn-bridge", action="store_true", help="W374's rule: turn_bridge off and on (W375)")
     ap.add_argument("--external", type=Path, default=None, help="the mobgap folder for W374's (d)")
     ap.add_argument("--with-bridge", action="store_true", help="the table with turn_bridge on (W376)")
+    ap.add_argument("--bridge-side", action="store_true", help="W384's rule: turn_bridge off and \"side\" (W385)")
     args = ap.parse_args()
     logging.disable(logging.WARNING)
-    if args.turn_bridge:
+    if args.bridge_side:
+        turn_bridge_rule(range(args.users[0], args.users[1]) if len(args.users) > 1 else SIDE_USERS, args.external,
+                         on="side", decision="W384")
+    elif args.turn_bridge:
         turn_bridge_rule(range(args.users[0], args.users[1]) if len(args.users) > 1 else RULE_USERS, args.external)
     else:
         table(range(args.users[0], args.users[1]) if len(args.users) > 1 else USERS,

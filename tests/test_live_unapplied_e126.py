@@ -11,8 +11,9 @@ from pdrlearn.waist.params import WaistParams
 def _line(options):
     """The line for ``options`` with ``stand_veto`` off (what the live tracker does; W199 made "adjacent" the offline
     default, W217 withdrew it; tests/test_waist_stand_veto.py), and ``pause_ride`` / ``rest_bias`` off (what the live
-    tracker does, E145), so only the options below are named."""
-    live = {"stand_veto": False, "pause_ride": False, "rest_bias": False}
+    tracker does, E145), and ``turn_bridge`` off (what the live tracker does, W385), so only the options below are
+    named."""
+    live = {"stand_veto": False, "pause_ride": False, "rest_bias": False, "turn_bridge": False}
     return unapplied_options_line(WaistParams(leg_m=0.9, options={**live, **(options or {})}))
 
 
@@ -22,7 +23,8 @@ def test_sit_veto_false_is_what_the_live_tracker_does_and_is_not_named():
     assert _line({"sit_veto": False, "contact_shift": False, "parity_fill": False}) is None  # E130: those named too
     warnings: list[str] = []
     live_options(WaistParams(leg_m=0.9, options={"sit_veto": False, "contact_shift": False, "parity_fill": False,
-                                                 "stand_veto": False, "pause_ride": False, "rest_bias": False}),
+                                                 "stand_veto": False, "pause_ride": False, "rest_bias": False,
+                                                 "turn_bridge": False}),  # W385: live tracks without it
                  warnings)
     assert not [w for w in warnings if "E107" in w]
 

@@ -19,7 +19,8 @@ def _line(options):
     """``stand_veto`` off, as live and (W217) the offline default again, ``pause_ride`` and ``rest_bias`` off, as live
     (E145): only these named."""
     return unapplied_options_line(WaistParams(leg_m=0.9, options={"stand_veto": False, "pause_ride": False,
-                                                                 "rest_bias": False, **(options or {})}))
+                                                                 "rest_bias": False, "turn_bridge": False,  # W385
+                                                                 **(options or {})}))
 
 
 def test_the_offline_defaults_of_contact_shift_and_parity_fill_are_named_with_what_live_does():

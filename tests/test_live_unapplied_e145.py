@@ -10,7 +10,8 @@ from pdrlearn.waist.live import LIVE_UNAPPLIED_OPTIONS, live_options, live_value
 from pdrlearn.waist.params import WaistParams
 
 #: the other E107 options at what the live tracker does, so that nothing else is named
-_LIVE = {"stand_veto": False, "sit_veto": False, "contact_shift": False, "parity_fill": False}
+_LIVE = {"stand_veto": False, "sit_veto": False, "contact_shift": False, "parity_fill": False,
+         "turn_bridge": False}  # W385: the offline default "side" is not applied live
 
 
 def test_rest_bias_is_applied_live_and_pause_ride_where_given_e147():

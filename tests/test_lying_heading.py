@@ -108,7 +108,7 @@ def test_lying_episodes_are_w222s_lying_runs_of_10_s_or_more_with_their_movement
 def test_the_default_is_on_w271_and_the_live_tracker_names_it_only_when_given():
     assert OPTION_DEFAULTS["lying_heading"] is True
     others = {"stand_veto": False, "sit_veto": False, "contact_shift": False, "parity_fill": False,
-              "pause_ride": False}
+              "pause_ride": False, "turn_bridge": False}  # W385: the offline default "side" is not live
     assert unapplied_options_line(WaistParams(leg_m=0.9, options=others)) is None
     line = unapplied_options_line(WaistParams(leg_m=0.9, options={**others, "lying_heading": True}))
     assert line is not None and "lying_heading=true" in line

@@ -245,7 +245,8 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
     p.write_text(json.dumps({**cal, "options": {"stairs_length": True, "pause_steps": "standing",
                                                 "sit_veto": False, "contact_shift": False, "parity_fill": False,
                                                 "stand_veto": False,  # W199: not live either
-                                                "pause_ride": False, "rest_bias": False}}))  # E145: nor these
+                                                "pause_ride": False, "rest_bias": False,  # E145: nor these
+                                                "turn_bridge": False}}))  # W385: nor its offline default "side"
     assert main(["export", str(p), "--out", str(tmp_path / "b2"), "--frame", _frame_arg(sim["session"])]) == 0
     assert "E107" not in capsys.readouterr().err
     # E126: without it the offline default "opposite" (W185) is named, once

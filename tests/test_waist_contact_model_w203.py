@@ -144,7 +144,8 @@ def test_the_live_line_names_it():
     assert line is not None and 'contact_model="learned"' in line and "contact_model=false" in line
     live = {"sit_veto": False, "contact_shift": False, "parity_fill": False,  # E126 / E130: what live does
             "stand_veto": False,  # W219: the offline default "walking" is not applied live either
-            "pause_ride": False, "rest_bias": False}  # E145: nor W231's nor L296's
+            "pause_ride": False, "rest_bias": False,  # E145: nor W231's nor L296's
+            "turn_bridge": False}  # W385: nor W384's offline default "side"
     assert unapplied_options_line(WaistParams(leg_m=0.9, options=live)) is None
 
 

@@ -81,9 +81,9 @@ def test_the_measured_real_row_ms001_test11():
     """W131's (b) row: MS001 Test11 in-bout F1 0.8663 -> 0.8804 (81/96 -> 81/93 of 91), 4 contacts dropped."""
     s = read_session(external_session("mobgap_MS001_Test11_Trial1"))
     on = track_waist(s, pipeline="waist-pendulum", sit_veto=False, parity_fill=False,  # measured before W159
-                     stand_veto=False)  # and before W219
+                     stand_veto=False, turn_bridge=False)  # and before W219, W385
     off = track_waist(s, pipeline="waist-pendulum", sit_veto=False, contact_shift=False, parity_fill=False,
-                      stand_veto=False)
+                      stand_veto=False, turn_bridge=False)
     assert len(off.steps) - len(on.steps) == 4 and on.info["options"]["contact_shift"] is True
     m0, m1 = step_metrics(off.steps, s), step_metrics(on.steps, s)
     assert (m0["n_detected"], m1["n_detected"], m1["n_reference"]) == (96, 93, 91)

@@ -98,13 +98,12 @@ def _matched(ev: np.ndarray, truth: np.ndarray) -> int:
     return int(score_events(ev, truth, tolerance_s=0.25)["true_positives"])  # one-to-one within 0.25 s
 
 
-def test_the_default_is_off_and_the_option_reaches_the_offline_pendulum_track():
-    assert OPTION_DEFAULTS["turn_bridge"] is False  # W375: not adopted
+def test_the_option_reaches_the_offline_pendulum_track():
+    assert OPTION_DEFAULTS["turn_bridge"] == "side"  # W375: true not adopted; W385: "side" adopted (W384's tests)
     s = _tug(8763)  # W374's diagnosis users (8760-8779): its TUG turn's two steps are behind a closed gate
     truth = np.sort(s.extras["ics"]["ic_s"].to_numpy(float))
     ev = {v: track_waist(s, pipeline="waist-pendulum", turn_bridge=v).steps["event_s"].to_numpy(float)
-          for v in (None, False, True)}
-    np.testing.assert_array_equal(ev[None], ev[False])
+          for v in (False, True)}
     assert (ev[False].size, _matched(ev[False], truth)) == (12, 12)
     assert (ev[True].size, _matched(ev[True], truth)) == (14, 14)  # both turn steps found, no extra
 
@@ -113,7 +112,7 @@ def test_realtime_and_live_tracks_do_not_apply_it_and_say_so(caplog):
     s = _tug(8763)
     with caplog.at_level(logging.WARNING, logger="pdrlearn"):
         on = track_waist(s, pipeline="waist-pendulum", realtime=True, turn_bridge=True)
-    off = track_waist(s, pipeline="waist-pendulum", realtime=True)
+    off = track_waist(s, pipeline="waist-pendulum", realtime=True, turn_bridge=False)
     np.testing.assert_array_equal(on.steps["event_s"].to_numpy(), off.steps["event_s"].to_numpy())
     assert any("turn_bridge=true applies to the offline waist-pendulum" in w and "W193" in w
                for w in on.info["warnings"])
@@ -125,4 +124,4 @@ def test_a_bad_value_is_one_line(bad):
     with pytest.raises(DataError) as e:
         track_waist(_tug(8763), pipeline="waist-pendulum", turn_bridge=bad)
     msg = str(e.value)
-    assert "\n" not in msg and "turn_bridge" in msg and "true or false" in msg
+    assert "\n" not in msg and "turn_bridge" in msg and "false, true" in msg  # W384: one of false, true, "side"

@@ -76,6 +76,10 @@ def turn_bridge_gate(gate: np.ndarray, w_z: np.ndarray, fs: float, *, max_step_s
     return out
 
 
+#: decision W384: the ``turn_bridge`` value that keeps a contact of the bridged span only where its side alternates
+TURN_BRIDGE_SIDE = "side"
+
+
 def motion_state(sigma_z: np.ndarray, *, walk_threshold: float, run_threshold: float = RUN_THRESHOLD_MPS2
                  ) -> np.ndarray:
     """0 = stopped, 1 = walking, 2 = running from the rolling std of vertical acceleration (m/s^2)."""
@@ -386,6 +390,24 @@ def _fast_fill(v: np.ndarray, vf: np.ndarray, cand: np.ndarray, keep: np.ndarray
     return np.setdiff1d(added, peaks)
 
 
+def alternating_bridged(peaks: np.ndarray, sd: np.ndarray, added: np.ndarray, max_gap: int) -> np.ndarray:
+    """Decision W384: the mask of the kept contacts ``peaks`` (sample indices, increasing; ``sd`` their W20 sides,
+    +1 / -1 / 0) where a contact W374's bridge ``added`` (per contact: not kept without the bridge) stays only when it
+    shows the weight shift of a step (W23: a decided side) to the side opposite the previous kept contact's (W20:
+    steps alternate feet) -- the previous one within ``max_gap`` samples (W47's sequence gap) and decided; else a
+    decided side is enough. The contacts kept without the bridge are never dropped. No new threshold (W20's 1/3)."""
+    keep = np.ones(np.asarray(peaks).shape[0], dtype=bool)
+    last = -1
+    for i in range(keep.size):
+        if added[i]:
+            near = last >= 0 and peaks[i] - peaks[last] <= max_gap and sd[last] != 0
+            if sd[i] == 0 or (near and sd[i] == sd[last]):
+                keep[i] = False
+                continue
+        last = i
+    return keep
+
+
 def candidate_sides(v_lat: np.ndarray, cand: np.ndarray, accepted: np.ndarray, ap: np.ndarray | None = None,
                     search: int = 0, *, level: np.ndarray | None = None) -> np.ndarray:
     """W20's side (+1 / -1 / 0, :func:`step_sides`) of each candidate vertical maximum ``cand`` (sample indices) from
@@ -421,7 +443,7 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
                      contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool | str = False,
                      side_at_contact: bool = False, fast_fill: bool = False, frozen: np.ndarray | None = None,
-                     with_ap: bool = True, turn_bridge: bool = False
+                     with_ap: bool = True, turn_bridge: bool | str = False
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
@@ -431,8 +453,21 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
     ``with_ap`` a window whose motion gate is closed throughout returns no contacts and ``ap`` None without filtering
     (:func:`ic_offline` keeps only maxima inside the gate, and its sequence rules add contacts only around kept ones:
     the same empty result, for the realtime detector's windows of a long rest, W31). ``turn_bridge``: the gate also
-    open over a yaw-rate turn inside a walk (:func:`turn_bridge_gate`, decision W374; off by default)."""
+    open over a yaw-rate turn inside a walk (:func:`turn_bridge_gate`, decision W374; off by default); ``"side"``
+    (:data:`TURN_BRIDGE_SIDE`): and a contact the bridge adds only where its W20 side is decided and alternates
+    (decision W384)."""
     gate = motion_gate(acc_v, w_z, fs, walk_threshold=walk_threshold, causal=False, turn_gate_rps=turn_gate_rps)
+    if turn_bridge == TURN_BRIDGE_SIDE:  # W384: the contacts without the bridge, and the bridge's that alternate
+        kw = dict(walk_threshold=walk_threshold, cutoff_hz=cutoff_hz, fir_order_s=fir_order_s,
+                  ap_cutoff_hz=ap_cutoff_hz, rhythm=rhythm, max_step_s=max_step_s, alternate=alternate,
+                  weight_shift=weight_shift, end_steps=end_steps, ap_above_mean=ap_above_mean,
+                  turn_gate_rps=turn_gate_rps, turn_shift_rps=turn_shift_rps, min_step_s=min_step_s,
+                  contact_shift=contact_shift, weak_fill=weak_fill, parity_fill=parity_fill,
+                  side_at_contact=side_at_contact, fast_fill=fast_fill, frozen=frozen, with_ap=with_ap)
+        off = contacts_offline(acc_v, acc_ap, acc_ml, w_z, fs, **kw)
+        on = contacts_offline(acc_v, acc_ap, acc_ml, w_z, fs, turn_bridge=True, **kw)
+        return bridge_additions(off, on, lateral_velocity_cached(acc_ml, fs), fs, max_step_s=max_step_s,
+                                min_step_s=SHORTEST_STEP_S if min_step_s is None else min_step_s)
     if turn_bridge:  # W374: a turn on the spot between two walks is stepped
         gate = turn_bridge_gate(gate, w_z, fs, max_step_s=max_step_s)
     if not with_ap and not gate.any():
@@ -450,6 +485,33 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                               weak_fill=weak_fill, parity=parity_fill, side_at_contact=side_at_contact,
                               fast_fill=fast_fill, frozen=frozen)
     return ic, fc, vmax, ap
+
+
+def bridge_additions(off: tuple, on: tuple, v_lat: np.ndarray, fs: float, *, max_step_s: float = 1.5,
+                     min_step_s: float = SHORTEST_STEP_S) -> tuple:
+    """Decision W384 (``turn_bridge="side"``): the contacts ``off`` (``(ic, fc, vmax, ap)`` of
+    :func:`contacts_offline` without W374's bridge) and those of ``on`` (with it) that the bridge adds -- more than
+    ``min_step_s`` (W16's shortest step) from every ``off`` maximum -- and that pass :func:`alternating_bridged` in
+    the merged sequence: the side read from the pelvis's lateral velocity ``v_lat`` at the vertical maximum (W20),
+    at the scale of the ``off`` contacts. The bridge only adds steps; the ones it adds show the weight shift of a
+    step to the other foot. Returns ``(ic, fc, vmax, ap)``, ``ap`` as ``on``'s."""
+    ic0, fc0, vm0 = (np.asarray(x, dtype=int) for x in off[:3])
+    ic1, fc1, vm1 = (np.asarray(x, dtype=int) for x in on[:3])
+    gap = max(1, int(round(min_step_s * fs)))
+    if vm0.size:
+        near = np.abs(vm1[:, None] - vm0[None, :]).min(axis=1) <= gap
+    else:
+        near = np.zeros(vm1.size, dtype=bool)
+    ic = np.concatenate([ic0, ic1[~near]])
+    fc = np.concatenate([fc0, fc1[~near]])
+    vm = np.concatenate([vm0, vm1[~near]])
+    added = np.r_[np.zeros(vm0.size, dtype=bool), np.ones(int((~near).sum()), dtype=bool)]
+    order = np.argsort(vm, kind="stable")
+    ic, fc, vm, added = ic[order], fc[order], vm[order], added[order]
+    v = np.asarray(v_lat, dtype=np.float64)
+    sd = step_sides(v[vm], ~added)  # W20: decided at 1/3 of the median |v| at the contacts found without the bridge
+    keep = alternating_bridged(vm, sd, added, _max_gap(max_step_s, fs))
+    return ic[keep], fc[keep], vm[keep], on[3]
 
 
 def contact_rows(ts: np.ndarray, max_step_s: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -267,8 +267,10 @@ def get_pipeline(name: str) -> Pipeline:
       ``"outside_freeze"``: none inside an episode of the freeze index, W213, decision W255; offline only),
       ``ap_above_mean`` (decisions W29 / W265, off: the IC is the last local AP maximum in W3's 0.25 s window above the
       AP acceleration's 2 s mean, if there is one; offline only),
-      ``turn_bridge`` (decisions W374 / W375, off: the motion gate is also open over a yaw-rate turn with walking
-      within 1.5 s before and after it, so a turn on the spot's weak steps are candidates; offline only),
+      ``turn_bridge`` (decisions W374 / W375 / W384 / W385, ``"side"``: the motion gate is also open over a yaw-rate
+      turn with walking within 1.5 s before and after it, so a turn on the spot's weak steps are candidates, and of the
+      contacts that adds only those whose side is decided and alternates are kept; ``true``: all of them; offline
+      only),
       ``gait_check`` (decision W140, off: with calibrated params, warn when the walk's median cadence is outside
       x0.75-x1.33 of the calibration walks'),
       ``speed_check`` (decision W211, on: with calibrated params, warn when the walk's median cadence is more than 10 %

@@ -35,6 +35,7 @@ from pdrlearn.kernels.freeze import inside_episodes
 from pdrlearn.kernels.lying_heading import long_axis_yaw_rate, stop_pieces  # decision W269
 from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
 from pdrlearn.kernels.step_events import EDGE_LOCK_VALUES  # decision W358
+from pdrlearn.kernels.waist import TURN_BRIDGE_SIDE  # decision W384
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
@@ -590,7 +591,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
-                   "turn_bridge": False,  # W374: the gate open over a yaw-rate turn inside a walk (offline pendulum)
+                   "turn_bridge": TURN_BRIDGE_SIDE,  # W374: the gate open over a yaw-rate turn inside a walk
+                   # (offline pendulum); W384 / W385: adopted as "side", its added contacts where the side alternates
                    "speed_check": True,  # W211
                    "step_bound": False,  # W230: measured, not adopted (a transient's return is a climb)
                    "freeze_index": False,  # W216: the lower back's freeze index is opt-in (freeze_veto implies it)
@@ -665,7 +667,7 @@ CAUSAL_PAUSE_STEPS = "standing"
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
                                                           "parity_fill", "stand_veto", "contact_model", "fast_fill",
-                                                          "cadence_law", "pll_edge_lock"))
+                                                          "cadence_law", "pll_edge_lock", "turn_bridge"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -687,6 +689,8 @@ FAST_FILL_VALUES = (False, True, FAST_FILL_OUTSIDE_FREEZE)
 #: decision W261: ``cadence_law`` - False, True (W240's factor on every calibrated pendulum step) or "steady" (only on
 #: steady walking steps)
 CADENCE_LAW_VALUES = (False, True, CADENCE_LAW_STEADY)
+#: decision W384: ``turn_bridge`` - False, True (W374's bridge) or "side" (its contacts only where the side alternates)
+TURN_BRIDGE_VALUES = (False, True, TURN_BRIDGE_SIDE)
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
@@ -696,7 +700,8 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "contact_model": (CONTACT_MODEL_VALUES, "W203"),
                   "fast_fill": (FAST_FILL_VALUES, "W242, W255"),
                   "cadence_law": (CADENCE_LAW_VALUES, "W240, W261"),
-                  "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367, W372")}
+                  "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367, W372"),
+                  "turn_bridge": (TURN_BRIDGE_VALUES, "W374, W384")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -734,7 +739,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
                 fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
                 foot_rest_veto: bool | None = None, pll_edge_lock: bool | str | None = None,
-                turn_bridge: bool | None = None) -> TrackResult:
+                turn_bridge: bool | str | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -887,7 +892,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         acceleration's 2 s mean, if there is one (decision W29, ``InitialContactDetector``'s ``ap_above_mean``; a
         track option by decision W265); default False
     turn_bridge : pendulum, offline detector: the motion gate is also open over a yaw-rate turn with walking on both
-        sides (decision W374, ``InitialContactDetector``'s ``turn_bridge``); default False
+        sides (decision W374, ``InitialContactDetector``'s ``turn_bridge``); ``"side"`` (the default, decisions W384 /
+        W385): the contacts without the bridge and those the bridge adds where their W20 side is decided and
+        alternates
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -1362,7 +1369,9 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
                                   fast_fill=o["fast_fill"] if o["fast_fill"] == FAST_FILL_OUTSIDE_FREEZE
                                   else bool(o["fast_fill"]),  # W242, W255
                                   ap_above_mean=bool(o["ap_above_mean"]) and not realtime,  # W29, W265: offline
-                                  turn_bridge=bool(o["turn_bridge"]) and not realtime,  # W374: offline
+                                  turn_bridge=not realtime and (TURN_BRIDGE_SIDE  # W374: offline; W384
+                                                                if o["turn_bridge"] == TURN_BRIDGE_SIDE
+                                                                else bool(o["turn_bridge"])),
                                   parity_fill="within" if o["parity_fill"] == "within" else bool(o["parity_fill"]))
 
 

@@ -119,7 +119,9 @@ class InitialContactDetector:
         this (rad/s; decision 28 of docs/decisions/steps.md: 0.45, the turning component of W7's mixture, finds
         a TUG's turning steps but lowers MS001 Test11's F1, not adopted); ``None`` (default) = the std gate alone (W4)
     turn_bridge : offline only: the motion gate is also open over a yaw-rate turn with walking on both sides
-        (:func:`pdrlearn.kernels.waist.turn_bridge_gate`, decision W374; off by default)
+        (:func:`pdrlearn.kernels.waist.turn_bridge_gate`, decision W374; off by default); ``"side"``: and a contact
+        whose maximum lies only in the bridged span is dropped when its W20 side equals the previous kept contact's
+        (:func:`pdrlearn.kernels.waist.alternating_bridged`, decision W384)
     turn_shift_rps : offline (and realtime with ``delay_s``): a maximum where the pelvis's mean yaw rate over the
         gate window (centred) reaches this (rad/s) is exempt from W23's weight-shift test (``weight_shift``;
         decision 29 of docs/decisions/steps.md: 0.45, decision 28's turning test); ``None`` (default) = W23 everywhere
@@ -174,7 +176,7 @@ class InitialContactDetector:
                  min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False,
                  parity_fill: bool | str = "within", realtime_shift: bool = False,  # W159/W160: adopted by its rule
                  side_at_contact: bool = False, fast_fill: bool | str = False,  # W235, W242, W255
-                 turn_bridge: bool = False):  # W374
+                 turn_bridge: bool | str = False):  # W374, W384
         self.turn_bridge = turn_bridge
         self.side_at_contact = side_at_contact
         self.fast_fill = fast_fill
@@ -213,7 +215,8 @@ class InitialContactDetector:
         shift = self.contact_shift and not self.learned and (not self.realtime or self.realtime_shift)  # W166
         return kw | {"contact_shift": bool(shift), "side_at_contact": bool(self.side_at_contact and offline),  # W235
                      "fast_fill": bool(self.fast_fill and offline),  # W242
-                     "turn_bridge": bool(self.turn_bridge and offline),  # W374: reads the walk after the turn
+                     "turn_bridge": (self.turn_bridge if self.turn_bridge == K.TURN_BRIDGE_SIDE  # W384
+                                     else bool(self.turn_bridge)) if offline else False,  # W374: reads ahead
                      "weak_fill": bool(self.weak_fill and offline),
                      "parity_fill": self.parity_fill if offline and self.parity_fill else False}
 

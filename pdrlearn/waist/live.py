@@ -172,14 +172,15 @@ def unapplied_options_line(p) -> str | None:
 def live_value(option: str, given: dict | None = None):
     """Decisions E126, E130: the value of the option ``option`` of :data:`LIVE_UNAPPLIED_OPTIONS` that the live tracker
     tracks as, under the PARAMS.json ``"options"`` ``given``: no sit veto (``False``, W185's ``REALTIME_SIT_VETO``,
-    where the offline default is ``"opposite"``); no stand veto (``False``, where the offline default is
-    ``"walking"`` since W219; the walking stretches' bounce is known only offline, W189 / W218); ``contact_shift`` only
-    with ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's
-    fill is the offline detector's only, where the default is ``"within"``); ``pause_ride`` only as the PARAMS.json
+    where the offline default is ``"opposite"``); no stand veto (``False``, where the offline default is ``"walking"``
+    since W219; the walking stretches' bounce is known only offline, W189 / W218); ``contact_shift`` only with
+    ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's fill is
+    the offline detector's only, where the default is ``"within"``); no ``turn_bridge`` (``False``: W374's bridge reads
+    the walk after the turn, where the offline default is ``"side"`` since W385); ``pause_ride`` only as the PARAMS.json
     gives it (E146: W231's ride is applied live when given true; not given: ``False``, W158's whole pause, where the
     offline default is true); ``lying_heading`` ``False`` (W271, E151: the live tracker labels no lying; E107's line
-    names its offline default only where the PARAMS.json gives it, :data:`NAMED_WHEN_GIVEN`); else the option's
-    offline default (E107)."""
+    names its offline default only where the PARAMS.json gives it, :data:`NAMED_WHEN_GIVEN`); else the option's offline
+    default (E107)."""
     from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
 
     given = given or {}
@@ -193,8 +194,8 @@ def live_value(option: str, given: dict | None = None):
         return False
     if option == "contact_shift":  # W166: W131 inside W31's window only with realtime_contact_shift
         return bool(value("contact_shift")) and bool(value("realtime_contact_shift"))
-    if option == "parity_fill":  # W159: InitialContactDetector.rule_settings keeps it offline only
-        return False
+    if option in ("parity_fill", "turn_bridge"):  # W159, W374 / W385: InitialContactDetector.rule_settings keeps
+        return False  # them offline only
     if option == "pause_ride":  # E146: applied live when the PARAMS.json gives it true, else W158's whole pause
         return bool(given["pause_ride"]) if given.get("pause_ride") is not None else False
     if option in ("lying_heading", "foot_rest_veto"):  # W271, E151, W337: never applied live (named only where
