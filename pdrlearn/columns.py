@@ -483,6 +483,18 @@ SUBJECTS: tuple[Column, ...] = (
     ("cadence_spm", "steps/min", "number", "60 x the bouts' steps between first and last contact / their contact "
                                            "spans (bouts.csv's cadence, pooled; L164)"),
     ("visit_as_written", _ID, "text", "meta.json visit(s) as written, ; -separated (C82)"),
+    ("floors_up", "count", "integer", "sessions.csv's floors_up summed over the tracked sessions (a day in parts "
+                                      "adds up); empty when one of them has none (C108)"),
+    ("floors_down", "count", "integer", "sessions.csv's floors_down summed (C108)"),
+    ("time_no_data_s", "s", "number", "sessions.csv's time_no_data_s (data gaps over 1 s) summed (C108)"),
+    ("standing_time_s", "s", "number", "lower back: sessions.csv's standing_time_s summed; empty when one of the "
+                                       "sessions has none (a foot track: a partial sum is not the day's, C108)"),
+    ("sitting_time_s", "s", "number", "lower back: sitting_time_s summed; empty as standing_time_s (C108)"),
+    ("lying_time_s", "s", "number", "lower back: lying_time_s summed; empty as standing_time_s (C108)"),
+    ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers summed; empty as standing_time_s "
+                                           "(C108)"),
+    ("n_stand_to_sit", "count", "integer", "lower back: stand-to-sit transfers summed; empty as standing_time_s "
+                                           "(C108)"),
 )
 
 #: decisions C22, C81-C83: track-all's changes.csv, one row per subject and later visit; ``{measure}`` stands for each
