@@ -930,9 +930,21 @@ def _pair(name: str, unit: str, what: str) -> tuple[Column, ...]:
             (f"{name}_ratio", "ratio", "number", "left / right (Patterson et al. 2010; L259)"))
 
 
+#: decision C109: the id columns leading each of ``pdrlearn gait``'s tables
+_GAIT_IDS: tuple[Column, ...] = (
+    ("session_left", _ID, "text", "the left foot's session name (meta.json session, else its folder; C109)"),
+    ("session_right", _ID, "text", "the right foot's session name (C109)"),
+    ("subject", _ID, "text", "meta.json subject of the two feet (as track-all's; both, ; -separated, when they "
+                             "differ; empty when not given; C109)"),
+    ("visit", _ID, "text", "meta.json visit of the two feet, as written (C109)"),
+)
+_FOOT: Column = ("foot", _ID, "text", "= side: strides.csv's name for it (C109; side kept for existing readers)")
+
 #: ``pdrlearn gait``'s gait_steps.csv (decisions L259, L284, L287): one row per step of the merged contacts
 GAIT_STEPS: tuple[Column, ...] = (
+    *_GAIT_IDS,
     ("side", _ID, "text", "the foot the step lands on (left / right)"),
+    _FOOT,
     ("bout", "index", "integer", "the walking bout of the pair (L261), from 1"),
     ("start_s", "s", "number", "the other foot's initial contact that starts the step, on the pair's clock"),
     ("ic_s", "s", "number", "the landing foot's initial contact that ends it"),
@@ -945,7 +957,9 @@ GAIT_STEPS: tuple[Column, ...] = (
 )
 #: ``pdrlearn gait``'s gait_cycles.csv (decisions L262, L287): one row per gait cycle of either foot
 GAIT_CYCLES: tuple[Column, ...] = (
+    *_GAIT_IDS,
     ("side", _ID, "text", "the foot whose cycle it is (its IC to its next IC)"),
+    _FOOT,
     ("bout", "index", "integer", "the walking bout of the pair (L261)"),
     ("start_s", "s", "number", "the cycle's first initial contact"),
     ("end_s", "s", "number", "the foot's next initial contact"),
@@ -959,6 +973,7 @@ GAIT_CYCLES: tuple[Column, ...] = (
 #: ``pdrlearn gait``'s gait_bouts.csv (decisions L259-L262, L284, L287): one row per walking bout of the pair; the same
 #: keys are gait_summary.json's ``walk``
 GAIT_BOUTS: tuple[Column, ...] = (
+    *_GAIT_IDS,
     ("bout", "index", "integer", "the walking bout of the pair (L261), from 1"),
     ("start_s", "s", "number", "its first initial contact (either foot)"),
     ("end_s", "s", "number", "its last initial contact"),

@@ -108,14 +108,13 @@ def register(app: typer.Typer) -> None:
         res = pair_sessions(left_dir, right_dir)  # bad input fails here, before any folder is made
         summary = json_safe(_summary_json(res))
         if out is not None:
-            import pandas as pd
+            from pdrlearn.track.gait_tables import gait_tables
 
             was = existed(out)
             with refused_output(out), atomic_directory(out) as tmp:  # all four files or none (B151)
                 (tmp / "gait_summary.json").write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n")
-                res["steps"].to_csv(tmp / "gait_steps.csv", index=False)
-                res["cycles"].to_csv(tmp / "gait_cycles.csv", index=False)
-                pd.DataFrame(res["bouts"]).to_csv(tmp / "gait_bouts.csv", index=False)
+                for name, table in gait_tables(res).items():  # decision C109: ids in front, foot beside side
+                    table.to_csv(tmp / name, index=False)
             replaced(out, was)
         if as_json:
             print_json(summary)
