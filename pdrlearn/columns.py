@@ -921,6 +921,21 @@ FOOT_STEPS: tuple[Column, ...] = (
                                      "tile; stride_length_mae_* = these pairs, one per ref_match (L252)"),
 )
 
+#: decision C110: ``pdrlearn gait-all``'s gait_pairs.csv, one row per visit folder
+GAIT_PAIRS: tuple[Column, ...] = (
+    ("path", _ID, "text", "the visit folder relative to ROOT (the pooled gait tables' path)"),
+    ("status", _ID, "text", "ok (paired and measured), failed (gait refused the pair) or no_pair (not one left "
+                            "and one right foot session by meta.json foot)"),
+    ("reason", _ID, "text", "a failed or no_pair row's one line; empty when ok"),
+    ("session_left", _ID, "text", "as gait_steps.csv (C109); empty unless ok"),
+    ("session_right", _ID, "text", "as gait_steps.csv (C109)"),
+    ("subject", _ID, "text", "as gait_steps.csv (C109)"),
+    ("visit", _ID, "text", "as gait_steps.csv (C109)"),
+    ("n_bouts", "count", "integer", "the pair's walking bouts: its rows of gait_bouts.csv"),
+    ("n_steps", "count", "integer", "the pair's steps of both feet: its rows of gait_steps.csv"),
+)
+
+
 def _pair(name: str, unit: str, what: str) -> tuple[Column, ...]:
     """Decision L287: a left / right measure of ``pdrlearn gait`` and its two asymmetry columns (L259)."""
     return ((f"{name}_left", unit, "number", f"the left foot's mean {what}"),
@@ -932,6 +947,7 @@ def _pair(name: str, unit: str, what: str) -> tuple[Column, ...]:
 
 #: decision C109: the id columns leading each of ``pdrlearn gait``'s tables
 _GAIT_IDS: tuple[Column, ...] = (
+    ("path", _ID, "text", "gait-all only: the visit folder relative to ROOT (gait_pairs.csv's key; C110)"),
     ("session_left", _ID, "text", "the left foot's session name (meta.json session, else its folder; C109)"),
     ("session_right", _ID, "text", "the right foot's session name (C109)"),
     ("subject", _ID, "text", "meta.json subject of the two feet (as track-all's; both, ; -separated, when they "
@@ -1264,7 +1280,7 @@ COHORT_METHODS_SUMMARY: tuple[Column, ...] = (
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, STAIRS, RIDES, WAIST_STEPS,
-    FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, DETECTIONS, EVENTS, STEPS_JSON,
+    FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_METHODS, COHORT_METHODS_SUMMARY), strict=True))
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
@@ -1292,7 +1308,9 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
                                "per user, task, method and unit; cohort_methods_summary.csv|md: the means over users.",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
                            "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
-                           "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines."}
+                           "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines. `pdrlearn "
+                           "gait-all ROOT --out DIR` (C110) stacks every visit folder's pair, each row led by "
+                           "`path`."}
 
 
 def expanded(table: str) -> dict[str, Column]:

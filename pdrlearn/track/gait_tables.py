@@ -40,3 +40,49 @@ def gait_tables(res: dict, ids: dict | None = None) -> dict[str, pd.DataFrame]:
             table.insert(i, key, value)
         out[name] = table
     return out
+
+
+#: decision C110: gait-all's tables of the pairs, gait's three stacked (each led by ``path``)
+GAIT_TABLE_FILES = ("gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
+#: decision C110: gait-all's gait_pairs.csv, one row per visit folder
+PAIR_COLUMNS = ("path", "status", "reason", "session_left", "session_right", "subject", "visit", "n_bouts",
+                "n_steps")
+
+
+def visit_pairs(found, root) -> list[dict]:
+    """Decision C110: the session folders ``found`` under ``root`` (:func:`pdrlearn.cohort.find_sessions`'s order)
+    grouped by the folder holding them (a visit folder) and paired by meta.json's foot
+    (:func:`pdrlearn.track.bilateral.session_foot`): per visit folder ``{"path": relative to root, "left",
+    "right": the two sessions or None, "reason": None for exactly one left and one right foot session, else why
+    there is no pair}``, in order of first appearance."""
+    from pathlib import Path
+
+    from pdrlearn.errors import DataError
+    from pdrlearn.runtime.replay import read_meta
+    from pdrlearn.track.bilateral import session_foot
+
+    root = Path(root)
+    groups: dict[Path, list[Path]] = {}
+    for p in found:
+        groups.setdefault(Path(p).parent, []).append(Path(p))
+    out = []
+    for parent, sessions in groups.items():
+        feet: dict[str | None, list[Path]] = {"left": [], "right": [], None: []}
+        problems = []
+        for s in sessions:
+            try:
+                feet[session_foot(read_meta(s))].append(s)
+            except DataError as exc:
+                problems.append(str(exc))
+        rel = parent.relative_to(root).as_posix() if parent != root else "."
+        pair = {"path": rel, "left": None, "right": None, "reason": None}
+        if len(feet["left"]) == 1 and len(feet["right"]) == 1 and not problems:
+            pair.update(left=feet["left"][0], right=feet["right"][0])
+        else:
+            names = ", ".join(s.name for s in feet[None])
+            pair["reason"] = "; ".join(problems) or (
+                f"no pair: {len(feet['left'])} left and {len(feet['right'])} right foot session(s)"
+                + (f", {len(feet[None])} naming no foot ({names}; import --foot)" if feet[None] else "")
+                + ": give each visit folder one left and one right foot session")
+        out.append(pair)
+    return out
