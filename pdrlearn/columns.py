@@ -483,6 +483,18 @@ SUBJECTS: tuple[Column, ...] = (
     ("cadence_spm", "steps/min", "number", "60 x the bouts' steps between first and last contact / their contact "
                                            "spans (bouts.csv's cadence, pooled; L164)"),
     ("visit_as_written", _ID, "text", "meta.json visit(s) as written, ; -separated (C82)"),
+    ("floors_up", "count", "integer", "sessions.csv's floors_up summed over the tracked sessions (a day in parts "
+                                      "adds up); empty when one of them has none (C108)"),
+    ("floors_down", "count", "integer", "sessions.csv's floors_down summed (C108)"),
+    ("time_no_data_s", "s", "number", "sessions.csv's time_no_data_s (data gaps over 1 s) summed (C108)"),
+    ("standing_time_s", "s", "number", "lower back: sessions.csv's standing_time_s summed; empty when one of the "
+                                       "sessions has none (a foot track: a partial sum is not the day's, C108)"),
+    ("sitting_time_s", "s", "number", "lower back: sitting_time_s summed; empty as standing_time_s (C108)"),
+    ("lying_time_s", "s", "number", "lower back: lying_time_s summed; empty as standing_time_s (C108)"),
+    ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers summed; empty as standing_time_s "
+                                           "(C108)"),
+    ("n_stand_to_sit", "count", "integer", "lower back: stand-to-sit transfers summed; empty as standing_time_s "
+                                           "(C108)"),
 )
 
 #: decisions C22, C81-C83: track-all's changes.csv, one row per subject and later visit; ``{measure}`` stands for each
@@ -909,6 +921,21 @@ FOOT_STEPS: tuple[Column, ...] = (
                                      "tile; stride_length_mae_* = these pairs, one per ref_match (L252)"),
 )
 
+#: decision C110: ``pdrlearn gait-all``'s gait_pairs.csv, one row per visit folder
+GAIT_PAIRS: tuple[Column, ...] = (
+    ("path", _ID, "text", "the visit folder relative to ROOT (the pooled gait tables' path)"),
+    ("status", _ID, "text", "ok (paired and measured), failed (gait refused the pair) or no_pair (not one left "
+                            "and one right foot session by meta.json foot)"),
+    ("reason", _ID, "text", "a failed or no_pair row's one line; empty when ok"),
+    ("session_left", _ID, "text", "as gait_steps.csv (C109); empty unless ok"),
+    ("session_right", _ID, "text", "as gait_steps.csv (C109)"),
+    ("subject", _ID, "text", "as gait_steps.csv (C109)"),
+    ("visit", _ID, "text", "as gait_steps.csv (C109)"),
+    ("n_bouts", "count", "integer", "the pair's walking bouts: its rows of gait_bouts.csv"),
+    ("n_steps", "count", "integer", "the pair's steps of both feet: its rows of gait_steps.csv"),
+)
+
+
 def _pair(name: str, unit: str, what: str) -> tuple[Column, ...]:
     """Decision L287: a left / right measure of ``pdrlearn gait`` and its two asymmetry columns (L259)."""
     return ((f"{name}_left", unit, "number", f"the left foot's mean {what}"),
@@ -918,9 +945,22 @@ def _pair(name: str, unit: str, what: str) -> tuple[Column, ...]:
             (f"{name}_ratio", "ratio", "number", "left / right (Patterson et al. 2010; L259)"))
 
 
+#: decision C109: the id columns leading each of ``pdrlearn gait``'s tables
+_GAIT_IDS: tuple[Column, ...] = (
+    ("path", _ID, "text", "gait-all only: the visit folder relative to ROOT (gait_pairs.csv's key; C110)"),
+    ("session_left", _ID, "text", "the left foot's session name (meta.json session, else its folder; C109)"),
+    ("session_right", _ID, "text", "the right foot's session name (C109)"),
+    ("subject", _ID, "text", "meta.json subject of the two feet (as track-all's; both, ; -separated, when they "
+                             "differ; empty when not given; C109)"),
+    ("visit", _ID, "text", "meta.json visit of the two feet, as written (C109)"),
+)
+_FOOT: Column = ("foot", _ID, "text", "= side: strides.csv's name for it (C109; side kept for existing readers)")
+
 #: ``pdrlearn gait``'s gait_steps.csv (decisions L259, L284, L287): one row per step of the merged contacts
 GAIT_STEPS: tuple[Column, ...] = (
+    *_GAIT_IDS,
     ("side", _ID, "text", "the foot the step lands on (left / right)"),
+    _FOOT,
     ("bout", "index", "integer", "the walking bout of the pair (L261), from 1"),
     ("start_s", "s", "number", "the other foot's initial contact that starts the step, on the pair's clock"),
     ("ic_s", "s", "number", "the landing foot's initial contact that ends it"),
@@ -933,7 +973,9 @@ GAIT_STEPS: tuple[Column, ...] = (
 )
 #: ``pdrlearn gait``'s gait_cycles.csv (decisions L262, L287): one row per gait cycle of either foot
 GAIT_CYCLES: tuple[Column, ...] = (
+    *_GAIT_IDS,
     ("side", _ID, "text", "the foot whose cycle it is (its IC to its next IC)"),
+    _FOOT,
     ("bout", "index", "integer", "the walking bout of the pair (L261)"),
     ("start_s", "s", "number", "the cycle's first initial contact"),
     ("end_s", "s", "number", "the foot's next initial contact"),
@@ -947,6 +989,7 @@ GAIT_CYCLES: tuple[Column, ...] = (
 #: ``pdrlearn gait``'s gait_bouts.csv (decisions L259-L262, L284, L287): one row per walking bout of the pair; the same
 #: keys are gait_summary.json's ``walk``
 GAIT_BOUTS: tuple[Column, ...] = (
+    *_GAIT_IDS,
     ("bout", "index", "integer", "the walking bout of the pair (L261), from 1"),
     ("start_s", "s", "number", "its first initial contact (either foot)"),
     ("end_s", "s", "number", "its last initial contact"),
@@ -1281,8 +1324,9 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, STAIRS, RIDES, WAIST_STEPS,
-    FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, DETECTIONS, EVENTS, STEPS_JSON,
+    FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY), strict=True))
+
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns: steps.csv (foot), below.",
@@ -1314,7 +1358,9 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
                                "per user, task, method and unit; cohort_methods_summary.csv|md: the means over users.",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
                            "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
-                           "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines."}
+                           "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines. `pdrlearn "
+                           "gait-all ROOT --out DIR` (C110) stacks every visit folder's pair, each row led by "
+                           "`path`."}
 
 
 def expanded(table: str) -> dict[str, Column]:

@@ -44,6 +44,7 @@ FOLDER_KINDS = {
     "evaluate-all": ("a cohort summary", "pdrlearn evaluate-all"),
     "track-all": ("a batch of tracks (sessions.csv, groups.csv, one folder per session)", "pdrlearn track-all"),
     "gait": ("a bilateral gait output (gait_summary.json, gait_steps.csv)", "pdrlearn gait"),  # decision L260
+    "gait-all": ("a batch of bilateral gait (gait_pairs.csv, gait_steps.csv)", "pdrlearn gait-all"),  # C110
 }
 _TRACK_FILES = ("summary.json", "steps.csv", "trajectory.csv")
 
@@ -63,6 +64,8 @@ def folder_kind(folder: Path) -> str | None:
         return "track-all"
     if (folder / "gait_summary.json").is_file() and (folder / "gait_steps.csv").is_file():
         return "gait"
+    if (folder / "gait_pairs.csv").is_file() and (folder / "gait_steps.csv").is_file():
+        return "gait-all"
     if all((folder / n).is_file() for n in _TRACK_FILES):
         try:
             summary = json.loads(read_text(folder / "summary.json"))

@@ -22,6 +22,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "steps.csv", "steps.csv (foot)",  # E137
                                 "trajectory.csv",  # B309
                                 "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv",  # L287
+                                "gait_pairs.csv",  # C110
                                 "detections.csv", "events.csv", "steps.json",  # steps 59
                                 "cohort_summary.csv",  # cohort C106
                                 "cohort_methods.csv", "cohort_methods_summary.csv")  # cohort C92

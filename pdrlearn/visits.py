@@ -163,7 +163,13 @@ def paired_visits(sessions, visit_map: dict[str, str] | None = None):
 #: subjects.csv's columns (cohort C25)
 SUBJECT_COLUMNS = ("subject", "visit", "group", "n_tracked", "n_failed", "paths", "distance_m", "n_bouts",
                    "walking_time_s", "n_steps", "n_strides", "bouts_distance_m", "gait_speed_mps", "cadence_spm",
-                   "visit_as_written")  # decision C82: last, the columns before it kept in place
+                   "visit_as_written",  # decision C82: last, the columns before it kept in place
+                   *("floors_up", "floors_down", "time_no_data_s", "standing_time_s", "sitting_time_s",
+                     "lying_time_s", "n_sit_to_stand", "n_stand_to_sit"))  # decision C108: after, positions kept
+
+#: decision C108: sessions.csv's additive columns subjects.csv sums (a day in parts adds up); its medians, CVs,
+#: speeds and errors are not additive and stay per session (gait speed and cadence are pooled instead, C25, L164)
+SUMMED_SESSION_COLUMNS = SUBJECT_COLUMNS[SUBJECT_COLUMNS.index("visit_as_written") + 1:]
 
 
 def subject_totals(sessions, visit_map: dict[str, str] | None = None):
@@ -216,11 +222,26 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
             row["gait_speed_mps"] = row["bouts_distance_m"] / t if t > 0 else np.nan
             span = total("bouts_contact_span_s")  # decision L164: bouts.csv's cadence, the bouts pooled
             row["cadence_spm"] = cadence_spm(total("bouts_n_step_intervals"), span) if span > 0 else np.nan
+            row.update({c: _sum_of_all(ok, c) for c in SUMMED_SESSION_COLUMNS})
             rows.append(row)
     out = pd.DataFrame(rows, columns=list(SUBJECT_COLUMNS))
-    for c in ("n_tracked", "n_failed", "n_bouts", "n_steps", "n_strides"):
-        out[c] = out[c].astype("Int64")
+    for c in ("n_tracked", "n_failed", "n_bouts", "n_steps", "n_strides", "floors_up", "floors_down",
+              "n_sit_to_stand", "n_stand_to_sit"):
+        out[c] = out[c].astype("Float64").astype("Int64")
     return out
+
+
+def _sum_of_all(ok, column: str):
+    """Decision C108: ``column`` of the tracked sessions ``ok`` summed; NaN when none was tracked or one of them
+    has no value (a foot track's posture times, a session table without the column): a part of a day's total
+    must not read as the day's total."""
+    import numpy as np
+    import pandas as pd
+
+    if column not in ok or not len(ok):
+        return np.nan
+    values = pd.to_numeric(ok[column], errors="coerce")
+    return float(values.sum()) if values.notna().all() else np.nan
 
 
 def _names(values) -> str | None:

@@ -1,4 +1,5 @@
-"""``pdrlearn gait LEFT_DIR RIGHT_DIR``: bilateral gait from two foot units of one walk (decisions L259-L263)."""
+"""``pdrlearn gait LEFT_DIR RIGHT_DIR``: bilateral gait from two foot units of one walk (decisions L259-L263);
+``pdrlearn gait-all ROOT``: every visit folder's pair (decision C110)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,8 @@ from pdrlearn.cli.common import FORCE_HELP
 
 #: the files ``gait --out`` writes (decision L260); the output-folder kind ``gait`` is recognised by them
 GAIT_FILES = ("gait_summary.json", "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
+#: the files ``gait-all --out`` writes (decision C110); the folder kind ``gait-all`` is recognised by gait_pairs.csv
+GAIT_ALL_FILES = ("gait_pairs.csv", "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
 
 
 def _fmt(v, spec: str) -> str:
@@ -62,6 +65,8 @@ def _summary_json(res: dict) -> dict:
 
 
 def register(app: typer.Typer) -> None:
+    register_all(app)
+
     @app.command("gait")
     def gait_cmd(
         left_dir: Path = typer.Argument(..., help="The LEFT foot's session folder."),
@@ -108,14 +113,13 @@ def register(app: typer.Typer) -> None:
         res = pair_sessions(left_dir, right_dir)  # bad input fails here, before any folder is made
         summary = json_safe(_summary_json(res))
         if out is not None:
-            import pandas as pd
+            from pdrlearn.track.gait_tables import gait_tables
 
             was = existed(out)
             with refused_output(out), atomic_directory(out) as tmp:  # all four files or none (B151)
                 (tmp / "gait_summary.json").write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n")
-                res["steps"].to_csv(tmp / "gait_steps.csv", index=False)
-                res["cycles"].to_csv(tmp / "gait_cycles.csv", index=False)
-                pd.DataFrame(res["bouts"]).to_csv(tmp / "gait_bouts.csv", index=False)
+                for name, table in gait_tables(res).items():  # decision C109: ids in front, foot beside side
+                    table.to_csv(tmp / name, index=False)
             replaced(out, was)
         if as_json:
             print_json(summary)
@@ -136,3 +140,84 @@ def register(app: typer.Typer) -> None:
                 typer.echo("  " + ref["reason"])
         if out is not None:
             typer.echo(f"wrote {out}/" + ", ".join(GAIT_FILES))
+
+
+def gait_all(root: Path, out: Path, force: bool = False) -> int:
+    """Decision C110: ``pdrlearn gait-all``'s work; the exit code (1 when a pair failed, as track-all)."""
+    import time
+
+    import pandas as pd
+
+    from pdrlearn.atomic import atomic_directory
+    from pdrlearn.cli.common import existed, out_folder, progress, refused_output, replaced
+    from pdrlearn.cohort import find_sessions
+    from pdrlearn.columns import TABLES
+    from pdrlearn.errors import DataError, PdrlearnError
+    from pdrlearn.table_csv import write_table_csv
+    from pdrlearn.track.bilateral import pair_sessions
+    from pdrlearn.track.gait_tables import GAIT_TABLE_FILES, PAIR_COLUMNS, gait_tables, visit_pairs
+
+    out_folder(out, "gait-all", force=force, inputs=(root,))
+    pairs = visit_pairs(find_sessions(root), root)
+    if all(p["reason"] is not None for p in pairs):  # decision B372: nothing to pair, nothing written
+        raise DataError(f"gait-all: {root}: no visit folder holds one left and one right foot session "
+                        f"({pairs[0]['path']}: {pairs[0]['reason']}); give each visit folder both feet's sessions "
+                        "with meta.json \"foot\" (pdrlearn import --foot), or use `pdrlearn gait LEFT RIGHT`")
+    rows, tables = [], {name: [] for name in GAIT_TABLE_FILES}
+    was = existed(out)
+    with refused_output(out), atomic_directory(out) as tmp, progress("gait-all", len(pairs), eta=True) as advance:
+        for i, pair in enumerate(pairs, 1):
+            row = {"path": pair["path"], "status": "no_pair", "reason": pair["reason"]}
+            start = time.perf_counter()
+            if pair["reason"] is None:
+                try:
+                    res = pair_sessions(pair["left"], pair["right"])
+                except PdrlearnError as exc:  # one pair's bad input: its line, the batch goes on
+                    row.update(status="failed", reason=str(exc))
+                else:
+                    got = gait_tables(res, {"path": pair["path"], **res["ids"]})
+                    for name in GAIT_TABLE_FILES:
+                        tables[name].append(got[name])
+                    row.update(status="ok", **res["ids"], n_bouts=len(res["bouts"]), n_steps=len(res["steps"]))
+            rows.append(row)
+            what = {"ok": f"ok, {row.get('n_steps')} steps in {row.get('n_bouts')} bout(s)",
+                    "failed": f"failed: {row['reason']}"}.get(row["status"], row["reason"])
+            typer.echo(f"[{i}/{len(pairs)}] {pair['path']}: {what} ({time.perf_counter() - start:.1f} s)", err=True)
+            advance()
+        write_table_csv(pd.DataFrame(rows, columns=list(PAIR_COLUMNS)).astype({"n_bouts": "Int64",
+                                                                              "n_steps": "Int64"}),
+                        tmp / "gait_pairs.csv")
+        for name, frames in tables.items():
+            header = pd.DataFrame(columns=[c[0] for c in TABLES[name]])
+            write_table_csv(pd.concat(frames, ignore_index=True) if frames else header, tmp / name)
+    replaced(out, was)
+    n_ok = sum(r["status"] == "ok" for r in rows)
+    typer.echo(f"{n_ok} of {len(pairs)} visit folder(s) paired; wrote {out}/" + ", ".join(GAIT_ALL_FILES))
+    return 0 if all(r["status"] != "failed" for r in rows) else 1
+
+
+def register_all(app: typer.Typer) -> None:
+    @app.command("gait-all")
+    def gait_all_cmd(
+        root: Path = typer.Argument(..., help="A folder of visit folders, each holding the left and the right "
+                                    "foot's session of one walk (meta.json \"foot\", as import --foot writes)."),
+        out: Path = typer.Option(..., "--out", "-o", help="Folder for gait_pairs.csv and the pooled "
+                                 "gait_steps.csv, gait_cycles.csv, gait_bouts.csv."),
+        force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    ):
+        """Bilateral gait of every visit folder under ROOT (decision C110): the session folders are found as
+        track-all finds them, grouped by the folder holding them, and each folder's one left and one right foot
+        session (by meta.json "foot") is given to `pdrlearn gait`. The pooled tables stack gait's tables, each
+        row led by `path` (the visit folder relative to ROOT) and the pair's ids (session_left, session_right,
+        subject, visit; C109); gait_pairs.csv has one row per visit folder with its status (ok, failed, no_pair)
+        and reason. A visit folder without exactly one session of each foot is one line and a no_pair row; a
+        pair that gait refuses is one line and a failed row (exit code 1), the others go on; no pair anywhere is
+        one error line, nothing written (exit 2). Pairs are tracked one after another, with a line each.
+
+        Examples:
+
+          pdrlearn gait-all study/ --out gait_study
+        """
+        code = gait_all(root, out, force)
+        if code:
+            raise typer.Exit(code)

@@ -667,6 +667,7 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     measures of their labelled events when both sessions have them (L263), and ``"sessions"``: each track's
     summary line data (``n_strides``, ``distance_m``)."""
     from pdrlearn.io import read_session
+    from pdrlearn.track.gait_tables import pair_ids
     from pdrlearn.track.plasys import track_plasys
 
     sessions = [read_session(d) for d in (left_dir, right_dir)]
@@ -697,4 +698,5 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
             out["warnings"].append(line)
     out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps))}
                        for side, d, t in zip(SIDES, (left_dir, right_dir), tracks, strict=True)}
+    out["ids"] = pair_ids(*sessions)  # decision C109: the tables' id columns
     return out
