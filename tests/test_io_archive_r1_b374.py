@@ -56,3 +56,13 @@ def test_a_zips_track_lists_the_folders_warnings_once_and_never_the_temporary_fo
     assert "pdrlearn-zip-" not in err_zip and "pdrlearn-zip-" not in json.dumps(z), err_zip
     if name == "gap9010":
         assert "dropped samples" in err_dir and f"{name}.zip:{name}: fAccelerometer have" in err_zip, err_zip
+
+
+def test_run_json_of_a_zip_hashes_the_archive_e197(sessions, tmp_path, capsys):
+    import hashlib
+
+    z = sessions / "walk9010.zip"
+    assert main(["track", str(z), "--out", str(tmp_path / "z")]) == 0
+    capsys.readouterr()
+    run = json.loads((tmp_path / "z" / "run.json").read_text())
+    assert run["input_sha256"] == {"walk9010.zip": hashlib.sha256(z.read_bytes()).hexdigest()}, run["input_sha256"]
