@@ -6,6 +6,7 @@ only."""
 from __future__ import annotations
 
 import json
+import logging
 import zipfile
 from pathlib import Path
 
@@ -66,3 +67,29 @@ def test_run_json_of_a_zip_hashes_the_archive_e197(sessions, tmp_path, capsys):
     capsys.readouterr()
     run = json.loads((tmp_path / "z" / "run.json").read_text())
     assert run["input_sha256"] == {"walk9010.zip": hashlib.sha256(z.read_bytes()).hexdigest()}, run["input_sha256"]
+
+
+def test_a_zip_inside_a_searched_tree_is_named_not_skipped_b374(sessions, tmp_path, capsys, caplog):
+    import shutil
+
+    from pdrlearn.cli.train import find_session_dirs
+    from pdrlearn.errors import DataError
+
+    root, only = tmp_path / "root", tmp_path / "only"
+    (root / "a").mkdir(parents=True)
+    only.mkdir()
+    shutil.copytree(sessions / "walk9010", root / "a" / "walk9010")
+    shutil.copy(sessions / "gap9010.zip", root / "a")
+    shutil.copy(sessions / "gap9010.zip", only)
+    assert main(["track-all", str(root), "--out", str(tmp_path / "all")]) == 0
+    err = capsys.readouterr().err
+    assert f"{root / 'a' / 'gap9010.zip'}: a zip archive, not searched" in err and "unzip" in err, err
+    assert main(["track-all", str(only), "--out", str(tmp_path / "all2")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "gap9010.zip" in err and "unzip" in err and "Traceback" not in err, err
+    assert not (tmp_path / "all2").exists()
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):  # train / evaluate's folder scan
+        assert find_session_dirs([root / "a"]) == [root / "a" / "walk9010"]
+    assert any("gap9010.zip: a zip archive, not searched" in r.getMessage() for r in caplog.records), caplog.text
+    with pytest.raises(DataError, match=r"gap9010\.zip.*pass the zips by name"):
+        find_session_dirs([only])

@@ -19,7 +19,7 @@ import zipfile
 from contextlib import contextmanager
 from pathlib import Path, PurePosixPath
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, shell_quote
 
 #: decision B361: the largest total size (bytes, uncompressed) of an archive's members that is extracted: 2 GiB, about
 #: ten 8 h nights of both units at 100 Hz as PLASYS CSVs (one 100 Hz three-axis CSV is about 14 MB an hour);
@@ -50,10 +50,22 @@ def is_archive(source) -> bool:
 def refuse_archive_for_batch(path: Path, command: str) -> None:
     """Decision B360: ``track-all`` searches a tree of folders for sessions, not a zip: one line saying to unzip it,
     or to give it to a command that reads one session (``track``, ``info``, ``steps`` ...)."""
-    if path.suffix.lower() == ".zip" and path.is_file():
+    if is_zip_file(path):
         raise DataError(f"{path}: a zip archive; `pdrlearn {command}` reads session folders: unzip it first "
                         f"(unzip {path} -d DIR), or give the zip to a one-session command such as `pdrlearn track` "
                         f"(decision B360)")
+
+
+def is_zip_file(path: Path) -> bool:
+    """A file (not a folder) whose name ends in ``.zip``: what B359 reads as a zip of a session."""
+    return path.suffix.lower() == ".zip" and path.is_file()
+
+
+def unsearched_zip_line(path: Path, searcher: str, alone: str) -> str:
+    """Decision B374: the line naming a zip archive that ``searcher`` (a command's folder search) met and did not
+    search (``alone``: how to give it by itself)."""
+    return (f"{path}: a zip archive, not searched ({searcher} looks for session folders); unzip it "
+            f"(unzip {shell_quote(path)} -d DIR) or {alone} (decision B374)")
 
 
 def archive_label(source, name: str | None = None) -> str:
@@ -292,5 +304,5 @@ def _renamed_error(exc: DataError, root: Path, label: str) -> DataError:
         return DataError(text)
 
 
-__all__ = ["MAX_ARCHIVE_BYTES", "MAX_ARCHIVE_MEMBERS", "archive_label", "is_archive", "read_session_zip",
-           "refuse_archive_for_batch"]
+__all__ = ["MAX_ARCHIVE_BYTES", "MAX_ARCHIVE_MEMBERS", "archive_label", "is_archive", "is_zip_file",
+           "read_session_zip", "refuse_archive_for_batch", "renamed_records", "unsearched_zip_line"]
