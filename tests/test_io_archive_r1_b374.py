@@ -93,3 +93,25 @@ def test_a_zip_inside_a_searched_tree_is_named_not_skipped_b374(sessions, tmp_pa
     assert any("gap9010.zip: a zip archive, not searched" in r.getMessage() for r in caplog.records), caplog.text
     with pytest.raises(DataError, match=r"gap9010\.zip.*pass the zips by name"):
         find_session_dirs([only])
+
+
+def test_a_missing_submodule_of_an_installed_package_is_raised_not_called_not_installed_e190(sessions, tmp_path,
+                                                                                              monkeypatch):
+    import importlib.util
+    import subprocess
+    import sys
+
+    from pdrlearn.install import missing_full_package
+
+    assert missing_full_package(ModuleNotFoundError("x", name="scipy.signal.windows")) is None  # scipy is installed
+    assert missing_full_package(ModuleNotFoundError("x", name="scipy")) == "scipy"
+    assert missing_full_package(ModuleNotFoundError("x", name="notapackage")) is None
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None)  # the top-level package really absent
+    assert missing_full_package(ModuleNotFoundError("x", name="scipy.signal.windows")) == "scipy"
+    monkeypatch.undo()
+    code = ("import sys; sys.modules['scipy.signal.windows'] = None; import pdrlearn.cli; "
+            f"sys.exit(pdrlearn.cli.main(['track', {str(sessions / 'walk9010')!r}, '--out', "
+            f"{str(tmp_path / 'blk')!r}]))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 1 and "ModuleNotFoundError" in proc.stderr, proc.stderr[-2000:]
+    assert "not installed" not in proc.stderr, proc.stderr[-2000:]
