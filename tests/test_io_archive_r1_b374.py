@@ -115,3 +115,48 @@ def test_a_missing_submodule_of_an_installed_package_is_raised_not_called_not_in
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 1 and "ModuleNotFoundError" in proc.stderr, proc.stderr[-2000:]
     assert "not installed" not in proc.stderr, proc.stderr[-2000:]
+
+
+def _zip_of(members: dict, dirs: tuple = ()) -> bytes:
+    import io
+
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w") as zf:
+        for d in dirs:
+            zf.writestr(zipfile.ZipInfo(d), b"")  # a directory entry
+        for name, data in members.items():
+            zf.writestr(name, data)
+    return buf.getvalue()
+
+
+def test_a_closed_file_an_empty_zip_and_a_nested_folder_are_one_line_b375(sessions, tmp_path):
+    from pdrlearn.errors import DataError
+    from pdrlearn.io import read_session
+
+    z = sessions / "walk9010.zip"
+    f = open(z, "rb")  # noqa: SIM115 (closed on purpose)
+    f.close()
+    with pytest.raises(DataError, match=r"walk9010\.zip: a closed file object; pass an open one"):
+        read_session(f)
+    for data in (_zip_of({}), _zip_of({}, dirs=("walk1/", "walk1/sub/")),
+                 _zip_of({"__MACOSX/._a": b"x", "walk1/.DS_Store": b"x"})):
+        with pytest.raises(DataError, match=r"^<upload>: holds no file \(only folders, or a zip tool's files"):
+            read_session(data)
+    walk = {f"data/walk1/{p.name}": p.read_bytes() for p in (sessions / "walk9010").iterdir()}
+    with pytest.raises(DataError, match=r"^<upload>: holds its sensor files in data/walk1/; zip that folder itself") \
+            as info:
+        read_session(_zip_of(walk))
+    assert "pass <upload>:" not in str(info.value)
+    two = {**walk, **{k.replace("walk1", "walk2"): v for k, v in walk.items()}}
+    with pytest.raises(DataError, match=r"holds 2 session folders \(data/walk1, data/walk2\); zip one itself"):
+        read_session(_zip_of(two))
+
+
+def test_member_names_that_differ_only_in_case_are_refused_b376(sessions):
+    from pdrlearn.errors import DataError
+    from pdrlearn.io import read_session
+
+    walk = {f"walk1/{p.name}": p.read_bytes() for p in (sessions / "walk9010").iterdir()}
+    walk["walk1/FGYROSCOPE.csv"] = walk["walk1/fGyroscope.csv"]
+    with pytest.raises(DataError, match=r"walk1/FGYROSCOPE\.csv: named twice in the archive \(names that differ only"):
+        read_session(_zip_of(walk))

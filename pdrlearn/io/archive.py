@@ -100,6 +100,7 @@ def read_session_zip(source, *, name: str | None = None, max_archive_bytes: int 
         members = _checked_members(zf, label, max_archive_bytes)
         with tempfile.TemporaryDirectory(prefix="pdrlearn-zip-") as tmp:  # mode 0700: private to this process
             top = _single_top_folder(members)
+            _refuse_deeper(members, top, label)
             root = Path(tmp) if top else Path(tmp) / _stem(label)
             _extract(zf, members, root, label, max_archive_bytes)
             folder = root / top if top else root
@@ -171,6 +172,8 @@ def _open_zip(source, label: str, max_bytes: int) -> zipfile.ZipFile:
             raise DataError(f"{label}: zip archive not found; pass a session folder or a zip of one")
         if path.is_dir():
             raise DataError(f"{label}: a folder, not a zip archive; pass it as a session folder")
+    elif getattr(source, "closed", False) is True or _read_fails(source):  # decision B375
+        raise DataError(f"{label}: a closed file object; pass an open one (opened 'rb') or the archive's bytes")
     elif isinstance(source, io.TextIOBase) or isinstance(source.read(0), str):
         raise DataError(f"{label}: a text file object; open the upload in binary mode ('rb') or pass its bytes")
     elif not _seekable(source):  # a request body: read once, at most the cap (the compressed size is no larger)
@@ -191,6 +194,15 @@ def _open_zip(source, label: str, max_bytes: int) -> zipfile.ZipFile:
             from None
     except OSError as exc:
         raise DataError(f"{label}: cannot be read ({exc.strerror or exc}); check the file") from None
+
+
+def _read_fails(obj) -> bool:
+    """Decision B375: ``obj.read(0)`` raises ValueError (a closed file object that does not say ``closed``)."""
+    try:
+        obj.read(0)
+    except ValueError:
+        return True
+    return False
 
 
 def _seekable(obj) -> bool:
@@ -225,16 +237,37 @@ def _checked_members(zf: zipfile.ZipFile, label: str, max_bytes: int) -> list[tu
             raise DataError(f"{label}:{raw}: a symbolic link in the archive; refused (zip the files themselves)")
         if info.flag_bits & 0x1:
             raise DataError(f"{label}:{raw}: encrypted; zip the session folder without a password")
-        if parts in seen:  # the second copy would replace the first unseen
-            raise DataError(f"{label}:{raw}: named twice in the archive; zip the session folder again")
-        seen.add(parts)
+        key = tuple(p.casefold() for p in parts)  # decision B376: one file on a case-insensitive file system
+        if key in seen:  # the second copy would replace the first unseen
+            raise DataError(f"{label}:{raw}: named twice in the archive (names that differ only in upper/lower case "
+                            f"are one file on macOS and Windows); zip the session folder again")
+        seen.add(key)
         total += info.file_size
         if total > max_bytes:
             raise DataError(f"{label}: its members unpack to more than {max_bytes} bytes (max_archive_bytes, "
                             f"decision B361; at {raw}); pass a smaller archive or raise max_archive_bytes")
         out.append((info, parts))
+    if not out:  # decision B375: an empty archive, folders only, or only a zip tool's files
+        raise DataError(f"{label}: holds no file (only folders, or a zip tool's files such as __MACOSX/); zip the "
+                        f"session folder with its files (zip -r walk1.zip walk1)")
     _refuse_nested(out, label)
     return out
+
+
+def _refuse_deeper(members: list, top: str | None, label: str) -> None:
+    """Decision B375: sensor files only in folders below the archive's top or its one folder (``data/walk1/``):
+    one line saying to zip that folder itself (a path inside the archive cannot be passed)."""
+    from pdrlearn.io.sensors import SENSORS
+
+    sensor_files = {s.filename.lower() for s in SENSORS.values()}
+    dirs = sorted({parts[:-1] for _info, parts in members if parts[-1].lower() in sensor_files})
+    if not dirs or ((top,) if top else ()) in dirs:
+        return
+    names = ["/".join(d) for d in dirs]
+    many = f"{len(names)} session folders ({', '.join(names[:3])}{' ...' if len(names) > 3 else ''}); zip one" \
+        if len(names) > 1 else "its sensor files in " + names[0] + "/; zip that folder"
+    raise DataError(f"{label}: holds {many} itself, e.g. (cd PARENT && zip -r {dirs[0][-1]}.zip {dirs[0][-1]}), or "
+                    f"unzip it and pass {names[0]} (decision B375)")
 
 
 def _refuse_nested(members: list, label: str) -> None:
