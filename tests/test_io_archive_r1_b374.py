@@ -160,3 +160,38 @@ def test_member_names_that_differ_only_in_case_are_refused_b376(sessions):
     walk["walk1/FGYROSCOPE.csv"] = walk["walk1/fGyroscope.csv"]
     with pytest.raises(DataError, match=r"walk1/FGYROSCOPE\.csv: named twice in the archive \(names that differ only"):
         read_session(_zip_of(walk))
+
+
+def _without_times(obj):
+    """A manifest / evaluate result without its creation time, run seconds, latency and the paths of its inputs."""
+    if isinstance(obj, dict):
+        return {k: _without_times(v) for k, v in obj.items()
+                if not any(w in k for w in ("created", "seconds", "time", "latency", "path", "commit", "host"))}
+    if isinstance(obj, list):
+        return [_without_times(v) for v in obj]
+    return obj
+
+
+def test_train_and_evaluate_from_zips_equal_the_folders_b360(tmp_path, capsys):
+    from pdrlearn.sim.simulate import simulate
+
+    dirs, zips = tmp_path / "dirs", tmp_path / "zips"
+    zips.mkdir()
+    for seed in (0, 1):
+        folder = dirs / f"terrain_{seed}"
+        write_session(simulate("terrain", user_seed=9011, seed=seed), folder)
+        _zip_folder(folder, zips / f"terrain_{seed}.zip")
+    args = ["--methods", "svm", "--cv", "3", "--tasks", "terrain", "--units", "foot", "--json"]
+    results = {}
+    for kind, inputs in (("dirs", [str(dirs / "terrain_0")]), ("zips", [str(zips / "terrain_0.zip")])):
+        assert main(["train", *inputs, "--out", str(tmp_path / f"m_{kind}"), *args]) == 0
+        capsys.readouterr()
+        test = dirs / "terrain_1" if kind == "dirs" else zips / "terrain_1.zip"
+        assert main(["evaluate", str(tmp_path / f"m_{kind}"), str(test), "--json"]) == 0
+        out = json.loads(capsys.readouterr().out)
+        manifest = json.loads((tmp_path / f"m_{kind}" / "manifest.json").read_text())
+        results[kind] = (_without_times(manifest), _without_times(out["tasks"]))
+    assert results["zips"][1] == results["dirs"][1]
+    assert results["zips"][1]["terrain"]["n_steps"] > 20
+    assert results["zips"][0] == results["dirs"][0]  # the model: same sessions, session ids, files' hashes ...
+    assert results["zips"][0]["training_data"]["n_sessions"] == 1 and results["zips"][0]["files"]
