@@ -140,7 +140,7 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
     inside of a session folder are not searched; a folder reached again through a symbolic link is searched
     once, with a warning). ``root`` itself being a session is an error: a batch command wants a folder of
     sessions (decision C12)."""
-    from pdrlearn.io.archive import refuse_archive_for_batch
+    from pdrlearn.io.archive import is_zip_file, refuse_archive_for_batch, unsearched_zip_line
 
     root = Path(root)
     refuse_archive_for_batch(root, "track-all")  # decision B360
@@ -150,6 +150,7 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
         raise DataError(f"{root}: is one session (it holds meta.json / sensor files); track it with "
                         f"`pdrlearn track {shell_quote(root)} --out DIR`, or pass the folder above it")
     found: list[Path] = []
+    zips: list[Path] = []  # decision B374: named, not searched (B360)
     seen = {root.resolve(): root}  # a folder reached again through a symbolic link (a loop: forever) is walked once
 
     def walk(d: Path) -> None:
@@ -160,6 +161,8 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
                 found.append(p)  # its track fails naming the link's target (exit 1), not silently skipped
                 continue
             if not p.is_dir():
+                if is_zip_file(p):
+                    zips.append(p)
                 continue
             real = p.resolve()
             if real in seen:
@@ -172,9 +175,14 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
                 walk(p)
 
     walk(root)
+    alone = "track it by itself with `pdrlearn track`"
     if not found:
+        held = (f"; it holds {len(zips)} zip archive(s), e.g. {zips[0].relative_to(root)}, which track-all does not "
+                f"search: unzip them, or track each with `pdrlearn track` (decision B374)") if zips else ""
         raise DataError(f"{root}: no session folders (a folder with meta.json or a sensor CSV such as "
-                        "fAccelerometer.csv) found at any depth")
+                        f"fAccelerometer.csv) found at any depth{held}")
+    for z in zips:
+        log.warning("%s", unsearched_zip_line(z, "`pdrlearn track-all`", alone))
     return found
 
 

@@ -26,9 +26,22 @@ LEAN_ROUTE = ("python -m pdrlearn.runtime BUNDLE SESSION, or in Python pdrlearn.
 
 
 def missing_full_package(exc: ModuleNotFoundError) -> str | None:
-    """The package of :data:`FULL_INSTALL` whose absence raised ``exc``; None for any other missing module."""
-    name = (exc.name or "").split(".")[0]
-    return name if name in FULL_INSTALL else None
+    """The package of :data:`FULL_INSTALL` whose absence raised ``exc``; None for any other missing module. Decision
+    E190 amended (review R1): a missing submodule (``scipy.signal.windows``) of a package that is installed is None
+    too (a version mismatch or a broken install, which "not installed" would hide)."""
+    import importlib.util
+
+    full = exc.name or ""
+    top = full.split(".")[0]
+    if top not in FULL_INSTALL:
+        return None
+    if full == top:
+        return top
+    try:
+        absent = importlib.util.find_spec(top) is None
+    except (ImportError, ValueError):  # a broken package: not "not installed"
+        absent = False
+    return top if absent else None
 
 
 def missing_package_line(needer: str, name: str) -> str:

@@ -89,7 +89,8 @@ def software_record() -> dict:
 def input_hashes(folder: Path) -> dict[str, str]:
     """Decision L136: the SHA-256 of every file of a session folder (meta.json, the sensor CSVs, steps.csv and label
     tables; hidden files and subfolders left out), by name (``None`` for a file that cannot be read): what the run
-    read, to tell a year on whether the data (a meta.json field included) are still the same."""
+    read, to tell a year on whether the data (a meta.json field included) are still the same. Decision E197: a
+    session file (a zip, B359) gives ``{name: its SHA-256}``."""
     import hashlib
 
     def digest(p: Path) -> str | None:
@@ -98,6 +99,8 @@ def input_hashes(folder: Path) -> dict[str, str]:
         except OSError:  # unreadable (the session's own error says so): no hash, and no output error (B151)
             return None
 
+    if Path(folder).is_file():  # decision E197: a zip of a session (B359) is what the run read: its own hash
+        return {Path(folder).name: digest(Path(folder))}
     try:
         entries = sorted(Path(folder).iterdir())
     except OSError:  # not a folder, or not readable

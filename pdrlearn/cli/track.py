@@ -650,7 +650,9 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     # decision L442: _track_session declares the session's belt incline inside this scope
     with captured_warnings(echo=True) as logged, steady_trim_set(settings.get("steady_trim")), incline_scope():
         tracked = _track_session(session_dir, settings)
-    summary = machine_summary(tracked["summary"], logged, str(session_dir))  # decisions E154, E155
+    # decisions E154, E155; B359 (R1): a zip's session (folder None) names itself `session 'NAME'` in later lines
+    where = [str(session_dir), *getattr(tracked.get("session"), "wheres", [])]
+    summary = machine_summary(tracked["summary"], logged, where)
     tracked["result"].info["warnings"] = list(summary["info"]["warnings"])
     return tracked
 

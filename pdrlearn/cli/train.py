@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import logging
 import time
 from pathlib import Path
 
@@ -37,7 +38,7 @@ EVAL_RESAMPLE_OPT, EVAL_NO_RESAMPLE_OPT = resample_options("scored")  # decision
 def find_session_dirs(paths: list[Path]) -> list[Path]:
     """Session folders among ``paths``: a folder with sensor CSVs (or a zip of one, decision B360) is a session,
     otherwise its immediate sub-folders that are sessions are used."""
-    from pdrlearn.io.archive import is_archive
+    from pdrlearn.io.archive import is_archive, is_zip_file, unsearched_zip_line
     from pdrlearn.io.sensors import SENSORS
 
     def is_session(p: Path) -> bool:
@@ -51,11 +52,19 @@ def find_session_dirs(paths: list[Path]) -> list[Path]:
             out.append(p)
             continue
         subs = sorted(q for q in p.iterdir() if is_session(q)) if p.is_dir() else []
+        zips = sorted(q for q in p.iterdir() if is_zip_file(q)) if p.is_dir() else []  # decision B374
+        if not subs and zips:
+            raise DataError(f"{p}: holds {len(zips)} zip archive(s) (e.g. {zips[0].name}) and no session folder; "
+                            f"a folder is searched for session folders only: pass the zips by name "
+                            f"({shell_quote(p)}/*.zip) or unzip them (decision B374)")
         if not subs:
             from pdrlearn.io.plasys import export_import_hint
 
             raise DataError(f"{p}: neither a session folder (fAccelerometer.csv, ...) nor a folder of sessions"
                             + (export_import_hint(p) if p.is_dir() else ""))
+        for z in zips:
+            logging.getLogger("pdrlearn.cli.train").warning("%s", unsearched_zip_line(
+                z, f"the search of {p} for sessions", "pass it by name (a zip is one session, B360)"))
         out.extend(subs)
     return out
 

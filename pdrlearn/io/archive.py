@@ -8,14 +8,18 @@ kept warnings name the archive and the member (``upload.zip:walk1/fGyroscope.csv
 
 from __future__ import annotations
 
+import contextvars
 import io
+import logging
 import os
 import stat
 import tempfile
+import threading
 import zipfile
+from contextlib import contextmanager
 from pathlib import Path, PurePosixPath
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, shell_quote
 
 #: decision B361: the largest total size (bytes, uncompressed) of an archive's members that is extracted: 2 GiB, about
 #: ten 8 h nights of both units at 100 Hz as PLASYS CSVs (one 100 Hz three-axis CSV is about 14 MB an hour);
@@ -46,10 +50,22 @@ def is_archive(source) -> bool:
 def refuse_archive_for_batch(path: Path, command: str) -> None:
     """Decision B360: ``track-all`` searches a tree of folders for sessions, not a zip: one line saying to unzip it,
     or to give it to a command that reads one session (``track``, ``info``, ``steps`` ...)."""
-    if path.suffix.lower() == ".zip" and path.is_file():
+    if is_zip_file(path):
         raise DataError(f"{path}: a zip archive; `pdrlearn {command}` reads session folders: unzip it first "
                         f"(unzip {path} -d DIR), or give the zip to a one-session command such as `pdrlearn track` "
                         f"(decision B360)")
+
+
+def is_zip_file(path: Path) -> bool:
+    """A file (not a folder) whose name ends in ``.zip``: what B359 reads as a zip of a session."""
+    return path.suffix.lower() == ".zip" and path.is_file()
+
+
+def unsearched_zip_line(path: Path, searcher: str, alone: str) -> str:
+    """Decision B374: the line naming a zip archive that ``searcher`` (a command's folder search) met and did not
+    search (``alone``: how to give it by itself)."""
+    return (f"{path}: a zip archive, not searched ({searcher} looks for session folders); unzip it "
+            f"(unzip {shell_quote(path)} -d DIR) or {alone} (decision B374)")
 
 
 def archive_label(source, name: str | None = None) -> str:
@@ -84,16 +100,61 @@ def read_session_zip(source, *, name: str | None = None, max_archive_bytes: int 
         members = _checked_members(zf, label, max_archive_bytes)
         with tempfile.TemporaryDirectory(prefix="pdrlearn-zip-") as tmp:  # mode 0700: private to this process
             top = _single_top_folder(members)
+            _refuse_deeper(members, top, label)
             root = Path(tmp) if top else Path(tmp) / _stem(label)
             _extract(zf, members, root, label, max_archive_bytes)
             folder = root / top if top else root
             try:
-                session = read_session(folder, **read_kwargs)
+                with renamed_records(root, label):  # decision B359 (R1): no line names the temporary folder
+                    session = read_session(folder, **read_kwargs)
             except DataError as exc:
                 raise _renamed_error(exc, root, label) from None
     session._read_warnings = [_renamed_line(w, root, label) for w in session._read_warnings]
+    session._read_from = _renamed(str(folder), root, label)  # B359 (R1): results strip it as a folder's path
     session.folder = None
     return session
+
+
+#: decision B359 (R1): the (temporary folder, archive label) pairs of the reads running in this context (thread / task)
+_RENAMES: contextvars.ContextVar[tuple] = contextvars.ContextVar("pdrlearn_zip_renames", default=())
+_FACTORY_LOCK = threading.Lock()
+
+
+@contextmanager
+def renamed_records(root: Path, label: str):
+    """Decision B359 (R1): the ``pdrlearn`` logging records raised in this context (thread / asyncio task) inside the
+    body name ``label`` (the archive) where they named ``root`` (the temporary folder), before any handler or
+    capture sees them: stderr and summary.json never name a folder that is gone."""
+    _install_factory()
+    token = _RENAMES.set((*_RENAMES.get(), (root, label)))
+    try:
+        yield
+    finally:
+        _RENAMES.reset(token)
+
+
+def _install_factory() -> None:
+    """Wrap logging's record factory once (the wrapper passes every record through when no read runs)."""
+    with _FACTORY_LOCK:
+        old = logging.getLogRecordFactory()
+        if getattr(old, "_pdrlearn_zip", False):
+            return
+
+        def factory(*args, **kwargs):
+            record = old(*args, **kwargs)
+            renames = _RENAMES.get()
+            if renames and (record.name == "pdrlearn" or record.name.startswith("pdrlearn.")):
+                from pdrlearn.warning_lines import _with_code
+
+                text = message = record.getMessage()
+                for root, label in renames:
+                    text = _renamed(text, root, label)
+                if text != message:
+                    record.msg, record.args = _with_code(text, getattr(record.msg, "code", None)), ()
+            return record
+
+        factory._pdrlearn_zip = True
+        logging.setLogRecordFactory(factory)
 
 
 def _stem(label: str) -> str:
@@ -111,6 +172,8 @@ def _open_zip(source, label: str, max_bytes: int) -> zipfile.ZipFile:
             raise DataError(f"{label}: zip archive not found; pass a session folder or a zip of one")
         if path.is_dir():
             raise DataError(f"{label}: a folder, not a zip archive; pass it as a session folder")
+    elif getattr(source, "closed", False) is True or _read_fails(source):  # decision B375
+        raise DataError(f"{label}: a closed file object; pass an open one (opened 'rb') or the archive's bytes")
     elif isinstance(source, io.TextIOBase) or isinstance(source.read(0), str):
         raise DataError(f"{label}: a text file object; open the upload in binary mode ('rb') or pass its bytes")
     elif not _seekable(source):  # a request body: read once, at most the cap (the compressed size is no larger)
@@ -131,6 +194,15 @@ def _open_zip(source, label: str, max_bytes: int) -> zipfile.ZipFile:
             from None
     except OSError as exc:
         raise DataError(f"{label}: cannot be read ({exc.strerror or exc}); check the file") from None
+
+
+def _read_fails(obj) -> bool:
+    """Decision B375: ``obj.read(0)`` raises ValueError (a closed file object that does not say ``closed``)."""
+    try:
+        obj.read(0)
+    except ValueError:
+        return True
+    return False
 
 
 def _seekable(obj) -> bool:
@@ -165,16 +237,37 @@ def _checked_members(zf: zipfile.ZipFile, label: str, max_bytes: int) -> list[tu
             raise DataError(f"{label}:{raw}: a symbolic link in the archive; refused (zip the files themselves)")
         if info.flag_bits & 0x1:
             raise DataError(f"{label}:{raw}: encrypted; zip the session folder without a password")
-        if parts in seen:  # the second copy would replace the first unseen
-            raise DataError(f"{label}:{raw}: named twice in the archive; zip the session folder again")
-        seen.add(parts)
+        key = tuple(p.casefold() for p in parts)  # decision B376: one file on a case-insensitive file system
+        if key in seen:  # the second copy would replace the first unseen
+            raise DataError(f"{label}:{raw}: named twice in the archive (names that differ only in upper/lower case "
+                            f"are one file on macOS and Windows); zip the session folder again")
+        seen.add(key)
         total += info.file_size
         if total > max_bytes:
             raise DataError(f"{label}: its members unpack to more than {max_bytes} bytes (max_archive_bytes, "
                             f"decision B361; at {raw}); pass a smaller archive or raise max_archive_bytes")
         out.append((info, parts))
+    if not out:  # decision B375: an empty archive, folders only, or only a zip tool's files
+        raise DataError(f"{label}: holds no file (only folders, or a zip tool's files such as __MACOSX/); zip the "
+                        f"session folder with its files (zip -r walk1.zip walk1)")
     _refuse_nested(out, label)
     return out
+
+
+def _refuse_deeper(members: list, top: str | None, label: str) -> None:
+    """Decision B375: sensor files only in folders below the archive's top or its one folder (``data/walk1/``):
+    one line saying to zip that folder itself (a path inside the archive cannot be passed)."""
+    from pdrlearn.io.sensors import SENSORS
+
+    sensor_files = {s.filename.lower() for s in SENSORS.values()}
+    dirs = sorted({parts[:-1] for _info, parts in members if parts[-1].lower() in sensor_files})
+    if not dirs or ((top,) if top else ()) in dirs:
+        return
+    names = ["/".join(d) for d in dirs]
+    many = f"{len(names)} session folders ({', '.join(names[:3])}{' ...' if len(names) > 3 else ''}); zip one" \
+        if len(names) > 1 else "its sensor files in " + names[0] + "/; zip that folder"
+    raise DataError(f"{label}: holds {many} itself, e.g. (cd PARENT && zip -r {dirs[0][-1]}.zip {dirs[0][-1]}), or "
+                    f"unzip it and pass {names[0]} (decision B375)")
 
 
 def _refuse_nested(members: list, label: str) -> None:
@@ -244,5 +337,5 @@ def _renamed_error(exc: DataError, root: Path, label: str) -> DataError:
         return DataError(text)
 
 
-__all__ = ["MAX_ARCHIVE_BYTES", "MAX_ARCHIVE_MEMBERS", "archive_label", "is_archive", "read_session_zip",
-           "refuse_archive_for_batch"]
+__all__ = ["MAX_ARCHIVE_BYTES", "MAX_ARCHIVE_MEMBERS", "archive_label", "is_archive", "is_zip_file",
+           "read_session_zip", "refuse_archive_for_batch", "renamed_records", "unsearched_zip_line"]

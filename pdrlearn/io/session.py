@@ -267,6 +267,9 @@ class Session:
     #: decision E154: the warnings logged while ``read_session`` read it (clipping B77, dropped packets B64 / B183,
     #: jitter B182 ...); every pipeline adds them to its ``info["warnings"]``
     _read_warnings: list[str] = field(default_factory=list, repr=False, compare=False)
+    #: decision B359 (R1): how the reader's lines name a session read from a zip (``walk1.zip:walk1``, its folder in the
+    #: archive); results strip it as they strip a folder's path (None: read from a folder or built in memory)
+    _read_from: str | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         """Decision E181: a session built in memory with ``meta`` but no ``frames`` takes the frames its meta
@@ -305,6 +308,12 @@ class Session:
         folder keeps its meta.json "session" name, which would name the original); ``session 'NAME'`` for
         a session built in memory. Outputs (summary.json's ``session``) keep :attr:`name`."""
         return str(self.folder) if self.folder is not None else f"session '{self.name}'"
+
+    @property
+    def wheres(self) -> list[str]:
+        """Decision B359 (R1): every name the session's warning lines start with: :attr:`where`, and for a zip's session
+        the archive's folder the reader's lines name (``walk1.zip:walk1``)."""
+        return [self.where, *([self._read_from] if self._read_from else [])]
 
     def validate(self) -> Session:
         """Check every stream as :func:`pdrlearn.io.read_session` checks a sensor file (decision B49:

@@ -120,7 +120,7 @@ def _wrap(name: str, fn: Pipeline) -> Pipeline:
         if isinstance(getattr(result, "info", None), dict):  # decision E154
             result.info["warnings"] = merged_warnings(result.info.get("warnings") or [],
                                                       [*getattr(session, "_read_warnings", []), *logged],
-                                                      getattr(session, "where", None))
+                                                      getattr(session, "wheres", None))  # B359 (R1)
         add_position_sigma(result, session)  # decision L128: every pipeline's track gets pos_sigma_m
         result.tracked = session_identity(session)  # decision B181: summary() checks the session it is given
         return result
