@@ -36,15 +36,16 @@ def test_a_silenced_pdrlearn_logger_does_not_silence_other_libraries_e154(monkey
 
 
 def test_a_wide_column_keeps_inf_and_small_values_e164(tmp_path):
-    """R2 #10: in a column reaching 1e6, inf was written empty (read back NaN) and 1e-9 / -1e-8 as 0 / -0."""
+    """R2 #10: in a column reaching 1e6, inf was written empty (read back NaN) and 1e-9 / -1e-8 as 0 / -0; since
+    cohort C103 (session 36) the small values are written in plain decimals, never in scientific notation."""
     t = [1733400005.151, float("nan"), float("inf"), 1e-9, -1e-8, float("-inf")]
     write_table_csv(pd.DataFrame({"t": t, "n": range(6)}), tmp_path / "a.csv")
-    assert (tmp_path / "a.csv").read_text().splitlines()[1:] == ["1733400005.151,0", ",1", "inf,2", "1e-09,3",
-                                                                  "-1e-08,4", "-inf,5"]
+    assert (tmp_path / "a.csv").read_text().splitlines()[1:] == ["1733400005.151,0", ",1", "inf,2", "0.000000001,3",
+                                                                  "-0.00000001,4", "-inf,5"]
     back = pd.read_csv(tmp_path / "a.csv")["t"].tolist()
     assert back[2] == float("inf") and back[5] == float("-inf") and back[3] == 1e-9
     assert [_num(v) for v in (1733400005.151, float("inf"), 1e-9, -1e-8, float("-inf"))] == [
-        "1733400005.151", "inf", "1e-09", "-1e-08", "-inf"]
+        "1733400005.151", "inf", "0.000000001", "-0.00000001", "-inf"]
 
 
 def test_the_short_contact_line_says_what_it_means_l414():
