@@ -6,7 +6,6 @@ from __future__ import annotations
 import logging
 
 import numpy as np
-import pytest
 
 from pdrlearn.classify.blocks import block_folds
 from pdrlearn.classify.training import train_user
