@@ -26,7 +26,7 @@ from pdrlearn.aid.synth import pdr_with_drift, position_errors, synthetic_waist_
 
 OUT = Path(__file__).resolve().parent / "results"
 sys.path.insert(0, str(OUT.parents[1]))  # experiments.partial when run as a script
-from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+from experiments.partial import parsed_with_names, partial_note  # noqa: E402
 
 #: options that make a run partial (steps decision 67, amended by review R2): aided*_partial.* files
 PARTIAL_OPTIONS = ("users", "length", "source", "imu_users", "imu_duration")
@@ -256,10 +256,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def output_names(argv=None):
     """The parsed options, the options that make the run partial and the file-name function (steps decision 67)."""
-    ap = build_parser()
-    args = ap.parse_args(argv)
-    changed = partial_options(ap, args, PARTIAL_OPTIONS)
-    return args, changed, lambda n: result_name(n, bool(changed))
+    return parsed_with_names(build_parser(), argv, PARTIAL_OPTIONS)
 
 
 def main(argv=None) -> int:

@@ -39,7 +39,7 @@ from pdrlearn.waist.params import resolve_params
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
-from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+from experiments.partial import parsed_with_names, partial_note  # noqa: E402
 
 PAPERS = {
     "seed 000 (Basso 2017)": "position error 0.9-2.1 % of path (Table I), length error 0.3-1.5 %",
@@ -458,10 +458,7 @@ PARTIAL_OPTIONS = ("data", "sim_users", "no_real")
 
 def output_names(argv: list[str] | None = None):
     """The parsed options, the options that make the run partial and the file-name function (steps decision 67)."""
-    ap = build_parser()
-    args = ap.parse_args(argv)
-    changed = partial_options(ap, args, PARTIAL_OPTIONS)
-    return args, changed, lambda n: result_name(n, bool(changed))
+    return parsed_with_names(build_parser(), argv, PARTIAL_OPTIONS)
 
 
 def main(argv: list[str] | None = None) -> None:
