@@ -25,6 +25,11 @@ from pdrlearn.aid.sporadic import SporadicFixFusion
 from pdrlearn.aid.synth import pdr_with_drift, position_errors, synthetic_waist_session, synthetic_walk
 
 OUT = Path(__file__).resolve().parent / "results"
+sys.path.insert(0, str(OUT.parents[1]))  # experiments.partial when run as a script
+from experiments.partial import parsed_with_names, partial_note  # noqa: E402
+
+#: options that make a run partial (steps decision 67, amended by review R2): aided*_partial.* files
+PARTIAL_OPTIONS = ("users", "length", "source", "imu_users", "imu_duration")
 
 
 def walks(source: str, users: int, length_m: float):
@@ -202,7 +207,7 @@ def colombo_rows(users: int, duration_s: float, sim_length_m: float = 150.0):
     return rows
 
 
-def plot_example(source: str, length_m: float) -> Path:
+def plot_example(source: str, length_m: float, png: str = "aided.png") -> Path:
     """Figure: PDR-only, GNSS fixes and fused path (energy saving 60 s) of user 0's walk."""
     from pdrlearn.aid.track import plot_aided
     from pdrlearn.track.base import TrackResult
@@ -225,7 +230,7 @@ def plot_example(source: str, length_m: float) -> Path:
         },
     }
     res = TrackResult(pdr.steps, f.trajectory_, info)
-    out = OUT / "aided.png"
+    out = OUT / png
     OUT.mkdir(parents=True, exist_ok=True)
     plot_aided(
         res,
@@ -237,7 +242,8 @@ def plot_example(source: str, length_m: float) -> Path:
     return out
 
 
-def main(argv=None) -> int:
+def build_parser() -> argparse.ArgumentParser:
+    """The options of ``experiments/aided.py``."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", type=int, default=5)
     ap.add_argument("--length", type=float, default=1000.0, help="walk length (m)")
@@ -245,8 +251,19 @@ def main(argv=None) -> int:
     ap.add_argument("--imu-users", type=int, default=3, help="users of the per-sample seed 004 tracker")
     ap.add_argument("--imu-duration", type=float, default=120.0, help="seconds per synthetic waist IMU walk")
     ap.add_argument("--plot-only", action="store_true", help="only draw experiments/results/aided.png")
-    args = ap.parse_args(argv)
-    print(f"wrote {plot_example(args.source, args.length)}")
+    return ap
+
+
+def output_names(argv=None):
+    """The parsed options, the options that make the run partial and the file-name function (steps decision 67)."""
+    return parsed_with_names(build_parser(), argv, PARTIAL_OPTIONS)
+
+
+def main(argv=None) -> int:
+    args, changed, name = output_names(argv)
+    if changed:
+        print(partial_note(changed))
+    print(f"wrote {plot_example(args.source, args.length, name('aided.png'))}")
     if args.plot_only:
         return 0
     g, s = [], []
@@ -332,12 +349,12 @@ def main(argv=None) -> int:
         "",
     ]
     OUT.mkdir(parents=True, exist_ok=True)
-    (OUT / "aided.md").write_text("\n".join(md))
+    (OUT / name("aided.md")).write_text("\n".join(md))
     pd.concat([G.assign(part="gnss"), S.assign(part="sporadic"), C.assign(part="imu")], ignore_index=True).to_csv(
-        OUT / "aided.csv", index=False, float_format="%.4f"
+        OUT / name("aided.csv"), index=False, float_format="%.4f"
     )
     print("\n".join(md))
-    print(f"wrote {OUT / 'aided.md'} and {OUT / 'aided.csv'}")
+    print(f"wrote {OUT / name('aided.md')} and {OUT / name('aided.csv')}")
     return 0
 
 

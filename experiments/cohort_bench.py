@@ -36,6 +36,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
 from pdrlearn.cli import main as cli  # noqa: E402
 from pdrlearn.io import write_session  # noqa: E402
 from pdrlearn.sim import simulate  # noqa: E402
@@ -135,7 +136,14 @@ def _plain_halves(cohort: Path, out: Path, common: list) -> dict:
     return {"users": sorted(rows, key=lambda r: r["user"])}
 
 
-def main(argv: list[str] | None = None) -> None:
+#: options that make a run partial (steps decision 67, amended by review R2): with the default --out, the table goes
+#: to cohort_bench_partial.md
+PARTIAL_OPTIONS = ("users", "methods", "tasks", "cv")
+DEFAULT_OUT = ROOT / "experiments" / "results" / "cohort_bench.md"
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The options of ``experiments/cohort_bench.py``."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", type=int, default=50)
     ap.add_argument("--methods", default="heuristic,fusion,dtw,svm,nn")
@@ -149,8 +157,25 @@ def main(argv: list[str] | None = None) -> None:
                     help="also time a 1-worker LocalCluster (last in each pair): the cluster's own scaling")
     ap.add_argument("--plain-halves", action="store_true",
                     help="also time two plain serial processes on half the users each (no Dask; last in each pair)")
-    ap.add_argument("--out", type=Path, default=ROOT / "experiments" / "results" / "cohort_bench.md")
+    ap.add_argument("--out", type=Path, default=DEFAULT_OUT)
+    return ap
+
+
+def output_path(argv: list[str] | None = None):
+    """The parsed options (``out`` renamed ``*_partial.md`` for a partial run to the default --out) and the options
+    that make the run partial (steps decision 67)."""
+    ap = build_parser()
     a = ap.parse_args(argv)
+    changed = partial_options(ap, a, PARTIAL_OPTIONS)
+    if changed and a.out == DEFAULT_OUT:
+        a.out = DEFAULT_OUT.with_name(result_name(DEFAULT_OUT.name, True))
+    return a, changed
+
+
+def main(argv: list[str] | None = None) -> None:
+    a, changed = output_path(argv)
+    if changed:
+        print(partial_note(changed))
     work = Path(tempfile.mkdtemp(prefix="pdrlearn_cohort_"))
     try:
         t0 = time.perf_counter()

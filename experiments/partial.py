@@ -33,3 +33,12 @@ def partial_note(changed: list[str]) -> str:
         return ""
     return (f"partial run ({', '.join(changed)} not at the default): results written as *{PARTIAL_SUFFIX}.* files; "
             "the committed headline files are left alone (steps decision 67)")
+
+
+def parsed_with_names(parser: argparse.ArgumentParser, argv: list[str] | None, names: tuple[str, ...]):
+    """``parser``'s options from ``argv``, the partial options among ``names`` and the file-name function
+    (``*_partial.*`` for a partial run)."""
+    args = parser.parse_args(argv)
+    changed = partial_options(parser, args, names)
+    return args, changed, lambda n: result_name(n, bool(changed))
+

@@ -38,6 +38,11 @@ from pdrlearn.sim import simulate
 ROOT = Path(__file__).resolve().parents[1]
 REAL = ROOT / "datasets" / "real"
 RESULTS = ROOT / "experiments" / "results"
+sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
+from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+
+#: options that make a run partial (steps decision 67, amended by review R2): the stem gets ``_partial``
+PARTIAL_OPTIONS = ("users", "first_user", "cv", "seed")
 REAL_FOOT = ["gaitmap_level_left", "gaitmap_level_right", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left"]
 # `--external DIR` (sessions of `pdrlearn fetch gaitmap`): the right foot of the same stair recordings, labelled
 # by the same converter rule as the bundled left foot (docs/external-data.md, gaitmap section). Only these:
@@ -295,7 +300,8 @@ def loro(real, args) -> dict:
     return {m: 100 * sum(h for h, _ in v) / max(sum(n for _, n in v), 1) for m, v in hits.items()}, per_rec
 
 
-def main(argv: list[str] | None = None) -> pd.DataFrame:
+def build_parser() -> argparse.ArgumentParser:
+    """The options of ``experiments/sim_to_real.py``."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", type=int, default=4, help="simulated users to train on (x 3 speeds)")
     ap.add_argument("--first-user", type=int, default=1,
@@ -320,8 +326,29 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
                          f"({', '.join(EXTERNAL_FOOT)}); results get the suffix _ext")
     ap.add_argument("--steady-train", action="store_true",
                     help="train on the steady simulated strides only (no turns on the spot / closing steps)")
+    return ap
+
+
+def output_stem(argv: list[str] | None = None):
+    """The parsed options, the options that make the run partial and the results' stem (steps decision 67: a
+    partial run adds ``_partial``; the variants keep their own suffixes)."""
+    ap = build_parser()
+    args = ap.parse_args(sys.argv[1:] if argv is None else list(argv))
+    changed = partial_options(ap, args, PARTIAL_OPTIONS)
+    stem = "sim_to_real" if args.rate == 20.0 else f"sim_to_real_{args.rate:g}hz"
+    stem += "" if args.variant == "none" else f"_{args.variant}"
+    stem += "_steady" if args.steady_train else ""
+    stem += "_rest" if args.boundaries == "rest" else ""
+    stem += "_realrate" if args.real_rate == "sim" else ""
+    stem += "_ext" if args.external is not None else ""
+    return args, changed, result_name(stem, bool(changed))
+
+
+def main(argv: list[str] | None = None) -> pd.DataFrame:
     argv = sys.argv[1:] if argv is None else list(argv)
-    args = ap.parse_args(argv)
+    args, changed, stem = output_stem(argv)
+    if changed:
+        print(partial_note(changed))
     logging.basicConfig(level=logging.WARNING)
     apply_variant(args.variant)
 
@@ -398,12 +425,6 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
     text += f"\n(run time {time.perf_counter() - t_all:.0f} s)\n"
     if not args.no_write:
         RESULTS.mkdir(parents=True, exist_ok=True)
-        stem = "sim_to_real" if args.rate == 20.0 else f"sim_to_real_{args.rate:g}hz"
-        stem += "" if args.variant == "none" else f"_{args.variant}"
-        stem += "_steady" if args.steady_train else ""
-        stem += "_rest" if args.boundaries == "rest" else ""
-        stem += "_realrate" if args.real_rate == "sim" else ""
-        stem += "_ext" if args.external is not None else ""
         df.to_csv(RESULTS / f"{stem}.csv", index=False)
         (RESULTS / f"{stem}.md").write_text(text)
     print(text)

@@ -12,32 +12,86 @@ from pdrlearn.classify.training import train_user
 from pdrlearn.sim import simulate
 
 
-def _check_no_leak(session, order, folds, gap=1):
-    """Each fold's test steps are one contiguous run of each session's walking order; no training step is a test
-    step or within ``gap`` steps of one in the same session; every step is tested exactly once."""
+def _check_no_leak(session, start, end, side, folds):
+    """Every step is tested exactly once; no training window overlaps or touches a test window of its session, and
+    each foot's stride right before and right after a held-out block (in time) is not trained on."""
     tested = np.concatenate([te for _, te in folds])
     assert sorted(tested) == list(range(len(session)))
     for tr, te in folds:
         assert not set(tr) & set(te)
         for s in np.unique(session[te]):
-            idx = np.flatnonzero(session == s)
-            pos = {i: p for p, i in enumerate(idx[np.argsort(order[idx], kind="stable")])}
-            test_pos = sorted(pos[i] for i in te if session[i] == s)
-            assert test_pos == list(range(test_pos[0], test_pos[-1] + 1))  # one contiguous stretch
-            train_pos = [pos[i] for i in tr if session[i] == s]
-            assert all(p < test_pos[0] - gap or p > test_pos[-1] + gap for p in train_pos)
+            a, b = te[session[te] == s], tr[session[tr] == s]
+            gap = np.maximum(start[b][:, None] - end[a][None, :], start[a][None, :] - end[b][:, None])
+            assert (gap > 0).all()  # no training window touches a test window
+            first, last = start[a].min(), start[a].max()
+            for f in np.unique(side[session == s]):
+                own = np.flatnonzero((session == s) & (side == f))
+                own = own[np.argsort(start[own], kind="stable")]
+                before, after = own[start[own] < first], own[start[own] > last]
+                for neighbour in [*before[-1:], *after[:1]]:
+                    assert neighbour not in set(b)
+
+
+def _walk(n, rng, two_feet=False):
+    """Start/end of ``n`` consecutive strides (each ends where the next of its foot starts); two feet: left and
+    right strides interleaved, half a stride apart (as mobgap's tables)."""
+    dur = rng.uniform(1.0, 1.3, n)
+    if not two_feet:
+        start = np.concatenate([[0.0], np.cumsum(dur)[:-1]])
+        return start, start + dur, np.full(n, "right", dtype=object)
+    side = np.array(["right", "left"] * (n // 2), dtype=object)
+    start, end = np.zeros(n), np.zeros(n)
+    for f, off in (("right", 0.0), ("left", 0.6)):
+        i = np.flatnonzero(side == f)
+        start[i] = off + np.concatenate([[0.0], np.cumsum(dur[i])[:-1]])
+        end[i] = start[i] + dur[i]
+    return start, end, side
 
 
 def test_block_folds_never_put_a_stretch_of_a_walk_or_its_neighbour_on_both_sides():
-    rng = np.random.default_rng(8840)
-    session = rng.integers(0, 3, 200)
-    order = rng.permutation(200)  # rows of steps.csv, not in array order
-    folds = block_folds(session, order, 5)
+    rng = np.random.default_rng(9000)
+    parts = [_walk(70, rng) for _ in range(3)]
+    session = np.repeat(np.arange(3), 70)
+    start, end, side = (np.concatenate([p[j] for p in parts]) for j in range(3))
+    folds = block_folds(session, start, end, 5, side)
     assert len(folds) == 5
-    _check_no_leak(session, order, folds)
-    # gap 1 leaves out at most two neighbours per session and fold
-    for tr, te in folds:
-        assert len(tr) >= 200 - len(te) - 2 * 3
+    _check_no_leak(session, start, end, side, folds)
+    for tr, te in folds:  # one foot in time order: one neighbour each side per session, as before
+        assert len(tr) >= 210 - len(te) - 2 * 3
+
+
+def test_block_folds_sort_a_shuffled_table_by_time():
+    """Review R2 finding 4: the rows of steps.csv shuffled (the toolkit reads them unsorted) gave 305 touching
+    train/test pairs when blocks followed the row order."""
+    rng = np.random.default_rng(9001)
+    start, end, side = _walk(120, rng)
+    perm = rng.permutation(120)
+    start, end, side = start[perm], end[perm], side[perm]
+    session = np.zeros(120, dtype=int)
+    folds = block_folds(session, start, end, 5, side)
+    _check_no_leak(session, start, end, side, folds)
+
+
+def test_block_folds_leave_out_both_feet_neighbours_of_an_interleaved_table():
+    """Review R2 finding 4: in a two-feet table the row neighbour is the other foot's stride; the same foot's
+    neighbour overlapped or touched a test window."""
+    rng = np.random.default_rng(9002)
+    start, end, side = _walk(120, rng, two_feet=True)
+    session = np.zeros(120, dtype=int)
+    folds = block_folds(session, start, end, 5, side)
+    _check_no_leak(session, start, end, side, folds)
+
+
+def test_training_folds_follow_the_times_of_a_shuffled_steps_table():
+    """The times reach the folds train uses: a walk whose steps.csv rows are shuffled gives leak-free folds."""
+    from pdrlearn.classify.training import _folds, session_windows, task_data
+
+    walk = simulate("length", 9003, seed=0)
+    walk.steps = walk.steps.sample(frac=1, random_state=0).reset_index(drop=True)
+    data = task_data(session_windows([walk], n_samples=40), "length", [walk])
+    folds, n = _folds(data.y, 4, 0, "length", data.session, kind="block", times=data.times, side=data.side)
+    assert n == 4
+    _check_no_leak(data.session, data.times[:, 0], data.times[:, 1], data.side, folds)
 
 
 def test_one_session_per_exercise_trains_with_block_folds_where_session_folds_fall_back(caplog):

@@ -41,3 +41,63 @@ def test_evaluate_bundle_refuses_model_directory_options_in_one_line(dirs, capsy
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--report" in err[0] and "runtime bundle" in err[0]
     assert not (tmp_path / "rep").exists()
+
+
+def test_evaluate_bundle_scores_the_foot_only_fallback_in_its_own_row(dirs, capsys, tmp_path):
+    """Decision E196 (review R2 finding 2): a session without the waist unit is classified by the bundle's
+    foot_only model; its strides were pooled under the chosen model's row and the warning advised --units, which
+    evaluate has not."""
+    import shutil
+
+    bundle, walk = dirs["root"] / "bundle", dirs["walk"]
+    nowaist = tmp_path / "nowaist"
+    shutil.copytree(walk, nowaist)
+    for f in nowaist.glob("w*.csv"):
+        f.unlink()
+    assert main(["evaluate", str(bundle), str(walk), "--json"]) == 0
+    alone = json.loads(capsys.readouterr().out)
+    assert main(["evaluate", str(bundle), str(walk), str(nowaist), "--json"]) == 0
+    out = capsys.readouterr()
+    got = json.loads(out.out)
+    manifest = json.loads((bundle / "manifest.json").read_text())["tasks"]
+    split = [t for t in got["tasks"] if manifest[t]["chosen"] != manifest[t].get("foot_only", manifest[t]["chosen"])]
+    assert split  # the bundle has a task whose chosen model reads the waist
+    for task in split:
+        r, ch, fo = got["tasks"][task], manifest[task]["chosen"], manifest[task]["foot_only"]
+        assert r["scored_model"] == ch and r["accuracy"] == alone["tasks"][task]["accuracy"]
+        assert r["n_steps"] == alone["tasks"][task]["n_steps"]  # the chosen row holds the full session only
+        assert r["methods"][ch["method"]]["units"][ch["unit"]]["sessions"] == ["walk"]
+        assert r["methods"][fo["method"]]["units"][fo["unit"]]["sessions"] == [got["sessions"][1]]
+    assert "foot-only model, in its own row" in out.err and "--units" not in out.err
+
+
+def test_evaluate_bundle_reads_a_zipped_session_as_run_does(dirs, capsys, tmp_path):
+    """Review R2 finding 6: evaluate BUNDLE x.zip said 'session folder not found' while run and evaluate MODEL
+    read the zip (decision B359)."""
+    import shutil
+
+    bundle, walk = dirs["root"] / "bundle", dirs["walk"]
+    archive = shutil.make_archive(str(tmp_path / "walk"), "zip", walk.parent, walk.name)
+    assert main(["evaluate", str(bundle), str(walk), "--json"]) == 0
+    folder = json.loads(capsys.readouterr().out)
+    assert main(["evaluate", str(bundle), archive, "--json"]) == 0
+    zipped = json.loads(capsys.readouterr().out)
+    assert {t: r["accuracy"] for t, r in zipped["tasks"].items()} == {
+        t: r["accuracy"] for t, r in folder["tasks"].items()}
+
+
+def test_evaluate_refuses_a_waist_only_bundle_in_one_line(capsys, tmp_path):
+    """E193's docstring: a waist-only bundle is one line (its steps carry no classes); review R2 finding 7."""
+    from pdrlearn.export.waist import export_waist
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import simulate
+    from pdrlearn.waist.calibration import calibrate
+
+    walk = simulate("A", 9004, rate_hz=100.0)
+    calibrate([walk], "waist-pendulum", distances=[20.0]).save(tmp_path / "cal.json")
+    frame = ",".join(f"{k}={v}" for k, v in walk.require_frame("waist").to_dict().items())
+    export_waist(tmp_path / "cal.json", tmp_path / "wb", frame=frame)
+    write_session(walk, tmp_path / "walk")
+    assert main(["evaluate", str(tmp_path / "wb"), str(tmp_path / "walk")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "waist-only bundle" in err[0] and "pdrlearn run" in err[0]

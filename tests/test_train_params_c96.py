@@ -77,3 +77,27 @@ def test_train_all_passes_cv_groups_and_params_to_every_user(tmp_path, capsys):
     for u in (8846, 8847):
         settings = json.loads((tmp_path / "m" / f"u{u}" / "manifest.json").read_text())["settings"]
         assert (settings["cv_groups"], settings["cv_blocks"], settings["params"]) == ("block", 4, {"svm": {"C": 3.0}})
+
+
+def test_a_non_finite_param_is_one_line_before_training(tmp_path, capsys):
+    """Decision B373 (review R2 finding 3): inf, 1e400, nan and a grid with inf passed the check and crashed after
+    training (the manifest's JSON cannot store inf)."""
+    for bad in ("svm.C=inf", "svm.C=1e400", "svm.C_grid=1,inf", "nn.learning_rate=inf", "nn.weight_decay=nan",
+                "dtw.window=nan"):
+        with pytest.raises(DataError, match="is not ") as exc:
+            parse_params([bad])
+        assert "\n" not in str(exc.value)
+    code = main(["train", str(tmp_path), "--out", str(tmp_path / "m"), "--param", "svm.C=inf"])
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and len(err.splitlines()) == 1 and "'inf' is not a number > 0" in err
+    assert not (tmp_path / "m").exists()
+
+
+def test_train_all_errors_name_train_all(tmp_path, capsys):
+    """Review R2 finding 7: train-all's --param and --cv-groups lines began with 'train:'."""
+    for opt in (["--param", "svm.X=1"], ["--cv-groups", "blocks"]):
+        code = main(["train-all", str(tmp_path), "--out", str(tmp_path / "m"), *opt])
+        err = capsys.readouterr().err.strip()
+        assert code == 2 and err.startswith("error: train-all: ") and len(err.splitlines()) == 1, err
+    assert main(["train", str(tmp_path), "--out", str(tmp_path / "m"), "--cv-groups", "blocks"]) == 2
+    assert capsys.readouterr().err.startswith("error: train: ")

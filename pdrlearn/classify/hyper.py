@@ -4,14 +4,17 @@ Pure parsing and checking, no numpy: the CLI checks ``--param`` before any data 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable, Mapping
 
 from pdrlearn.errors import DataError
 
 
 def _number(text: str, *, low: float, low_open: bool, high: float | None = None) -> float:
+    """A finite number in range: nan, inf and 1e400 (inf as a float) are refused, so a value the model's JSON
+    manifest cannot store is one line before training (decision B373)."""
     v = float(text)
-    if v != v or (v <= low if low_open else v < low) or (high is not None and v > high):
+    if not math.isfinite(v) or (v <= low if low_open else v < low) or (high is not None and v > high):
         raise ValueError(text)
     return v
 
@@ -83,32 +86,34 @@ def valid_names() -> str:
     return ", ".join(f"{m}.{n}" for m, names in HYPERPARAMETERS.items() for n in names)
 
 
-def parse_params(items: Iterable[str] | None) -> dict[str, dict[str, object]]:
+def parse_params(items: Iterable[str] | None, command: str = "train") -> dict[str, dict[str, object]]:
     """``["svm.C=10", "nn.hidden=32"]`` -> ``{"svm": {"C": 10.0}, "nn": {"hidden": 32}}``; a bad item is one
-    :class:`DataError` line naming ``--param``, the item and the valid names or values (decision C96)."""
+    :class:`DataError` line naming the ``command``, ``--param``, the item and the valid names or values (decision
+    C96; ``train-all`` names itself, C98 as amended by review R2)."""
     out: dict[str, dict[str, object]] = {}
     for item in items or ():
         key, eq, text = str(item).partition("=")
         method, dot, name = key.strip().partition(".")
         if not eq or not dot:
-            raise DataError(f"train: --param {item!r}: write METHOD.NAME=VALUE, e.g. --param svm.C=10; valid "
+            raise DataError(f"{command}: --param {item!r}: write METHOD.NAME=VALUE, e.g. --param svm.C=10; valid "
                             f"names: {valid_names()} (decision C96)")
         spec = HYPERPARAMETERS.get(method, {}).get(name)
         if spec is None:
-            raise DataError(f"train: --param {item!r}: unknown name {key.strip()!r}; valid names: {valid_names()} "
+            raise DataError(f"{command}: --param {item!r}: unknown name {key.strip()!r}; valid names: {valid_names()} "
                             "(decision C96)")
         if name in out.get(method, {}):
-            raise DataError(f"train: --param {key.strip()} is given twice; give it once (decision C96)")
+            raise DataError(f"{command}: --param {key.strip()} is given twice; give it once (decision C96)")
         parse, valid = spec
         try:
             value = parse(text.strip())
         except ValueError:
-            raise DataError(f"train: --param {item!r}: {text.strip()!r} is not {valid} (decision C96)") from None
+            raise DataError(f"{command}: --param {item!r}: {text.strip()!r} is not {valid} (decision C96)") from None
         out.setdefault(method, {})[name] = value
     return out
 
 
-def check_params_methods(params: Mapping[str, Mapping[str, object]], methods: Iterable[str]) -> None:
+def check_params_methods(params: Mapping[str, Mapping[str, object]], methods: Iterable[str],
+                         command: str = "train") -> None:
     """Decision C96 (C78's rule): a ``--param`` of a method that is not trained is refused; the ensemble trains its
     members (nn, svm, dtw)."""
     trained = set(methods)
@@ -117,7 +122,7 @@ def check_params_methods(params: Mapping[str, Mapping[str, object]], methods: It
     for method in params:
         if method not in trained:
             given = ", ".join(f"{method}.{n}" for n in params[method])
-            raise DataError(f"train: --param {given}: {method} is not trained (methods: "
+            raise DataError(f"{command}: --param {given}: {method} is not trained (methods: "
                             f"{','.join(sorted(set(methods)))}); add {method} to --methods or drop the --param "
                             "(decision C96)")
 

@@ -246,6 +246,8 @@ class TaskData:
     foot: np.ndarray | None = None  # per step: its session has the foot accelerometer (and no gap, B11)
     waist: np.ndarray | None = None  # per step: its session has the waist accelerometer (and no gap, B11)
     step: np.ndarray | None = None  # per step: its row in its session's (cleaned) steps table (decision C42)
+    times: np.ndarray | None = None  # per step: (start_s, end_s) of its steps.csv row (block folds, decision C95)
+    side: np.ndarray | None = None  # per step: its steps.csv 'foot' ('' without the column; decision C95)
 
     def unit_mask(self, unit: str) -> np.ndarray:
         """Steps whose session has the unit (``fused``: both units)."""
@@ -305,7 +307,7 @@ def task_data(windows, task: str, sessions=None) -> TaskData | None:
     from pdrlearn.classify.labels import bad_label_warning
     from pdrlearn.features import TASK_COLUMNS, task_labels
 
-    Xs, ys, sess, skipped, foot, waist, rows = [], [], [], 0, [], [], []
+    Xs, ys, sess, skipped, foot, waist, rows, times, sides = [], [], [], 0, [], [], [], [], []
     for i, w in enumerate(windows):
         if TASK_COLUMNS[task] not in w.steps or w.steps[TASK_COLUMNS[task]].notna().sum() == 0:
             continue
@@ -319,6 +321,10 @@ def task_data(windows, task: str, sessions=None) -> TaskData | None:
         ys.append(y)
         sess.append(np.full(len(y), i))
         rows.append(np.flatnonzero(keep))
+        kept = w.steps[keep]
+        times.append(kept[["start_s", "end_s"]].to_numpy(float))  # decision C95: blocks by time, not by row
+        sides.append(kept["foot"].fillna("").astype(str).to_numpy(object) if "foot" in kept
+                     else np.full(len(kept), "", dtype=object))
         lost = getattr(w, "gap_steps", {})  # steps overlapping a sensor gap lose that unit (decision B11)
         for unit, has, acc in (("foot", foot, "foot_acc"), ("waist", waist, "waist_acc")):
             ok = np.full(len(y), acc in w.available)
@@ -338,6 +344,8 @@ def task_data(windows, task: str, sessions=None) -> TaskData | None:
         np.concatenate(foot),
         np.concatenate(waist),
         np.concatenate(rows),
+        np.concatenate(times),
+        np.concatenate(sides),
     )
 
 
@@ -807,20 +815,21 @@ def default_user(sessions, fallback: str = UNNAMED_USER) -> str:
 
 
 def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None,
-           notes: list[str] | None = None, kind: str = "user", order: np.ndarray | None = None) -> tuple[list, int]:
+           notes: list[str] | None = None, kind: str = "user", times: np.ndarray | None = None,
+           side: np.ndarray | None = None) -> tuple[list, int]:
     """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps. With ``groups``
     (the user of each step, decision C29) and at least two users: folds of whole users (leave-one-user-out when
     there are at most ``cv`` users), unless a training fold would then lack a class (stratified, one line).
     Returns the folds and the number of users they hold out (0: stratified over steps). ``notes``: collect the
     warning lines there (the caller logs each once, decision C36) instead of logging them. ``kind``: what a group
     is, ``"user"`` or ``"session"`` (decision C59), for the warning; ``"block"`` (decision C95): ``groups`` are the
-    steps' sessions and ``order`` their walking order, folds of contiguous blocks of each session
-    (:func:`pdrlearn.classify.blocks.block_folds`; returns the number of folds)."""
+    steps' sessions, ``times`` their (start, end) and ``side`` their foot, folds of contiguous blocks of each session
+    in time (:func:`pdrlearn.classify.blocks.block_folds`; returns the number of folds)."""
     say = notes.append if notes is not None else log.warning
     if kind == "block" and groups is not None:
         from pdrlearn.classify.blocks import block_folds
 
-        folds = block_folds(groups, order, cv)
+        folds = block_folds(groups, times[:, 0], times[:, 1], cv, side)
         short = [i for i, (tr, _) in enumerate(folds) if len(np.unique(y[tr])) < len(np.unique(y))]
         if not short:
             return folds, len(folds)
@@ -1039,7 +1048,8 @@ def train_task(
             continue
         folds, cv_users[unit] = _folds(data.y[mask], cv, seed, data.task,
                                        None if groups is None else groups[mask], notes=notes,
-                                       kind=group_kind, order=None if data.step is None else data.step[mask])
+                                       kind=group_kind, times=None if data.times is None else data.times[mask],
+                                       side=None if data.side is None else data.side[mask])
         if cv_users[unit] and group_kind != "block":  # folds of whole users: each names whom it held out (C43)
             fold_groups[unit] = groups[mask]
         subsets[unit] = (mask, folds)

@@ -382,7 +382,7 @@ def train_all(
     t_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, resample_hz=resample)[0]
     per_task = check_task_methods(per_task, t_all)  # decisions C74, C78 (check_settings: C62)
     m_all = check_settings(methods=m_list)[1]
-    hyper = check_train_options(cv_groups, param, m_all, per_task)  # decision C98: train's checks, once
+    hyper = check_train_options(cv_groups, param, m_all, per_task, "train-all")  # decision C98: train's checks, once
     l_list = split_length_units(length_units)  # decision C40: as train's, before anything starts
     _check_workers(workers)
     _check_outside_cohort(out, cohort_dir)

@@ -170,15 +170,16 @@ def param_option():
         "decision C96).")
 
 
-def check_train_options(cv_groups: str, param, methods, per_task) -> dict:
-    """Decisions C95, C96, C98: ``--cv-groups`` and ``--param`` checked before any data is read; the parsed params."""
+def check_train_options(cv_groups: str, param, methods, per_task, command: str = "train") -> dict:
+    """Decisions C95, C96, C98: ``--cv-groups`` and ``--param`` checked before any data is read; the parsed params.
+    The line names ``command`` (train-all passes its own name; review R2 finding 7)."""
     from pdrlearn.classify.hyper import check_params_methods, parse_params
     from pdrlearn.classify.training import CV_GROUPS
 
     if cv_groups not in CV_GROUPS:
-        raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
-    hyper = parse_params(param)
-    check_params_methods(hyper, [*methods, *(m for ms in per_task.values() for m in ms)])
+        raise DataError(f"{command}: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
+    hyper = parse_params(param, command)
+    check_params_methods(hyper, [*methods, *(m for ms in per_task.values() for m in ms)], command)
     return hyper
 
 

@@ -457,6 +457,7 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
         raise DataError(f"evaluate: {', '.join(given)} needs a model directory written by 'pdrlearn train'; "
                         f"{bundle_dir} is an exported runtime bundle (scored with its chosen models only): drop "
                         f"{', '.join(given)}, or evaluate the model directory the bundle was exported from")
+    from pdrlearn.classify.evaluation import table_pairs
     from pdrlearn.cohort import captured_warnings
     from pdrlearn.export.score import score_bundle
     from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, bundle_kind
@@ -479,9 +480,12 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
         return
     c = console()
     for task, r in result["tasks"].items():
-        _task_table(c, r, f"{task}: {r['n_steps']} strides - bundle's chosen {r['chosen']['method']}/"
-                    f"{r['chosen']['unit']} {100 * r['accuracy']:.1f} % on the strides the runtime detects (matched "
-                    "to the labelled steps)")
+        scored, chosen = r["scored_model"], r["chosen"]
+        who = ("bundle's chosen" if scored == chosen else  # decision E196: the model that ran, one row each
+               f"bundle's foot-only (the chosen {chosen['method']}/{chosen['unit']} ran on no session)")
+        _task_table(c, r, f"{task}: {r['n_steps']} strides - {who} {scored['method']}/{scored['unit']} "
+                    f"{100 * r['accuracy']:.1f} % on the strides the runtime detects (matched to the labelled steps)"
+                    + ("; one row per model the runtime used" if len(table_pairs(r)) > 1 else ""))
     for s in result["skipped"]:
         c.print(f"skipped {s}", markup=False)
 

@@ -11,6 +11,7 @@ method/unit). The pooled accuracy is what adding up ``run --json``'s ``<task>_ag
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 
 #: a bundle task -> its label column in a session's steps.csv (``length`` is labelled ``length_class``, L53)
@@ -50,9 +51,35 @@ def runtime_table(steps) -> object:
                         columns=None if steps else ["start_s", "end_s"])
 
 
+@contextlib.contextmanager
+def _session_folder(d: Path):
+    """The folder to replay: ``d`` itself, or the session a zip archive holds, extracted as
+    :func:`pdrlearn.io.read_session` extracts it (decision B359; review R2 finding 6)."""
+    from pdrlearn.io.archive import extracted_session, is_archive
+
+    if not is_archive(d):
+        yield d
+        return
+    with extracted_session(d) as (folder, _root, _label):
+        yield folder
+
+
+def model_used(tracker, task: str) -> tuple[str, str] | None:
+    """The (method, unit) the runtime classified ``task`` with on a replayed session (the chosen model, or the
+    bundle's ``foot_only`` fallback on a session without the waist unit, E26); None when it left the task
+    unclassified (E196)."""
+    c = tracker.classifiers.get(task)
+    return None if c is None or c.model is None else (c.method, c.unit)
+
+
 def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *a, **k: None) -> dict:
-    """Each task's accuracy of the bundle's chosen model on the strides the runtime detects in ``session_dirs``
-    (decision E193); the result has ``evaluate``'s layout for a model directory (``tasks``, ``skipped``)."""
+    """Each task's accuracy on the strides the runtime detects in ``session_dirs`` (decision E193), one row per
+    model the runtime actually classified with (decision E196: the chosen model, and the ``foot_only`` fallback
+    on the sessions without the bundle's waist unit, never pooled); the result has ``evaluate``'s layout for a
+    model directory (``tasks``, ``skipped``). A task's headline figures are its chosen model's row (the fallback's
+    when the chosen model ran on no session)."""
+    import logging
+
     from pdrlearn.classify.training import class_metrics
     from pdrlearn.errors import DataError
     from pdrlearn.io import read_session
@@ -60,31 +87,52 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
     from pdrlearn.runtime.__main__ import replay
 
     bundle = load_bundle(bundle_dir)
-    pooled: dict[str, tuple[list[str], list[str]]] = {t: ([], []) for t in bundle.tasks}
-    names = []
+    # task -> (method, unit) -> (true, predicted, sessions)
+    pooled: dict[str, dict[tuple[str, str], tuple[list[str], list[str], list[str]]]] = {t: {} for t in bundle.tasks}
+    names, fallback = [], []
     for d in session_dirs:
         session = read_session(d)
         names.append(session.name)
-        _, steps = replay(bundle_dir, d)
+        with _session_folder(d) as folder:
+            tracker, steps = replay(bundle_dir, folder, fallback_line=False)
+        if tracker.units != bundle.body_units:
+            fallback.append(session.name)
         est = runtime_table(steps)
         for task in bundle.tasks:
+            used = model_used(tracker, task)
             t, p = matched_classes(est, session.steps, task)
-            pooled[task][0].extend(t)
-            pooled[task][1].extend(p)
+            if used is None or not t:
+                continue
+            row = pooled[task].setdefault(used, ([], [], []))
+            row[0].extend(t)
+            row[1].extend(p)
+            row[2].append(session.name)
         advance(1)
+    if fallback:  # decision E196: evaluate has no --units; say which model scored those sessions
+        logging.getLogger("pdrlearn.cli").warning(
+            "evaluate: %s %s no waist unit the bundle also uses: scored with the bundle's foot-only model, in its "
+            "own row (not pooled with the chosen model's)", ", ".join(fallback),
+            "has" if len(fallback) == 1 else "have")
     out: dict = {"bundle": str(bundle_dir), "sessions": names, "tasks": {}, "skipped": [],
                  "scored_on": "the strides the runtime detects, matched to the labelled steps (IoU >= 0.5)"}
-    for task, (true, pred) in pooled.items():
-        if not true:
+    for task, rows in pooled.items():
+        if not rows:
             out["skipped"].append(f"{task}: no runtime stride matched a labelled {LABEL_COLUMN.get(task, task)}")
             continue
         chosen = bundle.tasks[task].get("chosen") or {}
         if not {"method", "unit"} <= set(chosen):
             raise DataError(f"{bundle_dir}: task {task} names no chosen method/unit in manifest.json; re-export "
                             "the bundle with 'pdrlearn export'")
-        m = class_metrics(true, pred, bundle.classes(task))
-        row = {**m, "latency_ms": None}
-        out["tasks"][task] = {**m, "classes": bundle.classes(task), "chosen": dict(chosen), "skipped": [],
-                              "methods": {chosen["method"]: {"accuracy": m["accuracy"], "unit": chosen["unit"],
-                                                             "units": {chosen["unit"]: row}}}}
+        key = (chosen["method"], chosen["unit"])
+        head = key if key in rows else max(rows, key=lambda k: len(rows[k][0]))
+        metrics = {k: class_metrics(t, p, bundle.classes(task)) for k, (t, p, _) in rows.items()}
+        methods: dict = {}
+        for (m, u), r in metrics.items():
+            entry = methods.setdefault(m, {"accuracy": r["accuracy"], "unit": u, "units": {}})
+            entry["units"][u] = {**r, "latency_ms": None, "sessions": rows[(m, u)][2]}
+            if (m, u) == head:
+                entry["accuracy"], entry["unit"] = r["accuracy"], u
+        out["tasks"][task] = {**metrics[head], "classes": bundle.classes(task), "chosen": dict(chosen),
+                              "scored_model": {"method": head[0], "unit": head[1]}, "skipped": [],
+                              "methods": methods}
     return out

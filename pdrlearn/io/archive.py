@@ -9,6 +9,8 @@ kept warnings name the archive and the member (``upload.zip:walk1/fGyroscope.csv
 from __future__ import annotations
 
 import contextvars
+
+import contextlib
 import io
 import logging
 import os
@@ -93,6 +95,19 @@ def read_session_zip(source, *, name: str | None = None, max_archive_bytes: int 
     """
     from pdrlearn.io.plasys import read_session
 
+    with extracted_session(source, name=name, max_archive_bytes=max_archive_bytes) as (folder, root, label):
+        session = read_session(folder, **read_kwargs)
+    session._read_warnings = [_renamed_line(w, root, label) for w in session._read_warnings]
+    session.folder = None
+    return session
+
+
+@contextlib.contextmanager
+def extracted_session(source, *, name: str | None = None, max_archive_bytes: int = MAX_ARCHIVE_BYTES):
+    """The session folder a zip archive holds, checked and extracted into a private temporary folder (removed on
+    exit): yields ``(folder, root, label)``. A :class:`DataError` raised inside names the archive and member instead
+    of the temporary folder. :func:`read_session_zip` reads it; ``evaluate BUNDLE x.zip`` replays it through the
+    runtime (review R2 finding 6)."""
     label = archive_label(source, name)
     if isinstance(max_archive_bytes, bool) or not isinstance(max_archive_bytes, int) or max_archive_bytes <= 0:
         raise DataError(f"max_archive_bytes={max_archive_bytes!r}: give a positive whole number of bytes")
@@ -103,7 +118,6 @@ def read_session_zip(source, *, name: str | None = None, max_archive_bytes: int 
             _refuse_deeper(members, top, label)
             root = Path(tmp) if top else Path(tmp) / _stem(label)
             _extract(zf, members, root, label, max_archive_bytes)
-            folder = root / top if top else root
             try:
                 with renamed_records(root, label):  # decision B359 (R1): no line names the temporary folder
                     session = read_session(folder, **read_kwargs)
@@ -113,6 +127,10 @@ def read_session_zip(source, *, name: str | None = None, max_archive_bytes: int 
     session._read_from = _renamed(str(folder), root, label)  # B359 (R1): results strip it as a folder's path
     session.folder = None
     return session
+
+                yield (root / top if top else root), root, label
+            except DataError as exc:
+                raise _renamed_error(exc, root, label) from None
 
 
 #: decision B359 (R1): the (temporary folder, archive label) pairs of the reads running in this context (thread / task)
@@ -339,3 +357,6 @@ def _renamed_error(exc: DataError, root: Path, label: str) -> DataError:
 
 __all__ = ["MAX_ARCHIVE_BYTES", "MAX_ARCHIVE_MEMBERS", "archive_label", "is_archive", "is_zip_file",
            "read_session_zip", "refuse_archive_for_batch", "renamed_records", "unsearched_zip_line"]
+
+__all__ = ["MAX_ARCHIVE_BYTES", "MAX_ARCHIVE_MEMBERS", "archive_label", "extracted_session", "is_archive",
+           "read_session_zip", "refuse_archive_for_batch"]
