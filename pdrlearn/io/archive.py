@@ -8,9 +8,8 @@ kept warnings name the archive and the member (``upload.zip:walk1/fGyroscope.csv
 
 from __future__ import annotations
 
-import contextvars
-
 import contextlib
+import contextvars
 import io
 import logging
 import os
@@ -96,8 +95,10 @@ def read_session_zip(source, *, name: str | None = None, max_archive_bytes: int 
     from pdrlearn.io.plasys import read_session
 
     with extracted_session(source, name=name, max_archive_bytes=max_archive_bytes) as (folder, root, label):
-        session = read_session(folder, **read_kwargs)
+        with renamed_records(root, label):  # decision B359 (R1): no line names the temporary folder
+            session = read_session(folder, **read_kwargs)
     session._read_warnings = [_renamed_line(w, root, label) for w in session._read_warnings]
+    session._read_from = _renamed(str(folder), root, label)  # B359 (R1): results strip it as a folder's path
     session.folder = None
     return session
 
@@ -119,15 +120,6 @@ def extracted_session(source, *, name: str | None = None, max_archive_bytes: int
             root = Path(tmp) if top else Path(tmp) / _stem(label)
             _extract(zf, members, root, label, max_archive_bytes)
             try:
-                with renamed_records(root, label):  # decision B359 (R1): no line names the temporary folder
-                    session = read_session(folder, **read_kwargs)
-            except DataError as exc:
-                raise _renamed_error(exc, root, label) from None
-    session._read_warnings = [_renamed_line(w, root, label) for w in session._read_warnings]
-    session._read_from = _renamed(str(folder), root, label)  # B359 (R1): results strip it as a folder's path
-    session.folder = None
-    return session
-
                 yield (root / top if top else root), root, label
             except DataError as exc:
                 raise _renamed_error(exc, root, label) from None
@@ -355,8 +347,5 @@ def _renamed_error(exc: DataError, root: Path, label: str) -> DataError:
         return DataError(text)
 
 
-__all__ = ["MAX_ARCHIVE_BYTES", "MAX_ARCHIVE_MEMBERS", "archive_label", "is_archive", "is_zip_file",
-           "read_session_zip", "refuse_archive_for_batch", "renamed_records", "unsearched_zip_line"]
-
 __all__ = ["MAX_ARCHIVE_BYTES", "MAX_ARCHIVE_MEMBERS", "archive_label", "extracted_session", "is_archive",
-           "read_session_zip", "refuse_archive_for_batch"]
+           "is_zip_file", "read_session_zip", "refuse_archive_for_batch", "renamed_records", "unsearched_zip_line"]
