@@ -120,6 +120,22 @@ def incline_scope(value: float | None = None):
         _INCLINE.reset(token)
 
 
+@contextmanager
+def session_incline(session):
+    """Decisions L442, L454: the one scope a session's summary and tables are made in - the belt incline meta.json
+    declares for ``session`` (:func:`incline_value`; a bad value is one line naming it, B365), or the one an
+    enclosing scope declared already (``track`` declares it before tracking). Yields the session's own value
+    (None: none declared; ``session`` None: none)."""
+    incline = None if session is None else incline_value(session.meta, session_where(session))
+    with incline_scope(incline if declared_incline() is None else declared_incline()):
+        yield incline
+
+
+def session_where(session) -> str:
+    """The session's folder (its name in memory) as the belt's error lines name it."""
+    return str(getattr(session, "folder", None) or session.where)
+
+
 def set_incline(value: float | None) -> None:
     """Decision L442: the declared belt incline (%) of the session tracked inside :func:`incline_scope`."""
     _INCLINE.set(value)

@@ -1,0 +1,46 @@
+"""Session 36 fixer FK (review R3 of the treadmill merge): write_track's bouts / steps.csv at a declared incline
+(L442, F1), evaluate_track and `run` read the belt keys (L454, F2), the streamed belt check (L441, F3), short stair
+flights inside a ramp climb (L455, F4), the --step-length recipe (S81, F5), TrackResult.summary leaves the
+caller's info alone and the "not level" note's backward rows (L456, F6). Simulated users 9020-9029 only."""
+
+from __future__ import annotations
+
+import json
+
+import pandas as pd
+import pytest
+
+
+def _simulate(folder, route, user, **meta_extra):
+    from pdrlearn.cli import main
+
+    assert main(["simulate", "--route", route, "--user-seed", str(user), "--rate", "100", "--out", str(folder)]) == 0
+    if meta_extra:
+        meta = json.loads((folder / "meta.json").read_text())
+        (folder / "meta.json").write_text(json.dumps({**meta, **meta_extra}))
+    return folder
+
+
+@pytest.fixture(scope="module")
+def incline(tmp_path_factory):
+    """A 10 % slope walked from standing (user 9020) declared as a 1.0 m/s treadmill belt at 10 %."""
+    return _simulate(tmp_path_factory.mktemp("fk") / "incl", "stand:2, slope:30:10, stand:2", 9020,
+                     belt_speed_mps=1.0, belt_incline_pct=10)
+
+
+def test_write_track_folder_equals_track_folder_on_a_declared_incline_l442(incline, tmp_path, capsys):
+    from pdrlearn.cli import main
+    from pdrlearn.io import read_session
+    from pdrlearn.track import get_pipeline
+    from pdrlearn.track.folder import write_track
+
+    assert main(["track", str(incline), "--out", str(tmp_path / "cli")]) == 0
+    capsys.readouterr()
+    s = read_session(incline)
+    write_track(get_pipeline("plasys")(s), s, tmp_path / "api")
+    cli, api = (json.loads((tmp_path / d / "summary.json").read_text()) for d in ("cli", "api"))
+    assert cli["n_cv_strides"] == api["n_cv_strides"] > 0
+    for name in ("bouts.csv", "steps.csv"):
+        a, b = (pd.read_csv(tmp_path / d / name) for d in ("cli", "api"))
+        pd.testing.assert_frame_equal(a, b)
+    assert pd.read_csv(tmp_path / "api" / "steps.csv")["steady"].sum() == cli["n_cv_strides"]
