@@ -44,3 +44,41 @@ def test_write_track_folder_equals_track_folder_on_a_declared_incline_l442(incli
         a, b = (pd.read_csv(tmp_path / d / name) for d in ("cli", "api"))
         pd.testing.assert_frame_equal(a, b)
     assert pd.read_csv(tmp_path / "api" / "steps.csv")["steady"].sum() == cli["n_cv_strides"]
+
+
+RUN_BUNDLE = __import__("pathlib").Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
+
+
+def test_evaluate_track_reads_the_declared_incline_and_the_belt_l454(incline):
+    from pdrlearn.io import read_session
+    from pdrlearn.track import get_pipeline
+    from pdrlearn.track.belt import declared_incline
+    from pdrlearn.track.evaluate import evaluate_track
+
+    s = read_session(incline)
+    res = get_pipeline("plasys")(s)
+    got = evaluate_track(res, s)
+    want = res.summary(s)
+    assert declared_incline() is None  # the scope closed
+    assert got["floors_up"] == want["floors_up"] == 0 and "L442" in got["floors_note"]
+    assert got["n_cv_strides"] == want["n_cv_strides"] > 0
+    assert got["belt_incline_pct"] == 10 and got["belt_speed_error_pct"] == pytest.approx(want["belt_speed_error_pct"])
+
+
+def test_run_reads_the_declared_incline_and_refuses_a_bad_one_l454_b378(incline, tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    assert main(["run", str(RUN_BUNDLE), str(incline), "--out", str(tmp_path / "run")]) == 0
+    assert "floors up 0" in capsys.readouterr().out
+    got = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert got["belt_speed_mps"] == 1.0 and got["belt_incline_pct"] == 10 and "L442" in got["floors_note"]
+    assert "belt_speed_error_pct" in got and got["floors_up"] == 0
+    assert len(pd.read_csv(tmp_path / "run" / "stairs.csv")) == 0
+    bad = tmp_path / "bad"
+    __import__("shutil").copytree(incline, bad)
+    meta = json.loads((bad / "meta.json").read_text())
+    (bad / "meta.json").write_text(json.dumps({**meta, "belt_incline_pct": "ten"}))
+    assert main(["run", str(RUN_BUNDLE), str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "belt_incline_pct 'ten'" in err and "B365" in err and "\n" not in err and "Traceback" not in err
+    assert not (tmp_path / "o").exists()

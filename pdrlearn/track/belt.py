@@ -39,11 +39,11 @@ _INCLINE = contextvars.ContextVar("pdrlearn_belt_incline", default=None)
 
 def belt_rows(steps: pd.DataFrame) -> np.ndarray:
     """Decision L441: (B,) bool, the belt strides of a foot steps table (in its row order, which is time order):
-    a stride (L67 / L97's :func:`~pdrlearn.track.gait.stride_rows`) with a finite speed (:func:`stride_speeds`), turning less than
-    L79's 15 deg, not a side step (L228), whose rows before and after are such strides too (steady: no start, stop
-    or turn next to it, as L104's CV strides), and whose ``dz_m`` lies within L39's level band (0.10 m,
-    :data:`pdrlearn.kernels.distance.LEVEL_DZ_M`) of the median ``dz_m`` of those strides: level on a level belt,
-    the belt's constant grade on an inclined one. All False without the gait columns."""
+    a stride (L67 / L97's :func:`~pdrlearn.track.gait.stride_rows`) with a finite speed (:func:`stride_speeds`),
+    turning less than L79's 15 deg, not a side step (L228), whose rows before and after are such strides too
+    (steady: no start, stop or turn next to it, as L104's CV strides), and whose ``dz_m`` lies within L39's level
+    band (0.10 m, :data:`pdrlearn.kernels.distance.LEVEL_DZ_M`) of the median ``dz_m`` of those strides: level on a
+    level belt, the belt's constant grade on an inclined one. All False without the gait columns."""
     from pdrlearn.kernels.distance import LEVEL_DZ_M
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD, sideways_rows, stride_rows
 
@@ -65,7 +65,8 @@ def belt_rows(steps: pd.DataFrame) -> np.ndarray:
 def stride_speeds(steps: pd.DataFrame) -> np.ndarray:
     """Decisions L441, L222: (B,) each stride's horizontal speed, m/s: ``speed_mps``, or - a streamed foot table
     without stride times (no ``--contacts``, E51) - :func:`pdrlearn.track.gait.cycle_speeds` (|length| over the time
-    to the next stride's start), as ``median_speed_straight_mps`` reads it (:func:`pdrlearn.track.gait.range_speeds`)."""
+    to the next stride's start), as ``median_speed_straight_mps`` reads it
+    (:func:`pdrlearn.track.gait.range_speeds`)."""
     from pdrlearn.track.gait import range_speeds
 
     speed = (pd.to_numeric(steps["speed_mps"], errors="coerce").to_numpy(float) if "speed_mps" in steps
@@ -129,6 +130,13 @@ def incline_scope(value: float | None = None):
         yield
     finally:
         _INCLINE.reset(token)
+
+
+def check_belt_keys(meta: dict | None, where: str) -> None:
+    """Decisions L321, B365, L454: meta.json's ``belt_speed_mps`` and ``belt_incline_pct`` checked before tracking
+    (``track`` and ``run``): a bad value is one line naming it."""
+    belt_value(meta, where)
+    incline_value(meta, where)
 
 
 @contextmanager
