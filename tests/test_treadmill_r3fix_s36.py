@@ -82,3 +82,24 @@ def test_run_reads_the_declared_incline_and_refuses_a_bad_one_l454_b378(incline,
     err = capsys.readouterr().err.strip()
     assert "belt_incline_pct 'ten'" in err and "B365" in err and "\n" not in err and "Traceback" not in err
     assert not (tmp_path / "o").exists()
+
+
+def test_the_documented_step_length_recipe_labels_as_the_command_s81(tmp_path):
+    """docs/simulator.md's Python equivalent of --step-length (run as printed, user 9022 in place of 1) gives the
+    command's stride-length class bounds and labels (review R3 F5)."""
+    import re
+    from pathlib import Path
+
+    from pdrlearn.cli import main
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "simulator.md").read_text()
+    block = next(b for b in re.findall(r"```python\n(.*?)```", doc, re.S) if "step_length_m=0.3" in b)
+    code = block.replace("from_seed(1)", "from_seed(9022)")
+    code = code.replace('"out/sim/tenmwt_040_py"', repr(str(tmp_path / "py")))
+    exec(compile(code, "docs/simulator.md", "exec"), {})  # noqa: S102 - the documented recipe itself
+    assert main(["simulate", "--route", "stand:3, straight:14, stand:3", "--step-length", "0.3", "--step-time", "0.75",
+                 "--bounce", "pendulum", "--user-seed", "9022", "--out", str(tmp_path / "cli")]) == 0
+    py, cli = (json.loads((tmp_path / d / "meta.json").read_text()) for d in ("py", "cli"))
+    assert py["length_class_bounds_m"] == cli["length_class_bounds_m"]
+    a, b = (pd.read_csv(tmp_path / d / "steps.csv") for d in ("py", "cli"))
+    assert list(a["length_class"]) == list(b["length_class"]) and (a["length_class"] == "short").all()
