@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -103,3 +104,31 @@ def test_the_documented_step_length_recipe_labels_as_the_command_s81(tmp_path):
     assert py["length_class_bounds_m"] == cli["length_class_bounds_m"]
     a, b = (pd.read_csv(tmp_path / d / "steps.csv") for d in ("py", "cli"))
     assert list(a["length_class"]) == list(b["length_class"]) and (a["length_class"] == "short").all()
+
+
+def test_summary_leaves_the_callers_info_alone(incline):
+    from pdrlearn.io import read_session
+    from pdrlearn.track import get_pipeline
+
+    s = read_session(incline)
+    res = get_pipeline("plasys")(s)
+    before = dict(res.info)
+    got = res.summary(s)
+    assert got["info"]["belt_incline_pct"] == 10 and got["floors_up"] == 0
+    assert res.info == before and "belt_incline_pct" not in res.info  # before: 10.0 written into the caller's info
+
+
+def test_not_level_note_leaves_out_a_model_free_tracks_backward_strides_l456():
+    from pdrlearn.track.clinical import _not_level
+
+    n = 30
+    t = 1.1 + 0.01 * np.sin(np.arange(n))
+    start = 3.0 + np.r_[0.0, np.cumsum(t)[:-1]]
+    steps = pd.DataFrame({"start_s": start, "end_s": start + t, "length_m": 1.2, "raw_length_m": 1.2, "dz_m": 0.0,
+                          "turn_angle_rad": 0.0, "stride_time_s": np.r_[np.nan, t[1:]], "unit": "foot", "gap_s": 0.0,
+                          "direction": ""})  # a model-free track: no direction class
+    back = np.arange(n) >= 15  # the second half travels backward (L203), over a drifting climb
+    steps.loc[back, "raw_length_m"] = -1.2
+    steps.loc[back, "dz_m"] = 0.2
+    n_straight, n_not_level = _not_level(steps)
+    assert n_straight == 14 and n_not_level == 0  # before: 29 straight, 15 of them "not level"
