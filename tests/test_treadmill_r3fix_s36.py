@@ -132,3 +132,34 @@ def test_not_level_note_leaves_out_a_model_free_tracks_backward_strides_l456():
     steps.loc[back, "dz_m"] = 0.2
     n_straight, n_not_level = _not_level(steps)
     assert n_straight == 14 and n_not_level == 0  # before: 29 straight, 15 of them "not level"
+
+
+def _climb(dz, length, t=1.2):
+    """A steps table (gait columns included) of strides rising ``dz`` over ``length``, one every ``t`` s."""
+    n = len(dz)
+    start = 3.0 + t * np.arange(n)
+    return pd.DataFrame({"start_s": start, "end_s": start + t, "event_s": start + t - 0.1, "length_m": length,
+                         "dz_m": dz, "turn_angle_rad": 0.0, "heading_rad": 0.0,
+                         "stride_time_s": np.r_[np.nan, np.full(n - 1, t)], "speed_mps": np.asarray(length) / t,
+                         "unit": "foot", "gap_s": 0.0})
+
+
+def test_a_stair_beside_a_ramp_keeps_its_flight_with_the_l455_option(monkeypatch):
+    from pdrlearn.track import stair_flights
+    from pdrlearn.track.evaluate import ramp_climb_rows
+    from pdrlearn.track.stair_flights import flight_table
+
+    assert stair_flights.STEEP_STRIDES_IN_RAMPS is False  # L455: not adopted (a drift flight on gaitmap_ms_right)
+
+    # 30 strides up a 10 % ramp, then 3 stair strides of 0.34 m over 0.56 m (61 %, R3's route), then level
+    dz = np.r_[np.zeros(3), np.full(30, 0.12), np.full(3, 0.34), np.zeros(3)]
+    length = np.r_[np.full(33, 1.2), np.full(3, 0.56), np.full(3, 1.2)]
+    st = _climb(dz, length)
+    assert ramp_climb_rows(st)[3:36].all()  # L302 calls the whole climb a ramp
+    assert len(flight_table(st)) == 0  # L443, the default: the stair goes with the ramp
+    monkeypatch.setattr(stair_flights, "STEEP_STRIDES_IN_RAMPS", True)
+    table = flight_table(st)
+    assert len(table) == 1 and table["direction"].iloc[0] == "up" and table["n_strides"].iloc[0] == 3  # before: none
+    assert table["height_m"].iloc[0] == pytest.approx(1.02)
+    ramp_only = _climb(dz[:33], length[:33])  # the ramp alone keeps no flight (L443)
+    assert len(flight_table(ramp_only)) == 0
