@@ -266,3 +266,21 @@ def test_calibrate_belt_takes_belt_speed_times_the_contact_span_w378_b366(tmp_pa
     err = capsys.readouterr().err.strip()
     assert "--belt needs meta.json belt_speed_mps" in err and "B366" in err and "\n" not in err
     assert not (tmp_path / "y.json").exists()
+
+
+def test_streamed_track_keeps_the_belt_check_without_contacts_l441(tmp_path, capsys, caplog):
+    """Review R3 F3 (fixer FK, user 9021): `track --streaming` without --contacts has no stride time (E51); its belt
+    strides take their speed from the time to the next stride's start (L222) as median_speed_straight_mps does."""
+    from pdrlearn.cli import main
+
+    folder = tmp_path / "level"
+    assert main(["simulate", "--route", "stand:2, straight:40, stand:2", "--user-seed", "9021", "--out",
+                 str(folder)]) == 0
+    meta = json.loads((folder / "meta.json").read_text())
+    (folder / "meta.json").write_text(json.dumps({**meta, "belt_speed_mps": 1.3}))
+    summary, printed, _ = _track(folder, tmp_path / "strm", capsys, caplog, "--streaming")
+    assert pd.read_csv(tmp_path / "strm" / "steps.csv")["speed_mps"].isna().all()  # no stride time streamed
+    assert summary["n_belt_strides"] >= 20 and "belt_check_note" not in summary
+    assert abs(summary["belt_speed_error_pct"]) < 5
+    plain, _, _ = _track(folder, tmp_path / "offline", capsys, caplog)
+    assert summary["median_speed_belt_mps"] == pytest.approx(plain["median_speed_belt_mps"], rel=0.05)

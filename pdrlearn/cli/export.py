@@ -508,6 +508,9 @@ def run(
             session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse",
                                    drop_partial_row=drop_partial_row,  # decision B276: track's option, one mechanism
                                    command=run_command)  # decision B279: a cut last row names `run`'s option
+            from pdrlearn.track.belt import check_belt_keys, session_where
+
+            check_belt_keys(session.meta, session_where(session))  # decisions L454, B365: as track, before tracking
             from pdrlearn.io.plasys import unit_ends
 
             ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
@@ -735,6 +738,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
 
     session = read_session(session_dir, streamed=True, drop_partial_row=drop_partial_row,  # decision B276
                            command=f"pdrlearn run {shell_quote(bundle_dir)} {shell_quote(session_dir)}")  # B279
+    from pdrlearn.track.belt import check_belt_keys, session_where
+
+    check_belt_keys(session.meta, session_where(session))  # decisions L454, B365: as track, before tracking
     missing = [n for n in WAIST_SENSORS if not session.has(n)]
     if missing:
         raise MissingSensorError(f"session '{session.name}' ({session_dir}) has no {', '.join(missing)}, which the "

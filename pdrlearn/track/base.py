@@ -71,7 +71,10 @@ class TrackResult:
         if self.tracked is not None and given is not None and given != self.tracked:
             raise DataError(f"summary: this track is of session {self.tracked[0]!r} ({self.tracked[1] or 'in memory'})"
                             f", not of {given[0]!r} ({given[1] or 'in memory'}); pass the session you tracked")
-        return track_summary(self, session, pipeline=pipeline)
+        import dataclasses
+
+        # the caller's track untouched (as write_track): the summary records the declared incline in its info (L442)
+        return track_summary(dataclasses.replace(self, info=dict(self.info)), session, pipeline=pipeline)
 
     def plot(self, session=None, *, out=None, title: str = "", dpi: float | None = None):
         """Decision E89: the plan view of this track (``path.png`` of ``pdrlearn track``; with ``session``, its

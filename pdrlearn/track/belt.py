@@ -39,18 +39,18 @@ _INCLINE = contextvars.ContextVar("pdrlearn_belt_incline", default=None)
 
 def belt_rows(steps: pd.DataFrame) -> np.ndarray:
     """Decision L441: (B,) bool, the belt strides of a foot steps table (in its row order, which is time order):
-    a stride (L67 / L97's :func:`~pdrlearn.track.gait.stride_rows`) with a finite ``speed_mps``, turning less than
-    L79's 15 deg, not a side step (L228), whose rows before and after are such strides too (steady: no start, stop
-    or turn next to it, as L104's CV strides), and whose ``dz_m`` lies within L39's level band (0.10 m,
-    :data:`pdrlearn.kernels.distance.LEVEL_DZ_M`) of the median ``dz_m`` of those strides: level on a level belt,
-    the belt's constant grade on an inclined one. All False without the gait columns."""
+    a stride (L67 / L97's :func:`~pdrlearn.track.gait.stride_rows`) with a finite speed (:func:`stride_speeds`),
+    turning less than L79's 15 deg, not a side step (L228), whose rows before and after are such strides too
+    (steady: no start, stop or turn next to it, as L104's CV strides), and whose ``dz_m`` lies within L39's level
+    band (0.10 m, :data:`pdrlearn.kernels.distance.LEVEL_DZ_M`) of the median ``dz_m`` of those strides: level on a
+    level belt, the belt's constant grade on an inclined one. All False without the gait columns."""
     from pdrlearn.kernels.distance import LEVEL_DZ_M
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD, sideways_rows, stride_rows
 
     n = len(steps)
-    if not n or "speed_mps" not in steps or "turn_angle_rad" not in steps:
+    if not n or "turn_angle_rad" not in steps:
         return np.zeros(n, bool)
-    speed = pd.to_numeric(steps["speed_mps"], errors="coerce").to_numpy(float)
+    speed = stride_speeds(steps)
     turn = pd.to_numeric(steps["turn_angle_rad"], errors="coerce").to_numpy(float)
     with np.errstate(invalid="ignore"):
         ok = stride_rows(steps) & np.isfinite(speed) & (np.abs(turn) < STRAIGHT_MAX_RAD) & ~sideways_rows(steps)
@@ -62,12 +62,24 @@ def belt_rows(steps: pd.DataFrame) -> np.ndarray:
     return ok
 
 
+def stride_speeds(steps: pd.DataFrame) -> np.ndarray:
+    """Decisions L441, L222: (B,) each stride's horizontal speed, m/s: ``speed_mps``, or - a streamed foot table
+    without stride times (no ``--contacts``, E51) - :func:`pdrlearn.track.gait.cycle_speeds` (|length| over the time
+    to the next stride's start), as ``median_speed_straight_mps`` reads it
+    (:func:`pdrlearn.track.gait.range_speeds`)."""
+    from pdrlearn.track.gait import range_speeds
+
+    speed = (pd.to_numeric(steps["speed_mps"], errors="coerce").to_numpy(float) if "speed_mps" in steps
+             else np.full(len(steps), np.nan))
+    return range_speeds(steps, speed)
+
+
 def belt_speeds(steps: pd.DataFrame) -> np.ndarray:
     """Decision L441: the belt strides' (:func:`belt_rows`) speeds along the belt, m/s: the stride's horizontal
     ``speed_mps`` times sqrt(1 + (dz / length)^2) - an inclined belt runs along its surface (0.5 % more than the
     horizontal speed at 10 %); the horizontal speed itself on a level stride (``dz_m`` 0)."""
     rows = belt_rows(steps)
-    speed = pd.to_numeric(steps["speed_mps"], errors="coerce").to_numpy(float)[rows] if rows.any() else np.zeros(0)
+    speed = stride_speeds(steps)[rows] if rows.any() else np.zeros(0)
     if not rows.any() or "dz_m" not in steps:
         return speed
     dz = np.nan_to_num(pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)[rows])
@@ -118,6 +130,29 @@ def incline_scope(value: float | None = None):
         yield
     finally:
         _INCLINE.reset(token)
+
+
+def check_belt_keys(meta: dict | None, where: str) -> None:
+    """Decisions L321, B365, L454: meta.json's ``belt_speed_mps`` and ``belt_incline_pct`` checked before tracking
+    (``track`` and ``run``): a bad value is one line naming it."""
+    belt_value(meta, where)
+    incline_value(meta, where)
+
+
+@contextmanager
+def session_incline(session):
+    """Decisions L442, L454: the one scope a session's summary and tables are made in - the belt incline meta.json
+    declares for ``session`` (:func:`incline_value`; a bad value is one line naming it, B365), or the one an
+    enclosing scope declared already (``track`` declares it before tracking). Yields the session's own value
+    (None: none declared; ``session`` None: none)."""
+    incline = None if session is None else incline_value(session.meta, session_where(session))
+    with incline_scope(incline if declared_incline() is None else declared_incline()):
+        yield incline
+
+
+def session_where(session) -> str:
+    """The session's folder (its name in memory) as the belt's error lines name it."""
+    return str(getattr(session, "folder", None) or session.where)
 
 
 def set_incline(value: float | None) -> None:

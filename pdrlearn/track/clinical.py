@@ -846,7 +846,8 @@ def steady_stride_lengths(st: pd.DataFrame, steady: np.ndarray) -> np.ndarray:
 def _not_level(steps: pd.DataFrame) -> tuple[int, int]:
     """Decision L215: ``(straight strides with a stride time, how many of them L188's level criterion drops)``
     of a foot table: valid forward strides turning under 15 deg with a stride time, and those whose |``dz_m``|
-    reaches 0.10 m (:func:`pdrlearn.track.gait.stair_rows`)."""
+    reaches 0.10 m (:func:`pdrlearn.track.gait.stair_rows`). Decision L456: forward is not :func:`backward_rows`
+    (a model's ``direction`` backward or a model-free track's backward travel, L203 / L408), as the CV's strides."""
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD, stair_rows
 
     if "stride_time_s" not in steps or not len(steps):
@@ -855,8 +856,7 @@ def _not_level(steps: pd.DataFrame) -> tuple[int, int]:
     with np.errstate(invalid="ignore"):
         straight = (np.isfinite(steps["stride_time_s"].to_numpy(float)) & (np.abs(turn) < STRAIGHT_MAX_RAD)
                     & _valid(steps))
-    if "direction" in steps:
-        straight &= (steps["direction"].astype(str) != "backward").to_numpy()
+    straight &= ~backward_rows(steps)  # decision L456: L188's backward rows, a model-free track's included
     return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=True if cv_keeps_ramps() else None)
                                      ).sum())
 

@@ -1360,7 +1360,23 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     :class:`pdrlearn.track.bouts.BoutRule`, None = its defaults; decision L124); ``bout_table``: their table
     (:func:`pdrlearn.track.bouts.detected_bouts` under ``bouts``) when the caller has it (decision E73); with the
     trajectory's ``pos_sigma_m`` its last and largest value, ``final_position_sigma_m`` and
-    ``max_position_sigma_m`` (m, decision L128)."""
+    ``max_position_sigma_m`` (m, decision L128). Decision L454: with a ``session`` whose meta.json declares a
+    treadmill, the metrics are taken inside its declared incline (:func:`pdrlearn.track.belt.session_incline`: L442's
+    storeys, flights and CV strides; ``result.info["belt_incline_pct"]`` for stairs.csv) and the belt's keys follow
+    (:func:`pdrlearn.track.belt.belt_summary`, L321 / L441) - one place for ``track``, ``run`` and this function."""
+    from pdrlearn.track.belt import INCLINE_KEY, session_incline, session_where
+
+    with session_incline(session) as incline:
+        if incline is not None:
+            result.info[INCLINE_KEY] = incline  # stairs.csv reads it (clinical_tables)
+        out = _evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
+    if session is not None:
+        out.update(belt_summary(session.meta, out, session_where(session), result.steps))  # decisions L321, L441
+    return out
+
+
+def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout_table, storey_height_m) -> dict:
+    """:func:`evaluate_track`'s metrics, taken in the incline scope it opened."""
     from pdrlearn.track.bouts import bouts_summary
 
     if not (np.isfinite(storey_height_m) and storey_height_m > 0):
@@ -1463,20 +1479,14 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     import logging
 
     from pdrlearn.io.plasys import json_safe
-    from pdrlearn.track.belt import INCLINE_KEY, declared_incline, incline_scope, incline_value
     from pdrlearn.track.clinical import contact_timing
 
-    incline = incline_value(session.meta, str(getattr(session, "folder", None) or session.where))  # decision L442
-    if incline is not None:
-        result.info[INCLINE_KEY] = incline  # stairs.csv reads it (clinical_tables)
-    with incline_scope(incline if declared_incline() is None else declared_incline()):
-        summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
+    # decisions L442, L454: the declared incline and the belt's keys (L321, L441) in evaluate_track
+    summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     from pdrlearn.track.periods import time_accounting
 
     summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
-    summary.update(belt_summary(session.meta, summary, str(getattr(session, "folder", None) or session.where),
-                                result.steps))  # decision L441: the belt strides
     summary["session"] = session.name
     from pdrlearn.track.bouts import session_ids
 

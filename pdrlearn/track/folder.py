@@ -25,6 +25,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.outfolder import out_folder
     from pdrlearn.provenance import input_hashes, run_record, write_run_json
+    from pdrlearn.track.belt import session_incline
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
     from pdrlearn.track.evaluate import track_summary
     from pdrlearn.track.periods import time_accounting
@@ -35,9 +36,10 @@ def write_track(result, session, out, force: bool = False) -> Path:
     out = out_folder(Path(out), "track", force=force, inputs=(session.folder,) if session.folder else ())
     pipeline = result.info.get("pipeline", "plasys")
     result = dataclasses.replace(result, steps=result.steps.copy(), info=dict(result.info))  # the caller's untouched
-    bouts = detected_bouts(result.steps, None, **session_key(session), leg_m=session_leg_m(session))  # L124, L165
-    summary = track_summary(result, session, pipeline=pipeline, bout_table=bouts)  # C13, C14: TrackResult.summary
-    add_steady_column(result.steps)  # decision L415, as track's steps.csv
+    with session_incline(session):  # decisions L442, L454: bouts.csv's and steps.csv's CV strides as track's
+        bouts = detected_bouts(result.steps, None, **session_key(session), leg_m=session_leg_m(session))  # L124
+        summary = track_summary(result, session, pipeline=pipeline, bout_table=bouts)  # C13, C14
+        add_steady_column(result.steps)  # decision L415, as track's steps.csv
     summary.update(time_accounting(result, session, tracked_unit(pipeline)))  # decision L275
     summary = machine_summary(summary, [], session.where)  # decisions E154, E155
     tracked = {"session": session, "result": result, "summary": summary, "pipeline": pipeline,

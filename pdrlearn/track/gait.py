@@ -429,7 +429,7 @@ def cycle_speeds(steps: pd.DataFrame) -> np.ndarray:
     return out
 
 
-def _range_speeds(steps: pd.DataFrame, speed: np.ndarray) -> np.ndarray:
+def range_speeds(steps: pd.DataFrame, speed: np.ndarray) -> np.ndarray:
     """Decision L222: a foot table whose strides have no stride time (streamed without ``--contacts``, E51) takes
     :func:`cycle_speeds` for its straight-walking speed; any other table keeps its own ``speed_mps``."""
     foot = "unit" not in steps or (steps["unit"] == "foot").all()
@@ -539,7 +539,7 @@ def trimmed_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -
     valid = stride_rows(steps) & keep  # decisions L67, L97; L415
     turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
     _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid,
-                  _range_speeds(steps, steps["speed_mps"].to_numpy(float)),  # decision L222
+                  range_speeds(steps, steps["speed_mps"].to_numpy(float)),  # decision L222
                   turn < STRAIGHT_MAX_RAD)
     if "stance_time_s" in steps:  # decision L73
         out["n_stance_times"] = int(np.isfinite(steps["stance_time_s"].to_numpy(float)).sum())

@@ -101,6 +101,31 @@ def flight_strides(st: pd.DataFrame, min_strides: int | None = None) -> int:
     return int(sum(b - a for a, b, _ in found))
 
 
+#: decision L455 (an option, not adopted: a real level recording gained a 2-stride drift flight): a stride of a ramp
+#: climb as steep as a stair (its own grade >= L303's 20 %) stays a stair row of stairs.csv's flights
+STEEP_STRIDES_IN_RAMPS = False
+
+
+def flight_rows(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None,
+                steep_strides_in_ramps: bool | None = None) -> np.ndarray:
+    """Decisions L443, L455: (rows,) bool, the stair rows stairs.csv's flights are made of: L179's stair rows less
+    the climbs L302 calls "ramps" (L443); with ``steep_strides_in_ramps`` (default :data:`STEEP_STRIDES_IN_RAMPS`,
+    off) a stride of such a climb whose own grade |dz| / |length| reaches
+    :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` (L303's 20 %) stays a stair row (a stair beside a ramp)."""
+    from pdrlearn.track.evaluate import ramp_climb_rows
+    from pdrlearn.track.gait import stair_rows
+    from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
+
+    stair = stair_rows(st, ramp_not_stair=False)
+    kept = stair & ~ramp_climb_rows(st)  # decision L443
+    on = STEEP_STRIDES_IN_RAMPS if steep_strides_in_ramps is None else steep_strides_in_ramps
+    if length is None or not on:
+        return kept
+    with np.errstate(invalid="ignore", divide="ignore"):
+        steep = np.abs(np.nan_to_num(dz)) >= STAIR_MIN_GRADE_PCT / 100.0 * np.abs(length)  # decision L455
+    return kept | (stair & steep)
+
+
 def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.DataFrame:
     """``stairs.csv`` (decision L432): one row per :func:`flight_runs` flight of a foot track's rows (decision L443:
     not of the climbs L302 calls ramps, :func:`pdrlearn.track.evaluate.ramp_climb_rows`) (in
@@ -112,7 +137,7 @@ def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.D
     either foot with a barometric height) and without ``dz_m``."""
     from pdrlearn.track.bouts import cadence_spm
     from pdrlearn.track.clinical import _is_lower_back, bout_rows, cv_pct
-    from pdrlearn.track.gait import stair_rows, stride_rows
+    from pdrlearn.track.gait import stride_rows
 
     if not len(steps) or "dz_m" not in steps or _is_lower_back(steps):
         return pd.DataFrame(columns=list(FLIGHT_COLUMNS))
@@ -120,10 +145,10 @@ def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.D
     dz = pd.to_numeric(st["dz_m"], errors="coerce").to_numpy(float)
     # L179's n_stair_strides rows; decision L443: less a climb L302 calls "ramps" (under 20 % rise over run), as
     # floors_up_stairs / floors_up_ramps count it - a ramp, a hill or an inclined belt is no stair flight
-    stair = stair_rows(st, ramp_not_stair=True) & stride_rows(st)
+    length = pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float) if "length_m" in st else None
+    stair = flight_rows(st, dz, length) & stride_rows(st)
     start, end = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
     rows = []
-    length = pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float) if "length_m" in st else None
     for k, (a, b, sign) in enumerate(flight_runs(dz, stair, bout_rows(st), length), start=1):
         t = float(end[b - 1] - start[a])
         height = float(np.nansum(dz[a:b]))
