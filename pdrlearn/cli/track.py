@@ -396,7 +396,9 @@ def track(
     if as_json:
         print_json(summary)
     else:
-        _print_summary(summary, out, aided, waist_unit=(Path(session_dir) / "wAccelerometer.csv").is_file())  # L316
+        from pdrlearn.textfile import session_csv
+
+        _print_summary(summary, out, aided, waist_unit=session_csv(session_dir, "wAccelerometer").is_file())  # L316
     warned = summary.get("info", {}).get("warnings") or []
     if strict and warned:  # decision E156: the outputs are written; the exit code says the track warned
         typer.echo(f"strict: {len(warned)} warning(s) (summary.json info.warnings); exit code {STRICT_EXIT}", err=True)
