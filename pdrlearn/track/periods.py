@@ -50,7 +50,7 @@ PERIOD_GAIT_KEYS = ("median_stride_length_m", "median_speed_mps", "stride_time_c
                     "n_cv_strides")
 #: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
 PERIOD_COLUMNS = ("session", "subject", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
-                  "n_steps", "n_steps_counts", "median_stride_time_s", "median_cadence_spm",
+                  "n_steps", "n_steps_counts", "n_steps_both_feet", "median_stride_time_s", "median_cadence_spm",
                   *PERIOD_GAIT_KEYS, *TIME_KEYS,
                   *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
                   "position_sigma_end_m")
@@ -378,6 +378,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         row = {**session_key(session), "period": k + 1, "start_s": float(a), "end_s": float(b),
                "duration_s": float(b - a), "partial": bool(b - a < per_s - 1e-9),
                "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), "n_steps_counts": counts,
+               # decision L449: both feet's steps whatever the unit, as the summary's (2 per foot stride)
+               "n_steps_both_feet": step_counts(steps[m])["n_steps_both_feet"],
                **_period_gait(steps, m), **timeline.budget(a, b), **timeline.posture_budget(a, b)}
         c = inside(climb_t)
         row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None
