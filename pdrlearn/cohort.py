@@ -91,8 +91,10 @@ SCHEDULER_TIMEOUT_S = 10
 def session_files() -> tuple[str, ...]:
     """The files that make a folder a session: ``meta.json`` and every sensor file name."""
     from pdrlearn.io.sensors import SENSORS
+    from pdrlearn.textfile import GZ_CSV
 
-    return ("meta.json", *(s.filename for s in SENSORS.values()))
+    return ("meta.json", *(s.filename for s in SENSORS.values()),
+            *(s.name + GZ_CSV for s in SENSORS.values()))  # decision B369: gzip-compressed sensor files
 
 
 def is_session_dir(p: str | os.PathLike, _seen: frozenset = frozenset()) -> bool:

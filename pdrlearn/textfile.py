@@ -9,7 +9,10 @@ with BOM") is accepted (``utf-8-sig``), and a file that is not UTF-8 is refused 
 
 from __future__ import annotations
 
+import gzip
 import json
+import os
+import zlib
 from pathlib import Path
 
 from pdrlearn.errors import DataError, shell_quote
@@ -40,8 +43,67 @@ def decode(path, data: bytes, also: str = "") -> str:
 
 
 def read_text(path) -> str:
-    """The text of the file ``path``: UTF-8 (a BOM accepted) under any locale, else one line (decision B221)."""
-    return decode(path, Path(path).read_bytes())
+    """The text of the file ``path``: UTF-8 (a BOM accepted) under any locale, else one line (decision B221); a
+    ``*.gz`` file decompressed (decision B369)."""
+    return decode(path, read_bytes(path))
+
+
+#: decision B369: the suffix of a gzip-compressed session file (``fAccelerometer.csv.gz``), read in place
+GZ_CSV = ".csv.gz"
+
+
+def is_gzip(path) -> bool:
+    """Whether ``path`` is named as a gzip-compressed file (``*.gz``, decision B369)."""
+    return str(path).lower().endswith(".gz")
+
+
+def read_bytes(path) -> bytes:
+    """The bytes of ``path``, decompressed when it is a ``*.gz`` file (decision B369); a damaged gzip file is one
+    line naming it and the fix."""
+    data = Path(path).read_bytes()
+    if not is_gzip(path):
+        return data
+    try:
+        return gzip.decompress(data)
+    except (OSError, EOFError, zlib.error) as exc:  # gzip.BadGzipFile is an OSError
+        raise DataError(f"{path}: not a readable gzip file ({exc}); re-compress it (gzip -k FILE.csv) or put the "
+                        "plain CSV there (decision B369)") from None
+
+
+def open_text(path, encoding: str = "utf-8", errors: str = "strict"):
+    """``open(path)`` in text mode, through gzip for a ``*.gz`` file (decision B369)."""
+    if is_gzip(path):
+        return gzip.open(path, "rt", encoding=encoding, errors=errors)
+    return open(path, encoding=encoding, errors=errors)
+
+
+def csv_stem(path) -> str:
+    """A session file's name without ``.csv`` or ``.csv.gz`` (``fAccelerometer.csv.gz`` -> ``fAccelerometer``)."""
+    name = Path(path).name
+    for suffix in (GZ_CSV, ".csv"):
+        if name.lower().endswith(suffix):
+            return name[:-len(suffix)]
+    return Path(path).stem
+
+
+def session_csv(folder, stem: str) -> Path:
+    """Decision B369: the file of a session folder's ``stem`` (``fAccelerometer``, ``steps``): ``stem.csv``, else
+    ``stem.csv.gz`` when that is there (read in place); the plain path when neither is. A folder holding both is
+    one line naming them: which one is the recording would be a guess."""
+    folder = Path(folder)
+    plain, gz = folder / f"{stem}.csv", folder / f"{stem}{GZ_CSV}"
+    if not os.path.lexists(gz):
+        return plain
+    if os.path.lexists(plain):
+        raise DataError(f"{folder}: holds both {plain.name} and {gz.name}; keep one of them (delete the other or move "
+                        "it out of the session folder; decision B369)")
+    return gz
+
+
+def session_csvs(folder) -> list[Path]:
+    """Every ``*.csv`` and ``*.csv.gz`` file of ``folder``, sorted by name (decision B369)."""
+    folder = Path(folder)
+    return sorted([*folder.glob("*.csv"), *folder.glob(f"*{GZ_CSV}")], key=lambda p: p.name)
 
 
 def read_json(path):
@@ -70,13 +132,20 @@ def duplicate_message(path, names, header: str) -> str | None:
             f"column of each name (rename or delete the others; decision B223)")
 
 
-def gzip_hint(folder, stems) -> str:
-    """Decision B224: "; ..." saying that ``folder`` holds sensor files gzip-compressed (``fAccelerometer.csv.gz``),
-    which a session reader does not open, and what to do; "" when it holds none of ``stems``."""
-    found = sorted(p.name for p in Path(folder).glob("*.csv.gz") if p.name[:-len(".csv.gz")] in stems)
+#: decision B369 (amends B224): compressions a session folder's files are not read in (only gzip, ``*.csv.gz``)
+OTHER_COMPRESSIONS = (".bz2", ".xz", ".zip", ".zst")
+
+
+def compressed_hint(folder, stems) -> str:
+    """Decisions B224, B369: "; ..." saying that ``folder`` holds sensor files compressed other than by gzip
+    (``fAccelerometer.csv.zip``), which a session reader does not open, and what to do; "" when it holds none of
+    ``stems``. (``*.csv.gz`` files are read in place.)"""
+    found = sorted(p.name for p in Path(folder).glob("*.csv.*")
+                   if p.suffix.lower() in OTHER_COMPRESSIONS and p.name[:-len(p.suffix) - len(".csv")] in stems)
     if not found:
         return ""
     names = ", ".join(found[:3]) + (f" and {len(found) - 3} more" if len(found) > 3 else "")
-    return (f"; {names} {'is' if len(found) == 1 else 'are'} gzip-compressed, and a session folder's files are "
-            f"read as plain CSV: decompress them (gunzip {shell_quote(str(Path(folder)))}/*.csv.gz); `pdrlearn "
-            "import FILE.csv.gz` reads a compressed one-CSV lab export (decision B224)")
+    return (f"; {names} {'is' if len(found) == 1 else 'are'} compressed, and a session folder's files are read as "
+            f"plain CSV or gzip (.csv.gz): decompress them, or compress the plain files with gzip (gzip "
+            f"{shell_quote(str(Path(folder)))}/*.csv); `pdrlearn import FILE.csv.gz` reads a compressed one-CSV lab "
+            "export (decisions B224, B369)")

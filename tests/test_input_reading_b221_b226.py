@@ -2,8 +2,8 @@
 
 B221 every text file is UTF-8 (a BOM accepted) whatever the locale, a file that is not is one line; B222 sensor
 columns are read by name in any order and case, by the lean runtime as by the full reader; B223 a duplicated column
-name is refused; B224 gzip-compressed sensor files are named; B225 US thousands separators and rows wider than the
-header name the cause; B226 no matplotlib noise when the home folder cannot be written.
+name is refused; B224 compressed sensor files are named (gzip ones are read, B369); B225 US thousands separators and
+rows wider than the header name the cause; B226 no matplotlib noise when the home folder cannot be written.
 """
 
 from __future__ import annotations
@@ -234,18 +234,20 @@ def test_no_text_file_is_read_with_the_locale_encoding():
 
 # --- B224, B225: the cause named -------------------------------------------------------------------------------
 
-def test_gzip_compressed_sensor_files_are_named_with_the_fix(plain, tmp_path):
-    import gzip
+def test_compressed_sensor_files_are_named_with_the_fix(plain, tmp_path):
+    """B224 as B369 amends it: gzip files are read in place (tests/test_gzip_session_b369.py); another compression
+    (bzip2 here) is named with the fix."""
+    import bz2
 
     from pdrlearn.io import read_session
 
     s = _copy(plain, tmp_path)
     for n in SENSOR_FILES:
-        (s / f"{n}.csv.gz").write_bytes(gzip.compress((s / f"{n}.csv").read_bytes()))
+        (s / f"{n}.csv.bz2").write_bytes(bz2.compress((s / f"{n}.csv").read_bytes()))
         (s / f"{n}.csv").unlink()
     for read in (read_session, _lean):
-        with pytest.raises(DataError, match=r"fAccelerometer.csv.gz, fForceA.csv.gz, fForceB.csv.gz and 5 more are "
-                                            r"gzip-compressed.*gunzip .*pdrlearn import FILE.csv.gz"):
+        with pytest.raises(DataError, match=r"fAccelerometer.csv.bz2, fForceA.csv.bz2, fForceB.csv.bz2 and 5 more "
+                                            r"are compressed.*gzip .*pdrlearn import FILE.csv.gz"):
             read(s)
 
 

@@ -72,6 +72,9 @@ def info(
         t.add_row(name, d["placement"], f"{d['rate_hz']}", str(d["samples"]), f"{d['duration_s']:.2f}",
                   str(d["gaps"]), f"{d['longest_gap_s']:.3f}")
     c.print(t)
+    gz = [d["file"] for d in summary["sensors"].values() if str(d.get("file", "")).endswith(".gz")]
+    if gz:  # decision B369: read in place
+        c.print(f"gzip-compressed, read in place: {', '.join(gz)}", markup=False)
     bridged = {n: k for n, k in summary["dropped_samples_bridged"].items() if k}
     if bridged:
         c.print(f"dropped samples: the other commands bridge the intervals up to {MAX_BRIDGED_S:g} s by linear "

@@ -32,6 +32,27 @@ RUNNING_SPEED_MPS = 2.0
 SIT_MAX_S = 86_400.0  # = pdrlearn.sim.lying.MAX_LIE_S (tests/test_sim_lying.py)
 
 
+
+def parse_gaps(texts: list[str]) -> tuple:
+    """Decisions S83, B370: ``--gap UNIT:START:DURATION`` values as :func:`pdrlearn.sim.simulate.check_gaps` takes
+    them; a malformed one is one line naming it and the form."""
+    from pdrlearn.sim.simulate import GAP_UNITS
+
+    out = []
+    for text in texts or []:
+        parts = str(text).split(":")
+        try:
+            if len(parts) != 3 or parts[0] not in GAP_UNITS:
+                raise ValueError
+            start, dur = float(parts[1]), float(parts[2])
+            if not (math.isfinite(start) and start >= 0 and math.isfinite(dur) and dur > 0):
+                raise ValueError
+        except ValueError:
+            raise DataError(f"--gap {text!r}: give UNIT:START:DURATION, UNIT one of {', '.join(GAP_UNITS)}, START "
+                            ">= 0 and DURATION > 0 seconds, e.g. --gap foot:600:120 (decision B370)") from None
+        out.append((parts[0], start, dur))
+    return tuple(out)
+
 def simulate_cmd(
     scenario: str | None = typer.Option(
         None,
@@ -69,6 +90,8 @@ def simulate_cmd(
     clock_offset_s: float = typer.Option(0.0, "--clock-offset", help="Waist clock offset vs the foot unit (s)."),
     clock_drift_ppm: float = typer.Option(0.0, "--clock-drift-ppm", help="Waist clock drift (ppm)."),
     drop_rate: float = typer.Option(0.0, "--drop-rate", help="Fraction of foot packets lost (0-0.5)."),
+    gap: list[str] = typer.Option([], "--gap", help="A data gap (a battery swap) UNIT:START:DURATION, seconds on "
+                                  "the foot clock, UNIT foot, waist or both; repeatable (decision S83)."),
     irregular_rate: float = typer.Option(0.0, "--irregular-rate", help="Fraction of irregular steps (0-1)."),
     variability: float = typer.Option(
         1.0, "--variability", help="Scale of the stride-to-stride variability (step length / time CV 2-3.5 % at 1, "
@@ -168,6 +191,9 @@ def simulate_cmd(
         pdrlearn simulate --scenario walk --length-m 1000 --user-seed 3 --clock-offset 0.3 \\
             --clock-drift-ppm 50 --drop-rate 0.01 --out out/sim/walk1km
 
+        pdrlearn simulate --route "stand:5, straight:200, stand:5" --gap foot:60:30 --gap both:120:10 \\
+            --user-seed 3 --out out/sim/swap   # battery swaps: 30 s without the foot unit, 10 s without both
+
         pdrlearn simulate --route "straight:5, up:17, turn:180, down:17, backward:3" --user-seed 2 \\
             --out out/sim/floors_u2
 
@@ -239,6 +265,7 @@ def simulate_cmd(
         clock_offset_s=clock_offset_s,
         clock_drift_ppm=clock_drift_ppm,
         drop_rate=drop_rate,
+        gaps=parse_gaps(gap),  # decisions S83, B370
         irregular_rate=irregular_rate,
         variability=variability,  # decision S76
         foot_mount_pitch_deg=foot_mount_pitch,

@@ -398,7 +398,9 @@ def track(
     if as_json:
         print_json(summary)
     else:
-        _print_summary(summary, out, aided, waist_unit=(Path(session_dir) / "wAccelerometer.csv").is_file())  # L316
+        from pdrlearn.textfile import session_csv
+
+        _print_summary(summary, out, aided, waist_unit=session_csv(session_dir, "wAccelerometer").is_file())  # L316
     warned = summary.get("info", {}).get("warnings") or []
     if strict and warned:  # decision E156: the outputs are written; the exit code says the track warned
         typer.echo(f"strict: {len(warned)} warning(s) (summary.json info.warnings); exit code {STRICT_EXIT}", err=True)
@@ -893,6 +895,9 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.waist.gait_quality import add_bout_quality
 
         bouts = add_bout_quality(bouts, result.steps, kept_imu(imus, session))  # W353: the track's AHRS
+    from pdrlearn.track.periods import bout_floors
+
+    bouts = bout_floors(bouts, result.steps, result.info, o.get("storey_height_m", 3.0))  # decision L450
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,

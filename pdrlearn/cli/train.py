@@ -42,7 +42,8 @@ def find_session_dirs(paths: list[Path]) -> list[Path]:
     from pdrlearn.io.sensors import SENSORS
 
     def is_session(p: Path) -> bool:
-        return p.is_dir() and any((p / f"{name}.csv").is_file() for name in SENSORS)
+        return p.is_dir() and any((p / f"{name}{ext}").is_file() for name in SENSORS
+                                  for ext in (".csv", ".csv.gz"))  # decision B369: gzip-compressed ones too
 
     out: list[Path] = []
     for p in paths:

@@ -17,6 +17,7 @@ import logging
 import math
 import os
 import re
+import zlib
 from pathlib import Path
 
 import numpy as np
@@ -47,7 +48,18 @@ from pdrlearn.io.validate import (
     time_unit_candidates,
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
-from pdrlearn.textfile import decode, duplicate_message, gzip_hint, read_text
+from pdrlearn.textfile import (
+    compressed_hint,
+    csv_stem,
+    decode,
+    duplicate_message,
+    is_gzip,
+    open_text,
+    read_bytes,
+    read_text,
+    session_csv,
+    session_csvs,
+)
 
 log = logging.getLogger(__name__)
 
@@ -195,11 +207,16 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = (), *, h
         if encoding is not None:  # decision B344: not the encoding given
             raise DataError(f"{path}: not {encoding} text (--encoding {encoding}); give the encoding the file was "
                             "saved in (cp1252, latin-1, utf-16), or leave --encoding out for UTF-8") from None
-        decode(path, path.read_bytes(), not_utf8_also)  # decision B221: raises the one line naming the first byte
+        decode(path, read_bytes(path), not_utf8_also)  # decision B221: raises the one line naming the first byte
         raise DataError(f"{path}: not UTF-8 text; save it as UTF-8 (decision B221)") from None
     except pd.errors.ParserError as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise DataError(f"{path}: not a valid CSV ({first}); fix or re-export the file") from None
+    except (OSError, EOFError, zlib.error) as exc:
+        if not is_gzip(path):
+            raise
+        read_bytes(path)  # decision B369: a damaged .csv.gz, B369's one line
+        raise DataError(f"{path}: not a readable gzip file ({exc}); re-compress it (decision B369)") from None
     names = [str(c).strip() for c in df.columns]
     if not df.index.equals(pd.RangeIndex(len(df))) and len(names) > 1 and not names[0].startswith("#"):
         # pandas took the extra fields of each row as an index (a one-name header, a comment line above the real
@@ -339,7 +356,7 @@ def _csv_dialect(path: Path, encoding: str | None = None, *, header: bool = True
 def _separator_dialect(path: Path, encoding: str, has_header: bool = True) -> dict:
     """:func:`_csv_dialect`'s separator, ``sep=`` line and decimal comma."""
     try:
-        with open(path, encoding=encoding, errors="replace") as f:
+        with open_text(path, encoding=encoding, errors="replace") as f:  # decision B369: a .csv.gz too
             header, first = f.readline(), f.readline()
             declared = _sep_line(header)
             if declared is not None:  # decision B66: Excel's "sep=X" first line (Shimmer Consensys exports)
@@ -392,7 +409,7 @@ def _read_raw(path: str | os.PathLike, name: str | None = None, *,
     (B128: its last row may be cut mid-row, a unit whose battery died) loses its last line, with one warning.
     ``command``: the command line B128's refusal names with ``--drop-partial-row`` (decision B279)."""
     path = Path(path)
-    name = name or path.stem
+    name = name or csv_stem(path)  # decision B369: fAccelerometer.csv.gz is fAccelerometer
     if name not in SENSORS:
         raise DataError(f"{path}: unknown sensor file; expected one of {', '.join(s + '.csv' for s in SENSORS)}")
     spec = SENSORS[name]
@@ -464,7 +481,9 @@ def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: 
     check_timestamps(t, str(path))
     check_rate(t, str(path))
     factor, declared = value_unit
-    values = arr[:, 1:] * factor if factor != 1.0 else arr[:, 1:]  # B32: a declared unit, converted to SI
+    # B32: a declared unit, converted to SI. Decision E195: the values in an array of their own (same memory
+    # order), so that the file's array, whose timestamp column t replaces, is freed (a whole-day session: 23 MB/h)
+    values = arr[:, 1:] * factor if factor != 1.0 else arr[:, 1:].copy(order="K")
     if check_unit:
         try:
             check_units(SENSORS[name], values, str(path), t=t)
@@ -892,7 +911,7 @@ def export_import_hint(folder: Path) -> str:
     exports in ``folder`` into a session (paths quoted, B92), or "" when it holds none. Two or more exports:
     the file whose name says foot (UNIT_NAME_WORDS) is imported as the foot unit, the one that says waist with
     ``--unit waist --merge``; names that say neither are listed with both commands left to the user."""
-    gz = gzip_hint(folder, SENSORS)  # decision B224
+    gz = compressed_hint(folder, SENSORS)  # decision B224
     if gz:
         return gz
     exports = sorted((p for p in folder.glob("*.csv") if _looks_like_export(p)),
@@ -1161,10 +1180,10 @@ def _not_labels(path: Path, table: pd.DataFrame, folder: Path) -> bool:
     (``timestamp`` + x,y,z or x, no ``*_ms`` column) under a name that does not say ``trajectory`` (the
     ground-truth ``trajectory.csv``, ``foot_trajectory.csv`` have those columns). A copy that differs from its
     sensor file (or has none beside it) is a :class:`DataError`: which one is the recording is not known."""
-    copy_of = _sensor_copy_of(path.stem)
+    copy_of = _sensor_copy_of(csv_stem(path))
     if copy_of is not None:
-        original = folder / SENSORS[copy_of].filename
-        if original.is_file() and original.read_bytes() == path.read_bytes():
+        original = session_csv(folder, copy_of)  # decision B369: either may be gzip-compressed
+        if original.is_file() and read_bytes(original) == read_bytes(path):
             log.warning("%s: is a copy of %s (identical): ignored, not read as a label table; delete it", path,
                         original.name)
             return True
@@ -1178,7 +1197,7 @@ def _not_labels(path: Path, table: pd.DataFrame, folder: Path) -> bool:
     cols = [c for c in table.columns if c != "timestamp"]
     stream_like = ("timestamp" in table.columns and not any(str(c).endswith("_ms") for c in table.columns)
                    and any(tuple(cols) == spec.columns for spec in SENSORS.values()))
-    if stream_like and "trajectory" not in path.stem.lower():
+    if stream_like and "trajectory" not in csv_stem(path).lower():
         log.warning("%s: its columns (%s) are a sensor stream's, not a label table's: ignored (nothing reads it); "
                     "name it after its sensor (%s) if it is one, or move it out of the session folder", path,
                     ",".join(map(str, table.columns)), ", ".join(SENSORS[n].filename for n in SENSORS))
@@ -1272,8 +1291,8 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
     rate = float(rate) if rate is not None else imported_rate(meta)  # decision B304: an import's own rate
     clocks = unit_clocks(meta, meta_path)  # decision B115: per-unit rates and clock offsets
     raw = {}
-    for name, spec in SENSORS.items():
-        p = folder / spec.filename
+    files = {name: session_csv(folder, name) for name in SENSORS}  # decision B369: X.csv or X.csv.gz, not both
+    for name, p in files.items():
         if present(p):  # decision B315: a dangling link or a folder is there, unreadable: one line, not "missing"
             check_readable(p)
             raw[name] = _read_raw(p, name, drop_partial_row=drop_partial_row, command=command)[1]
@@ -1287,7 +1306,7 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
         scales.update(dict.fromkeys(names, sc))
         read_as.append((names, r, unit))
     scale, basis = _trajectory_scale(scales, clocks, meta, meta_path, rate)
-    streams = {name: _to_stream(folder / SENSORS[name].filename, name, arr, scales[name], check_units,
+    streams = {name: _to_stream(files[name], name, arr, scales[name], check_units,
                                 _value_unit(meta, name, str(meta_path)))
                for name, arr in raw.items()}
     for names, r, unit in read_as:
@@ -1316,7 +1335,8 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
     if bridge_drops is not False:
         _bridge_drops(streams, folder, BRIDGE_DROPS if bridge_drops is None else True, streamed=streamed)
     if not streams:
-        inner = sorted(p.name for p in folder.iterdir() if p.is_dir() and any(p.glob("[fw]*.csv")))
+        inner = sorted(p.name for p in folder.iterdir()
+                       if p.is_dir() and any(csv_stem(f) in SENSORS for f in session_csvs(p)))  # B369: .csv.gz too
         if inner:  # a folder of sessions (what `train` takes) given to a one-session command
             more = f" and {len(inner) - 3} more" if len(inner) > 3 else ""
             raise DataError(f"{folder}: holds session folders ({', '.join(inner[:3])}{more}), not one session's "
@@ -1325,18 +1345,20 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
             f"{folder}: no sensor files found; expected at least one of "
             f"{', '.join(s.filename for s in SENSORS.values())}{export_import_hint(folder)}"
         )
-    steps = _read_steps(folder / "steps.csv") if (folder / "steps.csv").exists() else None
-    traj = _read_trajectory(folder / "trajectory.csv", scale) if (folder / "trajectory.csv").exists() else None
+    steps_p, traj_p = session_csv(folder, "steps"), session_csv(folder, "trajectory")  # decision B369
+    steps = _read_steps(steps_p) if steps_p.exists() else None
+    traj = _read_trajectory(traj_p, scale) if traj_p.exists() else None
     extras = {}
-    for p in sorted(folder.glob("*.csv")):
-        if p.stem in SENSORS or p.stem in LABEL_FILES:
+    for p in session_csvs(folder):  # decision B369: label tables may be gzip-compressed too
+        if csv_stem(p) in SENSORS or csv_stem(p) in LABEL_FILES:
             continue
+        session_csv(folder, csv_stem(p))  # decision B369: not both plain and compressed
         table = session_table(p)  # decisions B222, B223
         if _not_labels(p, table, folder):  # decision B74: a copy of a sensor file, or a sensor stream
             continue
-        check_label_table(table, p.stem, str(p))
+        check_label_table(table, csv_stem(p), str(p))
         check_last_row(table, p, str(p))  # decision B205
-        extras[p.stem] = _ms_to_s(table, str(p))
+        extras[csv_stem(p)] = _ms_to_s(table, str(p))
     if spans == "common" and cut is not None:  # decision B81: the labels describe the walk that is kept
         t0, t1, dropped, why = cut
         labels = []

@@ -658,6 +658,18 @@ class Session:
     def copy(self) -> Session:
         return copy.deepcopy(self)
 
+    def _file_name(self, name: str) -> str:
+        """The name of the file the stream ``name`` is read from (decision B369: ``.csv`` or ``.csv.gz``); the
+        plain name for a session made in memory."""
+        from pdrlearn.textfile import session_csv
+
+        if self.folder is None:
+            return SENSORS[name].filename
+        try:
+            return session_csv(self.folder, name).name
+        except DataError:  # both there now: the reader refused that before; the plain one names it
+            return SENSORS[name].filename
+
     def summary(self) -> dict:
         """Machine-readable summary (the ``pdrlearn info --json`` contract)."""
         sensors = {}
@@ -671,6 +683,7 @@ class Session:
                 "longest_gap_s": round(max((g.duration_s for g in gaps), default=0.0), 6),
                 "unit": s.unit,
                 "placement": s.placement,
+                "file": self._file_name(name),  # decision B369: fAccelerometer.csv or fAccelerometer.csv.gz
             }
         labels: dict = {
             "steps": None if self.steps is None else int(len(self.steps)),

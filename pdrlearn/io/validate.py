@@ -121,6 +121,10 @@ def ends_mid_line(path) -> bool:
     """Decision B128: whether a non-empty file's last byte is not a line break (a copy or download cut short)."""
     import os
 
+    from pdrlearn.textfile import is_gzip
+
+    if is_gzip(path):  # decision B369: the last byte of the decompressed text
+        return _gzip_ends_mid_line(path)
     try:
         with open(path, "rb") as f:
             f.seek(0, os.SEEK_END)
@@ -130,6 +134,22 @@ def ends_mid_line(path) -> bool:
             return f.read(1) not in (b"\n", b"\r")
     except OSError:
         return False
+
+
+def _gzip_ends_mid_line(path) -> bool:
+    """:func:`ends_mid_line` of a ``*.gz`` file (decision B369): gzip cannot seek from the end, so the decompressed
+    text is read through in blocks; a damaged file is left to the reader's own line."""
+    import gzip
+    import zlib
+
+    last = b""
+    try:
+        with gzip.open(path, "rb") as f:
+            while block := f.read(1 << 20):
+                last = block[-1:]
+    except (OSError, EOFError, zlib.error):
+        return False
+    return last not in (b"", b"\n", b"\r")
 
 
 #: decision B73: a backward step of the timestamps larger than this (s) is a clock reset, not samples out of order:

@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pdrlearn.kernels.samples import values
+
 #: standard gravity (m/s^2), the rest level of |acc| (thesis ch.4.2.1.1)
 GRAVITY = 9.80665
 #: the impact's low-pass cutoff (Hz) and order: AccelStepDetector's ``event_cutoff_hz`` (steps decision 14)
@@ -198,7 +200,7 @@ def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
     completed stances (steps decision 53: one spike cannot move them; the running maximum until one has ended)."""
     out: list = []
     s = state
-    for ti, ai, fi in zip(t.tolist(), a.tolist(), f.tolist(), strict=True):
+    for ti, ai, fi in zip(values(t), values(a), values(f), strict=True):  # decision E195: no whole-session lists
         prev_t, prev_f, s.prev_t, s.prev_f = s.prev_t, s.prev_f, ti, fi
         if fi > s.fmax:
             s.fmax = fi

@@ -21,6 +21,7 @@ from numpy.lib.stride_tricks import sliding_window_view
 # decision E50: the force detector's kernel lives with the streamed IC (numpy only); re-exported here
 from pdrlearn.kernels.contact import ForceParams, ForceState, force_kernel, last_impact, peak_time  # noqa: F401
 from pdrlearn.kernels.dsp import magnitude
+from pdrlearn.kernels.samples import values
 
 Event = tuple[float, float, float, float, dict]
 
@@ -112,8 +113,8 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
     """
     out: list[Event] = []
     s = state
-    tl, al, sl = t.tolist(), a.tolist(), still.tolist()
-    el = al if e is None else e.tolist()
+    tl, al, sl = values(t), values(a), values(still)  # decision E195: no whole-session lists
+    el = values(a) if e is None else values(e)
     for ti, ai, si, ei in zip(tl, al, sl, el, strict=True):
         s.last_t = ti
         if s.pending is not None and ti - s.pending[0] >= p.min_stride_s and not (
@@ -226,7 +227,7 @@ def pelvic_kernel(t: np.ndarray, w: np.ndarray, state: PelvicState,
     is ``left`` for positive and ``right`` for negative lobes (thesis ch.5.3)."""
     out: list[Event] = []
     s = state
-    for ti, wi in zip(t.tolist(), w.tolist(), strict=True):
+    for ti, wi in zip(values(t), values(w), strict=True):  # decision E195
         s.last_t = ti
         # fill the delta samples of lobes waiting for their look-ahead
         for c in s.pending:
@@ -354,7 +355,7 @@ def pll_kernel(t: np.ndarray, v: np.ndarray, state: PLLState, p: PLLParams) -> t
     kp, ki = p.kp, p.ki
     sin, cos = math.sin, math.cos
     acc_i, acc_q = s.iq
-    for ti, xi, di in zip(t.tolist(), x.tolist(), dt.tolist(), strict=True):
+    for ti, xi, di in zip(values(t), values(x), values(dt), strict=True):  # decision E195
         sth = sin(theta)
         pd = -xi * sth
         acc_i += xi * cos(theta) * di  # decision W345: the period's in-phase / quadrature sums

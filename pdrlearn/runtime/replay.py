@@ -20,7 +20,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.install import INSTALL_EVERYTHING
-from pdrlearn.textfile import duplicate_message, gzip_hint, header_names, read_text
+from pdrlearn.textfile import compressed_hint, duplicate_message, header_names, read_text, session_csv
 
 log = logging.getLogger(__name__)
 
@@ -133,7 +133,7 @@ def read_streams(folder, bundle) -> tuple[dict, dict]:
     required, optional = bundle.sensors_of()
     streams = {}
     for name in [*required, *optional]:
-        path = folder / f"{name}.csv"
+        path = session_csv(folder, name)  # decision B369: X.csv or X.csv.gz (gzip: the standard library)
         if not path.is_file():
             continue
         si = bundle.manifest["units"].get(name)
@@ -144,7 +144,7 @@ def read_streams(folder, bundle) -> tuple[dict, dict]:
         streams[name] = _read_csv(path, width, scale)
     if not streams:
         raise MissingSensorError(f"{folder}: no sensor file the bundle reads ({', '.join([*required, *optional])})"
-                                 f"{gzip_hint(folder, [*required, *optional])}")
+                                 f"{compressed_hint(folder, [*required, *optional])}")
     return streams, meta
 
 

@@ -96,10 +96,14 @@ KNOBS: dict[str, object] = {
     "instrumented_foot": "right",
     # the foot whose steps the two asymmetries lengthen: "left" (S35, S42) or "right" (S55)
     "paretic_side": "left",
+    # decision S83: data gaps (a battery swap): (unit, start_s, duration_s) per gap, unit foot, waist or both
+    "gaps": (),
 }
+#: decision S83: the units a gap may name
+GAP_UNITS = ("foot", "waist", "both")
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
 META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry", "step_length_asymmetry",
-                      "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side")
+                      "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps")
 #: decisions S54, S55: the values of the two foot-side knobs
 FEET = ("left", "right")
 
@@ -128,6 +132,39 @@ def _rng(*parts: object) -> np.random.Generator:
     return np.random.default_rng(ints)
 
 
+def check_gaps(gaps) -> tuple[tuple[str, float, float], ...]:
+    """Decisions S83, B370: ``gaps`` as ``((unit, start_s, duration_s), ...)``, each unit foot, waist or both, a start
+    >= 0 and a duration > 0 (s, finite), sorted by start; one line naming the bad one and the fix."""
+    out = []
+    for g in gaps or ():
+        try:
+            unit, start, dur = g
+            start, dur = float(start), float(dur)
+        except (TypeError, ValueError):
+            raise DataError(f"simulate: gap {g!r}: give (unit, start_s, duration_s), e.g. ('foot', 600, 120) "
+                            "(decision B370)") from None
+        if unit not in GAP_UNITS or not (math.isfinite(start) and start >= 0) or not (math.isfinite(dur) and dur > 0):
+            raise DataError(f"simulate: gap {g!r}: the unit must be one of {', '.join(GAP_UNITS)}, the start a time >= "
+                            "0 s and the duration > 0 s (decision B370)")
+        out.append((str(unit), start, dur))
+    return tuple(sorted(out, key=lambda g: g[1]))
+
+
+def _gap_keep(t: np.ndarray, gaps, unit: str) -> np.ndarray:
+    """Decision S83: the samples (times ``t`` on the foot clock) of ``unit`` outside its gaps; a gap must leave
+    samples before and after it (one line, decision B370)."""
+    keep = np.ones(len(t), dtype=bool)
+    for g_unit, start, dur in gaps:
+        if g_unit not in (unit, "both"):
+            continue
+        if not (t[0] < start and start + dur < t[-1]):
+            raise DataError(f"simulate: gap {g_unit}:{start:g}:{dur:g} does not lie inside the recording (0-"
+                            f"{t[-1]:.1f} s) with samples before and after it; start it later or shorten it "
+                            "(decision B370)")
+        keep &= ~((t >= start - 1e-9) & (t < start + dur - 1e-9))  # start <= t < end, t's rounding aside
+    return keep
+
+
 def _check_knobs(knobs: dict) -> dict:
     """Merge ``knobs`` with the defaults, failing with one line on unknown names or bad values."""
     unknown = sorted(set(knobs) - set(KNOBS))
@@ -154,6 +191,7 @@ def _check_knobs(knobs: dict) -> dict:
     if not ok:
         raise DataError(f"simulate: waist_mount_deg={mount!r} must be three finite numbers (a rotation vector, deg)")
     out["waist_mount_deg"] = tuple(float(v) for v in mount)
+    out["gaps"] = check_gaps(out["gaps"])  # decisions S83, B370
     for k, default in KNOBS.items():
         v = out[k]
         if isinstance(default, bool | str | tuple):
@@ -496,6 +534,11 @@ def simulate_path(
         foot_keep[[0, -1]] = True
     drift = float(opt["clock_drift_ppm"]) * 1e-6
     t_waist = t_out * (1.0 + drift) + float(opt["clock_offset_s"])
+    waist_keep = np.ones(n_out, dtype=bool)
+    if opt["gaps"]:  # decision S83: a battery swap removes the unit's samples; the truth files stay the walk's
+        foot_keep &= _gap_keep(t_out, opt["gaps"], "foot")
+        waist_keep = _gap_keep(t_out, opt["gaps"], "waist")  # on the foot clock, as meta.json's gaps
+        t_waist, acc_w, gyr_w, mag_w, baro = (a[waist_keep] for a in (t_waist, acc_w, gyr_w, mag_w, baro))
     streams = {
         "fAccelerometer": Stream("fAccelerometer", t_out[foot_keep], acc_f[foot_keep]),
         "fGyroscope": Stream("fGyroscope", t_out[foot_keep], gyr_f[foot_keep]),

@@ -48,7 +48,8 @@ from pdrlearn.waist.gait_quality import QUALITY_COLUMNS
 BOUT_COLUMNS = ("session", "subject", "visit", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides",
                 "distance_m", "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
                 "longest_contact_gap_s", "data_gap_s", "n_turns", "direction", "backward_fraction", "altitude_change_m",
-                "altitude_change_before_m", "gait_out_of_range", "n_cv_strides", "stride_time_cv_pct",
+                "altitude_change_before_m", "floors_up", "floors_down",  # decision L450
+                "gait_out_of_range", "n_cv_strides", "stride_time_cv_pct",
                 "stride_length_cv_pct", *QUALITY_COLUMNS)  # decision W350: a lower-back track's gait quality
 
 #: decision E98: bouts.csv's renamed columns, old name -> new (speeds are ``_mps`` as everywhere else). The old name

@@ -50,7 +50,7 @@ PERIOD_GAIT_KEYS = ("median_stride_length_m", "median_speed_mps", "stride_time_c
                     "n_cv_strides")
 #: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
 PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
-                  "n_steps", "n_steps_counts", "median_stride_time_s", "median_cadence_spm",
+                  "n_steps", "n_steps_counts", "n_steps_both_feet", "median_stride_time_s", "median_cadence_spm",
                   *PERIOD_GAIT_KEYS, *TIME_KEYS,
                   *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
                   "position_sigma_end_m")
@@ -323,6 +323,43 @@ def period_span(result, session, unit: str | None, window: tuple[float, float] |
                     "--per-align start (decision B292)")
 
 
+def climb_times(steps: pd.DataFrame, info: dict, storey_height_m: float = 3.0) -> tuple[np.ndarray, np.ndarray] | None:
+    """The summary's floor climbs (decisions L374-L376; L337: a ramp's climb too) as ``(time_s, storeys)`` arrays, a
+    climb at the middle of its last stair row (L394: a ride after the last step is one row more, at its middle;
+    ``storeys`` > 0 up, < 0 down), for periods.csv (L277) and bouts.csv (L450); ``None`` when the summary's floors
+    come from the altitude (L64). ``steps`` sorted by ``start_s``."""
+    from pdrlearn.track.evaluate import _climb_dz, _climb_parts, _with_after, climb_slope_rows, floor_climbs
+
+    mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
+    dz, bridge = _climb_dz(steps)
+    if dz is None:
+        return None
+    dz, parts, slope_rows = _with_after(steps, info, dz, _climb_parts(steps), climb_slope_rows(steps, info))
+    at = np.concatenate([mid, [0.5 * (float(r["start_s"]) + float(r["end_s"])) for r in info.get("rides") or []
+                               if int(r.get("row", -1)) >= len(steps)]])
+    climbs = floor_climbs(dz, storey_height_m, bridge=bridge, slope_rows=slope_rows, parts=parts)
+    return (np.array([at[i] for i, _ in climbs], dtype=float), np.array([n for _, n in climbs], dtype=float)) \
+        if climbs else (np.zeros(0), np.zeros(0))
+
+
+def bout_floors(bouts: pd.DataFrame, steps: pd.DataFrame, info: dict, storey_height_m: float = 3.0) -> pd.DataFrame:
+    """Decision L450: bouts.csv's ``floors_up`` / ``floors_down``, the summary's floor climbs (:func:`climb_times`)
+    whose time lies in the bout (``start_s`` to ``end_s``); left empty when the summary's floors come from the
+    altitude (L64). A climb outside every bout (a ride between bouts) is in no bout."""
+    if not len(bouts):
+        return bouts
+    steps = steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(steps) else steps
+    climbs = climb_times(steps, info, storey_height_m)
+    if climbs is None:
+        return bouts
+    t, n = climbs
+    a, b = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
+    inside = (t[None, :] >= a[:, None]) & (t[None, :] <= b[:, None])
+    bouts["floors_up"] = [int(n[m & (n > 0)].sum()) for m in inside]
+    bouts["floors_down"] = [int(-n[m & (n < 0)].sum()) for m in inside]
+    return bouts
+
+
 def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
                  turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None,
                  span: tuple[float, float] | None = None) -> pd.DataFrame:
@@ -333,14 +370,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's."""
     from pdrlearn.track.bouts import session_key
     from pdrlearn.track.clock import clock_edges
-    from pdrlearn.track.evaluate import (
-        _climb_dz,
-        _climb_parts,
-        _with_after,
-        climb_slope_rows,
-        floor_climbs,
-        step_counts,
-    )
+    from pdrlearn.track.evaluate import step_counts
 
     t0, t1 = session_span(session, unit) if span is None else span
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
@@ -350,17 +380,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     ends = np.minimum(edges + per_s, t1) if clock is None else np.r_[edges[1:], t1]
     mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
     length = steps["length_m"].abs().to_numpy(float) if len(steps) else np.zeros(0)
-    dz, bridge = _climb_dz(steps)
-    # decision L394: a ride after the last step is one row more, at its middle
-    dz, parts, slope_rows = _with_after(steps, result.info, dz, _climb_parts(steps) if dz is not None else None,
-                                        climb_slope_rows(steps, result.info))
-    at = np.concatenate([mid, [0.5 * (float(r["start_s"]) + float(r["end_s"])) for r in result.info.get("rides") or []
-                               if int(r.get("row", -1)) >= len(steps)]])
-    climbs = (floor_climbs(dz, storey_height_m, bridge=bridge, slope_rows=slope_rows,
-                           parts=parts)  # decisions L374-L376, as the summary's
-              if dz is not None else None)  # decision L337: a ramp's climb as the summary's
-    climb_t = np.array([at[i] for i, _ in climbs]) if climbs else np.zeros(0)
-    climb_n = np.array([n for _, n in climbs]) if climbs else np.zeros(0)
+    climbs = climb_times(steps, result.info, storey_height_m)
+    climb_t, climb_n = climbs if climbs is not None else (np.zeros(0), np.zeros(0))
     bout_t = bouts["start_s"].to_numpy(float) if bouts is not None and len(bouts) else np.zeros(0)
     turn_t = turns["start_s"].to_numpy(float) if turns is not None and len(turns) else np.zeros(0)
     traj = result.trajectory
@@ -378,9 +399,11 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         row = {**session_key(session), "period": k + 1, "start_s": float(a), "end_s": float(b),
                "duration_s": float(b - a), "partial": bool(b - a < per_s - 1e-9),
                "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), "n_steps_counts": counts,
+               # decision L449: both feet's steps whatever the unit, as the summary's (2 per foot stride)
+               "n_steps_both_feet": step_counts(steps[m])["n_steps_both_feet"],
                **_period_gait(steps, m), **timeline.budget(a, b), **timeline.posture_budget(a, b)}
         c = inside(climb_t)
-        row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None
+        row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None  # L277
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None
         row["n_bouts"], row["n_turns"] = int(inside(bout_t).sum()), int(inside(turn_t).sum())
         row["data_gap"] = row["time_no_data_s"] > 0
