@@ -45,6 +45,8 @@ def test_write_track_folder_equals_track_folder_on_a_declared_incline_l442(incli
         a, b = (pd.read_csv(tmp_path / d / name) for d in ("cli", "api"))
         pd.testing.assert_frame_equal(a, b)
     assert pd.read_csv(tmp_path / "api" / "steps.csv")["steady"].sum() == cli["n_cv_strides"]
+    # L442 / L450 (lead, session 36): the bouts' floors are the summary's 0 on a declared incline, on both paths
+    assert cli["floors_up"] == 0 and pd.read_csv(tmp_path / "cli" / "bouts.csv")["floors_up"].tolist() == [0]
 
 
 RUN_BUNDLE = __import__("pathlib").Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"

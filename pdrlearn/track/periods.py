@@ -345,8 +345,14 @@ def climb_times(steps: pd.DataFrame, info: dict, storey_height_m: float = 3.0) -
 def bout_floors(bouts: pd.DataFrame, steps: pd.DataFrame, info: dict, storey_height_m: float = 3.0) -> pd.DataFrame:
     """Decision L450: bouts.csv's ``floors_up`` / ``floors_down``, the summary's floor climbs (:func:`climb_times`)
     whose time lies in the bout (``start_s`` to ``end_s``); left empty when the summary's floors come from the
-    altitude (L64). A climb outside every bout (a ride between bouts) is in no bout."""
+    altitude (L64). A climb outside every bout (a ride between bouts) is in no bout. On a declared inclined belt
+    (L442, :func:`pdrlearn.track.belt.declared_incline`) every bout's floors are 0, as the summary's."""
+    from pdrlearn.track.belt import declared_incline
+
     if not len(bouts):
+        return bouts
+    if declared_incline() is not None:  # decision L442: the belt's virtual climb is no storey
+        bouts["floors_up"], bouts["floors_down"] = 0, 0
         return bouts
     steps = steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(steps) else steps
     climbs = climb_times(steps, info, storey_height_m)
