@@ -169,7 +169,8 @@ def train(
         "cv_groups_by_task": model.settings.get("cv_groups_by_task", {}),
         "cv_users": model.settings["cv_users"],
         "cv_sessions": model.settings.get("cv_sessions", 0),  # decision C59
-        "cv_blocks": model.settings.get("cv_blocks", 0),  # decision C95
+        "cv_blocks": model.settings.get("cv_blocks", 0),  # decision C95: the folds used; C114: and asked
+        **({"cv_blocks_asked": model.settings["cv_blocks_asked"]} if "cv_blocks_asked" in model.settings else {}),
         "params": model.settings.get("params", {}),  # decision C96
         "skipped": model.skipped,
         "distance_calibration": model.data_summary.get("distance_calibration"),
