@@ -113,3 +113,16 @@ def test_one_session_per_exercise_trains_with_block_folds_where_session_folds_fa
     from pdrlearn.cli.train import cv_title
 
     assert cv_title(r) == "4-fold CV accuracy (contiguous blocks of each session, neighbours left out)"
+
+
+def test_settings_record_the_block_folds_used_and_asked():
+    """Decision C114 (review R2, side point): ``settings.cv_blocks`` recorded --cv while each task model recorded
+    the folds it used; with fewer labelled steps per session than --cv the two disagreed (20 against 15)."""
+    walk = simulate("length", 9060, seed=0)
+    walk.steps = walk.steps.groupby("length_class", group_keys=False).head(5).sort_values("start_s").reset_index(
+        drop=True)  # 15 labelled steps, 5 per class
+    m = train_user([walk], tasks=["length"], methods=["svm"], units=["foot"], cv=20, cv_groups="block",
+                   distance_calibration=False)
+    r = m.tasks["length"].cv["svm"]["foot"]
+    assert r["n_folds"] == r["cv_blocks"] == 15  # a fold per labelled step; the empty blocks are dropped
+    assert (m.settings["cv_blocks"], m.settings["cv_blocks_asked"]) == (15, 20)

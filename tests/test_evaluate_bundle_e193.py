@@ -101,3 +101,68 @@ def test_evaluate_refuses_a_waist_only_bundle_in_one_line(capsys, tmp_path):
     assert main(["evaluate", str(tmp_path / "wb"), str(tmp_path / "walk")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "waist-only bundle" in err[0] and "pdrlearn run" in err[0]
+
+
+def test_evaluate_bundle_warns_of_absent_classes_as_a_model_directory(dirs, capsys, tmp_path):
+    """Decision E198 (new user finding 4): evaluate MODEL says C64's line for the classes the test data hold no
+    step of; evaluate BUNDLE said nothing ("warnings": [])."""
+    import shutil
+
+    import pandas as pd
+
+    from pdrlearn.classify.evaluation import absent_warning
+
+    bundle, walk = dirs["root"] / "bundle", tmp_path / "level"
+    shutil.copytree(dirs["walk"], walk)
+    labels = pd.read_csv(walk / "steps.csv")
+    only = {"terrain": "flat", "direction": "forward", "length_class": "normal"}  # a level walk's labels only
+    labels.assign(**only).to_csv(walk / "steps.csv", index=False)
+    assert main(["evaluate", str(bundle), str(walk), "--json"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    for task, col in (("terrain", "terrain"), ("direction", "direction"), ("length", "length_class")):
+        r = got["tasks"][task]
+        absent = [c for c in r["classes"] if c != only[col]]
+        assert absent and r["absent_classes"] == absent
+        assert absent_warning(task, absent) in got["warnings"]
+    assert main(["evaluate", str(bundle), str(walk)]) == 0
+    assert "decision C64" in capsys.readouterr().err
+
+
+def test_evaluate_bundle_out_of_domain_line_follows_the_option(dirs, capsys, monkeypatch):
+    """Decision E198 (new user finding 9): evaluate BUNDLE said the runtime's C61 line by default (every stride
+    out, here forced by a share of 0) and refused --warn-out-of-domain, documented as off by default; now the
+    share is always in the result, pooled over the sessions, and the line is said only with the option."""
+    import pdrlearn.classify.domain as domain
+
+    monkeypatch.setattr(domain, "DEFAULT_WARN_SHARE", 0.0)  # C61's line for any stride outside
+    bundle, walk = dirs["root"] / "bundle", dirs["walk"]
+    assert main(["evaluate", str(bundle), str(walk), "--json"]) == 0
+    one = json.loads(capsys.readouterr().out)["out_of_domain"]["tasks"]
+    assert main(["evaluate", str(bundle), str(walk), str(walk), "--json"]) == 0
+    out = capsys.readouterr()
+    got = json.loads(out.out)
+    frac = got["out_of_domain_fraction"]
+    assert frac is not None and frac > 0
+    assert "training range" not in out.err and not [w for w in got["warnings"] if "training range" in w]
+    assert len(got["sessions"]) == 2
+    for task, s in got["out_of_domain"]["tasks"].items():  # pooled over both sessions
+        assert (s["n_out"], s["n_steps"]) == (2 * one[task]["n_out"], 2 * one[task]["n_steps"])
+    assert main(["evaluate", str(bundle), str(walk), "--warn-out-of-domain", str(frac / 2), "--json"]) == 0
+    out = capsys.readouterr()
+    said = [w for w in json.loads(out.out)["warnings"] if "training range" in w]
+    assert len(said) == 1 and "for the" in said[0]  # C16's detailed line, once
+    assert main(["evaluate", str(bundle), str(walk), "--warn-out-of-domain", "1.0"]) == 0
+    out = capsys.readouterr()
+    assert "training range" not in out.err and "% of the detected strides lie outside" in out.out
+
+
+def test_evaluate_help_names_the_options_a_bundle_refuses(capsys):
+    """Decision E198 (new user finding 9): --report / --predictions-out are refused with a bundle; --help said
+    nothing of it."""
+    from pdrlearn.export.score import MODEL_DIR_ONLY
+
+    assert main(["evaluate", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "a bundle refuses" in text
+    for opt in MODEL_DIR_ONLY:
+        assert opt in text.split("a bundle refuses", 1)[1][:200]

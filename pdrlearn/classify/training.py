@@ -855,6 +855,14 @@ def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | No
     return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y)), 0
 
 
+def blocks_used(tasks: dict) -> int:
+    """Decision C114: the most block folds any task's method x unit CV used (``cv_blocks`` of its record; 0: none
+    held out blocks). Block folds with no test step are dropped (C95), so a model trained on sessions of fewer
+    labelled steps than ``--cv`` used fewer folds than asked."""
+    return max((int(r.get("cv_blocks") or 0) for tm in tasks.values() for per in tm.cv.values()
+                for r in per.values() if isinstance(r, dict)), default=0)
+
+
 def cv_groups_used(tasks: dict, asked: str) -> tuple[dict[str, str], str]:
     """Decision B210: the grouping each task's CV folds used - ``asked`` when some method x unit held out whole users
     / sessions (``cv_users`` / ``cv_sessions`` > 0), ``"steps"`` when it fell back to stratified folds over steps
@@ -1495,7 +1503,10 @@ def train_user(
             # users in the training data when grouped by user (decision C29); sessions when by session (C59)
             "cv_users": n_users if cv_groups == "user" and used != "steps" else 0,
             **({"cv_sessions": n_users if used != "steps" else 0} if cv_groups == "session" else {}),
-            **({"cv_blocks": cv if used != "steps" else 0} if cv_groups == "block" else {}),  # decision C95
+            # decisions C95, C114: the block folds used (the most any task's models used; each model records its
+            # own, fewer than --cv when no session has cv labelled steps) and the number asked (--cv)
+            **({"cv_blocks": blocks_used(out) if used != "steps" else 0, "cv_blocks_asked": cv}
+               if cv_groups == "block" else {}),
             "seed": seed,
             "methods": list(methods),
             **({"task_methods": own_methods} if own_methods else {}),  # decision C74

@@ -170,7 +170,8 @@ def train(
         "cv_groups_by_task": model.settings.get("cv_groups_by_task", {}),
         "cv_users": model.settings["cv_users"],
         "cv_sessions": model.settings.get("cv_sessions", 0),  # decision C59
-        "cv_blocks": model.settings.get("cv_blocks", 0),  # decision C95
+        "cv_blocks": model.settings.get("cv_blocks", 0),  # decision C95: the folds used; C114: and asked
+        **({"cv_blocks_asked": model.settings["cv_blocks_asked"]} if "cv_blocks_asked" in model.settings else {}),
         "params": model.settings.get("params", {}),  # decision C96
         "skipped": model.skipped,
         "distance_calibration": model.data_summary.get("distance_calibration"),
@@ -318,9 +319,10 @@ def evaluate(
     report: Path = typer.Option(None, "--report", help="Folder for report.md/json and confusion PNGs."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     warn_out_of_domain: float = typer.Option(None, "--warn-out-of-domain", help="Warn (one line) when at least "
-                                             "this fraction of the labelled steps lie outside the model's training "
-                                             "range, e.g. 0.25 (off by default; the fraction is always in the "
-                                             "result as out_of_domain_fraction, decision C16)."),
+                                             "this fraction of the labelled steps (of a bundle: the detected "
+                                             "strides) lie outside the model's training range, e.g. 0.25 (off by "
+                                             "default; the fraction is always in the result as "
+                                             "out_of_domain_fraction, decisions C16, E198)."),
     predictions_out: Path = typer.Option(
         None, "--predictions-out", metavar="FILE.csv",
         help="Write one row per scored step: session, step (its data row in the session's steps.csv, 0 = the "
@@ -340,7 +342,8 @@ def evaluate(
     chosen model's accuracy on the strides the runtime and `track --model` detect (matched to the labelled
     steps); the table scores the labelled boundaries (decision C49). A runtime bundle (e.g. the shipped
     models/plasys-sim-default) is scored as `pdrlearn run` replays it: one row per task, its chosen model on the
-    strides the runtime detects (decision E193).
+    strides the runtime detects (decision E193); a bundle refuses --report, --predictions-out, --resample,
+    --no-resample and --warn-gait-range, which need a model directory's per-method models (decision E198).
 
     Examples:
 
@@ -357,10 +360,10 @@ def evaluate(
     if manifest_kind(Path(model_dir)) == "a runtime bundle":  # decision E193: score the shipped / exported bundle
         from pdrlearn.export.score import MODEL_DIR_ONLY
 
-        given = [o for o, v in zip(MODEL_DIR_ONLY, (report, predictions_out, warn_out_of_domain, resample or None,
+        given = [o for o, v in zip(MODEL_DIR_ONLY, (report, predictions_out, resample or None,
                                                     no_resample or None, warn_gait_range or None), strict=True)
                  if v is not None]
-        return _evaluate_bundle(model_dir, data_dirs, as_json, given)
+        return _evaluate_bundle(model_dir, data_dirs, as_json, given, warn_out_of_domain)
     from pdrlearn.classify import evaluate_model, load_model
     from pdrlearn.classify.detected import detected_lines
     from pdrlearn.classify.evaluation import (
@@ -451,9 +454,11 @@ def evaluate(
         c.print(f"{result['n_predictions']} step predictions written to {predictions_out}", markup=False)
 
 
-def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, given: list[str]) -> None:
+def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, given: list[str],
+                     warn_out_of_domain: float | None) -> None:
     """Decision E193: a runtime bundle's chosen models scored on the strides the runtime detects in labelled
-    sessions (pdrlearn.export.score), printed as the model directory's table (one row per task)."""
+    sessions (pdrlearn.export.score), printed as the model directory's table (one row per task); the absent-class
+    and out-of-domain lines as a model directory's (E198)."""
     if given:
         raise DataError(f"evaluate: {', '.join(given)} needs a model directory written by 'pdrlearn train'; "
                         f"{bundle_dir} is an exported runtime bundle (scored with its chosen models only): drop "
@@ -470,7 +475,7 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
                         f"{shell_quote(bundle_dir)} SESSION --json` for their step F1 and distance)")
     dirs = find_session_dirs(data_dirs)
     with captured_warnings(echo=True) as warned, progress("evaluating", len(dirs), enabled=not as_json) as advance:
-        result = score_bundle(bundle_dir, dirs, advance=advance)
+        result = score_bundle(bundle_dir, dirs, advance=advance, warn_out_of_domain=warn_out_of_domain)
     result["warnings"] = list(dict.fromkeys(warned))
     result["warning_codes"] = [warning_code(w) for w in result["warnings"]]
     if not result["tasks"]:
@@ -487,6 +492,9 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
         _task_table(c, r, f"{task}: {r['n_steps']} strides - {who} {scored['method']}/{scored['unit']} "
                     f"{100 * r['accuracy']:.1f} % on the strides the runtime detects (matched to the labelled steps)"
                     + ("; one row per model the runtime used" if len(table_pairs(r)) > 1 else ""))
+    if result.get("out_of_domain_fraction") is not None:  # decisions C16, E198: as a model directory's
+        c.print(f"{100 * result['out_of_domain_fraction']:.0f} % of the detected strides lie outside the model's "
+                "training range", markup=False)
     for s in result["skipped"]:
         c.print(f"skipped {s}", markup=False)
 

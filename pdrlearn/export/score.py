@@ -17,9 +17,9 @@ from pathlib import Path
 #: a bundle task -> its label column in a session's steps.csv (``length`` is labelled ``length_class``, L53)
 LABEL_COLUMN = {"length": "length_class"}
 
-#: evaluate's options that need a model directory's per-method models (decision E193: one line each)
-MODEL_DIR_ONLY = ("--report", "--predictions-out", "--warn-out-of-domain", "--resample", "--no-resample",
-                  "--warn-gait-range")
+#: evaluate's options that need a model directory's per-method models (decision E193: one line each);
+#: ``--warn-out-of-domain`` applies to a bundle too (decision E198)
+MODEL_DIR_ONLY = ("--report", "--predictions-out", "--resample", "--no-resample", "--warn-gait-range")
 
 
 def matched_classes(est, labels, task: str) -> tuple[list[str], list[str]]:
@@ -72,21 +72,58 @@ def model_used(tracker, task: str) -> tuple[str, str] | None:
     return None if c is None or c.model is None else (c.method, c.unit)
 
 
-def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *a, **k: None) -> dict:
+def pooled_domain(reports: list[dict | None], warn_at: float | None) -> dict | None:
+    """Decision E198: the sessions' out-of-domain ``reports`` (the replayed trackers', E105) pooled over the
+    strides: per task the strides outside the training range over the strides checked, the units and the feature
+    most often off (the one of the most sessions' strides), in :func:`~pdrlearn.classify.domain.domain_report`'s
+    layout (``warn`` at ``warn_at``, off when None); None when no session was checked."""
+    from collections import Counter
+
+    from pdrlearn.classify.domain import domain_report
+
+    per_task: dict[str, dict] = {}
+    for rep in reports:
+        for task, s in ((rep or {}).get("tasks") or {}).items():
+            if s.get("fraction") is None:
+                continue
+            p = per_task.setdefault(task, {"n_out": 0, "n_steps": 0, "units": [], "features": Counter()})
+            p["n_out"] += int(s["n_out"])
+            p["n_steps"] += int(s["n_steps"])
+            p["units"] += [u for u in str(s.get("unit") or "").split(", ") if u and u not in p["units"]]
+            if s.get("feature"):
+                p["features"][s["feature"]] += int(s["n_out"])
+    if not per_task:
+        return None
+    tasks = {t: {"n_out": p["n_out"], "n_steps": p["n_steps"], "fraction": p["n_out"] / p["n_steps"],
+                 "unit": ", ".join(sorted(p["units"])),
+                 "feature": p["features"].most_common(1)[0][0] if p["features"] else None}
+             for t, p in per_task.items() if p["n_steps"]}
+    return domain_report(tasks, warn_at=warn_at) if tasks else None
+
+
+def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *a, **k: None,
+                 warn_out_of_domain: float | None = None) -> dict:
     """Each task's accuracy on the strides the runtime detects in ``session_dirs`` (decision E193), one row per
     model the runtime actually classified with (decision E196: the chosen model, and the ``foot_only`` fallback
     on the sessions without the bundle's waist unit, never pooled); the result has ``evaluate``'s layout for a
     model directory (``tasks``, ``skipped``). A task's headline figures are its chosen model's row (the fallback's
-    when the chosen model ran on no session)."""
+    when the chosen model ran on no session). As ``evaluate MODEL`` (decision E198): C64's line for the classes the
+    scored strides hold none of (``absent_classes``), the strides' out-of-domain share always in the result
+    (``out_of_domain_fraction``, pooled over the sessions) and C16's warning line only from ``warn_out_of_domain``
+    (opt-in; no per-session C61 line)."""
     import logging
 
+    from pdrlearn.classify.domain import check_warn_at, warning_line
+    from pdrlearn.classify.evaluation import absent_classes, absent_warning
     from pdrlearn.classify.training import class_metrics
     from pdrlearn.errors import DataError
     from pdrlearn.io import read_session
     from pdrlearn.runtime import load_bundle
     from pdrlearn.runtime.__main__ import replay
 
+    check_warn_at(warn_out_of_domain)
     bundle = load_bundle(bundle_dir)
+    domains: list[dict | None] = []
     # task -> (method, unit) -> (true, predicted, sessions)
     pooled: dict[str, dict[tuple[str, str], tuple[list[str], list[str], list[str]]]] = {t: {} for t in bundle.tasks}
     names, fallback = [], []
@@ -94,7 +131,8 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
         session = read_session(d)
         names.append(session.name)
         with _session_folder(d) as folder:
-            tracker, steps = replay(bundle_dir, folder, fallback_line=False)
+            tracker, steps = replay(bundle_dir, folder, fallback_line=False, domain_line=False)
+        domains.append(tracker.domain_report())
         if tracker.units != bundle.body_units:
             fallback.append(session.name)
         est = runtime_table(steps)
@@ -132,7 +170,18 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
             entry["units"][u] = {**r, "latency_ms": None, "sessions": rows[(m, u)][2]}
             if (m, u) == head:
                 entry["accuracy"], entry["unit"] = r["accuracy"], u
+        # decision C64 (E198: as evaluate MODEL): the classes none of the scored strides hold, over every row
+        absent = absent_classes(bundle.classes(task), [c for t, _, _ in rows.values() for c in t])
+        line = absent_warning(task, absent)
+        if line:
+            logging.getLogger("pdrlearn.cli").warning(line)
         out["tasks"][task] = {**metrics[head], "classes": bundle.classes(task), "chosen": dict(chosen),
                               "scored_model": {"method": head[0], "unit": head[1]}, "skipped": [],
-                              "methods": methods}
+                              "methods": methods, "absent_classes": absent}
+    rep = pooled_domain(domains, warn_out_of_domain)  # decision E198 (C16 as evaluate MODEL)
+    out["out_of_domain_fraction"] = None if rep is None else rep["out_of_domain_fraction"]
+    out["out_of_domain"] = rep
+    line = warning_line(rep, what="strides") if rep else None
+    if line:
+        logging.getLogger("pdrlearn.cli").warning(line)
     return out

@@ -39,10 +39,12 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: str | None = None,
-           method: str | None = None, fallback_line: bool = True):
+           method: str | None = None, fallback_line: bool = True, domain_line: bool = True):
     """The tracker after replaying ``session_dir`` through ``bundle_dir`` and its steps, as ``pdrlearn run`` pushes
     a session (same input rates, stream ends, frames when the session declares them; decision E76).
-    ``fallback_line=False``: no E26 line about the foot unit only (``evaluate`` says it its own way, E196)."""
+    ``fallback_line=False``: no E26 line about the foot unit only (``evaluate`` says it its own way, E196);
+    ``domain_line=False``: the strides are still checked against the training ranges (``tracker.domain_report()``)
+    but the C61 line is not said (``evaluate`` pools the sessions and warns only when asked, E198)."""
     from pdrlearn.errors import DataError
     from pdrlearn.runtime import Tracker, load_bundle
     from pdrlearn.runtime.replay import read_streams, replay_chunks, session_frames
@@ -59,6 +61,8 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
                       input_rates_hz={n: _rate_hz(t) for n, (t, _) in streams.items()},
                       stream_ends_s={n: float(t[-1]) for n, (t, _) in streams.items() if len(t)},
                       check_domain=True)  # decision E105: C61's out-of-domain line, as pdrlearn run
+    if not domain_line:  # decision E198: checked, never said
+        tracker.quiet_domain()
     if fallback_line and asked is None and tracker.units != bundle.body_units:  # decision E26, as run says it
         logging.getLogger("pdrlearn.runtime").warning(
             "session %s has no waist unit the bundle also uses: the foot unit only (--units foot chooses this "

@@ -1796,6 +1796,11 @@ class Tracker(FixInput):
         training ranges (exported before E105) or no stride was checked."""
         return None if self._domain is None else self._domain.report(self._warn_ood)
 
+    def quiet_domain(self) -> None:
+        """Decision E198: keep checking the strides against the training ranges (:meth:`domain_report`) but never
+        say E105's line (``pdrlearn evaluate BUNDLE`` pools the sessions and warns only with its option)."""
+        self._domain_said = True
+
     def _warn_out_of_domain(self) -> None:
         """Decision E105: C61's one line (C16's with ``warn_out_of_domain``) at the end of a recording, once."""
         if self._domain is None or self._domain_said:
