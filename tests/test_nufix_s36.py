@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from pdrlearn.io.session import Session
 from pdrlearn.steps import score_steps
 
 #: a walk's initial contacts of one foot: stride times 1.1 +- 0.03 s (a fixed seed), 30 strides from 2 s
@@ -15,9 +16,7 @@ _RNG = np.random.default_rng(9050)
 IC = 2.0 + np.concatenate([[0.0], np.cumsum(1.1 + 0.03 * _RNG.standard_normal(29))])
 
 
-def _foot_session(ic_labels) -> "object":
-    from pdrlearn.io.session import Session
-
+def _foot_session(ic_labels) -> Session:
     steps = pd.DataFrame({"start_s": ic_labels - 0.3, "end_s": ic_labels + 0.75, "ic_s": ic_labels})
     return Session(name="sim", steps=steps, meta={"foot": "left"})
 
@@ -63,3 +62,25 @@ def test_a_drift_over_half_a_step_is_not_applied_and_names_both_candidates_l457(
     assert r.info.get("unit_alignment") is None and any("decision L457" in w for w in r.info["warnings"])
     # without drift the same walk is still aligned
     assert untrusted_message({**est, "drift": 0.0, "drift_span_s": 0.0}) is None
+
+
+def test_the_codebook_states_both_bouts_orders_c113():
+    """New user finding 7: `pdrlearn columns` listed track-all's order (path, visit, session, subject) only, while a
+    single track writes session, subject, visit: the note under bouts.csv names both, as the writers order them."""
+    from pdrlearn.cli.cohort import COMBINED_BOUT_KEYS
+    from pdrlearn.columns import NOTES, TABLES, markdown
+    from pdrlearn.track.bouts import BOUT_COLUMNS
+
+    note = NOTES["bouts.csv"]
+    single = BOUT_COLUMNS[:BOUT_COLUMNS.index("bout") + 1]
+    pooled = (*COMBINED_BOUT_KEYS, *(c for c in single if c not in COMBINED_BOUT_KEYS))
+    assert f"`{', '.join(single)}, ...`" in note and f"`{', '.join(pooled)}, ...`" in note
+    assert tuple(c for c, *_ in TABLES["bouts.csv"])[:len(pooled)] == pooled  # the listed order is track-all's
+    assert "decision C113" in markdown(["bouts.csv"])
+    from pdrlearn.track.periods import PERIOD_COLUMNS  # periods.csv: the codebook lists the single track's order
+
+    single = PERIOD_COLUMNS[:PERIOD_COLUMNS.index("period") + 1]
+    pooled = (*COMBINED_BOUT_KEYS, *(c for c in single if c not in COMBINED_BOUT_KEYS))
+    note = NOTES["periods.csv"]
+    assert f"`{', '.join(single)}, ...`" in note and f"`{', '.join(pooled)}, ...`" in note
+    assert tuple(c for c, *_ in TABLES["periods.csv"])[:len(single)] == single

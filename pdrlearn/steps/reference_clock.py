@@ -120,8 +120,8 @@ def offset_check(detected, reference, tolerance_s: float, given_s: float = 0.0) 
 
     Returns ``ref_offset_estimate_s`` (``given_s`` minus the refined shift: the ``ref_offset_s`` that puts the median
     error at 0, so it includes the detector's own timing bias), ``tight_window_s``, ``tight_matches_as_given``,
-    ``tight_matches_at_estimate`` and ``ref_offset_suspect`` (the rule of decision steps 56, with steps 69's half tolerance); empty with fewer than
-    3 events on either side."""
+    ``tight_matches_at_estimate`` and ``ref_offset_suspect`` (the rule of decision steps 56, with steps 69's half
+    tolerance); empty with fewer than 3 events on either side."""
     d = np.sort(np.asarray(detected, dtype=float))
     r = np.sort(np.asarray(reference, dtype=float))
     if d.size < 3 or r.size < 3:
@@ -140,7 +140,8 @@ def offset_check(detected, reference, tolerance_s: float, given_s: float = 0.0) 
     shift = float(np.median(err[tight])) if tight.any() else g
     now, at = _near(r, d, win), _near(r + shift, d, win)
     # decision steps 56, and steps 69: past half the tolerance
-    suspect = abs(shift) > max(win, MIN_SHIFT_FRAC * float(tolerance_s)) and at - now >= max(MIN_GAIN, MIN_GAIN_FRAC * r.size)
+    past = abs(shift) > max(win, MIN_SHIFT_FRAC * float(tolerance_s))
+    suspect = past and at - now >= max(MIN_GAIN, MIN_GAIN_FRAC * r.size)
     return {"ref_offset_estimate_s": float(given_s - shift), "tight_window_s": win,
             "tight_matches_as_given": now, "tight_matches_at_estimate": at, "ref_offset_suspect": bool(suspect)}
 
