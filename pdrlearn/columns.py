@@ -1340,6 +1340,14 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
          "steps.csv (foot)": "Foot tracks (plasys; `pdrlearn track`, `run`): one row per stride of the tracked foot "
                              "(E137); an empty cell is a value the stride cannot have. Columns marked with an option "
                              "or a model appear only with it.",
+         "bouts.csv": "Two column orders (decision C113; read the columns by name): a single `track` / `run` writes "
+                      "`session, subject, visit, bout, ...`; `track-all`'s OUT/bouts.csv leads with sessions.csv's "
+                      "key, `path, visit, session, subject, bout, ...` (L165), as listed below, and adds "
+                      "`visit_as_written` (C82).",
+         "periods.csv": "Two column orders (decision C113; read the columns by name): a single `track` / `run --per` "
+                        "writes `session, subject, visit, period, ...`, as listed below; `track-all --per`'s "
+                        "OUT/periods.csv leads with sessions.csv's key, `path, visit, session, subject, period, ...` "
+                        "(L277; `path`: the session folder relative to ROOT).",
          "strides.csv": "`pdrlearn track-all` (decision E163): every tracked session's steps.csv in one table, in "
                         "sessions.csv's order; the columns below lead, then the session's own steps.csv columns "
                         "(steps.csv / steps.csv (foot)).",

@@ -209,6 +209,10 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
             "residual_sd_s": float(resid.std()) if resid.size > 1 else float("nan"), "windows": n_win,
             "windows_inconsistent": 0 if wins is None else int(wins["inconsistent"]),
             "window_residual_max_s": far, "step_period_s": step_period(w),
+            # decision L457: how far the fitted drift moves the clock over the matched events (s); 0 for the windowed
+            # option, which follows the clock from the recording's start (steps 64)
+            "drift_span_s": (0.0 if wins is not None and window_s is not None and wins["line"] is not None
+                             else abs(drift) * float(np.ptp(pairs_f)) if pairs_f.size else 0.0),
             # decision L446: the accepted windows' line (steps 64), named in the untrusted line as the likely clock
             "window_line": None if wins is None or wins["line"] is None else [float(v) for v in wins["line"]]}
 
@@ -233,7 +237,28 @@ def untrusted_reason(estimate: dict) -> str | None:
                    "clock moved about half a step between walks)")
     if far > WINDOW_JUMP_S:
         why.append(f"a window lies {far:.2f} s from the fitted clock (over {WINDOW_JUMP_S:g} s)")
+    if half_step_ambiguous(estimate):
+        why.append(f"the fitted drift moves the clock {float(estimate['drift_span_s']):.2f} s over the walks, more "
+                   f"than half the {float(estimate['step_period_s']):.2f} s step period, so the estimate may be a step "
+                   "off (decision L457)")
     return "; ".join(why) or None
+
+
+def half_step_ambiguous(estimate: dict) -> bool:
+    """Decision L457: whether the one-offset estimate's clock line moves by more than half a step period over the
+    matched events (``drift_span_s`` of :func:`align_events`): the line and the one a step beside it then both
+    cross the half-step point, so which foot's events the waist steps are cannot be told from the start."""
+    period = float(estimate.get("step_period_s", float("nan")))
+    return bool(float(estimate.get("drift_span_s", 0.0)) > period / 2)  # NaN period: False
+
+
+def candidate_offsets(estimate: dict) -> tuple[float, float]:
+    """Decision L457: the estimate's ``--clock-offset`` (the waist clock at its 0, E111) and the one a step period
+    beside it on the other side of 0 (at ``ref_s``): the two offsets a walk cannot tell apart."""
+    o, drift, ref = (float(estimate[k]) for k in ("offset_s", "drift", "ref_s"))
+    period = float(estimate["step_period_s"])
+    alt = o - period if o > 0 else o + period
+    return o - drift * ref, alt - drift * ref
 
 
 def untrusted_message(estimate: dict, option: str = "--align-units") -> str | None:
@@ -251,6 +276,10 @@ def untrusted_message(estimate: dict, option: str = "--align-units") -> str | No
         hint = (f"; the walking windows followed from the recording's start read --clock-offset "
                 f"{off0 - drift * ref:.3f} --clock-drift-ppm {drift * 1e6:.0f} (right if the units were started "
                 "within half a step of each other, steps decision 64)")
+    if half_step_ambiguous(estimate):  # decision L457: the two candidates, same drift
+        a, b = candidate_offsets(estimate)
+        hint += (f"; the two candidates a step apart read --clock-offset {a:.3f} or {b:.3f} --clock-drift-ppm "
+                 f"{float(estimate['drift']) * 1e6:.0f} (decision L457)")
     return (f"{head}: the clock estimate cannot be trusted ({why}; it read {float(estimate['offset_s']):+.2f} s, "
             f"drift {float(estimate['drift']) * 1e6:+.0f} ppm, with a {period:.2f} s step period, and offsets a step "
             "apart look alike, decision L446); if the clocks are offset, give them by hand: --clock-offset SECONDS "
