@@ -165,3 +165,18 @@ def test_a_stair_beside_a_ramp_keeps_its_flight_with_the_l455_option(monkeypatch
     assert table["height_m"].iloc[0] == pytest.approx(1.02)
     ramp_only = _climb(dz[:33], length[:33])  # the ramp alone keeps no flight (L443)
     assert len(flight_table(ramp_only)) == 0
+
+
+def test_evaluate_track_sets_the_declared_incline_on_the_result_it_is_given_l456(incline):
+    """Review R5 F2: evaluate_track (L454's one place) sets info["belt_incline_pct"] on the result it is given, for
+    stairs.csv; TrackResult.summary gives it a copy (L456), so the caller's result is untouched there."""
+    from pdrlearn.io import read_session
+    from pdrlearn.track import get_pipeline
+    from pdrlearn.track.evaluate import evaluate_track
+
+    s = read_session(incline)
+    res = get_pipeline("plasys")(s)
+    res.summary(s)
+    assert res.info.get("belt_incline_pct") is None
+    evaluate_track(res, s)
+    assert res.info.get("belt_incline_pct") == 10.0

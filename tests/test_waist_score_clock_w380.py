@@ -46,3 +46,15 @@ def test_labels_move_onto_the_waist_clock_once_w380(walks):
         moved.extras["ics"]["ic_s"])
     synced = read_session(walks / "synced")
     assert waist_clock_labels(synced) is synced  # no simulated clock: the session itself, bit for bit
+
+
+def test_an_aligned_session_is_scored_on_the_foot_clock_w380_r5(walks):
+    """Review R5 F1: after ``apply_alignment`` the waist is on the foot clock, so the labels must not be moved again."""
+    from pdrlearn.steps import WaistICStepDetector, apply_alignment, score_steps
+
+    s = read_session(walks / "offset")
+    ref = s.extras["ics"]["ic_s"].to_numpy()
+    aligned = apply_alignment(s, 0.3, 400e-6)
+    assert waist_clock_labels(aligned).extras["ics"]["ic_s"].to_numpy() == pytest.approx(ref)  # unmoved
+    raw = score_steps(WaistICStepDetector().detect(s), s)["f1"]
+    assert score_steps(WaistICStepDetector().detect(aligned), aligned)["f1"] == pytest.approx(raw, abs=0.03)

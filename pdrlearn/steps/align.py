@@ -72,4 +72,7 @@ def apply_alignment(session: Session, offset_s: float, drift: float = 0.0, ref_s
     for s in out.streams.values():
         if s.placement == "waist":
             s.t = to_foot_clock(s.t, offset_s, drift, ref_s)
+    if (out.meta or {}).get("clock_offset_s") or (out.meta or {}).get("clock_drift_ppm"):
+        # W380 (review R5): the waist is on the foot clock now, so the simulator's recorded clock no longer moves labels
+        out.meta = {**out.meta, "clock_offset_s": 0.0, "clock_drift_ppm": 0.0}
     return out

@@ -621,7 +621,7 @@ SCOPED_OPTIONS = {
                   lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "ap_above_mean": ("the offline waist-pendulum with its own contact detector (W29, W265)",
                       lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
-    "turn_bridge": ("the offline waist-pendulum with its own contact detector (W374)",
+    "turn_bridge": ("the offline waist-pendulum with its own contact detector (W374, W384)",
                     lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
                     lambda pl, rt, m, det, stops: not rt),
