@@ -31,7 +31,7 @@ def test_copies_read_as_the_originals_with_semicolons_decimal_commas_and_a_bom(t
     assert raw.startswith(b"\xef\xbb\xbf") and b"\r\n" in raw
     text = raw.decode("utf-8-sig").splitlines()
     assert text[0] == "session;subject;speed_m_s;n_steps;tiny;start_time;t_epoch"
-    assert text[1] == "Gang 1;001;1,028535526;21;2,5e-05;2026-12-05T14:03:11.250+01:00;1796475791,25"
+    assert text[1] == "Gang 1;001;1,028535526;21;0,000025;2026-12-05T14:03:11.250+01:00;1796475791,25"  # C103: plain
     assert text[2] == 'Gang 2;"Weiß; K.";;9;-0,5;;1'  # text cells as written, the ';' inside one quoted
     back = read_table(written[0], text_columns=("subject",))  # pdrlearn reads its own copy back (B24)
     orig = read_table(res / "Gruppe Ältere" / "sessions.csv", text_columns=("subject",))

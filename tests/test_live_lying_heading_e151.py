@@ -11,7 +11,8 @@ from pdrlearn.export.waist import waist_manifest
 from pdrlearn.waist.live import live_value, unapplied_options_line
 from pdrlearn.waist.params import WaistParams
 
-_LIVE = {"stand_veto": False, "sit_veto": False, "contact_shift": False, "parity_fill": False, "pause_ride": False}
+_LIVE = {"stand_veto": False, "sit_veto": False, "contact_shift": False, "parity_fill": False, "pause_ride": False,
+         "turn_bridge": False}  # W385: the offline default "side" is not applied live
 
 
 def test_the_live_value_is_false_e151():

@@ -33,7 +33,8 @@ def walk(tmp_path_factory):
                                             # E126 / E130 (W199): as live, so E107's line does not name them
                                             "options": {"sit_veto": False, "contact_shift": False,
                                                         "parity_fill": False, "stand_veto": False,
-                                                        "pause_ride": False, "rest_bias": False}}))  # E145
+                                                        "pause_ride": False, "rest_bias": False,  # E145
+                                                        "turn_bridge": False}}))  # W385: live tracks without it
     frame = ",".join(f"{k}={v}" for k, v in s.require_frame("waist").to_dict().items())
     export_waist(d / "cal.json", d / "wb", frame=frame)
     a, g = s["wAccelerometer"], s["wGyroscope"]
