@@ -55,7 +55,7 @@ def test_steps_says_why_track_counts_fewer_lower_back_steps(tmp_path, capsys):
     out = capsys.readouterr().out
     count = int(out.split(": ", 1)[1].split(" steps")[0])
     assert "note: these are the detector's contacts; " in out and "(W281" in out  # W297 names them when it can
-    # turn_bridge false (W385's "side" default recovers one of the turn's steps on this walk, 12 = 12): the sit veto alone
+    # turn_bridge false (W385's "side" default recovers a turn step here, 12 = 12): the sit veto alone
     (tmp_path / "params.json").write_text(json.dumps({"options": {"turn_bridge": False}}))
     assert main(["track", str(d), "--units", "waist", "--out", str(tmp_path / "t"), "--json",
                  "--params", str(tmp_path / "params.json")]) == 0

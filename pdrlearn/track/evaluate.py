@@ -1363,8 +1363,9 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     ``max_position_sigma_m`` (m, decision L128). Decision L454: with a ``session`` whose meta.json declares a
     treadmill, the metrics are taken inside its declared incline (:func:`pdrlearn.track.belt.session_incline`: L442's
     storeys, flights and CV strides; it sets ``result.info["belt_incline_pct"]`` on the result it is given, which
-    stairs.csv reads: pass a copy to keep yours unchanged, as ``TrackResult.summary`` and ``write_track`` do, L456) and the belt's keys follow
-    (:func:`pdrlearn.track.belt.belt_summary`, L321 / L441) - one place for ``track``, ``run`` and this function."""
+    stairs.csv reads: pass a copy to keep yours unchanged, as ``TrackResult.summary`` and ``write_track`` do, L456)
+    and the belt's keys follow (:func:`pdrlearn.track.belt.belt_summary`, L321 / L441) - one place for ``track``,
+    ``run`` and this function."""
     from pdrlearn.track.belt import INCLINE_KEY, session_incline, session_where
 
     with session_incline(session) as incline:
