@@ -27,3 +27,28 @@ def test_simulate_gaps_not_a_list_is_one_line_b370(gaps):
 
     with pytest.raises(DataError, match=r"gaps=.*give a list of \(unit, start_s, duration_s\).*B370"):
         check_gaps(gaps)
+
+
+def test_truncated_gzip_session_names_the_gz_file_b369(tmp_path, capsys):
+    # review R4 finding 2: the lines named fGyroscope.csv (not there) and advised sed -i on the gzip file
+    import gzip
+    from pathlib import Path
+
+    from pdrlearn.cli import main
+
+    sim = tmp_path / "a"
+    assert main(["simulate", "--route", "straight:15", "-u", "9090", "-o", str(sim)]) == 0
+    plain = sim / "fGyroscope.csv"
+    data = plain.read_bytes()
+    nl = data.index(b"\n", 5000)
+    cut = data[:data.index(b",", nl) + 1]  # a row cut after its time: mid-row, no line break at the end
+    (sim / "fGyroscope.csv.gz").write_bytes(gzip.compress(cut))
+    plain.unlink()
+    capsys.readouterr()
+    assert main(["track", str(sim), "--out", str(tmp_path / "o1")]) == 2
+    err = capsys.readouterr().err
+    assert f"{Path(sim) / 'fGyroscope.csv.gz'}: last line incomplete" in err
+    assert "--drop-partial-row" in err and "sed -i" not in err
+    assert main(["track", str(sim), "--drop-partial-row", "--out", str(tmp_path / "o2")]) == 2
+    err = capsys.readouterr().err
+    assert f"{Path(sim) / 'fGyroscope.csv.gz'}: spans" in err and "fGyroscope.csv:" not in err
