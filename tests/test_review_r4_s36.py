@@ -52,3 +52,15 @@ def test_truncated_gzip_session_names_the_gz_file_b369(tmp_path, capsys):
     assert main(["track", str(sim), "--drop-partial-row", "--out", str(tmp_path / "o2")]) == 2
     err = capsys.readouterr().err
     assert f"{Path(sim) / 'fGyroscope.csv.gz'}: spans" in err and "fGyroscope.csv:" not in err
+
+
+def test_cohort_summary_csv_has_no_exponent_c103(tmp_path):
+    # review R4 finding 4: cohort_summary.csv was a plain to_csv (1e-05)
+    from pdrlearn.cli.cohort import _summarise
+    from pdrlearn.cohort import JobResult
+
+    _summarise([JobResult("u1", True, {"bias": 0.00001234, "big": 2.5e16}), JobResult("u2", False, error="x")],
+               tmp_path)
+    text = (tmp_path / "cohort_summary.csv").read_text()
+    assert "e-" not in text and "e+" not in text and "0.00001234" in text, text
+    assert not list(tmp_path.glob(".*.tmp"))
