@@ -467,6 +467,8 @@ def id_text(meta: dict, key: str, where: str | os.PathLike | None = None) -> str
         return v.strip() or None
     if isinstance(v, int) and not isinstance(v, bool):
         return str(v)
+    if isinstance(v, float) and v.is_integer():  # 12.0 (pandas' to_json of a float column) is the id "12" (review R4)
+        return str(int(v))
     if key == "subject" and isinstance(v, bool | float | list):
         file = "meta.json" if where is None else f"{Path(where) / 'meta.json'}"
         kind = "true/false" if isinstance(v, bool) else "a list" if isinstance(v, list) else "a fractional number"
@@ -505,6 +507,8 @@ def meta_visit(meta: dict) -> str | None:
     visit = meta.get("visit")
     if isinstance(visit, bool) or not isinstance(visit, str | int | float) or not str(visit).strip():
         return None
+    if isinstance(visit, float) and visit.is_integer():  # visit 2.0 is visit 2, so the two pair (review R4)
+        return str(int(visit))
     return str(visit).strip()
 
 
@@ -626,4 +630,5 @@ def natural_key(text: str) -> tuple:
     table of track-all lists its rows in this order (sessions by their folders, groups, subjects and visits)."""
     import re
 
-    return [(0, int(t), "") if t.isdigit() else (1, 0, t) for t in re.split(r"(\d+)", text) if t], text
+    # isdecimal, not isdigit: a superscript '²' is a digit int() refuses (review R4)
+    return [(0, int(t), "") if t.isdecimal() else (1, 0, t) for t in re.split(r"(\d+)", text) if t], text

@@ -57,7 +57,7 @@ def test_gait_all_pairs_each_visit_folders_feet_and_says_which_have_no_pair(tmp_
     one = pd.read_csv(tmp_path / "g" / "gait_bouts.csv", dtype={"subject": str, "visit": str})
     bouts = pd.read_csv(out / "gait_bouts.csv", dtype={"subject": str, "visit": str})
     mine = bouts[bouts["path"] == "P8991/visit2"].drop(columns="path").reset_index(drop=True)
-    pd.testing.assert_frame_equal(mine, one, check_exact=False, rtol=1e-9)
+    pd.testing.assert_frame_equal(mine, one, check_exact=True)  # C103: one float format (review R4)
     assert int(pairs.loc[1, "n_bouts"]) == len(one)
     # an existing output is replaced only with --force
     assert main(["gait-all", str(study), "--out", str(out)]) == 2

@@ -218,9 +218,7 @@ def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
         if c in COUNT_COLUMNS or c.endswith(("_n_steps", "_n_steps_detected", "_n_steps_labelled")):  # C87
             df[c] = pd.to_numeric(df[c]).round().astype("Int64")
     out.mkdir(parents=True, exist_ok=True)
-    tmp = out / ".cohort_summary.csv.tmp"
-    df.to_csv(tmp, index=False)
-    tmp.replace(out / "cohort_summary.csv")
+    _write_csv_atomic(df, out / "cohort_summary.csv")  # decision C103: plain decimals, never 1e-05 (review R4)
     (out / "cohort_summary.md").write_text(_blank_missing(df).to_markdown(index=False, floatfmt=".4g") + "\n",
                                            encoding="utf-8")
     return df

@@ -106,6 +106,7 @@ def register(app: typer.Typer) -> None:
         from pdrlearn.atomic import atomic_directory
         from pdrlearn.cli.common import existed, out_folder, print_json, refused_output, replaced
         from pdrlearn.io.plasys import json_safe
+        from pdrlearn.table_csv import write_table_csv
         from pdrlearn.track.bilateral import pair_sessions
 
         if out is not None:
@@ -119,7 +120,7 @@ def register(app: typer.Typer) -> None:
             with refused_output(out), atomic_directory(out) as tmp:  # all four files or none (B151)
                 (tmp / "gait_summary.json").write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n")
                 for name, table in gait_tables(res).items():  # decision C109: ids in front, foot beside side
-                    table.to_csv(tmp / name, index=False)
+                    write_table_csv(table, tmp / name)  # decision C103: as gait-all writes them (review R4)
             replaced(out, was)
         if as_json:
             print_json(summary)

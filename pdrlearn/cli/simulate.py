@@ -49,7 +49,7 @@ def parse_gaps(texts: list[str]) -> tuple:
                 raise ValueError
         except ValueError:
             raise DataError(f"--gap {text!r}: give UNIT:START:DURATION, UNIT one of {', '.join(GAP_UNITS)}, START "
-                            ">= 0 and DURATION > 0 seconds, e.g. --gap foot:600:120 (decision B370)") from None
+                            "> 0 and DURATION > 0 seconds, e.g. --gap foot:600:120 (decision B370)") from None
         out.append((parts[0], start, dur))
     return tuple(out)
 

@@ -465,7 +465,7 @@ def _unwrapped(raw: dict[str, np.ndarray], folder: Path) -> dict[str, np.ndarray
             alike.setdefault((bits, idx.size, float(arr[idx[0], 0])), []).append((name, arr, idx))
     for (bits, _, _), files in alike.items():
         name, arr, idx = files[0]
-        names = ", ".join(SENSORS[n].filename for n, _, _ in files)
+        names = ", ".join(session_csv(folder, n).name for n, _, _ in files)
         log.warning("%s", wrap_message(f"{folder}: {names}", arr[:, 0], bits, idx, "ticks", int(idx[0]) + 3))
     return out
 
@@ -518,7 +518,7 @@ def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_p
     ``None`` = milliseconds (also when ms fits, or nothing decides: B9's checks follow)."""
     imu = {n for n in raw if SENSORS[n].kind in ("accelerometer", "gyroscope")}
     for n in sorted(imu):  # decision B161: seconds of a slow logger are neither an IMU's seconds nor its ms
-        slow = slow_seconds_message(raw[n][:, 0], str(meta_path.parent / SENSORS[n].filename),
+        slow = slow_seconds_message(raw[n][:, 0], str(session_csv(meta_path.parent, n)),
                                     "declare \"units\": {\"timestamp\": \"ms\"} in meta.json")
         if slow:
             raise DataError(slow)
@@ -564,7 +564,7 @@ def _index_unit(raw: dict[str, np.ndarray], rate_hz: float | None, folder: Path,
               if lag is not None else "")
     unit = ("; and \"units\": {\"timestamp\": \"samples\"} instead of ms if they count samples" if declared
             else "")
-    raise DataError(f"{folder / SENSORS[name].filename}: its timestamps are consecutive integers "
+    raise DataError(f"{session_csv(folder, name)}: its timestamps are consecutive integers "
                     f"({t[0]:.0f}-{t[-1]:.0f}): these look like sample counters, not ms{rhythm}; give the sampling "
                     f"rate in {meta_path.name}: \"rate_hz\": <Hz> (1000 if they are ms{unit}), or write each "
                     "sample's time in ms")
@@ -1039,17 +1039,17 @@ def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = 
         others = [n for n in spans if n not in short]
         o_lo = min(float(spans[n].duration_s) for n in others)
         o_span = f"{full:.2f} s" if full - o_lo < 0.005 else f"{o_lo:.2f}-{full:.2f} s"
-        also = f" (also short: {', '.join(SENSORS[n].filename for n in short[1:])})" if len(short) > 1 else ""
+        also = f" (also short: {', '.join(session_csv(folder, n).name for n in short[1:])})" if len(short) > 1 else ""
         o_t0 = min(float(spans[n].t[0]) for n in others)
         o_t1 = max(float(spans[n].t[-1]) for n in others)
         slack = SPAN_TOLERANCE_S + max(period(first), period(spans[longest]))
         if first.t[0] - o_t0 > slack and o_t1 - first.t[-1] <= slack:  # decision B149: it started late
-            msg = (f"{folder / SENSORS[short[0]].filename}: starts {first.t[0] - o_t0:.2f} s after the other "
+            msg = (f"{session_csv(folder, short[0])}: starts {first.t[0] - o_t0:.2f} s after the other "
                    f"{len(others)} {unit} stream(s) and ends with them{also} (a sensor that started late, as a phone "
                    f"app's can): track the time every {unit} file covers with --common-span, or trim the other "
                    "files to its start (decisions B72, B81, B149)")
         else:
-            msg = (f"{folder / SENSORS[short[0]].filename}: spans {first.duration_s:.2f} s ({first.t[0]:.2f}-"
+            msg = (f"{session_csv(folder, short[0])}: spans {first.duration_s:.2f} s ({first.t[0]:.2f}-"
                    f"{first.t[-1]:.2f} s) but the other {len(others)} {unit} stream(s) {o_span}{also}; the file was "
                    "cut short (a truncated copy?), so a track would cover only part of the walk its labels describe "
                    "-- restore the whole file from the recording, or re-record, or track only the time every "
@@ -1134,11 +1134,11 @@ def cut_to_common_span(streams: dict[str, Stream], folder: Path) -> tuple[float,
         if keep.all():
             continue
         if keep.sum() < 2:
-            raise DataError(f"{folder / SENSORS[n].filename}: holds no samples in {t0:.2f}-{t1:.2f} s, the time every "
+            raise DataError(f"{session_csv(folder, n)}: holds no samples in {t0:.2f}-{t1:.2f} s, the time every "
                             f"{' and '.join(units)} file covers; --common-span cannot keep it -- move it out of the "
                             "session folder, or restore the files (decision B81)")
         gone = (float(s.t[keep][0]) - float(s.t[0])) + (float(s.t[-1]) - float(s.t[keep][-1]))
-        dropped.append(f"{gone:.2f} s of {SENSORS[n].filename}")
+        dropped.append(f"{gone:.2f} s of {session_csv(folder, n).name}")
         streams[n] = Stream(n, s.t[keep], s.values[keep])
     return t0, t1, ", ".join(dropped), why
 
@@ -1429,7 +1429,7 @@ def warn_saturation(session: Session) -> None:
         kind = SENSORS[name].kind
         n, top = clipped_samples(s.values, kind)
         if n:
-            where = (str(Path(session.folder) / SENSORS[name].filename) if session.folder is not None
+            where = (str(session_csv(session.folder, name)) if session.folder is not None
                      else f"session '{session.name}', stream {name}")
             log.warning("%s", saturation_warning(where, kind, n, len(s), top))
 
@@ -1443,7 +1443,7 @@ def warn_frozen(session: Session) -> None:
     for name, s in session.streams.items():
         if s.values.ndim != 2 or s.values.shape[1] != 3:
             continue
-        where = (str(Path(session.folder) / SENSORS[name].filename) if session.folder is not None
+        where = (str(session_csv(session.folder, name)) if session.folder is not None
                  else f"session '{session.name}', stream {name}")
         other = session.streams.get(FROZEN_PARTNER.get(name, ""))
         moved = None if other is None else other.t[moving_samples(other.name, other.values)]

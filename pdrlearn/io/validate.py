@@ -94,9 +94,11 @@ def truncated_line_message(where: str, line: int, others: str = "", what: str = 
     dead = ""
     if what == "the recording":  # decision B266: a dead battery's last row
         command = command or f"pdrlearn track {shell_quote(Path(where).parent)}"  # decision B279: the one run
+        # sed on a .csv.gz would damage the compressed file (review R4): only --drop-partial-row for it
+        sed = "" if str(where).endswith(".gz") else f", or `sed -i '$ d' {shell_quote(where)}`"
         dead = (f"; if the recording itself ends there (a unit whose battery died mid-row), drop that row: "
-                f"`{command} --drop-partial-row`, or `sed -i '$ d' "
-                f"{shell_quote(where)}` (decision B266; B72 still refuses a file then shorter than its unit's others)")
+                f"`{command} --drop-partial-row`{sed} (decision B266; B72 still refuses a file then shorter than "
+                "its unit's others)")
     return (f"{where}: last line incomplete (line {line} stops mid-row, no line break at the end): file "
             f"truncated?{others} -- restore the whole file from {what} (deleting the line leaves a file "
             f"cut short, decision B72){dead}")

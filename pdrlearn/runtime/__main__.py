@@ -119,8 +119,7 @@ def _write(out: Path, steps, start_s: float | None) -> None:
 
 def _num(v: float) -> str:
     """A float as the CSV files hold it: 10 significant digits, but an epoch time in seconds (|v| >= 1e6) with its
-    microseconds (decision E164; the package's ``cli.common.write_table_csv``, which this lean runtime cannot import,
-    writes the same)."""
+    microseconds (decision E164): the package's ``wide_float_text`` (C103), as ``write_table_csv`` writes it."""
     from pdrlearn.table_csv import wide_float_text
 
     return wide_float_text(v) if v == v else "nan"  # decisions E164, C103: the package's own, no exponent

@@ -134,7 +134,10 @@ def _rng(*parts: object) -> np.random.Generator:
 
 def check_gaps(gaps) -> tuple[tuple[str, float, float], ...]:
     """Decisions S83, B370: ``gaps`` as ``((unit, start_s, duration_s), ...)``, each unit foot, waist or both, a start
-    >= 0 and a duration > 0 (s, finite), sorted by start; one line naming the bad one and the fix."""
+    > 0 and a duration > 0 (s, finite), sorted by start; one line naming the bad one and the fix."""
+    if not isinstance(gaps, list | tuple) and gaps is not None:  # gaps=5 was a TypeError traceback (review R4)
+        raise DataError(f"simulate: gaps={gaps!r}: give a list of (unit, start_s, duration_s), e.g. "
+                        "[('foot', 600, 120)] (decision B370)")
     out = []
     for g in gaps or ():
         try:
@@ -144,7 +147,7 @@ def check_gaps(gaps) -> tuple[tuple[str, float, float], ...]:
             raise DataError(f"simulate: gap {g!r}: give (unit, start_s, duration_s), e.g. ('foot', 600, 120) "
                             "(decision B370)") from None
         if unit not in GAP_UNITS or not (math.isfinite(start) and start >= 0) or not (math.isfinite(dur) and dur > 0):
-            raise DataError(f"simulate: gap {g!r}: the unit must be one of {', '.join(GAP_UNITS)}, the start a time >= "
+            raise DataError(f"simulate: gap {g!r}: the unit must be one of {', '.join(GAP_UNITS)}, the start a time > "
                             "0 s and the duration > 0 s (decision B370)")
         out.append((str(unit), start, dur))
     return tuple(sorted(out, key=lambda g: g[1]))
