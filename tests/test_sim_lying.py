@@ -102,6 +102,7 @@ def test_simulate_help_lists_the_lie_item_and_the_seated_cap_is_a_day():
     from pdrlearn.cli.simulate import SIT_MAX_S
 
     out = CliRunner().invoke(app, ["simulate", "--help"], terminal_width=200).output
+    out = " ".join(out.replace("\u2502", " ").split())  # rich's box and wrapping: where a line breaks is not the point
     assert "'lie:28800'" in out and "turning over" in out
     assert SIT_MAX_S == MAX_LIE_S == 86_400.0
     res = CliRunner().invoke(app, ["simulate", "--route", "straight:2", "-u", "5963", "--sit-end", "90000",
