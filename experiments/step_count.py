@@ -43,7 +43,7 @@ from pdrlearn.steps import get_detector, score_steps
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
-from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+from experiments.partial import parsed_with_names, partial_note  # noqa: E402
 
 OUT = ROOT / "experiments" / "results"
 SPEEDS = ("slow", "normal", "fast")
@@ -315,10 +315,7 @@ def build_parser() -> argparse.ArgumentParser:
 def output_names(argv: list[str] | None = None):
     """The parsed options, the options that make the run partial (fewer simulated users than the full run's,
     steps decision 67) and the file-name function (``*_partial.*`` for a partial run)."""
-    ap = build_parser()
-    args = ap.parse_args(argv)
-    changed = partial_options(ap, args, ("users",))
-    return args, changed, lambda n: result_name(n, bool(changed))
+    return parsed_with_names(build_parser(), argv, ("users",))
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -264,12 +264,17 @@ def _checked_members(zf: zipfile.ZipFile, label: str, max_bytes: int) -> list[tu
     return out
 
 
+def _sensor_files() -> set[str]:
+    """The session's sensor file names, lower case (what a zip member must be named to be a sensor file)."""
+    from pdrlearn.io.sensors import SENSORS  # kept out of module import: the CLI imports this module light
+
+    return {s.filename.lower() for s in SENSORS.values()}
+
+
 def _refuse_deeper(members: list, top: str | None, label: str) -> None:
     """Decision B375: sensor files only in folders below the archive's top or its one folder (``data/walk1/``):
     one line saying to zip that folder itself (a path inside the archive cannot be passed)."""
-    from pdrlearn.io.sensors import SENSORS
-
-    sensor_files = {s.filename.lower() for s in SENSORS.values()}
+    sensor_files = _sensor_files()
     dirs = sorted({parts[:-1] for _info, parts in members if parts[-1].lower() in sensor_files})
     if not dirs or ((top,) if top else ()) in dirs:
         return
@@ -282,9 +287,7 @@ def _refuse_deeper(members: list, top: str | None, label: str) -> None:
 
 def _refuse_nested(members: list, label: str) -> None:
     """Decision B362: an archive whose only content is another archive (a zip of a zip) says so in one line."""
-    from pdrlearn.io.sensors import SENSORS
-
-    sensor_files = {s.filename.lower() for s in SENSORS.values()}
+    sensor_files = _sensor_files()
     if any(parts[-1].lower() in sensor_files for _info, parts in members):
         return
     inner = [("/".join(parts)) for _info, parts in members

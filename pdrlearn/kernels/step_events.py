@@ -114,7 +114,7 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
     out: list[Event] = []
     s = state
     tl, al, sl = values(t), values(a), values(still)  # decision E195: no whole-session lists
-    el = values(a) if e is None else values(e)
+    el = al if e is None else values(e)  # a memoryview / list iterates afresh in zip
     for ti, ai, si, ei in zip(tl, al, sl, el, strict=True):
         s.last_t = ti
         if s.pending is not None and ti - s.pending[0] >= p.min_stride_s and not (

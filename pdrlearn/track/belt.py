@@ -114,8 +114,7 @@ def incline_value(meta: dict | None, where: str) -> float | None:
         raise DataError(f"{where}/meta.json: {INCLINE_KEY} {v!r}: give the treadmill's incline as a number of percent "
                         f"(rise over run x 100, e.g. 10; at most {MAX_INCLINE_PCT:g}, negative for a decline), or "
                         "remove the key (decisions L442, B365)")
-    belt_value(meta, where)
-    if (meta or {}).get(BELT_KEY) is None:
+    if belt_value(meta, where) is None:
         raise DataError(f"{where}/meta.json: {INCLINE_KEY} {v!r} without {BELT_KEY}: an incline is declared for a "
                         f"treadmill belt; add \"{BELT_KEY}\" (m/s) or remove {INCLINE_KEY} (decisions L442, B365)")
     return float(v)
@@ -146,7 +145,8 @@ def session_incline(session):
     enclosing scope declared already (``track`` declares it before tracking). Yields the session's own value
     (None: none declared; ``session`` None: none)."""
     incline = None if session is None else incline_value(session.meta, session_where(session))
-    with incline_scope(incline if declared_incline() is None else declared_incline()):
+    outer = declared_incline()
+    with incline_scope(incline if outer is None else outer):
         yield incline
 
 
