@@ -74,3 +74,13 @@ def test_gait_all_without_any_pair_is_one_line_and_writes_nothing(tmp_path, caps
     assert err.startswith("error: gait-all: ") and "no visit folder holds one left and one right" in err
     assert "P8994/v1: no pair: 1 left and 0 right" in err and "\n" not in err and "Traceback" not in err
     assert not out.exists()
+
+
+def test_gait_all_on_a_missing_or_empty_root_is_one_line_and_writes_nothing(tmp_path, capsys):
+    """B372 (closing checks): a ROOT that does not exist, and one with no session folder, are one line each, exit 2."""
+    (tmp_path / "empty").mkdir()
+    for root, said in ((tmp_path / "nope", "folder not found"), (tmp_path / "empty", "no session folders")):
+        assert main(["gait-all", str(root), "--out", str(tmp_path / "out")]) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and said in err
+        assert not (tmp_path / "out").exists()
