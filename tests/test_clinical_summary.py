@@ -394,3 +394,23 @@ def test_readme_route_gives_no_pooled_stride_time_cv(tmp_path, capsys):
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["stride_time_cv_pct"] is None and summary["n_cv_strides"] < 10, summary
     assert "no stride-time CV (" in out and "steady level forward strides, 10 needed)" in out
+
+
+def test_summary_takes_the_steady_strides_once(monkeypatch):
+    """Session 37 re-read: the stride-time CV, its direction (L444), the length CVs (L212, L380) and the pooled-CV
+    check (L196) all read one :func:`steady_rows` per summary, not one each; the summary is the same."""
+    import pdrlearn.track.clinical as C
+
+    # two walking bouts of different rhythm (1.0 s then 1.4 s strides) around a 3 s stop: the pooled-CV path runs
+    t = np.concatenate([np.arange(12) * 1.0, 11.0 + 4.0 + np.arange(12) * 1.4])
+    table = _foot_table(t)
+    table["stride_time_s"] = np.r_[np.full(12, 1.0), np.full(12, 1.4)] * (1 + 0.01 * np.sin(np.arange(24)))
+    table["length_m"] = 1.2
+    before = clinical_summary(table)
+    calls = []
+    real = C.steady_rows
+    monkeypatch.setattr(C, "steady_rows", lambda steps: calls.append(1) or real(steps))
+    c = clinical_summary(table)
+    assert len(calls) == 1
+    assert c["stride_time_cv_bouts"] and c["stride_time_cv_direction"] == "forward", c
+    assert json.dumps(c, sort_keys=True) == json.dumps(before, sort_keys=True)

@@ -785,11 +785,17 @@ def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
     return st, steady
 
 
-def cv_direction(steps: pd.DataFrame) -> str | None:
+def _rows(steps: pd.DataFrame, rows: tuple[pd.DataFrame, np.ndarray] | None) -> tuple[pd.DataFrame, np.ndarray]:
+    """``rows`` (:func:`steady_rows` of ``steps`` already taken, e.g. by :func:`clinical_summary`, which takes it
+    once for all its CVs) or :func:`steady_rows` of ``steps``."""
+    return steady_rows(steps) if rows is None else rows
+
+
+def cv_direction(steps: pd.DataFrame, *, rows: tuple[pd.DataFrame, np.ndarray] | None = None) -> str | None:
     """Decision L444: ``"backward"`` when :func:`steady_rows` took the backward strides (fewer than
     :data:`CV_MIN_STRIDES` steady forward ones, at least as many steady backward ones), ``"forward"`` when it took
-    forward strides, None when it took none."""
-    st, steady = steady_rows(steps)
+    forward strides, None when it took none. ``rows``: :func:`steady_rows` of ``steps`` when already taken."""
+    st, steady = _rows(steps, rows)
     if not steady.any():
         return None
     return "backward" if backward_rows(st)[steady].all() else "forward"
@@ -815,10 +821,10 @@ def _steady(st: pd.DataFrame, ok: np.ndarray) -> np.ndarray:
     return steady
 
 
-def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
-    """The stride times (s) of a foot table's steady straight strides (:func:`steady_rows`) and the same strides'
-    swing-onset intervals (``start_s`` to the previous row's, s; decision L113); none for a lower-back table."""
-    st, steady = steady_rows(steps)
+def _straight_stride_times(st: pd.DataFrame, steady: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The stride times (s) of a foot table's steady straight strides (:func:`steady_rows`' ``st``, ``steady``) and
+    the same strides' swing-onset intervals (``start_s`` to the previous row's, s; decision L113); none for a
+    lower-back table."""
     if "stride_time_s" not in st:
         return np.zeros(0), np.zeros(0)
     onset = np.diff(st["start_s"].to_numpy(float), prepend=np.nan)
@@ -865,14 +871,16 @@ def _is_lower_back(steps: pd.DataFrame) -> bool:
     return "unit" in steps and len(steps) > 0 and bool((steps["unit"].astype(str) == "waist").all())
 
 
-def pooled_cv(steps: pd.DataFrame, cv_pct: float) -> dict | None:
+def pooled_cv(steps: pd.DataFrame, cv_pct: float, *, rows: tuple[pd.DataFrame, np.ndarray] | None = None
+              ) -> dict | None:
     """Decision L196: whether the stride-time CV ``cv_pct`` of ``steps`` (over :func:`steady_rows`' strides) pools
     walking bouts of different rhythm. Per L104 bout (:func:`bout_rows`, bouts.csv's under the default definition)
     holding at least :data:`CV_BOUT_MIN_STRIDES` of those strides: its median stride time and own CV; the
     within-bout CV = 100 x sqrt(sum of (t / its bout's mean - 1)^2 / (n - bouts)) over them. With two or more such
     bouts and ``cv_pct`` above :data:`CV_POOLED_FACTOR` x the within-bout CV: ``{"within_bouts_cv_pct", "bouts":
-    [{"bout", "start_s", "n_strides", "median_stride_time_s", "cv_pct"}, ...]}``; None otherwise."""
-    st, steady = steady_rows(steps)
+    [{"bout", "start_s", "n_strides", "median_stride_time_s", "cv_pct"}, ...]}``; None otherwise. ``rows``:
+    :func:`steady_rows` of ``steps`` when already taken."""
+    st, steady = _rows(steps, rows)
     if not steady.any():
         return None
     s = st["stride_time_s"].to_numpy(float)
@@ -1095,12 +1103,12 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     if _is_lower_back(steps):  # decision L214: L104 gives no CV on the lower back; the summary says why
         out["stride_time_cv_withheld"] = {"cause": "lower_back", "reason": LOWER_BACK_CV_REASON}
         return out
-    s, onset = _straight_stride_times(steps)
+    st, steady = rows = steady_rows(steps)  # taken once: every CV below is over these strides
+    s, onset = _straight_stride_times(st, steady)
     out["n_cv_strides"] = int(len(s))
-    out["stride_time_cv_direction"] = cv_direction(steps) if len(s) else None  # decision L444
+    out["stride_time_cv_direction"] = cv_direction(steps, rows=rows) if len(s) else None  # decision L444
     if len(s) >= CV_MIN_STRIDES and s.mean() > 0:
         cv = float(100.0 * s.std(ddof=1) / s.mean())
-        st, steady = steady_rows(steps)
         length = steady_stride_lengths(st, steady)
         length_cv = cv_pct(length[np.isfinite(length)]) if np.isfinite(length).sum() >= CV_MIN_STRIDES else math.nan
         out["stride_length_cv_pct"] = length_cv if math.isfinite(length_cv) else None  # decision L212
@@ -1115,7 +1123,7 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
                 "reason": "the initial contacts' timing scatters (decision L113)"}
         else:
             out["stride_time_cv_pct"] = cv
-            pooled = pooled_cv(steps, cv)  # decision L196: a CV over bouts of different rhythm
+            pooled = pooled_cv(steps, cv, rows=rows)  # decision L196: a CV over bouts of different rhythm
             if pooled:
                 out["stride_time_cv_within_bouts_pct"] = pooled["within_bouts_cv_pct"]
                 out["stride_time_cv_bouts"] = pooled["bouts"]
