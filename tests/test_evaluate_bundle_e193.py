@@ -86,6 +86,27 @@ def test_evaluate_bundle_reads_a_zipped_session_as_run_does(dirs, capsys, tmp_pa
         t: r["accuracy"] for t, r in folder["tasks"].items()}
 
 
+def test_evaluate_bundle_unpacks_a_zipped_session_once(dirs, capsys, tmp_path, monkeypatch):
+    """Session 37 re-read: evaluate BUNDLE x.zip read the labels from one extraction and replayed a second;
+    one extraction serves both (``pdrlearn.io.archive.session_with_folder``), with the same scores."""
+    import shutil
+
+    import pdrlearn.io.archive as A
+
+    bundle, walk = dirs["root"] / "bundle", dirs["walk"]
+    archive = shutil.make_archive(str(tmp_path / "walk"), "zip", walk.parent, walk.name)
+    assert main(["evaluate", str(bundle), str(walk), "--json"]) == 0
+    folder = json.loads(capsys.readouterr().out)
+    calls, real = [], A._extract
+    monkeypatch.setattr(A, "_extract", lambda *a: calls.append(1) or real(*a))
+    assert main(["evaluate", str(bundle), archive, "--json"]) == 0
+    zipped = json.loads(capsys.readouterr().out)
+    assert len(calls) == 1
+    assert zipped["sessions"] == folder["sessions"]
+    assert {t: r["accuracy"] for t, r in zipped["tasks"].items()} == {
+        t: r["accuracy"] for t, r in folder["tasks"].items()}
+
+
 def test_evaluate_refuses_a_waist_only_bundle_in_one_line(capsys, tmp_path):
     """E193's docstring: a waist-only bundle is one line (its steps carry no classes); review R2 finding 7."""
     from pdrlearn.export.waist import export_waist

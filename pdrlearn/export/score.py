@@ -11,7 +11,6 @@ method/unit). The pooled accuracy is what adding up ``run --json``'s ``<task>_ag
 
 from __future__ import annotations
 
-import contextlib
 from pathlib import Path
 
 #: a bundle task -> its label column in a session's steps.csv (``length`` is labelled ``length_class``, L53)
@@ -49,19 +48,6 @@ def runtime_table(steps) -> object:
 
     return pd.DataFrame([{"start_s": s.start_s, "end_s": s.end_s, **s.classes} for s in steps],
                         columns=None if steps else ["start_s", "end_s"])
-
-
-@contextlib.contextmanager
-def _session_folder(d: Path):
-    """The folder to replay: ``d`` itself, or the session a zip archive holds, extracted as
-    :func:`pdrlearn.io.read_session` extracts it (decision B359; review R2 finding 6)."""
-    from pdrlearn.io.archive import extracted_session, is_archive
-
-    if not is_archive(d):
-        yield d
-        return
-    with extracted_session(d) as (folder, _root, _label):
-        yield folder
 
 
 def model_used(tracker, task: str) -> tuple[str, str] | None:
@@ -117,7 +103,7 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
     from pdrlearn.classify.evaluation import absent_classes, absent_warning
     from pdrlearn.classify.training import class_metrics
     from pdrlearn.errors import DataError
-    from pdrlearn.io import read_session
+    from pdrlearn.io.archive import session_with_folder
     from pdrlearn.runtime import load_bundle
     from pdrlearn.runtime.__main__ import replay
 
@@ -128,9 +114,8 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
     pooled: dict[str, dict[tuple[str, str], tuple[list[str], list[str], list[str]]]] = {t: {} for t in bundle.tasks}
     names, fallback = [], []
     for d in session_dirs:
-        session = read_session(d)
-        names.append(session.name)
-        with _session_folder(d) as folder:
+        with session_with_folder(d) as (session, folder):  # a zip unpacked once for labels and replay (B359)
+            names.append(session.name)
             tracker, steps = replay(bundle_dir, folder, fallback_line=False, domain_line=False)
         domains.append(tracker.domain_report())
         if tracker.units != bundle.body_units:
