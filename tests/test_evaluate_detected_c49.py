@@ -71,3 +71,29 @@ def test_the_cli_leads_with_the_detected_figure(model, tmp_path, capsys):
                     f"{100 * out['accuracy']:.1f} % on the labelled boundaries (the table)")
     assert line.split(" - chosen svm/foot ")[1] in (tmp_path / "r" / "report.md").read_text()
 
+
+
+@pytest.mark.parametrize("found", [False, True])
+def test_detection_runs_once_per_session_for_every_method_and_unit(monkeypatch, found):
+    """Session 37 re-read: a session without detected strides was detected again for each method x unit (C97);
+    the detection is now kept per session for the object's life, strides or none."""
+    import pandas as pd
+
+    import pdrlearn.classify.detected as D
+
+    calls = []
+    strides = pd.DataFrame({"start_s": [0.0, 1.0], "end_s": [1.0, 2.0]}) if found else None
+    monkeypatch.setattr(D, "detected_strides", lambda s: calls.append(s) or strides)
+
+    class Model:  # predicts one class per stride, whichever model is asked
+        def predict_steps(self, session, st, **kw):
+            return pd.DataFrame({"terrain": ["level"] * len(st)})
+
+    det = D.DetectedPredictions(Model(), ["walk a", "walk b"])
+    for i in (0, 1):
+        det.session(i)
+        for method in ("svm", "rf"):
+            for unit in ("foot", "waist", "both"):
+                got = det.session(i, "terrain", method, unit)
+                assert (got is None) if not found else got[0] is strides
+    assert calls == ["walk a", "walk b"]

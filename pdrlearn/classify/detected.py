@@ -75,7 +75,14 @@ class DetectedPredictions:
     """Per session, the model's classes of the detected strides, computed once and shared by the tasks."""
 
     def __init__(self, model, sessions):
-        self.model, self.sessions, self._cache = model, sessions, {}
+        self.model, self.sessions, self._cache, self._strides = model, sessions, {}, {}
+
+    def strides(self, i: int) -> pd.DataFrame | None:
+        """:func:`detected_strides` of session ``i``, detected once for the object's life (the chosen model and
+        every method x unit of C97 share them; a session without strides is not detected again for each)."""
+        if i not in self._strides:
+            self._strides[i] = detected_strides(self.sessions[i])
+        return self._strides[i]
 
     def session(self, i: int, task: str | None = None, method: str | None = None,
                 unit: str | None = None) -> tuple[pd.DataFrame, pd.DataFrame] | None:
@@ -84,8 +91,7 @@ class DetectedPredictions:
         predictions when it cannot run on the session."""
         key = i if method is None else (i, task, method, unit)
         if key not in self._cache:
-            strides = self.session(i)[0] if method is not None and self.session(i) else detected_strides(
-                self.sessions[i])
+            strides = self.strides(i)
             self._cache[key] = None if strides is None else (strides, self._predict(i, strides, task, method, unit))
         return self._cache[key]
 
