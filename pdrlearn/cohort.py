@@ -614,14 +614,12 @@ def plain_number(x: float, digits: int = 3, sign: bool = False) -> str:
     """Decision C101: ``x`` to ``digits`` significant digits in plain decimals, never in scientific notation
     (``2070``, not ``2.07e+03``; ``0.000123``, not ``1.23e-04``; trailing zeros dropped as by ``%g``), as
     track-all's printed summaries show numbers; ``sign``: a leading ``+`` on a positive value. ``nan`` / ``inf``
-    as Python writes them."""
-    import math
+    as Python writes them. Decision E199: C103's :func:`pdrlearn.table_csv.float_text` at ``digits``, the one
+    plain-decimal kernel (a printed summary writes ``nan`` where a CSV cell is empty)."""
+    from pdrlearn.table_csv import float_text
 
-    if not math.isfinite(x) or x == 0:
-        return f"{x:+g}" if sign else f"{x:g}"
-    decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
-    text = f"{x:{'+' if sign else ''}.{decimals}f}"
-    return text.rstrip("0").rstrip(".") if "." in text else text  # as %g: no trailing zeros
+    text = float_text(x, digits) if x == x else "nan"
+    return "+" + text if sign and not text.startswith("-") else text
 
 
 def natural_key(text: str) -> tuple:
