@@ -48,6 +48,27 @@ def test_bad_gap_is_one_line_b370(tmp_path, capsys, bad):
     assert not (tmp_path / "s").exists()
 
 
+@pytest.mark.parametrize("bad", ["foot:20", "hand:20:5", "foot:-1:5", "foot:20:0", "foot:x:5", "both:20:nan",
+                                 "foot:20:5:1"])
+def test_cli_gap_line_is_check_gaps_own_b370(tmp_path, capsys, bad):
+    """Session 37 re-read: the CLI parses only the syntax (split at ':'); the one line is check_gaps', naming the
+    option's text and its form (the CLI repeated the range checks with its own message)."""
+    from pdrlearn.sim.simulate import check_gaps
+
+    with pytest.raises(DataError) as exc:
+        check_gaps([tuple(bad.split(":"))], option="--gap")
+    line = str(exc.value)
+    assert f"--gap {bad!r}" in line and "UNIT:START:DURATION, e.g. --gap foot:600:120" in line and "B370" in line
+    capsys.readouterr()
+    assert main(["simulate", "--route", "straight:10", "-u", "8909", "--gap", bad, "-o", str(tmp_path / "s")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert line in err and len(err.splitlines()) == 1
+    assert not (tmp_path / "s").exists()
+    with pytest.raises(DataError, match=r"^simulate: gap \('hand', 20, 5\): the unit must be one of foot, waist, "
+                                        r"both, the start a time > 0 s and the duration > 0 s \(decision B370\)$"):
+        check_gaps([("hand", 20, 5)])  # the Python API's line as before
+
+
 def test_gap_outside_the_recording_is_one_line_b370():
     from pdrlearn.sim import simulate
 

@@ -34,24 +34,11 @@ SIT_MAX_S = 86_400.0  # = pdrlearn.sim.lying.MAX_LIE_S (tests/test_sim_lying.py)
 
 
 def parse_gaps(texts: list[str]) -> tuple:
-    """Decisions S83, B370: ``--gap UNIT:START:DURATION`` values as :func:`pdrlearn.sim.simulate.check_gaps` takes
-    them; a malformed one is one line naming it and the form."""
-    from pdrlearn.sim.simulate import GAP_UNITS
+    """Decisions S83, B370: ``--gap UNIT:START:DURATION`` values split at ``:`` (the syntax only) and checked by
+    :func:`pdrlearn.sim.simulate.check_gaps`, whose one line names the bad value and the form."""
+    from pdrlearn.sim.simulate import check_gaps
 
-    out = []
-    for text in texts or []:
-        parts = str(text).split(":")
-        try:
-            if len(parts) != 3 or parts[0] not in GAP_UNITS:
-                raise ValueError
-            start, dur = float(parts[1]), float(parts[2])
-            if not (math.isfinite(start) and start >= 0 and math.isfinite(dur) and dur > 0):
-                raise ValueError
-        except ValueError:
-            raise DataError(f"--gap {text!r}: give UNIT:START:DURATION, UNIT one of {', '.join(GAP_UNITS)}, START "
-                            "> 0 and DURATION > 0 seconds, e.g. --gap foot:600:120 (decision B370)") from None
-        out.append((parts[0], start, dur))
-    return tuple(out)
+    return check_gaps([tuple(str(text).split(":")) for text in texts or []], option="--gap")
 
 def simulate_cmd(
     scenario: str | None = typer.Option(

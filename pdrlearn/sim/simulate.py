@@ -132,23 +132,27 @@ def _rng(*parts: object) -> np.random.Generator:
     return np.random.default_rng(ints)
 
 
-def check_gaps(gaps) -> tuple[tuple[str, float, float], ...]:
+def check_gaps(gaps, *, option: str | None = None) -> tuple[tuple[str, float, float], ...]:
     """Decisions S83, B370: ``gaps`` as ``((unit, start_s, duration_s), ...)``, each unit foot, waist or both, a start
-    > 0 and a duration > 0 (s, finite), sorted by start; one line naming the bad one and the fix."""
+    > 0 and a duration > 0 (s, finite), sorted by start; one line naming the bad one and the fix. ``option``: the
+    CLI option (``--gap``) whose ``UNIT:START:DURATION`` texts, split at ``:``, the gaps are; the line names the
+    option's text and form (the CLI parses only the syntax: one message, this one)."""
     if not isinstance(gaps, list | tuple) and gaps is not None:  # gaps=5 was a TypeError traceback (review R4)
         raise DataError(f"simulate: gaps={gaps!r}: give a list of (unit, start_s, duration_s), e.g. "
                         "[('foot', 600, 120)] (decision B370)")
+    shape = (f"UNIT:START:DURATION, e.g. {option} foot:600:120" if option else
+             "(unit, start_s, duration_s), e.g. ('foot', 600, 120)")
     out = []
     for g in gaps or ():
+        name = f"{option} {':'.join(map(str, g))!r}" if option else f"gap {g!r}"
         try:
             unit, start, dur = g
             start, dur = float(start), float(dur)
         except (TypeError, ValueError):
-            raise DataError(f"simulate: gap {g!r}: give (unit, start_s, duration_s), e.g. ('foot', 600, 120) "
-                            "(decision B370)") from None
+            raise DataError(f"simulate: {name}: give {shape} (decision B370)") from None
         if unit not in GAP_UNITS or not (math.isfinite(start) and start >= 0) or not (math.isfinite(dur) and dur > 0):
-            raise DataError(f"simulate: gap {g!r}: the unit must be one of {', '.join(GAP_UNITS)}, the start a time > "
-                            "0 s and the duration > 0 s (decision B370)")
+            raise DataError(f"simulate: {name}: the unit must be one of {', '.join(GAP_UNITS)}, the start a time > "
+                            f"0 s and the duration > 0 s{f'; give {shape}' if option else ''} (decision B370)")
         out.append((str(unit), start, dur))
     return tuple(sorted(out, key=lambda g: g[1]))
 
