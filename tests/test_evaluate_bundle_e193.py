@@ -71,24 +71,10 @@ def test_evaluate_bundle_scores_the_foot_only_fallback_in_its_own_row(dirs, caps
     assert "foot-only model, in its own row" in out.err and "--units" not in out.err
 
 
-def test_evaluate_bundle_reads_a_zipped_session_as_run_does(dirs, capsys, tmp_path):
+def test_evaluate_bundle_reads_a_zipped_session_as_run_does(dirs, capsys, tmp_path, monkeypatch):
     """Review R2 finding 6: evaluate BUNDLE x.zip said 'session folder not found' while run and evaluate MODEL
-    read the zip (decision B359)."""
-    import shutil
-
-    bundle, walk = dirs["root"] / "bundle", dirs["walk"]
-    archive = shutil.make_archive(str(tmp_path / "walk"), "zip", walk.parent, walk.name)
-    assert main(["evaluate", str(bundle), str(walk), "--json"]) == 0
-    folder = json.loads(capsys.readouterr().out)
-    assert main(["evaluate", str(bundle), archive, "--json"]) == 0
-    zipped = json.loads(capsys.readouterr().out)
-    assert {t: r["accuracy"] for t, r in zipped["tasks"].items()} == {
-        t: r["accuracy"] for t, r in folder["tasks"].items()}
-
-
-def test_evaluate_bundle_unpacks_a_zipped_session_once(dirs, capsys, tmp_path, monkeypatch):
-    """Session 37 re-read: evaluate BUNDLE x.zip read the labels from one extraction and replayed a second;
-    one extraction serves both (``pdrlearn.io.archive.session_with_folder``), with the same scores."""
+    read the zip (decision B359). Session 37 re-read: it then read the labels from one extraction and replayed a
+    second; one extraction serves both (``pdrlearn.io.archive.session_with_folder``), with the same scores."""
     import shutil
 
     import pdrlearn.io.archive as A
@@ -101,8 +87,7 @@ def test_evaluate_bundle_unpacks_a_zipped_session_once(dirs, capsys, tmp_path, m
     monkeypatch.setattr(A, "_extract", lambda *a: calls.append(1) or real(*a))
     assert main(["evaluate", str(bundle), archive, "--json"]) == 0
     zipped = json.loads(capsys.readouterr().out)
-    assert len(calls) == 1
-    assert zipped["sessions"] == folder["sessions"]
+    assert len(calls) == 1 and zipped["sessions"] == folder["sessions"]
     assert {t: r["accuracy"] for t, r in zipped["tasks"].items()} == {
         t: r["accuracy"] for t, r in folder["tasks"].items()}
 
