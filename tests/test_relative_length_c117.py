@@ -90,3 +90,29 @@ def test_streaming_tracker_equals_the_offline_rule_and_leaves_the_distance(tmp_p
     assert want != [r.get("length_class") for r in rows]  # the option changes classes on this walk
     assert [(s.length_m, s.x, s.y, s.z, s.classes.get("terrain"), s.classes.get("direction")) for s in session] == \
         [(s.length_m, s.x, s.y, s.z, s.classes.get("terrain"), s.classes.get("direction")) for s in default]
+
+
+def test_run_length_reference_session_writes_the_running_rules_classes(tmp_path, capsys):
+    """``pdrlearn run --length-reference session``: steps.csv's length_class is the running rule on the default
+    run's strides (the same lengths, positions, terrain and direction); a bad value is one line, exit 2, no output."""
+    import pandas as pd
+
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+    from pdrlearn.kernels.relative_length import session_length_classes
+    from pdrlearn.sim import simulate
+
+    write_session(simulate("length", 9122, "normal", seed=0), tmp_path / "u9122")
+    assert main(["run", str(BUNDLE), str(tmp_path / "u9122"), "--length-reference", "median",
+                 "--out", str(tmp_path / "bad")]) == 2
+    err = capsys.readouterr().err
+    assert "length_reference='median' is not one of model, session" in err and "Traceback" not in err
+    assert len([ln for ln in err.splitlines() if ln.startswith("error:")]) == 1
+    assert not (tmp_path / "bad").exists()
+    for name, extra in (("model", []), ("session", ["--length-reference", "session"])):
+        assert main(["run", str(BUNDLE), str(tmp_path / "u9122"), *extra, "--out", str(tmp_path / name)]) == 0
+    a, b = (pd.read_csv(tmp_path / n / "steps.csv") for n in ("model", "session"))
+    want = pd.Series(session_length_classes(a.to_dict("records")), dtype=object).fillna("").tolist()
+    assert b["length_class"].fillna("").tolist() == want and want != a["length_class"].fillna("").tolist()
+    cols = ["length_m", "x", "y", "terrain", "direction"]
+    pd.testing.assert_frame_equal(a[cols], b[cols])

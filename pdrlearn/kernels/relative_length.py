@@ -52,8 +52,8 @@ def relative_bounds(reference_m: float) -> dict[str, tuple[float, float]]:
 
 def eligible(terrain, direction, length_m: float, turn_rad: float) -> bool:
     """A stride whose length enters the session's median: the model's terrain ``flat`` and direction ``forward``, a
-    finite length > 0, turning less than 15 deg (decision L79)."""
-    a = float(length_m)
+    finite length (its size: a signed steps.csv ``length_m`` too) > 0, turning less than 15 deg (decision L79)."""
+    a = abs(float(length_m))
     return terrain == "flat" and direction == "forward" and math.isfinite(a) and a > 0 and not turning(turn_rad)
 
 
@@ -89,7 +89,7 @@ class SessionLength:
         holds no length class, or comes before the warm-up ends; else the session-relative class."""
         if not eligible(terrain, direction, length_m, turn_rad):
             return label, proba
-        bisect.insort(self._sorted, float(length_m))
+        bisect.insort(self._sorted, abs(float(length_m)))
         if not isinstance(label, str) or self.n < self.warmup:
             return label, proba
         return relative_class_one(label, proba, length_m, self.median())
