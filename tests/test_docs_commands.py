@@ -270,6 +270,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.io.importer import _TIME_SCALE, _resolve_unit, _time_word, parse_frame
     from pdrlearn.io.sensors import PLACEMENTS
     from pdrlearn.kernels.bayes import RULES
+    from pdrlearn.kernels.relative_length import LENGTH_REFERENCES
     from pdrlearn.kernels.window import BOUNDARIES
     from pdrlearn.plugins import parse_spec
     from pdrlearn.runtime.bundle import UNITS as BODY_UNITS
@@ -338,6 +339,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("export", "methods"): _one_of(METHODS, listed=True),
         ("track", "length_model"): get_step_length,  # decision E84: NAME[:key=value,...]
         ("run", "rules"): _one_of(RULES),
+        ("run", "length_reference"): _one_of(LENGTH_REFERENCES),  # decision C117
         ("run", "units"): _one_of(BODY_UNITS, listed=True),
         ("train", "boundaries"): _one_of(BOUNDARIES),
         ("train", "cv_groups"): _one_of(CV_GROUPS),  # decision C29

@@ -330,6 +330,11 @@ def run(
                                "side (left / right, empty when undecided) as `track --pipeline waist-pendulum` "
                                "names it, from the streamed contacts (W138's causal side, not the offline W129 "
                                "one: 79 of 80 agree where both decide on HA001, E103; decision E110)."),
+    length_reference: str = typer.Option("model", "--length-reference", metavar="model|session",
+                                         help="session: a flat, forward, straight stride's length_class from its "
+                                         "length against 0.8 / 1.2 x the median of the session's such strides so "
+                                         "far, after 10 (thesis ch.6.3's per-pedestrian classes; decision C117, not "
+                                         "the default: C118); the distance is unchanged."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -354,6 +359,8 @@ def run(
         pdrlearn run out/bundle/u1 walks/D --redact-paths --out out/run_share   # no folder path in any output (E176)
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --stair-rise 0.181 --out out/run_stairs   # stairs.csv n_stairs (L432)
+
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --length-reference session --out out/run_rel   # C117's length class
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
@@ -392,6 +399,9 @@ def run(
         from pdrlearn.track.stair_flights import stair_rise as check_stair_rise
 
         stair_rise_m = check_stair_rise(stair_rise)  # decision B348, as `track`: before any output
+        from pdrlearn.kernels.relative_length import check_length_reference
+
+        check_length_reference(length_reference)  # decision C117: before any output
         if dpi is not None and out is None:  # decision L70: it would be ignored
             raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                             "FOLDER or drop --dpi")
@@ -409,7 +419,8 @@ def run(
                                                          ("--common-span", common_span),
                                                          ("--warn-out-of-domain", warn_out_of_domain is not None),
                                                          ("--drop-neighbour", drop_neighbour),
-                                                         ("--stair-rise", stair_rise is not None))
+                                                         ("--stair-rise", stair_rise is not None),
+                                                         ("--length-reference", length_reference != "model"))
                                           if v]
             if given:
                 raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only "
@@ -453,6 +464,7 @@ def run(
                               resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                               units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
                               methods=methods, drop_neighbour=drop_neighbour,  # E101
+                              length_reference=length_reference,  # decision C117
                               check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
             if protocol == "-":
                 stream = sys.stdin
@@ -551,6 +563,7 @@ def run(
                               stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)},
                               max_gap_s=math.inf,  # B141: a recording's gaps are its own (its clock checked: B73)
                               drop_neighbour=drop_neighbour,  # E101
+                              length_reference=length_reference,  # decision C117
                               check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
             dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
             if tracker.heading_source == "auto" and not said and (dropped or not (

@@ -25,6 +25,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
+from pdrlearn.kernels import relative_length as _relative_length
 from pdrlearn.kernels import sideways as _sideways
 from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
@@ -420,6 +421,10 @@ class Tracker(FixInput):
         default (the per-model features cost time at each step); ``pdrlearn run`` turns it on. A bundle without
         ranges checks nothing (no line, no error). ``warn_out_of_domain`` (a fraction, as ``track``'s option,
         turns the check on): C16's detailed line from that fraction instead.
+    length_reference : ``"model"`` (default: the classifier's length class) or ``"session"`` (decision C117, opt-in:
+        a flat, forward, straight stride's reported class is its length against 0.8 / 1.2 x the median of the
+        session's such strides so far, after 10 of them; the distance is computed as before). A restarted tracker
+        (``resume``) starts a new median.
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -429,6 +434,7 @@ class Tracker(FixInput):
     _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
+    _session_length = None  # decision C117 (a bare Tracker.__new__: the model's length class)
     _side: _sideways.SideRun | None = None  # decision E124 (a bare Tracker.__new__ makes one at its first stride)
     _side_rows: _sideways.SideRun | None = None  # decision L243 (the same)
     _drop_warned = False
@@ -486,8 +492,12 @@ class Tracker(FixInput):
         waist_clock_offset_s: float = 0.0,
         check_domain: bool = False,
         warn_out_of_domain: float | None = None,
+        length_reference: str = "model",
     ):
         start_xyz = enu_start(start, start_enu_m)  # decision L159
+        #: decision C117: "session" reports a flat forward stride's length class against the session's median stride
+        self._session_length = (_relative_length.SessionLength()
+                                if _relative_length.check_length_reference(length_reference) == "session" else None)
         if not isinstance(clock_check, bool | np.bool_):  # decision L177: flags and a number of seconds
             raise DataError(f"clock_check={clock_check!r} must be True or False")
         if (isinstance(waist_clock_offset_s, bool) or not isinstance(waist_clock_offset_s, int | float | np.number)
@@ -1747,9 +1757,15 @@ class Tracker(FixInput):
         self.n_steps += 1
         self._heights.append(classes.get("terrain"), raw_dz, dz)  # decision E47
         length, direction = travel_sign_one(length, direction, classes.get("direction"))  # L65: after the position
+        turn_wrapped = float(np.angle(np.exp(1j * turn)))
+        if self._session_length is not None and "length" in classes:  # decision C117: the reported class only
+            label, lp = self._session_length.stride(classes["length"], proba.get("length"), abs(length),
+                                                    terrain=classes.get("terrain"),
+                                                    direction=classes.get("direction"), turn_rad=turn_wrapped)
+            classes, proba = {**classes, "length": label}, {**proba, "length": lp}
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z,
                     event_s=self._contact(t0, t1) if self.contacts else math.nan,
-                    turn_angle_rad=float(np.angle(np.exp(1j * turn))), impossible=impossible,
+                    turn_angle_rad=turn_wrapped, impossible=impossible,
                     pivot_rad=float(np.angle(np.exp(1j * (dyaw - turn)))),  # decision L106
                     sideways=self._side_rows.decided)  # decision L243
 
