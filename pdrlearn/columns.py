@@ -581,8 +581,8 @@ BOUTS: tuple[Column, ...] = (
                                                 "escalator ride; W158; of a pause over 30 s only the 1.5 m "
                                                 "within 30 s rides, W231), 0 for foot tracks"),
     ("floors_up", "count", "integer", "storeys of the summary's floor climbs (L127, L374-L376) whose last stair "
-                                      "stride lies in the bout (L450); empty when the floors come from the altitude "
-                                      "(L64) and for `run`"),
+                                      "stride lies in the bout (L450; `run` too, L458); empty when the floors come "
+                                      "from the altitude (L64)"),
     ("floors_down", "count", "integer", "the same, down (L450)"),
     ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is ABOVE L95's walking range "
                                              "(leg-scaled, L148; bouts of 5+ strides; L195): running or short fast "

@@ -76,3 +76,28 @@ def wide_float_text(x: float) -> str:
     if abs(x) >= WIDE_FLOAT_MIN and abs(x) != float("inf"):
         return f"{x:.{WIDE_FLOAT_DECIMALS}f}".rstrip("0").rstrip(".")
     return float_text(x)  # decision C103: a small value in plain decimals
+
+
+def table_text(df) -> dict:
+    """Cohort C116: ``df`` as :func:`write_table_csv` writes it (``csv``, header included) with its column dtypes
+    (``dtypes``), a JSON-able record that :func:`table_from_text` reads back; the file written from the read-back
+    table is the file written from ``df``, byte for byte (floats at their 10 written digits read and written again)."""
+    import io
+
+    buf = io.StringIO()
+    write_table_csv(df, buf)
+    return {"csv": buf.getvalue(), "dtypes": {str(c): str(t) for c, t in df.dtypes.items()}}
+
+
+def table_from_text(record: dict):
+    """Cohort C116: the table of a :func:`table_text` record: numeric and boolean columns with their dtypes, every
+    other column as the strings written (``001`` stays ``001``), empty cells missing."""
+    import io
+
+    import pandas as pd
+
+    kept = {c: (t if t[:1] in ("f", "i", "u", "b", "I", "U", "F") else object) for c, t in record["dtypes"].items()}
+    if not kept:
+        return pd.DataFrame()
+    return pd.read_csv(io.StringIO(record["csv"]), dtype=kept, keep_default_na=False,
+                       na_values={c: [""] for c in kept})

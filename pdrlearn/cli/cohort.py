@@ -746,22 +746,23 @@ def _reusable(out: Path, rels: list[str], keys: list[str], hashes: list[dict]
     return adopted, {rel: hit for rel, hit in hits.items() if hit is not None}
 
 
-def _interrupted_line(n_done: int) -> str:
-    """Cohort C41, decision B331: what an interrupted ``track-all`` keeps - the sessions done, in a temporary folder
-    beside OUT (OUT itself is not written), only when there are some."""
+def _interrupted_line(n_done: int, command: str = "track-all", noun: str = "session", decision: str = "C41") -> str:
+    """Cohort C41, decision B331: what an interrupted ``track-all`` (cohort C116: ``gait-all``, its pairs) keeps - the
+    sessions done, in a temporary folder beside OUT (OUT itself is not written), only when there are some."""
     if not n_done:
-        return "track-all: interrupted before any session finished; no session is kept"
-    return (f"track-all: interrupted after {n_done} session(s); they are kept in a temporary folder beside OUT (OUT "
-            "itself is not written): run the same command with --resume to go on from there (decision C41)")
+        return f"{command}: interrupted before any {noun} finished; no {noun} is kept"
+    return (f"{command}: interrupted after {n_done} {noun}(s); they are kept in a temporary folder beside OUT (OUT "
+            f"itself is not written): run the same command with --resume to go on from there (decision {decision})")
 
 
 @contextmanager
-def _resumable(done: list[int]):
-    """Cohort C41: a Ctrl-C of the batch says that the sessions done so far are kept for ``--resume``."""
+def resumable(done: list[int], **said):
+    """Cohort C41: a Ctrl-C of the batch says that the sessions done so far are kept for ``--resume`` (``said``:
+    :func:`_interrupted_line`'s command, noun and decision; cohort C116: gait-all's pairs)."""
     try:
         yield
     except KeyboardInterrupt:
-        typer.echo(_interrupted_line(done[0]), err=True)
+        typer.echo(_interrupted_line(done[0], **said), err=True)
         raise
 
 
@@ -1089,7 +1090,7 @@ def track_all(
     # decision B151: a full disk stops the batch; cohort C41: a Ctrl-C leaves the sessions tracked so far, as a kill
     done = [0]
     # decision E131: on a terminal, a bar of the sessions done with the time left under the lines (the lines as before)
-    with refused_output(out), _resumable(done), atomic_directory(out, keep_on_interrupt=True) as tmp, \
+    with refused_output(out), resumable(done), atomic_directory(out, keep_on_interrupt=True) as tmp, \
             progress("track-all", len(found), enabled=not as_json, eta=True) as advance:
 
         def progress_line(r: JobResult) -> None:

@@ -619,6 +619,10 @@ def run(
             result.info["stair_rise_m"] = stair_rise_m
         # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
         table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
+        from pdrlearn.track.periods import bout_floors
+
+        # decision L458: each bout's floors by the summary's climbs, as track's bouts.csv (L450)
+        table = bout_floors(table, result.steps, result.info, storey_height)
         summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
         summary["common_span_cut_s"] = cut_s  # decision B267, as track's
         summary["steady_trim"] = 0  # decision L415, as track's key (B14): `run` has no --steady-trim
@@ -851,6 +855,10 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     as_written(result)  # decision E157: the summary from the tables as written, whatever the chunk size
     # L124, E73: one detection (L165: key; L195: the leg-scaled range)
     table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
+    from pdrlearn.track.periods import bout_floors
+
+    # decision L458: each bout's floors by the summary's climbs, as track's bouts.csv (L450)
+    table = bout_floors(table, result.steps, result.info, storey_height_m)
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
                                                                        storey_height_m=storey_height_m),
                "session": session.name, **session_ids(session),  # decision C100, as track's

@@ -143,60 +143,6 @@ def register(app: typer.Typer) -> None:
             typer.echo(f"wrote {out}/" + ", ".join(GAIT_FILES))
 
 
-def gait_all(root: Path, out: Path, force: bool = False) -> int:
-    """Decision C110: ``pdrlearn gait-all``'s work; the exit code (1 when a pair failed, as track-all)."""
-    import time
-
-    import pandas as pd
-
-    from pdrlearn.atomic import atomic_directory
-    from pdrlearn.cli.common import existed, out_folder, progress, refused_output, replaced
-    from pdrlearn.cohort import find_sessions
-    from pdrlearn.columns import TABLES
-    from pdrlearn.errors import DataError, PdrlearnError
-    from pdrlearn.table_csv import write_table_csv
-    from pdrlearn.track.bilateral import pair_sessions
-    from pdrlearn.track.gait_tables import GAIT_TABLE_FILES, PAIR_COLUMNS, gait_tables, visit_pairs
-
-    out_folder(out, "gait-all", force=force, inputs=(root,))
-    pairs = visit_pairs(find_sessions(root), root)
-    if all(p["reason"] is not None for p in pairs):  # decision B372: nothing to pair, nothing written
-        raise DataError(f"gait-all: {root}: no visit folder holds one left and one right foot session "
-                        f"({pairs[0]['path']}: {pairs[0]['reason']}); give each visit folder both feet's sessions "
-                        "with meta.json \"foot\" (pdrlearn import --foot), or use `pdrlearn gait LEFT RIGHT`")
-    rows, tables = [], {name: [] for name in GAIT_TABLE_FILES}
-    was = existed(out)
-    with refused_output(out), atomic_directory(out) as tmp, progress("gait-all", len(pairs), eta=True) as advance:
-        for i, pair in enumerate(pairs, 1):
-            row = {"path": pair["path"], "status": "no_pair", "reason": pair["reason"]}
-            start = time.perf_counter()
-            if pair["reason"] is None:
-                try:
-                    res = pair_sessions(pair["left"], pair["right"])
-                except PdrlearnError as exc:  # one pair's bad input: its line, the batch goes on
-                    row.update(status="failed", reason=str(exc))
-                else:
-                    got = gait_tables(res, {"path": pair["path"], **res["ids"]})
-                    for name in GAIT_TABLE_FILES:
-                        tables[name].append(got[name])
-                    row.update(status="ok", **res["ids"], n_bouts=len(res["bouts"]), n_steps=len(res["steps"]))
-            rows.append(row)
-            what = {"ok": f"ok, {row.get('n_steps')} steps in {row.get('n_bouts')} bout(s)",
-                    "failed": f"failed: {row['reason']}"}.get(row["status"], row["reason"])
-            typer.echo(f"[{i}/{len(pairs)}] {pair['path']}: {what} ({time.perf_counter() - start:.1f} s)", err=True)
-            advance()
-        write_table_csv(pd.DataFrame(rows, columns=list(PAIR_COLUMNS)).astype({"n_bouts": "Int64",
-                                                                              "n_steps": "Int64"}),
-                        tmp / "gait_pairs.csv")
-        for name, frames in tables.items():
-            header = pd.DataFrame(columns=[c[0] for c in TABLES[name]])
-            write_table_csv(pd.concat(frames, ignore_index=True) if frames else header, tmp / name)
-    replaced(out, was)
-    n_ok = sum(r["status"] == "ok" for r in rows)
-    typer.echo(f"{n_ok} of {len(pairs)} visit folder(s) paired; wrote {out}/" + ", ".join(GAIT_ALL_FILES))
-    return 0 if all(r["status"] != "failed" for r in rows) else 1
-
-
 def register_all(app: typer.Typer) -> None:
     @app.command("gait-all")
     def gait_all_cmd(
@@ -205,6 +151,13 @@ def register_all(app: typer.Typer) -> None:
         out: Path = typer.Option(..., "--out", "-o", help="Folder for gait_pairs.csv and the pooled "
                                  "gait_steps.csv, gait_cycles.csv, gait_bouts.csv."),
         force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+        jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Pairs tracked at once: 1 = one after the other in "
+                                 "this process (default); N > 1 = a Dask LocalCluster of N single-threaded worker "
+                                 "processes, as track-all --jobs (decision C115); the same output."),
+        resume: bool = typer.Option(False, "--resume", help="Reuse the pairs an interrupted (killed, Ctrl-C) or "
+                                    "earlier run into OUT paired from the same input files and code, and pair the "
+                                    "others (a failed pair again); the tables are those an uninterrupted run writes "
+                                    "(decision C116). OUT is replaced as with --force."),
     ):
         """Bilateral gait of every visit folder under ROOT (decision C110): the session folders are found as
         track-all finds them, grouped by the folder holding them, and each folder's one left and one right foot
@@ -213,12 +166,21 @@ def register_all(app: typer.Typer) -> None:
         subject, visit; C109); gait_pairs.csv has one row per visit folder with its status (ok, failed, no_pair)
         and reason. A visit folder without exactly one session of each foot is one line and a no_pair row; a
         pair that gait refuses is one line and a failed row (exit code 1), the others go on; no pair anywhere is
-        one error line, nothing written (exit 2). Pairs are tracked one after another, with a line each.
+        one error line, nothing written (exit 2). Pairs are tracked one after another, with a line each, or N at a
+        time with --jobs N (C115). --resume goes on from an interrupted or earlier run: each paired visit folder's
+        result is recorded in OUT (a hidden .gait-all-pairs folder) with its input files' SHA-256, and reused while
+        they and pdrlearn's code are unchanged; a changed pair is paired again, its line saying what changed (C116).
 
         Examples:
 
           pdrlearn gait-all study/ --out gait_study
+
+          pdrlearn gait-all study/ --out gait_study --jobs 2 --force
+
+          pdrlearn gait-all study/ --out gait_study --resume   # after a kill or Ctrl-C: the finished pairs reused
         """
-        code = gait_all(root, out, force)
+        from pdrlearn.cli.gait_batch import gait_all
+
+        code = gait_all(root, out, force, jobs=jobs, resume=resume)
         if code:
             raise typer.Exit(code)

@@ -85,3 +85,59 @@ def reuse_folder(src: Path, dst: Path) -> None:
     an interruption of the resumed run loses nothing."""
     dst.parent.mkdir(parents=True, exist_ok=True)
     shutil.copytree(src, dst, copy_function=_link_or_copy)
+
+
+#: cohort C116: the hidden folder of ``gait-all``'s OUT holding one record per visit folder paired
+PAIR_RECORDS = ".gait-all-pairs"
+
+
+def pair_record_name(path: str) -> str:
+    """Cohort C116: a visit folder's record file name (its relative path hashed: ``.`` and nested paths alike)."""
+    return hashlib.sha256(path.encode()).hexdigest()[:16] + ".json"
+
+
+def pair_key(left: str, right: str) -> str:
+    """Cohort C116: the SHA-256 of what a pair's gait output depends on besides its input files: the two session
+    folders' paths below ROOT (a study moved or copied elsewhere keeps its records: gait-all's tables hold no
+    absolute path) and the code (as :func:`session_keys`; gait-all has no option that changes a pair's output)."""
+    from pdrlearn.cli.provenance import software_record
+
+    return _digest({"command": "gait-all", "left": left, "right": right, "software": software_record()})
+
+
+def write_file_record(file: Path, key: str, inputs: dict, value: dict) -> dict:
+    """Cohort C116: ``file`` holding the key, the input hashes and ``value`` with its SHA-256 (a record edited or cut
+    short is not reused), written under a temporary name and renamed (whole or absent); ``value`` as read back."""
+    text = json.dumps({"key": key, "input_sha256": inputs, "value_sha256": _digest(value), "value": value},
+                      allow_nan=False)
+    file = Path(file)
+    file.parent.mkdir(parents=True, exist_ok=True)
+    part = file.with_name(f".{file.name}.part-{os.getpid()}")
+    part.write_text(text + "\n")
+    os.replace(part, file)
+    return json.loads(text)["value"]
+
+
+def reusable_file(sources: list[Path], name: str, key: str, inputs: dict) -> tuple[dict | None, str | None]:
+    """Cohort C116: ``(value, None)`` from the first of ``sources`` whose ``PAIR_RECORDS/name`` was written under
+    ``key`` from these ``inputs`` and is intact; else ``(None, what changed)`` when a record was found (the code or
+    the folders, or the input files by name), ``(None, None)`` when none was."""
+    changed = None
+    for src in sources:
+        try:
+            rec = json.loads(read_text(Path(src) / PAIR_RECORDS / name))
+        except (OSError, ValueError):
+            continue
+        if not isinstance(rec, dict) or not isinstance(rec.get("value"), dict) or \
+                rec.get("value_sha256") != _digest(rec["value"]):
+            changed = changed or "its record in OUT is incomplete or edited"
+        elif rec.get("key") != key:
+            changed = changed or "pdrlearn's code or the session folders' names changed"
+        elif rec.get("input_sha256") != inputs:
+            old = rec.get("input_sha256") if isinstance(rec.get("input_sha256"), dict) else {}
+            files = [f"{side} {f}" for side in inputs for f in sorted({*inputs[side], *(old.get(side) or {})})
+                     if inputs[side].get(f) != (old.get(side) or {}).get(f)]
+            changed = changed or ("input files changed: " + ", ".join(files))
+        else:
+            return rec["value"], None
+    return None, changed

@@ -1,0 +1,125 @@
+"""Decisions C110, C115, C116: ``pdrlearn gait-all``'s work. Every visit folder's pair goes through
+:func:`pdrlearn.track.bilateral.pair_sessions` as a job of :func:`pdrlearn.cohort.run_cohort` - in this process, or
+(``--jobs N``, C115) on the Dask LocalCluster of N single-threaded worker processes that ``track-all --jobs`` uses.
+Each paired visit folder's result is recorded in OUT's hidden :data:`pdrlearn.cli.resume.PAIR_RECORDS` folder (its
+tables as written, the two sessions' input hashes, the code); ``--resume`` (C116) reuses the records that still
+match, from OUT or from an interrupted run's temporary folder, as ``track-all --resume`` (C41) does. The pooled tables
+are always built from the records' tables, so a serial, a parallel and a resumed run write the same bytes."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+#: the numeric libraries of a pair's tracking, loaded before each job's one-thread limit (as track-all's)
+PAIR_LIBRARIES = ("scipy.linalg", "scipy.signal")
+
+
+def _pair_job(args: dict) -> dict:
+    """One visit folder (cohort C115): a pair tracked by ``pair_sessions`` and its record written (C116) into the
+    batch's temporary folder; a folder without a pair is its ``no_pair`` row (no record). Returns ``{"row",
+    "tables"}`` as read back from the record, so that a fresh and a reused pair are the same objects."""
+    from pdrlearn.cli.resume import write_file_record
+    from pdrlearn.table_csv import table_text
+    from pdrlearn.track.bilateral import pair_sessions
+    from pdrlearn.track.gait_tables import GAIT_TABLE_FILES, gait_tables
+
+    if args["reason"] is not None:
+        return {"row": {"path": args["path"], "status": "no_pair", "reason": args["reason"]}, "tables": {}}
+    res = pair_sessions(Path(args["left"]), Path(args["right"]))
+    got = gait_tables(res, {"path": args["path"], **res["ids"]})
+    value = {"row": {"path": args["path"], "status": "ok", "reason": None, **res["ids"], "n_bouts": len(res["bouts"]),
+                     "n_steps": len(res["steps"])},
+             "tables": {name: table_text(got[name]) for name in GAIT_TABLE_FILES}}
+    return write_file_record(Path(args["record"]), args["key"], args["input_sha256"], value)
+
+
+def _progress_text(value: dict | None, error: str | None, reused: bool) -> str:
+    """A visit folder's progress line after ``[i/n] path: `` (C110's wording; C116: ``reused``)."""
+    if value is None:
+        return f"failed: {error}"
+    row = value["row"]
+    if row["status"] == "no_pair":
+        return row["reason"]
+    return f"{'reused' if reused else 'ok'}, {row['n_steps']} steps in {row['n_bouts']} bout(s)"
+
+
+def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: bool = False) -> int:
+    """Decisions C110, C115, C116: ``pdrlearn gait-all``'s work; the exit code (1 when a pair failed, as track-all)."""
+    import shutil
+
+    import pandas as pd
+
+    from pdrlearn.atomic import adopt_leftovers, atomic_directory
+    from pdrlearn.cli.cohort import resumable
+    from pdrlearn.cli.common import existed, out_folder, progress, refused_output, replaced
+    from pdrlearn.cli.gait import GAIT_ALL_FILES
+    from pdrlearn.cli.resume import PAIR_RECORDS, pair_key, pair_record_name, reusable_file, write_file_record
+    from pdrlearn.cohort import JobResult, find_sessions, folder_bytes, run_cohort
+    from pdrlearn.columns import TABLES
+    from pdrlearn.errors import DataError
+    from pdrlearn.provenance import input_hashes
+    from pdrlearn.table_csv import table_from_text, write_table_csv
+    from pdrlearn.track.gait_tables import GAIT_TABLE_FILES, PAIR_COLUMNS, visit_pairs
+
+    # cohort C116: --resume replaces a previous output as --force does (its unchanged pairs reused), as track-all's C41
+    out_folder(out, "gait-all", force=force or resume, inputs=(root,))
+    pairs = visit_pairs(find_sessions(root), root)
+    if all(p["reason"] is not None for p in pairs):  # decision B372: nothing to pair, nothing written
+        raise DataError(f"gait-all: {root}: no visit folder holds one left and one right foot session "
+                        f"({pairs[0]['path']}: {pairs[0]['reason']}); give each visit folder both feet's sessions "
+                        "with meta.json \"foot\" (pdrlearn import --foot), or use `pdrlearn gait LEFT RIGHT`")
+    names = [pair_record_name(p["path"]) for p in pairs]
+    keys = [None if p["reason"] else pair_key(*(Path(p[s]).relative_to(root).as_posix() for s in ("left", "right")))
+            for p in pairs]
+    hashes = [None if p["reason"] else {"left": input_hashes(p["left"]), "right": input_hashes(p["right"])}
+              for p in pairs]
+    adopted = adopt_leftovers(out) if resume else []
+    sources = [*adopted, *([out] if resume and out.is_dir() else [])]
+    reuse, changed = {}, {}
+    for i, p in enumerate(pairs):
+        if resume and p["reason"] is None:
+            reuse[i], changed[i] = reusable_file(sources, names[i], keys[i], hashes[i])
+    reuse = {i: v for i, v in reuse.items() if v is not None}
+    was = existed(out)
+    done = [0]
+    with refused_output(out), resumable(done, command="gait-all", noun="pair", decision="C116"), \
+            atomic_directory(out, keep_on_interrupt=True) as tmp, progress("gait-all", len(pairs), eta=True) as advance:
+
+        def progress_line(r: JobResult) -> None:
+            i = int(r.name)
+            done[0] += 1
+            line = _progress_text(r.value if r.ok else None, r.error, i in reuse)
+            why = f"; recomputed, {changed[i]} since the earlier run" if changed.get(i) else ""
+            typer.echo(f"[{done[0]}/{len(pairs)}] {pairs[i]['path']}: {line} ({r.seconds:.1f} s{why})", err=True)
+            advance()
+
+        for i, value in reuse.items():  # cohort C116: the record put into the new OUT as it was
+            write_file_record(tmp / PAIR_RECORDS / names[i], keys[i], hashes[i], value)
+            progress_line(JobResult(str(i), ok=True, value=value))
+        items = [(str(i), {"path": p["path"], "reason": p["reason"], "left": p["left"] and str(p["left"]),
+                           "right": p["right"] and str(p["right"]), "record": str(tmp / PAIR_RECORDS / names[i]),
+                           "key": keys[i], "input_sha256": hashes[i]})
+                 for i, p in enumerate(pairs) if i not in reuse]
+        costs = [sum(folder_bytes(a[s]) for s in ("left", "right") if a[s]) for _, a in items]
+        ran = {int(r.name): r for r in run_cohort(_pair_job, items, serial=jobs == 1, n_workers=jobs, costs=costs,
+                                                  preload=PAIR_LIBRARIES, on_done=progress_line)}
+        values = [reuse[i] if i in reuse else (ran[i].value if ran[i].ok else None) for i in range(len(pairs))]
+        rows = [v["row"] if v is not None else {"path": p["path"], "status": "failed", "reason": ran[i].error}
+                for i, (p, v) in enumerate(zip(pairs, values, strict=True))]
+        write_table_csv(pd.DataFrame(rows, columns=list(PAIR_COLUMNS)).astype({"n_bouts": "Int64",
+                                                                              "n_steps": "Int64"}),
+                        tmp / "gait_pairs.csv")
+        for name in GAIT_TABLE_FILES:
+            frames = [table_from_text(v["tables"][name]) for v in values if v is not None and v["tables"]]
+            header = pd.DataFrame(columns=[c[0] for c in TABLES[name]])
+            write_table_csv(pd.concat(frames, ignore_index=True) if frames else header, tmp / name)
+    replaced(out, was)
+    for folder in adopted:  # cohort C116 (as C41): the interrupted runs' folders, now in OUT
+        shutil.rmtree(folder, ignore_errors=True)
+    n_ok = sum(r["status"] == "ok" for r in rows)
+    typer.echo(f"{n_ok} of {len(pairs)} visit folder(s) paired"
+               + (f" ({len(reuse)} reused from an earlier run, --resume)" if resume else "")
+               + f"; wrote {out}/" + ", ".join(GAIT_ALL_FILES))
+    return 0 if all(r["status"] != "failed" for r in rows) else 1
