@@ -414,3 +414,9 @@ def test_summary_takes_the_steady_strides_once(monkeypatch):
     assert len(calls) == 1
     assert c["stride_time_cv_bouts"] and c["stride_time_cv_direction"] == "forward", c
     assert json.dumps(c, sort_keys=True) == json.dumps(before, sort_keys=True)
+    # review R1: the passed rows give what each check computes on its own rows (not the new code against itself)
+    monkeypatch.setattr(C, "steady_rows", real)
+    assert c["stride_time_cv_direction"] == C.cv_direction(table)
+    alone = C.pooled_cv(table, c["stride_time_cv_pct"])
+    assert alone and c["stride_time_cv_bouts"] == alone["bouts"]
+    assert c["stride_time_cv_within_bouts_pct"] == alone["within_bouts_cv_pct"]

@@ -49,7 +49,7 @@ def test_bad_gap_is_one_line_b370(tmp_path, capsys, bad):
 
 
 @pytest.mark.parametrize("bad", ["foot:20", "hand:20:5", "foot:-1:5", "foot:20:0", "foot:x:5", "both:20:nan",
-                                 "foot:20:5:1"])
+                                 "foot:20:5:1", "foot:0:5", "foot:-0:5"])
 def test_cli_gap_line_is_check_gaps_own_b370(tmp_path, capsys, bad):
     """Session 37 re-read: the CLI parses only the syntax (split at ':'); the one line is check_gaps', naming the
     option's text and its form (the CLI repeated the range checks with its own message)."""
@@ -74,3 +74,12 @@ def test_gap_outside_the_recording_is_one_line_b370():
 
     with pytest.raises(DataError, match=r"gap foot:500:5 does not lie inside the recording .*B370"):
         simulate("A", 8909, gaps=(("foot", 500, 5),))
+
+
+def test_check_gaps_non_sequence_is_one_line_with_option():
+    """Review R1 (session 37): check_gaps([5], option="--gap") was a TypeError traceback (the name was built outside
+    the try)."""
+    from pdrlearn.sim.simulate import check_gaps
+
+    with pytest.raises(DataError, match=r"^simulate: --gap 5: give UNIT:START:DURATION"):
+        check_gaps([5], option="--gap")

@@ -144,15 +144,18 @@ def check_gaps(gaps, *, option: str | None = None) -> tuple[tuple[str, float, fl
              "(unit, start_s, duration_s), e.g. ('foot', 600, 120)")
     out = []
     for g in gaps or ():
-        name = f"{option} {':'.join(map(str, g))!r}" if option else f"gap {g!r}"
+        try:
+            name = f"{option} {':'.join(map(str, g))!r}" if option else f"gap {g!r}"
+        except TypeError:  # not a sequence (review R1 of session 37)
+            name = f"{option} {g!r}" if option else f"gap {g!r}"
         try:
             unit, start, dur = g
             start, dur = float(start), float(dur)
         except (TypeError, ValueError):
             raise DataError(f"simulate: {name}: give {shape} (decision B370)") from None
-        if unit not in GAP_UNITS or not (math.isfinite(start) and start >= 0) or not (math.isfinite(dur) and dur > 0):
+        if unit not in GAP_UNITS or not (math.isfinite(start) and start > 0) or not (math.isfinite(dur) and dur > 0):
             raise DataError(f"simulate: {name}: the unit must be one of {', '.join(GAP_UNITS)}, the start a time > "
-                            f"0 s and the duration > 0 s{f'; give {shape}' if option else ''} (decision B370)")
+                            f"0 s and the duration > 0 s{f'; give {shape}' if option else ''} (decision B370)")  # B384
         out.append((str(unit), start, dur))
     return tuple(sorted(out, key=lambda g: g[1]))
 
