@@ -76,6 +76,8 @@ def test_split_cuts_at_rest_and_each_part_is_a_session_b379(day, tmp_path, capsy
             assert (t[col] / 1e3 >= meta["start_s"]).all() and (t[col] / 1e3 < meta["end_s"]).all()
     metas = [json.loads((p / "meta.json").read_text()) for p in parts]
     assert [m["split"]["part"] for m in metas] == [0, 1, 2]
+    assert [m["session"] for m in metas] == [f"{json.loads((day / 'meta.json').read_text())['session']}_part_00{k}"
+                                            for k in range(3)]
     assert metas[0]["split"]["start_cut"] == "session start" and metas[1]["split"]["start_cut"] == "rest"
     assert "distance_m" not in metas[0] and metas[0]["split"]["whole_session"]["distance_m"] > 100
     assert metas[1]["split"]["start_s"] == metas[0]["split"]["end_s"]

@@ -444,6 +444,8 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
         whole = {k: meta[k] for k in WHOLE_SESSION_KEYS if k in meta}
         for k, p in enumerate(parts):
             part_meta = {key: v for key, v in meta.items() if key not in WHOLE_SESSION_KEYS}
+            # each part a session of its own name, so that track-all's pooled tables tell the parts apart
+            part_meta["session"] = f"{meta.get('session') or folder.name}_part_{k:03d}"
             part_meta["split"] = {"source": str(folder.resolve()), "part": k, "parts": len(parts),
                                   "start_s": round(edges[k], 6), "end_s": round(edges[k + 1], 6),
                                   "start_cut": kinds[k], "end_cut": kinds[k + 1], "whole_session": whole}
