@@ -108,6 +108,21 @@ def test_output_does_not_depend_on_the_chunk_size_b379(day, tmp_path):
             == _rows(tmp_path / f"{day.name}_a" / "part_001" / "fGyroscope.csv"))
 
 
+def test_semicolon_decimal_comma_files_cut_alike_b379(day, tmp_path):
+    from pdrlearn.io.split import split_session
+
+    comma = tmp_path / "comma"
+    shutil.copytree(day, comma)
+    for p in sorted(comma.glob("[fw]*.csv")):  # the sensor files as a decimal-comma spreadsheet writes them (B24)
+        df = pd.read_csv(p, dtype=str)
+        df.apply(lambda c: c.str.replace(".", ",", regex=False)).to_csv(p, sep=";", index=False)
+    plain = split_session(day, tmp_path / "a", max_minutes=0.75)
+    got = split_session(comma, tmp_path / "b", max_minutes=0.75)
+    assert got.cuts == plain.cuts and all(c.at_rest for c in got.cuts)
+    assert _rows(got.parts[1] / "fGyroscope.csv")[1] == _rows(plain.parts[1] / "fGyroscope.csv")[1].replace(
+        ",", ";").replace(".", ",")
+
+
 def test_no_common_standstill_cuts_at_the_boundary_with_a_warning_b379(tmp_path, caplog):
     from pdrlearn.io.split import split_session
 

@@ -112,6 +112,12 @@ class _ChunkReader:
         self.path, self.scale, self.chunk_rows = path, scale, chunk_rows
         self.dialect = _csv_dialect(path)
         self.sep = self.dialect.get("sep") or ","
+        self.comma = self.dialect.get("decimal") == ","  # decision B24: a ';' file with decimal commas
+
+    def numbers(self, cells: pd.Series) -> pd.Series:
+        """Text cells as numbers (NaN where a cell is blank or no number), a decimal comma read as a point."""
+        cells = cells.str.strip()
+        return pd.to_numeric(cells.str.replace(",", ".", regex=False) if self.comma else cells, errors="coerce")
 
     def chunks(self) -> Iterator[tuple[pd.DataFrame, int]]:
         """``(chunk, line of its first row)``: every cell a string (empty cells stay empty)."""
@@ -150,7 +156,7 @@ class _ChunkReader:
         out = np.empty((len(chunk), len(cols)))
         for k, (c, scale) in enumerate(cols):
             cells = chunk[c].str.strip()
-            vals = pd.to_numeric(cells, errors="coerce")
+            vals = self.numbers(cells)
             bad = vals.isna() & ((cells != "") | required)
             if bad.any():
                 first = int(np.flatnonzero(bad.to_numpy())[0])
@@ -219,7 +225,7 @@ class _UnitScan:
             else:
                 t, chunk, cols = got
                 last[i] = float(t[-1])
-                self._keep(t, chunk, cols, windows[i], self.readers[i].path)
+                self._keep(t, chunk, cols, windows[i], self.readers[i])
             ready = [k for k in {*windows[0], *windows[1]}
                      if all(done[j] or last[j] > self.t0 + k * self.part_s + self.span for j in (0, 1))]
             for k in ready:
@@ -227,7 +233,7 @@ class _UnitScan:
                 self.masks[k] = _unit_still(acc, gyr, self.grid(k))
         self.last = max(last)
 
-    def _keep(self, t: np.ndarray, chunk: pd.DataFrame, cols: list[str], windows: dict, path: Path) -> None:
+    def _keep(self, t: np.ndarray, chunk: pd.DataFrame, cols: list[str], windows: dict, r: _ChunkReader) -> None:
         k_lo = max(1, math.ceil((t[0] - self.t0 - self.span) / self.part_s))
         k_hi = math.floor((t[-1] - self.t0 + self.span) / self.part_s)
         for k in range(k_lo, k_hi + 1):
@@ -235,9 +241,9 @@ class _UnitScan:
             sel = (t >= b - self.span) & (t <= b + self.span)
             if not sel.any():
                 continue
-            vals = chunk.loc[sel, cols[1:4]].apply(pd.to_numeric, errors="coerce").to_numpy(float)
+            vals = np.column_stack([r.numbers(chunk.loc[sel, c]).to_numpy(float) for c in cols[1:4]])
             if not np.isfinite(vals).all():
-                raise DataError(f"{path}: non-numeric or non-finite values near {b:.0f} s; fix or remove those rows "
+                raise DataError(f"{r.path}: non-numeric or non-finite values near {b:.0f} s; fix or remove those rows "
                                 "(decision B380)")
             w = windows.setdefault(k, _Window())
             w.t.append(t[sel])
