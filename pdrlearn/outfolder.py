@@ -45,6 +45,7 @@ FOLDER_KINDS = {
     "track-all": ("a batch of tracks (sessions.csv, groups.csv, one folder per session)", "pdrlearn track-all"),
     "gait": ("a bilateral gait output (gait_summary.json, gait_steps.csv)", "pdrlearn gait"),  # decision L260
     "gait-all": ("a batch of bilateral gait (gait_pairs.csv, gait_steps.csv)", "pdrlearn gait-all"),  # C110
+    "split": ("the parts of a session (split.json, part_000 ...)", "pdrlearn split"),  # decision B379
 }
 _TRACK_FILES = ("summary.json", "steps.csv", "trajectory.csv")
 
@@ -66,6 +67,8 @@ def folder_kind(folder: Path) -> str | None:
         return "gait"
     if (folder / "gait_pairs.csv").is_file() and (folder / "gait_steps.csv").is_file():
         return "gait-all"
+    if (folder / "split.json").is_file() and (folder / "part_000").is_dir():  # decision B379
+        return "split"
     if all((folder / n).is_file() for n in _TRACK_FILES):
         try:
             summary = json.loads(read_text(folder / "summary.json"))

@@ -24,7 +24,7 @@ import typer
 from pdrlearn.errors import PdrlearnError
 
 COMMAND_MODULES = ["simulate", "data", "import_csv", "steps", "train", "track", "calibrate", "export", "report",
-                   "cohort", "columns", "gait"]
+                   "cohort", "columns", "gait", "split"]
 
 app = typer.Typer(
     name="pdrlearn",

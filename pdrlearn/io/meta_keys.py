@@ -29,6 +29,7 @@ WRITTEN = frozenset({
     "source_commit", "source_description", "source_files", "source_path_in_mat", "source_path_in_pickle",
     "source_repo", "source_sample_offset", "terrain_recording", "test", "trial", "part", "lines", "streams",
     "retimed", "stamp_rate_hz", "ambiguous_columns", "unused_columns",
+    "split",  # pdrlearn split: the part's place in its session (decision B379)
 })
 KNOWN_META_KEYS = READ | WRITTEN
 

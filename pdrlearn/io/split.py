@@ -1,0 +1,472 @@
+"""Decision B379: split a long session (a whole-day recording) into parts that are sessions of their own.
+
+Every CSV of the session folder is read in chunks (``pandas.read_csv(chunksize=...)``), so the peak memory is
+that of a chunk and of the search windows around the cuts, not of the file: ``pdrlearn track`` holds the whole
+session in memory (decision E195: 0.3-0.4 GB per recorded hour), which a day of two units cannot fit. The parts
+are cut near every ``max_minutes`` boundary at a standstill common to every unit (the same cut time for all
+units), so each part starts and ends at rest like a recording of its own. Rows are copied as written (text, not
+re-formatted numbers) and keep the session's absolute time; label tables are sliced by their time columns.
+"""
+
+from __future__ import annotations
+
+import gzip
+import io
+import json
+import logging
+import math
+import os
+from collections.abc import Iterator
+from contextlib import ExitStack
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.sensors import SENSORS, UNIT_IMU
+from pdrlearn.textfile import GZ_CSV, csv_stem, is_gzip, read_json, session_csv, session_csvs
+
+log = logging.getLogger(__name__)
+
+#: rows per chunk read (decision B379); the output does not depend on it (tests/test_split_b379.py)
+CHUNK_ROWS = 100_000
+#: decision B379: how far from a boundary the common standstill is searched (either side), at most; shorter
+#: parts search a quarter of their length, so that two cuts never cross
+SEARCH_S = 300.0
+#: decision B379: the shortest common standstill cut in two, so that each part keeps the thesis' 2 s setup
+#: standstill (thesis ch.7.2; the standstill calibration's ``min_s``) at its end or start
+MIN_REST_S = 4.0
+#: decision B380: the shortest part: the 2 s standstill at each end (thesis ch.7.2) and room for walking; a
+#: shorter --max-minutes is refused, a shorter last piece is kept with the part before it
+MIN_PART_S = 30.0
+#: meta.json keys that count or measure the whole session: moved under ``split.whole_session`` in a part's
+#: meta.json, where no command reads them as the part's own (distance_m scores a track's distance)
+WHOLE_SESSION_KEYS = ("distance_m", "n_ics", "n_strides", "n_steps", "n_turns", "terrain_counts", "duration_s",
+                      "n_samples", "dropped_samples", "activity_seconds")
+
+
+@dataclass
+class Cut:
+    """One cut between two parts: its time (s, the session clock) and whether it lies in a common standstill."""
+
+    t: float
+    at_rest: bool
+    boundary: float
+
+
+@dataclass
+class _Window:
+    """Rows of one sensor file within a search window: timestamps (s) and values."""
+
+    t: list = field(default_factory=list)
+    v: list = field(default_factory=list)
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        if not self.t:
+            return np.zeros(0), np.zeros((0, 3))
+        return np.concatenate(self.t), np.concatenate(self.v)
+
+
+def rest_cut(t: np.ndarray, still: np.ndarray, boundary: float, *, min_rest_s: float = MIN_REST_S) -> float | None:
+    """The middle of the standstill run (``still`` at the times ``t``, s) of at least ``min_rest_s`` whose middle
+    lies nearest to ``boundary``; ``None`` when there is none (decision B379)."""
+    from pdrlearn.signal.conditioning import runs
+
+    best = None
+    for i, j in runs(still):
+        t0, t1 = float(t[i]), float(t[j - 1])
+        if t1 - t0 < min_rest_s:
+            continue
+        mid = 0.5 * (t0 + t1)
+        if best is None or abs(mid - boundary) < abs(best - boundary):
+            best = mid
+    return best
+
+
+def _unit_still(acc: tuple[np.ndarray, np.ndarray], gyr: tuple[np.ndarray, np.ndarray],
+                grid: np.ndarray) -> np.ndarray | None:
+    """One unit's standstill (pdrlearn.signal's detector) on ``grid``; ``None`` when the unit has no samples there.
+    The gyroscope is interpolated to the accelerometer's timestamps; a grid point farther than 1.5 sample periods
+    from the unit's samples (a gap) is not still."""
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    (ta, va), (tg, vg) = acc, gyr
+    if ta.size < 3 or tg.size < 3:
+        return None
+    fs = 1.0 / float(np.median(np.diff(ta)))
+    g = np.column_stack([np.interp(ta, tg, vg[:, k]) for k in range(vg.shape[1])])
+    still = standstill_mask(va, g, fs)
+    k = np.clip(np.searchsorted(ta, grid), 1, ta.size - 1)
+    near = np.where(np.abs(ta[k - 1] - grid) <= np.abs(ta[k] - grid), k - 1, k)
+    return still[near] & (np.abs(ta[near] - grid) <= 1.5 / fs)
+
+
+class _ChunkReader:
+    """The chunks of one CSV of a session folder: text cells as written, plus their times in seconds."""
+
+    def __init__(self, path: Path, scale: float, chunk_rows: int):
+        from pdrlearn.io.plasys import _csv_dialect
+
+        self.path, self.scale, self.chunk_rows = path, scale, chunk_rows
+        self.dialect = _csv_dialect(path)
+        self.sep = self.dialect.get("sep") or ","
+        self.comma = self.dialect.get("decimal") == ","  # decision B24: a ';' file with decimal commas
+
+    def numbers(self, cells: pd.Series) -> pd.Series:
+        """Text cells as numbers (NaN where a cell is blank or no number), a decimal comma read as a point."""
+        cells = cells.str.strip()
+        return pd.to_numeric(cells.str.replace(",", ".", regex=False) if self.comma else cells, errors="coerce")
+
+    def chunks(self) -> Iterator[tuple[pd.DataFrame, int]]:
+        """``(chunk, line of its first row)``: every cell a string (empty cells stay empty)."""
+        line = 2
+        try:
+            reader = pd.read_csv(self.path, dtype=str, keep_default_na=False, chunksize=self.chunk_rows,
+                                 **self.dialect)
+            with reader:
+                for chunk in reader:
+                    chunk.columns = [str(c).strip() for c in chunk.columns]
+                    yield chunk, line
+                    line += len(chunk)
+        except pd.errors.EmptyDataError:
+            raise DataError(f"{self.path}: file is empty (not even a header line); re-export or remove it") from None
+        except pd.errors.ParserError as exc:
+            first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise DataError(f"{self.path}: not a valid CSV ({first}); fix or re-export the file") from None
+        except UnicodeError:
+            raise DataError(f"{self.path}: not UTF-8 text; save it as UTF-8 (decision B221)") from None
+
+    def time_columns(self, columns) -> list[tuple[str, float]]:
+        """The time columns of a header and their seconds per unit: ``timestamp`` in the session's unit, ``*_ms``
+        (``t_ms``, ``start_ms`` ...) in ms (decision D1)."""
+        out = []
+        for c in columns:
+            low = c.lower()
+            if low == "timestamp":
+                out.append((c, self.scale))
+            elif low.endswith("_ms"):
+                out.append((c, 1e-3))
+        return out
+
+    def times(self, chunk: pd.DataFrame, cols: list[tuple[str, float]], line: int, *, required: bool) -> np.ndarray:
+        """(n, len(cols)) times in s; a blank cell is NaN; a cell that is no number is one line (``required``:
+        a blank one too)."""
+        out = np.empty((len(chunk), len(cols)))
+        for k, (c, scale) in enumerate(cols):
+            cells = chunk[c].str.strip()
+            vals = self.numbers(cells)
+            bad = vals.isna() & ((cells != "") | required)
+            if bad.any():
+                first = int(np.flatnonzero(bad.to_numpy())[0])
+                raise DataError(f"{self.path}: column {c} holds {cells.iloc[first]!r} at line {line + first}, not a "
+                                "number; fix or remove that row (decision B380)")
+            out[:, k] = vals.to_numpy(dtype=float) * scale
+        return out
+
+
+def _check_sorted(path: Path, t: np.ndarray, last: float, line: int) -> None:
+    """Decision B380 (D3 while streaming): a timestamp below the one before it is one line naming its line."""
+    prev = np.concatenate([[last], t[:-1]])
+    bad = np.flatnonzero(t < prev)
+    if bad.size:
+        raise DataError(f"{path}: timestamps are not sorted (line {line + int(bad[0])} is earlier than the line "
+                        "before it); sort the file by timestamp or fix the logger, then split (decisions D3, B380)")
+
+
+def _numeric_chunks(r: _ChunkReader) -> Iterator[tuple[np.ndarray, pd.DataFrame, list[str]]]:
+    """An accelerometer or gyroscope file's chunks as (times in s, the chunk, its timestamp,x,y,z columns); unsorted
+    timestamps are one line (decision B380)."""
+    last = -math.inf
+    for chunk, line in r.chunks():
+        cols = [c for c in chunk.columns if c.lower() in ("timestamp", "x", "y", "z")]
+        if [c.lower() for c in cols] != ["timestamp", "x", "y", "z"]:
+            raise DataError(f"{r.path}: needs the columns timestamp,x,y,z (has {','.join(chunk.columns)}); fix the "
+                            "header (thesis ch.4.3.3)")
+        t = r.times(chunk, [(cols[0], r.scale)], line, required=True)[:, 0]
+        _check_sorted(r.path, t, last, line)
+        if t.size:
+            last = float(t[-1])
+            yield t, chunk, cols
+
+
+def first_time(r: _ChunkReader) -> float | None:
+    """The first timestamp (s) of a sensor file, read from its first row only."""
+    for t, _, _ in _numeric_chunks(_ChunkReader(r.path, r.scale, 1)):
+        return float(t[0])
+    return None
+
+
+class _UnitScan:
+    """Decision B379: one unit's accelerometer and gyroscope files streamed side by side, keeping only the rows
+    within ``span`` of each boundary ``t0 + k * part_s`` until both files have passed it; then the unit's
+    standstill on the boundary's search grid replaces the rows (the memory: a chunk and one window per file)."""
+
+    def __init__(self, readers: tuple[_ChunkReader, _ChunkReader], t0: float, part_s: float, span: float):
+        self.readers, self.t0, self.part_s, self.span = readers, t0, part_s, span
+        self.masks: dict[int, np.ndarray | None] = {}
+        self.last = -math.inf
+
+    def grid(self, k: int) -> np.ndarray:
+        b = self.t0 + k * self.part_s
+        return b + np.arange(-self.span, self.span + 1e-9, 0.01)  # 100 Hz: finer than the detector's 0.25 s
+
+    def run(self) -> None:
+        its = [_numeric_chunks(r) for r in self.readers]
+        last = [-math.inf, -math.inf]
+        done = [False, False]
+        windows: list[dict[int, _Window]] = [{}, {}]
+        while not all(done):
+            i = min((j for j in (0, 1) if not done[j]), key=lambda j: last[j])
+            got = next(its[i], None)
+            if got is None:
+                done[i] = True
+            else:
+                t, chunk, cols = got
+                last[i] = float(t[-1])
+                self._keep(t, chunk, cols, windows[i], self.readers[i])
+            ready = [k for k in {*windows[0], *windows[1]}
+                     if all(done[j] or last[j] > self.t0 + k * self.part_s + self.span for j in (0, 1))]
+            for k in ready:
+                acc, gyr = (windows[j].pop(k, _Window()).arrays() for j in (0, 1))
+                self.masks[k] = _unit_still(acc, gyr, self.grid(k))
+        self.last = max(last)
+
+    def _keep(self, t: np.ndarray, chunk: pd.DataFrame, cols: list[str], windows: dict, r: _ChunkReader) -> None:
+        k_lo = max(1, math.ceil((t[0] - self.t0 - self.span) / self.part_s))
+        k_hi = math.floor((t[-1] - self.t0 + self.span) / self.part_s)
+        for k in range(k_lo, k_hi + 1):
+            b = self.t0 + k * self.part_s
+            sel = (t >= b - self.span) & (t <= b + self.span)
+            if not sel.any():
+                continue
+            vals = np.column_stack([r.numbers(chunk.loc[sel, c]).to_numpy(float) for c in cols[1:4]])
+            if not np.isfinite(vals).all():
+                raise DataError(f"{r.path}: non-numeric or non-finite values near {b:.0f} s; fix or remove those rows "
+                                "(decision B380)")
+            w = windows.setdefault(k, _Window())
+            w.t.append(t[sel])
+            w.v.append(vals)
+
+
+def scan_cuts(units: list[tuple[_ChunkReader, _ChunkReader]], t0: float, part_s: float,
+              span: float) -> tuple[list[Cut], float]:
+    """Decision B379: the cuts of a session whose units' (accelerometer, gyroscope) files are ``units``: near each
+    boundary ``t0 + k * part_s`` in the middle of the standstill common to every unit with samples there, else at
+    the boundary. Returns the cuts and the units' last timestamp (s)."""
+    scans = [_UnitScan(r, t0, part_s, span) for r in units]
+    for s in scans:
+        s.run()
+    t_end = max(s.last for s in scans)
+    cuts = []
+    k = 1
+    while t0 + k * part_s < t_end - MIN_PART_S:  # a last piece shorter than MIN_PART_S stays with the part before
+        b = t0 + k * part_s
+        masks = [m for s in scans if (m := s.masks.get(k)) is not None]
+        t_cut = None
+        if masks:
+            t_cut = rest_cut(scans[0].grid(k), np.logical_and.reduce(masks), b)
+        cuts.append(Cut(b if t_cut is None else t_cut, t_cut is not None, b))
+        k += 1
+    return cuts, t_end
+
+
+class _PartFiles:
+    """One CSV's output file in each part folder, opened at its first row (a ``.csv.gz`` is written gzip-compressed,
+    with no time stamp in the gzip header, so equal rows give equal bytes)."""
+
+    def __init__(self, stack: ExitStack, parts: list[Path], name: str, header: str):
+        self.stack, self.parts, self.name, self.header = stack, parts, name, header
+        self.files: dict[int, io.TextIOBase] = {}
+
+    def get(self, k: int):
+        f = self.files.get(k)
+        if f is None:
+            raw = self.stack.enter_context(open(self.parts[k] / self.name, "wb"))
+            if self.name.lower().endswith(GZ_CSV):
+                raw = self.stack.enter_context(gzip.GzipFile(filename="", mode="wb", fileobj=raw, mtime=0))
+            f = self.stack.enter_context(io.TextIOWrapper(raw, encoding="utf-8", newline=""))
+            f.write(self.header + "\n")
+            self.files[k] = f
+        return f
+
+
+@dataclass
+class SplitResult:
+    """What :func:`split_session` wrote: the part folders, the cuts, and the label rows left out at the cuts."""
+
+    parts: list[Path]
+    cuts: list[Cut]
+    t_start: float
+    t_end: float
+    dropped: dict[str, int]
+    copied_whole: list[str]
+
+
+def _route(cut_times: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each row's part (by its earliest time) and whether the row fits in it (its latest time before the part's end
+    and some time given). A row spanning a cut (a stride or bout across it) does not fit."""
+    has = np.isfinite(times).any(axis=1)
+    lo = np.where(has, np.nanmin(np.where(np.isfinite(times), times, np.inf), axis=1), 0.0)
+    hi = np.where(has, np.nanmax(np.where(np.isfinite(times), times, -np.inf), axis=1), 0.0)
+    part = np.searchsorted(cut_times, lo, side="right")
+    end = np.append(cut_times, np.inf)[part]
+    return part, has & (hi < end)
+
+
+def _write_file(path: Path, scale: float, chunk_rows: int, cut_times: np.ndarray, parts: list[Path],
+                result: SplitResult) -> None:
+    """Stream one CSV of the session into the part folders (decision B379). Sensor files: every row by its
+    timestamp, which must be sorted (B380); a part without rows of it gets no such file. Other CSVs with time
+    columns (``timestamp``, ``*_ms``): each row into the part of its earliest time, a row spanning a cut left out
+    and counted; every part gets the file (a header alone: labelled, nothing in that part). CSVs without a time
+    column are copied whole into every part."""
+    r = _ChunkReader(path, scale, chunk_rows)
+    sensor = csv_stem(path) in SENSORS
+    last = -math.inf
+    with ExitStack() as stack:
+        out = None
+        for chunk, line in r.chunks():
+            if out is None:
+                out = _PartFiles(stack, parts, path.name, r.sep.join(chunk.columns))
+                cols = r.time_columns(chunk.columns)
+                if sensor:
+                    cols = cols[:1]
+                    if not cols:
+                        raise DataError(f"{path}: no timestamp column (has {','.join(chunk.columns)}); fix the header "
+                                        "(thesis ch.4.3.3)")
+                elif not cols:
+                    result.copied_whole.append(path.name)
+                if not sensor:
+                    for k in range(len(parts)):
+                        out.get(k)
+            if not cols:
+                for k in range(len(parts)):
+                    chunk.to_csv(out.get(k), header=False, index=False, sep=r.sep, lineterminator="\n")
+                continue
+            times = r.times(chunk, cols, line, required=sensor)
+            if sensor:
+                _check_sorted(path, times[:, 0], last, line)
+                if len(times):
+                    last = float(times[-1, 0])
+            part, fits = _route(cut_times, times)
+            if not fits.all():
+                result.dropped[path.name] = result.dropped.get(path.name, 0) + int((~fits).sum())
+            for k in np.unique(part[fits]):
+                rows = chunk[fits & (part == k)]
+                rows.to_csv(out.get(int(k)), header=False, index=False, sep=r.sep, lineterminator="\n")
+        if out is None:
+            raise DataError(f"{path}: file is empty; re-export or remove it")
+
+
+def _refuse(folder: Path, meta: dict) -> None:
+    """Decision B380: what split cannot cut alike for every unit, in one line."""
+    if meta.get("clocks") or any(float(meta.get(k) or 0.0) != 0.0 for k in ("clock_offset_s", "clock_drift_ppm")
+                                 if isinstance(meta.get(k), int | float)):
+        raise DataError(f"{folder}/meta.json: the units have clocks of their own (clocks, clock_offset_s or "
+                        "clock_drift_ppm), so one cut time is not the same instant for every unit; split reads one "
+                        "session clock -- put the units on it first (docs/clock.md), then split (decision B380)")
+
+
+def check_max_minutes(max_minutes: float) -> float:
+    """Decision B380: --max-minutes as a part length in seconds, or one line."""
+    try:
+        v = float(max_minutes)
+    except (TypeError, ValueError):
+        v = math.nan
+    if not math.isfinite(v) or v <= 0:
+        raise DataError(f"--max-minutes {max_minutes}: give a positive number of minutes, e.g. --max-minutes 60 "
+                        "(decision B380)")
+    if v * 60.0 < MIN_PART_S:
+        raise DataError(f"--max-minutes {max_minutes}: parts of {v * 60.0:g} s are shorter than the {MIN_PART_S:g} s "
+                        "a part needs (a 2 s standstill at each end, thesis ch.7.2, and walking between); give "
+                        f"--max-minutes {MIN_PART_S / 60.0:g} or more (decision B380)")
+    return v * 60.0
+
+
+def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_minutes: float = 60.0,
+                  chunk_rows: int = CHUNK_ROWS) -> SplitResult:
+    """Decision B379: split the session folder ``session`` into ``out/part_000``, ``out/part_001`` ..., each a
+    session of at most about ``max_minutes`` (plus the search span), cut at a standstill common to every unit.
+
+    The files are read ``chunk_rows`` rows at a time, so the memory does not grow with the recording. The output is
+    written atomically (a temporary sibling folder renamed into place). Returns the parts, the cuts and the label
+    rows left out because they span a cut."""
+    from pdrlearn.atomic import atomic_directory
+    from pdrlearn.io.archive import is_archive
+    from pdrlearn.io.plasys import _timestamp_scale
+
+    folder = Path(session)
+    part_s = check_max_minutes(max_minutes)
+    if is_archive(folder):
+        raise DataError(f"{folder}: split reads a session folder, not a zip archive (a whole day is not unpacked in "
+                        "memory); unzip it first (`unzip -d DIR FILE`), then split DIR (decision B380)")
+    if not folder.is_dir():
+        raise DataError(f"{folder}: no such session folder; give a folder holding fAccelerometer.csv ... and "
+                        "meta.json (decision B380)")
+    meta_path = folder / "meta.json"
+    meta = {}
+    if meta_path.is_file():
+        try:
+            meta = read_json(meta_path)
+        except ValueError as exc:
+            raise DataError(f"{meta_path}: not valid JSON ({exc}); fix it (decision B380)") from None
+        if not isinstance(meta, dict):
+            raise DataError(f"{meta_path}: must hold a JSON object; fix it (decision B380)")
+    _refuse(folder, meta)
+    scale = _timestamp_scale(meta, str(meta_path))
+    units = []
+    for acc, gyr in UNIT_IMU.values():
+        pa, pg = session_csv(folder, acc), session_csv(folder, gyr)
+        if pa.is_file() and pg.is_file():
+            units.append((_ChunkReader(pa, scale, chunk_rows), _ChunkReader(pg, scale, chunk_rows)))
+    if not units:
+        raise DataError(f"{folder}: not a session split can cut: it needs a unit's accelerometer and gyroscope "
+                        "(fAccelerometer.csv + fGyroscope.csv or wAccelerometer.csv + wGyroscope.csv) to find the "
+                        "standstills (decision B380)")
+    starts = [t for pair in units for r in pair if (t := first_time(r)) is not None]
+    if not starts:
+        raise DataError(f"{folder}: the accelerometer and gyroscope files hold no rows; nothing to split "
+                        "(decision B380)")
+    t0 = min(starts)
+    span = min(SEARCH_S, part_s / 4.0)
+    cuts, t_end = scan_cuts(units, t0, part_s, span)
+    for c in cuts:
+        if not c.at_rest:
+            log.warning("%s: no standstill of %g s common to the units within %g s of %.1f s: cut there, in "
+                        "motion (its part's meta.json says so; decision B379)", folder, MIN_REST_S, span, c.boundary)
+    cut_times = np.array([c.t for c in cuts])
+    result = SplitResult([], cuts, t0, t_end, {}, [])
+    files = [p for p in session_csvs(folder) if is_gzip(p) or p.suffix.lower() == ".csv"]
+    with atomic_directory(out) as tmp:
+        parts = [tmp / f"part_{k:03d}" for k in range(len(cuts) + 1)]
+        for p in parts:
+            p.mkdir()
+        for path in files:
+            _write_file(path, scale, chunk_rows, cut_times, parts, result)
+        edges = [t0, *cut_times.tolist(), t_end]
+        kinds = ["session start", *("rest" if c.at_rest else "boundary, in motion" for c in cuts), "session end"]
+        whole = {k: meta[k] for k in WHOLE_SESSION_KEYS if k in meta}
+        for k, p in enumerate(parts):
+            part_meta = {key: v for key, v in meta.items() if key not in WHOLE_SESSION_KEYS}
+            # each part a session of its own name, so that track-all's pooled tables tell the parts apart
+            part_meta["session"] = f"{meta.get('session') or folder.name}_part_{k:03d}"
+            part_meta["split"] = {"source": str(folder.resolve()), "part": k, "parts": len(parts),
+                                  "start_s": round(edges[k], 6), "end_s": round(edges[k + 1], 6),
+                                  "start_cut": kinds[k], "end_cut": kinds[k + 1], "whole_session": whole}
+            (p / "meta.json").write_text(json.dumps(part_meta, indent=2) + "\n", encoding="utf-8")
+        summary = {"source": str(folder.resolve()), "max_minutes": float(max_minutes), "search_s": span,
+                   "min_rest_s": MIN_REST_S, "t_start_s": round(t0, 6), "t_end_s": round(t_end, 6),
+                   "cuts": [{"t_s": round(c.t, 6), "boundary_s": round(c.boundary, 6), "at_rest": c.at_rest}
+                            for c in cuts],
+                   "label_rows_spanning_a_cut": result.dropped, "copied_whole": result.copied_whole}
+        (tmp / "split.json").write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+    result.parts = [Path(out) / p.name for p in parts]
+    if result.dropped:
+        log.warning("%s: %s label row(s) span a cut and are in no part (%s; decision B379)", folder,
+                    sum(result.dropped.values()), ", ".join(f"{n}: {k}" for n, k in result.dropped.items()))
+    if result.copied_whole:
+        log.warning("%s: %s have no time column and were copied whole into every part (decision B379)", folder,
+                    ", ".join(result.copied_whole))
+    return result
