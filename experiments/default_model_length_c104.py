@@ -53,13 +53,14 @@ def user_range(text: str) -> list[int]:
 
 #: the columns of :func:`matched`: the labelled length, true / predicted length class, the C117 variants, and the
 #: true / predicted terrain and direction
-MATCHED = ["length_m", "true", "pred", "pred_session", "pred_whole", "terrain", "terrain_pred", "direction",
-           "direction_pred"]
+MATCHED = ["length_m", "true", "pred", "pred_session", "pred_whole", "pred_guarded", "terrain", "terrain_pred",
+           "direction", "direction_pred"]
 
 
 def matched(bundle: Path, folder: Path, steps: pd.DataFrame) -> pd.DataFrame:
     """The labelled steps the runtime's strides matched: their ``length_m``, true and predicted length class (the
-    model's, decision C117's running session median, the whole-session median) and terrain / direction."""
+    model's, decision C117's running session median, the whole-session median, C126's guarded whole-session median)
+    and terrain / direction."""
     _, emitted = replay(bundle, folder, fallback_line=False)
     est = runtime_table(emitted)
     labels = steps.reset_index(drop=True)
@@ -69,9 +70,10 @@ def matched(bundle: Path, folder: Path, steps: pd.DataFrame) -> pd.DataFrame:
     table = [s.to_dict() for s in emitted]
     est["session"] = session_length_classes(table)  # decision C117: what length_reference="session" reports
     est["whole"] = session_length_classes(table, causal=False)
+    est["guarded"] = session_length_classes(table, causal=False, guard=True)  # decision C126
     rows = [{"length_m": float(labels["length_m"].iloc[j]), "true": str(labels[col].iloc[j]),
              "pred": str(est["length"].iloc[i]), "pred_session": str(est["session"].iloc[i]),
-             "pred_whole": str(est["whole"].iloc[i]),
+             "pred_whole": str(est["whole"].iloc[i]), "pred_guarded": str(est["guarded"].iloc[i]),
              **{k: str(v) for t in ("terrain", "direction")
                 for k, v in ((t, labels[t].iloc[j]), (f"{t}_pred", est[t].iloc[i] if t in est else None))}}
             for i, j in match_by_overlap(est, labels)

@@ -340,6 +340,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "length_model"): get_step_length,  # decision E84: NAME[:key=value,...]
         ("run", "rules"): _one_of(RULES),
         ("run", "length_reference"): _one_of(LENGTH_REFERENCES),  # decision C117
+        **{(c, "length_reference"): _one_of(LENGTH_REFERENCES) for c in ("track", "track-all")},  # decision C126
         ("run", "units"): _one_of(BODY_UNITS, listed=True),
         ("train", "boundaries"): _one_of(BOUNDARIES),
         ("train", "cv_groups"): _one_of(CV_GROUPS),  # decision C29

@@ -929,6 +929,7 @@ def track_all(
     rules: str = _track.RULES_OPT,
     min_confidence: float = _track.MIN_CONFIDENCE_OPT,
     length_bounds: str = _track.LENGTH_BOUNDS_OPT,
+    length_reference: str = _track.LENGTH_REFERENCE_OPT,
     warn_out_of_domain: float = _track.WARN_OOD_OPT,
     start: str = _track.START_OPT,
     initial_heading: float = _track.INITIAL_HEADING_OPT,

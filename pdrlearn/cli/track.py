@@ -45,6 +45,13 @@ MIN_CONFIDENCE_OPT = typer.Option(None, "--min-confidence", min=0.0, max=1.0,
                                   "class reaches this (default 0.95; 0 = always, as the thesis).")
 LENGTH_BOUNDS_OPT = typer.Option(None, "--length-bounds", help="M3 stride-length class edges "
                                  "SHORT_MAX,NORMAL_MAX in m (default: the model's, else thesis x 2).")
+LENGTH_REFERENCE_OPT = typer.Option("model", "--length-reference", metavar="model|session", help="M3, offline: "
+                                    "session = after tracking, a flat, forward, straight stride's length_class from "
+                                    "its length against 0.8 / 1.2 x the median of ALL the session's such strides, "
+                                    "unless the model calls half or more of them short or long (decision C126; "
+                                    "lengths unchanged). Default model: the classifier's.")
+
+
 def warn_ood_option(when: str = "With --model: ", model: str = "model"):
     """C16's ``--warn-out-of-domain`` of ``track`` (``track-all``) and ``run`` (decision E105), one text."""
     return typer.Option(None, "--warn-out-of-domain", help=f"{when}warn (one line, naming the classifier and the "
@@ -264,6 +271,7 @@ def track(
     rules: str = RULES_OPT,
     min_confidence: float = MIN_CONFIDENCE_OPT,
     length_bounds: str = LENGTH_BOUNDS_OPT,
+    length_reference: str = LENGTH_REFERENCE_OPT,
     warn_out_of_domain: float = WARN_OOD_OPT,
     start: str = START_OPT,
     initial_heading: float = INITIAL_HEADING_OPT,
@@ -329,6 +337,8 @@ def track(
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --rules bayes --out out/D3 --json
 
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --streaming --out out/D3s   # = pdrlearn run
+
+        pdrlearn track out/sim/D_u1 --model out/models/u1 --length-reference session --out out/D3r   # C126
 
         pdrlearn track datasets/real/gaitmap_level_left --model out/models/u1 --warn-out-of-domain 0.25 --out out/L
 
@@ -449,7 +459,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    altitude: str | None = None, align_units: bool = False,
                    bout_rule: str | None = None, clock_offset: float | None = None,
                    clock_drift_ppm: float | None = None, drop_partial_row: bool = False,
-                   steady_trim: int | None = None) -> dict:
+                   steady_trim: int | None = None, length_reference: str = "model") -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -498,6 +508,12 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if fix_file is not None and not Path(fix_file).is_file():
             raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV "
                             "(t, lat, lon, accuracy_m)")
+    from pdrlearn.kernels.relative_length import check_length_reference
+
+    if check_length_reference(length_reference) != "model" and (model is None or str(model) == "oracle"):  # C126
+        raise DataError(f"track: --length-reference {length_reference} replaces a trained model's length classes "
+                        f"({'oracle classes are the labels' if model is not None else 'no --model given'}); add "
+                        "--model DIR, or drop --length-reference")
     if model is not None and str(model) != "oracle":  # decision B128: a bad --model fails once, before any session
         from pdrlearn.classify.model_dir import verify_model_dir
 
@@ -583,7 +599,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
             "altitude": altitude, "align_units": align_units, "clock_offset_s": clock_offset_s,
             "clock_drift": clock_drift, "drop_partial_row": drop_partial_row,
-            "steady_trim": None if steady_trim is None else check_steady_trim(steady_trim)}  # decision L415
+            "steady_trim": None if steady_trim is None else check_steady_trim(steady_trim),  # decision L415
+            "length_reference": length_reference}  # decision C126
 
 
 def read_params(params: Path):
@@ -764,6 +781,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                                                "--rules": o["rules"] is not None,
                                                "--min-confidence": o["min_confidence"] is not None,
                                                "--length-bounds": o["length_bounds_given"],
+                                               "--length-reference": o.get("length_reference", "model") != "model",
                                                "--streaming": streaming, "--toe-off": toe_off,
                                                "--ignore-force": bool(o.get("ignore_force")),
                                                "--contacts": contacts,
@@ -845,6 +863,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             result = fn(session, **kw)
     else:
         result = fn(session, **kw)
+    if o.get("length_reference", "model") != "model" and pipeline == "plasys":  # decision C126: the whole session's
+        from pdrlearn.track.session_length import whole_session_length  # strides, before a window keeps some
+
+        result.steps = whole_session_length(result.steps, source=str(session.where))
     if given_clock is not None:  # decision E111: recorded as --align-units' estimate is (L162)
         import logging
 
@@ -1133,12 +1155,13 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
 
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
-_PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
+_PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--length-reference",
+                   "--streaming",
                    "--toe-off", "--ignore-force", "--contacts", "--drop-neighbour", "--detector", "--altitude",
                    "--align-units",
                    "--clock-offset", "--clock-drift-ppm")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
-_M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
+_M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds", "--length-reference")
 
 
 def _refuse_ignored_options(pipeline: str, method: str, given: dict[str, bool], *, gnss, gnss_period, fixes,

@@ -99,12 +99,24 @@ class SessionLength:
 TABLE_COLUMNS = ("length_m", "terrain", "direction", "length_class")
 
 
-def session_length_classes(rows, *, causal: bool = True, warmup: int = WARMUP_STRIDES,
+def median_is_normal(rows) -> bool:
+    """Decision C126's guard: True when the model itself classes fewer than half of the session's eligible strides
+    (:func:`eligible`, with a length class) ``short`` and fewer than half ``long``, so that the session's median
+    stride lies among the strides the model calls ``normal`` (for classes ordered by length); False for a walk the
+    model sees as mostly short or mostly long strides, whose median is not the walker's normal stride. No
+    threshold: "half" is the median's own definition."""
+    classes = [r["length_class"] for r in rows if isinstance(r["length_class"], str)
+               and eligible(r["terrain"], r["direction"], r["length_m"], r.get("turn_angle_rad", 0.0))]
+    return all(2 * classes.count(c) < len(classes) for c in ("short", "long"))
+
+
+def session_length_classes(rows, *, causal: bool = True, warmup: int = WARMUP_STRIDES, guard: bool = False,
                            source: str = "stride table") -> list:
     """Decision C117 on a stride table (a list of dicts, or a DataFrame's ``to_dict("records")``; columns
     :data:`TABLE_COLUMNS`, ``turn_angle_rad`` optional, in walking order): each stride's length class.
     ``causal=True``: :class:`SessionLength` row by row (what the tracker gives, stride by stride); ``False``: the
-    median of all the session's eligible strides (offline), and no class changes with fewer than ``warmup`` of them.
+    median of all the session's eligible strides (offline), and no class changes with fewer than ``warmup`` of them;
+    with ``guard=True`` (decision C126, offline only) no class changes either unless :func:`median_is_normal`.
     A missing column is one DataError line naming ``source``."""
     check_warmup(warmup)
     rows = list(rows)
@@ -122,7 +134,7 @@ def session_length_classes(rows, *, causal: bool = True, warmup: int = WARMUP_ST
     ref = SessionLength(warmup)
     for r in rows:
         ref.stride(None, None, r["length_m"], **args(r))
-    if ref.n < warmup:
+    if ref.n < warmup or (guard and not median_is_normal(rows)):
         return [r["length_class"] for r in rows]
     med = ref.median()
     return [relative_class_one(r["length_class"], None, r["length_m"], med)[0]
@@ -133,4 +145,4 @@ def session_length_classes(rows, *, causal: bool = True, warmup: int = WARMUP_ST
 
 __all__ = ["RELATIVE_BOUNDS", "WARMUP_STRIDES", "LENGTH_REFERENCES", "TABLE_COLUMNS", "check_warmup",
            "check_length_reference", "relative_bounds", "eligible", "relative_class_one", "SessionLength",
-           "session_length_classes"]
+           "median_is_normal", "session_length_classes"]
