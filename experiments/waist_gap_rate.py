@@ -58,11 +58,11 @@ def across(res, a: float, b: float) -> float:
 
 
 def run(session, arm: str):
-    G.PRE_GAP_RATE = ARMS[arm]
+    old, G.PRE_GAP_RATE = G.PRE_GAP_RATE, ARMS[arm]
     try:
         return track_waist(session, pipeline="waist-pendulum")
     finally:
-        G.PRE_GAP_RATE = True
+        G.PRE_GAP_RATE = old
 
 
 def main() -> None:
