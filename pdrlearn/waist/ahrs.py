@@ -23,8 +23,8 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from pdrlearn.errors import DataError, MissingSensorError
-from pdrlearn.kernels.gaps import pre_gap_rate
 from pdrlearn.io import Session
+from pdrlearn.kernels.gaps import pre_gap_rate
 from pdrlearn.orient._kernels import madgwick_imu
 from pdrlearn.signal import gravity_rotation, interp_rows
 
@@ -131,7 +131,8 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     the accelerometer has dropped samples (an interval over 1.5 nominal periods, :meth:`Stream.gaps`),
     both streams are interpolated linearly onto the uniform clock ``t0 + k / fs`` of the native rate
     (decision W34); with W389's option (``kernels.gaps.PRE_GAP_RATE``, off) the rate inside a gyroscope gap is
-    the mean of the second before it instead of the line. A gap longer than :data:`LONG_GAP_S` (reported and ending the walking sequence, B11) is
+    the mean of the second before it instead of the line.
+    A gap longer than :data:`LONG_GAP_S` (reported and ending the walking sequence, B11) is
     filled as a rest instead: the mean specific force of the second before it and zero rate, so the AHRS
     keeps its attitude across it (a straight line between two walking samples tilted it for the rest of the
     recording and moved the median gravity, hence contacts and lengths before and after the gap; W34).
