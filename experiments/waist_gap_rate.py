@@ -65,16 +65,21 @@ def run(session, arm: str):
         G.PRE_GAP_RATE = old
 
 
-def main() -> None:
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--users", default="9210-9214")
+def user_range(doc: str, default: str = "9210-9214") -> list[int]:
+    """The ``--users A-B`` of session 37's phone experiments (this one and waist_pll_reference.py), pdrlearn quiet."""
+    p = argparse.ArgumentParser(description=doc.splitlines()[0])
+    p.add_argument("--users", default=default)
     a = p.parse_args()
     logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     lo, _, hi = a.users.partition("-")
+    return list(range(int(lo), int(hi or lo) + 1))
+
+
+def main() -> None:
+    users = user_range(__doc__)
     dev = {k: [] for k in ARMS}
     err = {k: [] for k in ARMS}
     same = 0
-    users = list(range(int(lo), int(hi or lo) + 1))
     for u in users:
         ses = at_rate(simulate_path(parse_route(ROUTE), UserProfile.from_seed(u), speed="normal", seed=37,
                                     name=f"gaprate_u{u}", scenario="route"))

@@ -9,19 +9,16 @@ Run: PYTHONPATH=. .venv/bin/python experiments/waist_pll_reference.py [--users 9
 
 from __future__ import annotations
 
-import argparse
-import logging
-
 import numpy as np
 
 import pdrlearn.track.waist as TW
+from experiments.waist_gap_rate import ROUTE, user_range
 from pdrlearn.io.session import Stream
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.waist import track_waist
 
-ROUTE = "stand:3, straight:30, turn:90, straight:20, stand:3"  # trial T1's route
 YAWS_DEG = (0.0, 20.0, 30.0)
 ARMS = {"unit": False, "walk": True}  # TW.WALK_REFERENCE
 
@@ -48,15 +45,10 @@ def run(session, pipeline: str, arm: str):
 
 
 def main() -> None:
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--users", default="9210-9214")
-    a = p.parse_args()
-    logging.getLogger("pdrlearn").setLevel(logging.ERROR)
-    lo, _, hi = a.users.partition("-")
     err = {k: [] for k in ARMS}
     pend_same = 0
     n = 0
-    for u in range(int(lo), int(hi or lo) + 1):
+    for u in user_range(__doc__):
         ses = simulate_path(parse_route(ROUTE), UserProfile.from_seed(u), speed="normal", seed=38,
                             name=f"pllref_u{u}", scenario="route")
         for deg in YAWS_DEG:
