@@ -135,6 +135,8 @@ def import_command(
     drop_duplicate_timestamps: bool = typer.Option(False, "--drop-duplicate-timestamps", help="Keep the first of "
                                                    "rows with the same timestamp (a phone app's batched samples; "
                                                    "refused otherwise, B150)."),
+    sort_timestamps: bool = typer.Option(False, "--sort-timestamps", help="Sort the rows by timestamp first (a phone "
+                                         "app's batched log writes some out of order; refused otherwise, B383)."),
     retime: float = typer.Option(None, "--retime", help="The sensor's output rate in Hz: re-time the samples at it, "
                                  "anchored to their stamps (a Bluetooth IMU's notifications carry several samples on "
                                  "one receive time; lost notifications are counted; B186)."),
@@ -283,7 +285,8 @@ def import_command(
               name=name or (None if merge else out.name),
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
-              drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime,
+              drop_duplicate_timestamps=drop_duplicate_timestamps, sort_timestamps=sort_timestamps,
+              add_gravity=add_gravity, retime_hz=retime,
               foot=foot, no_header=no_header, encoding=encoding, subject=subject,
               visit=visit)
     if split_at_clock_reset:
@@ -520,6 +523,8 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
             f"({_origin_text(t['origin_s'])} on the export's clock taken off), as the session's files do; if both were "
             "on one clock with another origin, import both units (clocks up to 2 s apart: `pdrlearn track "
             "--align-units`, decision L162)")
+    if record.get("sorted_rows"):  # decision B383
+        err(f"{record['sorted_rows']} row(s) out of time order moved by --sort-timestamps (decision B383)")
     for sensor, r in record["streams"].items():
         conv = "" if r["factor"] == 1.0 else f", x {r['factor']:.6g} to {session.streams[sensor].spec.unit}"
         dropped = record["dropped_rows"].get(sensor)
@@ -557,6 +562,9 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
                                    ("gyro", "gyroscope", "Gyroscope", "--gyro")):
         if prefix + sensor in record["streams"]:
             continue
+        if prefix + sensor in session.streams:  # the folder holds it already (--merge of a phone's files)
+            err(f"{prefix + sensor}: kept from the session in {out} (this file maps no {kind} columns)")
+            continue
         if key in ambiguous:  # several sets, none guessed: name them (a Shimmer3's LN and WR accelerometers)
             cols = ambiguous[key]
             shimmer = (" (Shimmer3: Accel_WR is the wide-range accelerometer, Accel_LN the low-noise one of "
@@ -566,7 +574,8 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
             err(f"note: several {kind} column sets ({', '.join(cols)}): none guessed{shimmer}; the pipelines need "
                 f"one: map it with {opt} X,Y,Z")
         else:  # every pipeline needs both (README "Session folders")
-            err(f"note: no {kind} columns recognised; the pipelines need one: map them with {opt} X,Y,Z")
+            err(f"note: no {kind} columns recognised; the pipelines need one: map them with {opt} X,Y,Z, or "
+                f"import the {kind}'s own file into this folder with {opt} X,Y,Z --merge (a phone's separate files)")
     unit = record["unit"]
     if unit in session.frames:
         err(f"{unit} frame: {json.dumps(session.frames[unit].to_dict())}")

@@ -742,7 +742,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                subject_height_m: float | None = None, rate_hz: float | None = None,
                time_format: str | None = None, time_zone: str | None = None,
                skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
-               add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
+               sort_timestamps: bool = False, add_gravity: str | os.PathLike | None = None,
+               retime_hz: float | None = None,
                foot: str | None = None, no_header: bool = False, encoding: str | None = None,
                subject: str | None = None, visit: str | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
@@ -764,6 +765,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         (every cell text, e.g. ``ms``, ``m/(s^2)``, ``deg/s``) is recognised, skipped and read for the units
     drop_duplicate_timestamps : keep the first of rows with the same timestamp (a phone app's batched samples,
         decision B150; counted in ``record["duplicate_rows"]``); refused otherwise
+    sort_timestamps : sort the rows by their timestamp first (a phone app's batched log writes rows out of order;
+        decision B383; the rows that moved counted in ``record["sorted_rows"]``); refused otherwise (D3). Not with a
+        clock reset (B73: sorting would interleave two recordings)
     add_gravity : a gravity file of the same recording (Sensor Logger's ``Gravity.csv``), added sample by sample
         to the accelerometer columns, which hold acceleration without gravity (decision B166): its columns of the
         same names, read with the same time column and units, interpolated onto the accelerometer's times
@@ -820,7 +824,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   subject_height_m: float | None = None, rate_hz: float | None = None,
                   time_format: str | None = None, time_zone: str | None = None,
                   skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
-                  add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None,
+                  sort_timestamps: bool = False, add_gravity: str | os.PathLike | None = None,
+                  retime_hz: float | None = None,
                   foot: str | None = None, no_header: bool = False, encoding: str | None = None,
                   subject: str | None = None, visit: str | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
@@ -1068,6 +1073,16 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
     if resets.size and not split:
         raise DataError(clock_reset_message(t_num * scale + base, resets, f"{where} ({time_column})",
                                             f"line {int(resets[0]) + 1 + first_line}", fix))
+    sorted_rows = 0
+    if sort_timestamps:  # decision B383: rows out of time order sorted (stable: equal stamps keep their order)
+        if resets.size:
+            raise DataError(f"{where}: --sort-timestamps would interleave the recordings on both sides of the clock "
+                            "reset; split the export first (--split-at-clock-reset, without --sort-timestamps) "
+                            "(decision B383)")
+        order = np.argsort(t_num, kind="stable")
+        sorted_rows = int((order != np.arange(order.size)).sum())
+        if sorted_rows:
+            df, t_num = df.iloc[order].reset_index(drop=True), t_num[order]
     if split and origin_s is not None:
         raise DataError("import: --split-at-clock-reset starts each part's clock at its own first sample; it "
                         "cannot share an origin with another export (--merge)")
@@ -1097,6 +1112,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                         "streams": {}, "dropped_rows": {}}
         if skipped is not None:  # decision B66
             record["skipped_rows"] = skipped
+        if sorted_rows:  # decision B383
+            record["sorted_rows"] = sorted_rows
         if mat_record is not None:  # decision B335
             record["mat"] = mat_record
         if no_header:  # decision B336
@@ -1136,7 +1153,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             check_timestamps(t, f"{where} ({time_column})", reset_fix=fix or None,
                              lines=np.flatnonzero(keep) + first_line,  # B80: the file's lines, in any part
                              duplicate_fix="drop the duplicated rows, or pass --drop-duplicate-timestamps to keep "
-                             "the first of each (a phone app's batched samples; decision B150)")
+                             "the first of each (a phone app's batched samples; decision B150)",
+                             backward_fix="sort the file by timestamp, or pass --sort-timestamps to sort the rows "
+                             "on import (decision B383)")
             _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where, inertial=kind in _INERTIAL)
             sign = signs.get(kind, np.ones(len(cols)))
             values = vals[keep] * factor * sign

@@ -664,6 +664,21 @@ STREAMED_DROPS = ("%s: %s have %s interval(s) of dropped samples of 1 s or less 
                   "counts as one sample interval, E36); if they are many, " + DROPS_CAUSE)
 
 
+#: decision W389: a waist gyroscope interval of dropped samples at least this long (s) gets :data:`GAP_TURN`
+#: (experiments/waist_gap_rate.py, W34's line: 0.3 s intervals moved no heading, 0.5-0.9 s ones up to 25 deg)
+GAP_TURN_S = 0.4
+#: decision W389: what such an interval costs the waist heading (W34 bridges the gyroscope with a straight line)
+GAP_TURN = ("; the waist gyroscope is a straight line across each one, which makes up or loses part of a turn: "
+            "0.5-0.9 s intervals while walking moved the heading by up to 25 deg on simulated walks (decision "
+            "W389) - check the path's heading after the longest one")
+
+
+def _gap_turn(left: list[tuple[str, int, float]]) -> str:
+    """Decision W389: :data:`GAP_TURN` when the waist gyroscope has an interval of at least :data:`GAP_TURN_S`
+    among ``left`` (name, count, longest), else an empty string."""
+    return GAP_TURN if any(n == "wGyroscope" and m >= GAP_TURN_S for n, _, m in left) else ""
+
+
 def _per_stream(left: list[tuple[str, int, float]]) -> str:
     """The count of :data:`STREAMED_DROPS`: one number when every stream has as many intervals, else each
     stream's, in the order named (as the offline warning counts them)."""
@@ -704,7 +719,7 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
         log.info("%s: dropped samples bridged by linear interpolation (decision B64): %s", folder,
                  ", ".join(f"{n} {k} interval(s), {m} sample(s)" for n, k, m in done))
     if left and streamed:  # decision L77: the streamed paths integrate on the timestamps (E36, L78)
-        log.warning(STREAMED_DROPS, folder, ", ".join(n for n, _, _ in left), _per_stream(left),
+        log.warning(STREAMED_DROPS + _gap_turn(left), folder, ", ".join(n for n, _, _ in left), _per_stream(left),
                     max(m for _, _, m in left))
         return
     if left:
@@ -715,7 +730,7 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
                  else "/".join(str(k) for _, k, _ in left) + " (in that order)")
         if not any(n in SENSORS and SENSORS[n].placement == "foot" for n, _, _ in left):
             # waist streams only: the foot's figure and `--streaming` (a foot option) do not apply
-            log.warning(WAIST_DROPS, folder, ", ".join(n for n, _, _ in left), count,
+            log.warning(WAIST_DROPS + _gap_turn(left), folder, ", ".join(n for n, _, _ in left), count,
                         what.removesuffix(", not bridged"), max(m for _, _, m in left))
             return
         frac = max(f for n, f in lost.items() if n in SENSORS and SENSORS[n].placement == "foot")

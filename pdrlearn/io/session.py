@@ -507,13 +507,16 @@ class Session:
                     f"{where} declares no axis frame for the {placement} unit{reason}; the D11 test finds its "
                     f"{acc_n} and {gyr_n} {h.describe()}: the two files disagree on the axes, which no frame can "
                     f"describe; {fix}")
-        example = json.dumps({placement: EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"]).to_dict()})
+        nearest = getattr(self._inferred.get(placement), "nearest", None)  # W394: the axes its walk gives
+        example = json.dumps({placement: (nearest or EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"])).to_dict()})
+        what = ("the nearest axis assignment its walking gives (check it against the mounting)" if nearest is not None
+                else "the thesis mounting")
         hint = self._waist_hint(placement)  # decision B288: a "foot" unit that never swings is named as a lower back
         err = DataError(
             f"{where} declares no axis frame for the {placement} unit{reason}; {hint + '; else ' if hint else ''}"
             f"add a \"frames\" entry giving the "
-            f"body direction of each of its axes (forward, backward, left, right, up, down), e.g. the thesis "
-            f"mounting \"frames\": {example}"
+            f"body direction of each of its axes (forward, backward, left, right, up, down), e.g. {what} "
+            f"\"frames\": {example}"
         )
         err.walk_s = getattr(self._inferred.get(placement), "walk_s", None)  # W61: too little walking to infer
         raise err

@@ -211,14 +211,16 @@ def restamp_isolated_ties(t: np.ndarray, values: np.ndarray) -> tuple[np.ndarray
 
 
 def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, reset_fix: str | None = None,
-                     lines: np.ndarray | None = None, duplicate_fix: str = "drop the duplicated rows") -> None:
+                     lines: np.ndarray | None = None, duplicate_fix: str = "drop the duplicated rows",
+                     backward_fix: str = "sort the file by timestamp") -> None:
     """Timestamps must be strictly increasing (no duplicates, sorted). ``in_memory``: ``t`` is a
     :class:`~pdrlearn.io.Stream`'s (decision B49): the messages count samples and say how to fix the arrays.
     ``reset_fix``: the fix a clock reset's message gives instead of splitting the session by hand
     (``pdrlearn import`` names its ``--split-at-clock-reset``, decision B80). ``lines``: the file line of each
     sample (default: sample k on line k + 2, under a header line); import gives them for the rows it kept.
     ``duplicate_fix``: the fix a file's duplicate timestamps are given (import names its
-    ``--drop-duplicate-timestamps``, decision B150)."""
+    ``--drop-duplicate-timestamps``, decision B150); ``backward_fix``: the fix of a file's rows out of order (import
+    names its ``--sort-timestamps``, decision B383)."""
 
     def line(k: int) -> int:
         return int(lines[k]) if lines is not None else k + 2
@@ -261,7 +263,7 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
                             "values[order])")
         raise DataError(
             f"{where}: timestamps go backwards {back.size} time(s) (first at line {line(back[0] + 1)}); "
-            "sort the file by timestamp"
+            + backward_fix
         )
 
 

@@ -250,6 +250,17 @@ def _cat(parts, k: int) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
 
 
+#: decision B382: the timestamp unit whose factor to seconds is nearest (in decades) to the rate ratio, and its fix
+_UNIT_HINTS = ((1e3, "are they in ms? push t in seconds (t_ms / 1000)"),
+               (1e6, "are they in us? push t in seconds (t_us / 1e6)"),
+               (1e9, "are they in ns (an Android event timestamp)? push t in seconds (t_ns / 1e9)"))
+
+
+def _unit_hint(ratio: float) -> str:
+    """Decision B382: the hint of :data:`_UNIT_HINTS` whose factor is nearest to ``ratio`` on a log scale."""
+    return min(_UNIT_HINTS, key=lambda h: abs(math.log10(ratio) - math.log10(h[0])))[1]
+
+
 def check_rate_unit(name: str, rate_hz: float, nominal_hz: float, nominal_what: str = "") -> None:
     """Decision E29: a one-line :class:`DataError` when pushed timestamps give a rate more than
     :data:`RATE_UNIT_FACTOR` away from the nominal one: they are not in seconds. ``name`` opens the message;
@@ -257,7 +268,7 @@ def check_rate_unit(name: str, rate_hz: float, nominal_hz: float, nominal_what: 
     f = rate_hz / nominal_hz
     if f < 1.0 / RATE_UNIT_FACTOR:
         raise DataError(f"{name}: the pushed timestamps give {rate_hz:.3g} Hz, {1.0 / f:.0f}x below {nominal_what}"
-                        f"{nominal_hz:g} Hz: are they in ms (or us)? push t in seconds (t_ms / 1000)")
+                        f"{nominal_hz:g} Hz: {_unit_hint(1.0 / f)}")
     if f > RATE_UNIT_FACTOR:
         raise DataError(f"{name}: the pushed timestamps give {rate_hz:.3g} Hz, {f:.0f}x above {nominal_what}"
                         f"{nominal_hz:g} Hz: push t in seconds")

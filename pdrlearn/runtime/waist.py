@@ -99,7 +99,8 @@ class WaistStream(FixInput):
 
     def __init__(self, fs: float, *, params, options: dict, walk_threshold: float, rotation, start: tuple,
                  warnings: list[str], keep_steps: int | None = None, check_input: bool = True,
-                 latlon: tuple[float, float] | None = None, sides: bool = False):
+                 latlon: tuple[float, float] | None = None, sides: bool = False,
+                 drop_duplicate_timestamps: bool = False):
         from collections import deque
 
         from pdrlearn.kernels.waist import TurnPrior
@@ -136,6 +137,9 @@ class WaistStream(FixInput):
         self._rot = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
         self._proc = None
         self._last_t = -np.inf
+        #: decision E203: drop a sample whose timestamp repeats the one before (keep the first), counted here
+        self._drop_dups = bool(drop_duplicate_timestamps)
+        self.n_dropped_duplicates = 0
         self._dts: list[float] | None = []  # the first sample intervals, until the unit check (E29)
         # samples of the navigation frame (absolute index b0 + i) since the oldest one a pending step needs
         self._b0 = 0
@@ -236,8 +240,13 @@ class WaistStream(FixInput):
             return []
         if not (np.isfinite(t).all() and np.isfinite(acc).all() and np.isfinite(gyr).all()):
             raise DataError(f"{self._name}.push: NaN or inf in the pushed samples; drop those samples")
-        if t[0] <= self._last_t or (t.size > 1 and np.any(np.diff(t) <= 0)):
-            raise DataError(f"{self._name}.push: timestamps must increase strictly across pushes (seconds)")
+        if self._drop_dups:  # decision E203: a phone's repeated sample, dropped (the first kept)
+            keep = t != np.concatenate([[self._last_t], t[:-1]])
+            if not keep.all():
+                t, acc, gyr = self._drop_repeats(t, acc, gyr, keep)
+                if not t.size:
+                    return []
+        self._check_order(t)
         guard, pushed = self._guard, dict(zip(WAIST_SENSORS, ((t, acc), (t, gyr)), strict=True))
         if guard is not None:  # decision B119, before any state changes (a refused push changes nothing)
             arrays = {n: pushed[n] for n in guard.wanted() if n in pushed}
@@ -261,6 +270,35 @@ class WaistStream(FixInput):
                 return []
             t, v = v_t
         return self._feed(self._proc.process(t, v), final=False)
+
+    def _drop_repeats(self, t, acc, gyr, keep):
+        """Decision E203: the samples ``keep`` (those whose timestamp does not repeat the one before); the first drop of
+        a run adds one warning line."""
+        if not self.n_dropped_duplicates:
+            msg = (f"{self._name}.push: dropping samples whose timestamp repeats the one before (the first is kept; "
+                   "drop_duplicate_timestamps=True, decision E203); the count is n_dropped_duplicates")
+            self.warnings.append(msg)
+            log.warning("live waist tracker: %s", msg)
+        self.n_dropped_duplicates += int((~keep).sum())
+        return t[keep], acc[keep], gyr[keep]
+
+    def _check_order(self, t: np.ndarray) -> None:
+        """Decision E203: one line naming the first sample of the push that does not increase strictly - from the
+        previous push's last sample, or from the sample before it in this push - and the fix."""
+        prev = np.concatenate([[self._last_t], t[:-1]])
+        bad = np.flatnonzero(t <= prev)
+        if not bad.size:
+            return
+        i = int(bad[0])
+        fix = ("pass drop_duplicate_timestamps=True to drop repeated samples (the first kept, as 'pdrlearn import "
+               "--drop-duplicate-timestamps')" if t[i] == prev[i] else "sort the samples by time before pushing")
+        what = "repeats" if t[i] == prev[i] else "goes back from"
+        if i == 0:
+            raise DataError(f"{self._name}.push: timestamps must increase strictly across pushes (seconds): this "
+                            f"push's first sample (t={t[0]:.6f} s) {what} the previous push's last (t="
+                            f"{self._last_t:.6f} s); {fix}")
+        raise DataError(f"{self._name}.push: timestamps must increase strictly (seconds): sample {i} of this push "
+                        f"(t={t[i]:.6f} s) {what} sample {i - 1} (t={prev[i]:.6f} s); {fix}")
 
     def push_barometer(self, t, p_hpa) -> None:
         """Add waist barometer samples (decision E106): ``t`` (n,) s on the clock of :meth:`push`, increasing strictly
@@ -784,11 +822,15 @@ class WaistTracker(WaistStream):
         the offline track's ``side`` by construction (W129 reads a zero-phase filter of the whole recording and the
         median over all its contacts; this reads the samples the contact was decided on and the contacts so far):
         on the bundled HA001 Test11 recording the two agree on 79 of the 80 contacts both decide (E103)
+    drop_duplicate_timestamps : drop a pushed sample whose timestamp equals the one before it (in the same push or the
+        previous push's last), keeping the first, as ``pdrlearn import --drop-duplicate-timestamps`` does for a file
+        (decision E203: a phone app repeats samples routinely); counted in ``n_dropped_duplicates``, one warning line.
+        Off (the default): such a push is refused with one line naming the sample and this option
     """
 
     def __init__(self, bundle, *, fs: float | None = None, start=(0.0, 0.0), heading_rad: float = 0.0,
                  frame=None, keep_steps: int | None = None, check_input: bool = True, start_latlon=None,
-                 sides: bool = False):
+                 sides: bool = False, drop_duplicate_timestamps: bool = False):
         from pdrlearn.kernels.frames import frame_rotation, mirrored_line
         from pdrlearn.kernels.geodetic import start_coordinate
         from pdrlearn.kernels.waist import rate_mismatch_line
@@ -829,4 +871,5 @@ class WaistTracker(WaistStream):
         thr = b.params.walk_threshold_mps2
         super().__init__(fs, params=b.params, options=b.options, rotation=rot, start=(x0, y0, h0),
                          warnings=warnings, walk_threshold=thr if thr is not None else b.manifest["walk_threshold"],
-                         keep_steps=keep_steps, check_input=check_input, latlon=latlon, sides=bool(sides))
+                         keep_steps=keep_steps, check_input=check_input, latlon=latlon, sides=bool(sides),
+                         drop_duplicate_timestamps=bool(drop_duplicate_timestamps))

@@ -112,6 +112,8 @@ class FrameInferenceError(DataError):
     walk_s: float | None = None
     up: np.ndarray | None = None
     forward: np.ndarray | None = None
+    #: a waist unit refused for its tilt: the nearest axis assignment its walking gives (an AxisFrame), else None
+    nearest = None
     #: decision D23 amended (L223): the foot strides the forward was measured from and their mean resultant
     n_strides: int | None = None
     resultant: float | None = None
@@ -492,20 +494,41 @@ def _walking_mean(acc: np.ndarray, fs: float, *, window_s: float = 4.0, walk_std
     return sums / count if count else acc.mean(axis=0)
 
 
-def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
+#: decision W394 (trial T1's finding 10): a waist unit whose gravity or forward is beyond MAX_SNAP_DEG of every axis is
+#: refused, and the refusal suggests the nearest axis assignment its walking gives, found with both snap checks opened
+#: to this (deg)
+NEAREST_SNAP_DEG = 90.0
+
+
+def _with_nearest(err: FrameInferenceError, acc, gyr, fs: float, max_snap_deg: float) -> FrameInferenceError:
+    """Decision W394: ``err`` (a snap refusal) carrying ``nearest``, the frame :func:`infer_waist_frame` gives
+    with the snap checks opened (:data:`NEAREST_SNAP_DEG`), when this was not already that inference."""
+    if max_snap_deg < NEAREST_SNAP_DEG:
+        try:
+            err.nearest = infer_waist_frame(acc, gyr, fs, max_snap_deg=NEAREST_SNAP_DEG).frame
+        except FrameInferenceError:
+            pass
+    return err
+
+
+def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float, *,
+                      max_snap_deg: float = MAX_SNAP_DEG) -> InferredFrame:
     """Frame of a waist (lower-back, belt) unit from its specific force (m/s^2) on one clock (fs Hz).
 
     ``gyr`` (rad/s, same samples; or None) leaves out the windows that turn (decision W333: the yaw rate about up,
     :data:`TURNING_WINDOW_RPS`). Raises :class:`FrameInferenceError` when there is too little (straight) walking or
-    the axes are ambiguous.
+    the axes are ambiguous. Gravity or forward more than ``max_snap_deg`` from every axis is refused; the refusal
+    carries ``nearest``, the frame inferred with the snap checks opened (:data:`NEAREST_SNAP_DEG`), or None (decision
+    W394: the fix suggested is that frame, not the thesis mounting).
     """
     from pdrlearn.waist._kernels import forward_sign
 
     acc = np.asarray(acc, dtype=float)
     up = _unit(_walking_mean(acc, fs))
     i_u, s_u, ang_u = _nearest_axis(up)
-    if ang_u > MAX_SNAP_DEG:
-        raise _refuse(f"gravity is {ang_u:.0f} deg from every sensor axis (more than {MAX_SNAP_DEG:g})", up)
+    if ang_u > max_snap_deg:  # W394: the nearest assignment the walking gives, as the suggested entry
+        raise _with_nearest(_refuse(f"gravity is {ang_u:.0f} deg from every sensor axis (more than "
+                                    f"{MAX_SNAP_DEG:g})", up), acc, gyr, fs, max_snap_deg)
     hor = [i for i in range(3) if i != i_u]
     e = np.eye(3)
     # horizontal basis: the two other sensor axes made orthogonal to up (the unit's tilt removed)
@@ -557,9 +580,10 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     # decision W2: forward when the lead lies within +-90 deg of 45 deg (the one rule, shared with the heading)
     fwd = ap * forward_sign(np.array([1.0]), np.array([zc.real]), np.array([-zc.imag]), 1.0, 0.0)
     i_f, s_f, ang_f = _nearest_axis(fwd, exclude=(i_u,))
-    if ang_f > MAX_SNAP_DEG:
-        raise _refuse(f"the forward direction is {ang_f:.0f} deg from both horizontal sensor axes "
-                      f"(more than {MAX_SNAP_DEG:g})", up, _unit(fwd - (fwd @ up) * up))
+    if ang_f > max_snap_deg:  # W394, as for gravity
+        raise _with_nearest(_refuse(f"the forward direction is {ang_f:.0f} deg from both horizontal sensor axes "
+                                    f"(more than {MAX_SNAP_DEG:g})", up, _unit(fwd - (fwd @ up) * up)),
+                            acc, gyr, fs, max_snap_deg)
     left = np.cross(e[i_u] * s_u, e[i_f] * s_f)
     i_l = int(np.argmax(np.abs(left)))
     frame = frame_from_axes((i_f, s_f), (i_l, float(np.sign(left[i_l]))), (i_u, s_u))

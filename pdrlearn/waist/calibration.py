@@ -166,6 +166,14 @@ MIN_STRIDES_GMM = 20  # strides needed to fit the straight/turning mixture (deci
 GAP_NOTE_S = 0.3
 
 
+#: decision W393: the note of a waist-pll calibration (trial T1 finding 5: calibrated on a 40 m walk, 57 steps, the
+#: 50 m route read +11.3 % with 80 steps for 75, the pendulum +0.7 %)
+PLL_EDGE_NOTE = ("waist-pll counts extra contacts at the edges of walking sequences (decision W345; pll_edge_lock "
+                 "removes some, W372): this calibration counts them among its walk's steps and does not correct "
+                 "them, so a walk with more starts, stops or turns than this one reads long (decision W393); "
+                 "waist-pendulum has no such extras")
+
+
 def gap_notes(session: Session, t0: float, t1: float) -> list[str]:
     """Notes on the accelerometer gaps of at least :data:`GAP_NOTE_S` inside ``[t0, t1]`` (s): the steps in
     them are interpolated (W34) and come out short, so a calibration on that walk overestimates K."""
@@ -448,6 +456,8 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     for n in notes_gap:
         log.info("calibrate: %s", n)
     out.notes += notes_gap + implausible + notes_count
+    if pipeline == "waist-pll":  # decision W393: the bout-edge extras are fitted into the length, not corrected
+        out.notes.append(PLL_EDGE_NOTE)
     if turns is not None:
         from pdrlearn.waist.ahrs import waist_imu
 
