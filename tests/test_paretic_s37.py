@@ -1,0 +1,70 @@
+"""Session 37, fixer FA (trial T2: a stroke unit's slow, hemiparetic walkers with two foot units). Decisions
+steps 70, L459-L462. Fresh simulated users 9180-9189 only."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.cli import main
+from pdrlearn.displace.force_check import check_force_stance, swing_lulls_dropped
+
+ROUTE = "stand:3, straight:16, stand:3"
+
+
+def _sim(tmp_path, user, step_length, step_time, asym, foot, route=ROUTE):
+    out = tmp_path / f"s{user}_{foot}"
+    assert main(["simulate", "--route", route, "--bounce", "pendulum", "--rate", "100", "--user-seed", str(user),
+                 "--step-length", str(step_length), "--step-time", str(step_time), "--step-time-asymmetry", str(asym),
+                 "--foot", foot, "--out", str(out)]) == 0
+    return out
+
+
+def _masks():
+    """100 Hz, a 1.7 s stride: loads 0-0.7, 1.5-2.4, 3.2-4.0 s (stance 0.9 s, swing 0.8 s), foot flats 0.1-0.4,
+    1.7-2.1, 3.4-3.8 s, and a one-sample lull at 1.0 s inside the force's swing."""
+    t = np.arange(0, 4.0, 0.01)
+    rest = (((t >= 0.1) & (t < 0.4)) | ((t >= 1.7) & (t < 2.1)) | ((t >= 3.4) & (t < 3.8))
+            | np.isclose(t, 1.0))
+    loaded = (t < 0.7) | ((t >= 1.5) & (t < 2.4)) | (t >= 3.2)
+    g = np.where(rest, 0.1, 3.0)
+    return t, rest, loaded, g
+
+
+def test_a_lull_inside_the_insoles_swing_is_no_rest_and_no_insole_fault_steps_70():
+    """Steps 70: the one-sample IMU "rest" at 1.0 s lies in the force's unbroken swing 0.7-1.5 s: it is dropped, and
+    L365 finds no failing stride (before it, the lull made two strides, both blamed on the insoles)."""
+    t, rest, loaded, g = _masks()
+    from pdrlearn.displace.foot import stance_runs
+
+    rr = stance_runs(t, rest)
+    assert len(rr) == 4 and len(swing_lulls_dropped(t, rr, loaded)) == 3
+    chk = check_force_stance(t, loaded, rest, g)
+    assert chk.n_bad == 0 and chk.n_strides == 2
+
+
+def test_an_insole_that_drops_out_in_a_rest_is_still_blamed_steps_70():
+    """The insole drops out 1.5-2.4 s, over the real rest 1.7-2.1 s: the force reads one unloaded span 0.7-3.2 s
+    (swing, rest, swing) whose unloaded rest lasts 0.4 s, longer than any swing the force counts (0.15 s): no lull,
+    L365 still blames the insole."""
+    t, rest, loaded, g = _masks()
+    rest = rest & ~np.isclose(t, 1.0)
+    loaded = loaded & ~((t >= 1.5) & (t < 2.4))
+    chk = check_force_stance(t, loaded, rest, g)
+    assert chk.n_bad == 2 and chk.reasons == ["no load in the foot's rest"] * 2
+
+
+def test_slow_paretic_foot_keeps_its_stride_count_steps_70(tmp_path, capsys):
+    """Fresh user 9185 (0.28 m in 0.90 s, step-time asymmetry 0.5, the left foot): before steps 70 the track had 30
+    strides for the labels' 29 and an L365 insole line (experiments/results/paretic_lull_70.txt)."""
+    d = _sim(tmp_path, 9185, 0.28, 0.90, 0.5, "left")
+    capsys.readouterr()
+    assert main(["track", str(d), "--out", str(tmp_path / "t"), "--force"]) == 0
+    err = capsys.readouterr().err
+    n = json.loads((tmp_path / "t" / "summary.json").read_text())["n_strides_one_foot"]
+    assert n == len(pd.read_csv(d / "steps.csv")) == 29
+    assert "disagree with the foot IMU" not in err
+
+
