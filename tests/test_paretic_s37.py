@@ -7,6 +7,7 @@ import json
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from pdrlearn.cli import main
 from pdrlearn.displace.force_check import check_force_stance, swing_lulls_dropped
@@ -68,3 +69,37 @@ def test_slow_paretic_foot_keeps_its_stride_count_steps_70(tmp_path, capsys):
     assert "disagree with the foot IMU" not in err
 
 
+
+
+def test_gait_withholds_symmetry_indices_under_ten_steps_a_side_l461():
+    """Decision L461: 5 steps a side give no SI or ratio, one reason; 12 a side give them."""
+    from pdrlearn.track.bilateral import bilateral_gait
+
+    def foot(ic):
+        ic = np.asarray(ic, float)
+        return pd.DataFrame({"start_s": ic - 0.6, "end_s": ic + 0.2, "event_s": ic, "tc_s": ic - 0.45,
+                             "length_m": 1.2, "gap_s": 0.0, "unit": "foot"})
+
+    short = bilateral_gait(foot(np.arange(6) * 1.2), foot(0.7 + np.arange(6) * 1.2))["walk"]
+    assert short["n_steps_left"] == 5 and short["step_time_s_si_pct"] is None and short["step_time_s_ratio"] is None
+    assert "5 steps on the left side, 10 needed" in short["si_withheld"]
+    long = bilateral_gait(foot(np.arange(13) * 1.2), foot(0.7 + np.arange(13) * 1.2))["walk"]
+    assert long["si_withheld"] is None and long["step_time_s_si_pct"] == pytest.approx(100 * 0.2 / 0.6)
+
+
+def test_gait_and_gait_all_carry_each_foots_trust_lines_l461(tmp_path, capsys):
+    """Decision L461: fresh user 9182 at 0.31 m/s, both feet: gait_summary.json's warnings and each side's
+    ``sessions`` hold the track's slower-than-validated line (L95), and gait-all's gait_pairs.csv has them in
+    ``warnings``; before, both were empty of it."""
+    visit = tmp_path / "study" / "v1"
+    for foot in ("left", "right"):
+        d = _sim(visit, 9182, 0.25, 0.80, 0.5, foot, route="stand:3, straight:8, stand:3")
+    left, right = visit / "s9182_left", visit / "s9182_right"
+    assert main(["gait", str(left), str(right), "--out", str(tmp_path / "g")]) == 0
+    res = json.loads((tmp_path / "g" / "gait_summary.json").read_text())
+    assert any(w.startswith("left foot:") and "slower than the walking" in w for w in res["warnings"])
+    assert any("slower than the walking" in w for w in res["sessions"]["right"]["warnings"])
+    assert main(["gait-all", str(tmp_path / "study"), "--out", str(tmp_path / "ga")]) == 0
+    pairs = pd.read_csv(tmp_path / "ga" / "gait_pairs.csv")
+    assert "right foot:" in pairs.loc[0, "warnings"] and "slower than the walking" in pairs.loc[0, "warnings"]
+    assert d.exists()

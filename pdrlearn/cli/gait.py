@@ -179,7 +179,8 @@ def gait_all(root: Path, out: Path, force: bool = False) -> int:
                     got = gait_tables(res, {"path": pair["path"], **res["ids"]})
                     for name in GAIT_TABLE_FILES:
                         tables[name].append(got[name])
-                    row.update(status="ok", **res["ids"], n_bouts=len(res["bouts"]), n_steps=len(res["steps"]))
+                    row.update(status="ok", **res["ids"], n_bouts=len(res["bouts"]), n_steps=len(res["steps"]),
+                               warnings=" | ".join(res["warnings"]))  # decision L461
             rows.append(row)
             what = {"ok": f"ok, {row.get('n_steps')} steps in {row.get('n_bouts')} bout(s)",
                     "failed": f"failed: {row['reason']}"}.get(row["status"], row["reason"])

@@ -36,7 +36,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
-from pdrlearn.track.clinical import bout_rows, symmetry_index_pct
+from pdrlearn.track.clinical import CV_MIN_STRIDES, bout_rows, symmetry_index_pct
 from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.foot_heights import height_warning
@@ -304,6 +304,25 @@ def _pair(name: str, left: float | None, right: float | None) -> dict:
             f"{name}_ratio": float(left / right) if both else None}
 
 
+#: decision L461: a symmetry index or ratio of the walk needs at least this many steps on each side. No source gives a
+#: minimum for the SI; the project's minimum for a stride-time CV (L113, :data:`CV_MIN_STRIDES`) is reused: an index
+#: compares two means, each as noisy as a CV's mean from the same number of steps
+SI_MIN_STEPS = CV_MIN_STRIDES
+
+
+def withhold_indices(walk: dict, *, min_steps: int = SI_MIN_STEPS) -> str | None:
+    """Decision L461: with fewer than ``min_steps`` steps on a side, every ``*_si_pct`` and ``*_ratio`` of ``walk``
+    is set to None (in place) and the reason returned; None when there are enough."""
+    n = min(walk["n_steps_left"], walk["n_steps_right"])
+    if n >= min_steps:
+        return None
+    for k in [k for k in walk if k.endswith(("_si_pct", "_ratio"))]:
+        walk[k] = None
+    side = "left" if walk["n_steps_left"] <= walk["n_steps_right"] else "right"
+    return (f"symmetry indices and ratios withheld: {n} steps on the {side} side, {min_steps} needed on each side "
+            "(decision L461; the stride-time CV's minimum, L113) - walk longer, or pool visits")
+
+
 def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame) -> dict:
     """Decisions L259, L262: the walk's (or one bout's) bilateral measures from its tables (module docstring)."""
     out = {"n_steps_left": int((steps["side"] == "left").sum()), "n_steps_right": int((steps["side"] == "right").sum())}
@@ -440,6 +459,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
         reason = SUPPORT_NOTE if "event_s" in left_steps else None
     walk = gait_measures(both, steps, cycles)
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
+    walk["si_withheld"] = withhold_indices(walk)  # decision L461
     log = logging.getLogger(__name__)
     for line in (clock_offset_warning(walk), stance_warning(walk) if "event_s" in left_steps else None,
                  unanchored_warning(walk, steps) if np.isfinite(both["x_m"]).any() else None):
@@ -661,6 +681,17 @@ def no_model_as_info(line: str):
         logging.getLogger(__name__).info(line)
 
 
+def foot_warnings(session, result) -> list[str]:
+    """Decision L461: one foot track's trust lines (its result's kept warnings and its summary's own, e.g. L95's
+    slower-than-validated walk and L113's withheld CV), which ``track`` prints, without E153's "no model" line (gait
+    takes no model)."""
+    from pdrlearn.track.evaluate import summary_warnings
+
+    summary = result.summary(session)  # logs the summary's own lines (as track's summary does)
+    lines = [str(x) for x in (*summary["info"].get("warnings", []), *summary_warnings(summary))]
+    return [x for x in dict.fromkeys(lines) if not x.startswith("no model:")]  # E153: gait takes no model
+
+
 def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     """Decisions L259-L263: read and track (offline plasys with ``toe_off=True``, L73) the left and the right foot's
     session folders of one walk and give :func:`bilateral_gait` of their tracks, plus ``"reference"``: the same
@@ -696,7 +727,15 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
         if line is not None:
             logging.getLogger(__name__).warning(line)
             out["warnings"].append(line)
-    out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps))}
-                       for side, d, t in zip(SIDES, (left_dir, right_dir), tracks, strict=True)}
+    feet = [foot_warnings(s, t) for s, t in zip(sessions, tracks, strict=True)]  # decision L461
+    for side, lines in zip(SIDES, feet, strict=True):
+        for line in lines:
+            out["warnings"].append(f"{side} foot: {line}")
+    for line in (out["walk"].get("si_withheld"),):
+        if line is not None:
+            logging.getLogger(__name__).warning(line)
+            out["warnings"].append(line)
+    out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps)), "warnings": lines}
+                       for side, d, t, lines in zip(SIDES, (left_dir, right_dir), tracks, feet, strict=True)}
     out["ids"] = pair_ids(*sessions)  # decision C109: the tables' id columns
     return out
