@@ -277,6 +277,9 @@ SESSIONS: tuple[Column, ...] = (
     ("walk_test_distance_m", "m", "number", "--corridor only: n_laps x corridor_m + the final partial lap (its tracked "
                                             "distance x the last lap's corridor / tracked ratio, at most corridor_m; "
                                             "ATS 2002 as recalled, L383)"),
+    ("walk_test_duration_s", "s", "number", "--corridor only: the span walk_test_distance_m covers (--window's, else "
+                                            "the first step's start to the last step's end); a note when it is over "
+                                            "7 minutes without --window (L462)"),
     ("walk_test_distance_per_minute_m", "m", "number", "--corridor only, summary.json only (a list): the corridor "
                                                      "distance in each full minute from the first step (L383)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "

@@ -103,3 +103,20 @@ def test_gait_and_gait_all_carry_each_foots_trust_lines_l461(tmp_path, capsys):
     pairs = pd.read_csv(tmp_path / "ga" / "gait_pairs.csv")
     assert "right foot:" in pairs.loc[0, "warnings"] and "slower than the walking" in pairs.loc[0, "warnings"]
     assert d.exists()
+
+
+def test_corridor_test_says_its_duration_and_notes_a_whole_recording_l462():
+    """Decision L462: 480 one-second strides up and down a corridor without --window: walk_test_duration_s 480 s and
+    one note that this is no 6-minute test; with the 6-minute span no note."""
+    from pdrlearn.track.corridor import corridor_laps
+
+    t = np.arange(480, dtype=float)
+    steps = pd.DataFrame({"start_s": t, "end_s": t + 1.0, "event_s": t + 1.0, "length_m": 1.0,
+                          "heading_rad": np.where((np.arange(480) // 30) % 2 == 0, 0.0, np.pi), "unit": "foot"})
+    mids = np.arange(30, 480, 30, dtype=float)
+    turns = pd.DataFrame({"start_s": mids - 0.5, "end_s": mids + 0.5, "angle_deg": 180.0})
+    _, keys, lines = corridor_laps(steps, turns, 30.0)
+    assert keys["walk_test_duration_s"] == pytest.approx(480.0)
+    assert sum("not a 6-minute test" in x and "L462" in x for x in lines) == 1
+    _, keys, lines = corridor_laps(steps, turns, 30.0, span=(0.0, 360.0))
+    assert keys["walk_test_duration_s"] == pytest.approx(360.0) and not any("L462" in x for x in lines)
