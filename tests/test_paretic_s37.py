@@ -72,8 +72,9 @@ def test_slow_paretic_foot_keeps_its_stride_count_steps_70(tmp_path, capsys):
 
 
 def test_gait_withholds_symmetry_indices_under_ten_steps_a_side_l461():
-    """Decision L461: 5 steps a side give no SI or ratio, one reason; 12 a side give them."""
-    from pdrlearn.track.bilateral import bilateral_gait
+    """Decision L461 (what `gait` / `gait-all` apply to the walk): 5 steps a side give no SI or ratio and one reason;
+    12 a side keep them."""
+    from pdrlearn.track.bilateral import bilateral_gait, withhold_indices
 
     def foot(ic):
         ic = np.asarray(ic, float)
@@ -81,10 +82,10 @@ def test_gait_withholds_symmetry_indices_under_ten_steps_a_side_l461():
                              "length_m": 1.2, "gap_s": 0.0, "unit": "foot"})
 
     short = bilateral_gait(foot(np.arange(6) * 1.2), foot(0.7 + np.arange(6) * 1.2))["walk"]
+    assert "5 steps on the left side, 10 needed" in withhold_indices(short)
     assert short["n_steps_left"] == 5 and short["step_time_s_si_pct"] is None and short["step_time_s_ratio"] is None
-    assert "5 steps on the left side, 10 needed" in short["si_withheld"]
     long = bilateral_gait(foot(np.arange(13) * 1.2), foot(0.7 + np.arange(13) * 1.2))["walk"]
-    assert long["si_withheld"] is None and long["step_time_s_si_pct"] == pytest.approx(100 * 0.2 / 0.6)
+    assert withhold_indices(long) is None and long["step_time_s_si_pct"] == pytest.approx(100 * 0.2 / 0.6)
 
 
 def test_gait_and_gait_all_carry_each_foots_trust_lines_l461(tmp_path, capsys):

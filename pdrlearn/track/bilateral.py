@@ -459,7 +459,6 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
         reason = SUPPORT_NOTE if "event_s" in left_steps else None
     walk = gait_measures(both, steps, cycles)
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
-    walk["si_withheld"] = withhold_indices(walk)  # decision L461
     log = logging.getLogger(__name__)
     for line in (clock_offset_warning(walk), stance_warning(walk) if "event_s" in left_steps else None,
                  unanchored_warning(walk, steps) if np.isfinite(both["x_m"]).any() else None):
@@ -681,15 +680,16 @@ def no_model_as_info(line: str):
         logging.getLogger(__name__).info(line)
 
 
-def foot_warnings(session, result) -> list[str]:
-    """Decision L461: one foot track's trust lines (its result's kept warnings and its summary's own, e.g. L95's
-    slower-than-validated walk and L113's withheld CV), which ``track`` prints, without E153's "no model" line (gait
-    takes no model)."""
+def foot_warnings(session, result) -> tuple[list[str], list[str]]:
+    """Decision L461: one foot track's lines: its result's kept warnings (without E153's "no model" line: gait takes
+    no model; they were logged while tracking) and its summary's own trust lines (L95's slower-than-validated walk,
+    L113's withheld CV, ...), which ``track`` prints and ``gait`` did not."""
     from pdrlearn.track.evaluate import summary_warnings
 
     summary = result.summary(session)  # logs the summary's own lines (as track's summary does)
-    lines = [str(x) for x in (*summary["info"].get("warnings", []), *summary_warnings(summary))]
-    return [x for x in dict.fromkeys(lines) if not x.startswith("no model:")]  # E153: gait takes no model
+    kept = [str(x) for x in summary["info"].get("warnings", []) if not str(x).startswith("no model:")]  # E153
+    own = [str(x) for x in summary_warnings(summary)]
+    return kept, own
 
 
 def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
@@ -728,14 +728,12 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
             logging.getLogger(__name__).warning(line)
             out["warnings"].append(line)
     feet = [foot_warnings(s, t) for s, t in zip(sessions, tracks, strict=True)]  # decision L461
-    for side, lines in zip(SIDES, feet, strict=True):
-        for line in lines:
-            out["warnings"].append(f"{side} foot: {line}")
-    for line in (out["walk"].get("si_withheld"),):
-        if line is not None:
-            logging.getLogger(__name__).warning(line)
-            out["warnings"].append(line)
-    out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps)), "warnings": lines}
-                       for side, d, t, lines in zip(SIDES, (left_dir, right_dir), tracks, feet, strict=True)}
+    out["warnings"] += [f"{side} foot: {line}" for side, (_, own) in zip(SIDES, feet, strict=True) for line in own]
+    out["walk"]["si_withheld"] = withhold_indices(out["walk"])  # decision L461
+    if out["walk"]["si_withheld"] is not None:
+        logging.getLogger(__name__).warning(out["walk"]["si_withheld"])
+        out["warnings"].append(out["walk"]["si_withheld"])
+    out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps)), "warnings": [*kept, *own]}
+                       for side, d, t, (kept, own) in zip(SIDES, (left_dir, right_dir), tracks, feet, strict=True)}
     out["ids"] = pair_ids(*sessions)  # decision C109: the tables' id columns
     return out
