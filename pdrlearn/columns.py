@@ -277,6 +277,9 @@ SESSIONS: tuple[Column, ...] = (
     ("walk_test_distance_m", "m", "number", "--corridor only: n_laps x corridor_m + the final partial lap (its tracked "
                                             "distance x the last lap's corridor / tracked ratio, at most corridor_m; "
                                             "ATS 2002 as recalled, L383)"),
+    ("walk_test_duration_s", "s", "number", "--corridor only: the span walk_test_distance_m covers (--window's, else "
+                                            "the first step's start to the last step's end); a note when it is over "
+                                            "7 minutes without --window (L462)"),
     ("walk_test_distance_per_minute_m", "m", "number", "--corridor only, summary.json only (a list): the corridor "
                                                      "distance in each full minute from the first step (L383)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
@@ -940,6 +943,8 @@ GAIT_PAIRS: tuple[Column, ...] = (
     ("visit", _ID, "text", "as gait_steps.csv (C109)"),
     ("n_bouts", "count", "integer", "the pair's walking bouts: its rows of gait_bouts.csv"),
     ("n_steps", "count", "integer", "the pair's steps of both feet: its rows of gait_steps.csv"),
+    ("warnings", _ID, "text", "the pair's warning lines as gait_summary.json's warnings (each foot's track lines "
+                              "prefixed `left foot:` / `right foot:`, L461), ` | `-joined; empty when none"),
 )
 
 
@@ -1012,6 +1017,8 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("step_length_scale_pct", "%", "number", "gait_summary.json walk only: the left track's length scale against "
                                              "the right's that the closing step implied, taken out (L310); empty "
                                              "without a closing step"),
+    ("si_withheld", _ID, "text", "gait_summary.json walk only: why the walk's symmetry indices and ratios are empty "
+                                 "(fewer than 10 steps on a side, L461); empty when given"),
     ("clock_offset_s", "s", "number", "((left step - left swing) - (right step - right swing)) / 2: the left clock's "
                                       "offset the steps imply, plus half the walker's own double-support imbalance "
                                       "(L284; > 0 = the left unit's times late)"),

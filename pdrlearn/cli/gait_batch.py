@@ -30,7 +30,7 @@ def _pair_job(args: dict) -> dict:
     res = pair_sessions(Path(args["left"]), Path(args["right"]))
     got = gait_tables(res, {"path": args["path"], **res["ids"]})
     value = {"row": {"path": args["path"], "status": "ok", "reason": None, **res["ids"], "n_bouts": len(res["bouts"]),
-                     "n_steps": len(res["steps"])},
+                     "n_steps": len(res["steps"]), "warnings": " | ".join(res["warnings"])},  # decision L461
              "tables": {name: table_text(got[name]) for name in GAIT_TABLE_FILES}}
     return write_file_record(Path(args["record"]), args["key"], args["input_sha256"], value)
 

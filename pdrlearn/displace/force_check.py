@@ -59,7 +59,7 @@ def check_force_stance(t: np.ndarray, loaded: np.ndarray, rest: np.ndarray, gyr_
     loaded = np.asarray(loaded, dtype=bool)
     g = np.asarray(gyr_norm, dtype=float)
     gap = np.zeros(len(t), dtype=bool) if gap is None else np.asarray(gap, dtype=bool)
-    rr = stance_runs(t, np.asarray(rest, dtype=bool))
+    rr = swing_lulls_dropped(t, stance_runs(t, np.asarray(rest, dtype=bool)), loaded, rest_loaded_min, min_swing_s)
     bad, reasons, n = [], [], 0
     for k in range(len(rr) - 1):
         s0, s1 = rr[k, 1], rr[k + 1, 0]  # the swing between rest k and rest k + 1
@@ -80,6 +80,40 @@ def check_force_stance(t: np.ndarray, loaded: np.ndarray, rest: np.ndarray, gyr_
     whole = n > 0 and len(bad) >= session_frac * n
     spans = np.array([(0, len(t))] if whole else bad, dtype=np.int64).reshape(-1, 2)
     return ForceCheck(spans, n, len(bad), whole, reasons)
+
+
+def swing_lulls_dropped(t: np.ndarray, rr: np.ndarray, loaded: np.ndarray, rest_loaded_min: float = REST_LOADED_MIN,
+                        min_swing_s: float = FORCE_MIN_SWING_S) -> np.ndarray:
+    """Decision steps 70 (pure kernel): the IMU's rest runs ``rr`` (k, 2) without those that lie in the force's swing.
+    A slow swing's lulls pass the IMU's rest test (steps 61, S77: under even the fixed 0.4 rad/s) and split a
+    paretic stride in two; the insoles, unloaded there, were then blamed (L365). Runs the force loads on less than
+    ``rest_loaded_min`` of their samples (one or several in a row) are lulls, not rests, when the force loads the
+    runs on both sides at least that much and stays unloaded from its load in the run before to its load in the run
+    after (one unbroken swing of the force's holds them), and each lasts less than ``min_swing_s`` (the accel-force
+    detector's shortest swing, thesis ch.5.2, :data:`FORCE_MIN_SWING_S`): a pause shorter than any swing the force
+    would count is a lull of the swing, whereas an insole that drops out over a real foot flat leaves a longer
+    unloaded rest, which L365 still blames on the insole."""
+    t = np.asarray(t, dtype=float)
+    loaded = np.asarray(loaded, dtype=bool)
+    rr = np.asarray(rr, dtype=np.int64).reshape(-1, 2)
+    full = np.array([b > a and loaded[a:b].mean() >= rest_loaded_min for a, b in rr], dtype=bool)
+    keep = np.ones(len(rr), dtype=bool)
+    k = 1
+    while k < len(rr) - 1:
+        if full[k] or not full[k - 1]:
+            k += 1
+            continue
+        j = k
+        while j < len(rr) and not full[j]:
+            j += 1  # runs k .. j-1 unloaded, j the next loaded run (if any)
+        if j < len(rr):
+            last = rr[k - 1, 0] + np.flatnonzero(loaded[rr[k - 1, 0]:rr[k, 0]])[-1]
+            first = rr[j - 1, 1] + np.flatnonzero(loaded[rr[j - 1, 1]:rr[j, 1]])[0]
+            short = all(t[e - 1] - t[s] < min_swing_s for s, e in rr[k:j])
+            if short and not loaded[last + 1:first].any():
+                keep[k:j] = False
+        k = j
+    return rr[keep]
 
 
 def _longest_false_s(t: np.ndarray, mask: np.ndarray) -> float:

@@ -36,7 +36,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
-from pdrlearn.track.clinical import bout_rows, symmetry_index_pct
+from pdrlearn.track.clinical import CV_MIN_STRIDES, bout_rows, symmetry_index_pct
 from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.foot_heights import height_warning
@@ -302,6 +302,25 @@ def _pair(name: str, left: float | None, right: float | None) -> dict:
     return {f"{name}_left": left, f"{name}_right": right,
             f"{name}_si_pct": symmetry_index_pct(left, right) if both else None,
             f"{name}_ratio": float(left / right) if both else None}
+
+
+#: decision L461: a symmetry index or ratio of the walk needs at least this many steps on each side. No source gives a
+#: minimum for the SI; the project's minimum for a stride-time CV (L113, :data:`CV_MIN_STRIDES`) is reused: an index
+#: compares two means, each as noisy as a CV's mean from the same number of steps
+SI_MIN_STEPS = CV_MIN_STRIDES
+
+
+def withhold_indices(walk: dict, *, min_steps: int = SI_MIN_STEPS) -> str | None:
+    """Decision L461: with fewer than ``min_steps`` steps on a side, every ``*_si_pct`` and ``*_ratio`` of ``walk``
+    is set to None (in place) and the reason returned; None when there are enough."""
+    n = min(walk["n_steps_left"], walk["n_steps_right"])
+    if n >= min_steps:
+        return None
+    for k in [k for k in walk if k.endswith(("_si_pct", "_ratio"))]:
+        walk[k] = None
+    side = "left" if walk["n_steps_left"] <= walk["n_steps_right"] else "right"
+    return (f"symmetry indices and ratios withheld: {n} steps on the {side} side, {min_steps} needed on each side "
+            "(decision L461; the stride-time CV's minimum, L113) - walk longer, or pool visits")
 
 
 def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame) -> dict:
@@ -661,6 +680,18 @@ def no_model_as_info(line: str):
         logging.getLogger(__name__).info(line)
 
 
+def foot_warnings(session, result) -> tuple[list[str], list[str]]:
+    """Decision L461: one foot track's lines: its result's kept warnings (without E153's "no model" line: gait takes
+    no model; they were logged while tracking) and its summary's own trust lines (L95's slower-than-validated walk,
+    L113's withheld CV, ...), which ``track`` prints and ``gait`` did not."""
+    from pdrlearn.track.evaluate import summary_warnings
+
+    summary = result.summary(session)  # logs the summary's own lines (as track's summary does)
+    kept = [str(x) for x in summary["info"].get("warnings", []) if not str(x).startswith("no model:")]  # E153
+    own = [str(x) for x in summary_warnings(summary)]
+    return kept, own
+
+
 def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     """Decisions L259-L263: read and track (offline plasys with ``toe_off=True``, L73) the left and the right foot's
     session folders of one walk and give :func:`bilateral_gait` of their tracks, plus ``"reference"``: the same
@@ -696,7 +727,13 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
         if line is not None:
             logging.getLogger(__name__).warning(line)
             out["warnings"].append(line)
-    out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps))}
-                       for side, d, t in zip(SIDES, (left_dir, right_dir), tracks, strict=True)}
+    feet = [foot_warnings(s, t) for s, t in zip(sessions, tracks, strict=True)]  # decision L461
+    out["warnings"] += [f"{side} foot: {line}" for side, (_, own) in zip(SIDES, feet, strict=True) for line in own]
+    out["walk"]["si_withheld"] = withhold_indices(out["walk"])  # decision L461
+    if out["walk"]["si_withheld"] is not None:
+        logging.getLogger(__name__).warning(out["walk"]["si_withheld"])
+        out["warnings"].append(out["walk"]["si_withheld"])
+    out["sessions"] = {side: {"session": str(d), "n_strides": int(len(t.steps)), "warnings": [*kept, *own]}
+                       for side, d, t, (kept, own) in zip(SIDES, (left_dir, right_dir), tracks, feet, strict=True)}
     out["ids"] = pair_ids(*sessions)  # decision C109: the tables' id columns
     return out

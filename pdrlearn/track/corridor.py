@@ -33,6 +33,9 @@ MINUTE_S = 60.0
 #: decision L383: laps.csv's columns
 LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "tracked_m", "distance_m", "distance_source",
                "speed_mps", "rest_s", "n_steps")  # E98: speed_mps, not the old speed_m_s
+#: decision L462: the six-minute walk test's duration (s; ATS statement, Am J Respir Crit Care Med 2002;166:111-117,
+#: as recalled); a test span without --window longer than this plus one of L383's minutes gets a note
+SIX_MINUTES_S = 360.0
 #: decision L383: the summary keys :func:`corridor_walk_test` gives
 KEYS = ("corridor_m", "n_laps", "walk_test_distance_m", "walk_test_distance_per_minute_m", "fatigue_index")
 
@@ -81,6 +84,8 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     t, d = _distance_in_time(st)
     t0, t_end = (float(t[0]), float(st["end_s"].max())) if span is None else (float(span[0]), float(span[1]))
+    out["walk_test_duration_s"] = t_end - t0  # decision L462: the span the distance is over
+    warnings_l462 = duration_note(t_end - t0, windowed=span is not None)
     contact = t[1::2]  # each row's contact
     n_row = _row_steps(st)
     turns = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s", "angle_deg"])
@@ -92,7 +97,7 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     lap_t0, lap_end = max(t0, float(t[0])), min(t_end, float(st["end_s"].max()))
     bounds = np.concatenate([[lap_t0], mids[(mids > lap_t0) & (mids < lap_end)], [lap_end]])
     tracked = np.diff(np.interp(bounds, t, d))  # the stretches between cone turns (and the test's ends)
-    warnings: list[str] = []
+    warnings: list[str] = [] if warnings_l462 is None else [warnings_l462]
     ref = float(np.median(tracked[:-1])) if len(tracked) > 1 else float("nan")
     if np.isfinite(ref) and not (CORRIDOR_RATIO_RANGE[0] * corridor_m <= ref <= CORRIDOR_RATIO_RANGE[1] * corridor_m):
         warnings.append(coded(f"corridor walk test: the median lap tracked {ref:.1f} m against --corridor "
@@ -145,6 +150,16 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     out["walk_test_distance_per_minute_m"] = per_minute
     out["fatigue_index"] = per_minute[-1] / per_minute[0] if len(per_minute) >= 2 and per_minute[0] > 0 else None
     return laps, out, warnings
+
+
+def duration_note(duration_s: float, *, windowed: bool) -> str | None:
+    """Decision L462: one line when a corridor walk test without ``--window`` spans much more than six minutes (a 6MWT
+    entered from the whole recording's laps); None otherwise."""
+    if windowed or not duration_s > SIX_MINUTES_S + MINUTE_S:
+        return None
+    return coded(f"corridor walk test: the laps and walk_test_distance_m cover the whole {duration_s:.0f} s from the "
+                 f"first to the last step, not a {SIX_MINUTES_S / 60:.0f}-minute test; for a 6MWT give its span, "
+                 "--window T0,T0+360 (decision L462)", "L462")
 
 
 def _per_minute(t: np.ndarray, d: np.ndarray, stretches, dist: np.ndarray, t0: float, t_end: float) -> list[float]:

@@ -1,0 +1,123 @@
+"""Session 37, fixer FA (trial T2: a stroke unit's slow, hemiparetic walkers with two foot units). Decisions
+steps 70, L459-L462. Fresh simulated users 9180-9189 only."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.displace.force_check import check_force_stance, swing_lulls_dropped
+
+ROUTE = "stand:3, straight:16, stand:3"
+
+
+def _sim(tmp_path, user, step_length, step_time, asym, foot, route=ROUTE):
+    out = tmp_path / f"s{user}_{foot}"
+    assert main(["simulate", "--route", route, "--bounce", "pendulum", "--rate", "100", "--user-seed", str(user),
+                 "--step-length", str(step_length), "--step-time", str(step_time), "--step-time-asymmetry", str(asym),
+                 "--foot", foot, "--out", str(out)]) == 0
+    return out
+
+
+def _masks():
+    """100 Hz, a 1.7 s stride: loads 0-0.7, 1.5-2.4, 3.2-4.0 s (stance 0.9 s, swing 0.8 s), foot flats 0.1-0.4,
+    1.7-2.1, 3.4-3.8 s, and a one-sample lull at 1.0 s inside the force's swing."""
+    t = np.arange(0, 4.0, 0.01)
+    rest = (((t >= 0.1) & (t < 0.4)) | ((t >= 1.7) & (t < 2.1)) | ((t >= 3.4) & (t < 3.8))
+            | np.isclose(t, 1.0))
+    loaded = (t < 0.7) | ((t >= 1.5) & (t < 2.4)) | (t >= 3.2)
+    g = np.where(rest, 0.1, 3.0)
+    return t, rest, loaded, g
+
+
+def test_a_lull_inside_the_insoles_swing_is_no_rest_and_no_insole_fault_steps_70():
+    """Steps 70: the one-sample IMU "rest" at 1.0 s lies in the force's unbroken swing 0.7-1.5 s: it is dropped, and
+    L365 finds no failing stride (before it, the lull made two strides, both blamed on the insoles)."""
+    t, rest, loaded, g = _masks()
+    from pdrlearn.displace.foot import stance_runs
+
+    rr = stance_runs(t, rest)
+    assert len(rr) == 4 and len(swing_lulls_dropped(t, rr, loaded)) == 3
+    chk = check_force_stance(t, loaded, rest, g)
+    assert chk.n_bad == 0 and chk.n_strides == 2
+
+
+def test_an_insole_that_drops_out_in_a_rest_is_still_blamed_steps_70():
+    """The insole drops out 1.5-2.4 s, over the real rest 1.7-2.1 s: the force reads one unloaded span 0.7-3.2 s
+    (swing, rest, swing) whose unloaded rest lasts 0.4 s, longer than any swing the force counts (0.15 s): no lull,
+    L365 still blames the insole."""
+    t, rest, loaded, g = _masks()
+    rest = rest & ~np.isclose(t, 1.0)
+    loaded = loaded & ~((t >= 1.5) & (t < 2.4))
+    chk = check_force_stance(t, loaded, rest, g)
+    assert chk.n_bad == 2 and chk.reasons == ["no load in the foot's rest"] * 2
+
+
+def test_slow_paretic_foot_keeps_its_stride_count_steps_70(tmp_path, capsys):
+    """Fresh user 9185 (0.28 m in 0.90 s, step-time asymmetry 0.5, the left foot): before steps 70 the track had 30
+    strides for the labels' 29 and an L365 insole line (experiments/results/paretic_lull_70.txt)."""
+    d = _sim(tmp_path, 9185, 0.28, 0.90, 0.5, "left")
+    capsys.readouterr()
+    assert main(["track", str(d), "--out", str(tmp_path / "t"), "--force"]) == 0
+    err = capsys.readouterr().err
+    n = json.loads((tmp_path / "t" / "summary.json").read_text())["n_strides_one_foot"]
+    assert n == len(pd.read_csv(d / "steps.csv")) == 29
+    assert "disagree with the foot IMU" not in err
+
+
+
+
+def test_gait_withholds_symmetry_indices_under_ten_steps_a_side_l461():
+    """Decision L461 (what `gait` / `gait-all` apply to the walk): 5 steps a side give no SI or ratio and one reason;
+    12 a side keep them."""
+    from pdrlearn.track.bilateral import bilateral_gait, withhold_indices
+
+    def foot(ic):
+        ic = np.asarray(ic, float)
+        return pd.DataFrame({"start_s": ic - 0.6, "end_s": ic + 0.2, "event_s": ic, "tc_s": ic - 0.45,
+                             "length_m": 1.2, "gap_s": 0.0, "unit": "foot"})
+
+    short = bilateral_gait(foot(np.arange(6) * 1.2), foot(0.7 + np.arange(6) * 1.2))["walk"]
+    assert "5 steps on the left side, 10 needed" in withhold_indices(short)
+    assert short["n_steps_left"] == 5 and short["step_time_s_si_pct"] is None and short["step_time_s_ratio"] is None
+    long = bilateral_gait(foot(np.arange(13) * 1.2), foot(0.7 + np.arange(13) * 1.2))["walk"]
+    assert withhold_indices(long) is None and long["step_time_s_si_pct"] == pytest.approx(100 * 0.2 / 0.6)
+
+
+def test_gait_and_gait_all_carry_each_foots_trust_lines_l461(tmp_path, capsys):
+    """Decision L461: fresh user 9182 at 0.31 m/s, both feet: gait_summary.json's warnings and each side's
+    ``sessions`` hold the track's slower-than-validated line (L95), and gait-all's gait_pairs.csv has them in
+    ``warnings``; before, both were empty of it."""
+    visit = tmp_path / "study" / "v1"
+    for foot in ("left", "right"):
+        d = _sim(visit, 9182, 0.25, 0.80, 0.5, foot, route="stand:3, straight:8, stand:3")
+    left, right = visit / "s9182_left", visit / "s9182_right"
+    assert main(["gait", str(left), str(right), "--out", str(tmp_path / "g")]) == 0
+    res = json.loads((tmp_path / "g" / "gait_summary.json").read_text())
+    assert any(w.startswith("left foot:") and "slower than the walking" in w for w in res["warnings"])
+    assert any("slower than the walking" in w for w in res["sessions"]["right"]["warnings"])
+    assert main(["gait-all", str(tmp_path / "study"), "--out", str(tmp_path / "ga")]) == 0
+    pairs = pd.read_csv(tmp_path / "ga" / "gait_pairs.csv")
+    assert "right foot:" in pairs.loc[0, "warnings"] and "slower than the walking" in pairs.loc[0, "warnings"]
+    assert d.exists()
+
+
+def test_corridor_test_says_its_duration_and_notes_a_whole_recording_l462():
+    """Decision L462: 480 one-second strides up and down a corridor without --window: walk_test_duration_s 480 s and
+    one note that this is no 6-minute test; with the 6-minute span no note."""
+    from pdrlearn.track.corridor import corridor_laps
+
+    t = np.arange(480, dtype=float)
+    steps = pd.DataFrame({"start_s": t, "end_s": t + 1.0, "event_s": t + 1.0, "length_m": 1.0,
+                          "heading_rad": np.where((np.arange(480) // 30) % 2 == 0, 0.0, np.pi), "unit": "foot"})
+    mids = np.arange(30, 480, 30, dtype=float)
+    turns = pd.DataFrame({"start_s": mids - 0.5, "end_s": mids + 0.5, "angle_deg": 180.0})
+    _, keys, lines = corridor_laps(steps, turns, 30.0)
+    assert keys["walk_test_duration_s"] == pytest.approx(480.0)
+    assert sum("not a 6-minute test" in x and "L462" in x for x in lines) == 1
+    _, keys, lines = corridor_laps(steps, turns, 30.0, span=(0.0, 360.0))
+    assert keys["walk_test_duration_s"] == pytest.approx(360.0) and not any("L462" in x for x in lines)
