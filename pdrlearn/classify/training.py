@@ -14,6 +14,7 @@ import logging
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -347,6 +348,42 @@ def task_data(windows, task: str, sessions=None) -> TaskData | None:
         np.concatenate(times),
         np.concatenate(sides),
     )
+
+
+class TrainingData(NamedTuple):
+    """:func:`training_data`'s steps: ``X`` the step windows ``(steps, channels, samples)``, ``y`` the labels,
+    ``session`` each step's session name, ``user`` each step's user (:func:`session_user`; None when the session's
+    meta.json names none)."""
+
+    X: np.ndarray
+    y: np.ndarray
+    session: np.ndarray
+    user: np.ndarray
+
+
+def training_data(sessions, task: str, *, unit: str | None = None, n_samples: int = 40, boundaries: str = "given",
+                  resample_hz: float | None = None) -> TrainingData:
+    """The labelled step windows ``train`` cross-validates for ``task`` (decision C120): cut as
+    :func:`train_user` cuts them (bout edges as the runtime cuts them, decision C55; ``boundaries``, ``n_samples``
+    and ``resample_hz`` as train's), pooled over ``sessions``; ``unit`` ("foot", "waist", "fused", "combined")
+    keeps the steps train fits that unit's models on (None: every labelled step). With scikit-learn,
+    ``cross_val_predict(make_estimator(task, method, unit), d.X, d.y, groups=d.user, cv=GroupKFold(k))`` then
+    scores the windows ``train --cv-groups user`` scores; :func:`pdrlearn.features.step_windows` on the labelled
+    steps as given cuts other windows at a bout's first and last step."""
+    if task not in TASKS:
+        raise DataError(f"training_data: task {task!r}; choose one of {', '.join(TASKS)}")
+    if unit is not None and unit not in UNITS:
+        raise DataError(f"training_data: unit {unit!r}; choose one of {', '.join(UNITS)} (or None: every step)")
+    if not sessions:
+        raise DataError("training_data: no sessions given; pass at least one labelled session")
+    sessions = one_rate(sessions, session_rates(sessions), resample_hz)  # decision C56, as train
+    data = task_data(session_windows(sessions, n_samples=n_samples, boundaries=boundaries), task, sessions)
+    if data is None:
+        raise DataError(_no_labels_message(task, sessions))
+    keep = np.ones(len(data.y), bool) if unit is None else data.unit_mask(unit)
+    names = np.asarray([s.name for s in sessions], dtype=object)
+    users = np.asarray([session_user(s) for s in sessions], dtype=object)
+    return TrainingData(data.X[keep], data.y[keep], names[data.session][keep], users[data.session][keep])
 
 
 def check_classes(
@@ -1538,6 +1575,8 @@ __all__ = [
     "make_estimator",
     "train_user",
     "train_task",
+    "training_data",
+    "TrainingData",
     "session_user",
     "CV_GROUPS",
     "UserModel",
