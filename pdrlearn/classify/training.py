@@ -954,9 +954,13 @@ def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> l
     values = as_names(values, name)
     bad = [v for v in values if v not in allowed]
     if bad or not values:
+        from pdrlearn.plugin_modules import PLUGIN_HINT
+
+        hint = f"; {PLUGIN_HINT}" if name == "method" and bad else ""  # decision C121
         raise DataError(
             # decision B177: the parameter and the CLI flag, so the line fits train_user and `pdrlearn train`
             f"{name}s (--{name}s): unknown {name} {', '.join(bad) or '(none given)'}; choose from {', '.join(allowed)}"
+            f"{hint}"
         )
     return values
 
