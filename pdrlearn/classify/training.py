@@ -161,7 +161,7 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
             factory = METHODS[method]
         except KeyError:
             raise METHODS.unknown(method) from None
-        est = factory(task, unit, seed=seed)
+        est = factory(task, unit, seed=seed, **params.get(method, {}))  # decision C122: its --param keywords
         if not (hasattr(est, "fit") and hasattr(est, "predict_proba")):
             raise DataError(f"classifier method '{method}': its factory returned {type(est).__name__}, which has no "
                             "fit / predict_proba; return an unfitted scikit-learn classifier (docs/extending.md)")
@@ -220,6 +220,11 @@ def _check_method(name: str, factory):
 METHODS = Registry("classifier method", "pdrlearn.methods", adapt=_check_method, helper="register_method")
 for _name in BUILTIN_METHODS:
     METHODS.register(_name, _builtin_method(_name))
+
+
+def plugin_factories() -> dict:
+    """The registered plug-in methods (not built-in): name -> factory (``--param PLUGIN.KEY=VALUE``, decision C122)."""
+    return {m: METHODS[m] for m in METHODS if m not in METHODS.builtin}
 
 
 def register_method(name: str, factory, *, replace: bool = False):
@@ -1411,7 +1416,8 @@ def train_user(
     named_units = units is not None
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
     own_methods = check_task_methods(task_methods, tasks)  # decisions C74, C78
-    params = check_params(params, [*methods, *(m for t in tasks for m in own_methods.get(t, ()))])  # decision C96
+    params = check_params(params, [*methods, *(m for t in tasks for m in own_methods.get(t, ()))],  # decision C96
+                          plugin_factories())  # decision C122
 
     def voted_of(ms):  # decision C23's soft votes of a method list (None: units named, every soft vote)
         return None if named_units else [m for m in ms if m not in COMBINED_METHODS]
