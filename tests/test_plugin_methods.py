@@ -103,3 +103,19 @@ def test_export_fallback_skips_a_plugin_foot_model_and_run_advice_says_reexport(
     with pytest.raises(ModelError, match=r"re-export with a built-in method that has a foot model \(pdrlearn export "
                                          r"MODEL --methods svm"):
         Tracker(tmp_path / "b", units=("foot",))
+
+
+def test_a_pipeline_ending_without_predict_proba_names_its_last_step_and_the_fix():
+    """Trial T4 finding 8: a Pipeline has fit; what is missing is predict_proba on its last step."""
+    from sklearn.svm import LinearSVC
+
+    register_method("linsvc", lambda task, unit, *, seed=0: Pipeline(
+        [("features", make_features(task, unit, "svm")), ("clf", LinearSVC())]))
+    try:
+        with pytest.raises(DataError, match=r"classifier method 'linsvc': its factory returned a Pipeline whose last "
+                                            r"step 'clf' \(LinearSVC\) has no predict_proba; end it with a "
+                                            r"probabilistic classifier .*CalibratedClassifierCV\(LinearSVC"):
+            train_user([synthetic_session(30, seed=0)], tasks=["terrain"], methods=["linsvc"], units=["foot"], cv=2,
+                       distance_calibration=False)
+    finally:
+        del METHODS["linsvc"]

@@ -163,8 +163,7 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
             raise METHODS.unknown(method) from None
         est = factory(task, unit, seed=seed, **params.get(method, {}))  # decision C122: its --param keywords
         if not (hasattr(est, "fit") and hasattr(est, "predict_proba")):
-            raise DataError(f"classifier method '{method}': its factory returned {type(est).__name__}, which has no "
-                            "fit / predict_proba; return an unfitted scikit-learn classifier (docs/extending.md)")
+            raise DataError(f"classifier method '{method}': {_no_proba_line(est)}")
         return est
     if unit == "fused":
         if method == "heuristic":
@@ -195,6 +194,20 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
             ]
         )
     raise METHODS.unknown(method)
+
+
+def _no_proba_line(est) -> str:
+    """What a plug-in factory's estimator lacks and the fix (trial T4 finding 8): a Pipeline has ``fit``, its last
+    step lacks ``predict_proba`` (``hasattr(pipeline, "predict_proba")`` follows the last step)."""
+    steps = getattr(est, "steps", None)
+    if hasattr(est, "fit") and steps:
+        last = type(steps[-1][1]).__name__
+        return (f"its factory returned a Pipeline whose last step {steps[-1][0]!r} ({last}) has no predict_proba; "
+                f"end it with a probabilistic classifier (SVC(probability=True), or wrap it: "
+                f"CalibratedClassifierCV({last}(...))) (docs/extending.md)")
+    what = "fit / predict_proba" if not hasattr(est, "fit") else "predict_proba"
+    return (f"its factory returned {type(est).__name__}, which has no {what}; return an unfitted scikit-learn "
+            "classifier with predict_proba (docs/extending.md)")
 
 
 def _builtin_method(name: str):
