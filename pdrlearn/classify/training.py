@@ -141,10 +141,13 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
 
     params = params or {}
 
-    if unit == "combined":
+    if unit == "combined" and method in COMBINED_PLUGINS and METHODS.get(method) is COMBINED_PLUGINS[method]:
+        pass  # decision C123: a plug-in registered with combined=True gets unit="combined" (below)
+    elif unit == "combined":
         if method not in COMBINED_METHODS:
             raise DataError(f"unit 'combined' (one model on both units' features, thesis ch. 6.1.1) exists for "
-                            f"{' and '.join(COMBINED_METHODS)} only, not {method!r}; use unit 'fused' for {method}")
+                            f"{' and '.join(COMBINED_METHODS)} only, not {method!r}; use unit 'fused' for {method} "
+                            "(a plug-in: register_method(..., combined=True), decision C123)")
         unit = "both"  # the feature transformers' name of the combined vector (pdrlearn.features)
 
     if method == "fusion" or (method == "heuristic" and unit != "fused"):
@@ -240,14 +243,31 @@ def plugin_factories() -> dict:
     return {m: METHODS[m] for m in METHODS if m not in METHODS.builtin}
 
 
-def register_method(name: str, factory, *, replace: bool = False):
+#: plug-in methods registered with ``combined=True`` (decision C123): name -> the factory registered so
+COMBINED_PLUGINS: dict[str, Callable] = {}
+
+
+def can_combine(method: str) -> bool:
+    """Whether ``method`` trains the ``combined`` unit: svm, nn (decision C22) or a plug-in registered with
+    ``combined=True`` (decision C123; the same factory still registered)."""
+    return method in COMBINED_METHODS or (method in COMBINED_PLUGINS and METHODS.get(method) is COMBINED_PLUGINS[method])
+
+
+def register_method(name: str, factory, *, replace: bool = False, combined: bool = False):
     """Make ``factory(task, unit, *, seed=0) -> an unfitted classifier`` (``fit(X, y)`` / ``predict_proba(X)`` on
     step-window arrays, string class labels; e.g. a Pipeline of ``pdrlearn.features.make_features(task, unit,
     "svm")`` and your classifier) the training method ``name``: ``pdrlearn train --methods NAME`` trains it per
     unit (and its fused soft vote), cross-validated as the built-ins; ``evaluate`` and ``track --model`` use it;
     ``export`` refuses it (the runtime has no recipe for it). A built-in name is refused unless ``replace=True``
-    (decision E81)."""
-    return METHODS.register(name, factory, replace=replace)
+    (decision E81). ``combined=True`` (decision C123): the factory also takes ``unit="combined"`` (one model on
+    both units' windows; ``make_features(task, "combined", ...)`` is the thesis' combined vector) and train
+    trains it on the ``combined`` unit as svm and nn."""
+    out = METHODS.register(name, factory, replace=replace)
+    if combined:
+        COMBINED_PLUGINS[name] = METHODS[name]
+    else:
+        COMBINED_PLUGINS.pop(name, None)
+    return out
 
 
 # --------------------------------------------------------------------------------------------------
@@ -1126,11 +1146,11 @@ def train_task(
     for method in sorted(methods, key=lambda m: m == "ensemble"):  # the ensemble reuses its members
         oof: dict[str, np.ndarray] = {}
         unit_list = ["fused"] if method == "fusion" else list(per_unit)
-        if want_combined and method in COMBINED_METHODS:
+        if want_combined and can_combine(method):  # decisions C22, C123
             unit_list.append("combined")  # one model on both units' features (decision C22)
         elif want_combined and not per_unit and method != "fusion":
             tm.skipped.append(f"{method}/combined: only {' and '.join(COMBINED_METHODS)} have a combined-feature "
-                              "model (decision C22)")
+                              "model (decision C22; a plug-in: register_method(..., combined=True), C123)")
         for unit in unit_list:
             if unit == "fused" and not want_fused:
                 continue
