@@ -141,7 +141,7 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
 
     params = params or {}
 
-    if unit == "combined" and method in COMBINED_PLUGINS and METHODS.get(method) is COMBINED_PLUGINS[method]:
+    if unit == "combined" and method not in COMBINED_METHODS and can_combine(method):
         pass  # decision C123: a plug-in registered with combined=True gets unit="combined" (below)
     elif unit == "combined":
         if method not in COMBINED_METHODS:
@@ -250,7 +250,8 @@ COMBINED_PLUGINS: dict[str, Callable] = {}
 def can_combine(method: str) -> bool:
     """Whether ``method`` trains the ``combined`` unit: svm, nn (decision C22) or a plug-in registered with
     ``combined=True`` (decision C123; the same factory still registered)."""
-    return method in COMBINED_METHODS or (method in COMBINED_PLUGINS and METHODS.get(method) is COMBINED_PLUGINS[method])
+    return method in COMBINED_METHODS or (method in COMBINED_PLUGINS
+                                          and METHODS.get(method) is COMBINED_PLUGINS[method])
 
 
 def register_method(name: str, factory, *, replace: bool = False, combined: bool = False):
