@@ -488,10 +488,19 @@ def class_metrics(y_true: np.ndarray, y_pred: np.ndarray, classes: Sequence[str]
 UNIT_PREFERENCE = ("foot", "waist", "combined", "fused")
 
 
-def best_pair(ranking: list[tuple[str, str]]) -> tuple[str, str] | None:
+def best_pair(ranking: list[tuple[str, str]], one_unit=()) -> tuple[str, str] | None:
     """Decision C8 / C23: the chosen ``(method, unit)`` of a task's ``ranking`` (best first): the best two-unit
-    model (soft vote or combined features), else the best of any unit; None for an empty ranking."""
-    return next((p for p in ranking if p[1] in TWO_UNIT), ranking[0] if ranking else None)
+    model (soft vote or combined features), else the best of any unit; None for an empty ranking. ``one_unit``: the
+    soft votes that read one unit only (a zero unit weight, :meth:`TaskModel.one_unit_votes`, decision C124), which
+    do not count as two-unit models."""
+    return next((p for p in ranking if p[1] in TWO_UNIT and p not in one_unit), ranking[0] if ranking else None)
+
+
+def zero_weight_unit(record: dict) -> str | None:
+    """Decision C124: the unit a fused CV record's soft vote gives weight 0 (``weights`` of the record, e.g. foot 1,
+    waist 0 -> ``"waist"``), so the vote reads the other unit only; None when both count (or no weights)."""
+    w = record.get("weights") or {}
+    return next((u for u, v in w.items() if v is not None and float(v) <= 0.0), None)
 
 
 def _score_key(metrics: dict, method: str, unit: str = "fused") -> tuple:
@@ -521,6 +530,10 @@ class TaskModel:
         """(method, unit) pairs from best to worst CV score."""
         pairs = [(m, u) for m, per in self.cv.items() for u in per if u in self.models.get(m, {})]
         return sorted(pairs, key=lambda p: _score_key(self.cv[p[0]][p[1]], p[0], p[1]))
+
+    def one_unit_votes(self) -> set[tuple[str, str]]:
+        """Decision C124: the fused soft votes with a zero unit weight (they read one unit only)."""
+        return {(m, "fused") for m, per in self.cv.items() if "fused" in per and zero_weight_unit(per["fused"])}
 
 
 @dataclass
@@ -1251,7 +1264,7 @@ def train_task(
             if unit in per:
                 attach_ranges(per[unit], data.X[subsets[unit][0]])
                 attach_joint(per[unit], data.X[subsets[unit][0]], data.y[subsets[unit][0]])  # decision C71
-    tm.chosen = best_pair(tm.ranking())
+    tm.chosen = best_pair(tm.ranking(), tm.one_unit_votes())  # decisions C8, C124
     if tm.chosen is None:
         raise DataError(f"task {data.task}: no method could be trained ({'; '.join(tm.skipped)})")
     return tm

@@ -217,6 +217,9 @@ def train(
         users_line = louo_line(r0)
         if users_line:
             c.print(f"  {users_line}", markup=False)
+        weights = fused_weights_line(tm)
+        if weights:
+            c.print(f"  {weights}", markup=False)
         c.print(f"  {chosen_reason(tm)}", markup=False)
         for s in grouped_skips(tm.skipped):
             c.print(f"  skipped {s}", markup=False)
@@ -276,6 +279,22 @@ def louo_line(r: dict) -> str | None:
         f"{who} {100 * a:.1f} % ({n} steps)" for who, a, n in zip(who_list, f["accuracy"], f["n_steps"], strict=True))
 
 
+def fused_weights_line(tm) -> str | None:
+    """Decision C124: the unit weights of the task's fused soft votes (foot/waist), the zero-weight ones marked as
+    reading one unit (their rows equal the unit model's); None without a soft vote."""
+    from pdrlearn.classify.training import zero_weight_unit
+
+    parts = []
+    for m, per in tm.cv.items():
+        w = (per.get("fused") or {}).get("weights")
+        if w:
+            zero = zero_weight_unit(per["fused"])
+            other = "waist" if zero == "foot" else "foot"
+            parts.append(f"{m} {w['foot']:.2f}/{w['waist']:.2f}"
+                         + (f" (reads the {other} only: not a two-unit model for the choice)" if zero else ""))
+    return ("fused weights (foot/waist; decision C124): " + ", ".join(parts)) if parts else None
+
+
 def chosen_reason(tm) -> str:
     """Why ``tm.chosen`` was chosen (decision C36): the best balanced CV accuracy among the two-unit models
     (decision C8/C23), and the one-unit models that rank above it."""
@@ -286,10 +305,12 @@ def chosen_reason(tm) -> str:
     if u not in TWO_UNIT:
         return f"chosen: {m}/{u}, the best balanced CV accuracy ({100 * bal:.1f} %)"
     above = []
+    one = tm.one_unit_votes()  # decision C124
     for mm, uu in tm.ranking():
         if (mm, uu) == (m, u):
             break
-        above.append(f"{mm}/{uu} {100 * (tm.cv[mm][uu]['balanced_accuracy'] or 0.0):.1f} %")
+        above.append(f"{mm}/{uu} {100 * (tm.cv[mm][uu]['balanced_accuracy'] or 0.0):.1f} %"
+                     + (" (a unit weight 0)" if (mm, uu) in one else ""))
     why = (f"chosen: {m}/{u}, the best balanced CV accuracy ({100 * bal:.1f} %) among the models reading both "
            "units (fused, combined; decision C8)")
     if above:

@@ -354,7 +354,7 @@ def export_model(
                                  f"{', '.join(left) or 'requested'} models embed training samples: DTW references "
                                  "or SVM support vectors); export without --no-training-samples, or train nn or "
                                  "heuristic models (pdrlearn train --methods nn,heuristic,fusion)")
-            chosen = chosen if chosen in ok else best_pair(ok)  # as training chooses (decisions C8, C23)
+            chosen = chosen if chosen in ok else best_pair(ok, tm.one_unit_votes())  # as training (C8, C23, C124)
         if methods:
             wanted = [(m, u) for m in methods for u in tm.models.get(m, {}) if allowed((m, u))]
         else:
@@ -402,7 +402,7 @@ def export_model(
         if not (chosen and chosen[1] in entries.get(chosen[0], {})):
             # decision E183: the chosen model left out, the best-ranked exported one as training chooses
             # (decisions C8, C23, E26), whatever order --methods lists them in
-            chosen = best_pair([p for p in tm.ranking() if p[1] in entries.get(p[0], {})]) or next(
+            chosen = best_pair([p for p in tm.ranking() if p[1] in entries.get(p[0], {})], tm.one_unit_votes()) or next(
                 (m, u) for m, per in entries.items() for u in per)
         exp_chosen = {"method": chosen[0], "unit": chosen[1]}
         for per in entries.values():
