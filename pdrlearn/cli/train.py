@@ -349,6 +349,12 @@ def evaluate(
         help="Write one row per scored step: session, step (its data row in the session's steps.csv, 0 = the "
         "first row under the header), start_s, end_s, task, true, predicted, correct, the method and unit that "
         "classified it and their probability of each class (p_<class>); written atomically (decision C42)."),
+    all_methods: bool = typer.Option(False, "--all-methods", help="Score every method x unit on the strides the "
+                                     "runtime detects too (JSON tasks.<t>.methods.<m>.units.<u>.detected, decision "
+                                     "C97), and with --predictions-out write every method x unit's class of each "
+                                     "labelled step matched to a detected stride (the same steps for every model, "
+                                     "for paired tests; p_<class> empty) instead of the chosen model's rows on the "
+                                     "labelled boundaries (decision C125)."),
     resample: bool = EVAL_RESAMPLE_OPT,
     no_resample: bool = EVAL_NO_RESAMPLE_OPT,
     warn_gait_range: bool = typer.Option(False, "--warn-gait-range", help="Warn (one line) when sessions' labelled "
@@ -364,7 +370,9 @@ def evaluate(
     steps); the table scores the labelled boundaries (decision C49). A runtime bundle (e.g. the shipped
     models/plasys-sim-default) is scored as `pdrlearn run` replays it: one row per task, its chosen model on the
     strides the runtime detects (decision E193); a bundle refuses --report, --predictions-out, --resample,
-    --no-resample and --warn-gait-range, which need a model directory's per-method models (decision E198).
+    --no-resample, --warn-gait-range and --all-methods, which need a model directory's per-method models
+    (decision E198). --all-methods scores every method x unit on the detected strides, and with
+    --predictions-out writes each model's class of the same matched steps (decision C125).
 
     Examples:
 
@@ -382,7 +390,8 @@ def evaluate(
         from pdrlearn.export.score import MODEL_DIR_ONLY
 
         given = [o for o, v in zip(MODEL_DIR_ONLY, (report, predictions_out, resample or None,
-                                                    no_resample or None, warn_gait_range or None), strict=True)
+                                                    no_resample or None, warn_gait_range or None,
+                                                    all_methods or None), strict=True)
                  if v is not None]
         return _evaluate_bundle(model_dir, data_dirs, as_json, given, warn_out_of_domain)
     from pdrlearn.classify import evaluate_model, load_model
@@ -432,7 +441,7 @@ def evaluate(
         tables: list | None = [] if predictions_out is not None else None
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,
                                 warn_out_of_domain=warn_out_of_domain, step_predictions=tables,
-                                warn_gait_range=warn_gait_range)
+                                warn_gait_range=warn_gait_range, all_methods=all_methods)  # decision C125
     result["warnings"] = list(dict.fromkeys(warned))
     result["warning_codes"] = [warning_code(w) for w in result["warnings"]]  # decision B350, as evaluate_model's
     if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
