@@ -152,15 +152,19 @@ def parse_spec(spec: Any, kind: str) -> tuple[str, dict]:
             raise DataError(f"{kind} '{spec}': setting '{item}' is not key=value; write NAME:key=value,...")
         if key in out:  # decision B200: the second value had silently won
             raise DataError(f"{kind} '{spec}': setting '{key}' is given twice; give it once")
-        low = value.lower()
-        if low in ("true", "false", "none"):
-            out[key] = {"true": True, "false": False, "none": None}[low]
-            continue
-        try:
-            out[key] = int(value) if value.lstrip("+-").isdigit() else float(value)
-        except ValueError:
-            out[key] = value
+        out[key] = spec_value(value)
     return name.strip(), out
+
+
+def spec_value(value: str) -> Any:
+    """A setting's text as :func:`parse_spec` reads it: true/false/none, an int, a float, else the text."""
+    low = value.lower()
+    if low in ("true", "false", "none"):
+        return {"true": True, "false": False, "none": None}[low]
+    try:
+        return int(value) if value.lstrip("+-").isdigit() else float(value)
+    except ValueError:
+        return value
 
 
 def from_spec(registry: Registry, spec: Any, **params) -> Any:

@@ -456,8 +456,11 @@ def check_command(c: Command, cli=None, validators=None) -> list[str]:
     root_opts = {o for p in cli.params for o in (*p.opts, *p.secondary_opts)}
     while words and words[0].startswith("-"):
         w = words.pop(0)
-        if w not in root_opts:
+        if w.split("=")[0] not in root_opts:
             return [f"pdrlearn {w}: no such option of pdrlearn (it has {', '.join(sorted(root_opts))})"]
+        takes = next(p for p in cli.params if w.split("=")[0] in p.opts)
+        if not getattr(takes, "is_flag", True) and "=" not in w and words:  # `--plugin MODULE` (decision C121)
+            words.pop(0)
     if not words or words[0] in ("...", "PLACEHOLDER") or _UPPER.match(words[0]):
         return []  # `pdrlearn --help`, `pdrlearn COMMAND --help`
     name, words = words[0], words[1:]
@@ -465,7 +468,8 @@ def check_command(c: Command, cli=None, validators=None) -> list[str]:
     if cmd is None:
         return [f"pdrlearn {name}: no such command (commands: {', '.join(sorted(cli.commands))})"]
     params = {o: p for p in cmd.params for o in (*p.opts, *p.secondary_opts) if p.param_type_name == "option"}
-    params.update({o: p for p in cli.params for o in p.opts if o in ("-v", "--verbose")})  # hoisted (B13)
+    hoisted = ("-v", "--verbose", "--plugin")  # accepted after the command name too (B13, C121)
+    params.update({o: p for p in cli.params for o in p.opts if o in hoisted})
     problems, positional, given, ellipsis, k, only_args = [], [], set(), False, 0, False
     while k < len(words):
         w = words[k]

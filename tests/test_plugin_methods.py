@@ -70,3 +70,52 @@ def test_a_factory_that_returns_no_classifier_is_one_line(registered):
                        distance_calibration=False)
     finally:
         del METHODS["broken"]
+
+
+def test_export_fallback_skips_a_plugin_foot_model_and_run_advice_says_reexport(registered, tmp_path, caplog):
+    """Decision E201 (trial T4 finding 2): a plug-in ranked the best foot model left the bundle without a foot-only
+    model; the next exportable foot model takes its place, and a bundle without one advises re-exporting."""
+    import json
+    import logging
+
+    from pdrlearn.runtime import Tracker
+
+    model = train_user([synthetic_session(60, seed=0)], tasks=["terrain"], methods=["logreg", "svm"],
+                       units=["foot", "waist", "combined"], cv=2, seed=0, distance_calibration=False)
+    tm = model.tasks["terrain"]
+    tm.chosen = ("svm", "combined")
+    tm.cv["logreg"]["foot"].update(balanced_accuracy=1.0, accuracy=1.0)  # the plug-in ranks first on the foot
+    tm.cv["svm"]["foot"].update(balanced_accuracy=0.9, accuracy=0.9)
+    assert [p for p in tm.ranking() if p[1] == "foot"] == [("logreg", "foot"), ("svm", "foot")]
+    model.save(tmp_path / "m")
+    with caplog.at_level(logging.WARNING):
+        export_model(tmp_path / "m", tmp_path / "b")
+    m = json.loads((tmp_path / "b" / "manifest.json").read_text())
+    assert m["tasks"]["terrain"]["foot_only"] == {"method": "svm", "unit": "foot"}
+    assert any(s.startswith("terrain logreg/foot:") for s in m["export"]["skipped"])
+    assert "foot-only fallback is svm/foot (logreg/foot skipped" in caplog.text
+    assert Tracker(tmp_path / "b", units=("foot",)).classifiers["terrain"].method == "svm"
+    del m["tasks"]["terrain"]["foot_only"]  # a bundle without it (as exported before E201): the advice
+    (tmp_path / "b" / "manifest.json").write_text(json.dumps(m))
+    from pdrlearn.runtime.bundle import sha256_file
+
+    (tmp_path / "b" / "manifest.sha256").write_text(sha256_file(tmp_path / "b" / "manifest.json"))
+    with pytest.raises(ModelError, match=r"re-export with a built-in method that has a foot model \(pdrlearn export "
+                                         r"MODEL --methods svm"):
+        Tracker(tmp_path / "b", units=("foot",))
+
+
+def test_a_pipeline_ending_without_predict_proba_names_its_last_step_and_the_fix():
+    """Trial T4 finding 8: a Pipeline has fit; what is missing is predict_proba on its last step."""
+    from sklearn.svm import LinearSVC
+
+    register_method("linsvc", lambda task, unit, *, seed=0: Pipeline(
+        [("features", make_features(task, unit, "svm")), ("clf", LinearSVC())]))
+    try:
+        with pytest.raises(DataError, match=r"classifier method 'linsvc': its factory returned a Pipeline whose last "
+                                            r"step 'clf' \(LinearSVC\) has no predict_proba; end it with a "
+                                            r"probabilistic classifier .*CalibratedClassifierCV\(LinearSVC"):
+            train_user([synthetic_session(30, seed=0)], tasks=["terrain"], methods=["linsvc"], units=["foot"], cv=2,
+                       distance_calibration=False)
+    finally:
+        del METHODS["linsvc"]

@@ -7,7 +7,8 @@ steps)``), :func:`load_model` (dir) -> :class:`UserModel`, :func:`evaluate_model
 heuristics follow the scikit-learn protocol (``classes_`` sorted, ``predict_proba`` columns in that order,
 decision C19). SVM and NN take a 2-D feature matrix; :func:`make_estimator` (task, method, unit) gives the
 fitted-ready pipeline on raw step windows ``(steps, channels, samples)`` (features + classifier) that
-``train_user`` cross-validates. Attributes are imported lazily (torch/sklearn load on first use);
+``train_user`` cross-validates; :func:`training_data` (sessions, task) gives the windows, labels, sessions and
+users it cross-validates (decision C120). Attributes are imported lazily (torch/sklearn load on first use);
 ``dir(pdrlearn.classify)`` lists them.
 """
 
@@ -24,6 +25,7 @@ _LAZY = {
     "UserModel": "pdrlearn.classify.training",
     "TaskModel": "pdrlearn.classify.training",
     "make_estimator": "pdrlearn.classify.training",
+    "training_data": "pdrlearn.classify.training",
     "load_model": "pdrlearn.classify.model_dir",
     "save_model": "pdrlearn.classify.model_dir",
     "evaluate_model": "pdrlearn.classify.evaluation",

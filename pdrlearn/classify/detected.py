@@ -109,12 +109,13 @@ class DetectedPredictions:
 
 
 def detected_score(task: str, classes, data, windows, sess_rows: dict, detected: DetectedPredictions,
-                   method: str | None = None, unit: str | None = None) -> dict | None:
+                   method: str | None = None, unit: str | None = None, matched: list | None = None) -> dict | None:
     """The task's accuracy on the detected strides: each labelled step of ``data`` (rows of session ``i`` in
     ``sess_rows[i]``) matched to a detected stride and compared with that stride's predicted class. ``n_steps``
     counts the matched and classified steps, ``n_labelled`` the labelled ones, ``n_unmatched`` those no detected
     stride matched. ``None`` when no session has a foot gyroscope (no detector runs). ``method`` / ``unit``
-    (decision C97): classified by that model of the task instead of the chosen one."""
+    (decision C97): classified by that model of the task instead of the chosen one. ``matched``: a list to which
+    ``(session index, row of data, predicted class)`` of each scored step is appended (decision C125)."""
     from pdrlearn.classify.training import class_metrics
     from pdrlearn.features import TASK_COLUMNS
     from pdrlearn.track.evaluate import match_by_overlap
@@ -139,6 +140,8 @@ def detected_score(task: str, classes, data, windows, sess_rows: dict, detected:
             if col[si] is not None and not (isinstance(col[si], float) and np.isnan(col[si])):
                 y_true.append(str(data.y[rows[li]]))
                 y_pred.append(str(col[si]))
+                if matched is not None:  # decision C125
+                    matched.append((i, rows[li], str(col[si])))
         if len(y_true) > first:
             per_session[_session_key(detected.sessions[i], per_session)] = (first, len(y_true))
     if not ran:

@@ -65,6 +65,7 @@ def evaluate_model(
     model, sessions, *, report_dir: Path | None = None, latency: bool = True, latency_steps: int = 20,
     advance: Callable[[int], None] = lambda n=1: None, warn_out_of_domain: float | None = None,
     step_predictions: list | None = None, warn_gait_range: bool = False, detected_methods: bool = False,
+    all_methods: bool = False,
 ) -> dict:
     """Score every trained task x method x unit of ``model`` on the labelled steps of ``sessions``.
 
@@ -93,6 +94,11 @@ def evaluate_model(
 
     ``detected_methods`` (decision C97, ``evaluate-all --per-method``): also score every method x unit on the
     detected strides, as ``tasks.<t>.methods.<m>.units.<u>.detected`` (C49's figure of that model).
+
+    ``all_methods`` (decision C125, ``evaluate --all-methods``): ``detected_methods``, and ``step_predictions``
+    gets every method x unit's row per labelled step matched to a detected stride (the same strides and steps for
+    every model, for paired comparisons; ``p_<class>`` empty: the detected path gives classes) instead of the
+    chosen model's rows on the labelled boundaries.
     """
     from pdrlearn.classify.domain import (
         NO_RANGES_NOTE,
@@ -232,7 +238,7 @@ def evaluate_model(
                 y_true.append(data.y[rows[done]])
                 y_pred.append(pred[done].astype(str))
                 used.append(runs[0])
-                if step_predictions is not None:  # decision C42
+                if step_predictions is not None and not all_methods:  # decision C42 (C125: detected rows)
                     step_predictions.append(prediction_rows(
                         tm, data, windows[i], rows[done], pred[done], src[done]))
         res["n_gap_unclassified"] = n_gap  # labelled steps lost to sensor gaps of every usable unit (B17)
@@ -264,10 +270,14 @@ def evaluate_model(
             log.warning(line)
         # decision C49: what the user gets - the same model on the strides the runtime / track detect
         res["detected"] = detected_score(task, classes, data, windows, sess_rows, detected)
-        if detected_methods:  # decision C97: the same strides and matching, classified by each model
+        if detected_methods or all_methods:  # decision C97: the same strides and matching, classified by each model
             for mm, per in res["methods"].items():
                 for uu, r_u in per["units"].items():
-                    r_u["detected"] = detected_score(task, classes, data, windows, sess_rows, detected, mm, uu)
+                    got: list | None = [] if all_methods and step_predictions is not None else None
+                    r_u["detected"] = detected_score(task, classes, data, windows, sess_rows, detected, mm, uu,
+                                                     matched=got)
+                    if got:  # decision C125: each model's classes of the same matched steps
+                        step_predictions.extend(detected_rows(tm, data, windows, got, (mm, uu)))
         line = drop_warning(task, m["accuracy"], res["detected"], model.boundaries)
         if line:
             log.warning(line)
@@ -327,21 +337,21 @@ PREDICTION_COLUMNS = ("session", "step", "start_s", "end_s", "task", "true", "pr
                       "method", "unit")
 
 
-def prediction_rows(tm, data, windows, rows: np.ndarray, pred: np.ndarray, src: np.ndarray):
+def prediction_rows(tm, data, windows, rows: np.ndarray, pred: np.ndarray, src: np.ndarray, proba: bool = True):
     """One session's scored steps of one task as a table (decision C42): the step's data row in the session's
     steps.csv (decision C47: also after contradicting labels left rows out) and its times, the true and predicted
     class, the method/unit that classified it and that model's probability of every class of the task
-    (``p_<class>``, in ``tm.classes`` order)."""
+    (``p_<class>``, in ``tm.classes`` order; empty with ``proba=False``, decision C125)."""
     import pandas as pd
 
     from pdrlearn.kernels.proba import align_proba
 
     classes = np.asarray(tm.classes)
-    proba = np.full((len(rows), len(classes)), np.nan)
-    for mu in dict.fromkeys(src):
+    probs = np.full((len(rows), len(classes)), np.nan)
+    for mu in dict.fromkeys(src) if proba else ():
         k = np.array([j for j, v in enumerate(src) if v == mu])
         est = tm.models[mu[0]][mu[1]]
-        proba[k] = align_proba(est.predict_proba(data.X[rows[k]]), np.asarray(est.classes_).astype(str), classes)
+        probs[k] = align_proba(est.predict_proba(data.X[rows[k]]), np.asarray(est.classes_).astype(str), classes)
     step = data.step[rows]
     table = windows.steps
     out = pd.DataFrame({
@@ -357,7 +367,23 @@ def prediction_rows(tm, data, windows, rows: np.ndarray, pred: np.ndarray, src: 
         "unit": [mu[1] for mu in src],
     })
     for j, c in enumerate(classes):
-        out[f"p_{c}"] = proba[:, j]
+        out[f"p_{c}"] = probs[:, j]
+    return out
+
+
+def detected_rows(tm, data, windows, matched: list, model: tuple[str, str]) -> list:
+    """Decision C125: one table per session of the labelled steps ``matched`` to a detected stride (``(session
+    index, row of data, predicted class)``, :func:`pdrlearn.classify.detected.detected_score`), classified by
+    ``model``; :data:`PREDICTION_COLUMNS` with the labelled step's row and times, ``p_<class>`` empty."""
+    out = []
+    for i in dict.fromkeys(m[0] for m in matched):
+        mine = [m for m in matched if m[0] == i]
+        rows = np.array([m[1] for m in mine], dtype=int)
+        pred = np.array([m[2] for m in mine], dtype=object)
+        src = np.empty(len(mine), dtype=object)
+        for k in range(len(mine)):
+            src[k] = model
+        out.append(prediction_rows(tm, data, windows[i], rows, pred, src, proba=False))
     return out
 
 

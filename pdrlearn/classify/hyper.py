@@ -86,10 +86,31 @@ def valid_names() -> str:
     return ", ".join(f"{m}.{n}" for m, names in HYPERPARAMETERS.items() for n in names)
 
 
-def parse_params(items: Iterable[str] | None, command: str = "train") -> dict[str, dict[str, object]]:
+def plugin_param(method: str, name: str, text: str, factory: Callable, item: str, command: str) -> object:
+    """Decision C122: ``--param METHOD.KEY=VALUE`` of a registered plug-in method: the value read as
+    :func:`pdrlearn.plugins.spec_value` (number, true/false/none, text), passed to its factory as ``KEY=VALUE``; a
+    key the factory does not take (no such keyword, no ``**kwargs``) is one line naming the keywords it takes."""
+    import inspect
+
+    from pdrlearn.plugins import spec_value
+
+    ps = inspect.signature(factory).parameters
+    takes = [p.name for p in ps.values() if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)
+             and p.name not in ("task", "unit", "seed")]
+    if name in ("task", "unit", "seed") or not (name in takes or any(p.kind == p.VAR_KEYWORD for p in ps.values())):
+        raise DataError(f"{command}: --param {item!r}: the factory of plug-in method {method} takes no keyword "
+                        f"{name!r} (its keywords: {', '.join(takes) or 'none'}); add it to the factory, e.g. "
+                        f"def factory(task, unit, *, seed=0, {name}=...) (decision C122)")
+    return spec_value(text.strip())
+
+
+def parse_params(items: Iterable[str] | None, command: str = "train",
+                 plugins: Mapping[str, Callable] | None = None) -> dict[str, dict[str, object]]:
     """``["svm.C=10", "nn.hidden=32"]`` -> ``{"svm": {"C": 10.0}, "nn": {"hidden": 32}}``; a bad item is one
     :class:`DataError` line naming the ``command``, ``--param``, the item and the valid names or values (decision
-    C96; ``train-all`` names itself, C98 as amended by review R2)."""
+    C96; ``train-all`` names itself, C98 as amended by review R2). ``plugins``: registered plug-in methods (name ->
+    factory), whose ``METHOD.KEY=VALUE`` goes to the factory as a keyword (:func:`plugin_param`, decision C122)."""
+    plugins = plugins or {}
     out: dict[str, dict[str, object]] = {}
     for item in items or ():
         key, eq, text = str(item).partition("=")
@@ -98,9 +119,15 @@ def parse_params(items: Iterable[str] | None, command: str = "train") -> dict[st
             raise DataError(f"{command}: --param {item!r}: write METHOD.NAME=VALUE, e.g. --param svm.C=10; valid "
                             f"names: {valid_names()} (decision C96)")
         spec = HYPERPARAMETERS.get(method, {}).get(name)
+        if spec is None and method in plugins and method not in HYPERPARAMETERS:
+            if name in out.get(method, {}):
+                raise DataError(f"{command}: --param {key.strip()} is given twice; give it once (decision C96)")
+            out.setdefault(method, {})[name] = plugin_param(method, name, text, plugins[method], item, command)
+            continue
         if spec is None:
             raise DataError(f"{command}: --param {item!r}: unknown name {key.strip()!r}; valid names: {valid_names()} "
-                            "(decision C96)")
+                            "or a registered plug-in method's factory keyword, PLUGIN.KEY=VALUE (decisions C96, "
+                            "C122)")
         if name in out.get(method, {}):
             raise DataError(f"{command}: --param {key.strip()} is given twice; give it once (decision C96)")
         parse, valid = spec
@@ -141,10 +168,11 @@ def _as_text(value) -> str:
 
 
 def check_params(params: Mapping[str, Mapping[str, object]] | None,
-                 methods: Iterable[str]) -> dict[str, dict[str, object]]:
+                 methods: Iterable[str], plugins: Mapping[str, Callable] | None = None) -> dict[str, dict[str, object]]:
     """``train_user(params=...)``: the API's ``{"svm": {"C": 10}}`` checked as ``--param`` is (decision C96): known
-    names, valid values, trained methods; returns the parsed values ({} for None)."""
+    names, valid values, trained methods; returns the parsed values ({} for None). ``plugins``: as
+    :func:`parse_params` (decision C122)."""
     items = [f"{m}.{n}={_as_text(v)}" for m, names in (params or {}).items() for n, v in (names or {}).items()]
-    out = parse_params(items)
+    out = parse_params(items, plugins=plugins)
     check_params_methods(out, methods)
     return out

@@ -338,7 +338,7 @@ def load_model(path):
             raise ModelError(
                 f"{f}: cannot be loaded ({type(exc).__name__}: {exc}): the model holds a class this Python cannot "
                 "import (your own estimator's module?); put its folder on PYTHONPATH (or import the module before "
-                "loading), or install the pdrlearn version that trained it"
+                "loading; the CLI: --plugin MODULE, decision C121), or install the pdrlearn version that trained it"
             ) from None
         except Exception as exc:  # noqa: BLE001 - any other unpickling failure is a model problem
             raise ModelError(

@@ -14,6 +14,7 @@ import logging
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -140,10 +141,13 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
 
     params = params or {}
 
-    if unit == "combined":
+    if unit == "combined" and method not in COMBINED_METHODS and can_combine(method):
+        pass  # decision C123: a plug-in registered with combined=True gets unit="combined" (below)
+    elif unit == "combined":
         if method not in COMBINED_METHODS:
             raise DataError(f"unit 'combined' (one model on both units' features, thesis ch. 6.1.1) exists for "
-                            f"{' and '.join(COMBINED_METHODS)} only, not {method!r}; use unit 'fused' for {method}")
+                            f"{' and '.join(COMBINED_METHODS)} only, not {method!r}; use unit 'fused' for {method} "
+                            "(a plug-in: register_method(..., combined=True), decision C123)")
         unit = "both"  # the feature transformers' name of the combined vector (pdrlearn.features)
 
     if method == "fusion" or (method == "heuristic" and unit != "fused"):
@@ -160,10 +164,9 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
             factory = METHODS[method]
         except KeyError:
             raise METHODS.unknown(method) from None
-        est = factory(task, unit, seed=seed)
+        est = factory(task, unit, seed=seed, **params.get(method, {}))  # decision C122: its --param keywords
         if not (hasattr(est, "fit") and hasattr(est, "predict_proba")):
-            raise DataError(f"classifier method '{method}': its factory returned {type(est).__name__}, which has no "
-                            "fit / predict_proba; return an unfitted scikit-learn classifier (docs/extending.md)")
+            raise DataError(f"classifier method '{method}': {_no_proba_line(est)}")
         return est
     if unit == "fused":
         if method == "heuristic":
@@ -196,6 +199,20 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
     raise METHODS.unknown(method)
 
 
+def _no_proba_line(est) -> str:
+    """What a plug-in factory's estimator lacks and the fix (trial T4 finding 8): a Pipeline has ``fit``, its last
+    step lacks ``predict_proba`` (``hasattr(pipeline, "predict_proba")`` follows the last step)."""
+    steps = getattr(est, "steps", None)
+    if hasattr(est, "fit") and steps:
+        last = type(steps[-1][1]).__name__
+        return (f"its factory returned a Pipeline whose last step {steps[-1][0]!r} ({last}) has no predict_proba; "
+                f"end it with a probabilistic classifier (SVC(probability=True), or wrap it: "
+                f"CalibratedClassifierCV({last}(...))) (docs/extending.md)")
+    what = "fit / predict_proba" if not hasattr(est, "fit") else "predict_proba"
+    return (f"its factory returned {type(est).__name__}, which has no {what}; return an unfitted scikit-learn "
+            "classifier with predict_proba (docs/extending.md)")
+
+
 def _builtin_method(name: str):
     def factory(task: str, unit: str, *, seed: int = 0):
         return make_estimator(task, name, unit, seed=seed)
@@ -221,14 +238,37 @@ for _name in BUILTIN_METHODS:
     METHODS.register(_name, _builtin_method(_name))
 
 
-def register_method(name: str, factory, *, replace: bool = False):
+def plugin_factories() -> dict:
+    """The registered plug-in methods (not built-in): name -> factory (``--param PLUGIN.KEY=VALUE``, decision C122)."""
+    return {m: METHODS[m] for m in METHODS if m not in METHODS.builtin}
+
+
+#: plug-in methods registered with ``combined=True`` (decision C123): name -> the factory registered so
+COMBINED_PLUGINS: dict[str, Callable] = {}
+
+
+def can_combine(method: str) -> bool:
+    """Whether ``method`` trains the ``combined`` unit: svm, nn (decision C22) or a plug-in registered with
+    ``combined=True`` (decision C123; the same factory still registered)."""
+    return method in COMBINED_METHODS or (method in COMBINED_PLUGINS
+                                          and METHODS.get(method) is COMBINED_PLUGINS[method])
+
+
+def register_method(name: str, factory, *, replace: bool = False, combined: bool = False):
     """Make ``factory(task, unit, *, seed=0) -> an unfitted classifier`` (``fit(X, y)`` / ``predict_proba(X)`` on
     step-window arrays, string class labels; e.g. a Pipeline of ``pdrlearn.features.make_features(task, unit,
     "svm")`` and your classifier) the training method ``name``: ``pdrlearn train --methods NAME`` trains it per
     unit (and its fused soft vote), cross-validated as the built-ins; ``evaluate`` and ``track --model`` use it;
     ``export`` refuses it (the runtime has no recipe for it). A built-in name is refused unless ``replace=True``
-    (decision E81)."""
-    return METHODS.register(name, factory, replace=replace)
+    (decision E81). ``combined=True`` (decision C123): the factory also takes ``unit="combined"`` (one model on
+    both units' windows; ``make_features(task, "combined", ...)`` is the thesis' combined vector) and train
+    trains it on the ``combined`` unit as svm and nn."""
+    out = METHODS.register(name, factory, replace=replace)
+    if combined:
+        COMBINED_PLUGINS[name] = METHODS[name]
+    else:
+        COMBINED_PLUGINS.pop(name, None)
+    return out
 
 
 # --------------------------------------------------------------------------------------------------
@@ -349,6 +389,42 @@ def task_data(windows, task: str, sessions=None) -> TaskData | None:
     )
 
 
+class TrainingData(NamedTuple):
+    """:func:`training_data`'s steps: ``X`` the step windows ``(steps, channels, samples)``, ``y`` the labels,
+    ``session`` each step's session name, ``user`` each step's user (:func:`session_user`; None when the session's
+    meta.json names none)."""
+
+    X: np.ndarray
+    y: np.ndarray
+    session: np.ndarray
+    user: np.ndarray
+
+
+def training_data(sessions, task: str, *, unit: str | None = None, n_samples: int = 40, boundaries: str = "given",
+                  resample_hz: float | None = None) -> TrainingData:
+    """The labelled step windows ``train`` cross-validates for ``task`` (decision C120): cut as
+    :func:`train_user` cuts them (bout edges as the runtime cuts them, decision C55; ``boundaries``, ``n_samples``
+    and ``resample_hz`` as train's), pooled over ``sessions``; ``unit`` ("foot", "waist", "fused", "combined")
+    keeps the steps train fits that unit's models on (None: every labelled step). With scikit-learn,
+    ``cross_val_predict(make_estimator(task, method, unit), d.X, d.y, groups=d.user, cv=GroupKFold(k))`` then
+    scores the windows ``train --cv-groups user`` scores; :func:`pdrlearn.features.step_windows` on the labelled
+    steps as given cuts other windows at a bout's first and last step."""
+    if task not in TASKS:
+        raise DataError(f"training_data: task {task!r}; choose one of {', '.join(TASKS)}")
+    if unit is not None and unit not in UNITS:
+        raise DataError(f"training_data: unit {unit!r}; choose one of {', '.join(UNITS)} (or None: every step)")
+    if not sessions:
+        raise DataError("training_data: no sessions given; pass at least one labelled session")
+    sessions = one_rate(sessions, session_rates(sessions), resample_hz)  # decision C56, as train
+    data = task_data(session_windows(sessions, n_samples=n_samples, boundaries=boundaries), task, sessions)
+    if data is None:
+        raise DataError(_no_labels_message(task, sessions))
+    keep = np.ones(len(data.y), bool) if unit is None else data.unit_mask(unit)
+    names = np.asarray([s.name for s in sessions], dtype=object)
+    users = np.asarray([session_user(s) for s in sessions], dtype=object)
+    return TrainingData(data.X[keep], data.y[keep], names[data.session][keep], users[data.session][keep])
+
+
 def check_classes(
     data: TaskData,
     *,
@@ -412,10 +488,19 @@ def class_metrics(y_true: np.ndarray, y_pred: np.ndarray, classes: Sequence[str]
 UNIT_PREFERENCE = ("foot", "waist", "combined", "fused")
 
 
-def best_pair(ranking: list[tuple[str, str]]) -> tuple[str, str] | None:
+def best_pair(ranking: list[tuple[str, str]], one_unit=()) -> tuple[str, str] | None:
     """Decision C8 / C23: the chosen ``(method, unit)`` of a task's ``ranking`` (best first): the best two-unit
-    model (soft vote or combined features), else the best of any unit; None for an empty ranking."""
-    return next((p for p in ranking if p[1] in TWO_UNIT), ranking[0] if ranking else None)
+    model (soft vote or combined features), else the best of any unit; None for an empty ranking. ``one_unit``: the
+    soft votes that read one unit only (a zero unit weight, :meth:`TaskModel.one_unit_votes`, decision C124), which
+    do not count as two-unit models."""
+    return next((p for p in ranking if p[1] in TWO_UNIT and p not in one_unit), ranking[0] if ranking else None)
+
+
+def zero_weight_unit(record: dict) -> str | None:
+    """Decision C124: the unit a fused CV record's soft vote gives weight 0 (``weights`` of the record, e.g. foot 1,
+    waist 0 -> ``"waist"``), so the vote reads the other unit only; None when both count (or no weights)."""
+    w = record.get("weights") or {}
+    return next((u for u, v in w.items() if v is not None and float(v) <= 0.0), None)
 
 
 def _score_key(metrics: dict, method: str, unit: str = "fused") -> tuple:
@@ -445,6 +530,10 @@ class TaskModel:
         """(method, unit) pairs from best to worst CV score."""
         pairs = [(m, u) for m, per in self.cv.items() for u in per if u in self.models.get(m, {})]
         return sorted(pairs, key=lambda p: _score_key(self.cv[p[0]][p[1]], p[0], p[1]))
+
+    def one_unit_votes(self) -> set[tuple[str, str]]:
+        """Decision C124: the fused soft votes with a zero unit weight (they read one unit only)."""
+        return {(m, "fused") for m, per in self.cv.items() if "fused" in per and zero_weight_unit(per["fused"])}
 
 
 @dataclass
@@ -917,9 +1006,13 @@ def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> l
     values = as_names(values, name)
     bad = [v for v in values if v not in allowed]
     if bad or not values:
+        from pdrlearn.plugin_modules import PLUGIN_HINT
+
+        hint = f"; {PLUGIN_HINT}" if name == "method" and bad else ""  # decision C121
         raise DataError(
             # decision B177: the parameter and the CLI flag, so the line fits train_user and `pdrlearn train`
             f"{name}s (--{name}s): unknown {name} {', '.join(bad) or '(none given)'}; choose from {', '.join(allowed)}"
+            f"{hint}"
         )
     return values
 
@@ -1067,11 +1160,11 @@ def train_task(
     for method in sorted(methods, key=lambda m: m == "ensemble"):  # the ensemble reuses its members
         oof: dict[str, np.ndarray] = {}
         unit_list = ["fused"] if method == "fusion" else list(per_unit)
-        if want_combined and method in COMBINED_METHODS:
+        if want_combined and can_combine(method):  # decisions C22, C123
             unit_list.append("combined")  # one model on both units' features (decision C22)
         elif want_combined and not per_unit and method != "fusion":
             tm.skipped.append(f"{method}/combined: only {' and '.join(COMBINED_METHODS)} have a combined-feature "
-                              "model (decision C22)")
+                              "model (decision C22; a plug-in: register_method(..., combined=True), C123)")
         for unit in unit_list:
             if unit == "fused" and not want_fused:
                 continue
@@ -1171,7 +1264,7 @@ def train_task(
             if unit in per:
                 attach_ranges(per[unit], data.X[subsets[unit][0]])
                 attach_joint(per[unit], data.X[subsets[unit][0]], data.y[subsets[unit][0]])  # decision C71
-    tm.chosen = best_pair(tm.ranking())
+    tm.chosen = best_pair(tm.ranking(), tm.one_unit_votes())  # decisions C8, C124
     if tm.chosen is None:
         raise DataError(f"task {data.task}: no method could be trained ({'; '.join(tm.skipped)})")
     return tm
@@ -1370,7 +1463,8 @@ def train_user(
     named_units = units is not None
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
     own_methods = check_task_methods(task_methods, tasks)  # decisions C74, C78
-    params = check_params(params, [*methods, *(m for t in tasks for m in own_methods.get(t, ()))])  # decision C96
+    params = check_params(params, [*methods, *(m for t in tasks for m in own_methods.get(t, ()))],  # decision C96
+                          plugin_factories())  # decision C122
 
     def voted_of(ms):  # decision C23's soft votes of a method list (None: units named, every soft vote)
         return None if named_units else [m for m in ms if m not in COMBINED_METHODS]
@@ -1538,6 +1632,8 @@ __all__ = [
     "make_estimator",
     "train_user",
     "train_task",
+    "training_data",
+    "TrainingData",
     "session_user",
     "CV_GROUPS",
     "UserModel",

@@ -83,18 +83,37 @@ def _stderr_logging():
         _handler = None
 
 
+def _load_plugins(values: list[str] | None) -> list[str]:
+    """Decision C121: import each ``--plugin`` module (its ``register_method`` / ``register_detector`` calls run)
+    before the command reads a registry."""
+    from pdrlearn.plugin_modules import load_plugin
+
+    for value in values or []:
+        load_plugin(value)
+    return values
+
+
 @app.callback()
 def _root(verbose: bool = typer.Option(False, "--verbose", "-v", help="Log progress details to stderr "
                                        "(also accepted after the command name)."),
           version: bool = typer.Option(False, "--version", callback=_print_version, is_eager=True,
-                                       help="Print the package version and exit.")):
+                                       help="Print the package version and exit."),
+          plugin: list[str] = typer.Option([], "--plugin", callback=_load_plugins, metavar="MODULE",
+                                           help="Import a module or .py file that registers plug-ins "
+                                           "(register_method, register_detector, ...) first; repeatable, also "
+                                           "accepted after the command name (pdrlearn train DIR --plugin "
+                                           "myclf.py --methods rf,svm).")):
     _set_verbose(verbose)
 
 
+#: root options accepted after the command name too: flags, and those that take a value (decision C121)
+_HOISTED_FLAGS, _HOISTED_VALUES = ("-v", "--verbose"), ("--plugin",)
+
+
 def _hoist_verbose(argv: list[str]) -> list[str]:
-    """Move ``-v``/``--verbose`` given after the command name in front of it, where the root option is
-    parsed (``pdrlearn track DIR --out O -v`` = ``pdrlearn -v track DIR --out O``). A token that is the
-    value of a command option (``--title -v``) or follows ``--`` is left alone."""
+    """Move ``-v``/``--verbose`` (and ``--plugin MODULE``, decision C121) given after the command name in front of
+    it, where the root option is parsed (``pdrlearn track DIR --out O -v`` = ``pdrlearn -v track DIR --out O``). A
+    token that is the value of a command option (``--title -v``) or follows ``--`` is left alone."""
     import typer.main
 
     i = next((k for k, a in enumerate(argv) if not a.startswith("-")), None)
@@ -109,7 +128,7 @@ def _hoist_verbose(argv: list[str]) -> list[str]:
         own.update(names)
         if p.param_type_name == "option" and not getattr(p, "is_flag", False) and not getattr(p, "count", False):
             takes_value.update(names)
-    if own & {"-v", "--verbose"}:
+    if own & {*_HOISTED_FLAGS, *_HOISTED_VALUES}:
         return argv
     head, rest, after = argv[:i], [], argv[i + 1:]
     hoisted, k = [], 0
@@ -118,8 +137,11 @@ def _hoist_verbose(argv: list[str]) -> list[str]:
         if a == "--":
             rest += after[k:]
             break
-        if a in ("-v", "--verbose"):
+        if a in _HOISTED_FLAGS or a.split("=")[0] in _HOISTED_VALUES:
             hoisted.append(a)
+            if a in _HOISTED_VALUES and k + 1 < len(after):
+                hoisted.append(after[k + 1])
+                k += 1
         else:
             rest.append(a)
             if a in takes_value and k + 1 < len(after):

@@ -167,18 +167,18 @@ def param_option():
         help="A learned classifier's hyperparameter for every task and unit, repeatable: svm.C (a number or cv), "
         "svm.C_grid, svm.class_weight, nn.hidden, nn.learning_rate, nn.max_epochs, nn.patience, nn.weight_decay, "
         "dtw.n_references, dtw.window (default: the thesis' values; stored in the model's settings.params; "
-        "decision C96).")
+        "decision C96); PLUGIN.KEY=VALUE: a keyword of a registered plug-in method's factory (decision C122).")
 
 
 def check_train_options(cv_groups: str, param, methods, per_task, command: str = "train") -> dict:
     """Decisions C95, C96, C98: ``--cv-groups`` and ``--param`` checked before any data is read; the parsed params.
     The line names ``command`` (train-all passes its own name; review R2 finding 7)."""
     from pdrlearn.classify.hyper import check_params_methods, parse_params
-    from pdrlearn.classify.training import CV_GROUPS
+    from pdrlearn.classify.training import CV_GROUPS, plugin_factories
 
     if cv_groups not in CV_GROUPS:
         raise DataError(f"{command}: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
-    hyper = parse_params(param, command)
+    hyper = parse_params(param, command, plugin_factories())  # decision C122: a plug-in's factory keywords
     check_params_methods(hyper, [*methods, *(m for ms in per_task.values() for m in ms)], command)
     return hyper
 

@@ -217,6 +217,9 @@ def train(
         users_line = louo_line(r0)
         if users_line:
             c.print(f"  {users_line}", markup=False)
+        weights = fused_weights_line(tm)
+        if weights:
+            c.print(f"  {weights}", markup=False)
         c.print(f"  {chosen_reason(tm)}", markup=False)
         for s in grouped_skips(tm.skipped):
             c.print(f"  skipped {s}", markup=False)
@@ -276,6 +279,22 @@ def louo_line(r: dict) -> str | None:
         f"{who} {100 * a:.1f} % ({n} steps)" for who, a, n in zip(who_list, f["accuracy"], f["n_steps"], strict=True))
 
 
+def fused_weights_line(tm) -> str | None:
+    """Decision C124: the unit weights of the task's fused soft votes (foot/waist), the zero-weight ones marked as
+    reading one unit (their rows equal the unit model's); None without a soft vote."""
+    from pdrlearn.classify.training import zero_weight_unit
+
+    parts = []
+    for m, per in tm.cv.items():
+        w = (per.get("fused") or {}).get("weights")
+        if w:
+            zero = zero_weight_unit(per["fused"])
+            other = "waist" if zero == "foot" else "foot"
+            parts.append(f"{m} {w['foot']:.2f}/{w['waist']:.2f}"
+                         + (f" (reads the {other} only: not a two-unit model for the choice)" if zero else ""))
+    return ("fused weights (foot/waist; decision C124): " + ", ".join(parts)) if parts else None
+
+
 def chosen_reason(tm) -> str:
     """Why ``tm.chosen`` was chosen (decision C36): the best balanced CV accuracy among the two-unit models
     (decision C8/C23), and the one-unit models that rank above it."""
@@ -286,10 +305,12 @@ def chosen_reason(tm) -> str:
     if u not in TWO_UNIT:
         return f"chosen: {m}/{u}, the best balanced CV accuracy ({100 * bal:.1f} %)"
     above = []
+    one = tm.one_unit_votes()  # decision C124
     for mm, uu in tm.ranking():
         if (mm, uu) == (m, u):
             break
-        above.append(f"{mm}/{uu} {100 * (tm.cv[mm][uu]['balanced_accuracy'] or 0.0):.1f} %")
+        above.append(f"{mm}/{uu} {100 * (tm.cv[mm][uu]['balanced_accuracy'] or 0.0):.1f} %"
+                     + (" (a unit weight 0)" if (mm, uu) in one else ""))
     why = (f"chosen: {m}/{u}, the best balanced CV accuracy ({100 * bal:.1f} %) among the models reading both "
            "units (fused, combined; decision C8)")
     if above:
@@ -328,6 +349,12 @@ def evaluate(
         help="Write one row per scored step: session, step (its data row in the session's steps.csv, 0 = the "
         "first row under the header), start_s, end_s, task, true, predicted, correct, the method and unit that "
         "classified it and their probability of each class (p_<class>); written atomically (decision C42)."),
+    all_methods: bool = typer.Option(False, "--all-methods", help="Score every method x unit on the strides the "
+                                     "runtime detects too (JSON tasks.<t>.methods.<m>.units.<u>.detected, decision "
+                                     "C97), and with --predictions-out write every method x unit's class of each "
+                                     "labelled step matched to a detected stride (the same steps for every model, "
+                                     "for paired tests; p_<class> empty) instead of the chosen model's rows on the "
+                                     "labelled boundaries (decision C125)."),
     resample: bool = EVAL_RESAMPLE_OPT,
     no_resample: bool = EVAL_NO_RESAMPLE_OPT,
     warn_gait_range: bool = typer.Option(False, "--warn-gait-range", help="Warn (one line) when sessions' labelled "
@@ -343,7 +370,9 @@ def evaluate(
     steps); the table scores the labelled boundaries (decision C49). A runtime bundle (e.g. the shipped
     models/plasys-sim-default) is scored as `pdrlearn run` replays it: one row per task, its chosen model on the
     strides the runtime detects (decision E193); a bundle refuses --report, --predictions-out, --resample,
-    --no-resample and --warn-gait-range, which need a model directory's per-method models (decision E198).
+    --no-resample, --warn-gait-range and --all-methods, which need a model directory's per-method models
+    (decision E198). --all-methods scores every method x unit on the detected strides, and with
+    --predictions-out writes each model's class of the same matched steps (decision C125).
 
     Examples:
 
@@ -361,7 +390,8 @@ def evaluate(
         from pdrlearn.export.score import MODEL_DIR_ONLY
 
         given = [o for o, v in zip(MODEL_DIR_ONLY, (report, predictions_out, resample or None,
-                                                    no_resample or None, warn_gait_range or None), strict=True)
+                                                    no_resample or None, warn_gait_range or None,
+                                                    all_methods or None), strict=True)
                  if v is not None]
         return _evaluate_bundle(model_dir, data_dirs, as_json, given, warn_out_of_domain)
     from pdrlearn.classify import evaluate_model, load_model
@@ -411,7 +441,7 @@ def evaluate(
         tables: list | None = [] if predictions_out is not None else None
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,
                                 warn_out_of_domain=warn_out_of_domain, step_predictions=tables,
-                                warn_gait_range=warn_gait_range)
+                                warn_gait_range=warn_gait_range, all_methods=all_methods)  # decision C125
     result["warnings"] = list(dict.fromkeys(warned))
     result["warning_codes"] = [warning_code(w) for w in result["warnings"]]  # decision B350, as evaluate_model's
     if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration

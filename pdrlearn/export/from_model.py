@@ -226,11 +226,17 @@ def _builtin_of(tm, known) -> str:
     return ",".join(m for m in tm.models if m in known) or "nn"
 
 
+def _foot_models(tm, chosen, methods, allowed=lambda p: True) -> list:
+    """Decision E26: the foot models of a task's bundle entry in the order the foot-only fallback takes them: the
+    chosen one when it reads the foot only, then the others by rank (of ``methods`` when given, of those
+    ``allowed``)."""
+    return [p for p in dict.fromkeys(([chosen] if chosen else []) + tm.ranking())
+            if p[1] == "foot" and (not methods or p[0] in methods) and allowed(p)]
+
+
 def _foot_only(tm, chosen, methods, allowed=lambda p: True):
-    """Decision E26: the foot model of a task's bundle entry: the chosen one when it reads the foot only, else
-    the best-ranked foot model (of ``methods`` when given, of those ``allowed``); None when there is none."""
-    return next((p for p in dict.fromkeys(([chosen] if chosen else []) + tm.ranking())
-                 if p[1] == "foot" and (not methods or p[0] in methods) and allowed(p)), None)
+    """Decision E26: the first of :func:`_foot_models`; None when there is none."""
+    return next(iter(_foot_models(tm, chosen, methods, allowed)), None)
 
 
 def _warn_dropped(dropped: list[str], methods) -> None:
@@ -348,7 +354,7 @@ def export_model(
                                  f"{', '.join(left) or 'requested'} models embed training samples: DTW references "
                                  "or SVM support vectors); export without --no-training-samples, or train nn or "
                                  "heuristic models (pdrlearn train --methods nn,heuristic,fusion)")
-            chosen = chosen if chosen in ok else best_pair(ok)  # as training chooses (decisions C8, C23)
+            chosen = chosen if chosen in ok else best_pair(ok, tm.one_unit_votes())  # as training (C8, C23, C124)
         if methods:
             wanted = [(m, u) for m in methods for u in tm.models.get(m, {}) if allowed((m, u))]
         else:
@@ -360,7 +366,8 @@ def export_model(
         # decision E26: the model `pdrlearn track` (UserModel.predict_steps) classifies a session without the
         # waist unit with: the chosen one when it reads the foot only, else the best-ranked foot model (of the
         # methods asked for, as the chosen one)
-        foot_only = _foot_only(tm, chosen, methods, allowed)
+        foot_models = _foot_models(tm, chosen, methods, allowed)
+        foot_only = next(iter(foot_models), None)
         if not training_samples:  # E68 amended (review): what the request would have exported without the option
             asked = ([(m, u) for m in methods for u in tm.models.get(m, {})] if methods else
                      [p for p in (tm.chosen, _foot_only(tm, tm.chosen, methods)) if p])
@@ -376,13 +383,26 @@ def export_model(
                 log.warning("skipped %s %s/%s: %s", task, m, u, exc)
                 continue
             entries.setdefault(m, {})[u] = e
+        # decision E201: a foot model the bundle cannot carry (a plug-in) gives way to the next exportable one
+        for p in foot_models[1:] if foot_only is not None and "foot" not in entries.get(foot_only[0], {}) else ():
+            try:
+                e = col.entry(tm.models[p[0]][p[1]], f"{task}_{p[0]}_{p[1]}")
+            except ModelError as exc:
+                skipped.append(f"{task} {p[0]}/{p[1]}: {exc}")
+                log.warning("skipped %s %s/%s: %s", task, p[0], p[1], exc)
+                continue
+            log.warning("export: task %s's foot-only fallback is %s/foot (%s/foot skipped: the bundle cannot carry "
+                        "it)", task, p[0], foot_only[0])
+            entries.setdefault(p[0], {})[p[1]] = e
+            foot_only = p
+            break
         if not entries:
             skipped.append(f"{task}: nothing exportable")
             continue
         if not (chosen and chosen[1] in entries.get(chosen[0], {})):
             # decision E183: the chosen model left out, the best-ranked exported one as training chooses
             # (decisions C8, C23, E26), whatever order --methods lists them in
-            chosen = best_pair([p for p in tm.ranking() if p[1] in entries.get(p[0], {})]) or next(
+            chosen = best_pair([p for p in tm.ranking() if p[1] in entries.get(p[0], {})], tm.one_unit_votes()) or next(
                 (m, u) for m, per in entries.items() for u in per)
         exp_chosen = {"method": chosen[0], "unit": chosen[1]}
         for per in entries.values():

@@ -18,7 +18,8 @@ LABEL_COLUMN = {"length": "length_class"}
 
 #: evaluate's options that need a model directory's per-method models (decision E193: one line each);
 #: ``--warn-out-of-domain`` applies to a bundle too (decision E198)
-MODEL_DIR_ONLY = ("--report", "--predictions-out", "--resample", "--no-resample", "--warn-gait-range")
+MODEL_DIR_ONLY = ("--report", "--predictions-out", "--resample", "--no-resample", "--warn-gait-range",
+                  "--all-methods")  # decision C125
 
 
 def matched_classes(est, labels, task: str) -> tuple[list[str], list[str]]:

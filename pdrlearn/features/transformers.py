@@ -375,6 +375,7 @@ def make_features(task: str, unit: str = "both", kind: str = "svm") -> _StepFeat
     terrain: svm -> :class:`TerrainSVMFeatures` (17), nn -> 72 segment features (thesis ch. 6.1.1.2);
     direction: :class:`DirectionFeatures` (25, both kinds); length: :class:`LengthFeatures` (29, both kinds).
     """
+    unit = "both" if unit == "combined" else unit  # decision C123: train's name of the combined unit
     if unit not in UNITS:
         raise DataError(f"make_features: unit must be one of {', '.join(UNITS)}, not {unit!r}")
     if kind not in ("svm", "nn"):

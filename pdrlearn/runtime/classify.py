@@ -131,6 +131,15 @@ _PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
 _UNIT_PREFERENCE = ("foot", "waist", "combined", "fused")
 
 
+def _no_unit_fix(units) -> str:
+    """Decision E201: what to do when a bundle has no model that reads only the data's unit(s): the model may
+    have one the export left out (a plug-in's is skipped, export's ``skipped`` lists it), so re-export with a
+    built-in method first; train only when the model has none."""
+    u = "+".join(units)
+    return (f"re-export with a built-in method that has a {u} model (pdrlearn export MODEL --methods svm; the "
+            f"bundle's manifest export.skipped lists what was left out), or train the model with the {u} unit")
+
+
 def _ranked(spec: dict) -> list[tuple[str, str]]:
     """The task's exported (method, unit) pairs, the chosen one first, then by cross-validated score (as
     :meth:`pdrlearn.classify.training.TaskModel.ranking`: balanced accuracy, accuracy, method; unscored last)."""
@@ -202,7 +211,7 @@ class TaskClassifier:
                 raise ModelError(
                     f"bundle {bundle.path}: task {task} has {where} that reads the {'+'.join(units)} unit only "
                     f"(it has {', '.join(f'{m}/{u}' for m, per in methods.items() for u in per)}); "
-                    f"{'choose another (Tracker methods=)' if asked else 'train the model with that unit'}"
+                    f"{'choose another (Tracker methods=)' if asked else _no_unit_fix(units)}"
                 )
         #: the sensors the data lack that this task's model reads (decision E26 amended); not empty: the task
         #: is left unclassified (``model`` is None)

@@ -1,0 +1,38 @@
+"""Decision C125 (trial T4 finding 4): ``evaluate --all-methods --predictions-out`` writes every method x unit's class
+of each labelled step matched to a detected stride, the same steps for every model (paired tests), agreeing with
+C97's per-method detected scores."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pandas as pd
+
+from pdrlearn.classify import train_user
+from pdrlearn.cli import main
+from pdrlearn.io import write_session
+from pdrlearn.sim import simulate
+
+
+def test_all_methods_predictions_are_every_model_on_the_same_detected_strides(tmp_path, capsys):
+    model = train_user([simulate("terrain", user_seed=9203)], tasks=["terrain"], methods=["heuristic", "svm"],
+                       units=["foot", "waist", "combined"], cv=3, distance_calibration=False)
+    model.save(tmp_path / "m")
+    test = write_session(simulate("terrain", user_seed=9203, seed=7), tmp_path / "test")
+    capsys.readouterr()
+    assert main(["evaluate", str(tmp_path / "m"), str(test), "--all-methods", "--predictions-out",
+                 str(tmp_path / "p.csv"), "--json"]) == 0
+    res = json.loads(capsys.readouterr().out)["tasks"]["terrain"]
+    rows = pd.read_csv(tmp_path / "p.csv")
+    pairs = {(m, u) for m, per in model.tasks["terrain"].models.items() for u in per}
+    assert set(zip(rows["method"], rows["unit"], strict=True)) == pairs and len(pairs) >= 4
+    steps = {mu: set(g["step"]) for mu, g in rows.groupby(["method", "unit"])}
+    assert len({frozenset(v) for v in steps.values()}) == 1  # the same matched steps for every model
+    for (m, u), g in rows.groupby(["method", "unit"]):
+        det = res["methods"][m]["units"][u]["detected"]
+        assert math.isclose(g["correct"].mean(), det["accuracy"]) and len(g) == det["n_steps"]
+    chosen = rows[(rows["method"] == res["chosen"]["method"]) & (rows["unit"] == res["chosen"]["unit"])]
+    assert math.isclose(chosen["correct"].mean(), res["detected"]["accuracy"])
+    assert rows.filter(like="p_").isna().all().all()
+    assert (rows.groupby(["method", "unit"])["predicted"].apply(tuple).nunique()) > 1  # not one model copied
