@@ -303,7 +303,7 @@ def _with_after(steps: pd.DataFrame, info: dict | None, dz, parts, slope_rows):
 CLIMB_KINDS = ("stairs", "ramps", "rides")
 
 
-def climb_kind(dz, pause_dz, length, rows, on_stairs=None) -> str:
+def climb_kind(dz, pause_dz, length, rows, on_stairs=None, stair_grade_pct: float | None = None) -> str:
     """Decision L302: what climbed one climb of :func:`floor_climbs` (its ``rows``, first to last stair row, of the
     rows' walking height change ``dz``, standstill change ``pause_dz`` (W158) and horizontal ``length``): ``"rides"``
     when the standstills from its first to its last stair row carry more than half its height (a lift or escalator
@@ -311,8 +311,11 @@ def climb_kind(dz, pause_dz, length, rows, on_stairs=None) -> str:
     :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` (a ramp or a hill, not a stair), else ``"stairs"`` - the stair
     rows alone, as a landing's and a U-turn's bridged rows would flatten a stairwell (L302's measurement).
     Decision L314: a climb of which more than half the stair rows are ``on_stairs`` (a lower-back track's W108 climbs,
-    :func:`pdrlearn.track.grade.climb_rows`) is "stairs" (or "rides"), whatever its grade."""
+    :func:`pdrlearn.track.grade.climb_rows`) is "stairs" (or "rides"), whatever its grade. Decision L463:
+    ``stair_grade_pct`` (None: L301's 20 %) is the unit's stair grade, :func:`pdrlearn.track.grade.stair_min_grade_pct`."""
     from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
+
+    stair_grade = STAIR_MIN_GRADE_PCT if stair_grade_pct is None else stair_grade_pct
 
     rows = np.asarray(rows, dtype=int)
     span = slice(int(rows[0]), int(rows[-1]) + 1)
@@ -322,7 +325,7 @@ def climb_kind(dz, pause_dz, length, rows, on_stairs=None) -> str:
     if on_stairs is not None and 2 * int(np.count_nonzero(np.asarray(on_stairs, bool)[rows])) > len(rows):
         return "stairs"  # decision L314
     run = float(np.sum(np.abs(length[rows])))
-    return "ramps" if run > 0 and 100.0 * abs(float(np.sum(dz[rows]))) / run < STAIR_MIN_GRADE_PCT else "stairs"
+    return "ramps" if run > 0 and 100.0 * abs(float(np.sum(dz[rows]))) / run < stair_grade else "stairs"
 
 
 def _climb_inputs(steps: pd.DataFrame):
@@ -373,15 +376,16 @@ def ramp_climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray
     if dz is None:
         return out
     walked, pause, length = _climb_inputs(steps)
-    from pdrlearn.track.grade import climb_rows
+    from pdrlearn.track.grade import climb_rows, stair_min_grade_pct
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
+    stair_grade = stair_min_grade_pct(steps)  # decision L463
     slope_rows = climb_slope_rows(steps, info)  # decision L337
     parts = _climb_parts(steps)  # decisions L374, L375
     for rows, _, ride in _climbs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True, slope_rows=slope_rows,
                                  parts=parts):
         if not ride and climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
-                                   on_stairs) == "ramps":
+                                   on_stairs, stair_grade) == "ramps":
             out[int(rows[0]):int(rows[-1]) + 1] = True
     return out
 
@@ -396,15 +400,16 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
         return out
     out.update({k: 0 for k in out})
     walked, pause, length = _climb_inputs(steps)
-    from pdrlearn.track.grade import climb_rows
+    from pdrlearn.track.grade import climb_rows, stair_min_grade_pct
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
+    stair_grade = stair_min_grade_pct(steps)  # decision L463
     slope_rows = climb_slope_rows(steps, info)  # decision L337
     parts = _climb_parts(steps)  # decisions L374-L376: a ride is a climb of its own, "rides"
     dz, parts, slope_rows = _with_after(steps, info, dz, parts, slope_rows)  # decision L394
     for rows, n, ride in _climbs(dz, storey_height_m, STOREY_BAND, bridge, None, slope_rows=slope_rows, parts=parts):
         kind = "rides" if ride else climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
-                                               on_stairs)
+                                               on_stairs, stair_grade)
         key = f"floors_{'up' if n > 0 else 'down'}_{kind}"
         out[key] += abs(n)
     return out

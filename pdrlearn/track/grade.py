@@ -27,6 +27,12 @@ RAMP_MIN_GRADE_PCT = 3.0
 #: simulator's stair, S3); a waist track's stair steps, whose horizontal length the pendulum overestimates, measured
 #: 30 % (decision L301's measurement)
 STAIR_MIN_GRADE_PCT = 20.0
+#: decision L463: a foot track's stair grade (%, rise over run): stairs are built at 30-50 deg (OSHA 29 CFR 1910.25,
+#: standard stairs), 58-119 %, but a foot track reads real flights at 34-42 %; trail slopes up to 30 % stay ramps.
+#: The lower back keeps L301's 20 % (its stair steps read 30 %). A project choice: the top of the trail range
+FOOT_STAIR_MIN_GRADE_PCT = 30.0
+#: decision L463: the stair grade per unit (:func:`stair_min_grade_pct`)
+STAIR_MIN_GRADE_PCT_BY_UNIT = {"foot": FOOT_STAIR_MIN_GRADE_PCT, "waist": STAIR_MIN_GRADE_PCT}
 #: decision L301: a run of ramp rows is a ramp run when its horizontal length is at least this (m): two foot strides
 RAMP_MIN_RUN_M = 2.0
 #: decision L301: a level stretch of at most this horizontal length (m) between two runs of one sign is a landing of
@@ -53,6 +59,13 @@ def grade_source(steps: pd.DataFrame, info: dict | None) -> str | None:
         dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)
         return "barometer" if np.any(np.nan_to_num(dz) != 0) else None
     return None
+
+
+def stair_min_grade_pct(steps: pd.DataFrame | None = None) -> float:
+    """Decision L463: the rise over run (%) from which the rows' climb is a stair - :data:`STAIR_MIN_GRADE_PCT_BY_UNIT`
+    of the rows' ``unit`` (a foot track without the column), L301's 20 % for mixed or unknown units."""
+    units = {"foot"} if steps is None or "unit" not in steps else set(steps["unit"].astype(str))
+    return STAIR_MIN_GRADE_PCT_BY_UNIT.get(units.pop(), STAIR_MIN_GRADE_PCT) if len(units) == 1 else STAIR_MIN_GRADE_PCT
 
 
 def grades_pct(length, dz, min_length_m: float = GRADE_MIN_LENGTH_M) -> np.ndarray:
@@ -171,8 +184,8 @@ def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
     dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
     unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
     rows = []
-    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info)),
-                          start=1):
+    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
+                                    stair_grade_pct=stair_min_grade_pct(steps)), start=1):  # decision L463
         rows.append({"ramp": k, "start_s": float(steps["start_s"].iloc[r["first"]]),
                      "end_s": float(steps["end_s"].iloc[r["last"]]),
                      **{c: r[c] for c in RAMP_COLUMNS if c in r}})

@@ -111,10 +111,10 @@ def flight_rows(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None,
     """Decisions L443, L455: (rows,) bool, the stair rows stairs.csv's flights are made of: L179's stair rows less
     the climbs L302 calls "ramps" (L443); with ``steep_strides_in_ramps`` (default :data:`STEEP_STRIDES_IN_RAMPS`,
     off) a stride of such a climb whose own grade |dz| / |length| reaches
-    :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` (L303's 20 %) stays a stair row (a stair beside a ramp)."""
+    :func:`pdrlearn.track.grade.stair_min_grade_pct` (L463: a foot track's 30 %) stays a stair row (a stair beside a ramp)."""
     from pdrlearn.track.evaluate import ramp_climb_rows
     from pdrlearn.track.gait import stair_rows
-    from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
+    from pdrlearn.track.grade import stair_min_grade_pct
 
     stair = stair_rows(st, ramp_not_stair=False)
     kept = stair & ~ramp_climb_rows(st)  # decision L443
@@ -122,7 +122,7 @@ def flight_rows(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None,
     if length is None or not on:
         return kept
     with np.errstate(invalid="ignore", divide="ignore"):
-        steep = np.abs(np.nan_to_num(dz)) >= STAIR_MIN_GRADE_PCT / 100.0 * np.abs(length)  # decision L455
+        steep = np.abs(np.nan_to_num(dz)) >= stair_min_grade_pct(st) / 100.0 * np.abs(length)  # L455, L463
     return kept | (stair & steep)
 
 

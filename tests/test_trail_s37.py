@@ -1,0 +1,56 @@
+"""Session 37, fixer FB (trial T3, hiking): `simulate --baro-drift` (S85), a foot track's stair grade (L463)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.io import read_session
+
+ROUTE = "stand:1, straight:4"
+
+
+def test_baro_drift_is_the_python_knob_and_scales_the_drawn_rate_s85(tmp_path):
+    runs = {}
+    for sd in ("0.3", "2"):
+        out = tmp_path / f"b{sd}"
+        assert main(["simulate", "--route", ROUTE, "--user-seed", "9190", "--baro-drift", sd, "--out", str(out)]) == 0
+        runs[sd] = read_session(out).meta
+    assert runs["2"]["knobs"]["baro_drift_hpa_per_h"] == 2.0
+    drawn = [runs[sd]["sensor_errors"]["wBarometer"]["drift_hpa_per_h"] for sd in ("0.3", "2")]
+    assert drawn[1] == pytest.approx(drawn[0] * 2.0 / 0.3)  # the same draw, scaled by the SD
+
+
+@pytest.mark.parametrize("value", ["-1", "11", "nan"])
+def test_baro_drift_out_of_range_is_one_line_s85(tmp_path, capsys, value):
+    assert main(["simulate", "--route", ROUTE, "--user-seed", "9190", "--baro-drift", value,
+                 "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert f"--baro-drift {value}" in err and "hPa per hour" in err and "Traceback" not in err
+    assert not (tmp_path / "x").exists()
+
+
+def _steps(length, dz, unit="foot"):
+    return pd.DataFrame({"start_s": np.arange(len(length)) * 1.0, "end_s": np.arange(len(length)) + 1.0,
+                         "length_m": length, "dz_m": dz, "unit": unit, "gap_s": 0.0})
+
+
+def test_a_25_pct_trail_slope_is_a_ramp_on_a_foot_track_and_a_stair_is_still_a_stair_l463():
+    from pdrlearn.track.evaluate import floors_by_kind
+    from pdrlearn.track.grade import ramp_table
+    from pdrlearn.track.stair_flights import flight_table
+
+    rng = np.random.default_rng(9190)
+    length = np.full(60, 1.4)
+    slope = _steps(length, length * (0.25 + rng.normal(0.0, 0.02, 60)))  # a 25 % trail with stride noise
+    got = floors_by_kind(slope)
+    assert got["floors_up_stairs"] == 0 and got["floors_up_ramps"] == 7  # 21 m: 7 storeys walked on a ramp
+    assert flight_table(slope).empty  # no stair flight
+    ramps = ramp_table(slope, {"altitude_source": "fused"})
+    assert len(ramps) == 1 and ramps["mean_grade_pct"].iloc[0] == pytest.approx(25.0, abs=1.0)  # one piece
+    stairs = _steps(np.r_[np.ones(3), np.full(9, 0.56), np.ones(3)], np.r_[np.zeros(3), np.full(9, 0.34), np.zeros(3)])
+    assert floors_by_kind(stairs)["floors_up_stairs"] == 1 and len(flight_table(stairs)) == 1  # 61 %: a stair
+    waist = _steps(np.full(120, 0.7), np.full(120, 0.7 * 0.25), unit="waist")  # the lower back keeps L301's 20 %
+    assert floors_by_kind(waist)["floors_up_stairs"] == 7
