@@ -99,9 +99,17 @@ SESSIONS: tuple[Column, ...] = (
     ("descent_m", "m", "number", "cumulative descent, >= 0 (ascent_m - descent_m = altitude_change_m; barometric z: "
                                  "minus altitude_drift_m; L146, L172)"),
     ("altitude_drift_m", "m", "number", "barometric z (lower back, --altitude fused): the slow change that "
-                                        "ascent_m / descent_m and the floors leave out (L172)"),
+                                        "ascent_m / descent_m and the floors leave out (L172); not the weather's "
+                                        "drift during climbs, which they include (weather_drift_m, L464)"),
     ("altitude_drift_limit_m", "m", "number", "the most the fastest weather (2 hPa/h) changes the barometric z in "
                                               "the track's span; a larger altitude_drift_m is warned about (W371)"),
+    ("weather_drift_rate_m_per_h", "m/h", "number", "foot tracks with wBarometer.csv: the barometric altitude's "
+                                                    "slope over standstills of 60 s or more (the weather; L464)"),
+    ("weather_drift_standstill_s", "s", "number", "the standstill seconds weather_drift_rate_m_per_h was read on "
+                                                  "(L464)"),
+    ("weather_drift_m", "m", "number", "weather_drift_rate_m_per_h over the strides' span: what the weather added to "
+                                       "the barometer's net change and climbs; over 1 m warned with --altitude "
+                                       "fused (L464)"),
     ("bouts_distance_m", "m", "number", "bouts.csv's distance summed (C25)"),
     ("bouts_time_s", "s", "number", "bouts.csv's durations summed (C25)"),
     ("bouts_n_steps", "count", "integer", "bouts.csv's steps summed (C25)"),

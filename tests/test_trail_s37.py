@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -54,3 +56,38 @@ def test_a_25_pct_trail_slope_is_a_ramp_on_a_foot_track_and_a_stair_is_still_a_s
     assert floors_by_kind(stairs)["floors_up_stairs"] == 1 and len(flight_table(stairs)) == 1  # 61 %: a stair
     waist = _steps(np.full(120, 0.7), np.full(120, 0.7 * 0.25), unit="waist")  # the lower back keeps L301's 20 %
     assert floors_by_kind(waist)["floors_up_stairs"] == 7
+
+
+def test_standstill_kernels_read_the_slope_not_the_climbs_l464():
+    from pdrlearn.kernels.weather_drift import drift_rate, standstills
+
+    spans = standstills([10.0, 200.0], [100.0, 210.0], 0.0, 300.0)  # 10 s stand, 100 s pause, 90 s stand
+    assert spans == [(105.0, 195.0), (215.0, 295.0)]
+    t = np.arange(0.0, 300.0, 0.05)
+    z = 0.001 * t + np.where(t > 150.0, 30.0, 0.0)  # a 30 m climb between two standstills: levels, not slope
+    rate, seconds = drift_rate(t, z, [(105.0, 145.0), (155.0, 195.0)])
+    assert rate == pytest.approx(0.001) and seconds == pytest.approx(80.0)
+    assert drift_rate(t, z, []) == (None, 0.0)
+
+
+def test_a_fused_track_warns_of_the_weather_drift_it_reads_on_a_pause_l464(tmp_path, capsys):
+    sim, out = tmp_path / "hike", tmp_path / "hike_f"
+    from pdrlearn.io.plasys import write_session
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    write_session(simulate_path(parse_route("stand:3, slope:60:10, stand:120, slope:60:-10, stand:3"),
+                                UserProfile.from_seed(9198), rate_hz=20.0, seed=0, scenario="route",
+                                baro_drift_hpa_per_h=0.0), sim)
+    baro = pd.read_csv(sim / "wBarometer.csv")
+    rate_hpa_s = -4.0 / 3600.0  # falling 4 hPa/h (2x the fastest weather): the altitude rises ~33 m/h
+    baro["x"] = baro["x"] + rate_hpa_s * baro["timestamp"] / 1000.0
+    baro.to_csv(sim / "wBarometer.csv", index=False)
+    assert main(["track", str(sim), "--altitude", "fused", "--out", str(out)]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    assert s["weather_drift_rate_m_per_h"] == pytest.approx(33.4, abs=3.0)
+    span = s["weather_drift_m"] / s["weather_drift_rate_m_per_h"] * 3600.0
+    assert 100.0 < span < 400.0 and s["weather_drift_standstill_s"] > 100.0
+    assert s["weather_drift_m"] > 1.0 and abs(s["altitude_drift_m"]) < 0.5 * s["weather_drift_m"]
+    err = capsys.readouterr().err
+    assert "decision L464" in err and f"{s['weather_drift_m']:+.2f} m" in err

@@ -1135,6 +1135,23 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
         out["barometer_ascent_m"], out["barometer_descent_m"] = float(up), float(down)  # decision L180: the climbs
         out["barometer_drift_m"] = out["barometer_altitude_change_m"] - out["barometer_climb_change_m"]
         out["barometer_disagree_limit_m"] = BAROMETER_DISAGREE_M + BAROMETER_DRIFT_M_PER_H * (span[1] - span[0]) / 3600
+        _weather_drift(b, steps, span, out)  # decision L464
+
+
+def _weather_drift(b, steps: pd.DataFrame, span: list[float], out: dict) -> None:
+    """Decision L464: ``weather_drift_rate_m_per_h`` (the barometric altitude's slope over the standstills of at
+    least :data:`pdrlearn.kernels.weather_drift.STANDSTILL_MIN_S`, the weather's), ``weather_drift_standstill_s``
+    (the seconds it was read on) and ``weather_drift_m`` (that rate over the strides' span: what the weather added
+    to the barometer's net change and its climbs); None without such a standstill."""
+    from pdrlearn.kernels.barometer import altitude_m
+    from pdrlearn.kernels.weather_drift import drift_rate, standstills
+
+    t = np.asarray(b.t, dtype=float)
+    spans = standstills(steps["start_s"], steps["end_s"], float(np.nanmin(t)), float(np.nanmax(t)))
+    rate, seconds = drift_rate(t, altitude_m(b.values[:, 0]), spans)
+    out["weather_drift_standstill_s"] = seconds if rate is not None else None
+    out["weather_drift_rate_m_per_h"] = None if rate is None else 3600.0 * rate
+    out["weather_drift_m"] = None if rate is None else rate * (span[1] - span[0])
 
 
 #: decision L145: a foot track's altitude change and the unused waist barometer's may differ by this much (m)
@@ -1284,6 +1301,21 @@ def drift_warning(summary: dict) -> str | None:
             "count only climbs")
 
 
+def weather_drift_warning(summary: dict) -> str | None:
+    """Decision L464: one line when a barometric track (a foot track fused with the barometer, L154: its
+    ``altitude_drift_m`` is set) read more than :data:`ALTITUDE_DRIFT_WARN_M` of weather drift over its span from
+    its standstills (``weather_drift_m``): the net change and the climbs include it, ``altitude_drift_m`` does not
+    measure it."""
+    drift, rate = summary.get("weather_drift_m"), summary.get("weather_drift_rate_m_per_h")
+    if summary.get("altitude_drift_m") is None or drift is None or not abs(float(drift)) > ALTITUDE_DRIFT_WARN_M:
+        return None
+    return (f"the barometer drifted {float(rate):+.2f} m/h while standing ({summary['weather_drift_standstill_s']:.0f} s"
+            f" of standstill; the weather, decision L464): over the track that is {float(drift):+.2f} m, which "
+            f"altitude_change_m ({float(summary.get('altitude_change_m', 0.0)):+.2f} m) and the climbs while it "
+            f"drifted (ascent_m / descent_m) include; altitude_drift_m ({float(summary['altitude_drift_m']):+.2f} m) "
+            "is only the slow change L172 left out of the climbs, not this drift")
+
+
 def _leg_length(result: TrackResult, session: Session, out: dict) -> None:
     """Decision L148: the walker's leg length from meta.json (``leg_length_m``, ``leg_length_source``), by which
     L95's walking range is scaled."""
@@ -1347,6 +1379,7 @@ def summary_warnings(summary: dict) -> list[str]:
                         pooled_cv_warning(summary), pooled_length_cv_warning(summary),  # L380
                         resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
+                        weather_drift_warning(summary),  # decision L464
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
                         stationary_reference_warning(summary), stance_range_warning(summary)) if w]
 
