@@ -91,3 +91,32 @@ def test_a_fused_track_warns_of_the_weather_drift_it_reads_on_a_pause_l464(tmp_p
     assert s["weather_drift_m"] > 1.0 and abs(s["altitude_drift_m"]) < 0.5 * s["weather_drift_m"]
     err = capsys.readouterr().err
     assert "decision L464" in err and f"{s['weather_drift_m']:+.2f} m" in err
+
+
+def test_bouts_and_periods_have_ascent_and_descent_and_ramps_a_speed_l467(tmp_path):
+    sim, out = tmp_path / "hill", tmp_path / "hill_f"
+    assert main(["simulate", "--route", "stand:3, slope:40:15, slope:40:-15, stand:3", "--user-seed", "9199",
+                 "--out", str(sim)]) == 0
+    assert main(["track", str(sim), "--altitude", "fused", "--per", "30s", "--out", str(out)]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    bouts, periods = pd.read_csv(out / "bouts.csv"), pd.read_csv(out / "periods.csv")
+    assert len(bouts) == 1 and bouts["ascent_m"].iloc[0] == pytest.approx(6.0, abs=1.0)  # 40 m at 15 %: 6 m
+    assert bouts["descent_m"].iloc[0] == pytest.approx(6.0, abs=1.0)
+    assert abs(bouts["altitude_change_m"].iloc[0]) < 1.0  # the net change alone hides the climb
+    assert periods["ascent_m"].sum() == pytest.approx(s["ascent_m"], abs=1.0)
+    assert periods["descent_m"].sum() == pytest.approx(s["descent_m"], abs=1.0)
+    ramps = pd.read_csv(out / "ramps.csv")
+    assert len(ramps) >= 2
+    assert np.allclose(ramps["duration_s"], ramps["end_s"] - ramps["start_s"])
+    assert np.allclose(ramps["speed_mps"], ramps["along_slope_m"] / ramps["duration_s"])
+    assert ramps["speed_mps"].between(0.8, 2.0).all()
+
+
+def test_a_bad_slope_item_gets_a_slope_example_l468():
+    from pdrlearn.errors import DataError
+    from pdrlearn.sim.route import parse_route
+
+    with pytest.raises(DataError, match=r"'10%' is not a number; e\.g\. 'slope:100:10 \(.*no % sign"):
+        parse_route("straight:5, slope:100:10%")
+    with pytest.raises(DataError, match=r"e\.g\. 'up:12'"):
+        parse_route("up:twelve")

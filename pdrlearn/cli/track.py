@@ -895,9 +895,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.waist.gait_quality import add_bout_quality
 
         bouts = add_bout_quality(bouts, result.steps, kept_imu(imus, session))  # W353: the track's AHRS
-    from pdrlearn.track.periods import bout_floors
+    from pdrlearn.track.periods import bout_ascent, bout_floors
 
     bouts = bout_floors(bouts, result.steps, result.info, o.get("storey_height_m", 3.0))  # decision L450
+    bouts = bout_ascent(bouts, result)  # decision L467
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,

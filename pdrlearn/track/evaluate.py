@@ -312,7 +312,8 @@ def climb_kind(dz, pause_dz, length, rows, on_stairs=None, stair_grade_pct: floa
     rows alone, as a landing's and a U-turn's bridged rows would flatten a stairwell (L302's measurement).
     Decision L314: a climb of which more than half the stair rows are ``on_stairs`` (a lower-back track's W108 climbs,
     :func:`pdrlearn.track.grade.climb_rows`) is "stairs" (or "rides"), whatever its grade. Decision L463:
-    ``stair_grade_pct`` (None: L301's 20 %) is the unit's stair grade, :func:`pdrlearn.track.grade.stair_min_grade_pct`."""
+    ``stair_grade_pct`` (None: L301's 20 %) is the unit's stair grade,
+    :func:`pdrlearn.track.grade.stair_min_grade_pct`."""
     from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
 
     stair_grade = STAIR_MIN_GRADE_PCT if stair_grade_pct is None else stair_grade_pct
@@ -663,6 +664,31 @@ def _basic(result: TrackResult, out: dict) -> None:
     out.update(grade_summary(result.steps, result.info))  # decisions L300, L301
 
 
+def _altitude_kind(result: TrackResult) -> tuple[bool, bool]:
+    """Decision L146: (a foot track, its z barometric: a lower-back track or a fused foot track, L154)."""
+    steps = result.steps
+    foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
+    return foot, bool(len(steps)) and (not foot or (result.info or {}).get("altitude_source") == "fused")
+
+
+def interval_ascent(result: TrackResult, a: float, b: float) -> tuple[float | None, float | None]:
+    """Decision L467: the ascent and descent (m) of the trajectory's z from ``a`` to ``b`` (s) by the summary's
+    rule (:func:`_ascent`: a barometric z L146's band crossed within L172's window, a foot track's strides as they
+    are); (None, None) without a trajectory z and time."""
+    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent
+
+    tr = result.trajectory
+    if not len(tr) or "z" not in tr or "t" not in tr:
+        return None, None
+    t = tr["t"].to_numpy(float)
+    m = (t >= a) & (t <= b)
+    z, t = tr["z"].to_numpy(float)[m], t[m]
+    foot, barometric = _altitude_kind(result)
+    if barometric:
+        return ascent_descent(z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S)
+    return ascent_descent(z, 0.0 if foot or not len(result.steps) else ASCENT_BAND_BARO_M)
+
+
 def _ascent(result: TrackResult, out: dict) -> None:
     """Decision L146: ``ascent_m`` / ``descent_m``, the cumulative climb and descent of the track's z (a hill
     walked up and down has both, its ``altitude_change_m`` ~0); a foot track's strides as they are, a barometric z
@@ -680,8 +706,7 @@ def _ascent(result: TrackResult, out: dict) -> None:
 
     tr, steps = result.trajectory, result.steps
     z = tr["z"].to_numpy(float) if len(tr) and "z" in tr else np.zeros(0)
-    foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
-    barometric = bool(len(steps)) and (not foot or (result.info or {}).get("altitude_source") == "fused")
+    foot, barometric = _altitude_kind(result)
     if not barometric or "t" not in tr:
         out["ascent_m"], out["descent_m"] = ascent_descent(z, 0.0 if foot or not len(steps) else ASCENT_BAND_BARO_M)
         return
@@ -1309,8 +1334,9 @@ def weather_drift_warning(summary: dict) -> str | None:
     drift, rate = summary.get("weather_drift_m"), summary.get("weather_drift_rate_m_per_h")
     if summary.get("altitude_drift_m") is None or drift is None or not abs(float(drift)) > ALTITUDE_DRIFT_WARN_M:
         return None
-    return (f"the barometer drifted {float(rate):+.2f} m/h while standing ({summary['weather_drift_standstill_s']:.0f} s"
-            f" of standstill; the weather, decision L464): over the track that is {float(drift):+.2f} m, which "
+    standing = float(summary["weather_drift_standstill_s"])
+    return (f"the barometer drifted {float(rate):+.2f} m/h while standing ({standing:.0f} s of standstill; the "
+            f"weather, decision L464): over the track that is {float(drift):+.2f} m, which "
             f"altitude_change_m ({float(summary.get('altitude_change_m', 0.0)):+.2f} m) and the climbs while it "
             f"drifted (ascent_m / descent_m) include; altitude_drift_m ({float(summary['altitude_drift_m']):+.2f} m) "
             "is only the slow change L172 left out of the climbs, not this drift")

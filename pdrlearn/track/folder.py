@@ -28,7 +28,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     from pdrlearn.track.belt import session_incline
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
     from pdrlearn.track.evaluate import track_summary
-    from pdrlearn.track.periods import bout_floors, time_accounting
+    from pdrlearn.track.periods import bout_ascent, bout_floors, time_accounting
     from pdrlearn.track.steady import add_steady_column
     from pdrlearn.track.units import tracked_unit
     from pdrlearn.warning_lines import machine_summary
@@ -39,6 +39,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     with session_incline(session):  # decisions L442, L454: bouts.csv's and steps.csv's CV strides as track's
         bouts = detected_bouts(result.steps, None, **session_key(session), leg_m=session_leg_m(session))  # L124
         bouts = bout_floors(bouts, result.steps, result.info)  # decision L450, as track's bouts.csv
+        bouts = bout_ascent(bouts, result)  # decision L467
         summary = track_summary(result, session, pipeline=pipeline, bout_table=bouts)  # C13, C14
         add_steady_column(result.steps)  # decision L415, as track's steps.csv
     summary.update(time_accounting(result, session, tracked_unit(pipeline)))  # decision L275

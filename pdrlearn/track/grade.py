@@ -43,7 +43,8 @@ LANDING_MAX_M = 3.5
 GRADE_WINDOW_ROWS = {"foot": 1, "waist": 3}
 
 RAMP_COLUMNS = ("ramp", "start_s", "end_s", "direction", "n_runs", "landings", "horizontal_run_m", "landing_m",
-                "along_slope_m", "rise_m", "mean_grade_pct", "max_run_grade_pct", "n_steps")
+                "along_slope_m", "rise_m", "mean_grade_pct", "max_run_grade_pct", "n_steps",
+                "duration_s", "speed_mps")  # decision L467
 
 
 def grade_source(steps: pd.DataFrame, info: dict | None) -> str | None:
@@ -186,9 +187,10 @@ def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
     rows = []
     for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
                                     stair_grade_pct=stair_min_grade_pct(steps)), start=1):  # decision L463
-        rows.append({"ramp": k, "start_s": float(steps["start_s"].iloc[r["first"]]),
-                     "end_s": float(steps["end_s"].iloc[r["last"]]),
-                     **{c: r[c] for c in RAMP_COLUMNS if c in r}})
+        t0, t1 = float(steps["start_s"].iloc[r["first"]]), float(steps["end_s"].iloc[r["last"]])
+        rows.append({"ramp": k, "start_s": t0, "end_s": t1, **{c: r[c] for c in RAMP_COLUMNS if c in r},
+                     "duration_s": t1 - t0,  # decision L467
+                     "speed_mps": r["along_slope_m"] / (t1 - t0) if t1 > t0 else np.nan})
     return pd.DataFrame(rows, columns=list(RAMP_COLUMNS))
 
 
