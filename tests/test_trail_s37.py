@@ -120,3 +120,14 @@ def test_a_bad_slope_item_gets_a_slope_example_l468():
         parse_route("straight:5, slope:100:10%")
     with pytest.raises(DataError, match=r"e\.g\. 'up:12'"):
         parse_route("up:twelve")
+
+
+def test_a_stair_section_inside_a_trail_climb_is_a_flight_but_a_steep_pair_is_not_l466():
+    from pdrlearn.track.stair_flights import flight_table
+
+    ramp = [(1.4, 0.14)] * 15  # a 10 % trail, 15 strides
+    for steep, flights in ((6, [("up", 6)]), (2, [])):
+        rows = [(1.4, 0.0)] * 5 + ramp + [(0.56, 0.34)] * steep + ramp + [(1.4, 0.0)] * 5
+        length, dz = (np.array(c) for c in zip(*rows, strict=True))
+        table = flight_table(_steps(length, dz))
+        assert [(r.direction, int(r.n_strides)) for r in table.itertuples()] == flights
