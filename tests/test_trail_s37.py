@@ -1,4 +1,5 @@
-"""Session 37, fixer FB (trial T3, hiking): `simulate --baro-drift` (S85), a foot track's stair grade (L463)."""
+"""Session 37, fixers FB / FB2 (trial T3, hiking): `simulate --baro-drift` (S85), a foot track's stair grade (L463,
+L469: 20 % by default, `--stair-grade 30` for trails), stairs inside a trail climb (L466, L470)."""
 
 from __future__ import annotations
 
@@ -39,23 +40,30 @@ def _steps(length, dz, unit="foot"):
                          "length_m": length, "dz_m": dz, "unit": unit, "gap_s": 0.0})
 
 
-def test_a_25_pct_trail_slope_is_a_ramp_on_a_foot_track_and_a_stair_is_still_a_stair_l463():
+def test_a_25_pct_trail_slope_is_a_stair_by_default_and_a_ramp_with_stair_grade_30_l469():
     from pdrlearn.track.evaluate import floors_by_kind
-    from pdrlearn.track.grade import ramp_table
+    from pdrlearn.track.grade import TRAIL_STAIR_GRADE_PCT, ramp_table, stair_grade_set, stair_min_grade_pct
     from pdrlearn.track.stair_flights import flight_table
 
-    rng = np.random.default_rng(9190)
+    rng = np.random.default_rng(9310)
     length = np.full(60, 1.4)
     slope = _steps(length, length * (0.25 + rng.normal(0.0, 0.02, 60)))  # a 25 % trail with stride noise
+    assert stair_min_grade_pct(slope) == 20.0  # L469: L301's 20 % by default (L463 amended)
     got = floors_by_kind(slope)
-    assert got["floors_up_stairs"] == 0 and got["floors_up_ramps"] == 7  # 21 m: 7 storeys walked on a ramp
-    assert flight_table(slope).empty  # no stair flight
-    ramps = ramp_table(slope, {"altitude_source": "fused"})
-    assert len(ramps) == 1 and ramps["mean_grade_pct"].iloc[0] == pytest.approx(25.0, abs=1.0)  # one piece
+    assert got["floors_up_stairs"] == 7 and got["floors_up_ramps"] == 0  # 21 m at 25 %: a stair by default
+    assert len(flight_table(slope)) == 1
     stairs = _steps(np.r_[np.ones(3), np.full(9, 0.56), np.ones(3)], np.r_[np.zeros(3), np.full(9, 0.34), np.zeros(3)])
-    assert floors_by_kind(stairs)["floors_up_stairs"] == 1 and len(flight_table(stairs)) == 1  # 61 %: a stair
-    waist = _steps(np.full(120, 0.7), np.full(120, 0.7 * 0.25), unit="waist")  # the lower back keeps L301's 20 %
-    assert floors_by_kind(waist)["floors_up_stairs"] == 7
+    waist = _steps(np.full(120, 0.7), np.full(120, 0.7 * 0.25), unit="waist")
+    with stair_grade_set(TRAIL_STAIR_GRADE_PCT):  # --stair-grade 30 (L463 rule B, an option)
+        assert stair_min_grade_pct(slope) == 30.0 and stair_min_grade_pct(waist) == 20.0
+        got = floors_by_kind(slope)
+        assert got["floors_up_stairs"] == 0 and got["floors_up_ramps"] == 7  # 7 storeys walked on a ramp
+        assert flight_table(slope).empty  # no stair flight
+        ramps = ramp_table(slope, {"altitude_source": "fused"})
+        assert len(ramps) == 1 and ramps["mean_grade_pct"].iloc[0] == pytest.approx(25.0, abs=1.0)  # one piece
+        assert floors_by_kind(stairs)["floors_up_stairs"] == 1 and len(flight_table(stairs)) == 1  # 61 %: a stair
+        assert floors_by_kind(waist)["floors_up_stairs"] == 7  # the lower back keeps L301's 20 %
+    assert stair_min_grade_pct(slope) == 20.0  # the scope ends with its block
 
 
 def test_standstill_kernels_read_the_slope_not_the_climbs_l464():
@@ -122,12 +130,79 @@ def test_a_bad_slope_item_gets_a_slope_example_l468():
         parse_route("up:twelve")
 
 
-def test_a_stair_section_inside_a_trail_climb_is_a_flight_but_a_steep_pair_is_not_l466():
+@pytest.mark.parametrize("grade", [None, 30.0])
+def test_a_stair_section_inside_a_trail_climb_is_a_flight_but_a_steep_pair_is_not_l466(grade):
+    """L466 at the default 20 % (L470: no false flight on the 7 real level walks) and with --stair-grade 30."""
+    from pdrlearn.track.grade import stair_grade_set
     from pdrlearn.track.stair_flights import flight_table
 
     ramp = [(1.4, 0.14)] * 15  # a 10 % trail, 15 strides
     for steep, flights in ((6, [("up", 6)]), (2, [])):
         rows = [(1.4, 0.0)] * 5 + ramp + [(0.56, 0.34)] * steep + ramp + [(1.4, 0.0)] * 5
         length, dz = (np.array(c) for c in zip(*rows, strict=True))
-        table = flight_table(_steps(length, dz))
+        with stair_grade_set(grade):
+            table = flight_table(_steps(length, dz))
         assert [(r.direction, int(r.n_strides)) for r in table.itertuples()] == flights
+
+
+TRAIL = "stand:3, straight:5, slope:40:25, straight:5, stand:3"  # a 25 % trail climb of 10 m
+
+
+@pytest.fixture(scope="module")
+def trail(tmp_path_factory):
+    sim = tmp_path_factory.mktemp("trail") / "t9311"
+    assert main(["simulate", "--route", TRAIL, "--user-seed", "9311", "--out", str(sim)]) == 0
+    return sim
+
+
+def _tracked(out):
+    s = json.loads((out / "summary.json").read_text())
+    return s, len(pd.read_csv(out / "stairs.csv")), len(pd.read_csv(out / "ramps.csv"))
+
+
+def test_track_stair_grade_30_makes_a_trail_a_ramp_and_the_default_a_stair_l469(trail, tmp_path):
+    assert main(["track", str(trail), "--altitude", "fused", "--out", str(tmp_path / "d")]) == 0
+    assert main(["track", str(trail), "--altitude", "fused", "--stair-grade", "30", "--out", str(tmp_path / "g")]) == 0
+    (d, d_flights, d_ramps), (g, g_flights, g_ramps) = _tracked(tmp_path / "d"), _tracked(tmp_path / "g")
+    assert d["floors_up_stairs"] >= 1 and d["floors_up_ramps"] == 0 and d_flights >= 1  # 20 %: a stair
+    assert "stair_grade_pct" not in d["info"]
+    assert g["floors_up_stairs"] == 0 and g["floors_up_ramps"] == d["floors_up_stairs"] and g_flights == 0
+    assert g_ramps > d_ramps and g["n_ramps"] == g_ramps and g["info"]["stair_grade_pct"] == 30.0
+    assert json.loads((tmp_path / "g" / "run.json").read_text())["options"]["stair_grade"] == 30.0
+
+
+def test_track_all_passes_stair_grade_and_the_lower_back_says_it_is_not_used_l469(trail, tmp_path, capsys):
+    root = tmp_path / "study"
+    root.mkdir()
+    (root / "t9311").symlink_to(trail, target_is_directory=True)
+    assert main(["track-all", str(root), "--altitude", "fused", "--stair-grade", "30", "--out",
+                 str(tmp_path / "batch")]) == 0
+    s, flights, _ = _tracked(tmp_path / "batch" / "t9311")
+    assert s["info"]["stair_grade_pct"] == 30.0 and s["floors_up_stairs"] == 0 and flights == 0
+    capsys.readouterr()
+    assert main(["track", str(trail), "--pipeline", "waist-pendulum", "--stair-grade", "30", "--out",
+                 str(tmp_path / "w")]) == 0
+    assert "--stair-grade is not used: a lower-back track keeps L301's 20 %" in capsys.readouterr().err
+    assert "stair_grade_pct" not in json.loads((tmp_path / "w" / "summary.json").read_text())["info"]
+
+
+@pytest.mark.parametrize("value", ["0", "101", "nan", "-5"])
+def test_a_bad_stair_grade_is_one_line_l469(trail, tmp_path, capsys, value):
+    for cmd in ("track", "track-all"):
+        src = trail if cmd == "track" else trail.parent
+        assert main([cmd, str(src), "--stair-grade", value, "--out", str(tmp_path / cmd)]) == 2
+        err = capsys.readouterr().err
+        assert "--stair-grade" in err and "(0, 100]" in err and "Traceback" not in err
+        assert len(err.strip().splitlines()) == 1 and not (tmp_path / cmd).exists()
+
+
+def test_run_takes_stair_grade_l469(trail, tmp_path_factory, tmp_path):
+    from tests.runtime_helpers import trained_dirs
+
+    bundle = trained_dirs(tmp_path_factory)["root"] / "bundle"
+    for name, extra in (("d", []), ("g", ["--stair-grade", "30"])):
+        assert main(["run", str(bundle), str(trail), *extra, "--out", str(tmp_path / name)]) == 0
+    (d, d_flights, _), (g, g_flights, _) = _tracked(tmp_path / "d"), _tracked(tmp_path / "g")
+    assert g["info"]["stair_grade_pct"] == 30.0 and "stair_grade_pct" not in d["info"]
+    assert (d_flights, g_flights) != (0, 0) and g_flights <= d_flights
+    assert g["floors_up_stairs"] < d["floors_up_stairs"] or g_flights < d_flights

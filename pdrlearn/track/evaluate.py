@@ -1431,8 +1431,9 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     and the belt's keys follow (:func:`pdrlearn.track.belt.belt_summary`, L321 / L441) - one place for ``track``,
     ``run`` and this function."""
     from pdrlearn.track.belt import INCLINE_KEY, session_incline, session_where
+    from pdrlearn.track.grade import info_stair_grade
 
-    with session_incline(session) as incline:
+    with session_incline(session) as incline, info_stair_grade(result.info):  # decision L469: --stair-grade
         if incline is not None:
             result.info[INCLINE_KEY] = incline  # stairs.csv reads it (clinical_tables)
         out = _evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)

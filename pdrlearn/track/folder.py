@@ -87,15 +87,17 @@ def clinical_tables(result, bouts) -> dict:
     from pdrlearn.waist.transfers import TRANSFER_COLUMNS
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
-    out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
     from pdrlearn.track.clinical import _is_lower_back
+    from pdrlearn.track.grade import info_stair_grade
     from pdrlearn.track.stair_flights import flight_table
 
-    if not _is_lower_back(result.steps):  # decision L440: no stairs.csv on the lower back (no flights to list)
-        # decision L432: a foot track's stair flights; n_stairs with --stair-rise
-        # decision L442: a declared inclined belt (info["belt_incline_pct"]) has no stair flight: the header alone
-        out["stairs.csv"] = flight_table(result.steps if result.info.get("belt_incline_pct") is None
-                                         else result.steps.iloc[:0], result.info.get("stair_rise_m"))
+    with info_stair_grade(result.info):  # decision L469: --stair-grade
+        out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+        if not _is_lower_back(result.steps):  # decision L440: no stairs.csv on the lower back (no flights to list)
+            # decision L432: a foot track's stair flights; n_stairs with --stair-rise
+            # decision L442: a declared inclined belt (info["belt_incline_pct"]) has no stair flight: the header alone
+            out["stairs.csv"] = flight_table(result.steps if result.info.get("belt_incline_pct") is None
+                                             else result.steps.iloc[:0], result.info.get("stair_rise_m"))
     from pdrlearn.track.travel import direction_change_table
 
     changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction

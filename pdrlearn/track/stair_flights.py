@@ -115,7 +115,7 @@ def flight_rows(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None,
     """Decisions L443, L455: (rows,) bool, the stair rows stairs.csv's flights are made of: L179's stair rows less
     the climbs L302 calls "ramps" (L443); with ``steep_strides_in_ramps`` (default :data:`STEEP_STRIDES_IN_RAMPS`,
     off) a stride of such a climb whose own grade |dz| / |length| reaches
-    :func:`pdrlearn.track.grade.stair_min_grade_pct` (L463: a foot track's 30 %) stays a stair row (a stair beside a
+    :func:`pdrlearn.track.grade.stair_min_grade_pct` (L469: 20 %, ``--stair-grade``) stays a stair row (a stair beside a
     ramp)."""
     from pdrlearn.track.evaluate import ramp_climb_rows
     from pdrlearn.track.gait import stair_rows
