@@ -148,16 +148,17 @@ SESSIONS: tuple[Column, ...] = (
     ("floors_down_ref", "count", "integer", "storeys descended in the reference; empty without a reference "
                                             "altitude track (C103)"),
     ("floors_up", "count", "integer", "storeys climbed"),
-    ("floors_up_stairs", "count", "integer", "floors_up's storeys of climbs on stairs (L302: rise over run 30 % or "
-                                             "more on a foot track, L463, 20 % on the lower back; walked); "
-                                             "floors_up = stairs + ramps + rides"),
-    ("floors_up_ramps", "count", "integer", "floors_up's storeys of climbs walked under 30 % / 20 % (a ramp or a hill; "
-                                            "L302); on a barometric or fused altitude a ramp's whole rise (L337)"),
+    ("floors_up_stairs", "count", "integer", "floors_up's storeys of climbs on stairs (L302: rise over run 20 % or "
+                                             "more, walked; a foot track's with --stair-grade PCT, e.g. 30 on "
+                                             "trails, L469); floors_up = stairs + ramps + rides"),
+    ("floors_up_ramps", "count", "integer", "floors_up's storeys of climbs walked under 20 % or --stair-grade (a "
+                                            "ramp or a hill; L302); on a barometric or fused altitude a ramp's "
+                                            "whole rise (L337)"),
     ("floors_up_rides", "count", "integer", "floors_up's storeys ridden: lift and escalator rides (a standstill change "
                                             "of 1.5 m or more, W158's pause_dz_m, each a climb of its own: L375; a "
                                             "ride of kind other counts none: L376); L302"),
     ("floors_down_stairs", "count", "integer", "floors_down's storeys on stairs (L302)"),
-    ("floors_down_ramps", "count", "integer", "floors_down's storeys walked under 30 % / 20 % (L302, L463)"),
+    ("floors_down_ramps", "count", "integer", "floors_down's storeys walked under 20 % or --stair-grade (L302, L469)"),
     ("floors_down_rides", "count", "integer", "floors_down's storeys ridden (L302)"),
     ("grade_source", _ID, "text", "where grade_pct and the ramps come from: fused (foot, --altitude fused) or "
                                   "barometer (lower back); empty: a foot track's own altitude, which L39 levels "
@@ -1044,8 +1045,8 @@ RAMPS: tuple[Column, ...] = (
     ("start_s", "s", "number", "its first row's start_s"),
     ("end_s", "s", "number", "its last row's end_s"),
     ("direction", _ID, "text", "up or down"),
-    ("n_runs", "count", "integer", "runs of 2 m or more whose rows' grade is 3 % to the stair grade (30 % on a "
-                                   "foot track, 20 % on the lower back; L301, L463) of one sign"),
+    ("n_runs", "count", "integer", "runs of 2 m or more whose rows' grade is 3 % to the stair grade (20 %; a "
+                                   "foot track's --stair-grade, L301, L469) of one sign"),
     ("landings", "count", "integer", "level stretches of at most 3.5 m between two runs (n_runs - 1); a single "
                                      "stride reading under 3 % inside a steady slope counts as one"),
     ("horizontal_run_m", "m", "number", "horizontal length of the runs (landings left out)"),
