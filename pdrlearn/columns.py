@@ -99,9 +99,17 @@ SESSIONS: tuple[Column, ...] = (
     ("descent_m", "m", "number", "cumulative descent, >= 0 (ascent_m - descent_m = altitude_change_m; barometric z: "
                                  "minus altitude_drift_m; L146, L172)"),
     ("altitude_drift_m", "m", "number", "barometric z (lower back, --altitude fused): the slow change that "
-                                        "ascent_m / descent_m and the floors leave out (L172)"),
+                                        "ascent_m / descent_m and the floors leave out (L172); not the weather's "
+                                        "drift during climbs, which they include (weather_drift_m, L464)"),
     ("altitude_drift_limit_m", "m", "number", "the most the fastest weather (2 hPa/h) changes the barometric z in "
                                               "the track's span; a larger altitude_drift_m is warned about (W371)"),
+    ("weather_drift_rate_m_per_h", "m/h", "number", "foot tracks with wBarometer.csv: the barometric altitude's "
+                                                    "slope over standstills of 60 s or more (the weather; L464)"),
+    ("weather_drift_standstill_s", "s", "number", "the standstill seconds weather_drift_rate_m_per_h was read on "
+                                                  "(L464)"),
+    ("weather_drift_m", "m", "number", "weather_drift_rate_m_per_h over the strides' span: what the weather added to "
+                                       "the barometer's net change and climbs; over 1 m warned with --altitude "
+                                       "fused (L464)"),
     ("bouts_distance_m", "m", "number", "bouts.csv's distance summed (C25)"),
     ("bouts_time_s", "s", "number", "bouts.csv's durations summed (C25)"),
     ("bouts_n_steps", "count", "integer", "bouts.csv's steps summed (C25)"),
@@ -141,14 +149,16 @@ SESSIONS: tuple[Column, ...] = (
                                             "altitude track (C103)"),
     ("floors_up", "count", "integer", "storeys climbed"),
     ("floors_up_stairs", "count", "integer", "floors_up's storeys of climbs on stairs (L302: rise over run 20 % or "
-                                             "more, walked); floors_up = stairs + ramps + rides"),
-    ("floors_up_ramps", "count", "integer", "floors_up's storeys of climbs walked under 20 % (a ramp or a hill; "
-                                            "L302); on a barometric or fused altitude a ramp's whole rise (L337)"),
+                                             "more, walked; a foot track's with --stair-grade PCT, e.g. 30 on "
+                                             "trails, L469); floors_up = stairs + ramps + rides"),
+    ("floors_up_ramps", "count", "integer", "floors_up's storeys of climbs walked under 20 % or --stair-grade (a "
+                                            "ramp or a hill; L302); on a barometric or fused altitude a ramp's "
+                                            "whole rise (L337)"),
     ("floors_up_rides", "count", "integer", "floors_up's storeys ridden: lift and escalator rides (a standstill change "
                                             "of 1.5 m or more, W158's pause_dz_m, each a climb of its own: L375; a "
                                             "ride of kind other counts none: L376); L302"),
     ("floors_down_stairs", "count", "integer", "floors_down's storeys on stairs (L302)"),
-    ("floors_down_ramps", "count", "integer", "floors_down's storeys walked under 20 % (L302)"),
+    ("floors_down_ramps", "count", "integer", "floors_down's storeys walked under 20 % or --stair-grade (L302, L469)"),
     ("floors_down_rides", "count", "integer", "floors_down's storeys ridden (L302)"),
     ("grade_source", _ID, "text", "where grade_pct and the ramps come from: fused (foot, --altitude fused) or "
                                   "barometer (lower back); empty: a foot track's own altitude, which L39 levels "
@@ -587,6 +597,8 @@ BOUTS: tuple[Column, ...] = (
                                       "stride lies in the bout (L450; `run` too, L458); empty when the floors come "
                                       "from the altitude (L64)"),
     ("floors_down", "count", "integer", "the same, down (L450)"),
+    ("ascent_m", "m", "number", "the summary's ascent_m rule on the trajectory from start_s to end_s (L467)"),
+    ("descent_m", "m", "number", "the same, descent (L467)"),
     ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is ABOVE L95's walking range "
                                              "(leg-scaled, L148; bouts of 5+ strides; L195): running or short fast "
                                              "steps. Never true for a slow bout (a bout's speed includes its start, "
@@ -717,6 +729,8 @@ PERIODS: tuple[Column, ...] = (
     ("floors_up", "count", "integer", "storeys of the climbs (L127) whose last stair stride lies in the period; "
                                       "empty when the floors come from the altitude (L64)"),
     ("floors_down", "count", "integer", "the same, down"),
+    ("ascent_m", "m", "number", "the summary's ascent_m rule on the trajectory inside the period (L467)"),
+    ("descent_m", "m", "number", "the same, descent (L467)"),
     ("n_bouts", "count", "integer", "bouts.csv's bouts that start in the period (sums to n_bouts)"),
     ("n_turns", "count", "integer", "turns.csv's turns that start in the period (sums to turn_count)"),
     ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
@@ -1038,7 +1052,8 @@ RAMPS: tuple[Column, ...] = (
     ("start_s", "s", "number", "its first row's start_s"),
     ("end_s", "s", "number", "its last row's end_s"),
     ("direction", _ID, "text", "up or down"),
-    ("n_runs", "count", "integer", "runs of 2 m or more whose rows' grade is 3-20 % of one sign (L301)"),
+    ("n_runs", "count", "integer", "runs of 2 m or more whose rows' grade is 3 % to the stair grade (20 %; a "
+                                   "foot track's --stair-grade, L301, L469) of one sign"),
     ("landings", "count", "integer", "level stretches of at most 3.5 m between two runs (n_runs - 1); a single "
                                      "stride reading under 3 % inside a steady slope counts as one"),
     ("horizontal_run_m", "m", "number", "horizontal length of the runs (landings left out)"),
@@ -1048,6 +1063,9 @@ RAMPS: tuple[Column, ...] = (
     ("mean_grade_pct", "%", "number", "100 x rise_m / horizontal_run_m"),
     ("max_run_grade_pct", "%", "number", "the steepest run's own mean grade"),
     ("n_steps", "count", "integer", "rows of steps.csv from the first run's first to the last run's last"),
+    ("duration_s", "s", "number", "end_s - start_s (L467)"),
+    ("speed_mps", "m/s", "number", "along_slope_m over duration_s: the runs' length along the surface over the "
+                                   "ramp's time, landings' time included (L467)"),
     *_clocks("start_s", "end_s"),
 )
 

@@ -961,6 +961,7 @@ def track_all(
     corridor: float = _track.CORRIDOR_OPT,
     splits: str = _track.SPLITS_OPT,
     stair_rise: float = _track.STAIR_RISE_OPT,
+    stair_grade: float = _track.STAIR_GRADE_OPT,  # decision L469
     bout_rule: str = _track.BOUT_RULE_OPT,
     bout_break_s: float = _track.BOUT_BREAK_OPT,
     bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,

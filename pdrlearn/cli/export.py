@@ -326,6 +326,7 @@ def run(
     drop_partial_row: bool = _track.DROP_PARTIAL_ROW_OPT,
     redact_paths: bool = _track.REDACT_PATHS_OPT,  # decision E176, as track's
     stair_rise: float = _track.STAIR_RISE_OPT,  # decision L432, as track's (review R3 finding 6)
+    stair_grade: float = _track.STAIR_GRADE_OPT,  # decision L469, as track's
     sides: bool = typer.Option(False, "--sides", help="A waist-only bundle: each step's foot, steps.csv column "
                                "side (left / right, empty when undecided) as `track --pipeline waist-pendulum` "
                                "names it, from the streamed contacts (W138's causal side, not the offline W129 "
@@ -402,6 +403,9 @@ def run(
         from pdrlearn.kernels.relative_length import check_length_reference
 
         check_length_reference(length_reference)  # decision C117: before any output
+        from pdrlearn.track.grade import check_stair_grade, record_stair_grade
+
+        stair_grade_pct = check_stair_grade(stair_grade)  # decision L469, as `track`: before any output
         if dpi is not None and out is None:  # decision L70: it would be ignored
             raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                             "FOLDER or drop --dpi")
@@ -420,7 +424,8 @@ def run(
                                                          ("--warn-out-of-domain", warn_out_of_domain is not None),
                                                          ("--drop-neighbour", drop_neighbour),
                                                          ("--stair-rise", stair_rise is not None),
-                                                         ("--length-reference", length_reference != "model"))
+                                                         ("--length-reference", length_reference != "model"),
+                                                         ("--stair-grade", stair_grade is not None))
                                           if v]
             if given:
                 raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only "
@@ -617,6 +622,7 @@ def run(
         result.info["out_of_domain"] = written_floats(tracker.domain_report())
         if stair_rise_m is not None:  # decision L432: stairs.csv's n_stairs, as track's info
             result.info["stair_rise_m"] = stair_rise_m
+        record_stair_grade(result, stair_grade_pct)  # decision L469: the summary's and stairs.csv's grade
         # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
         table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
         from pdrlearn.track.periods import bout_floors

@@ -21,6 +21,9 @@ HEIGHT_RANGE_M, LEG_PER_HEIGHT_RANGE = (0.7, 2.2), (0.35, 0.6)
 #: decision S33: `simulate --mag-disturbance` (uT, sd of the indoor field disturbances): from none to twice the
 #: 45 uT Earth field the simulator uses (a steel-framed corridor); the Python knob has no upper bound
 MAG_DISTURBANCE_MAX_UT = 90.0
+#: decision S85: `simulate --baro-drift` (hPa/h, SD of the weather's drift rate): 5x the fastest weather's 2 hPa/h
+#: (the WMO "very rapidly" tendency, W370), room to test a drift far beyond it; the Python knob has no upper bound
+BARO_DRIFT_MAX_HPA_PER_H = 10.0
 #: decision S34: the body axes `--waist-mount AXIS:DEG` turns the waist unit about (forward, left, up)
 MOUNT_AXES = {"x": 0, "y": 1, "z": 2}
 #: decision S48: a custom step faster than this (m/s) is warned: the simulator has no running gait (no flight
@@ -120,6 +123,10 @@ def simulate_cmd(
     mag_disturbance: float = typer.Option(
         3.0, "--mag-disturbance", help=f"SD of the indoor magnetic field disturbances (uT), 0-"
         f"{MAG_DISTURBANCE_MAX_UT:g} (default 3; 0 = the clean Earth field; decision S33)."),
+    baro_drift: float = typer.Option(
+        0.3, "--baro-drift", metavar="HPA_PER_H", help="SD of the weather's barometric drift rate (hPa/h), drawn "
+        f"once per session (default 0.3, decision S4; 2 = the fastest weather, W370), 0-{BARO_DRIFT_MAX_HPA_PER_H:g}; "
+        "meta.json's sensor_errors.wBarometer.drift_hpa_per_h is the rate drawn (decision S85)."),
     waist_mount: str | None = typer.Option(
         None, "--waist-mount", help="Turn the waist unit on the belt, AXIS:DEG about the body's x (forward), y "
         "(left) or z (up), e.g. 'z:90' or 'z:90,x:180' (applied right to left as rotations of the unit); "
@@ -232,6 +239,9 @@ def simulate_cmd(
                         "user's own stride-to-stride variability, 0 = identical strides)")
     if not (math.isfinite(mag_disturbance) and 0.0 <= mag_disturbance <= MAG_DISTURBANCE_MAX_UT):  # S33
         raise DataError(f"--mag-disturbance {mag_disturbance:g}: give 0-{MAG_DISTURBANCE_MAX_UT:g} uT")
+    if not (math.isfinite(baro_drift) and 0.0 <= baro_drift <= BARO_DRIFT_MAX_HPA_PER_H):  # decision S85
+        raise DataError(f"--baro-drift {baro_drift:g}: give the SD of the weather's drift rate in hPa per hour, 0 "
+                        f"(none) to {BARO_DRIFT_MAX_HPA_PER_H:g} (0.3 = the default, 2 = the fastest weather)")
     mount = parse_mount(waist_mount)  # decision S34
     if not (math.isfinite(step_time_asymmetry) and 0.0 <= step_time_asymmetry < STEP_TIME_ASYMMETRY_MAX):  # S35
         raise DataError(f"--step-time-asymmetry {step_time_asymmetry:g}: give 0 (symmetric) to below "
@@ -262,6 +272,7 @@ def simulate_cmd(
         rocker=rocker,
         heading0_deg=heading0,
         mag_disturbance_ut=mag_disturbance,
+        baro_drift_hpa_per_h=baro_drift,  # decision S85
         waist_mount_deg=mount,
         step_time_asymmetry=step_time_asymmetry,
         step_length_asymmetry=step_length_asymmetry,

@@ -250,6 +250,12 @@ STAIR_RISE_OPT = typer.Option(None, "--stair-rise", metavar="METRES", help="The 
                               "stride holds 2 stairs step-over-step and 1 step-to-step (decision L432). A lower-back "
                               "track has no stair flights: no stairs.csv, and one warning says the option is not "
                               "used (L440).")
+STAIR_GRADE_OPT = typer.Option(None, "--stair-grade", metavar="PCT", help="The rise over run (%, in (0, 100]) from "
+                               "which a foot track's climb is a stair, not a ramp (stairs.csv, floors_*_stairs / "
+                               "_ramps, ramps.csv). Default 20 (decision L301); --stair-grade 30 for a trail walk, "
+                               "whose 20-30 % slopes then stay ramps (decisions L463, L469). A foot track reads real "
+                               "stairs at about 34-39 %, so a grade near that loses stair flights. The lower back "
+                               "keeps 20 % (one warning says so).")
 
 
 def flights_line(summary: dict) -> str | None:
@@ -307,6 +313,7 @@ def track(
     corridor: float = CORRIDOR_OPT,
     splits: str = SPLITS_OPT,
     stair_rise: float = STAIR_RISE_OPT,
+    stair_grade: float = STAIR_GRADE_OPT,
     bout_rule: str = BOUT_RULE_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
     bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
@@ -357,6 +364,8 @@ def track(
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
 
         pdrlearn track out/sim/D_u1 --stair-rise 0.181 --out out/D_stairs   # stairs.csv: 1 flight (D's turns climb)
+
+        pdrlearn track out/sim/D_u1 --altitude fused --stair-grade 30 --out out/D_trail   # 20-30 % slopes: ramps
 
         pdrlearn track out/sim/A_u1 --steady-trim 3 --out out/A_steady   # each bout's first / last 3 strides out
 
@@ -452,7 +461,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
                    per_align: str = "start", corridor: float | None = None, splits: str | None = None,
-                   stair_rise: float | None = None, resample: bool = False,
+                   stair_rise: float | None = None, stair_grade: float | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
                    detector: str | None = None, length_model: str | None = None,
@@ -501,6 +510,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.stair_flights import stair_rise as check_stair_rise
 
     stair_rise_m = check_stair_rise(stair_rise)  # decision B348: before any session
+    from pdrlearn.track.grade import check_stair_grade
+
+    stair_grade_pct = check_stair_grade(stair_grade)  # decision L469: before any session
     if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
         raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
                         "--fixes give the track its direction; drop --initial-heading")
@@ -593,7 +605,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
             "per_align": per_align, "corridor_m": corridor_m, "splits_m": splits_m,
-            "stair_rise_m": stair_rise_m,
+            "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
@@ -663,11 +675,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     codes and the summary's ``schema_version``. Decision L415: the measures are computed under ``--steady-trim``
     (:func:`pdrlearn.track.steady.steady_trim_set`)."""
     from pdrlearn.track.belt import incline_scope
+    from pdrlearn.track.grade import stair_grade_set
     from pdrlearn.track.steady import steady_trim_set
     from pdrlearn.warning_lines import captured_warnings, machine_summary
 
-    # decision L442: _track_session declares the session's belt incline inside this scope
-    with captured_warnings(echo=True) as logged, steady_trim_set(settings.get("steady_trim")), incline_scope():
+    # decision L442: _track_session declares the session's belt incline inside this scope; L469: --stair-grade
+    with captured_warnings(echo=True) as logged, steady_trim_set(settings.get("steady_trim")), incline_scope(), \
+            stair_grade_set(settings.get("stair_grade_pct")):
         tracked = _track_session(session_dir, settings)
     # decisions E154, E155; B359 (R1): a zip's session (folder None) names itself `session 'NAME'` in later lines
     where = [str(session_dir), *getattr(tracked.get("session"), "wheres", [])]
@@ -896,6 +910,14 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         line = lower_back_rise_line(result.steps)  # decision L440: said, not ignored silently
         if line:
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+    if o.get("stair_grade_pct") is not None:  # decision L469: the summary's and the tables' stair grade
+        import logging
+
+        from pdrlearn.track.grade import record_stair_grade
+
+        line = record_stair_grade(result, o["stair_grade_pct"])
+        if line:
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
     tracked_session, whole = session, result  # decisions L275 / L277: the whole session's track
     if win is not None:  # decision L105: the whole session tracked, then the window's steps kept
         from pdrlearn.track.window import window_track
@@ -917,9 +939,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.waist.gait_quality import add_bout_quality
 
         bouts = add_bout_quality(bouts, result.steps, kept_imu(imus, session))  # W353: the track's AHRS
-    from pdrlearn.track.periods import bout_floors
+    from pdrlearn.track.periods import bout_ascent, bout_floors
 
     bouts = bout_floors(bouts, result.steps, result.info, o.get("storey_height_m", 3.0))  # decision L450
+    bouts = bout_ascent(bouts, result)  # decision L467
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,

@@ -62,6 +62,16 @@ STEP_TO_STEP = "step-to-step"
 ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "pivot", "stand", "sit", "lift",
                "escalator", "trolley", "side", "freeze", "lie", "vehicle")
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
+#: decision L468: the example a bad item's error line gives for its own kind (else :data:`_USAGE`)
+ITEM_EXAMPLES = {"straight": "straight:10", "curve": "curve:90:2", "slope": "slope:100:10 (100 m at a 10 % grade; "
+                 "no % sign; -10 goes down)", "up": "up:12", "down": "down:12", "turn": "turn:180",
+                 "backward": "backward:3", "stand": "stand:2"}
+
+
+def _usage(item: str) -> str:
+    """Decision L468: the error line's example for the route ``item``'s kind, the general one for other kinds."""
+    kind = str(item).split(":")[0].strip()
+    return f"e.g. '{ITEM_EXAMPLES[kind]}'" if kind in ITEM_EXAMPLES else _USAGE
 
 
 def _number(item: str, text: str, *, integer: bool = False, positive: bool = True) -> float:
@@ -69,10 +79,10 @@ def _number(item: str, text: str, *, integer: bool = False, positive: bool = Tru
         value = int(text) if integer else float(text)
     except ValueError:
         kind = "a whole number" if integer else "a number"
-        raise DataError(f"--route item {item!r}: {text!r} is not {kind}; {_USAGE}") from None
+        raise DataError(f"--route item {item!r}: {text!r} is not {kind}; {_usage(item)}") from None
     if not math.isfinite(value) or (positive and value <= 0):  # B300: a signed value is asked to be finite
         want = "a positive number" if positive else "a finite number"
-        raise DataError(f"--route item {item!r}: {text!r} must be {want}; {_USAGE}")
+        raise DataError(f"--route item {item!r}: {text!r} must be {want}; {_usage(item)}")
     return value
 
 
@@ -87,7 +97,7 @@ def _gait(item: str, parts: list[str], at: int) -> str:
 def _arity(item: str, parts: list[str], allowed: tuple[int, ...]) -> None:
     if len(parts) - 1 not in allowed:
         want = " or ".join(str(n) for n in allowed)
-        raise DataError(f"--route item {item!r}: '{parts[0]}' takes {want} value(s); {_USAGE}")
+        raise DataError(f"--route item {item!r}: '{parts[0]}' takes {want} value(s); {_usage(item)}")
 
 
 def parse_route(spec: str) -> list[Segment]:

@@ -49,6 +49,7 @@ BOUT_COLUMNS = ("session", "subject", "visit", "bout", "start_s", "end_s", "dura
                 "distance_m", "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
                 "longest_contact_gap_s", "data_gap_s", "n_turns", "direction", "backward_fraction", "altitude_change_m",
                 "altitude_change_before_m", "floors_up", "floors_down",  # decision L450
+                "ascent_m", "descent_m",  # decision L467
                 "gait_out_of_range", "n_cv_strides", "stride_time_cv_pct",
                 "stride_length_cv_pct", *QUALITY_COLUMNS)  # decision W350: a lower-back track's gait quality
 

@@ -303,7 +303,7 @@ def _with_after(steps: pd.DataFrame, info: dict | None, dz, parts, slope_rows):
 CLIMB_KINDS = ("stairs", "ramps", "rides")
 
 
-def climb_kind(dz, pause_dz, length, rows, on_stairs=None) -> str:
+def climb_kind(dz, pause_dz, length, rows, on_stairs=None, stair_grade_pct: float | None = None) -> str:
     """Decision L302: what climbed one climb of :func:`floor_climbs` (its ``rows``, first to last stair row, of the
     rows' walking height change ``dz``, standstill change ``pause_dz`` (W158) and horizontal ``length``): ``"rides"``
     when the standstills from its first to its last stair row carry more than half its height (a lift or escalator
@@ -311,8 +311,12 @@ def climb_kind(dz, pause_dz, length, rows, on_stairs=None) -> str:
     :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` (a ramp or a hill, not a stair), else ``"stairs"`` - the stair
     rows alone, as a landing's and a U-turn's bridged rows would flatten a stairwell (L302's measurement).
     Decision L314: a climb of which more than half the stair rows are ``on_stairs`` (a lower-back track's W108 climbs,
-    :func:`pdrlearn.track.grade.climb_rows`) is "stairs" (or "rides"), whatever its grade."""
+    :func:`pdrlearn.track.grade.climb_rows`) is "stairs" (or "rides"), whatever its grade. Decision L463:
+    ``stair_grade_pct`` (None: L301's 20 %) is the unit's stair grade,
+    :func:`pdrlearn.track.grade.stair_min_grade_pct`."""
     from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
+
+    stair_grade = STAIR_MIN_GRADE_PCT if stair_grade_pct is None else stair_grade_pct
 
     rows = np.asarray(rows, dtype=int)
     span = slice(int(rows[0]), int(rows[-1]) + 1)
@@ -322,7 +326,7 @@ def climb_kind(dz, pause_dz, length, rows, on_stairs=None) -> str:
     if on_stairs is not None and 2 * int(np.count_nonzero(np.asarray(on_stairs, bool)[rows])) > len(rows):
         return "stairs"  # decision L314
     run = float(np.sum(np.abs(length[rows])))
-    return "ramps" if run > 0 and 100.0 * abs(float(np.sum(dz[rows]))) / run < STAIR_MIN_GRADE_PCT else "stairs"
+    return "ramps" if run > 0 and 100.0 * abs(float(np.sum(dz[rows]))) / run < stair_grade else "stairs"
 
 
 def _climb_inputs(steps: pd.DataFrame):
@@ -373,15 +377,16 @@ def ramp_climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray
     if dz is None:
         return out
     walked, pause, length = _climb_inputs(steps)
-    from pdrlearn.track.grade import climb_rows
+    from pdrlearn.track.grade import climb_rows, stair_min_grade_pct
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
+    stair_grade = stair_min_grade_pct(steps)  # decision L463
     slope_rows = climb_slope_rows(steps, info)  # decision L337
     parts = _climb_parts(steps)  # decisions L374, L375
     for rows, _, ride in _climbs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True, slope_rows=slope_rows,
                                  parts=parts):
         if not ride and climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
-                                   on_stairs) == "ramps":
+                                   on_stairs, stair_grade) == "ramps":
             out[int(rows[0]):int(rows[-1]) + 1] = True
     return out
 
@@ -396,15 +401,16 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
         return out
     out.update({k: 0 for k in out})
     walked, pause, length = _climb_inputs(steps)
-    from pdrlearn.track.grade import climb_rows
+    from pdrlearn.track.grade import climb_rows, stair_min_grade_pct
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
+    stair_grade = stair_min_grade_pct(steps)  # decision L463
     slope_rows = climb_slope_rows(steps, info)  # decision L337
     parts = _climb_parts(steps)  # decisions L374-L376: a ride is a climb of its own, "rides"
     dz, parts, slope_rows = _with_after(steps, info, dz, parts, slope_rows)  # decision L394
     for rows, n, ride in _climbs(dz, storey_height_m, STOREY_BAND, bridge, None, slope_rows=slope_rows, parts=parts):
         kind = "rides" if ride else climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
-                                               on_stairs)
+                                               on_stairs, stair_grade)
         key = f"floors_{'up' if n > 0 else 'down'}_{kind}"
         out[key] += abs(n)
     return out
@@ -658,6 +664,31 @@ def _basic(result: TrackResult, out: dict) -> None:
     out.update(grade_summary(result.steps, result.info))  # decisions L300, L301
 
 
+def _altitude_kind(result: TrackResult) -> tuple[bool, bool]:
+    """Decision L146: (a foot track, its z barometric: a lower-back track or a fused foot track, L154)."""
+    steps = result.steps
+    foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
+    return foot, bool(len(steps)) and (not foot or (result.info or {}).get("altitude_source") == "fused")
+
+
+def interval_ascent(result: TrackResult, a: float, b: float) -> tuple[float | None, float | None]:
+    """Decision L467: the ascent and descent (m) of the trajectory's z from ``a`` to ``b`` (s) by the summary's
+    rule (:func:`_ascent`: a barometric z L146's band crossed within L172's window, a foot track's strides as they
+    are); (None, None) without a trajectory z and time."""
+    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent
+
+    tr = result.trajectory
+    if not len(tr) or "z" not in tr or "t" not in tr:
+        return None, None
+    t = tr["t"].to_numpy(float)
+    m = (t >= a) & (t <= b)
+    z, t = tr["z"].to_numpy(float)[m], t[m]
+    foot, barometric = _altitude_kind(result)
+    if barometric:
+        return ascent_descent(z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S)
+    return ascent_descent(z, 0.0 if foot or not len(result.steps) else ASCENT_BAND_BARO_M)
+
+
 def _ascent(result: TrackResult, out: dict) -> None:
     """Decision L146: ``ascent_m`` / ``descent_m``, the cumulative climb and descent of the track's z (a hill
     walked up and down has both, its ``altitude_change_m`` ~0); a foot track's strides as they are, a barometric z
@@ -675,8 +706,7 @@ def _ascent(result: TrackResult, out: dict) -> None:
 
     tr, steps = result.trajectory, result.steps
     z = tr["z"].to_numpy(float) if len(tr) and "z" in tr else np.zeros(0)
-    foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
-    barometric = bool(len(steps)) and (not foot or (result.info or {}).get("altitude_source") == "fused")
+    foot, barometric = _altitude_kind(result)
     if not barometric or "t" not in tr:
         out["ascent_m"], out["descent_m"] = ascent_descent(z, 0.0 if foot or not len(steps) else ASCENT_BAND_BARO_M)
         return
@@ -1130,6 +1160,23 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
         out["barometer_ascent_m"], out["barometer_descent_m"] = float(up), float(down)  # decision L180: the climbs
         out["barometer_drift_m"] = out["barometer_altitude_change_m"] - out["barometer_climb_change_m"]
         out["barometer_disagree_limit_m"] = BAROMETER_DISAGREE_M + BAROMETER_DRIFT_M_PER_H * (span[1] - span[0]) / 3600
+        _weather_drift(b, steps, span, out)  # decision L464
+
+
+def _weather_drift(b, steps: pd.DataFrame, span: list[float], out: dict) -> None:
+    """Decision L464: ``weather_drift_rate_m_per_h`` (the barometric altitude's slope over the standstills of at
+    least :data:`pdrlearn.kernels.weather_drift.STANDSTILL_MIN_S`, the weather's), ``weather_drift_standstill_s``
+    (the seconds it was read on) and ``weather_drift_m`` (that rate over the strides' span: what the weather added
+    to the barometer's net change and its climbs); None without such a standstill."""
+    from pdrlearn.kernels.barometer import altitude_m
+    from pdrlearn.kernels.weather_drift import drift_rate, standstills
+
+    t = np.asarray(b.t, dtype=float)
+    spans = standstills(steps["start_s"], steps["end_s"], float(np.nanmin(t)), float(np.nanmax(t)))
+    rate, seconds = drift_rate(t, altitude_m(b.values[:, 0]), spans)
+    out["weather_drift_standstill_s"] = seconds if rate is not None else None
+    out["weather_drift_rate_m_per_h"] = None if rate is None else 3600.0 * rate
+    out["weather_drift_m"] = None if rate is None else rate * (span[1] - span[0])
 
 
 #: decision L145: a foot track's altitude change and the unused waist barometer's may differ by this much (m)
@@ -1279,6 +1326,22 @@ def drift_warning(summary: dict) -> str | None:
             "count only climbs")
 
 
+def weather_drift_warning(summary: dict) -> str | None:
+    """Decision L464: one line when a barometric track (a foot track fused with the barometer, L154: its
+    ``altitude_drift_m`` is set) read more than :data:`ALTITUDE_DRIFT_WARN_M` of weather drift over its span from
+    its standstills (``weather_drift_m``): the net change and the climbs include it, ``altitude_drift_m`` does not
+    measure it."""
+    drift, rate = summary.get("weather_drift_m"), summary.get("weather_drift_rate_m_per_h")
+    if summary.get("altitude_drift_m") is None or drift is None or not abs(float(drift)) > ALTITUDE_DRIFT_WARN_M:
+        return None
+    standing = float(summary["weather_drift_standstill_s"])
+    return (f"the barometer drifted {float(rate):+.2f} m/h while standing ({standing:.0f} s of standstill; the "
+            f"weather, decision L464): over the track that is {float(drift):+.2f} m, which "
+            f"altitude_change_m ({float(summary.get('altitude_change_m', 0.0)):+.2f} m) and the climbs while it "
+            f"drifted (ascent_m / descent_m) include; altitude_drift_m ({float(summary['altitude_drift_m']):+.2f} m) "
+            "is only the slow change L172 left out of the climbs, not this drift")
+
+
 def _leg_length(result: TrackResult, session: Session, out: dict) -> None:
     """Decision L148: the walker's leg length from meta.json (``leg_length_m``, ``leg_length_source``), by which
     L95's walking range is scaled."""
@@ -1342,6 +1405,7 @@ def summary_warnings(summary: dict) -> list[str]:
                         pooled_cv_warning(summary), pooled_length_cv_warning(summary),  # L380
                         resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
+                        weather_drift_warning(summary),  # decision L464
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
                         stationary_reference_warning(summary), stance_range_warning(summary)) if w]
 
@@ -1367,8 +1431,9 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     and the belt's keys follow (:func:`pdrlearn.track.belt.belt_summary`, L321 / L441) - one place for ``track``,
     ``run`` and this function."""
     from pdrlearn.track.belt import INCLINE_KEY, session_incline, session_where
+    from pdrlearn.track.grade import info_stair_grade
 
-    with session_incline(session) as incline:
+    with session_incline(session) as incline, info_stair_grade(result.info):  # decision L469: --stair-grade
         if incline is not None:
             result.info[INCLINE_KEY] = incline  # stairs.csv reads it (clinical_tables)
         out = _evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)

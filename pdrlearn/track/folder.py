@@ -28,7 +28,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     from pdrlearn.track.belt import session_incline
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
     from pdrlearn.track.evaluate import track_summary
-    from pdrlearn.track.periods import bout_floors, time_accounting
+    from pdrlearn.track.periods import bout_ascent, bout_floors, time_accounting
     from pdrlearn.track.steady import add_steady_column
     from pdrlearn.track.units import tracked_unit
     from pdrlearn.warning_lines import machine_summary
@@ -39,6 +39,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     with session_incline(session):  # decisions L442, L454: bouts.csv's and steps.csv's CV strides as track's
         bouts = detected_bouts(result.steps, None, **session_key(session), leg_m=session_leg_m(session))  # L124
         bouts = bout_floors(bouts, result.steps, result.info)  # decision L450, as track's bouts.csv
+        bouts = bout_ascent(bouts, result)  # decision L467
         summary = track_summary(result, session, pipeline=pipeline, bout_table=bouts)  # C13, C14
         add_steady_column(result.steps)  # decision L415, as track's steps.csv
     summary.update(time_accounting(result, session, tracked_unit(pipeline)))  # decision L275
@@ -86,15 +87,17 @@ def clinical_tables(result, bouts) -> dict:
     from pdrlearn.waist.transfers import TRANSFER_COLUMNS
 
     out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
-    out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
     from pdrlearn.track.clinical import _is_lower_back
+    from pdrlearn.track.grade import info_stair_grade
     from pdrlearn.track.stair_flights import flight_table
 
-    if not _is_lower_back(result.steps):  # decision L440: no stairs.csv on the lower back (no flights to list)
-        # decision L432: a foot track's stair flights; n_stairs with --stair-rise
-        # decision L442: a declared inclined belt (info["belt_incline_pct"]) has no stair flight: the header alone
-        out["stairs.csv"] = flight_table(result.steps if result.info.get("belt_incline_pct") is None
-                                         else result.steps.iloc[:0], result.info.get("stair_rise_m"))
+    with info_stair_grade(result.info):  # decision L469: --stair-grade
+        out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+        if not _is_lower_back(result.steps):  # decision L440: no stairs.csv on the lower back (no flights to list)
+            # decision L432: a foot track's stair flights; n_stairs with --stair-rise
+            # decision L442: a declared inclined belt (info["belt_incline_pct"]) has no stair flight: the header alone
+            out["stairs.csv"] = flight_table(result.steps if result.info.get("belt_incline_pct") is None
+                                             else result.steps.iloc[:0], result.info.get("stair_rise_m"))
     from pdrlearn.track.travel import direction_change_table
 
     changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction

@@ -10,9 +10,14 @@ so its ``grade_pct`` is empty and ``grade_source`` is None (decision L300)."""
 
 from __future__ import annotations
 
+import contextvars
+import math
+from contextlib import contextmanager
+
 import numpy as np
 import pandas as pd
 
+from pdrlearn.errors import DataError
 from pdrlearn.signal import runs as signal_runs
 
 #: decision L300: a row shorter than this (m, horizontal) has no grade - a turn on the spot or a shuffle moves a few
@@ -27,6 +32,15 @@ RAMP_MIN_GRADE_PCT = 3.0
 #: simulator's stair, S3); a waist track's stair steps, whose horizontal length the pendulum overestimates, measured
 #: 30 % (decision L301's measurement)
 STAIR_MIN_GRADE_PCT = 20.0
+#: decision L463 rule B, an option since L469 (``--stair-grade 30``): a trail walk's stair grade (%, rise over run):
+#: stairs are built at 30-50 deg (OSHA 29 CFR 1910.25, standard stairs), 58-119 %, a foot track reads real flights
+#: at 34-39 %, and trail slopes up to 30 % then stay ramps. A project choice: the top of the 15-30 % trail range
+TRAIL_STAIR_GRADE_PCT = 30.0
+#: decision L469: ``--stair-grade``'s accepted values (%): a positive grade, at most a 45 deg rise over run
+STAIR_GRADE_MAX_PCT = 100.0
+_STAIR_GRADE = contextvars.ContextVar("pdrlearn_stair_grade", default=None)
+#: decision L469: the track's info key (summary.json ``info``) of a given ``--stair-grade``
+STAIR_GRADE_KEY = "stair_grade_pct"
 #: decision L301: a run of ramp rows is a ramp run when its horizontal length is at least this (m): two foot strides
 RAMP_MIN_RUN_M = 2.0
 #: decision L301: a level stretch of at most this horizontal length (m) between two runs of one sign is a landing of
@@ -37,7 +51,8 @@ LANDING_MAX_M = 3.5
 GRADE_WINDOW_ROWS = {"foot": 1, "waist": 3}
 
 RAMP_COLUMNS = ("ramp", "start_s", "end_s", "direction", "n_runs", "landings", "horizontal_run_m", "landing_m",
-                "along_slope_m", "rise_m", "mean_grade_pct", "max_run_grade_pct", "n_steps")
+                "along_slope_m", "rise_m", "mean_grade_pct", "max_run_grade_pct", "n_steps",
+                "duration_s", "speed_mps")  # decision L467
 
 
 def grade_source(steps: pd.DataFrame, info: dict | None) -> str | None:
@@ -53,6 +68,76 @@ def grade_source(steps: pd.DataFrame, info: dict | None) -> str | None:
         dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)
         return "barometer" if np.any(np.nan_to_num(dz) != 0) else None
     return None
+
+
+def check_stair_grade(value) -> float | None:
+    """Decision L469: ``--stair-grade``'s value as a grade in (0, :data:`STAIR_GRADE_MAX_PCT`] %; None: not given;
+    one clear line otherwise."""
+    if value is None:
+        return None
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        v = float("nan")
+    if isinstance(value, bool) or not (math.isfinite(v) and 0.0 < v <= STAIR_GRADE_MAX_PCT):
+        raise DataError(f"--stair-grade {value!r}: give the rise over run (%) from which a foot track's climb is a "
+                        f"stair, a number in (0, {STAIR_GRADE_MAX_PCT:g}] (e.g. {TRAIL_STAIR_GRADE_PCT:g} for a trail "
+                        f"walk; default {STAIR_MIN_GRADE_PCT:g}, decision L469)")
+    return v
+
+
+@contextmanager
+def stair_grade_set(pct: float | None):
+    """Decision L469: a foot track's measures computed inside call a climb a stair from ``pct`` % of rise over run
+    (None: L301's :data:`STAIR_MIN_GRADE_PCT`). A :class:`contextvars.ContextVar`, so the threads of
+    ``track-all --jobs`` do not share it (as L415's steady trim)."""
+    token = _STAIR_GRADE.set(check_stair_grade(pct))
+    try:
+        yield
+    finally:
+        _STAIR_GRADE.reset(token)
+
+
+@contextmanager
+def info_stair_grade(info: dict | None):
+    """Decision L469: a scope in which the grade a track's ``info`` records (:data:`STAIR_GRADE_KEY`, set by
+    ``--stair-grade``) is in force; without it, the one in force already (:func:`stair_grade_set`)."""
+    given = (info or {}).get(STAIR_GRADE_KEY)
+    with stair_grade_set(given_stair_grade() if given is None else given):
+        yield
+
+
+#: decision L469: what ``--stair-grade`` on a lower-back track says (once, as a warning), instead of ignoring it
+LOWER_BACK_GRADE_LINE = ("--stair-grade is not used: a lower-back track keeps L301's 20 % stair grade (its pendulum "
+                         "step lengths read real stairs at about 30 %); the option sets a foot track's (decision L469)")
+
+
+def record_stair_grade(result, pct: float | None) -> str | None:
+    """Decision L469: ``--stair-grade`` ``pct`` recorded in a foot track's ``result.info`` (:data:`STAIR_GRADE_KEY`,
+    read by the summary and the tables, :func:`info_stair_grade`); on a lower-back track nothing is recorded and
+    :data:`LOWER_BACK_GRADE_LINE` is returned (None otherwise)."""
+    from pdrlearn.track.clinical import _is_lower_back
+
+    if pct is None:
+        return None
+    if _is_lower_back(result.steps):
+        return LOWER_BACK_GRADE_LINE
+    result.info[STAIR_GRADE_KEY] = check_stair_grade(pct)
+    return None
+
+
+def given_stair_grade() -> float | None:
+    """Decision L469: the ``--stair-grade`` in force (:func:`stair_grade_set`); None: the default."""
+    return _STAIR_GRADE.get()
+
+
+def stair_min_grade_pct(steps: pd.DataFrame | None = None) -> float:
+    """Decisions L463, L469: the rise over run (%) from which the rows' climb is a stair - the ``--stair-grade`` in
+    force (:func:`stair_grade_set`) for a foot track's rows (a table without ``unit``: a foot track), else L301's
+    :data:`STAIR_MIN_GRADE_PCT` (the default; the lower back and mixed units always)."""
+    units = {"foot"} if steps is None or "unit" not in steps else set(steps["unit"].astype(str))
+    given = given_stair_grade()
+    return given if given is not None and units == {"foot"} else STAIR_MIN_GRADE_PCT
 
 
 def grades_pct(length, dz, min_length_m: float = GRADE_MIN_LENGTH_M) -> np.ndarray:
@@ -171,11 +256,12 @@ def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
     dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
     unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
     rows = []
-    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info)),
-                          start=1):
-        rows.append({"ramp": k, "start_s": float(steps["start_s"].iloc[r["first"]]),
-                     "end_s": float(steps["end_s"].iloc[r["last"]]),
-                     **{c: r[c] for c in RAMP_COLUMNS if c in r}})
+    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
+                                    stair_grade_pct=stair_min_grade_pct(steps)), start=1):  # decision L463
+        t0, t1 = float(steps["start_s"].iloc[r["first"]]), float(steps["end_s"].iloc[r["last"]])
+        rows.append({"ramp": k, "start_s": t0, "end_s": t1, **{c: r[c] for c in RAMP_COLUMNS if c in r},
+                     "duration_s": t1 - t0,  # decision L467
+                     "speed_mps": r["along_slope_m"] / (t1 - t0) if t1 > t0 else np.nan})
     return pd.DataFrame(rows, columns=list(RAMP_COLUMNS))
 
 

@@ -52,7 +52,7 @@ PERIOD_GAIT_KEYS = ("median_stride_length_m", "median_speed_mps", "stride_time_c
 PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
                   "n_steps", "n_steps_counts", "n_steps_both_feet", "median_stride_time_s", "median_cadence_spm",
                   *PERIOD_GAIT_KEYS, *TIME_KEYS,
-                  *POSTURE_KEYS, "floors_up", "floors_down", "n_bouts", "n_turns", "data_gap",
+                  *POSTURE_KEYS, "floors_up", "floors_down", "ascent_m", "descent_m", "n_bouts", "n_turns", "data_gap",
                   "position_sigma_end_m")
 #: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
 PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
@@ -366,6 +366,18 @@ def bout_floors(bouts: pd.DataFrame, steps: pd.DataFrame, info: dict, storey_hei
     return bouts
 
 
+def bout_ascent(bouts: pd.DataFrame, result) -> pd.DataFrame:
+    """Decision L467: bouts.csv's ``ascent_m`` / ``descent_m``, the summary's rule
+    (:func:`pdrlearn.track.evaluate.interval_ascent`) on the trajectory from each bout's ``start_s`` to ``end_s``."""
+    from pdrlearn.track.evaluate import interval_ascent
+
+    if len(bouts):
+        got = [interval_ascent(result, float(a), float(b)) for a, b in zip(bouts["start_s"], bouts["end_s"],
+                                                                            strict=True)]
+        bouts["ascent_m"], bouts["descent_m"] = [u for u, _ in got], [d for _, d in got]
+    return bouts
+
+
 def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
                  turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None,
                  span: tuple[float, float] | None = None) -> pd.DataFrame:
@@ -376,7 +388,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's."""
     from pdrlearn.track.bouts import session_key
     from pdrlearn.track.clock import clock_edges
-    from pdrlearn.track.evaluate import step_counts
+    from pdrlearn.track.evaluate import interval_ascent, step_counts
 
     t0, t1 = session_span(session, unit) if span is None else span
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
@@ -411,6 +423,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         c = inside(climb_t)
         row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None  # L277
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None
+        row["ascent_m"], row["descent_m"] = interval_ascent(result, float(a), float(b))  # decision L467
         row["n_bouts"], row["n_turns"] = int(inside(bout_t).sum()), int(inside(turn_t).sum())
         row["data_gap"] = row["time_no_data_s"] > 0
         j = int(np.searchsorted(tt, b + 1e-9, side="right")) - 1

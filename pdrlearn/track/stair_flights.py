@@ -103,7 +103,11 @@ def flight_strides(st: pd.DataFrame, min_strides: int | None = None) -> int:
 
 #: decision L455 (an option, not adopted: a real level recording gained a 2-stride drift flight): a stride of a ramp
 #: climb as steep as a stair (its own grade >= L303's 20 %) stays a stair row of stairs.csv's flights
-STEEP_STRIDES_IN_RAMPS = False
+STEEP_STRIDES_IN_RAMPS = True
+#: decision L466: with L455's rule on, a flight made only of a ramp climb's steep strides (none of its rows a stair
+#: row by L443) needs this many strides: L455's false flight on a real level walk had 2; a trail's stair section
+#: worth reporting has 6 stairs (3 strides) or more
+MIN_STEEP_FLIGHT_STRIDES = 3
 
 
 def flight_rows(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None,
@@ -111,10 +115,11 @@ def flight_rows(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None,
     """Decisions L443, L455: (rows,) bool, the stair rows stairs.csv's flights are made of: L179's stair rows less
     the climbs L302 calls "ramps" (L443); with ``steep_strides_in_ramps`` (default :data:`STEEP_STRIDES_IN_RAMPS`,
     off) a stride of such a climb whose own grade |dz| / |length| reaches
-    :data:`pdrlearn.track.grade.STAIR_MIN_GRADE_PCT` (L303's 20 %) stays a stair row (a stair beside a ramp)."""
+    :func:`pdrlearn.track.grade.stair_min_grade_pct` (L469: 20 %, ``--stair-grade``) stays a stair row (a stair beside a
+    ramp)."""
     from pdrlearn.track.evaluate import ramp_climb_rows
     from pdrlearn.track.gait import stair_rows
-    from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
+    from pdrlearn.track.grade import stair_min_grade_pct
 
     stair = stair_rows(st, ramp_not_stair=False)
     kept = stair & ~ramp_climb_rows(st)  # decision L443
@@ -122,7 +127,7 @@ def flight_rows(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None,
     if length is None or not on:
         return kept
     with np.errstate(invalid="ignore", divide="ignore"):
-        steep = np.abs(np.nan_to_num(dz)) >= STAIR_MIN_GRADE_PCT / 100.0 * np.abs(length)  # decision L455
+        steep = np.abs(np.nan_to_num(dz)) >= stair_min_grade_pct(st) / 100.0 * np.abs(length)  # L455, L463
     return kept | (stair & steep)
 
 
@@ -147,9 +152,12 @@ def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.D
     # floors_up_stairs / floors_up_ramps count it - a ramp, a hill or an inclined belt is no stair flight
     length = pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float) if "length_m" in st else None
     stair = flight_rows(st, dz, length) & stride_rows(st)
+    plain = flight_rows(st, dz, length, steep_strides_in_ramps=False)  # decision L466: L443's own stair rows
     start, end = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
     rows = []
-    for k, (a, b, sign) in enumerate(flight_runs(dz, stair, bout_rows(st), length), start=1):
+    found = [(a, b, sign) for a, b, sign in flight_runs(dz, stair, bout_rows(st), length)
+             if b - a >= MIN_STEEP_FLIGHT_STRIDES or plain[a:b].any()]  # decision L466
+    for k, (a, b, sign) in enumerate(found, start=1):
         t = float(end[b - 1] - start[a])
         height = float(np.nansum(dz[a:b]))
         size = np.abs(dz[a:b])
