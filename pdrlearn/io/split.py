@@ -191,6 +191,34 @@ def _numeric_chunks(r: _ChunkReader) -> Iterator[tuple[np.ndarray, pd.DataFrame,
             yield t, chunk, cols
 
 
+#: decision B385: rows of each sensor file the timestamp unit is inferred from (B22 reads the median interval and
+#: the first timestamp, which the first rows give)
+HEAD_ROWS = 1000
+
+
+def _head(path: Path) -> np.ndarray | None:
+    """The first :data:`HEAD_ROWS` rows of a sensor file as numbers, the timestamp first (NaN where a cell is no
+    number); None when it holds no row or no timestamp column."""
+    r = _ChunkReader(path, 1.0, HEAD_ROWS)
+    for chunk, _ in r.chunks():
+        cols = r.time_columns(chunk.columns)[:1]
+        if not cols or chunk.empty:
+            return None
+        rest = [c for c in chunk.columns if c != cols[0][0]]
+        return np.column_stack([r.numbers(chunk[c]).to_numpy(float) for c in [cols[0][0], *rest]])
+    return None
+
+
+def session_time_scale(folder: Path, meta: dict, meta_path: Path) -> tuple[float, str | None]:
+    """Decision B385: seconds per timestamp unit as the session reader finds it (``_group_time_scale``: the
+    declared unit, B16; else the unit every sensor file's rate allows, B22; else sample indices at ``rate_hz``,
+    B31), from each sensor file's first rows; and the unit read when meta.json declares none (None: ms)."""
+    from pdrlearn.io.plasys import _group_time_scale, meta_rate
+
+    raw = {name: h for name in SENSORS if (p := session_csv(folder, name)).is_file() and (h := _head(p)) is not None}
+    return _group_time_scale(raw, meta, meta_rate(meta, meta_path), folder, meta_path)
+
+
 def first_time(r: _ChunkReader) -> float | None:
     """The first timestamp (s) of a sensor file, read from its first row only."""
     for t, _, _ in _numeric_chunks(_ChunkReader(r.path, r.scale, 1)):
@@ -395,7 +423,6 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
     rows left out because they span a cut."""
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.io.archive import is_archive
-    from pdrlearn.io.plasys import _timestamp_scale
 
     folder = Path(session)
     part_s = check_max_minutes(max_minutes)
@@ -415,7 +442,10 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
         if not isinstance(meta, dict):
             raise DataError(f"{meta_path}: must hold a JSON object; fix it (decision B380)")
     _refuse(folder, meta)
-    scale = _timestamp_scale(meta, str(meta_path))
+    scale, unit = session_time_scale(folder, meta, meta_path)
+    if unit is not None:  # decision B385: said once, and written into every part's meta.json (below)
+        log.warning("%s: declares no timestamp unit: the timestamps are read as %s (decision B22), and each part's "
+                    "meta.json declares \"units\": {\"timestamp\": \"%s\"}", meta_path, unit, unit)
     units = []
     for acc, gyr in UNIT_IMU.values():
         pa, pg = session_csv(folder, acc), session_csv(folder, gyr)
@@ -451,6 +481,9 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
         for k, p in enumerate(parts):
             part_meta = {key: v for key, v in meta.items() if key not in WHOLE_SESSION_KEYS}
             # each part a session of its own name, so that track-all's pooled tables tell the parts apart
+            if unit is not None:  # decision B385: a part is read in the unit the whole was read in
+                part_meta["units"] = {**(meta.get("units") if isinstance(meta.get("units"), dict) else {}),
+                                      "timestamp": unit}
             part_meta["session"] = f"{meta.get('session') or folder.name}_part_{k:03d}"
             part_meta["split"] = {"source": str(folder.resolve()), "part": k, "parts": len(parts),
                                   "start_s": round(edges[k], 6), "end_s": round(edges[k + 1], 6),
