@@ -21,17 +21,27 @@ def _pair_job(args: dict) -> dict:
     batch's temporary folder; a folder without a pair is its ``no_pair`` row (no record). Returns ``{"row",
     "tables"}`` as read back from the record, so that a fresh and a reused pair are the same objects."""
     from pdrlearn.cli.resume import write_file_record
+    from pdrlearn.cohort import attach_to_error
     from pdrlearn.table_csv import table_text
     from pdrlearn.track.bilateral import pair_sessions
     from pdrlearn.track.gait_tables import GAIT_TABLE_FILES, gait_tables
+    from pdrlearn.warning_lines import captured_warnings
 
     if args["reason"] is not None:
-        return {"row": {"path": args["path"], "status": "no_pair", "reason": args["reason"]}, "tables": {}}
-    res = pair_sessions(Path(args["left"]), Path(args["right"]))
-    got = gait_tables(res, {"path": args["path"], **res["ids"]})
+        return {"row": {"path": args["path"], "status": "no_pair", "reason": args["reason"]}, "tables": {},
+                "warnings": []}
+    # cohort C129 (C15's mechanism): the pair's warnings go into its record, said once by the batch
+    with captured_warnings() as warned:
+        try:
+            res = pair_sessions(Path(args["left"]), Path(args["right"]))
+            got = gait_tables(res, {"path": args["path"], **res["ids"]})
+        except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
+            attach_to_error(exc, warnings=list(warned))
+            raise
     value = {"row": {"path": args["path"], "status": "ok", "reason": None, **res["ids"], "n_bouts": len(res["bouts"]),
                      "n_steps": len(res["steps"])},
-             "tables": {name: table_text(got[name]) for name in GAIT_TABLE_FILES}}
+             "tables": {name: table_text(got[name]) for name in GAIT_TABLE_FILES},
+             "warnings": list(dict.fromkeys(warned))}
     return write_file_record(Path(args["record"]), args["key"], args["input_sha256"], value)
 
 
@@ -52,7 +62,7 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
     import pandas as pd
 
     from pdrlearn.atomic import adopt_leftovers, atomic_directory
-    from pdrlearn.cli.cohort import resumable
+    from pdrlearn.cli.cohort import resumable, said_once
     from pdrlearn.cli.common import existed, out_folder, progress, refused_output, replaced
     from pdrlearn.cli.gait import GAIT_ALL_FILES
     from pdrlearn.cli.resume import PAIR_RECORDS, pair_key, pair_record_name, reusable_file, write_file_record
@@ -116,6 +126,9 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
             header = pd.DataFrame(columns=[c[0] for c in TABLES[name]])
             write_table_csv(pd.concat(frames, ignore_index=True) if frames else header, tmp / name)
     replaced(out, was)
+    # cohort C129: each pair's warnings (fresh, reused or failed), each distinct one said once, as track-all's C12
+    said_once([(p["path"], (v or {}).get("warnings") or (ran[i].extra.get("warnings", []) if i in ran else []))
+               for i, (p, v) in enumerate(zip(pairs, values, strict=True))], len(pairs), "pairs")
     for folder in adopted:  # cohort C116 (as C41): the interrupted runs' folders, now in OUT
         shutil.rmtree(folder, ignore_errors=True)
     n_ok = sum(r["status"] == "ok" for r in rows)

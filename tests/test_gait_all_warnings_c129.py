@@ -1,0 +1,56 @@
+"""Cohort C129 (session 37, fixer FE, review R2 finding 2): ``gait-all``'s per-pair warnings are captured in the
+pair's job, kept in its record and said once with the ``warning:`` prefix, alike serially, with ``--jobs 2`` and
+for pairs reused by ``--resume``. Simulated user 9292 only."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from pdrlearn.cli import main
+
+ROUTE = "stand:2, straight:10, stand:2"
+
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory) -> Path:
+    """Two visit folders of user 9292: visit1's left meta.json gives a wrong rate_hz (B32's warning), visit2's right
+    one no axis frames (D8's inferred-frame warnings)."""
+    root = tmp_path_factory.mktemp("c129") / "study"
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        for visit, seed in (("visit1", 9292), ("visit2", 9293)):
+            for foot in ("left", "right"):
+                assert main(["simulate", "--route", ROUTE, "--user-seed", "9292", "--seed", str(seed), "--rate", "50",
+                             "--foot", foot, "--out", str(root / "P9292" / visit / foot[0].upper()),
+                             "--subject", "P9292", "--visit", visit]) == 0
+    for folder, edit in (("visit1/L", lambda m: m.update(rate_hz=60)), ("visit2/R", lambda m: m.pop("frames"))):
+        path = root / "P9292" / folder / "meta.json"
+        meta = json.loads(path.read_text())
+        edit(meta)
+        path.write_text(json.dumps(meta))
+    return root
+
+
+def _warnings(*args) -> list[str]:
+    err = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+        assert main(["gait-all", *map(str, args)]) == 0
+    return [line for line in err.getvalue().splitlines() if line.startswith("warning:")]
+
+
+def test_gait_all_says_each_pairs_warnings_serial_jobs_and_resume_alike_c129(study, tmp_path):
+    serial = _warnings(study, "--out", tmp_path / "s")
+    assert any("P9292/visit1" in w and "rate_hz 60 contradicts" in w for w in serial), serial
+    assert any("P9292/visit2" in w and "declares no axis frame" in w for w in serial), serial
+    assert all(w.endswith("of 2 pairs]") for w in serial)
+    assert _warnings(study, "--out", tmp_path / "j", "--jobs", "2") == serial
+    shutil.copytree(tmp_path / "s", tmp_path / "r")
+    assert _warnings(study, "--out", tmp_path / "r", "--resume") == serial  # both pairs reused, their warnings said
+    records = [json.loads(p.read_text()) for p in sorted((tmp_path / "r" / ".gait-all-pairs").glob("*.json"))]
+    assert sorted(len(r["value"]["warnings"]) for r in records) == [1, 2]
