@@ -82,3 +82,25 @@ def test_split_of_ms_without_units_is_unchanged_b385(walk, tmp_path):
     assert main(["split", str(session), "--out", str(tmp_path / "p"), "--max-minutes", "0.75"]) == 0
     meta = json.loads((tmp_path / "p" / "part_001" / "meta.json").read_text())
     assert "timestamp" not in meta["units"]
+
+
+def test_parts_in_a_data_gap_are_merged_and_labels_follow_the_sensor_rows_b386(tmp_path, capsys):
+    from pdrlearn.io import read_session
+
+    session = tmp_path / "gap"
+    assert main(["simulate", "--route", "stand:5, straight:60, stand:6, straight:60, stand:5", "--gap", "both:30:70",
+                 "-u", "9294", "--seed", "9294", "--rate", "100", "-o", str(session)]) == 0
+    out = tmp_path / "parts"
+    assert main(["split", str(session), "--out", str(out), "--max-minutes", "0.5"]) == 0
+    assert "in a gap of the sensor rows" in capsys.readouterr().err
+    summary = json.loads((out / "split.json").read_text())
+    assert any(c["in_gap"] for c in summary["cuts"])
+    parts = sorted(out.glob("part_*"))
+    assert len(parts) == len(summary["cuts"]) + 1 >= 2
+    for part in parts:  # every part has sensor rows, and its labels lie within them
+        t = read_session(part).streams["fAccelerometer"].t
+        steps = pd.read_csv(part / "steps.csv")
+        assert len(t) and ((steps[["start_ms", "end_ms"]] / 1e3 >= t[0]) & (steps[["start_ms", "end_ms"]] / 1e3
+                                                                            <= t[-1])).all().all(), part.name
+    capsys.readouterr()
+    assert main(["track-all", str(out), "--out", str(tmp_path / "tracked")]) == 0  # every part tracks
