@@ -54,3 +54,22 @@ def test_gait_all_says_each_pairs_warnings_serial_jobs_and_resume_alike_c129(stu
     assert _warnings(study, "--out", tmp_path / "r", "--resume") == serial  # both pairs reused, their warnings said
     records = [json.loads(p.read_text()) for p in sorted((tmp_path / "r" / ".gait-all-pairs").glob("*.json"))]
     assert sorted(len(r["value"]["warnings"]) for r in records) == [1, 2]
+
+
+def test_resume_keys_change_with_an_edit_of_a_dirty_checkout_c130(tmp_path, monkeypatch):
+    """A pdrlearn whose commit does not tell its code (a dirty checkout: here a copy of the package without git or a
+    build stamp): an edit of one source file changes gait-all's and track-all's resume keys; the version is in them."""
+    import pdrlearn
+    from pdrlearn.cli import resume
+
+    pkg = tmp_path / "pdrlearn"
+    shutil.copytree(Path(pdrlearn.__file__).parent, pkg, ignore=shutil.ignore_patterns("__pycache__", "_build.json"))
+    monkeypatch.setattr(pdrlearn, "__file__", str(pkg / "__init__.py"))
+    keys = [(resume.pair_key("P1/visit1/L", "P1/visit1/R"),
+             resume.session_keys({}, [tmp_path], [{}], None)[0])]
+    module = pkg / "track" / "gait_tables.py"
+    module.write_text(module.read_text() + "\n# an edit\n")
+    keys.append((resume.pair_key("P1/visit1/L", "P1/visit1/R"), resume.session_keys({}, [tmp_path], [{}], None)[0]))
+    assert keys[0][0] != keys[1][0] and keys[0][1] != keys[1][1]
+    monkeypatch.setattr(pdrlearn, "__version__", "0.0.0-other")
+    assert resume.pair_key("P1/visit1/L", "P1/visit1/R") != keys[1][0]

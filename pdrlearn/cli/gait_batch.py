@@ -65,7 +65,14 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
     from pdrlearn.cli.cohort import resumable, said_once
     from pdrlearn.cli.common import existed, out_folder, progress, refused_output, replaced
     from pdrlearn.cli.gait import GAIT_ALL_FILES
-    from pdrlearn.cli.resume import PAIR_RECORDS, pair_key, pair_record_name, reusable_file, write_file_record
+    from pdrlearn.cli.resume import (
+        PAIR_RECORDS,
+        code_record,
+        pair_key,
+        pair_record_name,
+        reusable_file,
+        write_file_record,
+    )
     from pdrlearn.cohort import JobResult, find_sessions, folder_bytes, run_cohort
     from pdrlearn.columns import TABLES
     from pdrlearn.errors import DataError
@@ -81,8 +88,9 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
                         f"({pairs[0]['path']}: {pairs[0]['reason']}); give each visit folder both feet's sessions "
                         "with meta.json \"foot\" (pdrlearn import --foot), or use `pdrlearn gait LEFT RIGHT`")
     names = [pair_record_name(p["path"]) for p in pairs]
-    keys = [None if p["reason"] else pair_key(*(Path(p[s]).relative_to(root).as_posix() for s in ("left", "right")))
-            for p in pairs]
+    code = code_record()  # cohort C130: once per batch (it hashes pdrlearn's sources in a dirty checkout)
+    keys = [None if p["reason"] else pair_key(*(Path(p[s]).relative_to(root).as_posix() for s in ("left", "right")),
+                                              code) for p in pairs]
     hashes = [None if p["reason"] else {"left": input_hashes(p["left"]), "right": input_hashes(p["right"])}
               for p in pairs]
     adopted = adopt_leftovers(out) if resume else []
