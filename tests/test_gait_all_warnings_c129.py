@@ -34,6 +34,11 @@ def study(tmp_path_factory) -> Path:
         meta = json.loads(path.read_text())
         edit(meta)
         path.write_text(json.dumps(meta))
+    # cohort C116: a visit folder with the left foot only (no_pair), first in ROOT's order
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        assert main(["simulate", "--route", ROUTE, "--user-seed", "9292", "--seed", "9294", "--rate", "50",
+                     "--foot", "left", "--out", str(root / "P9292" / "visit0" / "L"), "--subject", "P9292",
+                     "--visit", "visit0"]) == 0
     return root
 
 
@@ -48,7 +53,7 @@ def test_gait_all_says_each_pairs_warnings_serial_jobs_and_resume_alike_c129(stu
     serial = _warnings(study, "--out", tmp_path / "s")
     assert any("P9292/visit1" in w and "rate_hz 60 contradicts" in w for w in serial), serial
     assert any("P9292/visit2" in w and "declares no axis frame" in w for w in serial), serial
-    assert all(w.endswith("of 2 pairs]") for w in serial)
+    assert all(w.endswith("of 3 pairs]") for w in serial)
     assert _warnings(study, "--out", tmp_path / "j", "--jobs", "2") == serial
     shutil.copytree(tmp_path / "s", tmp_path / "r")
     assert _warnings(study, "--out", tmp_path / "r", "--resume") == serial  # both pairs reused, their warnings said
@@ -73,3 +78,22 @@ def test_resume_keys_change_with_an_edit_of_a_dirty_checkout_c130(tmp_path, monk
     assert keys[0][0] != keys[1][0] and keys[0][1] != keys[1][1]
     monkeypatch.setattr(pdrlearn, "__version__", "0.0.0-other")
     assert resume.pair_key("P1/visit1/L", "P1/visit1/R") != keys[1][0]
+
+
+def test_the_interrupt_line_counts_only_the_pairs_kept_c116(study, tmp_path, monkeypatch):
+    """Review R2 finding 6: a Ctrl-C after a no_pair folder and one paired folder says 1 pair kept, not 2."""
+    import pdrlearn.track.bilateral as bilateral
+
+    real, calls = bilateral.pair_sessions, []
+
+    def interrupted(left, right):
+        calls.append(left)
+        if len(calls) == 2:  # Ctrl-C while visit2 is paired: visit0 (no pair) and visit1 are done
+            raise KeyboardInterrupt
+        return real(left, right)
+
+    monkeypatch.setattr(bilateral, "pair_sessions", interrupted)
+    err = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+        assert main(["gait-all", str(study), "--out", str(tmp_path / "o")]) != 0
+    assert "gait-all: interrupted after 1 pair(s); they are kept" in err.getvalue(), err.getvalue()

@@ -97,6 +97,18 @@ def test_streaming_tracker_equals_the_offline_rule_and_leaves_the_distance(tmp_p
         [(s.length_m, s.x, s.y, s.z, s.classes.get("terrain"), s.classes.get("direction")) for s in default]
 
 
+def _refused_run(capsys, bundle, session, reference: str, out, words: str) -> None:
+    """``pdrlearn run BUNDLE SESSION --length-reference REFERENCE`` refused: one ``error:`` line holding ``words``,
+    exit 2, no traceback, nothing written."""
+    from pdrlearn.cli import main
+
+    assert main(["run", str(bundle), str(session), "--length-reference", reference, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert words in err and "Traceback" not in err
+    assert len([ln for ln in err.splitlines() if ln.startswith("error:")]) == 1
+    assert not out.exists()
+
+
 def test_run_length_reference_session_writes_the_running_rules_classes(tmp_path, capsys):
     """``pdrlearn run --length-reference session``: steps.csv's length_class is the running rule on the default
     run's strides (the same lengths, positions, terrain and direction); a bad value is one line, exit 2, no output."""
@@ -108,12 +120,8 @@ def test_run_length_reference_session_writes_the_running_rules_classes(tmp_path,
     from pdrlearn.sim import simulate
 
     write_session(simulate("length", 9122, "normal", seed=0), tmp_path / "u9122")
-    assert main(["run", str(BUNDLE), str(tmp_path / "u9122"), "--length-reference", "median",
-                 "--out", str(tmp_path / "bad")]) == 2
-    err = capsys.readouterr().err
-    assert "length_reference='median' is not one of model, session" in err and "Traceback" not in err
-    assert len([ln for ln in err.splitlines() if ln.startswith("error:")]) == 1
-    assert not (tmp_path / "bad").exists()
+    _refused_run(capsys, BUNDLE, tmp_path / "u9122", "median", tmp_path / "bad",
+                 "length_reference='median' is not one of model, session")
     for name, extra in (("model", []), ("session", ["--length-reference", "session"])):
         assert main(["run", str(BUNDLE), str(tmp_path / "u9122"), *extra, "--out", str(tmp_path / name)]) == 0
     a, b = (pd.read_csv(tmp_path / n / "steps.csv") for n in ("model", "session"))
@@ -131,7 +139,6 @@ def test_session_reference_needs_terrain_direction_and_length_c131(tmp_path, cap
     import json
     import shutil
 
-    from pdrlearn.cli import main
     from pdrlearn.io import write_session
     from pdrlearn.runtime import Tracker
     from pdrlearn.sim import simulate
@@ -149,9 +156,4 @@ def test_session_reference_needs_terrain_direction_and_length_c131(tmp_path, cap
     (bundle / "manifest.sha256").write_text(f"{digest}  manifest.json\n")
     write_session(simulate("length", 9296, "normal", seed=0), tmp_path / "u9296")
     capsys.readouterr()
-    assert main(["run", str(bundle), str(tmp_path / "u9296"), "--length-reference", "session",
-                 "--out", str(tmp_path / "out")]) == 2
-    err = capsys.readouterr().err
-    assert "classifies no terrain" in err and "Traceback" not in err
-    assert len([ln for ln in err.splitlines() if ln.startswith("error:")]) == 1
-    assert not (tmp_path / "out").exists()
+    _refused_run(capsys, bundle, tmp_path / "u9296", "session", tmp_path / "out", "classifies no terrain")

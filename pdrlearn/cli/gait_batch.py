@@ -101,13 +101,14 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
             reuse[i], changed[i] = reusable_file(sources, names[i], keys[i], hashes[i])
     reuse = {i: v for i, v in reuse.items() if v is not None}
     was = existed(out)
-    done = [0]
-    with refused_output(out), resumable(done, command="gait-all", noun="pair", decision="C116"), \
+    done, kept = [0], [0]  # cohort C116: kept = the pairs with a record (not the failed and no_pair folders)
+    with refused_output(out), resumable(kept, command="gait-all", noun="pair", decision="C116"), \
             atomic_directory(out, keep_on_interrupt=True) as tmp, progress("gait-all", len(pairs), eta=True) as advance:
 
         def progress_line(r: JobResult) -> None:
             i = int(r.name)
             done[0] += 1
+            kept[0] += bool(r.ok and r.value["row"]["status"] == "ok")
             line = _progress_text(r.value if r.ok else None, r.error, i in reuse)
             why = f"; recomputed, {changed[i]} since the earlier run" if changed.get(i) else ""
             typer.echo(f"[{done[0]}/{len(pairs)}] {pairs[i]['path']}: {line} ({r.seconds:.1f} s{why})", err=True)
