@@ -30,9 +30,14 @@ def test_a_walker_scaled_by_085_gets_the_same_classes():
     for causal in (True, False):
         assert session_length_classes(_table(), causal=causal) == want
         assert session_length_classes(_table(0.85), causal=causal) == want
-    # the same strides against one absolute boundary would not agree: the scaled long strides (1.57 m) are shorter
-    # than the unscaled normal ones' 1.2 x median (1.68 m)
-    assert 0.85 * 1.85 < 1.2 * 1.40
+    # the same strides against one absolute boundary would not agree: the unscaled walk's boundaries (its
+    # relative_bounds) class the scaled long strides (1.57 m) normal, not long
+    from pdrlearn.kernels.relative_length import relative_bounds
+    from pdrlearn.kernels.turn_length import measured_class_one
+
+    fixed = relative_bounds(1.40)
+    assert [measured_class_one(r["length_m"], fixed) for r in _table(0.85)] != want
+    assert measured_class_one(0.85 * 1.85, fixed) == "normal"
 
 
 def test_warm_up_ineligible_strides_and_turns_keep_the_models_class():
@@ -92,6 +97,18 @@ def test_streaming_tracker_equals_the_offline_rule_and_leaves_the_distance(tmp_p
         [(s.length_m, s.x, s.y, s.z, s.classes.get("terrain"), s.classes.get("direction")) for s in default]
 
 
+def _refused_run(capsys, bundle, session, reference: str, out, words: str) -> None:
+    """``pdrlearn run BUNDLE SESSION --length-reference REFERENCE`` refused: one ``error:`` line holding ``words``,
+    exit 2, no traceback, nothing written."""
+    from pdrlearn.cli import main
+
+    assert main(["run", str(bundle), str(session), "--length-reference", reference, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert words in err and "Traceback" not in err
+    assert len([ln for ln in err.splitlines() if ln.startswith("error:")]) == 1
+    assert not out.exists()
+
+
 def test_run_length_reference_session_writes_the_running_rules_classes(tmp_path, capsys):
     """``pdrlearn run --length-reference session``: steps.csv's length_class is the running rule on the default
     run's strides (the same lengths, positions, terrain and direction); a bad value is one line, exit 2, no output."""
@@ -103,12 +120,8 @@ def test_run_length_reference_session_writes_the_running_rules_classes(tmp_path,
     from pdrlearn.sim import simulate
 
     write_session(simulate("length", 9122, "normal", seed=0), tmp_path / "u9122")
-    assert main(["run", str(BUNDLE), str(tmp_path / "u9122"), "--length-reference", "median",
-                 "--out", str(tmp_path / "bad")]) == 2
-    err = capsys.readouterr().err
-    assert "length_reference='median' is not one of model, session" in err and "Traceback" not in err
-    assert len([ln for ln in err.splitlines() if ln.startswith("error:")]) == 1
-    assert not (tmp_path / "bad").exists()
+    _refused_run(capsys, BUNDLE, tmp_path / "u9122", "median", tmp_path / "bad",
+                 "length_reference='median' is not one of model, session")
     for name, extra in (("model", []), ("session", ["--length-reference", "session"])):
         assert main(["run", str(BUNDLE), str(tmp_path / "u9122"), *extra, "--out", str(tmp_path / name)]) == 0
     a, b = (pd.read_csv(tmp_path / n / "steps.csv") for n in ("model", "session"))
@@ -116,3 +129,31 @@ def test_run_length_reference_session_writes_the_running_rules_classes(tmp_path,
     assert b["length_class"].fillna("").tolist() == want and want != a["length_class"].fillna("").tolist()
     cols = ["length_m", "x", "y", "terrain", "direction"]
     pd.testing.assert_frame_equal(a[cols], b[cols])
+
+
+def test_session_reference_needs_terrain_direction_and_length_c131(tmp_path, capsys):
+    """Decision C131: ``length_reference="session"`` with a model lacking the terrain, direction or length class
+    is one line (Tracker and ``pdrlearn run``: exit 2, nothing written), not a run that silently changes nothing.
+    Simulated user 9296 (session 37, fixer FE)."""
+    import hashlib
+    import json
+    import shutil
+
+    from pdrlearn.io import write_session
+    from pdrlearn.runtime import Tracker
+    from pdrlearn.sim import simulate
+
+    with pytest.raises(DataError, match=r"classifies no terrain .*decision C131") as e:
+        Tracker(BUNDLE, tasks=["direction", "length"], length_reference="session")
+    assert "\n" not in str(e.value)
+    Tracker(BUNDLE, tasks=["direction", "length"])  # the model's classes: no terrain needed
+    bundle = tmp_path / "no_terrain"  # as `train --tasks direction,length` gives
+    shutil.copytree(BUNDLE, bundle)
+    manifest = json.loads((bundle / "manifest.json").read_text())
+    del manifest["tasks"]["terrain"]
+    (bundle / "manifest.json").write_text(json.dumps(manifest))
+    digest = hashlib.sha256((bundle / "manifest.json").read_bytes()).hexdigest()
+    (bundle / "manifest.sha256").write_text(f"{digest}  manifest.json\n")
+    write_session(simulate("length", 9296, "normal", seed=0), tmp_path / "u9296")
+    capsys.readouterr()
+    _refused_run(capsys, bundle, tmp_path / "u9296", "session", tmp_path / "out", "classifies no terrain")

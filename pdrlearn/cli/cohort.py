@@ -618,7 +618,8 @@ def said_once(warned: list[tuple[str, list[str]]], total: int, noun: str = "sess
         # decision L271: whose figures a grouped line shows is said before them, not after a long text
         note = None if len(texts) == 1 else (f"figures of {names[0]}; each session's own are in its summary.json "
                                              "and sessions.csv's warnings column" if noun == "sessions" else
-                                             f"figures of {names[0]}; each user's own are in --json's warnings")
+                                             f"figures of {names[0]}; each user's own are in --json's warnings"
+                                             if noun == "users" else f"figures of {names[0]}")
         log.warning("%s", session_warning(first, names, total, note, noun))  # decision E118: the names first
 
 

@@ -21,17 +21,27 @@ def _pair_job(args: dict) -> dict:
     batch's temporary folder; a folder without a pair is its ``no_pair`` row (no record). Returns ``{"row",
     "tables"}`` as read back from the record, so that a fresh and a reused pair are the same objects."""
     from pdrlearn.cli.resume import write_file_record
+    from pdrlearn.cohort import attach_to_error
     from pdrlearn.table_csv import table_text
     from pdrlearn.track.bilateral import pair_sessions
     from pdrlearn.track.gait_tables import GAIT_TABLE_FILES, gait_tables
+    from pdrlearn.warning_lines import captured_warnings
 
     if args["reason"] is not None:
-        return {"row": {"path": args["path"], "status": "no_pair", "reason": args["reason"]}, "tables": {}}
-    res = pair_sessions(Path(args["left"]), Path(args["right"]))
-    got = gait_tables(res, {"path": args["path"], **res["ids"]})
+        return {"row": {"path": args["path"], "status": "no_pair", "reason": args["reason"]}, "tables": {},
+                "warnings": []}
+    # cohort C129 (C15's mechanism): the pair's warnings go into its record, said once by the batch
+    with captured_warnings() as warned:
+        try:
+            res = pair_sessions(Path(args["left"]), Path(args["right"]))
+            got = gait_tables(res, {"path": args["path"], **res["ids"]})
+        except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
+            attach_to_error(exc, warnings=list(warned))
+            raise
     value = {"row": {"path": args["path"], "status": "ok", "reason": None, **res["ids"], "n_bouts": len(res["bouts"]),
                      "n_steps": len(res["steps"]), "warnings": " | ".join(res["warnings"])},  # decision L461
-             "tables": {name: table_text(got[name]) for name in GAIT_TABLE_FILES}}
+             "tables": {name: table_text(got[name]) for name in GAIT_TABLE_FILES},
+             "warnings": list(dict.fromkeys(warned))}
     return write_file_record(Path(args["record"]), args["key"], args["input_sha256"], value)
 
 
@@ -52,10 +62,17 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
     import pandas as pd
 
     from pdrlearn.atomic import adopt_leftovers, atomic_directory
-    from pdrlearn.cli.cohort import resumable
+    from pdrlearn.cli.cohort import resumable, said_once
     from pdrlearn.cli.common import existed, out_folder, progress, refused_output, replaced
     from pdrlearn.cli.gait import GAIT_ALL_FILES
-    from pdrlearn.cli.resume import PAIR_RECORDS, pair_key, pair_record_name, reusable_file, write_file_record
+    from pdrlearn.cli.resume import (
+        PAIR_RECORDS,
+        code_record,
+        pair_key,
+        pair_record_name,
+        reusable_file,
+        write_file_record,
+    )
     from pdrlearn.cohort import JobResult, find_sessions, folder_bytes, run_cohort
     from pdrlearn.columns import TABLES
     from pdrlearn.errors import DataError
@@ -71,8 +88,9 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
                         f"({pairs[0]['path']}: {pairs[0]['reason']}); give each visit folder both feet's sessions "
                         "with meta.json \"foot\" (pdrlearn import --foot), or use `pdrlearn gait LEFT RIGHT`")
     names = [pair_record_name(p["path"]) for p in pairs]
-    keys = [None if p["reason"] else pair_key(*(Path(p[s]).relative_to(root).as_posix() for s in ("left", "right")))
-            for p in pairs]
+    code = code_record()  # cohort C130: once per batch (it hashes pdrlearn's sources in a dirty checkout)
+    keys = [None if p["reason"] else pair_key(*(Path(p[s]).relative_to(root).as_posix() for s in ("left", "right")),
+                                              code) for p in pairs]
     hashes = [None if p["reason"] else {"left": input_hashes(p["left"]), "right": input_hashes(p["right"])}
               for p in pairs]
     adopted = adopt_leftovers(out) if resume else []
@@ -83,13 +101,14 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
             reuse[i], changed[i] = reusable_file(sources, names[i], keys[i], hashes[i])
     reuse = {i: v for i, v in reuse.items() if v is not None}
     was = existed(out)
-    done = [0]
-    with refused_output(out), resumable(done, command="gait-all", noun="pair", decision="C116"), \
+    done, kept = [0], [0]  # cohort C116: kept = the pairs with a record (not the failed and no_pair folders)
+    with refused_output(out), resumable(kept, command="gait-all", noun="pair", decision="C116"), \
             atomic_directory(out, keep_on_interrupt=True) as tmp, progress("gait-all", len(pairs), eta=True) as advance:
 
         def progress_line(r: JobResult) -> None:
             i = int(r.name)
             done[0] += 1
+            kept[0] += bool(r.ok and r.value["row"]["status"] == "ok")
             line = _progress_text(r.value if r.ok else None, r.error, i in reuse)
             why = f"; recomputed, {changed[i]} since the earlier run" if changed.get(i) else ""
             typer.echo(f"[{done[0]}/{len(pairs)}] {pairs[i]['path']}: {line} ({r.seconds:.1f} s{why})", err=True)
@@ -116,6 +135,9 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
             header = pd.DataFrame(columns=[c[0] for c in TABLES[name]])
             write_table_csv(pd.concat(frames, ignore_index=True) if frames else header, tmp / name)
     replaced(out, was)
+    # cohort C129: each pair's warnings (fresh, reused or failed), each distinct one said once, as track-all's C12
+    said_once([(p["path"], (v or {}).get("warnings") or (ran[i].extra.get("warnings", []) if i in ran else []))
+               for i, (p, v) in enumerate(zip(pairs, values, strict=True))], len(pairs), "pairs")
     for folder in adopted:  # cohort C116 (as C41): the interrupted runs' folders, now in OUT
         shutil.rmtree(folder, ignore_errors=True)
     n_ok = sum(r["status"] == "ok" for r in rows)

@@ -26,15 +26,40 @@ def _digest(obj) -> str:
     return hashlib.sha256(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()
 
 
+def source_sha256() -> str:
+    """Cohort C130: the SHA-256 of every ``.py`` file of the pdrlearn package this process runs (paths and bytes,
+    sorted), so that an edit in a dirty checkout changes the resume keys."""
+    import pdrlearn
+
+    root = Path(pdrlearn.__file__).resolve().parent
+    h = hashlib.sha256()
+    for p in sorted(root.rglob("*.py")):
+        h.update(p.relative_to(root).as_posix().encode() + b"\0" + p.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+def code_record() -> dict:
+    """Cohort C130 (amends C41, C116): the code in a resume key: pdrlearn's version, the git commit, Python and the
+    libraries (L136's ``software_record``) and, when the checkout is dirty or its commit unknown (an installed copy
+    without a build stamp), the SHA-256 of pdrlearn's sources (:func:`source_sha256`): a commit alone cannot tell
+    two edits of a dirty checkout apart."""
+    from pdrlearn import __version__
+    from pdrlearn.cli.provenance import software_record
+
+    soft = software_record()
+    out = {"pdrlearn_version": __version__, **soft}
+    if soft["git_dirty"] is not False:
+        out["source_sha256"] = source_sha256()
+    return out
+
+
 def session_keys(options: dict, sessions: list[Path], settings: list[dict], model: dict | None) -> list[str]:
     """Per session, the SHA-256 of what its output depends on besides its input files: the options (but
     :data:`KEY_LEAVES_OUT`), the model's record (its manifest's SHA-256, L122), the calibration file's bytes
     (``--params`` / ``--params-dir``), the session folder (summary.json's ``input_dir``, C13) and the code
-    (pdrlearn version, git commit, libraries: L136)."""
-    from pdrlearn.cli.provenance import software_record
-
+    (:func:`code_record`: pdrlearn version, git commit, libraries, L136; the sources' hash when dirty, C130)."""
     base = {"options": {k: v for k, v in options.items() if k not in KEY_LEAVES_OUT}, "model": model,
-            "software": software_record()}
+            "software": code_record()}
     keys = []
     for folder, st in zip(sessions, settings, strict=True):
         params = st.get("params")
@@ -96,13 +121,12 @@ def pair_record_name(path: str) -> str:
     return hashlib.sha256(path.encode()).hexdigest()[:16] + ".json"
 
 
-def pair_key(left: str, right: str) -> str:
+def pair_key(left: str, right: str, code: dict | None = None) -> str:
     """Cohort C116: the SHA-256 of what a pair's gait output depends on besides its input files: the two session
     folders' paths below ROOT (a study moved or copied elsewhere keeps its records: gait-all's tables hold no
-    absolute path) and the code (as :func:`session_keys`; gait-all has no option that changes a pair's output)."""
-    from pdrlearn.cli.provenance import software_record
-
-    return _digest({"command": "gait-all", "left": left, "right": right, "software": software_record()})
+    absolute path) and the code (``code``, :func:`code_record` when None, as :func:`session_keys`; gait-all has no
+    option that changes a pair's output)."""
+    return _digest({"command": "gait-all", "left": left, "right": right, "software": code or code_record()})
 
 
 def write_file_record(file: Path, key: str, inputs: dict, value: dict) -> dict:

@@ -45,7 +45,9 @@ def split(
                                 [*(c.t for c in res.cuts), res.t_end], strict=True):
         typer.echo(f"{part}: {start:.1f}-{end:.1f} s")
     at_rest = sum(c.at_rest for c in res.cuts)
-    typer.echo(f"{len(res.parts)} part(s) under {out}; {at_rest} of {len(res.cuts)} cut(s) at a common standstill",
+    gaps = sum(c.in_gap for c in res.cuts)  # decision B386
+    typer.echo(f"{len(res.parts)} part(s) under {out}; {at_rest} of {len(res.cuts)} cut(s) at a common standstill"
+               + (f", {gaps} in a gap of the sensor rows" if gaps else ""),
                err=True)
 
 

@@ -511,6 +511,16 @@ def imported_rate(meta: dict) -> float | None:
     return float(rates[0]) if max(rates) <= 1.01 * min(rates) else None
 
 
+def meta_rate(meta: dict, meta_path: Path) -> float | None:
+    """meta.json's ``rate_hz`` (Hz), else the rate ``pdrlearn import`` recorded (decision B304), else None; a
+    ``rate_hz`` that is no positive number is one line."""
+    rate = meta.get("rate_hz")
+    if rate is not None and (isinstance(rate, bool) or not isinstance(rate, int | float) or not math.isfinite(rate)
+                             or rate <= 0):
+        raise DataError(f"{meta_path}: rate_hz {rate!r} is not a positive number of Hz; fix it or remove the field")
+    return float(rate) if rate is not None else imported_rate(meta)  # decision B304: an import's own rate
+
+
 def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_path: Path) -> str | None:
     """Decision B22: the one timestamp unit of a session whose meta.json declares none, from every sensor
     file at once (a unit every file's rate allows; the accelerometer and gyroscope files held to
@@ -1299,11 +1309,7 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
         if not isinstance(meta, dict):
             raise DataError(f"{meta_path}: must hold a JSON object")
         _check_body_fields(meta, str(meta_path))
-    rate = meta.get("rate_hz")
-    if rate is not None and (isinstance(rate, bool) or not isinstance(rate, int | float) or not math.isfinite(rate)
-                             or rate <= 0):
-        raise DataError(f"{meta_path}: rate_hz {rate!r} is not a positive number of Hz; fix it or remove the field")
-    rate = float(rate) if rate is not None else imported_rate(meta)  # decision B304: an import's own rate
+    rate = meta_rate(meta, meta_path)
     clocks = unit_clocks(meta, meta_path)  # decision B115: per-unit rates and clock offsets
     raw = {}
     files = {name: session_csv(folder, name) for name in SENSORS}  # decision B369: X.csv or X.csv.gz, not both

@@ -47,13 +47,20 @@ WHOLE_SESSION_KEYS = ("distance_m", "n_ics", "n_strides", "n_steps", "n_turns", 
                       "n_samples", "dropped_samples", "activity_seconds")
 
 
+#: decision B386: an interval between two rows of an accelerometer or gyroscope file longer than this (s) is a gap
+#: of the recording: a part's sensor span ends before it and its label rows are judged by that span
+GAP_S = 1.0
+
+
 @dataclass
 class Cut:
-    """One cut between two parts: its time (s, the session clock) and whether it lies in a common standstill."""
+    """One cut between two parts: its time (s, the session clock) and whether it lies in a common standstill (or,
+    decision B386, in a gap of every unit's rows: ``in_gap``)."""
 
     t: float
     at_rest: bool
     boundary: float
+    in_gap: bool = False
 
 
 @dataclass
@@ -100,7 +107,27 @@ def _unit_still(acc: tuple[np.ndarray, np.ndarray], gyr: tuple[np.ndarray, np.nd
     still = standstill_mask(va, g, fs)
     k = np.clip(np.searchsorted(ta, grid), 1, ta.size - 1)
     near = np.where(np.abs(ta[k - 1] - grid) <= np.abs(ta[k] - grid), k - 1, k)
-    return still[near] & (np.abs(ta[near] - grid) <= 1.5 / fs)
+    # decision B386: a grid point in a gap of the unit's rows (no sample within 1.5 periods) is no obstacle to a
+    # cut either: nothing of the unit is cut there
+    return still[near] | (np.abs(ta[near] - grid) > 1.5 / fs)
+
+
+def _segments(t: np.ndarray) -> list[tuple[float, float]]:
+    """Decision B386: the runs of timestamps ``t`` (s, sorted) without a gap over :data:`GAP_S`, as (first, last)."""
+    breaks = np.flatnonzero(np.diff(t) > GAP_S)
+    starts, ends = np.r_[0, breaks + 1], np.r_[breaks, t.size - 1]
+    return [(float(t[a]), float(t[b])) for a, b in zip(starts, ends, strict=True)]
+
+
+def sensor_spans(segments: list[tuple[float, float]], edges: list[float]) -> list[tuple[float, float] | None]:
+    """Decision B386: each part's sensor span (``edges``: its start and end times, s) - from its first to its last
+    accelerometer/gyroscope row, as far as ``segments`` (runs of rows without a gap) tell - or None for a part
+    without any such row."""
+    out = []
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
+        inside = [(max(s0, a), min(s1, b)) for s0, s1 in segments if s1 >= a and s0 < b]
+        out.append((min(x for x, _ in inside), max(y for _, y in inside)) if inside else None)
+    return out
 
 
 class _ChunkReader:
@@ -191,6 +218,34 @@ def _numeric_chunks(r: _ChunkReader) -> Iterator[tuple[np.ndarray, pd.DataFrame,
             yield t, chunk, cols
 
 
+#: decision B385: rows of each sensor file the timestamp unit is inferred from (B22 reads the median interval and
+#: the first timestamp, which the first rows give)
+HEAD_ROWS = 1000
+
+
+def _head(path: Path) -> np.ndarray | None:
+    """The first :data:`HEAD_ROWS` rows of a sensor file as numbers, the timestamp first (NaN where a cell is no
+    number); None when it holds no row or no timestamp column."""
+    r = _ChunkReader(path, 1.0, HEAD_ROWS)
+    for chunk, _ in r.chunks():
+        cols = r.time_columns(chunk.columns)[:1]
+        if not cols or chunk.empty:
+            return None
+        rest = [c for c in chunk.columns if c != cols[0][0]]
+        return np.column_stack([r.numbers(chunk[c]).to_numpy(float) for c in [cols[0][0], *rest]])
+    return None
+
+
+def session_time_scale(folder: Path, meta: dict, meta_path: Path) -> tuple[float, str | None]:
+    """Decision B385: seconds per timestamp unit as the session reader finds it (``_group_time_scale``: the
+    declared unit, B16; else the unit every sensor file's rate allows, B22; else sample indices at ``rate_hz``,
+    B31), from each sensor file's first rows; and the unit read when meta.json declares none (None: ms)."""
+    from pdrlearn.io.plasys import _group_time_scale, meta_rate
+
+    raw = {name: h for name in SENSORS if (p := session_csv(folder, name)).is_file() and (h := _head(p)) is not None}
+    return _group_time_scale(raw, meta, meta_rate(meta, meta_path), folder, meta_path)
+
+
 def first_time(r: _ChunkReader) -> float | None:
     """The first timestamp (s) of a sensor file, read from its first row only."""
     for t, _, _ in _numeric_chunks(_ChunkReader(r.path, r.scale, 1)):
@@ -207,6 +262,7 @@ class _UnitScan:
         self.readers, self.t0, self.part_s, self.span = readers, t0, part_s, span
         self.masks: dict[int, np.ndarray | None] = {}
         self.last = -math.inf
+        self.segments: list[tuple[float, float]] = []  # decision B386: where the unit has rows
 
     def grid(self, k: int) -> np.ndarray:
         b = self.t0 + k * self.part_s
@@ -224,6 +280,7 @@ class _UnitScan:
                 done[i] = True
             else:
                 t, chunk, cols = got
+                self.segments += _segments(np.r_[last[i], t] if math.isfinite(last[i]) else t)
                 last[i] = float(t[-1])
                 self._keep(t, chunk, cols, windows[i], self.readers[i])
             ready = [k for k in {*windows[0], *windows[1]}
@@ -250,15 +307,33 @@ class _UnitScan:
             w.v.append(vals)
 
 
+def _in_gap(t: float, segments: list[tuple[float, float]]) -> bool:
+    return not any(s0 <= t <= s1 for s0, s1 in segments)
+
+
+def _merge_empty(cuts: list[Cut], t0: float, t_end: float, segments: list[tuple[float, float]]) -> list[Cut]:
+    """Decision B386: no part without accelerometer/gyroscope rows (a part inside a data gap): such a part is merged
+    into the part before it (the cut at its start removed; the first part into the one after it)."""
+    while len(cuts) > 0:
+        spans = sensor_spans(segments, [t0, *(c.t for c in cuts), t_end])
+        empty = next((k for k, sp in enumerate(spans) if sp is None), None)
+        if empty is None:
+            break
+        del cuts[max(empty - 1, 0)]
+    return cuts
+
+
 def scan_cuts(units: list[tuple[_ChunkReader, _ChunkReader]], t0: float, part_s: float,
-              span: float) -> tuple[list[Cut], float]:
+              span: float) -> tuple[list[Cut], float, list[tuple[float, float]]]:
     """Decision B379: the cuts of a session whose units' (accelerometer, gyroscope) files are ``units``: near each
-    boundary ``t0 + k * part_s`` in the middle of the standstill common to every unit with samples there, else at
-    the boundary. Returns the cuts and the units' last timestamp (s)."""
+    boundary ``t0 + k * part_s`` in the middle of the standstill common to every unit with samples there (B386: or
+    of a gap in their rows), else at the boundary; B386: a part without rows merged into its neighbour. Returns the
+    cuts, the units' last timestamp (s) and where the units have rows (:func:`_segments`)."""
     scans = [_UnitScan(r, t0, part_s, span) for r in units]
     for s in scans:
         s.run()
     t_end = max(s.last for s in scans)
+    segments = sorted(seg for s in scans for seg in s.segments)
     cuts = []
     k = 1
     while t0 + k * part_s < t_end - MIN_PART_S:  # a last piece shorter than MIN_PART_S stays with the part before
@@ -267,9 +342,11 @@ def scan_cuts(units: list[tuple[_ChunkReader, _ChunkReader]], t0: float, part_s:
         t_cut = None
         if masks:
             t_cut = rest_cut(scans[0].grid(k), np.logical_and.reduce(masks), b)
-        cuts.append(Cut(b if t_cut is None else t_cut, t_cut is not None, b))
+        t = b if t_cut is None else t_cut
+        gap = _in_gap(t, segments)
+        cuts.append(Cut(t, t_cut is not None and not gap, b, gap))
         k += 1
-    return cuts, t_end
+    return _merge_empty(cuts, t0, t_end, segments), t_end, segments
 
 
 class _PartFiles:
@@ -304,19 +381,24 @@ class SplitResult:
     copied_whole: list[str]
 
 
-def _route(cut_times: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _route(cut_times: np.ndarray, times: np.ndarray,
+           spans: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Each row's part (by its earliest time) and whether the row fits in it (its latest time before the part's end
-    and some time given). A row spanning a cut (a stride or bout across it) does not fit."""
+    and some time given). A row spanning a cut (a stride or bout across it) does not fit; decision B386: with
+    ``spans`` (each part's sensor span, (parts, 2) s) neither does a row outside its part's span (in a data gap)."""
     has = np.isfinite(times).any(axis=1)
     lo = np.where(has, np.nanmin(np.where(np.isfinite(times), times, np.inf), axis=1), 0.0)
     hi = np.where(has, np.nanmax(np.where(np.isfinite(times), times, -np.inf), axis=1), 0.0)
     part = np.searchsorted(cut_times, lo, side="right")
     end = np.append(cut_times, np.inf)[part]
-    return part, has & (hi < end)
+    fits = has & (hi < end)
+    if spans is not None:
+        fits &= (lo >= spans[part, 0]) & (hi <= spans[part, 1])
+    return part, fits
 
 
 def _write_file(path: Path, scale: float, chunk_rows: int, cut_times: np.ndarray, parts: list[Path],
-                result: SplitResult) -> None:
+                result: SplitResult, spans: np.ndarray) -> None:
     """Stream one CSV of the session into the part folders (decision B379). Sensor files: every row by its
     timestamp, which must be sorted (B380); a part without rows of it gets no such file. Other CSVs with time
     columns (``timestamp``, ``*_ms``): each row into the part of its earliest time, a row spanning a cut left out
@@ -350,7 +432,7 @@ def _write_file(path: Path, scale: float, chunk_rows: int, cut_times: np.ndarray
                 _check_sorted(path, times[:, 0], last, line)
                 if len(times):
                     last = float(times[-1, 0])
-            part, fits = _route(cut_times, times)
+            part, fits = _route(cut_times, times, None if sensor else spans)
             if not fits.all():
                 result.dropped[path.name] = result.dropped.get(path.name, 0) + int((~fits).sum())
             for k in np.unique(part[fits]):
@@ -395,7 +477,6 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
     rows left out because they span a cut."""
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.io.archive import is_archive
-    from pdrlearn.io.plasys import _timestamp_scale
 
     folder = Path(session)
     part_s = check_max_minutes(max_minutes)
@@ -415,7 +496,10 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
         if not isinstance(meta, dict):
             raise DataError(f"{meta_path}: must hold a JSON object; fix it (decision B380)")
     _refuse(folder, meta)
-    scale = _timestamp_scale(meta, str(meta_path))
+    scale, unit = session_time_scale(folder, meta, meta_path)
+    if unit is not None:  # decision B385: said once, and written into every part's meta.json (below)
+        log.warning("%s: declares no timestamp unit: the timestamps are read as %s (decision B22), and each part's "
+                    "meta.json declares \"units\": {\"timestamp\": \"%s\"}", meta_path, unit, unit)
     units = []
     for acc, gyr in UNIT_IMU.values():
         pa, pg = session_csv(folder, acc), session_csv(folder, gyr)
@@ -431,26 +515,32 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
                         "(decision B380)")
     t0 = min(starts)
     span = min(SEARCH_S, part_s / 4.0)
-    cuts, t_end = scan_cuts(units, t0, part_s, span)
+    cuts, t_end, segments = scan_cuts(units, t0, part_s, span)
     for c in cuts:
-        if not c.at_rest:
+        if not c.at_rest and not c.in_gap:
             log.warning("%s: no standstill of %g s common to the units within %g s of %.1f s: cut there, in "
                         "motion (its part's meta.json says so; decision B379)", folder, MIN_REST_S, span, c.boundary)
     cut_times = np.array([c.t for c in cuts])
     result = SplitResult([], cuts, t0, t_end, {}, [])
+    edges = [t0, *cut_times.tolist(), t_end]
+    # decision B386: a label row outside its part's accelerometer/gyroscope rows (in a data gap) is in no part
+    spans = np.array(sensor_spans(segments, edges), dtype=float)
     files = [p for p in session_csvs(folder) if is_gzip(p) or p.suffix.lower() == ".csv"]
     with atomic_directory(out) as tmp:
         parts = [tmp / f"part_{k:03d}" for k in range(len(cuts) + 1)]
         for p in parts:
             p.mkdir()
         for path in files:
-            _write_file(path, scale, chunk_rows, cut_times, parts, result)
-        edges = [t0, *cut_times.tolist(), t_end]
-        kinds = ["session start", *("rest" if c.at_rest else "boundary, in motion" for c in cuts), "session end"]
+            _write_file(path, scale, chunk_rows, cut_times, parts, result, spans)
+        kinds = ["session start", *("rest" if c.at_rest else "gap" if c.in_gap else "boundary, in motion"
+                                    for c in cuts), "session end"]
         whole = {k: meta[k] for k in WHOLE_SESSION_KEYS if k in meta}
         for k, p in enumerate(parts):
             part_meta = {key: v for key, v in meta.items() if key not in WHOLE_SESSION_KEYS}
             # each part a session of its own name, so that track-all's pooled tables tell the parts apart
+            if unit is not None:  # decision B385: a part is read in the unit the whole was read in
+                part_meta["units"] = {**(meta.get("units") if isinstance(meta.get("units"), dict) else {}),
+                                      "timestamp": unit}
             part_meta["session"] = f"{meta.get('session') or folder.name}_part_{k:03d}"
             part_meta["split"] = {"source": str(folder.resolve()), "part": k, "parts": len(parts),
                                   "start_s": round(edges[k], 6), "end_s": round(edges[k + 1], 6),
@@ -458,13 +548,15 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
             (p / "meta.json").write_text(json.dumps(part_meta, indent=2) + "\n", encoding="utf-8")
         summary = {"source": str(folder.resolve()), "max_minutes": float(max_minutes), "search_s": span,
                    "min_rest_s": MIN_REST_S, "t_start_s": round(t0, 6), "t_end_s": round(t_end, 6),
-                   "cuts": [{"t_s": round(c.t, 6), "boundary_s": round(c.boundary, 6), "at_rest": c.at_rest}
+                   "cuts": [{"t_s": round(c.t, 6), "boundary_s": round(c.boundary, 6), "at_rest": c.at_rest,
+                             "in_gap": c.in_gap}
                             for c in cuts],
                    "label_rows_spanning_a_cut": result.dropped, "copied_whole": result.copied_whole}
         (tmp / "split.json").write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
     result.parts = [Path(out) / p.name for p in parts]
     if result.dropped:
-        log.warning("%s: %s label row(s) span a cut and are in no part (%s; decision B379)", folder,
+        log.warning("%s: %s label row(s) span a cut or lie in a gap of the sensor rows and are in no part (%s; "
+                    "decisions B379, B386)", folder,
                     sum(result.dropped.values()), ", ".join(f"{n}: {k}" for n, k in result.dropped.items()))
     if result.copied_whole:
         log.warning("%s: %s have no time column and were copied whole into every part (decision B379)", folder,

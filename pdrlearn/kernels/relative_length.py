@@ -43,6 +43,22 @@ def check_length_reference(value) -> str:
     return value
 
 
+#: decision C131: the tasks length_reference="session" needs: the length class it replaces, and the terrain and
+#: direction classes that make a stride eligible (:func:`eligible`)
+SESSION_TASKS = ("length", "terrain", "direction")
+
+
+def check_session_tasks(tasks, where) -> None:
+    """Decision C131: ``length_reference="session"`` with a model lacking one of :data:`SESSION_TASKS` would change
+    nothing and say nothing; one DataError line instead."""
+    missing = [t for t in SESSION_TASKS if t not in tasks]
+    if missing:
+        raise DataError(f"length_reference=\"session\" (--length-reference session): model {where} classifies no "
+                        f"{', '.join(missing)} (its tasks: {', '.join(tasks)}), and the session-relative length class "
+                        "needs the length class and, to pick flat forward strides, the terrain and direction classes; "
+                        "use a model trained with --tasks terrain,direction,length or drop the option (decision C131)")
+
+
 def relative_bounds(reference_m: float) -> dict[str, tuple[float, float]]:
     """The class bounds ``{name: (lo, hi)}`` (m) around the normal stride ``reference_m`` (:data:`RELATIVE_BOUNDS`)."""
     lo, hi = RELATIVE_BOUNDS

@@ -550,6 +550,8 @@ class Tracker(FixInput):
         self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
+        if self._session_length is not None:  # decision C131: the classes C117's median needs, or one line
+            _relative_length.check_session_tasks(self._model_args[0] or list(self.bundle.tasks), self.bundle.path)
         self._choose_models(sensors)
         self.params = dict(m["displacement"])
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
