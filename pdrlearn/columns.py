@@ -584,6 +584,8 @@ BOUTS: tuple[Column, ...] = (
                                       "stride lies in the bout (L450; `run` too, L458); empty when the floors come "
                                       "from the altitude (L64)"),
     ("floors_down", "count", "integer", "the same, down (L450)"),
+    ("freeze_time_s", "s", "number", "when the freeze index ran (foot tracks; lower back with --freeze-index): the "
+                                     "seconds of freezes.csv's episodes inside the bout (W397); absent otherwise"),
     ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is ABOVE L95's walking range "
                                              "(leg-scaled, L148; bouts of 5+ strides; L195): running or short fast "
                                              "steps. Never true for a slow bout (a bout's speed includes its start, "
@@ -893,6 +895,9 @@ FOOT_STEPS: tuple[Column, ...] = (
                                   "stride_length_cv_pct are the CVs (SD with n - 1) of their stride_time_s / "
                                   "|length_m| (steady straight level forward, L104; --steady-trim's bout ends out, "
                                   "L415)"),
+    ("in_freeze", _ID, "true/false", "when the freeze index ran: the stride's contact (event_s) lies inside an "
+                                     "episode of freezes.csv (W397; with the lower back's W396 unreliable episodes "
+                                     "too); absent otherwise"),
     ("contact_source", _ID, "text", "a stitched track only (L365's partial fallback): force or imu, the detector "
                                     "that timed the stride's IC (L405)"),
     ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),

@@ -88,3 +88,20 @@ def test_no_steps_line_names_the_veto_w396(slow, monkeypatch):
     res = tw.track_waist(slow, pipeline="waist-pendulum", freeze_veto=True)  # the old veto: every contact dropped
     assert res.info["n_frozen_contacts"] > 30
     assert any("no steps found" in w and "freeze_veto" in w and "W396" in w for w in res.info["warnings"])
+
+
+def test_track_writes_freeze_columns_when_the_index_ran_w397(fog, tmp_path):
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    d = tmp_path / "s"
+    write_session(fog, d)
+    assert main(["track", str(d), "--out", str(tmp_path / "on"), "--freeze-index"]) == 0
+    bouts, steps = pd.read_csv(tmp_path / "on" / "bouts.csv"), pd.read_csv(tmp_path / "on" / "steps.csv")
+    episodes = pd.read_csv(tmp_path / "on" / "freezes.csv")
+    assert bouts["freeze_time_s"].sum() == pytest.approx(episodes["duration_s"].sum(), abs=0.6)
+    inside = (steps["event_s"] >= episodes["start_s"].iloc[0]) & (steps["event_s"] <= episodes["end_s"].iloc[0])
+    assert steps["in_freeze"].astype(bool).tolist() == inside.tolist() and inside.sum() >= 5
+    assert main(["track", str(d), "--out", str(tmp_path / "off")]) == 0  # not measured: no column
+    assert "freeze_time_s" not in pd.read_csv(tmp_path / "off" / "bouts.csv")
+    assert "in_freeze" not in pd.read_csv(tmp_path / "off" / "steps.csv")

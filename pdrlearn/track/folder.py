@@ -28,6 +28,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     from pdrlearn.track.belt import session_incline
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
     from pdrlearn.track.evaluate import track_summary
+    from pdrlearn.track.freezes import add_freeze_columns
     from pdrlearn.track.periods import bout_floors, time_accounting
     from pdrlearn.track.steady import add_steady_column
     from pdrlearn.track.units import tracked_unit
@@ -41,6 +42,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
         bouts = bout_floors(bouts, result.steps, result.info)  # decision L450, as track's bouts.csv
         summary = track_summary(result, session, pipeline=pipeline, bout_table=bouts)  # C13, C14
         add_steady_column(result.steps)  # decision L415, as track's steps.csv
+    bouts = add_freeze_columns(bouts, result.steps, result.info.get("freezes"))  # decision W397, as track's
     summary.update(time_accounting(result, session, tracked_unit(pipeline)))  # decision L275
     summary = machine_summary(summary, [], session.where)  # decisions E154, E155
     tracked = {"session": session, "result": result, "summary": summary, "pipeline": pipeline,

@@ -185,3 +185,22 @@ def freeze_hint(rows: list[dict] | None, steps) -> str | None:
             "freeze index over 3, decision W213): freezing, a turn on the spot or shuffling is counted as steps and "
             "walking there; run with --freeze-index for freezes.csv (the option freeze_veto drops them; decision "
             "W395)")
+
+
+def add_freeze_columns(bouts: pd.DataFrame, steps: pd.DataFrame, rows: list[dict] | None) -> pd.DataFrame:
+    """Decision W397: when the freeze index ran (``rows``, freezes.csv's episodes, not None), bouts.csv's
+    ``freeze_time_s`` (the seconds of the episodes inside each bout, ``start_s`` to ``end_s``) and, in place,
+    steps.csv's ``in_freeze`` (the step's contact, ``event_s`` else ``start_s``, lies inside an episode); nothing
+    when the index did not run (not measured). Returns ``bouts``."""
+    if rows is None:
+        return bouts
+    eps = [(float(r["start_s"]), float(r["end_s"])) for r in rows]
+    if len(steps):
+        t = steps["event_s"].to_numpy(float) if "event_s" in steps else steps["start_s"].to_numpy(float)
+        t = np.where(np.isfinite(t), t, steps["start_s"].to_numpy(float))
+        steps["in_freeze"] = inside_episodes(t, eps)
+    if len(bouts):
+        a, b = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
+        bouts["freeze_time_s"] = [round(sum(max(0.0, min(e, y) - max(s, x)) for s, e in eps), 3)
+                                  for x, y in zip(a, b, strict=True)]
+    return bouts
