@@ -105,3 +105,23 @@ def test_track_writes_freeze_columns_when_the_index_ran_w397(fog, tmp_path):
     assert main(["track", str(d), "--out", str(tmp_path / "off")]) == 0  # not measured: no column
     assert "freeze_time_s" not in pd.read_csv(tmp_path / "off" / "bouts.csv")
     assert "in_freeze" not in pd.read_csv(tmp_path / "off" / "steps.csv")
+
+
+def test_turns_csv_counts_the_steps_inside_each_turn_w398(tmp_path):
+    from pdrlearn.sim import Turn
+    from pdrlearn.track.clinical import add_turn_steps
+    from pdrlearn.track.folder import clinical_tables
+    from pdrlearn.track.waist import track_waist
+
+    s = _sim([Stand(3.0), Straight(6.0), Turn(2 * np.pi), Straight(6.0), Stand(3.0)], 9307, 0.3, 0.5)
+    res = track_waist(s, pipeline="waist-pendulum")
+    turns = clinical_tables(res, None)["turns.csv"]
+    ev = res.steps["event_s"].to_numpy(float)
+    assert len(turns) and "turn_steps" in turns
+    for _, r in turns.iterrows():
+        assert r["turn_steps"] == int(((ev >= r["start_s"]) & (ev <= r["end_s"])).sum())
+    hand = add_turn_steps(pd.DataFrame({"start_s": [1.0, 5.0], "end_s": [2.0, 6.0]}),
+                          _steps([0.5, 1.0, 1.5, 2.0, 2.5, 5.5]).assign(unit="waist"))
+    assert hand["turn_steps"].tolist() == [3, 1]  # the ends are inside
+    foot = _steps([1.0, 1.5]).assign(unit="foot")
+    assert "turn_steps" not in add_turn_steps(pd.DataFrame({"start_s": [1.0], "end_s": [2.0]}), foot)

@@ -83,11 +83,12 @@ def clinical_tables(result, bouts) -> dict:
     back with a barometer, ``rides.csv`` (decision L377)."""
     import pandas as pd
 
-    from pdrlearn.track.clinical import turn_table
+    from pdrlearn.track.clinical import add_turn_steps, turn_table
     from pdrlearn.track.grade import ramp_table
     from pdrlearn.waist.transfers import TRANSFER_COLUMNS
 
-    out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
+    out = {"turns.csv": add_turn_steps(turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns")),
+                                       result.steps)}  # L210; W398: steps per turn
     out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
     from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.stair_flights import flight_table
