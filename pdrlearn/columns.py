@@ -650,9 +650,6 @@ TURNS: tuple[Column, ...] = (
                                    "lower back a full turn on the spot whose steps were missed (L255 / L256: the "
                                    "rows' heading over it is on another branch), or any such turn with the option "
                                    "of L233"),
-    ("turn_steps", "count", "integer", "lower back: the detected steps (steps.csv contacts, event_s) inside the "
-                                       "turn, start_s to end_s: the clinical steps per turn, unlike n_rows (W398); "
-                                       "absent on a foot track"),
     ("bout", "index", "integer", "the bouts.csv bout holding the turn; empty outside every bout"),
     ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s / duration_s (L209); per unit "
                                          "(L229): a foot track's turn (5-95 % heading timing, L208) 90 % of "
@@ -660,6 +657,9 @@ TURNS: tuple[Column, ...] = (
                                          "|angle_deg| over that span, longer than a 5-95 % one, so it reads lower "
                                          "than a foot track's for the same turn (about 20 % under the 5-95 % "
                                          "mean rate, L346); empty for a turn of no duration"),
+    ("turn_steps", "count", "integer", "lower back: the detected steps (steps.csv contacts, event_s) inside the "
+                                       "turn, start_s to end_s: the clinical steps per turn, unlike n_rows (W398); "
+                                       "empty on a foot track (its rows are one foot's strides)"),
     *_clocks("start_s", "end_s"),
 )
 

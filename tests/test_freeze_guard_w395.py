@@ -124,4 +124,4 @@ def test_turns_csv_counts_the_steps_inside_each_turn_w398(tmp_path):
                           _steps([0.5, 1.0, 1.5, 2.0, 2.5, 5.5]).assign(unit="waist"))
     assert hand["turn_steps"].tolist() == [3, 1]  # the ends are inside
     foot = _steps([1.0, 1.5]).assign(unit="foot")
-    assert "turn_steps" not in add_turn_steps(pd.DataFrame({"start_s": [1.0], "end_s": [2.0]}), foot)
+    assert add_turn_steps(pd.DataFrame({"start_s": [1.0], "end_s": [2.0]}), foot)["turn_steps"].isna().all()

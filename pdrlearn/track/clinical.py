@@ -880,10 +880,10 @@ def below_text(value: float, bound: float) -> str:
 def add_turn_steps(turns: pd.DataFrame, steps: pd.DataFrame) -> pd.DataFrame:
     """Decision W398: turns.csv's ``turn_steps`` on a lower-back track - the detected steps (steps.csv rows) whose
     contact ``event_s`` lies inside the turn (``start_s`` to ``end_s``), the clinical steps-per-turn, unlike
-    ``n_rows`` (the rows whose heading change the turn sums); a foot track's turns get no column (its rows are one
-    foot's strides). Returns a new table."""
+    ``n_rows`` (the rows whose heading change the turn sums); empty on a foot track (its rows are one foot's
+    strides). Returns a new table."""
     if not _is_lower_back(steps) or "event_s" not in steps:
-        return turns
+        return turns.assign(turn_steps=pd.array([pd.NA] * len(turns), dtype="Int64"))
     ev = np.sort(steps["event_s"].to_numpy(float))
     a, b = turns["start_s"].to_numpy(float), turns["end_s"].to_numpy(float)
     counts = np.searchsorted(ev, b, side="right") - np.searchsorted(ev, a, side="left")
