@@ -22,3 +22,10 @@ def test_slow_lower_back_line_names_the_step_count_w399(source):
 
 def test_slow_foot_line_is_unchanged_w399():
     assert "W399" not in _line({"pipeline": "plasys"})
+
+
+def test_the_line_keeps_its_warning_code_w399():
+    """E155: a line's code is the last "decision X" it names; W399's clause names none, so the code stays L351."""
+    from pdrlearn.warning_lines import warning_code
+
+    assert warning_code(_line({"pipeline": "waist-pendulum", "params_source": "defaults"})) == "L351"

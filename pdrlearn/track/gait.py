@@ -869,9 +869,9 @@ def _unreliable(summary: dict, info: dict, slow: bool) -> str:
 #: decision W399: what L95's slow lower-back line adds about the step count (T6: simulated 63 steps/min walks read
 #: 55-63 steps for 51 true contacts, stride_length_m 0.54 m for 0.60 m)
 _SLOW_COUNT = ("; n_steps, the cadence and bouts.csv's stride_length_m are not validated either (extra or missed "
-               "contacts at a slow cadence change the count, and a stride's length is its two steps'; decision W399)")
+               "contacts at a slow cadence change the count, and a stride's length is its two steps; W399)")
 _SLOW_COUNT_CALIBRATED = ("; the calibration corrects the distance, not the step count: n_steps, the cadence and "
-                          "bouts.csv's stride_length_m are not validated at this speed (decision W399)")
+                          "bouts.csv's stride_length_m are not validated at this speed, W399)")
 
 
 def bout_range_flags(table, leg_m: float | None) -> np.ndarray:
