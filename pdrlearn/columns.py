@@ -599,6 +599,8 @@ BOUTS: tuple[Column, ...] = (
     ("floors_down", "count", "integer", "the same, down (L450)"),
     ("ascent_m", "m", "number", "the summary's ascent_m rule on the trajectory from start_s to end_s (L467)"),
     ("descent_m", "m", "number", "the same, descent (L467)"),
+    ("freeze_time_s", "s", "number", "when the freeze index ran (foot tracks; lower back with --freeze-index): the "
+                                     "seconds of freezes.csv's episodes inside the bout (W397); absent otherwise"),
     ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is ABOVE L95's walking range "
                                              "(leg-scaled, L148; bouts of 5+ strides; L195): running or short fast "
                                              "steps. Never true for a slow bout (a bout's speed includes its start, "
@@ -670,6 +672,9 @@ TURNS: tuple[Column, ...] = (
                                          "|angle_deg| over that span, longer than a 5-95 % one, so it reads lower "
                                          "than a foot track's for the same turn (about 20 % under the 5-95 % "
                                          "mean rate, L346); empty for a turn of no duration"),
+    ("turn_steps", "count", "integer", "lower back: the detected steps (steps.csv contacts, event_s) inside the "
+                                       "turn, start_s to end_s: the clinical steps per turn, unlike n_rows (W398); "
+                                       "empty on a foot track (its rows are one foot's strides)"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -910,6 +915,9 @@ FOOT_STEPS: tuple[Column, ...] = (
                                   "stride_length_cv_pct are the CVs (SD with n - 1) of their stride_time_s / "
                                   "|length_m| (steady straight level forward, L104; --steady-trim's bout ends out, "
                                   "L415)"),
+    ("in_freeze", _ID, "true/false", "when the freeze index ran: the stride's contact (event_s) lies inside an "
+                                     "episode of freezes.csv (W397; with the lower back's W396 unreliable episodes "
+                                     "too); absent otherwise"),
     ("contact_source", _ID, "text", "a stitched track only (L365's partial fallback): force or imu, the detector "
                                     "that timed the stride's IC (L405)"),
     ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),

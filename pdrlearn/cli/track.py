@@ -950,6 +950,9 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     from pdrlearn.track.steady import add_steady_column
 
     add_steady_column(result.steps)  # decision L415: steps.csv says which strides the CVs are taken over
+    from pdrlearn.track.freezes import add_freeze_columns
+
+    bouts = add_freeze_columns(bouts, result.steps, result.info.get("freezes"))  # decision W397
     from pdrlearn.track.periods import time_accounting
 
     unit = tracked_unit(pipeline)

@@ -867,6 +867,29 @@ def _not_level(steps: pd.DataFrame) -> tuple[int, int]:
                                      ).sum())
 
 
+def below_text(value: float, bound: float) -> str:
+    """Decision W400: ``value`` (under ``bound``) with the fewest decimals, from one, that still print under
+    ``bound`` (19.9987 against 20: "19.999", not "20.0")."""
+    for digits in range(1, 7):
+        text = f"{value:.{digits}f}"
+        if float(text) < bound:
+            return text
+    return repr(float(value))
+
+
+def add_turn_steps(turns: pd.DataFrame, steps: pd.DataFrame) -> pd.DataFrame:
+    """Decision W398: turns.csv's ``turn_steps`` on a lower-back track - the detected steps (steps.csv rows) whose
+    contact ``event_s`` lies inside the turn (``start_s`` to ``end_s``), the clinical steps-per-turn, unlike
+    ``n_rows`` (the rows whose heading change the turn sums); empty on a foot track (its rows are one foot's
+    strides). Returns a new table."""
+    if not _is_lower_back(steps) or "event_s" not in steps:
+        return turns.assign(turn_steps=pd.array([pd.NA] * len(turns), dtype="Int64"))
+    ev = np.sort(steps["event_s"].to_numpy(float))
+    a, b = turns["start_s"].to_numpy(float), turns["end_s"].to_numpy(float)
+    counts = np.searchsorted(ev, b, side="right") - np.searchsorted(ev, a, side="left")
+    return turns.assign(turn_steps=np.where(np.isfinite(a) & np.isfinite(b), counts, 0).astype(int))
+
+
 def _is_lower_back(steps: pd.DataFrame) -> bool:
     return "unit" in steps and len(steps) > 0 and bool((steps["unit"].astype(str) == "waist").all())
 
@@ -1013,9 +1036,10 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
     if pct is None:
         out["reason"] = (f"no walking sequence with {ASYMMETRY_MIN_STEPS} step times of each foot")
     elif pct < ASYMMETRY_FLOOR_PCT:  # decision L216: not a finding of symmetry
-        out["reason"] = (f"not judged, which is no evidence of symmetry: index {pct:.1f} % is under "
-                         f"{ASYMMETRY_FLOOR_PCT:.0f} %, where the lower back's contact timing alone reads up to 18.8 % "
-                         "on walkers whose feet step alike (decision L121), and it can also miss a real asymmetry "
+        out["reason"] = (f"not judged, which is no evidence of symmetry: index {below_text(pct, ASYMMETRY_FLOOR_PCT)} "
+                         f"% is below the {ASYMMETRY_FLOOR_PCT:.0f} % threshold (W400's digits), where the lower "
+                         "back's contact timing alone reads up to 18.8 % on walkers whose feet step alike (decision "
+                         "L121), and it can also miss a real asymmetry "
                          f"(its index is {ASYMMETRY_ERROR_POINTS} points off the truth: a simulated 24.7 % read "
                          "19.9 %, decision L216); time the steps with a unit on each foot")
     else:

@@ -28,6 +28,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     from pdrlearn.track.belt import session_incline
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
     from pdrlearn.track.evaluate import track_summary
+    from pdrlearn.track.freezes import add_freeze_columns
     from pdrlearn.track.periods import bout_ascent, bout_floors, time_accounting
     from pdrlearn.track.steady import add_steady_column
     from pdrlearn.track.units import tracked_unit
@@ -42,6 +43,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
         bouts = bout_ascent(bouts, result)  # decision L467
         summary = track_summary(result, session, pipeline=pipeline, bout_table=bouts)  # C13, C14
         add_steady_column(result.steps)  # decision L415, as track's steps.csv
+    bouts = add_freeze_columns(bouts, result.steps, result.info.get("freezes"))  # decision W397, as track's
     summary.update(time_accounting(result, session, tracked_unit(pipeline)))  # decision L275
     summary = machine_summary(summary, [], session.where)  # decisions E154, E155
     tracked = {"session": session, "result": result, "summary": summary, "pipeline": pipeline,
@@ -82,11 +84,12 @@ def clinical_tables(result, bouts) -> dict:
     back with a barometer, ``rides.csv`` (decision L377)."""
     import pandas as pd
 
-    from pdrlearn.track.clinical import turn_table
+    from pdrlearn.track.clinical import add_turn_steps, turn_table
     from pdrlearn.track.grade import ramp_table
     from pdrlearn.waist.transfers import TRANSFER_COLUMNS
 
-    out = {"turns.csv": turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"))}  # L210
+    out = {"turns.csv": add_turn_steps(turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns")),
+                                       result.steps)}  # L210; W398: steps per turn
     from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.grade import info_stair_grade
     from pdrlearn.track.stair_flights import flight_table

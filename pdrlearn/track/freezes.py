@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pdrlearn.kernels.freeze import FREEZE_MIN_S, freeze_episodes
+from pdrlearn.kernels.freeze import FI_WINDOW_S, FREEZE_MIN_S, freeze_episodes, inside_episodes
 
 #: decision W213: the freeze-index threshold of a foot or lower-back unit (2 x Baechlin et al. 2010's 1.5)
 UNIT_FI_THRESHOLD = 3.0
@@ -129,3 +129,78 @@ def freeze_caveat_message(n: int, seconds: float, vetoed: bool) -> str:
     return (f"{n} freeze episode(s) of {seconds:.1f} s in all (freezes.csv, the lower back's freeze index, decision "
             f"W213); {steps}. On the lower back the index also reads very slow shuffling (0.2-0.3 m/s), festinating "
             "walks and daily activities as freezing (decision W215): confirm a freeze with a foot unit or video")
+
+
+def bout_spans(steps) -> list[tuple[float, float]]:
+    """The ``(start_s, end_s)`` of each walking bout of ``steps`` (:func:`pdrlearn.track.bouts.bout_ranges`, the
+    default rule): its first step's start to its last step's end."""
+    from pdrlearn.track.bouts import bout_ranges
+
+    if steps is None or not len(steps):
+        return []
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    s, e = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
+    return [(float(s[a]), float(np.nanmax(e[a:b]))) for a, b in bout_ranges(st)]
+
+
+def unreliable_mask(rows: list[dict] | None, steps) -> np.ndarray:
+    """Decision W396: for each freeze episode ``rows`` (freezes.csv's), whether the episodes together leave less than
+    two of the index's windows (2 x :data:`pdrlearn.kernels.freeze.FI_WINDOW_S`, Baechlin et al. 2010's 4 s) of a
+    walking bout of ``steps`` it overlaps uncovered: the index saw no walking around the "freeze", so it reads the
+    walking itself (slow or shuffling gait, W215)."""
+    rows = rows or []
+    eps = [(float(r["start_s"]), float(r["end_s"])) for r in rows]
+    out = np.zeros(len(rows), dtype=bool)
+    for s, e in bout_spans(steps):
+        if e <= s:
+            continue
+        grid = np.linspace(s, e, max(2, int(np.ceil((e - s) / 0.05)) + 1))  # 50 ms: the union's measure
+        covered = inside_episodes(grid, eps)
+        if (1.0 - covered.mean()) * (e - s) < 2.0 * FI_WINDOW_S:
+            out |= np.array([min(b, e) > max(a, s) for a, b in eps], dtype=bool)
+    return out
+
+
+def unreliable_message(rows: list[dict], vetoed: bool) -> str:
+    """Decision W396: the line naming the unreliable freeze episodes (:func:`unreliable_mask`)."""
+    spans = ", ".join(f"{r['start_s']:.1f}-{r['end_s']:.1f} s" for r in rows)
+    veto = "; freeze_veto (W214) left their contacts in" if vetoed else ""
+    return (f"{len(rows)} freeze episode(s) ({spans}) leave under {2 * FI_WINDOW_S:g} s of their walking bout "
+            "uncovered: unreliable, read as slow or shuffling walking rather than freezing (freezes.csv still lists "
+            "them; decision W396)" + veto)
+
+
+def freeze_hint(rows: list[dict] | None, steps) -> str | None:
+    """Decision W395: with the freeze index off, the one line saying that counted steps lie in episodes of 3-8 Hz
+    power (W213's, those :func:`unreliable_mask` does not flag); None when none does. The steps are unchanged."""
+    if not rows or steps is None or not len(steps):
+        return None
+    ok = [r for r, bad in zip(rows, unreliable_mask(rows, steps), strict=True) if not bad]
+    ev = steps["event_s"].to_numpy(float) if "event_s" in steps else steps["start_s"].to_numpy(float)
+    inside = inside_episodes(ev, [(r["start_s"], r["end_s"]) for r in ok])
+    if not inside.any():
+        return None
+    seconds = sum(r["duration_s"] for r in ok if inside_episodes(ev, [(r["start_s"], r["end_s"])]).any())
+    return (f"{int(inside.sum())} counted step(s) lie in {seconds:.1f} s of 3-8 Hz trembling power (the lower back's "
+            "freeze index over 3, decision W213): freezing, a turn on the spot or shuffling is counted as steps and "
+            "walking there; run with --freeze-index for freezes.csv (the option freeze_veto drops them; decision "
+            "W395)")
+
+
+def add_freeze_columns(bouts: pd.DataFrame, steps: pd.DataFrame, rows: list[dict] | None) -> pd.DataFrame:
+    """Decision W397: when the freeze index ran (``rows``, freezes.csv's episodes, not None), bouts.csv's
+    ``freeze_time_s`` (the seconds of the episodes inside each bout, ``start_s`` to ``end_s``) and, in place,
+    steps.csv's ``in_freeze`` (the step's contact, ``event_s`` else ``start_s``, lies inside an episode); nothing
+    when the index did not run (not measured). Returns ``bouts``."""
+    if rows is None:
+        return bouts
+    eps = [(float(r["start_s"]), float(r["end_s"])) for r in rows]
+    if len(steps):
+        t = steps["event_s"].to_numpy(float) if "event_s" in steps else steps["start_s"].to_numpy(float)
+        t = np.where(np.isfinite(t), t, steps["start_s"].to_numpy(float))
+        steps["in_freeze"] = inside_episodes(t, eps)
+    if len(bouts):
+        a, b = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
+        bouts["freeze_time_s"] = [round(sum(max(0.0, min(e, y) - max(s, x)) for s, e in eps), 3)
+                                  for x, y in zip(a, b, strict=True)]
+    return bouts

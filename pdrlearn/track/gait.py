@@ -857,13 +857,21 @@ def _unreliable(summary: dict, info: dict, slow: bool) -> str:
         # decision W227: the walker calibrated on walks at this cadence (W211's range +-10 % covers it)
         return ("the distance and speed are calibrated at this gait (this walk's cadence lies inside the lower-back "
                 "calibration walks' cadence range +-10 %, decisions W211, W227), but the terrain / direction / "
-                "length classes and the floors are not validated at this speed")
+                "length classes and the floors are not validated at this speed" + _SLOW_COUNT_CALIBRATED)
     text = "the distance, the terrain / direction / length classes and the floors are not reliable"
     if slow and str(summary.get("pipeline") or info.get("pipeline") or "").startswith("waist"):
         # decision L351: slow lower-back contacts are missed now and then; a miss leaves a gap read as a pause
         text += (", nor are the lower back's walking bouts and pauses (a contact missed at a slow cadence reads as a "
-                 "pause and splits a bout; decision L351)")
+                 "pause and splits a bout; decision L351)" + _SLOW_COUNT)
     return text
+
+
+#: decision W399: what L95's slow lower-back line adds about the step count (T6: simulated 63 steps/min walks read
+#: 55-63 steps for 51 true contacts, stride_length_m 0.54 m for 0.60 m)
+_SLOW_COUNT = ("; n_steps, the cadence and bouts.csv's stride_length_m are not validated either (extra or missed "
+               "contacts at a slow cadence change the count, and a stride's length is its two steps; W399)")
+_SLOW_COUNT_CALIBRATED = ("; the calibration corrects the distance, not the step count: n_steps, the cadence and "
+                          "bouts.csv's stride_length_m are not validated at this speed, W399)")
 
 
 def bout_range_flags(table, leg_m: float | None) -> np.ndarray:

@@ -40,7 +40,14 @@ from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
-from pdrlearn.track.freezes import freeze_caveat_message, lower_back_freezes
+from pdrlearn.track.freezes import (
+    freeze_caveat_message,
+    freeze_hint,
+    lower_back_freezes,
+    session_freezes,
+    unreliable_mask,
+    unreliable_message,
+)
 from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
@@ -1051,15 +1058,24 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
         n_unvaulted = steps.attrs["n_unvaulted"]
     freezes = lower_back_freezes(session, pipeline, o)  # decisions W213, W216: freezes.csv's episodes, opt-in
+    shaky = unreliable_mask(freezes, steps)  # W396: an episode covering most of its bout is no freeze to veto
     if freezes:  # decision W215: on the lower back the index is a screening one; say what else it reads
         warnings.append(freeze_caveat_message(len(freezes), sum(r["duration_s"] for r in freezes),
-                                              bool(o["freeze_veto"]) and not realtime))
+                                              bool(o["freeze_veto"]) and not realtime and not shaky.all()))
     n_frozen = 0
+    if shaky.any():
+        warnings.append(unreliable_message([r for r, b in zip(freezes, shaky, strict=True) if b],
+                                           bool(o["freeze_veto"]) and not realtime))
     if o["freeze_veto"] and not realtime and len(steps):  # W214: a contact inside a freeze is trembling, no step
         steps = drop_contacts(steps, ~inside_episodes(steps["event_s"].to_numpy(float),
-                                                      [(r["start_s"], r["end_s"]) for r in freezes or []]),
+                                                      [(r["start_s"], r["end_s"]) for r, b
+                                                       in zip(freezes or [], shaky, strict=True) if not b]),
                               "n_frozen")
         n_frozen = steps.attrs["n_frozen"]
+    elif freezes is None and not realtime:  # W395: the index off, a one-line hint when steps lie in its episodes
+        line = freeze_hint(session_freezes(session, pipeline), steps)
+        if line:
+            warnings.append(line)
     foot_runs = foot_rest_runs(steps, with_left_out_units(session))  # W336: contacts while the foot does not walk
     warnings.extend(foot_rest_message(steps, a, b, bool(o["foot_rest_veto"])) for a, b in foot_runs)
     if foot_runs and o["foot_rest_veto"]:
@@ -1125,7 +1141,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     # decision W76: never 0 steps without a word; W312: but not on a chair test W277 read without walking (its line
     # says so), and the isolated contacts a headline counts are named
     if not steps["has_next"].to_numpy(bool).any() and not (upright_source == "still" and len(transfers)):
-        warnings.append(no_steps_message(thr, sigma, gate_source, n_contacts=len(steps)))
+        warnings.append(no_steps_message(thr, sigma, gate_source, n_contacts=len(steps)) + (
+            f"; freeze_veto (decision W214) dropped {n_frozen} contact(s) inside freeze episodes: track without it "
+            "(decision W396)" if n_frozen else ""))
     elif not steps["has_next"].to_numpy(bool).any() and len(steps):
         warnings.append(f"the {len(steps)} contact(s) counted are isolated, none followed by another within "
                         f"{MAX_STEP_S:g} s: the chair transfers' own movement, no step and no distance (decision W312)")
