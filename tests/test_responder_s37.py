@@ -37,3 +37,60 @@ def test_walking_clock_caps_stops_at_three_seconds_l471():
     np.testing.assert_allclose(np.diff(clock), [1.1, 1.1, 3.0 + 1.0, 1.1])  # 996.8 s stop -> 3 s
     short = np.array([0.0, 1.1, 4.0])  # a 1.9 s stop is walking time, untouched
     np.testing.assert_allclose(P.walking_clock(short, short + 1.0), short + 1.0)
+
+
+def _streamed_out_and_back(rest_s: float):
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    n = 13
+    start = np.concatenate([10.0 + np.arange(n) * 1.1, 10.0 + n * 1.1 + rest_s + np.arange(n) * 1.1])
+    steps = pd.DataFrame({"start_s": start, "end_s": start + 1.1, "length_m": 1.5,
+                          "heading_rad": np.repeat([0.0, np.pi], n), "gap_s": 0.0})
+    traj = pd.DataFrame({"t": np.concatenate([[10.0], steps["end_s"]]), "x": 0.0, "y": 0.0, "z": 0.0})
+    return SimpleNamespace(trajectory=traj, steps=steps, info={})
+
+
+def test_streamed_radius_does_not_grow_over_a_rest_e205():
+    """E205: the streamed heading adds only gap_yaw's last second of a rest, so the streamed regime's bias term does
+    not run over a 1500 s rest: the radius stays the 2 s rest's (trial T5: 0.89 -> 15.34 m before)."""
+    from pdrlearn.track.position_sigma import STREAMED_REST_CLOCK, add_position_sigma
+
+    assert STREAMED_REST_CLOCK is True
+    short, long_ = _streamed_out_and_back(2.0), _streamed_out_and_back(1500.0)
+    for r in (short, long_):
+        add_position_sigma(r, None, "plasys-streaming")
+    s2, s1500 = (float(r.trajectory["pos_sigma_m"].iloc[-1]) for r in (short, long_))
+    assert s1500 < 1.1 * s2, (s2, s1500)
+    held = _streamed_out_and_back(1500.0)  # a held foot-gap row next to it: L99 bridges it, the clock runs
+    held.steps.loc[13, "gap_s"] = 1500.0
+    add_position_sigma(held, None, "plasys-streaming")
+    assert float(held.trajectory["pos_sigma_m"].iloc[-1]) > 3 * s2
+
+
+def test_run_prints_the_final_position_error_as_track_does_e206(tmp_path_factory, capsys):
+    """E206: `run` of a session with a reference prints the final position error in its one line, as `track`."""
+    import json
+
+    from pdrlearn.cli import main
+    from tests.runtime_helpers import trained_dirs_and_walk
+
+    d = trained_dirs_and_walk(tmp_path_factory, "fg_run")
+    walk = d["tmp"] / "sim"  # a simulated walk (user 9325): its trajectory.csv is the reference
+    assert main(["simulate", "--route", "stand:2, straight:8, stand:2", "--user-seed", "9325", "--out", str(walk)]) == 0
+    capsys.readouterr()
+    assert main(["run", str(d["root"] / "bundle"), str(walk), "--json"]) == 0
+    err = json.loads(capsys.readouterr().out)["final_position_error_m"]
+    assert main(["run", str(d["root"] / "bundle"), str(walk)]) == 0
+    assert f"final position error {err:.2f} m horizontal" in capsys.readouterr().out
+
+
+def test_one_line_summary_says_the_end_floor_l473():
+    """L473: the floor part of track's and run's one line ends with the storey the walk ended on."""
+    from pdrlearn.track.evaluate import floors_phrase
+
+    line = floors_phrase({"floors_up": 3, "floors_down": 3, "storeys_changed": 0, "barometer_unused": False})
+    assert line == ", floors up 3 / down 3, end floor +0"
+    assert floors_phrase({"floors_up": 2, "floors_down": 0, "storeys_changed": 2}).endswith("end floor +2")
+    assert floors_phrase({"floors_up": 0, "floors_down": 0, "storeys_changed": 0}) == ""  # level, no barometer

@@ -535,8 +535,8 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
     return np.asarray(relative) + offset
 
 
-#: decision L471 (adopted by its rule; docs/decisions/localization.md): the fused heading's +-``tau_s`` window is measured
-#: on :func:`walking_clock` (a stop between strides counts L79's 3 s at most); False = L17's clock time
+#: decision L471 (adopted by its rule; docs/decisions/localization.md): the fused heading's +-``tau_s`` window is
+#: measured on :func:`walking_clock` (a stop between strides counts L79's 3 s at most); False = L17's clock time
 FUSED_WALKING_CLOCK = True
 
 
