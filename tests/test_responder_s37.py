@@ -1,5 +1,6 @@
 """Session 37, fixer FG (trial T5): first-responder indoor tracking - long standstills, end floor, speed."""
 import numpy as np
+import pytest
 
 from pdrlearn.track import plasys as P
 
@@ -94,3 +95,25 @@ def test_one_line_summary_says_the_end_floor_l473():
     assert line == ", floors up 3 / down 3, end floor +0"
     assert floors_phrase({"floors_up": 2, "floors_down": 0, "storeys_changed": 2}).endswith("end floor +2")
     assert floors_phrase({"floors_up": 0, "floors_down": 0, "storeys_changed": 0}) == ""  # level, no barometer
+
+
+def test_strides_faster_than_the_training_strides_are_flagged_l474():
+    """L474: a stride whose speed lies over 10 % outside the model's recorded training speeds gets
+    speed_out_of_range and the track one warning line; a model without a recorded range flags nothing."""
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from pdrlearn.track.speed_domain import flag_speeds, model_speed_range, training_speed_range
+
+    rng = training_speed_range(np.linspace(1.2, 1.6, 50))
+    assert rng[0] == pytest.approx(1.204, abs=1e-3) and rng[1] == pytest.approx(1.596, abs=1e-3)
+    model = SimpleNamespace(data_summary={"distance_calibration": {"speed_range_mps": rng}})
+    table = pd.DataFrame({"speed_mps": [1.4, 1.9, 1.0, np.nan, 1.7]})
+    warnings: list[str] = []
+    info = flag_speeds(table, model_speed_range(model), warnings)
+    assert table["speed_out_of_range"].tolist() == [False, True, True, False, False]
+    assert info["n_out"] == 2 and info["n_strides"] == 4
+    assert len(warnings) == 1 and "speed of use" in warnings[0] and "L474" in warnings[0]
+    assert model_speed_range(SimpleNamespace(data_summary={})) is None
+    assert flag_speeds(pd.DataFrame({"speed_mps": [3.0]}), None, warnings) is None
