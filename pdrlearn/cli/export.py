@@ -647,6 +647,7 @@ def run(
             typer.echo(f"{source}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                        + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
                        f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
+                       + _track.position_error_phrase(summary)  # decision E206: as track's line
                        # L64: the storeys climbed and descended, when the track changed floors
                        + floors_phrase(summary)
                        + (f" -> {out}" if out else ""))
@@ -886,6 +887,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     typer.echo(f"{summary['source']}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
                f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
+               + _track.position_error_phrase(summary)  # decision E206: as track's line
                + floors_phrase(summary)  # decisions L64, E106: the storeys the barometer climbed, as track's line
                + (f" -> {out}" if out else ""))
 

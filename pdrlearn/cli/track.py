@@ -1090,6 +1090,13 @@ def distance_error_phrase(summary: dict) -> str:
             "L419)")
 
 
+def position_error_phrase(summary: dict) -> str:
+    """The one-line summaries' final position error (``track``; ``run`` too since decision E206): ", final position
+    error E m horizontal" when the session has a reference, else ""."""
+    err = summary.get("final_position_error_m")
+    return f", final position error {err:.2f} m horizontal" if err is not None else ""
+
+
 def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False) -> None:
     name = summary["session"]
     if summary.get("window_start_s") is not None:  # decision L105
@@ -1103,8 +1110,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                + (f"; inside the reference bouts {summary['bout_distance_m']:.2f} m vs "
                   f"{summary['bout_reference_m']:.2f} m" if bouts else "")
                + distance_error_phrase(summary)
-               + (f", final position error {summary['final_position_error_m']:.2f} m horizontal"
-                  if "final_position_error_m" in summary else "")
+               + position_error_phrase(summary)
                # L52: the altitude change, with its reference when the session has one
                + (f", altitude change {summary['altitude_change_m']:+.2f} m" if "altitude_change_m" in summary else "")
                + (f" (reference {summary['altitude_change_ref_m']:+.2f} m)" if "altitude_change_ref_m" in summary

@@ -155,7 +155,7 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
     from pdrlearn.io.resample import recorded_rate
     from pdrlearn.track.evaluate import match_by_overlap
 
-    raw_all, ref_all, used, skipped, rates = [], [], [], [], []
+    raw_all, ref_all, used, skipped, rates, speeds = [], [], [], [], [], []
     for s in sessions:
         lab = s.steps
         if lab is None or "length_m" not in lab or not s.has("fAccelerometer", "fGyroscope"):
@@ -168,6 +168,8 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
             skipped.append(f"{s.name}: {exc}")
             continue
         lab = lab.reset_index(drop=True)
+        if "speed_mps" in res.steps:  # decision L474: every tracked stride's speed, for the model's speed range
+            speeds.append(pd.to_numeric(res.steps["speed_mps"], errors="coerce").to_numpy(float))
         pairs = match_by_overlap(res.steps, lab, min_iou=0.5)
         if not pairs:
             skipped.append(f"{s.name}: no tracked stride matches a label")
@@ -190,6 +192,9 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
                    f"{' / '.join(f'{r:g}' for r in sorted({round(r, 3) for r in rec}))} Hz")
         rate_hz = None
     out.update(rate_hz=rate_hz, sessions_used=used, sessions_skipped=skipped)
+    from pdrlearn.track.speed_domain import training_speed_range
+
+    out["speed_range_mps"] = training_speed_range(np.concatenate(speeds) if speeds else [])  # decision L474
     return out
 
 

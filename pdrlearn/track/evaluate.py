@@ -453,7 +453,8 @@ def _climb_dz(steps: pd.DataFrame):
 
 def floors_phrase(summary: dict) -> str:
     """The one-line summaries' floor part (``track`` and ``run``, decisions L64, L127): ", floors up U / down D"
-    when the track changed floors, and once whether a barometer file lay unused (``barometer_unused``)."""
+    when the track changed floors, and once whether a barometer file lay unused (``barometer_unused``); then (decision
+    L473) the storey the walk ended on, ``storeys_changed`` from the start: ", end floor +N"."""
     if not (summary.get("floors_up") or summary.get("floors_down") or summary.get("barometer_unused")):
         return ""
     part = f", floors up {summary.get('floors_up', 0)} / down {summary.get('floors_down', 0)}"
@@ -461,6 +462,8 @@ def floors_phrase(summary: dict) -> str:
         part += (f" (foot altitude, storeys of {summary.get('storey_height_m', STOREY_HEIGHT_M):g} m; "
                  + ("wBarometer.csv read for rides only, L378)" if summary.get("n_rides") is not None
                     else "wBarometer.csv not used)"))
+    if summary.get("storeys_changed") is not None:  # decision L473: the net storey, a responder's key number
+        part += f", end floor {int(summary['storeys_changed']):+d}"
     return part
 
 

@@ -535,6 +535,26 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
     return np.asarray(relative) + offset
 
 
+#: decision L471 (adopted by its rule; docs/decisions/localization.md): the fused heading's +-``tau_s`` window is
+#: measured on :func:`walking_clock` (a stop between strides counts L79's 3 s at most); False = L17's clock time
+FUSED_WALKING_CLOCK = True
+
+
+def walking_clock(start_s: np.ndarray, end_s: np.ndarray, *, max_stop_s: float | None = None) -> np.ndarray:
+    """Decision L471: the strides' end times ``end_s`` (s, sorted) with every interval from one stride's end to the
+    next one's start that is longer than ``max_stop_s`` (None = L79's 3 s, ``kernels.contact.MAX_STRIDE_S``)
+    shortened to ``max_stop_s``: the time in which the foot's relative heading can drift (at rest its ZUPT/ZARU
+    holds it), so L17's window does not split a walk at a long rest."""
+    from pdrlearn.kernels.contact import MAX_STRIDE_S
+
+    cap = MAX_STRIDE_S if max_stop_s is None else float(max_stop_s)
+    start_s, end_s = np.asarray(start_s, float), np.asarray(end_s, float)
+    if len(end_s) < 2:
+        return end_s.copy()
+    excess = np.clip(start_s[1:] - end_s[:-1] - cap, 0.0, None)
+    return end_s - np.concatenate([[0.0], np.cumsum(excess)])
+
+
 def fuse_with_drift(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *,
                     min_span_s: float | None = None) -> np.ndarray:
     """Decision L266: ``relative`` (a gyroscope heading whose rate bias was not removed: its error grows with time)
@@ -1328,7 +1348,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                 f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
         elif hsrc == "fused":
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
-                                   strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s)
+                                   strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
+                                   walking=FUSED_WALKING_CLOCK)  # decision L471
         head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
         head = fd.foot_heading(initial_heading) + lateral
@@ -1388,6 +1409,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             tc = np.where(np.isfinite(tf), tf, tc)
     add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
                      turn_valid=~in_gap)  # L109: a stride moved 0 m by the guard keeps its measured turn
+    if domain is not None and cfg["rules"]:  # decision L474: strides faster / slower than the training strides
+        from pdrlearn.track.speed_domain import flag_speeds, model_speed_range
+
+        speed_info = flag_speeds(table, model_speed_range(model), warnings)
+        if speed_info is not None and isinstance(domain, dict):
+            domain["speed"] = speed_info
     if cfg["rules"] and use_bounds is not None and classified_length is not None and "length" not in untrained \
             and not (isinstance(model, str) and model == "oracle"):  # decision C89: the classes on turning strides
         from pdrlearn.track.turn_classes import turning_length_disagreement, turning_length_line
@@ -1489,27 +1516,30 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
 
 def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
-                    foot_gaps: dict, *, tau_s: float = 60.0, drift: bool = False) -> np.ndarray:
+                    foot_gaps: dict, *, tau_s: float = 60.0, drift: bool = False,
+                    walking: bool = False) -> np.ndarray:
     """Decision L90: :func:`fuse_heading` on each stretch of strides between two foot-IMU gaps (``fAccelerometer``
     / ``fGyroscope``, over 1 s) on its own: the foot's relative heading loses its link at such a gap (the turn
     inside it was not measured), so each stretch gets its own offset to the waist heading, from its own strides -
     the strides before a gap do not depend on anything after it, and after it the waist heading re-anchors the
     foot's. A stride belongs to the stretch after every gap that ended by its start. Without such a gap: one
     :func:`fuse_heading` call, as before. ``drift``: each stretch's offset is :func:`fuse_with_drift`'s line
-    (decision L266) instead of :func:`fuse_heading`'s window."""
+    (decision L266) instead of :func:`fuse_heading`'s window. ``walking``: the window runs on
+    :func:`walking_clock` (decision L471), so a long rest inside a stretch does not split it."""
     def one(r, a, t):
         if not drift:
-            return fuse_heading(r, a, t, tau_s=tau_s)
+            return fuse_heading(r, a, t, tau_s=tau_s)  # decision L17 (L471: ``t`` the walking clock)
         return fuse_with_drift(r, a, t, min_span_s=FALLBACK_DRIFT_MIN_S if COMPASS_SPAN_GATES else None)  # L280
 
+    clock = walking_clock(start_s, end_s) if walking and not drift else np.asarray(end_s, float)  # decision L471
     ends = sorted(b for k, g in foot_gaps.items() if k in FOOT_IMU for _, b in g)
     if not ends or not len(relative):
-        return one(relative, absolute, end_s)
+        return one(relative, absolute, clock)
     seg = np.searchsorted(np.asarray(ends), np.asarray(start_s, float), side="right")
     out = np.empty(len(relative))
     for k in np.unique(seg):
         m = seg == k
-        out[m] = one(np.asarray(relative)[m], np.asarray(absolute)[m], np.asarray(end_s)[m])
+        out[m] = one(np.asarray(relative)[m], np.asarray(absolute)[m], clock[m])
     return out
 
 

@@ -117,6 +117,24 @@ def held_gap_variance(steps) -> np.ndarray | None:
     return np.where(held, 0.5 * (v * gap) ** 2, 0.0)
 
 
+#: decision E205 (adopted by its rule; docs/decisions/export.md): the streamed regimes' bias clock skips the rests
+#: longer than L296's minute that the streamed heading does not integrate (L31's gap yaw looks back 1 s); False = clock
+STREAMED_REST_CLOCK = True
+STREAMED_REGIMES = ("plasys-streaming", "plasys-foot-streaming")
+
+
+def streamed_rests(steps, min_s: float) -> list[tuple[float, float]]:
+    """Decision E205: the (end, start) spans between two consecutive strides of a streamed track longer than
+    ``min_s`` (s), without those next to a held foot-gap row (``gap_s`` > 0, whose turn L99 bridges by the waist's
+    whole turn): over them the streamed heading adds only :func:`~pdrlearn.kernels.stride.gap_yaw`'s last second."""
+    if not len(steps) or not {"start_s", "end_s"} <= set(steps):
+        return []
+    start, end = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    held = steps["gap_s"].fillna(0.0).to_numpy(float) > 0 if "gap_s" in steps else np.zeros(len(steps), bool)
+    keep = (start[1:] - end[:-1] > min_s) & ~held[1:] & ~held[:-1]
+    return [(float(a), float(b)) for a, b in zip(end[:-1][keep], start[1:][keep], strict=True)]
+
+
 def sigma_regime(info: dict, session) -> str:
     """The :data:`SIGMA_PARAMS` key for a track of ``session`` with ``info`` (its pipeline, heading source,
     streaming)."""
@@ -264,6 +282,10 @@ def add_position_sigma(result, session, regime: str | None = None) -> None:
         from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
 
         rest_s = REST_BIAS_MIN_S  # decision L297: L296's rests turn the heading by their moving samples only
+    elif regime in STREAMED_REGIMES and STREAMED_REST_CLOCK:  # decision E205: rests the streamed heading skips
+        from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
+
+        rest_s, rests = REST_BIAS_MIN_S, streamed_rests(result.steps, REST_BIAS_MIN_S)
     bounded: dict = {}
     traj["pos_sigma_m"] = sigma_per_row(result.steps, traj["t"].to_numpy(float), params, rest_s, rests, bounded)
     # decision L333: whether the end's radius is the distance bound (the model's own was wider)
