@@ -125,6 +125,20 @@ def _heuristic_module():
     return heuristic
 
 
+def _call_factory(factory: Callable, method: str, task: str, unit: str, seed: int, kw: Mapping[str, object]):
+    """Decision C122: a plug-in factory called with its ``--param`` keywords; a ``**kwargs`` factory that refuses
+    one (a TypeError or ValueError while the keywords are given) is one line naming the ``--param``s (review R4)."""
+    try:
+        return factory(task, unit, seed=seed, **kw)
+    except (TypeError, ValueError) as e:
+        if not kw:
+            raise
+        given = " ".join(f"--param {method}.{k}" for k in kw)
+        raise DataError(f"classifier method '{method}': its factory refused {given}: {type(e).__name__}: "
+                        f"{str(e).splitlines()[0] if str(e) else ''}; drop or correct the --param (decision C122)"
+                        ) from None
+
+
 def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights: Sequence[float] | None = None,
                    params: Mapping[str, Mapping[str, object]] | None = None):
     """A fresh estimator on step-window arrays for ``task`` x ``method`` x ``unit``.
@@ -164,7 +178,7 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
             factory = METHODS[method]
         except KeyError:
             raise METHODS.unknown(method) from None
-        est = factory(task, unit, seed=seed, **params.get(method, {}))  # decision C122: its --param keywords
+        est = _call_factory(factory, method, task, unit, seed, params.get(method, {}))
         if not (hasattr(est, "fit") and hasattr(est, "predict_proba")):
             raise DataError(f"classifier method '{method}': {_no_proba_line(est)}")
         return est
@@ -1465,6 +1479,9 @@ def train_user(
     own_methods = check_task_methods(task_methods, tasks)  # decisions C74, C78
     params = check_params(params, [*methods, *(m for t in tasks for m in own_methods.get(t, ()))],  # decision C96
                           plugin_factories())  # decision C122
+    for m, kw in params.items():  # decision C122 (review R4): a factory refusing a --param fails here, in one line,
+        if kw and m in plugin_factories():  # not later as one skipped model per unit
+            _call_factory(plugin_factories()[m], m, tasks[0], "foot", seed, kw)
 
     def voted_of(ms):  # decision C23's soft votes of a method list (None: units named, every soft vote)
         return None if named_units else [m for m in ms if m not in COMBINED_METHODS]
