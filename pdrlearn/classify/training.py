@@ -257,6 +257,15 @@ def plugin_factories() -> dict:
     return {m: METHODS[m] for m in METHODS if m not in METHODS.builtin}
 
 
+def plugin_records(methods) -> dict[str, dict]:
+    """Decision C121 (amended): ``{method: {"module", "path", "sha256"}}`` of the plug-in methods among
+    ``methods`` (the model's manifest says which code trained it)."""
+    from pdrlearn.plugin_modules import module_record
+
+    factories = plugin_factories()
+    return {m: module_record(factories[m]) for m in dict.fromkeys(methods) if m in factories}
+
+
 #: plug-in methods registered with ``combined=True`` (decision C123): name -> the factory registered so
 COMBINED_PLUGINS: dict[str, Callable] = {}
 
@@ -1622,6 +1631,9 @@ def train_user(
             "methods": list(methods),
             **({"task_methods": own_methods} if own_methods else {}),  # decision C74
             "params": stored(params),  # decision C96: the hyperparameters given (--param), {} = the defaults
+            # decision C121 (amended, review R4): each trained plug-in method's module, file and sha256
+            **({"plugins": plugins} if (plugins := plugin_records([*methods, *(
+                m for ms in own_methods.values() for m in ms)])) else {}),
             "units": list(units),
             "length_units": length_units,  # the length task's own units, None = "units" (decision C38)
             # methods whose unit fused model was trained (soft vote; heuristic fusion); None = every method (C23)
