@@ -164,3 +164,23 @@ def test_root_plugin_before_the_command_and_bad_plugin_files_are_one_line(tmp_pa
     assert main(["track", str(tmp_path), "--plugin", str(tmp_path / "fi_sysexit.py")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "SystemExit(3)" in err[0], err
+
+
+def test_evaluate_a_plugin_with_fit_and_predict_proba_only(tmp_path):
+    """Review R4 finding 5: docs/extending.md asks a plug-in for fit and predict_proba only, but evaluate called
+    predict (`AttributeError: This 'Pipeline' has no attribute 'predict'`)."""
+    from pdrlearn.classify import evaluate_model, train_user
+    from pdrlearn.plugin_modules import load_plugin
+
+    name = "fi_c121_noproba"
+    load_plugin(str(_own_plugin(tmp_path, name, predict="")))
+    try:
+        model = train_user([synthetic_session(60, seed=0)], tasks=["terrain"], methods=[name], units=["foot"],
+                           cv=2, distance_calibration=False)
+        est = model.tasks["terrain"].models[name]["foot"]
+        assert not hasattr(est, "predict")
+        res = evaluate_model(model, [synthetic_session(60, seed=1)], latency=True)
+        got = res["tasks"]["terrain"]["methods"][name]["units"]["foot"]
+        assert 0 <= got["accuracy"] <= 1 and got["latency_ms"] > 0
+    finally:
+        _forget(name)

@@ -39,8 +39,17 @@ ROW_ORDER = [
 ]
 
 
+def predict_classes(est, X: np.ndarray) -> np.ndarray:
+    """The classes (as text) ``est`` gives ``X``: its ``predict``, or for a plug-in that has only ``fit`` and
+    ``predict_proba`` (the documented contract, docs/extending.md) the class of the largest probability
+    (``classes_[argmax]``; decision C134)."""
+    if hasattr(est, "predict"):
+        return np.asarray(est.predict(X)).astype(str)
+    return np.asarray(est.classes_)[np.argmax(est.predict_proba(X), axis=1)].astype(str)
+
+
 def step_latency_ms(est, X: np.ndarray, *, n: int = 20, repeat: int = 3) -> float:
-    """Median wall time (ms) of ``est.predict`` on one step (features + classification), over up to ``n``
+    """Median wall time (ms) of :func:`predict_classes` on one step (features + classification), over up to ``n``
     steps, best of ``repeat`` calls each."""
     times = []
     for i in range(min(n, len(X))):
@@ -48,7 +57,7 @@ def step_latency_ms(est, X: np.ndarray, *, n: int = 20, repeat: int = 3) -> floa
         best = np.inf
         for _ in range(repeat):
             t0 = time.perf_counter()
-            est.predict(one)
+            predict_classes(est, one)
             best = min(best, time.perf_counter() - t0)
         times.append(best)
     return float(np.median(times) * 1e3) if times else float("nan")
@@ -172,7 +181,7 @@ def evaluate_model(
                     if len(ok) == 0:
                         ok = rows  # the session lacks the unit: the model names the sensor it needs
                     try:
-                        got[i] = (ok, np.asarray(est.predict(data.X[ok])).astype(str))
+                        got[i] = (ok, predict_classes(est, data.X[ok]))
                     except MissingSensorError as exc:
                         res["skipped"].append(f"{method}/{unit} on {windows[i].session}: {exc}")
                 if not got:
