@@ -436,9 +436,10 @@ def training_data(sessions, task: str, *, unit: str | None = None, n_samples: in
         raise DataError(f"training_data: task {task!r}; choose one of {', '.join(TASKS)}")
     if unit is not None and unit not in UNITS:
         raise DataError(f"training_data: unit {unit!r}; choose one of {', '.join(UNITS)} (or None: every step)")
+    sessions = session_list(sessions)
     if not sessions:
         raise DataError("training_data: no sessions given; pass at least one labelled session")
-    sessions = one_rate(sessions, session_rates(sessions), resample_hz)  # decision C56, as train
+    sessions = one_rate(sessions, session_rates(sessions), resample_hz, "training_data")  # decision C56, as train
     data = task_data(session_windows(sessions, n_samples=n_samples, boundaries=boundaries), task, sessions)
     if data is None:
         raise DataError(_no_labels_message(task, sessions))
@@ -1363,7 +1364,16 @@ def mixed_rates(recorded: dict[str, dict[str, float]]) -> dict[str, dict[float, 
     return out
 
 
-def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float | None) -> list:
+def session_list(sessions) -> list:
+    """One :class:`pdrlearn.io.Session` as a list of one (``training_data(session)``, ``train_user(session)``; review
+    R4: a TypeError before), else the sessions as a list."""
+    from pdrlearn.io import Session
+
+    return [sessions] if isinstance(sessions, Session) else list(sessions or [])
+
+
+def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float | None,
+             who: str = "train") -> list:
     """Decision C56: the sessions at one rate per sensor. ``resample_hz``: every stream resampled to it (one
     warning naming the recorded rates when they differ); None: sessions at different rates are a one-line
     :class:`DataError` (B197) naming the rates, the sessions and ``--resample HZ`` (a model holds one rate per
@@ -1374,9 +1384,10 @@ def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float
             name, groups = next(iter(mixed.items()))
             said = "; ".join(f"{r:g} Hz: {w[0]}{f' and {len(w) - 1} more' if len(w) > 1 else ''}"
                              for r, w in groups.items())
-            raise DataError(f"train: the sessions were recorded at different rates ({name} {said}); a model is "
-                            f"trained at one rate: pass --resample HZ (e.g. --resample {max(groups):g}) to resample "
-                            "every session to it, or train the rates apart")
+            raise DataError(f"{who}: the sessions were recorded at different rates ({name} {said}); a model is "
+                            f"trained at one rate: pass --resample HZ (e.g. --resample {max(groups):g}; from the "
+                            f"API resample_hz={max(groups):g}) to resample every session to it, or train the rates "
+                            "apart")
         return list(sessions)
     check_resample_hz(resample_hz)
     from pdrlearn.io.resample import resample_session
@@ -1476,6 +1487,7 @@ def train_user(
     import pdrlearn
     from pdrlearn.buildinfo import created_utc
 
+    sessions = session_list(sessions)
     if not sessions:
         raise DataError("train: no sessions given; pass at least one labelled session folder")
     user = check_user(user)  # decision B339
