@@ -37,8 +37,7 @@ def plugin_file(tmp_path):
     f.parent.mkdir()
     f.write_text(PLUGIN.format(name=name))
     yield name, f
-    METHODS.pop(name, None)
-    sys.modules.pop(name, None)
+    _forget(name)
 
 
 def test_plugin_option_trains_and_evaluates_a_method_from_a_py_file(plugin_file, tmp_path, capsys):
