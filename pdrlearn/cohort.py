@@ -240,13 +240,18 @@ def single_threaded(preload: Sequence[str] = ()) -> Iterator[None]:
 
 
 def _guarded(fn: Callable, name: str, arg, threads: int | None = 1,
-             preload: Sequence[str] = ()) -> JobResult:
+             preload: Sequence[str] = (), plugins: Sequence[str] = ()) -> JobResult:
     t0, c0 = time.perf_counter(), time.process_time()
 
     def done(**kw) -> JobResult:
         return JobResult(name, seconds=time.perf_counter() - t0, cpu_seconds=time.process_time() - c0, **kw)
 
     try:
+        if plugins:  # decision C121 (amended, review R4): a Dask worker imports the --plugin modules first
+            from pdrlearn.plugin_modules import load_plugin
+
+            for p in plugins:
+                load_plugin(p)
         if threads == 1:
             with single_threaded(preload):
                 value = fn(arg)
@@ -357,6 +362,10 @@ def run_cohort(
         return out
     from distributed import Client, as_completed
 
+    from pdrlearn.plugin_modules import loaded_plugins
+
+    plugins = loaded_plugins()  # decision C121: the workers import what this process's --plugin imported
+
     if not log.isEnabledFor(logging.INFO):  # keep Dask's start/stop chatter out of the user's terminal
         logging.getLogger("distributed").setLevel(logging.ERROR)
     import dask
@@ -377,7 +386,7 @@ def run_cohort(
         futures = {}
         for rank, i in enumerate(order):  # higher Dask priority runs first
             name, arg = items[i]
-            fut = client.submit(_guarded, fn, name, arg, threads, preload, key=f"user-{i}-{name}",
+            fut = client.submit(_guarded, fn, name, arg, threads, preload, plugins, key=f"user-{i}-{name}",
                                 pure=False, priority=len(order) - rank)
             futures[fut] = i
         out: list[JobResult | None] = [None] * len(items)

@@ -17,10 +17,33 @@ PLUGIN_HINT = ("a plug-in: register it in a module given with --plugin MODULE (o
                "that declares it as an entry point (docs/extending.md)")
 
 
+#: the ``--plugin`` values loaded in this process (files as absolute paths), in order:
+#: :func:`pdrlearn.cohort.run_cohort` loads them again in its Dask workers (decision C121 as amended by review R4)
+LOADED: list[str] = []
+
+
+def loaded_plugins() -> tuple[str, ...]:
+    """The ``--plugin`` modules this process loaded (files as absolute paths), for worker processes."""
+    return tuple(LOADED)
+
+
+def _shadows(name: str, path: Path) -> bool:
+    """True when module ``name`` is already imported or importable from another file (``j/json.py`` would replace
+    the standard library's json for every later import, review R4)."""
+    if name in sys.modules or name in getattr(sys, "stdlib_module_names", ()):
+        return True
+    try:
+        spec = importlib.util.find_spec(name)
+    except (ImportError, ValueError):
+        return False
+    return spec is not None and (spec.origin is None or Path(spec.origin).resolve() != path)
+
+
 def load_plugin(value: str):
     """Import ``value``: a ``.py`` file path (loaded as the module of its file name, so a model that pickles its
     estimators finds it again under that name) or a module name (the current folder searched first, as ``python
-    -m``). A module that is missing or fails to import is one :class:`DataError` line."""
+    -m``). A module that is missing or fails to import (an exception or ``sys.exit``), or a file named like another
+    module (``json.py``), is one :class:`DataError` line."""
     value = str(value).strip()
     if not value:
         raise DataError("--plugin: empty; give a module name (myplugins) or a .py file (plug/myclf.py)")
@@ -29,10 +52,14 @@ def load_plugin(value: str):
         if value.endswith(".py") or os.sep in value:
             if not path.is_file():
                 raise DataError(f"--plugin {value}: no such file; give a .py file or an importable module name")
-            name = path.stem
-            if name in sys.modules and getattr(sys.modules[name], "__file__", None) == str(path.resolve()):
+            name, path = path.stem, path.resolve()
+            if name in sys.modules and getattr(sys.modules[name], "__file__", None) == str(path):
                 return sys.modules[name]
-            spec = importlib.util.spec_from_file_location(name, path.resolve())
+            if _shadows(name, path):
+                raise DataError(f"--plugin {value}: its module name {name!r} is already a module (the standard "
+                                "library's, an installed package's or one imported); rename the file, e.g. "
+                                f"{name}_plugin.py (decision C121)")
+            spec = importlib.util.spec_from_file_location(name, path)
             module = importlib.util.module_from_spec(spec)
             sys.modules[name] = module
             try:
@@ -40,13 +67,37 @@ def load_plugin(value: str):
             except BaseException:
                 del sys.modules[name]
                 raise
+            _remember(str(path))
             return module
         if os.getcwd() not in sys.path:
             sys.path.insert(0, os.getcwd())
-        return importlib.import_module(value)
+        module = importlib.import_module(value)
+        _remember(value)
+        return module
     except DataError:
         raise
-    except Exception as exc:  # noqa: BLE001  (any broken plug-in module: one line, never a traceback)
-        raise DataError(f"--plugin {value}: cannot import it ({type(exc).__name__}: {' '.join(str(exc).split())}); "
+    except (Exception, SystemExit) as exc:  # noqa: BLE001  (any broken plug-in module: one line, never a traceback)
+        what = f"SystemExit({exc.code!r})" if isinstance(exc, SystemExit) else type(exc).__name__
+        raise DataError(f"--plugin {value}: cannot import it ({what}: {' '.join(str(exc).split())}); "
                         "give an importable module (on PYTHONPATH or in the current folder) or a .py file that "
                         "imports") from None
+
+
+def _remember(value: str) -> None:
+    if value not in LOADED:
+        LOADED.append(value)
+
+
+def module_record(obj) -> dict[str, str | None]:
+    """Decision C121 (amended): where a plug-in came from, for a model's manifest: its module, file and the file's
+    sha256 (``None`` when it has no file)."""
+    import hashlib
+    import inspect
+
+    module = str(getattr(obj, "__module__", None))
+    try:
+        path = inspect.getsourcefile(obj)
+    except TypeError:
+        path = None
+    digest = hashlib.sha256(Path(path).read_bytes()).hexdigest() if path and Path(path).is_file() else None
+    return {"module": module, "path": path, "sha256": digest}

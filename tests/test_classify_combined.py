@@ -160,9 +160,11 @@ def test_bundle_with_a_combined_model_streams_like_predict_steps(tmp_path):
     assert fsteps and all(tr_foot.classifiers[t].unit == "foot" for t in model.tasks)
 
 
-def test_length_units_choose_the_length_task_among_soft_votes(tmp_path):
+def test_length_units_train_the_length_tasks_own_units_and_a_one_unit_vote_yields_to_its_unit(tmp_path):
     """Decision C38: ``length_units`` gives the length task its own units (every soft vote they allow, no
-    combined model, so C8 chooses among foot/waist/fused); terrain keeps the default combined model."""
+    combined model, so C8 chooses among foot/waist/fused); terrain keeps the default combined model. Here the soft
+    vote gives the foot weight 0, so C124 chooses the waist model it equals (renamed after review R4: no soft vote
+    is chosen in this fixture)."""
     s = [labelled_session(1, 8)]
     m = train_user(s, tasks=["terrain", "length"], methods=["svm"], cv=2, length_units=["foot", "waist", "fused"])
     assert set(m.tasks["length"].models["svm"]) == {"foot", "waist", "fused"}

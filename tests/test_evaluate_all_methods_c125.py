@@ -36,3 +36,30 @@ def test_all_methods_predictions_are_every_model_on_the_same_detected_strides(tm
     assert math.isclose(chosen["correct"].mean(), res["detected"]["accuracy"])
     assert rows.filter(like="p_").isna().all().all()
     assert (rows.groupby(["method", "unit"])["predicted"].apply(tuple).nunique()) > 1  # not one model copied
+
+
+def test_all_methods_rows_are_the_steps_every_model_classified_and_no_strides_is_one_line(tmp_path, capsys):
+    """Review R4: with a foot-only session the foot models wrote twice the steps of the waist and fused ones, and a
+    waist-only session (no detected strides) wrote 0 rows without a reason."""
+    model = train_user([simulate("terrain", user_seed=9360)], tasks=["terrain"], methods=["svm"],
+                       units=["foot", "waist", "fused"], cv=2, distance_calibration=False)
+    model.save(tmp_path / "m")
+    both = write_session(simulate("terrain", user_seed=9360, seed=5), tmp_path / "both")
+    foot = write_session(simulate("terrain", user_seed=9360, seed=6), tmp_path / "foot")
+    waist = write_session(simulate("terrain", user_seed=9360, seed=6), tmp_path / "waist")
+    for f in foot.glob("w*.csv"):
+        f.unlink()
+    for f in waist.glob("f*.csv"):
+        f.unlink()
+    capsys.readouterr()
+    assert main(["evaluate", str(tmp_path / "m"), str(foot), str(both), "--all-methods", "--predictions-out",
+                 str(tmp_path / "p.csv")]) == 0
+    rows = pd.read_csv(tmp_path / "p.csv")
+    per = rows.groupby(["method", "unit"])
+    assert per.ngroups == 3 and per.size().nunique() == 1  # before: 2x the rows for svm/foot
+    assert len({frozenset(zip(g["session"], g["step"], strict=True)) for _, g in per}) == 1
+    assert rows["session"].nunique() == 1  # the foot-only session's steps: not classified by svm/waist
+    assert main(["evaluate", str(tmp_path / "m"), str(waist), "--all-methods", "--predictions-out",
+                 str(tmp_path / "p2.csv")]) == 0
+    err = capsys.readouterr().err
+    assert sum("no detected strides" in line for line in err.splitlines()) == 1, err

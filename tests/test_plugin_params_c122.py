@@ -60,5 +60,50 @@ def test_builtin_names_stay_checked_and_plugins_only_when_registered():
     with pytest.raises(DataError, match="unknown name 'lrc.C'.*PLUGIN.KEY=VALUE"):
         parse_params(["lrc.C=1"])
     assert parse_params(["lrc.C=1", "lrc.max_iter=none"], plugins={"lrc": lr_c}) == {"lrc": {"C": 1, "max_iter": None}}
-    with pytest.raises(DataError, match="takes no keyword 'seed'"):
+    with pytest.raises(DataError, match="--seed sets it"):
         parse_params(["lrc.seed=3"], plugins={"lrc": lr_c})
+
+
+seen_c122 = []
+
+
+def mlp_c122(task, unit, *, seed=0, sizes=(10,), tag="x"):
+    seen_c122.append((sizes, tag))
+    return lr_c(task, unit, seed=seed)
+
+
+def lr_kw(task, unit, *, seed=0, **kw):
+    return Pipeline([("features", make_features(task, unit, "svm")),
+                     ("clf", LogisticRegression(random_state=seed, **kw))])
+
+
+def test_api_params_reach_a_plugin_factory_unchanged():
+    """Review R4: a tuple stayed a tuple and "007" stayed text only through the CLI; the API's values went through a
+    text round trip ((8, 4) -> '8,4', "007" -> 7)."""
+    register_method("mlpc122", mlp_c122)
+    try:
+        seen_c122.clear()
+        model = train_user([synthetic_session(60, seed=0)], tasks=["terrain"], methods=["mlpc122"], units=["foot"],
+                           cv=2, distance_calibration=False, params={"mlpc122": {"sizes": (8, 4), "tag": "007"}})
+        assert seen_c122 and all(v == ((8, 4), "007") for v in seen_c122)
+        assert model.settings["params"] == {"mlpc122": {"sizes": [8, 4], "tag": "007"}}
+        with pytest.raises(DataError, match="takes no keyword 'nosuch'"):
+            train_user([synthetic_session(60, seed=0)], tasks=["terrain"], methods=["mlpc122"], units=["foot"],
+                       cv=2, params={"mlpc122": {"nosuch": 1}})
+    finally:
+        del METHODS["mlpc122"]
+
+
+def test_a_kwargs_factory_refusing_a_param_is_one_line_and_seed_names_the_seed_option(tmp_path, capsys):
+    register_method("lrkw", lr_kw)
+    try:
+        s = write_session(synthetic_session(60, seed=0), tmp_path / "s")
+        assert main(["train", str(s), "--out", str(tmp_path / "m"), "--tasks", "terrain", "--units", "foot",
+                     "--cv", "2", "--methods", "lrkw", "--param", "lrkw.bogus=3"]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and "--param lrkw.bogus" in err[0] and "bogus" in err[0], err
+        assert not (tmp_path / "m").exists()
+        with pytest.raises(DataError, match="--seed sets it"):
+            parse_params(["lrkw.seed=1"], plugins={"lrkw": lr_kw})
+    finally:
+        del METHODS["lrkw"]

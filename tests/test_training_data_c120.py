@@ -43,3 +43,14 @@ def test_training_data_refuses_a_bad_task_or_unit(three_users):
         training_data(three_users, "terain")
     with pytest.raises(DataError, match="training_data: unit 'both'; choose one of foot, waist, fused, combined"):
         training_data(three_users, "terrain", unit="both")
+
+
+def test_one_session_is_accepted_and_mixed_rates_name_resample_hz():
+    """Review R4 finding 8: training_data(session) raised a TypeError; the API's mixed-rate line named only the
+    CLI's --resample."""
+    one = simulate("terrain", user_seed=9361)
+    assert len(training_data(one, "terrain").y) == len(training_data([one], "terrain").y) > 0
+    mixed = [one, simulate("terrain", user_seed=9361, seed=3, rate_hz=100.0)]  # one: 20 Hz
+    with pytest.raises(DataError, match=r"^training_data: the sessions were recorded at different rates.*"
+                                        r"resample_hz=\d"):
+        training_data(mixed, "terrain")

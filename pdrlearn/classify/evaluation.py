@@ -39,8 +39,17 @@ ROW_ORDER = [
 ]
 
 
+def predict_classes(est, X: np.ndarray) -> np.ndarray:
+    """The classes (as text) ``est`` gives ``X``: its ``predict``, or for a plug-in that has only ``fit`` and
+    ``predict_proba`` (the documented contract, docs/extending.md) the class of the largest probability
+    (``classes_[argmax]``; decision C134)."""
+    if hasattr(est, "predict"):
+        return np.asarray(est.predict(X)).astype(str)
+    return np.asarray(est.classes_)[np.argmax(est.predict_proba(X), axis=1)].astype(str)
+
+
 def step_latency_ms(est, X: np.ndarray, *, n: int = 20, repeat: int = 3) -> float:
-    """Median wall time (ms) of ``est.predict`` on one step (features + classification), over up to ``n``
+    """Median wall time (ms) of :func:`predict_classes` on one step (features + classification), over up to ``n``
     steps, best of ``repeat`` calls each."""
     times = []
     for i in range(min(n, len(X))):
@@ -48,7 +57,7 @@ def step_latency_ms(est, X: np.ndarray, *, n: int = 20, repeat: int = 3) -> floa
         best = np.inf
         for _ in range(repeat):
             t0 = time.perf_counter()
-            est.predict(one)
+            predict_classes(est, one)
             best = min(best, time.perf_counter() - t0)
         times.append(best)
     return float(np.median(times) * 1e3) if times else float("nan")
@@ -96,8 +105,9 @@ def evaluate_model(
     detected strides, as ``tasks.<t>.methods.<m>.units.<u>.detected`` (C49's figure of that model).
 
     ``all_methods`` (decision C125, ``evaluate --all-methods``): ``detected_methods``, and ``step_predictions``
-    gets every method x unit's row per labelled step matched to a detected stride (the same strides and steps for
-    every model, for paired comparisons; ``p_<class>`` empty: the detected path gives classes) instead of the
+    gets every method x unit's row per labelled step matched to a detected stride and classified by every model
+    (the same steps for every model, for paired comparisons; a session without detected strides is one warning;
+    ``p_<class>`` empty: the detected path gives classes) instead of the
     chosen model's rows on the labelled boundaries.
     """
     from pdrlearn.classify.domain import (
@@ -171,7 +181,7 @@ def evaluate_model(
                     if len(ok) == 0:
                         ok = rows  # the session lacks the unit: the model names the sensor it needs
                     try:
-                        got[i] = (ok, np.asarray(est.predict(data.X[ok])).astype(str))
+                        got[i] = (ok, predict_classes(est, data.X[ok]))
                     except MissingSensorError as exc:
                         res["skipped"].append(f"{method}/{unit} on {windows[i].session}: {exc}")
                 if not got:
@@ -271,13 +281,20 @@ def evaluate_model(
         # decision C49: what the user gets - the same model on the strides the runtime / track detect
         res["detected"] = detected_score(task, classes, data, windows, sess_rows, detected)
         if detected_methods or all_methods:  # decision C97: the same strides and matching, classified by each model
+            matched: dict[tuple[str, str], list] = {}
             for mm, per in res["methods"].items():
                 for uu, r_u in per["units"].items():
                     got: list | None = [] if all_methods and step_predictions is not None else None
                     r_u["detected"] = detected_score(task, classes, data, windows, sess_rows, detected, mm, uu,
                                                      matched=got)
-                    if got:  # decision C125: each model's classes of the same matched steps
-                        step_predictions.extend(detected_rows(tm, data, windows, got, (mm, uu)))
+                    if got is not None:
+                        matched[(mm, uu)] = got
+            if matched:  # decision C125 as amended (review R4): only the steps every model classified
+                for mu, got in common_matched(matched).items():
+                    if got:
+                        step_predictions.extend(detected_rows(tm, data, windows, got, mu))
+                for line in no_strides_lines(detected, windows, sess_rows):
+                    log.warning(line)
         line = drop_warning(task, m["accuracy"], res["detected"], model.boundaries)
         if line:
             log.warning(line)
@@ -369,6 +386,22 @@ def prediction_rows(tm, data, windows, rows: np.ndarray, pred: np.ndarray, src: 
     for j, c in enumerate(classes):
         out[f"p_{c}"] = probs[:, j]
     return out
+
+
+def common_matched(matched: dict[tuple[str, str], list]) -> dict[tuple[str, str], list]:
+    """Decision C125 (amended, review R4): each model's ``(session index, row, class)`` matches kept to the
+    labelled steps that every model classified, so ``--all-methods`` rows pair step by step."""
+    keys = [{(m[0], m[1]) for m in got} for got in matched.values()]
+    common = set.intersection(*keys) if keys else set()
+    return {mu: [m for m in got if (m[0], m[1]) in common] for mu, got in matched.items()}
+
+
+def no_strides_lines(detected, windows, sess_rows) -> list[str]:
+    """Decision C125 (amended, review R4): one line per session whose recording gives no detected strides, so
+    ``--all-methods`` has none of its steps (the stride detector needs the foot unit's gyroscope)."""
+    return [f"session '{windows[i].session}': no detected strides (the stride detector needs the foot unit's "
+            "gyroscope), so evaluate --all-methods writes none of its steps; without --all-methods the labelled "
+            "steps are written (decision C125)" for i in sess_rows if detected.strides(i) is None]
 
 
 def detected_rows(tm, data, windows, matched: list, model: tuple[str, str]) -> list:

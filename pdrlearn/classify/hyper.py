@@ -86,21 +86,30 @@ def valid_names() -> str:
     return ", ".join(f"{m}.{n}" for m, names in HYPERPARAMETERS.items() for n in names)
 
 
-def plugin_param(method: str, name: str, text: str, factory: Callable, item: str, command: str) -> object:
-    """Decision C122: ``--param METHOD.KEY=VALUE`` of a registered plug-in method: the value read as
-    :func:`pdrlearn.plugins.spec_value` (number, true/false/none, text), passed to its factory as ``KEY=VALUE``; a
-    key the factory does not take (no such keyword, no ``**kwargs``) is one line naming the keywords it takes."""
+def check_plugin_key(method: str, name: str, factory: Callable, item: str, command: str) -> None:
+    """Decision C122: a key the plug-in factory does not take (no such keyword, no ``**kwargs``) is one line naming
+    the keywords it takes; ``seed`` is refused naming ``--seed`` (``seed=`` of the API), which sets it."""
     import inspect
 
-    from pdrlearn.plugins import spec_value
-
+    if name == "seed":
+        raise DataError(f"{command}: --param {item!r}: the seed of plug-in method {method} is not a --param; "
+                        "--seed sets it (seed= in the API) (decision C122)")
     ps = inspect.signature(factory).parameters
     takes = [p.name for p in ps.values() if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)
              and p.name not in ("task", "unit", "seed")]
-    if name in ("task", "unit", "seed") or not (name in takes or any(p.kind == p.VAR_KEYWORD for p in ps.values())):
+    if name in ("task", "unit") or not (name in takes or any(p.kind == p.VAR_KEYWORD for p in ps.values())):
         raise DataError(f"{command}: --param {item!r}: the factory of plug-in method {method} takes no keyword "
                         f"{name!r} (its keywords: {', '.join(takes) or 'none'}); add it to the factory, e.g. "
                         f"def factory(task, unit, *, seed=0, {name}=...) (decision C122)")
+
+
+def plugin_param(method: str, name: str, text: str, factory: Callable, item: str, command: str) -> object:
+    """Decision C122: ``--param METHOD.KEY=VALUE`` of a registered plug-in method: the key checked
+    (:func:`check_plugin_key`), the value read as :func:`pdrlearn.plugins.spec_value` (number, true/false/none,
+    text), passed to its factory as ``KEY=VALUE``."""
+    from pdrlearn.plugins import spec_value
+
+    check_plugin_key(method, name, factory, item, command)
     return spec_value(text.strip())
 
 
@@ -170,9 +179,16 @@ def _as_text(value) -> str:
 def check_params(params: Mapping[str, Mapping[str, object]] | None,
                  methods: Iterable[str], plugins: Mapping[str, Callable] | None = None) -> dict[str, dict[str, object]]:
     """``train_user(params=...)``: the API's ``{"svm": {"C": 10}}`` checked as ``--param`` is (decision C96): known
-    names, valid values, trained methods; returns the parsed values ({} for None). ``plugins``: as
-    :func:`parse_params` (decision C122)."""
-    items = [f"{m}.{n}={_as_text(v)}" for m, names in (params or {}).items() for n, v in (names or {}).items()]
-    out = parse_params(items, plugins=plugins)
+    names, valid values, trained methods; returns the parsed values ({} for None). ``plugins``: registered plug-in
+    methods, whose keyword names are checked and whose values pass unchanged (a tuple stays a tuple, decision C122
+    as amended by review R4)."""
+    plugins = {m: f for m, f in (plugins or {}).items() if m not in HYPERPARAMETERS}
+    given = {m: dict(names or {}) for m, names in (params or {}).items()}
+    items = [f"{m}.{n}={_as_text(v)}" for m, names in given.items() if m not in plugins for n, v in names.items()]
+    out = parse_params(items)
+    for m in (m for m in given if m in plugins):  # decision C122 (review R4): the API's values reach the factory
+        for n in given[m]:                         # unchanged; only the keyword names are checked
+            check_plugin_key(m, n, plugins[m], f"{m}.{n}", "train")
+        out[m] = given[m]
     check_params_methods(out, methods)
     return out

@@ -125,6 +125,20 @@ def _heuristic_module():
     return heuristic
 
 
+def _call_factory(factory: Callable, method: str, task: str, unit: str, seed: int, kw: Mapping[str, object]):
+    """Decision C122: a plug-in factory called with its ``--param`` keywords; a ``**kwargs`` factory that refuses
+    one (a TypeError or ValueError while the keywords are given) is one line naming the ``--param``s (review R4)."""
+    try:
+        return factory(task, unit, seed=seed, **kw)
+    except (TypeError, ValueError) as e:
+        if not kw:
+            raise
+        given = " ".join(f"--param {method}.{k}" for k in kw)
+        raise DataError(f"classifier method '{method}': its factory refused {given}: {type(e).__name__}: "
+                        f"{str(e).splitlines()[0] if str(e) else ''}; drop or correct the --param (decision C122)"
+                        ) from None
+
+
 def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights: Sequence[float] | None = None,
                    params: Mapping[str, Mapping[str, object]] | None = None):
     """A fresh estimator on step-window arrays for ``task`` x ``method`` x ``unit``.
@@ -164,7 +178,7 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
             factory = METHODS[method]
         except KeyError:
             raise METHODS.unknown(method) from None
-        est = factory(task, unit, seed=seed, **params.get(method, {}))  # decision C122: its --param keywords
+        est = _call_factory(factory, method, task, unit, seed, params.get(method, {}))
         if not (hasattr(est, "fit") and hasattr(est, "predict_proba")):
             raise DataError(f"classifier method '{method}': {_no_proba_line(est)}")
         return est
@@ -241,6 +255,15 @@ for _name in BUILTIN_METHODS:
 def plugin_factories() -> dict:
     """The registered plug-in methods (not built-in): name -> factory (``--param PLUGIN.KEY=VALUE``, decision C122)."""
     return {m: METHODS[m] for m in METHODS if m not in METHODS.builtin}
+
+
+def plugin_records(methods) -> dict[str, dict]:
+    """Decision C121 (amended): ``{method: {"module", "path", "sha256"}}`` of the plug-in methods among
+    ``methods`` (the model's manifest says which code trained it)."""
+    from pdrlearn.plugin_modules import module_record
+
+    factories = plugin_factories()
+    return {m: module_record(factories[m]) for m in dict.fromkeys(methods) if m in factories}
 
 
 #: plug-in methods registered with ``combined=True`` (decision C123): name -> the factory registered so
@@ -413,9 +436,10 @@ def training_data(sessions, task: str, *, unit: str | None = None, n_samples: in
         raise DataError(f"training_data: task {task!r}; choose one of {', '.join(TASKS)}")
     if unit is not None and unit not in UNITS:
         raise DataError(f"training_data: unit {unit!r}; choose one of {', '.join(UNITS)} (or None: every step)")
+    sessions = session_list(sessions)
     if not sessions:
         raise DataError("training_data: no sessions given; pass at least one labelled session")
-    sessions = one_rate(sessions, session_rates(sessions), resample_hz)  # decision C56, as train
+    sessions = one_rate(sessions, session_rates(sessions), resample_hz, "training_data")  # decision C56, as train
     data = task_data(session_windows(sessions, n_samples=n_samples, boundaries=boundaries), task, sessions)
     if data is None:
         raise DataError(_no_labels_message(task, sessions))
@@ -1340,7 +1364,16 @@ def mixed_rates(recorded: dict[str, dict[str, float]]) -> dict[str, dict[float, 
     return out
 
 
-def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float | None) -> list:
+def session_list(sessions) -> list:
+    """One :class:`pdrlearn.io.Session` as a list of one (``training_data(session)``, ``train_user(session)``; review
+    R4: a TypeError before), else the sessions as a list."""
+    from pdrlearn.io import Session
+
+    return [sessions] if isinstance(sessions, Session) else list(sessions or [])
+
+
+def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float | None,
+             who: str = "train") -> list:
     """Decision C56: the sessions at one rate per sensor. ``resample_hz``: every stream resampled to it (one
     warning naming the recorded rates when they differ); None: sessions at different rates are a one-line
     :class:`DataError` (B197) naming the rates, the sessions and ``--resample HZ`` (a model holds one rate per
@@ -1351,9 +1384,10 @@ def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float
             name, groups = next(iter(mixed.items()))
             said = "; ".join(f"{r:g} Hz: {w[0]}{f' and {len(w) - 1} more' if len(w) > 1 else ''}"
                              for r, w in groups.items())
-            raise DataError(f"train: the sessions were recorded at different rates ({name} {said}); a model is "
-                            f"trained at one rate: pass --resample HZ (e.g. --resample {max(groups):g}) to resample "
-                            "every session to it, or train the rates apart")
+            raise DataError(f"{who}: the sessions were recorded at different rates ({name} {said}); a model is "
+                            f"trained at one rate: pass --resample HZ (e.g. --resample {max(groups):g}; from the "
+                            f"API resample_hz={max(groups):g}) to resample every session to it, or train the rates "
+                            "apart")
         return list(sessions)
     check_resample_hz(resample_hz)
     from pdrlearn.io.resample import resample_session
@@ -1453,6 +1487,7 @@ def train_user(
     import pdrlearn
     from pdrlearn.buildinfo import created_utc
 
+    sessions = session_list(sessions)
     if not sessions:
         raise DataError("train: no sessions given; pass at least one labelled session folder")
     user = check_user(user)  # decision B339
@@ -1465,6 +1500,9 @@ def train_user(
     own_methods = check_task_methods(task_methods, tasks)  # decisions C74, C78
     params = check_params(params, [*methods, *(m for t in tasks for m in own_methods.get(t, ()))],  # decision C96
                           plugin_factories())  # decision C122
+    for m, kw in params.items():  # decision C122 (review R4): a factory refusing a --param fails here, in one line,
+        if kw and m in plugin_factories():  # not later as one skipped model per unit
+            _call_factory(plugin_factories()[m], m, tasks[0], "foot", seed, kw)
 
     def voted_of(ms):  # decision C23's soft votes of a method list (None: units named, every soft vote)
         return None if named_units else [m for m in ms if m not in COMBINED_METHODS]
@@ -1605,6 +1643,9 @@ def train_user(
             "methods": list(methods),
             **({"task_methods": own_methods} if own_methods else {}),  # decision C74
             "params": stored(params),  # decision C96: the hyperparameters given (--param), {} = the defaults
+            # decision C121 (amended, review R4): each trained plug-in method's module, file and sha256
+            **({"plugins": plugins} if (plugins := plugin_records([*methods, *(
+                m for ms in own_methods.values() for m in ms)])) else {}),
             "units": list(units),
             "length_units": length_units,  # the length task's own units, None = "units" (decision C38)
             # methods whose unit fused model was trained (soft vote; heuristic fusion); None = every method (C23)

@@ -110,13 +110,30 @@ def _root(verbose: bool = typer.Option(False, "--verbose", "-v", help="Log progr
 _HOISTED_FLAGS, _HOISTED_VALUES = ("-v", "--verbose"), ("--plugin",)
 
 
+def _command_index(argv: list[str]) -> int | None:
+    """Where the command name is: the first token that is neither an option nor the value of a root option that
+    takes one (``pdrlearn --plugin x.py train ...``: train, not x.py; review R4)."""
+    k = 0
+    while k < len(argv):
+        a = argv[k]
+        if a == "--":
+            return None
+        if a in _HOISTED_VALUES:
+            k += 2
+            continue
+        if not a.startswith("-"):
+            return k
+        k += 1
+    return None
+
+
 def _hoist_verbose(argv: list[str]) -> list[str]:
     """Move ``-v``/``--verbose`` (and ``--plugin MODULE``, decision C121) given after the command name in front of
     it, where the root option is parsed (``pdrlearn track DIR --out O -v`` = ``pdrlearn -v track DIR --out O``). A
     token that is the value of a command option (``--title -v``) or follows ``--`` is left alone."""
     import typer.main
 
-    i = next((k for k, a in enumerate(argv) if not a.startswith("-")), None)
+    i = _command_index(argv)
     if i is None:
         return argv
     cmd = typer.main.get_command(app).commands.get(argv[i])

@@ -352,8 +352,9 @@ def evaluate(
     all_methods: bool = typer.Option(False, "--all-methods", help="Score every method x unit on the strides the "
                                      "runtime detects too (JSON tasks.<t>.methods.<m>.units.<u>.detected, decision "
                                      "C97), and with --predictions-out write every method x unit's class of each "
-                                     "labelled step matched to a detected stride (the same steps for every model, "
-                                     "for paired tests; p_<class> empty) instead of the chosen model's rows on the "
+                                     "labelled step matched to a detected stride and classified by "
+                                     "every model (the same steps, for paired tests; p_<class> empty) instead of "
+                                     "the chosen model's rows on the "
                                      "labelled boundaries (decision C125)."),
     resample: bool = EVAL_RESAMPLE_OPT,
     no_resample: bool = EVAL_NO_RESAMPLE_OPT,
@@ -372,7 +373,7 @@ def evaluate(
     strides the runtime detects (decision E193); a bundle refuses --report, --predictions-out, --resample,
     --no-resample, --warn-gait-range and --all-methods, which need a model directory's per-method models
     (decision E198). --all-methods scores every method x unit on the detected strides, and with
-    --predictions-out writes each model's class of the same matched steps (decision C125).
+    --predictions-out writes each model's class of the matched steps every model classified (decision C125).
 
     Examples:
 
