@@ -174,3 +174,15 @@ def test_corridor_test_says_its_duration_and_notes_a_whole_recording_l462():
     assert sum("not a 6-minute test" in x and "L462" in x for x in lines) == 1
     _, keys, lines = corridor_laps(steps, turns, 30.0, span=(0.0, 360.0))
     assert keys["walk_test_duration_s"] == pytest.approx(360.0) and not any("L462" in x for x in lines)
+
+
+def test_corridor_duration_is_a_corridor_key_in_the_no_steps_path_and_the_report_table_l462():
+    """L462 amended (review R3 finding 5): ``walk_test_duration_s`` was written only past the no-steps return and
+    was not in ``corridor.KEYS``, so a corridor run without steps omitted it and `pdrlearn report`'s walk-test table
+    (E152) showed the distance without its span."""
+    from pdrlearn.report.tests_table import WALK_TEST_COLUMNS
+    from pdrlearn.track.corridor import corridor_laps
+
+    _, keys, _ = corridor_laps(pd.DataFrame(), None, 30.0)
+    assert "walk_test_duration_s" in keys and keys["walk_test_duration_s"] is None
+    assert "walk_test_duration_s" in WALK_TEST_COLUMNS
