@@ -5,6 +5,7 @@ insoles. ``--code DIR`` tracks with the pdrlearn checkout at DIR (``PYTHONPATH``
 before (main) and after the change. Also lists the gaitmap foot recordings' stride counts (rule 3).
 
     PYTHONPATH=. python experiments/paretic_lull_70.py --code /work/main --sessions out/paretic70
+    PYTHONPATH=. python experiments/paretic_lull_70.py --code . --fresh-71   # steps 71's users 9350-9354
 """
 
 from __future__ import annotations
@@ -22,6 +23,9 @@ import pandas as pd
 USERS = [(9180, 0.30, 0.75, 0.3), (9181, 0.30, 0.85, 0.4), (9182, 0.25, 0.80, 0.5), (9183, 0.35, 0.80, 0.3),
          (9184, 0.30, 0.70, 0.4), (9185, 0.28, 0.90, 0.5), (9186, 0.35, 0.75, 0.35), (9187, 0.32, 0.85, 0.45),
          (9188, 0.27, 0.75, 0.3), (9189, 0.30, 0.65, 0.5)]
+#: steps 71's fresh users 9350-9354 (rule 3), same speeds and asymmetries
+USERS_71 = [(9350, 0.30, 0.80, 0.45), (9351, 0.27, 0.85, 0.35), (9352, 0.33, 0.70, 0.5), (9353, 0.26, 0.75, 0.4),
+            (9354, 0.34, 0.85, 0.3)]
 ROUTE = "stand:3, straight:16, stand:3"
 
 
@@ -35,10 +39,11 @@ def main() -> None:
     ap.add_argument("--code", required=True)
     ap.add_argument("--sessions", default="out/paretic70")
     ap.add_argument("--real", nargs="*", default=[])
+    ap.add_argument("--fresh-71", action="store_true", help="steps 71's fresh users 9350-9354 instead")
     a = ap.parse_args()
     root = Path(a.sessions)
     rows = []
-    for user, sl, st, asym in USERS:
+    for user, sl, st, asym in (USERS_71 if a.fresh_71 else USERS):
         for foot in ("left", "right"):
             d = root / f"s{user}_{foot}"
             if not d.exists():

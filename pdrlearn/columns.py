@@ -1042,8 +1042,8 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("step_length_scale_pct", "%", "number", "gait_summary.json walk only: the left track's length scale against "
                                              "the right's that the closing step implied, taken out (L310); empty "
                                              "without a closing step"),
-    ("si_withheld", _ID, "text", "gait_summary.json walk only: why the walk's symmetry indices and ratios are empty "
-                                 "(fewer than 10 steps on a side, L461); empty when given"),
+    ("si_withheld", _ID, "text", "why this bout's (in gait_summary.json's walk: the walk's) symmetry indices and "
+                                 "ratios are empty (fewer than 10 steps on a side, L461); empty when given"),
     ("clock_offset_s", "s", "number", "((left step - left swing) - (right step - right swing)) / 2: the left clock's "
                                       "offset the steps imply, plus half the walker's own double-support imbalance "
                                       "(L284; > 0 = the left unit's times late)"),

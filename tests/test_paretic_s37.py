@@ -57,6 +57,27 @@ def test_an_insole_that_drops_out_in_a_rest_is_still_blamed_steps_70():
     assert chk.n_bad == 2 and chk.reasons == ["no load in the foot's rest"] * 2
 
 
+def test_an_insole_dropout_over_a_short_real_foot_flat_is_still_blamed_steps_71():
+    """Steps 71 (review R3 finding 1): gaitmap MS-like foot flats of 0.04 s (73 of 75 of its real rests are under
+    0.15 s), one every 1.1 s stride inside a 0.7 s load; the insole drops out over the fourth stance. The unloaded
+    rest is as short as a lull, but the loads around it start two strides apart: it stays a rest, all 7 strides are
+    checked and the two around it blamed on the insole (steps 70 alone dropped it: 6 strides, no warning)."""
+    t = np.arange(0, 8.8, 0.01)
+    ph = t % 1.1
+    rest = (ph >= 0.30) & (ph < 0.345)
+    loaded = ph < 0.7
+    g = np.where(rest, 0.1, 3.0)
+    drop = loaded & ~((t >= 3.25) & (t < 4.1))
+    from pdrlearn.displace.foot import stance_runs
+
+    rr = stance_runs(t, rest)
+    assert len(rr) == 8 and np.all(t[rr[:, 1] - 1] - t[rr[:, 0]] <= 0.045)
+    assert len(swing_lulls_dropped(t, rr, drop)) == 8
+    assert check_force_stance(t, loaded, rest, g).n_bad == 0
+    chk = check_force_stance(t, drop, rest, g)
+    assert chk.n_strides == 7 and chk.n_bad == 2 and chk.reasons == ["no load in the foot's rest"] * 2
+
+
 def test_slow_paretic_foot_keeps_its_stride_count_steps_70(tmp_path, capsys):
     """Fresh user 9185 (0.28 m in 0.90 s, step-time asymmetry 0.5, the left foot): before steps 70 the track had 30
     strides for the labels' 29 and an L365 insole line (experiments/results/paretic_lull_70.txt)."""
@@ -71,10 +92,27 @@ def test_slow_paretic_foot_keeps_its_stride_count_steps_70(tmp_path, capsys):
 
 
 
-def test_gait_withholds_symmetry_indices_under_ten_steps_a_side_l461():
-    """Decision L461 (what `gait` / `gait-all` apply to the walk): 5 steps a side give no SI or ratio and one reason;
-    12 a side keep them."""
+@pytest.fixture(scope="module")
+def short_visit(tmp_path_factory):
+    """Fresh user 9355 (0.30 m in 0.80 s, asymmetry 0.4), both feet, 4 m: one bout of fewer than 10 steps a side."""
+    root = tmp_path_factory.mktemp("l461")
+    for foot in ("left", "right"):
+        _sim(root / "study" / "v1", 9355, 0.30, 0.80, 0.4, foot, route="stand:3, straight:4, stand:3")
+    return root
+
+
+def test_gait_withholds_symmetry_indices_under_ten_steps_a_side_l461(short_visit, capsys):
+    """Decision L461: `gait` (pair_sessions) on a 4 m walk gives the walk no SI or ratio and says why in
+    ``si_withheld`` and the warnings; the kernel: 5 steps a side give no SI or ratio, 12 a side keep them."""
     from pdrlearn.track.bilateral import bilateral_gait, withhold_indices
+
+    v = short_visit / "study" / "v1"
+    out = short_visit / "g"
+    assert main(["gait", str(v / "s9355_left"), str(v / "s9355_right"), "--out", str(out)]) == 0
+    walk = json.loads((out / "gait_summary.json").read_text())["walk"]
+    assert min(walk["n_steps_left"], walk["n_steps_right"]) < 10
+    assert walk["step_time_s_si_pct"] is None and walk["stride_time_s_ratio"] is None
+    assert "10 needed" in walk["si_withheld"]
 
     def foot(ic):
         ic = np.asarray(ic, float)
@@ -86,6 +124,21 @@ def test_gait_withholds_symmetry_indices_under_ten_steps_a_side_l461():
     assert short["n_steps_left"] == 5 and short["step_time_s_si_pct"] is None and short["step_time_s_ratio"] is None
     long = bilateral_gait(foot(np.arange(13) * 1.2), foot(0.7 + np.arange(13) * 1.2))["walk"]
     assert withhold_indices(long) is None and long["step_time_s_si_pct"] == pytest.approx(100 * 0.2 / 0.6)
+
+
+def test_gait_all_bout_rows_withhold_their_indices_under_ten_steps_a_side_l461(short_visit, capsys):
+    """Decision L461 amended (review R3 finding 2): gait-all writes no walk row, so its bouts carry the rule: a bout
+    with fewer than 10 steps a side has empty ``*_si_pct`` / ``*_ratio`` and says why in ``si_withheld`` (before,
+    gait_bouts.csv kept the SI the warning said was withheld)."""
+    assert main(["gait-all", str(short_visit / "study"), "--out", str(short_visit / "ga")]) == 0
+    bouts = pd.read_csv(short_visit / "ga" / "gait_bouts.csv")
+    pairs = pd.read_csv(short_visit / "ga" / "gait_pairs.csv")
+    assert "symmetry indices and ratios withheld" in pairs.loc[0, "warnings"]
+    few = bouts[bouts[["n_steps_left", "n_steps_right"]].min(axis=1) < 10]
+    assert len(few) >= 1
+    si = [c for c in bouts if c.endswith(("_si_pct", "_ratio"))]
+    assert len(si) >= 10 and few[si].isna().all().all()
+    assert few["si_withheld"].str.contains("10 needed on each side").all()
 
 
 def test_gait_and_gait_all_carry_each_foots_trust_lines_l461(tmp_path, capsys):
@@ -121,3 +174,15 @@ def test_corridor_test_says_its_duration_and_notes_a_whole_recording_l462():
     assert sum("not a 6-minute test" in x and "L462" in x for x in lines) == 1
     _, keys, lines = corridor_laps(steps, turns, 30.0, span=(0.0, 360.0))
     assert keys["walk_test_duration_s"] == pytest.approx(360.0) and not any("L462" in x for x in lines)
+
+
+def test_corridor_duration_is_a_corridor_key_in_the_no_steps_path_and_the_report_table_l462():
+    """L462 amended (review R3 finding 5): ``walk_test_duration_s`` was written only past the no-steps return and
+    was not in ``corridor.KEYS``, so a corridor run without steps omitted it and `pdrlearn report`'s walk-test table
+    (E152) showed the distance without its span."""
+    from pdrlearn.report.tests_table import WALK_TEST_COLUMNS
+    from pdrlearn.track.corridor import corridor_laps
+
+    _, keys, _ = corridor_laps(pd.DataFrame(), None, 30.0)
+    assert "walk_test_duration_s" in keys and keys["walk_test_duration_s"] is None
+    assert "walk_test_duration_s" in WALK_TEST_COLUMNS

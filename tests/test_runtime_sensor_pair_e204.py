@@ -59,3 +59,26 @@ def test_a_tracker_fed_by_the_pair_tracks_as_the_interpolated_arrays(walk):  # n
 def test_a_wrong_shape_is_one_line():
     with pytest.raises(DataError, match=r"SensorPair.push_gyr: expected values of shape \(2, 3\)"):
         SensorPair().push_gyr([0.0, 0.01], np.zeros((2, 2)))
+
+
+def test_a_stamp_that_goes_back_or_a_non_number_is_one_line_and_keeps_nothing():
+    """E204 amended (review R3 finding 4): a gyroscope batch pushed out of order made take() drop 11 accelerometer
+    samples the gyroscope covered (``n 0 dropped 11``); now the step back is refused with one DataError line and
+    nothing is kept, so the batches pushed in order pair every sample. A late accelerometer sample is refused the
+    same way (it was dropped and counted), and a string is a DataError (it was a bare ValueError)."""
+    tg, ta = np.arange(0.003, 0.3, 0.01), np.arange(0.0, 0.3, 0.01)
+    three = np.ones((10, 3))
+    p = SensorPair()
+    p.push_gyr(tg[10:20], three)
+    with pytest.raises(DataError, match=r"push_gyr: timestamps must not go back .* sample 0 of this push "
+                                        r"\(t=0\.003000 s\) is before the previous push's last") as e:
+        p.push_gyr(tg[0:10], three)
+    assert "\n" not in str(e.value)
+    p.push_acc(ta[11:20], three[:9])  # 0.11-0.19 s, all inside the gyroscope's 0.103-0.193 s
+    t, _, _ = p.take()
+    assert len(t) == 9 and p.n_dropped == 0
+    with pytest.raises(DataError, match=r"push_acc: .* sample 2 of this push \(t=0\.050000 s\) is before sample 1"):
+        p.push_acc(np.r_[ta[20], ta[21], ta[5]], np.ones((3, 3)))
+    with pytest.raises(DataError, match=r"push_acc: .*must be numbers"):
+        p.push_acc("a", [1, 2, 3])
+    assert p.n_dropped == 0

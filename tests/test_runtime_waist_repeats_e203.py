@@ -84,3 +84,19 @@ def test_the_rate_unit_line_names_the_unit_of_the_ratio(ratio, said):
     with pytest.raises(DataError) as e:
         check_rate_unit("wAccelerometer", 50.0 / ratio, 50.0, "fs=")
     assert str(e.value).endswith(said)
+
+
+def test_a_refused_push_with_a_dropped_repeat_changes_nothing_and_names_the_pushed_index(walk):
+    """E203 amended (review R3 finding 3): ``t[50:53], t[52], t[51], ...`` with drop_duplicate_timestamps=True: the
+    step back is sample 4 of the pushed array (it was named 3, counted after the repeat was dropped), and the refused
+    push neither counts its repeat nor adds the warning line; the corrected push then counts one repeat (was 2)."""
+    t, acc, gyr = walk["t"], walk["acc"], walk["gyr"]
+    tr = WaistTracker(walk["bundle"], drop_duplicate_timestamps=True)
+    tr.push(t[:50], acc[:50], gyr[:50])
+    bad = np.r_[t[50:53], t[52], t[51], t[53:60]]
+    with pytest.raises(DataError, match=r"sample 4 of this push \(t=0\.510000 s\) goes back from sample 3 "
+                                        r"\(t=0\.520000 s\)"):
+        tr.push(bad, acc[50:62], gyr[50:62])
+    assert tr.n_dropped_duplicates == 0 and not any("E203" in w for w in tr.warnings)
+    tr.push(np.r_[t[50:53], t[52], t[53:60]], acc[50:61], gyr[50:61])
+    assert tr.n_dropped_duplicates == 1 and sum("E203" in w for w in tr.warnings) == 1

@@ -28,6 +28,9 @@ REST_LOADED_MIN = 0.5
 #: L365: at least this share of the IMU's strides failing = the force is not this foot's: the session's stance from
 #: the IMU alone (one insole dropping out for a while leaves the rest of the session on force)
 SESSION_FALLBACK_FRAC = 0.5
+#: steps 71: loaded runs around dropped lulls must start less than this many of the session's typical strides apart
+#: (a lull lies inside one stride; an insole dropout over a real rest spans two; 1.5 is halfway, no document)
+LULL_MAX_STRIDES = 1.5
 
 
 @dataclass
@@ -91,13 +94,16 @@ def swing_lulls_dropped(t: np.ndarray, rr: np.ndarray, loaded: np.ndarray, rest_
     runs on both sides at least that much and stays unloaded from its load in the run before to its load in the run
     after (one unbroken swing of the force's holds them), and each lasts less than ``min_swing_s`` (the accel-force
     detector's shortest swing, thesis ch.5.2, :data:`FORCE_MIN_SWING_S`): a pause shorter than any swing the force
-    would count is a lull of the swing, whereas an insole that drops out over a real foot flat leaves a longer
-    unloaded rest, which L365 still blames on the insole."""
+    would count is a lull of the swing. Decision steps 71: and the loaded runs on both sides start less than
+    :data:`LULL_MAX_STRIDES` of the session's typical stride apart (:func:`_typical_stride`; fewer than two loaded
+    runs: nothing dropped). A real foot flat can be as short as a lull (gaitmap MS: 0.01-0.15 s), but
+    an insole that drops out over it leaves the loaded runs two strides apart, and L365 still blames the insole."""
     t = np.asarray(t, dtype=float)
     loaded = np.asarray(loaded, dtype=bool)
     rr = np.asarray(rr, dtype=np.int64).reshape(-1, 2)
     full = np.array([b > a and loaded[a:b].mean() >= rest_loaded_min for a, b in rr], dtype=bool)
     keep = np.ones(len(rr), dtype=bool)
+    stride = _typical_stride(t[rr[:, 0]], full)
     k = 1
     while k < len(rr) - 1:
         if full[k] or not full[k - 1]:
@@ -110,10 +116,22 @@ def swing_lulls_dropped(t: np.ndarray, rr: np.ndarray, loaded: np.ndarray, rest_
             last = rr[k - 1, 0] + np.flatnonzero(loaded[rr[k - 1, 0]:rr[k, 0]])[-1]
             first = rr[j - 1, 1] + np.flatnonzero(loaded[rr[j - 1, 1]:rr[j, 1]])[0]
             short = all(t[e - 1] - t[s] < min_swing_s for s, e in rr[k:j])
-            if short and not loaded[last + 1:first].any():
+            one = t[rr[j, 0]] - t[rr[k - 1, 0]] < LULL_MAX_STRIDES * stride  # steps 71 (NaN: False)
+            if short and one and not loaded[last + 1:first].any():
                 keep[k:j] = False
         k = j
     return rr[keep]
+
+
+def _typical_stride(starts: np.ndarray, full: np.ndarray) -> float:
+    """Decision steps 71: the median start-to-start time (s) of loaded rest runs next to each other (no unloaded run
+    between: a lull or a dropout doubles no interval of these); when there is no such pair (a foot that lulls in
+    every stride), of successive loaded runs with the unloaded ones skipped; NaN with fewer than two loaded runs."""
+    pair = np.flatnonzero(full[:-1] & full[1:])
+    if len(pair):
+        return float(np.median(starts[pair + 1] - starts[pair]))
+    s = starts[full]
+    return float(np.median(np.diff(s))) if len(s) > 1 else float("nan")
 
 
 def _longest_false_s(t: np.ndarray, mask: np.ndarray) -> float:

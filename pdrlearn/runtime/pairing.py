@@ -9,9 +9,15 @@ import numpy as np
 from pdrlearn.errors import DataError
 
 
-def _rows(name: str, t, v) -> tuple[np.ndarray, np.ndarray]:
-    t = np.asarray(t, dtype=np.float64).reshape(-1)
-    v = np.asarray(v, dtype=np.float64)
+def _rows(name: str, t, v, last: float) -> tuple[np.ndarray, np.ndarray]:
+    """Decision E204: one push's stamps (s) and (n, 3) values, or one DataError line: not numbers, a wrong shape, a
+    NaN / inf stamp, or a stamp that goes back (from the one before it, or from ``last``, the stream's last pushed)."""
+    try:
+        t = np.asarray(t, dtype=np.float64).reshape(-1)
+        v = np.asarray(v, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise DataError(f"SensorPair.{name}: timestamps (s) and values must be numbers ({e}); push float arrays"
+                        ) from None
     if v.size == 3 and t.size == 1:
         v = v.reshape(1, 3)
     if not v.size and not t.size:
@@ -19,6 +25,16 @@ def _rows(name: str, t, v) -> tuple[np.ndarray, np.ndarray]:
     if v.shape != (t.size, 3):
         raise DataError(f"SensorPair.{name}: expected values of shape ({t.size}, 3) for {t.size} timestamps, got "
                         f"{np.shape(v)}")
+    if not np.isfinite(t).all():
+        raise DataError(f"SensorPair.{name}: NaN or inf timestamps; drop those samples")
+    prev = np.concatenate([[last], t[:-1]])
+    back = np.flatnonzero(t < prev)
+    if back.size:  # E204 (amended): a step back would be interpolated from (gyr) or dropped as early (acc)
+        i = int(back[0])
+        before = "the previous push's last" if i == 0 else f"sample {i - 1}"
+        raise DataError(f"SensorPair.{name}: timestamps must not go back (seconds): sample {i} of this push "
+                        f"(t={t[i]:.6f} s) is before {before} (t={prev[i]:.6f} s); push each stream in time order "
+                        "(sort a batch by time before pushing)")
     return t, v
 
 
@@ -29,19 +45,24 @@ class SensorPair:
     gyroscope sample are dropped (counted in ``n_dropped``), as offline reads only the span both cover.
 
     ``pair.push_acc(t, acc)`` and ``pair.push_gyr(t, gyr)`` as each stream's samples arrive (s, (n, 3)), then
-    ``tracker.push(*pair.take())``. The order of the samples is the tracker's to check (E203)."""
+    ``tracker.push(*pair.take())``. Each stream's stamps must not go back (one DataError line, nothing kept: a
+    gyroscope batch out of order made the pair drop accelerometer samples the gyroscope covered); a repeated stamp
+    is kept (the gyroscope's interpolates the same; the accelerometer's is the tracker's, E203's option)."""
 
     def __init__(self):
         self._ta, self._a = np.zeros(0), np.zeros((0, 3))
         self._tg, self._g = np.zeros(0), np.zeros((0, 3))
         self.n_dropped = 0
+        self._last_a = self._last_g = -np.inf  # each stream's last pushed stamp (E204: no step back)
 
     def push_acc(self, t, acc) -> None:
-        t, v = _rows("push_acc", t, acc)
+        t, v = _rows("push_acc", t, acc, self._last_a)
+        self._last_a = float(t[-1]) if t.size else self._last_a
         self._ta, self._a = np.concatenate([self._ta, t]), np.vstack([self._a, v])
 
     def push_gyr(self, t, gyr) -> None:
-        t, v = _rows("push_gyr", t, gyr)
+        t, v = _rows("push_gyr", t, gyr, self._last_g)
+        self._last_g = float(t[-1]) if t.size else self._last_g
         self._tg, self._g = np.concatenate([self._tg, t]), np.vstack([self._g, v])
 
     def take(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

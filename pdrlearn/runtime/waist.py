@@ -240,19 +240,23 @@ class WaistStream(FixInput):
             return []
         if not (np.isfinite(t).all() and np.isfinite(acc).all() and np.isfinite(gyr).all()):
             raise DataError(f"{self._name}.push: NaN or inf in the pushed samples; drop those samples")
+        keep = np.ones(t.size, dtype=bool)
         if self._drop_dups:  # decision E203: a phone's repeated sample, dropped (the first kept)
             keep = t != np.concatenate([[self._last_t], t[:-1]])
-            if not keep.all():
-                t, acc, gyr = self._drop_repeats(t, acc, gyr, keep)
-                if not t.size:
-                    return []
-        self._check_order(t)
+        self._check_order(t[keep], np.flatnonzero(keep))  # E203: named by their index in the pushed arrays
+        if not keep.all():
+            t, acc, gyr = t[keep], acc[keep], gyr[keep]
+            if not t.size:
+                self._count_repeats(int((~keep).sum()))
+                return []
         guard, pushed = self._guard, dict(zip(WAIST_SENSORS, ((t, acc), (t, gyr)), strict=True))
         if guard is not None:  # decision B119, before any state changes (a refused push changes nothing)
             arrays = {n: pushed[n] for n in guard.wanted() if n in pushed}
             judged = guard.check(arrays)
         if self._dts is not None:
             self._unit_check(t)
+        if not keep.all():  # E203 (amended): counted only once every check has passed
+            self._count_repeats(int((~keep).sum()))
         if guard is not None:
             guard.take(arrays, judged)
         if self._fixes.t_start is None:  # aid_track's t_start: the track's first sample (decision D19, amended)
@@ -271,34 +275,35 @@ class WaistStream(FixInput):
             t, v = v_t
         return self._feed(self._proc.process(t, v), final=False)
 
-    def _drop_repeats(self, t, acc, gyr, keep):
-        """Decision E203: the samples ``keep`` (those whose timestamp does not repeat the one before); the first drop of
-        a run adds one warning line."""
+    def _count_repeats(self, n: int) -> None:
+        """Decision E203: ``n`` dropped repeated samples counted; the first drop of a run adds one warning line (called
+        only for a push every check accepted: a refused push changes nothing, B119)."""
         if not self.n_dropped_duplicates:
             msg = (f"{self._name}.push: dropping samples whose timestamp repeats the one before (the first is kept; "
                    "drop_duplicate_timestamps=True, decision E203); the count is n_dropped_duplicates")
             self.warnings.append(msg)
             log.warning("live waist tracker: %s", msg)
-        self.n_dropped_duplicates += int((~keep).sum())
-        return t[keep], acc[keep], gyr[keep]
+        self.n_dropped_duplicates += n
 
-    def _check_order(self, t: np.ndarray) -> None:
+    def _check_order(self, t: np.ndarray, index: np.ndarray) -> None:
         """Decision E203: one line naming the first sample of the push that does not increase strictly - from the
-        previous push's last sample, or from the sample before it in this push - and the fix."""
+        previous push's last sample, or from the sample before it in this push - and the fix. ``t`` the kept samples'
+        times, ``index`` their indices in the pushed array (the line names those: a dropped repeat shifts no index)."""
         prev = np.concatenate([[self._last_t], t[:-1]])
         bad = np.flatnonzero(t <= prev)
         if not bad.size:
             return
-        i = int(bad[0])
+        k = int(bad[0])
+        i, now, before = int(index[k]), float(t[k]), float(prev[k])  # a dropped repeat before it has prev's time
         fix = ("pass drop_duplicate_timestamps=True to drop repeated samples (the first kept, as 'pdrlearn import "
-               "--drop-duplicate-timestamps')" if t[i] == prev[i] else "sort the samples by time before pushing")
-        what = "repeats" if t[i] == prev[i] else "goes back from"
-        if i == 0:
+               "--drop-duplicate-timestamps')" if now == before else "sort the samples by time before pushing")
+        what = "repeats" if now == before else "goes back from"
+        if k == 0:
             raise DataError(f"{self._name}.push: timestamps must increase strictly across pushes (seconds): this "
-                            f"push's first sample (t={t[0]:.6f} s) {what} the previous push's last (t="
-                            f"{self._last_t:.6f} s); {fix}")
+                            f"push's {'first sample' if i == 0 else f'sample {i}'} (t={now:.6f} s) {what} the previous "
+                            f"push's last (t={self._last_t:.6f} s); {fix}")
         raise DataError(f"{self._name}.push: timestamps must increase strictly (seconds): sample {i} of this push "
-                        f"(t={t[i]:.6f} s) {what} sample {i - 1} (t={prev[i]:.6f} s); {fix}")
+                        f"(t={now:.6f} s) {what} sample {i - 1} (t={before:.6f} s); {fix}")
 
     def push_barometer(self, t, p_hpa) -> None:
         """Add waist barometer samples (decision E106): ``t`` (n,) s on the clock of :meth:`push`, increasing strictly

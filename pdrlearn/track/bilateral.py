@@ -730,6 +730,8 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     feet = [foot_warnings(s, t) for s, t in zip(sessions, tracks, strict=True)]  # decision L461
     out["warnings"] += [f"{side} foot: {line}" for side, (_, own) in zip(SIDES, feet, strict=True) for line in own]
     out["walk"]["si_withheld"] = withhold_indices(out["walk"])  # decision L461
+    for bout in out["bouts"]:  # decision L461 (amended): gait-all's only SI table is its bouts'
+        bout["si_withheld"] = withhold_indices(bout)
     if out["walk"]["si_withheld"] is not None:
         logging.getLogger(__name__).warning(out["walk"]["si_withheld"])
         out["warnings"].append(out["walk"]["si_withheld"])

@@ -37,7 +37,8 @@ LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "tracke
 #: as recalled); a test span without --window longer than this plus one of L383's minutes gets a note
 SIX_MINUTES_S = 360.0
 #: decision L383: the summary keys :func:`corridor_walk_test` gives
-KEYS = ("corridor_m", "n_laps", "walk_test_distance_m", "walk_test_distance_per_minute_m", "fatigue_index")
+KEYS = ("corridor_m", "n_laps", "walk_test_distance_m", "walk_test_duration_s", "walk_test_distance_per_minute_m",
+        "fatigue_index")  # L462: walk_test_duration_s in the no-steps path and the report's walk-test table too
 
 
 def _distance_in_time(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
