@@ -63,3 +63,20 @@ def test_all_methods_rows_are_the_steps_every_model_classified_and_no_strides_is
                  str(tmp_path / "p2.csv")]) == 0
     err = capsys.readouterr().err
     assert sum("no detected strides" in line for line in err.splitlines()) == 1, err
+
+
+def test_no_strides_line_is_said_once_for_a_two_task_model(tmp_path, capsys):
+    """Closing re-read (session 37): the C125 no-strides line names the session, not the task; a model of two tasks
+    said it twice."""
+    model = train_user([simulate("terrain", user_seed=9361), simulate("direction", user_seed=9361)],
+                       tasks=["terrain", "direction"], methods=["svm"], units=["foot", "waist"], cv=2,
+                       distance_calibration=False)
+    model.save(tmp_path / "m")
+    waist = write_session(simulate("direction", user_seed=9361, seed=6), tmp_path / "waist")
+    for f in waist.glob("f*.csv"):
+        f.unlink()
+    capsys.readouterr()
+    assert main(["evaluate", str(tmp_path / "m"), str(waist), "--all-methods", "--predictions-out",
+                 str(tmp_path / "p.csv")]) == 0
+    err = capsys.readouterr().err
+    assert sum("no detected strides" in line for line in err.splitlines()) == 1, err

@@ -125,3 +125,22 @@ def test_turns_csv_counts_the_steps_inside_each_turn_w398(tmp_path):
     assert hand["turn_steps"].tolist() == [3, 1]  # the ends are inside
     foot = _steps([1.0, 1.5]).assign(unit="foot")
     assert add_turn_steps(pd.DataFrame({"start_s": [1.0], "end_s": [2.0]}), foot)["turn_steps"].isna().all()
+
+
+def test_hint_and_in_freeze_read_a_step_at_the_same_time_closing_reread():
+    """Closing re-read (session 37): freeze_hint read the raw event_s (a NaN contact not counted) while in_freeze fell
+    back to start_s; both now read :func:`pdrlearn.track.freezes.contact_times`."""
+    import numpy as np
+    import pandas as pd
+
+    from pdrlearn.track.freezes import add_freeze_columns, contact_times, freeze_hint
+
+    steps = pd.DataFrame({"start_s": np.arange(0.0, 30.0, 0.5), "end_s": np.arange(0.5, 30.5, 0.5)})
+    steps["event_s"] = steps["start_s"] + 0.1
+    steps.loc[24:27, "event_s"] = np.nan  # four contacts without a time inside the episode (12-14 s)
+    assert np.array_equal(contact_times(steps)[24:28], steps["start_s"].to_numpy()[24:28])
+    rows = [{"start_s": 11.0, "end_s": 15.0, "duration_s": 4.0}]
+    add_freeze_columns(pd.DataFrame(columns=["start_s", "end_s"]), steps, rows)
+    line = freeze_hint(rows, steps)
+    n = int(steps["in_freeze"].sum())
+    assert line is not None and line.startswith(f"{n} counted step(s)"), (n, line)

@@ -111,3 +111,23 @@ def test_track_length_reference_bad_input_is_one_line(length_walk, tmp_path, cap
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("error: ") and line in err[0] and "Traceback" not in err[0], err
     assert not out.exists()
+
+
+def test_a_nan_length_or_turn_is_no_traceback_closing_reread():
+    """Closing re-read (session 37): a NaN ``length_m`` or ``turn_angle_rad`` became None and a TypeError in the
+    kernel; NaN is now not eligible (length) or straight (turn, L79), and an absent class stays None."""
+    import numpy as np
+    import pandas as pd
+
+    from pdrlearn.track.session_length import whole_session_length
+
+    n = 30
+    st = pd.DataFrame({"terrain": ["flat"] * n, "direction": ["forward"] * n,
+                       "length_m": np.linspace(1.3, 1.5, n), "turn_angle_rad": np.zeros(n),
+                       "length_class": ["normal"] * n, "p_length_short": 0.0, "p_length_normal": 1.0,
+                       "p_length_long": 0.0})
+    st.loc[3, "length_m"] = np.nan
+    st.loc[5, "turn_angle_rad"] = np.nan
+    st.loc[7, "terrain"] = np.nan
+    out = whole_session_length(st)
+    assert out["length_class"].tolist() == ["normal"] * n

@@ -146,6 +146,7 @@ def evaluate_model(
     _gait_range(sessions, out, warn_gait_range)  # decision L332: sessions outside L95's walking range
     domain: dict[str, dict] = {}
     detected = DetectedPredictions(model, sessions)  # decision C49: the runtime's strides, shared by the tasks
+    said: set[str] = set()  # C125's no-strides lines name the session, not the task: once (closing re-read)
     for task, tm in model.tasks.items():
         data = task_data(windows, task, sessions)
         if data is None or len(data.y) == 0:
@@ -294,7 +295,9 @@ def evaluate_model(
                     if got:
                         step_predictions.extend(detected_rows(tm, data, windows, got, mu))
                 for line in no_strides_lines(detected, windows, sess_rows):
-                    log.warning(line)
+                    if line not in said:
+                        said.add(line)
+                        log.warning(line)
         line = drop_warning(task, m["accuracy"], res["detected"], model.boundaries)
         if line:
             log.warning(line)

@@ -528,7 +528,7 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float, *,
     i_u, s_u, ang_u = _nearest_axis(up)
     if ang_u > max_snap_deg:  # W394: the nearest assignment the walking gives, as the suggested entry
         raise _with_nearest(_refuse(f"gravity is {ang_u:.0f} deg from every sensor axis (more than "
-                                    f"{MAX_SNAP_DEG:g})", up), acc, gyr, fs, max_snap_deg)
+                                    f"{max_snap_deg:g})", up), acc, gyr, fs, max_snap_deg)
     hor = [i for i in range(3) if i != i_u]
     e = np.eye(3)
     # horizontal basis: the two other sensor axes made orthogonal to up (the unit's tilt removed)
@@ -582,7 +582,7 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float, *,
     i_f, s_f, ang_f = _nearest_axis(fwd, exclude=(i_u,))
     if ang_f > max_snap_deg:  # W394, as for gravity
         raise _with_nearest(_refuse(f"the forward direction is {ang_f:.0f} deg from both horizontal sensor axes "
-                                    f"(more than {MAX_SNAP_DEG:g})", up, _unit(fwd - (fwd @ up) * up)),
+                                    f"(more than {max_snap_deg:g})", up, _unit(fwd - (fwd @ up) * up)),
                             acc, gyr, fs, max_snap_deg)
     left = np.cross(e[i_u] * s_u, e[i_f] * s_f)
     i_l = int(np.argmax(np.abs(left)))

@@ -170,17 +170,27 @@ def unreliable_message(rows: list[dict], vetoed: bool) -> str:
             "them; decision W396)" + veto)
 
 
+def contact_times(steps: pd.DataFrame) -> np.ndarray:
+    """A step's time for the freeze checks (W395, W397): its contact ``event_s``, else (absent or NaN) ``start_s``."""
+    start = steps["start_s"].to_numpy(float)
+    if "event_s" not in steps:
+        return start
+    t = steps["event_s"].to_numpy(float)
+    return np.where(np.isfinite(t), t, start)
+
+
 def freeze_hint(rows: list[dict] | None, steps) -> str | None:
     """Decision W395: with the freeze index off, the one line saying that counted steps lie in episodes of 3-8 Hz
     power (W213's, those :func:`unreliable_mask` does not flag); None when none does. The steps are unchanged."""
     if not rows or steps is None or not len(steps):
         return None
     ok = [r for r, bad in zip(rows, unreliable_mask(rows, steps), strict=True) if not bad]
-    ev = steps["event_s"].to_numpy(float) if "event_s" in steps else steps["start_s"].to_numpy(float)
-    inside = inside_episodes(ev, [(r["start_s"], r["end_s"]) for r in ok])
+    ev = contact_times(steps)  # closing re-read: as in_freeze reads it (a NaN contact: the step's start)
+    each = [inside_episodes(ev, [(r["start_s"], r["end_s"])]) for r in ok]
+    inside = np.logical_or.reduce(each) if each else np.zeros(len(ev), dtype=bool)
     if not inside.any():
         return None
-    seconds = sum(r["duration_s"] for r in ok if inside_episodes(ev, [(r["start_s"], r["end_s"])]).any())
+    seconds = sum(r["duration_s"] for r, hit in zip(ok, each, strict=True) if hit.any())
     return (f"{int(inside.sum())} counted step(s) lie in {seconds:.1f} s of 3-8 Hz trembling power (the lower back's "
             "freeze index over 3, decision W213): freezing, a turn on the spot or shuffling is counted as steps and "
             "walking there; run with --freeze-index for freezes.csv (the option freeze_veto drops them; decision "
@@ -196,9 +206,7 @@ def add_freeze_columns(bouts: pd.DataFrame, steps: pd.DataFrame, rows: list[dict
         return bouts
     eps = [(float(r["start_s"]), float(r["end_s"])) for r in rows]
     if len(steps):
-        t = steps["event_s"].to_numpy(float) if "event_s" in steps else steps["start_s"].to_numpy(float)
-        t = np.where(np.isfinite(t), t, steps["start_s"].to_numpy(float))
-        steps["in_freeze"] = inside_episodes(t, eps)
+        steps["in_freeze"] = inside_episodes(contact_times(steps), eps)
     if len(bouts):
         a, b = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
         bouts["freeze_time_s"] = [round(sum(max(0.0, min(e, y) - max(s, x)) for s, e in eps), 3)

@@ -19,7 +19,10 @@ def whole_session_length(steps: pd.DataFrame, source: str = "track") -> pd.DataF
     if "length_class" not in steps or not len(steps):
         return steps
     cols = [c for c in (*TABLE_COLUMNS, "turn_angle_rad") if c in steps]
-    rows = steps[cols].astype(object).where(steps[cols].notna(), None).to_dict("records")
+    table = steps[cols].astype(object)
+    text = [c for c in cols if not pd.api.types.is_numeric_dtype(steps[c])]  # an absent class is None, a number NaN
+    table[text] = table[text].where(steps[text].notna(), None)
+    rows = table.to_dict("records")  # closing re-read: a NaN length or turn was None, a TypeError in the kernel
     new = session_length_classes(rows, causal=False, guard=True, source=source)
     out = steps.copy()
     old = out["length_class"].to_numpy(dtype=object)
