@@ -144,3 +144,17 @@ def test_hint_and_in_freeze_read_a_step_at_the_same_time_closing_reread():
     line = freeze_hint(rows, steps)
     n = int(steps["in_freeze"].sum())
     assert line is not None and line.startswith(f"{n} counted step(s)"), (n, line)
+
+
+def test_track_all_keeps_the_freeze_column_in_the_combined_bouts_w397(fog, tmp_path):
+    """Review R5 (session 37): track-all's combined bouts.csv kept only BOUT_COLUMNS and dropped W397's
+    freeze_time_s, which each session's bouts.csv has with --freeze-index."""
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    write_session(fog, tmp_path / "study" / "a")
+    assert main(["track-all", str(tmp_path / "study"), "--out", str(tmp_path / "ta"), "--freeze-index"]) == 0
+    one = pd.read_csv(tmp_path / "ta" / "a" / "bouts.csv")
+    both = pd.read_csv(tmp_path / "ta" / "bouts.csv")
+    assert "freeze_time_s" in one and "freeze_time_s" in both
+    assert both["freeze_time_s"].tolist() == one["freeze_time_s"].tolist()

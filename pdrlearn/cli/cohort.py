@@ -829,7 +829,8 @@ def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
     ``subject`` follow."""
     from pdrlearn.track.bouts import BOUT_COLUMNS, csv_table, current_names
 
-    both = csv_table(combined_table(out, rows, "bouts.csv", BOUT_COLUMNS, current_names))  # E98
+    both = csv_table(combined_table(out, rows, "bouts.csv", BOUT_COLUMNS, current_names,
+                                    optional=("freeze_time_s",)))  # E98; W397's column (review R5)
     written = {row["path"]: row.get("visit_as_written") for row in rows}
     at = both.columns.get_loc("speed_m_s") if "speed_m_s" in both else len(both.columns)  # E98: that one kept last
     both.insert(at, "visit_as_written", both["path"].map(written))  # decision C82
@@ -867,11 +868,12 @@ def combined_strides(out: Path, rows: list[dict], inputs: dict[str, Path]) -> pd
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=list(STRIDE_KEYS))
 
 
-def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -> pd.DataFrame:
+def combined_table(out: Path, rows: list[dict], name: str, columns, read=None, optional=()) -> pd.DataFrame:
     """Decision L165's stacking of one per-session table (``out/<path>/<name>``; bouts.csv, and decision L277's
     periods.csv), in sessions.csv's order, each row led by ``path`` and ``visit``; ``read`` maps a table as read
     (bouts.csv: E98's old names). Decision L298: the sessions' clock columns follow (empty for a session without a
-    recording start)."""
+    recording start). ``optional``: columns a session's table has only with an option (bouts.csv's W397
+    ``freeze_time_s``), kept after the table's own when any session has them (review R5)."""
     import pandas as pd
 
     from pdrlearn.track.clock import CLOCK_COLUMNS
@@ -887,7 +889,7 @@ def combined_table(out: Path, rows: list[dict], name: str, columns, read=None) -
     if not parts:
         return pd.DataFrame(columns=cols)
     df = pd.concat(parts, ignore_index=True)
-    return df[cols + [c for c in CLOCK_COLUMNS.values() if c in df]]
+    return df[cols + [c for c in optional if c in df] + [c for c in CLOCK_COLUMNS.values() if c in df]]
 
 
 def _paired_visits(rows: list[dict], visit_map: dict[str, str] | None) -> None:
