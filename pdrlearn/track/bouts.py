@@ -158,8 +158,9 @@ def cadence_spm(n_step_intervals: float, span_s: float) -> float:
     return 60.0 * n_step_intervals / span_s if span_s > 0 else np.nan
 
 
-def _contact_times(st: pd.DataFrame) -> np.ndarray:
-    """Each row's initial contact (``event_s``, else ``start_s``), rows in time order."""
+def contact_times(st: pd.DataFrame) -> np.ndarray:
+    """Each row's initial contact (``event_s``, else - absent or NaN - ``start_s``); the bouts' cut and the freeze
+    checks (W395, W397) read a step's time alike."""
     t = st["start_s"].to_numpy(float)
     if "event_s" not in st:
         return t
@@ -171,7 +172,7 @@ def _contact_bouts(st: pd.DataFrame, break_s: float) -> list[tuple[int, int]]:
     """Decision L163's ``contact`` gap: the rows between two consecutive contacts more than ``break_s`` apart."""
     if not len(st):
         return []
-    cuts = [0, *(np.flatnonzero(np.diff(_contact_times(st)) > break_s) + 1).tolist(), len(st)]
+    cuts = [0, *(np.flatnonzero(np.diff(contact_times(st)) > break_s) + 1).tolist(), len(st)]
     return split_at_data_gaps(st, list(zip(cuts[:-1], cuts[1:], strict=True)), break_s)  # decision L269
 
 

@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.kernels.freeze import FI_WINDOW_S, FREEZE_MIN_S, freeze_episodes, inside_episodes
+from pdrlearn.track.bouts import contact_times
 
 #: decision W213: the freeze-index threshold of a foot or lower-back unit (2 x Baechlin et al. 2010's 1.5)
 UNIT_FI_THRESHOLD = 3.0
@@ -168,15 +169,6 @@ def unreliable_message(rows: list[dict], vetoed: bool) -> str:
     return (f"{len(rows)} freeze episode(s) ({spans}) leave under {2 * FI_WINDOW_S:g} s of their walking bout "
             "uncovered: unreliable, read as slow or shuffling walking rather than freezing (freezes.csv still lists "
             "them; decision W396)" + veto)
-
-
-def contact_times(steps: pd.DataFrame) -> np.ndarray:
-    """A step's time for the freeze checks (W395, W397): its contact ``event_s``, else (absent or NaN) ``start_s``."""
-    start = steps["start_s"].to_numpy(float)
-    if "event_s" not in steps:
-        return start
-    t = steps["event_s"].to_numpy(float)
-    return np.where(np.isfinite(t), t, start)
 
 
 def freeze_hint(rows: list[dict] | None, steps) -> str | None:
