@@ -68,18 +68,23 @@ def test_steep_stride_check_counts_strides_steeper_than_a_stair_l430():
     assert steep_stride_check(np.full(16, 0.62), np.full(16, 0.31))[0] is None
 
 
-def test_slow_stair_track_warns_its_height_is_not_a_climb_l430(slow_up_8450):
-    """Decision L430: trial T3's slow ascent read as a descent gets the steep-stride line; the same stairs at the
-    user's normal step do not."""
-    lines = [w for w in _warnings(slow_up_8450) if "slope allows" in w]
-    assert len(lines) == 1 and "not a climb" in lines[0]
+def test_slow_stair_track_is_a_climb_since_steps_70_and_no_steep_stride_line_l430(slow_up_8450):
+    """Decision L430: trial T3's slow ascent was read as a descent (its slow swings' lulls split the strides) and got
+    the steep-stride line. Since steps 70 / 71 (session 37) a lull the insoles leave unloaded between two loaded
+    rests is no rest: the same session tracks its 10 strides as the climb it is (12 x 0.17 m) and the line, whose
+    kernel ``test_steep_stride_check_counts_strides_steeper_than_a_stair_l430`` pins, no longer fires; the same
+    stairs at the user's normal step neither."""
+    res = get_pipeline("plasys")(slow_up_8450)
+    assert len(res.steps) == 10 and res.steps["dz_m"].sum() == pytest.approx(12 * 0.17, abs=0.15)
+    assert not [w for w in _warnings(slow_up_8450) if "slope allows" in w]
     normal = simulate_path(parse_route(UP), UserProfile.from_seed(8451), speed="normal", rate_hz=100.0)
     assert not [w for w in _warnings(normal) if "slope allows" in w]
 
 
 def test_track_and_steps_agree_on_the_slow_cadence_l431(caplog):
-    """Decision L431: user 8454 at a 1.2 s step: the track's split strides give a median cadence inside L95's range
-    (71 steps/min), its contacts 53 as `pdrlearn steps` counts them; both commands now say slow."""
+    """Decision L431: user 8454 at a 1.2 s step: the track's split strides gave a median cadence inside L95's range
+    (71 steps/min) and L431's line said the contacts' 53. Since steps 70 / 71 (session 37) the strides are not split:
+    the track's own cadence is the slow one and L95's line says it, with the cadence `pdrlearn steps` counts."""
     from pdrlearn.cli.steps import cadence_range_warning
     from pdrlearn.steps import get_detector
     from pdrlearn.steps.strides import one_per_stride
@@ -87,14 +92,14 @@ def test_track_and_steps_agree_on_the_slow_cadence_l431(caplog):
     s = _slow_up(8454)
     res = get_pipeline("plasys")(s)
     summary = res.summary(s)
-    assert 68 < summary["median_cadence_spm"] < 155  # the split strides' own cadence passes L95
+    assert summary["median_cadence_spm"] < 68  # the slow walk's own cadence, below L95's range
     lines = [w for w in summary_warnings(summary) if "slower than the walking" in w]
-    assert len(lines) == 1 and "the foot's contacts" in lines[0] and "L431" in lines[0]
+    assert len(lines) == 1 and "L431" not in lines[0]
     table, _ = one_per_stride(get_detector("accel").detect(s), s, force=False)
     steps_line = cadence_range_warning(table, s.meta, "foot")
     assert steps_line is not None and "slower than the walking" in steps_line
     cad = float(lines[0].split("median cadence ")[1].split(" ")[0])
-    assert cad == float(steps_line.split("median cadence ")[1].split(" ")[0])
+    assert abs(cad - float(steps_line.split("median cadence ")[1].split(" ")[0])) <= 2  # two detectors: 52 / 53
 
 
 def test_contact_cadence_line_only_when_the_track_line_is_silent_l431():
