@@ -152,3 +152,25 @@ def test_gait_all_resume_pairs_again_a_failed_or_changed_pair_c116(study, serial
     assert _files(out, said=False) == _files(fresh, said=False)
     # without --resume an existing OUT is still refused (as before)
     assert _run(root, "--out", out)[0] == 2
+
+
+def test_a_record_cut_short_leaves_no_temporary_file_c116(tmp_path, monkeypatch):
+    """Closing re-read (session 37): write_file_record wrote its own ``.part`` file, left behind when the write
+    failed; it now goes through the project's atomic writer (whole or absent, nothing else)."""
+    from pathlib import Path as P
+
+    from pdrlearn.cli.resume import write_file_record
+
+    real = P.write_text
+
+    def broken(self, text, *a, **k):
+        real(self, text[:10], *a, **k)
+        raise OSError("disk full")
+
+    monkeypatch.setattr(P, "write_text", broken)
+    with pytest.raises(OSError, match="disk full"):
+        write_file_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1})
+    monkeypatch.setattr(P, "write_text", real)
+    assert sorted(p.name for p in (tmp_path / "recs").iterdir()) == []
+    assert write_file_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1}) == {"row": 1}
+    assert sorted(p.name for p in (tmp_path / "recs").iterdir()) == ["a.json"]

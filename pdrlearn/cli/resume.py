@@ -134,11 +134,10 @@ def write_file_record(file: Path, key: str, inputs: dict, value: dict) -> dict:
     short is not reused), written under a temporary name and renamed (whole or absent); ``value`` as read back."""
     text = json.dumps({"key": key, "input_sha256": inputs, "value_sha256": _digest(value), "value": value},
                       allow_nan=False)
-    file = Path(file)
-    file.parent.mkdir(parents=True, exist_ok=True)
-    part = file.with_name(f".{file.name}.part-{os.getpid()}")
-    part.write_text(text + "\n")
-    os.replace(part, file)
+    from pdrlearn.atomic import atomic_file
+
+    with atomic_file(file) as part:  # closing re-read: the project's atomic writer (no .part left on a failure)
+        part.write_text(text + "\n")
     return json.loads(text)["value"]
 
 
