@@ -174,7 +174,25 @@ def _no_imu(day: Path, tmp: Path) -> Path:
     return bad
 
 
+def _empty(day: Path, tmp: Path) -> Path:
+    bad = tmp / "empty"
+    bad.mkdir()
+    return bad
+
+
+def _header_only(day: Path, tmp: Path) -> Path:
+    bad = tmp / "header_only"
+    bad.mkdir()
+    shutil.copy(day / "meta.json", bad)
+    for name in ("fAccelerometer.csv", "fGyroscope.csv", "wAccelerometer.csv", "wGyroscope.csv"):
+        if (day / name).exists():
+            (bad / name).write_text((day / name).read_text().splitlines()[0] + "\n")
+    return bad
+
+
 @pytest.mark.parametrize(("make", "args", "words"), [
+    (_empty, [], "not a session split can cut"),
+    (_header_only, [], "hold no rows"),
     (None, ["--max-minutes", "0"], "positive number of minutes"),
     (None, ["--max-minutes", "-5"], "positive number of minutes"),
     (None, ["--max-minutes", "nan"], "positive number of minutes"),
