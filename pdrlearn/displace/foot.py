@@ -173,6 +173,9 @@ TIMESTAMPS = False
 #: Off: its rule failed at 20 Hz (worst walk +3.851 pp at 3 % drops; the spline's free run ends ring after an
 #: impact; experiments/results/drops_runs_43-54.md)
 UPSAMPLE_RUNS = False
+#: decision L476: after a rest longer than L296's ``REST_BIAS_MIN_S`` between two strides, the foot gyroscope's bias
+#: (``gyro_bias="standstill"``) is re-read from the rest's still samples (``FootDisplacement(rest_bias=...)``)
+REST_BIAS = False
 
 #: decision B206: the ranges of :class:`FootDisplacement`'s numeric settings (their types come from its signature's
 #: annotations: a bool is JSON true / false, an int a whole number); windows and durations in s, rates, noise terms
@@ -275,6 +278,11 @@ class FootDisplacement:
         (L24's spline puts the block edges halfway between neighbours); meant with ``timestamps`` (the drop's
         interval then keeps its length). A clock without a drop is unchanged bit for bit. False (default;
         L87: not adopted, the free spline ends of the runs ring after an impact)
+    rest_bias : decision L476: with ``gyro_bias="standstill"``, the strides after a rest longer than 60 s
+        between two strides (L296's ``REST_BIAS_MIN_S``) remove the bias read from that rest's still samples
+        (L296's 30 s blocks; the last one's mean, as the setup standstill's, thesis ch.4 / ch.7.2.1) instead of
+        the setup standstill's: the gyroscope's bias drifts over minutes (warm-up, temperature). Walks without
+        such a rest are unchanged bit for bit
 
     Attributes
     ----------
@@ -297,13 +305,14 @@ class FootDisplacement:
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
                  tilt_clock: str = "rotation", timestamps: bool = TIMESTAMPS,
-                 upsample_runs: bool = UPSAMPLE_RUNS):
+                 upsample_runs: bool = UPSAMPLE_RUNS, rest_bias: bool = REST_BIAS):
         check_settings({k: v for k, v in locals().items() if k != "self"}, "FootDisplacement")  # decision B206
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
         self.tilt_dedrift, self.tilt_clock = bool(tilt_dedrift), tilt_clock
         self.timestamps = bool(timestamps)
         self.upsample_runs = bool(upsample_runs)
+        self.rest_bias = bool(rest_bias)
         if yaw not in ("twist", "x-axis"):
             raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
         self.yaw = yaw
@@ -413,7 +422,11 @@ class FootDisplacement:
         if self.gyro_bias == "stance" and B:
             bias = self._zaru_bias(gyr, i0, fs)
         elif self.gyro_bias == "standstill" and B:
-            bias = np.tile(self._standstill_bias(unit.acc, unit.gyr, fs0), (B, 1))
+            still0 = standstill_mask(unit.acc, unit.gyr, fs0)
+            bias = np.tile(self._standstill_bias(unit.gyr, fs0, still0), (B, 1))
+        self.rest_bias_rests_: list[tuple[float, float]] = []  # decision L476: the rests a bias was read from
+        if self.gyro_bias == "standstill" and self.rest_bias and B:
+            bias = self._rest_biases(unit, still0, bias)
         idx, mask = K.stride_index(i0, i1)
         dt, tclock, weight = self._intervals(t, period, idx, mask)
         q = K.stride_attitude(gyr, dt, idx, mask, g_body, bias, init) if B else None
@@ -502,10 +515,33 @@ class FootDisplacement:
         self.lever_arm_, self.lever_fit_ = r, fit
         self.disp_ = K.move_reference(self.disp_, q[:, 0], q[np.arange(len(q)), mask.sum(axis=1) - 1], r)
 
-    def _standstill_bias(self, acc: np.ndarray, gyr: np.ndarray, fs: float,
+    def _rest_biases(self, unit: UnitData, still: np.ndarray, bias: np.ndarray) -> np.ndarray:
+        """Decision L476: ``bias`` (B, 3) with every stride from the end of a rest longer than L296's
+        ``REST_BIAS_MIN_S`` between two strides (the previous stride's end to the stride's start) up to the next
+        such rest taking the bias of that rest: L296's :func:`~pdrlearn.kernels.rest_heading.block_bias` of the
+        unit's still samples (``still``, native clock), the block nearest the rest's end (thesis ch.4 / ch.7.2.1
+        read the offsets from a standstill; a rest is one). A rest without a block of still samples keeps the bias
+        before it."""
+        from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S, block_bias
+
+        out = bias.copy()
+        for k in range(1, len(out)):
+            t0, t1 = float(self.end_s_[k - 1]), float(self.start_s_[k])
+            if t1 - t0 <= REST_BIAS_MIN_S:
+                continue
+            a, b = int(np.searchsorted(unit.t, t0, side="left")), int(np.searchsorted(unit.t, t1, side="right"))
+            blocks = block_bias(unit.t[a:b], unit.gyr[a:b], still[a:b])
+            if blocks is None:
+                continue
+            centres, rates = blocks
+            out[k:] = rates[int(np.argmax(centres))]  # the block nearest the strides that follow
+            self.rest_bias_rests_.append((t0, t1))
+        return out
+
+    def _standstill_bias(self, gyr: np.ndarray, fs: float, still: np.ndarray,
                          min_s: float = 1.0) -> np.ndarray:
-        """Gyroscope offset (rad/s) over the first standstill of >= ``min_s`` s (thesis ch.7.2.1 setup)."""
-        still = standstill_mask(acc, gyr, fs)
+        """Gyroscope offset (rad/s) over the first standstill of >= ``min_s`` s (thesis ch.7.2.1 setup) of the
+        still samples ``still`` (``standstill_mask``)."""
         for a, b in runs(still):
             if (b - a) / fs >= min_s:
                 return gyr[a:b].mean(axis=0)

@@ -38,19 +38,35 @@ def rest_rotation(t: np.ndarray, w: np.ndarray, still: np.ndarray, t0: float, t1
         return integrate_rate(t, w, t0, t1, cum=cum)
     a, b = int(np.searchsorted(t, t0, side="left")), int(np.searchsorted(t, t1, side="right"))
     tt, ww, st = t[a:b], w[a:b], np.asarray(still[a:b], dtype=bool)
-    if len(tt) < 2:
+    blocks = block_bias(tt, ww, st)
+    if blocks is None:
         return integrate_rate(t, w, t0, t1, cum=cum)
+    centres, bias = blocks
     dt = np.gradient(tt)
-    block = np.floor((tt - tt[0]) / BIAS_BLOCK_S).astype(np.int64)
-    n_still = np.bincount(block, weights=st * dt)
-    s_rate = np.bincount(block, weights=np.where(st, ww, 0.0) * dt)
-    ok = n_still >= BIAS_MIN_STILL_S
-    if not ok.any():
-        return integrate_rate(t, w, t0, t1, cum=cum)
-    t_still = np.bincount(block, weights=np.where(st, tt, 0.0) * dt)
-    centres, bias = t_still[ok] / n_still[ok], s_rate[ok] / n_still[ok]
     moving = ~st
     return float(np.sum((ww[moving] - np.interp(tt[moving], centres, bias)) * dt[moving]))
+
+
+def block_bias(t: np.ndarray, w: np.ndarray, still: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """Decision L296: the gyroscope's bias over a rest's samples ``t`` (s), rates ``w`` (rad/s; (n,) or (n, k)
+    axes) and ``still`` (bool per sample): ``(centres, bias)``, the mean time and the mean rate of the still samples
+    of each :data:`BIAS_BLOCK_S` block holding :data:`BIAS_MIN_STILL_S` of them (bias (m,) or (m, k)); None when
+    there are fewer than 2 samples or no such block. Shared by the waist's rests (:func:`rest_rotation`) and the
+    foot's (decision L476, ``FootDisplacement(rest_bias=...)``)."""
+    st = np.asarray(still, dtype=bool)
+    if len(t) < 2:
+        return None
+    dt = np.gradient(t)
+    block = np.floor((t - t[0]) / BIAS_BLOCK_S).astype(np.int64)
+    n_still = np.bincount(block, weights=st * dt)
+    ok = n_still >= BIAS_MIN_STILL_S
+    if not ok.any():
+        return None
+    cols = w[:, None] if w.ndim == 1 else w
+    s_rate = np.column_stack([np.bincount(block, weights=np.where(st, c, 0.0) * dt) for c in cols.T])
+    t_still = np.bincount(block, weights=np.where(st, t, 0.0) * dt)
+    bias = s_rate[ok] / n_still[ok][:, None]
+    return t_still[ok] / n_still[ok], (bias[:, 0] if w.ndim == 1 else bias)
 
 
 def rest_frame_drift(t: np.ndarray, w: np.ndarray, still: np.ndarray, t0: float, t1: float, *,
