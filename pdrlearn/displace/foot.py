@@ -175,7 +175,7 @@ TIMESTAMPS = False
 UPSAMPLE_RUNS = False
 #: decision L476: after a rest longer than L296's ``REST_BIAS_MIN_S`` between two strides, the foot gyroscope's bias
 #: (``gyro_bias="standstill"``) is re-read from the rest's still samples (``FootDisplacement(rest_bias=...)``)
-REST_BIAS = False
+REST_BIAS = False  # decision L477: not adopted (two sessions grew by more than 0.3 m), opt-in
 
 #: decision B206: the ranges of :class:`FootDisplacement`'s numeric settings (their types come from its signature's
 #: annotations: a bool is JSON true / false, an int a whole number); windows and durations in s, rates, noise terms
