@@ -26,6 +26,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU
+from pdrlearn.kernels.order import first_out_of_order
 from pdrlearn.textfile import GZ_CSV, csv_stem, is_gzip, read_json, session_csv, session_csvs
 
 log = logging.getLogger(__name__)
@@ -228,10 +229,9 @@ class _ChunkReader:
 
 def _check_sorted(path: Path, t: np.ndarray, last: float, line: int) -> None:
     """Decision B380 (D3 while streaming): a timestamp below the one before it is one line naming its line."""
-    prev = np.concatenate([[last], t[:-1]])
-    bad = np.flatnonzero(t < prev)
-    if bad.size:
-        raise DataError(f"{path}: timestamps are not sorted (line {line + int(bad[0])} is earlier than the line "
+    i = first_out_of_order(t, last, strict=False)
+    if i is not None:
+        raise DataError(f"{path}: timestamps are not sorted (line {line + i} is earlier than the line "
                         "before it); sort the file by timestamp or fix the logger, then split (decisions D3, B380)")
 
 
