@@ -28,6 +28,10 @@ def test_track_all_skips_an_all_rest_split_part(tmp_path, capsys):
     assert "1/2 sessions tracked, 1 skipped" in out and "part_000: skipped" in err
     run = json.loads((tmp_path / "tracked" / "run.json").read_text())
     assert (run["n_tracked"], run["n_failed"], run["n_skipped"]) == (1, 0, 1)
+    from pdrlearn.report.batch import batch_tables, read_batch
+
+    text, _ = batch_tables(*read_batch(tmp_path / "tracked"))  # `pdrlearn report` reads the skipped row
+    assert text.startswith("1 of 2 sessions tracked, 0 failed, 1 skipped (split parts at rest), in 1 group(s)")
 
     # the same all-rest session, no longer a split part (no "split" in meta.json), fails as before (B318)
     alone = tmp_path / "alone"
