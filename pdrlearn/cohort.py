@@ -497,6 +497,14 @@ def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
     """Cohort C22: a session folder's ``(subject, visit)`` from its meta.json - the subject by :func:`meta_user`,
     the visit as ``visit`` is written (text, or a number as text). ``None`` for what meta.json does not name, and
     both for a folder without a readable meta.json object (the session's own error, if any, says why)."""
+    meta = session_meta(folder)
+    if meta is None:
+        return None, None
+    return meta_user(meta, folder), meta_visit(meta)
+
+
+def session_meta(folder: str | os.PathLike) -> dict | None:
+    """A session folder's meta.json object, None without a readable one (the session's own error says why)."""
     import json
 
     from pdrlearn.textfile import read_text
@@ -504,10 +512,20 @@ def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
     try:
         meta = json.loads(read_text(Path(folder) / "meta.json"))
     except (OSError, ValueError):
-        return None, None
-    if not isinstance(meta, dict):
-        return None, None
-    return meta_user(meta, folder), meta_visit(meta)
+        return None
+    return meta if isinstance(meta, dict) else None
+
+
+#: decision B389: sessions.csv's ``status`` of a part ``pdrlearn split`` wrote that holds no stride (all at rest)
+SKIPPED = "skipped"
+#: decision B389: sessions.csv's ``error`` cell of such a part (after the track's own line)
+SKIPPED_NOTE = "a part of a split session with no walking (all at rest): skipped, 0 steps, 0 m (decision B389)"
+
+
+def split_part(folder: str | os.PathLike) -> bool:
+    """Decision B389: whether a session folder is a part ``pdrlearn split`` wrote (its meta.json has ``split``)."""
+    meta = session_meta(folder)
+    return meta is not None and isinstance(meta.get("split"), dict)
 
 
 def meta_visit(meta: dict) -> str | None:
@@ -579,18 +597,19 @@ GROUP_METRICS = ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "
 def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
     """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (natural order, C102) with
     ``n_tracked`` (sessions tracked; decision C19: was ``n_sessions``, which ``track-all --json`` uses for every
-    session found), ``n_failed``, and for each metric column that has a value in some tracked session
-    ``<metric>_n`` (sessions with a value), ``_mean``, ``_sd`` (sample standard deviation, n - 1; empty for
-    one session), ``_median`` and (decision C20) ``_ci95_low`` / ``_ci95_high``, the 95 % t-interval of the mean
-    (empty under two sessions) over the group's tracked sessions. Plain pandas ``groupby`` statistics
-    (decision C12)."""
+    session found), ``n_failed`` (not a skipped split part, B389), and for each metric column that has a value in
+    some tracked session ``<metric>_n`` (sessions with a value), ``_mean``, ``_sd`` (sample standard deviation,
+    n - 1; empty for one session), ``_median`` and (decision C20) ``_ci95_low`` / ``_ci95_high``, the 95 %
+    t-interval of the mean (empty under two sessions) over the group's tracked sessions. Plain pandas ``groupby``
+    statistics (decision C12)."""
     import pandas as pd
 
     ok = sessions[sessions["status"] == "ok"]
     groups = sorted(sessions["group"].astype(str).unique(), key=natural_key)  # decision C102
     out = pd.DataFrame({"group": groups})
     out["n_tracked"] = [int((ok["group"].astype(str) == g).sum()) for g in groups]
-    out["n_failed"] = [int(((sessions["group"].astype(str) == g) & (sessions["status"] != "ok")).sum())
+    # decision B389: a skipped split part at rest is neither tracked nor failed
+    out["n_failed"] = [int(((sessions["group"].astype(str) == g) & (sessions["status"] == "failed")).sum())
                        for g in groups]
     for m in metrics:
         if m not in ok or not pd.to_numeric(ok[m], errors="coerce").notna().any():

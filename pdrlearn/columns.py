@@ -40,8 +40,8 @@ SESSIONS: tuple[Column, ...] = (
     ("visit", _ID, "text", "the visit as changes.csv and subjects.csv name it (C82): meta.json visit, --visit-map "
                            "applied and spellings of one visit made one (C28, C29); empty when not given (C22)"),
     ("visit_as_written", _ID, "text", "meta.json visit as written (C82)"),
-    ("status", _ID, "text", "ok (tracked) or failed"),
-    ("error", _ID, "text", "a failed session's one-line error; empty when ok"),
+    ("status", _ID, "text", "ok (tracked), failed, or skipped (a split part with no stride, all at rest: B389)"),
+    ("error", _ID, "text", "a failed session's one-line error (a skipped one's with B389's note); empty when ok"),
     ("session", _ID, "text", "meta.json's session name"),
     ("input_dir", _ID, "text", "the folder tracked, relative to ROOT (= path, C18)"),
     ("pipeline", _ID, "text", "the pipeline used: plasys (foot) or waist-pendulum / waist-pll (lower back)"),
@@ -468,7 +468,7 @@ SESSIONS: tuple[Column, ...] = (
 GROUPS: tuple[Column, ...] = (
     ("group", _ID, "text", "the group (sessions.csv group)"),
     ("n_tracked", "count", "integer", "sessions of the group tracked"),
-    ("n_failed", "count", "integer", "sessions of the group that failed"),
+    ("n_failed", "count", "integer", "sessions of the group that failed (a skipped split part is not, B389)"),
     ("{measure}_n", "count", "integer", "sessions with a value of the measure (the sessions.csv column)"),
     ("{measure}_mean", "as the measure", "number", "mean over those sessions (every session of every subject "
                                                    "and visit counted alike: descriptive only)"),

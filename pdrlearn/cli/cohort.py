@@ -39,6 +39,8 @@ from pdrlearn.cli.common import (
     train_resample_option,
 )
 from pdrlearn.cohort import (
+    SKIPPED,
+    SKIPPED_NOTE,
     JobResult,
     attach_to_error,
     captured_warnings,
@@ -51,6 +53,7 @@ from pdrlearn.cohort import (
     session_group,
     session_labels,
     session_warning,
+    split_part,
     user_sessions,
 )
 from pdrlearn.errors import DataError, NoStridesError, shell_quote
@@ -557,11 +560,13 @@ def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
     return list(dict.fromkeys(got))
 
 
-def _session_row(rel: str, group: str, r: JobResult, given: str | None = None) -> dict:
+def _session_row(rel: str, group: str, r: JobResult, given: str | None = None, skipped: bool = False) -> dict:
     error = None if r.ok else r.error
     if error and given:  # decision C18: the folder relative to ROOT, as path and input_dir (the same for a copy)
         error = error.replace(given, rel)
-    row = {"path": rel, "group": group, "status": "ok" if r.ok else "failed", "error": error}
+    if skipped:  # decision B389: a split part at rest, its track's line and the note
+        error = f"{error} -- {SKIPPED_NOTE}"
+    row = {"path": rel, "group": group, "status": SKIPPED if skipped else "ok" if r.ok else "failed", "error": error}
     warned = job_warnings(r, given)  # cohort C15: a failed session keeps its warnings beside its error
     row["n_warnings"] = len(r.value["warnings"]) if r.ok else len(r.extra.get("warnings", []))
     row["warnings"] = WARNINGS_SEP.join(warned) if warned else None
@@ -667,7 +672,7 @@ def _duplicates(rels: list[str], results: list[JobResult], dirs: list[Path]) -> 
 
 
 def _run_record(root: Path, options: dict, rels: list[str], results: list[JobResult], hashes: list[dict],
-                reused: dict[str, JobResult]) -> dict:
+                reused: dict[str, JobResult], n_skipped: int = 0) -> dict:
     """Decision C18: OUT/run.json, the record of a track-all run (:func:`pdrlearn.cli.provenance.run_record`, as
     ``track``'s, decision L122): the pdrlearn version, the command's options as given, ROOT as given, the model,
     when it finished and each session's wall and CPU time - what differs from run to run is here, so that
@@ -676,9 +681,11 @@ def _run_record(root: Path, options: dict, rels: list[str], results: list[JobRes
 
     ok = sum(r.ok for r in results)
     more = {"n_reused": len(reused), "reused": list(reused)} if options.get("resume") else {}  # cohort C41
+    if n_skipped:  # decision B389: split parts at rest, neither tracked nor failed
+        more["n_skipped"] = n_skipped
     return run_record("track-all", options, root=str(root), model=model_record(options.get("model")),
                       input_sha256=dict(zip(rels, hashes, strict=True)),  # L136
-                      n_sessions=len(results), n_tracked=ok, n_failed=len(results) - ok, **more,
+                      n_sessions=len(results), n_tracked=ok, n_failed=len(results) - ok - n_skipped, **more,
                       track_time_s={rel: round(r.seconds, 2) for rel, r in zip(rels, results, strict=True)},
                       cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
 
@@ -1092,6 +1099,12 @@ def track_all(
     hashes = [input_hashes(p) for p in found]  # decision L136 (run.json), and cohort C41's test of a reused session
     keys = session_keys(options, found, per_session, model_record(options.get("model")))
     adopted, reuse = _reusable(out, rels, keys, hashes) if resume else ([], {})
+    at_rest_parts = {rel for rel, p in zip(rels, found, strict=True) if split_part(p)}
+
+    def skipped_part(r: JobResult) -> bool:
+        """Decision B389: a part ``split`` wrote that holds no stride (all at rest): skipped, not failed."""
+        return not r.ok and r.exit_code == NoStridesError.exit_code and r.name in at_rest_parts
+
     # decision B151: a full disk stops the batch; cohort C41: a Ctrl-C leaves the sessions tracked so far, as a kill
     done = [0]
     # decision E131: on a terminal, a bar of the sessions done with the time left under the lines (the lines as before)
@@ -1101,7 +1114,7 @@ def track_all(
         def progress_line(r: JobResult) -> None:
             done[0] += 1
             what = (f"{'reused' if r.name in reuse else 'ok'}, {r.value['summary']['distance_m']:.1f} m" if r.ok
-                    else f"failed: {r.error}")
+                    else f"{SKIPPED}: {SKIPPED_NOTE}" if skipped_part(r) else f"failed: {r.error}")
             typer.echo(f"[{done[0]}/{len(found)}] {r.name}: {what} ({r.seconds:.1f} s)", err=True)
             advance()
 
@@ -1125,9 +1138,11 @@ def track_all(
             if all(r.exit_code == NoStridesError.exit_code for r in failed):  # decision B330: a data outcome (B318)
                 raise NoStridesError(first)
             raise DataError(first)
+        skipped = [r for r in failed if skipped_part(r)]  # decision B389
+        failed = [r for r in failed if not skipped_part(r)]
         dup, same = _duplicates(rels, results, found)
-        rows = [_session_row(rel, session_group(rel, group_depth), r, rename_text(str(p), names or {}))
-                for rel, r, p in zip(rels, results, found, strict=True)]
+        rows = [_session_row(rel, session_group(rel, group_depth), r, rename_text(str(p), names or {}),
+                             skipped_part(r)) for rel, r, p in zip(rels, results, found, strict=True)]
         for row, label, st in zip(rows, labels, per_session, strict=True):
             row["duplicate_of"] = dup.get(row["path"])
             row["same_sensor_data_as"] = same.get(row["path"])  # decision L137
@@ -1141,7 +1156,7 @@ def track_all(
         from pdrlearn.visits import subject_totals
 
         subjects = subject_totals(sessions, vmap)  # cohort C25: None when no session names a subject (C40: visits)
-        run = _run_record(root, options, rels, results, hashes, reused)
+        run = _run_record(root, options, rels, results, hashes, reused, len(skipped))
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
         if subjects is not None:
@@ -1172,7 +1187,8 @@ def track_all(
     if as_json:  # decision C19: n_sessions counts every session found, n_tracked those tracked (groups.csv's)
         printed = json_safe({"sessions": sessions.to_dict(orient="records"),
                               "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
-                              "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run,
+                              "n_tracked": len(results) - len(failed) - len(skipped), "n_failed": len(failed),
+                              **({"n_skipped": len(skipped)} if skipped else {}), "run": run,  # decision B389
                               **({"n_reused": len(reused)} if resume else {}),  # cohort C41
                               **({} if subjects is None else {"subjects": subjects.to_dict(orient="records")}),
                               **({} if changes is None else {"changes": changes.to_dict(orient="records"),
@@ -1180,7 +1196,8 @@ def track_all(
         printed = redact_json(printed, forms) if forms else printed  # decision E176
         print_json(rename_json(printed, names) if names else printed)  # decision C86
     else:
-        typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked"
+        typer.echo(f"track-all: {len(results) - len(failed) - len(skipped)}/{len(results)} sessions tracked"
+                   + (f", {len(skipped)} skipped (split parts at rest, decision B389)" if skipped else "")
                    + (f" ({len(reused)} reused from an earlier run, --resume)" if resume else "") + f"; wrote {out}/"
                    "<session>/, sessions.csv, groups.csv, bouts.csv, strides.csv, "
                    + ("periods.csv, " if settings.get("per_s") is not None else "")
@@ -1198,7 +1215,9 @@ def track_all(
             typer.echo(f"failed {r.name}: {r.error}")
             for w in job_warnings(r, given.get(r.name)):  # cohort C15: what it warned before it failed
                 typer.echo(f"  warned before: {w}")
-    _exit_if_any_failed(results)
+        for r in skipped:
+            typer.echo(f"{SKIPPED} {r.name}: {SKIPPED_NOTE}")
+    _exit_if_any_failed(failed)
 
 
 def register(app: typer.Typer) -> None:

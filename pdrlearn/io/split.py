@@ -26,6 +26,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU
+from pdrlearn.kernels.order import first_out_of_order
 from pdrlearn.textfile import GZ_CSV, csv_stem, is_gzip, read_json, session_csv, session_csvs
 
 log = logging.getLogger(__name__)
@@ -140,6 +141,7 @@ class _ChunkReader:
         self.dialect = _csv_dialect(path)
         self.sep = self.dialect.get("sep") or ","
         self.comma = self.dialect.get("decimal") == ","  # decision B24: a ';' file with decimal commas
+        self._held: tuple[tuple[pd.DataFrame, int] | None, Iterator] | None = None  # decision B388: head's read
 
     def numbers(self, cells: pd.Series) -> pd.Series:
         """Text cells as numbers (NaN where a cell is blank or no number), a decimal comma read as a point."""
@@ -147,13 +149,45 @@ class _ChunkReader:
         return pd.to_numeric(cells.str.replace(",", ".", regex=False) if self.comma else cells, errors="coerce")
 
     def chunks(self) -> Iterator[tuple[pd.DataFrame, int]]:
-        """``(chunk, line of its first row)``: every cell a string (empty cells stay empty)."""
+        """``(chunk, line of its first row)``: every cell a string (empty cells stay empty). Decision B388: after
+        :meth:`head` the read it began goes on (its rows first), so the file is not opened again."""
+        held, self._held = self._held, None
+        if held is None:
+            yield from self._read(None)
+            return
+        first, rest = held
+        if first is not None:
+            yield first
+        yield from rest
+
+    def head(self, rows: int) -> pd.DataFrame | None:
+        """Decision B388: the file's first ``rows`` rows (None without a row), its read held for :meth:`chunks`
+        (:meth:`close` ends it when no :meth:`chunks` follows)."""
+        self.close()
+        rest = self._read(rows)
+        first = next(rest, None)
+        self._held = (first, rest)
+        return None if first is None else first[0]
+
+    def close(self) -> None:
+        """End a read :meth:`head` began and :meth:`chunks` did not take."""
+        held, self._held = self._held, None
+        if held is not None:
+            held[1].close()
+
+    def _read(self, first_rows: int | None) -> Iterator[tuple[pd.DataFrame, int]]:
+        """The chunks of one read of the file (the first ``first_rows`` rows long when given)."""
         line = 2
         try:
             reader = pd.read_csv(self.path, dtype=str, keep_default_na=False, chunksize=self.chunk_rows,
                                  **self.dialect)
             with reader:
-                for chunk in reader:
+                while True:
+                    try:
+                        chunk = reader.get_chunk(first_rows)
+                    except StopIteration:
+                        return
+                    first_rows = None
                     chunk.columns = [str(c).strip() for c in chunk.columns]
                     yield chunk, line
                     line += len(chunk)
@@ -195,11 +229,19 @@ class _ChunkReader:
 
 def _check_sorted(path: Path, t: np.ndarray, last: float, line: int) -> None:
     """Decision B380 (D3 while streaming): a timestamp below the one before it is one line naming its line."""
-    prev = np.concatenate([[last], t[:-1]])
-    bad = np.flatnonzero(t < prev)
-    if bad.size:
-        raise DataError(f"{path}: timestamps are not sorted (line {line + int(bad[0])} is earlier than the line "
+    i = first_out_of_order(t, last, strict=False)
+    if i is not None:
+        raise DataError(f"{path}: timestamps are not sorted (line {line + i} is earlier than the line "
                         "before it); sort the file by timestamp or fix the logger, then split (decisions D3, B380)")
+
+
+def _numeric_times(r: _ChunkReader, chunk: pd.DataFrame, line: int) -> tuple[np.ndarray, list[str]]:
+    """An accelerometer or gyroscope chunk's times (s) and its timestamp,x,y,z columns, or one line."""
+    cols = [c for c in chunk.columns if c.lower() in ("timestamp", "x", "y", "z")]
+    if [c.lower() for c in cols] != ["timestamp", "x", "y", "z"]:
+        raise DataError(f"{r.path}: needs the columns timestamp,x,y,z (has {','.join(chunk.columns)}); fix the "
+                        "header (thesis ch.4.3.3)")
+    return r.times(chunk, [(cols[0], r.scale)], line, required=True)[:, 0], cols
 
 
 def _numeric_chunks(r: _ChunkReader) -> Iterator[tuple[np.ndarray, pd.DataFrame, list[str]]]:
@@ -207,11 +249,7 @@ def _numeric_chunks(r: _ChunkReader) -> Iterator[tuple[np.ndarray, pd.DataFrame,
     timestamps are one line (decision B380)."""
     last = -math.inf
     for chunk, line in r.chunks():
-        cols = [c for c in chunk.columns if c.lower() in ("timestamp", "x", "y", "z")]
-        if [c.lower() for c in cols] != ["timestamp", "x", "y", "z"]:
-            raise DataError(f"{r.path}: needs the columns timestamp,x,y,z (has {','.join(chunk.columns)}); fix the "
-                            "header (thesis ch.4.3.3)")
-        t = r.times(chunk, [(cols[0], r.scale)], line, required=True)[:, 0]
+        t, cols = _numeric_times(r, chunk, line)
         _check_sorted(r.path, t, last, line)
         if t.size:
             last = float(t[-1])
@@ -223,34 +261,38 @@ def _numeric_chunks(r: _ChunkReader) -> Iterator[tuple[np.ndarray, pd.DataFrame,
 HEAD_ROWS = 1000
 
 
-def _head(path: Path) -> np.ndarray | None:
+def _head(r: _ChunkReader) -> np.ndarray | None:
     """The first :data:`HEAD_ROWS` rows of a sensor file as numbers, the timestamp first (NaN where a cell is no
-    number); None when it holds no row or no timestamp column."""
-    r = _ChunkReader(path, 1.0, HEAD_ROWS)
-    for chunk, _ in r.chunks():
-        cols = r.time_columns(chunk.columns)[:1]
-        if not cols or chunk.empty:
-            return None
-        rest = [c for c in chunk.columns if c != cols[0][0]]
-        return np.column_stack([r.numbers(chunk[c]).to_numpy(float) for c in [cols[0][0], *rest]])
-    return None
+    number); None when it holds no row or no timestamp column. Decision B388: the read is held for the scan."""
+    chunk = r.head(HEAD_ROWS)
+    if chunk is None:
+        return None
+    cols = r.time_columns(chunk.columns)[:1]
+    if not cols or chunk.empty:
+        return None
+    rest = [c for c in chunk.columns if c != cols[0][0]]
+    return np.column_stack([r.numbers(chunk[c]).to_numpy(float) for c in [cols[0][0], *rest]])
 
 
-def session_time_scale(folder: Path, meta: dict, meta_path: Path) -> tuple[float, str | None]:
+def session_time_scale(readers: dict[str, _ChunkReader], meta: dict, folder: Path,
+                       meta_path: Path) -> tuple[float, str | None]:
     """Decision B385: seconds per timestamp unit as the session reader finds it (``_group_time_scale``: the
     declared unit, B16; else the unit every sensor file's rate allows, B22; else sample indices at ``rate_hz``,
-    B31), from each sensor file's first rows; and the unit read when meta.json declares none (None: ms)."""
+    B31), from each sensor file's first rows (``readers``: the session's sensor files by name); and the unit read
+    when meta.json declares none (None: ms)."""
     from pdrlearn.io.plasys import _group_time_scale, meta_rate
 
-    raw = {name: h for name in SENSORS if (p := session_csv(folder, name)).is_file() and (h := _head(p)) is not None}
+    raw = {name: h for name, r in readers.items() if (h := _head(r)) is not None}
     return _group_time_scale(raw, meta, meta_rate(meta, meta_path), folder, meta_path)
 
 
 def first_time(r: _ChunkReader) -> float | None:
-    """The first timestamp (s) of a sensor file, read from its first row only."""
-    for t, _, _ in _numeric_chunks(_ChunkReader(r.path, r.scale, 1)):
-        return float(t[0])
-    return None
+    """The first timestamp (s) of a sensor file, read from the first row :meth:`_ChunkReader.head` holds (decision
+    B388: not a read of its own)."""
+    if r._held is None or r._held[0] is None or r._held[0][0].empty:
+        return None
+    chunk, line = r._held[0]
+    return float(_numeric_times(r, chunk.iloc[:1], line)[0][0])
 
 
 class _UnitScan:
@@ -397,14 +439,15 @@ def _route(cut_times: np.ndarray, times: np.ndarray,
     return part, fits
 
 
-def _write_file(path: Path, scale: float, chunk_rows: int, cut_times: np.ndarray, parts: list[Path],
-                result: SplitResult, spans: np.ndarray) -> None:
+def _write_file(r: _ChunkReader, cut_times: np.ndarray, parts: list[Path], result: SplitResult,
+                spans: np.ndarray) -> None:
     """Stream one CSV of the session into the part folders (decision B379). Sensor files: every row by its
     timestamp, which must be sorted (B380); a part without rows of it gets no such file. Other CSVs with time
     columns (``timestamp``, ``*_ms``): each row into the part of its earliest time, a row spanning a cut left out
     and counted; every part gets the file (a header alone: labelled, nothing in that part). CSVs without a time
-    column are copied whole into every part."""
-    r = _ChunkReader(path, scale, chunk_rows)
+    column are copied whole into every part. Decision B388: a sensor file's read :meth:`_ChunkReader.head` began
+    goes on here when the scan did not take it (a barometer: one read)."""
+    path = r.path
     sensor = csv_stem(path) in SENSORS
     last = -math.inf
     with ExitStack() as stack:
@@ -475,7 +518,6 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
     The files are read ``chunk_rows`` rows at a time, so the memory does not grow with the recording. The output is
     written atomically (a temporary sibling folder renamed into place). Returns the parts, the cuts and the label
     rows left out because they span a cut."""
-    from pdrlearn.atomic import atomic_directory
     from pdrlearn.io.archive import is_archive
 
     folder = Path(session)
@@ -496,15 +538,36 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
         if not isinstance(meta, dict):
             raise DataError(f"{meta_path}: must hold a JSON object; fix it (decision B380)")
     _refuse(folder, meta)
-    scale, unit = session_time_scale(folder, meta, meta_path)
-    if unit is not None:  # decision B385: said once, and written into every part's meta.json (below)
-        log.warning("%s: declares no timestamp unit: the timestamps are read as %s (decision B22), and each part's "
-                    "meta.json declares \"units\": {\"timestamp\": \"%s\"}", meta_path, unit, unit)
-    units = []
-    for acc, gyr in UNIT_IMU.values():
-        pa, pg = session_csv(folder, acc), session_csv(folder, gyr)
-        if pa.is_file() and pg.is_file():
-            units.append((_ChunkReader(pa, scale, chunk_rows), _ChunkReader(pg, scale, chunk_rows)))
+    with ExitStack() as held:  # decision B388: each sensor file's head read goes on into the scan, else is ended
+        readers = {name: _ChunkReader(p, 1.0, chunk_rows) for name in SENSORS
+                   if (p := session_csv(folder, name)).is_file()}
+        for r in readers.values():
+            held.callback(r.close)
+        scale, unit = session_time_scale(readers, meta, folder, meta_path)
+        if unit is not None:  # decision B385: said once, and written into every part's meta.json (below)
+            log.warning("%s: declares no timestamp unit: the timestamps are read as %s (decision B22), and each part's "
+                        "meta.json declares \"units\": {\"timestamp\": \"%s\"}", meta_path, unit, unit)
+        for r in readers.values():
+            r.scale = scale
+        result, parts = _split(folder, out, meta, readers, scale, unit, part_s, max_minutes, chunk_rows)
+    result.parts = [Path(out) / p.name for p in parts]
+    if result.dropped:
+        log.warning("%s: %s label row(s) span a cut or lie in a gap of the sensor rows and are in no part (%s; "
+                    "decisions B379, B386)", folder,
+                    sum(result.dropped.values()), ", ".join(f"{n}: {k}" for n, k in result.dropped.items()))
+    if result.copied_whole:
+        log.warning("%s: %s have no time column and were copied whole into every part (decision B379)", folder,
+                    ", ".join(result.copied_whole))
+    return result
+
+
+def _split(folder: Path, out, meta: dict, readers: dict[str, _ChunkReader], scale: float, unit: str | None,
+           part_s: float, max_minutes: float, chunk_rows: int) -> tuple[SplitResult, list[Path]]:
+    """:func:`split_session` once the time unit is read: the scan (each accelerometer and gyroscope file's head
+    read going on, decision B388), then the parts written (a second read of every file)."""
+    from pdrlearn.atomic import atomic_directory
+
+    units = [(readers[acc], readers[gyr]) for acc, gyr in UNIT_IMU.values() if acc in readers and gyr in readers]
     if not units:
         raise DataError(f"{folder}: not a session split can cut: it needs a unit's accelerometer and gyroscope "
                         "(fAccelerometer.csv + fGyroscope.csv or wAccelerometer.csv + wGyroscope.csv) to find the "
@@ -530,8 +593,9 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
         parts = [tmp / f"part_{k:03d}" for k in range(len(cuts) + 1)]
         for p in parts:
             p.mkdir()
+        by_path = {r.path: r for r in readers.values()}
         for path in files:
-            _write_file(path, scale, chunk_rows, cut_times, parts, result, spans)
+            _write_file(by_path.get(path) or _ChunkReader(path, scale, chunk_rows), cut_times, parts, result, spans)
         kinds = ["session start", *("rest" if c.at_rest else "gap" if c.in_gap else "boundary, in motion"
                                     for c in cuts), "session end"]
         whole = {k: meta[k] for k in WHOLE_SESSION_KEYS if k in meta}
@@ -553,12 +617,4 @@ def split_session(session: str | os.PathLike, out: str | os.PathLike, *, max_min
                             for c in cuts],
                    "label_rows_spanning_a_cut": result.dropped, "copied_whole": result.copied_whole}
         (tmp / "split.json").write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
-    result.parts = [Path(out) / p.name for p in parts]
-    if result.dropped:
-        log.warning("%s: %s label row(s) span a cut or lie in a gap of the sensor rows and are in no part (%s; "
-                    "decisions B379, B386)", folder,
-                    sum(result.dropped.values()), ", ".join(f"{n}: {k}" for n, k in result.dropped.items()))
-    if result.copied_whole:
-        log.warning("%s: %s have no time column and were copied whole into every part (decision B379)", folder,
-                    ", ".join(result.copied_whole))
-    return result
+    return result, parts

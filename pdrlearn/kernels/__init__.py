@@ -32,6 +32,9 @@ Modules
 - :mod:`~pdrlearn.kernels.sideways` - side-stepping strides: L219's rule, offline and one stride at a time (E124).
 - :mod:`~pdrlearn.kernels.turn_length` - a turning stride's length class from its measured length (C88; C91: track,
   track --streaming and the runtime).
+- :mod:`~pdrlearn.kernels.rests` - the spans between a walk's rows: standstills (L464), streamed rests (E205), pauses
+  (L110).
+- :mod:`~pdrlearn.kernels.order` - the timestamp-order check of the runtime's pushes, the sensor pairing and split.
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

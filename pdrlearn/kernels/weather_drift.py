@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from pdrlearn.kernels.rests import between_rows
+
 #: decision L464: a standstill read for the drift lasts at least this (s) after trimming: L172's climb window (a
 #: storey is climbed in well under a minute), so a shorter pause between two climbs is not read as weather
 STANDSTILL_MIN_S = 60.0
@@ -27,12 +29,9 @@ def standstills(start, end, t_first: float, t_last: float, min_s: float = STANDS
     e = np.asarray(end, dtype=float).ravel()
     keep = np.isfinite(s) & np.isfinite(e)
     s, e = s[keep], e[keep]
-    if not len(s):
-        return [(t_first + trim_s, t_last - trim_s)] if t_last - t_first - 2 * trim_s >= min_s else []
     order = np.argsort(s, kind="stable")
-    s, e = s[order], np.maximum.accumulate(e[order])  # an overlapping step keeps the walk going
-    lo = np.concatenate([[t_first], e])
-    hi = np.concatenate([s, [t_last]])
+    # an overlapping step keeps the walk going (carry); a recording without steps is one standstill
+    lo, hi = between_rows(s[order], e[order], edges=(t_first, t_last), carry=True)
     return [(float(a + trim_s), float(b - trim_s)) for a, b in zip(lo, hi, strict=True) if b - a - 2 * trim_s >= min_s]
 
 

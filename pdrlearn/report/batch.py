@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pdrlearn.cohort import SKIPPED
 from pdrlearn.errors import DataError
 from pdrlearn.io.plasys import read_table
 
@@ -47,9 +48,10 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
                         f" {_REGENERATE}")
     if not len(sessions):
         raise DataError(f"{path}: has no session rows; {_REGENERATE}")
-    bad = sorted(set(sessions["status"].astype(str)) - {"ok", "failed"})
+    bad = sorted(set(sessions["status"].astype(str)) - {"ok", "failed", SKIPPED})  # decision B389: skipped
     if bad:
-        raise DataError(f"{path}: column status must be ok or failed, found {', '.join(bad[:3])}; {_REGENERATE}")
+        raise DataError(f"{path}: column status must be ok, failed or skipped, found {', '.join(bad[:3])}; "
+                        f"{_REGENERATE}")
     sessions["group"] = sessions["group"].astype(str)
     gpath = folder / "groups.csv"
     if not gpath.is_file():
@@ -74,9 +76,11 @@ def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[s
     warnings, the paired changes (visits by ``visit_map``)."""
     from pdrlearn.cohort import groups_text
 
-    n, failed = len(sessions), sessions[sessions["status"] != "ok"]
-    text = (f"{n - len(failed)} of {n} sessions tracked, {len(failed)} failed, in {len(groups)} group(s); "
-            "sessions.csv and groups.csv hold every column at full precision.")
+    n, failed = len(sessions), sessions[sessions["status"] == "failed"]
+    n_skipped = int((sessions["status"] == SKIPPED).sum())  # decision B389: split parts at rest
+    text = (f"{n - len(failed) - n_skipped} of {n} sessions tracked, {len(failed)} failed, "
+            + (f"{n_skipped} skipped (split parts at rest), " if n_skipped else "")
+            + f"in {len(groups)} group(s); sessions.csv and groups.csv hold every column at full precision.")
     from pdrlearn.report.tests_table import clinical_test_table, walk_test_table
 
     tests = [t for t in (clinical_test_table(sessions, "path"),  # decision W296: TUG, its phases, transfers, turns
@@ -195,8 +199,8 @@ def plot_batch(sessions: pd.DataFrame, path: Path, *, dpi: float | None = None) 
     y = np.arange(len(sessions))
     fig, axes = new_figure(1, len(metrics), figsize=(4.5 * len(metrics) + 2, 0.32 * len(sessions) + 1.6),
                              sharey=True, squeeze=False)
-    labels = [f"{p} (failed)" if s != "ok" else str(p) for p, s in zip(sessions["path"], sessions["status"],
-                                                                         strict=True)]
+    labels = [f"{p} ({s})" if s != "ok" else str(p) for p, s in zip(sessions["path"], sessions["status"],
+                                                                   strict=True)]
     for ax, (col, label) in zip(axes[0], metrics, strict=True):
         v = pd.to_numeric(sessions[col], errors="coerce").to_numpy(float)
         ax.barh(y, np.nan_to_num(v), color=[colours[g] for g in sessions["group"].astype(str)])

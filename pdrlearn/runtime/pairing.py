@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.order import first_out_of_order
 
 
 def _rows(name: str, t, v, last: float) -> tuple[np.ndarray, np.ndarray]:
@@ -27,14 +28,12 @@ def _rows(name: str, t, v, last: float) -> tuple[np.ndarray, np.ndarray]:
                         f"{np.shape(v)}")
     if not np.isfinite(t).all():
         raise DataError(f"SensorPair.{name}: NaN or inf timestamps; drop those samples")
-    prev = np.concatenate([[last], t[:-1]])
-    back = np.flatnonzero(t < prev)
-    if back.size:  # E204 (amended): a step back would be interpolated from (gyr) or dropped as early (acc)
-        i = int(back[0])
+    i = first_out_of_order(t, last, strict=False)
+    if i is not None:  # E204 (amended): a step back would be interpolated from (gyr) or dropped as early (acc)
         before = "the previous push's last" if i == 0 else f"sample {i - 1}"
         raise DataError(f"SensorPair.{name}: timestamps must not go back (seconds): sample {i} of this push "
-                        f"(t={t[i]:.6f} s) is before {before} (t={prev[i]:.6f} s); push each stream in time order "
-                        "(sort a batch by time before pushing)")
+                        f"(t={t[i]:.6f} s) is before {before} (t={t[i - 1] if i else last:.6f} s); push each stream "
+                        "in time order (sort a batch by time before pushing)")
     return t, v
 
 

@@ -24,6 +24,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.distance import classifier_rate_warning
+from pdrlearn.kernels.order import first_out_of_order
 
 #: a stream's rate, when the caller does not declare it, is the median interval of its first RATE_PROBE samples,
 #: or of those in its first RATE_PROBE_S s when that comes first (at least RATE_PROBE_MIN samples): a few
@@ -233,9 +234,8 @@ def _checked(name: str, t, v, last: float | None) -> tuple[np.ndarray, np.ndarra
     v = np.asarray(v, dtype=np.float64).reshape(len(t), -1)
     if not (np.isfinite(t).all() and np.isfinite(v).all()):
         raise DataError(f"{name}: pushed samples contain NaN/inf; clean the stream before tracking")
-    d = np.diff(t, prepend=-np.inf if last is None else last)
-    if not (d > 0).all():
-        i = int(np.argmin(d > 0))
+    i = first_out_of_order(t, -math.inf if last is None else last)
+    if i is not None:
         raise DataError(f"{name}: pushed timestamps are not increasing (at {t[i]:.3f} s); push samples in time "
                         "order")
     return t, v

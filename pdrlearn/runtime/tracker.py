@@ -40,6 +40,7 @@ from pdrlearn.kernels.distance import (
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gaps import drop_neighbour_on, drop_stride_disp
+from pdrlearn.kernels.order import first_out_of_order
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
     DOWN_MODES,
@@ -1219,8 +1220,7 @@ class Tracker(FixInput):
                             f"{want}{what}, one row per timestamp")
         if n and not (np.isfinite(t).all() and np.isfinite(v).all()):
             raise DataError(f"{name}: pushed samples contain NaN/inf; clean the stream before tracking")
-        if n > 1 and not (t[1:] > t[:-1]).all():
-            i = int(np.argmin(t[1:] > t[:-1])) + 1
+        if (i := first_out_of_order(t)) is not None:
             raise DataError(f"{name}: pushed timestamps are not increasing (at {t[i]:.3f} s after {t[i - 1]:.3f} s); "
                             "push samples in time order")
         return t, v

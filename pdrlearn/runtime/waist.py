@@ -20,6 +20,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.order import first_out_of_order
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.textfile import read_text
 
@@ -289,12 +290,11 @@ class WaistStream(FixInput):
         """Decision E203: one line naming the first sample of the push that does not increase strictly - from the
         previous push's last sample, or from the sample before it in this push - and the fix. ``t`` the kept samples'
         times, ``index`` their indices in the pushed array (the line names those: a dropped repeat shifts no index)."""
-        prev = np.concatenate([[self._last_t], t[:-1]])
-        bad = np.flatnonzero(t <= prev)
-        if not bad.size:
+        k = first_out_of_order(t, self._last_t)
+        if k is None:
             return
-        k = int(bad[0])
-        i, now, before = int(index[k]), float(t[k]), float(prev[k])  # a dropped repeat before it has prev's time
+        i, now = int(index[k]), float(t[k])
+        before = float(t[k - 1]) if k else float(self._last_t)  # a dropped repeat before it has prev's time
         fix = ("pass drop_duplicate_timestamps=True to drop repeated samples (the first kept, as 'pdrlearn import "
                "--drop-duplicate-timestamps')" if now == before else "sort the samples by time before pushing")
         what = "repeats" if now == before else "goes back from"
@@ -323,7 +323,7 @@ class WaistStream(FixInput):
             return
         if not np.isfinite(t).all():
             raise DataError(f"{self._name}.push_barometer: NaN or inf timestamps; drop those samples")
-        if t[0] <= self._baro_last or (t.size > 1 and np.any(np.diff(t) <= 0)):
+        if first_out_of_order(t, self._baro_last) is not None:
             raise DataError(f"{self._name}.push_barometer: timestamps must increase strictly across pushes (seconds)")
         self._baro_last = float(t[-1])
         if self._alt is None:

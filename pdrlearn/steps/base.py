@@ -12,6 +12,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session, Stream, session_entry
+from pdrlearn.kernels.order import first_out_of_order
 from pdrlearn.settings import Settings
 from pdrlearn.signal.filters import interp_rows
 from pdrlearn.steps._kernels import Event
@@ -116,7 +117,7 @@ class OnlineStepDetector:
             if not (np.all(np.isfinite(t)) and np.all(np.isfinite(v))):
                 raise DataError(f"{self.detector.name} online: NaN or inf in the pushed chunk; "
                                 "drop those samples")
-            if t[0] <= self._last_t or np.any(np.diff(t) <= 0):
+            if first_out_of_order(t, self._last_t) is not None:
                 raise DataError(f"{self.detector.name} online: timestamps must increase strictly "
                                 "across chunks")
             self._last_t = float(t[-1])

@@ -52,6 +52,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from pdrlearn.kernels.rests import between_rows
 from pdrlearn.kernels.yaw_turns import TURN_TIMING_FRACTIONS as _TURN_TIMING_FRACTIONS
 from pdrlearn.track.flags import flag_values
 
@@ -207,7 +208,8 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
     in time order."""
     t = st["start_s"].to_numpy(float)
     ok = _valid(st)
-    d = np.diff(t)
+    lo, hi = between_rows(t, t)  # start to start (np.diff's intervals)
+    d = hi - lo
     pair = ok[:-1] & ok[1:] & np.isfinite(d)
     if not pair.any():
         return np.zeros(len(d)), np.zeros(len(d), bool)

@@ -26,6 +26,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.kernels.position_sigma import position_covariance, sigma_radius
+from pdrlearn.kernels.rests import between_rows
 
 #: decision L128: parameters per error regime, each the maximum-likelihood fit on simulated users 900-905
 #: (``experiments/position_sigma.py fit --variant V``, printed values rounded to 2 significant digits); decision
@@ -131,8 +132,9 @@ def streamed_rests(steps, min_s: float) -> list[tuple[float, float]]:
         return []
     start, end = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
     held = steps["gap_s"].fillna(0.0).to_numpy(float) > 0 if "gap_s" in steps else np.zeros(len(steps), bool)
-    keep = (start[1:] - end[:-1] > min_s) & ~held[1:] & ~held[:-1]
-    return [(float(a), float(b)) for a, b in zip(end[:-1][keep], start[1:][keep], strict=True)]
+    lo, hi = between_rows(start, end)
+    keep = (hi - lo > min_s) & ~held[1:] & ~held[:-1]
+    return [(float(a), float(b)) for a, b in zip(lo[keep], hi[keep], strict=True)]
 
 
 def sigma_regime(info: dict, session) -> str:
