@@ -159,7 +159,7 @@ def test_a_record_cut_short_leaves_no_temporary_file_c116(tmp_path, monkeypatch)
     failed; it now goes through the project's atomic writer (whole or absent, nothing else)."""
     from pathlib import Path as P
 
-    from pdrlearn.cli.resume import write_file_record
+    from pdrlearn.cli.resume import write_record
 
     real = P.write_text
 
@@ -169,8 +169,8 @@ def test_a_record_cut_short_leaves_no_temporary_file_c116(tmp_path, monkeypatch)
 
     monkeypatch.setattr(P, "write_text", broken)
     with pytest.raises(OSError, match="disk full"):
-        write_file_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1})
+        write_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1})
     monkeypatch.setattr(P, "write_text", real)
     assert sorted(p.name for p in (tmp_path / "recs").iterdir()) == []
-    assert write_file_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1}) == {"row": 1}
+    assert write_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1}) == {"row": 1}
     assert sorted(p.name for p in (tmp_path / "recs").iterdir()) == ["a.json"]
