@@ -155,8 +155,8 @@ def test_gait_all_resume_pairs_again_a_failed_or_changed_pair_c116(study, serial
 
 
 def test_a_record_cut_short_leaves_no_temporary_file_c116(tmp_path, monkeypatch):
-    """Closing re-read (session 37): write_file_record wrote its own ``.part`` file, left behind when the write
-    failed; it now goes through the project's atomic writer (whole or absent, nothing else)."""
+    """Closing re-read (session 37): the record writer (then write_file_record) wrote its own ``.part`` file, left
+    behind when the write failed; it now goes through the project's atomic writer (whole or absent, nothing else)."""
     from pathlib import Path as P
 
     from pdrlearn.cli.resume import write_record
