@@ -155,11 +155,11 @@ def test_gait_all_resume_pairs_again_a_failed_or_changed_pair_c116(study, serial
 
 
 def test_a_record_cut_short_leaves_no_temporary_file_c116(tmp_path, monkeypatch):
-    """Closing re-read (session 37): write_file_record wrote its own ``.part`` file, left behind when the write
-    failed; it now goes through the project's atomic writer (whole or absent, nothing else)."""
+    """Closing re-read (session 37): the record writer (then write_file_record) wrote its own ``.part`` file, left
+    behind when the write failed; it now goes through the project's atomic writer (whole or absent, nothing else)."""
     from pathlib import Path as P
 
-    from pdrlearn.cli.resume import write_file_record
+    from pdrlearn.cli.resume import write_record
 
     real = P.write_text
 
@@ -169,8 +169,8 @@ def test_a_record_cut_short_leaves_no_temporary_file_c116(tmp_path, monkeypatch)
 
     monkeypatch.setattr(P, "write_text", broken)
     with pytest.raises(OSError, match="disk full"):
-        write_file_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1})
+        write_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1})
     monkeypatch.setattr(P, "write_text", real)
     assert sorted(p.name for p in (tmp_path / "recs").iterdir()) == []
-    assert write_file_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1}) == {"row": 1}
+    assert write_record(tmp_path / "recs" / "a.json", "k", {}, {"row": 1}) == {"row": 1}
     assert sorted(p.name for p in (tmp_path / "recs").iterdir()) == ["a.json"]

@@ -119,3 +119,35 @@ def test_a_pipeline_ending_without_predict_proba_names_its_last_step_and_the_fix
                        distance_calibration=False)
     finally:
         del METHODS["linsvc"]
+
+
+def test_export_converts_each_model_once_past_a_failed_foot_model_e207(tmp_path, monkeypatch):
+    """Decision E207: with --methods, the foot models E201's fallback goes through were converted already (they are
+    among the requested ones); each model is converted once and a failed one is skipped (and said) once."""
+    import json
+
+    from pdrlearn.export import from_model
+
+    model = train_user([synthetic_session(60, seed=0)], tasks=["terrain"], methods=["svm", "nn", "heuristic"],
+                       units=["foot", "combined"], cv=2, seed=0, distance_calibration=False)
+    tm = model.tasks["terrain"]
+    tm.chosen = ("svm", "combined")
+    for m, score in (("svm", 1.0), ("nn", 0.95), ("heuristic", 0.9)):
+        tm.cv[m]["foot"].update(balanced_accuracy=score, accuracy=score)
+    assert [p for p in tm.ranking() if p[1] == "foot"] == [("svm", "foot"), ("nn", "foot"), ("heuristic", "foot")]
+    model.save(tmp_path / "m")
+    real, calls = from_model._Collector.entry, []
+
+    def counted(self, est, stem):
+        calls.append(stem)
+        if stem in ("terrain_svm_foot", "terrain_nn_foot"):  # as a model the bundle cannot carry (E79, E86)
+            raise ModelError(f"{stem}: cannot be exported yet")
+        return real(self, est, stem)
+
+    monkeypatch.setattr(from_model._Collector, "entry", counted)
+    export_model(tmp_path / "m", tmp_path / "b", methods=["svm", "nn", "heuristic"])
+    top = [c for c in calls if c.count("_") == 2]  # not a fusion's members
+    assert sorted(top) == sorted(set(top)), top  # each model converted once
+    m = json.loads((tmp_path / "b" / "manifest.json").read_text())
+    assert m["tasks"]["terrain"]["foot_only"] == {"method": "heuristic", "unit": "foot"}
+    assert [s.split(":")[0] for s in m["export"]["skipped"]] == ["terrain svm/foot", "terrain nn/foot"]

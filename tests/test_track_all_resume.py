@@ -111,3 +111,41 @@ def test_resume_tracks_again_what_changed_or_is_incomplete(study, tmp_path):
     assert "(0 reused" in stdout
     rc, stdout, _ = _run(root, "--out", out, "--resume", "--storey-height", "2.9", "--jobs", "1")
     assert "(6 reused" in stdout  # --jobs is not part of a session's output
+
+
+def test_resume_says_why_a_session_was_tracked_again_as_gait_all_c135(study, tmp_path):
+    """Cohort C135: track-all's line of a session whose record was found but not reused names what changed, in
+    gait-all's words (C116: ``recomputed, input files changed: left meta.json since the earlier run``), through the
+    one check both commands share."""
+    root, out = tmp_path / "study", tmp_path / "o"
+    shutil.copytree(study, root)
+    assert _run(root, "--out", out)[0] == 1
+    meta = root / "a" / "S0" / "v1" / "meta.json"
+    meta.write_text(meta.read_text() + "\n")  # the same meaning, other bytes
+    (out / "b" / "S1" / "v2" / "steps.csv").unlink()
+    rc, _, err = _run(root, "--out", out, "--resume")
+    lines = {ln.split("] ")[1].split(":")[0]: ln for ln in err.splitlines() if ln.startswith("[")}
+    assert lines["a/S0/v1"].endswith(" s; recomputed, input files changed: meta.json since the earlier run)"), err
+    assert "; recomputed, its folder in OUT is incomplete or edited since the earlier run)" in lines["b/S1/v2"], err
+    assert "recomputed" not in lines["b/S9/v1"] and ": reused, " in lines["a/S1/v1"], err  # failed: no record
+    rc, _, err = _run(root, "--out", out, "--resume", "--storey-height", "2.9")
+    assert err.count("; recomputed, the options, model, calibration file, session folder or pdrlearn's code "
+                     "changed since the earlier run)") == 6, err
+
+
+def test_one_reuse_check_gives_both_commands_the_same_reason_c135(tmp_path):
+    """Cohort C135: a pair record (gait-all) and a session folder's record (track-all) with the same input file
+    changed give the same words; intact and unchanged, both are reused."""
+    from pdrlearn.cli.resume import reusable, write_record
+
+    folder = tmp_path / "session"
+    folder.mkdir()
+    (folder / "steps.csv").write_text("t\n1\n")
+    old, new = {"meta.json": "a", "f.csv": "b"}, {"meta.json": "c", "f.csv": "b"}
+    write_record(folder / RECORD, "k", old, {"x": 1}, outputs=folder)
+    write_record(tmp_path / "pair.json", "k", {"left": old, "right": old}, {"x": 1})
+    _, _, track = reusable([folder / RECORD], "k", new, key_changed="-", outputs=True)
+    _, _, gait = reusable([tmp_path / "pair.json"], "k", {"left": new, "right": old}, key_changed="-")
+    assert track == "input files changed: meta.json" and gait == "input files changed: left meta.json"
+    assert reusable([folder / RECORD], "k", old, key_changed="-", outputs=True) == (folder / RECORD, {"x": 1}, None)
+    assert reusable([tmp_path / "pair.json"], "k", {"left": old, "right": old}, key_changed="-")[1:] == ({"x": 1}, None)

@@ -1,6 +1,5 @@
 """Decision W389 (session 37, trial T1 finding 1): W34's straight line through the waist gyroscope across a short
-gap makes up a turn. The pre-gap mean rate was measured (experiments/waist_gap_rate.py) and not adopted: it stays
-an option (``kernels.gaps.PRE_GAP_RATE``, off) shared by the offline ``body_data`` and the stream ``Bridge``; the
+gap makes up a turn. The pre-gap mean rate was measured and not adopted (its option removed since, W401); the
 dropped-samples warning says what such a gap costs the heading."""
 
 from __future__ import annotations
@@ -31,25 +30,23 @@ def _session(gap_s: float, name: str = "w389") -> Session:
                    meta={"frames": {"waist": {"x": "forward", "y": "left", "z": "up"}}})
 
 
-def test_the_pre_gap_rate_option_fills_offline_and_stream_alike(monkeypatch):
-    """With the option on, the samples inside a 0.6 s gap carry the mean rate of the second before it, in
-    ``body_data`` and in the stream ``Bridge``; off (the default) both keep W34's line."""
+def test_a_short_gap_is_one_line_offline_and_streamed_and_no_module_switch_w401():
+    """Decision W401: W389's candidate (the pre-gap mean rate) and its module switch are gone; inside a 0.6 s gap
+    ``body_data`` and the stream ``Bridge`` both carry W34's straight line between the gap's edge samples."""
+    import pdrlearn.waist.ahrs as ahrs
+
+    assert not hasattr(G, "PRE_GAP_RATE") and not hasattr(G, "pre_gap_rate") and not hasattr(ahrs, "pre_gap_rate")
     s = _session(0.6)
     g = s["wGyroscope"]
     t, _, line = body_data(s)
     inside = (t > 5.13) & (t < 5.73)  # the samples 5.14-5.72 s dropped
     assert inside.sum() >= 25
-    monkeypatch.setattr(G, "PRE_GAP_RATE", True)
-    t2, _, mean = body_data(s)
-    want = g.values[(g.t > 5.12 - 1.0) & (g.t <= 5.12)].mean(axis=0)
-    assert np.allclose(mean[inside], want) and not np.allclose(line[inside], want)
-    assert np.array_equal(mean[~inside], line[~inside])  # recorded samples untouched
+    edge = np.flatnonzero(g.t <= 5.13)[-1]  # the last sample before the gap and the first after it
+    w = ((t[inside] - g.t[edge]) / (g.t[edge + 1] - g.t[edge]))[:, None]
+    assert np.allclose(line[inside], (1.0 - w) * g.values[edge] + w * g.values[edge + 1])
     v = np.column_stack([s["wAccelerometer"].values, g.values])
     bt, bv = Bridge(FS, {})(g.t, v)
-    assert np.allclose(bt, t2, atol=1e-9) and np.allclose(bv[:, 3:], mean, atol=1e-9)  # one kernel, same fill
-    monkeypatch.setattr(G, "PRE_GAP_RATE", False)
-    bt, bv = Bridge(FS, {})(g.t, v)
-    assert np.allclose(bv[:, 3:], line, atol=1e-9)
+    assert np.allclose(bt, t, atol=1e-9) and np.allclose(bv[:, 3:], line, atol=1e-9)
 
 
 @pytest.mark.parametrize("gap_s,warned", [(0.6, True), (0.2, False)])

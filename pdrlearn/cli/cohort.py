@@ -503,7 +503,7 @@ WARNINGS_SEP = " | "
 def _track_job(args: dict) -> dict:
     """Track one session (in this process or on a Dask worker) into ``args["out"]`` (atomically: the
     session's folder is complete or absent); its warnings are returned, not printed (said once per batch)."""
-    from pdrlearn.cli.resume import write_record
+    from pdrlearn.cli.resume import RECORD, write_record
     from pdrlearn.cli.track import track_session, write_track
     from pdrlearn.track.bouts import bout_totals
     from pdrlearn.warning_lines import merged_warnings
@@ -529,7 +529,7 @@ def _track_job(args: dict) -> dict:
                     rename_folder(tmp, names)
                     value = rename_json(value, names)
                 # cohort C41: what made the folder and its result, for `--resume`; written last, in the folder
-                return write_record(tmp, args["resume_key"], args["input_sha256"], value)
+                return write_record(tmp / RECORD, args["resume_key"], args["input_sha256"], value, outputs=tmp)
         except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
             attach_to_error(exc, warnings=list(warned))
             raise
@@ -741,17 +741,20 @@ RESUME_HELP = ("Reuse the sessions an interrupted (killed, Ctrl-C) or earlier ru
 
 
 def _reusable(out: Path, rels: list[str], keys: list[str], hashes: list[dict]
-              ) -> tuple[list[Path], dict[str, tuple[Path, dict]]]:
+              ) -> tuple[list[Path], dict[str, tuple[Path, dict]], dict[str, str]]:
     """Cohort C41: the temporary folders interrupted runs into ``out`` left (adopted:
     :func:`pdrlearn.atomic.adopt_leftovers`) and, per session, the folder of them or of ``out`` it can be reused from
-    with its job result (:func:`pdrlearn.cli.resume.reusable`)."""
+    with its job result (:func:`pdrlearn.cli.resume.reusable`); cohort C135: per session not reused whose record was
+    found, what changed."""
     from pdrlearn.atomic import adopt_leftovers
-    from pdrlearn.cli.resume import reusable
+    from pdrlearn.cli.resume import RECORD, SESSION_KEY_CHANGED, reusable
 
     adopted = adopt_leftovers(out)
     sources = [*adopted, *([out] if out.is_dir() else [])]
-    hits = {rel: reusable(sources, rel, key, h) for rel, key, h in zip(rels, keys, hashes, strict=True)}
-    return adopted, {rel: hit for rel, hit in hits.items() if hit is not None}
+    hits = {rel: reusable([src / rel / RECORD for src in sources], key, h, key_changed=SESSION_KEY_CHANGED,
+                          outputs=True) for rel, key, h in zip(rels, keys, hashes, strict=True)}
+    return (adopted, {rel: (file.parent, value) for rel, (file, value, _) in hits.items() if file is not None},
+            {rel: why for rel, (_, _, why) in hits.items() if why})
 
 
 def _interrupted_line(n_done: int, command: str = "track-all", noun: str = "session", decision: str = "C41") -> str:
@@ -1094,11 +1097,11 @@ def track_all(
         labels = [(names.get(sub, sub) if isinstance(sub, str) else sub, visit) for sub, visit in labels]
         per_session = [{**st, "names": names} for st in per_session]
     from pdrlearn.cli.provenance import input_hashes, model_record
-    from pdrlearn.cli.resume import session_keys
+    from pdrlearn.cli.resume import recomputed, session_keys
 
     hashes = [input_hashes(p) for p in found]  # decision L136 (run.json), and cohort C41's test of a reused session
     keys = session_keys(options, found, per_session, model_record(options.get("model")))
-    adopted, reuse = _reusable(out, rels, keys, hashes) if resume else ([], {})
+    adopted, reuse, changed = _reusable(out, rels, keys, hashes) if resume else ([], {}, {})
     at_rest_parts = {rel for rel, p in zip(rels, found, strict=True) if split_part(p)}
 
     def skipped_part(r: JobResult) -> bool:
@@ -1115,7 +1118,8 @@ def track_all(
             done[0] += 1
             what = (f"{'reused' if r.name in reuse else 'ok'}, {r.value['summary']['distance_m']:.1f} m" if r.ok
                     else f"{SKIPPED}: {SKIPPED_NOTE}" if skipped_part(r) else f"failed: {r.error}")
-            typer.echo(f"[{done[0]}/{len(found)}] {r.name}: {what} ({r.seconds:.1f} s)", err=True)
+            why = recomputed(changed.get(r.name))  # cohort C135: as gait-all's pairs (C116)
+            typer.echo(f"[{done[0]}/{len(found)}] {r.name}: {what} ({r.seconds:.1f} s{why})", err=True)
             advance()
 
         reused = {rel: _reused(rel, *reuse[rel], tmp / rel) for rel in rels if rel in reuse}

@@ -20,7 +20,7 @@ def _pair_job(args: dict) -> dict:
     """One visit folder (cohort C115): a pair tracked by ``pair_sessions`` and its record written (C116) into the
     batch's temporary folder; a folder without a pair is its ``no_pair`` row (no record). Returns ``{"row",
     "tables"}`` as read back from the record, so that a fresh and a reused pair are the same objects."""
-    from pdrlearn.cli.resume import write_file_record
+    from pdrlearn.cli.resume import write_record
     from pdrlearn.cohort import attach_to_error
     from pdrlearn.table_csv import table_text
     from pdrlearn.track.bilateral import pair_sessions
@@ -42,7 +42,7 @@ def _pair_job(args: dict) -> dict:
                      "n_steps": len(res["steps"]), "warnings": " | ".join(res["warnings"])},  # decision L461
              "tables": {name: table_text(got[name]) for name in GAIT_TABLE_FILES},
              "warnings": list(dict.fromkeys(warned))}
-    return write_file_record(Path(args["record"]), args["key"], args["input_sha256"], value)
+    return write_record(Path(args["record"]), args["key"], args["input_sha256"], value)
 
 
 def _progress_text(value: dict | None, error: str | None, reused: bool) -> str:
@@ -66,12 +66,14 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
     from pdrlearn.cli.common import existed, out_folder, progress, refused_output, replaced
     from pdrlearn.cli.gait import GAIT_ALL_FILES
     from pdrlearn.cli.resume import (
+        PAIR_KEY_CHANGED,
         PAIR_RECORDS,
         code_record,
         pair_key,
         pair_record_name,
-        reusable_file,
-        write_file_record,
+        recomputed,
+        reusable,
+        write_record,
     )
     from pdrlearn.cohort import JobResult, find_sessions, folder_bytes, run_cohort
     from pdrlearn.columns import TABLES
@@ -98,7 +100,8 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
     reuse, changed = {}, {}
     for i, p in enumerate(pairs):
         if resume and p["reason"] is None:
-            reuse[i], changed[i] = reusable_file(sources, names[i], keys[i], hashes[i])
+            _, reuse[i], changed[i] = reusable([Path(src) / PAIR_RECORDS / names[i] for src in sources], keys[i],
+                                               hashes[i], key_changed=PAIR_KEY_CHANGED)
     reuse = {i: v for i, v in reuse.items() if v is not None}
     was = existed(out)
     done, kept = [0], [0]  # cohort C116: kept = the pairs with a record (not the failed and no_pair folders)
@@ -110,12 +113,12 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
             done[0] += 1
             kept[0] += bool(r.ok and r.value["row"]["status"] == "ok")
             line = _progress_text(r.value if r.ok else None, r.error, i in reuse)
-            why = f"; recomputed, {changed[i]} since the earlier run" if changed.get(i) else ""
+            why = recomputed(changed.get(i))
             typer.echo(f"[{done[0]}/{len(pairs)}] {pairs[i]['path']}: {line} ({r.seconds:.1f} s{why})", err=True)
             advance()
 
         for i, value in reuse.items():  # cohort C116: the record put into the new OUT as it was
-            write_file_record(tmp / PAIR_RECORDS / names[i], keys[i], hashes[i], value)
+            write_record(tmp / PAIR_RECORDS / names[i], keys[i], hashes[i], value)
             progress_line(JobResult(str(i), ok=True, value=value))
         items = [(str(i), {"path": p["path"], "reason": p["reason"], "left": p["left"] and str(p["left"]),
                            "right": p["right"] and str(p["right"]), "record": str(tmp / PAIR_RECORDS / names[i]),

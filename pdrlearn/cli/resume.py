@@ -21,6 +21,9 @@ RECORD = ".track-all-session.json"
 #: content instead of by name (the model's manifest, the calibration file's bytes)
 KEY_LEAVES_OUT = ("jobs", "group_depth", "visit_map", "metrics", "resume", "params", "params_dir", "model")
 
+#: cohort C135: what a changed :func:`session_keys` key means, said on the session's line (as C116's pairs)
+SESSION_KEY_CHANGED = "the options, model, calibration file, session folder or pdrlearn's code changed"
+
 
 def _digest(obj) -> str:
     return hashlib.sha256(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()
@@ -68,33 +71,71 @@ def session_keys(options: dict, sessions: list[Path], settings: list[dict], mode
     return keys
 
 
-def write_record(folder: Path, key: str, inputs: dict, value: dict) -> dict:
-    """Write ``folder``'s :data:`RECORD` (last, inside the session's temporary folder: a session folder under its
-    own name is complete) and return ``value`` as read back from it, so that a fresh and a reused result are the
-    same objects (a JSON number, not a numpy one)."""
+def write_record(file: Path, key: str, inputs: dict, value: dict, *, outputs: Path | None = None) -> dict:
+    """Cohort C41, C116 (one writer since C135): ``file`` holding the key, the input hashes, what shows the record
+    intact and ``value``; returns ``value`` as read back from it, so that a fresh and a reused result are the same
+    objects (a JSON number, not a numpy one). What shows it intact: with ``outputs`` (track-all's session folder,
+    the record written last inside it) the SHA-256 of every output file; else the SHA-256 of ``value`` (gait-all's
+    pair record: one edited or cut short is not reused). Written under a temporary name and renamed (whole or
+    absent, the project's atomic writer)."""
+    from pdrlearn.atomic import atomic_file
     from pdrlearn.cli.provenance import input_hashes
 
-    text = json.dumps({"key": key, "input_sha256": inputs, "output_sha256": input_hashes(folder), "value": value})
-    (Path(folder) / RECORD).write_text(text + "\n")
+    check = {"output_sha256": input_hashes(outputs)} if outputs is not None else {"value_sha256": _digest(value)}
+    text = json.dumps({"key": key, "input_sha256": inputs, **check, "value": value})
+    with atomic_file(file) as part:
+        part.write_text(text + "\n")
     return json.loads(text)["value"]
 
 
-def reusable(sources: list[Path], rel: str, key: str, inputs: dict) -> tuple[Path, dict] | None:
-    """The first of ``sources`` (batch output folders, complete or interrupted) whose ``rel`` folder was made from
-    these ``inputs`` (SHA-256 by file) under ``key`` and still holds exactly the files it was written with:
-    ``(that folder, its job result)``; ``None`` when none does (the session is tracked again)."""
+def _intact(rec, file: Path, outputs: bool) -> bool:
+    """A record read back whole, with its value and (``outputs``: its folder's files, else the value) unchanged."""
     from pdrlearn.cli.provenance import input_hashes
 
-    for src in sources:
-        folder = src / rel
+    if not isinstance(rec, dict) or not isinstance(rec.get("value"), dict):
+        return False
+    if outputs:
+        return rec.get("output_sha256") == input_hashes(file.parent)
+    return rec.get("value_sha256") == _digest(rec["value"])
+
+
+def changed_files(new: dict, old) -> list[str]:
+    """The input files whose SHA-256 differs from the record's (added or gone too), sorted; gait-all's hashes by
+    side (``{"left": {...}, "right": {...}}``) are named ``left meta.json``."""
+    old = old if isinstance(old, dict) else {}
+    if new and all(isinstance(v, dict) for v in new.values()):  # by side: left first, as the pair is
+        return [f"{side} {f}" for side, files in new.items() for f in changed_files(files, old.get(side))]
+    return [f for f in sorted({*new, *old}) if new.get(f) != old.get(f)]
+
+
+def reusable(records: list[Path], key: str, inputs: dict, *, key_changed: str, outputs: bool = False
+             ) -> tuple[Path | None, dict | None, str | None]:
+    """Cohort C41, C116 (one check since C135): ``(record file, value, None)`` for the first of ``records`` (the
+    same record in each batch output folder, complete or interrupted) written under ``key`` from these ``inputs``
+    (SHA-256 by file) and still intact (:func:`_intact`; ``outputs``: track-all's record of its folder's files);
+    else ``(None, None, what changed)`` when a record was found - it edited or cut short, ``key_changed`` (the
+    caller's words for what its key holds), or the input files by name - and ``(None, None, None)`` when none was."""
+    changed = None
+    for file in records:
         try:
-            rec = json.loads(read_text(folder / RECORD))
+            rec = json.loads(read_text(file))
         except (OSError, ValueError):
             continue
-        if (isinstance(rec, dict) and rec.get("key") == key and rec.get("input_sha256") == inputs
-                and rec.get("output_sha256") == input_hashes(folder) and isinstance(rec.get("value"), dict)):
-            return folder, rec["value"]
-    return None
+        if not _intact(rec, Path(file), outputs):
+            changed = changed or f"its {'folder' if outputs else 'record'} in OUT is incomplete or edited"
+        elif rec.get("key") != key:
+            changed = changed or key_changed
+        elif rec.get("input_sha256") != inputs:
+            changed = changed or ("input files changed: " + ", ".join(changed_files(inputs, rec.get("input_sha256"))))
+        else:
+            return Path(file), rec["value"], None
+    return None, None, changed
+
+
+def recomputed(changed: str | None) -> str:
+    """Cohort C116, C135: the end of a progress line's ``(T s...)`` naming why an earlier run's result was not
+    reused (``""`` when no record was found)."""
+    return f"; recomputed, {changed} since the earlier run" if changed else ""
 
 
 def _link_or_copy(src: str, dst: str) -> None:
@@ -115,6 +156,9 @@ def reuse_folder(src: Path, dst: Path) -> None:
 #: cohort C116: the hidden folder of ``gait-all``'s OUT holding one record per visit folder paired
 PAIR_RECORDS = ".gait-all-pairs"
 
+#: cohort C116: what a changed :func:`pair_key` means, said on the pair's line
+PAIR_KEY_CHANGED = "pdrlearn's code or the session folders' names changed"
+
 
 def pair_record_name(path: str) -> str:
     """Cohort C116: a visit folder's record file name (its relative path hashed: ``.`` and nested paths alike)."""
@@ -127,40 +171,3 @@ def pair_key(left: str, right: str, code: dict | None = None) -> str:
     absolute path) and the code (``code``, :func:`code_record` when None, as :func:`session_keys`; gait-all has no
     option that changes a pair's output)."""
     return _digest({"command": "gait-all", "left": left, "right": right, "software": code or code_record()})
-
-
-def write_file_record(file: Path, key: str, inputs: dict, value: dict) -> dict:
-    """Cohort C116: ``file`` holding the key, the input hashes and ``value`` with its SHA-256 (a record edited or cut
-    short is not reused), written under a temporary name and renamed (whole or absent); ``value`` as read back."""
-    text = json.dumps({"key": key, "input_sha256": inputs, "value_sha256": _digest(value), "value": value},
-                      allow_nan=False)
-    from pdrlearn.atomic import atomic_file
-
-    with atomic_file(file) as part:  # closing re-read: the project's atomic writer (no .part left on a failure)
-        part.write_text(text + "\n")
-    return json.loads(text)["value"]
-
-
-def reusable_file(sources: list[Path], name: str, key: str, inputs: dict) -> tuple[dict | None, str | None]:
-    """Cohort C116: ``(value, None)`` from the first of ``sources`` whose ``PAIR_RECORDS/name`` was written under
-    ``key`` from these ``inputs`` and is intact; else ``(None, what changed)`` when a record was found (the code or
-    the folders, or the input files by name), ``(None, None)`` when none was."""
-    changed = None
-    for src in sources:
-        try:
-            rec = json.loads(read_text(Path(src) / PAIR_RECORDS / name))
-        except (OSError, ValueError):
-            continue
-        if not isinstance(rec, dict) or not isinstance(rec.get("value"), dict) or \
-                rec.get("value_sha256") != _digest(rec["value"]):
-            changed = changed or "its record in OUT is incomplete or edited"
-        elif rec.get("key") != key:
-            changed = changed or "pdrlearn's code or the session folders' names changed"
-        elif rec.get("input_sha256") != inputs:
-            old = rec.get("input_sha256") if isinstance(rec.get("input_sha256"), dict) else {}
-            files = [f"{side} {f}" for side in inputs for f in sorted({*inputs[side], *(old.get(side) or {})})
-                     if inputs[side].get(f) != (old.get(side) or {}).get(f)]
-            changed = changed or ("input files changed: " + ", ".join(files))
-        else:
-            return rec["value"], None
-    return None, changed

@@ -375,21 +375,24 @@ def export_model(
         if foot_only is not None and foot_only not in wanted:
             wanted = [*wanted, foot_only]
         entries: dict = {}
+        converted: dict = {}  # decision E207: each model of the task converted once, its entry or None (skipped)
+
+        def convert(p, task=task, tm=tm, converted=converted):
+            if p not in converted:
+                try:
+                    converted[p] = col.entry(tm.models[p[0]][p[1]], f"{task}_{p[0]}_{p[1]}")
+                except ModelError as exc:
+                    skipped.append(f"{task} {p[0]}/{p[1]}: {exc}")
+                    log.warning("skipped %s %s/%s: %s", task, p[0], p[1], exc)
+                    converted[p] = None
+            return converted[p]
+
         for m, u in wanted:
-            try:
-                e = col.entry(tm.models[m][u], f"{task}_{m}_{u}")
-            except ModelError as exc:
-                skipped.append(f"{task} {m}/{u}: {exc}")
-                log.warning("skipped %s %s/%s: %s", task, m, u, exc)
-                continue
-            entries.setdefault(m, {})[u] = e
+            if (e := convert((m, u))) is not None:
+                entries.setdefault(m, {})[u] = e
         # decision E201: a foot model the bundle cannot carry (a plug-in) gives way to the next exportable one
         for p in foot_models[1:] if foot_only is not None and "foot" not in entries.get(foot_only[0], {}) else ():
-            try:
-                e = col.entry(tm.models[p[0]][p[1]], f"{task}_{p[0]}_{p[1]}")
-            except ModelError as exc:
-                skipped.append(f"{task} {p[0]}/{p[1]}: {exc}")
-                log.warning("skipped %s %s/%s: %s", task, p[0], p[1], exc)
+            if (e := convert(p)) is None:
                 continue
             log.warning("export: task %s's foot-only fallback is %s/foot (%s/foot skipped: the bundle cannot carry "
                         "it)", task, p[0], foot_only[0])

@@ -675,7 +675,7 @@ STREAMED_DROPS = ("%s: %s have %s interval(s) of dropped samples of 1 s or less 
 
 
 #: decision W389: a waist gyroscope interval of dropped samples at least this long (s) gets :data:`GAP_TURN`
-#: (experiments/waist_gap_rate.py, W34's line: 0.3 s intervals moved no heading, 0.5-0.9 s ones up to 25 deg)
+#: (W389's measurement of W34's line: 0.3 s intervals moved no heading, 0.5-0.9 s ones up to 25 deg)
 GAP_TURN_S = 0.4
 #: decision W389: what such an interval costs the waist heading (W34 bridges the gyroscope with a straight line)
 GAP_TURN = ("; the waist gyroscope is a straight line across each one, which makes up or loses part of a turn: "

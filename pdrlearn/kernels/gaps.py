@@ -10,22 +10,6 @@ import numpy as np
 #: Gaps longer than this (s) are reported and end a walking sequence: the shortest steps last ~0.4 s
 #: and 1 s of missing data can hide one or two steps (brief: "gaps longer than e.g. 1 s").
 MIN_GAP_S = 1.0
-#: decision W389 (measured, not adopted: an option, off by default): True fills the gyroscope inside a bridged gap
-#: of up to 1 s with the mean rate of the recorded samples of ``PRE_GAP_WINDOW_S`` before it; False (default):
-#: W34's straight line between the gap's edge samples
-PRE_GAP_RATE = False
-PRE_GAP_WINDOW_S = 1.0
-
-
-def pre_gap_rate(t: np.ndarray, rate: np.ndarray, t_start: float,
-                 window_s: float = PRE_GAP_WINDOW_S) -> np.ndarray | None:
-    """Decision W389: the mean of the rows of ``rate`` (n, k) recorded at ``t`` in ``(t_start - window_s,
-    t_start]`` (the gait's pre-gap mean rate), the fill of a gap starting at ``t_start``; None when no sample is
-    there or :data:`PRE_GAP_RATE` is off (the default: keep W34's line)."""
-    m = (t > t_start - window_s) & (t <= t_start)
-    if not PRE_GAP_RATE or not m.any():
-        return None
-    return np.asarray(rate, dtype=float)[m].mean(axis=0)
 
 
 def grouped_gaps(gaps: dict[str, list[tuple[float, float]]]) -> list[tuple[list[str], list[tuple[float, float]]]]:

@@ -13,7 +13,7 @@ import numpy as np
 
 from pdrlearn.kernels import waist as K
 from pdrlearn.kernels.ahrs import madgwick_imu, quat_from_matrix, quat_matrices
-from pdrlearn.kernels.gaps import MIN_GAP_S, cut_contacts_at_gaps, pre_gap_rate
+from pdrlearn.kernels.gaps import MIN_GAP_S, cut_contacts_at_gaps
 from pdrlearn.kernels.rotation import gravity_rotation
 
 #: bridged gaps longer than this (s) are filled as a rest (decision B11: reported, they end the walking sequence;
@@ -41,8 +41,7 @@ def rule_contacts(settings: dict | None = None):
 class Bridge:
     """Decision W59: the dropped samples of a pushed stream bridged as the offline detector's input is
     (:func:`pdrlearn.waist.ahrs.body_data`, decision W34), so that ``online`` equals ``detect``: an interval
-    over 1.5 periods gets its missing samples at the nominal period, linearly interpolated (the gyroscope at
-    the pre-gap mean rate with W389's option); one over
+    over 1.5 periods gets its missing samples at the nominal period, linearly interpolated; one over
     ``LONG_GAP_S`` is filled as a rest (the mean of the raw samples of the second before it, zero rate); one over
     :data:`pdrlearn.track.gaps.MIN_GAP_S` ends the walking sequence (B11), added to ``gaps``."""
 
@@ -81,9 +80,6 @@ class Bridge:
             else:
                 w = ((ti - tt[i]) / d[i])[:, None]
                 fill = (1.0 - w) * vv[i] + w * vv[i + 1]
-                rate = pre_gap_rate(raw_t, raw_v[:, 3:], tt[i])  # W389 (an option): the pre-gap mean rate
-                if rate is not None:
-                    fill[:, 3:] = rate
             ts.append(ti)
             vs.append(fill)
             self.filled.append((float(tt[i]), float(tt[i + 1])))

@@ -379,24 +379,6 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
     return out.assign(length_m=lengths, frequency_hz=freq, dyaw_rad=dyaw)
 
 
-#: decision W390 (measured, not adopted: an option, off): True puts the harmonic headings' 0 at the first walking
-#: sequence's direction (the circular mean of its first ``WALK_REFERENCE_STEPS`` step directions), as the gyro
-#: heading's; False (default): the unit's initial facing
-WALK_REFERENCE = False
-WALK_REFERENCE_STEPS = 4
-
-
-def walk_reference(raw: np.ndarray, seqs) -> float:
-    """Decision W390: the circular mean of the first (up to) :data:`WALK_REFERENCE_STEPS` finite step directions
-    ``raw`` (rad) of the first walking sequence with one; 0 when there is none."""
-    for seq in seqs:
-        v = raw[seq[:-1]]
-        v = v[np.isfinite(v)][:WALK_REFERENCE_STEPS]
-        if len(v):
-            return float(np.angle(np.mean(np.exp(1j * v))))
-    return 0.0
-
-
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
                    resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
                    integrate_end: bool = False, rest_bias: bool = False, lying=None,
@@ -462,8 +444,6 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
             raw = K.resolve_axis_signs(raw, np.interp(mid, imu.t, imu.yaw))
         if rest_frame:  # decision W285: the frame's turn over a long rest (the bias) is no turn of the walk
             raw = raw - _rest_frame_drifts(imu, seqs, ev_all, still_mask)
-        if WALK_REFERENCE:  # decision W390: 0 = the first walk's direction, as the gyro heading's (W72)
-            raw = raw - walk_reference(raw, seqs)
         per_seq = [average_two(raw[seq[:-1]]) for seq in seqs]
     current = 0.0
     for seq, hd in zip(seqs, per_seq, strict=True):
@@ -1464,12 +1444,11 @@ def relative_heading_note(start, initial_heading: float, has_magnetometer: bool,
     """Decision W83: the one line saying a waist track's heading is relative to the start (no compass: W5), when
     the start direction was not given, and that a recorded wMagneticField.csv is not used; None otherwise.
     Decision W390: it names the reference of the heading ``method``: the gyro heading's 0 is the first walk's
-    direction; a harmonic heading's (``ahe``, waist-pll's default) the unit's initial facing, unless
-    :data:`WALK_REFERENCE` is on."""
+    direction; a harmonic heading's (``ahe``, waist-pll's default) the unit's initial facing."""
     given = bool(initial_heading) or (isinstance(start, dict) and "heading_rad" in start)
     if given and not has_magnetometer:
         return None
-    if method == "gyro" or WALK_REFERENCE:
+    if method == "gyro":
         zero = "0 = the direction of the first walk"
     else:  # W390: a yawed unit (a phone on the belt, in a pocket) turns the whole path
         zero = ("0 = the unit's initial facing, not the walking direction: the harmonic heading turns the whole "

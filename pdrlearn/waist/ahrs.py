@@ -24,7 +24,6 @@ from scipy.spatial.transform import Rotation
 
 from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.io import Session
-from pdrlearn.kernels.gaps import pre_gap_rate
 from pdrlearn.orient._kernels import madgwick_imu
 from pdrlearn.signal import gravity_rotation, interp_rows
 
@@ -130,8 +129,7 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     The waist kernels count samples (windows, shortest/longest step), so the clock must be uniform: when
     the accelerometer has dropped samples (an interval over 1.5 nominal periods, :meth:`Stream.gaps`),
     both streams are interpolated linearly onto the uniform clock ``t0 + k / fs`` of the native rate
-    (decision W34); with W389's option (``kernels.gaps.PRE_GAP_RATE``, off) the rate inside a gyroscope gap is
-    the mean of the second before it instead of the line.
+    (decision W34).
     A gap longer than :data:`LONG_GAP_S` (reported and ending the walking sequence, B11) is
     filled as a rest instead: the mean specific force of the second before it and zero rate, so the AHRS
     keeps its attitude across it (a straight line between two walking samples tilted it for the rest of the
@@ -170,12 +168,6 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     long = [g for g in gaps if g.duration_s > LONG_GAP_S]
     gyr_gaps = gyr_s.gaps()
     gyr_long = [g for g in gyr_gaps if g.duration_s > LONG_GAP_S]
-    for g in gyr_gaps:  # decision W389 (an option, off): the pre-gap mean rate
-        rate = None if g.duration_s > LONG_GAP_S else pre_gap_rate(gyr_s.t, gyr_s.values, g.start_s)
-        if rate is not None:
-            gyr = gyr.copy() if gyr is gyr_s.values else gyr
-            half = 0.5 / gyr_s.rate_hz
-            gyr[(t > g.start_s + half) & (t < g.start_s + g.duration_s - half)] = rate
     if long or gyr_long:  # a straight line between two walking samples would tilt the AHRS for the rest
         gyr = gyr.copy() if gyr is gyr_s.values else gyr  # of the recording
         half = 0.5 / acc_s.rate_hz
