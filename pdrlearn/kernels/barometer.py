@@ -487,8 +487,8 @@ FOOT_CLIMB_BIAS_SD_M = 0.01
 #: stride neither moves nor uses it, so the barometer's disagreement over a climb is the climb's, not the level
 #: strides' slope after it
 FOOT_CLIMB_BIAS_STEP_SD_M = 0.001
-#: decision L478/L479: the bias state is on in :func:`fuse_altitude` by default (see L479 for the measurement)
-FUSED_CLIMB_BIAS = False
+#: decision L479: the bias state is on in :func:`fuse_altitude` by default (L478's rule met: false ramps 5 -> 0)
+FUSED_CLIMB_BIAS = True
 
 
 def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t: np.ndarray,
