@@ -9,6 +9,7 @@ flagged strides (steps.csv ``speed_out_of_range``) of each.
 Usage::
 
     PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/speed_cruise_l480.py --out /tmp/l480   # ~15 min
+    PYTHONPATH=. .venv/bin/python experiments/speed_cruise_l480.py --rule-b --users 9500-9504 --out /tmp/l481  # L481
 """
 
 from __future__ import annotations
@@ -50,7 +51,9 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", default="9495-9499")
     ap.add_argument("--out", type=Path, required=True)
+    ap.add_argument("--rule-b", action="store_true", help="L481's rule B: cruise strides touch both neighbours")
     a = ap.parse_args()
+    speed_domain.CRUISE_CONTIGUOUS = a.rule_b
     a.out.mkdir(parents=True, exist_ok=True)
     total = {k: [0, 0, 0, 0] for k in ("old", "new")}
     for i, u in enumerate(users(a.users)):

@@ -21,6 +21,12 @@ SPEED_CRUISE = False
 #: decision L480: the strides left out at each end of each walking bout (the start from standing and the stop; a
 #: project choice: the simulator's and a walker's first stride is a half stride, Lindemann et al. 2008 in L415)
 CRUISE_TRIM = 1
+#: decision L481 (rule B): a cruise stride touches both neighbours (the gap between one stride's end and the next's
+#: start at most this, s: one sample at 20 Hz; a project choice): strides of a continuous walk share their boundary,
+#: so a gap is standing or turning on the spot between them, which the bout split (a pause of >= 1 s) may not see
+CRUISE_GAP_S = 0.05
+#: decision L481: rule B's contiguity is part of :func:`cruise_strides` (off: L480's rule A)
+CRUISE_CONTIGUOUS = False
 
 
 def cruise_strides(steps: pd.DataFrame) -> np.ndarray:
@@ -28,13 +34,24 @@ def cruise_strides(steps: pd.DataFrame) -> np.ndarray:
     level, forward, straight (:func:`pdrlearn.displace.calibration.straight_level_forward`: measured height change,
     length and heading, no model class, so a wrong class does not hide a stride) and not among the
     :data:`CRUISE_TRIM` first or last strides of a walking bout (:func:`pdrlearn.track.steady.trimmed_rows`: a
-    start from standing, the stride before and after a pause)."""
+    start from standing, the stride before and after a pause); with :data:`CRUISE_CONTIGUOUS` (decision L481, rule
+    B) also touching both neighbours (:func:`contiguous_strides`)."""
     from pdrlearn.displace.calibration import straight_level_forward
     from pdrlearn.track.steady import trimmed_rows
 
     if not len(steps):
         return np.zeros(0, bool)
-    return straight_level_forward(steps) & ~trimmed_rows(steps, CRUISE_TRIM)
+    out = straight_level_forward(steps) & ~trimmed_rows(steps, CRUISE_TRIM)
+    return out & contiguous_strides(steps) if CRUISE_CONTIGUOUS else out
+
+
+def contiguous_strides(steps: pd.DataFrame, gap_s: float = CRUISE_GAP_S) -> np.ndarray:
+    """Decision L481 (rule B): (rows,) bool, the rows (in the table's order, by ``start_s`` / ``end_s``) whose start
+    is the previous row's end and whose end the next row's start, within ``gap_s``; the first and last row are not."""
+    t0, t1 = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    with np.errstate(invalid="ignore"):
+        touch = np.abs(t0[1:] - t1[:-1]) <= gap_s
+    return np.r_[False, touch] & np.r_[touch, False]
 
 
 def training_speed_range(speeds) -> list[float] | None:
