@@ -4,7 +4,10 @@ A model trained on exercises at one speed classed 42 of 162 strides of a fast mi
 a median confidence 0.73, and C16's feature-range scores did not flag them. ``pdrlearn train``'s distance calibration
 tracks the training sessions (``displace.calibration``) and records the 1 % / 99 % quantiles of its strides'
 ``speed_mps`` (C16's quantiles) as ``speed_range_mps``; a tracked stride more than :data:`SPEED_MARGIN` outside it
-gets ``speed_out_of_range`` True in steps.csv and the track one warning line.
+gets ``speed_out_of_range`` True in steps.csv and the track one warning line. Decisions L480 / L481: the range is
+taken over, and compared on, the same cruise strides (:func:`cruise_strides`: level, forward, straight, not at a
+bout's ends, touching both neighbours), so a slow walk is flagged and a start from standing is not; a model
+trained before L481 records no ``speed_range_strides`` and is compared on every stride as before.
 """
 
 from __future__ import annotations
@@ -15,9 +18,9 @@ import pandas as pd
 #: decision L474: the relative margin (10 %) outside the training strides' 1-99 % speed range before a stride is
 #: flagged; stated, not fitted (a walk at the training speed has 2 % of its strides outside its own quantiles)
 SPEED_MARGIN = 0.10
-#: decision L480/L481: the range is taken over, and compared with, the cruise strides only (:func:`cruise_strides`);
-#: off: every tracked stride (L474)
-SPEED_CRUISE = False
+#: decision L480/L481 (adopted with rule B): the range is taken over, and compared with, the cruise strides only
+#: (:func:`cruise_strides`); off: every tracked stride (L474)
+SPEED_CRUISE = True
 #: decision L480: the strides left out at each end of each walking bout (the start from standing and the stop; a
 #: project choice: the simulator's and a walker's first stride is a half stride, Lindemann et al. 2008 in L415)
 CRUISE_TRIM = 1
@@ -25,8 +28,8 @@ CRUISE_TRIM = 1
 #: start at most this, s: one sample at 20 Hz; a project choice): strides of a continuous walk share their boundary,
 #: so a gap is standing or turning on the spot between them, which the bout split (a pause of >= 1 s) may not see
 CRUISE_GAP_S = 0.05
-#: decision L481: rule B's contiguity is part of :func:`cruise_strides` (off: L480's rule A)
-CRUISE_CONTIGUOUS = False
+#: decision L481: rule B's contiguity is part of :func:`cruise_strides` (adopted; off: L480's rule A)
+CRUISE_CONTIGUOUS = True
 
 
 def cruise_strides(steps: pd.DataFrame) -> np.ndarray:
