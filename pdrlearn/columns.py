@@ -908,7 +908,9 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("ood_*", _ID, "number", "with a model: the stride's out-of-training-range scores (C16)"),
     ("speed_out_of_range", _ID, "true/false", "offline with a model trained since L474: speed_mps more than 10 % "
                                               "outside the model's training strides' 1-99 % speeds (its classes "
-                                              "can be wrong with a high confidence; L474)"),
+                                              "can be wrong with a high confidence; L474); since L481 only level, "
+                                              "straight, forward strides of a continuous walk are compared (a "
+                                              "start, a stop, a turn, a stair stride is false)"),
     ("window_start_s", "s", "number", "with a model: the window the classes come from (L38)"),
     ("window_end_s", "s", "number", "the same window's end"),
     ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228); a "

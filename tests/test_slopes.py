@@ -192,3 +192,20 @@ def test_track_cli_altitude_option(tmp_path):
                                  "--out", str(tmp_path / "i")])
     assert r.exit_code != 0 and "--altitude fused reads the waist barometer (wBarometer.csv), which --units foot " \
         "leaves out" in str(r.exception) and not (tmp_path / "i").exists()
+
+
+def test_fused_climb_bias_keeps_a_level_top_level_after_an_over_read_climb_l478():
+    """Decision L478: a foot that over-reads every climbing stride (3.3 %, trial T3's +30.99 m for 30 m) no longer
+    leaves the fused filter a payback for the level strides after the climb (a false downhill ramp)."""
+    from pdrlearn.kernels.barometer import fuse_altitude
+
+    s0, s1 = _strides(140)
+    true = np.r_[np.zeros(10), np.full(100, 0.15), np.zeros(30)]  # 15 m up, then a level top
+    t = np.arange(0.0, s1[-1] + 2.0, 0.04)
+    baro = _baro(t, np.interp(t, np.r_[s0[0], s1], np.r_[0.0, np.cumsum(true)]))
+    old = fuse_altitude(true * 1.033, s0, s1, t, baro, climb_bias=False)
+    assert old[110:].sum() < -0.15  # measured -0.26 m: the slope state takes the climb's over-read
+    new = fuse_altitude(true * 1.033, s0, s1, t, baro, climb_bias=True)
+    assert abs(new[110:].sum()) < 0.05 and np.abs(new[110:]).max() < 0.01  # measured -0.007 m in all
+    assert new[:110].sum() == pytest.approx(15.0, abs=0.05)  # the climb reads the barometer's 15 m (old: 15.25)
+    assert np.array_equal(fuse_altitude(true * 1.033, s0, s1, t, baro), new)  # decision L479: on by default

@@ -153,6 +153,7 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
     """Track each labelled session with ``track``, keep the level, forward, straight strides matched to a
     flat forward label (IoU >= 0.5) and apply :func:`distance_gain` to all of them together."""
     from pdrlearn.io.resample import recorded_rate
+    from pdrlearn.track import speed_domain
     from pdrlearn.track.evaluate import match_by_overlap
 
     raw_all, ref_all, used, skipped, rates, speeds = [], [], [], [], [], []
@@ -168,8 +169,9 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
             skipped.append(f"{s.name}: {exc}")
             continue
         lab = lab.reset_index(drop=True)
-        if "speed_mps" in res.steps:  # decision L474: every tracked stride's speed, for the model's speed range
-            speeds.append(pd.to_numeric(res.steps["speed_mps"], errors="coerce").to_numpy(float))
+        if "speed_mps" in res.steps:  # decision L474: the tracked strides' speeds (L480: the cruise strides')
+            v = pd.to_numeric(res.steps["speed_mps"], errors="coerce").to_numpy(float)
+            speeds.append(v[speed_domain.cruise_strides(res.steps)] if speed_domain.SPEED_CRUISE else v)
         pairs = match_by_overlap(res.steps, lab, min_iou=0.5)
         if not pairs:
             skipped.append(f"{s.name}: no tracked stride matches a label")
@@ -192,9 +194,9 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
                    f"{' / '.join(f'{r:g}' for r in sorted({round(r, 3) for r in rec}))} Hz")
         rate_hz = None
     out.update(rate_hz=rate_hz, sessions_used=used, sessions_skipped=skipped)
-    from pdrlearn.track.speed_domain import training_speed_range
-
-    out["speed_range_mps"] = training_speed_range(np.concatenate(speeds) if speeds else [])  # decision L474
+    speeds = np.concatenate(speeds) if speeds else np.zeros(0)
+    out["speed_range_mps"] = speed_domain.training_speed_range(speeds)  # decision L474
+    out["speed_range_strides"] = "cruise" if speed_domain.SPEED_CRUISE else "all"  # decision L480
     return out
 
 

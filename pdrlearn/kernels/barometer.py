@@ -479,10 +479,20 @@ SLOPE_STEP_SD_M = 0.02
 #: transient (W108: 1.98 m in 2.4 s on a level floor, HA002 Test11), not a climb the foot missed: the barometer is
 #: re-referenced by it (the thesis' differential mode from a new reference point, ch.4.3.1.4) and the height kept
 BARO_JUMP_SDS = 4.0
+#: decision L478 (a project choice, not from the thesis): a climbing stride's (|dz| >= L39's 0.10 m) height carries a
+#: bias b (m per stride) the foot repeats over a climb (trial T3: +30.99 m read for a 30 m trail climb, +0.0045 m per
+#: stride), a state with this prior SD (m; L154's FOOT_STRIDE_SD_M, a stride's whole error budget) that
+FOOT_CLIMB_BIAS_SD_M = 0.01
+#: walks by this SD per climbing stride (m), so a later climb (a descent, stairs) may carry another bias; a level
+#: stride neither moves nor uses it, so the barometer's disagreement over a climb is the climb's, not the level
+#: strides' slope after it
+FOOT_CLIMB_BIAS_STEP_SD_M = 0.001
+#: decision L479: the bias state is on in :func:`fuse_altitude` by default (L478's rule met: false ramps 5 -> 0)
+FUSED_CLIMB_BIAS = True
 
 
 def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t: np.ndarray,
-                  baro_hpa: np.ndarray, *, level_dz_m: float = 0.10) -> np.ndarray:
+                  baro_hpa: np.ndarray, *, level_dz_m: float = 0.10, climb_bias: bool | None = None) -> np.ndarray:
     """Decision L154: the strides' height changes ``dz`` (m, after L39 / the class rules) fused with a barometer
     ``(baro_t, baro_hpa)`` (s, hPa) by a Kalman filter over the strides (causal: each stride's height uses the
     barometer up to its end; ``start_s`` / ``end_s`` the strides' times on the barometer's clock).
@@ -494,16 +504,20 @@ def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t
     :data:`BARO_WANDER_TAU_S`), so a barometer change that outlasts the wander's time becomes a slope and a short
     one does not. The measurement is :func:`relative_altitude` (W89's 1 s mean; the thesis' "differential mode",
     ch.4.3.1.4) at each stride's end, with :data:`BARO_NOISE_M`; a measurement :data:`BARO_JUMP_SDS` SDs from its
-    prediction moves the barometer's reference, not the height. Returns the fused per-stride height changes
-    (their sum is the fused altitude change); non-finite dz count as 0."""
+    prediction moves the barometer's reference, not the height. ``climb_bias`` (default :data:`FUSED_CLIMB_BIAS`,
+    decision L478) adds a fourth state, the climbing strides' bias b (:data:`FOOT_CLIMB_BIAS_SD_M`, a random walk of
+    :data:`FOOT_CLIMB_BIAS_STEP_SD_M` per climbing stride): a climbing stride moves h by dz + b. Returns the fused
+    per-stride height changes (their sum is the fused altitude change); non-finite dz count as 0."""
     d = np.nan_to_num(np.asarray(dz, dtype=float).ravel())
     t0, t1 = np.asarray(start_s, dtype=float).ravel(), np.asarray(end_s, dtype=float).ravel()
     if not len(d):
         return d
     b = relative_altitude(baro_t, baro_hpa, np.concatenate([[t0[0]], t1]))
     level = np.abs(d) < level_dz_m
-    x, p = np.zeros(3), np.diag([0.0, 0.0, BARO_WANDER_SD_M ** 2])  # h = 0 and no slope at the start, w its prior
-    obs = np.array([1.0, 0.0, 1.0])
+    bias_sd = FOOT_CLIMB_BIAS_SD_M if (FUSED_CLIMB_BIAS if climb_bias is None else climb_bias) else 0.0
+    # h = 0 and no slope at the start, w its prior, b (L478) its prior (0: the state is off)
+    x, p = np.zeros(4), np.diag([0.0, 0.0, BARO_WANDER_SD_M ** 2, bias_sd ** 2])
+    obs = np.array([1.0, 0.0, 1.0, 0.0])
     h = np.zeros(len(d) + 1)
 
     ref = 0.0  # the barometer's reference, moved by each transient
@@ -519,10 +533,12 @@ def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t
     t_prev = t0[0]
     for i in range(len(d)):
         a = np.exp(-max(float(t1[i] - t_prev), 0.0) / BARO_WANDER_TAU_S)  # the wander decorrelates
-        f = np.array([[1.0, float(level[i]), 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, a]])
-        x = f @ x + np.array([d[i], 0.0, 0.0])
+        climb = float(not level[i] and bias_sd > 0.0)
+        f = np.array([[1.0, float(level[i]), 0.0, climb], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, a, 0.0],
+                      [0.0, 0.0, 0.0, 1.0]])
+        x = f @ x + np.array([d[i], 0.0, 0.0, 0.0])
         p = f @ p @ f.T + np.diag([FOOT_STRIDE_SD_M ** 2, SLOPE_STEP_SD_M ** 2 * level[i],
-                                   BARO_WANDER_SD_M ** 2 * (1.0 - a * a)])
+                                   BARO_WANDER_SD_M ** 2 * (1.0 - a * a), FOOT_CLIMB_BIAS_STEP_SD_M ** 2 * climb])
         x, p, ref = update(x, p, b[i + 1], ref)
         h[i + 1], t_prev = x[0], t1[i]
     return np.diff(h)

@@ -1410,9 +1410,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
                      turn_valid=~in_gap)  # L109: a stride moved 0 m by the guard keeps its measured turn
     if domain is not None and cfg["rules"]:  # decision L474: strides faster / slower than the training strides
-        from pdrlearn.track.speed_domain import flag_speeds, model_speed_range
+        from pdrlearn.track.speed_domain import flag_speeds, model_speed_range, model_speed_strides
 
-        speed_info = flag_speeds(table, model_speed_range(model), warnings)
+        speed_info = flag_speeds(table, model_speed_range(model), warnings, model_speed_strides(model))
         if speed_info is not None and isinstance(domain, dict):
             domain["speed"] = speed_info
     if cfg["rules"] and use_bounds is not None and classified_length is not None and "length" not in untrained \

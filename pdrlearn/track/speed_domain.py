@@ -4,7 +4,10 @@ A model trained on exercises at one speed classed 42 of 162 strides of a fast mi
 a median confidence 0.73, and C16's feature-range scores did not flag them. ``pdrlearn train``'s distance calibration
 tracks the training sessions (``displace.calibration``) and records the 1 % / 99 % quantiles of its strides'
 ``speed_mps`` (C16's quantiles) as ``speed_range_mps``; a tracked stride more than :data:`SPEED_MARGIN` outside it
-gets ``speed_out_of_range`` True in steps.csv and the track one warning line.
+gets ``speed_out_of_range`` True in steps.csv and the track one warning line. Decisions L480 / L481: the range is
+taken over, and compared on, the same cruise strides (:func:`cruise_strides`: level, forward, straight, not at a
+bout's ends, touching both neighbours), so a slow walk is flagged and a start from standing is not; a model
+trained before L481 records no ``speed_range_strides`` and is compared on every stride as before.
 """
 
 from __future__ import annotations
@@ -15,6 +18,43 @@ import pandas as pd
 #: decision L474: the relative margin (10 %) outside the training strides' 1-99 % speed range before a stride is
 #: flagged; stated, not fitted (a walk at the training speed has 2 % of its strides outside its own quantiles)
 SPEED_MARGIN = 0.10
+#: decision L480/L481 (adopted with rule B): the range is taken over, and compared with, the cruise strides only
+#: (:func:`cruise_strides`); off: every tracked stride (L474)
+SPEED_CRUISE = True
+#: decision L480: the strides left out at each end of each walking bout (the start from standing and the stop; a
+#: project choice: the simulator's and a walker's first stride is a half stride, Lindemann et al. 2008 in L415)
+CRUISE_TRIM = 1
+#: decision L481 (rule B): a cruise stride touches both neighbours (the gap between one stride's end and the next's
+#: start at most this, s: one sample at 20 Hz; a project choice): strides of a continuous walk share their boundary,
+#: so a gap is standing or turning on the spot between them, which the bout split (a pause of >= 1 s) may not see
+CRUISE_GAP_S = 0.05
+#: decision L481: rule B's contiguity is part of :func:`cruise_strides` (adopted; off: L480's rule A)
+CRUISE_CONTIGUOUS = True
+
+
+def cruise_strides(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L480: (rows,) bool, the strides a speed range is taken over at train time and compared at track time:
+    level, forward, straight (:func:`pdrlearn.displace.calibration.straight_level_forward`: measured height change,
+    length and heading, no model class, so a wrong class does not hide a stride) and not among the
+    :data:`CRUISE_TRIM` first or last strides of a walking bout (:func:`pdrlearn.track.steady.trimmed_rows`: a
+    start from standing, the stride before and after a pause); with :data:`CRUISE_CONTIGUOUS` (decision L481, rule
+    B) also touching both neighbours (:func:`contiguous_strides`)."""
+    from pdrlearn.displace.calibration import straight_level_forward
+    from pdrlearn.track.steady import trimmed_rows
+
+    if not len(steps):
+        return np.zeros(0, bool)
+    out = straight_level_forward(steps) & ~trimmed_rows(steps, CRUISE_TRIM)
+    return out & contiguous_strides(steps) if CRUISE_CONTIGUOUS else out
+
+
+def contiguous_strides(steps: pd.DataFrame, gap_s: float = CRUISE_GAP_S) -> np.ndarray:
+    """Decision L481 (rule B): (rows,) bool, the rows (in the table's order, by ``start_s`` / ``end_s``) whose start
+    is the previous row's end and whose end the next row's start, within ``gap_s``; the first and last row are not."""
+    t0, t1 = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    with np.errstate(invalid="ignore"):
+        touch = np.abs(t0[1:] - t1[:-1]) <= gap_s
+    return np.r_[False, touch] & np.r_[touch, False]
 
 
 def training_speed_range(speeds) -> list[float] | None:
@@ -32,27 +72,41 @@ def training_speed_range(speeds) -> list[float] | None:
 
 def model_speed_range(model) -> list[float] | None:
     """The ``speed_range_mps`` a trained model recorded (None: oracle labels, no model, or trained before L474)."""
-    summary = getattr(model, "data_summary", None) or {}
-    rng = (summary.get("distance_calibration") or {}).get("speed_range_mps")
+    rng = _calibration(model).get("speed_range_mps")
     return [float(rng[0]), float(rng[1])] if rng is not None and len(rng) == 2 else None
 
 
-def flag_speeds(table: pd.DataFrame, speed_range, warnings: list[str]) -> dict | None:
+def model_speed_strides(model) -> str:
+    """Decision L480: which strides the model's ``speed_range_mps`` was taken over, ``"cruise"``
+    (:func:`cruise_strides`) or ``"all"`` (L474; a model trained before L480 records nothing)."""
+    return str(_calibration(model).get("speed_range_strides") or "all")
+
+
+def _calibration(model) -> dict:
+    summary = getattr(model, "data_summary", None) or {}
+    return summary.get("distance_calibration") or {}
+
+
+def flag_speeds(table: pd.DataFrame, speed_range, warnings: list[str], strides: str = "all") -> dict | None:
     """Decision L474: add ``speed_out_of_range`` to the stride ``table`` (``speed_mps`` more than
     :data:`SPEED_MARGIN` outside ``speed_range``; False where the speed is unknown) and, when any is, one line to
-    ``warnings``; returns ``info.out_of_domain.speed`` (None without a range or a ``speed_mps`` column)."""
+    ``warnings``; returns ``info.out_of_domain.speed`` (None without a range or a ``speed_mps`` column).
+    ``strides`` ``"cruise"`` (decision L480: the range was taken over :func:`cruise_strides`): only those strides are
+    compared (a start, a turn, a stair stride is not flagged)."""
     if speed_range is None or "speed_mps" not in table:
         return None
     lo, hi = speed_range
     v = pd.to_numeric(table["speed_mps"], errors="coerce").to_numpy(float)
-    out = np.isfinite(v) & ((v < lo * (1 - SPEED_MARGIN)) | (v > hi * (1 + SPEED_MARGIN)))
+    judged = np.isfinite(v) & (cruise_strides(table) if strides == "cruise" else True)
+    out = judged & ((v < lo * (1 - SPEED_MARGIN)) | (v > hi * (1 + SPEED_MARGIN)))
     table["speed_out_of_range"] = out
-    n, m = int(out.sum()), int(np.isfinite(v).sum())
+    n, m = int(out.sum()), int(judged.sum())
+    what = "level straight strides" if strides == "cruise" else "strides"
     if n:
         warnings.append(
-            f"{n} of {m} strides at speeds outside the model's training strides ({lo:.2f}-{hi:.2f} m/s, "
+            f"{n} of {m} {what} at speeds outside the model's training strides ({lo:.2f}-{hi:.2f} m/s, "
             f"+-{100 * SPEED_MARGIN:g} %; steps.csv speed_out_of_range): their terrain, direction and length classes "
             "can be wrong with a high confidence; record the calibration exercises at the speed of use and retrain "
             "(decision L474)")
-    return {"range_mps": [lo, hi], "margin": SPEED_MARGIN, "n_out": n, "n_strides": m,
+    return {"range_mps": [lo, hi], "margin": SPEED_MARGIN, "strides": strides, "n_out": n, "n_strides": m,
             "fraction": n / m if m else None}

@@ -1,0 +1,84 @@
+"""Decision L480: L474's speed range taken over, and compared on, the cruise strides
+(``track.speed_domain.SPEED_CRUISE``), judged by L480's adoption rule (docs/decisions/localization.md) on fresh
+simulated users.
+
+Per user: the three calibration exercises are simulated and ``train``-ed twice (the switch off: "old", on: "new");
+a normal walk with pauses and a very slow walk (0.33-0.39 m/s) are tracked offline with each model; it prints the
+flagged strides (steps.csv ``speed_out_of_range``) of each.
+
+Usage::
+
+    PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/speed_cruise_l480.py --out /tmp/l480   # ~15 min
+    PYTHONPATH=. .venv/bin/python experiments/speed_cruise_l480.py --rule-b --users 9500-9504 --out /tmp/l481  # L481
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fused_ramp_l478 import run  # noqa: E402
+from slopes import users  # noqa: E402
+
+from pdrlearn.track import speed_domain  # noqa: E402
+
+NORMAL = "stand:3, straight:30, stand:5, straight:20, turn:90, straight:20, stand:5, straight:15, stand:3"
+SLOW = "stand:3, straight:15, stand:3"
+#: L480: (--step-length m, --step-time s) of the slow walk, one per user in turn: 0.33-0.39 m/s
+SLOW_GAITS = [(0.20, 0.55), (0.18, 0.55), (0.22, 0.60), (0.20, 0.60), (0.24, 0.62)]
+
+
+def simulate(root: Path, name: str, user: int, args: list[str]) -> Path:
+    out = root / name
+    if not (out / "meta.json").exists():
+        run(["simulate", *args, "--user-seed", str(user), "--out", str(out), "--force"])
+    return out
+
+
+def flagged(sim: Path, model: Path, out: Path) -> tuple[int, int]:
+    run(["track", str(sim), "--model", str(model), "--out", str(out), "--force"])
+    st = pd.read_csv(out / "steps.csv")
+    col = st["speed_out_of_range"].astype(str).str.lower() == "true" if "speed_out_of_range" in st else st.index < 0
+    return int(col.sum()), len(st)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--users", default="9495-9499")
+    ap.add_argument("--out", type=Path, required=True)
+    ap.add_argument("--rule-b", action="store_true", help="L481's rule B: cruise strides touch both neighbours")
+    a = ap.parse_args()
+    speed_domain.CRUISE_CONTIGUOUS = a.rule_b
+    a.out.mkdir(parents=True, exist_ok=True)
+    total = {k: [0, 0, 0, 0] for k in ("old", "new")}
+    for i, u in enumerate(users(a.users)):
+        cal = [simulate(a.out, f"cal_{ex}_u{u}", u, ["--scenario", ex]) for ex in ("terrain", "direction", "length")]
+        sl, stime = SLOW_GAITS[i % len(SLOW_GAITS)]
+        normal = simulate(a.out, f"normal_u{u}", u, ["--route", NORMAL])
+        slow = simulate(a.out, f"slow_u{u}", u, ["--route", SLOW, "--step-length", str(sl), "--step-time", str(stime)])
+        parts = []
+        for tag, on in (("old", False), ("new", True)):
+            speed_domain.SPEED_CRUISE = on
+            model = a.out / f"m_u{u}_{tag}"
+            if not (model / "manifest.json").exists():
+                run(["train", *map(str, cal), "--out", str(model), "--force"])
+            rng = json.loads((model / "manifest.json").read_text())["training_data"]["distance_calibration"]
+            n_n, m_n = flagged(normal, model, a.out / f"t_normal_u{u}_{tag}")
+            n_s, m_s = flagged(slow, model, a.out / f"t_slow_u{u}_{tag}")
+            for j, v in enumerate((n_n, m_n, n_s, m_s)):
+                total[tag][j] += v
+            parts.append(f"{tag} range {rng['speed_range_mps']} normal {n_n}/{m_n} slow {n_s}/{m_s} "
+                         f"({sl / stime:.2f} m/s)")
+        print(u, "; ".join(parts), flush=True)
+    for tag, (n_n, m_n, n_s, m_s) in total.items():
+        print(f"{tag}: normal walks {n_n} of {m_n} strides flagged; slow walks {n_s} of {m_s} "
+              f"({100 * n_s / max(m_s, 1):.1f} %)")
+
+
+if __name__ == "__main__":
+    main()
