@@ -227,6 +227,13 @@ SESSIONS: tuple[Column, ...] = (
     ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
     ("n_side_strides", "count", "integer", "foot: strides of side-stepping runs (L219 / L228's sideways rows), "
                                            "not counted as backward (L270); empty on the lower back"),
+    ("forward_distance_m", "m", "number", "foot: distance_m less backward_distance_m and side_distance_m: forward "
+                                          "strides, turns on the spot and shuffles (L484); the three sum to "
+                                          "distance_m; empty on the lower back"),
+    ("backward_distance_m", "m", "number", "foot: summed |length_m| of the strides n_backward_strides counts (L484); "
+                                           "empty on the lower back"),
+    ("side_distance_m", "m", "number", "foot: summed |length_m| of the strides n_side_strides counts (L484); empty "
+                                       "on the lower back"),
     ("n_flight_phases", "count", "integer", "foot: runs of the foot accelerometer under 0.3 g for 0.1 s or more "
                                             "(both feet off the ground: jumps, running; W363); empty on the lower "
                                             "back"),
@@ -738,6 +745,10 @@ PERIODS: tuple[Column, ...] = (
     ("descent_m", "m", "number", "the same, descent (L467)"),
     ("n_bouts", "count", "integer", "bouts.csv's bouts that start in the period (sums to n_bouts)"),
     ("n_turns", "count", "integer", "turns.csv's turns that start in the period (sums to turn_count)"),
+    ("n_backward_strides", "count", "integer", "foot: the summary's backward strides whose middle lies in the period "
+                                               "(sums to n_backward_strides, L484); empty on the lower back"),
+    ("n_side_strides", "count", "integer", "foot: the summary's side strides whose middle lies in the period (sums "
+                                           "to n_side_strides, L484); empty on the lower back"),
     ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
     ("position_sigma_end_m", "m", "number", "the position's 1-sigma at the period's end (trajectory.csv pos_sigma_m, "
                                             "L128); empty for an aided track"),

@@ -133,3 +133,9 @@ def test_an_unknown_stairs_length_is_refused(storey):  # W156
 
     with pytest.raises(DataError, match="stairs_length 'yes'.*climbs"):
         get_pipeline("waist-pendulum")(storey, stairs_length="yes")
+
+
+def test_the_start_stop_line_states_no_direction_w402():  # W402: T2's stop-and-go read -22.8 % under "reads long"
+    line = micro_bout_message(7, 8, 5.0, 6.0)
+    assert "reads long" not in line
+    assert "too short or too long" in line and "-30 to +220 %" in line and "decision W402" in line

@@ -1149,9 +1149,11 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         from pdrlearn.track.corridor import corridor_line
 
         typer.echo(corridor_line(summary))
-    if summary.get("direction_changes"):  # decision L412: changes of travel direction (a turn is none)
-        typer.echo(f"{summary['direction_changes']} change(s) of travel direction between forward, backward, left "
-                   "and right strides (steps.csv travel; direction_changes.csv)")
+    from pdrlearn.track.travel import travel_line
+
+    travel = travel_line(summary)  # decisions L412, L484: backward / side strides, changes of travel direction
+    if travel:
+        typer.echo(travel)
     if summary.get("splits_m"):  # decision L411: the split times
         from pdrlearn.track.splits import splits_line
 

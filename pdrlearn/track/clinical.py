@@ -5,14 +5,16 @@ Every measure works on the rows of ``steps.csv`` of either pipeline: a foot trac
 strides (rest to rest, ``start_s`` the rest before the stride), a lower-back track's rows its steps (``start_s``
 the initial contact). Definitions (seconds and degrees, no sample counts):
 
-* **pause**: the interval from one row's ``start_s`` to the next row's is at least :data:`PAUSE_MIN_S` longer
-  than the walk's median such interval (the walker's own rhythm: one stride of the tracked foot, one step on the
-  lower back); the excess is the pause's length. So a pause is standing (no step of the tracked foot / of either
-  foot) for about a second or more beyond the usual rhythm; the rests of a slow walker's ordinary stance are no
-  pause. Rows across a foot-data gap (``gap_s`` > 0, L67) are not judged: a sensor gap is not a pause. An
-  interval across which the heading turns :data:`PAUSE_MAX_TURN_DEG` or more holds a turn: the time that turn
-  takes at :data:`TURN_ON_SPOT_MIN_DPS` is turning (a slow turn on the spot is no pause), only the excess beyond
-  it is standing (decision L119: a long stand before or after a turn is a pause and the turn still counts).
+* **pause**: the interval from one row's ``start_s`` to the next row's is at least :data:`PAUSE_MIN_S` longer than the
+  walk's median such interval (the walker's own rhythm: one stride of the tracked foot, one step on the lower back; on
+  a foot table at most the median of the rows' own stride windows, decision L482, so a stop-and-go walk whose
+  intervals mostly hold a stand is not judged against the stand); the excess is the pause's length. So a pause is
+  standing (no step of the tracked foot / of either foot) for about a second or more beyond the usual rhythm; the
+  rests of a slow walker's ordinary stance are no pause. Rows across a foot-data gap (``gap_s`` > 0, L67) are not
+  judged: a sensor gap is not a pause. An interval across which the heading turns :data:`PAUSE_MAX_TURN_DEG` or more
+  holds a turn: the time that turn takes at :data:`TURN_ON_SPOT_MIN_DPS` is turning (a slow turn on the spot is no
+  pause), only the excess beyond it is standing (decision L119: a long stand before or after a turn is a pause and the
+  turn still counts).
 * **walking bout**: the walk between pauses: ``n_walking_bouts`` = ``n_pauses`` + 1 (0 without a row); decision
   L269: a foot-data gap row longer than the pause threshold ends a bout too (the gap row in none); the time in data
   gaps is L275's ``time_no_data_s``.
@@ -213,7 +215,7 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
     pair = ok[:-1] & ok[1:] & np.isfinite(d)
     if not pair.any():
         return np.zeros(len(d)), np.zeros(len(d), bool)
-    excess = d - float(np.median(d[pair]))
+    excess = d - rhythm_s(st, d, pair)
     if "heading_rad" in st:  # decision L119: a turn across the interval takes its time, the rest is standing
         with np.errstate(invalid="ignore"):
             dh = np.abs(np.diff(np.degrees(unwrapped_heading(st))))
@@ -221,6 +223,23 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
             allow = np.minimum(dh / TURN_ON_SPOT_MIN_DPS, np.maximum(d - still_before(st)[1:], 0.0))
             excess = excess - np.where(dh >= PAUSE_MAX_TURN_DEG, allow, 0.0)
     return excess, pair & (excess >= min_s)
+
+
+#: decision L482: a foot table's rhythm is also bounded by its rows' own stride windows (stop-and-go walking)
+STRIDE_WINDOW_RHYTHM = True
+
+
+def rhythm_s(st: pd.DataFrame, d: np.ndarray, pair: np.ndarray) -> float:
+    """The walker's rhythm (s) a pause is judged against: the median of the valid row-to-row intervals ``d[pair]``
+    (L104); decision L482: on a foot table at most the median of its valid rows' own rest-to-rest windows
+    (``end_s - start_s``: one stride cycle, the standing between two strides lies outside it), so walks of 1-3
+    strides between stands are not judged against a median that is the stand."""
+    median = float(np.median(d[pair]))
+    if not STRIDE_WINDOW_RHYTHM or "end_s" not in st or not is_foot_table(st):
+        return median
+    window = st["end_s"].to_numpy(float) - st["start_s"].to_numpy(float)
+    window = window[_valid(st) & np.isfinite(window) & (window > 0)]
+    return min(median, float(np.median(window))) if window.size else median
 
 
 def still_before(steps: pd.DataFrame) -> np.ndarray:

@@ -583,6 +583,35 @@ def side_strides(steps: pd.DataFrame) -> int | None:
     return None if backward_travel(steps) is None else int(sideways_rows(steps).sum())
 
 
+#: decision L484: the summary's distance split by travel direction (sums to ``distance_m``)
+TRAVEL_DISTANCE_KEYS = ("forward_distance_m", "backward_distance_m", "side_distance_m")
+
+
+def travel_masks(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray] | None:
+    """Decision L484: (backward, side) row masks of a foot table, the rows ``n_backward_strides`` (L203) and
+    ``n_side_strides`` (L270) count; None for a lower-back table (no facing per step)."""
+    from pdrlearn.track.gait import sideways_rows
+
+    back = backward_travel(steps)
+    if back is None:
+        return None
+    back = np.asarray(back, bool)
+    return back, np.asarray(sideways_rows(steps), bool) & ~back
+
+
+def travel_distances(steps: pd.DataFrame) -> dict:
+    """Decision L484: :data:`TRAVEL_DISTANCE_KEYS`: the summed |``length_m``| (m) of the backward and side strides
+    (:func:`travel_masks`) and the rest of the distance (forward strides, turns on the spot, shuffles), so the three
+    sum to ``distance_m``; None each on a lower-back table."""
+    masks = travel_masks(steps)
+    if masks is None:
+        return dict.fromkeys(TRAVEL_DISTANCE_KEYS)
+    length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float))) if len(steps) else np.zeros(0)
+    back, side = float(length[masks[0]].sum()), float(length[masks[1]].sum())
+    return {"forward_distance_m": float(length.sum()) - back - side, "backward_distance_m": back,
+            "side_distance_m": side}
+
+
 def tracked_rate_hz(session: Session, pipeline: str | None) -> float | None:
     """Decision C19: the sampling rate (Hz) of the tracked unit's accelerometer (the lower back's for the waist
     pipelines, else the foot's): contact times, and so stride times and cadence, are resolved to one sample."""
@@ -602,6 +631,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     add_backward_travel(result.steps)  # decision L224: steps.csv's per-row form of the count below
     out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
     out["n_side_strides"] = side_strides(result.steps)  # decision L270: side steps, no backward travel
+    out.update(travel_distances(result.steps))  # decision L484: the distance by travel direction
     from pdrlearn.track.travel import add_travel, direction_change_table
 
     add_travel(result.steps)  # decision L412: each stride's travel direction (steps.csv travel)

@@ -24,7 +24,8 @@ which with ``time_walking_s`` sum to ``b - a`` and add up over consecutive windo
 Decision L277 (periods.csv, ``track --per 1h``): the whole-session track cut into consecutive periods from the
 recording's start (the last one shorter, ``partial``); each row's time columns are L275's for that period, its
 steps those whose middle lies inside (distance, n_steps), its bouts those that start inside, its turns (turns.csv)
-those whose start lies inside, its storeys those of the climbs whose last stair stride lies inside. Totals equal
+those whose start lies inside, its storeys those of the climbs whose last stair stride lies inside, its backward and
+side strides (decision L484, a foot track's) those whose middle lies inside. Totals equal
 the summary's (decision L278). Not re-tracked per period: a re-track would restart the tracker's start-up (the
 foot's first rest, its heading), drop the strides across each edge and the position it reached, and cost one
 track per period.
@@ -52,8 +53,8 @@ PERIOD_GAIT_KEYS = ("median_stride_length_m", "median_speed_mps", "stride_time_c
 PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
                   "n_steps", "n_steps_counts", "n_steps_both_feet", "median_stride_time_s", "median_cadence_spm",
                   *PERIOD_GAIT_KEYS, *TIME_KEYS,
-                  *POSTURE_KEYS, "floors_up", "floors_down", "ascent_m", "descent_m", "n_bouts", "n_turns", "data_gap",
-                  "position_sigma_end_m")
+                  *POSTURE_KEYS, "floors_up", "floors_down", "ascent_m", "descent_m", "n_bouts", "n_turns",
+                  "n_backward_strides", "n_side_strides", "data_gap", "position_sigma_end_m")
 #: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
 PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
@@ -388,7 +389,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's."""
     from pdrlearn.track.bouts import session_key
     from pdrlearn.track.clock import clock_edges
-    from pdrlearn.track.evaluate import interval_ascent, step_counts
+    from pdrlearn.track.evaluate import interval_ascent, step_counts, travel_masks
 
     t0, t1 = session_span(session, unit) if span is None else span
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
@@ -406,6 +407,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     sigma = traj["pos_sigma_m"].to_numpy(float) if "pos_sigma_m" in traj and len(traj) else None
     tt = traj["t"].to_numpy(float) if len(traj) else np.zeros(0)
     counts = step_counts(steps)["n_steps_counts"]  # decision L320: what n_steps counts, as the summary's
+    travel = travel_masks(steps)  # decision L484: the backward / side strides of the summary's counts
     rows = []
     for k, (a, b) in enumerate(zip(edges, ends, strict=True)):
         last = k == len(edges) - 1
@@ -425,6 +427,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None
         row["ascent_m"], row["descent_m"] = interval_ascent(result, float(a), float(b))  # decision L467
         row["n_bouts"], row["n_turns"] = int(inside(bout_t).sum()), int(inside(turn_t).sum())
+        row["n_backward_strides"], row["n_side_strides"] = ((None, None) if travel is None  # L484: lower back
+                                                            else (int(travel[0][m].sum()), int(travel[1][m].sum())))
         row["data_gap"] = row["time_no_data_s"] > 0
         j = int(np.searchsorted(tt, b + 1e-9, side="right")) - 1
         row["position_sigma_end_m"] = float(sigma[j]) if sigma is not None and j >= 0 else None

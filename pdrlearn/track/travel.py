@@ -92,3 +92,18 @@ def direction_change_table(steps: pd.DataFrame) -> pd.DataFrame | None:
             rows.append({"change": len(rows) + 1, "start_s": float(steps["start_s"].iloc[b]),
                          "from_travel": label[a], "to_travel": label[b], "row": int(b)})
     return pd.DataFrame(rows, columns=list(CHANGE_COLUMNS))
+
+
+def travel_line(summary: dict) -> str | None:
+    """The console's travel line of a foot track (decisions L412, L484): its backward and side strides with their
+    distance (``n_backward_strides``, ``n_side_strides``, ``backward_distance_m``, ``side_distance_m`` of
+    ``distance_m``) and its changes of travel direction; None when it has none of them (or is a lower-back track)."""
+    back, side, changes = (summary.get(k) or 0 for k in ("n_backward_strides", "n_side_strides", "direction_changes"))
+    parts = []
+    if back or side:
+        parts.append(f"{back} backward and {side} side stride(s) ({summary.get('backward_distance_m') or 0.0:.2f} m "
+                     f"backward, {summary.get('side_distance_m') or 0.0:.2f} m sideways of "
+                     f"{summary.get('distance_m') or 0.0:.2f} m)")
+    if changes:
+        parts.append(f"{changes} change(s) of travel direction between forward, backward, left and right strides")
+    return "; ".join(parts) + " (steps.csv travel; direction_changes.csv)" if parts else None

@@ -564,6 +564,11 @@ MICRO_BOUT_MAX_STEPS = 3
 #: a queue's shuffle forward is a dozen, a walk with a few stops at doors has a few, carrying a small share)
 MICRO_BOUT_MIN_COUNT = 5
 MICRO_BOUT_MIN_SHARE = 0.5
+#: decision W402: the distance errors measured where W157's line fired (experiments/startstop_w402.py, fresh users
+#: 9556-9559, uncalibrated): normal steps between 2-3 s stands read short on waist-pendulum (-20.6 to -29.8 %) and
+#: long on waist-pll (+46.1 to +137.9 %), a queue's 0.2 m steps long on both (+98.1 to +220.3 %)
+STARTSTOP_ERROR_TEXT = ("too short or too long (simulated start-stop walks: -30 to +220 %; normal steps between "
+                        "stands read short on waist-pendulum, a queue's 0.2 m shuffles long; decision W402)")
 
 
 def micro_bouts(length_m: np.ndarray, has_next: np.ndarray) -> tuple[int, int, float, float]:
@@ -589,6 +594,6 @@ def micro_bout_message(n_micro: int, n_sequences: int, micro_m: float, total_m: 
             f"standstills and carry {micro_m:.1f} of the {total_m:.1f} m ({100 * micro_m / total_m:.0f} %; "
             f"{MICRO_BOUT_MIN_COUNT} or more carrying half the distance warns, decision W157): start-stop "
             "shuffling (a queue, a crowded platform) is all gait initiation and termination, outside the steady "
-            "walking the waist step-length models and a calibration describe, and reads long (a simulated queue "
-            "of 0.2 m steps: +97 % waist-pendulum, +326 % waist-pll; calibrated +147 % / +310 %); a foot unit "
-            "measures such steps (plasys pipeline), the waist distance of these sequences is not reliable")
+            "walking the waist step-length models and a calibration describe: the waist distance of these "
+            f"sequences is not reliable and may read {STARTSTOP_ERROR_TEXT}; a foot unit measures such steps "
+            "(plasys pipeline)")
