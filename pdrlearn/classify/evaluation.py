@@ -443,7 +443,7 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
     trained at (decision C18's line, as ``pdrlearn track`` gives it). Decision B87: a session is a training
     session when its :meth:`~pdrlearn.io.session.Session.content_id` (``ids``) is among the manifest's
     ``training_data.session_ids``; a model trained before B87 has none, and its ``sessions`` names are matched."""
-    from pdrlearn.classify.training import rate_mismatch
+    from pdrlearn.classify.training import other_user_line, rate_mismatch
     from pdrlearn.io.resample import log_grouped
     from pdrlearn.kernels.distance import classifier_rate_warning
 
@@ -461,6 +461,9 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
         names = ", ".join(s.where for s in seen[:3]) + (f" and {len(seen) - 3} more" if len(seen) > 3 else "")
         log.warning("evaluate: %d of %d session(s) were used to train the model (%s; %s): the "
                     "accuracy on them is not held-out", len(seen), len(sessions), names, how)
+    line = other_user_line(model, sessions)  # decision C138: a per-user model scored on another user
+    if line:
+        log.warning(line)
     out["rate_mismatch"] = {}
     # decision B113 amended (review): the sessions scored resampled (--resample), sensor -> from_hz / to_hz
     out["resampled"] = {s.name: s.meta["resampled"] for s in sessions if s.meta.get("resampled")}

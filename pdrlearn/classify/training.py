@@ -786,6 +786,37 @@ def rate_mismatch(model, session, pred: pd.DataFrame | None = None) -> dict | No
     return off or None
 
 
+#: how :func:`pdrlearn.cohort.meta_user_key` names a user: a model's ``data_summary["users"]`` entry of another form
+#: is a given name (``--user P001``, decision E174), which says nothing about whom the model was fitted on
+_USER_KEY_PREFIXES = ("user:", "user.", "subject:", "subject.")
+
+
+def model_user_key(model) -> str | None:
+    """Decision C138: the one user a per-user model was fitted on, as :func:`session_user` names it
+    (``user.seed:9460``), from its ``data_summary["users"]``; None when it names none, several (a pooled model: a
+    new user is its intended use) or a given name (decision E174 replaced the key)."""
+    users = (getattr(model, "data_summary", None) or {}).get("users") or []
+    keys = [u for u in users if isinstance(u, str) and u.startswith(_USER_KEY_PREFIXES)]
+    return keys[0] if len(users) == 1 and len(keys) == 1 else None
+
+
+def other_user_line(model, sessions, what: str = "evaluate") -> str | None:
+    """Decision C138: one warning line when a per-user model (:func:`model_user_key`) is scored on / classifies
+    sessions whose meta.json names another user (:func:`session_user`, the mechanism of train's mixed-users warning,
+    C35); None when no user is known on either side or every session is the model's user."""
+    key = model_user_key(model)
+    if key is None:
+        return None
+    other = [(s, u) for s in sessions if (u := session_user(s)) is not None and u != key]
+    if not other:
+        return None
+    users = ", ".join(sorted({u for _, u in other}))
+    names = ", ".join(str(s.name) for s, _ in other[:3]) + (f" and {len(other) - 3} more" if len(other) > 3 else "")
+    return (f"{what}: the model was trained on {key} but {len(other)} of {len(sessions)} session(s) are of {users} "
+            f"({names}): a per-user model is applied to another user, so the figures are not the model's held-out "
+            "accuracy on its user (decision C138; train that user's model, or a pooled one with --cv-groups user)")
+
+
 def _gap_groups(windows):
     """``(rows, windows, lost units)`` triples: the steps that lost the same units (``("foot", "waist")``, ``()``
     for none) to sensor gaps, with those units removed from ``available`` (decision B11), so a model of the
