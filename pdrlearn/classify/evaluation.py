@@ -121,8 +121,9 @@ def evaluate_model(
 
     check_warn_at(warn_out_of_domain)
     from pdrlearn.classify.detected import DetectedPredictions, detected_score, drop_warning
-    from pdrlearn.classify.training import class_metrics, session_windows, task_data
+    from pdrlearn.classify.training import class_metrics, session_list, session_windows, task_data
 
+    sessions = session_list(sessions, "evaluate_model")  # decision B391: a Session or a path is accepted too
     if not sessions:
         raise DataError("evaluate: no sessions given; pass at least one labelled session folder")
     ids = [s.content_id() for s in sessions]  # decision B87: before anything reads the streams

@@ -436,7 +436,7 @@ def training_data(sessions, task: str, *, unit: str | None = None, n_samples: in
         raise DataError(f"training_data: task {task!r}; choose one of {', '.join(TASKS)}")
     if unit is not None and unit not in UNITS:
         raise DataError(f"training_data: unit {unit!r}; choose one of {', '.join(UNITS)} (or None: every step)")
-    sessions = session_list(sessions)
+    sessions = session_list(sessions, "training_data")
     if not sessions:
         raise DataError("training_data: no sessions given; pass at least one labelled session")
     sessions = one_rate(sessions, session_rates(sessions), resample_hz, "training_data")  # decision C56, as train
@@ -1395,12 +1395,27 @@ def mixed_rates(recorded: dict[str, dict[str, float]]) -> dict[str, dict[float, 
     return out
 
 
-def session_list(sessions) -> list:
+def session_list(sessions, caller: str = "train_user") -> list:
     """One :class:`pdrlearn.io.Session` as a list of one (``training_data(session)``, ``train_user(session)``; review
-    R4: a TypeError before), else the sessions as a list."""
-    from pdrlearn.io import Session
+    R4: a TypeError before), else the sessions as a list. Decision B391: a path (``str`` / ``os.PathLike``), alone or
+    in the list, is read as ``pdrlearn train`` reads it (a session folder, or a folder of sessions:
+    :func:`pdrlearn.session_dirs.find_session_dirs`; otherwise one :class:`DataError` naming the path); anything else
+    that is not a session is :func:`pdrlearn.io.session.as_session`'s one line naming ``caller``."""
+    import os
 
-    return [sessions] if isinstance(sessions, Session) else list(sessions or [])
+    from pdrlearn.io import Session
+    from pdrlearn.io.session import as_session
+    from pdrlearn.session_dirs import read_session_dirs
+
+    if isinstance(sessions, Session | str | os.PathLike):
+        sessions = [sessions]
+    out = []
+    for s in sessions or []:
+        if isinstance(s, str | os.PathLike):
+            out.extend(read_session_dirs([s]))  # decision B391 (a raw AttributeError before)
+        else:
+            out.append(as_session(s, caller))
+    return out
 
 
 def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float | None,

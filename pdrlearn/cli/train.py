@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import logging
 import time
 from pathlib import Path
 
@@ -31,49 +30,9 @@ from pdrlearn.cli.common import (
     train_resample_option,
 )
 from pdrlearn.errors import DataError, shell_quote
+from pdrlearn.session_dirs import find_session_dirs, read_session_dirs
 
 EVAL_RESAMPLE_OPT, EVAL_NO_RESAMPLE_OPT = resample_options("scored")  # decision B113, track's text
-
-
-def find_session_dirs(paths: list[Path]) -> list[Path]:
-    """Session folders among ``paths``: a folder with sensor CSVs (or a zip of one, decision B360) is a session,
-    otherwise its immediate sub-folders that are sessions are used."""
-    from pdrlearn.io.archive import is_archive, is_zip_file, unsearched_zip_line
-    from pdrlearn.io.sensors import SENSORS
-
-    def is_session(p: Path) -> bool:
-        return p.is_dir() and any((p / f"{name}{ext}").is_file() for name in SENSORS
-                                  for ext in (".csv", ".csv.gz"))  # decision B369: gzip-compressed ones too
-
-    out: list[Path] = []
-    for p in paths:
-        if not p.exists():
-            raise DataError(f"{p}: no such folder; pass PLASYS session folders or a folder of them")
-        if is_session(p) or is_archive(p):  # decision B360: a zip of a session folder is one session
-            out.append(p)
-            continue
-        subs = sorted(q for q in p.iterdir() if is_session(q)) if p.is_dir() else []
-        zips = sorted(q for q in p.iterdir() if is_zip_file(q)) if p.is_dir() else []  # decision B374
-        if not subs and zips:
-            raise DataError(f"{p}: holds {len(zips)} zip archive(s) (e.g. {zips[0].name}) and no session folder; "
-                            f"a folder is searched for session folders only: pass the zips by name "
-                            f"({shell_quote(p)}/*.zip) or unzip them (decision B374)")
-        if not subs:
-            from pdrlearn.io.plasys import export_import_hint
-
-            raise DataError(f"{p}: neither a session folder (fAccelerometer.csv, ...) nor a folder of sessions"
-                            + (export_import_hint(p) if p.is_dir() else ""))
-        for z in zips:
-            logging.getLogger("pdrlearn.cli.train").warning("%s", unsearched_zip_line(
-                z, f"the search of {p} for sessions", "pass it by name (a zip is one session, B360)"))
-        out.extend(subs)
-    return out
-
-
-def _read_all(paths: list[Path]):
-    from pdrlearn.io import read_session
-
-    return [read_session(d) for d in find_session_dirs(paths)]
 
 
 def train(
@@ -146,7 +105,7 @@ def train(
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)
-    sessions = _read_all(data_dirs)
+    sessions = read_session_dirs(data_dirs)
     total = sum(len(per_task.get(t, m_all)) for t in t_all) * len(u_all)
     t0 = time.perf_counter()
     with progress("training", total, enabled=not as_json) as advance:
