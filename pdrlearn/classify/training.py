@@ -168,7 +168,7 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
         mod = _heuristic_module()
         if mod is None:
             raise MissingSensorError("heuristic classifiers (pdrlearn.classify.heuristic) are not available")
-        return mod.make_heuristic(task, "both" if method == "fusion" else unit)
+        return mod.make_heuristic(task, "both" if method == "fusion" else unit, **params.get(method, {}))  # C139
     if unit == "fused" and method not in BUILTIN_METHODS:  # decision E86: a plug-in's soft vote of its two units
         members = [(u, make_estimator(task, method, u, seed=seed, params=params), slice(None))
                    for u in ("foot", "waist")]
@@ -206,8 +206,10 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
         return Pipeline(
             [
                 ("signals", FunctionTransformer(select_signals, kw_args={"names": DTW_SIGNALS[task][unit]})),
-                ("clf", DTWClassifier(**{"n_references": THESIS_REFERENCES_PER_CLASS[task], **params.get("dtw", {})},
-                                      random_state=seed, calibration=DTW_CALIBRATION, rule=DTW_RULE)),
+                ("clf", DTWClassifier(**{"n_references": THESIS_REFERENCES_PER_CLASS[task],
+                                         "calibration": DTW_CALIBRATION, "rule": DTW_RULE,
+                                         **params.get("dtw", {})},  # decision C139: --param dtw.rule, dtw.calibration
+                                      random_state=seed)),
             ]
         )
     raise METHODS.unknown(method)
@@ -1511,7 +1513,8 @@ def train_user(
         warning each, decision C53; with no task left the model holds only the distance calibration, one more
         warning, or :class:`DataError` when there is none either).
     params : the built-in estimators' hyperparameters, ``{"svm": {"C": 10.0}, "nn": {"hidden": 32}}`` (decision
-        C96, ``train --param``; names and checks: :data:`pdrlearn.classify.hyper.HYPERPARAMETERS`); stored in
+        C96, ``train --param``; names and checks: :data:`pdrlearn.classify.hyper.HYPERPARAMETERS`; decision C139:
+        also ``{"heuristic": {"thresholds": "thesis"}, "dtw": {"rule": "spread"}}``); stored in
         ``settings["params"]``. None: the thesis defaults.
     resample_hz : resample every stream of every session to this rate (Hz) first, by the runtime's resampler
         (:func:`pdrlearn.io.resample.resample_session`); needed when the sessions were recorded at different rates
