@@ -90,7 +90,7 @@ def train(
 
         pdrlearn train out/sim/u1 --out out/models/u1_c10 --cv-groups block --param svm.C=10 --param nn.hidden=32
     """
-    from pdrlearn.classify.spread import spread_text
+    from pdrlearn.classify.spread import chance_line, spread_text
     from pdrlearn.classify.training import check_settings, check_task_methods, check_user, train_user
     from pdrlearn.features.windows import BOUNDARIES
 
@@ -173,6 +173,9 @@ def train(
             )
         print_table(c, tab)  # decision C41: piped, the wider table is not cut to 80 columns
         c.print(f"  {SPREAD_NOTE}", markup=False)
+        chance = chance_line((f"{m}/{u}", tm.cv[m][u]) for m, u in tm.ranking())  # decision C141
+        if chance:
+            c.print(f"  {chance}", markup=False)
         users_line = louo_line(r0)
         if users_line:
             c.print(f"  {users_line}", markup=False)
@@ -494,7 +497,8 @@ def _task_table(c, r: dict, title: str) -> None:
     precision / recall / F1 per class (decision C37); a model directory's and a bundle's (E193) alike."""
     from rich.table import Table
 
-    from pdrlearn.classify.evaluation import results_head, results_table
+    from pdrlearn.classify.evaluation import results_head, results_table, table_pairs
+    from pdrlearn.classify.spread import chance_line
 
     c.print(title, markup=False)
     tab = Table()
@@ -506,6 +510,9 @@ def _task_table(c, r: dict, title: str) -> None:
     c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(
         f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
         for k in r["classes"]), markup=False)
+    chance = chance_line((f"{m}/{u}", r["methods"][m]["units"][u]) for m, u in table_pairs(r))  # decision C141
+    if chance:
+        c.print(f"  {chance}", markup=False)
 
 
 def _pct(v) -> str:
