@@ -51,3 +51,35 @@ def test_train_a_folder_with_sessions_one_level_down_names_them(user_tree, capsy
     assert main(["train", str(user_tree), "--out", str(user_tree.parent / "m9604"), "--tasks", "terrain"]) == 2
     err = capsys.readouterr().err
     assert "one level further down" in err and str(user_tree / "calib") in err and "Traceback" not in err
+
+
+def test_evaluate_with_the_arguments_swapped_gives_the_order(user_tree, tmp_path, capsys):
+    train_user(user_tree / "calib", **KW).save(tmp_path / "m")
+    capsys.readouterr()
+    assert main(["evaluate", str(user_tree / "test"), str(tmp_path / "m")]) == 2
+    err = capsys.readouterr().err
+    assert "the model comes first" in err and f"pdrlearn evaluate {tmp_path / 'm'} {user_tree / 'test'}" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_a_missing_waist_sensor_names_the_unit_the_model_reads():
+    """B392 (T4): a heuristic/waist or nn/waist model on a foot-only session said `(of both units, unit
+    'combined')`; heuristic fusion reads both units and says so."""
+    from pdrlearn.classify.training import make_estimator, training_data
+    from pdrlearn.errors import MissingSensorError
+
+    s = simulate("terrain", user_seed=9604)
+    d = training_data([s], "terrain")
+    s.streams = {n: st for n, st in s.streams.items() if not n.startswith("w")}
+    foot = training_data([s], "terrain")
+    for method, said in (("heuristic", "(unit='waist')"), ("nn", "(unit='waist')")):
+        est = make_estimator("terrain", method, "waist")
+        feats = est if method == "heuristic" else est[0]
+        if method == "heuristic":
+            est.fit(d.X, d.y)
+        with pytest.raises(MissingSensorError) as exc:
+            (est.predict if method == "heuristic" else feats.transform)(foot.X)
+        assert said in str(exc.value) and "combined" not in str(exc.value)
+    fusion = make_estimator("terrain", "fusion", "fused").fit(d.X, d.y)
+    with pytest.raises(MissingSensorError, match="of both units, heuristic fusion"):
+        fusion.predict(foot.X)

@@ -368,6 +368,7 @@ def evaluate(
     from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
 
     rate_mode = resample_mode(resample, no_resample)  # decision B113
+    swapped_order(model_dir, data_dirs)  # decision B392: `evaluate SESSIONS MODEL`
 
     if predictions_out is not None and report is not None and Path(predictions_out).resolve().is_relative_to(
             Path(report).resolve()):  # the next `--report --force` would delete it (decision C47)
@@ -445,6 +446,21 @@ def evaluate(
         c.print(f"report written to {report}")
     if predictions_out is not None:
         c.print(f"{result['n_predictions']} step predictions written to {predictions_out}", markup=False)
+
+
+def swapped_order(model_dir: Path, data_dirs: list[Path]) -> None:
+    """Decision B392: ``evaluate SESSIONS MODEL_DIR`` (the arguments swapped) is one line giving the order, when the
+    first argument holds no manifest.json and a later one does (a model directory)."""
+    from pdrlearn.classify.model_dir import MANIFEST
+
+    if (Path(model_dir) / MANIFEST).is_file():
+        return
+    models = [d for d in data_dirs if (Path(d) / MANIFEST).is_file()]
+    if models:
+        rest = [d for d in [model_dir, *data_dirs] if d != models[0]]
+        raise DataError(f"evaluate: {model_dir} is not a model directory but {models[0]} is: the model comes first, "
+                        f"then the sessions: `pdrlearn evaluate {shell_quote(models[0])} "
+                        f"{' '.join(shell_quote(d) for d in rest)}` (decision B392)")
 
 
 def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, given: list[str],
