@@ -121,8 +121,9 @@ def evaluate_model(
 
     check_warn_at(warn_out_of_domain)
     from pdrlearn.classify.detected import DetectedPredictions, detected_score, drop_warning
-    from pdrlearn.classify.training import class_metrics, session_windows, task_data
+    from pdrlearn.classify.training import class_metrics, session_list, session_windows, task_data
 
+    sessions = session_list(sessions, "evaluate_model")  # decision B391: a Session or a path is accepted too
     if not sessions:
         raise DataError("evaluate: no sessions given; pass at least one labelled session folder")
     ids = [s.content_id() for s in sessions]  # decision B87: before anything reads the streams
@@ -443,7 +444,7 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
     trained at (decision C18's line, as ``pdrlearn track`` gives it). Decision B87: a session is a training
     session when its :meth:`~pdrlearn.io.session.Session.content_id` (``ids``) is among the manifest's
     ``training_data.session_ids``; a model trained before B87 has none, and its ``sessions`` names are matched."""
-    from pdrlearn.classify.training import rate_mismatch
+    from pdrlearn.classify.training import other_user_line, rate_mismatch
     from pdrlearn.io.resample import log_grouped
     from pdrlearn.kernels.distance import classifier_rate_warning
 
@@ -461,6 +462,9 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
         names = ", ".join(s.where for s in seen[:3]) + (f" and {len(seen) - 3} more" if len(seen) > 3 else "")
         log.warning("evaluate: %d of %d session(s) were used to train the model (%s; %s): the "
                     "accuracy on them is not held-out", len(seen), len(sessions), names, how)
+    line = other_user_line(model, sessions)  # decision C138: a per-user model scored on another user
+    if line:
+        log.warning(line)
     out["rate_mismatch"] = {}
     # decision B113 amended (review): the sessions scored resampled (--resample), sensor -> from_hz / to_hz
     out["resampled"] = {s.name: s.meta["resampled"] for s in sessions if s.meta.get("resampled")}

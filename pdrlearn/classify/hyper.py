@@ -1,4 +1,5 @@
-"""``train --param METHOD.NAME=VALUE``: the built-in learned classifiers' hyperparameters (decision C96).
+"""``train --param METHOD.NAME=VALUE``: the built-in classifiers' hyperparameters (decision C96) and documented
+options (decision C139: the heuristics' thresholds / weights / bands, DTW's rule and calibration).
 
 Pure parsing and checking, no numpy: the CLI checks ``--param`` before any data is read."""
 
@@ -58,7 +59,32 @@ def _window(text: str) -> float | None:
     return None if text.strip().lower() == "none" else _number(text, low=0.0, low_open=True, high=1.0)
 
 
-#: method -> parameter -> (parse, what a valid value is and its default's source); decision C96
+def _choice(*values: str) -> Callable[[str], str]:
+    """One of ``values`` (case-insensitive), the estimator's own check's names (decision C139)."""
+    def parse(text: str) -> str:
+        v = text.strip().lower()
+        if v not in values:
+            raise ValueError(text)
+        return v
+    return parse
+
+
+def _flag(text: str) -> bool:
+    v = text.strip().lower()
+    if v not in ("true", "false"):
+        raise ValueError(text)
+    return v == "true"
+
+
+#: the heuristic rule classifiers' documented options (decision C139; pdrlearn.classify.heuristic's module text)
+_RULE_OPTIONS: dict[str, tuple[Callable[[str], object], str]] = {
+    "thresholds": (_choice("joint", "learn", "thesis"), "'joint', 'learn' or 'thesis' (default joint: cut points "
+                   "learnt from the user's steps, thesis ch. 6.1.3; 'thesis': the printed thresholds, decision C140)"),
+    "weights": (_choice("thesis", "skill"), "'thesis' or 'skill' (default thesis: Tables 26/32 and eq. 32)"),
+    "bands": (_flag, "'true' or 'false' (default true: a two-class rule may learn a band)"),
+}
+
+#: method -> parameter -> (parse, what a valid value is and its default's source); decisions C96, C139
 HYPERPARAMETERS: dict[str, dict[str, tuple[Callable[[str], object], str]]] = {
     "svm": {
         "C": (_svm_c, "a number > 0 or 'cv' (default cv: the inner grid search, thesis ch. 2.4.2.2)"),
@@ -77,7 +103,12 @@ HYPERPARAMETERS: dict[str, dict[str, tuple[Callable[[str], object], str]]] = {
         "n_references": (_integer(2), "an integer >= 2 per class (default 36 / 12 / 30 per task, thesis ch. "
                          "6.1.2.2, 6.2.2.2, 6.3.2.2)"),
         "window": (_window, "a fraction in (0, 1] of the step or 'none' (default 0.1)"),
+        "rule": (_choice("mean", "spread"), "'mean' or 'spread' (default mean: thesis ch. 6.1.2.2; 'spread': decision "
+                 "C70)"),
+        "calibration": (_choice("cv", "gap"), "'cv' or 'gap' (default cv: decision C67; 'gap': decision C4)"),
     },
+    "heuristic": dict(_RULE_OPTIONS),  # decision C139: make_heuristic's keywords, per unit
+    "fusion": dict(_RULE_OPTIONS),  # heuristic fusion: the same rules, thesis Table 26 / eq. 32 / Table 32 weights
 }
 
 

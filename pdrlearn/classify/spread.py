@@ -4,7 +4,7 @@ C58) the exact binomial interval of the pooled accuracy, which the table shows."
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -91,3 +91,42 @@ def spread_text(spread: dict | None) -> tuple[str, str]:
 def _pct(v: float) -> str:
     """A share as a percentage with one decimal, ``100`` and ``0`` without (the table's cells stay narrow)."""
     return f"{100 * v:.1f}".removesuffix(".0") if v in (0.0, 1.0) else f"{100 * v:.1f}"
+
+
+#: decision C141: a balanced accuracy within this of 1/K (K classes present) reads as chance; chosen, not measured
+CHANCE_MARGIN = 0.05
+
+
+def at_chance(record: Mapping) -> tuple[bool, int]:
+    """Decision C141: whether a method x unit's scores (``accuracy``, ``balanced_accuracy``, ``per_class``,
+    ``n_steps``, as :func:`pdrlearn.classify.training.class_metrics` gives them) are no better than guessing among
+    the K classes its steps hold: the accuracy's exact binomial 95 % interval (:func:`clopper_pearson`, C58) reaches
+    1/K, or the balanced accuracy (the class-blind guess's is 1/K) is at most 1/K + :data:`CHANCE_MARGIN`.
+    Returns ``(flag, K)``; no flag with fewer than two classes or no steps."""
+    k = sum(v is not None for v in (record.get("per_class") or {}).values())
+    n, acc, bal = int(record.get("n_steps") or 0), record.get("accuracy"), record.get("balanced_accuracy")
+    if k < 2 or n <= 0 or acc is None:
+        return False, k
+    ci = clopper_pearson(int(round(acc * n)), n)
+    low = ci is not None and ci[0] <= 1.0 / k
+    return bool(low or (bal is not None and bal <= 1.0 / k + CHANCE_MARGIN)), k
+
+
+def chance_line(records: Iterable[tuple[str, Mapping]]) -> str | None:
+    """Decision C141: one note naming the ``(method/unit, record)`` rows :func:`at_chance` flags, e.g. ``at or
+    below chance (3 classes, 1/K = 33.3 %): dtw/waist 35.7 % (balanced 33.2 %) ...``; None when none is. The rows
+    of one table hold the same steps, so K is the first flagged row's."""
+    hits, ks = [], []
+    for name, r in records:
+        flag, k = at_chance(r)
+        if flag:
+            bal = r.get("balanced_accuracy")
+            hits.append(f"{name} {100 * r['accuracy']:.1f} % (balanced {'-' if bal is None else f'{100 * bal:.1f}'} %)")
+            ks.append(k)
+    if not hits:
+        return None
+    dtw = "; DTW on the waist: decision C69 says why, --param dtw.rule=spread is C70's opt-in rule" if any(
+        h.startswith("dtw/waist") for h in hits) else ""
+    return (f"at or below chance ({ks[0]} classes, 1/K = {100 / ks[0]:.1f} %): {', '.join(hits)}: the 95 % CI of "
+            f"the accuracy reaches 1/K or the balanced accuracy is within {100 * CHANCE_MARGIN:.0f} points of it, no "
+            f"better than guessing{dtw} (decision C141)")

@@ -168,7 +168,7 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
         mod = _heuristic_module()
         if mod is None:
             raise MissingSensorError("heuristic classifiers (pdrlearn.classify.heuristic) are not available")
-        return mod.make_heuristic(task, "both" if method == "fusion" else unit)
+        return mod.make_heuristic(task, "both" if method == "fusion" else unit, **params.get(method, {}))  # C139
     if unit == "fused" and method not in BUILTIN_METHODS:  # decision E86: a plug-in's soft vote of its two units
         members = [(u, make_estimator(task, method, u, seed=seed, params=params), slice(None))
                    for u in ("foot", "waist")]
@@ -206,8 +206,10 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
         return Pipeline(
             [
                 ("signals", FunctionTransformer(select_signals, kw_args={"names": DTW_SIGNALS[task][unit]})),
-                ("clf", DTWClassifier(**{"n_references": THESIS_REFERENCES_PER_CLASS[task], **params.get("dtw", {})},
-                                      random_state=seed, calibration=DTW_CALIBRATION, rule=DTW_RULE)),
+                ("clf", DTWClassifier(**{"n_references": THESIS_REFERENCES_PER_CLASS[task],
+                                         "calibration": DTW_CALIBRATION, "rule": DTW_RULE,
+                                         **params.get("dtw", {})},  # decision C139: --param dtw.rule, dtw.calibration
+                                      random_state=seed)),
             ]
         )
     raise METHODS.unknown(method)
@@ -436,7 +438,7 @@ def training_data(sessions, task: str, *, unit: str | None = None, n_samples: in
         raise DataError(f"training_data: task {task!r}; choose one of {', '.join(TASKS)}")
     if unit is not None and unit not in UNITS:
         raise DataError(f"training_data: unit {unit!r}; choose one of {', '.join(UNITS)} (or None: every step)")
-    sessions = session_list(sessions)
+    sessions = session_list(sessions, "training_data")
     if not sessions:
         raise DataError("training_data: no sessions given; pass at least one labelled session")
     sessions = one_rate(sessions, session_rates(sessions), resample_hz, "training_data")  # decision C56, as train
@@ -784,6 +786,37 @@ def rate_mismatch(model, session, pred: pd.DataFrame | None = None) -> dict | No
             if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
                 off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
     return off or None
+
+
+#: how :func:`pdrlearn.cohort.meta_user_key` names a user: a model's ``data_summary["users"]`` entry of another form
+#: is a given name (``--user P001``, decision E174), which says nothing about whom the model was fitted on
+_USER_KEY_PREFIXES = ("user:", "user.", "subject:", "subject.")
+
+
+def model_user_key(model) -> str | None:
+    """Decision C138: the one user a per-user model was fitted on, as :func:`session_user` names it
+    (``user.seed:9460``), from its ``data_summary["users"]``; None when it names none, several (a pooled model: a
+    new user is its intended use) or a given name (decision E174 replaced the key)."""
+    users = (getattr(model, "data_summary", None) or {}).get("users") or []
+    keys = [u for u in users if isinstance(u, str) and u.startswith(_USER_KEY_PREFIXES)]
+    return keys[0] if len(users) == 1 and len(keys) == 1 else None
+
+
+def other_user_line(model, sessions, what: str = "evaluate") -> str | None:
+    """Decision C138: one warning line when a per-user model (:func:`model_user_key`) is scored on / classifies
+    sessions whose meta.json names another user (:func:`session_user`, the mechanism of train's mixed-users warning,
+    C35); None when no user is known on either side or every session is the model's user."""
+    key = model_user_key(model)
+    if key is None:
+        return None
+    other = [(s, u) for s in sessions if (u := session_user(s)) is not None and u != key]
+    if not other:
+        return None
+    users = ", ".join(sorted({u for _, u in other}))
+    names = ", ".join(str(s.name) for s, _ in other[:3]) + (f" and {len(other) - 3} more" if len(other) > 3 else "")
+    return (f"{what}: the model was trained on {key} but {len(other)} of {len(sessions)} session(s) are of {users} "
+            f"({names}): a per-user model is applied to another user, so the figures are not the model's held-out "
+            "accuracy on its user (decision C138; train that user's model, or a pooled one with --cv-groups user)")
 
 
 def _gap_groups(windows):
@@ -1364,12 +1397,27 @@ def mixed_rates(recorded: dict[str, dict[str, float]]) -> dict[str, dict[float, 
     return out
 
 
-def session_list(sessions) -> list:
+def session_list(sessions, caller: str = "train_user") -> list:
     """One :class:`pdrlearn.io.Session` as a list of one (``training_data(session)``, ``train_user(session)``; review
-    R4: a TypeError before), else the sessions as a list."""
-    from pdrlearn.io import Session
+    R4: a TypeError before), else the sessions as a list. Decision B391: a path (``str`` / ``os.PathLike``), alone or
+    in the list, is read as ``pdrlearn train`` reads it (a session folder, or a folder of sessions:
+    :func:`pdrlearn.session_dirs.find_session_dirs`; otherwise one :class:`DataError` naming the path); anything else
+    that is not a session is :func:`pdrlearn.io.session.as_session`'s one line naming ``caller``."""
+    import os
 
-    return [sessions] if isinstance(sessions, Session) else list(sessions or [])
+    from pdrlearn.io import Session
+    from pdrlearn.io.session import as_session
+    from pdrlearn.session_dirs import read_session_dirs
+
+    if isinstance(sessions, Session | str | os.PathLike):
+        sessions = [sessions]
+    out = []
+    for s in sessions or []:
+        if isinstance(s, str | os.PathLike):
+            out.extend(read_session_dirs([s]))  # decision B391 (a raw AttributeError before)
+        else:
+            out.append(as_session(s, caller))
+    return out
 
 
 def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float | None,
@@ -1465,7 +1513,8 @@ def train_user(
         warning each, decision C53; with no task left the model holds only the distance calibration, one more
         warning, or :class:`DataError` when there is none either).
     params : the built-in estimators' hyperparameters, ``{"svm": {"C": 10.0}, "nn": {"hidden": 32}}`` (decision
-        C96, ``train --param``; names and checks: :data:`pdrlearn.classify.hyper.HYPERPARAMETERS`); stored in
+        C96, ``train --param``; names and checks: :data:`pdrlearn.classify.hyper.HYPERPARAMETERS`; decision C139:
+        also ``{"heuristic": {"thresholds": "thesis"}, "dtw": {"rule": "spread"}}``); stored in
         ``settings["params"]``. None: the thesis defaults.
     resample_hz : resample every stream of every session to this rate (Hz) first, by the runtime's resampler
         (:func:`pdrlearn.io.resample.resample_session`); needed when the sessions were recorded at different rates

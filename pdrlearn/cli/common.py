@@ -164,10 +164,12 @@ def param_option():
 
     return typer.Option(
         None, "--param", metavar="METHOD.NAME=VALUE",
-        help="A learned classifier's hyperparameter for every task and unit, repeatable: svm.C (a number or cv), "
+        help="A classifier's hyperparameter or option for every task and unit, repeatable: svm.C (a number or cv), "
         "svm.C_grid, svm.class_weight, nn.hidden, nn.learning_rate, nn.max_epochs, nn.patience, nn.weight_decay, "
-        "dtw.n_references, dtw.window (default: the thesis' values; stored in the model's settings.params; "
-        "decision C96); PLUGIN.KEY=VALUE: a keyword of a registered plug-in method's factory (decision C122).")
+        "dtw.n_references, dtw.window, dtw.rule (mean or spread), dtw.calibration; heuristic.thresholds (joint, "
+        "learn or thesis), heuristic.weights, heuristic.bands and the same of fusion (default: the thesis' values; "
+        "stored in the model's settings.params; decisions C96, C139); PLUGIN.KEY=VALUE: a keyword of a registered "
+        "plug-in method's factory (decision C122).")
 
 
 def check_train_options(cv_groups: str, param, methods, per_task, command: str = "train") -> dict:

@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import logging
 import time
 from pathlib import Path
 
@@ -31,49 +30,9 @@ from pdrlearn.cli.common import (
     train_resample_option,
 )
 from pdrlearn.errors import DataError, shell_quote
+from pdrlearn.session_dirs import find_session_dirs, read_session_dirs
 
 EVAL_RESAMPLE_OPT, EVAL_NO_RESAMPLE_OPT = resample_options("scored")  # decision B113, track's text
-
-
-def find_session_dirs(paths: list[Path]) -> list[Path]:
-    """Session folders among ``paths``: a folder with sensor CSVs (or a zip of one, decision B360) is a session,
-    otherwise its immediate sub-folders that are sessions are used."""
-    from pdrlearn.io.archive import is_archive, is_zip_file, unsearched_zip_line
-    from pdrlearn.io.sensors import SENSORS
-
-    def is_session(p: Path) -> bool:
-        return p.is_dir() and any((p / f"{name}{ext}").is_file() for name in SENSORS
-                                  for ext in (".csv", ".csv.gz"))  # decision B369: gzip-compressed ones too
-
-    out: list[Path] = []
-    for p in paths:
-        if not p.exists():
-            raise DataError(f"{p}: no such folder; pass PLASYS session folders or a folder of them")
-        if is_session(p) or is_archive(p):  # decision B360: a zip of a session folder is one session
-            out.append(p)
-            continue
-        subs = sorted(q for q in p.iterdir() if is_session(q)) if p.is_dir() else []
-        zips = sorted(q for q in p.iterdir() if is_zip_file(q)) if p.is_dir() else []  # decision B374
-        if not subs and zips:
-            raise DataError(f"{p}: holds {len(zips)} zip archive(s) (e.g. {zips[0].name}) and no session folder; "
-                            f"a folder is searched for session folders only: pass the zips by name "
-                            f"({shell_quote(p)}/*.zip) or unzip them (decision B374)")
-        if not subs:
-            from pdrlearn.io.plasys import export_import_hint
-
-            raise DataError(f"{p}: neither a session folder (fAccelerometer.csv, ...) nor a folder of sessions"
-                            + (export_import_hint(p) if p.is_dir() else ""))
-        for z in zips:
-            logging.getLogger("pdrlearn.cli.train").warning("%s", unsearched_zip_line(
-                z, f"the search of {p} for sessions", "pass it by name (a zip is one session, B360)"))
-        out.extend(subs)
-    return out
-
-
-def _read_all(paths: list[Path]):
-    from pdrlearn.io import read_session
-
-    return [read_session(d) for d in find_session_dirs(paths)]
 
 
 def train(
@@ -131,7 +90,7 @@ def train(
 
         pdrlearn train out/sim/u1 --out out/models/u1_c10 --cv-groups block --param svm.C=10 --param nn.hidden=32
     """
-    from pdrlearn.classify.spread import spread_text
+    from pdrlearn.classify.spread import chance_line, spread_text
     from pdrlearn.classify.training import check_settings, check_task_methods, check_user, train_user
     from pdrlearn.features.windows import BOUNDARIES
 
@@ -146,7 +105,7 @@ def train(
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)
-    sessions = _read_all(data_dirs)
+    sessions = read_session_dirs(data_dirs)
     total = sum(len(per_task.get(t, m_all)) for t in t_all) * len(u_all)
     t0 = time.perf_counter()
     with progress("training", total, enabled=not as_json) as advance:
@@ -214,6 +173,9 @@ def train(
             )
         print_table(c, tab)  # decision C41: piped, the wider table is not cut to 80 columns
         c.print(f"  {SPREAD_NOTE}", markup=False)
+        chance = chance_line((f"{m}/{u}", tm.cv[m][u]) for m, u in tm.ranking())  # decision C141
+        if chance:
+            c.print(f"  {chance}", markup=False)
         users_line = louo_line(r0)
         if users_line:
             c.print(f"  {users_line}", markup=False)
@@ -406,6 +368,7 @@ def evaluate(
     from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
 
     rate_mode = resample_mode(resample, no_resample)  # decision B113
+    swapped_order(model_dir, data_dirs)  # decision B392: `evaluate SESSIONS MODEL`
 
     if predictions_out is not None and report is not None and Path(predictions_out).resolve().is_relative_to(
             Path(report).resolve()):  # the next `--report --force` would delete it (decision C47)
@@ -485,6 +448,21 @@ def evaluate(
         c.print(f"{result['n_predictions']} step predictions written to {predictions_out}", markup=False)
 
 
+def swapped_order(model_dir: Path, data_dirs: list[Path]) -> None:
+    """Decision B392: ``evaluate SESSIONS MODEL_DIR`` (the arguments swapped) is one line giving the order, when the
+    first argument holds no manifest.json and a later one does (a model directory)."""
+    from pdrlearn.classify.model_dir import MANIFEST
+
+    if (Path(model_dir) / MANIFEST).is_file():
+        return
+    models = [d for d in data_dirs if (Path(d) / MANIFEST).is_file()]
+    if models:
+        rest = [d for d in [model_dir, *data_dirs] if d != models[0]]
+        raise DataError(f"evaluate: {model_dir} is not a model directory but {models[0]} is: the model comes first, "
+                        f"then the sessions: `pdrlearn evaluate {shell_quote(models[0])} "
+                        f"{' '.join(shell_quote(d) for d in rest)}` (decision B392)")
+
+
 def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, given: list[str],
                      warn_out_of_domain: float | None) -> None:
     """Decision E193: a runtime bundle's chosen models scored on the strides the runtime detects in labelled
@@ -535,7 +513,8 @@ def _task_table(c, r: dict, title: str) -> None:
     precision / recall / F1 per class (decision C37); a model directory's and a bundle's (E193) alike."""
     from rich.table import Table
 
-    from pdrlearn.classify.evaluation import results_head, results_table
+    from pdrlearn.classify.evaluation import results_head, results_table, table_pairs
+    from pdrlearn.classify.spread import chance_line
 
     c.print(title, markup=False)
     tab = Table()
@@ -547,6 +526,9 @@ def _task_table(c, r: dict, title: str) -> None:
     c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(
         f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
         for k in r["classes"]), markup=False)
+    chance = chance_line((f"{m}/{u}", r["methods"][m]["units"][u]) for m, u in table_pairs(r))  # decision C141
+    if chance:
+        c.print(f"  {chance}", markup=False)
 
 
 def _pct(v) -> str:

@@ -13,7 +13,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.features import _kernels as K
-from pdrlearn.features.transformers import _StepFeatures, signal, times
+from pdrlearn.features.transformers import _StepFeatures, signal, signals_unit, times
 from pdrlearn.kernels.stats import half_balance, step_probability, yaw_stats
 
 _PEAK_STATS = ("min", "max", "t_min", "t_max", "dt_peaks", "abs_dt_peaks", "range", "peak_asym",
@@ -111,6 +111,11 @@ class RuleFeatures(_StepFeatures):
 
     def _names(self):
         return list(self.names)
+
+    def _unit_named(self) -> str:
+        """Decision B392: the unit whose sensors the rules read (``foot`` / ``waist``, ``fused`` for both), which a
+        missing-sensor line names; it named ``unit 'combined'`` for a heuristic/waist model (trial T4)."""
+        return signals_unit(self._signals(), "fused")
 
     def _compute(self, X):
         return rule_features(X, self.names)

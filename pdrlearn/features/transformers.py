@@ -85,6 +85,13 @@ def _checked_channels(names: tuple[str, ...]) -> np.ndarray:
     return np.array([0] + [CHANNEL_INDEX[c] for nm in names for c in SIGNALS[nm][0]], dtype=np.intp)
 
 
+def signals_unit(names, both: str = "both") -> str:
+    """Decision B392: the unit whose sensors the :data:`SIGNALS` ``names`` read (``foot``: foot and force, ``waist``),
+    ``both`` when they read both; the unit a missing-sensor line of a transformer without ``unit`` names."""
+    units = {"waist" if SIGNALS[n][2].startswith("waist") else "foot" for n in names}
+    return units.pop() if len(units) == 1 else both
+
+
 def require_signals(X: np.ndarray, names, *, task: str, unit: str) -> None:
     """Raise :class:`MissingSensorError` if a needed sensor is absent, :class:`DataError` on NaN steps."""
     if np.isfinite(X[:, _checked_channels(tuple(names)), :]).all():  # the usual case, one check (latency)
@@ -98,6 +105,8 @@ def require_signals(X: np.ndarray, names, *, task: str, unit: str) -> None:
             who = f"unit='{unit}'"
             if unit == "both":  # the combined vector of both units (training unit 'combined', decision C22)
                 who, alt = "of both units, unit 'combined'", ", or use a model of the other unit"
+            elif unit == "fused":  # decision B392: heuristic fusion's rules read both units
+                who, alt = "of both units, heuristic fusion", ", or use a model of the other unit"
             raise MissingSensorError(
                 f"{task} features ({who}) need the {group.replace('_', ' ')} "
                 f"({', '.join(GROUP_STREAMS[group])}), which the step windows lack; record it{alt}"
@@ -139,8 +148,12 @@ class _StepFeatures(TransformerMixin, BaseEstimator):
         """Feature matrix (n_steps, n_features)."""
         self._check_unit()
         arr = as_windows(X)
-        require_signals(arr, self._signals(), task=self.task, unit=getattr(self, "unit", "both"))
+        require_signals(arr, self._signals(), task=self.task, unit=self._unit_named())
         return self._compute(arr)
+
+    def _unit_named(self) -> str:
+        """The unit a missing-sensor line names (:func:`require_signals`)."""
+        return getattr(self, "unit", "both")
 
     def get_feature_names_out(self, input_features=None) -> np.ndarray:
         self._check_unit()
@@ -245,6 +258,9 @@ class SegmentFeatures(_StepFeatures):
 
     def _signals(self):
         return tuple(self.channels)
+
+    def _unit_named(self) -> str:  # decision B392: terrain nn/waist's line named "unit 'combined'"
+        return signals_unit(self._signals())
 
     def _names(self):
         return [f"{c}_seg{j + 1}_{s}" for c in self.channels for j in range(self.n_segments)

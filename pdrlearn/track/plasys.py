@@ -428,14 +428,18 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
     ``UserModel.predict_steps`` and ``evaluate``, decision C52): the step windows then hold other signals (a
     20 Hz simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
     ``{"trained_hz", "session_hz"}`` of the units that differ (None: none, or oracle labels / a model
-    without rates)."""
+    without rates). Decision C138: also one line when the per-user model was fitted on another user than the
+    session's meta.json names."""
     if isinstance(model, str | Path):
         return None
-    from pdrlearn.classify.training import rate_mismatch
+    from pdrlearn.classify.training import other_user_line, rate_mismatch
 
     off = rate_mismatch(model, session, classes)
     if off:
         warnings.append(classifier_rate_warning(off, resample_hint=True))
+    line = other_user_line(model, [session], "track")  # decision C138: a per-user model on another user
+    if line:
+        warnings.append(line)
     return off
 
 
