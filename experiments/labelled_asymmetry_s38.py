@@ -1,0 +1,74 @@
+"""Decision L490's measurement (session 38): L416's foot + lower-back step-time asymmetry on fresh children (users
+9580-9591: 1.15-1.45 m, leg 0.5 x height, step length 0.34 x height, 0.36-0.45 s steps; the trial's 2 x 10 m walkway
+route, and printed, not judged, 40 m straight) and on L416's adult validation walks (users 8044-8055, 60 m), each
+at step_time_asymmetry 0 / 0.05 / 0.15, 100 Hz, pendulum bounce. Truth: the same function on the simulator's true
+contacts (ics.csv).
+
+Run: PYTHONPATH=. .venv/bin/python experiments/labelled_asymmetry_s38.py [children|children40|adults]
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import sys
+import warnings
+
+import numpy as np
+
+from pdrlearn.sim import Stand, Straight, Turn, UserProfile, simulate_path
+from pdrlearn.steps.detectors import AccelForceStepDetector
+from pdrlearn.steps.waist_ic import WaistICStepDetector
+from pdrlearn.track.labelled_asymmetry import labelled_step_asymmetry
+
+CHILDREN = range(9580, 9592)
+ADULTS = range(8044, 8056)
+SETTINGS = (0.0, 0.05, 0.15)
+
+
+def child(uid: int) -> UserProfile:
+    """A child of 1.15-1.45 m (leg 0.5 x height) stepping 0.34 x height every 0.36-0.45 s, fixed by ``uid``."""
+    h = 1.15 + 0.03 * (uid % 11)
+    u = UserProfile.from_seed(uid).scaled(h, 0.5 * h)
+    return dataclasses.replace(u, step_length_m=0.34 * h, step_time_s=0.36 + 0.015 * (uid % 7))
+
+
+def one(group: str, uid: int, a: float) -> tuple[float, float | None, int, float | None]:
+    if group == "adults":
+        user, segs = UserProfile.from_seed(uid), [Stand(3), Straight(60), Stand(3)]
+    else:
+        user = child(uid)
+        segs = ([Stand(3), Straight(10), Turn(180), Straight(10), Stand(3)] if group == "children"
+                else [Stand(3), Straight(40), Stand(3)])
+    s = simulate_path(segs, user, speed="normal", rate_hz=100, seed=uid, bounce="pendulum", step_time_asymmetry=a)
+    ics = s.extras["ics"]
+    t = ics["ic_s"].to_numpy(float) if "ic_s" in ics else ics["ic_ms"].to_numpy(float) / 1000.0
+    inst = (s.meta.get("knobs") or {}).get("instrumented_foot", "right")
+    truth = labelled_step_asymmetry(t[ics["foot"].to_numpy() == inst], t)["step_time_asymmetry_pct"]
+    foot = AccelForceStepDetector().detect(s)["event_s"].to_numpy(float)  # = the plasys track's event_s
+    waist = WaistICStepDetector().detect(s)["event_s"].to_numpy(float)
+    est = labelled_step_asymmetry(foot, waist)
+    return truth, est["step_time_asymmetry_pct"], est["n_strides"], est.get("standard_error_points")
+
+
+def main(group: str) -> None:
+    logging.disable(logging.WARNING)
+    warnings.filterwarnings("ignore")
+    errors = []
+    for uid in ADULTS if group == "adults" else CHILDREN:
+        for a in SETTINGS:
+            truth, est, n, se = one(group, uid, a)
+            err = np.nan if est is None else est - truth
+            errors.append(err)
+            print(f"{group} user {uid} A {a:.2f}: truth {truth:5.2f} % estimate {'-' if est is None else f'{est:5.2f}'}"
+                  f" % ({n} strides, standard error {'-' if se is None else f'{se:.2f}'}) error {err:+.2f}", flush=True)
+    e = np.asarray(errors)
+    ok = np.isfinite(e)
+    print(f"{group}: given {int(ok.sum())} of {len(e)}, within 3.0 points {int((np.abs(e[ok]) <= 3.0).sum())}, "
+          f"over 6 points {int((np.abs(e[ok]) > 6.0).sum())}, median |error| "
+          f"{np.median(np.abs(e[ok])) if ok.any() else np.nan:.2f}, mean signed error "
+          f"{np.mean(e[ok]) if ok.any() else np.nan:+.2f}", flush=True)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "children")
