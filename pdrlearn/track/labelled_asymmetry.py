@@ -13,9 +13,18 @@ import logging
 
 import numpy as np
 
-#: decision L416: a lower-back contact within this fraction of a step (half the foot's median stride) of a foot
-#: contact is that foot's: its own contacts scatter ~0.04 s (SD) about the foot's, the other foot's lie a step away
-LABEL_TOLERANCE_STEPS = 0.25
+#: decision L416 as changed by L490: a lower-back contact within this fraction of a step (half the foot's median
+#: stride) of a foot contact plus the lower back's lag is that foot's: the other foot's lie a step away, so half a
+#: step is the midpoint (L416's quarter step without the lag cut children's own contacts, lagging ~0.05 s and
+#: scattering ~0.05 s SD at 0.36 s steps, into the other foot's)
+LABEL_TOLERANCE_STEPS = 0.5
+#: decision L490: the lower back's lag is first taken as the median offset of its contacts within this fraction of a
+#: step of a foot contact
+FIRST_PASS_STEPS = 0.5
+#: decisions L490, L493: the index is withheld when its standard error (:func:`index_standard_error_pct`) exceeds this
+#: many points: the lower back's contacts scatter ~0.05 s (SD) about the truth whatever the cadence, so at a child's
+#: 0.36 s steps over ~20 strides the median phase is too uncertain for a clinical figure
+MAX_STANDARD_ERROR_POINTS = 3.0
 #: decision L416: a foot stride longer than this times the median stride (a stop, a missed contact) gives no phase
 MAX_STRIDE_FACTOR = 1.5
 #: decision L416: the fewest strides with one other-foot contact for an index (L123's minimum for a figure)
@@ -38,9 +47,16 @@ def label_contacts(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLE
     if len(f) < 2 or not len(w):
         return f, w, np.zeros(len(w), bool)
     step = float(np.median(np.diff(f))) / 2.0
+    d = _offsets(f, w)
+    first = np.abs(d) <= FIRST_PASS_STEPS * step  # decision L490: the lower back's lag from its nearest contacts
+    lag = float(np.median(d[first])) if first.any() else 0.0
+    return f, w, np.abs(_offsets(f, w - lag)) <= tolerance_steps * step
+
+
+def _offsets(f: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """(W,) each of ``w`` minus its nearest of the sorted ``f`` (at least 2), s."""
     j = np.clip(np.searchsorted(f, w), 1, len(f) - 1)
-    near = np.where(np.abs(w - f[j - 1]) <= np.abs(w - f[j]), j - 1, j)
-    return f, w, np.abs(w - f[near]) <= tolerance_steps * step
+    return w - np.where(np.abs(w - f[j - 1]) <= np.abs(w - f[j]), f[j - 1], f[j])
 
 
 def other_foot_phases(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS) -> np.ndarray:
@@ -65,20 +81,33 @@ def other_foot_phases(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_T
     return ((other - f[k - 1]) / stride)[single]
 
 
+def index_standard_error_pct(phases) -> float:
+    """Decision L490: the standard error (points) of :func:`labelled_step_asymmetry`'s index from the other foot's
+    phases: the index is 200 |1 - 2 phi| (L121's symmetry index of phi T and (1 - phi) T), so 400 x the median
+    phase's standard error, 1.2533 x the phases' robust SD (1.4826 x their median absolute deviation) / sqrt(n)
+    (the median's asymptotic efficiency, 1.2533 = sqrt(pi / 2)); nan for fewer than 2 phases."""
+    p = np.asarray(phases, dtype=float)
+    if len(p) < 2:
+        return float("nan")
+    return float(400.0 * 1.2533 * 1.4826 * np.median(np.abs(p - np.median(p))) / np.sqrt(len(p)))
+
+
 def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS,
-                            min_strides: int = MIN_STRIDES) -> dict:
+                            min_strides: int = MIN_STRIDES,
+                            max_standard_error: float = MAX_STANDARD_ERROR_POINTS) -> dict:
     """Decision L416: ``{"step_time_asymmetry_pct", "n_strides", "step_time_s_instrumented", "step_time_s_other"}``
     of one foot's initial contacts ``foot_ic_s`` and the lower back's contacts of both feet ``waist_ic_s`` (s, one
     clock up to a constant offset under a quarter step). With the median phase phi of the other foot's contact
     (:func:`other_foot_phases`) and the foot's median stride T: the step onto the other foot phi T, onto the
     instrumented foot (1 - phi) T, and their symmetry index (Robinson et al. 1987, L121). None values with fewer
-    than ``min_strides`` strides."""
+    than ``min_strides`` strides, or with a standard error (``standard_error_points``, decision L490) over
+    ``max_standard_error`` points."""
     from pdrlearn.track.clinical import symmetry_index_pct
 
     phases = other_foot_phases(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
     out = {"step_time_asymmetry_pct": None, "n_strides": int(len(phases)), "step_time_s_instrumented": None,
-           "step_time_s_other": None}
-    if len(phases) < min_strides:
+           "step_time_s_other": None, "standard_error_points": index_standard_error_pct(phases)}
+    if len(phases) < min_strides or not out["standard_error_points"] <= max_standard_error:
         return out
     f = np.sort(np.asarray(foot_ic_s, dtype=float)[np.isfinite(np.asarray(foot_ic_s, dtype=float))])
     stride = float(np.median(np.diff(f)))
@@ -184,11 +213,17 @@ def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) 
         waist = to_foot_clock(waist, float(alignment["offset_s"]), float(alignment["drift"]),
                               float(alignment.get("ref_s", 0.0)))
     res = labelled_step_asymmetry(steps["event_s"].to_numpy(float), waist)
-    if res["step_time_asymmetry_pct"] is None:
+    if res["step_time_asymmetry_pct"] is None and res["n_strides"] >= MIN_STRIDES:
+        reason = (f"not given: the lower back's contacts scatter so much about the foot's that the index's standard "
+                  f"error is {res['standard_error_points']:.1f} points over {res['n_strides']} strides, over "
+                  f"{MAX_STANDARD_ERROR_POINTS:g} (decision L490: short fast steps, e.g. a child's); a longer walk, "
+                  "or a unit on each foot (pdrlearn gait LEFT_DIR RIGHT_DIR), gives it")
+    elif res["step_time_asymmetry_pct"] is None:
         reason = (f"not given: {res['n_strides']} of the foot's strides hold one lower-back contact of the other "
                   f"foot, {MIN_STRIDES} needed (decision L416)")
     else:
         reason = ("the lower back's contacts labelled by the foot unit's (the other foot's step in each stride, "
-                  f"median over {res['n_strides']} strides; decision L416)")
+                  f"median over {res['n_strides']} strides, standard error {res['standard_error_points']:.1f} points; "
+                  "decisions L416, L493)")
     return {"step_time_asymmetry_pct": res["step_time_asymmetry_pct"],
             "n_step_time_asymmetry_steps": 2 * res["n_strides"], "step_time_asymmetry_reason": reason}
