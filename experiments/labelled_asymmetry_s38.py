@@ -7,13 +7,15 @@ contacts (ics.csv).
 Decision L493's fresh walks: the same children and adults (60 m) of users 9592-9599.
 
 Run: PYTHONPATH=. .venv/bin/python experiments/labelled_asymmetry_s38.py
-[children|children40|adults|children_fresh|adults_fresh]
+[children|children40|adults|children_fresh|adults_fresh]; the centred labelling (``CENTRED_OPTIONS``, L490 / L493's
+option, measured when it was the default); with L416_DEFAULT=1 in the environment the default labelling instead.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import logging
+import os
 import sys
 import warnings
 
@@ -22,7 +24,7 @@ import numpy as np
 from pdrlearn.sim import Stand, Straight, Turn, UserProfile, simulate_path
 from pdrlearn.steps.detectors import AccelForceStepDetector
 from pdrlearn.steps.waist_ic import WaistICStepDetector
-from pdrlearn.track.labelled_asymmetry import labelled_step_asymmetry
+from pdrlearn.track.labelled_asymmetry import CENTRED_OPTIONS, labelled_step_asymmetry
 
 CHILDREN = range(9580, 9592)
 ADULTS = range(8044, 8056)
@@ -54,11 +56,13 @@ def one(group: str, uid: int, a: float) -> tuple[float, float | None, int, float
     truth = labelled_step_asymmetry(t[ics["foot"].to_numpy() == inst], t)["step_time_asymmetry_pct"]
     foot = AccelForceStepDetector().detect(s)["event_s"].to_numpy(float)  # = the plasys track's event_s
     waist = WaistICStepDetector().detect(s)["event_s"].to_numpy(float)
-    est = labelled_step_asymmetry(foot, waist)
-    try:  # without L490's standard-error gate (printed, not judged; the old code has no gate)
-        raw = labelled_step_asymmetry(foot, waist, max_standard_error=np.inf)["step_time_asymmetry_pct"]
-    except TypeError:
-        raw = est["step_time_asymmetry_pct"]
+    if os.environ.get("L416_DEFAULT"):  # the default labelling (L416), as main's code before session 38
+        est = labelled_step_asymmetry(foot, waist)
+        return truth, est["step_time_asymmetry_pct"], est["n_strides"], None, est["step_time_asymmetry_pct"]
+    est = labelled_step_asymmetry(foot, waist, **CENTRED_OPTIONS)  # L490 / L493's option
+    # without the standard-error gate (printed, not judged)
+    raw = labelled_step_asymmetry(foot, waist, **{**CENTRED_OPTIONS, "max_standard_error": np.inf}
+                                  )["step_time_asymmetry_pct"]
     return truth, est["step_time_asymmetry_pct"], est["n_strides"], est.get("standard_error_points"), raw
 
 
