@@ -130,3 +130,23 @@ def test_import_writes_the_leg_length_b390(tmp_path, capsys):
         assert err.startswith("error: ") and "\n" not in err and words in err, err
         assert not (tmp_path / f"bad{bad}").exists()
     assert math.isfinite(meta["leg_length_m"])
+
+
+def test_pipeline_auto_takes_the_calibrated_waist_pipeline_w407(tmp_path, capsys):
+    """A waist-pll calibration file and no --pipeline: auto tracks with waist-pll (it used waist-pendulum with its
+    defaults and warned that the parameters were calibrated for waist-pll); --pipeline given is kept."""
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
+    from pdrlearn.track.units import keep_units
+
+    s = simulate_path([Stand(2), Straight(12), Stand(2)], UserProfile.from_seed(9584), rate_hz=100, seed=9584)
+    write_session(keep_units(s, ("waist",)), tmp_path / "walk")
+    pll = tmp_path / "pll.json"
+    pll.write_text(json.dumps({"leg_m": 0.9, "k": 1.1, "source": "calibrated", "pipeline": "waist-pll"}))
+    for extra, want in (([], "waist-pll"), (["--pipeline", "waist-pendulum"], "waist-pendulum")):
+        out = tmp_path / f"t{len(extra)}"
+        assert main(["track", str(tmp_path / "walk"), "--params", str(pll), "--out", str(out), *extra]) == 0
+        summary = json.loads((out / "summary.json").read_text())
+        assert summary["pipeline"] == want, summary["pipeline"]
+        calibrated_for = any("calibrated for waist-pll" in str(w) for w in summary["info"].get("warnings") or [])
+        assert calibrated_for is (want != "waist-pll")
