@@ -150,3 +150,25 @@ def test_pipeline_auto_takes_the_calibrated_waist_pipeline_w407(tmp_path, capsys
         assert summary["pipeline"] == want, summary["pipeline"]
         calibrated_for = any("calibrated for waist-pll" in str(w) for w in summary["info"].get("warnings") or [])
         assert calibrated_for is (want != "waist-pll")
+
+
+def test_uncalibrated_pll_warns_a_child_of_its_size_w405(tmp_path):
+    """A 1.25 m child tracked with uncalibrated waist-pll is told the size (~45 % long) and pointed to waist-pendulum
+    or a calibration; an adult (no height below 1.5 m) and a calibrated track are not."""
+    import dataclasses
+
+    from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
+    from pdrlearn.track.units import keep_units
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist.plausibility import pll_short_walker_message
+
+    assert pll_short_walker_message({"height_m": 1.8}) is None and pll_short_walker_message({}) is None
+    assert "1.10 m" in pll_short_walker_message({"leg_length_m": 0.583})  # the height its leg implies (W115)
+    child = UserProfile.from_seed(9585).scaled(1.25, 0.62)
+    child = dataclasses.replace(child, step_length_m=0.42, step_time_s=0.38)
+    s = keep_units(simulate_path([Stand(2), Straight(12), Stand(2)], child, rate_hz=100, seed=9585), ("waist",))
+    warned = [w for w in track_waist(s, pipeline="waist-pll").info["warnings"] if "decision W405" in w]
+    assert len(warned) == 1 and "waist-pendulum" in warned[0] and "1.25 m" in warned[0], warned
+    calibrated = {"leg_m": 0.62, "k": 1.1, "source": "calibrated", "pipeline": "waist-pll"}
+    assert not [w for w in track_waist(s, pipeline="waist-pll", params=calibrated).info["warnings"]
+                if "decision W405" in w]

@@ -600,3 +600,27 @@ def micro_bout_message(n_micro: int, n_sequences: int, micro_m: float, total_m: 
             "walking the waist step-length models and a calibration describe, and reads long (a simulated queue "
             "of 0.2 m steps: +97 % waist-pendulum, +326 % waist-pll; calibrated +147 % / +310 %); a foot unit "
             "measures such steps (plasys pipeline), the waist distance of these sequences is not reliable")
+
+
+#: decision W405: a walker shorter than this (m, meta.json's height or the height its leg implies, W115) is warned that
+#: uncalibrated waist-pll reads them long: trial T1 (session 38) measured simulated children of 1.15-1.45 m at
+#: +43.6 to +50.3 % distance (an adult of 1.70 m +29.9 %), the pendulum -0.8 to -14.4 % on the same children
+PLL_SHORT_HEIGHT_M = 1.5
+
+
+def pll_short_walker_message(meta: dict | None) -> str | None:
+    """Decision W405: the line of an uncalibrated waist-pll track of a walker whose height (meta.json ``height_m``,
+    else the height its ``leg_length_m`` / ``sensor_height_m`` implies, W115) is under :data:`PLL_SHORT_HEIGHT_M`;
+    None for a taller walker or none known."""
+    from pdrlearn.waist.params import _meta_numbers, subject_height
+
+    if not _meta_numbers(meta or {}, "height_m", "leg_length_m", "sensor_height_m"):
+        return None
+    height = subject_height(meta, infer=True)[0]
+    if not height < PLL_SHORT_HEIGHT_M:
+        return None
+    return (f"uncalibrated waist-pll on a walker of about {height:.2f} m: its adult step-length line read simulated "
+            "children of 1.15-1.45 m +43.6 to +50.3 % long (an adult +29.9 %; trial T1, decision W405), so expect "
+            "the distance ~45 % long; use --pipeline waist-pendulum (-0.8 to -14.4 % on the same children) or "
+            "calibrate on this walker's walk of known length ('pdrlearn calibrate DIR --pipeline waist-pll "
+            "--distance M --out PARAMS.json', then --params PARAMS.json)")
