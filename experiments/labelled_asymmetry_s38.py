@@ -21,9 +21,8 @@ import warnings
 
 import numpy as np
 
+from experiments.labelled_asymmetry_s34 import walk_contacts
 from pdrlearn.sim import Stand, Straight, Turn, UserProfile, simulate_path
-from pdrlearn.steps.detectors import AccelForceStepDetector
-from pdrlearn.steps.waist_ic import WaistICStepDetector
 from pdrlearn.track.labelled_asymmetry import CENTRED_OPTIONS, labelled_step_asymmetry
 
 CHILDREN = range(9580, 9592)
@@ -50,12 +49,7 @@ def one(group: str, uid: int, a: float) -> tuple[float, float | None, int, float
         segs = ([Stand(3), Straight(10), Turn(180), Straight(10), Stand(3)] if group != "children40"
                 else [Stand(3), Straight(40), Stand(3)])
     s = simulate_path(segs, user, speed="normal", rate_hz=100, seed=uid, bounce="pendulum", step_time_asymmetry=a)
-    ics = s.extras["ics"]
-    t = ics["ic_s"].to_numpy(float) if "ic_s" in ics else ics["ic_ms"].to_numpy(float) / 1000.0
-    inst = (s.meta.get("knobs") or {}).get("instrumented_foot", "right")
-    truth = labelled_step_asymmetry(t[ics["foot"].to_numpy() == inst], t)["step_time_asymmetry_pct"]
-    foot = AccelForceStepDetector().detect(s)["event_s"].to_numpy(float)  # = the plasys track's event_s
-    waist = WaistICStepDetector().detect(s)["event_s"].to_numpy(float)
+    truth, foot, waist = walk_contacts(s)  # L416's measurement's truth and contacts
     if os.environ.get("L416_DEFAULT"):  # the default labelling (L416), as main's code before session 38
         est = labelled_step_asymmetry(foot, waist)
         return truth, est["step_time_asymmetry_pct"], est["n_strides"], None, est["step_time_asymmetry_pct"]
