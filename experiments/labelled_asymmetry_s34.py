@@ -21,15 +21,22 @@ USERS = range(8044, 8056)
 SETTINGS = (0.0, 0.05, 0.15)
 
 
-def one(uid: int, a: float, rate: int) -> tuple[float, float | None, int]:
-    s = simulate_path([Stand(3), Straight(60), Stand(3)], UserProfile.from_seed(uid), speed="normal", rate_hz=rate,
-                      seed=uid, bounce="pendulum", step_time_asymmetry=a)
+def walk_contacts(s) -> tuple[float, np.ndarray, np.ndarray]:
+    """``(truth, foot, waist)`` of a simulated walk: the index on its true contacts (ics.csv), the foot unit's
+    contacts (as the plasys track's event_s) and the lower back's (waist-ic)."""
     ics = s.extras["ics"]
     t = ics["ic_s"].to_numpy(float) if "ic_s" in ics else ics["ic_ms"].to_numpy(float) / 1000.0
     inst = (s.meta.get("knobs") or {}).get("instrumented_foot", "right")
     truth = labelled_step_asymmetry(t[ics["foot"].to_numpy() == inst], t)["step_time_asymmetry_pct"]
     foot = AccelForceStepDetector().detect(s)["event_s"].to_numpy(float)  # = the plasys track's event_s
     waist = WaistICStepDetector().detect(s)["event_s"].to_numpy(float)
+    return truth, foot, waist
+
+
+def one(uid: int, a: float, rate: int) -> tuple[float, float | None, int]:
+    s = simulate_path([Stand(3), Straight(60), Stand(3)], UserProfile.from_seed(uid), speed="normal", rate_hz=rate,
+                      seed=uid, bounce="pendulum", step_time_asymmetry=a)
+    truth, foot, waist = walk_contacts(s)
     est = labelled_step_asymmetry(foot, waist)
     return truth, est["step_time_asymmetry_pct"], est["n_strides"]
 

@@ -27,7 +27,7 @@ def _mapping_file(path: Path | None) -> dict:
     if not isinstance(m, dict):
         raise DataError(f"{path}: the mapping must be a JSON object such as {{\"acc\": [\"ax\", \"ay\", \"az\"]}}")
     known = {"time", "acc", "gyro", "mag", "baro", "heel", "toe", "units", "unit", "frames", "sensor_height_m",
-             "height_m"}
+             "height_m", "leg_length_m"}
     unknown = sorted(set(m) - known)
     if unknown:
         raise DataError(f"{path}: unknown key(s) {', '.join(unknown)}; the mapping takes {', '.join(sorted(known))}")
@@ -95,6 +95,9 @@ def import_command(
                                         "foot, B175)."),
     subject_height: float = typer.Option(None, "--subject-height", help="The subject's height (m), written to "
                                          "meta.json height_m (default: none; commands assume 1.7 m and say so)."),
+    leg_length: float = typer.Option(None, "--leg-length", help="The subject's leg length (m, greater-trochanter "
+                                     "height), written to meta.json leg_length_m: a child's measured leg scales "
+                                     "the walking range (L148) and the waist pendulum (B390)."),
     steps: Path = typer.Option(None, "--steps", help="Labelled steps (start_ms,end_ms,terrain,... as steps.csv) in "
                                "ms on the export's clock; written as the session's steps.csv. A list of initial "
                                "contacts only (ic_ms, optional foot column: --foot picks) becomes strides from "
@@ -172,6 +175,8 @@ def import_command(
             --time-unit s --acc-unit g --gyro-unit deg/s --frames x=forward,y=up,z=right
 
         pdrlearn import phone.csv --out sessions/walk1 --unit waist --merge --sensor-height 1.0
+
+        pdrlearn import child.csv --out sessions/child1 --subject-height 1.25 --leg-length 0.62   # a child
 
         pdrlearn import lowback.csv --out sessions/lb1 --unit waist --steps strides.csv --labels ics.csv \\
             --labels bouts.csv --labels turns.csv
@@ -284,6 +289,7 @@ def import_command(
               sensor_height_m=sensor_height if sensor_height is not None else m.get("sensor_height_m"),
               name=name or (None if merge else out.name),
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
+              leg_length_m=leg_length if leg_length is not None else m.get("leg_length_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
               drop_duplicate_timestamps=drop_duplicate_timestamps, sort_timestamps=sort_timestamps,
               add_gravity=add_gravity, retime_hz=retime,

@@ -32,7 +32,8 @@ from pdrlearn.textfile import read_text
 #: The tracking options, shared by ``track`` and ``track-all`` (one declaration each, so the two commands
 #: cannot drift apart). ``--gnss``/``--fixes`` are per-recording files and belong to ``track`` only.
 PIPELINE_OPT = typer.Option("auto", help="Tracking pipeline: plasys, waist-pll, waist-pendulum; auto = plasys "
-                            "for a session with a foot unit, else waist-pendulum.")
+                            "for a session with a foot unit, else waist-pendulum, or the lower-back pipeline a "
+                            "--params calibration was made for (W407).")
 METHOD_OPT = typer.Option("auto", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes); "
                           "auto = M3 with --model, else the M3 engine without the class rules (warned).")
 MODEL_OPT = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
@@ -703,7 +704,7 @@ def pseudonymous(session, names: dict[str, str]):
 def _track_session(session_dir: Path, settings: dict) -> dict:
     """:func:`track_session` without E154's capture and L415's setting."""
     from pdrlearn.io import read_session
-    from pdrlearn.track.base import get_pipeline, resolve_pipeline
+    from pdrlearn.track.base import calibrated_pipeline, get_pipeline, resolve_pipeline
     from pdrlearn.track.evaluate import track_summary
     from pdrlearn.track.units import check_tracked_span, keep_units, tracked_unit
 
@@ -759,7 +760,14 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     if pipeline in ("plasys", "auto") and session._left_out and not session.has("fAccelerometer"):
         _refuse_foot_options_without_foot(pipeline, o, session)  # decision W254
     _refuse_waist_pipeline_without_waist(pipeline, session)  # decision W260
+    auto = pipeline == "auto"
     pipeline = resolve_pipeline(pipeline, session)
+    if auto and calibrated_pipeline(pipeline, par) != pipeline:  # decision W407: the calibration's pipeline
+        pipeline = calibrated_pipeline(pipeline, par)
+        import logging
+
+        logging.getLogger("pdrlearn.cli").info("--pipeline auto: %s, the pipeline %s was calibrated for (decision "
+                                               "W407)", pipeline, params)
     given_clock, clock_lines = None, []
     # decision E111: the waist clock moved by hand, before anything reads it; B230: before B126's span check (a
     # waist clock 2 s late covers the foot's time once moved); another pipeline is refused below (B27)

@@ -735,6 +735,28 @@ ROW_INDEX = "(row index)"
 FEET = ("left", "right")
 
 
+#: decision B390: the leg length (m) `import --leg-length` accepts: a toddler's 0.3 m to a very tall adult's 1.3 m
+#: (the simulator's S38 range, 0.45-0.6 x its 0.6-2.2 m heights, widened to the measured leg of any walker)
+LEG_LENGTH_RANGE_M = (0.3, 1.3)
+
+
+def check_leg_length(leg_length_m, height_m=None) -> float:
+    """Decision B390: ``leg_length_m`` as a float in metres, or one DataError line naming ``--leg-length`` and the
+    fix: outside :data:`LEG_LENGTH_RANGE_M`, or not under the ``height_m`` given with it."""
+    lo, hi = LEG_LENGTH_RANGE_M
+    try:
+        leg = float(leg_length_m)
+    except (TypeError, ValueError):
+        leg = float("nan")
+    if not (math.isfinite(leg) and lo <= leg <= hi):
+        raise DataError(f"import: --leg-length {leg_length_m!r} is not a leg length in m ({lo:g}-{hi:g} m, the "
+                        "greater trochanter's height above the floor: 0.62, not 62)")
+    if height_m is not None and math.isfinite(float(height_m)) and leg >= float(height_m):
+        raise DataError(f"import: --leg-length {leg:g} m is not under --subject-height {float(height_m):g} m; give "
+                        "the leg (greater-trochanter height, ~0.5 x the height) in m")
+    return leg
+
+
 def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str, list[str]] | None = None,
                time_column: str | None = None, time_unit: str | None = None, units: dict[str, str] | None = None,
                frame=None, sensor_height_m: float | None = None, name: str | None = None,
@@ -745,7 +767,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                sort_timestamps: bool = False, add_gravity: str | os.PathLike | None = None,
                retime_hz: float | None = None,
                foot: str | None = None, no_header: bool = False, encoding: str | None = None,
-               subject: str | None = None, visit: str | None = None) -> tuple[Session, dict]:
+               subject: str | None = None, visit: str | None = None,
+               leg_length_m: float | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -780,6 +803,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     sensor_height_m : the waist unit's height above the ground (m), written to ``meta.json`` (refused for a foot
         unit, B175)
     subject_height_m : the subject's height (m), written to ``meta.json`` ``height_m``
+    leg_length_m : the subject's leg length (m, greater-trochanter height), written to ``meta.json``
+        ``leg_length_m`` (decision B390: a child's measured leg; L148 scales the walking range by it)
     name : session name (default: the CSV's stem)
     encoding : the CSV's text encoding (``cp1252``: German Excel's plain "CSV" save type; decision B344); default
         UTF-8, a byte order mark accepted (B221)
@@ -827,7 +852,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   sort_timestamps: bool = False, add_gravity: str | os.PathLike | None = None,
                   retime_hz: float | None = None,
                   foot: str | None = None, no_header: bool = False, encoding: str | None = None,
-                  subject: str | None = None, visit: str | None = None) -> list[tuple[Session, dict]]:
+                  subject: str | None = None, visit: str | None = None,
+                  leg_length_m: float | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = path_arg(path, "import_csv_parts" if split else "import_csv", "a CSV or MAT file")  # decision B349
@@ -1240,6 +1266,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"import: subject height {subject_height_m!r} is not a person's height in m "
                                 "(0.5-2.5 m; 1.75, not 175)")
             meta["height_m"] = h
+        if leg_length_m is not None:  # decision B390
+            meta["leg_length_m"] = check_leg_length(leg_length_m, subject_height_m)
         if foot is not None:  # decision B321: `pdrlearn gait` checks the side given against it (L260)
             meta["foot"] = foot
         from pdrlearn.io.meta_keys import label_option

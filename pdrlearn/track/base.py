@@ -187,6 +187,21 @@ def resolve_pipeline(name: str, session) -> str:
     return "waist-pendulum"
 
 
+#: decision W407: the lower-back pipelines `--pipeline auto` may take from a calibration file's "pipeline"
+WAIST_PIPELINES = ("waist-pendulum", "waist-pll")
+
+
+def calibrated_pipeline(chosen: str, params) -> str:
+    """Decision W407: ``--pipeline auto``'s lower-back choice ``chosen`` (:func:`resolve_pipeline`) replaced by the
+    lower-back pipeline the parameters (``--params``' parsed JSON) were calibrated for (``"source": "calibrated"``,
+    ``"pipeline"`` one of :data:`WAIST_PIPELINES`), so a waist-pll calibration tracks with waist-pll instead of
+    leaving waist-pendulum at its defaults; ``chosen`` otherwise (a foot pipeline, or no such file)."""
+    if chosen not in WAIST_PIPELINES or not isinstance(params, dict) or params.get("source") != "calibrated":
+        return chosen
+    named = params.get("pipeline")
+    return named if named in WAIST_PIPELINES else chosen
+
+
 def foot_unit_ignored(session, doing: str) -> str | None:
     """Decision B204: the line when a session has foot files but no fAccelerometer.csv, so that the choice
     between the units (``auto``) leaves the foot unit out and does ``doing`` with the waist; None otherwise."""

@@ -635,6 +635,13 @@ def range_side(cad: float | None, speed: float | None, leg_m: float | None) -> s
     return None
 
 
+#: decision L492: what L95's fast line (and W100's short-step line on the lower back) adds when meta.json gives no
+#: height or leg length: a child's cadence is above the adult range L95 judges without one (L148 scales it)
+NO_HEIGHT_HINT = ("if the walker is a child or short, give the height or the leg length (pdrlearn import "
+                  "--subject-height M or --leg-length M, or meta.json height_m / leg_length_m): the walking range "
+                  "scales with the leg (decisions L148, L492)")
+
+
 #: decisions W144, W178, L197: the fast gaits' names, in L95's session line and in L195's bout line
 FAST_GAITS = {"running": ("this looks like running, and running is not supported: ", "looks like running"),
               "running_first": ("running, or short fast steps (a festinating or shuffling gait), neither of which is "
@@ -770,6 +777,8 @@ def gait_range_warning(summary: dict) -> str | None:
         extra += ("; the waist step length is uncalibrated and the default model is not validated at slow "
                   "cadence: the distance and speed depend on a calibration on this walker's own walk of known "
                   "length ('pdrlearn calibrate DIR --distance M', e.g. a 10 m walk test)")
+    if side == "fast" and leg is None:  # decision L492: no height or leg known, the adult range was judged
+        extra += f"; {NO_HEIGHT_HINT}"
     return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow)}{extra}"
 
 

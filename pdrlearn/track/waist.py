@@ -971,6 +971,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                         "(decision W56); drop realtime or set length_smoothing to none")
     _configure_model(model, None if isinstance(spec, StepLengthModel) else spec, realtime,
                      _model_options(o, realtime))
+    if pipeline == "waist-pll" and p.source != "calibrated":  # decision W405: a child's uncalibrated pll reads long
+        from pdrlearn.waist.plausibility import pll_short_walker_message
+
+        short = pll_short_walker_message(session.meta)
+        if short:
+            warnings.append(short)
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
@@ -1155,9 +1161,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
     pendulum = functools.cache(lambda: _pendulum_steps(imu, p, thr, o))  # W139 and W186 read it once
-    ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0],  # W100, W116
+    height_m, no_height = subject_height(session.meta)
+    ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, height_m,  # W100, W116
                                     pendulum=pendulum, short_step=bool(o["short_step_check"]),  # W139, W207
-                                    stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])))  # W155
+                                    stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])),  # W155
+                                    height_known=no_height is None)  # decision L492
     if ratio_line:
         warnings.append(ratio_line)
     excess = None
@@ -1322,7 +1330,7 @@ def contact_steps(table: pd.DataFrame, imu: WaistIMU, name: str = "") -> pd.Data
 
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
-                height_m: float, pendulum=None, stairs=None, short_step: bool = False
+                height_m: float, pendulum=None, stairs=None, short_step: bool = False, height_known: bool = True
                 ) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
     warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps).
@@ -1355,7 +1363,7 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
     ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), step_s)
     # W208: a pll track that misses steps says so first (W139's line would call its short reading long)
     line = missed or walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length,
-                                        pll_m=pll_m, pendulum_m=pendulum_m)
+                                        pll_m=pll_m, pendulum_m=pendulum_m, height_known=height_known)
     if line is None and (short_step or pll_m is not None) and not running_cadence(length, cadence, height_m):
         line = short_step_message(length, n, height_m, pll_m=pll_m, pendulum_m=pendulum_m)  # decision W207
     return ratio, line

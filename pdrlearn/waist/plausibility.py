@@ -192,7 +192,8 @@ SHORT_STEP_CAUSE = ("at such short steps the pelvis vaults by a few millimetres 
 
 
 def short_step_message(length: float | None, n: int, height_m: float = WALK_RATIO_HEIGHT_M, *,
-                       pll_m: float | None = None, pendulum_m: float | None = None) -> str | None:
+                       pll_m: float | None = None, pendulum_m: float | None = None,
+                       height_known: bool = True) -> str | None:
     """Decision W207's one warning line when the median uncalibrated pendulum step ``length`` (m, over ``n`` >=
     :data:`PLAUSIBILITY_MIN_PAIRS` steps with a step time) is under :func:`short_step_limit` of a walker ``height_m``
     tall; None otherwise. Decision W208: ``pll_m`` / ``pendulum_m``, the distances of a ``waist-pll`` track and of the
@@ -330,14 +331,17 @@ def running_cadence(length: float | None, cadence: float | None, height_m: float
 
 def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
                        height_m: float = WALK_RATIO_HEIGHT_M, *, pll_length: float | None = None,
-                       pll_m: float | None = None, pendulum_m: float | None = None) -> str | None:
+                       pll_m: float | None = None, pendulum_m: float | None = None,
+                       height_known: bool = True) -> str | None:
     """Decision W100's one warning line for an uncalibrated waist track whose walk ratio lies outside
     :data:`WALK_RATIO_BAND` over at least :data:`PLAUSIBILITY_MIN_PAIRS` steps; None when it is inside or not
     judged. Decision W116: the band is that of a walker ``height_m`` tall (:func:`walk_ratio_scale`: a child's healthy
     walk ratio is smaller). Decision W139: ``pll_length`` (m), the median step of a ``waist-pll`` track whose
     ``ratio``, ``length`` and ``cadence`` are the pendulum model's reading of the same session; the line says so.
     Decision W208: with the pll track's distance ``pll_m`` and the pendulum reading's ``pendulum_m`` (m) the line gives
-    both and says "reads long" only of a pll track that reads longer than the pendulum."""
+    both and says "reads long" only of a pll track that reads longer than the pendulum. Decision L492: a short-step
+    line of a walker whose height meta.json does not give (``height_known`` False) says to give it (a child's band is
+    smaller, W116)."""
     c = walk_ratio_scale(height_m)
     lo, hi, healthy = c * WALK_RATIO_BAND[0], c * WALK_RATIO_BAND[1], c * WALK_RATIO_HEALTHY
     if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or lo <= ratio <= hi:
@@ -359,6 +363,10 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
         what = (f"{what}; waist-pll reads a median step of {pll_length:.2f} m, the pendulum {length:.2f} m")
         if pll_m is not None and pendulum_m is not None:  # W208: the direction is the reading's
             what += f" (distance {pll_m:.2f} m, {_direction(pll_m, pendulum_m)} the pendulum's {pendulum_m:.2f} m)"
+    if ratio < lo and not height_known:  # decision L492
+        from pdrlearn.track.gait import NO_HEIGHT_HINT
+
+        what += f"; {NO_HEIGHT_HINT.replace('walking range', 'band')} (W116)"
     return (("" if pll_length is None else PLL_WALK_RATIO_BASIS) +
             f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
             f"{n} steps; healthy gait ~{healthy:.4f} at {height_m:.2f} m tall, outside {lo:.4f}-{hi:.4f} warns, "
@@ -597,3 +605,27 @@ def micro_bout_message(n_micro: int, n_sequences: int, micro_m: float, total_m: 
             "walking the waist step-length models and a calibration describe: the waist distance of these "
             f"sequences is not reliable and may read {STARTSTOP_ERROR_TEXT}; a foot unit measures such steps "
             "(plasys pipeline)")
+
+
+#: decision W405: a walker shorter than this (m, meta.json's height or the height its leg implies, W115) is warned that
+#: uncalibrated waist-pll reads them long: trial T1 (session 38) measured simulated children of 1.15-1.45 m at
+#: +43.6 to +50.3 % distance (an adult of 1.70 m +29.9 %), the pendulum -0.8 to -14.4 % on the same children
+PLL_SHORT_HEIGHT_M = 1.5
+
+
+def pll_short_walker_message(meta: dict | None) -> str | None:
+    """Decision W405: the line of an uncalibrated waist-pll track of a walker whose height (meta.json ``height_m``,
+    else the height its ``leg_length_m`` / ``sensor_height_m`` implies, W115) is under :data:`PLL_SHORT_HEIGHT_M`;
+    None for a taller walker or none known."""
+    from pdrlearn.waist.params import _meta_numbers, subject_height
+
+    if not _meta_numbers(meta or {}, "height_m", "leg_length_m", "sensor_height_m"):
+        return None
+    height = subject_height(meta, infer=True)[0]
+    if not height < PLL_SHORT_HEIGHT_M:
+        return None
+    return (f"uncalibrated waist-pll on a walker of about {height:.2f} m: its adult step-length line read simulated "
+            "children of 1.15-1.45 m +43.6 to +50.3 % long (an adult +29.9 %; trial T1, decision W405), so expect "
+            "the distance ~45 % long; use --pipeline waist-pendulum (-0.8 to -14.4 % on the same children) or "
+            "calibrate on this walker's walk of known length ('pdrlearn calibrate DIR --pipeline waist-pll "
+            "--distance M --out PARAMS.json', then --params PARAMS.json)")
