@@ -106,6 +106,7 @@ from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_co
 from pdrlearn.track.rides import foot_rides
 from pdrlearn.track.sim_rocker import hermite_contact_line
 from pdrlearn.track.travel import side_class_warning
+from pdrlearn.track.turn_reference import turn_reference_warning
 from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
 from pdrlearn.warning_lines import coded
 
@@ -1471,6 +1472,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object),
                                           table["sideways"].to_numpy(dtype=bool))  # decision C137
     side_class_warning(table, warnings)  # decision C137: side steps the model classed backward
+    turn_reference_warning(table, fd.reference_point, warnings)  # decision L489: many turns on the spot
     if len(extra):  # decision L76: a gap row reports the heading of the row before it (after L65's sign)
         for i in inserted[inserted > 0]:
             rep_head[i] = rep_head[i - 1]
