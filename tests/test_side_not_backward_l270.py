@@ -13,6 +13,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.io import write_session
+from pdrlearn.kernels import sideways as KS
 from pdrlearn.kernels.backward import backward_mask, backward_rows
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
@@ -26,7 +27,8 @@ def _sim(user: int = 5202):
     return simulate_path(parse_route(ROUTE), UserProfile.from_seed(user), rate_hz=20.0, seed=user, scenario="route")
 
 
-def test_the_kernel_leaves_side_steps_out():
+def test_the_kernel_leaves_side_steps_out(monkeypatch):
+    monkeypatch.setattr(KS, "MIN_SIDE_STRIDES", 3)  # the run mechanism at L219's former 3 (L486 made it 1)
     length = [-0.4, -0.4, -0.4, -0.6]
     assert backward_mask(length).tolist() == [True] * 4
     assert backward_mask(length, sideways=[True, True, True, False]).tolist() == [False, False, False, True]

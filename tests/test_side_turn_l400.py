@@ -7,6 +7,7 @@ import logging
 
 import numpy as np
 
+from pdrlearn.kernels import sideways as KS
 from pdrlearn.kernels.sideways import SIDE_MAX_TURN_DEG, SideRun, is_sideways, sideways_runs
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
@@ -15,7 +16,8 @@ from pdrlearn.track import get_pipeline
 SPIN = "straight:10, turn:360, stand:2, turn:-360, stand:2"  # the new user's route
 
 
-def test_a_stride_that_turns_the_foot_is_not_judged_sideways():
+def test_a_stride_that_turns_the_foot_is_not_judged_sideways(monkeypatch):
+    monkeypatch.setattr(KS, "MIN_SIDE_STRIDES", 3)  # the run mechanism at L219's former 3 (L486 made it 1)
     angle, length = np.radians([90.0, 90.0, 90.0]), np.full(3, 0.3)
     assert sideways_runs(angle, length) == [(0, 2)] and sideways_runs(angle, length, np.radians([0, 5, 30])) == [(0, 2)]
     assert sideways_runs(angle, length, np.radians([0.0, 60.0, 0.0])) == []

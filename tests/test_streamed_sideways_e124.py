@@ -25,7 +25,8 @@ def _stride(angle_deg: float, length: float = 0.4) -> tuple[float, float]:
     return length * math.cos(a), length * math.sin(a)
 
 
-def test_side_run_adds_the_travel_angle_from_the_third_sideways_stride_on():
+def test_side_run_adds_the_travel_angle_from_the_third_sideways_stride_on(monkeypatch):
+    monkeypatch.setattr(KS, "MIN_SIDE_STRIDES", 3)  # the run mechanism at L219's former 3 (L486 made it 1)
     run = SideRun()
     extras = [run.stride(*_stride(d, 1.4 if abs(d) < 45 else 0.4), 0.4) for d in (4, 6, 5, 90, 92, 91, 89, 5, 88)]
     # forward strides and the run's first two: 0; then the angle less the usual offset (median of 4, 6, 5 deg)
@@ -105,10 +106,11 @@ def test_run_equals_track_streaming_on_a_side_stretch(root, monkeypatch):
     assert abs(before[-1].y - runs[0][-1].y) > 0.5  # the rule moved the run's track
 
 
-def test_the_usual_travel_angle_reads_a_bounded_window():
+def test_the_usual_travel_angle_reads_a_bounded_window(monkeypatch):
     """E124 (session 28 review): the streamed tracker's usual travel angle is the median of the latest
     SIDE_USUAL_STRIDES strides outside any run, so its state stays bounded over a long stream (main: one float per
     stride for the whole stream)."""
+    monkeypatch.setattr(KS, "MIN_SIDE_STRIDES", 3)  # the run mechanism at L219's former 3 (L486 made it 1)
     import math
 
     from pdrlearn.kernels.sideways import SIDE_USUAL_STRIDES, SideRun

@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from pdrlearn.kernels import sideways as KS
 from pdrlearn.kernels.sideways import SideRun, whole_runs
 from pdrlearn.runtime.tracker import Step, Tracker
 from pdrlearn.sim import UserProfile, simulate, simulate_path
@@ -36,7 +37,8 @@ def _streamed(s, **kw):
         logging.disable(logging.NOTSET)
 
 
-def test_decided_from_the_third_sideways_stride_and_whole_runs_adds_back_the_first_two():
+def test_decided_from_the_third_sideways_stride_and_whole_runs_adds_back_the_first_two(monkeypatch):
+    monkeypatch.setattr(KS, "MIN_SIDE_STRIDES", 3)  # the run mechanism at L219's former 3 (L486 made it 1)
     run = SideRun()
     decided = []
     for d in (4, 6, 90, 92, 91, 89, 5, 90, 88, 3):
@@ -51,6 +53,7 @@ def test_decided_from_the_third_sideways_stride_and_whole_runs_adds_back_the_fir
 
 
 def test_track_streaming_marks_the_side_run_and_the_cvs_leave_it(monkeypatch):
+    monkeypatch.setattr(KS, "MIN_SIDE_STRIDES", 3)  # the run mechanism at L219's former 3 (L486 made it 1)
     st = _streamed(_sim(ROUTE, 4742), contacts=True).steps
     flags = st["sideways"].to_numpy(bool)
     whole = sideways_rows(st)
@@ -66,7 +69,8 @@ def test_track_streaming_marks_the_side_run_and_the_cvs_leave_it(monkeypatch):
     assert "sideways" in plain and not plain["sideways"].to_numpy(bool).any()
 
 
-def test_an_offline_table_is_read_as_it_is():
+def test_an_offline_table_is_read_as_it_is(monkeypatch):
+    monkeypatch.setattr(KS, "MIN_SIDE_STRIDES", 3)  # the run mechanism at L219's former 3 (L486 made it 1)
     t = pd.DataFrame({"sideways": [False, False, True, True, True], "gap_s": 0.0})
     assert sideways_rows(t).tolist() == [False, False, True, True, True]  # no pivot_rad: offline's whole runs
     assert sideways_rows(t.assign(pivot_rad=0.0)).tolist() == [True] * 5

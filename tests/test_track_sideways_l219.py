@@ -8,17 +8,19 @@ import logging
 import numpy as np
 import pytest
 
+from pdrlearn.kernels import sideways as KS
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track import get_pipeline, plasys
 from pdrlearn.track.sideways import MIN_SIDE_STRIDES, side_travel_extra, sideways_runs
 
 
-def test_sideways_runs_need_three_long_sideways_strides_in_a_row():
+def test_sideways_runs_need_three_long_sideways_strides_in_a_row(monkeypatch):
+    monkeypatch.setattr(KS, "MIN_SIDE_STRIDES", 3)  # the run mechanism at L219's former 3 (L486 made it 1)
     deg = np.radians([3, 95, 92, 88, 4, 91, 89, 5, -95, -90, -100, -80, 2])
     length = np.array([1.5, 0.4, 0.4, 0.4, 1.5, 0.4, 0.4, 1.5, 0.4, 0.4, 0.1, 0.4, 1.5])
     # 1-3: a run; 5-6: too short; 8-11: broken by a 0.1 m stride at 10
-    assert MIN_SIDE_STRIDES == 3
+    assert MIN_SIDE_STRIDES == 1  # decision L486 (the constant; the mechanism is tested at 3 here)
     assert sideways_runs(deg, length) == [(1, 3)]
     assert sideways_runs(np.radians([61, 119, 90]), np.full(3, 0.3)) == [(0, 2)]
     assert sideways_runs(np.radians([59, 90, 90]), np.full(3, 0.3)) == []
@@ -44,7 +46,8 @@ def test_a_side_stretch_gives_one_line_and_a_walk_none(pipeline, monkeypatch):
     assert _lines("straight:6, turn:90, straight:6", pipeline) == []
 
 
-def test_side_travel_extra_adds_a_runs_angle_beyond_the_usual_offset_only():
+def test_side_travel_extra_adds_a_runs_angle_beyond_the_usual_offset_only(monkeypatch):
+    monkeypatch.setattr(KS, "MIN_SIDE_STRIDES", 3)  # the run mechanism at L219's former 3 (L486 made it 1)
     lat = np.radians([5, 4, 95, 93, 96, 6, 5, 60])
     length = np.array([1.5, 1.5, 0.4, 0.4, 0.4, 1.5, 1.5, 0.4])
     extra = np.degrees(side_travel_extra(lat, length))

@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from pdrlearn.kernels.sideways import MIN_SIDE_STRIDES
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track import get_pipeline
+from pdrlearn.track.sideways import WARN_MIN_SIDE_STRIDES  # decision L487: the lines' own minimum
 from pdrlearn.waist.backward import MIN_BACKWARD_STEPS
 
 #: the README's simulator paragraph with the two minimum stretches moved to docs/simulator.md (session 36)
@@ -20,7 +20,7 @@ SIMULATOR_DOC = Path(__file__).resolve().parents[1] / "docs" / "simulator.md"
 
 def test_readme_states_both_minimum_stretches_with_their_values():
     text = " ".join(SIMULATOR_DOC.read_text(encoding="utf-8").split())
-    assert f"`MIN_SIDE_STRIDES` = {MIN_SIDE_STRIDES} consecutive sideways strides" in text
+    assert f"`WARN_MIN_SIDE_STRIDES` = {WARN_MIN_SIDE_STRIDES} consecutive sideways strides" in text
     assert f"`MIN_BACKWARD_STEPS` = {MIN_BACKWARD_STEPS} consecutive lower-back steps" in text
     assert "(W344)" in text
 

@@ -23,8 +23,10 @@ from pdrlearn.kernels.stride import reversed_by_rules
 SIDE_ANGLE_DEG = (60.0, 120.0)
 #: decision L219: shorter strides are not judged (a shuffle on the spot, a stepping turn's small steps)
 SIDE_MIN_STRIDE_M = 0.15
-#: decision L219: fewer consecutive sideways strides are no side-stepping stretch (a 90 deg stepping turn's step)
-MIN_SIDE_STRIDES = 3
+#: decision L219: fewer consecutive sideways strides are no side-stepping stretch; 3 before decision L486 (against a
+#: 90 deg stepping turn's step, which L400's turn test now leaves out): 1, a 1-2 stride shuffle along a shelf is side
+#: (adopted by L486's rule, measured in L487)
+MIN_SIDE_STRIDES = 1
 #: decision L400: a stride during which the foot's own heading turned by more than this (deg) is not judged (a turn on
 #: the spot's stride: no facing to measure from); the half-width of :data:`SIDE_ANGLE_DEG`'s window around 90 deg
 SIDE_MAX_TURN_DEG = (SIDE_ANGLE_DEG[1] - SIDE_ANGLE_DEG[0]) / 2.0
@@ -51,13 +53,15 @@ def is_sideways(angle, length, turn=None):
     return side & ~(np.degrees(np.abs(np.asarray(turn, float))) > SIDE_MAX_TURN_DEG)  # L400 (NaN: not checked)
 
 
-def sideways_runs(angle: np.ndarray, length: np.ndarray, turn: np.ndarray | None = None) -> list[tuple[int, int]]:
-    """Runs ``(first, last)`` of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides (angle rad from the
-    foot's facing, left +; length m; ``turn`` the foot's heading change over each stride, rad, L400)."""
+def sideways_runs(angle: np.ndarray, length: np.ndarray, turn: np.ndarray | None = None,
+                  min_strides: int | None = None) -> list[tuple[int, int]]:
+    """Runs ``(first, last)`` of at least ``min_strides`` (None: :data:`MIN_SIDE_STRIDES`) consecutive sideways
+    strides (angle rad from the foot's facing, left +; length m; ``turn`` the foot's heading change over each stride,
+    rad, L400)."""
     side = is_sideways(angle, length, turn)
     edges = np.flatnonzero(np.diff(np.r_[0, side.astype(int), 0]))
-    return [(int(a_), int(b_ - 1)) for a_, b_ in zip(edges[::2], edges[1::2], strict=True)
-            if b_ - a_ >= MIN_SIDE_STRIDES]
+    least = MIN_SIDE_STRIDES if min_strides is None else int(min_strides)
+    return [(int(a_), int(b_ - 1)) for a_, b_ in zip(edges[::2], edges[1::2], strict=True) if b_ - a_ >= least]
 
 
 def side_travel_extra(lateral: np.ndarray, length: np.ndarray, turn: np.ndarray | None = None) -> np.ndarray:

@@ -563,25 +563,31 @@ def reversed_by_rules(foot_headed: bool, dx: float, length: float) -> float:
     return math.pi
 
 
-def travel_sign_one(length: float, heading: float, direction=None) -> tuple[float, float]:
+def travel_sign_one(length: float, heading: float, direction=None, sideways: bool = False) -> tuple[float, float]:
     """Decision L65: the ``(length_m, heading_rad)`` a stride is REPORTED with. A negative length stays only
     when the stride's direction class is ``"backward"`` (the thesis' sign rule); any other negative length (no
     class, or a "forward" class the bayes rule left the estimate's sign) becomes its magnitude along the
     heading turned by pi: the same displacement (``advance``), no negative stride in a table without a
     backward class. The sign of a stride's measured x flips when the foot turns by ~180 deg within it (a
     turnaround), so without this a turnaround stride read -1.3 m with its heading reversed. Apply it after
-    the position update (the position is the same either way)."""
-    if length < 0.0 and direction != "backward":
+    the position update (the position is the same either way). Decision C137: a ``sideways`` stride (L219 / L486's
+    side step) is no backward travel (L270) whatever its class, so it keeps no negative length either: a model that
+    never saw side steps classes them backward, and steps.csv read -0.38 m side strides (trial T2, finding 3)."""
+    if length < 0.0 and (direction != "backward" or sideways):
         return -length, heading + math.pi
     return length, heading
 
 
-def travel_sign(length: np.ndarray, heading: np.ndarray, direction=None) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`travel_sign_one` on arrays (``direction``: one class or None per stride, or None for all)."""
+def travel_sign(length: np.ndarray, heading: np.ndarray, direction=None,
+                sideways=None) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`travel_sign_one` on arrays (``direction``: one class or None per stride, or None for all;
+    ``sideways``: (n,) bool, decision C137, or None: none)."""
     length = np.asarray(length, dtype=float)
     heading = np.asarray(heading, dtype=float)
     back = (np.zeros(len(length), dtype=bool) if direction is None
             else np.asarray(direction, dtype=object) == "backward")
+    if sideways is not None:
+        back &= ~np.asarray(sideways, dtype=bool)  # decision C137: a side step keeps no negative length
     flip = (length < 0.0) & ~back
     return np.where(flip, -length, length), np.where(flip, heading + math.pi, heading)
 

@@ -634,6 +634,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     cut_s = opposite_yaw_cuts(yaw.to_dict("records")) if yaw_split and yaw is not None else None  # decision L370
     st, spans = _turn_spans(steps, reversal=reversal, first_own=first_own, foot_split=foot_split, cut_s=cut_s)
     rows, claimed = [], []  # claimed: the counted turns' row spans (decision L233)
+    by_yaw: dict[int, dict] = {}  # decision W403: the row each matched yaw-rate turn gave
     b_lo, b_hi, b_no = (np.zeros(0),) * 3
     if bouts is not None and len(bouts):
         b_lo, b_hi = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
@@ -660,6 +661,15 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                 angle += match[1]
                 if yaw_angle:  # decision W328: El-Gohary's angle, the yaw rate integrated over the turn
                     angle = float(yaw["angle_deg"].iloc[match[0]])
+            if match is not None and match[0] in by_yaw:  # decision W403: a yaw-rate turn whose steps two spans
+                # share (a pause between them: a bout boundary) is one turn - the first span's row, in its bout,
+                # with the later span's rows (and, when its angle is the rows', their change) added
+                first_row = by_yaw[match[0]]
+                first_row["n_rows"] += int(last - first)
+                if not yaw_angle:
+                    first_row["angle_deg"] += rows_angle
+                claimed.append((lo, hi))
+                continue
             if abs(angle) < min_deg:
                 continue
             claimed.append((lo, hi))
@@ -692,6 +702,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                          "n_rows": int(last - first), "bout": bout_of(float(t[a + 1])),
                          # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
                          "mean_rate_dps": share * abs(angle) / (t1 - t0) if t1 > t0 else np.nan})
+            if match is not None:
+                by_yaw[match[0]] = rows[-1]  # decision W403
     if (yaw_only or whole) and yaw is not None:  # decision L233: a yaw-rate turn no counted turn overlaps
         for y in yaw.itertuples():
             if abs(y.angle_deg) < min_deg or any(y.start_s <= hi and y.end_s >= lo for lo, hi in claimed):

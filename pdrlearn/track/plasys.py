@@ -105,6 +105,8 @@ from pdrlearn.track.gaps import (
 from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
 from pdrlearn.track.rides import foot_rides
 from pdrlearn.track.sim_rocker import hermite_contact_line
+from pdrlearn.track.travel import side_class_warning
+from pdrlearn.track.turn_reference import turn_reference_warning
 from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
 from pdrlearn.warning_lines import coded
 
@@ -1471,7 +1473,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         ll = geodetic_track(start, length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     # decision L65: a negative length only with a backward class (else |length| along heading + pi, same path)
-    rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object))
+    rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object),
+                                          table["sideways"].to_numpy(dtype=bool))  # decision C137
+    side_class_warning(table, warnings)  # decision C137: side steps the model classed backward
+    turn_reference_warning(table, fd.reference_point, warnings)  # decision L489: many turns on the spot
     if len(extra):  # decision L76: a gap row reports the heading of the row before it (after L65's sign)
         for i in inserted[inserted > 0]:
             rep_head[i] = rep_head[i - 1]
@@ -1877,7 +1882,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             table[c] = classes[c].to_numpy()
     # decision L65 (as the runtime's Step): a negative length only with a backward class; the path is the same
     rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object)
-                                          if "direction" in table else None)
+                                          if "direction" in table else None, sideways)  # decision C137
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
     table["turn_angle_rad"] = np.angle(np.exp(1j * turn))  # decision E51, wrapped as offline's L66 column
@@ -1885,6 +1890,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["impossible"] = impossible & ~in_gap  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["sideways"] = sideways  # decision L243 (L228's column, decided stride by stride as the runtime's)
+    side_class_warning(table, warnings)  # decision C137: side steps the model classed backward
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt

@@ -3,7 +3,7 @@
 A lower-back unit gives a step's length and the unit's heading, not the way the step went, so a side step is
 counted as forward distance. The cue is the foot unit's ZUPT stride: its horizontal displacement points sideways from
 the foot's facing (:func:`pdrlearn.track.frame_inference.foot_travel_angles`). Only with a foot unit and its declared
-frame. A run of at least :data:`MIN_SIDE_STRIDES` consecutive sideways strides gives one warning line
+frame. A run of at least :data:`WARN_MIN_SIDE_STRIDES` consecutive sideways strides gives one warning line
 (:func:`sideways_warnings`); the waist steps are not changed. The foot track's fused heading used to take the waist
 compass's facing for these strides' direction; :func:`side_travel_extra` adds their travel angle after it
 (``plasys.SIDE_TRAVEL_HEADING``, adopted by L219's rule), and with it off ``plasys`` gives the line too. The
@@ -24,6 +24,11 @@ from pdrlearn.kernels.sideways import (  # noqa: F401 - re-exported: the rule li
 )
 from pdrlearn.track.frame_inference import foot_travel_angles
 
+#: decision L487: L219's warning lines (foot with the side placement off, and the lower-back pipelines, W344) keep the
+#: former 3-stride stretch: a line per 1-stride shuffle would flood a picker's shift; the steps table and the counts
+#: take :data:`MIN_SIDE_STRIDES` (1 since L486)
+WARN_MIN_SIDE_STRIDES = 3
+
 
 def sideways_warnings(session, consequence) -> list[str]:
     """Decision L219's lines: one per sideways run of the session's foot unit. ``consequence(t0, t1)`` is the
@@ -33,7 +38,7 @@ def sideways_warnings(session, consequence) -> list[str]:
         return []
     t0, t1, angle, length, turn = strides
     out = []
-    for a, b in sideways_runs(angle, length, turn):  # decision L400: a stride of a turn on the spot is no side step
+    for a, b in sideways_runs(angle, length, turn, WARN_MIN_SIDE_STRIDES):  # L400: a turn's stride is no side step
         ang = np.degrees(angle[a:b + 1])
         out.append(f"{b - a + 1} foot strides at {t0[a]:.1f}-{t1[b]:.1f} s travel sideways {side_ways(ang)} "
                    f"({length[a:b + 1].sum():.1f} m by the foot unit's ZUPT strides, median "

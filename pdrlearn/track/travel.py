@@ -107,3 +107,26 @@ def travel_line(summary: dict) -> str | None:
     if changes:
         parts.append(f"{changes} change(s) of travel direction between forward, backward, left and right strides")
     return "; ".join(parts) + " (steps.csv travel; direction_changes.csv)" if parts else None
+
+
+def side_class_warning(steps: pd.DataFrame, warnings: list[str]) -> None:
+    """Decision C137: one line when the direction model classed side steps (L219 / L486's ``sideways`` rows)
+    backward - its calibration had none (a model classes forward / backward only). Their ``length_m`` keeps no
+    negative sign (:func:`pdrlearn.kernels.stride.travel_sign`), ``direction`` keeps the model's class, and
+    ``travel`` (left / right / side) says where they went. Appended to ``warnings``; nothing without a model."""
+    if "direction" not in steps or "sideways" not in steps:
+        return
+    from pdrlearn.track.flags import flag_values
+
+    side = flag_values(steps["sideways"])
+    back = side & (steps["direction"].to_numpy(dtype=object) == "backward")
+    if not back.any():
+        return
+    conf = (pd.to_numeric(steps["confidence"], errors="coerce").to_numpy(float)[back] if "confidence" in steps
+            else np.full(int(back.sum()), np.nan))
+    seen = f" at confidence {np.nanmin(conf):.2f}-{np.nanmax(conf):.2f}" if np.isfinite(conf).any() else ""
+    warnings.append(f"{int(back.sum())} of {int(side.sum())} side-step strides (steps.csv sideways) were classed "
+                    f"backward by the model{seen}: its calibration walks had no side steps, so its direction class "
+                    "does not apply to them; their length_m is counted positive (side travel, not backward), "
+                    "steps.csv direction keeps the model's class and travel says the side - count backward steps by "
+                    "travel / backward_travel, not direction (decision C137)")
