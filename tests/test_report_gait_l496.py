@@ -19,8 +19,8 @@ def test_report_gait_table_has_stride_length_asymmetry_and_why_empty(tmp_path):
              stride_time_cv_pct=2.5, stride_time_cv_withheld=None)
     _summary(tmp_path / "res" / "short", median_stride_length_m=0.812, step_time_asymmetry_pct=None,
              step_time_asymmetry_reason="not given: 8 of the foot's strides hold one lower-back contact",
-             stride_time_cv_pct=None,
-             stride_time_cv_withheld={"cause": "too_few_strides", "reason": "9 steady level forward strides, 10 needed"})
+             stride_time_cv_pct=None, stride_time_cv_withheld={
+                 "cause": "too_few_strides", "reason": "9 steady level forward strides, 10 needed"})
     build_report(tmp_path / "res", tmp_path / "rep")
     md = (tmp_path / "rep" / "report.md").read_text()
     gait = md.split("**gait parameters**")[1].split("**")[0]
