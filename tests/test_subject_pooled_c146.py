@@ -63,3 +63,8 @@ def test_track_all_pools_a_childs_short_trials(tmp_path):
     assert row["pooled_n_strides"] == len(strides)
     assert row["pooled_median_stride_length_m"] == pytest.approx(strides["length_m"].abs().median())
     assert 0.8 < row["pooled_median_stride_length_m"] < 1.0  # 2 x the simulated 0.45 m step
+    # the report of the batch shows the pooled table (C146), read from subjects.csv
+    assert main(["report", str(tmp_path / "out"), "--out", str(tmp_path / "rep")]) == 0
+    md = (tmp_path / "rep" / "report.md").read_text()
+    pooled = md.split("within each session, decision C146)**")[1].split("**")[0]
+    assert "pooled_stride_time_cv_pct" in pooled and f"{row['pooled_stride_time_cv_pct']:.4g}" in pooled

@@ -247,6 +247,9 @@ def _batch_section(folder: Path, root: Path) -> Section:
 
     sessions, groups = read_batch(folder)
     text, tables = batch_tables(sessions, groups, run_visit_map(folder), run_metrics(folder))
+    from pdrlearn.report.batch import pooled_subject_table
+
+    tables += pooled_subject_table(folder)  # decision C146
     rel = folder.relative_to(root).as_posix()
     return Section(f"Batch (track-all) — {folder.resolve().name if rel == '.' else rel}", text=text, tables=tables,
                    plots=[("distance and gait speed per session (sessions.csv)", "batch_sessions.png",
