@@ -515,6 +515,18 @@ SUBJECTS: tuple[Column, ...] = (
                                            "(C108)"),
     ("n_stand_to_sit", "count", "integer", "lower back: stand-to-sit transfers summed; empty as standing_time_s "
                                            "(C108)"),
+    ("pooled_n_sessions", "count", "integer", "the row's sessions with foot strides, pooled in the pooled_* columns "
+                                              "(C146)"),
+    ("pooled_n_strides", "count", "integer", "foot strides pooled over those sessions (median_stride_length_m's "
+                                             "strides: no gap row, no zeroed stride; C146)"),
+    ("pooled_median_stride_length_m", "m", "number", "median stride length of the pooled foot strides (C146)"),
+    ("pooled_n_cv_sessions", "count", "integer", "sessions with at least 2 CV strides (steps.csv steady rows with a "
+                                                 "stride time), pooled in the CV (C146)"),
+    ("pooled_n_cv_strides", "count", "integer", "their CV strides (C146)"),
+    ("pooled_stride_time_cv_pct", "%", "number", "stride-time CV within sessions, pooled: each stride time about its "
+                                                 "own session's mean, no stride across two sessions; empty under 9 "
+                                                 "degrees of freedom (strides less sessions; C146)"),
+    ("pooled_stride_time_cv_reason", _ID, "text", "why pooled_stride_time_cv_pct is empty (C146)"),
 )
 
 #: decisions C22, C81-C83: track-all's changes.csv, one row per subject and later visit; ``{measure}`` stands for each

@@ -32,12 +32,12 @@ def test_parse_route_every_kind():
         ("", "empty"),
         ("straight:10,,up:3", "empty item"),
         ("upp:3", "unknown kind 'upp'"),
-        ("straight", "takes 1 or 2 value"),
+        ("straight", "takes 1 or 2 or 3 value"),  # decision S88: :PACE
         ("up:3:0.17", "takes 1 or 3 value"),
         ("up:2.5", "not a whole number"),
         ("straight:-4", "positive"),
         ("straight:nan", "positive"),
-        ("straight:10:brisk", "gait 'brisk'"),
+        ("straight:10:brisk", "'brisk' must be a gait"),  # decision S88
         ("turn:0", "non-zero"),
         ("curve:0:2", "non-zero"),
         ("backward:x", "not a whole number"),

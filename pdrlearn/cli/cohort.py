@@ -1160,14 +1160,20 @@ def track_all(
         from pdrlearn.visits import subject_totals
 
         subjects = subject_totals(sessions, vmap)  # cohort C25: None when no session names a subject (C40: visits)
+        strides = combined_strides(tmp, rows, dict(zip(rels, found, strict=True)))  # decision E163
+        if subjects is not None:  # decision C146: each subject's strides pooled over its sessions
+            from pdrlearn.track.steady import steady_trim_set
+            from pdrlearn.track.subject_pool import add_pooled_columns
+
+            with steady_trim_set(settings.get("steady_trim")):  # decision L415: the lengths' --steady-trim
+                subjects = add_pooled_columns(subjects, strides)
         run = _run_record(root, options, rels, results, hashes, reused, len(skipped))
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
         if subjects is not None:
             _write_csv_atomic(subjects, tmp / "subjects.csv")
         _write_csv_atomic(combined_bouts(tmp, rows), tmp / "bouts.csv", pooled=True)  # L165: every session's bouts
-        _write_csv_atomic(combined_strides(tmp, rows, dict(zip(rels, found, strict=True))),
-                          tmp / "strides.csv", pooled=True)  # decision E163: every session's strides, one table
+        _write_csv_atomic(strides, tmp / "strides.csv", pooled=True)  # decision E163: every session's strides
         if settings.get("per_s") is not None:  # decision L277: every session's periods, as bouts.csv (L165)
             from pdrlearn.track.periods import PERIOD_COLUMNS
 

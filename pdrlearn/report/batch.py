@@ -159,6 +159,22 @@ def subject_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = No
              "summed)", subjects[[c for c in SUBJECT_TABLE_COLUMNS if c in subjects.columns]])]
 
 
+def pooled_subject_table(folder: str | Path) -> list[tuple[str, pd.DataFrame]]:
+    """Decision C146: subjects.csv's strides pooled over each subject's sessions (the ``pooled_*`` columns), read
+    from the folder's subjects.csv (they come from strides.csv, not sessions.csv); none without them."""
+    from pdrlearn.track.subject_pool import POOLED_COLUMNS
+
+    path = Path(folder) / "subjects.csv"
+    if not path.is_file():
+        return []
+    subjects = read_table(path, text_columns=("subject", "visit"))  # cohort C42: labels as written
+    if "pooled_n_strides" not in subjects.columns:  # written before C146
+        return []
+    keep = ["subject", *(["visit"] if subjects["visit"].notna().any() else []), *POOLED_COLUMNS]
+    return [("per subject and visit: strides pooled over its sessions (subjects.csv pooled_*; the stride-time CV "
+             "within each session, decision C146)", subjects[[c for c in keep if c in subjects.columns]])]
+
+
 def change_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None,
                   metrics: tuple[str, ...] | None = None) -> list[tuple[str, pd.DataFrame]]:
     """Decisions C22, C23: with sessions naming a subject and two or more visits, the paired change per visit and

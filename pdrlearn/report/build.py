@@ -186,6 +186,9 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         gait = [c for c in GAIT_COLUMNS if c in df.columns]  # decision L81: the gait parameters, own table
         if len(gait) > 1 and df[gait[1:]].notna().any().any():
             tables.append(("gait parameters", df[gait]))
+            withheld = withheld_table(df)  # decision L496: why a stride-time CV or asymmetry cell is empty
+            if withheld is not None:
+                tables.append(("gait parameters not given, and why", withheld))
         from pdrlearn.report.tests_table import clinical_test_table, walk_test_table
 
         for tests in (clinical_test_table(df, "run"),  # decision W296: TUG, its phases, transfers, turns
@@ -244,6 +247,9 @@ def _batch_section(folder: Path, root: Path) -> Section:
 
     sessions, groups = read_batch(folder)
     text, tables = batch_tables(sessions, groups, run_visit_map(folder), run_metrics(folder))
+    from pdrlearn.report.batch import pooled_subject_table
+
+    tables += pooled_subject_table(folder)  # decision C146
     rel = folder.relative_to(root).as_posix()
     return Section(f"Batch (track-all) — {folder.resolve().name if rel == '.' else rel}", text=text, tables=tables,
                    plots=[("distance and gait speed per session (sessions.csv)", "batch_sessions.png",
@@ -342,7 +348,24 @@ GAIT_COLUMNS = ("run", "walking_time_s", "gait_speed_mps", "walking_speed_mps", 
                 "median_speed_mps",
                 "median_cadence_spm", "median_stride_time_s", "median_step_time_s", "n_stride_times",
                 "n_straight_strides", "n_walking_bouts", "n_pauses", "pause_time_s", "turn_count",
-                "stride_time_cv_pct")  # the last five: decision L104; walking_speed_mps: L110
+                "stride_time_cv_pct",  # the last five: decision L104; walking_speed_mps: L110
+                "median_stride_length_m", "step_time_asymmetry_pct")  # decision L496: a clinical report's two
+
+#: decision L496: per gait parameter the report may leave empty, the summary key (flattened, as
+#: :func:`_flat_scalars` names it) holding why it is empty
+WITHHELD_REASONS = (("stride_time_cv_pct", "stride_time_cv_withheld.reason"),
+                    ("step_time_asymmetry_pct", "step_time_asymmetry_reason"))
+
+
+def withheld_table(df: pd.DataFrame) -> pd.DataFrame | None:
+    """Decision L496: one row per run and empty gait parameter of :data:`WITHHELD_REASONS` whose summary says why
+    (``run``, ``parameter``, ``reason``); None without one. A reason beside a given value (how it was taken) is
+    not repeated."""
+    rows = [{"run": run, "parameter": col, "reason": why}
+            for col, key in WITHHELD_REASONS if col in df and key in df
+            for run, value, why in zip(df["run"], df[col], df[key], strict=True)
+            if pd.isna(value) and isinstance(why, str) and why.strip()]
+    return pd.DataFrame(rows, columns=["run", "parameter", "reason"]) if rows else None
 
 _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}

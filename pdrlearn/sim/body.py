@@ -195,7 +195,8 @@ def schedule(
         kd = KINDS[st.kind]
         dfac, pfac, (vf, vz), clear = kd.duration, kd.toe_off, kd.impact, kd.clearance_m
         ic_pitch = None if kd.contact_deg is None else np.radians(kd.contact_deg)
-        d = user.step_time(speed, st.gait) * dfac * max(0.7, 1.0 + rng.normal(0.0, cv))
+        # decision S88: a Straight's own pace (st.pace), else the session's speed
+        d = user.step_time(st.pace or speed, st.gait) * dfac * max(0.7, 1.0 + rng.normal(0.0, cv))
         if step_time_asymmetry:  # decision S35 (skipped at 0: default sessions bit for bit)
             d *= step_time_factor(st.foot, step_time_asymmetry, affected)
         if st.irregular:

@@ -20,17 +20,19 @@ from pdrlearn.sim.freeze import FREEZE_MARGIN_S, FreezeEpisode, check_freeze, dr
 from pdrlearn.sim.lying import BED_SIT_S, LyingEpisode, check_lie, draw_lying
 from pdrlearn.sim.ride import RIDE_MARGIN_S, Ride, check_rise, draw_ride
 from pdrlearn.sim.transfer import SIT_MARGIN_S, Transfer, draw_transfer
-from pdrlearn.sim.user import GAITS, UserProfile, asymmetry_factor
+from pdrlearn.sim.user import GAITS, SPEEDS, UserProfile, asymmetry_factor
 from pdrlearn.sim.vehicle import check_vehicle, draw_vehicle
 
 
 # -- segments --------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Straight:
-    """Walk straight ahead ``length_m`` metres with ``gait`` steps (short/normal/long)."""
+    """Walk straight ahead ``length_m`` metres with ``gait`` steps (short/normal/long); ``pace`` (slow/normal/fast,
+    decision S88) this walk's own speed instead of the session's (None: the session's)."""
 
     length_m: float
     gait: str = "normal"
+    pace: str | None = None
 
 
 @dataclass(frozen=True)
@@ -235,6 +237,7 @@ class Footstep:
     pause_before_s: float = 0.0
     irregular: bool = False
     pushing: bool = False  # decision S46: a step of a Trolley walk (hands on a trolley's handle)
+    pace: str | None = None  # decision S88: the step's own speed (a Straight's pace), None: the session's
 
 
 def _normal(psi: float) -> np.ndarray:
@@ -300,6 +303,7 @@ class _Walker:
         direction: str = "forward",
         foot: str | None = None,
         irregular: bool = False,
+        pace: str | None = None,
     ) -> None:
         foot = foot or self._next_foot()
         heel = self._heel(c, z, psi, foot)
@@ -307,7 +311,7 @@ class _Walker:
             # lateral placement variability
             heel[:2] += self.rng.normal(0.0, 0.01 * self.var / 0.03) * _normal(psi)
         self.steps.append(Footstep(foot, heel, float(psi), kind, gait, direction, self.pending_pause, irregular,
-                                   self.pushing))
+                                   self.pushing, pace))
         self.pending_pause = 0.0
         self.feet[foot] = (heel, psi)
         self.last_moved = foot
@@ -359,9 +363,10 @@ class _Walker:
     def straight(self, seg: Straight) -> None:
         self._change_direction("forward")
         c0, u = self.c.copy(), _ahead(self.psi)
-        for s, irr in zip(*self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait),
+        pace = getattr(seg, "pace", None)  # decision S88: a Straight's own pace (a Trolley has none)
+        for s, irr in zip(*self._progress(seg.length_m, self.user.step_length(pace or self.speed, seg.gait),
                                             True), strict=True):
-            self.step(c0 + s * u, self.z, self.psi, "walk", gait=seg.gait, irregular=bool(irr))
+            self.step(c0 + s * u, self.z, self.psi, "walk", gait=seg.gait, irregular=bool(irr), pace=pace)
 
     def curve(self, seg: Curve) -> None:
         self._change_direction("forward")
@@ -643,6 +648,8 @@ def plan_footsteps(
     for seg in segments:
         if isinstance(seg, Straight | Curve | Slope | Trolley) and seg.gait not in GAITS:
             raise DataError(f"{seg}: gait must be one of {', '.join(GAITS)}")
+        if isinstance(seg, Straight) and seg.pace is not None and seg.pace not in SPEEDS:  # decision S88
+            raise DataError(f"{seg}: pace must be one of {', '.join(SPEEDS)} (or None: the session's speed)")
         try:
             handlers[type(seg)](seg)
         except KeyError:

@@ -5,7 +5,7 @@
 
 | item | meaning |
 |---|---|
-| ``straight:M[:GAIT]`` | walk M metres straight ahead; GAIT short, normal (default) or long |
+| ``straight:M[:GAIT][:PACE]`` | walk M m straight; GAIT short, normal (default), long; PACE slow/normal/fast (S88) |
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
 | ``up:N[:RISE:RUN][:step-to-step]`` / ``down:...`` | climb / descend N stairs (0.17 x 0.28 m); ``step-to-step``: S80 |
 | ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
@@ -54,7 +54,7 @@ from pdrlearn.sim.path import (
     stair_size_error,
 )
 from pdrlearn.sim.ride import check_rise
-from pdrlearn.sim.user import GAITS
+from pdrlearn.sim.user import GAITS, SPEEDS
 from pdrlearn.sim.vehicle import check_vehicle
 
 #: decision S80: the stairs option of the step-to-step gait (``up:N[:RISE:RUN]:step-to-step``)
@@ -94,6 +94,24 @@ def _gait(item: str, parts: list[str], at: int) -> str:
     return parts[at]
 
 
+def _straight(item: str, parts: list[str]) -> Straight:
+    """Decision S88: ``straight:M[:GAIT][:PACE]``; a lone third value that is a pace and no gait (``straight:10:fast``)
+    is the pace. A pace outside :data:`SPEEDS` (``run``) is one line naming the paces and that there is no running
+    gait (S48)."""
+    rest = parts[2:]
+    if len(rest) == 1 and rest[0] not in GAITS and rest[0] in SPEEDS:
+        rest = ["normal", rest[0]]
+    pace = rest[1] if len(rest) == 2 else None
+    if pace is not None and pace not in SPEEDS:
+        raise DataError(f"--route item {item!r}: pace {pace!r} must be one of {', '.join(SPEEDS)} (this walk's own "
+                        "speed, e.g. 'straight:10:fast'); the simulator has no running gait, no flight phase "
+                        "(decisions S48, S88)")
+    if len(rest) == 1 and rest[0] not in GAITS:
+        raise DataError(f"--route item {item!r}: {rest[0]!r} must be a gait ({', '.join(GAITS)}) or a pace "
+                        f"({', '.join(SPEEDS)}; decision S88); the simulator has no running gait (S48)")
+    return Straight(_number(item, parts[1]), gait=_gait(item, ["", "", *rest], 2), pace=pace)
+
+
 def _arity(item: str, parts: list[str], allowed: tuple[int, ...]) -> None:
     if len(parts) - 1 not in allowed:
         want = " or ".join(str(n) for n in allowed)
@@ -113,10 +131,12 @@ def parse_route(spec: str) -> list[Segment]:
         kind = parts[0].lower()
         if kind not in ROUTE_KINDS:
             raise DataError(f"--route item {item!r}: unknown kind {parts[0]!r}; use one of {', '.join(ROUTE_KINDS)}")
-        if kind in ("straight", "trolley"):  # trolley: decision S46
+        if kind == "straight":  # decision S88: straight:M[:GAIT][:PACE]
+            _arity(item, parts, (1, 2, 3))
+            segments.append(_straight(item, parts))
+        elif kind == "trolley":  # decision S46
             _arity(item, parts, (1, 2))
-            walk = Straight if kind == "straight" else Trolley
-            segments.append(walk(_number(item, parts[1]), gait=_gait(item, parts, 2)))
+            segments.append(Trolley(_number(item, parts[1]), gait=_gait(item, parts, 2)))
         elif kind in ("lift", "escalator"):  # decision S45: the planner's limits, named after the item
             _arity(item, parts, (1,))
             rise = _number(item, parts[1], positive=False)

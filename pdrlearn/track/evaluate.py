@@ -494,6 +494,14 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
     """``median_stride_length_m`` (decisions C12, C19): the median |length_m| of a foot track's strides, without
     the 0 m rows that stand for a foot gap (``gap_s`` > 0, L67: no stride) or a stride the last-line guard moved
     0 m (``impossible``, L97); None for a lower-back track (its rows are steps of either foot) or no strides."""
+    length = stride_lengths(steps)
+    return float(pd.Series(length).median()) if length is not None and len(length) else None
+
+
+def stride_lengths(steps: pd.DataFrame) -> np.ndarray | None:
+    """The |length_m| (m) :func:`median_stride_length` takes the median of: a foot track's strides, without a gap
+    row (L67), a stride L97's guard zeroed or one ``--steady-trim`` cut (L415); None for a lower-back track.
+    Decision C146: subjects.csv's pooled median stride length pools these over a subject's sessions."""
     units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
     if units != {"foot"} or "length_m" not in steps:
         return None
@@ -503,10 +511,7 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
         drop = drop | steps["impossible"].eq(True).to_numpy(bool)
     from pdrlearn.track.steady import trimmed_rows
 
-    length = length[~(drop | trimmed_rows(steps))]  # decision L415: --steady-trim
-    return float(length.median()) if len(length) else None
-
-
+    return length[~(drop | trimmed_rows(steps))].to_numpy(float)  # decision L415: --steady-trim
 
 
 def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
