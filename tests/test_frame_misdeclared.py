@@ -12,6 +12,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from pdrlearn.errors import DataError
+from pdrlearn.io.frames import AxisFrame
 from pdrlearn.track.frame_inference import MISDECLARED_DEG, remount
 
 #: x/y swapped, then z negated back as D11's advice says: right-handed data, the old frame kept
@@ -74,3 +75,18 @@ def test_a_declared_forward_that_is_the_vertical_axis_is_refused(walk):
     assert "the declared forward is the unit's vertical axis, decision D30" in m and "decision D23" in m
     right = remount(walk, "foot", SWAPPED_Z_FIXED).frames["foot"]
     assert str(right.to_dict()).replace("'", '"') in m
+
+
+def test_d11_advice_on_a_swapped_foot_gives_the_frame_to_write_after_the_fix(walk, caplog):
+    """Trial T3 finding 4: D11's advice (negate z back) followed, the old frame kept, tracked backward 73.5 m off:
+    the warning now gives the whole frame to write after the fix, and that frame is accepted."""
+    swap = np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, 1]])
+    s = _kept(walk, swap)
+    with caplog.at_level(logging.WARNING):
+        assert s.handedness("foot").mirrored
+    (m,) = [r.getMessage() for r in caplog.records if "left-handed (mirrored) pair" in r.getMessage()]
+    want = '"frames": {"foot": {"x": "up", "y": "forward", "z": "left"}} (decision D30)'
+    assert "negate the z axis back" in m and m.endswith(f"they give {want}")
+    fixed = remount(walk, "foot", SWAPPED_Z_FIXED)  # the fix done, the frame written as the warning says
+    fixed.frames["foot"] = AxisFrame(x="up", y="forward", z="left")
+    assert fixed.require_frame("foot") == AxisFrame(x="up", y="forward", z="left")

@@ -872,6 +872,17 @@ def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredF
     return f"{what} {' and '.join(issues)}; {used} is still used (decision D8): {fix}"
 
 
+def frame_after_negating(session, placement: str, axis: str) -> AxisFrame | None:
+    """Decision D30: the frame the data give (:func:`infer_session_frame`, the first :data:`CHECK_SPAN_S` s) once the
+    ``placement`` unit's ``axis`` ("x", "y" or "z") is negated in all its streams (D11's fix of a mirrored pair);
+    ``None`` when the data do not fix it."""
+    R = np.diag([-1.0 if a == axis else 1.0 for a in "xyz"])
+    try:
+        return infer_session_frame(remount(session, placement, R), placement, max_s=CHECK_SPAN_S).frame
+    except DataError:
+        return None
+
+
 def remount(session, placement: str, rotation: np.ndarray):
     """A copy of ``session`` with the ``placement`` unit's 3-axis streams (accelerometer, gyroscope,
     magnetometer) expressed in a remounted sensor frame: ``v_new = rotation @ v_old``. A declared frame
@@ -918,4 +929,4 @@ __all__ = ["FrameInferenceError", "InferredFrame", "infer_foot_frame", "infer_wa
            "infer_session_frame", "frame_disagreement", "check_declared_frame", "declared_frame_warning",
            "DeclaredCheck", "directions_off", "forward_reversal_deg", "OPPOSED_DEG", "MISDECLARED_DEG", "misdeclared",
            "rest_to_rest", "rest_swings", "stride_displacements", "swing_pitch_extremes", "remount",
-           "right_handed_orientations", "INFER", "UNIT_STREAMS"]
+           "frame_after_negating", "right_handed_orientations", "INFER", "UNIT_STREAMS"]
