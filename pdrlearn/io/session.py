@@ -619,6 +619,23 @@ class Session:
         ``frames`` entry would write them; empty when every frame used was declared."""
         return {p: f.to_dict() for p, f in sorted(self._inferred.items()) if isinstance(f, AxisFrame)}
 
+    def frame_status(self, placement: str) -> str | None:
+        """Decision C142: how the ``placement`` unit's frame was had, from the checks run so far (none run here):
+        ``inferred`` (from the data, D8), ``forced`` (declared, rejected by the data, kept by ``"force_frame"``,
+        D23), ``contradicted`` (declared, used with D10's warning: the data give another frame, or it is
+        left-handed), ``declared`` (declared or ``source_project``, not contradicted); ``None`` when no command
+        asked for it (the unit not used, absent, or refused)."""
+        if isinstance(self._inferred.get(placement), AxisFrame):
+            return "inferred"
+        if placement not in self.frames:
+            return None
+        chk = self._checked.get(placement)
+        if chk is None:
+            return "declared" if not self.infer_frames else None
+        if chk.refuse:
+            return None
+        return "forced" if chk.forced else "contradicted" if chk.message else "declared"
+
     def has_frame(self, placement: str) -> bool:
         """True when :meth:`require_frame` gives the ``placement`` unit a frame (declared, or inferred from
         the data with its warning); for methods that use a unit only when its axes are known."""

@@ -719,6 +719,8 @@ class DeclaredCheck:
     refuse: bool = False
     unchecked: str | None = None
     compared: tuple[str, ...] = ()
+    #: decision C142: a frame the data reject (D23, D28, D30) kept by ``"force_frame"``
+    forced: bool = False
 
     def summary(self) -> str:
         """``info``'s words for a check that raised nothing (decision D22: never "not contradicted" unchecked)."""
@@ -773,7 +775,7 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
                              unchecked, compared)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked, how=how)
-    return DeclaredCheck(msg, refuse, unchecked, compared)
+    return DeclaredCheck(msg, refuse, unchecked, compared, forced=forced)
 
 
 def misdeclared(declared: AxisFrame, found: InferredFrame | None, rev: float | None) -> str | None:
