@@ -19,5 +19,6 @@ def test_waist_pll_is_the_same_under_a_pitch_without_sensor_errors(pitch):
             for m in ((0.0, 0.0, 0.0), (0.0, pitch, 0.0))]
     a, b = (r.steps for r in runs)
     assert len(a) == len(b) > 20
-    np.testing.assert_allclose(b["length_m"], a["length_m"], atol=1e-4)  # float rounding of the rotated data (seen: 1.2e-6 m)
+    # float rounding of the rotated data (seen: 1.2e-6 m)
+    np.testing.assert_allclose(b["length_m"], a["length_m"], atol=1e-4)
     np.testing.assert_allclose(b["event_s"], a["event_s"], atol=1e-9)
