@@ -66,3 +66,14 @@ def test_track_all_sessions_csv_has_the_frame_columns(walk, tmp_path):
     df = pd.read_csv(tmp_path / "out" / "sessions.csv").set_index("path")
     assert df.loc["a", "frame_foot"] == "declared" and df.loc["b", "frame_foot"] == "inferred"
     assert df.loc["b", "frame_waist"] == "inferred"
+
+
+def test_the_missing_frame_error_says_to_declare_the_nearest_axes(walk):
+    from pdrlearn.errors import DataError
+
+    s = _stripped(remount(walk, "foot", Rotation.from_euler("y", 40, degrees=True).as_matrix().T))
+    with pytest.raises(DataError) as exc:
+        s.require_frame("foot")
+    m = str(exc.value)
+    assert "a yawed mount" in m and "the sensor axes nearest its forward, left and up" in m
+    assert m.endswith('"frames": {"foot": {"x": "forward", "y": "up", "z": "right"}}')

@@ -510,7 +510,9 @@ class Session:
         nearest = getattr(self._inferred.get(placement), "nearest", None)  # W394: the axes its walk gives
         example = json.dumps({placement: (nearest or EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"])).to_dict()})
         what = ("the nearest axis assignment its walking gives (check it against the mounting)" if nearest is not None
-                else "the thesis mounting")
+                # decision C142 (trial T3 finding 6): a yawed or tilted unit is declared by its nearest axes
+                else "the sensor axes nearest its forward, left and up (a unit yawed or tilted on its mount is "
+                     "declared by its nearest axes), as in the thesis mounting")
         hint = self._waist_hint(placement)  # decision B288: a "foot" unit that never swings is named as a lower back
         err = DataError(
             f"{where} declares no axis frame for the {placement} unit{reason}; {hint + '; else ' if hint else ''}"
