@@ -11,8 +11,6 @@ Run: ``OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/frame_misdeclared.py
 from __future__ import annotations
 
 import argparse
-import os
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -22,6 +20,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from experiments.frame_check_evidence import sim  # noqa: E402  (one simulate call, shared)
 from pdrlearn.io.plasys import read_session  # noqa: E402
 from pdrlearn.track.frame_inference import check_declared_frame, remount  # noqa: E402,I001
 
@@ -58,12 +57,6 @@ def cases(folder: Path) -> str:
     swap = np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, -1]])  # x/y swapped, z negated back (D11 followed)
     parts.append(f"swapped+z-fixed refused {refused(s, frame, swap)}")
     return ", ".join(parts)
-
-
-def sim(out: Path, user: int, *args: str) -> None:
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    subprocess.run([sys.executable, "-m", "pdrlearn", "simulate", "--user-seed", str(user), "--out", str(out), *args],
-                   check=True, capture_output=True, env=env)
 
 
 def main() -> None:
