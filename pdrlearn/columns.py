@@ -171,6 +171,12 @@ SESSIONS: tuple[Column, ...] = (
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference; empty when the reference has no "
                                           "altitude track (0: it has one, and no storey was climbed; C103)"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
+    ("frame_foot", _ID, "text", "how the foot unit's axis frame was had (C142): declared (meta.json or "
+                                "source_project, not contradicted), inferred (from the data, D8), contradicted "
+                                "(declared, used with D10's warning naming the frame the data give), forced "
+                                "(declared, rejected by the data, kept by \"force_frame\", D23); empty when the "
+                                "track did not use the unit"),
+    ("frame_waist", _ID, "text", "the lower-back unit's, as frame_foot (C142)"),
     ("ic_timing_mean_ms", "ms", "number", "lower back: mean initial-contact time error against the reference"),
     ("ic_timing_sd_ms", "ms", "number", "lower back: SD of that error"),
     ("ic_timing_stereo_mean_ms", "ms", "number", "lower back: mean contact time error, both feet matched"),
