@@ -571,8 +571,9 @@ def markdown_tables(result: dict) -> str:
     return "\n\n".join(parts) + "\n"
 
 
-def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
-    """One confusion-matrix panel per method x unit of a task (rows = true, columns = predicted)."""
+def plot_confusions(task: str, task_result: dict, out: Path, *, what: str = "confusion matrices") -> Path:
+    """One confusion-matrix panel per method x unit of a task (rows = true, columns = predicted); ``what`` names
+    them in the title (the train report's out-of-fold ones: "CV confusion matrices", decision C143)."""
     from pdrlearn.plots import new_figure, save_atomic, text_colour_on
 
     pairs = [(m, u) for m, d in task_result["methods"].items() for u in d["units"]]
@@ -595,7 +596,7 @@ def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
         ax.set_title(f"{m}/{u}: {100 * acc:.1f} %", fontsize=8)
         ax.set_xlabel("predicted", fontsize=7)
         ax.set_ylabel("true", fontsize=7)
-    fig.suptitle(f"{task}: confusion matrices ({task_result['n_steps']} steps)")
+    fig.suptitle(f"{task}: {what} ({task_result['n_steps']} steps)")
     fig.tight_layout()
     save_atomic(fig, out)
     return out

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import typer
 
+from pdrlearn.classify.cv_report import cv_title, grouped
 from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
@@ -109,6 +110,8 @@ def train(
     ),
     resample: float = train_resample_option(),  # decisions C56, C62: train-all's too
     param: list[str] = param_option(),  # decision C96 (C98: train-all's too)
+    report: Path = typer.Option(None, "--report", help="Folder for the CV tables (cv.csv; louo.csv with "
+                                "--cv-groups user), one confusion PNG per task and report.md (decision C143)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -130,6 +133,8 @@ def train(
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
 
         pdrlearn train out/sim/u1 --out out/models/u1_c10 --cv-groups block --param svm.C=10 --param nn.hidden=32
+
+        pdrlearn train out/sim/u1 --out out/models/u1_r --report out/train_u1
     """
     from pdrlearn.classify.spread import spread_text
     from pdrlearn.classify.training import check_settings, check_task_methods, check_user, train_user
@@ -145,6 +150,11 @@ def train(
     hyper = check_train_options(cv_groups, param, m_all, per_task)  # decisions C95, C96: before any data is read
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
+    if report is not None:  # decision C143: checked before the work, like --out
+        if report.resolve() == out.resolve():
+            raise DataError(f"train: --report {report} is the --out model directory; choose another folder, e.g. "
+                            f"{out.parent / (out.name + '_report')}")
+        out_folder(report, "train-report", force=force, inputs=(*data_dirs, out))
     was = existed(out)
     sessions = _read_all(data_dirs)
     total = sum(len(per_task.get(t, m_all)) for t in t_all) * len(u_all)
@@ -158,8 +168,17 @@ def train(
     seconds = time.perf_counter() - t0
     model.save(out)
     replaced(out, was)
+    if report is not None:  # decision C143
+        from pdrlearn.atomic import atomic_directory
+        from pdrlearn.classify.cv_report import write_model_report
+
+        had_report = existed(report)
+        with atomic_directory(report) as tmp:
+            write_model_report(model, tmp)
+        replaced(report, had_report)
     summary = {
         "out": str(out),
+        "report": None if report is None else str(report),  # decision C143
         "user": model.user,
         "users": model.data_summary.get("users", []),  # decision C35
         "sessions": len(sessions),
@@ -239,6 +258,8 @@ def train(
         c.print("hyperparameters: " + ", ".join(f"{m}.{n}={v}" for m, names in summary["params"].items()
                                                 for n, v in names.items()) + " (--param; the rest thesis defaults)")
     c.print(f"model written to {out} ({seconds:.1f} s)")
+    if report is not None:
+        c.print(f"report written to {report} (cv.csv, confusion PNGs, report.md)")
 
 
 #: how the train table's spread columns are computed (decision C41), printed under each table
@@ -247,30 +268,11 @@ SPREAD_NOTE = ("all, balanced: pooled over the steps; folds: mean±sd of the fol
                "are not independent; decisions C41, C58)")
 
 
-def cv_title(r: dict) -> str:
-    """The CV part of a task's title line (decisions C29, C43, C59): ``10-fold CV accuracy``, ``leave-one-user-out
-    CV accuracy (3 users)``, ``5-fold CV accuracy (folds of whole users, 12 users)`` or the same of sessions."""
-    n, kind, groups = r["n_folds"], *_grouped(r)
-    if r.get("cv_blocks"):  # decision C95
-        return f"{n}-fold CV accuracy (contiguous blocks of each session, neighbours left out)"
-    if groups and n == groups:
-        return f"leave-one-{kind}-out CV accuracy ({groups} {kind}s)"
-    if groups:
-        return f"{n}-fold CV accuracy (folds of whole {kind}s, {groups} {kind}s)"
-    return f"{n}-fold CV accuracy"
-
-
-def _grouped(r: dict) -> tuple[str, int]:
-    """What a CV record's folds hold out whole (``"user"``, ``"session"``, decision C59) and how many there are
-    (0: folds of steps)."""
-    return ("session", r["cv_sessions"]) if r.get("cv_sessions") else ("user", r.get("cv_users") or 0)
-
-
 def louo_line(r: dict) -> str | None:
     """The chosen model's accuracy on each held-out user (session) of a leave-one-user-out CV (decisions C43,
     C59), e.g. ``chosen model per held-out user: user:u1 93.0 %, user:u2 97.5 %``; None for folds of steps."""
     f = r.get("folds") or {}
-    kind, groups = _grouped(r)
+    kind, groups = grouped(r)
     who_list = f.get(f"{kind}s")
     if not who_list:
         return None
