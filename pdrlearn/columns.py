@@ -1334,6 +1334,8 @@ TRAIN_CV: tuple[Column, ...] = (
     ("ci95_high_pct", "%", "number", "its high end"),
     ("folds_mean_pct", "%", "number", "mean of the folds' accuracies (C41)"),
     ("folds_sd_pct", "%", "number", "their sample SD; empty with one fold"),
+    ("thesis_pct", "%", "number", "the thesis' figure of the row: mean of its per-class accuracies in Tables "
+                                  "27/28/33 (C144); empty where the thesis has no row (soft votes, ensemble)"),
     ("accuracy_<class>_pct", "%", "number", "recall of each class (thesis Tables 27/28/33's per-class accuracy)"),
 )
 TRAIN_LOUO: tuple[Column, ...] = (

@@ -23,7 +23,8 @@ from pdrlearn.errors import DataError
 
 #: the first columns of :func:`evaluation_frame`; ``accuracy_<class>`` (the per-class recall, thesis Tables 27/28/33's
 #: per-class accuracy) follow in the task's class order
-EVALUATION_COLUMNS = ("task", "method", "unit", "chosen", "n_steps", "accuracy", "balanced_accuracy", "latency_ms")
+EVALUATION_COLUMNS = ("task", "method", "unit", "chosen", "n_steps", "accuracy", "balanced_accuracy", "latency_ms",
+                      "thesis_pct")  # decision C144
 
 
 def _named(results, kind: str, is_one) -> list[tuple[str | None, dict]]:
@@ -73,10 +74,13 @@ def evaluation_frame(results):
     """:func:`~pdrlearn.classify.evaluate_model`'s result(s) as one row per task x method x unit: ``task``,
     ``method``, ``unit``, ``chosen`` (the model's choice for that task, the one ``tasks.<t>.accuracy`` reports),
     ``n_steps`` (steps that model scored), ``accuracy``, ``balanced_accuracy`` (fractions), ``latency_ms`` (per step;
-    empty with ``latency=False``) and ``accuracy_<class>`` per class of the task (the thesis tables' per-class
+    empty with ``latency=False``), ``thesis_pct`` (the thesis' figure of the row, % - the mean of thesis Tables
+    27/28/33's per-class accuracies; empty where it has no row, decision C144) and ``accuracy_<class>`` per class of
+    the task (the thesis tables' per-class
     accuracy, i.e. recall; empty when the sessions have no step of that class). Rows in ``report.md``'s order.
     ``df.pivot_table(index=["method", "unit"], columns="task", values="accuracy")`` compares the tasks."""
     from pdrlearn.classify.evaluation import table_pairs
+    from pdrlearn.classify.thesis import thesis_pct
 
     rows, names = [], []
     for name, res in _named(results, "evaluation_frame", _is_evaluation):
@@ -87,7 +91,8 @@ def evaluation_frame(results):
                 row = {"task": task, "method": method, "unit": unit,
                        "chosen": (method, unit) == (chosen.get("method"), chosen.get("unit")),
                        "n_steps": m.get("n_steps"), "accuracy": m["accuracy"],
-                       "balanced_accuracy": m.get("balanced_accuracy"), "latency_ms": m.get("latency_ms")}
+                       "balanced_accuracy": m.get("balanced_accuracy"), "latency_ms": m.get("latency_ms"),
+                       "thesis_pct": thesis_pct(task, method, unit)}  # decision C144
                 row.update({f"accuracy_{c}": m["per_class"].get(c) for c in r["classes"]})
                 rows.append(row)
                 names.append(name)

@@ -16,7 +16,7 @@ from pathlib import Path
 
 #: the first columns of :func:`cv_frame` (cv.csv); ``accuracy_<class>_pct`` follow in the task's class order
 CV_COLUMNS = ("task", "method", "unit", "chosen", "cv", "n_steps", "accuracy_pct", "balanced_accuracy_pct",
-              "ci95_low_pct", "ci95_high_pct", "folds_mean_pct", "folds_sd_pct")
+              "ci95_low_pct", "ci95_high_pct", "folds_mean_pct", "folds_sd_pct", "thesis_pct")
 #: the columns of :func:`louo_frame` (louo.csv)
 LOUO_COLUMNS = ("task", "method", "unit", "chosen", "held_out", "n_steps", "accuracy_pct", "balanced_accuracy_pct")
 
@@ -78,6 +78,7 @@ def cv_rows(model) -> list[dict]:
     """One row per task x method x unit of the model's CV (columns :data:`CV_COLUMNS`, then
     ``accuracy_<class>_pct``), in the order of thesis Tables 27/28/33 (evaluate's ``table_pairs``)."""
     from pdrlearn.classify.evaluation import table_pairs
+    from pdrlearn.classify.thesis import thesis_pct
 
     rows = []
     for task, rec in task_records(model):
@@ -90,7 +91,7 @@ def cv_rows(model) -> list[dict]:
                    "n_steps": r.get("n_steps"), "accuracy_pct": _pct(r.get("accuracy")),
                    "balanced_accuracy_pct": _pct(r.get("balanced_accuracy")), "ci95_low_pct": _pct(ci[0]),
                    "ci95_high_pct": _pct(ci[1]), "folds_mean_pct": _pct(f.get("mean")),
-                   "folds_sd_pct": _pct(f.get("sd"))}
+                   "folds_sd_pct": _pct(f.get("sd")), "thesis_pct": thesis_pct(task, m, u)}  # decision C144
             row.update({f"accuracy_{c}_pct": _pct((r.get("per_class") or {}).get(c)) for c in rec["classes"]})
             rows.append(row)
     return rows

@@ -468,7 +468,7 @@ def evaluate(
 
     c = console()
     for task, r in result["tasks"].items():
-        _task_table(c, r, f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
+        _task_table(c, r, task, f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
                     f"{headline(r)}")
         for line in detected_lines(r.get("detected")):  # decision C76
             c.print(f"  {line}", markup=False)
@@ -522,7 +522,7 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
         scored, chosen = r["scored_model"], r["chosen"]
         who = ("bundle's chosen" if scored == chosen else  # decision E196: the model that ran, one row each
                f"bundle's foot-only (the chosen {chosen['method']}/{chosen['unit']} ran on no session)")
-        _task_table(c, r, f"{task}: {r['n_steps']} strides - {who} {scored['method']}/{scored['unit']} "
+        _task_table(c, r, task, f"{task}: {r['n_steps']} strides - {who} {scored['method']}/{scored['unit']} "
                     f"{100 * r['accuracy']:.1f} % on the strides the runtime detects (matched to the labelled steps)"
                     + ("; one row per model the runtime used" if len(table_pairs(r)) > 1 else ""))
     if result.get("out_of_domain_fraction") is not None:  # decisions C16, E198: as a model directory's
@@ -532,7 +532,7 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
         c.print(f"skipped {s}", markup=False)
 
 
-def _task_table(c, r: dict, title: str) -> None:
+def _task_table(c, r: dict, task: str, title: str) -> None:
     """One task's evaluation: ``title``, the per-class table (decision C60: with balanced %) and the chosen model's
     precision / recall / F1 per class (decision C37); a model directory's and a bundle's (E193) alike."""
     from rich.table import Table
@@ -541,11 +541,11 @@ def _task_table(c, r: dict, title: str) -> None:
 
     c.print(title, markup=False)
     tab = Table()
-    for col in results_head(r):
+    for col in results_head(r, task):  # decision C144: with the thesis' figure
         tab.add_column(col)
-    for row in results_table(r):
+    for row in results_table(r, task):
         tab.add_row(*row)
-    c.print(tab)
+    print_table(c, tab)  # piped, at the width it needs: the thesis column made 80 columns wrap the headers
     c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(
         f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
         for k in r["classes"]), markup=False)
