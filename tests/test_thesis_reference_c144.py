@@ -62,4 +62,5 @@ def test_train_report_cv_table_has_thesis_pct():
     th = {(m, u): v for m, u, v in zip(df["method"], df["unit"], df["thesis_pct"], strict=True)}
     assert th[("dtw", "waist")] == pytest.approx(75.3)  # thesis Table 27: (59 + 98 + 69) / 3
     assert th[("svm", "fused")] is None or math.isnan(th[("svm", "fused")])
-    assert "thesis %" in display_table(df).columns
+    assert list(display_table(df, r["classes"]).columns[3:7]) == ["flat %", "up %", "down %", "all %"]
+    assert "thesis %" in display_table(df, r["classes"]).columns

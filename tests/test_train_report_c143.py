@@ -86,3 +86,21 @@ def test_train_report_folder_is_refused_when_it_is_the_model_dir(trained, tmp_pa
     assert code == 2
     assert "--report" in (err := capsys.readouterr().err) and "is the --out model directory" in err
     assert not (tmp_path / "m").exists()
+
+
+def test_each_task_table_shows_its_own_classes():
+    from pdrlearn.classify.cv_report import report_markdown
+
+    def rec(classes):
+        return {"per_class": dict.fromkeys(classes, 1.0), "accuracy": 1.0, "balanced_accuracy": 1.0, "n_steps": 9,
+                "n_folds": 3, "confusion": [[3 if i == j else 0 for j in classes] for i in classes]}
+
+    manifest = {"user": "x", "tasks": {
+        "terrain": {"classes": ["flat", "up", "down"], "n_steps": 9, "chosen": {"method": "svm", "unit": "foot"},
+                    "cv": {"svm": {"foot": rec(["flat", "up", "down"])}}},
+        "direction": {"classes": ["forward", "backward"], "n_steps": 9, "chosen": {"method": "svm", "unit": "foot"},
+                      "cv": {"svm": {"foot": rec(["forward", "backward"])}}}}}
+    md = report_markdown(manifest, "x", {})
+    direction = md[md.index("## direction"):]
+    assert "forward %" in direction.splitlines()[2] and "backward %" in direction.splitlines()[2]
+    assert "flat %" not in direction and "forward %" not in md[:md.index("## direction")]

@@ -124,8 +124,8 @@ def cv_frame(model):
     """The model's CV table as a DataFrame (:func:`cv_rows`; what ``to_dataframe(model)`` returns)."""
     import pandas as pd
 
-    rows = cv_rows(model)
-    return pd.DataFrame(rows, columns=list(rows[0]) if rows else list(CV_COLUMNS))
+    rows = cv_rows(model)  # every task's class columns (the union of the rows' keys, in order)
+    return pd.DataFrame(rows) if rows else pd.DataFrame(columns=list(CV_COLUMNS))
 
 
 def louo_frame(model):
@@ -135,8 +135,8 @@ def louo_frame(model):
     return pd.DataFrame(louo_rows(model), columns=list(LOUO_COLUMNS))
 
 
-def display_table(t):
-    """A task's rows of :func:`cv_frame` with the short headers of train's table (``flat %`` ..., ``all %``,
+def display_table(t, classes):
+    """A task's rows of :func:`cv_frame` (its ``classes``, not the other tasks' empty columns) with the short headers of train's table (``flat %`` ..., ``all %``,
     ``balanced %``, ``folds`` mean±sd, ``95 % CI``), for report.md and ``pdrlearn report``."""
     import pandas as pd
 
@@ -146,8 +146,8 @@ def display_table(t):
 
     out = pd.DataFrame({"method": t["method"], "unit": t["unit"], "chosen": t["chosen"].map({True: "yes",
                                                                                             False: ""})})
-    for c in [c for c in t.columns if c.startswith("accuracy_") and c not in ("accuracy_pct",)]:
-        out[c.removeprefix("accuracy_").removesuffix("_pct") + " %"] = t[c].round(1)
+    for c in classes:
+        out[f"{c} %"] = t[f"accuracy_{c}_pct"].round(1)
     out["all %"], out["balanced %"] = t["accuracy_pct"].round(1), t["balanced_accuracy_pct"].round(1)
     out["folds"] = span(t["folds_mean_pct"].tolist(), t["folds_sd_pct"].tolist(), "±")
     out["95 % CI"] = span(t["ci95_low_pct"].tolist(), t["ci95_high_pct"].tolist(), "-")
@@ -169,12 +169,12 @@ def report_markdown(model, user: str, images: dict[str, str]) -> str:
              "Out-of-fold accuracy of every method x unit (%), rows in the order of thesis Tables 27/28/33; "
              "95 % CI: exact binomial interval of the pooled steps (decision C58); chosen: the model `track --model` "
              "uses. Tables: cv.csv, louo.csv (decision C143).", ""]
-    for task, _ in task_records(model):
+    for task, rec in task_records(model):
         t = cv[cv["task"] == task]
         if t.empty:
             continue
         lines += [f"## {task} ({t['cv'].iloc[0]}, {int(t['n_steps'].max())} steps)", ""]
-        lines += _md_table(display_table(t))
+        lines += _md_table(display_table(t, rec["classes"]))
         lt = louo[louo["task"] == task]
         if not lt.empty:
             wide = lt.pivot_table(index=["method", "unit"], columns="held_out", values="accuracy_pct", sort=False)

@@ -119,7 +119,7 @@ def _model_cv_sections(manifest: dict) -> list[Section]:
             continue
         sec = Section(f"Cross-validation — {task}", text=f"{t['cv'].iloc[0]}, {int(t['n_steps'].max())} steps; "
                       "accuracies in %, 95 % CI exact binomial (decision C58)")
-        sec.tables.append((f"{task}: CV accuracy per method", display_table(t)))
+        sec.tables.append((f"{task}: CV accuracy per method", display_table(t, rec["classes"])))
         lt = louo[louo["task"] == task]
         if not lt.empty:
             sec.tables.append((f"{task}: accuracy (%) per held-out user", lt.drop(columns=["task"])))
