@@ -136,8 +136,9 @@ def louo_frame(model):
 
 
 def display_table(t, classes):
-    """A task's rows of :func:`cv_frame` (its ``classes``, not the other tasks' empty columns) with the short headers of train's table (``flat %`` ..., ``all %``,
-    ``balanced %``, ``folds`` mean±sd, ``95 % CI``), for report.md and ``pdrlearn report``."""
+    """A task's rows of :func:`cv_frame` (its ``classes``, not the other tasks' empty columns) with the short
+    headers of train's table (``flat %`` ..., ``all %``, ``balanced %``, ``folds`` mean±sd, ``95 % CI``), for
+    report.md and ``pdrlearn report``."""
     import pandas as pd
 
     def span(a, b, sep):
