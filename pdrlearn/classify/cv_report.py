@@ -74,49 +74,49 @@ def _pct(v) -> float | None:
     return None if v is None else round(100 * float(v), 2)
 
 
-def cv_rows(model) -> list[dict]:
-    """One row per task x method x unit of the model's CV (columns :data:`CV_COLUMNS`, then
-    ``accuracy_<class>_pct``), in the order of thesis Tables 27/28/33 (evaluate's ``table_pairs``)."""
+def _records(model):
+    """``(task, rec, method, unit, record, folds)`` of every task x method x unit of the model's CV, in the order of
+    thesis Tables 27/28/33 (evaluate's ``table_pairs``); shared by :func:`cv_rows` and :func:`louo_rows`."""
     from pdrlearn.classify.evaluation import table_pairs
-    from pdrlearn.classify.thesis import thesis_pct
 
-    rows = []
     for task, rec in task_records(model):
         res = cv_task_result(rec)
         for m, u in table_pairs(res):
             r = res["methods"][m]["units"][u]
-            f = r.get("folds") or {}
-            ci = f.get("ci95") or (None, None)  # decision C58: exact binomial interval of the pooled steps
-            row = {"task": task, "method": m, "unit": u, "chosen": (m, u) == rec["chosen"], "cv": cv_title(r),
-                   "n_steps": r.get("n_steps"), "accuracy_pct": _pct(r.get("accuracy")),
-                   "balanced_accuracy_pct": _pct(r.get("balanced_accuracy")), "ci95_low_pct": _pct(ci[0]),
-                   "ci95_high_pct": _pct(ci[1]), "folds_mean_pct": _pct(f.get("mean")),
-                   "folds_sd_pct": _pct(f.get("sd")), "thesis_pct": thesis_pct(task, m, u)}  # decision C144
-            row.update({f"accuracy_{c}_pct": _pct((r.get("per_class") or {}).get(c)) for c in rec["classes"]})
-            rows.append(row)
+            yield task, rec, m, u, r, r.get("folds") or {}
+
+
+def cv_rows(model) -> list[dict]:
+    """One row per task x method x unit of the model's CV (columns :data:`CV_COLUMNS`, then
+    ``accuracy_<class>_pct``)."""
+    from pdrlearn.classify.thesis import thesis_pct
+
+    rows = []
+    for task, rec, m, u, r, f in _records(model):
+        ci = f.get("ci95") or (None, None)  # decision C58: exact binomial interval of the pooled steps
+        row = {"task": task, "method": m, "unit": u, "chosen": (m, u) == rec["chosen"], "cv": cv_title(r),
+               "n_steps": r.get("n_steps"), "accuracy_pct": _pct(r.get("accuracy")),
+               "balanced_accuracy_pct": _pct(r.get("balanced_accuracy")), "ci95_low_pct": _pct(ci[0]),
+               "ci95_high_pct": _pct(ci[1]), "folds_mean_pct": _pct(f.get("mean")),
+               "folds_sd_pct": _pct(f.get("sd")), "thesis_pct": thesis_pct(task, m, u)}  # decision C144
+        row.update({f"accuracy_{c}_pct": _pct((r.get("per_class") or {}).get(c)) for c in rec["classes"]})
+        rows.append(row)
     return rows
 
 
 def louo_rows(model) -> list[dict]:
     """One row per task x method x unit x held-out user (or session, decision C59) of a CV whose folds held out
     whole users (``train --cv-groups user``); empty for folds of steps."""
-    from pdrlearn.classify.evaluation import table_pairs
-
     rows = []
-    for task, rec in task_records(model):
-        res = cv_task_result(rec)
-        for m, u in table_pairs(res):
-            r = res["methods"][m]["units"][u]
-            f = r.get("folds") or {}
-            kind, _ = grouped(r)
-            who = f.get(f"{kind}s")
-            if not who:
-                continue
-            for name, acc, bal, n in zip(who, f["accuracy"], f.get("balanced_accuracy") or [None] * len(who),
-                                         f["n_steps"], strict=True):
-                rows.append({"task": task, "method": m, "unit": u, "chosen": (m, u) == rec["chosen"],
-                             "held_out": name, "n_steps": n, "accuracy_pct": _pct(acc),
-                             "balanced_accuracy_pct": _pct(bal)})
+    for task, rec, m, u, r, f in _records(model):
+        who = f.get(f"{grouped(r)[0]}s")
+        if not who:
+            continue
+        for name, acc, bal, n in zip(who, f["accuracy"], f.get("balanced_accuracy") or [None] * len(who),
+                                     f["n_steps"], strict=True):
+            rows.append({"task": task, "method": m, "unit": u, "chosen": (m, u) == rec["chosen"],
+                         "held_out": name, "n_steps": n, "accuracy_pct": _pct(acc),
+                         "balanced_accuracy_pct": _pct(bal)})
     return rows
 
 
