@@ -81,11 +81,12 @@ def test_to_dataframe_of_a_user_model_is_the_cv_table(trained):
                                                           abs=0.01)
 
 
-def test_train_report_folder_is_refused_when_it_is_the_model_dir(trained, tmp_path, capsys):
-    code = main(["train", str(trained / "u9660"), "--out", str(tmp_path / "m"), "--report", str(tmp_path / "m")])
-    assert code == 2
-    assert "--report" in (err := capsys.readouterr().err) and "is the --out model directory" in err
-    assert not (tmp_path / "m").exists()
+def test_train_report_folder_is_refused_when_it_is_in_or_holds_the_model_dir(trained, tmp_path, capsys):
+    for out, rep in (("m", "m"), ("m", "m/rep"), ("r/m", "r")):
+        code = main(["train", str(trained / "u9660"), "--out", str(tmp_path / out), "--report", str(tmp_path / rep)])
+        assert code == 2
+        assert "--report" in (err := capsys.readouterr().err) and "the --out model directory" in err
+        assert not (tmp_path / "m").exists() and not (tmp_path / "r").exists()
 
 
 def test_each_task_table_shows_its_own_classes():

@@ -151,9 +151,10 @@ def train(
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     if report is not None:  # decision C143: checked before the work, like --out
-        if report.resolve() == out.resolve():
-            raise DataError(f"train: --report {report} is the --out model directory; choose another folder, e.g. "
-                            f"{out.parent / (out.name + '_report')}")
+        rep, mod = report.resolve(), out.resolve()
+        if rep.is_relative_to(mod) or mod.is_relative_to(rep):  # the model's atomic write (or the report's) deletes
+            raise DataError(f"train: --report {report} is, or is inside, or holds the --out model directory; choose "
+                            f"a folder beside it, e.g. {out.parent / (out.name + '_report')}")
         out_folder(report, "train-report", force=force, inputs=(*data_dirs, out))
     was = existed(out)
     sessions = _read_all(data_dirs)
