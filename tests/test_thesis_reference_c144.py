@@ -64,3 +64,14 @@ def test_train_report_cv_table_has_thesis_pct():
     assert th[("svm", "fused")] is None or math.isnan(th[("svm", "fused")])
     assert list(display_table(df, r["classes"]).columns[3:7]) == ["flat %", "up %", "down %", "all %"]
     assert "thesis %" in display_table(df, r["classes"]).columns
+
+
+def test_pdrlearn_report_of_an_evaluation_shows_the_thesis_column(tmp_path):
+    import json
+
+    from pdrlearn.report.build import collect
+
+    (tmp_path / "evaluation.json").write_text(json.dumps({"boundaries": "given", "tasks": {"terrain": _result()}}))
+    tables = [df for sec in collect(tmp_path) for _, df in sec.tables]
+    th = dict(zip(tables[0]["unit"], tables[0]["thesis %"], strict=True))
+    assert th["foot"] == pytest.approx(97.9) and (th["fused"] is None or math.isnan(th["fused"]))

@@ -132,6 +132,8 @@ def _model_cv_sections(manifest: dict) -> list[Section]:
 
 
 def _evaluation_sections(ev: dict) -> list[Section]:
+    from pdrlearn.classify.thesis import thesis_pct
+
     out = []
     for task, d in (ev.get("tasks") or {}).items():
         sec = Section(f"Evaluation — {task}")
@@ -149,6 +151,7 @@ def _evaluation_sections(ev: dict) -> list[Section]:
                     row["all %"] = 100 * ud["accuracy"] if isinstance(ud.get("accuracy"), int | float) else None
                     if isinstance(ud.get("latency_ms"), int | float):
                         row["ms/step"] = ud["latency_ms"]
+                    row["thesis %"] = thesis_pct(task, m, u)  # decision C144: None where the thesis has no row
                     rows.append(row)
             else:
                 row = {"method": m}
