@@ -708,12 +708,15 @@ class DeclaredCheck:
     """What the data say of a declared frame (decisions D10, D22): ``message`` the warning or refusal text
     (without the ``meta.json`` location; ``None``: nothing to say), ``refuse`` True when the declared forward
     is reversed against the data, ``unchecked`` why the data could not judge it (the inference's reason;
-    ``None`` when it ran), ``compared`` the directions the data could still compare when it gave up."""
+    ``None`` when it ran), ``compared`` the directions the data could still compare when it gave up,
+    ``forward_deg`` the horizontal angle (deg) between the declared forward and the measured walking direction
+    (``None``: not measured; decision D25 reads it for the waist compass)."""
 
     message: str | None = None
     refuse: bool = False
     unchecked: str | None = None
     compared: tuple[str, ...] = ()
+    forward_deg: float | None = None
 
     def summary(self) -> str:
         """``info``'s words for a check that raised nothing (decision D22: never "not contradicted" unchecked)."""
@@ -761,10 +764,10 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
     if refuse and weak_reversal(*evidence):  # decision L223: too little evidence to refuse
         return DeclaredCheck(weak_reversal_warning(placement, declared, origin, rev, *evidence), False, unchecked,
-                             compared)
+                             compared, rev)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked)
-    return DeclaredCheck(msg, refuse, unchecked, compared)
+    return DeclaredCheck(msg, refuse, unchecked, compared, rev)
 
 
 def weak_reversal(n_strides: int | None, resultant: float | None) -> bool:

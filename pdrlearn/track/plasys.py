@@ -647,6 +647,12 @@ COMPASS_GYRO_FALLBACK = True
 FALLBACK_DRIFT = True
 
 
+#: decision D25 (docs/decisions/aided.md): the fused / waist heading checks the waist unit's mounting (its compass's
+#: turns against the foot gyroscope's, its declared forward against the walking direction) and on a failure follows
+#: the foot gyroscope's own heading (:mod:`pdrlearn.track.compass_mount`); False = the compass as before
+COMPASS_MOUNT_CHECK = True
+
+
 #: decision L264: L182's check fits its model on windows of this length (s) of straight strides, each on its own:
 #: L17's +-60 s, the span over which the fused heading itself trusts the foot's relative heading against the compass;
 #: a foot heading that drifts over a 30-80 min shift (stairs, turns on the spot) is then judged only over the span
@@ -1297,7 +1303,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
     bridge_foot_yaw(fd, foot_gaps, (lambda n: (work.streams[n].t, work.streams[n].values)) if bridged else None)
     hsrc = heading or cfg["heading"]
-    hard_iron_info, compass_info = None, None
+    hard_iron_info, compass_info, mount_info = None, None, None
     if hsrc in ("waist", "fused") and not has_waist:
         warnings.append(no_waist_heading(session))
         hsrc = "foot"
@@ -1327,8 +1333,19 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             offset_line = unit_offset_line(session, force_table=seen.get("AccelForceStepDetector"))
             warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)
-        compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
-            work, strides, relative, ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD))
+        straight = ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD)
+        mount_line = None
+        if COMPASS_MOUNT_CHECK and work.has("wMagneticField"):  # decision D25: the waist unit's mounting
+            from pdrlearn.track.compass_mount import mount_check
+
+            mount_line, mount_info = mount_check(work, relative, head, straight)
+            warnings += [mount_line] if mount_line else []
+        if mount_line is not None:  # decision D25: the foot gyroscope's own heading, as heading "foot"
+            compass_line, compass_info = None, None
+            head = relative + initial_heading
+        else:
+            compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
+                work, strides, relative, straight)
         warnings += [compass_line] if compass_line else []
         fallback = (hsrc == "fused" and compass_line is not None
                     and (COMPASS_GYRO_FALLBACK if compass_fallback is None else compass_fallback))
@@ -1346,7 +1363,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                     "on a shorter one (decision L226, L266, L280)")
             warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
                 f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
-        elif hsrc == "fused":
+        elif hsrc == "fused" and mount_line is None:
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
                                    walking=FUSED_WALKING_CLOCK)  # decision L471
@@ -1479,6 +1496,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             "toe_off_source": toe_off_source if toe_off else None,  # decision L388
             "hard_iron": hard_iron_info,  # decision L84 (None: the fit was not asked)
             "compass_check": compass_info,  # decision L182 (None: no compass heading, or too few strides)
+            "compass_mount": mount_info,  # decision D25 (None: no compass heading)
             "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
             # decision L38: strides classified on the streaming segmenter's window / on their own bounds
