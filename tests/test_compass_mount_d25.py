@@ -40,6 +40,10 @@ def test_turn_mismatch_reads_a_mirrored_compass_and_not_an_offset():
     assert turn_mismatch(foot, -foot + 1.0, keep) == (pytest.approx(180.0), 2)  # mirrored: the other way
     assert turn_mismatch(foot, foot + 2.5, keep) == (pytest.approx(0.0, abs=1e-9), 2)  # an offset: no mismatch
     assert turn_mismatch(np.zeros(10), np.zeros(10), np.ones(10, bool)) == (None, 0)  # no turn: nothing judged
+    # D25 amended: a mirrored compass matches the mirrored foot turns; a disturbed one's bent turns do not
+    assert turn_mismatch(foot, -foot + 1.0, keep, mirrored=True)[0] == pytest.approx(0.0, abs=1e-9)
+    bent = foot * 0.2  # a 90 deg turn read as 18 deg (L280's 30 uT loop: -91 -> -17 deg)
+    assert turn_mismatch(foot, bent, keep)[0] > 45.0 and turn_mismatch(foot, bent, keep, mirrored=True)[0] > 45.0
 
 
 @pytest.mark.parametrize("mount", ["z:90", "z:180", "swap"])

@@ -5,7 +5,7 @@ Trial T3 (session 38): a mirrored waist unit (x/y swapped, frame inferred) turne
 
 - turns (:func:`turn_mismatch`): between consecutive straight strides across a foot turn of at least
   :data:`MOUNT_TURN_MIN_DEG`, the waist compass's turn against the foot gyroscope's (a mirrored compass turns the
-  other way);
+  other way: its turns match the mirrored foot turns, which a disturbed field's do not);
 - the waist's forward (:func:`declared_forward_off`): D10's check of a declared waist frame measured the walking
   direction more than :data:`MOUNT_FORWARD_OFF_DEG` from the declared forward (the compass then reads the heading of
   another body direction, a constant offset no turn shows).
@@ -29,11 +29,12 @@ def _wrap(a):
     return (np.asarray(a, float) + np.pi) % (2 * np.pi) - np.pi
 
 
-def turn_mismatch(foot: np.ndarray, compass: np.ndarray, keep: np.ndarray,
-                  min_turn_deg: float = MOUNT_TURN_MIN_DEG) -> tuple[float | None, int]:
+def turn_mismatch(foot: np.ndarray, compass: np.ndarray, keep: np.ndarray, min_turn_deg: float = MOUNT_TURN_MIN_DEG,
+                  *, mirrored: bool = False) -> tuple[float | None, int]:
     """Decision D25 (a): the median |wrap(compass turn - foot turn)| (deg) over the turns between consecutive
     ``keep`` strides (time order) whose ``foot`` heading (rad) changed by at least ``min_turn_deg``, the compass turn
-    being the change of ``compass`` (rad) between the same strides; and the number of turns (None: no turn)."""
+    being the change of ``compass`` (rad) between the same strides; and the number of turns (None: no turn).
+    ``mirrored``: against the mirrored foot turn, |wrap(compass turn + foot turn)| (D25 amended)."""
     idx = np.flatnonzero(np.asarray(keep, bool))
     if len(idx) < 2:
         return None, 0
@@ -42,7 +43,8 @@ def turn_mismatch(foot: np.ndarray, compass: np.ndarray, keep: np.ndarray,
     turn = np.abs(df) >= np.radians(min_turn_deg)
     if not turn.any():
         return None, 0
-    return float(np.degrees(np.median(np.abs(_wrap(dc[turn] - df[turn]))))), int(turn.sum())
+    sign = -1.0 if mirrored else 1.0
+    return float(np.degrees(np.median(np.abs(_wrap(dc[turn] - sign * df[turn]))))), int(turn.sum())
 
 
 def declared_forward_off(session, placement: str = "waist") -> float | None:
@@ -57,11 +59,16 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
     the turn mismatch of :func:`turn_mismatch` (with at least :data:`MOUNT_MIN_TURNS` turns) and the declared
     forward's offset of :func:`declared_forward_off`; the line says the track follows the foot's gyroscope heading."""
     mismatch, n = turn_mismatch(foot, compass, keep)
+    mirror = turn_mismatch(foot, compass, keep, mirrored=True)[0]
     off = declared_forward_off(session)
-    info = {"turn_mismatch_deg": mismatch, "n_turns": n, "waist_forward_off_deg": off,
-            "limit_deg": MOUNT_TURN_MISMATCH_DEG, "forward_limit_deg": MOUNT_FORWARD_OFF_DEG, "fallback": False}
+    info = {"turn_mismatch_deg": mismatch, "mirrored_mismatch_deg": mirror, "n_turns": n,
+            "waist_forward_off_deg": off, "limit_deg": MOUNT_TURN_MISMATCH_DEG,
+            "forward_limit_deg": MOUNT_FORWARD_OFF_DEG, "fallback": False}
     why = []
-    if mismatch is not None and n >= MOUNT_MIN_TURNS and mismatch > MOUNT_TURN_MISMATCH_DEG:
+    # D25 amended: a disturbed field (30 uT hard iron) also bends the compass's turns (54.8 deg), but not into the
+    # mirrored foot turns (126.3 deg): only a compass whose turns match the mirrored ones is a mirrored unit
+    if (mismatch is not None and n >= MOUNT_MIN_TURNS and mismatch > MOUNT_TURN_MISMATCH_DEG
+            and mirror <= MOUNT_TURN_MISMATCH_DEG):
         why.append(f"its compass turns differ from the foot gyroscope's turns by a median {mismatch:.0f} deg over {n} "
                    f"turns (over {MOUNT_TURN_MISMATCH_DEG:g} deg: the compass turns the other way, the unit's data "
                    "are mirrored, e.g. two axes swapped)")
