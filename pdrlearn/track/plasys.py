@@ -850,6 +850,27 @@ def require_stride_cover(session: Session, names, command: str = "pdrlearn track
                           command=command)
 
 
+#: decision L494 (docs/decisions/localization.md): a foot-only heading's 0 is the first walk's direction (W390's
+#: circular mean of the first strides' travel headings), not the foot unit's facing, which a unit yawed on the shoe
+#: turns (trial T3: 20 deg -> 13.24 m off on a 45 m route); False = the unit's facing at the start
+FOOT_WALK_REFERENCE = True
+
+
+def foot_walk_reference(head: np.ndarray, disp: np.ndarray) -> float:
+    """Decision L494: the direction (rad) of the first walk in the strides' foot-only travel headings ``head`` (rad,
+    0 = the foot unit's facing at the start): W390's :func:`~pdrlearn.track.waist.walk_reference` over the strides
+    longer than the frame inference's walking stride (``MIN_STRIDE_M``, D8; horizontal displacement ``disp``, m) as
+    one walking sequence; 0 when :data:`FOOT_WALK_REFERENCE` is off."""
+    if not FOOT_WALK_REFERENCE:
+        return 0.0
+    from pdrlearn.track.frame_inference import MIN_STRIDE_M
+    from pdrlearn.track.waist import walk_reference
+
+    disp = np.asarray(disp, float)
+    head = np.where(np.hypot(disp[:, 0], disp[:, 1]) > MIN_STRIDE_M, np.asarray(head, float), np.nan)
+    return walk_reference(head, [np.arange(len(head) + 1)])  # one sequence: its last index closes it (W390)
+
+
 def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
     """Mean waist heading over each stride window (rad)."""
     s = steps["start_s"].to_numpy(float)
@@ -1342,7 +1363,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             warnings += [mount_line] if mount_line else []
         if mount_line is not None:  # decision D25: the foot gyroscope's own heading, as heading "foot"
             compass_line, compass_info = None, None
-            head = relative + initial_heading
+            head = relative + initial_heading - foot_walk_reference(relative + side_extra, disp)  # L494
         else:
             compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
                 work, strides, relative, straight)
@@ -1369,7 +1390,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                    walking=FUSED_WALKING_CLOCK)  # decision L471
         head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
-        head = fd.foot_heading(initial_heading) + lateral
+        head = fd.foot_heading(0.0) + lateral
+        head = head + initial_heading - foot_walk_reference(head, disp)  # decision L494
     else:
         raise DataError(f"plasys: heading '{hsrc}' is not waist, foot or fused")
     if hsrc in ("waist", "fused") and not SIDE_TRAVEL_HEADING:  # decision L219: a side-stepping stretch is put
