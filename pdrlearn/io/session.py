@@ -608,6 +608,12 @@ class Session:
                       "status": status, "handedness": None if h is None else h.to_dict()}
         return out
 
+    def declared_check(self, placement: str):
+        """The data's check of ``placement``'s declared frame run so far (decision D10's
+        :class:`~pdrlearn.track.frame_inference.DeclaredCheck`), or None (not declared or not checked yet)."""
+        chk = self._checked.get(placement)
+        return chk if hasattr(chk, "forward_deg") else None
+
     @property
     def frame_warnings(self) -> list[str]:
         """Decision W334: the D10 warnings the data checks of the declared frames logged so far (one per unit, in

@@ -713,12 +713,15 @@ class DeclaredCheck:
     """What the data say of a declared frame (decisions D10, D22): ``message`` the warning or refusal text
     (without the ``meta.json`` location; ``None``: nothing to say), ``refuse`` True when the declared forward
     is reversed against the data, ``unchecked`` why the data could not judge it (the inference's reason;
-    ``None`` when it ran), ``compared`` the directions the data could still compare when it gave up."""
+    ``None`` when it ran), ``compared`` the directions the data could still compare when it gave up,
+    ``forward_deg`` the horizontal angle (deg) between the declared forward and the measured walking direction
+    (``None``: not measured; decision D25 reads it for the waist compass)."""
 
     message: str | None = None
     refuse: bool = False
     unchecked: str | None = None
     compared: tuple[str, ...] = ()
+    forward_deg: float | None = None
     #: decision C142: a frame the data reject (D23, D28, D30) kept by ``"force_frame"``
     forced: bool = False
 
@@ -772,10 +775,10 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
     if refuse and weak_reversal(*evidence):  # decision L223: too little evidence to refuse
         return DeclaredCheck(weak_reversal_warning(placement, declared, origin, rev, *evidence, how=how), False,
-                             unchecked, compared)
+                             unchecked, compared, rev)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked, how=how)
-    return DeclaredCheck(msg, refuse, unchecked, compared, forced=forced)
+    return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced)
 
 
 def misdeclared(declared: AxisFrame, found: InferredFrame | None, rev: float | None) -> str | None:
