@@ -41,53 +41,14 @@ sys.path.insert(0, str(ROOT))
 from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
 from pdrlearn.classify import evaluate_model, train_user  # noqa: E402
 from pdrlearn.classify.evaluation import ROW_ORDER  # noqa: E402
+from pdrlearn.classify.thesis import THESIS_ACCURACY, THESIS_TABLE  # noqa: E402
 from pdrlearn.classify.training import DEFAULT_METHODS  # noqa: E402
 
 log = logging.getLogger("characterization")
 
 #: Thesis results, accuracy % per class and unit: thesis Table 27 (terrain), Table 28 (direction),
 #: Table 33 (length). Keys: (method, unit) -> {class: %}. "fusion" = Heuristic Fusion.
-THESIS = {
-    "terrain": {  # thesis Table 27
-        ("heuristic", "waist"): {"up": 98, "down": 97, "flat": 87},
-        ("heuristic", "foot"): {"up": 95, "down": 97, "flat": 89},
-        ("dtw", "waist"): {"up": 59, "down": 98, "flat": 69},
-        ("dtw", "foot"): {"up": 93, "down": 100, "flat": 87},
-        ("svm", "waist"): {"up": 97.5, "down": 94.2, "flat": 85.1},
-        ("svm", "foot"): {"up": 99.4, "down": 99.4, "flat": 94.9},
-        ("nn", "waist"): {"up": 98.3, "down": 94.1, "flat": 87.2},
-        ("nn", "foot"): {"up": 100, "down": 100, "flat": 94.9},
-        ("fusion", "fused"): {"up": 99, "down": 97, "flat": 91},
-        ("svm", "combined"): {"up": 99.4, "down": 99.5, "flat": 96.2},
-        ("nn", "combined"): {"up": 100, "down": 100, "flat": 98.7},
-    },
-    "direction": {  # thesis Table 28
-        ("heuristic", "waist"): {"forward": 82.1, "backward": 74.4},
-        ("heuristic", "foot"): {"forward": 97.4, "backward": 94.9},
-        ("dtw", "waist"): {"forward": 84.6, "backward": 79.5},
-        ("dtw", "foot"): {"forward": 100, "backward": 97.4},
-        ("svm", "waist"): {"forward": 98.6, "backward": 96.7},
-        ("svm", "foot"): {"forward": 100, "backward": 100},
-        ("nn", "waist"): {"forward": 99.4, "backward": 95.5},
-        ("nn", "foot"): {"forward": 100, "backward": 100},
-        ("fusion", "fused"): {"forward": 100, "backward": 98},
-        ("svm", "combined"): {"forward": 100, "backward": 100},
-        ("nn", "combined"): {"forward": 100, "backward": 100},
-    },
-    "length": {  # thesis Table 33
-        ("heuristic", "waist"): {"short": 94, "normal": 63, "long": 87},
-        ("heuristic", "foot"): {"short": 94, "normal": 91, "long": 72},
-        ("dtw", "waist"): {"short": 94, "normal": 74, "long": 71},
-        ("dtw", "foot"): {"short": 100, "normal": 50, "long": 97},
-        ("svm", "waist"): {"short": 98.4, "normal": 80.3, "long": 92.6},
-        ("svm", "foot"): {"short": 96.1, "normal": 81.9, "long": 90.7},
-        ("nn", "waist"): {"short": 100, "normal": 86.7, "long": 96.2},
-        ("nn", "foot"): {"short": 100, "normal": 83.3, "long": 100},
-        ("fusion", "fused"): {"short": 96, "normal": 91, "long": 90},
-        ("svm", "combined"): {"short": 100, "normal": 86.0, "long": 98.1},
-        ("nn", "combined"): {"short": 100, "normal": 90.0, "long": 96.2},
-    },
-}
+THESIS = THESIS_ACCURACY  # thesis Tables 27, 28, 33: the package's copy (decision C144)
 # The thesis' "SVM/NN Fusion" rows are one model on both units' features (ch. 6.1.1.1, 6.1.1.2, 6.2.1, 6.3.1):
 # our unit "combined" (decision C22), keyed so above; "fused" (soft vote, C7) has no thesis row (decision C90).
 #: decision C90: the protocol difference every table beside the thesis states
@@ -97,7 +58,7 @@ PROTOCOL_NOTE = (
     "of the calibration exercises, straight walks whose only turns are short turnaround steps. On the thesis "
     "walks the length class is markedly worse (decision C88: the strides turning 15 deg or more), so these "
     "figures are an upper bound for walking with turns.")
-TABLE_NO = {"terrain": 27, "direction": 28, "length": 33}
+TABLE_NO = THESIS_TABLE
 ROWS = ROW_ORDER  # thesis Tables 27, 28, 33 row order
 #: Training / test set sizes of the thesis (steps): terrain 970 + 170 validation / 540 test (ch. 6.1.1),
 #: direction 450 + 100 / 100 (ch. 6.2.1), length 855 + 171 / 114 (ch. 6.3.1). The thesis adds that a

@@ -171,6 +171,12 @@ SESSIONS: tuple[Column, ...] = (
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference; empty when the reference has no "
                                           "altitude track (0: it has one, and no storey was climbed; C103)"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
+    ("frame_foot", _ID, "text", "how the foot unit's axis frame was had (C142): declared (meta.json or "
+                                "source_project, not contradicted), inferred (from the data, D8), contradicted "
+                                "(declared, used with D10's warning naming the frame the data give), forced "
+                                "(declared, rejected by the data, kept by \"force_frame\", D23); empty when the "
+                                "track did not use the unit"),
+    ("frame_waist", _ID, "text", "the lower-back unit's, as frame_foot (C142)"),
     ("ic_timing_mean_ms", "ms", "number", "lower back: mean initial-contact time error against the reference"),
     ("ic_timing_sd_ms", "ms", "number", "lower back: SD of that error"),
     ("ic_timing_stereo_mean_ms", "ms", "number", "lower back: mean contact time error, both feet matched"),
@@ -1346,6 +1352,37 @@ COHORT_METHODS_SUMMARY: tuple[Column, ...] = (
 )
 
 
+#: classifiers C143: `train --report`'s tables (pdrlearn.classify.cv_report); accuracies are percentages
+TRAIN_CV: tuple[Column, ...] = (
+    ("task", _ID, "text", "terrain, direction or length"),
+    ("method", _ID, "text", "as cohort_methods.csv"),
+    ("unit", _ID, "text", "as cohort_methods.csv"),
+    ("chosen", _ID, "true/false", "whether it is the task's chosen model (train's choice, C8), the one track --model "
+                               "uses"),
+    ("cv", _ID, "text", "the cross-validation: '10-fold CV accuracy', 'leave-one-user-out CV accuracy (3 users)', ..."),
+    ("n_steps", "count", "integer", "labelled strides of one foot the CV scored (C69: every session's, pooled)"),
+    ("accuracy_pct", "%", "number", "out-of-fold accuracy over the pooled steps"),
+    ("balanced_accuracy_pct", "%", "number", "mean of the class recalls (C60; what train ranks by, C36)"),
+    ("ci95_low_pct", "%", "number", "exact binomial (Clopper-Pearson) 95 % interval of accuracy_pct, low end (C58)"),
+    ("ci95_high_pct", "%", "number", "its high end"),
+    ("folds_mean_pct", "%", "number", "mean of the folds' accuracies (C41)"),
+    ("folds_sd_pct", "%", "number", "their sample SD; empty with one fold"),
+    ("thesis_pct", "%", "number", "the thesis' figure of the row: mean of its per-class accuracies in Tables "
+                                  "27/28/33 (C144); empty where the thesis has no row (soft votes, ensemble)"),
+    ("accuracy_<class>_pct", "%", "number", "recall of each class (thesis Tables 27/28/33's per-class accuracy)"),
+)
+TRAIN_LOUO: tuple[Column, ...] = (
+    ("task", _ID, "text", "as cv.csv"),
+    ("method", _ID, "text", "as cv.csv"),
+    ("unit", _ID, "text", "as cv.csv"),
+    ("chosen", _ID, "true/false", "as cv.csv"),
+    ("held_out", _ID, "text", "the user (session, C59) the fold held out, as meta.json names it"),
+    ("n_steps", "count", "integer", "that user's labelled steps"),
+    ("accuracy_pct", "%", "number", "accuracy on that user's steps, trained on the others"),
+    ("balanced_accuracy_pct", "%", "number", "mean recall over the classes that user's steps hold"),
+)
+
+
 #: cohort C106: the classifier tasks cohort_summary.csv has columns of (pdrlearn.classify.training.TASKS, not imported
 #: here: it loads scikit-learn)
 COHORT_TASKS = ("terrain", "direction", "length")
@@ -1395,7 +1432,7 @@ TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, STAIRS, RIDES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
-    COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY), strict=True))
+    COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
@@ -1434,6 +1471,11 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
                                "tables on subject (C107).",
          "cohort_methods.csv": "`pdrlearn evaluate-all MODELS COHORT --per-method` (cohort decision C92): one row "
                                "per user, task, method and unit; cohort_methods_summary.csv|md: the means over users.",
+         "cv.csv": "`pdrlearn train ... --report DIR` (classifiers C143; `to_dataframe(model)` is the same table): "
+                   "one row per task, method and unit of the model's cross-validation, in thesis Tables 27/28/33's "
+                   "order; confusion_<task>.png beside it, report.md the same tables.",
+         "louo.csv": "`pdrlearn train ... --cv-groups user --report DIR` (C143): one row per task, method, unit and "
+                     "held-out user; written only when the folds held out whole users.",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
                            "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
                            "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines. `pdrlearn "

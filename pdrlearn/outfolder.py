@@ -40,6 +40,7 @@ FOLDER_KINDS = {
     "bundle": ("a runtime bundle", "pdrlearn export"),
     "report": ("a report (index.html, report.md)", "pdrlearn report"),
     "evaluation": ("an evaluation report", "pdrlearn evaluate --report"),
+    "train-report": ("a training report (cv.csv, report.md)", "pdrlearn train --report"),  # decision C143
     "train-all": ("per-user model directories", "pdrlearn train-all"),
     "evaluate-all": ("a cohort summary", "pdrlearn evaluate-all"),
     "track-all": ("a batch of tracks (sessions.csv, groups.csv, one folder per session)", "pdrlearn track-all"),
@@ -79,6 +80,8 @@ def folder_kind(folder: Path) -> str | None:
         return "run" if summary.get("pipeline") == "runtime" else "track"
     if (folder / "index.html").is_file() and (folder / "report.md").is_file():
         return "report"
+    if (folder / "report.md").is_file() and (folder / "cv.csv").is_file():  # decision C143
+        return "train-report"
     if (folder / "report.md").is_file() or (folder / "report.json").is_file():
         return "evaluation"
     return None

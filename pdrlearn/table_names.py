@@ -25,4 +25,5 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "gait_pairs.csv",  # C110
                                 "detections.csv", "events.csv", "steps.json",  # steps 59
                                 "cohort_summary.csv",  # cohort C106
-                                "cohort_methods.csv", "cohort_methods_summary.csv")  # cohort C92
+                                "cohort_methods.csv", "cohort_methods_summary.csv",  # cohort C92
+                                "cv.csv", "louo.csv")  # classifiers C143

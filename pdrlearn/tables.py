@@ -6,7 +6,9 @@
 - :func:`summary_frame` -- ``TrackResult.summary(session)`` dicts (summary.json): one row per track, with the
   columns of track-all's sessions.csv (``final_x_m`` ..., docs/columns.md), the same flattening
   (:func:`summary_row`);
-- :func:`to_dataframe` -- any of the three (or a ``{name: result}`` dict / list of them), told apart by their keys.
+- a :class:`~pdrlearn.classify.UserModel` -- its cross-validation table (decision C143,
+  :func:`pdrlearn.classify.cv_report.cv_frame`: one row per task x method x unit, accuracies in %, as cv.csv);
+- :func:`to_dataframe` -- any of these (or a ``{name: result}`` dict / list of them), told apart by their keys.
 
 Column names keep the project's unit suffixes (docs/columns.md: ``_s``, ``_m``, ``_ms``, ``_pct``, ``_mps``;
 fractions such as ``accuracy`` or ``f1`` have none). Each function takes one result, a list, or a ``{name: result}``
@@ -21,7 +23,8 @@ from pdrlearn.errors import DataError
 
 #: the first columns of :func:`evaluation_frame`; ``accuracy_<class>`` (the per-class recall, thesis Tables 27/28/33's
 #: per-class accuracy) follow in the task's class order
-EVALUATION_COLUMNS = ("task", "method", "unit", "chosen", "n_steps", "accuracy", "balanced_accuracy", "latency_ms")
+EVALUATION_COLUMNS = ("task", "method", "unit", "chosen", "n_steps", "accuracy", "balanced_accuracy", "latency_ms",
+                      "thesis_pct")  # decision C144
 
 
 def _named(results, kind: str, is_one) -> list[tuple[str | None, dict]]:
@@ -71,10 +74,13 @@ def evaluation_frame(results):
     """:func:`~pdrlearn.classify.evaluate_model`'s result(s) as one row per task x method x unit: ``task``,
     ``method``, ``unit``, ``chosen`` (the model's choice for that task, the one ``tasks.<t>.accuracy`` reports),
     ``n_steps`` (steps that model scored), ``accuracy``, ``balanced_accuracy`` (fractions), ``latency_ms`` (per step;
-    empty with ``latency=False``) and ``accuracy_<class>`` per class of the task (the thesis tables' per-class
+    empty with ``latency=False``), ``thesis_pct`` (the thesis' figure of the row, % - the mean of thesis Tables
+    27/28/33's per-class accuracies; empty where it has no row, decision C144) and ``accuracy_<class>`` per class of
+    the task (the thesis tables' per-class
     accuracy, i.e. recall; empty when the sessions have no step of that class). Rows in ``report.md``'s order.
     ``df.pivot_table(index=["method", "unit"], columns="task", values="accuracy")`` compares the tasks."""
     from pdrlearn.classify.evaluation import table_pairs
+    from pdrlearn.classify.thesis import thesis_pct
 
     rows, names = [], []
     for name, res in _named(results, "evaluation_frame", _is_evaluation):
@@ -85,7 +91,8 @@ def evaluation_frame(results):
                 row = {"task": task, "method": method, "unit": unit,
                        "chosen": (method, unit) == (chosen.get("method"), chosen.get("unit")),
                        "n_steps": m.get("n_steps"), "accuracy": m["accuracy"],
-                       "balanced_accuracy": m.get("balanced_accuracy"), "latency_ms": m.get("latency_ms")}
+                       "balanced_accuracy": m.get("balanced_accuracy"), "latency_ms": m.get("latency_ms"),
+                       "thesis_pct": thesis_pct(task, method, unit)}  # decision C144
                 row.update({f"accuracy_{c}": m["per_class"].get(c) for c in r["classes"]})
                 rows.append(row)
                 names.append(name)
@@ -130,7 +137,8 @@ def summary_frame(summaries):
 
 
 def to_dataframe(result):
-    """The DataFrame view of an ``evaluate_model`` result, a ``score_steps`` dict or a track summary (or a list /
+    """The DataFrame view of an ``evaluate_model`` result, a UserModel (its CV table, decision C143), a
+    ``score_steps`` dict or a track summary (or a list /
     ``{name: result}`` dict of one kind): :func:`evaluation_frame`, :func:`step_scores_frame` or
     :func:`summary_frame`, told apart by their keys. Anything else is one :class:`DataError` line."""
     for fn, is_one in ((evaluation_frame, _is_evaluation), (step_scores_frame, _is_step_score),
@@ -142,9 +150,14 @@ def to_dataframe(result):
             first = result[0]
         if isinstance(first, Mapping) and is_one(first):
             return fn(result)
+    if hasattr(result, "tasks") and hasattr(result, "user") and not isinstance(result, Mapping):
+        from pdrlearn.classify.cv_report import cv_frame
+
+        return cv_frame(result)  # decision C143: a UserModel's CV table (cv.csv of train --report)
     if hasattr(result, "steps") and hasattr(result, "summary"):
         raise DataError("to_dataframe: a TrackResult's tables are result.steps and result.trajectory already; for its "
                         "summary pass result.summary(session)")
-    raise DataError("to_dataframe: expected evaluate_model(...)'s result, a score_steps(...) dict or a "
+    raise DataError("to_dataframe: expected evaluate_model(...)'s result, a UserModel (train_user / load_model: its "
+                    "CV table), a score_steps(...) dict or a "
                     f"TrackResult.summary(session) dict (or a list / {{name: result}} dict of them); got "
                     f"{type(result).__name__}")

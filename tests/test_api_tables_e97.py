@@ -95,7 +95,8 @@ def test_step_scores_and_summaries_are_frames_with_the_csv_names(gaitmap_level_l
 
 
 @pytest.mark.parametrize("bad, match", [
-    ({"a": 1}, r"^to_dataframe: expected evaluate_model\(...\)'s result, a score_steps\(...\) dict or a "
+    ({"a": 1}, r"^to_dataframe: expected evaluate_model\(...\)'s result, a UserModel .*, a score_steps\(...\) dict "
+               r"or a "
                r"TrackResult.summary\(session\) dict .*got dict$"),
     (42, "got int$"),
 ])

@@ -195,7 +195,11 @@ def test_require_frame_infers_once_warns_and_declared_wins(walk, caplog):
     assert s.frames_inferred == {"foot": declared["foot"].to_dict(), "waist": declared["waist"].to_dict()}
     odd = AxisFrame(x="left", y="up", z="forward")
     s.frames = {"foot": odd}
-    assert s.require_frame("foot") is odd  # a declared frame always wins, even against the data
+    with pytest.raises(DataError, match="turned by 9[01] deg, decision D28"):  # D28: a foot forward turned 90 deg
+        s.require_frame("foot")
+    s = walk.copy()
+    s.frames, s.meta = {"foot": odd}, {**s.meta, "force_frame": True}
+    assert s.require_frame("foot") is odd  # forced, a declared frame wins even against the data (D23)
     s = walk.copy()
     s.frames, s.infer_frames = {}, False
     with pytest.raises(DataError, match="declares no axis frame for the foot unit; add"):

@@ -524,14 +524,20 @@ def table_pairs(task_result: dict) -> list[tuple[str, str]]:
     return pairs + [(m, u) for m, d in methods.items() for u in d["units"] if (m, u) not in pairs]
 
 
-def results_head(task_result: dict) -> list[str]:
-    """The column names of :func:`results_table`'s rows (evaluate's table and report.md)."""
-    return ["method", "unit", *[f"{c} %" for c in task_result["classes"]], "all %", "balanced %", "ms/step"]
+def results_head(task_result: dict, task: str | None = None) -> list[str]:
+    """The column names of :func:`results_table`'s rows (evaluate's table and report.md); with ``task``, ``thesis %``
+    last (decision C144)."""
+    return ["method", "unit", *[f"{c} %" for c in task_result["classes"]], "all %", "balanced %", "ms/step",
+            *(["thesis %"] if task else [])]
 
 
-def results_table(task_result: dict) -> list[list[str]]:
+def results_table(task_result: dict, task: str | None = None) -> list[list[str]]:
     """Rows ``[method, unit, per-class %..., all %, balanced %, ms]`` in the order of thesis Tables 27/28/33;
-    ``balanced %`` (decision C60) is the mean of the class recalls, what ``train`` ranks the models by (C36)."""
+    ``balanced %`` (decision C60) is the mean of the class recalls, what ``train`` ranks the models by (C36). With
+    ``task``, the thesis' figure of the row last (decision C144: the mean of its per-class accuracies, "-" where
+    the thesis has no row; :func:`pdrlearn.classify.thesis.thesis_pct`)."""
+    from pdrlearn.classify.thesis import thesis_pct
+
     rows = []
     methods = task_result["methods"]
     for m, u in table_pairs(task_result):
@@ -539,8 +545,9 @@ def results_table(task_result: dict) -> list[list[str]]:
         pc = [("-" if r["per_class"][c] is None else f"{100 * r['per_class'][c]:.1f}") for c in task_result["classes"]]
         lat = r.get("latency_ms")
         bal = r.get("balanced_accuracy")
+        th = thesis_pct(task, m, u) if task else None
         rows.append([m, u, *pc, f"{100 * r['accuracy']:.1f}", "-" if bal is None else f"{100 * bal:.1f}",
-                     "-" if lat is None else f"{lat:.3f}"])
+                     "-" if lat is None else f"{lat:.3f}", *([("-" if th is None else f"{th:.1f}")] if task else [])])
     return rows
 
 
@@ -559,7 +566,7 @@ def markdown_tables(result: dict) -> str:
     """All tasks' result tables as Markdown."""
     parts = []
     for task, r in result["tasks"].items():
-        head = results_head(r)
+        head = results_head(r, task)
         lines = [
             f"### {task} ({r['n_steps']} steps; chosen {r['chosen']['method']}/{r['chosen']['unit']}: "
             f"{headline(r)})",  # decision C49
@@ -567,7 +574,7 @@ def markdown_tables(result: dict) -> str:
             "| " + " | ".join(head) + " |",
             "|" + "---|" * len(head),
         ]
-        lines += ["| " + " | ".join(row) + " |" for row in results_table(r)]
+        lines += ["| " + " | ".join(row) + " |" for row in results_table(r, task)]
         from pdrlearn.classify.detected import detected_lines
 
         lines += ["", *[f"- {line}" for line in detected_lines(r.get("detected"))]] if r.get("detected") else []
@@ -575,8 +582,9 @@ def markdown_tables(result: dict) -> str:
     return "\n\n".join(parts) + "\n"
 
 
-def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
-    """One confusion-matrix panel per method x unit of a task (rows = true, columns = predicted)."""
+def plot_confusions(task: str, task_result: dict, out: Path, *, what: str = "confusion matrices") -> Path:
+    """One confusion-matrix panel per method x unit of a task (rows = true, columns = predicted); ``what`` names
+    them in the title (the train report's out-of-fold ones: "CV confusion matrices", decision C143)."""
     from pdrlearn.plots import new_figure, save_atomic, text_colour_on
 
     pairs = [(m, u) for m, d in task_result["methods"].items() for u in d["units"]]
@@ -599,7 +607,7 @@ def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
         ax.set_title(f"{m}/{u}: {100 * acc:.1f} %", fontsize=8)
         ax.set_xlabel("predicted", fontsize=7)
         ax.set_ylabel("true", fontsize=7)
-    fig.suptitle(f"{task}: confusion matrices ({task_result['n_steps']} steps)")
+    fig.suptitle(f"{task}: {what} ({task_result['n_steps']} steps)")
     fig.tight_layout()
     save_atomic(fig, out)
     return out

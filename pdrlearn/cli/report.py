@@ -19,7 +19,9 @@ def report(
 ) -> None:
     """Render accuracy tables, confusion matrices, trajectories and latency figures as one page.
 
-    The HTML is self-contained (images embedded, no network resources); report.md holds the same content.
+    The HTML is self-contained (images embedded, no network resources); report.md holds the same content. A model
+    directory gets per task its cross-validation table, the leave-one-user-out table (--cv-groups user) and the
+    out-of-fold confusion matrices (classifiers C143; `train --report` writes them as CSV too).
 
     Examples:
 

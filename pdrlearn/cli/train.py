@@ -8,6 +8,7 @@ from pathlib import Path
 
 import typer
 
+from pdrlearn.classify.cv_report import cv_title, grouped
 from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
@@ -68,6 +69,8 @@ def train(
     ),
     resample: float = train_resample_option(),  # decisions C56, C62: train-all's too
     param: list[str] = param_option(),  # decision C96 (C98: train-all's too)
+    report: Path = typer.Option(None, "--report", help="Folder for the CV tables (cv.csv; louo.csv with "
+                                "--cv-groups user), one confusion PNG per task and report.md (decision C143)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -89,6 +92,8 @@ def train(
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
 
         pdrlearn train out/sim/u1 --out out/models/u1_c10 --cv-groups block --param svm.C=10 --param nn.hidden=32
+
+        pdrlearn train out/sim/u1 --out out/models/u1_r --report out/train_u1
     """
     from pdrlearn.classify.spread import chance_line, spread_text
     from pdrlearn.classify.training import check_settings, check_task_methods, check_user, train_user
@@ -104,6 +109,12 @@ def train(
     hyper = check_train_options(cv_groups, param, m_all, per_task)  # decisions C95, C96: before any data is read
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
+    if report is not None:  # decision C143: checked before the work, like --out
+        rep, mod = report.resolve(), out.resolve()
+        if rep.is_relative_to(mod) or mod.is_relative_to(rep):  # the model's atomic write (or the report's) deletes
+            raise DataError(f"train: --report {report} is, or is inside, or holds the --out model directory; choose "
+                            f"a folder beside it, e.g. {out.parent / (out.name + '_report')}")
+        out_folder(report, "train-report", force=force, inputs=(*data_dirs, out))
     was = existed(out)
     sessions = read_session_dirs(data_dirs)
     total = sum(len(per_task.get(t, m_all)) for t in t_all) * len(u_all)
@@ -117,8 +128,17 @@ def train(
     seconds = time.perf_counter() - t0
     model.save(out)
     replaced(out, was)
+    if report is not None:  # decision C143
+        from pdrlearn.atomic import atomic_directory
+        from pdrlearn.classify.cv_report import write_model_report
+
+        had_report = existed(report)
+        with atomic_directory(report) as tmp:
+            write_model_report(model, tmp)
+        replaced(report, had_report)
     summary = {
         "out": str(out),
+        "report": None if report is None else str(report),  # decision C143
         "user": model.user,
         "users": model.data_summary.get("users", []),  # decision C35
         "sessions": len(sessions),
@@ -201,6 +221,8 @@ def train(
         c.print("hyperparameters: " + ", ".join(f"{m}.{n}={v}" for m, names in summary["params"].items()
                                                 for n, v in names.items()) + " (--param; the rest thesis defaults)")
     c.print(f"model written to {out} ({seconds:.1f} s)")
+    if report is not None:
+        c.print(f"report written to {report} (cv.csv, confusion PNGs, report.md)")
 
 
 #: how the train table's spread columns are computed (decision C41), printed under each table
@@ -209,30 +231,11 @@ SPREAD_NOTE = ("all, balanced: pooled over the steps; folds: mean±sd of the fol
                "are not independent; decisions C41, C58)")
 
 
-def cv_title(r: dict) -> str:
-    """The CV part of a task's title line (decisions C29, C43, C59): ``10-fold CV accuracy``, ``leave-one-user-out
-    CV accuracy (3 users)``, ``5-fold CV accuracy (folds of whole users, 12 users)`` or the same of sessions."""
-    n, kind, groups = r["n_folds"], *_grouped(r)
-    if r.get("cv_blocks"):  # decision C95
-        return f"{n}-fold CV accuracy (contiguous blocks of each session, neighbours left out)"
-    if groups and n == groups:
-        return f"leave-one-{kind}-out CV accuracy ({groups} {kind}s)"
-    if groups:
-        return f"{n}-fold CV accuracy (folds of whole {kind}s, {groups} {kind}s)"
-    return f"{n}-fold CV accuracy"
-
-
-def _grouped(r: dict) -> tuple[str, int]:
-    """What a CV record's folds hold out whole (``"user"``, ``"session"``, decision C59) and how many there are
-    (0: folds of steps)."""
-    return ("session", r["cv_sessions"]) if r.get("cv_sessions") else ("user", r.get("cv_users") or 0)
-
-
 def louo_line(r: dict) -> str | None:
     """The chosen model's accuracy on each held-out user (session) of a leave-one-user-out CV (decisions C43,
     C59), e.g. ``chosen model per held-out user: user:u1 93.0 %, user:u2 97.5 %``; None for folds of steps."""
     f = r.get("folds") or {}
-    kind, groups = _grouped(r)
+    kind, groups = grouped(r)
     who_list = f.get(f"{kind}s")
     if not who_list:
         return None
@@ -429,7 +432,7 @@ def evaluate(
 
     c = console()
     for task, r in result["tasks"].items():
-        _task_table(c, r, f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
+        _task_table(c, r, task, f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
                     f"{headline(r)}")
         for line in detected_lines(r.get("detected")):  # decision C76
             c.print(f"  {line}", markup=False)
@@ -498,7 +501,7 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
         scored, chosen = r["scored_model"], r["chosen"]
         who = ("bundle's chosen" if scored == chosen else  # decision E196: the model that ran, one row each
                f"bundle's foot-only (the chosen {chosen['method']}/{chosen['unit']} ran on no session)")
-        _task_table(c, r, f"{task}: {r['n_steps']} strides - {who} {scored['method']}/{scored['unit']} "
+        _task_table(c, r, task, f"{task}: {r['n_steps']} strides - {who} {scored['method']}/{scored['unit']} "
                     f"{100 * r['accuracy']:.1f} % on the strides the runtime detects (matched to the labelled steps)"
                     + ("; one row per model the runtime used" if len(table_pairs(r)) > 1 else ""))
     if result.get("out_of_domain_fraction") is not None:  # decisions C16, E198: as a model directory's
@@ -508,7 +511,7 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
         c.print(f"skipped {s}", markup=False)
 
 
-def _task_table(c, r: dict, title: str) -> None:
+def _task_table(c, r: dict, task: str, title: str) -> None:
     """One task's evaluation: ``title``, the per-class table (decision C60: with balanced %) and the chosen model's
     precision / recall / F1 per class (decision C37); a model directory's and a bundle's (E193) alike."""
     from rich.table import Table
@@ -518,11 +521,11 @@ def _task_table(c, r: dict, title: str) -> None:
 
     c.print(title, markup=False)
     tab = Table()
-    for col in results_head(r):
+    for col in results_head(r, task):  # decision C144: with the thesis' figure
         tab.add_column(col)
-    for row in results_table(r):
+    for row in results_table(r, task):
         tab.add_row(*row)
-    c.print(tab)
+    print_table(c, tab)  # piped, at the width it needs: the thesis column made 80 columns wrap the headers
     c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(
         f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
         for k in r["classes"]), markup=False)

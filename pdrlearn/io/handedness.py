@@ -36,6 +36,7 @@ is confirmed on all the strides at the full rate and reported when that median e
 from __future__ import annotations
 
 import itertools
+import json
 from dataclasses import dataclass
 
 import numpy as np
@@ -540,7 +541,31 @@ def check_handedness(session, placement: str, *, ratio: bool = True) -> tuple[Ha
                f"{np.exp(h.axes_log_ratio):.1f} times smaller with them (median of {h.segments}; decision D11 "
                f"amendment); {axes_fix_text(P, acc_n, gyr_n)}")
         return h, msg
-    return h, mirrored_message(h, placement)
+    msg = mirrored_message(h, placement)
+    declared = getattr(session, "frames", {}).get(placement)
+    if declared is not None:  # decision D30 (trial T3 finding 4): the declared frame must follow the fix
+        msg = f"{msg}; {declared_frame_after_fix(session, placement, h, declared)}"
+    return h, msg
+
+
+def declared_frame_after_fix(session, placement: str, h: Handedness, declared) -> str:
+    """Decision D30: D11's advice for a unit with a declared frame: once the mirrored axis is negated back, the
+    declared frame (written for the mirrored axes) may no longer describe the data (trial T3: an x/y-swapped foot
+    fixed as advised, old frame kept, tracked backward 73.5 m off). The frame the data give with that axis negated
+    back (:func:`pdrlearn.track.frame_inference.frame_after_negating`), to write, else the instruction to rewrite
+    or remove the entry."""
+    from pdrlearn.track.frame_inference import frame_after_negating
+
+    ax = h.mirror_axis
+    found = frame_after_negating(session, placement, ax) if ax is not None else None
+    entry = json.dumps({placement: declared.to_dict()})
+    if found is None:
+        return (f"then rewrite its declared \"frames\" entry {entry} for the fixed axes too, or remove it to have "
+                "the frame inferred from the data (decision D8): the declared frame describes the mirrored axes")
+    if found.to_dict() == declared.to_dict():
+        return f"its declared \"frames\" entry {entry} matches the data once the {ax} axis is negated back"
+    return (f"then also replace its declared \"frames\" entry {entry}, which no longer describes the data: with the "
+            f"{ax} axis negated back they give \"frames\": {json.dumps({placement: found.to_dict()})} (decision D30)")
 
 
 def mirrored_message(h: Handedness, placement: str, *, how=None) -> str:

@@ -510,7 +510,9 @@ class Session:
         nearest = getattr(self._inferred.get(placement), "nearest", None)  # W394: the axes its walk gives
         example = json.dumps({placement: (nearest or EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"])).to_dict()})
         what = ("the nearest axis assignment its walking gives (check it against the mounting)" if nearest is not None
-                else "the thesis mounting")
+                # decision C142 (trial T3 finding 6): a yawed or tilted unit is declared by its nearest axes
+                else "the sensor axes nearest its forward, left and up (a unit yawed or tilted on its mount is "
+                     "declared by its nearest axes), as in the thesis mounting")
         hint = self._waist_hint(placement)  # decision B288: a "foot" unit that never swings is named as a lower back
         err = DataError(
             f"{where} declares no axis frame for the {placement} unit{reason}; {hint + '; else ' if hint else ''}"
@@ -606,6 +608,12 @@ class Session:
                       "status": status, "handedness": None if h is None else h.to_dict()}
         return out
 
+    def declared_check(self, placement: str):
+        """The data's check of ``placement``'s declared frame run so far (decision D10's
+        :class:`~pdrlearn.track.frame_inference.DeclaredCheck`), or None (not declared or not checked yet)."""
+        chk = self._checked.get(placement)
+        return chk if hasattr(chk, "forward_deg") else None
+
     @property
     def frame_warnings(self) -> list[str]:
         """Decision W334: the D10 warnings the data checks of the declared frames logged so far (one per unit, in
@@ -618,6 +626,23 @@ class Session:
         """The frames this session's commands inferred from the data so far (decision D8), as meta.json's
         ``frames`` entry would write them; empty when every frame used was declared."""
         return {p: f.to_dict() for p, f in sorted(self._inferred.items()) if isinstance(f, AxisFrame)}
+
+    def frame_status(self, placement: str) -> str | None:
+        """Decision C142: how the ``placement`` unit's frame was had, from the checks run so far (none run here):
+        ``inferred`` (from the data, D8), ``forced`` (declared, rejected by the data, kept by ``"force_frame"``,
+        D23), ``contradicted`` (declared, used with D10's warning: the data give another frame, or it is
+        left-handed), ``declared`` (declared or ``source_project``, not contradicted); ``None`` when no command
+        asked for it (the unit not used, absent, or refused)."""
+        if isinstance(self._inferred.get(placement), AxisFrame):
+            return "inferred"
+        if placement not in self.frames:
+            return None
+        chk = self._checked.get(placement)
+        if chk is None:
+            return "declared" if not self.infer_frames else None
+        if chk.refuse:
+            return None
+        return "forced" if chk.forced else "contradicted" if chk.message else "declared"
 
     def has_frame(self, placement: str) -> bool:
         """True when :meth:`require_frame` gives the ``placement`` unit a frame (declared, or inferred from

@@ -41,8 +41,11 @@ class UnitData:
     fs: float
 
 
-def unit_data(session: Session, placement: str, *, purpose: str = "localization") -> UnitData:
-    """Accelerometer, gyroscope (and magnetometer) of a unit rotated into FLU via its declared frame.
+def unit_data(session: Session, placement: str, *, purpose: str = "localization",
+              sensor_axes: bool = False) -> UnitData:
+    """Accelerometer, gyroscope (and magnetometer) of a unit rotated into FLU via its declared frame;
+    ``sensor_axes`` True: in the sensor's own axes, without a frame (none required, none checked: decision C142,
+    for callers that read magnitudes only, e.g. the foot's rests).
 
     Raises
     ------
@@ -53,10 +56,9 @@ def unit_data(session: Session, placement: str, *, purpose: str = "localization"
     acc_s = session.require(acc_n, gyr_n, purpose=purpose)
     session.require_cover(acc_n, gyr_n)  # the gyroscope is interpolated onto the accelerometer's clock
     gyr_s = session.streams[gyr_n]
-    frame = session.require_frame(placement)
+    R = np.eye(3) if sensor_axes else session.require_frame(placement).matrix()
     if len(acc_s) < 4 or len(gyr_s) < 4:
         raise DataError(f"session '{session.name}': {placement} streams have fewer than 4 samples")
-    R = frame.matrix()
     t = acc_s.t
     for s in (acc_s, gyr_s):
         if not np.all(np.isfinite(s.values)):

@@ -90,9 +90,13 @@ def _verified_manifest(root: Path) -> dict:
 
 
 def _model_section(manifest: dict, root: Path) -> Section:
+    """The model's facts as short cells (decision C143: the whole ``tasks`` object went into one cell, 55,749
+    characters a line); a bundle's cross-validation metrics as before."""
     sec = Section("Model")
-    keys = ["user", "schema_version", "package_version", "created", "tasks", "units", "methods"]
-    info = {k: manifest[k] for k in keys if k in manifest}
+    keys = ["user", "schema_version", "package_version", "created", "units", "methods"]
+    info = {k: manifest[k] for k in keys if k in manifest and not isinstance(manifest[k], dict)}
+    if isinstance(manifest.get("tasks"), dict):  # the names; the tables below hold the numbers
+        info["tasks"] = ", ".join(manifest["tasks"])
     sec.tables.append(("manifest", pd.DataFrame({"field": list(info), "value": [_fmt(v) for v in info.values()]})))
     metrics = manifest.get("metrics") or manifest.get("cv_metrics") or {}
     rows = [{"metric": k, "value": v} for k, v in _flat_scalars(metrics).items()]
@@ -101,7 +105,35 @@ def _model_section(manifest: dict, root: Path) -> Section:
     return sec
 
 
+def _model_cv_sections(manifest: dict) -> list[Section]:
+    """Decision C143: a model directory's CV table per task, its leave-one-user-out table (folds of whole users)
+    and the out-of-fold confusion figure (:mod:`pdrlearn.classify.cv_report`, as ``train --report`` writes them)."""
+    from pdrlearn.classify.cv_report import cv_frame, cv_task_result, display_table, louo_frame, task_records
+    from pdrlearn.classify.evaluation import plot_confusions
+
+    cv, louo = cv_frame(manifest), louo_frame(manifest)
+    out = []
+    for task, rec in task_records(manifest):
+        t = cv[cv["task"] == task]
+        if t.empty:
+            continue
+        sec = Section(f"Cross-validation — {task}", text=f"{t['cv'].iloc[0]}, {int(t['n_steps'].max())} steps; "
+                      "accuracies in %, 95 % CI exact binomial (decision C58)")
+        sec.tables.append((f"{task}: CV accuracy per method", display_table(t, rec["classes"])))
+        lt = louo[louo["task"] == task]
+        if not lt.empty:
+            sec.tables.append((f"{task}: accuracy (%) per held-out user", lt.drop(columns=["task"])))
+        res = cv_task_result(rec)
+        sec.plots.append((f"{task}: CV confusion matrices (rows = true class)", f"confusion_cv_{task}.png",
+                          lambda path, task=task, res=res: bool(plot_confusions(
+                              task, res, path, what="CV confusion matrices"))))
+        out.append(sec)
+    return out
+
+
 def _evaluation_sections(ev: dict) -> list[Section]:
+    from pdrlearn.classify.thesis import thesis_pct
+
     out = []
     for task, d in (ev.get("tasks") or {}).items():
         sec = Section(f"Evaluation — {task}")
@@ -119,6 +151,7 @@ def _evaluation_sections(ev: dict) -> list[Section]:
                     row["all %"] = 100 * ud["accuracy"] if isinstance(ud.get("accuracy"), int | float) else None
                     if isinstance(ud.get("latency_ms"), int | float):
                         row["ms/step"] = ud["latency_ms"]
+                    row["thesis %"] = thesis_pct(task, m, u)  # decision C144: None where the thesis has no row
                     rows.append(row)
             else:
                 row = {"method": m}
@@ -144,7 +177,10 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         raise DataError(f"{root}: not a folder; pass a model directory or a results folder")
     sections: list[Section] = []
     if (root / "manifest.json").exists():
-        sections.append(_model_section(_verified_manifest(root), root))
+        manifest = _verified_manifest(root)
+        sections.append(_model_section(manifest, root))
+        if manifest.get("kind") == "pdrlearn user model":  # decision C143
+            sections.extend(_model_cv_sections(manifest))
     skip = Path(exclude).resolve() if exclude is not None else None
     reports: dict[Path, bool] = {}
 

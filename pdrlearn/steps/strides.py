@@ -26,7 +26,9 @@ def _foot_rests(session: Session, force: bool = True):
     from pdrlearn.displace.force_check import checked_stance
     from pdrlearn.orient import unit_data
 
-    foot = unit_data(session, "foot", purpose="the rests between strides")
+    # decision C142 (trial T3 finding 6): the rests read |acc| and |gyro| only (signal.conditioning.standstill_mask,
+    # force_stance), so the unit's own axes do: counting needs no frame (a yawed foot was refused by `steps`)
+    foot = unit_data(session, "foot", purpose="the rests between strides", sensor_axes=True)
     return foot, checked_stance(session, foot, use_force=force)[0]
 
 

@@ -1642,6 +1642,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     summary["info"] = summary_info(summary["info"])  # decision E141: W182's, W213's, L210's rows and aid's fixes
+    for p in ("foot", "waist"):  # decision C142: each unit's frame status, a sessions.csv column
+        summary[f"frame_{p}"] = session.frame_status(p)
     if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
         summary["frames_inferred"] = session.frames_inferred
     from pdrlearn.warning_lines import machine_summary

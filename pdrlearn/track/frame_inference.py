@@ -101,6 +101,11 @@ REFUSE_REVERSED = ("foot",)
 #: Decision D22: the declared forward's heading is compared only when it is at least this far from vertical
 #: (deg): a trial's foot unit pitched 64 deg from its declared forward still walked every stride backward.
 MIN_FORWARD_ELEVATION_DEG = 15.0
+#: Decision D28: a declared foot forward whose heading lies more than this many degrees from the strides' direction
+#: is turned, not a nearest-axis declaration: a unit yawed 45 deg on the shoe (the most a nearest-axis declaration is
+#: off) and pitched toes-down by the 60 deg end of FOOT_PITCH_WINDOW_DEG projects to atan(tan 45 / cos 60) = 63.4 deg
+#: from above; a declared lateral axis to 90 deg; midway, 76.7 deg. Geometry, not fitted to a recording.
+MISDECLARED_DEG = (float(np.degrees(np.arctan(1.0 / np.cos(np.radians(FOOT_PITCH_WINDOW_DEG[1]))))) + 90.0) / 2.0
 
 
 class FrameInferenceError(DataError):
@@ -708,12 +713,17 @@ class DeclaredCheck:
     """What the data say of a declared frame (decisions D10, D22): ``message`` the warning or refusal text
     (without the ``meta.json`` location; ``None``: nothing to say), ``refuse`` True when the declared forward
     is reversed against the data, ``unchecked`` why the data could not judge it (the inference's reason;
-    ``None`` when it ran), ``compared`` the directions the data could still compare when it gave up."""
+    ``None`` when it ran), ``compared`` the directions the data could still compare when it gave up,
+    ``forward_deg`` the horizontal angle (deg) between the declared forward and the measured walking direction
+    (``None``: not measured; decision D25 reads it for the waist compass)."""
 
     message: str | None = None
     refuse: bool = False
     unchecked: str | None = None
     compared: tuple[str, ...] = ()
+    forward_deg: float | None = None
+    #: decision C142: a frame the data reject (D23, D28, D30) kept by ``"force_frame"``
+    forced: bool = False
 
     def summary(self) -> str:
         """``info``'s words for a check that raised nothing (decision D22: never "not contradicted" unchecked)."""
@@ -752,6 +762,10 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
     reverse = rev is not None and rev > OPPOSED_DEG
     if reverse and "forward" not in off:  # the heading reversed though the axis is pitched (D22)
         off["forward"] = rev
+    how = misdeclared(declared, found, rev)  # decisions D28, D30: turned, or the vertical axis declared forward
+    if how is not None and "forward" not in off:
+        off["forward"] = directions_off(declared, None, found.forward, 0.0)["forward"]
+    reverse = reverse or how is not None
     if isinstance(session.meta.get("frames"), dict):
         origin = 'declared in "frames"'
     else:
@@ -760,11 +774,25 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
     refuse = reverse and not forced and placement in REFUSE_REVERSED  # D23 amended: the foot only
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
     if refuse and weak_reversal(*evidence):  # decision L223: too little evidence to refuse
-        return DeclaredCheck(weak_reversal_warning(placement, declared, origin, rev, *evidence), False, unchecked,
-                             compared)
+        return DeclaredCheck(weak_reversal_warning(placement, declared, origin, rev, *evidence, how=how), False,
+                             unchecked, compared, rev)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
-                                 unchecked=unchecked)
-    return DeclaredCheck(msg, refuse, unchecked, compared)
+                                 unchecked=unchecked, how=how)
+    return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced)
+
+
+def misdeclared(declared: AxisFrame, found: InferredFrame | None, rev: float | None) -> str | None:
+    """Decisions D28, D30: how a declared frame's forward is wrong though not reversed (D22's ``rev`` at most
+    :data:`OPPOSED_DEG`), when the data fix the frame (``found``): ``"turned by N deg"`` beyond
+    :data:`MISDECLARED_DEG`, ``"the unit's vertical axis"`` when the declared forward lies within
+    :data:`MIN_FORWARD_ELEVATION_DEG` of the measured up (``rev`` None); else ``None``."""
+    if found is None or found.up is None or found.forward is None:
+        return None
+    if rev is None:  # D30: no heading to compare, the declared forward is (near) vertical
+        return "the unit's vertical axis, decision D30"
+    if MISDECLARED_DEG < rev <= OPPOSED_DEG:  # D28
+        return f"turned by {rev:.0f} deg, decision D28"
+    return None
 
 
 def weak_reversal(n_strides: int | None, resultant: float | None) -> bool:
@@ -775,12 +803,15 @@ def weak_reversal(n_strides: int | None, resultant: float | None) -> bool:
     return n_strides < REFUSE_MIN_STRIDES or resultant < REFUSE_MIN_RESULTANT
 
 
-def weak_reversal_warning(placement: str, declared: AxisFrame, origin: str, rev: float, n_strides: int,
-                          resultant: float) -> str:
-    """Decision L223: the line for a declared foot frame that reads reversed on too little evidence: the frame
-    is used, no other frame is suggested, and the likely cause (a walk slower than L95's range) is named."""
-    return (f"the {placement} unit's frame {json.dumps(declared.to_dict())} ({origin}) reads reversed against its "
-            f"data (forward {rev:.0f} deg from the strides' direction), but on too little evidence to refuse it "
+def weak_reversal_warning(placement: str, declared: AxisFrame, origin: str, rev: float | None, n_strides: int,
+                          resultant: float, *, how: str | None = None) -> str:
+    """Decision L223: the line for a declared foot frame that reads reversed (``how``: or turned, or its vertical
+    axis declared forward, D28/D30) on too little evidence: the frame is used, no other frame is suggested, and the
+    likely cause (a walk slower than L95's range) is named."""
+    reads = (f"reads reversed against its data (forward {rev:.0f} deg from the strides' direction)"
+             if how is None else f"reads wrong against its data (its forward is {how})")
+    return (f"the {placement} unit's frame {json.dumps(declared.to_dict())} ({origin}) {reads}, "
+            f"but on too little evidence to refuse it "
             f"(the strides' direction from {n_strides} strides of more than {MIN_STRIDE_M:g} m, resultant "
             f"{resultant:.2f}; decision L223 refuses on at least {REFUSE_MIN_STRIDES} strides and a resultant of "
             f"{REFUSE_MIN_RESULTANT:g}): the meta.json frame is still used. Few long strides with a common direction "
@@ -799,12 +830,13 @@ def _turned(declared: AxisFrame, names: set[str]) -> AxisFrame:
 
 def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredFrame | None, origin: str,
                            used: str = "the meta.json frame", *, off: dict[str, float] | None = None,
-                           refuse: bool = False, unchecked: str | None = None) -> str | None:
+                           refuse: bool = False, unchecked: str | None = None, how: str | None = None) -> str | None:
     """Decision D10's warning for a ``declared`` frame (``origin``: where it was declared) against the frame
     ``found`` in the data (``None``: the data did not fix it), or ``None`` when there is nothing to say. Shared by
     :func:`check_declared_frame` (offline) and the live ``WaistTracker`` (decision B108, ``used``: what it keeps).
     ``off`` (default: D10's disagreement with ``found``) may come from the directions measured when the
-    inference gave up (``unchecked``: its reason); ``refuse`` words it as D22's refusal."""
+    inference gave up (``unchecked``: its reason); ``refuse`` words it as D22's refusal (``how``: D28/D30's words
+    for a forward turned or vertical, :func:`misdeclared`; None: reversed)."""
     if off is None:
         off = frame_disagreement(declared, found) if found is not None else {}
     left_handed = not declared.right_handed
@@ -838,10 +870,22 @@ def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredF
         fix = (f"{fix}; but if the declared axes are right, the accelerometer reports gravity as -1 g (iOS Core "
                f"Motion exports do): negate all three columns of {acc_n}.csv (pdrlearn import --acc=-X,-Y,-Z) "
                "instead, since writing the data's frame would mirror every turn")
-    if refuse:  # decision D22: a reversed track is never what is meant
-        return (f"{what} {' and '.join(issues)}; every stride would be tracked reversed, so it is not used "
+    if refuse:  # decision D22: a reversed track is never what is meant (D28, D30: nor a turned one)
+        tracked = ("reversed" if how is None else f"turned (the declared forward is {how})")
+        return (f"{what} {' and '.join(issues)}; every stride would be tracked {tracked}, so it is not used "
                 f"(decision D23): {fix}; or, to use it anyway, add \"force_frame\": true to meta.json")
     return f"{what} {' and '.join(issues)}; {used} is still used (decision D8): {fix}"
+
+
+def frame_after_negating(session, placement: str, axis: str) -> AxisFrame | None:
+    """Decision D30: the frame the data give (:func:`infer_session_frame`, the first :data:`CHECK_SPAN_S` s) once the
+    ``placement`` unit's ``axis`` ("x", "y" or "z") is negated in all its streams (D11's fix of a mirrored pair);
+    ``None`` when the data do not fix it."""
+    R = np.diag([-1.0 if a == axis else 1.0 for a in "xyz"])
+    try:
+        return infer_session_frame(remount(session, placement, R), placement, max_s=CHECK_SPAN_S).frame
+    except DataError:
+        return None
 
 
 def remount(session, placement: str, rotation: np.ndarray):
@@ -888,6 +932,6 @@ def right_handed_orientations() -> list[np.ndarray]:
 
 __all__ = ["FrameInferenceError", "InferredFrame", "infer_foot_frame", "infer_waist_frame", "frame_from_axes",
            "infer_session_frame", "frame_disagreement", "check_declared_frame", "declared_frame_warning",
-           "DeclaredCheck", "directions_off", "forward_reversal_deg", "OPPOSED_DEG",
+           "DeclaredCheck", "directions_off", "forward_reversal_deg", "OPPOSED_DEG", "MISDECLARED_DEG", "misdeclared",
            "rest_to_rest", "rest_swings", "stride_displacements", "swing_pitch_extremes", "remount",
-           "right_handed_orientations", "INFER", "UNIT_STREAMS"]
+           "frame_after_negating", "right_handed_orientations", "INFER", "UNIT_STREAMS"]

@@ -653,6 +653,12 @@ COMPASS_GYRO_FALLBACK = True
 FALLBACK_DRIFT = True
 
 
+#: decision D25 (docs/decisions/aided.md): the fused / waist heading checks the waist unit's mounting (its compass's
+#: turns against the foot gyroscope's, its declared forward against the walking direction) and on a failure follows
+#: the foot gyroscope's own heading (:mod:`pdrlearn.track.compass_mount`); False = the compass as before
+COMPASS_MOUNT_CHECK = True
+
+
 #: decision L264: L182's check fits its model on windows of this length (s) of straight strides, each on its own:
 #: L17's +-60 s, the span over which the fused heading itself trusts the foot's relative heading against the compass;
 #: a foot heading that drifts over a 30-80 min shift (stairs, turns on the spot) is then judged only over the span
@@ -848,6 +854,27 @@ def require_stride_cover(session: Session, names, command: str = "pdrlearn track
     used = {n for group in GROUP_STREAMS.values() for n in group}
     session.require_cover("fGyroscope", *(n for n in names if n in used and n != "fGyroscope" and n in session),
                           command=command)
+
+
+#: decision L494 (docs/decisions/localization.md): a foot-only heading's 0 is the first walk's direction (W390's
+#: circular mean of the first strides' travel headings), not the foot unit's facing, which a unit yawed on the shoe
+#: turns (trial T3: 20 deg -> 13.24 m off on a 45 m route); False = the unit's facing at the start
+FOOT_WALK_REFERENCE = True
+
+
+def foot_walk_reference(head: np.ndarray, disp: np.ndarray) -> float:
+    """Decision L494: the direction (rad) of the first walk in the strides' foot-only travel headings ``head`` (rad,
+    0 = the foot unit's facing at the start): W390's :func:`~pdrlearn.track.waist.walk_reference` over the strides
+    longer than the frame inference's walking stride (``MIN_STRIDE_M``, D8; horizontal displacement ``disp``, m) as
+    one walking sequence; 0 when :data:`FOOT_WALK_REFERENCE` is off."""
+    if not FOOT_WALK_REFERENCE:
+        return 0.0
+    from pdrlearn.track.frame_inference import MIN_STRIDE_M
+    from pdrlearn.track.waist import walk_reference
+
+    disp = np.asarray(disp, float)
+    head = np.where(np.hypot(disp[:, 0], disp[:, 1]) > MIN_STRIDE_M, np.asarray(head, float), np.nan)
+    return walk_reference(head, [np.arange(len(head) + 1)])  # one sequence: its last index closes it (W390)
 
 
 def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
@@ -1303,7 +1330,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
     bridge_foot_yaw(fd, foot_gaps, (lambda n: (work.streams[n].t, work.streams[n].values)) if bridged else None)
     hsrc = heading or cfg["heading"]
-    hard_iron_info, compass_info = None, None
+    hard_iron_info, compass_info, mount_info = None, None, None
     if hsrc in ("waist", "fused") and not has_waist:
         warnings.append(no_waist_heading(session))
         hsrc = "foot"
@@ -1333,8 +1360,19 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             offset_line = unit_offset_line(session, force_table=seen.get("AccelForceStepDetector"))
             warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)
-        compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
-            work, strides, relative, ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD))
+        straight = ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD)
+        mount_line = None
+        if COMPASS_MOUNT_CHECK and work.has("wMagneticField"):  # decision D25: the waist unit's mounting
+            from pdrlearn.track.compass_mount import mount_check
+
+            mount_line, mount_info = mount_check(work, relative, head, straight)
+            warnings += [mount_line] if mount_line else []
+        if mount_line is not None:  # decision D25: the foot gyroscope's own heading, as heading "foot"
+            compass_line, compass_info = None, None
+            head = relative + initial_heading - foot_walk_reference(relative + side_extra, disp)  # L494
+        else:
+            compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
+                work, strides, relative, straight)
         warnings += [compass_line] if compass_line else []
         fallback = (hsrc == "fused" and compass_line is not None
                     and (COMPASS_GYRO_FALLBACK if compass_fallback is None else compass_fallback))
@@ -1352,13 +1390,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                     "on a shorter one (decision L226, L266, L280)")
             warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
                 f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
-        elif hsrc == "fused":
+        elif hsrc == "fused" and mount_line is None:
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
                                    walking=FUSED_WALKING_CLOCK)  # decision L471
         head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
-        head = fd.foot_heading(initial_heading) + lateral
+        head = fd.foot_heading(0.0) + lateral
+        head = head + initial_heading - foot_walk_reference(head, disp)  # decision L494
     else:
         raise DataError(f"plasys: heading '{hsrc}' is not waist, foot or fused")
     if hsrc in ("waist", "fused") and not SIDE_TRAVEL_HEADING:  # decision L219: a side-stepping stretch is put
@@ -1488,6 +1527,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             "toe_off_source": toe_off_source if toe_off else None,  # decision L388
             "hard_iron": hard_iron_info,  # decision L84 (None: the fit was not asked)
             "compass_check": compass_info,  # decision L182 (None: no compass heading, or too few strides)
+            "compass_mount": mount_info,  # decision D25 (None: no compass heading)
             "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
             # decision L38: strides classified on the streaming segmenter's window / on their own bounds

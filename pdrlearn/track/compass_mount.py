@@ -1,0 +1,84 @@
+"""Decision D25: is the waist unit mounted so that its compass can give the fused track's heading?
+
+Trial T3 (session 38): a mirrored waist unit (x/y swapped, frame inferred) turned the default fused track by about
+180 deg, a waist unit turned on the belt with its belt frame kept by 90-180 deg, exit 0. Two comparisons:
+
+- turns (:func:`turn_mismatch`): between consecutive straight strides across a foot turn of at least
+  :data:`MOUNT_TURN_MIN_DEG`, the waist compass's turn against the foot gyroscope's (a mirrored compass turns the
+  other way: its turns match the mirrored foot turns, which a disturbed field's do not);
+- the waist's forward (:func:`declared_forward_off`): D10's check of a declared waist frame measured the walking
+  direction more than :data:`MOUNT_FORWARD_OFF_DEG` from the declared forward (the compass then reads the heading of
+  another body direction, a constant offset no turn shows).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+#: decision D25: a foot heading change of at least this (deg) between two consecutive straight strides is a turn
+MOUNT_TURN_MIN_DEG = 45.0
+#: decision D25: at least this many turns judge the compass's turns
+MOUNT_MIN_TURNS = 2
+#: decision D25: a median |compass turn - foot turn| over this (deg) fails (a mirrored compass: 180 deg on 90 deg)
+MOUNT_TURN_MISMATCH_DEG = 45.0
+#: decision D25: a declared waist forward measured more than this (deg, horizontal) off fails: halfway to the next
+#: axis, the largest error of a nearest-axis declaration
+MOUNT_FORWARD_OFF_DEG = 45.0
+
+
+def _wrap(a):
+    return (np.asarray(a, float) + np.pi) % (2 * np.pi) - np.pi
+
+
+def turn_mismatch(foot: np.ndarray, compass: np.ndarray, keep: np.ndarray, min_turn_deg: float = MOUNT_TURN_MIN_DEG,
+                  *, mirrored: bool = False) -> tuple[float | None, int]:
+    """Decision D25 (a): the median |wrap(compass turn - foot turn)| (deg) over the turns between consecutive
+    ``keep`` strides (time order) whose ``foot`` heading (rad) changed by at least ``min_turn_deg``, the compass turn
+    being the change of ``compass`` (rad) between the same strides; and the number of turns (None: no turn).
+    ``mirrored``: against the mirrored foot turn, |wrap(compass turn + foot turn)| (D25 amended)."""
+    idx = np.flatnonzero(np.asarray(keep, bool))
+    if len(idx) < 2:
+        return None, 0
+    df = _wrap(np.diff(np.asarray(foot, float)[idx]))
+    dc = _wrap(np.diff(np.asarray(compass, float)[idx]))
+    turn = np.abs(df) >= np.radians(min_turn_deg)
+    if not turn.any():
+        return None, 0
+    sign = -1.0 if mirrored else 1.0
+    return float(np.degrees(np.median(np.abs(_wrap(dc[turn] - sign * df[turn]))))), int(turn.sum())
+
+
+def declared_forward_off(session, placement: str = "waist") -> float | None:
+    """Decision D25 (b): the horizontal angle (deg) D10's check of ``placement``'s declared frame measured between
+    the declared forward and the walking direction; None when the frame is not declared or the data did not fix it."""
+    chk = session.declared_check(placement)
+    return None if chk is None else chk.forward_deg
+
+
+def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray) -> tuple[str | None, dict]:
+    """Decision D25: (a warning line or None, ``info["compass_mount"]``) for a heading that reads the waist compass:
+    the turn mismatch of :func:`turn_mismatch` (with at least :data:`MOUNT_MIN_TURNS` turns) and the declared
+    forward's offset of :func:`declared_forward_off`; the line says the track follows the foot's gyroscope heading."""
+    mismatch, n = turn_mismatch(foot, compass, keep)
+    mirror = turn_mismatch(foot, compass, keep, mirrored=True)[0]
+    off = declared_forward_off(session)
+    info = {"turn_mismatch_deg": mismatch, "mirrored_mismatch_deg": mirror, "n_turns": n,
+            "waist_forward_off_deg": off, "limit_deg": MOUNT_TURN_MISMATCH_DEG,
+            "forward_limit_deg": MOUNT_FORWARD_OFF_DEG, "fallback": False}
+    why = []
+    # D25 amended: a disturbed field (30 uT hard iron) also bends the compass's turns (54.8 deg), but not into the
+    # mirrored foot turns (126.3 deg): only a compass whose turns match the mirrored ones is a mirrored unit
+    if (mismatch is not None and n >= MOUNT_MIN_TURNS and mismatch > MOUNT_TURN_MISMATCH_DEG
+            and mirror <= MOUNT_TURN_MISMATCH_DEG):
+        why.append(f"its compass turns differ from the foot gyroscope's turns by a median {mismatch:.0f} deg over {n} "
+                   f"turns (over {MOUNT_TURN_MISMATCH_DEG:g} deg: the compass turns the other way, the unit's data "
+                   "are mirrored, e.g. two axes swapped)")
+    if off is not None and off > MOUNT_FORWARD_OFF_DEG:
+        why.append(f"its declared forward is {off:.0f} deg from the direction it walks (over "
+                   f"{MOUNT_FORWARD_OFF_DEG:g} deg: the unit is turned on the belt against its declared frame)")
+    if not why:
+        return None, info
+    info["fallback"] = True
+    return ("the waist unit's mounting does not match its frame - " + "; ".join(why) + " - so its compass would "
+            "turn the whole track: this track's heading is the foot gyroscope's own (0 = the foot unit's facing at "
+            "the start, as `--units foot`), not the compass's (decision D25); declare the waist unit's frame as it "
+            "is worn (`pdrlearn info` prints the frame the data give)"), info

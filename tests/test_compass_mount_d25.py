@@ -1,0 +1,68 @@
+"""Decision D25 (trial T3 findings 1 and 5): the fused heading checks the waist unit's mounting before it takes the
+compass - a mirrored waist unit (x/y swapped, frame inferred) or one turned on the belt against its declared frame
+turned the whole default track by 90-180 deg (51-73 m off on a 45 m route, exit 0); with D25 the track follows the
+foot gyroscope's own heading and says so in one line."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
+from pdrlearn.track.compass_mount import turn_mismatch
+
+ROUTE = "stand:3, straight:14, turn:90, straight:8, turn:-90, straight:10, stand:3"
+
+
+def _walk(user: int, **knobs):
+    return simulate_path(parse_route(ROUTE), UserProfile.from_seed(user), rate_hz=100.0, seed=0, scenario="route",
+                         **knobs)
+
+
+def _final_error(session, result) -> float:
+    est = result.trajectory[["x", "y"]].to_numpy(float)
+    true = session.trajectory[["x", "y"]].to_numpy(float)
+    return float(np.hypot(*((est[-1] - est[0]) - (true[-1] - true[0]))))
+
+
+def _swap_waist_xy(session):
+    """The waist unit's x and y columns swapped in every sensor (a mirrored unit), its frame left to the inference."""
+    for name in ("wAccelerometer", "wGyroscope", "wMagneticField"):
+        session.streams[name].values = session.streams[name].values[:, [1, 0, 2]].copy()
+    session.frames.pop("waist", None)
+    return session
+
+
+def test_turn_mismatch_reads_a_mirrored_compass_and_not_an_offset():
+    foot = np.radians(np.r_[np.zeros(8), np.full(4, 90.0), np.zeros(6)])
+    keep = np.ones(len(foot), bool)
+    assert turn_mismatch(foot, -foot + 1.0, keep) == (pytest.approx(180.0), 2)  # mirrored: the other way
+    assert turn_mismatch(foot, foot + 2.5, keep) == (pytest.approx(0.0, abs=1e-9), 2)  # an offset: no mismatch
+    assert turn_mismatch(np.zeros(10), np.zeros(10), np.ones(10, bool)) == (None, 0)  # no turn: nothing judged
+    # D25 amended: a mirrored compass matches the mirrored foot turns; a disturbed one's bent turns do not
+    assert turn_mismatch(foot, -foot + 1.0, keep, mirrored=True)[0] == pytest.approx(0.0, abs=1e-9)
+    bent = foot * 0.2  # a 90 deg turn read as 18 deg (L280's 30 uT loop: -91 -> -17 deg)
+    assert turn_mismatch(foot, bent, keep)[0] > 45.0 and turn_mismatch(foot, bent, keep, mirrored=True)[0] > 45.0
+
+
+@pytest.mark.parametrize("mount", ["z:90", "z:180", "swap"])
+def test_a_turned_or_mirrored_waist_does_not_turn_the_fused_track(mount):
+    from pdrlearn.track.plasys import track_plasys
+
+    s = _swap_waist_xy(_walk(9625)) if mount == "swap" else \
+        _walk(9625, waist_mount_deg=(0.0, 0.0, float(mount.split(":")[1])))
+    r = track_plasys(s)
+    assert _final_error(s, r) < 5.0  # before D25: the track turned by 90-180 deg
+    assert r.info["compass_mount"]["fallback"]
+    line = [w for w in r.info["warnings"] if "decision D25" in w]
+    assert len(line) == 1 and "waist unit's mounting" in line[0] and "foot gyroscope's own" in line[0]
+
+
+def test_a_normal_waist_keeps_the_compass():
+    from pdrlearn.track.plasys import track_plasys
+
+    s = _walk(9626)
+    r = track_plasys(s)
+    assert r.info["compass_mount"]["fallback"] is False and r.info["compass_mount"]["n_turns"] >= 2
+    assert not any("decision D25" in w for w in r.info["warnings"])
