@@ -40,7 +40,7 @@ def test_parse_route_every_kind():
         ("straight:10:brisk", "'brisk' must be a gait"),  # decision S88
         ("turn:0", "non-zero"),
         ("curve:0:2", "non-zero"),
-        ("backward:x", "not a whole number"),
+        ("backward:x", "not a number"),
     ],
 )
 def test_parse_route_refuses_bad_items_in_one_line(spec, message):

@@ -103,7 +103,7 @@ class Backward:
     """``n_steps`` backward steps (the body keeps facing forward). ``direct`` (decision S67): straight out of forward
     level walking, with no closing step and no pause - the foot that landed last steps back past the other one."""
 
-    n_steps: int
+    n_steps: int | float  # decision S89: a fraction is that share of the nominal backward step (0.5: half a step)
     direct: bool = False
 
 
@@ -431,8 +431,8 @@ class _Walker:
             import logging  # for is said (after backward steps there is none: the walker goes on stepping back)
 
             logging.getLogger("pdrlearn.sim").warning(
-                "simulate: backward:%d:direct %s: there is no forward level walking to reverse, so it starts as "
-                "backward:%d does, with S64's stop (a closing step where the feet are apart, then 0.6 s still; "
+                "simulate: backward:%g:direct %s: there is no forward level walking to reverse, so it starts as "
+                "backward:%g does, with S64's stop (a closing step where the feet are apart, then 0.6 s still; "
                 "decision S70)", seg.n_steps, self._no_reversal_why(), seg.n_steps)
         if reverse is None:
             self._change_direction("backward")

@@ -9,7 +9,7 @@
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
 | ``up:N[:RISE:RUN][:step-to-step]`` / ``down:...`` | climb / descend N stairs (0.17 x 0.28 m); ``step-to-step``: S80 |
 | ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
-| ``backward:N[:direct]`` | N backward steps; ``direct``: straight out of forward walking, no stop (S67) |
+| ``backward:N[:direct]`` | N backward steps (N >= 0.25, 0.5: half a step, S89); ``direct``: no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
 | ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
 | ``stand:S`` | stand still S seconds |
@@ -68,6 +68,11 @@ ITEM_EXAMPLES = {"straight": "straight:10", "curve": "curve:90:2", "slope": "slo
                  "backward": "backward:3", "stand": "stand:2"}
 
 
+#: decision S89: the least ``backward:N`` (a quarter of the nominal backward step, ~0.1 m: a shuffle back; an
+#: assumption, no seed gives a shortest step)
+MIN_BACKWARD_STEPS = 0.25
+
+
 def _usage(item: str) -> str:
     """Decision L468: the error line's example for the route ``item``'s kind, the general one for other kinds."""
     kind = str(item).split(":")[0].strip()
@@ -84,6 +89,17 @@ def _number(item: str, text: str, *, integer: bool = False, positive: bool = Tru
         want = "a positive number" if positive else "a finite number"
         raise DataError(f"--route item {item!r}: {text!r} must be {want}; {_usage(item)}")
     return value
+
+
+def _backward_steps(item: str, text: str) -> int | float:
+    """Decision S89: ``backward:N``'s N, a whole number of steps or a fraction of the nominal backward step (0.5 =
+    half a step, taken as one short step); under :data:`MIN_BACKWARD_STEPS` is one line."""
+    n = _number(item, text)
+    if n < MIN_BACKWARD_STEPS:
+        raise DataError(f"--route item {item!r}: {text!r} backward steps is under {MIN_BACKWARD_STEPS:g} of a step "
+                        f"(N counts backward steps of 0.55 x the step length; 0.5 = half a step; decision S89), "
+                        "e.g. 'backward:0.5'")
+    return int(n) if float(n).is_integer() else n
 
 
 def _gait(item: str, parts: list[str], at: int) -> str:
@@ -182,7 +198,7 @@ def parse_route(spec: str) -> list[Segment]:
             if len(parts) > 2 and parts[2].strip().lower() != "direct":  # decision S67
                 raise DataError(f"--route item {item!r}: the option after N is 'direct' (a reversal straight out "
                                 "of forward walking, no stop; decision S67), e.g. 'backward:8:direct'")
-            segments.append(Backward(int(_number(item, parts[1], integer=True)), direct=len(parts) > 2))
+            segments.append(Backward(_backward_steps(item, parts[1]), direct=len(parts) > 2))
         elif kind == "turn":
             _arity(item, parts, (1,))
             angle = _number(item, parts[1], positive=False)

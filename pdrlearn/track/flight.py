@@ -23,7 +23,9 @@ KEYS = ("n_flight_phases", "flight_time_s")
 
 def flight_phases(t, acc) -> list[tuple[float, float]]:
     """Decision W363: ``(start_s, end_s)`` of each run of samples of ``acc`` (n, 3) m/s^2 at times ``t`` (s) whose
-    magnitude is under :data:`FLIGHT_MAX_G` for at least :data:`FLIGHT_MIN_S`."""
+    magnitude is under :data:`FLIGHT_MAX_G` for at least :data:`FLIGHT_MIN_S`: decision W409, its first and last low
+    samples that far apart (a slow walker's late swing dips under 0.3 g for two samples at 20 Hz, which k x dt would
+    count as 0.1 s). ``end_s`` is the last low sample's time plus one sample interval."""
     t = np.asarray(t, float)
     if t.size < 2:
         return []
@@ -33,9 +35,9 @@ def flight_phases(t, acc) -> list[tuple[float, float]]:
     dt = float(np.median(np.diff(t)))
     out = []
     for a, b in runs(low):  # samples a .. b-1 are low
-        start, end = float(t[a]), float(t[b - 1]) + dt
-        if end - start >= FLIGHT_MIN_S - 1e-9:
-            out.append((start, end))
+        start, last = float(t[a]), float(t[b - 1])
+        if last - start >= FLIGHT_MIN_S - 1e-9:  # decision W409: seen under 0.3 g for 0.1 s, not k x dt
+            out.append((start, last + dt))
     return out
 
 

@@ -860,21 +860,25 @@ def require_stride_cover(session: Session, names, command: str = "pdrlearn track
 #: circular mean of the first strides' travel headings), not the foot unit's facing, which a unit yawed on the shoe
 #: turns (trial T3: 20 deg -> 13.24 m off on a 45 m route); False = the unit's facing at the start
 FOOT_WALK_REFERENCE = True
+#: decision L494: the first walk's direction is the circular mean of its first (up to) this many walking strides'
+#: headings (W390's measured count; its lower-back switch was removed, W401)
+WALK_REFERENCE_STRIDES = 4
 
 
 def foot_walk_reference(head: np.ndarray, disp: np.ndarray) -> float:
     """Decision L494: the direction (rad) of the first walk in the strides' foot-only travel headings ``head`` (rad,
-    0 = the foot unit's facing at the start): W390's :func:`~pdrlearn.track.waist.walk_reference` over the strides
-    longer than the frame inference's walking stride (``MIN_STRIDE_M``, D8; horizontal displacement ``disp``, m) as
-    one walking sequence; 0 when :data:`FOOT_WALK_REFERENCE` is off."""
+    0 = the foot unit's facing at the start): the circular mean of the first :data:`WALK_REFERENCE_STRIDES` finite
+    headings of the strides longer than the frame inference's walking stride (``MIN_STRIDE_M``, D8; horizontal
+    displacement ``disp``, m), as W390 read a walk's direction; 0 when there is none or :data:`FOOT_WALK_REFERENCE`
+    is off."""
     if not FOOT_WALK_REFERENCE:
         return 0.0
     from pdrlearn.track.frame_inference import MIN_STRIDE_M
-    from pdrlearn.track.waist import walk_reference
 
     disp = np.asarray(disp, float)
-    head = np.where(np.hypot(disp[:, 0], disp[:, 1]) > MIN_STRIDE_M, np.asarray(head, float), np.nan)
-    return walk_reference(head, [np.arange(len(head) + 1)])  # one sequence: its last index closes it (W390)
+    head = np.asarray(head, float)[np.hypot(disp[:, 0], disp[:, 1]) > MIN_STRIDE_M]
+    head = head[np.isfinite(head)][:WALK_REFERENCE_STRIDES]
+    return float(np.angle(np.mean(np.exp(1j * head)))) if len(head) else 0.0
 
 
 def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
