@@ -47,6 +47,11 @@ class SporadicFixFusion(ParamsMixin):
     heading_drift_rad : standard deviation (rad) of the heading-offset random walk per step.
     initial_sigma_m : start standard deviation (m); default sqrt(P_p(0)) of seed 004.
     fix_sigma_m : per-axis fix standard deviation (m); ``None`` = from each fix's ``accuracy_m``.
+    innovation_gate : decision D31: reject a fix whose normalised innovation squared exceeds the chi-square 0.997
+        quantile (2 degrees of freedom; never two fixes in a row); ``rejected_`` lists them.
+    stretch_to : decision D32: ``"fix"`` (seed 004 eq. 26: the stretched path passes through every fix) or
+        ``"posterior"`` (it ends each segment at the filter's updated estimate, as far toward the fix as its
+        accuracy allows).
     """
 
     def __init__(
@@ -64,6 +69,8 @@ class SporadicFixFusion(ParamsMixin):
         heading_drift_rad: float = _D.heading_drift_rad,
         initial_sigma_m: float = _D.initial_sigma_m,
         fix_sigma_m: float | None = None,
+        innovation_gate: bool = _D.innovation_gate,
+        stretch_to: str = _D.stretch_to,
     ):
         self.period_s = period_s
         self.moving_gap_s = moving_gap_s
@@ -77,6 +84,8 @@ class SporadicFixFusion(ParamsMixin):
         self.heading_drift_rad = heading_drift_rad
         self.initial_sigma_m = initial_sigma_m
         self.fix_sigma_m = fix_sigma_m
+        self.innovation_gate = innovation_gate
+        self.stretch_to = stretch_to
 
     def run(
         self,
@@ -127,6 +136,7 @@ class SporadicFixFusion(ParamsMixin):
         fix_done = np.zeros(len(ft), bool)  # D15: a fix is one measurement, used (or passed over) once
         applied = np.zeros(len(ft), bool)
         superseded = 0
+        self.rejected_ = []  # decision D31: (t, x, y, distance m, per-axis sigma m) of each fix the gate rejected
         for k in range(n):
             t_k, prev_t = float(st.at[k, "end_s"]), s.prev_t
             x_prev = s.predict(float(st.at[k, "length_m"]), float(st.at[k, "heading_rad"]), k + 1)
@@ -157,6 +167,10 @@ class SporadicFixFusion(ParamsMixin):
                         c = min(best, key=lambda c: abs(ft[c] - t_k))
                         fix_done[c] = True
                         z = fxy[c]
+            if c is not None and s.gate(z, float(fsig[c])) is not None:  # decision D31
+                self.rejected_.append((float(ft[c]), float(fxy[c][0]), float(fxy[c][1]),
+                                       float(np.hypot(*(z - s.x))), float(fsig[c])))
+                c = None
             if c is not None:
                 rows, pos = s.correct(z, float(fsig[c]), k + 1)
                 if self.stretch:
@@ -183,7 +197,8 @@ class SporadicFixFusion(ParamsMixin):
         counts["fixes_unused"] = int(unused.sum())
         counts["fixes_outside_track"] = int(outside.sum())
         counts["fixes_superseded"] = superseded
-        counts["fixes_not_queried"] = int(np.sum(unused & ~outside)) - superseded
+        counts["fixes_rejected"] = len(self.rejected_)  # decision D31
+        counts["fixes_not_queried"] = int(np.sum(unused & ~outside)) - superseded - len(self.rejected_)
         self.stats_ = counts
         self.heading_offset_rad_ = offset
         return self

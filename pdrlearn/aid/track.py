@@ -15,7 +15,7 @@ from pdrlearn.aid.gnss import GnssPdrFusion
 from pdrlearn.aid.sporadic import SporadicFixFusion
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
-from pdrlearn.kernels.fixes import initial_fix_sigma
+from pdrlearn.kernels.fixes import FIX_TIME_HINT, initial_fix_sigma
 from pdrlearn.track.base import TrackResult
 
 log = logging.getLogger(__name__)
@@ -77,6 +77,11 @@ def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | Non
     if st["fixes_superseded"]:
         why.append(f"{st['fixes_superseded']} followed by a later fix before the same step ended (the later one "
                    "is used)")
+    if st.get("fixes_rejected"):  # decision D31: each one named
+        from pdrlearn.kernels.fixes import rejected_phrase
+
+        why.append(f"{st['fixes_rejected']} rejected by the innovation gate (more than 3 sigma from the filter's "
+                   f"estimate, decision D31: {rejected_phrase(f.rejected_)})")
     return f"aid: {st['fixes_unused']} of the {n} fixes in {path} not used: " + "; ".join(why)
 
 
@@ -164,8 +169,8 @@ def aid_track(
                 all_outside = True
                 warnings.append(
                     f"aid: none of the {len(fx)} fixes in {path} lies within the track ({t_start:.1f} to "
-                    f"{t_end:.1f} s; fixes at {ft.min():.1f} to {ft.max():.1f} s), so none is used; a fix CSV's t "
-                    "is in seconds on the session clock (the session files' timestamps are milliseconds)"
+                    f"{t_end:.1f} s; fixes at {ft.min():.1f} to {ft.max():.1f} s), so none is used; "
+                    + FIX_TIME_HINT.replace("a fix's t", "a fix CSV's t")
                 )
         info["origin"] = list(origin) if origin else None
         # start known (or local fixes around the track's own origin): 1 m; else the first fix's sigma

@@ -138,6 +138,32 @@ P_P0_M2 = 0.1
 Q_C_M2 = 0.0025
 
 
+#: decision D31: a fix whose normalised innovation squared (chi-square with 2 degrees of freedom: the innovation of
+#: seed 004 eqs. 20-22 with S = P + R) exceeds this is rejected, P(chi2_2 > g) = 0.003, the 3-sigma tail (seeds 001
+#: and 004 gate no fix: project choice)
+GATE_CHI2_2DOF = -2.0 * math.log(0.003)
+
+
+def innovation_nis(x: np.ndarray, P: np.ndarray, z: np.ndarray, sigma_m: float) -> float:
+    """Decision D31: the normalised innovation squared of the fix ``z`` (m, per-axis SD ``sigma_m``) against the
+    state ``x``, ``P``: nu^T (P + sigma^2 I)^-1 nu, nu = z - x (seed 004 eqs. 20-22's innovation and its covariance)."""
+    nu = np.asarray(z, float) - np.asarray(x, float)
+    S = np.asarray(P, float) + np.eye(2) * float(sigma_m) ** 2
+    return float(nu @ np.linalg.solve(S, nu))
+
+
+#: decisions D18, E212: the hint for a fix time outside the walk, offline (`track --fixes`) and live (`add_fix`)
+FIX_TIME_HINT = "a fix's t is in seconds on the session clock (the session files' timestamps are milliseconds)"
+#: decision E212: ``add_fix`` refuses a fix time more than this (s) after the newest pushed sample (a fix in ms)
+FIX_AHEAD_MAX_S = 60.0
+
+
+def rejected_phrase(rejected) -> str:
+    """Decision D31: the rejected fixes ``(t, x, y, distance, sigma)`` named, for the offline and the live line."""
+    return ", ".join(f"t {t:.1f} s at ({x:.1f}, {y:.1f}) {d:.1f} m from the estimate, accuracy "
+                     f"{sg * RADIUS68_PER_SIGMA:.1f} m" for t, x, y, d, sg in rejected)
+
+
 @dataclass(frozen=True)
 class FixConfig:
     """The step EKF's settings, with :class:`pdrlearn.aid.sporadic.SporadicFixFusion`'s defaults (that class takes
@@ -151,6 +177,8 @@ class FixConfig:
     scale_feedback: bool = False
     heading_drift_rad: float = math.radians(0.3)
     initial_sigma_m: float = math.sqrt(P_P0_M2)
+    innovation_gate: bool = False  # decision D31: reject a fix beyond GATE_CHI2_2DOF
+    stretch_to: str = "fix"  # decision D32: the stretched path ends at the "fix" (seed 004 eq. 26) or the "posterior"
 
 
 def sigma_from_accuracy(accuracy_m) -> np.ndarray:
@@ -212,6 +240,7 @@ class StepFixState:
         self.P_anchor = self.P.copy()
         self.prev_t = float(t0)
         self.yaw_corrections = 0
+        self.rejected_last = False  # decision D31: the last fix the gate saw was rejected
 
     def predict(self, length: float, heading: float, row: int) -> np.ndarray:
         """One step (``length`` m, ``heading`` rad ENU) as output row ``row``: the PDR position moves, the EKF
@@ -237,6 +266,19 @@ class StepFixState:
             self._seg_last_head = hc
         return x_prev
 
+    def gate(self, z: np.ndarray, sigma: float) -> float | None:
+        """Decision D31: the fix's normalised innovation squared when the gate (``cfg.innovation_gate``) rejects it,
+        else None. A fix right after a rejected one is never rejected: two fixes in a row beyond the gate say the
+        filter, not the fixes, is wrong (it would otherwise reject every later fix)."""
+        if not getattr(self.cfg, "innovation_gate", False):
+            return None
+        nis = innovation_nis(self.x, self.P, z, sigma)
+        if nis > GATE_CHI2_2DOF and not self.rejected_last:
+            self.rejected_last = True
+            return nis
+        self.rejected_last = False
+        return None
+
     def correct(self, z: np.ndarray, sigma: float, row: int) -> tuple[list[int], np.ndarray]:
         """Adjust at output row ``row`` with the fix ``z`` (m, per-axis SD ``sigma``): the segment since the last
         adjustment is stretched onto it (seed 004 eqs. 24-26), its yaw (eq. 28) and, optionally, its speed scale
@@ -250,6 +292,12 @@ class StepFixState:
         stretched, _, theta_bar = stretch_segment(inc, self.l_start, l_end)
         rows = list(self.seg_rows)
         pos = self.anchor_xy + self.l_start + np.cumsum(stretched, axis=0)
+        if getattr(c, "stretch_to", "fix") == "posterior" and len(inc):
+            # decision D32: stretched from posterior to posterior (seed 004 eq. 26 with l = the EKF's correction,
+            # K nu of eqs. 20-22, instead of the whole fix - estimate): a fix moves the path as far as its accuracy
+            # against the filter's covariance allows
+            x_post = kf_update(self.x, self.P, z, np.array([sigma]))[0]
+            pos = self.anchor_xy + np.cumsum(stretch_segment(inc, np.zeros(2), x_post - self.x)[0], axis=0)
         if c.yaw_feedback is not None and len(inc):
             lens = np.hypot(inc[:, 0], inc[:, 1])
             dth = wrap_angle(theta_bar - np.asarray(self.seg_head))
@@ -332,6 +380,7 @@ class LiveFixes:
         self._k = 0
         self._pending: list[tuple[float, np.ndarray, float]] = []  # (t, (x, y), sigma), in the order pushed
         self.read = self.used = self.superseded = self.late = 0
+        self.rejected: list[tuple[float, float, float, float, float]] = []  # decision D31, as SporadicFixFusion's
 
     def add(self, t: float, xy: np.ndarray, sigma: float) -> None:
         self.read += 1
@@ -362,9 +411,13 @@ class LiveFixes:
             self.superseded += len(inside) - 1
             t_from = max(s.prev_t, start_s)
             z = fix_at_step(self._pending[c][1], self._pending[c][0], end_s, t_from, s.x - x_prev)
-            s.correct(z, self._pending[c][2], self._k)
-            self.used += 1
-            used = True
+            if s.gate(z, self._pending[c][2]) is not None:  # decision D31
+                f = self._pending[c]
+                self.rejected.append((f[0], float(f[1][0]), float(f[1][1]), float(np.hypot(*(z - s.x))), f[2]))
+            else:
+                s.correct(z, self._pending[c][2], self._k)
+                self.used += 1
+                used = True
             drop = set(inside.tolist())
             self._pending = [f for i, f in enumerate(self._pending) if i not in drop]
         s.prev_t = float(end_s)
@@ -373,7 +426,9 @@ class LiveFixes:
     def stats(self) -> dict:
         """``fixes_read``, ``fixes_used``, ``fixes_unused`` (= read - used) split into ``fixes_superseded`` (a later
         fix in the same step), ``fixes_outside_track`` (before the first step, or after the last so far: still
-        pending) and ``fixes_late`` (pushed after the step its time falls in was reported, D20)."""
+        pending), ``fixes_late`` (pushed after the step its time falls in was reported, D20) and ``fixes_rejected``
+        (the innovation gate's, D31)."""
         outside = getattr(self, "outside_before", 0) + len(self._pending)
         return {"fixes_read": self.read, "fixes_used": self.used, "fixes_unused": self.read - self.used,
-                "fixes_superseded": self.superseded, "fixes_outside_track": outside, "fixes_late": self.late}
+                "fixes_superseded": self.superseded, "fixes_outside_track": outside, "fixes_late": self.late,
+                "fixes_rejected": len(self.rejected)}

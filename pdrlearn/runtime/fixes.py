@@ -48,17 +48,41 @@ class FixInput:
         if not all(math.isfinite(v) for v in (t, x, y, s)) or s <= 0:
             raise DataError(f"add_fix(t={t}, x={x}, y={y}): t, x, y must be finite and the accuracy > 0 m; drop "
                             "this fix")
+        from pdrlearn.kernels.fixes import FIX_AHEAD_MAX_S, FIX_TIME_HINT
+
+        now = self._pushed_until()
+        if now is not None and t > now + FIX_AHEAD_MAX_S:  # decision E212: refused now, not held until flush()
+            raise DataError(f"add_fix(t={t:g}, x={x:g}, y={y:g}): t is {t - now:.0f} s after the newest pushed sample "
+                            f"({now:.1f} s): {FIX_TIME_HINT}; give t in seconds (t={t / 1000.0:g} if it was ms)")
         self._fixes.add(t, (x, y), s)
+
+    def _pushed_until(self) -> float | None:
+        """Decision E212: the time (s) of the newest pushed sample (the foot Tracker's ``_latest``, the waist
+        stream's ``_last_t``), None before any."""
+        for name in ("_latest", "_last_t"):
+            v = getattr(self, name, None)
+            if v is not None and math.isfinite(v):
+                return float(v)
+        return None
 
     def fix_stats(self) -> dict:
         """The fix counters of ``track --fixes``' summary (decision D17): ``fixes_read``, ``fixes_used``,
-        ``fixes_unused`` = ``fixes_superseded`` + ``fixes_outside_track`` + ``fixes_late`` (D20)."""
+        ``fixes_unused`` = ``fixes_superseded`` + ``fixes_outside_track`` + ``fixes_late`` (D20) + ``fixes_rejected``
+        (D31)."""
         return self._fixes.stats()
 
     def _fuse_step(self, start_s: float, end_s: float, length: float, heading: float):
         """The step's fused position (x, y), or None while no fix has been used (the step keeps its PDR position,
         which the filter's estimate equals to rounding until then)."""
+        n_rejected = len(self._fixes.rejected)
         xy, _ = self._fixes.step(start_s, end_s, length, heading)
+        if len(self._fixes.rejected) > n_rejected:  # decision D31: each rejected fix named as it is rejected
+            from pdrlearn.kernels.fixes import rejected_phrase
+
+            msg = (f"fix rejected by the innovation gate (more than 3 sigma from the filter's estimate, decision "
+                   f"D31): {rejected_phrase(self._fixes.rejected[n_rejected:])}")
+            self.warnings.append(msg)
+            log.warning("%s", msg)
         if self._fixes.used:
             self.fix_position = (float(xy[0]), float(xy[1]))
             return self.fix_position
@@ -72,7 +96,8 @@ class FixInput:
         self._fix_warned = True
         why = [f"{st[k]} {what}" for k, what in (("fixes_superseded", "superseded by a later fix in the same step"),
                                                   ("fixes_outside_track", "outside the tracked steps"),
-                                                  ("fixes_late", "pushed after their step was reported (D20)"))
+                                                  ("fixes_late", "pushed after their step was reported (D20)"),
+                                                  ("fixes_rejected", "rejected by the innovation gate (D31)"))
                if st[k]]
         msg = f"{st['fixes_unused']} of {st['fixes_read']} fixes not used: {', '.join(why)}"
         self.warnings.append(msg)

@@ -548,6 +548,10 @@ class Tracker(FixInput):
         frames = frames or m["frames"]
         self.forward = {p: forward_vector(f) for p, f in frames.items()}
         self.warnings: list[str] = []
+        from pdrlearn.runtime.rides import BAROMETERS, RideWatch
+
+        baro = next((n for n in BAROMETERS if n in self.used_sensors), None)
+        self._rides = RideWatch(baro) if baro is not None else None  # decision E211: each ride not counted, named
         self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
@@ -975,6 +979,8 @@ class Tracker(FixInput):
                             self._latest = t0
                         continue
                 self._append(name, t, v)
+            if self._rides is not None and self._rides.name in samples:  # decision E211
+                self._rides.push(*samples[self._rides.name])
         for msg in self._frozen.push(checked, fast):  # decision B120: a frozen sensor, one warning per run
             self._warn(msg)
         if self._frozen_foot is not None:  # decision B213: B203's frozen foot IMU, live
@@ -1405,6 +1411,10 @@ class Tracker(FixInput):
         self._kept = (step.end_s, step.heading_rad, (step.x, step.y, step.z),  # L97: a zeroed stride ends none
                       (step.start_s, step.end_s, math.nan if step.impossible else step.event_s))
         self._row_gaps = [g for g in self._row_gaps if g[1] > step.end_s]
+        if self._rides is not None:  # decision E211: a ride in the standstill before it (none after a gap row)
+            ride = self._rides.line(step.start_s if prev is None else prev[1], step.start_s)
+            if ride is not None:
+                self._warn(ride)
         out.append(step)
         for st in out:  # decisions D19-D21: the fixes added so far, used at the step their time falls in
             fused = self._fuse_step(st.start_s, st.end_s, st.length_m, st.heading_rad)
