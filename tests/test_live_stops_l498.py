@@ -1,0 +1,61 @@
+"""Decision L498 (session 38, trial T5 finding 1): the streamed waist turn between two strides covers the whole stop
+(up to 60 s), so the pelvis's turn back into its rest early in a stop is not lost at every stop of 3 s or more."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from pdrlearn.kernels import stride as K
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _waist_stop(stop_s: float, turn_rad: float = 0.05):
+    """A waist at rest (gravity on +z) that turns ``turn_rad`` about the vertical in the first 0.5 s of a stop of
+    ``stop_s`` s between a stride ending at 10 s and the next starting at 10 + stop_s (100 Hz)."""
+    t = np.arange(9.0, 10.0 + stop_s + 0.5, 0.01)
+    gyr = np.zeros((len(t), 3))
+    gyr[(t >= 10.0) & (t < 10.5), 2] = turn_rad / 0.5
+    acc = np.tile([0.0, 0.0, 9.80665], (len(t), 1))
+    streams = {"wGyroscope": (t, gyr), "wAccelerometer": (t, acc)}
+    return streams.__getitem__, 10.0, 10.0 + stop_s
+
+
+@pytest.mark.parametrize("stop_s", [1.0, 3.0, 10.0, 59.0])
+def test_waist_gap_yaw_keeps_a_turn_early_in_a_stop_l498(stop_s, monkeypatch):
+    stream, t_end, t_next = _waist_stop(stop_s)
+    assert K.WAIST_GAP_WHOLE is True
+    assert K.waist_gap_max_s(t_end, t_next) == pytest.approx(stop_s)
+    got = K.stride_gap_yaw(None, "waist-gyro", stream, t_end, t_next, waist=True)  # the runtime's call
+    assert got == pytest.approx(0.05, abs=2e-3)  # L31's last second alone: 0 for the 3-59 s stops
+    monkeypatch.setattr(K, "WAIST_GAP_WHOLE", False)
+    assert K.waist_gap_max_s(t_end, t_next) == K.GAP_YAW_MAX_S
+
+
+def test_a_rest_over_a_minute_keeps_the_last_second_l498():
+    stream, t_end, t_next = _waist_stop(120.0)
+    assert K.waist_gap_max_s(t_end, t_next) == K.GAP_YAW_MAX_S  # E205's radius skips exactly these gaps
+    assert K.stride_gap_yaw(None, "waist-gyro", stream, t_end, t_next, waist=True) == 0.0
+
+
+def test_streamed_heading_does_not_step_at_each_stop_l498(tmp_path):
+    """End to end: a slow walk with five stops of 3-10 s (user 9750) through `run`'s replay of the shipped bundle:
+    the heading after the last stop is within 2 deg of the heading after the first stride (before L498 it fell
+    2-3 deg at every stop of 3 s or more: about -11 deg here)."""
+    import pandas as pd
+
+    from pdrlearn.cli import main
+
+    walk = tmp_path / "walk"
+    route = ("stand:3, straight:6, stand:3, straight:6, stand:5, straight:6, stand:10, straight:6, stand:4, "
+             "straight:6, stand:3, straight:6, stand:3")
+    assert main(["simulate", "--route", route, "--step-length", "0.5", "--step-time", "0.7", "--bounce", "pendulum",
+                 "--user-seed", "9750", "--out", str(walk)]) == 0
+    assert main(["run", str(ROOT / "models" / "plasys-sim-default"), str(walk), "--out", str(tmp_path / "o")]) == 0
+    h = np.degrees(pd.read_csv(tmp_path / "o" / "steps.csv")["heading_rad"].to_numpy())
+    assert len(h) > 20
+    assert math.fabs(np.median(h[-5:]) - np.median(h[1:5])) < 2.0, h.round(1)
