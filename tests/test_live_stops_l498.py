@@ -59,3 +59,34 @@ def test_streamed_heading_does_not_step_at_each_stop_l498(tmp_path):
     h = np.degrees(pd.read_csv(tmp_path / "o" / "steps.csv")["heading_rad"].to_numpy())
     assert len(h) > 20
     assert math.fabs(np.median(h[-5:]) - np.median(h[1:5])) < 2.0, h.round(1)
+
+
+def _live_steps(walk: Path, chunk_s: float):
+    from pdrlearn.runtime import Tracker, load_bundle
+    from pdrlearn.runtime.replay import read_streams, replay_chunks
+
+    bundle = load_bundle(ROOT / "models" / "plasys-sim-default")
+    tracker = Tracker(bundle)
+    streams, _ = read_streams(walk, bundle)
+    steps = [s for chunk in replay_chunks(streams, chunk_s) for s in tracker.push(chunk)]
+    return tracker, steps + list(tracker.flush())
+
+
+def test_turns_read_from_turn_and_pivot_e210(tmp_path):
+    """E210: an app pushing 0.1 s chunks announces turns from turn_angle_rad + pivot_rad (the heading unit's change,
+    = Tracker.heading's), as docs/deploying.md shows; and L498: a 10 s stop's samples stay buffered live, so the
+    0.1 s chunks give the heading one whole push gives."""
+    from pdrlearn.cli import main
+
+    walk = tmp_path / "walk"
+    assert main(["simulate", "--route", "stand:3, straight:6, stand:10, straight:4, turn:90, straight:4, stand:3",
+                 "--step-length", "0.5", "--step-time", "0.7", "--bounce", "pendulum", "--user-seed", "9751",
+                 "--out", str(walk)]) == 0
+    tracker, steps = _live_steps(walk, 0.1)
+    turned = sum(s.turn_angle_rad + s.pivot_rad for s in steps)
+    assert turned == pytest.approx(tracker.heading, abs=1e-6)  # initial heading 0
+    assert 60.0 < math.degrees(turned) < 120.0
+    whole, steps_whole = _live_steps(walk, 1e6)
+    assert [round(s.heading_rad, 6) for s in steps] == [round(s.heading_rad, 6) for s in steps_whole]
+    text = (ROOT / "docs" / "deploying.md").read_text()
+    assert "Announcing turns live" in text and "turn_angle_rad + step.pivot_rad" in text
