@@ -90,3 +90,28 @@ def test_turns_read_from_turn_and_pivot_e210(tmp_path):
     assert [round(s.heading_rad, 6) for s in steps] == [round(s.heading_rad, 6) for s in steps_whole]
     text = (ROOT / "docs" / "deploying.md").read_text()
     assert "Announcing turns live" in text and "turn_angle_rad + step.pivot_rad" in text
+
+
+def test_live_tracker_keeps_a_stops_samples_for_the_waist_gap_yaw_l498(tmp_path):
+    """L498: pushed in 0.1 s chunks, the Tracker still holds the waist's samples from the last stride's end 10 s into
+    a 12 s stop (before: trimmed to buffer_s = 8 s, so a turn early in the stop was lost live)."""
+    from pdrlearn.cli import main
+    from pdrlearn.runtime import Tracker, load_bundle
+    from pdrlearn.runtime.replay import read_streams, replay_chunks
+
+    walk = tmp_path / "walk"
+    assert main(["simulate", "--route", "stand:3, straight:6, stand:12, straight:4, stand:3", "--step-length", "0.5",
+                 "--step-time", "0.7", "--bounce", "pendulum", "--user-seed", "9752", "--out", str(walk)]) == 0
+    bundle = load_bundle(ROOT / "models" / "plasys-sim-default")
+    tracker = Tracker(bundle)
+    streams, _ = read_streams(walk, bundle)
+    checked = False
+    for chunk in replay_chunks(streams, 0.1):
+        tracker.push(chunk)
+        end = tracker._prev_end
+        if end is not None and tracker._latest - end > 10.0:
+            t, _ = tracker._buf["wGyroscope"].view()
+            assert t[0] <= end, (t[0], end)
+            checked = True
+            break
+    assert checked
