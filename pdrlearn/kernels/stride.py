@@ -29,6 +29,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
 from pdrlearn.kernels.contact import MAX_STRIDE_S
 from pdrlearn.kernels.histospline import upsample_block_means
+from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
 from pdrlearn.kernels.window import BRIDGE_GAP_S, TIE_S, Levelled, foot_levelled, interp, resample, segment
 
 # -- length-class bounds -------------------------------------------------------------------------------
@@ -403,6 +404,18 @@ def gap_yaw(t_gyr: np.ndarray, gyr: np.ndarray, t_acc: np.ndarray, acc: np.ndarr
 #: Decision L61: the waist's turn between strides is integrated ungated (the waist-gyro heading inside a
 #: stride integrates every sample; L31's 0.4 rad/s gate is a still foot's rule)
 WAIST_GAP_STILL_RAD_S = 0.0
+#: Decision L498: the waist's turn between strides covers the whole gap since the last stride's end when the gap
+#: lasts up to L296's ``REST_BIAS_MIN_S`` (the pelvis turns back into its rest early in a stop); False = L31's last
+#: :data:`GAP_YAW_MAX_S` only
+WAIST_GAP_WHOLE = True
+
+
+def waist_gap_max_s(prev_end: float, t0: float) -> float:
+    """Decision L498: how far back (s) the waist's gap yaw looks from a stride's start ``t0``: the whole gap since
+    ``prev_end`` up to ``rest_heading.REST_BIAS_MIN_S`` (60 s, L296 / W72: the offline waist integrates such a stop
+    whole), else L31's :data:`GAP_YAW_MAX_S`."""
+    gap = float(t0) - float(prev_end)
+    return gap if WAIST_GAP_WHOLE and gap <= REST_BIAS_MIN_S else GAP_YAW_MAX_S
 
 
 def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[str], tuple[np.ndarray, np.ndarray]],
@@ -420,7 +433,8 @@ def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[st
         return gap_yaw(*stream("fGyroscope"), *stream("fAccelerometer"), prev_end, t0) if foot else 0.0
     if not waist:
         return 0.0
-    return gap_yaw(*stream("wGyroscope"), *stream("wAccelerometer"), prev_end, t0, still_rad_s=WAIST_GAP_STILL_RAD_S)
+    return gap_yaw(*stream("wGyroscope"), *stream("wAccelerometer"), prev_end, t0, still_rad_s=WAIST_GAP_STILL_RAD_S,
+                   max_s=waist_gap_max_s(prev_end, t0))  # decision L498
 
 
 def waist_bridge_yaw(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> float:

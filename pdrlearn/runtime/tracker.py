@@ -63,6 +63,7 @@ from pdrlearn.kernels.stride import (
     stride_rules_one,
     travel_sign_one,
     waist_bridge_yaw,
+    waist_gap_max_s,
 )
 from pdrlearn.kernels.window import (
     BOUNDARIES,
@@ -1911,6 +1912,9 @@ class Tracker(FixInput):
             keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
         if self._prev_end is not None and any(g[2] and g[3] for g in self._foot_gaps):  # decision L91: the waist's
             keep_from = min(keep_from, self._prev_end - _LOOK_BACK_S)  # turn from the last stride's end is bridged
+        elif self._prev_end is not None and self.waist_gap_yaw and "waist" in self.units \
+                and waist_gap_max_s(self._prev_end, self._latest) > GAP_YAW_MAX_S:  # decision L498: a stop up to 60 s
+            keep_from = min(keep_from, self._prev_end - _LOOK_BACK_S)  # keeps its samples for the waist's gap yaw
         keep_from = min(keep_from, self._foot_silent_keep())  # decision E113
         if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return
