@@ -45,7 +45,7 @@ def counts(session) -> list[tuple]:
 
 def line(name: str, c: list[tuple]) -> str:
     return name + ": " + "; ".join(f"{r[0]} {b} bouts, {p} pauses ({t} s), walking {w} s"
-                                   for r, (b, p, t, w) in zip(RULES, c))
+                                   for r, (b, p, t, w) in zip(RULES, c, strict=True))
 
 
 def main() -> None:

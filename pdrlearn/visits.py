@@ -216,7 +216,8 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
             row = {"subject": subject, "visit": visit, "visit_as_written": _names(at["visit_as_written"]),
                    "group": "; ".join(dict.fromkeys(at["group"].astype(str))),
                    # decision B393: a split part at rest (B389's skipped) is neither tracked nor failed
-                   "n_tracked": len(ok), "n_failed": int((at["status"] != SKIPPED).sum()) - len(ok), "paths": "; ".join(at["path"].astype(str)),
+                   "n_tracked": len(ok), "n_failed": int((at["status"] != SKIPPED).sum()) - len(ok),
+                   "paths": "; ".join(at["path"].astype(str)),
                    "distance_m": total("distance_m"), "n_bouts": total("n_bouts"), "walking_time_s": t,
                    "n_steps": total("bouts_n_steps"), "n_strides": total("bouts_n_strides"),
                    "bouts_distance_m": total("bouts_distance_m")}

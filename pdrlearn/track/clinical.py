@@ -267,7 +267,7 @@ def movement_windows(st: pd.DataFrame) -> np.ndarray:
     start, end = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
     ok = _valid(st) & np.isfinite(start) & np.isfinite(end) & (end > start)
     out, first, last = [], None, None
-    for a, b, good in zip(start.tolist(), end.tolist(), ok.tolist()):
+    for a, b, good in zip(start.tolist(), end.tolist(), ok.tolist(), strict=True):
         if not good:
             if first is not None:
                 out.append(last - first)
