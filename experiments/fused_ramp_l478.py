@@ -82,14 +82,20 @@ def main() -> None:
     ap.add_argument("--out", type=Path, required=True)
     a = ap.parse_args()
     a.out.mkdir(parents=True, exist_ok=True)
+    report([(kind, u) for kind, us in (("T", users(a.route_users)), ("H", users(a.route_users)),
+                                       ("D", users(a.d_users))) for u in us], a.out, session)
+
+
+def report(todo: list[tuple[str, int]], root: Path, track) -> None:
+    """Each (set, user) of ``todo`` tracked by ``track(set, user, root)`` (a dict code -> :func:`measure`), one
+    printed line per session, then the false ramps of T and H and the mean errors per set and code (L478, L502)."""
     table = []
-    for kind, us in (("T", users(a.route_users)), ("H", users(a.route_users)), ("D", users(a.d_users))):
-        for u in us:
-            r = session(kind, u, a.out)
-            table += [{"set": kind, "user": u, "code": k, **v} for k, v in r.items()]
-            print(kind, u, "; ".join(f"{k} false {v['false_n']} ({v['false_rise']:.2f} m) alt err "
-                                     f"{v['alt_err']:.3f} ascent err {v['ascent_err']:.3f}" for k, v in r.items()),
-                  flush=True)
+    for kind, u in todo:
+        r = track(kind, u, root)
+        table += [{"set": kind, "user": u, "code": k, **v} for k, v in r.items()]
+        print(kind, u, "; ".join(f"{k} false {v['false_n']} ({v['false_rise']:.2f} m) alt err "
+                                 f"{v['alt_err']:.3f} ascent err {v['ascent_err']:.3f}" for k, v in r.items()),
+              flush=True)
     df = pd.DataFrame(table)
     tr = df[df["set"].isin(["T", "H"])].groupby("code")[["false_n", "false_rise"]].sum()
     print("routes T+H false ramps (count, summed |rise| m):\n" + tr.to_string())
