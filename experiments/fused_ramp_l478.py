@@ -61,17 +61,29 @@ def measure(sim: Path, out: Path) -> dict:
             "ascent_err": abs(float(summary["ascent_m"]) - float(h[h > 0].sum()))}
 
 
-def session(kind: str, user: int, root: Path) -> dict:
+#: L478's codes: (tag, the kernels.barometer settings it tracks with)
+CODES = (("old", {"FUSED_CLIMB_BIAS": False}), ("new", {"FUSED_CLIMB_BIAS": True}))
+
+
+def session(kind: str, user: int, root: Path, codes=CODES, routes=None) -> dict:
+    """One simulated session of set ``kind`` (a route of ``routes``, default :data:`ROUTES`, or scenario D) tracked
+    with ``--altitude fused`` once per code (L478; L502 passes its four), the settings put back after."""
     sim = root / f"{kind}_u{user}"
     if not (sim / "meta.json").exists():
-        what = ["--scenario", "D"] if kind == "D" else ["--route", ROUTES[kind]]
+        what = ["--scenario", "D"] if kind == "D" else ["--route", (routes or ROUTES)[kind]]
         run(["simulate", *what, "--user-seed", str(user), "--out", str(sim), "--force"])
     rows = {}
-    for tag, on in (("old", False), ("new", True)):
-        barometer.FUSED_CLIMB_BIAS = on
-        out = root / f"{kind}_u{user}_{tag}"
-        run(["track", str(sim), "--altitude", "fused", "--out", str(out), "--force"])
-        rows[tag] = measure(sim, out)
+    for tag, settings in codes:
+        before = {k: getattr(barometer, k) for k in settings}
+        for k, v in settings.items():
+            setattr(barometer, k, v)
+        try:
+            out = root / f"{kind}_u{user}_{tag}"
+            run(["track", str(sim), "--altitude", "fused", "--out", str(out), "--force"])
+            rows[tag] = measure(sim, out)
+        finally:
+            for k, v in before.items():
+                setattr(barometer, k, v)
     return rows
 
 

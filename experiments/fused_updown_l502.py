@@ -17,7 +17,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fused_ramp_l478 import ROUTES, measure, report, run  # noqa: E402
+from fused_ramp_l478 import ROUTES, report  # noqa: E402
+from fused_ramp_l478 import session as l478_session  # noqa: E402
 from slopes import users  # noqa: E402
 
 from pdrlearn.kernels import barometer  # noqa: E402
@@ -28,18 +29,8 @@ CODES = (("off", False, "one"), ("one", True, "one"), ("split", True, "split"), 
 
 
 def session(kind: str, user: int, root: Path) -> dict:
-    sim = root / f"{kind}_u{user}"
-    if not (sim / "meta.json").exists():
-        what = ["--scenario", "D"] if kind == "D" else ["--route", ROUTES[kind]]
-        run(["simulate", *what, "--user-seed", str(user), "--out", str(sim), "--force"])
-    rows = {}
-    for tag, on, mode in CODES:
-        barometer.FUSED_CLIMB_BIAS, barometer.FUSED_CLIMB_BIAS_MODE = on, mode
-        out = root / f"{kind}_u{user}_{tag}"
-        run(["track", str(sim), "--altitude", "fused", "--out", str(out), "--force"])
-        rows[tag] = measure(sim, out)
-    barometer.FUSED_CLIMB_BIAS, barometer.FUSED_CLIMB_BIAS_MODE = True, "one"
-    return rows
+    return l478_session(kind, user, root, codes=[(tag, {"FUSED_CLIMB_BIAS": on, "FUSED_CLIMB_BIAS_MODE": mode})
+                                                 for tag, on, mode in CODES], routes=ROUTES)
 
 
 def kernel_case(over: float, n_up: int, n_level: int, n_down: int, on: bool, mode: str,
