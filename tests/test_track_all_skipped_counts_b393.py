@@ -54,3 +54,17 @@ def test_all_rest_split_and_skipped_part_beside_a_failure(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "every session failed (1 split part at rest skipped); first error: part_001:" in err
     assert not out.exists()
+
+
+def test_a_visit_of_only_skipped_parts_is_missing_not_failed():
+    from pdrlearn.visits import _side
+
+    rows = pd.DataFrame({"path": ["v2/part_000", "v2/part_001"], "status": ["skipped", "skipped"],
+                         "pipeline": ["plasys", None], "distance_m": [None, None]})
+    status, reason, row = _side(rows, "v2", ["distance_m"])
+    assert (status, row) == ("missing", None)  # old code: "failed", "v2: v2/part_000, v2/part_001 failed"
+    assert reason == "v2: no session tracked (2 split parts at rest skipped)"
+    status, reason, row = _side(pd.concat([rows, pd.DataFrame({"path": ["v2/part_002"], "status": ["ok"],
+                                                               "pipeline": ["plasys"], "distance_m": [12.0]})]),
+                                "v2", ["distance_m"])
+    assert status == "ok" and reason is None and row["distance_m"] == 12.0  # the one tracked part, nothing failed
