@@ -61,17 +61,29 @@ def measure(sim: Path, out: Path) -> dict:
             "ascent_err": abs(float(summary["ascent_m"]) - float(h[h > 0].sum()))}
 
 
-def session(kind: str, user: int, root: Path) -> dict:
+#: L478's codes: (tag, the kernels.barometer settings it tracks with)
+CODES = (("old", {"FUSED_CLIMB_BIAS": False}), ("new", {"FUSED_CLIMB_BIAS": True}))
+
+
+def session(kind: str, user: int, root: Path, codes=CODES, routes=None) -> dict:
+    """One simulated session of set ``kind`` (a route of ``routes``, default :data:`ROUTES`, or scenario D) tracked
+    with ``--altitude fused`` once per code (L478; L502 passes its four), the settings put back after."""
     sim = root / f"{kind}_u{user}"
     if not (sim / "meta.json").exists():
-        what = ["--scenario", "D"] if kind == "D" else ["--route", ROUTES[kind]]
+        what = ["--scenario", "D"] if kind == "D" else ["--route", (routes or ROUTES)[kind]]
         run(["simulate", *what, "--user-seed", str(user), "--out", str(sim), "--force"])
     rows = {}
-    for tag, on in (("old", False), ("new", True)):
-        barometer.FUSED_CLIMB_BIAS = on
-        out = root / f"{kind}_u{user}_{tag}"
-        run(["track", str(sim), "--altitude", "fused", "--out", str(out), "--force"])
-        rows[tag] = measure(sim, out)
+    for tag, settings in codes:
+        before = {k: getattr(barometer, k) for k in settings}
+        for k, v in settings.items():
+            setattr(barometer, k, v)
+        try:
+            out = root / f"{kind}_u{user}_{tag}"
+            run(["track", str(sim), "--altitude", "fused", "--out", str(out), "--force"])
+            rows[tag] = measure(sim, out)
+        finally:
+            for k, v in before.items():
+                setattr(barometer, k, v)
     return rows
 
 
@@ -82,14 +94,20 @@ def main() -> None:
     ap.add_argument("--out", type=Path, required=True)
     a = ap.parse_args()
     a.out.mkdir(parents=True, exist_ok=True)
+    report([(kind, u) for kind, us in (("T", users(a.route_users)), ("H", users(a.route_users)),
+                                       ("D", users(a.d_users))) for u in us], a.out, session)
+
+
+def report(todo: list[tuple[str, int]], root: Path, track) -> None:
+    """Each (set, user) of ``todo`` tracked by ``track(set, user, root)`` (a dict code -> :func:`measure`), one
+    printed line per session, then the false ramps of T and H and the mean errors per set and code (L478, L502)."""
     table = []
-    for kind, us in (("T", users(a.route_users)), ("H", users(a.route_users)), ("D", users(a.d_users))):
-        for u in us:
-            r = session(kind, u, a.out)
-            table += [{"set": kind, "user": u, "code": k, **v} for k, v in r.items()]
-            print(kind, u, "; ".join(f"{k} false {v['false_n']} ({v['false_rise']:.2f} m) alt err "
-                                     f"{v['alt_err']:.3f} ascent err {v['ascent_err']:.3f}" for k, v in r.items()),
-                  flush=True)
+    for kind, u in todo:
+        r = track(kind, u, root)
+        table += [{"set": kind, "user": u, "code": k, **v} for k, v in r.items()]
+        print(kind, u, "; ".join(f"{k} false {v['false_n']} ({v['false_rise']:.2f} m) alt err "
+                                 f"{v['alt_err']:.3f} ascent err {v['ascent_err']:.3f}" for k, v in r.items()),
+              flush=True)
     df = pd.DataFrame(table)
     tr = df[df["set"].isin(["T", "H"])].groupby("code")[["false_n", "false_rise"]].sum()
     print("routes T+H false ramps (count, summed |rise| m):\n" + tr.to_string())

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 
-from pdrlearn.cohort import GROUP_METRICS, natural_key, t_interval
+from pdrlearn.cohort import GROUP_METRICS, SKIPPED, natural_key, t_interval
 
 #: changes.csv's leading columns (decision C22; C82: the visits as meta.json wrote them; C83: the trials averaged);
 #: ``<measure>_baseline``, ``<measure>_change`` and ``<measure>_change_pct`` (C81) follow per measure
@@ -215,7 +215,9 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
             t = total("bouts_time_s")
             row = {"subject": subject, "visit": visit, "visit_as_written": _names(at["visit_as_written"]),
                    "group": "; ".join(dict.fromkeys(at["group"].astype(str))),
-                   "n_tracked": len(ok), "n_failed": len(at) - len(ok), "paths": "; ".join(at["path"].astype(str)),
+                   # decision B393: a split part at rest (B389's skipped) is neither tracked nor failed
+                   "n_tracked": len(ok), "n_failed": int((at["status"] != SKIPPED).sum()) - len(ok),
+                   "paths": "; ".join(at["path"].astype(str)),
                    "distance_m": total("distance_m"), "n_bouts": total("n_bouts"), "walking_time_s": t,
                    "n_steps": total("bouts_n_steps"), "n_strides": total("bouts_n_strides"),
                    "bouts_distance_m": total("bouts_distance_m")}
@@ -266,6 +268,11 @@ def _side(rows, visit: str, measures) -> tuple[str, str | None, object]:
         reasons += [f"{visit}: {p} is a copy of {d}, counted once" for p, d in zip(
             rows.loc[copies, "path"], rows.loc[copies, "duplicate_of"], strict=True)]
         rows = rows[~copies]
+    skipped = rows["status"] == SKIPPED  # decision B393: B389's split parts at rest are neither trials nor failed
+    if skipped.any():
+        rows = rows[~skipped]
+        if rows.empty:
+            return "missing", f"{visit}: no session tracked ({int(skipped.sum())} split parts at rest skipped)", None
     ok = rows[rows["status"] == "ok"]
     failed = rows.loc[rows["status"] != "ok", "path"].astype(str).tolist()
     if len(rows) == 1:  # one session: its row, as before C83

@@ -1031,7 +1031,8 @@ def track_all(
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
     when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
-    nothing is written; 4 when every session failed for having no stride (B318, B330).
+    nothing is written; 4 when every session failed for having no stride (B318, B330) or every session is a split
+    part at rest (B393).
 
     Examples:
 
@@ -1136,14 +1137,9 @@ def track_all(
             results = [r if r.ok else dataclasses.replace(r, error=rename_text(r.error, names),
                                                           extra=rename_json(r.extra, names)) for r in results]
         _batch_warnings([(rel, str(p)) for rel, p in zip(rels, found, strict=True)], results)
-        failed = [r for r in results if not r.ok]
-        if len(failed) == len(results):
-            first = f"every session failed; first error: {failed[0].name}: {failed[0].error}"
-            if all(r.exit_code == NoStridesError.exit_code for r in failed):  # decision B330: a data outcome (B318)
-                raise NoStridesError(first)
-            raise DataError(first)
-        skipped = [r for r in failed if skipped_part(r)]  # decision B389
-        failed = [r for r in failed if not skipped_part(r)]
+        skipped = [r for r in results if skipped_part(r)]  # decision B389
+        failed = [r for r in results if not r.ok and not skipped_part(r)]
+        _raise_if_none_tracked(failed, skipped, len(results))
         dup, same = _duplicates(rels, results, found)
         rows = [_session_row(rel, session_group(rel, group_depth), r, rename_text(str(p), names or {}),
                              skipped_part(r)) for rel, r, p in zip(rels, results, found, strict=True)]
@@ -1228,6 +1224,22 @@ def track_all(
         for r in skipped:
             typer.echo(f"{SKIPPED} {r.name}: {SKIPPED_NOTE}")
     _exit_if_any_failed(failed)
+
+
+def _raise_if_none_tracked(failed: list[JobResult], skipped: list[JobResult], n: int) -> None:
+    """Nothing written when no session was tracked: every session failed (exit 2; 4 when each for having no
+    stride, B318 / B330), its first error that of the first real failure; decision B393: B389's split parts at rest
+    are left out of the failures first, and a batch of only such parts says so (exit 4, a data outcome as B318's)."""
+    if len(failed) + len(skipped) < n:
+        return
+    rest = f"{len(skipped)} split part{'' if len(skipped) == 1 else 's'} at rest skipped"
+    if not failed:
+        raise NoStridesError(f"no session tracked ({rest}, decision B389): the split recording holds no walking")
+    first = (f"every session failed{f' ({rest})' if skipped else ''}; "
+             f"first error: {failed[0].name}: {failed[0].error}")
+    if all(r.exit_code == NoStridesError.exit_code for r in failed):  # decision B330: a data outcome (B318)
+        raise NoStridesError(first)
+    raise DataError(first)
 
 
 def register(app: typer.Typer) -> None:

@@ -489,10 +489,17 @@ FOOT_CLIMB_BIAS_SD_M = 0.01
 FOOT_CLIMB_BIAS_STEP_SD_M = 0.001
 #: decision L479: the bias state is on in :func:`fuse_altitude` by default (L478's rule met: false ramps 5 -> 0)
 FUSED_CLIMB_BIAS = True
+#: decision L502 (L503: "scale" adopted): the bias's form: "one" (L478: one additive state for climbing and
+#: descending strides), "split" (an additive state per direction, b_up for dz >= 0.10 m, b_down for dz <= -0.10 m)
+#: or "scale" (a climbing stride moves h by dz (1 + k), so the correction flips with dz's sign)
+FUSED_CLIMB_BIAS_MODE = "scale"
+#: decision L502: "scale"'s prior and random walk are L478's per-stride budgets at the smallest climbing stride (L39)
+SCALE_REF_DZ_M = 0.10
 
 
 def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t: np.ndarray,
-                  baro_hpa: np.ndarray, *, level_dz_m: float = 0.10, climb_bias: bool | None = None) -> np.ndarray:
+                  baro_hpa: np.ndarray, *, level_dz_m: float = 0.10, climb_bias: bool | None = None,
+                  bias_mode: str | None = None) -> np.ndarray:
     """Decision L154: the strides' height changes ``dz`` (m, after L39 / the class rules) fused with a barometer
     ``(baro_t, baro_hpa)`` (s, hPa) by a Kalman filter over the strides (causal: each stride's height uses the
     barometer up to its end; ``start_s`` / ``end_s`` the strides' times on the barometer's clock).
@@ -506,18 +513,27 @@ def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t
     ch.4.3.1.4) at each stride's end, with :data:`BARO_NOISE_M`; a measurement :data:`BARO_JUMP_SDS` SDs from its
     prediction moves the barometer's reference, not the height. ``climb_bias`` (default :data:`FUSED_CLIMB_BIAS`,
     decision L478) adds a fourth state, the climbing strides' bias b (:data:`FOOT_CLIMB_BIAS_SD_M`, a random walk of
-    :data:`FOOT_CLIMB_BIAS_STEP_SD_M` per climbing stride): a climbing stride moves h by dz + b. Returns the fused
-    per-stride height changes (their sum is the fused altitude change); non-finite dz count as 0."""
+    :data:`FOOT_CLIMB_BIAS_STEP_SD_M` per climbing stride): a climbing stride moves h by dz + b. ``bias_mode``
+    (default :data:`FUSED_CLIMB_BIAS_MODE`, decision L502): "one" that state; "split" b for climbing and a fifth
+    state for descending strides; "scale" the state is a scale k, a climbing stride moves h by dz (1 + k). Returns
+    the fused per-stride height changes (their sum is the fused altitude change); non-finite dz count as 0."""
     d = np.nan_to_num(np.asarray(dz, dtype=float).ravel())
     t0, t1 = np.asarray(start_s, dtype=float).ravel(), np.asarray(end_s, dtype=float).ravel()
     if not len(d):
         return d
     b = relative_altitude(baro_t, baro_hpa, np.concatenate([[t0[0]], t1]))
     level = np.abs(d) < level_dz_m
-    bias_sd = FOOT_CLIMB_BIAS_SD_M if (FUSED_CLIMB_BIAS if climb_bias is None else climb_bias) else 0.0
-    # h = 0 and no slope at the start, w its prior, b (L478) its prior (0: the state is off)
-    x, p = np.zeros(4), np.diag([0.0, 0.0, BARO_WANDER_SD_M ** 2, bias_sd ** 2])
-    obs = np.array([1.0, 0.0, 1.0, 0.0])
+    on = FUSED_CLIMB_BIAS if climb_bias is None else climb_bias
+    mode = FUSED_CLIMB_BIAS_MODE if bias_mode is None else bias_mode
+    if mode not in ("one", "split", "scale"):
+        raise ValueError(f"bias_mode {mode!r}: one of 'one', 'split', 'scale' (decision L502)")
+    per = SCALE_REF_DZ_M if mode == "scale" else 1.0  # L502: k's budgets are b's at a 0.10 m stride
+    bias_sd = FOOT_CLIMB_BIAS_SD_M / per if on else 0.0
+    step_sd = FOOT_CLIMB_BIAS_STEP_SD_M / per
+    # h = 0 and no slope at the start, w its prior, b (L478; L502: b_up or k) and L502's b_down their priors (0: off)
+    x = np.zeros(5)
+    p = np.diag([0.0, 0.0, BARO_WANDER_SD_M ** 2, bias_sd ** 2, bias_sd ** 2 * (mode == "split")])
+    obs = np.array([1.0, 0.0, 1.0, 0.0, 0.0])
     h = np.zeros(len(d) + 1)
 
     ref = 0.0  # the barometer's reference, moved by each transient
@@ -534,11 +550,14 @@ def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t
     for i in range(len(d)):
         a = np.exp(-max(float(t1[i] - t_prev), 0.0) / BARO_WANDER_TAU_S)  # the wander decorrelates
         climb = float(not level[i] and bias_sd > 0.0)
-        f = np.array([[1.0, float(level[i]), 0.0, climb], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, a, 0.0],
-                      [0.0, 0.0, 0.0, 1.0]])
-        x = f @ x + np.array([d[i], 0.0, 0.0, 0.0])
+        down = climb * float(mode == "split" and d[i] < 0.0)  # L502: a descending stride's own bias
+        up = climb - down
+        f = np.eye(5)
+        f[0, 1], f[2, 2], f[0, 4] = float(level[i]), a, down
+        f[0, 3] = up * d[i] if mode == "scale" else up  # L502: dz (1 + k) flips the correction with dz's sign
+        x = f @ x + np.array([d[i], 0.0, 0.0, 0.0, 0.0])
         p = f @ p @ f.T + np.diag([FOOT_STRIDE_SD_M ** 2, SLOPE_STEP_SD_M ** 2 * level[i],
-                                   BARO_WANDER_SD_M ** 2 * (1.0 - a * a), FOOT_CLIMB_BIAS_STEP_SD_M ** 2 * climb])
+                                   BARO_WANDER_SD_M ** 2 * (1.0 - a * a), step_sd ** 2 * up, step_sd ** 2 * down])
         x, p, ref = update(x, p, b[i + 1], ref)
         h[i + 1], t_prev = x[0], t1[i]
     return np.diff(h)

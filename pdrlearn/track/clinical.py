@@ -233,13 +233,55 @@ def rhythm_s(st: pd.DataFrame, d: np.ndarray, pair: np.ndarray) -> float:
     """The walker's rhythm (s) a pause is judged against: the median of the valid row-to-row intervals ``d[pair]``
     (L104); decision L482: on a foot table at most the median of its valid rows' own rest-to-rest windows
     (``end_s - start_s``: one stride cycle, the standing between two strides lies outside it), so walks of 1-3
-    strides between stands are not judged against a median that is the stand."""
+    strides between stands are not judged against a median that is the stand; decision L500: the windows are
+    :func:`movement_windows` and bound the median only when it exceeds their median by ``PAUSE_MIN_S`` or more (the
+    intervals are mostly stands), so a very slow continuous walk keeps L104's rhythm."""
     median = float(np.median(d[pair]))
     if not STRIDE_WINDOW_RHYTHM or "end_s" not in st or not is_foot_table(st):
         return median
+    window = movement_windows(st) if RHYTHM_MOVEMENTS else _row_windows(st)
+    if not window.size:
+        return median
+    bound = float(np.median(window))
+    if RHYTHM_MOVEMENTS and median - bound < PAUSE_MIN_S:  # L500: the intervals are not mostly stands
+        return median
+    return min(median, bound)
+
+
+#: decision L500: L482's bound reads movements (touching rows merged), and only when the intervals are mostly stands
+RHYTHM_MOVEMENTS = True
+#: decision L500: rows whose windows are this close (s; one sample at the foot units' 100 Hz) are one movement
+TOUCH_S = 0.01
+
+
+def _row_windows(st: pd.DataFrame) -> np.ndarray:
     window = st["end_s"].to_numpy(float) - st["start_s"].to_numpy(float)
-    window = window[_valid(st) & np.isfinite(window) & (window > 0)]
-    return min(median, float(np.median(window))) if window.size else median
+    return window[_valid(st) & np.isfinite(window) & (window > 0)]
+
+
+def movement_windows(st: pd.DataFrame) -> np.ndarray:
+    """Decision L500: (M,) the windows (s) of a foot table's movements (rows in ``start_s`` order): consecutive
+    valid rows whose rest-to-rest windows touch or overlap (next ``start_s`` <= previous ``end_s`` +
+    :data:`TOUCH_S`; a stride the tracker cut in two) are one movement from the first ``start_s`` to the last
+    ``end_s``; gap rows and non-finite or non-positive windows are left out and end a movement."""
+    start, end = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
+    ok = _valid(st) & np.isfinite(start) & np.isfinite(end) & (end > start)
+    out, first, last = [], None, None
+    for a, b, good in zip(start.tolist(), end.tolist(), ok.tolist(), strict=True):
+        if not good:
+            if first is not None:
+                out.append(last - first)
+            first = None
+            continue
+        if first is not None and a <= last + TOUCH_S:
+            last = max(last, b)
+            continue
+        if first is not None:
+            out.append(last - first)
+        first, last = a, b
+    if first is not None:
+        out.append(last - first)
+    return np.asarray(out, float)
 
 
 def still_before(steps: pd.DataFrame) -> np.ndarray:
