@@ -762,8 +762,9 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     _refuse_waist_pipeline_without_waist(pipeline, session)  # decision W260
     auto = pipeline == "auto"
     pipeline = resolve_pipeline(pipeline, session)
-    if auto and calibrated_pipeline(pipeline, par) != pipeline:  # decision W407: the calibration's pipeline
-        pipeline = calibrated_pipeline(pipeline, par)
+    calibrated = calibrated_pipeline(pipeline, par) if auto else pipeline  # decision W407: the calibration's pipeline
+    if calibrated != pipeline:
+        pipeline = calibrated
         import logging
 
         logging.getLogger("pdrlearn.cli").info("--pipeline auto: %s, the pipeline %s was calibrated for (decision "

@@ -736,7 +736,7 @@ FEET = ("left", "right")
 
 
 #: decision B390: the leg length (m) `import --leg-length` accepts: a toddler's 0.3 m to a very tall adult's 1.3 m
-#: (the simulator's S38 range, 0.45-0.6 x its 0.6-2.2 m heights, widened to the measured leg of any walker)
+#: (the simulator's S38 range, 0.35-0.6 x its 0.7-2.2 m heights, widened to the measured leg of any walker)
 LEG_LENGTH_RANGE_M = (0.3, 1.3)
 
 

@@ -7,7 +7,8 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
 
 * **pause**: the interval from one row's ``start_s`` to the next row's is at least :data:`PAUSE_MIN_S` longer than the
   walk's median such interval (the walker's own rhythm: one stride of the tracked foot, one step on the lower back; on
-  a foot table at most the median of the rows' own stride windows, decision L482, so a stop-and-go walk whose
+  a foot table, when that median exceeds the median of its movement windows (touching rows joined) by
+  :data:`PAUSE_MIN_S` or more, that window median instead, decisions L482 and L500, so a stop-and-go walk whose
   intervals mostly hold a stand is not judged against the stand); the excess is the pause's length. So a pause is
   standing (no step of the tracked foot / of either foot) for about a second or more beyond the usual rhythm; the
   rests of a slow walker's ordinary stance are no pause. Rows across a foot-data gap (``gap_s`` > 0, L67) are not
