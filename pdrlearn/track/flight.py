@@ -2,8 +2,8 @@
 
 In flight the body falls freely, and an accelerometer, which measures specific force (a - g), reads about 0 g; while
 walking one foot is always on the ground and the foot unit reads about 1 g plus its swing accelerations. A run of
-samples under :data:`FLIGHT_MAX_G` lasting more than :data:`FLIGHT_MIN_S` (W409, W412) is a flight phase: a jump or a running stride,
-which the foot pipeline would count as a walking stride. Pure functions.
+samples under :data:`FLIGHT_MAX_G` lasting more than :data:`FLIGHT_MIN_S` (W409, W412) is a flight phase: a jump
+or a running stride, which the foot pipeline would count as a walking stride. Pure functions.
 """
 
 from __future__ import annotations
