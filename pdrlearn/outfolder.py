@@ -132,7 +132,7 @@ def few_names(names: list[str], k: int = 3) -> str:
 
 
 def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, ...] = (),
-               inputs: tuple = ()) -> Path:
+               inputs: tuple = (), option: str = "--out") -> Path:
     """Validate an output folder of ``kind`` (a key of :data:`FOLDER_KINDS`) before any work is done
     (decisions B12, B26).
 
@@ -143,11 +143,11 @@ def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, 
     even with ``force``. ``allow`` names files that do not make a folder "non-empty" (the documented
     ``--json > DIR/evaluation.json`` redirect creates that file before the command runs). A folder that
     is or holds one of the command's ``inputs`` (``export M --out M``) is never replaced: the atomic
-    replacement would delete the input.
+    replacement would delete the input. ``option`` is the option the messages name (`train --report`: review R3).
     """
     what = FOLDER_KINDS[kind][0]
     if path.exists() and not path.is_dir():
-        raise DataError(f"{path}: is a file; --out must be a folder for {what}")
+        raise DataError(f"{path}: is a file; {option} must be a folder for {what}")
     for parent in path.parents:  # a file in the way of the folder (was FileExistsError after all the work)
         if parent.exists():
             if not parent.is_dir():

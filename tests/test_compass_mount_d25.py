@@ -57,6 +57,8 @@ def test_a_turned_or_mirrored_waist_does_not_turn_the_fused_track(mount):
     assert r.info["compass_mount"]["fallback"]
     line = [w for w in r.info["warnings"] if "decision D25" in w]
     assert len(line) == 1 and "waist unit's mounting" in line[0] and "foot gyroscope's own" in line[0]
+    # review R3.1: since L494 the fallback's heading 0 is the first walk's direction, not the foot unit's facing
+    assert "0 = the first walk's direction" in line[0] and "facing" not in line[0]
 
 
 def test_a_normal_waist_keeps_the_compass():
@@ -66,3 +68,31 @@ def test_a_normal_waist_keeps_the_compass():
     r = track_plasys(s)
     assert r.info["compass_mount"]["fallback"] is False and r.info["compass_mount"]["n_turns"] >= 2
     assert not any("decision D25" in w for w in r.info["warnings"])
+
+
+class _NoDeclaredFrame:
+    def declared_check(self, placement):
+        return None
+
+
+def test_d34_judges_only_turns_of_45_to_135_deg():
+    """Decision D34 (review R3 finding 3): near +-180 deg the mirrored foot turn is the turn itself, so a U-turn
+    cannot tell a mirrored compass from a normal one; only foot turns of 45-135 deg are judged."""
+    from pdrlearn.track.compass_mount import mount_check
+
+    # corridor: foot U-turns of 170 / -170 deg, a normal compass bent to -135 / 135 deg by the field
+    foot = np.radians(np.r_[np.zeros(5), np.full(5, 170.0), np.zeros(5), np.full(5, 170.0)])
+    bent = np.radians(np.r_[np.zeros(5), np.full(5, -135.0), np.zeros(5), np.full(5, -135.0)])
+    keep = np.ones(len(foot), bool)
+    assert turn_mismatch(foot, bent, keep) == (None, 0)  # before D34: 55 deg over 3 turns, mirrored 35 deg
+    assert turn_mismatch(foot, bent, keep, max_turn_deg=180.0)[1] == 3
+    line, info = mount_check(_NoDeclaredFrame(), foot, bent, keep)
+    assert line is None and info["fallback"] is False and info["n_turns"] == 0  # before D34: a false fallback
+    # a walk with two 90 deg turns and a U-turn: the two 90 deg turns are judged, the U-turn is not
+    foot = np.radians(np.r_[np.zeros(5), np.full(5, 90.0), np.zeros(5), np.full(5, 180.0)])
+    keep = np.ones(len(foot), bool)
+    assert turn_mismatch(foot, -foot, keep) == (pytest.approx(180.0), 2)
+    assert turn_mismatch(foot, -foot, keep, mirrored=True) == (pytest.approx(0.0, abs=1e-9), 2)
+    assert turn_mismatch(foot, -foot, keep, max_turn_deg=135.0)[1] == 2
+    assert turn_mismatch(np.radians(np.r_[0.0, 135.0]), np.zeros(2), np.ones(2, bool))[1] == 1  # 135 deg: judged
+    assert turn_mismatch(np.radians(np.r_[0.0, 136.0]), np.zeros(2), np.ones(2, bool))[1] == 0

@@ -31,3 +31,24 @@ def test_slow_cane_walk_has_no_flight_phase(tmp_path):
     summary = track_summary(get_pipeline("plasys")(session), session, pipeline="plasys")
     assert summary["n_flight_phases"] == 0
     assert not any("decision W363" in w for w in summary["info"]["warnings"])
+
+
+def test_at_100_hz_ten_low_samples_are_not_a_flight_eleven_are_and_the_line_says_more_than_0_1_s():
+    """Decision W412 (review R3 finding 5): W409 needs the first and last low samples 0.1 s apart, so an exact
+    0.1 s run at 100 Hz (10 samples, 0.09 s apart) is not a flight; the warning says "more than 0.1 s" (it said
+    "0.1 s or more")."""
+    from types import SimpleNamespace
+
+    from pdrlearn.track.flight import flight_summary
+
+    t = np.arange(0, 4, 0.01)  # 100 Hz
+    acc = np.tile([0.0, 9.81, 0.0], (len(t), 1))
+    acc[100:110] = [0.0, 0.98, 0.0]  # 0.1 g: 10 samples, 1.00-1.09 s
+    assert flight_phases(t, acc) == []
+    acc[200:211] = [0.0, 0.98, 0.0]  # 11 samples, 2.00-2.10 s
+    assert np.allclose(flight_phases(t, acc), [(2.0, 2.11)])
+    session = SimpleNamespace(streams={"fAccelerometer": SimpleNamespace(t=t, values=acc)})
+    keys, line = flight_summary(session, "plasys")
+    assert keys["n_flight_phases"] == 1
+    assert "under 0.3 g for more than 0.1 s" in line and "0.1 s or more apart" in line
+    assert "for 0.1 s or more" not in line

@@ -43,3 +43,29 @@ def test_the_live_events_example_reads_a_stop_and_two_turns(root, tmp_path):
     assert len(stop) == 1 and 3.5 < float(re.search(r"stopped ([\d.]+) s", stop[0]).group(1)) < 5.5
     turns = {m.group(1): float(m.group(2)) for e in events if (m := re.search(r"turned (\w+) (\d+) deg", e))}
     assert set(turns) == {"left", "right"} and all(70 <= a <= 110 for a in turns.values()), events
+
+
+def test_a_turn_then_standing_is_closed_while_standing_e214(root, tmp_path):
+    """Decision E214 (review R3 finding 2): user 9856 walks, curves 90 deg left and stands 5 s; on_step alone held
+    the turn back (no straight stride follows it); the example's close(now), called after each push with the latest
+    sample time, gives it while the walker stands, before the tracker's flush."""
+    import math
+
+    from tests.runtime_helpers import time_chunks
+
+    ses = tmp_path / "turn_stand"
+    assert main(["simulate", "--route", "straight:6, curve:90:2, stand:5", "--user-seed", "9856",
+                 "--out", str(ses)]) == 0
+    session = read_session(ses)
+    scope: dict = {}
+    exec(compile(_example(), "deploying.md", "exec"), scope)  # noqa: S102 - the documented code itself
+    events, tracker = scope["events"], Tracker(root / "bundle")
+    live = []
+    for _, chunk in time_chunks(session, 0.5):
+        live += [e for st in tracker.push(chunk) for e in events.on_step(st)]
+        live += events.close(max(float(t[-1]) for t, _ in chunk.values() if len(t)))
+    turns = [e for e in live if "turned" in e]
+    assert len(turns) == 1 and "left" in turns[0], live
+    assert 70 <= float(re.search(r"turned left (\d+) deg", turns[0]).group(1)) <= 110
+    end = [e for st in tracker.flush() for e in events.on_step(st)] + events.close(math.inf)
+    assert not [e for e in end if "turned" in e], end  # closed once, not again at the end

@@ -105,3 +105,13 @@ def test_each_task_table_shows_its_own_classes():
     direction = md[md.index("## direction"):]
     assert "forward %" in direction.splitlines()[2] and "backward %" in direction.splitlines()[2]
     assert "flat %" not in direction and "forward %" not in md[:md.index("## direction")]
+
+
+def test_a_report_path_that_is_a_file_is_refused_naming_report(trained, tmp_path, capsys):
+    """Review R3 finding 4: `train --report FILE` said "--out must be a folder"; it names --report."""
+    (tmp_path / "afile").write_text("x")
+    code = main(["train", str(trained / "u9660"), "--out", str(tmp_path / "m"), "--report", str(tmp_path / "afile")])
+    err = capsys.readouterr().err
+    assert code == 2 and err.strip() == f"error: {tmp_path / 'afile'}: is a file; --report must be a folder for a " \
+                                        "training report (cv.csv, report.md)"
+    assert not (tmp_path / "m").exists() and (tmp_path / "afile").read_text() == "x"

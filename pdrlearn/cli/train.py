@@ -114,7 +114,7 @@ def train(
         if rep.is_relative_to(mod) or mod.is_relative_to(rep):  # the model's atomic write (or the report's) deletes
             raise DataError(f"train: --report {report} is, or is inside, or holds the --out model directory; choose "
                             f"a folder beside it, e.g. {out.parent / (out.name + '_report')}")
-        out_folder(report, "train-report", force=force, inputs=(*data_dirs, out))
+        out_folder(report, "train-report", force=force, inputs=(*data_dirs, out), option="--report")
     was = existed(out)
     sessions = read_session_dirs(data_dirs)
     total = sum(len(per_task.get(t, m_all)) for t in t_all) * len(u_all)
@@ -385,7 +385,7 @@ def evaluate(
     if report is not None:
         # evaluation.json alone is the documented `--json > DIR/evaluation.json` redirect, made by the shell
         out_folder(report, "evaluation", force=force, inputs=(model_dir, *data_dirs),
-                   allow=("evaluation.json",))
+                   allow=("evaluation.json",), option="--report")
     # not atomic: the folder may hold the file the shell is redirecting --json into (written in place)
     was = report is not None and (report / "report.md").is_file()
     # the same progress bar as train (stderr, a terminal only, not with --json): loading the model (~2 s),

@@ -4,8 +4,9 @@ Trial T3 (session 38): a mirrored waist unit (x/y swapped, frame inferred) turne
 180 deg, a waist unit turned on the belt with its belt frame kept by 90-180 deg, exit 0. Two comparisons:
 
 - turns (:func:`turn_mismatch`): between consecutive straight strides across a foot turn of at least
-  :data:`MOUNT_TURN_MIN_DEG`, the waist compass's turn against the foot gyroscope's (a mirrored compass turns the
-  other way: its turns match the mirrored foot turns, which a disturbed field's do not);
+  :data:`MOUNT_TURN_MIN_DEG` and at most :data:`MOUNT_TURN_MAX_DEG` (D34), the waist compass's turn against the foot
+  gyroscope's (a mirrored compass turns the other way: its turns match the mirrored foot turns, which a disturbed
+  field's do not);
 - the waist's forward (:func:`declared_forward_off`): D10's check of a declared waist frame measured the walking
   direction more than :data:`MOUNT_FORWARD_OFF_DEG` from the declared forward (the compass then reads the heading of
   another body direction, a constant offset no turn shows).
@@ -16,6 +17,9 @@ import numpy as np
 
 #: decision D25: a foot heading change of at least this (deg) between two consecutive straight strides is a turn
 MOUNT_TURN_MIN_DEG = 45.0
+#: decision D34 (amends D25): a foot turn over this (deg) is not judged: near +-180 deg the mirrored turn is the turn
+#: itself, so a U-turn cannot tell a mirrored compass from a normal one; None: no bound (D25 as first written)
+MOUNT_TURN_MAX_DEG: float | None = 135.0
 #: decision D25: at least this many turns judge the compass's turns
 MOUNT_MIN_TURNS = 2
 #: decision D25: a median |compass turn - foot turn| over this (deg) fails (a mirrored compass: 180 deg on 90 deg)
@@ -30,17 +34,21 @@ def _wrap(a):
 
 
 def turn_mismatch(foot: np.ndarray, compass: np.ndarray, keep: np.ndarray, min_turn_deg: float = MOUNT_TURN_MIN_DEG,
-                  *, mirrored: bool = False) -> tuple[float | None, int]:
+                  *, mirrored: bool = False, max_turn_deg: float | None = None) -> tuple[float | None, int]:
     """Decision D25 (a): the median |wrap(compass turn - foot turn)| (deg) over the turns between consecutive
     ``keep`` strides (time order) whose ``foot`` heading (rad) changed by at least ``min_turn_deg``, the compass turn
     being the change of ``compass`` (rad) between the same strides; and the number of turns (None: no turn).
-    ``mirrored``: against the mirrored foot turn, |wrap(compass turn + foot turn)| (D25 amended)."""
+    ``mirrored``: against the mirrored foot turn, |wrap(compass turn + foot turn)| (D25 amended).
+    ``max_turn_deg``: only foot turns of at most this are judged (D34; None: :data:`MOUNT_TURN_MAX_DEG`)."""
     idx = np.flatnonzero(np.asarray(keep, bool))
     if len(idx) < 2:
         return None, 0
     df = _wrap(np.diff(np.asarray(foot, float)[idx]))
     dc = _wrap(np.diff(np.asarray(compass, float)[idx]))
+    top = MOUNT_TURN_MAX_DEG if max_turn_deg is None else max_turn_deg
     turn = np.abs(df) >= np.radians(min_turn_deg)
+    if top is not None:  # decision D34: a U-turn's mirrored turn is the turn itself
+        turn &= np.abs(df) <= np.radians(top)
     if not turn.any():
         return None, 0
     sign = -1.0 if mirrored else 1.0
@@ -79,6 +87,6 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
         return None, info
     info["fallback"] = True
     return ("the waist unit's mounting does not match its frame - " + "; ".join(why) + " - so its compass would "
-            "turn the whole track: this track's heading is the foot gyroscope's own (0 = the foot unit's facing at "
-            "the start, as `--units foot`), not the compass's (decision D25); declare the waist unit's frame as it "
-            "is worn (`pdrlearn info` prints the frame the data give)"), info
+            "turn the whole track: this track's heading is the foot gyroscope's own (0 = the first walk's "
+            "direction, L494, as `--units foot`), not the compass's (decision D25); declare the waist unit's frame as "
+            "it is worn (`pdrlearn info` prints the frame the data give)"), info

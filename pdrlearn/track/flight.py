@@ -2,8 +2,8 @@
 
 In flight the body falls freely, and an accelerometer, which measures specific force (a - g), reads about 0 g; while
 walking one foot is always on the ground and the foot unit reads about 1 g plus its swing accelerations. A run of
-samples under :data:`FLIGHT_MAX_G` lasting :data:`FLIGHT_MIN_S` or more is a flight phase: a jump or a running stride,
-which the foot pipeline would count as a walking stride. Pure functions.
+samples under :data:`FLIGHT_MAX_G` lasting more than :data:`FLIGHT_MIN_S` (W409, W412) is a flight phase: a jump
+or a running stride, which the foot pipeline would count as a walking stride. Pure functions.
 """
 
 from __future__ import annotations
@@ -53,7 +53,9 @@ def flight_summary(session, pipeline: str | None) -> tuple[dict, str | None]:
     if not phases:
         return keys, None
     longest = max(b - a for a, b in phases)
-    return keys, (f"{len(phases)} flight phase(s) (the foot accelerometer under {FLIGHT_MAX_G:g} g for "
-                  f"{FLIGHT_MIN_S:g} s or more, {total:.2f} s in all, the longest {longest:.2f} s): the foot left the "
+    # decision W412: "more than", as W409's rule (an exact 0.1 s run, 10 samples at 100 Hz, spans 0.09 s: not one)
+    return keys, (f"{len(phases)} flight phase(s) (the foot accelerometer under {FLIGHT_MAX_G:g} g for more than "
+                  f"{FLIGHT_MIN_S:g} s, its first and last low samples {FLIGHT_MIN_S:g} s or more apart, "
+                  f"{total:.2f} s in all, the longest {longest:.2f} s): the foot left the "
                   "ground with both feet - jumps or running; strides across them may be jumps, not walking strides, "
                   "and their lengths and the distance are not validated (decision W363)")
