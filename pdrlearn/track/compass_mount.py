@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from pdrlearn.kernels.fixes import wrap_angle
+
 #: decision D25: a foot heading change of at least this (deg) between two consecutive straight strides is a turn
 MOUNT_TURN_MIN_DEG = 45.0
 #: decision D34 (amends D25): a foot turn over this (deg) is not judged: near +-180 deg the mirrored turn is the turn
@@ -29,10 +31,6 @@ MOUNT_TURN_MISMATCH_DEG = 45.0
 MOUNT_FORWARD_OFF_DEG = 45.0
 
 
-def _wrap(a):
-    return (np.asarray(a, float) + np.pi) % (2 * np.pi) - np.pi
-
-
 def turn_mismatch(foot: np.ndarray, compass: np.ndarray, keep: np.ndarray, min_turn_deg: float = MOUNT_TURN_MIN_DEG,
                   *, mirrored: bool = False, max_turn_deg: float | None = None) -> tuple[float | None, int]:
     """Decision D25 (a): the median |wrap(compass turn - foot turn)| (deg) over the turns between consecutive
@@ -43,8 +41,8 @@ def turn_mismatch(foot: np.ndarray, compass: np.ndarray, keep: np.ndarray, min_t
     idx = np.flatnonzero(np.asarray(keep, bool))
     if len(idx) < 2:
         return None, 0
-    df = _wrap(np.diff(np.asarray(foot, float)[idx]))
-    dc = _wrap(np.diff(np.asarray(compass, float)[idx]))
+    df = wrap_angle(np.diff(np.asarray(foot, float)[idx]))
+    dc = wrap_angle(np.diff(np.asarray(compass, float)[idx]))
     top = MOUNT_TURN_MAX_DEG if max_turn_deg is None else max_turn_deg
     turn = np.abs(df) >= np.radians(min_turn_deg)
     if top is not None:  # decision D34: a U-turn's mirrored turn is the turn itself
@@ -52,7 +50,7 @@ def turn_mismatch(foot: np.ndarray, compass: np.ndarray, keep: np.ndarray, min_t
     if not turn.any():
         return None, 0
     sign = -1.0 if mirrored else 1.0
-    return float(np.degrees(np.median(np.abs(_wrap(dc[turn] - sign * df[turn]))))), int(turn.sum())
+    return float(np.degrees(np.median(np.abs(wrap_angle(dc[turn] - sign * df[turn]))))), int(turn.sum())
 
 
 def declared_forward_off(session, placement: str = "waist") -> float | None:
