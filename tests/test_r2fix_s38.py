@@ -1,0 +1,70 @@
+"""Review R2's findings on session 38 (fixer FM): `import --merge --leg-length` keeps the leg and the mapping key's
+leg is checked as --leg-length (B394), ..."""
+
+from __future__ import annotations
+
+import json
+
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+
+
+def _unit_csvs(tmp_path):
+    """A simulated walk (user 9820) as a foot CSV and a waist CSV, both in the sensor frame."""
+    from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
+
+    s = simulate_path([Stand(2), Straight(6), Stand(2)], UserProfile.from_seed(9820), rate_hz=100, seed=9820)
+    out = []
+    for unit, acc, gyro in (("foot", "fAccelerometer", "fGyroscope"), ("waist", "wAccelerometer", "wGyroscope")):
+        a, w = s.streams[acc], s.streams[gyro]
+        path = tmp_path / f"{unit}.csv"
+        pd.DataFrame({"time_s": a.t, **{f"acc_{c}": a.values[:, i] for i, c in enumerate("xyz")},
+                      **{f"gyro_{c}": w.values[:, i] for i, c in enumerate("xyz")}}).to_csv(path, index=False)
+        out.append(path)
+    return s, out
+
+
+
+def test_merge_keeps_and_checks_the_leg_length_b394(tmp_path, capsys):
+    s, (foot, waist) = _unit_csvs(tmp_path)
+    out = tmp_path / "mg"
+    assert main(["import", str(foot), "--out", str(out), "--unit", "foot"]) == 0
+    assert main(["import", str(waist), "--out", str(out), "--unit", "waist", "--merge", "--subject-height", "1.2",
+                 "--leg-length", "0.6"]) == 0
+    meta = json.loads((out / "meta.json").read_text())
+    assert meta["height_m"] == 1.2 and meta["leg_length_m"] == 0.6, meta
+    # the foot part carries the height, the merged waist part a leg that does not fit it
+    out2 = tmp_path / "mg2"
+    assert main(["import", str(foot), "--out", str(out2), "--unit", "foot", "--subject-height", "1.1"]) == 0
+    before = (out2 / "meta.json").read_text()
+    capsys.readouterr()
+    assert main(["import", str(waist), "--out", str(out2), "--unit", "waist", "--merge", "--leg-length", "1.0"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: ") and "\n" not in err and "leg_length_m 1 m does not fit" in err, err
+    assert (out2 / "meta.json").read_text() == before
+
+
+@pytest.mark.parametrize("value, words", [(True, "leg_length_m\" True is not a leg length"),
+                                          ("62", "leg_length_m\" '62' is not"),
+                                          (1.0, "leg_length_m\" 1 m does not fit --subject-height 1.1 m")])
+def test_mapping_leg_length_is_named_as_its_key_b394(tmp_path, capsys, value, words):
+    _, (foot, _) = _unit_csvs(tmp_path)
+    mapping = tmp_path / "map.json"
+    mapping.write_text(json.dumps({"leg_length_m": value}))
+    capsys.readouterr()
+    assert main(["import", str(foot), "--out", str(tmp_path / "x"), "--mapping", str(mapping),
+                 "--subject-height", "1.1"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: ") and "\n" not in err and words in err and "--leg-length" not in err, err
+    assert not (tmp_path / "x").exists()
+
+
+def test_leg_option_uses_the_leg_height_rule_b394(tmp_path, capsys):
+    _, (foot, _) = _unit_csvs(tmp_path)
+    capsys.readouterr()
+    assert main(["import", str(foot), "--out", str(tmp_path / "x"), "--subject-height", "1.1",
+                 "--leg-length", "1.0"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--leg-length 1 m does not fit --subject-height 1.1 m" in err and "0.39-0.66 m" in err, err
