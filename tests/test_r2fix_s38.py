@@ -1,5 +1,6 @@
 """Review R2's findings on session 38 (fixer FM): `import --merge --leg-length` keeps the leg and the mapping key's
-leg is checked as --leg-length (B394), ..."""
+leg is checked as --leg-length (B394); L489's turn line counts turn episodes and states the distance share (L504),
+..."""
 
 from __future__ import annotations
 
@@ -68,3 +69,27 @@ def test_leg_option_uses_the_leg_height_rule_b394(tmp_path, capsys):
                  "--leg-length", "1.0"]) == 2
     err = capsys.readouterr().err.strip()
     assert "--leg-length 1 m does not fit --subject-height 1.1 m" in err and "0.39-0.66 m" in err, err
+
+
+def test_turn_line_counts_episodes_and_states_the_distance_share_l504():
+    """A 4 x 10 m corridor walk (7 turning strides in four turnarounds, 30 strides: L489's line fired on it with a
+    2.7-8.3 point claim) gets no line; a route turning every stride pair does, with the metres and the share and no
+    point figure; one long turn (4 strides in a row) is one episode."""
+    import numpy as np
+
+    from pdrlearn.track.turn_reference import MAX_M_PER_TURN, MIN_TURN_EPISODES, turn_reference_warning
+
+    assert (MIN_TURN_EPISODES, MAX_M_PER_TURN) == (4, 5.0)
+
+    def line(turn_deg, length):
+        out: list[str] = []
+        turn_reference_warning(pd.DataFrame({"turn_angle_rad": np.radians(turn_deg), "length_m": length}), "sensor",
+                               out)
+        return out
+
+    corridor = [0] * 6 + [61, 103] + [0] * 5 + [121, 38] + [0] * 5 + [89, 66] + [0] * 7 + [121]
+    assert len(corridor) == 30 and line(corridor, 1.2) == []
+    assert line([90] * 4 + [0] * 6, 0.5) == []  # one episode
+    got = line([90, 0, 0] * 5, 0.6)
+    assert len(got) == 1 and got[0].startswith("5 turns on the spot (5 of 15 strides") and "3.0 m = 33 %" in got[0]
+    assert "uncertain by" not in got[0] and "L504" in got[0]
