@@ -1,6 +1,6 @@
 """Review R2's findings on session 38 (fixer FM): `import --merge --leg-length` keeps the leg and the mapping key's
-leg is checked as --leg-length (B394); L489's turn line counts turn episodes and states the distance share (L504),
-..."""
+leg is checked as --leg-length (B394); L489's turn line counts turn episodes and states the distance share (L504);
+C141's chance note tells a small sample's interval from a score at chance and is in evaluate's JSON (C149), ..."""
 
 from __future__ import annotations
 
@@ -93,3 +93,41 @@ def test_turn_line_counts_episodes_and_states_the_distance_share_l504():
     got = line([90, 0, 0] * 5, 0.6)
     assert len(got) == 1 and got[0].startswith("5 turns on the spot (5 of 15 strides") and "3.0 m = 33 %" in got[0]
     assert "uncertain by" not in got[0] and "L504" in got[0]
+
+
+def test_small_sample_rows_are_not_called_guessing_c149():
+    from pdrlearn.classify.spread import at_chance, chance_kind, chance_line
+
+    def rec(acc, bal, n, k=3):
+        return {"accuracy": acc, "balanced_accuracy": bal, "n_steps": n,
+                "per_class": dict.fromkeys(["flat", "up", "down"][:k], 0.5)}
+
+    assert at_chance(rec(0.8, 0.8, 10, k=2)) == (True, 2)  # review R2: still flagged, the CI reaches 1/2
+    assert chance_kind(rec(0.8, 0.8, 10, k=2)) == "undistinguished" and chance_kind(rec(0.357, 0.40, 224)) == "chance"
+    line = chance_line([("heuristic/waist", rec(0.60, 0.639, 10))])
+    assert line.startswith("not distinguishable from chance on 10 steps (3 classes, 1/K = 33.3 %): heuristic/waist "
+                           "60.0 % (balanced 63.9 %)"), line
+    assert "guessing" not in line and "at or below" not in line
+    both = chance_line([("svm/foot", rec(0.60, 0.639, 10)), ("dtw/waist", rec(0.30, 0.33, 10))])
+    assert both.startswith("at or below chance (3 classes, 1/K = 33.3 %): dtw/waist 30.0 %") and \
+        "; not distinguishable from chance on 10 steps (3 classes, 1/K = 33.3 %): svm/foot 60.0 %" in both
+
+
+def test_evaluate_json_carries_the_chance_note_c149(tmp_path, capsys):
+    import numpy as np
+
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import simulate
+
+    s = simulate("terrain", user_seed=9821)
+    s.steps["terrain"] = np.random.default_rng(0).permutation(s.steps["terrain"].to_numpy())  # labels: noise
+    data = write_session(s, tmp_path / "noise")
+    good = write_session(simulate("terrain", user_seed=9821, seed=7), tmp_path / "good")
+    assert main(["train", str(good), "--out", str(tmp_path / "g"), "--tasks", "terrain", "--methods", "svm",
+                 "--units", "foot", "--cv", "3"]) == 0
+    capsys.readouterr()
+    assert main(["evaluate", str(tmp_path / "g"), str(data), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    notes = [w for w in out["warnings"] if w.startswith("terrain: at or below chance (3 classes")]
+    assert len(notes) == 1 and "svm/foot" in notes[0], out["warnings"]
+    assert out["warning_codes"][out["warnings"].index(notes[0])] == "C141"
