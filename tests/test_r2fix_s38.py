@@ -1,6 +1,7 @@
 """Review R2's findings on session 38 (fixer FM): `import --merge --leg-length` keeps the leg and the mapping key's
 leg is checked as --leg-length (B394); L489's turn line counts turn episodes and states the distance share (L504);
-C141's chance note tells a small sample's interval from a score at chance and is in evaluate's JSON (C149), ..."""
+C141's chance note tells a small sample's interval from a score at chance and is in evaluate's JSON (C149); waist-pll
+on a pendulum calibration warns a child as uncalibrated (W411), ..."""
 
 from __future__ import annotations
 
@@ -131,3 +132,24 @@ def test_evaluate_json_carries_the_chance_note_c149(tmp_path, capsys):
     notes = [w for w in out["warnings"] if w.startswith("terrain: at or below chance (3 classes")]
     assert len(notes) == 1 and "svm/foot" in notes[0], out["warnings"]
     assert out["warning_codes"][out["warnings"].index(notes[0])] == "C141"
+
+
+def test_pll_on_a_pendulum_calibration_warns_a_child_w411():
+    """A 1.25 m child (user 9822), waist-pll with a waist-pendulum calibration file: the pll keeps its defaults,
+    so W405's short-walker line is given (it was only with no file); the pll's own calibration stays silent."""
+    import dataclasses
+
+    from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
+    from pdrlearn.track.units import keep_units
+    from pdrlearn.track.waist import track_waist
+
+    child = dataclasses.replace(UserProfile.from_seed(9822).scaled(1.25, 0.62), step_length_m=0.42, step_time_s=0.38)
+    s = keep_units(simulate_path([Stand(2), Straight(12), Stand(2)], child, rate_hz=100, seed=9822), ("waist",))
+
+    def w405(params):
+        return [w for w in track_waist(s, pipeline="waist-pll", params=params).info["warnings"]
+                if "decision W405" in w]
+
+    pend = {"leg_m": 0.62, "k": 1.1, "source": "calibrated", "pipeline": "waist-pendulum"}
+    assert len(w405(pend)) == 1 and "1.25 m" in w405(pend)[0]
+    assert w405({**pend, "pipeline": "waist-pll"}) == [] and w405({**pend, "pipeline": None}) == []
