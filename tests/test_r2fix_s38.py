@@ -1,7 +1,8 @@
 """Review R2's findings on session 38 (fixer FM): `import --merge --leg-length` keeps the leg and the mapping key's
 leg is checked as --leg-length (B394); L489's turn line counts turn episodes and states the distance share (L504);
 C141's chance note tells a small sample's interval from a score at chance and is in evaluate's JSON (C149); waist-pll
-on a pendulum calibration warns a child as uncalibrated (W411), ..."""
+on a pendulum calibration warns a child as uncalibrated (W411); a stream's first stride is not judged side or backward (L505),
+..."""
 
 from __future__ import annotations
 
@@ -153,3 +154,26 @@ def test_pll_on_a_pendulum_calibration_warns_a_child_w411():
     pend = {"leg_m": 0.62, "k": 1.1, "source": "calibrated", "pipeline": "waist-pendulum"}
     assert len(w405(pend)) == 1 and "1.25 m" in w405(pend)[0]
     assert w405({**pend, "pipeline": "waist-pll"}) == [] and w405({**pend, "pipeline": None}) == []
+
+
+def test_first_streamed_stride_is_not_judged_side_or_backward_l505():
+    """gaitmap_walk4x10_right streamed: its first stride (raw -0.62 m, a start-up heading fault) was a side stride
+    (a backward one before L486); a stream's first stride has no facing before it. The second is judged as before;
+    an offline table's first stride still is."""
+    import numpy as np
+
+    from pdrlearn.kernels.backward import backward_mask, backward_rows
+    from pdrlearn.kernels.sideways import SideRun
+
+    run = SideRun()
+    run.stride(0.05, 0.6, 0.6)  # 85 deg from the facing, 0.6 m: a side stride's shape
+    assert not run.decided
+    run.stride(0.05, 0.6, 0.6)
+    assert run.decided
+    length, gap = np.array([-0.62, -0.5, 1.4]), np.array([0.0, 0.0, 0.0])
+    assert backward_mask(length, gap).tolist() == [True, True, False]
+    assert backward_mask(length, gap, streamed=True).tolist() == [False, True, False]
+    assert backward_mask(length, np.array([1.0, 0.0, 0.0]), streamed=True).tolist() == [False, False, False]
+    rows = [{"length_m": v, "pivot_rad": 0.0, "gap_s": 0.0} for v in length]
+    assert backward_rows(rows) == [False, True, False]
+    assert backward_rows([{k: v for k, v in r.items() if k != "pivot_rad"} for r in rows]) == [True, True, False]
