@@ -2,7 +2,7 @@
 leg is checked as --leg-length (B394); L489's turn line counts turn episodes and states the distance share (L504);
 C141's chance note tells a small sample's interval from a score at chance and is in evaluate's JSON (C149); waist-pll
 on a pendulum calibration warns a child as uncalibrated (W411); a stream's first stride is not judged side or backward (L505),
-..."""
+train_user(5) and a bytes path are one DataError line (B395)."""
 
 from __future__ import annotations
 
@@ -177,3 +177,15 @@ def test_first_streamed_stride_is_not_judged_side_or_backward_l505():
     rows = [{"length_m": v, "pivot_rad": 0.0, "gap_s": 0.0} for v in length]
     assert backward_rows(rows) == [False, True, False]
     assert backward_rows([{k: v for k, v in r.items() if k != "pivot_rad"} for r in rows]) == [True, True, False]
+
+
+@pytest.mark.parametrize("arg, words", [(5, "train_user: expected a pdrlearn Session, got an int"),
+                                        (b"/tmp/s", "train_user: got the bytes path b'/tmp/s'; pass a path as a str"),
+                                        ([b"/tmp/s"], "got the bytes path b'/tmp/s'")])
+def test_train_user_odd_arguments_are_one_line_b395(arg, words):
+    from pdrlearn import train_user
+    from pdrlearn.errors import DataError
+
+    with pytest.raises(DataError) as info:
+        train_user(arg)
+    assert words in str(info.value) and "\n" not in str(info.value), str(info.value)
