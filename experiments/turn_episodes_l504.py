@@ -1,6 +1,6 @@
-"""Decision L504's measurement: L489's turn line (now counting turn episodes, L504) on L489's turn route for users 9579 and
-9821-9823, a corridor walk with one and with four turnarounds
-(9821-9823) and the real gaitmap walks, offline plasys.
+"""Decision L504's measurement: L489's turn line (now counting turn episodes) on L489's turn route for users 9579
+and 9821-9823, a corridor walk with one and with four turnarounds (the same users) and the real gaitmap walks,
+offline plasys.
 
     PYTHONPATH=. python experiments/turn_episodes_l504.py
 """
@@ -20,7 +20,8 @@ TURNS = ("stand:2, straight:3, turn:90, straight:2, turn:-90, straight:3, turn:1
 CORRIDOR = "stand:2, straight:10, turn:180, straight:10, stand:2"
 CORRIDOR4 = "stand:2, " + "straight:10, turn:180, " * 4 + "stand:2"  # the 4 x 10 m protocol
 REAL = ["datasets/external/gaitmap_walk4x10_left", "datasets/external/gaitmap_walk4x10_right",
-        "datasets/external/gaitmap_lwalk", "/work/shared/data/gaitmap_level_left", "/work/shared/data/gaitmap_level_right"]
+        "datasets/external/gaitmap_lwalk", "/work/shared/data/gaitmap_level_left",
+        "/work/shared/data/gaitmap_level_right"]
 
 
 def line(session) -> str:

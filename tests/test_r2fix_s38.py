@@ -1,8 +1,8 @@
 """Review R2's findings on session 38 (fixer FM): `import --merge --leg-length` keeps the leg and the mapping key's
 leg is checked as --leg-length (B394); L489's turn line counts turn episodes and states the distance share (L504);
 C141's chance note tells a small sample's interval from a score at chance and is in evaluate's JSON (C149); waist-pll
-on a pendulum calibration warns a child as uncalibrated (W411); a stream's first stride is not judged side or backward (L505),
-train_user(5) and a bytes path are one DataError line (B395)."""
+on a pendulum calibration warns a child as uncalibrated (W411); a stream's first stride is not judged side or
+backward (L505); train_user(5) and a bytes path are one DataError line (B395)."""
 
 from __future__ import annotations
 
