@@ -36,11 +36,11 @@ def test_train_and_evaluate_print_the_note_for_labels_that_carry_no_signal(tmp_p
     data = write_session(s, tmp_path / "noise")
     assert main(["train", str(data), "--out", str(tmp_path / "m"), "--tasks", "terrain", "--methods", "svm",
                  "--units", "foot", "--cv", "3"]) == 0
-    out = capsys.readouterr().out
-    assert "at or below chance (3 classes, 1/K = 33.3 %): svm/foot" in out.replace("\n", " ")
+    out = capsys.readouterr().out  # 41.8 % on 91 noise steps: above 1/K, its CI reaching it (decision C149)
+    assert "not distinguishable from chance on 91 steps (3 classes, 1/K = 33.3 %): svm/foot" in out.replace("\n", " ")
     good = write_session(simulate("terrain", user_seed=9606, seed=7), tmp_path / "good")
     assert main(["train", str(good), "--out", str(tmp_path / "g"), "--tasks", "terrain", "--methods", "svm",
                  "--units", "foot", "--cv", "3"]) == 0
-    assert "at or below chance" not in capsys.readouterr().out
+    assert "1/K =" not in capsys.readouterr().out
     assert main(["evaluate", str(tmp_path / "g"), str(data)]) == 0
     assert "at or below chance (3 classes, 1/K = 33.3 %): svm/foot" in capsys.readouterr().out.replace("\n", " ")

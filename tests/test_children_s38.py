@@ -122,7 +122,7 @@ def test_import_writes_the_leg_length_b390(tmp_path, capsys):
                  "--frames", "x=forward,y=left,z=up"]) == 0
     meta = json.loads((out / "meta.json").read_text())
     assert meta["leg_length_m"] == 0.62 and meta["height_m"] == 1.25
-    for bad, words in (("62", "0.62, not 62"), ("nan", "--leg-length"), ("1.3", "not under --subject-height")):
+    for bad, words in (("62", "0.62, not 62"), ("nan", "--leg-length"), ("1.3", "does not fit --subject-height")):
         capsys.readouterr()
         assert main(["import", str(csv), "--out", str(tmp_path / f"bad{bad}"), "--subject-height", "1.25",
                      "--leg-length", bad]) == 2

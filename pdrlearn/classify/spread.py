@@ -112,21 +112,45 @@ def at_chance(record: Mapping) -> tuple[bool, int]:
     return bool(low or (bal is not None and bal <= 1.0 / k + CHANCE_MARGIN)), k
 
 
+def chance_kind(record: Mapping) -> str | None:
+    """Decision C149: how :func:`at_chance` flags ``record``: ``"chance"`` when its accuracy or balanced accuracy
+    itself is within :data:`CHANCE_MARGIN` of 1/K (or under), ``"undistinguished"`` when only the accuracy's 95 %
+    interval reaches 1/K (a clearly better score on too few steps to tell), None when not flagged."""
+    flag, k = at_chance(record)
+    if not flag:
+        return None
+    bal = record.get("balanced_accuracy")
+    near = [v for v in (record.get("accuracy"), bal) if v is not None and v <= 1.0 / k + CHANCE_MARGIN]
+    return "chance" if near else "undistinguished"
+
+
 def chance_line(records: Iterable[tuple[str, Mapping]]) -> str | None:
     """Decision C141: one note naming the ``(method/unit, record)`` rows :func:`at_chance` flags, e.g. ``at or
     below chance (3 classes, 1/K = 33.3 %): dtw/waist 35.7 % (balanced 33.2 %) ...``; None when none is. The rows
-    of one table hold the same steps, so K is the first flagged row's."""
-    hits, ks = [], []
+    of one table hold the same steps, so K is the first flagged row's. Decision C149: a row whose scores are clearly
+    above 1/K and whose interval alone reaches it is "not distinguishable from chance on N steps" instead."""
+    hits: dict[str, list[str]] = {"chance": [], "undistinguished": []}
+    kn: dict[str, tuple[int, int]] = {}  # each kind's first row's K and steps (one table's rows share them)
     for name, r in records:
-        flag, k = at_chance(r)
-        if flag:
+        kind = chance_kind(r)
+        if kind:
             bal = r.get("balanced_accuracy")
-            hits.append(f"{name} {100 * r['accuracy']:.1f} % (balanced {'-' if bal is None else f'{100 * bal:.1f}'} %)")
-            ks.append(k)
-    if not hits:
+            hits[kind].append(f"{name} {100 * r['accuracy']:.1f} % (balanced "
+                              f"{'-' if bal is None else f'{100 * bal:.1f}'} %)")
+            kn.setdefault(kind, (at_chance(r)[1], int(r.get("n_steps") or 0)))
+    if not kn:
         return None
-    dtw = "; DTW on the waist: decision C69 says why, --param dtw.rule=spread is C70's opt-in rule" if any(
-        h.startswith("dtw/waist") for h in hits) else ""
-    return (f"at or below chance ({ks[0]} classes, 1/K = {100 / ks[0]:.1f} %): {', '.join(hits)}: the 95 % CI of "
-            f"the accuracy reaches 1/K or the balanced accuracy is within {100 * CHANCE_MARGIN:.0f} points of it, no "
-            f"better than guessing{dtw} (decision C141)")
+    parts = []
+    if hits["chance"]:
+        dtw = "; DTW on the waist: decision C69 says why, --param dtw.rule=spread is C70's opt-in rule" if any(
+            h.startswith("dtw/waist") for h in hits["chance"]) else ""
+        k = kn["chance"][0]
+        parts.append(f"at or below chance ({k} classes, 1/K = {100 / k:.1f} %): {', '.join(hits['chance'])}: "
+                     "the 95 % CI of the accuracy reaches 1/K or the balanced accuracy is within "
+                     f"{100 * CHANCE_MARGIN:.0f} points of it, no better than guessing{dtw} (decision C141)")
+    if hits["undistinguished"]:
+        k, n = kn["undistinguished"]
+        parts.append(f"not distinguishable from chance on {n} steps ({k} classes, 1/K = {100 / k:.1f} %): "
+                     f"{', '.join(hits['undistinguished'])}: above 1/K, but the accuracy's 95 % CI reaches it on so "
+                     "few steps; evaluate on more steps (decisions C141, C149)")
+    return "; ".join(parts)

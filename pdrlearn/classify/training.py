@@ -1402,15 +1402,18 @@ def session_list(sessions, caller: str = "train_user") -> list:
     R4: a TypeError before), else the sessions as a list. Decision B391: a path (``str`` / ``os.PathLike``), alone or
     in the list, is read as ``pdrlearn train`` reads it (a session folder, or a folder of sessions:
     :func:`pdrlearn.session_dirs.find_session_dirs`; otherwise one :class:`DataError` naming the path); anything else
-    that is not a session is :func:`pdrlearn.io.session.as_session`'s one line naming ``caller``."""
+    that is not a session is :func:`pdrlearn.io.session.as_session`'s one line naming ``caller`` (decision B395: a
+    single non-iterable value and a bytes path too)."""
     import os
 
     from pdrlearn.io import Session
     from pdrlearn.io.session import as_session
     from pdrlearn.session_dirs import read_session_dirs
 
-    if isinstance(sessions, Session | str | os.PathLike):
+    if isinstance(sessions, Session | str | os.PathLike | bytes | bytearray):
         sessions = [sessions]
+    elif sessions is not None and not hasattr(sessions, "__iter__"):  # decision B395: `train_user(5)` was a
+        as_session(sessions, caller)  # TypeError traceback ("'int' object is not iterable"): the one line
     out = []
     for s in sessions or []:
         if isinstance(s, str | os.PathLike):

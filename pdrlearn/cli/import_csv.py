@@ -209,6 +209,12 @@ def import_command(
         raise DataError("import: --labels-offset moves the --steps and --labels times; pass those tables, or leave "
                         "it out")
     m = _mapping_file(mapping)
+    if leg_length is None and "leg_length_m" in m:  # decision B394: a bad mapping value is named as its key
+        from pdrlearn.io.importer import check_leg_length
+
+        given_height = subject_height if subject_height is not None else m.get("height_m")
+        check_leg_length(m["leg_length_m"], given_height, f"{mapping}: \"leg_length_m\"",
+                         "--subject-height" if subject_height is not None else "\"height_m\"")
     if force_frame and frames is None and m.get("frames") is None:  # decision B69: it would be ignored
         raise DataError(f"{csv}: --force-frame keeps a --frames entry the data contradict (B67), and none is given; "
                         "add --frames AXES (e.g. x=forward,y=up,z=right) or drop --force-frame")

@@ -409,7 +409,7 @@ def evaluate(
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,
                                 warn_out_of_domain=warn_out_of_domain, step_predictions=tables,
                                 warn_gait_range=warn_gait_range, all_methods=all_methods)  # decision C125
-    result["warnings"] = list(dict.fromkeys(warned))
+    result["warnings"] = list(dict.fromkeys(warned)) + _chance_notes(result)  # decision C149: the C141 note too
     result["warning_codes"] = [warning_code(w) for w in result["warnings"]]  # decision B350, as evaluate_model's
     if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
         raise DataError(f"evaluate: {model_dir} has no trained classifier to evaluate (training skipped every "
@@ -532,6 +532,20 @@ def _task_table(c, r: dict, task: str, title: str) -> None:
     chance = chance_line((f"{m}/{u}", r["methods"][m]["units"][u]) for m, u in table_pairs(r))  # decision C141
     if chance:
         c.print(f"  {chance}", markup=False)
+
+
+def _chance_notes(result: dict) -> list[str]:
+    """Decision C149: each task's C141 chance note (:func:`~pdrlearn.classify.spread.chance_line`, the line printed
+    under its table) as ``"TASK: note"``, for the JSON's warnings."""
+    from pdrlearn.classify.evaluation import table_pairs
+    from pdrlearn.classify.spread import chance_line
+
+    out = []
+    for task, r in (result.get("tasks") or {}).items():
+        line = chance_line((f"{m}/{u}", r["methods"][m]["units"][u]) for m, u in table_pairs(r))
+        if line:
+            out.append(f"{task}: {line}")
+    return out
 
 
 def _pct(v) -> str:

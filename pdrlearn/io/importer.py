@@ -740,20 +740,31 @@ FEET = ("left", "right")
 LEG_LENGTH_RANGE_M = (0.3, 1.3)
 
 
-def check_leg_length(leg_length_m, height_m=None) -> float:
-    """Decision B390: ``leg_length_m`` as a float in metres, or one DataError line naming ``--leg-length`` and the
-    fix: outside :data:`LEG_LENGTH_RANGE_M`, or not under the ``height_m`` given with it."""
+def check_leg_length(leg_length_m, height_m=None, option: str = "--leg-length",
+                     height_option: str = "--subject-height") -> float:
+    """Decision B390: ``leg_length_m`` as a float in metres, or one DataError line naming ``option`` (the CLI
+    option, or the mapping file's key, decision B394) and the fix: not a number (``true`` included), outside
+    :data:`LEG_LENGTH_RANGE_M`, or, with a ``height_m``, outside S38's leg/height range (0.35-0.6 x the height,
+    the rule `simulate --leg-length` applies; decision B394)."""
+    from pdrlearn.cli.simulate import LEG_PER_HEIGHT_RANGE  # decision S38's rule (numpy-free module)
+
     lo, hi = LEG_LENGTH_RANGE_M
     try:
-        leg = float(leg_length_m)
+        leg = float("nan") if isinstance(leg_length_m, bool) else float(leg_length_m)
     except (TypeError, ValueError):
         leg = float("nan")
     if not (math.isfinite(leg) and lo <= leg <= hi):
-        raise DataError(f"import: --leg-length {leg_length_m!r} is not a leg length in m ({lo:g}-{hi:g} m, the "
+        raise DataError(f"import: {option} {leg_length_m!r} is not a leg length in m ({lo:g}-{hi:g} m, the "
                         "greater trochanter's height above the floor: 0.62, not 62)")
-    if height_m is not None and math.isfinite(float(height_m)) and leg >= float(height_m):
-        raise DataError(f"import: --leg-length {leg:g} m is not under --subject-height {float(height_m):g} m; give "
-                        "the leg (greater-trochanter height, ~0.5 x the height) in m")
+    try:
+        h = float("nan") if height_m is None or isinstance(height_m, bool) else float(height_m)
+    except (TypeError, ValueError):
+        h = float("nan")  # a bad height is refused by its own check
+    if math.isfinite(h) and not (LEG_PER_HEIGHT_RANGE[0] * h <= leg <= LEG_PER_HEIGHT_RANGE[1] * h):
+        raise DataError(f"import: {option} {leg:g} m does not fit {height_option} {h:g} m: the leg "
+                        f"(greater-trochanter height) is {LEG_PER_HEIGHT_RANGE[0]:g}-{LEG_PER_HEIGHT_RANGE[1]:g} x "
+                        f"the height ({LEG_PER_HEIGHT_RANGE[0] * h:.2f}-{LEG_PER_HEIGHT_RANGE[1] * h:.2f} m here; "
+                        "decisions S38, B394)")
     return leg
 
 
@@ -1344,9 +1355,12 @@ def merge_sessions(base: Session, add: Session) -> Session:
     placement = meta.get("placement")
     if placement and placement != add.meta.get("placement"):
         meta["placement"] = "foot+waist"
-    for key in ("sensor_height_m", "height_m", "foot", "subject", "visit"):
+    for key in ("sensor_height_m", "height_m", "leg_length_m", "foot", "subject", "visit"):  # B394: the leg too
         if key in add.meta:
             meta[key] = add.meta[key]
+    if "leg_length_m" in meta:  # decision B394: the leg against the merged session's height, as without --merge
+        check_leg_length(meta["leg_length_m"], meta.get("height_m"), "the merged session's leg_length_m",
+                         "its height_m")
     return Session(name=base.name, streams={**base.streams, **add.streams},
                    steps=base.steps if base.steps is not None else add.steps,
                    trajectory=base.trajectory, extras={**add.extras, **base.extras}, meta=meta,

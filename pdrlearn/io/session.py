@@ -751,13 +751,17 @@ def as_session(obj, caller: str) -> Session:
         from pdrlearn.io.plasys import read_session
 
         return read_session(obj)
+    if isinstance(obj, bytes | bytearray):  # decision B395: its bytes were read as sessions ("got a int")
+        raise NotASessionError(f"{caller}: got the bytes path {bytes(obj)!r}; pass a path as a str or "
+                               "pathlib.Path (e.g. path.decode()), or a pdrlearn Session")
     what = type(obj).__name__
+    what = f"{'an' if what[:1].lower() in 'aeiou' else 'a'} {what}"  # decision B395: "an int", not "a int"
     hint = ""
     if isinstance(obj, dict):
         hint = "; a dict of Streams becomes one with pdrlearn.io.Session(name=..., streams={name: Stream(...)})"
     elif isinstance(obj, pd.DataFrame):
         hint = "; a table of samples becomes one with `pdrlearn import FILE.csv --out SESSION`"
-    raise NotASessionError(f"{caller}: expected a pdrlearn Session, got a {what} (read one with "
+    raise NotASessionError(f"{caller}: expected a pdrlearn Session, got {what} (read one with "
                            f"pdrlearn.io.read_session(path), or pass the session folder's path){hint}")
 
 

@@ -20,14 +20,18 @@ import numpy as np
 BACKWARD_MAX_TURN_DEG = 30.0
 
 
-def backward_mask(length_m, gap_s=None, impossible=None, turn_angle_rad=None, sideways=None) -> np.ndarray:
+def backward_mask(length_m, gap_s=None, impossible=None, turn_angle_rad=None, sideways=None,
+                  streamed: bool = False) -> np.ndarray:
     """(n,) bool: the strides of signed lengths ``length_m`` that travel backward (module docstring); ``gap_s``,
     ``impossible``, ``turn_angle_rad`` and ``sideways`` (the side-stepping rows, decision L270) (n,) each optional
-    (None: not known, no stride excluded by it; NaN turn: not a turn)."""
+    (None: not known, no stride excluded by it; NaN turn: not a turn). ``streamed``: a streamed table, whose first
+    measured stride has no facing before it and is not judged (decision L505)."""
     length = np.asarray(length_m, dtype=float)
     keep = np.ones(length.shape, bool)
     if gap_s is not None:
         keep &= ~(np.asarray(gap_s, dtype=float) > 0)
+    if streamed and keep.any():
+        keep[np.argmax(keep)] = False  # decision L505: the stream's first measured stride
     if impossible is not None:
         keep &= ~np.asarray(impossible, dtype=bool)
     if turn_angle_rad is not None:
@@ -48,10 +52,10 @@ def backward_rows(rows: list[dict]) -> list[bool]:
     def num(key):
         return [math.nan if r.get(key) is None else float(r[key]) for r in rows]
 
-    side = side_rows([bool(r.get("sideways") or False) for r in rows], num("gap_s"),
-                     streamed=any("pivot_rad" in r for r in rows))
+    streamed = any("pivot_rad" in r for r in rows)
+    side = side_rows([bool(r.get("sideways") or False) for r in rows], num("gap_s"), streamed=streamed)
     return backward_mask(num("length_m"), num("gap_s"), [bool(r.get("impossible") or False) for r in rows],
-                         num("turn_angle_rad"), side).tolist()
+                         num("turn_angle_rad"), side, streamed=streamed).tolist()  # L505
 
 
 def is_backward(row: dict) -> bool:

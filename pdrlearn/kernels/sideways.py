@@ -100,6 +100,7 @@ class SideRun:
         self.others: deque[float] = deque(maxlen=SIDE_USUAL_STRIDES)
         self.pending: list[float] = []  # those of the current run's sideways strides before it is one
         self.count = 0  # consecutive sideways strides up to the last one
+        self.started = False  # decision L505: the first stride is not judged (no facing before it)
 
     def stride(self, dx: float, dy: float, length: float, frame: float = 0.0, turn: float | None = None) -> float:
         """The angle (rad) to add to the direction of the stride with horizontal displacement ``(dx, dy)`` m in its
@@ -109,6 +110,9 @@ class SideRun:
         c, s = math.cos(frame), math.sin(frame)
         fx, fy = c * dx - s * dy, s * dx + c * dy  # the displacement in the foot's frame (offline's ``disp``)
         angle = travel_angle(fx, fy)
+        if not self.started:  # decision L505: the stream's first stride has no facing before it (a start-up heading
+            self.started = True  # fault read a straight walk's first stride as sideways): not judged, not "usual"
+            return 0.0
         if not bool(is_sideways(angle, math.hypot(fx, fy), turn)):
             self.others.extend(self.pending if self.count < MIN_SIDE_STRIDES else [])
             self.others.append(angle)

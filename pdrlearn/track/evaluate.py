@@ -537,7 +537,8 @@ def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
                          steps["impossible"].eq(True).to_numpy(bool) if "impossible" in steps else None,
                          # L203 amended: a turning stride is no backward travel
                          steps["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in steps else None,
-                         sideways_rows(steps))  # decision L270: nor is a side step (L228's runs; L243 streamed)
+                         sideways_rows(steps),  # decision L270: nor is a side step (L228's runs; L243 streamed)
+                         streamed="pivot_rad" in steps)  # decision L505: nor a stream's first stride
 
 
 def add_backward_travel(steps: pd.DataFrame) -> None:

@@ -971,13 +971,15 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                         "(decision W56); drop realtime or set length_smoothing to none")
     _configure_model(model, None if isinstance(spec, StepLengthModel) else spec, realtime,
                      _model_options(o, realtime))
-    if pipeline == "waist-pll" and p.source != "calibrated":  # decision W405: a child's uncalibrated pll reads long
+    # decision W411: another pipeline's calibration leaves this one's step length on its defaults too
+    own_calibration = p.source == "calibrated" and p.pipeline in (None, pipeline)
+    if pipeline == "waist-pll" and not own_calibration:  # decision W405: a child's uncalibrated pll reads long
         from pdrlearn.waist.plausibility import pll_short_walker_message
 
         short = pll_short_walker_message(session.meta)
         if short:
             warnings.append(short)
-    if p.source == "calibrated" and p.pipeline not in (None, pipeline):
+    if p.source == "calibrated" and not own_calibration:
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
     try:
