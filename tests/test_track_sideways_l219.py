@@ -70,8 +70,10 @@ def _plasys(route: str, on: bool, monkeypatch) -> tuple[np.ndarray, list[str]]:
 
 
 def test_plasys_puts_side_strides_sideways_and_leaves_other_tracks_alone(monkeypatch):
-    err_off, _ = _plasys("side:-4", False, monkeypatch)
-    err_on, warn_on = _plasys("side:-4", True, monkeypatch)
+    # a forward walk first: since L494 a foot track's heading 0 is its first walk, which a walk of side steps alone
+    # would make the side direction (then L219 has nothing left to correct)
+    err_off, _ = _plasys("straight:4, side:-4", False, monkeypatch)
+    err_on, warn_on = _plasys("straight:4, side:-4", True, monkeypatch)
     assert np.hypot(*err_off) > 4.0 and np.hypot(*err_on) < 1.0  # L218: along the facing; L219: sideways
     assert not [w for w in warn_on if "decision L219" in w]
     a, _ = _plasys("straight:6, turn:90, straight:6", False, monkeypatch)
