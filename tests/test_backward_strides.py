@@ -56,7 +56,8 @@ def test_lower_back_track_has_none(tmp_path, capsys):
 
 def test_a_replay_counts_the_strides_its_model_classes_backward(tmp_path, capsys):
     """L203 amended (the feature tour, session 27): `pdrlearn run` left ``n_backward_strides`` empty (its table has
-    no raw length); it counts the strides its bundle classes backward (signed ``length_m``): 6 of 6 here."""
+    no raw length); it counts the strides its bundle classes backward (signed ``length_m``): 5 of 6 here, the first
+    not judged (L505)."""
     from pathlib import Path
 
     bundle = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
@@ -64,4 +65,5 @@ def test_a_replay_counts_the_strides_its_model_classes_backward(tmp_path, capsys
     assert main(["simulate", "--route", "stand:3, backward:10, stand:3", "--user-seed", "11", "--out", str(sim)]) == 0
     capsys.readouterr()
     assert main(["run", str(bundle), str(sim), "--out", str(tmp_path / "r"), "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["n_backward_strides"] == 6
+    # decision L505 (session 38): a stream's first stride is not judged backward or side (no facing yet)
+    assert json.loads(capsys.readouterr().out)["n_backward_strides"] == 5

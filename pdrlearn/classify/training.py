@@ -802,6 +802,13 @@ def model_user_key(model) -> str | None:
     return keys[0] if len(users) == 1 and len(keys) == 1 else None
 
 
+def _where(session) -> str:
+    """How a warning names a session (decision B34): its folder's name, not meta.json's (a copied folder keeps the
+    original's "session" name); the name of a session built in memory."""
+    folder = getattr(session, "folder", None)
+    return folder.name if folder is not None else str(getattr(session, "name", session))
+
+
 def other_user_line(model, sessions, what: str = "evaluate") -> str | None:
     """Decision C138: one warning line when a per-user model (:func:`model_user_key`) is scored on / classifies
     sessions whose meta.json names another user (:func:`session_user`, the mechanism of train's mixed-users warning,
@@ -813,7 +820,7 @@ def other_user_line(model, sessions, what: str = "evaluate") -> str | None:
     if not other:
         return None
     users = ", ".join(sorted({u for _, u in other}))
-    names = ", ".join(str(s.name) for s, _ in other[:3]) + (f" and {len(other) - 3} more" if len(other) > 3 else "")
+    names = ", ".join(_where(s) for s, _ in other[:3]) + (f" and {len(other) - 3} more" if len(other) > 3 else "")
     return (f"{what}: the model was trained on {key} but {len(other)} of {len(sessions)} session(s) are of {users} "
             f"({names}): a per-user model is applied to another user, so the figures are not the model's held-out "
             "accuracy on its user (decision C138; train that user's model, or a pooled one with --cv-groups user)")

@@ -980,6 +980,8 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
         for line in summary_warnings(out):
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
             out["info"] = {**out["info"], "warnings": [*out["info"].get("warnings", []), line]}
+    if session is not None:  # decision C142: each unit's frame status, as track's summary.json
+        out.update({f"frame_{p}": session.frame_status(p) for p in ("foot", "waist")})
     if session is not None and session.frames_inferred:  # D8, as track's summary.json gives them
         out["frames_inferred"] = session.frames_inferred
     out.update({

@@ -28,6 +28,8 @@ class RideWatch:
 
     def push(self, t, values) -> None:
         t = np.asarray(t, dtype=float).reshape(-1)
+        if not len(t):  # an empty push (a stream that stopped, a chunk without barometer rows)
+            return
         p = np.asarray(values, dtype=float).reshape(len(t), -1)[:, 0]
         self._t = np.concatenate([self._t, t])
         self._p = np.concatenate([self._p, p])
