@@ -162,10 +162,13 @@ def _md_table(df) -> list[str]:
     return [blank.to_markdown(index=False, floatfmt=".1f"), ""]
 
 
-def report_markdown(model, user: str, images: dict[str, str]) -> str:
+def report_markdown(model, user: str, images: dict[str, str], *, cv=None, louo=None) -> str:
     """report.md of a model: per task its CV table (the columns of cv.csv less the repeated ones), the
-    leave-one-user-out table pivoted to one column per held-out user, and the confusion figure ``images[task]``."""
-    cv, louo = cv_frame(model), louo_frame(model)
+    leave-one-user-out table pivoted to one column per held-out user, and the confusion figure ``images[task]``;
+    ``cv`` / ``louo``: the model's :func:`cv_frame` / :func:`louo_frame` when the caller has them (built here
+    otherwise)."""
+    cv = cv_frame(model) if cv is None else cv
+    louo = louo_frame(model) if louo is None else louo
     lines = [f"# Cross-validation of the model of user {user}", "",
              "Out-of-fold accuracy of every method x unit (%), rows in the order of thesis Tables 27/28/33; "
              "95 % CI: exact binomial interval of the pooled steps (decision C58); chosen: the model `track --model` "
@@ -194,8 +197,8 @@ def write_model_report(model, out: Path, *, user: str | None = None) -> Path:
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     user = user or (model.get("user") if isinstance(model, dict) else getattr(model, "user", "")) or "unnamed"
-    write_table_csv(cv_frame(model), out / "cv.csv")
-    louo = louo_frame(model)
+    cv, louo = cv_frame(model), louo_frame(model)
+    write_table_csv(cv, out / "cv.csv")
     if not louo.empty:
         write_table_csv(louo, out / "louo.csv")
     images = {}
@@ -204,5 +207,5 @@ def write_model_report(model, out: Path, *, user: str | None = None) -> Path:
         if res["methods"]:
             plot_confusions(task, res, out / f"confusion_{task}.png", what="CV confusion matrices")
             images[task] = f"confusion_{task}.png"
-    (out / "report.md").write_text(report_markdown(model, str(user), images) + "\n", encoding="utf-8")
+    (out / "report.md").write_text(report_markdown(model, str(user), images, cv=cv, louo=louo) + "\n", encoding="utf-8")
     return out
