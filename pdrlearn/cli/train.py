@@ -25,6 +25,7 @@ from pdrlearn.cli.common import (
     print_table,
     progress,
     replaced,
+    report_folder,
     resample_options,
     split_choices,
     split_length_units,
@@ -110,11 +111,8 @@ def train(
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     if report is not None:  # decision C143: checked before the work, like --out
-        rep, mod = report.resolve(), out.resolve()
-        if rep.is_relative_to(mod) or mod.is_relative_to(rep):  # the model's atomic write (or the report's) deletes
-            raise DataError(f"train: --report {report} is, or is inside, or holds the --out model directory; choose "
-                            f"a folder beside it, e.g. {out.parent / (out.name + '_report')}")
-        out_folder(report, "train-report", force=force, inputs=(*data_dirs, out), option="--report")
+        report_folder(report, out, command="train", what="model directory", kind="train-report", force=force,
+                      inputs=tuple(data_dirs))
     was = existed(out)
     sessions = read_session_dirs(data_dirs)
     total = sum(len(per_task.get(t, m_all)) for t in t_all) * len(u_all)
