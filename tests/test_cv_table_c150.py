@@ -94,3 +94,21 @@ def test_the_column_dictionary_takes_cv_csvs_names_from_the_writer():
     assert _named(("task",), meanings) == (("task", "-", "text", "t"),)
     with pytest.raises(KeyError, match="new_pct"):
         _named(("task", "new_pct"), meanings)
+
+
+def test_the_table_rounds_once():
+    """Decision C150: 29 of 31 steps is 93.548 %; cv_rows rounded it to 93.55 and the table to 93.6 (rounded
+    twice). The table now says 93.5 as train's console did; cv.csv keeps two decimals (93.55)."""
+    from pdrlearn.classify.cv_report import cv_frame, display_table, rounded
+
+    acc = 29 / 31
+    rec = {"per_class": {"flat": acc, "up": 1.0}, "accuracy": acc, "balanced_accuracy": acc, "n_steps": 31,
+           "n_folds": 3, "folds": {"mean": acc, "sd": 0.0, "ci95": [0.7858, 0.9925]}}
+    manifest = {"user": "x", "tasks": {"terrain": {"classes": ["flat", "up"], "n_steps": 31,
+                                                   "chosen": {"method": "svm", "unit": "foot"},
+                                                   "cv": {"svm": {"foot": rec}}}}}
+    cv = cv_frame(manifest)
+    row = display_table(cv, ["flat", "up"]).iloc[0]
+    assert (row["all %"], row["balanced %"], row["flat %"]) == (93.5, 93.5, 93.5)
+    assert row["folds"] == "93.5±0.0" and row["95 % CI"] == "78.6-99.2"
+    assert rounded(cv, 2)["accuracy_pct"].iloc[0] == 93.55

@@ -78,7 +78,19 @@ def cv_task_result(rec: dict) -> dict:
 
 
 def _pct(v) -> float | None:
-    return None if v is None else round(100 * float(v), 2)
+    """A share in %, unrounded (decision C150: the tables round once, :func:`rounded`; rounded to 2 decimals first,
+    93.548 read 93.6 at one decimal)."""
+    return None if v is None else 100 * float(v)
+
+
+def rounded(df, ndigits: int):
+    """``df`` with every float column rounded to ``ndigits`` decimals as ``f"{v:.{ndigits}f}"`` prints it (Python's
+    :func:`round`; numpy's rounds the scaled binary value), empty cells kept (decision C150)."""
+    out = df.copy()
+    for c in out.columns:
+        if out[c].dtype.kind == "f" or (out[c].dtype == object and any(isinstance(v, float) for v in out[c])):
+            out[c] = out[c].map(lambda v: v if not isinstance(v, float) or v != v else round(float(v), ndigits))
+    return out
 
 
 def _records(model):
@@ -161,13 +173,13 @@ def display_table(t, classes, order=None):
     out = pd.DataFrame({"method": t["method"], "unit": t["unit"], "chosen": t["chosen"].map({True: "yes",
                                                                                             False: ""})})
     for c in classes:
-        out[f"{c} %"] = t[class_column(c)].round(1)
-    out["all %"], out["balanced %"] = t["accuracy_pct"].round(1), t["balanced_accuracy_pct"].round(1)
+        out[f"{c} %"] = t[class_column(c)]
+    out["all %"], out["balanced %"] = t["accuracy_pct"], t["balanced_accuracy_pct"]
     out["folds"] = span(t["folds_mean_pct"].tolist(), t["folds_sd_pct"].tolist(), "±")
     out["95 % CI"] = span(t["ci95_low_pct"].tolist(), t["ci95_high_pct"].tolist(), "-")
     for c in [c for c in t.columns if c.startswith("thesis")]:
-        out[c.replace("_pct", " %")] = t[c].round(1)
-    return out.reset_index(drop=True)
+        out[c.replace("_pct", " %")] = t[c]
+    return rounded(out, 1).reset_index(drop=True)
 
 
 def text_rows(df) -> list[list[str]]:
@@ -221,9 +233,9 @@ def write_model_report(model, out: Path, *, user: str | None = None) -> Path:
     out.mkdir(parents=True, exist_ok=True)
     user = user or (model.get("user") if isinstance(model, dict) else getattr(model, "user", "")) or "unnamed"
     cv, louo = cv_frame(model), louo_frame(model)
-    write_table_csv(cv, out / "cv.csv")
+    write_table_csv(rounded(cv, 2), out / "cv.csv")  # two decimals of %, as before decision C150
     if not louo.empty:
-        write_table_csv(louo, out / "louo.csv")
+        write_table_csv(rounded(louo, 2), out / "louo.csv")
     images = {}
     for task, rec in task_records(model):
         res = cv_task_result(rec)
