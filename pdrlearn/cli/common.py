@@ -325,6 +325,18 @@ def refused_output(out: Path):
         raise err from None
 
 
+def report_folder(report: Path, out: Path, *, command: str, what: str, kind: str, force: bool,
+                  inputs: tuple = ()) -> None:
+    """Decisions C143, C151: ``--report`` of ``train`` / ``train-all``, checked before the work like ``--out``: a
+    folder that is, is inside or holds the ``--out`` folder (``what``) is refused (one atomic write would delete the
+    other), then :func:`out_folder` of ``kind``."""
+    rep, mod = report.resolve(), out.resolve()
+    if rep.is_relative_to(mod) or mod.is_relative_to(rep):
+        raise DataError(f"{command}: --report {report} is, or is inside, or holds the --out {what}; choose "
+                        f"a folder beside it, e.g. {out.parent / (out.name + '_report')}")
+    out_folder(report, kind, force=force, inputs=(*inputs, out), option="--report")
+
+
 def replaced(path: Path, existed: bool) -> None:
     """Say on stderr that ``--force`` replaced a previous output (one line; stdout stays machine-readable)."""
     if existed:
