@@ -18,6 +18,7 @@ REMOVED = {
     "pdrlearn.kernels.stride": ("WAIST_GAP_WHOLE", "WAIST_GAP_FOOT_HEADING"),  # L498, E114
     "pdrlearn.track.clinical": ("STRIDE_WINDOW_RHYTHM", "RHYTHM_MOVEMENTS"),  # L482, L500 / L501
     "pdrlearn.track.plasys": ("COMPASS_MOUNT_CHECK", "FOOT_WALK_REFERENCE"),  # D25, L494
+    "pdrlearn.track.labelled_asymmetry": ("LABELLED_ASYMMETRY",),  # L416
 }
 
 
