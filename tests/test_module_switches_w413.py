@@ -19,6 +19,7 @@ REMOVED = {
     "pdrlearn.track.clinical": ("STRIDE_WINDOW_RHYTHM", "RHYTHM_MOVEMENTS"),  # L482, L500 / L501
     "pdrlearn.track.plasys": ("COMPASS_MOUNT_CHECK", "FOOT_WALK_REFERENCE"),  # D25, L494
     "pdrlearn.track.labelled_asymmetry": ("LABELLED_ASYMMETRY",),  # L416
+    "pdrlearn.track.speed_domain": ("SPEED_CRUISE", "CRUISE_CONTIGUOUS"),  # L480 / L481 (rule B)
 }
 
 
