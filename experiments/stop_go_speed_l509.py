@@ -1,7 +1,8 @@
-"""Decision L509's adoption rule (docs/decisions/localization.md): each foot stride's ``speed_mps`` against the
+"""Decisions L509/L512's adoption rule (docs/decisions/localization.md): each foot stride's ``speed_mps`` against the
 simulator's steps.csv (the stride whose start..end holds the tracked ``event_s``; truth ``length_m / (end - start)``)
-with the old speed (``|length_m| / stride_time_s``, IC to IC) and L509's (a stride after a rest over the next
-stride's IC-to-IC), on fresh simulated users 10000-10009: stop-and-go routes and continuous walks."""
+with the old speed (``|length_m| / stride_time_s``, IC to IC) and the code's (L512: a stride after a rest over the
+shorter of its own and the next stride's IC-to-IC; L509's first version measured 10000-10009), on fresh simulated
+users from ``--first-user`` (10010 for L512): stop-and-go routes and continuous walks."""
 
 from __future__ import annotations
 
@@ -25,10 +26,13 @@ STOP_GO = ("stand:2, straight:4, stand:1, backward:3, stand:0.5, straight:4, sta
            "stand:2", "stand:2, straight:4:fast, stand:0.5, backward:4, stand:2.5, straight:6:fast, stand:1, "
            "side:-2, stand:0.8, straight:3:fast, stand:2")
 CONTINUOUS = "stand:3, straight:20, stand:3"
-CASES = ([(10000 + k, "stop-go", STOP_GO[k % 2], []) for k in range(6)]
-         + [(10006, "slow", CONTINUOUS, ["--speed", "slow"]), (10007, "normal", CONTINUOUS, []),
-            (10008, "fast", CONTINUOUS, ["--speed", "fast"]),
-            (10009, "very slow", CONTINUOUS, ["--step-length", "0.25", "--step-time", "1.5"])])
+
+
+def cases(first: int) -> list[tuple]:
+    return ([(first + k, "stop-go", STOP_GO[k % 2], []) for k in range(6)]
+            + [(first + 6, "slow", CONTINUOUS, ["--speed", "slow"]), (first + 7, "normal", CONTINUOUS, []),
+               (first + 8, "fast", CONTINUOUS, ["--speed", "fast"]),
+               (first + 9, "very slow", CONTINUOUS, ["--step-length", "0.25", "--step-time", "1.5"])])
 
 
 def speeds(folder: Path) -> pd.DataFrame:
@@ -61,7 +65,8 @@ def err(v: pd.Series, truth: pd.Series) -> tuple[int, float]:
 def main() -> None:
     frames = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for user, label, route, extra in CASES:
+        first = int(sys.argv[sys.argv.index("--first-user") + 1]) if "--first-user" in sys.argv else 10000
+        for user, label, route, extra in cases(first):
             out = Path(tmp) / f"u{user}"
             subprocess.run([sys.executable, "-m", "pdrlearn", "simulate", "--route", route, "--user-seed", str(user),
                             "--out", str(out), *extra], check=True, capture_output=True)
