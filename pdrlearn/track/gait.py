@@ -96,9 +96,10 @@ def stance_swing(start_s, end_s, event_s, tc_s, stride_s, valid=None) -> tuple[n
     return tc, stance, swing, 100.0 * stance / sd
 
 
-#: decisions L509/L512: the speed of a stride after a rest is its length over the shorter of its own and the next
-#: stride's IC-to-IC (False: ``|length_m| / stride_time_s`` for every stride, the first one after a stop reading low)
-REST_SPEED = True
+#: decisions L509/L512 (not adopted: an opt-in): True, a stride after a rest takes its length over the shorter of its
+#: own and the next stride's IC-to-IC; False (default), ``|length_m| / stride_time_s`` for every stride (the first
+#: one after a stop under 3 s reads low)
+REST_SPEED = False
 
 
 def resumed_times(start_s, end_s, stride_s, valid=None) -> np.ndarray:
