@@ -35,3 +35,27 @@ def test_speed_line_counts_side_strides_as_side():
     lines: list[str] = []
     flag_speeds(table, [1.0, 1.6], lines, "all")
     assert lines and "8 of 8 strides (of them 6 side steps, not forward walking)" in lines[0]
+
+
+def test_read_session_names_the_lower_back_for_a_clipped_waist_accelerometer(tmp_path, caplog):
+    import logging
+
+    import numpy as np
+
+    from pdrlearn.io import read_session
+
+    fs, g = 100.0, 9.80665
+    t = np.arange(0.0, 20.0, 1.0 / fs)
+    moving = (t > 6.0) & (t < 14.0)  # still, 8 s of jumps, still
+    up = g + np.where(moving, 30.0 * np.sin(2 * np.pi * t / 0.5), 0.0)  # +-3 g about gravity, a +-2 g range clips
+    acc = np.column_stack([0.3 * np.sin(t), np.clip(up, -2 * g, 2 * g), 0.2 * np.cos(t)])
+    gyr = np.column_stack([0.1 * np.sin(t), 0.1 * np.cos(t), 0.05 * np.sin(2 * t)])
+    folder = tmp_path / "s"
+    folder.mkdir()
+    for name, v in (("wAccelerometer", acc), ("wGyroscope", gyr)):
+        rows = "\n".join(f"{round(a * 1000)},{x:.6f},{y:.6f},{z:.6f}" for a, (x, y, z) in zip(t, v, strict=True))
+        (folder / f"{name}.csv").write_text("timestamp,x,y,z\n" + rows + "\n")
+    with caplog.at_level(logging.WARNING):
+        read_session(folder)
+    line = next(r.getMessage() for r in caplog.records if "clipped" in r.getMessage())
+    assert "wAccelerometer.csv" in line and "lower back" in line and "foot" not in line
