@@ -961,7 +961,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("stride_time_s", "s", "number", "IC to IC: this event_s minus the previous stride's (empty at the first "
                                      "stride, after a stop over 3 s, a gap row, or a missing IC; L66, L80)"),
     ("cadence_spm", "steps/min", "number", "120 / stride_time_s (two steps per stride of one foot)"),
-    ("speed_mps", "m/s", "number", "|length_m| / stride_time_s"),
+    ("speed_mps", "m/s", "number", "|length_m| / stride_time_s: the first stride after a stop under 3 s reads low "
+                                   "(its IC-to-IC holds the stop) and the first stride has none; the opt-in "
+                                   "gait.REST_SPEED takes the shorter of its own and the next stride's time (L509, "
+                                   "L512)"),
     ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride (wrapped "
                                         "to +-pi)"),
     ("tc_s", "s", "number", "--toe-off only: the stride's toe-off (foot gyroscope push-off peak; L73)"),

@@ -459,10 +459,12 @@ START_HELP = ("Start coordinate LAT,LON (degrees) -> lat/lon columns and OUT/tra
               "starts (default 0: z = height above the start; decision L56) and the GPX <ele>.")
 
 
-INITIAL_HEADING_HELP = ("Direction the walker sets off in, DEG degrees in the track's ENU frame: counter-clockwise "
+INITIAL_HEADING_HELP = ("Direction the walker faces at the first walk (a first side step travels 90 deg from it; "
+                        "decision L510), DEG degrees in the track's ENU frame: counter-clockwise "
                         "from east (0 = east, the default; 90 = north; -90 = south; a compass bearing B, clockwise "
                         "from north, is 90 - B). For a relative heading (foot or gyroscope heading, --streaming, "
-                        "no magnetometer); refused when the heading is absolute (decision L98).")
+                        "no magnetometer, or the foot heading the waist mounting check fell back to, L511); refused "
+                        "when the heading is absolute (decision L98).")
 
 
 def initial_heading_option(deg: float | None) -> float | None:

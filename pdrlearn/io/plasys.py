@@ -1452,7 +1452,8 @@ def warn_saturation(session: Session) -> None:
         if n:
             where = (str(session_csv(session.folder, name)) if session.folder is not None
                      else f"session '{session.name}', stream {name}")
-            log.warning("%s", saturation_warning(where, kind, n, len(s), top))
+            log.warning("%s", saturation_warning(where, kind, n, len(s), top,
+                                                 "waist" if name.startswith("w") else "foot"))  # T3 finding 9
 
 
 def warn_frozen(session: Session) -> None:

@@ -624,12 +624,15 @@ def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
     return k > (int(np.unique(near, return_counts=True)[1].max()) if near.size else 0)
 
 
-def saturation_warning(where: str, kind: str, n: int, total: int, top: float) -> str:
-    """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results."""
+def saturation_warning(where: str, kind: str, n: int, total: int, top: float, unit_name: str = "foot") -> str:
+    """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results;
+    ``unit_name`` the body unit (``"foot"`` or ``"waist"``: its consequence named for it, trial T3 finding 9)."""
     unit = "m/s^2" if kind == "accelerometer" else "rad/s"
     rng = f"{top / STANDARD_GRAVITY:.3g} g" if kind == "accelerometer" else f"{np.rad2deg(top):.4g} deg/s"
-    effect = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
-              if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it")
+    accel = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
+             if unit_name == "foot" else "the lower back's step peaks and the step lengths read from its vertical "
+             "movement are cut short")
+    effect = accel if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it"
     return coded(f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
             f"sensor's full scale: held for {CLIP_RUN}+ samples in a row, or reached by {CLIP_PINNED}+ samples one at "
             f"a time): {effect}, so distances and headings come out wrong there; record with a range above +-{rng} "

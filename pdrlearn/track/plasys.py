@@ -858,15 +858,26 @@ def require_stride_cover(session: Session, names, command: str = "pdrlearn track
 WALK_REFERENCE_STRIDES = 4
 
 
-def foot_walk_reference(head: np.ndarray, disp: np.ndarray) -> float:
+def foot_walk_reference(head: np.ndarray, disp: np.ndarray, lateral: np.ndarray | None = None,
+                        turn: np.ndarray | None = None) -> float:
     """Decision L494: the direction (rad) of the first walk in the strides' foot-only travel headings ``head`` (rad,
     0 = the foot unit's facing at the start): the circular mean of the first :data:`WALK_REFERENCE_STRIDES` finite
     headings of the strides longer than the frame inference's walking stride (``MIN_STRIDE_M``, D8; horizontal
-    displacement ``disp``, m), as W390 read a walk's direction; 0 when there is none."""
+    displacement ``disp``, m), as W390 read a walk's direction; 0 when there is none. Decision L510: with
+    ``lateral`` (each stride's travel angle from the foot's facing, rad, left +) a sideways stride (L219's
+    :func:`~pdrlearn.kernels.sideways.is_sideways`, ``turn`` its foot's heading change, L400) reads the walker's
+    facing, its heading less 90 deg to its side, so 0 is the walker's facing at the first walk, not a first
+    shuffle's travel (a backward stride's heading is its facing already: its length carries the sign)."""
+    from pdrlearn.kernels.sideways import is_sideways
     from pdrlearn.track.frame_inference import MIN_STRIDE_M
 
     disp = np.asarray(disp, float)
-    head = np.asarray(head, float)[np.hypot(disp[:, 0], disp[:, 1]) > MIN_STRIDE_M]
+    head = np.asarray(head, float)
+    hlen = np.hypot(disp[:, 0], disp[:, 1])
+    if lateral is not None:  # decision L510: a side stride travels at the facing +-90 deg
+        lateral = np.asarray(lateral, float)
+        head = head - np.where(is_sideways(lateral, hlen, turn), np.sign(lateral) * np.pi / 2, 0.0)
+    head = head[hlen > MIN_STRIDE_M]
     head = head[np.isfinite(head)][:WALK_REFERENCE_STRIDES]
     return float(np.angle(np.mean(np.exp(1j * head)))) if len(head) else 0.0
 
@@ -1365,7 +1376,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             warnings += [mount_line] if mount_line else []
         if mount_line is not None:  # decision D25: the foot gyroscope's own heading, as heading "foot"
             compass_line, compass_info = None, None
-            head = relative + initial_heading - foot_walk_reference(relative + side_extra, disp)  # L494
+            head = relative + initial_heading - foot_walk_reference(  # decisions L494, L510
+                relative + side_extra, disp, lateral, fd.yaw_change_)
         else:
             compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
                 work, strides, relative, straight)
@@ -1393,7 +1405,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
         head = fd.foot_heading(0.0) + lateral
-        head = head + initial_heading - foot_walk_reference(head, disp)  # decision L494
+        head = head + initial_heading - foot_walk_reference(head, disp, lateral, fd.yaw_change_)  # L494, L510
     else:
         raise DataError(f"plasys: heading '{hsrc}' is not waist, foot or fused")
     if hsrc in ("waist", "fused") and not SIDE_TRAVEL_HEADING:  # decision L219: a side-stepping stretch is put

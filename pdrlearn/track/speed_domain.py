@@ -97,6 +97,10 @@ def flag_speeds(table: pd.DataFrame, speed_range, warnings: list[str], strides: 
     table["speed_out_of_range"] = out
     n, m = int(out.sum()), int(judged.sum())
     what = "level straight strides" if strides == "cruise" else "strides"
+    if n and "travel" in table:  # trial T3 finding 9: a side or backward stride is counted as such, not as a walk's
+        travel = table["travel"].astype(str).to_numpy()
+        other = [f"{int((out & (travel == t)).sum())} {t}" for t in ("side", "backward") if (out & (travel == t)).any()]
+        what += f" (of them {', '.join(other)} steps, not forward walking)" if other else ""
     if n:
         warnings.append(
             f"{n} of {m} {what} at speeds outside the model's training strides ({lo:.2f}-{hi:.2f} m/s, "
