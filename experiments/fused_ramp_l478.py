@@ -1,5 +1,6 @@
-"""Decision L478: the fused altitude's bias state for climbing strides (``kernels.barometer.FUSED_CLIMB_BIAS``),
-judged by L478's adoption rule (docs/decisions/localization.md) on fresh simulated users.
+"""Decision L478: the fused altitude's bias state for climbing strides (``kernels.barometer.fuse_altitude``'s
+``climb_bias``; W413: a keyword, each code tracks with the kernel given its keywords), judged by L478's adoption
+rule (docs/decisions/localization.md) on fresh simulated users.
 
 Each session is simulated once (``pdrlearn simulate``) and tracked twice offline with ``--altitude fused`` (no
 model), the bias state off ("old") and on ("new"). Per session it prints the false ramps (ramps.csv rows whose true
@@ -16,10 +17,12 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import functools
 import io
 import json
 import sys
 from pathlib import Path
+from unittest import mock
 
 import numpy as np
 import pandas as pd
@@ -61,29 +64,25 @@ def measure(sim: Path, out: Path) -> dict:
             "ascent_err": abs(float(summary["ascent_m"]) - float(h[h > 0].sum()))}
 
 
-#: L478's codes: (tag, the kernels.barometer settings it tracks with)
-CODES = (("old", {"FUSED_CLIMB_BIAS": False}), ("new", {"FUSED_CLIMB_BIAS": True}))
+#: L478's codes: (tag, the keywords of ``kernels.barometer.fuse_altitude`` it tracks with; W413)
+CODES = (("old", {"climb_bias": False}), ("new", {"climb_bias": True}))
 
 
 def session(kind: str, user: int, root: Path, codes=CODES, routes=None) -> dict:
     """One simulated session of set ``kind`` (a route of ``routes``, default :data:`ROUTES`, or scenario D) tracked
-    with ``--altitude fused`` once per code (L478; L502 passes its four), the settings put back after."""
+    with ``--altitude fused`` once per code (L478; L502 passes its four): ``fuse_altitude`` given the code's keywords
+    for that track only (W413)."""
     sim = root / f"{kind}_u{user}"
     if not (sim / "meta.json").exists():
         what = ["--scenario", "D"] if kind == "D" else ["--route", (routes or ROUTES)[kind]]
         run(["simulate", *what, "--user-seed", str(user), "--out", str(sim), "--force"])
     rows = {}
-    for tag, settings in codes:
-        before = {k: getattr(barometer, k) for k in settings}
-        for k, v in settings.items():
-            setattr(barometer, k, v)
-        try:
+    fuse = barometer.fuse_altitude
+    for tag, keywords in codes:
+        with mock.patch.object(barometer, "fuse_altitude", functools.partial(fuse, **keywords)):
             out = root / f"{kind}_u{user}_{tag}"
             run(["track", str(sim), "--altitude", "fused", "--out", str(out), "--force"])
             rows[tag] = measure(sim, out)
-        finally:
-            for k, v in before.items():
-                setattr(barometer, k, v)
     return rows
 
 

@@ -24,12 +24,12 @@ from slopes import users  # noqa: E402
 from pdrlearn.kernels import barometer  # noqa: E402
 
 ROUTES = {**ROUTES, "U": "stand:3, straight:10, slope:150:15, slope:150:-15, straight:10, stand:3"}
-#: (label, FUSED_CLIMB_BIAS, FUSED_CLIMB_BIAS_MODE)
+#: (label, fuse_altitude's climb_bias, bias_mode)
 CODES = (("off", False, "one"), ("one", True, "one"), ("split", True, "split"), ("scale", True, "scale"))
 
 
 def session(kind: str, user: int, root: Path) -> dict:
-    return l478_session(kind, user, root, codes=[(tag, {"FUSED_CLIMB_BIAS": on, "FUSED_CLIMB_BIAS_MODE": mode})
+    return l478_session(kind, user, root, codes=[(tag, {"climb_bias": on, "bias_mode": mode})
                                                  for tag, on, mode in CODES], routes=ROUTES)
 
 

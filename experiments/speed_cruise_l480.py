@@ -1,15 +1,15 @@
-"""Decision L480: L474's speed range taken over, and compared on, the cruise strides
-(``track.speed_domain.SPEED_CRUISE``), judged by L480's adoption rule (docs/decisions/localization.md) on fresh
-simulated users.
+"""Decisions L480 / L481: L474's speed range taken over, and compared on, the cruise strides (rule B: touching both
+neighbours), on simulated users (docs/decisions/localization.md).
 
-Per user: the three calibration exercises are simulated and ``train``-ed twice (the switch off: "old", on: "new");
-a normal walk with pauses and a very slow walk (0.33-0.39 m/s) are tracked offline with each model; it prints the
-flagged strides (steps.csv ``speed_out_of_range``) of each.
+Per user: the three calibration exercises are simulated and ``train``-ed; a normal walk with pauses and a very slow
+walk (0.33-0.39 m/s) are tracked offline with the model; it prints the flagged strides (steps.csv
+``speed_out_of_range``) of each. L480 / L481 were adopted and W413 removed their module switches
+(``SPEED_CRUISE``, ``CRUISE_CONTIGUOUS``), so this prints the rule as it is; the "old" arm (every stride) and rule A
+they measured are at commit d3ffb129 (``git show d3ffb129:experiments/speed_cruise_l480.py``).
 
 Usage::
 
-    PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/speed_cruise_l480.py --out /tmp/l480   # ~15 min
-    PYTHONPATH=. .venv/bin/python experiments/speed_cruise_l480.py --rule-b --users 9500-9504 --out /tmp/l481  # L481
+    PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/speed_cruise_l480.py --out /tmp/l480   # ~8 min
 """
 
 from __future__ import annotations
@@ -24,8 +24,6 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from fused_ramp_l478 import run  # noqa: E402
 from slopes import users  # noqa: E402
-
-from pdrlearn.track import speed_domain  # noqa: E402
 
 NORMAL = "stand:3, straight:30, stand:5, straight:20, turn:90, straight:20, stand:5, straight:15, stand:3"
 SLOW = "stand:3, straight:15, stand:3"
@@ -51,34 +49,25 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", default="9495-9499")
     ap.add_argument("--out", type=Path, required=True)
-    ap.add_argument("--rule-b", action="store_true", help="L481's rule B: cruise strides touch both neighbours")
     a = ap.parse_args()
-    speed_domain.CRUISE_CONTIGUOUS = a.rule_b
     a.out.mkdir(parents=True, exist_ok=True)
-    total = {k: [0, 0, 0, 0] for k in ("old", "new")}
+    total = [0, 0, 0, 0]
     for i, u in enumerate(users(a.users)):
         cal = [simulate(a.out, f"cal_{ex}_u{u}", u, ["--scenario", ex]) for ex in ("terrain", "direction", "length")]
         sl, stime = SLOW_GAITS[i % len(SLOW_GAITS)]
         normal = simulate(a.out, f"normal_u{u}", u, ["--route", NORMAL])
         slow = simulate(a.out, f"slow_u{u}", u, ["--route", SLOW, "--step-length", str(sl), "--step-time", str(stime)])
-        parts = []
-        for tag, on in (("old", False), ("new", True)):
-            speed_domain.SPEED_CRUISE = on
-            model = a.out / f"m_u{u}_{tag}"
-            if not (model / "manifest.json").exists():
-                run(["train", *map(str, cal), "--out", str(model), "--force"])
-            rng = json.loads((model / "manifest.json").read_text())["training_data"]["distance_calibration"]
-            n_n, m_n = flagged(normal, model, a.out / f"t_normal_u{u}_{tag}")
-            n_s, m_s = flagged(slow, model, a.out / f"t_slow_u{u}_{tag}")
-            for j, v in enumerate((n_n, m_n, n_s, m_s)):
-                total[tag][j] += v
-            parts.append(f"{tag} range {rng['speed_range_mps']} normal {n_n}/{m_n} slow {n_s}/{m_s} "
-                         f"({sl / stime:.2f} m/s)")
-        print(u, "; ".join(parts), flush=True)
-    for tag, (n_n, m_n, n_s, m_s) in total.items():
-        print(f"{tag}: normal walks {n_n} of {m_n} strides flagged; slow walks {n_s} of {m_s} "
-              f"({100 * n_s / max(m_s, 1):.1f} %)")
-
+        model = a.out / f"m_u{u}"
+        if not (model / "manifest.json").exists():
+            run(["train", *map(str, cal), "--out", str(model), "--force"])
+        rng = json.loads((model / "manifest.json").read_text())["training_data"]["distance_calibration"]
+        n_n, m_n = flagged(normal, model, a.out / f"t_normal_u{u}")
+        n_s, m_s = flagged(slow, model, a.out / f"t_slow_u{u}")
+        total = [t + v for t, v in zip(total, (n_n, m_n, n_s, m_s), strict=True)]
+        print(u, f"range {rng['speed_range_mps']} normal {n_n}/{m_n} slow {n_s}/{m_s} ({sl / stime:.2f} m/s)",
+              flush=True)
+    n_n, m_n, n_s, m_s = total
+    print(f"normal walks {n_n} of {m_n} strides flagged; slow walks {n_s} of {m_s} ({100 * n_s / max(m_s, 1):.1f} %)")
 
 if __name__ == "__main__":
     main()

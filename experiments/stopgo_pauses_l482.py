@@ -1,7 +1,10 @@
-"""Decision L482's adoption rule (docs/decisions/localization.md): the foot track's walking bouts and pauses with
-the rhythm bounded by the rows' own stride windows (``clinical.STRIDE_WINDOW_RHYTHM`` true) against L104's median
-alone (false, = main), on fresh simulated users 9540-9555 (stop-and-go routes with known walks / stands, and
-continuous walks at normal gait and 0.4 m/s) and the real recordings of datasets/real (a check, not tuned on)."""
+"""Decision L482's cases (docs/decisions/localization.md): the foot track's walking bouts and pauses with the rhythm
+bounded by the rows' own stride windows, on simulated users 9540-9555 (stop-and-go routes with known walks / stands,
+and continuous walks at normal gait and 0.4 m/s) and the real recordings of datasets/real (a check, not tuned on).
+
+L482 was adopted and L500 refined it (L501); W413 removed their module switches, so this prints the rule as it is.
+L482's measurement against L104's median alone ran with ``clinical.STRIDE_WINDOW_RHYTHM``, which commit d3ffb129
+holds (``git show d3ffb129:experiments/stopgo_pauses_l482.py``)."""
 
 from __future__ import annotations
 
@@ -11,7 +14,6 @@ import tempfile
 from pathlib import Path
 
 from pdrlearn.io import read_session
-from pdrlearn.track import clinical
 from pdrlearn.track.base import get_pipeline, resolve_pipeline
 from pdrlearn.track.evaluate import track_summary
 
@@ -32,41 +34,48 @@ CASES = ([(u, "sg1", SG1, [], (8, 7)) for u in range(9540, 9544)]
 KEYS = ("n_walking_bouts", "n_pauses", "pause_time_s", "walking_time_s")
 
 
-def both(session) -> tuple[dict, dict]:
-    result = get_pipeline(resolve_pipeline("auto", session))(session)
-    out = []
-    for on in (False, True):
-        clinical.STRIDE_WINDOW_RHYTHM = on
-        s = track_summary(result, session)
-        out.append({k: s.get(k) for k in KEYS})
-    clinical.STRIDE_WINDOW_RHYTHM = True
-    return out[0], out[1]
+def counts(session) -> dict:
+    """The session tracked (pipeline auto) and its summary's :data:`KEYS`."""
+    s = track_summary(get_pipeline(resolve_pipeline("auto", session))(session), session)
+    return {k: s.get(k) for k in KEYS}
 
 
-def line(name: str, old: dict, new: dict) -> str:
-    return name + ": " + ", ".join(
-        f"{k} {old[k]:.2f} -> {new[k]:.2f}" if isinstance(old[k], float) else f"{k} {old[k]} -> {new[k]}" for k in KEYS)
+def line(name: str, new: dict) -> str:
+    return name + ": " + ", ".join(f"{k} {new[k]:.2f}" if isinstance(new[k], float) else f"{k} {new[k]}" for k in KEYS)
 
 
-def main() -> None:
-    right = 0
+def run_cases(cases) -> tuple[int, int]:
+    """Each (user, label, route, extra simulate options, truth (bouts, pauses) or None) of ``cases`` simulated at
+    100 Hz and counted, one printed line each: (cases with a truth counted right, cases without one with a pause)."""
+    right, paused = 0, 0
     with tempfile.TemporaryDirectory() as tmp:
-        for user, label, route, extra, truth in CASES:
+        for user, label, route, extra, truth in cases:
             out = Path(tmp) / f"u{user}"
             subprocess.run([sys.executable, "-m", "pdrlearn", "simulate", "--route", route, "--user-seed", str(user),
                             "--rate", "100", "--out", str(out), *extra], check=True, capture_output=True)
-            old, new = both(read_session(out))
+            new = counts(read_session(out))
             ok = ""
             if truth:
                 hit = (new["n_walking_bouts"], new["n_pauses"]) == truth
                 right += hit
                 ok = f" (truth {truth[0]} / {truth[1]}: {'right' if hit else 'WRONG'})"
-            print(line(f"u{user} {label}", old, new) + ok, flush=True)
-    print(f"stop-and-go users with the right bout / pause counts: {right} of 8", flush=True)
+            else:
+                paused += new["n_pauses"] > 0
+            print(line(f"u{user} {label}", new) + ok, flush=True)
+    return right, paused
+
+
+def real() -> None:
+    """The real recordings of datasets/real, one printed line each (a check, not tuned on)."""
     for p in sorted((ROOT / "datasets/real").iterdir()):
         if p.is_dir():
-            old, new = both(read_session(p))
-            print(line(p.name, old, new), flush=True)
+            print(line(p.name, counts(read_session(p))), flush=True)
+
+
+def main() -> None:
+    right, _ = run_cases(CASES)
+    print(f"stop-and-go users with the right bout / pause counts: {right} of 8", flush=True)
+    real()
 
 
 if __name__ == "__main__":

@@ -4,6 +4,8 @@ against main's kernel (the waist gyroscope interpolated across the gap), on fres
 Users 4042-4059 (fresh), 20 Hz, normal speed, seed 4, the trial's loop R1 (session 28); every waist stream removed
 for 30 s from 100 + 3 (u - 4042) s. `track --streaming` without a model (the kernel `run` shares), final position
 error (m, `evaluate_track`) per arm; each walk's copy without a gap must give identical steps in both arms.
+E114 is the kernel's rule (W413 removed its module switch, commit d3ffb129 holds it): main's arm stands in the
+kernel's ``waist_heads`` with :func:`before_e114` for its tracks.
 
 Run: PYTHONPATH=. .venv/bin/python experiments/waist_gap_heading.py [--users 4042-4059]
 """
@@ -12,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+from unittest import mock
 
 import numpy as np
 
@@ -27,15 +30,20 @@ R1 = ("stand:5, straight:20, turn:90, straight:15, up:17, turn:180, up:17, strai
       "backward:4, stand:20, turn:180, straight:25, turn:90, straight:10, down:17, turn:180, down:17, straight:15, "
       "turn:-90, straight:20, turn:180")
 GAP_S = 30.0
-ARMS = {"main": False, "E114": True}  # SK.WAIST_GAP_FOOT_HEADING
+ARMS = ("main", "E114")
+
+
+def before_e114(levelled) -> bool:
+    """The kernel's ``waist_heads`` before E114 (main's arm): a levelled waist gyroscope heads every stride, gap or
+    not."""
+    return "waist" in levelled and levelled["waist"][2] is not None
 
 
 def run(session, arm: str):
-    SK.WAIST_GAP_FOOT_HEADING = ARMS[arm]
-    try:
+    if arm == "E114":
         return track_plasys(session, streaming=True)
-    finally:
-        SK.WAIST_GAP_FOOT_HEADING = True
+    with mock.patch.object(SK, "waist_heads", before_e114):
+        return track_plasys(session, streaming=True)
 
 
 def main() -> None:

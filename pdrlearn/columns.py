@@ -8,6 +8,7 @@ every column written is here. Meanings follow docs/localization.md's table of su
 
 from __future__ import annotations
 
+from pdrlearn.classify.cv_report import CLASS_COLUMN, CV_COLUMNS, LOUO_COLUMNS
 from pdrlearn.cohort import GROUP_METRICS
 from pdrlearn.table_names import TABLE_NAMES
 from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG
@@ -960,7 +961,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("stride_time_s", "s", "number", "IC to IC: this event_s minus the previous stride's (empty at the first "
                                      "stride, after a stop over 3 s, a gap row, or a missing IC; L66, L80)"),
     ("cadence_spm", "steps/min", "number", "120 / stride_time_s (two steps per stride of one foot)"),
-    ("speed_mps", "m/s", "number", "|length_m| / stride_time_s"),
+    ("speed_mps", "m/s", "number", "|length_m| / stride_time_s: the first stride after a stop under 3 s reads low "
+                                   "(its IC-to-IC holds the stop) and the first stride has none; the opt-in "
+                                   "gait.REST_SPEED takes the shorter of its own and the next stride's time (L509, "
+                                   "L512)"),
     ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride (wrapped "
                                         "to +-pi)"),
     ("tc_s", "s", "number", "--toe-off only: the stride's toe-off (foot gyroscope push-off peak; L73)"),
@@ -1352,35 +1356,43 @@ COHORT_METHODS_SUMMARY: tuple[Column, ...] = (
 )
 
 
-#: classifiers C143: `train --report`'s tables (pdrlearn.classify.cv_report); accuracies are percentages
-TRAIN_CV: tuple[Column, ...] = (
-    ("task", _ID, "text", "terrain, direction or length"),
-    ("method", _ID, "text", "as cohort_methods.csv"),
-    ("unit", _ID, "text", "as cohort_methods.csv"),
-    ("chosen", _ID, "true/false", "whether it is the task's chosen model (train's choice, C8), the one track --model "
-                               "uses"),
-    ("cv", _ID, "text", "the cross-validation: '10-fold CV accuracy', 'leave-one-user-out CV accuracy (3 users)', ..."),
-    ("n_steps", "count", "integer", "labelled strides of one foot the CV scored (C69: every session's, pooled)"),
-    ("accuracy_pct", "%", "number", "out-of-fold accuracy over the pooled steps"),
-    ("balanced_accuracy_pct", "%", "number", "mean of the class recalls (C60; what train ranks by, C36)"),
-    ("ci95_low_pct", "%", "number", "exact binomial (Clopper-Pearson) 95 % interval of accuracy_pct, low end (C58)"),
-    ("ci95_high_pct", "%", "number", "its high end"),
-    ("folds_mean_pct", "%", "number", "mean of the folds' accuracies (C41)"),
-    ("folds_sd_pct", "%", "number", "their sample SD; empty with one fold"),
-    ("thesis_pct", "%", "number", "the thesis' figure of the row: mean of its per-class accuracies in Tables "
+def _named(names: tuple[str, ...], meanings: dict[str, tuple[str, str, str]]) -> tuple[Column, ...]:
+    """Classifiers C150: a table's columns in the order its writer names them (``names``, the writer's one list),
+    each with its entry of ``meanings``; a name without a meaning, or a meaning of no column, fails at import."""
+    if set(names) != set(meanings):
+        raise KeyError(f"columns: {sorted(set(names) ^ set(meanings))} named by the writer or the dictionary only")
+    return tuple((n, *meanings[n]) for n in names)
+
+
+#: classifiers C143: `train --report`'s tables (pdrlearn.classify.cv_report); accuracies are percentages; the names
+#: and their order are cv_report's CV_COLUMNS / LOUO_COLUMNS (C150)
+TRAIN_CV: tuple[Column, ...] = (*_named(CV_COLUMNS, {
+    "task": (_ID, "text", "terrain, direction or length"),
+    "method": (_ID, "text", "as cohort_methods.csv"),
+    "unit": (_ID, "text", "as cohort_methods.csv"),
+    "chosen": (_ID, "true/false", "whether it is the task's chosen model (train's choice, C8), the one track --model "
+                                  "uses"),
+    "cv": (_ID, "text", "the cross-validation: '10-fold CV accuracy', 'leave-one-user-out CV accuracy (3 users)', ..."),
+    "n_steps": ("count", "integer", "labelled strides of one foot the CV scored (C69: every session's, pooled)"),
+    "accuracy_pct": ("%", "number", "out-of-fold accuracy over the pooled steps"),
+    "balanced_accuracy_pct": ("%", "number", "mean of the class recalls (C60; what train ranks by, C36)"),
+    "ci95_low_pct": ("%", "number", "exact binomial (Clopper-Pearson) 95 % interval of accuracy_pct, low end (C58)"),
+    "ci95_high_pct": ("%", "number", "its high end"),
+    "folds_mean_pct": ("%", "number", "mean of the folds' accuracies (C41)"),
+    "folds_sd_pct": ("%", "number", "their sample SD; empty with one fold"),
+    "thesis_pct": ("%", "number", "the thesis' figure of the row: mean of its per-class accuracies in Tables "
                                   "27/28/33 (C144); empty where the thesis has no row (soft votes, ensemble)"),
-    ("accuracy_<class>_pct", "%", "number", "recall of each class (thesis Tables 27/28/33's per-class accuracy)"),
-)
-TRAIN_LOUO: tuple[Column, ...] = (
-    ("task", _ID, "text", "as cv.csv"),
-    ("method", _ID, "text", "as cv.csv"),
-    ("unit", _ID, "text", "as cv.csv"),
-    ("chosen", _ID, "true/false", "as cv.csv"),
-    ("held_out", _ID, "text", "the user (session, C59) the fold held out, as meta.json names it"),
-    ("n_steps", "count", "integer", "that user's labelled steps"),
-    ("accuracy_pct", "%", "number", "accuracy on that user's steps, trained on the others"),
-    ("balanced_accuracy_pct", "%", "number", "mean recall over the classes that user's steps hold"),
-)
+}), (CLASS_COLUMN, "%", "number", "recall of each class (thesis Tables 27/28/33's per-class accuracy)"))
+TRAIN_LOUO: tuple[Column, ...] = _named(LOUO_COLUMNS, {
+    "task": (_ID, "text", "as cv.csv"),
+    "method": (_ID, "text", "as cv.csv"),
+    "unit": (_ID, "text", "as cv.csv"),
+    "chosen": (_ID, "true/false", "as cv.csv"),
+    "held_out": (_ID, "text", "the user (session, C59) the fold held out, as meta.json names it"),
+    "n_steps": ("count", "integer", "that user's labelled steps"),
+    "accuracy_pct": ("%", "number", "accuracy on that user's steps, trained on the others"),
+    "balanced_accuracy_pct": ("%", "number", "mean recall over the classes that user's steps hold"),
+})
 
 
 #: cohort C106: the classifier tasks cohort_summary.csv has columns of (pdrlearn.classify.training.TASKS, not imported

@@ -42,6 +42,8 @@ FOLDER_KINDS = {
     "evaluation": ("an evaluation report", "pdrlearn evaluate --report"),
     "train-report": ("a training report (cv.csv, report.md)", "pdrlearn train --report"),  # decision C143
     "train-all": ("per-user model directories", "pdrlearn train-all"),
+    "train-all-report": ("per-user training reports (USER/cv.csv, USER/report.md)",
+                         "pdrlearn train-all --report"),  # cohort C151
     "evaluate-all": ("a cohort summary", "pdrlearn evaluate-all"),
     "track-all": ("a batch of tracks (sessions.csv, groups.csv, one folder per session)", "pdrlearn track-all"),
     "gait": ("a bilateral gait output (gait_summary.json, gait_steps.csv)", "pdrlearn gait"),  # decision L260
@@ -82,6 +84,9 @@ def folder_kind(folder: Path) -> str | None:
         return "report"
     if (folder / "report.md").is_file() and (folder / "cv.csv").is_file():  # decision C143
         return "train-report"
+    users = [p for p in folder.iterdir() if not p.name.startswith(".")]
+    if users and all(p.is_dir() and folder_kind(p) == "train-report" for p in users):  # cohort C151: one per user
+        return "train-all-report"
     if (folder / "report.md").is_file() or (folder / "report.json").is_file():
         return "evaluation"
     return None

@@ -25,38 +25,36 @@ def _child_contacts(step_s: float, own_offsets, n_strides: int = 24, asym: float
     return foot, np.sort(np.concatenate([own, other]))
 
 
-def test_contacts_lagging_past_a_quarter_step_keep_their_label_l490():
-    """A child's 0.36 s steps: the lower back's own contacts lie 0.02-0.10 s before the foot's (lag -0.06 s): L416's
-    quarter step (0.09 s) takes every other one for the other foot's; L490's option (the window centred on the lag)
-    labels all of them the foot's and reads the symmetric walk symmetric."""
-    from pdrlearn.track.labelled_asymmetry import CENTRED_OPTIONS, label_contacts, labelled_step_asymmetry
+def test_l490_and_l493_options_are_gone_and_the_default_labelling_is_l416s_l507():
+    """A child's 0.36 s steps, the lower back's own contacts 0.02-0.10 s before the foot's: L416's quarter step
+    (0.09 s) takes some of them for the other foot's (L490's measured limit). L490's centred window and L493's
+    3-point gate were not adopted; L507 removed them (commit d3ffb129 holds ``CENTRED_OPTIONS``)."""
+    import inspect
+
+    from pdrlearn.track import labelled_asymmetry as la
 
     foot, waist = _child_contacts(0.36, [-0.02, -0.06, -0.10])
-    assert not label_contacts(foot, waist)[2].all()  # L416's default window: some own contacts mislabelled
-    _, w, own = label_contacts(foot, waist, tolerance_steps=0.5, centre_on_lag=True)
-    truth_own = np.isin(np.round(w, 6), np.round(foot + np.resize([-0.02, -0.06, -0.10], len(foot)), 6))
-    assert (own == truth_own).all()
-    res = labelled_step_asymmetry(foot, waist, **CENTRED_OPTIONS)
-    assert res["step_time_asymmetry_pct"] is not None and res["step_time_asymmetry_pct"] < 3.0, res
+    assert not la.label_contacts(foot, waist)[2].all()  # L416's default window: some own contacts mislabelled
+    for f in (la.label_contacts, la.other_foot_phases, la.labelled_step_asymmetry):
+        assert not {"centre_on_lag", "max_standard_error"} & set(inspect.signature(f).parameters), f
+    assert not any(hasattr(la, n) for n in ("CENTRED_OPTIONS", "FIRST_PASS_STEPS", "MAX_STANDARD_ERROR_POINTS"))
 
 
-def test_scattered_contacts_withhold_the_index_with_their_standard_error_l493():
+def test_scattered_contacts_give_the_index_with_their_standard_error_l490():
     """Other-foot contacts scattering 0.06 s (SD) in 0.72 s strides over 20 strides: the median phase is uncertain
-    by several points: its standard error is returned (L490), and L493's option (a 3-point gate) withholds it."""
-    from pdrlearn.track.labelled_asymmetry import CENTRED_OPTIONS, labelled_step_asymmetry
+    by several points: its standard error is returned (L490) and the index still given (L493's gate not adopted)."""
+    from pdrlearn.track.labelled_asymmetry import UNCERTAIN_SE_POINTS, labelled_step_asymmetry
 
     rng = np.random.default_rng(9581)
     foot = np.arange(21) * 0.72
     other = foot[:-1] + 0.36 + rng.normal(0.0, 0.06, 20)
     waist = np.sort(np.concatenate([foot - 0.03, other - 0.03]))
     res = labelled_step_asymmetry(foot, waist)
-    assert res["standard_error_points"] > CENTRED_OPTIONS["max_standard_error"]
-    assert res["step_time_asymmetry_pct"] is not None  # the default (L416) still gives it: L493 not adopted
-    gated = labelled_step_asymmetry(foot, waist, **CENTRED_OPTIONS)
-    assert gated["step_time_asymmetry_pct"] is None and gated["n_strides"] >= 10
-    tight = labelled_step_asymmetry(foot, np.sort(np.concatenate([foot - 0.03, foot[:-1] + 0.33])), **CENTRED_OPTIONS)
+    assert res["standard_error_points"] > UNCERTAIN_SE_POINTS
+    assert res["step_time_asymmetry_pct"] is not None and res["n_strides"] >= 10
+    tight = labelled_step_asymmetry(foot, np.sort(np.concatenate([foot - 0.03, foot[:-1] + 0.33])))
     assert tight["step_time_asymmetry_pct"] == pytest.approx(0.0, abs=1e-6)
-    assert tight["standard_error_points"] <= CENTRED_OPTIONS["max_standard_error"]
+    assert tight["standard_error_points"] <= UNCERTAIN_SE_POINTS
 
 
 def test_track_reason_gives_the_standard_error_and_calls_a_loose_index_uncertain_l490(monkeypatch):

@@ -57,8 +57,10 @@ def test_a_turned_or_mirrored_waist_does_not_turn_the_fused_track(mount):
     assert r.info["compass_mount"]["fallback"]
     line = [w for w in r.info["warnings"] if "decision D25" in w]
     assert len(line) == 1 and "waist unit's mounting" in line[0] and "foot gyroscope's own" in line[0]
-    # review R3.1: since L494 the fallback's heading 0 is the first walk's direction, not the foot unit's facing
-    assert "0 = the first walk's direction" in line[0] and "facing" not in line[0]
+    # review R3.1: since L494 the fallback's heading 0 is the first walk's, not the foot unit's facing; L510: the
+    # walker's facing at the first walk (a first side step's travel is not 0), and --initial-heading sets it (L511)
+    assert "0 = the walker's facing at the first walk" in line[0] and "unit's facing" not in line[0]
+    assert "--initial-heading DEG sets it" in line[0]
 
 
 def test_a_normal_waist_keeps_the_compass():

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.classify.evaluation import PREDICTION_COLUMNS, evaluate_model, write_predictions
-from pdrlearn.classify.spread import clopper_pearson, fold_spread, spread_text, t_interval
+from pdrlearn.classify.spread import clopper_pearson, fold_spread, t_interval
 from pdrlearn.classify.training import _cv_entry, _folds, train_user
 from pdrlearn.cli.common import file_kind, out_file
 from pdrlearn.cli.train import cv_title, louo_line
@@ -33,7 +33,8 @@ def test_clopper_pearson_by_hand_and_all_folds_perfect():
     y = np.array(["a", "b"] * 112)
     folds = [(np.setdiff1d(np.arange(224), te), te) for te in np.array_split(np.arange(224), 10)]
     s = fold_spread(y, y, folds)
-    assert spread_text(s) == ("100±0", "98.4-100")  # was "100-100", the t-interval of ten perfect folds
+    # was "100-100", the t-interval of ten perfect folds (the table's text since C150: cv_report.display_table)
+    assert (s["mean"], s["sd"]) == (1.0, 0.0) and s["ci95"] == pytest.approx([0.025 ** (1 / 224), 1.0])
 
 
 def test_fold_spread_scores_each_fold_and_names_the_held_out_users():
@@ -46,7 +47,8 @@ def test_fold_spread_scores_each_fold_and_names_the_held_out_users():
     assert s["sd"] == 0.0 and s["users"] == ["u1", "u2"] and s["t_ci95"] == pytest.approx([2 / 3, 2 / 3])
     # decision C58: the table's interval is the exact binomial one of 4 of 6 pooled steps, not the folds' point
     assert s["interval"] == "Clopper-Pearson over the pooled steps"
-    assert spread_text(s) == ("66.7±0", "22.3-95.7")
+    assert s["ci95"] == pytest.approx(list(clopper_pearson(4, 6))) and s["ci95"] == pytest.approx([0.223, 0.957],
+                                                                                                   abs=5e-4)
     e = _cv_entry(y, p, ["a", "b"], folds, 2, np.array(["u1"] * 3 + ["u2"] * 3))
     assert e["n_folds"] == 2 and e["folds"]["users"] == ["u1", "u2"] and e["accuracy"] == pytest.approx(4 / 6)
     assert cv_title(e) == "leave-one-user-out CV accuracy (2 users)"

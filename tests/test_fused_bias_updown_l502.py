@@ -17,7 +17,8 @@ def _up_then_down(over: float, mode: str | None, on: bool = True) -> tuple[float
     true = np.r_[np.full(60, 0.17), np.full(60, -0.17)]
     t = np.arange(0.0, s1[-1] + 2.0, 0.04)
     baro = _baro(t, np.interp(t, np.r_[s0[0], s1], np.r_[0.0, np.cumsum(true)]))
-    c = np.cumsum(fuse_altitude(true * over, s0, s1, t, baro, climb_bias=on, bias_mode=mode))
+    keys = {} if mode is None else {"climb_bias": on, "bias_mode": mode}  # None: fuse_altitude's defaults
+    c = np.cumsum(fuse_altitude(true * over, s0, s1, t, baro, **keys))
     return float(c[59] - 10.2), float(c[-1])
 
 
@@ -32,4 +33,12 @@ def test_default_bias_keeps_the_end_height_after_an_up_then_down_walk(over):
 def test_bias_mode_is_checked():
     with pytest.raises(ValueError, match="L502"):
         _up_then_down(1.03, "both")
-    assert barometer.FUSED_CLIMB_BIAS_MODE in ("one", "split", "scale")
+    assert set(barometer.BIAS_MODES) == {"one", "split", "scale"}
+
+
+def test_default_is_the_scale_keyword_and_no_module_switch_w413():
+    """W413: the adopted bias (L479 on, L503 "scale") is fuse_altitude's keyword default, not a module global an
+    experiment flips."""
+    assert _up_then_down(1.05, None) == _up_then_down(1.05, "scale")
+    assert _up_then_down(1.05, None) != _up_then_down(1.05, "scale", False)
+    assert not hasattr(barometer, "FUSED_CLIMB_BIAS") and not hasattr(barometer, "FUSED_CLIMB_BIAS_MODE")

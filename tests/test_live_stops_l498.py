@@ -26,14 +26,19 @@ def _waist_stop(stop_s: float, turn_rad: float = 0.05):
 
 
 @pytest.mark.parametrize("stop_s", [1.0, 3.0, 10.0, 59.0])
-def test_waist_gap_yaw_keeps_a_turn_early_in_a_stop_l498(stop_s, monkeypatch):
+def test_waist_gap_yaw_keeps_a_turn_early_in_a_stop_l498(stop_s):
     stream, t_end, t_next = _waist_stop(stop_s)
-    assert K.WAIST_GAP_WHOLE is True
     assert K.waist_gap_max_s(t_end, t_next) == pytest.approx(stop_s)
     got = K.stride_gap_yaw(None, "waist-gyro", stream, t_end, t_next, waist=True)  # the runtime's call
     assert got == pytest.approx(0.05, abs=2e-3)  # L31's last second alone: 0 for the 3-59 s stops
-    monkeypatch.setattr(K, "WAIST_GAP_WHOLE", False)
-    assert K.waist_gap_max_s(t_end, t_next) == K.GAP_YAW_MAX_S
+
+
+def test_whole_gap_is_the_rule_not_a_module_switch_w413():
+    """W413: L498 was adopted, so the whole stop is the kernel's rule; no ``WAIST_GAP_WHOLE`` global to flip back to
+    L31's last second (that arm is at commit d3ffb129)."""
+    stream, t_end, t_next = _waist_stop(3.0)
+    assert K.stride_gap_yaw(None, "waist-gyro", stream, t_end, t_next, waist=True) == pytest.approx(0.05, abs=2e-3)
+    assert not hasattr(K, "WAIST_GAP_WHOLE")
 
 
 def test_a_rest_over_a_minute_keeps_the_last_second_l498():

@@ -1,6 +1,6 @@
 """Decision C138 (trial T4 finding 1): a per-user model scored on (or tracking) another user's sessions says so in
 one line, in ``evaluate``'s JSON ``warnings`` and in ``track``'s; the model's own user, a pooled model or sessions
-naming no user give nothing."""
+naming no user give nothing (a pseudonymised model: decision C152, tests/test_other_user_c152.py)."""
 
 from __future__ import annotations
 
@@ -48,9 +48,7 @@ def test_no_user_known_on_either_side_says_nothing(model_9600):
     pooled = train_user([simulate("terrain", user_seed=9600), simulate("terrain", user_seed=9602)],
                         tasks=["terrain"], methods=["svm"], units=["foot"], cv=3, distance_calibration=False)
     assert not _c138(evaluate_model(pooled, [simulate("terrain", user_seed=9601, seed=7)], latency=False)["warnings"])
-    named = train_user([simulate("terrain", user_seed=9600)], tasks=["terrain"], methods=["svm"], units=["foot"],
-                       cv=3, distance_calibration=False, user="P001")  # E174: the key is replaced, unknown
-    assert not _c138(evaluate_model(named, [simulate("terrain", user_seed=9601, seed=7)], latency=False)["warnings"])
+    # a model named by --user (E174) warns since decision C152: tests/test_other_user_c152.py
 
 
 def test_track_with_another_users_model_warns(model_9600):

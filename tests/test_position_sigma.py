@@ -156,7 +156,8 @@ def test_foot_only_two_sigma_is_not_so_wide_that_it_always_holds_the_truth(tmp_p
     from pdrlearn.cli import main
     from pdrlearn.track import plasys
 
-    monkeypatch.setattr(plasys, "FOOT_WALK_REFERENCE", False)
+    assert not hasattr(plasys, "FOOT_WALK_REFERENCE")  # W413: L494 is the rule; the unit's facing stood in here
+    monkeypatch.setattr(plasys, "foot_walk_reference", lambda head, disp, lateral=None, turn=None: 0.0)
     from pdrlearn.io import write_session
     from pdrlearn.sim import UserProfile, simulate_path
     from pdrlearn.sim.route import parse_route

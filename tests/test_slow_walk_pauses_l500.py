@@ -44,8 +44,9 @@ def test_slow_walk_with_a_longer_rest_is_judged_against_l104_median():
     assert len(pauses(_table(starts, ends))) == 0  # L482 alone: 1 pause of 1.44 s
 
 
-def test_stop_and_go_keeps_l482_and_the_rule_can_be_switched_off(monkeypatch):
+def test_stop_and_go_keeps_l482_and_no_module_switch_w413():
+    """L482's case stays right; W413: L500 (adopted by L501) is the rule, no ``RHYTHM_MOVEMENTS`` to switch back to
+    L482's row windows (11 pauses on the cut slow walk; commit d3ffb129 holds that switch)."""
     st = _stop_and_go()  # walks of 1-3 strides between 2 s stands: L482's case stays right
     assert len(pauses(st)) == len(WALKS) - 1
-    monkeypatch.setattr(clinical, "RHYTHM_MOVEMENTS", False)
-    assert len(pauses(_cut_slow_walk())) == 11  # L482 as it was
+    assert not hasattr(clinical, "RHYTHM_MOVEMENTS") and not hasattr(clinical, "STRIDE_WINDOW_RHYTHM")

@@ -62,17 +62,12 @@ def test_the_calibration_records_its_range_over_the_cruise_strides_l480(monkeypa
 
     monkeypatch.setattr("pdrlearn.io.resample.recorded_rate", lambda s, name: (100.0, None))
     res = TrackResult(steps=st.copy(), trajectory=pd.DataFrame(), info={})
-    assert calibration._estimate([S()], lambda s, p: res, None, {})["speed_range_strides"] == "cruise"  # L481
-    rng = {}
-    for on in (False, True):
-        monkeypatch.setattr(speed_domain, "SPEED_CRUISE", on)
-        out = calibration._estimate([S()], lambda s, p: res, None, {})
-        rng[on] = (out["speed_range_mps"], out["speed_range_strides"])
-    assert rng[True] == ([1.2, 1.2], "cruise")
-    assert rng[False][1] == "all" and rng[False][0][0] < 0.3  # L474: the start and stop strides set the low end
+    out = calibration._estimate([S()], lambda s, p: res, None, {})
+    assert (out["speed_range_mps"], out["speed_range_strides"]) == ([1.2, 1.2], "cruise")  # L481 (L474: low end 0.2)
+    assert not hasattr(speed_domain, "SPEED_CRUISE")  # W413: L480 / L481 adopted, no module switch
 
 
-def test_a_stride_after_a_gap_is_no_cruise_stride_under_rule_b_l481(monkeypatch):
+def test_a_stride_after_a_gap_is_no_cruise_stride_under_rule_b_l481():
     """L481 rule B: a turn on the spot between two strides (a gap shorter than a pause, no bout split) leaves the
     strides on either side of the gap out of the cruise strides."""
     from pdrlearn.track import speed_domain
@@ -80,7 +75,5 @@ def test_a_stride_after_a_gap_is_no_cruise_stride_under_rule_b_l481(monkeypatch)
     st = _walk([1.0] * 12)
     st.loc[6:, ["start_s", "end_s"]] += 0.4  # 0.4 s between rows 5 and 6: under the 1 s pause, no bout split
     assert speed_domain.contiguous_strides(st).tolist() == [False] + [True] * 4 + [False, False] + [True] * 4 + [False]
-    monkeypatch.setattr(speed_domain, "CRUISE_CONTIGUOUS", False)
-    assert speed_domain.cruise_strides(st)[[5, 6]].all()  # rule A keeps them
-    monkeypatch.setattr(speed_domain, "CRUISE_CONTIGUOUS", True)
+    assert not hasattr(speed_domain, "CRUISE_CONTIGUOUS")  # W413: rule B adopted (rule A kept rows 5 and 6)
     assert np.flatnonzero(speed_domain.cruise_strides(st)).tolist() == [1, 2, 3, 4, 7, 8, 9, 10]

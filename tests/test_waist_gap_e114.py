@@ -45,9 +45,13 @@ def test_strides_across_a_waist_gap_turn_with_the_foot(gapped):
 
 
 def test_main_kernel_integrated_the_interpolated_waist_rate(gapped, monkeypatch):
-    """The other arm of E114's experiment (main's kernel): the turn is lost, the heading after the gap is off."""
+    """The other arm of E114's experiment (the kernel before E114, its switch removed by W413 - commit d3ffb129
+    holds it): a levelled waist always heads, the turn is lost, the heading after the gap is off."""
     clean, gap, b = gapped
-    monkeypatch.setattr(SK, "WAIST_GAP_FOOT_HEADING", False)
+    assert not hasattr(SK, "WAIST_GAP_FOOT_HEADING")  # W413: E114 is the rule, no module switch
+    from experiments.waist_gap_heading import before_e114
+
+    monkeypatch.setattr(SK, "waist_heads", before_e114)
     assert _after_gap_error(gap, clean, b) > 30.0
 
 

@@ -17,8 +17,15 @@ from pathlib import Path
 #: the first columns of :func:`cv_frame` (cv.csv); ``accuracy_<class>_pct`` follow in the task's class order
 CV_COLUMNS = ("task", "method", "unit", "chosen", "cv", "n_steps", "accuracy_pct", "balanced_accuracy_pct",
               "ci95_low_pct", "ci95_high_pct", "folds_mean_pct", "folds_sd_pct", "thesis_pct")
+#: the per-class columns that follow :data:`CV_COLUMNS`, ``<class>`` the class name (docs/columns.md's name)
+CLASS_COLUMN = "accuracy_<class>_pct"
 #: the columns of :func:`louo_frame` (louo.csv)
 LOUO_COLUMNS = ("task", "method", "unit", "chosen", "held_out", "n_steps", "accuracy_pct", "balanced_accuracy_pct")
+
+
+def class_column(c: str) -> str:
+    """cv.csv's column of class ``c``'s accuracy (:data:`CLASS_COLUMN`)."""
+    return CLASS_COLUMN.replace("<class>", c)
 
 
 def grouped(r: dict) -> tuple[str, int]:
@@ -71,7 +78,19 @@ def cv_task_result(rec: dict) -> dict:
 
 
 def _pct(v) -> float | None:
-    return None if v is None else round(100 * float(v), 2)
+    """A share in %, unrounded (decision C150: the tables round once, :func:`rounded`; rounded to 2 decimals first,
+    93.548 read 93.6 at one decimal)."""
+    return None if v is None else 100 * float(v)
+
+
+def rounded(df, ndigits: int):
+    """``df`` with every float column rounded to ``ndigits`` decimals as ``f"{v:.{ndigits}f}"`` prints it (Python's
+    :func:`round`; numpy's rounds the scaled binary value), empty cells kept (decision C150)."""
+    out = df.copy()
+    for c in out.columns:
+        if out[c].dtype.kind == "f" or (out[c].dtype == object and any(isinstance(v, float) for v in out[c])):
+            out[c] = out[c].map(lambda v: v if not isinstance(v, float) or v != v else round(float(v), ndigits))
+    return out
 
 
 def _records(model):
@@ -99,7 +118,7 @@ def cv_rows(model) -> list[dict]:
                "balanced_accuracy_pct": _pct(r.get("balanced_accuracy")), "ci95_low_pct": _pct(ci[0]),
                "ci95_high_pct": _pct(ci[1]), "folds_mean_pct": _pct(f.get("mean")),
                "folds_sd_pct": _pct(f.get("sd")), "thesis_pct": thesis_pct(task, m, u)}  # decision C144
-        row.update({f"accuracy_{c}_pct": _pct((r.get("per_class") or {}).get(c)) for c in rec["classes"]})
+        row.update({class_column(c): _pct((r.get("per_class") or {}).get(c)) for c in rec["classes"]})
         rows.append(row)
     return rows
 
@@ -135,11 +154,17 @@ def louo_frame(model):
     return pd.DataFrame(louo_rows(model), columns=list(LOUO_COLUMNS))
 
 
-def display_table(t, classes):
-    """A task's rows of :func:`cv_frame` (its ``classes``, not the other tasks' empty columns) with the short
-    headers of train's table (``flat %`` ..., ``all %``, ``balanced %``, ``folds`` mean±sd, ``95 % CI``), for
-    report.md and ``pdrlearn report``."""
+def display_table(t, classes, order=None):
+    """The one CV table of a task (decision C150): its rows of :func:`cv_frame` (its ``classes``, not the other
+    tasks' empty columns) with short headers (``flat %`` ..., ``all %``, ``balanced %``, ``folds`` mean±sd, ``95 %
+    CI``, ``thesis %``), rendered by report.md, ``pdrlearn report`` and train's console table (:func:`text_rows`).
+    ``order``: (method, unit) pairs to show, in that order (train's ranking, decision C36); default every row in the
+    order of thesis Tables 27/28/33."""
     import pandas as pd
+
+    if order is not None:
+        key = list(zip(t["method"], t["unit"], strict=True))
+        t = t.iloc[[key.index(p) for p in order if p in key]]
 
     def span(a, b, sep):
         return [None if x is None or x != x else (f"{x:.1f}" if y is None or y != y else f"{x:.1f}{sep}{y:.1f}")
@@ -148,13 +173,23 @@ def display_table(t, classes):
     out = pd.DataFrame({"method": t["method"], "unit": t["unit"], "chosen": t["chosen"].map({True: "yes",
                                                                                             False: ""})})
     for c in classes:
-        out[f"{c} %"] = t[f"accuracy_{c}_pct"].round(1)
-    out["all %"], out["balanced %"] = t["accuracy_pct"].round(1), t["balanced_accuracy_pct"].round(1)
+        out[f"{c} %"] = t[class_column(c)]
+    out["all %"], out["balanced %"] = t["accuracy_pct"], t["balanced_accuracy_pct"]
     out["folds"] = span(t["folds_mean_pct"].tolist(), t["folds_sd_pct"].tolist(), "±")
     out["95 % CI"] = span(t["ci95_low_pct"].tolist(), t["ci95_high_pct"].tolist(), "-")
     for c in [c for c in t.columns if c.startswith("thesis")]:
-        out[c.replace("_pct", " %")] = t[c].round(1)
-    return out.reset_index(drop=True)
+        out[c.replace("_pct", " %")] = t[c]
+    return rounded(out, 1).reset_index(drop=True)
+
+
+def text_rows(df) -> list[list[str]]:
+    """:func:`display_table`'s cells as text for a console table: one decimal, ``-`` where empty (decision C150)."""
+    def cell(v) -> str:
+        if v is None or (isinstance(v, float) and v != v):
+            return "-"
+        return f"{v:.1f}" if isinstance(v, float) else str(v)
+
+    return [[cell(v) for v in row] for row in df.itertuples(index=False)]
 
 
 def _md_table(df) -> list[str]:
@@ -198,9 +233,9 @@ def write_model_report(model, out: Path, *, user: str | None = None) -> Path:
     out.mkdir(parents=True, exist_ok=True)
     user = user or (model.get("user") if isinstance(model, dict) else getattr(model, "user", "")) or "unnamed"
     cv, louo = cv_frame(model), louo_frame(model)
-    write_table_csv(cv, out / "cv.csv")
+    write_table_csv(rounded(cv, 2), out / "cv.csv")  # two decimals of %, as before decision C150
     if not louo.empty:
-        write_table_csv(louo, out / "louo.csv")
+        write_table_csv(rounded(louo, 2), out / "louo.csv")
     images = {}
     for task, rec in task_records(model):
         res = cv_task_result(rec)

@@ -78,21 +78,6 @@ def fold_spread(y_true: np.ndarray, y_pred: np.ndarray, folds: Sequence[tuple[np
     return out
 
 
-def spread_text(spread: dict | None) -> tuple[str, str]:
-    """The train table's two cells: ``"mean +- sd"`` (%) of the folds' accuracies and the 95 % interval."""
-    if not spread or spread.get("mean") is None:
-        return "-", "-"
-    sd = spread.get("sd")
-    ms = f"{_pct(spread['mean'])}±{_pct(sd)}" if sd is not None else _pct(spread["mean"])
-    ci = spread.get("ci95")
-    return ms, ("-" if ci is None else f"{_pct(ci[0])}-{_pct(ci[1])}")
-
-
-def _pct(v: float) -> str:
-    """A share as a percentage with one decimal, ``100`` and ``0`` without (the table's cells stay narrow)."""
-    return f"{100 * v:.1f}".removesuffix(".0") if v in (0.0, 1.0) else f"{100 * v:.1f}"
-
-
 #: decision C141: a balanced accuracy within this of 1/K (K classes present) reads as chance; chosen, not measured
 CHANCE_MARGIN = 0.05
 

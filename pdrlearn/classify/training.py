@@ -789,17 +789,16 @@ def rate_mismatch(model, session, pred: pd.DataFrame | None = None) -> dict | No
 
 
 #: how :func:`pdrlearn.cohort.meta_user_key` names a user: a model's ``data_summary["users"]`` entry of another form
-#: is a given name (``--user P001``, decision E174), which says nothing about whom the model was fitted on
+#: is a given name (``--user P001``, decision E174)
 _USER_KEY_PREFIXES = ("user:", "user.", "subject:", "subject.")
 
 
 def model_user_key(model) -> str | None:
-    """Decision C138: the one user a per-user model was fitted on, as :func:`session_user` names it
-    (``user.seed:9460``), from its ``data_summary["users"]``; None when it names none, several (a pooled model: a
-    new user is its intended use) or a given name (decision E174 replaced the key)."""
+    """Decisions C138, C152: the one user a per-user model was fitted on, as its ``data_summary["users"]`` names it:
+    :func:`session_user`'s key (``user.seed:9460``) or a name given at training (``P001``, decision E174); None when
+    it names none or several (a pooled model: a new user is its intended use)."""
     users = (getattr(model, "data_summary", None) or {}).get("users") or []
-    keys = [u for u in users if isinstance(u, str) and u.startswith(_USER_KEY_PREFIXES)]
-    return keys[0] if len(users) == 1 and len(keys) == 1 else None
+    return users[0] if len(users) == 1 and isinstance(users[0], str) and users[0].strip() else None
 
 
 def _where(session) -> str:
@@ -816,14 +815,20 @@ def other_user_line(model, sessions, what: str = "evaluate") -> str | None:
     key = model_user_key(model)
     if key is None:
         return None
-    other = [(s, u) for s in sessions if (u := session_user(s)) is not None and u != key]
+    # decision C152: both ids known and different, whatever their form: a given name (P001) is the same user as a
+    # session whose meta.json 'user' / 'subject' is that text (key user:P001)
+    other = [(s, u) for s in sessions if (u := session_user(s)) is not None and key not in (u, _one_user(s))]
     if not other:
         return None
     users = ", ".join(sorted({u for _, u in other}))
     names = ", ".join(_where(s) for s, _ in other[:3]) + (f" and {len(other) - 3} more" if len(other) > 3 else "")
+    given = ("" if key.startswith(_USER_KEY_PREFIXES) else
+             f"; {key} is the name given at training (train --user, E174): if these are that user's sessions, write "
+             f"\"user\": \"{key}\" in their meta.json")
     return (f"{what}: the model was trained on {key} but {len(other)} of {len(sessions)} session(s) are of {users} "
             f"({names}): a per-user model is applied to another user, so the figures are not the model's held-out "
-            "accuracy on its user (decision C138; train that user's model, or a pooled one with --cv-groups user)")
+            f"accuracy on its user{given} (decision C138; train that user's model, or a pooled one with --cv-groups "
+            "user)")
 
 
 def _gap_groups(windows):

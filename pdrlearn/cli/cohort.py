@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 import re
 import shutil
-from contextlib import contextmanager
+from contextlib import contextmanager, nullcontext
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -33,6 +33,7 @@ from pdrlearn.cli.common import (
     progress,
     refused_output,
     replaced,
+    report_folder,
     split_choices,
     split_length_units,
     storey_height_option,
@@ -114,6 +115,10 @@ def _train_job(args: dict) -> dict:
                        task_methods=args.get("task_methods"),  # decision C74
                        cv_groups=args.get("cv_groups", "steps"), params=args.get("params"))  # decision C98
     model.save(Path(args["out"]))
+    if args.get("report"):  # cohort C151: train --report's folder (C143), one per user
+        from pdrlearn.classify.cv_report import write_model_report
+
+        write_model_report(model, Path(args["report"]))
     row = {"sessions": len(sessions), **skipped, **trained_rate(model), "skipped_tasks": len(model.skipped),
            "skipped_task_names": skipped_task_names(args["tasks"] or TASKS, model.tasks)}  # decision C87
     for t, tm in model.tasks.items():
@@ -234,7 +239,9 @@ def _blank_missing(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool,
-           notes: dict[str, dict] | None = None) -> None:
+           notes: dict[str, dict] | None = None, extra: dict | None = None) -> None:
+    """The per-user summary (a table, or with ``as_json`` one JSON object with ``extra``'s keys too: train-all's
+    ``report``, cohort C151) and the failed users' lines."""
     import pandas as pd
 
     failed = [r for r in results if not r.ok]
@@ -242,7 +249,7 @@ def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool
         users = _blank_missing(df).to_dict(orient="records")
         if notes is not None:  # cohort C105: each user's absent classes (C64) and warnings
             users = [{**u, **notes.get(u["user"], {})} for u in users]
-        print_json(json_safe({"users": users, "n_users": len(results), "n_failed": len(failed)}))
+        print_json(json_safe({"users": users, "n_users": len(results), "n_failed": len(failed), **(extra or {})}))
         for r in failed:  # decision E167: on stderr too, as track-all --json's failed lines (stdout is the JSON)
             typer.echo(f"failed {r.name}: {r.error}", err=True)
     else:
@@ -356,6 +363,9 @@ def train_all(
     force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + " (the whole models "
                                "folder is replaced atomically: users no longer in the cohort, or failing now, "
                                "keep no old model)."),
+    report: Path = typer.Option(None, "--report", help="Folder for each user's CV tables, as train --report's: "
+                                "REPORT/<user>/ holds cv.csv (louo.csv with --cv-groups user), one confusion PNG per "
+                                "task and report.md (cohort C151)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
     """Train every user of a cohort on Dask; a failing user is reported and the rest complete.
@@ -375,6 +385,8 @@ def train_all(
         pdrlearn train-all cohort/ --out models/ --scheduler tcp://10.0.0.5:8786
 
         pdrlearn train-all cohort/ --out models/ --cv-groups block --param svm.C=10   # C95, C96, C98
+
+        pdrlearn train-all cohort/ --out models/ --report models_report/   # C151: REPORT/<user>/report.md
     """
     from pdrlearn.classify.training import check_settings, check_task_methods
 
@@ -389,16 +401,23 @@ def train_all(
     _check_outside_cohort(out, cohort_dir)
     _check_only_train_all_output(out)
     out_folder(out, "train-all", force=force, inputs=(cohort_dir,))
+    if report is not None:  # cohort C151: train's check (C143), before any work
+        _check_outside_cohort(report, cohort_dir)
+        report_folder(report, out, command="train-all", what="models folder", kind="train-all-report", force=force,
+                      inputs=(cohort_dir,))
     was, had_eval = existed(out), (out / "eval" / "cohort_summary.csv").is_file()
+    had_report = report is not None and existed(report)
     users = cohort_users(cohort_dir)
     # the whole models folder is built beside the old one and swapped in (decision B19): a --force re-run
-    # leaves no model of a user who is no longer in the cohort, or who failed this time
-    with refused_output(out), atomic_directory(out) as tmp:  # decision B151
+    # leaves no model of a user who is no longer in the cohort, or who failed this time; the report folder too
+    # (C151), swapped in after the models, as train's (C143)
+    with (refused_output(out), atomic_directory(report) if report is not None else nullcontext() as rtmp,
+          atomic_directory(out) as tmp):  # decision B151
         items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
                            "methods": m_list,
                            "task_methods": per_task, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
                            "skip_bad": skip_bad, "resample_hz": resample, "cv_groups": cv_groups,
-                           "params": hyper})
+                           "params": hyper, "report": None if rtmp is None else str(rtmp / u.name)})
                  for u in users]
         results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
         _check_any_ok(results)
@@ -407,7 +426,13 @@ def train_all(
         typer.echo(f"replaced {out} (and {out / 'eval'}, evaluate-all's summary of the replaced models)", err=True)
     else:
         replaced(out, was)
-    _print(df, results, f"train-all: {sum(r.ok for r in results)}/{len(results)} users trained", as_json)
+    if report is not None:
+        replaced(report, had_report)
+    _print(df, results, f"train-all: {sum(r.ok for r in results)}/{len(results)} users trained", as_json,
+           extra=None if report is None else {"report": str(report)})
+    if report is not None and not as_json:
+        console().print(f"reports written to {report} (one folder per trained user: cv.csv, confusion PNGs, "
+                        "report.md)", markup=False)
     _exit_if_any_failed(results)
 
 

@@ -325,6 +325,18 @@ def refused_output(out: Path):
         raise err from None
 
 
+def report_folder(report: Path, out: Path, *, command: str, what: str, kind: str, force: bool,
+                  inputs: tuple = ()) -> None:
+    """Decisions C143, C151: ``--report`` of ``train`` / ``train-all``, checked before the work like ``--out``: a
+    folder that is, is inside or holds the ``--out`` folder (``what``) is refused (one atomic write would delete the
+    other), then :func:`out_folder` of ``kind``."""
+    rep, mod = report.resolve(), out.resolve()
+    if rep.is_relative_to(mod) or mod.is_relative_to(rep):
+        raise DataError(f"{command}: --report {report} is, or is inside, or holds the --out {what}; choose "
+                        f"a folder beside it, e.g. {out.parent / (out.name + '_report')}")
+    out_folder(report, kind, force=force, inputs=(*inputs, out), option="--report")
+
+
 def replaced(path: Path, existed: bool) -> None:
     """Say on stderr that ``--force`` replaced a previous output (one line; stdout stays machine-readable)."""
     if existed:
@@ -447,10 +459,12 @@ START_HELP = ("Start coordinate LAT,LON (degrees) -> lat/lon columns and OUT/tra
               "starts (default 0: z = height above the start; decision L56) and the GPX <ele>.")
 
 
-INITIAL_HEADING_HELP = ("Direction the walker sets off in, DEG degrees in the track's ENU frame: counter-clockwise "
+INITIAL_HEADING_HELP = ("Direction the walker faces at the first walk (a first side step travels 90 deg from it; "
+                        "decision L510), DEG degrees in the track's ENU frame: counter-clockwise "
                         "from east (0 = east, the default; 90 = north; -90 = south; a compass bearing B, clockwise "
                         "from north, is 90 - B). For a relative heading (foot or gyroscope heading, --streaming, "
-                        "no magnetometer); refused when the heading is absolute (decision L98).")
+                        "no magnetometer, or the foot heading the waist mounting check fell back to, L511); refused "
+                        "when the heading is absolute (decision L98).")
 
 
 def initial_heading_option(deg: float | None) -> float | None:

@@ -25,6 +25,7 @@ from pdrlearn.cli.common import (
     print_table,
     progress,
     replaced,
+    report_folder,
     resample_options,
     split_choices,
     split_length_units,
@@ -95,7 +96,7 @@ def train(
 
         pdrlearn train out/sim/u1 --out out/models/u1_r --report out/train_u1
     """
-    from pdrlearn.classify.spread import chance_line, spread_text
+    from pdrlearn.classify.spread import chance_line
     from pdrlearn.classify.training import check_settings, check_task_methods, check_user, train_user
     from pdrlearn.features.windows import BOUNDARIES
 
@@ -110,11 +111,8 @@ def train(
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     if report is not None:  # decision C143: checked before the work, like --out
-        rep, mod = report.resolve(), out.resolve()
-        if rep.is_relative_to(mod) or mod.is_relative_to(rep):  # the model's atomic write (or the report's) deletes
-            raise DataError(f"train: --report {report} is, or is inside, or holds the --out model directory; choose "
-                            f"a folder beside it, e.g. {out.parent / (out.name + '_report')}")
-        out_folder(report, "train-report", force=force, inputs=(*data_dirs, out), option="--report")
+        report_folder(report, out, command="train", what="model directory", kind="train-report", force=force,
+                      inputs=tuple(data_dirs))
     was = existed(out)
     sessions = read_session_dirs(data_dirs)
     total = sum(len(per_task.get(t, m_all)) for t in t_all) * len(u_all)
@@ -174,23 +172,22 @@ def train(
         return
     from rich.table import Table
 
+    from pdrlearn.classify.cv_report import cv_frame, display_table, text_rows
+
     c = console()
+    cv_all = cv_frame(model)  # decision C150: the table of cv.csv, report.md and `pdrlearn report`
     for t, tm in model.tasks.items():
         # the title as its own line: as a table title rich wrapped it to the table's width
         r0 = tm.cv[tm.chosen[0]][tm.chosen[1]]
         c.print(f"{t}: {tm.n_steps} steps, {cv_title(r0)} (chosen: {tm.chosen[0]}/{tm.chosen[1]})", markup=False)
-        tab = Table()
-        tab.add_column("method")
         # decision C36: the rows are ranked by balanced accuracy (mean of the class columns), so it is shown;
-        # decision C41: the folds' spread of the accuracy beside the pooled one
-        for col in (*tm.classes, "all", "balanced", "folds", "95 % CI", "unit"):
-            tab.add_column(col, no_wrap=col in ("folds", "95 % CI", "unit"))
-        for m, u in tm.ranking():
-            r = tm.cv[m][u]
-            tab.add_row(
-                m, *[f"{100 * r['per_class'][k]:.1f}" for k in tm.classes], f"{100 * r['accuracy']:.1f}",
-                f"{100 * (r['balanced_accuracy'] or 0.0):.1f}", *spread_text(r.get("folds")), u
-            )
+        # decision C41: the folds' spread of the accuracy beside the pooled one; C144: the thesis' figure
+        shown = display_table(cv_all[cv_all["task"] == t], tm.classes, order=tm.ranking())
+        tab = Table()
+        for col in shown.columns:
+            tab.add_column(col, no_wrap=col in ("method", "unit", "folds", "95 % CI"))
+        for row in text_rows(shown):
+            tab.add_row(*row)
         print_table(c, tab)  # decision C41: piped, the wider table is not cut to 80 columns
         c.print(f"  {SPREAD_NOTE}", markup=False)
         chance = chance_line((f"{m}/{u}", tm.cv[m][u]) for m, u in tm.ranking())  # decision C141

@@ -171,7 +171,7 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
         lab = lab.reset_index(drop=True)
         if "speed_mps" in res.steps:  # decision L474: the tracked strides' speeds (L480: the cruise strides')
             v = pd.to_numeric(res.steps["speed_mps"], errors="coerce").to_numpy(float)
-            speeds.append(v[speed_domain.cruise_strides(res.steps)] if speed_domain.SPEED_CRUISE else v)
+            speeds.append(v[speed_domain.cruise_strides(res.steps)])  # L480 / L481 adopted (W413: no switch)
         pairs = match_by_overlap(res.steps, lab, min_iou=0.5)
         if not pairs:
             skipped.append(f"{s.name}: no tracked stride matches a label")
@@ -196,7 +196,7 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
     out.update(rate_hz=rate_hz, sessions_used=used, sessions_skipped=skipped)
     speeds = np.concatenate(speeds) if speeds else np.zeros(0)
     out["speed_range_mps"] = speed_domain.training_speed_range(speeds)  # decision L474
-    out["speed_range_strides"] = "cruise" if speed_domain.SPEED_CRUISE else "all"  # decision L480
+    out["speed_range_strides"] = "cruise"  # decision L480: the strides the range was taken over
     return out
 
 

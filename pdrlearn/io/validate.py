@@ -633,21 +633,24 @@ FOOT_PEAK_DPS = (560, 990)
 FOOT_GYRO_RANGE_DPS = 1000
 
 
-def saturation_warning(where: str, kind: str, n: int, total: int, top: float, *, moving: int | None = None,
-                       foot: bool = False) -> str:
-    """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results. Decision
-    B401, a gyroscope: ``moving`` (the file's samples with |w| >= :data:`MOVING_RAD_S`) gives the share of the motion at
-    full scale, and ``foot`` (the foot unit's) what the offline track does about it (L525) and the range a foot
-    needs."""
+def saturation_warning(where: str, kind: str, n: int, total: int, top: float, unit_name: str = "foot", *,
+                       moving: int | None = None) -> str:
+    """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results;
+    ``unit_name`` the body unit (``"foot"`` or ``"waist"``: its consequence named for it, trial T3 finding 9).
+    Decision B401, a gyroscope: ``moving`` (the file's samples with |w| >= :data:`MOVING_RAD_S`) gives the share of
+    the motion at full scale, and a foot's line says what the offline track does about it (L525) and the range a
+    foot needs."""
     unit = "m/s^2" if kind == "accelerometer" else "rad/s"
     rng = f"{top / STANDARD_GRAVITY:.3g} g" if kind == "accelerometer" else f"{np.rad2deg(top):.4g} deg/s"
-    effect = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
-              if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it")
+    accel = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
+             if unit_name == "foot" else "the lower back's step peaks and the step lengths read from its vertical "
+             "movement are cut short")
+    effect = accel if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it"
     share, remedy, codes = "", "", "B77, B311"
     if kind == "gyroscope" and moving:  # decision B401: the size of the effect, measured on the file
         share = f"; {100.0 * n / moving:.2g} % of its moving samples (|w| >= {MOVING_RAD_S:g} rad/s) are at full scale"
         codes = "B77, B311, B401"
-    if kind == "gyroscope" and foot:
+    if kind == "gyroscope" and unit_name == "foot":
         effect += (" (the foot's stride pitch and yaw: the offline track re-levels each stride at its end rest and "
                    "heads by the waist unit, decision L525)")
         remedy = (f" (+-{FOOT_GYRO_RANGE_DPS} deg/s or more for a foot: walking feet turned at {FOOT_PEAK_DPS[0]}-"

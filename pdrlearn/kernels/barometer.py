@@ -487,19 +487,15 @@ FOOT_CLIMB_BIAS_SD_M = 0.01
 #: stride neither moves nor uses it, so the barometer's disagreement over a climb is the climb's, not the level
 #: strides' slope after it
 FOOT_CLIMB_BIAS_STEP_SD_M = 0.001
-#: decision L479: the bias state is on in :func:`fuse_altitude` by default (L478's rule met: false ramps 5 -> 0)
-FUSED_CLIMB_BIAS = True
-#: decision L502 (L503: "scale" adopted): the bias's form: "one" (L478: one additive state for climbing and
-#: descending strides), "split" (an additive state per direction, b_up for dz >= 0.10 m, b_down for dz <= -0.10 m)
-#: or "scale" (a climbing stride moves h by dz (1 + k), so the correction flips with dz's sign)
-FUSED_CLIMB_BIAS_MODE = "scale"
+#: decision L502 (L503: "scale" adopted): the climb bias's forms, :func:`fuse_altitude`'s ``bias_mode``
+BIAS_MODES = ("one", "split", "scale")
 #: decision L502: "scale"'s prior and random walk are L478's per-stride budgets at the smallest climbing stride (L39)
 SCALE_REF_DZ_M = 0.10
 
 
 def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t: np.ndarray,
-                  baro_hpa: np.ndarray, *, level_dz_m: float = 0.10, climb_bias: bool | None = None,
-                  bias_mode: str | None = None) -> np.ndarray:
+                  baro_hpa: np.ndarray, *, level_dz_m: float = 0.10, climb_bias: bool = True,
+                  bias_mode: str = "scale") -> np.ndarray:
     """Decision L154: the strides' height changes ``dz`` (m, after L39 / the class rules) fused with a barometer
     ``(baro_t, baro_hpa)`` (s, hPa) by a Kalman filter over the strides (causal: each stride's height uses the
     barometer up to its end; ``start_s`` / ``end_s`` the strides' times on the barometer's clock).
@@ -511,21 +507,21 @@ def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t
     :data:`BARO_WANDER_TAU_S`), so a barometer change that outlasts the wander's time becomes a slope and a short
     one does not. The measurement is :func:`relative_altitude` (W89's 1 s mean; the thesis' "differential mode",
     ch.4.3.1.4) at each stride's end, with :data:`BARO_NOISE_M`; a measurement :data:`BARO_JUMP_SDS` SDs from its
-    prediction moves the barometer's reference, not the height. ``climb_bias`` (default :data:`FUSED_CLIMB_BIAS`,
-    decision L478) adds a fourth state, the climbing strides' bias b (:data:`FOOT_CLIMB_BIAS_SD_M`, a random walk of
-    :data:`FOOT_CLIMB_BIAS_STEP_SD_M` per climbing stride): a climbing stride moves h by dz + b. ``bias_mode``
-    (default :data:`FUSED_CLIMB_BIAS_MODE`, decision L502): "one" that state; "split" b for climbing and a fifth
-    state for descending strides; "scale" the state is a scale k, a climbing stride moves h by dz (1 + k). Returns
-    the fused per-stride height changes (their sum is the fused altitude change); non-finite dz count as 0."""
+    prediction moves the barometer's reference, not the height. ``climb_bias`` (decision L478; on by default
+    since L479, whose rule was met: false ramps 5 -> 0; W413: a keyword, no module switch) adds a fourth state, the
+    climbing strides' bias b (:data:`FOOT_CLIMB_BIAS_SD_M`, a random walk of :data:`FOOT_CLIMB_BIAS_STEP_SD_M` per
+    climbing stride): a climbing stride moves h by dz + b. ``bias_mode`` (decision L502, one of :data:`BIAS_MODES`;
+    L503 adopted "scale"): "one" that state; "split" b for climbing and a fifth state for descending strides;
+    "scale" the state is a scale k, a climbing stride moves h by dz (1 + k). Returns the fused per-stride height
+    changes (their sum is the fused altitude change); non-finite dz count as 0."""
     d = np.nan_to_num(np.asarray(dz, dtype=float).ravel())
     t0, t1 = np.asarray(start_s, dtype=float).ravel(), np.asarray(end_s, dtype=float).ravel()
     if not len(d):
         return d
     b = relative_altitude(baro_t, baro_hpa, np.concatenate([[t0[0]], t1]))
     level = np.abs(d) < level_dz_m
-    on = FUSED_CLIMB_BIAS if climb_bias is None else climb_bias
-    mode = FUSED_CLIMB_BIAS_MODE if bias_mode is None else bias_mode
-    if mode not in ("one", "split", "scale"):
+    on, mode = bool(climb_bias), bias_mode
+    if mode not in BIAS_MODES:
         raise ValueError(f"bias_mode {mode!r}: one of 'one', 'split', 'scale' (decision L502)")
     per = SCALE_REF_DZ_M if mode == "scale" else 1.0  # L502: k's budgets are b's at a 0.10 m stride
     bias_sd = FOOT_CLIMB_BIAS_SD_M / per if on else 0.0

@@ -404,18 +404,15 @@ def gap_yaw(t_gyr: np.ndarray, gyr: np.ndarray, t_acc: np.ndarray, acc: np.ndarr
 #: Decision L61: the waist's turn between strides is integrated ungated (the waist-gyro heading inside a
 #: stride integrates every sample; L31's 0.4 rad/s gate is a still foot's rule)
 WAIST_GAP_STILL_RAD_S = 0.0
-#: Decision L498: the waist's turn between strides covers the whole gap since the last stride's end when the gap
-#: lasts up to L296's ``REST_BIAS_MIN_S`` (the pelvis turns back into its rest early in a stop); False = L31's last
-#: :data:`GAP_YAW_MAX_S` only
-WAIST_GAP_WHOLE = True
 
 
 def waist_gap_max_s(prev_end: float, t0: float) -> float:
     """Decision L498: how far back (s) the waist's gap yaw looks from a stride's start ``t0``: the whole gap since
     ``prev_end`` up to ``rest_heading.REST_BIAS_MIN_S`` (60 s, L296 / W72: the offline waist integrates such a stop
-    whole), else L31's :data:`GAP_YAW_MAX_S`."""
+    whole; the pelvis turns back into its rest early in a stop), else L31's :data:`GAP_YAW_MAX_S` (W413: no
+    switch back to L31's last second alone)."""
     gap = float(t0) - float(prev_end)
-    return gap if WAIST_GAP_WHOLE and gap <= REST_BIAS_MIN_S else GAP_YAW_MAX_S
+    return gap if gap <= REST_BIAS_MIN_S else GAP_YAW_MAX_S
 
 
 def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[str], tuple[np.ndarray, np.ndarray]],
@@ -613,19 +610,18 @@ def headed_by_foot(levelled: Levelled, heading_source: str) -> bool:
 
 
 #: decision E114: heading auto leaves the waist gyroscope for a stride whose waist samples leave a gap over this
-#: (s) inside it or at its ends (B11's 1 s, ``GAP_LONG_S``); the experiment's switch (main's kernel: False)
+#: (s) inside it or at its ends (B11's 1 s, ``GAP_LONG_S``)
 WAIST_GAP_S = 1.0
-WAIST_GAP_FOOT_HEADING = True
 
 
 def waist_heads(levelled: Levelled) -> bool:
     """Decision E114: whether heading auto takes the stride's turn from the waist gyroscope: the waist unit's
-    accelerometer and gyroscope are levelled, and (:data:`WAIST_GAP_FOOT_HEADING`) their samples cover the stride,
+    accelerometer and gyroscope are levelled, and their samples cover the stride,
     from the foot's first to its last sample, without an interval over :data:`WAIST_GAP_S`. A waist dropout's rate
     interpolated across the gap is not a turn, and a live Tracker's held waist has no sample after the stride."""
     if "waist" not in levelled or levelled["waist"][2] is None:
         return False
-    if not WAIST_GAP_FOOT_HEADING or "foot" not in levelled:
+    if "foot" not in levelled:
         return True
     tw, tf = levelled["waist"][0], levelled["foot"][0]
     if tw is None or tf is None:  # no times to judge (a caller's stand-in): the waist heads, as before E114

@@ -65,7 +65,9 @@ _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curv
 #: decision L468: the example a bad item's error line gives for its own kind (else :data:`_USAGE`)
 ITEM_EXAMPLES = {"straight": "straight:10", "curve": "curve:90:2", "slope": "slope:100:10 (100 m at a 10 % grade; "
                  "no % sign; -10 goes down)", "up": "up:12", "down": "down:12", "turn": "turn:180",
-                 "backward": "backward:3", "stand": "stand:2"}
+                 "backward": "backward:3", "stand": "stand:2",
+                 "side": "side:3 (3 m to the left, -3 to the right, at the walker's own pace: side takes no pace; "
+                         "decision S49)"}
 
 
 #: decision S89: the least ``backward:N`` (a quarter of the nominal backward step, ~0.1 m: a shuffle back; an

@@ -226,38 +226,28 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
     return excess, pair & (excess >= min_s)
 
 
-#: decision L482: a foot table's rhythm is also bounded by its rows' own stride windows (stop-and-go walking)
-STRIDE_WINDOW_RHYTHM = True
-
-
 def rhythm_s(st: pd.DataFrame, d: np.ndarray, pair: np.ndarray) -> float:
     """The walker's rhythm (s) a pause is judged against: the median of the valid row-to-row intervals ``d[pair]``
     (L104); decision L482: on a foot table at most the median of its valid rows' own rest-to-rest windows
     (``end_s - start_s``: one stride cycle, the standing between two strides lies outside it), so walks of 1-3
     strides between stands are not judged against a median that is the stand; decision L500: the windows are
     :func:`movement_windows` and bound the median only when it exceeds their median by ``PAUSE_MIN_S`` or more (the
-    intervals are mostly stands), so a very slow continuous walk keeps L104's rhythm."""
+    intervals are mostly stands), so a very slow continuous walk keeps L104's rhythm. Both rules were adopted (L482,
+    L501) and are the rule itself (W413: no module switches; commit d3ffb129 holds them)."""
     median = float(np.median(d[pair]))
-    if not STRIDE_WINDOW_RHYTHM or "end_s" not in st or not is_foot_table(st):
+    if "end_s" not in st or not is_foot_table(st):
         return median
-    window = movement_windows(st) if RHYTHM_MOVEMENTS else _row_windows(st)
+    window = movement_windows(st)
     if not window.size:
         return median
     bound = float(np.median(window))
-    if RHYTHM_MOVEMENTS and median - bound < PAUSE_MIN_S:  # L500: the intervals are not mostly stands
+    if median - bound < PAUSE_MIN_S:  # L500: the intervals are not mostly stands
         return median
     return min(median, bound)
 
 
-#: decision L500: L482's bound reads movements (touching rows merged), and only when the intervals are mostly stands
-RHYTHM_MOVEMENTS = True
 #: decision L500: rows whose windows are this close (s; one sample at the foot units' 100 Hz) are one movement
 TOUCH_S = 0.01
-
-
-def _row_windows(st: pd.DataFrame) -> np.ndarray:
-    window = st["end_s"].to_numpy(float) - st["start_s"].to_numpy(float)
-    return window[_valid(st) & np.isfinite(window) & (window > 0)]
 
 
 def movement_windows(st: pd.DataFrame) -> np.ndarray:

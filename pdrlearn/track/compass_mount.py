@@ -85,6 +85,7 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
         return None, info
     info["fallback"] = True
     return ("the waist unit's mounting does not match its frame - " + "; ".join(why) + " - so its compass would "
-            "turn the whole track: this track's heading is the foot gyroscope's own (0 = the first walk's "
-            "direction, L494, as `--units foot`), not the compass's (decision D25); declare the waist unit's frame as "
+            "turn the whole track: this track's heading is the foot gyroscope's own (0 = the walker's facing at the "
+            "first walk, L494/L510, as `--units foot`; --initial-heading DEG sets it, L511), not the compass's "
+            "(decision D25); declare the waist unit's frame as "
             "it is worn (`pdrlearn info` prints the frame the data give)"), info

@@ -11,19 +11,17 @@ from __future__ import annotations
 
 from pdrlearn.warning_lines import coded
 
-#: decision L525 (adopted by its rule, docs/decisions/localization.md): False = offline as before L525
-CLIPPED_FOOT_GYRO = True
-#: decision L525: the FootDisplacement settings of the streamed stride (L68's tilt correction at the end rest, the
+#: decision L525 (adopted by its rule, L526; the rule itself, no switch: W413 / L507): the FootDisplacement settings of the streamed stride (L68's tilt correction at the end rest, the
 #: ZUPT's velocity drift linear in time instead of L21's |a|-weighted clock); a user's ``params`` key wins
 CLIPPED_FOOT_SETTINGS = {"tilt_dedrift": True, "accel_scale_error": 0.0}
 
 
 def foot_gyro_clipped(session) -> tuple[int, float]:
     """Decision L525: (samples with a clipped axis, the clipped level in rad/s) of the session's foot gyroscope by
-    B77/B311's :func:`~pdrlearn.io.validate.clipped_samples`; (0, 0.0) without one or when the switch is off."""
+    B77/B311's :func:`~pdrlearn.io.validate.clipped_samples`; (0, 0.0) without one."""
     from pdrlearn.io.validate import clipped_samples
 
-    if not CLIPPED_FOOT_GYRO or not session.has("fGyroscope"):
+    if not session.has("fGyroscope"):
         return 0, 0.0
     return clipped_samples(session.streams["fGyroscope"].values, "gyroscope")
 

@@ -16,15 +16,10 @@ import numpy as np
 #: decision L416: a lower-back contact within this fraction of a step (half the foot's median stride) of a foot
 #: contact is that foot's: its own contacts scatter ~0.04 s (SD) about the foot's, the other foot's lie a step away
 LABEL_TOLERANCE_STEPS = 0.25
-#: decision L490 (not adopted, L491 / L493: an option): the lower back's lag is first taken as the median offset of
-#: its contacts within this fraction of a step of a foot contact, then the labelling window is centred on it
-FIRST_PASS_STEPS = 0.5
-#: decision L416: no standard-error gate by default (L493's 3-point gate was not adopted: an option)
-MAX_STANDARD_ERROR_POINTS = float("inf")
-#: decisions L490 / L493 (not adopted: one fresh child walk read 33.69 % for 13.53 % through the gate): the options
-#: of ``label_contacts`` / ``labelled_step_asymmetry`` that centre a half-step window (the midpoint between the two
-#: feet's contacts) on the lower back's lag and withhold an index whose standard error is over 3 points
-CENTRED_OPTIONS = {"tolerance_steps": 0.5, "centre_on_lag": True, "max_standard_error": 3.0}
+#: decision L490: an index whose standard error (:func:`index_standard_error_pct`) is over this many points is given
+#: with a note that it is uncertain (L493's gate withholding it, and L490's window centred on the lower back's lag,
+#: were not adopted; L507 removed those options, commit d3ffb129 holds them)
+UNCERTAIN_SE_POINTS = 3.0
 #: decision L416: a foot stride longer than this times the median stride (a stop, a missed contact) gives no phase
 MAX_STRIDE_FACTOR = 1.5
 #: decision L416: the fewest strides with one other-foot contact for an index (L123's minimum for a figure)
@@ -32,29 +27,19 @@ MIN_STRIDES = 10
 #: decision L416: the lower-back stream's lowest rate (Hz) for the index (its 20 Hz contacts failed on development
 #: users 8040-8042)
 LABELLED_MIN_RATE_HZ = 50.0
-#: decision L416: whether a plasys track of a session with the lower-back unit reports the index in its summary
-#: (the adoption rule's outcome; see docs/decisions/localization.md)
-LABELLED_ASYMMETRY = True
 
 
-def label_contacts(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS,
-                   centre_on_lag: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def label_contacts(foot_ic_s, waist_ic_s, *,
+                   tolerance_steps: float = LABEL_TOLERANCE_STEPS) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(foot, waist, own)``: the foot contacts and the lower-back contacts (finite, sorted, s) and (W,) bool, True
     for a lower-back contact within ``tolerance_steps`` x half the foot's median stride of a foot contact (decision
-    L416), with ``centre_on_lag`` of a foot contact plus the lower back's lag (the median offset of its contacts
-    within :data:`FIRST_PASS_STEPS` of a step of one; decision L490's option). Fewer than 2 foot contacts: no
-    contact is the foot's."""
+    L416). Fewer than 2 foot contacts: no contact is the foot's."""
     f = np.sort(np.asarray(foot_ic_s, dtype=float)[np.isfinite(np.asarray(foot_ic_s, dtype=float))])
     w = np.sort(np.asarray(waist_ic_s, dtype=float)[np.isfinite(np.asarray(waist_ic_s, dtype=float))])
     if len(f) < 2 or not len(w):
         return f, w, np.zeros(len(w), bool)
     step = float(np.median(np.diff(f))) / 2.0
-    lag = 0.0
-    if centre_on_lag:  # decision L490's option: the lower back's lag from its contacts nearest the foot's
-        d = _offsets(f, w)
-        first = np.abs(d) <= FIRST_PASS_STEPS * step
-        lag = float(np.median(d[first])) if first.any() else 0.0
-    return f, w, np.abs(_offsets(f, w - lag)) <= tolerance_steps * step
+    return f, w, np.abs(_offsets(f, w)) <= tolerance_steps * step
 
 
 def _offsets(f: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -63,12 +48,11 @@ def _offsets(f: np.ndarray, w: np.ndarray) -> np.ndarray:
     return w - np.where(np.abs(w - f[j - 1]) <= np.abs(w - f[j]), f[j - 1], f[j])
 
 
-def other_foot_phases(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS,
-                      centre_on_lag: bool = False) -> np.ndarray:
+def other_foot_phases(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS) -> np.ndarray:
     """(S,) the phase (0-1) of the other foot's contact inside each of the foot's strides that holds exactly one
     (:func:`label_contacts`; the lower back's median lag behind the foot's own contacts taken off; strides over
     :data:`MAX_STRIDE_FACTOR` x the median left out); empty without an own contact."""
-    f, w, own = label_contacts(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps, centre_on_lag=centre_on_lag)
+    f, w, own = label_contacts(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
     if not own.any() or own.all():
         return np.zeros(0)
     j = np.clip(np.searchsorted(f, w[own]), 1, len(f) - 1)
@@ -98,21 +82,20 @@ def index_standard_error_pct(phases) -> float:
 
 
 def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS,
-                            min_strides: int = MIN_STRIDES, centre_on_lag: bool = False,
-                            max_standard_error: float = MAX_STANDARD_ERROR_POINTS) -> dict:
+                            min_strides: int = MIN_STRIDES) -> dict:
     """Decision L416: ``{"step_time_asymmetry_pct", "n_strides", "step_time_s_instrumented", "step_time_s_other"}``
     of one foot's initial contacts ``foot_ic_s`` and the lower back's contacts of both feet ``waist_ic_s`` (s, one
     clock up to a constant offset under a quarter step). With the median phase phi of the other foot's contact
     (:func:`other_foot_phases`) and the foot's median stride T: the step onto the other foot phi T, onto the
     instrumented foot (1 - phi) T, and their symmetry index (Robinson et al. 1987, L121). None values with fewer
-    than ``min_strides`` strides, or with a standard error (``standard_error_points``, decision L490, always
-    given) over ``max_standard_error`` points (none by default; :data:`CENTRED_OPTIONS`, L493's option: 3)."""
+    than ``min_strides`` strides (and at least 2, which a standard error needs: ``standard_error_points``, decision
+    L490, always given)."""
     from pdrlearn.track.clinical import symmetry_index_pct
 
-    phases = other_foot_phases(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps, centre_on_lag=centre_on_lag)
+    phases = other_foot_phases(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
     out = {"step_time_asymmetry_pct": None, "n_strides": int(len(phases)), "step_time_s_instrumented": None,
            "step_time_s_other": None, "standard_error_points": index_standard_error_pct(phases)}
-    if len(phases) < min_strides or not out["standard_error_points"] <= max_standard_error:
+    if len(phases) < max(min_strides, 2):
         return out
     f = np.sort(np.asarray(foot_ic_s, dtype=float)[np.isfinite(np.asarray(foot_ic_s, dtype=float))])
     stride = float(np.median(np.diff(f)))
@@ -188,15 +171,15 @@ def clock_warning(warnings) -> str | None:
 def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) -> dict:
     """Decision L416: the summary keys (``step_time_asymmetry_pct``, ``n_step_time_asymmetry_steps``,
     ``step_time_asymmetry_reason``) a foot track (steps with ``event_s``, every row ``unit`` foot) of ``session``
-    takes from :func:`labelled_step_asymmetry` when the session holds the lower-back unit too and
-    :data:`LABELLED_ASYMMETRY` is on; ``{}`` otherwise (the foot's "not observable" stays). The lower back's contacts:
+    takes from :func:`labelled_step_asymmetry` when the session holds the lower-back unit too (adopted by L416's
+    rule; W413: no module switch); ``{}`` otherwise (the foot's "not observable" stays). The lower back's contacts:
     the waist-pendulum pipeline's offline IC detector (``waist-ic``, once per session's data: :func:`waist_ic_contacts`,
     L427); a lower-back stream under
     :data:`LABELLED_MIN_RATE_HZ` gives the reason instead of an index, and so do ``warnings`` (the track's) holding
     a clock warning (decision L447: :func:`clock_warning`). ``alignment``: the track's ``info["unit_alignment"]``;
     an estimate it applied (``source`` "estimated", ``--align-units``) moves the lower back's contacts onto the foot
     clock as it moved the track's waist streams (L447; a given clock moved the session itself before tracking)."""
-    if (not LABELLED_ASYMMETRY or not len(steps) or "event_s" not in steps or "unit" not in steps
+    if (not len(steps) or "event_s" not in steps or "unit" not in steps
             or not (steps["unit"] == "foot").all() or not session.has("wAccelerometer", "wGyroscope")
             or np.isfinite(steps["event_s"].to_numpy(float)).sum() < 2):  # a streamed table without --contacts
         return {}
@@ -225,7 +208,7 @@ def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) 
         reason = ("the lower back's contacts labelled by the foot unit's (the other foot's step in each stride, "
                   f"median over {res['n_strides']} strides, standard error {res['standard_error_points']:.1f} points; "
                   "decisions L416, L490)")
-        if res["standard_error_points"] > CENTRED_OPTIONS["max_standard_error"]:  # decision L490: say it is loose
+        if res["standard_error_points"] > UNCERTAIN_SE_POINTS:  # decision L490: say it is loose
             reason += ("; uncertain: over 3 points, the lower back's contacts scatter too much about the foot's at "
                        "these short fast steps (e.g. a child's; trial T1 read 5-21 % on symmetric children), so a "
                        "longer walk or a unit on each foot (pdrlearn gait LEFT_DIR RIGHT_DIR) times it better")

@@ -654,12 +654,6 @@ COMPASS_GYRO_FALLBACK = True
 FALLBACK_DRIFT = True
 
 
-#: decision D25 (docs/decisions/aided.md): the fused / waist heading checks the waist unit's mounting (its compass's
-#: turns against the foot gyroscope's, its declared forward against the walking direction) and on a failure follows
-#: the foot gyroscope's own heading (:mod:`pdrlearn.track.compass_mount`); False = the compass as before
-COMPASS_MOUNT_CHECK = True
-
-
 #: decision L264: L182's check fits its model on windows of this length (s) of straight strides, each on its own:
 #: L17's +-60 s, the span over which the fused heading itself trusts the foot's relative heading against the compass;
 #: a foot heading that drifts over a 30-80 min shift (stairs, turns on the spot) is then judged only over the span
@@ -859,25 +853,32 @@ def require_stride_cover(session: Session, names, command: str = "pdrlearn track
 
 #: decision L494 (docs/decisions/localization.md): a foot-only heading's 0 is the first walk's direction (W390's
 #: circular mean of the first strides' travel headings), not the foot unit's facing, which a unit yawed on the shoe
-#: turns (trial T3: 20 deg -> 13.24 m off on a 45 m route); False = the unit's facing at the start
-FOOT_WALK_REFERENCE = True
-#: decision L494: the first walk's direction is the circular mean of its first (up to) this many walking strides'
-#: headings (W390's measured count; its lower-back switch was removed, W401)
+#: turns (trial T3: 20 deg -> 13.24 m off on a 45 m route; adopted, W413: no module switch); the first walk's
+#: direction is the circular mean of its first (up to) this many walking strides' headings (W390's measured count;
+#: its lower-back switch was removed, W401)
 WALK_REFERENCE_STRIDES = 4
 
 
-def foot_walk_reference(head: np.ndarray, disp: np.ndarray) -> float:
+def foot_walk_reference(head: np.ndarray, disp: np.ndarray, lateral: np.ndarray | None = None,
+                        turn: np.ndarray | None = None) -> float:
     """Decision L494: the direction (rad) of the first walk in the strides' foot-only travel headings ``head`` (rad,
     0 = the foot unit's facing at the start): the circular mean of the first :data:`WALK_REFERENCE_STRIDES` finite
     headings of the strides longer than the frame inference's walking stride (``MIN_STRIDE_M``, D8; horizontal
-    displacement ``disp``, m), as W390 read a walk's direction; 0 when there is none or :data:`FOOT_WALK_REFERENCE`
-    is off."""
-    if not FOOT_WALK_REFERENCE:
-        return 0.0
+    displacement ``disp``, m), as W390 read a walk's direction; 0 when there is none. Decision L510: with
+    ``lateral`` (each stride's travel angle from the foot's facing, rad, left +) a sideways stride (L219's
+    :func:`~pdrlearn.kernels.sideways.is_sideways`, ``turn`` its foot's heading change, L400) reads the walker's
+    facing, its heading less 90 deg to its side, so 0 is the walker's facing at the first walk, not a first
+    shuffle's travel (a backward stride's heading is its facing already: its length carries the sign)."""
+    from pdrlearn.kernels.sideways import is_sideways
     from pdrlearn.track.frame_inference import MIN_STRIDE_M
 
     disp = np.asarray(disp, float)
-    head = np.asarray(head, float)[np.hypot(disp[:, 0], disp[:, 1]) > MIN_STRIDE_M]
+    head = np.asarray(head, float)
+    hlen = np.hypot(disp[:, 0], disp[:, 1])
+    if lateral is not None:  # decision L510: a side stride travels at the facing +-90 deg
+        lateral = np.asarray(lateral, float)
+        head = head - np.where(is_sideways(lateral, hlen, turn), np.sign(lateral) * np.pi / 2, 0.0)
+    head = head[hlen > MIN_STRIDE_M]
     head = head[np.isfinite(head)][:WALK_REFERENCE_STRIDES]
     return float(np.angle(np.mean(np.exp(1j * head)))) if len(head) else 0.0
 
@@ -1377,14 +1378,17 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         head = _stride_heading(wh, strides)
         straight = ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD)
         mount_line = None
-        if COMPASS_MOUNT_CHECK and work.has("wMagneticField"):  # decision D25: the waist unit's mounting
+        # decision D25 (adopted; W413: no module switch): the fused / waist heading checks the waist unit's mounting
+        # (its compass's turns against the foot gyroscope's, its declared forward against the walking direction)
+        if work.has("wMagneticField"):
             from pdrlearn.track.compass_mount import mount_check
 
             mount_line, mount_info = mount_check(work, relative, head, straight)
             warnings += [mount_line] if mount_line else []
         if mount_line is not None:  # decision D25: the foot gyroscope's own heading, as heading "foot"
             compass_line, compass_info = None, None
-            head = relative + initial_heading - foot_walk_reference(relative + side_extra, disp)  # L494
+            head = relative + initial_heading - foot_walk_reference(  # decisions L494, L510
+                relative + side_extra, disp, lateral, fd.yaw_change_)
         else:
             compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
                 work, strides, relative, straight)
@@ -1412,7 +1416,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
         head = fd.foot_heading(0.0) + lateral
-        head = head + initial_heading - foot_walk_reference(head, disp)  # decision L494
+        head = head + initial_heading - foot_walk_reference(head, disp, lateral, fd.yaw_change_)  # L494, L510
     else:
         raise DataError(f"plasys: heading '{hsrc}' is not waist, foot or fused")
     if hsrc in ("waist", "fused") and not SIDE_TRAVEL_HEADING:  # decision L219: a side-stepping stretch is put

@@ -152,7 +152,9 @@ def rotated_to_track(gx: np.ndarray, gy: np.ndarray, after: np.ndarray, tx: np.n
 def heading_is_absolute(info: dict, session: Session) -> bool:
     """True when a track's heading is referenced to north, from its ``info``: aided by position fixes; given its
     start direction (``initial_heading_rad``, ``track --initial-heading``, decision L98); the
-    offline plasys waist or fused heading on a session with a waist magnetometer (the waist filter's compass).
+    offline plasys waist or fused heading on a session with a waist magnetometer (the waist filter's compass), unless
+    D25's mounting check dropped the compass (``info.compass_mount.fallback``: the foot gyroscope's own heading,
+    relative, decision L511).
     Relative (heading 0 = the start's direction): ``--streaming`` (gyroscopes only), the foot's integrated yaw,
     the lower-back pipelines (their heading starts at the unit's initial facing, docs/waist.md, W5), a
     magnetometer in the session or not. A track without a pipeline in its ``info``: absolute when the session
@@ -162,5 +164,6 @@ def heading_is_absolute(info: dict, session: Session) -> bool:
         return True
     if "pipeline" not in info:
         return has_compass
+    mount_fallback = bool((info.get("compass_mount") or {}).get("fallback"))  # decision L511: D25's foot heading
     return (info["pipeline"] == "plasys" and not info.get("streaming")
-            and info.get("heading_source") in ("waist", "fused") and has_compass)
+            and info.get("heading_source") in ("waist", "fused") and has_compass and not mount_fallback)

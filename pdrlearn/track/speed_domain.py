@@ -18,9 +18,6 @@ import pandas as pd
 #: decision L474: the relative margin (10 %) outside the training strides' 1-99 % speed range before a stride is
 #: flagged; stated, not fitted (a walk at the training speed has 2 % of its strides outside its own quantiles)
 SPEED_MARGIN = 0.10
-#: decision L480/L481 (adopted with rule B): the range is taken over, and compared with, the cruise strides only
-#: (:func:`cruise_strides`); off: every tracked stride (L474)
-SPEED_CRUISE = True
 #: decision L480: the strides left out at each end of each walking bout (the start from standing and the stop; a
 #: project choice: the simulator's and a walker's first stride is a half stride, Lindemann et al. 2008 in L415)
 CRUISE_TRIM = 1
@@ -28,8 +25,6 @@ CRUISE_TRIM = 1
 #: start at most this, s: one sample at 20 Hz; a project choice): strides of a continuous walk share their boundary,
 #: so a gap is standing or turning on the spot between them, which the bout split (a pause of >= 1 s) may not see
 CRUISE_GAP_S = 0.05
-#: decision L481: rule B's contiguity is part of :func:`cruise_strides` (adopted; off: L480's rule A)
-CRUISE_CONTIGUOUS = True
 
 
 def cruise_strides(steps: pd.DataFrame) -> np.ndarray:
@@ -37,15 +32,15 @@ def cruise_strides(steps: pd.DataFrame) -> np.ndarray:
     level, forward, straight (:func:`pdrlearn.displace.calibration.straight_level_forward`: measured height change,
     length and heading, no model class, so a wrong class does not hide a stride) and not among the
     :data:`CRUISE_TRIM` first or last strides of a walking bout (:func:`pdrlearn.track.steady.trimmed_rows`: a
-    start from standing, the stride before and after a pause); with :data:`CRUISE_CONTIGUOUS` (decision L481, rule
-    B) also touching both neighbours (:func:`contiguous_strides`)."""
+    start from standing, the stride before and after a pause); decision L481 (rule B, adopted; W413: no module
+    switch) also touching both neighbours (:func:`contiguous_strides`)."""
     from pdrlearn.displace.calibration import straight_level_forward
     from pdrlearn.track.steady import trimmed_rows
 
     if not len(steps):
         return np.zeros(0, bool)
     out = straight_level_forward(steps) & ~trimmed_rows(steps, CRUISE_TRIM)
-    return out & contiguous_strides(steps) if CRUISE_CONTIGUOUS else out
+    return out & contiguous_strides(steps)
 
 
 def contiguous_strides(steps: pd.DataFrame, gap_s: float = CRUISE_GAP_S) -> np.ndarray:
@@ -102,6 +97,10 @@ def flag_speeds(table: pd.DataFrame, speed_range, warnings: list[str], strides: 
     table["speed_out_of_range"] = out
     n, m = int(out.sum()), int(judged.sum())
     what = "level straight strides" if strides == "cruise" else "strides"
+    if n and "travel" in table:  # trial T3 finding 9: a side or backward stride is counted as such, not as a walk's
+        travel = table["travel"].astype(str).to_numpy()
+        other = [f"{int((out & (travel == t)).sum())} {t}" for t in ("side", "backward") if (out & (travel == t)).any()]
+        what += f" (of them {', '.join(other)} steps, not forward walking)" if other else ""
     if n:
         warnings.append(
             f"{n} of {m} {what} at speeds outside the model's training strides ({lo:.2f}-{hi:.2f} m/s, "
