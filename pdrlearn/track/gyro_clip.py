@@ -11,8 +11,9 @@ from __future__ import annotations
 
 from pdrlearn.warning_lines import coded
 
-#: decision L525 (adopted by its rule, L526; the rule itself, no switch: W413 / L507): the FootDisplacement settings of the streamed stride (L68's tilt correction at the end rest, the
-#: ZUPT's velocity drift linear in time instead of L21's |a|-weighted clock); a user's ``params`` key wins
+#: decision L525 (adopted by its rule, L526; the rule itself, no switch: W413 / L507): the FootDisplacement settings
+#: of the streamed stride (L68's tilt correction at the end rest, the ZUPT's velocity drift linear in time instead of
+#: L21's |a|-weighted clock); a user's ``params`` key wins
 CLIPPED_FOOT_SETTINGS = {"tilt_dedrift": True, "accel_scale_error": 0.0}
 
 
