@@ -244,3 +244,15 @@ def test_a_model_or_bundle_without_the_force_record_loads_and_says_nothing_b398(
     assert bundle_force({"training": {"data": {}}}) is None and bundle_force({}) is None  # a bundle before C153
     rec = model_force(load_model(length_model["dir"]))
     assert bundle_force({"training": {"data": {"force": rec}}}) == rec
+
+
+def test_the_detector_tare_does_not_need_a_usable_gyroscope_steps_73(walk100):
+    """Steps 73's offline tare reads the foot IMU's swings; a gyroscope too short for that (which accel-force never
+    needed) leaves only the online tare, and the detector runs as before."""
+    from pdrlearn.steps import AccelForceStepDetector
+
+    short = copy.copy(walk100)
+    short.streams = dict(walk100.streams)
+    g = walk100.streams["fGyroscope"]
+    short.streams["fGyroscope"] = type(g)(g.name, g.t[:3], g.values[:3])
+    assert len(AccelForceStepDetector().detect(short)) == len(AccelForceStepDetector().detect(walk100))

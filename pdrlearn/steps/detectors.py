@@ -165,7 +165,11 @@ class AccelForceStepDetector(StepDetector):
             from pdrlearn.displace.force_check import tared
             from pdrlearn.orient import unit_data
 
-            session, line = tared(session, unit_data(session, "foot", purpose=purpose, sensor_axes=True))
+            try:
+                foot = unit_data(session, "foot", purpose=purpose, sensor_axes=True)
+            except DataError:  # a gyroscope this detector never needed (short, not covering): the online tare only
+                foot = None
+            session, line = (session, None) if foot is None else tared(session, foot)
             if line:
                 log.warning("%s: %s", session.where, line)
         acc = session["fAccelerometer"]
