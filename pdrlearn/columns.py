@@ -1044,6 +1044,10 @@ GAIT_STEPS: tuple[Column, ...] = (
     ("step_length_m", "m", "number", "the two feet's tracked rest positions at start_s and ic_s differenced along "
                                      "the walking direction (L310); empty in a turn, off the walk's first axis, at "
                                      "the closing step and for labelled contacts"),
+    ("contact_source", _ID, "text", "the detector that timed the landing foot's contacts (steps 72): force "
+                                    "(accel-force), imu (the accelerometer detector) or force+imu (a stitched track, "
+                                    "L405); both feet imu when only one had force sensors or with --ignore-force; "
+                                    "also gait_summary.json's contact_source {left, right}"),
 )
 #: ``pdrlearn gait``'s gait_cycles.csv (decisions L262, L287): one row per gait cycle of either foot
 GAIT_CYCLES: tuple[Column, ...] = (

@@ -443,6 +443,11 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
     line = other_user_line(model, [session], "track")  # decision C138: a per-user model on another user
     if line:
         warnings.append(line)
+    from pdrlearn.classify.force_scale import force_scale_line, model_force
+
+    line = force_scale_line(model_force(model), session)  # decision C153: force in another unit than the training's
+    if line:
+        warnings.append(line)
     return off
 
 
