@@ -1627,10 +1627,10 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary.update(domain_fraction(result))  # decision C16
     placement = scale = None
     if result.info.get("pipeline") == "plasys":  # decision B134: a foot unit that never swings is not on the foot
-        from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats, foot_scale_warning
+        from pdrlearn.track.foot_rest import foot_placement_line, foot_rest_stats, foot_scale_warning
 
         stats = foot_rest_stats(session)
-        placement = foot_placement_warning(stats, "")  # L352: the loop below prefixes session.where
+        placement = foot_placement_line(session, stats, "")  # L352: the loop prefixes session.where; W415
         scale = foot_scale_warning(stats, "")  # decision B201: the foot accelerometer's rest |acc| off 1 g
     add_gait_range_flag(summary)  # decision L195
     lines = summary_warnings(summary)

@@ -1371,7 +1371,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
             mount_line, mount_info = mount_check(work, relative, head, straight)
             warnings += [mount_line] if mount_line else []
-        if mount_line is not None:  # decision D25: the foot gyroscope's own heading, as heading "foot"
+        if (mount_info or {}).get("fallback"):  # D25 (W415: without a line): the foot gyroscope's heading
             compass_line, compass_info = None, None
             head = relative + initial_heading - foot_walk_reference(relative + side_extra, disp)  # L494
         else:
