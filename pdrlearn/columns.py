@@ -240,10 +240,11 @@ SESSIONS: tuple[Column, ...] = (
                                            "empty on the lower back"),
     ("side_distance_m", "m", "number", "foot: summed |length_m| of the strides n_side_strides counts (L484); empty "
                                        "on the lower back"),
-    ("n_flight_phases", "count", "integer", "foot: runs of the foot accelerometer under 0.3 g for more than "
-                                            "0.1 s (first to last low sample 0.1 s or more, W409; both feet off the "
-                                            "ground: jumps, running; W363); empty on the lower back"),
-    ("flight_time_s", "s", "number", "foot: the flight phases' time in all (W363)"),
+    ("n_flight_phases", "count", "integer", "runs of the tracked unit's accelerometer (foot; lower back: the "
+                                            "waist's, W416) under 0.3 g for more than 0.1 s (first to last low "
+                                            "sample 0.1 s or more, W409; both feet off the ground: jumps, running; "
+                                            "W363)"),
+    ("flight_time_s", "s", "number", "the flight phases' time in all (W363, W416)"),
     ("direction_changes", "count", "integer", "foot: changes of travel direction (steps.csv travel: forward / "
                                               "backward / left / right, turn and empty rows skipped; "
                                               "direction_changes.csv's rows, L412); a turn is not one; empty on "

@@ -41,10 +41,21 @@ def flight_phases(t, acc) -> list[tuple[float, float]]:
     return out
 
 
+#: decision W416: each unit's accelerometer; a lower-back track reads the waist's (a pelvis in free fall reads ~0 g too)
+UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
+
+
+def flight_unit(pipeline: str | None) -> str:
+    """The unit whose accelerometer a track's flight test reads: ``"waist"`` for a lower-back pipeline (W416)."""
+    return "waist" if "waist" in str(pipeline) else "foot"
+
+
 def flight_summary(session, pipeline: str | None) -> tuple[dict, str | None]:
-    """Decision W363: ``(keys, line)`` - :data:`KEYS` of a foot track's accelerometer (None for both on a lower-back
-    track or without the stream) and the warning line when it has a flight phase."""
-    acc = session.streams.get("fAccelerometer") if "waist" not in str(pipeline) else None
+    """Decision W363: ``(keys, line)`` - :data:`KEYS` of the tracked unit's accelerometer (the foot's; decision
+    W416: a lower-back track's the waist's; None for both without the stream) and the warning line when it has a
+    flight phase."""
+    unit = flight_unit(pipeline)
+    acc = session.streams.get(UNIT_ACC[unit])
     if acc is None:
         return dict.fromkeys(KEYS), None
     phases = flight_phases(acc.t, acc.values)
@@ -54,8 +65,12 @@ def flight_summary(session, pipeline: str | None) -> tuple[dict, str | None]:
         return keys, None
     longest = max(b - a for a, b in phases)
     # decision W412: "more than", as W409's rule (an exact 0.1 s run, 10 samples at 100 Hz, spans 0.09 s: not one)
-    return keys, (f"{len(phases)} flight phase(s) (the foot accelerometer under {FLIGHT_MAX_G:g} g for more than "
-                  f"{FLIGHT_MIN_S:g} s, its first and last low samples {FLIGHT_MIN_S:g} s or more apart, "
-                  f"{total:.2f} s in all, the longest {longest:.2f} s): the foot left the "
-                  "ground with both feet - jumps or running; strides across them may be jumps, not walking strides, "
-                  "and their lengths and the distance are not validated (decision W363)")
+    low = (f"{len(phases)} flight phase(s) (the {'lower-back' if unit == 'waist' else 'foot'} accelerometer under "
+           f"{FLIGHT_MAX_G:g} g for more than {FLIGHT_MIN_S:g} s, its first and last low samples {FLIGHT_MIN_S:g} s "
+           f"or more apart, {total:.2f} s in all, the longest {longest:.2f} s)")
+    if unit == "waist":  # decision W416: the lower-back pipelines' own consequence
+        return keys, (f"{low}: the body left the ground - jumps or running; the lower-back pipelines count the "
+                      "take-offs and landings as walking steps and place every step forward, so the step count and "
+                      "the distance include them and are not validated (decision W416)")
+    return keys, (f"{low}: the foot left the ground with both feet - jumps or running; strides across them may be "
+                  "jumps, not walking strides, and their lengths and the distance are not validated (decision W363)")

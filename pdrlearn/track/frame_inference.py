@@ -792,7 +792,29 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
                              unchecked, compared, rev)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked, how=how)
+    if SIDE_TRAVEL_WORDS and msg and placement == "waist" and UNIT_STREAMS["foot"][0] not in session.streams:
+        msg = side_travel_words(rev) + msg if side_travel_words(rev) else msg  # decision W416
     return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced)
+
+
+#: decision W416 (b): D10's waist line on a session without a foot unit leads with side or backward travel when the
+#: measured walking direction is more than this (deg) from the declared forward (L219's side window's edge)
+SIDE_FROM_DEG = 60.0
+#: decision W416 (b), not adopted (its rule's backpedal, user 10022, reads forward on the waist: no D10 line to word):
+#: opt-in; False = D10's line as before W416
+SIDE_TRAVEL_WORDS = False
+
+
+def side_travel_words(rev: float | None) -> str:
+    """Decision W416 (b): the words that lead D10's waist line on a session without a foot unit when the measured
+    walking direction lies ``rev`` deg (over :data:`SIDE_FROM_DEG`) from the declared forward: side or backward
+    movement, which the lower-back pipelines place forward, named before a wrong frame; "" otherwise."""
+    if rev is None or rev <= SIDE_FROM_DEG:
+        return ""
+    return (f"the waist unit's measured walking direction is {rev:.0f} deg from its declared forward: side or "
+            "backward movement (side shuffles, backpedals) reads so with a right frame, and the lower-back pipelines "
+            "place it forward (the distance counts it as forward walking; a foot unit tells the way each stride "
+            "went; decision W416) - write the \"frames\" entry below only if the walker walked forward. D10: ")
 
 
 def _waist_not_judged(session) -> str | None:
