@@ -844,6 +844,19 @@ FREEZES: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+#: decision W417: a track's flights.csv, one row per flight phase of either unit (W363's test, W409's rule, W416)
+FLIGHTS: tuple[Column, ...] = (
+    ("unit", _ID, "text", "foot or waist: the accelerometer (fAccelerometer.csv / wAccelerometer.csv) that read it"),
+    ("start_s", "s", "number", "its first sample under 0.3 g, on the session's clock"),
+    ("end_s", "s", "number", "its last sample under 0.3 g plus one sample interval"),
+    ("flight_time_s", "s", "number", "end_s - start_s (first to last low sample 0.1 s or more apart, W409)"),
+    ("jump_height_m", "m", "number", "g x flight_time_s^2 / 8, the flight-time method (W417): assumes take-off and "
+                                     "landing in the same posture and the unit in free fall from take-off to "
+                                     "touch-down; a landing on bent knees overstates it; the sample interval limits "
+                                     "flight_time_s (+-0.05 s at 20 Hz: +-0.05 m at a 0.4 s flight)"),
+    *_clocks("start_s", "end_s"),
+)
+
 #: decision L300: steps.csv's grade column, foot and lower back
 _GRADE_PCT: Column = ("grade_pct", "%", "number", "100 x dz_m / |length_m|, + up (L300); empty unless the altitude "
                       "is barometric (grade_source), on a row under 0.2 m, a gap row or an impossible stride")
@@ -1431,7 +1444,7 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
-    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, STAIRS, RIDES, WAIST_STEPS,
+    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, FLIGHTS, RAMPS, STAIRS, RIDES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 

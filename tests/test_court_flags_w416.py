@@ -61,3 +61,24 @@ def test_side_travel_words_lead_the_waist_line_without_a_foot_unit_when_switched
     monkeypatch.setattr(fi, "SIDE_TRAVEL_WORDS", False)  # the default (W416 (b) not adopted): D10's line as before
     msg = fi.check_declared_frame(read_session(sim), "waist", read_session(sim).frames["waist"]).message
     assert msg.startswith("the waist unit's frame") and "W416" not in msg, msg
+
+
+def test_flights_csv_lists_each_units_jumps_with_a_height_w417(tmp_path):
+    """Trial T3 finding 6, decision W417: flights.csv, one row per flight phase of the foot and the lower back."""
+    from pdrlearn.track.flight import FLIGHT_COLUMNS, jump_height
+
+    assert abs(float(jump_height(0.4)) - 9.80665 * 0.16 / 8) < 1e-12  # g t^2 / 8
+    sim = _sim(tmp_path, "stand:2, straight:6, stand:2", 10039, "jump2")
+    starts = add_jumps(sim, 1.0, 2.0, files=("fAccelerometer", "wAccelerometer"))
+    out = tmp_path / "jump2_tr"
+    assert main(["track", str(sim), "--out", str(out)]) == 0
+    table = pd.read_csv(out / "flights.csv")
+    assert tuple(table.columns) == FLIGHT_COLUMNS
+    assert sorted(table["unit"]) == ["foot"] * 3 + ["waist"] * 3
+    for unit in ("foot", "waist"):
+        rows = table[table["unit"] == unit]
+        # the 0 g stretch runs 0.25-0.65 s after each jump start: 0.4 s, within one 20 Hz sample
+        assert (abs(rows["start_s"].to_numpy() - [s + 0.25 for s in starts]) <= 0.051).all(), rows
+        assert (abs(rows["flight_time_s"] - 0.4) <= 0.051).all() and (abs(rows["jump_height_m"] - 0.196) < 0.05).all()
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["n_flight_phases"] == 3 and "flights" not in summary["info"]  # the tracked unit's count

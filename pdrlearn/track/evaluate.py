@@ -1515,6 +1515,10 @@ def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout
 
         keys, line = flight_summary(session, result.info.get("pipeline"))
         out.update(keys)
+        if keys["n_flight_phases"] is not None and "flights" not in result.info:  # decision W417: flights.csv
+            from pdrlearn.track.flight import flight_rows
+
+            result.info["flights"] = flight_rows(session)
         if line:
             import logging
 
@@ -1542,6 +1546,7 @@ def domain_fraction(result: TrackResult) -> dict:
 SUMMARY_INFO_LEFT_OUT = {
     "transfers": "transfers.csv (decision W182)",
     "freezes": "freezes.csv (decision W213)",
+    "flights": "flights.csv (decision W417)",
     "postures": "the runs behind the posture time keys (decision W222)",
     "yaw_turns": "turns.csv's turn timing (decision L210)",
     "rest_bias_rests": "the position radius's clock (decision L306)",

@@ -50,6 +50,30 @@ def flight_unit(pipeline: str | None) -> str:
     return "waist" if "waist" in str(pipeline) else "foot"
 
 
+#: decision W417: flights.csv's columns (:func:`flight_rows`)
+FLIGHT_COLUMNS = ("unit", "start_s", "end_s", "flight_time_s", "jump_height_m")
+
+
+def jump_height(flight_time_s):
+    """Decision W417: the flight-time jump height (m), g t^2 / 8 (a body that leaves and lands at the same height rises
+    for half its flight: h = g (t/2)^2 / 2; Bosco et al. 1983)."""
+    return G * np.square(np.asarray(flight_time_s, float)) / 8.0
+
+
+def flight_rows(session) -> list[dict]:
+    """Decision W417: flights.csv's rows (:data:`FLIGHT_COLUMNS`), one per flight phase (:func:`flight_phases`) of
+    each unit with an accelerometer (:data:`UNIT_ACC`), in time order."""
+    rows = []
+    for unit, name in UNIT_ACC.items():
+        acc = session.streams.get(name)
+        if acc is None:
+            continue
+        for a, b in flight_phases(acc.t, acc.values):
+            rows.append({"unit": unit, "start_s": round(a, 3), "end_s": round(b, 3), "flight_time_s": round(b - a, 3),
+                         "jump_height_m": round(float(jump_height(b - a)), 3)})
+    return sorted(rows, key=lambda r: (r["start_s"], r["unit"]))
+
+
 def flight_summary(session, pipeline: str | None) -> tuple[dict, str | None]:
     """Decision W363: ``(keys, line)`` - :data:`KEYS` of the tracked unit's accelerometer (the foot's; decision
     W416: a lower-back track's the waist's; None for both without the stream) and the warning line when it has a
