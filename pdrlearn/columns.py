@@ -771,6 +771,14 @@ PERIODS: tuple[Column, ...] = (
     ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
     ("position_sigma_end_m", "m", "number", "the position's 1-sigma at the period's end (trajectory.csv pos_sigma_m, "
                                             "L128); empty for an aided track"),
+    ("start_x_m", "m", "number", "the track's x (trajectory.csv) at the period's start: the last trajectory row at or "
+                                 "before it, the first row before the track begins (L514)"),
+    ("start_y_m", "m", "number", "the track's y at the period's start (L514)"),
+    ("end_x_m", "m", "number", "the track's x at the period's end (L514)"),
+    ("end_y_m", "m", "number", "the track's y at the period's end (L514)"),
+    ("dx_m", "m", "number", "end_x_m - start_x_m: the period's net displacement along x (distance_m is the path "
+                            "length; L514)"),
+    ("dy_m", "m", "number", "end_y_m - start_y_m (L514)"),
     *_clocks("start_s", "end_s"),
 )
 
