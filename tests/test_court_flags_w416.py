@@ -47,7 +47,7 @@ def test_waist_track_finds_flight_phases_and_says_so_w416(tmp_path):
     assert len(lines) == 1 and "lower-back accelerometer" in lines[0] and "decision W416" in lines[0], lines
 
 
-def test_side_travel_words_lead_the_waist_line_without_a_foot_unit_when_switched_on_w416(tmp_path, monkeypatch):
+def test_side_travel_words_lead_the_waist_line_without_a_foot_unit_when_asked_w416(tmp_path):
     assert fi.side_travel_words(40.0) == ""
     assert "side or backward movement" in fi.side_travel_words(95.0)
     sim = _sim(tmp_path, "stand:2, side:3, side:-3, stand:2", 10038, "sh")
@@ -55,11 +55,11 @@ def test_side_travel_words_lead_the_waist_line_without_a_foot_unit_when_switched
         f.unlink()
     from pdrlearn.io import read_session
 
-    monkeypatch.setattr(fi, "SIDE_TRAVEL_WORDS", True)
-    msg = fi.check_declared_frame(read_session(sim), "waist", read_session(sim).frames["waist"]).message
+    session = read_session(sim)
+    msg = fi.check_declared_frame(session, "waist", session.frames["waist"], side_words=True).message
     assert msg.startswith("the waist unit's measured walking direction is ") and "decision W416" in msg, msg
-    monkeypatch.setattr(fi, "SIDE_TRAVEL_WORDS", False)  # the default (W416 (b) not adopted): D10's line as before
-    msg = fi.check_declared_frame(read_session(sim), "waist", read_session(sim).frames["waist"]).message
+    # the default (W416 (b) not adopted): D10's line as before
+    msg = fi.check_declared_frame(session, "waist", session.frames["waist"]).message
     assert msg.startswith("the waist unit's frame") and "W416" not in msg, msg
 
 

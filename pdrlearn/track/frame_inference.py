@@ -744,14 +744,17 @@ class DeclaredCheck:
         return f"not checked ({self.unchecked})"
 
 
-def check_declared_frame(session, placement: str, declared: AxisFrame) -> DeclaredCheck:
+def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_words: bool = False) -> DeclaredCheck:
     """The data's word on a declared or ``source_project`` frame: a warning (without the ``meta.json``
     location) when it is left-handed or the data contradict it with confidence (decision D10); a refusal when
     its forward is reversed against the data (decision D22), also when the inference gives up on which
     axis is forward but measured the strides' direction and gravity (:class:`FrameInferenceError` ``up`` /
     ``forward``; a reversed up alone is D10's warning). The inference runs once here, on the first
     :data:`CHECK_SPAN_S` seconds. Decision W415: a waist frame is not judged when the foot unit's strides in that
-    span mostly travel sideways or backward (:func:`pdrlearn.track.stride_kinds.not_judged`)."""
+    span mostly travel sideways or backward (:func:`pdrlearn.track.stride_kinds.not_judged`). ``side_words``
+    (decision W416 (b), not adopted: its rule's waist-only backpedal, user 10022, reads forward, so there is no line
+    to word; opt-in, False = D10's line as before): a waist line without a foot unit leads with
+    :func:`side_travel_words`."""
     if isinstance(session.meta.get("frames"), dict):
         origin = 'declared in "frames"'
     else:
@@ -792,7 +795,7 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
                              unchecked, compared, rev)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked, how=how)
-    if SIDE_TRAVEL_WORDS and msg and placement == "waist" and UNIT_STREAMS["foot"][0] not in session.streams:
+    if side_words and msg and placement == "waist" and UNIT_STREAMS["foot"][0] not in session.streams:
         msg = side_travel_words(rev) + msg if side_travel_words(rev) else msg  # decision W416
     return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced)
 
@@ -800,10 +803,6 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
 #: decision W416 (b): D10's waist line on a session without a foot unit leads with side or backward travel when the
 #: measured walking direction is more than this (deg) from the declared forward (L219's side window's edge)
 SIDE_FROM_DEG = 60.0
-#: decision W416 (b), not adopted (its rule's backpedal, user 10022, reads forward on the waist: no D10 line to word):
-#: opt-in; False = D10's line as before W416
-SIDE_TRAVEL_WORDS = False
-
 
 def side_travel_words(rev: float | None) -> str:
     """Decision W416 (b): the words that lead D10's waist line on a session without a foot unit when the measured

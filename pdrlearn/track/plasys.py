@@ -1394,7 +1394,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                     "on a shorter one (decision L226, L266, L280)")
             warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
                 f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
-        elif hsrc == "fused" and mount_line is None:
+        elif hsrc == "fused" and not (mount_info or {}).get("fallback"):  # D25 (W415: also without its line)
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
                                    walking=FUSED_WALKING_CLOCK)  # decision L471
