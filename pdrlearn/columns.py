@@ -241,10 +241,11 @@ SESSIONS: tuple[Column, ...] = (
                                            "empty on the lower back"),
     ("side_distance_m", "m", "number", "foot: summed |length_m| of the strides n_side_strides counts (L484); empty "
                                        "on the lower back"),
-    ("n_flight_phases", "count", "integer", "foot: runs of the foot accelerometer under 0.3 g for more than "
-                                            "0.1 s (first to last low sample 0.1 s or more, W409; both feet off the "
-                                            "ground: jumps, running; W363); empty on the lower back"),
-    ("flight_time_s", "s", "number", "foot: the flight phases' time in all (W363)"),
+    ("n_flight_phases", "count", "integer", "runs of the tracked unit's accelerometer (foot; lower back: the "
+                                            "waist's, W416) under 0.3 g for more than 0.1 s (first to last low "
+                                            "sample 0.1 s or more, W409; both feet off the ground: jumps, running; "
+                                            "W363)"),
+    ("flight_time_s", "s", "number", "the flight phases' time in all (W363, W416)"),
     ("direction_changes", "count", "integer", "foot: changes of travel direction (steps.csv travel: forward / "
                                               "backward / left / right, turn and empty rows skipped; "
                                               "direction_changes.csv's rows, L412); a turn is not one; empty on "
@@ -771,6 +772,14 @@ PERIODS: tuple[Column, ...] = (
     ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
     ("position_sigma_end_m", "m", "number", "the position's 1-sigma at the period's end (trajectory.csv pos_sigma_m, "
                                             "L128); empty for an aided track"),
+    ("start_x_m", "m", "number", "the track's x (trajectory.csv) at the period's start: the last trajectory row at or "
+                                 "before it, the first row before the track begins (L514)"),
+    ("start_y_m", "m", "number", "the track's y at the period's start (L514)"),
+    ("end_x_m", "m", "number", "the track's x at the period's end (L514)"),
+    ("end_y_m", "m", "number", "the track's y at the period's end (L514)"),
+    ("dx_m", "m", "number", "end_x_m - start_x_m: the period's net displacement along x (distance_m is the path "
+                            "length; L514)"),
+    ("dy_m", "m", "number", "end_y_m - start_y_m (L514)"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -841,6 +850,19 @@ FREEZES: tuple[Column, ...] = (
     ("duration_s", "s", "number", "end_s - start_s"),
     ("peak_fi", "ratio", "number", "the largest freeze index (3-8 Hz / 0.5-3 Hz power, Moore 2008) of its 4 s "
                                    "windows"),
+    *_clocks("start_s", "end_s"),
+)
+
+#: decision W417: a track's flights.csv, one row per flight phase of either unit (W363's test, W409's rule, W416)
+FLIGHTS: tuple[Column, ...] = (
+    ("unit", _ID, "text", "foot or waist: the accelerometer (fAccelerometer.csv / wAccelerometer.csv) that read it"),
+    ("start_s", "s", "number", "its first sample under 0.3 g, on the session's clock"),
+    ("end_s", "s", "number", "its last sample under 0.3 g plus one sample interval"),
+    ("flight_time_s", "s", "number", "end_s - start_s (first to last low sample 0.1 s or more apart, W409)"),
+    ("jump_height_m", "m", "number", "g x flight_time_s^2 / 8, the flight-time method (W417): assumes take-off and "
+                                     "landing in the same posture and the unit in free fall from take-off to "
+                                     "touch-down; a landing on bent knees overstates it; the sample interval limits "
+                                     "flight_time_s (+-0.05 s at 20 Hz: +-0.05 m at a 0.4 s flight)"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -1446,7 +1468,7 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
-    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, STAIRS, RIDES, WAIST_STEPS,
+    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, FLIGHTS, RAMPS, STAIRS, RIDES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 

@@ -1185,6 +1185,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
                f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
+               f"{'flights.csv, ' if (out / 'flights.csv').is_file() else ''}"
                f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
                f"{'laps.csv, ' if summary.get('corridor_m') is not None else ''}"
                f"{'splits.csv, ' if summary.get('splits_m') else ''}"
