@@ -9,7 +9,7 @@ checkout's (OLD, e.g. /work/main) from the track's steps.csv / turns.csv / bouts
 other hall of 10-50 m (L518's wrong corridors), and once more with `--walk-test-duration` 1 s past the stop.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/corridor_s39.py OLD_CHECKOUT [WORKDIR]
-Output: experiments/results/corridor_s39.txt (the printed lines).
+Output: experiments/results/corridor_s39.txt (the printed lines; corridor_s39_final.txt with FINAL as 3rd argument).
 """
 import importlib.util
 import subprocess
@@ -119,14 +119,16 @@ def main(old: str, work: Path) -> None:
                 if c == w["hall"]:
                     continue
                 _, _, w_c = corridor_laps(steps, turns, c, bouts)
+                _, _, w_o = old_c.corridor_laps(steps, turns, c, bouts)
                 key = (unit, f"{c / w['hall']:.2f}")
-                hit = wrong.setdefault(key, [0, 0])
+                hit = wrong.setdefault(key, [0, 0, 0])
                 hit[0] += any("L518" in x for x in w_c)
                 hit[1] += 1
+                hit[2] += any("corridor length right" in x for x in w_o)  # the old code's L384 line
     lines.append(f"L518 on the true --corridor: foot {fired_true['foot']} of {n_true['foot']}, lower back "
                  f"{fired_true['lower back']} of {n_true['lower back']}")
-    for (unit, ratio), (f, n) in sorted(wrong.items(), key=lambda kv: (kv[0][0], float(kv[0][1]))):
-        lines.append(f"L518 on --corridor = {ratio} x the true hall, {unit}: fired {f} of {n}")
+    for (unit, ratio), (f, n, o) in sorted(wrong.items(), key=lambda kv: (kv[0][0], float(kv[0][1]))):
+        lines.append(f"L518 on --corridor = {ratio} x the true hall, {unit}: fired {f} of {n} (the old L384 line {o})")
     lines.append(f"L517 check: (a) stop tracks silent and equal to the old code's {checks['a']} of {2 * n_stop}; "
                  f"(b) walk-back tracks named with the true laps {checks['b']} of {2 * n_back}; (c) walk-back tracks "
                  f"with --walk-test-duration: true laps and no L517 line {checks['c']} of {2 * n_back}")
@@ -146,8 +148,11 @@ def main(old: str, work: Path) -> None:
                          f"{'fired' if any('L518' in x for x in w_c) else 'no'}")
     for line in lines[-(len(wrong) + 9):]:
         print(line)
-    (Path(__file__).resolve().parent / "results" / "corridor_s39.txt").write_text("\n".join(lines) + "\n")
+    name = "corridor_s39_final.txt" if FINAL else "corridor_s39.txt"
+    (Path(__file__).resolve().parent / "results" / name).write_text("\n".join(lines) + "\n")
 
+
+FINAL = len(sys.argv) > 3 and sys.argv[3] == "FINAL"  # L518's outcome applied (the lower back at L384's 0.5-2 x)
 
 if __name__ == "__main__":
     main(sys.argv[1], Path(sys.argv[2]) if len(sys.argv) > 2 else Path(tempfile.mkdtemp()))

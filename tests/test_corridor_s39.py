@@ -18,9 +18,9 @@ WALK_BACK = ("stand:3, straight:15, turn:180, straight:15, turn:180, straight:15
              "straight:10, stand:6, turn:180, straight:6, stand:3")
 
 
-def _strides(t: np.ndarray, step_m: float = 1.0) -> pd.DataFrame:
-    """A foot table of 1 s strides starting at ``t`` (s), ``step_m`` tracked metres each."""
-    return pd.DataFrame({"start_s": t, "end_s": t + 1.0, "event_s": t + 1.0, "length_m": step_m, "unit": "foot"})
+def _strides(t: np.ndarray, step_m: float = 1.0, unit: str = "foot") -> pd.DataFrame:
+    """A ``unit`` table of 1 s strides starting at ``t`` (s), ``step_m`` tracked metres each."""
+    return pd.DataFrame({"start_s": t, "end_s": t + 1.0, "event_s": t + 1.0, "length_m": step_m, "unit": unit})
 
 
 def _stop_and_walk_back(step_m: float = 1.0) -> tuple[pd.DataFrame, pd.DataFrame]:
@@ -102,3 +102,36 @@ def test_bad_walk_test_duration_is_one_line_and_no_output_b396(tmp_path, capsys,
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--walk-test-duration" in err[0] and words in err[0] and "Traceback" not in err[0]
     assert not (tmp_path / "t").exists()
+
+
+def _l518(warnings: list[str]) -> list[str]:
+    return [w for w in warnings if "L518" in w]
+
+
+def test_a_wrong_corridor_on_an_accurate_foot_track_warns_l518():
+    """L518 (trial T1 finding 2): a foot track's 30 m laps (+-1 %) given --corridor 20, 25, 40 or 50 get one line;
+    30 none; the count and distance stay laps x --corridor (main: 20 and 50 silent, inside L384's 0.5-2 x)."""
+    t = np.arange(4 * 30 + 15, dtype=float)
+    steps = _strides(t, 1.0 + 0.01 * np.sin(t))
+    turns = _turns_at([30, 60, 90, 120])
+    assert _l518(corridor_laps(steps, turns, 30.0)[2]) == []
+    for corridor in (20.0, 25.0, 40.0, 50.0):
+        _, s, warnings = corridor_laps(steps, turns, corridor)
+        line = _l518(warnings)
+        assert len(line) == 1 and f"against --corridor {corridor:g} m" in line[0], corridor
+        assert "is the corridor length right?" in line[0] and s["n_laps"] == 4, corridor
+        assert s["walk_test_distance_m"] == pytest.approx(4 * corridor + corridor / 2, rel=0.02)
+    # the lower back keeps L384's 0.5-2 x (L518's measurement: its scale is not known to 15 %)
+    waist = steps.assign(unit="waist")
+    assert _l518(corridor_laps(waist, turns, 20.0)[2]) == [] and len(_l518(corridor_laps(waist, turns, 14.0)[2])) == 1
+
+
+def test_a_walk_without_a_lap_longer_than_the_corridor_warns_l518():
+    """L518: the trial's --corridor 3 on a straight 10 m walk was capped at 3 m silently; now one line says so. A
+    walk shorter than the corridor (a test stopped in lap 1) stays quiet."""
+    walk = _strides(np.arange(10, dtype=float))
+    _, s, warnings = corridor_laps(walk, None, 3.0)
+    assert s["walk_test_distance_m"] == pytest.approx(3.0)
+    line = _l518(warnings)
+    assert len(line) == 1 and "10.0 m without a cone turn" in line[0] and "capped at one corridor length" in line[0]
+    assert _l518(corridor_laps(walk, None, 10.0)[2]) == [] and _l518(corridor_laps(walk, None, 30.0)[2]) == []

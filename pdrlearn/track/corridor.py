@@ -22,13 +22,14 @@ from pdrlearn.warning_lines import coded
 CONE_TURN_MIN_DEG = 135.0
 #: decision L384: a final stretch of at least this many median stretches warns of a missed turn
 MISSED_TURN_RATIO = 1.5
-#: decision L518 (amends L384's 0.5-2 x): the relative scale error a track's laps may carry against the true corridor,
-#: by unit: foot 15 % (measured: the simulated 6MWT's tracked distance -0.93..+0.78 %, L385; the real foot's stride
-#: length 3.44 % MAE, README), lower back 50 % (measured: uncalibrated waist-pendulum -16.3 %, calibrated waist-pll
-#: +39.6 % on L385's route; uncalibrated waist-pendulum +30 % on a 0.5 m-step walker)
-CORRIDOR_SCALE_TOL = {"foot": 0.15, "lower back": 0.50}
-#: decision L518: the laps' robust relative spread (1.4826 x MAD / median) counts this many times on top
-CORRIDOR_SPREAD_K = 2.0
+#: decision L518 (amends L384's 0.5-2 x on the foot): the relative scale error a track's laps may carry against the
+#: true corridor, by unit: foot 15 % (measured: the simulated 6MWT's tracked distance -0.93..+0.78 %, L385; the real
+#: foot's stride length 3.44 % MAE, README); the lower back keeps L384's 0.5-2 x (tolerance 100 %): L518's 50 % fired
+#: on 7 of 20 true corridors (uncalibrated waist-pendulum laps up to +87 % at 0.35 m steps), not adopted
+CORRIDOR_SCALE_TOL = {"foot": 0.15, "lower back": 1.0}
+#: decision L518: the laps' robust relative spread (1.4826 x MAD / median) counts this many times on top (the foot;
+#: the lower back keeps L384's fixed range)
+CORRIDOR_SPREAD_K = {"foot": 2.0, "lower back": 0.0}
 #: decision L407: a lap whose tracked metres are off its corridor lengths x the median lap by more than this fraction
 #: warns (uneven legs, e.g. a 5-10-5 shuttle, or a wrong --corridor); halfway between a turn placed a stride off on a
 #: 10 m corridor (~0.14) and the 0.5 at which L384 changes the lap's count
@@ -187,7 +188,8 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
 def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bool) -> str | None:
     """Decision L518: one line when ``--corridor`` disagrees with the track's own laps (``tracked``: the stretches'
     tracked metres, the last one the final stretch after the last cone turn) by more than the unit's scale error
-    (:data:`CORRIDOR_SCALE_TOL`) + :data:`CORRIDOR_SPREAD_K` x the laps' robust relative spread; a walk without a lap
+    (:data:`CORRIDOR_SCALE_TOL`) + :data:`CORRIDOR_SPREAD_K` x the laps' robust relative spread (the lower back:
+    L384's 0.5-2 x); a walk without a lap
     when its final stretch tracks more than that over one corridor length (capped at it); None otherwise."""
     unit = "lower back" if lower_back else "foot"
     tol = CORRIDOR_SCALE_TOL[unit]
@@ -195,7 +197,7 @@ def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bo
     if len(laps) and np.median(laps) > 0:
         ref = float(np.median(laps))
         spread = 1.4826 * float(np.median(np.abs(laps - ref))) / ref  # a robust relative SD (1.4826 x MAD)
-        tol += CORRIDOR_SPREAD_K * spread
+        tol += CORRIDOR_SPREAD_K[unit] * spread
         if abs(np.log(ref / corridor_m)) <= np.log1p(tol):
             return None
         return coded(f"corridor walk test: the median lap tracked {ref:.1f} m (laps {np.min(laps):.1f}-"
