@@ -302,9 +302,10 @@ SESSIONS: tuple[Column, ...] = (
     ("walk_test_distance_m", "m", "number", "--corridor only: n_laps x corridor_m + the final partial lap (its tracked "
                                             "distance x the last lap's corridor / tracked ratio, at most corridor_m; "
                                             "ATS 2002 as recalled, L383)"),
-    ("walk_test_duration_s", "s", "number", "--corridor only: the span walk_test_distance_m covers (--window's, else "
-                                            "the first step's start to the last step's end); a note when it is over "
-                                            "7 minutes without --window (L462)"),
+    ("walk_test_duration_s", "s", "number", "--corridor only: the span walk_test_distance_m covers (--walk-test-"
+                                            "duration's from the first step, L516; --window's; else the first "
+                                            "step's start to the last step's end); a note when it is over 7 minutes "
+                                            "without either (L462)"),
     ("walk_test_distance_per_minute_m", "m", "number", "--corridor only, summary.json only (a list): the corridor "
                                                      "distance in each full minute from the first step (L383)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
@@ -1173,11 +1174,13 @@ LAPS: tuple[Column, ...] = (
                              "also with --window: standing after the test is no lap's time)"),
     ("duration_s", "s", "number", "end_s - start_s, rests included (L384)"),
     ("corridor_laps", "count", "integer", "corridor lengths it counts: round(tracked_m / the median stretch); 2 or "
-                                          "more a missed turn, 0 the final partial lap (L384)"),
+                                          "more a missed turn, 0 the final partial lap or a last lap that turned "
+                                          "back short (L384, L517)"),
     ("tracked_m", "m", "number", "the track's distance over it (steps.csv's lengths)"),
     ("distance_m", "m", "number", "corridor_laps x corridor_m, or the final lap's scaled tracked distance (L383)"),
-    ("distance_source", _ID, "text", "corridor, tracked x scale (the final lap: x the last lap's corridor / tracked "
-                                     "ratio) or tracked (no lap completed)"),
+    ("distance_source", _ID, "text", "corridor, tracked x scale (the final lap or a last lap that turned back "
+                                     "short, L517: x the last lap's corridor / tracked ratio) or tracked (no lap "
+                                     "completed)"),
     ("speed_mps", "m/s", "number", "distance_m / duration_s (E98's name, as bouts.csv)"),
     ("rest_s", "s", "number", "its time outside bouts.csv's walking bouts (a rest at a cone stays in its lap, L384)"),
     ("n_steps", "count", "integer", "steps of both feet whose contact lies in it (as bouts.csv's n_steps)"),
