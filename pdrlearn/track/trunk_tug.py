@@ -9,9 +9,6 @@ transfers and seat-to-seat rules then read the waist, its turns and step count t
 
 from __future__ import annotations
 
-import logging
-from contextlib import contextmanager
-
 import numpy as np
 import pandas as pd
 
@@ -21,30 +18,19 @@ from pdrlearn.errors import DataError
 FOOT, WAIST = "foot", "waist"
 
 
-@contextmanager
-def _quiet():
-    """The inner waist track's warnings describe a track that is not the output (W418): not repeated."""
-    log = logging.getLogger("pdrlearn")
-    level = log.level
-    log.setLevel(logging.ERROR)
-    try:
-        yield
-    finally:
-        log.setLevel(level)
-
-
 def add_trunk_transfers(result, session) -> None:
     """Decision W418: put the lower-back unit's chair transfers (W182), walking contacts and yaw-rate turns into a
     foot track ``result``'s ``info`` (``transfers``, ``trunk_contacts``, ``trunk_yaw_turns``), read by a
     waist-pendulum track of ``session``'s waist unit alone; nothing when the session has no lower-back unit. A
     waist unit that cannot be tracked leaves ``info["trunk_note"]`` (one line naming the command) instead."""
+    from pdrlearn.displace.calibration import tracker_warnings_silenced
     from pdrlearn.track.base import get_pipeline
     from pdrlearn.track.units import keep_units
 
     if not session.has("wAccelerometer", "wGyroscope") or result.info.get("transfers") is not None:
         return
     try:
-        with _quiet():
+        with tracker_warnings_silenced("pdrlearn"):  # the inner track's warnings are not the output's (W418)
             waist = get_pipeline("waist-pendulum")(keep_units(session, ("waist",)))
     except DataError as exc:
         result.info["trunk_note"] = (f"no chair transfers from the lower-back unit ({exc}); a TUG needs them: "
