@@ -438,6 +438,10 @@ SESSIONS: tuple[Column, ...] = (
                                          "(tug_trials.csv, W325); empty on a foot track"),
     ("tug_trials_median_s", "s", "number", "lower back: the median of tug_trials.csv's tug_time_s (W325); empty "
                                            "without a trial"),
+    ("tug_steps_source", _ID, "text", "with transfers: the unit tug_trials.csv's n_steps is counted on, foot (a foot "
+                                      "+ waist session's default track, W418 / W419) or waist; empty otherwise"),
+    ("tug_turns_source", _ID, "text", "with transfers: the unit whose turns time the TUG's turn phases, foot or "
+                                      "waist (W419); empty otherwise"),
     ("sts5_time_s", "s", "number", "lower back, a five-times sit-to-stand: the first rise's start to the last sit's "
                                    "end when the transfers are exactly 5 rises and 5 sits alternating from a rise, "
                                    "none flagged, no walking between (W279)"),
@@ -838,8 +842,14 @@ TUG_TRIAL_TABLE: tuple[Column, ...] = (
     ("tug_walk_back_s", "s", "number", "the trial's walk back (W293)"),
     ("tug_turn_to_sit_s", "s", "number", "the trial's turn-to-sit (W293, W307)"),
     ("tug_stand_to_sit_s", "s", "number", "the trial's stand-to-sit (W293)"),
-    ("n_steps", "count", "integer", "steps.csv rows starting from start_s to end_s"),
+    ("n_steps", "count", "integer", "steps of both feet from start_s to end_s: a lower-back track's steps.csv rows "
+                                    "(turns on the spot hold none, W331); a foot + waist session's default track: "
+                                    "2 x the foot's strides (W419); steps_source says which"),
     ("n_turns", "count", "integer", "turns.csv rows whose midpoint lies between the rise's end and the sit's start"),
+    ("steps_source", _ID, "text", "the unit n_steps is counted on: foot (a foot + waist session's default track, "
+                                  "W419) or waist (a lower-back track: misses the steps of turns on the spot)"),
+    ("turns_source", _ID, "text", "the unit whose turns.csv times the turns and n_turns: foot or waist (W419; the "
+                                  "lower back's turns read about 1 s longer, W293)"),
     *_clocks("start_s", "end_s"),
 )
 

@@ -664,12 +664,18 @@ def _basic(result: TrackResult, out: dict) -> None:
     out.update(turn_summary(table))
     if result.info.get("yaw_turns") is not None:  # decisions L231 / L233: turns.csv's turns are turn_count's
         out["turn_count"] = len(table)
-    out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W183: chair transfers, TUG
+    from pdrlearn.track.trunk_tug import trunk_note, tug_contacts, tug_source_summary, tug_yaw_turns
+
+    # decision W183: chair transfers, TUG (W418: a foot track's from the waist unit's transfers and contacts)
+    out.update(transfer_summary(result.info.get("transfers"), tug_contacts(result)))
+    if out.get("tug_time_note") is None:
+        out["tug_time_note"] = trunk_note(result)  # W418: why a two-unit track has no transfers
     from pdrlearn.waist.tug_phases import tug_phase_summary, tug_phases
 
     # decision W293: the TUG's phases, from the transfers, these turns and the walking contacts
-    out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, result.steps,
-                                            yaw_turns=result.info.get("yaw_turns"))))  # W307
+    out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, tug_contacts(result),
+                                            yaw_turns=tug_yaw_turns(result))))  # W307
+    out.update(tug_source_summary(result))  # decision W419
     from pdrlearn.waist.turn_steps import stepless_summary
 
     # decision W331: a lower-back track's turns on the spot that hold no step, and the steps they imply
@@ -1551,6 +1557,8 @@ SUMMARY_INFO_LEFT_OUT = {
     "yaw_turns": "turns.csv's turn timing (decision L210)",
     "rest_bias_rests": "the position radius's clock (decision L306)",
     "rides": "rides.csv (decision L377)",
+    "trunk_contacts": "the lower-back contacts a two-unit TUG is timed on (decision W418)",
+    "trunk_yaw_turns": "the lower-back turns of a two-unit TUG's turn-to-sit (decisions W307, W418)",
 }
 #: decision E141: the entries of ``info["aid"]`` that summary.json leaves out (every fix's row: aided.png's)
 SUMMARY_AID_LEFT_OUT = ("fix_table",)

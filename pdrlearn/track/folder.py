@@ -112,14 +112,16 @@ def clinical_tables(result, bouts) -> dict:
         out["rides.csv"] = ride_table(result.info)
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
+        from pdrlearn.track.trunk_tug import foot_strides, tug_contacts, tug_yaw_turns
         from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases, tug_trial_table
 
-        phases = tug_phases(result.info["transfers"], out["turns.csv"], result.steps,  # decision W293
-                            yaw_turns=result.info.get("yaw_turns"))  # W307
+        # decision W418: a foot track's TUG reads the waist's contacts; W419: the foot's turns.csv and strides
+        phases = tug_phases(result.info["transfers"], out["turns.csv"], tug_contacts(result),  # decision W293
+                            yaw_turns=tug_yaw_turns(result))  # W307
         if phases is not None:
             out["tug_phases.csv"] = tug_phase_table(phases)
-        trials = tug_trial_table(result.info["transfers"], out["turns.csv"], result.steps,  # decision W325
-                                 yaw_turns=result.info.get("yaw_turns"))
+        trials = tug_trial_table(result.info["transfers"], out["turns.csv"], tug_contacts(result),  # decision W325
+                                 yaw_turns=tug_yaw_turns(result), foot=foot_strides(result))
         if len(trials):
             out["tug_trials.csv"] = trials
     if result.info.get("flights") is not None:  # decision W417: each unit's flight phases, with a jump height
