@@ -603,17 +603,23 @@ def still_yaw_rate_message(found: tuple[float, float, float] | None, fix: str | 
                "--turns N')"))
 
 
-#: decision W421: a vertical rate at a rest (or its change from the first rest) over this (rad/s) warns; see
-#: docs/decisions/waist.md W421 for how it was measured
-REST_RATE_WARN_RPS = {"waist": STILL_YAW_RATE_WARN_RPS, "foot": STILL_YAW_RATE_WARN_RPS}
+#: decision W421: a vertical rate at a rest (or its change from the first rest) over this (rad/s) warns. Measured,
+#: NOT ADOPTED for the waist (inf: the daily-activity mobgap Test11 rests read -1.02 to +2.35 deg/s); the foot's is
+#: decision L527's
+REST_RATE_WARN_RPS = {"waist": float("inf"), "foot": float("inf")}
+#: decision W421: X_foot as measured (1.25 x the largest foot value of the good data, 0.00539 rad/s)
+FOOT_DRIFT_MEASURED_RPS = 0.00674
 
 
-def drifting_rest_message(rates: np.ndarray, unit: str = "waist", fix: str | None = None) -> str | None:
+def drifting_rest_message(rates: np.ndarray, unit: str = "waist", fix: str | None = None, *,
+                          threshold: float | None = None) -> str | None:
     """Decision W421's one warning line when :func:`rest_rate_excess` of the ``unit``'s standstills ``rates``
-    exceeds :data:`REST_RATE_WARN_RPS`: the size (deg/s, deg a minute), the unit, the rests and the remedy."""
+    exceeds ``threshold`` (rad/s; :data:`REST_RATE_WARN_RPS` by default): the size (deg/s, deg a minute), the unit,
+    the rests and the remedy."""
     level = unit == "waist"
     found = rest_rate_excess(rates, level=level)
-    if found is None or found[0] <= REST_RATE_WARN_RPS[unit]:
+    threshold = REST_RATE_WARN_RPS[unit] if threshold is None else threshold
+    if found is None or found[0] <= threshold:
         return None
     size, k = found
     r = np.asarray(rates, dtype=float).reshape(-1, 3)
@@ -624,7 +630,8 @@ def drifting_rest_message(rates: np.ndarray, unit: str = "waist", fix: str | Non
     remedy = fix if fix else (WAIST_BIAS_FIX if level else FOOT_DRIFT_FIX)
     return (f"the {unit} gyroscope {what}: a bias{' that drifts' if k else ''} of {np.degrees(size):.2f} deg/s"
             f"{kept}, which turns the path by about {np.degrees(size) * 60:.0f} deg a minute of walking (over "
-            f"{np.degrees(REST_RATE_WARN_RPS[unit]) * 60:.0f} deg a minute at any rest warns, decision W421); "
+            f"{np.degrees(threshold) * 60:.0f} deg a minute at any rest warns, decision "
+            f"{'W421' if level else 'L527'}); "
             + remedy)
 
 
@@ -643,9 +650,20 @@ FOOT_DRIFT_FIX = ("the foot pipeline removes only the bias read at the first res
                   "still 2-5 s before it, or re-record after the gyroscope offset is calibrated")
 
 
-#: W125: the way out the two-unit tracks name (the foot's ZUPT-corrected yaw does not read the waist gyroscope)
-TWO_UNIT_FIX = ("the two-unit track heads by the waist unit: track the foot unit's own yaw with --units foot, or "
-                "re-record after the waist unit's gyroscope offset is calibrated (decision W125)")
+#: W125: the way out the two-unit tracks name (the foot's ZUPT-corrected yaw does not read the waist gyroscope);
+#: W422: and the rest-bias removal (W126's ``waist_bias``, a ``--params`` key since W422)
+WAIST_BIAS_PARAMS = "--params holding {\"waist_bias\": true}"
+TWO_UNIT_FIX = ("the two-unit track heads by the waist unit: remove the bias read at its rests with "
+                f"{WAIST_BIAS_PARAMS} (decisions W126, W422; offline), track the foot unit's own yaw with --units "
+                "foot, or re-record after the waist unit's gyroscope offset is calibrated (decision W125)")
+
+
+def bias_removed(line: str) -> str:
+    """Decision W422: a W105 / W421 line of a two-unit track that removed the bias (``waist_bias`` on): its remedy
+    replaced by what was done."""
+    head = line.split("the two-unit track heads by the waist unit", 1)[0].rstrip("; ")
+    return (head + "; waist_bias is on, so the heading turned by the waist gyroscope less the vertical rate read at "
+            "each rest, interpolated between rests (decisions W126, W422)")
 
 
 #: decision W157: a walking sequence of at most this many steps (3 contacts after its first: under two strides of
