@@ -54,7 +54,10 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--sim", type=Path, required=True)
     ap.add_argument("--degrade", required=True)
+    ap.add_argument("--foot-only", action="store_true", help="decision L527: the foot line at W421's X_foot")
     a = ap.parse_args()
+    if a.foot_only:
+        return foot_only(a.sim, a.degrade)
     shared = {p.name for p in SHARED.iterdir() if p.is_dir()}
     external = sorted(p for p in EXTERNAL.iterdir() if p.is_dir())
     real = external + sorted(p for p in SHARED.iterdir() if p.is_dir())
@@ -100,6 +103,31 @@ def main() -> None:
         print(f"u{u}: drift waist {w[0]} ({ex[0]:.4f}) foot {w[1]} ({ex[1]:.4f}); 0.8 deg/s waist {wc} "
               f"({excess(c, 'waist'):.4f})")
     print(f"(b) drift: waist warned {nb_w}/10, foot warned {nb_f}/10; (c) 0.8 deg/s: waist warned {nc}/10")
+
+
+def foot_only(sim: Path, degrade: str) -> None:
+    """Decision L527: the foot line at W421's measured X_foot (not re-tuned) on the real foot recordings and fresh
+    sessions ``sim/uU`` (U = 10170-10179, L527's route), clean at 100 / 52 Hz and drifting 0 -> 2 deg/s at 52 Hz."""
+    P.REST_RATE_WARN_RPS["foot"] = P.FOOT_DRIFT_MEASURED_RPS
+    real = [p for root in (EXTERNAL, SHARED) for p in sorted(root.iterdir()) if p.is_dir() and "gaitmap" in p.name]
+    n_real = 0
+    for p in real:
+        w = P.foot_drift_line(read_session(p)) is not None
+        n_real += w
+        print(f"{p.parent.name}/{p.name:32s} foot {w} ({excess(read_session(p), 'foot'):.5f})")
+    n_clean = n_drift = 0
+    for u in range(10170, 10180):
+        src = sim / f"u{u}"
+        for q in (src, degraded(src, "r52", degrade, "rate=52")):
+            s = read_session(q)
+            w = P.foot_drift_line(s) is not None
+            n_clean += w
+            print(f"{q.name:14s} clean foot {w} ({excess(s, 'foot'):.5f})")
+        s = read_session(degraded(src, "dr2", degrade, "rate=52", "drift_dps=2"))
+        w = P.foot_drift_line(s) is not None
+        n_drift += w
+        print(f"u{u}_dr2 foot {w} ({excess(s, 'foot'):.5f})")
+    print(f"(a) real foot warned {n_real}/{len(real)}, clean warned {n_clean}/20; (b) drift warned {n_drift}/10")
 
 
 if __name__ == "__main__":
