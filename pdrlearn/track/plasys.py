@@ -107,7 +107,7 @@ from pdrlearn.track.rides import foot_rides
 from pdrlearn.track.sim_rocker import hermite_contact_line
 from pdrlearn.track.travel import side_class_warning
 from pdrlearn.track.turn_reference import turn_reference_warning
-from pdrlearn.waist.plausibility import foot_drift_line, waist_bias_check, waist_bias_line
+from pdrlearn.waist.plausibility import bias_removed, foot_drift_line, waist_bias_check, waist_bias_line
 from pdrlearn.warning_lines import coded
 
 log = logging.getLogger(__name__)
@@ -1354,8 +1354,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, relative, keep=~in_gap)
         # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
         bias_line, rest = waist_bias_check(work)  # decisions W125, W421: the waist unit this heading turns by
-        warnings += [bias_line] if bias_line else []
         yaw_bias = rest[1] if bias_line and (WAIST_BIAS_AT_REST if waist_bias is None else waist_bias) else None
+        warnings += [bias_removed(bias_line) if yaw_bias is not None else bias_line] if bias_line else []  # W422
         wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading,
                           yaw_bias=yaw_bias).fit_session(work)  # decision W126
         warnings += wh.warnings_
