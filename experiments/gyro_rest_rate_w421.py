@@ -114,7 +114,7 @@ def foot_only(sim: Path, degrade: str) -> None:
     for p in real:
         w = P.foot_drift_line(read_session(p)) is not None
         n_real += w
-        print(f"{p.parent.name}/{p.name:32s} foot {w} ({excess(read_session(p), 'foot'):.5f})")
+        print(f"{p.parent.name}/{p.name:32s} foot {w} ({excess(read_session(p), 'foot')})")
     n_clean = n_drift = 0
     for u in range(10170, 10180):
         src = sim / f"u{u}"

@@ -58,7 +58,7 @@ def test_the_waist_rest_check_is_off_on_daily_activities_w421(walk, real_dir):
     assert drifting_rest_message(unit_rest_rates(walk, "waist"), "waist", threshold=STILL_YAW_RATE_WARN_RPS) is None
 
 
-def test_a_foot_bias_drifting_after_the_first_rest_warns_the_foot_heading_w421(walk):
+def test_a_foot_bias_drifting_after_the_first_rest_warns_the_foot_heading_l527(walk):
     """``--units foot`` (no waist unit): the foot pipeline removes the first rest's bias only; a drift warns, the
     step count and the clean track unchanged."""
     foot = walk.copy()
@@ -66,8 +66,8 @@ def test_a_foot_bias_drifting_after_the_first_rest_warns_the_foot_heading_w421(w
         foot.streams.pop(n, None)
     clean = track_plasys(foot, method="M2")
     drift = track_plasys(_biased(foot, "foot", 0.0, np.radians(2.0)), method="M2")
-    assert not _lines(clean, "W421")
-    (line,) = _lines(drift, "W421")
+    assert not _lines(clean, "L527")
+    (line,) = _lines(drift, "L527")
     assert "the foot gyroscope" in line and "first rest's bias" in line
     assert len(drift.steps) == len(clean.steps)
 

@@ -603,12 +603,12 @@ def still_yaw_rate_message(found: tuple[float, float, float] | None, fix: str | 
                "--turns N')"))
 
 
-#: decision W421: a vertical rate at a rest (or its change from the first rest) over this (rad/s) warns. Measured,
-#: NOT ADOPTED for the waist (inf: the daily-activity mobgap Test11 rests read -1.02 to +2.35 deg/s); the foot's is
-#: decision L527's
-REST_RATE_WARN_RPS = {"waist": float("inf"), "foot": float("inf")}
 #: decision W421: X_foot as measured (1.25 x the largest foot value of the good data, 0.00539 rad/s)
 FOOT_DRIFT_MEASURED_RPS = 0.00674
+#: decision W421: a vertical rate at a rest (or its change from the first rest) over this (rad/s) warns. Measured,
+#: NOT ADOPTED for the waist (inf: the daily-activity mobgap Test11 rests read -1.02 to +2.35 deg/s); the foot's
+#: change from its first rest: decision L527, adopted
+REST_RATE_WARN_RPS = {"waist": float("inf"), "foot": FOOT_DRIFT_MEASURED_RPS}
 
 
 def drifting_rest_message(rates: np.ndarray, unit: str = "waist", fix: str | None = None, *,
