@@ -74,10 +74,10 @@ def test_a_foot_bias_drifting_after_the_first_rest_warns_the_foot_heading_l527(w
 
 def test_the_two_unit_track_names_and_applies_waist_bias_w422(walk):
     biased = _biased(walk, "waist", np.radians(2.0))
-    (off,) = _lines(track_plasys(biased, method="M2"), "W105")
+    (off,) = _lines(track_plasys(biased, method="M2", waist_bias=False), "W105")
     assert "{\"waist_bias\": true}" in off
-    (on,) = _lines(track_plasys(biased, method="M2", waist_bias=True), "W105")
-    assert "waist_bias is on" in on and "--units foot" not in on
+    (on,) = _lines(track_plasys(biased, method="M2"), "W105")  # W423: on by default
+    assert "waist_bias is on" in on and "{\"waist_bias\": false}" in on
 
 
 def _cli(tmp_path, capsys, session, par, *extra):
@@ -96,9 +96,11 @@ def _cli(tmp_path, capsys, session, par, *extra):
 
 def test_track_params_reaches_waist_bias_w422(walk, tmp_path, capsys):
     """Trial T2 finding 5: ``--params {"waist_bias": true}`` was refused ("unknown parameter(s) waist_bias")."""
-    rc, err = _cli(tmp_path, capsys, _biased(walk, "waist", np.radians(2.0)), {"waist_bias": True})
+    rc, err = _cli(tmp_path, capsys, _biased(walk, "waist", np.radians(2.0)), {"waist_bias": False})
     assert rc == 0, err
-    assert "waist_bias is on" in err
+    assert "{\"waist_bias\": true}" in err and "waist_bias is on" not in err
+    rc, err = _cli(tmp_path, capsys, _biased(walk, "waist", np.radians(2.0)), {"waist_bias": True})
+    assert rc == 0 and "waist_bias is on" in err, err
     rc, err = _cli(tmp_path, capsys, walk, {"waist_bias": "yes"})
     assert rc == 2 and "\"waist_bias\" must be true or false" in err and "Traceback" not in err
     rc, err = _cli(tmp_path, capsys, walk, {"waist_bias": True}, "--streaming")

@@ -659,11 +659,14 @@ TWO_UNIT_FIX = ("the two-unit track heads by the waist unit: remove the bias rea
 
 
 def bias_removed(line: str) -> str:
-    """Decision W422: a W105 / W421 line of a two-unit track that removed the bias (``waist_bias`` on): its remedy
-    replaced by what was done."""
+    """Decisions W422/W423: a W105 line of a two-unit track that removed the bias (``waist_bias`` on, the default
+    since W423): its remedy replaced by what was done and how to undo it."""
     head = line.split("the two-unit track heads by the waist unit", 1)[0].rstrip("; ")
-    return (head + "; waist_bias is on, so the heading turned by the waist gyroscope less the vertical rate read at "
-            "each rest, interpolated between rests (decisions W126, W422)")
+    return (head + "; waist_bias is on (the default since decision W423), so the heading turned by the waist "
+            "gyroscope less the vertical rate read at each rest, interpolated between rests (the check of decision "
+            "W125, the removal of W126, W422); "
+            "it reads a rest as still, so if the walker turned or sat while standing, turn it off with "
+            "--params holding {\"waist_bias\": false}, or track the foot unit's own yaw with --units foot")
 
 
 #: decision W157: a walking sequence of at most this many steps (3 contacts after its first: under two strides of
