@@ -13,7 +13,7 @@ from pdrlearn.io.session import Stream
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.plasys import track_plasys
-from pdrlearn.waist.plausibility import REST_RATE_WARN_RPS, STILL_YAW_RATE_WARN_RPS, waist_bias_line
+from pdrlearn.waist.plausibility import STILL_YAW_RATE_WARN_RPS, waist_bias_line
 
 
 @pytest.fixture(scope="module")
@@ -43,7 +43,7 @@ def test_the_waist_rest_check_is_off_on_daily_activities_w421(walk, real_dir):
     Test11 recording, so the default waist check stays W105's first rest; the kernel reads every rest (the 0 -> 2
     deg/s drift's last rest +1.6 deg/s) and its line names the unit, the size and the remedy at a given threshold."""
     from pdrlearn.io import read_session
-    from pdrlearn.waist.plausibility import drifting_rest_message, rest_rate_excess, unit_rest_rates
+    from pdrlearn.waist.plausibility import REST_RATE_WARN_RPS, drifting_rest_message, rest_rate_excess, unit_rest_rates
 
     assert REST_RATE_WARN_RPS["waist"] == float("inf")
     test11 = unit_rest_rates(read_session(real_dir / "mobgap_HA001_Test11_Trial1"), "waist")
