@@ -49,17 +49,18 @@ def test_the_shared_check_reads_the_vertical_rate_in_any_mounting(walk):
     assert waist_bias_line(foot_only) is None
 
 
-def test_the_rest_bias_removal_is_an_option_off_by_default(walk):
-    """Decision W126 (not adopted): ``waist_bias=True`` removes the vertical-rate bias read at the waist's rests
-    from the fused heading; the default leaves the heading as it was; a clean session is unchanged either way."""
+def test_the_rest_bias_removal_is_on_by_default_w423(walk):
+    """Decision W126 (an option), W423 (the default): ``waist_bias`` removes the vertical-rate bias read at the
+    waist's rests from the fused heading when W105 fires; ``waist_bias=False`` leaves the heading as it was; a clean
+    session is unchanged either way."""
     from pdrlearn.track.plasys import WAIST_BIAS_AT_REST
 
-    assert WAIST_BIAS_AT_REST is False
-    clean = track_plasys(walk, method="M2")
-    clean_on = track_plasys(walk, method="M2", waist_bias=True)
+    assert WAIST_BIAS_AT_REST is True
+    clean = track_plasys(walk, method="M2", waist_bias=False)
+    clean_on = track_plasys(walk, method="M2")
     np.testing.assert_allclose(clean_on.steps["heading_rad"], clean.steps["heading_rad"])
-    off = track_plasys(_biased(walk, 0.05), method="M2")
-    on = track_plasys(_biased(walk, 0.05), method="M2", waist_bias=True)
+    off = track_plasys(_biased(walk, 0.05), method="M2", waist_bias=False)
+    on = track_plasys(_biased(walk, 0.05), method="M2")
     truth = clean.steps["heading_rad"].to_numpy()
 
     def spread(r):

@@ -827,8 +827,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                                                "--clock-drift-ppm": o.get("clock_drift") is not None},
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"],
                             chosen_by=chosen_by)
+    track_keys = {}
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
+        par, track_keys = _track_params(par, params, streaming)  # decision W422
         if not streaming:  # decisions B206 / B207: the foot settings' types and ranges, in a line naming the file
             from pdrlearn.displace.foot import check_settings
 
@@ -888,6 +890,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         for k in ("rules", "min_confidence", "warn_out_of_domain", "bounds", "altitude"):
             if o.get(k) is not None:
                 kw[k] = o[k]
+        kw.update(track_keys)  # decision W422: track_plasys options given in --params
     # decision W352: the gait quality (W350) only when asked for; W353: it reads the track's own AHRS
     gait_quality = tracked_unit(pipeline) == "waist" and bool(o.get("gait_quality"))
     if gait_quality:
@@ -1274,6 +1277,26 @@ def _reference_point(point: str, par, params: Path | None, pipeline: str, stream
         raise DataError(f"track: --reference-point {point} contradicts \"reference_point\": "
                         f"\"{par['reference_point']}\" in {params}; give one of them")
     return {**par, "reference_point": point}
+
+
+#: decision W422: ``--params`` keys of the plasys pipeline that are ``track_plasys`` options, not FootDisplacement
+#: settings (W126's waist-gyroscope rest-bias removal: the API had it, the CLI refused the key, trial T2 finding 5)
+TRACK_PARAM_KEYS = ("waist_bias",)
+
+
+def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
+    """Decision W422: ``par`` split into the FootDisplacement settings and the :data:`TRACK_PARAM_KEYS` (JSON true /
+    false), or one line naming the file: a non-boolean value, or ``waist_bias`` with ``--streaming`` (the streamed
+    heading has no rest-bias removal)."""
+    keys = {k: par[k] for k in TRACK_PARAM_KEYS if k in par}
+    for k, v in keys.items():
+        if not isinstance(v, bool):
+            raise DataError(f"{path}: \"{k}\" must be true or false (JSON, no quotes), not {v!r:.40}; fix the key")
+    if keys and streaming:
+        raise DataError(f"{path}: \"waist_bias\" removes the waist gyroscope bias from the offline two-unit heading "
+                        "(decisions W126, W422); the --streaming kernel has no such removal: drop --streaming or "
+                        "the key")
+    return {k: v for k, v in par.items() if k not in keys}, keys
 
 
 def _refuse_waist_params(par: dict, path: Path, session) -> None:

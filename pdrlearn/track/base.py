@@ -246,7 +246,7 @@ def get_pipeline(name: str) -> Pipeline:
       length and height change of the stride before it; off by default), ``ignore_force`` (decision L366: offline,
       the foot IMU alone, the force sensors left out; without it L365 checks them against the IMU),
       ``altitude`` (decision L154: ``"foot"``, the default, or ``"fused"`` with the waist barometer; an option),
-      ``waist_bias`` (decision W126: remove the waist gyroscope bias read at rest; off by default),
+      ``waist_bias`` (decision W126: remove the waist gyroscope bias read at rest when W105 fires; on by default, W423),
       ``compass_fallback`` (decision L226: with heading ``"fused"``, follow the waist gyroscope turned to the compass
       by one constant offset when L182's compass check warns; on by default, L227), ``fallback_drift`` (decision L266:
       that offset drifts linearly in time, the waist gyroscope's rate bias; on by default, L265).

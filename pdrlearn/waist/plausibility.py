@@ -516,8 +516,19 @@ def waist_bias_line(session: Session) -> str | None:
     """Decision W125: W105's warning line for a session's waist unit as the two-unit tracks read it (``track``'s
     PLASYS path, ``run``): :func:`waist_rest_bias`'s first standstill; None without a waist unit, without a
     standstill, or under :data:`STILL_YAW_RATE_WARN_RPS`."""
-    found = waist_rest_bias(session)
-    return None if found is None else still_yaw_rate_message(found[0], TWO_UNIT_FIX)
+    return waist_bias_check(session)[0]
+
+
+def waist_bias_check(session: Session, fix: str | None = None):
+    """Decisions W125/W421: ``(line, rest)``: W105's line on the waist unit's first standstill, else W421's on its
+    later ones (``fix``: the way out, TWO_UNIT_FIX by default), or None; and :func:`waist_rest_bias`'s
+    ``(first, rests)`` (None without a readable waist unit)."""
+    rates = unit_rest_rates(session, "waist")
+    if rates is None:
+        return None, None
+    rest = _first_and_rests(rates)
+    line = still_yaw_rate_message(rest[0], fix or TWO_UNIT_FIX)
+    return line or drifting_rest_message(rates, "waist", fix or TWO_UNIT_FIX), rest
 
 
 def waist_rest_bias(session: Session) -> tuple[tuple[float, float, float] | None, np.ndarray] | None:
@@ -527,21 +538,55 @@ def waist_rest_bias(session: Session) -> tuple[tuple[float, float, float] | None
     :func:`still_yaw_rate` over the first standstill (or None), and ``rests`` (k, 2) = (mid time s, mean rate rad/s)
     of every standstill of at least ``STILL_S[0]`` (its first ``STILL_S[1]`` s; W126's drifting-bias profile); None
     without a readable waist unit."""
+    found = unit_rest_rates(session, "waist")
+    return None if found is None else _first_and_rests(found)
+
+
+def _first_and_rests(found: np.ndarray):
+    """W105's first standstill ``(rate, t0, t1)`` (None without one) and W126's ``(mid time, rate)`` rows of
+    :func:`unit_rest_rates`' ``found``."""
+    first = None if not len(found) else (float(found[0, 2]), float(found[0, 0]), float(found[0, 1]))  # W105
+    return first, np.column_stack([0.5 * (found[:, 0] + found[:, 1]), found[:, 2]])
+
+
+def unit_rest_rates(session: Session, unit: str = "waist") -> np.ndarray | None:
+    """Decisions W125/W421: ``(k, 3)`` = (start s, end s, mean vertical rate rad/s) of every standstill of at least
+    ``STILL_S[0]`` s (its first ``STILL_S[1]`` s; W105's :func:`still_periods`) of the ``unit`` ("waist" / "foot"):
+    its gyroscope on the low-passed accelerometer's up direction, the rate a heading turns by (thesis ch.7.1; a
+    projection on the measured gravity, so the foot is read in its sensor axes, no frame needed). None without a
+    readable unit."""
     from pdrlearn.errors import MissingSensorError
     from pdrlearn.orient import _kernels as OK
     from pdrlearn.orient import unit_data
     from pdrlearn.signal import lowpass
 
-    if not session.has("wAccelerometer", "wGyroscope"):
+    prefix = "w" if unit == "waist" else "f"
+    if not session.has(f"{prefix}Accelerometer", f"{prefix}Gyroscope"):
         return None
     try:
-        u = unit_data(session, "waist", purpose="waist gyroscope bias check")
+        u = unit_data(session, unit, purpose=f"{unit} gyroscope bias check", sensor_axes=unit == "foot")
     except (MissingSensorError, DataError):  # the heading that needs the unit says why it cannot read it
         return None
     up = OK.yaw_rate(lowpass(u.acc, min(1.0, 0.4 * u.fs), u.fs), u.gyr)  # as WaistHeading.estimate (thesis ch.7.1)
-    rests = [(0.5 * (u.t[a] + u.t[stop - 1]), float(np.mean(up[a:stop])))
+    rests = [(float(u.t[a]), float(u.t[stop - 1]), float(np.mean(up[a:stop])))
              for a, stop in still_periods(u.t, u.acc, u.gyr, u.fs)]
-    return still_yaw_rate(u.t, u.acc, u.gyr, u.fs, vertical=up), np.array(rests, dtype=float).reshape(-1, 2)
+    return np.array(rests, dtype=float).reshape(-1, 3)
+
+
+def rest_rate_excess(rates: np.ndarray, *, level: bool = True) -> tuple[float, int] | None:
+    """Decision W421: ``(rate, k)``: the largest vertical rate at rest (rad/s) a heading keeps of the unit's
+    standstills ``rates`` (:func:`unit_rest_rates`) and the standstill ``k`` it was read at: with ``level`` (the
+    waist: nothing removes its bias) the largest ``|rate_k|`` or change ``|rate_k - rate_0|`` from the first rest;
+    without (the foot: its pipeline removes the first rest's bias, thesis ch.7.2.1) the largest change only. None
+    with fewer than one (``level``) or two rests."""
+    r = np.asarray(rates, dtype=float).reshape(-1, 3)[:, 2]
+    if len(r) < (1 if level else 2):
+        return None
+    cand = np.abs(r - r[0])
+    if level:
+        cand = np.maximum(cand, np.abs(r))
+    k = int(np.argmax(cand))
+    return float(cand[k]), k
 
 
 def still_yaw_rate_message(found: tuple[float, float, float] | None, fix: str | None = None) -> str | None:
@@ -558,9 +603,70 @@ def still_yaw_rate_message(found: tuple[float, float, float] | None, fix: str | 
                "--turns N')"))
 
 
-#: W125: the way out the two-unit tracks name (the foot's ZUPT-corrected yaw does not read the waist gyroscope)
-TWO_UNIT_FIX = ("the two-unit track heads by the waist unit: track the foot unit's own yaw with --units foot, or "
-                "re-record after the waist unit's gyroscope offset is calibrated (decision W125)")
+#: decision W421: X_foot as measured (1.25 x the largest foot value of the good data, 0.00539 rad/s)
+FOOT_DRIFT_MEASURED_RPS = 0.00674
+#: decision W421: a vertical rate at a rest (or its change from the first rest) over this (rad/s) warns. Measured,
+#: NOT ADOPTED for the waist (inf: the daily-activity mobgap Test11 rests read -1.02 to +2.35 deg/s); the foot's
+#: change from its first rest: decision L527, adopted
+REST_RATE_WARN_RPS = {"waist": float("inf"), "foot": FOOT_DRIFT_MEASURED_RPS}
+
+
+def drifting_rest_message(rates: np.ndarray, unit: str = "waist", fix: str | None = None, *,
+                          threshold: float | None = None) -> str | None:
+    """Decision W421's one warning line when :func:`rest_rate_excess` of the ``unit``'s standstills ``rates``
+    exceeds ``threshold`` (rad/s; :data:`REST_RATE_WARN_RPS` by default): the size (deg/s, deg a minute), the unit,
+    the rests and the remedy."""
+    level = unit == "waist"
+    found = rest_rate_excess(rates, level=level)
+    threshold = REST_RATE_WARN_RPS[unit] if threshold is None else threshold
+    if found is None or found[0] <= threshold:
+        return None
+    size, k = found
+    r = np.asarray(rates, dtype=float).reshape(-1, 3)
+    deg = np.degrees(r[:, 2])
+    what = (f"reads {deg[k]:+.2f} deg/s about the vertical at the rest at {r[k, 0]:.1f}-{r[k, 1]:.1f} s "
+            f"(the first rest, {r[0, 0]:.1f}-{r[0, 1]:.1f} s: {deg[0]:+.2f} deg/s)")
+    kept = "" if level else ", less the first rest's bias its pipeline removes"
+    remedy = fix if fix else (WAIST_BIAS_FIX if level else FOOT_DRIFT_FIX)
+    return (f"the {unit} gyroscope {what}: a bias{' that drifts' if k else ''} of {np.degrees(size):.2f} deg/s"
+            f"{kept}, which turns the path by about {np.degrees(size) * 60:.0f} deg a minute of walking (over "
+            f"{np.degrees(threshold) * 60:.0f} deg a minute at any rest warns, decision "
+            f"{'W421' if level else 'L527'}); "
+            + remedy)
+
+
+def foot_drift_line(session: Session) -> str | None:
+    """Decision W421's line for the foot unit a foot heading turns by (its pipeline removes the first rest's bias,
+    ``gyro_bias="standstill"``): the rate at a later rest changed by more than the threshold; None otherwise."""
+    rates = unit_rest_rates(session, "foot")
+    return None if rates is None else drifting_rest_message(rates, "foot")
+
+
+#: decision W421: the remedies the rest-rate line names
+WAIST_BIAS_FIX = ("let the sensor warm up before the walk, or calibrate the bias on a walk with whole turns "
+                  "('pdrlearn calibrate DIR --turns N')")
+FOOT_DRIFT_FIX = ("the foot pipeline removes only the bias read at the first rest, so a bias that drifts "
+                  "(temperature) bends the foot's own heading: let the sensor warm up before the walk and stand "
+                  "still 2-5 s before it, or re-record after the gyroscope offset is calibrated")
+
+
+#: W125: the way out the two-unit tracks name (the foot's ZUPT-corrected yaw does not read the waist gyroscope);
+#: W422: and the rest-bias removal (W126's ``waist_bias``, a ``--params`` key since W422)
+WAIST_BIAS_PARAMS = "--params holding {\"waist_bias\": true}"
+TWO_UNIT_FIX = ("the two-unit track heads by the waist unit: remove the bias read at its rests with "
+                f"{WAIST_BIAS_PARAMS} (decisions W126, W422; offline), track the foot unit's own yaw with --units "
+                "foot, or re-record after the waist unit's gyroscope offset is calibrated (decision W125)")
+
+
+def bias_removed(line: str) -> str:
+    """Decisions W422/W423: a W105 line of a two-unit track that removed the bias (``waist_bias`` on, the default
+    since W423): its remedy replaced by what was done and how to undo it."""
+    head = line.split("the two-unit track heads by the waist unit", 1)[0].rstrip("; ")
+    return (head + "; waist_bias is on (the default since decision W423), so the heading turned by the waist "
+            "gyroscope less the vertical rate read at each rest, interpolated between rests (the check of decision "
+            "W125, the removal of W126, W422); "
+            "it reads a rest as still, so if the walker turned or sat while standing, turn it off with "
+            "--params holding {\"waist_bias\": false}, or track the foot unit's own yaw with --units foot")
 
 
 #: decision W157: a walking sequence of at most this many steps (3 contacts after its first: under two strides of
