@@ -577,6 +577,23 @@ def reversed_by_rules(foot_headed: bool, dx: float, length: float) -> float:
     return math.pi
 
 
+#: decision E216 (docs/decisions/export.md): a stride headed by the waist and classed "forward" with a negative length
+#: (a pivot whose step frame turned with the foot) is placed by |length| along the waist heading; False = the thesis
+#: sign rule as before (the position could move against the travel, E210)
+WAIST_FORWARD_SIGN = False
+
+
+def waist_forward_flip(foot_headed: bool, direction, length: float, side_offset: float = 0.0) -> float:
+    """Decision E216: pi when a stride headed by the waist (not ``foot_headed``) has the reported direction class
+    ``"forward"``, a negative ``length`` and no E124 side placement (``side_offset`` 0), and
+    :data:`WAIST_FORWARD_SIGN` is on; else 0. Added to the stride's direction, it moves |length| along the waist
+    heading (the walker's facing), where a forward stride travels."""
+    if (not WAIST_FORWARD_SIGN or foot_headed or direction != "forward" or not length < 0.0
+            or side_offset != 0.0):
+        return 0.0
+    return math.pi
+
+
 def travel_sign_one(length: float, heading: float, direction=None, sideways: bool = False) -> tuple[float, float]:
     """Decision L65: the ``(length_m, heading_rad)`` a stride is REPORTED with. A negative length stays only
     when the stride's direction class is ``"backward"`` (the thesis' sign rule); any other negative length (no

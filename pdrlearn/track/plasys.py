@@ -1885,11 +1885,16 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         # decision L189 (offline's L184, the same function) / L206 (the run's summed dz): a gated stride is level
         dz = KD.streamed_gated_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
     length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
+    side_offset = np.zeros(len(table))
     if KSW.STREAMED_SIDE_TRAVEL:  # decision E124: a side-stepping stretch's strides headed by the waist go along
         side = KSW.SideRun()  # their travel angle from the run's third stride on (the runtime's call, stride by stride)
         for i in np.flatnonzero(~(in_gap | posture | foot_headed)):
-            place[i] += side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]),
-                                    float(foot_turn[i]))  # L400
+            side_offset[i] = side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]),
+                                         float(foot_turn[i]))  # L400
+    place += side_offset
+    if "direction" in classes:  # decision E216: the runtime's call, stride by stride
+        place += [SK.waist_forward_flip(bool(f), c, float(L), float(o)) for f, c, L, o in
+                  zip(foot_headed, classes["direction"].to_numpy(dtype=object), length, side_offset, strict=True)]
     sideways = np.zeros(len(table), dtype=bool)  # decision L243: the runtime's Step.sideways, stride by stride
     rows = KSW.SideRun()
     for i in np.flatnonzero(~(in_gap | posture)):
