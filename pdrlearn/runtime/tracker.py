@@ -25,6 +25,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
+from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import relative_length as _relative_length
 from pdrlearn.kernels import sideways as _sideways
 from pdrlearn.kernels import turn_length as _turn_length
@@ -438,6 +439,7 @@ class Tracker(FixInput):
     _trims = 0
     speculative = False
     _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
+    _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _session_length = None  # decision C117 (a bare Tracker.__new__: the model's length class)
@@ -635,6 +637,7 @@ class Tracker(FixInput):
         self.position = start_xyz
         self._init_fixes(self.position[:2], innovation_gate=innovation_gate)  # decisions D19-D21, D35: add_fix
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
+        self._first_walk = _first_walk.FirstWalk(self.heading)  # decision E215
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
@@ -1765,6 +1768,13 @@ class Tracker(FixInput):
                 self._side = _sideways.SideRun()
             side = self._side.stride(dx, dy, length, _sideways.step_frame(lev), _sideways.foot_turn(lev))  # L400
         direction += side + waist_forward_flip(foot_headed, classes.get("direction"), length, side)  # E216
+        if self._first_walk is not None:  # decision E215: L494's first-walk reference, once, causally
+            if self._fixes.used:  # a used fix set the frame (D24's yaw feedback learnt in it)
+                self._first_walk.stop()
+            ref = self._first_walk.stride(foot_headed, direction, math.hypot(dx, dy))
+            if ref is not None:
+                heading, direction = heading - ref, direction - ref
+                self._warn(self._first_walk.line(t1))
         if self._side_rows is None:
             self._side_rows = _sideways.SideRun()
         self._side_rows.stride(dx, dy, length, _sideways.step_frame(lev),  # decision L243: whatever the heading

@@ -65,6 +65,7 @@ from pdrlearn.kernels.distance import (
     level_dz,
     unclassed_level_dz,
 )
+from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GROUP_STREAMS,
@@ -1920,6 +1921,12 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                               raw_disp[:, 2], dz)
         warnings += [msg] if msg else []
     head = initial_heading + np.cumsum(dyaw) + place  # decision L34: the direction each stride is placed along
+    first_walk = FirstWalk(initial_heading)  # decision E215: L494's first-walk reference, once (the runtime's call)
+    for i in np.flatnonzero(~(in_gap | posture)):
+        ref = first_walk.stride(bool(foot_headed[i]), float(head[i]), float(np.hypot(disp[i, 0], disp[i, 1])))
+        if ref is not None:
+            head[i:] -= ref
+            warnings.append(first_walk.line(float(strides[i, 1])))
     xyz = np.zeros((len(table) + 1, 3))
     for i in range(len(table)):  # the runtime's own position update, stride by stride
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
