@@ -1768,11 +1768,11 @@ class Tracker(FixInput):
                 self._side = _sideways.SideRun()
             side = self._side.stride(dx, dy, length, _sideways.step_frame(lev), _sideways.foot_turn(lev))  # L400
         direction += side + waist_forward_flip(foot_headed, classes.get("direction"), length, side)  # E216
-        if self._first_walk is not None:  # decision E215: L494's first-walk reference, once, causally
+        if self._first_walk is not None:  # decision E215: L494's first-walk direction, said once (applied: opt-in)
             if self._fixes.used:  # a used fix set the frame (D24's yaw feedback learnt in it)
                 self._first_walk.stop()
             ref = self._first_walk.stride(foot_headed, direction, math.hypot(dx, dy))
-            if ref is not None:
+            if ref is not None:  # the end of the first walk: said once (turned only as an opt-in, 0.0 otherwise)
                 heading, direction = heading - ref, direction - ref
                 self._warn(self._first_walk.line(t1))
         if self._side_rows is None:

@@ -861,6 +861,10 @@ def require_stride_cover(session: Session, names, command: str = "pdrlearn track
 #: circular mean of the first strides' travel headings), not the foot unit's facing, which a unit yawed on the shoe
 #: turns (trial T3: 20 deg -> 13.24 m off on a 45 m route); False = the unit's facing at the start
 FOOT_WALK_REFERENCE = True
+#: decision E215: the streamed track's ``info["compass_mount"]``: D25's check is not needed there (measured: a waist
+#: turned 90 / 180 deg on the belt or mirrored moved the streamed end by at most 0.059 m, users 9880-9884)
+STREAMED_COMPASS_MOUNT = ("not needed: the streamed heading reads no compass (the waist or foot gyroscope's rate about "
+                          "the vertical, which a unit's yaw on the belt does not change; decision E215)")
 #: decision L494: the first walk's direction is the circular mean of its first (up to) this many walking strides'
 #: headings (W390's measured count; its lower-back switch was removed, W401)
 WALK_REFERENCE_STRIDES = 4
@@ -1921,8 +1925,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                               raw_disp[:, 2], dz)
         warnings += [msg] if msg else []
     head = initial_heading + np.cumsum(dyaw) + place  # decision L34: the direction each stride is placed along
-    first_walk = FirstWalk(initial_heading)  # decision E215: L494's first-walk reference, once (the runtime's call)
-    for i in np.flatnonzero(~(in_gap | posture)):
+    first_walk = FirstWalk(initial_heading)  # decision E215: L494's first-walk direction, said once (the runtime's
+    for i in np.flatnonzero(~(in_gap | posture)):  # call; the heading turned by it only as an opt-in, else by 0.0)
         ref = first_walk.stride(bool(foot_headed[i]), float(head[i]), float(np.hypot(disp[i, 0], disp[i, 1])))
         if ref is not None:
             head[i:] -= ref
@@ -1971,6 +1975,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "classifier_rate_mismatch": off_rate,  # decision C18
             "resampled": session.meta.get("resampled") or None,  # B113 amended (review): from_hz / to_hz
             "terrain_dz_check": terrain_check, "altitude_check": altitude_check,  # decisions C28, L69
+            "compass_mount": STREAMED_COMPASS_MOUNT,  # decision E215: D25 guards a compass, which this never reads
+            "first_walk_deg": None if first_walk.angle is None else float(np.degrees(first_walk.angle)),  # E215
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)
