@@ -577,10 +577,10 @@ def reversed_by_rules(foot_headed: bool, dx: float, length: float) -> float:
     return math.pi
 
 
-#: decision E216 (docs/decisions/export.md): a stride headed by the waist and classed "forward" with a negative length
-#: (a pivot whose step frame turned with the foot) is placed by |length| along the waist heading; False = the thesis
-#: sign rule as before (the position could move against the travel, E210)
-WAIST_FORWARD_SIGN = False
+#: decision E216 (docs/decisions/export.md; measured and adopted): a stride headed by the waist and classed "forward"
+#: with a negative length (a pivot whose step frame turned with the foot) is placed by |length| along the waist
+#: heading; False = the thesis sign rule as before (the position could move against the travel, E210)
+WAIST_FORWARD_SIGN = True
 
 
 def waist_forward_flip(foot_headed: bool, direction, length: float, side_offset: float = 0.0) -> float:
