@@ -45,6 +45,9 @@ def test_a_streamed_foot_only_track_says_its_heading_is_the_units_facing_e215(wa
     assert 10.0 < abs(yawed.info["first_walk_deg"]) < 30.0  # the walk heads ~20 deg off the yawed unit's facing
     two = track_plasys(walk, streaming=True, method="M2", heading="auto")  # the waist heads: no line
     assert not [w for w in two.info["warnings"] if "decision E215" in w]
+    straight = track_plasys(walk, streaming=True, method="M2", heading="foot")  # a unit mounted straight: no line
+    assert abs(straight.info["first_walk_deg"]) < 10.0
+    assert not [w for w in straight.info["warnings"] if "decision E215" in w]
 
 
 def test_the_opt_in_re_reference_keeps_a_yawed_unit_from_turning_the_path_e215(walk, monkeypatch):
@@ -83,6 +86,9 @@ def test_first_walk_kernel_once_and_only_foot_headed_e215():
     assert got[:4] == [None] * 4 and got[4] == pytest.approx(0.5) and got[5] is None  # the 4th walking stride, once
     said = FirstWalk(enabled=False)
     assert [said.stride(True, 0.5, 1.2) for _ in range(5)] == [None, None, None, 0.0, None]  # said, not turned
+    assert "heads +28.6 deg" in said.line(9.0)
+    quiet = FirstWalk(enabled=False)
+    assert [quiet.stride(True, 0.1, 1.2) for _ in range(4)][-1] == 0.0 and quiet.line(9.0) is None  # 5.7 deg
     assert fw.n_before == 4  # a short pivot and three walking strides placed before it
     waist = FirstWalk(enabled=True)
     assert waist.stride(False, 0.5, 1.2) is None and waist.done  # the waist heads: its frame, not applied

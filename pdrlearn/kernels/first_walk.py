@@ -19,6 +19,10 @@ import math
 #: (L494's rule, causal; the strides before keep the facing); False (measured, not adopted) = its 0 stays the foot
 #: unit's facing at the start, and the line says how far the first walk heads from it
 STREAMED_FIRST_WALK = False
+#: decision E215: the not-applied line is said when the first walk heads at least this far (deg) from the unit's facing
+#: (a choice, not fitted: half the 20 deg yaw of L494's trial; a unit mounted straight reads a few degrees, and a line
+#: on every stream of it said nothing); ``info["first_walk_deg"]`` of ``track --streaming`` holds the angle always
+SAY_MIN_DEG = 10.0
 #: decision L494: the walking strides the first walk's direction is read from (plasys.WALK_REFERENCE_STRIDES)
 WALK_STRIDES = 4
 #: decision L494 (amended): a walking stride is longer than the frame inference's ``MIN_STRIDE_M`` (m, D8's own
@@ -63,9 +67,12 @@ class FirstWalk:
         self.n_before -= 1  # the stride that ends the walk
         return self.angle if self.apply else 0.0
 
-    def line(self, t: float) -> str:
-        """The warning line at time ``t`` (s) of the stride that ended the first walk."""
+    def line(self, t: float) -> str | None:
+        """The warning line at time ``t`` (s) of the stride that ended the first walk (None: not applied and the walk
+        heads less than :data:`SAY_MIN_DEG` from the unit's facing)."""
         deg = math.degrees(self.angle)
+        if not self.apply and abs(deg) < SAY_MIN_DEG:
+            return None
         if self.apply:
             return (f"the foot-only heading's 0 is the first walk's direction (decision L494), known at {t:.1f} s "
                     f"after {WALK_STRIDES} walking strides: the heading turned by {-deg:+.1f} deg from then on; the "

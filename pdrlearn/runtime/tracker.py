@@ -1774,7 +1774,9 @@ class Tracker(FixInput):
             ref = self._first_walk.stride(foot_headed, direction, math.hypot(dx, dy))
             if ref is not None:  # the end of the first walk: said once (turned only as an opt-in, 0.0 otherwise)
                 heading, direction = heading - ref, direction - ref
-                self._warn(self._first_walk.line(t1))
+                line = self._first_walk.line(t1)
+                if line:
+                    self._warn(line)
         if self._side_rows is None:
             self._side_rows = _sideways.SideRun()
         self._side_rows.stride(dx, dy, length, _sideways.step_frame(lev),  # decision L243: whatever the heading

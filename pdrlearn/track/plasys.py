@@ -1930,7 +1930,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         ref = first_walk.stride(bool(foot_headed[i]), float(head[i]), float(np.hypot(disp[i, 0], disp[i, 1])))
         if ref is not None:
             head[i:] -= ref
-            warnings.append(first_walk.line(float(strides[i, 1])))
+            line = first_walk.line(float(strides[i, 1]))
+            warnings += [line] if line else []
     xyz = np.zeros((len(table) + 1, 3))
     for i in range(len(table)):  # the runtime's own position update, stride by stride
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
