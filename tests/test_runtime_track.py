@@ -205,7 +205,9 @@ def test_bundle_without_calibration_fields_runs_with_gain_one(calibrated, tmp_pa
     (old / MANIFEST_SHA).write_text(f"{sha256_file(old / 'manifest.json')}  manifest.json\n")  # as re-written
     tr = Tracker(old, heading_source="foot")
     steps = _stream_sim(tr, s)
-    assert tr.distance_gain == 1.0 and tr.stride_sd is None and not tr.warnings
+    # E215's line (the streamed foot-only heading's 0 is the unit's facing, when the first walk heads 10 deg or more
+    # from it) is the simulated walk's, not the old bundle's
+    assert tr.distance_gain == 1.0 and tr.stride_sd is None and not [w for w in tr.warnings if "E215" not in w]
     off = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True, heading="foot",
                                  calibration=False)
     assert np.abs(_xyz(steps) - off.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3

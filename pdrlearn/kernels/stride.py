@@ -574,6 +574,16 @@ def reversed_by_rules(foot_headed: bool, dx: float, length: float) -> float:
     return math.pi
 
 
+def waist_forward_flip(foot_headed: bool, direction, length: float, side_offset: float = 0.0) -> float:
+    """Decision E216: pi when a stride headed by the waist (not ``foot_headed``) has the reported direction class
+    ``"forward"``, a negative ``length`` and no E124 side placement (``side_offset`` 0); else 0 (measured and adopted,
+    docs/decisions/export.md; the rule itself, no module switch, W413). Added to the stride's direction, it moves
+    |length| along the waist heading (the walker's facing), where a forward stride travels."""
+    if foot_headed or direction != "forward" or not length < 0.0 or side_offset != 0.0:
+        return 0.0
+    return math.pi
+
+
 def travel_sign_one(length: float, heading: float, direction=None, sideways: bool = False) -> tuple[float, float]:
     """Decision L65: the ``(length_m, heading_rad)`` a stride is REPORTED with. A negative length stays only
     when the stride's direction class is ``"backward"`` (the thesis' sign rule); any other negative length (no

@@ -12,6 +12,8 @@ from __future__ import annotations
 import logging
 import math
 
+import numpy as np
+
 from pdrlearn.errors import DataError
 
 log = logging.getLogger(__name__)
@@ -20,11 +22,18 @@ log = logging.getLogger(__name__)
 class FixInput:
     """``add_fix`` / ``fix_stats`` for a tracker; the tracker calls :meth:`_fuse_step` on every step it reports."""
 
-    def _init_fixes(self, start_xy) -> None:
+    def _init_fixes(self, start_xy, innovation_gate: bool | None = None) -> None:
+        """The live fix filter from ``start_xy``; ``innovation_gate`` (decision D35: D31's gate, an option) None
+        keeps the tracker's setting (a restart re-initialises the filter with it)."""
         from pdrlearn.kernels.fixes import FixConfig, LiveFixes, initial_fix_sigma
 
+        if innovation_gate is not None:
+            if not isinstance(innovation_gate, bool | np.bool_):
+                raise DataError(f"innovation_gate={innovation_gate!r} must be True or False (decision D31's gate)")
+            self._innovation_gate = bool(innovation_gate)
+        gate = getattr(self, "_innovation_gate", False)
         # add_fix takes x, y in the track's frame: ``track --fixes``' start sigma for an x, y fix file (D19)
-        self._fixes = LiveFixes(FixConfig(), start_xy=start_xy,
+        self._fixes = LiveFixes(FixConfig(innovation_gate=gate), start_xy=start_xy,
                                 initial_sigma_m=initial_fix_sigma(start_known=True, xy_fixes=True))
         self.fix_position: tuple[float, float] | None = None  # the fused position once a fix was used
         self._fix_warned = False

@@ -76,6 +76,8 @@ def resume(tracker, state: dict) -> list:
     tracker.position = position
     tracker._init_fixes(position[:2])
     tracker.heading = heading
+    if tracker._first_walk is not None:  # decision E215: a resumed tracker goes on in its old frame
+        tracker._first_walk.stop()
     tracker._prev_end = last_end
     tracker._resume_end = last_end
     ls = state["last_step"]

@@ -24,7 +24,6 @@ class RideWatch:
         self.name = name
         self._t = np.zeros(0)
         self._p = np.zeros(0)
-        self.rides: list[tuple[float, float, float]] = []  # (start_s, end_s, dz_m) of each ride named
 
     def push(self, t, values) -> None:
         t = np.asarray(t, dtype=float).reshape(-1)
@@ -49,7 +48,6 @@ class RideWatch:
         self._t, self._p = self._t[keep], self._p[keep]
         if dz is None or not abs(dz) >= RIDE_MIN_M:  # W231's half storey, as track.rides._pause_dz
             return None
-        self.rides.append((float(a), float(b), float(dz)))
         return (f"{self.name}: the altitude changed {dz:+.1f} m while the wearer stood from {a:.1f} to {b:.1f} s (a "
                 "lift or escalator ride, decision W231); the streamed z counts the walked height only, so the steps "
                 "after it keep the height before it (decision E211): `pdrlearn track` on the recording counts rides "

@@ -25,6 +25,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
+from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import relative_length as _relative_length
 from pdrlearn.kernels import sideways as _sideways
 from pdrlearn.kernels import turn_length as _turn_length
@@ -63,6 +64,7 @@ from pdrlearn.kernels.stride import (
     stride_rules_one,
     travel_sign_one,
     waist_bridge_yaw,
+    waist_forward_flip,
     waist_gap_max_s,
 )
 from pdrlearn.kernels.window import (
@@ -427,6 +429,9 @@ class Tracker(FixInput):
         a flat, forward, straight stride's reported class is its length against 0.8 / 1.2 x the median of the
         session's such strides so far, after 10 of them; the distance is computed as before). A restarted tracker
         (``resume``) starts a new median.
+    innovation_gate : decision D31 (an option, off by default as ``track --fixes``' gate, D33): ``add_fix`` rejects
+        a fix more than 3 sigma from the filter's estimate (the chi-square 0.997 gate, never two fixes in a row),
+        names it in one warning as it is rejected and counts it in ``fix_stats()["fixes_rejected"]`` (decision D35).
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -434,6 +439,7 @@ class Tracker(FixInput):
     _trims = 0
     speculative = False
     _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
+    _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _session_length = None  # decision C117 (a bare Tracker.__new__: the model's length class)
@@ -495,6 +501,7 @@ class Tracker(FixInput):
         check_domain: bool = False,
         warn_out_of_domain: float | None = None,
         length_reference: str = "model",
+        innovation_gate: bool = False,
     ):
         start_xyz = enu_start(start, start_enu_m)  # decision L159
         #: decision C117: "session" reports a flat forward stride's length class against the session's median stride
@@ -628,8 +635,9 @@ class Tracker(FixInput):
         #: push that completes no step, else at the next push (decision E21), or before a step needs them
         self._foot_q: list[tuple[str, float, list[float]]] = []
         self.position = start_xyz
-        self._init_fixes(self.position[:2])  # decisions D19-D21: add_fix
+        self._init_fixes(self.position[:2], innovation_gate=innovation_gate)  # decisions D19-D21, D35: add_fix
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
+        self._first_walk = _first_walk.FirstWalk(self.heading)  # decision E215
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
@@ -1754,10 +1762,21 @@ class Tracker(FixInput):
         foot_headed = headed_by_foot(lev, self.heading_source)
         direction = (heading + placement_offset(lev, self.heading_source, disp)  # decision L34
                      + reversed_by_rules(foot_headed, dx, length))  # L37
+        side = 0.0
         if not foot_headed and _sideways.STREAMED_SIDE_TRAVEL:  # decision E124 (track --streaming's call)
             if self._side is None:
                 self._side = _sideways.SideRun()
-            direction += self._side.stride(dx, dy, length, _sideways.step_frame(lev), _sideways.foot_turn(lev))  # L400
+            side = self._side.stride(dx, dy, length, _sideways.step_frame(lev), _sideways.foot_turn(lev))  # L400
+        direction += side + waist_forward_flip(foot_headed, classes.get("direction"), length, side)  # E216
+        if self._first_walk is not None:  # decision E215: L494's first-walk direction, said once (applied: opt-in)
+            if self._fixes.used:  # a used fix set the frame (D24's yaw feedback learnt in it)
+                self._first_walk.stop()
+            ref = self._first_walk.stride(foot_headed, direction, math.hypot(dx, dy))
+            if ref is not None:  # the end of the first walk: said once (turned only as an opt-in, 0.0 otherwise)
+                heading, direction = heading - ref, direction - ref
+                line = self._first_walk.line(t1)
+                if line:
+                    self._warn(line)
         if self._side_rows is None:
             self._side_rows = _sideways.SideRun()
         self._side_rows.stride(dx, dy, length, _sideways.step_frame(lev),  # decision L243: whatever the heading

@@ -65,6 +65,7 @@ from pdrlearn.kernels.distance import (
     level_dz,
     unclassed_level_dz,
 )
+from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GROUP_STREAMS,
@@ -863,6 +864,10 @@ def require_stride_cover(session: Session, names, command: str = "pdrlearn track
 #: direction is the circular mean of its first (up to) this many walking strides' headings (W390's measured count;
 #: its lower-back switch was removed, W401)
 WALK_REFERENCE_STRIDES = 4
+#: decision E215: the streamed track's ``info["compass_mount"]``: D25's check is not needed there (measured: a waist
+#: turned 90 / 180 deg on the belt or mirrored moved the streamed end by at most 0.059 m, users 9880-9884)
+STREAMED_COMPASS_MOUNT = ("not needed: the streamed heading reads no compass (the waist or foot gyroscope's rate about "
+                          "the vertical, which a unit's yaw on the belt does not change; decision E215)")
 
 
 def foot_walk_reference(head: np.ndarray, disp: np.ndarray, lateral: np.ndarray | None = None,
@@ -1914,11 +1919,16 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         # decision L189 (offline's L184, the same function) / L206 (the run's summed dz): a gated stride is level
         dz = KD.streamed_gated_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
     length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
+    side_offset = np.zeros(len(table))
     if KSW.STREAMED_SIDE_TRAVEL:  # decision E124: a side-stepping stretch's strides headed by the waist go along
         side = KSW.SideRun()  # their travel angle from the run's third stride on (the runtime's call, stride by stride)
         for i in np.flatnonzero(~(in_gap | posture | foot_headed)):
-            place[i] += side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]),
-                                    float(foot_turn[i]))  # L400
+            side_offset[i] = side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]),
+                                         float(foot_turn[i]))  # L400
+    place += side_offset
+    if "direction" in classes:  # decision E216: the runtime's call, stride by stride
+        place += [SK.waist_forward_flip(bool(f), c, float(L), float(o)) for f, c, L, o in
+                  zip(foot_headed, classes["direction"].to_numpy(dtype=object), length, side_offset, strict=True)]
     sideways = np.zeros(len(table), dtype=bool)  # decision L243: the runtime's Step.sideways, stride by stride
     rows = KSW.SideRun()
     for i in np.flatnonzero(~(in_gap | posture)):
@@ -1944,6 +1954,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                               raw_disp[:, 2], dz)
         warnings += [msg] if msg else []
     head = initial_heading + np.cumsum(dyaw) + place  # decision L34: the direction each stride is placed along
+    first_walk = FirstWalk(initial_heading)  # decision E215: L494's first-walk direction, said once (the runtime's
+    for i in np.flatnonzero(~(in_gap | posture)):  # call; the heading turned by it only as an opt-in, else by 0.0)
+        ref = first_walk.stride(bool(foot_headed[i]), float(head[i]), float(np.hypot(disp[i, 0], disp[i, 1])))
+        if ref is not None:
+            head[i:] -= ref
+            line = first_walk.line(float(strides[i, 1]))
+            warnings += [line] if line else []
     xyz = np.zeros((len(table) + 1, 3))
     for i in range(len(table)):  # the runtime's own position update, stride by stride
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
@@ -1988,6 +2005,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "classifier_rate_mismatch": off_rate,  # decision C18
             "resampled": session.meta.get("resampled") or None,  # B113 amended (review): from_hz / to_hz
             "terrain_dz_check": terrain_check, "altitude_check": altitude_check,  # decisions C28, L69
+            # decision E215: D25 guards a compass, which this never reads (W415's "not_judged" key, dict as offline)
+            "compass_mount": {"fallback": False, "not_judged": STREAMED_COMPASS_MOUNT},
+            "first_walk_deg": None if first_walk.angle is None else float(np.degrees(first_walk.angle)),  # E215
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)
