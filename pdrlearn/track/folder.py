@@ -122,6 +122,11 @@ def clinical_tables(result, bouts) -> dict:
                                  yaw_turns=result.info.get("yaw_turns"))
         if len(trials):
             out["tug_trials.csv"] = trials
+    from pdrlearn.track.walk_test import ten_metre_walk_trials
+
+    trials = ten_metre_walk_trials(result.steps, result.info.get("ten_m_walk_m"))  # decision L524: every 10MWT trial
+    if len(trials):
+        out["ten_m_walk_trials.csv"] = trials
     if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
         from pdrlearn.track.freezes import freeze_table
 
