@@ -456,7 +456,9 @@ SESSIONS: tuple[Column, ...] = (
                                          "walking bout reaching 14 m, straight (L312); empty on a shorter or "
                                          "turning walk (L313)"),
     ("ten_m_walk_speed_mps", "m/s", "number", "10 m / ten_m_walk_time_s (L312)"),
-    ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); empty when there is one"),
+    ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); with one, the walking bouts that "
+                                     "tracked under RUN_OUT_M short of the walkway and so are no trial (L524); "
+                                     "else empty"),
     ("n_ten_m_walk_trials", "count", "integer", "10 m walk test: the walking bouts timed as the first "
                                                 "(ten_m_walk_trials.csv, L524): a self-selected and a fast trial "
                                                 "are 2"),

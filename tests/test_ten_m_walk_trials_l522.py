@@ -57,3 +57,11 @@ def test_every_straight_bout_is_a_trial_self_selected_and_fast_l524():
     assert got["n_ten_m_walk_trials"] == 2 and got["ten_m_walk_max_speed_mps"] == pytest.approx(1.5)
     # a short bout is no trial
     assert len(ten_metre_walk_trials(pd.DataFrame(_bout(3.0, 1.0, 10.0)))) == 0
+
+
+def test_a_bout_just_short_of_the_walkway_is_named_beside_a_timed_trial_l524():
+    near = _bout(3.0, 1.0, 14.0)[:-1] + [{**_bout(3.0, 1.0, 14.0)[-1], "length_m": 0.99}]  # 13.99 m: no trial
+    got = ten_metre_walk(pd.DataFrame(near + _bout(40.0, 1.5, 15.0)))
+    assert got["n_ten_m_walk_trials"] == 1 and got["ten_m_walk_speed_mps"] == pytest.approx(1.5)
+    assert "walking bout 1 tracked 13.99 m, short of 14 m" in got["ten_m_walk_note"]
+    assert ten_metre_walk(pd.DataFrame(_bout(3.0, 1.0, 15.0)))["ten_m_walk_note"] is None  # no near miss: no note

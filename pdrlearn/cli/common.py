@@ -565,7 +565,8 @@ def transfer_line(summary: dict) -> str | None:
         more = (f"; {n} trials, fastest {summary['ten_m_walk_max_speed_mps']:.2f} m/s, ten_m_walk_trials.csv, L524"
                 if n > 1 else "")
         parts.append(f"10 m walk test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
-                     f"(the middle {timed:g} m of the first {accel + timed + decel:g} m walk, L312{more})")
+                     f"(the middle {timed:g} m of the first {accel + timed + decel:g} m walk, L312{more})"
+                     + (f" - {summary['ten_m_walk_note']}" if summary.get("ten_m_walk_note") else ""))  # L524
     if summary.get("t25fw_time_s") is not None:  # decision L387: the first 7.62 m from standing
         parts.append(f"timed 25-foot walk {summary['t25fw_time_s']:.2f} s, {summary['t25fw_speed_mps']:.2f} m/s "
                      "(the first 7.62 m from standing, L387)")

@@ -76,6 +76,13 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
                      lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)), decel_m=decel)
     trials = ten_metre_walk_trials(steps, zones)
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524
+    missed = _near_misses(steps, accel + timed + decel)
+    if out["ten_m_walk_time_s"] is not None and missed:  # decision L524: a trial lost to L349's few cm is said
+        out["ten_m_walk_note"] = (
+            "; ".join(f"walking bout {n} tracked {math.floor(m * 100.0 + 1e-6) / 100.0:.2f} m, short of "
+                      f"{accel + timed + decel:g} m" for n, m in missed)
+            + f": not timed, so the timed trial(s) in ten_m_walk_trials.csv may not be the first walk (L313); have the "
+            "walker start and stop beyond the walkway's ends (a run-out, decisions L349, L524)")
     out["ten_m_walk_max_speed_mps"] = float(trials["speed_mps"].max()) if len(trials) else None
     out["ten_m_walk_zones_m"] = [accel, timed, decel]  # decision L522: the walkway the keys were timed on
     return out
@@ -100,6 +107,15 @@ def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float]
             if isinstance(got, tuple):
                 rows.append((len(rows) + 1, got[0], got[1], got[1] - got[0], timed / (got[1] - got[0])))
     return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
+
+
+def _near_misses(steps: pd.DataFrame, need: float) -> list[tuple[int, float]]:
+    """Decisions L349, L524: (bout number from 1, tracked metres) of each walking bout short of ``need`` by less than
+    :data:`RUN_OUT_M` - a walk of the walkway's length that tracked a few cm short."""
+    if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns) or _is_lower_back(steps):
+        return []
+    got = [(n, _time_bout(steps, a, b, 0.0, need, 0.0)) for n, (a, b) in enumerate(bout_rows(steps), start=1)]
+    return [(n, m) for n, m in got if isinstance(m, float) and need - RUN_OUT_M <= m < need]
 
 
 def t25fw(steps: pd.DataFrame) -> dict:
