@@ -81,7 +81,7 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
         out["ten_m_walk_note"] = (
             "; ".join(f"walking bout {n} tracked {math.floor(m * 100.0 + 1e-6) / 100.0:.2f} m, short of "
                       f"{accel + timed + decel:g} m" for n, m in missed)
-            + f": not timed, so the timed trial(s) in ten_m_walk_trials.csv may not be the first walk (L313); have the "
+            + ": not timed, so the timed trial(s) in ten_m_walk_trials.csv may not be the first walk (L313); have the "
             "walker start and stop beyond the walkway's ends (a run-out, decisions L349, L524)")
     out["ten_m_walk_max_speed_mps"] = float(trials["speed_mps"].max()) if len(trials) else None
     out["ten_m_walk_zones_m"] = [accel, timed, decel]  # decision L522: the walkway the keys were timed on
