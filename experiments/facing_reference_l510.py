@@ -1,7 +1,8 @@
 """Decision L510's adoption rule (docs/decisions/localization.md): a foot-only (and D25-fallback) track's heading 0 as
-the walker's facing at the first walk (``plasys.foot_walk_reference`` with the strides' sides; W413: no module switch) against L494's travel reference, by
-``pdrlearn track --json``'s final position and ``final_position_error_m``, on simulated users 10000-10005 and the
-real gaitmap foot recordings of datasets/external (a check, not tuned on)."""
+the walker's facing at the first walk (``plasys.foot_walk_reference`` with the strides' sides; W413: no module
+switch) against L494's travel reference, by ``pdrlearn track --json``'s final position and
+``final_position_error_m``, on simulated users 10000-10005 and the real gaitmap foot recordings of
+datasets/external (a check, not tuned on)."""
 
 from __future__ import annotations
 

@@ -35,13 +35,13 @@ def info(
     s = read_session(session_dir, bridge_drops=False, spans="warn")
     summary = s.summary()
     summary["frame_checks"] = s.frame_checks()  # warnings are logged (stderr) once, by the checks themselves
-    from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats, foot_scale_warning
+    from pdrlearn.track.foot_rest import foot_placement_line, foot_rest_stats, foot_scale_warning
 
     summary["foot_rests"] = foot_rest_stats(s)  # decisions B133 (rest |acc| in g, a display), B134
     from pdrlearn.io.meta_keys import unknown_keys_line
     from pdrlearn.track.units import units_apart_line
 
-    for line in (foot_placement_warning(summary["foot_rests"], s.where),
+    for line in (foot_placement_line(s, summary["foot_rests"], s.where),  # B134 (W415: not on side drills)
                  foot_scale_warning(summary["foot_rests"], s.where),  # decision B201: a rest |acc| off 1 g
                  unknown_keys_line(s.meta, s.where),  # decision B262: meta.json keys pdrlearn does not read
                  units_apart_line(s)):  # decision B267: the units' spans differ (what track refuses or cuts)

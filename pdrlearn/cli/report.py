@@ -16,6 +16,10 @@ def report(
     out: Path = typer.Option(..., "--out", "-o", help="Report folder to write (index.html + report.md)."),
     title: str = typer.Option(None, help="Page title."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    clinical: bool = typer.Option(False, "--clinical", help="Also write clinical.md: per patient, the session and "
+                                  "recording date and one line per clinical test tracked (6MWT, TUG with phases, "
+                                  "steps and turn time, 10 m walk, gait speed and cadence), each naming its unit "
+                                  "(decision W420)."),
 ) -> None:
     """Render accuracy tables, confusion matrices, trajectories and latency figures as one page.
 
@@ -32,16 +36,25 @@ def report(
 
         pdrlearn track-all study/ --out results/batch && pdrlearn report results/batch --out results/batch_report
 
+        pdrlearn report out/track --out out/report_clinical --clinical
+
     A track-all output gets a batch section (cohort C16): the per-session and per-group tables, the failed
     sessions with their errors and warnings, and a figure of each session's distance and gait speed.
     """
     from pdrlearn.report import build_report
 
     out_folder(out, "report", force=force, inputs=(source,))
+    text = None
+    if clinical:  # decision W420: read before anything is written (one line when there is no track)
+        from pdrlearn.report.clinical import clinical_markdown
+
+        text = clinical_markdown(source)
     was = existed(out)
-    path = build_report(source, out, title=title)
+    path = build_report(source, out, title=title, extra=None if text is None else {"clinical.md": text + "\n"})
     replaced(out, was)
     typer.echo(str(path / "index.html"))
+    if text is not None:
+        typer.echo(str(path / "clinical.md"))
 
 
 def register(app: typer.Typer) -> None:

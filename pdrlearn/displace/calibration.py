@@ -120,9 +120,10 @@ def _labelled_flat_forward(labels: pd.DataFrame) -> np.ndarray:
 
 
 @contextmanager
-def _tracker_warnings_silenced():
-    """Raise the ``pdrlearn.track`` logger to ERROR for the duration (calibration runs the tracker internally)."""
-    log = logging.getLogger("pdrlearn.track")
+def tracker_warnings_silenced(name: str = "pdrlearn.track"):
+    """Raise the ``name`` logger to ERROR for the duration (calibration runs the tracker internally; W418's two-unit
+    track runs the waist track, ``name`` "pdrlearn")."""
+    log = logging.getLogger(name)
     level = log.level
     log.setLevel(logging.ERROR)
     try:
@@ -163,7 +164,7 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
             skipped.append(f"{s.name}: no labelled stride lengths or no foot unit")
             continue
         try:
-            with _tracker_warnings_silenced():  # the tracker's notes (e.g. default length bounds) are not the user's
+            with tracker_warnings_silenced():  # the tracker's notes (e.g. default length bounds) are not the user's
                 res = track(s, params)
         except PdrlearnError as exc:
             skipped.append(f"{s.name}: {exc}")

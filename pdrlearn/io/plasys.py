@@ -1444,7 +1444,7 @@ def warn_low_rate(session: Session) -> None:
 def warn_saturation(session: Session) -> None:
     """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
     extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence."""
-    from pdrlearn.io.validate import clipped_samples, saturation_warning
+    from pdrlearn.io.validate import MOVING_RAD_S, clipped_samples, saturation_warning
 
     for name, s in session.streams.items():
         kind = SENSORS[name].kind
@@ -1452,8 +1452,11 @@ def warn_saturation(session: Session) -> None:
         if n:
             where = (str(session_csv(session.folder, name)) if session.folder is not None
                      else f"session '{session.name}', stream {name}")
+            gyro = kind == "gyroscope"  # decision B401: the share of the motion at full scale, and the foot's remedy
+            moving = int(np.count_nonzero(np.linalg.norm(s.values, axis=1) >= MOVING_RAD_S)) if gyro else None
             log.warning("%s", saturation_warning(where, kind, n, len(s), top,
-                                                 "waist" if name.startswith("w") else "foot"))  # T3 finding 9
+                                                 "waist" if name.startswith("w") else "foot",  # T3 finding 9
+                                                 moving=moving))
 
 
 def warn_frozen(session: Session) -> None:

@@ -624,16 +624,39 @@ def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
     return k > (int(np.unique(near, return_counts=True)[1].max()) if near.size else 0)
 
 
-def saturation_warning(where: str, kind: str, n: int, total: int, top: float, unit_name: str = "foot") -> str:
+#: decision B401: a gyroscope sample is "moving" at |w| >= this (rad/s): the stance segmenter's default threshold
+#: (``kernels.stride.StanceSegmenter.stance_gyro_rad_s``), so the share of clipped samples is of the swings'
+MOVING_RAD_S = 0.8
+#: decision B401: the per-axis peak rates (deg/s) of walking feet measured on the real gaitmap recordings in
+#: datasets/external (lwalk, level, stairs, walk4x10, ms: 560-987 deg/s); a foot needs a range above them
+FOOT_PEAK_DPS = (560, 990)
+FOOT_GYRO_RANGE_DPS = 1000
+
+
+def saturation_warning(where: str, kind: str, n: int, total: int, top: float, unit_name: str = "foot", *,
+                       moving: int | None = None) -> str:
     """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results;
-    ``unit_name`` the body unit (``"foot"`` or ``"waist"``: its consequence named for it, trial T3 finding 9)."""
+    ``unit_name`` the body unit (``"foot"`` or ``"waist"``: its consequence named for it, trial T3 finding 9).
+    Decision B401, a gyroscope: ``moving`` (the file's samples with |w| >= :data:`MOVING_RAD_S`) gives the share of
+    the motion at full scale, and a foot's line says what the offline track does about it (L525) and the range a
+    foot needs."""
     unit = "m/s^2" if kind == "accelerometer" else "rad/s"
     rng = f"{top / STANDARD_GRAVITY:.3g} g" if kind == "accelerometer" else f"{np.rad2deg(top):.4g} deg/s"
     accel = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
              if unit_name == "foot" else "the lower back's step peaks and the step lengths read from its vertical "
              "movement are cut short")
     effect = accel if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it"
+    share, remedy, codes = "", "", "B77, B311"
+    if kind == "gyroscope" and moving:  # decision B401: the size of the effect, measured on the file
+        share = f"; {100.0 * n / moving:.2g} % of its moving samples (|w| >= {MOVING_RAD_S:g} rad/s) are at full scale"
+        codes = "B77, B311, B401"
+    if kind == "gyroscope" and unit_name == "foot":
+        effect += (" (the foot's stride pitch and yaw: the offline track re-levels each stride at its end rest and "
+                   "heads by the waist unit, decision L525)")
+        remedy = (f" (+-{FOOT_GYRO_RANGE_DPS} deg/s or more for a foot: walking feet turned at {FOOT_PEAK_DPS[0]}-"
+                  f"{FOOT_PEAK_DPS[1]} deg/s in the real gaitmap recordings)")
+        codes = "B77, B311, B401"
     return coded(f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
             f"sensor's full scale: held for {CLIP_RUN}+ samples in a row, or reached by {CLIP_PINNED}+ samples one at "
-            f"a time): {effect}, so distances and headings come out wrong there; record with a range above +-{rng} "
-            "(decision B77, B311)", "B77")  # decision E170
+            f"a time){share}: {effect}, so distances and headings come out wrong there; record with a range above "
+            f"+-{rng}{remedy} (decision {codes})", "B77")  # decision E170

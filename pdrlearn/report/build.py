@@ -451,8 +451,10 @@ def _markdown(sections: list[Section], title: str, image_names: dict[Path, str])
     return "\n".join(lines)
 
 
-def build_report(source: str | os.PathLike, out: str | os.PathLike, *, title: str | None = None) -> Path:
-    """Write ``out/index.html`` (self-contained) and ``out/report.md`` (+ images); atomic. Returns ``out``."""
+def build_report(source: str | os.PathLike, out: str | os.PathLike, *, title: str | None = None,
+                 extra: dict[str, str] | None = None) -> Path:
+    """Write ``out/index.html`` (self-contained) and ``out/report.md`` (+ images) and each of ``extra``'s texts
+    under its file name (decision W420's clinical.md); atomic. Returns ``out``."""
     out = Path(out)
     sections = collect(source, exclude=out)
     if out.exists() and not out.is_dir():
@@ -479,4 +481,6 @@ def build_report(source: str | os.PathLike, out: str | os.PathLike, *, title: st
                 names[p] = name
         (tmp / "index.html").write_text(_html(sections, title))
         (tmp / "report.md").write_text(_markdown(sections, title, names))
+        for name, text in (extra or {}).items():
+            (tmp / name).write_text(text)
     return out

@@ -664,12 +664,18 @@ def _basic(result: TrackResult, out: dict) -> None:
     out.update(turn_summary(table))
     if result.info.get("yaw_turns") is not None:  # decisions L231 / L233: turns.csv's turns are turn_count's
         out["turn_count"] = len(table)
-    out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W183: chair transfers, TUG
+    from pdrlearn.track.trunk_tug import trunk_note, tug_contacts, tug_source_summary, tug_yaw_turns
+
+    # decision W183: chair transfers, TUG (W418: a foot track's from the waist unit's transfers and contacts)
+    out.update(transfer_summary(result.info.get("transfers"), tug_contacts(result)))
+    if out.get("tug_time_note") is None:
+        out["tug_time_note"] = trunk_note(result)  # W418: why a two-unit track has no transfers
     from pdrlearn.waist.tug_phases import tug_phase_summary, tug_phases
 
     # decision W293: the TUG's phases, from the transfers, these turns and the walking contacts
-    out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, result.steps,
-                                            yaw_turns=result.info.get("yaw_turns"))))  # W307
+    out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, tug_contacts(result),
+                                            yaw_turns=tug_yaw_turns(result))))  # W307
+    out.update(tug_source_summary(result))  # decision W419
     from pdrlearn.waist.turn_steps import stepless_summary
 
     # decision W331: a lower-back track's turns on the spot that hold no step, and the steps they imply
@@ -1516,6 +1522,10 @@ def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout
 
         keys, line = flight_summary(session, result.info.get("pipeline"))
         out.update(keys)
+        if keys["n_flight_phases"] is not None and "flights" not in result.info:  # decision W417: flights.csv
+            from pdrlearn.track.flight import flight_rows
+
+            result.info["flights"] = flight_rows(session)
         if line:
             import logging
 
@@ -1543,10 +1553,13 @@ def domain_fraction(result: TrackResult) -> dict:
 SUMMARY_INFO_LEFT_OUT = {
     "transfers": "transfers.csv (decision W182)",
     "freezes": "freezes.csv (decision W213)",
+    "flights": "flights.csv (decision W417)",
     "postures": "the runs behind the posture time keys (decision W222)",
     "yaw_turns": "turns.csv's turn timing (decision L210)",
     "rest_bias_rests": "the position radius's clock (decision L306)",
     "rides": "rides.csv (decision L377)",
+    "trunk_contacts": "the lower-back contacts a two-unit TUG is timed on (decision W418)",
+    "trunk_yaw_turns": "the lower-back turns of a two-unit TUG's turn-to-sit (decisions W307, W418)",
 }
 #: decision E141: the entries of ``info["aid"]`` that summary.json leaves out (every fix's row: aided.png's)
 SUMMARY_AID_LEFT_OUT = ("fix_table",)
@@ -1628,10 +1641,10 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary.update(domain_fraction(result))  # decision C16
     placement = scale = None
     if result.info.get("pipeline") == "plasys":  # decision B134: a foot unit that never swings is not on the foot
-        from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats, foot_scale_warning
+        from pdrlearn.track.foot_rest import foot_placement_line, foot_rest_stats, foot_scale_warning
 
         stats = foot_rest_stats(session)
-        placement = foot_placement_warning(stats, "")  # L352: the loop below prefixes session.where
+        placement = foot_placement_line(session, stats, "")  # L352: the loop prefixes session.where; W415
         scale = foot_scale_warning(stats, "")  # decision B201: the foot accelerometer's rest |acc| off 1 g
     add_gait_range_flag(summary)  # decision L195
     lines = summary_warnings(summary)

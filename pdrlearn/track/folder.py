@@ -112,14 +112,16 @@ def clinical_tables(result, bouts) -> dict:
         out["rides.csv"] = ride_table(result.info)
     if result.info.get("transfers") is not None:
         out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
+        from pdrlearn.track.trunk_tug import foot_strides, tug_contacts, tug_yaw_turns
         from pdrlearn.waist.tug_phases import tug_phase_table, tug_phases, tug_trial_table
 
-        phases = tug_phases(result.info["transfers"], out["turns.csv"], result.steps,  # decision W293
-                            yaw_turns=result.info.get("yaw_turns"))  # W307
+        # decision W418: a foot track's TUG reads the waist's contacts; W419: the foot's turns.csv and strides
+        phases = tug_phases(result.info["transfers"], out["turns.csv"], tug_contacts(result),  # decision W293
+                            yaw_turns=tug_yaw_turns(result))  # W307
         if phases is not None:
             out["tug_phases.csv"] = tug_phase_table(phases)
-        trials = tug_trial_table(result.info["transfers"], out["turns.csv"], result.steps,  # decision W325
-                                 yaw_turns=result.info.get("yaw_turns"))
+        trials = tug_trial_table(result.info["transfers"], out["turns.csv"], tug_contacts(result),  # decision W325
+                                 yaw_turns=tug_yaw_turns(result), foot=foot_strides(result))
         if len(trials):
             out["tug_trials.csv"] = trials
     from pdrlearn.track.walk_test import ten_metre_walk_trials
@@ -127,6 +129,10 @@ def clinical_tables(result, bouts) -> dict:
     trials = ten_metre_walk_trials(result.steps, result.info.get("ten_m_walk_m"))  # decision L524: every 10MWT trial
     if len(trials):
         out["ten_m_walk_trials.csv"] = trials
+    if result.info.get("flights") is not None:  # decision W417: each unit's flight phases, with a jump height
+        from pdrlearn.track.flight import FLIGHT_COLUMNS
+
+        out["flights.csv"] = pd.DataFrame(result.info["flights"], columns=list(FLIGHT_COLUMNS))
     if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
         from pdrlearn.track.freezes import freeze_table
 

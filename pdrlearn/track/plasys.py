@@ -103,6 +103,7 @@ from pdrlearn.track.gaps import (
     unit_gap_warnings,
 )
 from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
+from pdrlearn.track.gyro_clip import clipped_foot_line, clipped_foot_settings, foot_gyro_clipped
 from pdrlearn.track.rides import foot_rides
 from pdrlearn.track.sim_rocker import hermite_contact_line
 from pdrlearn.track.travel import side_class_warning
@@ -440,6 +441,11 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
     if off:
         warnings.append(classifier_rate_warning(off, resample_hint=True))
     line = other_user_line(model, [session], "track")  # decision C138: a per-user model on another user
+    if line:
+        warnings.append(line)
+    from pdrlearn.classify.force_scale import force_scale_line, model_force
+
+    line = force_scale_line(model_force(model), session)  # decision C153: force in another unit than the training's
     if line:
         warnings.append(line)
     return off
@@ -1158,6 +1164,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         raise DataError(f"plasys: {refusal}")
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
+    clipped = foot_gyro_clipped(session) if cfg["heading"] == "fused" else (0, 0.0)  # decision L525
+    if clipped[0]:
+        waist_gyro = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
+        heading = heading or ("waist" if waist_gyro else None)  # L525 (b): the foot's stride yaw is not trusted
+        warnings.append(clipped_foot_line(*clipped[:1], len(session.streams["fGyroscope"]), clipped[1],
+                                          heading == "waist"))
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
     stance_source, imu_spans = "inertial", np.zeros((0, 2))
     fev, force_offset = None, None  # decisions L388 / L389: the force detector's events, the insoles' clock offset
@@ -1208,6 +1220,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         raise NoStridesError(f"{session.where}: no strides detected; is the foot unit moving?{hint}")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     fd_kw.update(check_foot_settings(params, "plasys params"))  # decisions B206 / B207
+    if clipped[0]:  # decision L525 (a): the streamed stride's tilt correction and ZUPT clock
+        fd_kw = clipped_foot_settings(fd_kw, params)
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
     fd_warnings = list(fd.warnings_)
     raw_disp = disp = fd.disp_
@@ -1249,6 +1263,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     work, alignment = session, None
     if align and has_waist:  # decision L162: any method the waist heads (L13 had M3 only)
         work, alignment = align_clocks(session, warnings, force_table=seen.get("AccelForceStepDetector"))
+    if clipped[0] and heading == "waist":  # decision L525 (b): each stride's and pause's turn is the waist's
+        bridge_foot_yaw(fd, {}, lambda n: (work.streams[n].t, work.streams[n].values), every=True)
     if cfg["rules"]:
         if model is None:
             raise ModelError(MODEL_NEEDED.format(what="M3 needs the step classes") + "; M1/M2 need no model")
@@ -1374,7 +1390,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
             mount_line, mount_info = mount_check(work, relative, head, straight)
             warnings += [mount_line] if mount_line else []
-        if mount_line is not None:  # decision D25: the foot gyroscope's own heading, as heading "foot"
+        if (mount_info or {}).get("fallback"):  # D25 (W415: without a line): the foot gyroscope's heading
             compass_line, compass_info = None, None
             head = relative + initial_heading - foot_walk_reference(  # decisions L494, L510
                 relative + side_extra, disp, lateral, fd.yaw_change_)
@@ -1398,7 +1414,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                     "on a shorter one (decision L226, L266, L280)")
             warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
                 f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
-        elif hsrc == "fused" and mount_line is None:
+        elif hsrc == "fused" and not (mount_info or {}).get("fallback"):  # D25 (W415: also without its line)
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
                                    walking=FUSED_WALKING_CLOCK)  # decision L471
@@ -1600,15 +1616,18 @@ def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndar
     return out
 
 
-def bridge_foot_yaw(fd: FootDisplacement, foot_gaps: dict, stream=None) -> None:
+def bridge_foot_yaw(fd: FootDisplacement, foot_gaps: dict, stream=None, *, every: bool = False) -> None:
     """Decisions L90 / L91: the foot's turn is not integrated over a foot-IMU gap (``fAccelerometer`` /
     ``fGyroscope``, over 1 s): the gyroscope there is an interpolated line (``orient.unit_data``), so the yaw of a
     stride whose bounds overlap a gap (``fd.yaw_change_``) and the pivot before a stride whose pause from the
     previous stride overlaps one (``fd.gap_yaw_``, L28) become the waist's turn over the same interval
     (:func:`~pdrlearn.kernels.stride.waist_bridge_yaw`; ``stream(name)`` -> ``(t, values)``) or, with ``stream``
-    None (no waist gyroscope), 0. Strides and pauses that overlap no such gap keep their values bit for bit."""
+    None (no waist gyroscope), 0. Strides and pauses that overlap no such gap keep their values bit for bit.
+    ``every`` (decision L525: a clipped foot gyroscope's stride yaw is not trusted): every stride's turn is the
+    waist's from the previous stride's end (the pause's turn folded in, as a streamed row's ``pivot_rad``, L106, so
+    that a turn on the spot counts), and no pause keeps a turn of its own."""
     imu = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU and v}
-    if not imu or not len(fd.yaw_change_):
+    if not (imu or every) or not len(fd.yaw_change_):
         return
     st, en = np.asarray(fd.start_s_, float), np.asarray(fd.end_s_, float)
 
@@ -1620,6 +1639,10 @@ def bridge_foot_yaw(fd: FootDisplacement, foot_gaps: dict, stream=None) -> None:
 
     yc = np.array(fd.yaw_change_, dtype=float)
     gy = np.array(getattr(fd, "gap_yaw_", np.zeros(len(yc))), dtype=float)
+    if every:
+        fd.yaw_change_ = np.array([turn(min(st[k], en[k - 1]) if k else st[k], en[k]) for k in range(len(yc))])
+        fd.gap_yaw_ = np.zeros(len(yc))
+        return
     for k in range(len(yc)):
         if over(st[k], en[k]):
             yc[k] = turn(st[k], en[k])

@@ -190,6 +190,10 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
     info["freezes"] = window_episodes(info["freezes"], t0, t1, clip=True)
     if info.get("yaw_turns") is not None:  # decision W329: a yaw-rate turn counts on the side of its larger part
         info["yaw_turns"] = [r for r in info["yaw_turns"] if t0 <= 0.5 * (r["start_s"] + r["end_s"]) <= t1]
+    if info.get("trunk_yaw_turns") is not None:  # decision W418: the waist unit's turns, as W329's
+        info["trunk_yaw_turns"] = [r for r in info["trunk_yaw_turns"] if t0 <= 0.5 * (r["start_s"] + r["end_s"]) <= t1]
+    if info.get("trunk_contacts") is not None:  # decision W418: the waist unit's contacts inside the window
+        info["trunk_contacts"] = [r for r in info["trunk_contacts"] if t0 <= r["start_s"] <= t1]
     if info["transfers"] is None and "transfers" not in result.info:
         del info["transfers"]
     if warnings:

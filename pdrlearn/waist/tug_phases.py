@@ -33,7 +33,8 @@ TUG_PHASE_COLUMNS = ("phase", "start_s", "end_s", "duration_s")
 #: decision W293: the summary's flat duration keys (sessions.csv keeps scalars only, C12), one per phase
 TUG_PHASE_KEYS = tuple(f"tug_{p}_s" for p in TUG_PHASES)
 #: decision W325: tug_trials.csv's columns, in order
-TUG_TRIAL_COLUMNS = ("trial", "start_s", "end_s", "tug_time_s", *TUG_PHASE_KEYS, "n_steps", "n_turns")
+TUG_TRIAL_COLUMNS = ("trial", "start_s", "end_s", "tug_time_s", *TUG_PHASE_KEYS, "n_steps", "n_turns",
+                     "steps_source", "turns_source")  # W419: the unit each count comes from
 #: decision W307: without a second turns.csv turn, take the turn-to-sit from the yaw-rate turns (W308: adopted)
 TUG_YAW_TURN_TO_SIT = True
 #: the phases as the console line names them
@@ -124,10 +125,13 @@ def segment_phases(rise, sit, turns: pd.DataFrame | None, steps: pd.DataFrame | 
 
 
 def tug_trial_table(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None, yaw_turns=None,
-                    yaw_to_sit: bool | None = None) -> pd.DataFrame:
+                    yaw_to_sit: bool | None = None, foot: pd.DataFrame | None = None) -> pd.DataFrame:
     """Decision W325: tug_trials.csv's rows (:data:`TUG_TRIAL_COLUMNS`), one per TUG trial
     (:func:`~pdrlearn.waist.transfers.tug_trial_pairs`) of a track's transfers, with each trial's W293 phases
-    (:func:`segment_phases`), its walking contacts from the rise's start to the sit's end and its turns.csv turns."""
+    (:func:`segment_phases`), its walking contacts from the rise's start to the sit's end and its turns.csv turns.
+    Decision W419: ``foot`` (a two-unit track's foot strides, ``turns`` then the foot's turns.csv) counts the steps
+    (:func:`~pdrlearn.track.trunk_tug.foot_step_count`); ``steps_source`` / ``turns_source`` name the unit."""
+    from pdrlearn.track.trunk_tug import FOOT, WAIST, foot_step_count
     from pdrlearn.waist.transfers import flag_texts, tug_trial_pairs
 
     rows = []
@@ -141,8 +145,11 @@ def tug_trial_table(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame |
             phases = tug_phase_summary(segment_phases(rise, sit, turns, steps, yaw_turns, yaw_to_sit))
             rows.append({"trial": k + 1, "start_s": t0, "end_s": t1, "tug_time_s": t1 - t0,
                          **{key: phases[key] for key in TUG_PHASE_KEYS},
-                         "n_steps": int(((contacts >= t0) & (contacts <= t1)).sum()),
-                         "n_turns": len(_turns_inside(turns, float(rise["end_s"]), float(sit["start_s"])))})
+                         "n_steps": (int(((contacts >= t0) & (contacts <= t1)).sum()) if foot is None
+                                     else foot_step_count(foot, t0, t1)),  # W419
+                         "n_turns": len(_turns_inside(turns, float(rise["end_s"]), float(sit["start_s"]))),
+                         "steps_source": WAIST if foot is None else FOOT,
+                         "turns_source": WAIST if foot is None else FOOT})
     return pd.DataFrame(rows, columns=list(TUG_TRIAL_COLUMNS))
 
 

@@ -1,0 +1,134 @@
+"""A short per-patient clinical summary of track outputs (decision W420, docs/decisions/waist.md): ``pdrlearn report
+SOURCE --out OUT --clinical`` writes ``OUT/clinical.md`` beside report.md.
+
+One block per patient (summary.json ``subject``, else the session): the patient and session ids, the recording date
+(summary.json ``recording_start``, else the tracked session's meta.json via run.json, L298's rule), then one line per
+clinical test a track measured - the corridor walk test (6MWT), the TUG with its phases, steps and turn time, the
+10 m walk, the gait speed and cadence - each naming the unit it comes from. Nothing research-only: no errors against
+a reference, no model or validation warnings, no per-stride tables.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pandas as pd
+
+from pdrlearn.errors import DataError
+
+#: decision W420: the body unit each pipeline's measures come from, as the summary names it
+UNIT_NAMES = {"plasys": "foot unit", "waist-pll": "lower-back unit", "waist-pendulum": "lower-back unit"}
+
+
+def _read(path: Path) -> dict:
+    try:
+        return json.loads(path.read_text())
+    except (OSError, ValueError) as exc:
+        raise DataError(f"{path}: cannot read it as JSON ({type(exc).__name__}); re-run the track that wrote it "
+                        "(decision W420)") from None
+
+
+def recording_date(summary: dict, folder: Path) -> str | None:
+    """Decision W420: the recording's date (YYYY-MM-DD): summary.json ``recording_start`` (L298), else the tracked
+    session's meta.json (run.json ``session``) read by L298's :func:`~pdrlearn.track.clock.recording_start`."""
+    text = summary.get("recording_start")
+    if isinstance(text, str) and text:
+        return text[:10]
+    run = folder / "run.json"
+    session = _read(run).get("session") if run.is_file() else None
+    meta = Path(session) / "meta.json" if session else None
+    if meta is None or not meta.is_file():
+        return None
+    from pdrlearn.track.clock import recording_start
+
+    try:
+        start = recording_start(_read(meta), str(meta))
+    except DataError:
+        return None
+    return None if start is None else start.date().isoformat()
+
+
+def _s(v) -> str:
+    return f"{v:.1f} s"
+
+
+def tug_line(summary: dict, folder: Path) -> str | None:
+    """Decision W420: the TUG's line - its time, phases, steps and turn time, each with its source unit (W419's
+    tug_trials.csv ``steps_source`` / ``turns_source``); several trials: each trial's time and their median."""
+    from pdrlearn.waist.tug_phases import PHASE_LABELS, TUG_PHASES
+
+    path = folder / "tug_trials.csv"
+    trials = pd.read_csv(path) if path.is_file() else None
+    if summary.get("tug_time_s") is None:
+        if not summary.get("n_tug_trials") or trials is None:
+            return None
+        times = ", ".join(_s(t) for t in trials["tug_time_s"])
+        return (f"- TUG: {len(trials)} trials {times} (median {_s(summary['tug_trials_median_s'])}); chair transfers: "
+                "lower-back unit")
+    phases = summary.get("tug_phases") or {}
+    parts = [f"{PHASE_LABELS[p]} {_s(phases[p]['duration_s'])}" for p in TUG_PHASES if phases.get(p)]
+    text = f"- TUG: {_s(summary['tug_time_s'])} ({', '.join(parts)})"
+    if trials is not None and len(trials):
+        row = trials.iloc[0]
+        steps_from = row.get("steps_source", "waist")
+        turns_from = row.get("turns_source", "waist")
+        count = f"{int(row['n_steps'])} steps ({_unit(steps_from)}"
+        count += ", turning steps not seen)" if steps_from == "waist" else ")"
+        text += f"; {count}"
+        if summary.get("tug_turn_s") is not None:
+            text += f"; turn {_s(summary['tug_turn_s'])} ({_unit(turns_from)})"
+    return text + "; chair transfers: lower-back unit"
+
+
+def _unit(source: str) -> str:
+    return "foot unit" if source == "foot" else "lower-back unit"
+
+
+def clinical_lines(summary: dict, folder: Path) -> list[str]:
+    """Decision W420: one line per clinical test the track in ``folder`` (its ``summary``) measured."""
+    unit = UNIT_NAMES.get(str(summary.get("pipeline")), str(summary.get("pipeline")))
+    lines = []
+    if summary.get("walk_test_distance_m") is not None:
+        corridor = summary.get("corridor_m")
+        laps = f", {summary['n_laps']} laps of {corridor:g} m" if corridor and summary.get("n_laps") is not None \
+            else ""
+        dur = summary.get("walk_test_duration_s")
+        lines.append(f"- Corridor walk test (6MWT): {summary['walk_test_distance_m']:.0f} m{laps}"
+                     f"{f' in {dur / 60:.1f} min' if dur else ''} ({unit})")
+    tug = tug_line(summary, folder)
+    if tug:
+        lines.append(tug)
+    if summary.get("ten_m_walk_speed_mps") is not None:
+        lines.append(f"- 10 m walk: {summary['ten_m_walk_speed_mps']:.2f} m/s ({_s(summary['ten_m_walk_time_s'])}; "
+                     f"{unit})")
+    if summary.get("gait_speed_mps") is not None:
+        cad = summary.get("median_cadence_spm")
+        lines.append(f"- Gait speed {summary['gait_speed_mps']:.2f} m/s"
+                     f"{f', cadence {cad:.0f} steps/min' if cad is not None else ''} ({unit})")
+    return lines
+
+
+def clinical_markdown(source: str | Path) -> str:
+    """Decision W420: clinical.md's text for every track output (summary.json) under ``source``; one
+    :class:`DataError` line when there is none."""
+    root = Path(source)
+    found = sorted(root.rglob("summary.json")) if root.is_dir() else []
+    tracks = [(p.parent, _read(p)) for p in found]
+    tracks = [(f, s) for f, s in tracks if s.get("pipeline") in UNIT_NAMES]
+    if not tracks:
+        raise DataError(f"{root}: --clinical reads track outputs (summary.json of `pdrlearn track`) and there is none "
+                        "under it; track the sessions first (pdrlearn track SESSION --out DIR) or drop --clinical")
+    patients: dict[str, list] = {}
+    for folder, summary in tracks:
+        patients.setdefault(str(summary.get("subject") or summary.get("session")), []).append((folder, summary))
+    out = ["# Clinical summary", ""]
+    for patient, rows in patients.items():
+        out += [f"## Patient {patient}", ""]
+        for folder, summary in rows:
+            date = recording_date(summary, folder)
+            when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
+            out.append(f"Session {summary.get('session')} ({folder.name}), {when}:")
+            out += clinical_lines(summary, folder) or ["- no clinical test measured"]
+            out.append("")
+    return "\n".join(out)
