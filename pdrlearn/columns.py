@@ -462,7 +462,17 @@ SESSIONS: tuple[Column, ...] = (
                                          "walking bout reaching 14 m, straight (L312); empty on a shorter or "
                                          "turning walk (L313)"),
     ("ten_m_walk_speed_mps", "m/s", "number", "10 m / ten_m_walk_time_s (L312)"),
-    ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); empty when there is one"),
+    ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); with one, the walking bouts that "
+                                     "tracked under RUN_OUT_M short of the walkway and so are no trial (L524); "
+                                     "else empty"),
+    ("n_ten_m_walk_trials", "count", "integer", "10 m walk test: the walking bouts timed as the first "
+                                                "(ten_m_walk_trials.csv, L524): a self-selected and a fast trial "
+                                                "are 2"),
+    ("ten_m_walk_max_speed_mps", "m/s", "number", "the fastest of ten_m_walk_trials.csv's speed_mps (the fast "
+                                                  "trial, L524); empty without a trial"),
+    ("ten_m_walk_zones_m", "m", "number", "summary.json only (a list): the walkway the 10 m walk keys were timed on, "
+                                          "acceleration zone, timed metres, deceleration zone (2, 10, 2; track "
+                                          "--ten-m-walk, L522)"),
     ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from the first walking bout's start (standing) to "
                                     "where its path passes 7.62 m, straight (L387); empty on a shorter or turning "
                                     "walk and on the lower back (L313)"),
@@ -823,6 +833,18 @@ TUG_PHASE_TABLE: tuple[Column, ...] = (
                              "before the sit; the others: their row's end_s"),
     ("duration_s", "s", "number", "end_s - start_s; the phases do not tile the TUG (standing before the first step "
                                   "or before the sit is in none)"),
+    *_clocks("start_s", "end_s"),
+)
+
+#: decision L524: a foot track's ten_m_walk_trials.csv (only with a timed 10 m walk)
+TEN_M_WALK_TRIAL_TABLE: tuple[Column, ...] = (
+    ("trial", "count", "integer", "1, 2, ... in time order: each walking bout long enough (acceleration zone + timed "
+                                  "+ deceleration zone, 2 + 10 + 2 m or track --ten-m-walk's, L522), straight and "
+                                  "level (L312, L313, L524)"),
+    ("start_s", "s", "number", "when the path passes the end of the acceleration zone (the timed stretch's start)"),
+    ("end_s", "s", "number", "when the path passes the end of the timed stretch"),
+    ("time_s", "s", "number", "end_s - start_s (the first trial's is the summary's ten_m_walk_time_s)"),
+    ("speed_mps", "m/s", "number", "the timed metres / time_s"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -1481,7 +1503,8 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
-    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, FLIGHTS, RAMPS, STAIRS, RIDES, WAIST_STEPS,
+    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, TEN_M_WALK_TRIAL_TABLE,
+    FREEZES, FLIGHTS, RAMPS, STAIRS, RIDES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 

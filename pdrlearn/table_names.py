@@ -16,6 +16,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "direction_changes.csv",  # L412
                                 "transfers.csv", "tug_phases.csv",  # W293
                                 "tug_trials.csv",  # W325
+                                "ten_m_walk_trials.csv",  # L524
                                 "freezes.csv",
                                 "flights.csv",  # W417
                                 "ramps.csv",  # L301

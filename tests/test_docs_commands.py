@@ -288,6 +288,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
     from pdrlearn.track.splits import parse_splits
     from pdrlearn.track.units import parse_units
+    from pdrlearn.track.walk_test import parse_ten_m_walk
     from pdrlearn.track.window import parse_window
     from pdrlearn.waist.lengths import get_step_length
 
@@ -331,6 +332,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "window"): parse_window,  # decision L105
         ("track", "per"): parse_per,  # decision L277
         ("track", "splits"): parse_splits,  # decision L411 (B307)
+        ("track", "ten_m_walk"): parse_ten_m_walk,  # decision L522
         ("track", "per_align"): _one_of(PER_ALIGNS),  # decision L299
         ("steps", "time_origin"): _one_of(TIME_ORIGINS),  # decision E173
         **{(c, "bout_rule"): _one_of(BOUT_PRESETS, case=False) for c in ("track", "track-all", "run")},  # decision L163

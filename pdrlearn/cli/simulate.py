@@ -9,6 +9,7 @@ import typer
 
 from pdrlearn.cli.common import FORCE_HELP, json_safe, non_session_files, print_json, progress, replaced
 from pdrlearn.errors import DataError
+from pdrlearn.route_forms import route_help
 
 #: decision S30: the step length (m) and step time (s) `simulate --step-length/--step-time` accept: from a 0.1 m
 #: shuffle to a 1.0 m stride-long step, from 24 steps/min; the simulator walked all four corners with the steps
@@ -33,6 +34,11 @@ RUNNING_SPEED_MPS = 2.0
 #: decision S43: `simulate --sit-start/--sit-end` (s seated at the start / end of the session); decision S61: up to a
 #: day (was an hour, S43, set when a simulated hour took ~1 GB of memory, S44; S62 cut it further), as `lie:S`
 SIT_MAX_S = 86_400.0  # = pdrlearn.sim.lying.MAX_LIE_S (tests/test_sim_lying.py)
+#: decision S90: `simulate --stand` (the standstill before and after the walk, Python's ``stand_s``, default 5 s,
+#: thesis ch.8). 0.5 s: the trial's clinic TUG (the walker goes at once); under it the first swing would start
+#: before the settled stance the body model begins with (an assumption: no seed gives a shortest standstill);
+#: up to an hour
+STAND_RANGE_S = (0.5, 3600.0)
 
 
 
@@ -54,20 +60,7 @@ def simulate_cmd(
     route: str | None = typer.Option(
         None,
         "--route",
-        # decision S56: the ramp item listed; the empty [i][/i] keeps rich from reading ':M:' as an emoji code
-        help="Your own path instead of a scenario, e.g. 'straight:10, up:12, turn:180, down:12, "
-        "backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md). Stairs: "
-        "'up:N[i][/i][:RISE:RUN][:step-to-step]' and 'down:N[i][/i][:RISE:RUN][:step-to-step]' (N stairs, "
-        "default 0.17 m rise x 0.28 m run; step-to-step: both feet on each stair, one stair per stride; decision "
-        "S80). Ramps: 'slope:M[i][/i]:PCT' walks M metres "
-        "(horizontal) on a ramp of PCT % (-30 to 30, < 0 downhill; 'slope:9:8.33' is a 1:12 ramp; S37). "
-        "Rides without steps: 'lift:+9' / "
-        "'lift:-9' (a lift, metres up / down), 'escalator:+6' (30 deg, 0.5 m/s, straight ahead; 1-60 m); "
-        "'trolley:20' walks 20 m pushing a trolley (decisions S45, S46); 'side:3' / 'side:-3' side-steps 3 m "
-        "left / right facing ahead (S49). 'backward:8[i][/i]:direct' reverses straight out of forward walking, "
-        "no closing step or stop (S67). In bed: 'lie:28800' sits on a bed edge, lies down 8 h turning over 2 "
-        "times an hour ('lie:28800:4' 4 times, 'lie:600:0' never), sits up and stands up, no steps (lying.csv, "
-        "rolls.csv; up to 86400 s; S58-S61).",
+        help=route_help(),  # decision S91: every item kind the parser accepts, from its table (S56: no emoji)
     ),
     user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty; "
@@ -151,6 +144,11 @@ def simulate_cmd(
         0.0, "--sit-start", help=f"Start the session seated this long (s, 0-{SIT_MAX_S:g}; trunk leaning forward "
         "10-25 deg, feet flat), then stand up (a sit-to-stand) before the standstill and the walk; transfers.csv "
         "has the stand-up (decision S43)."),
+    stand: float = typer.Option(
+        5.0, "--stand", help=f"The standstill before the first and after the last movement (s, "
+        f"{STAND_RANGE_S[0]:g}-{STAND_RANGE_S[1]:g}; default 5, thesis ch.8): with --sit-start / --sit-end it lies "
+        "between the stand-up and the walk and between the walk and the sit-down, so it counts in a TUG time; "
+        "--stand 0.5 for a clinic TUG's 'go' (decision S90)."),
     sit_end: float = typer.Option(
         0.0, "--sit-end", help=f"End the session by sitting down after the last standstill and staying seated "
         f"this long (s, 0-{SIT_MAX_S:g}; decision S43)."),
@@ -252,6 +250,9 @@ def simulate_cmd(
     for name, v in (("--foot", foot), ("--paretic-side", paretic_side)):  # decisions S54, S55
         if v not in ("left", "right"):
             raise DataError(f"{name} {v!r}: give left or right")
+    if not (math.isfinite(stand) and STAND_RANGE_S[0] <= stand <= STAND_RANGE_S[1]):  # decision S90
+        raise DataError(f"--stand {stand:g}: give the standstill before and after the walk in seconds, "
+                        f"{STAND_RANGE_S[0]:g} to {STAND_RANGE_S[1]:g} (e.g. --stand 0.5 for a clinic TUG)")
     for name, v in (("--sit-start", sit_start), ("--sit-end", sit_end)):  # decision S43
         if not (math.isfinite(v) and 0.0 <= v <= SIT_MAX_S):
             raise DataError(f"{name} {v:g}: give the seated time in seconds, 0 (none) to {SIT_MAX_S:g}")
@@ -278,6 +279,7 @@ def simulate_cmd(
         step_length_asymmetry=step_length_asymmetry,
         sit_start_s=sit_start,
         sit_end_s=sit_end,
+        stand_s=stand,  # decision S90
         instrumented_foot=foot,
         paretic_side=paretic_side,
     )

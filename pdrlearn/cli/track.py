@@ -248,6 +248,11 @@ SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times 
                           "time from the first step's start, interpolated within the stride that crosses it, the "
                           "split time and mean speed since the previous mark) and a summary line; marks beyond the "
                           "path are named in one warning (decision L411).")
+TEN_M_WALK_OPT = typer.Option(None, "--ten-m-walk", metavar="ACCEL,TIMED,DECEL", help="The 10 m walk test's "
+                              "walkway in metres: an acceleration zone, the timed distance and a deceleration zone "
+                              "(default 2,10,2 on 14 m, L312; e.g. 2,6,2: a 10 m walkway's middle 6 m). Every "
+                              "straight walking bout that long is timed: the summary's ten_m_walk_* keys (the first "
+                              "trial), n_ten_m_walk_trials and OUT/ten_m_walk_trials.csv (decisions L522, L524).")
 
 STAIR_RISE_OPT = typer.Option(None, "--stair-rise", metavar="METRES", help="The stairs' rise (e.g. 0.17): "
                               "OUT/stairs.csv (one row per stair flight of a foot track) gets n_stairs = "
@@ -318,6 +323,7 @@ def track(
     corridor: float = CORRIDOR_OPT,
     walk_test_duration: float = WALK_TEST_DURATION_OPT,
     splits: str = SPLITS_OPT,
+    ten_m_walk: str = TEN_M_WALK_OPT,
     stair_rise: float = STAIR_RISE_OPT,
     stair_grade: float = STAIR_GRADE_OPT,
     bout_rule: str = BOUT_RULE_OPT,
@@ -370,6 +376,8 @@ def track(
         pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from the 1st step
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
+
+        pdrlearn track out/sim/A_u1 --ten-m-walk 2,6,2 --out out/A_10mwt   # a 10 m walkway's middle 6 m (L522)
 
         pdrlearn track out/sim/D_u1 --stair-rise 0.181 --out out/D_stairs   # stairs.csv: 1 flight (D's turns climb)
 
@@ -470,6 +478,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    common_span: bool = False, window: str | None = None, per: str | None = None,
                    per_align: str = "start", corridor: float | None = None, splits: str | None = None,
                    walk_test_duration: float | None = None,
+                   ten_m_walk: str | None = None,
                    stair_rise: float | None = None, stair_grade: float | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
@@ -519,6 +528,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.splits import parse_splits
 
     splits_m = parse_splits(splits)  # decision B307: before any session
+    from pdrlearn.track.walk_test import parse_ten_m_walk
+
+    ten_m_walk_m = parse_ten_m_walk(ten_m_walk)  # decision L522: before any session
     from pdrlearn.track.stair_flights import stair_rise as check_stair_rise
 
     stair_rise_m = check_stair_rise(stair_rise)  # decision B348: before any session
@@ -617,6 +629,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
             "per_align": per_align, "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
+            "ten_m_walk_m": ten_m_walk_m,
             "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
@@ -928,6 +941,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                            fix_period_s=o["fix_period"], start=o["start_ll"])
     if o["start_alt"]:  # decision L56: the z column starts at the given altitude (as Tracker(start=(x, y, ALT)))
         result.trajectory["z"] = result.trajectory["z"] + o["start_alt"]
+    if o.get("ten_m_walk_m") is not None:  # decision L522: the walkway of the 10 m walk test's keys and trials
+        result.info["ten_m_walk_m"] = o["ten_m_walk_m"]
     if o.get("stair_rise_m") is not None:  # decision L432: stairs.csv's n_stairs (clinical_tables reads it)
         result.info["stair_rise_m"] = o["stair_rise_m"]
         import logging
@@ -1202,6 +1217,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
                f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"
+               f"{'ten_m_walk_trials.csv, ' if summary.get('n_ten_m_walk_trials') else ''}"  # decision L524
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'flights.csv, ' if (out / 'flights.csv').is_file() else ''}"
                f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"

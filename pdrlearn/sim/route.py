@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 
 from pdrlearn.errors import DataError
+from pdrlearn.route_forms import ROUTE_FORMS
 from pdrlearn.sim.freeze import check_freeze
 from pdrlearn.sim.lying import check_lie
 from pdrlearn.sim.path import (
@@ -59,8 +60,8 @@ from pdrlearn.sim.vehicle import check_vehicle
 
 #: decision S80: the stairs option of the step-to-step gait (``up:N[:RISE:RUN]:step-to-step``)
 STEP_TO_STEP = "step-to-step"
-ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "pivot", "stand", "sit", "lift",
-               "escalator", "trolley", "side", "freeze", "lie", "vehicle")
+#: decision S91: the kinds the parser accepts are route_forms.ROUTE_FORMS' (simulate --route's help lists them)
+ROUTE_KINDS = tuple(ROUTE_FORMS)
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
 #: decision L468: the example a bad item's error line gives for its own kind (else :data:`_USAGE`)
 ITEM_EXAMPLES = {"straight": "straight:10", "curve": "curve:90:2", "slope": "slope:100:10 (100 m at a 10 % grade; "

@@ -683,7 +683,8 @@ def _basic(result: TrackResult, out: dict) -> None:
                                 result.info.get("yaw_turns")))
     from pdrlearn.track.walk_test import t25fw, ten_metre_walk
 
-    out.update(ten_metre_walk(result.steps))  # decisions L312, L313: the 10 m walk test's middle 10 m
+    # decisions L312, L313: the 10 m walk test's middle 10 m; L522: --ten-m-walk's walkway; L524: every trial
+    out.update(ten_metre_walk(result.steps, result.info.get("ten_m_walk_m")))
     out.update(t25fw(result.steps))  # decision L387: the timed 25-foot walk from standing
     from pdrlearn.track.stair_flights import flight_summary
 

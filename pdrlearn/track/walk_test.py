@@ -63,13 +63,59 @@ def _path(st: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
     return t, d, x, y
 
 
-def ten_metre_walk(steps: pd.DataFrame) -> dict:
+def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None) -> dict:
     """Decision L312: :data:`KEYS` of a tracked step table: the first walking bout (L104's bouts,
     :func:`pdrlearn.track.clinical.bout_rows`) whose path reaches ZONE_M + TIMED_M + ZONE_M = 14 m is timed over
     its middle 10 m (module docstring); ``ten_m_walk_note`` says why there is no time (decision L313: a walk shorter
     than 14 m is not timed - no zone is shortened and nothing extrapolated -, nor one that turns inside its first
-    14 m or whose rows there lack a length; nor a lower-back track, :data:`LOWER_BACK_NOTE`), else None."""
-    return timed_walk(steps, ZONE_M, TIMED_M, KEYS, LOWER_BACK_NOTE, short_walk_note)
+    14 m or whose rows there lack a length; nor a lower-back track, :data:`LOWER_BACK_NOTE`), else None.
+    ``zones`` (decision L522, ``track --ten-m-walk``): the walkway's (acceleration, timed, deceleration) metres
+    instead of (2, 10, 2). Decision L524: :data:`TRIAL_KEYS` count every timed bout (:func:`ten_metre_walk_trials`)."""
+    accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
+    out = timed_walk(steps, accel, timed, KEYS, LOWER_BACK_NOTE,
+                     lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)), decel_m=decel)
+    trials = ten_metre_walk_trials(steps, zones)
+    out["n_ten_m_walk_trials"] = len(trials)  # decision L524
+    missed = _near_misses(steps, accel + timed + decel)
+    if out["ten_m_walk_time_s"] is not None and missed:  # decision L524: a trial lost to L349's few cm is said
+        out["ten_m_walk_note"] = (
+            "; ".join(f"walking bout {n} tracked {math.floor(m * 100.0 + 1e-6) / 100.0:.2f} m, short of "
+                      f"{accel + timed + decel:g} m" for n, m in missed)
+            + ": not timed, so the timed trial(s) in ten_m_walk_trials.csv may not be the first walk (L313); have the "
+            "walker start and stop beyond the walkway's ends (a run-out, decisions L349, L524)")
+    out["ten_m_walk_max_speed_mps"] = float(trials["speed_mps"].max()) if len(trials) else None
+    out["ten_m_walk_zones_m"] = [accel, timed, decel]  # decision L522: the walkway the keys were timed on
+    return out
+
+
+#: decision L524: ten_m_walk_trials.csv's columns (one row per timed straight bout)
+TRIAL_COLUMNS = ("trial", "start_s", "end_s", "time_s", "speed_mps")
+#: decision L524: the summary keys of every timed bout (beside :data:`KEYS`, the first one's)
+TRIAL_KEYS = ("n_ten_m_walk_trials", "ten_m_walk_max_speed_mps", "ten_m_walk_zones_m")
+
+
+def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None) -> pd.DataFrame:
+    """Decision L524: ``ten_m_walk_trials.csv``: every walking bout timed as L312 times the first one (its
+    acceleration zone, timed metres, deceleration zone reached, straight, level, every length known; L313's
+    refusals skip a bout), one row each (:data:`TRIAL_COLUMNS`: ``start_s`` / ``end_s`` where the path passes the
+    timed stretch's start and end). A self-selected and a fast trial in one recording are two rows."""
+    accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
+    rows = []
+    if len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns) and not _is_lower_back(steps):
+        for a, b in bout_rows(steps):
+            got = _time_bout(steps, a, b, accel, timed, decel)
+            if isinstance(got, tuple):
+                rows.append((len(rows) + 1, got[0], got[1], got[1] - got[0], timed / (got[1] - got[0])))
+    return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
+
+
+def _near_misses(steps: pd.DataFrame, need: float) -> list[tuple[int, float]]:
+    """Decisions L349, L524: (bout number from 1, tracked metres) of each walking bout short of ``need`` by less than
+    :data:`RUN_OUT_M` - a walk of the walkway's length that tracked a few cm short."""
+    if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns) or _is_lower_back(steps):
+        return []
+    got = [(n, _time_bout(steps, a, b, 0.0, need, 0.0)) for n, (a, b) in enumerate(bout_rows(steps), start=1)]
+    return [(n, m) for n, m in got if isinstance(m, float) and need - RUN_OUT_M <= m < need]
 
 
 def t25fw(steps: pd.DataFrame) -> dict:
@@ -83,14 +129,44 @@ def t25fw(steps: pd.DataFrame) -> dict:
                                              "a shorter walk is not timed"))
 
 
+def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: float, decel_m: float):
+    """Decisions L312, L313, L434: the bout ``steps.iloc[a:b]`` timed over the ``timed_m`` after its first
+    ``zone_m`` when its path reaches ``zone_m + timed_m + decel_m``: the times ``(t0, t1)``; a float (the bout's
+    known length) when it is shorter; a str (the note) when it reaches that length but is refused."""
+    need = zone_m + timed_m + decel_m
+    t, d, x, y = _path(steps.iloc[a:b])
+    length = np.abs(steps["length_m"].to_numpy(float)[a:b])
+    known = np.concatenate([[0.0], np.cumsum(np.nan_to_num(length))])  # a stride without a length as 0 m
+    reach = np.flatnonzero(known >= need)
+    if not len(reach):
+        return float(known[-1])
+    k = int(reach[0])
+    if not np.isfinite(d[: k + 1]).all() or not np.isfinite(t[: k + 1]).all():
+        return f"a stride of the first {need:g} m has no length or no time (decision L313); not timed"
+    n_stair = flight_strides(steps.iloc[a:a + k])
+    if n_stair:  # decision L434: a walkway test is timed on level ground only; L438: a flight, not one stride
+        return (f"the first {need:g} m of the walk hold a stair flight of {n_stair} stair stride(s) "
+                f"(|dz_m| >= 0.10 m, L179; 2 or more in a row, L438): a {timed_m:g} m walk test is "
+                "timed on a level walkway (decision L434); not timed - stairs.csv has the flights")
+    end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
+    if math.hypot(*end) < STRAIGHT_MIN * need:
+        return (f"the first {need:g} m of the walk are not straight: a turn or a reversal "
+                f"(straight-line {math.hypot(*end):.1f} m; decision L313): a {timed_m:g} m walk "
+                "test needs a straight walkway; not timed")
+    t0, t1 = np.interp([zone_m, zone_m + timed_m], d[: k + 1], t[: k + 1])
+    if not t1 > t0:
+        return "the rows' times do not increase (decision L313); not timed"
+    return float(t0), float(t1)
+
+
 def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[str, str, str], lower_back_note: str,
-               short_note) -> dict:
+               short_note, decel_m: float | None = None) -> dict:
     """Decisions L312, L387: ``keys`` (time, speed, note) of the first walking bout whose path reaches ``zone_m`` +
-    ``timed_m`` + ``zone_m``, timed over the ``timed_m`` after its first ``zone_m`` (L313's refusals; ``short_note(
-    longest, need)`` the note of a walk too short)."""
+    ``timed_m`` + ``decel_m`` (default ``zone_m``; L522), timed over the ``timed_m`` after its first ``zone_m``
+    (L313's refusals, :func:`_time_bout`; ``short_note(longest, need)`` the note of a walk too short)."""
     time_key, speed_key, note_key = keys
     out = dict.fromkeys(keys)
-    need = 2 * zone_m + timed_m
+    decel_m = zone_m if decel_m is None else decel_m
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns):
         out[note_key] = "no steps"
         return out
@@ -99,49 +175,53 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         return out
     longest = 0.0
     for a, b in bout_rows(steps):
-        t, d, x, y = _path(steps.iloc[a:b])
-        length = np.abs(steps["length_m"].to_numpy(float)[a:b])
-        known = np.concatenate([[0.0], np.cumsum(np.nan_to_num(length))])  # a stride without a length as 0 m
-        reach = np.flatnonzero(known >= need)
-        if not len(reach):
-            longest = max(longest, float(known[-1]))
+        got = _time_bout(steps, a, b, zone_m, timed_m, decel_m)
+        if isinstance(got, float):
+            longest = max(longest, got)
             continue
-        k = int(reach[0])
-        if not np.isfinite(d[: k + 1]).all() or not np.isfinite(t[: k + 1]).all():
-            out[note_key] = (f"a stride of the first {need:g} m has no length or no time (decision L313); "
-                             "not timed")
+        if isinstance(got, str):
+            out[note_key] = got
             return out
-        n_stair = flight_strides(steps.iloc[a:a + k])
-        if n_stair:  # decision L434: a walkway test is timed on level ground only; L438: a flight, not one stride
-            out[note_key] = (f"the first {need:g} m of the walk hold a stair flight of {n_stair} stair stride(s) "
-                             f"(|dz_m| >= 0.10 m, L179; 2 or more in a row, L438): a {timed_m:g} m walk test is "
-                             "timed on a level walkway (decision L434); not timed - stairs.csv has the flights")
-            return out
-        end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
-        if math.hypot(*end) < STRAIGHT_MIN * need:
-            out[note_key] = (f"the first {need:g} m of the walk are not straight: a turn or a reversal "
-                             f"(straight-line {math.hypot(*end):.1f} m; decision L313): a {timed_m:g} m walk "
-                             "test needs a straight walkway; not timed")
-            return out
-        t0, t1 = np.interp([zone_m, zone_m + timed_m], d[: k + 1], t[: k + 1])
-        if not t1 > t0:
-            out[note_key] = "the rows' times do not increase (decision L313); not timed"
-            return out
-        out[time_key], out[speed_key] = float(t1 - t0), float(timed_m / (t1 - t0))
+        out[time_key], out[speed_key] = got[1] - got[0], timed_m / (got[1] - got[0])
         return out
-    out[note_key] = short_note(longest, need)
+    out[note_key] = short_note(longest, zone_m + timed_m + decel_m)
     return out
 
 
-def short_walk_note(longest: float, need: float = 2 * ZONE_M + TIMED_M) -> str:
+def short_walk_note(longest: float, need: float = 2 * ZONE_M + TIMED_M,
+                    zones: tuple[float, float, float] = (ZONE_M, TIMED_M, ZONE_M)) -> str:
     """Decision L349: the note of a walk whose longest bout ``longest`` (m) is under ``need``: the longest shown
     rounded DOWN to 2 decimals (13.998 m read "14.0 m" beside "no walking bout of 14 m"), and when it falls short by
     under :data:`RUN_OUT_M` the advice to walk past the walkway's ends (an exact 14 m walk can track a little short)."""
     shown = math.floor(longest * 100.0 + 1e-6) / 100.0  # + 1e-6: a cumulative sum of 12.25 m is 12.2499...
-    note = (f"no walking bout of {need:.0f} m ({ZONE_M:.0f} m to accelerate, {TIMED_M:.0f} m timed, {ZONE_M:.0f} m to "
+    note = (f"no walking bout of {need:g} m ({zones[0]:g} m to accelerate, {zones[1]:g} m timed, {zones[2]:g} m to "
             f"decelerate; the longest {shown:.2f} m; decision L313): a shorter walk is not timed")
     if need - RUN_OUT_M <= longest < need:  # L349: a 14 m walkway walked end to end can track a few cm short
-        return (note + f" - the walk tracked {need - longest:.2f} m short of {need:.0f} m: have the walker start "
+        return (note + f" - the walk tracked {need - longest:.2f} m short of {need:g} m: have the walker start "
                 f"and stop at least one step beyond the walkway's ends (a run-out), so the bout is longer than "
-                f"{need:.0f} m (decision L349); or time a window of it with track --window and read gait_speed_mps")
-    return note + " - time a window of it with track --window and read gait_speed_mps"
+                f"{need:g} m (decision L349); or " + _ZONES_HINT)
+    return note + " - " + _ZONES_HINT
+
+
+#: decision L522: what a shorter walkway's note points to (the trial's 10 m walkway: 2 m, 6 m timed, 2 m)
+_ZONES_HINT = ("a shorter walkway is timed with track --ten-m-walk ACCEL,TIMED,DECEL (e.g. 2,6,2 on a 10 m "
+               "walkway: its middle 6 m; decision L522)")
+
+
+def parse_ten_m_walk(text: str | None) -> tuple[float, float, float] | None:
+    """Decision L522: ``track --ten-m-walk ACCEL,TIMED,DECEL``'s metres checked before any session (None: the
+    default 2,10,2 walkway of L312)."""
+    if text is None:
+        return None
+    from pdrlearn.errors import DataError
+
+    try:
+        parts = tuple(float(v) for v in str(text).split(","))
+    except ValueError:
+        parts = ()
+    if (len(parts) != 3 or not all(math.isfinite(v) for v in parts) or parts[0] < 0 or parts[2] < 0
+            or parts[1] <= 0):
+        raise DataError(f"--ten-m-walk {text}: give the walkway's metres ACCEL,TIMED,DECEL - the acceleration "
+                        "zone, the timed distance (> 0) and the deceleration zone (>= 0), e.g. --ten-m-walk 2,6,2 "
+                        "for a 10 m walkway timed over its middle 6 m")
+    return parts

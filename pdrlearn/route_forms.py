@@ -1,0 +1,40 @@
+"""Decision S91: every item kind ``--route`` accepts, with its form - the one table the parser
+(:func:`pdrlearn.sim.route.parse_route`, its ``ROUTE_KINDS``) and ``simulate --route``'s help are built from, so the
+help lists every kind. No imports: ``import pdrlearn.cli`` stays light (tests/test_cli_import_light.py)."""
+
+#: decision S91: kind -> its form and meaning, in the help's order (the parser accepts exactly these kinds)
+ROUTE_FORMS = {
+    "straight": "'straight:M[:GAIT][:PACE]' M metres ahead, GAIT short / normal / long, PACE slow / normal / fast "
+                "(this walk's own speed, 'straight:14:fast'; S88)",
+    "curve": "'curve:DEG:R[:GAIT]' an arc of DEG degrees (+ left) of radius R m",
+    "slope": "'slope:M:PCT[:GAIT]' M metres (horizontal) on a ramp of PCT % (-30 to 30, < 0 downhill; "
+             "'slope:9:8.33' is a 1:12 ramp; S37)",
+    "up": "'up:N[:RISE:RUN][:step-to-step]' N stairs up (default 0.17 m rise x 0.28 m run; step-to-step: both feet "
+          "on each stair, S80)",
+    "down": "'down:N[:RISE:RUN][:step-to-step]' N stairs down",
+    "backward": "'backward:N[:direct]' N backward steps (0.5: half a step, S89; direct: reversing straight out of "
+                "forward walking, no stop, S67)",
+    "turn": "'turn:DEG' turning in place by stepping (+ left; S9)",
+    "pivot": "'pivot:DEG[:N[:STEP]]' turning on the spot without stopping, in N short steps (0, the default: one "
+             "per few degrees) each moving the body STEP m (default 0.15; S41)",
+    "stand": "'stand:S' standing S seconds",
+    "sit": "'sit:S' sitting down, seated S seconds, standing up (a chair; transfers.csv)",
+    "lift": "'lift:+M' / 'lift:-M' a lift M metres up / down, no steps (S45)",
+    "escalator": "'escalator:+M' 30 deg, 0.5 m/s, straight ahead (1-60 m; S45)",
+    "trolley": "'trolley:M[:GAIT]' M metres pushing a trolley (S46)",
+    "side": "'side:M' side-stepping M metres left (-M right) facing ahead (S49)",
+    "freeze": "'freeze:S[:HZ[:ACC]]' a freezing-of-gait episode: trembling in place S seconds (S51)",
+    "lie": "'lie:S[:ROLLS]' sits on a bed edge, lies down S seconds turning over ROLLS times an hour (default 2; 0 "
+           "never), sits up and stands up (lying.csv, rolls.csv; up to 86400 s; S58-S61)",
+    "vehicle": "'vehicle:S[:RMS[:RISE]]' standing S seconds in a moving vehicle, no steps (RMS its vibration, "
+               "drawn when empty; RISE m climbed; S71, S75)",
+}
+
+
+def route_help() -> str:
+    """Decision S91: ``simulate --route``'s help, every kind of :data:`ROUTE_FORMS` listed. ``[i][/i]`` after each
+    ':' keeps rich from reading ':M:' as an emoji code (S56)."""
+    items = "; ".join(ROUTE_FORMS.values())
+    return ("Your own path instead of a scenario, items separated by commas, e.g. 'straight:10, up:12, turn:180, "
+            "down:12, backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md). Every item: "
+            + items + ".").replace(":", ":[i][/i]")
