@@ -38,6 +38,7 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.displace.foot import check_settings as check_foot_settings
+from pdrlearn.displace.force_channels import live_force
 from pdrlearn.displace.force_check import (
     checked_stance,
     imu_strides_in,
@@ -1173,6 +1174,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             raise DataError("plasys: method M2 is accelerometer + force, and ignore_force=True (--ignore-force) "
                             "leaves the force out; use --method M1 or M3, or drop --ignore-force")
         if not ignore_force:  # decision B284: an unloaded offset (raw ADC counts) subtracted, with one line
+            session, dead_line = live_force(session)  # steps decision 74: a dead channel named and left out
+            warnings += [dead_line] if dead_line else []
             session, tare_line = tared(session, foot)
             warnings += [tare_line] if tare_line else []
         stance, stance_source, lines, imu_spans = checked_stance(session, foot, use_force=not ignore_force)  # L365/6
