@@ -119,3 +119,7 @@ def test_lone_forefoot_falls_back_to_the_imu_steps_75(walk, tmp_path):
     text = " | ".join(res.info["warnings"])
     assert "fForceA.csv (heel) is flat at 0 N" in text and "fForceB.csv (forefoot) alone times" in text
     assert res.info["stance_source"].startswith("inertial")
+    from pdrlearn.errors import MissingSensorError
+
+    with pytest.raises(MissingSensorError, match=r"needed by M2 .*fForceA.csv \(heel\) is flat at 0 N"):
+        _track(dead, method="M2")

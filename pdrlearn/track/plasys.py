@@ -1168,6 +1168,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                           heading == "waist"))
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
     stance_source, imu_spans = "inertial", np.zeros((0, 2))
+    dead_line = None  # steps decision 74
     fev, force_offset = None, None  # decisions L388 / L389: the force detector's events, the insoles' clock offset
     if cfg["force"]:
         if ignore_force and method == "M2":  # decision L366
@@ -1183,8 +1184,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if stance_source == "inertial" and not ignore_force:
             if method == "M2":
                 raise MissingSensorError(
-                    f"session '{session.name}' has no fForceA/fForceB needed by M2 (accelerometer + force); "
-                    "use --method M1 or M3, or record the force sensors")
+                    f"session '{session.name}' has no fForceA/fForceB needed by M2 (accelerometer + force)"
+                    + (f" ({dead_line})" if dead_line else "") + "; use --method M1 or M3, or record the force sensors")
             warnings.append(NO_FORCE_STANCE)
     else:
         stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
