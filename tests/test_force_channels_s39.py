@@ -123,3 +123,25 @@ def test_lone_forefoot_falls_back_to_the_imu_steps_75(walk, tmp_path):
 
     with pytest.raises(MissingSensorError, match=r"needed by M2 .*fForceA.csv \(heel\) is flat at 0 N"):
         _track(dead, method="M2")
+
+
+def _insole_csv(walk, path):
+    """The trial's mk.py "plain" layout: time_s, acc in g, gyro in deg/s, heel, midfoot, forefoot (N)."""
+    a, g = (pd.read_csv(walk / f"{n}.csv") for n in ("fAccelerometer", "fGyroscope"))
+    h, f = (pd.read_csv(walk / f"{n}.csv")["x"].to_numpy(float) for n in ("fForceA", "fForceB"))
+    n = min(len(a), len(g), len(h), len(f))
+    df = pd.DataFrame({"time_s": a.timestamp[:n] / 1000.0, **{f"acc_{c}_g": a[c][:n] / 9.80665 for c in "xyz"},
+                       **{f"gyr_{c}_dps": np.degrees(g[c][:n]) for c in "xyz"}})
+    df["heel"], df["midfoot"], df["forefoot"] = h[:n], 0.5 * (h[:n] + f[:n]), f[:n]
+    df.to_csv(path, index=False)
+    return path
+
+
+def test_import_names_a_midfoot_channel_and_where_to_add_it_b399(walk, tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    csv = _insole_csv(walk, tmp_path / "insole.csv")
+    assert main(["import", str(csv), "--out", str(tmp_path / "imp"), "--heel", "heel", "--toe", "forefoot"]) == 0
+    err = capsys.readouterr().err
+    assert "unused columns: midfoot" in err  # before: this line alone
+    assert "midfoot: a further force channel?" in err and "into the forefoot column" in err and "B399" in err

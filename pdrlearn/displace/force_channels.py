@@ -99,3 +99,19 @@ def one_channel_filled(session):
     out = copy.copy(session)
     out.streams = {**session.streams, other: type(s)(other, s.t, np.zeros_like(s.values))}
     return out
+
+
+#: decision B399: words in an unused column's name that mark a further force channel (a midfoot / arch sensor)
+EXTRA_FORCE_WORDS = ("midfoot", "midsole", "arch", "force", "fsr")
+
+
+def extra_force_line(unused: list[str]) -> str | None:
+    """Decision B399: one line when an unused column of an import looks like a further force channel (a midfoot
+    sensor): pdrlearn reads two channels and its detectors use their sum, so say where to add it."""
+    hit = [c for c in unused if any(w in "".join(ch for ch in c.lower() if ch.isalnum()) for w in EXTRA_FORCE_WORDS)]
+    if not hit:
+        return None
+    return (f"{', '.join(hit)}: a further force channel? pdrlearn reads two, heel (--heel, fForceA.csv) and forefoot "
+            "(--toe, fForceB.csv), and its force detectors use their sum (thesis ch.5.2); add a midfoot column into "
+            "the forefoot column before importing (the heel alone times the contact, steps decision 75), or import "
+            "a total force as --heel alone (docs/data.md, Force insoles; decision B399)")
