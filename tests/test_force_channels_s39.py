@@ -145,3 +145,15 @@ def test_import_names_a_midfoot_channel_and_where_to_add_it_b399(walk, tmp_path,
     err = capsys.readouterr().err
     assert "unused columns: midfoot" in err  # before: this line alone
     assert "midfoot: a further force channel?" in err and "into the forefoot column" in err and "B399" in err
+
+
+def test_no_stance_line_says_why_the_insoles_give_no_toe_off_b400(walk, tmp_path):
+    from pdrlearn.cli.common import NO_STANCE_CLAUSE, gait_line
+    from pdrlearn.io import read_session
+
+    s = read_session(walk)
+    with_force = gait_line(_track(walk).summary(s))
+    assert NO_STANCE_CLAUSE in with_force and "with force insoles too: --toe-off takes the gyroscope's" in with_force
+    assert "steps decision 76" in with_force and "B400" in with_force
+    without = gait_line(_track(walk, ignore_force=True).summary(s))
+    assert without.endswith(NO_STANCE_CLAUSE) and "B400" not in without  # an IMU-only stance: as before
