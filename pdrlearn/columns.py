@@ -241,10 +241,11 @@ SESSIONS: tuple[Column, ...] = (
                                            "empty on the lower back"),
     ("side_distance_m", "m", "number", "foot: summed |length_m| of the strides n_side_strides counts (L484); empty "
                                        "on the lower back"),
-    ("n_flight_phases", "count", "integer", "foot: runs of the foot accelerometer under 0.3 g for more than "
-                                            "0.1 s (first to last low sample 0.1 s or more, W409; both feet off the "
-                                            "ground: jumps, running; W363); empty on the lower back"),
-    ("flight_time_s", "s", "number", "foot: the flight phases' time in all (W363)"),
+    ("n_flight_phases", "count", "integer", "runs of the tracked unit's accelerometer (foot; lower back: the "
+                                            "waist's, W416) under 0.3 g for more than 0.1 s (first to last low "
+                                            "sample 0.1 s or more, W409; both feet off the ground: jumps, running; "
+                                            "W363)"),
+    ("flight_time_s", "s", "number", "the flight phases' time in all (W363, W416)"),
     ("direction_changes", "count", "integer", "foot: changes of travel direction (steps.csv travel: forward / "
                                               "backward / left / right, turn and empty rows skipped; "
                                               "direction_changes.csv's rows, L412); a turn is not one; empty on "
@@ -301,9 +302,10 @@ SESSIONS: tuple[Column, ...] = (
     ("walk_test_distance_m", "m", "number", "--corridor only: n_laps x corridor_m + the final partial lap (its tracked "
                                             "distance x the last lap's corridor / tracked ratio, at most corridor_m; "
                                             "ATS 2002 as recalled, L383)"),
-    ("walk_test_duration_s", "s", "number", "--corridor only: the span walk_test_distance_m covers (--window's, else "
-                                            "the first step's start to the last step's end); a note when it is over "
-                                            "7 minutes without --window (L462)"),
+    ("walk_test_duration_s", "s", "number", "--corridor only: the span walk_test_distance_m covers (--walk-test-"
+                                            "duration's from the first step, L516; --window's; else the first "
+                                            "step's start to the last step's end); a note when it is over 7 minutes "
+                                            "without either (L462)"),
     ("walk_test_distance_per_minute_m", "m", "number", "--corridor only, summary.json only (a list): the corridor "
                                                      "distance in each full minute from the first step (L383)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
@@ -771,6 +773,14 @@ PERIODS: tuple[Column, ...] = (
     ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
     ("position_sigma_end_m", "m", "number", "the position's 1-sigma at the period's end (trajectory.csv pos_sigma_m, "
                                             "L128); empty for an aided track"),
+    ("start_x_m", "m", "number", "the track's x (trajectory.csv) at the period's start: the last trajectory row at or "
+                                 "before it, the first row before the track begins (L514)"),
+    ("start_y_m", "m", "number", "the track's y at the period's start (L514)"),
+    ("end_x_m", "m", "number", "the track's x at the period's end (L514)"),
+    ("end_y_m", "m", "number", "the track's y at the period's end (L514)"),
+    ("dx_m", "m", "number", "end_x_m - start_x_m: the period's net displacement along x (distance_m is the path "
+                            "length; L514)"),
+    ("dy_m", "m", "number", "end_y_m - start_y_m (L514)"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -841,6 +851,19 @@ FREEZES: tuple[Column, ...] = (
     ("duration_s", "s", "number", "end_s - start_s"),
     ("peak_fi", "ratio", "number", "the largest freeze index (3-8 Hz / 0.5-3 Hz power, Moore 2008) of its 4 s "
                                    "windows"),
+    *_clocks("start_s", "end_s"),
+)
+
+#: decision W417: a track's flights.csv, one row per flight phase of either unit (W363's test, W409's rule, W416)
+FLIGHTS: tuple[Column, ...] = (
+    ("unit", _ID, "text", "foot or waist: the accelerometer (fAccelerometer.csv / wAccelerometer.csv) that read it"),
+    ("start_s", "s", "number", "its first sample under 0.3 g, on the session's clock"),
+    ("end_s", "s", "number", "its last sample under 0.3 g plus one sample interval"),
+    ("flight_time_s", "s", "number", "end_s - start_s (first to last low sample 0.1 s or more apart, W409)"),
+    ("jump_height_m", "m", "number", "g x flight_time_s^2 / 8, the flight-time method (W417): assumes take-off and "
+                                     "landing in the same posture and the unit in free fall from take-off to "
+                                     "touch-down; a landing on bent knees overstates it; the sample interval limits "
+                                     "flight_time_s (+-0.05 s at 20 Hz: +-0.05 m at a 0.4 s flight)"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -1044,6 +1067,10 @@ GAIT_STEPS: tuple[Column, ...] = (
     ("step_length_m", "m", "number", "the two feet's tracked rest positions at start_s and ic_s differenced along "
                                      "the walking direction (L310); empty in a turn, off the walk's first axis, at "
                                      "the closing step and for labelled contacts"),
+    ("contact_source", _ID, "text", "the detector that timed the landing foot's contacts (steps 72): force "
+                                    "(accel-force), imu (the accelerometer detector) or force+imu (a stitched track, "
+                                    "L405); both feet imu when only one had force sensors or with --ignore-force; "
+                                    "also gait_summary.json's contact_source {left, right}"),
 )
 #: ``pdrlearn gait``'s gait_cycles.csv (decisions L262, L287): one row per gait cycle of either foot
 GAIT_CYCLES: tuple[Column, ...] = (
@@ -1147,11 +1174,13 @@ LAPS: tuple[Column, ...] = (
                              "also with --window: standing after the test is no lap's time)"),
     ("duration_s", "s", "number", "end_s - start_s, rests included (L384)"),
     ("corridor_laps", "count", "integer", "corridor lengths it counts: round(tracked_m / the median stretch); 2 or "
-                                          "more a missed turn, 0 the final partial lap (L384)"),
+                                          "more a missed turn, 0 the final partial lap or a last lap that turned "
+                                          "back short (L384, L517)"),
     ("tracked_m", "m", "number", "the track's distance over it (steps.csv's lengths)"),
     ("distance_m", "m", "number", "corridor_laps x corridor_m, or the final lap's scaled tracked distance (L383)"),
-    ("distance_source", _ID, "text", "corridor, tracked x scale (the final lap: x the last lap's corridor / tracked "
-                                     "ratio) or tracked (no lap completed)"),
+    ("distance_source", _ID, "text", "corridor, tracked x scale (the final lap or a last lap that turned back "
+                                     "short, L517: x the last lap's corridor / tracked ratio) or tracked (no lap "
+                                     "completed)"),
     ("speed_mps", "m/s", "number", "distance_m / duration_s (E98's name, as bouts.csv)"),
     ("rest_s", "s", "number", "its time outside bouts.csv's walking bouts (a rest at a cone stays in its lap, L384)"),
     ("n_steps", "count", "integer", "steps of both feet whose contact lies in it (as bouts.csv's n_steps)"),
@@ -1442,7 +1471,7 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
-    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, RAMPS, STAIRS, RIDES, WAIST_STEPS,
+    DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, FREEZES, FLIGHTS, RAMPS, STAIRS, RIDES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 

@@ -16,7 +16,9 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "direction_changes.csv",  # L412
                                 "transfers.csv", "tug_phases.csv",  # W293
                                 "tug_trials.csv",  # W325
-                                "freezes.csv", "ramps.csv",  # L301
+                                "freezes.csv",
+                                "flights.csv",  # W417
+                                "ramps.csv",  # L301
                                 "stairs.csv",  # L432
                                 "rides.csv",  # L377
                                 "steps.csv", "steps.csv (foot)",  # E137

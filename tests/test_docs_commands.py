@@ -359,6 +359,8 @@ def _validators() -> dict[tuple[str, str], object]:
         ("import", "time_unit"): time_unit,
         ("import", "acc_unit"): unit_word("acc"),
         ("import", "gyro_unit"): unit_word("gyro"),
+        ("import", "heel_unit"): unit_word("heel"),  # decision B397
+        ("import", "toe_unit"): unit_word("toe"),
         ("import", "frames"): parse_frame,
         ("import", "encoding"): codecs.lookup,  # decision B344: a text encoding Python knows (cp1252, latin-1 ...)
         ("export", "frame"): parse_frame,  # decision E57: the waist unit's axes, as import --frames

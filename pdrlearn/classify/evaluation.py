@@ -475,6 +475,12 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
             out["rate_mismatch"][s.name] = off
             lines.setdefault(classifier_rate_warning(off, resample_hint=True), []).append(s.where)
     log_grouped(lines)  # one line per distinct rate pair, naming the sessions
+    from pdrlearn.classify.force_scale import force_scale_line, model_force
+
+    record = model_force(model)  # decision C153: a session whose force is in another unit than the training's
+    out["force_scale"] = [line for s in sessions if (line := force_scale_line(record, s))]
+    for line in out["force_scale"]:
+        log.warning(line)
 
 
 def _untrained_tasks(model, windows, out: dict) -> None:

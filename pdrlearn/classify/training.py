@@ -1675,6 +1675,11 @@ def train_user(
         summary["length_bounds_m"] = bounds
     if calibration is not None:
         summary["distance_calibration"] = calibration
+    from pdrlearn.classify.force_scale import training_force
+
+    force = training_force(sessions)  # decision C153: the force unit and level the force features were fitted on
+    if force is not None:
+        summary["force"] = force
     for t, m in out.items():
         data = datas[t]
         summary["steps"][t] = {

@@ -537,6 +537,14 @@ def run(
             required, optional = bundle.sensors_of(use)
             rates = {n: r for n, r in rates.items() if n[0] in {u[0] for u in use}}  # a foot-only replay: no waist
             bundle.check_streams(rates if no_resample else {n: float("nan") for n in rates}, where=where, units=use)
+            from pdrlearn.classify.force_scale import bundle_force, force_scale_line
+
+            # decision C153: the bundle's training force against the session's (B398: none in an older bundle)
+            line = force_scale_line(bundle_force(bundle.manifest), session)
+            if line and "foot" in use:
+                import logging
+
+                logging.getLogger("pdrlearn.cli").warning(line)
             from pdrlearn.track.plasys import require_stride_cover
 
             # decisions L161, L170, E111: as track's; B230: a clock moved by --clock-offset / --align-units before B21's

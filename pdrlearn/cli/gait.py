@@ -58,7 +58,7 @@ def gait_lines(summary: dict) -> list[str]:
 
 
 def _summary_json(res: dict) -> dict:
-    out = {k: res[k] for k in ("walk", "bouts", "toe_off", "reason", "warnings", "sessions")}
+    out = {k: res[k] for k in ("walk", "bouts", "toe_off", "reason", "warnings", "sessions", "contact_source")}
     ref = res.get("reference")
     out["reference"] = None if ref is None else {k: ref[k] for k in ("walk", "bouts", "toe_off", "reason")}
     return out
@@ -75,6 +75,10 @@ def register(app: typer.Typer) -> None:
                                  "gait_cycles.csv and gait_bouts.csv (default: print only)."),
         force: bool = typer.Option(False, "--force", help=FORCE_HELP),
         as_json: bool = typer.Option(False, "--json", help="Print gait_summary.json's object."),
+        ignore_force: bool = typer.Option(False, "--ignore-force", help="Time both feet's contacts and toe-offs with "
+                                          "the foot IMU's detector, the force sensors left out (as track's, L366). "
+                                          "Without it a pair whose feet would be timed by different detectors (force "
+                                          "on one foot only) is timed by the IMU on both, with one line (steps 72)."),
     ):
         """Bilateral gait of one walk recorded with a unit on each foot: step time (one foot's initial contact
         to the other's next), step length (the two feet's tracked positions along the walk, straight steps,
@@ -95,13 +99,16 @@ def register(app: typer.Typer) -> None:
         time per foot is given with its asymmetry (L327). A pair whose meta.json "foot" (import --foot) contradicts
         the LEFT / RIGHT order is refused (B321), as are two feet whose rates differ by over 10 % or whose spans
         overlap for under 50 % of the shorter (B322); with no "foot" recorded one warning says the side is taken from
-        the argument order.
+        the argument order. Both feet are timed by one detector (steps 72): with force sensors on one foot only, or
+        with --ignore-force, both by the IMU's; gait_steps.csv's and gait_summary.json's contact_source say which.
 
         Examples:
 
           pdrlearn gait datasets/real/gaitmap_level_left datasets/real/gaitmap_level_right
 
           pdrlearn gait LEFT RIGHT --out gait_out --json
+
+          pdrlearn gait LEFT RIGHT --ignore-force   # both feet timed by the IMU, the insoles left out
         """
         from pdrlearn.atomic import atomic_directory
         from pdrlearn.cli.common import existed, out_folder, print_json, refused_output, replaced
@@ -111,7 +118,8 @@ def register(app: typer.Typer) -> None:
 
         if out is not None:
             out_folder(out, "gait", force=force, inputs=(left_dir, right_dir))
-        res = pair_sessions(left_dir, right_dir)  # bad input fails here, before any folder is made
+        # bad input fails here, before any folder is made
+        res = pair_sessions(left_dir, right_dir, ignore_force=ignore_force)
         summary = json_safe(_summary_json(res))
         if out is not None:
             from pdrlearn.track.gait_tables import gait_tables

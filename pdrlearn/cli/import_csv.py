@@ -88,6 +88,10 @@ def import_command(
                                  "'(g)' or '_g', else m/s2)."),
     gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s, or the size of one count, '1/16.4 "
                                   "deg/s' (B313) (default: the header's, else rad/s)."),
+    heel_unit: str = typer.Option(None, "--heel-unit", help="The --heel force column's unit: N, kgf (kg, kp; x "
+                                  "9.80665) or counts (raw ADC, unitless; B286) (default: the header's '(kg)' or "
+                                  "'_kg', '_N', '_adc', else N; B397)."),
+    toe_unit: str = typer.Option(None, "--toe-unit", help="The --toe force column's unit, as --heel-unit (B397)."),
     frames: str = typer.Option(None, "--frames", help="The unit's axes, e.g. x=forward,y=up,z=right (default: "
                                "none; commands infer it from the data, decision D8)."),
     sensor_height: float = typer.Option(None, "--sensor-height", help="The waist unit's height above "
@@ -188,6 +192,8 @@ def import_command(
         pdrlearn import trial.mat --acc acc --gyro gyr --acc-unit g --gyro-unit deg/s --out s01  # data.acc, data.gyr
 
         pdrlearn import matrix.csv --no-header --time 0 --acc 1,2,3 --gyro 4,5,6 --out s01  # writematrix
+
+        pdrlearn import insole.csv --heel heel --toe forefoot --heel-unit counts --toe-unit counts --out s02  # ADC
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
@@ -241,7 +247,8 @@ def import_command(
     if not isinstance(mu, dict):
         raise DataError(f"{mapping}: \"units\" must be an object such as {{\"acc\": \"g\", \"gyro\": \"deg/s\"}}")
     units = {k: v for k, v in mu.items() if k != "time"}
-    units.update({k: v for k, v in (("acc", acc_unit), ("gyro", gyro_unit)) if v is not None})
+    units.update({k: v for k, v in (("acc", acc_unit), ("gyro", gyro_unit), ("heel", heel_unit), ("toe", toe_unit))
+                  if v is not None})  # decision B397: the force columns' units as options too
     # the output, checked before any work: never the input's folder, never a folder of other files
     src = csv.resolve()
     if out.exists() and not out.is_dir():

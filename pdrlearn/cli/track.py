@@ -239,6 +239,10 @@ CORRIDOR_OPT = typer.Option(None, "--corridor", metavar="METRES", help="A corrid
                             "METRES + the final partial lap, n_laps, distance per minute from the first step, "
                             "fatigue_index (decisions L383, L384). A 6MWT inside a longer "
                             "recording: with --window T0,T0+360.")
+WALK_TEST_DURATION_OPT = typer.Option(None, "--walk-test-duration", metavar="SECONDS", help="With --corridor: "
+                                      "the test lasts SECONDS from the first step (360 for a 6MWT, 120 for a "
+                                      "2MWT, the ATS 2002 protocol's 'go'); walking after it (back to a chair) "
+                                      "is not scored (decision L516).")
 SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times at distances along the tracked path "
                           "(e.g. 5,10,20: a sprint's marks, metres from the first step): OUT/splits.csv (each mark's "
                           "time from the first step's start, interpolated within the stride that crosses it, the "
@@ -312,6 +316,7 @@ def track(
     per: str = PER_OPT,
     per_align: str = PER_ALIGN_OPT,
     corridor: float = CORRIDOR_OPT,
+    walk_test_duration: float = WALK_TEST_DURATION_OPT,
     splits: str = SPLITS_OPT,
     stair_rise: float = STAIR_RISE_OPT,
     stair_grade: float = STAIR_GRADE_OPT,
@@ -361,6 +366,8 @@ def track(
         pdrlearn track out/sim/A_u1 --per 60 --per-align first-step --out out/A_min   # minutes from the first step
 
         pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
+
+        pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from the 1st step
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
 
@@ -462,6 +469,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
                    per_align: str = "start", corridor: float | None = None, splits: str | None = None,
+                   walk_test_duration: float | None = None,
                    stair_rise: float | None = None, stair_grade: float | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
@@ -505,6 +513,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.corridor import corridor_length
 
     corridor_m = corridor_length(corridor)  # decision B293: before any session
+    from pdrlearn.track.corridor import walk_test_duration as check_walk_test_duration
+
+    walk_test_s = check_walk_test_duration(walk_test_duration, corridor_m)  # decision B396: before any session
     from pdrlearn.track.splits import parse_splits
 
     splits_m = parse_splits(splits)  # decision B307: before any session
@@ -605,7 +616,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
-            "per_align": per_align, "corridor_m": corridor_m, "splits_m": splits_m,
+            "per_align": per_align, "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
             "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
@@ -1027,7 +1038,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
 
         span = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None  # L383: the test's
         laps, keys, lines = corridor_laps(result.steps, clinical_tables(result, bouts)["turns.csv"], o["corridor_m"],
-                                          bouts, span=span)
+                                          bouts, span=span, duration_s=o.get("walk_test_s"))  # L516
         summary.update(keys)
         if lines:
             import logging
@@ -1185,6 +1196,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
                f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
+               f"{'flights.csv, ' if (out / 'flights.csv').is_file() else ''}"
                f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
                f"{'laps.csv, ' if summary.get('corridor_m') is not None else ''}"
                f"{'splits.csv, ' if summary.get('splits_m') else ''}"

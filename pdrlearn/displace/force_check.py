@@ -361,14 +361,15 @@ def force_offsets(session, foot) -> dict[str, float]:
     return out
 
 
-def offset_line(offsets: dict[str, float]) -> str | None:
-    """Decision B284's warning: the channels whose unloaded offset was subtracted, and how to avoid it."""
+def offset_line(offsets: dict[str, float], *, suffix: str = ".csv",
+                fix: str = "tare the insole or subtract its unloaded reading before `pdrlearn import`") -> str | None:
+    """Decision B284's warning: the channels whose unloaded offset was subtracted, and how to avoid it (``suffix``
+    after each channel's name, ``fix`` the advice: steps decision 73's online detector names its columns)."""
     if not offsets:
         return None
-    parts = ", ".join(f"{n}.csv never drops below ~{v:.4g} in the foot's swings" for n, v in offsets.items())
+    parts = ", ".join(f"{n}{suffix} never drops below ~{v:.4g} in the foot's swings" for n, v in offsets.items())
     return (f"{parts} (an unloaded offset: raw ADC counts of an FSR insole?): subtracted before the force thresholds "
-            "(decision B284); tare the insole or subtract its unloaded reading before `pdrlearn import` to silence "
-            "this")
+            f"(decision B284); {fix} to silence this")
 
 
 def tared(session, foot):

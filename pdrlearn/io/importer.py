@@ -108,11 +108,15 @@ _UNIT_ALIASES = {
 }
 #: the option that gives a kind's unit (the others: the --mapping file's "units")
 _UNIT_OPTION = {"acc": "--acc-unit", "gyro": "--gyro-unit"}
+#: decision B397: the options that give a force column's unit (B286's N, kgf or counts)
+_FORCE_UNIT_OPTION = {"heel": "--heel-unit", "toe": "--toe-unit"}
 _HINT = re.compile(r"[\(\[]\s*([^\)\]]+?)\s*[\)\]]\s*$")
 #: unit suffixes of names such as ``acc_x_g``, ``gyr_x_dps``, ``time_ms`` (decision D12): suffix -> unit word
 _SUFFIX_UNITS = {"g": "g", "mg": "mg", "ms2": "m/s2", "mps2": "m/s2", "dps": "deg/s", "degs": "deg/s",
                  "rads": "rad/s", "radps": "rad/s", "ms": "ms", "s": "s", "us": "us", "ns": "ns", "ut": "ut",
-                 "hpa": "hpa", "pa": "pa", "kpa": "kpa"}
+                 "hpa": "hpa", "pa": "pa", "kpa": "kpa",
+                 # decision B397: force units as suffixes (heel_N, heel_kg, heel_adc), B286's words
+                 "n": "n", "kg": "kgf", "kgf": "kgf", "kp": "kgf", "adc": "counts", "counts": "counts"}
 #: suffixes that are also a name's own stem or axis (``x_g``, ``ax_g``?): read as a unit only after two parts
 _SHORT_SUFFIXES = {"g", "s"}
 
@@ -326,7 +330,7 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
     if len(hints) > 1:  # never one of them for all the columns: some would be converted wrongly
         raise DataError(f"{where}: the {kind} columns {', '.join(columns)} carry different units "
                         f"({', '.join(sorted(hints))}); convert them to one unit, or give it with "
-                        f"{_UNIT_OPTION.get(kind, '--mapping units')}")
+                        f"{_UNIT_OPTION.get(kind) or _FORCE_UNIT_OPTION.get(kind, '--mapping units')}")
     if len(hints) == 1:
         u = hints.pop()
         return u, table[u], "units row" if row else "header"
@@ -350,8 +354,8 @@ def _check_force_units(kind: str, given: str | None, columns: list[str], where: 
                             "(unitless: the force detectors are scale-free) with --mapping units (decision B286)")
         if w not in by_word:
             raise DataError(f"{where}: {kind} unit {text!r} ({src}) is not one of {', '.join(by_word.values())}; "
-                            "convert the column, rename its unit hint, or give its unit with --mapping units "
-                            "(decision B286)")
+                            "convert the column, rename its unit hint, or give its unit with "
+                            f"{_FORCE_UNIT_OPTION[kind]} (decision B286)")
 
 
 def _time_word(text: str) -> str:
@@ -1209,7 +1213,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"import: --add-gravity adds gravity to the accelerometer columns, and {where} has "
                                 "none mapped; map them with --acc X,Y,Z (decision B166)")
             stream = Stream(sensor, t, values)
-            opt = _UNIT_OPTION.get(kind, "--mapping units")
+            opt = _UNIT_OPTION.get(kind) or _FORCE_UNIT_OPTION.get(kind, "--mapping units")
             try:
                 check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
                             declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})", t=t, factor=factor)

@@ -253,6 +253,45 @@ FORCE_ON_FRAC, FORCE_OFF_FRAC, FORCE_AMP, FORCE_MIN_SWING_S = 0.10, 0.05, 1.0, 0
 FORCE_REF_STANCES = 5
 
 
+@dataclass
+class TareState:
+    """Steps decision 73: :func:`running_tare`'s state - the filtered |acc|'s extremes since the start, the time the
+    foot first swung (NaN: not yet), each force channel's running minimum and maximum, and the offsets last
+    subtracted (0: none)."""
+    amn: float = math.inf
+    amx: float = -math.inf
+    swung_t: float = math.nan
+    fmn: tuple = (math.inf, math.inf)
+    fmx: tuple = (-math.inf, -math.inf)
+    offset: tuple = (0.0, 0.0)
+
+
+def running_tare(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: TareState, amp: float = FORCE_AMP,
+                 off_frac: float = FORCE_OFF_FRAC, wait_s: float = MAX_STRIDE_S) -> tuple[np.ndarray, TareState]:
+    """Steps decision 73: decision B284's tare, causal, for the online accel-force detector (which sees no gyroscope).
+    The foot has swung once the filtered |acc| ``a`` has spanned ``amp`` since the start (thesis ch.5.2's swing test);
+    ``wait_s`` (the longest stride) later every channel that reaches ~0 unloaded has done so. From then on a force
+    channel (``f`` (n, 2), heel and toe, at times ``t``) whose running minimum stays above ``off_frac`` of its running
+    maximum (B284's test: the detector could never see a swing) has that minimum (its unloaded reading) subtracted,
+    clipped at 0. A channel that reaches ~0 in the swings is returned bit for bit."""
+    t, a = np.asarray(t, dtype=float), np.asarray(a, dtype=float)
+    f = np.asarray(f, dtype=float).reshape(len(a), 2)
+    if not len(a):
+        return f, state
+    amx = np.maximum.accumulate(np.concatenate([[state.amx], a]))[1:]
+    amn = np.minimum.accumulate(np.concatenate([[state.amn], a]))[1:]
+    fmn = np.minimum.accumulate(np.vstack([state.fmn, f]), axis=0)[1:]
+    fmx = np.maximum.accumulate(np.vstack([state.fmx, f]), axis=0)[1:]
+    swung_t = state.swung_t
+    if swung_t != swung_t and ((amx - amn) > amp).any():
+        swung_t = float(t[np.argmax((amx - amn) > amp)])
+    due = t >= swung_t + wait_s  # all False while swung_t is NaN
+    off = np.where(due[:, None] & (fmn > off_frac * fmx), fmn, 0.0)
+    out = np.where(off > 0, np.maximum(f - off, 0.0), f)
+    return out, TareState(float(amn[-1]), float(amx[-1]), swung_t, tuple(map(float, fmn[-1])),
+                          tuple(map(float, fmx[-1])), tuple(map(float, off[-1])))
+
+
 def force_onset(t: np.ndarray, acc: np.ndarray, force: np.ndarray) -> float:
     """Decision E50: the last stance onset (s) in one stride's samples by :func:`force_kernel` (a fresh state: the
     running maximum is the stride's), ``force`` (n, 2) heel and toe at the times ``t`` of ``acc`` (n, 3); the swing

@@ -19,7 +19,15 @@ import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
 # decision E50: the force detector's kernel lives with the streamed IC (numpy only); re-exported here
-from pdrlearn.kernels.contact import ForceParams, ForceState, force_kernel, last_impact, peak_time  # noqa: F401
+from pdrlearn.kernels.contact import (  # noqa: F401
+    ForceParams,
+    ForceState,
+    TareState,
+    force_kernel,
+    last_impact,
+    peak_time,
+    running_tare,
+)
 from pdrlearn.kernels.dsp import magnitude
 from pdrlearn.kernels.samples import values
 
@@ -671,10 +679,12 @@ class ForceProcessor:
     """:class:`pdrlearn.steps.AccelForceStepDetector`'s online detection (thesis ch.5.2): ``v`` (n, 5) is the
     acceleration and the two forces at its times."""
 
-    def __init__(self, det, fs: float, lowpass=NumpyLowpass, delay=None):
+    def __init__(self, det, fs: float, lowpass=NumpyLowpass, delay=None, tare: bool = True):
         self.det = det
         self.lp = lowpass(cutoff_below(det.cutoff_hz, fs), fs, order=det.order)
         self.state = ForceState()
+        self.tare = TareState() if tare else None  # steps decision 73: B284's tare, causal
+        self.offset_ = (0.0, 0.0)  # steps decision 73: the largest offsets subtracted so far (heel, toe)
         self.params = ForceParams(amp=det.threshold, on_frac=det.force_on_frac, off_frac=det.force_off_frac,
                                   min_swing_s=det.min_swing_s, subsample=subsample_of(det),
                                   ref_stances=int(getattr(det, "ref_stances", 0)),
@@ -682,7 +692,12 @@ class ForceProcessor:
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
         a = self.lp.push(magnitude(v[:, :3]))
-        f = v[:, 3] + v[:, 4]
+        forces = v[:, 3:5]
+        if self.tare is not None:  # steps decision 73: an unloaded offset (raw ADC counts) subtracted
+            forces, self.tare = running_tare(t, a, forces, self.tare, amp=self.params.amp,
+                                             off_frac=self.params.off_frac)
+            self.offset_ = tuple(map(max, self.offset_, self.tare.offset))
+        f = forces[:, 0] + forces[:, 1]
         ev, self.state = force_kernel(t, a, f, self.state, self.params)
         return ev
 

@@ -22,6 +22,7 @@ from pdrlearn.kernels.contact import (
     FORCE_OFF_FRAC,
     FORCE_ON_FRAC,
     FORCE_REF_STANCES,
+    MAX_STRIDE_S,
     PEAK_FRAC,
 )
 from pdrlearn.kernels.step_events import (  # decision L177: the online processors, numpy only given a low-pass
@@ -162,6 +163,17 @@ class AccelForceStepDetector(StepDetector):
         purpose = ("the accelerometer + force step detector (thesis ch.5.2; "
                    "use --detector accel without force)")
         session.require("fAccelerometer", "fForceA", "fForceB", purpose=purpose)
+        if session.has("fGyroscope"):  # steps decision 73: B284's tare (the CLI's), from the foot IMU's swings
+            from pdrlearn.displace.force_check import tared
+            from pdrlearn.orient import unit_data
+
+            try:
+                foot = unit_data(session, "foot", purpose=purpose, sensor_axes=True)
+            except DataError:  # a gyroscope this detector never needed (short, not covering): the online tare only
+                foot = None
+            session, line = (session, None) if foot is None else tared(session, foot)
+            if line:
+                log.warning("%s: %s", session.where, line)
         acc = session["fAccelerometer"]
         check_stream(acc, session)
         fa = stream_on(session, "fForceA", acc.t, purpose=purpose)
@@ -169,7 +181,26 @@ class AccelForceStepDetector(StepDetector):
         return acc.t, np.column_stack([acc.values, fa[:, 0], fb[:, 0]]), {}
 
     def _make_processor(self, fs: float, **context):
-        return ForceProcessor(self, fs, CausalLowpass)
+        return _TaredForceProcessor(self, fs, CausalLowpass, tare=True)  # steps decision 73
+
+
+class _TaredForceProcessor(ForceProcessor):
+    """Steps decision 73: the accel-force detector's processor, whose causal tare (:func:`running_tare`) says once
+    which unloaded offset it subtracts (B284's line)."""
+
+    said = False
+
+    def process(self, t, v):
+        ev = super().process(t, v)
+        if not self.said and any(self.offset_):
+            from pdrlearn.displace.force_check import offset_line
+
+            self.said = True
+            log.warning("%s online: %s", self.det.name, offset_line(
+                {n: o for n, o in zip(self.det.input_columns[3:], self.offset_, strict=True) if o > 0},
+                suffix="", fix=f"the strides of the first {MAX_STRIDE_S:g} s after the foot first swung were read "
+                "untared (missed); tare the insole or subtract its unloaded reading before pushing the samples"))
+        return ev
 
 
 # ---------------------------------------------------------------------------------------------------

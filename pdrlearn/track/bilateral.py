@@ -692,11 +692,14 @@ def foot_warnings(session, result) -> tuple[list[str], list[str]]:
     return kept, own
 
 
-def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
+def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False) -> dict:
     """Decisions L259-L263: read and track (offline plasys with ``toe_off=True``, L73) the left and the right foot's
     session folders of one walk and give :func:`bilateral_gait` of their tracks, plus ``"reference"``: the same
     measures of their labelled events when both sessions have them (L263), and ``"sessions"``: each track's
-    summary line data (``n_strides``, ``distance_m``)."""
+    summary line data (``n_strides``, ``distance_m``). Steps decision 72: both feet are timed by one detector - the
+    IMU's when only one foot has force sensors or the two tracks' contacts came from different detectors (one
+    warning line), or always with ``ignore_force`` (L366, ``gait --ignore-force``); ``"contact_source"`` gives each
+    foot's."""
     from pdrlearn.io import read_session
     from pdrlearn.track.gait_tables import pair_ids
     from pdrlearn.track.plasys import track_plasys
@@ -711,9 +714,27 @@ def pair_sessions(left_dir: Path, right_dir: Path) -> dict:
     side = side_warning(left_dir, right_dir, [s.meta for s in sessions])
     if side is not None:
         logging.getLogger(__name__).warning(side)
+    from pdrlearn.track.gait_contacts import contact_source, has_force, mixed_line
+
+    mixed = []  # steps decision 72: one detector times both feet
+    forced = {side: "force" if has_force(s) else "none" for side, s in zip(SIDES, sessions, strict=True)}
+    if not ignore_force and len(set(forced.values())) > 1:
+        ignore_force = True
+        mixed.append(mixed_line(forced, before=True))
     with no_model_as_info(GAIT_NO_MODEL_INFO):  # decision E153: gait takes no model; one info line, no warning
-        tracks = [track_plasys(s, toe_off=True) for s in sessions]
+        tracks = [track_plasys(s, toe_off=True, ignore_force=ignore_force) for s in sessions]
+        sources = dict(zip(SIDES, map(contact_source, tracks), strict=True))
+        if len(set(sources.values())) > 1:  # steps decision 72: e.g. one foot's insole check fell back (L365)
+            mixed.append(mixed_line(sources, before=False))
+            tracks = [t if sources[side] == "imu" else track_plasys(s, toe_off=True, ignore_force=True)
+                      for side, s, t in zip(SIDES, sessions, tracks, strict=True)]
+            sources = dict(zip(SIDES, map(contact_source, tracks), strict=True))
+    for line in mixed:
+        logging.getLogger(__name__).warning(line)
     out = bilateral_gait(tracks[0].steps, tracks[1].steps)
+    out["contact_source"] = sources  # steps decision 72: gait_summary.json's and gait_steps.csv's detector per foot
+    out["steps"]["contact_source"] = out["steps"]["side"].map(sources)
+    out["warnings"] += mixed
     labels = [label_steps(s) for s in sessions]
     out["reference"] = (bilateral_gait(labels[0], labels[1]) if all(x is not None for x in labels) else None)
     sharp = [impact_sharpness(s["fAccelerometer"].t, s["fAccelerometer"].values, t.steps["event_s"])

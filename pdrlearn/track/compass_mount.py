@@ -63,7 +63,9 @@ def declared_forward_off(session, placement: str = "waist") -> float | None:
 def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray) -> tuple[str | None, dict]:
     """Decision D25: (a warning line or None, ``info["compass_mount"]``) for a heading that reads the waist compass:
     the turn mismatch of :func:`turn_mismatch` (with at least :data:`MOUNT_MIN_TURNS` turns) and the declared
-    forward's offset of :func:`declared_forward_off`; the line says the track follows the foot's gyroscope heading."""
+    forward's offset of :func:`declared_forward_off`; the line says the track follows the foot's gyroscope heading.
+    Decision W415: when the waist frame check was not judged (a side or backward drill) there is no line, but
+    ``info["fallback"]`` is still set (the foot gyroscope's heading: the numbers D25 gave before W415)."""
     mismatch, n = turn_mismatch(foot, compass, keep)
     mirror = turn_mismatch(foot, compass, keep, mirrored=True)[0]
     off = declared_forward_off(session)
@@ -84,6 +86,10 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
     if not why:
         return None, info
     info["fallback"] = True
+    chk = session.declared_check("waist")
+    if chk is not None and chk.side_drill:  # decision W415: a side or backward drill, not a mounting fault: no line,
+        info["not_judged"] = chk.unchecked  # but the foot gyroscope's heading as before W415 (numbers unchanged)
+        return None, info
     return ("the waist unit's mounting does not match its frame - " + "; ".join(why) + " - so its compass would "
             "turn the whole track: this track's heading is the foot gyroscope's own (0 = the walker's facing at the "
             "first walk, L494/L510, as `--units foot`; --initial-heading DEG sets it, L511), not the compass's "

@@ -22,8 +22,14 @@ from pdrlearn.warning_lines import coded
 CONE_TURN_MIN_DEG = 135.0
 #: decision L384: a final stretch of at least this many median stretches warns of a missed turn
 MISSED_TURN_RATIO = 1.5
-#: decision L384: the median tracked stretch outside these multiples of the corridor warns of a wrong --corridor
-CORRIDOR_RATIO_RANGE = (0.5, 2.0)
+#: decision L518 (amends L384's 0.5-2 x on the foot): the relative scale error a track's laps may carry against the
+#: true corridor, by unit: foot 15 % (measured: the simulated 6MWT's tracked distance -0.93..+0.78 %, L385; the real
+#: foot's stride length 3.44 % MAE, README); the lower back keeps L384's 0.5-2 x (tolerance 100 %): L518's 50 % fired
+#: on 7 of 20 true corridors (uncalibrated waist-pendulum laps up to +87 % at 0.35 m steps), not adopted
+CORRIDOR_SCALE_TOL = {"foot": 0.15, "lower back": 1.0}
+#: decision L518: the laps' robust relative spread (1.4826 x MAD / median) counts this many times on top (the foot;
+#: the lower back keeps L384's fixed range)
+CORRIDOR_SPREAD_K = {"foot": 2.0, "lower back": 0.0}
 #: decision L407: a lap whose tracked metres are off its corridor lengths x the median lap by more than this fraction
 #: warns (uneven legs, e.g. a 5-10-5 shuttle, or a wrong --corridor); halfway between a turn placed a stride off on a
 #: 10 m corridor (~0.14) and the 0.5 at which L384 changes the lap's count
@@ -36,6 +42,16 @@ LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "tracke
 #: decision L462: the six-minute walk test's duration (s; ATS statement, Am J Respir Crit Care Med 2002;166:111-117,
 #: as recalled); a test span without --window longer than this plus one of L383's minutes gets a note
 SIX_MINUTES_S = 360.0
+#: decision L517: the last lap that ends at a cone turn is short (a turn back mid-corridor, e.g. the walk back to the
+#: chair after the test) when it tracks less than its corridor lengths x the median lap by more than this fraction
+#: (a foot track's laps agree within ~1 %: trial T1's 30.2 m +-1 %; a cone turn placed a stride off moves a 15 m
+#: lap's end ~9 %) ...
+SHORT_LAP_MIN_FRAC = 0.10
+#: decision L517: ... or by more than this many robust SDs (1.4826 x MAD) of the other single laps' tracked metres,
+#: whichever is larger (a lower-back track whose lap lengths change with speed, L407's waist-pll, spreads them)
+SHORT_LAP_SPREAD_K = 4.0
+#: decision L517: at least this many other single laps judge a last lap short (fewer: no spread to judge by)
+SHORT_LAP_MIN_LAPS = 2
 #: decision L383: the summary keys :func:`corridor_walk_test` gives
 KEYS = ("corridor_m", "n_laps", "walk_test_distance_m", "walk_test_duration_s", "walk_test_distance_per_minute_m",
         "fatigue_index")  # L462: walk_test_duration_s in the no-steps path and the report's walk-test table too
@@ -72,11 +88,14 @@ def _rest_s(start: float, end: float, bouts: pd.DataFrame | None) -> float:
 
 def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                   bouts: pd.DataFrame | None = None,
-                  span: tuple[float, float] | None = None) -> tuple[pd.DataFrame, dict, list[str]]:
+                  span: tuple[float, float] | None = None,
+                  duration_s: float | None = None) -> tuple[pd.DataFrame, dict, list[str]]:
     """Decisions L383, L384: ``(laps, summary, warnings)`` of a tracked step table walked up and down a corridor of
     ``corridor_m`` metres: laps.csv's rows (:data:`LAP_COLUMNS`), the summary's :data:`KEYS` and the warning lines
     (missed or extra turns, a corridor length far from the tracked laps). ``span``: the test's start and end (s;
-    ``track --window``'s), else the first step's start and the last step's end."""
+    ``track --window``'s), else the first step's start and the last step's end. ``duration_s`` (decision L516,
+    ``track --walk-test-duration``): the test runs ``duration_s`` seconds from the first step's start (inside
+    ``span`` when both are given)."""
     out = dict.fromkeys(KEYS)
     out["corridor_m"] = float(corridor_m)
     empty = pd.DataFrame(columns=list(LAP_COLUMNS))
@@ -85,8 +104,11 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     t, d = _distance_in_time(st)
     t0, t_end = (float(t[0]), float(st["end_s"].max())) if span is None else (float(span[0]), float(span[1]))
+    if duration_s is not None:  # decision L516: the 6MWT's minutes from "go", the first step (ATS 2002)
+        t0 = float(t[0])
+        t_end = t0 + float(duration_s) if span is None else min(t0 + float(duration_s), t_end)
     out["walk_test_duration_s"] = t_end - t0  # decision L462: the span the distance is over
-    warnings_l462 = duration_note(t_end - t0, windowed=span is not None)
+    warnings_l462 = duration_note(t_end - t0, windowed=span is not None or duration_s is not None)
     contact = t[1::2]  # each row's contact
     n_row = _row_steps(st)
     turns = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s", "angle_deg"])
@@ -100,9 +122,9 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     tracked = np.diff(np.interp(bounds, t, d))  # the stretches between cone turns (and the test's ends)
     warnings: list[str] = [] if warnings_l462 is None else [warnings_l462]
     ref = float(np.median(tracked[:-1])) if len(tracked) > 1 else float("nan")
-    if np.isfinite(ref) and not (CORRIDOR_RATIO_RANGE[0] * corridor_m <= ref <= CORRIDOR_RATIO_RANGE[1] * corridor_m):
-        warnings.append(coded(f"corridor walk test: the median lap tracked {ref:.1f} m against --corridor "
-                              f"{corridor_m:g} m: is the corridor length right? (decision L384)", "L384"))
+    line = corridor_agreement(tracked, corridor_m, lower_back=_is_lower_back(st))
+    if line:
+        warnings.append(line)
     # decision L384: a stretch ending at a cone turn counts round(tracked / median) corridor lengths; 0 joins the next
     stretches: list[tuple[float, float, float, int]] = []  # (start, end, tracked, corridor laps; -1 = the final one)
     start, acc = lap_t0, 0.0
@@ -118,7 +140,18 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                                   f"{ref:.1f} m: counted as {c} laps (a missed turn; decision L384)", "L384"))
         stretches.append((start, float(bounds[k + 1]), acc, c))
         start, acc = float(bounds[k + 1]), 0.0
-    uneven = [(i, m, c) for i, (_, _, m, c) in enumerate(stretches, start=1) if abs(m / (c * ref) - 1.0)
+    last = acc + tracked[-1]
+    short = _short_last_lap(stretches, ref)
+    if short is not None:  # decision L517: scored as its tracked metres x the lap scale, not a corridor length
+        a, b, m, c = stretches[short]
+        stretches[short] = (a, b, m, -1)
+        warnings.append(coded(f"corridor walk test: lap {short + 1} turned back after {m:.1f} m of a {c * ref:.1f} m "
+                              f"lap (at {b:.1f} s), and {last:.1f} m more were walked after it: walking after the "
+                              f"test (back to a chair)? lap {short + 1} is scored as its tracked metres x the lap "
+                              "scale, not a corridor length, and the walk after it is scored too; for a 6MWT give "
+                              "--walk-test-duration 360 (six minutes from the first step) or its --window "
+                              "(decision L517)", "L517"))
+    uneven = [(i, m, c) for i, (_, _, m, c) in enumerate(stretches, start=1) if c > 0 and abs(m / (c * ref) - 1.0)
               > LAP_AGREEMENT_TOL]
     if uneven:
         warnings.append(coded("corridor walk test: " + ", ".join(f"lap {i} tracked {m:.1f} m" for i, m, _ in uneven)
@@ -126,7 +159,6 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                               f"(off by more than {LAP_AGREEMENT_TOL:.0%}): the laps disagree with the corridor "
                               "(uneven legs, e.g. a shuttle, or a wrong --corridor?); counted as whole corridor "
                               "lengths (decision L407)", "L407"))
-    last = acc + tracked[-1]
     stretches.append((start, lap_end, last, -1))
     if np.isfinite(ref) and ref > 0 and last >= MISSED_TURN_RATIO * ref:
         warnings.append(coded(f"corridor walk test: the final stretch tracked {last:.1f} m, {last / ref:.1f} laps "
@@ -151,6 +183,49 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     out["walk_test_distance_per_minute_m"] = per_minute
     out["fatigue_index"] = per_minute[-1] / per_minute[0] if len(per_minute) >= 2 and per_minute[0] > 0 else None
     return laps, out, warnings
+
+
+def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bool) -> str | None:
+    """Decision L518: one line when ``--corridor`` disagrees with the track's own laps (``tracked``: the stretches'
+    tracked metres, the last one the final stretch after the last cone turn) by more than the unit's scale error
+    (:data:`CORRIDOR_SCALE_TOL`) + :data:`CORRIDOR_SPREAD_K` x the laps' robust relative spread (the lower back:
+    L384's 0.5-2 x); a walk without a lap
+    when its final stretch tracks more than that over one corridor length (capped at it); None otherwise."""
+    unit = "lower back" if lower_back else "foot"
+    tol = CORRIDOR_SCALE_TOL[unit]
+    laps = np.asarray(tracked[:-1], float)
+    if len(laps) and np.median(laps) > 0:
+        ref = float(np.median(laps))
+        spread = 1.4826 * float(np.median(np.abs(laps - ref))) / ref  # a robust relative SD (1.4826 x MAD)
+        tol += CORRIDOR_SPREAD_K[unit] * spread
+        if abs(np.log(ref / corridor_m)) <= np.log1p(tol):
+            return None
+        return coded(f"corridor walk test: the median lap tracked {ref:.1f} m (laps {np.min(laps):.1f}-"
+                     f"{np.max(laps):.1f} m) against --corridor {corridor_m:g} m ({ref / corridor_m - 1:+.0%}), more "
+                     f"than a {unit} track's scale error allows ({tol:.0%}): is the corridor length right? the laps "
+                     f"count {corridor_m:g} m each (decision L518)", "L518")
+    last = float(np.sum(tracked)) if len(tracked) else 0.0
+    if last <= (1.0 + tol) * corridor_m:
+        return None
+    return coded(f"corridor walk test: the walk tracked {last:.1f} m without a cone turn, {last / corridor_m:.1f} x "
+                 f"--corridor {corridor_m:g} m (more than a {unit} track's {tol:.0%} scale error): capped at one "
+                 "corridor length; is the corridor length right, or were the cone turns missed? (decision L518)",
+                 "L518")
+
+
+def _short_last_lap(stretches: list[tuple[float, float, float, int]], ref: float) -> int | None:
+    """Decision L517: the index of the last stretch ending at a cone turn when it tracks short of its corridor
+    lengths x the median lap ``ref`` by more than :data:`SHORT_LAP_MIN_FRAC` or :data:`SHORT_LAP_SPREAD_K` robust
+    SDs of the other single laps (at least :data:`SHORT_LAP_MIN_LAPS` of them); None otherwise."""
+    if not stretches or not np.isfinite(ref) or ref <= 0:
+        return None
+    i = len(stretches) - 1
+    m, c = stretches[i][2], stretches[i][3]
+    others = np.array([s[2] for s in stretches[:i] if s[3] == 1])
+    if c < 1 or len(others) < SHORT_LAP_MIN_LAPS:
+        return None
+    spread = 1.4826 * float(np.median(np.abs(others - np.median(others))))  # a robust SD (1.4826 x MAD)
+    return i if c * ref - m > max(SHORT_LAP_MIN_FRAC * ref, SHORT_LAP_SPREAD_K * spread) else None
 
 
 def duration_note(duration_s: float, *, windowed: bool) -> str | None:
@@ -196,6 +271,24 @@ def corridor_length(corridor: float | None) -> float | None:
         raise DataError(f"--corridor {corridor:g}: give the corridor's length in metres, a positive number "
                         "(e.g. --corridor 30 for the ATS 6MWT's 30 m course)")
     return float(corridor)
+
+
+def walk_test_duration(duration: float | None, corridor_m: float | None) -> float | None:
+    """Decision B396: ``--walk-test-duration``'s seconds checked before any session (None: the test runs over the
+    track or its --window, L383)."""
+    if duration is None:
+        return None
+    import math
+
+    from pdrlearn.errors import DataError
+
+    if not math.isfinite(duration) or duration <= 0:
+        raise DataError(f"--walk-test-duration {duration:g}: give the test's duration in seconds from the first step, "
+                        "a positive number (e.g. --walk-test-duration 360 for the 6MWT, 120 for the 2MWT)")
+    if corridor_m is None:
+        raise DataError(f"--walk-test-duration {duration:g} times the corridor walk test: add --corridor METRES "
+                        "(e.g. --corridor 30), or drop --walk-test-duration")
+    return float(duration)
 
 
 def corridor_line(summary: dict) -> str:

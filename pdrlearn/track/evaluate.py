@@ -1515,6 +1515,10 @@ def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout
 
         keys, line = flight_summary(session, result.info.get("pipeline"))
         out.update(keys)
+        if keys["n_flight_phases"] is not None and "flights" not in result.info:  # decision W417: flights.csv
+            from pdrlearn.track.flight import flight_rows
+
+            result.info["flights"] = flight_rows(session)
         if line:
             import logging
 
@@ -1542,6 +1546,7 @@ def domain_fraction(result: TrackResult) -> dict:
 SUMMARY_INFO_LEFT_OUT = {
     "transfers": "transfers.csv (decision W182)",
     "freezes": "freezes.csv (decision W213)",
+    "flights": "flights.csv (decision W417)",
     "postures": "the runs behind the posture time keys (decision W222)",
     "yaw_turns": "turns.csv's turn timing (decision L210)",
     "rest_bias_rests": "the position radius's clock (decision L306)",
@@ -1627,10 +1632,10 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     summary.update(domain_fraction(result))  # decision C16
     placement = scale = None
     if result.info.get("pipeline") == "plasys":  # decision B134: a foot unit that never swings is not on the foot
-        from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats, foot_scale_warning
+        from pdrlearn.track.foot_rest import foot_placement_line, foot_rest_stats, foot_scale_warning
 
         stats = foot_rest_stats(session)
-        placement = foot_placement_warning(stats, "")  # L352: the loop below prefixes session.where
+        placement = foot_placement_line(session, stats, "")  # L352: the loop prefixes session.where; W415
         scale = foot_scale_warning(stats, "")  # decision B201: the foot accelerometer's rest |acc| off 1 g
     add_gait_range_flag(summary)  # decision L195
     lines = summary_warnings(summary)

@@ -41,10 +41,45 @@ def flight_phases(t, acc) -> list[tuple[float, float]]:
     return out
 
 
+#: decision W416: each unit's accelerometer; a lower-back track reads the waist's (a pelvis in free fall reads ~0 g too)
+UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
+
+
+def flight_unit(pipeline: str | None) -> str:
+    """The unit whose accelerometer a track's flight test reads: ``"waist"`` for a lower-back pipeline (W416)."""
+    return "waist" if "waist" in str(pipeline) else "foot"
+
+
+#: decision W417: flights.csv's columns (:func:`flight_rows`)
+FLIGHT_COLUMNS = ("unit", "start_s", "end_s", "flight_time_s", "jump_height_m")
+
+
+def jump_height(flight_time_s):
+    """Decision W417: the flight-time jump height (m), g t^2 / 8 (a body that leaves and lands at the same height rises
+    for half its flight: h = g (t/2)^2 / 2; Bosco et al. 1983)."""
+    return G * np.square(np.asarray(flight_time_s, float)) / 8.0
+
+
+def flight_rows(session) -> list[dict]:
+    """Decision W417: flights.csv's rows (:data:`FLIGHT_COLUMNS`), one per flight phase (:func:`flight_phases`) of
+    each unit with an accelerometer (:data:`UNIT_ACC`), in time order."""
+    rows = []
+    for unit, name in UNIT_ACC.items():
+        acc = session.streams.get(name)
+        if acc is None:
+            continue
+        for a, b in flight_phases(acc.t, acc.values):
+            rows.append({"unit": unit, "start_s": round(a, 3), "end_s": round(b, 3), "flight_time_s": round(b - a, 3),
+                         "jump_height_m": round(float(jump_height(b - a)), 3)})
+    return sorted(rows, key=lambda r: (r["start_s"], r["unit"]))
+
+
 def flight_summary(session, pipeline: str | None) -> tuple[dict, str | None]:
-    """Decision W363: ``(keys, line)`` - :data:`KEYS` of a foot track's accelerometer (None for both on a lower-back
-    track or without the stream) and the warning line when it has a flight phase."""
-    acc = session.streams.get("fAccelerometer") if "waist" not in str(pipeline) else None
+    """Decision W363: ``(keys, line)`` - :data:`KEYS` of the tracked unit's accelerometer (the foot's; decision
+    W416: a lower-back track's the waist's; None for both without the stream) and the warning line when it has a
+    flight phase."""
+    unit = flight_unit(pipeline)
+    acc = session.streams.get(UNIT_ACC[unit])
     if acc is None:
         return dict.fromkeys(KEYS), None
     phases = flight_phases(acc.t, acc.values)
@@ -54,8 +89,12 @@ def flight_summary(session, pipeline: str | None) -> tuple[dict, str | None]:
         return keys, None
     longest = max(b - a for a, b in phases)
     # decision W412: "more than", as W409's rule (an exact 0.1 s run, 10 samples at 100 Hz, spans 0.09 s: not one)
-    return keys, (f"{len(phases)} flight phase(s) (the foot accelerometer under {FLIGHT_MAX_G:g} g for more than "
-                  f"{FLIGHT_MIN_S:g} s, its first and last low samples {FLIGHT_MIN_S:g} s or more apart, "
-                  f"{total:.2f} s in all, the longest {longest:.2f} s): the foot left the "
-                  "ground with both feet - jumps or running; strides across them may be jumps, not walking strides, "
-                  "and their lengths and the distance are not validated (decision W363)")
+    low = (f"{len(phases)} flight phase(s) (the {'lower-back' if unit == 'waist' else 'foot'} accelerometer under "
+           f"{FLIGHT_MAX_G:g} g for more than {FLIGHT_MIN_S:g} s, its first and last low samples {FLIGHT_MIN_S:g} s "
+           f"or more apart, {total:.2f} s in all, the longest {longest:.2f} s)")
+    if unit == "waist":  # decision W416: the lower-back pipelines' own consequence
+        return keys, (f"{low}: the body left the ground - jumps or running; the lower-back pipelines count the "
+                      "take-offs and landings as walking steps and place every step forward, so the step count and "
+                      "the distance include them and are not validated (decision W416)")
+    return keys, (f"{low}: the foot left the ground with both feet - jumps or running; strides across them may be "
+                  "jumps, not walking strides, and their lengths and the distance are not validated (decision W363)")

@@ -122,6 +122,10 @@ def clinical_tables(result, bouts) -> dict:
                                  yaw_turns=result.info.get("yaw_turns"))
         if len(trials):
             out["tug_trials.csv"] = trials
+    if result.info.get("flights") is not None:  # decision W417: each unit's flight phases, with a jump height
+        from pdrlearn.track.flight import FLIGHT_COLUMNS
+
+        out["flights.csv"] = pd.DataFrame(result.info["flights"], columns=list(FLIGHT_COLUMNS))
     if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
         from pdrlearn.track.freezes import freeze_table
 

@@ -133,10 +133,17 @@ def no_strides_warning(stats: dict | None, where: str, detector: str) -> str | N
             "at the foot's rests (decision B201)")
 
 
-def foot_placement_warning(stats: dict | None, where: str) -> str | None:
+def foot_placement_warning(stats: dict | None, where: str, kinds: dict | None = None) -> str | None:
     """Decision B134: one line when the foot unit walks but never swings like a foot (``where``: the line's prefix;
-    "" for none, when the caller prefixes its lines itself - decision L352: ``track`` printed it twice)."""
+    "" for none, when the caller prefixes its lines itself - decision L352: ``track`` printed it twice). Decision
+    W415: none when ``kinds`` (:func:`pdrlearn.track.stride_kinds.foot_stride_kinds`) has at least
+    :data:`~pdrlearn.track.stride_kinds.MIN_CLASSED_STRIDES` long strides, mostly sideways or backward (a side step
+    swings the foot less than a forward stride: 127-144 deg/s)."""
+    from pdrlearn.track.stride_kinds import MIN_CLASSED_STRIDES, not_judged
+
     if not stats or not stats["walking"] or not stats["swing_rad_s"] < FOOT_NO_SWING:
+        return None
+    if not_judged(kinds, MIN_CLASSED_STRIDES):  # decision W415: a side-shuffle drill's foot
         return None
     return (f"{where + ': ' if where else ''}no foot-flat rests found: the foot unit (fAccelerometer.csv, "
             "fGyroscope.csv) walks but never "
@@ -146,3 +153,13 @@ def foot_placement_warning(stats: dict | None, where: str) -> str | None:
             "and its distance is meaningless: is this unit on the foot? (pocket/waist/shank placements are not "
             "supported for the foot unit: mount it on the shoe, instep, heel or side; a lower-back unit's data go "
             "in the w* files; decision B134)")
+
+
+def foot_placement_line(session, stats: dict | None, where: str) -> str | None:
+    """:func:`foot_placement_warning` with W415's stride kinds of the session's foot unit, measured only when B134's
+    line would otherwise be given (a ZUPT pass)."""
+    if foot_placement_warning(stats, where) is None:
+        return None
+    from pdrlearn.track.stride_kinds import foot_stride_kinds
+
+    return foot_placement_warning(stats, where, foot_stride_kinds(session))

@@ -259,11 +259,11 @@ def swing_pitch_extremes(gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndar
     return down, up
 
 
-def _declared_foot(session, *, need_frame: bool = True):
+def _declared_foot(session, *, need_frame: bool = True, span: tuple[float, float] | None = None):
     """The session's foot unit with its declared frame, for :func:`foot_push_off` and :func:`foot_travel_angles`:
     ``(t, acc, gyr, fs, frame, stance)`` (the accelerometer's clock, the gyro resampled onto it, the ZUPT stance
     mask); None without a foot unit, a declared foot frame (``need_frame=False``: frame None allowed, decision
-    W336's frame-free read), enough finite samples or a rate."""
+    W336's frame-free read), enough finite samples or a rate. ``span`` (s): only the samples inside it (W415)."""
     from pdrlearn.displace.foot import inertial_stance
     from pdrlearn.signal.filters import interp_rows
 
@@ -274,10 +274,16 @@ def _declared_foot(session, *, need_frame: bool = True):
     acc_s, gyr_s = session.streams[acc_n], session.streams[gyr_n]
     if len(acc_s) < 8 or len(gyr_s) < 2 or not np.isfinite(acc_s.rate_hz):
         return None
-    acc, gyr, fs = acc_s.values, interp_rows(acc_s.t, gyr_s.t, gyr_s.values), float(acc_s.rate_hz)
+    t, acc = acc_s.t, acc_s.values
+    if span is not None:  # decision W415: the waist check's span only
+        keep = (t >= span[0]) & (t <= span[1])
+        if keep.sum() < 8:
+            return None
+        t, acc = t[keep], acc[keep]
+    gyr, fs = interp_rows(t, gyr_s.t, gyr_s.values), float(acc_s.rate_hz)
     if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
         return None
-    return acc_s.t, acc, gyr, fs, frame, inertial_stance(acc, gyr, fs)
+    return t, acc, gyr, fs, frame, inertial_stance(acc, gyr, fs)
 
 
 def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
@@ -309,13 +315,14 @@ def foot_swing_strides(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | N
     return t[i0], t[i1], turn[i1] - turn[i0]
 
 
-def foot_travel_angles(session) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
+def foot_travel_angles(session, span: tuple[float, float] | None = None
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
     """Start and end time (s), travel angle (rad from the foot's facing, left +), horizontal length (m) and the
     foot's heading change (rad, L400) of each rest-to-rest ZUPT stride of the session's foot unit
     (:func:`stride_motion`), in its declared frame's
     forward / left axes (decision L219: a side step travels about 90 deg from the facing); None without a foot unit
-    or a declared foot frame (an inferred one assumes forward walking)."""
-    foot = _declared_foot(session)
+    or a declared foot frame (an inferred one assumes forward walking). ``span`` (s): the strides inside it (W415)."""
+    foot = _declared_foot(session, span=span)
     if foot is None:
         return None
     t, acc, gyr, fs, frame, stance = foot
@@ -724,6 +731,8 @@ class DeclaredCheck:
     forward_deg: float | None = None
     #: decision C142: a frame the data reject (D23, D28, D30) kept by ``"force_frame"``
     forced: bool = False
+    #: decision W415: not judged, the foot unit's strides mostly travel sideways or backward (``unchecked`` says so)
+    side_drill: bool = False
 
     def summary(self) -> str:
         """``info``'s words for a check that raised nothing (decision D22: never "not contradicted" unchecked)."""
@@ -735,13 +744,21 @@ class DeclaredCheck:
         return f"not checked ({self.unchecked})"
 
 
-def check_declared_frame(session, placement: str, declared: AxisFrame) -> DeclaredCheck:
+def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_words: bool = False) -> DeclaredCheck:
     """The data's word on a declared or ``source_project`` frame: a warning (without the ``meta.json``
     location) when it is left-handed or the data contradict it with confidence (decision D10); a refusal when
     its forward is reversed against the data (decision D22), also when the inference gives up on which
     axis is forward but measured the strides' direction and gravity (:class:`FrameInferenceError` ``up`` /
     ``forward``; a reversed up alone is D10's warning). The inference runs once here, on the first
-    :data:`CHECK_SPAN_S` seconds."""
+    :data:`CHECK_SPAN_S` seconds. Decision W415: a waist frame is not judged when the foot unit's strides in that
+    span mostly travel sideways or backward (:func:`pdrlearn.track.stride_kinds.not_judged`). ``side_words``
+    (decision W416 (b), not adopted: its rule's waist-only backpedal, user 10022, reads forward, so there is no line
+    to word; opt-in, False = D10's line as before): a waist line without a foot unit leads with
+    :func:`side_travel_words`."""
+    if isinstance(session.meta.get("frames"), dict):
+        origin = 'declared in "frames"'
+    else:
+        origin = f"implied by source_project {json.dumps(str(session.meta.get('source_project', '')))}"
     unchecked, compared, up, fwd = None, (), None, None
     try:
         found = infer_session_frame(session, placement, max_s=CHECK_SPAN_S)
@@ -766,10 +783,10 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
     if how is not None and "forward" not in off:
         off["forward"] = directions_off(declared, None, found.forward, 0.0)["forward"]
     reverse = reverse or how is not None
-    if isinstance(session.meta.get("frames"), dict):
-        origin = 'declared in "frames"'
-    else:
-        origin = f"implied by source_project {json.dumps(str(session.meta.get('source_project', '')))}"
+    skip = _waist_not_judged(session) if placement == "waist" else None
+    if skip is not None:  # decision W415: no line but a left-handed one; D25 still reads the measured offset
+        return DeclaredCheck(declared_frame_warning(placement, declared, None, origin, off={}), False, skip,
+                             compared, rev, side_drill=True)
     forced = reverse and session.frame_forced(placement)  # decision D23's override
     refuse = reverse and not forced and placement in REFUSE_REVERSED  # D23 amended: the foot only
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
@@ -778,7 +795,39 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
                              unchecked, compared, rev)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked, how=how)
+    if side_words and msg and placement == "waist" and UNIT_STREAMS["foot"][0] not in session.streams:
+        msg = side_travel_words(rev) + msg if side_travel_words(rev) else msg  # decision W416
     return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced)
+
+
+#: decision W416 (b): D10's waist line on a session without a foot unit leads with side or backward travel when the
+#: measured walking direction is more than this (deg) from the declared forward (L219's side window's edge)
+SIDE_FROM_DEG = 60.0
+
+def side_travel_words(rev: float | None) -> str:
+    """Decision W416 (b): the words that lead D10's waist line on a session without a foot unit when the measured
+    walking direction lies ``rev`` deg (over :data:`SIDE_FROM_DEG`) from the declared forward: side or backward
+    movement, which the lower-back pipelines place forward, named before a wrong frame; "" otherwise."""
+    if rev is None or rev <= SIDE_FROM_DEG:
+        return ""
+    return (f"the waist unit's measured walking direction is {rev:.0f} deg from its declared forward: side or "
+            "backward movement (side shuffles, backpedals) reads so with a right frame, and the lower-back pipelines "
+            "place it forward (the distance counts it as forward walking; a foot unit tells the way each stride "
+            "went; decision W416) - write the \"frames\" entry below only if the walker walked forward. D10: ")
+
+
+def _waist_not_judged(session) -> str | None:
+    """Decision W415: why the waist unit's declared frame is not judged over D10's check span (B252's first walk, up to
+    :data:`CHECK_SPAN_S` s): the foot unit's strides there mostly travel sideways or backward; None: judge it."""
+    from pdrlearn.track.stride_kinds import foot_stride_kinds, not_judged
+
+    acc_s = session.streams.get(UNIT_STREAMS["waist"][0])
+    if acc_s is None or len(acc_s) < 8:
+        return None
+    i0, n = check_span(acc_s.t, acc_s.values, CHECK_SPAN_S)
+    if n <= i0:
+        return None
+    return not_judged(foot_stride_kinds(session, (float(acc_s.t[i0]), float(acc_s.t[n - 1]))))
 
 
 def misdeclared(declared: AxisFrame, found: InferredFrame | None, rev: float | None) -> str | None:

@@ -49,12 +49,15 @@ TIME_KEYS = ("time_walking_s", "time_between_steps_s", "time_no_steps_s", "time_
 #: decision L340: periods.csv's stride length, speed and variability, each the summary's own rule on the period's steps
 PERIOD_GAIT_KEYS = ("median_stride_length_m", "median_speed_mps", "stride_time_cv_pct", "stride_length_cv_pct",
                     "n_cv_strides")
+#: decision L514: periods.csv's positions at each period's start and end and its net displacement (m)
+POSITION_KEYS = ("start_x_m", "start_y_m", "end_x_m", "end_y_m", "dx_m", "dy_m")
 #: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
 PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
                   "n_steps", "n_steps_counts", "n_steps_both_feet", "median_stride_time_s", "median_cadence_spm",
                   *PERIOD_GAIT_KEYS, *TIME_KEYS,
                   *POSTURE_KEYS, "floors_up", "floors_down", "ascent_m", "descent_m", "n_bouts", "n_turns",
-                  "n_backward_strides", "n_side_strides", "data_gap", "position_sigma_end_m")
+                  "n_backward_strides", "n_side_strides", "data_gap", "position_sigma_end_m",
+                  *POSITION_KEYS)
 #: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
 PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
@@ -379,6 +382,19 @@ def bout_ascent(bouts: pd.DataFrame, result) -> pd.DataFrame:
     return bouts
 
 
+def period_displacement(traj: pd.DataFrame, a: float, b: float) -> dict:
+    """Decision L514: :data:`POSITION_KEYS` of the window ``[a, b]`` (s): the track's x / y at ``a`` and at ``b`` (the
+    last ``traj`` row at or before each, the first row before the track begins) and their difference; None each
+    without trajectory rows."""
+    if not len(traj) or not {"t", "x", "y"} <= set(traj.columns):
+        return dict.fromkeys(POSITION_KEYS)
+    tt = traj["t"].to_numpy(float)
+    xy = traj[["x", "y"]].to_numpy(float)
+    i, j = (max(int(np.searchsorted(tt, v + 1e-9, side="right")) - 1, 0) for v in (a, b))
+    return {"start_x_m": float(xy[i, 0]), "start_y_m": float(xy[i, 1]), "end_x_m": float(xy[j, 0]),
+            "end_y_m": float(xy[j, 1]), "dx_m": float(xy[j, 0] - xy[i, 0]), "dy_m": float(xy[j, 1] - xy[i, 1])}
+
+
 def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
                  turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None,
                  span: tuple[float, float] | None = None) -> pd.DataFrame:
@@ -432,5 +448,6 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         row["data_gap"] = row["time_no_data_s"] > 0
         j = int(np.searchsorted(tt, b + 1e-9, side="right")) - 1
         row["position_sigma_end_m"] = float(sigma[j]) if sigma is not None and j >= 0 else None
+        row.update(period_displacement(traj, float(a), float(b)))  # decision L514
         rows.append(row)
     return pd.DataFrame(rows, columns=list(PERIOD_COLUMNS))

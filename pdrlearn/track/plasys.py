@@ -444,6 +444,11 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
     line = other_user_line(model, [session], "track")  # decision C138: a per-user model on another user
     if line:
         warnings.append(line)
+    from pdrlearn.classify.force_scale import force_scale_line, model_force
+
+    line = force_scale_line(model_force(model), session)  # decision C153: force in another unit than the training's
+    if line:
+        warnings.append(line)
     return off
 
 
@@ -1389,7 +1394,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
             mount_line, mount_info = mount_check(work, relative, head, straight)
             warnings += [mount_line] if mount_line else []
-        if mount_line is not None:  # decision D25: the foot gyroscope's own heading, as heading "foot"
+        if (mount_info or {}).get("fallback"):  # D25 (W415: without a line): the foot gyroscope's heading
             compass_line, compass_info = None, None
             head = relative + initial_heading - foot_walk_reference(  # decisions L494, L510
                 relative + side_extra, disp, lateral, fd.yaw_change_)
@@ -1413,7 +1418,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                     "on a shorter one (decision L226, L266, L280)")
             warnings[warnings.index(compass_line)] = compass_line.split("; track with")[0] + (
                 f"; this track follows the waist gyroscope's heading, turned to the compass by {turned_by}")
-        elif hsrc == "fused" and mount_line is None:
+        elif hsrc == "fused" and not (mount_info or {}).get("fallback"):  # D25 (W415: also without its line)
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
                                    walking=FUSED_WALKING_CLOCK)  # decision L471
