@@ -1467,9 +1467,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         from pdrlearn.track.toeoff import toe_off_times  # insoles' clock is checked against it)
 
         tc_gyro = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
-    if fev is not None:  # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events
-        force_offset, clock_line = offset_check(session, fev, [n for n in ("fForceA", "fForceB")
-                                                               if n in session.streams], table=table, tc_gyro=tc_gyro)
+    force_names = [n for n in ("fForceA", "fForceB") if n in session.streams]
+    # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events; steps 75: not on one channel,
+    # whose drop-off is the heel's when it is a heel (user 10138: -210 ms against the toe-off, a false clock line)
+    if fev is not None and len(force_names) == 2:
+        force_offset, clock_line = offset_check(session, fev, force_names, table=table, tc_gyro=tc_gyro)
         if clock_line:  # B297: L161's waist-vs-foot line compares with the insoles' contacts, so it says so
             warnings[:] = [w + INSOLE_CLOCK_NOTE if "decision L161" in w else w for w in warnings]
             warnings.append(clock_line)
