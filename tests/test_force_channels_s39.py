@@ -16,15 +16,14 @@ def walk(tmp_path_factory):
     from pdrlearn.io import write_session
     from pdrlearn.sim import UserProfile, simulate
 
-    out = tmp_path_factory.mktemp("fg") / "walk"
-    write_session(simulate("B", UserProfile.from_seed(10130), "normal", rate_hz=100.0), out)
-    return out
+    return write_session(simulate("B", UserProfile.from_seed(10130), "normal", rate_hz=100.0),
+                         tmp_path_factory.mktemp("fg") / "walk")
 
 
 def _copy(src, dst, edit):
-    """A copy of session folder ``src`` with ``edit(folder)`` applied."""
-    shutil.copytree(src, dst)
-    edit(dst)
+    """A copy of session folder ``src`` with ``edit(folder)`` applied (test_force_check_l365's edits the force
+    tables; these edit files)."""
+    edit(shutil.copytree(src, dst))
     return dst
 
 
