@@ -12,7 +12,7 @@ def test_the_gait_line_names_toe_off_only_when_the_stance_is_missing_for_want_of
     plain = track_plasys(s).summary(s)
     assert plain["n_stance_times"] == 0 and plain["median_stance_time_s"] is None
     line = gait_line(plain)
-    assert line.endswith(NO_STANCE_CLAUSE) and "--toe-off" in line
+    assert NO_STANCE_CLAUSE in line and "--toe-off" in line  # B400 may follow it (a force stance)
     toe = track_plasys(s, toe_off=True).summary(s)
     assert toe["n_stance_times"] > 0 and "--toe-off" not in gait_line(toe)
     streamed = track_plasys(s, streaming=True).summary(s)  # --toe-off is refused there: no hint to use it

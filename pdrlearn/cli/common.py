@@ -636,7 +636,7 @@ def gait_line(summary: dict, streamed: bool | None = None) -> str:
             # decision L204: the streamed strides' cadence needs their initial contacts (E51's option)
             + ("; no cadence or stride time: the streamed strides have no initial contact without --contacts "
                "(decisions E51, L204)" if cad is None and streamed else "")
-            + (NO_STANCE_CLAUSE if no_toe_off(summary) else stance_clause(summary)))
+            + (NO_STANCE_CLAUSE + force_toe_off_note(summary) if no_toe_off(summary) else stance_clause(summary)))
 
 
 def stance_clause(summary: dict) -> str:
@@ -654,6 +654,16 @@ def stance_clause(summary: dict) -> str:
 #: n_stance_times 0 and median_stance_time_s / median_swing_time_s / median_stance_pct null)
 NO_STANCE_CLAUSE = ("; no stance or swing times (summary.json n_stance_times 0): add --toe-off for them "
                     "(decisions L73, L423)")
+
+
+#: decision B400: what NO_STANCE_CLAUSE adds when the insoles gave the stance (the trial expected their toe-off)
+FORCE_TOE_OFF_NOTE = (", with force insoles too: --toe-off takes the gyroscope's toe-off, as the insoles' drop-off "
+                      "read the stance further from the truth (steps decision 76, L388; decision B400)")
+
+
+def force_toe_off_note(summary: dict) -> str:
+    """Decision B400: :data:`FORCE_TOE_OFF_NOTE` when ``summary``'s stance came from the force insoles, else ""."""
+    return FORCE_TOE_OFF_NOTE if (summary.get("info") or {}).get("stance_source") == "force" else ""
 
 
 def no_toe_off(summary: dict) -> bool:

@@ -38,10 +38,13 @@ def info(
     from pdrlearn.track.foot_rest import foot_placement_line, foot_rest_stats, foot_scale_warning
 
     summary["foot_rests"] = foot_rest_stats(s)  # decisions B133 (rest |acc| in g, a display), B134
+    from pdrlearn.displace.force_channels import live_force
     from pdrlearn.io.meta_keys import unknown_keys_line
     from pdrlearn.track.units import units_apart_line
 
+    dead = live_force(s)[1]  # steps decision 74: a dead force channel (or a lone forefoot, 75) named
     for line in (foot_placement_line(s, summary["foot_rests"], s.where),  # B134 (W415: not on side drills)
+                 dead and f"{s.where}: {dead}",
                  foot_scale_warning(summary["foot_rests"], s.where),  # decision B201: a rest |acc| off 1 g
                  unknown_keys_line(s.meta, s.where),  # decision B262: meta.json keys pdrlearn does not read
                  units_apart_line(s)):  # decision B267: the units' spans differ (what track refuses or cuts)

@@ -575,6 +575,12 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         err(f"labels: {name} with {lab['rows']} rows from {lab['file']} (shifted to the session's clock)")
     if record["unused_columns"]:
         err(f"unused columns: {', '.join(record['unused_columns'])}")
+        if record["unit"] == "foot":
+            from pdrlearn.displace.force_channels import extra_force_line
+
+            extra = extra_force_line(record["unused_columns"])  # decision B399: a midfoot channel
+            if extra:
+                err(extra)
     prefix = "f" if record["unit"] == "foot" else "w"
     ambiguous = record.get("ambiguous_columns") or {}
     for key, kind, sensor, opt in (("acc", "accelerometer", "Accelerometer", "--acc"),

@@ -126,12 +126,17 @@ def _events_file(events_out: Path | None, out: Path | None, force: bool) -> Path
 
 
 def _tared(session):
-    """Decision B284: ``session`` with its force sensors' unloaded offset subtracted (and the line logged)."""
+    """Decision B284: ``session`` with its force sensors' unloaded offset subtracted (and the line logged); steps
+    decision 74 first: a dead force channel left out (and named)."""
     import logging
 
+    from pdrlearn.displace.force_channels import live_force
     from pdrlearn.displace.force_check import tared
     from pdrlearn.orient import unit_data
 
+    session, dead = live_force(session)
+    if dead:
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, dead)
     session, line = tared(session, unit_data(session, "foot", purpose="the force sensors' unloaded offset"))
     if line:
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)

@@ -12,6 +12,7 @@ import logging
 
 import numpy as np
 
+from pdrlearn.displace.force_channels import one_channel_filled
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels.contact import (
@@ -158,6 +159,7 @@ class AccelForceStepDetector(StepDetector):
         self._store(locals())
 
     def _inputs(self, session: Session):
+        session = one_channel_filled(session)  # steps decision 75: one force channel is the combined force
         purpose = ("the accelerometer + force step detector (thesis ch.5.2; "
                    "use --detector accel without force)")
         session.require("fAccelerometer", "fForceA", "fForceB", purpose=purpose)

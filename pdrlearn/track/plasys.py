@@ -38,6 +38,7 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.displace.foot import check_settings as check_foot_settings
+from pdrlearn.displace.force_channels import live_force
 from pdrlearn.displace.force_check import (
     checked_stance,
     imu_strides_in,
@@ -1178,12 +1179,15 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                           heading == "waist"))
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
     stance_source, imu_spans = "inertial", np.zeros((0, 2))
+    dead_line = None  # steps decision 74
     fev, force_offset = None, None  # decisions L388 / L389: the force detector's events, the insoles' clock offset
     if cfg["force"]:
         if ignore_force and method == "M2":  # decision L366
             raise DataError("plasys: method M2 is accelerometer + force, and ignore_force=True (--ignore-force) "
                             "leaves the force out; use --method M1 or M3, or drop --ignore-force")
         if not ignore_force:  # decision B284: an unloaded offset (raw ADC counts) subtracted, with one line
+            session, dead_line = live_force(session)  # steps decision 74: a dead channel named and left out
+            warnings += [dead_line] if dead_line else []
             session, tare_line = tared(session, foot)
             warnings += [tare_line] if tare_line else []
         stance, stance_source, lines, imu_spans = checked_stance(session, foot, use_force=not ignore_force)  # L365/6
@@ -1191,8 +1195,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if stance_source == "inertial" and not ignore_force:
             if method == "M2":
                 raise MissingSensorError(
-                    f"session '{session.name}' has no fForceA/fForceB needed by M2 (accelerometer + force); "
-                    "use --method M1 or M3, or record the force sensors")
+                    f"session '{session.name}' has no fForceA/fForceB needed by M2 (accelerometer + force)"
+                    + (f" ({dead_line})" if dead_line else "") + "; use --method M1 or M3, or record the force sensors")
             warnings.append(NO_FORCE_STANCE)
     else:
         stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
@@ -1470,9 +1474,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         from pdrlearn.track.toeoff import toe_off_times  # insoles' clock is checked against it)
 
         tc_gyro = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
-    if fev is not None:  # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events
-        force_offset, clock_line = offset_check(session, fev, [n for n in ("fForceA", "fForceB")
-                                                               if n in session.streams], table=table, tc_gyro=tc_gyro)
+    force_names = [n for n in ("fForceA", "fForceB") if n in session.streams]
+    # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events; steps 75: not on one channel,
+    # whose drop-off is the heel's when it is a heel (user 10138: -210 ms against the toe-off, a false clock line)
+    if fev is not None and len(force_names) == 2:
+        force_offset, clock_line = offset_check(session, fev, force_names, table=table, tc_gyro=tc_gyro)
         if clock_line:  # B297: L161's waist-vs-foot line compares with the insoles' contacts, so it says so
             warnings[:] = [w + INSOLE_CLOCK_NOTE if "decision L161" in w else w for w in warnings]
             warnings.append(clock_line)
