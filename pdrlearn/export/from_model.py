@@ -17,7 +17,8 @@ import numpy as np
 from pdrlearn.errors import ModelError
 from pdrlearn.export.bundle import base_manifest, write_bundle
 from pdrlearn.export.onnx_convert import svm_decision_to_onnx, torch_to_onnx
-from pdrlearn.export.parity import check_bundle_parity, parity_windows
+from pdrlearn.export.parity import PARITY_ATOL, check_bundle_parity, parity_windows
+from pdrlearn.export.precision import FLOAT32_PARITY_ATOL, bundle_to_float32
 from pdrlearn.export.step_graph import build_step_graph
 
 STEP_GRAPH_FILE = "models/step.onnx"
@@ -284,6 +285,7 @@ def export_model(
     overwrite: bool = False,
     model=None,
     training_samples: bool = True,
+    float32: bool = False,
 ) -> Path:
     """Write the runtime bundle of a trained model directory.
 
@@ -312,6 +314,9 @@ def export_model(
         task whose chosen model does is given the model training would have chosen without them (the best
         ranked two-unit one, else the best ranked), its foot-only fallback likewise; a task left without
         any model is a :class:`ModelError`.
+    float32 : every ONNX graph (step graph, SVMs, networks) computes in float32 and the networks' ``.f32`` twins
+        are left out (``pdrlearn export --float32``, decision E217: single-precision targets); the parity check
+        before writing allows :data:`pdrlearn.export.precision.FLOAT32_PARITY_ATOL`.
     """
     from pdrlearn.classify.model_dir import load_model, read_manifest
     from pdrlearn.classify.training import BUILTIN_METHODS, METHODS, best_pair
@@ -478,6 +483,10 @@ def export_model(
     if step is not None:
         col.onnx[STEP_GRAPH_FILE] = step[0]
         manifest["step_graph"] = {"file": STEP_GRAPH_FILE, **step[1]}
+    atol = PARITY_ATOL
+    if float32:  # decision E217
+        col.onnx = bundle_to_float32(col.onnx, manifest)
+        atol = FLOAT32_PARITY_ATOL
     models = {t: tm.models for t, tm in model.tasks.items()}
     W = parity_windows(int(model.n_samples), model.boundaries or "given")
 
@@ -485,7 +494,7 @@ def export_model(
         from pdrlearn.runtime import load_bundle
 
         bundle = load_bundle(path, verify=verify)
-        check_bundle_parity(bundle, models, W)
+        check_bundle_parity(bundle, models, W, atol=atol)
         return bundle
 
     return write_bundle(out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, json_files=col.json,
