@@ -50,6 +50,8 @@ def export(
     float32: bool = typer.Option(False, "--float32", help="Every ONNX graph in float32 (step graph, SVMs, "
                                  "networks), no float64 twins: for single-precision targets such as a Cortex-M4F "
                                  "(docs/deploying.md; decision E217)."),
+    units: str = typer.Option(None, "--units", help="foot or waist: a single-unit bundle, only the models that "
+                              "read that unit alone (the smallest bundle for a one-sensor device; decision E218)."),
     force: bool = typer.Option(False, "--force", "--overwrite", help=FORCE_HELP + " --overwrite is the old name."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
     frame: str = typer.Option(None, "--frame", help="Waist calibration only: the waist unit's axes, e.g. "
@@ -69,6 +71,8 @@ def export(
 
         pdrlearn export out/models/u1 --out out/bundle_u1_f32 --float32   # a float32-only bundle (E217)
 
+        pdrlearn export out/models/u1 --out out/bundle_u1_foot --units foot --methods nn --float32
+
         pdrlearn export p.json --out wbundle --frame x=up,y=right,z=forward   # a waist calibration (calibrate)
     """
     from pdrlearn.errors import DataError
@@ -78,9 +82,9 @@ def export(
     from pdrlearn.runtime.bundle import _is_waist_calibration
 
     if _is_waist_calibration(model_dir):  # decision E57: a belt-phone user's calibration -> a waist bundle
-        if methods or length_bounds or float32:
+        if methods or length_bounds or float32 or units:
             raise DataError(f"export {model_dir}: a waist calibration has no classifiers; drop --methods / "
-                            "--length-bounds / --float32")
+                            "--length-bounds / --float32 / --units")
         return _export_waist(model_dir, out, frame, force, as_json)
     if frame is not None:
         raise DataError(f"export --frame: only for a waist calibration; {model_dir} is a model directory, whose "
@@ -95,7 +99,8 @@ def export(
     out_folder(out, "bundle", force=force, inputs=(model_dir,))
     was = existed(out)
     path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force,
-                        training_samples=not no_training_samples, float32=float32)
+                        training_samples=not no_training_samples, float32=float32,
+                        units=units)
     replaced(out, was)
     b = load_bundle(path)
     summary = {
