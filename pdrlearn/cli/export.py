@@ -78,6 +78,7 @@ def export(
     from pdrlearn.errors import DataError
     from pdrlearn.export.bundle import bundle_size_bytes
     from pdrlearn.export.from_model import export_model
+    from pdrlearn.export.sizes import bundle_sizes, sizes_lines
     from pdrlearn.runtime import load_bundle
     from pdrlearn.runtime.bundle import _is_waist_calibration
 
@@ -111,6 +112,7 @@ def export(
                   for t, v in b.tasks.items()},
         "skipped": b.manifest.get("export", {}).get("skipped", []),
         "training_samples": b.manifest.get("export", {}).get("training_samples", True),
+        "model_sizes": bundle_sizes(path, b.manifest["files"]),  # decision E219
     }
     if as_json:
         print_json(json_safe(summary))
@@ -122,6 +124,9 @@ def export(
                    + ", ".join(f"{m}/{u}" for m, us in v["methods"].items() for u in us) + ")")
     for s in summary["skipped"]:
         typer.echo(f"  skipped: {s}")
+    typer.echo("files (flash; parameters and multiply-accumulates per step of each ONNX graph, decision E219):")
+    for line in sizes_lines(summary["model_sizes"]):
+        typer.echo(line)
 
 
 def _export_waist(cal: Path, out: Path, frame: str | None, force: bool, as_json: bool) -> None:

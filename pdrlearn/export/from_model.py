@@ -19,9 +19,12 @@ from pdrlearn.export.bundle import base_manifest, write_bundle
 from pdrlearn.export.onnx_convert import svm_decision_to_onnx, torch_to_onnx
 from pdrlearn.export.parity import PARITY_ATOL, check_bundle_parity, parity_windows
 from pdrlearn.export.precision import FLOAT32_PARITY_ATOL, bundle_to_float32
+from pdrlearn.export.sizes import onnx_stats
 from pdrlearn.export.step_graph import build_step_graph
 
 STEP_GRAPH_FILE = "models/step.onnx"
+#: the values of ``export --units`` (decision E218): a bundle of the models that read one body unit alone
+EXPORT_UNITS = ("foot", "waist")
 
 log = logging.getLogger(__name__)
 
@@ -335,7 +338,7 @@ def export_model(
     bad = [m for m in methods or [] if m not in known]
     if bad:
         raise ModelError(f"unknown method(s) {', '.join(bad)}; choose from {', '.join(known)}")
-    if units not in (None, "foot", "waist"):
+    if units is not None and units not in EXPORT_UNITS:
         raise ModelError(f"--units {units!r}: choose foot or waist (a single-unit bundle, decision E218)")
     if model is None:
         model = load_model(model_dir)
@@ -502,6 +505,8 @@ def export_model(
     if float32:  # decision E217
         col.onnx = bundle_to_float32(col.onnx, manifest)
         atol = FLOAT32_PARITY_ATOL
+    # decision E219: each graph's flash, parameters and multiply-accumulates per step, for a port's budget
+    manifest["export"]["model_sizes"] = {rel: onnx_stats(m) for rel, m in sorted(col.onnx.items())}
     models = {t: tm.models for t, tm in model.tasks.items()}
     W = parity_windows(int(model.n_samples), model.boundaries or "given")
 
