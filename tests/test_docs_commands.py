@@ -266,6 +266,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.cli.simulate import parse_mount
     from pdrlearn.columns import TABLES as COLUMN_TABLES
     from pdrlearn.displace.foot import REFERENCE_POINTS
+    from pdrlearn.export.from_model import EXPORT_UNITS
     from pdrlearn.io.external import SOURCES
     from pdrlearn.io.importer import _TIME_SCALE, _resolve_unit, _time_word, parse_frame
     from pdrlearn.io.sensors import PLACEMENTS
@@ -344,6 +345,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("run", "length_reference"): _one_of(LENGTH_REFERENCES),  # decision C117
         **{(c, "length_reference"): _one_of(LENGTH_REFERENCES) for c in ("track", "track-all")},  # decision C126
         ("run", "units"): _one_of(BODY_UNITS, listed=True),
+        ("export", "units"): _one_of(EXPORT_UNITS),  # decision E218
         ("train", "boundaries"): _one_of(BOUNDARIES),
         ("train", "cv_groups"): _one_of(CV_GROUPS),  # decision C29
         ("calibrate", "pipeline"): _one_of(calibrated),

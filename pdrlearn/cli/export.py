@@ -47,6 +47,11 @@ def export(
                                              "embed the user's training samples (DTW references, SVM support "
                                              "vectors, soft votes with them): each task gets the best-ranked model "
                                              "without them (docs/deploying.md, privacy; decision E68)."),
+    float32: bool = typer.Option(False, "--float32", help="Every ONNX graph in float32 (step graph, SVMs, "
+                                 "networks), no float64 twins: for single-precision targets such as a Cortex-M4F "
+                                 "(docs/deploying.md; decision E217)."),
+    units: str = typer.Option(None, "--units", help="foot or waist: a single-unit bundle, only the models that "
+                              "read that unit alone (the smallest bundle for a one-sensor device; decision E218)."),
     force: bool = typer.Option(False, "--force", "--overwrite", help=FORCE_HELP + " --overwrite is the old name."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
     frame: str = typer.Option(None, "--frame", help="Waist calibration only: the waist unit's axes, e.g. "
@@ -64,18 +69,23 @@ def export(
 
         pdrlearn export out/models/u1 --out out/bundle_u1_shared --no-training-samples
 
+        pdrlearn export out/models/u1 --out out/bundle_u1_f32 --float32   # a float32-only bundle (E217)
+
+        pdrlearn export out/models/u1 --out out/bundle_u1_foot --units foot --methods nn --float32
+
         pdrlearn export p.json --out wbundle --frame x=up,y=right,z=forward   # a waist calibration (calibrate)
     """
     from pdrlearn.errors import DataError
     from pdrlearn.export.bundle import bundle_size_bytes
     from pdrlearn.export.from_model import export_model
+    from pdrlearn.export.sizes import bundle_sizes, sizes_lines
     from pdrlearn.runtime import load_bundle
     from pdrlearn.runtime.bundle import _is_waist_calibration
 
     if _is_waist_calibration(model_dir):  # decision E57: a belt-phone user's calibration -> a waist bundle
-        if methods or length_bounds:
+        if methods or length_bounds or float32 or units:
             raise DataError(f"export {model_dir}: a waist calibration has no classifiers; drop --methods / "
-                            "--length-bounds")
+                            "--length-bounds / --float32 / --units")
         return _export_waist(model_dir, out, frame, force, as_json)
     if frame is not None:
         raise DataError(f"export --frame: only for a waist calibration; {model_dir} is a model directory, whose "
@@ -90,7 +100,8 @@ def export(
     out_folder(out, "bundle", force=force, inputs=(model_dir,))
     was = existed(out)
     path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force,
-                        training_samples=not no_training_samples)
+                        training_samples=not no_training_samples, float32=float32,
+                        units=units)
     replaced(out, was)
     b = load_bundle(path)
     summary = {
@@ -101,6 +112,7 @@ def export(
                   for t, v in b.tasks.items()},
         "skipped": b.manifest.get("export", {}).get("skipped", []),
         "training_samples": b.manifest.get("export", {}).get("training_samples", True),
+        "model_sizes": bundle_sizes(path, b.manifest["files"]),  # decision E219
     }
     if as_json:
         print_json(json_safe(summary))
@@ -112,6 +124,9 @@ def export(
                    + ", ".join(f"{m}/{u}" for m, us in v["methods"].items() for u in us) + ")")
     for s in summary["skipped"]:
         typer.echo(f"  skipped: {s}")
+    typer.echo("files (flash; parameters and multiply-accumulates per step of each ONNX graph, decision E219):")
+    for line in sizes_lines(summary["model_sizes"]):
+        typer.echo(line)
 
 
 def _export_waist(cal: Path, out: Path, frame: str | None, force: bool, as_json: bool) -> None:

@@ -17,10 +17,14 @@ import numpy as np
 from pdrlearn.errors import ModelError
 from pdrlearn.export.bundle import base_manifest, write_bundle
 from pdrlearn.export.onnx_convert import svm_decision_to_onnx, torch_to_onnx
-from pdrlearn.export.parity import check_bundle_parity, parity_windows
+from pdrlearn.export.parity import PARITY_ATOL, check_bundle_parity, parity_windows
+from pdrlearn.export.precision import FLOAT32_PARITY_ATOL, bundle_to_float32
+from pdrlearn.export.sizes import onnx_stats
 from pdrlearn.export.step_graph import build_step_graph
 
 STEP_GRAPH_FILE = "models/step.onnx"
+#: the values of ``export --units`` (decision E218): a bundle of the models that read one body unit alone
+EXPORT_UNITS = ("foot", "waist")
 
 log = logging.getLogger(__name__)
 
@@ -284,6 +288,8 @@ def export_model(
     overwrite: bool = False,
     model=None,
     training_samples: bool = True,
+    float32: bool = False,
+    units: str | None = None,
 ) -> Path:
     """Write the runtime bundle of a trained model directory.
 
@@ -312,6 +318,12 @@ def export_model(
         task whose chosen model does is given the model training would have chosen without them (the best
         ranked two-unit one, else the best ranked), its foot-only fallback likewise; a task left without
         any model is a :class:`ModelError`.
+    float32 : every ONNX graph (step graph, SVMs, networks) computes in float32 and the networks' ``.f32`` twins
+        are left out (``pdrlearn export --float32``, decision E217: single-precision targets); the parity check
+        before writing allows :data:`pdrlearn.export.precision.FLOAT32_PARITY_ATOL`.
+    units : ``"foot"`` or ``"waist"`` (``pdrlearn export --units``, decision E218): only the models that read that
+        unit alone (not the soft votes or combined models, which read both); each task's chosen model is the best
+        ranked of those (as ``--no-training-samples`` chooses); a task without one is a :class:`ModelError`.
     """
     from pdrlearn.classify.model_dir import load_model, read_manifest
     from pdrlearn.classify.training import BUILTIN_METHODS, METHODS, best_pair
@@ -326,6 +338,8 @@ def export_model(
     bad = [m for m in methods or [] if m not in known]
     if bad:
         raise ModelError(f"unknown method(s) {', '.join(bad)}; choose from {', '.join(known)}")
+    if units is not None and units not in EXPORT_UNITS:
+        raise ModelError(f"--units {units!r}: choose foot or waist (a single-unit bundle, decision E218)")
     if model is None:
         model = load_model(model_dir)
         src_manifest = read_manifest(model_dir)
@@ -343,11 +357,19 @@ def export_model(
     for task, tm in model.tasks.items():
         chosen = tm.chosen
 
-        def allowed(p, tm=tm) -> bool:  # decision E68: --no-training-samples
+        def keeps(p, tm=tm) -> bool:  # decision E68: --no-training-samples
             return training_samples or not embeds_training_samples(tm.models[p[0]][p[1]])
 
-        if not training_samples:
+        def allowed(p, keeps=keeps) -> bool:  # decision E218: --units keeps the models of that unit alone
+            return keeps(p) and (units is None or p[1] == units)
+
+        if not training_samples or units:
             ok = [p for p in tm.ranking() if allowed(p) and (not methods or p[0] in methods)]
+            if not ok and units and not [p for p in tm.ranking() if p[1] == units and (not methods or p[0] in methods)]:
+                have = ", ".join(f"{m}/{u}" for m, u in tm.ranking() if not methods or m in methods)
+                raise ModelError(f"{model_dir}: --units {units} leaves task {task} without a model (it has {have}); "
+                                 f"train the model with the {units} unit (pdrlearn train --units {units}), or "
+                                 "export without --units (decision E218)")
             if not ok:
                 left = [f"{m}/{u}" for m, per in tm.models.items() for u in per if not methods or m in methods]
                 raise ModelError(f"{model_dir}: --no-training-samples leaves task {task} without a model (its "
@@ -371,7 +393,7 @@ def export_model(
         if not training_samples:  # E68 amended (review): what the request would have exported without the option
             asked = ([(m, u) for m in methods for u in tm.models.get(m, {})] if methods else
                      [p for p in (tm.chosen, _foot_only(tm, tm.chosen, methods)) if p])
-            dropped += [f"{task} {m}/{u}" for m, u in dict.fromkeys(asked) if not allowed((m, u))]
+            dropped += [f"{task} {m}/{u}" for m, u in dict.fromkeys(asked) if not keeps((m, u))]
         if foot_only is not None and foot_only not in wanted:
             wanted = [*wanted, foot_only]
         entries: dict = {}
@@ -473,11 +495,18 @@ def export_model(
         },
         metrics={t: v["cv"] for t, v in tasks.items()},
         export={"methods": list(methods) if methods else "chosen", "skipped": skipped,
-                "training_samples": bool(training_samples), "dropped": dropped},  # decision E68
+                "training_samples": bool(training_samples), "dropped": dropped,  # decision E68
+                **({"units": units} if units else {})},  # decision E218
     )
     if step is not None:
         col.onnx[STEP_GRAPH_FILE] = step[0]
         manifest["step_graph"] = {"file": STEP_GRAPH_FILE, **step[1]}
+    atol = PARITY_ATOL
+    if float32:  # decision E217
+        col.onnx = bundle_to_float32(col.onnx, manifest)
+        atol = FLOAT32_PARITY_ATOL
+    # decision E219: each graph's flash, parameters and multiply-accumulates per step, for a port's budget
+    manifest["export"]["model_sizes"] = {rel: onnx_stats(m) for rel, m in sorted(col.onnx.items())}
     models = {t: tm.models for t, tm in model.tasks.items()}
     W = parity_windows(int(model.n_samples), model.boundaries or "given")
 
@@ -485,7 +514,7 @@ def export_model(
         from pdrlearn.runtime import load_bundle
 
         bundle = load_bundle(path, verify=verify)
-        check_bundle_parity(bundle, models, W)
+        check_bundle_parity(bundle, models, W, atol=atol)
         return bundle
 
     return write_bundle(out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, json_files=col.json,

@@ -307,6 +307,8 @@ class StepGraph:
             raise DataError(f"step features are NaN: the stream lacks a sensor the model needs (window channels "
                             f"{', '.join(missing)} are empty); push those sensors, or export a model trained "
                             "without them")
-        if self._run is not None and W.dtype == np.float64 and W.flags.c_contiguous:
+        if self._run is not None and W.dtype != self.model.dtype:  # a float32 step graph (decision E217)
+            W = np.ascontiguousarray(W, dtype=self.model.dtype)
+        if self._run is not None and W.dtype == self.model.dtype and W.flags.c_contiguous:
             return dict(zip(self._roles, self._run(self._wanted, {self.model.input_name: W}, None), strict=True))
         return self.model.run(W)
