@@ -1441,22 +1441,31 @@ def warn_low_rate(session: Session) -> None:
                         rate, MIN_VALIDATED_RATE_HZ, what, MIN_VALIDATED_RATE_HZ)
 
 
+def _stream_where(session: Session, name: str) -> str:
+    """A stream's name in a warning: its file, or the in-memory session and stream."""
+    return (str(session_csv(session.folder, name)) if session.folder is not None
+            else f"session '{session.name}', stream {name}")
+
+
 def warn_saturation(session: Session) -> None:
     """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
     extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence."""
-    from pdrlearn.io.validate import MOVING_RAD_S, clipped_samples, saturation_warning
+    from pdrlearn.io.validate import (MOVING_RAD_S, ceiling_clip, ceiling_warning, clipped_samples,
+                                      saturation_warning)
 
     for name, s in session.streams.items():
         kind = SENSORS[name].kind
         n, top = clipped_samples(s.values, kind)
         if n:
-            where = (str(session_csv(session.folder, name)) if session.folder is not None
-                     else f"session '{session.name}', stream {name}")
+            where = _stream_where(session, name)
             gyro = kind == "gyroscope"  # decision B401: the share of the motion at full scale, and the foot's remedy
             moving = int(np.count_nonzero(np.linalg.norm(s.values, axis=1) >= MOVING_RAD_S)) if gyro else None
             log.warning("%s", saturation_warning(where, kind, n, len(s), top,
                                                  "waist" if name.startswith("w") else "foot",  # T3 finding 9
                                                  moving=moving))
+        elif kind == "accelerometer" and (full := ceiling_clip(s.values)):  # decision B403: clipped ahead of a filter
+            where = _stream_where(session, name)
+            log.warning("%s", ceiling_warning(where, full, "waist" if name.startswith("w") else "foot"))
 
 
 def warn_frozen(session: Session) -> None:

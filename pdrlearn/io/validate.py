@@ -624,6 +624,54 @@ def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
     return k > (int(np.unique(near, return_counts=True)[1].max()) if near.size else 0)
 
 
+#: decision B403: an accelerometer axis needs this many peaks (strides) at or above B77's 2 g floor to be judged for
+#: a ceiling; standard MEMS full scales (g) the pinned peaks must sit just under (2 g is caught by B77 at every rate,
+#: trial T2); the band under the scale (90-100 %) and the largest spread of the 10 highest peaks (7 %) that make a
+#: ceiling: all stated in decision B403 before it was measured
+CEILING_MIN_PEAKS = 20
+CEILING_SCALES_G = (4.0, 8.0, 16.0)
+CEILING_BAND = 0.90
+CEILING_SPREAD = 0.07
+CEILING_TAIL = 10
+
+
+def ceiling_clip(values: np.ndarray) -> float:
+    """Decision B403: the full scale (m/s^2) an accelerometer file's impact peaks are pinned under (a converter that
+    saturated before the sensor's own decimation filter: the filter smooths each flat top into a peak just below the
+    scale), or 0.0. On each axis and sign: the local maxima at or above :data:`CLIP_LEVEL`; with
+    :data:`CEILING_MIN_PEAKS` or more, a ceiling when the largest lies within :data:`CEILING_BAND`-100 % of one of
+    :data:`CEILING_SCALES_G` and the :data:`CEILING_TAIL`-th largest within :data:`CEILING_SPREAD` of it."""
+    v = np.asarray(values, dtype=float)
+    if v.ndim != 2 or v.shape[0] < 3:
+        return 0.0
+    floor = CLIP_LEVEL["accelerometer"]
+    found = 0.0
+    for col in (*v.T, *(-v).T):
+        inner = col[1:-1]
+        peaks = np.sort(inner[(inner > col[:-2]) & (inner >= col[2:]) & (inner >= floor)])[::-1]
+        if peaks.size < CEILING_MIN_PEAKS:
+            continue
+        top = float(peaks[0])
+        if (top - float(peaks[CEILING_TAIL - 1])) > CEILING_SPREAD * top:
+            continue
+        for scale in CEILING_SCALES_G:
+            full = scale * STANDARD_GRAVITY
+            if CEILING_BAND * full <= top <= full:
+                found = max(found, full)
+    return found
+
+
+def ceiling_warning(where: str, full: float, unit_name: str = "foot") -> str:
+    """Decision B403's one line: the file, the full scale its peaks are pinned under, the consequence and the fix."""
+    g = full / STANDARD_GRAVITY
+    what = ("the foot's integrated stride lengths come out short (trial T2: -2.3 % at 52 Hz)" if unit_name == "foot"
+            else "the lower back's step peaks and step lengths come out short")
+    return coded(f"{where}: its impact peaks are pinned just under +-{g:.3g} g (the {CEILING_TAIL} highest within "
+                 f"{100 * CEILING_SPREAD:.0f} % of one another): the sensor looks clipped at +-{g:.3g} g ahead of its "
+                 f"own filter, which smoothed the flat tops away; {what}; record with a range above +-{g:.3g} g "
+                 "(decision B403)", "B403")
+
+
 #: decision B401: a gyroscope sample is "moving" at |w| >= this (rad/s): the stance segmenter's default threshold
 #: (``kernels.stride.StanceSegmenter.stance_gyro_rad_s``), so the share of clipped samples is of the swings'
 MOVING_RAD_S = 0.8
