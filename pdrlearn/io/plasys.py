@@ -1450,8 +1450,7 @@ def _stream_where(session: Session, name: str) -> str:
 def warn_saturation(session: Session) -> None:
     """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
     extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence."""
-    from pdrlearn.io.validate import (MOVING_RAD_S, ceiling_clip, ceiling_warning, clipped_samples,
-                                      saturation_warning)
+    from pdrlearn.io.validate import MOVING_RAD_S, ceiling_clip, ceiling_warning, clipped_samples, saturation_warning
 
     for name, s in session.streams.items():
         kind = SENSORS[name].kind
