@@ -1427,13 +1427,36 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
 MIN_VALIDATED_RATE_HZ = 20.0
 
 
+#: decision B404: below this rate (Hz) of a unit's accelerometer / gyroscope, ``track`` and ``steps`` refuse the
+#: session: the lowest rate at which every one of 10 simulated walks kept step F1 >= 0.9 and |distance error| <= 10 %
+#: (measured in decision B404; 10 Hz: F1 0.045, -99.81 %, trial T2)
+MIN_RATE_HZ = 15.0
+
+
+def unit_rates(session: Session) -> dict[str, float]:
+    """Each IMU unit's sampling rate (Hz): the slower of its accelerometer and gyroscope (NaN without either)."""
+    return {unit: min((session.streams[n].rate_hz for n in names if n in session.streams
+                       and len(session.streams[n]) > 1), default=float("nan"))
+            for unit, names in UNIT_IMU.items()}
+
+
+def refuse_too_slow(session: Session, command: str) -> None:
+    """Decision B404: a DataError naming the session, the unit and its rate when a unit's accelerometer or gyroscope
+    is sampled below :data:`MIN_RATE_HZ` (D7: a nominal clock may read 1 % low); ``command`` the CLI command."""
+    where = session.folder if session.folder is not None else f"session '{session.name}'"
+    for unit, rate in unit_rates(session).items():
+        if rate < MIN_RATE_HZ * 0.99:
+            raise DataError(f"{where}: the {unit} unit is sampled at {rate:.3g} Hz, too slow for {command} to give a "
+                            f"result (below {MIN_RATE_HZ:g} Hz its steps are lost and the distance comes out far "
+                            f"short; docs/robustness.md): record at {MIN_VALIDATED_RATE_HZ:g} Hz or more (decision "
+                            "B404)")
+
+
 def warn_low_rate(session: Session) -> None:
     """One warning per unit whose accelerometer or gyroscope is sampled below :data:`MIN_VALIDATED_RATE_HZ`
     (decision B23): the detectors run, but lose steps (a 10 Hz foot recording: 16 of 29 strides)."""
     where = session.folder if session.folder is not None else f"session '{session.name}'"
-    for unit, names in UNIT_IMU.items():
-        rates = [session.streams[n].rate_hz for n in names if n in session.streams and len(session.streams[n]) > 1]
-        rate = min(rates, default=float("nan"))
+    for unit, rate in unit_rates(session).items():
         if rate < MIN_VALIDATED_RATE_HZ * 0.99:  # D7: a nominal 20 Hz clock may read 19.9x Hz
             what = "strides" if unit == "foot" else "steps"
             log.warning("%s: the %s unit is sampled at %.3g Hz, below the %g Hz its step detectors are validated at "
@@ -1471,18 +1494,26 @@ def warn_frozen(session: Session) -> None:
     """Decision B120: one warning per run of bit-identical consecutive samples of a 3-axis sensor file lasting
     :data:`~pdrlearn.kernels.units.FROZEN_S` or more while the unit's other sensor shows it moving (a frozen
     sensor; without that sensor, every such run), naming the file and the span."""
-    from pdrlearn.kernels.units import FROZEN_PARTNER, frozen_message, frozen_spans, moving_samples
+    from pdrlearn.io.validate import resolution
+    from pdrlearn.kernels.units import (
+        FROZEN_MOVING_MIN,
+        FROZEN_PARTNER,
+        frozen_message,
+        frozen_spans,
+        moving_samples,
+        quantisation_margin,
+    )
 
     for name, s in session.streams.items():
         if s.values.ndim != 2 or s.values.shape[1] != 3:
             continue
-        where = (str(session_csv(session.folder, name)) if session.folder is not None
-                 else f"session '{session.name}', stream {name}")
+        where = _stream_where(session, name)
         other = session.streams.get(FROZEN_PARTNER.get(name, ""))
-        moved = None if other is None else other.t[moving_samples(other.name, other.values)]
+        moved = None if other is None else other.t[moving_samples(  # B405: beyond the partner's own rounding
+            other.name, other.values, quantisation_margin(resolution(other.values)))]
         for a, b, n in frozen_spans(s.t, s.values):
-            if moved is not None and not np.any((moved >= a) & (moved <= b)):
-                continue  # the unit rests (its other sensor shows no movement): a quantised reading, not frozen
+            if moved is not None and np.count_nonzero((moved >= a) & (moved <= b)) < FROZEN_MOVING_MIN:
+                continue  # the unit rests (its other sensor shows no movement, B405: or a transient): quantised
             log.warning("%s", frozen_message(where, a, b, n, s.values[int(np.searchsorted(s.t, a))]))
 
 
