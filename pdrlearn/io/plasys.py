@@ -1496,6 +1496,7 @@ def warn_frozen(session: Session) -> None:
     sensor; without that sensor, every such run), naming the file and the span."""
     from pdrlearn.io.validate import resolution
     from pdrlearn.kernels.units import (
+        FROZEN_EDGE_S,
         FROZEN_MOVING_MIN,
         FROZEN_PARTNER,
         frozen_message,
@@ -1512,7 +1513,8 @@ def warn_frozen(session: Session) -> None:
         moved = None if other is None else other.t[moving_samples(  # B405: beyond the partner's own rounding
             other.name, other.values, quantisation_margin(resolution(other.values)))]
         for a, b, n in frozen_spans(s.t, s.values):
-            if moved is not None and np.count_nonzero((moved >= a) & (moved <= b)) < FROZEN_MOVING_MIN:
+            inside = (moved > a + FROZEN_EDGE_S) & (moved < b - FROZEN_EDGE_S) if moved is not None else None
+            if inside is not None and np.count_nonzero(inside) < FROZEN_MOVING_MIN:
                 continue  # the unit rests (its other sensor shows no movement, B405: or a transient): quantised
             log.warning("%s", frozen_message(where, a, b, n, s.values[int(np.searchsorted(s.t, a))]))
 

@@ -386,6 +386,9 @@ FROZEN_PARTNER = {"fAccelerometer": "fGyroscope", "fGyroscope": "fAccelerometer"
 #: (B77's count): one or two transient samples, such as a decimation filter's edge at a file's first or last sample,
 #: are not motion, while a walking unit moves on dozens
 FROZEN_MOVING_MIN = 3
+#: decision B405 (amended): the partner's movement counts only this far (s) inside a run's ends: a coarsely quantised
+#: unit starts and stops moving there, and a decimation filter's edge transient sits at a file's ends
+FROZEN_EDGE_S = 0.5
 #: a gyroscope sample shows movement over this rate (rad/s): above B36's still 0.3 rad/s and a standing body's sway
 MOVING_RPS = 0.5
 #: an accelerometer sample shows movement when |acc| is this far from gravity (m/s^2): twice B37's walking sd
