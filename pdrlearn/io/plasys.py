@@ -1427,11 +1427,29 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
 MIN_VALIDATED_RATE_HZ = 20.0
 
 
+#: decision B404 (amended): below this rate (Hz) of a unit's accelerometer / gyroscope, ``track`` and ``steps``
+#: refuse the session: on fresh simulated walks (users 10180-10189) 10 and 12.5 Hz failed in 10 of 10 (step F1 < 0.9
+#: or |distance error| > 10 %; 10 Hz -99.7 %), 15 Hz in 4 of 10, so 15 Hz is the lowest rate not unusable
+MIN_RATE_HZ = 15.0
+
+
 def unit_rates(session: Session) -> dict[str, float]:
     """Each IMU unit's sampling rate (Hz): the slower of its accelerometer and gyroscope (NaN without either)."""
     return {unit: min((session.streams[n].rate_hz for n in names if n in session.streams
                        and len(session.streams[n]) > 1), default=float("nan"))
             for unit, names in UNIT_IMU.items()}
+
+
+def refuse_too_slow(session: Session, command: str) -> None:
+    """Decision B404: a DataError naming the session, the unit and its rate when a unit's accelerometer or gyroscope
+    is sampled below :data:`MIN_RATE_HZ` (D7: a nominal clock may read 1 % low); ``command`` the CLI command."""
+    where = session.folder if session.folder is not None else f"session '{session.name}'"
+    for unit, rate in unit_rates(session).items():
+        if rate < MIN_RATE_HZ * 0.99:
+            raise DataError(f"{where}: the {unit} unit is sampled at {rate:.3g} Hz, too slow for {command} to give a "
+                            f"result (below {MIN_RATE_HZ:g} Hz its steps are lost and the distance comes out far "
+                            f"short; docs/robustness.md): record at {MIN_VALIDATED_RATE_HZ:g} Hz or more (decision "
+                            "B404)")
 
 
 def warn_low_rate(session: Session) -> None:
