@@ -111,3 +111,39 @@ def test_single_sample_clips_at_a_pinned_full_scale_are_said_b311(tmp_path, capl
     lines = [r.getMessage() for r in caplog.records if "clipped" in r.getMessage()]
     assert len(lines) == 1 and "fAccelerometer.csv: 20 of 2000 samples" in lines[0], lines
     assert "reached by 5+ samples one at a time" in lines[0] and "above +-4 g (decision B77, B311)" in lines[0]
+
+
+def _filtered_impact_walk(full: float | None, fs_out: int = 52, seconds: float = 40.0, seed: int = 10180):
+    """A 400 Hz foot with one 25-60 m/s^2 heel-strike pulse (37 ms, Hann) a second on +z, optionally clipped at
+    ``full`` there, then decimated to ``fs_out`` Hz by an anti-aliased polyphase filter: a sensor whose converter
+    saturates ahead of its own decimation filter (trial T2 finding 3)."""
+    from scipy.signal import resample_poly
+
+    rng = np.random.default_rng(seed)
+    fs = 400
+    t = np.arange(0.0, seconds, 1.0 / fs)
+    v = np.column_stack([np.zeros_like(t), np.zeros_like(t), np.full_like(t, G)]) + rng.normal(0, 0.05, (t.size, 3))
+    pulse = np.hanning(15)
+    for k in np.arange(200, t.size - 20, fs):
+        v[k:k + 15, 2] += rng.uniform(25.0, 60.0) * pulse
+    if full is not None:
+        v = np.clip(v, -full, full)
+    out = resample_poly(v, fs_out, fs, axis=0)
+    return np.arange(len(out)) / fs_out, out
+
+
+def test_clipped_before_the_sensors_filter_is_said_b403(tmp_path, caplog):
+    from pdrlearn.io.validate import ceiling_clip
+
+    full = 4 * G
+    t, clipped = _filtered_impact_walk(full)
+    assert clipped_samples(clipped, "accelerometer") == (0, 0.0)  # no flat top left for B77 / B311
+    assert ceiling_clip(clipped) == pytest.approx(full)
+    assert ceiling_clip(_filtered_impact_walk(None)[1]) == 0.0  # the same walk unclipped: its peaks spread
+    _write(tmp_path / "s", "fAccelerometer", t, clipped)
+    _write(tmp_path / "s", "fGyroscope", t, np.zeros_like(clipped))
+    with caplog.at_level(logging.WARNING):
+        read_session(tmp_path / "s")
+    lines = [r.getMessage() for r in caplog.records if "B403" in r.getMessage()]
+    assert len(lines) == 1 and "fAccelerometer.csv: its impact peaks are pinned just under +-4 g" in lines[0], lines
+    assert "record with a range above +-4 g" in lines[0]

@@ -1645,6 +1645,11 @@ def train_user(
         from pdrlearn.displace.calibration import calibrate_distance
 
         calibration = calibrate_distance(sessions)
+        from pdrlearn.classify.calibration_note import calibration_skipped_line
+
+        skipped_cal = calibration_skipped_line(calibration, sessions)  # decision C154: said, not only stored
+        if skipped_cal:
+            log.warning("%s", skipped_cal)
     if not out and (calibration is None or calibration.get("reason")):
         # decision C17: a model without classifiers is worth writing only for its distance calibration
         why = ("distance calibration off" if calibration is None

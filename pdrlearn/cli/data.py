@@ -68,12 +68,13 @@ def info(
     c = console()
     c.print(f"session {summary['name']} — {summary['duration_s']:.1f} s", markup=False)
     t = Table()
-    for col in ("sensor", "placement", "rate (Hz)", "samples", "duration (s)", "gaps", "longest gap (s)"):
+    for col in ("sensor", "placement", "rate (Hz)", "samples", "duration (s)", "gaps", "longest gap (s)",
+                "resolution"):  # decision B406
         # names whole (the sensor was cut to "fAccelero…" at 80 columns); the other headers wrap instead
-        t.add_column(col, min_width={"sensor": 14, "placement": 9}.get(col))
+        t.add_column(col, min_width={"sensor": 14, "placement": 9, "resolution": 10}.get(col))
     for name, d in summary["sensors"].items():
         t.add_row(name, d["placement"], f"{d['rate_hz']}", str(d["samples"]), f"{d['duration_s']:.2f}",
-                  str(d["gaps"]), f"{d['longest_gap_s']:.3f}")
+                  str(d["gaps"]), f"{d['longest_gap_s']:.3f}", f"{d['resolution']:.3g} {d['unit']}")
     c.print(t)
     gz = [d["file"] for d in summary["sensors"].values() if str(d.get("file", "")).endswith(".gz")]
     if gz:  # decision B369: read in place

@@ -81,6 +81,9 @@ def steps(
     events_out = _events_file(events_out, out, force)
     was = out is not None and existed(out)
     session = read_session(session_dir)
+    from pdrlearn.io.plasys import refuse_too_slow
+
+    refuse_too_slow(session, "steps")  # decision B404
     if time_origin == "export":
         if export_origin_s(session.meta) is None:
             raise DataError(f"{session_dir}: --time-origin export adds back the first time of the export 'pdrlearn "

@@ -1427,13 +1427,36 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
 MIN_VALIDATED_RATE_HZ = 20.0
 
 
+#: decision B404 (amended): below this rate (Hz) of a unit's accelerometer / gyroscope, ``track`` and ``steps``
+#: refuse the session: on fresh simulated walks (users 10180-10189) 10 and 12.5 Hz failed in 10 of 10 (step F1 < 0.9
+#: or |distance error| > 10 %; 10 Hz -99.7 %), 15 Hz in 4 of 10, so 15 Hz is the lowest rate not unusable
+MIN_RATE_HZ = 15.0
+
+
+def unit_rates(session: Session) -> dict[str, float]:
+    """Each IMU unit's sampling rate (Hz): the slower of its accelerometer and gyroscope (NaN without either)."""
+    return {unit: min((session.streams[n].rate_hz for n in names if n in session.streams
+                       and len(session.streams[n]) > 1), default=float("nan"))
+            for unit, names in UNIT_IMU.items()}
+
+
+def refuse_too_slow(session: Session, command: str) -> None:
+    """Decision B404: a DataError naming the session, the unit and its rate when a unit's accelerometer or gyroscope
+    is sampled below :data:`MIN_RATE_HZ` (D7: a nominal clock may read 1 % low); ``command`` the CLI command."""
+    where = session.folder if session.folder is not None else f"session '{session.name}'"
+    for unit, rate in unit_rates(session).items():
+        if rate < MIN_RATE_HZ * 0.99:
+            raise DataError(f"{where}: the {unit} unit is sampled at {rate:.3g} Hz, too slow for {command} to give a "
+                            f"result (below {MIN_RATE_HZ:g} Hz its steps are lost and the distance comes out far "
+                            f"short; docs/robustness.md): record at {MIN_VALIDATED_RATE_HZ:g} Hz or more (decision "
+                            "B404)")
+
+
 def warn_low_rate(session: Session) -> None:
     """One warning per unit whose accelerometer or gyroscope is sampled below :data:`MIN_VALIDATED_RATE_HZ`
     (decision B23): the detectors run, but lose steps (a 10 Hz foot recording: 16 of 29 strides)."""
     where = session.folder if session.folder is not None else f"session '{session.name}'"
-    for unit, names in UNIT_IMU.items():
-        rates = [session.streams[n].rate_hz for n in names if n in session.streams and len(session.streams[n]) > 1]
-        rate = min(rates, default=float("nan"))
+    for unit, rate in unit_rates(session).items():
         if rate < MIN_VALIDATED_RATE_HZ * 0.99:  # D7: a nominal 20 Hz clock may read 19.9x Hz
             what = "strides" if unit == "foot" else "steps"
             log.warning("%s: the %s unit is sampled at %.3g Hz, below the %g Hz its step detectors are validated at "
@@ -1441,40 +1464,58 @@ def warn_low_rate(session: Session) -> None:
                         rate, MIN_VALIDATED_RATE_HZ, what, MIN_VALIDATED_RATE_HZ)
 
 
+def _stream_where(session: Session, name: str) -> str:
+    """A stream's name in a warning: its file, or the in-memory session and stream."""
+    return (str(session_csv(session.folder, name)) if session.folder is not None
+            else f"session '{session.name}', stream {name}")
+
+
 def warn_saturation(session: Session) -> None:
     """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
     extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence."""
-    from pdrlearn.io.validate import MOVING_RAD_S, clipped_samples, saturation_warning
+    from pdrlearn.io.validate import MOVING_RAD_S, ceiling_clip, ceiling_warning, clipped_samples, saturation_warning
 
     for name, s in session.streams.items():
         kind = SENSORS[name].kind
         n, top = clipped_samples(s.values, kind)
         if n:
-            where = (str(session_csv(session.folder, name)) if session.folder is not None
-                     else f"session '{session.name}', stream {name}")
+            where = _stream_where(session, name)
             gyro = kind == "gyroscope"  # decision B401: the share of the motion at full scale, and the foot's remedy
             moving = int(np.count_nonzero(np.linalg.norm(s.values, axis=1) >= MOVING_RAD_S)) if gyro else None
             log.warning("%s", saturation_warning(where, kind, n, len(s), top,
                                                  "waist" if name.startswith("w") else "foot",  # T3 finding 9
                                                  moving=moving))
+        elif kind == "accelerometer" and (full := ceiling_clip(s.values)):  # decision B403: clipped ahead of a filter
+            where = _stream_where(session, name)
+            log.warning("%s", ceiling_warning(where, full, "waist" if name.startswith("w") else "foot"))
 
 
 def warn_frozen(session: Session) -> None:
     """Decision B120: one warning per run of bit-identical consecutive samples of a 3-axis sensor file lasting
     :data:`~pdrlearn.kernels.units.FROZEN_S` or more while the unit's other sensor shows it moving (a frozen
     sensor; without that sensor, every such run), naming the file and the span."""
-    from pdrlearn.kernels.units import FROZEN_PARTNER, frozen_message, frozen_spans, moving_samples
+    from pdrlearn.io.validate import resolution
+    from pdrlearn.kernels.units import (
+        FROZEN_EDGE_S,
+        FROZEN_MOVING_MIN,
+        FROZEN_PARTNER,
+        frozen_message,
+        frozen_spans,
+        moving_samples,
+        quantisation_margin,
+    )
 
     for name, s in session.streams.items():
         if s.values.ndim != 2 or s.values.shape[1] != 3:
             continue
-        where = (str(session_csv(session.folder, name)) if session.folder is not None
-                 else f"session '{session.name}', stream {name}")
+        where = _stream_where(session, name)
         other = session.streams.get(FROZEN_PARTNER.get(name, ""))
-        moved = None if other is None else other.t[moving_samples(other.name, other.values)]
+        moved = None if other is None else other.t[moving_samples(  # B405: beyond the partner's own rounding
+            other.name, other.values, quantisation_margin(resolution(other.values)))]
         for a, b, n in frozen_spans(s.t, s.values):
-            if moved is not None and not np.any((moved >= a) & (moved <= b)):
-                continue  # the unit rests (its other sensor shows no movement): a quantised reading, not frozen
+            inside = (moved > a + FROZEN_EDGE_S) & (moved < b - FROZEN_EDGE_S) if moved is not None else None
+            if inside is not None and np.count_nonzero(inside) < FROZEN_MOVING_MIN:
+                continue  # the unit rests (its other sensor shows no movement, B405: or a transient): quantised
             log.warning("%s", frozen_message(where, a, b, n, s.values[int(np.searchsorted(s.t, a))]))
 
 

@@ -700,6 +700,8 @@ class Session:
 
     def summary(self) -> dict:
         """Machine-readable summary (the ``pdrlearn info --json`` contract)."""
+        from pdrlearn.io.validate import resolution
+
         sensors = {}
         for name, s in self.streams.items():
             gaps = s.gaps()
@@ -710,6 +712,7 @@ class Session:
                 "gaps": len(gaps),
                 "longest_gap_s": round(max((g.duration_s for g in gaps), default=0.0), 6),
                 "unit": s.unit,
+                "resolution": resolution(s.values),  # decision B406: the smallest step between values, in unit
                 "placement": s.placement,
                 "file": self._file_name(name),  # decision B369: fAccelerometer.csv or fAccelerometer.csv.gz
             }

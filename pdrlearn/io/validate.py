@@ -593,8 +593,9 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
     top = 0.0
     for j in range(v.shape[1]):
         col = v[:, j]
+        step = axis_step(col)
         for ext in (col.max(), col.min()):
-            if not abs(ext) >= level:
+            if not abs(ext) >= level or step > CLIP_COARSE * abs(ext):  # decision B405: coarse levels repeat
                 continue
             at = col == ext
             if _pinned(col, ext, at):  # decision B311: a pinned full-scale value, runs or not
@@ -611,6 +612,27 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
     return int(hit.sum()), top
 
 
+#: decision B405: an axis whose resolution (:func:`axis_step`) is more than this fraction of its extreme has under 50
+#: levels up to it, so its peak level repeats by quantisation (an 8-bit +-2000 deg/s gyroscope: 15.6 deg/s steps,
+#: its 359 deg/s peaks 4.3 %); B77/B311 do not call it clipped. A clipped 8-bit +-250 deg/s one: 0.8 %, still said.
+CLIP_COARSE = 0.02
+
+
+def axis_step(col: np.ndarray) -> float:
+    """Decision B405/B406: the smallest step between the distinct values of one axis (its resolution; 0.0 with
+    fewer than two distinct values)."""
+    u = np.unique(np.asarray(col, dtype=float)[np.isfinite(col)])
+    return float(np.diff(u).min()) if u.size > 1 else 0.0
+
+
+def resolution(values: np.ndarray) -> float:
+    """Decision B406: a stream's resolution: the smallest :func:`axis_step` over its axes that have one (0.0 when
+    no axis changes)."""
+    v = np.asarray(values, dtype=float)
+    steps = [axis_step(c) for c in v.reshape(len(v), -1).T]
+    return min((x for x in steps if x > 0), default=0.0)
+
+
 def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
     """Decision B311: ``CLIP_PINNED`` or more samples sit at the axis's extreme ``ext`` (``at``), and more than at any
     other value in the top tenth of the axis's range: a rail piles up every sample beyond it, while the top of an
@@ -622,6 +644,54 @@ def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
     band = 0.1 * float(col.max() - col.min())
     near = col[~at & (np.abs(col - ext) <= band)]
     return k > (int(np.unique(near, return_counts=True)[1].max()) if near.size else 0)
+
+
+#: decision B403: an accelerometer axis needs this many peaks (strides) at or above B77's 2 g floor to be judged for
+#: a ceiling; standard MEMS full scales (g) the pinned peaks must sit just under (2 g is caught by B77 at every rate,
+#: trial T2); the band under the scale (90-100 %) and the largest spread of the 10 highest peaks (7 %) that make a
+#: ceiling: all stated in decision B403 before it was measured
+CEILING_MIN_PEAKS = 20
+CEILING_SCALES_G = (4.0, 8.0, 16.0)
+CEILING_BAND = 0.90
+CEILING_SPREAD = 0.07
+CEILING_TAIL = 10
+
+
+def ceiling_clip(values: np.ndarray) -> float:
+    """Decision B403: the full scale (m/s^2) an accelerometer file's impact peaks are pinned under (a converter that
+    saturated before the sensor's own decimation filter: the filter smooths each flat top into a peak just below the
+    scale), or 0.0. On each axis and sign: the local maxima at or above :data:`CLIP_LEVEL`; with
+    :data:`CEILING_MIN_PEAKS` or more, a ceiling when the largest lies within :data:`CEILING_BAND`-100 % of one of
+    :data:`CEILING_SCALES_G` and the :data:`CEILING_TAIL`-th largest within :data:`CEILING_SPREAD` of it."""
+    v = np.asarray(values, dtype=float)
+    if v.ndim != 2 or v.shape[0] < 3:
+        return 0.0
+    floor = CLIP_LEVEL["accelerometer"]
+    found = 0.0
+    for col in (*v.T, *(-v).T):
+        inner = col[1:-1]
+        peaks = np.sort(inner[(inner > col[:-2]) & (inner >= col[2:]) & (inner >= floor)])[::-1]
+        if peaks.size < CEILING_MIN_PEAKS:
+            continue
+        top = float(peaks[0])
+        if (top - float(peaks[CEILING_TAIL - 1])) > CEILING_SPREAD * top:
+            continue
+        for scale in CEILING_SCALES_G:
+            full = scale * STANDARD_GRAVITY
+            if CEILING_BAND * full <= top <= full:
+                found = max(found, full)
+    return found
+
+
+def ceiling_warning(where: str, full: float, unit_name: str = "foot") -> str:
+    """Decision B403's one line: the file, the full scale its peaks are pinned under, the consequence and the fix."""
+    g = full / STANDARD_GRAVITY
+    what = ("the foot's integrated stride lengths come out short (trial T2: -2.3 % at 52 Hz)" if unit_name == "foot"
+            else "the lower back's step peaks and step lengths come out short")
+    return coded(f"{where}: its impact peaks are pinned just under +-{g:.3g} g (the {CEILING_TAIL} highest within "
+                 f"{100 * CEILING_SPREAD:.0f} % of one another): the sensor looks clipped at +-{g:.3g} g ahead of its "
+                 f"own filter, which smoothed the flat tops away; {what}; record with a range above +-{g:.3g} g "
+                 "(decision B403)", "B403")
 
 
 #: decision B401: a gyroscope sample is "moving" at |w| >= this (rad/s): the stance segmenter's default threshold

@@ -382,6 +382,13 @@ FROZEN_S = 2.0
 #: +-16 g, 31 mg/LSB, with 1.5 mg noise: runs up to 8.1 s), as a frozen one does; a moving unit changes every sensor
 FROZEN_PARTNER = {"fAccelerometer": "fGyroscope", "fGyroscope": "fAccelerometer", "wAccelerometer": "wGyroscope",
                   "wGyroscope": "wAccelerometer", "wMagneticField": "wGyroscope"}
+#: decision B405: the partner sensor must show movement on this many samples of a run for it to be a frozen sensor
+#: (B77's count): one or two transient samples, such as a decimation filter's edge at a file's first or last sample,
+#: are not motion, while a walking unit moves on dozens
+FROZEN_MOVING_MIN = 3
+#: decision B405 (amended): the partner's movement counts only this far (s) inside a run's ends: a coarsely quantised
+#: unit starts and stops moving there, and a decimation filter's edge transient sits at a file's ends
+FROZEN_EDGE_S = 0.5
 #: a gyroscope sample shows movement over this rate (rad/s): above B36's still 0.3 rad/s and a standing body's sway
 MOVING_RPS = 0.5
 #: an accelerometer sample shows movement when |acc| is this far from gravity (m/s^2): twice B37's walking sd
@@ -389,19 +396,26 @@ MOVING_RPS = 0.5
 MOVING_ACC = 2 * WALKING_ACC_STD
 
 
-def moving_samples(name: str, values) -> np.ndarray:
+def moving_samples(name: str, values, margin: float = 0.0) -> np.ndarray:
     """Decision B120: which samples of stream ``name`` (n, 3) show the unit moving (:data:`MOVING_RPS`,
-    :data:`MOVING_ACC`); a magnetometer shows none."""
+    :data:`MOVING_ACC`, widened by ``margin``); a magnetometer shows none."""
     v = np.asarray(values, dtype=float)
-    return np.asarray(moving_norm(name, np.linalg.norm(v.reshape(len(v), -1), axis=1)), dtype=bool)
+    return np.asarray(moving_norm(name, np.linalg.norm(v.reshape(len(v), -1), axis=1), margin), dtype=bool)
 
 
-def moving_norm(name: str, norm):
-    """:func:`moving_samples` on the samples' norms (an array, or one float: the tracker's one-sample path)."""
+def quantisation_margin(step: float) -> float:
+    """Decision B405: the largest error rounding to a 3-axis sensor's ``step`` makes in a sample's norm
+    (half a step on each axis: sqrt(3) / 2 steps)."""
+    return 0.5 * math.sqrt(3.0) * step
+
+
+def moving_norm(name: str, norm, margin: float = 0.0):
+    """:func:`moving_samples` on the samples' norms (an array, or one float: the tracker's one-sample path);
+    ``margin`` (decision B405) widens the thresholds by the sensor's own quantisation."""
     if name.endswith("Gyroscope"):
-        return norm > MOVING_RPS
+        return norm > MOVING_RPS + margin
     if name.endswith("Accelerometer"):
-        return abs(norm - STANDARD_GRAVITY) > MOVING_ACC
+        return abs(norm - STANDARD_GRAVITY) > MOVING_ACC + margin
     return norm != norm  # a magnetometer: no evidence (False; NaN never comes, the push checks it)
 
 
