@@ -1583,6 +1583,11 @@ def train_user(
     ids = [s.content_id() for s in sessions]  # decision B87: before anything reads the streams
     recorded = session_rates(sessions)
     sessions = one_rate(sessions, recorded, resample_hz)  # decision C56
+    from pdrlearn.classify.force_scale import training_force
+
+    # decision C153: the force unit and level the force features are fitted on; C155: mixed units refused here,
+    # before any fit
+    force = training_force(sessions)
     windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
     users = [session_user(s) for s in sessions]
     named = sorted({u for u in users if u is not None})  # the users the sessions name (decision C35)
@@ -1675,9 +1680,6 @@ def train_user(
         summary["length_bounds_m"] = bounds
     if calibration is not None:
         summary["distance_calibration"] = calibration
-    from pdrlearn.classify.force_scale import training_force
-
-    force = training_force(sessions)  # decision C153: the force unit and level the force features were fitted on
     if force is not None:
         summary["force"] = force
     for t, m in out.items():
