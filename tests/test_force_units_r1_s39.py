@@ -4,6 +4,7 @@ import (B407), import's force unit lines (B408)."""
 from __future__ import annotations
 
 import copy
+import json
 
 import numpy as np
 import pytest
@@ -73,3 +74,57 @@ def test_a_model_trained_on_mixed_units_before_c155_says_so_c155(walk):
     line = force_scale_line(record, _in_units(walk, "walk_n", "N", "N"))
     # before C155: "is 1x the model's training force (... N; counts)", a ratio against no level
     assert "different force units" in line and "1x" not in line and "retrain" in line
+
+
+@pytest.fixture(scope="module")
+def adc_csv(walk, tmp_path_factory):
+    """Review R1's d.csv case: raw ADC counts in heel and toe under names without a unit hint."""
+    from tests.test_force_units_s39 import _adc, _insole_csv
+
+    path = tmp_path_factory.mktemp("b407") / "insole.csv"
+    _insole_csv(walk, path, "", _adc)
+    return path
+
+
+def _import(args, capsys):
+    from pdrlearn.cli import main
+
+    capsys.readouterr()
+    rc = main(["import", *map(str, args)])
+    return rc, capsys.readouterr().err.strip().splitlines()
+
+
+def test_one_given_force_unit_is_both_columns_and_different_units_are_refused_b407(adc_csv, tmp_path, capsys):
+    rc, err = _import([adc_csv, "--out", tmp_path / "s", "--heel-unit", "counts"], capsys)
+    units = json.loads((tmp_path / "s" / "meta.json").read_text())["units"]
+    # before B407: "fForceB: forefoot ... in N (default)", the counts written as N
+    assert rc == 0 and units["fForceA"] == units["fForceB"] == "counts (source counts, x 1)"
+    assert any(line.startswith("fForceB: forefoot") and "given with --heel-unit, B407" in line for line in err)
+    rc, err = _import([adc_csv, "--out", tmp_path / "t", "--heel-unit", "counts", "--toe-unit", "N"], capsys)
+    assert rc == 2 and len(err) == 1 and "B407" in err[0] and "in counts (given)" in err[0]  # before B407: 0
+    assert not (tmp_path / "t").exists()
+
+
+@pytest.mark.parametrize("unit, said, not_said", [
+    ("1/4 N", "--heel-unit takes N, kgf", "give its unit with --heel-unit"),  # before B408: the option just given
+    ("%BW", "with --heel-unit counts", "with --mapping units"),  # before B408: --mapping only
+])
+def test_the_force_unit_lines_name_what_heel_unit_takes_b408(adc_csv, tmp_path, capsys, unit, said, not_said):
+    rc, err = _import([adc_csv, "--out", tmp_path / "s", "--heel-unit", unit], capsys)
+    assert rc == 2 and len(err) == 1 and said in err[0] and not_said not in err[0]
+    assert not (tmp_path / "s").exists()
+
+
+def test_a_force_unit_for_an_unmapped_column_is_one_line_b408(walk, tmp_path, capsys):
+    import pandas as pd
+
+    from tests.test_force_units_s39 import _insole_csv
+
+    path = tmp_path / "renamed.csv"
+    _insole_csv(walk, path, "")
+    df = pd.read_csv(path).rename(columns={"heel": "heel_new", "midfoot": "mid_old", "forefoot": "toe_old"})
+    df.to_csv(path, index=False)  # review R1's b.csv: no force column is guessed
+    rc, err = _import([path, "--out", tmp_path / "s", "--heel-unit", "kg"], capsys)
+    # before B408: exit 0, the unit ignored without a word
+    assert rc == 2 and len(err) == 1 and "--heel-unit kg is given" in err[0] and "--heel COLUMN" in err[0]
+    assert not (tmp_path / "s").exists()
