@@ -128,3 +128,21 @@ def test_a_force_unit_for_an_unmapped_column_is_one_line_b408(walk, tmp_path, ca
     # before B408: exit 0, the unit ignored without a word
     assert rc == 2 and len(err) == 1 and "--heel-unit kg is given" in err[0] and "--heel COLUMN" in err[0]
     assert not (tmp_path / "s").exists()
+
+
+def test_a_pseudonymised_models_line_says_it_keeps_no_trace_and_names_import_subject_c156():
+    from pdrlearn.classify import train_user
+    from pdrlearn.classify.training import other_user_line
+    from pdrlearn.sim import simulate
+
+    model = train_user([simulate("length", user_seed=10271)], tasks=["length"], methods=["svm"], units=["foot"],
+                       cv=2, user="P001", distance_calibration=False)
+    # C156: no trace of the hidden id, not even a hash (session names are not users, E174)
+    assert [k for k in model.data_summary if "user" in k] == ["users"] and model.data_summary["users"] == ["P001"]
+    own = simulate("length", user_seed=10271, seed=5)
+    line = other_user_line(model, [own])
+    # before C156: only 'write "user": "P001" in their meta.json', rewriting the user's data
+    assert "keeps no trace of the id it hides (decision C156)" in line and "import them with --subject P001" in line
+    own.meta = {**own.meta, "subject": "P001"}  # what import --subject P001 writes
+    own.meta.pop("user", None)
+    assert other_user_line(model, [own]) is None
