@@ -6,12 +6,12 @@ from __future__ import annotations
 import copy
 import json
 
-import numpy as np
 import pytest
 
 from pdrlearn.errors import DataError
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
+from tests.test_force_units_s39 import _adc, _insole_csv, _with_force
 
 ROUTE = "stand:2, straight:20, stand:2"
 
@@ -24,20 +24,11 @@ def walk():
 def _in_units(session, name: str, heel: str, toe: str, fn=None):
     """A copy of ``session`` named ``name`` whose meta.json units say heel / toe are in ``heel`` / ``toe`` (force
     values ``fn(values)``)."""
-    out = copy.copy(session)
+    out = copy.copy(session) if fn is None else _with_force(session, fn)
     out.name = name
     out.meta = {**(session.meta or {}), "units": {"fForceA": f"{heel} (source {heel}, x 1)",
                                                   "fForceB": f"{toe} (source {toe}, x 1)"}}
-    if fn is not None:
-        out.streams = dict(session.streams)
-        for n in ("fForceA", "fForceB"):
-            s = session.streams[n]
-            out.streams[n] = type(s)(s.name, s.t, fn(s.values))
     return out
-
-
-def _adc(values):  # review R1's d.csv: a 12-bit FSR, 250 counts unloaded, 4 counts/N
-    return np.clip(np.round(250 + 4 * values), 0, 4095)
 
 
 def test_training_on_mixed_force_units_is_refused_naming_the_sessions_c155(walk):
@@ -79,8 +70,6 @@ def test_a_model_trained_on_mixed_units_before_c155_says_so_c155(walk):
 @pytest.fixture(scope="module")
 def adc_csv(walk, tmp_path_factory):
     """Review R1's d.csv case: raw ADC counts in heel and toe under names without a unit hint."""
-    from tests.test_force_units_s39 import _adc, _insole_csv
-
     path = tmp_path_factory.mktemp("b407") / "insole.csv"
     _insole_csv(walk, path, "", _adc)
     return path
@@ -117,8 +106,6 @@ def test_the_force_unit_lines_name_what_heel_unit_takes_b408(adc_csv, tmp_path, 
 
 def test_a_force_unit_for_an_unmapped_column_is_one_line_b408(walk, tmp_path, capsys):
     import pandas as pd
-
-    from tests.test_force_units_s39 import _insole_csv
 
     path = tmp_path / "renamed.csv"
     _insole_csv(walk, path, "")
