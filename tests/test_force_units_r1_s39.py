@@ -54,7 +54,7 @@ def test_the_force_unit_of_a_session_reads_heel_and_toe_c155(walk):
     assert force_scale_line(record, _in_units(walk, "walk_n", "N", "N")) is None
     toe_counts = _in_units(walk, "walk_toe", "N", "counts")  # before C155: fForceA's N, no line
     assert "N; counts" in force_scale_line(record, toe_counts)
-    with pytest.raises(DataError, match="N; counts: session 'walk_mixed'"):
+    with pytest.raises(DataError, match="heel and toe in N and counts: session 'walk_mixed'"):
         training_force([mixed])
 
 

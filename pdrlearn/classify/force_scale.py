@@ -60,7 +60,8 @@ def training_force(sessions) -> dict | None:
         by_unit: dict[str, list[str]] = {}
         for s, u, _ in rows:
             by_unit.setdefault(u, []).append(str(getattr(s, "where", None) or getattr(s, "name", "?")))
-        named = "; ".join(f"{u}: {', '.join(w[:3])}{f' and {len(w) - 3} more' if len(w) > 3 else ''}"
+        named = "; ".join(f"{u if '; ' not in u else 'heel and toe in ' + ' and '.join(u.split('; '))}: "
+                          f"{', '.join(w[:3])}{f' and {len(w) - 3} more' if len(w) > 3 else ''}"
                           for u, w in sorted(by_unit.items()))
         raise DataError(f"train: the sessions' force is in different units ({named}); the force features are "
                         "unit-dependent: re-import the sessions in one unit (import --heel-unit / --toe-unit, "
