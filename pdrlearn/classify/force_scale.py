@@ -30,21 +30,45 @@ def force_level(session) -> float | None:
     return level if np.isfinite(level) and level > 0 else None
 
 
-def force_unit(session) -> str:
-    """The stored force unit of a session: meta.json ``units.fForceA``'s first word (``"N (source kgf, x
+def _channel_unit(session, name: str) -> str:
+    """The stored unit of one force stream: meta.json ``units.<name>``'s first word (``"N (source kgf, x
     9.80665)"`` -> ``N``, ``"counts ..."`` -> ``counts``), else ``N`` (the data model's unit, B286)."""
-    text = str(((session.meta or {}).get("units") or {}).get("fForceA") or "N").strip()
+    text = str(((session.meta or {}).get("units") or {}).get(name) or "N").strip()
     return (text.split() or ["N"])[0]
 
 
+def force_unit(session) -> str:
+    """The stored force unit of a session, read from both force streams (decision C155: heel and toe, not fForceA
+    alone): one word (``N``, ``counts``), or ``"counts; N"`` when heel and toe differ (a session imported before
+    B407 with one ``--heel-unit``)."""
+    names = [n for n in FORCE_STREAMS if n in (getattr(session, "streams", None) or {})] or list(FORCE_STREAMS[:1])
+    return "; ".join(sorted({_channel_unit(session, n) for n in names}))
+
+
 def training_force(sessions) -> dict | None:
-    """Decision C153: ``{"unit", "level_p95", "n_sessions"}`` of the training ``sessions`` with force (the unit(s),
-    ``; ``-joined when they differ; the median of their :func:`force_level`), None when none has force."""
-    rows = [(force_unit(s), lv) for s in sessions if (lv := force_level(s)) is not None]
+    """Decision C153: ``{"unit", "level_p95", "n_sessions"}`` of the training ``sessions`` with force (their one
+    unit; the median of their :func:`force_level`), None when none has force. Decision C155: sessions in different
+    force units (N and counts), or a session whose heel and toe differ, are one :class:`DataError` naming them: a
+    median of N and counts levels is no level, and every later session would be called unreliable."""
+    rows = [(s, force_unit(s), lv) for s in sessions if (lv := force_level(s)) is not None]
     if not rows:
         return None
-    level = round(float(np.median([lv for _, lv in rows])), 6)
-    return {"unit": "; ".join(sorted({u for u, _ in rows})), "level_p95": level, "n_sessions": len(rows)}
+    units = sorted({u for _, u, _ in rows})
+    if len(units) > 1 or "; " in units[0]:
+        from pdrlearn.errors import DataError
+
+        by_unit: dict[str, list[str]] = {}
+        for s, u, _ in rows:
+            by_unit.setdefault(u, []).append(str(getattr(s, "where", None) or getattr(s, "name", "?")))
+        named = "; ".join(f"{u if '; ' not in u else 'heel and toe in ' + ' and '.join(u.split('; '))}: "
+                          f"{', '.join(w[:3])}{f' and {len(w) - 3} more' if len(w) > 3 else ''}"
+                          for u, w in sorted(by_unit.items()))
+        raise DataError(f"train: the sessions' force is in different units ({named}); the force features are "
+                        "unit-dependent: re-import the sessions in one unit (import --heel-unit / --toe-unit, "
+                        "B397; counts cannot become N without a calibration) or train on one unit's sessions "
+                        "(decision C155)")
+    level = round(float(np.median([lv for _, _, lv in rows])), 6)
+    return {"unit": units[0], "level_p95": level, "n_sessions": len(rows)}
 
 
 def model_force(model) -> dict | None:
@@ -69,6 +93,10 @@ def force_scale_line(record: dict | None, session) -> str | None:
     if level is None:
         return None
     unit, trained = force_unit(session), float(record["level_p95"])
+    if "; " in str(record.get("unit")):  # decision C155: a model trained on mixed units before C155 has no level
+        return (f"{session.where}: the model was trained on sessions in different force units "
+                f"({record.get('unit')}, before decision C155), so its force classes (length, terrain) are "
+                "unreliable in any unit; retrain on sessions in one unit (decision C155)")
     ratio = level / trained
     if unit == record.get("unit") and 1.0 / FORCE_SCALE_MAX <= ratio <= FORCE_SCALE_MAX:
         return None

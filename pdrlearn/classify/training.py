@@ -822,9 +822,12 @@ def other_user_line(model, sessions, what: str = "evaluate") -> str | None:
         return None
     users = ", ".join(sorted({u for _, u in other}))
     names = ", ".join(_where(s) for s, _ in other[:3]) + (f" and {len(other) - 3} more" if len(other) > 3 else "")
+    # decision C156: the model keeps no trace of the id a given name hides (a hash of it, salt stored beside it,
+    # would confirm a guessed id), so the own sessions are recognised only by that name: import --subject
     given = ("" if key.startswith(_USER_KEY_PREFIXES) else
-             f"; {key} is the name given at training (train --user, E174): if these are that user's sessions, write "
-             f"\"user\": \"{key}\" in their meta.json")
+             f"; {key} is the name given at training (train --user, E174) and the model keeps no trace of the id it "
+             "hides (decision C156): if these are that user's sessions the line is expected; to have them "
+             f"recognised, import them with --subject {key}, or write \"user\": \"{key}\" in their meta.json")
     return (f"{what}: the model was trained on {key} but {len(other)} of {len(sessions)} session(s) are of {users} "
             f"({names}): a per-user model is applied to another user, so the figures are not the model's held-out "
             f"accuracy on its user{given} (decision C138; train that user's model, or a pooled one with --cv-groups "
@@ -1583,6 +1586,11 @@ def train_user(
     ids = [s.content_id() for s in sessions]  # decision B87: before anything reads the streams
     recorded = session_rates(sessions)
     sessions = one_rate(sessions, recorded, resample_hz)  # decision C56
+    from pdrlearn.classify.force_scale import training_force
+
+    # decision C153: the force unit and level the force features are fitted on; C155: mixed units refused here,
+    # before any fit
+    force = training_force(sessions)
     windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
     users = [session_user(s) for s in sessions]
     named = sorted({u for u in users if u is not None})  # the users the sessions name (decision C35)
@@ -1680,9 +1688,6 @@ def train_user(
         summary["length_bounds_m"] = bounds
     if calibration is not None:
         summary["distance_calibration"] = calibration
-    from pdrlearn.classify.force_scale import training_force
-
-    force = training_force(sessions)  # decision C153: the force unit and level the force features were fitted on
     if force is not None:
         summary["force"] = force
     for t, m in out.items():

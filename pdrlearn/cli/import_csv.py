@@ -310,12 +310,14 @@ def import_command(
               visit=visit)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
+        _check_force_unit_used(csv, parts[0][1], heel_unit, toe_unit)  # decision B408, before any write
         if len(parts) > 1:
             _write_parts(parts, csv, unit, out, force_frame, as_json)
             return
         session, record = parts[0]
     else:
         session, record = import_csv(csv, origin_s=origin, **kw)
+        _check_force_unit_used(csv, record, heel_unit, toe_unit)  # decision B408, before any write
     if steps is not None:
         if base is not None and base.steps is not None:
             raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
@@ -367,6 +369,21 @@ def import_command(
         typer.echo(f"warning: {out}: {axes_warning}", err=True)
     if frame_warning:
         typer.echo(f"warning: {out}: {frame_warning}", err=True)
+
+
+def _check_force_unit_used(csv: Path, record: dict, heel_unit: str | None, toe_unit: str | None) -> None:
+    """Decision B408: ``--heel-unit`` / ``--toe-unit`` given for a force column the import did not map is one line
+    (it had been ignored without a word: the unit the user meant for a column that stayed unused)."""
+    from pdrlearn.errors import DataError
+
+    mapped = {r[-6:] for r in record["streams"]}  # fForceA / wForceA ...: ForceA is heel, ForceB toe (KINDS)
+    for opt, given, kind, stream in (("--heel-unit", heel_unit, "heel", "ForceA"),
+                                     ("--toe-unit", toe_unit, "toe", "ForceB")):
+        if given is not None and stream not in mapped:
+            unused = record.get("unused_columns") or []
+            raise DataError(f"{csv}: {opt} {given} is given, but no {kind} force column is mapped"
+                            + (f" (unused columns: {', '.join(map(str, unused))})" if unused else "")
+                            + f"; name it with --{kind} COLUMN, or leave {opt} out (decision B408)")
 
 
 def _split_written(folder: Path) -> bool:

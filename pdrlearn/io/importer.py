@@ -337,6 +337,36 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
     return si, 1.0, "default"
 
 
+def _own_force_unit(kind: str, columns: list[str], units: dict, row_units: dict[str, str] | None) -> bool:
+    """Whether a force kind's unit is said for it: given (option or --mapping units), a units row or a header hint."""
+    return units.get(kind) is not None or any((row_units or {}).get(c) or _header_unit(c) for c in columns)
+
+
+def _one_force_unit(columns: dict[str, list[str]], units: dict, where: str,
+                    row_units: dict[str, str] | None) -> tuple[dict, dict[str, str]]:
+    """Decision B407: heel and toe in one stored unit. A unit given for one of them (``--heel-unit counts``) is the
+    other's too when the other says none of its own (it had been N by default: raw counts in the toe written as N);
+    heel and toe that still resolve to different stored units (N and counts) are one :class:`DataError`, since the
+    force features and C153/C155's check read heel + toe as one unit. Returns the units and {kind: the option its
+    unit was taken from}."""
+    if not {"heel", "toe"} <= set(columns):
+        return units, {}
+    units, shared = dict(units), {}
+    own = {k: _own_force_unit(k, columns[k], units, row_units) for k in ("heel", "toe")}
+    for kind, other in (("heel", "toe"), ("toe", "heel")):
+        if not own[kind] and units.get(other) is not None:
+            units[kind], shared[kind] = units[other], _FORCE_UNIT_OPTION[other]
+    got = {k: _resolve_unit(k, units.get(k), columns[k], where, row_units) for k in ("heel", "toe")}
+    stored = {k: "counts" if u == "counts" else "N" for k, (u, _, _) in got.items()}  # B286: kgf is stored as N
+    if stored["heel"] != stored["toe"]:
+        said = {k: f"{got[k][0]} ({shared.get(k) or got[k][2]})" for k in got}
+        raise DataError(f"{where}: the heel force ({', '.join(columns['heel'])}) is in {said['heel']} and the toe "
+                        f"({', '.join(columns['toe'])}) in {said['toe']}; the force features read heel + toe in one "
+                        "unit: give both the same unit (--heel-unit U --toe-unit U) or convert one column "
+                        "(decision B407)")
+    return units, shared
+
+
 def _check_force_units(kind: str, given: str | None, columns: list[str], where: str,
                        row_units: dict[str, str] | None, by_word: dict[str, str]) -> None:
     """Decision B286: a force column's unit (given, units row or header hint ``heel (kg)``) that is not N, kgf or
@@ -351,7 +381,13 @@ def _check_force_units(kind: str, given: str | None, columns: list[str], where: 
         if w.replace("(", "").replace(")", "") in _BODY_WEIGHT_UNITS:
             raise DataError(f"{where}: {kind} unit {text!r} ({src}) is % body weight, and import does not know the "
                             "body mass: convert it to N (x mass_kg x 9.80665 / 100) or declare it as counts "
-                            "(unitless: the force detectors are scale-free) with --mapping units (decision B286)")
+                            f"(unitless: the force detectors are scale-free) with {_FORCE_UNIT_OPTION[kind]} counts "
+                            "or the --mapping file's \"units\" (decisions B286, B408)")
+        if w not in by_word and src == "given":  # decision B408: not "give it with" the option just given
+            raise DataError(f"{where}: {kind} unit {text!r} ({src}) is not a force unit; {_FORCE_UNIT_OPTION[kind]} "
+                            "takes N, kgf (or kg, kp) or counts (raw ADC, unitless; no count size such as "
+                            "'1/4 N': the detectors are scale-free, convert the column to N for the force "
+                            "features) (decisions B286, B408)")
         if w not in by_word:
             raise DataError(f"{where}: {kind} unit {text!r} ({src}) is not one of {', '.join(by_word.values())}; "
                             "convert the column, rename its unit hint, or give its unit with "
@@ -1163,6 +1199,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             record["time"]["datetime"] = parsed[1]
         streams: dict[str, Stream] = {}
         units = {k: v for k, v in (units or {}).items() if v is not None}
+        units, shared_unit = _one_force_unit(columns, units, where, row_units)  # decision B407
         for kind, cols in columns.items():
             sensor = prefix + KINDS[kind][0]
             vals = df[cols].apply(pd.to_numeric, errors="coerce").to_numpy(dtype=float)
@@ -1188,6 +1225,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 if again.size:
                     record.setdefault("duplicate_rows", {})[sensor] = int(again.size)
             u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where, row_units)
+            if kind in shared_unit:  # decision B407: the other force column's given unit
+                u_src = f"given with {shared_unit[kind]}, B407"
             t = t_all[keep]
             if retime_hz is not None:  # decision B186: batched receive stamps spread at the sensor's rate
                 t = _retimed(t, float(retime_hz), where, time_column, record, sensor)
@@ -1229,7 +1268,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 except DataError:
                     raise exc from None
                 si = next(iter(UNITS[kind]))
-                fix = (f"drop {opt} {u} (or pass {opt} {si})" if u_src == "given"
+                fix = (f"drop {opt} {u} (or pass {opt} {si})" if u_src.startswith("given")
                        else f"the column names say {u}, but the values are not: pass {opt} {si}")
                 raise DataError(f"{exc}; read without the conversion from {u} they are plausible {si}: {fix}") from None
             streams[sensor] = stream
