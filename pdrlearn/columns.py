@@ -787,11 +787,13 @@ PERIODS: tuple[Column, ...] = (
     ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
     ("position_sigma_end_m", "m", "number", "the position's 1-sigma at the period's end (trajectory.csv pos_sigma_m, "
                                             "L128); empty for an aided track"),
-    ("start_x_m", "m", "number", "the track's x (trajectory.csv) at the period's start: the last trajectory row at or "
-                                 "before it, the first row before the track begins (L514)"),
-    ("start_y_m", "m", "number", "the track's y at the period's start (L514)"),
-    ("end_x_m", "m", "number", "the track's x at the period's end (L514)"),
-    ("end_y_m", "m", "number", "the track's y at the period's end (L514)"),
+    ("start_x_m", "m", "number", "the track's x (trajectory.csv) at the period's start: at the end of the last step "
+                                 "distance_m counts before it (its middle before the start), at the first step's start "
+                                 "when none is (L514, L528)"),
+    ("start_y_m", "m", "number", "the track's y at the period's start (L514, L528)"),
+    ("end_x_m", "m", "number", "the track's x at the period's end: at the end of the last step counted up to it, so "
+                               "|(dx_m, dy_m)| <= distance_m (L514, L528)"),
+    ("end_y_m", "m", "number", "the track's y at the period's end (L514, L528)"),
     ("dx_m", "m", "number", "end_x_m - start_x_m: the period's net displacement along x (distance_m is the path "
                             "length; L514)"),
     ("dy_m", "m", "number", "end_y_m - start_y_m (L514)"),

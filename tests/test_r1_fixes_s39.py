@@ -2,6 +2,7 @@
 
 import json
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -31,3 +32,37 @@ def test_a_window_after_the_jumps_has_no_flights_w424(jumps_then_walk, tmp_path,
     s = json.loads((whole / "summary.json").read_text())
     assert s["n_flight_phases"] == 3
     assert len(pd.read_csv(whole / "flights.csv")) >= 3
+
+
+def _net_within_distance(per: pd.DataFrame) -> None:
+    net = np.hypot(per["dx_m"], per["dy_m"])
+    assert (net <= per["distance_m"] + 1e-6).all(), per[["start_s", "distance_m", "n_steps", "dx_m", "dy_m"]]
+
+
+def test_periods_net_displacement_is_never_longer_than_its_distance_l528(jumps_then_walk, tmp_path):
+    # review R1's case: the position at the last stride end before each edge lagged a stride behind distance_m's rule
+    out, win = tmp_path / "per", tmp_path / "win"
+    assert main(["track", str(jumps_then_walk), "--per", "5", "--out", str(out)]) == 0
+    per = pd.read_csv(out / "periods.csv")
+    _net_within_distance(per)
+    final = json.loads((out / "summary.json").read_text())["final_position"]
+    assert abs(per["dx_m"].sum() - final["x"]) < 1e-6 and abs(per["dy_m"].sum() - final["y"]) < 1e-6
+    # under --window, each period's start is a position of the window's trajectory
+    assert main(["track", str(jumps_then_walk), "--per", "5", "--window", "7,16", "--out", str(win)]) == 0
+    per, traj = pd.read_csv(win / "periods.csv"), pd.read_csv(win / "trajectory.csv")
+    _net_within_distance(per)
+    assert all(np.isclose(traj["x"], x).any() for x in per["start_x_m"]), (per["start_x_m"], traj["x"])
+
+
+@pytest.mark.parametrize("user,route,units,every", [
+    (10251, "stand:2, straight:8, turn:90, straight:6, stand:2", "foot", "3"),
+    (10252, "stand:1, straight:5, side:3, backward:2, stand:2", "foot", "4"),
+    (10253, "stand:2, straight:10, turn:-90, straight:5, stand:1", "waist", "2.5"),
+])
+def test_periods_net_displacement_property_over_simulated_walks_l528(tmp_path, user, route, units, every):
+    sim, out = tmp_path / "s", tmp_path / "o"
+    assert main(["simulate", "--route", route, "--user-seed", str(user), "--out", str(sim)]) == 0
+    assert main(["track", str(sim), "--units", units, "--per", every, "--out", str(out)]) == 0
+    per = pd.read_csv(out / "periods.csv")
+    _net_within_distance(per)
+    assert np.allclose(per["end_x_m"].to_numpy()[:-1], per["start_x_m"].to_numpy()[1:])
