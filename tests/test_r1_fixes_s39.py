@@ -66,3 +66,74 @@ def test_periods_net_displacement_property_over_simulated_walks_l528(tmp_path, u
     per = pd.read_csv(out / "periods.csv")
     _net_within_distance(per)
     assert np.allclose(per["end_x_m"].to_numpy()[:-1], per["start_x_m"].to_numpy()[1:])
+
+
+@pytest.fixture(scope="module")
+def clipped_walks(tmp_path_factory):
+    """A 100 Hz walk with a turn (user 10254), its foot gyroscope clipped at +-250 deg/s (L525's case), one spike (the
+    global extreme held 4 samples, review R1's spike.py) and the clipped copy without the waist unit."""
+    import shutil
+
+    root = tmp_path_factory.mktemp("l529")
+    clean = root / "clean"
+    assert main(["simulate", "--route", "stand:3, straight:12, turn:90, straight:8, stand:3", "--rate", "100",
+                 "--user-seed", "10254", "--out", str(clean)]) == 0
+    g = pd.read_csv(clean / "fGyroscope.csv")
+    out = {"clean": clean}
+    for name in ("clip", "spike", "foot_clip"):
+        out[name] = root / name
+        shutil.copytree(clean, out[name])
+        v = g.copy()
+        xyz = v[["x", "y", "z"]].to_numpy().copy()
+        if name == "spike":
+            i = int(np.argmax(np.abs(xyz).max(1)))
+            ax = int(np.argmax(np.abs(xyz[i])))
+            xyz[i:i + 4, ax] = xyz[i, ax]
+        else:
+            xyz = np.clip(xyz, -np.deg2rad(250.0), np.deg2rad(250.0))
+        v[["x", "y", "z"]] = xyz
+        v.to_csv(out[name] / "fGyroscope.csv", index=False)
+    for f in out["foot_clip"].glob("w*.csv"):
+        f.unlink()
+    return out
+
+
+def test_a_spike_in_the_foot_gyroscope_leaves_the_track_alone_l529(clipped_walks, caplog):
+    from pdrlearn.io import read_session
+    from pdrlearn.track.plasys import track_plasys
+
+    clean = track_plasys(read_session(clipped_walks["clean"]))
+    with caplog.at_level("WARNING"):
+        spike = read_session(clipped_walks["spike"])
+    line = next(r.getMessage() for r in caplog.records if "fGyroscope.csv" in r.getMessage())
+    assert "keeps its usual settings, decision L529" in line and "heads by the waist unit" not in line
+    res = track_plasys(spike)
+    assert not [w for w in res.info["warnings"] if "L525" in w]
+    assert res.info["heading_source"] == clean.info["heading_source"] == "fused"
+    clipped = track_plasys(read_session(clipped_walks["clip"]))  # a clipped swing still switches (L525)
+    assert [w for w in clipped.info["warnings"] if "L525" in w] and clipped.info["heading_source"] == "waist"
+
+
+def test_the_l525_line_names_a_params_file_and_the_settings_used_l530(clipped_walks, tmp_path):
+    from pdrlearn.io import read_session
+    from pdrlearn.track.plasys import track_plasys
+
+    session = read_session(clipped_walks["clip"])
+    line = next(w for w in track_plasys(session).info["warnings"] if "L525" in w)
+    assert "--params '{" not in line and '--params JSON file with {"tilt_dedrift": false}' in line
+    assert "tilt_dedrift true, accel_scale_error 0" in line
+    own = {"tilt_dedrift": False, "accel_scale_error": 0.01}
+    line = next(w for w in track_plasys(session, params=own).info["warnings"] if "L525" in w)
+    assert "tilt_dedrift true" not in line and "accel_scale_error 0," not in line and "your --params file" in line
+    params = tmp_path / "p.json"  # the advice works: a params file
+    params.write_text(json.dumps({"tilt_dedrift": False}))
+    assert main(["track", str(clipped_walks["clip"]), "--params", str(params), "--out", str(tmp_path / "o")]) == 0
+
+
+def test_b401_line_of_a_foot_only_session_names_the_foots_own_heading_l530(clipped_walks, caplog):
+    from pdrlearn.io import read_session
+
+    with caplog.at_level("WARNING"):
+        read_session(clipped_walks["foot_clip"])
+    line = next(r.getMessage() for r in caplog.records if "fGyroscope.csv" in r.getMessage())
+    assert "heads by the waist unit" not in line and "keeps the foot's own stride yaw" in line

@@ -1454,9 +1454,10 @@ def warn_saturation(session: Session) -> None:
                      else f"session '{session.name}', stream {name}")
             gyro = kind == "gyroscope"  # decision B401: the share of the motion at full scale, and the foot's remedy
             moving = int(np.count_nonzero(np.linalg.norm(s.values, axis=1) >= MOVING_RAD_S)) if gyro else None
+            waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")  # decision L530
             log.warning("%s", saturation_warning(where, kind, n, len(s), top,
                                                  "waist" if name.startswith("w") else "foot",  # T3 finding 9
-                                                 moving=moving))
+                                                 moving=moving, waist=waist))
 
 
 def warn_frozen(session: Session) -> None:
