@@ -70,7 +70,8 @@ def clipped_foot_line(n: int, total: int, top: float, waist_heads: bool, applied
            "keeps the foot settings your --params file gives (tilt_dedrift, accel_scale_error)")
     if waist_heads:
         ways = ["the Python API's heading='fused'"] + ([f"a --params JSON file with {{{undo[0]}}}"] if undo else [])
-        head = f"and heads by the waist unit instead of fusing the foot's stride yaw ({' and '.join(ways)} {'undo' if len(ways) > 1 else 'undoes'} it)"
+        verb = "undo" if len(ways) > 1 else "undoes"
+        head = f"and heads by the waist unit instead of fusing the foot's stride yaw ({' and '.join(ways)} {verb} it)"
     else:
         head = ("but its heading is the foot's own stride yaw, which the clipping turns: add a waist unit, or record "
                 "the foot with a wider range")
