@@ -1020,8 +1020,8 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("cadence_spm", "steps/min", "number", "120 / stride_time_s (two steps per stride of one foot)"),
     ("speed_mps", "m/s", "number", "|length_m| / stride_time_s: the first stride after a stop under 3 s reads low "
                                    "(its IC-to-IC holds the stop) and the first stride has none; the opt-in "
-                                   "gait.REST_SPEED takes the shorter of its own and the next stride's time (L509, "
-                                   "L512)"),
+                                   "gait.add_gait_columns(rest_speed=True) takes the shorter of its own and the "
+                                   "next stride's time (L509, L512)"),
     ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride (wrapped "
                                         "to +-pi)"),
     ("tc_s", "s", "number", "--toe-off only: the stride's toe-off (foot gyroscope push-off peak; L73)"),
