@@ -137,3 +137,12 @@ def test_b401_line_of_a_foot_only_session_names_the_foots_own_heading_l530(clipp
         read_session(clipped_walks["foot_clip"])
     line = next(r.getMessage() for r in caplog.records if "fGyroscope.csv" in r.getMessage())
     assert "heads by the waist unit" not in line and "keeps the foot's own stride yaw" in line
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_every_track_writes_flights_csv_header_only_without_a_flight_w424(tmp_path, streaming):
+    sim, out = tmp_path / "s", tmp_path / "o"
+    assert main(["simulate", "--route", "stand:2, straight:6, stand:2", "--user-seed", "10255", "--out", str(sim)]) == 0
+    assert main(["track", str(sim), "--out", str(out), *(["--streaming"] if streaming else [])]) == 0
+    flights = pd.read_csv(out / "flights.csv")
+    assert flights.empty and list(flights.columns) == ["unit", "start_s", "end_s", "flight_time_s", "jump_height_m"]
