@@ -787,11 +787,13 @@ PERIODS: tuple[Column, ...] = (
     ("data_gap", _ID, "true/false", "time_no_data_s > 0: a data gap inside the period"),
     ("position_sigma_end_m", "m", "number", "the position's 1-sigma at the period's end (trajectory.csv pos_sigma_m, "
                                             "L128); empty for an aided track"),
-    ("start_x_m", "m", "number", "the track's x (trajectory.csv) at the period's start: the last trajectory row at or "
-                                 "before it, the first row before the track begins (L514)"),
-    ("start_y_m", "m", "number", "the track's y at the period's start (L514)"),
-    ("end_x_m", "m", "number", "the track's x at the period's end (L514)"),
-    ("end_y_m", "m", "number", "the track's y at the period's end (L514)"),
+    ("start_x_m", "m", "number", "the track's x (trajectory.csv) at the period's start: at the end of the last step "
+                                 "distance_m counts before it (its middle before the start), at the first step's start "
+                                 "when none is (L514, L528)"),
+    ("start_y_m", "m", "number", "the track's y at the period's start (L514, L528)"),
+    ("end_x_m", "m", "number", "the track's x at the period's end: at the end of the last step counted up to it, so "
+                               "|(dx_m, dy_m)| <= distance_m (L514, L528)"),
+    ("end_y_m", "m", "number", "the track's y at the period's end (L514, L528)"),
     ("dx_m", "m", "number", "end_x_m - start_x_m: the period's net displacement along x (distance_m is the path "
                             "length; L514)"),
     ("dy_m", "m", "number", "end_y_m - start_y_m (L514)"),
@@ -1018,8 +1020,8 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("cadence_spm", "steps/min", "number", "120 / stride_time_s (two steps per stride of one foot)"),
     ("speed_mps", "m/s", "number", "|length_m| / stride_time_s: the first stride after a stop under 3 s reads low "
                                    "(its IC-to-IC holds the stop) and the first stride has none; the opt-in "
-                                   "gait.REST_SPEED takes the shorter of its own and the next stride's time (L509, "
-                                   "L512)"),
+                                   "gait.add_gait_columns(rest_speed=True) takes the shorter of its own and the "
+                                   "next stride's time (L509, L512)"),
     ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride (wrapped "
                                         "to +-pi)"),
     ("tc_s", "s", "number", "--toe-off only: the stride's toe-off (foot gyroscope push-off peak; L73)"),

@@ -68,9 +68,17 @@ def test_initial_heading_is_accepted_when_d25_fell_back_to_the_foot_heading_l511
 
 
 def test_d25_warning_names_the_facing_and_initial_heading_l511():
-    import inspect
+    # review R1 finding 11: the line D25 prints, not the source (a comment would have satisfied a grep)
+    from types import SimpleNamespace
 
-    from pdrlearn.track import compass_mount
+    from pdrlearn.track.compass_mount import MOUNT_FORWARD_OFF_DEG, mount_check
 
-    text = inspect.getsource(compass_mount.mount_check)
-    assert "walker's facing" in text and "--initial-heading DEG sets it" in text
+    turned = SimpleNamespace(forward_deg=MOUNT_FORWARD_OFF_DEG + 30.0, side_drill=False, unchecked=None)
+    session = SimpleNamespace(declared_check=lambda placement: turned)  # a waist unit turned on the belt
+    heading = np.zeros(20)
+    line, info = mount_check(session, heading, heading, np.ones(20, bool))
+    assert info["fallback"] and line is not None
+    assert "the walker's facing at the first walk" in line and "--initial-heading DEG sets it, L511" in line
+    walked = SimpleNamespace(forward_deg=0.0, side_drill=False, unchecked=None)  # worn as declared: no line
+    assert mount_check(SimpleNamespace(declared_check=lambda placement: walked), heading, heading,
+                       np.ones(20, bool))[0] is None

@@ -132,6 +132,23 @@ def test_the_online_tare_leaves_a_tared_insole_bit_for_bit_steps_73(walk100):
     assert np.ptp(a) > FORCE_AMP
     # the offline detector on the simulated newtons: unchanged whether pushed at once or in chunks
     assert _online_strides(AccelForceStepDetector(), walk100) == len(AccelForceStepDetector().detect(walk100))
+    # review R1 finding 10: the same events at the same times as with no tare at all (a count hides moved events)
+    tared, plain = _online_events(walk100, tare=True), _online_events(walk100, tare=False)
+    assert len(plain) > 15 and tared == plain
+
+
+def _online_events(session, *, tare: bool, chunk: int = 50) -> list:
+    """The force detector's online events (``ForceProcessor``, steps decision 73's ``tare`` on or off) of a session
+    pushed in chunks of ``chunk`` samples."""
+    from pdrlearn.kernels.step_events import ForceProcessor
+    from pdrlearn.steps import AccelForceStepDetector
+    from pdrlearn.steps.base import stream_on
+
+    t = session["fAccelerometer"].t
+    x = np.column_stack([session["fAccelerometer"].values,
+                         *(stream_on(session, n, t, purpose="test")[:, 0] for n in ("fForceA", "fForceB"))])
+    proc = ForceProcessor(AccelForceStepDetector(), fs=100.0, tare=tare)
+    return [e for i in range(0, len(t), chunk) for e in proc.process(t[i:i + chunk], x[i:i + chunk])]
 
 
 def _insole_csv(session, path, suffix: str, scale=lambda v: v):

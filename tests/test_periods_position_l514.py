@@ -12,12 +12,15 @@ from pdrlearn.cli import main
 from pdrlearn.track.periods import POSITION_KEYS, period_displacement
 
 
-def test_period_displacement_reads_the_last_row_at_or_before_each_edge_l514():
+def test_period_displacement_reads_the_position_after_the_last_counted_step_l528():
     traj = pd.DataFrame({"t": [1.0, 2.0, 3.0, 4.0], "x": [0.0, 1.0, 2.0, 2.5], "y": [0.0, 0.0, 1.0, 1.0]})
-    assert period_displacement(traj, 0.0, 3.5) == {"start_x_m": 0.0, "start_y_m": 0.0, "end_x_m": 2.0, "end_y_m": 1.0,
-                                                   "dx_m": 2.0, "dy_m": 1.0}
-    assert period_displacement(traj, 2.0, 9.0)["dx_m"] == 1.5
-    assert period_displacement(traj.iloc[:0], 0.0, 1.0) == dict.fromkeys(POSITION_KEYS)
+    start, end = np.array([1.0, 2.0, 3.0]), np.array([2.0, 3.0, 4.0])  # steps whose middles are 1.5, 2.5, 3.5
+    # [0, 3): the steps of middle 1.5 and 2.5, from the first step's start to the second's end (not the row at 3.0 s)
+    assert period_displacement(traj, start, end, 0.0, 3.0) == {"start_x_m": 0.0, "start_y_m": 0.0, "end_x_m": 2.0,
+                                                              "end_y_m": 1.0, "dx_m": 2.0, "dy_m": 1.0}
+    assert period_displacement(traj, start, end, 3.0, 9.0, last=True)["dx_m"] == 0.5
+    assert period_displacement(traj, start, end, 5.0, 9.0, last=True)["dx_m"] == 0.0  # no step: no displacement
+    assert period_displacement(traj.iloc[:0], start, end, 0.0, 1.0) == dict.fromkeys(POSITION_KEYS)
 
 
 def test_periods_csv_gives_each_shuffle_legs_net_displacement_l514(tmp_path):

@@ -1482,9 +1482,10 @@ def warn_saturation(session: Session) -> None:
             where = _stream_where(session, name)
             gyro = kind == "gyroscope"  # decision B401: the share of the motion at full scale, and the foot's remedy
             moving = int(np.count_nonzero(np.linalg.norm(s.values, axis=1) >= MOVING_RAD_S)) if gyro else None
+            waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")  # decision L530
             log.warning("%s", saturation_warning(where, kind, n, len(s), top,
                                                  "waist" if name.startswith("w") else "foot",  # T3 finding 9
-                                                 moving=moving))
+                                                 moving=moving, waist=waist))
         elif kind == "accelerometer" and (full := ceiling_clip(s.values)):  # decision B403: clipped ahead of a filter
             where = _stream_where(session, name)
             log.warning("%s", ceiling_warning(where, full, "waist" if name.startswith("w") else "foot"))

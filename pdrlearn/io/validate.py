@@ -704,11 +704,12 @@ FOOT_GYRO_RANGE_DPS = 1000
 
 
 def saturation_warning(where: str, kind: str, n: int, total: int, top: float, unit_name: str = "foot", *,
-                       moving: int | None = None) -> str:
+                       moving: int | None = None, waist: bool = True) -> str:
     """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results;
     ``unit_name`` the body unit (``"foot"`` or ``"waist"``: its consequence named for it, trial T3 finding 9).
     Decision B401, a gyroscope: ``moving`` (the file's samples with |w| >= :data:`MOVING_RAD_S`) gives the share of
-    the motion at full scale, and a foot's line says what the offline track does about it (L525) and the range a
+    the motion at full scale, and a foot's line says what the offline track does about it (L525; decision L530: by
+    the heading ``waist`` gives, a session with a waist unit or not; L529: nothing under its share) and the range a
     foot needs."""
     unit = "m/s^2" if kind == "accelerometer" else "rad/s"
     rng = f"{top / STANDARD_GRAVITY:.3g} g" if kind == "accelerometer" else f"{np.rad2deg(top):.4g} deg/s"
@@ -721,8 +722,16 @@ def saturation_warning(where: str, kind: str, n: int, total: int, top: float, un
         share = f"; {100.0 * n / moving:.2g} % of its moving samples (|w| >= {MOVING_RAD_S:g} rad/s) are at full scale"
         codes = "B77, B311, B401"
     if kind == "gyroscope" and unit_name == "foot":
-        effect += (" (the foot's stride pitch and yaw: the offline track re-levels each stride at its end rest and "
-                   "heads by the waist unit, decision L525)")
+        from pdrlearn.track.gyro_clip import CLIPPED_MOVING_MIN_SHARE, clipping_acts
+
+        if not clipping_acts(n, moving):  # decision L529: too rare a clipping for L525 to act on
+            effect += (f" (the foot's stride pitch and yaw; under {100 * CLIPPED_MOVING_MIN_SHARE:g} % of the moving "
+                       "samples, the offline track keeps its usual settings, decision L529)")
+        else:  # decision L530: the heading named by the units present
+            effect += (" (the foot's stride pitch and yaw: the offline track re-levels each stride at its end rest "
+                       + ("and heads by the waist unit" if waist else
+                          "and keeps the foot's own stride yaw, which the clipping turns (no waist unit)")
+                       + ", decision L525)")
         remedy = (f" (+-{FOOT_GYRO_RANGE_DPS} deg/s or more for a foot: walking feet turned at {FOOT_PEAK_DPS[0]}-"
                   f"{FOOT_PEAK_DPS[1]} deg/s in the real gaitmap recordings)")
         codes = "B77, B311, B401"

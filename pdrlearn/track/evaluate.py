@@ -1520,12 +1520,15 @@ def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout
     if session is not None:  # decision W363: flight phases in the foot recording (jumps, running)
         from pdrlearn.track.flight import flight_summary
 
-        keys, line = flight_summary(session, result.info.get("pipeline"))
+        win = result.info.get("window")  # decision W425: a --window's flights only (its seconds from the start)
+        span = None if not win else (win["start_s"] + session.t_recording_start,
+                                     win["end_s"] + session.t_recording_start)
+        keys, line = flight_summary(session, result.info.get("pipeline"), span)
         out.update(keys)
         if keys["n_flight_phases"] is not None and "flights" not in result.info:  # decision W417: flights.csv
             from pdrlearn.track.flight import flight_rows
 
-            result.info["flights"] = flight_rows(session)
+            result.info["flights"] = flight_rows(session, span)
         if line:
             import logging
 

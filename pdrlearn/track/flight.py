@@ -60,29 +60,39 @@ def jump_height(flight_time_s):
     return G * np.square(np.asarray(flight_time_s, float)) / 8.0
 
 
-def flight_rows(session) -> list[dict]:
+def in_span(phases: list[tuple[float, float]], span: tuple[float, float] | None) -> list[tuple[float, float]]:
+    """Decision W425: the flight phases of a ``--window`` ``span`` ``(t0, t1)`` (the session's clock): those whose
+    middle lies inside it, whole (a flight is under a second; a cut one would misstate its jump height). None: all."""
+    if span is None:
+        return list(phases)
+    return [(a, b) for a, b in phases if span[0] <= 0.5 * (a + b) <= span[1]]
+
+
+def flight_rows(session, span: tuple[float, float] | None = None) -> list[dict]:
     """Decision W417: flights.csv's rows (:data:`FLIGHT_COLUMNS`), one per flight phase (:func:`flight_phases`) of
-    each unit with an accelerometer (:data:`UNIT_ACC`), in time order."""
+    each unit with an accelerometer (:data:`UNIT_ACC`), in time order; decision W425: those of ``span``
+    (:func:`in_span`)."""
     rows = []
     for unit, name in UNIT_ACC.items():
         acc = session.streams.get(name)
         if acc is None:
             continue
-        for a, b in flight_phases(acc.t, acc.values):
+        for a, b in in_span(flight_phases(acc.t, acc.values), span):
             rows.append({"unit": unit, "start_s": round(a, 3), "end_s": round(b, 3), "flight_time_s": round(b - a, 3),
                          "jump_height_m": round(float(jump_height(b - a)), 3)})
     return sorted(rows, key=lambda r: (r["start_s"], r["unit"]))
 
 
-def flight_summary(session, pipeline: str | None) -> tuple[dict, str | None]:
+def flight_summary(session, pipeline: str | None,
+                   span: tuple[float, float] | None = None) -> tuple[dict, str | None]:
     """Decision W363: ``(keys, line)`` - :data:`KEYS` of the tracked unit's accelerometer (the foot's; decision
     W416: a lower-back track's the waist's; None for both without the stream) and the warning line when it has a
-    flight phase."""
+    flight phase; decision W425: of ``span``'s phases only (:func:`in_span`)."""
     unit = flight_unit(pipeline)
     acc = session.streams.get(UNIT_ACC[unit])
     if acc is None:
         return dict.fromkeys(KEYS), None
-    phases = flight_phases(acc.t, acc.values)
+    phases = in_span(flight_phases(acc.t, acc.values), span)
     total = float(sum(b - a for a, b in phases))
     keys = {"n_flight_phases": len(phases), "flight_time_s": round(total, 3)}
     if not phases:

@@ -96,12 +96,6 @@ def stance_swing(start_s, end_s, event_s, tc_s, stride_s, valid=None) -> tuple[n
     return tc, stance, swing, 100.0 * stance / sd
 
 
-#: decisions L509/L512 (not adopted: an opt-in): True, a stride after a rest takes its length over the shorter of its
-#: own and the next stride's IC-to-IC; False (default), ``|length_m| / stride_time_s`` for every stride (the first
-#: one after a stop under 3 s reads low)
-REST_SPEED = False
-
-
 def resumed_times(start_s, end_s, stride_s, valid=None) -> np.ndarray:
     """Decision L512 (L509 revised): (B,) s, the moving time ``speed_mps`` divides by: ``stride_s`` (IC to IC),
     except for a stride after a rest - the first valid row, or one whose ``start_s`` lies more than
@@ -123,18 +117,19 @@ def resumed_times(start_s, end_s, stride_s, valid=None) -> np.ndarray:
 
 
 def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=None, turn_valid=None,
-                     rest_speed: bool | None = None) -> pd.DataFrame:
+                     rest_speed: bool = False) -> pd.DataFrame:
     """``table`` (a strides table with ``start_s``, ``end_s``, ``event_s``, ``length_m``) with the
     :data:`GAIT_COLUMNS` added in place and returned; ``turn_rad`` (B,) the foot's turn over each stride (NaN
     when None); ``valid`` (B,) bool: False for rows that are no stride (across a gap, or moved 0 m by the
     guard, L97). ``turn_valid`` (B,) bool: the rows whose turn was measured (:func:`turn_rows`: not a gap row,
     decision L109; default ``valid``); the others get a NaN turn. ``tc_s`` (B,): each
     stride's toe-off (``pdrlearn.track.toeoff``); given, the :data:`TOE_OFF_COLUMNS` are added too (L73).
-    ``rest_speed`` (default :data:`REST_SPEED`): decisions L509/L512, a stride after a rest takes its speed over the
-    shorter of its own and the next stride's IC-to-IC (:func:`resumed_times`); ``stride_time_s`` stays IC to IC."""
+    ``rest_speed`` (decisions L509/L512, not adopted: an opt-in keyword only, no module global, W401's pattern):
+    True, a stride after a rest takes its speed over the shorter of its own and the next stride's IC-to-IC
+    (:func:`resumed_times`); False (default), ``|length_m| / stride_time_s`` for every stride (the first one after a
+    stop under 3 s reads low). ``stride_time_s`` stays IC to IC."""
     n = len(table)
     stride = stride_times(table["start_s"], table["end_s"], table["event_s"], valid)
-    rest_speed = REST_SPEED if rest_speed is None else rest_speed
     moving = resumed_times(table["start_s"], table["end_s"], stride, valid) if rest_speed else stride
     turn = np.full(n, np.nan) if turn_rad is None else np.angle(np.exp(1j * np.asarray(turn_rad, dtype=float)))
     turn_valid = valid if turn_valid is None else turn_valid

@@ -5,7 +5,9 @@ B401). The offline stride's gyroscope attitude then leaks gravity into the heigh
 (L30) turns a few degrees per stride, which the fused heading (L17) cannot remove. The streamed stride does neither:
 it re-levels at the stride's end rest (``kernels.window.foot_levelled``), removes the velocity drift linearly in time
 and is headed by the waist gyroscope. So, when B77/B311 flag the foot gyroscope, the offline track takes the streamed
-stride's treatment (:data:`CLIPPED_FOOT_SETTINGS`) and the waist's heading.
+stride's treatment (:data:`CLIPPED_FOOT_SETTINGS`) and the waist's heading. Decision L529: only when the clipped
+samples are :data:`CLIPPED_MOVING_MIN_SHARE` or more of the foot's moving samples (B401's share): a spike of a few
+held samples leaves the track alone.
 """
 from __future__ import annotations
 
@@ -17,31 +19,61 @@ from pdrlearn.warning_lines import coded
 CLIPPED_FOOT_SETTINGS = {"tilt_dedrift": True, "accel_scale_error": 0.0}
 
 
-def foot_gyro_clipped(session) -> tuple[int, float]:
-    """Decision L525: (samples with a clipped axis, the clipped level in rad/s) of the session's foot gyroscope by
-    B77/B311's :func:`~pdrlearn.io.validate.clipped_samples`; (0, 0.0) without one."""
-    from pdrlearn.io.validate import clipped_samples
+#: decision L529 (adopted, docs/decisions/localization.md): L525 acts when the clipped samples are at least this share
+#: of the foot gyroscope's moving samples (|w| >= B401's MOVING_RAD_S); fixed before the measurement (a spike: 0.14 %,
+#: a +-250 deg/s foot: 22-33 %)
+CLIPPED_MOVING_MIN_SHARE = 0.01
+
+
+def clipping_acts(n: int, moving: int | None) -> bool:
+    """Decision L529: whether ``n`` clipped samples of a foot gyroscope with ``moving`` moving samples (B401) are
+    enough for L525 to act (:data:`CLIPPED_MOVING_MIN_SHARE`; ``moving`` None: not counted, any clipping acts)."""
+    return n > 0 and (moving is None or n >= CLIPPED_MOVING_MIN_SHARE * moving)
+
+
+def foot_gyro_clipped(session) -> tuple[int, float, int]:
+    """Decision L525: (samples with a clipped axis, the clipped level in rad/s, decision L529: the moving samples,
+    B401's) of the session's foot gyroscope by B77/B311's :func:`~pdrlearn.io.validate.clipped_samples`; (0, 0.0, 0)
+    without one."""
+    import numpy as np
+
+    from pdrlearn.io.validate import MOVING_RAD_S, clipped_samples
 
     if not session.has("fGyroscope"):
-        return 0, 0.0
-    return clipped_samples(session.streams["fGyroscope"].values, "gyroscope")
+        return 0, 0.0, 0
+    values = session.streams["fGyroscope"].values
+    n, top = clipped_samples(values, "gyroscope")
+    return n, top, int(np.count_nonzero(np.linalg.norm(values, axis=1) >= MOVING_RAD_S))
+
+
+def applied_settings(params) -> dict:
+    """Decision L525: the :data:`CLIPPED_FOOT_SETTINGS` the user's ``params`` do not set (those the track applies)."""
+    given = params if isinstance(params, dict) else {}
+    return {k: v for k, v in CLIPPED_FOOT_SETTINGS.items() if k not in given}
 
 
 def clipped_foot_settings(settings: dict, params) -> dict:
     """Decision L525: ``settings`` (FootDisplacement keywords) with :data:`CLIPPED_FOOT_SETTINGS` for the keys the
     user's ``params`` do not set."""
-    given = params if isinstance(params, dict) else {}
-    return {**settings, **{k: v for k, v in CLIPPED_FOOT_SETTINGS.items() if k not in given}}
+    return {**settings, **applied_settings(params)}
 
 
-def clipped_foot_line(n: int, total: int, top: float, waist_heads: bool) -> str:
-    """Decision L525's one line: what the offline track did about the clipped foot gyroscope."""
+def clipped_foot_line(n: int, total: int, top: float, waist_heads: bool, applied: dict | None = None) -> str:
+    """Decision L525's one line: what the offline track did about the clipped foot gyroscope, worded from the
+    settings it ``applied`` (:func:`applied_settings`; None: all of them) and whether the waist heads it."""
     import math
 
-    head = ("and heads by the waist unit instead of fusing the foot's stride yaw (the Python API's heading='fused' "
-            "and --params '{\"tilt_dedrift\": false}' undo it)" if waist_heads else
-            "but its heading is the foot's own stride yaw, which the clipping turns: add a waist unit, or record the "
-            "foot with a wider range")
+    applied = CLIPPED_FOOT_SETTINGS if applied is None else applied
+    names = ", ".join(f"{k} {str(v).lower() if isinstance(v, bool) else f'{v:g}'}" for k, v in applied.items())
+    undo = [f'"{k}": {"false" if v is True else "null"}' for k, v in applied.items() if k == "tilt_dedrift"]
+    fix = (f"re-levels each stride at its end rest ({names}, as the streamed stride does)" if applied else
+           "keeps the foot settings your --params file gives (tilt_dedrift, accel_scale_error)")
+    if waist_heads:
+        ways = ["the Python API's heading='fused'"] + ([f"a --params JSON file with {{{undo[0]}}}"] if undo else [])
+        verb = "undo" if len(ways) > 1 else "undoes"
+        head = f"and heads by the waist unit instead of fusing the foot's stride yaw ({' and '.join(ways)} {verb} it)"
+    else:
+        head = ("but its heading is the foot's own stride yaw, which the clipping turns: add a waist unit, or record "
+                "the foot with a wider range")
     return coded(f"the foot gyroscope clips at +-{math.degrees(top):.0f} deg/s in {n} of {total} samples: the offline "
-                 f"track re-levels each stride at its end rest (tilt_dedrift, accel_scale_error 0, as the streamed "
-                 f"stride does) {head} (decision L525)", "L525")
+                 f"track {fix} {head} (decision L525)", "L525")

@@ -382,15 +382,25 @@ def bout_ascent(bouts: pd.DataFrame, result) -> pd.DataFrame:
     return bouts
 
 
-def period_displacement(traj: pd.DataFrame, a: float, b: float) -> dict:
-    """Decision L514: :data:`POSITION_KEYS` of the window ``[a, b]`` (s): the track's x / y at ``a`` and at ``b`` (the
-    last ``traj`` row at or before each, the first row before the track begins) and their difference; None each
-    without trajectory rows."""
+def period_displacement(traj: pd.DataFrame, start, end, a: float, b: float, *, last: bool = False) -> dict:
+    """Decision L514: :data:`POSITION_KEYS` of the period ``[a, b)`` (``[a, b]`` when ``last``) and their difference;
+    None each without trajectory rows. Decision L528: the positions follow ``distance_m``'s stride rule (L277: the
+    steps ``start`` / ``end`` (s) whose middle lies inside): the start is the track's position at the end of the last
+    step counted before ``a`` (at the first step's start when none is), the end its position at the end of the last
+    step counted up to ``b`` (the start when none is), each the last ``traj`` row at or before that instant, so the
+    net displacement sums the period's own steps and is never longer than ``distance_m``."""
     if not len(traj) or not {"t", "x", "y"} <= set(traj.columns):
         return dict.fromkeys(POSITION_KEYS)
+    start, end = np.asarray(start, float), np.asarray(end, float)
+    t_a, t_b = a, b  # no step at all: the instants themselves
+    if len(start):
+        mid = 0.5 * (start + end)
+        before, upto = mid < a, (mid <= b) if last else (mid < b)
+        t_a = float(end[before][np.argmax(mid[before])]) if before.any() else float(start.min())
+        t_b = float(end[upto][np.argmax(mid[upto])]) if upto.any() else t_a
     tt = traj["t"].to_numpy(float)
     xy = traj[["x", "y"]].to_numpy(float)
-    i, j = (max(int(np.searchsorted(tt, v + 1e-9, side="right")) - 1, 0) for v in (a, b))
+    i, j = (max(int(np.searchsorted(tt, v + 1e-9, side="right")) - 1, 0) for v in (t_a, t_b))
     return {"start_x_m": float(xy[i, 0]), "start_y_m": float(xy[i, 1]), "end_x_m": float(xy[j, 0]),
             "end_y_m": float(xy[j, 1]), "dx_m": float(xy[j, 0] - xy[i, 0]), "dy_m": float(xy[j, 1] - xy[i, 1])}
 
@@ -448,6 +458,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         row["data_gap"] = row["time_no_data_s"] > 0
         j = int(np.searchsorted(tt, b + 1e-9, side="right")) - 1
         row["position_sigma_end_m"] = float(sigma[j]) if sigma is not None and j >= 0 else None
-        row.update(period_displacement(traj, float(a), float(b)))  # decision L514
+        starts, stops = (steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)) if len(steps) \
+            else (np.zeros(0), np.zeros(0))
+        row.update(period_displacement(traj, starts, stops, float(a), float(b), last=last))  # L514, L528
         rows.append(row)
     return pd.DataFrame(rows, columns=list(PERIOD_COLUMNS))

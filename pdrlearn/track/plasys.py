@@ -105,7 +105,13 @@ from pdrlearn.track.gaps import (
     unit_gap_warnings,
 )
 from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
-from pdrlearn.track.gyro_clip import clipped_foot_line, clipped_foot_settings, foot_gyro_clipped
+from pdrlearn.track.gyro_clip import (
+    applied_settings,
+    clipped_foot_line,
+    clipped_foot_settings,
+    clipping_acts,
+    foot_gyro_clipped,
+)
 from pdrlearn.track.rides import foot_rides
 from pdrlearn.track.sim_rocker import hermite_contact_line
 from pdrlearn.track.travel import side_class_warning
@@ -1171,12 +1177,13 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         raise DataError(f"plasys: {refusal}")
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
-    clipped = foot_gyro_clipped(session) if cfg["heading"] == "fused" else (0, 0.0)  # decision L525
+    clipped = foot_gyro_clipped(session) if cfg["heading"] == "fused" else (0, 0.0, 0)  # decision L525
+    clipped = clipped if clipping_acts(clipped[0], clipped[2]) else (0, 0.0, 0)  # L529: a spike is left alone
     if clipped[0]:
         waist_gyro = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
         heading = heading or ("waist" if waist_gyro else None)  # L525 (b): the foot's stride yaw is not trusted
-        warnings.append(clipped_foot_line(*clipped[:1], len(session.streams["fGyroscope"]), clipped[1],
-                                          heading == "waist"))
+        warnings.append(clipped_foot_line(clipped[0], len(session.streams["fGyroscope"]), clipped[1],
+                                          heading == "waist", applied_settings(params)))
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
     stance_source, imu_spans = "inertial", np.zeros((0, 2))
     dead_line = None  # steps decision 74
