@@ -5,6 +5,7 @@ from __future__ import annotations
 import logging
 import shutil
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -48,3 +49,19 @@ def test_light_heel_is_barely_loaded_and_said_once_steps_77(walk, tmp_path):
     assert len(lines) == 1 and "fForceA.csv (heel) is barely loaded" in lines[0]
     assert "a toe walker's heel, or a dead channel" in lines[0] and "drop the dead file" not in lines[0]
     assert not any(w.startswith("no force sensors") for w in res.info["warnings"])  # before: said again
+
+
+def test_lone_heel_of_toe_walker_is_refused_steps_78(walk, tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    heel = shutil.copytree(walk, tmp_path / "heel")
+    (heel / "fForceB.csv").unlink()  # a heel-only insole on a normal walker: counted on the heel (steps 75)
+    assert main(["steps", str(heel), "--detector", "accel-force"]) == 0
+    toe = shutil.copytree(heel, tmp_path / "toe")
+    df = pd.read_csv(toe / "fForceA.csv")  # R2's /tmp/r2/toe_heelonly: the heel barely loaded, a few N baseline
+    df["x"] = 0.01 * df["x"] + np.abs(np.random.default_rng(0).normal(2.5, 1.5, len(df)))
+    df.to_csv(toe / "fForceA.csv", index=False)
+    capsys.readouterr()
+    assert main(["steps", str(toe), "--detector", "accel-force"]) == 2  # before: 0, with 0 or 5 of the strides
+    err = capsys.readouterr().err
+    assert "steps decision 78" in err and "--detector accel" in err and "Traceback" not in err

@@ -140,3 +140,22 @@ def extra_force_line(unused: list[str]) -> str | None:
             "(--toe, fForceB.csv), and its force detectors use their sum (thesis ch.5.2); add a midfoot column into "
             "the forefoot column before importing (the heel alone times the contact, steps decision 75), or import "
             "a total force as --heel alone (docs/data.md, Force insoles; decision B399)")
+
+
+def lone_heel_rejected(session, foot, what: str) -> str | None:
+    """Steps decision 78: the one error line when ``what`` (a detector chosen by name that reads the force) would
+    run on a lone fForceA (steps 75) that decision L365's per-stride check rejects for the whole session (loaded
+    outside the foot IMU's rests or not in them); None otherwise (two channels, or the check passes). ``foot``: the
+    foot unit's :class:`~pdrlearn.orient.UnitData`."""
+    from pdrlearn.displace.foot import inertial_stance
+    from pdrlearn.displace.force_check import _disagreement
+
+    if present(session) != list(LONE_FORCE):
+        return None
+    _, chk = _disagreement(session, foot, inertial_stance(foot.acc, foot.gyr, foot.fs))
+    if not chk.session:
+        return None
+    why = ", ".join(sorted(set(chk.reasons)))
+    return (f"{session.where}: {what} reads fForceA.csv (heel) alone as the force (steps decision 75), and it "
+            f"disagrees with the foot IMU in {chk.n_bad} of {chk.n_strides} strides ({why}; decision L365): a toe "
+            "walker's heel, or an unloaded insole; count on the IMU with --detector accel (steps decision 78)")
