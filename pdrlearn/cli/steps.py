@@ -92,7 +92,7 @@ def steps(
     if detector == "auto":
         det = auto_detector(session)
     if det.unit == "foot" and reads_force(det) and session.has("fAccelerometer", "fGyroscope"):
-        session = _tared(session)  # decision B284: an unloaded offset subtracted, with one line
+        session = _tared(session, det.name)  # decision B284: an unloaded offset subtracted, with one line
     u = det.unit[0]  # "f" or "w": the unit's inertial streams (+ the force sensors of accel-force)
     warn_gaps(session, [f"{u}Accelerometer", f"{u}Gyroscope", *(("fForceA", "fForceB") if "force" in det.name else ())],
               "no step is detected inside them (recall counts the labelled ones as missed) - re-record or trim "
@@ -128,21 +128,30 @@ def _events_file(events_out: Path | None, out: Path | None, force: bool) -> Path
     return events_out
 
 
-def _tared(session):
+def _tared(session, name: str):
     """Decision B284: ``session`` with its force sensors' unloaded offset subtracted (and the line logged); steps
-    decision 74 first: a dead force channel left out (and named)."""
+    decision 74 first: a dead force channel left out (and named); decision B409: detector ``name`` (chosen by name:
+    `auto` reads no force) refused in one line when no force channel is left; steps decision 78: also when the one
+    left is a lone heel that L365's check rejects."""
     import logging
 
-    from pdrlearn.displace.force_channels import live_force
+    from pdrlearn.displace.force_channels import live_force, lone_heel_rejected, no_force_left
     from pdrlearn.displace.force_check import tared
     from pdrlearn.orient import unit_data
 
+    refused = no_force_left(session, f"--detector {name}")
+    if refused:
+        raise DataError(refused)
     session, dead = live_force(session)
     if dead:
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, dead)
     session, line = tared(session, unit_data(session, "foot", purpose="the force sensors' unloaded offset"))
     if line:
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+    refused = lone_heel_rejected(session, unit_data(session, "foot", purpose="the insole check"),  # steps 78
+                                 f"--detector {name}")
+    if refused:
+        raise DataError(refused)
     return session
 
 

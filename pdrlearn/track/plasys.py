@@ -1204,7 +1204,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                 raise MissingSensorError(
                     f"session '{session.name}' has no fForceA/fForceB needed by M2 (accelerometer + force)"
                     + (f" ({dead_line})" if dead_line else "") + "; use --method M1 or M3, or record the force sensors")
-            warnings.append(NO_FORCE_STANCE)
+            warnings += [] if dead_line else [NO_FORCE_STANCE]  # steps 77: steps 74's line has said it
     else:
         stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
     kind = cfg["detector"] if stance_source == "force" or method == "M1" else "AccelStepDetector"
