@@ -916,10 +916,6 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             result = fn(session, **kw)
     else:
         result = fn(session, **kw)
-    if pipeline == "plasys":  # decision W418: the chair transfers and TUG from the waist unit the session has
-        from pdrlearn.track.trunk_tug import add_trunk_transfers
-
-        add_trunk_transfers(result, session)
     if o.get("length_reference", "model") != "model" and pipeline == "plasys":  # decision C126: the whole session's
         from pdrlearn.track.session_length import whole_session_length  # strides, before a window keeps some
 

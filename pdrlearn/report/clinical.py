@@ -23,7 +23,7 @@ UNIT_NAMES = {"plasys": "foot unit", "waist-pll": "lower-back unit", "waist-pend
 
 def _read(path: Path) -> dict:
     try:
-        return json.loads(path.read_text())
+        return json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError) as exc:
         raise DataError(f"{path}: cannot read it as JSON ({type(exc).__name__}); re-run the track that wrote it "
                         "(decision W420)") from None

@@ -115,6 +115,7 @@ from pdrlearn.track.gyro_clip import (
 from pdrlearn.track.rides import foot_rides
 from pdrlearn.track.sim_rocker import hermite_contact_line
 from pdrlearn.track.travel import side_class_warning
+from pdrlearn.track.trunk_tug import add_trunk_transfers
 from pdrlearn.track.turn_reference import turn_reference_warning
 from pdrlearn.waist.plausibility import bias_removed, foot_drift_line, waist_bias_check, waist_bias_line
 from pdrlearn.warning_lines import coded
@@ -1171,6 +1172,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if insole:
             res.info["warnings"].append(insole)
             log.warning("%s: %s", session.where, insole)
+        add_trunk_transfers(res, session)  # decision W418: the chair transfers and TUG from the waist unit
         return res
     refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
     if refusal:
@@ -1605,6 +1607,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
+    add_trunk_transfers(res, session)  # decision W418: the chair transfers and TUG from the waist unit (API and CLI)
     return res
 
 
