@@ -100,9 +100,9 @@ def test_ha001_test11_one_sample_pushes_equal_one_push():
     """W64's fragment rule reads the same rows whatever arrived when: every chunking gives the same steps."""
     s = _session("ha001")
     n = len(s["wAccelerometer"].t)
-    # one sample at a time over 0-15 s and 84-104 s (the rest in two pushes): the windows hold both W27 fragments
-    # the live tracker judges (4.1 s and 86.7 s) and a turn (9.9 s), so the fragment rule runs sample by sample
-    one = _columns(_run(s, [1] * 1500 + [6900] + [1] * 2000)[0])
+    # one sample at a time over 0-15 s and 84-104 s (1 s pushes between and after): the windows hold both W27
+    # fragments the live tracker judges (4.1 s and 86.7 s) and a turn (9.9 s): the fragment rule runs sample by sample
+    one = _columns(_run(s, [1] * 1500 + [100] * 69 + [1] * 2000 + [100] * 34)[0])
     whole = _columns(_run(s, [n])[0])
     rand = _columns(_run(s, list(np.random.default_rng(9).integers(1, 500, 4000)))[0])
     for k in one:
