@@ -28,9 +28,18 @@ def shift(tmp_path_factory):
     return root
 
 
+_TRACKED: dict = {}
+
+
 def _track(root, name, *args, session="walk"):
-    out = root / name
-    assert main(["track", str(root / session), "--out", str(out), "--json", *args]) == 0
+    """``track --json`` of ``root / session`` into ``root / name``; the same session and options tracked again by
+    another test reuse the first folder (a track is deterministic; the tests only read its files)."""
+    key = (str(root), session, args)
+    if key not in _TRACKED:
+        out = root / name
+        assert main(["track", str(root / session), "--out", str(out), "--json", *args]) == 0
+        _TRACKED[key] = out
+    out = _TRACKED[key]
     return json.loads((out / "summary.json").read_text()), out
 
 
@@ -103,8 +112,8 @@ def test_period_row_is_its_window(shift):
 
 def test_window_of_only_sitting_walks_zero_with_a_note(shift, capsys):
     """L276: a window without a step walked 0 s: walking_time_s 0 (not null), one "note:" line, no warning."""
-    whole, _ = _track(shift, "whole2")
-    steps = pd.read_csv(shift / "whole2" / "steps.csv")
+    whole, out = _track(shift, "whole2")
+    steps = pd.read_csv(out / "steps.csv")
     gaps = steps["start_s"].to_numpy()[1:] - steps["end_s"].to_numpy()[:-1]
     k = int(np.argmax(gaps))  # the sit: the longest time between two strides
     a, b = steps["end_s"].iloc[k] + 5.0, steps["start_s"].iloc[k + 1] - 5.0

@@ -166,8 +166,10 @@ def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim,
     stairs = stairs3040
     ref = track_waist(stairs, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
     assert np.ptp(ref.trajectory["z"]) > 5.0
-    n = len(stairs["wAccelerometer"].t)
-    chunks = [1] * n if how == "one" else list(np.random.default_rng(3).integers(1, 300, 2000))
+    # "one": one-sample pushes over 10-35 s (both flights up and the U-turn landing between them: steps whose
+    # altitude change is read while the barometer arrives sample by sample), 1 s pushes before and after
+    chunks = ([100] * 10 + [1] * 2500 + [100] * 30 if how == "one"
+              else list(np.random.default_rng(3).integers(1, 300, 2000)))
     for tr in (WaistTracker(load_waist_bundle(sim["bundle"]), fs=100.0),
                LiveWaistTracker(100.0, params=str(sim["cal"]), meta=stairs.meta, frame=stairs.require_frame("waist"))):
         out = _push_with_barometer(tr, stairs, chunks)
