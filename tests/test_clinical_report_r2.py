@@ -40,3 +40,34 @@ def test_clinical_on_a_summary_that_is_not_an_object_is_one_line(tmp_path, capsy
     err = capsys.readouterr().err
     assert "must hold a JSON object, not list" in err and "Traceback" not in err, err
     assert not (tmp_path / "rep").exists()
+
+
+WALK_262 = {"ten_m_walk_time_s": 3.676, "ten_m_walk_speed_mps": 1.632, "n_ten_m_walk_trials": 2,
+            "ten_m_walk_max_speed_mps": 1.6398, "ten_m_walk_zones_m": [2.0, 6.0, 2.0]}
+
+
+def test_clinical_ten_m_walk_names_its_timed_metres_and_trials_l531(tmp_path):
+    _summary(tmp_path / "out" / "p" / "walk", subject="P1", **WALK_262)
+    _summary(tmp_path / "out" / "p" / "plain", subject="P1", ten_m_walk_time_s=7.0, ten_m_walk_speed_mps=1.43,
+             n_ten_m_walk_trials=1, ten_m_walk_max_speed_mps=1.43)
+    lines = [x for x in clinical_markdown(tmp_path / "out").splitlines() if x.startswith("- 10 m walk")]
+    assert lines == ["- 10 m walk: 1.43 m/s (7.0 s over the middle 10 m of a 14 m walkway; foot unit)",
+                     "- 10 m walk: 1.63 m/s (3.7 s over the middle 6 m of a 10 m walkway; 2 trials, fastest "
+                     "1.64 m/s; foot unit)"], lines
+
+
+def test_report_walk_table_shows_the_walkway_and_trials_l531(tmp_path):
+    _summary(tmp_path / "out" / "walk", **WALK_262)
+    assert main(["report", str(tmp_path / "out"), "--out", str(tmp_path / "rep")]) == 0
+    text = (tmp_path / "rep" / "report.md").read_text()
+    head = next(x for x in text.splitlines() if "ten_m_walk_time_s" in x and x.startswith("|"))
+    for col in ("n_ten_m_walk_trials", "ten_m_walk_max_speed_mps", "ten_m_walk_zones_m"):
+        assert col in head, head
+    assert "2 / 6 / 2" in text
+
+
+def test_ten_m_walk_speed_column_text_is_not_a_fixed_10_m_l531():
+    from pdrlearn.columns import markdown
+
+    row = next(x for x in markdown().splitlines() if x.startswith("| `ten_m_walk_speed_mps`"))
+    assert "10 m / ten_m_walk_time_s" not in row and "ten_m_walk_zones_m" in row, row
