@@ -438,10 +438,11 @@ SESSIONS: tuple[Column, ...] = (
                                          "(tug_trials.csv, W325); empty on a foot track"),
     ("tug_trials_median_s", "s", "number", "lower back: the median of tug_trials.csv's tug_time_s (W325); empty "
                                            "without a trial"),
-    ("tug_steps_source", _ID, "text", "with transfers: the unit tug_trials.csv's n_steps is counted on, foot (a foot "
-                                      "+ waist session's default track, W418 / W419) or waist; empty otherwise"),
-    ("tug_turns_source", _ID, "text", "with transfers: the unit whose turns time the TUG's turn phases, foot or "
-                                      "waist (W419); empty otherwise"),
+    ("tug_steps_source", _ID, "text", "with a TUG: the unit tug_trials.csv's n_steps is counted on, foot (a foot "
+                                      "+ waist session's default track, W418 / W419) or waist; empty otherwise "
+                                      "(W427)"),
+    ("tug_turns_source", _ID, "text", "with a TUG: the unit whose turns time the TUG's turn phases, foot or "
+                                      "waist (W419); empty otherwise (W427)"),
     ("sts5_time_s", "s", "number", "lower back, a five-times sit-to-stand: the first rise's start to the last sit's "
                                    "end when the transfers are exactly 5 rises and 5 sits alternating from a rise, "
                                    "none flagged, no walking between (W279)"),

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import json
 
+import pandas as pd
+
 from pdrlearn.cli import main
 from pdrlearn.report.clinical import clinical_markdown
 
@@ -71,3 +73,49 @@ def test_ten_m_walk_speed_column_text_is_not_a_fixed_10_m_l531():
 
     row = next(x for x in markdown().splitlines() if x.startswith("| `ten_m_walk_speed_mps`"))
     assert "10 m / ten_m_walk_time_s" not in row and "ten_m_walk_zones_m" in row, row
+
+
+class _Session:
+    where = "DIR"
+
+    def has(self, *names):
+        return True
+
+
+class _Result:
+    def __init__(self, info=None):
+        self.info = dict(info or {})
+        self.steps = pd.DataFrame({"start_s": [1.0], "end_s": [2.0], "event_s": [1.5]})
+
+
+def test_a_dead_waist_unit_that_reads_no_transfers_leaves_a_note_w427(monkeypatch):
+    from pdrlearn.track import base, units
+    from pdrlearn.track.trunk_tug import add_trunk_transfers, trunk_note
+
+    def dead(name):  # the inner waist track of a frozen wAccelerometer: it runs, and reads no transfers
+        return lambda session, **kw: _Result({"transfers": None, "yaw_turns": None})
+
+    monkeypatch.setattr(base, "get_pipeline", dead)
+    monkeypatch.setattr(units, "keep_units", lambda session, kept: session)
+    result = _Result()
+    add_trunk_transfers(result, _Session())
+    note = trunk_note(result)
+    assert note is not None and note.startswith("no chair transfers from the lower-back unit (its track read none")
+    assert "pdrlearn track DIR --units waist" in note
+
+
+def test_a_walk_without_a_tug_names_no_tug_source_w427():
+    from pdrlearn.track.trunk_tug import tug_source_summary
+
+    result = _Result({"transfers": pd.DataFrame(), "trunk_contacts": []})
+    assert tug_source_summary(result, {"n_tug_trials": 0, "tug_time_s": None}) == {
+        "tug_steps_source": None, "tug_turns_source": None}
+    assert tug_source_summary(result, {"n_tug_trials": 1, "tug_time_s": 9.5})["tug_steps_source"] == "foot"
+
+
+def test_two_unit_posture_line_says_the_track_reads_the_waist_for_the_tug_w427():
+    from pdrlearn.cli.common import posture_line
+
+    line = posture_line({"standing_time_s": None}, waist_unit=True)
+    assert "takes only the chair transfers and TUG from that unit (W418), not the posture times" in line
+    assert "track it for the split" not in line

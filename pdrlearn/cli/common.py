@@ -581,11 +581,13 @@ def posture_line(summary: dict, waist_unit: bool = False) -> str:
     """Decision W222: ``track``'s line of the time that is not walking, by posture (a lower-back track), or that a
     foot-only track cannot split it (its keys are null). Decision E145: ``run`` of a waist bundle writes the keys null
     too (the live tracker has no posture runs) and prints no such line; the line names both. Decision L316: a foot
-    track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead."""
+    track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead; W427: this
+    track reads that unit's chair transfers and TUG already (W418), not its posture times."""
     if summary.get("standing_time_s") is None and waist_unit:
-        return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt, and this "
-                "session has that unit (wAccelerometer.csv): track it for the split, pdrlearn track DIR --pipeline "
-                "waist-pendulum (decisions W222, L316)")
+        return ("posture: no standing / sitting / lying split in this foot track - it needs the lower-back unit's "
+                "trunk tilt, and this track takes only the chair transfers and TUG from that unit (W418), not the "
+                "posture times; for the split, pdrlearn track DIR --pipeline waist-pendulum (decisions W222, L316, "
+                "W427)")
     if summary.get("standing_time_s") is None:
         return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt in an "
                 "offline `pdrlearn track` (a foot unit sees no trunk; `run` of a waist bundle has no posture runs; "
