@@ -438,10 +438,11 @@ SESSIONS: tuple[Column, ...] = (
                                          "(tug_trials.csv, W325); empty on a foot track"),
     ("tug_trials_median_s", "s", "number", "lower back: the median of tug_trials.csv's tug_time_s (W325); empty "
                                            "without a trial"),
-    ("tug_steps_source", _ID, "text", "with transfers: the unit tug_trials.csv's n_steps is counted on, foot (a foot "
-                                      "+ waist session's default track, W418 / W419) or waist; empty otherwise"),
-    ("tug_turns_source", _ID, "text", "with transfers: the unit whose turns time the TUG's turn phases, foot or "
-                                      "waist (W419); empty otherwise"),
+    ("tug_steps_source", _ID, "text", "with a TUG: the unit tug_trials.csv's n_steps is counted on, foot (a foot "
+                                      "+ waist session's default track, W418 / W419) or waist; empty otherwise "
+                                      "(W427)"),
+    ("tug_turns_source", _ID, "text", "with a TUG: the unit whose turns time the TUG's turn phases, foot or "
+                                      "waist (W419); empty otherwise (W427)"),
     ("sts5_time_s", "s", "number", "lower back, a five-times sit-to-stand: the first rise's start to the last sit's "
                                    "end when the transfers are exactly 5 rises and 5 sits alternating from a rise, "
                                    "none flagged, no walking between (W279)"),
@@ -458,10 +459,12 @@ SESSIONS: tuple[Column, ...] = (
     ("tug_turn_to_sit_s", "s", "number", "TUG: the last of two or more turns before the sit (W293), else the last "
                                          "yaw-rate turn of 80 deg or more after the first (W307); empty without"),
     ("tug_stand_to_sit_s", "s", "number", "TUG: the stand-to-sit (W293)"),
-    ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes from 2 m to 12 m of the first "
-                                         "walking bout reaching 14 m, straight (L312); empty on a shorter or "
-                                         "turning walk (L313)"),
-    ("ten_m_walk_speed_mps", "m/s", "number", "10 m / ten_m_walk_time_s (L312)"),
+    ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes over the timed metres of "
+                                         "ten_m_walk_zones_m (default 2 m to 12 m) of the first walking bout "
+                                         "reaching the walkway's length, straight (L312, L522, L531); empty on a "
+                                         "shorter or turning walk (L313)"),
+    ("ten_m_walk_speed_mps", "m/s", "number", "the timed metres of ten_m_walk_zones_m (default 10 m) / "
+                                              "ten_m_walk_time_s (L312, L531)"),
     ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); with one, the walking bouts that "
                                      "tracked under RUN_OUT_M short of the walkway and so are no trial (L524); "
                                      "else empty"),

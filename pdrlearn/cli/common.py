@@ -560,10 +560,11 @@ def transfer_line(summary: dict) -> str | None:
         if summary.get("sts5_time_s") is not None:  # decision W279
             parts.append(f"five-times sit-to-stand {summary['sts5_time_s']:.2f} s (first rise to last sit)")
     if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout
-        accel, timed, decel = summary.get("ten_m_walk_zones_m") or (2.0, 10.0, 2.0)  # decision L522
-        n = summary.get("n_ten_m_walk_trials") or 0  # decision L524: every timed bout
-        more = (f"; {n} trials, fastest {summary['ten_m_walk_max_speed_mps']:.2f} m/s, ten_m_walk_trials.csv, L524"
-                if n > 1 else "")
+        from pdrlearn.track.walk_test import trials_text, walkway_zones  # decisions L522, L524, L531
+
+        accel, timed, decel = walkway_zones(summary)
+        more = trials_text(summary)
+        more = f"; {more}, ten_m_walk_trials.csv, L524" if more else ""
         parts.append(f"10 m walk test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
                      f"(the middle {timed:g} m of the first {accel + timed + decel:g} m walk, L312{more})"
                      + (f" - {summary['ten_m_walk_note']}" if summary.get("ten_m_walk_note") else ""))  # L524
@@ -580,11 +581,13 @@ def posture_line(summary: dict, waist_unit: bool = False) -> str:
     """Decision W222: ``track``'s line of the time that is not walking, by posture (a lower-back track), or that a
     foot-only track cannot split it (its keys are null). Decision E145: ``run`` of a waist bundle writes the keys null
     too (the live tracker has no posture runs) and prints no such line; the line names both. Decision L316: a foot
-    track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead."""
+    track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead; W427: this
+    track reads that unit's chair transfers and TUG already (W418), not its posture times."""
     if summary.get("standing_time_s") is None and waist_unit:
-        return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt, and this "
-                "session has that unit (wAccelerometer.csv): track it for the split, pdrlearn track DIR --pipeline "
-                "waist-pendulum (decisions W222, L316)")
+        return ("posture: no standing / sitting / lying split in this foot track - it needs the lower-back unit's "
+                "trunk tilt, and this track takes only the chair transfers and TUG from that unit (W418), not the "
+                "posture times; for the split, pdrlearn track DIR --pipeline waist-pendulum (decisions W222, L316, "
+                "W427)")
     if summary.get("standing_time_s") is None:
         return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt in an "
                 "offline `pdrlearn track` (a foot unit sees no trunk; `run` of a waist bundle has no posture runs; "

@@ -213,9 +213,9 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         for p in tracks:
             raw = _read_json(p)
             d = _flat_scalars(raw)
-            per_minute = raw.get("walk_test_distance_per_minute_m")  # decision E152: a list, kept for its table
-            rows.append({**d, "run": run_label(p, root),  # decision C80: a single track named by its session
-                         **({"walk_test_distance_per_minute_m": per_minute} if per_minute else {})})
+            # decisions E152, L531: lists, kept for the walk-test table
+            lists = {k: raw[k] for k in ("walk_test_distance_per_minute_m", "ten_m_walk_zones_m") if raw.get(k)}
+            rows.append({**d, "run": run_label(p, root), **lists})  # decision C80: a single track named by its session
         df = _step_count_columns(pd.DataFrame(rows))  # decision L103
         key = [c for c in TRACK_COLUMNS if c in df.columns]
         tables = [("trajectory summaries", df[key])]

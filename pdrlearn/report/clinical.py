@@ -1,11 +1,11 @@
 """A short per-patient clinical summary of track outputs (decision W420, docs/decisions/waist.md): ``pdrlearn report
 SOURCE --out OUT --clinical`` writes ``OUT/clinical.md`` beside report.md.
 
-One block per patient (summary.json ``subject``, else the session): the patient and session ids, the recording date
-(summary.json ``recording_start``, else the tracked session's meta.json via run.json, L298's rule), then one line per
-clinical test a track measured - the corridor walk test (6MWT), the TUG with its phases, steps and turn time, the
-10 m walk, the gait speed and cadence - each naming the unit it comes from. Nothing research-only: no errors against
-a reference, no model or validation warnings, no per-stride tables.
+One block per patient (summary.json ``subject``, else the folder's path under SOURCE, W426): the patient and session
+ids, the recording date (summary.json ``recording_start``, else the tracked session's meta.json via run.json, L298's
+rule), then one line per clinical test a track measured - the corridor walk test (6MWT), the TUG with its phases,
+steps and turn time, the 10 m walk, the gait speed and cadence - each naming the unit it comes from. Nothing
+research-only: no errors against a reference, no model or validation warnings, no per-stride tables.
 """
 
 from __future__ import annotations
@@ -23,10 +23,13 @@ UNIT_NAMES = {"plasys": "foot unit", "waist-pll": "lower-back unit", "waist-pend
 
 def _read(path: Path) -> dict:
     try:
-        return json.loads(path.read_text(encoding="utf-8"))
+        data = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError) as exc:
         raise DataError(f"{path}: cannot read it as JSON ({type(exc).__name__}); re-run the track that wrote it "
                         "(decision W420)") from None
+    if not isinstance(data, dict):  # the line plain `report` gives (report/build.py)
+        raise DataError(f"{path}: must hold a JSON object, not {type(data).__name__}; regenerate it")
+    return data
 
 
 def recording_date(summary: dict, folder: Path) -> str | None:
@@ -99,9 +102,14 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     tug = tug_line(summary, folder)
     if tug:
         lines.append(tug)
-    if summary.get("ten_m_walk_speed_mps") is not None:
-        lines.append(f"- 10 m walk: {summary['ten_m_walk_speed_mps']:.2f} m/s ({_s(summary['ten_m_walk_time_s'])}; "
-                     f"{unit})")
+    if summary.get("ten_m_walk_speed_mps") is not None:  # L531: the walkway's timed metres and every trial (L524)
+        from pdrlearn.track.walk_test import trials_text, walkway_zones
+
+        accel, timed, decel = walkway_zones(summary)
+        trials = trials_text(summary)
+        lines.append(f"- 10 m walk: {summary['ten_m_walk_speed_mps']:.2f} m/s ({_s(summary['ten_m_walk_time_s'])} "
+                     f"over the middle {timed:g} m of a {accel + timed + decel:g} m walkway"
+                     f"{f'; {trials}' if trials else ''}; {unit})")
     if summary.get("gait_speed_mps") is not None:
         cad = summary.get("median_cadence_spm")
         lines.append(f"- Gait speed {summary['gait_speed_mps']:.2f} m/s"
@@ -121,14 +129,18 @@ def clinical_markdown(source: str | Path) -> str:
                         "under it; track the sessions first (pdrlearn track SESSION --out DIR) or drop --clinical")
     patients: dict[str, list] = {}
     for folder, summary in tracks:
-        patients.setdefault(str(summary.get("subject") or summary.get("session")), []).append((folder, summary))
+        # W426: without a subject, the folder's path under SOURCE stands for the patient: two patients' session
+        # folders may share a name (patientA/tug, patientB/tug), the session id alone merged them
+        rel = folder.relative_to(root).as_posix() if folder != root else folder.name
+        key = str(summary["subject"]) if summary.get("subject") else f"{rel} (no subject in meta.json)"
+        patients.setdefault(key, []).append((folder, rel, summary))
     out = ["# Clinical summary", ""]
     for patient, rows in patients.items():
         out += [f"## Patient {patient}", ""]
-        for folder, summary in rows:
+        for folder, rel, summary in rows:
             date = recording_date(summary, folder)
             when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
-            out.append(f"Session {summary.get('session')} ({folder.name}), {when}:")
+            out.append(f"Session {summary.get('session')} ({rel}), {when}:")
             out += clinical_lines(summary, folder) or ["- no clinical test measured"]
             out.append("")
     return "\n".join(out)

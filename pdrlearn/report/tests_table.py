@@ -8,7 +8,7 @@ import pandas as pd
 
 from pdrlearn.track.corridor import KEYS as CORRIDOR_KEYS
 from pdrlearn.track.walk_test import KEYS as TEN_M_WALK_KEYS
-from pdrlearn.track.walk_test import T25FW_KEYS
+from pdrlearn.track.walk_test import T25FW_KEYS, TRIAL_KEYS
 from pdrlearn.waist.tug_phases import TUG_PHASE_KEYS
 
 #: decision W296: the columns, in order (the first, the row's name, is given by the caller)
@@ -24,10 +24,12 @@ _TRIGGER = ("tug_time_s", *TUG_PHASE_KEYS, "n_sit_to_stand", "n_stand_to_sit", "
 
 
 #: decision E152: the walk tests' columns (the corridor test L383, the 10 m walk L312, the T25FW L387), in order
-WALK_TEST_COLUMNS = (*CORRIDOR_KEYS, *T25FW_KEYS, *TEN_M_WALK_KEYS)
+WALK_TEST_COLUMNS = (*CORRIDOR_KEYS, *T25FW_KEYS, *TEN_M_WALK_KEYS, *TRIAL_KEYS)  # L531: trials and walkway (L524)
 #: decision E152: the walk-test table's caption
 WALK_TEST_CAPTION = ("walk tests: the corridor test (--corridor, laps.csv; per minute from the test's start), the "
-                     "timed 25-foot walk and the 10 m walk; a note says why a time is missing")
+                     "timed 25-foot walk and the 10 m walk (ten_m_walk_time_s is over the timed metres of "
+                     "ten_m_walk_zones_m: acceleration / timed / deceleration m, L531); a note says why a time is "
+                     "missing")
 #: decision E152: the columns that make the walk-test table worth showing (a note alone does not)
 _WALK_TRIGGER = ("n_laps", "walk_test_distance_m", "t25fw_time_s", "ten_m_walk_time_s")
 
@@ -56,9 +58,9 @@ def walk_test_table(df: pd.DataFrame, key: str) -> tuple[str, pd.DataFrame] | No
     sessions.csv, named by column ``key``) once a track has a walk-test value; None when none has one. A list
     (``walk_test_distance_per_minute_m``) shows as its values joined by " / "."""
     df = df.copy()
-    col = "walk_test_distance_per_minute_m"
-    if col in df.columns:
-        df[col] = [" / ".join(f"{v:.1f}" for v in x) if isinstance(x, list | tuple) else x for x in df[col]]
+    for col, fmt in (("walk_test_distance_per_minute_m", "{:.1f}"), ("ten_m_walk_zones_m", "{:g}")):  # L531
+        if col in df.columns:
+            df[col] = [" / ".join(fmt.format(v) for v in x) if isinstance(x, list | tuple) else x for x in df[col]]
     return _table(df, key, WALK_TEST_COLUMNS, _WALK_TRIGGER, WALK_TEST_CAPTION, every_row=True)
 
 

@@ -675,7 +675,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decision W293: the TUG's phases, from the transfers, these turns and the walking contacts
     out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, tug_contacts(result),
                                             yaw_turns=tug_yaw_turns(result))))  # W307
-    out.update(tug_source_summary(result))  # decision W419
+    out.update(tug_source_summary(result, out))  # decision W419; W427: None without a TUG
     from pdrlearn.waist.turn_steps import stepless_summary
 
     # decision W331: a lower-back track's turns on the spot that hold no step, and the steps they imply

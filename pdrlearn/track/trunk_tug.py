@@ -37,6 +37,10 @@ def add_trunk_transfers(result, session) -> None:
                                      f"pdrlearn track {session.where} --units waist (W418)")
         return
     result.info["transfers"] = waist.info.get("transfers")
+    if result.info["transfers"] is None:  # W427: a dead (e.g. frozen) waist unit tracks but reads no transfers
+        result.info["trunk_note"] = ("no chair transfers from the lower-back unit (its track read none: is "
+                                     "wAccelerometer frozen or unplugged?); a TUG needs them: "
+                                     f"pdrlearn track {session.where} --units waist (W418, W427)")
     cols = [c for c in ("start_s", "end_s", "event_s") if c in waist.steps]
     result.info["trunk_contacts"] = waist.steps[cols].to_dict("records")
     result.info["trunk_yaw_turns"] = waist.info.get("yaw_turns")
@@ -69,9 +73,11 @@ def foot_step_count(strides: pd.DataFrame, t0: float, t1: float) -> int:
     return 2 * int(((ev >= t0) & (ev <= t1)).sum())
 
 
-def tug_source_summary(result) -> dict:
-    """Decision W419: the summary's ``tug_steps_source`` / ``tug_turns_source`` (None without transfers)."""
-    if result.info.get("transfers") is None:
+def tug_source_summary(result, summary: dict) -> dict:
+    """Decision W419: the summary's ``tug_steps_source`` / ``tug_turns_source``; None without transfers and (W427)
+    without a TUG in ``summary`` (no ``tug_time_s``, ``n_tug_trials`` 0: nothing was counted)."""
+    has_tug = bool(summary.get("n_tug_trials")) or summary.get("tug_time_s") is not None
+    if result.info.get("transfers") is None or not has_tug:
         return {"tug_steps_source": None, "tug_turns_source": None}
     unit = FOOT if foot_strides(result) is not None else WAIST
     return {"tug_steps_source": unit, "tug_turns_source": unit}

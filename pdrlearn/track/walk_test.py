@@ -37,6 +37,23 @@ LOWER_BACK_NOTE = ("not given on the lower back: its step lengths read slow walk
                    "calibration: speed +34 to +164 %, decision L313); time the walk with a foot unit")
 #: the summary keys :func:`ten_metre_walk` gives (decision L312)
 KEYS = ("ten_m_walk_time_s", "ten_m_walk_speed_mps", "ten_m_walk_note")
+
+
+def walkway_zones(summary: dict) -> tuple[float, float, float]:
+    """Decision L531: the walkway (acceleration, timed, deceleration metres) a summary's ``ten_m_walk_*`` keys were
+    timed on: ``ten_m_walk_zones_m`` (L522), else L312's 2, 10, 2."""
+    accel, timed, decel = summary.get("ten_m_walk_zones_m") or (ZONE_M, TIMED_M, ZONE_M)
+    return float(accel), float(timed), float(decel)
+
+
+def trials_text(summary: dict) -> str:
+    """Decision L531: "N trials, fastest V m/s" when a summary has two or more 10 m walk trials (L524), else ""."""
+    n = summary.get("n_ten_m_walk_trials") or 0
+    if n < 2 or summary.get("ten_m_walk_max_speed_mps") is None:
+        return ""
+    return f"{n} trials, fastest {summary['ten_m_walk_max_speed_mps']:.2f} m/s"
+
+
 #: decision L387: the timed 25-foot walk's distance (m; 25 ft, the MSFC's T25FW as recalled), from standing
 T25FW_M = 7.62
 #: the summary keys :func:`t25fw` gives (decision L387)
