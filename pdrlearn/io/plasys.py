@@ -1440,16 +1440,22 @@ def unit_rates(session: Session) -> dict[str, float]:
             for unit, names in UNIT_IMU.items()}
 
 
-def refuse_too_slow(session: Session, command: str) -> None:
+def refuse_too_slow(session: Session, command: str, units: tuple[str, ...] | None = None) -> None:
     """Decision B404: a DataError naming the session, the unit and its rate when a unit's accelerometer or gyroscope
-    is sampled below :data:`MIN_RATE_HZ` (D7: a nominal clock may read 1 % low); ``command`` the CLI command."""
+    is sampled below :data:`MIN_RATE_HZ` (D7: a nominal clock may read 1 % low); ``command`` the CLI command.
+    ``units`` the units the command reads (None: every unit; ``steps`` passes its detector's unit only). Decision
+    B410: ``track`` (every unit) names ``--units`` when the other unit is fast enough on its own."""
     where = session.folder if session.folder is not None else f"session '{session.name}'"
-    for unit, rate in unit_rates(session).items():
-        if rate < MIN_RATE_HZ * 0.99:
+    rates = unit_rates(session)
+    for unit, rate in rates.items():
+        if (units is None or unit in units) and rate < MIN_RATE_HZ * 0.99:
+            fast = [u for u, r in rates.items() if u != unit and r >= MIN_RATE_HZ * 0.99]
+            other = (f"; or {command} the {fast[0]} unit alone with --units {fast[0]}"  # decision B410
+                     if units is None and command == "track" and fast else "")
             raise DataError(f"{where}: the {unit} unit is sampled at {rate:.3g} Hz, too slow for {command} to give a "
                             f"result (below {MIN_RATE_HZ:g} Hz its steps are lost and the distance comes out far "
-                            f"short; docs/robustness.md): record at {MIN_VALIDATED_RATE_HZ:g} Hz or more (decision "
-                            "B404)")
+                            f"short; docs/robustness.md): record at {MIN_VALIDATED_RATE_HZ:g} Hz or more{other} "
+                            "(decision B404)")
 
 
 def warn_low_rate(session: Session) -> None:
