@@ -1479,6 +1479,7 @@ def _stream_where(session: Session, name: str) -> str:
 def warn_saturation(session: Session) -> None:
     """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
     extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence."""
+    from pdrlearn.io import validate
     from pdrlearn.io.validate import MOVING_RAD_S, ceiling_clip, ceiling_warning, clipped_samples, saturation_warning
 
     for name, s in session.streams.items():
@@ -1492,7 +1493,7 @@ def warn_saturation(session: Session) -> None:
             log.warning("%s", saturation_warning(where, kind, n, len(s), top,
                                                  "waist" if name.startswith("w") else "foot",  # T3 finding 9
                                                  moving=moving, waist=waist))
-        elif kind == "accelerometer" and (full := ceiling_clip(s.values)):  # decision B403: clipped ahead of a filter
+        elif kind == "accelerometer" and validate.CEILING_WARN and (full := ceiling_clip(s.values)):  # B403 (B411: off)
             where = _stream_where(session, name)
             log.warning("%s", ceiling_warning(where, full, "waist" if name.startswith("w") else "foot"))
 
