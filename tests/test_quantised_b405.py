@@ -76,3 +76,22 @@ def test_info_prints_each_streams_resolution_b406(tmp_path, capsys):
     assert main(["info", str(folder)]) == 0
     out = capsys.readouterr().out
     assert "resolution" in out and "0.017" in out  # the cell may wrap its unit onto a second line
+
+
+def test_info_prints_no_resolution_for_float_noise_b412(capsys):
+    """Decision B412 (review R3 finding 4): mobgap's converted gyroscope printed 9.14e-17 rad/s, the smallest gap
+    between floats; off a grid `info` prints "-" and --json null, while a quantised stream keeps its step."""
+    from tests.conftest import external_session
+
+    folder = external_session("mobgap_HA001_Test5_Trial1")
+    assert main(["info", str(folder), "--json"]) == 0
+    sensors = json.loads(capsys.readouterr().out)["sensors"]
+    assert sensors["wGyroscope"]["resolution"] is None
+    assert main(["info", str(folder)]) == 0
+    row = next(ln for ln in capsys.readouterr().out.splitlines() if "wGyroscope" in ln)
+    assert "e-17" not in row and row.rstrip(" │|").endswith("-"), row
+    from pdrlearn.io.validate import grid_resolution
+
+    step = np.deg2rad(4000.0 / 4096)
+    q = _quantise(np.random.default_rng(10351).normal(0, 0.3, (500, 3)), step)
+    assert abs(grid_resolution(q) - step) < 1e-9

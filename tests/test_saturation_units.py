@@ -132,8 +132,11 @@ def _filtered_impact_walk(full: float | None, fs_out: int = 52, seconds: float =
     return np.arange(len(out)) / fs_out, out
 
 
-def test_clipped_before_the_sensors_filter_is_said_b403(tmp_path, caplog):
+def test_clipped_before_the_sensors_filter_is_said_b403(tmp_path, caplog, monkeypatch):
+    from pdrlearn.io import validate
     from pdrlearn.io.validate import ceiling_clip
+
+    monkeypatch.setattr(validate, "CEILING_WARN", True)  # decision B411: B403's line is opt-in
 
     full = 4 * G
     t, clipped = _filtered_impact_walk(full)
@@ -147,3 +150,30 @@ def test_clipped_before_the_sensors_filter_is_said_b403(tmp_path, caplog):
     lines = [r.getMessage() for r in caplog.records if "B403" in r.getMessage()]
     assert len(lines) == 1 and "fAccelerometer.csv: its impact peaks are pinned just under +-4 g" in lines[0], lines
     assert "record with a range above +-4 g" in lines[0]
+
+
+def test_a_faster_unclipped_real_walker_is_not_called_clipped_b411(tmp_path, caplog):
+    """Decision B411 (review R3 finding 2): the real gaitmap_ms_right walk with its dynamics x1.3 (gravity kept, not
+    clipped) put its top 10 peaks within 7 % just under 8 g and B403 warned; B403 is now off by default."""
+    import pandas as pd
+
+    from pdrlearn.io.validate import ceiling_clip
+    from tests.conftest import external_session
+
+    src = external_session("gaitmap_ms_right")
+    dst = tmp_path / "m1.3"
+    dst.mkdir()
+    for p in src.iterdir():
+        if p.is_file():
+            (dst / p.name).write_bytes(p.read_bytes())
+    d = pd.read_csv(src / "fAccelerometer.csv")
+    v = d.iloc[:, 1:4].to_numpy(float)
+    n = int(round(read_session(src).streams["fAccelerometer"].rate_hz))  # a 1 s moving-average gravity
+    grav = np.column_stack([np.convolve(np.pad(c, (n // 2, n - 1 - n // 2), mode="edge"), np.ones(n) / n, "valid")
+                            for c in v.T])
+    d.iloc[:, 1:4] = grav + 1.3 * (v - grav)
+    d.to_csv(dst / "fAccelerometer.csv", index=False)
+    assert ceiling_clip(d.iloc[:, 1:4].to_numpy(float)) == pytest.approx(8 * G)  # the rule alone still fires
+    with caplog.at_level(logging.WARNING):
+        read_session(dst)
+    assert not [r for r in caplog.records if "B403" in r.getMessage()]

@@ -11,6 +11,7 @@ from pdrlearn.displace.calibration import MAX_DEVIATION
 def sensor_suspects(sessions) -> list[str]:
     """Decision C154: what in ``sessions`` points at the sensor: files B77/B311 call clipped, files B403 calls
     clipped ahead of their filter, files with dropped samples (gaps), units sampled below B23's rate."""
+    from pdrlearn.io import validate
     from pdrlearn.io.plasys import MIN_VALIDATED_RATE_HZ, unit_rates
     from pdrlearn.io.sensors import SENSORS
     from pdrlearn.io.validate import ceiling_clip, clipped_samples
@@ -21,7 +22,7 @@ def sensor_suspects(sessions) -> list[str]:
             kind = SENSORS[name].kind
             if clipped_samples(st.values, kind)[0]:
                 clipped.add(name)
-            elif kind == "accelerometer" and ceiling_clip(st.values):
+            elif kind == "accelerometer" and validate.CEILING_WARN and ceiling_clip(st.values):  # B411: opt-in
                 ceiling.add(name)
             if st.gaps():
                 dropped.add(name)

@@ -73,8 +73,9 @@ def info(
         # names whole (the sensor was cut to "fAccelero…" at 80 columns); the other headers wrap instead
         t.add_column(col, min_width={"sensor": 14, "placement": 9, "resolution": 10}.get(col))
     for name, d in summary["sensors"].items():
+        res = "-" if d["resolution"] is None else f"{d['resolution']:.3g} {d['unit']}"  # decision B412: off a grid
         t.add_row(name, d["placement"], f"{d['rate_hz']}", str(d["samples"]), f"{d['duration_s']:.2f}",
-                  str(d["gaps"]), f"{d['longest_gap_s']:.3f}", f"{d['resolution']:.3g} {d['unit']}")
+                  str(d["gaps"]), f"{d['longest_gap_s']:.3f}", res)
     c.print(t)
     gz = [d["file"] for d in summary["sensors"].values() if str(d.get("file", "")).endswith(".gz")]
     if gz:  # decision B369: read in place

@@ -1440,16 +1440,22 @@ def unit_rates(session: Session) -> dict[str, float]:
             for unit, names in UNIT_IMU.items()}
 
 
-def refuse_too_slow(session: Session, command: str) -> None:
+def refuse_too_slow(session: Session, command: str, units: tuple[str, ...] | None = None) -> None:
     """Decision B404: a DataError naming the session, the unit and its rate when a unit's accelerometer or gyroscope
-    is sampled below :data:`MIN_RATE_HZ` (D7: a nominal clock may read 1 % low); ``command`` the CLI command."""
+    is sampled below :data:`MIN_RATE_HZ` (D7: a nominal clock may read 1 % low); ``command`` the CLI command.
+    ``units`` the units the command reads (None: every unit; ``steps`` passes its detector's unit only). Decision
+    B410: ``track`` (every unit) names ``--units`` when the other unit is fast enough on its own."""
     where = session.folder if session.folder is not None else f"session '{session.name}'"
-    for unit, rate in unit_rates(session).items():
-        if rate < MIN_RATE_HZ * 0.99:
+    rates = unit_rates(session)
+    for unit, rate in rates.items():
+        if (units is None or unit in units) and rate < MIN_RATE_HZ * 0.99:
+            fast = [u for u, r in rates.items() if u != unit and r >= MIN_RATE_HZ * 0.99]
+            other = (f"; or {command} the {fast[0]} unit alone with --units {fast[0]}"  # decision B410
+                     if units is None and command == "track" and fast else "")
             raise DataError(f"{where}: the {unit} unit is sampled at {rate:.3g} Hz, too slow for {command} to give a "
                             f"result (below {MIN_RATE_HZ:g} Hz its steps are lost and the distance comes out far "
-                            f"short; docs/robustness.md): record at {MIN_VALIDATED_RATE_HZ:g} Hz or more (decision "
-                            "B404)")
+                            f"short; docs/robustness.md): record at {MIN_VALIDATED_RATE_HZ:g} Hz or more{other} "
+                            "(decision B404)")
 
 
 def warn_low_rate(session: Session) -> None:
@@ -1473,6 +1479,7 @@ def _stream_where(session: Session, name: str) -> str:
 def warn_saturation(session: Session) -> None:
     """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
     extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence."""
+    from pdrlearn.io import validate
     from pdrlearn.io.validate import MOVING_RAD_S, ceiling_clip, ceiling_warning, clipped_samples, saturation_warning
 
     for name, s in session.streams.items():
@@ -1486,7 +1493,7 @@ def warn_saturation(session: Session) -> None:
             log.warning("%s", saturation_warning(where, kind, n, len(s), top,
                                                  "waist" if name.startswith("w") else "foot",  # T3 finding 9
                                                  moving=moving, waist=waist))
-        elif kind == "accelerometer" and (full := ceiling_clip(s.values)):  # decision B403: clipped ahead of a filter
+        elif kind == "accelerometer" and validate.CEILING_WARN and (full := ceiling_clip(s.values)):  # B403 (B411: off)
             where = _stream_where(session, name)
             log.warning("%s", ceiling_warning(where, full, "waist" if name.startswith("w") else "foot"))
 
