@@ -53,9 +53,6 @@ def test_the_rest_bias_removal_is_on_by_default_w423(walk):
     """Decision W126 (an option), W423 (the default): ``waist_bias`` removes the vertical-rate bias read at the
     waist's rests from the fused heading when W105 fires; ``waist_bias=False`` leaves the heading as it was; a clean
     session is unchanged either way."""
-    from pdrlearn.track.plasys import WAIST_BIAS_AT_REST
-
-    assert WAIST_BIAS_AT_REST is True
     clean = track_plasys(walk, method="M2", waist_bias=False)
     clean_on = track_plasys(walk, method="M2")
     np.testing.assert_allclose(clean_on.steps["heading_rad"], clean.steps["heading_rad"])

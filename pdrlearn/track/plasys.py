@@ -515,10 +515,6 @@ def move_waist_clock(session: Session, offset_s: float, drift: float, warnings: 
     return aligned, info
 
 
-#: decision W126: when W125 warns, the two-unit waist heading removes the vertical-rate bias read at the waist's
-#: standstills (``track_plasys(waist_bias=...)``); W126 measured it as an option, W423 adopted it as the default
-#: (users 10160-10169 at 52 Hz: 18/18 biased sessions where W105 fired improved, median 34.81 -> 3.65 m; clean 0.000 m)
-WAIST_BIAS_AT_REST = True
 from pdrlearn.kernels.align import UNIT_OFFSET_WARN_S  # noqa: E402, F401 (decision L161; shared with the runtime, L177)
 
 
@@ -1080,7 +1076,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         :data:`COMPASS_GYRO_FALLBACK`); ``info["compass_check"]["gyro_fallback"]`` says whether it applied
     fallback_drift : the fallback's offset drifts linearly per stretch (decision L266; None = :data:`FALLBACK_DRIFT`)
     waist_bias : heading "waist"/"fused": when W125's bias warning fires, remove the waist gyroscope's vertical-rate
-        bias read at its standstills (decision W126; None = :data:`WAIST_BIAS_AT_REST`)
+        bias read at its standstills (decision W126; None = on, W423's adopted default: users 10160-10169 at 52 Hz,
+        18/18 biased sessions where W105 fired improved, median 34.81 -> 3.65 m)
     contacts : streaming: give each stride its initial contact (``event_s``: the force sensors' stance onset, else
         the accelerometer impact, decisions E49/E50) and so ``stride_time_s``, ``cadence_spm``, ``speed_mps``
         and the summary's stride medians (E51; an option: E50's adoption rule was not met). Offline strides always
@@ -1390,7 +1387,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, relative, keep=~in_gap)
         # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
         bias_line, rest = waist_bias_check(work)  # decisions W125, W421: the waist unit this heading turns by
-        yaw_bias = rest[1] if bias_line and (WAIST_BIAS_AT_REST if waist_bias is None else waist_bias) else None
+        yaw_bias = rest[1] if bias_line and (waist_bias is None or bool(waist_bias)) else None
         warnings += [bias_removed(bias_line) if yaw_bias is not None else bias_line] if bias_line else []  # W422
         wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading,
                           yaw_bias=yaw_bias).fit_session(work)  # decision W126
