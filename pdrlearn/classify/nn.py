@@ -144,6 +144,21 @@ def train_mlp(
     return [W1.T.copy(), b1, W2.T.copy(), b2], best_epoch
 
 
+def input_scale(X: np.ndarray, mean: np.ndarray) -> np.ndarray:
+    """Each column's standard deviation, 1 where the column is constant up to rounding (decision E220).
+
+    A feature constant in training but for float64 noise (a window's duration fraction 1 +- 2e-16) has a std of
+    ~4e-16; dividing by it turns the noise of a new step into a z-score of ~1 that float32 rounding (or any other
+    summation order) erases, so a float32 bundle differed by 0.34. The test is scikit-learn's
+    ``preprocessing._data._is_constant_feature`` (as StandardScaler, which the SVM uses): var <= n eps var +
+    (n mean eps)^2.
+    """
+    n, eps = len(X), np.finfo(np.float64).eps
+    var = X.var(axis=0)
+    constant = var <= n * eps * var + (n * mean * eps) ** 2
+    return np.where(constant | ~(var > 0), 1.0, np.sqrt(var))
+
+
 class NNClassifier(ClassifierMixin, BaseEstimator):
     """Small torch MLP classifier (one tanh hidden layer, softmax output).
 
@@ -202,8 +217,7 @@ class NNClassifier(ClassifierMixin, BaseEstimator):
                 f"NNClassifier: only one class ({self.classes_[0]!r}); label steps of at least 2 classes"
             )
         self.mean_ = X.mean(axis=0)
-        std = X.std(axis=0)
-        self.scale_ = np.where(std > 0, std, 1.0)
+        self.scale_ = input_scale(X, self.mean_)
         Z = (X - self.mean_) / self.scale_
         seed = 0 if self.random_state is None else int(self.random_state)
         Xt, yt, Xv, yv = Z, yi, None, None

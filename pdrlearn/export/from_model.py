@@ -18,7 +18,7 @@ from pdrlearn.errors import ModelError
 from pdrlearn.export.bundle import base_manifest, write_bundle
 from pdrlearn.export.onnx_convert import svm_decision_to_onnx, torch_to_onnx
 from pdrlearn.export.parity import PARITY_ATOL, check_bundle_parity, parity_windows
-from pdrlearn.export.precision import FLOAT32_PARITY_ATOL, bundle_to_float32
+from pdrlearn.export.precision import FLOAT32_PARITY_ATOL, bundle_to_float32, check_float32_ranges
 from pdrlearn.export.sizes import onnx_stats
 from pdrlearn.export.step_graph import build_step_graph
 
@@ -503,7 +503,8 @@ def export_model(
         manifest["step_graph"] = {"file": STEP_GRAPH_FILE, **step[1]}
     atol = PARITY_ATOL
     if float32:  # decision E217
-        col.onnx = bundle_to_float32(col.onnx, manifest)
+        onnx64, col.onnx = col.onnx, bundle_to_float32(col.onnx, manifest)
+        check_float32_ranges(onnx64, col.onnx, manifest)  # decision E221: before anything is written
         atol = FLOAT32_PARITY_ATOL
     # decision E219: each graph's flash, parameters and multiply-accumulates per step, for a port's budget
     manifest["export"]["model_sizes"] = {rel: onnx_stats(m) for rel, m in sorted(col.onnx.items())}
