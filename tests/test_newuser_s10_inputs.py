@@ -36,11 +36,11 @@ def _warnings(err: str) -> list[str]:
 
 
 def test_foot_below_20_hz_warns_once_naming_rate_and_bound(tmp_path, capsys):
-    d = _decimate(LEVEL, tmp_path / "s10", 20)  # 10.24 Hz
+    d = _decimate(LEVEL, tmp_path / "s17", 12)  # 17.07 Hz: under the thesis' 20 Hz, above B404's 15 Hz refusal
     assert main(["steps", str(d)]) == 0
     low = [w for w in _warnings(capsys.readouterr().err) if "sampled at" in w]
     assert len(low) == 1, low
-    assert str(d) in low[0] and "foot unit is sampled at 10.2 Hz" in low[0] and "20 Hz" in low[0]
+    assert str(d) in low[0] and "foot unit is sampled at 17.1 Hz" in low[0] and "20 Hz" in low[0]
 
 
 def test_foot_at_20_hz_and_native_rate_do_not_warn(tmp_path, capsys):
