@@ -7,7 +7,7 @@ ROUTE_FORMS = {
     "straight": "'straight:M[:GAIT][:PACE]' M metres ahead, GAIT short / normal / long, PACE slow / normal / fast "
                 "(this walk's own speed, 'straight:14:fast'; S88)",
     "curve": "'curve:DEG:R[:GAIT]' an arc of DEG degrees (+ left) of radius R m",
-    "slope": "'slope:M:PCT[:GAIT]' M metres (horizontal) on a ramp of PCT % (-30 to 30, < 0 downhill; "
+    "slope": "'slope:M:PCT' (or 'slope:M:PCT:GAIT') M metres (horizontal) on a ramp of PCT % (-30 to 30, < 0 downhill; "
              "'slope:9:8.33' is a 1:12 ramp; S37)",
     "up": "'up:N[:RISE:RUN][:step-to-step]' N stairs up (default 0.17 m rise x 0.28 m run; step-to-step: both feet "
           "on each stair, S80)",
@@ -26,7 +26,7 @@ ROUTE_FORMS = {
     "side": "'side:M' side-stepping M metres left (-M right) facing ahead (S49)",
     "freeze": "'freeze:S[:HZ[:ACC]]' a freezing-of-gait episode: trembling in place S seconds (S51)",
     "lie": "'lie:S[:ROLLS]' sits on a bed edge, lies down S seconds turning over ROLLS times an hour (default 2; 0 "
-           "never), sits up and stands up (lying.csv, rolls.csv; up to 86400 s; S58-S61)",
+           "never), sits up and stands up ('lie:28800': a night; lying.csv, rolls.csv; up to 86400 s; S58-S61)",
     "vehicle": "'vehicle:S[:RMS[:RISE]]' standing S seconds in a moving vehicle, no steps (RMS its vibration, "
                "drawn when empty; RISE m climbed; S71, S75)",
 }

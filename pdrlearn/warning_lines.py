@@ -85,6 +85,20 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
         _ACTIVE.reset(token)
 
 
+@contextmanager
+def isolated_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
+    """The body's WARNING records of ``logger`` go to a list of their own: no enclosing capture of this context
+    (E179) collects them and no handler prints them. For a pipeline run inside another (W418's waist track inside a
+    two-unit foot track): per context, so a concurrent thread's warnings are untouched (a logger level raised and
+    restored around the inner run was not: E179's test saw one thread's inner lines in another's result)."""
+    token = _ACTIVE.set(())
+    try:
+        with captured_warnings(logger) as got:
+            yield got
+    finally:
+        _ACTIVE.reset(token)
+
+
 #: decision E179: the captures of this context (thread / asyncio task), innermost last: (shared state, collector)
 _ACTIVE: contextvars.ContextVar[tuple] = contextvars.ContextVar("pdrlearn_captures", default=())
 _SHARED: dict[str, _Shared] = {}

@@ -121,8 +121,7 @@ def _labelled_flat_forward(labels: pd.DataFrame) -> np.ndarray:
 
 @contextmanager
 def tracker_warnings_silenced(name: str = "pdrlearn.track"):
-    """Raise the ``name`` logger to ERROR for the duration (calibration runs the tracker internally; W418's two-unit
-    track runs the waist track, ``name`` "pdrlearn")."""
+    """Raise the ``name`` logger to ERROR for the duration (calibration runs the tracker internally)."""
     log = logging.getLogger(name)
     level = log.level
     log.setLevel(logging.ERROR)

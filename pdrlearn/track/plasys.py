@@ -1169,8 +1169,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if insole:
             res.info["warnings"].append(insole)
             log.warning("%s: %s", session.where, insole)
-        add_trunk_transfers(res, session)  # decision W418: the chair transfers and TUG from the waist unit
-        return res
+        return res  # W418's chair transfers are offline only: `run` (the streamed runtime) writes none either
     refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
     if refusal:
         raise DataError(f"plasys: {refusal}")

@@ -13,6 +13,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.warning_lines import isolated_warnings
 
 #: decision W419: the value of tug_trials.csv's ``steps_source`` / ``turns_source`` per unit
 FOOT, WAIST = "foot", "waist"
@@ -23,14 +24,13 @@ def add_trunk_transfers(result, session) -> None:
     foot track ``result``'s ``info`` (``transfers``, ``trunk_contacts``, ``trunk_yaw_turns``), read by a
     waist-pendulum track of ``session``'s waist unit alone; nothing when the session has no lower-back unit. A
     waist unit that cannot be tracked leaves ``info["trunk_note"]`` (one line naming the command) instead."""
-    from pdrlearn.displace.calibration import tracker_warnings_silenced
     from pdrlearn.track.base import get_pipeline
     from pdrlearn.track.units import keep_units
 
     if not session.has("wAccelerometer", "wGyroscope") or result.info.get("transfers") is not None:
         return
     try:
-        with tracker_warnings_silenced("pdrlearn"):  # the inner track's warnings are not the output's (W418)
+        with isolated_warnings():  # the inner track's warnings are not the output's (W418; per thread, E179)
             waist = get_pipeline("waist-pendulum")(keep_units(session, ("waist",)))
     except DataError as exc:
         result.info["trunk_note"] = (f"no chair transfers from the lower-back unit ({exc}); a TUG needs them: "
