@@ -88,15 +88,43 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
 @contextmanager
 def isolated_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
     """The body's WARNING records of ``logger`` go to a list of their own: no enclosing capture of this context
-    (E179) collects them and no handler prints them. For a pipeline run inside another (W418's waist track inside a
-    two-unit foot track): per context, so a concurrent thread's warnings are untouched (a logger level raised and
-    restored around the inner run was not: E179's test saw one thread's inner lines in another's result)."""
-    token = _ACTIVE.set(())
+    (E179) collects them and no handler on the logger's chain (its own, its ancestors', the root's) emits them. For a
+    pipeline run inside another (W418's waist track inside a two-unit foot track). Per context (a filter judging the
+    raising thread / task), so a concurrent thread's warnings are untouched: a logger level raised and restored
+    around the inner run was not (E179's test saw one thread's inner lines in another's result)."""
+    with _ISO_LOCK:
+        if not _ISO_HANDLERS:
+            node = logging.getLogger(logger)
+            while node is not None:
+                _ISO_HANDLERS.extend(node.handlers)
+                node = node.parent if node.propagate else None
+            for h in _ISO_HANDLERS:
+                h.addFilter(_not_isolated)
+        _ISO_COUNT[0] += 1
+    mark, token = _ISOLATED.set(True), _ACTIVE.set(())
     try:
         with captured_warnings(logger) as got:
             yield got
     finally:
         _ACTIVE.reset(token)
+        _ISOLATED.reset(mark)
+        with _ISO_LOCK:
+            _ISO_COUNT[0] -= 1
+            if not _ISO_COUNT[0]:
+                for h in _ISO_HANDLERS:
+                    h.removeFilter(_not_isolated)
+                _ISO_HANDLERS.clear()
+
+
+#: :func:`isolated_warnings`' state: the raising context is inside one; the handlers filtered; how many are open
+_ISOLATED: contextvars.ContextVar[bool] = contextvars.ContextVar("pdrlearn_isolated", default=False)
+_ISO_HANDLERS: list = []
+_ISO_COUNT = [0]
+_ISO_LOCK = threading.Lock()
+
+
+def _not_isolated(record: logging.LogRecord) -> bool:
+    return not _ISOLATED.get()
 
 
 #: decision E179: the captures of this context (thread / asyncio task), innermost last: (shared state, collector)
