@@ -20,7 +20,6 @@ engine's (+0.8 % on the simulator, L40), so the record also holds the gain of th
 from __future__ import annotations
 
 import logging
-from contextlib import contextmanager
 
 import numpy as np
 import pandas as pd
@@ -29,6 +28,7 @@ from pdrlearn.errors import DataError, PdrlearnError
 
 # the level-stride threshold and the rate check are shared with the streaming runtime (decision E14)
 from pdrlearn.kernels.distance import LEVEL_DZ_M, RATE_TOLERANCE  # noqa: F401
+from pdrlearn.warning_lines import isolated_warnings
 
 log = logging.getLogger(__name__)
 
@@ -119,18 +119,6 @@ def _labelled_flat_forward(labels: pd.DataFrame) -> np.ndarray:
     return mask
 
 
-@contextmanager
-def tracker_warnings_silenced(name: str = "pdrlearn.track"):
-    """Raise the ``name`` logger to ERROR for the duration (calibration runs the tracker internally)."""
-    log = logging.getLogger(name)
-    level = log.level
-    log.setLevel(logging.ERROR)
-    try:
-        yield
-    finally:
-        log.setLevel(level)
-
-
 def _offline_track(s, params):
     """The offline engine on the session's labelled strides (force stance where the session has force
     sensors; M3 with the labels' classes otherwise), gain 1."""
@@ -163,7 +151,8 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
             skipped.append(f"{s.name}: no labelled stride lengths or no foot unit")
             continue
         try:
-            with tracker_warnings_silenced():  # the tracker's notes (e.g. default length bounds) are not the user's
+            # the tracker's notes (e.g. default length bounds) are not the user's; kept per thread (E179)
+            with isolated_warnings("pdrlearn.track"):
                 res = track(s, params)
         except PdrlearnError as exc:
             skipped.append(f"{s.name}: {exc}")
