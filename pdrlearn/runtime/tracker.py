@@ -790,8 +790,7 @@ class Tracker(FixInput):
             last = max(-math.inf if ring is None else ring.last, -math.inf if raw is None else raw)
             if not t.size or (t[0] > last and not (t[1:] == t[:-1]).any()):
                 continue  # the usual push: nothing repeated
-            seen = np.unique([*([] if ring is None else ring.view()[0]), *([] if raw is None else [raw])])
-            rep = repeated(t, seen)
+            rep = repeated(t, self._taken_times(name))
             if rep.any():
                 try:
                     v = np.asarray(tv[1], dtype=np.float64)
@@ -803,6 +802,13 @@ class Tracker(FixInput):
                 out[name] = (t[~rep], v[~rep])
                 dropped[name] = int(rep.sum())
         return (samples if out is None else out), dropped
+
+    def _taken_times(self, name: str) -> np.ndarray:
+        """Decision E225: the input times of ``name`` the tracker still knows, sorted: its buffered samples' (a
+        resampled stream's buffer holds the output grid: its newest input time alone)."""
+        ring, raw = self._buf.get(name), self.inputs.last_in(name)
+        own = [] if ring is None or name in self.inputs.resamplers else ring.view()[0]
+        return np.unique([*own, *([] if raw is None else [raw])])
 
     def _count_repeats(self, dropped: dict[str, int]) -> None:
         """Decision E225 (E203's amended count): a taken push's dropped repeats counted; the first adds one line."""
@@ -1237,10 +1243,10 @@ class Tracker(FixInput):
     def _order_error(self, name: str, t0: float, last: float) -> DataError:
         """Decisions E225 / E227: the refusal of a push whose first ``name`` sample (``t0`` s) is not after the
         stream's newest (``last``): a duplicate, a clock that went back (a reconnected pod) or a late sample."""
-        ring, unit = self._buf.get(name), unit_of(name)
-        seen = [] if ring is None else ring.view()[0]
+        unit = unit_of(name)
         other = [r.last for n, r in self._buf.items() if unit_of(n) not in (None, unit)]
-        return order_error(name, t0, last, duplicate=bool(repeated([t0], seen)[0]), max_lag_s=self.max_lag_s,
+        return order_error(name, t0, last, duplicate=bool(repeated([t0], self._taken_times(name))[0]),
+                           max_lag_s=self.max_lag_s,
                            offset_s=float(getattr(self, f"{unit}_clock_offset_s", 0.0)) if unit else 0.0,
                            other_newest=max(other) if other else None, note=self._jumped_note(t0))
 
