@@ -618,19 +618,17 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
 CLIP_COARSE = 0.02
 
 
+def distinct_steps(col: np.ndarray) -> np.ndarray:
+    """Decision B405/B406: the steps between the sorted distinct finite values of one axis (empty with fewer than two
+    distinct values): the kernel of :func:`axis_step` and :func:`resolution`."""
+    return np.diff(np.unique(np.asarray(col, dtype=float)[np.isfinite(col)]))
+
+
 def axis_step(col: np.ndarray) -> float:
     """Decision B405/B406: the smallest step between the distinct values of one axis (its resolution; 0.0 with
     fewer than two distinct values)."""
-    u = np.unique(np.asarray(col, dtype=float)[np.isfinite(col)])
-    return float(np.diff(u).min()) if u.size > 1 else 0.0
-
-
-def resolution(values: np.ndarray) -> float:
-    """Decision B406: a stream's resolution: the smallest :func:`axis_step` over its axes that have one (0.0 when
-    no axis changes)."""
-    v = np.asarray(values, dtype=float)
-    steps = [axis_step(c) for c in v.reshape(len(v), -1).T]
-    return min((x for x in steps if x > 0), default=0.0)
+    d = distinct_steps(col)
+    return float(d.min()) if d.size else 0.0
 
 
 #: decision B412: a stream's smallest step is a resolution only when the values lie on a grid: at least this share of
@@ -640,23 +638,22 @@ GRID_SHARE = 0.9
 GRID_TOLERANCE = 0.05
 
 
-def on_grid(col: np.ndarray) -> bool:
-    """Decision B412: whether one axis's distinct values lie on the grid of its smallest step (:func:`axis_step`)."""
-    u = np.unique(np.asarray(col, dtype=float)[np.isfinite(col)])
-    if u.size < 2:
-        return False
-    d = np.diff(u)
-    r = d / d.min()
+def _on_grid(steps: np.ndarray) -> bool:
+    """Decision B412: whether one axis's :func:`distinct_steps` (non-empty) are whole multiples of the smallest."""
+    r = steps / steps.min()
     return float(np.mean(np.abs(r - np.round(r)) <= GRID_TOLERANCE)) >= GRID_SHARE
 
 
-def grid_resolution(values: np.ndarray) -> float | None:
-    """Decision B412: :func:`resolution` when every changing axis lies on the grid of its smallest step
-    (:func:`on_grid`), else None (`info` prints "-", null in --json): the smallest gap between converted floats is
-    no sensor step."""
+def resolution(values: np.ndarray, *, grid: bool = False) -> float | None:
+    """Decision B406: a stream's resolution: the smallest :func:`axis_step` over its axes that have one (0.0 when
+    no axis changes). ``grid=True`` (decision B412, what `info` prints): None unless some axis changes and every
+    changing axis lies on the grid of its smallest step (`info` prints "-", null in --json): the smallest gap
+    between converted floats is no sensor step."""
     v = np.asarray(values, dtype=float)
-    cols = [c for c in v.reshape(len(v), -1).T if axis_step(c) > 0]
-    return resolution(v) if cols and all(on_grid(c) for c in cols) else None
+    steps = [d for d in (distinct_steps(c) for c in v.reshape(len(v), -1).T) if d.size]
+    if grid and not (steps and all(_on_grid(d) for d in steps)):
+        return None
+    return min((float(d.min()) for d in steps), default=0.0)
 
 
 def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
