@@ -678,10 +678,6 @@ CEILING_SCALES_G = (4.0, 8.0, 16.0)
 CEILING_BAND = 0.90
 CEILING_SPREAD = 0.07
 CEILING_TAIL = 10
-#: decision B411 (not adopted, B403 switched off): unclipped real gait with its dynamics x1.2 / x1.3
-#: (datasets/external/gaitmap_ms_right) is called pinned under 8 g by :func:`ceiling_clip`, and a pile-up test did not
-#: clear it; B403's warning and C154's suspect run only when this is set True (opt-in; the function stays)
-CEILING_WARN = False
 
 
 def ceiling_clip(values: np.ndarray) -> float:
@@ -689,7 +685,12 @@ def ceiling_clip(values: np.ndarray) -> float:
     saturated before the sensor's own decimation filter: the filter smooths each flat top into a peak just below the
     scale), or 0.0. On each axis and sign: the local maxima at or above :data:`CLIP_LEVEL`; with
     :data:`CEILING_MIN_PEAKS` or more, a ceiling when the largest lies within :data:`CEILING_BAND`-100 % of one of
-    :data:`CEILING_SCALES_G` and the :data:`CEILING_TAIL`-th largest within :data:`CEILING_SPREAD` of it."""
+    :data:`CEILING_SCALES_G` and the :data:`CEILING_TAIL`-th largest within :data:`CEILING_SPREAD` of it.
+
+    Not adopted as a warning (decision B411: unclipped real gait with its dynamics x1.2 / x1.3,
+    datasets/external/gaitmap_ms_right, is called pinned under 8 g too); decision B415: no pipeline calls it (no
+    switch), it is a check to run on a suspect accelerometer file, ``ceiling_clip(session.streams[
+    "fAccelerometer"].values)`` (0.0: no ceiling found)."""
     v = np.asarray(values, dtype=float)
     if v.ndim != 2 or v.shape[0] < 3:
         return 0.0
@@ -708,17 +709,6 @@ def ceiling_clip(values: np.ndarray) -> float:
             if CEILING_BAND * full <= top <= full:
                 found = max(found, full)
     return found
-
-
-def ceiling_warning(where: str, full: float, unit_name: str = "foot") -> str:
-    """Decision B403's one line: the file, the full scale its peaks are pinned under, the consequence and the fix."""
-    g = full / STANDARD_GRAVITY
-    what = ("the foot's integrated stride lengths come out short (trial T2: -2.3 % at 52 Hz)" if unit_name == "foot"
-            else "the lower back's step peaks and step lengths come out short")
-    return coded(f"{where}: its impact peaks are pinned just under +-{g:.3g} g (the {CEILING_TAIL} highest within "
-                 f"{100 * CEILING_SPREAD:.0f} % of one another): the sensor looks clipped at +-{g:.3g} g ahead of its "
-                 f"own filter, which smoothed the flat tops away; {what}; record with a range above +-{g:.3g} g "
-                 "(decision B403)", "B403")
 
 
 #: decision B401: a gyroscope sample is "moving" at |w| >= this (rad/s): the stance segmenter's default threshold
