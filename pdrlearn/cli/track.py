@@ -453,7 +453,6 @@ NOT_IN_TRACK_ALL = {
     "--gnss": "a per-recording fix file", "--gnss-period": "thins --gnss", "--fixes": "a per-recording fix file",
     "--fix-period": "thins --fixes",
     "--strict": "track-all's exit code 1 names failed sessions; sessions.csv's n_warnings counts each one's (E156)",
-    "--ten-m-walk": "one session's walkway zones (L522); a batch with it is a loop of track for now",
 }
 
 
