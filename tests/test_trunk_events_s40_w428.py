@@ -22,6 +22,8 @@ from pdrlearn.warning_lines import isolated_warnings
 #: (user, route, stand_s, speed): two TUGs of different stand / turn / pace settings
 TUGS = [(10440, "straight:3, turn:180, straight:3, turn:180", 0.5, "slow"),
         (10441, "straight:3, curve:180:0.6, straight:3, turn:-180", 2.0, "normal")]
+#: a session with lying transfers too (W245: postures_and_transfers adds them, W278 flags them)
+LIE = (10442, "straight:5, lie:20, straight:5, sit:5, straight:3, turn:180, straight:3")
 #: the TUG outputs W418 / W419 write (W428's rule: identical to the whole waist track's)
 TUG_FILES = ("transfers.csv", "tug_phases.csv", "tug_trials.csv", "turns.csv", "summary.json")
 
@@ -33,6 +35,9 @@ def tugs(tmp_path_factory):
         s = simulate_path(parse_route(route), UserProfile.from_seed(uid), speed=speed, rate_hz=100, seed=0,
                           scenario="route", sit_start_s=3, sit_end_s=3, stand_s=stand, bounce="pendulum")
         write_session(s, root / f"tug_{uid}")
+    s = simulate_path(parse_route(LIE[1]), UserProfile.from_seed(LIE[0]), rate_hz=100, seed=0, scenario="route",
+                      sit_start_s=3)
+    write_session(s, root / f"tug_{LIE[0]}")
     return root
 
 
@@ -41,12 +46,12 @@ def _whole_track_events(session):
     return get_pipeline("waist-pendulum")(session)
 
 
-@pytest.mark.parametrize("uid", [u for u, *_ in TUGS])
-def test_trunk_events_are_the_whole_waist_tracks_w428(tugs, uid):
+@pytest.mark.parametrize("uid, n_transfers", [(10440, 2), (10441, 2), (LIE[0], 7)])
+def test_trunk_events_are_the_whole_waist_tracks_w428(tugs, uid, n_transfers):
     session = keep_units(read_session(tugs / f"tug_{uid}"), ("waist",))
     with isolated_warnings():
         whole, part = _whole_track_events(session), trunk_events(session)
-    assert part.info["transfers"] == whole.info["transfers"] and len(part.info["transfers"]) == 2
+    assert part.info["transfers"] == whole.info["transfers"] and len(part.info["transfers"]) == n_transfers
     assert part.info["yaw_turns"] == whole.info["yaw_turns"] and len(part.info["yaw_turns"]) >= 2
     cols = ["start_s", "end_s", "event_s"]
     assert part.steps[cols].to_dict("records") == whole.steps[cols].to_dict("records")
