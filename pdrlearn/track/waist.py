@@ -1557,7 +1557,8 @@ def trunk_events(session: Session) -> TrackResult:
     reads it: ``info["transfers"]`` (W182 / W245 / W278's rows, None without an upright: W277), ``info["yaw_turns"]``
     (L210) and ``steps``' ``start_s``, ``end_s``, ``event_s`` (the contacts after every veto and B11's gap cut).
     The same :func:`track_waist` code stopped there: no step length, heading, altitude, ride or plausibility check
-    is computed, and no trajectory is made; warnings are logged as the whole track logs them up to there."""
+    is computed, no trajectory is made, and the track's own warning lines are not logged (W418 keeps none of the inner
+    track's)."""
     return _track_waist(session, "waist-pendulum", None, None, dict.fromkeys(OPTION_DEFAULTS), None, None,
                         trunk_only=True)
 
