@@ -439,6 +439,11 @@ class Tracker(FixInput):
     innovation_gate : decision D31 (an option, off by default as ``track --fixes``' gate, D33): ``add_fix`` rejects
         a fix more than 3 sigma from the filter's estimate (the chi-square 0.997 gate, never two fixes in a row),
         names it in one warning as it is rejected and counts it in ``fix_stats()["fixes_rejected"]`` (decision D35).
+    first_walk : a foot-headed track's heading is turned once, at the end of its first walk (the 4th stride over 0.2
+        m), by that walk's direction less the start heading (L494's reference made causal; decision E215: measured,
+        a unit yawed on the shoe ended 15.0 -> 2.0 m off on average, not adopted as the default: unyawed feet got
+        worse in two of five walks; decision E222: this keyword, as ``track_plasys(streaming=True, first_walk=...)``).
+        False (default): the heading's 0 stays the foot unit's facing and one line says how far the walk heads.
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -514,6 +519,7 @@ class Tracker(FixInput):
         warn_out_of_domain: float | None = None,
         length_reference: str = "model",
         innovation_gate: bool = False,
+        first_walk: bool = False,
         drop_duplicate_timestamps: bool = False,
     ):
         start_xyz = enu_start(start, start_enu_m)  # decision L159
@@ -650,7 +656,7 @@ class Tracker(FixInput):
         self.position = start_xyz
         self._init_fixes(self.position[:2], innovation_gate=innovation_gate)  # decisions D19-D21, D35: add_fix
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
-        self._first_walk = _first_walk.FirstWalk(self.heading)  # decision E215
+        self._first_walk = _first_walk.FirstWalk(self.heading, enabled=first_walk)  # decisions E215, E222
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
