@@ -293,11 +293,21 @@ _KIND_RANK = {"stairs_up": 0, "stairs_down": 0, "turn": 1, "start_stop": 2, "lev
 def contact_kinds(both: pd.DataFrame) -> np.ndarray:
     """Decision L538: each merged contact's kind (:data:`STEP_KINDS`) from the stride into it: ``stairs_up`` /
     ``stairs_down`` by its ``terrain``, else ``turn`` when it turns at least L79's ``STRAIGHT_MAX_RAD`` (a missing
-    turn is straight, as L79's), else ``start_stop`` for a bout's first or last contact (``partial``, L317), else
-    ``level``."""
+    turn is straight, as L79's), else ``start_stop`` for a bout's first or last contact (``partial``, L317) or a
+    closing step inside a bout (a level stride under L310's :data:`CLOSING_STRIDE_SHARE` of the foot's median level
+    stride: the feet brought side by side, e.g. before a stair), else ``level``."""
     kind = np.full(len(both), "level", dtype=object)
     if "partial" in both:
         kind[both["partial"].to_numpy(bool)] = "start_stop"
+    if "length_m" in both:  # L310's closing-step rule on the foot's own strides, inside a bout
+        length, side = np.abs(both["length_m"].to_numpy(float)), both["side"].to_numpy()
+        plain = kind == "level"
+        if "terrain" in both:
+            plain &= both["terrain"].to_numpy() == "flat"
+        for s in SIDES:
+            own = plain & (side == s) & np.isfinite(length)
+            if own.sum() >= 3:
+                kind[own & (length < CLOSING_STRIDE_SHARE * np.median(length[own]))] = "start_stop"
     if "turn_deg" in both:
         turn = np.nan_to_num(both["turn_deg"].to_numpy(float), nan=0.0)
         kind[turn >= math.degrees(STRAIGHT_MAX_RAD)] = "turn"  # decision L79's straight stride
