@@ -79,14 +79,18 @@ def main(argv: list[str]) -> None:
               f"{kinds} | speed {r['speed'][0]:.3f} ({r['speed'][1]:.3f}) cadence {r['cadence'][0]:.1f} "
               f"({r['cadence'][1]:.1f}) distance {r['distance'][0]:.2f} ({r['distance'][1]:.2f}; walked "
               f"{r['distance'][2]:.2f})")
-    head = np.array([abs(r["headline"] - r["truth_level"]) for r in rows])
-    pooled = np.array([abs(r["pooled"] - r["truth_level"]) for r in rows])
+    given = [r for r in rows if r["headline"] is not None]  # L461: under 10 level steps a side, withheld
+    head = np.array([abs(r["headline"] - r["truth_level"]) for r in given])
+    pooled = np.array([abs(r["pooled"] - r["truth_level"]) for r in given])
+    print(f"headline withheld (under 10 level straight steps a side, L461) on {len(rows) - len(given)} of {len(rows)}: "
+          + ", ".join(f"user {r['user']} pooled {_f(r['pooled'])} truth_level {_f(r['truth_level'])}"
+                      for r in rows if r["headline"] is None))
     speed = np.array([100 * (r["speed"][0] / r["speed"][1] - 1) for r in rows])
     dist = np.array([100 * (r["distance"][0] / r["distance"][2] - 1) for r in rows])
     cad = np.array([r["cadence"][0] - r["cadence"][1] for r in rows])
     print(f"|headline - truth_level| median {np.median(head):.2f} max {head.max():.2f} points; |pooled - truth_level| "
           f"median {np.median(pooled):.2f} max {pooled.max():.2f}; headline nearer on {(head < pooled).sum()} of "
-          f"{len(rows)}")
+          f"{len(given)}")
     print(f"gait speed vs labels {speed.min():+.2f} to {speed.max():+.2f} %; distance vs walked {dist.min():+.2f} to "
           f"{dist.max():+.2f} %; cadence vs labels {cad.min():+.2f} to {cad.max():+.2f} steps/min")
 

@@ -1165,8 +1165,9 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s (L539)"),
     ("cadence_spm", "steps/min", "number", "60 x the bout's steps (both feet) / their summed step times (L539)"),
     ("headline_steps", _ID, "text", "gait_summary.json walk only: level (the measures above the pace are of the "
-                                    "walk's level straight steps, gait_steps.csv kind level) or all (under 10 of "
-                                    "them on a side); a bout's measures take the walk's choice (L538)"),
+                                    "walk's level straight steps, gait_steps.csv kind level; under 10 a side: "
+                                    "their indices withheld, L461) or all (no level straight step on a side); a "
+                                    "bout's measures take the walk's choice (L538)"),
     ("n_steps_all_left", "count", "integer", "gait_summary.json walk only: every step landing on the left foot, "
                                              "of any kind (L538)"),
     ("n_steps_all_right", "count", "integer", "gait_summary.json walk only: the same on the right foot (L538)"),

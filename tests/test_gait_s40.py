@@ -153,10 +153,16 @@ def test_l538_headline_is_the_level_straight_steps_with_a_row_per_kind():
     up = res["by_kind"]["stairs_up"]
     assert up["step_time_s_left"] == pytest.approx(0.6) and up["step_time_s_right"] == pytest.approx(0.6)
     assert res["by_kind"]["level"]["step_time_s_si_pct"] == pytest.approx(w["step_time_s_si_pct"])
-    # fewer than 10 level steps on a side: every step, as before (said in walk headline_steps)
-    short = bilateral_gait(_labels(left[8:], terr[8:]), _labels(right[8:], terr[8:]))
-    assert short["walk"]["headline_steps"] == "all"
-    assert short["walk"]["n_steps_left"] == short["walk"]["n_steps_all_left"]
+    # no level straight step on a side (a stair recording): every step, as before (said in walk headline_steps)
+    stairs = bilateral_gait(_labels(left[n:], "up"), _labels(right[n:], "up"))
+    assert stairs["walk"]["headline_steps"] == "all"
+    assert stairs["walk"]["n_steps_left"] == stairs["walk"]["n_steps_all_left"] > 0
+    # a few level steps: the headline stays theirs, its indices withheld (L461), never the pooled ones'
+    from pdrlearn.track.bilateral import withhold_indices
+
+    few = bilateral_gait(_labels(left[7:], terr[7:]), _labels(right[7:], terr[7:]))["walk"]
+    assert few["headline_steps"] == "level" and few["n_steps_left"] < 10
+    assert withhold_indices(few) is not None and few["step_time_s_si_pct"] is None
 
 
 def test_l539_gait_speed_cadence_and_distance_of_the_walk():

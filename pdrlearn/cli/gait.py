@@ -66,14 +66,8 @@ def _basis(w: dict) -> str:
         return (f" (level straight steps, of {w['n_steps_all_left']}/{w['n_steps_all_right']}: no stairs, turns, "
                 "starts or stops; L538)")
     if w.get("headline_steps") == "all":
-        return f" (all steps: under {_min_steps()} level straight steps on a side; L538)"
+        return " (all steps: no level straight step on a side; L538)"
     return ""
-
-
-def _min_steps() -> int:
-    from pdrlearn.track.bilateral import SI_MIN_STEPS  # here: `pdrlearn --help` loads no numpy
-
-    return SI_MIN_STEPS
 
 
 def pace_line(w: dict) -> str:
@@ -130,8 +124,13 @@ def register(app: typer.Typer) -> None:
         decision L310), step-time / step-length / stride-time / stride-length asymmetry (symmetry index and L/R ratio),
         double and single support (% of the gait cycle, from the toe-off of track --toe-off), per walk and per
         walking bout. Each folder is tracked offline with --toe-off; with labelled IC / TC events in both folders
-        (gaitmap's mocap) the same measures of the labels are given as the reference. The two recordings must share
-        one clock (t = 0 at the same instant, as gaitmap's left / right folders): pdrlearn does not align them; it
+        (gaitmap's mocap) the same measures of the labels are given as the reference (with ics.csv's step lengths,
+        L540). The headline measures are the level straight steps' (no stairs, turns, starts or stops; all steps
+        with none on a side), with a row per kind of step and gait_steps.csv / gait_cycles.csv's kind
+        (L538), and the walk's gait speed, cadence and distance (L539). The two recordings must share one clock:
+        two sessions imported from absolute (epoch or date-time) timestamps are aligned on their meta.json
+        imported.time.origin_s (the later one moved by the difference, one line, gait_summary.json's
+        clock_alignment; L537); any other pair must share t = 0 (as gaitmap's left / right folders). gait
         refuses contacts that do not overlap in time (decision L260) and two sessions whose meta.json names different
         activities, and warns when under 80 % of the merged contacts alternate feet (decision B245). Two sessions
         whose meta.json clock_id differ are refused (decision L283); a step-time asymmetry that the swing times do not

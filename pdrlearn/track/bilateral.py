@@ -504,21 +504,21 @@ def _fmt_pct(v) -> str:
     return "-" if v is None else f"{v:.1f}"
 
 
-#: decision L538: ``walk["headline_steps"]``: the walk's measures are of its level straight steps (``"level"``), or,
-#: with fewer than :data:`SI_MIN_STEPS` of them on a side, of all its steps (``"all"``, as before session 40)
+#: decision L538: ``walk["headline_steps"]``: the walk's measures are of its level straight steps (``"level"``; with
+#: fewer than L461's :data:`SI_MIN_STEPS` of them on a side their indices are withheld, never taken from the other
+#: kinds), or, with no level straight step on a side, of all its steps (``"all"``, as before session 40)
 HEADLINE_BASES = ("level", "all")
 
 
-def headline_masks(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame,
-                   *, min_steps: int | None = None) -> tuple[str, np.ndarray, np.ndarray, np.ndarray]:
+def headline_masks(both: pd.DataFrame, steps: pd.DataFrame,
+                   cycles: pd.DataFrame) -> tuple[str, np.ndarray, np.ndarray, np.ndarray]:
     """Decision L538: which rows of the merged contacts, the step table and the cycle table the walk's headline
     measures take: the ``level`` kind's (:data:`STEP_KINDS`: no stair, turn, gait initiation or closing step) when
-    each side has at least ``min_steps`` (default :data:`SI_MIN_STEPS`, L461's) level steps, else every row;
-    ``(basis, contacts, steps, cycles)``, basis in :data:`HEADLINE_BASES`."""
-    min_steps = SI_MIN_STEPS if min_steps is None else min_steps
+    each side has a level step, else every row (a walk of stairs or turns only); ``(basis, contacts, steps,
+    cycles)``, basis in :data:`HEADLINE_BASES`."""
     level = steps["kind"].to_numpy() == "level"
     n = [int((level & (steps["side"].to_numpy() == s)).sum()) for s in SIDES]
-    if min(n) < min_steps:
+    if min(n) < 1:
         return "all", np.ones(len(both), bool), np.ones(len(steps), bool), np.ones(len(cycles), bool)
     return ("level", contact_kinds(both) == "level", level,
             cycles["kind"].to_numpy() == "level" if len(cycles) else np.zeros(0, bool))
