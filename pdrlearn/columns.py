@@ -1065,6 +1065,9 @@ GAIT_PAIRS: tuple[Column, ...] = (
     ("visit", _ID, "text", "as gait_steps.csv (C109)"),
     ("n_bouts", "count", "integer", "the pair's walking bouts: its rows of gait_bouts.csv"),
     ("n_steps", "count", "integer", "the pair's steps of both feet: its rows of gait_steps.csv"),
+    ("clock_right_minus_left_s", "s", "number", "the right session's absolute start minus the left's when both "
+                                                "were imported from absolute timestamps and aligned on them (L537, "
+                                                "gait_summary.json clock_alignment); empty: paired on their t = 0"),
     ("warnings", _ID, "text", "the pair's warning lines as gait_summary.json's warnings (each foot's track lines "
                               "prefixed `left foot:` / `right foot:`, L461), ` | `-joined; empty when none"),
 )

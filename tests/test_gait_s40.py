@@ -70,17 +70,24 @@ def level_pair(tmp_path_factory):
     return root, feet
 
 
-def test_l537_two_feet_imported_from_one_absolute_clock_are_paired_on_it(level_pair, capsys):
-    """F1: the right unit switched on 2.3 s after the left, both exporting absolute time (the left epoch seconds,
-    the right ISO date-time text); each import moves t = 0 to its own first sample. Paired on their t = 0 the step
-    times were off by 2.3 s modulo the stride (SI 89.5 % for a true 18.7 % in T1's trial); gait now moves the right
-    session by the difference of the imports' origins and reads the true asymmetry."""
+@pytest.fixture(scope="module")
+def imported_pair(level_pair):
+    """``level_pair``'s two feet exported as T1's clinic does and imported: the right unit switched on 2.3 s after
+    the left, both exporting absolute time (the left epoch seconds, the right ISO date-time text)."""
     root, feet = level_pair
     frames = ["--frames", "x=forward,y=up,z=right"]
     for foot, cut, iso in (("left", 0.0, False), ("right", 2.3, True)):
         _export(feet[foot], root / f"{foot}.csv", cut, iso=iso)
         assert main(["import", str(root / f"{foot}.csv"), "--unit", "foot", "--foot", foot, *frames, "--out",
                      str(root / f"i{foot}")]) == 0
+    return root, feet
+
+
+def test_l537_two_feet_imported_from_one_absolute_clock_are_paired_on_it(imported_pair, capsys):
+    """F1: each import moves t = 0 to its own first sample. Paired on their t = 0 the step times were off by 2.3 s
+    modulo the stride (SI 89.5 % for a true 18.7 % in T1's trial); gait now moves the right session by the
+    difference of the imports' origins and reads the true asymmetry."""
+    root, feet = imported_pair
     capsys.readouterr()
     assert main(["gait", str(root / "ileft"), str(root / "iright"), "--out", str(root / "g")]) == 0
     out = capsys.readouterr().out
@@ -94,6 +101,23 @@ def test_l537_two_feet_imported_from_one_absolute_clock_are_paired_on_it(level_p
     print(out, truth)
     assert abs(summary["walk"]["step_time_s_si_pct"] - truth) < 3.0
     assert not any("L284" in w for w in summary["warnings"])  # no clock-offset pattern left
+
+
+def test_l537_gait_all_aligns_the_same_way_and_says_so_in_gait_pairs(imported_pair, tmp_path, capsys):
+    """F1 for the batch form: gait-all pairs through the same function; gait_pairs.csv says the alignment."""
+    import shutil
+
+    root, feet = imported_pair
+    for foot in ("left", "right"):
+        shutil.copytree(root / f"i{foot}", tmp_path / "study" / "P01" / "v1" / foot)
+    assert main(["gait-all", str(tmp_path / "study"), "--out", str(tmp_path / "ga")]) == 0
+    pairs = pd.read_csv(tmp_path / "ga" / "gait_pairs.csv")
+    assert pairs["status"].tolist() == ["ok"]
+    assert pairs["clock_right_minus_left_s"].iloc[0] == pytest.approx(2.3, abs=0.002)
+    assert undocumented("gait_pairs.csv", list(pairs.columns)) == []
+    bouts = pd.read_csv(tmp_path / "ga" / "gait_bouts.csv")
+    truth = _true_step_si(pd.read_csv(feet["left"] / "ics.csv"))
+    assert abs(bouts["step_time_s_si_pct"].iloc[0] - truth) < 3.0
 
 
 def test_l537_which_sessions_are_aligned():
