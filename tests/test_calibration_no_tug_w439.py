@@ -34,3 +34,18 @@ def _forcing_transfers(f):
         kw["transfers"] = True
         return f(*a, **kw)
     return wrapped
+
+
+def test_gait_tracks_both_feet_without_the_transfers(tmp_path, monkeypatch):
+    """W439: ``pdrlearn gait``'s foot tracks (pair_sessions) read no TUG either."""
+    from pdrlearn.cli import main
+    from pdrlearn.track.bilateral import pair_sessions
+
+    for foot in ("left", "right"):
+        assert main(["simulate", "--route", "stand:2, straight:6, stand:2", "--user-seed", "10410", "--foot", foot,
+                     "--out", str(tmp_path / foot), "--json"]) == 0
+    calls = []
+    real = plasys.add_trunk_transfers
+    monkeypatch.setattr(plasys, "add_trunk_transfers", lambda res, s: (calls.append(s.name), real(res, s))[1])
+    r = pair_sessions(tmp_path / "left", tmp_path / "right")
+    assert r["walk"]["n_steps_left"] > 0 and calls == []

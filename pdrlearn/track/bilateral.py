@@ -957,11 +957,12 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
         ignore_force = True
         mixed.append(mixed_line(forced, before=True))
     with no_model_as_info(GAIT_NO_MODEL_INFO):  # decision E153: gait takes no model; one info line, no warning
-        tracks = [track_plasys(s, toe_off=True, ignore_force=ignore_force) for s in sessions]
+        tracks = [track_plasys(s, toe_off=True, ignore_force=ignore_force, transfers=False)  # W439: no TUG read
+                  for s in sessions]
         sources = dict(zip(SIDES, map(contact_source, tracks), strict=True))
         if len(set(sources.values())) > 1:  # steps decision 72: e.g. one foot's insole check fell back (L365)
             mixed.append(mixed_line(sources, before=False))
-            tracks = [t if sources[side] == "imu" else track_plasys(s, toe_off=True, ignore_force=True)
+            tracks = [t if sources[side] == "imu" else track_plasys(s, toe_off=True, ignore_force=True, transfers=False)
                       for side, s, t in zip(SIDES, sessions, tracks, strict=True)]
             sources = dict(zip(SIDES, map(contact_source, tracks), strict=True))
     for line in mixed:
