@@ -577,12 +577,19 @@ def transfer_line(summary: dict) -> str | None:
     return ", ".join(parts) if parts else None
 
 
-def posture_line(summary: dict, waist_unit: bool = False) -> str:
+def posture_line(summary: dict, waist_unit: bool = False, tug_from_waist: bool = True) -> str:
     """Decision W222: ``track``'s line of the time that is not walking, by posture (a lower-back track), or that a
     foot-only track cannot split it (its keys are null). Decision E145: ``run`` of a waist bundle writes the keys null
     too (the live tracker has no posture runs) and prints no such line; the line names both. Decision L316: a foot
     track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead; W427: this
-    track reads that unit's chair transfers and TUG already (W418), not its posture times."""
+    track reads that unit's chair transfers and TUG already (W418), not its posture times. Decision W431: only when it
+    did (``tug_from_waist``: the track holds the waist's contacts); a ``--streaming`` or ``--units foot`` track did
+    not, and says it has no TUG."""
+    if summary.get("standing_time_s") is None and waist_unit and not tug_from_waist:
+        return ("posture: no standing / sitting / lying split in this foot track - it needs the lower-back unit's "
+                "trunk tilt, and this track did not read that unit's chair transfers either, so it has no TUG (W418 "
+                "reads them offline, with the unit: pdrlearn track DIR); for the split, pdrlearn track DIR --pipeline "
+                "waist-pendulum (decisions W222, L316, W431)")
     if summary.get("standing_time_s") is None and waist_unit:
         return ("posture: no standing / sitting / lying split in this foot track - it needs the lower-back unit's "
                 "trunk tilt, and this track takes only the chair transfers and TUG from that unit (W418), not the "

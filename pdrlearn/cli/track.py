@@ -435,7 +435,8 @@ def track(
     else:
         from pdrlearn.textfile import session_csv
 
-        _print_summary(summary, out, aided, waist_unit=session_csv(session_dir, "wAccelerometer").is_file())  # L316
+        _print_summary(summary, out, aided, waist_unit=session_csv(session_dir, "wAccelerometer").is_file(),  # L316
+                       tug_from_waist="trunk_contacts" in tracked["result"].info)  # W431: whether the track read it
     warned = summary.get("info", {}).get("warnings") or []
     if strict and warned:  # decision E156: the outputs are written; the exit code says the track warned
         typer.echo(f"strict: {len(warned)} warning(s) (summary.json info.warnings); exit code {STRICT_EXIT}", err=True)
@@ -1138,7 +1139,8 @@ def position_error_phrase(summary: dict) -> str:
     return f", final position error {err:.2f} m horizontal" if err is not None else ""
 
 
-def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False) -> None:
+def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False,
+                   tug_from_waist: bool = True) -> None:
     name = summary["session"]
     if summary.get("window_start_s") is not None:  # decision L105
         name += f" [{summary['window_start_s']:g}-{summary['window_end_s']:g} s]"
@@ -1207,7 +1209,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
                    f"{summary['time_no_data_s']:.1f} s")
         # decisions W222, L316: the time that is not walking, by posture
-        typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys"))
+        typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys", tug_from_waist))
     from pdrlearn.track.geoexport import GEO_FILES
 
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
