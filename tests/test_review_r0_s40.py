@@ -6,6 +6,7 @@ import logging
 
 import pytest
 
+from pdrlearn.export.from_model import EXPORT_UNITS
 from pdrlearn.warning_lines import captured_warnings, isolated_warnings
 
 
@@ -108,3 +109,110 @@ def test_a_track_that_did_not_read_the_waist_says_it_has_no_tug_w431(tug_offset,
     note = json.loads((tmp_path / "streaming" / "summary.json").read_text())["tug_time_note"]
     assert note == (f"no chair transfers and no TUG in a --streaming track (W418 reads them offline only): "
                     f"pdrlearn track {tug_offset} without --streaming (W431)")
+
+
+def _walk(t0: float, speed: float, metres: float, heading: float = 0.0) -> list[dict]:
+    """One-second strides of ``speed`` metres from ``t0`` along ``heading``, contact at each stride's end."""
+    return [{"start_s": t0 + i, "end_s": t0 + i + 1.0, "event_s": t0 + i + 1.0, "length_m": speed,
+             "heading_rad": heading} for i in range(int(round(metres / speed)))]
+
+
+def test_a_refused_first_bout_does_not_hide_a_later_timed_one_l535():
+    """L535 (R0 finding 3): a first bout with a turn in its first 14 m (8 m out and back) is refused, but the next
+    straight 16 m bout is the summary's 10 m walk, its note naming the refused bout; with no bout timed the refusal
+    is the note, as before."""
+    import math
+
+    import pandas as pd
+
+    from pdrlearn.track.walk_test import ten_metre_walk
+
+    turn = _walk(3.0, 1.0, 8.0) + _walk(11.0, 1.0, 8.0, math.pi)  # one bout: out and back, no rest
+    steps = pd.DataFrame(turn + _walk(30.0, 1.0, 16.0) + _walk(60.0, 2.0, 16.0))
+    got = ten_metre_walk(steps)
+    assert got["ten_m_walk_time_s"] == pytest.approx(10.0) and got["ten_m_walk_speed_mps"] == pytest.approx(1.0)
+    assert got["n_ten_m_walk_trials"] == 2 and got["ten_m_walk_max_speed_mps"] == pytest.approx(2.0)
+    assert got["ten_m_walk_note"].startswith("timed walking bout 2; walking bout 1 before it: the first 14 m of the "
+                                             "walk are not straight"), got["ten_m_walk_note"]
+    alone = ten_metre_walk(pd.DataFrame(turn))
+    assert alone["ten_m_walk_time_s"] is None and alone["ten_m_walk_note"].startswith("the first 14 m of the walk")
+
+
+def test_clinical_md_gives_the_10_m_walk_after_a_turning_walk_l535(tmp_path, capsys):
+    """L535 (R0 finding 3, its session shortened): walk to the start and back, then a straight 16 m walk: the console
+    and clinical.md give the 10 m walk (they said nothing: the summary's keys were null)."""
+    from pdrlearn.cli import main
+
+    d = tmp_path / "clinic"
+    assert main(["simulate", "--route", "stand:3, straight:8, turn:180, straight:8, stand:5, turn:180, stand:3, "
+                 "straight:16, stand:3", "--user-seed", "10763", "--rate", "100", "--out", str(d)]) == 0
+    assert main(["track", str(d), "--out", str(tmp_path / "out" / "t")]) == 0
+    assert "10 m walk test" in capsys.readouterr().out
+    assert main(["report", str(tmp_path / "out"), "--out", str(tmp_path / "rep"), "--clinical"]) == 0
+    text = (tmp_path / "rep" / "clinical.md").read_text()
+    assert "- 10 m walk: " in text and "over the middle 10 m of a 14 m walkway" in text, text
+
+
+@pytest.mark.parametrize("zones, words", [
+    ((2.0, 10.0, 2.0), "the middle 10 m of a 14 m walkway"),
+    ((0.0, 6.0, 4.0), "the first 6 m of a 10 m walkway, from standing, 4 m left to decelerate"),
+    ((1.0, 6.0, 3.0), "the 6 m after the first 1 m of a 10 m walkway, 3 m left to decelerate"),
+    ((2.0, 10.0, 0.0), "the 10 m after the first 2 m of a 12 m walkway, no zone to decelerate"),
+    ((0.0, 7.62, 0.0), "the first 7.62 m of a 7.62 m walkway, from standing")])
+def test_the_timed_stretch_is_worded_from_its_zones_l536(zones, words):
+    """L536 (R0 finding 8): "the middle" only for equal zones; `--ten-m-walk 0,6,4` is the first 6 m from standing."""
+    from pdrlearn.track.walk_test import timed_stretch
+
+    assert timed_stretch(*zones) == words
+
+
+def test_console_and_clinical_md_say_the_timed_stretch_l536(tmp_path):
+    """L536: clinical.md and the console line of a `--ten-m-walk 0,6,4` summary say "the first 6 m ... from
+    standing", not "the middle 6 m"."""
+    import json
+
+    from pdrlearn.cli.common import transfer_line
+    from pdrlearn.report.clinical import clinical_markdown
+
+    summary = {"session": "w", "pipeline": "plasys", "ten_m_walk_time_s": 4.6, "ten_m_walk_speed_mps": 1.3,
+               "n_ten_m_walk_trials": 1, "ten_m_walk_max_speed_mps": 1.3, "ten_m_walk_zones_m": [0.0, 6.0, 4.0]}
+    (tmp_path / "out" / "w").mkdir(parents=True)
+    (tmp_path / "out" / "w" / "summary.json").write_text(json.dumps(summary))
+    line = [x for x in clinical_markdown(tmp_path / "out").splitlines() if x.startswith("- 10 m walk")]
+    assert line == ["- 10 m walk: 1.30 m/s (4.6 s over the first 6 m of a 10 m walkway, from standing, 4 m left to "
+                    "decelerate; foot unit)"], line
+    assert "(the first 6 m of a 10 m walk, from standing, 4 m left to decelerate, L312, L536)" in transfer_line(summary)
+
+
+@pytest.fixture(scope="module")
+def trained(tmp_path_factory):
+    from tests.runtime_helpers import trained_dirs_and_walk
+
+    return trained_dirs_and_walk(tmp_path_factory, "r0_s40")
+
+
+def test_export_units_waist_is_refused_in_one_line_e233(trained, tmp_path, capsys):
+    """E233 (R0 finding 4): `export --units waist` wrote a bundle `run` refused both ways; now it is one line naming
+    the waist bundle route (calibrate, export cal.json), exit 2, nothing written."""
+    from pdrlearn.cli import main
+
+    assert main(["export", str(trained["root"] / "model"), "--out", str(tmp_path / "w"), "--units", "waist"]) == 2
+    err = capsys.readouterr().err
+    lines = [x for x in err.splitlines() if x.startswith("error:")]
+    assert len(lines) == 1 and "--units waist: a classifier bundle needs the foot unit" in lines[0], err
+    assert "pdrlearn calibrate" in lines[0] and "pdrlearn export cal.json" in lines[0] and "Traceback" not in err
+    assert not (tmp_path / "w").exists()
+
+
+@pytest.mark.parametrize("options", [[], ["--float32"], ["--no-training-samples"],
+                                     *(["--units", u] for u in EXPORT_UNITS),
+                                     ["--units", "foot", "--methods", "nn", "--float32"]])
+def test_every_bundle_export_writes_is_run_by_run_e233(trained, tmp_path, capsys, options):
+    """E233: each bundle `export` writes from a two-unit model (every ``--units`` it takes, and the options
+    docs/deploying.md and E217 / E218 give) replays the test walk with `run`."""
+    from pdrlearn.cli import main
+
+    assert main(["export", str(trained["root"] / "model"), "--out", str(tmp_path / "b"), *options]) == 0
+    assert main(["run", str(tmp_path / "b"), str(trained["walk"]), "--out", str(tmp_path / "run")]) == 0, \
+        capsys.readouterr().err
+    assert len((tmp_path / "run" / "steps.csv").read_text().splitlines()) > 10
