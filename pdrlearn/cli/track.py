@@ -766,9 +766,6 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         logging.getLogger("pdrlearn.cli").warning("%s", unknown)
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
-    from pdrlearn.io.plasys import refuse_too_slow
-
-    refuse_too_slow(session, "track")  # decision B404: the tracked units only (after --units)
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
     chosen_by = None  # the option that chose the pipeline, for the lines that name it
     if pipeline == "auto" and waist_asked:
