@@ -251,12 +251,13 @@ def replay_check(streams: dict, chunk_s: float = 1.0) -> ClockCheck:
     return cc
 
 
-def waist_on_foot_clock(samples: dict, offset_s: float) -> dict:
+def waist_on_foot_clock(samples: dict, offset_s: float, prefix: str = "w") -> dict:
     """Decision L177: ``samples`` (sensor -> ``(t, values)``) with the waist sensors' times moved to ``t - offset_s``
-    (L161's model, no drift); anything that is no (t, values) pair is passed on for the push's checks to name."""
+    (L161's model, no drift); anything that is no (t, values) pair is passed on for the push's checks to name.
+    ``prefix="f"``: the foot sensors' instead (decision E227: a foot pod rebased after a reconnect)."""
     out = dict(samples)
     for name, tv in samples.items():
-        if str(name).startswith("w") and isinstance(tv, tuple | list) and len(tv) == 2:
+        if str(name).startswith(prefix) and isinstance(tv, tuple | list) and len(tv) == 2:
             try:
                 t = np.asarray(tv[0], dtype=np.float64) - offset_s
             except (TypeError, ValueError):

@@ -1008,7 +1008,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
                  drop_neighbour: bool | None = None, ignore_force: bool = False,
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
-                 fallback_drift: bool | None = None, first_walk: bool = False,
+                 fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
                  **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -1068,6 +1068,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     first_walk : streaming: a foot-headed track's heading is turned once, at the end of its first walk, by that walk's
         direction (L494's reference made causal; decision E215, not adopted as the default; E222: this keyword, as
         the runtime ``Tracker``'s); offline L494 references the first walk always and True is refused
+    transfers : offline two-unit session: time the chair transfers and TUG from the waist unit (W418); False skips
+        that inner waist work for callers that read no TUG (the distance calibration; decision W439)
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
         ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
         3 % default. False: neither
@@ -1182,8 +1184,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if insole:
             res.info["warnings"].append(insole)
             log.warning("%s: %s", session.where, insole)
-        if session.has("wAccelerometer", "wGyroscope"):  # W418's transfers are offline only (`run` writes none
-            res.info["trunk_note"] = STREAMED_TRUNK_NOTE.format(where=session.where)  # either); W431: say so
+        if transfers and session.has("wAccelerometer", "wGyroscope"):  # W418's transfers are offline only (`run`
+            res.info["trunk_note"] = STREAMED_TRUNK_NOTE.format(where=session.where)  # writes none); W431: say so
         return res
     refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
     if refusal:
@@ -1618,7 +1620,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
-    add_trunk_transfers(res, work)  # decision W418 (W430: the waist on the aligned clock, as --clock-offset gives it)
+    if transfers:  # decision W439: callers that read no TUG (the distance calibration) skip the inner waist work
+        add_trunk_transfers(res, work)  # decision W418 (W430: the waist on the aligned clock, as --clock-offset)
     return res
 
 
