@@ -87,25 +87,43 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
 
 @contextmanager
 def isolated_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
-    """The body's WARNING records of ``logger`` go to a list of their own: no enclosing capture of this context
-    (E179) collects them and no handler on the logger's chain (its own, its ancestors', the root's) emits them. For a
-    pipeline run inside another (W418's waist track inside a two-unit foot track). Per context (a filter judging the
-    raising thread / task), so a concurrent thread's warnings are untouched: a logger level raised and restored
-    around the inner run was not (E179's test saw one thread's inner lines in another's result)."""
+    """The body's WARNING records of ``logger`` (and its children) go to a list of their own: no enclosing capture of
+    this context (E179) collects them and no handler on the logger's chain (its own, its ancestors', the root's)
+    emits them. For a pipeline run inside another (W418's waist track inside a two-unit foot track). Per context (a
+    filter judging the raising thread / task), so a concurrent thread's warnings are untouched: a logger level raised
+    and restored around the inner run was not (E179's test saw one thread's inner lines in another's result).
+
+    Decision W432 (review R0 finding 7): only those records: another logger's (``pdrlearn.kernels`` inside an
+    isolation of ``pdrlearn.track``, a third-party library's), and any record at ERROR or above, print and reach the
+    enclosing captures as without the isolation; and the yielded list holds the records also when an enclosing
+    capture was open (the collecting handlers are not filtered: they judge each record themselves)."""
     shared = _shared(logger)
     shared.isolate()
-    mark, token = _ISOLATED.set(True), _ACTIVE.set(())
+    mark = _ISOLATED.set((*_ISOLATED.get(), (logger, len(_ACTIVE.get()))))
     try:
-        with captured_warnings(logger) as got:
-            yield got
+        with captured_warnings(logger, echo=True) as got:  # W432: the handlers' filter keeps the diverted records
+            yield got                                      # unprinted; an ERROR or another logger's prints as before
     finally:
-        _ACTIVE.reset(token)
         _ISOLATED.reset(mark)
         shared.unisolate()
 
 
-#: :func:`isolated_warnings`: the raising context (thread / asyncio task) is inside one
-_ISOLATED: contextvars.ContextVar[bool] = contextvars.ContextVar("pdrlearn_isolated", default=False)
+#: :func:`isolated_warnings` (decision W432): the isolations of the raising context (thread / asyncio task), innermost
+#: last: (logger name, the number of captures of the context open at its entry: those are outside it)
+_ISOLATED: contextvars.ContextVar[tuple] = contextvars.ContextVar("pdrlearn_isolated", default=())
+
+
+def _under(name: str, logger: str) -> bool:
+    return name == logger or name.startswith(logger + ".")
+
+
+def _isolated_from(record: logging.LogRecord, depth: int | None = None) -> bool:
+    """Decision W432: whether ``record`` is one an isolation of the raising context diverts (a WARNING-level record of
+    its logger's sub-tree) from the handlers (``depth`` None) or from the capture at index ``depth`` of the context's
+    captures (one opened before that isolation)."""
+    if not logging.WARNING <= record.levelno < logging.ERROR:
+        return False
+    return any(_under(record.name, name) and (depth is None or depth < outside) for name, outside in _ISOLATED.get())
 
 
 #: decision E179: the captures of this context (thread / asyncio task), innermost last: (shared state, collector)
@@ -132,8 +150,8 @@ class _Collect(logging.Handler):
 
     def emit(self, record: logging.LogRecord) -> None:
         line = _with_code(record.getMessage(), record_code(record))  # E170: with its code
-        for owner, (messages, _echo) in _ACTIVE.get():
-            if owner is self.shared:
+        for depth, (owner, (messages, _echo)) in enumerate(_ACTIVE.get()):
+            if owner is self.shared and not _isolated_from(record, depth):  # W432: not an isolated record
                 messages.append(line)
         _last_resort(record, self)
 
@@ -161,7 +179,8 @@ def _last_resort(record: logging.LogRecord, collector: _Collect) -> None:
     chain = _chain_handlers(logging.getLogger(record.name))
     if any(not isinstance(h, _Collect) for h in chain) or chain[0] is not collector:
         return
-    if any(owner.ours(record) for owner, _collector in _ACTIVE.get()):
+    if any(owner.ours(record) and not _isolated_from(record, depth)
+           for depth, (owner, _collector) in enumerate(_ACTIVE.get())):
         return
     if all(h.shared.let_through(record) for h in chain):  # a silenced logger's record stays silent (E154)
         last.handle(record)
@@ -175,8 +194,8 @@ class _Shared:
     record below the caller's level, and, on the logger's own handlers, a record raised inside a capture without
     ``echo``). A record raised in a context without a capture passes as if no capture ran, to logging's
     ``lastResort`` too when no handler is configured (:func:`_last_resort`, E179 amended). :func:`isolated_warnings`
-    adds, while one runs, a filter on every handler of the logger's chain that drops the records raised in a context
-    inside one (:meth:`isolate`)."""
+    adds, while one runs, a filter on every handler of the logger's chain that drops the WARNING records of the
+    isolated logger raised in a context inside one (:meth:`isolate`, W432)."""
 
     def __init__(self, logger: str):
         self.name = logger
@@ -233,17 +252,19 @@ class _Shared:
             self.filtered = []
 
     def not_isolated(self, record: logging.LogRecord) -> bool:  # the filter :meth:`isolate` adds
-        return not _ISOLATED.get()
+        return not _isolated_from(record)
 
     def isolate(self) -> None:
-        """:func:`isolated_warnings`' entry: the first one running puts :meth:`not_isolated` on every handler of the
-        logger's chain (its own, its ancestors', the root's); :meth:`unisolate` at the last one's exit takes it off."""
+        """:func:`isolated_warnings`' entry: puts :meth:`not_isolated` on every handler of the logger's chain (its
+        own, its ancestors', the root's) that is not a collecting one (decision W432: those judge a record
+        themselves), looked up at each entry so that a handler added while another isolation runs is covered;
+        :meth:`unisolate` at the last one's exit takes them off."""
         with self.lock:
             self.isolating += 1
-            if self.isolating == 1:
-                self.iso_handlers = _chain_handlers(self.log)
-                for h in self.iso_handlers:
+            for h in _chain_handlers(self.log):
+                if not isinstance(h, _Collect) and h not in self.iso_handlers:
                     h.addFilter(self.not_isolated)
+                    self.iso_handlers.append(h)
 
     def unisolate(self) -> None:
         with self.lock:

@@ -36,7 +36,7 @@ def _warnings(err: str) -> list[str]:
 
 
 def test_foot_below_20_hz_warns_once_naming_rate_and_bound(tmp_path, capsys):
-    d = _decimate(LEVEL, tmp_path / "s17", 12)  # 17.07 Hz: under the thesis' 20 Hz, above B404's 15 Hz refusal
+    d = _decimate(LEVEL, tmp_path / "s17", 12)  # 17.07 Hz: under the thesis' 20 Hz (B416: no refusal)
     assert main(["steps", str(d)]) == 0
     low = [w for w in _warnings(capsys.readouterr().err) if "sampled at" in w]
     assert len(low) == 1, low

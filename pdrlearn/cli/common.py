@@ -572,13 +572,12 @@ def transfer_line(summary: dict) -> str | None:
         if summary.get("sts5_time_s") is not None:  # decision W279
             parts.append(f"five-times sit-to-stand {summary['sts5_time_s']:.2f} s (first rise to last sit)")
     if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout
-        from pdrlearn.track.walk_test import trials_text, walkway_zones  # decisions L522, L524, L531
+        from pdrlearn.track.walk_test import timed_stretch, trials_text, walkway_zones  # L522, L524, L531
 
-        accel, timed, decel = walkway_zones(summary)
         more = trials_text(summary)
         more = f"; {more}, ten_m_walk_trials.csv, L524" if more else ""
         parts.append(f"10 m walk test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
-                     f"(the middle {timed:g} m of the first {accel + timed + decel:g} m walk, L312{more})"
+                     f"({timed_stretch(*walkway_zones(summary), 'a {total} m walk')}, L312, L536{more})"
                      + (f" - {summary['ten_m_walk_note']}" if summary.get("ten_m_walk_note") else ""))  # L524
     if summary.get("t25fw_time_s") is not None:  # decision L387: the first 7.62 m from standing
         parts.append(f"timed 25-foot walk {summary['t25fw_time_s']:.2f} s, {summary['t25fw_speed_mps']:.2f} m/s "
@@ -589,12 +588,19 @@ def transfer_line(summary: dict) -> str | None:
     return ", ".join(parts) if parts else None
 
 
-def posture_line(summary: dict, waist_unit: bool = False) -> str:
+def posture_line(summary: dict, waist_unit: bool = False, tug_from_waist: bool = True) -> str:
     """Decision W222: ``track``'s line of the time that is not walking, by posture (a lower-back track), or that a
     foot-only track cannot split it (its keys are null). Decision E145: ``run`` of a waist bundle writes the keys null
     too (the live tracker has no posture runs) and prints no such line; the line names both. Decision L316: a foot
     track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead; W427: this
-    track reads that unit's chair transfers and TUG already (W418), not its posture times."""
+    track reads that unit's chair transfers and TUG already (W418), not its posture times. Decision W431: only when it
+    did (``tug_from_waist``: the track holds the waist's contacts); a ``--streaming`` or ``--units foot`` track did
+    not, and says it has no TUG."""
+    if summary.get("standing_time_s") is None and waist_unit and not tug_from_waist:
+        return ("posture: no standing / sitting / lying split in this foot track - it needs the lower-back unit's "
+                "trunk tilt, and this track did not read that unit's chair transfers either, so it has no TUG (W418 "
+                "reads them offline, with the unit: pdrlearn track DIR); for the split, pdrlearn track DIR --pipeline "
+                "waist-pendulum (decisions W222, L316, W431)")
     if summary.get("standing_time_s") is None and waist_unit:
         return ("posture: no standing / sitting / lying split in this foot track - it needs the lower-back unit's "
                 "trunk tilt, and this track takes only the chair transfers and TUG from that unit (W418), not the "

@@ -51,8 +51,10 @@ def export(
     float32: bool = typer.Option(False, "--float32", help="Every ONNX graph in float32 (step graph, SVMs, "
                                  "networks), no float64 twins: for single-precision targets such as a Cortex-M4F "
                                  "(docs/deploying.md; decision E217)."),
-    units: str = typer.Option(None, "--units", help="foot or waist: a single-unit bundle, only the models that "
-                              "read that unit alone (the smallest bundle for a one-sensor device; decision E218)."),
+    units: str = typer.Option(None, "--units", help="foot: a single-unit bundle, only the models that read the "
+                              "foot unit alone (the smallest bundle for a one-sensor device; decision E218). Not "
+                              "waist: the runtime detects steps on the foot unit; a waist-only device runs a waist "
+                              "bundle, `pdrlearn export CAL.json` of `pdrlearn calibrate` (decisions E57, E233)."),
     force: bool = typer.Option(False, "--force", "--overwrite", help=FORCE_HELP + " --overwrite is the old name."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
     frame: str = typer.Option(None, "--frame", help="Waist calibration only: the waist unit's axes, e.g. "

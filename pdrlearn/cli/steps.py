@@ -88,9 +88,6 @@ def steps(
                             "origin_s): its times are its own; leave --time-origin out (decision E173)")
     if detector == "auto":
         det = auto_detector(session)
-    from pdrlearn.io.plasys import refuse_too_slow
-
-    refuse_too_slow(session, "steps", (det.unit,))  # decision B404 (B410: the chosen detector's unit only)
     if det.unit == "foot" and reads_force(det) and session.has("fAccelerometer", "fGyroscope"):
         session = _tared(session, det.name)  # decision B284: an unloaded offset subtracted, with one line
     u = det.unit[0]  # "f" or "w": the unit's inertial streams (+ the force sensors of accel-force)

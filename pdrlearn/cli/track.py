@@ -442,7 +442,8 @@ def track(
         from pdrlearn.textfile import session_csv
 
         _print_summary(summary, out, aided, waist_unit=session_csv(session_dir, "wAccelerometer").is_file(),  # L316
-                       plot=settings["plot"])  # decision L533
+                       plot=settings["plot"],  # decision L533
+                       tug_from_waist="trunk_contacts" in tracked["result"].info)  # W431: whether the track read it
     warned = summary.get("info", {}).get("warnings") or []
     if strict and warned:  # decision E156: the outputs are written; the exit code says the track warned
         typer.echo(f"strict: {len(warned)} warning(s) (summary.json info.warnings); exit code {STRICT_EXIT}", err=True)
@@ -774,9 +775,6 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         logging.getLogger("pdrlearn.cli").warning("%s", unknown)
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
-    from pdrlearn.io.plasys import refuse_too_slow
-
-    refuse_too_slow(session, "track")  # decision B404: the tracked units only (after --units)
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
     chosen_by = None  # the option that chose the pipeline, for the lines that name it
     if pipeline == "auto" and waist_asked:
@@ -1147,7 +1145,8 @@ def position_error_phrase(summary: dict) -> str:
     return f", final position error {err:.2f} m horizontal" if err is not None else ""
 
 
-def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False, plot: bool = True) -> None:
+def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False, plot: bool = True,
+                   tug_from_waist: bool = True) -> None:
     name = summary["session"]
     if summary.get("window_start_s") is not None:  # decision L105
         name += f" [{summary['window_start_s']:g}-{summary['window_end_s']:g} s]"
@@ -1216,7 +1215,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
                    f"{summary['time_no_data_s']:.1f} s")
         # decisions W222, L316: the time that is not walking, by posture
-        typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys"))
+        typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys", tug_from_waist))
     from pdrlearn.track.geoexport import GEO_FILES
 
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "

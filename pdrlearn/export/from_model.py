@@ -23,8 +23,10 @@ from pdrlearn.export.sizes import onnx_stats
 from pdrlearn.export.step_graph import build_step_graph
 
 STEP_GRAPH_FILE = "models/step.onnx"
-#: the values of ``export --units`` (decision E218): a bundle of the models that read one body unit alone
-EXPORT_UNITS = ("foot", "waist")
+#: the values of ``export --units`` (decision E218): a bundle of the models that read one body unit alone. Decision
+#: E233 (review R0 finding 4): foot only; a waist-only classifier bundle could not be run (the runtime detects steps
+#: on the foot unit's gyroscope, E7), so ``--units waist`` is refused and names the waist bundle (E57)
+EXPORT_UNITS = ("foot",)
 
 log = logging.getLogger(__name__)
 
@@ -321,9 +323,10 @@ def export_model(
     float32 : every ONNX graph (step graph, SVMs, networks) computes in float32 and the networks' ``.f32`` twins
         are left out (``pdrlearn export --float32``, decision E217: single-precision targets); the parity check
         before writing allows :data:`pdrlearn.export.precision.FLOAT32_PARITY_ATOL`.
-    units : ``"foot"`` or ``"waist"`` (``pdrlearn export --units``, decision E218): only the models that read that
-        unit alone (not the soft votes or combined models, which read both); each task's chosen model is the best
-        ranked of those (as ``--no-training-samples`` chooses); a task without one is a :class:`ModelError`.
+    units : ``"foot"`` (``pdrlearn export --units``, decision E218; E233: ``"waist"`` is refused): only the models
+        that read that unit alone (not the soft votes or combined models, which read both); each task's chosen model
+        is the best ranked of those (as ``--no-training-samples`` chooses); a task without one is a
+        :class:`ModelError`.
     """
     from pdrlearn.classify.model_dir import load_model, read_manifest
     from pdrlearn.classify.training import BUILTIN_METHODS, METHODS, best_pair
@@ -338,8 +341,15 @@ def export_model(
     bad = [m for m in methods or [] if m not in known]
     if bad:
         raise ModelError(f"unknown method(s) {', '.join(bad)}; choose from {', '.join(known)}")
+    if units == "waist":  # decision E233: nothing could run the bundle
+        from pdrlearn.runtime.bundle import waist_only_hint
+
+        raise ModelError(f"--units waist: a classifier bundle needs the foot unit, whose gyroscope the runtime detects "
+                         f"steps on (decision E7), so a waist-only one could not be run; {waist_only_hint()} "
+                         "(decisions E57, E233)")
     if units is not None and units not in EXPORT_UNITS:
-        raise ModelError(f"--units {units!r}: choose foot or waist (a single-unit bundle, decision E218)")
+        raise ModelError(f"--units {units!r}: choose {' or '.join(EXPORT_UNITS)} (a single-unit bundle, decisions "
+                         "E218, E233)")
     if model is None:
         model = load_model(model_dir)
         src_manifest = read_manifest(model_dir)

@@ -103,12 +103,11 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     if tug:
         lines.append(tug)
     if summary.get("ten_m_walk_speed_mps") is not None:  # L531: the walkway's timed metres and every trial (L524)
-        from pdrlearn.track.walk_test import trials_text, walkway_zones
+        from pdrlearn.track.walk_test import timed_stretch, trials_text, walkway_zones
 
-        accel, timed, decel = walkway_zones(summary)
         trials = trials_text(summary)
         lines.append(f"- 10 m walk: {summary['ten_m_walk_speed_mps']:.2f} m/s ({_s(summary['ten_m_walk_time_s'])} "
-                     f"over the middle {timed:g} m of a {accel + timed + decel:g} m walkway"
+                     f"over {timed_stretch(*walkway_zones(summary))}"  # decision L536
                      f"{f'; {trials}' if trials else ''}; {unit})")
     if summary.get("gait_speed_mps") is not None:
         cad = summary.get("median_cadence_spm")

@@ -460,6 +460,11 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
     return off
 
 
+#: decision W431: a streamed two-unit track's ``trunk_note`` (summary ``tug_time_note``): W418's TUG is offline only
+STREAMED_TRUNK_NOTE = ("no chair transfers and no TUG in a --streaming track (W418 reads them offline only): "
+                       "pdrlearn track {where} without --streaming (W431)")
+
+
 def align_clocks(session: Session, warnings: list[str], *, force_table=None) -> tuple[Session, dict | None]:
     """Waist streams moved onto the foot clock with the steps detected by both units (thesis ch.7.2.2:
     the gyroscope-detected steps align the units); the session unchanged when that fails. ``track --align-units``
@@ -1179,7 +1184,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if insole:
             res.info["warnings"].append(insole)
             log.warning("%s: %s", session.where, insole)
-        return res  # W418's chair transfers are offline only: `run` (the streamed runtime) writes none either
+        if transfers and session.has("wAccelerometer", "wGyroscope"):  # W418's transfers are offline only (`run`
+            res.info["trunk_note"] = STREAMED_TRUNK_NOTE.format(where=session.where)  # writes none); W431: say so
+        return res
     refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
     if refusal:
         raise DataError(f"plasys: {refusal}")
@@ -1614,7 +1621,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
     if transfers:  # decision W439: callers that read no TUG (the distance calibration) skip the inner waist work
-        add_trunk_transfers(res, session)  # decision W418: chair transfers and TUG from the waist unit (API, CLI)
+        add_trunk_transfers(res, work)  # decision W418 (W430: the waist on the aligned clock, as --clock-offset)
     return res
 
 

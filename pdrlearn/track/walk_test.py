@@ -46,6 +46,20 @@ def walkway_zones(summary: dict) -> tuple[float, float, float]:
     return float(accel), float(timed), float(decel)
 
 
+def timed_stretch(accel: float, timed: float, decel: float, whole: str = "a {total} m walkway") -> str:
+    """Decision L536: the words for a walkway's timed stretch from its (acceleration, timed, deceleration) metres:
+    "the middle 6 m of a 10 m walkway" only when the zones are equal and not 0; "the first 6 m of a 10 m walkway,
+    from standing, 4 m left to decelerate" for ``--ten-m-walk 0,6,4``; "the 6 m after the first 1 m of ..."
+    otherwise. ``whole`` names the walk, ``{total}`` its metres. The console line and clinical.md both say it."""
+    of = whole.format(total=f"{accel + timed + decel:g}")
+    left = f", {decel:g} m left to decelerate" if decel > 0 else ", no zone to decelerate"
+    if accel == decel > 0:
+        return f"the middle {timed:g} m of {of}"
+    if accel == 0:
+        return f"the first {timed:g} m of {of}, from standing" + (left if decel > 0 else "")
+    return f"the {timed:g} m after the first {accel:g} m of {of}{left}"
+
+
 def trials_text(summary: dict) -> str:
     """Decision L531: "N trials, fastest V m/s" when a summary has two or more 10 m walk trials (L524), else ""."""
     n = summary.get("n_ten_m_walk_trials") or 0
@@ -95,11 +109,11 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524
     missed = _near_misses(steps, accel + timed + decel)
     if out["ten_m_walk_time_s"] is not None and missed:  # decision L524: a trial lost to L349's few cm is said
-        out["ten_m_walk_note"] = (
+        out["ten_m_walk_note"] = "; ".join(filter(None, [out["ten_m_walk_note"], (  # L535's note kept before it
             "; ".join(f"walking bout {n} tracked {math.floor(m * 100.0 + 1e-6) / 100.0:.2f} m, short of "
                       f"{accel + timed + decel:g} m" for n, m in missed)
             + ": not timed, so the timed trial(s) in ten_m_walk_trials.csv may not be the first walk (L313); have the "
-            "walker start and stop beyond the walkway's ends (a run-out, decisions L349, L524)")
+            "walker start and stop beyond the walkway's ends (a run-out, decisions L349, L524)")]))
     out["ten_m_walk_max_speed_mps"] = float(trials["speed_mps"].max()) if len(trials) else None
     out["ten_m_walk_zones_m"] = [accel, timed, decel]  # decision L522: the walkway the keys were timed on
     return out
@@ -180,7 +194,10 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
                short_note, decel_m: float | None = None) -> dict:
     """Decisions L312, L387: ``keys`` (time, speed, note) of the first walking bout whose path reaches ``zone_m`` +
     ``timed_m`` + ``decel_m`` (default ``zone_m``; L522), timed over the ``timed_m`` after its first ``zone_m``
-    (L313's refusals, :func:`_time_bout`; ``short_note(longest, need)`` the note of a walk too short)."""
+    (L313's refusals, :func:`_time_bout`; ``short_note(longest, need)`` the note of a walk too short). Decision L535:
+    a bout L313 refuses (a turn in it) does not end the search: the first bout timed is the keys', the note naming
+    the refused bout before it; with none timed, the first refusal is the note (review R0 finding 3: the summary,
+    console and clinical.md said "not timed" beside ten_m_walk_trials.csv's timed trials)."""
     time_key, speed_key, note_key = keys
     out = dict.fromkeys(keys)
     decel_m = zone_m if decel_m is None else decel_m
@@ -190,18 +207,20 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
     if _is_lower_back(steps):  # decision L313
         out[note_key] = lower_back_note
         return out
-    longest = 0.0
-    for a, b in bout_rows(steps):
+    longest, refused = 0.0, None
+    for n, (a, b) in enumerate(bout_rows(steps), start=1):
         got = _time_bout(steps, a, b, zone_m, timed_m, decel_m)
         if isinstance(got, float):
             longest = max(longest, got)
             continue
-        if isinstance(got, str):
-            out[note_key] = got
-            return out
+        if isinstance(got, str):  # decision L535: a refused bout is said, and a later bout may still be timed
+            refused = refused or (n, got)
+            continue
         out[time_key], out[speed_key] = got[1] - got[0], timed_m / (got[1] - got[0])
+        if refused:
+            out[note_key] = f"timed walking bout {n}; walking bout {refused[0]} before it: {refused[1]} (L535)"
         return out
-    out[note_key] = short_note(longest, zone_m + timed_m + decel_m)
+    out[note_key] = refused[1] if refused else short_note(longest, zone_m + timed_m + decel_m)
     return out
 
 
