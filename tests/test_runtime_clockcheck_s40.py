@@ -119,7 +119,7 @@ def test_a_known_drift_moves_the_waist_clock_live_as_run_does_e229(long_walk):
 
 def test_dropped_samples_are_counted_and_said_live_as_run_says_them_e230(walk):
     """Lost 4-sample foot packets (0.25 s between the samples either side, at 20 Hz): counted per stream and said at
-    flush in run's line (T4: silent live); ``warn_drops=False`` (run, which says them when it reads) counts them."""
+    flush in run's line (T4: silent live); ``stream_checks=False`` (run, which says them when it reads) counts them."""
     t0 = float(walk["fAccelerometer"].t[0])
     lost = [(t0 + 10.0 * k, t0 + 10.0 * k + 0.15) for k in range(1, 5)]
 
@@ -136,11 +136,11 @@ def test_dropped_samples_are_counted_and_said_live_as_run_says_them_e230(walk):
     line = streamed_drops_line([(n, s["intervals"], s["longest_s"]) for n, s in stats.items()])
     assert line in tr.warnings and "4 interval(s) of dropped samples" in line
     assert tr._gap_limit("fAccelerometer") > 32.2 - 31.95  # E30's live gap: not by float rounding either
-    quiet, _ = _replay(streams, warn_drops=False)
+    quiet, _ = _replay(streams, stream_checks=False)
     assert quiet.drop_stats() == stats and line not in quiet.warnings
     assert not _replay(_streams(walk))[0].drop_stats()
-    with pytest.raises(DataError, match="warn_drops='no' must be True or False"):
-        Tracker(load_bundle(BUNDLE), warn_drops="no")
+    with pytest.raises(DataError, match="stream_checks='no' must be True or False"):
+        Tracker(load_bundle(BUNDLE), stream_checks="no")
 
 
 def test_a_quarter_second_loss_is_one_thing_whatever_its_float_rounding_e230():
@@ -179,3 +179,31 @@ def test_a_second_thread_inside_push_is_refused_in_one_line_e231(walk):
         tr.push(push)
     tr.flush()
     assert tr.n_steps > 10
+
+
+def test_the_foot_vs_barometer_check_is_said_live_as_run_says_it_e232(tmp_path, capsys):
+    """A barometer that climbs ~1.7 m mid-walk while the foot stays level: `pdrlearn run` warns L145's line; the live
+    Tracker pushed the same samples says the same line at flush (T4: silent live), once; with ``stream_checks=False``
+    (run's own Tracker) it does not."""
+    import json
+
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+    from pdrlearn.io.session import Stream
+
+    walk = _sim(10742, 60)
+    b = walk.streams["wBarometer"]
+    p = b.values.copy()
+    mid = 0.5 * (b.t[0] + b.t[-1])
+    p[:, 0] -= 0.2 * np.clip((b.t - mid) / 5.0, 0, 1)
+    walk.streams["wBarometer"] = Stream("wBarometer", b.t, p)
+    streams = _streams(walk)
+    tr, _ = _replay(streams)
+    live = [w for w in tr.warnings if "disagrees with the waist barometer" in w]
+    assert len(live) == 1 and "foot altitude change +0.00 m" in live[0]
+    folder = write_session(walk, tmp_path / "S")
+    assert main(["run", str(BUNDLE), str(folder), "--json"]) == 0
+    warned = json.loads(capsys.readouterr().out)["info"]["warnings"]
+    assert live[0] in [w["message"] if isinstance(w, dict) else w for w in warned]
+    quiet, _ = _replay(streams, stream_checks=False)
+    assert not [w for w in quiet.warnings if "disagrees with the waist barometer" in w]

@@ -86,6 +86,7 @@ from pdrlearn.kernels.window import (
     rest_boundaries,
     segment,
 )
+from pdrlearn.runtime.baro_check import BaroCheck
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.clocks import SENSORS as CLOCK_SENSORS
@@ -447,9 +448,11 @@ class Tracker(FixInput):
     waist_clock_drift_ppm : a known drift of the waist clock (ppm, ``t_waist = t_foot x (1 + ppm/1e6) + offset``,
         ``pdrlearn run --clock-drift-ppm``'s model and mechanism, ``to_foot_clock``): every pushed waist sample is
         moved to ``(t - offset) / (1 + ppm/1e6)`` (decision E229; 0: none).
-    warn_drops : say at :meth:`flush`, in ``pdrlearn run``'s line (L77), the intervals of dropped samples (over 1.5
-        sample intervals, up to 1 s) the pushed streams had (decision E230; :meth:`drop_stats` counts them either
-        way); ``pdrlearn run`` turns it off: it says them when it reads the session.
+    stream_checks : say at :meth:`flush` the lines ``pdrlearn run`` says of a session: the intervals of dropped
+        samples (over 1.5 sample intervals, up to 1 s) the pushed streams had, in run's line (L77, decision E230;
+        :meth:`drop_stats` counts them either way), and, for a foot track pushed a barometer, L145's line when the
+        foot's altitude change disagrees with the barometer's (decision E232); ``pdrlearn run`` turns it off: it says
+        them itself.
     check_domain : score each classified stride against the training ranges the bundle's models carry (decision
         E105; ``pdrlearn export`` stores them since): :meth:`domain_report` is ``pdrlearn track --model``'s report
         (C16), and :meth:`flush` warns C61's one line when more than half a task's strides lie outside. Off by
@@ -471,6 +474,7 @@ class Tracker(FixInput):
     speculative = False
     _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
     _pushed_drops: list | None = None  # decision E230 (likewise)
+    _baro = None  # decision E232 (likewise: no barometer check)
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
@@ -531,7 +535,7 @@ class Tracker(FixInput):
         clock_check: bool = True,
         waist_clock_offset_s: float = 0.0,
         waist_clock_drift_ppm: float = 0.0,
-        warn_drops: bool = True,
+        stream_checks: bool = True,
         check_domain: bool = False,
         warn_out_of_domain: float | None = None,
         length_reference: str = "model",
@@ -539,10 +543,11 @@ class Tracker(FixInput):
     ):
         self._busy = threading.Lock()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
+        self.stream_checks = bool(stream_checks)  # decisions E230, E232 (checked below)
         #: decision C117: "session" reports a flat forward stride's length class against the session's median stride
         self._session_length = (_relative_length.SessionLength()
                                 if _relative_length.check_length_reference(length_reference) == "session" else None)
-        for key, flag in (("clock_check", clock_check), ("warn_drops", warn_drops)):  # L177, E230: flags
+        for key, flag in (("clock_check", clock_check), ("stream_checks", stream_checks)):  # L177, E230: flags
             if not isinstance(flag, bool | np.bool_):
                 raise DataError(f"{key}={flag!r} must be True or False")
         if (isinstance(waist_clock_offset_s, bool) or not isinstance(waist_clock_offset_s, int | float | np.number)
@@ -601,6 +606,9 @@ class Tracker(FixInput):
 
         baro = next((n for n in BAROMETERS if n in self.used_sensors), None)
         self._rides = RideWatch(baro) if baro is not None else None  # decision E211: each ride not counted, named
+        #: decision E232: L145's foot-vs-barometer check (a foot track pushed a barometer, run's line at flush)
+        self._baro = (BaroCheck(baro) if baro is not None and "foot" in self.units and self.stream_checks
+                      else None)
         self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
@@ -726,7 +734,6 @@ class Tracker(FixInput):
         self._drops: dict[str, tuple[int, float]] = {}
         self._drop_lim: dict[str, float] = {}
         self._drops_said = False
-        self.warn_drops = bool(warn_drops)
         self._gap_marks: list[list] = []
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._drop_ref: tuple | None = None  # decision L167: (displacement, duration) of the last clean stride
@@ -1043,6 +1050,8 @@ class Tracker(FixInput):
                 self._append(name, t, v)
             if self._rides is not None and self._rides.name in samples:  # decision E211
                 self._rides.push(*samples[self._rides.name])
+            if self._baro is not None and self._baro.name in samples:  # decision E232
+                self._baro.push(*samples[self._baro.name])
         for msg in self._frozen.push(checked, fast):  # decision B120: a frozen sensor, one warning per run
             self._warn(msg)
         if self._frozen_foot is not None:  # decision B213: B203's frozen foot IMU, live
@@ -1165,7 +1174,7 @@ class Tracker(FixInput):
     def drop_stats(self) -> dict[str, dict]:
         """Decision E230: per pushed stream with dropped samples, ``{"intervals": n, "longest_s": s}``: the intervals
         over 1.5 of its sample intervals and up to 1 s (``pdrlearn run``'s count, L77; longer ones are gaps, E30),
-        so far. ``flush`` says them in ``run``'s line unless ``warn_drops=False``."""
+        so far. ``flush`` says them in ``run``'s line unless ``stream_checks=False``."""
         return {n: {"intervals": k, "longest_s": m} for n, (k, m) in self._drops.items()}
 
     def _resumes(self, name: str, t: float) -> bool:
@@ -1373,9 +1382,13 @@ class Tracker(FixInput):
         steps = self._process_ready(force=True)
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
-        if self._drops and self.warn_drops and not self._drops_said:  # decision E230: run's line (L77), once
+        if self._drops and self.stream_checks and not self._drops_said:  # decision E230: run's line (L77), once
             self._drops_said = True
             self._warn(streamed_drops_line([(n, k, m) for n, (k, m) in self._drops.items()]))
+        if self._baro is not None:  # decision E232: run's L145 line on the whole stream
+            line = self._baro.line(final=True)
+            if line and line not in self.warnings:
+                self._warn(line)
         self._warn_unused_fixes()  # decision D21
         self._warn_out_of_domain()  # decision E105
         self._warn_turning_lengths()  # decisions C89 / C94
@@ -1524,6 +1537,8 @@ class Tracker(FixInput):
             fused = self._fuse_step(st.start_s, st.end_s, st.length_m, st.heading_rad)
             if fused is not None:
                 st.x, st.y = fused
+            if self._baro is not None:  # decision E232: the barometer's altitude at each row's end
+                self._baro.row(st.start_s, st.end_s, st.z, st.dz_m)
         return out
 
     def height_checks(self) -> dict:
