@@ -6,8 +6,8 @@ Prints, final position error (m) of ``track_plasys(streaming=True, method="M2")`
   (``waist_mount_deg`` z 90 and z 180, as ``simulate --waist-mount``) and mirrored (x and y columns of the waist
   accelerometer, gyroscope and magnetometer swapped, the belt frame kept: D26's ``--meta keep``);
 * L494: users 9885-9889, heading foot, the foot unit yawed on the shoe by 0, +20, -30 deg (L494's remount about the
-  simulator foot frame's y, frame kept), :data:`pdrlearn.kernels.first_walk.STREAMED_FIRST_WALK` off (old) and on
-  (new); and the same users' two-unit tracks (heading auto), old and new;
+  simulator foot frame's y, frame kept), ``track_plasys(..., first_walk=...)`` (decision E222's keyword; E215's
+  flag then) off (old) and on (new); and the same users' two-unit tracks (heading auto), old and new;
 * the real foot recordings of datasets/real, heading foot, old and new: distance and final position (error where the
   recording has a reference).
 
@@ -22,7 +22,6 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-import pdrlearn.kernels.first_walk as FW
 from pdrlearn.io import read_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
@@ -53,8 +52,7 @@ def _kept(session, placement: str, rotation: np.ndarray):
 
 
 def _streamed(session, heading: str, first_walk: bool):
-    FW.STREAMED_FIRST_WALK = first_walk
-    return track_plasys(session, streaming=True, method="M2", heading=heading)
+    return track_plasys(session, streaming=True, method="M2", heading=heading, first_walk=first_walk)
 
 
 def d25() -> None:

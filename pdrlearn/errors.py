@@ -34,6 +34,18 @@ class GravityRemovedError(DataError):
     a reader that converted a declared unit does not ask whether that unit is right."""
 
 
+class ClockWentBack(DataError):
+    """A live unit's timestamps went back by more than ``max_lag_s`` (decision E227: most likely a pod that reconnected
+    with its clock restarted). ``unit`` names it and ``offset_s`` is the clock offset that would put the refused
+    samples beside the other unit's newest (None without another unit): ``tracker.rebase_clock(e.unit, e.offset_s)``
+    and the push again go on with the same tracker."""
+
+    def __init__(self, message: str, unit: str, offset_s: float | None):
+        super().__init__(message)
+        self.unit = unit
+        self.offset_s = offset_s
+
+
 class MissingSensorError(DataError):
     """A method needs a sensor stream that the session does not have."""
 

@@ -92,15 +92,8 @@ def isolated_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
     pipeline run inside another (W418's waist track inside a two-unit foot track). Per context (a filter judging the
     raising thread / task), so a concurrent thread's warnings are untouched: a logger level raised and restored
     around the inner run was not (E179's test saw one thread's inner lines in another's result)."""
-    with _ISO_LOCK:
-        if not _ISO_HANDLERS:
-            node = logging.getLogger(logger)
-            while node is not None:
-                _ISO_HANDLERS.extend(node.handlers)
-                node = node.parent if node.propagate else None
-            for h in _ISO_HANDLERS:
-                h.addFilter(_not_isolated)
-        _ISO_COUNT[0] += 1
+    shared = _shared(logger)
+    shared.isolate()
     mark, token = _ISOLATED.set(True), _ACTIVE.set(())
     try:
         with captured_warnings(logger) as got:
@@ -108,23 +101,11 @@ def isolated_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
     finally:
         _ACTIVE.reset(token)
         _ISOLATED.reset(mark)
-        with _ISO_LOCK:
-            _ISO_COUNT[0] -= 1
-            if not _ISO_COUNT[0]:
-                for h in _ISO_HANDLERS:
-                    h.removeFilter(_not_isolated)
-                _ISO_HANDLERS.clear()
+        shared.unisolate()
 
 
-#: :func:`isolated_warnings`' state: the raising context is inside one; the handlers filtered; how many are open
+#: :func:`isolated_warnings`: the raising context (thread / asyncio task) is inside one
 _ISOLATED: contextvars.ContextVar[bool] = contextvars.ContextVar("pdrlearn_isolated", default=False)
-_ISO_HANDLERS: list = []
-_ISO_COUNT = [0]
-_ISO_LOCK = threading.Lock()
-
-
-def _not_isolated(record: logging.LogRecord) -> bool:
-    return not _ISOLATED.get()
 
 
 #: decision E179: the captures of this context (thread / asyncio task), innermost last: (shared state, collector)
@@ -157,6 +138,16 @@ class _Collect(logging.Handler):
         _last_resort(record, self)
 
 
+def _chain_handlers(node: logging.Logger | None) -> list[logging.Handler]:
+    """The handlers a record of ``node`` reaches, in ``Logger.callHandlers``' order: its own, then its ancestors'
+    while each propagates (none for None)."""
+    chain = []
+    while node is not None:
+        chain += node.handlers
+        node = node.parent if node.propagate else None
+    return chain
+
+
 def _last_resort(record: logging.LogRecord, collector: _Collect) -> None:
     """Decision E179 amended (review R4): with no handler configured, logging prints a record through its
     ``lastResort`` only when no handler sits on the record's logger chain (``Logger.callHandlers``); a capture's
@@ -167,10 +158,7 @@ def _last_resort(record: logging.LogRecord, collector: _Collect) -> None:
     last = logging.lastResort
     if last is None or record.levelno < last.level:
         return
-    chain, node = [], logging.getLogger(record.name)
-    while node is not None:  # the handlers Logger.callHandlers reaches, in its order
-        chain += node.handlers
-        node = node.parent if node.propagate else None
+    chain = _chain_handlers(logging.getLogger(record.name))
     if any(not isinstance(h, _Collect) for h in chain) or chain[0] is not collector:
         return
     if any(owner.ours(record) for owner, _collector in _ACTIVE.get()):
@@ -186,7 +174,9 @@ class _Shared:
     unless changed meanwhile) and one filter on the handlers the records reach (it drops a silenced logger's
     record below the caller's level, and, on the logger's own handlers, a record raised inside a capture without
     ``echo``). A record raised in a context without a capture passes as if no capture ran, to logging's
-    ``lastResort`` too when no handler is configured (:func:`_last_resort`, E179 amended)."""
+    ``lastResort`` too when no handler is configured (:func:`_last_resort`, E179 amended). :func:`isolated_warnings`
+    adds, while one runs, a filter on every handler of the logger's chain that drops the records raised in a context
+    inside one (:meth:`isolate`)."""
 
     def __init__(self, logger: str):
         self.name = logger
@@ -198,6 +188,8 @@ class _Shared:
         self.old_level = logging.NOTSET
         self.filtered: list[tuple[logging.Handler, logging.Filter]] = []
         self.collect = _Collect(self, logging.WARNING)
+        self.isolating = 0
+        self.iso_handlers: list[logging.Handler] = []
 
     def ours(self, record: logging.LogRecord) -> bool:
         return record.name == self.name or record.name.startswith(self.name + ".")
@@ -219,11 +211,9 @@ class _Shared:
             self.cut = self.log.getEffectiveLevel()  # E154: what the caller lets through
             self.filtered = [(h, self.own_handlers) for h in self.log.handlers]
             self.lowered = self.cut > logging.WARNING
-            if self.lowered:
-                node = self.log.parent if self.log.propagate else None
-                while node is not None:  # the handlers the records propagate to
-                    self.filtered += [(h, self.let_through) for h in node.handlers]
-                    node = node.parent if node.propagate else None
+            if self.lowered:  # the handlers the records propagate to
+                self.filtered += [(h, self.let_through)
+                                  for h in _chain_handlers(self.log.parent if self.log.propagate else None)]
                 self.old_level = self.log.level
                 self.log.setLevel(logging.WARNING)
             for h, f in self.filtered:
@@ -241,6 +231,27 @@ class _Shared:
             for h, f in self.filtered:
                 h.removeFilter(f)
             self.filtered = []
+
+    def not_isolated(self, record: logging.LogRecord) -> bool:  # the filter :meth:`isolate` adds
+        return not _ISOLATED.get()
+
+    def isolate(self) -> None:
+        """:func:`isolated_warnings`' entry: the first one running puts :meth:`not_isolated` on every handler of the
+        logger's chain (its own, its ancestors', the root's); :meth:`unisolate` at the last one's exit takes it off."""
+        with self.lock:
+            self.isolating += 1
+            if self.isolating == 1:
+                self.iso_handlers = _chain_handlers(self.log)
+                for h in self.iso_handlers:
+                    h.addFilter(self.not_isolated)
+
+    def unisolate(self) -> None:
+        with self.lock:
+            self.isolating -= 1
+            if not self.isolating:
+                for h in self.iso_handlers:
+                    h.removeFilter(self.not_isolated)
+                self.iso_handlers = []
 
 
 def keeps_warnings(fn):

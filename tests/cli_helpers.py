@@ -41,7 +41,7 @@ def tracked_slow_walk(tmp_path: Path, capsys, route: str, user: int, step_length
     assert main(["simulate", "--route", route, "--user-seed", str(user), "--rate", "100", "--step-length",
                  str(step_length), "--step-time", str(step_time), "--out", str(d)]) == 0
     capsys.readouterr()
-    assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "t")]) == 0
     out = capsys.readouterr().out
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
     traj = pd.read_csv(d / "trajectory.csv")

@@ -43,7 +43,7 @@ def mobgap_test5() -> Path:
 
 @pytest.fixture(scope="session")
 def synthetic_bundle(tmp_path_factory):
-    """The loaded default bundle of ``tests.runtime_helpers.trained_dirs`` (trained once per test process)."""
+    """The loaded default bundle of ``tests.runtime_helpers.trained_dirs`` (trained once per test run)."""
     from pdrlearn.runtime import load_bundle
     from tests.runtime_helpers import trained_dirs
 

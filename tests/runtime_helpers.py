@@ -7,6 +7,8 @@ task is learnable. 20 Hz like the PLASYS firmware (thesis ch.4.2.3).
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 
@@ -140,15 +142,47 @@ ALL_METHODS = ["heuristic", "fusion", "dtw", "svm", "nn"]
 ALL_UNITS = ("foot", "waist", "fused", "combined")
 
 
+def made_once(tmp_path_factory, name: str, make) -> Path:
+    """The folder ``name`` that ``make(folder)`` fills, made once per test run (session 40): under pytest-xdist every
+    worker of the run shares it, the first one to take the file lock makes it and the others wait for it and read it
+    (pytest-xdist's documented pattern: a lock beside ``tmp_path_factory.getbasetemp().parent``, the run's folder);
+    a serial run (no worker) makes it in its own temporary folder, as before. ``NAME.done`` beside it marks a
+    finished folder: a worker that failed half-way leaves none, and the next one starts again from an empty folder.
+    Callers read it and never write into it (every test that edits a bundle copies it first)."""
+    import os
+    import shutil
+
+    if not os.environ.get("PYTEST_XDIST_WORKER"):  # serial: the parent is shared by every run of the user
+        folder = tmp_path_factory.mktemp(name)
+        make(folder)
+        return folder
+    from filelock import FileLock
+
+    folder = tmp_path_factory.getbasetemp().parent / name
+    done = folder.with_name(f"{name}.done")
+    with FileLock(str(folder) + ".lock"):
+        if not done.is_file():
+            shutil.rmtree(folder, ignore_errors=True)
+            folder.mkdir()
+            make(folder)
+            done.touch()
+    return folder
+
+
 def trained_dirs(tmp_path_factory) -> dict:
-    """Train once per test process: a two-unit model (all methods), its bundles (all methods; default =
-    chosen), and a foot-only model + bundle (for the Bluetooth protocol). Returns their paths."""
-    if "root" in _CACHE:
-        return _CACHE
+    """Train once per test run (:func:`made_once`: one xdist worker trains, the others read its folder): a two-unit
+    model (all methods), its bundles (all methods; default = chosen), and a foot-only model + bundle (for the
+    Bluetooth protocol). Returns their paths."""
+    if "root" not in _CACHE:
+        _CACHE.update(root=made_once(tmp_path_factory, "trained", _train_two_unit))
+    return _CACHE
+
+
+def _train_two_unit(root: Path) -> None:
+    """:func:`trained_dirs`'s models and bundles, into ``root``."""
     from pdrlearn.classify import train_user
     from pdrlearn.export.from_model import export_model
 
-    root = tmp_path_factory.mktemp("trained")
     train = synthetic_session(90, seed=0)
     # every unit named: the soft votes (fused) beside the combined models, which replace the svm/nn soft votes
     # by default (decision C23), so that the bundles hold both kinds
@@ -160,8 +194,6 @@ def trained_dirs(tmp_path_factory) -> dict:
         del foot.streams[name]
     _with_bounds(train_user([foot], cv=2, seed=0, units=["foot"], methods=["svm", "dtw"])).save(root / "model_foot")
     export_model(root / "model_foot", root / "bundle_foot")
-    _CACHE.update(root=root)
-    return _CACHE
 
 
 def trained_dirs_and_walk(tmp_path_factory, name: str = "cli") -> dict:
@@ -183,21 +215,23 @@ REST_METHODS = ["nn", "svm", "dtw", "ensemble"]
 
 def rest_dirs(tmp_path_factory) -> dict:
     """A foot-only model trained on rest-to-rest windows (``boundaries="rest"``, decision 13) with the
-    ``ensemble`` method, and its bundle with every method (once per test process)."""
-    if "rest_root" in _CACHE:
-        return _CACHE
+    ``ensemble`` method, and its bundle with every method (once per test run, :func:`made_once`)."""
+    if "rest_root" not in _CACHE:
+        _CACHE.update(rest_root=made_once(tmp_path_factory, "trained_rest", _train_rest))
+    return _CACHE
+
+
+def _train_rest(root: Path) -> None:
+    """:func:`rest_dirs`'s model and bundle, into ``root``."""
     from pdrlearn.classify import train_user
     from pdrlearn.export.from_model import export_model
 
-    root = tmp_path_factory.mktemp("trained_rest")
     foot = synthetic_session(90, seed=0)
     for name in ("wAccelerometer", "wGyroscope", "wBarometer"):
         del foot.streams[name]
     _with_bounds(train_user([foot], cv=2, seed=0, units=["foot"], methods=REST_METHODS, boundaries="rest")).save(
         root / "model")
     export_model(root / "model", root / "bundle", methods=REST_METHODS)
-    _CACHE.update(rest_root=root)
-    return _CACHE
 
 
 def svm_user_walk(root, user: int, walk: str = "D"):

@@ -52,17 +52,20 @@ def _stderr_of(argv, capsys) -> list[str]:
 
 # command -> (argv with {gap} and {out}, text one of its warnings must contain)
 WARNING_CASES = {
-    "track-waist-pll": (["track", "{gap}", "--pipeline", "waist-pll", "--out", "{out}/t"], "no per-user calibration"),
-    "track-waist-pendulum": (["track", "{gap}", "--pipeline", "waist-pendulum", "--out", "{out}/t"], "gap(s) longer"),
-    "track-plasys": (["track", "{gap}", "--method", "M2", "--out", "{out}/t"],  # B34: one line for the streams
+    "track-waist-pll": (["track", "--no-plot", "{gap}", "--pipeline", "waist-pll", "--out", "{out}/t"],
+                         "no per-user calibration"),
+    "track-waist-pendulum": (["track", "--no-plot", "{gap}", "--pipeline", "waist-pendulum", "--out", "{out}/t"],
+                              "gap(s) longer"),
+    "track-plasys": (["track", "--no-plot", "{gap}", "--method", "M2", "--out", "{out}/t"],  # B34: one line
                      "fAccelerometer, fGyroscope, wAccelerometer, wGyroscope have 1 gap"),  # L365: no force
-    "track-streaming": (["track", "{gap}", "--method", "M2", "--streaming", "--out", "{out}/t"], "gap(s) longer"),
-    "track-aided": (["track", "{gap}", "--pipeline", "waist-pll", "--fixes", "{out}/fixes_ms.csv", "--out",
+    "track-streaming": (["track", "--no-plot", "{gap}", "--method", "M2", "--streaming", "--out", "{out}/t"],
+                         "gap(s) longer"),
+    "track-aided": (["track", "--no-plot", "{gap}", "--pipeline", "waist-pll", "--fixes", "{out}/fixes_ms.csv", "--out",
                      "{out}/t"], "none of the"),
     "calibrate": (["calibrate", "{gap}", "-p", "waist-pll", "-d", "20", "--out", "{out}/p.json"], "gap(s) longer"),
     "steps": (["steps", "{gap}", "--detector", "accel"], "fAccelerometer, fGyroscope have 1 gap"),
     "steps-waist": (["steps", "{gap}", "--detector", "pll"], "wAccelerometer, wGyroscope have 1 gap"),
-    "run": (["run", str(BUNDLE), "{gap}", "--out", "{out}/r"], "a gap longer than 1 s (B11)"),
+    "run": (["run", "--no-plot", str(BUNDLE), "{gap}", "--out", "{out}/r"], "a gap longer than 1 s (B11)"),
 }
 
 
@@ -88,8 +91,8 @@ OUTPUT_CASES = {
     "train": (["train", "{terrain}", "--out", "{target}", "--methods", "heuristic", "--tasks", "terrain", "--cv",
                "3"], "manifest.json", True),
     "export": (["export", "{model}", "--out", "{target}"], "manifest.json", True),
-    "track": (["track", "{A}", "--method", "M2", "--out", "{target}"], "summary.json", True),
-    "run": (["run", str(BUNDLE), "{A}", "--out", "{target}"], "summary.json", True),
+    "track": (["track", "--no-plot", "{A}", "--method", "M2", "--out", "{target}"], "summary.json", True),
+    "run": (["run", "--no-plot", str(BUNDLE), "{A}", "--out", "{target}"], "summary.json", True),
     "report": (["report", "{model}", "--out", "{target}"], "index.html", True),
     "evaluate-report": (["evaluate", "{model}", "{terrain}", "--report", "{target}"], "report.md", False),
     "calibrate": (["calibrate", "{A}", "-p", "waist-pll", "-d", "20", "--out", "{target}.json"], None, True),
@@ -168,9 +171,10 @@ def test_run_writes_the_files_and_columns_of_track(data, tmp_path, capsys):
     """B14: `run` and `track` name the same content the same way: steps.csv with `length_class` (was
     `length`) and track's column order, trajectory.csv `t,x,y,z,lat,lon`, summary.json with track's keys
     (final_position {x, y, z}, not a list; session, pipeline, distance_error_pct against the session)."""
-    assert main(["run", str(BUNDLE), str(data["A"]), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), str(data["A"]), "--out", str(tmp_path / "r"), "--json"]) == 0
     printed = json.loads(capsys.readouterr().out)
-    assert main(["track", str(data["A"]), "--method", "M3", "--model", "oracle", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(data["A"]), "--method", "M3", "--model", "oracle", "--out",
+                 str(tmp_path / "t")]) == 0
     capsys.readouterr()
     r, t = tmp_path / "r", tmp_path / "t"
     assert {p.name for p in r.iterdir()} <= {p.name for p in t.iterdir()}
@@ -196,7 +200,7 @@ def test_run_writes_the_files_and_columns_of_track(data, tmp_path, capsys):
 @pytest.mark.parametrize("where", ["before", "after", "long-after"])
 def test_verbose_before_or_after_the_command(data, tmp_path, capsys, where):
     """B13: `pdrlearn track ... -v` logs INFO like `pdrlearn -v track ...` (before: "No such option: -v")."""
-    argv = ["track", str(data["A"]), "--method", "M2", "--out", str(tmp_path / "t")]
+    argv = ["track", str(data["A"]), "--method", "M2", "--out", str(tmp_path / "t"), "--no-plot"]
     argv = {"before": ["-v", *argv], "after": [*argv, "-v"], "long-after": [*argv[:2], "--verbose", *argv[2:]]}[where]
     lines = _stderr_of(argv, capsys)
     assert any(ln.startswith("INFO pdrlearn.") for ln in lines), lines
@@ -212,7 +216,7 @@ def test_hoist_verbose_leaves_option_values_alone():
 
 
 def test_without_verbose_no_info_lines(data, tmp_path, capsys):
-    lines = _stderr_of(["track", str(data["A"]), "--method", "M2", "--out", str(tmp_path / "t")], capsys)
+    lines = _stderr_of(["track", "--no-plot", str(data["A"]), "--method", "M2", "--out", str(tmp_path / "t")], capsys)
     assert not any(ln.startswith("INFO") for ln in lines), lines
 
 
@@ -257,7 +261,7 @@ def test_waist_track_line_says_the_error_is_inside_the_bouts(tmp_path, capsys):
     from pdrlearn.cli import main
     from tests.conftest import REAL
 
-    assert main(["track", str(REAL / "mobgap_HA001_Test5_Trial1"), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(REAL / "mobgap_HA001_Test5_Trial1"), "--out", str(tmp_path / "t")]) == 0
     line = next(ln for ln in capsys.readouterr().out.splitlines() if "distance error" in ln)
     # the error follows the two numbers it compares (new-user trial: it read as the whole walk's error)
     assert re.search(r"steps, \d+\.\d\d m; inside the reference bouts \d+\.\d\d m vs \d+\.\d\d m, "

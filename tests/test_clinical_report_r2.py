@@ -89,13 +89,13 @@ class _Result:
 
 
 def test_a_dead_waist_unit_that_reads_no_transfers_leaves_a_note_w427(monkeypatch):
-    from pdrlearn.track import base, units
+    from pdrlearn.track import units, waist
     from pdrlearn.track.trunk_tug import add_trunk_transfers, trunk_note
 
-    def dead(name):  # the inner waist track of a frozen wAccelerometer: it runs, and reads no transfers
-        return lambda session, **kw: _Result({"transfers": None, "yaw_turns": None})
+    def dead(session):  # the inner waist work of a frozen wAccelerometer (W428): it runs, and reads no transfers
+        return _Result({"transfers": None, "yaw_turns": None})
 
-    monkeypatch.setattr(base, "get_pipeline", dead)
+    monkeypatch.setattr(waist, "trunk_events", dead)
     monkeypatch.setattr(units, "keep_units", lambda session, kept: session)
     result = _Result()
     add_trunk_transfers(result, _Session())

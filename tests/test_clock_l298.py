@@ -53,7 +53,7 @@ def night(tmp_path_factory):
 
 def _track(root, name, *args, session="imp"):
     out = root / name
-    assert main(["track", str(root / session), "--out", str(out), *args]) == 0
+    assert main(["track", "--no-plot", str(root / session), "--out", str(out), *args]) == 0
     return json.loads((out / "summary.json").read_text()), out
 
 
@@ -165,7 +165,7 @@ def test_a_start_written_by_hand_gives_the_columns(night, tmp_path):
     meta = json.loads((d / "meta.json").read_text())
     (d / "meta.json").write_text(json.dumps({**meta, "recording_start": "2026-12-05T02:13:00Z"}))
     out = tmp_path / "o"
-    assert main(["track", str(d), "--out", str(out), "--units", "waist"]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(out), "--units", "waist"]) == 0
     bouts = pd.read_csv(out / "bouts.csv")
     want = [(datetime(2026, 12, 5, 2, 13, tzinfo=UTC) + timedelta(seconds=t)).isoformat(timespec="milliseconds")
             for t in bouts["start_s"]]
@@ -203,7 +203,8 @@ def test_freezes_csv_gets_them_at_a_negative_offset(tmp_path):
     meta = json.loads((tmp_path / "fz" / "meta.json").read_text())
     (tmp_path / "fz" / "meta.json").write_text(json.dumps({**meta, "recording_start": "2026-12-05T02:10:00-05:00"}))
     out = tmp_path / "o"
-    assert main(["track", str(tmp_path / "fz"), "--units", "waist", "--freeze-index", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "fz"), "--units", "waist", "--freeze-index", "--out",
+                 str(out)]) == 0
     fz = pd.read_csv(tmp_path / "o" / "freezes.csv")
     assert len(fz) == 1 and fz["start_time"].str.endswith("-05:00").all()
     assert fz["start_time"].iloc[0] == (datetime(2026, 12, 5, 2, 10, tzinfo=timezone(timedelta(hours=-5)))

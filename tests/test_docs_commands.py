@@ -373,7 +373,8 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track-all", "metrics"): parse_metrics,  # cohort C81, decision B303: sessions.csv's number columns
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
-                "per_align", "units", "altitude", "detector", "length_model", "splits"):  # C12, L108, B127, L154, E93
+                "per_align", "units", "altitude", "detector", "length_model", "splits",
+                "ten_m_walk"):  # C12, L108, B127, L154, E93, L534
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")

@@ -49,10 +49,10 @@ def test_a_5000_ppm_session_is_refused_naming_the_drift(tmp_path, capsys):
     assert "clock drift" in err and "--clock-drift-ppm 5000`" in err, err  # main: "it stopped 1.55 s before"
     assert "stopped" not in err.split("--")[0], err
     assert not (tmp_path / "refused").exists()
-    assert main(["track", str(d), "--clock-drift-ppm", "5000", "--out", str(tmp_path / "given")]) == 0
+    assert main(["track", "--no-plot", str(d), "--clock-drift-ppm", "5000", "--out", str(tmp_path / "given")]) == 0
     got = json.loads((tmp_path / "given" / "summary.json").read_text())
     clean = write_session(_sim(6800, 450), tmp_path / "clean")  # the same walk, one clock
-    assert main(["track", str(clean), "--out", str(tmp_path / "clean_out")]) == 0
+    assert main(["track", "--no-plot", str(clean), "--out", str(tmp_path / "clean_out")]) == 0
     ref = json.loads((tmp_path / "clean_out" / "summary.json").read_text())
     assert got["common_span_cut_s"] == 0.0 and got["distance_m"] == pytest.approx(ref["distance_m"], rel=1e-3)
 
@@ -70,8 +70,8 @@ def test_run_refuses_a_foot_unit_that_died_before_the_waist(tmp_path, capsys):
     assert "the tracked foot unit covers" in err and "stopped" in err and "(decision B126)" in err, err
     assert f"`pdrlearn run {RUN_BUNDLE} {d} --common-span`" in err and "pdrlearn track" not in err, err
     assert not (tmp_path / "refused").exists()
-    assert main(["run", str(RUN_BUNDLE), str(d), "--common-span", "--out", str(tmp_path / "cut")]) == 0
-    assert main(["run", str(RUN_BUNDLE), str(intact), "--out", str(tmp_path / "intact_run")]) == 0
+    assert main(["run", "--no-plot", str(RUN_BUNDLE), str(d), "--common-span", "--out", str(tmp_path / "cut")]) == 0
+    assert main(["run", "--no-plot", str(RUN_BUNDLE), str(intact), "--out", str(tmp_path / "intact_run")]) == 0
 
 
 def test_a_cut_last_row_names_the_command_that_was_run(tmp_path, capsys):

@@ -89,15 +89,20 @@ def walk100():
     return _sim(10101, "right", rocker=None)
 
 
-def _online_strides(det, session, chunk: int = 50) -> int:
+def _pushed(session, push, chunk: int = 50) -> list:
+    """``push(t, x)``'s output for each chunk of ``chunk`` samples of the session's foot accelerometer with its heel
+    and toe force beside it (the force detector's input), in order."""
     from pdrlearn.steps.base import stream_on
 
     t = session["fAccelerometer"].t
     x = np.column_stack([session["fAccelerometer"].values,
                          *(stream_on(session, n, t, purpose="test")[:, 0] for n in ("fForceA", "fForceB"))])
+    return [push(t[i:i + chunk], x[i:i + chunk]) for i in range(0, len(t), chunk)]
+
+
+def _online_strides(det, session, chunk: int = 50) -> int:
     online = det.online(fs=100.0)
-    return sum(len(online.push(t[i:i + chunk], x[i:i + chunk])) for i in range(0, len(t), chunk)) \
-        + len(online.flush())
+    return sum(map(len, _pushed(session, online.push, chunk))) + len(online.flush())
 
 
 def test_the_force_detector_tares_adc_counts_offline_and_online_steps_73(walk100, caplog):
@@ -142,13 +147,9 @@ def _online_events(session, *, tare: bool, chunk: int = 50) -> list:
     pushed in chunks of ``chunk`` samples."""
     from pdrlearn.kernels.step_events import ForceProcessor
     from pdrlearn.steps import AccelForceStepDetector
-    from pdrlearn.steps.base import stream_on
 
-    t = session["fAccelerometer"].t
-    x = np.column_stack([session["fAccelerometer"].values,
-                         *(stream_on(session, n, t, purpose="test")[:, 0] for n in ("fForceA", "fForceB"))])
     proc = ForceProcessor(AccelForceStepDetector(), fs=100.0, tare=tare)
-    return [e for i in range(0, len(t), chunk) for e in proc.process(t[i:i + chunk], x[i:i + chunk])]
+    return [e for out in _pushed(session, proc.process, chunk) for e in out]
 
 
 def _insole_csv(session, path, suffix: str, scale=lambda v: v):

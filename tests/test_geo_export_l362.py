@@ -47,7 +47,7 @@ def _gpx_points(path):
 
 
 def test_track_with_start_writes_gpx_and_geojson_longitude_first(walk, tmp_path, capsys):
-    assert main(["track", str(walk), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(walk), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "t")]) == 0
     assert "track.gpx, track.geojson" in capsys.readouterr().out  # named in the "wrote" line
     traj = pd.read_csv(tmp_path / "t" / "trajectory.csv")
     n = int((np.isfinite(traj["lat"]) & np.isfinite(traj["lon"])).sum())
@@ -86,7 +86,7 @@ def stairs(tmp_path_factory):
 
 
 def test_altitude_gives_elevations(stairs, tmp_path, capsys):
-    assert main(["track", str(stairs), "--start", f"{LAT},{LON},12.5", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(stairs), "--start", f"{LAT},{LON},12.5", "--out", str(tmp_path / "t")]) == 0
     traj = pd.read_csv(tmp_path / "t" / "trajectory.csv")
     _, pts = _gpx_points(tmp_path / "t" / "track.gpx")
     assert len(pts) == len(traj) and traj["z"].max() - traj["z"].min() > 2.0  # 17 stairs of 0.17 m
@@ -100,14 +100,15 @@ def test_altitude_gives_elevations(stairs, tmp_path, capsys):
 
 
 def test_no_files_without_start(walk, tmp_path, capsys):
-    assert main(["track", str(walk), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(walk), "--out", str(tmp_path / "t")]) == 0
     assert "track.gpx" not in capsys.readouterr().out
     assert not (tmp_path / "t" / "track.gpx").exists() and not (tmp_path / "t" / "track.geojson").exists()
     assert (tmp_path / "t" / "trajectory.csv").is_file()
 
 
 def test_times_are_utc_from_the_recording_start(clocked, tmp_path, capsys):
-    assert main(["track", str(clocked["zoned"]), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "z")]) == 0
+    assert main(["track", "--no-plot", str(clocked["zoned"]), "--start", f"{LAT},{LON}", "--out",
+                 str(tmp_path / "z")]) == 0
     traj = pd.read_csv(tmp_path / "z" / "trajectory.csv")
     _, pts = _gpx_points(tmp_path / "z" / "track.gpx")
     times = [p.find("g:time", NS).text for p in pts]
@@ -121,7 +122,8 @@ def test_times_are_utc_from_the_recording_start(clocked, tmp_path, capsys):
     feats = json.loads((tmp_path / "z" / "track.geojson").read_text())["features"]
     assert feats[1]["properties"]["time"] == times[0] and feats[2]["properties"]["time"] == times[-1]
     # a start without an offset: a local clock time of no known zone -> no UTC time is made up
-    assert main(["track", str(clocked["naive"]), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "n")]) == 0
+    assert main(["track", "--no-plot", str(clocked["naive"]), "--start", f"{LAT},{LON}", "--out",
+                 str(tmp_path / "n")]) == 0
     _, pts = _gpx_points(tmp_path / "n" / "track.gpx")
     assert len(pts) == len(traj) and all(p.find("g:time", NS) is None for p in pts)
 
@@ -156,14 +158,15 @@ def test_run_writes_them_as_track(walk, tmp_path, capsys):
     from tests.conftest import ROOT
 
     bundle = ROOT / "models" / "plasys-sim-default"
-    assert main(["run", str(bundle), str(walk), "--start", f"{LAT},{LON},3", "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(walk), "--start", f"{LAT},{LON},3", "--out",
+                 str(tmp_path / "r")]) == 0
     traj = pd.read_csv(tmp_path / "r" / "trajectory.csv")
     _, pts = _gpx_points(tmp_path / "r" / "track.gpx")
     assert len(pts) == len(traj) and (float(pts[0].get("lat")), float(pts[0].get("lon"))) == (LAT, LON)
     assert pts[0].find("g:ele", NS).text == "3.00"
     coords = json.loads((tmp_path / "r" / "track.geojson").read_text())["features"][0]["geometry"]["coordinates"]
     assert coords[0] == [LON, LAT, 3.0] and len(coords) == len(traj)
-    assert main(["run", str(bundle), str(walk), "--out", str(tmp_path / "r0")]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(walk), "--out", str(tmp_path / "r0")]) == 0
     assert not (tmp_path / "r0" / "track.gpx").exists() and not (tmp_path / "r0" / "track.geojson").exists()
 
 
@@ -172,7 +175,7 @@ def test_track_all_writes_them_per_session(walk, tmp_path, capsys):
 
     root = tmp_path / "root"
     shutil.copytree(walk, root / "a")
-    assert main(["track-all", str(root), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "all")]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "all")]) == 0
     gpx = sorted((tmp_path / "all").rglob("track.gpx"))
     assert len(gpx) == 1 and (gpx[0].parent / "track.geojson").is_file()
     # in the session's own folder, beside its trajectory.csv (review R1 finding 4)
@@ -185,7 +188,7 @@ def test_session_name_with_uffff_gives_a_parsable_gpx_b295(tmp_path, capsys):
     s = sim.simulate("walk", user_seed=7311, length_m=6.0)
     s.meta["session"] = "walk\uffffx"
     d = write_session(s, tmp_path / "u7311")
-    assert main(["track", str(d), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(d), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "t")]) == 0
     trk, pts = _gpx_points(tmp_path / "t" / "track.gpx")
     assert trk.find("g:name", NS).text == "walkx" and len(pts) > 3
 
@@ -197,7 +200,7 @@ def test_a_start_near_the_date_limits_writes_no_times_b296(start, tmp_path, caps
     s = sim.simulate("walk", user_seed=7312, length_m=6.0)
     s.meta["recording_start"] = start
     d = write_session(s, tmp_path / "u7312")
-    assert main(["track", str(d), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(d), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "t")]) == 0
     err = capsys.readouterr().err
     _, pts = _gpx_points(tmp_path / "t" / "track.gpx")
     assert len(pts) > 3 and all(p.find("g:time", NS) is None for p in pts)
@@ -209,7 +212,8 @@ def test_a_start_near_the_date_limits_writes_no_times_b296(start, tmp_path, caps
     import shutil
 
     shutil.copytree(d, tmp_path / "root" / "a")
-    assert main(["track-all", str(tmp_path / "root"), "--start", f"{LAT},{LON}", "--out", str(tmp_path / "all")]) == 0
+    assert main(["track-all", "--no-plot", str(tmp_path / "root"), "--start", f"{LAT},{LON}", "--out",
+                 str(tmp_path / "all")]) == 0
     assert (tmp_path / "all" / "a" / "track.gpx").is_file()
 
 
@@ -225,6 +229,6 @@ def test_clock_columns_after_9999_are_empty_not_a_traceback_b296(tmp_path, capsy
     s = sim.simulate("walk", user_seed=7313, length_m=6.0)
     s.meta["recording_start"] = "9999-12-31T23:59:59+00:00"
     d = write_session(s, tmp_path / "u7313")
-    assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "t")]) == 0
     bouts = pd.read_csv(tmp_path / "t" / "bouts.csv")
     assert len(bouts) and bouts["end_time"].isna().all()

@@ -56,7 +56,7 @@ def _stderr_warnings(err: str) -> list[str]:
 
 def test_every_warning_track_prints_is_in_its_json_and_summary_e154(sessions, tmp_path, capsys):
     folder = sessions["jit"]
-    assert main(["track", str(folder), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(folder), "--out", str(tmp_path / "t"), "--json"]) == 0
     out, err = capsys.readouterr()
     printed = json.loads(out)
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
@@ -98,8 +98,8 @@ def test_a_silenced_logger_still_fills_info_warnings_e154(sessions, caplog):
 
 def test_track_all_and_track_give_the_same_warnings_e154(sessions, tmp_path, capsys):
     folder = sessions["jit"]
-    assert main(["track-all", str(folder.parent), "--out", str(tmp_path / "all")]) == 0
-    assert main(["track", str(folder), "--out", str(tmp_path / "one")]) == 0
+    assert main(["track-all", "--no-plot", str(folder.parent), "--out", str(tmp_path / "all")]) == 0
+    assert main(["track", "--no-plot", str(folder), "--out", str(tmp_path / "one")]) == 0
     capsys.readouterr()
     row = pd.read_csv(tmp_path / "all" / "sessions.csv").iloc[0]
     column = row["warnings"].split(" | ")
@@ -109,7 +109,7 @@ def test_track_all_and_track_give_the_same_warnings_e154(sessions, tmp_path, cap
 
 
 def test_schema_version_and_warning_codes_e155(sessions, tmp_path, capsys):
-    assert main(["track", str(sessions["clip"]), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(sessions["clip"]), "--out", str(tmp_path / "t"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert next(iter(summary)) == "schema_version" and summary["schema_version"] == SUMMARY_SCHEMA_VERSION == 1
     info = summary["info"]
@@ -141,24 +141,26 @@ def test_each_warning_of_the_gaitmap_toe_off_track_has_its_own_code_e168():
 
 
 def test_strict_exits_3_when_the_track_warned_and_writes_the_outputs_e156(sessions, tmp_path, capsys):
-    assert main(["track", str(sessions["clean"]), "--model", "oracle", "--strict", "--json",
+    assert main(["track", "--no-plot", str(sessions["clean"]), "--model", "oracle", "--strict", "--json",
                  "--out", str(tmp_path / "ok")]) == 0
     clean = json.loads(capsys.readouterr().out)
     assert clean["info"]["warnings"] == []
-    assert main(["track", str(sessions["clip"]), "--model", "oracle", "--strict", "--json",
+    assert main(["track", "--no-plot", str(sessions["clip"]), "--model", "oracle", "--strict", "--json",
                  "--out", str(tmp_path / "warned")]) == 3
     out, err = capsys.readouterr()
     assert json.loads(out)["info"]["warning_codes"] == ["B77"]
     assert "exit code 3" in err.splitlines()[-1]
     for name in ("summary.json", "steps.csv", "trajectory.csv", "run.json"):
         assert (tmp_path / "warned" / name).is_file()
-    assert main(["track", str(sessions["clip"]), "--model", "oracle", "--out", str(tmp_path / "lenient")]) == 0
+    assert main(["track", "--no-plot", str(sessions["clip"]), "--model", "oracle", "--out",
+                 str(tmp_path / "lenient")]) == 0
 
 
 def test_run_keeps_its_warnings_and_no_timing_in_summary_for_any_chunk_size_e154_e157(sessions, tmp_path, capsys):
     folder = sessions["clip"]
     for chunk in ("1", "7.3"):
-        assert main(["run", str(RUN_BUNDLE), str(folder), "--chunk-s", chunk, "--out", str(tmp_path / chunk),
+        assert main(["run", "--no-plot", str(RUN_BUNDLE), str(folder), "--chunk-s", chunk, "--out",
+                     str(tmp_path / chunk),
                      "--json"]) == 0
     out, err = capsys.readouterr()
     first = (tmp_path / "1" / "summary.json").read_bytes()
@@ -178,8 +180,10 @@ def test_columns_documents_the_written_trajectory_b309(sessions, tmp_path, capsy
 
     assert main(["columns", "trajectory"]) == 0  # main: "not a table pdrlearn writes"
     assert "pos_sigma_m" in capsys.readouterr().out
-    assert main(["track", str(sessions["clean"]), "--start", "41.1,-8.6", "--out", str(tmp_path / "t")]) == 0
-    assert main(["track", str(sessions["clean"]), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "w")]) == 0
+    assert main(["track", "--no-plot", str(sessions["clean"]), "--start", "41.1,-8.6", "--out",
+                 str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(sessions["clean"]), "--pipeline", "waist-pendulum", "--out",
+                 str(tmp_path / "w")]) == 0
     for name in ("t", "w"):
         cols = pd.read_csv(tmp_path / name / "trajectory.csv").columns
         assert undocumented("trajectory.csv", cols) == [] and list(cols[:4]) == ["t", "x", "y", "z"]

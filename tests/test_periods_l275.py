@@ -37,7 +37,7 @@ def _track(root, name, *args, session="walk"):
     key = (str(root), session, args)
     if key not in _TRACKED:
         out = root / name
-        assert main(["track", str(root / session), "--out", str(out), "--json", *args]) == 0
+        assert main(["track", "--no-plot", str(root / session), "--out", str(out), "--json", *args]) == 0
         _TRACKED[key] = out
     out = _TRACKED[key]
     return json.loads((out / "summary.json").read_text()), out
@@ -150,7 +150,8 @@ def test_data_gap_is_no_data_time(shift, tmp_path):
 
 def test_per_with_window_cuts_the_window(shift):
     """L277 refused --per with --window; L381 (session 33) cuts the window into periods from its start."""
-    assert main(["track", str(shift / "walk"), "--out", str(shift / "x"), "--per", "1h", "--window", "0,10"]) == 0
+    assert main(["track", "--no-plot", str(shift / "walk"), "--out", str(shift / "x"), "--per", "1h", "--window",
+                 "0,10"]) == 0
     per = pd.read_csv(shift / "x" / "periods.csv")
     assert len(per) == 1 and per["start_s"].iloc[0] == 0.0 and per["end_s"].iloc[0] == pytest.approx(10.0)
     assert bool(per["partial"].iloc[0])
@@ -163,7 +164,7 @@ def test_track_all_stacks_the_periods(shift, tmp_path):
     for name in ("a", "b"):
         shutil.copytree(shift / "walk", root / name)
     out = tmp_path / "ta"
-    assert main(["track-all", str(root), "--out", str(out), "--per", "40s", "--jobs", "1"]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(out), "--per", "40s", "--jobs", "1"]) == 0
     allp = pd.read_csv(out / "periods.csv")
     one = pd.read_csv(out / "a" / "periods.csv")
     assert list(allp.columns[:2]) == ["path", "visit"] and len(allp) == 2 * len(one)

@@ -90,8 +90,8 @@ def test_info_prints_no_resolution_for_float_noise_b412(capsys):
     assert main(["info", str(folder)]) == 0
     row = next(ln for ln in capsys.readouterr().out.splitlines() if "wGyroscope" in ln)
     assert "e-17" not in row and row.rstrip(" │|").endswith("-"), row
-    from pdrlearn.io.validate import grid_resolution
+    from pdrlearn.io.validate import resolution
 
     step = np.deg2rad(4000.0 / 4096)
     q = _quantise(np.random.default_rng(10351).normal(0, 0.3, (500, 3)), step)
-    assert abs(grid_resolution(q) - step) < 1e-9
+    assert abs(resolution(q, grid=True) - step) < 1e-9

@@ -1,7 +1,8 @@
 """Decision E215 (session 39): L494's first-walk heading reference on the streamed track (``track --streaming`` and
 the runtime ``Tracker``, one kernel). Measured and not adopted as the default: a streamed foot-only track says in one
 line that its heading's 0 is the unit's facing and how far the first walk heads from it (no silence); the causal
-re-reference is an opt-in (``kernels.first_walk.STREAMED_FIRST_WALK``) that keeps a yawed unit from turning the path.
+re-reference is an option (decision E222: ``track_plasys(streaming=True, first_walk=True)``,
+``Tracker(first_walk=True)``) that keeps a yawed unit from turning the path.
 D25 is not needed streamed (the streamed heading reads no compass). Simulated user 9887 (E215's range 9880-9889)."""
 
 from __future__ import annotations
@@ -50,14 +51,11 @@ def test_a_streamed_foot_only_track_says_its_heading_is_the_units_facing_e215(wa
     assert not [w for w in straight.info["warnings"] if "decision E215" in w]
 
 
-def test_the_opt_in_re_reference_keeps_a_yawed_unit_from_turning_the_path_e215(walk, monkeypatch):
-    import pdrlearn.kernels.first_walk as FW
-
+def test_the_opt_in_re_reference_keeps_a_yawed_unit_from_turning_the_path_e215(walk):
     truth = walk.trajectory[["x", "y"]].to_numpy(float)
     truth = truth[-1] - truth[0]
     off = track_plasys(_yawed(walk, 20.0), streaming=True, method="M2", heading="foot")
-    monkeypatch.setattr(FW, "STREAMED_FIRST_WALK", True)
-    on = track_plasys(_yawed(walk, 20.0), streaming=True, method="M2", heading="foot")
+    on = track_plasys(_yawed(walk, 20.0), streaming=True, method="M2", heading="foot", first_walk=True)  # E222
     assert np.hypot(*(_end(on) - truth)) < 4.0 < np.hypot(*(_end(off) - truth))  # measured 1.72 / 11.95 m
     assert [w for w in on.info["warnings"] if "heading turned by" in w]
 

@@ -44,7 +44,7 @@ def study(tmp_path_factory) -> Path:
 def _run(*args: str) -> tuple[int, str, str]:
     out, err = io.StringIO(), io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        rc = main(["track-all", *map(str, args)])
+        rc = main(["track-all", "--no-plot", *map(str, args)])
     return rc, out.getvalue(), err.getvalue()
 
 
@@ -65,7 +65,7 @@ def _files(folder: Path) -> dict[str, bytes]:
 def test_a_killed_batch_resumes_and_writes_the_uninterrupted_tables(study, reference, tmp_path):
     out = tmp_path / "o"
     env = {**os.environ, "PYTHONPATH": str(REPO), "OMP_NUM_THREADS": "1"}
-    proc = subprocess.Popen([sys.executable, "-m", "pdrlearn", "track-all", str(study), "--out", str(out)],
+    proc = subprocess.Popen([sys.executable, "-m", "pdrlearn", "track-all", "--no-plot", str(study), "--out", str(out)],
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
     seen = []
     for line in proc.stderr:  # killed (SIGKILL: no clean-up at all) once two sessions are done

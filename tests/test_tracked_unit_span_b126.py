@@ -45,8 +45,8 @@ def test_a_foot_unit_that_stopped_early_is_refused_naming_the_ways_out(walk, tmp
     assert "the tracked foot unit covers 0.00-25.00 s" in err and "stopped" in err and "before the waist" in err
     assert "--common-span" in err and "--units waist" in err and "B126" in err
     # the time both cover, as the refusal says; and the waist alone covers the whole walk
-    assert main(["track", str(walk / "foot_short"), "--common-span", "--out", str(tmp_path / "c")]) == 0
-    assert main(["track", str(walk / "foot_short"), "--units", "waist", "--out", str(tmp_path / "w")]) == 0
+    assert main(["track", "--no-plot", str(walk / "foot_short"), "--common-span", "--out", str(tmp_path / "c")]) == 0
+    assert main(["track", "--no-plot", str(walk / "foot_short"), "--units", "waist", "--out", str(tmp_path / "w")]) == 0
     assert json.loads((tmp_path / "w" / "summary.json").read_text())["pipeline"] == "waist-pendulum"
 
 
@@ -61,7 +61,7 @@ def test_the_window_is_checked_against_the_tracked_unit(walk, tmp_path, capsys):
     with pytest.raises(DataError, match="outside the recording, which lasts 25.00 s \\(the tracked foot unit's"):
         check_window((26.0, 30.0), session, "foot")
     capsys.readouterr()
-    assert main(["track", str(walk / "foot_short"), "--units", "foot", "--window", "26,30",
+    assert main(["track", "--no-plot", str(walk / "foot_short"), "--units", "foot", "--window", "26,30",
                  "--out", str(tmp_path / "t")]) == 2
     assert "which lasts 25.00 s (the tracked foot unit's" in capsys.readouterr().err
 
@@ -71,13 +71,13 @@ def test_units_foot_keeps_the_foot_outcome_of_a_session_whose_waist_stopped(walk
     assert main(["track", str(walk / "waist_short"), "--out", str(tmp_path / "t")]) == 2
     err = capsys.readouterr().err
     assert "--common-span" in err and "--units foot (decision B127)" in err  # the refusal names both (B83, B127)
-    assert main(["track", str(walk / "waist_short"), "--units", "foot", "--out", str(tmp_path / "f")]) == 0
-    assert main(["track", str(walk / "whole"), "--units", "foot", "--out", str(tmp_path / "w")]) == 0
+    assert main(["track", "--no-plot", str(walk / "waist_short"), "--units", "foot", "--out", str(tmp_path / "f")]) == 0
+    assert main(["track", "--no-plot", str(walk / "whole"), "--units", "foot", "--out", str(tmp_path / "w")]) == 0
     cut, whole = (json.loads((tmp_path / n / "summary.json").read_text()) for n in ("f", "w"))
     assert cut["distance_m"] == pytest.approx(whole["distance_m"], rel=1e-9) and cut["distance_m"] > 50
     root = tmp_path / "study"
     shutil.copytree(walk / "waist_short", root / "S01" / "v2")
-    assert main(["track-all", str(root), "--units", "foot", "--out", str(tmp_path / "all")]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--units", "foot", "--out", str(tmp_path / "all")]) == 0
     row = pd.read_csv(tmp_path / "all" / "sessions.csv").iloc[0]
     assert row["status"] == "ok" and row["distance_m"] == pytest.approx(whole["distance_m"], rel=1e-9)
 

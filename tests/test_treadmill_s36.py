@@ -74,7 +74,7 @@ def _track(folder, out, capsys, caplog, *extra):
 
     caplog.clear()
     with caplog.at_level(logging.WARNING):
-        assert main(["track", str(folder), "--out", str(out), *extra]) == 0
+        assert main(["track", "--no-plot", str(folder), "--out", str(out), *extra]) == 0
     printed = capsys.readouterr().out
     return json.loads((out / "summary.json").read_text()), printed, [r.getMessage() for r in caplog.records]
 

@@ -68,7 +68,7 @@ def _lost(folder) -> float:
 
 
 def test_track_all_counts_the_walk_lost_by_either_dead_unit(batch, tmp_path):
-    assert main(["track-all", str(batch), "--common-span", "--out", str(tmp_path / "o")]) == 0
+    assert main(["track-all", "--no-plot", str(batch), "--common-span", "--out", str(tmp_path / "o")]) == 0
     rows = pd.read_csv(tmp_path / "o" / "sessions.csv").set_index("path")
     assert rows.loc["intact", "common_span_cut_s"] == 0.0
     assert _lost(batch / "footdead") > 10
@@ -80,9 +80,9 @@ def test_track_run_and_info_give_the_same_number(batch, tmp_path, capsys):
     from tests.test_clock_offset_e111 import RUN_BUNDLE
 
     d = batch / "footdead"
-    assert main(["track", str(d), "--common-span", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(d), "--common-span", "--out", str(tmp_path / "t")]) == 0
     tracked = json.loads((tmp_path / "t" / "summary.json").read_text())["common_span_cut_s"]
-    assert main(["run", str(RUN_BUNDLE), str(d), "--common-span", "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(RUN_BUNDLE), str(d), "--common-span", "--out", str(tmp_path / "r")]) == 0
     ran = json.loads((tmp_path / "r" / "summary.json").read_text())["common_span_cut_s"]
     capsys.readouterr()
     assert main(["info", str(d)]) == 0
@@ -91,7 +91,7 @@ def test_track_run_and_info_give_the_same_number(batch, tmp_path, capsys):
     assert tracked == pytest.approx(_lost(d), abs=0.05) and ran == pytest.approx(tracked, abs=0.02)
     assert float(said.group(1)) == pytest.approx(tracked, abs=0.01)
     # the waist tracked alone covers the whole walk: nothing lost
-    assert main(["track", str(d), "--units", "waist", "--out", str(tmp_path / "w")]) == 0
+    assert main(["track", "--no-plot", str(d), "--units", "waist", "--out", str(tmp_path / "w")]) == 0
     assert json.loads((tmp_path / "w" / "summary.json").read_text())["common_span_cut_s"] == 0.0
 
 
@@ -112,15 +112,16 @@ def test_run_refuses_a_drifting_pair_as_track_does(drift, tmp_path, capsys):
     assert len(err.splitlines()) == 1 and "clock drift" in err and "--clock-drift-ppm 4000" in err, err
     assert "pdrlearn run " in err and "pdrlearn track" not in err and "--units foot" in err, err
     assert not (tmp_path / "refused").exists()
-    assert main(["run", str(RUN_BUNDLE), str(drift), "--clock-drift-ppm", "4000", "--out", str(tmp_path / "g")]) == 0
+    assert main(["run", "--no-plot", str(RUN_BUNDLE), str(drift), "--clock-drift-ppm", "4000", "--out",
+                 str(tmp_path / "g")]) == 0
     assert json.loads((tmp_path / "g" / "summary.json").read_text())["common_span_cut_s"] == 0.0  # one walk
 
 
 def test_a_drift_cut_counts_the_overhang_and_a_given_drift_none(drift, tmp_path):
-    assert main(["track", str(drift), "--common-span", "--out", str(tmp_path / "c")]) == 0
+    assert main(["track", "--no-plot", str(drift), "--common-span", "--out", str(tmp_path / "c")]) == 0
     cut = json.loads((tmp_path / "c" / "summary.json").read_text())["common_span_cut_s"]
     assert cut == pytest.approx(_lost(drift), abs=0.05) and cut > 1.0  # main: 0.0
-    assert main(["track", str(drift), "--clock-drift-ppm", "4000", "--out", str(tmp_path / "g")]) == 0
+    assert main(["track", "--no-plot", str(drift), "--clock-drift-ppm", "4000", "--out", str(tmp_path / "g")]) == 0
     assert json.loads((tmp_path / "g" / "summary.json").read_text())["common_span_cut_s"] == 0.0
 
 
@@ -138,7 +139,7 @@ def test_run_drops_a_partial_row_with_the_option(tmp_path, capsys):
     assert main(["run", str(RUN_BUNDLE), str(d), "--out", str(tmp_path / "refused")]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "--drop-partial-row" in err, err
-    assert main(["run", str(RUN_BUNDLE), str(d), "--drop-partial-row", "--out", str(tmp_path / "o")]) == 0
+    assert main(["run", "--no-plot", str(RUN_BUNDLE), str(d), "--drop-partial-row", "--out", str(tmp_path / "o")]) == 0
     assert "(--drop-partial-row, decision B266)" in capsys.readouterr().err
 
 

@@ -9,26 +9,23 @@ from pdrlearn.displace.calibration import MAX_DEVIATION
 
 
 def sensor_suspects(sessions) -> list[str]:
-    """Decision C154: what in ``sessions`` points at the sensor: files B77/B311 call clipped, files B403 calls
-    clipped ahead of their filter, files with dropped samples (gaps), units sampled below B23's rate."""
-    from pdrlearn.io import validate
+    """Decision C154: what in ``sessions`` points at the sensor: files B77/B311 call clipped, files with dropped
+    samples (gaps), units sampled below B23's rate (B403's clipping ahead of the filter is not named: B411, B415)."""
     from pdrlearn.io.plasys import MIN_VALIDATED_RATE_HZ, unit_rates
     from pdrlearn.io.sensors import SENSORS
-    from pdrlearn.io.validate import ceiling_clip, clipped_samples
+    from pdrlearn.io.validate import clipped_samples
 
-    clipped, ceiling, dropped, slow = set(), set(), set(), set()
+    clipped, dropped, slow = set(), set(), set()
     for s in sessions:
         for name, st in s.streams.items():
             kind = SENSORS[name].kind
             if clipped_samples(st.values, kind)[0]:
                 clipped.add(name)
-            elif kind == "accelerometer" and validate.CEILING_WARN and ceiling_clip(st.values):  # B411: opt-in
-                ceiling.add(name)
             if st.gaps():
                 dropped.add(name)
         slow |= {u for u, r in unit_rates(s).items() if r < MIN_VALIDATED_RATE_HZ * 0.99}
-    named = (("clipped samples (B77, B311) in ", clipped), ("peaks pinned under a full scale (B403) in ", ceiling),
-             ("dropped samples in ", dropped), ("a rate below 20 Hz (B23) for the ", slow))
+    named = (("clipped samples (B77, B311) in ", clipped), ("dropped samples in ", dropped),
+             ("a rate below 20 Hz (B23) for the ", slow))
     return [head + ", ".join(sorted(names)) for head, names in named if names]
 
 

@@ -987,6 +987,7 @@ def track_all(
     length_model: str = _track.LENGTH_MODEL_OPT,
     altitude: str = _track.ALTITUDE_OPT,
     dpi: int = _track.DPI_OPT,
+    no_plot: bool = _track.NO_PLOT_OPT,  # decision L533
     common_span: bool = _track.COMMON_SPAN_OPT,
     drop_partial_row: bool = _track.DROP_PARTIAL_ROW_OPT,
     align_units: bool = _track.ALIGN_UNITS_OPT,
@@ -998,6 +999,7 @@ def track_all(
     per_align: str = _track.PER_ALIGN_OPT,
     corridor: float = _track.CORRIDOR_OPT,
     walk_test_duration: float = _track.WALK_TEST_DURATION_OPT,  # decision L516
+    ten_m_walk: str = _track.TEN_M_WALK_OPT,  # decision L534: every session's walkway (L522)
     splits: str = _track.SPLITS_OPT,
     stair_rise: float = _track.STAIR_RISE_OPT,
     stair_grade: float = _track.STAIR_GRADE_OPT,  # decision L469
@@ -1077,6 +1079,8 @@ def track_all(
         pdrlearn track-all study/ --out dtc --visit-map conditions.json --metrics gait_speed_mps,stride_time_cv_pct
 
         pdrlearn track-all study/ --out share --subject-map pseudonyms.csv --redact-paths   # C86, E176
+
+        pdrlearn track-all study/ --out results/tables --no-plot   # no path.png per session: faster (L533)
     """
     # decision C18: every option as given (a new option is recorded without a change here), for run.json; taken
     # before any name is defined in this function

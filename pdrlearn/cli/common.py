@@ -125,6 +125,18 @@ def split_length_units(value: str | None) -> list[str] | None:
 #: The ``--force`` option every command that writes an output takes (docs/decisions/bad-input.md B12).
 #: ``--dpi`` of every command that writes a figure (decision L70)
 DPI_HELP = "Resolution of the figure(s) in dots per inch (default 110)."
+#: ``--no-plot`` of every command that draws a figure per session: track, track-all, run (decision L533)
+NO_PLOT_HELP = ("Write no figure (path.png, aided.png); every table, summary.json and the map files are the same "
+                "(decision L533: drawing path.png is most of a short session's writing time in a batch).")
+
+
+def check_no_plot(command: str, no_plot: bool, dpi: int | None) -> bool:
+    """Decision B413: ``--dpi`` with ``--no-plot`` is one error line (the resolution of a figure that is not
+    written), before any work; returns whether the command draws its figures (decision L533)."""
+    if no_plot and dpi is not None:
+        raise DataError(f"{command}: --dpi {dpi} sets the resolution of path.png, which --no-plot does not write; "
+                        "drop --dpi or --no-plot")
+    return not no_plot
 def resample_options(verb: str, when: str = "") -> tuple:
     """Decision B113: the ``--resample`` / ``--no-resample`` options of ``track`` (``track-all``) and ``evaluate``,
     one text; ``verb``: what the default does with the session (tracked, scored), ``when``: a condition first."""

@@ -17,6 +17,7 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     INITIAL_HEADING_HELP,
     START_HELP,
+    check_no_plot,
     clock_progress,
     count_phrase,
     existed,
@@ -314,6 +315,7 @@ def run(
                                           help=INITIAL_HEADING_HELP.split(" For a relative")[0]
                                           + " (the runtime's heading is relative: gyroscopes only)."),
     dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
+    no_plot: bool = _track.NO_PLOT_OPT,  # decision L533, as track's
     method: str = typer.Option(None, "--method", metavar="[TASK=]METHOD[/UNIT],...",
                                help="Classify with another exported model than the bundle's chosen one: e.g. svm "
                                "(every task; its chosen unit, else its only one), svm/foot, or terrain=dtw/foot "
@@ -377,6 +379,8 @@ def run(
         pdrlearn run out/bundle/u1 out/sim/D_u1 --stair-rise 0.181 --out out/run_stairs   # stairs.csv n_stairs (L432)
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --length-reference session --out out/run_rel   # C117's length class
+
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --no-plot --out out/run_tables   # no path.png (L533)
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
@@ -421,6 +425,7 @@ def run(
         from pdrlearn.track.grade import check_stair_grade, record_stair_grade
 
         stair_grade_pct = check_stair_grade(stair_grade)  # decision L469, as `track`: before any output
+        plot = check_no_plot("run", no_plot, dpi)  # decisions L533, B413: before any output
         if dpi is not None and out is None:  # decision L70: it would be ignored
             raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                             "FOLDER or drop --dpi")
@@ -448,6 +453,7 @@ def run(
                                 "--out / --json)")
             return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts,
                               storey_height, start_ll, start_alt, sides=sides,  # decision L142: as the foot bundle's
+                              plot=plot,  # decision L533
                               start_ele=start_ele,  # decision L363
                               logged=logged,  # decision E154
                               drop_partial_row=drop_partial_row,  # decision B276
@@ -661,7 +667,7 @@ def run(
         keep_warnings(summary, logged, session)  # decision E154
         if out is not None:  # decision E157: the push times in run.json, not summary.json
             _write(out, result, summary, session, source, dpi=dpi, record=record(latency_ms_per_step=_latency(lat)),
-                   bouts=table, with_ele=start_ele, redact=redact)
+                   bouts=table, with_ele=start_ele, redact=redact, plot=plot)  # decision L533
         if as_json:
             print_json(redacted(json_safe(summary), redact))
         else:
@@ -756,7 +762,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0,
                start_ll=None, start_alt: float = 0.0, sides: bool = False, drop_partial_row: bool = False,
                start_ele: bool = False, logged: list[str] | None = None,
-               redact: tuple[str, ...] | None = None) -> None:
+               redact: tuple[str, ...] | None = None, plot: bool = True) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
@@ -903,7 +909,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     keep_warnings(summary, logged or [], session)  # decision E154
     if out is not None:  # decision E157: the push times in run.json, not summary.json
         _write(out, result, summary, session, summary["source"], dpi=dpi,
-               record=record(latency_ms_per_step=_latency(lat)), bouts=table, with_ele=start_ele, redact=redact)
+               record=record(latency_ms_per_step=_latency(lat)), bouts=table, with_ele=start_ele, redact=redact,
+               plot=plot)  # decision L533
     if as_json:
         print_json(redacted(json_safe(summary), redact))  # decision E176
         return
@@ -1065,8 +1072,10 @@ def as_written(result) -> None:
 
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
-           record: dict, bouts, with_ele: bool = False, redact: tuple[str, ...] | None = None) -> None:
-    """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png, summary.json and run.json
+           record: dict, bouts, with_ele: bool = False, redact: tuple[str, ...] | None = None,
+           plot: bool = True) -> None:
+    """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png (not with ``plot`` false: ``--no-plot``,
+    decision L533), summary.json and run.json
     (``record``, decision L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure),
     atomically: all seven or none, and ``--force`` keeps the old run until then. ``session``: the replayed session
     (its ground truth in path.png; None for a capture). Decision E144: a replayed session whose meta.json gives its
@@ -1095,7 +1104,9 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         # L124 (E98), L200, L202: bouts.csv, turns.csv ... as track; E144: its clock columns
         for name, table in event_tables(result, bouts, start=start).items():
             write_table_csv(table, tmp / name)
-        plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
+        if plot:  # decision L533
+            plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run",
+                       dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
         from pdrlearn.track.geoexport import write_geo_files
 

@@ -12,7 +12,9 @@ from pdrlearn.cli.common import (
     DPI_HELP,
     FORCE_HELP,
     INITIAL_HEADING_HELP,
+    NO_PLOT_HELP,
     START_HELP,
+    check_no_plot,
     count_phrase,
     existed,
     gait_line,
@@ -117,6 +119,7 @@ ALTITUDE_OPT = typer.Option(None, "--altitude", help="plasys: the altitude from 
                             "read; an option, decision L154 - the barometer's wander moves a level walk by up to "
                             "~0.4 m and a stair climb by a few cm; docs/localization.md).")
 DPI_OPT = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP)
+NO_PLOT_OPT = typer.Option(False, "--no-plot", help=NO_PLOT_HELP)  # decision L533
 COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a unit is over 1 s shorter than the "
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
                                "every file and label table cut to it, with one warning naming the seconds dropped "
@@ -313,6 +316,7 @@ def track(
     length_model: str = LENGTH_MODEL_OPT,
     altitude: str = ALTITUDE_OPT,
     dpi: int = DPI_OPT,
+    no_plot: bool = NO_PLOT_OPT,
     common_span: bool = COMMON_SPAN_OPT,
     drop_partial_row: bool = DROP_PARTIAL_ROW_OPT,
     align_units: bool = ALIGN_UNITS_OPT,
@@ -395,6 +399,8 @@ def track(
 
         pdrlearn track walks/D --redact-paths --out out/D_share   # no folder path in any output (E176)
 
+        pdrlearn track out/sim/D_u1 --no-plot --out out/D_tables   # no path.png: the tables alone, faster (L533)
+
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
     arguments = dict(locals())  # decision L122: every option as given, defaults included (before any other name)
@@ -437,7 +443,8 @@ def track(
     else:
         from pdrlearn.textfile import session_csv
 
-        _print_summary(summary, out, aided, waist_unit=session_csv(session_dir, "wAccelerometer").is_file())  # L316
+        _print_summary(summary, out, aided, waist_unit=session_csv(session_dir, "wAccelerometer").is_file(),  # L316
+                       plot=settings["plot"])  # decision L533
     warned = summary.get("info", {}).get("warnings") or []
     if strict and warned:  # decision E156: the outputs are written; the exit code says the track warned
         typer.echo(f"strict: {len(warned)} warning(s) (summary.json info.warnings); exit code {STRICT_EXIT}", err=True)
@@ -455,7 +462,6 @@ NOT_IN_TRACK_ALL = {
     "--gnss": "a per-recording fix file", "--gnss-period": "thins --gnss", "--fixes": "a per-recording fix file",
     "--fix-period": "thins --fixes",
     "--strict": "track-all's exit code 1 names failed sessions; sessions.csv's n_warnings counts each one's (E156)",
-    "--ten-m-walk": "one session's walkway zones (L522); a batch with it is a loop of track for now",
 }
 
 
@@ -477,7 +483,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    freeze_index: bool = False, gait_quality: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, ignore_force: bool = False,
                    contacts: bool = False,
-                   drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
+                   drop_neighbour: bool = False, dpi: int | None = None, no_plot: bool = False,
+                   initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
                    per_align: str = "start", corridor: float | None = None, splits: str | None = None,
                    walk_test_duration: float | None = None,
@@ -502,6 +509,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.window import parse_window
 
     rate_mode = resample_mode(resample, no_resample)  # decision B113
+    plot = check_no_plot("track", no_plot, dpi)  # decisions L533, B413: before any session
     bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L163: checked before any session
     if rate_mode != "native" and model is None:
         raise DataError(f"track: {'--resample' if resample else '--no-resample'} compares the session's rate with "
@@ -629,7 +637,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "freeze_index": freeze_index, "gait_quality": gait_quality,
             "reference_point": reference_point, "toe_off": toe_off, "ignore_force": ignore_force,
             "contacts": contacts,
-            "drop_neighbour": drop_neighbour, "dpi": dpi,
+            "drop_neighbour": drop_neighbour, "dpi": dpi, "plot": plot,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
             "per_align": per_align, "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
             "ten_m_walk_m": ten_m_walk_m,
@@ -1084,8 +1092,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             summary["info"]["warnings"] = [*summary["info"].get("warnings", []), *lines]
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
-            "dpi": dpi, "content_id": content_id, "bouts": bouts, "periods": periods, "laps": laps, "start": start,
-            "splits": splits,
+            "dpi": dpi, "plot": o["plot"], "content_id": content_id, "bouts": bouts, "periods": periods, "laps": laps,
+            "start": start, "splits": splits,
             "start_ele": bool(o.get("start_ele"))}
 
 
@@ -1141,7 +1149,7 @@ def position_error_phrase(summary: dict) -> str:
     return f", final position error {err:.2f} m horizontal" if err is not None else ""
 
 
-def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False) -> None:
+def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = False, plot: bool = True) -> None:
     name = summary["session"]
     if summary.get("window_start_s") is not None:  # decision L105
         name += f" [{summary['window_start_s']:g}-{summary['window_end_s']:g} s]"
@@ -1226,8 +1234,9 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'laps.csv, ' if summary.get('corridor_m') is not None else ''}"
                f"{'splits.csv, ' if summary.get('splits_m') else ''}"
                f"{'direction_changes.csv, ' if summary.get('direction_changes') is not None else ''}"
-               f"{'periods.csv, ' if summary.get('per_s') else ''}path.png, "
-               f"{'aided.png, ' if aided else ''}summary.json, run.json"
+               f"{'periods.csv, ' if summary.get('per_s') else ''}"
+               f"{'path.png, ' if plot else ''}"  # decision L533: no figure with --no-plot
+               f"{'aided.png, ' if aided and plot else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)
                + "".join(f", {n}" for n in GEO_FILES if (out / n).is_file()))
 

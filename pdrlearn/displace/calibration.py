@@ -126,7 +126,8 @@ def _offline_track(s, params):
 
     method = "M2" if s.has("fForceA") or s.has("fForceB") else "M3"
     return track_plasys(s, method=method, model=None if method == "M2" else "oracle", steps="labels",
-                        heading="foot", params=params, distance_gain=1.0)
+                        heading="foot", params=params, distance_gain=1.0,
+                        transfers=False)  # decision W439: a calibration reads no TUG
 
 
 def _streaming_track(s, params):

@@ -1446,8 +1446,7 @@ def _stream_where(session: Session, name: str) -> str:
 def warn_saturation(session: Session) -> None:
     """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
     extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence."""
-    from pdrlearn.io import validate
-    from pdrlearn.io.validate import MOVING_RAD_S, ceiling_clip, ceiling_warning, clipped_samples, saturation_warning
+    from pdrlearn.io.validate import MOVING_RAD_S, clipped_samples, saturation_warning
 
     for name, s in session.streams.items():
         kind = SENSORS[name].kind
@@ -1460,9 +1459,6 @@ def warn_saturation(session: Session) -> None:
             log.warning("%s", saturation_warning(where, kind, n, len(s), top,
                                                  "waist" if name.startswith("w") else "foot",  # T3 finding 9
                                                  moving=moving, waist=waist))
-        elif kind == "accelerometer" and validate.CEILING_WARN and (full := ceiling_clip(s.values)):  # B403 (B411: off)
-            where = _stream_where(session, name)
-            log.warning("%s", ceiling_warning(where, full, "waist" if name.startswith("w") else "foot"))
 
 
 def warn_frozen(session: Session) -> None:

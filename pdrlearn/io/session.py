@@ -700,7 +700,7 @@ class Session:
 
     def summary(self) -> dict:
         """Machine-readable summary (the ``pdrlearn info --json`` contract)."""
-        from pdrlearn.io.validate import grid_resolution
+        from pdrlearn.io.validate import resolution
 
         sensors = {}
         for name, s in self.streams.items():
@@ -712,7 +712,7 @@ class Session:
                 "gaps": len(gaps),
                 "longest_gap_s": round(max((g.duration_s for g in gaps), default=0.0), 6),
                 "unit": s.unit,
-                "resolution": grid_resolution(s.values),  # B406: the smallest step, in unit (B412: None off a grid)
+                "resolution": resolution(s.values, grid=True),  # B406: the smallest step (B412: None off a grid)
                 "placement": s.placement,
                 "file": self._file_name(name),  # decision B369: fAccelerometer.csv or fAccelerometer.csv.gz
             }

@@ -618,19 +618,17 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
 CLIP_COARSE = 0.02
 
 
+def distinct_steps(col: np.ndarray) -> np.ndarray:
+    """Decision B405/B406: the steps between the sorted distinct finite values of one axis (empty with fewer than two
+    distinct values): the kernel of :func:`axis_step` and :func:`resolution`."""
+    return np.diff(np.unique(np.asarray(col, dtype=float)[np.isfinite(col)]))
+
+
 def axis_step(col: np.ndarray) -> float:
     """Decision B405/B406: the smallest step between the distinct values of one axis (its resolution; 0.0 with
     fewer than two distinct values)."""
-    u = np.unique(np.asarray(col, dtype=float)[np.isfinite(col)])
-    return float(np.diff(u).min()) if u.size > 1 else 0.0
-
-
-def resolution(values: np.ndarray) -> float:
-    """Decision B406: a stream's resolution: the smallest :func:`axis_step` over its axes that have one (0.0 when
-    no axis changes)."""
-    v = np.asarray(values, dtype=float)
-    steps = [axis_step(c) for c in v.reshape(len(v), -1).T]
-    return min((x for x in steps if x > 0), default=0.0)
+    d = distinct_steps(col)
+    return float(d.min()) if d.size else 0.0
 
 
 #: decision B412: a stream's smallest step is a resolution only when the values lie on a grid: at least this share of
@@ -640,23 +638,22 @@ GRID_SHARE = 0.9
 GRID_TOLERANCE = 0.05
 
 
-def on_grid(col: np.ndarray) -> bool:
-    """Decision B412: whether one axis's distinct values lie on the grid of its smallest step (:func:`axis_step`)."""
-    u = np.unique(np.asarray(col, dtype=float)[np.isfinite(col)])
-    if u.size < 2:
-        return False
-    d = np.diff(u)
-    r = d / d.min()
+def _on_grid(steps: np.ndarray) -> bool:
+    """Decision B412: whether one axis's :func:`distinct_steps` (non-empty) are whole multiples of the smallest."""
+    r = steps / steps.min()
     return float(np.mean(np.abs(r - np.round(r)) <= GRID_TOLERANCE)) >= GRID_SHARE
 
 
-def grid_resolution(values: np.ndarray) -> float | None:
-    """Decision B412: :func:`resolution` when every changing axis lies on the grid of its smallest step
-    (:func:`on_grid`), else None (`info` prints "-", null in --json): the smallest gap between converted floats is
-    no sensor step."""
+def resolution(values: np.ndarray, *, grid: bool = False) -> float | None:
+    """Decision B406: a stream's resolution: the smallest :func:`axis_step` over its axes that have one (0.0 when
+    no axis changes). ``grid=True`` (decision B412, what `info` prints): None unless some axis changes and every
+    changing axis lies on the grid of its smallest step (`info` prints "-", null in --json): the smallest gap
+    between converted floats is no sensor step."""
     v = np.asarray(values, dtype=float)
-    cols = [c for c in v.reshape(len(v), -1).T if axis_step(c) > 0]
-    return resolution(v) if cols and all(on_grid(c) for c in cols) else None
+    steps = [d for d in (distinct_steps(c) for c in v.reshape(len(v), -1).T) if d.size]
+    if grid and not (steps and all(_on_grid(d) for d in steps)):
+        return None
+    return min((float(d.min()) for d in steps), default=0.0)
 
 
 def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
@@ -681,10 +678,6 @@ CEILING_SCALES_G = (4.0, 8.0, 16.0)
 CEILING_BAND = 0.90
 CEILING_SPREAD = 0.07
 CEILING_TAIL = 10
-#: decision B411 (not adopted, B403 switched off): unclipped real gait with its dynamics x1.2 / x1.3
-#: (datasets/external/gaitmap_ms_right) is called pinned under 8 g by :func:`ceiling_clip`, and a pile-up test did not
-#: clear it; B403's warning and C154's suspect run only when this is set True (opt-in; the function stays)
-CEILING_WARN = False
 
 
 def ceiling_clip(values: np.ndarray) -> float:
@@ -692,7 +685,12 @@ def ceiling_clip(values: np.ndarray) -> float:
     saturated before the sensor's own decimation filter: the filter smooths each flat top into a peak just below the
     scale), or 0.0. On each axis and sign: the local maxima at or above :data:`CLIP_LEVEL`; with
     :data:`CEILING_MIN_PEAKS` or more, a ceiling when the largest lies within :data:`CEILING_BAND`-100 % of one of
-    :data:`CEILING_SCALES_G` and the :data:`CEILING_TAIL`-th largest within :data:`CEILING_SPREAD` of it."""
+    :data:`CEILING_SCALES_G` and the :data:`CEILING_TAIL`-th largest within :data:`CEILING_SPREAD` of it.
+
+    Not adopted as a warning (decision B411: unclipped real gait with its dynamics x1.2 / x1.3,
+    datasets/external/gaitmap_ms_right, is called pinned under 8 g too); decision B415: no pipeline calls it (no
+    switch), it is a check to run on a suspect accelerometer file, ``ceiling_clip(session.streams[
+    "fAccelerometer"].values)`` (0.0: no ceiling found)."""
     v = np.asarray(values, dtype=float)
     if v.ndim != 2 or v.shape[0] < 3:
         return 0.0
@@ -711,17 +709,6 @@ def ceiling_clip(values: np.ndarray) -> float:
             if CEILING_BAND * full <= top <= full:
                 found = max(found, full)
     return found
-
-
-def ceiling_warning(where: str, full: float, unit_name: str = "foot") -> str:
-    """Decision B403's one line: the file, the full scale its peaks are pinned under, the consequence and the fix."""
-    g = full / STANDARD_GRAVITY
-    what = ("the foot's integrated stride lengths come out short (trial T2: -2.3 % at 52 Hz)" if unit_name == "foot"
-            else "the lower back's step peaks and step lengths come out short")
-    return coded(f"{where}: its impact peaks are pinned just under +-{g:.3g} g (the {CEILING_TAIL} highest within "
-                 f"{100 * CEILING_SPREAD:.0f} % of one another): the sensor looks clipped at +-{g:.3g} g ahead of its "
-                 f"own filter, which smoothed the flat tops away; {what}; record with a range above +-{g:.3g} g "
-                 "(decision B403)", "B403")
 
 
 #: decision B401: a gyroscope sample is "moving" at |w| >= this (rad/s): the stance segmenter's default threshold

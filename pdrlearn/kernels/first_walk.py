@@ -6,8 +6,9 @@ Offline, L494 subtracts the first walk's direction (the circular mean of the fir
 so a foot unit yawed on the shoe no longer turns the path. A stream knows that direction only at the end of its first
 walk: :class:`FirstWalk` collects the placed directions of the foot-headed strides longer than L494's walking stride
 and, at the 4th, says it in one line. E215 measured applying it there (the heading turned from that stride on) and did
-not adopt it (:data:`STREAMED_FIRST_WALK`, an opt-in): the line then says the streamed heading's 0 is the unit's facing
-and how far the first walk heads from it.
+not adopt it as the default: the line then says the streamed heading's 0 is the unit's facing and how far the first
+walk heads from it. Applying it is an option (decision E222: the keyword ``first_walk`` of
+``track_plasys(streaming=True)`` and the runtime ``Tracker``, ``enabled`` here; no module switch, W413).
 """
 
 from __future__ import annotations
@@ -15,10 +16,6 @@ from __future__ import annotations
 import cmath
 import math
 
-#: decision E215: True = the streamed track's foot-only heading is re-referenced once, at the end of the first walk
-#: (L494's rule, causal; the strides before keep the facing); False (measured, not adopted) = its 0 stays the foot
-#: unit's facing at the start, and the line says how far the first walk heads from it
-STREAMED_FIRST_WALK = False
 #: decision E215: the not-applied line is said when the first walk heads at least this far (deg) from the unit's facing
 #: (a choice, not fitted: half the 20 deg yaw of L494's trial; a unit mounted straight reads a few degrees, and a line
 #: on every stream of it said nothing); ``info["first_walk_deg"]`` of ``track --streaming`` holds the angle always
@@ -33,14 +30,17 @@ WALK_MIN_M = 0.2
 class FirstWalk:
     """Decision E215: :meth:`stride` each stride before it is placed; at the stride that ends the first walk (once)
     it returns the angle (rad) to subtract from the heading from that stride on -- the first walk's direction less the
-    start heading ``start`` (rad) when ``enabled`` (default :data:`STREAMED_FIRST_WALK`), else 0.0 -- and the caller
+    start heading ``start`` (rad) when ``enabled``, else 0.0 -- and the caller
     gives :meth:`line`; None at every other stride. Strides placed before keep the unit's facing and the position is
     not moved back (the reported steps' lengths along their headings still sum to the track, as a fix filter and
-    ``pdrlearn run``'s rows read it)."""
+    ``pdrlearn run``'s rows read it). Decision E215: ``enabled=True`` re-references the foot-only heading once, at
+    the end of the first walk (L494's rule, causal; the strides before keep the facing); False (the default:
+    measured, not adopted) keeps its 0 the foot unit's facing at the start, and :meth:`line` says how far the first
+    walk heads from it (decision E222: a keyword, no module switch)."""
 
-    def __init__(self, start: float = 0.0, enabled: bool | None = None):
+    def __init__(self, start: float = 0.0, enabled: bool = False):
         self.start = float(start)
-        self.apply = bool(STREAMED_FIRST_WALK if enabled is None else enabled)
+        self.apply = bool(enabled)
         self.heads: list[float] = []
         self.done = False
         self.angle: float | None = None  # the first walk's direction less the start heading (rad), once known

@@ -18,3 +18,25 @@ def first_out_of_order(t, last: float = -math.inf, *, strict: bool = True) -> in
     prev = np.concatenate([[last], t[:-1]])
     bad = np.flatnonzero(t <= prev if strict else t < prev)
     return int(bad[0]) if bad.size else None
+
+
+def repeated(t, seen=()) -> np.ndarray:
+    """Decision E203 (E225: shared by both live trackers): True for each timestamp of ``t`` (s) that repeats one
+    already seen - the sample before it in ``t``, or one of ``seen`` (sorted: the stream's times already taken; the
+    lean ``WaistTracker`` passes its last one, the foot ``Tracker`` those it still buffers, so a packet sent twice is
+    found whole). A step back to a time not seen is not a repeat (the order check names it)."""
+    t = np.asarray(t, dtype=np.float64).reshape(-1)
+    rep = np.zeros(t.shape, dtype=bool)
+    rep[1:] = t[1:] == t[:-1]
+    seen = np.asarray(seen, dtype=np.float64).reshape(-1)
+    if seen.size and t.size:
+        i = np.minimum(np.searchsorted(seen, t), seen.size - 1)
+        rep |= seen[i] == t
+    return rep
+
+
+def repeats_dropped_line(where: str, count: str) -> str:
+    """Decision E203's one warning line at a live tracker's first dropped repeat (E225: both trackers' wording):
+    ``where`` names the push, ``count`` the attribute that counts them."""
+    return (f"{where}: dropping samples whose timestamp repeats one already taken (the first is kept; "
+            f"drop_duplicate_timestamps=True, decision E203); the count is {count}")

@@ -258,14 +258,15 @@ def replay_check(streams: dict, chunk_s: float = 1.0) -> ClockCheck:
     return cc
 
 
-def waist_on_foot_clock(samples: dict, offset_s: float, drift: float = 0.0) -> dict:
+def waist_on_foot_clock(samples: dict, offset_s: float, drift: float = 0.0, prefix: str = "w") -> dict:
     """Decision L177: ``samples`` (sensor -> ``(t, values)``) with the waist sensors' times moved to ``t - offset_s``
     (L161's model), and with ``drift`` (s/s, decision E229) to ``(t - offset_s) / (1 + drift)``: ``to_foot_clock``
     at ``ref_s`` 0, the mechanism of ``run --clock-offset`` / ``--clock-drift-ppm`` (B265; bit for bit ``t -
-    offset_s`` without drift); anything that is no (t, values) pair is passed on for the push's checks to name."""
+    offset_s`` without drift); anything that is no (t, values) pair is passed on for the push's checks to name.
+    ``prefix="f"``: the foot sensors' instead (decision E227: a foot pod rebased after a reconnect)."""
     out = dict(samples)
     for name, tv in samples.items():
-        if str(name).startswith("w") and isinstance(tv, tuple | list) and len(tv) == 2:
+        if str(name).startswith(prefix) and isinstance(tv, tuple | list) and len(tv) == 2:
             try:
                 t = to_foot_clock(np.asarray(tv[0], dtype=np.float64), offset_s, drift)
             except (TypeError, ValueError):

@@ -459,19 +459,27 @@ def resample_message(resamplers: dict[str, StreamResampler], rate_out: float) ->
 
 
 def stopped_message(name: str, t: float | None, first_s: float, newest: float, max_lag_s: float, grace_s: float,
-                    required: bool) -> str:
+                    required: bool, cause: str = "") -> str:
     """Decision E23's line for a stream that sent nothing while the others moved on by more than
-    ``max_lag_s`` + ``grace_s`` (its own delivery interval, s); ``t`` = its newest sample (None: never)."""
+    ``max_lag_s`` + ``grace_s`` (its own delivery interval, s); ``t`` = its newest sample (None: never). ``cause``:
+    what the lag is instead of a stopped sensor (decision E223: the units' clocks apart from the start)."""
     what = (f"no samples since {t:.2f} s" if t is not None
             else f"no samples at all since the first sample at {first_s:.2f} s")
     behind = f"max_lag_s = {max_lag_s:g} s" + (f" + {grace_s:.2f} s of its own delivery interval" if grace_s else "")
+    if cause:
+        return (f"{name}: {what} while the other sensors are at {newest:.2f} s (more than {behind} behind): {cause}"
+                + ("; the push is refused and the tracker unchanged" if required else
+                   "; ignored from now on, the steps no longer wait for it"))
     if required and t is None and name.startswith("w"):  # E32: a foot-only stream, most likely; the fix first
         return (f"{name}: {what} while other sensors are at {newest:.2f} s (more than {behind} behind): for a "
                 "foot-only stream pass units=('foot',) to Tracker (or sensors= without the waist sensors; "
                 "pdrlearn run --units foot, decision E26); else connect the waist unit and start a new Tracker")
     if required:
         return (f"{name}: {what} while other sensors are at {newest:.2f} s (more than {behind} behind; the sensor "
-                "stopped or its link dropped); reconnect it and start a new Tracker, or track without it with a "
+                "stopped or its link dropped): the push is refused and the tracker unchanged; when its samples return "
+                "the same Tracker goes on (a stride across a foot gap over 1 s is a 0 m gap row, E46; a pod that "
+                "reconnected with its clock restarted: tracker.rebase_clock, decision E227); a sensor that is gone: "
+                "track without it with a "
                 + ("foot-only Tracker (units=('foot',); pdrlearn run --units foot, decision E26)"
                    if name.startswith("w") else "bundle that does not need it"))
     return (f"{name} (optional): {what} while the others are at {newest:.2f} s (more than {behind} behind): "

@@ -43,7 +43,7 @@ from pdrlearn.kernels.distance import (
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gaps import MIN_GAP_S, drop_neighbour_on, drop_stride_disp, streamed_drops_line
-from pdrlearn.kernels.order import first_out_of_order
+from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
     DOWN_MODES,
@@ -94,6 +94,7 @@ from pdrlearn.runtime.clocks import ClockCheck, offset_remedy, waist_on_foot_clo
 from pdrlearn.runtime.domain import DomainLog
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenFootWatch, FrozenWatch, MirrorWatch, UnitGuard
+from pdrlearn.runtime.links import RepeatedLines, StartClocks, order_error, unit_of
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
 from pdrlearn.runtime.restart import resume as resume_state
@@ -444,7 +445,13 @@ class Tracker(FixInput):
         estimate (at ``flush``: the offline check's on the same samples). False: no check.
     waist_clock_offset_s : a known offset of the waist clock (s, ``t_waist = t_foot + offset``, the sign L161's line
         and ``track --align-units`` give): every pushed waist sample is moved to ``t - offset`` before anything
-        else (decision L177: the live form of ``--align-units``; 0: none).
+        else (decision L177: the live form of ``--align-units``; 0: none). Settable between pushes (decision E227),
+        as :meth:`rebase_clock` sets it: a waist pod that reconnected with its clock restarted goes on.
+    drop_duplicate_timestamps : drop a pushed sample whose timestamp repeats one already taken of its stream (the
+        sample before it in the push, or one the tracker still buffers: a Bluetooth packet sent again), keeping the
+        first, as ``WaistTracker(drop_duplicate_timestamps=True)`` (decision E225, E203's kernel); counted per
+        sensor in :attr:`dropped_duplicates` (total :attr:`n_dropped_duplicates`), one warning line. Off: such a
+        push is refused, the line says "duplicates one already taken".
     waist_clock_drift_ppm : a known drift of the waist clock (ppm, ``t_waist = t_foot x (1 + ppm/1e6) + offset``,
         ``pdrlearn run --clock-drift-ppm``'s model and mechanism, ``to_foot_clock``): every pushed waist sample is
         moved to ``(t - offset) / (1 + ppm/1e6)`` (decision E229; 0: none).
@@ -466,6 +473,11 @@ class Tracker(FixInput):
     innovation_gate : decision D31 (an option, off by default as ``track --fixes``' gate, D33): ``add_fix`` rejects
         a fix more than 3 sigma from the filter's estimate (the chi-square 0.997 gate, never two fixes in a row),
         names it in one warning as it is rejected and counts it in ``fix_stats()["fixes_rejected"]`` (decision D35).
+    first_walk : a foot-headed track's heading is turned once, at the end of its first walk (the 4th stride over 0.2
+        m), by that walk's direction less the start heading (L494's reference made causal; decision E215: measured,
+        a unit yawed on the shoe ended 15.0 -> 2.0 m off on average, not adopted as the default: unyawed feet got
+        worse in two of five walks; decision E222: this keyword, as ``track_plasys(streaming=True, first_walk=...)``).
+        False (default): the heading's 0 stays the foot unit's facing and one line says how far the walk heads.
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -501,6 +513,11 @@ class Tracker(FixInput):
     #: decision L134: a resumed tracker's last measured stride end (s; strides found again up to it are dropped)
     _resume_end: float | None = None
     _carry: list | tuple = ()
+    #: decisions E223-E227 (a bare Tracker.__new__: no offset, no repeat dropped, every line written)
+    foot_clock_offset_s = 0.0
+    _drop_dups = False
+    _starts: StartClocks | None = None
+    _repeats: RepeatedLines | None = None
 
     def __init__(
         self,
@@ -540,6 +557,8 @@ class Tracker(FixInput):
         warn_out_of_domain: float | None = None,
         length_reference: str = "model",
         innovation_gate: bool = False,
+        first_walk: bool = False,
+        drop_duplicate_timestamps: bool = False,
     ):
         self._busy = threading.Lock()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
@@ -686,7 +705,7 @@ class Tracker(FixInput):
         self.position = start_xyz
         self._init_fixes(self.position[:2], innovation_gate=innovation_gate)  # decisions D19-D21, D35: add_fix
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
-        self._first_walk = _first_walk.FirstWalk(self.heading)  # decision E215
+        self._first_walk = _first_walk.FirstWalk(self.heading, enabled=first_walk)  # decisions E215, E222
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
@@ -772,9 +791,19 @@ class Tracker(FixInput):
                                 "waist clock to move; drop it")
         self.waist_clock_offset_s = float(waist_clock_offset_s)
         self.waist_clock_drift_ppm = float(waist_clock_drift_ppm)  # decision E229
-        # the check reads the moved samples: the offset to name is the one given plus the one still seen
-        self._clock = (ClockCheck(lambda off, given=self.waist_clock_offset_s: offset_remedy(given + off))
+        #: decision E227: the foot clock's offset from the tracker's (its samples moved to ``t - offset``; 0 until
+        #: :meth:`rebase_clock` moves a foot pod that reconnected with its clock restarted)
+        self.foot_clock_offset_s = 0.0
+        # the check reads the moved samples: the offset to name is the one given (or rebased, E227) plus the one seen
+        self._clock = (ClockCheck(lambda off: offset_remedy(self.waist_clock_offset_s + off))
                        if clock_check and "waist" in self.units else None)
+        #: decision E225: drop a pushed sample whose timestamp repeats one taken, counted per sensor here
+        self._drop_dups = bool(drop_duplicate_timestamps)
+        self.dropped_duplicates: dict[str, int] = {}
+        #: decision E223: the two units' clocks at the start; E224: repeated lines counted (kind -> occurrences)
+        self._starts = StartClocks(self.max_lag_s) if {"foot", "waist"} <= set(self.units) else None
+        self._repeats = RepeatedLines()
+        self.warning_counts = self._repeats.counts
         #: decision L134: a restart state's position, heading and samples (the steps they complete come out with
         #: the next push's or flush's)
         self._carry = resume_state(self, resume) if resume is not None else []
@@ -787,6 +816,75 @@ class Tracker(FixInput):
         ``offset_s`` is the offset at foot-clock time ``ref_s``, inside the recording (decision L198): the constant
         ``waist_clock_offset_s`` that aligns it, whatever the clocks' origin."""
         return None if self._clock is None else self._clock.estimate
+
+    @property
+    def n_dropped_duplicates(self) -> int:
+        """Decision E225: the pushed samples dropped as repeats (``drop_duplicate_timestamps=True``), every sensor."""
+        return sum(self.dropped_duplicates.values())
+
+    def rebase_clock(self, unit: str, offset_s: float) -> None:
+        """Decision E227: from now on every pushed sample of ``unit`` (``"foot"`` or ``"waist"``) is moved to ``t -
+        offset_s`` (its clock reads the tracker's time plus ``offset_s``; the waist's is ``waist_clock_offset_s``).
+        A pod that reconnected with its clock restarted goes on in the same tracker: its buffered samples stay on
+        the tracker's clock, its new ones join them. The refusal of its first new push is a
+        :class:`~pdrlearn.errors.ClockWentBack` whose ``offset_s`` puts them beside the other unit's newest."""
+        if unit not in self.units:
+            raise DataError(f"rebase_clock({unit!r}, ...): the tracker follows {'+'.join(self.units)}; give one of "
+                            f"{', '.join(map(repr, self.units))}")
+        if isinstance(offset_s, bool) or not isinstance(offset_s, int | float | np.number) or not math.isfinite(
+                offset_s):
+            raise DataError(f"rebase_clock({unit!r}, {offset_s!r}): give the unit clock's offset in seconds (a finite "
+                            "number: its clock reads the tracker's time plus it)")
+        setattr(self, f"{unit}_clock_offset_s", float(offset_s))
+
+    def _without_repeats(self, samples: dict) -> tuple[dict, dict[str, int]]:
+        """Decision E225: ``samples`` without the samples whose timestamp repeats one taken (the kernel E203's
+        ``WaistTracker`` uses: the sample before it, or one this tracker still buffers), and sensor -> how many were
+        dropped (counted by :meth:`push` once the push is taken). Anything not a (t, values) pair of matching length
+        is passed on for the push's checks to name."""
+        out, dropped = None, {}
+        for name, tv in samples.items():
+            if not (isinstance(tv, tuple | list) and len(tv) == 2):
+                continue
+            try:
+                t = np.asarray(tv[0], dtype=np.float64).reshape(-1)
+            except (TypeError, ValueError):
+                continue
+            ring, raw = self._buf.get(name), self.inputs.last_in(name)
+            last = max(-math.inf if ring is None else ring.last, -math.inf if raw is None else raw)
+            if not t.size or (t[0] > last and not (t[1:] == t[:-1]).any()):
+                continue  # the usual push: nothing repeated
+            rep = repeated(t, self._taken_times(name))
+            if rep.any():
+                try:
+                    v = np.asarray(tv[1], dtype=np.float64)
+                except (TypeError, ValueError):
+                    continue
+                if v.ndim == 0 or len(v) != len(t):
+                    continue
+                out = out if out is not None else dict(samples)
+                out[name] = (t[~rep], v[~rep])
+                dropped[name] = int(rep.sum())
+        return (samples if out is None else out), dropped
+
+    def _taken_times(self, name: str) -> np.ndarray:
+        """Decision E225: the input times of ``name`` the tracker still knows, sorted: its buffered samples' (a
+        resampled stream's buffer holds the output grid: its newest input time alone)."""
+        ring, raw = self._buf.get(name), self.inputs.last_in(name)
+        own = [] if ring is None or name in self.inputs.resamplers else ring.view()[0]
+        return np.unique([*own, *([] if raw is None else [raw])])
+
+    def _count_repeats(self, dropped: dict[str, int]) -> None:
+        """Decision E225 (E203's amended count): a taken push's dropped repeats counted; the first adds one line."""
+        if not self.dropped_duplicates:
+            self._warn(repeats_dropped_line("Tracker.push", "n_dropped_duplicates (per sensor: dropped_duplicates)"))
+        for n, k in dropped.items():
+            self.dropped_duplicates[n] = self.dropped_duplicates.get(n, 0) + k
+
+    def _clocks_note(self, name: str, t: float | None) -> str:
+        """Decision E223: the clause naming the units' start-up clock offset when the lagging stream ``name`` (newest
+        sample ``t``, None: never taken) is of the unit whose clock reads behind, or was refused all along, else ''."""
+        return "" if self._starts is None else self._starts.note(name, self.waist_clock_offset_s, t is not None)
 
     def _check_clocks(self, checked: dict, fast: dict | None) -> None:
         """Decision L177: the check's sensors' pushed samples to :class:`ClockCheck`, and its line once."""
@@ -1009,17 +1107,29 @@ class Tracker(FixInput):
         if self.waist_clock_offset_s or self.waist_clock_drift_ppm:  # decisions L177, E229: the waist samples on
             samples = waist_on_foot_clock(samples, self.waist_clock_offset_s,  # the foot clock, before anything else
                                           self.waist_clock_drift_ppm * 1e-6)
+        if self.foot_clock_offset_s:  # decision E227: a foot pod rebased after a reconnect, likewise
+            samples = waist_on_foot_clock(samples, self.foot_clock_offset_s, prefix="f")
+        dropped = None
+        if self._drop_dups:  # decision E225: repeated samples dropped before the checks, counted once taken
+            samples, dropped = self._without_repeats(samples)
         fast = self._check_push(samples)  # decision E29: every sensor checked before any state changes
         if fast is None:  # decision E40: no sample at all, nothing to do
+            if dropped:
+                self._count_repeats(dropped)
             return []
         checked, self._checked = self._checked, {}
-        self._check_stopped({**{n: (f[0], f[0]) for n, f in fast.items()},  # decision B122: E23 before any change
-                             **{n: (float(t[0]), float(t[-1])) for n, (t, _) in checked.items()}})
+        spans = {**{n: (f[0], f[0]) for n, f in fast.items()},
+                 **{n: (float(t[0]), float(t[-1])) for n, (t, _) in checked.items()}}
+        if self._starts is not None and self._starts.contact is None:  # decision E223: the units' clocks at the start
+            self._starts.seen(spans)
+        self._check_stopped(spans)  # decision B122: E23 before any change
         guard = self._guard
         if guard is not None:  # decision B119: the units of the accelerometers' first seconds, the gyroscopes' windows
             arrays = {n: checked[n] if n in checked else (np.array([fast[n][0]]), np.array([fast[n][1]]))
                       for n in guard.wanted() if n in checked or n in fast}
             guard.take(arrays, guard.check(arrays))
+        if dropped:  # decision E225: counted once every check has passed (E203 amended)
+            self._count_repeats(dropped)
         if self._clock is not None:  # decision L177: the raw pushed samples, as the offline check reads a recording
             self._check_clocks(checked, fast)
         if self._foot_q:  # the foot samples of a push that completed a step (decision E21)
@@ -1128,8 +1238,7 @@ class Tracker(FixInput):
             raw = self.inputs.last_in(name)
             last = raw if raw is not None else (ring.last if ring is not None else None)
             if last is not None and not t[0] > last:
-                raise DataError(f"{name}: pushed timestamps are not increasing (at {t[0]:.3f} s after {last:.3f} s); "
-                                f"push samples in time order{self._jumped_note(float(t[0]))}")
+                raise self._order_error(name, float(t[0]), last)
             tt = t if last is None else np.concatenate(([last], t))
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 d = np.diff(tt)
@@ -1198,12 +1307,14 @@ class Tracker(FixInput):
             self._paused[n] = -math.inf if last is None or not math.isfinite(last) else float(last)
         self._held.update(names)
         since = "none received" if t is None else f"no samples since {t:.2f} s"
-        self._warn(f"{', '.join(names)}: {since} while the other sensors are at {self._latest:.2f} s (more than "
-                   f"max_lag_s = {self.max_lag_s:g} s behind): the foot's strides go on without the waist unit, "
-                   "their turn from the foot's gyroscope (decision E114) and their classes from the waist's last "
-                   "values held (unreliable); its samples are taken again when they return, in step with the foot's "
-                   "(decision E115); a waist unit that is gone: track the foot alone, units=('foot',) (pdrlearn run "
-                   "--units foot, decision E26)")
+        clocks = self._clocks_note(names[0], t)  # decision E223: two clocks, named first
+        self._warn_every("waist paused", (
+            f"{', '.join(names)}: {since} while the other sensors are at {self._latest:.2f} s (more than max_lag_s = "
+            f"{self.max_lag_s:g} s behind){': ' + clocks + '; meanwhile' if clocks else ':'} the foot's strides go on "
+            "without the waist unit, their turn from the foot's gyroscope (decision E114) and their classes from the "
+            "waist's last values held (unreliable); its samples are taken again when they return, in step with the "
+            "foot's (decision E115); a waist unit that is gone: track the foot alone, units=('foot',) (pdrlearn run "
+            "--units foot, decision E26)"))
 
     def _held_waist(self, lev: dict, t1: float) -> dict:
         """Decision E115: a stride whose end a paused waist stream did not reach is headed by the foot (E114), as a
@@ -1221,9 +1332,9 @@ class Tracker(FixInput):
             gone = min(self._paused[n] for n in back)
             for n in back:
                 del self._paused[n]
-            self._warn(f"{', '.join(back)}: samples again by {self._latest:.2f} s (none since {gone:.2f} s); the waist "
-                       "unit heads the strides again, from the heading the foot's strides carried across the gap "
-                       "(decision E115)")
+            self._warn_every("waist resumed", f"{', '.join(back)}: samples again by {self._latest:.2f} s (none since "
+                             f"{gone:.2f} s); the waist unit heads the strides again, from the heading the foot's "
+                             "strides carried across the gap (decision E115)")
 
     def _jump_error(self, name: str, a: float, b: float) -> DataError:
         """Decision B141: the line refusing a push whose ``name`` samples jump from ``a`` to ``b`` s, more than
@@ -1234,6 +1345,16 @@ class Tracker(FixInput):
             "push those samples with their right times, or, if the sensors really were silent that long, go on with "
             "old.flush() (the steps it still holds) and a new Tracker(bundle, start=tuple(old.position), "
             "heading_rad=old.heading), or give Tracker(max_gap_s=...)")
+
+    def _order_error(self, name: str, t0: float, last: float) -> DataError:
+        """Decisions E225 / E227: the refusal of a push whose first ``name`` sample (``t0`` s) is not after the
+        stream's newest (``last``): a duplicate, a clock that went back (a reconnected pod) or a late sample."""
+        unit = unit_of(name)
+        other = [r.last for n, r in self._buf.items() if unit_of(n) not in (None, unit)]
+        return order_error(name, t0, last, duplicate=bool(repeated([t0], self._taken_times(name))[0]),
+                           max_lag_s=self.max_lag_s,
+                           offset_s=float(getattr(self, f"{unit}_clock_offset_s", 0.0)) if unit else 0.0,
+                           other_newest=max(other) if other else None, note=self._jumped_note(t0))
 
     def _jumped_note(self, t: float) -> str:
         """Decision B141: for a refused sample at ``t`` s inside a gap the tracker accepted (a forward jump of its
@@ -1336,8 +1457,10 @@ class Tracker(FixInput):
         if n and not (np.isfinite(t).all() and np.isfinite(v).all()):
             raise DataError(f"{name}: pushed samples contain NaN/inf; clean the stream before tracking")
         if (i := first_out_of_order(t)) is not None:
+            dup = ("; that sample repeats the one before it, a duplicate: Tracker(drop_duplicate_timestamps=True) "
+                   "drops such samples (decision E225)" if t[i] == t[i - 1] else "")
             raise DataError(f"{name}: pushed timestamps are not increasing (at {t[i]:.3f} s after {t[i - 1]:.3f} s); "
-                            "push samples in time order")
+                            f"push samples in time order{dup}")
         return t, v
 
     def _feed_foot(self) -> None:
@@ -1574,8 +1697,9 @@ class Tracker(FixInput):
                    "flush() at the end of the stream" if force else f"up to max_wait_s = {self._wait_s:g} s")
             self._warn(f"{', '.join(held)}: no samples since {last:.2f} s; the step ending at {t1:.2f} s and those "
                        f"after it are measured with their last values held ({why}): heading and "
-                       "classes that read them are unreliable - reconnect the sensor and start a new Tracker, or track "
-                       "without it (units=('foot',) for the waist; decision E31)")
+                       "classes that read them are unreliable; when its samples return the same Tracker goes on (a "
+                       "pod that reconnected with its clock restarted: rebase_clock, decision E227), a sensor that is "
+                       "gone: track without it (units=('foot',) for the waist; decision E31)")
 
     def _held_limit(self, name: str) -> float:
         """Decision E39: how long (s) a stream may have sent nothing before the end of a step before its last value
@@ -1619,12 +1743,13 @@ class Tracker(FixInput):
         if not self._unseen and self._latest - min([r.last for r in self._buf.values()]) <= self.max_lag_s:
             return  # the common case
         required = self.required
-        paused: list[str] = []
+        paused: dict[str, float] = {}
         for n, t, grace in self._stopped(self._latest, self._first_t, self._last_times(), self._batch):
             if n in required and t is not None and self._pausable(n):  # decision E115
-                paused.append(n)
+                paused[n] = t  # its newest input time (a stream still probed for its rate is not buffered yet)
                 continue
-            msg = stopped_message(n, t, self._first_t, self._latest, self.max_lag_s, grace, n in required)
+            msg = stopped_message(n, t, self._first_t, self._latest, self.max_lag_s, grace, n in required,
+                                  cause=self._clocks_note(n, t))  # decision E223: two clocks, not a stopped sensor
             if n in required:
                 raise DataError(msg)
             self.inputs.ignore(n, "it stopped")
@@ -1632,8 +1757,8 @@ class Tracker(FixInput):
             self.warnings.append(msg)
             log.warning("bundle %s: %s", self.bundle.path, msg)
             self._without(n)
-        if paused:
-            self._pause(paused, min(self._buf[n].last for n in paused if n in self._buf))
+        if paused:  # decision E223's session: the earliest newest input time, not only the buffered streams'
+            self._pause(list(paused), min(paused.values()))
 
     def _last_times(self, pushed: dict[str, float] | None = None) -> dict[str, float | None]:
         """Each buffered or not yet seen required stream's newest input time (s; None: never pushed), with the
@@ -1687,7 +1812,8 @@ class Tracker(FixInput):
                     batch[n] = adv
         for n, t, grace in self._stopped(latest, first_t, last, batch):
             if n in self.required and not (t is not None and self._pausable(n)):  # decision E115: paused after it
-                raise DataError(stopped_message(n, t, first_t, latest, self.max_lag_s, grace, True))
+                raise DataError(stopped_message(n, t, first_t, latest, self.max_lag_s, grace, True,
+                                                cause=self._clocks_note(n, t)))  # decision E223
 
     def _without(self, name: str) -> None:
         """Decision B121: an optional stream that stopped: each task's model re-chosen as for a stream without it
@@ -1981,6 +2107,15 @@ class Tracker(FixInput):
         """One warning line: kept in ``warnings`` and logged."""
         self.warnings.append(msg)
         log.warning("bundle %s: %s", self.bundle.path, msg)
+
+    def _warn_every(self, kind: str, msg: str) -> None:
+        """Decision E224: a line that can repeat while its cause lasts, written at most once per
+        :data:`~pdrlearn.runtime.links.REPEAT_WARN_S` of stream time; every one counted in ``warning_counts``."""
+        if self._repeats is None:  # a bare Tracker.__new__: every line
+            self._repeats = RepeatedLines()
+        line = self._repeats.line(kind, msg, self._latest)
+        if line is not None:
+            self._warn(line)
 
     def _resolve_calibration(self) -> None:
         """The distance gain and stride sd that apply at the pushed foot accelerometer's rate (median

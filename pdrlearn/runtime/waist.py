@@ -20,7 +20,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from pdrlearn.errors import DataError
-from pdrlearn.kernels.order import first_out_of_order
+from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.textfile import read_text
 
@@ -243,7 +243,7 @@ class WaistStream(FixInput):
             raise DataError(f"{self._name}.push: NaN or inf in the pushed samples; drop those samples")
         keep = np.ones(t.size, dtype=bool)
         if self._drop_dups:  # decision E203: a phone's repeated sample, dropped (the first kept)
-            keep = t != np.concatenate([[self._last_t], t[:-1]])
+            keep = ~repeated(t, [self._last_t])  # the kernel the foot Tracker shares (E225)
         self._check_order(t[keep], np.flatnonzero(keep))  # E203: named by their index in the pushed arrays
         if not keep.all():
             t, acc, gyr = t[keep], acc[keep], gyr[keep]
@@ -280,8 +280,7 @@ class WaistStream(FixInput):
         """Decision E203: ``n`` dropped repeated samples counted; the first drop of a run adds one warning line (called
         only for a push every check accepted: a refused push changes nothing, B119)."""
         if not self.n_dropped_duplicates:
-            msg = (f"{self._name}.push: dropping samples whose timestamp repeats the one before (the first is kept; "
-                   "drop_duplicate_timestamps=True, decision E203); the count is n_dropped_duplicates")
+            msg = repeats_dropped_line(f"{self._name}.push", "n_dropped_duplicates")
             self.warnings.append(msg)
             log.warning("live waist tracker: %s", msg)
         self.n_dropped_duplicates += n

@@ -249,7 +249,10 @@ def get_pipeline(name: str) -> Pipeline:
       ``waist_bias`` (decision W126: remove the waist gyroscope bias read at rest when W105 fires; on by default, W423),
       ``compass_fallback`` (decision L226: with heading ``"fused"``, follow the waist gyroscope turned to the compass
       by one constant offset when L182's compass check warns; on by default, L227), ``fallback_drift`` (decision L266:
-      that offset drifts linearly in time, the waist gyroscope's rate bias; on by default, L265).
+      that offset drifts linearly in time, the waist gyroscope's rate bias; on by default, L265), ``first_walk``
+      (decisions E215, E222: with ``streaming``, a foot-headed heading turned once by the first walk's direction at
+      its end; off by default), ``transfers`` (decisions W418, W439: offline, time the chair transfers and TUG from
+      the waist unit; on by default, the distance calibration turns it off).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``

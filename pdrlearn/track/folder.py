@@ -14,11 +14,12 @@ from pathlib import Path
 from pdrlearn.table_csv import write_table_csv
 
 
-def write_track(result, session, out, force: bool = False) -> Path:
+def write_track(result, session, out, force: bool = False, *, plot: bool = True) -> Path:
     """Write ``result`` (a track of ``session``) to the folder ``out`` as ``pdrlearn track SESSION --out OUT`` does
-    with its defaults: trajectory.csv, steps.csv, bouts.csv (default bout rule), turns.csv, path.png,
-    summary.json (with the time accounting and steadiness flags, L275, L415), track.gpx / track.geojson with a
-    start, and run.json (``command`` "write_track", the session's folder and its files' SHA-256, cwd and argv).
+    with its defaults: trajectory.csv, steps.csv, bouts.csv (default bout rule), turns.csv, path.png (none with
+    ``plot=False``, as ``--no-plot``: decision L533), summary.json (with the time accounting and steadiness flags,
+    L275, L415), track.gpx / track.geojson with a start, and run.json (``command`` "write_track", the session's
+    folder and its files' SHA-256, cwd and argv).
     All files or none (:func:`pdrlearn.atomic.atomic_directory`); an existing track folder is replaced only with
     ``force`` and anything else in ``out`` is refused (one :class:`~pdrlearn.errors.DataError` line, as ``track``).
     ``result`` is not changed. Returns ``out``."""
@@ -47,7 +48,7 @@ def write_track(result, session, out, force: bool = False) -> Path:
     summary.update(time_accounting(result, session, tracked_unit(pipeline)))  # decision L275
     summary = machine_summary(summary, [], session.where)  # decisions E154, E155
     tracked = {"session": session, "result": result, "summary": summary, "pipeline": pipeline,
-               "aided": "aid" in result.info, "dpi": None, "bouts": bouts}
+               "aided": "aid" in result.info, "dpi": None, "plot": plot, "bouts": bouts}
     with atomic_directory(out) as tmp:
         write_folder(tmp, tracked)
         write_run_json(tmp, run_record(
@@ -142,19 +143,21 @@ def clinical_tables(result, bouts) -> dict:
 
 def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
     """Write :func:`track_session`'s track into the existing folder ``dest`` (the caller's temporary folder):
-    ``trajectory.csv``, ``steps.csv``, ``bouts.csv`` (decision L124), ``path.png`` (``aided.png`` with fixes) and
-    ``summary.json``; return the summary and whether the track was aided."""
+    ``trajectory.csv``, ``steps.csv``, ``bouts.csv`` (decision L124), ``path.png`` (``aided.png`` with fixes; neither
+    when ``tracked["plot"]`` is false, decision L533) and ``summary.json``; return the summary and whether the track
+    was aided."""
     from pdrlearn.track.plots import plot_paths
 
     session, result, summary, pipeline, aided, dpi = (tracked[k] for k in ("session", "result", "summary",
                                                                               "pipeline", "aided", "dpi"))
+    plot = tracked.get("plot", True)  # decision L533: --no-plot draws no figure; nothing else changes
     traj = result.trajectory.copy()
     for c in ("lat", "lon"):
         if c not in traj:
             traj[c] = float("nan")
     if "pos_sigma_m" in traj:  # decision L128: appended after the columns trajectory.csv always had
         traj = traj[[c for c in traj.columns if c != "pos_sigma_m"] + ["pos_sigma_m"]]
-    if aided:
+    if aided and plot:
         from pdrlearn.aid import plot_aided
 
         plot_aided(result, dest / "aided.png", truth=session.trajectory,
@@ -167,8 +170,9 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
     for name, table in event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start"),
                                      tracked.get("laps"), tracked.get("splits")).items():
         write_table_csv(table, dest / name)
-    plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
-               session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
+    if plot:
+        plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
+                   session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     from pdrlearn.track.geoexport import write_geo_files
 

@@ -1007,7 +1007,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
                  drop_neighbour: bool | None = None, ignore_force: bool = False,
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
-                 fallback_drift: bool | None = None,
+                 fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
                  **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -1064,6 +1064,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     drop_neighbour : streaming: a stride across dropped foot samples over 0.25 s takes the length and height change
         of the clean stride before it (decision L167, an option; E101: None = ``kernels.gaps.DROP_NEIGHBOUR``, False);
         offline such strides take their neighbours' height change (L160) and True is refused
+    first_walk : streaming: a foot-headed track's heading is turned once, at the end of its first walk, by that walk's
+        direction (L494's reference made causal; decision E215, not adopted as the default; E222: this keyword, as
+        the runtime ``Tracker``'s); offline L494 references the first walk always and True is refused
+    transfers : offline two-unit session: time the chair transfers and TUG from the waist unit (W418); False skips
+        that inner waist work for callers that read no TUG (the distance calibration; decision W439)
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
         ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
         3 % default. False: neither
@@ -1140,6 +1145,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         raise DataError("plasys drop_neighbour=True is the streamed strides' option (decision L167); offline, strides "
                         "across dropped samples take their neighbours' height change (L160): add streaming=True or "
                         "drop drop_neighbour")
+    if first_walk and not streaming:  # decision E222
+        raise DataError("plasys first_walk=True is the streamed track's option (decision E215); offline, a foot-only "
+                        "heading's 0 is the first walk's direction already (L494): add streaming=True or drop "
+                        "first_walk")
     if streaming:
         if ignore_force:  # decision L366: the streamed kernel's contacts read the force (E50); offline only
             raise DataError("plasys ignore_force=True (--ignore-force) is offline only: the streamed strides take "
@@ -1154,6 +1163,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
                               warn_out_of_domain=warn_out_of_domain, contacts=contacts,
                               drop_neighbour=drop_neighbour,  # decision E101
+                              first_walk=first_walk,  # decision E222
                               **({} if waist_bridge is None else {"waist_bridge": bool(waist_bridge)}),
                               **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}),
                               **({} if waist_gap_yaw is None else {"waist_gap_yaw": bool(waist_gap_yaw)}))
@@ -1607,7 +1617,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
-    add_trunk_transfers(res, session)  # decision W418: the chair transfers and TUG from the waist unit (API and CLI)
+    if transfers:  # decision W439: callers that read no TUG (the distance calibration) skip the inner waist work
+        add_trunk_transfers(res, session)  # decision W418: chair transfers and TUG from the waist unit (API, CLI)
     return res
 
 
@@ -1738,7 +1749,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     waist_gap_yaw: bool = True, waist_bridge: bool = True, rules: str | None = None,
                     min_confidence: float | None = None,
                     warn_out_of_domain: float | None = None, contacts: bool = False,
-                    drop_neighbour: bool | None = None) -> TrackResult:
+                    drop_neighbour: bool | None = None, first_walk: bool = False) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -1765,6 +1776,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     after it); False: 0 (L90). ``drop_neighbour=True`` (decision L167, an option, as the runtime ``Tracker``'s;
     E101: a keyword, None: ``kernels.gaps.DROP_NEIGHBOUR``, False): a stride across dropped foot samples over 0.25 s
     (under 1 s) takes the length (scaled by the durations) and height change of the clean stride before it.
+    ``first_walk=True`` (decisions E215, E222, an option, as the runtime ``Tracker``'s): a foot-headed track's
+    heading is turned once, at the end of its first walk, by that walk's direction.
     """
     start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
     initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
@@ -1970,12 +1983,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                               raw_disp[:, 2], dz)
         warnings += [msg] if msg else []
     head = initial_heading + np.cumsum(dyaw) + place  # decision L34: the direction each stride is placed along
-    first_walk = FirstWalk(initial_heading)  # decision E215: L494's first-walk direction, said once (the runtime's
-    for i in np.flatnonzero(~(in_gap | posture)):  # call; the heading turned by it only as an opt-in, else by 0.0)
-        ref = first_walk.stride(bool(foot_headed[i]), float(head[i]), float(np.hypot(disp[i, 0], disp[i, 1])))
+    walk_ref = FirstWalk(initial_heading, enabled=first_walk)  # decision E215: L494's first-walk direction, said once
+    for i in np.flatnonzero(~(in_gap | posture)):  # (the runtime's call; the heading turned by it only with
+        # first_walk=True, decision E222, else by 0.0)
+        ref = walk_ref.stride(bool(foot_headed[i]), float(head[i]), float(np.hypot(disp[i, 0], disp[i, 1])))
         if ref is not None:
             head[i:] -= ref
-            line = first_walk.line(float(strides[i, 1]))
+            line = walk_ref.line(float(strides[i, 1]))
             warnings += [line] if line else []
     xyz = np.zeros((len(table) + 1, 3))
     for i in range(len(table)):  # the runtime's own position update, stride by stride
@@ -2023,7 +2037,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "terrain_dz_check": terrain_check, "altitude_check": altitude_check,  # decisions C28, L69
             # decision E215: D25 guards a compass, which this never reads (W415's "not_judged" key, dict as offline)
             "compass_mount": {"fallback": False, "not_judged": STREAMED_COMPASS_MOUNT},
-            "first_walk_deg": None if first_walk.angle is None else float(np.degrees(first_walk.angle)),  # E215
+            "first_walk_deg": None if walk_ref.angle is None else float(np.degrees(walk_ref.angle)),  # E215
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)

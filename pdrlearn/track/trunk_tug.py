@@ -2,9 +2,10 @@
 docs/decisions/waist.md).
 
 A PLASYS track follows the foot, which does not see the trunk; W418 runs the waist-pendulum pipeline on the session's
-lower-back unit alone (what ``track --units waist`` runs) and keeps its transfers, walking contacts and yaw-rate
-turns in the foot track's ``info`` (``transfers``, ``trunk_contacts``, ``trunk_yaw_turns``). W419: the TUG's chair
-transfers and seat-to-seat rules then read the waist, its turns and step count the foot.
+lower-back unit alone (what ``track --units waist`` runs; W428: only as far as these need) and keeps its transfers,
+walking contacts and yaw-rate turns in the foot track's ``info`` (``transfers``, ``trunk_contacts``,
+``trunk_yaw_turns``). W419: the TUG's chair transfers and seat-to-seat rules then read the waist, its turns and step
+count the foot.
 """
 
 from __future__ import annotations
@@ -22,16 +23,18 @@ FOOT, WAIST = "foot", "waist"
 def add_trunk_transfers(result, session) -> None:
     """Decision W418: put the lower-back unit's chair transfers (W182), walking contacts and yaw-rate turns into a
     foot track ``result``'s ``info`` (``transfers``, ``trunk_contacts``, ``trunk_yaw_turns``), read by a
-    waist-pendulum track of ``session``'s waist unit alone; nothing when the session has no lower-back unit. A
+    waist-pendulum track of ``session``'s waist unit alone (W428: :func:`~pdrlearn.track.waist.trunk_events`, that
+    track's code stopped once these are known); nothing when the session has no lower-back unit. A
     waist unit that cannot be tracked leaves ``info["trunk_note"]`` (one line naming the command) instead."""
-    from pdrlearn.track.base import get_pipeline
     from pdrlearn.track.units import keep_units
+    from pdrlearn.track.waist import trunk_events
 
     if not session.has("wAccelerometer", "wGyroscope") or result.info.get("transfers") is not None:
         return
     try:
         with isolated_warnings():  # the inner track's warnings are not the output's (W418; per thread, E179)
-            waist = get_pipeline("waist-pendulum")(keep_units(session, ("waist",)))
+            # W428: only what the TUG reads of the waist-pendulum track (its own code stopped after the contacts)
+            waist = trunk_events(keep_units(session, ("waist",)))
     except DataError as exc:
         result.info["trunk_note"] = (f"no chair transfers from the lower-back unit ({exc}); a TUG needs them: "
                                      f"pdrlearn track {session.where} --units waist (W418)")

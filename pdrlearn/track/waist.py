@@ -725,6 +725,27 @@ def resolve_options(p: WaistParams, given: dict) -> dict:
     return o
 
 
+def _postures_transfers(imu: WaistIMU, steps: pd.DataFrame, transfers: pd.DataFrame, upright_source: str,
+                        fixed_up, o: dict, warnings: list[str]) -> tuple[list, pd.DataFrame | None]:
+    """The posture runs and the final chair transfers of a lower-back track (``track_waist``'s and, decision W428,
+    :func:`trunk_events`'): ``transfers`` (W182's rows) with W245's lying transfers, W277's empty answer without an
+    upright, W278's flags (their line appended to ``warnings``)."""
+    # decisions W222, W245: the posture runs (from the chair transfers) and the lying transfers added to them
+    postures, transfers = postures_and_transfers(imu, steps, transfers, fixed_up)
+    if upright_source == "none":  # decision W277: no upright, no transfer and no posture to judge: left empty
+        return [], None
+    # decision W278: rows that cannot be taken as read (not alternating, walking on both sides) flagged, one line
+    # decision W311: W278's walking test reads the contacts after the offline sit veto even when the track
+    # applied none (realtime): a rise's own false contacts are no walking on both sides
+    transfers = flag_transfers(transfers, steps if bool(o["sit_veto"]) else transfer_veto(
+        steps, imu, **sit_veto_keywords(OPTION_DEFAULTS["sit_veto"]),
+        **({} if fixed_up is None else {"upright": fixed_up})))
+    line = flag_message(transfers)
+    if line:
+        warnings.append(line)
+    return postures, transfers
+
+
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool | None = None,
                 heading: str | None = None, refine_ic: bool | None = None, initial_heading: float | None = None,
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
@@ -918,15 +939,6 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
     and else :data:`OPTION_DEFAULTS`.
     """
-    if pipeline not in ("waist-pll", "waist-pendulum"):
-        raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
-    p, warnings = resolve_params(session, params)
-    spec = length_model if length_model is not None else ("pendulum" if pipeline == "waist-pendulum" else
-                                                          "frequency")
-    model = get_step_length(spec)  # E84
-    if not model.uses_leg_length:  # e.g. the frequency model (waist-pll's) has no leg length (W62)
-        warnings = [w for w in warnings if not w.startswith(NO_SENSOR_HEIGHT)]
-    det = None if detector is None else waist_detector(detector, realtime)  # E85
     given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
@@ -953,10 +965,27 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "pll_slow_cadence_check": None,  # W313: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean,
              "turn_bridge": turn_bridge}
+    return _track_waist(session, pipeline, params, start, given, detector, length_model)
+
+
+def _track_waist(session: Session, pipeline: str, params, start, given: dict, detector, length_model, *,
+                 trunk_only: bool = False) -> TrackResult:
+    """:func:`track_waist`'s body, its keyword options in ``given`` (each None: PARAMS.json's, else the default).
+    ``trunk_only`` (decision W428, :func:`trunk_events`): stop after the contacts' vetoes and the gap cut, with the
+    chair transfers, the contacts and the yaw-rate turns only."""
+    if pipeline not in ("waist-pll", "waist-pendulum"):
+        raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
+    p, warnings = resolve_params(session, params)
+    spec = length_model if length_model is not None else ("pendulum" if pipeline == "waist-pendulum" else
+                                                          "frequency")
+    model = get_step_length(spec)  # E84
+    if not model.uses_leg_length:  # e.g. the frequency model (waist-pll's) has no leg length (W62)
+        warnings = [w for w in warnings if not w.startswith(NO_SENSOR_HEIGHT)]
+    det = None if detector is None else waist_detector(detector, given["realtime"])  # E85
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
-    if realtime and not causal_veto and sit_veto is None and (p.options or {}).get("sit_veto") is None:
+    if realtime and not causal_veto and given["sit_veto"] is None and (p.options or {}).get("sit_veto") is None:
         o["sit_veto"] = REALTIME_SIT_VETO  # W185: the whole-recording veto is the offline default only
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
@@ -1074,6 +1103,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
+    if trunk_only:  # decision W428: what W418's TUG reads; the rest of the track (lengths, headings, altitude) is not
+        transfers = _postures_transfers(imu, steps, transfers, upright_source, fixed_up, o, warnings)[1]
+        return TrackResult(steps=steps[["start_s", "end_s", "event_s"]].copy(), trajectory=pd.DataFrame(),
+                           info={"transfers": None if transfers is None else transfers.to_dict("records"),
+                                 "yaw_turns": yaw_turns(imu, p.gyro_bias_rps)})  # decision L210, as below
     # W338: phone only (W336 reads a foot unit); W339: measured, not kept by default (an opt-in PARAMS.json option)
     if o["rhythm_warning"] and not with_left_out_units(session).placement_streams("foot"):
         warnings.extend(arrhythmic_message(steps, a, b, r)
@@ -1197,19 +1231,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         warnings.append(calibration)
     n = len(steps)
     length_model = model.name
-    # decisions W222, W245: the posture runs (from the chair transfers) and the lying transfers added to them
-    postures, transfers = postures_and_transfers(imu, steps, transfers, fixed_up)
-    if upright_source == "none":  # decision W277: no upright, no transfer and no posture to judge: left empty
-        postures, transfers = [], None
-    else:  # decision W278: rows that cannot be taken as read (not alternating, walking on both sides) flagged, one line
-        # decision W311: W278's walking test reads the contacts after the offline sit veto even when the track
-        # applied none (realtime): a rise's own false contacts are no walking on both sides
-        transfers = flag_transfers(transfers, steps if bool(o["sit_veto"]) else transfer_veto(
-            steps, imu, **sit_veto_keywords(OPTION_DEFAULTS["sit_veto"]),
-            **({} if fixed_up is None else {"upright": fixed_up})))
-        line = flag_message(transfers)
-        if line:
-            warnings.append(line)
+    postures, transfers = _postures_transfers(imu, steps, transfers, upright_source, fixed_up, o, warnings)
     steps = _with_still_before(steps, imu, still_mask())  # decision L372: the pauses' still time
     info = {
         "pipeline": pipeline,
@@ -1527,6 +1549,18 @@ def _no_walking(session: Session, pipeline: str, p: WaistParams, o: dict, warnin
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(acc.t[0]))
+
+
+def trunk_events(session: Session) -> TrackResult:
+    """Decision W428: what W418's two-unit TUG reads of ``session``'s lower-back unit, as the default offline
+    waist-pendulum track (``get_pipeline("waist-pendulum")(session)``, its defaults and PARAMS.json-free options)
+    reads it: ``info["transfers"]`` (W182 / W245 / W278's rows, None without an upright: W277), ``info["yaw_turns"]``
+    (L210) and ``steps``' ``start_s``, ``end_s``, ``event_s`` (the contacts after every veto and B11's gap cut).
+    The same :func:`track_waist` code stopped there: no step length, heading, altitude, ride or plausibility check
+    is computed, no trajectory is made, and the track's own warning lines are not logged (W418 keeps none of the inner
+    track's)."""
+    return _track_waist(session, "waist-pendulum", None, None, dict.fromkeys(OPTION_DEFAULTS), None, None,
+                        trunk_only=True)
 
 
 def _check_waist_keywords(pipeline: str, opts: dict) -> None:

@@ -1,0 +1,140 @@
+"""What a live Bluetooth link does to a two-unit Tracker's timestamps (session 40, trial T4 findings 1-3).
+
+Two pods that count from power-on start seconds apart (decision E223: named, not blamed on a stopped sensor); a
+waist stream that pauses and resumes on every packet repeats E115's lines (E224: counted, a line at most every
+:data:`REPEAT_WARN_S` of stream time); a packet sent twice, a late one and a pod whose clock restarted at a reconnect
+are refused with what they most likely are (E225, E227). Plain Python and numpy: the lean runtime's import set.
+"""
+
+from __future__ import annotations
+
+import math
+
+from pdrlearn.errors import ClockWentBack, DataError
+
+#: decision E224 (ours, not from a document): a repeated E115 pause / resume line is written at most once per this many
+#: seconds of stream time (5 min: an hour's waist pausing on every packet writes about 24 lines, not 20 000); every
+#: occurrence is counted in ``Tracker.warning_counts``
+REPEAT_WARN_S = 300.0
+
+UNITS = {"f": "foot", "w": "waist"}
+
+
+def unit_of(name: str) -> str | None:
+    """The body unit of a sensor stream (``fAccelerometer`` -> ``"foot"``), None for another name."""
+    return UNITS.get(str(name)[:1])
+
+
+def _per_unit(pushed: dict) -> dict[str, tuple[float, float]]:
+    """unit -> (first, last) time (s) over the streams of ``pushed`` (sensor -> (first, last))."""
+    out: dict[str, tuple[float, float]] = {}
+    for name, (a, b) in pushed.items():
+        u = unit_of(name)
+        if u is not None:
+            a0, b0 = out.get(u, (math.inf, -math.inf))
+            out[u] = (min(a0, a), max(b0, b))
+    return out
+
+
+class StartClocks:
+    """Decision E223: whether the two units' clocks disagree by more than ``max_lag_s`` from the start.
+
+    At the first push that holds a sample of both units, the gap between the new unit's first sample and the other
+    unit's newest (``contact``, s, waist minus foot) is how far apart the clocks read at the same wall time, whatever
+    the order the pods connected in (a unit switched on later on the same clock starts beside the other's newest: no
+    gap). The offset named is the difference of the units' first samples (pods connected together: exact). The times
+    are those of every push that passed E29's checks, refused by the lag check or not (a unit whose pushes are all
+    refused still shows its clock; a diagnostic, no tracking state); nothing more is noted once both units are seen."""
+
+    __slots__ = ("first", "newest", "contact", "max_lag_s")
+
+    def __init__(self, max_lag_s: float):
+        self.max_lag_s = float(max_lag_s)
+        self.first: dict[str, float] = {}
+        self.newest: dict[str, float] = {}
+        self.contact: float | None = None
+
+    def seen(self, pushed: dict) -> None:
+        """Note a push's times (sensor -> (first, last) s, on the tracker's clock) until both units are seen."""
+        if self.contact is not None:
+            return
+        per = _per_unit(pushed)
+        if "foot" in per and "waist" in per and not self.newest:  # both in one push
+            self.contact = per["waist"][0] - per["foot"][0]
+        elif "waist" in per and "foot" in self.newest and "waist" not in self.newest:  # the waist joins the foot
+            self.contact = per["waist"][0] - self.newest["foot"]
+        elif "foot" in per and "waist" in self.newest and "foot" not in self.newest:  # the foot joins the waist
+            self.contact = self.newest["waist"] - per["foot"][0]
+        for u, (a, b) in per.items():
+            self.first[u] = min(self.first.get(u, math.inf), a)
+            self.newest[u] = max(self.newest.get(u, -math.inf), b)
+
+    def note(self, name: str, given_s: float, taken: bool = True) -> str:
+        """The clause naming the start-up offset when the lagging stream ``name`` is of the unit whose clock reads
+        behind, or was never taken (``taken`` False) though its unit's pushes came (refused), else ''. ``given_s``:
+        the tracker's ``waist_clock_offset_s`` (the samples are already moved by it)."""
+        first, contact = self.first, self.contact
+        if contact is None or abs(contact) <= self.max_lag_s:
+            return ""
+        w = first["waist"] - first["foot"]  # the waist clock ahead of the foot's by w (s)
+        behind = "waist" if contact < 0 else "foot"
+        if (taken and unit_of(name) != behind) or (w < 0) != (contact < 0):
+            return ""
+        return (f"the waist clock is about {abs(w):.1f} s {'ahead of' if w > 0 else 'behind'} the foot's (the units' "
+                f"first samples at {first['foot']:.2f} s (foot) and {first['waist']:.2f} s (waist): two clocks, not a "
+                f"stopped sensor): pass Tracker(..., waist_clock_offset_s={given_s + w:.2f}) (t_waist = t_foot + "
+                "offset) or stamp both units on one clock set at connection (decision E223)")
+
+
+class RepeatedLines:
+    """Decision E224: a kind of warning line that can repeat for as long as its cause lasts (E115's pause and resume
+    on every packet) is written at most once per :data:`REPEAT_WARN_S` of stream time, with the count since the last
+    line; ``counts`` (kind -> occurrences) counts every one."""
+
+    __slots__ = ("counts", "_said")
+
+    def __init__(self):
+        self.counts: dict[str, int] = {}
+        self._said: dict[str, tuple[float, int]] = {}  # kind -> (stream time of its last line, count then)
+
+    def line(self, kind: str, msg: str, t: float) -> str | None:
+        """``msg`` (with the occurrences not written since the last) when due at stream time ``t``, else None."""
+        n = self.counts[kind] = self.counts.get(kind, 0) + 1
+        last = self._said.get(kind)
+        if last is not None and t - last[0] < REPEAT_WARN_S:
+            return None
+        self._said[kind] = (t, n)
+        if last is None:
+            return msg
+        return (f"{msg} [{n - last[1] - 1} more such lines since {last[0]:.2f} s not written: at most one per "
+                f"{REPEAT_WARN_S:g} s of stream time; warning_counts[{kind!r}] = {n} (decision E224)]")
+
+
+def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s: float, offset_s: float,
+                other_newest: float | None, note: str = "") -> DataError:
+    """The refusal of a push whose first ``name`` sample (``t0`` s, the tracker's clock) is not after the stream's
+    newest (``last``): a duplicate of a sample taken (decision E225), a clock that went back by more than
+    ``max_lag_s`` (E227: :class:`ClockWentBack`, with the offset that puts it beside the other unit's newest,
+    ``other_newest``; ``offset_s`` the unit's offset now), or a late sample; ``note``: B141's jumped-clock note."""
+    head = f"{name}: pushed timestamps are not increasing (at {t0:.3f} s after {last:.3f} s)"
+    if duplicate:
+        return DataError(f"{head}: that sample duplicates one already taken, a packet sent again? "
+                         "Tracker(drop_duplicate_timestamps=True) drops such samples, counted in dropped_duplicates "
+                         f"(decision E225); the push is refused and the tracker unchanged{note}")
+    unit = unit_of(name)
+    if last - t0 > max_lag_s and unit is not None and not note:  # B141's accepted jump: its own note, not E227
+        beside = other_newest is not None and other_newest > last
+        off = offset_s + t0 - (other_newest if beside else last) - 1e-3  # the sample just after the tracker's newest
+        where = ("beside the other unit's newest" if beside else
+                 f"just after its last sample (less the seconds it was gone: {off:.2f} - gone)")
+        return ClockWentBack(
+            f"{head}: the {unit} clock went back {last - t0:.2f} s, a pod that reconnected with its clock restarted? "
+            f"The push is refused and the tracker unchanged; tracker.rebase_clock({unit!r}, {off:.2f}) puts its new "
+            f"samples {where} and the same Tracker goes on (ClockWentBack.offset_s; decision E227)", unit,
+            off if beside else None)
+    return DataError(f"{head}; a packet that arrived late? a sample older than the stream's newest is refused (the "
+                     "push is refused and the tracker unchanged): push each unit's samples in the order it sent them"
+                     f"{note}")
+
+
+__all__ = ["REPEAT_WARN_S", "RepeatedLines", "StartClocks", "order_error", "unit_of"]
