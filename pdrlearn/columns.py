@@ -1065,6 +1065,9 @@ GAIT_PAIRS: tuple[Column, ...] = (
     ("visit", _ID, "text", "as gait_steps.csv (C109)"),
     ("n_bouts", "count", "integer", "the pair's walking bouts: its rows of gait_bouts.csv"),
     ("n_steps", "count", "integer", "the pair's steps of both feet: its rows of gait_steps.csv"),
+    ("clock_right_minus_left_s", "s", "number", "the right session's absolute start minus the left's when both "
+                                                "were imported from absolute timestamps and aligned on them (L537, "
+                                                "gait_summary.json clock_alignment); empty: paired on their t = 0"),
     ("warnings", _ID, "text", "the pair's warning lines as gait_summary.json's warnings (each foot's track lines "
                               "prefixed `left foot:` / `right foot:`, L461), ` | `-joined; empty when none"),
 )
@@ -1108,6 +1111,10 @@ GAIT_STEPS: tuple[Column, ...] = (
                                     "(accel-force), imu (the accelerometer detector) or force+imu (a stitched track, "
                                     "L405); both feet imu when only one had force sensors or with --ignore-force; "
                                     "also gait_summary.json's contact_source {left, right}"),
+    ("kind", _ID, "text", "level, stairs_up, stairs_down, turn or start_stop: the kind of the two strides into "
+                          "start_s and ic_s (a stair stride, |dz| >= 0.10 m, over a turn of 15 deg or more over a "
+                          "bout's first or last contact; L538); the walk's headline is its level steps' "
+                          "(gait_summary.json walk headline_steps), each kind's in by_kind"),
 )
 #: ``pdrlearn gait``'s gait_cycles.csv (decisions L262, L287): one row per gait cycle of either foot
 GAIT_CYCLES: tuple[Column, ...] = (
@@ -1123,6 +1130,7 @@ GAIT_CYCLES: tuple[Column, ...] = (
     ("double_support_pct", "%", "number", "both double-support periods of the cycle, % of it (L262; reads low from "
                                           "foot units, L285); empty when the events are out of order"),
     ("single_support_pct", "%", "number", "the other foot's swing, % of the cycle (L262)"),
+    ("kind", _ID, "text", "as gait_steps.csv's kind, of the cycle's two contacts after start_s (L538)"),
 )
 #: ``pdrlearn gait``'s gait_bouts.csv (decisions L259-L262, L284, L287): one row per walking bout of the pair; the same
 #: keys are gait_summary.json's ``walk``
@@ -1155,6 +1163,17 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("n_support_cycles", "count", "integer", "cycles with a double support"),
     ("double_support_pct", "%", "number", "mean double support, % of the gait cycle (L262; reads low, L285)"),
     *_pair("single_support_pct", "%", "single support (the other foot's swing), % of the gait cycle (L262)"),
+    ("distance_m", "m", "number", "the mean of the two feet's summed stride lengths, every step of the bout (L539)"),
+    ("walking_time_s", "s", "number", "the mean of the two feet's summed stride times, rest to rest (L539)"),
+    ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s (L539)"),
+    ("cadence_spm", "steps/min", "number", "60 x the bout's steps (both feet) / their summed step times (L539)"),
+    ("headline_steps", _ID, "text", "gait_summary.json walk only: level (the measures above the pace are of the "
+                                    "walk's level straight steps, gait_steps.csv kind level; under 10 a side: "
+                                    "their indices withheld, L461) or all (no level straight step on a side); a "
+                                    "bout's measures take the walk's choice (L538)"),
+    ("n_steps_all_left", "count", "integer", "gait_summary.json walk only: every step landing on the left foot, "
+                                             "of any kind (L538)"),
+    ("n_steps_all_right", "count", "integer", "gait_summary.json walk only: the same on the right foot (L538)"),
 )
 
 
@@ -1557,9 +1576,10 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
                      "held-out user; written only when the folds held out whole users.",
          "gait_steps.csv": "`pdrlearn gait LEFT RIGHT --out DIR` (decisions L259-L263, L283-L287): the two feet's "
                            "contacts merged on their shared clock; gait_summary.json's `walk` has gait_bouts.csv's "
-                           "keys for the whole walk, its `warnings` the B245 / L284 / L285 lines. `pdrlearn "
-                           "gait-all ROOT --out DIR` (C110) stacks every visit folder's pair, each row led by "
-                           "`path`."}
+                           "keys for the whole walk (its level straight steps', L538), `by_kind` the same keys "
+                           "for each step kind, `clock_alignment` how the two feet were put on one clock (L537), "
+                           "its `warnings` the B245 / L284 / L285 lines. `pdrlearn gait-all ROOT --out DIR` (C110) "
+                           "stacks every visit folder's pair, each row led by `path`."}
 
 
 def expanded(table: str) -> dict[str, Column]:

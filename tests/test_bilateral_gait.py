@@ -35,14 +35,16 @@ def test_hand_made_walk_step_times_asymmetry_and_support():
     right = _foot(0.7 + np.arange(5) * 1.2, length=1.1)
     r = bilateral_gait(left, right)
     w = r["walk"]
-    assert w["n_steps_left"] == 4 and w["n_steps_right"] == 5
+    assert w["n_steps_all_left"] == 4 and w["n_steps_all_right"] == 5  # L538: every step; the headline's level ones
+    assert w["n_steps_left"] == 4 and w["n_steps_right"] == 3  # leave out the walk's first and last (start_stop)
     assert w["step_time_s_left"] == pytest.approx(0.5) and w["step_time_s_right"] == pytest.approx(0.7)
     assert w["step_time_s_si_pct"] == pytest.approx(100 * 0.2 / 0.6)
     assert w["step_time_s_ratio"] == pytest.approx(0.5 / 0.7)
     assert w["stride_length_m_si_pct"] == pytest.approx(100 * 0.2 / 1.2)
     assert w["double_support_pct"] == pytest.approx(25.0)
     assert w["single_support_pct_left"] == pytest.approx(37.5) and w["single_support_pct_right"] == pytest.approx(37.5)
-    assert w["n_support_cycles"] == 8 and r["toe_off"] and "L73" in r["reason"]
+    # L538: 8 cycles; the right one ending on the walk's last contact (start_stop) is not in the headline
+    assert len(r["cycles"]) == 8 and w["n_support_cycles"] == 7 and r["toe_off"] and "L73" in r["reason"]
     assert len(r["bouts"]) == 1 and r["bouts"][0]["step_time_s_si_pct"] == pytest.approx(w["step_time_s_si_pct"])
 
 
@@ -52,7 +54,7 @@ def test_a_missed_stride_makes_no_step_and_no_cycle():
     left = _foot(np.arange(5) * 1.2)
     right = _foot(np.delete(0.7 + np.arange(5) * 1.2, 2))
     r = bilateral_gait(left, right)
-    assert r["walk"]["n_steps_left"] == 3 and r["walk"]["n_steps_right"] == 4
+    assert r["walk"]["n_steps_all_left"] == 3 and r["walk"]["n_steps_all_right"] == 4  # L538: every step
     assert r["walk"]["step_time_s_left"] == pytest.approx(0.5)
     cyc = r["cycles"]
     assert not ((cyc["side"] == "left") & np.isclose(cyc["start_s"], 2.4)).any()
@@ -125,7 +127,9 @@ def test_cli_on_the_gaitmap_pair(tmp_path, capsys):
     """The real level walk: both feet tracked with --toe-off; the mocap events give the reference line."""
     rc, out = _cli(["gait", str(LEFT), str(RIGHT), "--out", str(tmp_path / "g")], capsys)
     assert rc == 0, out.err
-    assert "steps left/right 32/31" in out.out and "reference (the sessions' labelled contacts):" in out.out
+    # decision L538: the headline is the level straight steps' (the 4 x 10 m walk's turns and starts left out)
+    assert "steps left/right 24/24 (level straight steps, of 32/31" in out.out
+    assert "reference (the sessions' labelled contacts):" in out.out
     assert "double support" in out.out and "L262" in out.out
     summary = json.loads((tmp_path / "g" / "gait_summary.json").read_text())
     # no false warning; L311's line says why it has no step length (a return walk: no anchor)

@@ -120,7 +120,8 @@ def test_gait_withholds_symmetry_indices_under_ten_steps_a_side_l461(short_visit
                              "length_m": 1.2, "gap_s": 0.0, "unit": "foot"})
 
     short = bilateral_gait(foot(np.arange(6) * 1.2), foot(0.7 + np.arange(6) * 1.2))["walk"]
-    assert "5 steps on the left side, 10 needed" in withhold_indices(short)
+    # decision L538: the headline's steps are the level ones, the walk's first (start_stop) step left out
+    assert "4 steps on the right side, 10 needed" in withhold_indices(short)
     assert short["n_steps_left"] == 5 and short["step_time_s_si_pct"] is None and short["step_time_s_ratio"] is None
     long = bilateral_gait(foot(np.arange(13) * 1.2), foot(0.7 + np.arange(13) * 1.2))["walk"]
     assert withhold_indices(long) is None and long["step_time_s_si_pct"] == pytest.approx(100 * 0.2 / 0.6)

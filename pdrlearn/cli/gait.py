@@ -23,7 +23,7 @@ def _fmt(v, spec: str) -> str:
 def gait_lines(summary: dict) -> list[str]:
     """The printed lines of one :func:`pdrlearn.track.bilateral.bilateral_gait` measures dict (``walk``)."""
     w = summary
-    lines = [f"steps left/right {w['n_steps_left']}/{w['n_steps_right']}: step time "
+    lines = [f"steps left/right {w['n_steps_left']}/{w['n_steps_right']}{_basis(w)}: step time "
              f"{_fmt(w['step_time_s_left'], '.3f')} / {_fmt(w['step_time_s_right'], '.3f')} s, symmetry index "
              f"{_fmt(w['step_time_s_si_pct'], '.1f')} %, ratio L/R {_fmt(w['step_time_s_ratio'], '.3f')}",
              f"stride length left/right {_fmt(w['stride_length_m_left'], '.3f')} / "
@@ -34,8 +34,9 @@ def gait_lines(summary: dict) -> list[str]:
         lines.append(f"step length left/right {_fmt(w['step_length_m_left'], '.3f')} / "
                      f"{_fmt(w['step_length_m_right'], '.3f')} m, symmetry index "
                      f"{_fmt(w['step_length_m_si_pct'], '.1f')} %, ratio L/R {_fmt(w['step_length_m_ratio'], '.3f')} "
-                     f"({w['n_step_lengths']} straight steps; the closing step took out a "
-                     f"{_fmt(scale, '+.2f')} % relative scale of the two tracks, L310)")
+                     + (f"({w['n_step_lengths']} straight steps; the closing step took out a "
+                        f"{_fmt(scale, '+.2f')} % relative scale of the two tracks, L310)" if scale is not None else
+                        f"({w['n_step_lengths']} steps; the labels' own step lengths, ics.csv, L540)"))
     if w.get("swing_time_s_left") is not None or w.get("swing_time_s_right") is not None:  # decision L284
         swing = (f"swing time left/right {_fmt(w['swing_time_s_left'], '.3f')} / "
                  f"{_fmt(w['swing_time_s_right'], '.3f')} s, symmetry index {_fmt(w['swing_time_s_si_pct'], '.1f')} %")
@@ -54,13 +55,51 @@ def gait_lines(summary: dict) -> list[str]:
         lines.append(f"double support {w['double_support_pct']:.1f} % of the gait cycle, single support left/right "
                      f"{_fmt(w['single_support_pct_left'], '.1f')} / {_fmt(w['single_support_pct_right'], '.1f')} % "
                      f"({w['n_support_cycles']} cycles)")
+    if w.get("cadence_spm") is not None:  # decision L539
+        lines.append(pace_line(w))
+    return lines
+
+
+def _basis(w: dict) -> str:
+    """Decision L538: what the headline's steps are, after the counts."""
+    if w.get("headline_steps") == "level":
+        return (f" (level straight steps, of {w['n_steps_all_left']}/{w['n_steps_all_right']}: no stairs, turns, "
+                "starts or stops; L538)")
+    if w.get("headline_steps") == "all":
+        return " (all steps: no level straight step on a side; L538)"
+    return ""
+
+
+def pace_line(w: dict) -> str:
+    """Decision L539: the walk's (a bout's, a kind's) gait speed, cadence and distance line."""
+    return (f"gait speed {_fmt(w.get('gait_speed_mps'), '.2f')} m/s, cadence {_fmt(w['cadence_spm'], '.1f')} "
+            f"steps/min, distance {_fmt(w.get('distance_m'), '.2f')} m in {_fmt(w.get('walking_time_s'), '.1f')} s "
+            "(all steps; the two feet's strides averaged, L539)")
+
+
+#: decision L538: the printed name of each step kind's row
+KIND_NAMES = {"level": "level", "stairs_up": "stairs up", "stairs_down": "stairs down", "turn": "turn",
+              "start_stop": "start / stop"}
+
+
+def kind_lines(by_kind: dict) -> list[str]:
+    """Decision L538: one line per step kind (gait_summary.json ``by_kind``): steps, step time and its symmetry
+    index, stance time and stride length left / right."""
+    lines = []
+    for kind, w in by_kind.items():
+        lines.append(f"{KIND_NAMES.get(kind, kind)}: steps {w['n_steps_left']}/{w['n_steps_right']}, step time "
+                     f"{_fmt(w['step_time_s_left'], '.3f')} / {_fmt(w['step_time_s_right'], '.3f')} s (SI "
+                     f"{_fmt(w['step_time_s_si_pct'], '.1f')} %), stance {_fmt(w['stance_time_s_left'], '.3f')} / "
+                     f"{_fmt(w['stance_time_s_right'], '.3f')} s, stride length "
+                     f"{_fmt(w['stride_length_m_left'], '.3f')} / {_fmt(w['stride_length_m_right'], '.3f')} m")
     return lines
 
 
 def _summary_json(res: dict) -> dict:
-    out = {k: res[k] for k in ("walk", "bouts", "toe_off", "reason", "warnings", "sessions", "contact_source")}
+    out = {k: res[k] for k in ("walk", "bouts", "by_kind", "toe_off", "reason", "warnings", "sessions",
+                               "contact_source", "clock_alignment")}
     ref = res.get("reference")
-    out["reference"] = None if ref is None else {k: ref[k] for k in ("walk", "bouts", "toe_off", "reason")}
+    out["reference"] = None if ref is None else {k: ref[k] for k in ("walk", "bouts", "by_kind", "toe_off", "reason")}
     return out
 
 
@@ -85,8 +124,13 @@ def register(app: typer.Typer) -> None:
         decision L310), step-time / step-length / stride-time / stride-length asymmetry (symmetry index and L/R ratio),
         double and single support (% of the gait cycle, from the toe-off of track --toe-off), per walk and per
         walking bout. Each folder is tracked offline with --toe-off; with labelled IC / TC events in both folders
-        (gaitmap's mocap) the same measures of the labels are given as the reference. The two recordings must share
-        one clock (t = 0 at the same instant, as gaitmap's left / right folders): pdrlearn does not align them; it
+        (gaitmap's mocap) the same measures of the labels are given as the reference (with ics.csv's step lengths,
+        L540). The headline measures are the level straight steps' (no stairs, turns, starts or stops; all steps
+        with none on a side), with a row per kind of step and gait_steps.csv / gait_cycles.csv's kind
+        (L538), and the walk's gait speed, cadence and distance (L539). The two recordings must share one clock:
+        two sessions imported from absolute (epoch or date-time) timestamps are aligned on their meta.json
+        imported.time.origin_s (the later one moved by the difference, one line, gait_summary.json's
+        clock_alignment; L537); any other pair must share t = 0 (as gaitmap's left / right folders). gait
         refuses contacts that do not overlap in time (decision L260) and two sessions whose meta.json names different
         activities, and warns when under 80 % of the merged contacts alternate feet (decision B245). Two sessions
         whose meta.json clock_id differ are refused (decision L283); a step-time asymmetry that the swing times do not
@@ -136,8 +180,17 @@ def register(app: typer.Typer) -> None:
         s = res["sessions"]
         typer.echo(f"{s['left']['session']} + {s['right']['session']}: {s['left']['n_strides']} left and "
                    f"{s['right']['n_strides']} right strides tracked, {len(res['bouts'])} walking bout(s)")
+        from pdrlearn.track.bilateral import alignment_line
+
+        aligned = alignment_line(res["clock_alignment"])  # decision L537
+        if aligned is not None:
+            typer.echo(aligned)
         for line in gait_lines(res["walk"]):
             typer.echo(line)
+        if len(res["by_kind"]) > 1:  # decision L538: a walk of one kind has its rows in the headline
+            typer.echo("by kind of step (L538):")
+            for line in kind_lines(res["by_kind"]):
+                typer.echo("  " + line)
         if res["reason"]:
             typer.echo(res["reason"])
         ref = res.get("reference")
@@ -145,6 +198,9 @@ def register(app: typer.Typer) -> None:
             typer.echo("reference (the sessions' labelled contacts):")
             for line in gait_lines(ref["walk"]):
                 typer.echo("  " + line)
+            if len(ref["by_kind"]) > 1:  # decision L538
+                for line in kind_lines(ref["by_kind"]):
+                    typer.echo("    " + line)
             if ref["reason"]:
                 typer.echo("  " + ref["reason"])
         if out is not None:

@@ -39,7 +39,9 @@ def _pair_job(args: dict) -> dict:
             attach_to_error(exc, warnings=list(warned))
             raise
     value = {"row": {"path": args["path"], "status": "ok", "reason": None, **res["ids"], "n_bouts": len(res["bouts"]),
-                     "n_steps": len(res["steps"]), "warnings": " | ".join(res["warnings"])},  # decision L461
+                     "n_steps": len(res["steps"]),
+                     "clock_right_minus_left_s": res["clock_alignment"]["right_minus_left_s"],  # decision L537
+                     "warnings": " | ".join(res["warnings"])},  # decision L461
              "tables": {name: table_text(got[name]) for name in GAIT_TABLE_FILES},
              "warnings": list(dict.fromkeys(warned))}
     return write_record(Path(args["record"]), args["key"], args["input_sha256"], value)

@@ -36,6 +36,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
 from pdrlearn.track.clinical import CV_MIN_STRIDES, bout_rows, symmetry_index_pct
 from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
@@ -44,7 +45,7 @@ from pdrlearn.track.foot_heights import height_warning
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
 #: rest position after the stride, its own track's frame) and ``dir_rad`` (the stride's direction) need a tracked
 #: table's ``heading_rad`` (decision L310), else NaN
-EVENT_COLUMNS = ("ic_s", "tc_s", "length_m", "x_m", "y_m", "dir_rad")
+EVENT_COLUMNS = ("ic_s", "tc_s", "length_m", "x_m", "y_m", "dir_rad", "terrain", "turn_deg", "stride_s")
 #: decision L260: a foot's ``meta.json`` key naming which foot the unit is on (gaitmap's ``foot``, the simulator's
 #: ``instrumented_foot``)
 FOOT_META_KEYS = ("foot", "instrumented_foot")
@@ -100,10 +101,41 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
     length = st["length_m"].to_numpy(float) if "length_m" in st else np.full(len(st), np.nan)
     if "impossible" in st:
         length = np.where(flag_values(st["impossible"]), np.nan, length)
+    terrain, turn = stride_terrain(steps)[ok], stride_turn_deg(steps)[ok]  # decision L538
+    span = (st["end_s"].to_numpy(float) - st["start_s"].to_numpy(float) if {"start_s", "end_s"} <= set(st)
+            else np.full(len(st), np.nan))  # decision L539: the stride's rest-to-rest time
     out = pd.DataFrame({"ic_s": st[ic_col].to_numpy(float),
                         "tc_s": st["tc_s"].to_numpy(float) if "tc_s" in st else np.full(len(st), np.nan),
-                        "length_m": length, "x_m": x, "y_m": y, "dir_rad": d})
+                        "length_m": length, "x_m": x, "y_m": y, "dir_rad": d, "terrain": terrain,
+                        "turn_deg": turn, "stride_s": span})
     return out.sort_values("ic_s", kind="stable").reset_index(drop=True)
+
+
+def stride_terrain(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L538: each row's terrain, ``"up"`` / ``"down"`` / ``"flat"``: a tracked table's L179 stair rule
+    (:func:`pdrlearn.track.gait.stair_rows`, |``dz_m``| >= 0.10 m, a ramp climb's rows left out) by the sign of
+    ``dz_m``; a label table's own ``terrain`` (the simulator's and gaitmap's flat / up / down); ``"flat"`` for a table
+    with neither (its steps are taken as level)."""
+    n = len(steps)
+    if "dz_m" in steps:
+        from pdrlearn.track.gait import stair_rows
+
+        dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)
+        return np.where(stair_rows(steps), np.where(dz > 0, "up", "down"), "flat").astype(object)
+    if "terrain" in steps:
+        t = steps["terrain"].astype(str).str.strip().str.lower().to_numpy()
+        return np.where(np.isin(t, ("up", "down")), t, "flat").astype(object)
+    return np.full(n, "flat", dtype=object)
+
+
+def stride_turn_deg(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L538: each row's turn (deg, absolute): a tracked table's ``turn_angle_rad`` (L66), a label table's
+    ``heading_change_deg``; 0 without either."""
+    if "turn_angle_rad" in steps:
+        return np.degrees(np.abs(pd.to_numeric(steps["turn_angle_rad"], errors="coerce").to_numpy(float)))
+    if "heading_change_deg" in steps:
+        return np.abs(pd.to_numeric(steps["heading_change_deg"], errors="coerce").to_numpy(float))
+    return np.zeros(len(steps))
 
 
 #: decision L310: a step whose two strides (the landing foot's into its contact, the other foot's into the contact
@@ -248,18 +280,68 @@ def merged_contacts(left: pd.DataFrame, right: pd.DataFrame) -> pd.DataFrame:
     return both.assign(bout=bout, partial=partial)
 
 
+#: decision L538: the kinds of a step (gait_steps.csv ``kind``) and of a gait cycle (gait_cycles.csv ``kind``): on
+#: level ground and straight; on a stair going up or down (the stride's L179 rule, |dz| >= 0.10 m); in a turn (the
+#: stride turns L79's 15 deg or more); a walking bout's first or last step (L317's half strides: gait initiation and
+#: the closing step). The walk's headline measures are its level steps' (:func:`headline_masks`)
+STEP_KINDS = ("level", "stairs_up", "stairs_down", "turn", "start_stop")
+#: decision L538: which kind a step (or cycle) takes when its two contacts' strides differ: the lower rank; on a tie
+#: the landing contact's
+_KIND_RANK = {"stairs_up": 0, "stairs_down": 0, "turn": 1, "start_stop": 2, "level": 3}
+
+
+def contact_kinds(both: pd.DataFrame) -> np.ndarray:
+    """Decision L538: each merged contact's kind (:data:`STEP_KINDS`) from the stride into it: ``stairs_up`` /
+    ``stairs_down`` by its ``terrain``, else ``turn`` when it turns at least L79's ``STRAIGHT_MAX_RAD`` (a missing
+    turn is straight, as L79's), else ``start_stop`` for a bout's first or last contact (``partial``, L317) or a
+    closing step inside a bout (a level stride under L310's :data:`CLOSING_STRIDE_SHARE` of the foot's median level
+    stride: the feet brought side by side, e.g. before a stair), else ``level``."""
+    kind = np.full(len(both), "level", dtype=object)
+    if "partial" in both:
+        kind[both["partial"].to_numpy(bool)] = "start_stop"
+    if "length_m" in both:  # L310's closing-step rule on the foot's own strides, inside a bout
+        length, side = np.abs(both["length_m"].to_numpy(float)), both["side"].to_numpy()
+        plain = kind == "level"
+        if "terrain" in both:
+            plain &= both["terrain"].to_numpy() == "flat"
+        for s in SIDES:
+            own = plain & (side == s) & np.isfinite(length)
+            if own.sum() >= 3:
+                kind[own & (length < CLOSING_STRIDE_SHARE * np.median(length[own]))] = "start_stop"
+    if "turn_deg" in both:
+        turn = np.nan_to_num(both["turn_deg"].to_numpy(float), nan=0.0)
+        kind[turn >= math.degrees(STRAIGHT_MAX_RAD)] = "turn"  # decision L79's straight stride
+    if "terrain" in both:
+        terrain = both["terrain"].to_numpy()
+        kind[terrain == "up"] = "stairs_up"
+        kind[terrain == "down"] = "stairs_down"
+    return kind
+
+
+def joined_kind(landing: np.ndarray, other: np.ndarray) -> np.ndarray:
+    """Decision L538: the kind of a step or cycle from its landing contact's and its other contact's kinds
+    (:data:`_KIND_RANK`: a stair over a turn over a start / stop over level; on a tie the landing contact's)."""
+    if not len(landing):
+        return np.asarray(landing, dtype=object)
+    rank = np.vectorize(_KIND_RANK.__getitem__, otypes=[int])
+    return np.where(rank(landing) <= rank(other), landing, other).astype(object)
+
+
 def step_table(both: pd.DataFrame) -> pd.DataFrame:
     """Decision L259: one row per step of :func:`merged_contacts` - ``side`` (the foot it lands on), ``bout``,
     ``start_s`` (the other foot's IC), ``ic_s``, ``step_time_s``, (decision L284) ``swing_time_s``: the landing
     foot's toe-off before this IC (its row's ``tc_s``) to the IC, one unit's clock, so no clock offset moves it (NaN
-    without that toe-off), and (decision L310) ``step_length_m`` (:func:`step_lengths`)."""
+    without that toe-off), (decision L310) ``step_length_m`` (:func:`step_lengths`) and (decision L538) ``kind``
+    (:func:`joined_kind` of the two contacts)."""
     t, side, bout = both["ic_s"].to_numpy(float), both["side"].to_numpy(), both["bout"].to_numpy(int)
     tc = both["tc_s"].to_numpy(float)
     k = np.flatnonzero((side[1:] != side[:-1]) & (bout[1:] == bout[:-1])) + 1
     swing = np.where(tc[k] < t[k], t[k] - tc[k], np.nan)  # L284: one unit's toe-off to its IC (any clock offset)
     length = step_lengths(both, k) if "x_m" in both else np.full(len(k), np.nan)  # decision L310
+    kinds = contact_kinds(both)  # decision L538
     return pd.DataFrame({"side": side[k], "bout": bout[k], "start_s": t[k - 1], "ic_s": t[k],
-                         "step_time_s": t[k] - t[k - 1], "swing_time_s": swing, "step_length_m": length})
+                         "step_time_s": t[k] - t[k - 1], "swing_time_s": swing, "step_length_m": length,
+                         "kind": joined_kind(kinds[k], kinds[k - 1])})
 
 
 def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
@@ -267,8 +349,10 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
     IC of the other foot between them - a stride either track or label table lacks makes no cycle): ``side``,
     ``bout``, ``start_s``, ``end_s``, ``stride_time_s``, ``stance_time_s`` (decision L327: the foot's IC to its
     toe-off inside the cycle, NaN without one), ``double_support_pct`` and ``single_support_pct`` (module
-    docstring; NaN where a toe-off is missing or the events are out of order)."""
+    docstring; NaN where a toe-off is missing or the events are out of order) and (decision L538) ``kind``
+    (:func:`joined_kind` of the foot's next contact and the other foot's contact inside the cycle)."""
     rows = []
+    kinds = contact_kinds(both)  # decision L538
     t, tc, side, bout = (both["ic_s"].to_numpy(float), both["tc_s"].to_numpy(float), both["side"].to_numpy(),
                          both["bout"].to_numpy(int))
     for s in SIDES:
@@ -284,9 +368,10 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
             if ic_f < tc_o < ic_o < tc_f < ic_next:  # Perry & Burnfield 2010: the cycle's event order
                 ds = 100.0 * ((tc_o - ic_f) + (tc_f - ic_o)) / T
                 ss = 100.0 * (ic_o - tc_o) / T
-            rows.append((s, int(bout[a]), t[a], t[b], T, stance, ds, ss))
+            kind = joined_kind(kinds[[b]], kinds[[a + 1]])[0]  # decision L538
+            rows.append((s, int(bout[a]), t[a], t[b], T, stance, ds, ss, kind))
     cols = ["side", "bout", "start_s", "end_s", "stride_time_s", "stance_time_s", "double_support_pct",
-            "single_support_pct"]
+            "single_support_pct", "kind"]
     return pd.DataFrame(rows, columns=cols).sort_values("start_s", kind="stable").reset_index(drop=True)
 
 
@@ -372,12 +457,15 @@ def clock_offset_warning(walk: dict) -> str | None:
         return None
     si, swing_si, off = walk["step_time_s_si_pct"], walk["swing_time_s_si_pct"], walk["clock_offset_s"]
     late, early = ("left", "right") if off > 0 else ("right", "left")
+    stride = _mean([v for v in (walk.get("stride_time_s_left"), walk.get("stride_time_s_right")) if v is not None])
+    period = ("" if stride is None else f" (an offset is only known modulo the stride time, {stride:.3f} s: the "
+              "clocks may differ by this plus or minus whole strides; decision L537)")
     return (f"bilateral gait: step-time symmetry index {si:.1f} % but swing-time {swing_si:.1f} % (single support "
             f"{_fmt_pct(walk.get('single_support_pct_left'))} / {_fmt_pct(walk.get('single_support_pct_right'))} "
             f"%): a walker's step-time asymmetry comes with swing asymmetry, a clock offset does not (decision "
-            f"L284). The {late} unit's times look ~{abs(off) * 1000:.0f} ms late against the {early} one's: are the "
-            f"two clocks synchronised, or do the {late} foot's contacts read late (a soft impact, decision L318)? The "
-            "step times, their asymmetry and the double support are not trustworthy if either")
+            f"L284). The {late} unit's times look ~{abs(off) * 1000:.0f} ms late against the {early} one's{period}: "
+            f"are the two clocks synchronised, or do the {late} foot's contacts read late (a soft impact, decision "
+            "L318)? The step times, their asymmetry and the double support are not trustworthy if either")
 
 
 def stance_warning(walk: dict) -> str | None:
@@ -416,15 +504,109 @@ def _fmt_pct(v) -> str:
     return "-" if v is None else f"{v:.1f}"
 
 
-def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
+#: decision L538: ``walk["headline_steps"]``: the walk's measures are of its level straight steps (``"level"``; with
+#: fewer than L461's :data:`SI_MIN_STEPS` of them on a side their indices are withheld, never taken from the other
+#: kinds), or, with no level straight step on a side, of all its steps (``"all"``, as before session 40)
+HEADLINE_BASES = ("level", "all")
+
+
+def headline_masks(both: pd.DataFrame, steps: pd.DataFrame,
+                   cycles: pd.DataFrame) -> tuple[str, np.ndarray, np.ndarray, np.ndarray]:
+    """Decision L538: which rows of the merged contacts, the step table and the cycle table the walk's headline
+    measures take: the ``level`` kind's (:data:`STEP_KINDS`: no stair, turn, gait initiation or closing step) when
+    each side has a level step, else every row (a walk of stairs or turns only); ``(basis, contacts, steps,
+    cycles)``, basis in :data:`HEADLINE_BASES`."""
+    level = steps["kind"].to_numpy() == "level"
+    n = [int((level & (steps["side"].to_numpy() == s)).sum()) for s in SIDES]
+    if min(n) < 1:
+        return "all", np.ones(len(both), bool), np.ones(len(steps), bool), np.ones(len(cycles), bool)
+    return ("level", contact_kinds(both) == "level", level,
+            cycles["kind"].to_numpy() == "level" if len(cycles) else np.zeros(0, bool))
+
+
+def walk_pace(both: pd.DataFrame, steps: pd.DataFrame) -> dict:
+    """Decision L539: the walk's (or one bout's, one kind's) ``distance_m`` - the mean of the two feet's summed
+    stride lengths (``length_m``; an ``impossible`` stride counts 0 m) -, ``walking_time_s`` - the mean of the two
+    feet's summed stride times rest to rest (``end_s - start_s``, so a pause between strides is not walking) -,
+    ``gait_speed_mps`` = distance / time (track's rest-to-rest definition, L250) and ``cadence_spm`` = 60 x steps /
+    their summed step times (both feet's steps: :func:`step_table`); None where the tables cannot give them (a
+    table without stride lengths or rest times)."""
+    dist, time = [], []
+    for s in SIDES:
+        own = both[both["side"] == s]
+        length = own["length_m"].to_numpy(float) if "length_m" in own else np.zeros(0)
+        span = own["stride_s"].to_numpy(float) if "stride_s" in own else np.zeros(0)
+        dist.append(float(np.nansum(np.abs(length))) if np.isfinite(length).any() else None)
+        time.append(float(np.nansum(span)) if np.isfinite(span).any() else None)
+    d = None if None in dist else 0.5 * (dist[0] + dist[1])
+    t = None if None in time else 0.5 * (time[0] + time[1])
+    st = steps["step_time_s"].to_numpy(float) if len(steps) else np.zeros(0)
+    st = st[np.isfinite(st)]
+    return {"distance_m": d, "walking_time_s": t,
+            "gait_speed_mps": d / t if d is not None and t else None,
+            "cadence_spm": 60.0 * len(st) / float(st.sum()) if len(st) and st.sum() > 0 else None}
+
+
+def known_step_lengths(steps: pd.DataFrame, ics: pd.DataFrame | None, *, tol_s: float = 0.01) -> pd.DataFrame:
+    """Decision L540: ``steps`` with ``step_length_m`` taken from a label table of both feet's contacts that gives
+    each step's length (the simulator's ics.csv ``ic_s``, ``foot``, ``step_length_m``, S42), matched on the landing
+    foot and its contact within ``tol_s``; ``steps`` unchanged without such a table."""
+    if ics is None or not {"ic_s", "foot", "step_length_m"} <= set(ics) or not len(steps):
+        return steps
+    out = steps.copy()
+    length = np.full(len(out), np.nan)
+    for s in SIDES:
+        own = ics[ics["foot"].astype(str).str.lower() == s]
+        t, v = own["ic_s"].to_numpy(float), pd.to_numeric(own["step_length_m"], errors="coerce").to_numpy(float)
+        rows = np.flatnonzero(out["side"].to_numpy() == s)
+        if not len(t) or not len(rows):
+            continue
+        near = np.abs(out["ic_s"].to_numpy(float)[rows][:, None] - t[None, :])
+        j = near.argmin(axis=1)
+        ok = near[np.arange(len(rows)), j] <= tol_s
+        length[rows[ok]] = v[j[ok]]
+    out["step_length_m"] = length
+    return out
+
+
+def measures_of(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame, masks=None) -> dict:
+    """:func:`gait_measures` of the rows ``masks`` (contacts, steps, cycles; default all) plus :func:`walk_pace` of
+    every row (decision L539: the pace is the whole walk's, never the headline's subset)."""
+    if masks is None:
+        m = gait_measures(both, steps, cycles)
+    else:
+        m = gait_measures(both[masks[0]], steps[masks[1]], cycles[masks[2]])
+    return {**m, **walk_pace(both, steps)}
+
+
+def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame) -> dict:
+    """Decision L538: ``{kind: measures}`` (:func:`measures_of`) of each :data:`STEP_KINDS` kind the walk has a step
+    of: its steps, its cycles and the contacts of its kind."""
+    ck = contact_kinds(both)
+    out = {}
+    for kind in STEP_KINDS:
+        if not (steps["kind"] == kind).any():
+            continue
+        c = both[ck == kind]
+        s = steps[steps["kind"] == kind]
+        y = cycles[cycles["kind"] == kind] if len(cycles) else cycles
+        out[kind] = {**gait_measures(c, s, y), **walk_pace(c, s)}
+    return out
+
+
+def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
+                   step_lengths: pd.DataFrame | None = None) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
-    Returns ``{"walk": measures, "bouts": [measures + bout, start_s, end_s], "steps": step table, "cycles":
-    cycle table, "toe_off": bool, "reason": str | None, "warnings": [lines]}``; measures are :func:`gait_measures`'
-    (None where the tables cannot give them); ``warnings`` holds B245's, L284's and L285's lines (each logged).
-    Refuses (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on
-    one clock)."""
+    Returns ``{"walk": measures, "bouts": [measures + bout, start_s, end_s], "by_kind": {kind: measures}, "steps":
+    step table, "cycles": cycle table, "toe_off": bool, "reason": str | None, "warnings": [lines]}``; measures are
+    :func:`gait_measures`' (None where the tables cannot give them) of the walk's level straight steps when it has
+    enough (decision L538, :func:`headline_masks`; ``walk["headline_steps"]`` says which) and :func:`walk_pace`'s
+    of all its steps (L539); ``warnings`` holds B245's, L284's and L285's lines (each logged). ``step_lengths``
+    (decision L540): a label table of both feet's contacts with each step's length (ics.csv), whose lengths the steps
+    take (:func:`known_step_lengths`). Refuses (:class:`DataError`, one line) two tables whose contacts do not
+    overlap in time (L260: not one walk on one clock)."""
     left, right = foot_events(left_steps), foot_events(right_steps)
     for s, ev in zip(SIDES, (left, right), strict=True):
         if len(ev) < 2:
@@ -446,18 +628,23 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
         steps["step_length_m"] = np.nan
     else:  # decision L310: the closing step brought the feet side by side: the anchor, no step length
         steps.loc[steps.index[-1], "step_length_m"] = np.nan
+    steps = known_step_lengths(steps, step_lengths)  # decision L540: the labels' own step lengths
     toe_off = bool(np.isfinite(both["tc_s"]).any())
+    basis, *masks = headline_masks(both, steps, cycles)  # decision L538
     bouts = []
     for k in sorted(set(both["bout"])):
-        b = both[both["bout"] == k]
-        m = gait_measures(b, steps[steps["bout"] == k], cycles[cycles["bout"] == k])
+        inb = [both["bout"].to_numpy() == k, steps["bout"].to_numpy() == k, cycles["bout"].to_numpy() == k]
+        b = both[inb[0]]
+        m = measures_of(b, steps[inb[1]], cycles[inb[2]], [mk[ib] for mk, ib in zip(masks, inb, strict=True)])
         bouts.append({"bout": int(k), "start_s": float(b["ic_s"].iloc[0]), "end_s": float(b["ic_s"].iloc[-1]), **m})
     if not toe_off:
         reason = ("no toe-off in the foot tables: double and single support need each foot's terminal contact "
                   "(pdrlearn track --toe-off, decision L73); the step times are given")
     else:  # decision L262: a foot track's (event_s) support times carry L73's biases; a label table's do not
         reason = SUPPORT_NOTE if "event_s" in left_steps else None
-    walk = gait_measures(both, steps, cycles)
+    walk = measures_of(both, steps, cycles, masks)
+    walk["headline_steps"] = basis  # decision L538
+    walk.update({f"n_steps_all_{s}": int((steps["side"] == s).sum()) for s in SIDES})
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
     log = logging.getLogger(__name__)
     for line in (clock_offset_warning(walk), stance_warning(walk) if "event_s" in left_steps else None,
@@ -465,8 +652,8 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame) -> dict:
         if line is not None:  # L285 judges a track's toe-off, not a label table's
             log.warning(line)
             warnings.append(line)
-    return {"walk": walk, "bouts": bouts, "steps": steps, "cycles": cycles, "toe_off": toe_off, "reason": reason,
-            "warnings": [w for w in warnings if w is not None]}
+    return {"walk": walk, "bouts": bouts, "by_kind": kind_measures(both, steps, cycles), "steps": steps,
+            "cycles": cycles, "toe_off": toe_off, "reason": reason, "warnings": [w for w in warnings if w is not None]}
 
 
 def alternating_share(both: pd.DataFrame) -> tuple[int, int]:
@@ -539,6 +726,50 @@ def sim_walk(meta: dict) -> str | None:
                                               sort_keys=True, default=str)
 
 
+def _wall_origin(meta: dict) -> float | None:
+    """Decision L537: a session's 0 s on an absolute clock (s since the epoch): ``pdrlearn import``'s
+    ``imported.time.origin_s`` (:func:`pdrlearn.track.clock.export_origin_s`) when it is in B39's epoch range (an
+    epoch-seconds or epoch-ms column, a date-time text with a date); None otherwise (a device's own counter, a time
+    of day without a date, a session not imported - the simulator's, gaitmap's)."""
+    from pdrlearn.io.validate import EPOCH_END, EPOCH_START
+    from pdrlearn.track.clock import export_origin_s
+
+    o = export_origin_s(meta)
+    return o if o is not None and EPOCH_START <= o < EPOCH_END else None
+
+
+def clock_alignment(left_dir: Path, right_dir: Path, left_meta: dict, right_meta: dict) -> dict:
+    """Decision L537: how the two sessions' times are put on one clock. When both were imported from an absolute
+    clock (:func:`_wall_origin`), the later one's times are moved by the difference of the two origins, so both are
+    on the earlier unit's clock (``basis`` ``"absolute clock"``, ``right_minus_left_s`` = right origin - left
+    origin, ``shift_left_s`` / ``shift_right_s`` the s added to each side's times); otherwise both keep their own
+    t = 0 (``basis`` ``"shared t = 0"``, as before session 40), with ``note`` saying why when only one side has an
+    absolute start."""
+    o = _wall_origin(left_meta), _wall_origin(right_meta)
+    if None not in o:
+        d = o[1] - o[0]
+        return {"basis": "absolute clock", "right_minus_left_s": d, "origin_s_left": o[0], "origin_s_right": o[1],
+                "shift_left_s": max(-d, 0.0), "shift_right_s": max(d, 0.0), "note": None}
+    note = None
+    if o != (None, None):
+        has, lacks = (left_dir, right_dir) if o[0] is not None else (right_dir, left_dir)
+        note = (f"gait: {has} was imported from an absolute clock (meta.json imported.time.origin_s) and {lacks} "
+                "was not: the two are paired on their own t = 0 (decision L537), which is one clock only if both "
+                "recordings started together; import both feet from exports of one synchronised clock")
+    return {"basis": "shared t = 0", "right_minus_left_s": None, "origin_s_left": o[0], "origin_s_right": o[1],
+            "shift_left_s": 0.0, "shift_right_s": 0.0, "note": note}
+
+
+def alignment_line(alignment: dict) -> str | None:
+    """Decision L537: the printed line of an absolute-clock alignment (:func:`clock_alignment`); None without one."""
+    if alignment["basis"] != "absolute clock":
+        return None
+    d = alignment["right_minus_left_s"]
+    later, earlier = ("right", "left") if d >= 0 else ("left", "right")
+    return (f"aligned on the units' absolute clock (meta.json imported.time.origin_s): the {later} unit starts "
+            f"{abs(d):.3f} s after the {earlier} one (decision L537)")
+
+
 def check_clock(left_dir: Path, right_dir: Path, left_meta: dict, right_meta: dict) -> None:
     """Decision L283 (B248): refuse (one line) two sessions whose ``meta.json`` both give :data:`CLOCK_META_KEY`
     with different values: their timestamps do not share t = 0, so no step time between them means anything. Two
@@ -576,17 +807,19 @@ PAIR_RATE_TOLERANCE = 0.10
 PAIR_MIN_OVERLAP = 0.5
 
 
-def check_pair_streams(left_dir: Path, right_dir: Path, sessions: list) -> None:
+def check_pair_streams(left_dir: Path, right_dir: Path, sessions: list, shifts: tuple[float, float] = (0.0, 0.0)) \
+        -> None:
     """Decision B322 (session 34, trial T5 finding 2): refuse (one line naming both folders) a pair whose foot
     accelerometers' sample rates differ by more than :data:`PAIR_RATE_TOLERANCE` or whose time spans overlap by less
-    than :data:`PAIR_MIN_OVERLAP` of the shorter one: not the two feet of one walk on one clock."""
+    than :data:`PAIR_MIN_OVERLAP` of the shorter one: not the two feet of one walk on one clock. ``shifts``: each
+    session's times moved onto the pair's clock (decision L537, :func:`clock_alignment`)."""
     acc = [s["fAccelerometer"] for s in sessions]
     rates = [a.rate_hz for a in acc]
     if abs(rates[0] - rates[1]) > PAIR_RATE_TOLERANCE * max(rates):
         raise DataError(f"gait: {left_dir} ({rates[0]:.4g} Hz) and {right_dir} ({rates[1]:.4g} Hz) differ in "
                         f"sample rate by over {100 * PAIR_RATE_TOLERANCE:.0f} % (decision B322): not the two units of "
                         "one walk; give the left and the right foot's sessions of the same walk")
-    spans = [(float(a.t[0]), float(a.t[-1])) for a in acc]
+    spans = [(float(a.t[0]) + sh, float(a.t[-1]) + sh) for a, sh in zip(acc, shifts, strict=True)]  # L537
     overlap = min(spans[0][1], spans[1][1]) - max(spans[0][0], spans[1][0])
     shorter = min(b - a for a, b in spans)
     if shorter > 0 and overlap < PAIR_MIN_OVERLAP * shorter:
@@ -710,7 +943,9 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
         if not s.has("fAccelerometer", "fGyroscope"):
             raise DataError(f"gait: {d} has no foot unit (fAccelerometer.csv, fGyroscope.csv); give a foot session")
     check_one_walk(left_dir, right_dir, sessions[0].meta, sessions[1].meta)
-    check_pair_streams(left_dir, right_dir, sessions)  # decision B322
+    alignment = clock_alignment(left_dir, right_dir, sessions[0].meta, sessions[1].meta)  # decision L537
+    shifts = (alignment["shift_left_s"], alignment["shift_right_s"])
+    check_pair_streams(left_dir, right_dir, sessions, shifts)  # decision B322
     side = side_warning(left_dir, right_dir, [s.meta for s in sessions])
     if side is not None:
         logging.getLogger(__name__).warning(side)
@@ -731,12 +966,21 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
             sources = dict(zip(SIDES, map(contact_source, tracks), strict=True))
     for line in mixed:
         logging.getLogger(__name__).warning(line)
-    out = bilateral_gait(tracks[0].steps, tracks[1].steps)
+    from pdrlearn.track.clock import on_export_clock
+
+    out = bilateral_gait(*(on_export_clock(t.steps, sh) for t, sh in zip(tracks, shifts, strict=True)))  # L537
+    out["clock_alignment"] = alignment
+    if alignment["note"] is not None:
+        logging.getLogger(__name__).warning(alignment["note"])
+        out["warnings"].append(alignment["note"])
     out["contact_source"] = sources  # steps decision 72: gait_summary.json's and gait_steps.csv's detector per foot
     out["steps"]["contact_source"] = out["steps"]["side"].map(sources)
     out["warnings"] += mixed
     labels = [label_steps(s) for s in sessions]
-    out["reference"] = (bilateral_gait(labels[0], labels[1]) if all(x is not None for x in labels) else None)
+    ics = sessions[0].extras.get("ics")  # decision L540: the simulator's both-feet contacts with step lengths
+    ics = None if ics is None else on_export_clock(ics, shifts[0])
+    out["reference"] = (bilateral_gait(*(on_export_clock(x, sh) for x, sh in zip(labels, shifts, strict=True)),
+                                       step_lengths=ics) if all(x is not None for x in labels) else None)
     sharp = [impact_sharpness(s["fAccelerometer"].t, s["fAccelerometer"].values, t.steps["event_s"])
              for s, t in zip(sessions, tracks, strict=True)]  # decision L318
     out["walk"]["impact_sharpness_left"], out["walk"]["impact_sharpness_right"] = sharp
@@ -753,6 +997,8 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
     out["walk"]["si_withheld"] = withhold_indices(out["walk"])  # decision L461
     for bout in out["bouts"]:  # decision L461 (amended): gait-all's only SI table is its bouts'
         bout["si_withheld"] = withhold_indices(bout)
+    for m in out["by_kind"].values():  # decision L538: each kind's indices by L461's rule too
+        m["si_withheld"] = withhold_indices(m)
     if out["walk"]["si_withheld"] is not None:
         logging.getLogger(__name__).warning(out["walk"]["si_withheld"])
         out["warnings"].append(out["walk"]["si_withheld"])

@@ -45,7 +45,8 @@ def gait_tables(res: dict, ids: dict | None = None) -> dict[str, pd.DataFrame]:
 #: decision C110: gait-all's tables of the pairs, gait's three stacked (each led by ``path``)
 GAIT_TABLE_FILES = ("gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
 #: decision C110: gait-all's gait_pairs.csv, one row per visit folder
-PAIR_COLUMNS = ("path", "status", "reason", *GAIT_ID_COLUMNS, "n_bouts", "n_steps", "warnings")  # L461: warnings
+PAIR_COLUMNS = ("path", "status", "reason", *GAIT_ID_COLUMNS, "n_bouts", "n_steps", "clock_right_minus_left_s",
+                "warnings")  # L461: warnings; L537: the absolute-clock alignment
 
 
 def visit_pairs(found, root) -> list[dict]:
