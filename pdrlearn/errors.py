@@ -62,6 +62,12 @@ class ModelError(PdrlearnError):
     """A model directory or bundle is missing, altered or from another schema version."""
 
 
+class ConcurrentUseError(PdrlearnError, RuntimeError):
+    """Decision E231: a live tracker's ``push`` or ``flush`` entered from a second thread while another thread is
+    inside one: a programming error (share one lock around the calls, or feed one thread through a queue), not bad
+    data, so a service that catches :class:`DataError` per push does not swallow it."""
+
+
 class InternalError(PdrlearnError, RuntimeError):
     """A numerical state of pdrlearn itself went wrong (non-finite, or no longer what it must be) on data that
     passed every input check: a bug to report, not bad data (decision E27). One line, as every other error."""

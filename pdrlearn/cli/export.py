@@ -591,7 +591,8 @@ def run(
             # the runtime resamples at these rates and announces it in one line; a stream behind the others
             # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
             # decision L177: run checked the clocks on the recording above (L170), the same numbers: no second line
-            tracker = Tracker(bundle, frames=_frames_of(session, bundle, use), clock_check=False,
+            # decision E230: run said the intervals of dropped samples when it read the session (L77): not again
+            tracker = Tracker(bundle, frames=_frames_of(session, bundle, use), clock_check=False, stream_checks=False,
                               resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                               input_rates_hz=rates, units=use,
                               sensors=[n for n, st in session.streams.items() if len(st)],

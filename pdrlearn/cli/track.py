@@ -174,7 +174,9 @@ def clock_drift_value(clock_drift_ppm: float | None, align_units: bool, command:
 
     if clock_drift_ppm is None:
         return None
-    if not math.isfinite(clock_drift_ppm) or abs(clock_drift_ppm) > 1e5:
+    from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
+
+    if not math.isfinite(clock_drift_ppm) or abs(clock_drift_ppm) > MAX_CLOCK_DRIFT * 1e6:
         raise DataError(f"{command}: --clock-drift-ppm {clock_drift_ppm}: give the waist clock's drift in ppm, a "
                         "finite number within +-100000 (t_waist = t_foot x (1 + PPM/1e6)), e.g. --clock-drift-ppm "
                         "200")

@@ -48,6 +48,7 @@ from pdrlearn.io.validate import (
     time_unit_candidates,
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
+from pdrlearn.kernels.gaps import DROPS_CAUSE, gap_turn, streamed_drops_line  # decision E230: shared with the runtime
 from pdrlearn.textfile import (
     compressed_hint,
     csv_stem,
@@ -663,39 +664,6 @@ BRIDGE_DROPS = False
 #: decision B183: the offline distance lost per fraction of the foot's samples dropped in short intervals (B64's
 #: users 1-3: 1 % -> -1.1..-3.2 %, 3 % -> -4.5..-8.8 %; the BLE trial's 5 % in bursts: -8.5..-12 %)
 DROP_DISTANCE_FACTOR = 2.0
-#: decision B149: where dropped samples come from, for every drop warning: a sensor's radio link, or a phone app
-#: (which logs from a shared, loaded CPU and drops or batches samples: session 22's phone trial, 1 % drops)
-DROPS_CAUSE = "check the Bluetooth link, or a phone app's sampling (its rate setting, the phone's load)"
-#: decision L77: the B64 warning of the streamed paths (``pdrlearn run``, ``track --streaming``), which integrate
-#: each stride on its timestamps (E36) and keep the distance (L78: median |distance error| 0.370 % at 1 %, 0.691 %
-#: at 3 % drops, 0.289 % clean); an interval over 0.25 s still counts as one sample interval there (E36)
-STREAMED_DROPS = ("%s: %s have %s interval(s) of dropped samples of 1 s or less (longest %.3f s): integrated on "
-                  "the timestamps here, so they cost little distance (decisions B64, L78; an interval over 0.25 s "
-                  "counts as one sample interval, E36); if they are many, " + DROPS_CAUSE)
-
-
-#: decision W389: a waist gyroscope interval of dropped samples at least this long (s) gets :data:`GAP_TURN`
-#: (W389's measurement of W34's line: 0.3 s intervals moved no heading, 0.5-0.9 s ones up to 25 deg)
-GAP_TURN_S = 0.4
-#: decision W389: what such an interval costs the waist heading (W34 bridges the gyroscope with a straight line)
-GAP_TURN = ("; the waist gyroscope is a straight line across each one, which makes up or loses part of a turn: "
-            "0.5-0.9 s intervals while walking moved the heading by up to 25 deg on simulated walks (decision "
-            "W389) - check the path's heading after the longest one")
-
-
-def _gap_turn(left: list[tuple[str, int, float]]) -> str:
-    """Decision W389: :data:`GAP_TURN` when the waist gyroscope has an interval of at least :data:`GAP_TURN_S`
-    among ``left`` (name, count, longest), else an empty string."""
-    return GAP_TURN if any(n == "wGyroscope" and m >= GAP_TURN_S for n, _, m in left) else ""
-
-
-def _per_stream(left: list[tuple[str, int, float]]) -> str:
-    """The count of :data:`STREAMED_DROPS`: one number when every stream has as many intervals, else each
-    stream's, in the order named (as the offline warning counts them)."""
-    counts = [k for _, k, _ in left]
-    return str(counts[0]) if len(set(counts)) == 1 else "/".join(map(str, counts)) + " (in that order)"
-
-
 #: intervals longer than this (s) are B11's gaps, warned by the pipelines (``track.gaps``); shorter unbridged ones
 #: are warned here
 _GAP_WARNED_S = 1.0
@@ -729,8 +697,7 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
         log.info("%s: dropped samples bridged by linear interpolation (decision B64): %s", folder,
                  ", ".join(f"{n} {k} interval(s), {m} sample(s)" for n, k, m in done))
     if left and streamed:  # decision L77: the streamed paths integrate on the timestamps (E36, L78)
-        log.warning(STREAMED_DROPS + _gap_turn(left), folder, ", ".join(n for n, _, _ in left), _per_stream(left),
-                    max(m for _, _, m in left))
+        log.warning("%s: %s", folder, streamed_drops_line(left))  # decision E230: shared with the live tracker
         return
     if left:
         what = (f"of {MAX_BRIDGED_S:g}-1 s, not bridged" if bridge
@@ -740,7 +707,7 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
                  else "/".join(str(k) for _, k, _ in left) + " (in that order)")
         if not any(n in SENSORS and SENSORS[n].placement == "foot" for n, _, _ in left):
             # waist streams only: the foot's figure and `--streaming` (a foot option) do not apply
-            log.warning(WAIST_DROPS + _gap_turn(left), folder, ", ".join(n for n, _, _ in left), count,
+            log.warning(WAIST_DROPS + gap_turn(left), folder, ", ".join(n for n, _, _ in left), count,
                         what.removesuffix(", not bridged"), max(m for _, _, m in left))
             return
         frac = max(f for n, f in lost.items() if n in SENSORS and SENSORS[n].placement == "foot")

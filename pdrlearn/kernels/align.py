@@ -27,6 +27,11 @@ MIN_LOCK_PAIRS = 5
 LOCK_MAX_RESIDUAL_SD_S = 0.05
 
 
+#: the largest clock drift (s/s) a clock may be moved by (``apply_alignment``, ``--clock-drift-ppm`` B265, the
+#: Tracker's ``waist_clock_drift_ppm`` E229): 10 %, far beyond any crystal's
+MAX_CLOCK_DRIFT = 0.1
+
+
 def to_foot_clock(t_waist, offset_s: float, drift: float = 0.0, ref_s: float = 0.0):
     """Waist-clock times moved onto the foot clock: ``ref_s + (t_waist - offset_s - ref_s) / (1 + drift)`` (the
     module's model solved for ``t_f``; ``apply_alignment`` and decision L447's contacts share it)."""
@@ -256,9 +261,40 @@ def candidate_offsets(estimate: dict) -> tuple[float, float]:
     """Decision L457: the estimate's ``--clock-offset`` (the waist clock at its 0, E111) and the one a step period
     beside it on the other side of 0 (at ``ref_s``): the two offsets a walk cannot tell apart."""
     o, drift, ref = (float(estimate[k]) for k in ("offset_s", "drift", "ref_s"))
-    period = float(estimate["step_period_s"])
-    alt = o - period if o > 0 else o + period
-    return o - drift * ref, alt - drift * ref
+    return o - drift * ref, step_twin(o, float(estimate["step_period_s"])) - drift * ref
+
+
+def step_twin(offset_s: float, period_s: float) -> float:
+    """Decisions L457 / E228: the offset one step period ``period_s`` from ``offset_s`` on the other side of 0, which a
+    walk's periodic step events match as well as ``offset_s`` (NaN with a NaN period)."""
+    return offset_s - period_s if offset_s > 0 else offset_s + period_s
+
+
+def twin_of(offset_s: float, estimate: dict | None) -> float | None:
+    """Decision E228: :func:`step_twin` of ``offset_s`` with ``estimate``'s step period when ``offset_s`` is over
+    :data:`UNIT_OFFSET_WARN_S` (the estimate is the candidate closest to 0, L161; an offset that far from 0 says the
+    units were not started together, so closest-to-0 no longer tells it from its twin); None otherwise, or without a
+    step period."""
+    period = float("nan") if estimate is None else float(estimate.get("step_period_s", float("nan")))
+    if not (abs(offset_s) > UNIT_OFFSET_WARN_S and np.isfinite(period)):
+        return None
+    return step_twin(offset_s, period)
+
+
+def twin_line(estimate: dict, option: str = "--align-units") -> str | None:
+    """Decision E228: the line ``option`` adds when it applied ``estimate`` (locked and trusted) whose offset has a
+    twin one step period away (:func:`twin_of`): which of the two is right cannot be told from the steps; None when it
+    has none."""
+    twin = twin_of(float(estimate["offset_s"]), estimate)
+    if twin is None:
+        return None
+    a, b = candidate_offsets(estimate)
+    ppm = f" --clock-drift-ppm {float(estimate['drift']) * 1e6:.0f}" if float(estimate["drift"]) else ""
+    return (f"{option} moved the waist clock by the estimate, {float(estimate['offset_s']):+.3f} s; "
+            f"{twin:+.3f} s, one {float(estimate['step_period_s']):.2f} s step period away, matches a walk's periodic "
+            "steps as well, so the steps cannot tell which is right (the estimate is the one closer to 0, L161): if "
+            f"the track is worse than without it, give the other by hand, --clock-offset {b:.3f}{ppm} instead of "
+            f"{option} (--clock-offset {a:.3f}{ppm} is the one applied; decision E228)")
 
 
 def untrusted_message(estimate: dict, option: str = "--align-units") -> str | None:
@@ -287,18 +323,38 @@ def untrusted_message(estimate: dict, option: str = "--align-units") -> str | No
 
 
 def unit_offset_message(offset_s: float, drift: float, command: str = "pdrlearn track",
-                        remedy: str | None = None, estimate: dict | None = None) -> str | None:
+                        remedy=None, estimate: dict | None = None) -> str | None:
     """Decision L161: the warning line for an estimated offset (s) and drift (s/s) over :data:`UNIT_OFFSET_WARN_S`,
     else None. ``command``: the one whose ``--align-units`` the line names (``pdrlearn run``, decision L170);
-    ``remedy``: another fix to name instead (the live Tracker's keyword, decision L177); ``estimate``:
-    :func:`align_events`' dict, None when it is not locked (decision L183, :func:`offset_locked`)."""
+    ``remedy``: another fix to name instead, a callable of the offset (the live Tracker's keyword, decision L177);
+    ``estimate``: :func:`align_events`' dict, None when it is not locked (decision L183, :func:`offset_locked`).
+    Decision E228: with an estimate, the line names both the offset and its twin one step period away
+    (:func:`twin_of`) and the fix for each, since a walk's periodic steps cannot tell them apart."""
     if abs(offset_s) <= UNIT_OFFSET_WARN_S or (estimate is not None and not offset_locked(estimate)):
         return None
-    fix = remedy if remedy is not None else f"`{command} --align-units`"
-    return (f"the waist unit's steps fall {offset_s:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "
-            f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later "
-            "that counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align "
-            f"them with {fix} (an offset a whole step period apart is not seen)")
+    twin = twin_of(offset_s, estimate)
+    head = f"the waist unit's steps fall {offset_s:+.2f} s from the foot unit's"
+    note = f"(drift {drift * 1e6:+.0f} ppm; over {UNIT_OFFSET_WARN_S:g} s warns, decision L161)"
+    cause = ("the unit clocks are offset (a unit switched on later that counts from 0, or a drifting clock), and the "
+             "waist heading is read at the foot's strides")
+    if twin is None:
+        fix = remedy(offset_s) if remedy is not None else f"`{command} --align-units`"
+        return (f"{head} {note}: {cause}; align them with {fix} (an offset one step period from this one reads as "
+                "this one, decision E228)")
+    period = float(estimate["step_period_s"])
+    if remedy is not None:
+        fixes = remedy(offset_s), remedy(twin)
+    else:  # E111's offsets at the waist clock's 0, with the drift (B265) when one was fitted
+        ppm = f" --clock-drift-ppm {drift * 1e6:.0f}" if drift else ""
+        at0 = drift * float(estimate.get("ref_s", 0.0))
+        fixes = (f"`{command} --clock-offset {offset_s - at0:.3f}{ppm}`",
+                 f"`{command} --clock-offset {twin - at0:.3f}{ppm}`")
+    ahead = ("ahead of", "behind") if offset_s > 0 else ("behind", "ahead of")
+    applies = "" if remedy is not None else f"; `{command} --align-units` applies the first, L162"
+    return (f"{head}, or {twin:+.2f} s {note}: offsets one {period:.2f} s step period apart match a walk's periodic "
+            f"steps alike, so the steps cannot tell which (decision E228); {cause}; align them with {fixes[0]} if "
+            f"the waist clock is {ahead[0]} the foot's, or {fixes[1]} if it is {ahead[1]} it (stamp both units on "
+            f"one clock to be sure{applies})")
 
 
 def unlocked_message(estimate: dict, option: str = "--align-units") -> str | None:

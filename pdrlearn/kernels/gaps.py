@@ -12,6 +12,47 @@ import numpy as np
 MIN_GAP_S = 1.0
 
 
+#: decision B149: where dropped samples come from, for every drop warning: a sensor's radio link, or a phone app
+#: (which logs from a shared, loaded CPU and drops or batches samples: session 22's phone trial, 1 % drops)
+DROPS_CAUSE = "check the Bluetooth link, or a phone app's sampling (its rate setting, the phone's load)"
+#: decision L77: the B64 warning of the streamed paths (``pdrlearn run``, ``track --streaming``), which integrate
+#: each stride on its timestamps (E36) and keep the distance (L78: median |distance error| 0.370 % at 1 %, 0.691 %
+#: at 3 % drops, 0.289 % clean); an interval over 0.25 s still counts as one sample interval there (E36)
+STREAMED_DROPS = ("%s: %s have %s interval(s) of dropped samples of 1 s or less (longest %.3f s): integrated on "
+                  "the timestamps here, so they cost little distance (decisions B64, L78; an interval over 0.25 s "
+                  "counts as one sample interval, E36); if they are many, " + DROPS_CAUSE)
+
+
+#: decision W389: a waist gyroscope interval of dropped samples at least this long (s) gets :data:`GAP_TURN`
+#: (W389's measurement of W34's line: 0.3 s intervals moved no heading, 0.5-0.9 s ones up to 25 deg)
+GAP_TURN_S = 0.4
+#: decision W389: what such an interval costs the waist heading (W34 bridges the gyroscope with a straight line)
+GAP_TURN = ("; the waist gyroscope is a straight line across each one, which makes up or loses part of a turn: "
+            "0.5-0.9 s intervals while walking moved the heading by up to 25 deg on simulated walks (decision "
+            "W389) - check the path's heading after the longest one")
+
+
+def gap_turn(left: list[tuple[str, int, float]]) -> str:
+    """Decision W389: :data:`GAP_TURN` when the waist gyroscope has an interval of at least :data:`GAP_TURN_S`
+    among ``left`` (name, count, longest), else an empty string."""
+    return GAP_TURN if any(n == "wGyroscope" and m >= GAP_TURN_S for n, _, m in left) else ""
+
+
+def per_stream(left: list[tuple[str, int, float]]) -> str:
+    """The count of :data:`STREAMED_DROPS`: one number when every stream has as many intervals, else each
+    stream's, in the order named (as the offline warning counts them)."""
+    counts = [k for _, k, _ in left]
+    return str(counts[0]) if len(set(counts)) == 1 else "/".join(map(str, counts)) + " (in that order)"
+
+
+def streamed_drops_line(left: list[tuple[str, int, float]]) -> str:
+    """Decisions L77 / E230: :data:`STREAMED_DROPS`' line (without its session prefix, with W389's :func:`gap_turn`)
+    for ``left``, the streams' ``(name, intervals of dropped samples, longest s)``: ``pdrlearn run`` says it when it
+    reads a session, the live :class:`~pdrlearn.runtime.Tracker` at ``flush`` from what was pushed (one mechanism)."""
+    return (STREAMED_DROPS.removeprefix("%s: ") % (", ".join(n for n, _, _ in left), per_stream(left),
+                                                   max(m for _, _, m in left))) + gap_turn(left)
+
+
 def grouped_gaps(gaps: dict[str, list[tuple[float, float]]]) -> list[tuple[list[str], list[tuple[float, float]]]]:
     """``(stream names, gaps)`` with the streams that share the same gaps (to 0.1 s) in one entry, in first-seen
     order: one gap in every stream of a unit (a dropped radio link) is one line, not one per stream (B34)."""

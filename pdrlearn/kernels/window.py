@@ -487,6 +487,10 @@ Levelled = dict[str, tuple[np.ndarray, np.ndarray, "np.ndarray | None", "np.ndar
 #: Decision E36: an interval between two foot-accelerometer samples of a stride longer than this (s) is a gap:
 #: the runtime's warned gap (``GAP_WARN_S``, decision E30; shorter ones cannot hide a stance)
 BRIDGE_GAP_S = 0.25
+#: decision E230: an interval is over :data:`BRIDGE_GAP_S` only by more than this (s): float rounding of the timestamps
+#: (a lost 4-sample packet at 20 Hz: ``32.2 - 31.95`` = 0.25000000000000355 s, ``31.2 - 30.95`` = 0.25 s) must not
+#: decide whether the same loss is a gap (far under any sample interval: 1e-6 s is 0.1 % of a 1 kHz one)
+GAP_TOL_S = 1e-6
 
 
 def gap_clock(t: np.ndarray, gap_s: float = BRIDGE_GAP_S) -> np.ndarray:
@@ -498,7 +502,7 @@ def gap_clock(t: np.ndarray, gap_s: float = BRIDGE_GAP_S) -> np.ndarray:
     if len(t) < 2:
         return t
     d = t[1:] - t[:-1]
-    big = d > gap_s
+    big = d > gap_s + GAP_TOL_S  # decision E230: not by float rounding
     if not big.any():
         return t
     small = d[~big]

@@ -26,7 +26,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from pdrlearn.errors import DataError
-from pdrlearn.kernels.align import UNIT_OFFSET_WARN_S, align_events, unit_offset_message
+from pdrlearn.kernels.align import UNIT_OFFSET_WARN_S, align_events, to_foot_clock, unit_offset_message
 from pdrlearn.kernels.contact import (
     EVENT_CUTOFF_HZ,
     FORCE_AMP,
@@ -68,6 +68,10 @@ WINDOW_PAD_S = 3.0
 #: ... at most this many, the latest (the waist sees both feet: about 2 per foot stride; a waist walking while the
 #: foot unit detects nothing cannot grow the list)
 WINDOW_WAIST_EVENTS = 4 * WINDOW_FOOT_EVENTS
+#: decision E229: after its line the check goes on estimating and warns again when the estimate has moved this far (s)
+#: from the offset it last warned of (a drifting clock, T4's 150 ppm hour: 0.1 s in about 11 min); a priori: half
+#: L161's 0.2 s threshold, a quarter of the slowest validated walk's 0.43 s step period (L95)
+REWARN_MOVE_S = 0.1
 #: samples of a stream held before they are run through its detector (one call per block, not per sample)
 BLOCK_SAMPLES = 64
 FORCE_SENSORS = ("fForceA", "fForceB")
@@ -98,10 +102,13 @@ class ClockCheck:
 
     ``feed(name, t, values)`` with the raw pushed samples of ``fAccelerometer``, ``fForceA``, ``fForceB`` and
     ``wAccelerometer`` (others ignored), then ``check()`` once per push: it runs the foot detector and returns L161's
-    warning line the first time the estimate is over :data:`UNIT_OFFSET_WARN_S` (None otherwise; ``final=True`` at
-    the end of the stream: all events of the window, as the offline check up to it). :attr:`estimate` is
-    ``align_events``' last dict (``offset_s``, ``drift``, ``matched``, ...), or None before there are 3 events of
-    each unit. ``remedy``: the fix the line names, from the estimated offset. State: the detectors' (bounded) and the
+    warning line the first time the estimate is over :data:`UNIT_OFFSET_WARN_S`, and again each time a later one over
+    it has moved more than :data:`REWARN_MOVE_S` from the last warned offset (decision E229; None otherwise;
+    ``final=True`` at the end of the stream: all events of the window, as the offline check up to it).
+    :attr:`estimate` is ``align_events``' last dict (``offset_s``, ``drift``, ``matched``, ...), or None before there
+    are 3 events of each unit; it is renewed every :data:`CHECK_EVERY_STRIDES` foot strides, after a line too (E229).
+    ``remedy``: the fix the line names, a callable of an offset (E228: the estimate's and its twin's). State: the
+    detectors' (bounded) and the
     event times of the window (decision E120: at most :data:`WINDOW_FOOT_EVENTS` foot and
     :data:`WINDOW_WAIST_EVENTS` waist events, plus those of one push)."""
 
@@ -119,6 +126,7 @@ class ClockCheck:
         self._windowed = False  # the foot window was full once: the waist events before it are dropped too
         self.estimate: dict | None = None
         self.warned = False
+        self.warned_offset: float | None = None  # decision E229: the offset of the last line
 
     def feed(self, name: str, t, v) -> None:
         held = self._held.get(name)
@@ -129,8 +137,8 @@ class ClockCheck:
             self._run_waist(held.take())
 
     def check(self, final: bool = False) -> str | None:
-        """The warning line, once: when a new estimate (every CHECK_EVERY_STRIDES foot strides, and at the end)
-        is over the threshold. The estimate at the end is made after a warning too (:attr:`estimate`)."""
+        """The warning line when a new estimate (every CHECK_EVERY_STRIDES foot strides, and at the end) is over the
+        threshold: the first time, then when it has moved over REWARN_MOVE_S from the last line's (decision E229)."""
         if final:
             for name in ("wAccelerometer",):
                 if self._held[name].n:
@@ -141,7 +149,7 @@ class ClockCheck:
         else:  # the foot samples after the whole push was fed (its force samples too: the detector is chosen once)
             self._run_foot(final=False)  # after the line too: the held samples stay one block (the state bounded)
             self._trim()
-            if self.warned or self._foot_seen < self._checked_at + CHECK_EVERY_STRIDES:
+            if self._foot_seen < self._checked_at + CHECK_EVERY_STRIDES:  # E229: after a line too
                 return None
         if final:
             self._trim()
@@ -151,11 +159,10 @@ class ClockCheck:
         except DataError:  # fewer than 3 events of a unit: no estimate yet
             return None
         off = self.estimate["offset_s"]
-        fix = None if self.remedy is None else self.remedy(off)
-        line = unit_offset_message(off, self.estimate["drift"], remedy=fix, estimate=self.estimate)  # L183
-        if line is None or self.warned:
+        line = unit_offset_message(off, self.estimate["drift"], remedy=self.remedy, estimate=self.estimate)  # L183
+        if line is None or (self.warned_offset is not None and abs(off - self.warned_offset) <= REWARN_MOVE_S):
             return None
-        self.warned = True
+        self.warned, self.warned_offset = True, off
         return line
 
     def _trim(self) -> None:
@@ -251,15 +258,17 @@ def replay_check(streams: dict, chunk_s: float = 1.0) -> ClockCheck:
     return cc
 
 
-def waist_on_foot_clock(samples: dict, offset_s: float, prefix: str = "w") -> dict:
+def waist_on_foot_clock(samples: dict, offset_s: float, drift: float = 0.0, prefix: str = "w") -> dict:
     """Decision L177: ``samples`` (sensor -> ``(t, values)``) with the waist sensors' times moved to ``t - offset_s``
-    (L161's model, no drift); anything that is no (t, values) pair is passed on for the push's checks to name.
+    (L161's model), and with ``drift`` (s/s, decision E229) to ``(t - offset_s) / (1 + drift)``: ``to_foot_clock``
+    at ``ref_s`` 0, the mechanism of ``run --clock-offset`` / ``--clock-drift-ppm`` (B265; bit for bit ``t -
+    offset_s`` without drift); anything that is no (t, values) pair is passed on for the push's checks to name.
     ``prefix="f"``: the foot sensors' instead (decision E227: a foot pod rebased after a reconnect)."""
     out = dict(samples)
     for name, tv in samples.items():
         if str(name).startswith(prefix) and isinstance(tv, tuple | list) and len(tv) == 2:
             try:
-                t = np.asarray(tv[0], dtype=np.float64) - offset_s
+                t = to_foot_clock(np.asarray(tv[0], dtype=np.float64), offset_s, drift)
             except (TypeError, ValueError):
                 continue
             out[name] = (t, tv[1])

@@ -18,17 +18,19 @@ from __future__ import annotations
 import functools
 import logging
 import math
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
+from pdrlearn.errors import ConcurrentUseError, DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import relative_length as _relative_length
 from pdrlearn.kernels import sideways as _sideways
 from pdrlearn.kernels import turn_length as _turn_length
+from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import (
@@ -40,7 +42,7 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
-from pdrlearn.kernels.gaps import drop_neighbour_on, drop_stride_disp
+from pdrlearn.kernels.gaps import MIN_GAP_S, drop_neighbour_on, drop_stride_disp, streamed_drops_line
 from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
@@ -70,6 +72,7 @@ from pdrlearn.kernels.stride import (
 from pdrlearn.kernels.window import (
     BOUNDARIES,
     BRIDGE_GAP_S,
+    GAP_TOL_S,
     GROUP_STREAMS,
     GROUPS,
     TASK_COLUMNS,
@@ -83,6 +86,7 @@ from pdrlearn.kernels.window import (
     rest_boundaries,
     segment,
 )
+from pdrlearn.runtime.baro_check import BaroCheck
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.clocks import SENSORS as CLOCK_SENSORS
@@ -159,6 +163,28 @@ LEGACY_RULES, LEGACY_MIN_CONFIDENCE = "thesis", 0.0
 #: what the streamed stride rules do for a task without a class (decision C17, ``pdrlearn.track.plasys``)
 _NO_CLASS_RULE = {"terrain": "the stride's raw height change", "direction": "the estimate's own sign",
                   "length": "no length clamp"}
+
+
+def one_call_at_a_time(method):
+    """Decision E231: ``method`` (``Tracker.push`` / ``flush``) refused with one :class:`ConcurrentUseError` line when
+    another thread is inside one of them on the same tracker (a non-blocking lock: ~0.1 us a call). Without it two
+    unlocked threads interleaved their pushes silently (trial s40 T4: 89.42 m and a final y of -0.89 m instead of
+    89.41 m / -0.85 m, no error)."""
+
+    @functools.wraps(method)
+    def guarded(self, *args, **kwargs):
+        busy = self._busy
+        if not busy.acquire(False):
+            raise ConcurrentUseError(
+                f"Tracker.{method.__name__}: called from a second thread while another thread is inside push/flush "
+                "of the same tracker; hold one threading.Lock around every push and flush of a tracker, or feed it "
+                "from one thread through a queue (docs/deploying.md, decision E231)")
+        try:
+            return method(self, *args, **kwargs)
+        finally:
+            busy.release()
+
+    return guarded
 
 
 def check_tasks(bundle: Bundle, tasks, methods) -> tuple[list[str] | None, dict[str, str] | None]:
@@ -426,6 +452,14 @@ class Tracker(FixInput):
         first, as ``WaistTracker(drop_duplicate_timestamps=True)`` (decision E225, E203's kernel); counted per
         sensor in :attr:`dropped_duplicates` (total :attr:`n_dropped_duplicates`), one warning line. Off: such a
         push is refused, the line says "duplicates one already taken".
+    waist_clock_drift_ppm : a known drift of the waist clock (ppm, ``t_waist = t_foot x (1 + ppm/1e6) + offset``,
+        ``pdrlearn run --clock-drift-ppm``'s model and mechanism, ``to_foot_clock``): every pushed waist sample is
+        moved to ``(t - offset) / (1 + ppm/1e6)`` (decision E229; 0: none).
+    stream_checks : say at :meth:`flush` the lines ``pdrlearn run`` says of a session: the intervals of dropped
+        samples (over 1.5 sample intervals, up to 1 s) the pushed streams had, in run's line (L77, decision E230;
+        :meth:`drop_stats` counts them either way), and, for a foot track pushed a barometer, L145's line when the
+        foot's altitude change disagrees with the barometer's (decision E232); ``pdrlearn run`` turns it off: it says
+        them itself.
     check_domain : score each classified stride against the training ranges the bundle's models carry (decision
         E105; ``pdrlearn export`` stores them since): :meth:`domain_report` is ``pdrlearn track --model``'s report
         (C16), and :meth:`flush` warns C61's one line when more than half a task's strides lie outside. Off by
@@ -451,6 +485,8 @@ class Tracker(FixInput):
     _trims = 0
     speculative = False
     _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
+    _pushed_drops: list | None = None  # decision E230 (likewise)
+    _baro = None  # decision E232 (likewise: no barometer check)
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
@@ -515,6 +551,8 @@ class Tracker(FixInput):
         start_enu_m=None,
         clock_check: bool = True,
         waist_clock_offset_s: float = 0.0,
+        waist_clock_drift_ppm: float = 0.0,
+        stream_checks: bool = True,
         check_domain: bool = False,
         warn_out_of_domain: float | None = None,
         length_reference: str = "model",
@@ -522,16 +560,24 @@ class Tracker(FixInput):
         first_walk: bool = False,
         drop_duplicate_timestamps: bool = False,
     ):
+        self._busy = threading.Lock()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
+        self.stream_checks = bool(stream_checks)  # decisions E230, E232 (checked below)
         #: decision C117: "session" reports a flat forward stride's length class against the session's median stride
         self._session_length = (_relative_length.SessionLength()
                                 if _relative_length.check_length_reference(length_reference) == "session" else None)
-        if not isinstance(clock_check, bool | np.bool_):  # decision L177: flags and a number of seconds
-            raise DataError(f"clock_check={clock_check!r} must be True or False")
+        for key, flag in (("clock_check", clock_check), ("stream_checks", stream_checks)):  # L177, E230: flags
+            if not isinstance(flag, bool | np.bool_):
+                raise DataError(f"{key}={flag!r} must be True or False")
         if (isinstance(waist_clock_offset_s, bool) or not isinstance(waist_clock_offset_s, int | float | np.number)
                 or not math.isfinite(waist_clock_offset_s)):
             raise DataError(f"waist_clock_offset_s={waist_clock_offset_s!r} must be the waist clock's offset in "
                             "seconds (a finite number; 0 for none)")
+        if (isinstance(waist_clock_drift_ppm, bool) or not isinstance(waist_clock_drift_ppm, int | float | np.number)
+                or not abs(waist_clock_drift_ppm) <= MAX_CLOCK_DRIFT * 1e6):  # decision E229, as run's B265
+            raise DataError(f"waist_clock_drift_ppm={waist_clock_drift_ppm!r} must be the waist clock's drift in ppm "
+                            f"(a finite number within +-{MAX_CLOCK_DRIFT * 1e6:.0f}, t_waist = t_foot x (1 + "
+                            "ppm/1e6) + offset; 0 for none)")
         from pdrlearn.classify.domain import check_warn_at
 
         check_warn_at(warn_out_of_domain)  # decision C16's option, as track's
@@ -579,6 +625,9 @@ class Tracker(FixInput):
 
         baro = next((n for n in BAROMETERS if n in self.used_sensors), None)
         self._rides = RideWatch(baro) if baro is not None else None  # decision E211: each ride not counted, named
+        #: decision E232: L145's foot-vs-barometer check (a foot track pushed a barometer, run's line at flush)
+        self._baro = (BaroCheck(baro) if baro is not None and "foot" in self.units and self.stream_checks
+                      else None)
         self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
@@ -698,6 +747,12 @@ class Tracker(FixInput):
         #: gaps announced ``[start, end, long]`` (the latest few), the foot gaps over GAP_LONG_S not yet behind
         #: the processed strides, and the streams announced as held (``max_lag_s = inf``)
         self._pushed_gaps: list | None = None
+        #: decision E230: the push's intervals of dropped samples (committed after its checks), the count per stream
+        #: ``(intervals, longest s)``, each stream's limit (s) and whether flush said them
+        self._pushed_drops: list | None = None
+        self._drops: dict[str, tuple[int, float]] = {}
+        self._drop_lim: dict[str, float] = {}
+        self._drops_said = False
         self._gap_marks: list[list] = []
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._drop_ref: tuple | None = None  # decision L167: (displacement, duration) of the last clean stride
@@ -729,10 +784,13 @@ class Tracker(FixInput):
                         else None)
         #: decision L177: the live two-unit clock check (None: off, or the waist unit not followed) and the known
         #: waist clock offset moved off every pushed waist sample
-        if waist_clock_offset_s and "waist" not in self.units:
-            raise DataError(f"waist_clock_offset_s={waist_clock_offset_s!r}: the tracker follows "
-                            f"{'+'.join(self.units)} only, so there is no waist clock to move; drop it")
+        for key, given in (("waist_clock_offset_s", waist_clock_offset_s),
+                           ("waist_clock_drift_ppm", waist_clock_drift_ppm)):
+            if given and "waist" not in self.units:
+                raise DataError(f"{key}={given!r}: the tracker follows {'+'.join(self.units)} only, so there is no "
+                                "waist clock to move; drop it")
         self.waist_clock_offset_s = float(waist_clock_offset_s)
+        self.waist_clock_drift_ppm = float(waist_clock_drift_ppm)  # decision E229
         #: decision E227: the foot clock's offset from the tracker's (its samples moved to ``t - offset``; 0 until
         #: :meth:`rebase_clock` moves a foot pod that reconnected with its clock restarted)
         self.foot_clock_offset_s = 0.0
@@ -1030,6 +1088,7 @@ class Tracker(FixInput):
         if ring.last > self._latest:
             self._latest = ring.last
 
+    @one_call_at_a_time  # decision E231
     def push(self, samples) -> list[Step]:
         """Add samples; returns the steps completed by them (possibly none).
 
@@ -1045,8 +1104,9 @@ class Tracker(FixInput):
                 ts.append(mm.t)
                 vs.append(mm.values)
             samples = grouped
-        if self.waist_clock_offset_s:  # decision L177: the waist samples on the foot clock, before anything else
-            samples = waist_on_foot_clock(samples, self.waist_clock_offset_s)
+        if self.waist_clock_offset_s or self.waist_clock_drift_ppm:  # decisions L177, E229: the waist samples on
+            samples = waist_on_foot_clock(samples, self.waist_clock_offset_s,  # the foot clock, before anything else
+                                          self.waist_clock_drift_ppm * 1e-6)
         if self.foot_clock_offset_s:  # decision E227: a foot pod rebased after a reconnect, likewise
             samples = waist_on_foot_clock(samples, self.foot_clock_offset_s, prefix="f")
         dropped = None
@@ -1100,6 +1160,8 @@ class Tracker(FixInput):
                 self._append(name, t, v)
             if self._rides is not None and self._rides.name in samples:  # decision E211
                 self._rides.push(*samples[self._rides.name])
+            if self._baro is not None and self._baro.name in samples:  # decision E232
+                self._baro.push(*samples[self._baro.name])
         for msg in self._frozen.push(checked, fast):  # decision B120: a frozen sensor, one warning per run
             self._warn(msg)
         if self._frozen_foot is not None:  # decision B213: B203's frozen foot IMU, live
@@ -1108,6 +1170,8 @@ class Tracker(FixInput):
             self._unpause()
         if self._pushed_gaps:
             self._note_gaps()
+        if self._pushed_drops:  # decision E230
+            self._count_drops()
         self._detect()
         if self._pending or self._latest >= self._lag_next:  # E23: before a waiting step could go stale
             self._check_lag()
@@ -1135,7 +1199,7 @@ class Tracker(FixInput):
         A one-sample float64 push of a buffered sensor is checked on Python floats (decision E17's path) and
         returned, sensor -> ``(t, values)``, for :meth:`push` to append without checking it again; None for a
         push without any sample (decision E40)."""
-        buf, gaps, fast, some = self._buf, None, {}, False
+        buf, gaps, drops, fast, some = self._buf, None, None, {}, False
         self._checked = {}  # sensor -> its checked (t, values) arrays (not the one-sample path's)
         resampled, isfinite = self.inputs.resamplers, math.isfinite
         for name, tv in samples.items():
@@ -1150,6 +1214,9 @@ class Tracker(FixInput):
                     # finite iff the sum is (finite values overflow only beyond 1e308: the general path then)
                     if t0 > last and isfinite(sum(vals, t0)):
                         fast[name] = (t0, vals)
+                        if t0 - last > self._drop_lim.get(name, math.inf):  # decision E230: dropped samples
+                            drops = drops or []
+                            drops.append((name, np.array([t0 - last])))
                         if t0 - last > GAP_WARN_S and t0 - last > self._gap_limit(name):
                             if t0 - last > self.max_gap_s and not self._resumes(name, t0):  # decision B141
                                 raise self._jump_error(name, last, t0)
@@ -1179,12 +1246,45 @@ class Tracker(FixInput):
                 if d[i] > self.max_gap_s and not (i == 0 and self._resumes(name, float(tt[1]))):  # decision B141:
                     raise self._jump_error(name, float(tt[i]), float(tt[i + 1]))  # before any state change
             self.inputs.check_rate(name, t)
+            lim = self._drop_limit(name)
+            if len(tt) > 1 and float(tt[-1] - tt[0]) > lim:  # decision E230: intervals of dropped samples
+                dd = np.diff(tt)
+                drops = drops or []
+                drops.append((name, dd[dd > lim]))
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 for i in np.flatnonzero(d > self._gap_limit(name, d)).tolist():
                     gaps = gaps or []
                     gaps.append((name, float(tt[i]), float(tt[i + 1])))
-        self._pushed_gaps = gaps
+        self._pushed_gaps, self._pushed_drops = gaps, drops
         return fast if some or fast else None
+
+    def _drop_limit(self, name: str) -> float:
+        """Decision E230: the interval (s) over which two samples of ``name`` enclose dropped samples, 1.5 of its sample
+        intervals as ``pdrlearn run``'s read counts them (``Stream.gaps``, B64; not its jitter allowance, B33/B182),
+        once its rate is known (declared or probed, E22); ``math.inf`` before."""
+        lim = self._drop_lim.get(name)
+        if lim is None:
+            rate = self.inputs.input_rates_hz.get(name)
+            if not rate:
+                return math.inf
+            lim = self._drop_lim[name] = 1.5 / rate
+        return lim
+
+    def _count_drops(self) -> None:
+        """Decision E230: the push's intervals of dropped samples up to B11's 1 s (longer ones are E30's gaps),
+        counted per stream for :meth:`drop_stats` and ``flush``'s line."""
+        drops, self._pushed_drops = self._pushed_drops, None
+        for name, d in drops:
+            d = d[d <= MIN_GAP_S]
+            if d.size:
+                n, longest = self._drops.get(name, (0, 0.0))
+                self._drops[name] = (n + int(d.size), max(longest, float(d.max())))
+
+    def drop_stats(self) -> dict[str, dict]:
+        """Decision E230: per pushed stream with dropped samples, ``{"intervals": n, "longest_s": s}``: the intervals
+        over 1.5 of its sample intervals and up to 1 s (``pdrlearn run``'s count, L77; longer ones are gaps, E30),
+        so far. ``flush`` says them in ``run``'s line unless ``stream_checks=False``."""
+        return {n: {"intervals": k, "longest_s": m} for n, (k, m) in self._drops.items()}
 
     def _resumes(self, name: str, t: float) -> bool:
         """Decision E115: a paused waist stream (:attr:`_paused`) whose samples return at ``t`` s in step with the
@@ -1275,11 +1375,11 @@ class Tracker(FixInput):
         and ``d``, the push's); with fewer than 3 of them, none is a gap yet."""
         rate = self.inputs.input_rates_hz.get(name)
         if rate:
-            return max(GAP_WARN_S, 1.5 / rate)
+            return max(GAP_WARN_S + GAP_TOL_S, 1.5 / rate)  # decision E230: not by float rounding
         p = self.inputs._probe.get(name)
         seen = [np.diff(np.concatenate(p[0]))] if p and p[0] else []
         d = np.concatenate([*seen, d]) if d is not None else (seen[0] if seen else np.empty(0))
-        return max(GAP_WARN_S, 1.5 * float(np.median(d))) if len(d) >= 3 else math.inf
+        return max(GAP_WARN_S + GAP_TOL_S, 1.5 * float(np.median(d))) if len(d) >= 3 else math.inf
 
     def _note_gaps(self) -> None:
         """Decision E30: one warning per gap the push opened (the streams that show it, its length and where),
@@ -1384,6 +1484,7 @@ class Tracker(FixInput):
             self._feed_foot()
         return f
 
+    @one_call_at_a_time  # decision E231
     def flush(self) -> list[Step]:
         """Process the detected steps still waiting for other sensors' samples (end of a recording); the
         resampled streams' last samples (their filter's delay, decision E22) are buffered first."""
@@ -1404,6 +1505,13 @@ class Tracker(FixInput):
         steps = self._process_ready(force=True)
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
+        if self._drops and self.stream_checks and not self._drops_said:  # decision E230: run's line (L77), once
+            self._drops_said = True
+            self._warn(streamed_drops_line([(n, k, m) for n, (k, m) in self._drops.items()]))
+        if self._baro is not None:  # decision E232: run's L145 line on the whole stream
+            line = self._baro.line(final=True)
+            if line and line not in self.warnings:
+                self._warn(line)
         self._warn_unused_fixes()  # decision D21
         self._warn_out_of_domain()  # decision E105
         self._warn_turning_lengths()  # decisions C89 / C94
@@ -1552,6 +1660,8 @@ class Tracker(FixInput):
             fused = self._fuse_step(st.start_s, st.end_s, st.length_m, st.heading_rad)
             if fused is not None:
                 st.x, st.y = fused
+            if self._baro is not None:  # decision E232: the barometer's altitude at each row's end
+                self._baro.row(st.start_s, st.end_s, st.z, st.dz_m)
         return out
 
     def height_checks(self) -> dict:

@@ -15,6 +15,7 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels.align import (
+    MAX_CLOCK_DRIFT,
     align_events,  # noqa: F401 (numpy only, shared with the runtime: L177)
     to_foot_clock,
 )
@@ -66,7 +67,7 @@ def apply_alignment(session: Session, offset_s: float, drift: float = 0.0, ref_s
     :func:`align_estimate`'s ``ref_s`` with its ``offset_s`` and ``drift``, decision L198). Labels are left as they
     are (foot clock)."""
     out = session.copy()
-    if not np.isfinite(offset_s) or not np.isfinite(drift) or not np.isfinite(ref_s) or abs(drift) > 0.1:
+    if not np.isfinite(offset_s) or not np.isfinite(drift) or not np.isfinite(ref_s) or abs(drift) > MAX_CLOCK_DRIFT:
         raise DataError(f"apply_alignment: implausible offset {offset_s} s / drift {drift} / reference {ref_s} s; "
                         "re-run align_units")
     for s in out.streams.values():

@@ -69,6 +69,7 @@ from pdrlearn.kernels.distance import (
 from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
+    GAP_TOL_S,
     GROUP_STREAMS,
     TASK_COLUMNS,
     available_groups,
@@ -472,7 +473,7 @@ def align_clocks(session: Session, warnings: list[str], *, force_table=None) -> 
     :func:`~pdrlearn.kernels.align.offset_locked`) is not applied: the session unchanged and one line why.
     ``force_table``: :func:`~pdrlearn.steps.align.align_estimate`'s (steps decision 55)."""
     try:
-        from pdrlearn.kernels.align import unlocked_message, untrusted_message
+        from pdrlearn.kernels.align import twin_line, unlocked_message, untrusted_message
         from pdrlearn.steps.align import align_estimate
 
         est = align_estimate(session, force_table=force_table)
@@ -481,8 +482,11 @@ def align_clocks(session: Session, warnings: list[str], *, force_table=None) -> 
         if line is not None:
             warnings.append(line)
             return session, None
-        return move_waist_clock(session, est["offset_s"], est["drift"], warnings, source="estimated",
-                                ref_s=est["ref_s"])  # decision L198: the offset holds at ref_s
+        moved = move_waist_clock(session, est["offset_s"], est["drift"], warnings, source="estimated",
+                                 ref_s=est["ref_s"])  # decision L198: the offset holds at ref_s
+        if (line := twin_line(est)) is not None:  # decision E228: applied, and its twin a step away named
+            warnings.append(line)
+        return moved
     except (ImportError, AttributeError):
         warnings.append("pdrlearn.steps.align_units not available: unit clocks not aligned")
     except DataError as exc:
@@ -1879,7 +1883,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     imu_gap = overlaps_gaps(table, imu_gaps)  # decisions L90 / L91: the foot's yaw is lost over these strides
     # decision L167 (an option, DROP_NEIGHBOUR): a stride across dropped samples over the gap clock's limit takes the
     # length and height of the stride before it (ref: that stride's displacement and duration), as the runtime's
-    across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S), None
+    across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S + GAP_TOL_S), None  # E230
     neighbour = KG.drop_neighbour_on(drop_neighbour)  # decision E101
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
