@@ -790,13 +790,16 @@ def gait_range_warning(summary: dict) -> str | None:
     gait_speed = _finite(summary.get("gait_speed_mps"))
     what = (FAST_GAITS[fast_gait(cad, speed, leg, gait_speed)][0] if side == "fast"
             else "this is slower than the walking the pipelines were validated on: ")
+    info = summary.get("info") or {}
+    if side == "fast" and info.get("step_count_unusable"):  # decision W442: the contacts are not steps here
+        what = ("no gait to name: the lower back's contacts are no step count here (the steps are too small or too "
+                "slow to count, decision W442), so this cadence is not the walker's: ")
     if side == "fast" and speed is None and cad is not None and gait_speed is not None and \
             gait_speed > speed_range[1]:  # decision L197: the figure that names it running
         figs += f", gait speed {gait_speed:.2f} m/s"
     ood = summary.get("out_of_domain_fraction")
     extra = (f"; {100 * float(ood):.0f} % of the strides lie outside the model's training range" if ood is not None
              else "")
-    info = summary.get("info") or {}
     if slow and str(info.get("pipeline") or "").startswith("waist") and \
             info.get("params_source") == "defaults":
         # decision W77: an uncalibrated waist's step length at slow cadence is the default model's guess

@@ -89,6 +89,13 @@ from pdrlearn.waist.lengths import (
 )
 from pdrlearn.waist.lying import postures_and_transfers, session_lying
 from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params, subject_height
+from pdrlearn.waist.pelvic_rhythm import (
+    RHYTHM_SLOW,
+    SLOW_PERIOD_S,
+    merge_dropped,
+    pelvic_steps,
+    rhythm_keep,
+)
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
@@ -97,6 +104,7 @@ from pdrlearn.waist.plausibility import (
     contact_alternation,
     contact_lateral_velocity,
     contact_sides,
+    count_mismatch_message,
     median_cadence,
     micro_bout_message,
     micro_bouts,
@@ -107,6 +115,7 @@ from pdrlearn.waist.plausibility import (
     running_cadence,
     short_step_message,
     step_counts,
+    steps_uncountable,
     still_yaw_rate,
     still_yaw_rate_message,
     walk_ratio,
@@ -594,6 +603,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pll_edge_lock": "walk-edges",  # W356 / W367 / W372: waist-pll's edge peaks where the walk ends
                    # (starts) only when the loop is locked at them; W368: "walk-end" adopted; W373: "walk-edges"
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
+                   "pelvic_rhythm_veto": False,  # W440: measured, not adopted (Test11's step F1 fell); an option
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
@@ -632,6 +642,8 @@ SCOPED_OPTIONS = {
                     lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "freeze_veto": ("the offline waist tracks (W214: the freeze index's window looks 2 s ahead)",
                     lambda pl, rt, m, det, stops: not rt),
+    "pelvic_rhythm_veto": ("the offline waist tracks (W440: the pelvic rhythm is read over the whole recording)",
+                           lambda pl, rt, m, det, stops: not rt),
     "pll_edge_lock": ("waist-pll with its own PLL detector (W356)",
                       lambda pl, rt, m, det, stops: pl == "waist-pll" and not det),
     "vault_veto": ("the offline waist-pendulum (W119)",
@@ -674,7 +686,8 @@ CAUSAL_PAUSE_STEPS = "standing"
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
                                                           "parity_fill", "stand_veto", "contact_model", "fast_fill",
-                                                          "cadence_law", "pll_edge_lock", "turn_bridge"))
+                                                          "cadence_law", "pll_edge_lock", "turn_bridge",
+                                                          "pelvic_rhythm_veto"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -698,6 +711,8 @@ FAST_FILL_VALUES = (False, True, FAST_FILL_OUTSIDE_FREEZE)
 CADENCE_LAW_VALUES = (False, True, CADENCE_LAW_STEADY)
 #: decision W384: ``turn_bridge`` - False, True (W374's bridge) or "side" (its contacts only where the side alternates)
 TURN_BRIDGE_VALUES = (False, True, TURN_BRIDGE_SIDE)
+#: decision W440: ``pelvic_rhythm_veto`` - False, True (at every cadence) or "slow" (below 70 steps/min only)
+PELVIC_RHYTHM_VALUES = (False, True, RHYTHM_SLOW)
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
@@ -708,7 +723,8 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "fast_fill": (FAST_FILL_VALUES, "W242, W255"),
                   "cadence_law": (CADENCE_LAW_VALUES, "W240, W261"),
                   "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367, W372"),
-                  "turn_bridge": (TURN_BRIDGE_VALUES, "W374, W384")}
+                  "turn_bridge": (TURN_BRIDGE_VALUES, "W374, W384"),
+                  "pelvic_rhythm_veto": (PELVIC_RHYTHM_VALUES, "W440")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -767,7 +783,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
                 fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
                 foot_rest_veto: bool | None = None, pll_edge_lock: bool | str | None = None,
-                turn_bridge: bool | str | None = None) -> TrackResult:
+                turn_bridge: bool | str | None = None, pelvic_rhythm_veto: bool | str | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -862,6 +878,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         of a foot stride that swings the foot (a standing passenger's bounce in a vehicle; decision W336,
         :mod:`pdrlearn.waist.foot_rest`; such runs are always named in one warning line each); default True
         (decision W337), False keeps and names them
+    pelvic_rhythm_veto : offline: drop a contact sooner after the previous one of its walking sequence than 0.6 x the
+        local step period of the pelvic-gyro detector (the one of the pair farther from a pelvic-gyro step; the step
+        before it extends over it; decision W440, :mod:`pdrlearn.waist.pelvic_rhythm`): a very slow gait's extra
+        contacts (W79); ``"slow"``: only where that period is slower than 70 steps/min (L95's range); True: at
+        every cadence (lowered the real daily-activity recordings' step F1, W440)
     pll_edge_lock : waist-pll with its own detector (the live tracker ignores it): the first and the last PLL peak of
         a run of peaks that pass the activity gate count only when the loop is locked at them (phase error within
         45 deg over the period ending at the peak; decision W356, W345's diagnosis: a free-running peak at a bout's
@@ -954,6 +975,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "stand_veto": stand_veto, "contact_model": contact_model, "realtime_sit_veto": realtime_sit_veto,
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "foot_rest_veto": foot_rest_veto,  # W336
+             "pelvic_rhythm_veto": pelvic_rhythm_veto,  # W440
              "pll_edge_lock": pll_edge_lock,  # W356
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
@@ -1097,6 +1119,13 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     warnings.extend(foot_rest_message(steps, a, b, bool(o["foot_rest_veto"])) for a, b in foot_runs)
     if foot_runs and o["foot_rest_veto"]:
         steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
+    gyro_s = functools.cache(lambda: None if realtime else pelvic_steps(session))  # W440, W441: read once, offline
+    n_rhythm = 0
+    if o["pelvic_rhythm_veto"] and not realtime and len(steps) and gyro_s() is not None:  # decision W440
+        steps = merge_dropped(steps, rhythm_keep(steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool),
+                                                 gyro_s(), min_period_s=SLOW_PERIOD_S
+                                                 if o["pelvic_rhythm_veto"] == RHYTHM_SLOW else 0.0), "n_rhythm")
+        n_rhythm = steps.attrs["n_rhythm"]
     if sit_hint_s is not None:  # W146's line; W343: not for the contacts a later veto (W336's foot rest) dropped
         warnings.extend(sit_veto_hint(int(np.isin(sit_hint_s, steps["event_s"].to_numpy(float)).sum()),
                                       realtime=realtime))
@@ -1193,9 +1222,16 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                                       vibration_kind=bool(o["ride_vibration"]))  # L403: opt-in
         steps = steps.assign(ride=ride_kinds)
         warnings.extend(ride_lines(rides))
-    if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
-        warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
-                                                step_counts(session, steps["event_s"].to_numpy(float))))
+    # decisions W114, W441: the pelvic gyro's count beside the contacts' (offline), both ways
+    counts = None if realtime else step_counts(session, steps["event_s"].to_numpy(float), gyro_s=gyro_s(),
+                                               has_next=steps["has_next"].to_numpy(bool))
+    not_alternating = (not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS
+                       and alternation < ALTERNATION_MIN)  # decision W98
+    uncountable = not_alternating and steps_uncountable(counts)  # decision W442
+    if not_alternating:
+        warnings.append(not_alternating_message(alternation, pairs, counts))  # W114, W442 in its line
+    elif count_mismatch_message(counts):  # decision W441
+        warnings.append(count_mismatch_message(counts))
     pendulum = functools.cache(lambda: _pendulum_steps(imu, p, thr, o))  # W139 and W186 read it once
     height_m, no_height = subject_height(session.meta)
     ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, height_m,  # W100, W116
@@ -1257,6 +1293,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         "n_weak_run_contacts": n_weak_run,
         "n_rescored_contacts": n_rescored,  # decision W203
         "n_frozen_contacts": n_frozen,  # decision W214
+        "n_rhythm_contacts": n_rhythm,  # decision W440
+        "n_pelvic_gyro_steps": None if counts is None else counts[1],  # decision W441: over the contacts' span
+        "step_count_unusable": bool(uncountable),  # decision W442: L95's line names no fast gait then
         "barometer_jump_steps": jumps,  # decision W230: steps held level (a pressure transient); None: no altitude
         "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
         # decisions W182, W245: transfers.csv (not in summary.json); W277: None when no upright could be had

@@ -106,21 +106,35 @@ STEP_COUNT_MIN = 10  # W99: walks where both counts are under this are not judge
 STEP_COUNT_MARGIN_S = 0.5  # W99: pelvic-gyro steps this far outside the first / last waist contact still count
 
 
-def step_counts(session: Session, event_s: np.ndarray) -> tuple[int, int] | None:
+def step_counts(session: Session, event_s: np.ndarray, gyro_s: np.ndarray | None = None,
+                has_next: np.ndarray | None = None) -> tuple[int, int] | None:
     """Decision W99: ``(n_waist, n_gyro)``: the waist contacts ``event_s`` (s) of a calibration walk and the
     pelvic-gyro detector's steps between the first and last of them (+- :data:`STEP_COUNT_MARGIN_S`); None
-    without two contacts or without a waist gyroscope."""
-    from pdrlearn.steps.detectors import PelvicGyroStepDetector
+    without two contacts or without a waist gyroscope. ``gyro_s``: the pelvic-gyro step times when already read
+    (decision W441: the track reads them once, :func:`pdrlearn.waist.pelvic_rhythm.pelvic_steps`). ``has_next``
+    (decision W441, a track's contacts): both counted only over its walking sequences (two or more contacts, each
+    +- the margin), so the pelvis's rotations between walks (a daily recording's turns and reaching) are not steps."""
+    from pdrlearn.waist.pelvic_rhythm import pelvic_steps
 
     ev = np.asarray(event_s, dtype=np.float64)
     if ev.size < 2:
         return None
-    try:
-        gyro = PelvicGyroStepDetector().detect(session)["event_s"].to_numpy(float)
-    except DataError:  # no waist gyroscope: nothing to compare with
+    gyro = pelvic_steps(session) if gyro_s is None else np.asarray(gyro_s, dtype=np.float64)
+    if gyro is None:  # no waist gyroscope: nothing to compare with
         return None
-    lo, hi = ev.min() - STEP_COUNT_MARGIN_S, ev.max() + STEP_COUNT_MARGIN_S
-    return int(ev.size), int(np.count_nonzero((gyro >= lo) & (gyro <= hi)))
+    if has_next is None:
+        spans = [(0, ev.size - 1)]
+    else:
+        hn = np.asarray(has_next, dtype=bool)
+        starts = np.flatnonzero(np.r_[True, ~hn[:-1]])
+        ends = np.r_[starts[1:] - 1, ev.size - 1]
+        spans = [(a, b) for a, b in zip(starts, ends, strict=True) if b > a]
+        if not spans:
+            return None
+    n_w = sum(b - a + 1 for a, b in spans)
+    n_g = sum(int(np.count_nonzero((gyro >= ev[a:b + 1].min() - STEP_COUNT_MARGIN_S) &
+                                   (gyro <= ev[a:b + 1].max() + STEP_COUNT_MARGIN_S))) for a, b in spans)
+    return int(n_w), n_g
 
 
 #: decision W114: what a waist contact count well under the pelvic gyroscope's means
@@ -138,16 +152,71 @@ def steps_missed(counts: tuple[int, int] | None) -> bool:
     return max(n_w, n_g) >= STEP_COUNT_MIN and n_g - n_w > STEP_COUNT_DISAGREE * n_g
 
 
+def steps_added(counts: tuple[int, int] | None) -> bool:
+    """Decision W441: the waist contacts of :func:`step_counts` ``(n_waist, n_gyro)`` exceed the pelvic-gyro count by
+    more than :data:`STEP_COUNT_DISAGREE` of it (the larger at least :data:`STEP_COUNT_MIN`): W114's test the other
+    way round."""
+    if counts is None:
+        return False
+    n_w, n_g = counts
+    return max(n_w, n_g) >= STEP_COUNT_MIN and n_w - n_g > STEP_COUNT_DISAGREE * n_g
+
+
+#: decision W442: waist contacts more than this times the pelvic-gyro count, with W98's alternation failed, are no
+#: step count at all (the trial's x4-5 against W79's x1.4 of a countable slow walk; a priori, not fitted)
+STEP_COUNT_UNUSABLE = 1.5
+
+
+def steps_uncountable(counts: tuple[int, int] | None) -> bool:
+    """Decision W442: :func:`steps_added`, the waist contacts more than :data:`STEP_COUNT_UNUSABLE` x the pelvic-gyro
+    count, and that count at least :data:`STEP_COUNT_MIN` (the pelvis turns step by step: someone walks; a wheelchair
+    user's pushes give no pelvic steps and keep W98's line). The caller adds W98's failed alternation."""
+    return steps_added(counts) and counts[1] >= STEP_COUNT_MIN and counts[0] > STEP_COUNT_UNUSABLE * counts[1]
+
+
+#: decision W441: what a waist contact count well over the pelvic gyroscope's means
+ADDED_STEPS_CAUSE = ("the waist detector adds contacts inside steps, as at a very slow or small-stepping gait "
+                     "(below ~70 steps/min the step's own vertical acceleration is small, decision W79) or with a "
+                     "walking aid's strikes, so the step count and distance read high")
+#: decision W442: why the contacts are no step count
+UNCOUNTABLE_CAUSE = ("the steps are too small or too slow for the lower back to count (very small slow steps, such as "
+                     "0.1 m every 1.5-2 s: the trunk's vertical motion at a step is no larger than its vibration; "
+                     "else a walking aid's strikes or wheelchair propulsion beside the steps), so n_steps, the "
+                     "cadence and the distance are not usable (not short fast steps and not running)")
+
+
+def _counts_text(counts: tuple[int, int], decision: str) -> str:
+    return (f"the pelvic-gyro detector counts {counts[1]} steps over the same span, the waist contacts "
+            f"{counts[0]} ({decision})")
+
+
+def count_mismatch_message(counts: tuple[int, int] | None) -> str | None:
+    """Decision W441's one line when the two counts of :func:`step_counts` disagree by more than
+    :data:`STEP_COUNT_DISAGREE` of the pelvic-gyro count, in either direction (W114's line says it only with W98's);
+    None when they agree or were not read."""
+    if steps_missed(counts):
+        cause = MISSED_STEPS_CAUSE
+    elif steps_added(counts):
+        cause = ADDED_STEPS_CAUSE
+    else:
+        return None
+    return (_counts_text(counts, "more than 30 % apart warns, decision W441") + f": {cause}; use 'pdrlearn steps "
+            "DIR --detector pelvic-gyro' for the step count and cadence, or a foot unit")
+
+
 def not_alternating_message(index: float, pairs: int, counts: tuple[int, int] | None = None) -> str:
     """Decision W98's one warning line for a waist track whose steps do not alternate left/right; with the
     :func:`step_counts` ``counts`` of its contacts, decision W114: when the pelvic gyroscope counts more steps
-    (:func:`steps_missed`) the contacts are every other step of a fast gait, and the line says so instead."""
+    (:func:`steps_missed`) the contacts are every other step of a fast gait, and the line says so instead;
+    decision W442: when the waist contacts are :func:`steps_uncountable`, the steps are too small or slow to count."""
     head = (f"the detected steps do not alternate left/right (alternation index {index:.2f} over {pairs} "
             f"consecutive steps; walking is ~1, under {ALTERNATION_MIN:g} warns, decision W98): ")
+    use = "; use 'pdrlearn steps DIR --detector pelvic-gyro' for the step count and cadence, or a foot unit"
     if steps_missed(counts):
-        return (head + f"the pelvic-gyro detector counts {counts[1]} steps over the same span, the waist contacts "
-                f"{counts[0]} (decision W114): {MISSED_STEPS_CAUSE}; use 'pdrlearn steps DIR --detector "
-                "pelvic-gyro' for the step count and cadence, or a foot unit")
+        return head + _counts_text(counts, "decision W114") + f": {MISSED_STEPS_CAUSE}" + use
+    if steps_uncountable(counts):
+        return (head + _counts_text(counts, f"over {STEP_COUNT_UNUSABLE:g} x warns, decision W442") +
+                f": {UNCOUNTABLE_CAUSE}" + use)
     return (head + "the pelvis shows no sideways weight shift from step to step, so the step count, distance and "
             "speed may not be walking (wheelchair propulsion, walking-aid strikes, phantom steps at very slow gait); "
             "check with a foot unit or 'pdrlearn steps DIR --detector pelvic-gyro'")
