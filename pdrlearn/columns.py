@@ -810,6 +810,8 @@ PERIODS: tuple[Column, ...] = (
     ("dx_m", "m", "number", "end_x_m - start_x_m: the period's net displacement along x (distance_m is the path "
                             "length; L514)"),
     ("dy_m", "m", "number", "end_y_m - start_y_m (L514)"),
+    ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers (transfers.csv) starting in the "
+                                           "period; empty on a foot track (W448)"),
     *_clocks("start_s", "end_s"),
 )
 

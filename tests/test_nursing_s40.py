@@ -64,13 +64,19 @@ def test_a_simulated_tug_and_a_chair_to_chair_walk_w445(tmp_path, capsys):
                  "straight:3", "--sit-start", "5", "--sit-end", "5", "--step-length", "0.35", "--step-time", "0.8",
                  "--bounce", "pendulum", "--height", "1.58", "--user-seed", "10912", "--out", str(d)]) == 0
     capsys.readouterr()
-    assert main(["track", str(d), "--units", "waist", "--out", str(out)]) == 0
+    assert main(["track", str(d), "--units", "waist", "--per", "30s", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     s = json.loads((out / "summary.json").read_text())
     assert s["n_sit_to_stand"] == 2 and s["n_tug_trials"] == 1 and s["n_chair_walks"] == 1
     trials = pd.read_csv(out / "tug_trials.csv")
     assert len(trials) == 1 and trials["start_s"].iloc[0] < 10.0  # the TUG, not the walk
     assert "1 chair-to-chair walk(s) not timed (W445)" in printed
+    # decision W448: periods.csv counts each rise in the period it starts in
+    periods, rises = pd.read_csv(out / "periods.csv"), pd.read_csv(out / "transfers.csv")
+    rises = rises[rises["kind"] == SIT_TO_STAND]["start_s"]
+    assert periods["n_sit_to_stand"].sum() == 2
+    assert periods["n_sit_to_stand"].tolist() == [int(((rises >= a) & (rises < b)).sum())
+                                                  for a, b in zip(periods["start_s"], periods["end_s"], strict=True)]
     assert main(["report", str(out), "--out", str(tmp_path / "rep"), "--clinical"]) == 0
     md = (tmp_path / "rep" / "clinical.md").read_text()
     assert "- TUG: 1 trials" in md and "found among 1 chair-to-chair walk(s) of daily life" in md
