@@ -432,12 +432,17 @@ SESSIONS: tuple[Column, ...] = (
     ("tug_time_note", _ID, "text", "lower back: why there is no tug_time_s although a sit-to-stand is followed by "
                                    "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
                                    "W282; no step between: a chair stand, W340), pointing at --window - or, with "
-                                   "TUG trials found, that each is timed in tug_trials.csv (W325); empty otherwise"),
+                                   "TUG trials found, that each is timed in tug_trials.csv (W325), or that the "
+                                   "seat-to-seat walks are chair-to-chair walks (W445); empty otherwise"),
     ("n_tug_trials", "count", "integer", "lower back: TUG trials, W183's seat-to-seat rule applied to each "
                                          "sit-to-stand directly followed by a stand-to-sit with walking between "
-                                         "(tug_trials.csv, W325); empty on a foot track"),
+                                         "(tug_trials.csv, W325) that looks like a TUG: at most 120 s and back "
+                                         "to the chair it rose from (W445); empty on a foot track"),
     ("tug_trials_median_s", "s", "number", "lower back: the median of tug_trials.csv's tug_time_s (W325); empty "
                                            "without a trial"),
+    ("n_chair_walks", "count", "integer", "lower back: seat-to-seat walks (W325's pattern) that do not look like a "
+                                          "TUG - longer than 120 s or not back to the chair: daily walks, not timed "
+                                          "(W445); empty on a foot track"),
     ("tug_steps_source", _ID, "text", "with a TUG: the unit tug_trials.csv's n_steps is counted on, foot (a foot "
                                       "+ waist session's default track, W418 / W419) or waist; empty otherwise "
                                       "(W427)"),
@@ -521,11 +526,13 @@ SUBJECTS: tuple[Column, ...] = (
     ("paths", _ID, "text", "the session folders"),
     ("distance_m", "m", "number", "the tracks' distances summed over the sessions"),
     ("n_bouts", "count", "integer", "walking bouts"),
-    ("walking_time_s", "s", "number", "bouts' durations summed"),
+    ("walking_time_s", "s", "number", "sessions.csv's walking_time_s summed (the summary's: stops over 3 s left "
+                                      "out, L79; W447)"),
     ("n_steps", "count", "integer", "bouts' steps summed"),
     ("n_strides", "count", "integer", "bouts' strides summed"),
     ("bouts_distance_m", "m", "number", "the walking bouts' distance summed (bouts.csv)"),
-    ("gait_speed_mps", "m/s", "number", "bouts distance / walking time (pooled, not a mean of bouts)"),
+    ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s, the sessions pooled: sessions.csv's and "
+                                        "summary.json's definition, equal to them for one session (W447)"),
     ("cadence_spm", "steps/min", "number", "60 x the bouts' steps between first and last contact / their contact "
                                            "spans (bouts.csv's cadence, pooled; L164)"),
     ("visit_as_written", _ID, "text", "meta.json visit(s) as written, ; -separated (C82)"),
@@ -541,6 +548,9 @@ SUBJECTS: tuple[Column, ...] = (
                                            "(C108)"),
     ("n_stand_to_sit", "count", "integer", "lower back: stand-to-sit transfers summed; empty as standing_time_s "
                                            "(C108)"),
+    ("bouts_time_s", "s", "number", "the walking bouts' durations summed (bouts.csv, the batch's --bout-* rule)"),
+    ("bouts_gait_speed_mps", "m/s", "number", "bouts_distance_m / bouts_time_s (pooled, not a mean of bouts; C25's "
+                                              "gait speed, named apart by W447)"),
     ("pooled_n_sessions", "count", "integer", "the row's sessions with foot strides, pooled in the pooled_* columns "
                                               "(C146)"),
     ("pooled_n_strides", "count", "integer", "foot strides pooled over those sessions (median_stride_length_m's "
@@ -800,6 +810,8 @@ PERIODS: tuple[Column, ...] = (
     ("dx_m", "m", "number", "end_x_m - start_x_m: the period's net displacement along x (distance_m is the path "
                             "length; L514)"),
     ("dy_m", "m", "number", "end_y_m - start_y_m (L514)"),
+    ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers (transfers.csv) starting in the "
+                                           "period; empty on a foot track (W448)"),
     *_clocks("start_s", "end_s"),
 )
 

@@ -165,11 +165,13 @@ SUBJECT_COLUMNS = ("subject", "visit", "group", "n_tracked", "n_failed", "paths"
                    "walking_time_s", "n_steps", "n_strides", "bouts_distance_m", "gait_speed_mps", "cadence_spm",
                    "visit_as_written",  # decision C82: last, the columns before it kept in place
                    *("floors_up", "floors_down", "time_no_data_s", "standing_time_s", "sitting_time_s",
-                     "lying_time_s", "n_sit_to_stand", "n_stand_to_sit"))  # decision C108: after, positions kept
+                     "lying_time_s", "n_sit_to_stand", "n_stand_to_sit"),  # decision C108: after, positions kept
+                   "bouts_time_s", "bouts_gait_speed_mps")  # decision W447: C25's bout speed under its own name
 
 #: decision C108: sessions.csv's additive columns subjects.csv sums (a day in parts adds up); its medians, CVs,
 #: speeds and errors are not additive and stay per session (gait speed and cadence are pooled instead, C25, L164)
-SUMMED_SESSION_COLUMNS = SUBJECT_COLUMNS[SUBJECT_COLUMNS.index("visit_as_written") + 1:]
+SUMMED_SESSION_COLUMNS = SUBJECT_COLUMNS[SUBJECT_COLUMNS.index("visit_as_written") + 1:
+                                         SUBJECT_COLUMNS.index("bouts_time_s")]
 
 
 def subject_totals(sessions, visit_map: dict[str, str] | None = None):
@@ -177,10 +179,13 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
     (natural order) and, when some session names a visit, per visit (:func:`visit_order`; a subject's sessions
     without a visit are one row with an empty visit). ``n_tracked`` / ``n_failed``: its sessions; ``paths``: the
     sessions counted (``; ``-separated, relative to ROOT); ``distance_m``: the tracks' distances summed;
-    ``n_bouts``, ``walking_time_s``, ``n_steps``, ``n_strides``, ``bouts_distance_m``: the detected walking bouts'
-    count, summed durations, steps (of both feet, L103), strides and distance (bouts.csv of each session, under the
-    batch's ``--bout-rule`` / ``--bout-break-s`` / ``--bout-min-strides``); ``gait_speed_mps`` = bouts_distance_m /
-    walking_time_s (empty without walking time) and ``cadence_spm``: bouts.csv's cadence definition
+    ``walking_time_s`` and ``gait_speed_mps``: decision W447, sessions.csv's (summary.json's) definition pooled -
+    the sessions' ``walking_time_s`` summed and ``distance_m`` over it (empty without walking time), so a one-session
+    subject reads what sessions.csv reads; ``n_bouts``, ``n_steps``, ``n_strides``, ``bouts_distance_m``,
+    ``bouts_time_s``: the detected walking bouts' count, steps (of both feet, L103), strides, distance and summed
+    durations (bouts.csv of each session, under the batch's ``--bout-rule`` / ``--bout-break-s`` /
+    ``--bout-min-strides``), ``bouts_gait_speed_mps`` = bouts_distance_m / bouts_time_s (C25's, renamed by W447)
+    and ``cadence_spm``: bouts.csv's cadence definition
     (:func:`pdrlearn.track.bouts.cadence_spm`, decision L164) of the bouts pooled - their steps between first and
     last contact (sessions.csv's ``bouts_n_step_intervals``) over their contact spans (``bouts_contact_span_s``).
     Sessions naming no subject are in no row (sessions.csv has them). Visits are named as changes.csv names them
@@ -218,10 +223,13 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
                    # decision B393: a split part at rest (B389's skipped) is neither tracked nor failed
                    "n_tracked": len(ok), "n_failed": int((at["status"] != SKIPPED).sum()) - len(ok),
                    "paths": "; ".join(at["path"].astype(str)),
-                   "distance_m": total("distance_m"), "n_bouts": total("n_bouts"), "walking_time_s": t,
+                   "distance_m": total("distance_m"), "n_bouts": total("n_bouts"),
+                   "walking_time_s": total("walking_time_s"),  # decision W447: the summary's, as sessions.csv
                    "n_steps": total("bouts_n_steps"), "n_strides": total("bouts_n_strides"),
-                   "bouts_distance_m": total("bouts_distance_m")}
-            row["gait_speed_mps"] = row["bouts_distance_m"] / t if t > 0 else np.nan
+                   "bouts_distance_m": total("bouts_distance_m"), "bouts_time_s": t}
+            w = row["walking_time_s"]
+            row["gait_speed_mps"] = row["distance_m"] / w if w > 0 else np.nan  # decision W447
+            row["bouts_gait_speed_mps"] = row["bouts_distance_m"] / t if t > 0 else np.nan  # cohort C25
             span = total("bouts_contact_span_s")  # decision L164: bouts.csv's cadence, the bouts pooled
             row["cadence_spm"] = cadence_spm(total("bouts_n_step_intervals"), span) if span > 0 else np.nan
             row.update({c: _sum_of_all(ok, c) for c in SUMMED_SESSION_COLUMNS})

@@ -399,9 +399,14 @@ def test_subjects_csv_totals_each_subject_and_visit_from_the_bouts(site_tree, tm
     assert row["distance_m"] == pytest.approx(sum(s["distance_m"] for s in summaries), rel=1e-12)
     assert row["n_bouts"] == len(bouts) == sum(s["n_bouts"] for s in summaries)
     # bouts.csv is written to 10 significant digits (track's number format), subjects.csv at full precision
-    assert row["walking_time_s"] == pytest.approx(bouts["duration_s"].sum(), rel=1e-9)
+    assert row["bouts_time_s"] == pytest.approx(bouts["duration_s"].sum(), rel=1e-9)
     assert (row["n_steps"], row["n_strides"]) == (bouts["n_steps"].sum(), bouts["n_strides"].sum())
-    assert row["gait_speed_mps"] == pytest.approx(bouts["distance_m"].sum() / bouts["duration_s"].sum(), rel=1e-9)
+    assert row["bouts_gait_speed_mps"] == pytest.approx(bouts["distance_m"].sum() / bouts["duration_s"].sum(),
+                                                        rel=1e-9)
+    # decision W447: walking_time_s and gait_speed_mps are the summaries' (sessions.csv's) definition, pooled
+    walking = sum(s["walking_time_s"] for s in summaries)
+    assert row["walking_time_s"] == pytest.approx(walking, rel=1e-12)
+    assert row["gait_speed_mps"] == pytest.approx(sum(s["distance_m"] for s in summaries) / walking, rel=1e-12)
     # decision L164 / cohort C45: bouts.csv's cadence (steps between first and last contact over that span), pooled
     assert row["cadence_spm"] == pytest.approx(60 * bouts["n_step_intervals"].sum() / bouts["contact_span_s"].sum(),
                                                rel=1e-9)

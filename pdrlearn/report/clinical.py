@@ -16,9 +16,13 @@ from pathlib import Path
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.report.daily_living import daily_living_lines
 
 #: decision W420: the body unit each pipeline's measures come from, as the summary names it
 UNIT_NAMES = {"plasys": "foot unit", "waist-pll": "lower-back unit", "waist-pendulum": "lower-back unit"}
+#: decision L95: the lowest speed (m/s) and cadence (steps/min) the pipelines are validated on; decision W446: an
+#: uncalibrated lower-back gait speed under VALIDATED_MIN_MPS is not given (as L313 withholds its 10 m walk)
+VALIDATED_MIN_MPS, VALIDATED_MIN_SPM = 0.5, 70.0
 
 
 def _read(path: Path) -> dict:
@@ -68,7 +72,7 @@ def tug_line(summary: dict, folder: Path) -> str | None:
             return None
         times = ", ".join(_s(t) for t in trials["tug_time_s"])
         return (f"- TUG: {len(trials)} trials {times} (median {_s(summary['tug_trials_median_s'])}); chair transfers: "
-                "lower-back unit")
+                f"lower-back unit{_daily_tug(summary)}")
     phases = summary.get("tug_phases") or {}
     parts = [f"{PHASE_LABELS[p]} {_s(phases[p]['duration_s'])}" for p in TUG_PHASES if phases.get(p)]
     text = f"- TUG: {_s(summary['tug_time_s'])} ({', '.join(parts)})"
@@ -81,7 +85,54 @@ def tug_line(summary: dict, folder: Path) -> str | None:
         text += f"; {count}"
         if summary.get("tug_turn_s") is not None:
             text += f"; turn {_s(summary['tug_turn_s'])} ({_unit(turns_from)})"
-    return text + "; chair transfers: lower-back unit"
+    return text + f"; chair transfers: lower-back unit{_daily_tug(summary)}"
+
+
+def _daily_tug(summary: dict) -> str:
+    """Decision W445: the TUG line's caveat when the recording also holds chair-to-chair walks (daily life)."""
+    n = summary.get("n_chair_walks")
+    return (f"; found among {n} chair-to-chair walk(s) of daily life: not a supervised test (W445)" if n else "")
+
+
+def _calibrated(summary: dict) -> bool:
+    """Decision W446: whether a lower-back track's step length is the wearer's (``calibrate``'s PARAMS)."""
+    return ((summary.get("info") or {}).get("params_source")) == "calibrated"
+
+
+def gait_speed_line(summary: dict, unit: str) -> str | None:
+    """Decisions W420, W446: the gait speed and cadence line. A lower-back speed says whether it is calibrated; an
+    uncalibrated one under :data:`VALIDATED_MIN_MPS` is not given (it read +57 % for trial T2's 0.21 m/s walker);
+    under L95's validated speed or cadence the line says so."""
+    speed, cad = summary.get("gait_speed_mps"), summary.get("median_cadence_spm")
+    if speed is None:
+        return None
+    cadence = f", cadence {cad:.0f} steps/min" if cad is not None else ""
+    slow_cad = cad is not None and cad < VALIDATED_MIN_SPM
+    if unit != "lower-back unit":
+        flags = [f"below the validated {VALIDATED_MIN_SPM:g} steps/min (L95)"] if slow_cad else []
+        return f"- Gait speed {speed:.2f} m/s{cadence} ({'; '.join([unit, *flags])})"
+    if not _calibrated(summary) and speed < VALIDATED_MIN_MPS:  # decision W446
+        flags = [unit] + ([f"cadence below the validated {VALIDATED_MIN_SPM:g} steps/min (L95)"] if slow_cad else [])
+        given = f"; cadence {cad:.0f} steps/min" if cad is not None else ""
+        return (f"- Gait speed not given: an uncalibrated lower-back reading under the validated "
+                f"{VALIDATED_MIN_MPS:g} m/s (L95) is not reliable; calibrate with a 10 m walk at the person's own pace "
+                f"(pdrlearn calibrate, W446){given} ({'; '.join(flags)})")
+    flags = [unit, "calibrated" if _calibrated(summary) else
+             "uncalibrated: step length from body height, no per-user calibration (W169)"]
+    if speed < VALIDATED_MIN_MPS or slow_cad:
+        flags.append(f"slower than the validated {VALIDATED_MIN_MPS:g} m/s / {VALIDATED_MIN_SPM:g} steps/min (L95)")
+    return f"- Gait speed {speed:.2f} m/s{cadence} ({'; '.join(flags)})"
+
+
+def warnings_line(summary: dict) -> str | None:
+    """Decision W446: a pointer to the track's warnings (clinical.md leaves their text to report.md)."""
+    info = summary.get("info") or {}
+    warnings, codes = info.get("warnings") or [], info.get("warning_codes") or []
+    if not warnings:
+        return None
+    named = f" ({', '.join(dict.fromkeys(c for c in codes if c))})" if any(codes) else ""
+    return (f"- Track warnings: {len(warnings)}{named}; read them in report.md or summary.json info.warnings before "
+            "using these numbers")
 
 
 def _unit(source: str) -> str:
@@ -109,10 +160,13 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
         lines.append(f"- 10 m walk: {summary['ten_m_walk_speed_mps']:.2f} m/s ({_s(summary['ten_m_walk_time_s'])} "
                      f"over {timed_stretch(*walkway_zones(summary))}"  # decision L536
                      f"{f'; {trials}' if trials else ''}; {unit})")
-    if summary.get("gait_speed_mps") is not None:
-        cad = summary.get("median_cadence_spm")
-        lines.append(f"- Gait speed {summary['gait_speed_mps']:.2f} m/s"
-                     f"{f', cadence {cad:.0f} steps/min' if cad is not None else ''} ({unit})")
+    speed = gait_speed_line(summary, unit)
+    if speed:
+        lines.append(speed)
+    lines += daily_living_lines(summary, folder)
+    warnings = warnings_line(summary)
+    if warnings:
+        lines.append(warnings)
     return lines
 
 

@@ -96,7 +96,8 @@ def plot_time_course(series: list[tuple[str, pd.DataFrame]], rests: pd.DataFrame
         speed = dist / np.where(b > a, b - a, np.nan)
         for ax, v in ((axes[0][0], dist), (axes[1][0], speed)):
             ax.stairs(v, np.r_[a, b[-1]], label=f"per {kind}")  # contiguous rows: each one's start, the last end
-    for ax, label in ((axes[0][0], "distance (m)"), (axes[1][0], "mean speed (m/s)")):
+    # decision W448: distance / the whole period, rests included - not a gait speed (T2 read 0.004 m/s beside one)
+    for ax, label in ((axes[0][0], "distance (m)"), (axes[1][0], "distance / time (m/s),\nrests included")):
         for r in (rests.itertuples() if rests is not None else []):
             ax.axvspan(r.start_s, r.end_s, color="0.85", zorder=0)
         ax.set_ylabel(label)

@@ -57,7 +57,7 @@ PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "
                   *PERIOD_GAIT_KEYS, *TIME_KEYS,
                   *POSTURE_KEYS, "floors_up", "floors_down", "ascent_m", "descent_m", "n_bouts", "n_turns",
                   "n_backward_strides", "n_side_strides", "data_gap", "position_sigma_end_m",
-                  *POSITION_KEYS)
+                  *POSITION_KEYS, "n_sit_to_stand")  # decision W448: last, the columns before it kept in place
 #: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
 PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
@@ -405,6 +405,19 @@ def period_displacement(traj: pd.DataFrame, start, end, a: float, b: float, *, l
             "end_y_m": float(xy[j, 1]), "dx_m": float(xy[j, 0] - xy[i, 0]), "dy_m": float(xy[j, 1] - xy[i, 1])}
 
 
+def rise_times(transfers) -> np.ndarray | None:
+    """Decision W448: the start times (s) of a track's sit-to-stand transfers (``info["transfers"]``, a table or
+    its records); None without transfers (a foot track: not measured, not zero)."""
+    if transfers is None:
+        return None
+    from pdrlearn.waist.transfers import SIT_TO_STAND
+
+    tr = pd.DataFrame(list(transfers) if not isinstance(transfers, pd.DataFrame) else transfers)
+    if not len(tr):
+        return np.zeros(0)
+    return tr.loc[tr["kind"] == SIT_TO_STAND, "start_s"].to_numpy(float)
+
+
 def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
                  turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None,
                  span: tuple[float, float] | None = None) -> pd.DataFrame:
@@ -429,6 +442,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     climb_t, climb_n = climbs if climbs is not None else (np.zeros(0), np.zeros(0))
     bout_t = bouts["start_s"].to_numpy(float) if bouts is not None and len(bouts) else np.zeros(0)
     turn_t = turns["start_s"].to_numpy(float) if turns is not None and len(turns) else np.zeros(0)
+    rise_t = rise_times(result.info.get("transfers"))  # decision W448: None on a track without a trunk unit
     traj = result.trajectory
     sigma = traj["pos_sigma_m"].to_numpy(float) if "pos_sigma_m" in traj and len(traj) else None
     tt = traj["t"].to_numpy(float) if len(traj) else np.zeros(0)
@@ -453,6 +467,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None
         row["ascent_m"], row["descent_m"] = interval_ascent(result, float(a), float(b))  # decision L467
         row["n_bouts"], row["n_turns"] = int(inside(bout_t).sum()), int(inside(turn_t).sum())
+        row["n_sit_to_stand"] = None if rise_t is None else int(inside(rise_t).sum())  # decision W448
         row["n_backward_strides"], row["n_side_strides"] = ((None, None) if travel is None  # L484: lower back
                                                             else (int(travel[0][m].sum()), int(travel[1][m].sum())))
         row["data_gap"] = row["time_no_data_s"] > 0

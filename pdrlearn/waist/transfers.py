@@ -18,7 +18,8 @@ whole movement and classed by the pelvis's height change over it:
   recorded from seat to seat); and at least one step lies between the rise and the sit (W340: a TUG walks; a rise
   and a sit with nothing between are a chair stand);
 * **TUG trials** (W325): the same rule applied to each sit-to-stand directly followed by a stand-to-sit with walking
-  between (:func:`tug_trial_pairs`), so two or three trials in one recording are each timed (tug_trials.csv).
+  between (:func:`tug_trial_pairs`), so two or three trials in one recording are each timed (tug_trials.csv);
+  W445: only when the pair looks like a TUG (:func:`tug_like`), else it is a chair-to-chair walk (``n_chair_walks``).
 
 Not from a seed: the clinical TUG runs from rising off the chair to sitting back on it (Podsiadlo & Richardson 1991,
 J Am Geriatr Soc 39:142-148, as recalled), and the thresholds are this module's choices (W182), set before
@@ -62,7 +63,11 @@ TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_
 #: decision W183: the summary keys of :func:`transfer_summary`
 TRANSFER_SUMMARY_KEYS = ("n_sit_to_stand", "n_stand_to_sit", "median_sit_to_stand_s", "median_stand_to_sit_s",
                          "tug_time_s", "n_lie_down", "n_get_up", "tug_time_note", "sts5_time_s",
-                         "n_transfers_flagged", "n_tug_trials", "tug_trials_median_s")
+                         "n_transfers_flagged", "n_tug_trials", "tug_trials_median_s", "n_chair_walks")
+#: decision W445: a TUG trial lasts at most this (s) from the rise's start to the sit's end
+TUG_MAX_S = 120.0
+#: decision W445: and comes back: the contacts' net displacement at most this fraction of the walked path
+TUG_RETURN_MAX = 0.25
 #: decision W278: a transfer with walking contacts within this (s) before its start and after its end is flagged
 FLAG_WALK_S = 2.0
 #: decision W278: transfers.csv's ``flag`` texts ("" = none)
@@ -230,20 +235,25 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
            "sts5_time_s": sts5_time_s(tr, steps),  # decision W279
            "n_transfers_flagged": int((flag_texts(tr["flag"]) != "").sum())}  # decision W278
     contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
+    pairs = seat_to_seat_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]), contacts)  # W325
+    trials = tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]), contacts,
+                             **contact_path(steps))  # W445
     if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
-        # decision W340: and a walking contact between the rise and the sit (a TUG walks; W325's trial test)
-        if len(tr) == 2 and not ((contacts < t0).any() or (contacts > t1).any()) and walked_between(
-                contacts, float(tr["end_s"].iloc[0]), float(tr["start_s"].iloc[1])):
+        # decision W340: and a walking contact between the rise and the sit (a TUG walks; W325's trial test);
+        # W445: and the pair is a TUG trial (it looks like one)
+        if len(tr) == 2 and not ((contacts < t0).any() or (contacts > t1).any()) and trials == [(0, 1)]:
             out["tug_time_s"] = t1 - t0
-    trials = tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]), contacts)  # W325
     times = [float(tr["end_s"].iloc[j]) - float(tr["start_s"].iloc[i]) for i, j in trials]
     out["n_tug_trials"], out["tug_trials_median_s"] = len(trials), float(np.median(times)) if times else None
+    out["n_chair_walks"] = len(pairs) - len(trials)  # decision W445
     # decision W282: why not, when a rise is followed by a sit (a TUG could be timed on them)
     pair = len(rise) and len(sit) and float(rise["start_s"].min()) < float(sit["end_s"].max())
     # decision W279: a five-times sit-to-stand is no TUG to explain: it has its own time
-    out["tug_time_note"] = (trials_note(tr, trials) if trials else tug_note(tr, contacts)) if (
-        out["tug_time_s"] is None and pair and out["sts5_time_s"] is None) else None
+    out["tug_time_note"] = None
+    if out["tug_time_s"] is None and pair and out["sts5_time_s"] is None:
+        out["tug_time_note"] = (trials_note(tr, trials) if trials else  # W445: seat-to-seat walks, no TUG among them
+                                chair_walks_note(tr, pairs) if pairs else tug_note(tr, contacts))
     return out
 
 
@@ -254,13 +264,13 @@ def walked_between(contacts, t0: float, t1: float) -> bool:
     return bool(((c > t0) & (c < t1)).any())
 
 
-def tug_trial_pairs(kinds, start_s, end_s, flags, contacts) -> list[tuple[int, int]]:
-    """Decision W325: the TUG trials of a transfers table in time order (``kinds``, ``start_s``, ``end_s``, W278's
-    ``flags`` per row) with walking ``contacts`` (start times, s), as ``(rise row, sit row)`` index pairs (a pure
-    kernel): W183's seat-to-seat rule applied per pair of consecutive rows - a sit-to-stand directly followed by a
-    stand-to-sit, neither flagged, at least one contact between the rise's end and the sit's start, and none between
-    the transfer before (or the start) and the rise's start nor between the sit's end and the next transfer (or the
-    end)."""
+def seat_to_seat_pairs(kinds, start_s, end_s, flags, contacts) -> list[tuple[int, int]]:
+    """Decision W325: the seat-to-seat walks of a transfers table in time order (``kinds``, ``start_s``, ``end_s``,
+    W278's ``flags`` per row) with walking ``contacts`` (start times, s), as ``(rise row, sit row)`` index pairs (a
+    pure kernel): W183's seat-to-seat rule applied per pair of consecutive rows - a sit-to-stand directly followed by
+    a stand-to-sit, neither flagged, at least one contact between the rise's end and the sit's start, and none
+    between the transfer before (or the start) and the rise's start nor between the sit's end and the next transfer
+    (or the end). W445: a TUG trial (:func:`tug_trial_pairs`) or a chair-to-chair walk."""
     kinds = list(kinds)
     a, b = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
     c = np.asarray(contacts, dtype=float)
@@ -274,6 +284,50 @@ def tug_trial_pairs(kinds, start_s, end_s, flags, contacts) -> list[tuple[int, i
         if seated and walked_between(c, b[i], a[i + 1]):
             out.append((i, i + 1))
     return out
+
+
+def tug_like(t0: float, up: float, down: float, t1: float, contacts, length_m=None, heading_rad=None) -> bool:
+    """Decision W445: whether a seat-to-seat walk (rise from ``t0`` to ``up``, sit from ``down`` to ``t1``, s; walking
+    ``contacts``' start times, s) looks like a TUG (a pure kernel): at most :data:`TUG_MAX_S` long and - with each
+    contact's ``length_m`` and ``heading_rad`` - a net displacement of the contacts between ``up`` and ``down`` at
+    most :data:`TUG_RETURN_MAX` of their path (it comes back to the chair)."""
+    c = np.asarray(contacts, dtype=float)
+    inside = (c > up) & (c < down)
+    if t1 - t0 > TUG_MAX_S:
+        return False
+    if length_m is None or heading_rad is None:
+        return True
+    ln = np.asarray(length_m, dtype=float)[inside]
+    hd = np.asarray(heading_rad, dtype=float)[inside]
+    ok = np.isfinite(ln) & np.isfinite(hd)
+    path = float(ln[ok].sum())
+    if path <= 0.0:
+        return True
+    net = float(np.hypot((ln[ok] * np.cos(hd[ok])).sum(), (ln[ok] * np.sin(hd[ok])).sum()))
+    return net <= TUG_RETURN_MAX * path
+
+
+def contact_path(steps: pd.DataFrame | None) -> dict:
+    """Decision W445: ``{"length_m", "heading_rad"}`` of the walking contacts (``steps``, a lower-back track's
+    steps.csv) for :func:`tug_like`'s return test; empty when they carry none (a two-unit track's trunk contacts)."""
+    if steps is None or not len(steps) or "length_m" not in steps or "heading_rad" not in steps:
+        return {}
+    return {"length_m": steps["length_m"].to_numpy(float), "heading_rad": steps["heading_rad"].to_numpy(float)}
+
+
+def tug_trial_pairs(kinds, start_s, end_s, flags, contacts, length_m=None, heading_rad=None) -> list[tuple[int, int]]:
+    """Decisions W325, W445: the TUG trials of a transfers table: :func:`seat_to_seat_pairs` that look like a TUG
+    (:func:`tug_like`; ``length_m`` / ``heading_rad`` per contact, optional)."""
+    a, b = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
+    return [(i, j) for i, j in seat_to_seat_pairs(kinds, start_s, end_s, flags, contacts)
+            if tug_like(a[i], b[i], a[j], b[j], contacts, length_m, heading_rad)]
+
+
+def chair_walks_note(tr: pd.DataFrame, pairs: list[tuple[int, int]]) -> str:
+    """Decision W445: ``tug_time_note`` when every seat-to-seat walk is a chair-to-chair walk (no TUG trial)."""
+    rises = ", ".join(f"{float(tr['start_s'].iloc[i]):.1f}" for i, _ in pairs)
+    return (f"no TUG time: {len(pairs)} chair-to-chair walk(s) (rises at {rises} s) do not look like a TUG (longer "
+            f"than {TUG_MAX_S:g} s, or not back to the chair it rose from): daily walks, not timed (W445)")
 
 
 def trials_note(tr: pd.DataFrame, trials: list[tuple[int, int]]) -> str:

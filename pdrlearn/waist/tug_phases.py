@@ -132,14 +132,14 @@ def tug_trial_table(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame |
     Decision W419: ``foot`` (a two-unit track's foot strides, ``turns`` then the foot's turns.csv) counts the steps
     (:func:`~pdrlearn.track.trunk_tug.foot_step_count`); ``steps_source`` / ``turns_source`` name the unit."""
     from pdrlearn.track.trunk_tug import FOOT, WAIST, foot_step_count
-    from pdrlearn.waist.transfers import flag_texts, tug_trial_pairs
+    from pdrlearn.waist.transfers import contact_path, flag_texts, tug_trial_pairs
 
     rows = []
     if transfers is not None:
         tr = _table(transfers)
         contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
         for k, (i, j) in enumerate(tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]),
-                                                   contacts)):
+                                                   contacts, **contact_path(steps))):  # W325, W445
             rise, sit = tr.iloc[i], tr.iloc[j]
             t0, t1 = float(rise["start_s"]), float(sit["end_s"])
             phases = tug_phase_summary(segment_phases(rise, sit, turns, steps, yaw_turns, yaw_to_sit))
@@ -160,8 +160,9 @@ def tug_trials_line(summary: dict, table: pd.DataFrame | None = None) -> str | N
     if not n or summary.get("tug_time_s") is not None:
         return None
     times = "" if table is None or not len(table) else ", ".join(f"{t:.2f}" for t in table["tug_time_s"]) + " s "
+    walks = summary.get("n_chair_walks")
     return (f"{n} TUG trial(s): {times}(median {summary['tug_trials_median_s']:.2f} s; tug_trials.csv, "
-            "decision W325)")
+            "decision W325)" + (f"; {walks} chair-to-chair walk(s) not timed (W445)" if walks else ""))
 
 
 def tug_phase_summary(phases: dict | None) -> dict:

@@ -1,0 +1,79 @@
+"""clinical.md's daily-living block of a long recording (decision W448, docs/decisions/waist.md): steps, walking
+bouts, chair transfers and posture times, read from what ``track`` already wrote (summary.json, bouts.csv,
+periods.csv) - no new measure."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+#: decision W448: a recording this long (s) or longer gets the block (a supervised test lasts minutes)
+DAILY_MIN_S = 3600.0
+#: decision W448: a walking bout this long (s) or longer is counted apart (Mobilise-D style long bouts)
+LONG_BOUT_S = 30.0
+#: decision W448: the steps per period are listed when periods.csv has at most this many rows (a day of hours)
+MAX_PERIODS_LISTED = 48
+#: decision L95: the lowest cadence (steps/min) the pipelines are validated on
+VALIDATED_MIN_SPM = 70.0
+
+
+def _csv(path: Path) -> pd.DataFrame | None:
+    try:
+        return pd.read_csv(path) if path.is_file() else None
+    except (OSError, ValueError, pd.errors.EmptyDataError):
+        return None
+
+
+def _h(seconds) -> str:
+    s = float(seconds)
+    return f"{s / 3600:.1f} h" if s >= 3600 else f"{s / 60:.0f} min"
+
+
+def _per(per_s) -> str:
+    per = float(per_s)
+    return f"{per / 3600:g} h" if per % 3600 == 0 else f"{per / 60:g} min" if per % 60 == 0 else f"{per:g} s"
+
+
+def daily_living_lines(summary: dict, folder: Path) -> list[str]:
+    """Decision W448: the daily-living lines of a track ``folder`` (its ``summary``) that spans
+    :data:`DAILY_MIN_S` or more; none for a shorter one."""
+    span = summary.get("time_span_s")
+    if span is None or float(span) < DAILY_MIN_S:
+        return []
+    lines = []
+    steps, cad = summary.get("n_steps"), summary.get("median_cadence_spm")
+    if steps is not None:
+        caveat = ("; lower-back step count not validated below "
+                  f"{VALIDATED_MIN_SPM:g} steps/min (L95)" if str(summary.get("pipeline")).startswith("waist")
+                  and cad is not None and cad < VALIDATED_MIN_SPM else "")
+        text = f"- Daily living over {_h(span)} recorded: {int(steps)} steps ({3600 * steps / float(span):.0f} per hour"
+        text += f", {86400 * steps / float(span):.0f} per day)" if float(span) >= 86400 else ")"
+        walking = summary.get("walking_time_s")
+        if walking is not None:
+            text += f"; walking {float(walking) / 60:.1f} min"
+        bouts = _csv(folder / "bouts.csv")
+        if bouts is not None and len(bouts) and "duration_s" in bouts:
+            d = pd.to_numeric(bouts["duration_s"], errors="coerce").to_numpy(float)
+            text += (f" in {len(d)} walking bouts (median {np.nanmedian(d):.0f} s, longest {np.nanmax(d):.0f} s, "
+                     f"{int((d >= LONG_BOUT_S).sum())} of {LONG_BOUT_S:g} s or more)")
+        lines.append(text + caveat)
+    if summary.get("n_sit_to_stand") is not None:
+        text = f"- Transfers: {summary['n_sit_to_stand']} sit-to-stand"
+        if summary.get("median_sit_to_stand_s") is not None:
+            text += f" (median {summary['median_sit_to_stand_s']:.1f} s)"
+        text += (f", {summary.get('n_stand_to_sit')} stand-to-sit, {summary.get('n_lie_down')} lie-down, "
+                 f"{summary.get('n_get_up')} get-up")
+        if summary.get("n_chair_walks"):
+            text += f"; {summary['n_chair_walks']} chair-to-chair walk(s) (W445)"
+        lines.append(text)
+    post = [(k, summary.get(f"{k}_time_s")) for k in ("sitting", "standing", "lying", "unknown")]
+    if any(v is not None for _, v in post[:3]):
+        lines.append("- Posture: " + ", ".join(f"{k} {_h(v)}" for k, v in post if v is not None))
+    periods = _csv(folder / "periods.csv")
+    if periods is not None and 1 < len(periods) <= MAX_PERIODS_LISTED and "n_steps" in periods:
+        n = pd.to_numeric(periods["n_steps"], errors="coerce")
+        per = f" per {_per(summary['per_s'])}" if summary.get("per_s") else " per period"
+        lines.append(f"- Steps{per} (periods.csv): " + ", ".join("-" if pd.isna(v) else f"{v:.0f}" for v in n))
+    return lines
