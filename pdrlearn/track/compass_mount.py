@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from pdrlearn.kernels.fixes import wrap_angle
+from pdrlearn.track.frame_inference import asymmetric_forward_words
 
 #: decision D25: a foot heading change of at least this (deg) between two consecutive straight strides is a turn
 MOUNT_TURN_MIN_DEG = 45.0
@@ -60,6 +61,12 @@ def declared_forward_off(session, placement: str = "waist") -> float | None:
     return None if chk is None else chk.forward_deg
 
 
+def forward_power_ratio(session, placement: str = "waist") -> float | None:
+    """Decision W435: the step-frequency power ratio of the forward D10's check measured (None: none measured)."""
+    chk = session.declared_check(placement)
+    return None if chk is None else getattr(chk, "forward_power_ratio", None)
+
+
 def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray) -> tuple[str | None, dict]:
     """Decision D25: (a warning line or None, ``info["compass_mount"]``) for a heading that reads the waist compass:
     the turn mismatch of :func:`turn_mismatch` (with at least :data:`MOUNT_MIN_TURNS` turns) and the declared
@@ -80,11 +87,16 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
         why.append(f"its compass turns differ from the foot gyroscope's turns by a median {mismatch:.0f} deg over {n} "
                    f"turns (over {MOUNT_TURN_MISMATCH_DEG:g} deg: the compass turns the other way, the unit's data "
                    "are mirrored, e.g. two axes swapped)")
-    if off is not None and off > MOUNT_FORWARD_OFF_DEG:
+    ratio = forward_power_ratio(session)
+    info["forward_power_ratio"] = ratio
+    asymmetric = off is not None and off > MOUNT_FORWARD_OFF_DEG and bool(asymmetric_forward_words(ratio))
+    if asymmetric:  # decision W435: an asymmetric gait's measured forward swings by up to ~50 deg: not judged
+        info["forward_not_judged"] = True
+    elif off is not None and off > MOUNT_FORWARD_OFF_DEG:
         why.append(f"its declared forward is {off:.0f} deg from the direction it walks (over "
                    f"{MOUNT_FORWARD_OFF_DEG:g} deg: the unit is turned on the belt against its declared frame)")
     if not why:
-        return None, info
+        return (asymmetric_mount_line(off, ratio) if asymmetric else None), info
     info["fallback"] = True
     chk = session.declared_check("waist")
     if chk is not None and chk.side_drill:  # decision W415: a side or backward drill, not a mounting fault: no line,
@@ -95,3 +107,14 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
             "first walk, L494/L510, as `--units foot`; --initial-heading DEG sets it, L511), not the compass's "
             "(decision D25); declare the waist unit's frame as "
             "it is worn (`pdrlearn info` prints the frame the data give)"), info
+
+
+def asymmetric_mount_line(off: float, ratio: float) -> str:
+    """Decision W435's line: the declared waist forward measured ``off`` deg from the walking direction, not judged
+    because the measurement's step-frequency power ``ratio`` is under
+    :data:`pdrlearn.track.frame_inference.MIN_JUDGED_POWER_RATIO`; the compass
+    is kept."""
+    return (f"the waist unit's declared forward measures {off:.0f} deg from the direction it walks, over D25's "
+            f"{MOUNT_FORWARD_OFF_DEG:g} deg, but that measurement is not trusted" + asymmetric_forward_words(ratio)
+            + ": the track keeps the waist compass's heading; if the unit really is turned on the belt, declare its "
+            "frame as it is worn, and if its turns look wrong track with --units foot")
