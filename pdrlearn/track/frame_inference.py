@@ -337,6 +337,24 @@ def foot_travel_angles(session, span: tuple[float, float] | None = None
     return t[i0], t[i1], np.arctan2(left, fwd), np.hypot(fwd, left), yaw
 
 
+#: decision B418: a foot refused for its rotation axis whose swing pitches toes-down less than this (deg) is named a
+#: foot of little sagittal rotation: trial s40 T1 finding 6's prosthetic-like feet pitched 15 deg (refused, axis 48
+#: deg off) and 25-52 deg (inferred; axis 13-25 deg off); the simulator's anatomical foot ~50 deg
+LITTLE_PITCH_DEG = 30.0
+
+
+def little_pitch_words(down_deg: float) -> str:
+    """Decision B418: what the foot rotation-axis refusal adds when the swing's toes-down pitch ``down_deg`` is under
+    :data:`LITTLE_PITCH_DEG` (else ""): the likely cause (a stiff or prosthetic foot, a shuffling gait) and the fix
+    (declare the axes)."""
+    if not down_deg < LITTLE_PITCH_DEG:
+        return ""
+    return (f"; in swing it pitches toes-down only {down_deg:.0f} deg: little sagittal rotation, as a stiff or "
+            "prosthetic foot or a shuffling gait makes, lets its roll and yaw decide the axis; declare the unit's "
+            "axes - pdrlearn import --frames x=...,y=...,z=... or a \"frames\" entry in meta.json (docs/frames.md, "
+            "prosthetic feet; decision B418) - and it tracks")
+
+
 def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
     """Frame of a foot unit from its specific force (m/s^2) and angular rate (rad/s) on one clock (fs Hz).
 
@@ -387,7 +405,8 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     ang_rot = _angle_deg(v[:, 2], left)
     if ang_rot > MAX_SNAP_DEG:
         raise _refuse(f"the foot's main rotation axis is {ang_rot:.0f} deg from the medio-lateral "
-                      f"direction of its strides (more than {MAX_SNAP_DEG:g})", up, fwd, (len(hor), resultant))
+                      f"direction of its strides (more than {MAX_SNAP_DEG:g})" + little_pitch_words(
+                          float(np.degrees(np.median(down)))), up, fwd, (len(hor), resultant))
     i_ml, s_ml, ang_ml = _nearest_axis(left)
     if ang_ml > MAX_SNAP_DEG:
         raise _refuse(f"the medio-lateral direction is {ang_ml:.0f} deg from every sensor axis "
