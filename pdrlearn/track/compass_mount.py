@@ -88,33 +88,26 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
                    f"turns (over {MOUNT_TURN_MISMATCH_DEG:g} deg: the compass turns the other way, the unit's data "
                    "are mirrored, e.g. two axes swapped)")
     ratio = forward_power_ratio(session)
-    info["forward_power_ratio"] = ratio
+    info["forward_power_ratio"] = ratio  # decision W435: under x10, an asymmetric gait may have turned the measurement
     asymmetric = off is not None and off > MOUNT_FORWARD_OFF_DEG and bool(asymmetric_forward_words(ratio))
-    if asymmetric:  # decision W435: an asymmetric gait's measured forward swings by up to ~50 deg: not judged
-        info["forward_not_judged"] = True
-    elif off is not None and off > MOUNT_FORWARD_OFF_DEG:
+    if off is not None and off > MOUNT_FORWARD_OFF_DEG:
         why.append(f"its declared forward is {off:.0f} deg from the direction it walks (over "
-                   f"{MOUNT_FORWARD_OFF_DEG:g} deg: the unit is turned on the belt against its declared frame)")
+                   f"{MOUNT_FORWARD_OFF_DEG:g} deg: the unit is turned on the belt against its declared frame"
+                   + (", or" + asymmetric_forward_words(ratio)[1:] if asymmetric else "") + ")")
     if not why:
-        return (asymmetric_mount_line(off, ratio) if asymmetric else None), info
+        return None, info
     info["fallback"] = True
     chk = session.declared_check("waist")
     if chk is not None and chk.side_drill:  # decision W415: a side or backward drill, not a mounting fault: no line,
         info["not_judged"] = chk.unchecked  # but the foot gyroscope's heading as before W415 (numbers unchanged)
         return None, info
-    return ("the waist unit's mounting does not match its frame - " + "; ".join(why) + " - so its compass would "
+    guess = "may not match" if asymmetric and len(why) == 1 else "does not match"  # W435: the gait may turn it
+    return (f"the waist unit's mounting {guess} its frame - " + "; ".join(why) + " - so its compass would "
             "turn the whole track: this track's heading is the foot gyroscope's own (0 = the walker's facing at the "
             "first walk, L494/L510, as `--units foot`; --initial-heading DEG sets it, L511), not the compass's "
-            "(decision D25); declare the waist unit's frame as "
-            "it is worn (`pdrlearn info` prints the frame the data give)"), info
+            "(decision D25); " + ("if the unit is worn as declared, keep its frame: the foot gyroscope's heading is "
+                                  "the safe choice here, since a unit really turned on the belt would turn the whole "
+                                  "track (W435: 35-38 m off on a 35 m route)" if asymmetric else
+                                  "declare the waist unit's frame as it is worn (`pdrlearn info` prints the frame the "
+                                  "data give)")), info
 
-
-def asymmetric_mount_line(off: float, ratio: float) -> str:
-    """Decision W435's line: the declared waist forward measured ``off`` deg from the walking direction, not judged
-    because the measurement's step-frequency power ``ratio`` is under
-    :data:`pdrlearn.track.frame_inference.MIN_JUDGED_POWER_RATIO`; the compass
-    is kept."""
-    return (f"the waist unit's declared forward measures {off:.0f} deg from the direction it walks, over D25's "
-            f"{MOUNT_FORWARD_OFF_DEG:g} deg, but that measurement is not trusted" + asymmetric_forward_words(ratio)
-            + ": the track keeps the waist compass's heading; if the unit really is turned on the belt, declare its "
-            "frame as it is worn, and if its turns look wrong track with --units foot")

@@ -546,11 +546,11 @@ def _with_nearest(err: FrameInferenceError, acc, gyr, fs: float, max_snap_deg: f
     return err
 
 
-#: decision W435: a waist forward measured with a step-frequency power ratio (forward over lateral) under this is
-#: not judged against a declared forward (D25): an asymmetric gait's lateral sway puts power at the step frequency
-#: and turns the measured forward by up to ~50 deg (trial s40 T1 finding 3: x4.7-x7.0 at step-time asymmetry
-#: 0.2-0.45, 53 deg off); a symmetric simulated walk reads ~x85 and the real straight lower-back walks x12.8-x228
-#: (mobgap Test5); a project choice between the two
+#: decision W435: a waist forward measured with a step-frequency power ratio (forward over lateral) under this is said
+#: to be possibly turned by the gait (D25's line, the axis refusal): an asymmetric gait's lateral sway puts power at the
+#: step frequency and turns the measured forward by up to ~50 deg (trial s40 T1 finding 3: x4.7-x7.0 at step-time
+#: asymmetry 0.2-0.45, 53 deg off); a symmetric simulated walk reads ~x85 and the real straight lower-back walks
+#: x12.8-x228 (mobgap Test5); a project choice between the two. Not adopted: not judging D25 (b) under it (W435)
 MIN_JUDGED_POWER_RATIO = 10.0
 
 
@@ -561,7 +561,7 @@ def asymmetric_forward_words(ratio: float | None) -> str:
         return ""
     return (f"; its step-frequency power ratio is only x{ratio:.1f} (under x{MIN_JUDGED_POWER_RATIO:g}): a strongly "
             "asymmetric gait (a prosthesis, a hemiparesis) or much turning puts lateral sway at the step frequency and "
-            "turns the measured forward by up to ~50 deg, so it does not judge the mounting (decision W435)")
+            "can turn the measured forward by up to ~50 deg (decision W435)")
 
 
 def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float, *,
