@@ -155,3 +155,13 @@ def test_a_reported_lower_back_asymmetry_gives_the_index_without_its_over_read_w
     assert rep["step_time_asymmetry_pct"] == pytest.approx(50.0)  # the summary value stays the raw index
     assert OVER_READ_FACTOR == 1.5 and "about 33.3 % once the simulated x1.5 over-read is taken out" in rep["reason"]
     assert "+4.3 to +26.1 points" in rep["reason"]
+
+
+def test_a_foot_import_without_frames_names_a_prosthetic_foot_b418(tmp_path, capsys):
+    from pdrlearn.cli import main
+    from tests.sim_helpers import lab_columns, quiet_walk
+
+    lab_columns(quiet_walk("straight:4", 10803, seed=1, rate_hz=50.0)).to_csv(tmp_path / "foot.csv", index=False)
+    assert main(["import", str(tmp_path / "foot.csv"), "--unit", "foot", "--out", str(tmp_path / "o")]) == 0
+    err = capsys.readouterr().err
+    assert "pass --frames to declare it (always for a prosthetic or stiff foot" in err
