@@ -165,3 +165,16 @@ def test_a_foot_import_without_frames_names_a_prosthetic_foot_b418(tmp_path, cap
     assert main(["import", str(tmp_path / "foot.csv"), "--unit", "foot", "--out", str(tmp_path / "o")]) == 0
     err = capsys.readouterr().err
     assert "pass --frames to declare it (always for a prosthetic or stiff foot" in err
+
+
+def test_force_frame_keeps_the_waist_compass_against_d25_b_w434():
+    from pdrlearn.track.compass_mount import mount_check
+
+    chk = SimpleNamespace(forward_deg=53.0, side_drill=False, unchecked=None, forward_power_ratio=4.7)
+    heading, keep = np.zeros(20), np.ones(20, bool)
+    forced = SimpleNamespace(declared_check=lambda placement: chk, frame_forced=lambda placement: placement == "waist")
+    line, info = mount_check(forced, heading, heading, keep)
+    assert line is None and info["fallback"] is False and info["forward_forced"] is True
+    free = SimpleNamespace(declared_check=lambda placement: chk, frame_forced=lambda placement: False)
+    line, info = mount_check(free, heading, heading, keep)
+    assert info["fallback"] is True and '"force_frame": ["waist"] in meta.json (W434)' in line

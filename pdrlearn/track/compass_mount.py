@@ -90,7 +90,10 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
     ratio = forward_power_ratio(session)
     info["forward_power_ratio"] = ratio  # decision W435: under x10, an asymmetric gait may have turned the measurement
     asymmetric = off is not None and off > MOUNT_FORWARD_OFF_DEG and bool(asymmetric_forward_words(ratio))
-    if off is not None and off > MOUNT_FORWARD_OFF_DEG:
+    forced = off is not None and off > MOUNT_FORWARD_OFF_DEG and _waist_forced(session)
+    if forced:  # decision W434: the user's "force_frame" keeps the declared waist frame, and so its compass
+        info["forward_forced"] = True
+    elif off is not None and off > MOUNT_FORWARD_OFF_DEG:
         why.append(f"its declared forward is {off:.0f} deg from the direction it walks (over "
                    f"{MOUNT_FORWARD_OFF_DEG:g} deg: the unit is turned on the belt against its declared frame"
                    + (", or" + asymmetric_forward_words(ratio)[1:] if asymmetric else "") + ")")
@@ -107,7 +110,14 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
             "first walk, L494/L510, as `--units foot`; --initial-heading DEG sets it, L511), not the compass's "
             "(decision D25); " + ("if the unit is worn as declared, keep its frame: the foot gyroscope's heading is "
                                   "the safe choice here, since a unit really turned on the belt would turn the whole "
-                                  "track (W435: 35-38 m off on a 35 m route)" if asymmetric else
+                                  "track (W435: 35-38 m off on a 35 m route); to keep its compass all the same, "
+                                  "\"force_frame\": [\"waist\"] in meta.json (W434)" if asymmetric else
                                   "declare the waist unit's frame as it is worn (`pdrlearn info` prints the frame the "
                                   "data give)")), info
 
+
+def _waist_forced(session) -> bool:
+    """Decision W434: whether ``session`` forces its declared waist frame (meta.json ``"force_frame"``, D23's
+    override; False for a session object without one)."""
+    forced = getattr(session, "frame_forced", None)
+    return bool(forced("waist")) if callable(forced) else False
