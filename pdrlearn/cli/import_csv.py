@@ -622,7 +622,9 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     if unit in session.frames:
         err(f"{unit} frame: {json.dumps(session.frames[unit].to_dict())}")
     else:
-        err(f"{unit} frame: not declared; commands infer it from the data (decision D8); pass --frames to declare it")
+        err(f"{unit} frame: not declared; commands infer it from the data (decision D8); pass --frames to declare it"
+            + (" (always for a prosthetic or stiff foot, whose little sagittal rotation the inference may not read: "
+               "decision B418)" if unit == "foot" else ""))
     verb = "added to" if merge else ("replaced" if existed else "written to")
     err(f"{unit} unit {verb} {out}; check it with: pdrlearn info {shell_quote(out)}")
     typer.echo(str(out))

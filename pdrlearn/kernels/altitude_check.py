@@ -92,6 +92,35 @@ def steep_stride_check(length: np.ndarray, dz: np.ndarray) -> tuple[str | None, 
             "against a barometer (`--altitude fused`) or the lower back (`--pipeline waist-pendulum`)"), info
 
 
+#: decision L543: at least this many strides a model classed up / down whose height the level rule zeroed, together
+#: climbing at least :data:`ZEROED_CLIMB_MIN_M`, warn: a ramp run is at least two foot strides (L301's 2 m) and a stair
+#: riser 0.17 m (the simulator's, L39) is the least height change a user reads as a climb
+ZEROED_CLIMB_MIN_STRIDES = 2
+ZEROED_CLIMB_MIN_M = 0.17
+
+
+def zeroed_climb_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str | None, dict]:
+    """Decision L543: ``terrain`` (n,) a model's top terrain classes (None / NaN: none), ``raw_dz`` (n,) the strides'
+    integrated height changes, ``dz`` (n,) the track's. A stride classed up (down) whose ``dz`` is 0 while its
+    ``raw_dz`` rose (fell) lost its climb to L39's level rule (its class under L18's confidence gate, L184, and its
+    |dz| under 0.10 m: a ramp stride - a 1:12 ramp rises 0.083 m per 1 m stride). With
+    :data:`ZEROED_CLIMB_MIN_STRIDES` of them climbing :data:`ZEROED_CLIMB_MIN_M` or more, one warning; returns
+    ``(line or None, info)``."""
+    terr = np.array([t if isinstance(t, str) else "" for t in terrain], dtype=object)
+    raw = np.nan_to_num(np.asarray(raw_dz, dtype=float))
+    fin = np.nan_to_num(np.asarray(dz, dtype=float))
+    zeroed = (fin == 0.0) & (((terr == "up") & (raw > 0)) | ((terr == "down") & (raw < 0)))
+    up_m, down_m = float(raw[zeroed & (terr == "up")].sum()), float(raw[zeroed & (terr == "down")].sum())
+    info = {"zeroed_climb_strides": int(zeroed.sum()), "zeroed_up_m": up_m, "zeroed_down_m": down_m}
+    if zeroed.sum() < ZEROED_CLIMB_MIN_STRIDES or max(up_m, -down_m) < ZEROED_CLIMB_MIN_M:
+        return None, info
+    return (f"{int(zeroed.sum())} strides the model classed up or down kept no height ({up_m:+.2f} m up, "
+            f"{down_m:+.2f} m down of integrated height left out): each changed height by under {LEVEL_DZ_M:.2f} m "
+            "and its class was under the 0.95 confidence gate, so L39's level rule zeroed it (L184) - a ramp "
+            "walked in strides of under 0.10 m rise (a 1:12 ramp at strides under 1.2 m), so the altitude and "
+            "ramps.csv miss it; with a waist barometer, --altitude fused measures it (decision L543)"), info
+
+
 def fused_altitude_line(msg: str, fused_m: float) -> str:
     """Decision L292: L69's line (:func:`integrated_altitude_check`) of a track whose altitude was then fused with
     the waist barometer (L154): it quotes the reported (fused) altitude change, the foot's own after it."""

@@ -392,20 +392,55 @@ def still_altitude_sd(t: np.ndarray, p_hpa: np.ndarray, walk_start_s: float, wal
     return float(np.sqrt(np.mean(dev ** 2)))
 
 
-def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noise_sd: float) -> np.ndarray:
-    """Decision W108: the steps of a climb. ``proposed`` is each step's signed proposal (+1 up, -1 down, 0 none;
-    W91's rate test), ``start_h`` / ``end_h`` the altitude (m) at each step's start / end. A maximal run of
-    consecutive steps proposed with one sign is a climb when its height (``end_h`` of its last step minus
-    ``start_h`` of its first) has that sign and is at least ``max(STAIR_CLIMB_MIN_M, CLIMB_NOISE_SDS *
-    noise_sd)``."""
-    s = np.asarray(proposed, dtype=int).ravel()
-    out = np.zeros(len(s), dtype=bool)
+def bridge_single_gaps(proposed: np.ndarray) -> np.ndarray:
+    """Decision W433: ``proposed`` (+1 / -1 / 0 per step) with every single unproposed step between two proposed
+    steps of one sign given that sign - a step-to-step flight's closing steps keep its 2 s rate near W91's 0.1 m/s
+    and one of them dips under it (trial s40 T1 F2: a 1.7 m flight split into 1.0 m + 0.7 m runs, no climb)."""
+    s = np.asarray(proposed, dtype=int).ravel().copy()
+    if len(s) >= 3:
+        gap = (s[1:-1] == 0) & (s[:-2] != 0) & (s[:-2] == s[2:])
+        s[1:-1][gap] = s[:-2][gap]
+    return s
+
+
+def climb_runs(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray,
+               noise_sd: float) -> list[tuple[int, int, float]]:
+    """Decision W108: the climbs, ``(first, stop, height)`` per climb (rows ``first:stop``, height in m, signed).
+    ``proposed`` is each step's signed proposal (+1 up, -1 down, 0 none; W91's rate test), ``start_h`` / ``end_h``
+    the altitude (m) at each step's start / end. A maximal run of consecutive steps proposed with one sign (a single
+    unproposed step between two of one sign bridged, decision W433) is a climb when its height (``end_h`` of its
+    last step minus ``start_h`` of its first) has that sign and is at least ``max(STAIR_CLIMB_MIN_M,
+    CLIMB_NOISE_SDS * noise_sd)``."""
+    s = bridge_single_gaps(proposed)
     need = max(STAIR_CLIMB_MIN_M, CLIMB_NOISE_SDS * float(noise_sd))
     edges = np.flatnonzero(np.diff(np.concatenate([[0], s, [0]])) != 0)  # every change of the proposal
-    for a, b in zip(edges[:-1], edges[1:], strict=True):
-        if s[a] != 0 and s[a] * (end_h[b - 1] - start_h[a]) >= need:
-            out[a:b] = True
+    return [(int(a), int(b), float(end_h[b - 1] - start_h[a])) for a, b in zip(edges[:-1], edges[1:], strict=True)
+            if s[a] != 0 and s[a] * (end_h[b - 1] - start_h[a]) >= need]
+
+
+def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noise_sd: float) -> np.ndarray:
+    """Decision W108: the steps of a climb (:func:`climb_runs`), a mask over the steps."""
+    return runs_mask(len(np.asarray(proposed).ravel()), climb_runs(proposed, start_h, end_h, noise_sd))
+
+
+def runs_mask(n: int, runs: list[tuple[int, int, float]]) -> np.ndarray:
+    """The mask over ``n`` steps of the rows ``first:stop`` of ``runs`` (:func:`climb_runs`)."""
+    out = np.zeros(int(n), dtype=bool)
+    for a, b, _ in runs:
+        out[a:b] = True
     return out
+
+
+#: decision W433: a climb whose barometric rise per step is under this (m) is climbed step to step (both feet on
+#: each stair, every second step a closing step): half of L39's highest riser (0.18 m) is 0.09 m, L39's lowest riser
+#: 0.15 m - a step-over-step climb rises one riser per step - and this lies between the two
+STEP_TO_STEP_MAX_RISE_M = 0.12
+
+
+def step_to_step_mask(n: int, climbs: list[tuple[int, int, float]]) -> np.ndarray:
+    """Decision W433: the steps of the ``climbs`` (:func:`climb_runs` over ``n`` steps) whose |height| per step is
+    under :data:`STEP_TO_STEP_MAX_RISE_M`: a step-to-step climb, whose steps move half a tread each."""
+    return runs_mask(n, [r for r in climbs if abs(r[2]) / (r[1] - r[0]) < STEP_TO_STEP_MAX_RISE_M])
 
 
 #: Decision W230: the largest barometric height change (m) one walking step can make. A step climbs one riser

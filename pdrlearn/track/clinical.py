@@ -1074,6 +1074,14 @@ ASYMMETRY_FLOOR_PCT = 20.0
 ASYMMETRY_ERROR_POINTS = "-8.4 to +17.0"
 
 
+#: decision W436: the lower back's step-time index over the simulated truth, a factor (median of trial s40 T1's
+#: three asymmetric walkers: 1.508, 1.477, 1.500; waist-pendulum, slow, 100 Hz); on fresh users 10810-10819 with a true
+#: SI of 10 % or more the index / 1.5 was within 4.91 points of the truth (mean 2.52, raw 12.32 points off)
+OVER_READ_FACTOR = 1.5
+#: decision W436: what the fresh users' raw / true ranged over, said in the reason (text only)
+OVER_READ_RANGE = "17-38 % read x1.24-x1.70 the truth, +4.3 to +26.1 points; divided by 1.5, -4.1 to +4.9 points"
+
+
 def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
     """Decision L121 (Python API): what a tracked step table can honestly say about the step-time asymmetry.
     ``{"step_time_asymmetry_pct", "raw_pct", "n_step_times", "reason"}``:
@@ -1111,7 +1119,10 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
     else:
         out["step_time_asymmetry_pct"] = pct
         out["reason"] = (f"asymmetric; the lower back misreads the size, mostly over (a simulated 39.1 % read 55.2 %, "
-                         f"decision L121; {ASYMMETRY_ERROR_POINTS} points off the truth, decision L216)")
+                         f"decision L121; {ASYMMETRY_ERROR_POINTS} points off the truth, decision L216), by a factor "
+                         f"that grows the error with the asymmetry: about {pct / OVER_READ_FACTOR:.1f} % once the "
+                         f"simulated x{OVER_READ_FACTOR:g} over-read is taken out (fresh simulated walkers of true "
+                         f"{OVER_READ_RANGE}: W436), an estimate for a clinic's change scores, not a measurement")
     return out
 
 

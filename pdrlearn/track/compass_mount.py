@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from pdrlearn.kernels.fixes import wrap_angle
+from pdrlearn.track.frame_inference import asymmetric_forward_words
 
 #: decision D25: a foot heading change of at least this (deg) between two consecutive straight strides is a turn
 MOUNT_TURN_MIN_DEG = 45.0
@@ -60,6 +61,12 @@ def declared_forward_off(session, placement: str = "waist") -> float | None:
     return None if chk is None else chk.forward_deg
 
 
+def forward_power_ratio(session, placement: str = "waist") -> float | None:
+    """Decision W435: the step-frequency power ratio of the forward D10's check measured (None: none measured)."""
+    chk = session.declared_check(placement)
+    return None if chk is None else getattr(chk, "forward_power_ratio", None)
+
+
 def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray) -> tuple[str | None, dict]:
     """Decision D25: (a warning line or None, ``info["compass_mount"]``) for a heading that reads the waist compass:
     the turn mismatch of :func:`turn_mismatch` (with at least :data:`MOUNT_MIN_TURNS` turns) and the declared
@@ -80,9 +87,16 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
         why.append(f"its compass turns differ from the foot gyroscope's turns by a median {mismatch:.0f} deg over {n} "
                    f"turns (over {MOUNT_TURN_MISMATCH_DEG:g} deg: the compass turns the other way, the unit's data "
                    "are mirrored, e.g. two axes swapped)")
-    if off is not None and off > MOUNT_FORWARD_OFF_DEG:
+    ratio = forward_power_ratio(session)
+    info["forward_power_ratio"] = ratio  # decision W435: under x10, an asymmetric gait may have turned the measurement
+    asymmetric = off is not None and off > MOUNT_FORWARD_OFF_DEG and bool(asymmetric_forward_words(ratio))
+    forced = off is not None and off > MOUNT_FORWARD_OFF_DEG and _waist_forced(session)
+    if forced:  # decision W434: the user's "force_frame" keeps the declared waist frame, and so its compass
+        info["forward_forced"] = True
+    elif off is not None and off > MOUNT_FORWARD_OFF_DEG:
         why.append(f"its declared forward is {off:.0f} deg from the direction it walks (over "
-                   f"{MOUNT_FORWARD_OFF_DEG:g} deg: the unit is turned on the belt against its declared frame)")
+                   f"{MOUNT_FORWARD_OFF_DEG:g} deg: the unit is turned on the belt against its declared frame"
+                   + (", or" + asymmetric_forward_words(ratio)[1:] if asymmetric else "") + ")")
     if not why:
         return None, info
     info["fallback"] = True
@@ -90,8 +104,20 @@ def mount_check(session, foot: np.ndarray, compass: np.ndarray, keep: np.ndarray
     if chk is not None and chk.side_drill:  # decision W415: a side or backward drill, not a mounting fault: no line,
         info["not_judged"] = chk.unchecked  # but the foot gyroscope's heading as before W415 (numbers unchanged)
         return None, info
-    return ("the waist unit's mounting does not match its frame - " + "; ".join(why) + " - so its compass would "
+    guess = "may not match" if asymmetric and len(why) == 1 else "does not match"  # W435: the gait may turn it
+    return (f"the waist unit's mounting {guess} its frame - " + "; ".join(why) + " - so its compass would "
             "turn the whole track: this track's heading is the foot gyroscope's own (0 = the walker's facing at the "
             "first walk, L494/L510, as `--units foot`; --initial-heading DEG sets it, L511), not the compass's "
-            "(decision D25); declare the waist unit's frame as "
-            "it is worn (`pdrlearn info` prints the frame the data give)"), info
+            "(decision D25); " + ("if the unit is worn as declared, keep its frame: the foot gyroscope's heading is "
+                                  "the safe choice here, since a unit really turned on the belt would turn the whole "
+                                  "track (W435: 35-38 m off on a 35 m route); to keep its compass all the same, "
+                                  "\"force_frame\": [\"waist\"] in meta.json (W434)" if asymmetric else
+                                  "declare the waist unit's frame as it is worn (`pdrlearn info` prints the frame the "
+                                  "data give)")), info
+
+
+def _waist_forced(session) -> bool:
+    """Decision W434: whether ``session`` forces its declared waist frame (meta.json ``"force_frame"``, D23's
+    override; False for a session object without one)."""
+    forced = getattr(session, "frame_forced", None)
+    return bool(forced("waist")) if callable(forced) else False

@@ -122,6 +122,8 @@ class FrameInferenceError(DataError):
     #: decision D23 amended (L223): the foot strides the forward was measured from and their mean resultant
     n_strides: int | None = None
     resultant: float | None = None
+    #: decision W435: a waist forward's step-frequency power ratio (forward over lateral), else None
+    ap_power_ratio: float | None = None
 
 
 def _refuse(msg: str, up: np.ndarray | None = None, forward: np.ndarray | None = None,
@@ -148,6 +150,8 @@ class InferredFrame:
     #: decision D23 amended (L223): the foot strides the forward was measured from and their mean resultant
     n_strides: int | None = None
     resultant: float | None = None
+    #: decision W435: a waist forward's step-frequency power ratio (forward over lateral), else None
+    ap_power_ratio: float | None = None
 
     def describe(self) -> str:
         return ", ".join(f"{k} {v}" for k, v in self.evidence.items())
@@ -333,6 +337,24 @@ def foot_travel_angles(session, span: tuple[float, float] | None = None
     return t[i0], t[i1], np.arctan2(left, fwd), np.hypot(fwd, left), yaw
 
 
+#: decision B418: a foot refused for its rotation axis whose swing pitches toes-down less than this (deg) is named a
+#: foot of little sagittal rotation: trial s40 T1 finding 6's prosthetic-like feet pitched 15 deg (refused, axis 48
+#: deg off) and 25-52 deg (inferred; axis 13-25 deg off); the simulator's anatomical foot ~50 deg
+LITTLE_PITCH_DEG = 30.0
+
+
+def little_pitch_words(down_deg: float) -> str:
+    """Decision B418: what the foot rotation-axis refusal adds when the swing's toes-down pitch ``down_deg`` is under
+    :data:`LITTLE_PITCH_DEG` (else ""): the likely cause (a stiff or prosthetic foot, a shuffling gait) and the fix
+    (declare the axes)."""
+    if not down_deg < LITTLE_PITCH_DEG:
+        return ""
+    return (f"; in swing it pitches toes-down only {down_deg:.0f} deg: little sagittal rotation, as a stiff or "
+            "prosthetic foot or a shuffling gait makes, lets its roll and yaw decide the axis; declare the unit's "
+            "axes - pdrlearn import --frames x=...,y=...,z=... or a \"frames\" entry in meta.json (docs/frames.md, "
+            "prosthetic feet; decision B418) - and it tracks")
+
+
 def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
     """Frame of a foot unit from its specific force (m/s^2) and angular rate (rad/s) on one clock (fs Hz).
 
@@ -383,7 +405,8 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     ang_rot = _angle_deg(v[:, 2], left)
     if ang_rot > MAX_SNAP_DEG:
         raise _refuse(f"the foot's main rotation axis is {ang_rot:.0f} deg from the medio-lateral "
-                      f"direction of its strides (more than {MAX_SNAP_DEG:g})", up, fwd, (len(hor), resultant))
+                      f"direction of its strides (more than {MAX_SNAP_DEG:g})" + little_pitch_words(
+                          float(np.degrees(np.median(down)))), up, fwd, (len(hor), resultant))
     i_ml, s_ml, ang_ml = _nearest_axis(left)
     if ang_ml > MAX_SNAP_DEG:
         raise _refuse(f"the medio-lateral direction is {ang_ml:.0f} deg from every sensor axis "
@@ -523,6 +546,24 @@ def _with_nearest(err: FrameInferenceError, acc, gyr, fs: float, max_snap_deg: f
     return err
 
 
+#: decision W435: a waist forward measured with a step-frequency power ratio (forward over lateral) under this is said
+#: to be possibly turned by the gait (D25's line, the axis refusal): an asymmetric gait's lateral sway puts power at the
+#: step frequency and turns the measured forward by up to ~50 deg (trial s40 T1 finding 3: x4.7-x7.0 at step-time
+#: asymmetry 0.2-0.45, 53 deg off); a symmetric simulated walk reads ~x85 and the real straight lower-back walks
+#: x12.8-x228 (mobgap Test5); a project choice between the two. Not adopted: not judging D25 (b) under it (W435)
+MIN_JUDGED_POWER_RATIO = 10.0
+
+
+def asymmetric_forward_words(ratio: float | None) -> str:
+    """Decision W435: the words a waist forward measurement with a low step-frequency power ``ratio`` adds to what it
+    says ("" when the ratio is :data:`MIN_JUDGED_POWER_RATIO` or more, or None)."""
+    if ratio is None or ratio >= MIN_JUDGED_POWER_RATIO:
+        return ""
+    return (f"; its step-frequency power ratio is only x{ratio:.1f} (under x{MIN_JUDGED_POWER_RATIO:g}): a strongly "
+            "asymmetric gait (a prosthesis, a hemiparesis) or much turning puts lateral sway at the step frequency and "
+            "can turn the measured forward by up to ~50 deg (decision W435)")
+
+
 def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float, *,
                       max_snap_deg: float = MAX_SNAP_DEG) -> InferredFrame:
     """Frame of a waist (lower-back, belt) unit from its specific force (m/s^2) on one clock (fs Hz).
@@ -593,13 +634,15 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float, *,
     fwd = ap * forward_sign(np.array([1.0]), np.array([zc.real]), np.array([-zc.imag]), 1.0, 0.0)
     i_f, s_f, ang_f = _nearest_axis(fwd, exclude=(i_u,))
     if ang_f > max_snap_deg:  # W394, as for gravity
-        raise _with_nearest(_refuse(f"the forward direction is {ang_f:.0f} deg from both horizontal sensor axes "
-                                    f"(more than {max_snap_deg:g})", up, _unit(fwd - (fwd @ up) * up)),
-                            acc, gyr, fs, max_snap_deg)
+        err = _refuse(f"the forward direction is {ang_f:.0f} deg from both horizontal sensor axes "
+                      f"(more than {max_snap_deg:g})" + asymmetric_forward_words(ratio), up,
+                      _unit(fwd - (fwd @ up) * up))
+        err.ap_power_ratio = ratio  # decision W435
+        raise _with_nearest(err, acc, gyr, fs, max_snap_deg)
     left = np.cross(e[i_u] * s_u, e[i_f] * s_f)
     i_l = int(np.argmax(np.abs(left)))
     frame = frame_from_axes((i_f, s_f), (i_l, float(np.sign(left[i_l]))), (i_u, s_u))
-    return InferredFrame("waist", frame, up=up, forward=_unit(fwd - (fwd @ up) * up), evidence={
+    return InferredFrame("waist", frame, up=up, forward=_unit(fwd - (fwd @ up) * up), ap_power_ratio=ratio, evidence={
         "up": f"{'xyz'[i_u]}{'+' if s_u > 0 else '-'} ({ang_u:.0f} deg tilt)",
         "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} ({ang_f:.0f} deg off, step-frequency power x{ratio:.1f})",
         "forward lead": f"{lead:.0f} deg over {walk_s:.0f} s of walking (rhythm {rhythm:.0f} sigma; the sign "
@@ -733,6 +776,8 @@ class DeclaredCheck:
     forced: bool = False
     #: decision W415: not judged, the foot unit's strides mostly travel sideways or backward (``unchecked`` says so)
     side_drill: bool = False
+    #: decision W435: the waist forward measurement's step-frequency power ratio (None: not measured or a foot)
+    forward_power_ratio: float | None = None
 
     def summary(self) -> str:
         """``info``'s words for a check that raised nothing (decision D22: never "not contradicted" unchecked)."""
@@ -759,12 +804,12 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
         origin = 'declared in "frames"'
     else:
         origin = f"implied by source_project {json.dumps(str(session.meta.get('source_project', '')))}"
-    unchecked, compared, up, fwd = None, (), None, None
+    unchecked, compared, up, fwd, ratio = None, (), None, None, None
     try:
         found = infer_session_frame(session, placement, max_s=CHECK_SPAN_S)
     except FrameInferenceError as exc:
         found, unchecked, off = None, str(exc), {}
-        evidence = (exc.n_strides, exc.resultant)
+        evidence, ratio = (exc.n_strides, exc.resultant), exc.ap_power_ratio
         if exc.forward is not None:  # gave up after measuring the strides' signed direction (past D9's push-off)
             up, fwd, compared = exc.up, exc.forward, ("up", "forward")
             off = directions_off(declared, up, None, OPPOSED_DEG)  # up only: which axis is forward is unknown
@@ -774,7 +819,7 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
     else:
         up, fwd = found.up, found.forward
         off = frame_disagreement(declared, found)
-        evidence = (found.n_strides, found.resultant)
+        evidence, ratio = (found.n_strides, found.resultant), found.ap_power_ratio
     rev = forward_reversal_deg(declared, up, fwd)
     reverse = rev is not None and rev > OPPOSED_DEG
     if reverse and "forward" not in off:  # the heading reversed though the axis is pitched (D22)
@@ -786,18 +831,18 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
     skip = _waist_not_judged(session) if placement == "waist" else None
     if skip is not None:  # decision W415: no line but a left-handed one; D25 still reads the measured offset
         return DeclaredCheck(declared_frame_warning(placement, declared, None, origin, off={}), False, skip,
-                             compared, rev, side_drill=True)
+                             compared, rev, side_drill=True, forward_power_ratio=ratio)
     forced = reverse and session.frame_forced(placement)  # decision D23's override
     refuse = reverse and not forced and placement in REFUSE_REVERSED  # D23 amended: the foot only
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
     if refuse and weak_reversal(*evidence):  # decision L223: too little evidence to refuse
         return DeclaredCheck(weak_reversal_warning(placement, declared, origin, rev, *evidence, how=how), False,
-                             unchecked, compared, rev)
+                             unchecked, compared, rev, forward_power_ratio=ratio)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked, how=how)
     if side_words and msg and placement == "waist" and UNIT_STREAMS["foot"][0] not in session.streams:
         msg = side_travel_words(rev) + msg if side_travel_words(rev) else msg  # decision W416
-    return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced)
+    return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced, forward_power_ratio=ratio)
 
 
 #: decision W416 (b): D10's waist line on a session without a foot unit leads with side or backward travel when the

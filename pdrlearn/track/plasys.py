@@ -55,7 +55,12 @@ from pdrlearn.kernels import gaps as KG
 from pdrlearn.kernels import sideways as KSW
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels import turn_length as KT
-from pdrlearn.kernels.altitude_check import integrated_altitude_check, steep_stride_check, terrain_dz_check
+from pdrlearn.kernels.altitude_check import (
+    integrated_altitude_check,
+    steep_stride_check,
+    terrain_dz_check,
+    zeroed_climb_check,
+)
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
 from pdrlearn.kernels.contact import force_at, stride_contact
 from pdrlearn.kernels.distance import (
@@ -1384,6 +1389,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         msg, terrain_check = terrain_dz_check(np.where(in_gap, None, classes["terrain"].to_numpy(dtype=object)),
                                               disp[:, 2], dz)
         warnings += [msg] if msg else []
+        if altitude != "fused":  # decision L543: up / down strides the level rule zeroed (fused reads the barometer)
+            msg, terrain_check["zeroed_climb"] = zeroed_climb_check(
+                np.where(in_gap | impossible, None, classes["terrain"].to_numpy(dtype=object)), disp[:, 2], dz)
+            warnings += [msg] if msg else []
 
     bridge_foot_yaw(fd, foot_gaps, (lambda n: (work.streams[n].t, work.streams[n].values)) if bridged else None)
     hsrc = heading or cfg["heading"]

@@ -29,7 +29,10 @@ from pdrlearn.kernels.barometer import (  # decision W91's constants and test, s
     STAIR_TREAD_M,
     STAIRS_RATE_MPS,  # noqa: F401 (re-exported)
     STAIRS_RATE_WINDOW_S,
+    STEP_TO_STEP_MAX_RISE_M,
+    runs_mask,
     stairs_rate_test,
+    step_to_step_mask,
 )
 from pdrlearn.kernels.freeze import inside_episodes
 from pdrlearn.kernels.lying_heading import long_axis_yaw_rate, stop_pieces  # decision W269
@@ -285,22 +288,34 @@ def _stairs_steps(baro, steps: pd.DataFrame, climb: bool) -> np.ndarray:
     ``baro``, B188).
     ``climb`` (decision W108): only the proposed steps of a climb higher than the barometer's own still-period
     noise allows (:func:`pdrlearn.kernels.barometer.climb_mask`)."""
-    from pdrlearn.kernels.barometer import climb_mask, relative_altitude, still_altitude_sd
-
     if baro is None or not len(steps):
         return np.zeros(len(steps), dtype=bool)
-    b = baro
+    return runs_mask(len(steps), _climb_runs(baro, steps)) if climb else _stair_proposals(baro, steps)[0]
+
+
+def _stair_proposals(baro, steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Decision W91's proposals (a mask), each step's 2 s rise and its altitude at its start and end (m)."""
+    from pdrlearn.kernels.barometer import relative_altitude
+
     t0, t1 = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
     mid = 0.5 * (t0 + t1)
     half = 0.5 * STAIRS_RATE_WINDOW_S
     n = len(mid)
-    h = relative_altitude(b.t, b.values[:, 0], np.concatenate([mid - half, mid + half, t0, t1]))
+    h = relative_altitude(baro.t, baro.values[:, 0], np.concatenate([mid - half, mid + half, t0, t1]))
     rise = h[n:2 * n] - h[:n]
-    proposed = stairs_rate_test(rise)
-    if not climb:
-        return proposed
-    sd = still_altitude_sd(b.t, b.values[:, 0], float(t0.min()), float(t1.max()))
-    return climb_mask(np.where(proposed, np.sign(rise), 0), h[2 * n:3 * n], h[3 * n:], sd)
+    return stairs_rate_test(rise), rise, h[2 * n:3 * n], h[3 * n:]
+
+
+def _climb_runs(baro, steps: pd.DataFrame) -> list[tuple[int, int, float]]:
+    """Decision W108's climbs (:func:`pdrlearn.kernels.barometer.climb_runs`: first row, stop row, height); none
+    without a usable barometer ``baro`` (B188) or steps."""
+    from pdrlearn.kernels.barometer import climb_runs, still_altitude_sd
+
+    if baro is None or not len(steps):
+        return []
+    proposed, rise, start_h, end_h = _stair_proposals(baro, steps)
+    sd = still_altitude_sd(baro.t, baro.values[:, 0], float(steps["start_s"].min()), float(steps["end_s"].max()))
+    return climb_runs(np.where(proposed, np.sign(rise), 0), start_h, end_h, sd)
 
 
 #: decision W155: at least this many steps inside W108's climbs warn that ``stairs_length`` is off (a storey of the
@@ -308,23 +323,32 @@ def _stairs_steps(baro, steps: pd.DataFrame, climb: bool) -> np.ndarray:
 STAIRS_WARN_MIN_STEPS = 8
 
 
-def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray) -> str | None:
+def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.ndarray | None = None) -> str | None:
     """Decision W155's one warning line of a track whose steps ``climbs`` (W108's climb mask: steps inside a
     barometric climb of at least half a storey) are :data:`STAIRS_WARN_MIN_STEPS` or more while the option
     ``stairs_length`` is off: their lengths ``length_m`` are read as level steps (the trial's two storeys up and down:
-    +64 % distance on waist-pendulum, +90 % on waist-pll, calibrated; +3.9 % with the option). None otherwise."""
+    +64 % distance on waist-pendulum, +90 % on waist-pll, calibrated; +3.9 % with the option). ``tread_m``: each
+    step's bound (decision W433: half the tread on a step-to-step climb; None: :data:`STAIR_TREAD_M` everywhere),
+    and the line names the step-to-step steps. None otherwise."""
     c = np.asarray(climbs, dtype=bool)
     n = int(c.sum())
     if n < STAIRS_WARN_MIN_STEPS:
         return None
+    tread = np.full(len(c), STAIR_TREAD_M) if tread_m is None else np.asarray(tread_m, dtype=float)
     read = float(np.abs(np.asarray(length_m, dtype=float)[c]).sum())
-    capped = float(np.minimum(np.abs(np.asarray(length_m, dtype=float)[c]), STAIR_TREAD_M).sum())
+    capped = float(np.minimum(np.abs(np.asarray(length_m, dtype=float)[c]), tread[c]).sum())
+    halves = int((c & (tread < STAIR_TREAD_M)).sum())
     return (f"{n} steps are on stairs (barometric climbs of 1.5 m or more, decision W108) and read {read:.1f} m "
             "horizontally as level steps: the waist step-length models measure the body's step, not the tread, so "
             "these steps read long (two storeys up and down, calibrated, simulated: +64 % waist-pendulum, +90 % "
             "waist-pll; an uncalibrated track whose level steps read short may still read short in total: "
-            "calibrate first, pdrlearn calibrate); the option stairs_length bounds a stair step by the "
-            f"{STAIR_TREAD_M:.2f} m tread "
+            "calibrate first, pdrlearn calibrate)"
+            + (f"; {halves} of them climb under {STEP_TO_STEP_MAX_RISE_M:.2f} m per step, half a riser: a "
+               "step-to-step climb (both feet on each stair, as with a prosthesis or a painful knee), whose steps "
+               "move half a tread each, so they read about double again, and its climbs may be listed as ramps "
+               "(decision W433)" if halves else "")
+            + "; the option stairs_length bounds a stair step by the "
+            f"{STAIR_TREAD_M:.2f} m tread " + ("(half of it step to step) " if halves else "") +
             "(decision W91): \"options\": {\"stairs_length\": \"climbs\"} in the PARAMS.json (--params), or "
             f"stairs_length=\"climbs\", bounds these steps ({capped:.1f} m here; decision W156), true also the "
             "steps of shorter barometric changes (decision W155)")
@@ -1146,15 +1170,17 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                           cadence_law=(o["cadence_law"] if o["cadence_law"] == CADENCE_LAW_STEADY
                                        else bool(o["cadence_law"])))  # W240, W261
     baro = usable_barometer(session, warnings)  # decision B188: an impossible pressure change is not read
-    stairs = _stairs_steps(baro, steps, bool(o["stairs_climb"]))
-    climbs = stairs if bool(o["stairs_climb"]) else _stairs_steps(baro, steps, True)  # W108's climbs, for W155
+    runs = _climb_runs(baro, steps)  # W108's climbs (W433: a single unproposed step inside bridged), for W155
+    climbs = runs_mask(len(steps), runs)
+    stairs = climbs if bool(o["stairs_climb"]) else _stairs_steps(baro, steps, False)
+    tread = np.where(step_to_step_mask(len(steps), runs), 0.5 * STAIR_TREAD_M, STAIR_TREAD_M)  # W433: half a tread
     if not bool(o["stairs_length"]):  # W155: a counted stair climb read at level-walking step lengths says so
-        line = stairs_length_message(climbs, steps["length_m"].to_numpy(float))
+        line = stairs_length_message(climbs, steps["length_m"].to_numpy(float), tread)
         if line:
             warnings.append(line)
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
         bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
-        steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
+        steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), tread),
                                                steps["length_m"].to_numpy(float)))
     still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: the IMU's own (W285, W354)
     lying = (_lying_heading(imu, steps, transfers, still_mask) if bool(o["lying_heading"]) and method == "gyro"
