@@ -108,4 +108,4 @@ def test_write_track_is_a_top_level_entry_point():
     import pdrlearn
 
     assert "write_track" in pdrlearn.__all__
-    assert list(inspect.signature(pdrlearn.write_track).parameters) == ["result", "session", "out", "force"]
+    assert list(inspect.signature(pdrlearn.write_track).parameters) == ["result", "session", "out", "force", "plot"]  # L533: plot=False
