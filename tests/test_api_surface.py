@@ -108,4 +108,5 @@ def test_write_track_is_a_top_level_entry_point():
     import pdrlearn
 
     assert "write_track" in pdrlearn.__all__
-    assert list(inspect.signature(pdrlearn.write_track).parameters) == ["result", "session", "out", "force", "plot"]  # L533: plot=False
+    params = list(inspect.signature(pdrlearn.write_track).parameters)
+    assert params == ["result", "session", "out", "force", "plot"]  # L533: plot=False writes no figure
