@@ -150,6 +150,10 @@ def test_csv_with_iso_times_latitude_longitude_and_hdop(tmp_path):
     pd.DataFrame({"t": ["soon"], "lat": [51.0], "lon": [-1.8], "accuracy_m": [5.0]}).to_csv(bad_t, index=False)
     with pytest.raises(DataError, match="neither a number"):
         read_fixes(bad_t)
+    ms = tmp_path / "ms.csv"  # a session folder's timestamp (ms) is not taken for seconds
+    pd.DataFrame({"timestamp": [1000.0], "lat": [51.0], "lon": [-1.8], "accuracy_m": [5.0]}).to_csv(ms, index=False)
+    with pytest.raises(DataError, match="name it t when it is session seconds"):
+        read_fixes(ms)
 
 
 # --- D38 -------------------------------------------------------------------------------------------------

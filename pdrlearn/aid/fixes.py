@@ -317,11 +317,18 @@ def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M) -> FixLog:
     df.columns = [str(c).strip() for c in df.columns]
     if not len(df):
         raise DataError(f"{path}: no fixes (empty table)")
+    named_t = "t" in df.columns
+    original = list(df.columns)
     df = _rename_aliases(df)
     if "accuracy_m" not in df.columns and "hdop" in df.columns:  # decision D37: HDOP x UERE, as a GGA's
         df["accuracy_m"] = pd.to_numeric(df["hdop"], errors="coerce") * uere_m
     stats = {"lines": int(len(df))}
     epoch = _utc_seconds(df["t"], str(path)) if "t" in df.columns else None
+    if epoch is None and "t" in df.columns and not named_t:  # decision D37: numbers only under t (session seconds)
+        alias = original[list(df.columns).index("t")]
+        raise DataError(f"{path}: column {alias!r} holds numbers, which could be seconds or milliseconds of any clock; "
+                        "name it t when it is session seconds, or give ISO 8601 UTC date-times "
+                        "(e.g. 2026-03-15T10:00:00Z)")
     if epoch is not None:
         df["t"] = epoch
     df = validate_fix_table(df, str(path))
