@@ -192,6 +192,7 @@ def parse_nmea_lines(
         df = pd.DataFrame(columns=["t", "lat", "lon", "accuracy_m"], dtype=float)
     stats["used"] = int(len(df))
     stats["first_utc_s"] = float(order[0]) if order else None
+    stats["time_base"] = "utc_day"  # decision D38: UTC seconds of day, placed on the session clock by aid_track
     skipped = stats["bad_checksum"] + stats["empty"] + stats["malformed"]
     if skipped:
         log.info(
@@ -216,7 +217,8 @@ def read_nmea(path, **kwargs) -> FixLog:
         raise DataError(
             f"{path}: no valid GGA/RMC fix in {out.stats['sentences']} sentence(s) "
             f"({out.stats['bad_checksum']} bad checksum, {out.stats['empty']} empty); "
-            "check that the file is an NMEA 0183 log with a position fix"
+            "check that the file is an NMEA 0183 log with a position fix, or pass a GPX file (.gpx) or a fix CSV "
+            f"with {CSV_NEEDS} (decision D37)"
         )
     return out
 
@@ -230,8 +232,8 @@ def validate_fix_table(df: pd.DataFrame, source: str = "fix table") -> pd.DataFr
     if missing or not (has_geo or has_xy):
         need = missing + ([] if has_geo or has_xy else ["lat+lon (or x+y)"])
         raise DataError(
-            f"{source}: missing column(s) {', '.join(need)}; a fix CSV needs t, lat, lon, "
-            f"accuracy_m (or t, x, y, accuracy_m); it has: {', '.join(map(str, df.columns))}"
+            f"{source}: missing column(s) {', '.join(need)}; a fix CSV needs {CSV_NEEDS}; it has: "
+            f"{', '.join(map(str, df.columns))}"
         )
     use = ["t", "accuracy_m"] + (["lat", "lon"] if has_geo else []) + (["x", "y"] if has_xy else [])
     try:
@@ -254,8 +256,55 @@ def validate_fix_table(df: pd.DataFrame, source: str = "fix table") -> pd.DataFr
     return out.sort_values("t", kind="stable").reset_index(drop=True)
 
 
-def read_fix_csv(path) -> FixLog:
-    """Read a fix CSV with columns ``t, lat, lon, accuracy_m`` (or ``t, x, y, accuracy_m``)."""
+#: decision D37: column names a fix CSV may use for each field (case-insensitive), first found wins
+CSV_ALIASES = {
+    "t": ("t", "time", "timestamp", "utc", "datetime", "time_utc"),
+    "lat": ("lat", "latitude"),
+    "lon": ("lon", "lng", "long", "longitude"),
+    "accuracy_m": ("accuracy_m", "accuracy", "horizontal_accuracy_m", "hacc"),
+    "hdop": ("hdop",),
+}
+#: decision D37: what a fix CSV needs, for the error lines
+CSV_NEEDS = ("t (session seconds, or ISO 8601 UTC times such as 2026-03-15T10:00:00Z), lat, lon (or x, y in m), and "
+             "accuracy_m (m, 68 % radius) or hdop (accuracy = HDOP x 4 m)")
+
+
+def _rename_aliases(df: pd.DataFrame) -> pd.DataFrame:
+    """Decision D37: the fix CSV's columns under their canonical names (:data:`CSV_ALIASES`), case-insensitive."""
+    lower = {str(c).strip().lower(): c for c in df.columns}
+    ren = {}
+    for canon, names in CSV_ALIASES.items():
+        if canon in df.columns:
+            continue
+        for n in names:
+            if n in lower and lower[n] not in ren:
+                ren[lower[n]] = canon
+                break
+    return df.rename(columns=ren)
+
+
+def _utc_seconds(values: pd.Series, source: str) -> np.ndarray | None:
+    """Decision D37: ISO 8601 date-times -> seconds since the epoch (UTC; a time without an offset is read as UTC,
+    as GPX and NMEA times are); None when the column is numeric (session seconds)."""
+    num = pd.to_numeric(values, errors="coerce")
+    if num.notna().all():
+        return None
+    try:
+        dt = pd.to_datetime(values.astype(str).str.strip(), utc=True, format="ISO8601")
+    except (ValueError, TypeError):
+        bad = values[num.isna()].iloc[0]
+        raise DataError(f"{source}: t value {bad!r} is neither a number (session seconds) nor an ISO 8601 date-time; "
+                        f"a fix CSV needs {CSV_NEEDS}") from None
+    return (dt - pd.Timestamp("1970-01-01", tz="UTC")).dt.total_seconds().to_numpy(float)
+
+
+def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M) -> FixLog:
+    """Read a fix CSV with columns ``t, lat, lon, accuracy_m`` (or ``t, x, y, accuracy_m``).
+
+    Decision D37: ``latitude``/``longitude`` (and the other :data:`CSV_ALIASES`) name the same columns; ``t`` may be
+    ISO 8601 UTC date-times (``stats['time_base'] == "utc"``, mapped onto the session clock like NMEA times by
+    :func:`pdrlearn.aid.track.aid_track`); an ``hdop`` column stands for a missing ``accuracy_m`` (HDOP x ``uere_m``).
+    """
     path = Path(path)
     if not path.is_file():
         raise DataError(f"{path}: no such fix CSV; pass a file with columns t, lat, lon, accuracy_m")
@@ -268,15 +317,122 @@ def read_fix_csv(path) -> FixLog:
     df.columns = [str(c).strip() for c in df.columns]
     if not len(df):
         raise DataError(f"{path}: no fixes (empty table)")
+    named_t = "t" in df.columns
+    original = list(df.columns)
+    df = _rename_aliases(df)
+    if "accuracy_m" not in df.columns and "hdop" in df.columns:  # decision D37: HDOP x UERE, as a GGA's
+        df["accuracy_m"] = pd.to_numeric(df["hdop"], errors="coerce") * uere_m
+    stats = {"lines": int(len(df))}
+    epoch = _utc_seconds(df["t"], str(path)) if "t" in df.columns else None
+    if epoch is None and "t" in df.columns and not named_t:  # decision D37: numbers only under t (session seconds)
+        alias = original[list(df.columns).index("t")]
+        raise DataError(f"{path}: column {alias!r} holds numbers, which could be seconds or milliseconds of any clock; "
+                        "name it t when it is session seconds, or give ISO 8601 UTC date-times "
+                        "(e.g. 2026-03-15T10:00:00Z)")
+    if epoch is not None:
+        df["t"] = epoch
     df = validate_fix_table(df, str(path))
-    return FixLog(df, {"lines": int(len(df)), "used": int(len(df))}, str(path))
+    if epoch is not None:  # decision D37: times since the first fix; aid_track places them on the session clock
+        stats["time_base"] = "utc"
+        stats["first_epoch_s"] = float(df["t"].iloc[0])
+        df["t"] = df["t"] - df["t"].iloc[0]
+    stats["used"] = int(len(df))
+    return FixLog(df, stats, str(path))
+
+
+# -- GPX -------------------------------------------------------------------------------------------------
+def _local(tag: str) -> str:
+    return tag.rsplit("}", 1)[-1]
+
+
+def read_gpx(path, *, uere_m: float = DEFAULT_UERE_M, accuracy_m: float = DEFAULT_RMC_ACCURACY_M) -> FixLog:
+    """Read the track points (``<trkpt lat lon>`` with ``<time>``, optional ``<ele>``, ``<hdop>``) of a GPX 1.0/1.1
+    file (decision D37; what handheld receivers export and what ``pdrlearn track`` writes as track.gpx).
+
+    Times are UTC (GPX 1.1); ``t`` is seconds since the first point and ``stats['first_epoch_s']`` the first point's
+    seconds since the epoch (``time_base`` ``"utc"``). Accuracy: HDOP x ``uere_m`` when the point has ``<hdop>``, else
+    ``accuracy_m`` (a GPX point reports none; the default is an RMC fix's without HDOP). Points without a valid
+    position or time are skipped and counted (``malformed``, ``no_time``).
+    """
+    import xml.etree.ElementTree as ET
+
+    path = Path(path)
+    if not path.is_file():
+        raise DataError(f"{path}: no such GPX file")
+    stats = dict(points=0, used=0, malformed=0, no_time=0, no_hdop=0)
+    rows = []
+    try:
+        for _, el in ET.iterparse(path, events=("end",)):
+            if _local(el.tag) not in ("trkpt", "rtept"):
+                continue
+            stats["points"] += 1
+            kids = {_local(c.tag): (c.text or "").strip() for c in el}
+            try:
+                lat, lon = float(el.get("lat", "nan")), float(el.get("lon", "nan"))
+            except ValueError:
+                lat = lon = float("nan")
+            el.clear()  # a long track's points are not kept in the tree
+            if not (abs(lat) <= 90.0 and abs(lon) <= 180.0):
+                stats["malformed"] += 1
+                continue
+            when = pd.to_datetime(kids.get("time", ""), utc=True, errors="coerce", format="ISO8601")
+            if pd.isna(when):
+                stats["no_time"] += 1
+                continue
+            try:
+                hdop = float(kids["hdop"]) if kids.get("hdop") else float("nan")
+            except ValueError:
+                hdop = float("nan")
+            if not hdop > 0:
+                stats["no_hdop"] += 1
+            acc = hdop * uere_m if hdop > 0 else accuracy_m
+            rows.append(((when - pd.Timestamp("1970-01-01", tz="UTC")).total_seconds(), lat, lon, acc))
+    except ET.ParseError as exc:
+        raise DataError(f"{path}: not a well-formed GPX (XML) file ({exc}); export the track again as GPX 1.1, or "
+                        f"write a fix CSV with {CSV_NEEDS}") from None
+    if not rows:
+        why = (f"{stats['no_time']} without <time>" if stats["no_time"] else "")
+        raise DataError(f"{path}: no GPX track point with a position and a UTC <time> in {stats['points']} point(s)"
+                        + (f" ({why})" if why else "") + "; a track point needs lat, lon and <time> "
+                        "(track.gpx has times only when the session gives its recording_start with a UTC offset)")
+    df = pd.DataFrame(rows, columns=["tabs", "lat", "lon", "accuracy_m"]).sort_values("tabs", kind="stable")
+    df = df.drop_duplicates("tabs", keep="last").reset_index(drop=True)
+    stats["first_epoch_s"] = float(df["tabs"].iloc[0])
+    stats["time_base"] = "utc"
+    df.insert(0, "t", df["tabs"] - df["tabs"].iloc[0])
+    df = df.drop(columns="tabs")
+    stats["used"] = int(len(df))
+    return FixLog(df, stats, str(path))
+
+
+def fix_format(path) -> str:
+    """Decision D37: ``"csv"``, ``"gpx"`` or ``"nmea"``: by extension (``.csv``, ``.gpx``), else by the first
+    non-blank character (``<`` XML/GPX, ``$`` NMEA; anything else is read as a CSV when its first line has a comma
+    and no ``$``)."""
+    path = Path(path)
+    ext = path.suffix.lower()
+    if ext in (".csv", ".gpx"):
+        return ext[1:]
+    try:
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            head = fh.read(4096).lstrip("\ufeff \t\r\n")
+    except OSError:
+        return "nmea"
+    if head.startswith("<"):
+        return "gpx"
+    first = head.splitlines()[0] if head else ""
+    if "$" not in head and "," in first:
+        return "csv"
+    return "nmea"
 
 
 def read_fixes(path, **nmea_options) -> FixLog:
-    """Read fixes from ``.csv`` (CSV reader) or anything else (NMEA 0183 reader)."""
-    path = Path(path)
-    if path.suffix.lower() == ".csv":
+    """Read fixes from a CSV, a GPX or an NMEA 0183 log (:func:`fix_format`, decision D37)."""
+    kind = fix_format(path)
+    if kind == "csv":
         return read_fix_csv(path)
+    if kind == "gpx":
+        return read_gpx(path)
     return read_nmea(path, **nmea_options)
 
 

@@ -2,7 +2,8 @@
 indoor multipath bias), beacon/landmark proximity fixes and a precise infrastructure (camera) stream;
 plus an NMEA 0183 writer so generated fixes can go through the same reader as real logs.
 
-All generators take a trajectory table (``t`` in s, ``x`` east / ``y`` north in m) and return a fix table
+All generators take a trajectory table (``t`` in s, or ``timestamp`` in ms as a session folder's trajectory.csv,
+decision D40; ``x`` east / ``y`` north in m) and return a fix table
 (``t``, ``x``, ``y``, ``accuracy_m`` and, when ``origin`` is given, ``lat``/``lon``).
 """
 
@@ -19,8 +20,12 @@ from pdrlearn.errors import DataError
 
 
 def _truth(trajectory: pd.DataFrame, what: str = "trajectory") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    if trajectory is not None and "t" not in trajectory.columns and "timestamp" in trajectory.columns:
+        # decision D40: a session folder's trajectory.csv (pdrlearn.sim) has timestamp in ms
+        trajectory = trajectory.assign(t=pd.to_numeric(trajectory["timestamp"], errors="coerce") / 1000.0)
     if trajectory is None or not {"t", "x", "y"} <= set(trajectory.columns) or len(trajectory) < 2:
-        raise DataError(f"{what}: need a ground-truth table with columns t, x, y and at least 2 rows")
+        raise DataError(f"{what}: need a ground-truth table with columns t (s; or timestamp in ms, as a session "
+                        "folder's trajectory.csv), x, y and at least 2 rows")
     t, x, y = (trajectory[c].to_numpy(float) for c in ("t", "x", "y"))
     if not (np.isfinite(t).all() and np.isfinite(x).all() and np.isfinite(y).all()):
         raise DataError(f"{what}: NaN in t/x/y; interpolate or drop those rows first")

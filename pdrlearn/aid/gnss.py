@@ -21,7 +21,15 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.aid._base import ParamsMixin
-from pdrlearn.aid._kernels import fix_at_step, kf_predict, kf_update, scalar_kf, wrap_angle
+from pdrlearn.aid._kernels import (
+    fit_length_scale,
+    fix_at_step,
+    kf_predict,
+    kf_update,
+    scalar_kf,
+    stretch_between_fixes,
+    wrap_angle,
+)
 from pdrlearn.aid.fixes import sigma_from_accuracy
 from pdrlearn.errors import DataError
 
@@ -128,10 +136,23 @@ class GnssPdrFusion(ParamsMixin):
         estimate ("the last information considered valid", seed 001 Sec. 3.1.2); numbers: how fast the
         heading bias (deg/min) and the length scale (1/min) may change, and successive estimates are averaged
         by a scalar Kalman filter with these as process noise.
-    min_baseline_m : minimum PDR path between two fixes used for the compensation (m).
+    min_baseline_m : minimum PDR path between two fixes used for the compensation (m); decision D36: 100 m (was
+        50 m: two 5 m fixes 50 m apart give the scale +-14 % and the heading bias +-8 deg of noise; 200 m lags a
+        drifting heading).
     step_length : ``"pdr"`` (the track's lengths) or ``"model"`` (a*f - b refined online from GNSS).
     model : the :class:`StepLengthModel` used with ``step_length="model"``.
     initial_sigma_m : standard deviation of the start position (m).
+    sigma_bias_deg : decision D36: standard deviation (deg) of the heading's systematic error left after the
+        compensation; the position variance grows by (sigma_bias x the path walked since the last used fix)^2 (a
+        constant heading error grows linearly with the path, where the per-step noise grows with its square root), so
+        the first fix after an outage takes the correction in full. 0 = seed 001's per-step noise only.
+    smooth : decision D36: ``trajectory_``'s ``x``, ``y`` are the offline path (each jump at a used fix spread
+        linearly back over the steps since the previous used fix, seed 004 eq. 26;
+        :func:`~pdrlearn.kernels.fixes.stretch_between_fixes`), the causal filter in ``x_rt``, ``y_rt``; ``False``:
+        ``x``, ``y`` are the causal filter (seed 001's real-time output).
+    start_known : decision D38: the start position is known (``start_xy`` is where the walk starts); ``False`` (the
+        walk is assumed to start at the first fix): with ``smooth`` the path before the first used fix is projected
+        back from it.
     """
 
     def __init__(
@@ -150,10 +171,13 @@ class GnssPdrFusion(ParamsMixin):
         compensate_when: str = "always",
         heading_drift_deg_per_min: float | None = None,
         scale_drift_per_min: float | None = None,
-        min_baseline_m: float = 50.0,
+        min_baseline_m: float = 100.0,
         step_length: str = "pdr",
         model: StepLengthModel | None = None,
         initial_sigma_m: float = 1.0,
+        smooth: bool = True,
+        start_known: bool = True,
+        sigma_bias_deg: float = 10.0,
     ):
         self.mode = mode
         self.period_s = period_s
@@ -172,6 +196,9 @@ class GnssPdrFusion(ParamsMixin):
         self.step_length = step_length
         self.model = model
         self.initial_sigma_m = initial_sigma_m
+        self.smooth = smooth
+        self.start_known = start_known
+        self.sigma_bias_deg = sigma_bias_deg
 
     def _check(self) -> None:
         if self.mode not in MODES:
@@ -227,14 +254,19 @@ class GnssPdrFusion(ParamsMixin):
             fixes_before_ttff=0,
             fixes_inaccurate=0,
             fixes_gated=0,
+            fixes_superseded=0,
             fixes_while_off=0,
             activations=1 if state == ACQUIRING else 0,
             compensations=0,
             model_updates=0,
         )
         rows = [(t0, x[0], x[1], raw[0], raw[1], self.initial_sigma_m, state, False)]
+        priors = [x.copy()]  # decision D36: the prediction at each row, before a fix's update
+        paths = [0.0]  # decision D39: the PDR path (m) at each row
+        walked = 0.0  # decision D36: the path (m) since the last used fix
         used = []
         j = int(np.searchsorted(ft, t0, side="left"))  # next fix to look at
+        j_first = j
         prev_t = t0
         prev_end = None
 
@@ -291,6 +323,12 @@ class GnssPdrFusion(ParamsMixin):
                 sigma_heading_rad=self.sigma_heading_rad,
             )
             inc = np.array([lc * np.cos(hc), lc * np.sin(hc)])
+            if self.sigma_bias_deg:  # decision D36: a systematic heading error grows with the path since the last fix
+                d_new = walked + abs(lc)
+                P = P + np.eye(2) * np.radians(self.sigma_bias_deg) ** 2 * (d_new**2 - walked**2)
+                walked = d_new
+            priors.append(x.copy())
+            paths.append(path)
             # --- fixes since the previous step: the latest one is extrapolated to this step
             fix_used = False
             cand = []
@@ -307,6 +345,7 @@ class GnssPdrFusion(ParamsMixin):
                     counts["fixes_inaccurate"] += len(ready) - len(valid)
                     if valid:
                         i = valid[-1]
+                        counts["fixes_superseded"] += len(valid) - 1  # decision D40: the latest one is used
                         z = fix_at_step(fxy[i], ft[i], t_k, prev_t, inc)  # seed 001 Sec. 2.2.6: last fix -> last step
                         xn, Pn, _, nis = kf_update(x, P, z, fsig[i : i + 1])
                         if self.gate_chi2 is not None and nis > self.gate_chi2:
@@ -317,6 +356,7 @@ class GnssPdrFusion(ParamsMixin):
                             counts["fixes_used"] += 1
                             used.append((ft[i], fxy[i, 0], fxy[i, 1], facc[i], t_k))
                             last_fix = t_k
+                            walked = 0.0
                             obs = self._compensation(anchors, raw, z, fsig[i], path, nsteps, fsum, model, counts)
                             if obs is not None:
                                 # scalar Kalman smoothing of log-scale and bias: each estimate has the
@@ -342,11 +382,25 @@ class GnssPdrFusion(ParamsMixin):
             rows.append((t_k, x[0], x[1], raw[0], raw[1], float(np.sqrt(np.trace(P) / 2)), state, fix_used))
             prev_t = t_k
         t_end = rows[-1][0]
+        counts["fixes_outside_track"] = j_first + (len(ft) - j)  # decision D40: before the start, after the last step
         if on_since is not None:
             on_time += t_end - on_since
         total = max(t_end - t0, 1e-9)
-        self.trajectory_ = pd.DataFrame(rows, columns=["t", "x", "y", "x_pdr", "y_pdr", "sigma_m", "gnss", "fix_used"])
+        traj = pd.DataFrame(rows, columns=["t", "x", "y", "x_pdr", "y_pdr", "sigma_m", "gnss", "fix_used"])
+        causal = traj[["x", "y"]].to_numpy(float)
+        traj.insert(3, "x_rt", causal[:, 0])
+        traj.insert(4, "y_rt", causal[:, 1])
+        fix_rows = traj["fix_used"].to_numpy(bool)
+        if self.smooth:  # decision D36 (D38 before the first fix)
+            sm = stretch_between_fixes(causal, np.asarray(priors), fix_rows, start_anchor=self.start_known)
+            traj["x"], traj["y"] = sm[:, 0], sm[:, 1]
+        self.trajectory_ = traj
         self.fixes_used_ = pd.DataFrame(used, columns=["t", "x", "y", "accuracy_m", "step_t"])
+        # decision D39: the step-length scale GNSS measures on stretches of good fixes (not the compensation's latest)
+        raw_rows = traj[["x_pdr", "y_pdr"]].to_numpy(float)[fix_rows]
+        self.distance_scale_, self.distance_scale_covered_m_, self.distance_scale_windows_ = fit_length_scale(
+            self.fixes_used_[["x", "y"]].to_numpy(float), self.fixes_used_["t"].to_numpy(float), raw_rows,
+            np.asarray(paths)[fix_rows])
         counts["gnss_on_fraction"] = (
             0.0 if self.mode == "off" else (1.0 if self.mode == "best" else float(min(on_time / total, 1.0)))
         )

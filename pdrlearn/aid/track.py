@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pdrlearn.aid.fixes import FixLog, parse_nmea_lines, read_fix_csv, to_local
+from pdrlearn.aid.fixes import FixLog, read_fixes, to_local
 from pdrlearn.aid.geo import enu_to_geodetic
 from pdrlearn.aid.gnss import GnssPdrFusion
 from pdrlearn.aid.sporadic import SporadicFixFusion
@@ -33,28 +33,64 @@ def _parse_start(start) -> tuple[float, float] | None:
     return lat, lon
 
 
-def _load(path, session: Session) -> FixLog:
+def _utc_day_s(when) -> float:
+    """UTC seconds of day of an aware datetime."""
+    from datetime import UTC
+
+    u = when.astimezone(UTC)
+    return u.hour * 3600.0 + u.minute * 60.0 + u.second + u.microsecond * 1e-6
+
+
+def _first_fix_session_t(flog: FixLog, session: Session, offset_s: float | None) -> tuple[float, str]:
+    """Decision D38: the session-clock time (s) of a fix log's first fix, and how it was found.
+
+    In order: ``offset_s`` (``--gnss-time-offset``: seconds after the session start); the log's absolute time against
+    the session's absolute start -- a GPX / ISO-time CSV's UTC date-time against meta.json ``recording_start`` (with a
+    UTC offset, L298), an NMEA UTC time of day against ``utc_start_s`` or the ``recording_start``'s UTC time of day
+    (the nearest day); else the session start (``"assumed"``: the caller warns)."""
+    st = flog.stats
+    if offset_s is not None:
+        return session.t_start + float(offset_s), "offset"
+    meta = session.meta if isinstance(session.meta, dict) else {}
+    from pdrlearn.track.clock import recording_start
+
+    start = recording_start(meta, session.where)
+    aware = start is not None and start.utcoffset() is not None
+    utc0 = meta.get("utc_start_s")
+    if st.get("time_base") == "utc" and aware:
+        return float(st["first_epoch_s"]) - start.timestamp(), "recording_start"  # 0 s of the session = start
+    tod = st.get("first_utc_s") if st.get("time_base") == "utc_day" else (
+        float(st["first_epoch_s"]) % 86400.0 if st.get("time_base") == "utc" else None)
+    if tod is not None and utc0 is not None:  # UTC seconds of day at the session clock's t_start
+        return session.t_start + (tod - float(utc0) + 43200.0) % 86400.0 - 43200.0, "utc_start_s"
+    if tod is not None and aware:
+        return (tod - _utc_day_s(start) + 43200.0) % 86400.0 - 43200.0, "recording_start"
+    return session.t_start, "assumed"
+
+
+def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog, str | None]:
+    """Read a fix file (NMEA, GPX or CSV, decision D37) and put its times on the session clock (decision D38);
+    returns the log and a warning line (or None) when the log's times could not be placed."""
     path = Path(path)
-    if path.suffix.lower() == ".csv":
-        return read_fix_csv(path)
     if not path.is_file():
-        raise DataError(f"{path}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV (t, lat, lon, accuracy_m)")
-    # NMEA times are UTC of day: mapped with the session's meta 'utc_start_s' (UTC seconds of day at the
-    # session clock's t_start) when known, else the first fix is taken at the session start
-    # (docs/decisions/aided.md).
-    with open(path, encoding="ascii", errors="replace") as fh:
-        out = parse_nmea_lines(fh, source=str(path), t0_s=0.0)
-    if not len(out):
-        raise DataError(
-            f"{path}: no valid GGA/RMC fix in {out.stats['sentences']} sentence(s) "
-            f"({out.stats['bad_checksum']} bad checksum, {out.stats['empty']} empty)"
-        )
-    t0 = session.t_start
-    utc0 = session.meta.get("utc_start_s") if isinstance(session.meta, dict) else None
-    if utc0 is not None:
-        t0 = session.t_start + out.stats["first_utc_s"] - float(utc0)
+        raise DataError(f"{path}: no such fix file; pass an NMEA log (.nmea/.txt), a GPX track (.gpx) or a CSV "
+                        "(t, lat, lon, accuracy_m)")
+    out = read_fixes(path)
+    if "time_base" not in out.stats:  # a CSV's t on the session clock
+        if offset_s is not None:
+            raise DataError(f"{path}: --gnss-time-offset places a log's UTC times (NMEA, GPX, ISO-time CSV) on the "
+                            "session clock, but this CSV's t is already in session seconds; drop the option or shift t")
+        return out, None
+    t0, how = _first_fix_session_t(out, session, offset_s)
     out.fixes["t"] = out.fixes["t"] + t0
-    return out
+    out.stats["time_alignment"] = how
+    out.stats["first_fix_s"] = round(float(t0), 3)
+    if how != "assumed":
+        return out, None
+    return out, (f"aid: {path}: the fixes' UTC times cannot be placed on the session clock (its meta.json has no "
+                 "recording_start with a UTC offset, nor utc_start_s), so the first fix is taken at the session start; "
+                 "if the receiver's first fix came later, pass --gnss-time-offset S (its seconds after the session "
+                 "start) or write recording_start in meta.json (decision D38)")
 
 
 def _file_stats(stats: dict) -> dict:
@@ -85,6 +121,30 @@ def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | Non
     return f"aid: {st['fixes_unused']} of the {n} fixes in {path} not used: " + "; ".join(why)
 
 
+#: decision D39: the GNSS scale replaces the steps' lengths only when its windows cover at least this much PDR path (m)
+MIN_SCALE_COVER_M = 1000.0
+
+
+def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.DataFrame | None]:
+    """Decision D39: the GNSS-calibrated distance. The filter's fitted scale (``distance_scale_``, on stretches of good
+    fixes) multiplies the steps' ``length_m`` when its windows cover :data:`MIN_SCALE_COVER_M`, so ``distance_m``,
+    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Returns (info keys, the
+    scaled steps or None)."""
+    pdr_m = float(np.nansum(steps["length_m"].to_numpy(float)))
+    scale, cover = float(f.distance_scale_), float(f.distance_scale_covered_m_)
+    ok = np.isfinite(scale) and cover >= MIN_SCALE_COVER_M
+    info = {"distance_pdr_m": round(pdr_m, 2),
+            "distance_scale": round(scale, 4) if np.isfinite(scale) else None,
+            "distance_scale_cover_m": round(cover, 1),
+            "distance_scale_windows": int(f.distance_scale_windows_),
+            "distance_scaled": bool(ok)}
+    if not ok:
+        return info, None
+    out = steps.copy()
+    out["length_m"] = out["length_m"].to_numpy(float) * scale
+    return info, out
+
+
 def _steps_from_path(x: np.ndarray, y: np.ndarray, steps: pd.DataFrame) -> pd.DataFrame:
     """Steps whose lengths/headings reproduce a path (to chain a second filter after the first)."""
     dx, dy = np.diff(x), np.diff(y)
@@ -103,6 +163,7 @@ def aid_track(
     fixes_path=None,
     fix_period_s: float | None = None,
     start=None,
+    gnss_time_offset_s: float | None = None,
 ) -> TrackResult:
     """Fuse a PDR track with GNSS fixes (seed 001) and/or sporadic absolute fixes (seed 004).
 
@@ -119,7 +180,11 @@ def aid_track(
         stream such as 10 Hz cameras); ``None`` (default) = every fix is used at the step it falls in
         (sporadic fixes, decision D14).
     start : start coordinate ``(lat, lon)`` or ``"lat,lon"`` (degrees): origin of the local frame, where
-        the track starts. Default: the first fix (the walk is assumed to start there).
+        the track starts. Default: the first fix (decision D38: the path before it is projected back from it).
+    gnss_time_offset_s : decision D38: the session-clock seconds after the session start of the GNSS log's first fix
+        (``--gnss-time-offset``), for a log with UTC times when the session gives no absolute start (meta.json
+        ``recording_start`` with a UTC offset, or ``utc_start_s``); without either the first fix is taken at the
+        session start and a warning says so.
 
     Returns
     -------
@@ -154,12 +219,15 @@ def aid_track(
     x0 = np.array([float(traj0["x"].iloc[0]), float(traj0["y"].iloc[0])]) if len(traj0) else np.zeros(2)
     t_start = float(traj0["t"].iloc[0]) if len(traj0) else None
     cur_steps = steps
+    scaled_steps = None  # decision D39: the steps with GNSS-calibrated lengths
     fused = None
     all_fixes = []
     for kind, path in (("gnss", gnss_path), ("fixes", fixes_path)):
         if path is None:
             continue
-        flog = _load(path, session)
+        flog, late = _load(path, session, gnss_time_offset_s if kind == "gnss" else None)
+        if late:
+            warnings.append(late)
         fx, origin = to_local(flog.fixes, origin)
         all_outside = False
         if t_start is not None and len(fx):
@@ -178,8 +246,10 @@ def aid_track(
                                    first_accuracy_m=fx["accuracy_m"].iloc[0] if len(fx) else None)
         if kind == "gnss":
             mode = "saving" if gnss_period_s else "best"
-            f = GnssPdrFusion(mode=mode, period_s=float(gnss_period_s or 60.0), initial_sigma_m=sigma0)
+            f = GnssPdrFusion(mode=mode, period_s=float(gnss_period_s or 60.0), initial_sigma_m=sigma0,
+                              start_known=start is not None or "x" in flog.fixes.columns)  # decision D38
             f.run(cur_steps, fx, start_xy=x0, t_start=t_start)
+            scale_info, scaled_steps = _distance_scale(f, steps)
             info["gnss"] = {
                 "file": str(path),
                 "mode": mode,
@@ -188,6 +258,7 @@ def aid_track(
                 **f.stats_,
                 "length_scale": f.scale_,
                 "heading_bias_deg": float(np.degrees(f.heading_bias_rad_)),
+                **scale_info,
             }
         else:
             tp = fix_period_s
@@ -226,13 +297,16 @@ def aid_track(
     fixes = pd.concat(all_fixes, ignore_index=True)
     info["fix_table"] = {c: np.round(fixes[c].to_numpy(float), 3).tolist() for c in ("t", "x", "y", "accuracy_m")}
     info["fix_table"]["source"] = fixes["source"].tolist()
+    # decision D39: the fused path's own length (it follows the fixes' noise: longer than the walk)
+    info["path_length_m"] = round(float(np.sum(np.hypot(np.diff(out["x"].to_numpy()), np.diff(out["y"].to_numpy())))),
+                                  2)
     new_info = dict(result.info)
     new_info["aid"] = info
     if warnings:
         new_info["warnings"] = list(new_info.get("warnings", [])) + warnings
     for w in warnings:  # logged once, like the pipelines' warnings (the CLI prints log records, decision B13)
         log.warning("%s: %s", session.where, w)
-    return TrackResult(result.steps.copy(), out, new_info)
+    return TrackResult(scaled_steps if scaled_steps is not None else result.steps.copy(), out, new_info)
 
 
 def check_sorted(steps: pd.DataFrame) -> pd.DataFrame:

@@ -298,8 +298,11 @@ def track(
     initial_heading: float = INITIAL_HEADING_OPT,
     storey_height: float = storey_height_option(),
     params: Path = PARAMS_OPT,
-    gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
+    gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA, GPX or CSV) for aiding."),
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
+    gnss_time_offset: float = typer.Option(None, "--gnss-time-offset", help="Seconds after the session start of the "
+                                           "--gnss log's first fix, when meta.json gives no recording_start with a "
+                                           "UTC offset (decision D38)."),
     fixes: Path = typer.Option(None, "--fixes", help="Sporadic absolute fixes CSV for aiding."),
     fix_period: float = typer.Option(None, "--fix-period", help="Query the --fixes stream every S seconds while "
                                      "walking (seed 004; thins a dense stream). Default: every fix is used."),
@@ -461,6 +464,7 @@ STRICT_EXIT = 3
 #: checks that every other option of ``track`` is one of ``track-all``, declared by the same object)
 NOT_IN_TRACK_ALL = {
     "--gnss": "a per-recording fix file", "--gnss-period": "thins --gnss", "--fixes": "a per-recording fix file",
+    "--gnss-time-offset": "places one --gnss log's times",
     "--fix-period": "thins --fixes",
     "--strict": "track-all's exit code 1 names failed sessions; sessions.csv's n_warnings counts each one's (E156)",
 }
@@ -480,7 +484,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    rules: str | None = None, min_confidence: float | None = None, length_bounds: str | None = None,
                    warn_out_of_domain: float | None = None, start: str | None = None, params: Path | None = None,
                    gnss: Path | None = None, gnss_period: float | None = None, fixes: Path | None = None,
-                   fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
+                   fix_period: float | None = None, gnss_time_offset: float | None = None, streaming: bool = False,
+                   realtime: bool = False,
                    freeze_index: bool = False, gait_quality: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, ignore_force: bool = False,
                    contacts: bool = False,
@@ -552,10 +557,13 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
         raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
                         "--fixes give the track its direction; drop --initial-heading")
+    if gnss_time_offset is not None and gnss is None:  # decision D38
+        raise DataError(f"track: --gnss-time-offset {gnss_time_offset:g} places the times of a --gnss log, which is "
+                        "not given; pass --gnss FILE or drop --gnss-time-offset")
     for fix_file in (gnss, fixes):  # before the tracking, which warned and worked first
         if fix_file is not None and not Path(fix_file).is_file():
-            raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV "
-                            "(t, lat, lon, accuracy_m)")
+            raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt), a GPX track (.gpx) or a "
+                            "CSV (t, lat, lon, accuracy_m)")
     from pdrlearn.kernels.relative_length import check_length_reference
 
     if check_length_reference(length_reference) != "model" and (model is None or str(model) == "oracle"):  # C126
@@ -634,6 +642,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "warn_out_of_domain": warn_out_of_domain, "start_ll": start_ll, "start_alt": start_alt,
             "start_ele": start_has_altitude(start),  # decision L362: track.gpx's <ele> only from a given altitude
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
+            "gnss_time_offset": gnss_time_offset,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "freeze_index": freeze_index, "gait_quality": gait_quality,
             "reference_point": reference_point, "toe_off": toe_off, "ignore_force": ignore_force,
@@ -946,7 +955,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             raise DataError("aiding (--gnss/--fixes) needs pdrlearn.aid.aid_track, which is not installed "
                             "in this version; run without those options") from None
         result = aid_track(result, session, gnss_path=gnss, gnss_period_s=o["gnss_period"], fixes_path=fixes,
-                           fix_period_s=o["fix_period"], start=o["start_ll"])
+                           fix_period_s=o["fix_period"], start=o["start_ll"],
+                           gnss_time_offset_s=o.get("gnss_time_offset"))
     if o["start_alt"]:  # decision L56: the z column starts at the given altitude (as Tracker(start=(x, y, ALT)))
         result.trajectory["z"] = result.trajectory["z"] + o["start_alt"]
     if o.get("ten_m_walk_m") is not None:  # decision L522: the walkway of the 10 m walk test's keys and trials

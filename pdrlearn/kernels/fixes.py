@@ -432,3 +432,63 @@ class LiveFixes:
         return {"fixes_read": self.read, "fixes_used": self.used, "fixes_unused": self.read - self.used,
                 "fixes_superseded": self.superseded, "fixes_outside_track": outside, "fixes_late": self.late,
                 "fixes_rejected": len(self.rejected)}
+
+
+def stretch_between_fixes(causal: np.ndarray, prior: np.ndarray, used: np.ndarray, *,
+                          start_anchor: bool) -> np.ndarray:
+    """Decision D36: the offline path of a step-triggered fix filter from its causal one.
+
+    ``causal`` (n, 2): the filter's position after each row (posterior where a fix was used); ``prior`` (n, 2): its
+    prediction at each row before the update; ``used`` (n,): rows where a fix was used. Between two used rows a < b
+    the jump at b (posterior - prior) is spread linearly over the segment's steps (seed 004 eq. 26: each increment
+    plus (l(k) - l(k-m)) / m, with l = 0 after the posterior at a), so the path reaches b without a jump. Before the
+    first used row: with ``start_anchor`` (the start is known) the same spread from row 0; without it the whole
+    correction is applied to every earlier row (decision D38: the path before the first fix is the PDR's shape
+    projected back from that fix, not drawn forward from the first fix's position). After the last used row the
+    causal path continues from that posterior (no jump)."""
+    out = np.array(causal, float, copy=True)
+    prior = np.asarray(prior, float)
+    prev = 0 if start_anchor else None
+    for b in np.flatnonzero(np.asarray(used, bool)):
+        jump = out[b] - prior[b]  # out[b] is still causal[b]: rows > prev are untouched so far
+        if prev is None:
+            out[:b] += jump
+        elif b > prev:
+            m = b - prev
+            out[prev + 1 : b] += (np.arange(1, m) / m)[:, None] * jump
+        prev = b
+    return out
+
+
+def fit_length_scale(fix_xy: np.ndarray, fix_t: np.ndarray, pdr_xy: np.ndarray, pdr_path_m: np.ndarray, *,
+                     window_m: float = 200.0, max_gap_s: float = 5.0, straightness: float = 0.95
+                     ) -> tuple[float, float, int]:
+    """Decision D39: the step-length scale that GNSS measures, on straight stretches of good fixes.
+
+    ``fix_xy``/``fix_t``: the used fixes in order; ``pdr_xy``/``pdr_path_m``: the uncompensated PDR position and its
+    path length (m, the sum of the step lengths) at each of those fixes' steps. Consecutive windows of at least
+    ``window_m`` of PDR path, with no two fixes more than ``max_gap_s`` apart inside and a PDR chord at least
+    ``straightness`` x its path (a straight walk, where the walked distance is the fixes' chord), each give the fixes'
+    chord and the steps' summed length; the scale is the sum of the chords over the sum of the lengths (a window's fix
+    noise, ~ sqrt(2) x 3.4 m over 200 m, averages out over the windows). The PDR's chord is not the denominator: a
+    lower-back track's heading sways from step to step, which shortens its chord, not its distance (D39's first
+    candidate, +2.2 to +3.4 % on waist-pll tracks). Returns (scale or nan, PDR path covered by the windows (m),
+    number of windows)."""
+    fix_xy, pdr_xy = np.asarray(fix_xy, float).reshape(-1, 2), np.asarray(pdr_xy, float).reshape(-1, 2)
+    fix_t, path = np.asarray(fix_t, float), np.asarray(pdr_path_m, float)
+    num = den = 0.0
+    n = 0
+    i0 = 0
+    for j in range(1, len(fix_t)):
+        if fix_t[j] - fix_t[j - 1] > max_gap_s:  # an outage: the next window starts after it
+            i0 = j
+            continue
+        walked = path[j] - path[i0]
+        if walked < window_m:
+            continue
+        if float(np.hypot(*(pdr_xy[j] - pdr_xy[i0]))) >= straightness * walked:
+            num += float(np.hypot(*(fix_xy[j] - fix_xy[i0])))
+            den += walked
+            n += 1
+        i0 = j
+    return (num / den if den > 0 else float("nan")), den, n
