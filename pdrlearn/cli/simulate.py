@@ -128,11 +128,15 @@ def simulate_cmd(
     step_time_asymmetry: float = typer.Option(
         0.0, "--step-time-asymmetry", help="Hemiparetic gait: each step onto the left foot (--paretic-side) lasts "
         "1 + this times the step onto the other (symmetry ratio - 1, Patterson et al. 2010), e.g. 0.39; the "
-        "cadence stays the user's; 0 (default) to below 1 (decision S35)."),
+        "cadence stays the user's; 0 (default) to below 1 (decision S35); the other side's: --paretic-side right. "
+        "Each foot's stance is the user's stance fraction of its steps' time (no separate stance-time asymmetry; "
+        "decision S94)."),
     step_length_asymmetry: float = typer.Option(
         0.0, "--step-length-asymmetry", help="Asymmetric steps (after a stroke, with a prosthesis): each step "
         "onto the left foot (--paretic-side) is 1 + this times as long as the step onto the other, e.g. 0.1; the "
-        "stride length stays the user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42)."),
+        "stride length stays the user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42). "
+        "Only the step times and lengths are asymmetric: both feet's kinematics (toe-off pitch, push-off, heel "
+        "strike, stance fraction) are the same anatomical foot's; there is no prosthetic foot (decision S94)."),
     foot: str = typer.Option(
         "right", "--foot", help="The foot that carries the foot unit: right (default) or left. The same arguments "
         "with --foot left give the other foot of the SAME walk (same contacts, waist and trajectory; the foot's "
@@ -241,12 +245,16 @@ def simulate_cmd(
         raise DataError(f"--baro-drift {baro_drift:g}: give the SD of the weather's drift rate in hPa per hour, 0 "
                         f"(none) to {BARO_DRIFT_MAX_HPA_PER_H:g} (0.3 = the default, 2 = the fastest weather)")
     mount = parse_mount(waist_mount)  # decision S34
-    if not (math.isfinite(step_time_asymmetry) and 0.0 <= step_time_asymmetry < STEP_TIME_ASYMMETRY_MAX):  # S35
-        raise DataError(f"--step-time-asymmetry {step_time_asymmetry:g}: give 0 (symmetric) to below "
-                        f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
-    if not (math.isfinite(step_length_asymmetry) and 0.0 <= step_length_asymmetry < STEP_LENGTH_ASYMMETRY_MAX):
-        raise DataError(f"--step-length-asymmetry {step_length_asymmetry:g}: give 0 (symmetric) to below "  # S42
-                        f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer than the right's)")
+    for name, value, top, example in (("--step-time-asymmetry", step_time_asymmetry, STEP_TIME_ASYMMETRY_MAX,  # S35
+                                       "0.39 = the --paretic-side foot's steps 39 % longer than the other's"),
+                                      ("--step-length-asymmetry", step_length_asymmetry,  # decision S42
+                                       STEP_LENGTH_ASYMMETRY_MAX,
+                                       "0.1 = the --paretic-side foot's steps 10 % longer than the other's")):
+        if not (math.isfinite(value) and 0.0 <= value < top):
+            flip = "right" if paretic_side == "left" else "left"
+            other = (f"; for the other foot's longer steps give --paretic-side {flip} {name} {-value:g} (decision "
+                     "S93)" if math.isfinite(value) and -top < value < 0 else "")
+            raise DataError(f"{name} {value:g}: give 0 (symmetric) to below {top:g} ({example}){other}")
     for name, v in (("--foot", foot), ("--paretic-side", paretic_side)):  # decisions S54, S55
         if v not in ("left", "right"):
             raise DataError(f"{name} {v!r}: give left or right")
