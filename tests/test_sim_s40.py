@@ -71,4 +71,40 @@ def test_help_says_the_feet_are_anatomical(capsys, monkeypatch):  # decision S94
     text = " ".join(capsys.readouterr().out.split())
     assert "S92" in text  # the route help names the leading foot
     assert "there is no prosthetic foot (decision S94)" in text
-    assert "no separate stance-time asymmetry" in text
+    assert "--stance-time-asymmetry shortens the paretic side's (S94)" in text
+
+
+def _stances(a: float) -> tuple[dict, np.ndarray]:
+    from pdrlearn.sim.body import schedule
+
+    user = UserProfile.from_seed(10826)
+    steps = plan_footsteps([Stand(2), Straight(16), Stand(2)], user, rng=np.random.default_rng(1))[0]
+    ev = schedule(steps, user, speed="normal", rng=np.random.default_rng(2), stand_s=2.0, rocker="smooth",
+                  affected="right", stance_time_asymmetry=a)
+    feet = np.array([s.foot for s in steps])
+    out = {}
+    for foot in ("left", "right"):
+        k = np.flatnonzero(feet == foot)
+        out[foot] = float(np.median(ev.to[k[2:]] - ev.ic[k[1:-1]]))  # a contact to the same foot's next toe-off
+    return out, ev.ic
+
+
+def test_stance_time_asymmetry_shortens_the_paretic_sides_stance_only():  # decision S94
+    sym, ic0 = _stances(0.0)
+    asym, ic1 = _stances(0.15)
+    assert sym["left"] / sym["right"] == pytest.approx(1.0, abs=0.02)
+    assert asym["left"] / asym["right"] == pytest.approx(1.15, abs=0.03)  # the other foot's about 1 + a times
+    assert asym["left"] == pytest.approx(sym["left"], abs=1e-9)
+    assert ic1 == pytest.approx(ic0, abs=1e-9)  # the contacts (step times) unchanged
+
+
+def test_stance_time_asymmetry_range_is_one_line(tmp_path, capsys):  # decision S94
+    from pdrlearn.cli.simulate import STANCE_TIME_ASYMMETRY_MAX as CLI_MAX
+    from pdrlearn.sim.body import STANCE_TIME_ASYMMETRY_MAX
+
+    assert CLI_MAX == STANCE_TIME_ASYMMETRY_MAX
+    assert main(["simulate", "--route", "stand:2, straight:2", "-u", "10827", "--stance-time-asymmetry", "0.3",
+                 "--out", str(tmp_path / "s")]) != 0
+    err = capsys.readouterr().err
+    assert err.startswith("error: --stance-time-asymmetry 0.3: give 0 (symmetric) to below 0.2")
+    assert not (tmp_path / "s").exists()
