@@ -176,7 +176,7 @@ def _pairs_row(folder: Path, root: Path) -> dict:
                 rows = pd.read_csv(table, dtype=str, keep_default_na=False)
             except (OSError, ValueError, pd.errors.ParserError):
                 return {}
-            hit = rows[rows.get("path", pd.Series(dtype=str)) == rel] if "path" in rows else rows.iloc[:0]
+            hit = rows[rows["path"] == rel] if "path" in rows else rows.iloc[:0]
             return hit.iloc[0].to_dict() if len(hit) else {}
         if up == root:
             break
