@@ -66,10 +66,10 @@ def folder_kind(folder: Path) -> str | None:
         return "train-all" if any(folder.glob("*/manifest.json")) else "evaluate-all"
     if (folder / "sessions.csv").is_file() and (folder / "groups.csv").is_file():
         return "track-all"
+    if (folder / "gait_pairs.csv").is_file() and (folder / "gait_steps.csv").is_file():
+        return "gait-all"  # decision W437: before gait's, a gait-all output of ROOT's own pair (PATH ".") has both
     if (folder / "gait_summary.json").is_file() and (folder / "gait_steps.csv").is_file():
         return "gait"
-    if (folder / "gait_pairs.csv").is_file() and (folder / "gait_steps.csv").is_file():
-        return "gait-all"
     if (folder / "split.json").is_file() and (folder / "part_000").is_dir():  # decision B379
         return "split"
     if all((folder / n).is_file() for n in _TRACK_FILES):

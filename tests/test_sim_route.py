@@ -33,7 +33,7 @@ def test_parse_route_every_kind():
         ("straight:10,,up:3", "empty item"),
         ("upp:3", "unknown kind 'upp'"),
         ("straight", "takes 1 or 2 or 3 value"),  # decision S88: :PACE
-        ("up:3:0.17", "takes 1 or 3 value"),
+        ("up:3:0.17", "takes N or N:RISE:RUN"),
         ("up:2.5", "not a whole number"),
         ("straight:-4", "positive"),
         ("straight:nan", "positive"),

@@ -95,7 +95,9 @@ def kind_lines(by_kind: dict) -> list[str]:
     return lines
 
 
-def _summary_json(res: dict) -> dict:
+def summary_json(res: dict) -> dict:
+    """gait_summary.json's object of :func:`pdrlearn.track.bilateral.pair_sessions`'s ``res`` (gait --out; gait-all
+    writes one per pair, decision W437)."""
     out = {k: res[k] for k in ("walk", "bouts", "by_kind", "toe_off", "reason", "warnings", "sessions",
                                "contact_source", "clock_alignment")}
     ref = res.get("reference")
@@ -164,7 +166,7 @@ def register(app: typer.Typer) -> None:
             out_folder(out, "gait", force=force, inputs=(left_dir, right_dir))
         # bad input fails here, before any folder is made
         res = pair_sessions(left_dir, right_dir, ignore_force=ignore_force)
-        summary = json_safe(_summary_json(res))
+        summary = json_safe(summary_json(res))
         if out is not None:
             from pdrlearn.track.gait_tables import gait_tables
 
@@ -213,7 +215,9 @@ def register_all(app: typer.Typer) -> None:
         root: Path = typer.Argument(..., help="A folder of visit folders, each holding the left and the right "
                                     "foot's session of one walk (meta.json \"foot\", as import --foot writes)."),
         out: Path = typer.Option(..., "--out", "-o", help="Folder for gait_pairs.csv and the pooled "
-                                 "gait_steps.csv, gait_cycles.csv, gait_bouts.csv."),
+                                 "gait_steps.csv, gait_cycles.csv, gait_bouts.csv, and each paired visit folder's "
+                                 "gait_summary.json at OUT/PATH/gait_summary.json (as gait --out's; decision W437), "
+                                 "which `pdrlearn report OUT [--clinical]` reads."),
         force: bool = typer.Option(False, "--force", help=FORCE_HELP),
         jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Pairs tracked at once: 1 = one after the other in "
                                  "this process (default); N > 1 = a Dask LocalCluster of N single-threaded worker "

@@ -8,6 +8,7 @@ are always built from the records' tables, so a serial, a parallel and a resumed
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import typer
@@ -20,8 +21,10 @@ def _pair_job(args: dict) -> dict:
     """One visit folder (cohort C115): a pair tracked by ``pair_sessions`` and its record written (C116) into the
     batch's temporary folder; a folder without a pair is its ``no_pair`` row (no record). Returns ``{"row",
     "tables"}`` as read back from the record, so that a fresh and a reused pair are the same objects."""
+    from pdrlearn.cli.gait import summary_json
     from pdrlearn.cli.resume import write_record
     from pdrlearn.cohort import attach_to_error
+    from pdrlearn.io.plasys import json_safe
     from pdrlearn.table_csv import table_text
     from pdrlearn.track.bilateral import pair_sessions
     from pdrlearn.track.gait_tables import GAIT_TABLE_FILES, gait_tables
@@ -43,8 +46,32 @@ def _pair_job(args: dict) -> dict:
                      "clock_right_minus_left_s": res["clock_alignment"]["right_minus_left_s"],  # decision L537
                      "warnings": " | ".join(res["warnings"])},  # decision L461
              "tables": {name: table_text(got[name]) for name in GAIT_TABLE_FILES},
+             "summary": _portable(json_safe(summary_json(res)), args),  # decision W437: as gait's, paths below ROOT
              "warnings": list(dict.fromkeys(warned))}
     return write_record(Path(args["record"]), args["key"], args["input_sha256"], value)
+
+
+def _portable(summary: dict, args: dict) -> dict:
+    """Decision W437 (cohort C116's rule for records): the pair's gait_summary.json object with each session's path
+    relative to ROOT (``args["root"]``), so a record reused after the study moved holds no stale folder."""
+    for side in ("left", "right"):
+        entry = (summary.get("sessions") or {}).get(side)
+        if isinstance(entry, dict) and entry.get("session"):
+            entry["session"] = Path(entry["session"]).relative_to(args["root"]).as_posix()
+    return summary
+
+
+def _placed(summary: dict, root: Path) -> dict:
+    """Decision W437: a record's gait_summary.json object with its sessions' paths under this run's ROOT again (the
+    file names each foot's session folder as `gait --out`'s does)."""
+    import copy
+
+    summary = copy.deepcopy(summary)
+    for side in ("left", "right"):
+        entry = (summary.get("sessions") or {}).get(side)
+        if isinstance(entry, dict) and entry.get("session"):
+            entry["session"] = str(root / entry["session"])
+    return summary
 
 
 def _progress_text(value: dict | None, error: str | None, reused: bool) -> str:
@@ -122,7 +149,8 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
         for i, value in reuse.items():  # cohort C116: the record put into the new OUT as it was
             write_record(tmp / PAIR_RECORDS / names[i], keys[i], hashes[i], value)
             progress_line(JobResult(str(i), ok=True, value=value))
-        items = [(str(i), {"path": p["path"], "reason": p["reason"], "left": p["left"] and str(p["left"]),
+        items = [(str(i), {"path": p["path"], "reason": p["reason"], "root": str(root),
+                           "left": p["left"] and str(p["left"]),
                            "right": p["right"] and str(p["right"]), "record": str(tmp / PAIR_RECORDS / names[i]),
                            "key": keys[i], "input_sha256": hashes[i]})
                  for i, p in enumerate(pairs) if i not in reuse]
@@ -139,6 +167,11 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
             frames = [table_from_text(v["tables"][name]) for v in values if v is not None and v["tables"]]
             header = pd.DataFrame(columns=[c[0] for c in TABLES[name]])
             write_table_csv(pd.concat(frames, ignore_index=True) if frames else header, tmp / name)
+        for p, v in zip(pairs, values, strict=True):  # decision W437: each pair's summary, for `report` (clinical)
+            if v is not None and isinstance(v.get("summary"), dict):
+                (tmp / p["path"]).mkdir(parents=True, exist_ok=True)
+                (tmp / p["path"] / "gait_summary.json").write_text(json.dumps(_placed(v["summary"], root),
+                                                                               indent=2, allow_nan=False) + "\n")
     replaced(out, was)
     # cohort C129: each pair's warnings (fresh, reused or failed), each distinct one said once, as track-all's C12
     said_once([(p["path"], (v or {}).get("warnings") or (ran[i].extra.get("warnings", []) if i in ran else []))
@@ -148,5 +181,5 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
     n_ok = sum(r["status"] == "ok" for r in rows)
     typer.echo(f"{n_ok} of {len(pairs)} visit folder(s) paired"
                + (f" ({len(reuse)} reused from an earlier run, --resume)" if resume else "")
-               + f"; wrote {out}/" + ", ".join(GAIT_ALL_FILES))
+               + f"; wrote {out}/" + ", ".join(GAIT_ALL_FILES) + " and each pair's PATH/gait_summary.json (W437)")
     return 0 if all(r["status"] != "failed" for r in rows) else 1

@@ -12,14 +12,16 @@ from pdrlearn.cli.common import FORCE_HELP, existed, out_folder, replaced
 def report(
     source: Path = typer.Argument(..., help="Model directory (manifest.json) or a results folder "
                                   "(evaluation.json, cohort_summary.csv, a track-all output: sessions.csv + "
-                                  "groups.csv, summary.json, PNG figures)."),
+                                  "groups.csv, summary.json, a gait or gait-all output: gait_summary.json (W437), PNG "
+                                  "figures)."),
     out: Path = typer.Option(..., "--out", "-o", help="Report folder to write (index.html + report.md)."),
     title: str = typer.Option(None, help="Page title."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     clinical: bool = typer.Option(False, "--clinical", help="Also write clinical.md: per patient, the session and "
                                   "recording date and one line per clinical test tracked (6MWT, TUG with phases, "
                                   "steps and turn time, 10 m walk, gait speed and cadence), each naming its unit "
-                                  "(decision W420)."),
+                                  "(decision W420); a gait / gait-all output adds each walk's step-time, stance and "
+                                  "step-length asymmetry, the two feet of one walk one block (W438)."),
 ) -> None:
     """Render accuracy tables, confusion matrices, trajectories and latency figures as one page.
 
@@ -37,6 +39,8 @@ def report(
         pdrlearn track-all study/ --out results/batch && pdrlearn report results/batch --out results/batch_report
 
         pdrlearn report out/track --out out/report_clinical --clinical
+
+        pdrlearn gait-all clinic/ --out ga && pdrlearn report ga --out ga_report --clinical
 
     A track-all output gets a batch section (cohort C16): the per-session and per-group tables, the failed
     sessions with their errors and warnings, and a figure of each session's distance and gait speed.

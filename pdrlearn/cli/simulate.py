@@ -34,6 +34,9 @@ RUNNING_SPEED_MPS = 2.0
 #: decision S43: `simulate --sit-start/--sit-end` (s seated at the start / end of the session); decision S61: up to a
 #: day (was an hour, S43, set when a simulated hour took ~1 GB of memory, S44; S62 cut it further), as `lie:S`
 SIT_MAX_S = 86_400.0  # = pdrlearn.sim.lying.MAX_LIE_S (tests/test_sim_lying.py)
+#: decision S94: = pdrlearn.sim.body.STANCE_TIME_ASYMMETRY_MAX (kept here so the help needs no numpy import;
+#: tests/test_sim_s40.py checks they agree)
+STANCE_TIME_ASYMMETRY_MAX = 0.2
 #: decision S90: `simulate --stand` (the standstill before and after the walk, Python's ``stand_s``, default 5 s,
 #: thesis ch.8). 0.5 s: the trial's clinic TUG (the walker goes at once); under it the first swing would start
 #: before the settled stance the body model begins with (an assumption: no seed gives a shortest standstill);
@@ -128,11 +131,20 @@ def simulate_cmd(
     step_time_asymmetry: float = typer.Option(
         0.0, "--step-time-asymmetry", help="Hemiparetic gait: each step onto the left foot (--paretic-side) lasts "
         "1 + this times the step onto the other (symmetry ratio - 1, Patterson et al. 2010), e.g. 0.39; the "
-        "cadence stays the user's; 0 (default) to below 1 (decision S35)."),
+        "cadence stays the user's; 0 (default) to below 1 (decision S35); the other side's: --paretic-side right. "
+        "Each foot's stance follows its steps' time; --stance-time-asymmetry shortens the paretic side's (S94)."),
     step_length_asymmetry: float = typer.Option(
         0.0, "--step-length-asymmetry", help="Asymmetric steps (after a stroke, with a prosthesis): each step "
         "onto the left foot (--paretic-side) is 1 + this times as long as the step onto the other, e.g. 0.1; the "
-        "stride length stays the user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42)."),
+        "stride length stays the user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42). "
+        "Only the step times, lengths and (--stance-time-asymmetry) stance are asymmetric: both feet's kinematics "
+        "(toe-off pitch, push-off, heel strike) are the same anatomical foot's; there is no prosthetic foot "
+        "(decision S94)."),
+    stance_time_asymmetry: float = typer.Option(
+        0.0, "--stance-time-asymmetry", help="Shorter stance on the --paretic-side foot (a prosthesis user loads "
+        "the prosthetic side for less time): its stance fraction is the user's / (1 + this), its swings longer, the "
+        f"step times unchanged, so the other foot's stance is about 1 + this times its own; 0 (default) to below "
+        f"{STANCE_TIME_ASYMMETRY_MAX:g} (double support stays; decision S94)."),
     foot: str = typer.Option(
         "right", "--foot", help="The foot that carries the foot unit: right (default) or left. The same arguments "
         "with --foot left give the other foot of the SAME walk (same contacts, waist and trajectory; the foot's "
@@ -241,12 +253,19 @@ def simulate_cmd(
         raise DataError(f"--baro-drift {baro_drift:g}: give the SD of the weather's drift rate in hPa per hour, 0 "
                         f"(none) to {BARO_DRIFT_MAX_HPA_PER_H:g} (0.3 = the default, 2 = the fastest weather)")
     mount = parse_mount(waist_mount)  # decision S34
-    if not (math.isfinite(step_time_asymmetry) and 0.0 <= step_time_asymmetry < STEP_TIME_ASYMMETRY_MAX):  # S35
-        raise DataError(f"--step-time-asymmetry {step_time_asymmetry:g}: give 0 (symmetric) to below "
-                        f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
-    if not (math.isfinite(step_length_asymmetry) and 0.0 <= step_length_asymmetry < STEP_LENGTH_ASYMMETRY_MAX):
-        raise DataError(f"--step-length-asymmetry {step_length_asymmetry:g}: give 0 (symmetric) to below "  # S42
-                        f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer than the right's)")
+    for name, value, top, example in (("--step-time-asymmetry", step_time_asymmetry, STEP_TIME_ASYMMETRY_MAX,  # S35
+                                       "0.39 = the --paretic-side foot's steps 39 % longer than the other's"),
+                                      ("--step-length-asymmetry", step_length_asymmetry,  # decision S42
+                                       STEP_LENGTH_ASYMMETRY_MAX,
+                                       "0.1 = the --paretic-side foot's steps 10 % longer than the other's"),
+                                      ("--stance-time-asymmetry", stance_time_asymmetry,  # decision S94
+                                       STANCE_TIME_ASYMMETRY_MAX,
+                                       "0.1 = the --paretic-side foot's stance fraction the user's / 1.1")):
+        if not (math.isfinite(value) and 0.0 <= value < top):
+            flip = "right" if paretic_side == "left" else "left"
+            other = (f"; for the other foot's longer steps give --paretic-side {flip} {name} {-value:g} (decision "
+                     "S93)" if math.isfinite(value) and -top < value < 0 else "")
+            raise DataError(f"{name} {value:g}: give 0 (symmetric) to below {top:g} ({example}){other}")
     for name, v in (("--foot", foot), ("--paretic-side", paretic_side)):  # decisions S54, S55
         if v not in ("left", "right"):
             raise DataError(f"{name} {v!r}: give left or right")
@@ -277,6 +296,7 @@ def simulate_cmd(
         waist_mount_deg=mount,
         step_time_asymmetry=step_time_asymmetry,
         step_length_asymmetry=step_length_asymmetry,
+        stance_time_asymmetry=stance_time_asymmetry,  # decision S94
         sit_start_s=sit_start,
         sit_end_s=sit_end,
         stand_s=stand,  # decision S90

@@ -6,6 +6,11 @@ ids, the recording date (summary.json ``recording_start``, else the tracked sess
 rule), then one line per clinical test a track measured - the corridor walk test (6MWT), the TUG with its phases,
 steps and turn time, the 10 m walk, the gait speed and cadence - each naming the unit it comes from. Nothing
 research-only: no errors against a reference, no model or validation warnings, no per-stride tables.
+
+Decision W438: the two feet of one walk are one block. A ``pdrlearn gait`` / ``gait-all`` output under SOURCE
+(gait_summary.json, W437) gives the walk's asymmetry line - step time, stance time and step length left / right with
+the symmetry index and the longer side - and its gait speed and cadence; the tracks of a left and a right foot session
+of one folder (meta.json ``foot``) that no gait output pairs are one block whose line says how to get the asymmetry.
 """
 
 from __future__ import annotations
@@ -44,8 +49,14 @@ def recording_date(summary: dict, folder: Path) -> str | None:
         return text[:10]
     run = folder / "run.json"
     session = _read(run).get("session") if run.is_file() else None
-    meta = Path(session) / "meta.json" if session else None
-    if meta is None or not meta.is_file():
+    return session_date(Path(session)) if session else None
+
+
+def session_date(session: Path) -> str | None:
+    """Decision W420 (W438: a gait pair's left session too): the date (YYYY-MM-DD) of a session folder's meta.json by
+    L298's :func:`~pdrlearn.track.clock.recording_start`, None without one."""
+    meta = Path(session) / "meta.json"
+    if not meta.is_file():
         return None
     from pdrlearn.track.clock import recording_start
 
@@ -170,30 +181,185 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     return lines
 
 
+#: decision W438: the asymmetry line's measures (gait_summary.json ``walk`` ``X_left`` / ``X_right`` / ``X_si_pct``)
+ASYMMETRY_MEASURES = (("step_time_s", "step time", "s"), ("stance_time_s", "stance", "s"),
+                      ("step_length_m", "step length", "m"))
+
+
+def _number(v) -> float | None:
+    return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None
+
+
+def asymmetry_lines(walk: dict) -> list[str]:
+    """Decision W438: a gait_summary.json ``walk``'s clinical lines: left / right, the symmetry index and the longer
+    side of step time, stance and step length (each read defensively: a measure gait left out is left out), then the
+    gait speed and cadence (L539) when given."""
+    parts = []
+    for key, name, unit in ASYMMETRY_MEASURES:
+        left, right = _number(walk.get(f"{key}_left")), _number(walk.get(f"{key}_right"))
+        if left is None or right is None:
+            continue
+        si = _number(walk.get(f"{key}_si_pct"))
+        side = "equal" if left == right else f"{'left' if left > right else 'right'} longer"
+        parts.append(f"{name} L/R {left:.3f} / {right:.3f} {unit} "
+                     + (f"(SI {si:.1f} %, {side})" if si is not None else f"({side}; no symmetry index)"))
+    basis = {"level": "level straight steps", "all": "all steps"}.get(str(walk.get("headline_steps")))
+    lines = []
+    if parts:
+        lines.append(f"- Asymmetry (both feet{f', {basis}' if basis else ''}): " + "; ".join(parts))
+        withheld = walk.get("si_withheld")
+        if isinstance(withheld, str) and withheld:
+            lines.append(f"  (symmetry indices withheld: {withheld})")
+    else:
+        lines.append("- Asymmetry: not measured (too few steps on a side)")
+    speed, cad = _number(walk.get("gait_speed_mps")), _number(walk.get("cadence_spm"))
+    if speed is not None:
+        lines.append(f"- Gait speed {speed:.2f} m/s{f', cadence {cad:.0f} steps/min' if cad is not None else ''} "
+                     "(both foot units)")
+    return lines
+
+
+def _pairs_row(folder: Path, root: Path) -> dict:
+    """Decision W438: gait-all's gait_pairs.csv row of the visit folder a gait_summary.json is in (the nearest
+    folder up to ``root`` holding gait_pairs.csv), ``{}`` for a `gait --out` folder."""
+    for up in [folder, *folder.parents]:
+        table = up / "gait_pairs.csv"
+        if table.is_file():
+            rel = folder.relative_to(up).as_posix() if folder != up else "."
+            try:
+                rows = pd.read_csv(table, dtype=str, keep_default_na=False)
+            except (OSError, ValueError, pd.errors.ParserError):
+                return {}
+            hit = rows[rows["path"] == rel] if "path" in rows else rows.iloc[:0]
+            return hit.iloc[0].to_dict() if len(hit) else {}
+        if up == root:
+            break
+    return {}
+
+
+def _meta(session: str | Path | None) -> dict:
+    path = Path(session) / "meta.json" if session else None
+    if path is None or not path.is_file():
+        return {}
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    return data if isinstance(data, dict) else {}
+
+
+def _same(a, b) -> bool:
+    try:
+        return bool(a) and bool(b) and Path(a).resolve() == Path(b).resolve()
+    except (OSError, ValueError):
+        return False
+
+
+def _gait_walks(root: Path) -> list[dict]:
+    """Decision W438: every gait_summary.json under ``root`` (gait --out, gait-all's W437 per-pair files) as ``{folder,
+    rel, subject, left, right (session paths), names, walk}``; one not written by gait is the line plain report
+    gives."""
+    walks = []
+    for path in sorted(root.rglob("gait_summary.json")) if root.is_dir() else []:
+        summary = _read(path)
+        walk, sessions = summary.get("walk"), summary.get("sessions")
+        if not isinstance(walk, dict):
+            raise DataError(f"{path}: no \"walk\" object; not a gait_summary.json written by `pdrlearn gait --out`; "
+                            "regenerate it")
+        sessions = sessions if isinstance(sessions, dict) else {}
+        side = {s: (sessions.get(s) or {}).get("session") if isinstance(sessions.get(s), dict) else None
+                for s in ("left", "right")}
+        row = _pairs_row(path.parent, root)
+        subject = row.get("subject") or _meta(side["left"]).get("subject") or _meta(side["right"]).get("subject")
+        rel = path.parent.relative_to(root).as_posix() if path.parent != root else path.parent.name
+        names = {s: row.get(f"session_{s}") or (Path(side[s]).name if side[s] else "?") for s in ("left", "right")}
+        walks.append({"folder": path.parent, "rel": rel, "subject": subject or None, "walk": walk, **side,
+                      "names": names})
+    return walks
+
+
 def clinical_markdown(source: str | Path) -> str:
-    """Decision W420: clinical.md's text for every track output (summary.json) under ``source``; one
-    :class:`DataError` line when there is none."""
+    """Decision W420: clinical.md's text for every track output (summary.json) and (W438) every bilateral gait
+    output (gait_summary.json) under ``source``; one :class:`DataError` line when there is neither."""
     root = Path(source)
     found = sorted(root.rglob("summary.json")) if root.is_dir() else []
     tracks = [(p.parent, _read(p)) for p in found]
     tracks = [(f, s) for f, s in tracks if s.get("pipeline") in UNIT_NAMES]
-    if not tracks:
-        raise DataError(f"{root}: --clinical reads track outputs (summary.json of `pdrlearn track`) and there is none "
-                        "under it; track the sessions first (pdrlearn track SESSION --out DIR) or drop --clinical")
+    gaits = _gait_walks(root)
+    if not tracks and not gaits:
+        raise DataError(f"{root}: --clinical reads track outputs (summary.json of `pdrlearn track`) or bilateral gait "
+                        "outputs (gait_summary.json of `pdrlearn gait --out` / `gait-all`) and there is none under it; "
+                        "track the sessions first (pdrlearn track SESSION --out DIR) or drop --clinical")
     patients: dict[str, list] = {}
     for folder, summary in tracks:
         # W426: without a subject, the folder's path under SOURCE stands for the patient: two patients' session
         # folders may share a name (patientA/tug, patientB/tug), the session id alone merged them
         rel = folder.relative_to(root).as_posix() if folder != root else folder.name
         key = str(summary["subject"]) if summary.get("subject") else f"{rel} (no subject in meta.json)"
-        patients.setdefault(key, []).append((folder, rel, summary))
+        patients.setdefault(key, []).append(("track", folder, rel, summary))
+    for g in gaits:
+        key = str(g["subject"]) if g["subject"] else f"{g['rel']} (no subject in meta.json)"
+        patients.setdefault(key, []).append(("gait", g["folder"], g["rel"], g))
     out = ["# Clinical summary", ""]
     for patient, rows in patients.items():
         out += [f"## Patient {patient}", ""]
-        for folder, rel, summary in rows:
-            date = recording_date(summary, folder)
-            when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
-            out.append(f"Session {summary.get('session')} ({rel}), {when}:")
-            out += clinical_lines(summary, folder) or ["- no clinical test measured"]
-            out.append("")
+        for block in walk_blocks(rows):
+            out += block + [""]
     return "\n".join(out)
+
+
+def _track_block(folder: Path, rel: str, summary: dict, head: str = "Session") -> list[str]:
+    date = recording_date(summary, folder)
+    when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
+    return [f"{head} {summary.get('session')} ({rel}), {when}:",
+            *(clinical_lines(summary, folder) or ["- no clinical test measured"])]
+
+
+def walk_blocks(rows: list) -> list[list[str]]:
+    """Decision W438: one patient's blocks of lines. The two tracks of a left and a right foot session of one folder
+    are one walk block (each foot's lines under its side, then the walk's asymmetry from the gait output pairing the
+    same two sessions, or the line saying how to get it); a gait output no track matches is its own walk block; every
+    other track is W420's session block."""
+    from pdrlearn.track.bilateral import session_foot
+
+    tracks = [r for r in rows if r[0] == "track"]
+    gaits = [r[3] for r in rows if r[0] == "gait"]
+    feet: dict[str, dict[str, list]] = {}
+    for r in tracks:
+        session = r[3].get("input_dir")
+        foot = session_foot(_meta(session)) if session else None  # decision L260's meta.json keys
+        if foot is not None:
+            feet.setdefault(str(Path(session).parent), {}).setdefault(foot, []).append(r)
+    paired = {id(v[0]): k for k, d in feet.items() if all(len(d.get(s, [])) == 1 for s in ("left", "right"))
+              for v in (d["left"], d["right"])}
+    used, blocks, done = set(), [], set()
+    for r in tracks:
+        key = paired.get(id(r))
+        if key is None:
+            blocks.append(_track_block(r[1], r[2], r[3]))
+            continue
+        if key in done:
+            continue
+        done.add(key)
+        left, right = feet[key]["left"][0], feet[key]["right"][0]
+        block = [f"Walk {Path(key).name}: left and right foot of one walk (W438):"]
+        for side, (_, folder, rel, summary) in (("Left foot", left), ("Right foot", right)):
+            lines = _track_block(folder, rel, summary, head=f"{side}, session")
+            block += [lines[0], *[f"  {line}" for line in lines[1:]]]
+        g = next((g for g in gaits if _same(g["left"], left[3].get("input_dir"))
+                  and _same(g["right"], right[3].get("input_dir"))), None)
+        if g is None:
+            block.append("- Asymmetry: not measured; pair the two feet with `pdrlearn gait-all ROOT --out G` (or "
+                         "`pdrlearn gait LEFT RIGHT --out G`) and report a folder holding G too (W437, W438)")
+        else:
+            used.add(id(g))
+            block += asymmetry_lines(g["walk"])
+        blocks.append(block)
+    for g in gaits:
+        if id(g) in used:
+            continue
+        date = session_date(Path(g["left"])) if g["left"] else None
+        when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
+        blocks.append([f"Walk {g['rel']} (left {g['names']['left']} + right {g['names']['right']}; pdrlearn gait), "
+                       f"{when}:", *asymmetry_lines(g["walk"])])
+    return blocks

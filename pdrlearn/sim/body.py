@@ -115,6 +115,13 @@ STAIR_TOE_CLEARANCE = 2.0  # toe clearance over a stair nosing / the user's leve
 STEP_TIME_ASYMMETRY_MAX = 1.0
 
 
+#: decision S94: ``stance_time_asymmetry`` must be below this: the paretic-side foot's stance fraction is the user's
+#: / (1 + a), and at the users' least stance fraction 0.62 (:mod:`pdrlearn.sim.user`) a = 0.2 leaves it 0.517 - still
+#: above 0.5, so its swing (1 - fraction of the stride) stays shorter than a step and the feet keep a double support
+#: (an assumption of this simulator, no seed gives a limit)
+STANCE_TIME_ASYMMETRY_MAX = 0.2
+
+
 def step_time_factor(foot: str, asymmetry: float, affected: str = AFFECTED_FOOT) -> float:
     """Decision S35: the factor on the step time of a step landing on ``foot`` for a step-time asymmetry ``a``
     (:func:`pdrlearn.sim.user.asymmetry_factor`, shared with S42's step lengths): a = 0.39 makes each step onto the
@@ -160,11 +167,16 @@ def schedule(
     rocker: str = "hermite",
     step_time_asymmetry: float = 0.0,
     affected: str = AFFECTED_FOOT,
+    stance_time_asymmetry: float = 0.0,
 ) -> Events:
     """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters.
 
     ``step_time_asymmetry``: the steps onto the ``affected`` foot (default :data:`AFFECTED_FOOT`, decision S55) are
     1 + this times as long as the others (:func:`step_time_factor`, decision S35).
+
+    ``stance_time_asymmetry`` (decision S94): the ``affected`` foot's stance fraction is the user's / (1 + this) - its
+    swings before landing are longer, its stance shorter, the step times unchanged - so the other foot's stance is
+    about 1 + this times its own (a prosthesis user loads the prosthetic side for less time).
 
     ``rocker``: "hermite" (the foot is flat and still ``LOAD_FRACTION`` of the cycle after the contact) or "smooth"
     (still only ``ROCKER_FRACTION`` after it, decisions S31; the foot-flat event stays at ``LOAD_FRACTION``).
@@ -190,8 +202,10 @@ def schedule(
     cv = user.variability * variability
     last_ff = {"left": stand_s - 1.0, "right": stand_s - 1.0}
     settle = stand_s  # time at which all feet are flat after the last bout
-    stance = user.stance_fraction
     for k, st in enumerate(steps):
+        stance = user.stance_fraction  # decision S94: the affected foot's shortened (skipped at 0: bit for bit)
+        if stance_time_asymmetry and st.foot == affected:
+            stance = user.stance_fraction / (1.0 + stance_time_asymmetry)
         kd = KINDS[st.kind]
         dfac, pfac, (vf, vz), clear = kd.duration, kd.toe_off, kd.impact, kd.clearance_m
         ic_pitch = None if kd.contact_deg is None else np.radians(kd.contact_deg)

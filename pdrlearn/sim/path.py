@@ -48,13 +48,16 @@ class Curve:
 class Stairs:
     """Climb (``up=True``) or descend ``n`` stairs of ``rise_m`` x ``run_m``, one stair per step (step over step,
     a stride spans two stairs). ``step_to_step`` (decision S80): both feet on each stair, the same foot leading every
-    stair, so a stride spans one stair (the non-reciprocal gait of frail older adults)."""
+    stair, so a stride spans one stair (the non-reciprocal gait of frail older adults). ``lead`` (decision S92): the
+    foot that leads every stair of a step-to-step flight ("left" / "right"; None: the foot that would step next, as
+    before S92)."""
 
     n: int
     up: bool = True
     rise_m: float = 0.17
     run_m: float = 0.28
     step_to_step: bool = False
+    lead: str | None = None
 
 
 #: decision B347: the stair rise (m) the simulator accepts: building codes give 0.10-0.22 m (IBC 2018 sec. 1011.5.2:
@@ -391,9 +394,14 @@ class _Walker:
         c0, z0, u = self.c.copy(), self.z, _ahead(self.psi)
         sign = 1.0 if seg.up else -1.0
         kind = "stairs_up" if seg.up else "stairs_down"
+        if seg.lead is not None and not seg.step_to_step:
+            raise DataError(f"{seg}: a leading foot is for step-to-step stairs (step over step, the feet alternate; "
+                            "decision S92)")
         if seg.step_to_step:  # decision S80: the lead foot onto each stair, the trail foot beside it
             self.close()
-            lead = self._next_foot()
+            if seg.lead not in (None, "left", "right"):
+                raise DataError(f"{seg}: lead must be 'left', 'right' or None (decision S92)")
+            lead = self._next_foot(seg.lead)  # decision S92: the feet are together here, so the chosen foot leads
             trail = "left" if lead == "right" else "right"
             for j in range(1, seg.n + 1):
                 c, z = c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m

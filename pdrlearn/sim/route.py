@@ -7,7 +7,7 @@
 |---|---|
 | ``straight:M[:GAIT][:PACE]`` | walk M m straight; GAIT short, normal (default), long; PACE slow/normal/fast (S88) |
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
-| ``up:N[:RISE:RUN][:step-to-step]`` / ``down:...`` | climb / descend N stairs (0.17 x 0.28 m); ``step-to-step``: S80 |
+| ``up:N[:RISE:RUN][:step-to-step[:FOOT]]`` / ``down:...`` | N stairs; ``step-to-step``: S80; FOOT leads: S92 |
 | ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
 | ``backward:N[:direct]`` | N backward steps (N >= 0.25, 0.5: half a step, S89); ``direct``: no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
@@ -137,6 +137,27 @@ def _arity(item: str, parts: list[str], allowed: tuple[int, ...]) -> None:
         raise DataError(f"--route item {item!r}: '{parts[0]}' takes {want} value(s); {_usage(item)}")
 
 
+def _stair_options(item: str, kind: str, parts: list[str]) -> tuple[list[str], bool, str | None]:
+    """Decisions S80, S92: ``up``/``down``'s trailing options - ``step-to-step`` (S80), then optionally the foot
+    that leads every stair (``left`` / ``right``, S92: "up with the good, down with the bad" of a prosthesis user).
+    Returns the item's number parts, step-to-step and the leading foot (None: the foot that would step next)."""
+    words = []
+    while len(parts) > 2 and parts[-1].strip()[:1].isalpha():
+        words.insert(0, parts[-1].strip().lower())
+        parts = parts[:-1]
+    example = f"e.g. '{kind}:12:0.17:0.29:{STEP_TO_STEP}' or '{kind}:12:0.17:0.29:{STEP_TO_STEP}:left'"
+    if not words:
+        return parts, False, None
+    if words[0] != STEP_TO_STEP or len(words) > 2 or (len(words) == 2 and words[1] not in ("left", "right")):
+        if words[0] in ("left", "right"):
+            raise DataError(f"--route item {item!r}: a leading foot follows '{STEP_TO_STEP}' (step over step, the "
+                            f"feet alternate; decision S92), {example}")
+        raise DataError(f"--route item {item!r}: the options after N or RISE:RUN are '{STEP_TO_STEP}' (both feet on "
+                        "each stair; decision S80) and then the leading foot, 'left' or 'right' (decision S92), "
+                        f"{example}")
+    return parts, True, words[1] if len(words) == 2 else None
+
+
 def parse_route(spec: str) -> list[Segment]:
     """The path segments of a route text (module docstring); a bad item is one :class:`DataError` line."""
     items = [s.strip() for s in str(spec).split(",")]
@@ -183,19 +204,18 @@ def parse_route(spec: str) -> list[Segment]:
             grade = pct / 100.0
             segments.append(Slope(_number(item, parts[1]), grade, gait=_gait(item, parts, 3)))
         elif kind in ("up", "down"):
-            s2s = len(parts) in (3, 5) and parts[-1].strip().lower() == STEP_TO_STEP  # decision S80
-            if len(parts) in (3, 5) and not s2s and parts[-1].strip()[:1].isalpha():
-                raise DataError(f"--route item {item!r}: the option after N or RISE:RUN is '{STEP_TO_STEP}' (both "
-                                f"feet on each stair; decision S80), e.g. '{kind}:12:0.17:0.29:{STEP_TO_STEP}'")
-            parts = parts[:-1] if s2s else parts
-            _arity(item, parts, (1, 3))
+            parts, s2s, lead = _stair_options(item, kind, parts)  # decisions S80, S92
+            if len(parts) - 1 not in (1, 3):
+                raise DataError(f"--route item {item!r}: '{kind}' takes N or N:RISE:RUN, then optionally "
+                                f"':{STEP_TO_STEP}' and the leading foot ':left' / ':right' (decisions S80, S92), "
+                                f"e.g. '{kind}:12', '{kind}:12:0.17:0.29' or '{kind}:12:0.17:0.29:{STEP_TO_STEP}:left'")
             size = {} if len(parts) == 2 else {"rise_m": _number(item, parts[2]), "run_m": _number(item, parts[3])}
             if size:  # decision B347: a stair's size in metres, inside the building codes' range widened
                 bad = stair_size_error(size["rise_m"], size["run_m"])
                 if bad:
                     raise DataError(f"--route item {item!r}: {bad} (up:N:RISE:GOING, e.g. 'up:12:0.17:0.29')")
             segments.append(Stairs(int(_number(item, parts[1], integer=True)), up=kind == "up", step_to_step=s2s,
-                                   **size))
+                                   lead=lead, **size))
         elif kind == "backward":
             _arity(item, parts, (1, 2))
             if len(parts) > 2 and parts[2].strip().lower() != "direct":  # decision S67

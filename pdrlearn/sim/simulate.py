@@ -22,6 +22,7 @@ from pdrlearn.sim.body import (
     LOAD_FRACTION,
     PELVIS_MODES,
     ROCKER_MODES,
+    STANCE_TIME_ASYMMETRY_MAX,
     STEP_TIME_ASYMMETRY_MAX,
     TRUNK_ACC_SD,
     TRUNK_RATE_SD,
@@ -89,6 +90,8 @@ KNOBS: dict[str, object] = {
     "step_time_asymmetry": 0.0,
     # step-length asymmetry: the steps onto the left foot are 1 + this times the right's, same stride length (S42)
     "step_length_asymmetry": 0.0,
+    # decision S94: the paretic_side foot's stance fraction is the user's / (1 + this), the step times unchanged
+    "stance_time_asymmetry": 0.0,
     # the session starts seated this long (s), then stands up; and / or ends seated after sitting down (S43)
     "sit_start_s": 0.0,
     "sit_end_s": 0.0,
@@ -103,7 +106,7 @@ KNOBS: dict[str, object] = {
 GAP_UNITS = ("foot", "waist", "both")
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
 META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry", "step_length_asymmetry",
-                      "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps")
+                      "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps")
 #: decisions S54, S55: the values of the two foot-side knobs
 FEET = ("left", "right")
 
@@ -221,6 +224,9 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: step_time_asymmetry={out['step_time_asymmetry']!r} must be >= 0 and < "
                         f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's; "
                         "paretic_side='right' for the right foot's)")
+    if not 0 <= out["stance_time_asymmetry"] < STANCE_TIME_ASYMMETRY_MAX:  # decision S94
+        raise DataError(f"simulate: stance_time_asymmetry={out['stance_time_asymmetry']!r} must be >= 0 and < "
+                        f"{STANCE_TIME_ASYMMETRY_MAX:g} (0.1: the paretic_side foot's stance fraction / 1.1)")
     if not 0 <= out["step_length_asymmetry"] < STEP_LENGTH_ASYMMETRY_MAX:  # decision S42
         raise DataError(f"simulate: step_length_asymmetry={out['step_length_asymmetry']!r} must be >= 0 and < "
                         f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer)")
@@ -390,7 +396,7 @@ def simulate_path(
         raise DataError("simulate: nothing to simulate (no steps and stand_s < 1 s); add segments or stand longer")
     ev = schedule(steps, user, speed=speed, rng=rng, stand_s=lead + stand, variability=float(opt["variability"]),
                   rocker=str(opt["rocker"]), step_time_asymmetry=float(opt["step_time_asymmetry"]),
-                  affected=str(opt["paretic_side"]))
+                  affected=str(opt["paretic_side"]), stance_time_asymmetry=float(opt["stance_time_asymmetry"]))
     total_s = (max(ev.end_s, lead + stand) if steps else lead + stand) + end_pause + stand
     sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
     ride_starts = transfer_starts(rides, ev.rest, lead + stand)  # decision S45: as a transfer's
