@@ -1,6 +1,7 @@
 """Decision L544's adoption measurement (run once; the rule is in docs/decisions/localization.md): "today" (L182's
 check fitting a hard-iron offset on every set of strides) against the candidate (no offset fitted where the headings'
-resultant length exceeds L84's ``HARD_IRON_MAX_RESULTANT``) and clean-compass tracking (``compass_fallback=False``),
+resultant length exceeds L84's ``HARD_IRON_MAX_RESULTANT``; in L264's windows a heading offset that drifts
+linearly) and clean-compass tracking (``compass_fallback=False``),
 on fresh simulated users 10840-10851: (a) marches, (b) a disturbed compass, (c) short routes, (d) R1 x2 and L264's
 shift at 3 uT. Offline, no model. Prints; changes nothing on disk but a temporary folder.
 
@@ -29,12 +30,17 @@ MARCH = "straight:1200:fast, slope:500:6, curve:90:50, straight:1000, slope:500:
 GATE = P.HARD_IRON_MAX_RESULTANT  # L84's gate, the candidate's
 
 
+WINDOWED = P.windowed_disagreement
+
+
 def track(s, config: str, sh: float, **kw) -> dict:
-    P.HARD_IRON_MAX_RESULTANT = GATE if config == "candidate" else np.inf  # today: the offset always fitted
+    today = config != "candidate"  # today: the offset always fitted, one constant heading offset per window
+    P.HARD_IRON_MAX_RESULTANT = np.inf if today else GATE
+    P.windowed_disagreement = (lambda *a, **k: WINDOWED(*a, **k, drift=False)) if today else WINDOWED
     try:
         r = P.track_plasys(s, **kw)
     finally:
-        P.HARD_IRON_MAX_RESULTANT = GATE
+        P.HARD_IRON_MAX_RESULTANT, P.windowed_disagreement = GATE, WINDOWED
     out = track_summary(r, s, storey_height_m=sh)
     cc = r.info.get("compass_check") or {}
     out["_median"], out["_fired"] = cc.get("median_deg"), bool(cc.get("median_deg", 0) > P.COMPASS_DISAGREE_DEG)
@@ -73,6 +79,7 @@ def main() -> None:
     part(tmp, "(b) loop 30uT", LOOP, range(10846, 10852), STOREY_HEIGHT_M, ("--mag-disturbance", "30"))
     part(tmp, "(b) straight300 30uT", "straight:300", range(10846, 10850), STOREY_HEIGHT_M,
          ("--mag-disturbance", "30"))
+    part(tmp, "(b) shift route1 30uT", ROUTE1, range(10850, 10852), STOREY_HEIGHT_M, ("--mag-disturbance", "30"))
     part(tmp, "(c) short 0", SHORT[0], range(10846, 10852), STOREY_HEIGHT_M)
     part(tmp, "(c) short loop", SHORT[1], range(10846, 10852), STOREY_HEIGHT_M)
     part(tmp, "(d) R1x2 3uT", r1x2, range(10846, 10852), 2.89)
