@@ -51,10 +51,10 @@ def err(d: dict) -> float:
     return d["final_position_error_m"]
 
 
-def part(tmp: Path, name: str, route: str, users, sh: float, extra=(), clean: bool = False) -> None:
+def run_part(tmp: Path, name: str, route: str, users, sh: float, extra=(), clean: bool = False) -> None:
     e, fired, worse = {"today": [], "candidate": [], "clean": []}, {"today": 0, "candidate": 0}, []
     for u in users:
-        s = read_session(simulate(tmp / f"{name.split()[0]}_{name.split()[1]}_{u}", route, u, *extra))
+        s = read_session(simulate(tmp / f"{''.join(c for c in name if c.isalnum())}_{u}", route, u, *extra))
         r = {k: track(s, k, sh) for k in ("today", "candidate")}
         if clean:
             r["clean"] = track(s, "candidate", sh, compass_fallback=False)
@@ -69,10 +69,14 @@ def part(tmp: Path, name: str, route: str, users, sh: float, extra=(), clean: bo
           + f"; candidate worse than today by more than today's 2 sigma: {worse}", flush=True)
 
 
-def main() -> None:
+def main(start: int = 0) -> None:
+    """``start``: the first part to run (the first run stopped at part 8, "(c) short loop", on a folder name its
+    parts shared; the rerun began there with the same users)."""
     logging.disable(logging.WARNING)
     tmp = Path(tempfile.mkdtemp(prefix="l544_"))
     r1x2 = ", ".join([R1] * 2)
+    parts = []
+    part = (lambda *a, **k: parts.append((a, k)))  # noqa: E731  collected, then run from ``start``
     part(tmp, "(a) march", MARCH, range(10840, 10844), STOREY_HEIGHT_M, clean=True)
     part(tmp, "(a) straight1000", "straight:1000", range(10844, 10846), STOREY_HEIGHT_M, clean=True)
     part(tmp, "(b) R1x2 30uT", r1x2, range(10846, 10852), 2.89, ("--mag-disturbance", "30"))
@@ -84,7 +88,9 @@ def main() -> None:
     part(tmp, "(c) short loop", SHORT[1], range(10846, 10852), STOREY_HEIGHT_M)
     part(tmp, "(d) R1x2 3uT", r1x2, range(10846, 10852), 2.89)
     part(tmp, "(d) shift route1", ROUTE1, range(10850, 10852), STOREY_HEIGHT_M, clean=True)
+    for a, k in parts[start:]:
+        run_part(*a, **k)
 
 
 if __name__ == "__main__":
-    main()
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 0)
