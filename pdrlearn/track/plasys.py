@@ -756,8 +756,7 @@ def check_angle(mf: np.ndarray, ml: np.ndarray, psi: np.ndarray, t: np.ndarray, 
     gates = COMPASS_SPAN_GATES if span_gates is None else span_gates
     one = None
     if not windowed or (gates and np.ptp(t) <= COMPASS_ONE_FIT_MAX_S):  # decision L182 / L280: one fit
-        one = float(np.degrees(np.median(np.abs(compass_disagreement(  # decision L544: L84's spread gate
-            mf, ml, psi, max_resultant=HARD_IRON_MAX_RESULTANT)[0]))))
+        one = float(np.degrees(np.median(np.abs(compass_disagreement(mf, ml, psi)[0]))))  # L545: as L182
     win = float(np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t))))) if windowed else None
     angle, by = max((a, b) for a, b in ((win, "windows"), (one, "one fit")) if a is not None)
     info = {"median_deg": angle, "n_strides": int(len(psi)), "limit_deg": COMPASS_DISAGREE_DEG,
