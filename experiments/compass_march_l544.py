@@ -5,6 +5,9 @@ linearly) and clean-compass tracking (``compass_fallback=False``),
 on fresh simulated users 10840-10851: (a) marches, (b) a disturbed compass, (c) short routes, (d) R1 x2 and L264's
 shift at 3 uT. Offline, no model. Prints; changes nothing on disk but a temporary folder.
 
+Since L545 (not adopted) the candidate is ``windowed_disagreement(drift=True)``, and L182's one fit is never gated:
+a rerun measures L545's candidate, not L544's (whose one fit was gated too).
+
 Run: ``OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/compass_march_l544.py``
 """
 
@@ -36,7 +39,7 @@ WINDOWED = P.windowed_disagreement
 def track(s, config: str, sh: float, **kw) -> dict:
     today = config != "candidate"  # today: the offset always fitted, one constant heading offset per window
     P.HARD_IRON_MAX_RESULTANT = np.inf if today else GATE
-    P.windowed_disagreement = (lambda *a, **k: WINDOWED(*a, **k, drift=False)) if today else WINDOWED
+    P.windowed_disagreement = lambda *a, **k: WINDOWED(*a, **{**k, "drift": not today})  # L545: off by default
     try:
         r = P.track_plasys(s, **kw)
     finally:

@@ -1,6 +1,7 @@
 """Session 40, fixer FG, trial T3 (load-carriage marches): decisions L544 / L545 (L182's compass check on long
-straight walks, `track --compass`), L546 (the waist pipeline's memory grew with the square of the recording), L548
-(`simulate --gap` past the recording's end refused before simulating). Short sessions only."""
+straight walks: the ``drift`` keyword, measured and not adopted; `track --compass keep`), L546 (the waist
+pipeline's memory grew with the square of the recording), L548 (`simulate --gap` past the recording's end refused
+before simulating). Short sessions only."""
 
 from __future__ import annotations
 
@@ -32,30 +33,32 @@ def _straight_march(drift_dps: float, disturb_deg: float, seed: int = 0):
     return 22.0 * np.sin(seen) + 2.0, 22.0 * np.cos(seen) - 1.5, psi, t
 
 
-def test_a_straight_march_with_a_drifting_foot_does_not_condemn_a_good_compass_l544():
-    """Decisions L544 / L545 (T3 finding 1): in L264's windows a straight leg's headings cannot separate a hard-iron
-    offset from the field (it swallowed the field: 38 deg on T3's march), and a foot gyroscope drifting 1 deg/s
-    turns a constant offset away; with no offset fitted there and a drifting heading offset, a consistent compass
-    scores a few degrees while a disturbed one still scores over L182's 20 deg."""
+def test_a_straight_march_with_a_drifting_foot_and_the_drift_keyword_l544():
+    """Decisions L544 / L545 (T3 finding 1; measured, not adopted): in L264's windows a straight leg's headings
+    cannot separate a hard-iron offset from the field (it swallowed the field: 38 deg on T3's march), and a foot
+    gyroscope drifting 1 deg/s turns a constant offset away - the default check condemns a consistent compass;
+    ``drift=True`` (no offset fitted there, a drifting heading offset) scores it a few degrees while a disturbed
+    one still scores over L182's 20 deg."""
     mf, ml, psi, t = _straight_march(drift_dps=1.0, disturb_deg=0.0)
-    good = np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t))))
+    good = np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t, drift=True))))
     assert good < 5.0
-    assert np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t, drift=False)))) > COMPASS_DISAGREE_DEG
-    angle, info = check_angle(mf, ml, psi, t, windowed=True)  # a 50 min walk: the windows alone judge (L280)
+    assert np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t)))) > COMPASS_DISAGREE_DEG  # L264
+    angle, info = check_angle(mf, ml, psi, t, windowed=True, drift=True)  # 50 min: the windows alone (L280)
     assert angle == pytest.approx(good) and info["by"] == "windows"
+    assert check_angle(mf, ml, psi, t, windowed=True)[0] > COMPASS_DISAGREE_DEG  # the default, as before
     mf, ml, psi, t = _straight_march(drift_dps=1.0, disturb_deg=50.0)
-    assert np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t)))) > COMPASS_DISAGREE_DEG
+    assert np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t, drift=True)))) > COMPASS_DISAGREE_DEG
 
 
 def test_a_short_walk_is_still_judged_by_l182s_one_fit_l545():
-    """Decision L545: a walk up to L280's 900 s keeps L182's one fit as it was (a drifting foot heading there was
-    the fallback's case, L281 (d)), whatever the windows say."""
+    """Decision L545: with ``drift`` a walk up to L280's 900 s keeps L182's one fit as it was (a drifting foot
+    heading there was the fallback's case, L281 (d)), whatever the windows say."""
     from pdrlearn.orient._kernels import compass_disagreement
 
     mf, ml, psi, t = _straight_march(drift_dps=0.2, disturb_deg=0.0)
     keep = t < 800
     mf, ml, psi, t = mf[keep], ml[keep], psi[keep], t[keep]
-    angle, info = check_angle(mf, ml, psi, t, windowed=True)
+    angle, info = check_angle(mf, ml, psi, t, windowed=True, drift=True)
     one = np.degrees(np.median(np.abs(compass_disagreement(mf, ml, psi)[0])))
     assert info["median_one_fit_deg"] == pytest.approx(one)
 
