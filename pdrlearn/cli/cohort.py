@@ -991,6 +991,7 @@ def track_all(
     common_span: bool = _track.COMMON_SPAN_OPT,
     drop_partial_row: bool = _track.DROP_PARTIAL_ROW_OPT,
     align_units: bool = _track.ALIGN_UNITS_OPT,
+    compass: str = _track.COMPASS_OPT,
     clock_offset: float = _track.CLOCK_OFFSET_OPT,
     clock_drift_ppm: float = _track.CLOCK_DRIFT_OPT,
     units: str = _track.UNITS_OPT,

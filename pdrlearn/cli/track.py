@@ -118,6 +118,13 @@ ALTITUDE_OPT = typer.Option(None, "--altitude", help="plasys: the altitude from 
                             "the default) or fused with the session's waist barometer (fused: slopes and hills "
                             "read; an option, decision L154 - the barometer's wander moves a level walk by up to "
                             "~0.4 m and a stair climb by a few cm; docs/localization.md).")
+#: decision L545: ``--compass``'s values: auto = L182's check and L226's fallback to the waist gyroscope when it
+#: warns (the default); keep = the fused heading keeps the compass (L17) even when the check warns
+COMPASS_CHOICES = ("auto", "keep")
+COMPASS_OPT = typer.Option("auto", "--compass", help="plasys, offline, foot + waist (the fused heading): auto = "
+                           "when the compass check warns (decision L182), follow the waist gyroscope turned to the "
+                           "compass (L226); keep = keep the compass (L17) all the same, e.g. outdoors, away from "
+                           "steel, where the compass is trusted (decision L545).")
 DPI_OPT = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP)
 NO_PLOT_OPT = typer.Option(False, "--no-plot", help=NO_PLOT_HELP)  # decision L533
 COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a unit is over 1 s shorter than the "
@@ -318,6 +325,7 @@ def track(
     detector: str = DETECTOR_OPT,
     length_model: str = LENGTH_MODEL_OPT,
     altitude: str = ALTITUDE_OPT,
+    compass: str = COMPASS_OPT,
     dpi: int = DPI_OPT,
     no_plot: bool = NO_PLOT_OPT,
     common_span: bool = COMMON_SPAN_OPT,
@@ -499,7 +507,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
                    detector: str | None = None, length_model: str | None = None,
-                   altitude: str | None = None, align_units: bool = False,
+                   altitude: str | None = None, align_units: bool = False, compass: str = "auto",
                    bout_rule: str | None = None, clock_offset: float | None = None,
                    clock_drift_ppm: float | None = None, drop_partial_row: bool = False,
                    steady_trim: int | None = None, length_reference: str = "model") -> dict:
@@ -629,6 +637,12 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if check_altitude(altitude) == "fused" and "waist" not in (parse_units(units) or ("waist",)):
             raise DataError(f"track: --altitude fused reads the waist barometer (wBarometer.csv), which --units "
                             f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
+    if compass not in COMPASS_CHOICES:  # decision L545: before any session
+        raise DataError(f"--compass {compass}: give auto (fall back to the waist gyroscope when the compass check "
+                        "warns, the default) or keep (keep the compass)")
+    if compass != "auto" and streaming:
+        raise DataError("track: --compass keep chooses the offline fused heading's source; the --streaming kernel "
+                        "heads by the waist gyroscope and reads no compass: drop --streaming or --compass")
     if length_bounds is not None:
         try:
             bounds = [float(v) for v in length_bounds.split(",")]
@@ -655,7 +669,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
-            "altitude": altitude, "align_units": align_units, "clock_offset_s": clock_offset_s,
+            "altitude": altitude, "align_units": align_units, "compass": compass, "clock_offset_s": clock_offset_s,
             "clock_drift": clock_drift, "drop_partial_row": drop_partial_row,
             "steady_trim": None if steady_trim is None else check_steady_trim(steady_trim),  # decision L415
             "length_reference": length_reference}  # decision C126
@@ -857,6 +871,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                                                "--detector": o.get("detector_unit") == "foot",
                                                "--altitude": o.get("altitude") is not None,
                                                "--align-units": bool(o.get("align_units")),
+                                               "--compass": o.get("compass", "auto") != "auto",
                                                "--clock-offset": o.get("clock_offset_s") is not None,
                                                "--clock-drift-ppm": o.get("clock_drift") is not None},
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"],
@@ -914,6 +929,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             if not session.has("wAccelerometer", "wGyroscope"):  # decision B192: it had been ignored silently
                 raise no_waist_for_clock("track", "--align-units", session.where)
             kw["align"] = True  # with --streaming refused by track_settings, before any session
+        if o.get("compass", "auto") == "keep":  # decision L545
+            kw["compass_fallback"] = False
         if o.get("ignore_force"):  # decision L366 (offline only: plasys refuses it with streaming=True)
             kw["ignore_force"] = True
         if toe_off:  # decision L73
@@ -1256,7 +1273,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--length-reference",
                    "--streaming",
                    "--toe-off", "--ignore-force", "--contacts", "--drop-neighbour", "--detector", "--altitude",
-                   "--align-units",
+                   "--align-units", "--compass",
                    "--clock-offset", "--clock-drift-ppm")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds", "--length-reference")

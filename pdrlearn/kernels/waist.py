@@ -14,6 +14,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels import dsp
+from pdrlearn.kernels.nearest import nearest_distance
 
 # --------------------------------------------------------------------------------------------------
 # motion gate (seed 000 sec. II-B)
@@ -499,7 +500,7 @@ def bridge_additions(off: tuple, on: tuple, v_lat: np.ndarray, fs: float, *, max
     ic1, fc1, vm1 = (np.asarray(x, dtype=int) for x in on[:3])
     gap = max(1, int(round(min_step_s * fs)))
     if vm0.size:
-        near = np.abs(vm1[:, None] - vm0[None, :]).min(axis=1) <= gap
+        near = nearest_distance(vm1, vm0) <= gap  # decision L546: no contacts x contacts matrix
     else:
         near = np.zeros(vm1.size, dtype=bool)
     ic = np.concatenate([ic0, ic1[~near]])
@@ -1546,7 +1547,7 @@ def walk_extent_mask(event_s: np.ndarray, has_next: np.ndarray, stretch: np.ndar
         return out
     rid = run_ids(has_next)
     ts = t[st]
-    ok |= np.abs(t[:, None] - ts[None, :]).min(axis=1) <= bound_s + 1e-9
+    ok |= nearest_distance(t, ts) <= bound_s + 1e-9  # decision L546: no contacts x contacts matrix
     for k in np.flatnonzero(st):
         for step in (-1, 1):
             j = k + step

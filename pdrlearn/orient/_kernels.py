@@ -90,23 +90,51 @@ def fit_horizontal_hard_iron(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndar
     return coef[2:4].copy(), float(np.hypot(coef[0], coef[1])), resultant
 
 
-def compass_disagreement(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray) -> tuple[np.ndarray, float]:
+def drift_line(d: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Decisions L266 / L544: the least-squares line in ``t`` (s) of the wrapped angle difference ``d`` (rad) about
+    its circular mean, iterated 3 x so a drift past +-180 deg does not wrap away; its value at each ``t``
+    (unwrapped, rad): an offset plus a constant rate (a gyroscope's remaining bias)."""
+    d, t = np.asarray(d, dtype=float), np.asarray(t, dtype=float)
+    line = np.zeros(len(d))
+    X = np.column_stack([np.ones_like(t), t - t.mean()]) if len(t) else np.zeros((0, 2))
+    for _ in range(3):  # the line about the current offset
+        centre = np.arctan2(np.mean(np.sin(d - line)), np.mean(np.cos(d - line))) + line
+        r = wrap_angle(d - centre)
+        line = centre + X @ np.linalg.lstsq(X, r, rcond=None)[0]
+    return line
+
+
+def compass_disagreement(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray, *,
+                         max_resultant: float | None = None,
+                         t: np.ndarray | None = None) -> tuple[np.ndarray, float]:
     """Decision L182: how far the compass disagrees with a gyroscope-integrated heading ``psi`` (rad, relative),
     beyond a hard-iron offset and a constant heading offset: :func:`fit_horizontal_hard_iron`'s model fitted, the
     angle (rad) between each sample's level field less the fitted offset and the model's field at its ``psi``.
     A field of the Earth plus a hard-iron offset (any mounting yaw) fits it up to noise; a field that changes
     along the walk (steel, an indoor disturbance) or a heading that drifts away from the compass does not.
+    ``max_resultant`` (decision L544): when the headings' resultant length exceeds it (they spread too little to
+    separate the offset from the field: a straight walk, L84's gate), no offset is fitted (zero) and only the
+    field's size and heading offset are - else the offset swallows the Earth field and the angle is the noise of
+    the little left (a straight 17 min walk: fitted field 0.5 uT of 26 uT, median 40-55 deg per window).
+    ``t`` (s, decision L544): the heading offset is a line in ``t`` (:func:`drift_line` of the compass's heading
+    less ``psi``), not a constant: a foot heading whose gyroscope bias turns it steadily (T3: up to 1.3 deg/s after
+    an hour) agrees with a consistent compass, while a field that changes from place to place still does not.
 
     Returns (angles (n,) wrapped rad, fitted horizontal field ``H``)."""
     psi = np.asarray(psi, dtype=float)
-    b, field, _ = fit_horizontal_hard_iron(m_fwd, m_left, psi)
+    b, field, resultant = fit_horizontal_hard_iron(m_fwd, m_left, psi)
+    zeroed = max_resultant is not None and resultant > max_resultant  # decision L544
+    b = np.zeros(2) if zeroed else b
     s, c = np.sin(psi), np.cos(psi)
     X = np.vstack([np.column_stack([s, c]), np.column_stack([c, -s])])
     y = np.concatenate([np.asarray(m_fwd, dtype=float) - b[0], np.asarray(m_left, dtype=float) - b[1]])
     a, bb = np.linalg.lstsq(X, y, rcond=None)[0] if psi.size else (0.0, 0.0)
     pf, pl = a * s + bb * c, a * c - bb * s  # the model's level field at each heading
     mf, ml = y[: psi.size], y[psi.size:]
-    return wrap_angle(np.arctan2(ml, mf) - np.arctan2(pl, pf)), field
+    if t is not None and psi.size > 1:  # decision L544: the compass's heading (pi/2 - atan2, eq. 35) less psi
+        d = wrap_angle(np.pi / 2 - np.arctan2(ml, mf) - psi)  # about a drifting line
+        return wrap_angle(d - drift_line(d, t)), float(np.hypot(a, bb)) if zeroed else field
+    return wrap_angle(np.arctan2(ml, mf) - np.arctan2(pl, pf)), float(np.hypot(a, bb)) if zeroed else field
 
 
 def yaw_rate(acc: np.ndarray, gyr: np.ndarray) -> np.ndarray:

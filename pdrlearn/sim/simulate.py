@@ -163,17 +163,30 @@ def check_gaps(gaps, *, option: str | None = None) -> tuple[tuple[str, float, fl
     return tuple(sorted(out, key=lambda g: g[1]))
 
 
+def check_gaps_inside(t: np.ndarray, gaps) -> None:
+    """Decisions B370, L548: every gap leaves samples (times ``t``, s, the output grid) before and after it, else one
+    line - checked as soon as the recording's length is known, before the sensors are simulated (a 107 min march
+    had said so only after 1 min 40 s). A gap that runs to the end is a unit that stops for good: the line says
+    how to make one."""
+    for g_unit, start, dur in gaps or ():
+        if not (t[0] < start and start + dur < t[-1]):
+            stops = t[0] < start < t[-1] <= start + dur
+            raise DataError(f"simulate: gap {g_unit}:{start:g}:{dur:g} does not lie inside the recording (0-"
+                            f"{t[-1]:.1f} s) with samples before and after it; start it later or shorten it "
+                            "(decision B370)" + (
+                                "; for a unit that stops for good (a battery that dies) simulate without the gap "
+                                "and cut that unit's sensor files at the time (docs/localization.md, \"A unit that "
+                                "stops early\", decision L548)" if stops else ""))
+
+
 def _gap_keep(t: np.ndarray, gaps, unit: str) -> np.ndarray:
     """Decision S83: the samples (times ``t`` on the foot clock) of ``unit`` outside its gaps; a gap must leave
-    samples before and after it (one line, decision B370)."""
+    samples before and after it (one line, decision B370; :func:`check_gaps_inside`)."""
     keep = np.ones(len(t), dtype=bool)
+    check_gaps_inside(t, gaps)
     for g_unit, start, dur in gaps:
         if g_unit not in (unit, "both"):
             continue
-        if not (t[0] < start and start + dur < t[-1]):
-            raise DataError(f"simulate: gap {g_unit}:{start:g}:{dur:g} does not lie inside the recording (0-"
-                            f"{t[-1]:.1f} s) with samples before and after it; start it later or shorten it "
-                            "(decision B370)")
         keep &= ~((t >= start - 1e-9) & (t < start + dur - 1e-9))  # start <= t < end, t's rounding aside
     return keep
 
@@ -415,6 +428,7 @@ def simulate_path(
     dt = 1.0 / fine_rate
     t100 = t.block_means(OVERSAMPLE)
     t_out = block_mean(t100, k_out)
+    check_gaps_inside(t_out, opt["gaps"])  # decision L548: before the sensors are simulated
 
     # -- foot unit (the right foot, S1, or the left, S54) --
     # per-user mount: from beside the heel to the instep (decisions S19)

@@ -16,6 +16,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
+from pdrlearn.kernels.nearest import nearest_distance
 from pdrlearn.steps.base import check_event_span, check_unit
 
 DEFAULT_TOLERANCE_S = 0.25
@@ -232,7 +233,7 @@ def _reference_events(session: Session, unit: str, tolerance_s: float) -> Refere
             lo = np.fmin(lo, pre)
             pre = pre[np.isfinite(pre)]
             # a pre_ic that is no stride's ic opens a chain of labelled strides (mocap ICs)
-            extra = pre[np.abs(pre[:, None] - ev[None, :]).min(axis=1) > 1e-3] if ev.size else pre
+            extra = pre[nearest_distance(pre, ev) > 1e-3] if ev.size else pre  # decision L546
             if extra.size:
                 ev = np.concatenate([extra, ev])
                 desc += " + pre_ic_s opening each chain of strides"

@@ -36,6 +36,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.nearest import nearest_index
 from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
 from pdrlearn.track.clinical import CV_MIN_STRIDES, bout_rows, symmetry_index_pct
 from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
@@ -176,7 +177,7 @@ def common_frame(left: pd.DataFrame, right: pd.DataFrame) -> pd.DataFrame:
     if not ok_l.any() or not ok_r.any():
         return left
     tl, tr = left["ic_s"].to_numpy(float)[ok_l], right["ic_s"].to_numpy(float)[ok_r]
-    near = np.abs(tl[:, None] - tr[None, :]).argmin(axis=1)
+    near = nearest_index(tl, tr)  # decision L546: no strides x strides matrix
     diff = _wrap(right["dir_rad"].to_numpy(float)[ok_r][near] - left["dir_rad"].to_numpy(float)[ok_l])
     mean = math.atan2(np.sin(diff).mean(), np.cos(diff).mean())
     rot = float(mean + np.median(_wrap(diff - mean)))
