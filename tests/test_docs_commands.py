@@ -264,6 +264,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.classify.training import CV_GROUPS, METHODS, check_settings
     from pdrlearn.cli.cohort import parse_metrics
     from pdrlearn.cli.simulate import parse_mount
+    from pdrlearn.cli.track import COMPASS_CHOICES
     from pdrlearn.columns import TABLES as COLUMN_TABLES
     from pdrlearn.displace.foot import REFERENCE_POINTS
     from pdrlearn.export.from_model import EXPORT_UNITS
@@ -330,6 +331,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "length_bounds"): two_numbers,
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
         ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
+        ("track", "compass"): _one_of(COMPASS_CHOICES),  # decision L545
         ("track", "window"): parse_window,  # decision L105
         ("track", "per"): parse_per,  # decision L277
         ("track", "splits"): parse_splits,  # decision L411 (B307)
@@ -374,7 +376,7 @@ def _validators() -> dict[tuple[str, str], object]:
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
                 "per_align", "units", "altitude", "detector", "length_model", "splits",
-                "ten_m_walk"):  # C12, L108, B127, L154, E93, L534
+                "ten_m_walk", "compass"):  # C12, L108, B127, L154, E93, L534, L545
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")
