@@ -5,6 +5,8 @@
 final position error (m) per user and its median (min..max). ``--controls`` prints, for scenarios A, C, D,
 ``straight:5, backward:6, straight:5`` and ``straight:23``, how many tracks are identical (distance and end point
 within 1e-9 m) with E124's rule off and on. ``--candidate`` prints the side routes with the rule off and on.
+E124 is the rule of both paths (adopted in E125; decision E234 removed its module switch ``STREAMED_SIDE_TRAVEL``):
+the "off" arm stands in :class:`~pdrlearn.kernels.sideways.SideRun`'s angle with 0 (:func:`before_e124`).
 
     PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/side_steps_streamed.py --users 4160-4169
     PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/side_steps_streamed.py --users 4170-4179 --candidate
@@ -20,6 +22,7 @@ import logging
 import sys
 import tempfile
 from pathlib import Path
+from unittest import mock
 
 import numpy as np
 
@@ -61,14 +64,24 @@ def track(s, path: str, tmp: Path) -> dict:
     return {"err": summ.get("final_position_error_m", np.nan), "dist": summ["distance_m"], "end": traj[-1]}
 
 
+@contextlib.contextmanager
+def before_e124():
+    """The streamed tracks before E124 (decision E234: no switch, a stand-in for the arm): every
+    :meth:`SideRun.stride <pdrlearn.kernels.sideways.SideRun.stride>` still runs (L243's ``sideways`` rows read its
+    state) but adds 0 to the stride's direction, in ``track --streaming`` and the runtime alike."""
+    real = KS.SideRun.stride
+
+    def no_angle(self, *args, **kwargs) -> float:
+        real(self, *args, **kwargs)
+        return 0.0
+
+    with mock.patch.object(KS.SideRun, "stride", no_angle):
+        yield
+
+
 def measure(route: str, path: str, user: int, on: bool) -> dict:
-    saved = KS.STREAMED_SIDE_TRAVEL
-    KS.STREAMED_SIDE_TRAVEL = on
-    try:
-        with tempfile.TemporaryDirectory() as d:
-            return track(session(route, user), path, Path(d))
-    finally:
-        KS.STREAMED_SIDE_TRAVEL = saved
+    with tempfile.TemporaryDirectory() as d, contextlib.nullcontext() if on else before_e124():
+        return track(session(route, user), path, Path(d))
 
 
 def main(users: range, mode: str) -> None:
@@ -85,10 +98,11 @@ def main(users: range, mode: str) -> None:
         return
     for route in ROUTES:
         for p in PATHS:
-            for on in ((False, True) if mode == "candidate" else (KS.STREAMED_SIDE_TRAVEL,)):
+            for on in ((False, True) if mode == "candidate" else (True,)):
                 e = np.array([measure(route, p, u, on)["err"] for u in users])
-                print(f"{route!r} {p} (STREAMED_SIDE_TRAVEL={on}): final_position_error_m median {np.median(e):.2f} "
-                      f"({e.min():.2f}..{e.max():.2f}); per user " + " ".join(f"{x:.2f}" for x in e), flush=True)
+                print(f"{route!r} {p} (E124's rule {'on' if on else 'off'}): final_position_error_m median "
+                      f"{np.median(e):.2f} ({e.min():.2f}..{e.max():.2f}); per user "
+                      + " ".join(f"{x:.2f}" for x in e), flush=True)
 
 
 if __name__ == "__main__":

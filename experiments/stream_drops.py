@@ -4,7 +4,7 @@ height change of the stride before it, against its own integration on the gap cl
 Per user (fresh: 2210-2249; 2200-2209 were the diagnosis'): a flat 400 m walk (``simulate("walk", u, rate_hz=100,
 seed=u, length_m=400)``), copies with 1 %, 3 % and 5 % of the foot samples lost in bursts of 5-50 samples (the BLE
 trial's ``degrade.py loss`` model, seed = user: :func:`lose_bursts`), tracked by ``track --streaming`` M2 without a
-model (the runtime's kernel, parity pinned by tests/test_runtime_track.py) with ``kernels.gaps.DROP_NEIGHBOUR`` off
+model (the runtime's kernel, parity pinned by tests/test_runtime_track.py) with ``drop_neighbour`` off
 (before) and on (L167). Offline ``track`` (L160) is printed for reference. Also checks that each clean copy gives
 identical steps and trajectory in both arms.
 
@@ -21,7 +21,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-import pdrlearn.kernels.gaps as KG
 from experiments.position_sigma import users
 from pdrlearn.io import Stream
 from pdrlearn.sim.simulate import simulate
@@ -58,11 +57,7 @@ def run(session, arm: str | None):
     """``track --streaming`` M2 in ``arm`` (None: offline ``track``, the L160 default)."""
     if arm is None:
         return track_plasys(session)
-    KG.DROP_NEIGHBOUR = ARMS[arm]
-    try:
-        return track_plasys(session, streaming=True, method="M2")
-    finally:
-        KG.DROP_NEIGHBOUR = False  # the default (L167 not adopted)
+    return track_plasys(session, streaming=True, method="M2", drop_neighbour=ARMS[arm])  # E101, L549: the keyword
 
 
 def main() -> None:

@@ -1,6 +1,7 @@
 """Decision L189's measurement: ``track --streaming`` (``track_streaming``) and the runtime ``Tracker`` with L184's
 level rule on the M3 strides whose terrain class the 0.95 gate (L18) dropped
-(``kernels.distance.STREAMED_GATED_LEVEL_DZ``), against today's raw integrated height, on the same per-user models.
+(the ``gated_level_dz`` keyword, decision L550; the module switch ``kernels.distance.STREAMED_GATED_LEVEL_DZ`` it
+replaced was measured here), against today's raw integrated height, on the same per-user models.
 
 Usage::
 
@@ -21,11 +22,12 @@ import logging
 import tempfile
 from functools import partial
 from pathlib import Path
+from unittest import mock
 
 import numpy as np
 import pandas as pd
 
-import pdrlearn.kernels.distance as KD
+import pdrlearn.runtime as R
 from pdrlearn.export.from_model import export_model
 from pdrlearn.runtime import Tracker
 from pdrlearn.runtime.__main__ import replay as replay_dir
@@ -47,15 +49,24 @@ def _localization():
     return mod
 
 
-def _replay(bundle: Path, session, chunk_s: float = 1.0) -> list:
-    """The runtime's steps of ``session`` pushed in ``chunk_s`` chunks (as tests.runtime_helpers.replay)."""
-    tr = Tracker(bundle)
+def _replay(bundle: Path, session, mode=False, chunk_s: float = 1.0) -> list:
+    """The runtime's steps of ``session`` pushed in ``chunk_s`` chunks (as tests.runtime_helpers.replay), the
+    Tracker given ``gated_level_dz=mode`` (decision L550)."""
+    tr = Tracker(bundle, gated_level_dz=mode)
     t = session.streams["fAccelerometer"].t
     steps = []
     for t0 in np.arange(t[0], t[-1] + chunk_s, chunk_s):
         cut = {n: (st.t >= t0) & (st.t < t0 + chunk_s) for n, st in session.streams.items()}
         steps += tr.push({n: (st.t[cut[n]], st.values[cut[n]]) for n, st in session.streams.items()})
     return steps + tr.flush()
+
+
+def replay_real(session_dir: Path, mode) -> list:
+    """``pdrlearn run``'s replay of a recorded session through the shipped bundle, its Tracker given
+    ``gated_level_dz=mode`` (decision L550: a keyword; the replay builds its own Tracker, so the name it imports
+    stands in a partial for this replay only)."""
+    with mock.patch.object(R, "Tracker", partial(Tracker, gated_level_dz=mode)):
+        return replay_dir(ROOT / "models" / "plasys-sim-default", session_dir)[1]
 
 
 def measure(user: int, scenarios: tuple[str, ...], group: str, loc, work: Path) -> list[dict]:
@@ -68,14 +79,13 @@ def measure(user: int, scenarios: tuple[str, ...], group: str, loc, work: Path) 
         for speed in SPEEDS:
             s = sim(scen, user_seed=user, speed=speed)
             for flag in (False, True):
-                KD.STREAMED_GATED_LEVEL_DZ = flag
-                ev = evaluate_track(track_streaming(s, method="M3", model=model), s)
+                ev = evaluate_track(track_streaming(s, method="M3", model=model, gated_level_dz=flag), s)
                 row = {"group": group, "user": user, "scenario": scen, "speed": speed, "candidate": flag,
                        "distance_error_pct": ev["distance_error_pct"],
                        "altitude_error_pct": ev.get("altitude_error_pct", np.nan),
                        "altitude_change_m": ev["altitude_change_m"], "runtime_altitude_error_pct": np.nan}
                 if group == "fresh":
-                    steps = _replay(work / f"b{user}", s)
+                    steps = _replay(work / f"b{user}", s, flag)
                     ref, _ = reference_altitude_change(s, steps[0].start_s, steps[-1].end_s)
                     z = steps[-1].z
                     row["runtime_altitude_change_m"] = z
@@ -93,8 +103,7 @@ def real_rows() -> list[dict]:
         if d is None:
             continue
         for flag in (False, True):
-            KD.STREAMED_GATED_LEVEL_DZ = flag
-            _, steps = replay_dir(ROOT / "models" / "plasys-sim-default", d)
+            steps = replay_real(d, flag)
             rows.append({"group": "real", "user": name, "candidate": flag,
                          "final_height_m": steps[-1].z if steps else np.nan,
                          "distance_m": float(sum(abs(s.length_m) for s in steps))})
@@ -118,7 +127,6 @@ def main(argv=None) -> None:
             rows += measure(u, ("A", "B", "C", "D"), "thesis", loc, Path(tmp))
             print(f"user {u} done", flush=True)
     rows += real_rows()
-    KD.STREAMED_GATED_LEVEL_DZ = False
     df = pd.DataFrame(rows)
     df.to_csv(a.out, index=False)
     df["abs_dist"] = df["distance_error_pct"].abs() if "distance_error_pct" in df else np.nan

@@ -1,5 +1,6 @@
 """Decision L206's measurement: ``track --streaming`` (``track_streaming``) and the runtime ``Tracker`` with L39's
-level rule on the summed dz of a run of gated M3 strides (``kernels.distance.STREAMED_GATED_LEVEL_DZ = "summed"``)
+level rule on the summed dz of a run of gated M3 strides (``gated_level_dz="summed"``, decision L550; measured as
+the value "summed" of the module switch ``kernels.distance.STREAMED_GATED_LEVEL_DZ`` it replaced)
 against today's default (False, raw heights), with offline M3 (``track_plasys``, L184) as the reference.
 
 Usage::
@@ -24,9 +25,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-import pdrlearn.kernels.distance as KD
 from pdrlearn.export.from_model import export_model
-from pdrlearn.runtime.__main__ import replay as replay_dir
 from pdrlearn.sim import UserProfile, simulate
 from pdrlearn.sim.route import parse_route
 from pdrlearn.sim.simulate import simulate_path
@@ -64,9 +63,8 @@ def measure(user: int, l189, loc, work: Path, cache: Path | None) -> list[dict]:
     for route, speed, s in _sessions(user, sim):
         off = evaluate_track(track_plasys(s, method="M3", model=model), s)
         for mode in MODES:
-            KD.STREAMED_GATED_LEVEL_DZ = mode
-            ev = evaluate_track(track_streaming(s, method="M3", model=model), s)
-            steps = l189._replay(work / f"b{user}", s)
+            ev = evaluate_track(track_streaming(s, method="M3", model=model, gated_level_dz=mode), s)
+            steps = l189._replay(work / f"b{user}", s, mode)
             ref, _ = reference_altitude_change(s, steps[0].start_s, steps[-1].end_s)
             rows.append({"group": "fresh", "user": user, "route": route, "speed": speed, "mode": str(mode),
                          "offline_alt_m": off["altitude_change_m"], "offline_ref_m": off.get("altitude_change_ref_m"),
@@ -75,13 +73,13 @@ def measure(user: int, l189, loc, work: Path, cache: Path | None) -> list[dict]:
                          "distance_error_pct": ev["distance_error_pct"], "runtime_alt_m": steps[-1].z,
                          "runtime_ref_m": ref, "runtime_alt_err_pct": 100.0 * abs(steps[-1].z - ref) / abs(ref)
                          if ref is not None and abs(ref) > 0.5 else np.nan})  # as evaluate._altitude
-    KD.STREAMED_GATED_LEVEL_DZ = False
     return rows
 
 
 def real_rows() -> list[dict]:
     rows = []
-    for name in _l189().REAL:
+    l189 = _l189()
+    for name in l189.REAL:
         d = next((ROOT / "datasets" / k / name for k in ("real", "external")
                   if (ROOT / "datasets" / k / name).exists()), None)
         if d is None:
@@ -89,11 +87,9 @@ def real_rows() -> list[dict]:
         est = pd.read_csv(d / "steps.csv") if (d / "steps.csv").exists() else None
         ref = float(est["est_height_m"].sum()) if est is not None and "est_height_m" in est else np.nan
         for mode in MODES:
-            KD.STREAMED_GATED_LEVEL_DZ = mode
-            _, steps = replay_dir(ROOT / "models" / "plasys-sim-default", d)
+            steps = l189.replay_real(d, mode)
             rows.append({"group": "real", "user": name, "mode": str(mode), "final_height_m": steps[-1].z,
                          "est_height_m": ref, "distance_m": float(sum(abs(s.length_m) for s in steps))})
-    KD.STREAMED_GATED_LEVEL_DZ = False
     return rows
 
 

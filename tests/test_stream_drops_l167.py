@@ -2,7 +2,8 @@
 ``Tracker`` behind ``pdrlearn run``) a stride across dropped foot samples over the gap clock's 0.25 s takes the length
 (scaled by the durations) and height change of the clean stride before it, as offline's L160 takes its neighbours'
 height; by default (the rule failed its altitude criterion on users 2210-2249) E36's gap clock counts the lost swing
-as one sample interval and such strides come out ~1/3 short. The option is ``kernels.gaps.DROP_NEIGHBOUR = True``.
+as one sample interval and such strides come out ~1/3 short. The option is the keyword ``drop_neighbour=True``
+(decision E101; L549: no module switch).
 """
 
 from __future__ import annotations
@@ -12,7 +13,6 @@ import logging
 import numpy as np
 import pytest
 
-import pdrlearn.kernels.gaps as KG
 from pdrlearn.io import Stream
 from pdrlearn.kernels.gaps import drop_stride_disp
 from pdrlearn.runtime.tracker import Tracker
@@ -31,41 +31,39 @@ def _bursts(session, first: int, every: int, size: int):
     return session
 
 
-def test_drop_stride_disp_takes_the_length_and_height_of_the_stride_before(monkeypatch):
-    monkeypatch.setattr(KG, "DROP_NEIGHBOUR", True)
+def test_drop_stride_disp_takes_the_length_and_height_of_the_stride_before():
     # its own direction (3-4-5), the reference's 1.3 m x 1.1 / 1.0 s, the reference's height
-    np.testing.assert_allclose(drop_stride_disp((0.3, 0.4, 0.9), 1.1, ((1.3, 0.0, -0.02), 1.0)),
+    np.testing.assert_allclose(drop_stride_disp((0.3, 0.4, 0.9), 1.1, ((1.3, 0.0, -0.02), 1.0), True),
                                (0.6 * 1.43, 0.8 * 1.43, -0.02))
     # a stance lost in the burst joins two strides: at most twice the reference
-    np.testing.assert_allclose(drop_stride_disp((1.0, 0.0, 0.0), 3.5, ((1.3, 0.0, 0.0), 1.0)), (2.6, 0.0, 0.0))
-    assert drop_stride_disp((0.4, 0.1, 0.7), 1.0, None) == (0.4, 0.1, 0.7)  # no clean stride before: its own
-    monkeypatch.setattr(KG, "DROP_NEIGHBOUR", False)  # the default: its own
+    np.testing.assert_allclose(drop_stride_disp((1.0, 0.0, 0.0), 3.5, ((1.3, 0.0, 0.0), 1.0), True), (2.6, 0.0, 0.0))
+    assert drop_stride_disp((0.4, 0.1, 0.7), 1.0, None, True) == (0.4, 0.1, 0.7)  # no clean stride before: its own
+    # the default (L167 not adopted; L549: a keyword, no module switch): its own
     assert drop_stride_disp((0.4, 0.1, 0.7), 1.0, ((1.3, 0.0, -0.02), 1.0)) == (0.4, 0.1, 0.7)
 
 
-def test_streamed_strides_across_dropped_samples_keep_the_distance_with_the_option(caplog, monkeypatch):
+def test_streamed_strides_across_dropped_samples_keep_the_distance_with_the_option(caplog):
     from pdrlearn.sim.simulate import simulate
     from pdrlearn.track.evaluate import evaluate_track
 
     def walk():
         return simulate("walk", 2205, rate_hz=100.0, seed=2205, length_m=60.0)  # flat 60 m at 100 Hz
 
-    def track(s):
-        return get_pipeline("plasys")(s, method="M2", streaming=True)
+    def track(s, **kw):
+        return get_pipeline("plasys")(s, method="M2", streaming=True, **kw)
 
     clean = walk()
     err0 = evaluate_track(track(clean), clean)["distance_error_pct"]
     s = _bursts(walk(), 300, 230, 30)  # 0.3 s lost every 2.3 s (over E36's 0.25 s, under B11's 1 s)
     before = evaluate_track(track(s), s)["distance_error_pct"]  # the default: the gap clock
-    monkeypatch.setattr(KG, "DROP_NEIGHBOUR", True)
     with caplog.at_level(logging.WARNING, logger="pdrlearn"):
-        r = track(s)
+        r = track(s, drop_neighbour=True)
     err = evaluate_track(r, s)["distance_error_pct"]
     # clean +0.04 %, default -27.8 %, the option +3.6 % (a burst at a stance moves the boundary into the stride
     # across it, whose duration ratio then counts a little more)
     assert before < err0 - 20 and abs(err - err0) < 5, (before, err, err0)
     assert any("decision L167" in w for w in r.info["warnings"])
-    assert track(clean).steps.equals(track(walk()).steps)  # no drop: nothing to take
+    assert track(clean, drop_neighbour=True).steps.equals(track(walk()).steps)  # no drop: nothing to take
 
 
 def _replay(tr: Tracker, s) -> list:
@@ -77,15 +75,14 @@ def root(tmp_path_factory):
     return trained_dirs(tmp_path_factory)["root"]
 
 
-def test_the_runtime_takes_the_stride_before_as_track_streaming(root, monkeypatch):
+def test_the_runtime_takes_the_stride_before_as_track_streaming(root):
     sim = pytest.importorskip("pdrlearn.sim")
     s = _bursts(sim.simulate("D", 1), 200, 47, 7)  # 20 Hz: 7 samples (0.35 s) lost every 2.35 s
     for n in [n for n in s.streams if n.startswith("w")]:  # foot only: with the waist, track --streaming classifies a
         del s.streams[n]  # stride across a foot drop by the waist (B11), the runtime leaves it unclassified (E30)
     default = np.array([[st.x, st.y, st.z] for st in _replay(Tracker(root / "bundle", units=("foot",)), s)])
-    monkeypatch.setattr(KG, "DROP_NEIGHBOUR", True)
-    res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True)
-    tr = Tracker(root / "bundle", units=("foot",))
+    res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True, drop_neighbour=True)
+    tr = Tracker(root / "bundle", units=("foot",), drop_neighbour=True)
     steps = _replay(tr, s)
     assert len(steps) == len(res.steps) >= 20
     got = np.array([[st.x, st.y, st.z] for st in steps])
@@ -97,15 +94,14 @@ def test_the_runtime_takes_the_stride_before_as_track_streaming(root, monkeypatc
 
 def test_drop_neighbour_is_a_keyword_of_the_streamed_paths(root):
     """Decision E101: L167's option is the ``drop_neighbour`` keyword of ``track_plasys(streaming=True)`` and the
-    runtime ``Tracker`` (the module flag stays its default, False), so one call can ask for it; offline it is
-    refused (L160 applies there)."""
+    runtime ``Tracker`` (False by default; L549: the module flag is gone), so one call can ask for it; offline it
+    is refused (L160 applies there)."""
     from pdrlearn.errors import DataError
 
     sim = pytest.importorskip("pdrlearn.sim")
     s = _bursts(sim.simulate("D", 1), 200, 47, 7)
     for n in [n for n in s.streams if n.startswith("w")]:
         del s.streams[n]
-    assert KG.DROP_NEIGHBOUR is False
     res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True, drop_neighbour=True)
     tr = Tracker(root / "bundle", units=("foot",), drop_neighbour=True)
     got = np.array([[st.x, st.y, st.z] for st in _replay(tr, s)])

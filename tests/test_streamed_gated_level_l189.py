@@ -1,5 +1,6 @@
-"""Decision L189: with ``kernels.distance.STREAMED_GATED_LEVEL_DZ`` (an option, off by default: measured, not adopted
-by its rule), ``track --streaming`` and the runtime ``Tracker`` give an M3 stride whose terrain class the 0.95 gate
+"""Decision L189: with ``gated_level_dz=True`` (an option, off by default: measured, not adopted by its rule; decision
+L550: a keyword of ``track_plasys(streaming=True)`` and ``Tracker``, no module switch), ``track --streaming`` and the
+runtime ``Tracker`` give an M3 stride whose terrain class the 0.95 gate
 (L18) dropped L39's level rule, with offline's L184 function (``kernels.distance.unclassed_level_dz``).
 
 The case is L184's (trial `audit`): user 5's DTW terrain model, whose probabilities stay far below 0.95, on scenario D
@@ -12,7 +13,6 @@ from functools import partial
 import numpy as np
 import pytest
 
-import pdrlearn.kernels.distance as KD
 import pdrlearn.track.plasys as plasys
 from pdrlearn.kernels.distance import LEVEL_DZ_M, unclassed_level_dz, unclassed_level_dz_one
 from pdrlearn.sim import simulate
@@ -42,19 +42,16 @@ def soft_terrain_case(tmp_path_factory):
     return model, root / "bundle", d
 
 
-def _live(bundle, d, monkeypatch, on: bool):
+def _live(bundle, d, on: bool):
     from pdrlearn.runtime import Tracker
 
-    monkeypatch.setattr(KD, "STREAMED_GATED_LEVEL_DZ", on)
-    return replay(Tracker(bundle), d, 1.0)
+    return replay(Tracker(bundle, gated_level_dz=on), d, 1.0)
 
 
 @pytest.mark.slow
-def test_gated_strides_streamed_and_live_get_the_level_height_as_offline(soft_terrain_case, monkeypatch):
+def test_gated_strides_streamed_and_live_get_the_level_height_as_offline(soft_terrain_case):
     model, bundle, d = soft_terrain_case
-    assert not KD.STREAMED_GATED_LEVEL_DZ  # not adopted by L189's rule (d): an option, off by default
-    monkeypatch.setattr(KD, "STREAMED_GATED_LEVEL_DZ", True)
-    res = plasys.track_plasys(d, method="M3", model=model, streaming=True)
+    res = plasys.track_plasys(d, method="M3", model=model, streaming=True, gated_level_dz=True)
     st = res.steps
     gated = st[[c for c in st.columns if c.startswith("p_terrain_")]].max(axis=1).to_numpy() < 0.95
     assert gated.mean() > 0.9  # the case: nearly every terrain class dropped by the gate
@@ -66,34 +63,31 @@ def test_gated_strides_streamed_and_live_get_the_level_height_as_offline(soft_te
     offline = evaluate_track(plasys.track_plasys(d, method="M3", model=model), d)["altitude_change_m"]
     assert abs(ev["altitude_change_m"] - offline) < 0.25 and abs(ev["altitude_change_m"] - ref) < 0.3
     # the runtime: the same strides, the same heights (the one-stride call of the same function)
-    live = _live(bundle, d, monkeypatch, True)
+    live = _live(bundle, d, True)
     moved = [s for s in live if s.gap_s == 0.0]
     assert len(moved) == len(st)
     np.testing.assert_allclose([s.dz_m for s in moved], dz, atol=1e-9)
     assert live[-1].z == pytest.approx(res.trajectory["z"].iloc[-1], abs=1e-6)
     # without L189 the gated flat strides keep their integrated heights: streamed and live climb too high (the gap)
-    monkeypatch.setattr(KD, "STREAMED_GATED_LEVEL_DZ", False)
-    before = plasys.track_plasys(d, method="M3", model=model, streaming=True)
+    before = plasys.track_plasys(d, method="M3", model=model, streaming=True)  # the default (L189 not adopted)
     assert evaluate_track(before, d)["altitude_change_m"] - ref > 0.4
-    assert _live(bundle, d, monkeypatch, False)[-1].z - ref > 0.4
+    assert _live(bundle, d, False)[-1].z - ref > 0.4
     np.testing.assert_array_equal(before.steps["length_m"], st["length_m"])  # lengths untouched
 
 
-def test_where_offline_and_streamed_agreed_nothing_changes(monkeypatch):
+def test_where_offline_and_streamed_agreed_nothing_changes():
     """A session where offline and streamed agreed before: scenario D (user 2) with the label classes (oracle: no
     probabilities, never gated) - the option changes no stride, and streamed still ends at offline's altitude."""
     d = simulate("D", user_seed=2, speed="normal")
     offline = evaluate_track(plasys.track_plasys(d, method="M3", model="oracle"), d)
-    monkeypatch.setattr(KD, "STREAMED_GATED_LEVEL_DZ", True)
-    on = plasys.track_plasys(d, method="M3", model="oracle", streaming=True)
-    monkeypatch.setattr(KD, "STREAMED_GATED_LEVEL_DZ", False)
+    on = plasys.track_plasys(d, method="M3", model="oracle", streaming=True, gated_level_dz=True)
     off = plasys.track_plasys(d, method="M3", model="oracle", streaming=True)
     np.testing.assert_array_equal(on.steps["dz_m"], off.steps["dz_m"])
     np.testing.assert_array_equal(on.trajectory[["x", "y", "z"]], off.trajectory[["x", "y", "z"]])
     assert abs(evaluate_track(on, d)["altitude_change_m"] - offline["altitude_change_m"]) < 0.25
 
 
-def test_a_soft_model_streamed_ends_where_offline_does(monkeypatch):
+def test_a_soft_model_streamed_ends_where_offline_does():
     """The gap L189 closes, on a model whose every terrain class the gate drops (SVM trained on one session): scenario
     D (user 2, 3.80 m of stairs) streamed ends at 3.809 m with the option, 3.163 m without it; offline 3.859 m
     (printed when written)."""
@@ -104,8 +98,7 @@ def test_a_soft_model_streamed_ends_where_offline_does(monkeypatch):
                        units=["foot"], cv=2, distance_calibration=False)
     d = sim("D", user_seed=2, speed="normal")
     offline = evaluate_track(plasys.track_plasys(d, method="M3", model=model), d)["altitude_change_m"]
-    monkeypatch.setattr(KD, "STREAMED_GATED_LEVEL_DZ", True)
-    on = evaluate_track(plasys.track_plasys(d, method="M3", model=model, streaming=True), d)["altitude_change_m"]
-    monkeypatch.setattr(KD, "STREAMED_GATED_LEVEL_DZ", False)
+    on = evaluate_track(plasys.track_plasys(d, method="M3", model=model, streaming=True, gated_level_dz=True),
+                        d)["altitude_change_m"]
     off = evaluate_track(plasys.track_plasys(d, method="M3", model=model, streaming=True), d)["altitude_change_m"]
     assert abs(on - offline) < 0.1 and abs(off - offline) > 0.5

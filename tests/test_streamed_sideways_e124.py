@@ -1,9 +1,12 @@
 """Decision E124: the streamed foot tracker (``track --streaming``, ``pdrlearn run``, ``Tracker``) places a
 side-stepping stretch's strides headed by the waist gyroscope along their travel angle, from the run's third
-sideways stride on (L219's rule one stride at a time, :class:`pdrlearn.kernels.sideways.SideRun`)."""
+sideways stride on (L219's rule one stride at a time, :class:`pdrlearn.kernels.sideways.SideRun`). Adopted (E125);
+decision E234: no module switch, the tracks "before E124" stand in ``SideRun``'s angle with 0 (the experiment's
+:func:`~experiments.side_steps_streamed.before_e124`)."""
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import math
 
@@ -53,18 +56,20 @@ def _sim(route: str, user: int = 4):
     return simulate_path(parse_route(route), UserProfile.from_seed(user), rate_hz=20.0, seed=1, scenario="route")
 
 
-def _streamed(s, on: bool, monkeypatch, **kw):
-    monkeypatch.setattr(KS, "STREAMED_SIDE_TRAVEL", on)
+def _streamed(s, on: bool, **kw):
+    from experiments.side_steps_streamed import before_e124
+
     logging.disable(logging.WARNING)
     try:
-        return get_pipeline("plasys")(s, streaming=True, **kw)
+        with contextlib.nullcontext() if on else before_e124():
+            return get_pipeline("plasys")(s, streaming=True, **kw)
     finally:
         logging.disable(logging.NOTSET)
 
 
-def test_track_streaming_puts_a_side_stretch_sideways(monkeypatch):
+def test_track_streaming_puts_a_side_stretch_sideways():
     s = _sim("side:-4")
-    off, on = (_streamed(s, flag, monkeypatch) for flag in (False, True))
+    off, on = (_streamed(s, flag) for flag in (False, True))
     e_off, e_on = (evaluate_track(r, s)["final_position_error_m"] for r in (off, on))
     assert e_off > 4.0 and e_on < 2.0, (e_off, e_on)
     assert on.trajectory["y"].iloc[-1] < -2.5  # to the right, as walked
@@ -72,9 +77,9 @@ def test_track_streaming_puts_a_side_stretch_sideways(monkeypatch):
 
 
 @pytest.mark.parametrize("route", ["A", "straight:5, backward:6, straight:5"])
-def test_tracks_without_side_steps_are_the_same(route, monkeypatch):
+def test_tracks_without_side_steps_are_the_same(route):
     s = simulate(route, 4, rate_hz=20.0, seed=1) if len(route) == 1 else _sim(route)
-    off, on = (_streamed(s, flag, monkeypatch) for flag in (False, True))
+    off, on = (_streamed(s, flag) for flag in (False, True))
     assert np.array_equal(off.trajectory[["x", "y"]].to_numpy(), on.trajectory[["x", "y"]].to_numpy())
     assert np.array_equal(off.steps["heading_rad"].to_numpy(), on.steps["heading_rad"].to_numpy())
 
@@ -84,9 +89,10 @@ def root(tmp_path_factory):
     return trained_dirs(tmp_path_factory)["root"]
 
 
-def test_run_equals_track_streaming_on_a_side_stretch(root, monkeypatch):
+def test_run_equals_track_streaming_on_a_side_stretch(root):
+    from experiments.side_steps_streamed import before_e124
+
     s = _sim("straight:4, side:2, straight:4")
-    monkeypatch.setattr(KS, "STREAMED_SIDE_TRAVEL", True)
     logging.disable(logging.WARNING)
     try:
         runs = [replay(Tracker(root / "bundle"), s, chunk) for chunk in (0.5, 1.0)]
@@ -98,10 +104,10 @@ def test_run_equals_track_streaming_on_a_side_stretch(root, monkeypatch):
         assert len(steps) == len(t) - 1
         assert np.allclose([(st.x, st.y) for st in steps], t[["x", "y"]].to_numpy()[1:], atol=1e-9)
         assert np.allclose(np.cos([st.heading_rad for st in steps]), np.cos(res.steps["heading_rad"]), atol=1e-9)
-    monkeypatch.setattr(KS, "STREAMED_SIDE_TRAVEL", False)
     logging.disable(logging.WARNING)
     try:
-        before = replay(Tracker(root / "bundle"), s, 1.0)
+        with before_e124():
+            before = replay(Tracker(root / "bundle"), s, 1.0)
     finally:
         logging.disable(logging.NOTSET)
     assert abs(before[-1].y - runs[0][-1].y) > 0.5  # the rule moved the run's track

@@ -14,6 +14,8 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from pdrlearn.errors import DataError
+
 #: A stride is "level" when its estimated height change is below this (m): half a stair rise, as the
 #: simulator's terrain label (decisions S3: 0.08 m) - a stair stride climbs 2 x 0.15-0.18 m (L26).
 LEVEL_DZ_M = 0.10
@@ -36,13 +38,26 @@ RUN_MEMBER_DZ_M = 0.05
 RUN_MEAN_STRIDES = 3
 #: Decision L304: whether L39's level rule keeps the strides of such a run whose mean |dz| >= LEVEL_DZ_M
 RUN_MEAN_LEVEL = False
-#: Decision L189 (an option, measured and not adopted by its rule (d): one real level walk ended 0.061 m higher):
-#: ``track --streaming`` and the runtime give L184's level rule (:func:`unclassed_level_dz`) to an M3 stride whose
-#: terrain class the confidence gate (L18) dropped, as offline M3 does (``plasys.GATED_LEVEL_DZ``).
-#: ``"summed"`` (decision L206; measured in L207, not adopted: a real level walk ends higher and two real stair climbs
-#: read lower): L39's threshold on the summed dz of a run of such strides (:func:`summed_level_step`) instead of each
-#: stride's own dz. False (the default): raw heights.
-STREAMED_GATED_LEVEL_DZ = False
+#: Decisions L189 / L206 (options, measured and not adopted): the values of the ``gated_level_dz`` keyword of
+#: ``track_plasys(streaming=True)`` / ``track_streaming`` and the runtime ``Tracker`` (decision L550: a keyword, no
+#: module switch). True (L189; not adopted by its rule (d): one real level walk ended 0.061 m higher): an M3 stride
+#: whose terrain class the confidence gate (L18) dropped gets L184's level rule (:func:`unclassed_level_dz`), as
+#: offline M3 does (``plasys.GATED_LEVEL_DZ``). ``"summed"`` (L206; measured in L207, not adopted: a real level walk
+#: ends higher and two real stair climbs read lower): L39's threshold on the summed dz of a run of such strides
+#: (:func:`summed_level_step`) instead of each stride's own dz. False (the default): raw heights.
+GATED_LEVEL_MODES = (False, True, "summed")
+
+
+def check_gated_level_dz(value):
+    """``gated_level_dz`` (decision L550) checked: False, True (np.bool_ too) or ``"summed"``, else one DataError
+    line naming the values (1 / 0 are not taken for True / False)."""
+    if isinstance(value, bool | np.bool_):
+        return bool(value)
+    if isinstance(value, str) and value == "summed":
+        return value
+    raise DataError(f"gated_level_dz={value!r} is not one of False, True, 'summed' (decisions L189, L206: the level "
+                    "rule for streamed M3 strides whose terrain class the gate dropped; False, the default, keeps "
+                    "their raw heights)")
 
 
 def rate_differs(trained_hz: float, fs_hz: float, *, tolerance: float = RATE_TOLERANCE) -> bool:
@@ -171,11 +186,12 @@ def summed_level_step(dz: float, classed: bool, run_dz: float) -> tuple[float, f
     return (0.0 if abs(run_dz) < LEVEL_DZ_M else dz), run_dz
 
 
-def streamed_gated_level_dz(dz: np.ndarray, classed: np.ndarray, mode=None) -> np.ndarray:
-    """The streamed paths' level rule for strides without a terrain class, by ``mode`` (default
-    :data:`STREAMED_GATED_LEVEL_DZ`): True = :func:`unclassed_level_dz` per stride (decision L189), ``"summed"`` =
-    :func:`summed_level_step` along the strides in order (decision L206), False = the heights unchanged. A new array."""
-    mode = STREAMED_GATED_LEVEL_DZ if mode is None else mode
+def streamed_gated_level_dz(dz: np.ndarray, classed: np.ndarray, mode=False) -> np.ndarray:
+    """The streamed paths' level rule for strides without a terrain class, by ``mode`` (the callers'
+    ``gated_level_dz`` keyword, decision L550): True = :func:`unclassed_level_dz` per stride (decision L189),
+    ``"summed"`` = :func:`summed_level_step` along the strides in order (decision L206), False = the heights unchanged
+    (:func:`check_gated_level_dz`'s line for any other value). A new array."""
+    mode = check_gated_level_dz(mode)
     dz = np.asarray(dz, dtype=np.float64)
     if mode is True:
         return unclassed_level_dz(dz, classed)
@@ -184,9 +200,7 @@ def streamed_gated_level_dz(dz: np.ndarray, classed: np.ndarray, mode=None) -> n
         for i, (d, c) in enumerate(zip(dz.tolist(), np.asarray(classed, dtype=bool).tolist(), strict=True)):
             out[i], run = summed_level_step(d, c, run)
         return out
-    if mode is False:
-        return dz.copy()
-    raise ValueError(f"STREAMED_GATED_LEVEL_DZ {mode!r}: must be False, True or 'summed' (decisions L189, L206)")
+    return dz.copy()
 
 
 def terrain_from_dz(dz, valid=None, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:

@@ -109,31 +109,20 @@ def neighbour_heights(dz: np.ndarray, across: np.ndarray, skip: np.ndarray) -> n
     return out
 
 
-#: decision L167 (an option, not adopted: users 2210-2249 kept the distance under burst loss, the altitude against the
-#: clean copy did not improve at 3 and 5 %): the default of the ``drop_neighbour`` keyword of the runtime ``Tracker``
-#: and ``track_plasys(streaming=True)`` / ``track_streaming`` (decision E101; None there reads this). True makes a
-#: streamed stride across dropped foot samples (over the gap clock's 0.25 s, at most B11's 1 s) take the length and
-#: height change of the stride before it; False (default): its own, integrated on the gap clock (E36)
-DROP_NEIGHBOUR = False
 #: decision L167: the most strides one across dropped samples stands for (a stance lost in the burst joins two)
 DROP_SPAN_MAX = 2.0
 
 
-def drop_neighbour_on(neighbour: bool | None) -> bool:
-    """Decision E101: whether L167's rule applies for a caller's ``drop_neighbour`` keyword (None:
-    :data:`DROP_NEIGHBOUR`, read at call time)."""
-    return bool(DROP_NEIGHBOUR if neighbour is None else neighbour)
-
-
-def drop_stride_disp(disp, duration_s: float, ref, neighbour: bool | None = None) -> tuple[float, float, float]:
+def drop_stride_disp(disp, duration_s: float, ref, neighbour: bool = False) -> tuple[float, float, float]:
     """Decision L167 (L160's rule streamed: only the neighbour before is known when a stride ends): the step-frame
     displacement ``(dx, dy, dz)`` (m) of a stride of ``duration_s`` (s) across dropped foot samples. ``ref``:
     ``((dx, dy, dz), duration_s)`` of the nearest stride before it that crossed no drop, or None (then ``disp``
     itself). Its own direction, ``ref``'s horizontal length x the ratio of the durations (at most
     :data:`DROP_SPAN_MAX`), ``ref``'s height change. ``neighbour``: whether L167's rule applies (decision E101: the
-    callers' ``drop_neighbour`` keyword; None: :data:`DROP_NEIGHBOUR`); False: ``disp`` itself."""
+    callers' ``drop_neighbour`` keyword; L167 not adopted, so False by default, decision L549: no module switch);
+    False: ``disp`` itself."""
     dx, dy, dz = (float(v) for v in disp)
-    if ref is None or not drop_neighbour_on(neighbour):
+    if ref is None or not neighbour:
         return dx, dy, dz
     (rx, ry, rz), rdur = ref
     length = math.hypot(float(rx), float(ry)) * min(float(duration_s) / float(rdur), DROP_SPAN_MAX)

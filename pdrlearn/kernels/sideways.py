@@ -30,12 +30,6 @@ MIN_SIDE_STRIDES = 1
 #: decision L400: a stride during which the foot's own heading turned by more than this (deg) is not judged (a turn on
 #: the spot's stride: no facing to measure from); the half-width of :data:`SIDE_ANGLE_DEG`'s window around 90 deg
 SIDE_MAX_TURN_DEG = (SIDE_ANGLE_DEG[1] - SIDE_ANGLE_DEG[0]) / 2.0
-#: decision E124: the streamed foot tracker headed by the waist gyroscope (``track --streaming``, ``pdrlearn run``,
-#: ``Tracker``) places a side-stepping stretch's strides along their travel angle (:class:`SideRun`; adopted by
-#: E124's rule, measured in E125); False = before E124
-STREAMED_SIDE_TRAVEL = True
-
-
 def travel_angle(dx: float, dy: float) -> float:
     """A stride's travel angle (rad) from the foot's facing, signed with its x (the lengths' sign): offline's
     ``lateral`` and :func:`pdrlearn.kernels.stride.placement_offset`'s."""
@@ -86,7 +80,8 @@ SIDE_USUAL_STRIDES = 256
 
 class SideRun:
     """Decision E124: L219's rule one stride at a time, for a foot tracker whose strides go along the waist gyro's
-    heading (the streamed ``track --streaming`` and the runtime ``Tracker``, one implementation).
+    heading (the streamed ``track --streaming`` and the runtime ``Tracker``, one implementation). Adopted by E124's
+    rule (measured in E125): both always call it; decision E234: no module switch turns it off.
 
     :meth:`stride` takes each measured stride as it ends and returns the angle (rad) to add to its direction: 0
     unless it is the :data:`MIN_SIDE_STRIDES`-th or a later consecutive sideways stride (:func:`is_sideways`), then

@@ -42,7 +42,7 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
-from pdrlearn.kernels.gaps import MIN_GAP_S, drop_neighbour_on, drop_stride_disp, streamed_drops_line
+from pdrlearn.kernels.gaps import MIN_GAP_S, drop_stride_disp, streamed_drops_line
 from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
@@ -432,7 +432,8 @@ class Tracker(FixInput):
         --streaming``'s ``waist_bridge``); False: it keeps the heading (E30, L90).
     drop_neighbour : a stride across dropped foot samples over 0.25 s (under 1 s) takes the length (scaled by the
         durations) and height change of the clean stride before it (decision L167, an option; E101: a keyword, as
-        ``track_plasys(streaming=True, drop_neighbour=...)``); None: ``pdrlearn.kernels.gaps.DROP_NEIGHBOUR`` (False).
+        ``track_plasys(streaming=True, drop_neighbour=...)``); False (default): its own (decision L549: no module
+        switch).
     max_gap_s : a push whose timestamps jump further ahead than this (s; default 60) of a stream's last sample is
         refused in one line, the tracker unchanged (decision B141: a clock glitch accepted as a gap would refuse
         every later sample); ``math.inf`` accepts any gap.
@@ -478,6 +479,10 @@ class Tracker(FixInput):
         a unit yawed on the shoe ended 15.0 -> 2.0 m off on average, not adopted as the default: unyawed feet got
         worse in two of five walks; decision E222: this keyword, as ``track_plasys(streaming=True, first_walk=...)``).
         False (default): the heading's 0 stays the foot unit's facing and one line says how far the walk heads.
+    gated_level_dz : an M3 stride whose terrain class the confidence gate dropped gets L39's level rule, per stride
+        (True, decision L189: offline's L184 function) or on the summed dz of its run of such strides (``"summed"``,
+        L206); both measured and not adopted (L189, L207). False (default): raw heights. Decision L550: this keyword,
+        as ``track_plasys(streaming=True, gated_level_dz=...)``; only with a bundle that classifies terrain.
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -494,7 +499,8 @@ class Tracker(FixInput):
     _side: _sideways.SideRun | None = None  # decision E124 (a bare Tracker.__new__ makes one at its first stride)
     _side_rows: _sideways.SideRun | None = None  # decision L243 (the same)
     _drop_warned = False
-    drop_neighbour: bool | None = None  # decision E101 (a bare Tracker.__new__: kernels.gaps.DROP_NEIGHBOUR)
+    drop_neighbour = False  # decisions E101, L549 (a bare Tracker.__new__: L167 off)
+    gated_level_dz: bool | str = False  # decision L550 (a bare Tracker.__new__: raw heights)
     #: decision E46: the long foot gaps (start, end) not yet behind the last emitted stride, the pending gap row
     #: ([start, gap_s] or None), the end / reported heading / position of the last emitted stride
     _row_gaps: list | tuple = ()
@@ -545,7 +551,7 @@ class Tracker(FixInput):
         waist_bridge: bool = True,
         contacts: bool = False,
         check_input: bool = True,
-        drop_neighbour: bool | None = None,
+        drop_neighbour: bool = False,
         resume: dict | None = None,
         max_gap_s: float = MAX_GAP_S,
         start_enu_m=None,
@@ -559,10 +565,12 @@ class Tracker(FixInput):
         innovation_gate: bool = False,
         first_walk: bool = False,
         drop_duplicate_timestamps: bool = False,
+        gated_level_dz: bool | str = False,
     ):
         self._busy = threading.Lock()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
         self.stream_checks = bool(stream_checks)  # decisions E230, E232 (checked below)
+        self.gated_level_dz = _distance.check_gated_level_dz(gated_level_dz)  # decisions L189, L206, L550
         #: decision C117: "session" reports a flat forward stride's length class against the session's median stride
         self._session_length = (_relative_length.SessionLength()
                                 if _relative_length.check_length_reference(length_reference) == "session" else None)
@@ -759,7 +767,7 @@ class Tracker(FixInput):
         self._side = _sideways.SideRun()  # decision E124: the side-stepping stretch the strides are in
         self._side_rows = _sideways.SideRun()  # decision L243: the same test on every stride, for Step.sideways
         self._drop_warned = False
-        self.drop_neighbour = drop_neighbour_on(drop_neighbour)  # decision E101
+        self.drop_neighbour = bool(drop_neighbour)  # decisions E101, L549
         self._held: set[str] = set()
         #: decision E115: the required waist streams that stopped while the foot strides went on (name -> the
         #: time of its newest sample then); their samples are taken again when they return
@@ -1940,7 +1948,7 @@ class Tracker(FixInput):
             if self._mirror is not None:
                 self._mirror_stride(t0, t1)
         if bridged:  # decision L167 (an option; track --streaming's): the length and height of the clean stride before
-            on = drop_neighbour_on(self.drop_neighbour)  # decision E101 (a bare Tracker.__new__: None)
+            on = self.drop_neighbour  # decisions E101, L549 (a bare Tracker.__new__: False)
             disp = np.array(drop_stride_disp(disp, t1 - t0, self._drop_ref, on))
             if on and self._drop_ref is not None and not self._drop_warned:
                 self._drop_warned = True
@@ -1985,10 +1993,10 @@ class Tracker(FixInput):
                 confident_one(get("direction"), pget("direction"), g), confident_one(get("length"), pget("length"), g),
                 bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=pget("length"),
                 sigma_rel=self._sigma_rel)
-        if _distance.STREAMED_GATED_LEVEL_DZ == "summed" and "terrain" in self.classifiers:
+        if self.gated_level_dz == "summed" and "terrain" in self.classifiers:  # decision L550: the keyword
             # decision L206: L39's rule on the summed dz of the run of gated strides (one kernel with streamed)
             dz, self._gated_run_dz = summed_level_step(dz, terrain is not None, self._gated_run_dz)
-        elif terrain is None and _distance.STREAMED_GATED_LEVEL_DZ is True and "terrain" in self.classifiers:
+        elif terrain is None and self.gated_level_dz is True and "terrain" in self.classifiers:
             dz = unclassed_level_dz_one(dz, False)  # decision L189 (offline's L184): no terrain class, L39's rule
         impossible = impossible_stride_one(length, dz, t1 - t0)
         if impossible:  # decision L94: never summed, as pdrlearn track
@@ -1999,7 +2007,7 @@ class Tracker(FixInput):
         direction = (heading + placement_offset(lev, self.heading_source, disp)  # decision L34
                      + reversed_by_rules(foot_headed, dx, length))  # L37
         side = 0.0
-        if not foot_headed and _sideways.STREAMED_SIDE_TRAVEL:  # decision E124 (track --streaming's call)
+        if not foot_headed:  # decisions E124, E234 (track --streaming's call; adopted, no module switch)
             if self._side is None:
                 self._side = _sideways.SideRun()
             side = self._side.stride(dx, dy, length, _sideways.step_frame(lev), _sideways.foot_turn(lev))  # L400

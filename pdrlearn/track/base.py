@@ -252,7 +252,9 @@ def get_pipeline(name: str) -> Pipeline:
       that offset drifts linearly in time, the waist gyroscope's rate bias; on by default, L265), ``first_walk``
       (decisions E215, E222: with ``streaming``, a foot-headed heading turned once by the first walk's direction at
       its end; off by default), ``transfers`` (decisions W418, W439: offline, time the chair transfers and TUG from
-      the waist unit; on by default, the distance calibration turns it off).
+      the waist unit; on by default, the distance calibration turns it off), ``gated_level_dz`` (decisions L189,
+      L206, L550: with ``streaming``, True / ``"summed"`` give M3 strides whose terrain class the gate dropped L39's
+      level rule; off by default).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``

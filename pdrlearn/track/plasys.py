@@ -51,7 +51,6 @@ from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelE
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import distance as KD
-from pdrlearn.kernels import gaps as KG
 from pdrlearn.kernels import sideways as KSW
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels import turn_length as KT
@@ -1015,10 +1014,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
                  waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
                  hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
-                 drop_neighbour: bool | None = None, ignore_force: bool = False,
+                 drop_neighbour: bool = False, ignore_force: bool = False,
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
                  fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
-                 **opts) -> TrackResult:
+                 gated_level_dz: bool | str = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -1072,11 +1071,15 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         decision L99, the streamed default). None (default): True streamed, False offline; False, or no waist
         gyroscope: 0 (L90: the foot's interpolated gyroscope is never integrated there)
     drop_neighbour : streaming: a stride across dropped foot samples over 0.25 s takes the length and height change
-        of the clean stride before it (decision L167, an option; E101: None = ``kernels.gaps.DROP_NEIGHBOUR``, False);
+        of the clean stride before it (decision L167, an option; E101, L549: a keyword, False by default);
         offline such strides take their neighbours' height change (L160) and True is refused
     first_walk : streaming: a foot-headed track's heading is turned once, at the end of its first walk, by that walk's
         direction (L494's reference made causal; decision E215, not adopted as the default; E222: this keyword, as
         the runtime ``Tracker``'s); offline L494 references the first walk always and True is refused
+    gated_level_dz : streaming M3: an M3 stride whose terrain class the 0.95 gate (L18) dropped gets L39's level rule,
+        per stride (True, decision L189) or on the summed dz of its run of such strides (``"summed"``, L206); both
+        measured and not adopted (L189, L207), so False (default: raw heights); decision L550: this keyword, as the
+        runtime ``Tracker``'s. Offline M3 levels such strides already (L184) and True / "summed" are refused
     transfers : offline two-unit session: time the chair transfers and TUG from the waist unit (W418); False skips
         that inner waist work for callers that read no TUG (the distance calibration; decision W439)
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
@@ -1155,6 +1158,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         raise DataError("plasys drop_neighbour=True is the streamed strides' option (decision L167); offline, strides "
                         "across dropped samples take their neighbours' height change (L160): add streaming=True or "
                         "drop drop_neighbour")
+    if KD.check_gated_level_dz(gated_level_dz) and not streaming:  # decision L550
+        raise DataError(f"plasys gated_level_dz={gated_level_dz!r} is the streamed track's option (decisions L189, "
+                        "L206); offline, M3 gives a stride whose terrain class the gate dropped L39's level rule "
+                        "already (L184): add streaming=True or drop gated_level_dz")
     if first_walk and not streaming:  # decision E222
         raise DataError("plasys first_walk=True is the streamed track's option (decision E215); offline, a foot-only "
                         "heading's 0 is the first walk's direction already (L494): add streaming=True or drop "
@@ -1174,6 +1181,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                               warn_out_of_domain=warn_out_of_domain, contacts=contacts,
                               drop_neighbour=drop_neighbour,  # decision E101
                               first_walk=first_walk,  # decision E222
+                              gated_level_dz=gated_level_dz,  # decision L550
                               **({} if waist_bridge is None else {"waist_bridge": bool(waist_bridge)}),
                               **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}),
                               **({} if waist_gap_yaw is None else {"waist_gap_yaw": bool(waist_gap_yaw)}))
@@ -1765,7 +1773,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     waist_gap_yaw: bool = True, waist_bridge: bool = True, rules: str | None = None,
                     min_confidence: float | None = None,
                     warn_out_of_domain: float | None = None, contacts: bool = False,
-                    drop_neighbour: bool | None = None, first_walk: bool = False) -> TrackResult:
+                    drop_neighbour: bool = False, first_walk: bool = False,
+                    gated_level_dz: bool | str = False) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -1790,15 +1799,18 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     as the runtime's; L91's mechanism): a stride headed by the waist gyroscope across a foot-IMU gap over 1 s turns
     by the waist's turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest
     after it); False: 0 (L90). ``drop_neighbour=True`` (decision L167, an option, as the runtime ``Tracker``'s;
-    E101: a keyword, None: ``kernels.gaps.DROP_NEIGHBOUR``, False): a stride across dropped foot samples over 0.25 s
+    E101: a keyword, False by default, L549): a stride across dropped foot samples over 0.25 s
     (under 1 s) takes the length (scaled by the durations) and height change of the clean stride before it.
     ``first_walk=True`` (decisions E215, E222, an option, as the runtime ``Tracker``'s): a foot-headed track's
-    heading is turned once, at the end of its first walk, by that walk's direction.
+    heading is turned once, at the end of its first walk, by that walk's direction. ``gated_level_dz`` (decisions
+    L189, L206, options not adopted; L550: a keyword, as the runtime ``Tracker``'s): True / ``"summed"`` give an M3
+    stride whose terrain class the gate dropped L39's level rule, per stride / on its run's summed dz; False: raw.
     """
     start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
     initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
     if method not in ("M2", "M3"):
         raise DataError(f"plasys streaming: method '{method}' is not streamable; use M2 or M3")
+    gated_level_dz = KD.check_gated_level_dz(gated_level_dz)  # decision L550
     if heading not in SK.HEADING_SOURCES:
         raise DataError(f"plasys streaming: heading '{heading}' is not one of {', '.join(SK.HEADING_SOURCES)} "
                         "(waist/fused headings need the whole session)")
@@ -1890,10 +1902,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
     imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
     imu_gap = overlaps_gaps(table, imu_gaps)  # decisions L90 / L91: the foot's yaw is lost over these strides
-    # decision L167 (an option, DROP_NEIGHBOUR): a stride across dropped samples over the gap clock's limit takes the
+    # decision L167 (an option, drop_neighbour): a stride across dropped samples over the gap clock's limit takes the
     # length and height of the stride before it (ref: that stride's displacement and duration), as the runtime's
     across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S + GAP_TOL_S), None  # E230
-    neighbour = KG.drop_neighbour_on(drop_neighbour)  # decision E101
+    neighbour = bool(drop_neighbour)  # decisions E101, L549
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
@@ -1960,16 +1972,18 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        sigma_rel=sigma_rel)
     place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
               for f, d, L in zip(foot_headed, disp, length, strict=True)]
-    if method == "M3" and KD.STREAMED_GATED_LEVEL_DZ and "terrain" not in untrained and "terrain" in rule_classes:
+    if method == "M3" and gated_level_dz and "terrain" not in untrained and "terrain" in rule_classes:
         # decision L189 (offline's L184, the same function) / L206 (the run's summed dz): a gated stride is level
-        dz = KD.streamed_gated_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
+        dz = KD.streamed_gated_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]],
+                                        gated_level_dz)  # decision L550: the keyword
     length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
     side_offset = np.zeros(len(table))
-    if KSW.STREAMED_SIDE_TRAVEL:  # decision E124: a side-stepping stretch's strides headed by the waist go along
-        side = KSW.SideRun()  # their travel angle from the run's third stride on (the runtime's call, stride by stride)
-        for i in np.flatnonzero(~(in_gap | posture | foot_headed)):
-            side_offset[i] = side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]),
-                                         float(foot_turn[i]))  # L400
+    # decisions E124 / E125 (adopted; E234: the rule is the code, no module switch): a side-stepping stretch's strides
+    # headed by the waist go along their travel angle once the run is decided (the runtime's call, stride by stride)
+    side = KSW.SideRun()
+    for i in np.flatnonzero(~(in_gap | posture | foot_headed)):
+        side_offset[i] = side.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]),
+                                     float(foot_turn[i]))  # L400
     place += side_offset
     if "direction" in classes:  # decision E216: the runtime's call, stride by stride
         place += [SK.waist_forward_flip(bool(f), c, float(L), float(o)) for f, c, L, o in
