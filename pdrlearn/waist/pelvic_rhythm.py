@@ -36,11 +36,15 @@ RHYTHM_SLOW = "slow"
 
 
 def pelvic_steps(session: Session) -> np.ndarray | None:
-    """The pelvic-gyro detector's step times (s) of ``session`` (thesis ch.5.3), None without a waist gyroscope."""
+    """The pelvic-gyro detector's step times (s) of ``session`` (thesis ch.5.3), None without a waist gyroscope.
+    An internal cross-check (W440, W441): the detector's own lines (e.g. its "no standstill calibration") are kept
+    out of the track's warnings (decision W441, amended by the lead: a detector the user did not ask for)."""
     from pdrlearn.steps.detectors import PelvicGyroStepDetector
+    from pdrlearn.warning_lines import isolated_warnings
 
     try:
-        return PelvicGyroStepDetector().detect(session)["event_s"].to_numpy(float)
+        with isolated_warnings("pdrlearn.steps"):
+            return PelvicGyroStepDetector().detect(session)["event_s"].to_numpy(float)
     except DataError:
         return None
 
