@@ -52,6 +52,23 @@ def parse_gaps(texts: list[str]) -> tuple:
 
     return check_gaps([tuple(str(text).split(":")) for text in texts or []], option="--gap")
 
+
+def parse_transfer_time(text: str) -> tuple[float, float]:
+    """Decision S95: ``--transfer-time LO:HI`` as ``(lo, hi)`` seconds; one ``error:`` line naming the option and a
+    valid form otherwise (the range is checked by :func:`pdrlearn.sim.simulate.check_transfer_s`)."""
+    from pdrlearn.sim.transfer import TRANSFER_TIME_RANGE_S
+
+    lo_ok, hi_ok = TRANSFER_TIME_RANGE_S
+    try:
+        lo, hi = (float(x) for x in str(text).split(":"))
+    except ValueError:
+        lo = hi = math.nan
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo_ok <= lo <= hi <= hi_ok):
+        raise DataError(f"--transfer-time {text!r}: give LO:HI seconds with {lo_ok:g} <= LO <= HI <= {hi_ok:g}, e.g. "
+                        "--transfer-time 3:6 for a frail person's slow sit-to-stand (default 1.5:2.5)")
+    return lo, hi
+
+
 def simulate_cmd(
     scenario: str | None = typer.Option(
         None,
@@ -164,6 +181,10 @@ def simulate_cmd(
     sit_end: float = typer.Option(
         0.0, "--sit-end", help=f"End the session by sitting down after the last standstill and staying seated "
         f"this long (s, 0-{SIT_MAX_S:g}; decision S43)."),
+    transfer_time: str | None = typer.Option(
+        None, "--transfer-time", metavar="LO:HI", help="Draw each sit-down's and stand-up's duration (s) from LO to "
+        "HI, e.g. '3:6' for a frail person's slow sit-to-stand (default 1.5:2.5; every sit:, lie: and "
+        "--sit-start / --sit-end transfer; decision S95)."),
     height: float | None = typer.Option(
         None, "--height", help=f"The user at this stature (m, {HEIGHT_RANGE_M[0]:g}-{HEIGHT_RANGE_M[1]:g}, e.g. 0.95 "
         "for a 3-year-old): foot, waist-unit height, swing, pelvis bounce and sway scaled by stature, step length "
@@ -300,6 +321,7 @@ def simulate_cmd(
         sit_start_s=sit_start,
         sit_end_s=sit_end,
         stand_s=stand,  # decision S90
+        **({} if transfer_time is None else {"transfer_s": parse_transfer_time(transfer_time)}),  # decision S95
         instrumented_foot=foot,
         paretic_side=paretic_side,
     )

@@ -514,9 +514,10 @@ class Session:
                 else "the sensor axes nearest its forward, left and up (a unit yawed or tilted on its mount is "
                      "declared by its nearest axes), as in the thesis mounting")
         hint = self._waist_hint(placement)  # decision B288: a "foot" unit that never swings is named as a lower back
+        frame = nearest or EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"])
         err = DataError(
             f"{where} declares no axis frame for the {placement} unit{reason}; {hint + '; else ' if hint else ''}"
-            f"add a \"frames\" entry giving the "
+            f"{self._import_fix(placement, frame)}add a \"frames\" entry giving the "
             f"body direction of each of its axes (forward, backward, left, right, up, down), e.g. {what} "
             f"\"frames\": {example}"
         )
@@ -541,6 +542,22 @@ class Session:
         frame = self.frames.get(placement)
         return frame is not None and any(isinstance(r, dict) and isinstance(r.get("frame_forced"), dict)
                                          and r["frame_forced"].get("declared") == frame.to_dict() for r in recs)
+
+    def _import_fix(self, placement: str, frame: AxisFrame) -> str:
+        """Decision B419: the frame refusal's first fix for a session ``pdrlearn import`` wrote (meta.json's
+        ``"imported"`` record names the file): run that import again with ``--frames`` (the example ``frame``), and
+        how to find the axes by standing still and leaning forward; ``""`` for any other session."""
+        recs = self.meta.get("imported")
+        recs = recs if isinstance(recs, list) else [recs] if isinstance(recs, dict) else []
+        files = [r["file"] for r in recs if isinstance(r, dict) and isinstance(r.get("file"), str)
+                 and r.get("unit", placement) == placement]
+        if not files:
+            return ""
+        axes = ",".join(f"{k}={v}" for k, v in frame.to_dict().items())
+        return (f"re-import it with its axes named: the same `pdrlearn import {files[0]} --unit {placement} ...` "
+                f"command with --frames {axes} (an example: to find yours, stand still - the accelerometer axis "
+                "reading about +1 g is up, -1 g down - then lean forward: the horizontal axis whose reading falls "
+                "below zero is forward, above zero backward); or ")
 
     def _waist_hint(self, placement: str) -> str | None:
         """Decision B288: for a foot unit of a session without a waist unit whose gyroscope never swings, B287's

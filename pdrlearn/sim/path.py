@@ -19,7 +19,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.sim.freeze import FREEZE_MARGIN_S, FreezeEpisode, check_freeze, draw_freeze
 from pdrlearn.sim.lying import BED_SIT_S, LyingEpisode, check_lie, draw_lying
 from pdrlearn.sim.ride import RIDE_MARGIN_S, Ride, check_rise, draw_ride
-from pdrlearn.sim.transfer import SIT_MARGIN_S, Transfer, draw_transfer
+from pdrlearn.sim.transfer import SIT_MARGIN_S, TRANSFER_S, Transfer, draw_transfer
 from pdrlearn.sim.user import GAITS, SPEEDS, UserProfile, asymmetry_factor
 from pdrlearn.sim.vehicle import check_vehicle, draw_vehicle
 
@@ -265,8 +265,10 @@ class _Walker:
         variability: float,
         length_asymmetry: float = 0.0,
         affected: str = "left",
+        transfer_s: tuple[float, float] = TRANSFER_S,
     ):
         self.user, self.speed, self.rng = user, speed, rng
+        self.transfer_s = transfer_s  # decision S95: the sitting-down / standing-up durations' range (s)
         self.length_asymmetry = length_asymmetry
         self.affected = affected  # decision S55: the foot whose steps are the long ones
         self.c = np.zeros(2)
@@ -533,7 +535,8 @@ class _Walker:
         if not (math.isfinite(seg.duration_s) and seg.duration_s >= 0):
             raise DataError(f"{seg}: the seated time must be a finite number of seconds >= 0")
         self.close()
-        tr = draw_transfer(len(self.steps), self.pending_pause + SIT_MARGIN_S, float(seg.duration_s), self.rng)
+        tr = draw_transfer(len(self.steps), self.pending_pause + SIT_MARGIN_S, float(seg.duration_s), self.rng,
+                           self.transfer_s)
         self.transfers.append(tr)
         self.pending_pause += SIT_MARGIN_S + tr.total_s + SIT_MARGIN_S
 
@@ -543,7 +546,7 @@ class _Walker:
         The transfer's draws come first, as a ``sit``'s, then the bed-edge sitting times and the lying's."""
         check_lie(float(seg.duration_s), seg.turns_per_h, str(seg))
         self.close()
-        tr = draw_transfer(len(self.steps), self.pending_pause + SIT_MARGIN_S, 0.0, self.rng)
+        tr = draw_transfer(len(self.steps), self.pending_pause + SIT_MARGIN_S, 0.0, self.rng, self.transfer_s)
         before, after = (BED_SIT_S[0] + x * (BED_SIT_S[1] - BED_SIT_S[0]) for x in self.rng.uniform(0.0, 1.0, 2))
         ep = draw_lying(len(self.steps), tr.delay_s + tr.down_s + before, float(seg.duration_s), seg.turns_per_h,
                         tr.recline_rad, self.psi, self.rng)
@@ -616,12 +619,14 @@ def plan_footsteps(
     variability: float = 1.0,
     step_length_asymmetry: float = 0.0,
     paretic_side: str = "left",
+    transfer_s: tuple[float, float] = TRANSFER_S,
 ) -> tuple[list[Footstep], dict, float, list[Transfer | Ride | FreezeEpisode | LyingEpisode]]:
     """Footprints of both feet along ``segments``.
 
     ``step_length_asymmetry``: on level, curved and sloped walking the steps onto the ``paretic_side`` foot (default
     left, decision S55) are 1 + this times the steps onto the other, the segment's length and number of steps
-    unchanged (decision S42).
+    unchanged (decision S42). ``transfer_s``: the range (s) each sitting-down and standing-up duration is drawn from
+    (decision S95).
 
     Returns
     -------
@@ -633,7 +638,8 @@ def plan_footsteps(
         (:mod:`pdrlearn.sim.ride`) and the freezes of :class:`Freeze` ones (:mod:`pdrlearn.sim.freeze`, S51); a
         :class:`Lie` gives a transfer followed by its :class:`~pdrlearn.sim.lying.LyingEpisode` (S58)
     """
-    w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry, paretic_side)
+    w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry, paretic_side,
+                transfer_s)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
     handlers = {
         Straight: w.straight,

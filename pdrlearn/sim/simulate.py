@@ -46,7 +46,15 @@ from pdrlearn.sim.lying import LyingEpisode, lying_angles, lying_rotation, lying
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
 from pdrlearn.sim.ride import Ride, ride_offset, ride_table
 from pdrlearn.sim.scenarios import SCENARIOS
-from pdrlearn.sim.transfer import session_sit_starts, session_sits, transfer_motion, transfer_starts, transfer_table
+from pdrlearn.sim.transfer import (
+    TRANSFER_S,
+    TRANSFER_TIME_RANGE_S,
+    session_sit_starts,
+    session_sits,
+    transfer_motion,
+    transfer_starts,
+    transfer_table,
+)
 from pdrlearn.sim.user import SPEEDS, UserProfile
 from pdrlearn.sim.vehicle import VehicleRide, vehicle_carry
 
@@ -101,12 +109,15 @@ KNOBS: dict[str, object] = {
     "paretic_side": "left",
     # decision S83: data gaps (a battery swap): (unit, start_s, duration_s) per gap, unit foot, waist or both
     "gaps": (),
+    # decision S95: the range (s) of each sit-down's / stand-up's duration (sim.transfer.TRANSFER_S by default)
+    "transfer_s": TRANSFER_S,
 }
 #: decision S83: the units a gap may name
 GAP_UNITS = ("foot", "waist", "both")
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
 META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry", "step_length_asymmetry",
-                      "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps")
+                      "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps",
+                      "transfer_s")
 #: decisions S54, S55: the values of the two foot-side knobs
 FEET = ("left", "right")
 
@@ -218,6 +229,7 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: waist_mount_deg={mount!r} must be three finite numbers (a rotation vector, deg)")
     out["waist_mount_deg"] = tuple(float(v) for v in mount)
     out["gaps"] = check_gaps(out["gaps"])  # decisions S83, B370
+    out["transfer_s"] = check_transfer_s(out["transfer_s"])  # decision S95
     for k, default in KNOBS.items():
         v = out[k]
         if isinstance(default, bool | str | tuple):
@@ -244,6 +256,21 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: step_length_asymmetry={out['step_length_asymmetry']!r} must be >= 0 and < "
                         f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer)")
     return out
+
+
+def check_transfer_s(value) -> tuple[float, float]:
+    """Decision S95: ``transfer_s`` as ``(lo, hi)`` seconds, ``lo <= hi``, both in
+    :data:`~pdrlearn.sim.transfer.TRANSFER_TIME_RANGE_S`; one ``DataError`` line otherwise."""
+    lo_ok, hi_ok = TRANSFER_TIME_RANGE_S
+    try:
+        lo, hi = (float(v) for v in value)
+        ok = not any(isinstance(v, bool) for v in value) and lo_ok <= lo <= hi <= hi_ok
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise DataError(f"simulate: transfer_s={value!r} must be two durations LO <= HI in seconds, {lo_ok:g} to "
+                        f"{hi_ok:g} (e.g. (3, 6) for a frail person's sit-to-stand; default {TRANSFER_S})")
+    return lo, hi
 
 
 def _output_factor(rate_hz: float) -> int:
@@ -395,6 +422,7 @@ def simulate_path(
         variability=float(opt["variability"]),
         step_length_asymmetry=float(opt["step_length_asymmetry"]),
         paretic_side=str(opt["paretic_side"]),
+        transfer_s=opt["transfer_s"],  # decision S95
     )
     rides = [e for e in transfers if isinstance(e, Ride | VehicleRide)]  # decisions S45 (lifts, escalators), S71
     freezes = [e for e in transfers if isinstance(e, FreezeEpisode)]  # decision S51: trembling in place
@@ -403,7 +431,8 @@ def simulate_path(
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     # decision S43: seated at the start (then a stand-up before the standstill) and / or at the end (own stream)
     sit0, sit1 = ((None, None) if not (opt["sit_start_s"] or opt["sit_end_s"]) else session_sits(
-        float(opt["sit_start_s"]), float(opt["sit_end_s"]), _rng(user.seed, int(seed), scenario, speed, "sit")))
+        float(opt["sit_start_s"]), float(opt["sit_end_s"]), _rng(user.seed, int(seed), scenario, speed, "sit"),
+        opt["transfer_s"]))
     lead = float(opt["sit_start_s"]) + sit0.up_s if sit0 else 0.0
     if not steps and 2 * stand + end_pause + lead + float(opt["sit_end_s"]) < 1.0:
         raise DataError("simulate: nothing to simulate (no steps and stand_s < 1 s); add segments or stand longer")

@@ -26,7 +26,10 @@ import numpy as np
 
 from pdrlearn.sim.kernels import smoothstep
 
-TRANSFER_S = (1.5, 2.5)  # duration of sitting down / standing up (s), each drawn on its own
+TRANSFER_S = (1.5, 2.5)  # duration of sitting down / standing up (s), each drawn on its own (the default of S95's knob)
+#: decision S95: the range ``simulate --transfer-time LO:HI`` accepts (s): a frail person's 3-6 s sit-to-stand and
+#: slower; above 10 s one movement is no longer one transfer
+TRANSFER_TIME_RANGE_S = (0.5, 10.0)
 FLEXION_DEG = (30.0, 45.0)  # peak forward trunk (waist unit) pitch during the movement
 DROP_M = (0.40, 0.50)  # pelvis lowering from standing to seated
 BACK_M = (0.10, 0.20)  # pelvis moving backward onto the seat (assumption)
@@ -64,8 +67,10 @@ class Transfer:
         return self.down_s + self.seat_s + self.up_s
 
 
-def draw_transfer(after: int, delay_s: float, seat_s: float, rng: np.random.Generator) -> Transfer:
-    """A :class:`Transfer` with the module's ranges drawn from ``rng``."""
+def draw_transfer(after: int, delay_s: float, seat_s: float, rng: np.random.Generator,
+                  transfer_s: tuple[float, float] = TRANSFER_S) -> Transfer:
+    """A :class:`Transfer` with the module's ranges drawn from ``rng``; ``transfer_s`` the range of the sitting-down
+    and standing-up durations (s; decision S95: ``simulate --transfer-time LO:HI``, a frail person's 3-6 s)."""
     u = rng.uniform(0.0, 1.0, 6)
 
     def pick(lo_hi: tuple[float, float], x: float) -> float:
@@ -74,9 +79,9 @@ def draw_transfer(after: int, delay_s: float, seat_s: float, rng: np.random.Gene
     return Transfer(
         after=int(after),
         delay_s=float(delay_s),
-        down_s=pick(TRANSFER_S, u[0]),
+        down_s=pick(transfer_s, u[0]),
         seat_s=float(seat_s),
-        up_s=pick(TRANSFER_S, u[1]),
+        up_s=pick(transfer_s, u[1]),
         flexion_rad=math.radians(pick(FLEXION_DEG, u[2])),
         drop_m=pick(DROP_M, u[3]),
         back_m=pick(BACK_M, u[4]),
@@ -131,7 +136,8 @@ def transfer_table(transfers: list[Transfer], starts: np.ndarray) -> list[dict]:
     return rows
 
 
-def session_sits(sit_start_s: float, sit_end_s: float, rng: np.random.Generator) -> tuple[Transfer | None, ...]:
+def session_sits(sit_start_s: float, sit_end_s: float, rng: np.random.Generator,
+                 transfer_s: tuple[float, float] = TRANSFER_S) -> tuple[Transfer | None, ...]:
     """Decision S43: the transfers of a session that starts seated ``sit_start_s`` seconds (then stands up) and / or
     ends seated ``sit_end_s`` seconds (after sitting down); None for a zero time. Drawn as :func:`draw_transfer`'s,
     except the seated posture: a forward lean of :data:`SEATED_FLEXION_DEG` (a negative ``recline_rad``). The first
@@ -140,7 +146,7 @@ def session_sits(sit_start_s: float, sit_end_s: float, rng: np.random.Generator)
     out = []
     for seat in (sit_start_s, sit_end_s):
         if seat > 0:
-            tr = draw_transfer(0, 0.0, float(seat) + SEATED_BEFORE_S, rng)
+            tr = draw_transfer(0, 0.0, float(seat) + SEATED_BEFORE_S, rng, transfer_s)
             out.append(replace(tr, recline_rad=-math.radians(float(rng.uniform(*SEATED_FLEXION_DEG)))))
         else:
             out.append(None)

@@ -82,6 +82,12 @@ RHYTHM_LAG_S = (0.3, 1.0)
 #: frequency (a simulated A 0.75 walk with a realistic pelvis read forward 74 deg off)
 STRIDE_ONLY_LAG_S = (1.0, 2.0)
 MIN_RHYTHM_SIGMA = 8.0
+#: decision W452 (measured, rule written first): below LOW_RATE_HZ the rhythm test needs this many noise SDs: a 20 Hz
+#: recording has a fifth of a 100 Hz one's samples, so the same correlation reads sqrt(5) = 2.2x fewer SDs; white
+#: noise at 20 / 25 Hz (500 recordings each, 10-300 s) read at most 3.52 / 3.12, and slow simulated walkers (users
+#: 10924-10935) were inferred 4 / 5 of 12 (0 wrong) instead of 0
+MIN_RHYTHM_SIGMA_LOW_RATE = 5.0
+LOW_RATE_HZ = 40.0
 #: A declared (or source_project) frame contradicts the data (decision D10) when one of its body directions
 #: lies more than this many degrees from the direction measured in the data. A nearest-axis declaration is
 #: at most 45 deg off (a unit mounted half-way between two axes may be declared either way) and the foot's
@@ -600,17 +606,19 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float, *,
                                                             else ")"))
         err.walk_s = walk_s  # W61: a waist track of such a recording has no steps to place
         raise err
-    if rhythm < MIN_RHYTHM_SIGMA and stride and stride[0][0] >= MIN_RHYTHM_SIGMA:  # decision W226
+    min_sigma = MIN_RHYTHM_SIGMA_LOW_RATE if fs < LOW_RATE_HZ else MIN_RHYTHM_SIGMA  # decision W452
+    if rhythm < min_sigma and stride and stride[0][0] >= min_sigma:  # decision W226
         raise FrameInferenceError(f"the vertical acceleration of the {walk_s:.0f} s that move repeats at a stride of "
                                   f"{stride[0][1]:.2f} s (autocorrelation {stride[0][0]:.1f} noise standard "
                                   f"deviations) but at no step period of {RHYTHM_LAG_S[0]:g}-{RHYTHM_LAG_S[1]:g} s "
-                                  f"({rhythm:.1f} < {MIN_RHYTHM_SIGMA:g}): alternating short and long steps (an "
+                                  f"({rhythm:.1f} < {min_sigma:g}): alternating short and long steps (an "
                                   "asymmetric gait) or very slow walking, on which this test, which reads the step "
                                   "frequency, is not validated (decision W226)")
-    if rhythm < MIN_RHYTHM_SIGMA:
+    if rhythm < min_sigma:
         raise FrameInferenceError(f"no walking rhythm: the vertical acceleration of the {walk_s:.0f} s that move "
                                   f"repeats at no step or stride period of {RHYTHM_LAG_S[0]:g}-{RHYTHM_LAG_S[1]:g} s "
-                                  f"(autocorrelation {rhythm:.1f} < {MIN_RHYTHM_SIGMA:g} noise standard deviations)"
+                                  f"(autocorrelation {rhythm:.1f} < {min_sigma:g} noise standard deviations"
+                                  + (f" at {fs:g} Hz, W452" if fs < LOW_RATE_HZ else "") + ")"
                                   + (f" nor at a stride of {STRIDE_ONLY_LAG_S[0]:g}-{STRIDE_ONLY_LAG_S[1]:g} s "
                                      f"({stride[0][0]:.1f}; decision W226)" if stride else ""))
     n_fast, n_walk = fast[0]  # after the rhythm check: noise has no rhythm, and no step band
@@ -789,24 +797,13 @@ class DeclaredCheck:
         return f"not checked ({self.unchecked})"
 
 
-def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_words: bool = False) -> DeclaredCheck:
-    """The data's word on a declared or ``source_project`` frame: a warning (without the ``meta.json``
-    location) when it is left-handed or the data contradict it with confidence (decision D10); a refusal when
-    its forward is reversed against the data (decision D22), also when the inference gives up on which
-    axis is forward but measured the strides' direction and gravity (:class:`FrameInferenceError` ``up`` /
-    ``forward``; a reversed up alone is D10's warning). The inference runs once here, on the first
-    :data:`CHECK_SPAN_S` seconds. Decision W415: a waist frame is not judged when the foot unit's strides in that
-    span mostly travel sideways or backward (:func:`pdrlearn.track.stride_kinds.not_judged`). ``side_words``
-    (decision W416 (b), not adopted: its rule's waist-only backpedal, user 10022, reads forward, so there is no line
-    to word; opt-in, False = D10's line as before): a waist line without a foot unit leads with
-    :func:`side_travel_words`."""
-    if isinstance(session.meta.get("frames"), dict):
-        origin = 'declared in "frames"'
-    else:
-        origin = f"implied by source_project {json.dumps(str(session.meta.get('source_project', '')))}"
+def _span_check(session, placement: str, declared: AxisFrame, max_s: float | None) -> tuple:
+    """D10 / D22's inference for :func:`check_declared_frame` over ``max_s`` seconds from the first walk (None: the
+    whole recording): ``(found, unchecked, off, evidence, up, forward, compared, ratio)`` (ratio: W435's forward
+    power ratio)."""
     unchecked, compared, up, fwd, ratio = None, (), None, None, None
     try:
-        found = infer_session_frame(session, placement, max_s=CHECK_SPAN_S)
+        found = infer_session_frame(session, placement, max_s=max_s)
     except FrameInferenceError as exc:
         found, unchecked, off = None, str(exc), {}
         evidence, ratio = (exc.n_strides, exc.resultant), exc.ap_power_ratio
@@ -820,6 +817,32 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
         up, fwd = found.up, found.forward
         off = frame_disagreement(declared, found)
         evidence, ratio = (found.n_strides, found.resultant), found.ap_power_ratio
+    return found, unchecked, off, evidence, up, fwd, compared, ratio
+
+
+def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_words: bool = False) -> DeclaredCheck:
+    """The data's word on a declared or ``source_project`` frame: a warning (without the ``meta.json``
+    location) when it is left-handed or the data contradict it with confidence (decision D10); a refusal when
+    its forward is reversed against the data (decision D22), also when the inference gives up on which
+    axis is forward but measured the strides' direction and gravity (:class:`FrameInferenceError` ``up`` /
+    ``forward``; a reversed up alone is D10's warning). The inference runs once here, on the first
+    :data:`CHECK_SPAN_S` seconds; decision W453: a waist frame they contradict, again on the whole recording, whose
+    answer (when it fixes the axes) is the one judged. Decision W415: a waist frame is not judged when the foot
+    unit's strides in that span mostly travel sideways or backward
+    (:func:`pdrlearn.track.stride_kinds.not_judged`). ``side_words`` (decision W416 (b), not adopted: its rule's
+    waist-only backpedal, user 10022, reads forward, so there is no line to word; opt-in, False = D10's line as
+    before): a waist line without a foot unit leads with :func:`side_travel_words`."""
+    if isinstance(session.meta.get("frames"), dict):
+        origin = 'declared in "frames"'
+    else:
+        origin = f"implied by source_project {json.dumps(str(session.meta.get('source_project', '')))}"
+    found, unchecked, off, evidence, up, fwd, compared, ratio = _span_check(session, placement, declared, CHECK_SPAN_S)
+    if placement == "waist" and off:
+        # decision W453: a waist frame the first CHECK_SPAN_S contradict is judged on the whole recording (B252's
+        # cost paid only then): a night's span from its first movement held the bed's, not the later walk
+        whole = _span_check(session, placement, declared, None)
+        if whole[1] is None:
+            found, unchecked, off, evidence, up, fwd, compared, ratio = whole
     rev = forward_reversal_deg(declared, up, fwd)
     reverse = rev is not None and rev > OPPOSED_DEG
     if reverse and "forward" not in off:  # the heading reversed though the axis is pitched (D22)

@@ -138,7 +138,14 @@ from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.rhythm import arrhythmic_message, arrhythmic_sequences
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.steplength import CADENCE_LAW_STEADY, cadence_law_factor, calibration_cadence_hz, steady_steps
-from pdrlearn.waist.transfers import chair_transfers_upright, flag_message, flag_transfers, upright_message
+from pdrlearn.waist.transfers import (
+    chair_transfers_upright,
+    flag_message,
+    flag_transfers,
+    unmatched_message,
+    unmatched_posture_changes,
+    upright_message,
+)
 
 log = logging.getLogger(__name__)
 
@@ -781,6 +788,9 @@ def _postures_transfers(imu: WaistIMU, steps: pd.DataFrame, transfers: pd.DataFr
         steps, imu, **sit_veto_keywords(OPTION_DEFAULTS["sit_veto"]),
         **({} if fixed_up is None else {"upright": fixed_up})))
     line = flag_message(transfers)
+    if line:
+        warnings.append(line)
+    line = unmatched_message(unmatched_posture_changes(postures, transfers))  # decision W451
     if line:
         warnings.append(line)
     return postures, transfers

@@ -39,6 +39,7 @@ from pdrlearn.waist.upright import (
     MAX_PASSES,
     flexion_free_walking,
     mean_direction,
+    not_lying,
     standing_mask,
     still_mask,
     walking_is_reliable,
@@ -56,6 +57,11 @@ HEIGHT_MIN_M = 0.20
 #: decision W233's candidate (measured, see its text): the height change over at least this (s) on each side of the tilt
 #: peak (W104's TRANSFER_HALF_S); None = over W182's movement bounds only
 HEIGHT_HALF_S: float | None = None
+#: decision W450's candidate (measured, NOT adopted: see its text), :func:`transfers_from_tilt`'s ``slow_bounds``: a
+#: flexion run whose W182 bounds move the pelvis by less than HEIGHT_MIN_M is bounded again with movement_bounds'
+#: keywords (a slow transfer's trunk flexes at under MOVING_DPS near its top), kept only with a still trunk within
+#: ``seated_rest_s`` on its seated side
+W450_CANDIDATE = {"top_s": 1.0, "seated_rest_s": 1.0}
 SIT_TO_STAND, STAND_TO_SIT = "sit-to-stand", "stand-to-sit"
 #: transfers.csv's columns (decision W182), in order
 TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_s", "peak_tilt_deg",
@@ -72,6 +78,9 @@ TUG_RETURN_MAX = 0.25
 FLAG_WALK_S = 2.0
 #: decision W278: transfers.csv's ``flag`` texts ("" = none)
 NOT_ALTERNATING, WALKING_BOTH_SIDES = "not alternating", "walking on both sides"
+#: decision W451: a sitting posture run at least this long (s) that turns into standing (or standing into it) needs a
+#: chair transfer there; a shorter one may be a bend read as sitting from the tilt (W222's 15 deg)
+UNMATCHED_SIT_S = 10.0
 #: decision W279: the five-times sit-to-stand's number of rises
 STS_RISES = 5
 #: decision W258: the lying kinds (W245) counted by direction: into lying (``n_lie_down``) and out of it
@@ -90,30 +99,32 @@ def _tilt_deg(imu: WaistIMU, up: np.ndarray) -> np.ndarray:
     return np.degrees(np.arccos(np.clip(u @ up, -1.0, 1.0)))
 
 
-def tilt_rate_dps(t: np.ndarray, tilt: np.ndarray, fs: float) -> np.ndarray:
-    """The trunk tilt's rate (deg/s), the mean over :data:`RATE_WINDOW_S` (decision W182; shared by W245's lying
-    transfers)."""
-    w = max(int(round(RATE_WINDOW_S * fs)), 1)
+def tilt_rate_dps(t: np.ndarray, tilt: np.ndarray, fs: float, window_s: float = RATE_WINDOW_S) -> np.ndarray:
+    """The trunk tilt's rate (deg/s), the mean over ``window_s`` (:data:`RATE_WINDOW_S`, decision W182; shared by
+    W245's lying transfers; W450's candidate may pass another)."""
+    w = max(int(round(window_s * fs)), 1)
     return np.convolve(np.gradient(tilt, t), np.ones(w) / w, mode="same")
 
 
-def movement_bounds(t: np.ndarray, tilt: np.ndarray, peak: int, fs: float) -> tuple[int, int]:
+def movement_bounds(t: np.ndarray, tilt: np.ndarray, peak: int, fs: float, *, moving_dps: float = MOVING_DPS,
+                    window_s: float = RATE_WINDOW_S, top_s: float = RATE_WINDOW_S) -> tuple[int, int]:
     """Sample indices ``(start, end)`` of the movement around the tilt peak ``peak`` (decision W182): backward from
-    the peak past the samples near it where the tilt's rate (mean over :data:`RATE_WINDOW_S`) is under
-    :data:`MOVING_DPS` (at most :data:`RATE_WINDOW_S` of them: the top of the flexion), then past those where the
-    trunk flexes at :data:`MOVING_DPS` or more; the first sample after them is the start. Forward alike with the
-    trunk straightening (the rate at or under -:data:`MOVING_DPS`)."""
-    w = max(int(round(RATE_WINDOW_S * fs)), 1)
-    rate = tilt_rate_dps(t, tilt, fs)
+    the peak past the samples near it where the tilt's rate (mean over ``window_s``) is under ``moving_dps`` (at
+    most ``top_s`` of them: the top of the flexion), then past those where the trunk flexes at ``moving_dps`` or
+    more; the first sample after them is the start. Forward alike with the trunk straightening (the rate at or
+    under -``moving_dps``). The defaults are W182's (:data:`MOVING_DPS`, :data:`RATE_WINDOW_S` for both); W450's
+    not adopted candidate passes others (:data:`W450_CANDIDATE`)."""
+    w = max(int(round(top_s * fs)), 1)
+    rate = tilt_rate_dps(t, tilt, fs, window_s)
     a = peak
-    while a > 0 and peak - a < w and rate[a - 1] < MOVING_DPS:  # the top of the flexion
+    while a > 0 and peak - a < w and rate[a - 1] < moving_dps:  # the top of the flexion
         a -= 1
-    while a > 0 and rate[a - 1] >= MOVING_DPS:
+    while a > 0 and rate[a - 1] >= moving_dps:
         a -= 1
     b = peak
-    while b < len(t) - 1 and b - peak < w and rate[b + 1] > -MOVING_DPS:
+    while b < len(t) - 1 and b - peak < w and rate[b + 1] > -moving_dps:
         b += 1
-    while b < len(t) - 1 and rate[b + 1] <= -MOVING_DPS:
+    while b < len(t) - 1 and rate[b + 1] <= -moving_dps:
         b += 1
     return a, b
 
@@ -130,12 +141,15 @@ def height_change_m(t: np.ndarray, acc_v: np.ndarray, a: int, b: int) -> float:
     return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(tt)))
 
 
-def transfers_from_tilt(imu: WaistIMU, tilt: np.ndarray) -> pd.DataFrame:
+def transfers_from_tilt(imu: WaistIMU, tilt: np.ndarray, *, slow_bounds: dict | None = None) -> pd.DataFrame:
     """Decision W182: transfers.csv's rows (:data:`TRANSFER_COLUMNS`) from the trunk's per-sample ``tilt`` (deg)
     from an upright: each W104 flexion run (:func:`~pdrlearn.waist.posture.flexion_runs`) widened to its movement
     (:func:`movement_bounds`) and classed by :func:`height_change_m`; bends (less than :data:`HEIGHT_MIN_M`) are
-    left out."""
+    left out. ``slow_bounds`` (decision W450, not adopted; e.g. :data:`W450_CANDIDATE`): a run left out is bounded
+    again with these :func:`movement_bounds` keywords and, with ``seated_rest_s``, kept only when the trunk is still
+    (W277's :func:`~pdrlearn.waist.upright.still_mask`) within that many seconds on its seated side."""
     rows: list[dict] = []
+    still = None
     for _, t_peak, _ in flexion_runs(imu.t, tilt):
         peak = int(np.clip(np.searchsorted(imu.t, t_peak), 0, len(imu.t) - 1))
         a, b = movement_bounds(imu.t, tilt, peak, imu.fs)
@@ -144,6 +158,17 @@ def transfers_from_tilt(imu: WaistIMU, tilt: np.ndarray) -> pd.DataFrame:
             ha = min(a, int(np.searchsorted(imu.t, t_peak - HEIGHT_HALF_S)))
             hb = max(b, min(int(np.searchsorted(imu.t, t_peak + HEIGHT_HALF_S)), len(imu.t) - 1))
         dz = height_change_m(imu.t, imu.acc_v, ha, hb)
+        if abs(dz) < HEIGHT_MIN_M and slow_bounds is not None:  # decision W450: a slow transfer's wider movement
+            a, b = movement_bounds(imu.t, tilt, peak, imu.fs, **{k: v for k, v in slow_bounds.items()
+                                                                    if k != "seated_rest_s"})
+            dz = height_change_m(imu.t, imu.acc_v, a, b)
+            rest_s = slow_bounds.get("seated_rest_s")
+            if rest_s is not None and abs(dz) >= HEIGHT_MIN_M:
+                still = still_mask(imu.gyr_nav, imu.fs) if still is None else still
+                side = ((imu.t >= imu.t[a] - rest_s) & (imu.t <= imu.t[a])) if dz > 0 else (
+                    (imu.t >= imu.t[b]) & (imu.t <= imu.t[b] + rest_s))
+                if not still[side].any():
+                    continue
         if abs(dz) < HEIGHT_MIN_M:
             continue
         t0, t1 = float(imu.t[a]), float(imu.t[b])
@@ -166,7 +191,7 @@ def still_upright_transfers(imu: WaistIMU) -> tuple[pd.DataFrame, np.ndarray | N
     (:func:`~pdrlearn.waist.upright.standing_mask`), until it moves by less than
     :data:`~pdrlearn.waist.upright.CONVERGED_DEG`. ``(empty, None)`` when no still sample is standing: no
     reliable upright."""
-    still = still_mask(imu.gyr_nav, imu.fs)
+    still = still_mask(imu.gyr_nav, imu.fs) & not_lying(imu.up_body)  # decision W453: not the hours in bed
     up = mean_direction(imu.up_body, still)
     found = False
     rows = _empty()
@@ -371,6 +396,38 @@ def upright_message(source: str, n_transfers: int) -> str:
                 "are read against the trunk's direction while standing still between transfers (decision W277)")
     return ("no walking and no still standing to take the trunk's upright from: the chair transfers and the posture "
             "times cannot be judged and are left empty (unknown; decision W277)")
+
+
+def unmatched_posture_changes(postures, transfers) -> list[float]:
+    """Decision W451: the times (s) where the posture runs (``[start_s, end_s, posture]`` in time order, W222's)
+    change between a sitting run of :data:`UNMATCHED_SIT_S` or more and a standing one with no chair transfer
+    (``transfers``' sit-to-stand / stand-to-sit rows) whose span widened by :data:`FLAG_WALK_S` holds the change (a
+    pure kernel): a rise or a sit that W182 missed, or a posture misread from the tilt."""
+    tr = pd.DataFrame(list(transfers) if transfers is not None and not isinstance(transfers, pd.DataFrame)
+                      else transfers, columns=list(TRANSFER_COLUMNS)) if transfers is not None else _empty()
+    chair = tr[tr["kind"].isin((SIT_TO_STAND, STAND_TO_SIT))]
+    a = chair["start_s"].to_numpy(float) - FLAG_WALK_S
+    b = chair["end_s"].to_numpy(float) + FLAG_WALK_S
+    out = []
+    for prev, nxt in zip(postures[:-1], postures[1:], strict=True):
+        kinds = {prev[2], nxt[2]}
+        if kinds != {"sitting", "standing"}:
+            continue
+        sit = prev if prev[2] == "sitting" else nxt
+        t = float(nxt[0])
+        if float(sit[1]) - float(sit[0]) >= UNMATCHED_SIT_S and not ((a <= t) & (t <= b)).any():
+            out.append(t)
+    return out
+
+
+def unmatched_message(times: list[float]) -> str | None:
+    """Decision W451: one line for :func:`unmatched_posture_changes`' times; None when there is none."""
+    if not times:
+        return None
+    at = ", ".join(f"{t:.1f}" for t in times[:8]) + (", ..." if len(times) > 8 else "")
+    return (f"{len(times)} change(s) between sitting and standing (at {at} s) have no chair transfer in "
+            "transfers.csv: a slow or small rise or sit was not found (or the posture was misread from the trunk's "
+            "tilt), so n_sit_to_stand / n_stand_to_sit may count too few (decision W451)")
 
 
 def flag_texts(column) -> np.ndarray:

@@ -36,6 +36,10 @@ STILL_RATE_RPS = 0.1
 STILL_WINDOW_S = 0.5
 #: decision W277: a rest shorter than this (s) is not used (the top of a flexion pauses for less)
 STILL_MIN_S = 1.0
+#: decision W453: a still sample whose up direction lies this far (deg) or more from the unit frame's up (FLU z, the
+#: declared or inferred frame's) is lying, not the standing W277 reads the upright from: W222's LYING_TILT_DEG (a
+#: trunk nearer horizontal than upright); a mount is at most 35 deg off its nearest axes (frame_inference.MAX_SNAP_DEG)
+NOT_LYING_DEG = 60.0
 #: decision W277: at most this many passes of upright -> transfers -> standing upright
 MAX_PASSES = 4
 #: decision W277: the passes stop when the upright moves by less than this (deg)
@@ -68,6 +72,16 @@ def still_mask(gyr: np.ndarray, fs: float) -> np.ndarray:
         if b - a >= STILL_MIN_S * fs:
             out[a:b] = True
     return out
+
+
+def not_lying(up_body: np.ndarray) -> np.ndarray:
+    """Decision W453: per sample, the up direction ``up_body`` (n, 3, body FLU) within :data:`NOT_LYING_DEG` of the
+    frame's up (a pure kernel; a non-finite row is False). A night's hours in bed outweigh its minutes upright, and
+    W277's median of every still sample was the lying trunk's direction."""
+    u = np.asarray(up_body, dtype=float)
+    with np.errstate(invalid="ignore"):
+        cos = u[:, 2] / np.linalg.norm(u, axis=1)
+    return np.isfinite(cos) & (cos > np.cos(np.radians(NOT_LYING_DEG)))
 
 
 def standing_mask(t: np.ndarray, still: np.ndarray, transfers: pd.DataFrame, rise: str, sit: str) -> np.ndarray:
