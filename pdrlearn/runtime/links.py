@@ -115,7 +115,8 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
     """The refusal of a push whose first ``name`` sample (``t0`` s, the tracker's clock) is not after the stream's
     newest (``last``): a duplicate of a sample taken (decision E225), a clock that went back by more than
     ``max_lag_s`` (E227: :class:`ClockWentBack`, with the offset that puts it beside the other unit's newest,
-    ``other_newest``; ``offset_s`` the unit's offset now), or a late sample; ``note``: B141's jumped-clock note."""
+    ``other_newest``, or just after its own last sample when none is past it, E235; ``offset_s`` the unit's offset
+    now), or a late sample; ``note``: B141's jumped-clock note."""
     head = f"{name}: pushed timestamps are not increasing (at {t0:.3f} s after {last:.3f} s)"
     if duplicate:
         return DataError(f"{head}: that sample duplicates one already taken, a packet sent again? "
@@ -131,7 +132,7 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
             f"{head}: the {unit} clock went back {last - t0:.2f} s, a pod that reconnected with its clock restarted? "
             f"The push is refused and the tracker unchanged; tracker.rebase_clock({unit!r}, {off:.2f}) puts its new "
             f"samples {where} and the same Tracker goes on (ClockWentBack.offset_s; decision E227)", unit,
-            off if beside else None)
+            off, beside)  # decision E235: always the offset the line names, never None
     return DataError(f"{head}; a packet that arrived late? a sample older than the stream's newest is refused (the "
                      "push is refused and the tracker unchanged): push each unit's samples in the order it sent them"
                      f"{note}")

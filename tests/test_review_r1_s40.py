@@ -1,0 +1,60 @@
+"""Review R1 of session 40 (fixer FL): the live runtime's pod-clock code, findings 1-7 (decisions E235-E240, L551).
+
+Short simulated walks of user 10980, cut into 0.2 s pod packets with tests/test_runtime_clock_s40.py's helpers.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pdrlearn.errors import ClockWentBack
+from pdrlearn.runtime import Tracker, links, load_bundle
+from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
+from tests.test_runtime_clock_s40 import BUNDLE, _packets, _reconnected, _run, _xy
+
+
+@pytest.fixture(scope="module")
+def bundle():
+    return load_bundle(BUNDLE)
+
+
+@pytest.fixture(scope="module")
+def walk():
+    return simulate_path(parse_route("straight:15, turn:90, straight:12"), UserProfile.from_seed(10980),
+                         speed="normal", rate_hz=20.0, seed=10980, name="pods", scenario="route")
+
+
+def _end(steps):
+    return _xy(steps)[-1]
+
+
+# -- E235 ---------------------------------------------------------------------------------------------------------
+def test_a_one_unit_tracker_gets_a_usable_offset_and_the_documented_loop_goes_on_e235(bundle, walk):
+    foot = [p for p in _packets(walk) if p[0] == "foot"]
+    clean, errors = _run(Tracker(bundle, units=("foot",)), foot)
+    assert errors == []
+    packets = [p for p in _reconnected(walk, "foot") if p[0] == "foot"]
+    tr = Tracker(bundle, units=("foot",))
+    steps, errors = _run(tr, packets, rebase=True)  # before: rebase_clock('foot', None) raised out of the loop
+    assert len(errors) == 1 and isinstance(errors[0], ClockWentBack) and errors[0].beside is False
+    assert f"rebase_clock('foot', {errors[0].offset_s:.2f})" in str(errors[0])  # the value the line prints
+    assert tr.foot_clock_offset_s == errors[0].offset_s and len(steps) >= len(clean) - 2
+    assert np.hypot(*(_end(steps) - _end(clean))) < 3.0
+
+
+def test_both_pods_restarted_are_rebased_one_after_the_other_e235(bundle, walk):
+    clean, _ = _run(Tracker(bundle), _packets(walk))
+    at = 15.0  # the phone's Bluetooth restarts: both pods gone 1 s, both clocks restarted at 0
+    packets = [(u, a, {n: (t - at, v) for n, (t, v) in d.items()} if a >= at else d)
+               for u, a, d in _packets(walk) if not (at - 1.0 <= a < at)]
+    steps, errors = _run(Tracker(bundle), packets, rebase=True)
+    assert [(e.unit, e.beside) for e in errors] == [("foot", False), ("waist", True)]
+    assert len(steps) >= len(clean) - 2 and np.hypot(*(_end(steps) - _end(clean))) < 3.0
+
+
+def test_the_order_refusal_always_gives_a_number_e235():
+    alone = links.order_error("fGyroscope", 0.0, 20.0, duplicate=False, max_lag_s=2.0, offset_s=0.5, other_newest=None)
+    assert isinstance(alone, ClockWentBack) and not alone.beside
+    assert alone.offset_s == pytest.approx(0.5 + 0.0 - 20.0 - 1e-3)
