@@ -58,3 +58,26 @@ def test_the_order_refusal_always_gives_a_number_e235():
     alone = links.order_error("fGyroscope", 0.0, 20.0, duplicate=False, max_lag_s=2.0, offset_s=0.5, other_newest=None)
     assert isinstance(alone, ClockWentBack) and not alone.beside
     assert alone.offset_s == pytest.approx(0.5 + 0.0 - 20.0 - 1e-3)
+
+
+# -- E236 ---------------------------------------------------------------------------------------------------------
+def test_a_waist_gone_within_300_s_of_a_short_pause_is_still_said_e236(bundle, walk):
+    # out of range 6-10 s (back), then gone for good from 20 s: the second pause is within E224's 300 s
+    keep = [p for p in _packets(walk) if not (p[0] == "waist" and (6 <= p[1] < 10 or p[1] >= 20))]
+    tr = Tracker(bundle)
+    _run(tr, keep)
+    gone = [w for w in tr.warnings if "no samples since 20.00 s" in w and "(decision E115)" in w]
+    assert len(gone) == 1 and "still so at" in gone[0] and "(decision E236)" in gone[0]  # before: no line at all
+    assert tr.warning_counts == {"waist paused": 2, "waist resumed": 1}
+
+
+def test_held_back_lines_are_written_when_their_cause_lasts_or_at_the_end_e236():
+    r = links.RepeatedLines()
+    assert r.line("p", "a", 0.0) == "a" and r.line("p", "b", 1.0) is None
+    assert r.overdue("p", 1.0 + links.STILL_S - 0.1) is None  # flapping: held back
+    got = r.overdue("p", 1.0 + links.STILL_S)
+    assert got.startswith("b [still so at 11.00 s, 10.0 s later") and r.overdue("p", 30.0) is None  # once
+    assert r.line("q", "c", 0.0) == "c" and r.line("q", "d", 5.0) is None and r.line("q", "e", 6.0) is None
+    end = r.summary(7.0)
+    assert len(end) == 1 and end[0].startswith("e [the last of the lines held back since 5.00 s, written at the end")
+    assert "1 more such lines since 0.00 s not written" in end[0] and r.summary(8.0) == []

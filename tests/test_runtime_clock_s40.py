@@ -117,7 +117,10 @@ def test_repeated_pause_lines_are_counted_not_written_per_packet(bundle, walk, m
     _run(tr, _packets(walk, waist=lambda t: t - 5.0))
     n = tr.warning_counts["waist paused"]
     assert n > 20 and tr.warning_counts["waist resumed"] >= n - 1
-    assert sum("(decision E115)" in w for w in tr.warnings) == 2  # one pause, one resume line in < 300 s
+    # one pause, one resume line in < 300 s, and E236's summing-up of each at flush; none "still so" (it flaps)
+    assert sum("(decision E115)" in w for w in tr.warnings) == 4
+    assert sum("written at the end (decision E236)" in w for w in tr.warnings) == 2
+    assert not any("still so at" in w for w in tr.warnings)
     monkeypatch.setattr(links, "REPEAT_WARN_S", 10.0)
     tr = Tracker(bundle)
     _run(tr, _packets(walk, waist=lambda t: t - 5.0))

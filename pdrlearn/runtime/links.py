@@ -17,6 +17,11 @@ from pdrlearn.errors import ClockWentBack, DataError
 #: occurrence is counted in ``Tracker.warning_counts``
 REPEAT_WARN_S = 300.0
 
+#: decision E236 (ours): a repeated line held back by E224 is written after all once its cause has lasted this many
+#: seconds of stream time (a waist paused and not back 10 s later is gone, not pausing on every packet: T4's flapping
+#: waist came back within a packet, 0.2 s)
+STILL_S = 10.0
+
 UNITS = {"f": "foot", "w": "waist"}
 
 
@@ -89,25 +94,57 @@ class StartClocks:
 class RepeatedLines:
     """Decision E224: a kind of warning line that can repeat for as long as its cause lasts (E115's pause and resume
     on every packet) is written at most once per :data:`REPEAT_WARN_S` of stream time, with the count since the last
-    line; ``counts`` (kind -> occurrences) counts every one."""
+    line; ``counts`` (kind -> occurrences) counts every one. Decision E236: only flapping is held back: a held line
+    whose cause lasts :data:`STILL_S` is written after all (:meth:`overdue`), and :meth:`summary` (at ``flush``)
+    writes one line per kind with lines not written since its last."""
 
-    __slots__ = ("counts", "_said")
+    __slots__ = ("counts", "_said", "_unsaid")
 
     def __init__(self):
         self.counts: dict[str, int] = {}
         self._said: dict[str, tuple[float, int]] = {}  # kind -> (stream time of its last line, count then)
+        self._unsaid: dict[str, tuple[float, float, str]] = {}  # kind -> (first and last held-back time, last msg)
 
     def line(self, kind: str, msg: str, t: float) -> str | None:
         """``msg`` (with the occurrences not written since the last) when due at stream time ``t``, else None."""
-        n = self.counts[kind] = self.counts.get(kind, 0) + 1
+        self.counts[kind] = self.counts.get(kind, 0) + 1
         last = self._said.get(kind)
         if last is not None and t - last[0] < REPEAT_WARN_S:
+            self._unsaid[kind] = (self._unsaid.get(kind, (t,))[0], t, msg)
             return None
+        return self._write(kind, msg, t, "")
+
+    def _write(self, kind: str, msg: str, t: float, why: str) -> str:
+        """``msg`` written at ``t``: the held-back count since the last line of ``kind`` appended (``why`` first)."""
+        n, last = self.counts[kind], self._said.get(kind)
         self._said[kind] = (t, n)
-        if last is None:
+        self._unsaid.pop(kind, None)
+        k = 0 if last is None else n - last[1] - 1
+        if not k and not why:
             return msg
-        return (f"{msg} [{n - last[1] - 1} more such lines since {last[0]:.2f} s not written: at most one per "
-                f"{REPEAT_WARN_S:g} s of stream time; warning_counts[{kind!r}] = {n} (decision E224)]")
+        held = (f"{k} more such lines since {last[0]:.2f} s not written: at most one per {REPEAT_WARN_S:g} s of stream "
+                "time" if k else "")
+        return f"{msg} [{'; '.join(x for x in (why, held) if x)}; warning_counts[{kind!r}] = {n} (decision E224)]"
+
+    def overdue(self, kind: str, t: float) -> str | None:
+        """Decision E236: the held-back line of ``kind`` whose cause still lasts at stream time ``t``, written when
+        it was held back :data:`STILL_S` or more before ``t`` (the caller asks only while the cause lasts), else
+        None."""
+        held = self._unsaid.get(kind)
+        if held is None or t - held[1] < STILL_S:
+            return None
+        return self._write(kind, held[2], t, f"still so at {t:.2f} s, {t - held[1]:.1f} s later: not a stream that "
+                                             f"comes back at once, so written after all (decision E236)")
+
+    def summary(self, t: float) -> list[str]:
+        """Decision E236 (at the end of a stream, stream time ``t``): one line per kind with lines not written since
+        its last: the last of them, with the count."""
+        out = []
+        for kind in list(self._unsaid):
+            first = self._unsaid[kind][0]
+            out.append(self._write(kind, self._unsaid[kind][2], t, f"the last of the lines held back since {first:.2f} "
+                                   "s, written at the end (decision E236)"))
+        return out
 
 
 def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s: float, offset_s: float,
@@ -138,4 +175,4 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
                      f"{note}")
 
 
-__all__ = ["REPEAT_WARN_S", "RepeatedLines", "StartClocks", "order_error", "unit_of"]
+__all__ = ["REPEAT_WARN_S", "STILL_S", "RepeatedLines", "StartClocks", "order_error", "unit_of"]

@@ -1175,6 +1175,10 @@ class Tracker(FixInput):
         self._detect()
         if self._pending or self._latest >= self._lag_next:  # E23: before a waiting step could go stale
             self._check_lag()
+        if self._paused and self._repeats is not None:  # decision E236: a waist paused and not back is said
+            line = self._repeats.overdue("waist paused", self._latest)
+            if line is not None:
+                self._warn(line)
         steps = self._process_ready()
         # a push that completes steps returns them first, and the next push feeds its foot samples to the
         # push-time levelling (decision E21) and trims (decision E15); pushes in chunks of a stride or more
@@ -1505,6 +1509,9 @@ class Tracker(FixInput):
         steps = self._process_ready(force=True)
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
+        if self._repeats is not None:  # decision E236: the repeated lines held back since their last, summed up
+            for line in self._repeats.summary(self._latest):
+                self._warn(line)
         if self._drops and self.stream_checks and not self._drops_said:  # decision E230: run's line (L77), once
             self._drops_said = True
             self._warn(streamed_drops_line([(n, k, m) for n, (k, m) in self._drops.items()]))
