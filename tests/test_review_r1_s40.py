@@ -5,10 +5,12 @@ Short simulated walks of user 10980, cut into 0.2 s pod packets with tests/test_
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
-from pdrlearn.errors import ClockWentBack
+from pdrlearn.errors import ClockWentBack, DataError
 from pdrlearn.runtime import Tracker, links, load_bundle
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
@@ -81,3 +83,71 @@ def test_held_back_lines_are_written_when_their_cause_lasts_or_at_the_end_e236()
     end = r.summary(7.0)
     assert len(end) == 1 and end[0].startswith("e [the last of the lines held back since 5.00 s, written at the end")
     assert "1 more such lines since 0.00 s not written" in end[0] and r.summary(8.0) == []
+
+
+# -- E237 ---------------------------------------------------------------------------------------------------------
+def _same_end(a, b):
+    return len(a) and len(b) and np.allclose(_end(a), _end(b), rtol=0, atol=1e-9) and a[-1].end_s == b[-1].end_s
+
+
+def test_a_resumed_tracker_does_not_move_the_saved_waist_samples_again_e237(bundle, walk):
+    packets = _packets(walk, waist=lambda t: t + 5.0)
+    ref, errors = _run(Tracker(bundle, waist_clock_offset_s=5.0), packets)
+    assert errors == []
+    at = len(packets) // 2
+
+    def make(**kw):
+        return Tracker(bundle, waist_clock_offset_s=5.0, **kw)
+
+    tr = make()
+    for _, _, d in packets[:at]:
+        tr.push(d)  # no flush: a crash
+    state = json.loads(json.dumps(tr.restart_state()))
+    assert state["version"] == 2 and state["waist_clock_offset_s"] == 5.0 and state["foot_clock_offset_s"] == 0.0
+    new = make(resume=state)
+    rest, errors = _run(new, packets[at:])
+    # before: the saved waist samples 5 s early, the optional waist streams dropped, E223 advising offset 0.00
+    assert errors == [] and not new.warnings and _same_end(rest, ref)
+    assert new.waist_clock_offset_s == 5.0
+    # the state's offset wins over a constructor left at its default, with one line
+    newer = Tracker(bundle, resume=state)
+    rest, errors = _run(newer, packets[at:])
+    assert errors == [] and _same_end(rest, ref)
+    said = "Tracker(resume=state): the state's waist_clock_offset_s = 5 s replaces the 0 s"
+    assert newer.warnings[0].startswith(said)
+
+
+def test_a_rebased_foot_offset_is_in_the_state_e237(bundle, walk):
+    packets = _reconnected(walk, "foot")
+    ref, _ = _run(Tracker(bundle), packets, rebase=True)
+    tr = Tracker(bundle)
+    at = len(packets) - 100  # 10 s before the end, after the reconnect (at 15 s of 35 s) was rebased
+    for _, _, d in packets[:at]:
+        try:
+            tr.push(d)
+        except ClockWentBack as e:
+            tr.rebase_clock(e.unit, e.offset_s)
+            tr.push(d)
+    assert tr.foot_clock_offset_s != 0.0
+    state = json.loads(json.dumps(tr.restart_state()))
+    new = Tracker(bundle, resume=state)
+    rest, errors = _run(new, packets[at:])
+    assert errors == [] and new.foot_clock_offset_s == tr.foot_clock_offset_s and _same_end(rest, ref)
+
+
+def test_a_version_1_state_is_read_with_the_given_offsets_and_others_are_refused_e237(bundle, walk):
+    packets = _packets(walk, waist=lambda t: t + 5.0)
+    ref, _ = _run(Tracker(bundle, waist_clock_offset_s=5.0), packets)
+    at = len(packets) // 2
+    tr = Tracker(bundle, waist_clock_offset_s=5.0)
+    for _, _, d in packets[:at]:
+        tr.push(d)
+    state = json.loads(json.dumps(tr.restart_state()))
+    old = {k: v for k, v in state.items() if not k.endswith("_clock_offset_s")} | {"version": 1}
+    new = Tracker(bundle, waist_clock_offset_s=5.0, resume=old)
+    rest, errors = _run(new, packets[at:])
+    assert errors == [] and _same_end(rest, ref)  # its samples not moved again either
+    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): not a restart state of version 2 \(got 3\)"):
+        Tracker(bundle, resume={**state, "version": 3})
+    with pytest.raises(DataError, match="clock offsets .* not finite"):
+        Tracker(bundle, resume={**state, "foot_clock_offset_s": float("nan")})
