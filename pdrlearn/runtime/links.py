@@ -47,17 +47,22 @@ class StartClocks:
     At the first push that holds a sample of both units, the gap between the new unit's first sample and the other
     unit's newest (``contact``, s, waist minus foot) is how far apart the clocks read at the same wall time, whatever
     the order the pods connected in (a unit switched on later on the same clock starts beside the other's newest: no
-    gap). The offset named is the difference of the units' first samples (pods connected together: exact). The times
-    are those of every push that passed E29's checks, refused by the lag check or not (a unit whose pushes are all
-    refused still shows its clock; a diagnostic, no tracking state); nothing more is noted once both units are seen."""
+    gap). Decision E238: the offset named is ``offset``: the difference of the units' first samples when it is within
+    the other unit's latest push of ``contact`` (pods that connected together: exact), else ``contact`` (a pod that
+    joined later: its first samples' difference is not the clocks'). The times are those of every push that passed
+    E29's checks, refused by the lag check or not (a unit whose pushes are all refused still shows its clock; a
+    diagnostic, no tracking state); nothing more is noted once both units are seen."""
 
-    __slots__ = ("first", "newest", "contact", "max_lag_s")
+    __slots__ = ("first", "newest", "contact", "offset", "max_lag_s", "_pushed", "_joined")
 
     def __init__(self, max_lag_s: float):
         self.max_lag_s = float(max_lag_s)
         self.first: dict[str, float] = {}
         self.newest: dict[str, float] = {}
         self.contact: float | None = None
+        self.offset: float | None = None
+        self._pushed: dict[str, float] = {}  # unit -> the first sample of its latest push
+        self._joined: str | None = None  # the unit that joined the other (None: both in one push)
 
     def seen(self, pushed: dict) -> None:
         """Note a push's times (sensor -> (first, last) s, on the tracker's clock) until both units are seen."""
@@ -67,28 +72,41 @@ class StartClocks:
         if "foot" in per and "waist" in per and not self.newest:  # both in one push
             self.contact = per["waist"][0] - per["foot"][0]
         elif "waist" in per and "foot" in self.newest and "waist" not in self.newest:  # the waist joins the foot
-            self.contact = per["waist"][0] - self.newest["foot"]
+            self.contact, self._joined = per["waist"][0] - self.newest["foot"], "waist"
         elif "foot" in per and "waist" in self.newest and "foot" not in self.newest:  # the foot joins the waist
-            self.contact = self.newest["waist"] - per["foot"][0]
+            self.contact, self._joined = self.newest["waist"] - per["foot"][0], "foot"
+        if self.contact is not None:
+            other = {"waist": "foot", "foot": "waist"}.get(self._joined)
+            span = 0.0 if other is None else self.newest[other] - self._pushed[other]
+            w = (per["waist"][0] if "waist" in per else self.first["waist"]) - (
+                per["foot"][0] if "foot" in per else self.first["foot"])
+            self.offset = w if abs(w - self.contact) <= span + 1e-6 else self.contact  # decision E238
         for u, (a, b) in per.items():
             self.first[u] = min(self.first.get(u, math.inf), a)
             self.newest[u] = max(self.newest.get(u, -math.inf), b)
+            self._pushed[u] = a
 
     def note(self, name: str, given_s: float, taken: bool = True) -> str:
         """The clause naming the start-up offset when the lagging stream ``name`` is of the unit whose clock reads
         behind, or was never taken (``taken`` False) though its unit's pushes came (refused), else ''. ``given_s``:
         the tracker's ``waist_clock_offset_s`` (the samples are already moved by it)."""
-        first, contact = self.first, self.contact
+        contact, off = self.contact, self.offset
         if contact is None or abs(contact) <= self.max_lag_s:
             return ""
-        w = first["waist"] - first["foot"]  # the waist clock ahead of the foot's by w (s)
         behind = "waist" if contact < 0 else "foot"
-        if (taken and unit_of(name) != behind) or (w < 0) != (contact < 0):
+        if taken and unit_of(name) != behind:  # decision E238: no test of the first samples' sign
             return ""
-        return (f"the waist clock is about {abs(w):.1f} s {'ahead of' if w > 0 else 'behind'} the foot's (the units' "
-                f"first samples at {first['foot']:.2f} s (foot) and {first['waist']:.2f} s (waist): two clocks, not a "
-                f"stopped sensor): pass Tracker(..., waist_clock_offset_s={given_s + w:.2f}) (t_waist = t_foot + "
-                "offset) or stamp both units on one clock set at connection (decision E223)")
+        first, joined = self.first, self._joined
+        if off != contact or joined is None:  # the pods connected together
+            seen = f"the units' first samples at {first['foot']:.2f} s (foot) and {first['waist']:.2f} s (waist)"
+        else:
+            other = "foot" if joined == "waist" else "waist"
+            seen = (f"the {joined}'s first sample at {first[joined]:.2f} s when the {other}'s newest was "
+                    f"{first[joined] - (contact if joined == 'waist' else -contact):.2f} s")
+        return (f"the waist clock is about {abs(off):.1f} s {'ahead of' if off > 0 else 'behind'} the foot's ({seen}: "
+                f"two clocks, not a stopped sensor): pass Tracker(..., waist_clock_offset_s={given_s + off:.2f}) "
+                "(t_waist = t_foot + offset) or stamp both units on one clock set at connection (decisions E223, "
+                "E238)")
 
 
 class RepeatedLines:
