@@ -188,3 +188,38 @@ def test_start_clocks_name_the_offset_by_how_the_pods_connected_e238():
     c.seen({"fGyroscope": (0.0, 0.15)})
     c.seen({"wGyroscope": (5.0, 5.15)})
     assert c.offset == pytest.approx(5.0) and "first samples at 0.00 s (foot) and 5.00 s" in c.note("fGyroscope", 0.0)
+
+
+# -- E239 ---------------------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def walk50():
+    return simulate_path(parse_route("straight:10"), UserProfile.from_seed(10981), speed="normal", rate_hz=50.0,
+                         seed=10981, name="pods", scenario="route")
+
+
+def test_a_packet_sent_twice_to_a_resampling_tracker_is_found_whole_e239(bundle, walk50):
+    packets = _packets(walk50)
+    tr = Tracker(bundle, drop_duplicate_timestamps=True, resample=True)
+    for _, _, d in packets[:41]:
+        tr.push(d)
+    u, _, d = packets[40]
+    assert u == "foot" and "fAccelerometer" in tr.inputs.resamplers
+    tr.push(d)  # before: refused as "a packet that arrived late?" (only its last sample was found a repeat)
+    assert tr.dropped_duplicates == {n: len(t) for n, (t, _) in d.items()}
+    off = Tracker(bundle, resample=True)
+    for _, _, d in packets[:41]:
+        off.push(d)
+    with pytest.raises(DataError, match="that sample duplicates one already taken, a packet sent again"):
+        off.push(d)
+
+
+@pytest.mark.parametrize("at", [0, 2])
+def test_a_packet_sent_twice_while_its_rate_is_probed_is_found_whole_e239(bundle, walk, at):
+    packets = _packets(walk)
+    tr = Tracker(bundle, drop_duplicate_timestamps=True)
+    for _, _, d in packets[:at + 1]:
+        tr.push(d)
+    _, _, d = packets[at]
+    assert tr.inputs.last_in("fAccelerometer") is not None  # still probed for its rate: no buffer yet
+    tr.push(d)  # before: "pushed timestamps are not increasing (at 0.000 s after 0.150 s); a packet that arrived late?"
+    assert tr.dropped_duplicates == {n: len(t) for n, (t, _) in d.items()}
