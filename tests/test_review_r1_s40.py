@@ -15,6 +15,7 @@ from pdrlearn.runtime import Tracker, links, load_bundle
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from tests.test_runtime_clock_s40 import BUNDLE, _packets, _reconnected, _run, _xy
+from tests.test_runtime_threads_queue import _example
 
 
 @pytest.fixture(scope="module")
@@ -223,3 +224,23 @@ def test_a_packet_sent_twice_while_its_rate_is_probed_is_found_whole_e239(bundle
     assert tr.inputs.last_in("fAccelerometer") is not None  # still probed for its rate: no buffer yet
     tr.push(d)  # before: "pushed timestamps are not increasing (at 0.000 s after 0.150 s); a packet that arrived late?"
     assert tr.dropped_duplicates == {n: len(t) for n, (t, _) in d.items()}
+
+
+# -- E240 ---------------------------------------------------------------------------------------------------------
+def test_the_thread_recipe_pushes_a_refused_push_again_unit_by_unit_e240(bundle, walk):
+    track = _example()["track_from_units"]
+    foot = [d for u, _, d in _packets(walk) if u == "foot"]
+    waist = [d for u, _, d in _packets(walk) if u == "waist"]
+    bad_t = float(foot[40]["fGyroscope"][0][0])
+
+    class Refusing(Tracker):  # refuses every push holding that foot sample, as a stopped stream or a wrong shape
+        def push(self, samples):
+            if "fGyroscope" in samples and (samples["fGyroscope"][0] == bad_t).any():
+                raise DataError("fGyroscope: refused for the test")
+            return super().push(samples)
+
+    refused, tracker = [], Refusing(bundle)
+    got = track(tracker, {"foot": foot, "waist": waist}, refused=refused)
+    assert refused == ["fGyroscope: refused for the test"] and len(got) >= 20
+    # the waist's samples of the refused push were pushed again alone: no waist sample lost (before: its packet)
+    assert "wAccelerometer" not in tracker.drop_stats() and "fAccelerometer" in tracker.drop_stats()
