@@ -244,3 +244,23 @@ def test_the_thread_recipe_pushes_a_refused_push_again_unit_by_unit_e240(bundle,
     assert refused == ["fGyroscope: refused for the test"] and len(got) >= 20
     # the waist's samples of the refused push were pushed again alone: no waist sample lost (before: its packet)
     assert "wAccelerometer" not in tracker.drop_stats() and "fAccelerometer" in tracker.drop_stats()
+
+
+# -- L551 ---------------------------------------------------------------------------------------------------------
+def test_the_gait_reference_withholds_few_step_indices_as_the_track_does_l551(tmp_path, capsys):
+    from pdrlearn.cli import main
+    from tests.test_gait_s40 import _sim
+
+    feet = _sim(tmp_path, "stand:2, straight:10, turn:180, straight:10, stand:2", 10982)
+    capsys.readouterr()
+    assert main(["gait", str(feet["left"]), str(feet["right"]), "--out", str(tmp_path / "g")]) == 0
+    out = capsys.readouterr().out
+    summary = json.loads((tmp_path / "g" / "gait_summary.json").read_text())
+    ref = summary["reference"]
+    for res in (summary, ref):  # the same rule on both sides (before: the reference's 2-3 step turn had its SI)
+        turn = res["by_kind"]["turn"]
+        assert min(turn["n_steps_left"], turn["n_steps_right"]) < 10
+        assert turn["step_time_s_si_pct"] is None and "withheld" in turn["si_withheld"]
+        assert res["by_kind"]["level"]["step_time_s_si_pct"] is not None and res["walk"]["si_withheld"] is None
+    block = out[out.index("reference (the sessions' labelled contacts):"):]
+    assert "    turn: steps" in block and block.split("    turn: steps")[1].split("\n")[0].count("(SI - %)") == 1
