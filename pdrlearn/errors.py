@@ -36,14 +36,16 @@ class GravityRemovedError(DataError):
 
 class ClockWentBack(DataError):
     """A live unit's timestamps went back by more than ``max_lag_s`` (decision E227: most likely a pod that reconnected
-    with its clock restarted). ``unit`` names it and ``offset_s`` is the clock offset that would put the refused
-    samples beside the other unit's newest (None without another unit): ``tracker.rebase_clock(e.unit, e.offset_s)``
-    and the push again go on with the same tracker."""
+    with its clock restarted). ``unit`` names it and ``offset_s`` is the clock offset that puts the refused samples
+    beside the other unit's newest (``beside`` True) or, without another unit past the refused one's last sample (a
+    one-unit tracker, both pods restarted), just after the unit's own last sample (``beside`` False; decision E235:
+    always a number): ``tracker.rebase_clock(e.unit, e.offset_s)`` and the push again go on with the same tracker."""
 
-    def __init__(self, message: str, unit: str, offset_s: float | None):
+    def __init__(self, message: str, unit: str, offset_s: float, beside: bool = True):
         super().__init__(message)
         self.unit = unit
-        self.offset_s = offset_s
+        self.offset_s = float(offset_s)
+        self.beside = bool(beside)
 
 
 class MissingSensorError(DataError):

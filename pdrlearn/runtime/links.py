@@ -17,6 +17,11 @@ from pdrlearn.errors import ClockWentBack, DataError
 #: occurrence is counted in ``Tracker.warning_counts``
 REPEAT_WARN_S = 300.0
 
+#: decision E236 (ours): a repeated line held back by E224 is written after all once its cause has lasted this many
+#: seconds of stream time (a waist paused and not back 10 s later is gone, not pausing on every packet: T4's flapping
+#: waist came back within a packet, 0.2 s)
+STILL_S = 10.0
+
 UNITS = {"f": "foot", "w": "waist"}
 
 
@@ -42,17 +47,22 @@ class StartClocks:
     At the first push that holds a sample of both units, the gap between the new unit's first sample and the other
     unit's newest (``contact``, s, waist minus foot) is how far apart the clocks read at the same wall time, whatever
     the order the pods connected in (a unit switched on later on the same clock starts beside the other's newest: no
-    gap). The offset named is the difference of the units' first samples (pods connected together: exact). The times
-    are those of every push that passed E29's checks, refused by the lag check or not (a unit whose pushes are all
-    refused still shows its clock; a diagnostic, no tracking state); nothing more is noted once both units are seen."""
+    gap). Decision E238: the offset named is ``offset``: the difference of the units' first samples when it is within
+    the other unit's latest push of ``contact`` (pods that connected together: exact), else ``contact`` (a pod that
+    joined later: its first samples' difference is not the clocks'). The times are those of every push that passed
+    E29's checks, refused by the lag check or not (a unit whose pushes are all refused still shows its clock; a
+    diagnostic, no tracking state); nothing more is noted once both units are seen."""
 
-    __slots__ = ("first", "newest", "contact", "max_lag_s")
+    __slots__ = ("first", "newest", "contact", "offset", "max_lag_s", "_pushed", "_joined")
 
     def __init__(self, max_lag_s: float):
         self.max_lag_s = float(max_lag_s)
         self.first: dict[str, float] = {}
         self.newest: dict[str, float] = {}
         self.contact: float | None = None
+        self.offset: float | None = None
+        self._pushed: dict[str, float] = {}  # unit -> the first sample of its latest push
+        self._joined: str | None = None  # the unit that joined the other (None: both in one push)
 
     def seen(self, pushed: dict) -> None:
         """Note a push's times (sensor -> (first, last) s, on the tracker's clock) until both units are seen."""
@@ -62,52 +72,97 @@ class StartClocks:
         if "foot" in per and "waist" in per and not self.newest:  # both in one push
             self.contact = per["waist"][0] - per["foot"][0]
         elif "waist" in per and "foot" in self.newest and "waist" not in self.newest:  # the waist joins the foot
-            self.contact = per["waist"][0] - self.newest["foot"]
+            self.contact, self._joined = per["waist"][0] - self.newest["foot"], "waist"
         elif "foot" in per and "waist" in self.newest and "foot" not in self.newest:  # the foot joins the waist
-            self.contact = self.newest["waist"] - per["foot"][0]
+            self.contact, self._joined = self.newest["waist"] - per["foot"][0], "foot"
+        if self.contact is not None:
+            other = {"waist": "foot", "foot": "waist"}.get(self._joined)
+            span = 0.0 if other is None else self.newest[other] - self._pushed[other]
+            w = (per["waist"][0] if "waist" in per else self.first["waist"]) - (
+                per["foot"][0] if "foot" in per else self.first["foot"])
+            self.offset = w if abs(w - self.contact) <= span + 1e-6 else self.contact  # decision E238
         for u, (a, b) in per.items():
             self.first[u] = min(self.first.get(u, math.inf), a)
             self.newest[u] = max(self.newest.get(u, -math.inf), b)
+            self._pushed[u] = a
 
     def note(self, name: str, given_s: float, taken: bool = True) -> str:
         """The clause naming the start-up offset when the lagging stream ``name`` is of the unit whose clock reads
         behind, or was never taken (``taken`` False) though its unit's pushes came (refused), else ''. ``given_s``:
         the tracker's ``waist_clock_offset_s`` (the samples are already moved by it)."""
-        first, contact = self.first, self.contact
+        contact, off = self.contact, self.offset
         if contact is None or abs(contact) <= self.max_lag_s:
             return ""
-        w = first["waist"] - first["foot"]  # the waist clock ahead of the foot's by w (s)
         behind = "waist" if contact < 0 else "foot"
-        if (taken and unit_of(name) != behind) or (w < 0) != (contact < 0):
+        if taken and unit_of(name) != behind:  # decision E238: no test of the first samples' sign
             return ""
-        return (f"the waist clock is about {abs(w):.1f} s {'ahead of' if w > 0 else 'behind'} the foot's (the units' "
-                f"first samples at {first['foot']:.2f} s (foot) and {first['waist']:.2f} s (waist): two clocks, not a "
-                f"stopped sensor): pass Tracker(..., waist_clock_offset_s={given_s + w:.2f}) (t_waist = t_foot + "
-                "offset) or stamp both units on one clock set at connection (decision E223)")
+        first, joined = self.first, self._joined
+        if off != contact or joined is None:  # the pods connected together
+            seen = f"the units' first samples at {first['foot']:.2f} s (foot) and {first['waist']:.2f} s (waist)"
+        else:
+            other = "foot" if joined == "waist" else "waist"
+            seen = (f"the {joined}'s first sample at {first[joined]:.2f} s when the {other}'s newest was "
+                    f"{first[joined] - (contact if joined == 'waist' else -contact):.2f} s")
+        return (f"the waist clock is about {abs(off):.1f} s {'ahead of' if off > 0 else 'behind'} the foot's ({seen}: "
+                f"two clocks, not a stopped sensor): pass Tracker(..., waist_clock_offset_s={given_s + off:.2f}) "
+                "(t_waist = t_foot + offset) or stamp both units on one clock set at connection (decisions E223, "
+                "E238)")
 
 
 class RepeatedLines:
     """Decision E224: a kind of warning line that can repeat for as long as its cause lasts (E115's pause and resume
     on every packet) is written at most once per :data:`REPEAT_WARN_S` of stream time, with the count since the last
-    line; ``counts`` (kind -> occurrences) counts every one."""
+    line; ``counts`` (kind -> occurrences) counts every one. Decision E236: only flapping is held back: a held line
+    whose cause lasts :data:`STILL_S` is written after all (:meth:`overdue`), and :meth:`summary` (at ``flush``)
+    writes one line per kind with lines not written since its last."""
 
-    __slots__ = ("counts", "_said")
+    __slots__ = ("counts", "_said", "_unsaid")
 
     def __init__(self):
         self.counts: dict[str, int] = {}
         self._said: dict[str, tuple[float, int]] = {}  # kind -> (stream time of its last line, count then)
+        self._unsaid: dict[str, tuple[float, float, str]] = {}  # kind -> (first and last held-back time, last msg)
 
     def line(self, kind: str, msg: str, t: float) -> str | None:
         """``msg`` (with the occurrences not written since the last) when due at stream time ``t``, else None."""
-        n = self.counts[kind] = self.counts.get(kind, 0) + 1
+        self.counts[kind] = self.counts.get(kind, 0) + 1
         last = self._said.get(kind)
         if last is not None and t - last[0] < REPEAT_WARN_S:
+            self._unsaid[kind] = (self._unsaid.get(kind, (t,))[0], t, msg)
             return None
+        return self._write(kind, msg, t, "")
+
+    def _write(self, kind: str, msg: str, t: float, why: str) -> str:
+        """``msg`` written at ``t``: the held-back count since the last line of ``kind`` appended (``why`` first)."""
+        n, last = self.counts[kind], self._said.get(kind)
         self._said[kind] = (t, n)
-        if last is None:
+        self._unsaid.pop(kind, None)
+        k = 0 if last is None else n - last[1] - 1
+        if not k and not why:
             return msg
-        return (f"{msg} [{n - last[1] - 1} more such lines since {last[0]:.2f} s not written: at most one per "
-                f"{REPEAT_WARN_S:g} s of stream time; warning_counts[{kind!r}] = {n} (decision E224)]")
+        held = (f"{k} more such lines since {last[0]:.2f} s not written: at most one per {REPEAT_WARN_S:g} s of stream "
+                "time" if k else "")
+        return f"{msg} [{'; '.join(x for x in (why, held) if x)}; warning_counts[{kind!r}] = {n} (decision E224)]"
+
+    def overdue(self, kind: str, t: float) -> str | None:
+        """Decision E236: the held-back line of ``kind`` whose cause still lasts at stream time ``t``, written when
+        it was held back :data:`STILL_S` or more before ``t`` (the caller asks only while the cause lasts), else
+        None."""
+        held = self._unsaid.get(kind)
+        if held is None or t - held[1] < STILL_S:
+            return None
+        return self._write(kind, held[2], t, f"still so at {t:.2f} s, {t - held[1]:.1f} s later: not a stream that "
+                                             f"comes back at once, so written after all (decision E236)")
+
+    def summary(self, t: float) -> list[str]:
+        """Decision E236 (at the end of a stream, stream time ``t``): one line per kind with lines not written since
+        its last: the last of them, with the count."""
+        out = []
+        for kind in list(self._unsaid):
+            first = self._unsaid[kind][0]
+            out.append(self._write(kind, self._unsaid[kind][2], t, f"the last of the lines held back since {first:.2f} "
+                                   "s, written at the end (decision E236)"))
+        return out
 
 
 def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s: float, offset_s: float,
@@ -115,7 +170,8 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
     """The refusal of a push whose first ``name`` sample (``t0`` s, the tracker's clock) is not after the stream's
     newest (``last``): a duplicate of a sample taken (decision E225), a clock that went back by more than
     ``max_lag_s`` (E227: :class:`ClockWentBack`, with the offset that puts it beside the other unit's newest,
-    ``other_newest``; ``offset_s`` the unit's offset now), or a late sample; ``note``: B141's jumped-clock note."""
+    ``other_newest``, or just after its own last sample when none is past it, E235; ``offset_s`` the unit's offset
+    now), or a late sample; ``note``: B141's jumped-clock note."""
     head = f"{name}: pushed timestamps are not increasing (at {t0:.3f} s after {last:.3f} s)"
     if duplicate:
         return DataError(f"{head}: that sample duplicates one already taken, a packet sent again? "
@@ -131,10 +187,10 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
             f"{head}: the {unit} clock went back {last - t0:.2f} s, a pod that reconnected with its clock restarted? "
             f"The push is refused and the tracker unchanged; tracker.rebase_clock({unit!r}, {off:.2f}) puts its new "
             f"samples {where} and the same Tracker goes on (ClockWentBack.offset_s; decision E227)", unit,
-            off if beside else None)
+            off, beside)  # decision E235: always the offset the line names, never None
     return DataError(f"{head}; a packet that arrived late? a sample older than the stream's newest is refused (the "
                      "push is refused and the tracker unchanged): push each unit's samples in the order it sent them"
                      f"{note}")
 
 
-__all__ = ["REPEAT_WARN_S", "RepeatedLines", "StartClocks", "order_error", "unit_of"]
+__all__ = ["REPEAT_WARN_S", "STILL_S", "RepeatedLines", "StartClocks", "order_error", "unit_of"]

@@ -30,6 +30,9 @@ from pdrlearn.kernels.order import first_out_of_order
 #: or of those in its first RATE_PROBE_S s when that comes first (at least RATE_PROBE_MIN samples): a few
 #: irregular samples at the start (a burst, a late first sample) do not decide it (decision E22, amended)
 RATE_PROBE = 32
+#: decision E239 (ours): a resampled stream's raw input times kept this many seconds back from its newest, so that a
+#: packet sent again is found whole by ``Tracker(drop_duplicate_timestamps=True)`` (its buffer holds the output grid)
+RECENT_RAW_S = 5.0
 RATE_PROBE_S = 1.0
 RATE_PROBE_MIN = 5
 #: decision E29: a stream whose rate is more than this factor away from the bundle's is refused rather than
@@ -301,6 +304,7 @@ class InputStage:
         self.resamplers: dict[str, StreamResampler] = {}
         self._probe: dict[str, tuple[list, list]] = {}
         self._last_raw: dict[str, float] = {}  # resampled streams: time of the last input sample (s)
+        self._recent: dict[str, np.ndarray] = {}  # resampled streams: their last RECENT_RAW_S of input times (E239)
         self.passed: set[str] = set()  # streams at the bundle's rate, passed through unchanged
         #: sensor -> why its samples are dropped (the bundle does not use it; an optional stream that stopped)
         self.ignored: dict[str, str] = {}
@@ -368,6 +372,7 @@ class InputStage:
         self.passed.discard(name)
         self.resamplers.pop(name, None)
         self._probe.pop(name, None)
+        self._recent.pop(name, None)
 
     def last_in(self, name: str) -> float | None:
         """Time (s) of the newest sample received of a stream that is resampled or whose rate is being
@@ -376,6 +381,21 @@ class InputStage:
             return self._last_raw[name]
         p = self._probe.get(name)
         return float(p[0][-1][-1]) if p and p[0] else None
+
+    def raw_times(self, name: str) -> np.ndarray:
+        """Decision E239: the input times (s, increasing) of ``name`` held here: a resampled stream's last
+        :data:`RECENT_RAW_S` s, a stream still probed for its rate all of its probe; empty otherwise (its buffer
+        holds them)."""
+        if name in self._recent:
+            return self._recent[name]
+        p = self._probe.get(name)
+        return np.concatenate(p[0]) if p and p[0] else np.empty(0)
+
+    def _took_raw(self, name: str, t: np.ndarray) -> None:
+        """Decision E239: note the input times ``t`` of the resampled stream ``name`` (its last RECENT_RAW_S s)."""
+        tt = np.concatenate([self._recent.get(name, np.empty(0)), np.asarray(t, dtype=np.float64)])
+        self._recent[name] = tt[tt >= tt[-1] - RECENT_RAW_S]
+        self._last_raw[name] = float(tt[-1])
 
     def push(self, samples: dict) -> dict:
         if self.passed.issuperset(samples):  # every stream known and at the bundle's rate
@@ -390,7 +410,7 @@ class InputStage:
                 t, v = _checked(name, t, v, self._last_raw.get(name))
                 if len(t):
                     out[name] = r.push(t, v)
-                    self._last_raw[name] = float(t[-1])
+                    self._took_raw(name, t)
                 continue
             if name in self.ignored:
                 continue
@@ -417,7 +437,7 @@ class InputStage:
                     out[name] = (tt, vv)
                 else:
                     out[name] = self.resamplers[name].push(tt, vv)
-                    self._last_raw[name] = float(tt[-1])
+                    self._took_raw(name, tt)
         return {n: tv for n, tv in out.items() if len(tv[0])}
 
     def flush(self) -> dict:

@@ -20,19 +20,23 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 
-#: the restart state's format (a state of another version is refused in one line)
-STATE_VERSION = 1
+#: the restart state's format (decision E237: 2 adds the clock offsets; a version-1 state is read as before, its
+#: samples taken as on the tracker's clock and the constructor's offsets kept; any other version is refused in one line)
+STATE_VERSION = 2
 _KEYS = ("version", "position", "heading_rad", "last_end_s", "last_step", "n_steps", "samples")
+_CLOCKS = ("waist_clock_offset_s", "foot_clock_offset_s")  # decision E237: version 2 on
 
 
 def restart_state(tracker) -> dict:
     """Decision L134: ``{"version", "position" [x, y, z] m, "heading_rad", "last_end_s" (the last measured
     stride's end, s, or None), "last_step" (the last emitted row's end, heading, position and stride times, for
     E46's gap row and E51's stride time; or None), "n_steps", "samples": {sensor: {"t": [...] s, "values":
-    [[...], ...]}}}`` with the samples the tracker buffers. A tracker that resamples (``resample=True``, E22) is
-    refused in one line (decision L140): its buffer holds resampled samples, and its low-pass filter holds the last
-    raw ones (its delay, 0.84 s from 50 to 20 Hz), which no state carries; a new tracker fed the resampled samples
-    resampled them again and lost a stride (0.20-0.28 m off at the end of a 40-stride walk)."""
+    [[...], ...]}}, "waist_clock_offset_s", "foot_clock_offset_s"}`` with the samples the tracker buffers (on its
+    clock: already moved by the offsets) and the offsets it applies now (a ``rebase_clock`` included; E237). A
+    tracker that resamples (``resample=True``, E22) is refused in one line (decision L140): its buffer holds
+    resampled samples, and its low-pass filter holds the last raw ones (its delay, 0.84 s from 50 to 20 Hz), which
+    no state carries; a new tracker fed the resampled samples resampled them again and lost a stride (0.20-0.28 m
+    off at the end of a 40-stride walk)."""
     if tracker.inputs.resamplers:
         names = ", ".join(sorted(tracker.inputs.resamplers))
         raise DataError(f"restart_state(): this tracker resamples {names} to {tracker.rate_hz:g} Hz (resample=True, "
@@ -50,15 +54,22 @@ def restart_state(tracker) -> dict:
         "n_steps": int(tracker.n_steps),
         "samples": {name: {"t": t.tolist(), "values": v.tolist()}
                     for name, (t, v) in ((n, r.view()) for n, r in tracker._buf.items())},
+        **{k: float(getattr(tracker, k)) for k in _CLOCKS},  # decision E237
     }
 
 
 def resume(tracker, state: dict) -> list:
     """Decision L134: set a new ``tracker`` (no sample pushed yet) to ``state`` (:func:`restart_state`) and push
-    the state's samples; returns the steps they complete (strides the old tracker had not emitted yet)."""
+    the state's samples; returns the steps they complete (strides the old tracker had not emitted yet).
+
+    Decision E237: the samples are on the old tracker's clock already, so they are pushed with every clock offset
+    (and the waist's drift) at 0; then the state's offsets are set (a version-2 state: they win over the
+    constructor's, one warning line when they differ; version 1: the constructor's kept)."""
     where = "Tracker(resume=state)"
-    if not isinstance(state, dict) or state.get("version") != STATE_VERSION or not set(_KEYS) <= set(state):
-        got = state.get("version") if isinstance(state, dict) else type(state).__name__
+    version = state.get("version") if isinstance(state, dict) else None
+    keys = _KEYS + (_CLOCKS if version == STATE_VERSION else ())
+    if version not in (1, STATE_VERSION) or not set(keys) <= set(state):
+        got = version if isinstance(state, dict) else type(state).__name__
         raise DataError(f"{where}: not a restart state of version {STATE_VERSION} (got {got!r}); give what "
                         "Tracker.restart_state() returned (decision L134)")
     try:
@@ -67,12 +78,13 @@ def resume(tracker, state: dict) -> list:
         last_end = None if state["last_end_s"] is None else float(state["last_end_s"])
         samples = {str(n): (np.asarray(s["t"], dtype=float), np.asarray(s["values"], dtype=float))
                    for n, s in state["samples"].items()}
+        clocks = {k: float(state[k]) for k in keys if k in _CLOCKS}
     except (TypeError, ValueError, KeyError) as exc:
-        raise DataError(f"{where}: the state's position, heading_rad, last_end_s or samples are malformed "
-                        f"({exc}); give what Tracker.restart_state() returned (decision L134)") from None
-    if not (np.isfinite(position).all() and math.isfinite(heading)):
-        raise DataError(f"{where}: the state's position {position.tolist()} or heading {heading} is not finite; "
-                        "give what Tracker.restart_state() returned (decision L134)")
+        raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples or clock offsets are "
+                        f"malformed ({exc}); give what Tracker.restart_state() returned (decision L134)") from None
+    if not (np.isfinite(position).all() and math.isfinite(heading) and all(map(math.isfinite, clocks.values()))):
+        raise DataError(f"{where}: the state's position {position.tolist()}, heading {heading} or clock offsets "
+                        f"{clocks} are not finite; give what Tracker.restart_state() returned (decision L134)")
     tracker.position = position
     tracker._init_fixes(position[:2])
     tracker.heading = heading
@@ -84,7 +96,18 @@ def resume(tracker, state: dict) -> list:
     tracker._kept = None if ls is None else (float(ls[0]), float(ls[1]), tuple(map(float, ls[2])),
                                              tuple(map(float, ls[3])))
     tracker.n_steps = int(state["n_steps"])
-    return tracker.push({n: tv for n, tv in samples.items() if len(tv[0])}) if samples else []
+    for k, v in clocks.items():  # decision E237: the state's clock wins; a different given value is said
+        if v != getattr(tracker, k):
+            tracker._warn(f"{where}: the state's {k} = {v:g} s replaces the {getattr(tracker, k):g} s given (the "
+                          "offset the saved tracker applied last, a rebase_clock included; decision E237)")
+    kept = {k: getattr(tracker, k) for k in (*_CLOCKS, "waist_clock_drift_ppm")}
+    for k in kept:  # decision E237: the saved samples are on the tracker's clock already: not moved again
+        setattr(tracker, k, 0.0)
+    try:
+        return tracker.push({n: tv for n, tv in samples.items() if len(tv[0])}) if samples else []
+    finally:
+        for k, v in {**kept, **clocks}.items():
+            setattr(tracker, k, v)
 
 
 def drop_measured(pending: list, last_end: float | None) -> list:

@@ -449,7 +449,8 @@ class Tracker(FixInput):
         else (decision L177: the live form of ``--align-units``; 0: none). Settable between pushes (decision E227),
         as :meth:`rebase_clock` sets it: a waist pod that reconnected with its clock restarted goes on.
     drop_duplicate_timestamps : drop a pushed sample whose timestamp repeats one already taken of its stream (the
-        sample before it in the push, or one the tracker still buffers: a Bluetooth packet sent again), keeping the
+        sample before it in the push, or one the tracker still buffers; a resampled stream's last 5 s of input
+        times and a stream's rate probe count too, decision E239: a Bluetooth packet sent again), keeping the
         first, as ``WaistTracker(drop_duplicate_timestamps=True)`` (decision E225, E203's kernel); counted per
         sensor in :attr:`dropped_duplicates` (total :attr:`n_dropped_duplicates`), one warning line. Off: such a
         push is refused, the line says "duplicates one already taken".
@@ -876,11 +877,12 @@ class Tracker(FixInput):
         return (samples if out is None else out), dropped
 
     def _taken_times(self, name: str) -> np.ndarray:
-        """Decision E225: the input times of ``name`` the tracker still knows, sorted: its buffered samples' (a
-        resampled stream's buffer holds the output grid: its newest input time alone)."""
-        ring, raw = self._buf.get(name), self.inputs.last_in(name)
-        own = [] if ring is None or name in self.inputs.resamplers else ring.view()[0]
-        return np.unique([*own, *([] if raw is None else [raw])])
+        """Decision E225: the input times of ``name`` the tracker still knows, sorted: its buffered samples', or
+        (decision E239) a resampled stream's last input times and a stream still probed for its rate its probe's
+        (the buffer of a resampled stream holds the output grid)."""
+        ring = self._buf.get(name)
+        own = np.empty(0) if ring is None or name in self.inputs.resamplers else ring.view()[0]
+        return np.unique(np.concatenate([own, self.inputs.raw_times(name)]))
 
     def _count_repeats(self, dropped: dict[str, int]) -> None:
         """Decision E225 (E203's amended count): a taken push's dropped repeats counted; the first adds one line."""
@@ -1183,6 +1185,10 @@ class Tracker(FixInput):
         self._detect()
         if self._pending or self._latest >= self._lag_next:  # E23: before a waiting step could go stale
             self._check_lag()
+        if self._paused and self._repeats is not None:  # decision E236: a waist paused and not back is said
+            line = self._repeats.overdue("waist paused", self._latest)
+            if line is not None:
+                self._warn(line)
         steps = self._process_ready()
         # a push that completes steps returns them first, and the next push feeds its foot samples to the
         # push-time levelling (decision E21) and trims (decision E15); pushes in chunks of a stride or more
@@ -1513,6 +1519,9 @@ class Tracker(FixInput):
         steps = self._process_ready(force=True)
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
+        if self._repeats is not None:  # decision E236: the repeated lines held back since their last, summed up
+            for line in self._repeats.summary(self._latest):
+                self._warn(line)
         if self._drops and self.stream_checks and not self._drops_said:  # decision E230: run's line (L77), once
             self._drops_said = True
             self._warn(streamed_drops_line([(n, k, m) for n, (k, m) in self._drops.items()]))

@@ -409,6 +409,18 @@ def withhold_indices(walk: dict, *, min_steps: int = SI_MIN_STEPS) -> str | None
             "(decision L461; the stride-time CV's minimum, L113) - walk longer, or pool visits")
 
 
+def withhold_all(res: dict) -> None:
+    """Decision L461 on a :func:`bilateral_gait` result ``res`` (in place): its walk, each bout (L461 amended:
+    gait-all's only SI table is its bouts') and each kind (L538) get ``si_withheld``, their indices withheld by
+    :func:`withhold_indices`. ``pair_sessions`` runs it on the tracked result and on the labels' reference alike
+    (decision L551: a 2-step index is noise whichever contacts it comes from)."""
+    if not res:
+        return
+    res["walk"]["si_withheld"] = withhold_indices(res["walk"])
+    for m in [*res.get("bouts", []), *res.get("by_kind", {}).values()]:
+        m["si_withheld"] = withhold_indices(m)
+
+
 def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame) -> dict:
     """Decisions L259, L262: the walk's (or one bout's) bilateral measures from its tables (module docstring)."""
     out = {"n_steps_left": int((steps["side"] == "left").sum()), "n_steps_right": int((steps["side"] == "right").sum())}
@@ -996,11 +1008,8 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
             out["warnings"].append(line)
     feet = [foot_warnings(s, t) for s, t in zip(sessions, tracks, strict=True)]  # decision L461
     out["warnings"] += [f"{side} foot: {line}" for side, (_, own) in zip(SIDES, feet, strict=True) for line in own]
-    out["walk"]["si_withheld"] = withhold_indices(out["walk"])  # decision L461
-    for bout in out["bouts"]:  # decision L461 (amended): gait-all's only SI table is its bouts'
-        bout["si_withheld"] = withhold_indices(bout)
-    for m in out["by_kind"].values():  # decision L538: each kind's indices by L461's rule too
-        m["si_withheld"] = withhold_indices(m)
+    for res in (out, out["reference"] or {}):  # decision L551: the labels' reference by the same rule as the track
+        withhold_all(res)
     if out["walk"]["si_withheld"] is not None:
         logging.getLogger(__name__).warning(out["walk"]["si_withheld"])
         out["warnings"].append(out["walk"]["si_withheld"])
