@@ -207,3 +207,21 @@ def test_the_foot_vs_barometer_check_is_said_live_as_run_says_it_e232(tmp_path, 
     assert live[0] in [w["message"] if isinstance(w, dict) else w for w in warned]
     quiet, _ = _replay(streams, stream_checks=False)
     assert not [w for w in quiet.warnings if "disagrees with the waist barometer" in w]
+
+
+def test_one_sample_pushes_count_dropped_samples_as_chunks_do_e230(walk):
+    """Review R2 finding 1: a tracker fed one sample per push (a Bluetooth callback's feed, E17's fast path) counted
+    no dropped samples (its limit was read before any chunked push had set it); now as 1 s chunks count them."""
+    t0 = float(walk["fAccelerometer"].t[0])
+    lost = [(t0 + 10.0 * k, t0 + 10.0 * k + 0.15) for k in range(1, 3)]
+
+    def keep(name, t):
+        if not name.startswith("f"):
+            return np.ones(len(t), bool)
+        return ~np.any([(t >= a - 1e-9) & (t <= b + 1e-9) for a, b in lost], axis=0)
+
+    streams = {n: (t[t < t0 + 30.0], v[t < t0 + 30.0]) for n, (t, v) in _streams(walk, keep=keep).items()}
+    chunked = _replay(streams)[0].drop_stats()
+    single = _replay(streams, chunk_s=0.05)[0].drop_stats()
+    assert chunked["fAccelerometer"]["intervals"] == 2
+    assert single["fAccelerometer"] == chunked["fAccelerometer"]

@@ -1228,7 +1228,7 @@ class Tracker(FixInput):
                     # finite iff the sum is (finite values overflow only beyond 1e308: the general path then)
                     if t0 > last and isfinite(sum(vals, t0)):
                         fast[name] = (t0, vals)
-                        if t0 - last > self._drop_lim.get(name, math.inf):  # decision E230: dropped samples
+                        if t0 - last > self._drop_limit(name):  # decision E230 (R2 1: on this path too)
                             drops = drops or []
                             drops.append((name, np.array([t0 - last])))
                         if t0 - last > GAP_WARN_S and t0 - last > self._gap_limit(name):
