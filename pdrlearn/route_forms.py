@@ -22,7 +22,8 @@ ROUTE_FORMS = {
     "lift": "'lift:+M' / 'lift:-M' a lift M metres up / down, no steps ('lift:+9': three storeys; S45)",
     "escalator": "'escalator:+M' / 'escalator:-M' 30 deg, 0.5 m/s, straight ahead (1-60 m; 'escalator:+6', "
                  "'escalator:-9'; S45)",
-    "trolley": "'trolley:M[:GAIT]' M metres pushing a trolley ('trolley:20'; S46)",
+    "trolley": "'trolley:M[:GAIT]' M metres pushing a trolley ('trolley:20'; S46): a free walk with the pelvic "
+               "rotation and trunk yaw halved; a walking aid (rollator, cane) is not simulated (W456)",
     "side": "'side:M' side-stepping M metres left (-M right) facing ahead (S49)",
     "freeze": "'freeze:S[:HZ[:ACC]]' a freezing-of-gait episode: trembling in place S seconds (S51)",
     "lie": "'lie:S[:ROLLS]' sits on a bed edge, lies down S seconds turning over ROLLS times an hour (default 2; 0 "

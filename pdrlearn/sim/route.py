@@ -18,7 +18,7 @@
 | ``lift:H`` | stand in a lift riding H metres (+H up, -H down; no steps; decision S45) |
 | ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
 | ``vehicle:S[:RMS[:RISE]]`` | ride a bus or train for S s (20-3600), vibrating RMS (S71), climbing RISE m (S75) |
-| ``trolley:M[:GAIT]`` | walk M metres straight ahead pushing a trolley (damped pelvic rotation; decision S46) |
+| ``trolley:M[:GAIT]`` | walk M metres straight pushing a trolley (pelvic rotation halved, S46; no walking aid, W456) |
 | ``side:M`` | side-step M metres facing ahead (+M left, -M right; lead foot out, trail foot closes; decision S49) |
 | ``freeze:S[:HZ[:ACC]]`` | stop, tremble in place S s at HZ (3-8) with the foot's peak ACC m/s^2 (no steps; S51) |
 

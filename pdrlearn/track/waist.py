@@ -102,6 +102,8 @@ from pdrlearn.waist.pelvic_rhythm import (
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
+    SHORT_STEP_CAUSE,
+    WALK_RATIO_ADVICE,
     calibration_covers,
     calibration_line,
     contact_alternation,
@@ -1524,11 +1526,13 @@ RELATIVE_HEADING = "waist heading relative to the start"
 class _NoHeadingNote(logging.Filter):
     """Drops W83's line from this module's log: a calibration tracks walks for their distance, not their heading;
     W155's, which advises a track's option (a calibration walk's stairs are the calibration's to judge); and the
-    "no per-user calibration" line (B241: it is the calibration being made)."""
+    "no per-user calibration" line (B241: it is the calibration being made); decision W455: W100's walk-ratio line
+    and W207's short-step line, whose advice (calibrate on this walker's own walk) is the calibration being made."""
 
     def filter(self, record: logging.LogRecord) -> bool:
         msg = record.getMessage()
-        return RELATIVE_HEADING not in msg and "(decision W155)" not in msg and "no per-user calibration" not in msg
+        return not any(mark in msg for mark in (RELATIVE_HEADING, "(decision W155)", "no per-user calibration",
+                                                WALK_RATIO_ADVICE, SHORT_STEP_CAUSE))
 
 
 def without_heading_note():

@@ -398,6 +398,19 @@ def running_cadence(length: float | None, cadence: float | None, height_m: float
     return range_side(cadence, None, leg) == "fast" and fast_gait(cadence, speed, leg) != "short_fast"
 
 
+#: decision W454: a walk ratio far under the band has two causes the ratio cannot tell apart, read in opposite
+#: directions: short steps read long (W100's simulated festinating walks) and a trunk steadied by a walking aid reads
+#: short (trial T2, session 40: the simulated waist's dynamic acceleration damped to x0.4, docs/waist.md's rollator
+#: case, on three 12 m walks at 0.30-0.53 m/s: 4.71, 8.71 and 7.43 m)
+LOW_RATIO_DIRECTION = ("and reads long on short steps (simulated festinating walks: +20 to +174 % distance) but short "
+                       "on a trunk a rollator or cane steadies (a simulated trunk motion damped to x0.4: -27 to -61 % "
+                       "distance), so the distance may be too long or too short (decision W454)")
+#: decision W100: what an uncalibrated walk-ratio line asks for; decision W455: ``calibrate`` drops the line by it
+WALK_RATIO_ADVICE = ("the distance, speed and step lengths need a calibration on this walker's own walk of known "
+                     "length (a 10 m walk test, or this recording if you know the distance walked): 'pdrlearn "
+                     "calibrate DIR --distance M --out PARAMS.json', then track with --params PARAMS.json")
+
+
 def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
                        height_m: float = WALK_RATIO_HEIGHT_M, *, pll_length: float | None = None,
                        pll_m: float | None = None, pendulum_m: float | None = None,
@@ -415,8 +428,8 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
     lo, hi, healthy = c * WALK_RATIO_BAND[0], c * WALK_RATIO_BAND[1], c * WALK_RATIO_HEALTHY
     if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or lo <= ratio <= hi:
         return None
-    what = ("far under healthy gait's: a short-stepping (shuffling, festinating) gait, on which the uncalibrated "
-            "waist step length is not validated and reads long (simulated festinating walks: +20 to +174 % distance)"
+    what = ("far under healthy gait's: a short-stepping (shuffling, festinating) gait or a trunk steadied by a "
+            f"walking aid, on which the uncalibrated waist step length is not validated {LOW_RATIO_DIRECTION}"
             if ratio < lo else
             "far over healthy gait's: the uncalibrated step length is implausibly long for this cadence")
     if ratio < lo and running_cadence(length, cadence, height_m):  # decision W177
@@ -427,8 +440,7 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
                 "probably too short")
     if pll_length is not None:  # W139
         if pll_m is not None and pendulum_m is not None and not pll_m > pendulum_m and ratio < lo:  # W208
-            what = what.replace("and reads long (simulated festinating walks: +20 to +174 % distance)",
-                                "and is not reliable")
+            what = what.replace(LOW_RATIO_DIRECTION, "and is not reliable")
         what = (f"{what}; waist-pll reads a median step of {pll_length:.2f} m, the pendulum {length:.2f} m")
         if pll_m is not None and pendulum_m is not None:  # W208: the direction is the reading's
             what += f" (distance {pll_m:.2f} m, {_direction(pll_m, pendulum_m)} the pendulum's {pendulum_m:.2f} m)"
@@ -439,10 +451,7 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
     return (("" if pll_length is None else PLL_WALK_RATIO_BASIS) +
             f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
             f"{n} steps; healthy gait ~{healthy:.4f} at {height_m:.2f} m tall, outside {lo:.4f}-{hi:.4f} warns, "
-            f"decision W100, scaled to the stature by W116) is {what}; the distance, speed and step lengths need a "
-            "calibration on this walker's own walk of known length (a 10 m walk test, or this recording if you know "
-            "the distance walked): 'pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with "
-            "--params PARAMS.json")
+            f"decision W100, scaled to the stature by W116) is {what}; {WALK_RATIO_ADVICE}")
 
 
 #: decision W140: a calibrated track whose median cadence is outside this factor of its calibration walks' warns
