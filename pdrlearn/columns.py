@@ -310,7 +310,8 @@ SESSIONS: tuple[Column, ...] = (
                                                      "distance in each full minute from the first step (L383)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
                                          "(our choice, L383); empty under 2 full minutes"),
-    ("splits_m", "m", "number", "--splits only, summary.json only (a list): the distance marks given (L411)"),
+    ("splits_m", "m", "number", "--splits only, summary.json only (a list): the distance marks given (L411); "
+                                "with --splits every:STEP each STEP on the path, then the path's end (L553)"),
     ("split_times_s", "s", "number", "--splits only, summary.json only (a list): each mark's time from the first "
                                      "step's start (splits.csv's time_s); empty for a mark beyond the path (L411)"),
     ("per_align", _ID, "text", "--per-align clock or first-step only: clock (periods.csv cut at the clock's whole "
@@ -1263,6 +1264,7 @@ SPLITS: tuple[Column, ...] = (
                               "that crosses it; a rest adds no distance, L411)"),
     ("split_time_s", "s", "number", "time_s minus the previous mark's (the first: time_s)"),
     ("speed_mps", "m/s", "number", "the metres since the previous mark / split_time_s"),
+    ("pace_min_per_km", "min/km", "number", "split_time_s in minutes / the kilometres since the previous mark (L554)"),
 )
 
 #: decision L412: a foot track's direction_changes.csv, one row per change of travel direction

@@ -256,10 +256,11 @@ WALK_TEST_DURATION_OPT = typer.Option(None, "--walk-test-duration", metavar="SEC
                                       "2MWT, the ATS 2002 protocol's 'go'); walking after it (back to a chair) "
                                       "is not scored (decision L516).")
 SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times at distances along the tracked path "
-                          "(e.g. 5,10,20: a sprint's marks, metres from the first step): OUT/splits.csv (each mark's "
+                          "(e.g. 5,10,20: a sprint's marks, metres from the first step; every:1000: a mark every "
+                          "1000 m and the final partial split at the path's end, L553): OUT/splits.csv (each mark's "
                           "time from the first step's start, interpolated within the stride that crosses it, the "
-                          "split time and mean speed since the previous mark) and a summary line; marks beyond the "
-                          "path are named in one warning (decision L411).")
+                          "split time, mean speed and pace in min/km since the previous mark, L554) and a summary "
+                          "line; marks beyond the path are named in one warning (decision L411).")
 TEN_M_WALK_OPT = typer.Option(None, "--ten-m-walk", metavar="ACCEL,TIMED,DECEL", help="The 10 m walk test's "
                               "walkway in metres: an acceleration zone, the timed distance and a deceleration zone "
                               "(default 2,10,2 on 14 m, L312; e.g. 2,6,2: a 10 m walkway's middle 6 m). Every "
@@ -393,6 +394,8 @@ def track(
         pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from the 1st step
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
+
+        pdrlearn track march/ --splits every:1000 --out out/march   # every km and the last partial km (L553)
 
         pdrlearn track out/sim/A_u1 --ten-m-walk 2,6,2 --out out/A_10mwt   # a 10 m walkway's middle 6 m (L522)
 

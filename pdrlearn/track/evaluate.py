@@ -685,7 +685,8 @@ def _basic(result: TrackResult, out: dict) -> None:
 
     # decisions L312, L313: the 10 m walk test's middle 10 m; L522: --ten-m-walk's walkway; L524: every trial
     out.update(ten_metre_walk(result.steps, result.info.get("ten_m_walk_m")))
-    out.update(t25fw(result.steps))  # decision L387: the timed 25-foot walk from standing
+    # decision L387: the timed 25-foot walk from standing; L552: a long bout only on a declared walkway
+    out.update(t25fw(result.steps, walkway=result.info.get("ten_m_walk_m") is not None))
     from pdrlearn.track.stair_flights import flight_summary
 
     out.update(flight_summary(result.steps))  # decision L432: stairs.csv's flights up and down

@@ -6,11 +6,15 @@ each row of the step table from the row's start (the distance before it) to its 
 and stays put between rows (a rest adds no distance) - :func:`pdrlearn.track.corridor._distance_in_time`, the
 corridor laps' own clock. The time a mark is passed is interpolated linearly within the row that crosses it, and
 counted from the first row's start. Pure functions of the step table.
+
+Decision L553: ``--splits every:1000`` marks every 1000 m up to the path's end and ends with the final partial
+split at the path's end (a 9163 m march: 1000, ..., 9000 and 9163 m); L554: each split's pace (min/km).
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
@@ -19,18 +23,48 @@ from pdrlearn.errors import DataError
 from pdrlearn.warning_lines import coded
 
 #: decision L411: splits.csv's columns
-SPLIT_COLUMNS = ("split", "distance_m", "time_s", "split_time_s", "speed_mps")
+SPLIT_COLUMNS = ("split", "distance_m", "time_s", "split_time_s", "speed_mps", "pace_min_per_km")  # L554: pace
 #: decision L411: the summary keys :func:`split_table` gives
 KEYS = ("splits_m", "split_times_s")
 
 
-def parse_splits(text: str | None) -> tuple[float, ...] | None:
+#: decision L553: the step form's prefix (``--splits every:1000``)
+EVERY = "every:"
+
+
+@dataclass(frozen=True)
+class EverySplit:
+    """Decision L553: ``--splits every:STEP``: a mark every ``step_m`` metres up to the path's end, then the end."""
+
+    step_m: float
+
+    def marks(self, path_m: float) -> np.ndarray:
+        """The marks of a path ``path_m`` long: each whole step on it, then ``path_m`` itself (the final partial
+        split, rounded down to the cm so the path reaches it) when the path goes on past the last whole step."""
+        n = int(math.floor(path_m / self.step_m + 1e-9))
+        whole = self.step_m * np.arange(1, n + 1)
+        end = math.floor(path_m * 100.0 + 1e-6) / 100.0  # + 1e-6: a sum of 13.3 m is 13.2999...
+        return np.append(whole, end) if end > (whole[-1] if n else 0.0) else whole
+
+
+def parse_splits(text: str | None) -> tuple[float, ...] | EverySplit | None:
     """Decision B307: ``--splits`` as distances in metres (``5,10,20``): positive, finite and increasing, else one
-    error line naming the option and the fix; None when not given."""
+    error line naming the option and the fix; None when not given. Decision L553: ``every:STEP`` (one positive
+    distance in metres) gives an :class:`EverySplit`."""
     if text is None:
         return None
+    fix = ("give increasing distances in metres along the path from the first step, e.g. --splits 5,10,20, or a "
+           "mark every STEP metres, e.g. --splits every:1000")
+    if str(text).strip().lower().startswith(EVERY):  # decision L553
+        step = str(text).strip()[len(EVERY):].strip()
+        try:
+            step_m = float(step)
+        except ValueError:
+            step_m = float("nan")
+        if not math.isfinite(step_m) or step_m <= 0:
+            raise DataError(f"--splits {text!r}: {step!r} is not a positive distance; {fix}")
+        return EverySplit(step_m)
     parts = [p.strip() for p in str(text).split(",")]
-    fix = "give increasing distances in metres along the path from the first step, e.g. --splits 5,10,20"
     try:
         values = [float(p) for p in parts]
     except ValueError:
@@ -66,7 +100,11 @@ def _crossing_times(steps: pd.DataFrame, marks: np.ndarray) -> tuple[np.ndarray,
 def split_table(steps: pd.DataFrame, marks) -> tuple[pd.DataFrame, dict, list[str]]:
     """Decision L411: ``(splits, summary, warnings)`` of a tracked step table timed at the distance ``marks`` (m):
     splits.csv's rows (:data:`SPLIT_COLUMNS`, one per mark the path reaches), the summary's :data:`KEYS` (a mark
-    beyond the path has a None time) and one warning line naming the marks beyond the tracked path."""
+    beyond the path has a None time) and one warning line naming the marks beyond the tracked path. ``marks`` may be
+    an :class:`EverySplit` (decision L553): its marks on this path, the last one the path's end."""
+    if isinstance(marks, EverySplit):  # decision L553: the marks depend on the path's length
+        ok = len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns)
+        marks = marks.marks(_crossing_times(steps, np.empty(0))[1]) if ok else np.array([marks.step_m])
     marks = np.asarray(list(marks), float)
     keys = {"splits_m": [float(m) for m in marks], "split_times_s": [None] * len(marks)}
     empty = pd.DataFrame(columns=list(SPLIT_COLUMNS))
@@ -79,7 +117,9 @@ def split_table(steps: pd.DataFrame, marks) -> tuple[pd.DataFrame, dict, list[st
     for n, (m, t) in enumerate(zip(marks[reached], times[reached], strict=True), start=1):
         dt = float(t - prev_t)
         rows.append({"split": n, "distance_m": float(m), "time_s": float(t), "split_time_s": dt,
-                     "speed_mps": float((m - prev_d) / dt) if dt > 0 else float("nan")})
+                     "speed_mps": float((m - prev_d) / dt) if dt > 0 else float("nan"),
+                     # decision L554: minutes per kilometre of this split (a march's pace)
+                     "pace_min_per_km": float(dt / 60.0 / ((m - prev_d) / 1000.0)) if m > prev_d else float("nan")})
         prev_d, prev_t = float(m), float(t)
     keys["split_times_s"] = [float(t) if np.isfinite(t) else None for t in times]
     lines = []

@@ -35,6 +35,11 @@ RUN_OUT_M = 1.0
 LOWER_BACK_NOTE = ("not given on the lower back: its step lengths read slow walkers' short steps long, so the 2 m "
                    "and 12 m marks are passed early (simulated 0.45-1.0 m/s walkers, waist-pendulum without "
                    "calibration: speed +34 to +164 %, decision L313); time the walk with a foot unit")
+#: decision L552 (our choice, no document gives one): with no walkway declared (no ``track --ten-m-walk``), a walking
+#: bout longer than this (m) is not a walkway test - a march or a long walk (trial T3 finding 9: "10 m walk test
+#: 5.30 s" on a 9 km march) - and the automatic 10 m walk and T25FW skip it. 100 m: ten 10 m walk tests, as
+#: position_sigma's 100 m; a 14 m walkway's bout with run-outs is some 20 m
+WALKWAY_BOUT_MAX_M = 100.0
 #: the summary keys :func:`ten_metre_walk` gives (decision L312)
 KEYS = ("ten_m_walk_time_s", "ten_m_walk_speed_mps", "ten_m_walk_note")
 
@@ -94,6 +99,12 @@ def _path(st: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
     return t, d, x, y
 
 
+def _bout_limit(zones) -> float | None:
+    """Decision L552: the longest bout the walk tests time: none with a declared walkway (``zones``), else
+    :data:`WALKWAY_BOUT_MAX_M`."""
+    return None if zones else WALKWAY_BOUT_MAX_M
+
+
 def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None) -> dict:
     """Decision L312: :data:`KEYS` of a tracked step table: the first walking bout (L104's bouts,
     :func:`pdrlearn.track.clinical.bout_rows`) whose path reaches ZONE_M + TIMED_M + ZONE_M = 14 m is timed over
@@ -101,10 +112,12 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     than 14 m is not timed - no zone is shortened and nothing extrapolated -, nor one that turns inside its first
     14 m or whose rows there lack a length; nor a lower-back track, :data:`LOWER_BACK_NOTE`), else None.
     ``zones`` (decision L522, ``track --ten-m-walk``): the walkway's (acceleration, timed, deceleration) metres
-    instead of (2, 10, 2). Decision L524: :data:`TRIAL_KEYS` count every timed bout (:func:`ten_metre_walk_trials`)."""
+    instead of (2, 10, 2). Decision L524: :data:`TRIAL_KEYS` count every timed bout (:func:`ten_metre_walk_trials`).
+    Decision L552: without ``zones`` a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
     out = timed_walk(steps, accel, timed, KEYS, LOWER_BACK_NOTE,
-                     lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)), decel_m=decel)
+                     lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)), decel_m=decel,
+                     max_bout_m=_bout_limit(zones))
     trials = ten_metre_walk_trials(steps, zones)
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524
     missed = _near_misses(steps, accel + timed + decel)
@@ -134,7 +147,7 @@ def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float]
     rows = []
     if len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns) and not _is_lower_back(steps):
         for a, b in bout_rows(steps):
-            got = _time_bout(steps, a, b, accel, timed, decel)
+            got = _time_bout(steps, a, b, accel, timed, decel, _bout_limit(zones))  # L552
             if isinstance(got, tuple):
                 rows.append((len(rows) + 1, got[0], got[1], got[1] - got[0], timed / (got[1] - got[0])))
     return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
@@ -149,21 +162,24 @@ def _near_misses(steps: pd.DataFrame, need: float) -> list[tuple[int, float]]:
     return [(n, m) for n, m in got if isinstance(m, float) and need - RUN_OUT_M <= m < need]
 
 
-def t25fw(steps: pd.DataFrame) -> dict:
+def t25fw(steps: pd.DataFrame, walkway: bool = False) -> dict:
     """Decision L387: :data:`T25FW_KEYS` of a tracked step table: the timed 25-foot walk from a standing start - the
     first walking bout whose path reaches :data:`T25FW_M` is timed from its first row's start to where its path
     passes 7.62 m (no zone: the test starts from standing, L312's kernel with a zone of 0 m); a shorter, turning or
-    lower-back walk is not timed (L313's rules), ``t25fw_note`` says why."""
+    lower-back walk is not timed (L313's rules), ``t25fw_note`` says why. Decision L552: unless ``walkway`` (a
+    walkway declared, ``track --ten-m-walk``) a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed."""
     return timed_walk(steps, 0.0, T25FW_M, T25FW_KEYS, T25FW_LOWER_BACK_NOTE,
                       lambda longest, need: (f"no walking bout of {need:g} m (25 ft, from standing; the longest "
                                              f"{math.floor(longest * 100.0 + 1e-6) / 100.0:.2f} m; decision L387): "
-                                             "a shorter walk is not timed"))
+                                             "a shorter walk is not timed"), max_bout_m=_bout_limit(walkway))
 
 
-def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: float, decel_m: float):
+def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: float, decel_m: float,
+               max_bout_m: float | None = None):
     """Decisions L312, L313, L434: the bout ``steps.iloc[a:b]`` timed over the ``timed_m`` after its first
     ``zone_m`` when its path reaches ``zone_m + timed_m + decel_m``: the times ``(t0, t1)``; a float (the bout's
-    known length) when it is shorter; a str (the note) when it reaches that length but is refused."""
+    known length) when it is shorter; a str (the note) when it reaches that length but is refused - decision L552:
+    also when the bout is longer than ``max_bout_m`` (a march, not a walkway)."""
     need = zone_m + timed_m + decel_m
     t, d, x, y = _path(steps.iloc[a:b])
     length = np.abs(steps["length_m"].to_numpy(float)[a:b])
@@ -171,6 +187,10 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
     reach = np.flatnonzero(known >= need)
     if not len(reach):
         return float(known[-1])
+    if max_bout_m is not None and known[-1] > max_bout_m:  # decision L552
+        return (f"the walking bout is {known[-1]:.0f} m long, far longer than a walkway (over {max_bout_m:g} m, "
+                f"decision L552): a long walk or a march, not a {timed_m:g} m walk test; not timed - give track "
+                "--ten-m-walk ACCEL,TIMED,DECEL to time a walkway on it")
     k = int(reach[0])
     if not np.isfinite(d[: k + 1]).all() or not np.isfinite(t[: k + 1]).all():
         return f"a stride of the first {need:g} m has no length or no time (decision L313); not timed"
@@ -191,13 +211,14 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
 
 
 def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[str, str, str], lower_back_note: str,
-               short_note, decel_m: float | None = None) -> dict:
+               short_note, decel_m: float | None = None, max_bout_m: float | None = None) -> dict:
     """Decisions L312, L387: ``keys`` (time, speed, note) of the first walking bout whose path reaches ``zone_m`` +
     ``timed_m`` + ``decel_m`` (default ``zone_m``; L522), timed over the ``timed_m`` after its first ``zone_m``
     (L313's refusals, :func:`_time_bout`; ``short_note(longest, need)`` the note of a walk too short). Decision L535:
     a bout L313 refuses (a turn in it) does not end the search: the first bout timed is the keys', the note naming
     the refused bout before it; with none timed, the first refusal is the note (review R0 finding 3: the summary,
-    console and clinical.md said "not timed" beside ten_m_walk_trials.csv's timed trials)."""
+    console and clinical.md said "not timed" beside ten_m_walk_trials.csv's timed trials). Decision L552: a bout
+    over ``max_bout_m`` is refused."""
     time_key, speed_key, note_key = keys
     out = dict.fromkeys(keys)
     decel_m = zone_m if decel_m is None else decel_m
@@ -209,7 +230,7 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         return out
     longest, refused = 0.0, None
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
-        got = _time_bout(steps, a, b, zone_m, timed_m, decel_m)
+        got = _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m)
         if isinstance(got, float):
             longest = max(longest, got)
             continue
