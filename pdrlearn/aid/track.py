@@ -123,13 +123,17 @@ def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | Non
 
 #: decision D39: the GNSS scale replaces the steps' lengths only when its windows cover at least this much PDR path (m)
 MIN_SCALE_COVER_M = 1000.0
+#: decision D41: the stride columns proportional to ``length_m`` (``speed_mps`` = |length_m| / a time), scaled with it
+SCALED_COLUMNS = ("length_m", "speed_mps")
 
 
 def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.DataFrame | None]:
     """Decision D39: the GNSS-calibrated distance. The filter's fitted scale (``distance_scale_``, on stretches of good
     fixes) multiplies the steps' ``length_m`` when its windows cover :data:`MIN_SCALE_COVER_M`, so ``distance_m``,
-    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Returns (info keys, the
-    scaled steps or None)."""
+    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Decision D41: every
+    length-derived stride column (:data:`SCALED_COLUMNS`: ``length_m`` and the ``speed_mps`` the pipeline already
+    derived from it) is scaled together, so ``speed_mps * stride_time_s == |length_m|`` still holds; ``raw_length_m``
+    (the estimate before the rules) stays the PDR's. Returns (info keys, the scaled steps or None)."""
     pdr_m = float(np.nansum(steps["length_m"].to_numpy(float)))
     scale, cover = float(f.distance_scale_), float(f.distance_scale_covered_m_)
     ok = np.isfinite(scale) and cover >= MIN_SCALE_COVER_M
@@ -141,7 +145,9 @@ def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.Dat
     if not ok:
         return info, None
     out = steps.copy()
-    out["length_m"] = out["length_m"].to_numpy(float) * scale
+    for col in SCALED_COLUMNS:
+        if col in out:
+            out[col] = out[col].to_numpy(float) * scale
     return info, out
 
 
