@@ -32,3 +32,36 @@ def test_aided_speed_is_scaled_with_the_length(tmp_path):
     assert ok.sum() > 100
     np.testing.assert_allclose((st["speed_mps"] * st["stride_time_s"])[ok], st["length_m"].abs()[ok], rtol=1e-9)
     assert st["speed_mps"].median() == pytest.approx(0.75 / 0.55, rel=0.015)  # the true speed, not 0.8 x
+
+
+# --- W457 ------------------------------------------------------------------------------------------------
+def _quiet(args: list) -> int:
+    import contextlib
+    import io
+
+    from pdrlearn.cli import main
+
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        return main([str(a) for a in args])
+
+
+def test_gait_all_with_a_relative_root_names_absolute_sessions_and_report_reads_it_anywhere(tmp_path, monkeypatch):
+    import json
+
+    base = tmp_path / "study"
+    for foot in ("left", "right"):
+        assert _quiet(["simulate", "--route", "stand:2, straight:12, stand:2", "--user-seed", 11080, "--seed", 1,
+                       "--rate", 50, "--foot", foot, "--subject", "P11080",
+                       "--out", base / "clinic" / "P11080" / "v1" / foot]) == 0
+    monkeypatch.chdir(base)
+    assert _quiet(["gait-all", "clinic", "--out", "out/ga"]) == 0  # ROOT relative to the cwd
+    assert _quiet(["track-all", "clinic", "--out", "out/ta", "--no-plot"]) == 0
+    summary = json.loads((base / "out" / "ga" / "P11080" / "v1" / "gait_summary.json").read_text())
+    assert summary["sessions"]["left"]["session"] == str((base / "clinic" / "P11080" / "v1" / "left").resolve())
+    texts = []
+    for cwd in (base, tmp_path):  # the report's clinical.md does not depend on where it runs
+        monkeypatch.chdir(cwd)
+        assert _quiet(["report", base / "out", "--out", tmp_path / f"r{len(texts)}", "--clinical"]) == 0
+        texts.append((tmp_path / f"r{len(texts)}" / "clinical.md").read_text())
+    assert texts[0] == texts[1]
+    assert texts[1].count("- Asymmetry (both feet") == 1 and "Asymmetry: not measured" not in texts[1]
