@@ -65,3 +65,31 @@ def test_gait_all_with_a_relative_root_names_absolute_sessions_and_report_reads_
         texts.append((tmp_path / f"r{len(texts)}" / "clinical.md").read_text())
     assert texts[0] == texts[1]
     assert texts[1].count("- Asymmetry (both feet") == 1 and "Asymmetry: not measured" not in texts[1]
+
+
+# --- L555 ------------------------------------------------------------------------------------------------
+def test_known_step_lengths_needs_no_steps_by_contacts_memory_and_keeps_its_output():
+    """Decision L555: ``known_step_lengths`` on one side of a ~100 min march (5500 steps, 5500 ics rows; the matrix
+    was 484 MB, review R3) peaks under 20 MB and matches each step as the matrix's argmin did."""
+    import tracemalloc
+
+    from pdrlearn.track.bilateral import known_step_lengths
+
+    n = 5500
+    rng = np.random.default_rng(11081)
+    t = np.arange(n) * 1.1
+    ics = pd.DataFrame({"ic_s": t, "foot": "left", "step_length_m": 0.6 + 0.1 * rng.random(n)})
+    steps = pd.DataFrame({"side": "left", "ic_s": t + rng.normal(0, 0.006, n)})
+    tracemalloc.start()
+    try:
+        got = known_step_lengths(steps, ics)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 20e6
+    small = steps.iloc[:400]
+    near = np.abs(small["ic_s"].to_numpy()[:, None] - t[None, :])
+    j = near.argmin(axis=1)
+    ref = np.where(near[np.arange(400), j] <= 0.01, ics["step_length_m"].to_numpy()[j], np.nan)
+    np.testing.assert_array_equal(got["step_length_m"].to_numpy()[:400], ref)
+    assert np.isnan(ref).any() and np.isfinite(ref).any()  # both outcomes checked
