@@ -93,3 +93,36 @@ def test_known_step_lengths_needs_no_steps_by_contacts_memory_and_keeps_its_outp
     ref = np.where(near[np.arange(400), j] <= 0.01, ics["step_length_m"].to_numpy()[j], np.nan)
     np.testing.assert_array_equal(got["step_length_m"].to_numpy()[:400], ref)
     assert np.isnan(ref).any() and np.isfinite(ref).any()  # both outcomes checked
+
+
+# --- L556 ------------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def walk(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("fo") / "walk"
+    assert _quiet(["simulate", "--route", "stand:2, straight:12, stand:2", "--user-seed", 11082, "--seed", 1,
+                   "--rate", 50, "--out", out]) == 0
+    return out
+
+
+def test_compass_keep_without_the_waist_unit_is_refused_in_one_line(walk, tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    out = tmp_path / "o"
+    assert main(["track", str(walk), "--units", "foot", "--compass", "keep", "--no-plot", "--out", str(out)]) == 2
+    err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
+    assert len(err) == 1 and "--compass keep" in err[0] and "--units foot" in err[0] and not out.exists(), err
+
+
+def test_compass_keep_on_a_session_without_a_magnetometer_says_it_changes_nothing(walk, tmp_path):
+    import json
+    import shutil
+
+    from pdrlearn.cli.track import COMPASS_UNUSED
+
+    bare = tmp_path / "bare"
+    shutil.copytree(walk, bare)
+    (bare / "wMagneticField.csv").unlink()
+    for value, said in (("keep", True), ("auto", False)):
+        assert _quiet(["track", bare, "--compass", value, "--no-plot", "--out", tmp_path / value]) == 0
+        warned = json.loads((tmp_path / value / "summary.json").read_text())["info"]["warnings"]
+        assert (COMPASS_UNUSED in warned) is said
