@@ -126,3 +126,41 @@ def test_compass_keep_on_a_session_without_a_magnetometer_says_it_changes_nothin
         assert _quiet(["track", bare, "--compass", value, "--no-plot", "--out", tmp_path / value]) == 0
         warned = json.loads((tmp_path / value / "summary.json").read_text())["info"]["warnings"]
         assert (COMPASS_UNUSED in warned) is said
+
+
+# --- D42 -------------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
+def test_a_non_finite_gnss_time_offset_is_refused_in_one_line(walk, tmp_path, capsys, value):
+    from pdrlearn.cli import main
+
+    log = tmp_path / "log.nmea"
+    log.write_text("")
+    out = tmp_path / "o"
+    assert main(["track", str(walk), "--gnss", str(log), "--gnss-time-offset", value, "--out", str(out)]) == 2
+    err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
+    assert len(err) == 1 and f"--gnss-time-offset {value}" in err[0] and "finite" in err[0] and not out.exists(), err
+
+
+def test_fixes_outside_the_track_get_advice_from_how_the_log_was_placed(tmp_path):
+    from datetime import UTC, datetime
+
+    from pdrlearn.aid.fixgen import write_nmea
+    from pdrlearn.errors import DataError
+
+    steps, truth = _legs((200.0,))
+    fx = gnss_fixes(truth, accuracy_m=4.0, origin=ORIGIN, seed=6)
+    write_nmea(fx, tmp_path / "log.nmea")
+    pdr = _pdr(steps)
+    far = datetime(2026, 3, 15, 3, 0, tzinfo=UTC).isoformat()  # the log's 10:00 UTC is 7 h after this start
+    cases = ((Session(name="w"), 1e6, "--gnss-time-offset put the first fix at 1000000.0 s"),
+             (Session(name="w", meta={"recording_start": far}), None, "placed by meta.json recording_start"))
+    for session, offset, words in cases:
+        warned = aid_track(pdr, session, gnss_path=tmp_path / "log.nmea", gnss_time_offset_s=offset).info["warnings"]
+        line = next(w for w in warned if "lies within the track" in w)
+        assert words in line and "fix CSV's t" not in line, line
+    csv = tmp_path / "late.csv"  # a session-seconds CSV keeps the units advice
+    fx.assign(t=fx["t"] + 1e4)[["t", "lat", "lon", "accuracy_m"]].to_csv(csv, index=False)
+    line = next(w for w in aid_track(pdr, Session(name="w"), gnss_path=csv).info["warnings"] if "lies within" in w)
+    assert "a fix CSV's t is in seconds" in line
+    with pytest.raises(DataError, match="not a finite number"):  # the Python API refuses it too
+        aid_track(pdr, Session(name="w"), gnss_path=tmp_path / "log.nmea", gnss_time_offset_s=float("nan"))

@@ -574,6 +574,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if gnss_time_offset is not None and gnss is None:  # decision D38
         raise DataError(f"track: --gnss-time-offset {gnss_time_offset:g} places the times of a --gnss log, which is "
                         "not given; pass --gnss FILE or drop --gnss-time-offset")
+    from pdrlearn.aid.track import check_time_offset
+
+    gnss_time_offset = check_time_offset(gnss_time_offset)  # decision D42: a finite number, before any session
     for fix_file in (gnss, fixes):  # before the tracking, which warned and worked first
         if fix_file is not None and not Path(fix_file).is_file():
             raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt), a GPX track (.gpx) or a "
