@@ -164,3 +164,26 @@ def test_fixes_outside_the_track_get_advice_from_how_the_log_was_placed(tmp_path
     assert "a fix CSV's t is in seconds" in line
     with pytest.raises(DataError, match="not a finite number"):  # the Python API refuses it too
         aid_track(pdr, Session(name="w"), gnss_path=tmp_path / "log.nmea", gnss_time_offset_s=float("nan"))
+
+
+# --- D43 -------------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("times", [["0", "1", "", "3"], ["2026-03-15T10:00:00Z", "2026-03-15T10:00:01Z", "",
+                                                          "2026-03-15T10:00:03Z"]])
+def test_a_blank_t_cell_is_named_by_its_row_not_taken_for_an_iso_time(tmp_path, times):
+    from pdrlearn.aid import read_fixes
+    from pdrlearn.errors import DataError
+
+    p = tmp_path / "blank.csv"
+    p.write_text("t,lat,lon,accuracy_m\n" + "".join(f"{t},51.0000{k},-1.8,5\n" for k, t in enumerate(times)))
+    with pytest.raises(DataError, match=r"1 row\(s\) with NaN/inf \(first: data row 3\)"):
+        read_fixes(p)
+
+
+def test_an_iso_column_names_its_first_non_blank_bad_value(tmp_path):
+    from pdrlearn.aid import read_fixes
+    from pdrlearn.errors import DataError
+
+    p = tmp_path / "bad.csv"
+    p.write_text("t,lat,lon,accuracy_m\n2026-03-15T10:00:00Z,51,-1.8,5\n,51,-1.8,5\nsoon,51,-1.8,5\n")
+    with pytest.raises(DataError, match="t value 'soon' is neither a number"):
+        read_fixes(p)
