@@ -187,3 +187,13 @@ def test_an_iso_column_names_its_first_non_blank_bad_value(tmp_path):
     p.write_text("t,lat,lon,accuracy_m\n2026-03-15T10:00:00Z,51,-1.8,5\n,51,-1.8,5\nsoon,51,-1.8,5\n")
     with pytest.raises(DataError, match="t value 'soon' is neither a number"):
         read_fixes(p)
+
+
+# --- L557 ------------------------------------------------------------------------------------------------
+def test_nearest_distance_of_a_nan_value_is_nan_so_no_tolerance_passes():
+    """Decision L557: the documented behaviour off finite input: a NaN ``x`` gets a NaN distance (as the matrix)."""
+    from pdrlearn.kernels.nearest import nearest_distance
+
+    d = nearest_distance(np.array([0.1, np.nan, 2.0]), np.array([2.0, 0.0, 1.0]))
+    assert d[0] == pytest.approx(0.1) and np.isnan(d[1]) and d[2] == 0.0
+    assert not (d[1] <= 0.5)
