@@ -123,7 +123,8 @@ ALTITUDE_OPT = typer.Option(None, "--altitude", help="plasys: the altitude from 
 COMPASS_CHOICES = ("auto", "keep")
 #: decision L556: ``--compass keep`` on a session without the waist magnetometer (it reads no compass)
 COMPASS_UNUSED = ("--compass keep chooses the fused heading's compass, but the session has no waist magnetometer "
-                  "(wMagneticField.csv), so the heading reads no compass and --compass keep changes nothing")
+                  "(wMagneticField.csv), so the heading reads no compass and --compass keep changes nothing "
+                  "(decision L556)")
 COMPASS_OPT = typer.Option("auto", "--compass", help="plasys, offline, foot + waist (the fused heading): auto = "
                            "when the compass check warns (decision L182), follow the waist gyroscope turned to the "
                            "compass (L226); keep = keep the compass (L17) all the same, e.g. outdoors, away from "
