@@ -225,31 +225,25 @@ def test_fit_length_scale_uses_straight_windows_only():
     assert np.isnan(scale) and n == 0 and cover == 0.0
 
 
-def test_aided_distance_is_gnss_calibrated_and_path_length_reported():
+def test_aided_distance_is_gnss_calibrated_and_path_length_reported(tmp_path):
     steps, truth = _legs((900.0, 900.0))
     true_m = float(steps["length_m"].sum())
     pdr = _pdr(steps, scale=0.8)  # T3's waist-only track: -19 %
     fx = gnss_fixes(truth, accuracy_m=5.0, origin=ORIGIN, seed=4)
-    out = aid_track(pdr, Session(name="w"), gnss_path=_write_csv(fx), start=ORIGIN)
+    out = aid_track(pdr, Session(name="w"), gnss_path=_write_csv(fx, tmp_path / "gnss1.csv"), start=ORIGIN)
     g = out.info["aid"]["gnss"]
     assert g["distance_scaled"] and g["distance_pdr_m"] == pytest.approx(0.8 * true_m, rel=1e-6)
     assert out.steps["length_m"].sum() == pytest.approx(true_m, rel=0.015)
     assert out.info["aid"]["path_length_m"] > 0.9 * true_m
     short = _pdr(_legs((400.0,))[0], scale=0.8)  # 400 m of windows < 1000 m: the PDR's lengths kept
-    out2 = aid_track(short, Session(name="w"), gnss_path=_write_csv(gnss_fixes(_legs((400.0,))[1], accuracy_m=5.0,
-                                                                               origin=ORIGIN, seed=4)), start=ORIGIN)
+    fx2 = gnss_fixes(_legs((400.0,))[1], accuracy_m=5.0, origin=ORIGIN, seed=4)
+    out2 = aid_track(short, Session(name="w"), gnss_path=_write_csv(fx2, tmp_path / "gnss2.csv"), start=ORIGIN)
     assert not out2.info["aid"]["gnss"]["distance_scaled"]
     assert out2.steps["length_m"].sum() == pytest.approx(short.steps["length_m"].sum())
 
 
-_CSV_N = [0]
-
-
-def _write_csv(fx: pd.DataFrame):
-    import tempfile
-
-    _CSV_N[0] += 1
-    p = Path(tempfile.mkdtemp()) / f"gnss{_CSV_N[0]}.csv"
+def _write_csv(fx: pd.DataFrame, p: Path) -> Path:
+    """The fixes as a session-seconds CSV at ``p`` (in the test's tmp_path: nothing left behind)."""
     fx[["t", "lat", "lon", "accuracy_m"]].to_csv(p, index=False)
     return p
 

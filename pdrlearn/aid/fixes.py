@@ -285,17 +285,24 @@ def _rename_aliases(df: pd.DataFrame) -> pd.DataFrame:
 
 def _utc_seconds(values: pd.Series, source: str) -> np.ndarray | None:
     """Decision D37: ISO 8601 date-times -> seconds since the epoch (UTC; a time without an offset is read as UTC,
-    as GPX and NMEA times are); None when the column is numeric (session seconds)."""
+    as GPX and NMEA times are); None when the column is numeric (session seconds). Decision D43: decided on the
+    non-blank cells (a blank cell is no evidence of ISO times); a blank cell stays NaN, so
+    :func:`validate_fix_table` names its row."""
     num = pd.to_numeric(values, errors="coerce")
-    if num.notna().all():
+    blank = values.isna() | values.astype(str).str.strip().eq("")
+    if (num.notna() | blank).all():
         return None
+    text = values[~blank].astype(str).str.strip()
     try:
-        dt = pd.to_datetime(values.astype(str).str.strip(), utc=True, format="ISO8601")
-    except (ValueError, TypeError):
-        bad = values[num.isna()].iloc[0]
+        dt = pd.to_datetime(text, utc=True, format="ISO8601")
+    except (ValueError, TypeError):  # D43: the first non-blank cell that is no ISO time
+        unread = pd.to_datetime(text, utc=True, format="ISO8601", errors="coerce").isna()
+        bad = values[~blank][unread].iloc[0] if unread.any() else values[num.isna() & ~blank].iloc[0]
         raise DataError(f"{source}: t value {bad!r} is neither a number (session seconds) nor an ISO 8601 date-time; "
                         f"a fix CSV needs {CSV_NEEDS}") from None
-    return (dt - pd.Timestamp("1970-01-01", tz="UTC")).dt.total_seconds().to_numpy(float)
+    out = np.full(len(values), np.nan)
+    out[~blank.to_numpy()] = (dt - pd.Timestamp("1970-01-01", tz="UTC")).dt.total_seconds().to_numpy(float)
+    return out
 
 
 def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M) -> FixLog:

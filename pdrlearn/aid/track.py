@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import logging
+import math
 from pathlib import Path
 
 import numpy as np
@@ -68,6 +69,40 @@ def _first_fix_session_t(flog: FixLog, session: Session, offset_s: float | None)
     return session.t_start, "assumed"
 
 
+def check_time_offset(offset_s: float | None) -> float | None:
+    """Decision D42: ``--gnss-time-offset`` (``gnss_time_offset_s``) as a float, None kept; a non-finite value (nan,
+    inf) is refused in one line (it put every fix at nan / inf s, so the track was written unaided)."""
+    if offset_s is None:
+        return None
+    if not math.isfinite(float(offset_s)):
+        raise DataError(f"--gnss-time-offset {offset_s}: not a finite number of seconds; give the first fix's seconds "
+                        "after the session start (e.g. --gnss-time-offset 120), or drop it to place the log by "
+                        "meta.json recording_start")
+    return float(offset_s)
+
+
+#: decision D42: the all-outside line's advice, by how the log's times were placed (``time_alignment``, D38)
+OUTSIDE_HINTS = {
+    "offset": "--gnss-time-offset put the first fix at {first:.1f} s; give the first fix's seconds after the "
+              "session start",
+    "recording_start": "the log's UTC times were placed by meta.json recording_start (first fix at {first:.1f} s); "
+                       "check recording_start's date, time and UTC offset, or pass --gnss-time-offset S",
+    "utc_start_s": "the log's UTC times were placed by meta.json utc_start_s (first fix at {first:.1f} s); check "
+                   "utc_start_s, or pass --gnss-time-offset S",
+    "assumed": "the first fix was taken at the session start ({first:.1f} s); pass --gnss-time-offset S (the first "
+               "fix's seconds after the session start) or write recording_start in meta.json",
+}
+
+
+def _outside_hint(stats: dict) -> str:
+    """Decision D42: the advice of the "none of the fixes lies within the track" line: a CSV's session-seconds
+    ``t`` (:data:`FIX_TIME_HINT`) or, for a log placed by D38, how it was placed (:data:`OUTSIDE_HINTS`)."""
+    how = stats.get("time_alignment")
+    if how not in OUTSIDE_HINTS:
+        return FIX_TIME_HINT.replace("a fix's t", "a fix CSV's t")
+    return OUTSIDE_HINTS[how].format(first=float(stats.get("first_fix_s", float("nan"))))
+
+
 def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog, str | None]:
     """Read a fix file (NMEA, GPX or CSV, decision D37) and put its times on the session clock (decision D38);
     returns the log and a warning line (or None) when the log's times could not be placed."""
@@ -75,6 +110,7 @@ def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog
     if not path.is_file():
         raise DataError(f"{path}: no such fix file; pass an NMEA log (.nmea/.txt), a GPX track (.gpx) or a CSV "
                         "(t, lat, lon, accuracy_m)")
+    offset_s = check_time_offset(offset_s)
     out = read_fixes(path)
     if "time_base" not in out.stats:  # a CSV's t on the session clock
         if offset_s is not None:
@@ -123,13 +159,17 @@ def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | Non
 
 #: decision D39: the GNSS scale replaces the steps' lengths only when its windows cover at least this much PDR path (m)
 MIN_SCALE_COVER_M = 1000.0
+#: decision D41: the stride columns proportional to ``length_m`` (``speed_mps`` = |length_m| / a time), scaled with it
+SCALED_COLUMNS = ("length_m", "speed_mps")
 
 
 def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.DataFrame | None]:
     """Decision D39: the GNSS-calibrated distance. The filter's fitted scale (``distance_scale_``, on stretches of good
     fixes) multiplies the steps' ``length_m`` when its windows cover :data:`MIN_SCALE_COVER_M`, so ``distance_m``,
-    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Returns (info keys, the
-    scaled steps or None)."""
+    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Decision D41: every
+    length-derived stride column (:data:`SCALED_COLUMNS`: ``length_m`` and the ``speed_mps`` the pipeline already
+    derived from it) is scaled together, so ``speed_mps * stride_time_s == |length_m|`` still holds; ``raw_length_m``
+    (the estimate before the rules) stays the PDR's. Returns (info keys, the scaled steps or None)."""
     pdr_m = float(np.nansum(steps["length_m"].to_numpy(float)))
     scale, cover = float(f.distance_scale_), float(f.distance_scale_covered_m_)
     ok = np.isfinite(scale) and cover >= MIN_SCALE_COVER_M
@@ -141,7 +181,9 @@ def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.Dat
     if not ok:
         return info, None
     out = steps.copy()
-    out["length_m"] = out["length_m"].to_numpy(float) * scale
+    for col in SCALED_COLUMNS:
+        if col in out:
+            out[col] = out[col].to_numpy(float) * scale
     return info, out
 
 
@@ -238,7 +280,7 @@ def aid_track(
                 warnings.append(
                     f"aid: none of the {len(fx)} fixes in {path} lies within the track ({t_start:.1f} to "
                     f"{t_end:.1f} s; fixes at {ft.min():.1f} to {ft.max():.1f} s), so none is used; "
-                    + FIX_TIME_HINT.replace("a fix's t", "a fix CSV's t")
+                    + _outside_hint(flog.stats)  # decision D42
                 )
         info["origin"] = list(origin) if origin else None
         # start known (or local fixes around the track's own origin): 1 m; else the first fix's sigma

@@ -63,10 +63,13 @@ def _portable(summary: dict, args: dict) -> dict:
 
 def _placed(summary: dict, root: Path) -> dict:
     """Decision W437: a record's gait_summary.json object with its sessions' paths under this run's ROOT again (the
-    file names each foot's session folder as `gait --out`'s does)."""
+    file names each foot's session folder as `gait --out`'s does). Decision W457: under the resolved ROOT, so a relative
+    ROOT gives the same absolute folders as track-all's summary.json (C13) and `report --clinical` reads the same from
+    any working directory."""
     import copy
 
     summary = copy.deepcopy(summary)
+    root = Path(root).resolve()
     for side in ("left", "right"):
         entry = (summary.get("sessions") or {}).get(side)
         if isinstance(entry, dict) and entry.get("session"):

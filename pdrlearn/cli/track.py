@@ -121,6 +121,10 @@ ALTITUDE_OPT = typer.Option(None, "--altitude", help="plasys: the altitude from 
 #: decision L545: ``--compass``'s values: auto = L182's check and L226's fallback to the waist gyroscope when it
 #: warns (the default); keep = the fused heading keeps the compass (L17) even when the check warns
 COMPASS_CHOICES = ("auto", "keep")
+#: decision L556: ``--compass keep`` on a session without the waist magnetometer (it reads no compass)
+COMPASS_UNUSED = ("--compass keep chooses the fused heading's compass, but the session has no waist magnetometer "
+                  "(wMagneticField.csv), so the heading reads no compass and --compass keep changes nothing "
+                  "(decision L556)")
 COMPASS_OPT = typer.Option("auto", "--compass", help="plasys, offline, foot + waist (the fused heading): auto = "
                            "when the compass check warns (decision L182), follow the waist gyroscope turned to the "
                            "compass (L226); keep = keep the compass (L17) all the same, e.g. outdoors, away from "
@@ -571,6 +575,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if gnss_time_offset is not None and gnss is None:  # decision D38
         raise DataError(f"track: --gnss-time-offset {gnss_time_offset:g} places the times of a --gnss log, which is "
                         "not given; pass --gnss FILE or drop --gnss-time-offset")
+    from pdrlearn.aid.track import check_time_offset
+
+    gnss_time_offset = check_time_offset(gnss_time_offset)  # decision D42: a finite number, before any session
     for fix_file in (gnss, fixes):  # before the tracking, which warned and worked first
         if fix_file is not None and not Path(fix_file).is_file():
             raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt), a GPX track (.gpx) or a "
@@ -646,6 +653,10 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if compass != "auto" and streaming:
         raise DataError("track: --compass keep chooses the offline fused heading's source; the --streaming kernel "
                         "heads by the waist gyroscope and reads no compass: drop --streaming or --compass")
+    if compass != "auto" and "waist" not in (parse_units(units) or ("waist",)):  # decision L556, as --altitude fused
+        raise DataError(f"track: --compass {compass} chooses the fused heading's source, the waist unit's "
+                        f"compass, which --units {units} leaves out: add waist to --units (--units foot,waist) or "
+                        "drop --compass")
     if length_bounds is not None:
         try:
             bounds = [float(v) for v in length_bounds.split(",")]
@@ -911,6 +922,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     heading0 = o.get("initial_heading_rad")
     if heading0 is not None:  # decision L98: every pipeline's API takes it (ENU rad)
         kw["initial_heading"] = heading0
+    compass_lines = []
     if pipeline == "plasys":
         kw["method"] = method
         if streaming:
@@ -934,6 +946,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             kw["align"] = True  # with --streaming refused by track_settings, before any session
         if o.get("compass", "auto") == "keep":  # decision L545
             kw["compass_fallback"] = False
+            if not session.has("wMagneticField"):  # decision L556: said, not ignored silently
+                compass_lines.append(COMPASS_UNUSED)
         if o.get("ignore_force"):  # decision L366 (offline only: plasys refuses it with streaming=True)
             kw["ignore_force"] = True
         if toe_off:  # decision L73
@@ -964,6 +978,12 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         result.info["unit_alignment"] = given_clock
         result.info["warnings"] = [*clock_lines, *result.info.get("warnings", [])]
         for line in clock_lines:
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+    if compass_lines:  # decision L556
+        import logging
+
+        result.info["warnings"] = [*result.info.get("warnings", []), *compass_lines]
+        for line in compass_lines:
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
     aided = gnss is not None or fixes is not None
     if heading0 is not None:

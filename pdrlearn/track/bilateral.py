@@ -574,9 +574,10 @@ def known_step_lengths(steps: pd.DataFrame, ics: pd.DataFrame | None, *, tol_s: 
         rows = np.flatnonzero(out["side"].to_numpy() == s)
         if not len(t) or not len(rows):
             continue
-        near = np.abs(out["ic_s"].to_numpy(float)[rows][:, None] - t[None, :])
-        j = near.argmin(axis=1)
-        ok = near[np.arange(len(rows)), j] <= tol_s
+        ic = out["ic_s"].to_numpy(float)[rows]
+        j = nearest_index(ic, t)  # decision L555: no steps x contacts matrix (L546's search; a tie to the first)
+        with np.errstate(invalid="ignore"):
+            ok = np.abs(ic - t[j]) <= tol_s
         length[rows[ok]] = v[j[ok]]
     out["step_length_m"] = length
     return out
