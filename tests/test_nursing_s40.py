@@ -146,3 +146,21 @@ def test_subjects_gait_speed_is_the_sessions_definition_w447():
     assert row["gait_speed_mps"] == pytest.approx(sessions["gait_speed_mps"].iloc[0], rel=1e-12)
     assert row["bouts_time_s"] == pytest.approx(260.05)
     assert row["bouts_gait_speed_mps"] == pytest.approx(93.64 / 260.05)
+
+
+def test_w445_return_bound_sits_between_a_pll_tug_and_a_one_way_walk():
+    """W445 amended by the lead: a waist-pll TUG read a return ratio of 0.31, T2's lowest one-way walk 0.37."""
+    import numpy as np
+
+    from pdrlearn.waist.transfers import TUG_RETURN_MAX, tug_like
+
+    def ratio_walk(r):  # 5 contacts of 1 m out, 5 back of B / 5 m: net / path = (5 - B) / (5 + B) = r
+        back = 5.0 * (1.0 - r) / (1.0 + r)
+        return np.r_[np.full(5, 1.0), np.full(5, back / 5.0)], np.r_[np.zeros(5), np.full(5, np.pi)]
+
+    contacts = np.arange(10) + 10.0
+    for r, tug in ((0.31, True), (0.37, False)):
+        ln, hd = ratio_walk(r)
+        net = abs((ln * np.cos(hd)).sum()) / ln.sum()
+        assert bool(net <= TUG_RETURN_MAX) is tug
+        assert bool(tug_like(0.0, 5.0, 25.0, 30.0, contacts, ln, hd)) is tug
