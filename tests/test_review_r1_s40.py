@@ -14,7 +14,7 @@ from pdrlearn.errors import ClockWentBack, DataError
 from pdrlearn.runtime import Tracker, links, load_bundle
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from tests.test_runtime_clock_s40 import BUNDLE, _packets, _reconnected, _run, _xy
+from tests.test_runtime_clock_s40 import BUNDLE, _packets, _reconnected, _run, _xy, pods_walk
 from tests.test_runtime_threads_queue import _example
 
 
@@ -25,8 +25,7 @@ def bundle():
 
 @pytest.fixture(scope="module")
 def walk():
-    return simulate_path(parse_route("straight:15, turn:90, straight:12"), UserProfile.from_seed(10980),
-                         speed="normal", rate_hz=20.0, seed=10980, name="pods", scenario="route")
+    return pods_walk(10980)
 
 
 def _end(steps):

@@ -31,10 +31,16 @@ def bundle():
     return load_bundle(BUNDLE)
 
 
+def pods_walk(user: int):
+    """The two pods' 20 Hz walk of simulated ``user`` (27 m with a 90 deg turn), shared by the session-40 runtime
+    tests."""
+    return simulate_path(parse_route("straight:15, turn:90, straight:12"), UserProfile.from_seed(user),
+                         speed="normal", rate_hz=20.0, seed=user, name="pods", scenario="route")
+
+
 @pytest.fixture(scope="module")
 def walk():
-    return simulate_path(parse_route("straight:15, turn:90, straight:12"), UserProfile.from_seed(10720),
-                         speed="normal", rate_hz=20.0, seed=10720, name="pods", scenario="route")
+    return pods_walk(10720)
 
 
 def _packets(walk, foot=lambda t: t, waist=lambda t: t, chunk_s=0.2):

@@ -53,6 +53,20 @@ def _streams(session, clock=None, keep=None):
     return out
 
 
+def _losing_foot_packets(walk, n: int):
+    """A ``keep`` for :func:`_streams`: every foot stream loses ``n`` 4-sample packets (0.15 s of samples, 0.25 s
+    between the samples either side at 20 Hz), one every 10 s from 10 s on; the waist keeps all."""
+    t0 = float(walk["fAccelerometer"].t[0])
+    lost = [(t0 + 10.0 * k, t0 + 10.0 * k + 0.15) for k in range(1, n + 1)]
+
+    def keep(name, t):
+        if not name.startswith("f"):
+            return np.ones(len(t), bool)
+        return ~np.any([(t >= a - 1e-9) & (t <= b + 1e-9) for a, b in lost], axis=0)
+
+    return keep
+
+
 def _replay(streams, chunk_s=1.0, watch=None, **kw):
     tr = Tracker(load_bundle(BUNDLE), **kw)
     for push in replay_chunks(streams, chunk_s):
@@ -120,15 +134,7 @@ def test_a_known_drift_moves_the_waist_clock_live_as_run_does_e229(long_walk):
 def test_dropped_samples_are_counted_and_said_live_as_run_says_them_e230(walk):
     """Lost 4-sample foot packets (0.25 s between the samples either side, at 20 Hz): counted per stream and said at
     flush in run's line (T4: silent live); ``stream_checks=False`` (run, which says them when it reads) counts them."""
-    t0 = float(walk["fAccelerometer"].t[0])
-    lost = [(t0 + 10.0 * k, t0 + 10.0 * k + 0.15) for k in range(1, 5)]
-
-    def keep(name, t):
-        if not name.startswith("f"):
-            return np.ones(len(t), bool)
-        return ~np.any([(t >= a - 1e-9) & (t <= b + 1e-9) for a, b in lost], axis=0)
-
-    streams = _streams(walk, keep=keep)
+    streams = _streams(walk, keep=_losing_foot_packets(walk, 4))
     tr, _ = _replay(streams)
     stats = tr.drop_stats()
     assert stats["fAccelerometer"]["intervals"] == 4
@@ -213,14 +219,8 @@ def test_one_sample_pushes_count_dropped_samples_as_chunks_do_e230(walk):
     """Review R2 finding 1: a tracker fed one sample per push (a Bluetooth callback's feed, E17's fast path) counted
     no dropped samples (its limit was read before any chunked push had set it); now as 1 s chunks count them."""
     t0 = float(walk["fAccelerometer"].t[0])
-    lost = [(t0 + 10.0 * k, t0 + 10.0 * k + 0.15) for k in range(1, 3)]
-
-    def keep(name, t):
-        if not name.startswith("f"):
-            return np.ones(len(t), bool)
-        return ~np.any([(t >= a - 1e-9) & (t <= b + 1e-9) for a, b in lost], axis=0)
-
-    streams = {n: (t[t < t0 + 30.0], v[t < t0 + 30.0]) for n, (t, v) in _streams(walk, keep=keep).items()}
+    streams = {n: (t[t < t0 + 30.0], v[t < t0 + 30.0])
+               for n, (t, v) in _streams(walk, keep=_losing_foot_packets(walk, 2)).items()}
     chunked = _replay(streams)[0].drop_stats()
     single = _replay(streams, chunk_s=0.05)[0].drop_stats()
     assert chunked["fAccelerometer"]["intervals"] == 2
