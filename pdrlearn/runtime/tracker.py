@@ -18,13 +18,12 @@ from __future__ import annotations
 import functools
 import logging
 import math
-import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from pdrlearn.errors import ConcurrentUseError, DataError, InternalError, ModelError, VerticalAxisError
+from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import relative_length as _relative_length
@@ -99,6 +98,7 @@ from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
 from pdrlearn.runtime.restart import resume as resume_state
 from pdrlearn.runtime.stream import FootLevelling, HeightLog, Ring, fill_resampled, foot_levelled, waist_entry
+from pdrlearn.runtime.threads import new_guard, one_call_at_a_time
 
 log = logging.getLogger(__name__)
 #: float64 in native byte order. Arrays made here share this dtype object (``is`` is the cheap test), but
@@ -163,28 +163,6 @@ LEGACY_RULES, LEGACY_MIN_CONFIDENCE = "thesis", 0.0
 #: what the streamed stride rules do for a task without a class (decision C17, ``pdrlearn.track.plasys``)
 _NO_CLASS_RULE = {"terrain": "the stride's raw height change", "direction": "the estimate's own sign",
                   "length": "no length clamp"}
-
-
-def one_call_at_a_time(method):
-    """Decision E231: ``method`` (``Tracker.push`` / ``flush``) refused with one :class:`ConcurrentUseError` line when
-    another thread is inside one of them on the same tracker (a non-blocking lock: ~0.1 us a call). Without it two
-    unlocked threads interleaved their pushes silently (trial s40 T4: 89.42 m and a final y of -0.89 m instead of
-    89.41 m / -0.85 m, no error)."""
-
-    @functools.wraps(method)
-    def guarded(self, *args, **kwargs):
-        busy = self._busy
-        if not busy.acquire(False):
-            raise ConcurrentUseError(
-                f"Tracker.{method.__name__}: called from a second thread while another thread is inside push/flush "
-                "of the same tracker; hold one threading.Lock around every push and flush of a tracker, or feed it "
-                "from one thread through a queue (docs/deploying.md, decision E231)")
-        try:
-            return method(self, *args, **kwargs)
-        finally:
-            busy.release()
-
-    return guarded
 
 
 def check_tasks(bundle: Bundle, tasks, methods) -> tuple[list[str] | None, dict[str, str] | None]:
@@ -486,6 +464,8 @@ class Tracker(FixInput):
         as ``track_plasys(streaming=True, gated_level_dz=...)``; only with a bundle that classifies terrain.
     """
 
+    _one_at_a_time = "push/flush"  # decision E231: the calls one_call_at_a_time guards
+
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
     _spec: tuple | None = None  # likewise: no step computed ahead (decision E24)
     _trims = 0
@@ -568,7 +548,7 @@ class Tracker(FixInput):
         drop_duplicate_timestamps: bool = False,
         gated_level_dz: bool | str = False,
     ):
-        self._busy = threading.Lock()  # decision E231: push / flush one thread at a time
+        self._busy = new_guard()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
         self.stream_checks = bool(stream_checks)  # decisions E230, E232 (checked below)
         self.gated_level_dz = _distance.check_gated_level_dz(gated_level_dz)  # decisions L189, L206, L550
