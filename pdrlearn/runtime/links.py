@@ -44,9 +44,10 @@ def _per_unit(pushed: dict) -> dict[str, tuple[float, float]]:
 class StartClocks:
     """Decision E223: whether the two units' clocks disagree by more than ``max_lag_s`` from the start.
 
-    At the first push that holds a sample of both units, the gap between the new unit's first sample and the other
-    unit's newest (``contact``, s, waist minus foot) is how far apart the clocks read at the same wall time, whatever
-    the order the pods connected in (a unit switched on later on the same clock starts beside the other's newest: no
+    At the first push that holds a sample of both units, the gap between the new unit's newest sample and the other
+    unit's newest (``contact``, s, waist minus foot; decision E242: its newest, not its first, which lies a packet or a
+    held-back burst before) is how far apart the clocks read at the same wall time, whatever the order the pods
+    connected in (a unit switched on later on the same clock ends its first push beside the other's newest: no
     gap). Decision E238: the offset named is ``offset``: the difference of the units' first samples when it is within
     the other unit's latest push of ``contact`` (pods that connected together: exact), else ``contact`` (a pod that
     joined later: its first samples' difference is not the clocks'). The times are those of every push that passed
@@ -62,7 +63,7 @@ class StartClocks:
         self.contact: float | None = None
         self.offset: float | None = None
         self._pushed: dict[str, float] = {}  # unit -> the first sample of its latest push
-        self._joined: str | None = None  # the unit that joined the other (None: both in one push)
+        self._joined: str | None = None  # the unit that joined the other (None: both in one push, or together)
 
     def seen(self, pushed: dict) -> None:
         """Note a push's times (sensor -> (first, last) s, on the tracker's clock) until both units are seen."""
@@ -71,16 +72,21 @@ class StartClocks:
         per = _per_unit(pushed)
         if "foot" in per and "waist" in per and not self.newest:  # both in one push
             self.contact = per["waist"][0] - per["foot"][0]
+        # decision E242: a joining unit's newest sample against the other's newest (each unit's latest time known
+        # when the push arrives), not its first: a push of one packet (its span, 0.15 s at 0.2 s packets) or a burst
+        # the pod held back put its first sample that much before the other's newest
         elif "waist" in per and "foot" in self.newest and "waist" not in self.newest:  # the waist joins the foot
-            self.contact, self._joined = per["waist"][0] - self.newest["foot"], "waist"
+            self.contact, self._joined = per["waist"][1] - self.newest["foot"], "waist"
         elif "foot" in per and "waist" in self.newest and "foot" not in self.newest:  # the foot joins the waist
-            self.contact, self._joined = self.newest["waist"] - per["foot"][0], "foot"
+            self.contact, self._joined = self.newest["waist"] - per["foot"][1], "foot"
         if self.contact is not None:
             other = {"waist": "foot", "foot": "waist"}.get(self._joined)
             span = 0.0 if other is None else self.newest[other] - self._pushed[other]
             w = (per["waist"][0] if "waist" in per else self.first["waist"]) - (
                 per["foot"][0] if "foot" in per else self.first["foot"])
-            self.offset = w if abs(w - self.contact) <= span + 1e-6 else self.contact  # decision E238
+            together = abs(w - self.contact) <= span + 1e-6
+            self.offset = w if together else self.contact  # decision E238
+            self._joined = None if together else self._joined  # the pods connected together: named so
         for u, (a, b) in per.items():
             self.first[u] = min(self.first.get(u, math.inf), a)
             self.newest[u] = max(self.newest.get(u, -math.inf), b)
@@ -97,12 +103,13 @@ class StartClocks:
         if taken and unit_of(name) != behind:  # decision E238: no test of the first samples' sign
             return ""
         first, joined = self.first, self._joined
-        if off != contact or joined is None:  # the pods connected together
+        if joined is None:  # the pods connected together
             seen = f"the units' first samples at {first['foot']:.2f} s (foot) and {first['waist']:.2f} s (waist)"
         else:
             other = "foot" if joined == "waist" else "waist"
-            seen = (f"the {joined}'s first sample at {first[joined]:.2f} s when the {other}'s newest was "
-                    f"{first[joined] - (contact if joined == 'waist' else -contact):.2f} s")
+            mine = self.newest[joined]  # decision E242: its newest at contact (nothing is noted after it)
+            seen = (f"the {joined}'s newest sample at {mine:.2f} s when the {other}'s newest was "
+                    f"{mine - (contact if joined == 'waist' else -contact):.2f} s")
         return (f"the waist clock is about {abs(off):.1f} s {'ahead of' if off > 0 else 'behind'} the foot's ({seen}: "
                 f"two clocks, not a stopped sensor): pass Tracker(..., waist_clock_offset_s={given_s + off:.2f}) "
                 "(t_waist = t_foot + offset) or stamp both units on one clock set at connection (decisions E223, "
