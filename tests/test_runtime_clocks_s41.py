@@ -5,10 +5,16 @@ Short simulated walks of users 11100-11119 cut into 0.2 s pod packets with tests
 
 from __future__ import annotations
 
+import re
+import textwrap
+from pathlib import Path
+
+import numpy as np
 import pytest
 
+from pdrlearn.errors import ClockWentBack
 from pdrlearn.runtime import Tracker, links, load_bundle
-from tests.test_runtime_clock_s40 import BUNDLE, _packets, _run, pods_walk
+from tests.test_runtime_clock_s40 import BUNDLE, _packets, _run, _xy, pods_walk
 
 
 @pytest.fixture(scope="module")
@@ -48,3 +54,69 @@ def test_a_late_pod_whose_first_push_is_a_held_back_burst_is_named_by_its_newest
     c.seen({"wGyroscope": (5.0, 5.15)})
     c.seen({"fGyroscope": (-0.6, 0.15)})
     assert c.contact == pytest.approx(5.0) and "the foot's newest sample at 0.15 s" in c.note("fGyroscope", 0.0)
+
+
+# -- E243 ---------------------------------------------------------------------------------------------------------
+DOCS = Path(__file__).resolve().parents[1] / "docs" / "deploying.md"
+
+
+def _recipe():
+    """docs/deploying.md's E227 loop body (one packet) as written, compiled."""
+    m = re.search(r"\n( +)```python\n(\1from pdrlearn\.errors import ClockWentBack, DataError\n.*?)\1```",
+                  DOCS.read_text(), re.S)
+    assert m, "the ClockWentBack recipe of docs/deploying.md is gone"
+    return compile(textwrap.dedent(m.group(2)), "deploying.md", "exec")
+
+
+def _by_slice(packets):
+    """One push per 0.2 s slice holding both units' packets (a phone that gathers both pods' packets)."""
+    out: dict = {}
+    for _, a, d in packets:
+        out.setdefault(round(a, 6), {}).update(d)
+    return list(out.values())
+
+
+def _restarted(walk, at=15.0):
+    """Both pods gone 1 s and back with their clocks restarted at 0 (the phone's Bluetooth restarted)."""
+    return [(u, a, {n: (t - at, v) for n, (t, v) in d.items()} if a >= at else d)
+            for u, a, d in _packets(walk) if not (at - 1.0 <= a < at)]
+
+
+def test_the_documented_loop_recovers_both_clocks_of_one_push_in_one_pass_e243(bundle, walk):
+    """Before E243 the recipe's second push (after rebasing the foot) raised a ClockWentBack for the waist out of its
+    ``except`` block."""
+    code = _recipe()
+    clean, _ = _run(Tracker(bundle), _packets(walk))
+    tracker, got, refusals = Tracker(bundle), [], []
+    for packet in _by_slice(_restarted(walk)):
+        ns = {"tracker": tracker, "packet": packet}
+        exec(code, ns)  # noqa: S102 - the documentation's own recipe
+        got += ns["steps"]
+    got += tracker.flush()
+    assert len(got) >= len(clean) - 2 and np.hypot(*(_xy(got)[-1] - _xy(clean)[-1])) < 3.0
+    # the one refusal names both units, each first new sample just after the tracker's newest
+    tr = Tracker(bundle)
+    pushes = _by_slice(_restarted(walk))
+    for packet in pushes:
+        try:
+            tr.push(packet)
+        except ClockWentBack as e:
+            refusals.append(e)
+            break
+    e = refusals[0]
+    assert set(e.offsets) == {"foot", "waist"} and e.offsets[e.unit] == e.offset_s and not e.beside
+    assert "(ClockWentBack.offsets; decisions E227, E243)" in str(e) and "\n" not in str(e)
+    for u, off in e.offsets.items():
+        assert f"tracker.rebase_clock({u!r}, {off:.2f})" in str(e)
+
+
+def test_one_unit_restarted_in_a_push_of_both_keeps_offsets_to_that_unit_e243(bundle, walk):
+    """Only the waist restarted (the foot's samples in order): ``offsets`` is E227's one unit, as before."""
+    at = 15.0
+    packets = [(u, a, {n: (t - at, v) for n, (t, v) in d.items()} if (a >= at and u == "waist") else d)
+               for u, a, d in _packets(walk) if not (at - 1.0 <= a < at and u == "waist")]
+    tr = Tracker(bundle)
+    with pytest.raises(ClockWentBack) as info:
+        for packet in _by_slice(packets):
+            tr.push(packet)
+    assert info.value.offsets == {"waist": info.value.offset_s} and info.value.unit == "waist"

@@ -172,13 +172,31 @@ class RepeatedLines:
         return out
 
 
+def _all_went_back(head: str, back: dict) -> ClockWentBack:
+    """Decision E243: the refusal of a push holding two units whose clocks both went back (unit -> (first sample,
+    its streams' newest, offset now), the tracker's clock): each unit's first pushed sample goes just after the
+    tracker's newest, so the push's units stay beside each other as pushed (E223's reading of one push: its units'
+    first samples are the same wall time), in one refusal: rebasing one unit and pushing again refused the other."""
+    newest = max(b for _, b, _ in back.values())
+    offsets = {u: off + a - newest - 1e-3 for u, (a, _, off) in back.items()}
+    went = " and ".join(f"the {u} clock {b - a:.2f} s" for u, (a, b, _) in back.items())
+    calls = " and ".join(f"tracker.rebase_clock({u!r}, {o:.2f})" for u, o in offsets.items())
+    first = next(iter(offsets))
+    return ClockWentBack(
+        f"{head}: {went} went back, both pods reconnected with their clocks restarted? The push is refused and the "
+        f"tracker unchanged; {calls} put their new samples just after the tracker's newest, beside each other as "
+        f"pushed (less the seconds they were gone: {offsets[first]:.2f} - gone), and the same Tracker goes on "
+        "(ClockWentBack.offsets; decisions E227, E243)", first, offsets[first], False, offsets)
+
+
 def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s: float, offset_s: float,
-                other_newest: float | None, note: str = "") -> DataError:
+                other_newest: float | None, note: str = "", also_back: dict | None = None) -> DataError:
     """The refusal of a push whose first ``name`` sample (``t0`` s, the tracker's clock) is not after the stream's
     newest (``last``): a duplicate of a sample taken (decision E225), a clock that went back by more than
     ``max_lag_s`` (E227: :class:`ClockWentBack`, with the offset that puts it beside the other unit's newest,
     ``other_newest``, or just after its own last sample when none is past it, E235; ``offset_s`` the unit's offset
-    now), or a late sample; ``note``: B141's jumped-clock note."""
+    now), or a late sample; ``note``: B141's jumped-clock note. ``also_back``: the other units of the push whose clock
+    went back too, unit -> (first sample, its streams' newest, offset now) (decision E243: one refusal names both)."""
     head = f"{name}: pushed timestamps are not increasing (at {t0:.3f} s after {last:.3f} s)"
     if duplicate:
         return DataError(f"{head}: that sample duplicates one already taken, a packet sent again? "
@@ -186,6 +204,8 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
                          f"(decision E225); the push is refused and the tracker unchanged{note}")
     unit = unit_of(name)
     if last - t0 > max_lag_s and unit is not None and not note:  # B141's accepted jump: its own note, not E227
+        if also_back:
+            return _all_went_back(head, {unit: (t0, last, offset_s), **also_back})
         beside = other_newest is not None and other_newest > last
         off = offset_s + t0 - (other_newest if beside else last) - 1e-3  # the sample just after the tracker's newest
         where = ("beside the other unit's newest" if beside else

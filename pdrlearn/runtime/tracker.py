@@ -1232,7 +1232,7 @@ class Tracker(FixInput):
             raw = self.inputs.last_in(name)
             last = raw if raw is not None else (ring.last if ring is not None else None)
             if last is not None and not t[0] > last:
-                raise self._order_error(name, float(t[0]), last)
+                raise self._order_error(name, float(t[0]), last, samples)
             tt = t if last is None else np.concatenate(([last], t))
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 d = np.diff(tt)
@@ -1340,15 +1340,42 @@ class Tracker(FixInput):
             "old.flush() (the steps it still holds) and a new Tracker(bundle, start=tuple(old.position), "
             "heading_rad=old.heading), or give Tracker(max_gap_s=...)")
 
-    def _order_error(self, name: str, t0: float, last: float) -> DataError:
+    def _order_error(self, name: str, t0: float, last: float, samples: dict | None = None) -> DataError:
         """Decisions E225 / E227: the refusal of a push whose first ``name`` sample (``t0`` s) is not after the
-        stream's newest (``last``): a duplicate, a clock that went back (a reconnected pod) or a late sample."""
+        stream's newest (``last``): a duplicate, a clock that went back (a reconnected pod) or a late sample;
+        decision E243: with the push's other units whose clocks went back too (``samples``: the push)."""
         unit = unit_of(name)
         other = [r.last for n, r in self._buf.items() if unit_of(n) not in (None, unit)]
         return order_error(name, t0, last, duplicate=bool(repeated([t0], self._taken_times(name))[0]),
-                           max_lag_s=self.max_lag_s,
-                           offset_s=float(getattr(self, f"{unit}_clock_offset_s", 0.0)) if unit else 0.0,
-                           other_newest=max(other) if other else None, note=self._jumped_note(t0))
+                           max_lag_s=self.max_lag_s, offset_s=self._clock_offset(unit),
+                           other_newest=max(other) if other else None, note=self._jumped_note(t0),
+                           also_back=self._also_back(unit, samples) if samples is not None else None)
+
+    def _clock_offset(self, unit: str | None) -> float:
+        """The offset (s) ``rebase_clock`` last gave ``unit``'s clock (the waist's ``waist_clock_offset_s``)."""
+        return float(getattr(self, f"{unit}_clock_offset_s", 0.0)) if unit else 0.0
+
+    def _also_back(self, unit: str, samples: dict) -> dict:
+        """Decision E243: the units of the push ``samples`` (the tracker's clock) other than ``unit`` whose clock went
+        back too (a stream's first sample more than ``max_lag_s`` before its newest, no repeat of a taken sample, not
+        inside a B141 jump): unit -> (their first sample, their streams' newest, the unit's offset now)."""
+        out: dict[str, tuple[float, float, float]] = {}
+        for name, tv in samples.items():
+            u = unit_of(name)
+            if u in (None, unit) or name not in self.inputs.used or name in self.inputs.ignored:
+                continue
+            try:
+                t = np.asarray(tv[0], dtype=np.float64).reshape(-1)
+            except (TypeError, ValueError, IndexError):
+                continue
+            raw, ring = self.inputs.last_in(name), self._buf.get(name)
+            last = raw if raw is not None else (ring.last if ring is not None else None)
+            if (not t.size or last is None or not last - t[0] > self.max_lag_s or self._jumped_note(float(t[0]))
+                    or repeated(t[:1], self._taken_times(name))[0]):
+                continue
+            a, b, _ = out.get(u, (math.inf, -math.inf, 0.0))
+            out[u] = (min(a, float(t[0])), max(b, float(last)), self._clock_offset(u))
+        return out
 
     def _jumped_note(self, t: float) -> str:
         """Decision B141: for a refused sample at ``t`` s inside a gap the tracker accepted (a forward jump of its
