@@ -12,8 +12,7 @@ import pytest
 
 from pdrlearn.errors import ConcurrentUseError, DataError
 from pdrlearn.export.waist import export_waist
-from pdrlearn.runtime import Tracker, WaistTracker
-from pdrlearn.runtime import threads
+from pdrlearn.runtime import Tracker, WaistTracker, threads
 from pdrlearn.sim import simulate
 from pdrlearn.waist import WaistTracker as ParamsWaistTracker
 
@@ -62,7 +61,7 @@ def test_a_second_thread_inside_a_waist_tracker_is_refused_in_one_line_e241(walk
     for e, name in zip(got, ("push", "push_barometer", "flush"), strict=True):
         assert str(e).startswith(f"WaistTracker.{name}: called from a second thread while another thread is inside "
                                  "push/push_barometer/flush of the same tracker")
-        assert "decisions E231, E241" in str(e) and "\n" not in str(e)
+        assert "decision E231; the waist trackers: E241" in str(e) and "\n" not in str(e)
     # refused calls changed nothing: the same steps as a tracker fed one thread
     ref = (WaistTracker(walk["bundle"], fs=100.0) if kind == "bundle" else
            ParamsWaistTracker(100.0, params=walk["cal"], frame=walk["frame"]))

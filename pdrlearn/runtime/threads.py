@@ -32,7 +32,8 @@ def one_call_at_a_time(method):
             raise ConcurrentUseError(
                 f"{type(self).__name__}.{method.__name__}: called from a second thread while another thread is inside "
                 f"{self._one_at_a_time} of the same tracker; hold one threading.Lock around every such call of a "
-                "tracker, or feed it from one thread through a queue (docs/deploying.md, decisions E231, E241)")
+                "tracker, or feed it from one thread through a queue (docs/deploying.md, decision E231; the waist "
+                "trackers: E241)")
         try:
             return method(self, *args, **kwargs)
         finally:
