@@ -120,3 +120,62 @@ def test_one_unit_restarted_in_a_push_of_both_keeps_offsets_to_that_unit_e243(bu
         for packet in _by_slice(packets):
             tr.push(packet)
     assert info.value.offsets == {"waist": info.value.offset_s} and info.value.unit == "waist"
+
+
+# -- E244 / E245 --------------------------------------------------------------------------------------------------
+def _drifting_check(ppm: float, minutes: float, seed: int = 11107):
+    """L177's live check fed synthetic step events (foot strides every 1.1 s, the waist at both feet, 10 ms jitter) of a
+    waist clock drifting ``ppm`` from 0, 20 strides at a time as a Tracker's pushes bring them: its lines and
+    (estimate, true offset at the estimate's ref_s) per check."""
+    from pdrlearn.runtime.clocks import CHECK_EVERY_STRIDES, ClockCheck
+
+    rng = np.random.default_rng(seed)
+    foot = np.arange(5.0, 5.0 + 60.0 * minutes, 1.1)
+    waist = np.sort(np.concatenate([foot, foot + 0.55]))
+    waist = waist * (1.0 + ppm * 1e-6) + rng.normal(0.0, 0.01, waist.size)
+    foot = foot + rng.normal(0.0, 0.01, foot.size)
+    cc, lines, seen = ClockCheck(), [], []
+    for k in range(CHECK_EVERY_STRIDES, foot.size, CHECK_EVERY_STRIDES):
+        cc._foot_events += foot[k - CHECK_EVERY_STRIDES:k].tolist()
+        cc._waist_events += waist[(waist > (cc._waist_events or [-1.0])[-1]) & (waist <= foot[k - 1])].tolist()
+        cc._foot_seen = k
+        line = cc.check()
+        if line:
+            lines.append(line)
+        if cc.estimate is not None:
+            seen.append((dict(cc.estimate), cc.estimate["ref_s"] * ppm * 1e-6))
+    return lines, seen
+
+
+def test_a_clock_drifting_past_half_a_step_is_followed_and_named_again_e244(monkeypatch):
+    """1000 ppm over 15 min: the offset passes half the 0.55 s step period at about 4.6 min. Before E244 the estimate
+    read the twin (-0.27 s) and, under 0.2 s again, went quiet while the clock went on to 0.9 s."""
+    lines, seen = _drifting_check(1000.0, 15.0)
+    locked = [(e, true) for e, true in seen if e["matched"] >= 8]
+    assert max(true for _, true in locked) > 0.6
+    assert all(abs(e["offset_s"] - true) < 0.1 for e, true in locked)
+    assert any(e["periods_followed"] for e, _ in locked)
+    late = [float(x.split("fall ")[1].split(" s")[0]) for x in lines]
+    assert late[-1] > 0.6 and "(decision E244)" in lines[-1]  # named again, the followed offset
+    from pdrlearn.runtime import clocks
+
+    monkeypatch.setattr(clocks.ClockCheck, "_follow", lambda self, est: None)  # E229 alone
+    lines, seen = _drifting_check(1000.0, 15.0)
+    assert max(abs(float(x.split("fall ")[1].split(" s")[0])) for x in lines) < 0.35  # never named past the twin
+
+
+def test_an_estimate_far_from_the_followed_offset_is_said_and_followed_again_e244():
+    """An estimate neither at the followed offset nor a step period from it: one line, and following restarts."""
+    from pdrlearn.runtime.clocks import ClockCheck
+
+    cc = ClockCheck()
+    base = {"drift": 0.0, "matched": 100, "residual_sd_s": 0.02, "step_period_s": 0.55}
+    assert cc._follow({**base, "offset_s": 0.25, "ref_s": 100.0}) is None
+    est = {**base, "offset_s": -0.28, "ref_s": 120.0}  # the twin of +0.27
+    assert cc._follow(est) is None and est["offset_s"] == pytest.approx(0.27) and est["periods_followed"] == 1
+    est = {**base, "offset_s": 0.0, "ref_s": 140.0}  # 0.27 s from the prediction, 0.28 s from the next candidate
+    lost = cc._follow(est)
+    assert lost and "lost the waist clock's offset it followed" in lost and "(decision E244)" in lost
+    assert est["offset_s"] == 0.0 and est["periods_followed"] == 0
+    nan = {**base, "offset_s": 0.1, "ref_s": 160.0, "step_period_s": float("nan")}
+    assert "no step period" in cc._follow(nan)

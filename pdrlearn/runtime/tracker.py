@@ -803,7 +803,9 @@ class Tracker(FixInput):
         """Decision L177: the last estimate of the foot-to-waist clock offset (``align_events``' dict: ``offset_s``,
         ``drift``, ``ref_s``, ``matched``, ``foot_events``, ``residual_sd_s``), None before one (or without the check).
         ``offset_s`` is the offset at foot-clock time ``ref_s``, inside the recording (decision L198): the constant
-        ``waist_clock_offset_s`` that aligns it, whatever the clocks' origin."""
+        ``waist_clock_offset_s`` that aligns it, whatever the clocks' origin. Decision E244: once an estimate has
+        locked, ``offset_s`` is followed across step periods (``raw_offset_s``: L161's candidate closest to 0,
+        ``periods_followed``: the whole step periods between them), so a drifting clock is not read as its twin."""
         return None if self._clock is None else self._clock.estimate
 
     @property
