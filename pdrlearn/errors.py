@@ -39,13 +39,17 @@ class ClockWentBack(DataError):
     with its clock restarted). ``unit`` names it and ``offset_s`` is the clock offset that puts the refused samples
     beside the other unit's newest (``beside`` True) or, without another unit past the refused one's last sample (a
     one-unit tracker, both pods restarted), just after the unit's own last sample (``beside`` False; decision E235:
-    always a number): ``tracker.rebase_clock(e.unit, e.offset_s)`` and the push again go on with the same tracker."""
+    always a number). Decision E243: ``offsets`` (unit -> offset) holds every unit of the refused push whose clock went
+    back (both, when both pods restarted and one push holds both; else ``{unit: offset_s}``): ``for u, off in
+    e.offsets.items(): tracker.rebase_clock(u, off)`` and the push again go on with the same tracker."""
 
-    def __init__(self, message: str, unit: str, offset_s: float, beside: bool = True):
+    def __init__(self, message: str, unit: str, offset_s: float, beside: bool = True,
+                 offsets: dict[str, float] | None = None):
         super().__init__(message)
         self.unit = unit
         self.offset_s = float(offset_s)
         self.beside = bool(beside)
+        self.offsets = {str(u): float(o) for u, o in (offsets or {unit: offset_s}).items()}  # decision E243
 
 
 class MissingSensorError(DataError):
