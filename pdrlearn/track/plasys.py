@@ -718,12 +718,15 @@ def windowed_disagreement(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray
                           min_n: int = HARD_IRON_MIN_STRIDES, drift: bool = False) -> np.ndarray:
     """Decision L264: :func:`~pdrlearn.orient._kernels.compass_disagreement`'s angles (rad), its model fitted on each
     :func:`compass_windows` window of the strides at times ``t`` (s) on its own; in the order of ``t``. ``drift``
-    (decisions L544 / L545, measured, not adopted): no hard-iron offset in a window whose headings do not spread
-    (L84's gate) and a heading offset that drifts linearly in the window (the foot gyroscope's drift)."""
+    (decisions L544 / L545 / L558): no hard-iron offset in a window whose headings do not spread (L84's gate) and a
+    heading offset that drifts linearly in the window (the foot gyroscope's drift), when there are at least two
+    windows; a walk of one window is fitted as L182's one fit (L558)."""
     from pdrlearn.orient._kernels import compass_disagreement
 
     ang = np.zeros(len(psi))
-    for g in compass_windows(t, window_s, min_n):
+    groups = compass_windows(t, window_s, min_n)
+    drift = drift and len(groups) > 1  # decision L558: one window is L182's one fit, judged exactly as before
+    for g in groups:
         ang[g] = compass_disagreement(np.asarray(m_fwd, float)[g], np.asarray(m_left, float)[g],
                                       np.asarray(psi, float)[g],
                                       max_resultant=HARD_IRON_MAX_RESULTANT if drift else None,
