@@ -1,5 +1,5 @@
-"""Session 41, implementer I4: decision L558 (L545's drift-aware compass windows with a walk of one window fitted as
-L182's one fit, so a recording too short for two windows is judged exactly as before)."""
+"""Session 41, implementer I4: decisions L558 / L559 (L545's drift-aware compass windows, with a walk of one window
+fitted as L182's one fit so a recording too short for two windows is judged exactly as before; adopted)."""
 
 from __future__ import annotations
 
@@ -18,9 +18,9 @@ def test_a_walk_of_one_window_is_fitted_as_l182s_one_fit_with_drift_l558():
     mf, ml, psi, t = mf[keep], ml[keep], psi[keep], t[keep]
     assert len(compass_windows(t, COMPASS_CHECK_WINDOW_S, 8)) == 1
     one = compass_disagreement(mf, ml, psi)[0]
-    assert windowed_disagreement(mf, ml, psi, t, drift=True) == pytest.approx(one, abs=1e-12)
-    assert check_angle(mf, ml, psi, t, windowed=True, drift=True)[0] == pytest.approx(
-        check_angle(mf, ml, psi, t, windowed=True)[0], abs=1e-12)
+    assert windowed_disagreement(mf, ml, psi, t) == pytest.approx(one, abs=1e-12)
+    assert check_angle(mf, ml, psi, t, windowed=True)[0] == pytest.approx(
+        check_angle(mf, ml, psi, t, windowed=False)[0], abs=1e-12)
 
 
 def test_two_windows_or_more_still_take_the_drift_aware_fit_l558():
@@ -29,6 +29,7 @@ def test_two_windows_or_more_still_take_the_drift_aware_fit_l558():
     keep = t < 2.5 * COMPASS_CHECK_WINDOW_S
     mf, ml, psi, t = mf[keep], ml[keep], psi[keep], t[keep]
     assert len(compass_windows(t, COMPASS_CHECK_WINDOW_S, 8)) == 3
-    drift = np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t, drift=True))))
-    plain = np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t))))
+    drift = np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t))))
+    plain = np.degrees(np.median(np.abs(np.concatenate([compass_disagreement(mf[g], ml[g], psi[g])[0]
+                                                        for g in compass_windows(t, COMPASS_CHECK_WINDOW_S, 8)]))))
     assert drift < 5.0 < plain
