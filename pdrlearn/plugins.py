@@ -126,6 +126,11 @@ class Registry(MutableMapping):
         self._load()
         return f"{type(self).__name__}({self.kind}: {', '.join(self._items)})"
 
+    def builtin_names(self, unit: str | None = None) -> list[str]:
+        """The built-in entries' names in registration order (decision C157: what help texts, experiments and the
+        docs tests list); ``unit``: only entries whose ``unit`` attribute is it (a detector's "foot" / "waist")."""
+        return [n for n in self if n in self.builtin and (unit is None or getattr(self[n], "unit", None) == unit)]
+
     def unknown(self, name: str) -> DataError:
         """The error for a name that is not registered: a failed plug-in's reason, else the valid names."""
         if name in self.failed:
