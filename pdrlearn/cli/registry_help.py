@@ -1,6 +1,6 @@
 """Decision C157: an option's help that lists the step detectors or the step-length models reads their registries
 (:data:`pdrlearn.steps.DETECTORS`, :data:`pdrlearn.waist.lengths.STEP_LENGTHS`) when the help is shown, so a new
-built-in or a plug-in (``--plugin``, an entry point) appears in ``pdrlearn steps --help`` / ``pdrlearn track --help``
+built-in or a plug-in (``--plugin``, an entry point) appears in the help of ``steps``, ``track`` and ``track-all``
 with no list of names to edit. The help text holds a placeholder (:data:`DETECTOR_NAMES`, :data:`LENGTH_NAMES`);
 ``import pdrlearn.cli`` and the root ``--help`` stay free of the numerical libraries (decision C14): a registry is
 imported only when the help of an option that names it is formatted."""
