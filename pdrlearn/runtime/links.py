@@ -166,12 +166,13 @@ class RepeatedLines:
 
 
 def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s: float, offset_s: float,
-                other_newest: float | None, note: str = "") -> DataError:
+                other_newest: float | None, note: str = "", drift: float = 0.0) -> DataError:
     """The refusal of a push whose first ``name`` sample (``t0`` s, the tracker's clock) is not after the stream's
     newest (``last``): a duplicate of a sample taken (decision E225), a clock that went back by more than
     ``max_lag_s`` (E227: :class:`ClockWentBack`, with the offset that puts it beside the other unit's newest,
     ``other_newest``, or just after its own last sample when none is past it, E235; ``offset_s`` the unit's offset
-    now), or a late sample; ``note``: B141's jumped-clock note."""
+    now and ``drift`` its clock's drift in s/s, E229's waist model ``t = (t_unit - offset_s) / (1 + drift)``, E248),
+    or a late sample; ``note``: B141's jumped-clock note."""
     head = f"{name}: pushed timestamps are not increasing (at {t0:.3f} s after {last:.3f} s)"
     if duplicate:
         return DataError(f"{head}: that sample duplicates one already taken, a packet sent again? "
@@ -180,7 +181,9 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
     unit = unit_of(name)
     if last - t0 > max_lag_s and unit is not None and not note:  # B141's accepted jump: its own note, not E227
         beside = other_newest is not None and other_newest > last
-        off = offset_s + t0 - (other_newest if beside else last) - 1e-3  # the sample just after the tracker's newest
+        # the sample 1 ms after the tracker's newest: its unit clock's reading t0 (1 + drift) + offset_s less that
+        # time on the unit's clock (decision E248: with E229's drift; E227 took t0 - target, off by target x drift)
+        off = offset_s + (t0 - (other_newest if beside else last) - 1e-3) * (1.0 + drift)
         where = ("beside the other unit's newest" if beside else
                  f"just after its last sample (less the seconds it was gone: {off:.2f} - gone)")
         return ClockWentBack(

@@ -1363,12 +1363,15 @@ class Tracker(FixInput):
     def _order_error(self, name: str, t0: float, last: float) -> DataError:
         """Decisions E225 / E227: the refusal of a push whose first ``name`` sample (``t0`` s) is not after the
         stream's newest (``last``): a duplicate, a clock that went back (a reconnected pod) or a late sample."""
-        unit = unit_of(name)
-        other = [r.last for n, r in self._buf.items() if unit_of(n) not in (None, unit)]
+        unit, raw = unit_of(name), self.inputs.last_in
+        # the other unit's newest input sample (decision E249: a resampled stream's ring holds the output grid,
+        # behind its input by the low-pass delay), as the order check itself reads its own stream's
+        other = [r.last if raw(n) is None else raw(n) for n, r in self._buf.items() if unit_of(n) not in (None, unit)]
         return order_error(name, t0, last, duplicate=bool(repeated([t0], self._taken_times(name))[0]),
                            max_lag_s=self.max_lag_s,
                            offset_s=float(getattr(self, f"{unit}_clock_offset_s", 0.0)) if unit else 0.0,
-                           other_newest=max(other) if other else None, note=self._jumped_note(t0))
+                           other_newest=max(other) if other else None, note=self._jumped_note(t0),
+                           drift=self.waist_clock_drift_ppm * 1e-6 if unit == "waist" else 0.0)  # decision E248
 
     def _jumped_note(self, t: float) -> str:
         """Decision B141: for a refused sample at ``t`` s inside a gap the tracker accepted (a forward jump of its
