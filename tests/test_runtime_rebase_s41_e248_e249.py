@@ -4,7 +4,8 @@ sample 1 ms after the other unit's newest input sample, with a drifting waist cl
 Review R0 of session 40, findings 2 and 3 (E227's reconnect path): with ``waist_clock_drift_ppm`` the offset left out
 the drift (an hour after power-on at 150 ppm the rebased waist landed 0.54 s early; at 500 ppm the push after the
 documented rebase was refused as late); with ``resample=True`` "the other unit's newest" was read from the resampled
-output grid, 0.84 s behind the input at 50 -> 20 Hz (the rebased waist landed 0.65 s early). Simulated users 11390-11391.
+output grid, 0.84 s behind the input at 50 -> 20 Hz (the rebased waist landed 0.65 s early).
+Simulated users 11390-11391.
 """
 
 from __future__ import annotations
