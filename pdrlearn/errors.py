@@ -39,18 +39,22 @@ class ClockWentBack(DataError):
     with its clock restarted). ``unit`` names it and ``offset_s`` is the clock offset that puts the refused samples
     beside the other unit's newest (``beside`` True) or, without another unit past the refused one's last sample (a
     one-unit tracker, both pods restarted), just after the unit's own last sample (``beside`` False; decision E235:
-    always a number): ``tracker.rebase_clock(e.unit, e.offset_s)`` and the push again go on with the same tracker."""
+    always a number). Decision E243: ``offsets`` (unit -> offset) holds every unit of the refused push whose clock went
+    back (both, when both pods restarted and one push holds both; else ``{unit: offset_s}``): ``for u, off in
+    e.offsets.items(): tracker.rebase_clock(u, off)`` and the push again go on with the same tracker."""
 
-    def __init__(self, message: str, unit: str, offset_s: float, beside: bool = True):
+    def __init__(self, message: str, unit: str, offset_s: float, beside: bool = True,
+                 offsets: dict[str, float] | None = None):
         super().__init__(message)
         self.unit = unit
         self.offset_s = float(offset_s)
         self.beside = bool(beside)
+        self.offsets = {str(u): float(o) for u, o in (offsets or {unit: offset_s}).items()}  # decision E243
 
     def __reduce__(self):
         # Decision E250: pickled / copied with every constructor argument (``args`` holds the message alone), so a
         # ClockWentBack raised in a worker process reaches the parent with its unit and offset.
-        return type(self), (str(self), self.unit, self.offset_s, self.beside), self.__dict__
+        return type(self), (str(self), self.unit, self.offset_s, self.beside, self.offsets), self.__dict__
 
 
 class MissingSensorError(DataError):

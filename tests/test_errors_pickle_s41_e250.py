@@ -37,7 +37,7 @@ def _instance(cls):
     """One instance of ``cls`` with every constructor argument given (not the defaults), and an attribute set after
     construction, as FrameInferenceError's callers do."""
     params = list(inspect.signature(cls.__init__).parameters.values())[1:]
-    extra = {"unit": "waist", "offset_s": -15.2, "beside": False}
+    extra = {"unit": "waist", "offset_s": -15.2, "beside": False, "offsets": {"waist": -15.2, "foot": -3.5}}
     e = cls("a   message\nover two lines", *[extra[p.name] for p in params[1:]])
     e.note_after = 3.5
     return e
@@ -65,6 +65,9 @@ def test_clock_went_back_keeps_unit_offset_and_beside():
     e = ClockWentBack("waist: the waist clock went back 13.95 s", "waist", -15.2, beside=False)
     back = pickle.loads(pickle.dumps(e))
     assert (back.unit, back.offset_s, back.beside, str(back)) == ("waist", -15.2, False, str(e))
+    assert back.offsets == {"waist": -15.2}
+    both = ClockWentBack("both went back", "foot", -3.5, False, {"foot": -3.5, "waist": -15.2})
+    assert pickle.loads(pickle.dumps(both)).offsets == {"foot": -3.5, "waist": -15.2}
     assert isinstance(back, errors.DataError)
 
 
@@ -76,3 +79,4 @@ def test_a_clock_went_back_in_a_worker_process_reaches_the_parent():
     with ProcessPoolExecutor(1) as ex, pytest.raises(ClockWentBack) as info:
         ex.submit(_raise_clock_went_back, 0).result(timeout=120)
     assert (info.value.unit, info.value.offset_s, info.value.beside) == ("waist", -15.2, True)
+    assert info.value.offsets == {"waist": -15.2}

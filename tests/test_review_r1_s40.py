@@ -167,9 +167,10 @@ def _e223(bundle, walk, join_s, offset=0.0):
 @pytest.mark.parametrize("join_s", [0.0, 3.0])
 def test_the_offset_named_is_the_clocks_whenever_the_waist_pod_connected_e238(bundle, walk, join_s):
     line, _ = _e223(bundle, walk, join_s)
-    # together: the first samples' difference (exact); 3 s late: the waist's first sample against the foot's
-    # newest, a packet (0.15 s) off; before: "about 5.0 s behind ... waist_clock_offset_s=-5.00" for the late pod
-    want = "-8.00" if join_s == 0.0 else "-8.15"
+    # together: the first samples' difference (exact); 3 s late: the waist's newest against the foot's newest (E242:
+    # exact; its first sample against the foot's newest was a packet, 0.15 s, off: -8.15); before E238: "about 5.0 s
+    # behind ... waist_clock_offset_s=-5.00" for the late pod
+    want = "-8.00"
     assert f"waist_clock_offset_s={want})" in line and f"about {abs(float(want)):.1f} s behind" in line
     again, _ = _e223(bundle, walk, join_s, offset=-5.0)  # a partial correction: the rest named, not the given
     assert f"waist_clock_offset_s={want})" in again and "about 3." in again  # before: "about 0.0 s ... =-5.00"
@@ -181,9 +182,9 @@ def test_start_clocks_name_the_offset_by_how_the_pods_connected_e238():
     c.seen({"fGyroscope": (3.0, 3.15)})
     c.seen({"fGyroscope": (3.2, 3.35)})
     c.seen({"wGyroscope": (-4.8, -4.65)})
-    assert c.contact == pytest.approx(-8.15) and c.offset == c.contact  # joined late
-    assert "the waist's first sample at -4.80 s when the foot's newest was 3.35 s" in c.note("wGyroscope", 1.0)
-    assert "waist_clock_offset_s=-7.15)" in c.note("wGyroscope", 1.0) and c.note("fGyroscope", 1.0) == ""
+    assert c.contact == pytest.approx(-8.0) and c.offset == c.contact  # joined late (E242: newest vs newest)
+    assert "the waist's newest sample at -4.65 s when the foot's newest was 3.35 s" in c.note("wGyroscope", 1.0)
+    assert "waist_clock_offset_s=-7.00)" in c.note("wGyroscope", 1.0) and c.note("fGyroscope", 1.0) == ""
     c = links.StartClocks(2.0)
     c.seen({"fGyroscope": (0.0, 0.15)})
     c.seen({"wGyroscope": (5.0, 5.15)})

@@ -84,10 +84,23 @@ def test_the_order_refusal_offset_places_the_sample_beside_the_other_units_newes
     offset, t_raw = -2.0, 0.0  # the waist clock restarted: its first new sample reads 0 s
     t0 = (t_raw - offset) / (1 + drift)  # E229's model, where the tracker put it
     e = links.order_error("wGyroscope", t0, 3613.95, duplicate=False, max_lag_s=2.0, offset_s=offset,
-                          other_newest=3615.2, drift=drift)
+                          other_newest=3615.2, drift={"waist": drift})
     assert isinstance(e, ClockWentBack) and e.beside
     assert (t_raw - e.offset_s) / (1 + drift) == pytest.approx(3615.2 + 1e-3, abs=1e-9)
     alone = links.order_error("wGyroscope", t0, 3613.95, duplicate=False, max_lag_s=2.0, offset_s=offset,
-                              other_newest=None, drift=drift)
+                              other_newest=None, drift={"waist": drift})
     assert not alone.beside and (t_raw - alone.offset_s) / (1 + drift) == pytest.approx(3613.95 + 1e-3, abs=1e-9)
     assert np.isfinite(alone.offset_s)
+
+
+@pytest.mark.parametrize("drift", [0.0, 500e-6])
+def test_both_clocks_back_in_one_push_hold_the_waist_drift_e248(drift):
+    # decision E243's one refusal for both units: each unit's first new sample 1 ms after the tracker's newest
+    foot_off, waist_off = 0.0, 3.0
+    t0 = (0.0 - waist_off) / (1 + drift)  # the waist's first new sample (its clock reads 0) on the tracker's clock
+    e = links.order_error("wGyroscope", t0, 3613.95, duplicate=False, max_lag_s=2.0, offset_s=waist_off,
+                          other_newest=3614.0, also_back={"foot": (0.0 - foot_off, 3614.0, foot_off)},
+                          drift={"waist": drift})
+    assert isinstance(e, ClockWentBack) and set(e.offsets) == {"waist", "foot"}
+    assert (0.0 - e.offsets["waist"]) / (1 + drift) == pytest.approx(3614.0 + 1e-3, abs=1e-9)
+    assert 0.0 - e.offsets["foot"] == pytest.approx(3614.0 + 1e-3, abs=1e-9)

@@ -26,7 +26,13 @@ from types import SimpleNamespace
 import numpy as np
 
 from pdrlearn.errors import DataError
-from pdrlearn.kernels.align import UNIT_OFFSET_WARN_S, align_events, to_foot_clock, unit_offset_message
+from pdrlearn.kernels.align import (
+    UNIT_OFFSET_WARN_S,
+    align_events,
+    offset_locked,
+    to_foot_clock,
+    unit_offset_message,
+)
 from pdrlearn.kernels.contact import (
     EVENT_CUTOFF_HZ,
     FORCE_AMP,
@@ -72,6 +78,10 @@ WINDOW_WAIST_EVENTS = 4 * WINDOW_FOOT_EVENTS
 #: from the offset it last warned of (a drifting clock, T4's 150 ppm hour: 0.1 s in about 11 min); a priori: half
 #: L161's 0.2 s threshold, a quarter of the slowest validated walk's 0.43 s step period (L95)
 REWARN_MOVE_S = 0.1
+#: decision E244: a followed estimate whose nearest candidate (a whole number of step periods from L161's) still lies
+#: more than this fraction of the step period from the offset predicted is not followed (a priori: halfway between
+#: the prediction and the half period at which a candidate of the other branch is nearer)
+LOST_FRACTION = 0.25
 #: samples of a stream held before they are run through its detector (one call per block, not per sample)
 BLOCK_SAMPLES = 64
 FORCE_SENSORS = ("fForceA", "fForceB")
@@ -106,7 +116,8 @@ class ClockCheck:
     it has moved more than :data:`REWARN_MOVE_S` from the last warned offset (decision E229; None otherwise;
     ``final=True`` at the end of the stream: all events of the window, as the offline check up to it).
     :attr:`estimate` is ``align_events``' last dict (``offset_s``, ``drift``, ``matched``, ...), or None before there
-    are 3 events of each unit; it is renewed every :data:`CHECK_EVERY_STRIDES` foot strides, after a line too (E229).
+    are 3 events of each unit; it is renewed every :data:`CHECK_EVERY_STRIDES` foot strides, after a line too (E229),
+    and once one has locked its ``offset_s`` is followed across step periods (decision E244, :meth:`_follow`).
     ``remedy``: the fix the line names, a callable of an offset (E228: the estimate's and its twin's). State: the
     detectors' (bounded) and the
     event times of the window (decision E120: at most :data:`WINDOW_FOOT_EVENTS` foot and
@@ -127,6 +138,7 @@ class ClockCheck:
         self.estimate: dict | None = None
         self.warned = False
         self.warned_offset: float | None = None  # decision E229: the offset of the last line
+        self._followed: tuple[float, float, float] | None = None  # decision E244: (offset, drift, ref_s) followed
 
     def feed(self, name: str, t, v) -> None:
         held = self._held.get(name)
@@ -158,12 +170,44 @@ class ClockCheck:
             self.estimate = align_events(self._foot_events, self._waist_events)
         except DataError:  # fewer than 3 events of a unit: no estimate yet
             return None
+        lost = self._follow(self.estimate)  # decision E244
         off = self.estimate["offset_s"]
         line = unit_offset_message(off, self.estimate["drift"], remedy=self.remedy, estimate=self.estimate)  # L183
         if line is None or (self.warned_offset is not None and abs(off - self.warned_offset) <= REWARN_MOVE_S):
-            return None
+            return lost
+        k = self.estimate.get("periods_followed", 0)
+        if k:
+            line += (f" [followed across {k:+d} step period(s) from the previous estimates: the steps alone read "
+                     f"{self.estimate['raw_offset_s']:+.2f} s, the candidate closest to 0 (decision E244)]")
         self.warned, self.warned_offset = True, off
-        return line
+        return line if lost is None else f"{lost}; {line}"
+
+    def _follow(self, est: dict) -> str | None:
+        """Decision E244: ``est`` (``align_events``' dict) moved by whole step periods to the candidate nearest the
+        offset the previous locked estimates predict (their offset and drift), so a clock that drifts past half a step
+        period is followed, not read as its twin; ``raw_offset_s`` keeps L161's candidate, ``periods_followed`` the
+        periods moved. The line saying it lost the followed offset (and follows again from L161's), else None."""
+        x, period = float(est["offset_s"]), float(est.get("step_period_s", math.nan))
+        est["raw_offset_s"], est["periods_followed"] = x, 0
+        if not offset_locked(est):  # L183: an estimate that did not lock tells no offset to follow
+            return None
+        prev, self._followed = self._followed, None
+        lost = None
+        if prev is not None:
+            p = prev[0] + prev[1] * (float(est["ref_s"]) - prev[2])
+            k = round((p - x) / period) if math.isfinite(period) and period > 0 else 0
+            if math.isfinite(period) and period > 0 and abs(x + k * period - p) <= LOST_FRACTION * period:
+                est["offset_s"] = x + k * period
+                est["periods_followed"] = int(k)
+            else:
+                near = "no step period" if not math.isfinite(period) else f"nor a {period:.2f} s step period from it"
+                lost = (f"the live clock check lost the waist clock's offset it followed: it read {x:+.2f} s "
+                        f"({near}) where {p:+.2f} s was expected from the previous estimates (a long rest, or a "
+                        "window of few steps); it follows again from this estimate, the candidate closest to 0; a "
+                        "waist clock that drifts: give Tracker(..., waist_clock_drift_ppm=) the drift its lines"
+                        " measure (decision E244)")
+        self._followed = (float(est["offset_s"]), float(est["drift"]), float(est["ref_s"]))
+        return lost
 
     def _trim(self) -> None:
         """Decision E120: keep the last WINDOW_FOOT_EVENTS foot events and, once that window was full, the waist

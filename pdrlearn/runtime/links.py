@@ -44,9 +44,10 @@ def _per_unit(pushed: dict) -> dict[str, tuple[float, float]]:
 class StartClocks:
     """Decision E223: whether the two units' clocks disagree by more than ``max_lag_s`` from the start.
 
-    At the first push that holds a sample of both units, the gap between the new unit's first sample and the other
-    unit's newest (``contact``, s, waist minus foot) is how far apart the clocks read at the same wall time, whatever
-    the order the pods connected in (a unit switched on later on the same clock starts beside the other's newest: no
+    At the first push that holds a sample of both units, the gap between the new unit's newest sample and the other
+    unit's newest (``contact``, s, waist minus foot; decision E242: its newest, not its first, which lies a packet or a
+    held-back burst before) is how far apart the clocks read at the same wall time, whatever the order the pods
+    connected in (a unit switched on later on the same clock ends its first push beside the other's newest: no
     gap). Decision E238: the offset named is ``offset``: the difference of the units' first samples when it is within
     the other unit's latest push of ``contact`` (pods that connected together: exact), else ``contact`` (a pod that
     joined later: its first samples' difference is not the clocks'). The times are those of every push that passed
@@ -62,7 +63,7 @@ class StartClocks:
         self.contact: float | None = None
         self.offset: float | None = None
         self._pushed: dict[str, float] = {}  # unit -> the first sample of its latest push
-        self._joined: str | None = None  # the unit that joined the other (None: both in one push)
+        self._joined: str | None = None  # the unit that joined the other (None: both in one push, or together)
 
     def seen(self, pushed: dict) -> None:
         """Note a push's times (sensor -> (first, last) s, on the tracker's clock) until both units are seen."""
@@ -71,16 +72,21 @@ class StartClocks:
         per = _per_unit(pushed)
         if "foot" in per and "waist" in per and not self.newest:  # both in one push
             self.contact = per["waist"][0] - per["foot"][0]
+        # decision E242: a joining unit's newest sample against the other's newest (each unit's latest time known
+        # when the push arrives), not its first: a push of one packet (its span, 0.15 s at 0.2 s packets) or a burst
+        # the pod held back put its first sample that much before the other's newest
         elif "waist" in per and "foot" in self.newest and "waist" not in self.newest:  # the waist joins the foot
-            self.contact, self._joined = per["waist"][0] - self.newest["foot"], "waist"
+            self.contact, self._joined = per["waist"][1] - self.newest["foot"], "waist"
         elif "foot" in per and "waist" in self.newest and "foot" not in self.newest:  # the foot joins the waist
-            self.contact, self._joined = self.newest["waist"] - per["foot"][0], "foot"
+            self.contact, self._joined = self.newest["waist"] - per["foot"][1], "foot"
         if self.contact is not None:
             other = {"waist": "foot", "foot": "waist"}.get(self._joined)
             span = 0.0 if other is None else self.newest[other] - self._pushed[other]
             w = (per["waist"][0] if "waist" in per else self.first["waist"]) - (
                 per["foot"][0] if "foot" in per else self.first["foot"])
-            self.offset = w if abs(w - self.contact) <= span + 1e-6 else self.contact  # decision E238
+            together = abs(w - self.contact) <= span + 1e-6
+            self.offset = w if together else self.contact  # decision E238
+            self._joined = None if together else self._joined  # the pods connected together: named so
         for u, (a, b) in per.items():
             self.first[u] = min(self.first.get(u, math.inf), a)
             self.newest[u] = max(self.newest.get(u, -math.inf), b)
@@ -97,12 +103,13 @@ class StartClocks:
         if taken and unit_of(name) != behind:  # decision E238: no test of the first samples' sign
             return ""
         first, joined = self.first, self._joined
-        if off != contact or joined is None:  # the pods connected together
+        if joined is None:  # the pods connected together
             seen = f"the units' first samples at {first['foot']:.2f} s (foot) and {first['waist']:.2f} s (waist)"
         else:
             other = "foot" if joined == "waist" else "waist"
-            seen = (f"the {joined}'s first sample at {first[joined]:.2f} s when the {other}'s newest was "
-                    f"{first[joined] - (contact if joined == 'waist' else -contact):.2f} s")
+            mine = self.newest[joined]  # decision E242: its newest at contact (nothing is noted after it)
+            seen = (f"the {joined}'s newest sample at {mine:.2f} s when the {other}'s newest was "
+                    f"{mine - (contact if joined == 'waist' else -contact):.2f} s")
         return (f"the waist clock is about {abs(off):.1f} s {'ahead of' if off > 0 else 'behind'} the foot's ({seen}: "
                 f"two clocks, not a stopped sensor): pass Tracker(..., waist_clock_offset_s={given_s + off:.2f}) "
                 "(t_waist = t_foot + offset) or stamp both units on one clock set at connection (decisions E223, "
@@ -165,14 +172,35 @@ class RepeatedLines:
         return out
 
 
+def _all_went_back(head: str, back: dict, drift: dict) -> ClockWentBack:
+    """Decision E243: the refusal of a push holding two units whose clocks both went back (unit -> (first sample,
+    its streams' newest, offset now), the tracker's clock): each unit's first pushed sample goes just after the
+    tracker's newest, so the push's units stay beside each other as pushed (E223's reading of one push: its units'
+    first samples are the same wall time), in one refusal: rebasing one unit and pushing again refused the other."""
+    newest = max(b for _, b, _ in back.values())
+    # decision E248: each unit's drift (s/s, ``drift``), as order_error's one-unit offset
+    offsets = {u: off + (a - newest - 1e-3) * (1.0 + drift.get(u, 0.0)) for u, (a, _, off) in back.items()}
+    went = " and ".join(f"the {u} clock {b - a:.2f} s" for u, (a, b, _) in back.items())
+    calls = " and ".join(f"tracker.rebase_clock({u!r}, {o:.2f})" for u, o in offsets.items())
+    first = next(iter(offsets))
+    return ClockWentBack(
+        f"{head}: {went} went back, both pods reconnected with their clocks restarted? The push is refused and the "
+        f"tracker unchanged; {calls} put their new samples just after the tracker's newest, beside each other as "
+        f"pushed (less the seconds they were gone: {offsets[first]:.2f} - gone), and the same Tracker goes on "
+        "(ClockWentBack.offsets; decisions E227, E243)", first, offsets[first], False, offsets)
+
+
 def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s: float, offset_s: float,
-                other_newest: float | None, note: str = "", drift: float = 0.0) -> DataError:
+                other_newest: float | None, note: str = "", also_back: dict | None = None,
+                drift: dict | None = None) -> DataError:
     """The refusal of a push whose first ``name`` sample (``t0`` s, the tracker's clock) is not after the stream's
     newest (``last``): a duplicate of a sample taken (decision E225), a clock that went back by more than
     ``max_lag_s`` (E227: :class:`ClockWentBack`, with the offset that puts it beside the other unit's newest,
     ``other_newest``, or just after its own last sample when none is past it, E235; ``offset_s`` the unit's offset
-    now and ``drift`` its clock's drift in s/s, E229's waist model ``t = (t_unit - offset_s) / (1 + drift)``, E248),
-    or a late sample; ``note``: B141's jumped-clock note."""
+    now), or a late sample; ``note``: B141's jumped-clock note. ``also_back``: the other units of the push whose clock
+    went back too, unit -> (first sample, its streams' newest, offset now) (decision E243: one refusal names both).
+    ``drift``: unit -> its clock's drift in s/s (E229's waist model ``t = (t_unit - offset_s) / (1 + drift)``; decision
+    E248: every offset given holds it)."""
     head = f"{name}: pushed timestamps are not increasing (at {t0:.3f} s after {last:.3f} s)"
     if duplicate:
         return DataError(f"{head}: that sample duplicates one already taken, a packet sent again? "
@@ -180,10 +208,12 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
                          f"(decision E225); the push is refused and the tracker unchanged{note}")
     unit = unit_of(name)
     if last - t0 > max_lag_s and unit is not None and not note:  # B141's accepted jump: its own note, not E227
+        if also_back:
+            return _all_went_back(head, {unit: (t0, last, offset_s), **also_back}, drift or {})
         beside = other_newest is not None and other_newest > last
         # the sample 1 ms after the tracker's newest: its unit clock's reading t0 (1 + drift) + offset_s less that
         # time on the unit's clock (decision E248: with E229's drift; E227 took t0 - target, off by target x drift)
-        off = offset_s + (t0 - (other_newest if beside else last) - 1e-3) * (1.0 + drift)
+        off = offset_s + (t0 - (other_newest if beside else last) - 1e-3) * (1.0 + (drift or {}).get(unit, 0.0))
         where = ("beside the other unit's newest" if beside else
                  f"just after its last sample (less the seconds it was gone: {off:.2f} - gone)")
         return ClockWentBack(

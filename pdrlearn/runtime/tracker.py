@@ -18,13 +18,12 @@ from __future__ import annotations
 import functools
 import logging
 import math
-import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from pdrlearn.errors import ConcurrentUseError, DataError, InternalError, ModelError, VerticalAxisError
+from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import relative_length as _relative_length
@@ -99,6 +98,7 @@ from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
 from pdrlearn.runtime.restart import resume as resume_state
 from pdrlearn.runtime.stream import FootLevelling, HeightLog, Ring, fill_resampled, foot_levelled, waist_entry
+from pdrlearn.runtime.threads import new_guard, one_call_at_a_time
 
 log = logging.getLogger(__name__)
 #: float64 in native byte order. Arrays made here share this dtype object (``is`` is the cheap test), but
@@ -163,28 +163,6 @@ LEGACY_RULES, LEGACY_MIN_CONFIDENCE = "thesis", 0.0
 #: what the streamed stride rules do for a task without a class (decision C17, ``pdrlearn.track.plasys``)
 _NO_CLASS_RULE = {"terrain": "the stride's raw height change", "direction": "the estimate's own sign",
                   "length": "no length clamp"}
-
-
-def one_call_at_a_time(method):
-    """Decision E231: ``method`` (``Tracker.push`` / ``flush``) refused with one :class:`ConcurrentUseError` line when
-    another thread is inside one of them on the same tracker (a non-blocking lock: ~0.1 us a call). Without it two
-    unlocked threads interleaved their pushes silently (trial s40 T4: 89.42 m and a final y of -0.89 m instead of
-    89.41 m / -0.85 m, no error)."""
-
-    @functools.wraps(method)
-    def guarded(self, *args, **kwargs):
-        busy = self._busy
-        if not busy.acquire(False):
-            raise ConcurrentUseError(
-                f"Tracker.{method.__name__}: called from a second thread while another thread is inside push/flush "
-                "of the same tracker; hold one threading.Lock around every push and flush of a tracker, or feed it "
-                "from one thread through a queue (docs/deploying.md, decision E231)")
-        try:
-            return method(self, *args, **kwargs)
-        finally:
-            busy.release()
-
-    return guarded
 
 
 def check_tasks(bundle: Bundle, tasks, methods) -> tuple[list[str] | None, dict[str, str] | None]:
@@ -486,6 +464,8 @@ class Tracker(FixInput):
         as ``track_plasys(streaming=True, gated_level_dz=...)``; only with a bundle that classifies terrain.
     """
 
+    _one_at_a_time = "push/flush"  # decision E231: the calls one_call_at_a_time guards
+
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
     _spec: tuple | None = None  # likewise: no step computed ahead (decision E24)
     _trims = 0
@@ -568,7 +548,7 @@ class Tracker(FixInput):
         drop_duplicate_timestamps: bool = False,
         gated_level_dz: bool | str = False,
     ):
-        self._busy = threading.Lock()  # decision E231: push / flush one thread at a time
+        self._busy = new_guard()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
         self.stream_checks = bool(stream_checks)  # decisions E230, E232 (checked below)
         self.gated_level_dz = _distance.check_gated_level_dz(gated_level_dz)  # decisions L189, L206, L550
@@ -823,7 +803,9 @@ class Tracker(FixInput):
         """Decision L177: the last estimate of the foot-to-waist clock offset (``align_events``' dict: ``offset_s``,
         ``drift``, ``ref_s``, ``matched``, ``foot_events``, ``residual_sd_s``), None before one (or without the check).
         ``offset_s`` is the offset at foot-clock time ``ref_s``, inside the recording (decision L198): the constant
-        ``waist_clock_offset_s`` that aligns it, whatever the clocks' origin."""
+        ``waist_clock_offset_s`` that aligns it, whatever the clocks' origin. Decision E244: once an estimate has
+        locked, ``offset_s`` is followed across step periods (``raw_offset_s``: L161's candidate closest to 0,
+        ``periods_followed``: the whole step periods between them), so a drifting clock is not read as its twin."""
         return None if self._clock is None else self._clock.estimate
 
     @property
@@ -1252,7 +1234,7 @@ class Tracker(FixInput):
             raw = self.inputs.last_in(name)
             last = raw if raw is not None else (ring.last if ring is not None else None)
             if last is not None and not t[0] > last:
-                raise self._order_error(name, float(t[0]), last)
+                raise self._order_error(name, float(t[0]), last, samples)
             tt = t if last is None else np.concatenate(([last], t))
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 d = np.diff(tt)
@@ -1360,18 +1342,45 @@ class Tracker(FixInput):
             "old.flush() (the steps it still holds) and a new Tracker(bundle, start=tuple(old.position), "
             "heading_rad=old.heading), or give Tracker(max_gap_s=...)")
 
-    def _order_error(self, name: str, t0: float, last: float) -> DataError:
+    def _order_error(self, name: str, t0: float, last: float, samples: dict | None = None) -> DataError:
         """Decisions E225 / E227: the refusal of a push whose first ``name`` sample (``t0`` s) is not after the
-        stream's newest (``last``): a duplicate, a clock that went back (a reconnected pod) or a late sample."""
+        stream's newest (``last``): a duplicate, a clock that went back (a reconnected pod) or a late sample;
+        decision E243: with the push's other units whose clocks went back too (``samples``: the push)."""
         unit, raw = unit_of(name), self.inputs.last_in
         # the other unit's newest input sample (decision E249: a resampled stream's ring holds the output grid,
         # behind its input by the low-pass delay), as the order check itself reads its own stream's
         other = [r.last if raw(n) is None else raw(n) for n, r in self._buf.items() if unit_of(n) not in (None, unit)]
         return order_error(name, t0, last, duplicate=bool(repeated([t0], self._taken_times(name))[0]),
-                           max_lag_s=self.max_lag_s,
-                           offset_s=float(getattr(self, f"{unit}_clock_offset_s", 0.0)) if unit else 0.0,
+                           max_lag_s=self.max_lag_s, offset_s=self._clock_offset(unit),
                            other_newest=max(other) if other else None, note=self._jumped_note(t0),
-                           drift=self.waist_clock_drift_ppm * 1e-6 if unit == "waist" else 0.0)  # decision E248
+                           also_back=self._also_back(unit, samples) if samples is not None else None,
+                           drift={"waist": self.waist_clock_drift_ppm * 1e-6})  # decision E248
+
+    def _clock_offset(self, unit: str | None) -> float:
+        """The offset (s) ``rebase_clock`` last gave ``unit``'s clock (the waist's ``waist_clock_offset_s``)."""
+        return float(getattr(self, f"{unit}_clock_offset_s", 0.0)) if unit else 0.0
+
+    def _also_back(self, unit: str, samples: dict) -> dict:
+        """Decision E243: the units of the push ``samples`` (the tracker's clock) other than ``unit`` whose clock went
+        back too (a stream's first sample more than ``max_lag_s`` before its newest, no repeat of a taken sample, not
+        inside a B141 jump): unit -> (their first sample, their streams' newest, the unit's offset now)."""
+        out: dict[str, tuple[float, float, float]] = {}
+        for name, tv in samples.items():
+            u = unit_of(name)
+            if u in (None, unit) or name not in self.inputs.used or name in self.inputs.ignored:
+                continue
+            try:
+                t = np.asarray(tv[0], dtype=np.float64).reshape(-1)
+            except (TypeError, ValueError, IndexError):
+                continue
+            raw, ring = self.inputs.last_in(name), self._buf.get(name)
+            last = raw if raw is not None else (ring.last if ring is not None else None)
+            if (not t.size or last is None or not last - t[0] > self.max_lag_s or self._jumped_note(float(t[0]))
+                    or repeated(t[:1], self._taken_times(name))[0]):
+                continue
+            a, b, _ = out.get(u, (math.inf, -math.inf, 0.0))
+            out[u] = (min(a, float(t[0])), max(b, float(last)), self._clock_offset(u))
+        return out
 
     def _jumped_note(self, t: float) -> str:
         """Decision B141: for a refused sample at ``t`` s inside a gap the tracker accepted (a forward jump of its

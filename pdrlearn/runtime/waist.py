@@ -22,6 +22,7 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
 from pdrlearn.runtime.fixes import FixInput
+from pdrlearn.runtime.threads import new_guard, one_call_at_a_time
 from pdrlearn.textfile import read_text
 
 log = logging.getLogger(__name__)
@@ -97,6 +98,7 @@ class WaistStream(FixInput):
     far (logged here)."""
 
     _name = "WaistTracker"
+    _one_at_a_time = "push/push_barometer/flush"  # decision E241: the calls one_call_at_a_time guards
 
     def __init__(self, fs: float, *, params, options: dict, walk_threshold: float, rotation, start: tuple,
                  warnings: list[str], keep_steps: int | None = None, check_input: bool = True,
@@ -108,6 +110,7 @@ class WaistStream(FixInput):
         from pdrlearn.kernels.waist_stream import MAX_STEP_S
         from pdrlearn.runtime.guard import FrozenWatch, UnitGuard
 
+        self._busy = new_guard()  # decision E241: E231's guard, one thread at a time
         self.fs = float(fs)
         self.params = params
         self.options = options
@@ -224,6 +227,7 @@ class WaistStream(FixInput):
         return int(n)
 
     # -- input -------------------------------------------------------------------------------------------
+    @one_call_at_a_time  # decision E241
     def push(self, t, acc, gyr) -> list[LiveStep]:
         """Add samples: ``t`` (n,) s increasing, ``acc`` (n, 3) m/s^2 with gravity, ``gyr`` (n, 3) rad/s, in the
         unit's sensor frame. Returns the steps reported by this push (decision W64: once final); a push without
@@ -304,6 +308,7 @@ class WaistStream(FixInput):
         raise DataError(f"{self._name}.push: timestamps must increase strictly (seconds): sample {i} of this push "
                         f"(t={now:.6f} s) {what} sample {i - 1} (t={before:.6f} s); {fix}")
 
+    @one_call_at_a_time  # decision E241
     def push_barometer(self, t, p_hpa) -> None:
         """Add waist barometer samples (decision E106): ``t`` (n,) s on the clock of :meth:`push`, increasing strictly
         across pushes, ``p_hpa`` (n,) pressure in hPa (a non-finite sample is skipped, as offline). Each step then has
@@ -361,6 +366,7 @@ class WaistStream(FixInput):
         check_rate_unit(f"{self._name}.push", 1.0 / float(np.median(dts[:RATE_PROBE_MIN])), self.fs, "fs=")
         self._dts = None  # judged once
 
+    @one_call_at_a_time  # decision E241
     def flush(self) -> list[LiveStep]:
         """End of the stream: decide the last contacts and report every step left."""
         guard, self._guard = self._guard, None
