@@ -305,12 +305,28 @@ def _utc_seconds(values: pd.Series, source: str) -> np.ndarray | None:
     return out
 
 
-def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M) -> FixLog:
+def _hdop_cells(values: pd.Series, source: str) -> tuple[np.ndarray, np.ndarray]:
+    """Decision D44: a fix CSV's ``hdop`` column as floats and its blank cells (empty, only spaces or NaN: the
+    receiver gave no HDOP, an unknown accuracy); any other cell that is no number is a one-line error naming its
+    data row."""
+    num = pd.to_numeric(values, errors="coerce").to_numpy(float)
+    blank = (values.isna() | values.astype(str).str.strip().str.lower().isin(["", "nan"])).to_numpy()
+    bad = np.isnan(num) & ~blank
+    if bad.any():
+        row = int(np.flatnonzero(bad)[0])
+        raise DataError(f"{source}: hdop value {values.iloc[row]!r} in data row {row + 1} is not a number; give the "
+                        "receiver's HDOP, or leave the cell blank for a fix of unknown accuracy (decision D44)")
+    return num, blank
+
+
+def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M, accuracy_m: float = DEFAULT_RMC_ACCURACY_M) -> FixLog:
     """Read a fix CSV with columns ``t, lat, lon, accuracy_m`` (or ``t, x, y, accuracy_m``).
 
     Decision D37: ``latitude``/``longitude`` (and the other :data:`CSV_ALIASES`) name the same columns; ``t`` may be
     ISO 8601 UTC date-times (``stats['time_base'] == "utc"``, mapped onto the session clock like NMEA times by
     :func:`pdrlearn.aid.track.aid_track`); an ``hdop`` column stands for a missing ``accuracy_m`` (HDOP x ``uere_m``).
+    Decision D44: a blank ``hdop`` cell (empty, spaces, NaN) is a fix of unknown accuracy, kept with ``accuracy_m``
+    (a GPX point's without ``<hdop>``) and counted in ``stats['blank_hdop']``.
     """
     path = Path(path)
     if not path.is_file():
@@ -327,9 +343,11 @@ def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M) -> FixLog:
     named_t = "t" in df.columns
     original = list(df.columns)
     df = _rename_aliases(df)
-    if "accuracy_m" not in df.columns and "hdop" in df.columns:  # decision D37: HDOP x UERE, as a GGA's
-        df["accuracy_m"] = pd.to_numeric(df["hdop"], errors="coerce") * uere_m
     stats = {"lines": int(len(df))}
+    if "accuracy_m" not in df.columns and "hdop" in df.columns:  # decision D37: HDOP x UERE, as a GGA's
+        hdop, blank = _hdop_cells(df["hdop"], str(path))
+        df["accuracy_m"] = np.where(blank, accuracy_m, hdop * uere_m)  # decision D44: blank = unknown, the default
+        stats["blank_hdop"] = int(blank.sum())
     epoch = _utc_seconds(df["t"], str(path)) if "t" in df.columns else None
     if epoch is None and "t" in df.columns and not named_t:  # decision D37: numbers only under t (session seconds)
         alias = original[list(df.columns).index("t")]

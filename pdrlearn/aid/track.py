@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pdrlearn.aid.fixes import FixLog, read_fixes, to_local
+from pdrlearn.aid.fixes import DEFAULT_RMC_ACCURACY_M, FixLog, read_fixes, to_local
 from pdrlearn.aid.geo import enu_to_geodetic
 from pdrlearn.aid.gnss import GnssPdrFusion
 from pdrlearn.aid.sporadic import SporadicFixFusion
@@ -103,30 +103,42 @@ def _outside_hint(stats: dict) -> str:
     return OUTSIDE_HINTS[how].format(first=float(stats.get("first_fix_s", float("nan"))))
 
 
-def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog, str | None]:
+def _blank_hdop_line(path, flog: FixLog) -> str | None:
+    """Decision D44: one line counting a fix CSV's blank ``hdop`` cells (kept with the default accuracy), or None."""
+    n = int(flog.stats.get("blank_hdop", 0))
+    if not n:
+        return None
+    return (f"aid: {path}: {n} of {flog.stats['lines']} fix(es) have a blank hdop (unknown accuracy) and were kept "
+            f"with the default accuracy {DEFAULT_RMC_ACCURACY_M:g} m, as a GPX point without <hdop> (decision D44); "
+            "give accuracy_m or hdop for every fix to weight them by it")
+
+
+def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog, list[str]]:
     """Read a fix file (NMEA, GPX or CSV, decision D37) and put its times on the session clock (decision D38);
-    returns the log and a warning line (or None) when the log's times could not be placed."""
+    returns the log and its warning lines: blank hdop cells (D44), times that could not be placed (D38)."""
     path = Path(path)
     if not path.is_file():
         raise DataError(f"{path}: no such fix file; pass an NMEA log (.nmea/.txt), a GPX track (.gpx) or a CSV "
                         "(t, lat, lon, accuracy_m)")
     offset_s = check_time_offset(offset_s)
     out = read_fixes(path)
+    lines = [x for x in [_blank_hdop_line(path, out)] if x]
     if "time_base" not in out.stats:  # a CSV's t on the session clock
         if offset_s is not None:
             raise DataError(f"{path}: --gnss-time-offset places a log's UTC times (NMEA, GPX, ISO-time CSV) on the "
                             "session clock, but this CSV's t is already in session seconds; drop the option or shift t")
-        return out, None
+        return out, lines
     t0, how = _first_fix_session_t(out, session, offset_s)
     out.fixes["t"] = out.fixes["t"] + t0
     out.stats["time_alignment"] = how
     out.stats["first_fix_s"] = round(float(t0), 3)
     if how != "assumed":
-        return out, None
-    return out, (f"aid: {path}: the fixes' UTC times cannot be placed on the session clock (its meta.json has no "
-                 "recording_start with a UTC offset, nor utc_start_s), so the first fix is taken at the session start; "
-                 "if the receiver's first fix came later, pass --gnss-time-offset S (its seconds after the session "
-                 "start) or write recording_start in meta.json (decision D38)")
+        return out, lines
+    return out, lines + [
+        f"aid: {path}: the fixes' UTC times cannot be placed on the session clock (its meta.json has no "
+        "recording_start with a UTC offset, nor utc_start_s), so the first fix is taken at the session start; "
+        "if the receiver's first fix came later, pass --gnss-time-offset S (its seconds after the session "
+        "start) or write recording_start in meta.json (decision D38)"]
 
 
 def _file_stats(stats: dict) -> dict:
@@ -267,9 +279,8 @@ def aid_track(
     for kind, path in (("gnss", gnss_path), ("fixes", fixes_path)):
         if path is None:
             continue
-        flog, late = _load(path, session, gnss_time_offset_s if kind == "gnss" else None)
-        if late:
-            warnings.append(late)
+        flog, lines = _load(path, session, gnss_time_offset_s if kind == "gnss" else None)
+        warnings += lines
         fx, origin = to_local(flog.fixes, origin)
         all_outside = False
         if t_start is not None and len(fx):
