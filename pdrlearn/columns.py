@@ -1202,6 +1202,8 @@ GAIT_BOUTS: tuple[Column, ...] = (
 
 #: decision L301: ``ramps.csv`` (``track`` / ``run``), one row per ramp: runs of consistent grade and their landings
 RAMPS: tuple[Column, ...] = (
+    ("path", _ID, "text", "track-all's OUT/ramps.csv only: the session's path, sessions.csv's key (L572)"),
+    ("visit", _ID, "text", "track-all's OUT/ramps.csv only: sessions.csv's visit (C82; L572)"),
     ("ramp", "index", "integer", "the ramp's number, from 1 in walking order"),
     ("start_s", "s", "number", "its first row's start_s"),
     ("end_s", "s", "number", "its last row's end_s"),
