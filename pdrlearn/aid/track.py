@@ -159,6 +159,8 @@ def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | Non
 
 #: decision D39: the GNSS scale replaces the steps' lengths only when its windows cover at least this much PDR path (m)
 MIN_SCALE_COVER_M = 1000.0
+#: decision D45: ... and only when it differs from 1 by at least this many of its standard errors (its windows' scatter)
+MIN_SCALE_Z = 2.0
 #: decision D41: the stride columns proportional to ``length_m`` (``speed_mps`` = |length_m| / a time), scaled with it
 SCALED_COLUMNS = ("length_m", "speed_mps")
 
@@ -166,15 +168,20 @@ SCALED_COLUMNS = ("length_m", "speed_mps")
 def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.DataFrame | None]:
     """Decision D39: the GNSS-calibrated distance. The filter's fitted scale (``distance_scale_``, on stretches of good
     fixes) multiplies the steps' ``length_m`` when its windows cover :data:`MIN_SCALE_COVER_M`, so ``distance_m``,
-    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Decision D41: every
+    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Decision D45: and only when
+    the scale differs from 1 by at least :data:`MIN_SCALE_Z` of its standard errors (``distance_scale_se_``, the
+    windows' scatter): a scale GNSS cannot tell from 1 leaves the PDR's lengths (a good foot track's distance is
+    within a few tenths of a percent; 5 windows of 5 m fixes scatter about 1 %). Decision D41: every
     length-derived stride column (:data:`SCALED_COLUMNS`: ``length_m`` and the ``speed_mps`` the pipeline already
     derived from it) is scaled together, so ``speed_mps * stride_time_s == |length_m|`` still holds; ``raw_length_m``
     (the estimate before the rules) stays the PDR's. Returns (info keys, the scaled steps or None)."""
     pdr_m = float(np.nansum(steps["length_m"].to_numpy(float)))
-    scale, cover = float(f.distance_scale_), float(f.distance_scale_covered_m_)
-    ok = np.isfinite(scale) and cover >= MIN_SCALE_COVER_M
+    scale, cover, se = float(f.distance_scale_), float(f.distance_scale_covered_m_), float(f.distance_scale_se_)
+    ok = bool(np.isfinite(scale) and cover >= MIN_SCALE_COVER_M and np.isfinite(se)
+              and abs(scale - 1.0) >= MIN_SCALE_Z * se)
     info = {"distance_pdr_m": round(pdr_m, 2),
             "distance_scale": round(scale, 4) if np.isfinite(scale) else None,
+            "distance_scale_se": round(se, 4) if np.isfinite(se) else None,
             "distance_scale_cover_m": round(cover, 1),
             "distance_scale_windows": int(f.distance_scale_windows_),
             "distance_scaled": bool(ok)}
