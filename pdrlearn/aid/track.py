@@ -161,6 +161,11 @@ def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | Non
 MIN_SCALE_COVER_M = 1000.0
 #: decision D45: ... and only when it differs from 1 by at least this many of its standard errors (its windows' scatter)
 MIN_SCALE_Z = 2.0
+#: decision D45: ... or when its standard error is at most the PDR's own expected relative distance error, by the
+#: step table's unit: a foot's ZUPT stride lengths are measured (D39's plasys bound, 0.5 %: its seven plasys tracks read
+#: -0.42 to +0.75 %); a lower back's step lengths are modelled (D39's seven waist-pll tracks read -4.90 to +11.24 %,
+#: median |error| 3.30 %). A step table of no single known unit has none (the standard-error test alone)
+PDR_DISTANCE_ERROR = {"foot": 0.005, "waist": 0.033}
 #: decision D41: the stride columns proportional to ``length_m`` (``speed_mps`` = |length_m| / a time), scaled with it
 SCALED_COLUMNS = ("length_m", "speed_mps")
 
@@ -169,16 +174,19 @@ def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.Dat
     """Decision D39: the GNSS-calibrated distance. The filter's fitted scale (``distance_scale_``, on stretches of good
     fixes) multiplies the steps' ``length_m`` when its windows cover :data:`MIN_SCALE_COVER_M`, so ``distance_m``,
     splits and periods are the calibrated ones; the PDR's own distance stays in the info. Decision D45: and only when
-    the scale differs from 1 by at least :data:`MIN_SCALE_Z` of its standard errors (``distance_scale_se_``, the
-    windows' scatter): a scale GNSS cannot tell from 1 leaves the PDR's lengths (a good foot track's distance is
-    within a few tenths of a percent; 5 windows of 5 m fixes scatter about 1 %). Decision D41: every
+    the scale's standard error (``distance_scale_se_``, its windows' scatter) is at most the PDR's expected error
+    (:data:`PDR_DISTANCE_ERROR` of the steps' unit) or the scale differs from 1 by at least :data:`MIN_SCALE_Z` of
+    them: a scale less precise than the PDR and not distinguishable from 1 leaves the PDR's lengths (a good foot
+    track's distance is within a few tenths of a percent; 5 windows of 5 m fixes scatter about 1 %). Decision D41: every
     length-derived stride column (:data:`SCALED_COLUMNS`: ``length_m`` and the ``speed_mps`` the pipeline already
     derived from it) is scaled together, so ``speed_mps * stride_time_s == |length_m|`` still holds; ``raw_length_m``
     (the estimate before the rules) stays the PDR's. Returns (info keys, the scaled steps or None)."""
     pdr_m = float(np.nansum(steps["length_m"].to_numpy(float)))
     scale, cover, se = float(f.distance_scale_), float(f.distance_scale_covered_m_), float(f.distance_scale_se_)
+    units = set(steps["unit"].astype(str)) if "unit" in steps else set()
+    expected = PDR_DISTANCE_ERROR.get(next(iter(units)), 0.0) if len(units) == 1 else 0.0
     ok = bool(np.isfinite(scale) and cover >= MIN_SCALE_COVER_M and np.isfinite(se)
-              and abs(scale - 1.0) >= MIN_SCALE_Z * se)
+              and (se <= expected or abs(scale - 1.0) >= MIN_SCALE_Z * se))
     info = {"distance_pdr_m": round(pdr_m, 2),
             "distance_scale": round(scale, 4) if np.isfinite(scale) else None,
             "distance_scale_se": round(se, 4) if np.isfinite(se) else None,
