@@ -12,7 +12,7 @@ import pytest
 
 from pdrlearn.aid import aid_track, read_fixes
 from pdrlearn.aid.fixgen import gnss_fixes
-from pdrlearn.aid.track import MIN_SCALE_COVER_M, MIN_SCALE_Z
+from pdrlearn.aid.track import MIN_SCALE_COVER_M, PDR_DISTANCE_ERROR, scale_applies
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels.fixes import length_scale_se, scale_from_windows
@@ -64,27 +64,34 @@ def test_length_scale_se_is_the_windows_scatter_d45():
     assert scale_from_windows(c, length) == (pytest.approx(1.0), 800.0, 4)
 
 
+def test_scale_applies_kernel_d45():
+    # 5 windows, SE 1 %: more precise than a lower back (5.96 %), not than a foot (0.41 %); 1 outside its 99 % interval
+    assert scale_applies(1.004, 0.01, 5, 1002.0, PDR_DISTANCE_ERROR["waist"])
+    assert not scale_applies(1.004, 0.01, 5, 1002.0, PDR_DISTANCE_ERROR["foot"])
+    assert not scale_applies(1.0128, 0.0057, 5, 1002.2, PDR_DISTANCE_ERROR["foot"])  # R0-like: z 2.25 is not 4.60
+    assert scale_applies(1.05, 0.01, 5, 1002.0, PDR_DISTANCE_ERROR["foot"])  # a foot track 5 % short: told off
+    assert not scale_applies(1.05, 0.01, 5, 999.0, PDR_DISTANCE_ERROR["waist"])  # D39's cover
+    assert not scale_applies(1.05, float("nan"), 1, 1200.0, PDR_DISTANCE_ERROR["waist"])  # one window: no SE
+
+
 def test_a_scale_gnss_cannot_tell_from_1_leaves_a_good_track_d45(tmp_path):
-    """R0 finding 5: an exact PDR (scale 1) on a 1300 m two-leg walk with 5 m fixes: the fitted scale is within its
-    two standard errors of 1, so the PDR's lengths are kept (D39 alone scaled them: errors up to 1.75 % measured);
-    a PDR 5 % short (a lower-back track's) is scaled on the same fixes."""
+    """R0 finding 5: an exact PDR on a 1300 m two-leg walk with 5 m fixes (5 windows). Its steps as a foot's: the scale
+    (SE about 1 %) is less precise than a foot's strides and does not tell them off, so their lengths are kept (D39
+    alone scaled them: errors up to 1.75 % measured on fresh users); as a lower back's, the scale replaces them; a
+    foot track 8 % long is scaled."""
     steps, truth = _legs((700.0, 600.0))
     true_m = float(steps["length_m"].sum())
-    kept = 0
     for seed in (1, 2, 3):
         fx = gnss_fixes(truth, accuracy_m=5.0, origin=ORIGIN, seed=seed)
         path = _write_csv(fx, tmp_path / f"g{seed}.csv")
-        out = aid_track(_pdr(steps), Session(name="w"), gnss_path=path, start=ORIGIN)
-        g = out.info["aid"]["gnss"]
-        assert g["distance_scale_cover_m"] >= MIN_SCALE_COVER_M and g["distance_scale_se"] > 0
-        assert g["distance_scaled"] == (abs(g["distance_scale"] - 1.0) >= MIN_SCALE_Z * g["distance_scale_se"])
-        if not g["distance_scaled"]:
-            kept += 1
-            assert out.steps["length_m"].sum() == pytest.approx(true_m)
-        bad = aid_track(_pdr(steps, scale=0.95), Session(name="w"), gnss_path=path, start=ORIGIN)
-        assert bad.info["aid"]["gnss"]["distance_scaled"]
-        assert bad.steps["length_m"].sum() == pytest.approx(true_m, rel=0.02)
-    assert kept >= 2
+        for unit, scale, scaled in (("foot", 1.0, False), ("waist", 1.0, True), ("foot", 1.08, True)):
+            pdr = _pdr(steps, scale=scale)
+            pdr.steps["unit"] = unit
+            out = aid_track(pdr, Session(name="w"), gnss_path=path, start=ORIGIN)
+            g = out.info["aid"]["gnss"]
+            assert g["distance_scale_cover_m"] >= MIN_SCALE_COVER_M and 0 < g["distance_scale_se"] < 0.03
+            assert g["distance_scaled"] == scaled, (seed, unit, scale, g)
+            assert out.steps["length_m"].sum() == pytest.approx(true_m if scaled else scale * true_m, rel=0.02)
 
 
 # --- D46 -------------------------------------------------------------------------------------------------
