@@ -1194,7 +1194,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", []), *([msg] if msg else [])]
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
         at = len(res.info["warnings"]) - 1 if no_classes and msg else None
-        apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
+        apply_altitude(res, session, altitude,  # decision L154 (L292: rewrites L69's line; L564: the raw heights)
+                       raw_dz=raw_dz if no_classes else None)
         if at is not None:
             log.warning("%s: %s", session.where, res.info["warnings"][at])
         insole = streamed_insole_line(session, "track --streaming")  # decision L406: L365's check, told
@@ -1386,6 +1387,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
     length, dz, impossible = _drop_impossible(length, dz, strides["start_s"].to_numpy(float),
                                               strides["end_s"].to_numpy(float), warnings)  # decision L94
+    # decision L564: the heights before L39's level rule (0 where the stride has none), for the fused altitude
+    leveled = no_classes or "terrain" in untrained
+    climb_dz = np.where(in_gap | impossible, 0.0, raw_dz) if leveled else None
     altitude_check, terrain_check = None, None
     msg, steep_check = steep_stride_check(np.where(in_gap | impossible, 0.0, np.hypot(disp[:, 0], disp[:, 1])), dz)
     warnings += [msg] if msg else []  # decision L430: strides steeper than any stair
@@ -1577,6 +1581,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         order = np.argsort(table["start_s"].to_numpy(float), kind="stable")
         table = table.iloc[order].reset_index(drop=True)
         length, dz, head = length[order], dz[order], head[order]
+        climb_dz = None if climb_dz is None else np.concatenate([climb_dz, np.zeros(len(at))])[order]  # L564
         inserted = np.flatnonzero(order >= len(order) - len(at))  # the gap rows' new places
         add_gait_columns(table, turn_rad=table["turn_angle_rad"].to_numpy(float),  # the rows next to a gap row
                          valid=stride_rows(table), turn_valid=turn_rows(table),  # decisions L67, L97, L109
@@ -1635,7 +1640,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             "warnings": warnings}
     res = TrackResult(steps=table, trajectory=traj, info=info)
     logged = len(warnings)  # apply_altitude logs its own lines
-    apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
+    apply_altitude(res, session, altitude, raw_dz=climb_dz)  # decision L154 (L292: rewrites L69's line; L564)
     foot_rides(res, session)  # decision L378: the rides, from the waist barometer (offline only, as run's files)
     res.steps.insert(res.steps.columns.get_loc("terrain") + 1, "terrain_dz",  # decision L424: beside the class
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
