@@ -1,0 +1,88 @@
+"""Decisions L564-L567 (session 41, trial T3 findings 1 and 2): one height source inside a barometric climb for the
+fused foot altitude, and the barometric ascent / descent checked against the climbs ramps.csv / stairs.csv
+identify whole."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.kernels.barometer import barometric_climb, fuse_altitude, pressure_hpa
+from pdrlearn.kernels.distance import level_dz
+from pdrlearn.track.base import TrackResult
+from pdrlearn.track.evaluate import climb_total_warning, identified_climbs, summary_warnings
+
+
+def _ramp_walk(grade: float = 0.07, n: tuple[int, int, int] = (12, 16, 12), stride_m: float = 1.4):
+    """Strides of 1 s and ``stride_m`` m: level, a ``grade`` slope, level; the barometer the true height (ISA,
+    25 Hz, no noise). Returns (t0, t1, length, true dz, barometer t, hPa)."""
+    true = np.r_[np.zeros(n[0]), np.full(n[1], grade * stride_m), np.zeros(n[2])]
+    t0 = np.arange(len(true), dtype=float) + 3.0
+    h = np.r_[0.0, np.cumsum(true)]
+    bt = np.arange(0.0, t0[-1] + 6.0, 0.04)
+    hpa = pressure_hpa(np.interp(bt, np.r_[t0[0], t0 + 1.0], h), 1013.25)
+    return t0, t0 + 1.0, np.full(len(true), stride_m), true, bt, hpa
+
+
+def test_barometric_climb_marks_the_slope_and_its_ends_not_the_level_walk():
+    t0, t1, length, true, bt, hpa = _ramp_walk()
+    climb = barometric_climb(t0, t1, length, bt, hpa)
+    assert climb[12:28].all()  # every slope stride, the first and the last included (the centred span)
+    assert not climb[:6].any() and not climb[-6:].any()  # the level walk away from the slope
+    flat = barometric_climb(t0, t1, length, bt, np.full(len(bt), 1013.25))
+    assert not flat.any() and barometric_climb([], [], [], bt, hpa).shape == (0,)
+
+
+def test_one_height_source_inside_the_climb_steadies_the_per_stride_grades():
+    """T3 finding 1's mechanism: a 7 % slope of 1.4 m strides rises 0.098 m per stride; the foot reads them 0.09 /
+    0.11 m alternately, so L39 levels every other one. Fused from two sources their grades swing; with the foot's
+    own heights inside the barometric climb (L564) they do not, and the slope's height is kept."""
+    t0, t1, length, true, bt, hpa = _ramp_walk()
+    raw = true + np.where(np.arange(len(true)) % 2, 0.012, -0.008) * (true > 0)
+    leveled = level_dz(raw)
+    before = fuse_altitude(leveled, t0, t1, bt, hpa)
+    climb = barometric_climb(t0, t1, length, bt, hpa)
+    after = fuse_altitude(np.where(climb, raw, leveled), t0, t1, bt, hpa, climbing=climb)
+    g_before, g_after = 100 * before[12:28] / length[12:28], 100 * after[12:28] / length[12:28]
+    assert np.ptp(g_before) > 4.0  # the swing: some strides near 0 %, others over 7 %
+    assert np.ptp(g_after) < 2.0 and abs(g_after.mean() - 7.0) < 0.5
+    assert abs(after.sum() - true.sum()) < 0.1
+
+
+def _fused_result(dz: np.ndarray, length: np.ndarray, *, fused: bool = True) -> TrackResult:
+    n = len(dz)
+    steps = pd.DataFrame({"start_s": np.arange(n, dtype=float), "end_s": np.arange(n, dtype=float) + 1.0,
+                          "event_s": np.arange(n, dtype=float) + 0.5, "length_m": length, "dz_m": dz,
+                          "unit": "foot"})
+    t = np.r_[0.0, steps["end_s"].to_numpy()]
+    traj = pd.DataFrame({"t": t, "x": np.r_[0.0, np.cumsum(length)], "y": 0.0, "z": np.r_[0.0, np.cumsum(dz)]})
+    return TrackResult(steps=steps, trajectory=traj, info={"altitude_source": "fused" if fused else "foot"})
+
+
+def test_identified_climbs_sum_the_ramps_and_flights_of_a_barometric_track_only():
+    ramp_up = np.r_[np.zeros(4), np.full(10, 1.3 * 0.0833), np.zeros(4)]
+    stairs_down = np.full(6, -0.34)
+    dz = np.r_[ramp_up, stairs_down, np.zeros(3)]
+    length = np.r_[np.full(18, 1.3), np.full(6, 0.56), np.full(3, 1.3)]
+    got = identified_climbs(_fused_result(dz, length))
+    assert got["ramps_stairs_ascent_m"] == pytest.approx(10 * 1.3 * 0.0833)
+    assert got["ramps_stairs_descent_m"] == pytest.approx(6 * 0.34)
+    assert identified_climbs(_fused_result(dz, length, fused=False)) == {"ramps_stairs_ascent_m": None,
+                                                                           "ramps_stairs_descent_m": None}
+
+
+def test_an_ascent_below_the_ramps_rise_is_warned_and_a_whole_one_is_not():
+    """T3 finding 2: a fused 1:12 ramp of 1.00 m read ascent_m 0.59 while ramps.csv rise_m read 1.08."""
+    line = climb_total_warning({"ascent_m": 0.59, "descent_m": 0.0, "ramps_stairs_ascent_m": 1.08,
+                                "ramps_stairs_descent_m": 0.0})
+    assert line is not None and "ascent_m 0.59 m is 0.49 m below the 1.08 m" in line and "L566" in line
+    assert "descent_m" not in line.split(":")[0]
+    assert climb_total_warning({"ascent_m": 1.0, "descent_m": 0.9, "ramps_stairs_ascent_m": 1.08,
+                                "ramps_stairs_descent_m": 1.0}) is None  # within the BMP280's 0.13 m
+    assert climb_total_warning({"ascent_m": 1.0, "ramps_stairs_ascent_m": None}) is None
+    down = climb_total_warning({"ascent_m": 0.0, "descent_m": 0.68, "ramps_stairs_ascent_m": 0.0,
+                                "ramps_stairs_descent_m": 0.99})
+    assert down.startswith("descent_m 0.68 m is 0.31 m below the 0.99 m its ramps and stair flights drop")
+    assert down in summary_warnings({"ascent_m": 0.0, "descent_m": 0.68, "ramps_stairs_ascent_m": 0.0,
+                                     "ramps_stairs_descent_m": 0.99})
