@@ -16,13 +16,13 @@ import json
 import os
 import subprocess
 import sys
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 ROOT = Path(__file__).resolve().parent.parent
+T3 = Path("/tmp/lead_s41/scratch_T3/sweep")
 RAMP = "stand:3, straight:5, slope:15:{g}, straight:5, stand:3"
 STAIRS = "stand:3, straight:5, up:17, turn:180, down:17, straight:5, stand:3"
 LEVEL = "stand:3, straight:20, turn:90, straight:20, turn:180, straight:20, stand:3"
@@ -45,22 +45,71 @@ def sessions() -> list[dict]:
     return out
 
 
-def _run(args: list[str], pythonpath: Path) -> None:
-    env = {**os.environ, "PYTHONPATH": str(pythonpath), "OMP_NUM_THREADS": "1"}
-    subprocess.run([sys.executable, "-m", "pdrlearn", *args], env=env, check=True, stdout=subprocess.DEVNULL,
-                   stderr=subprocess.DEVNULL)
+def _dir(s: dict, out: Path) -> Path:
+    return out / f"{s['kind']}_{s['grade']:+g}_{s['gait']}_u{s['user']}"
 
 
-def prepare(s: dict, out: Path, old: Path) -> None:
-    d = out / f"{s['kind']}_{s['grade']:+g}_{s['gait']}_u{s['user']}"
-    s["dir"] = d
-    if not (d / "meta.json").exists():
-        _run(["simulate", "--route", s["route"], *GAITS[s["gait"]], "--user-seed", str(s["user"]), "--seed",
-              str(s["user"]), "--out", str(d)], ROOT)
-    for tag, code in (("before", old), ("after", ROOT)):
+def worker(tag: str, out: Path) -> None:
+    """One interpreter per code version (importing pdrlearn costs more than a short track on a loaded machine):
+    "after" simulates every session (a ``.sim_done`` marker each) and tracks it; "before" tracks each once
+    simulated."""
+    import contextlib
+    import io
+    import logging
+    import time
+
+    import pdrlearn
+    from pdrlearn.cli import main as cli
+
+    print(tag, "code", pdrlearn.__file__, flush=True)
+    logging.disable(logging.WARNING)
+    todo = sessions()
+    if tag == "after":
+        for s in todo:
+            d = _dir(s, out)
+            if not (d / ".sim_done").exists():
+                with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+                    cli(["simulate", "--route", s["route"], *GAITS[s["gait"]], "--user-seed", str(s["user"]),
+                         "--seed", str(s["user"])] + ["--out", str(d)])
+                (d / ".sim_done").write_text("")
+    for s in todo:
+        d = _dir(s, out)
+        while not (d / ".sim_done").exists():
+            time.sleep(2)
         o = Path(f"{d}_{tag}")
         if not (o / "summary.json").exists():
-            _run(["track", str(d), "--altitude", "fused", "--no-plot", "--out", str(o)], code)
+            with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+                cli(["track", str(d), "--altitude", "fused", "--no-plot", "--out", str(o)])
+        print(tag, o.name, flush=True)
+    for d in t3_dirs(T3):  # (e) T3's steep ramps
+        o = out / f"t3_{d.name}_{tag}"
+        if not (o / "summary.json").exists():
+            with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+                cli(["track", str(d), "--altitude", "fused", "--no-plot", "--out", str(o)])
+        print(tag, o.name, flush=True)
+
+
+def t3_dirs(t3: Path) -> list[Path]:
+    """T3's sweep sessions of 8.33 % and steeper (g8.33, g10, g12)."""
+    if not t3.exists():
+        return []
+    return [d for d in sorted(t3.glob("g*_u*")) if d.is_dir() and "_" not in d.name.split("_u")[1]
+            and float(d.name[1:].split("_u")[0]) >= 8.3]
+
+
+def prepare_all(ss: list[dict], out: Path, old: Path) -> None:
+    for s in ss:
+        s["dir"] = _dir(s, out)
+        if (s["dir"] / "meta.json").exists() and not (s["dir"] / ".sim_done").exists():
+            (s["dir"] / ".sim_done").write_text("")  # simulated by an earlier run of this script
+    procs = []
+    for tag, code in (("after", ROOT), ("before", old)):
+        env = {**os.environ, "PYTHONPATH": str(code), "OMP_NUM_THREADS": "1"}
+        procs.append(subprocess.Popen([sys.executable, __file__, "--worker", tag, "--out", str(out), "--old",
+                                       str(old)], env=env))
+    for p in procs:
+        if p.wait():
+            raise SystemExit(f"worker failed: {p.args}")
 
 
 def ramp_metrics(d: Path, o: Path, grade: float) -> dict:
@@ -186,19 +235,13 @@ def real_overlay() -> bool:
     return ok
 
 
-def t3_steep(t3: Path, old: Path, out: Path) -> bool:
+def t3_steep(t3: Path, out: Path) -> bool:
     """(e) T3's steep ramps (g8.33, g10, g12 of its sweep): mean |grade error| before / after."""
     errs: dict[str, list[float]] = {"before": [], "after": []}
-    for d in sorted(t3.glob("g*_u*")):
-        if "_" in d.name.split("_u")[1] or not d.is_dir():
-            continue
+    for d in t3_dirs(t3):
         g = float(d.name[1:].split("_u")[0])
-        if g < 8.3:
-            continue
-        for tag, code in (("before", old), ("after", ROOT)):
+        for tag in ("before", "after"):
             o = out / f"t3_{d.name}_{tag}"
-            if not (o / "summary.json").exists():
-                _run(["track", str(d), "--altitude", "fused", "--no-plot", "--out", str(o)], code)
             r = pd.read_csv(o / "ramps.csv")
             up = r[r["direction"] == "up"]
             gr = float(up.loc[up["rise_m"].idxmax(), "mean_grade_pct"]) if len(up) else 0.0
@@ -213,17 +256,19 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--old", type=Path, required=True, help="a checkout of the code before L564")
     ap.add_argument("--out", type=Path, required=True)
-    ap.add_argument("--t3", type=Path, default=Path("/tmp/lead_s41/scratch_T3/sweep"))
-    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--t3", type=Path, default=T3)
+    ap.add_argument("--worker", choices=("before", "after"), help=argparse.SUPPRESS)
     a = ap.parse_args()
     a.out.mkdir(parents=True, exist_ok=True)
+    if a.worker:
+        worker(a.worker, a.out)
+        return
     ss = sessions()
-    with ThreadPoolExecutor(a.jobs) as pool:
-        list(pool.map(lambda s: prepare(s, a.out, a.old), ss))
+    prepare_all(ss, a.out, a.old)
     ok = judge(ss)
     ok &= real_overlay()
     if a.t3.exists():
-        ok &= t3_steep(a.t3, a.old, a.out)
+        ok &= t3_steep(a.t3, a.out)
     print("L564:", "ADOPTED (all hold)" if ok else "NOT ADOPTED")
 
 
