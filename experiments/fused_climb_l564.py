@@ -1,6 +1,7 @@
 """Decision L564: one height source inside a barometric climb (the foot's un-levelled heights), judged by L564's
 adoption rule (docs/decisions/localization.md): fresh users 11430-11459 on RAMP / STAIRS / LEVEL routes, the fused
-track before (``--old``: a checkout of the code before L564) and after (this checkout), both `pdrlearn track
+track before (``--old``: a checkout of the code before L564) and after (this checkout, ``--params`` holding
+``{"fused_climb": true}``, L565), both `pdrlearn track
 --altitude fused` offline without a model; (d) the real gaitmap level walks under the mobgap Test11 barometers;
 (e) T3's steep ramps (``--t3``, used data).
 
@@ -64,6 +65,9 @@ def worker(tag: str, out: Path) -> None:
     print(tag, "code", pdrlearn.__file__, flush=True)
     logging.disable(logging.WARNING)
     todo = sessions()
+    opt = out / "fused_climb.json"  # decision L565: L564 is the option {"fused_climb": true}
+    opt.write_text('{"fused_climb": true}')
+    extra = ["--params", str(opt)] if tag == "after" else []
     if tag == "after":
         for s in todo:
             d = _dir(s, out)
@@ -79,13 +83,13 @@ def worker(tag: str, out: Path) -> None:
         o = Path(f"{d}_{tag}")
         if not (o / "summary.json").exists():
             with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-                cli(["track", str(d), "--altitude", "fused", "--no-plot", "--out", str(o)])
+                cli(["track", str(d), "--altitude", "fused", "--no-plot", "--out", str(o), *extra])
         print(tag, o.name, flush=True)
     for d in t3_dirs(T3):  # (e) T3's steep ramps
         o = out / f"t3_{d.name}_{tag}"
         if not (o / "summary.json").exists():
             with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-                cli(["track", str(d), "--altitude", "fused", "--no-plot", "--out", str(o)])
+                cli(["track", str(d), "--altitude", "fused", "--no-plot", "--out", str(o), *extra])
         print(tag, o.name, flush=True)
 
 

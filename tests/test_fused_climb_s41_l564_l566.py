@@ -86,3 +86,56 @@ def test_an_ascent_below_the_ramps_rise_is_warned_and_a_whole_one_is_not():
     assert down.startswith("descent_m 0.68 m is 0.31 m below the 0.99 m its ramps and stair flights drop")
     assert down in summary_warnings({"ascent_m": 0.0, "descent_m": 0.68, "ramps_stairs_ascent_m": 0.0,
                                      "ramps_stairs_descent_m": 0.99})
+
+
+@pytest.fixture(scope="module")
+def ramp6():
+    """A 6 % ramp of 15 m (user 11436 of L564's measurement, here simulated in-process)."""
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    s = simulate_path(parse_route("stand:3, straight:5, slope:15:6, straight:5, stand:3"),
+                      UserProfile.from_seed(11436), seed=11436)
+    st = s.steps
+    climb = st[st["height_m"] != 0]
+    return s, float(climb["start_s"].iloc[0]), float(climb["end_s"].iloc[-1])
+
+
+def test_the_fused_climb_option_puts_the_ramp_where_it_is(ramp6):
+    """L564 / L565: with ``fused_climb`` the fused ramp is one run that ends where the truth does, with its rise and
+    grade; without it (the default) it ends 2.2 s early with a fake landing and 0.56 of its 0.90 m (printed in
+    session 41: 2 runs, end 20.87 s against 23.11 s, rise 0.562 m; with the option 1 run, 23.15 s, 0.917 m, 6.45 %)."""
+    from pdrlearn.track.grade import ramp_table
+    from pdrlearn.track.plasys import track_plasys
+
+    s, t0, t1 = ramp6
+    got = {}
+    for on in (False, True):
+        res = track_plasys(s, altitude="fused", fused_climb=on)
+        r = ramp_table(res.steps, res.info)
+        got[on] = r.loc[r["rise_m"].idxmax()]
+    assert got[False]["landings"] >= 1 and t1 - got[False]["end_s"] > 1.5 and got[False]["rise_m"] < 0.7
+    assert got[True]["landings"] == 0 and abs(got[True]["end_s"] - t1) < 0.3 and abs(got[True]["start_s"] - t0) < 1.3
+    assert abs(got[True]["rise_m"] - 0.9) < 0.1 and abs(got[True]["mean_grade_pct"] - 6.0) < 0.6
+
+
+def test_the_fused_climb_option_needs_the_fused_altitude_and_is_a_params_key(ramp6, tmp_path):
+    from pdrlearn.cli import main
+    from pdrlearn.errors import DataError
+    from pdrlearn.io import write_session
+    from pdrlearn.track.plasys import track_plasys
+
+    s, _, _ = ramp6
+    with pytest.raises(DataError, match="fused_climb=True .* add altitude='fused'"):
+        track_plasys(s, fused_climb=True)
+    d = tmp_path / "s"
+    write_session(s, d)
+    par = tmp_path / "p.json"
+    par.write_text('{"fused_climb": "yes"}')
+    assert main(["track", str(d), "--altitude", "fused", "--params", str(par), "--no-plot",
+                 "--out", str(tmp_path / "bad")]) != 0
+    par.write_text('{"fused_climb": true}')
+    assert main(["track", str(d), "--altitude", "fused", "--streaming", "--params", str(par), "--no-plot",
+                 "--out", str(tmp_path / "o")]) == 0
+    r = pd.read_csv(tmp_path / "o" / "ramps.csv")
+    assert len(r) >= 1 and r["rise_m"].max() > 0.6
