@@ -139,3 +139,20 @@ def test_the_fused_climb_option_needs_the_fused_altitude_and_is_a_params_key(ram
                  "--out", str(tmp_path / "o")]) == 0
     r = pd.read_csv(tmp_path / "o" / "ramps.csv")
     assert len(r) >= 1 and r["rise_m"].max() > 0.6
+
+
+def test_a_climbing_stride_does_not_add_the_slope_state_to_its_own_height():
+    """L564's ``climbing``: a stride fused with its own height is a climbing stride, so the slope the filter learnt
+    from the barometer over the levelled strides before it is not added again (0.07 m strides: the first own-height
+    stride reads 0.080 m, 0.121 m if it were 'level' and took the slope state on top)."""
+    n = 30
+    true = np.full(n, 0.07)
+    t0 = np.arange(n) + 3.0
+    bt = np.arange(0.0, t0[-1] + 6.0, 0.04)
+    hpa = pressure_hpa(np.interp(bt, np.r_[t0[0], t0 + 1.0], np.r_[0.0, np.cumsum(true)]), 1013.25)
+    dz = np.r_[np.zeros(15), true[15:]]  # levelled by L39, then the foot's own heights
+    climbing = np.r_[np.zeros(15, bool), np.ones(15, bool)]
+    on = fuse_altitude(dz, t0, t0 + 1.0, bt, hpa, climbing=climbing)
+    off = fuse_altitude(dz, t0, t0 + 1.0, bt, hpa)
+    assert abs(on[15] - 0.07) < 0.015 and off[15] - 0.07 > 0.04
+    assert abs(on[15:].sum() - 1.05) < abs(off[15:].sum() - 1.05)
