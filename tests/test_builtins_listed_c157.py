@@ -154,3 +154,25 @@ def test_the_root_help_imports_no_registry():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
                          env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin", "COLUMNS": "100"}, cwd=ROOT)
     assert out.stdout.strip().splitlines()[-1] == "[]", out.stdout
+
+
+def test_the_light_help_names_are_the_registries_builtins_c157_amended():
+    """C157 amended: the help shows these tuples while no registry is imported (a help without scipy / pandas);
+    they must be the registries' built-ins, in registration order."""
+    from pdrlearn.cli.registry_help import BUILTIN_DETECTORS, BUILTIN_LENGTHS, length_names
+
+    assert BUILTIN_DETECTORS == {u: tuple(DETECTORS.builtin_names(u)) for u in BUILTIN_DETECTORS}
+    assert sum(map(len, BUILTIN_DETECTORS.values())) == len(DETECTORS.builtin_names())
+    assert [n.split(":")[0] for n in BUILTIN_LENGTHS] == STEP_LENGTHS.builtin_names()
+    assert ", ".join(BUILTIN_LENGTHS) == length_names().split(" | ")[0]  # the same text as the registry's
+
+
+def test_a_help_imports_no_registry_c157_amended():
+    code = ("import sys\nfrom pdrlearn.cli import main\ntry:\n    main(['steps', '--help'])\nexcept SystemExit:\n"
+            "    pass\ntry:\n    main(['track', '--help'])\nexcept SystemExit:\n    pass\n"
+            "print(sorted(m for m in ('scipy', 'pandas', 'pdrlearn.steps.detectors', 'pdrlearn.waist.lengths')"
+            " if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert out.returncode == 0, out.stderr[-400:]
+    assert out.stdout.strip().splitlines()[-1] == "[]"
+    assert "pelvic-gyro, pll, waist-ic (waist steps)" in out.stdout and "weinberg:k=..." in out.stdout

@@ -81,7 +81,7 @@ def test_track_compass_keep_keeps_the_compass_l545(disturbed, tmp_path):
     fallback to the waist gyroscope, the line's old advice); the default (auto) falls back (L226)."""
     for value, fallback in (("auto", True), ("keep", False)):
         out = tmp_path / value
-        assert main(["track", str(disturbed), "--compass", value, "--out", str(out)]) == 0
+        assert main(["track", str(disturbed), "--compass", value, "--no-plot", "--out", str(out)]) == 0
         summary = json.loads((out / "summary.json").read_text())
         check = summary["info"]["compass_check"]
         assert check["median_deg"] > COMPASS_DISAGREE_DEG and check["gyro_fallback"] is fallback

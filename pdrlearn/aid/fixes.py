@@ -283,15 +283,35 @@ def _rename_aliases(df: pd.DataFrame) -> pd.DataFrame:
     return df.rename(columns=ren)
 
 
+def _epoch_seconds(num: pd.Series, source: str) -> np.ndarray | None:
+    """Decision D46: a numeric ``t`` column (NaN for a blank cell) is session seconds (None) unless its values reach
+    B39's :data:`~pdrlearn.io.validate.EPOCH_START` (1e9 s, 31 years: no session's clock): wholly in
+    [EPOCH_START, EPOCH_END) they are epoch seconds (UTC, returned as such); beyond EPOCH_END (epoch ms or finer), or
+    a column mixing epoch and session seconds, is refused in one line."""
+    from pdrlearn.io.validate import EPOCH_END, EPOCH_START
+
+    v = num.to_numpy(float)
+    seen = v[np.isfinite(v)]
+    if not len(seen) or (np.abs(seen) < EPOCH_START).all():
+        return None
+    if ((seen >= EPOCH_START) & (seen < EPOCH_END)).all():
+        return v
+    lo, hi = float(seen.min()), float(seen.max())
+    what = ("epoch milliseconds or finer? divide them by 1000 to epoch seconds" if hi >= EPOCH_END else
+            f"epoch seconds (from {EPOCH_START:g}) mixed with session seconds")
+    raise DataError(f"{source}: t runs from {lo:.15g} to {hi:.15g}: {what}; give t as session seconds, epoch seconds "
+                    "or ISO 8601 UTC date-times (e.g. 2026-03-15T10:00:00Z) (decision D46)")
+
+
 def _utc_seconds(values: pd.Series, source: str) -> np.ndarray | None:
     """Decision D37: ISO 8601 date-times -> seconds since the epoch (UTC; a time without an offset is read as UTC,
-    as GPX and NMEA times are); None when the column is numeric (session seconds). Decision D43: decided on the
-    non-blank cells (a blank cell is no evidence of ISO times); a blank cell stays NaN, so
-    :func:`validate_fix_table` names its row."""
+    as GPX and NMEA times are); None when the column is numeric (session seconds), except epoch seconds, returned
+    as they are (decision D46, :func:`_epoch_seconds`). Decision D43: decided on the non-blank cells (a blank cell is
+    no evidence of ISO times); a blank cell stays NaN, so :func:`validate_fix_table` names its row."""
     num = pd.to_numeric(values, errors="coerce")
     blank = values.isna() | values.astype(str).str.strip().eq("")
     if (num.notna() | blank).all():
-        return None
+        return _epoch_seconds(num, source)
     text = values[~blank].astype(str).str.strip()
     try:
         dt = pd.to_datetime(text, utc=True, format="ISO8601")

@@ -171,6 +171,28 @@ def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | Non
 
 #: decision D39: the GNSS scale replaces the steps' lengths only when its windows cover at least this much PDR path (m)
 MIN_SCALE_COVER_M = 1000.0
+#: decision D45: the PDR's own expected relative distance error by the step table's unit, the RMS error of D39's seven
+#: tracks of that unit (m60-m66): a foot's ZUPT-measured strides -0.42 to +0.75 % (RMS 0.41 %), a lower back's
+#: modelled steps (waist-pll) -4.90 to +11.24 % (RMS 5.96 %); a table of no single known unit has none
+PDR_DISTANCE_ERROR = {"foot": 0.0041, "waist": 0.0596}
+#: decision D45: the scale is "more precise than the PDR" when its Student-t interval at this level (two-sided 95 %) is
+#: no wider than the PDR's normal one, and "finds the PDR off" when 1 lies outside its interval at this level (99 %)
+PRECISE_LEVEL, OFF_LEVEL = 0.975, 0.995
+
+
+def scale_applies(scale: float, se: float, n: int, cover_m: float, expected: float) -> bool:
+    """Decision D45: whether the GNSS scale (:func:`~pdrlearn.kernels.fixes.fit_length_scale`: ``scale``, its
+    standard error ``se`` from ``n`` windows covering ``cover_m``) replaces the steps' lengths of a PDR whose expected
+    relative distance error is ``expected``: D39's cover, and either the scale is more precise than the PDR (its
+    t-interval no wider: t(:data:`PRECISE_LEVEL`, n - 1) x se <= z(:data:`PRECISE_LEVEL`) x expected) or it finds the
+    PDR off (|scale - 1| >= t(:data:`OFF_LEVEL`, n - 1) x se). Student's t, as the standard error is estimated from a
+    few windows (t = 2.78 / 4.60 at 5 windows, 2.23 / 3.17 at 11)."""
+    from scipy.stats import norm, t
+
+    if not (np.isfinite(scale) and np.isfinite(se) and n >= 2 and cover_m >= MIN_SCALE_COVER_M):
+        return False
+    precise = t.ppf(PRECISE_LEVEL, n - 1) * se <= norm.ppf(PRECISE_LEVEL) * expected
+    return bool(precise or abs(scale - 1.0) >= t.ppf(OFF_LEVEL, n - 1) * se)
 #: decision D41: the stride columns proportional to ``length_m`` (``speed_mps`` = |length_m| / a time), scaled with it
 SCALED_COLUMNS = ("length_m", "speed_mps")
 
@@ -178,15 +200,21 @@ SCALED_COLUMNS = ("length_m", "speed_mps")
 def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.DataFrame | None]:
     """Decision D39: the GNSS-calibrated distance. The filter's fitted scale (``distance_scale_``, on stretches of good
     fixes) multiplies the steps' ``length_m`` when its windows cover :data:`MIN_SCALE_COVER_M`, so ``distance_m``,
-    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Decision D41: every
+    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Decision D45: and only when
+    :func:`scale_applies` (the scale more precise than the PDR of the steps' unit, :data:`PDR_DISTANCE_ERROR`, or
+    finding it off): a scale less precise than a good foot track (within a few tenths of a percent; 5 windows of 5 m
+    fixes scatter about 1 %) and not telling it off leaves the PDR's lengths. Decision D41: every
     length-derived stride column (:data:`SCALED_COLUMNS`: ``length_m`` and the ``speed_mps`` the pipeline already
     derived from it) is scaled together, so ``speed_mps * stride_time_s == |length_m|`` still holds; ``raw_length_m``
     (the estimate before the rules) stays the PDR's. Returns (info keys, the scaled steps or None)."""
     pdr_m = float(np.nansum(steps["length_m"].to_numpy(float)))
-    scale, cover = float(f.distance_scale_), float(f.distance_scale_covered_m_)
-    ok = np.isfinite(scale) and cover >= MIN_SCALE_COVER_M
+    scale, cover, se = float(f.distance_scale_), float(f.distance_scale_covered_m_), float(f.distance_scale_se_)
+    units = set(steps["unit"].astype(str)) if "unit" in steps else set()
+    expected = PDR_DISTANCE_ERROR.get(next(iter(units)), 0.0) if len(units) == 1 else 0.0
+    ok = scale_applies(scale, se, int(f.distance_scale_windows_), cover, expected)  # decision D45
     info = {"distance_pdr_m": round(pdr_m, 2),
             "distance_scale": round(scale, 4) if np.isfinite(scale) else None,
+            "distance_scale_se": round(se, 4) if np.isfinite(se) else None,
             "distance_scale_cover_m": round(cover, 1),
             "distance_scale_windows": int(f.distance_scale_windows_),
             "distance_scaled": bool(ok)}
