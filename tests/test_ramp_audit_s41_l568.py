@@ -48,7 +48,8 @@ def test_ramp_runs_table_has_one_row_per_run_and_landing_with_flags_and_position
     assert runs["ramp"].eq(1).all() and list(runs["n_steps"]) == [4, 1, 8]
     assert runs["horizontal_m"].tolist() == pytest.approx([5.0, 1.5, 10.0])
     assert runs["grade_pct"].tolist() == pytest.approx([8.0, 0.0, 9.0])
-    assert runs["over_1_12"].tolist()[::2] == [False, True] and runs["run_rise_over_0_76"].tolist()[::2] == [False, True]
+    assert runs["over_1_12"].tolist()[::2] == [False, True]
+    assert runs["run_rise_over_0_76"].tolist()[::2] == [False, True]
     assert runs["over_1_12"].isna().iloc[1]  # a landing has no flag
     assert (runs["start_s"].tolist(), runs["end_s"].tolist()) == ([0.0, 4.0, 5.0], [4.0, 5.0, 13.0])
     assert runs["start_x_m"].tolist() == pytest.approx([0.0, 8.0, 10.0]) and runs["end_y_m"].eq(1.0).all()

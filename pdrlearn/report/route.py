@@ -12,7 +12,8 @@ import pandas as pd
 from pdrlearn.io.plasys import read_table
 
 #: decision L571: the summary keys of the climb table (those the summary has)
-CLIMB_KEYS = ("distance_m", "distance_along_slope_m", "ascent_m", "descent_m", "floors_up", "floors_down",
+CLIMB_KEYS = ("distance_m", "distance_along_slope_m", "ascent_m", "descent_m", "ramps_stairs_ascent_m",
+              "ramps_stairs_descent_m", "floors_up", "floors_down",
               "n_ramps", "max_ramp_grade_pct", "n_flights_up", "n_flights_down", "grade_source")
 #: decision L571: ramps.csv's columns shown (those the file has)
 RAMP_KEYS = ("ramp", "start_s", "end_s", "direction", "n_runs", "landings", "horizontal_run_m", "landing_m", "rise_m",
