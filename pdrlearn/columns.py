@@ -46,7 +46,9 @@ SESSIONS: tuple[Column, ...] = (
     ("session", _ID, "text", "meta.json's session name"),
     ("input_dir", _ID, "text", "the folder tracked, relative to ROOT (= path, C18)"),
     ("pipeline", _ID, "text", "the pipeline used: plasys (foot) or waist-pendulum / waist-pll (lower back)"),
-    ("method", _ID, "text", "the pipeline's method (M1, M2, M3 on the foot)"),
+    ("method", _ID, "text", "the pipeline's method (M1, M2, M3 on the foot; lower back detector/step-length "
+                            "model/heading, the model with the settings the user set, e.g. alvarez-offline/"
+                            "weinberg:k=0.6/gyro, W462)"),
     ("rate_hz", "Hz", "number", "the tracked unit's accelerometer rate"),
     ("n_steps", "count", "integer", "rows of steps.csv: strides of the tracked foot (foot) or steps (lower back)"),
     ("n_steps_counts", _ID, "text", "what n_steps counts: 'strides of the tracked foot' or 'steps of both feet'"),
