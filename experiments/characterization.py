@@ -63,7 +63,7 @@ ROWS = ROW_ORDER  # thesis Tables 27, 28, 33 row order
 #: Training / test set sizes of the thesis (steps): terrain 970 + 170 validation / 540 test (ch. 6.1.1),
 #: direction 450 + 100 / 100 (ch. 6.2.1), length 855 + 171 / 114 (ch. 6.3.1). The thesis adds that a
 #: training set 5 (terrain) to 10 (length) times smaller gives similar results (ch. 6.1.3, 6.3.3); a
-#: user's calibration is one exercise per task (~75 / 50 / 90 steps, DESIGN), so we train on
+#: user's calibration is one exercise per task (~75 / 50 / 90 steps, the simulator's exercises), so we train on
 #: ``--train-walks`` exercises and test on ``--test-walks`` other ones.
 THESIS_SIZES = {"terrain": (970, 170, 540), "direction": (450, 100, 100), "length": (855, 171, 114)}
 

@@ -5,8 +5,9 @@ linearly) and clean-compass tracking (``compass_fallback=False``),
 on fresh simulated users 10840-10851: (a) marches, (b) a disturbed compass, (c) short routes, (d) R1 x2 and L264's
 shift at 3 uT. Offline, no model. Prints; changes nothing on disk but a temporary folder.
 
-Since L545 (not adopted) the candidate is ``windowed_disagreement(drift=True)``, and L182's one fit is never gated:
-a rerun measures L545's candidate, not L544's (whose one fit was gated too).
+Since L545 (not adopted) L182's one fit is never gated; since L559 (L558's rule met) the windows always fit L544's
+model from two windows on and there is no keyword left: a rerun tracks today's code as both "today" and "candidate"
+(the measured "today" is in the decision log only).
 
 Run: ``OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/compass_march_l544.py``
 """
@@ -30,20 +31,11 @@ from compass_check_long import R1  # noqa: E402  the navigation trial's R1 (L226
 from compass_window_shift import LOOP, ROUTE1, SHORT, fmt, simulate  # noqa: E402  (L264's routes, runner)
 
 MARCH = "straight:1200:fast, slope:500:6, curve:90:50, straight:1000, slope:500:-6, straight:800:slow"
-GATE = P.HARD_IRON_MAX_RESULTANT  # L84's gate, the candidate's
-
-
-WINDOWED = P.windowed_disagreement
 
 
 def track(s, config: str, sh: float, **kw) -> dict:
-    today = config != "candidate"  # today: the offset always fitted, one constant heading offset per window
-    P.HARD_IRON_MAX_RESULTANT = np.inf if today else GATE
-    P.windowed_disagreement = lambda *a, **k: WINDOWED(*a, **{**k, "drift": not today})  # L545: off by default
-    try:
-        r = P.track_plasys(s, **kw)
-    finally:
-        P.HARD_IRON_MAX_RESULTANT, P.windowed_disagreement = GATE, WINDOWED
+    """``config`` ("today" / "candidate") only names the result since L559: both track today's code."""
+    r = P.track_plasys(s, **kw)
     out = track_summary(r, s, storey_height_m=sh)
     cc = r.info.get("compass_check") or {}
     out["_median"], out["_fired"] = cc.get("median_deg"), bool(cc.get("median_deg", 0) > P.COMPASS_DISAGREE_DEG)

@@ -277,6 +277,15 @@ def calibration_for(s: Session, sessions: list[Session], work: Path) -> tuple[li
     return [CLI, "calibrate", str(cal.path), "--pipeline", "waist-pendulum", "--out", str(params)], params
 
 
+def detector_jobs(s: Session, d: str, unit: str) -> list[Job]:
+    """One `pdrlearn steps` job per built-in detector of ``unit``, in registration order (decision C157: a new
+    built-in is swept with no list to edit); one that reads the force insoles may be "na" (a foot without them)."""
+    from pdrlearn.steps import DETECTORS
+
+    return [Job(s, f"steps {n}", [CLI, "steps", d, "-d", n, "--json"], "steps",
+                "na" if "force_heel" in DETECTORS[n].input_columns else "ok") for n in DETECTORS.builtin_names(unit)]
+
+
 def jobs_for(s: Session, models: dict, sessions: list[Session], work: Path, stage: str = "out") -> list[Job]:
     tag = f"{s.source}/{s.name}"
     wd = work / stage / s.source / s.name  # fresh per stage: track/plot refuse to overwrite (B12)
@@ -284,8 +293,7 @@ def jobs_for(s: Session, models: dict, sessions: list[Session], work: Path, stag
     jobs = [Job(s, "info", [CLI, "info", d, "--json"], "info"),
             Job(s, "plot", [CLI, "plot", d, "--out", str(wd / "plot.png")], "plot")]
     if s.placement == "foot":
-        jobs += [Job(s, "steps accel", [CLI, "steps", d, "-d", "accel", "--json"], "steps"),
-                 Job(s, "steps accel-force", [CLI, "steps", d, "-d", "accel-force", "--json"], "steps", "na"),
+        jobs += [*detector_jobs(s, d, "foot"),
                  Job(s, "track (defaults)", [CLI, "track", d, "--out", str(wd / "t_default"), "--json"], "track", out_dir=wd / "t_default"),
                  Job(s, "track M1", [CLI, "track", d, "--method", "M1", "--out", str(wd / "t_m1"), "--json"], "track", out_dir=wd / "t_m1"),
                  Job(s, "track M2", [CLI, "track", d, "--method", "M2", "--out", str(wd / "t_m2"), "--json"], "track", "na")]
@@ -298,9 +306,7 @@ def jobs_for(s: Session, models: dict, sessions: list[Session], work: Path, stag
         if models.get("bundle"):
             jobs.append(Job(s, "run rbundle", [CLI, "run", str(models["bundle"]), d, "--out", str(wd / "run"), "--json"], "run"))
     else:
-        jobs += [Job(s, "steps waist-ic", [CLI, "steps", d, "-d", "waist-ic", "--json"], "steps"),
-                 Job(s, "steps pll", [CLI, "steps", d, "-d", "pll", "--json"], "steps"),
-                 Job(s, "steps pelvic-gyro", [CLI, "steps", d, "-d", "pelvic-gyro", "--json"], "steps"),
+        jobs += [*detector_jobs(s, d, "waist"),
                  Job(s, "track waist-pll", [CLI, "track", d, "--pipeline", "waist-pll", "--out", str(wd / "t_pll"), "--json"], "track", out_dir=wd / "t_pll"),
                  Job(s, "track waist-pendulum", [CLI, "track", d, "--pipeline", "waist-pendulum", "--out", str(wd / "t_pend"), "--json"], "track", out_dir=wd / "t_pend"),
                  Job(s, "run default bundle", [CLI, "run", str(DEFAULT_BUNDLE), d, "--out", str(wd / "run"), "--json"], "run", "na")]

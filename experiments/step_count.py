@@ -39,6 +39,7 @@ import pandas as pd
 
 from pdrlearn.io import read_session
 from pdrlearn.sim import simulate
+from pdrlearn.steps import DETECTORS as REGISTRY
 from pdrlearn.steps import get_detector, score_steps
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -47,10 +48,12 @@ from experiments.partial import parsed_with_names, partial_note  # noqa: E402
 
 OUT = ROOT / "experiments" / "results"
 SPEEDS = ("slow", "normal", "fast")
+#: the simulated thesis tables' detectors (Tables 20-21 and the PLL of seeds 000/001): the thesis protocol, named
+#: on purpose; waist-ic and later built-ins are not in them (--waist-ic N scores waist-ic on simulated sessions)
 DETECTORS = ("accel", "accel-force", "pelvic-gyro", "pll")
-#: lower-back detectors of the real-recordings table; waist-ic = the waist-pendulum pipeline's IC detector
-#: (steps decision 17); not in the simulated thesis tables (--waist-ic N scores it on simulated sessions)
-WAIST_DETECTORS = ("pelvic-gyro", "pll", "waist-ic")
+#: the real-recordings table's detectors: every built-in of each unit, in registration order (decision C157: a new
+#: built-in is scored with no list to edit); waist-ic = the waist-pendulum pipeline's IC detector (steps decision 17)
+FOOT_DETECTORS, WAIST_DETECTORS = tuple(REGISTRY.builtin_names("foot")), tuple(REGISTRY.builtin_names("waist"))
 # thesis Table 20 (scenario A) and Table 21 (scenario B): step-count error (%) per walking speed
 THESIS = {
     ("A", "accel"): (0.2, 0.1, 1.6), ("A", "accel-force"): (0.0, 0.1, 0.4), ("A", "pelvic-gyro"): (1.4, 2.6, 4.0),
@@ -110,7 +113,7 @@ def real(real_dir: Path) -> pd.DataFrame:
     for unit, names in REAL.items():
         for name in names:
             s = read_session(real_dir / name)
-            dets = ("accel", "accel-force") if unit == "foot" else WAIST_DETECTORS
+            dets = FOOT_DETECTORS if unit == "foot" else WAIST_DETECTORS
             rows += [detector_row(s, name, d) for d in dets]
     return pd.DataFrame(rows)
 

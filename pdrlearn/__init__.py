@@ -1,6 +1,6 @@
 """pdrlearn: learning-based step characterization and pedestrian dead reckoning (PLASYS).
 
-See README.md for usage and ../DESIGN.md-derived architecture notes in docs/.
+See README.md for usage, docs/architecture.md for the packages and docs/extending.md for the plug-ins.
 
 The subpackages (``pdrlearn.io``, ``pdrlearn.track``, ...) are attributes imported on first use (decision E89,
 PEP 562): ``import pdrlearn`` then ``pdrlearn.io.read_session(...)`` works and ``import pdrlearn`` stays as

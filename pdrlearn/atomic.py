@@ -1,5 +1,5 @@
 """Atomic writes: a folder or file is built under a temporary name and moved into place only when complete,
-so an interrupted or failing write never leaves a half-written result (project standard, DESIGN.md).
+so an interrupted or failing write never leaves a half-written result (CONTRIBUTING.md's style).
 
 Replacing an existing folder (``--force``, decision B12) is check-then-replace: the CLI checks the folder
 before the work (``cli.common.out_folder``) and replaces it minutes later. Decision B20 narrows that race:

@@ -51,6 +51,11 @@ class ClockWentBack(DataError):
         self.beside = bool(beside)
         self.offsets = {str(u): float(o) for u, o in (offsets or {unit: offset_s}).items()}  # decision E243
 
+    def __reduce__(self):
+        # Decision E250: pickled / copied with every constructor argument (``args`` holds the message alone), so a
+        # ClockWentBack raised in a worker process reaches the parent with its unit and offset.
+        return type(self), (str(self), self.unit, self.offset_s, self.beside, self.offsets), self.__dict__
+
 
 class MissingSensorError(DataError):
     """A method needs a sensor stream that the session does not have."""

@@ -16,7 +16,7 @@ from collections.abc import Callable, MutableMapping
 from typing import Any
 
 from pdrlearn.errors import DataError
-from pdrlearn.settings import annotation_words, fits_words, words_what
+from pdrlearn.settings import wrong_type
 
 log = logging.getLogger(__name__)
 
@@ -126,6 +126,11 @@ class Registry(MutableMapping):
         self._load()
         return f"{type(self).__name__}({self.kind}: {', '.join(self._items)})"
 
+    def builtin_names(self, unit: str | None = None) -> list[str]:
+        """The built-in entries' names in registration order (decision C157: what help texts, experiments and the
+        docs tests list); ``unit``: only entries whose ``unit`` attribute is it (a detector's "foot" / "waist")."""
+        return [n for n in self if n in self.builtin and (unit is None or getattr(self[n], "unit", None) == unit)]
+
     def unknown(self, name: str) -> DataError:
         """The error for a name that is not registered: a failed plug-in's reason, else the valid names."""
         if name in self.failed:
@@ -214,15 +219,6 @@ def _check_spec_value(kind: str, spec: str, name: str, cls, key: str, value) -> 
     """Decision E94: a spec's text value for a setting annotated as a number or a flag (``pll:loop_hz=abc``,
     ``accel:rests_only=no``) is one line; it had been stored as text (truthy, or a TypeError inside the
     detection). Settings without a plain annotation (``tuple[...]``, none) are left to the class."""
-    import inspect
-
-    try:
-        param = inspect.signature(cls).parameters.get(key)
-    except (TypeError, ValueError):
-        return
-    words = None if param is None else annotation_words(param.annotation)
-    if words is None or fits_words(value, words):
-        return
-    what = words_what(words)
-    default = param.default if param.default is not inspect.Parameter.empty else None
-    raise DataError(f"{kind} '{spec}': {name}: {key}={value!r} is not {what} (its default: {default!r})")
+    said = wrong_type(cls, key, value)
+    if said:
+        raise DataError(f"{kind} '{spec}': {name}: {said}")

@@ -120,8 +120,26 @@ def words_what(words: set[str]) -> str:
 
 
 def fits_words(value, words: set[str]) -> bool:
-    """Whether ``value``'s type is one the annotation ``words`` takes (an int is a float, a bool is no number)."""
-    return bool(set(TAKEN_BY.get(type(value), ())) & words)
+    """Whether ``value``'s type is one the annotation ``words`` takes (an int is a float, a bool is no number; a
+    numpy scalar counts as the Python value it is)."""
+    kind = (bool if isinstance(value, np.bool_) else int if isinstance(value, np.integer)
+            else float if isinstance(value, np.floating) else type(value))
+    return bool(set(TAKEN_BY.get(kind, ())) & words)
+
+
+def wrong_type(cls, key: str, value) -> str | None:
+    """``"k='abc' is not a number (its default: None)"`` when ``value`` is not of the type ``cls``'s setting ``key``
+    is annotated with (decision E94's check of a spec's value; decision C158: also a length model's Python settings);
+    None when it is, or when the annotation is not a plain union of names (``tuple[...]``, none: left to the class)."""
+    try:
+        param = inspect.signature(cls).parameters.get(key)
+    except (TypeError, ValueError):
+        return None
+    words = None if param is None else annotation_words(param.annotation)
+    if words is None or fits_words(value, words):
+        return None
+    default = param.default if param.default is not inspect.Parameter.empty else None
+    return f"{key}={value!r} is not {words_what(words)} (its default: {default!r})"
 
 
 class Rule:

@@ -78,27 +78,33 @@ def test_walk_test_duration_on_a_simulated_stop_and_walk_back_l516_l517(tmp_path
         capsys.readouterr()
         out = tmp_path / f"{unit}_timed"
         assert main(["track", str(ses), "--units", unit, "--corridor", "15", "--walk-test-duration", "104",
-                     "--out", str(out)]) == 0
+                     "--no-plot", "--out", str(out)]) == 0
         s = json.loads((out / "summary.json").read_text())
         assert s["n_laps"] == 4 and s["walk_test_distance_m"] == pytest.approx(70.0, abs=1.0), unit
         assert "L517" not in capsys.readouterr().err
         out = tmp_path / f"{unit}_whole"
-        assert main(["track", str(ses), "--units", unit, "--corridor", "15", "--out", str(out)]) == 0
+        assert main(["track", str(ses), "--units", unit, "--corridor", "15", "--no-plot", "--out", str(out)]) == 0
         s = json.loads((out / "summary.json").read_text())
         err = capsys.readouterr().err
         assert s["n_laps"] == 4 and s["walk_test_distance_m"] == pytest.approx(76.0, abs=1.0), unit
         assert "lap 5 turned back after" in err and "more were walked after it" in err and "L517" in err, unit
 
 
+@pytest.fixture(scope="module")
+def short_walk(tmp_path_factory):
+    """A 5 m walk (user 10042), simulated once for every refused --walk-test-duration."""
+    ses = tmp_path_factory.mktemp("b396") / "walk"
+    assert main(["simulate", "--route", "straight:5", "--user-seed", "10042", "--out", str(ses)]) == 0
+    return ses
+
+
 @pytest.mark.parametrize("args, words", [(["--corridor", "30", "--walk-test-duration", "0"], "a positive number"),
                                          (["--corridor", "30", "--walk-test-duration=-360"], "a positive number"),
                                          (["--corridor", "30", "--walk-test-duration", "nan"], "a positive number"),
                                          (["--walk-test-duration", "360"], "add --corridor")])
-def test_bad_walk_test_duration_is_one_line_and_no_output_b396(tmp_path, capsys, args, words):
-    ses = tmp_path / "walk"
-    assert main(["simulate", "--route", "straight:5", "--user-seed", "10042", "--out", str(ses)]) == 0
+def test_bad_walk_test_duration_is_one_line_and_no_output_b396(short_walk, tmp_path, capsys, args, words):
     capsys.readouterr()
-    assert main(["track", str(ses), *args, "--out", str(tmp_path / "t")]) == 2
+    assert main(["track", str(short_walk), *args, "--out", str(tmp_path / "t")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--walk-test-duration" in err[0] and words in err[0] and "Traceback" not in err[0]
     assert not (tmp_path / "t").exists()

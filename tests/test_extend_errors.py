@@ -62,7 +62,7 @@ def test_an_estimator_with_encoded_labels_is_one_line(foot, session):
 
 
 def test_an_estimator_with_a_decision_function_only_classifies(foot, session):
-    """DESIGN.md: predict_proba or decision_function; the scores' softmax, argmax = the estimator's predict."""
+    """docs/extending.md: predict_proba or decision_function; the scores' softmax, argmax = the estimator's predict."""
     est = Pipeline([("f", make_features("terrain", "foot", "svm")), ("c", LinearSVC())])
     m = _inject(foot, est)
     out = m.predict_steps(session, session.steps, tasks=["terrain"])

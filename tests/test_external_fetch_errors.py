@@ -1,5 +1,5 @@
 """``pdrlearn fetch``: bad output folders, caches and downloads are one-line errors naming the path and the
-fix, not tracebacks (DESIGN.md). No network: every case fails or is served before a download."""
+fix, not tracebacks (CONTRIBUTING.md). No network: every case fails or is served before a download."""
 
 from __future__ import annotations
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import json
 import logging
 import shutil
@@ -18,6 +19,17 @@ def walk(tmp_path_factory):
 
     return write_session(simulate("B", UserProfile.from_seed(10130), "normal", rate_hz=100.0),
                          tmp_path_factory.mktemp("fg") / "walk")
+
+
+@pytest.fixture(scope="module")
+def clean(walk):
+    """The walk as recorded, read and tracked with the default settings: ``(session, track)`` (the reference of the
+    steps 74 / 75 tests and B400's line)."""
+    from pdrlearn.io import read_session
+    from pdrlearn.track.plasys import track_plasys
+
+    session = read_session(walk)
+    return session, track_plasys(session)
 
 
 def _copy(src, dst, edit):
@@ -62,8 +74,8 @@ def test_dead_channel_kernel_steps_74():
     assert dead_channels({"fForceA": heel}) == {}
 
 
-def test_track_names_a_dead_heel_and_keeps_force_steps_74(walk, tmp_path):
-    clean = _track(walk)
+def test_track_names_a_dead_heel_and_keeps_force_steps_74(walk, clean, tmp_path):
+    clean = clean[1]
     dead = _copy(walk, tmp_path / "deadB", _set("fForceB", np.zeros_like))
     res = _track(dead, toe_off=True)
     lines = [w for w in res.info["warnings"] if "steps decision 74" in w]
@@ -97,12 +109,12 @@ def test_info_flags_a_dead_channel_steps_74(walk, tmp_path, caplog):
     assert "fForceB.csv (forefoot) alone times the initial contact late" in caplog.text
 
 
-def test_one_total_channel_tracks_and_counts_steps_75(walk, tmp_path, capsys):
+def test_one_total_channel_tracks_and_counts_steps_75(walk, clean, tmp_path, capsys):
     from pdrlearn.cli import main
     from pdrlearn.io import read_session
     from pdrlearn.steps import AccelForceStepDetector
 
-    clean = _track(walk)
+    clean = clean[1]
     total = _copy(walk, tmp_path / "total", _total)
     res = _track(total)  # before: "has no fForceB needed by the accelerometer + force step detector"
     assert res.info["stance_source"] == "force" and len(res.steps) == len(clean.steps)
@@ -148,12 +160,12 @@ def test_import_names_a_midfoot_channel_and_where_to_add_it_b399(walk, tmp_path,
     assert "midfoot: a further force channel?" in err and "into the forefoot column" in err and "B399" in err
 
 
-def test_no_stance_line_says_why_the_insoles_give_no_toe_off_b400(walk, tmp_path):
+def test_no_stance_line_says_why_the_insoles_give_no_toe_off_b400(walk, clean, tmp_path):
     from pdrlearn.cli.common import NO_STANCE_CLAUSE, gait_line
-    from pdrlearn.io import read_session
 
-    s = read_session(walk)
-    with_force = gait_line(_track(walk).summary(s))
+    s, track = copy.copy(clean[0]), copy.copy(clean[1])
+    track.steps = track.steps.copy()  # summary() adds columns to the steps: the shared track is left as it was
+    with_force = gait_line(track.summary(s))
     assert NO_STANCE_CLAUSE in with_force and "with force insoles too: --toe-off takes the gyroscope's" in with_force
     assert "steps decision 76" in with_force and "B400" in with_force
     without = gait_line(_track(walk, ignore_force=True).summary(s))

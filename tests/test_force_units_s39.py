@@ -41,12 +41,13 @@ def _adc(values):  # trial T4's mk.py: a 12-bit FSR, 250 counts unloaded, 4 coun
 def pair(tmp_path_factory):
     """User 10100's left and right foot of one walk (trial T4's case): the left without insoles."""
     root = tmp_path_factory.mktemp("pair")
-    out = {}
+    out, sims = {}, {}
     for foot in ("left", "right"):
         out[foot] = root / foot
-        write_session(_sim(10100, foot), out[foot])
+        sims[foot] = _sim(10100, foot)
+        write_session(sims[foot], out[foot])
     out["left_nf"] = root / "left_nf"
-    s = _sim(10100, "left")
+    s = copy.copy(sims["left"])  # the same left walk (simulated once), its force files left out
     s.streams = {k: v for k, v in s.streams.items() if not k.startswith("fForce")}
     write_session(s, out["left_nf"])
     return out

@@ -1,7 +1,7 @@
 """Session 40, fixer FG, trial T3 (load-carriage marches): decisions L544 / L545 (L182's compass check on long
-straight walks: the ``drift`` keyword, measured and not adopted; `track --compass keep`), L546 (the waist
-pipeline's memory grew with the square of the recording), L548 (`simulate --gap` past the recording's end refused
-before simulating). Short sessions only."""
+straight walks: measured, not adopted; adopted in session 41 with L558's one-window case, L559; `track --compass
+keep`), L546 (the waist pipeline's memory grew with the square of the recording), L548 (`simulate --gap` past the
+recording's end refused before simulating). Short sessions only."""
 
 from __future__ import annotations
 
@@ -34,31 +34,36 @@ def _straight_march(drift_dps: float, disturb_deg: float, seed: int = 0):
 
 
 def test_a_straight_march_with_a_drifting_foot_and_the_drift_keyword_l544():
-    """Decisions L544 / L545 (T3 finding 1; measured, not adopted): in L264's windows a straight leg's headings
-    cannot separate a hard-iron offset from the field (it swallowed the field: 38 deg on T3's march), and a foot
-    gyroscope drifting 1 deg/s turns a constant offset away - the default check condemns a consistent compass;
-    ``drift=True`` (no offset fitted there, a drifting heading offset) scores it a few degrees while a disturbed
-    one still scores over L182's 20 deg."""
+    """Decisions L544 / L545 / L559 (T3 finding 1; adopted by L558's rule in session 41): in L264's windows a
+    straight leg's headings cannot separate a hard-iron offset from the field (it swallowed the field: 38 deg on T3's
+    march), and a foot gyroscope drifting 1 deg/s turns a constant offset away - L264's old window fit (here by hand)
+    condemns a consistent compass; the windows now (no offset fitted there, a drifting heading offset) score it a few
+    degrees while a disturbed one still scores over L182's 20 deg."""
+    from pdrlearn.orient._kernels import compass_disagreement
+    from pdrlearn.track.plasys import COMPASS_CHECK_WINDOW_S, HARD_IRON_MIN_STRIDES, compass_windows
+
     mf, ml, psi, t = _straight_march(drift_dps=1.0, disturb_deg=0.0)
-    good = np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t, drift=True))))
+    good = np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t))))
     assert good < 5.0
-    assert np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t)))) > COMPASS_DISAGREE_DEG  # L264
-    angle, info = check_angle(mf, ml, psi, t, windowed=True, drift=True)  # 50 min: the windows alone (L280)
+    old = np.zeros(len(t))
+    for g in compass_windows(t, COMPASS_CHECK_WINDOW_S, HARD_IRON_MIN_STRIDES):  # L264 before L559
+        old[g] = compass_disagreement(mf[g], ml[g], psi[g])[0]
+    assert np.degrees(np.median(np.abs(old))) > COMPASS_DISAGREE_DEG
+    angle, info = check_angle(mf, ml, psi, t, windowed=True)  # 50 min: the windows alone (L280)
     assert angle == pytest.approx(good) and info["by"] == "windows"
-    assert check_angle(mf, ml, psi, t, windowed=True)[0] > COMPASS_DISAGREE_DEG  # the default, as before
     mf, ml, psi, t = _straight_march(drift_dps=1.0, disturb_deg=50.0)
-    assert np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t, drift=True)))) > COMPASS_DISAGREE_DEG
+    assert np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t)))) > COMPASS_DISAGREE_DEG
 
 
 def test_a_short_walk_is_still_judged_by_l182s_one_fit_l545():
-    """Decision L545: with ``drift`` a walk up to L280's 900 s keeps L182's one fit as it was (a drifting foot
+    """Decision L545 (L559): a walk up to L280's 900 s keeps L182's one fit as it was (a drifting foot
     heading there was the fallback's case, L281 (d)), whatever the windows say."""
     from pdrlearn.orient._kernels import compass_disagreement
 
     mf, ml, psi, t = _straight_march(drift_dps=0.2, disturb_deg=0.0)
     keep = t < 800
     mf, ml, psi, t = mf[keep], ml[keep], psi[keep], t[keep]
-    angle, info = check_angle(mf, ml, psi, t, windowed=True, drift=True)
+    angle, info = check_angle(mf, ml, psi, t, windowed=True)
     one = np.degrees(np.median(np.abs(compass_disagreement(mf, ml, psi)[0])))
     assert info["median_one_fit_deg"] == pytest.approx(one)
 
@@ -76,7 +81,7 @@ def test_track_compass_keep_keeps_the_compass_l545(disturbed, tmp_path):
     fallback to the waist gyroscope, the line's old advice); the default (auto) falls back (L226)."""
     for value, fallback in (("auto", True), ("keep", False)):
         out = tmp_path / value
-        assert main(["track", str(disturbed), "--compass", value, "--out", str(out)]) == 0
+        assert main(["track", str(disturbed), "--compass", value, "--no-plot", "--out", str(out)]) == 0
         summary = json.loads((out / "summary.json").read_text())
         check = summary["info"]["compass_check"]
         assert check["median_deg"] > COMPASS_DISAGREE_DEG and check["gyro_fallback"] is fallback

@@ -64,7 +64,7 @@ def test_a_simulated_tug_and_a_chair_to_chair_walk_w445(tmp_path, capsys):
                  "straight:3", "--sit-start", "5", "--sit-end", "5", "--step-length", "0.35", "--step-time", "0.8",
                  "--bounce", "pendulum", "--height", "1.58", "--user-seed", "10912", "--out", str(d)]) == 0
     capsys.readouterr()
-    assert main(["track", str(d), "--units", "waist", "--per", "30s", "--out", str(out)]) == 0
+    assert main(["track", str(d), "--units", "waist", "--per", "30s", "--no-plot", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     s = json.loads((out / "summary.json").read_text())
     assert s["n_sit_to_stand"] == 2 and s["n_tug_trials"] == 1 and s["n_chair_walks"] == 1

@@ -22,13 +22,15 @@ def jumps_then_walk(tmp_path_factory):
 @pytest.mark.parametrize("units", ["foot", "waist"])
 def test_a_window_after_the_jumps_has_no_flights_w424(jumps_then_walk, tmp_path, units):
     out, whole = tmp_path / "win", tmp_path / "whole"
-    assert main(["track", str(jumps_then_walk), "--units", units, "--window", "9,16", "--out", str(out)]) == 0
+    assert main(["track", str(jumps_then_walk), "--units", units, "--window", "9,16", "--no-plot",
+                 "--out", str(out)]) == 0
     s = json.loads((out / "summary.json").read_text())
     assert (s["n_flight_phases"], s["flight_time_s"]) == (0, 0.0)
     assert pd.read_csv(out / "flights.csv").empty
     assert not [w for w in s["info"]["warnings"] if "flight phase" in w]
     # the window holding the jumps keeps them (the cut is the window's, not a loss of the test)
-    assert main(["track", str(jumps_then_walk), "--units", units, "--window", "0,9", "--out", str(whole)]) == 0
+    assert main(["track", str(jumps_then_walk), "--units", units, "--window", "0,9", "--no-plot",
+                 "--out", str(whole)]) == 0
     s = json.loads((whole / "summary.json").read_text())
     assert s["n_flight_phases"] == 3
     assert len(pd.read_csv(whole / "flights.csv")) >= 3
@@ -42,13 +44,13 @@ def _net_within_distance(per: pd.DataFrame) -> None:
 def test_periods_net_displacement_is_never_longer_than_its_distance_l528(jumps_then_walk, tmp_path):
     # review R1's case: the position at the last stride end before each edge lagged a stride behind distance_m's rule
     out, win = tmp_path / "per", tmp_path / "win"
-    assert main(["track", str(jumps_then_walk), "--per", "5", "--out", str(out)]) == 0
+    assert main(["track", str(jumps_then_walk), "--per", "5", "--no-plot", "--out", str(out)]) == 0
     per = pd.read_csv(out / "periods.csv")
     _net_within_distance(per)
     final = json.loads((out / "summary.json").read_text())["final_position"]
     assert abs(per["dx_m"].sum() - final["x"]) < 1e-6 and abs(per["dy_m"].sum() - final["y"]) < 1e-6
     # under --window, each period's start is a position of the window's trajectory
-    assert main(["track", str(jumps_then_walk), "--per", "5", "--window", "7,16", "--out", str(win)]) == 0
+    assert main(["track", str(jumps_then_walk), "--per", "5", "--window", "7,16", "--no-plot", "--out", str(win)]) == 0
     per, traj = pd.read_csv(win / "periods.csv"), pd.read_csv(win / "trajectory.csv")
     _net_within_distance(per)
     assert all(np.isclose(traj["x"], x).any() for x in per["start_x_m"]), (per["start_x_m"], traj["x"])
@@ -62,7 +64,7 @@ def test_periods_net_displacement_is_never_longer_than_its_distance_l528(jumps_t
 def test_periods_net_displacement_property_over_simulated_walks_l528(tmp_path, user, route, units, every):
     sim, out = tmp_path / "s", tmp_path / "o"
     assert main(["simulate", "--route", route, "--user-seed", str(user), "--out", str(sim)]) == 0
-    assert main(["track", str(sim), "--units", units, "--per", every, "--out", str(out)]) == 0
+    assert main(["track", str(sim), "--units", units, "--per", every, "--no-plot", "--out", str(out)]) == 0
     per = pd.read_csv(out / "periods.csv")
     _net_within_distance(per)
     assert np.allclose(per["end_x_m"].to_numpy()[:-1], per["start_x_m"].to_numpy()[1:])
@@ -98,7 +100,17 @@ def clipped_walks(tmp_path_factory):
     return out
 
 
-def test_a_spike_in_the_foot_gyroscope_leaves_the_track_alone_l529(clipped_walks, caplog):
+@pytest.fixture(scope="module")
+def clipped_track(clipped_walks):
+    """The clipped walk read and tracked with the default settings (L529 and L530 read the same track)."""
+    from pdrlearn.io import read_session
+    from pdrlearn.track.plasys import track_plasys
+
+    session = read_session(clipped_walks["clip"])
+    return session, track_plasys(session)
+
+
+def test_a_spike_in_the_foot_gyroscope_leaves_the_track_alone_l529(clipped_walks, clipped_track, caplog):
     from pdrlearn.io import read_session
     from pdrlearn.track.plasys import track_plasys
 
@@ -110,16 +122,15 @@ def test_a_spike_in_the_foot_gyroscope_leaves_the_track_alone_l529(clipped_walks
     res = track_plasys(spike)
     assert not [w for w in res.info["warnings"] if "L525" in w]
     assert res.info["heading_source"] == clean.info["heading_source"] == "fused"
-    clipped = track_plasys(read_session(clipped_walks["clip"]))  # a clipped swing still switches (L525)
+    clipped = clipped_track[1]  # a clipped swing still switches (L525)
     assert [w for w in clipped.info["warnings"] if "L525" in w] and clipped.info["heading_source"] == "waist"
 
 
-def test_the_l525_line_names_a_params_file_and_the_settings_used_l530(clipped_walks, tmp_path):
-    from pdrlearn.io import read_session
+def test_the_l525_line_names_a_params_file_and_the_settings_used_l530(clipped_walks, clipped_track, tmp_path):
     from pdrlearn.track.plasys import track_plasys
 
-    session = read_session(clipped_walks["clip"])
-    line = next(w for w in track_plasys(session).info["warnings"] if "L525" in w)
+    session, default = clipped_track
+    line = next(w for w in default.info["warnings"] if "L525" in w)
     assert "--params '{" not in line and '--params JSON file with {"tilt_dedrift": false}' in line
     assert "tilt_dedrift true, accel_scale_error 0" in line
     own = {"tilt_dedrift": False, "accel_scale_error": 0.01}
@@ -127,7 +138,8 @@ def test_the_l525_line_names_a_params_file_and_the_settings_used_l530(clipped_wa
     assert "tilt_dedrift true" not in line and "accel_scale_error 0," not in line and "your --params file" in line
     params = tmp_path / "p.json"  # the advice works: a params file
     params.write_text(json.dumps({"tilt_dedrift": False}))
-    assert main(["track", str(clipped_walks["clip"]), "--params", str(params), "--out", str(tmp_path / "o")]) == 0
+    assert main(["track", str(clipped_walks["clip"]), "--params", str(params), "--no-plot", "--out",
+                 str(tmp_path / "o")]) == 0
 
 
 def test_b401_line_of_a_foot_only_session_names_the_foots_own_heading_l530(clipped_walks, caplog):
@@ -139,10 +151,18 @@ def test_b401_line_of_a_foot_only_session_names_the_foots_own_heading_l530(clipp
     assert "heads by the waist unit" not in line and "keeps the foot's own stride yaw" in line
 
 
-@pytest.mark.parametrize("streaming", [False, True])
-def test_every_track_writes_flights_csv_header_only_without_a_flight_w424(tmp_path, streaming):
-    sim, out = tmp_path / "s", tmp_path / "o"
+@pytest.fixture(scope="module")
+def short_walk(tmp_path_factory):
+    """A short walk without a jump (user 10255), simulated once for both tracks of the flights.csv test."""
+    sim = tmp_path_factory.mktemp("w424_flights") / "s"
     assert main(["simulate", "--route", "stand:2, straight:6, stand:2", "--user-seed", "10255", "--out", str(sim)]) == 0
-    assert main(["track", str(sim), "--out", str(out), *(["--streaming"] if streaming else [])]) == 0
+    return sim
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_every_track_writes_flights_csv_header_only_without_a_flight_w424(short_walk, tmp_path, streaming):
+    out = tmp_path / "o"
+    assert main(["track", str(short_walk), "--no-plot", "--out", str(out),
+                 *(["--streaming"] if streaming else [])]) == 0
     flights = pd.read_csv(out / "flights.csv")
     assert flights.empty and list(flights.columns) == ["unit", "start_s", "end_s", "flight_time_s", "jump_height_m"]

@@ -34,7 +34,7 @@ def study(tmp_path_factory) -> Path:
                        "--step-time-asymmetry", 0.2, "--step-length-asymmetry", 0.15, "--paretic-side", "right",
                        "--rocker", "smooth", "--subject", "P10825", "--out", root / "P10825" / "v1" / foot]) == 0
     assert _quiet(["gait-all", root, "--out", base / "ga"]) == 0
-    assert _quiet(["track-all", root, "--out", base / "ta"]) == 0
+    assert _quiet(["track-all", root, "--out", base / "ta", "--no-plot"]) == 0
     return base
 
 

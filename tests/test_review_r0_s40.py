@@ -81,11 +81,12 @@ def test_align_units_gives_the_transfers_the_aligned_waist_w430(tug_offset, tmp_
 
     from pdrlearn.cli import main
 
-    assert main(["track", str(tug_offset), "--align-units", "--out", str(tmp_path / "al")]) == 0
+    assert main(["track", str(tug_offset), "--align-units", "--no-plot", "--out", str(tmp_path / "al")]) == 0
     assert "takes only the chair transfers and TUG from that unit (W418)" in capsys.readouterr().out
     offset = json.loads((tmp_path / "al" / "summary.json").read_text())["info"]["unit_alignment"]["offset_s"]
-    assert main(["track", str(tug_offset), "--clock-offset", repr(offset), "--out", str(tmp_path / "co")]) == 0
-    assert main(["track", str(tug_offset), "--out", str(tmp_path / "no")]) == 0
+    assert main(["track", str(tug_offset), "--clock-offset", repr(offset), "--no-plot", "--out",
+                 str(tmp_path / "co")]) == 0
+    assert main(["track", str(tug_offset), "--no-plot", "--out", str(tmp_path / "no")]) == 0
     al, co, no = ((tmp_path / k / "transfers.csv").read_text() for k in ("al", "co", "no"))
     assert al == co and al != no  # the estimate moves the transfers as the same offset given by hand does
     assert (tmp_path / "al" / "tug_trials.csv").read_text() == (tmp_path / "co" / "tug_trials.csv").read_text()
@@ -101,7 +102,7 @@ def test_a_track_that_did_not_read_the_waist_says_it_has_no_tug_w431(tug_offset,
 
     for extra in (["--streaming"], ["--units", "foot"]):
         out = tmp_path / extra[0].strip("-")
-        assert main(["track", str(tug_offset), *extra, "--out", str(out)]) == 0
+        assert main(["track", str(tug_offset), *extra, "--no-plot", "--out", str(out)]) == 0
         text = capsys.readouterr().out
         assert "did not read that unit's chair transfers either, so it has no TUG" in text, text
         assert "takes only the chair transfers and TUG" not in text
@@ -146,7 +147,7 @@ def test_clinical_md_gives_the_10_m_walk_after_a_turning_walk_l535(tmp_path, cap
     d = tmp_path / "clinic"
     assert main(["simulate", "--route", "stand:3, straight:8, turn:180, straight:8, stand:5, turn:180, stand:3, "
                  "straight:16, stand:3", "--user-seed", "10763", "--rate", "100", "--out", str(d)]) == 0
-    assert main(["track", str(d), "--out", str(tmp_path / "out" / "t")]) == 0
+    assert main(["track", str(d), "--no-plot", "--out", str(tmp_path / "out" / "t")]) == 0
     assert "10 m walk test" in capsys.readouterr().out
     assert main(["report", str(tmp_path / "out"), "--out", str(tmp_path / "rep"), "--clinical"]) == 0
     text = (tmp_path / "rep" / "clinical.md").read_text()
@@ -213,6 +214,6 @@ def test_every_bundle_export_writes_is_run_by_run_e233(trained, tmp_path, capsys
     from pdrlearn.cli import main
 
     assert main(["export", str(trained["root"] / "model"), "--out", str(tmp_path / "b"), *options]) == 0
-    assert main(["run", str(tmp_path / "b"), str(trained["walk"]), "--out", str(tmp_path / "run")]) == 0, \
+    assert main(["run", str(tmp_path / "b"), str(trained["walk"]), "--no-plot", "--out", str(tmp_path / "run")]) == 0, \
         capsys.readouterr().err
     assert len((tmp_path / "run" / "steps.csv").read_text().splitlines()) > 10

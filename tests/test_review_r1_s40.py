@@ -90,9 +90,16 @@ def _same_end(a, b):
     return len(a) and len(b) and np.allclose(_end(a), _end(b), rtol=0, atol=1e-9) and a[-1].end_s == b[-1].end_s
 
 
-def test_a_resumed_tracker_does_not_move_the_saved_waist_samples_again_e237(bundle, walk):
+@pytest.fixture(scope="module")
+def ahead(bundle, walk):
+    """The walk with the waist clock 5 s ahead, tracked whole with the offset given: ``(packets, steps, refusals)``,
+    the reference of both resume tests."""
     packets = _packets(walk, waist=lambda t: t + 5.0)
-    ref, errors = _run(Tracker(bundle, waist_clock_offset_s=5.0), packets)
+    return (packets, *_run(Tracker(bundle, waist_clock_offset_s=5.0), packets))
+
+
+def test_a_resumed_tracker_does_not_move_the_saved_waist_samples_again_e237(bundle, ahead):
+    packets, ref, errors = ahead
     assert errors == []
     at = len(packets) // 2
 
@@ -135,9 +142,8 @@ def test_a_rebased_foot_offset_is_in_the_state_e237(bundle, walk):
     assert errors == [] and new.foot_clock_offset_s == tr.foot_clock_offset_s and _same_end(rest, ref)
 
 
-def test_a_version_1_state_is_read_with_the_given_offsets_and_others_are_refused_e237(bundle, walk):
-    packets = _packets(walk, waist=lambda t: t + 5.0)
-    ref, _ = _run(Tracker(bundle, waist_clock_offset_s=5.0), packets)
+def test_a_version_1_state_is_read_with_the_given_offsets_and_others_are_refused_e237(bundle, ahead):
+    packets, ref, _ = ahead
     at = len(packets) // 2
     tr = Tracker(bundle, waist_clock_offset_s=5.0)
     for _, _, d in packets[:at]:

@@ -98,9 +98,16 @@ def test_a_waist_clock_seconds_ahead_is_named_and_its_offset_tracks_exactly(bund
     assert errors == [] and _same(got, clean)
 
 
-def test_a_waist_clock_seconds_behind_is_named_in_the_pause_line(bundle, walk):
+@pytest.fixture(scope="module")
+def behind(bundle, walk):
+    """The walk with the waist clock 5 s behind, pushed into a default Tracker: ``(tracker, refusals)`` (the E223 and
+    E224 tests read the same run)."""
     tr = Tracker(bundle)
-    _, errors = _run(tr, _packets(walk, waist=lambda t: t - 5.0))
+    return tr, _run(tr, _packets(walk, waist=lambda t: t - 5.0))[1]
+
+
+def test_a_waist_clock_seconds_behind_is_named_in_the_pause_line(behind):
+    tr, errors = behind
     assert errors == []
     paused = [w for w in tr.warnings if "samples are taken again" in w]
     assert paused and "the waist clock is about 5.0 s behind the foot's" in paused[0]
@@ -118,9 +125,8 @@ def test_a_sensor_that_really_stops_on_one_clock_is_still_blamed_and_the_same_tr
 
 
 # -- E224 ---------------------------------------------------------------------------------------------------------
-def test_repeated_pause_lines_are_counted_not_written_per_packet(bundle, walk, monkeypatch):
-    tr = Tracker(bundle)
-    _run(tr, _packets(walk, waist=lambda t: t - 5.0))
+def test_repeated_pause_lines_are_counted_not_written_per_packet(bundle, walk, behind, monkeypatch):
+    tr = behind[0]
     n = tr.warning_counts["waist paused"]
     assert n > 20 and tr.warning_counts["waist resumed"] >= n - 1
     # one pause, one resume line in < 300 s, and E236's summing-up of each at flush; none "still so" (it flaps)

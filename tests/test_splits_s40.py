@@ -69,7 +69,7 @@ def test_track_a_long_walk_every_split_and_no_walk_test_line(tmp_path, capsys):
                  "--out", str(ses)]) == 0
     out = tmp_path / "track"
     capsys.readouterr()
-    assert main(["track", str(ses), "--splits", "every:100", "--out", str(out)]) == 0
+    assert main(["track", str(ses), "--splits", "every:100", "--no-plot", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     table = pd.read_csv(out / "splits.csv")
     print(table.to_string())

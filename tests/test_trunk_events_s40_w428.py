@@ -61,9 +61,9 @@ def test_trunk_events_are_the_whole_waist_tracks_w428(tugs, uid, n_transfers):
 def test_two_unit_tug_outputs_are_unchanged_w428(tugs, uid, monkeypatch):
     import pdrlearn.track.waist as waist
 
-    assert main(["track", str(tugs / f"tug_{uid}"), "--out", str(tugs / f"new_{uid}")]) == 0
+    assert main(["track", str(tugs / f"tug_{uid}"), "--no-plot", "--out", str(tugs / f"new_{uid}")]) == 0
     monkeypatch.setattr(waist, "trunk_events", _whole_track_events)  # the old path, as reference
-    assert main(["track", str(tugs / f"tug_{uid}"), "--out", str(tugs / f"old_{uid}")]) == 0
+    assert main(["track", str(tugs / f"tug_{uid}"), "--no-plot", "--out", str(tugs / f"old_{uid}")]) == 0
     for name in TUG_FILES:
         assert filecmp.cmp(tugs / f"new_{uid}" / name, tugs / f"old_{uid}" / name, shallow=False), name
 
@@ -76,5 +76,5 @@ def test_two_unit_foot_track_skips_the_waist_tracks_other_stages_w428(tugs, monk
 
     monkeypatch.setattr(waist, "_step_lengths", not_run)
     monkeypatch.setattr(waist, "_step_headings", not_run)
-    assert main(["track", str(tugs / "tug_10440"), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", str(tugs / "tug_10440"), "--no-plot", "--out", str(tmp_path / "t")]) == 0
     assert (tmp_path / "t" / "tug_trials.csv").is_file()

@@ -283,15 +283,35 @@ def _rename_aliases(df: pd.DataFrame) -> pd.DataFrame:
     return df.rename(columns=ren)
 
 
+def _epoch_seconds(num: pd.Series, source: str) -> np.ndarray | None:
+    """Decision D46: a numeric ``t`` column (NaN for a blank cell) is session seconds (None) unless its values reach
+    B39's :data:`~pdrlearn.io.validate.EPOCH_START` (1e9 s, 31 years: no session's clock): wholly in
+    [EPOCH_START, EPOCH_END) they are epoch seconds (UTC, returned as such); beyond EPOCH_END (epoch ms or finer), or
+    a column mixing epoch and session seconds, is refused in one line."""
+    from pdrlearn.io.validate import EPOCH_END, EPOCH_START
+
+    v = num.to_numpy(float)
+    seen = v[np.isfinite(v)]
+    if not len(seen) or (np.abs(seen) < EPOCH_START).all():
+        return None
+    if ((seen >= EPOCH_START) & (seen < EPOCH_END)).all():
+        return v
+    lo, hi = float(seen.min()), float(seen.max())
+    what = ("epoch milliseconds or finer? divide them by 1000 to epoch seconds" if hi >= EPOCH_END else
+            f"epoch seconds (from {EPOCH_START:g}) mixed with session seconds")
+    raise DataError(f"{source}: t runs from {lo:.15g} to {hi:.15g}: {what}; give t as session seconds, epoch seconds "
+                    "or ISO 8601 UTC date-times (e.g. 2026-03-15T10:00:00Z) (decision D46)")
+
+
 def _utc_seconds(values: pd.Series, source: str) -> np.ndarray | None:
     """Decision D37: ISO 8601 date-times -> seconds since the epoch (UTC; a time without an offset is read as UTC,
-    as GPX and NMEA times are); None when the column is numeric (session seconds). Decision D43: decided on the
-    non-blank cells (a blank cell is no evidence of ISO times); a blank cell stays NaN, so
-    :func:`validate_fix_table` names its row."""
+    as GPX and NMEA times are); None when the column is numeric (session seconds), except epoch seconds, returned
+    as they are (decision D46, :func:`_epoch_seconds`). Decision D43: decided on the non-blank cells (a blank cell is
+    no evidence of ISO times); a blank cell stays NaN, so :func:`validate_fix_table` names its row."""
     num = pd.to_numeric(values, errors="coerce")
     blank = values.isna() | values.astype(str).str.strip().eq("")
     if (num.notna() | blank).all():
-        return None
+        return _epoch_seconds(num, source)
     text = values[~blank].astype(str).str.strip()
     try:
         dt = pd.to_datetime(text, utc=True, format="ISO8601")
@@ -305,12 +325,28 @@ def _utc_seconds(values: pd.Series, source: str) -> np.ndarray | None:
     return out
 
 
-def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M) -> FixLog:
+def _hdop_cells(values: pd.Series, source: str) -> tuple[np.ndarray, np.ndarray]:
+    """Decision D44: a fix CSV's ``hdop`` column as floats and its blank cells (empty, only spaces or NaN: the
+    receiver gave no HDOP, an unknown accuracy); any other cell that is no number is a one-line error naming its
+    data row."""
+    num = pd.to_numeric(values, errors="coerce").to_numpy(float)
+    blank = (values.isna() | values.astype(str).str.strip().str.lower().isin(["", "nan"])).to_numpy()
+    bad = np.isnan(num) & ~blank
+    if bad.any():
+        row = int(np.flatnonzero(bad)[0])
+        raise DataError(f"{source}: hdop value {values.iloc[row]!r} in data row {row + 1} is not a number; give the "
+                        "receiver's HDOP, or leave the cell blank for a fix of unknown accuracy (decision D44)")
+    return num, blank
+
+
+def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M, accuracy_m: float = DEFAULT_RMC_ACCURACY_M) -> FixLog:
     """Read a fix CSV with columns ``t, lat, lon, accuracy_m`` (or ``t, x, y, accuracy_m``).
 
     Decision D37: ``latitude``/``longitude`` (and the other :data:`CSV_ALIASES`) name the same columns; ``t`` may be
     ISO 8601 UTC date-times (``stats['time_base'] == "utc"``, mapped onto the session clock like NMEA times by
     :func:`pdrlearn.aid.track.aid_track`); an ``hdop`` column stands for a missing ``accuracy_m`` (HDOP x ``uere_m``).
+    Decision D44: a blank ``hdop`` cell (empty, spaces, NaN) is a fix of unknown accuracy, kept with ``accuracy_m``
+    (a GPX point's without ``<hdop>``) and counted in ``stats['blank_hdop']``.
     """
     path = Path(path)
     if not path.is_file():
@@ -327,9 +363,11 @@ def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M) -> FixLog:
     named_t = "t" in df.columns
     original = list(df.columns)
     df = _rename_aliases(df)
-    if "accuracy_m" not in df.columns and "hdop" in df.columns:  # decision D37: HDOP x UERE, as a GGA's
-        df["accuracy_m"] = pd.to_numeric(df["hdop"], errors="coerce") * uere_m
     stats = {"lines": int(len(df))}
+    if "accuracy_m" not in df.columns and "hdop" in df.columns:  # decision D37: HDOP x UERE, as a GGA's
+        hdop, blank = _hdop_cells(df["hdop"], str(path))
+        df["accuracy_m"] = np.where(blank, accuracy_m, hdop * uere_m)  # decision D44: blank = unknown, the default
+        stats["blank_hdop"] = int(blank.sum())
     epoch = _utc_seconds(df["t"], str(path)) if "t" in df.columns else None
     if epoch is None and "t" in df.columns and not named_t:  # decision D37: numbers only under t (session seconds)
         alias = original[list(df.columns).index("t")]

@@ -22,11 +22,13 @@ import pandas as pd
 
 from pdrlearn.aid._base import ParamsMixin
 from pdrlearn.aid._kernels import (
-    fit_length_scale,
     fix_at_step,
     kf_predict,
     kf_update,
+    length_scale_se,
+    length_scale_windows,
     scalar_kf,
+    scale_from_windows,
     stretch_between_fixes,
     wrap_angle,
 )
@@ -398,9 +400,12 @@ class GnssPdrFusion(ParamsMixin):
         self.fixes_used_ = pd.DataFrame(used, columns=["t", "x", "y", "accuracy_m", "step_t"])
         # decision D39: the step-length scale GNSS measures on stretches of good fixes (not the compensation's latest)
         raw_rows = traj[["x_pdr", "y_pdr"]].to_numpy(float)[fix_rows]
-        self.distance_scale_, self.distance_scale_covered_m_, self.distance_scale_windows_ = fit_length_scale(
+        chords, lengths = length_scale_windows(
             self.fixes_used_[["x", "y"]].to_numpy(float), self.fixes_used_["t"].to_numpy(float), raw_rows,
             np.asarray(paths)[fix_rows])
+        self.distance_scale_, self.distance_scale_covered_m_, self.distance_scale_windows_ = scale_from_windows(
+            chords, lengths)
+        self.distance_scale_se_ = length_scale_se(chords, lengths)  # decision D45
         counts["gnss_on_fraction"] = (
             0.0 if self.mode == "off" else (1.0 if self.mode == "best" else float(min(on_time / total, 1.0)))
         )

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pdrlearn.aid.fixes import FixLog, read_fixes, to_local
+from pdrlearn.aid.fixes import DEFAULT_RMC_ACCURACY_M, FixLog, read_fixes, to_local
 from pdrlearn.aid.geo import enu_to_geodetic
 from pdrlearn.aid.gnss import GnssPdrFusion
 from pdrlearn.aid.sporadic import SporadicFixFusion
@@ -103,30 +103,42 @@ def _outside_hint(stats: dict) -> str:
     return OUTSIDE_HINTS[how].format(first=float(stats.get("first_fix_s", float("nan"))))
 
 
-def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog, str | None]:
+def _blank_hdop_line(path, flog: FixLog) -> str | None:
+    """Decision D44: one line counting a fix CSV's blank ``hdop`` cells (kept with the default accuracy), or None."""
+    n = int(flog.stats.get("blank_hdop", 0))
+    if not n:
+        return None
+    return (f"aid: {path}: {n} of {flog.stats['lines']} fix(es) have a blank hdop (unknown accuracy) and were kept "
+            f"with the default accuracy {DEFAULT_RMC_ACCURACY_M:g} m, as a GPX point without <hdop> (decision D44); "
+            "give accuracy_m or hdop for every fix to weight them by it")
+
+
+def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog, list[str]]:
     """Read a fix file (NMEA, GPX or CSV, decision D37) and put its times on the session clock (decision D38);
-    returns the log and a warning line (or None) when the log's times could not be placed."""
+    returns the log and its warning lines: blank hdop cells (D44), times that could not be placed (D38)."""
     path = Path(path)
     if not path.is_file():
         raise DataError(f"{path}: no such fix file; pass an NMEA log (.nmea/.txt), a GPX track (.gpx) or a CSV "
                         "(t, lat, lon, accuracy_m)")
     offset_s = check_time_offset(offset_s)
     out = read_fixes(path)
+    lines = [x for x in [_blank_hdop_line(path, out)] if x]
     if "time_base" not in out.stats:  # a CSV's t on the session clock
         if offset_s is not None:
             raise DataError(f"{path}: --gnss-time-offset places a log's UTC times (NMEA, GPX, ISO-time CSV) on the "
                             "session clock, but this CSV's t is already in session seconds; drop the option or shift t")
-        return out, None
+        return out, lines
     t0, how = _first_fix_session_t(out, session, offset_s)
     out.fixes["t"] = out.fixes["t"] + t0
     out.stats["time_alignment"] = how
     out.stats["first_fix_s"] = round(float(t0), 3)
     if how != "assumed":
-        return out, None
-    return out, (f"aid: {path}: the fixes' UTC times cannot be placed on the session clock (its meta.json has no "
-                 "recording_start with a UTC offset, nor utc_start_s), so the first fix is taken at the session start; "
-                 "if the receiver's first fix came later, pass --gnss-time-offset S (its seconds after the session "
-                 "start) or write recording_start in meta.json (decision D38)")
+        return out, lines
+    return out, lines + [
+        f"aid: {path}: the fixes' UTC times cannot be placed on the session clock (its meta.json has no "
+        "recording_start with a UTC offset, nor utc_start_s), so the first fix is taken at the session start; "
+        "if the receiver's first fix came later, pass --gnss-time-offset S (its seconds after the session "
+        "start) or write recording_start in meta.json (decision D38)"]
 
 
 def _file_stats(stats: dict) -> dict:
@@ -159,6 +171,28 @@ def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | Non
 
 #: decision D39: the GNSS scale replaces the steps' lengths only when its windows cover at least this much PDR path (m)
 MIN_SCALE_COVER_M = 1000.0
+#: decision D45: the PDR's own expected relative distance error by the step table's unit, the RMS error of D39's seven
+#: tracks of that unit (m60-m66): a foot's ZUPT-measured strides -0.42 to +0.75 % (RMS 0.41 %), a lower back's
+#: modelled steps (waist-pll) -4.90 to +11.24 % (RMS 5.96 %); a table of no single known unit has none
+PDR_DISTANCE_ERROR = {"foot": 0.0041, "waist": 0.0596}
+#: decision D45: the scale is "more precise than the PDR" when its Student-t interval at this level (two-sided 95 %) is
+#: no wider than the PDR's normal one, and "finds the PDR off" when 1 lies outside its interval at this level (99 %)
+PRECISE_LEVEL, OFF_LEVEL = 0.975, 0.995
+
+
+def scale_applies(scale: float, se: float, n: int, cover_m: float, expected: float) -> bool:
+    """Decision D45: whether the GNSS scale (:func:`~pdrlearn.kernels.fixes.fit_length_scale`: ``scale``, its
+    standard error ``se`` from ``n`` windows covering ``cover_m``) replaces the steps' lengths of a PDR whose expected
+    relative distance error is ``expected``: D39's cover, and either the scale is more precise than the PDR (its
+    t-interval no wider: t(:data:`PRECISE_LEVEL`, n - 1) x se <= z(:data:`PRECISE_LEVEL`) x expected) or it finds the
+    PDR off (|scale - 1| >= t(:data:`OFF_LEVEL`, n - 1) x se). Student's t, as the standard error is estimated from a
+    few windows (t = 2.78 / 4.60 at 5 windows, 2.23 / 3.17 at 11)."""
+    from scipy.stats import norm, t
+
+    if not (np.isfinite(scale) and np.isfinite(se) and n >= 2 and cover_m >= MIN_SCALE_COVER_M):
+        return False
+    precise = t.ppf(PRECISE_LEVEL, n - 1) * se <= norm.ppf(PRECISE_LEVEL) * expected
+    return bool(precise or abs(scale - 1.0) >= t.ppf(OFF_LEVEL, n - 1) * se)
 #: decision D41: the stride columns proportional to ``length_m`` (``speed_mps`` = |length_m| / a time), scaled with it
 SCALED_COLUMNS = ("length_m", "speed_mps")
 
@@ -166,15 +200,21 @@ SCALED_COLUMNS = ("length_m", "speed_mps")
 def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.DataFrame | None]:
     """Decision D39: the GNSS-calibrated distance. The filter's fitted scale (``distance_scale_``, on stretches of good
     fixes) multiplies the steps' ``length_m`` when its windows cover :data:`MIN_SCALE_COVER_M`, so ``distance_m``,
-    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Decision D41: every
+    splits and periods are the calibrated ones; the PDR's own distance stays in the info. Decision D45: and only when
+    :func:`scale_applies` (the scale more precise than the PDR of the steps' unit, :data:`PDR_DISTANCE_ERROR`, or
+    finding it off): a scale less precise than a good foot track (within a few tenths of a percent; 5 windows of 5 m
+    fixes scatter about 1 %) and not telling it off leaves the PDR's lengths. Decision D41: every
     length-derived stride column (:data:`SCALED_COLUMNS`: ``length_m`` and the ``speed_mps`` the pipeline already
     derived from it) is scaled together, so ``speed_mps * stride_time_s == |length_m|`` still holds; ``raw_length_m``
     (the estimate before the rules) stays the PDR's. Returns (info keys, the scaled steps or None)."""
     pdr_m = float(np.nansum(steps["length_m"].to_numpy(float)))
-    scale, cover = float(f.distance_scale_), float(f.distance_scale_covered_m_)
-    ok = np.isfinite(scale) and cover >= MIN_SCALE_COVER_M
+    scale, cover, se = float(f.distance_scale_), float(f.distance_scale_covered_m_), float(f.distance_scale_se_)
+    units = set(steps["unit"].astype(str)) if "unit" in steps else set()
+    expected = PDR_DISTANCE_ERROR.get(next(iter(units)), 0.0) if len(units) == 1 else 0.0
+    ok = scale_applies(scale, se, int(f.distance_scale_windows_), cover, expected)  # decision D45
     info = {"distance_pdr_m": round(pdr_m, 2),
             "distance_scale": round(scale, 4) if np.isfinite(scale) else None,
+            "distance_scale_se": round(se, 4) if np.isfinite(se) else None,
             "distance_scale_cover_m": round(cover, 1),
             "distance_scale_windows": int(f.distance_scale_windows_),
             "distance_scaled": bool(ok)}
@@ -267,9 +307,8 @@ def aid_track(
     for kind, path in (("gnss", gnss_path), ("fixes", fixes_path)):
         if path is None:
             continue
-        flog, late = _load(path, session, gnss_time_offset_s if kind == "gnss" else None)
-        if late:
-            warnings.append(late)
+        flog, lines = _load(path, session, gnss_time_offset_s if kind == "gnss" else None)
+        warnings += lines
         fx, origin = to_local(flog.fixes, origin)
         all_outside = False
         if t_start is not None and len(fx):

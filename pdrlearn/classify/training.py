@@ -869,8 +869,9 @@ def _units_available(unit: str, available: Sequence[str], method: str) -> bool:
 def estimator_proba(est, X, classes, where: str) -> np.ndarray:
     """Probabilities ``(n, len(classes))`` of a fitted estimator in the task's class order (decision B172).
 
-    DESIGN.md ("Models"): an estimator gives ``predict_proba`` or ``decision_function``; decision values become
-    probabilities by a row softmax (a binary ``(n,)`` score d as ``[-d, d]``), the SVM's own rule (decision E4).
+    An estimator gives ``predict_proba`` or ``decision_function`` (scikit-learn's classifiers, docs/extending.md);
+    decision values become probabilities by a row softmax (a binary ``(n,)`` score d as ``[-d, d]``), the SVM's own
+    rule (decision E4).
     An estimator fitted on other labels (encoded integers, other class names) or with neither method is one line
     naming ``where`` (the model) and the fix, not a KeyError / AttributeError from inside."""
     from pdrlearn.kernels.proba import softmax
@@ -888,7 +889,7 @@ def estimator_proba(est, X, classes, where: str) -> np.ndarray:
         d = np.asarray(est.decision_function(X), dtype=float)
         proba = softmax(np.column_stack([-d, d]) if d.ndim == 1 else d)
     else:
-        raise DataError(f"{where}: {name} has neither predict_proba nor decision_function (DESIGN.md, Models); "
+        raise DataError(f"{where}: {name} has neither predict_proba nor decision_function; "
                         "wrap it, e.g. sklearn.calibration.CalibratedClassifierCV")
     return align_proba(proba, own, np.asarray(classes))
 

@@ -211,6 +211,25 @@ def _help_flag_shows_no_type() -> None:
         cls.get_help_option = get_help_option
 
 
+def _help_names_registries() -> None:
+    """Decision C157: before a command's help is formatted, the options' placeholders get the registries' names
+    (:func:`pdrlearn.cli.registry_help.fill_registry_help`; the registry is imported only then, C14)."""
+    from typer.core import TyperCommand
+
+    if getattr(TyperCommand.format_help, "_pdrlearn", False):
+        return
+    original = TyperCommand.format_help
+
+    def format_help(self, ctx, formatter, _original=original):
+        from pdrlearn.cli.registry_help import fill_registry_help
+
+        fill_registry_help(self)
+        return _original(self, ctx, formatter)
+
+    format_help._pdrlearn = True
+    TyperCommand.format_help = format_help
+
+
 def reflow_paragraphs(doc: str) -> str:
     """A command's docstring with each plain paragraph on one line, so that the help wraps it at the
     terminal's width (typer keeps every source line break: an 80-column help broke sentences in the
@@ -230,6 +249,7 @@ def _reflow_help(typer_app: typer.Typer) -> None:
 
 _flags_show_no_type(app)
 _help_flag_shows_no_type()
+_help_names_registries()
 _reflow_help(app)
 
 

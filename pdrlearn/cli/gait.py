@@ -95,13 +95,21 @@ def kind_lines(by_kind: dict) -> list[str]:
     return lines
 
 
+def stair_lines(flights: list[dict]) -> list[str]:
+    """Decision L561: one line per stair flight (gait_summary.json ``stairs``): its pattern and leading foot."""
+    from pdrlearn.track.stair_lead import flight_line
+
+    return [f"stairs (L561): {flight_line(f)}" for f in flights]
+
+
 def summary_json(res: dict) -> dict:
     """gait_summary.json's object of :func:`pdrlearn.track.bilateral.pair_sessions`'s ``res`` (gait --out; gait-all
     writes one per pair, decision W437)."""
-    out = {k: res[k] for k in ("walk", "bouts", "by_kind", "toe_off", "reason", "warnings", "sessions",
-                               "contact_source", "clock_alignment")}
+    out = {k: res[k] for k in ("walk", "bouts", "by_kind", "stairs", "toe_off", "reason", "warnings", "sessions",
+                               "contact_source", "clock_alignment")}  # L561: stairs
     ref = res.get("reference")
-    out["reference"] = None if ref is None else {k: ref[k] for k in ("walk", "bouts", "by_kind", "toe_off", "reason")}
+    out["reference"] = None if ref is None else {k: ref[k] for k in ("walk", "bouts", "by_kind", "stairs", "toe_off",
+                                                                     "reason")}
     return out
 
 
@@ -193,6 +201,8 @@ def register(app: typer.Typer) -> None:
             typer.echo("by kind of step (L538):")
             for line in kind_lines(res["by_kind"]):
                 typer.echo("  " + line)
+        for line in stair_lines(res["stairs"]):  # decision L561
+            typer.echo(line)
         if res["reason"]:
             typer.echo(res["reason"])
         ref = res.get("reference")
@@ -203,6 +213,8 @@ def register(app: typer.Typer) -> None:
             if len(ref["by_kind"]) > 1:  # decision L538
                 for line in kind_lines(ref["by_kind"]):
                     typer.echo("    " + line)
+            for line in stair_lines(ref["stairs"]):  # decision L561
+                typer.echo("  " + line)
             if ref["reason"]:
                 typer.echo("  " + ref["reason"])
         if out is not None:

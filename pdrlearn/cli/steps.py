@@ -8,6 +8,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_file, print_json, replaced, warn_gaps
+from pdrlearn.cli.registry_help import DETECTOR_NAMES
 from pdrlearn.errors import DataError
 
 #: decision steps 38: warn when more than this fraction of the foot's rest-to-rest strides were merged into a
@@ -26,11 +27,10 @@ EVENTS_OUT_HELP = ("Write every scored event to this CSV: event (ic | tc), foot,
 def steps(
     session_dir: Path = typer.Argument(..., help="PLASYS session folder."),
     detector: str = typer.Option("auto", "--detector", "-d",
-                                 help="accel | accel-force (foot strides) | pelvic-gyro | pll | waist-ic (waist "
-                                 "steps); auto = accel with a foot unit, else waist-ic (the waist-pendulum "
-                                 "pipeline's initial contacts; pll without a waist gyroscope); or a registered or "
-                                 "installed plug-in detector (docs/extending.md); NAME:key=value,... sets its "
-                                 "settings, e.g. pll:loop_hz=1.5 (decision E94)."),
+                                 help=f"{DETECTOR_NAMES} (the registered ones, decision C157); auto = accel "
+                                 "with a foot unit, else waist-ic (the waist-pendulum pipeline's initial contacts; "
+                                 "pll without a waist gyroscope); or a plug-in detector (docs/extending.md); "
+                                 "NAME:key=value,... sets its settings, e.g. pll:loop_hz=1.5 (decision E94)."),
     out: Path = typer.Option(None, "--out", "-o", help="Write the steps table to this CSV (times in s)."),
     tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
     time_origin: str = typer.Option("session", "--time-origin", help="session: --out times in s from the "

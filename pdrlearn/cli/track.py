@@ -28,6 +28,7 @@ from pdrlearn.cli.common import (
     transfer_line,
     walk_line,
 )
+from pdrlearn.cli.registry_help import LENGTH_NAMES
 from pdrlearn.errors import DataError
 from pdrlearn.textfile import read_text
 
@@ -103,8 +104,8 @@ DETECTOR_OPT = typer.Option(None, "--detector", help="The steps from this step d
                             "(decision L149), a waist one (unit 'waist') gives the lower-back pipeline its contacts "
                             "(decision E85); NAME:key=value,... sets its settings, e.g. pll:loop_hz=1.5 (decision "
                             "E94, as --length-model). Default: the pipeline's own.")
-LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelines: the step-length model (pendulum, "
-                                "frequency, weinberg:k=GAIN or a plug-in; NAME:key=value,... sets its settings; "
+LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelines: the step-length model "
+                                f"({LENGTH_NAMES}, or a plug-in; NAME:key=value,... sets its settings; "
                                 "decision E84; a gain model without its gain takes the one `calibrate "
                                 "--length-model NAME` wrote to --params, W460). Default: the pipeline's own.")
 CONTACTS_OPT = typer.Option(False, "--contacts", help="plasys --streaming: each stride's initial contact "

@@ -460,24 +460,14 @@ def stretch_between_fixes(causal: np.ndarray, prior: np.ndarray, used: np.ndarra
     return out
 
 
-def fit_length_scale(fix_xy: np.ndarray, fix_t: np.ndarray, pdr_xy: np.ndarray, pdr_path_m: np.ndarray, *,
-                     window_m: float = 200.0, max_gap_s: float = 5.0, straightness: float = 0.95
-                     ) -> tuple[float, float, int]:
-    """Decision D39: the step-length scale that GNSS measures, on straight stretches of good fixes.
-
-    ``fix_xy``/``fix_t``: the used fixes in order; ``pdr_xy``/``pdr_path_m``: the uncompensated PDR position and its
-    path length (m, the sum of the step lengths) at each of those fixes' steps. Consecutive windows of at least
-    ``window_m`` of PDR path, with no two fixes more than ``max_gap_s`` apart inside and a PDR chord at least
-    ``straightness`` x its path (a straight walk, where the walked distance is the fixes' chord), each give the fixes'
-    chord and the steps' summed length; the scale is the sum of the chords over the sum of the lengths (a window's fix
-    noise, ~ sqrt(2) x 3.4 m over 200 m, averages out over the windows). The PDR's chord is not the denominator: a
-    lower-back track's heading sways from step to step, which shortens its chord, not its distance (D39's first
-    candidate, +2.2 to +3.4 % on waist-pll tracks). Returns (scale or nan, PDR path covered by the windows (m),
-    number of windows)."""
+def length_scale_windows(fix_xy: np.ndarray, fix_t: np.ndarray, pdr_xy: np.ndarray, pdr_path_m: np.ndarray, *,
+                         window_m: float = 200.0, max_gap_s: float = 5.0, straightness: float = 0.95
+                         ) -> tuple[np.ndarray, np.ndarray]:
+    """Decision D39: the windows :func:`fit_length_scale` fits on, as (the fixes' chord, the steps' summed length) per
+    window (m, two arrays of the windows' count); the parameters are :func:`fit_length_scale`'s."""
     fix_xy, pdr_xy = np.asarray(fix_xy, float).reshape(-1, 2), np.asarray(pdr_xy, float).reshape(-1, 2)
     fix_t, path = np.asarray(fix_t, float), np.asarray(pdr_path_m, float)
-    num = den = 0.0
-    n = 0
+    chords, lengths = [], []
     i0 = 0
     for j in range(1, len(fix_t)):
         if fix_t[j] - fix_t[j - 1] > max_gap_s:  # an outage: the next window starts after it
@@ -487,8 +477,44 @@ def fit_length_scale(fix_xy: np.ndarray, fix_t: np.ndarray, pdr_xy: np.ndarray, 
         if walked < window_m:
             continue
         if float(np.hypot(*(pdr_xy[j] - pdr_xy[i0]))) >= straightness * walked:
-            num += float(np.hypot(*(fix_xy[j] - fix_xy[i0])))
-            den += walked
-            n += 1
+            chords.append(float(np.hypot(*(fix_xy[j] - fix_xy[i0]))))
+            lengths.append(float(walked))
         i0 = j
-    return (num / den if den > 0 else float("nan")), den, n
+    return np.asarray(chords, float), np.asarray(lengths, float)
+
+
+def fit_length_scale(fix_xy: np.ndarray, fix_t: np.ndarray, pdr_xy: np.ndarray, pdr_path_m: np.ndarray, *,
+                     window_m: float = 200.0, max_gap_s: float = 5.0, straightness: float = 0.95
+                     ) -> tuple[float, float, int]:
+    """Decision D39: the step-length scale that GNSS measures, on straight stretches of good fixes.
+
+    ``fix_xy``/``fix_t``: the used fixes in order; ``pdr_xy``/``pdr_path_m``: the uncompensated PDR position and its
+    path length (m, the sum of the step lengths) at each of those fixes' steps. Consecutive windows of at least
+    ``window_m`` of PDR path, with no two fixes more than ``max_gap_s`` apart inside and a PDR chord at least
+    ``straightness`` x its path (a straight walk, where the walked distance is the fixes' chord), each give the fixes'
+    chord and the steps' summed length (:func:`length_scale_windows`); the scale is the sum of the chords over the sum
+    of the lengths (a window's fix noise, ~ sqrt(2) x 3.4 m over 200 m, averages out over the windows). The PDR's
+    chord is not the denominator: a lower-back track's heading sways from step to step, which shortens its chord, not
+    its distance (D39's first candidate, +2.2 to +3.4 % on waist-pll tracks). Returns (scale or nan, PDR path covered
+    by the windows (m), number of windows)."""
+    return scale_from_windows(*length_scale_windows(fix_xy, fix_t, pdr_xy, pdr_path_m, window_m=window_m,
+                                                    max_gap_s=max_gap_s, straightness=straightness))
+
+
+def scale_from_windows(chords: np.ndarray, lengths: np.ndarray) -> tuple[float, float, int]:
+    """Decision D39: (scale = sum(chords) / sum(lengths) or nan, the PDR path covered (m), number of windows) of
+    :func:`length_scale_windows`' windows."""
+    den = float(np.sum(lengths))
+    return (float(np.sum(chords)) / den if den > 0 else float("nan")), den, int(len(lengths))
+
+
+def length_scale_se(chords: np.ndarray, lengths: np.ndarray) -> float:
+    """Decision D45: the standard error of :func:`fit_length_scale`'s scale R = sum(chords) / sum(lengths) from its
+    windows' own scatter (the ratio estimator's: sqrt(n / (n - 1) x sum((c_i - R l_i)^2)) / sum(l_i), which for
+    windows of equal length is the per-window ratios' standard deviation / sqrt(n)); nan with fewer than 2 windows."""
+    c, length = np.asarray(chords, float), np.asarray(lengths, float)
+    n, den = len(c), float(length.sum())
+    if n < 2 or den <= 0:
+        return float("nan")
+    r = float(c.sum()) / den
+    return float(np.sqrt(n / (n - 1) * np.sum((c - r * length) ** 2)) / den)

@@ -216,7 +216,7 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
             # decisions E152, L531: lists, kept for the walk-test table
             lists = {k: raw[k] for k in ("walk_test_distance_per_minute_m", "ten_m_walk_zones_m") if raw.get(k)}
             rows.append({**d, "run": run_label(p, root), **lists})  # decision C80: a single track named by its session
-        df = _step_count_columns(pd.DataFrame(rows))  # decision L103
+        df = step_count_columns(pd.DataFrame(rows))  # decision L103
         key = [c for c in TRACK_COLUMNS if c in df.columns]
         tables = [("trajectory summaries", df[key])]
         gait = [c for c in GAIT_COLUMNS if c in df.columns]  # decision L81: the gait parameters, own table
@@ -345,7 +345,7 @@ def _run_warnings(tracks: list[Path], evaluations: list[Path], root: Path) -> Se
 STEPS_COLUMN, STRIDES_COLUMN = "steps (both feet)", "strides (tracked foot)"
 
 
-def _step_count_columns(df: pd.DataFrame) -> pd.DataFrame:
+def step_count_columns(df: pd.DataFrame) -> pd.DataFrame:
     """Decision L103: :data:`STEPS_COLUMN` from ``n_steps_both_feet`` and :data:`STRIDES_COLUMN` from
     ``n_strides_one_foot``; a summary written before L103 (no such keys) gets them from ``n_steps`` and its
     ``pipeline`` (plasys / runtime: strides of the tracked foot, x 2 for the steps; waist-*: steps)."""

@@ -22,6 +22,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.report.daily_living import daily_living_lines
+from pdrlearn.track.stair_lead import FLIGHT_WORDS, flight_line
 
 #: decision W420: the body unit each pipeline's measures come from, as the summary names it
 UNIT_NAMES = {"plasys": "foot unit", "waist-pll": "lower-back unit", "waist-pendulum": "lower-back unit"}
@@ -190,10 +191,10 @@ def _number(v) -> float | None:
     return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None
 
 
-def asymmetry_lines(walk: dict) -> list[str]:
+def asymmetry_lines(walk: dict, stairs=None) -> list[str]:
     """Decision W438: a gait_summary.json ``walk``'s clinical lines: left / right, the symmetry index and the longer
     side of step time, stance and step length (each read defensively: a measure gait left out is left out), then the
-    gait speed and cadence (L539) when given."""
+    gait speed and cadence (L539) when given, then (L561) its ``stairs`` flights: pattern and leading foot."""
     parts = []
     for key, name, unit in ASYMMETRY_MEASURES:
         left, right = _number(walk.get(f"{key}_left")), _number(walk.get(f"{key}_right"))
@@ -216,6 +217,10 @@ def asymmetry_lines(walk: dict) -> list[str]:
     if speed is not None:
         lines.append(f"- Gait speed {speed:.2f} m/s{f', cadence {cad:.0f} steps/min' if cad is not None else ''} "
                      "(both foot units)")
+    flights = [f for f in stairs if isinstance(f, dict) and f.get("kind") in FLIGHT_WORDS] \
+        if isinstance(stairs, list) else []
+    if flights:  # decision L561
+        lines.append("- Stairs (both foot units, L561): " + "; ".join(flight_line(f) for f in flights))
     return lines
 
 
@@ -274,7 +279,7 @@ def _gait_walks(root: Path) -> list[dict]:
         rel = path.parent.relative_to(root).as_posix() if path.parent != root else path.parent.name
         names = {s: row.get(f"session_{s}") or (Path(side[s]).name if side[s] else "?") for s in ("left", "right")}
         walks.append({"folder": path.parent, "rel": rel, "subject": subject or None, "walk": walk, **side,
-                      "names": names})
+                      "names": names, "stairs": summary.get("stairs")})  # L561: stairs
     return walks
 
 
@@ -353,7 +358,7 @@ def walk_blocks(rows: list) -> list[list[str]]:
                          "`pdrlearn gait LEFT RIGHT --out G`) and report a folder holding G too (W437, W438)")
         else:
             used.add(id(g))
-            block += asymmetry_lines(g["walk"])
+            block += asymmetry_lines(g["walk"], g["stairs"])
         blocks.append(block)
     for g in gaits:
         if id(g) in used:
@@ -361,5 +366,5 @@ def walk_blocks(rows: list) -> list[list[str]]:
         date = session_date(Path(g["left"])) if g["left"] else None
         when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
         blocks.append([f"Walk {g['rel']} (left {g['names']['left']} + right {g['names']['right']}; pdrlearn gait), "
-                       f"{when}:", *asymmetry_lines(g["walk"])])
+                       f"{when}:", *asymmetry_lines(g["walk"], g["stairs"])])
     return blocks

@@ -9,6 +9,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pdrlearn.report.build import STEPS_COLUMN, step_count_columns
+
 #: decision W448: a recording this long (s) or longer gets the block (a supervised test lasts minutes)
 DAILY_MIN_S = 3600.0
 #: decision W448: a walking bout this long (s) or longer is counted apart (Mobilise-D style long bouts)
@@ -36,6 +38,21 @@ def _per(per_s) -> str:
     return f"{per / 3600:g} h" if per % 3600 == 0 else f"{per / 60:g} min" if per % 60 == 0 else f"{per:g} s"
 
 
+def _both_feet(table: pd.DataFrame, summary: dict) -> pd.Series:
+    """Decision W458: the steps of both feet per row of ``table`` (the summary or periods.csv): its
+    ``n_steps_both_feet``, else L103's reading of ``n_steps`` by the track's ``pipeline`` (a foot track's ``n_steps``
+    counts strides of the tracked foot, 2 steps each)."""
+    table = table.assign(pipeline=summary.get("pipeline"))
+    out = step_count_columns(table)
+    return pd.to_numeric(out[STEPS_COLUMN], errors="coerce") if STEPS_COLUMN in out else pd.Series(np.nan, table.index)
+
+
+def _estimated(summary: dict) -> bool:
+    """Decision W458 (L103): a foot track's step count is 2 per stride of the tracked foot, an estimate."""
+    return summary.get("n_steps_counts") == "strides of the tracked foot" or (
+        summary.get("n_steps_counts") is None and str(summary.get("pipeline")) in ("plasys", "runtime"))
+
+
 def daily_living_lines(summary: dict, folder: Path) -> list[str]:
     """Decision W448: the daily-living lines of a track ``folder`` (its ``summary``) that spans
     :data:`DAILY_MIN_S` or more; none for a shorter one."""
@@ -43,13 +60,19 @@ def daily_living_lines(summary: dict, folder: Path) -> list[str]:
     if span is None or float(span) < DAILY_MIN_S:
         return []
     lines = []
-    steps, cad = summary.get("n_steps"), summary.get("median_cadence_spm")
-    if steps is not None:
+    cad = summary.get("median_cadence_spm")
+    # decision W458: steps of both feet, as the cadence beside it (a foot track's n_steps counts strides)
+    counts = {k: [summary.get(k)] for k in ("n_steps", "n_steps_both_feet")}
+    steps = _both_feet(pd.DataFrame(counts), summary).iloc[0] if summary.get("n_steps") is not None else np.nan
+    approx = "~" if _estimated(summary) else ""
+    if not pd.isna(steps):
         caveat = ("; lower-back step count not validated below "
                   f"{VALIDATED_MIN_SPM:g} steps/min (L95)" if str(summary.get("pipeline")).startswith("waist")
                   and cad is not None and cad < VALIDATED_MIN_SPM else "")
-        text = f"- Daily living over {_h(span)} recorded: {int(steps)} steps ({3600 * steps / float(span):.0f} per hour"
-        text += f", {86400 * steps / float(span):.0f} per day)" if float(span) >= 86400 else ")"
+        text = (f"- Daily living over {_h(span)} recorded: {approx}{int(steps)} steps "
+                f"({3600 * steps / float(span):.0f} per hour")
+        text += f", {86400 * steps / float(span):.0f} per day" if float(span) >= 86400 else ""
+        text += "; 2 per stride of the tracked foot)" if approx else ")"
         walking = summary.get("walking_time_s")
         if walking is not None:
             text += f"; walking {float(walking) / 60:.1f} min"
@@ -72,8 +95,10 @@ def daily_living_lines(summary: dict, folder: Path) -> list[str]:
     if any(v is not None for _, v in post[:3]):
         lines.append("- Posture: " + ", ".join(f"{k} {_h(v)}" for k, v in post if v is not None))
     periods = _csv(folder / "periods.csv")
-    if periods is not None and 1 < len(periods) <= MAX_PERIODS_LISTED and "n_steps" in periods:
-        n = pd.to_numeric(periods["n_steps"], errors="coerce")
+    if periods is not None and 1 < len(periods) <= MAX_PERIODS_LISTED and (
+            "n_steps" in periods or "n_steps_both_feet" in periods):
+        n = _both_feet(periods, summary)  # decision W458: periods.csv's n_steps_both_feet, as the line above
         per = f" per {_per(summary['per_s'])}" if summary.get("per_s") else " per period"
-        lines.append(f"- Steps{per} (periods.csv): " + ", ".join("-" if pd.isna(v) else f"{v:.0f}" for v in n))
+        src = "periods.csv, ~2 per stride of the tracked foot" if _estimated(summary) else "periods.csv"
+        lines.append(f"- Steps{per} ({src}): " + ", ".join("-" if pd.isna(v) else f"{v:.0f}" for v in n))
     return lines

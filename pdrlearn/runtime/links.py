@@ -172,13 +172,14 @@ class RepeatedLines:
         return out
 
 
-def _all_went_back(head: str, back: dict) -> ClockWentBack:
+def _all_went_back(head: str, back: dict, drift: dict) -> ClockWentBack:
     """Decision E243: the refusal of a push holding two units whose clocks both went back (unit -> (first sample,
     its streams' newest, offset now), the tracker's clock): each unit's first pushed sample goes just after the
     tracker's newest, so the push's units stay beside each other as pushed (E223's reading of one push: its units'
     first samples are the same wall time), in one refusal: rebasing one unit and pushing again refused the other."""
     newest = max(b for _, b, _ in back.values())
-    offsets = {u: off + a - newest - 1e-3 for u, (a, _, off) in back.items()}
+    # decision E248: each unit's drift (s/s, ``drift``), as order_error's one-unit offset
+    offsets = {u: off + (a - newest - 1e-3) * (1.0 + drift.get(u, 0.0)) for u, (a, _, off) in back.items()}
     went = " and ".join(f"the {u} clock {b - a:.2f} s" for u, (a, b, _) in back.items())
     calls = " and ".join(f"tracker.rebase_clock({u!r}, {o:.2f})" for u, o in offsets.items())
     first = next(iter(offsets))
@@ -190,13 +191,16 @@ def _all_went_back(head: str, back: dict) -> ClockWentBack:
 
 
 def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s: float, offset_s: float,
-                other_newest: float | None, note: str = "", also_back: dict | None = None) -> DataError:
+                other_newest: float | None, note: str = "", also_back: dict | None = None,
+                drift: dict | None = None) -> DataError:
     """The refusal of a push whose first ``name`` sample (``t0`` s, the tracker's clock) is not after the stream's
     newest (``last``): a duplicate of a sample taken (decision E225), a clock that went back by more than
     ``max_lag_s`` (E227: :class:`ClockWentBack`, with the offset that puts it beside the other unit's newest,
     ``other_newest``, or just after its own last sample when none is past it, E235; ``offset_s`` the unit's offset
     now), or a late sample; ``note``: B141's jumped-clock note. ``also_back``: the other units of the push whose clock
-    went back too, unit -> (first sample, its streams' newest, offset now) (decision E243: one refusal names both)."""
+    went back too, unit -> (first sample, its streams' newest, offset now) (decision E243: one refusal names both).
+    ``drift``: unit -> its clock's drift in s/s (E229's waist model ``t = (t_unit - offset_s) / (1 + drift)``; decision
+    E248: every offset given holds it)."""
     head = f"{name}: pushed timestamps are not increasing (at {t0:.3f} s after {last:.3f} s)"
     if duplicate:
         return DataError(f"{head}: that sample duplicates one already taken, a packet sent again? "
@@ -205,9 +209,11 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
     unit = unit_of(name)
     if last - t0 > max_lag_s and unit is not None and not note:  # B141's accepted jump: its own note, not E227
         if also_back:
-            return _all_went_back(head, {unit: (t0, last, offset_s), **also_back})
+            return _all_went_back(head, {unit: (t0, last, offset_s), **also_back}, drift or {})
         beside = other_newest is not None and other_newest > last
-        off = offset_s + t0 - (other_newest if beside else last) - 1e-3  # the sample just after the tracker's newest
+        # the sample 1 ms after the tracker's newest: its unit clock's reading t0 (1 + drift) + offset_s less that
+        # time on the unit's clock (decision E248: with E229's drift; E227 took t0 - target, off by target x drift)
+        off = offset_s + (t0 - (other_newest if beside else last) - 1e-3) * (1.0 + (drift or {}).get(unit, 0.0))
         where = ("beside the other unit's newest" if beside else
                  f"just after its last sample (less the seconds it was gone: {off:.2f} - gone)")
         return ClockWentBack(

@@ -1346,12 +1346,15 @@ class Tracker(FixInput):
         """Decisions E225 / E227: the refusal of a push whose first ``name`` sample (``t0`` s) is not after the
         stream's newest (``last``): a duplicate, a clock that went back (a reconnected pod) or a late sample;
         decision E243: with the push's other units whose clocks went back too (``samples``: the push)."""
-        unit = unit_of(name)
-        other = [r.last for n, r in self._buf.items() if unit_of(n) not in (None, unit)]
+        unit, raw = unit_of(name), self.inputs.last_in
+        # the other unit's newest input sample (decision E249: a resampled stream's ring holds the output grid,
+        # behind its input by the low-pass delay), as the order check itself reads its own stream's
+        other = [r.last if raw(n) is None else raw(n) for n, r in self._buf.items() if unit_of(n) not in (None, unit)]
         return order_error(name, t0, last, duplicate=bool(repeated([t0], self._taken_times(name))[0]),
                            max_lag_s=self.max_lag_s, offset_s=self._clock_offset(unit),
                            other_newest=max(other) if other else None, note=self._jumped_note(t0),
-                           also_back=self._also_back(unit, samples) if samples is not None else None)
+                           also_back=self._also_back(unit, samples) if samples is not None else None,
+                           drift={"waist": self.waist_clock_drift_ppm * 1e-6})  # decision E248
 
     def _clock_offset(self, unit: str | None) -> float:
         """The offset (s) ``rebase_clock`` last gave ``unit``'s clock (the waist's ``waist_clock_offset_s``)."""

@@ -457,10 +457,10 @@ def register_detector(name: str, cls: type[StepDetector], *, replace: bool = Fal
 
 
 def get_detector(name: str, **params) -> StepDetector:
-    """Detector by CLI name (``accel``, ``accel-force``, ``pelvic-gyro``, ``pll``, ``waist-ic`` and any
-    registered with :func:`register_detector` or installed as a plug-in), optionally with settings in the CLI's
-    form ``"pll:loop_hz=2,damping=0.5"`` (decision E94: the step-length models' ``NAME:key=value``, one parser;
-    an unknown setting is one line naming the valid ones)."""
+    """Detector by CLI name (a name of :data:`DETECTORS`: the built-ins registered below and any registered with
+    :func:`register_detector` or installed as a plug-in; ``sorted(DETECTORS)`` lists them), optionally with settings
+    in the CLI's form ``"pll:loop_hz=2,damping=0.5"`` (decision E94: the step-length models' ``NAME:key=value``, one
+    parser; an unknown setting is one line naming the valid ones)."""
     from pdrlearn.plugins import from_spec
 
     return from_spec(DETECTORS, name, **params)

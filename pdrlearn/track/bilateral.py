@@ -95,10 +95,11 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
                         "session offline (pdrlearn track, not --streaming)")
     ok = np.isfinite(steps[ic_col].to_numpy(float))
     x, y, d = stride_positions(steps)  # decision L310: over every row (a gap row is 0 m), before any is left out
+    z = stride_heights(steps)  # decision L561: likewise
     if "gap_s" in steps:
         ok &= steps["gap_s"].to_numpy(float) == 0
     st = steps[ok]
-    x, y, d = x[ok], y[ok], d[ok]
+    x, y, d, z = x[ok], y[ok], d[ok], z[ok]
     length = st["length_m"].to_numpy(float) if "length_m" in st else np.full(len(st), np.nan)
     if "impossible" in st:
         length = np.where(flag_values(st["impossible"]), np.nan, length)
@@ -107,7 +108,7 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
             else np.full(len(st), np.nan))  # decision L539: the stride's rest-to-rest time
     out = pd.DataFrame({"ic_s": st[ic_col].to_numpy(float),
                         "tc_s": st["tc_s"].to_numpy(float) if "tc_s" in st else np.full(len(st), np.nan),
-                        "length_m": length, "x_m": x, "y_m": y, "dir_rad": d, "terrain": terrain,
+                        "length_m": length, "x_m": x, "y_m": y, "z_m": z, "dir_rad": d, "terrain": terrain,
                         "turn_deg": turn, "stride_s": span})
     return out.sort_values("ic_s", kind="stable").reset_index(drop=True)
 
@@ -162,6 +163,16 @@ def stride_positions(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.nd
         length = np.where(flag_values(steps["impossible"]), np.nan, length)
     h = steps["heading_rad"].to_numpy(float)
     return np.cumsum(length * np.cos(h)), np.cumsum(length * np.sin(h)), h
+
+
+def stride_heights(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L561: the foot's rest height (m) after each row, its strides' height changes summed from the track's
+    origin (0): a tracked table's ``dz_m``, a label table's ``height_m`` (the simulator's steps.csv); a missing
+    height counts 0 m; all NaN for a table with neither."""
+    col = "dz_m" if "dz_m" in steps else "height_m" if "height_m" in steps else None
+    if col is None:
+        return np.full(len(steps), np.nan)
+    return np.nancumsum(pd.to_numeric(steps[col], errors="coerce").to_numpy(float))
 
 
 def _wrap(a):
@@ -614,7 +625,8 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
     Returns ``{"walk": measures, "bouts": [measures + bout, start_s, end_s], "by_kind": {kind: measures}, "steps":
-    step table, "cycles": cycle table, "toe_off": bool, "reason": str | None, "warnings": [lines]}``; measures are
+    step table, "cycles": cycle table, "toe_off": bool, "reason": str | None, "warnings": [lines], "stairs":
+    [flights, decision L561's :func:`pdrlearn.track.stair_lead.stair_flights`]}``; measures are
     :func:`gait_measures`' (None where the tables cannot give them) of the walk's level straight steps when it has
     enough (decision L538, :func:`headline_masks`; ``walk["headline_steps"]`` says which) and :func:`walk_pace`'s
     of all its steps (L539); ``warnings`` holds B245's, L284's and L285's lines (each logged). ``step_lengths``
@@ -666,8 +678,11 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
         if line is not None:  # L285 judges a track's toe-off, not a label table's
             log.warning(line)
             warnings.append(line)
+    from pdrlearn.track.stair_lead import stair_flights
+
     return {"walk": walk, "bouts": bouts, "by_kind": kind_measures(both, steps, cycles), "steps": steps,
-            "cycles": cycles, "toe_off": toe_off, "reason": reason, "warnings": [w for w in warnings if w is not None]}
+            "cycles": cycles, "toe_off": toe_off, "reason": reason, "warnings": [w for w in warnings if w is not None],
+            "stairs": stair_flights(both, contact_kinds(both))}  # decision L561
 
 
 def alternating_share(both: pd.DataFrame) -> tuple[int, int]:

@@ -21,7 +21,7 @@ mean). What the data fixes:
   0-90 deg at step frequency; seed 003 sec. 3.1); left = up x forward.
 
 The module sits in ``track``, after the stages it uses (the ZUPT stride integration of ``displace``, the W2
-rule of ``waist``; /work/shared/DESIGN.md data flow); :meth:`pdrlearn.io.Session.require_frame` imports it
+rule of ``waist``; the data flow of docs/architecture.md); :meth:`pdrlearn.io.Session.require_frame` imports it
 lazily, when a method first asks for an undeclared frame.
 
 Every check that can fail raises :class:`FrameInferenceError` (a :class:`DataError`) with the reason;

@@ -715,15 +715,18 @@ def compass_windows(t: np.ndarray, window_s: float, min_n: int) -> list[np.ndarr
 
 def windowed_disagreement(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray, t: np.ndarray, *,
                           window_s: float = COMPASS_CHECK_WINDOW_S,
-                          min_n: int = HARD_IRON_MIN_STRIDES, drift: bool = False) -> np.ndarray:
+                          min_n: int = HARD_IRON_MIN_STRIDES) -> np.ndarray:
     """Decision L264: :func:`~pdrlearn.orient._kernels.compass_disagreement`'s angles (rad), its model fitted on each
-    :func:`compass_windows` window of the strides at times ``t`` (s) on its own; in the order of ``t``. ``drift``
-    (decisions L544 / L545, measured, not adopted): no hard-iron offset in a window whose headings do not spread
-    (L84's gate) and a heading offset that drifts linearly in the window (the foot gyroscope's drift)."""
+    :func:`compass_windows` window of the strides at times ``t`` (s) on its own; in the order of ``t``. Decisions
+    L544 / L558 (adopted by L558's rule, L559): with at least two windows, no hard-iron offset in a window whose
+    headings do not spread (L84's gate) and a heading offset that drifts linearly in the window (the foot
+    gyroscope's drift); a walk of one window is fitted as L182's one fit."""
     from pdrlearn.orient._kernels import compass_disagreement
 
     ang = np.zeros(len(psi))
-    for g in compass_windows(t, window_s, min_n):
+    groups = compass_windows(t, window_s, min_n)
+    drift = len(groups) > 1  # decisions L558 / L559: one window is L182's one fit, judged exactly as before
+    for g in groups:
         ang[g] = compass_disagreement(np.asarray(m_fwd, float)[g], np.asarray(m_left, float)[g],
                                       np.asarray(psi, float)[g],
                                       max_resultant=HARD_IRON_MAX_RESULTANT if drift else None,
@@ -732,8 +735,7 @@ def windowed_disagreement(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray
 
 
 def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
-                  keep: np.ndarray, *, windowed: bool | None = None,
-                  drift: bool = False) -> tuple[str | None, dict | None]:
+                  keep: np.ndarray, *, windowed: bool | None = None) -> tuple[str | None, dict | None]:
     """Decision L182: (a warning line or None, ``info.compass_check``) for a track whose heading reads the waist
     compass: the median |angle| (:func:`~pdrlearn.orient._kernels.compass_disagreement`) of the ``keep`` strides
     (straight, outside foot gaps) against the foot's relative heading ``psi`` (rad), with at least
@@ -745,7 +747,7 @@ def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
     psi_ok = np.asarray(psi, float)[ok]
     windowed = COMPASS_CHECK_WINDOWED if windowed is None else windowed
     t = strides["start_s"].to_numpy(float)[ok]
-    angle, info = check_angle(mf, ml, psi_ok, t, windowed=windowed, drift=drift)  # drift: L544 / L545
+    angle, info = check_angle(mf, ml, psi_ok, t, windowed=windowed)
     if not angle > COMPASS_DISAGREE_DEG:
         return None, info
     over = {"windows": f" (each {COMPASS_CHECK_WINDOW_S:g} s window on its own, L264)",
@@ -760,19 +762,19 @@ def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
 
 
 def check_angle(mf: np.ndarray, ml: np.ndarray, psi: np.ndarray, t: np.ndarray, *, windowed: bool,
-                span_gates: bool | None = None, drift: bool = False) -> tuple[float, dict]:
+                span_gates: bool | None = None) -> tuple[float, dict]:
     """Decisions L182 / L264 / L280: the median |angle| (deg) L182's check judges, from the straight strides' level
     field ``mf`` / ``ml`` (uT), the foot's relative heading ``psi`` (rad) and their times ``t`` (s), and the
     ``info.compass_check`` dict. ``windowed``: each L264 window on its own; with ``span_gates`` (None =
     :data:`COMPASS_SPAN_GATES`) a walk spanning at most :data:`COMPASS_ONE_FIT_MAX_S` is also judged by L182's one
-    fit, and the larger median judges (L280). ``drift``: :func:`windowed_disagreement`'s (L544 / L545, not adopted)."""
+    fit, and the larger median judges (L280); the windows are fitted as L558 / L559 adopted."""
     from pdrlearn.orient._kernels import compass_disagreement
 
     gates = COMPASS_SPAN_GATES if span_gates is None else span_gates
     one = None
     if not windowed or (gates and np.ptp(t) <= COMPASS_ONE_FIT_MAX_S):  # decision L182 / L280: one fit
         one = float(np.degrees(np.median(np.abs(compass_disagreement(mf, ml, psi)[0]))))
-    win = float(np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t, drift=drift))))) if windowed else None
+    win = float(np.degrees(np.median(np.abs(windowed_disagreement(mf, ml, psi, t))))) if windowed else None
     angle, by = max((a, b) for a, b in ((win, "windows"), (one, "one fit")) if a is not None)
     info = {"median_deg": angle, "n_strides": int(len(psi)), "limit_deg": COMPASS_DISAGREE_DEG,
             "window_s": COMPASS_CHECK_WINDOW_S if windowed else None, "by": by,

@@ -30,6 +30,12 @@ KEYS = ("splits_m", "split_times_s")
 
 #: decision L553: the step form's prefix (``--splits every:1000``)
 EVERY = "every:"
+#: decision B420: the shortest ``every:STEP`` (m): about a step (a foot track's row is a stride, ~1.4 m); a finer mark
+#: is only interpolated within one row, and every:0.01 wrote 24,029 rows for a 240 m walk
+MIN_EVERY_M = 1.0
+#: decision L563: the console's split line names at most this many marks (the first ones and the last two); every
+#: mark stays in splits.csv and summary.json ``splits_m``
+MAX_LINE_SPLITS = 12
 
 
 @dataclass(frozen=True)
@@ -63,6 +69,10 @@ def parse_splits(text: str | None) -> tuple[float, ...] | EverySplit | None:
             step_m = float("nan")
         if not math.isfinite(step_m) or step_m <= 0:
             raise DataError(f"--splits {text!r}: {step!r} is not a positive distance; {fix}")
+        if step_m < MIN_EVERY_M:  # decision B420
+            raise DataError(f"--splits {text!r}: a mark every {step_m:g} m is finer than a step (at least "
+                            f"every:{MIN_EVERY_M:g}); give a mark every {MIN_EVERY_M:g} m or more, e.g. --splits "
+                            "every:100, or list the marks, e.g. --splits 5,10,20")
         return EverySplit(step_m)
     parts = [p.strip() for p in str(text).split(",")]
     try:
@@ -85,15 +95,16 @@ def _crossing_times(steps: pd.DataFrame, marks: np.ndarray) -> tuple[np.ndarray,
 
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     t, d = _distance_in_time(st)
+    marks = np.asarray(marks, float)
     out = np.full(len(marks), np.nan)
-    for i, m in enumerate(marks):
-        k = int(np.searchsorted(d, m, side="left"))  # the first point at or past the mark
-        if k >= len(d):
-            continue
-        if k == 0 or d[k] == d[k - 1]:
-            out[i] = t[k]
-        else:  # linear within the row that crosses it (its start at d[k-1], its contact at d[k])
-            out[i] = t[k - 1] + (m - d[k - 1]) / (d[k] - d[k - 1]) * (t[k] - t[k - 1])
+    k = np.searchsorted(d, marks, side="left")  # the first point at or past each mark
+    on = k < len(d)
+    k, m = k[on], marks[on]
+    b = np.maximum(k - 1, 0)
+    flat = (k == 0) | (d[k] == d[b])  # the mark is a point of the clock itself
+    span = np.where(flat, 1.0, d[k] - d[b])
+    # linear within the row that crosses it (its start at d[k-1], its contact at d[k]); decision L563: one pass
+    out[on] = np.where(flat, t[k], t[b] + (m - d[b]) / span * (t[k] - t[b]))
     return out - float(t[0]), float(d[-1]), float(t[0])
 
 
@@ -143,4 +154,8 @@ def splits_line(summary: dict) -> str | None:
             continue
         parts.append(f"{m:g} m {t:.2f} s" + (f" (+{t - prev:.2f} s)" if prev is not None else ""))
         prev = t
+    if len(parts) > MAX_LINE_SPLITS:  # decision L563: the first marks, how many are left out, the last two
+        left = len(parts) - MAX_LINE_SPLITS
+        parts = [*parts[:MAX_LINE_SPLITS - 2], f"... {left} more ...", *parts[-2:]]
+        return f"splits from the first step: {', '.join(parts)} ({len(marks)} marks; all in splits.csv)"
     return "splits from the first step: " + ", ".join(parts) + " (splits.csv)"

@@ -988,7 +988,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
         ``event_s`` are used as they are (no motion gate, no IC refinement); offline only (not with ``realtime``)
     length_model : the step length from this model instead of the pipeline's (decision E84): a registered name
-        (``pdrlearn.waist.lengths.STEP_LENGTHS``: ``pendulum``, ``frequency``, ``weinberg`` and plug-ins), a
+        (``pdrlearn.waist.lengths.STEP_LENGTHS``: the built-ins and plug-ins, ``list(STEP_LENGTHS)``), a
         ``"name:key=value"`` string or a :class:`~pdrlearn.waist.lengths.StepLengthModel`; None: ``pendulum``
         (waist-pendulum) or ``frequency`` (waist-pll). A model given by name takes the options named like its
         settings (``merge_fragments``, ``length_smoothing``, ``pause_steps``)
