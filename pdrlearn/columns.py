@@ -109,6 +109,11 @@ SESSIONS: tuple[Column, ...] = (
                                         "drift during climbs, which they include (weather_drift_m, L464)"),
     ("altitude_drift_limit_m", "m", "number", "the most the fastest weather (2 hPa/h) changes the barometric z in "
                                               "the track's span; a larger altitude_drift_m is warned about (W371)"),
+    ("ramps_stairs_ascent_m", "m", "number", "barometric z (lower back, --altitude fused): the summed rise of "
+                                             "ramps.csv rise_m and stairs.csv height_m up; an ascent_m more than "
+                                             "0.13 m below it is warned about (L566)"),
+    ("ramps_stairs_descent_m", "m", "number", "barometric z: the summed drop of ramps.csv and stairs.csv down, >= 0; "
+                                              "a descent_m more than 0.13 m below it is warned about (L566)"),
     ("weather_drift_rate_m_per_h", "m/h", "number", "foot tracks with wBarometer.csv: the barometric altitude's "
                                                     "slope over standstills of 60 s or more (the weather; L464)"),
     ("weather_drift_standstill_s", "s", "number", "the standstill seconds weather_drift_rate_m_per_h was read on "

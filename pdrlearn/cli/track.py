@@ -1359,7 +1359,8 @@ def _reference_point(point: str, par, params: Path | None, pipeline: str, stream
 
 #: decision W422: ``--params`` keys of the plasys pipeline that are ``track_plasys`` options, not FootDisplacement
 #: settings (W126's waist-gyroscope rest-bias removal: the API had it, the CLI refused the key, trial T2 finding 5)
-TRACK_PARAM_KEYS = ("waist_bias",)
+#: decision L565: ``fused_climb`` (L564's one height source inside a barometric climb, an option), offline and streamed
+TRACK_PARAM_KEYS = ("waist_bias", "fused_climb")
 
 
 def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
@@ -1370,7 +1371,7 @@ def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
     for k, v in keys.items():
         if not isinstance(v, bool):
             raise DataError(f"{path}: \"{k}\" must be true or false (JSON, no quotes), not {v!r:.40}; fix the key")
-    if keys and streaming:
+    if "waist_bias" in keys and streaming:
         raise DataError(f"{path}: \"waist_bias\" removes the waist gyroscope bias from the offline two-unit heading "
                         "(decisions W126, W422); the --streaming kernel has no such removal: drop --streaming or "
                         "the key")

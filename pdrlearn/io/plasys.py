@@ -1476,6 +1476,22 @@ def _stream_frame(s: Stream, scale: float) -> pd.DataFrame:
     return pd.DataFrame(data)
 
 
+def _write_float_csv(df: pd.DataFrame, path: Path) -> None:
+    """``df.to_csv(path, index=False, float_format="%.17g")``, byte for byte, about 2.5x faster for the all-float,
+    NaN-free frames a session's streams and trajectory are (session 41, lead; suite-time note of implementer I2: a
+    2020 s simulated night's 8 streams 1.56 -> 0.58 s CPU). Anything else (a NaN, which pandas writes as an empty
+    cell, a non-float column, a column name CSV would quote) goes through pandas."""
+    arr = df.to_numpy() if all(dt.kind == "f" for dt in df.dtypes) else None
+    if (arr is None or not np.isfinite(arr).all()
+            or any(not isinstance(c, str) or any(ch in c for ch in ',"\n\r') for c in df.columns)):
+        df.to_csv(path, index=False, float_format="%.17g")
+        return
+    row = ",".join(["%.17g"] * arr.shape[1])
+    with open(path, "w", encoding="utf-8", newline="") as f:
+        f.write(",".join(df.columns) + "\n")
+        f.writelines(row % r + "\n" for r in map(tuple, arr.tolist()))
+
+
 def write_session(session: Session, folder: str | os.PathLike, *, overwrite: bool = False) -> Path:
     """Write a session as a PLASYS folder, atomically (temporary folder + rename).
 
@@ -1507,13 +1523,13 @@ def write_session(session: Session, folder: str | os.PathLike, *, overwrite: boo
             meta["frames"] = {p: f.to_dict() for p, f in session.frames.items()}
         scale = 1e-3
         for name, s in session.streams.items():
-            _stream_frame(s, scale).to_csv(tmp / f"{name}.csv", index=False, float_format="%.17g")
+            _write_float_csv(_stream_frame(s, scale), tmp / f"{name}.csv")
         if session.steps is not None:
             _s_to_ms(session.steps).to_csv(tmp / "steps.csv", index=False)
         if session.trajectory is not None:
             tr = session.trajectory.copy()
             tr.insert(0, "timestamp", np.round(tr.pop("t").to_numpy() / scale, 9))
-            tr.to_csv(tmp / "trajectory.csv", index=False, float_format="%.17g")
+            _write_float_csv(tr, tmp / "trajectory.csv")
         for k, df in session.extras.items():
             _s_to_ms(df).to_csv(tmp / f"{k}.csv", index=False)
         (tmp / "meta.json").write_text(json.dumps(meta, indent=2, default=json_default) + "\n")

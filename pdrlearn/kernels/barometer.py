@@ -528,9 +528,42 @@ BIAS_MODES = ("one", "split", "scale")
 SCALE_REF_DZ_M = 0.10
 
 
+#: decision L564 (a project choice): a stride is read inside a barometric climb over the span from this many seconds
+#: before its start to as many after its end - about four strides each side, so a ramp's first and last strides are in
+CLIMB_SPAN_S = 5.0
+#: decision L564: ... when the barometer changes over that span by at least this grade (%) of the horizontal length
+#: walked in it: L301's RAMP_MIN_GRADE_PCT, the grade that makes a ramp row (above ADA 2010's 1:48 level bound)
+CLIMB_MIN_GRADE_PCT = 3.0
+
+
+def barometric_climb(start_s: np.ndarray, end_s: np.ndarray, length_m: np.ndarray, baro_t: np.ndarray,
+                     baro_hpa: np.ndarray, span_s: float = CLIMB_SPAN_S,
+                     min_grade_pct: float = CLIMB_MIN_GRADE_PCT) -> np.ndarray:
+    """Decision L564: boolean per stride (walking order; ``start_s`` / ``end_s`` on the barometer's clock,
+    ``length_m`` horizontal), True inside a barometric climb: :func:`relative_altitude` changes from ``span_s`` before
+    the stride's start to ``span_s`` after its end by at least ``min_grade_pct`` % of the summed length of the strides
+    that overlap that span. Centred (it reads the barometer after the stride): the fusion runs after the track.
+    Non-finite lengths count as 0."""
+    t0, t1 = np.asarray(start_s, dtype=float).ravel(), np.asarray(end_s, dtype=float).ravel()
+    n = len(t0)
+    if not n:
+        return np.zeros(0, dtype=bool)
+    length = np.abs(np.nan_to_num(np.asarray(length_m, dtype=float).ravel()))
+    a, b = t0 - span_s, t1 + span_s
+    h = relative_altitude(baro_t, baro_hpa, np.concatenate([a, b]))
+    rise = np.abs(h[n:] - h[:n])
+    order = np.argsort(t1, kind="stable")
+    walked = np.concatenate([[0.0], np.cumsum(length[order])])
+    # strides overlapping [a, b]: ending after a and starting before b (walking order: end times sorted)
+    lo = np.searchsorted(t1[order], a, side="right")
+    hi = np.searchsorted(np.sort(t0), b, side="left")
+    run = walked[np.maximum(hi, lo)] - walked[lo]
+    return (run > 0) & (rise >= min_grade_pct / 100.0 * run)
+
+
 def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t: np.ndarray,
                   baro_hpa: np.ndarray, *, level_dz_m: float = 0.10, climb_bias: bool = True,
-                  bias_mode: str = "scale") -> np.ndarray:
+                  bias_mode: str = "scale", climbing: np.ndarray | None = None) -> np.ndarray:
     """Decision L154: the strides' height changes ``dz`` (m, after L39 / the class rules) fused with a barometer
     ``(baro_t, baro_hpa)`` (s, hPa) by a Kalman filter over the strides (causal: each stride's height uses the
     barometer up to its end; ``start_s`` / ``end_s`` the strides' times on the barometer's clock).
@@ -547,14 +580,18 @@ def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t
     climbing strides' bias b (:data:`FOOT_CLIMB_BIAS_SD_M`, a random walk of :data:`FOOT_CLIMB_BIAS_STEP_SD_M` per
     climbing stride): a climbing stride moves h by dz + b. ``bias_mode`` (decision L502, one of :data:`BIAS_MODES`;
     L503 adopted "scale"): "one" that state; "split" b for climbing and a fifth state for descending strides;
-    "scale" the state is a scale k, a climbing stride moves h by dz (1 + k). Returns the fused per-stride height
-    changes (their sum is the fused altitude change); non-finite dz count as 0."""
+    "scale" the state is a scale k, a climbing stride moves h by dz (1 + k). ``climbing`` (decision L564, a boolean
+    per stride, :func:`barometric_climb`): those strides are climbing strides whatever their |dz| (the caller gives
+    them the foot's un-levelled height: one height source inside a barometric climb). Returns the fused per-stride
+    height changes (their sum is the fused altitude change); non-finite dz count as 0."""
     d = np.nan_to_num(np.asarray(dz, dtype=float).ravel())
     t0, t1 = np.asarray(start_s, dtype=float).ravel(), np.asarray(end_s, dtype=float).ravel()
     if not len(d):
         return d
     b = relative_altitude(baro_t, baro_hpa, np.concatenate([[t0[0]], t1]))
     level = np.abs(d) < level_dz_m
+    if climbing is not None:  # decision L564: inside a barometric climb no stride is level
+        level &= ~np.asarray(climbing, dtype=bool).ravel()
     on, mode = bool(climb_bias), bias_mode
     if mode not in BIAS_MODES:
         raise ValueError(f"bias_mode {mode!r}: one of 'one', 'split', 'scale' (decision L502)")

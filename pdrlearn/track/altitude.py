@@ -35,11 +35,13 @@ def set_strides_dz(result, dz: np.ndarray) -> None:
         result.trajectory["z"] = z0 + np.concatenate([[0.0], np.cumsum(dz)])
 
 
-def apply_altitude(result, session, altitude: str) -> None:
+def apply_altitude(result, session, altitude: str, raw_dz: np.ndarray | None = None) -> None:
     """Decision L154: with ``altitude="fused"`` and a waist barometer in ``session`` (wBarometer with samples), the
     strides' heights become the fused ones and ``info["altitude_source"]`` says so, with the foot's own altitude
     change in ``info["foot_altitude_change_m"]``; without a barometer one warning says the foot's altitude is
-    kept. ``"foot"``: ``info["altitude_source"] = "foot"``."""
+    kept. ``"foot"``: ``info["altitude_source"] = "foot"``. ``raw_dz`` (decision L564; the strides' heights before
+    L39's level rule, one per row, or None where no level rule ran, e.g. a terrain model): inside a barometric climb
+    (:func:`pdrlearn.kernels.barometer.barometric_climb`) a stride is fused with its own un-levelled height."""
     result.info["altitude_source"] = "foot"
     steps = result.steps
     if altitude != "fused" or not len(steps):
@@ -50,7 +52,7 @@ def apply_altitude(result, session, altitude: str) -> None:
         result.info.setdefault("warnings", []).append(msg)
         log.warning("%s: %s", session.where, msg)
         return
-    from pdrlearn.kernels.barometer import fuse_altitude
+    from pdrlearn.kernels.barometer import barometric_climb, fuse_altitude
     from pdrlearn.track.barometer import FUSED_EFFECT, usable_barometer
 
     lines: list[str] = []
@@ -61,8 +63,12 @@ def apply_altitude(result, session, altitude: str) -> None:
             log.warning("%s: %s", session.where, line)
         return
     foot = np.nan_to_num(steps["dz_m"].to_numpy(float))
-    fused = fuse_altitude(foot, steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), b.t,
-                          b.values[:, 0])
+    t0, t1 = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    climbing, into = None, foot
+    if raw_dz is not None and len(raw_dz) == len(foot):  # decision L564: one height source inside a climb
+        climbing = barometric_climb(t0, t1, steps["length_m"].to_numpy(float), b.t, b.values[:, 0])
+        into = np.where(climbing, np.nan_to_num(np.asarray(raw_dz, dtype=float)), foot)
+    fused = fuse_altitude(into, t0, t1, b.t, b.values[:, 0], climbing=climbing)
     set_strides_dz(result, fused)
     result.info["altitude_source"] = "fused"
     result.info["foot_altitude_change_m"] = float(foot.sum())

@@ -709,6 +709,7 @@ def _basic(result: TrackResult, out: dict) -> None:
 
     add_grade(result.steps, result.info)  # decision L300: steps.csv's grade_pct
     out.update(grade_summary(result.steps, result.info))  # decisions L300, L301
+    out.update(identified_climbs(result))  # decision L566: what ramps.csv / stairs.csv rise and drop
 
 
 def _altitude_kind(result: TrackResult) -> tuple[bool, bool]:
@@ -765,6 +766,27 @@ def _ascent(result: TrackResult, out: dict) -> None:
     t = t[np.isfinite(t)]
     # decision W371: the most the fastest weather changes z in the track's span (W370's rate)
     out["altitude_drift_limit_m"] = float(WEATHER_RATE_MAX_M_PER_S * (t[-1] - t[0])) if len(t) > 1 else 0.0
+
+
+def identified_climbs(result: TrackResult) -> dict:
+    """Decision L566: ``ramps_stairs_ascent_m`` / ``ramps_stairs_descent_m``, the summed rise of the ramps
+    (ramps.csv ``rise_m``, L301) and stair flights (stairs.csv ``height_m``, L432) up and down of a track whose z is
+    barometric (a lower-back track, ``--altitude fused``): the climbs the track identified whole, against which
+    :func:`climb_total_warning` checks L172's ``ascent_m`` / ``descent_m``. None on other tracks."""
+    from pdrlearn.track.clinical import _is_lower_back
+    from pdrlearn.track.grade import info_stair_grade, ramp_table
+    from pdrlearn.track.stair_flights import flight_table
+
+    if not _altitude_kind(result)[1]:
+        return {"ramps_stairs_ascent_m": None, "ramps_stairs_descent_m": None}
+    with info_stair_grade(result.info):  # as track/folder.py writes ramps.csv and stairs.csv (L469, L440, L442)
+        rise = pd.to_numeric(ramp_table(result.steps, result.info)["rise_m"], errors="coerce").to_numpy(float)
+        if not _is_lower_back(result.steps) and result.info.get("belt_incline_pct") is None:
+            rise = np.concatenate([rise, pd.to_numeric(flight_table(result.steps)["height_m"],
+                                                       errors="coerce").to_numpy(float)])
+    rise = rise[np.isfinite(rise)]
+    return {"ramps_stairs_ascent_m": float(rise[rise > 0].sum()),
+            "ramps_stairs_descent_m": float(-rise[rise < 0].sum()) + 0.0}
 
 
 def _walked_heights(session: Session) -> pd.DataFrame | None:
@@ -1266,6 +1288,24 @@ def drift_warning(summary: dict) -> str | None:
             "count only climbs")
 
 
+def climb_total_warning(summary: dict) -> str | None:
+    """Decision L566: one line when a barometric track's ``ascent_m`` (``descent_m``) is more than
+    :data:`DRIFT_BEYOND_WEATHER_FLOOR_M` (the BMP280's 0.13 m) below what its ramps and stair flights rise (drop)
+    (``ramps_stairs_ascent_m`` / ``_descent_m``): L172's band-within-a-minute count lost part of climbs the track
+    identified whole, so the route's height gained / lost is to be read from ramps.csv / stairs.csv."""
+    parts = []
+    for key, word in (("ascent", "rise"), ("descent", "drop")):
+        counted, whole = summary.get(f"{key}_m"), summary.get(f"ramps_stairs_{key}_m")
+        if counted is not None and whole is not None and float(whole) - float(counted) > DRIFT_BEYOND_WEATHER_FLOOR_M:
+            parts.append(f"{key}_m {float(counted):.2f} m is {float(whole) - float(counted):.2f} m below the "
+                         f"{float(whole):.2f} m its ramps and stair flights {word} (ramps_stairs_{key}_m)")
+    if not parts:
+        return None
+    return ("; ".join(parts) + ": the barometric count (L172: 0.5 m crossed within 60 s) drops the part of a climb "
+            "under that band, so the height gained / lost of ramps and stairs is in ramps.csv rise_m / stairs.csv "
+            "height_m (decision L566)")
+
+
 def weather_drift_warning(summary: dict) -> str | None:
     """Decision L464: one line when a barometric track (a foot track fused with the barometer, L154: its
     ``altitude_drift_m`` is set) read more than :data:`ALTITUDE_DRIFT_WARN_M` of weather drift over its span from
@@ -1346,6 +1386,7 @@ def summary_warnings(summary: dict) -> list[str]:
                         resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
                         weather_drift_warning(summary),  # decision L464
+                        climb_total_warning(summary),  # decision L566
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
                         stationary_reference_warning(summary), stance_range_warning(summary)) if w]
 

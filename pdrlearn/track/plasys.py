@@ -1019,7 +1019,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  drop_neighbour: bool = False, ignore_force: bool = False,
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
                  fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
-                 gated_level_dz: bool | str = False, **opts) -> TrackResult:
+                 gated_level_dz: bool | str = False, fused_climb: bool = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -1113,6 +1113,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     altitude : "foot" (default, None) - the strides' own height (L39 / the terrain classes) - or "fused": fused with
         the session's waist barometer (decision L154, :func:`pdrlearn.kernels.barometer.fuse_altitude`; an option,
         its adoption rule was not met), offline and streamed; ``info["altitude_source"]`` says which
+    fused_climb : with ``altitude="fused"`` and no terrain model: a stride inside a barometric climb is fused with the
+        foot's own un-levelled height instead of L39's level one (decision L564, an option: L565, its rule was not
+        met - ramp ends within 0.06 s and grades steadier, but stair walks' end height up to 0.11 m worse)
 
     Any other keyword argument raises ``TypeError`` naming the closest valid one (decision L43). Warnings go
     to ``info["warnings"]`` and to the ``logging`` logger ``pdrlearn.track`` (not Python's ``warnings``).
@@ -1121,6 +1124,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
     if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
         check_keywords("plasys", opts, keyword_names(track_plasys))
+    if fused_climb and check_altitude(altitude) != "fused":  # decision L565: an option that would do nothing
+        raise DataError("plasys: fused_climb=True reads the waist barometer's climbs, which only altitude='fused' "
+                        "uses: add altitude='fused' or drop fused_climb (decision L565)")
     if not (model is None or isinstance(model, str | Path) or hasattr(model, "predict_steps")):
         raise TypeError(f"plasys: model={model!r:.40} is not a model: pass a trained model directory (str or Path), "
                         "a model from pdrlearn.classify.load_model, 'oracle' (the session's labels) or None (decision "
@@ -1196,7 +1202,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", []), *([msg] if msg else [])]
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
         at = len(res.info["warnings"]) - 1 if no_classes and msg else None
-        apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
+        apply_altitude(res, session, altitude,  # decision L154 (L292: rewrites L69's line; L564: the raw heights)
+                       raw_dz=raw_dz if no_classes and fused_climb else None)  # L565: an option
         if at is not None:
             log.warning("%s: %s", session.where, res.info["warnings"][at])
         insole = streamed_insole_line(session, "track --streaming")  # decision L406: L365's check, told
@@ -1388,6 +1395,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
     length, dz, impossible = _drop_impossible(length, dz, strides["start_s"].to_numpy(float),
                                               strides["end_s"].to_numpy(float), warnings)  # decision L94
+    # decision L564: the heights before L39's level rule (0 where the stride has none), for the fused altitude
+    leveled = no_classes or "terrain" in untrained
+    climb_dz = np.where(in_gap | impossible, 0.0, raw_dz) if leveled else None
     altitude_check, terrain_check = None, None
     msg, steep_check = steep_stride_check(np.where(in_gap | impossible, 0.0, np.hypot(disp[:, 0], disp[:, 1])), dz)
     warnings += [msg] if msg else []  # decision L430: strides steeper than any stair
@@ -1579,6 +1589,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         order = np.argsort(table["start_s"].to_numpy(float), kind="stable")
         table = table.iloc[order].reset_index(drop=True)
         length, dz, head = length[order], dz[order], head[order]
+        climb_dz = None if climb_dz is None else np.concatenate([climb_dz, np.zeros(len(at))])[order]  # L564
         inserted = np.flatnonzero(order >= len(order) - len(at))  # the gap rows' new places
         add_gait_columns(table, turn_rad=table["turn_angle_rad"].to_numpy(float),  # the rows next to a gap row
                          valid=stride_rows(table), turn_valid=turn_rows(table),  # decisions L67, L97, L109
@@ -1637,7 +1648,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             "warnings": warnings}
     res = TrackResult(steps=table, trajectory=traj, info=info)
     logged = len(warnings)  # apply_altitude logs its own lines
-    apply_altitude(res, session, altitude)  # decision L154 (L292: it rewrites L69's line when it fuses)
+    apply_altitude(res, session, altitude,  # decision L154 (L292: rewrites L69's line; L564 / L565: an option)
+                   raw_dz=climb_dz if fused_climb else None)
     foot_rides(res, session)  # decision L378: the rides, from the waist barometer (offline only, as run's files)
     res.steps.insert(res.steps.columns.get_loc("terrain") + 1, "terrain_dz",  # decision L424: beside the class
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
