@@ -54,7 +54,9 @@ SESSIONS: tuple[Column, ...] = (
     ("session", _ID, "text", "meta.json's session name"),
     ("input_dir", _ID, "text", "the folder tracked, relative to ROOT (= path, C18)"),
     ("pipeline", _ID, "text", "the pipeline used: plasys (foot) or waist-pendulum / waist-pll (lower back)"),
-    ("method", _ID, "text", "the pipeline's method (M1, M2, M3 on the foot)"),
+    ("method", _ID, "text", "the pipeline's method (M1, M2, M3 on the foot; lower back detector/step-length "
+                            "model/heading, the model with the settings the user set, e.g. alvarez-offline/"
+                            "weinberg:k=0.6/gyro, W462)"),
     ("rate_hz", "Hz", "number", "the tracked unit's accelerometer rate"),
     ("n_steps", "count", "integer", "rows of steps.csv: strides of the tracked foot (foot) or steps (lower back)"),
     ("n_steps_counts", _ID, "text", "what n_steps counts: 'strides of the tracked foot' or 'steps of both feet'"),
@@ -63,7 +65,10 @@ SESSIONS: tuple[Column, ...] = (
     ("n_steps_both_feet", "count", "integer", "lower back: detected steps; foot: 2 x n_strides_one_foot (estimate)"),
     ("distance_m", "m", "number", "tracked distance"),
     ("distance_ref_m", "m", "number", "reference distance (meta.json or labels); empty without one"),
-    ("distance_error_pct", "%", "number", "100 x (distance_m - distance_ref_m) / distance_ref_m"),
+    ("distance_error_pct", "%", "number", "100 x (distance_compared_m - distance_ref_m) / distance_ref_m; "
+                                          "distance_compared_m is distance_m when distance_error_scope is 'whole "
+                                          "track', distance_in_ref_bouts_m when it is 'reference bouts' (W71, W459): "
+                                          "a gain fitted by hand is distance_ref_m / distance_compared_m"),
     ("final_position_error_m", "m", "number", "horizontal distance of the last tracked position from the true one"),
     ("walking_time_s", "s", "number", "time walking (stops over 3 s and data gaps left out, L79); with --window "
                                       "the window's strides' (0 when it holds none, L276)"),
@@ -142,7 +147,11 @@ SESSIONS: tuple[Column, ...] = (
     ("class_agreement_strides", "count", "integer", "tracked strides matched to a labelled one (L53)"),
     ("contact_timing", _ID, "text", "contacts on 'whole samples' or 'between samples' (L116)"),
     ("direction_agreement", "fraction", "number", "matched strides whose direction class is the label's (L53)"),
-    ("distance_error_scope", _ID, "text", "what distance_error_pct compares (W71, L82)"),
+    ("distance_compared_m", "m", "number", "the tracked distance distance_error_pct compares with distance_ref_m: "
+                                           "distance_m or, in scope 'reference bouts', distance_in_ref_bouts_m "
+                                           "(W459)"),
+    ("distance_error_scope", _ID, "text", "what distance_error_pct compares (W71, L82): 'whole track' "
+                                          "(distance_m) or 'reference bouts' (distance_in_ref_bouts_m)"),
     ("distance_error_strides_pct", "%", "number", "distance error against the summed reference strides"),
     ("distance_in_ref_bouts_m", "m", "number", "tracked distance inside the reference bouts (L82)"),
     ("distance_matched_error_pct", "%", "number", "foot: distance error over the strides matched to labels"),

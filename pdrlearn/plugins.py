@@ -161,6 +161,18 @@ def parse_spec(spec: Any, kind: str) -> tuple[str, dict]:
     return name.strip(), out
 
 
+def spec_text(name: str, settings: dict) -> str:
+    """``"name"`` or ``"name:key=value,..."``, the form :func:`parse_spec` reads back (decision W462): booleans and
+    None as true/false/none, a float as its shortest round-trip text (``0.6``; a fitted gain in full, so the spec
+    reads back the same number)."""
+    def text(v: Any) -> str:
+        if v is None or isinstance(v, bool):
+            return {None: "none", True: "true", False: "false"}[v]
+        return repr(v) if isinstance(v, float) else str(v)
+
+    return name + (":" + ",".join(f"{k}={text(v)}" for k, v in settings.items()) if settings else "")
+
+
 def spec_value(value: str) -> Any:
     """A setting's text as :func:`parse_spec` reads it: true/false/none, an int, a float, else the text."""
     low = value.lower()

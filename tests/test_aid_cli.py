@@ -32,6 +32,7 @@ def test_track_with_gnss_and_fixes(walk, capsys):
     rc = main(
         [
             "track",
+            "--no-plot",
             str(d / "walk"),
             "--pipeline",
             "waist-pll",
@@ -54,6 +55,7 @@ def test_track_with_gnss_and_fixes(walk, capsys):
     rc = main(
         [
             "track",
+            "--no-plot",
             str(d / "walk"),
             "--pipeline",
             "waist-pll",
@@ -82,6 +84,7 @@ def test_track_with_bad_fix_file_is_one_line_error(walk, capsys, tmp_path):
     rc = main(
         [
             "track",
+            "--no-plot",
             str(d / "walk"),
             "--pipeline",
             "waist-pll",
@@ -105,7 +108,7 @@ def test_track_warns_when_no_fix_lies_within_the_track(walk, capsys, tmp_path):
     cams = cams[cams["t"] >= 1.0]  # the 150 m walk lasts ~2 min: every fix lands after it in ms
     cams["t"] = cams["t"] * 1000.0
     cams.to_csv(tmp_path / "cams_ms.csv", index=False)
-    args = ["track", str(d / "walk"), "--pipeline", "waist-pll", "--fixes"]
+    args = ["track", "--no-plot", str(d / "walk"), "--pipeline", "waist-pll", "--fixes"]
     rc = main(args + [str(tmp_path / "cams_ms.csv"), "--fix-period", "4", "--out", str(tmp_path / "o")])
     assert rc == 0
     err = capsys.readouterr().err
@@ -126,7 +129,8 @@ def test_track_uses_sporadic_fixes_by_default(walk, capsys, tmp_path):
     times = np.array([30.0, 60.0, 85.0])
     pd.DataFrame({"t": times, "x": np.interp(times, t, truth["x"]), "y": np.interp(times, t, truth["y"]),
                   "accuracy_m": 1.0}).to_csv(tmp_path / "fix.csv", index=False)
-    args = ["track", str(d / "walk"), "--pipeline", "waist-pll", "--fixes", str(tmp_path / "fix.csv"), "--json"]
+    args = ["track", "--no-plot", str(d / "walk"), "--pipeline", "waist-pll", "--fixes", str(tmp_path / "fix.csv"),
+            "--json"]
     assert main(args + ["--out", str(tmp_path / "o")]) == 0
     summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     info = summary["info"]["aid"]["fixes"]

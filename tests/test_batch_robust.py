@@ -119,7 +119,7 @@ def provenance_batch(tree, tmp_path_factory):
 
     err = io.StringIO()
     with contextlib.redirect_stderr(err):
-        rc = main(["track-all", str(root), "--out", str(out)])
+        rc = main(["track-all", "--no-plot", str(root), "--out", str(out)])
     return root, out, rc, err.getvalue()
 
 

@@ -323,7 +323,8 @@ def test_bouts_without_length_say_why_no_distance_error(capsys, caplog, tmp_path
     d = _copy(src, tmp_path / "s")
     _edit(d, "bouts.csv", lambda df: df.drop(columns=["length_m"]))
     with caplog.at_level("WARNING"):
-        code = main(["track", str(d), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "o"), "--json"])
+        code = main(["track", "--no-plot", str(d), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "o"),
+                     "--json"])
     assert code == 0
     assert "distance_error_pct" not in json.loads(capsys.readouterr().out)
     assert any("bouts.csv has no length_m" in r.getMessage() for r in caplog.records)

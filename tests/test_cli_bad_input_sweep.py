@@ -112,17 +112,17 @@ def _commands(s: Path, out: Path, model: Path) -> dict[str, list[str]]:
         "plot": ["plot", str(s), "--out", str(out / "p.png")],
         "steps": ["steps", str(s), "--detector", "accel", "--out", str(out / "s.csv")],
         "steps-pll": ["steps", str(s), "--detector", "pll", "--out", str(out / "s.csv")],
-        "track-M1": ["track", str(s), "--method", "M1", "--out", str(out / "t")],
-        "track-M2": ["track", str(s), "--method", "M2", "--out", str(out / "t")],
-        "track-M3": ["track", str(s), "--method", "M3", "--model", str(model), "--out", str(out / "t")],
-        "track-M3-streaming": ["track", str(s), "--method", "M3", "--model", str(model), "--streaming", "--out",
-                               str(out / "t")],
-        "track-waist-pll": ["track", str(s), "--pipeline", "waist-pll", "--out", str(out / "t")],
-        "track-waist-pendulum": ["track", str(s), "--pipeline", "waist-pendulum", "--out", str(out / "t")],
+        "track-M1": ["track", "--no-plot", str(s), "--method", "M1", "--out", str(out / "t")],
+        "track-M2": ["track", "--no-plot", str(s), "--method", "M2", "--out", str(out / "t")],
+        "track-M3": ["track", "--no-plot", str(s), "--method", "M3", "--model", str(model), "--out", str(out / "t")],
+        "track-M3-streaming": ["track", "--no-plot", str(s), "--method", "M3", "--model", str(model), "--streaming",
+                               "--out", str(out / "t")],
+        "track-waist-pll": ["track", "--no-plot", str(s), "--pipeline", "waist-pll", "--out", str(out / "t")],
+        "track-waist-pendulum": ["track", "--no-plot", str(s), "--pipeline", "waist-pendulum", "--out", str(out / "t")],
         "calibrate": ["calibrate", str(s), "-d", "20", "--out", str(out / "p.json")],
         "train": ["train", str(s), "--out", str(out / "m"), "--methods", "heuristic", "--cv", "2"],
         "evaluate": ["evaluate", str(model), str(s), "--report", str(out / "r")],
-        "run": ["run", str(BUNDLE), str(s), "--out", str(out / "r")],
+        "run": ["run", "--no-plot", str(BUNDLE), str(s), "--out", str(out / "r")],
     }
 
 
@@ -288,7 +288,7 @@ def test_run_says_when_the_foot_heads_the_walk(base, tmp_path, capsys, kind):
             "both_units": lambda d: None}[kind]
     s = _session(base, tmp_path, edit)
     capsys.readouterr()
-    assert main(["run", str(bundle), str(s), "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(s), "--out", str(tmp_path / "r")]) == 0
     lines = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
     said = [ln for ln in lines if "heading from the foot's own integrated yaw" in ln]
     assert len(said) == (0 if kind == "both_units" else 1), lines

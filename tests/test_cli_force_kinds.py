@@ -76,9 +76,10 @@ def test_run_summary_scores_the_strides_like_track_streaming(tmp_path, capsys):
     s = tmp_path / "A"
     assert main(["simulate", "-s", "A", "-u", "1", "--out", str(s), "--json"]) == 0
     capsys.readouterr()
-    assert main(["run", str(BUNDLE), str(s), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), str(s), "--out", str(tmp_path / "r"), "--json"]) == 0
     rj = json.loads(capsys.readouterr().out)
-    assert main(["track", str(s), "--method", "M2", "--streaming", "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(s), "--method", "M2", "--streaming", "--out", str(tmp_path / "t"),
+                 "--json"]) == 0
     tj = json.loads(capsys.readouterr().out)
     assert "step_f1" in tj and "step_f1" in rj
     assert rj["n_steps"] == tj["n_steps"] and abs(rj["step_f1"] - tj["step_f1"]) < 1e-9
@@ -90,8 +91,8 @@ def test_a_file_in_the_way_of_the_output_folder_is_one_error_line(model, tmp_pat
     before, FileExistsError escaped as a traceback after the command had done all its work."""
     (tmp_path / "afile").write_text("not a folder")
     out = tmp_path / "afile" / "sub"
-    argv = {"track": ["track", model["terrain"], "--method", "M2", "--out", out],
-            "run": ["run", BUNDLE, model["terrain"], "--out", out],
+    argv = {"track": ["track", "--no-plot", model["terrain"], "--method", "M2", "--out", out],
+            "run": ["run", "--no-plot", BUNDLE, model["terrain"], "--out", out],
             "report": ["report", model["model"], "--out", out],
             "train": ["train", model["terrain"], "--out", out, "--methods", "heuristic", "--tasks", "terrain",
                       "--cv", "3"],
@@ -105,7 +106,7 @@ def test_an_output_the_system_refuses_is_one_error_line(model, tmp_path, capsys)
     `error:` line naming the path, not an OSError traceback; exit 2, nothing written (decision B152)."""
     if not Path("/proc/self").is_dir():
         pytest.skip("needs Linux /proc")
-    for argv in (["track", model["terrain"], "--method", "M2", "--out", "/proc/pdrlearn_test_out"],
+    for argv in (["track", "--no-plot", model["terrain"], "--method", "M2", "--out", "/proc/pdrlearn_test_out"],
                  ["steps", model["terrain"], "--out", "/proc/pdrlearn_test_out.csv"]):
         rc = main([str(a) for a in argv])
         # decision L290: M2's foot (+0.34 m) and the barometer's net (-0.28 m) on this 8.5 m up-and-down exercise

@@ -246,8 +246,8 @@ def test_console_script_prints_each_warning_once(data, tmp_path):
     import subprocess
     import sys
 
-    proc = subprocess.run([sys.executable, "-c", "from pdrlearn.cli import run; run()", "track", str(data["A"]),
-                           "--pipeline", "waist-pll", "--out", str(tmp_path / "t")],
+    proc = subprocess.run([sys.executable, "-c", "from pdrlearn.cli import run; run()", "track", "--no-plot",
+                           str(data["A"]), "--pipeline", "waist-pll", "--out", str(tmp_path / "t")],
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]

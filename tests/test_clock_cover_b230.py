@@ -41,8 +41,9 @@ def test_run_refuses_a_late_waist_naming_its_own_options(folders, capsys):
 
 def test_run_with_the_offset_given_replays_a_2_s_late_waist(folders, tmp_path, capsys):
     clean, late = folders
-    assert main(["run", str(RUN_BUNDLE), str(clean), "--out", str(tmp_path / "clean")]) == 0
-    assert main(["run", str(RUN_BUNDLE), str(late), "--clock-offset", "2.0", "--out", str(tmp_path / "given")]) == 0
+    assert main(["run", "--no-plot", str(RUN_BUNDLE), str(clean), "--out", str(tmp_path / "clean")]) == 0
+    assert main(["run", "--no-plot", str(RUN_BUNDLE), str(late), "--clock-offset", "2.0", "--out",
+                 str(tmp_path / "given")]) == 0
     _same_track(tmp_path / "clean", tmp_path / "given")  # main: refused by B21 before the offset (exit 2)
     info = json.loads((tmp_path / "given" / "summary.json").read_text())["info"]
     assert info["unit_alignment"]["offset_s"] == 2.0
@@ -51,15 +52,16 @@ def test_run_with_the_offset_given_replays_a_2_s_late_waist(folders, tmp_path, c
 def test_run_common_span_cuts_as_track_does(folders, tmp_path, capsys):
     _, late = folders
     capsys.readouterr()
-    assert main(["run", str(RUN_BUNDLE), str(late), "--common-span", "--out", str(tmp_path / "cut")]) == 0
+    assert main(["run", "--no-plot", str(RUN_BUNDLE), str(late), "--common-span", "--out", str(tmp_path / "cut")]) == 0
     assert "--common-span: cut to" in capsys.readouterr().err
     assert json.loads((tmp_path / "cut" / "run.json").read_text())["options"]["common_span"] is True
 
 
 def test_track_with_the_offset_given_takes_a_2_s_late_waist(folders, tmp_path):
     clean, late = folders
-    assert main(["track", str(clean), "--out", str(tmp_path / "clean")]) == 0
-    assert main(["track", str(late), "--clock-offset", "2.0", "--out", str(tmp_path / "given")]) == 0  # main: B126
+    assert main(["track", "--no-plot", str(clean), "--out", str(tmp_path / "clean")]) == 0
+    assert main(["track", "--no-plot", str(late), "--clock-offset", "2.0", "--out",
+                 str(tmp_path / "given")]) == 0  # main: B126
     _same_track(tmp_path / "clean", tmp_path / "given")
 
 

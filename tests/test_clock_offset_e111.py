@@ -55,10 +55,11 @@ def _moved(a: Path, b: Path) -> float:
 @pytest.mark.parametrize("extra", [[], ["--streaming"]], ids=["offline", "streaming"])
 def test_track_with_the_offset_given_equals_the_clean_track(folders, tmp_path, capsys, extra):
     clean, late = folders
-    assert main(["track", str(clean), *extra, "--out", str(tmp_path / "clean")]) == 0
-    assert main(["track", str(late), *extra, "--out", str(tmp_path / "late")]) == 0
+    assert main(["track", "--no-plot", str(clean), *extra, "--out", str(tmp_path / "clean")]) == 0
+    assert main(["track", "--no-plot", str(late), *extra, "--out", str(tmp_path / "late")]) == 0
     capsys.readouterr()
-    assert main(["track", str(late), *extra, "--clock-offset", "0.3", "--out", str(tmp_path / "given")]) == 0
+    assert main(["track", "--no-plot", str(late), *extra, "--clock-offset", "0.3", "--out",
+                 str(tmp_path / "given")]) == 0
     err = capsys.readouterr().err
     assert "decision L161" not in err  # the units' steps together again
     _same_track(tmp_path / "clean", tmp_path / "given")
@@ -72,7 +73,7 @@ def test_track_with_the_offset_given_equals_the_clean_track(folders, tmp_path, c
 def test_run_with_the_offset_given_equals_the_clean_replay(folders, tmp_path, capsys):
     clean, late = folders
     for name, folder, extra in (("clean", clean, []), ("late", late, []), ("given", late, ["--clock-offset", "0.3"])):
-        assert main(["run", str(RUN_BUNDLE), str(folder), *extra, "--out", str(tmp_path / name)]) == 0
+        assert main(["run", "--no-plot", str(RUN_BUNDLE), str(folder), *extra, "--out", str(tmp_path / name)]) == 0
         err = capsys.readouterr().err
         assert ("decision L161" in err) == (name == "late"), name
     _same_track(tmp_path / "clean", tmp_path / "given")
@@ -85,8 +86,8 @@ def test_track_all_takes_the_offset_for_every_session(folders, tmp_path, capsys)
     _, late = folders
     root = tmp_path / "study"
     write_session(__import__("pdrlearn.io", fromlist=["read_session"]).read_session(late), root / "S01")
-    assert main(["track-all", str(root), "--clock-offset", "0.3", "--out", str(tmp_path / "batch")]) == 0
-    assert main(["track", str(late), "--clock-offset", "0.3", "--out", str(tmp_path / "one")]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--clock-offset", "0.3", "--out", str(tmp_path / "batch")]) == 0
+    assert main(["track", "--no-plot", str(late), "--clock-offset", "0.3", "--out", str(tmp_path / "one")]) == 0
     _same_track(tmp_path / "batch" / "S01", tmp_path / "one")
     info = json.loads((tmp_path / "batch" / "S01" / "summary.json").read_text())["info"]
     assert info["unit_alignment"]["source"] == "given"

@@ -294,6 +294,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.walk_test import parse_ten_m_walk
     from pdrlearn.track.window import parse_window
+    from pdrlearn.waist.calibration import gain_model
     from pdrlearn.waist.lengths import get_step_length
 
     def settings(kind):
@@ -345,6 +346,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("export", "length_bounds"): two_numbers,
         ("export", "methods"): _one_of(METHODS, listed=True),
         ("track", "length_model"): get_step_length,  # decision E84: NAME[:key=value,...]
+        ("calibrate", "length_model"): gain_model,  # decision W460: a model with a gain_param, the gain not set
         ("run", "rules"): _one_of(RULES),
         ("run", "length_reference"): _one_of(LENGTH_REFERENCES),  # decision C117
         **{(c, "length_reference"): _one_of(LENGTH_REFERENCES) for c in ("track", "track-all")},  # decision C126

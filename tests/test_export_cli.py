@@ -36,7 +36,7 @@ def test_export_cli_json_and_run_cli(dirs, capsys, tmp_path):
     assert info["size_bytes"] < 5e6
     manifest = json.loads((tmp_path / "b" / "manifest.json").read_text())
     assert manifest["displacement"]["length_bounds_m"]["normal"] == [0.5, 0.9]
-    assert main(["run", str(tmp_path / "b"), str(dirs["walk"]), "--out", str(tmp_path / "run"),
+    assert main(["run", "--no-plot", str(tmp_path / "b"), str(dirs["walk"]), "--out", str(tmp_path / "run"),
                  "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["n_steps"] >= 18  # 20 labelled strides, the first starts at the first stance
@@ -47,7 +47,8 @@ def test_export_cli_json_and_run_cli(dirs, capsys, tmp_path):
 def test_run_method_classifies_with_another_exported_model(dirs, capsys):
     """Decision E52: --method picks an exported model instead of the chosen one; one that is not exported is
     one line naming what the bundle holds, before any output."""
-    assert main(["run", str(dirs["root"] / "bundle_all"), str(dirs["walk"]), "--method", "dtw,terrain=svm/foot",
+    assert main(["run", "--no-plot", str(dirs["root"] / "bundle_all"), str(dirs["walk"]), "--method",
+                 "dtw,terrain=svm/foot",
                  "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["methods"]["terrain"] == "svm/foot" and out["methods"]["direction"].startswith("dtw/")
@@ -60,7 +61,7 @@ def test_run_reads_the_bluetooth_protocol(dirs, capsys, tmp_path):
     s = synthetic_session(15, seed=11)
     cap = tmp_path / "capture.txt"
     cap.write_text("".join(format_protocol(s)))
-    assert main(["run", str(dirs["root"] / "bundle_foot"), "--protocol", str(cap), "--json"]) == 0
+    assert main(["run", "--no-plot", str(dirs["root"] / "bundle_foot"), "--protocol", str(cap), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["n_steps"] >= 13
     assert out["protocol"]["corrupted"] == 0 and out["protocol"]["sets"] > 0
@@ -70,7 +71,7 @@ def test_run_counts_corrupted_protocol_lines_and_refuses_two_sources(dirs, capsy
     s = synthetic_session(15, seed=11)
     cap = tmp_path / "capture.txt"
     cap.write_text("garbage\n" + "".join(format_protocol(s)) + "%$1 1 2$2\n")
-    assert main(["run", str(dirs["root"] / "bundle_foot"), "--protocol", str(cap), "--json"]) == 0
+    assert main(["run", "--no-plot", str(dirs["root"] / "bundle_foot"), "--protocol", str(cap), "--json"]) == 0
     got = capsys.readouterr()
     assert json.loads(got.out)["protocol"]["corrupted"] >= 2
     assert "corrupted line(s) skipped" in got.err
@@ -152,7 +153,7 @@ def test_round_trip_export_run_on_a_simulated_session(tmp_path, capsys):
     assert disp["length_bounds_m"]["normal"] == pytest.approx([e1, e2])
     a = sim.simulate("A", 0)
     write_session(a, tmp_path / "A")
-    assert main(["run", str(tmp_path / "bundle"), str(tmp_path / "A"), "--out", str(tmp_path / "run"),
+    assert main(["run", "--no-plot", str(tmp_path / "bundle"), str(tmp_path / "A"), "--out", str(tmp_path / "run"),
                  "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     truth = float(np.hypot(*np.diff(a.trajectory[["x", "y"]].to_numpy(), axis=0).T).sum())  # path length (m)

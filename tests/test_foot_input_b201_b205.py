@@ -53,7 +53,7 @@ def test_a_mis_scaled_foot_accelerometer_is_warned_b201(walk, tmp_path, capsys):
     (line,) = _lines(capsys.readouterr().err, "B201")
     assert line.startswith(f"warning: {d}: fAccelerometer.csv reads 1.2") and "g at the foot's rests" in line
     assert "calibrate the accelerometer (scale), or divide its values by 1.2" in line
-    assert main(["track", str(d), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "t"), "--json"]) == 0
     out = capsys.readouterr()
     assert len(_lines(out.err, "(decision B201)")) == 1 and "Traceback" not in out.err
     d = _copy(walk, tmp_path, "x104", _scaled(1.04))  # within 7 %: not warned (a correct real foot reads 0.967 g)
@@ -77,7 +77,7 @@ def test_gravity_removed_acceleration_is_refused_b202(walk, tmp_path, capsys, un
     """Each axis's median subtracted: the foot was tracked (-44 %), the waist told to multiply by 9.80665."""
     d = _copy(walk, tmp_path, f"lin_{unit}", lambda df: df.assign(**{c: df[c] - df[c].median() for c in "xyz"}),
               f"{unit}Accelerometer.csv")
-    for cmd in (["info", str(d)], ["track", str(d), "--out", str(tmp_path / "t")]):
+    for cmd in (["info", str(d)], ["track", "--no-plot", str(d), "--out", str(tmp_path / "t")]):
         assert main(cmd) == 2
         err = capsys.readouterr().err.strip()
         assert err.count("\n") == 0 and err.startswith(f"error: {d / f'{unit}Accelerometer.csv'}: the accelerometer "
@@ -105,8 +105,8 @@ def test_a_frozen_foot_imu_beside_stepping_force_sensors_is_refused_b203(walk, t
     d = _copy(walk, tmp_path, "frozen", _frozen)
     g = d / "fGyroscope.csv"
     pd.read_csv(g).assign(x=0.0, y=0.0, z=0.0).to_csv(g, index=False)
-    for cmd in (["track", str(d), "--out", str(tmp_path / "t")],
-                ["track", str(d), "--out", str(tmp_path / "t"), "--streaming"]):
+    for cmd in (["track", "--no-plot", str(d), "--out", str(tmp_path / "t")],
+                ["track", "--no-plot", str(d), "--out", str(tmp_path / "t"), "--streaming"]):
         assert main(cmd) == 2
         err = capsys.readouterr().err.strip().splitlines()[-1]
         assert err.startswith(f"error: {d}: no strides detected; is the foot unit moving? The force sensors "
@@ -139,10 +139,10 @@ def test_a_standing_subject_is_not_a_frozen_imu_b203():
 def test_a_session_without_its_foot_accelerometer_says_the_foot_is_ignored_b204(walk, tmp_path, capsys):
     d = _copy(walk, tmp_path / "batch", "noacc")
     (d / "fAccelerometer.csv").unlink()
-    assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "t")]) == 0
     (line,) = _lines(capsys.readouterr().err, "B204")
     assert line.startswith(f"warning: {d}: fAccelerometer.csv missing: foot unit ignored, tracking the waist (")
-    assert main(["track-all", str(tmp_path / "batch"), "--out", str(tmp_path / "ta")]) == 0
+    assert main(["track-all", "--no-plot", str(tmp_path / "batch"), "--out", str(tmp_path / "ta")]) == 0
     assert len(_lines(capsys.readouterr().err, "fAccelerometer.csv missing: foot unit ignored")) == 1
     assert "foot unit ignored" in pd.read_csv(tmp_path / "ta" / "sessions.csv")["warnings"].iloc[0]
 

@@ -116,7 +116,7 @@ def test_track_writes_freezes_csv_and_summary(frozen, tmp_path):
     for pipeline in ("waist-pendulum", "plasys"):  # W216: the lower back's index with --freeze-index
         out = tmp_path / pipeline
         flag = ["--freeze-index"] if pipeline == "waist-pendulum" else []
-        assert main(["track", str(d), "--pipeline", pipeline, "--out", str(out), *flag]) == 0
+        assert main(["track", "--no-plot", str(d), "--pipeline", pipeline, "--out", str(out), *flag]) == 0
         table = pd.read_csv(out / "freezes.csv")
         assert list(table.columns) == list(FREEZE_COLUMNS) and len(table) == 1
         summary = json.loads((out / "summary.json").read_text())
@@ -134,7 +134,7 @@ def test_lower_back_freeze_index_is_opt_in_w216(tmp_path, capsys):
     from pdrlearn.cli import main
 
     out = tmp_path / "default"
-    assert main(["track", HA001_TEST11, "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", HA001_TEST11, "--out", str(out)]) == 0
     printed = capsys.readouterr()
     summary = json.loads((out / "summary.json").read_text())
     assert not (out / "freezes.csv").exists()
@@ -142,7 +142,7 @@ def test_lower_back_freeze_index_is_opt_in_w216(tmp_path, capsys):
     assert "freezes.csv" not in printed.out + printed.err and "freeze episode" not in printed.out + printed.err
     assert not any("freeze" in w for w in summary["info"]["warnings"])
     on = tmp_path / "on"
-    assert main(["track", HA001_TEST11, "--out", str(on), "--freeze-index"]) == 0
+    assert main(["track", "--no-plot", HA001_TEST11, "--out", str(on), "--freeze-index"]) == 0
     table = pd.read_csv(on / "freezes.csv")
     s_on = json.loads((on / "summary.json").read_text())
     assert s_on["n_freezes"] == len(table) == 4 and s_on["freeze_time_s"] == pytest.approx(14.5)
@@ -151,7 +151,7 @@ def test_lower_back_freeze_index_is_opt_in_w216(tmp_path, capsys):
     par = tmp_path / "p.json"
     par.write_text(json.dumps({"options": {"freeze_index": True}}))
     via = tmp_path / "via_params"
-    assert main(["track", HA001_TEST11, "--out", str(via), "--params", str(par)]) == 0
+    assert main(["track", "--no-plot", HA001_TEST11, "--out", str(via), "--params", str(par)]) == 0
     assert json.loads((via / "summary.json").read_text())["n_freezes"] == 4
 
 
@@ -191,7 +191,7 @@ def test_run_writes_the_lower_back_freezes_only_with_the_option_w216(frozen, tmp
                                  "options": {"freeze_index": on}}))
         export_waist(p, tmp_path / f"b{on}", frame=frame)
         out = tmp_path / f"run{on}"
-        assert main(["run", str(tmp_path / f"b{on}"), str(d), "--out", str(out)]) == 0
+        assert main(["run", "--no-plot", str(tmp_path / f"b{on}"), str(d), "--out", str(out)]) == 0
         summary = json.loads((out / "summary.json").read_text())
         assert (out / "freezes.csv").exists() is on
         assert summary["n_freezes"] == (1 if on else None)

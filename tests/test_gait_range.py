@@ -41,7 +41,7 @@ def test_track_prints_and_stores_the_range_warning(tmp_path, monkeypatch, capsys
 
     real = E.evaluate_track
     monkeypatch.setattr(E, "evaluate_track", lambda *a, **k: {**real(*a, **k), "median_cadence_spm": 195.0})
-    assert main(["track", "datasets/real/gaitmap_level_left", "--out", str(tmp_path / "o"), "--json"]) == 0
+    assert main(["track", "--no-plot", "datasets/real/gaitmap_level_left", "--out", str(tmp_path / "o"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     lines = [w for w in out["info"]["warnings"] if "decision L95" in w]
     # W144: 195 steps/min at a walking speed is short fast steps (or a run), not "looks like running"
@@ -63,14 +63,14 @@ def test_run_prints_and_stores_the_range_warning(tmp_path, monkeypatch, capsys):
     session = tmp_path / "walk"
     write_session(simulate("A", user_seed=3, speed="fast"), session)
     bundle = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
-    assert main(["run", str(bundle), str(session), "--out", str(tmp_path / "quiet"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(session), "--out", str(tmp_path / "quiet"), "--json"]) == 0
     quiet = json.loads(capsys.readouterr().out)
     assert not [w for w in quiet["info"].get("warnings", []) if "decision L95" in w]
     real = E.evaluate_track
     # decision L222: the streamed summary judges its straight strides' speed (from the gait cycle) when it has 5
     monkeypatch.setattr(E, "evaluate_track", lambda *a, **k: {**real(*a, **k), "gait_speed_mps": 3.9,
                                                                "median_speed_straight_mps": 3.9})
-    assert main(["run", str(bundle), str(session), "--out", str(tmp_path / "o"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(session), "--out", str(tmp_path / "o"), "--json"]) == 0
     captured = capsys.readouterr()
     out = json.loads(captured.out)
     lines = [w for w in out["info"]["warnings"] if "decision L95" in w]
@@ -144,7 +144,7 @@ def test_track_a_simulated_three_year_old_is_quiet(tmp_path, capsys):
                  "--step-length", "0.36", "--step-time", "0.3", "--user-seed", "1162", "--rate", "100",
                  "--out", str(kid)]) == 0
     capsys.readouterr()
-    assert main(["track", str(kid), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(kid), "--out", str(tmp_path / "t"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["median_cadence_spm"] > 190 and abs(out["distance_error_pct"]) < 3
     assert out["leg_length_m"] == 0.45 and out["leg_length_source"] == "meta.json leg_length_m"
@@ -165,7 +165,7 @@ def test_track_all_groups_the_range_warning_of_several_sessions(tmp_path, capsys
     monkeypatch.setattr(E, "evaluate_track", lambda *a, **k: {**real(*a, **k), "median_cadence_spm": 195.0})
     capsys.readouterr()
     with caplog.at_level(logging.WARNING):
-        assert main(["track-all", str(tmp_path / "in"), "--out", str(tmp_path / "o"), "--json"]) == 0
+        assert main(["track-all", "--no-plot", str(tmp_path / "in"), "--out", str(tmp_path / "o"), "--json"]) == 0
     lines = [r.getMessage() for r in caplog.records if "decision L95" in r.getMessage() and "of 2 sessions" in
              r.getMessage()]
     assert len(lines) == 1 and "[2 of 2 sessions]" in lines[0], lines  # E118: the sessions first

@@ -43,7 +43,7 @@ def _turned_90(a: tuple[float, float], b: tuple[float, float]) -> None:
 
 @pytest.mark.parametrize("where, extra", [("nomag", []), ("mag", ["--streaming"])])
 def test_track_initial_heading_turns_the_track(walks, tmp_path, where, extra):
-    args = ["track", str(walks / where), *extra]
+    args = ["track", "--no-plot", str(walks / where), *extra]
     assert main([*args, "--out", str(tmp_path / "a")]) == 0
     assert main([*args, "--initial-heading", "90", "--out", str(tmp_path / "b")]) == 0
     _turned_90(_end(tmp_path / "a"), _end(tmp_path / "b"))
@@ -56,14 +56,15 @@ def test_track_initial_heading_turns_the_track(walks, tmp_path, where, extra):
 
 
 def test_run_initial_heading_turns_the_track(walks, tmp_path):
-    assert main(["run", str(BUNDLE), str(walks / "mag"), "--out", str(tmp_path / "a")]) == 0
-    assert main(["run", str(BUNDLE), str(walks / "mag"), "--initial-heading", "90", "--out", str(tmp_path / "b")]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), str(walks / "mag"), "--out", str(tmp_path / "a")]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), str(walks / "mag"), "--initial-heading", "90", "--out",
+                 str(tmp_path / "b")]) == 0
     _turned_90(_end(tmp_path / "a"), _end(tmp_path / "b"))
 
 
 @pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
 def test_non_finite_initial_heading_is_one_error_line(walks, tmp_path, capsys, value):
-    for cmd in (["track", str(walks / "nomag")], ["run", str(BUNDLE), str(walks / "nomag")]):
+    for cmd in (["track", "--no-plot", str(walks / "nomag")], ["run", "--no-plot", str(BUNDLE), str(walks / "nomag")]):
         assert main([*cmd, "--initial-heading", value, "--out", str(tmp_path / "o")]) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and "--initial-heading" in err[0] and "finite number of degrees" in err[0], err
@@ -86,7 +87,7 @@ def test_initial_heading_with_fixes_is_refused_before_tracking(walks, tmp_path, 
     fixes.write_text("t,lat,lon,accuracy_m\n1.0,41.178,-8.598,3.0\n")
     monkeypatch.setattr(cli_track, "track_session", lambda *a, **k: pytest.fail("tracked before refusing"))
     capsys.readouterr()
-    rc = main(["track", str(walks / "nomag"), "--fixes", str(fixes), "--initial-heading", "90",
+    rc = main(["track", "--no-plot", str(walks / "nomag"), "--fixes", str(fixes), "--initial-heading", "90",
                "--out", str(tmp_path / "x")])
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1 and "--gnss / --fixes give the track its direction" in err[0], err

@@ -126,14 +126,14 @@ def bundle(tmp_path_factory):
 
 def test_run_of_a_night_applies_both_and_names_neither_e146_e147(night, bundle, tmp_path, capsys):
     walk = write_session(night, tmp_path / "night")
-    assert main(["run", str(bundle), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert (summary["floors_up"], summary["floors_down"]) == (0, 0)  # E145's run: floors down 2
     warnings = summary["info"]["warnings"]
     assert [w for w in warnings if "decision W231" in w]
     assert not [w for w in warnings if "pause_ride" in w or "rest_bias" in w]  # E147: E107's line does not name them
     # the same night on a bundle with both options false: E145's run (W158's whole pause, W72's whole rest)
-    assert main(["run", str(bundle.parent / "wb_off"), str(walk), "--json"]) == 0
+    assert main(["run", "--no-plot", str(bundle.parent / "wb_off"), str(walk), "--json"]) == 0
     old = json.loads(capsys.readouterr().out)
     assert old["floors_down"] >= 1 and not [w for w in old["info"]["warnings"] if "decision W231" in w]
     # L309: run's radius clock skips the rest L296 corrected live, as track's (L306); with the options false it
@@ -153,7 +153,7 @@ def test_run_names_a_step_jump_as_track_does_e148(bundle, tmp_path, capsys):
     ref = track_waist(s, pipeline="waist-pendulum", realtime=True, params=str(bundle.parent / "cal.json"))
     (want,) = [w for w in ref.info["warnings"] if "decision W230" in w]
     walk = write_session(s, tmp_path / "door")
-    assert main(["run", str(bundle), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     (got,) = [w for w in summary["info"]["warnings"] if "decision W230" in w]  # before E148: no line
     # the same steps at the same times, their dz to the written CSV's rounding and the offline W174 transfer hold
@@ -163,7 +163,7 @@ def test_run_names_a_step_jump_as_track_does_e148(bundle, tmp_path, capsys):
     assert "offline `pdrlearn track` with the option step_bound" in got  # the live tracker does not hold them
     assert summary["info"]["barometer_jump_steps"] == ref.info["barometer_jump_steps"] >= 1
     level = write_session(_sim("stand:2, straight:15, stand:2", 5924), tmp_path / "level")
-    assert main(["run", str(bundle), str(level), "--json"]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(level), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert not [w for w in summary["info"]["warnings"] if "decision W230" in w]
     assert summary["info"]["barometer_jump_steps"] == 0

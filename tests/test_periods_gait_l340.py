@@ -39,7 +39,7 @@ def _truth(session, a, b):
 
 def test_periods_give_stride_length_speed_and_cvs_as_the_truth_l340(fatigue, capsys):
     out = fatigue / "foot"
-    assert main(["track", str(fatigue / "s"), "--per", "40s", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(fatigue / "s"), "--per", "40s", "--out", str(out)]) == 0
     per = pd.read_csv(out / "periods.csv")
     s = json.loads((out / "summary.json").read_text())
     assert undocumented("periods.csv", per.columns) == [] and set(PERIOD_GAIT_KEYS) <= set(per.columns)
@@ -60,7 +60,8 @@ def test_periods_give_stride_length_speed_and_cvs_as_the_truth_l340(fatigue, cap
 
 def test_lower_back_periods_leave_the_foot_only_columns_empty_and_name_the_constant_bounce_s69(fatigue, capsys):
     out = fatigue / "waist"
-    assert main(["track", str(fatigue / "s"), "--pipeline", "waist-pendulum", "--per", "40s", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(fatigue / "s"), "--pipeline", "waist-pendulum", "--per", "40s", "--out",
+                 str(out)]) == 0
     per = pd.read_csv(out / "periods.csv")
     for k in ("median_stride_length_m", "stride_time_cv_pct", "stride_length_cv_pct", "n_cv_strides"):
         assert per[k].isna().all()
@@ -68,10 +69,11 @@ def test_lower_back_periods_leave_the_foot_only_columns_empty_and_name_the_const
     line = "pelvis bounces the same on every step"
     assert line in capsys.readouterr().err
     assert any(line in w for w in json.loads((out / "summary.json").read_text())["info"]["warnings"])
-    assert main(["track", str(fatigue / "p"), "--pipeline", "waist-pendulum", "--per", "40s",
+    assert main(["track", "--no-plot", str(fatigue / "p"), "--pipeline", "waist-pendulum", "--per", "40s",
                  "--out", str(fatigue / "waist_p")]) == 0
     assert line not in capsys.readouterr().err  # --bounce pendulum: its steps follow the stride
-    assert main(["track", str(fatigue / "s"), "--pipeline", "waist-pendulum", "--out", str(fatigue / "w1")]) == 0
+    assert main(["track", "--no-plot", str(fatigue / "s"), "--pipeline", "waist-pendulum", "--out",
+                 str(fatigue / "w1")]) == 0
     assert line not in capsys.readouterr().err  # only with --per
 
 

@@ -74,9 +74,9 @@ def test_clock_progress_counts_the_recordings_seconds_never_backwards(monkeypatc
 def test_run_track_and_track_all_show_a_bar_on_a_terminal_only(walks, monkeypatch, capsys):
     a = walks / "all" / "a"
     _terminal(monkeypatch, True)
-    assert main(["run", str(SHIPPED), str(a), "--out", str(walks / "run")]) == 0
-    assert main(["track", str(a), "--out", str(walks / "track")]) == 0
-    assert main(["track-all", str(walks / "all"), "--out", str(walks / "cohort")]) == 0
+    assert main(["run", "--no-plot", str(SHIPPED), str(a), "--out", str(walks / "run")]) == 0
+    assert main(["track", "--no-plot", str(a), "--out", str(walks / "track")]) == 0
+    assert main(["track-all", "--no-plot", str(walks / "all"), "--out", str(walks / "cohort")]) == 0
     run, track, cohort = _Bars.made
     assert run["description"] == "run sim_A_u4750_normal_s4750" and run["total"] > 20
     assert run["completed"] == pytest.approx(run["total"])
@@ -86,9 +86,9 @@ def test_run_track_and_track_all_show_a_bar_on_a_terminal_only(walks, monkeypatc
     capsys.readouterr()
     # --json: no bar, on a terminal too
     _Bars.made = []
-    assert main(["run", str(SHIPPED), str(a), "--json"]) == 0
-    assert main(["track", str(a), "--out", str(walks / "track_j"), "--json"]) == 0
-    assert main(["track-all", str(walks / "all"), "--out", str(walks / "cohort_j"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(SHIPPED), str(a), "--json"]) == 0
+    assert main(["track", "--no-plot", str(a), "--out", str(walks / "track_j"), "--json"]) == 0
+    assert main(["track-all", "--no-plot", str(walks / "all"), "--out", str(walks / "cohort_j"), "--json"]) == 0
     assert _Bars.made == []
     json.loads(capsys.readouterr().out.splitlines()[0])
 
@@ -99,8 +99,8 @@ def test_not_on_a_terminal_the_output_is_unchanged(walks, monkeypatch, capsys):
     a = walks / "all" / "a"
 
     def outputs(tag):
-        assert main(["run", str(SHIPPED), str(a), "--out", str(walks / f"r{tag}")]) == 0
-        assert main(["track-all", str(walks / "all"), "--out", str(walks / f"c{tag}")]) == 0
+        assert main(["run", "--no-plot", str(SHIPPED), str(a), "--out", str(walks / f"r{tag}")]) == 0
+        assert main(["track-all", "--no-plot", str(walks / "all"), "--out", str(walks / f"c{tag}")]) == 0
         out = capsys.readouterr()
         strip = [ln.split(" (")[0] if ln.startswith("[") else ln for ln in out.err.splitlines()]  # the times vary
         return out.out.replace(str(walks / f"r{tag}"), "R").replace(str(walks / f"c{tag}"), "C"), strip

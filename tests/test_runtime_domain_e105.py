@@ -89,7 +89,7 @@ def test_bundle_scores_strides_as_the_trained_model(case):
 
 def test_run_out_of_domain_prints_tracks_line(case, gaitmap_level_left, tmp_path, capsys):
     args = [str(case["bundle"]), str(gaitmap_level_left)]
-    assert main(["run", *args, "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", *args, "--out", str(tmp_path / "r")]) == 0
     lines = _lines(capsys.readouterr().err)
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
     report = summary["info"]["out_of_domain"]
@@ -97,14 +97,14 @@ def test_run_out_of_domain_prints_tracks_line(case, gaitmap_level_left, tmp_path
     assert len(lines) == 1 and lines[0].endswith(session_warning_line(report)), lines  # C61's line, C61's share
     assert "--warn-out-of-domain" in lines[0] and "unreliable" in lines[0]
     # the same strides out as `track --model --streaming` counts with the trained model (one mechanism)
-    assert main(["track", str(gaitmap_level_left), "--model", str(case["root"] / "model"), "--streaming",
+    assert main(["track", "--no-plot", str(gaitmap_level_left), "--model", str(case["root"] / "model"), "--streaming",
                  "--out", str(tmp_path / "t")]) == 0
     tracked = json.loads((tmp_path / "t" / "summary.json").read_text())
     assert _lines(capsys.readouterr().err)[0].endswith(session_warning_line(report))  # word for word
     assert {t: (s["n_out"], s["n_steps"]) for t, s in report["tasks"].items()} == {
         t: (s["n_out"], s["n_steps"]) for t, s in tracked["info"]["out_of_domain"]["tasks"].items()}
     # --warn-out-of-domain: C16's detailed line instead (never both)
-    assert main(["run", *args, "--warn-out-of-domain", str(FRACTION_THRESHOLD)]) == 0
+    assert main(["run", "--no-plot", *args, "--warn-out-of-domain", str(FRACTION_THRESHOLD)]) == 0
     detail = _lines(capsys.readouterr().err)
     assert len(detail) == 1 and "terrain classifier" in detail[0] and "most often" in detail[0], detail
     assert main(["run", *args, "--warn-out-of-domain", "1.5"]) == 2
@@ -112,7 +112,7 @@ def test_run_out_of_domain_prints_tracks_line(case, gaitmap_level_left, tmp_path
 
 
 def test_run_in_domain_prints_no_line(case, tmp_path, capsys):
-    assert main(["run", str(case["bundle"]), str(case["own"]), "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(case["bundle"]), str(case["own"]), "--out", str(tmp_path / "r")]) == 0
     assert _lines(capsys.readouterr().err) == []
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
     assert summary["out_of_domain_fraction"] is not None and summary["out_of_domain_fraction"] <= DEFAULT_WARN_SHARE
@@ -120,7 +120,7 @@ def test_run_in_domain_prints_no_line(case, tmp_path, capsys):
 
 def test_bundle_without_ranges_runs_without_line_or_error(case, gaitmap_level_left, tmp_path, capsys):
     old = _stripped(case["bundle"], tmp_path / "old")
-    assert main(["run", str(old), str(gaitmap_level_left), "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(old), str(gaitmap_level_left), "--out", str(tmp_path / "r")]) == 0
     assert _lines(capsys.readouterr().err) == []
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
     assert summary.get("out_of_domain_fraction") is None and summary["n_steps"] > 20

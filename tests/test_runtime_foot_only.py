@@ -159,21 +159,22 @@ def _no_c28(err: str) -> list[str]:
 def test_run_cli_foot_only_default_option_and_track_parity(root, tmp_path, capsys):
     write_session(_foot_session("cli_foot"), tmp_path / "walk")
     walk, b = str(tmp_path / "walk"), str(root / "bundle")
-    assert main(["track", walk, "--model", str(root / "model"), "--streaming", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", walk, "--model", str(root / "model"), "--streaming", "--out",
+                 str(tmp_path / "t")]) == 0
 
     def c28(lines):  # the toy model's C28 line (decision E47: run gives track's, from the same code)
         return [e[e.index("strides' terrain"):] for e in lines if "terrain classes contradict" in e]
 
     want = c28(capsys.readouterr().err.strip().splitlines())
     # default: the foot alone, announced in one warning line that names the option
-    assert main(["run", b, walk, "--out", str(tmp_path / "r0")]) == 0
+    assert main(["run", "--no-plot", b, walk, "--out", str(tmp_path / "r0")]) == 0
     err = capsys.readouterr().err.strip().splitlines()
     assert c28(err) == want
     err = _no_c28("\n".join(err))
     assert len(err) == 1 and err[0].startswith("warning: session 'cli_foot' has no wAccelerometer, wGyroscope")
     assert "--units foot" in err[0] and "foot's own integrated yaw" in err[0]
     # --units foot: the same run, with the heading line `pdrlearn track` prints
-    assert main(["run", b, walk, "--units", "foot", "--out", str(tmp_path / "r1"), "--json"]) == 0
+    assert main(["run", "--no-plot", b, walk, "--units", "foot", "--out", str(tmp_path / "r1"), "--json"]) == 0
     cap = capsys.readouterr()
     assert c28(cap.err.strip().splitlines()) == want
     assert _no_c28(cap.err) == [
@@ -202,7 +203,7 @@ def test_run_reads_the_bluetooth_protocol_with_a_two_unit_bundle(root, tmp_path,
     an error), and asking for the waist names the option."""
     cap = tmp_path / "capture.txt"
     cap.write_text("".join(format_protocol(synthetic_session(15, seed=11))))
-    assert main(["run", str(root / "bundle"), "--protocol", str(cap), "--json"]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), "--protocol", str(cap), "--json"]) == 0
     got = capsys.readouterr()
     assert json.loads(got.out)["n_steps"] >= 13
     assert len(_no_c28(got.err)) == 1 and "has no waist unit" in got.err
@@ -216,10 +217,10 @@ def test_foot_only_run_does_not_warn_about_the_absent_waist_frame(root, tmp_path
     s = _foot_session("no_waist_frame")
     s.frames.pop("waist", None)
     write_session(s, tmp_path / "walk")
-    assert main(["run", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot"]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot"]) == 0
     err = capsys.readouterr().err
     assert "waist frame" not in err, err
-    assert main(["run", str(root / "bundle"), str(tmp_path / "walk")]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "walk")]) == 0
     err = _no_c28(capsys.readouterr().err)
     assert len(err) == 1 and "waist frame" not in err[0], err
 
@@ -266,7 +267,7 @@ def test_run_without_force_leaves_the_force_task_unclassified_as_track(root, tmp
     assert np.abs(got - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
     # the CLI: the session's sensor files say which sensors the stream has
     write_session(s, tmp_path / "walk")
-    assert main(["run", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot", "--json"]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot", "--json"]) == 0
     cap = capsys.readouterr()
     out = json.loads(cap.out)
     assert out["n_steps"] == len(steps) and out["methods"]["length"] == "none"

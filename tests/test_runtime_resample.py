@@ -331,7 +331,7 @@ def test_run_replays_a_gap_in_a_used_stream_the_same_at_any_chunk(dirs, tmp_path
     tables = []
     for chunk in ("0.25", "1", "2", "5"):
         out = tmp_path / f"run{chunk}"
-        assert main(["run", str(dirs["root"] / "bundle"), str(tmp_path / "gap"), "--chunk-s", chunk,
+        assert main(["run", "--no-plot", str(dirs["root"] / "bundle"), str(tmp_path / "gap"), "--chunk-s", chunk,
                      "--out", str(out), "--resample"]) == 0, capsys.readouterr()[1]
         tables.append(pd.read_csv(out / "steps.csv"))
     capsys.readouterr()
@@ -388,7 +388,29 @@ def _decimated(src, dst, every=2, acc_short_s=0.0):
     return dst
 
 
-def test_run_a_102hz_recording_with_a_204hz_bundle_like_track_streaming(real_bundle, tmp_path, capsys):
+@pytest.fixture(scope="module")
+def right102(real_bundle, tmp_path_factory):
+    """gaitmap_level_right at 102.4 Hz and its ``track --model --streaming`` at the data's own rate, made once for
+    the two tests that compare ``run`` with it (session 41): ``(session, track summary, track stderr, track
+    steps.csv)``."""
+    import contextlib
+    import io
+    import json
+
+    from pdrlearn.cli import main
+    from tests.conftest import REAL
+
+    root = tmp_path_factory.mktemp("right102")
+    dec = _decimated(REAL / "gaitmap_level_right", root / "right102")
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = main(["track", "--no-plot", str(dec), "--model", str(real_bundle / "model"), "--streaming", "--json",
+                   "--out", str(root / "track")])
+    assert rc == 0, err.getvalue()
+    return dec, json.loads(out.getvalue()), err.getvalue(), root / "track" / "steps.csv"
+
+
+def test_run_a_102hz_recording_with_a_204hz_bundle_like_track_streaming(real_bundle, right102, tmp_path, capsys):
     """``pdrlearn run`` resamples (one warning line), ``--no-resample`` refuses (the old line); the strides
     and classes are close to ``track --model --streaming`` at the data's own rate. Tolerances from the 102.4 Hz
     external recordings (experiments/results/runtime_resample_compare.md: up to 1 extra stride, 88-97 % of
@@ -396,24 +418,20 @@ def test_run_a_102hz_recording_with_a_204hz_bundle_like_track_streaming(real_bun
     import json
 
     from pdrlearn.cli import main
-    from tests.conftest import REAL
 
-    dec = _decimated(REAL / "gaitmap_level_right", tmp_path / "right102")
+    dec, track, _, track_steps = right102
     b = real_bundle / "bundle"
-    assert main(["run", str(b), str(dec), "--json", "--out", str(tmp_path / "run"), "--resample"]) == 0
+    assert main(["run", "--no-plot", str(b), str(dec), "--json", "--out", str(tmp_path / "run"), "--resample"]) == 0
     out, err = capsys.readouterr()
     lines = [ln for ln in err.splitlines() if "resampling" in ln]
     assert len(lines) == 1 and "fAccelerometer, fGyroscope sampled at 102.4 Hz" in lines[0]
     assert "resampling to 204.8 Hz" in lines[0] and "--no-resample" in lines[0]
     run = json.loads(out)
-    assert main(["track", str(dec), "--model", str(real_bundle / "model"), "--streaming", "--json",
-                 "--out", str(tmp_path / "track")]) == 0
-    track = json.loads(capsys.readouterr()[0])
     assert abs(run["n_steps"] - track["n_steps"]) <= 1
     assert abs(run["distance_m"] / track["distance_m"] - 1) <= 0.05
     import pandas as pd
 
-    rs, ts = pd.read_csv(tmp_path / "run" / "steps.csv"), pd.read_csv(tmp_path / "track" / "steps.csv")
+    rs, ts = pd.read_csv(tmp_path / "run" / "steps.csv"), pd.read_csv(track_steps)
     same = matched = 0
     for _, r in ts.iterrows():
         d = np.abs(rs["start_s"] - r["start_s"]) + np.abs(rs["end_s"] - r["end_s"])
@@ -473,35 +491,30 @@ def test_run_says_where_a_short_foot_accelerometer_ends_the_walk(real_bundle, di
     for b, sess, name in ((real_bundle / "bundle", dec, "fAccelerometer"),
                           (dirs["root"] / "bundle", tmp_path / "simshort", "wAccelerometer")):
         out = tmp_path / f"out_{sess.name}"
-        assert main(["run", str(b), str(sess), "--out", str(out)]) == 0
+        assert main(["run", "--no-plot", str(b), str(sess), "--out", str(out)]) == 0
         lines = [ln for ln in capsys.readouterr()[1].splitlines() if "before fGyroscope" in ln]
         assert len(lines) == 1
         n_past.append(_check_short_line(lines[0], sess, out / "steps.csv", name))
     assert n_past[1] >= 1
 
 
-def test_run_tracks_another_rate_at_the_native_rate_by_default(real_bundle, tmp_path, capsys):
+def test_run_tracks_another_rate_at_the_native_rate_by_default(real_bundle, right102, tmp_path, capsys):
     """E22 amended: by default ``run`` tracks data at another rate at its own rate, exactly as ``track
     --streaming`` (resampling a 50 Hz walk into a 20 Hz bundle mislabelled half its steps: the models'
     features are defined in seconds and cut from the data's own samples)."""
     import json
 
     from pdrlearn.cli import main
-    from tests.conftest import REAL
 
-    dec = _decimated(REAL / "gaitmap_level_right", tmp_path / "right102")
+    dec, track, track_err, _ = right102
     b = real_bundle / "bundle"
-    assert main(["run", str(b), str(dec), "--json", "--out", str(tmp_path / "run")]) == 0
+    assert main(["run", "--no-plot", str(b), str(dec), "--json", "--out", str(tmp_path / "run")]) == 0
     out, err = capsys.readouterr()
     assert any("tracked at the data's own rate" in ln for ln in err.splitlines())
     # decision C18 amended: run says what track says of the classifiers' rate (it said only the line above)
     c18 = [ln for ln in err.splitlines() if "step classifiers were trained at" in ln]
     assert len(c18) == 1 and "trained at 204.8 Hz, the session's foot unit runs at 102.4 Hz" in c18[0], err
     run = json.loads(out)
-    assert main(["track", str(dec), "--model", str(real_bundle / "model"), "--streaming", "--json",
-                 "--out", str(tmp_path / "track")]) == 0
-    track_out, track_err = capsys.readouterr()
-    track = json.loads(track_out)
     line = c18[0][c18[0].index("the model's step classifiers"):]
     assert line in track_err, track_err  # the same words as track's
     assert run["n_steps"] == track["n_steps"]

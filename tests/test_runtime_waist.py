@@ -115,12 +115,13 @@ def test_export_and_run_of_a_waist_bundle_on_the_command_line(sim, tmp_path, cap
     walk = write_session(sim["session"], tmp_path / "walk")
     assert main(["export", str(sim["cal"]), "--out", str(tmp_path / "b"), "--frame", _frame_arg(sim["session"])]) == 0
     assert capsys.readouterr().out.startswith(f"waist bundle {tmp_path / 'b'} (")
-    assert main(["run", str(tmp_path / "b"), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(tmp_path / "b"), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     ref = track_waist(sim["session"], pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
     assert summary["n_steps"] == len(ref.steps) and summary["pipeline"] == "runtime"
     assert summary["distance_m"] == pytest.approx(float(ref.steps["length_m"].sum()), abs=1e-9)
-    assert main(["run", str(tmp_path / "b"), str(walk), "--out", str(tmp_path / "r"), "--force"]) == 0  # a run
+    assert main(["run", "--no-plot", str(tmp_path / "b"), str(walk), "--out", str(tmp_path / "r"),
+                 "--force"]) == 0  # a run
 
 
 def test_run_of_a_waist_bundle_counts_floors_in_the_storey_height_given(sim, tmp_path, capsys):
@@ -129,7 +130,7 @@ def test_run_of_a_waist_bundle_counts_floors_in_the_storey_height_given(sim, tmp
 
     stairs = simulate("D", 402, rate_hz=100.0)  # thesis scenario D: 21 stairs
     walk = write_session(stairs, tmp_path / "walk")
-    assert main(["run", str(sim["bundle"]), str(walk), "--storey-height", "1.5", "--json"]) == 0
+    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--storey-height", "1.5", "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     ref = track_waist(stairs, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
     want = evaluate_track(ref, stairs, storey_height_m=1.5)
@@ -182,7 +183,7 @@ def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim,
     from pdrlearn.track.evaluate import evaluate_track
 
     walk = write_session(stairs, tmp_path / "stairs")
-    assert main(["run", str(sim["bundle"]), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     want = evaluate_track(ref, stairs)
     assert (summary["floors_up"], summary["floors_down"]) == (want["floors_up"], want["floors_down"]) == (2, 1)
@@ -190,7 +191,7 @@ def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim,
         assert summary[k] == pytest.approx(want[k], abs=1e-6), k
     assert summary["barometer_unused"] is False and summary["final_position"]["z"] == pytest.approx(
         float(ref.trajectory["z"].iloc[-1]), abs=1e-6)
-    assert main(["run", str(sim["bundle"]), str(walk)]) == 0
+    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk)]) == 0
     assert "floors up 2 / down 1" in capsys.readouterr().out  # the console line says it, as track's
 
 
@@ -223,7 +224,7 @@ def test_export_carries_stairs_length_into_the_waist_bundle_and_the_runtime_appl
     np.testing.assert_allclose([o.length_m for o in out], ref.steps["length_m"].to_numpy(), atol=1e-9, rtol=0)
     assert [o.stairs for o in out] == ref.steps["stairs"].tolist()
     walk = write_session(stairs3040, tmp_path / "stairs")
-    assert main(["run", str(tmp_path / "wb"), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(tmp_path / "wb"), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["distance_m"] == pytest.approx(float(ref.steps["length_m"].sum()), abs=1e-6)
 
@@ -241,7 +242,7 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
     assert "pause_steps" not in err[0] and "stairs_length" not in err[0]
     assert "contact_shift=true, " in err[0]  # E130: W131's shift is not applied live without realtime_contact_shift
     walk = write_session(sim["session"], tmp_path / "walk")
-    assert main(["run", str(tmp_path / "b"), str(walk)]) == 0
+    assert main(["run", "--no-plot", str(tmp_path / "b"), str(walk)]) == 0
     assert sum("E107" in ln for ln in capsys.readouterr().err.splitlines()) == 1
     # E126: options at the live tracker's values are not named; "sit_veto": false is what it does
     p.write_text(json.dumps({**cal, "options": {"stairs_length": True, "pause_steps": "standing",
@@ -284,7 +285,7 @@ def test_a_waist_run_without_a_barometer_says_so_and_a_live_implausible_one_is_o
     s = copy.deepcopy(sim["session"])
     s.streams.pop("wBarometer", None)
     walk = write_session(s, tmp_path / "nobaro")
-    assert main(["run", str(sim["bundle"]), str(walk), "--json"]) == 0
+    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--json"]) == 0
     cap = capsys.readouterr()
     assert NO_BAROMETER in cap.err and json.loads(cap.out)["altitude_change_m"] == 0.0
     tr = WaistTracker(load_waist_bundle(sim["bundle"]), fs=100.0)
@@ -323,8 +324,9 @@ def test_bad_input_is_one_line(sim, tmp_path, capsys):
     s = copy.deepcopy(sim["session"])
     del s.streams["wGyroscope"]
     walk = write_session(s, tmp_path / "no_gyro")
-    _one_line(capsys, ["run", str(sim["bundle"]), str(walk)], "has no wGyroscope, which the waist bundle")
-    _one_line(capsys, ["run", str(sim["bundle"]), str(walk), "--units", "foot"], "--units is for a foot-unit bundle")
+    _one_line(capsys, ["run", "--no-plot", str(sim["bundle"]), str(walk)], "has no wGyroscope, which the waist bundle")
+    _one_line(capsys, ["run", "--no-plot", str(sim["bundle"]), str(walk), "--units", "foot"],
+              "--units is for a foot-unit bundle")
     with pytest.raises(DataError, match="not radians"):
         WaistTracker(sim["bundle"], heading_rad=90.0)
     pll = tmp_path / "pll.json"
@@ -370,7 +372,7 @@ def test_run_of_a_waist_bundle_takes_start(sim, tmp_path, capsys):
     import pandas as pd
 
     walk = write_session(sim["session"], tmp_path / "walk")
-    assert main(["run", str(sim["bundle"]), str(walk), "--start", "41.178,-8.608,12.5", "--out",
+    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--start", "41.178,-8.608,12.5", "--out",
                  str(tmp_path / "r"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     ref = track_waist(sim["session"], pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]),
@@ -385,7 +387,8 @@ def test_run_of_a_waist_bundle_takes_start(sim, tmp_path, capsys):
     np.testing.assert_allclose(got["z"].to_numpy(), ref["z"].to_numpy(), atol=0.01, rtol=0)
     # decision E157: run's summary is computed from its tables at the CSV files' 10 significant digits
     assert summary["final_position"]["lat"] == pytest.approx(ref["lat"].iloc[-1], rel=1e-9)
-    _one_line(capsys, ["run", str(sim["bundle"]), str(walk), "--start", "41.1,200"], "--start '41.1,200': latitude")
+    _one_line(capsys, ["run", "--no-plot", str(sim["bundle"]), str(walk), "--start", "41.1,200"],
+              "--start '41.1,200': latitude")
 
 
 def test_a_bundle_applied_at_another_rate_warns_naming_calibrate(sim):
@@ -445,9 +448,9 @@ def test_run_of_a_waist_bundle_writes_the_side_column_with_sides(sim, tmp_path, 
     import pandas as pd
 
     walk = write_session(sim["session"], tmp_path / "walk")
-    assert main(["run", str(sim["bundle"]), str(walk), "--sides", "--out", str(tmp_path / "r")]) == 0
-    assert main(["run", str(sim["bundle"]), str(walk), "--out", str(tmp_path / "p")]) == 0
-    assert main(["track", str(walk), "--pipeline", "waist-pendulum", "--params", str(sim["cal"]),
+    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--sides", "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--out", str(tmp_path / "p")]) == 0
+    assert main(["track", "--no-plot", str(walk), "--pipeline", "waist-pendulum", "--params", str(sim["cal"]),
                  "--out", str(tmp_path / "t")]) == 0
     capsys.readouterr()
     got, plain, offline = (pd.read_csv(tmp_path / n / "steps.csv") for n in ("r", "p", "t"))
@@ -460,7 +463,7 @@ def test_run_of_a_waist_bundle_writes_the_side_column_with_sides(sim, tmp_path, 
     assert set(got["side"].dropna()) == {"left", "right"} == set(offline["side"].dropna())
     assert got["side"].notna().sum() > 0.8 * len(got)
     pd.testing.assert_frame_equal(got.drop(columns="side"), plain)  # the option adds the column only
-    assert main(["run", str(ROOT / "models" / "plasys-sim-default"), str(walk), "--sides",
+    assert main(["run", "--no-plot", str(ROOT / "models" / "plasys-sim-default"), str(walk), "--sides",
                  "--out", str(tmp_path / "f")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--sides" in err[0] and "foot-unit bundle" in err[0] and "drop --sides" in err[0]

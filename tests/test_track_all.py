@@ -104,7 +104,8 @@ def test_api_summary_equals_summary_json(tree, batch):
 
 
 def test_track_summary_json_has_input_dir(tree, tmp_path):
-    rc = main(["track", str(tree / "siteA" / "p01" / "walk"), "--method", "M2", "--out", str(tmp_path / "t")])
+    rc = main(["track", "--no-plot", str(tree / "siteA" / "p01" / "walk"), "--method", "M2", "--out",
+               str(tmp_path / "t")])
     assert rc == 0
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
     assert summary["input_dir"] == str((tree / "siteA" / "p01" / "walk").resolve())
@@ -194,7 +195,7 @@ def test_a_failed_session_keeps_the_warnings_it_raised(tree, tmp_path, monkeypat
         return real(tmp, tracked)
 
     monkeypatch.setattr(T, "write_track", fails_for_p02)
-    rc = main(["track-all", str(root), "--out", str(tmp_path / "o")])
+    rc = main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "o")])
     out, err = capsys.readouterr()
     assert rc == 1
     s = pd.read_csv(tmp_path / "o" / "sessions.csv").set_index("path")

@@ -80,7 +80,7 @@ def runs(site_tree, tmp_path_factory):
     for root, out in ((first, base / "o1"), (second, base / "o2")):
         err = io.StringIO()
         with contextlib.redirect_stderr(err):
-            rc = main(["track-all", str(root), "--out", str(out), "--method", "M2", "--group-depth", "1"])
+            rc = main(["track-all", "--no-plot", str(root), "--out", str(out), "--method", "M2", "--group-depth", "1"])
         got.append((rc, out, err.getvalue()))
     return first, got
 
@@ -160,7 +160,7 @@ def test_track_all_json_counts_found_and_tracked(site_tree, tmp_path, capsys):
     (root / "centreB" / "S04" / "visit1").mkdir(parents=True)
     (root / "centreB" / "S04" / "visit1" / "meta.json").write_text('{"name": "no data"}')
     capsys.readouterr()
-    assert main(["track-all", str(root), "--out", str(tmp_path / "o"), "--method", "M2", "--json"]) == 1
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "o"), "--method", "M2", "--json"]) == 1
     got = json.loads(capsys.readouterr().out)
     assert (got["n_sessions"], got["n_tracked"], got["n_failed"]) == (4, 3, 1)
     assert sum(g["n_tracked"] for g in got["groups"]) == 3 and got["run"]["n_tracked"] == 3
@@ -176,7 +176,7 @@ def test_track_records_its_options_in_run_json(site_tree, tmp_path, monkeypatch)
     monkeypatch.chdir(tmp_path)
     session = "study/centreA/S02/visit1"
     for out, extra in (("o1", []), ("o2", []), ("o3", ["--method", "M1"]), ("o4", ["--model", "oracle"])):
-        assert main(["track", session, "--out", out, *extra]) == 0
+        assert main(["track", "--no-plot", session, "--out", out, *extra]) == 0
     runs = {o: json.loads((tmp_path / o / "run.json").read_text()) for o in ("o1", "o2", "o3", "o4")}
     timings = ("finished_utc", "track_time_s", "cpu_time_s")
     assert all(k in runs["o1"] for k in timings) and runs["o1"]["track_time_s"] >= 0
@@ -187,7 +187,7 @@ def test_track_records_its_options_in_run_json(site_tree, tmp_path, monkeypatch)
     assert r1["command"] == "track" and r1["pdrlearn_version"] == __version__ and r1["session"] == session
     assert r1["options"]["method"] == "auto" and r1["options"]["pipeline"] == "auto" and r1["options"]["dpi"] is None
     assert r1["pipeline"] == "plasys" and r1["model"] is None and "window" in r1["options"]
-    assert r1["cwd"] == str(tmp_path) and r1["argv"] == ["pdrlearn", "track", session, "--out", "o1"]
+    assert r1["cwd"] == str(tmp_path) and r1["argv"] == ["pdrlearn", "track", "--no-plot", session, "--out", "o1"]
     assert str(tmp_path) not in json.dumps({k: v for k, v in r1.items() if k != "cwd"})
     assert runs["o3"]["options"]["method"] == "M1" and runs["o3"]["method"] == "M1"
     assert {k: v for k, v in runs["o3"]["options"].items() if k != "method"} == {
@@ -243,7 +243,7 @@ def visit_runs(site_tree, tmp_path_factory):
     for r, out in ((root, base / "o1"), (copy, base / "o2")):
         printed, err = io.StringIO(), io.StringIO()
         with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(err):
-            rc = main(["track-all", str(r), "--out", str(out), "--method", "M2"])
+            rc = main(["track-all", "--no-plot", str(r), "--out", str(out), "--method", "M2"])
         got.append((rc, out, printed.getvalue() + err.getvalue()))
     return root, got
 
@@ -351,18 +351,19 @@ def test_params_dir_gives_each_subject_its_calibration_file(site_tree, tmp_path,
     assert len(err) == 1 and "'S03'" in err[0] and "S03.json" in err[0] and "centreB/S03/visit1" in err[0], err
     assert "'S01'" not in err[0] and not (tmp_path / "bad").exists()
     shutil.rmtree(root / "centreB")
-    assert main(["track-all", str(root), "--out", str(tmp_path / "a"), *common]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "a"), *common]) == 0
     table = pd.read_csv(tmp_path / "a" / "sessions.csv")
     assert table["params_file"].tolist() == ["S01.json", "S02.json"]
     for subj in ("S01", "S02"):
-        assert main(["track", str(root / "centreA" / subj / "visit1"), "--pipeline", "waist-pendulum", "--params",
+        assert main(["track", "--no-plot", str(root / "centreA" / subj / "visit1"), "--pipeline", "waist-pendulum",
+                     "--params",
                      str(cal / f"{subj}.json"), "--out", str(tmp_path / f"t{subj}")]) == 0
         one = json.loads((tmp_path / f"t{subj}" / "summary.json").read_text())
         assert table.set_index("subject").loc[subj, "distance_m"] == pytest.approx(one["distance_m"], rel=1e-12)
     d = table["distance_m"].to_numpy(float)
     assert d[1] / d[0] > 1.3  # K 0.9 vs 0.5 on walks of the same length: each subject's own file was used
     capsys.readouterr()
-    assert main(["track-all", str(root), "--out", str(tmp_path / "m"), *common, "--params",
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "m"), *common, "--params",
                  str(cal / "S01.json")]) == 2
     assert "not both" in capsys.readouterr().err and not (tmp_path / "m").exists()
 

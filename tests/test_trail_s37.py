@@ -91,7 +91,7 @@ def test_a_fused_track_warns_of_the_weather_drift_it_reads_on_a_pause_l464(tmp_p
     rate_hpa_s = -4.0 / 3600.0  # falling 4 hPa/h (2x the fastest weather): the altitude rises ~33 m/h
     baro["x"] = baro["x"] + rate_hpa_s * baro["timestamp"] / 1000.0
     baro.to_csv(sim / "wBarometer.csv", index=False)
-    assert main(["track", str(sim), "--altitude", "fused", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sim), "--altitude", "fused", "--out", str(out)]) == 0
     s = json.loads((out / "summary.json").read_text())
     assert s["weather_drift_rate_m_per_h"] == pytest.approx(33.4, abs=3.0)
     span = s["weather_drift_m"] / s["weather_drift_rate_m_per_h"] * 3600.0
@@ -105,7 +105,7 @@ def test_bouts_and_periods_have_ascent_and_descent_and_ramps_a_speed_l467(tmp_pa
     sim, out = tmp_path / "hill", tmp_path / "hill_f"
     assert main(["simulate", "--route", "stand:3, slope:40:15, slope:40:-15, stand:3", "--user-seed", "9199",
                  "--out", str(sim)]) == 0
-    assert main(["track", str(sim), "--altitude", "fused", "--per", "30s", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sim), "--altitude", "fused", "--per", "30s", "--out", str(out)]) == 0
     s = json.loads((out / "summary.json").read_text())
     bouts, periods = pd.read_csv(out / "bouts.csv"), pd.read_csv(out / "periods.csv")
     assert len(bouts) == 1 and bouts["ascent_m"].iloc[0] == pytest.approx(6.0, abs=1.0)  # 40 m at 15 %: 6 m
@@ -161,8 +161,9 @@ def _tracked(out):
 
 
 def test_track_stair_grade_30_makes_a_trail_a_ramp_and_the_default_a_stair_l469(trail, tmp_path):
-    assert main(["track", str(trail), "--altitude", "fused", "--out", str(tmp_path / "d")]) == 0
-    assert main(["track", str(trail), "--altitude", "fused", "--stair-grade", "30", "--out", str(tmp_path / "g")]) == 0
+    assert main(["track", "--no-plot", str(trail), "--altitude", "fused", "--out", str(tmp_path / "d")]) == 0
+    assert main(["track", "--no-plot", str(trail), "--altitude", "fused", "--stair-grade", "30", "--out",
+                 str(tmp_path / "g")]) == 0
     (d, d_flights, d_ramps), (g, g_flights, g_ramps) = _tracked(tmp_path / "d"), _tracked(tmp_path / "g")
     assert d["floors_up_stairs"] >= 1 and d["floors_up_ramps"] == 0 and d_flights >= 1  # 20 %: a stair
     assert "stair_grade_pct" not in d["info"]
@@ -175,12 +176,12 @@ def test_track_all_passes_stair_grade_and_the_lower_back_says_it_is_not_used_l46
     root = tmp_path / "study"
     root.mkdir()
     (root / "t9311").symlink_to(trail, target_is_directory=True)
-    assert main(["track-all", str(root), "--altitude", "fused", "--stair-grade", "30", "--out",
+    assert main(["track-all", "--no-plot", str(root), "--altitude", "fused", "--stair-grade", "30", "--out",
                  str(tmp_path / "batch")]) == 0
     s, flights, _ = _tracked(tmp_path / "batch" / "t9311")
     assert s["info"]["stair_grade_pct"] == 30.0 and s["floors_up_stairs"] == 0 and flights == 0
     capsys.readouterr()
-    assert main(["track", str(trail), "--pipeline", "waist-pendulum", "--stair-grade", "30", "--out",
+    assert main(["track", "--no-plot", str(trail), "--pipeline", "waist-pendulum", "--stair-grade", "30", "--out",
                  str(tmp_path / "w")]) == 0
     assert "--stair-grade is not used: a lower-back track keeps L301's 20 %" in capsys.readouterr().err
     assert "stair_grade_pct" not in json.loads((tmp_path / "w" / "summary.json").read_text())["info"]
@@ -201,7 +202,7 @@ def test_run_takes_stair_grade_l469(trail, tmp_path_factory, tmp_path):
 
     bundle = trained_dirs(tmp_path_factory)["root"] / "bundle"
     for name, extra in (("d", []), ("g", ["--stair-grade", "30"])):
-        assert main(["run", str(bundle), str(trail), *extra, "--out", str(tmp_path / name)]) == 0
+        assert main(["run", "--no-plot", str(bundle), str(trail), *extra, "--out", str(tmp_path / name)]) == 0
     (d, d_flights, _), (g, g_flights, _) = _tracked(tmp_path / "d"), _tracked(tmp_path / "g")
     assert g["info"]["stair_grade_pct"] == 30.0 and "stair_grade_pct" not in d["info"]
     assert (d_flights, g_flights) != (0, 0) and g_flights <= d_flights

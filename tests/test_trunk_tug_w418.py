@@ -34,8 +34,8 @@ def tug(tmp_path_factory):
     t0, t1 = float(tr.iloc[0]["rise_s"]), float(tr.iloc[-1]["seated_s"])
     ics = pd.read_csv(root / "tug" / "ics.csv")["ic_ms"].to_numpy(float) / 1000.0
     truth = {"n_steps": int(((ics >= t0) & (ics <= t1)).sum()), **true_tug_phases(s, ROUTE)}
-    assert main(["track", str(root / "tug"), "--out", str(root / "both")]) == 0
-    assert main(["track", str(root / "tug"), "--units", "waist", "--out", str(root / "waist")]) == 0
+    assert main(["track", "--no-plot", str(root / "tug"), "--out", str(root / "both")]) == 0
+    assert main(["track", "--no-plot", str(root / "tug"), "--units", "waist", "--out", str(root / "waist")]) == 0
     return root, truth
 
 
@@ -70,7 +70,7 @@ def test_two_unit_tug_counts_steps_and_turns_on_the_foot_w419(tug):
 
 def test_foot_units_only_track_has_no_transfers(tug, tmp_path):
     root, _ = tug
-    assert main(["track", str(root / "tug"), "--units", "foot", "--out", str(tmp_path / "f")]) == 0
+    assert main(["track", "--no-plot", str(root / "tug"), "--units", "foot", "--out", str(tmp_path / "f")]) == 0
     summary = json.loads((tmp_path / "f" / "summary.json").read_text())
     assert summary["tug_time_s"] is None and summary["tug_steps_source"] is None
     assert not (tmp_path / "f" / "transfers.csv").exists()

@@ -95,7 +95,7 @@ def test_track_writes_trials_and_keeps_a_one_trial_recording(tmp_path, capsys):
     assert main(["simulate", "--route", TRIAL, "--sit-start", "5", "--sit-end", "5", "--user-seed", "7115", "--out",
                  str(one)]) == 0
     capsys.readouterr()
-    assert main(["track", str(two), "--units", "waist", "--out", str(tmp_path / "t2")]) == 0
+    assert main(["track", "--no-plot", str(two), "--units", "waist", "--out", str(tmp_path / "t2")]) == 0
     out = capsys.readouterr().out
     table = pd.read_csv(tmp_path / "t2" / "tug_trials.csv")
     summary = json.loads((tmp_path / "t2" / "summary.json").read_text())
@@ -106,7 +106,7 @@ def test_track_writes_trials_and_keeps_a_one_trial_recording(tmp_path, capsys):
     assert "--window" not in out and "tug_trials.csv, " in out  # W282's advice gone, the file named
     assert not (tmp_path / "t2" / "tug_phases.csv").exists()
     # one trial: tug_time_s as W183 (the rise's start to the sit's end), tug_phases.csv as W293, one trials row
-    assert main(["track", str(one), "--units", "waist", "--out", str(tmp_path / "t1")]) == 0
+    assert main(["track", "--no-plot", str(one), "--units", "waist", "--out", str(tmp_path / "t1")]) == 0
     out = capsys.readouterr().out
     summary = json.loads((tmp_path / "t1" / "summary.json").read_text())
     tr = pd.read_csv(tmp_path / "t1" / "transfers.csv")
@@ -151,7 +151,7 @@ def test_a_chair_stand_without_walking_is_no_tug_w340(tmp_path, capsys):
     assert main(["simulate", "--route", "stand:6", "--sit-start", "5", "--sit-end", "5", "--user-seed", "7310",
                  "--out", str(d)]) == 0
     capsys.readouterr()
-    assert main(["track", str(d), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(d), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
     out = capsys.readouterr().out
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
     assert (summary["n_sit_to_stand"], summary["n_stand_to_sit"], summary["n_steps"]) == (1, 1, 0)

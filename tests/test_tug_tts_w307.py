@@ -81,7 +81,7 @@ def test_track_writes_the_turn_to_sit_and_leaves_turns_csv_alone(tmp_path, capsy
     assert main(["simulate", "--route", TWO_TURNS, "--sit-start", "5", "--sit-end", "5", "--user-seed", "6794",
                  "--speed", "slow", "--out", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["track", str(sim), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(sim), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
     out = capsys.readouterr().out
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
     table = pd.read_csv(tmp_path / "t" / "tug_phases.csv")

@@ -80,6 +80,6 @@ def test_run_warns_of_a_biased_waist_gyroscope(walk, tmp_path, synthetic_bundle,
     for name, session, warned in (("clean", walk, False), ("biased", _biased(walk, 0.03), True)):
         folder = write_session(session, tmp_path / name)
         capsys.readouterr()
-        assert main(["run", str(synthetic_bundle.path), str(folder)]) == 0
+        assert main(["run", "--no-plot", str(synthetic_bundle.path), str(folder)]) == 0
         err = capsys.readouterr().err
         assert ("decision W105" in err and "--units foot" in err) == warned, err

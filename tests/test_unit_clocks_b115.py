@@ -87,7 +87,7 @@ def test_track_of_the_curators_copy_is_the_original_track(sessions, tmp_path, ca
     orig, units = sessions
     got = []
     for s in (orig, units):
-        assert main(["track", str(s), "--out", str(tmp_path / s.name), "--json"]) == 0
+        assert main(["track", "--no-plot", str(s), "--out", str(tmp_path / s.name), "--json"]) == 0
         got.append(json.loads(capsys.readouterr().out))
     assert got[1]["n_steps"] == got[0]["n_steps"]
     assert got[1]["distance_m"] == pytest.approx(got[0]["distance_m"], rel=1e-3)

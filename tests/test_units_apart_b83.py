@@ -61,7 +61,7 @@ def test_track_refuses_naming_common_span_which_tracks_both(apart, tmp_path, cap
     err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
     assert len(err) == 1 and "--common-span" in err[0] and "wAccelerometer.csv" in err[0], err
     assert not (tmp_path / "t").exists()
-    assert main(["track", str(out), "--out", str(tmp_path / "t"), "--common-span"]) == 0
+    assert main(["track", "--no-plot", str(out), "--out", str(tmp_path / "t"), "--common-span"]) == 0
     warn = [ln for ln in capsys.readouterr().err.splitlines() if "--common-span" in ln]
     assert len(warn) == 1 and "decision B83" in warn[0] and "5.05 s of fAccelerometer.csv" in warn[0], warn
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())

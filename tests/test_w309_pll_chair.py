@@ -37,7 +37,8 @@ def readme_sts5(tmp_path_factory):
 
 
 def _track(session, out, capsys):
-    assert main(["track", str(session), "--units", "waist", "--pipeline", "waist-pll", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(session), "--units", "waist", "--pipeline", "waist-pll", "--out",
+                 str(out)]) == 0
     printed = capsys.readouterr()
     return json.loads((out / "summary.json").read_text()), printed
 

@@ -279,7 +279,7 @@ def test_real_track_cli_json_contract(tmp_path, capsys):
     assert main(["calibrate", str(REAL / "mobgap_HA001_Test5_Trial1"), "--pipeline", "waist-pll",
                  "--out", str(params)]) == 0
     capsys.readouterr()
-    rc = main(["track", str(REAL / "mobgap_HA001_Test5_Trial2"), "--pipeline", "waist-pll", "--params",
+    rc = main(["track", "--no-plot", str(REAL / "mobgap_HA001_Test5_Trial2"), "--pipeline", "waist-pll", "--params",
                str(params), "--start", "41.178,-8.608", "--out", str(tmp_path / "trk"), "--json"])
     assert rc == 0
     d = json.loads(capsys.readouterr().out)

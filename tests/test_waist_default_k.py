@@ -48,7 +48,7 @@ def test_calibrate_defaults_to_the_pipeline_track_takes(tmp_path, capsys):
     out = capsys.readouterr().out
     saved = json.loads(p.read_text())
     assert saved["pipeline"] == "waist-pendulum" and f"K = {saved['k']:.4f}" in out
-    assert main(["track", str(HA001_T5), "--params", str(p), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(HA001_T5), "--params", str(p), "--out", str(tmp_path / "t"), "--json"]) == 0
     captured = capsys.readouterr()
     assert "keeps its defaults" not in captured.err
     assert json.loads(captured.out)["distance_error_pct"] != pytest.approx(1.253, abs=0.01)  # not the defaults

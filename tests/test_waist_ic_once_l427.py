@@ -44,7 +44,7 @@ def test_summaries_and_write_track_run_the_detector_once(two_units, tmp_path, mo
     result = pdrlearn.get_pipeline("plasys")(session)
     calls = _counting(monkeypatch)
     first, second = result.summary(session), result.summary(session)
-    pdrlearn.write_track(result, session, tmp_path / "t")
+    pdrlearn.write_track(result, session, tmp_path / "t", plot=False)
     import json
 
     written = json.loads((tmp_path / "t" / "summary.json").read_text())

@@ -121,7 +121,7 @@ def test_run_of_a_waist_bundle_calibrated_on_a_shuffle_warns_on_normal_walking(t
     walk = write_session(s, tmp_path / "walk")
     for name, warned in (("c", True), ("plain", False)):
         export_waist(tmp_path / f"{name}.json", tmp_path / f"wb_{name}", frame=frame)
-        assert main(["run", str(tmp_path / f"wb_{name}"), str(walk), "--out", str(tmp_path / f"r_{name}"),
+        assert main(["run", "--no-plot", str(tmp_path / f"wb_{name}"), str(walk), "--out", str(tmp_path / f"r_{name}"),
                      "--json"]) == 0
         summary = json.loads(capsys.readouterr().out)
         assert bool([w for w in summary["info"]["warnings"] if "decision W140" in w]) is warned

@@ -193,23 +193,26 @@ def test_a_detector_declares_its_unit():
 
 def test_track_cli_waist_detector_and_length_model(tmp_path: Path, capsys):
     sess = str(REAL / "mobgap_HA001_Test5_Trial1")
-    assert main(["track", sess, "--detector", "pelvic-gyro", "--length-model", "weinberg:k=0.45",
+    assert main(["track", "--no-plot", sess, "--detector", "pelvic-gyro", "--length-model", "weinberg:k=0.45",
                  "--out", str(tmp_path / "a"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["pipeline"] == "waist-pendulum"
     assert out["info"]["methods"]["steps"] == "pelvic-gyro" and out["info"]["methods"]["length"] == "weinberg"
     assert main(["track", sess, "--length-model", "weinberg", "--out", str(tmp_path / "b")]) == 2
     assert "set its gain k" in capsys.readouterr().err
-    assert main(["track", sess, "--pipeline", "plasys", "--length-model", "pendulum",
+    assert main(["track", "--no-plot", sess, "--pipeline", "plasys", "--length-model", "pendulum",
                  "--out", str(tmp_path / "c")]) == 2
     assert "--length-model sets the lower-back pipelines' step length" in capsys.readouterr().err
-    assert main(["track", sess, "--pipeline", "waist-pll", "--detector", "accel", "--out", str(tmp_path / "d")]) == 2
+    assert main(["track", "--no-plot", sess, "--pipeline", "waist-pll", "--detector", "accel", "--out",
+                 str(tmp_path / "d")]) == 2
     assert "--detector accel detects the foot's strides" in capsys.readouterr().err
     # review s24 (B191): a pipeline chosen by --detector / --length-model is named as such, not as "got --pipeline"
-    assert main(["track", sess, "--detector", "pelvic-gyro", "--altitude", "fused", "--out", str(tmp_path / "e")]) == 2
+    assert main(["track", "--no-plot", sess, "--detector", "pelvic-gyro", "--altitude", "fused", "--out",
+                 str(tmp_path / "e")]) == 2
     err = capsys.readouterr().err
     assert "plasys pipeline only (--detector pelvic-gyro chose --pipeline waist-pendulum" in err
-    assert main(["track", sess, "--pipeline", "waist-pll", "--altitude", "fused", "--out", str(tmp_path / "f")]) == 2
+    assert main(["track", "--no-plot", sess, "--pipeline", "waist-pll", "--altitude", "fused", "--out",
+                 str(tmp_path / "f")]) == 2
     assert "(got --pipeline waist-pll, a lower-back pipeline" in capsys.readouterr().err
 
 
@@ -242,7 +245,7 @@ def test_installed_length_models_and_methods_reach_the_cli(tmp_path):
         logreg = my_waist_plugin:logreg
     """)
     (tmp_path / "my_waist_plugin.py").write_text(MY_PLUGIN)
-    r = _cli(["track", str(REAL / "mobgap_HA001_Test5_Trial1"), "--length-model", "half", "--out",
+    r = _cli(["track", "--no-plot", str(REAL / "mobgap_HA001_Test5_Trial1"), "--length-model", "half", "--out",
               str(tmp_path / "t"), "--json"], env)
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)

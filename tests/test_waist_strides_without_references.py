@@ -24,7 +24,7 @@ def test_waist_steps_are_not_matched_one_to_one_with_strides(tmp_path, capsys):
     write_session(s, tmp_path / "steps_only")
     res = {}
     for name, folder in (("refs", src), ("steps_only", tmp_path / "steps_only")):
-        assert main(["track", str(folder), "--out", str(tmp_path / f"trk_{name}"), "--json"]) == 0
+        assert main(["track", "--no-plot", str(folder), "--out", str(tmp_path / f"trk_{name}"), "--json"]) == 0
         res[name] = json.loads(capsys.readouterr().out.splitlines()[-1])
     got = res["steps_only"]
     for k in ("stride_length_mae_pct", "stride_length_matched", "distance_matched_error_pct"):

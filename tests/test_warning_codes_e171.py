@@ -47,7 +47,7 @@ def test_a_drops_session_tracked_with_splits_keeps_b64(tmp_path, capsys):
     assert main(["simulate", "--scenario", "walk", "--length-m", "20", "--user-seed", "8530", "--drop-rate", "0.03",
                  "--rate", "100", "--out", str(ses)]) == 0
     capsys.readouterr()
-    assert main(["track", str(ses), "--splits", "50", "--json", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(ses), "--splits", "50", "--json", "--out", str(tmp_path / "t")]) == 0
     printed = json.loads(capsys.readouterr().out)["info"]["warning_codes"]
     written = json.loads((tmp_path / "t" / "summary.json").read_text())["info"]["warning_codes"]
     assert printed == written

@@ -27,7 +27,8 @@ def lift_session(tmp_path_factory):
 def _window(session_dir, out, window: str, *extra: str):
     from pdrlearn.cli import main
 
-    assert main(["track", str(session_dir), "--units", "waist", "--window", window, "--out", str(out), *extra]) == 0
+    assert main(["track", "--no-plot", str(session_dir), "--units", "waist", "--window", window, "--out", str(out),
+                 *extra]) == 0
     m = json.loads((out / "summary.json").read_text())
     return m, pd.read_csv(out / "trajectory.csv"), pd.read_csv(out / "steps.csv", keep_default_na=False)
 

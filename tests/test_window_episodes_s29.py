@@ -26,7 +26,7 @@ def frozen_dir(tmp_path_factory):
 def _track(d, out, *args):
     from pdrlearn.cli import main
 
-    assert main(["track", str(d), "--out", str(out), *args]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(out), *args]) == 0
     return pd.read_csv(out / "freezes.csv"), json.loads((out / "summary.json").read_text())
 
 

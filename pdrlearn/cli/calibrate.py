@@ -48,6 +48,12 @@ def register(app: typer.Typer) -> None:
                                   help="Treadmill walks: each walk's distance is its meta.json belt_speed_mps x "
                                        "the span of its counted contacts, first to last (with --start/--end: "
                                        "inside them); instead of --distance (decision W378)."),
+        length_model: str = typer.Option(None, "--length-model",
+                                         help="Also fit this gain model's linear gain (weinberg, or a plug-in that "
+                                              "declares gain_param; NAME:key=value,... sets its other settings) on "
+                                              "the same walks and counted steps; written to PARAMS.json's "
+                                              "length_models, which `track --length-model NAME --params` reads "
+                                              "(decision W460)."),
         out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write (an existing file only with --force)."),
         redact_paths: bool = REDACT_PATHS_OPT,  # decision E176: "fit" holds the folders as typed
         force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -69,6 +75,9 @@ def register(app: typer.Typer) -> None:
 
           pdrlearn calibrate walks/D -d 30 --redact-paths --out p.json   (its "fit" folders as <redacted>, E176)
 
+          pdrlearn calibrate walk1 -d 30 --length-model weinberg --out p.json   (also the gain k of weinberg,
+          W460; then track with --length-model weinberg --params p.json)
+
           A treadmill walk with meta.json belt_speed_mps: calibrate DIR --belt --start 20 --end 50 -o p.json
           (distance = belt speed x the contacts' span, W378)
 
@@ -79,6 +88,10 @@ def register(app: typer.Typer) -> None:
 
         out_file(out, (".json",), "params", force=force)
         was = existed(out)
+        if length_model is not None:  # decision W460: one line before any session is read or tracked
+            from pdrlearn.waist.calibration import gain_model
+
+            gain_model(length_model)
         if turns is not None and not math.isfinite(turns):
             raise DataError(f"--turns {turns}: give the signed number of full turns walked, e.g. 1 or -2")
         for dm in distance or []:  # one error line before any session is read or tracked (no track warning first)
@@ -101,7 +114,7 @@ def register(app: typer.Typer) -> None:
                                 "as many of each (or only one of the two)")
             spans = [((start or [None] * n)[k], (end or [None] * n)[k]) for k in range(n)]
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
-                           fit_turns=fit_turns, shrink=shrink, spans=spans, belt=belt)
+                           fit_turns=fit_turns, shrink=shrink, spans=spans, belt=belt, length_model=length_model)
         fit: dict = {"fit": [str(d) for d in dirs]}
         if redact_paths:  # decision E176: the folders fitted on as <redacted>, said in the file
             from pdrlearn.redact import path_forms, redact_json
@@ -121,5 +134,8 @@ def register(app: typer.Typer) -> None:
                            f"L = {params.leg_m:.3f} m)")
             else:
                 typer.echo(f"  fitted: step length = {params.a_walk:.4f} f - {params.b_walk:.4f} m (walking)")
+            for name, gains in (params.length_models or {}).items():  # decision W460
+                typer.echo(f"  fitted: {name} " + ", ".join(f"{k} = {v:.4f}" for k, v in gains.items())
+                           + f" (track --length-model {name} --params {out})")
             for n in d["notes"]:
                 typer.echo(f"  {n}")

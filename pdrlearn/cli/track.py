@@ -106,7 +106,8 @@ DETECTOR_OPT = typer.Option(None, "--detector", help="The steps from this step d
                             "E94, as --length-model). Default: the pipeline's own.")
 LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelines: the step-length model "
                                 f"({LENGTH_NAMES}, or a plug-in; NAME:key=value,... sets its settings; "
-                                "decision E84). Default: the pipeline's own.")
+                                "decision E84; a gain model without its gain takes the one `calibrate "
+                                "--length-model NAME` wrote to --params, W460). Default: the pipeline's own.")
 CONTACTS_OPT = typer.Option(False, "--contacts", help="plasys --streaming: each stride's initial contact "
                             "(force onset, else the accelerometer impact) and so stride_time_s, cadence_spm, "
                             "speed_mps (decisions E49-E51; `pdrlearn run --contacts` gives the same).")

@@ -926,6 +926,7 @@ def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
     out["distance_ref_source"] = source
     out["distance_error_pct"] = 100.0 * (out["distance_m"] - ref) / ref
     out["distance_error_scope"] = "whole track"  # decision W71: what distance_error_pct compares
+    out["distance_compared_m"] = out["distance_m"]  # decision W459: the tracked distance the error compares
     if gt is not None and len(gt) > 1 and len(tr) and not still:
         t0, t1 = float(tr["t"].iloc[0]), float(tr["t"].iloc[-1])
         g = {c: gt[c].to_numpy(float) for c in ("t", "x", "y", "z")}
@@ -1184,6 +1185,7 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
         # with distance_ref_m; say so next to the number
         out["distance_error_scope"] = "reference bouts"
         out["distance_in_ref_bouts_m"] = m["bout_distance_m"]
+        out["distance_compared_m"] = m["bout_distance_m"]  # decision W459: the error's numerator, in every scope
     for k in ("stride_length_matched", "stride_length_composed", "stride_length_mae_pct",
               "stride_length_mae_pct_straight", "stride_length_mae_pct_turns", "stride_length_mae_pct_steady",
               "distance_matched_error_pct", "distance_matched_m", "distance_matched_ref_m"):

@@ -87,11 +87,12 @@ from pdrlearn.waist.lengths import (
     check_lengths,
     check_pause_steps,
     get_step_length,
+    model_spec,
     step_frequency,
     walking_sequences,
 )
 from pdrlearn.waist.lying import postures_and_transfers, session_lying
-from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params, subject_height
+from pdrlearn.waist.params import NO_CALIBRATION, NO_SENSOR_HEIGHT, WaistParams, resolve_params, subject_height
 from pdrlearn.waist.pelvic_rhythm import (
     RHYTHM_SLOW,
     SLOW_PERIOD_S,
@@ -104,6 +105,7 @@ from pdrlearn.waist.plausibility import (
     PLAUSIBILITY_MIN_PAIRS,
     SHORT_STEP_CAUSE,
     WALK_RATIO_ADVICE,
+    WALK_RATIO_NEED,
     calibration_covers,
     calibration_line,
     contact_alternation,
@@ -124,6 +126,7 @@ from pdrlearn.waist.plausibility import (
     still_yaw_rate,
     still_yaw_rate_message,
     walk_ratio,
+    walk_ratio_advice,
     walk_ratio_message,
 )
 from pdrlearn.waist.pll_calibration import edge_lock_mismatch_line, recorded_keys
@@ -1060,13 +1063,17 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                      _model_options(o, realtime))
     # decision W411: another pipeline's calibration leaves this one's step length on its defaults too
     own_calibration = p.source == "calibrated" and p.pipeline in (None, pipeline)
+    gain_source = _calibrated_gain(model, spec, p, own_calibration)  # decision W460
+    if not model.uses_profile:  # decision W461: calibrate's K / lines do not change this model; its own gain may
+        warnings = [w for w in warnings if not w.startswith(NO_CALIBRATION)]
+        warnings[:0] = [default_gain_line(model)] if gain_source == "default" else []
     if pipeline == "waist-pll" and not own_calibration:  # decision W405: a child's uncalibrated pll reads long
         from pdrlearn.waist.plausibility import pll_short_walker_message
 
         short = pll_short_walker_message(session.meta)
         if short:
             warnings.append(short)
-    if p.source == "calibrated" and not own_calibration:
+    if p.source == "calibrated" and not own_calibration and model.uses_profile:
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
     try:
@@ -1275,7 +1282,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, height_m,  # W100, W116
                                     pendulum=pendulum, short_step=bool(o["short_step_check"]),  # W139, W207
                                     stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])),  # W155
-                                    height_known=no_height is None)  # decision L492
+                                    height_known=no_height is None,  # decision L492
+                                    advice=walk_ratio_advice(model.name, uses_profile=model.uses_profile,
+                                                             gain_param=model.gain_param))  # decision W461
     if ratio_line:
         warnings.append(ratio_line)
     excess = None
@@ -1304,13 +1313,14 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     if calibration:
         warnings.append(calibration)
     n = len(steps)
-    length_model = model.name
+    # decision W462: the model with the settings the user set (info["methods"]["length"] keeps its name)
+    length_model = model_spec(model, None if isinstance(spec, StepLengthModel) else spec, gain_source == "params")
     postures, transfers = _postures_transfers(imu, steps, transfers, upright_source, fixed_up, o, warnings)
     steps = _with_still_before(steps, imu, still_mask())  # decision L372: the pauses' still time
     info = {
         "pipeline": pipeline,
         "method": f"{steps.attrs.get('detector', '')}/{length_model}/{method}",
-        "methods": {"steps": steps.attrs.get("detector", ""), "length": length_model, "heading": method},
+        "methods": {"steps": steps.attrs.get("detector", ""), "length": model.name, "heading": method},
         "params": p.to_dict(),
         "params_source": p.source,
         "options": o,
@@ -1358,6 +1368,42 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start, z_raw)
+
+
+def _calibrated_gain(model: StepLengthModel, spec, p: WaistParams, own_calibration: bool) -> str | None:
+    """Decision W460: where ``model``'s :attr:`~pdrlearn.waist.lengths.StepLengthModel.gain_param` comes from, and set
+    it from PARAMS.json's ``length_models`` when the user did not: ``"spec"`` (the spec names it, or an instance's is
+    not None), ``"params"`` (the file's, calibrated for this pipeline), ``"default"`` (the model's default gain);
+    None for a model without a gain. A gain that is still None is one line naming both ways to set it."""
+    from pdrlearn.plugins import parse_spec
+
+    gain = model.gain_param
+    if not gain:
+        return None
+    value = model.get_params().get(gain)
+    if (gain in parse_spec(spec, "step-length model")[1]) if isinstance(spec, str) else value is not None:
+        return "spec"
+    fitted = ((p.length_models or {}).get(model.name) or {}).get(gain) if own_calibration else None
+    if fitted is not None:
+        model.set_params(**{gain: float(fitted)})
+        return "params"
+    if value is not None:
+        return "default"
+    where = ("" if not (p.length_models or {}).get(model.name) else
+             f" (the --params file was calibrated for {p.pipeline}, not this pipeline)")
+    raise DataError(f"step-length model {model.name}: set its gain {gain}{where}: give it "
+                    f"(--length-model {model.name}:{gain}=VALUE) or fit it on a walk of known length: 'pdrlearn "
+                    f"calibrate DIR --distance M --length-model {model.name} --out PARAMS.json', then track with "
+                    "--params PARAMS.json (decision W460)")
+
+
+def default_gain_line(model: StepLengthModel) -> str:
+    """Decision W461: the "no per-user calibration" line of a gain model tracked on its default gain."""
+    g = model.gain_param
+    return (f"{NO_CALIBRATION}: step-length model {model.name}'s gain {g} = {model.get_params()[g]:g} is its default; "
+            f"fit it on this walker's walk of known length ('pdrlearn calibrate DIR --distance M --length-model "
+            f"{model.name} --out PARAMS.json', then track with --params PARAMS.json) or set {model.name}:{g}=VALUE "
+            "(decisions W460, W461)")
 
 
 def _configure_model(model: StepLengthModel, spec, realtime: bool, options: dict) -> None:
@@ -1431,8 +1477,8 @@ def contact_steps(table: pd.DataFrame, imu: WaistIMU, name: str = "") -> pd.Data
 
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
-                height_m: float, pendulum=None, stairs=None, short_step: bool = False, height_known: bool = True
-                ) -> tuple[float | None, str | None]:
+                height_m: float, pendulum=None, stairs=None, short_step: bool = False, height_known: bool = True,
+                advice: str = WALK_RATIO_ADVICE) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
     warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps).
     Decision W139: an offline, uncalibrated ``waist-pll`` track is judged on the steps ``pendulum()`` returns (the
@@ -1442,7 +1488,10 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
     Decision W207: with ``short_step`` (the option ``short_step_check``; always for waist-pll, W208), inside W100's
     band, a median pendulum step under half the comfortable step for the stature warns
     (:func:`~pdrlearn.waist.plausibility.short_step_message`; not at a running cadence, W177). Decision W208: a pll
-    track with far fewer contacts than the pendulum reading says it misses steps instead of W139's line."""
+    track with far fewer contacts than the pendulum reading says it misses steps instead of W139's line. Decision
+    W461: ``advice`` ends W100's line (:func:`~pdrlearn.waist.plausibility.walk_ratio_advice`: what applies to the
+    track's step-length model); a model other than the pipeline's (another advice) gets no W207 line, which is about
+    the pendulum's reading."""
     if realtime or p.source != "defaults" or not len(steps):
         return None, None
     pll_length = pll_m = pendulum_m = None
@@ -1464,8 +1513,10 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
     ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), step_s)
     # W208: a pll track that misses steps says so first (W139's line would call its short reading long)
     line = missed or walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length,
-                                        pll_m=pll_m, pendulum_m=pendulum_m, height_known=height_known)
-    if line is None and (short_step or pll_m is not None) and not running_cadence(length, cadence, height_m):
+                                        pll_m=pll_m, pendulum_m=pendulum_m, height_known=height_known,
+                                        advice=advice)
+    if (line is None and (short_step or pll_m is not None) and advice == WALK_RATIO_ADVICE
+            and not running_cadence(length, cadence, height_m)):
         line = short_step_message(length, n, height_m, pll_m=pll_m, pendulum_m=pendulum_m)  # decision W207
     return ratio, line
 
@@ -1531,8 +1582,8 @@ class _NoHeadingNote(logging.Filter):
 
     def filter(self, record: logging.LogRecord) -> bool:
         msg = record.getMessage()
-        return not any(mark in msg for mark in (RELATIVE_HEADING, "(decision W155)", "no per-user calibration",
-                                                WALK_RATIO_ADVICE, SHORT_STEP_CAUSE))
+        return not any(mark in msg for mark in (RELATIVE_HEADING, "(decision W155)", NO_CALIBRATION,
+                                                WALK_RATIO_NEED, SHORT_STEP_CAUSE))
 
 
 def without_heading_note():

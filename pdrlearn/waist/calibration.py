@@ -98,14 +98,24 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     f = st["frequency_hz"].to_numpy(float)
     steady = steady_steps(1.0 / res.steps["frequency_hz"].to_numpy(float), res.steps["has_next"].to_numpy(bool),
                           frequency_scale=p.frequency_scale())[res.steps["has_next"].to_numpy(bool)]  # W261
+    return [CalibrationWalk(d, f[m], g[m], name, c[m], None if dpsi is None else dpsi[m], steady[m])
+            for d, m, name in counted_walks(session, st, distance_m=distance_m, span_s=span_s)]
+
+
+def counted_walks(session: Session, st, *, distance_m: float | None = None,
+                  span_s: tuple[float | None, float | None] | None = None) -> list[tuple[float, np.ndarray, str]]:
+    """The walks of known length among the steps ``st`` (a track's rows with a next contact) as ``(distance_m, mask
+    over st, name)``: with ``distance_m`` one walk of every step (inside ``span_s``, decision W61: both contacts
+    inside; W21: first to last detected contact), otherwise one per reference bout (``bouts.csv``) with the steps
+    :func:`~pdrlearn.waist.evaluate.steps_in_interval` counts for it. The counting rules of both fits,
+    :func:`calibration_walks` and a gain model's (:func:`fit_length_gain`, decision W460)."""
     if span_s is not None and distance_m is None:
         raise DataError("calibrate: --start/--end mark the stretch whose length --distance gives; pass --distance "
                         "METERS too (the reference bouts of bouts.csv carry their own times)")
+    keep = np.ones(len(st), dtype=bool)
     if span_s is not None:  # W61: the measured stretch only
         keep = span_mask(session, st, span_s)
-        st, g, c, f, steady = st[keep], g[keep], c[keep], f[keep], steady[keep]
-        dpsi = None if dpsi is None else dpsi[keep]
-        if not len(st):
+        if not keep.any():
             raise DataError(f"calibrate: no detected step of {session.name} lies inside --start/--end "
                             f"({span_s[0]}-{span_s[1]} s from its start; the recording covers "
                             f"{session.duration_s:.1f} s); widen the stretch")
@@ -113,10 +123,10 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
         if not (np.isfinite(distance_m) and distance_m > 0):
             raise DataError(f"calibrate: --distance {distance_m} must be a positive number of metres")
         # on the clock of --start/--end (s from the recording's start, W61), which a session's clock need not be
-        t0 = session.t_start
-        span = (f"{session.name}: contacts {st['start_s'].min() - t0:.1f}-{st['end_s'].max() - t0:.1f} s from the "
-                "recording's start" if len(st) else session.name)
-        return [CalibrationWalk(float(distance_m), f, g, span, c, dpsi, steady)]
+        t0, kept = session.t_start, st[keep]
+        span = (f"{session.name}: contacts {kept['start_s'].min() - t0:.1f}-{kept['end_s'].max() - t0:.1f} s from "
+                "the recording's start" if len(kept) else session.name)
+        return [(float(distance_m), keep, span)]
     bouts = reference_bouts(session)
     if bouts is None:
         raise DataError(f"session '{session.name}' has no bouts.csv with reference lengths; "
@@ -125,8 +135,7 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     for b in bouts.itertuples():
         m = steps_in_interval(st, b.start_s, b.end_s)
         if m.any():
-            walks.append(CalibrationWalk(float(b.length_m), f[m], g[m], f"{session.name}@{b.start_s:.1f}s", c[m],
-                                         None if dpsi is None else dpsi[m], steady[m]))
+            walks.append((float(b.length_m), m, f"{session.name}@{b.start_s:.1f}s"))
     return walks
 
 
@@ -336,10 +345,77 @@ def belt_distance(session: Session, steps, span_s=None) -> tuple[float, str]:
                f"{t1 - session.t_start:.1f} s) = {d:.2f} m of belt (decision W378)")
 
 
+#: decision W460: a gain model's fit stops when a refit changes the gain by less than this fraction (one refit when
+#: the tracked sum is linear in the gain; W150's pivot cap is not, and converges geometrically), at most
+#: :data:`GAIN_FIT_ITERATIONS` tracks of every walk
+GAIN_FIT_RTOL = 1e-9
+GAIN_FIT_ITERATIONS = 8
+
+
+def gain_model(spec: str):
+    """Decision W460: the step-length model ``spec`` names (``"NAME"`` or ``"NAME:key=value,..."``) and its settings,
+    checked for ``calibrate --length-model``: it declares a linear gain
+    (:attr:`~pdrlearn.waist.lengths.StepLengthModel.gain_param`) and ``spec`` does not set it."""
+    from pdrlearn.plugins import parse_spec
+    from pdrlearn.waist.lengths import get_step_length
+
+    model = get_step_length(spec)
+    name, own = parse_spec(spec, "step-length model")
+    if model.gain_param is None:
+        own_model = name in ("pendulum", "frequency")
+        raise DataError(f"calibrate: --length-model {name} " + (
+            "is a pipeline's own model: calibrate fits it without --length-model (--pipeline waist-pendulum: "
+            "pendulum, waist-pll: frequency)" if own_model else
+            "declares no linear gain (gain_param) for calibrate to fit; set gain_param = 'SETTING' in its class when "
+            "its lengths are proportional to that setting (docs/extending.md), or set its settings by hand") +
+            " (decision W460)")
+    if model.gain_param in own:
+        raise DataError(f"calibrate: --length-model {spec} sets the gain {model.gain_param} that calibrate fits; "
+                        f"drop {model.gain_param}= (decision W460)")
+    return model, name, own
+
+
+def fit_length_gain(sessions: list[Session], pipeline: str, spec: str, params: WaistParams,
+                    distances: list[float | None], spans: list) -> tuple[float, str]:
+    """Decision W460: the gain of the gain model ``spec`` (:func:`gain_model`) that makes the tracker's sum over the
+    walks of known length their distance (``D = k sum(l_1)``, the pendulum's K-only fit, seed 003 eq. 1 with F = 0:
+    K = sum D / sum g): each session tracked (``track_waist`` on ``pipeline`` with ``params``) with the model at gain
+    ``k``, its steps counted as :func:`counted_walks` counts them (``distances`` and ``spans``: one per session; W21,
+    W61, bouts) and ``k`` refitted as ``k sum D / sum l_k`` until it changes by less than :data:`GAIN_FIT_RTOL`.
+    Returns ``(k, note)``."""
+    from pdrlearn.plugins import spec_text
+    from pdrlearn.track.waist import track_waist, without_heading_note
+
+    model, name, own = gain_model(spec)
+    gain, k = model.gain_param, 1.0
+    for i in range(GAIN_FIT_ITERATIONS):
+        total_d = total_l = 0.0
+        n_walks = n_steps = 0
+        for s, d, span in zip(sessions, distances, spans, strict=True):
+            with without_heading_note():  # W83's line, the uncalibrated gain's own lines (W455)
+                res = track_waist(s, pipeline=pipeline, params=params, length_model=spec_text(name, {**own, gain: k}))
+            st = res.steps[res.steps["has_next"]]
+            lengths = st["length_m"].to_numpy(float)
+            for dist, m, _ in counted_walks(s, st, distance_m=d, span_s=span):
+                total_d, total_l = total_d + dist, total_l + float(lengths[m].sum())
+                n_walks, n_steps = n_walks + 1, n_steps + int(m.sum())
+        if not total_l > 0:
+            raise DataError(f"calibrate: the counted steps carry no length under {name} at {gain}={k:g}; check the "
+                            "recordings and the model's settings (decision W460)")
+        new = k * total_d / total_l
+        if abs(new - k) <= GAIN_FIT_RTOL * new:
+            return new, (f"{name} gain {gain} = {new:.4f} on {n_walks} walk(s), {n_steps} steps, {total_d:.2f} m: the "
+                         f"tracked sum at this gain is the known distance (decision W460; {i + 1} track(s) of each "
+                         "walk)")
+        k = new
+    return k, (f"{name} gain {gain} = {k:.4f}: the refits did not settle in {GAIN_FIT_ITERATIONS} tracks of each walk "
+               "(decision W460); check the tracked sum")
+
+
 def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] | None = None,
               turns: float | None = None, fit_turns: bool = False, params=None, shrink: bool = False,
               tau_k: float | None = None, spans: list[tuple[float | None, float | None]] | None = None,
-              belt: bool = False) -> WaistParams:
+              belt: bool = False, length_model: str | None = None) -> WaistParams:
     """Fit the step-length parameters of ``pipeline`` (with ``turns``, the gyro bias; with ``fit_turns``,
     the straight/turning mixture, decision W14).
 
@@ -356,9 +432,13 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     belt : decision W378 (``calibrate --belt``): each session is a treadmill walk (meta.json ``belt_speed_mps``,
         L321) and its distance the belt speed x the span of its counted contacts (first to last, inside ``spans``),
         the belt distance the walker covered between them; not with ``distances``.
+    length_model : decision W460 (``calibrate --length-model``): also fit this gain model's gain on the same walks
+        (:func:`fit_length_gain`), kept in ``length_models``.
     """
     if not sessions:
         raise DataError("calibrate: give at least one session folder")
+    if length_model is not None:
+        gain_model(length_model)  # W460: one line before any session is tracked
     if (shrink or tau_k is not None) and pipeline != "waist-pendulum":  # W48: it would be ignored
         raise DataError(f"calibrate: --shrink shrinks the pendulum gain K (decision W48), which {pipeline} does not "
                         "have; calibrate --pipeline waist-pendulum, or drop --shrink")
@@ -385,6 +465,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         raise DataError("calibrate: --belt takes each walk's distance from meta.json belt_speed_mps x its contact "
                         "span; give --belt or --distance, not both (decision W378)")
     belt_notes: list[str] = []
+    walk_distances: list[float | None] = []  # W460: each session's distance (given or the belt's), for a gain fit
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         with without_heading_note():  # W83: calibration does not use the heading
@@ -398,6 +479,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         if belt:  # decision W378: the belt distance between the first and the last counted contact
             d, note = belt_distance(s, res.steps[res.steps["has_next"]], span)
             belt_notes.append(note)
+        walk_distances.append(d)
         walks += calibration_walks(s, pipeline, distance_m=d, params=base, result=res, span_s=span)
         if d is not None:  # decision W99: cross-check the walk's contact count with the pelvic gyro
             counted = res.steps[res.steps["has_next"]]
@@ -458,6 +540,13 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     out.notes += notes_gap + implausible + notes_count
     if pipeline == "waist-pll":  # decision W393: the bout-edge extras are fitted into the length, not corrected
         out.notes.append(PLL_EDGE_NOTE)
+    if length_model is not None:  # decision W460: the gain model's gain on the same walks, the same counted steps
+        model, name, _ = gain_model(length_model)
+        k, note = fit_length_gain(sessions, pipeline, length_model, base, walk_distances,
+                                  [None if spans is None else spans[i if len(spans) > 1 else 0]
+                                   for i in range(len(sessions))])
+        out.length_models = {**(out.length_models or {}), name: {model.gain_param: k}}
+        out.notes.append(note)
     if turns is not None:
         from pdrlearn.waist.ahrs import waist_imu
 

@@ -41,10 +41,17 @@ def sample_index(steps: pd.DataFrame, signals, column: str = "event_s") -> np.nd
 class StepLengthModel(Settings):
     """Base class of a waist step-length model: set ``name`` (the registered name), keyword-only settings in
     ``__init__`` (``self._store(locals())``), and implement :meth:`predict`. ``uses_leg_length``: the model reads
-    ``profile.leg_m`` (False: the pipeline drops the "no sensor height" warning)."""
+    ``profile.leg_m`` (False: the pipeline drops the "no sensor height" warning). ``uses_profile``: the model reads
+    the profile's calibrated step-length parameters (K, F, the frequency lines), so ``pdrlearn calibrate`` and
+    ``track --params`` change it (False: the pipeline drops the "no per-user calibration" line, decision W461).
+    ``gain_param``: the name of a setting the lengths are proportional to (a linear gain, no default): ``pdrlearn
+    calibrate --length-model NAME`` fits it, PARAMS.json's ``length_models`` keeps it and ``track --params`` sets it
+    when the spec does not (decision W460)."""
 
     name = "base"
     uses_leg_length = True
+    uses_profile = True
+    gain_param: str | None = None
     #: settings for a model whose defaults cannot run (weinberg's gain): the contract test and examples use them
     example_settings: dict = {}
 
@@ -272,6 +279,8 @@ class WeinbergLength(StepLengthModel):
 
     name = "weinberg"
     uses_leg_length = False
+    uses_profile = False  # decision W461: only its own gain k
+    gain_param = "k"  # decision W460: calibrate --length-model weinberg fits it
     example_settings = {"k": 0.45}
 
     def __init__(self, *, k: float | None = None):
@@ -281,7 +290,8 @@ class WeinbergLength(StepLengthModel):
         if self.k is None:
             raise DataError("step-length model weinberg: set its gain k (m per (m/s^2)^(1/4), fitted per user on a "
                             "walk of known length, Weinberg 2002), e.g. --length-model weinberg:k=0.45 or "
-                            "WeinbergLength(k=0.45)")
+                            "WeinbergLength(k=0.45), or fit it with 'pdrlearn calibrate DIR --distance M "
+                            "--length-model weinberg --out PARAMS.json' and track with --params PARAMS.json (W460)")
         check_steps(steps, self.name)
         idx = sample_index(steps, signals)
         has_next = steps["has_next"].to_numpy(bool)
@@ -311,6 +321,10 @@ def _check_length_model(name: str, obj):
         if obj.name != name:
             raise DataError(f"step-length model '{name}': the class's name attribute is {obj.name!r}; set "
                             f"name = {name!r} in {obj.__name__}")
+        if obj.gain_param is not None and obj.gain_param not in obj._param_names():  # decision W460
+            raise DataError(f"step-length model '{name}': gain_param {obj.gain_param!r} is not one of its settings "
+                            f"({', '.join(obj._param_names()) or 'none'}); name the setting the lengths are "
+                            "proportional to, or set gain_param = None")
         return obj
     if callable(obj) and not isinstance(obj, type):
         return type(f"FunctionLength[{name}]", (_FunctionLength,),
@@ -347,3 +361,31 @@ def get_step_length(spec, **params) -> StepLengthModel:
         name = parse_spec(spec, "step-length model")[0]
         raise DataError(f"step-length model {name}: {exc}; its settings are "
                         f"{', '.join(STEP_LENGTHS[name]._param_names()) or 'none'}") from None
+
+
+def model_spec(model: StepLengthModel, spec=None, gain_from_params: bool = False) -> str:
+    """Decision W462: the model as ``"name:key=value,..."`` with the settings the user set - those ``spec`` (its
+    ``"name:key=value"`` string) names; for an instance (``spec`` None) those that differ from its defaults - and,
+    with ``gain_from_params``, its :attr:`~StepLengthModel.gain_param` (read from PARAMS.json, W460). The pipeline's
+    options it takes (``pause_steps`` ...) are the track's ``options``, not repeated here."""
+    import inspect
+
+    from pdrlearn.plugins import parse_spec, spec_text
+
+    params = model.get_params()
+    if isinstance(spec, str):
+        keys = set(parse_spec(spec, "step-length model")[1])
+    else:
+        sig = inspect.signature(type(model).__init__).parameters
+        keys = {k for k, v in params.items() if k not in sig or sig[k].default is inspect.Parameter.empty
+                or not _same(sig[k].default, v)}
+    if gain_from_params and model.gain_param:
+        keys.add(model.gain_param)
+    return spec_text(model.name, {k: v for k, v in params.items() if k in keys})
+
+
+def _same(a, b) -> bool:
+    try:
+        return bool(a == b)
+    except (TypeError, ValueError):  # an array setting
+        return a is b

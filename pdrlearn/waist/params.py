@@ -26,6 +26,8 @@ LEG_PER_HEIGHT = 0.53  # greater-trochanter height / body height
 # (the pendulum's L is the sensor height, W10/W69; seed 003's malleolus-to-trochanter L2 is not used)
 #: the start of the warning line for a leg length taken from the height (decision W62)
 NO_SENSOR_HEIGHT = "meta.json gives no sensor height"
+#: the start of the warning line of an uncalibrated step length (dropped for a model that reads no profile, W461)
+NO_CALIBRATION = "no per-user calibration"
 FOOT_PER_HEIGHT = 0.152  # foot length / body height
 # Pendulum gain K without calibration (decision W46): mobgap's SlZijlstra default scaling factor
 # (step_length_scaling_factor_ms_ms = 4.587 / 4, optimised on the Mobilise-D MS project), the same
@@ -70,7 +72,9 @@ class WaistParams:
     error and what shrinking it toward :data:`DEFAULT_K` gives (decision
     W48: ``k_cal``, ``se``, ``n_strides``, ``k0``, ``tau``, ``k_shrunk``, ``k``, ``applied``); gait : the calibration
     walks' ``median_cadence_spm``, ``step_length_m``, ``speed_mps`` and ``n_steps`` (decision W140; None: defaults, or
-    a file written before W140); notes : how each value was obtained.
+    a file written before W140); length_models : the gains ``pdrlearn calibrate --length-model NAME`` fitted, as
+    ``{NAME: {GAIN_SETTING: value}}`` (decision W460: ``{"weinberg": {"k": 0.43}}``; None: none fitted);
+    notes : how each value was obtained.
     """
 
     leg_m: float = float("nan")
@@ -90,6 +94,7 @@ class WaistParams:
     gait: dict | None = None
     rate_hz: float = float("nan")
     sl_leg_m: float = float("nan")
+    length_models: dict | None = None
     notes: list[str] = field(default_factory=list)
 
     def frequency_scale(self) -> float:
@@ -117,11 +122,14 @@ class WaistParams:
         for k, v in d.items():
             if k not in names:
                 continue
-            if k in ("turn_gmm", "notes", "source", "pipeline", "options", "k_shrinkage", "gait"):
-                if k in ("turn_gmm", "options", "k_shrinkage", "gait") and v is not None and not isinstance(v, dict):
+            if k in ("turn_gmm", "notes", "source", "pipeline", "options", "k_shrinkage", "gait", "length_models"):
+                if (k in ("turn_gmm", "options", "k_shrinkage", "gait", "length_models") and v is not None
+                        and not isinstance(v, dict)):
                     raise DataError(f"{where}: {k} must be a JSON object")
                 if k == "gait" and v is not None:
                     _check_gait(v, where)  # decision B198
+                if k == "length_models" and v is not None:
+                    _check_length_models(v, where)  # decision W460
                 kw[k] = v
                 continue
             if v is None:
@@ -173,6 +181,19 @@ def _check_gait(gait: dict, where: str) -> None:
     if bad:
         raise DataError(f"{where}: gait {broken_line(bad)} (decision W140's record of the "
                         "calibration walks); fix it, set \"gait\" to null, or re-run 'pdrlearn calibrate'")
+
+
+def _check_length_models(models: dict, where: str) -> None:
+    """Decision W460: ``length_models`` is ``{NAME: {SETTING: positive number}}`` (a gain ``calibrate
+    --length-model`` fitted); anything else is one line."""
+    for name, gains in models.items():
+        ok = isinstance(gains, dict) and all(
+            isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) and v > 0
+            for v in gains.values())
+        if not ok:
+            raise DataError(f"{where}: length_models {name!r} is {json.dumps(gains)}; give {{SETTING: positive "
+                            "number}} (e.g. \"weinberg\": {\"k\": 0.43}), set length_models to null, or re-run "
+                            "'pdrlearn calibrate --length-model NAME' (decision W460)")
 
 
 def _cadence_range_ok(rng) -> bool:
@@ -270,7 +291,7 @@ def default_params(session: Session, *, infer_height: bool = False) -> tuple[Wai
     that say what was assumed; ``infer_height``: without ``height_m`` the height the leg length implies (decision
     W115, an option: :func:`subject_height`)."""
     meta = session.meta or {}
-    warnings = ["no per-user calibration: step length from meta.json defaults "
+    warnings = [f"{NO_CALIBRATION}: step length from meta.json defaults "
                 "(run 'pdrlearn calibrate' on walks of known length, 20 steps or more: decision W169)"]
     notes = []
     height, line = subject_height(meta, infer=infer_height)  # W115: the warning names the height the leg implies
@@ -352,7 +373,7 @@ def _default_lines(warnings: list[str], user: WaistParams, filled: set[str]) -> 
         return []
     keep = []
     for w in warnings:
-        if w.startswith("no per-user calibration"):
+        if w.startswith(NO_CALIBRATION):
             ok = True
         elif w.startswith("meta.json gives no subject height"):
             ok = bool(filled & {"a_walk", "b_walk", "a_run", "b_run", "leg_m"})

@@ -405,16 +405,32 @@ def running_cadence(length: float | None, cadence: float | None, height_m: float
 LOW_RATIO_DIRECTION = ("and reads long on short steps (simulated festinating walks: +20 to +174 % distance) but short "
                        "on a trunk a rollator or cane steadies (a simulated trunk motion damped to x0.4: -27 to -61 % "
                        "distance), so the distance may be too long or too short (decision W454)")
-#: decision W100: what an uncalibrated walk-ratio line asks for; decision W455: ``calibrate`` drops the line by it
-WALK_RATIO_ADVICE = ("the distance, speed and step lengths need a calibration on this walker's own walk of known "
-                     "length (a 10 m walk test, or this recording if you know the distance walked): 'pdrlearn "
-                     "calibrate DIR --distance M --out PARAMS.json', then track with --params PARAMS.json")
+#: decision W455: the start of every walk-ratio advice (:func:`walk_ratio_advice`); ``calibrate`` drops the line by it
+WALK_RATIO_NEED = ("the distance, speed and step lengths need a calibration on this walker's own walk of known "
+                   "length (a 10 m walk test, or this recording if you know the distance walked)")
+#: decision W100: what an uncalibrated walk-ratio line asks for (the pipelines' own step-length models)
+WALK_RATIO_ADVICE = (f"{WALK_RATIO_NEED}: 'pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with "
+                     "--params PARAMS.json")
+
+
+def walk_ratio_advice(name: str, *, uses_profile: bool = True, gain_param: str | None = None) -> str:
+    """Decision W461: what a walk-ratio line asks for, true of the step-length model ``name``: the pipelines'
+    models (``uses_profile``) :data:`WALK_RATIO_ADVICE`; a model with a linear gain ``gain_param``
+    ``calibrate --length-model`` (W460) or the gain by hand; a model that reads no calibration, its settings."""
+    if uses_profile:
+        return WALK_RATIO_ADVICE
+    if gain_param:
+        return (f"{WALK_RATIO_NEED}: 'pdrlearn calibrate DIR --distance M --length-model {name} --out PARAMS.json' "
+                f"fits {name}'s gain {gain_param}, then track with --length-model {name} --params PARAMS.json "
+                f"(or set it: --length-model {name}:{gain_param}=VALUE; decisions W460, W461)")
+    return (f"the step-length model {name} reads no per-user calibration ('pdrlearn calibrate' and --params do not "
+            "change it): check its settings (decision W461)")
 
 
 def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
                        height_m: float = WALK_RATIO_HEIGHT_M, *, pll_length: float | None = None,
                        pll_m: float | None = None, pendulum_m: float | None = None,
-                       height_known: bool = True) -> str | None:
+                       height_known: bool = True, advice: str = WALK_RATIO_ADVICE) -> str | None:
     """Decision W100's one warning line for an uncalibrated waist track whose walk ratio lies outside
     :data:`WALK_RATIO_BAND` over at least :data:`PLAUSIBILITY_MIN_PAIRS` steps; None when it is inside or not
     judged. Decision W116: the band is that of a walker ``height_m`` tall (:func:`walk_ratio_scale`: a child's healthy
@@ -423,7 +439,7 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
     Decision W208: with the pll track's distance ``pll_m`` and the pendulum reading's ``pendulum_m`` (m) the line gives
     both and says "reads long" only of a pll track that reads longer than the pendulum. Decision L492: a short-step
     line of a walker whose height meta.json does not give (``height_known`` False) says to give it (a child's band is
-    smaller, W116)."""
+    smaller, W116). Decision W461: ``advice`` (:func:`walk_ratio_advice`) ends the line."""
     c = walk_ratio_scale(height_m)
     lo, hi, healthy = c * WALK_RATIO_BAND[0], c * WALK_RATIO_BAND[1], c * WALK_RATIO_HEALTHY
     if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or lo <= ratio <= hi:
@@ -451,7 +467,7 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
     return (("" if pll_length is None else PLL_WALK_RATIO_BASIS) +
             f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
             f"{n} steps; healthy gait ~{healthy:.4f} at {height_m:.2f} m tall, outside {lo:.4f}-{hi:.4f} warns, "
-            f"decision W100, scaled to the stature by W116) is {what}; {WALK_RATIO_ADVICE}")
+            f"decision W100, scaled to the stature by W116) is {what}; {advice}")
 
 
 #: decision W140: a calibrated track whose median cadence is outside this factor of its calibration walks' warns
