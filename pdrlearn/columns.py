@@ -33,6 +33,14 @@ def _clocks(*of: str) -> tuple[Column, ...]:
     return tuple(_clock(c) for c in of)
 
 
+def _ends(start: str, end: str) -> tuple[Column, ...]:
+    """Decision L570: the x / y and lat / lon columns of an event's two ends (trajectory.csv at its times)."""
+    return tuple((f"{e}_{c}", u, "number", f"{w}: trajectory.csv's {c.removesuffix('_m')} at that time (L570)"
+                  + ("" if c.endswith("_m") else "; empty without a geodetic start (--start LAT,LON)"))
+                 for e, w in (("start", start), ("end", end))
+                 for c, u in (("x_m", "m"), ("y_m", "m"), ("lat", "deg"), ("lon", "deg")))
+
+
 SESSIONS: tuple[Column, ...] = (
     ("path", _ID, "text", "the session folder relative to ROOT (the row's key)"),
     ("group", _ID, "text", "the first --group-depth folder levels of path (siteA)"),
@@ -181,6 +189,8 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_along_slope_m", "m", "number", "distance along the walked surface, sum of sqrt(length^2 + dz^2); "
                                               "empty without a grade_source (L300)"),
     ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a grade_source"),
+    ("max_ramp_grade_pct", "%", "number", "the steepest ramp run's grade in size, ramps.csv's largest "
+                                          "|max_run_grade_pct| (L572); empty without a ramp or a grade_source"),
     ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / other (L377; a foot "
                                     "track's from the waist barometer, L378); empty without a barometer"),
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference; empty when the reference has no "
@@ -1206,6 +1216,8 @@ GAIT_BOUTS: tuple[Column, ...] = (
 
 #: decision L301: ``ramps.csv`` (``track`` / ``run``), one row per ramp: runs of consistent grade and their landings
 RAMPS: tuple[Column, ...] = (
+    ("path", _ID, "text", "track-all's OUT/ramps.csv only: the session's path, sessions.csv's key (L572)"),
+    ("visit", _ID, "text", "track-all's OUT/ramps.csv only: sessions.csv's visit (C82; L572)"),
     ("ramp", "index", "integer", "the ramp's number, from 1 in walking order"),
     ("start_s", "s", "number", "its first row's start_s"),
     ("end_s", "s", "number", "its last row's end_s"),
@@ -1224,6 +1236,36 @@ RAMPS: tuple[Column, ...] = (
     ("duration_s", "s", "number", "end_s - start_s (L467)"),
     ("speed_mps", "m/s", "number", "along_slope_m over duration_s: the runs' length along the surface over the "
                                    "ramp's time, landings' time included (L467)"),
+    ("max_run_rise_m", "m", "number", "the largest rise of one run (signed; L569)"),
+    ("over_1_12", _ID, "true/false", "the steepest run's grade |max_run_grade_pct| is over 1:12 = 8.33 % (ADA 2010 "
+                                     "sec. 405.2; L569); a grade read 0.5-1 point off can decide it"),
+    ("over_1_20", _ID, "true/false", "|max_run_grade_pct| is over 1:20 = 5 % (steeper than a walking surface, ADA "
+                                     "2010 sec. 403.3; L569)"),
+    ("run_rise_over_0_76", _ID, "true/false", "|max_run_rise_m| is over 0.76 m, a run's largest rise (ADA 2010 sec. "
+                                              "405.6; L569)"),
+    *_ends("its first row's start", "its last row's end"),
+    *_clocks("start_s", "end_s"),
+)
+
+#: decision L568: ``ramp_runs.csv`` (``track`` / ``run``), one row per run and per landing of each ramps.csv ramp
+RAMP_RUNS: tuple[Column, ...] = (
+    ("ramp", "index", "integer", "ramps.csv's ramp the row belongs to"),
+    ("part", "index", "integer", "the run's or landing's number within the ramp, from 1 in walking order"),
+    ("kind", _ID, "text", "run (rows of one grade sign, 3 % up to the stair grade, 2 m or more; L301) or landing "
+                          "(the rows between two runs)"),
+    ("start_s", "s", "number", "its first row's start_s"),
+    ("end_s", "s", "number", "its last row's end_s"),
+    ("horizontal_m", "m", "number", "the rows' horizontal length; a landing's in whole strides, resolved to one "
+                                    "stride (a 1.0 m landing can read 1.7 m)"),
+    ("rise_m", "m", "number", "the rows' summed dz_m (signed, + up)"),
+    ("grade_pct", "%", "number", "100 x rise_m / horizontal_m"),
+    ("n_steps", "count", "integer", "rows of steps.csv"),
+    ("over_1_12", _ID, "true/false", "a run's |grade_pct| over 1:12 = 8.33 % (ADA 2010 sec. 405.2; L569); empty "
+                                     "on a landing"),
+    ("over_1_20", _ID, "true/false", "a run's |grade_pct| over 1:20 = 5 % (L569); empty on a landing"),
+    ("run_rise_over_0_76", _ID, "true/false", "a run's |rise_m| over 0.76 m (ADA 2010 sec. 405.6; L569); empty on "
+                                              "a landing"),
+    *_ends("its first row's start", "its last row's end"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -1245,6 +1287,7 @@ STAIRS: tuple[Column, ...] = (
     ("n_stairs", "count", "integer", "round(|height_m| / --stair-rise); empty without it: a stride holds 2 stairs "
                                      "step-over-step, 1 step-to-step, so strides do not count stairs (L432)"),
     ("stairs_per_min", "1/min", "number", "60 x n_stairs / time_s; empty without --stair-rise"),
+    *_ends("its first stride's start", "its last stride's end"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -1556,7 +1599,7 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, TEN_M_WALK_TRIAL_TABLE,
-    FREEZES, FLIGHTS, RAMPS, STAIRS, RIDES, WAIST_STEPS,
+    FREEZES, FLIGHTS, RAMPS, RAMP_RUNS, STAIRS, RIDES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 

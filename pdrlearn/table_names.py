@@ -20,6 +20,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "freezes.csv",
                                 "flights.csv",  # W417
                                 "ramps.csv",  # L301
+                                "ramp_runs.csv",  # L568
                                 "stairs.csv",  # L432
                                 "rides.csv",  # L377
                                 "steps.csv", "steps.csv (foot)",  # E137

@@ -1201,6 +1201,12 @@ def track_all(
             _write_csv_atomic(subjects, tmp / "subjects.csv")
         _write_csv_atomic(combined_bouts(tmp, rows), tmp / "bouts.csv", pooled=True)  # L165: every session's bouts
         _write_csv_atomic(strides, tmp / "strides.csv", pooled=True)  # decision E163: every session's strides
+        from pdrlearn.track.grade import RAMP_COLUMNS
+
+        # decision L572: every session's ramps, as bouts.csv (L165), for a route audit over several sessions
+        _write_csv_atomic(combined_table(tmp, rows, "ramps.csv", RAMP_COLUMNS,  # a reused older table: new columns
+                                         lambda b: b.reindex(columns=[*b, *(c for c in RAMP_COLUMNS if c not in b)])),
+                          tmp / "ramps.csv", pooled=True)
         if settings.get("per_s") is not None:  # decision L277: every session's periods, as bouts.csv (L165)
             from pdrlearn.track.periods import PERIOD_COLUMNS
 
@@ -1236,7 +1242,7 @@ def track_all(
         typer.echo(f"track-all: {len(results) - len(failed) - len(skipped)}/{len(results)} sessions tracked"
                    + (f", {len(skipped)} skipped (split parts at rest, decision B389)" if skipped else "")
                    + (f" ({len(reused)} reused from an earlier run, --resume)" if resume else "") + f"; wrote {out}/"
-                   "<session>/, sessions.csv, groups.csv, bouts.csv, strides.csv, "
+                   "<session>/, sessions.csv, groups.csv, bouts.csv, strides.csv, ramps.csv, "
                    + ("periods.csv, " if settings.get("per_s") is not None else "")
                    + ("" if subjects is None else "subjects.csv, ")
                    + ("" if changes is None else

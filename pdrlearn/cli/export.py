@@ -688,6 +688,9 @@ def run(
             flights = _track.flights_line(summary)  # decision L432: as track's line (review R3 finding 6)
             if flights:
                 typer.echo(flights)
+            ramps = _track.written_ramps_line(summary, out)  # decision L571: as track's line
+            if ramps:
+                typer.echo(ramps)
 
 
 def _foot_checks(session) -> None:
@@ -1104,17 +1107,19 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         write_table_csv(steps, tmp / "steps.csv")  # decision E164: an epoch time keeps its decimals
         write_table_csv(result.trajectory, tmp / "trajectory.csv")
         # L124 (E98), L200, L202: bouts.csv, turns.csv ... as track; E144: its clock columns
-        for name, table in event_tables(result, bouts, start=start).items():
+        tables = event_tables(result, bouts, start=start)
+        for name, table in tables.items():
             write_table_csv(table, tmp / name)
         if plot:  # decision L533
             plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run",
                        dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
         from pdrlearn.track.geoexport import write_geo_files
+        from pdrlearn.track.ramp_audit import route_features
 
         write_geo_files(tmp, result.trajectory, session=summary.get("session") or source,  # decision L363, as track
                         pipeline=summary.get("pipeline"), distance_m=summary.get("distance_m"), start=start,
-                        with_ele=with_ele)
+                        with_ele=with_ele, features=route_features(tables))  # decision L570: ramps, flights
         write_run_json(tmp, record)
         if redact:  # decision E176
             from pdrlearn.redact import redact_folder

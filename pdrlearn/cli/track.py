@@ -297,6 +297,18 @@ def flights_line(summary: dict) -> str | None:
                                      ", n_stairs with --stair-rise METRES") + ")")
 
 
+def written_ramps_line(summary: dict, out: Path | None) -> str | None:
+    """Decision L571: the printed ramps line of a track (``track`` and ``run``) from its written ramps.csv in
+    ``out``; None without a ramp."""
+    if out is None or not summary.get("n_ramps") or not (Path(out) / "ramps.csv").is_file():
+        return None
+    import pandas as pd
+
+    from pdrlearn.track.ramp_audit import ramps_line
+
+    return ramps_line(pd.read_csv(Path(out) / "ramps.csv"))
+
+
 def track(
     session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
     out: Path = typer.Option(..., "--out", "-o", help="Output folder (created; an existing track only with --force)."),
@@ -1264,6 +1276,9 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
     flights = flights_line(summary)  # decision L432: the stair flights
     if flights:
         typer.echo(flights)
+    ramps = written_ramps_line(summary, out)  # decision L571: the ramps, beside the stair flights
+    if ramps:
+        typer.echo(ramps)
     if summary.get("time_span_s") is not None:  # decision L275: where the time went, summing to the span
         typer.echo(f"time {summary['time_span_s']:.1f} s: walking {summary['time_walking_s']:.1f} s, between steps "
                    f"{summary['time_between_steps_s']:.1f} s, no steps {summary['time_no_steps_s']:.1f} s, no data "
@@ -1272,7 +1287,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
         typer.echo(posture_line(summary, waist_unit and summary.get("pipeline") == "plasys", tug_from_waist))
     from pdrlearn.track.geoexport import GEO_FILES
 
-    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, "
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, ramp_runs.csv, "
                # decision L440: no stairs.csv on the lower back
                f"{'stairs.csv, ' if (out / 'stairs.csv').is_file() else ''}"
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"

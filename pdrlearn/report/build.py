@@ -232,12 +232,16 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
             if tests is not None:
                 tables.append(tests)
         sections.append(Section("Tracking", tables=tables))
+        from pdrlearn.report.route import route_section
         from pdrlearn.report.time_course import time_course_section
 
         for p in tracks:  # decision L386: periods.csv, laps.csv and the rests of bouts.csv beside a summary.json
             course = time_course_section(p.parent, run_label(p, root))
             if course is not None:
                 sections.append(course)
+            route = route_section(p.parent, _read_json(p), run_label(p, root))  # decision L571: ramps, stairs, climb
+            if route is not None:
+                sections.append(route)
     for p in find("gait_summary.json"):  # decision C79: a `pdrlearn gait` output folder
         from pdrlearn.report.gait import gait_section
 

@@ -79,7 +79,8 @@ def clinical_tables(result, bouts) -> dict:
     ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
     sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk; with a TUG time its
     phases, ``tug_phases.csv``, decision W293; with a TUG trial, ``tug_trials.csv``, W325) and ``freezes.csv``
-    (decision W213: the freeze index's episodes of the tracked unit), ``ramps.csv`` (decision L301), ``stairs.csv``
+    (decision W213: the freeze index's episodes of the tracked unit), ``ramps.csv`` (decision L301) and
+    ``ramp_runs.csv`` (L568: its runs and landings), ``stairs.csv``
     (decision L432: the stair flights of a foot track, ``n_stairs`` from ``info["stair_rise_m"]``; none on the lower
     back, L440) and, on the lower
     back with a barometer, ``rides.csv`` (decision L377)."""
@@ -93,15 +94,20 @@ def clinical_tables(result, bouts) -> dict:
                                        result.steps)}  # L210; W398: steps per turn
     from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.grade import info_stair_grade
+    from pdrlearn.track.ramp_audit import ramp_run_table, with_end_positions
     from pdrlearn.track.stair_flights import flight_table
 
+    traj = result.trajectory
     with info_stair_grade(result.info):  # decision L469: --stair-grade
-        out["ramps.csv"] = ramp_table(result.steps, result.info)  # decision L301: the ramps (header alone: no grade)
+        # decision L301: the ramps (header alone: no grade); L569: their flags, L570: their ends' positions
+        out["ramps.csv"] = ramp_table(result.steps, result.info, traj)
+        out["ramp_runs.csv"] = ramp_run_table(result.steps, result.info, traj)  # decision L568: runs and landings
         if not _is_lower_back(result.steps):  # decision L440: no stairs.csv on the lower back (no flights to list)
             # decision L432: a foot track's stair flights; n_stairs with --stair-rise
             # decision L442: a declared inclined belt (info["belt_incline_pct"]) has no stair flight: the header alone
-            out["stairs.csv"] = flight_table(result.steps if result.info.get("belt_incline_pct") is None
-                                             else result.steps.iloc[:0], result.info.get("stair_rise_m"))
+            out["stairs.csv"] = with_end_positions(  # decision L570: the flights' ends' positions
+                flight_table(result.steps if result.info.get("belt_incline_pct") is None
+                             else result.steps.iloc[:0], result.info.get("stair_rise_m")), traj)
     from pdrlearn.track.travel import direction_change_table
 
     changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction
@@ -167,17 +173,19 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
 
     write_table_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
     # decisions L124 (E98: the old speed_m_s last), L200, W182, L277; L298: clock columns with a recording start
-    for name, table in event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start"),
-                                     tracked.get("laps"), tracked.get("splits")).items():
+    tables = event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start"),
+                          tracked.get("laps"), tracked.get("splits"))
+    for name, table in tables.items():
         write_table_csv(table, dest / name)
     if plot:
         plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                    session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     from pdrlearn.track.geoexport import write_geo_files
+    from pdrlearn.track.ramp_audit import route_features
 
     # decisions L362, L363: track.gpx and track.geojson of a track with lat/lon (--start, geodetic fixes), none without
     write_geo_files(dest, traj, session=session.name, pipeline=summary.get("pipeline"),
                     distance_m=summary.get("distance_m"), start=tracked.get("start"),
-                    with_ele=bool(tracked.get("start_ele")))
+                    with_ele=bool(tracked.get("start_ele")), features=route_features(tables))  # L570
     return summary, aided

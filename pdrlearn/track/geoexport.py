@@ -11,7 +11,10 @@ With lat/lon in trajectory.csv (a geodetic start ``--start LAT,LON[,ALT]``, or a
   are UTC, so a start written without an offset, a local clock time of no known zone, gives no ``<time>``);
 - ``track.geojson``: an RFC 7946 FeatureCollection (WGS 84, positions ``[lon, lat(, ele)]``, longitude first, RFC
   7946 section 3.1.1): the path as a LineString (a MultiLineString when rows without lat/lon cut it, B281) and
-  Point features at its start and end.
+  Point features at its start and end;
+- decision L570: each ramp (ramps.csv) and stair flight (stairs.csv) as a LineString feature of the path between its
+  start and end times (properties: kind, number, direction, grade_pct, rise_m, L569's flags, ...:
+  :func:`pdrlearn.track.ramp_audit.route_features`) and as a GPX ``<wpt>`` at its start (name, type).
 
 Coordinates are written with 7 decimals (1e-7 degree is ~1 cm), elevations with 2 (cm). Standard library only.
 """
@@ -85,13 +88,23 @@ def _coord(v: float) -> str:
     return f"{v:.{COORD_DECIMALS}f}"
 
 
-def gpx_text(lat, lon, pieces: list[np.ndarray], *, name: str, ele=None, times: list[str] | None = None) -> str:
+def gpx_text(lat, lon, pieces: list[np.ndarray], *, name: str, ele=None, times: list[str] | None = None,
+             waypoints: list[dict] | None = None) -> str:
     """The GPX 1.1 document of the rows ``pieces`` (:func:`geo_pieces`): one ``<trk>`` called ``name`` with a
     ``<trkseg>`` per piece; ``ele`` (m, per row) gives each point's ``<ele>`` where finite, ``times`` its
-    ``<time>`` (GPX 1.1 element order: ele, then time)."""
+    ``<time>`` (GPX 1.1 element order: ele, then time). Decision L570: ``waypoints`` (``lat``, ``lon``, ``name``,
+    ``type``, optional ``ele`` / ``time``) are ``<wpt>`` elements before the track (GPX 1.1: wpt, rte, trk)."""
     ET.register_namespace("", GPX_NS)
     root = ET.Element(f"{{{GPX_NS}}}gpx", {"version": "1.1", "creator": "pdrlearn",
                                             f"{{{_XSI}}}schemaLocation": f"{GPX_NS} {_GPX_XSD}"})
+    for w in waypoints or []:
+        pt = ET.SubElement(root, f"{{{GPX_NS}}}wpt", {"lat": _coord(w["lat"]), "lon": _coord(w["lon"])})
+        if w.get("ele") is not None and math.isfinite(w["ele"]):
+            ET.SubElement(pt, f"{{{GPX_NS}}}ele").text = f"{w['ele']:.{ELE_DECIMALS}f}"
+        if w.get("time") is not None:
+            ET.SubElement(pt, f"{{{GPX_NS}}}time").text = w["time"]
+        ET.SubElement(pt, f"{{{GPX_NS}}}name").text = xml_text(w["name"])
+        ET.SubElement(pt, f"{{{GPX_NS}}}type").text = xml_text(w["type"])
     trk = ET.SubElement(root, f"{{{GPX_NS}}}trk")
     ET.SubElement(trk, f"{{{GPX_NS}}}name").text = xml_text(name)
     for piece in pieces:
@@ -134,12 +147,52 @@ def geojson_dict(lat, lon, pieces: list[np.ndarray], *, properties: dict, ele=No
                          point("start", int(rows[0])), point("end", int(rows[-1]))]}
 
 
+def feature_geometry(t, lat, lon, ele, t0: float, t1: float) -> list[list[float]]:
+    """Decision L570: the RFC 7946 positions of the path from time ``t0`` to ``t1``: the rows' lat / lon (and
+    ``ele`` when given) interpolated at both ends, the rows strictly between them in order; empty where either end
+    has no position (outside the rows with lat / lon)."""
+    ok = np.isfinite(t) & np.isfinite(lat) & np.isfinite(lon) & (np.isfinite(ele) if ele is not None else True)
+    tt = t[ok]
+    if len(tt) < 2 or not (tt[0] <= t0 <= tt[-1] and tt[0] <= t1 <= tt[-1]):
+        return []
+    cols = [lon[ok], lat[ok]] + ([ele[ok]] if ele is not None else [])  # RFC 7946 3.1.1: lon first
+    inner = np.flatnonzero((tt > t0) & (tt < t1))
+    pts = [[float(np.interp(t0, tt, c)) for c in cols], *([float(c[i]) for c in cols] for i in inner),
+           [float(np.interp(t1, tt, c)) for c in cols]]
+    return [[round(v, COORD_DECIMALS if k < 2 else ELE_DECIMALS) for k, v in enumerate(p)] for p in pts]
+
+
+def route_feature_parts(trajectory, features: list[dict], *, with_ele: bool, start: datetime | None,
+                        session: str) -> tuple[list[dict], list[dict]]:
+    """Decision L570: the GeoJSON Features and GPX waypoints of ``features``
+    (:func:`pdrlearn.track.ramp_audit.route_features`) on ``trajectory``; a feature without a position at both ends
+    is left out."""
+    t, lat, lon = (trajectory[c].to_numpy(float) for c in ("t", "lat", "lon"))
+    ele = trajectory["z"].to_numpy(float) if with_ele and "z" in trajectory else None
+    geo, wpts = [], []
+    for f in features:
+        coords = feature_geometry(t, lat, lon, ele, f["start_s"], f["end_s"])
+        if not coords:
+            continue
+        props = {"session": session, **f["properties"], "name": f["name"], "start_s": round(f["start_s"], 3),
+                 "end_s": round(f["end_s"], 3)}
+        geo.append({"type": "Feature", "geometry": {"type": "LineString", "coordinates": coords},
+                    "properties": props})
+        when = utc_times(start, [f["start_s"]], where=session)
+        wpts.append({"lat": coords[0][1], "lon": coords[0][0], "ele": coords[0][2] if ele is not None else None,
+                     "time": when[0] if when else None, "name": f["name"], "type": f["properties"]["kind"]})
+    return geo, wpts
+
+
 def write_geo_files(dest: Path, trajectory, *, session: str, pipeline: str | None, distance_m: float | None,
-                    start: datetime | None = None, with_ele: bool = False) -> tuple[str, ...]:
+                    start: datetime | None = None, with_ele: bool = False,
+                    features: list[dict] | None = None) -> tuple[str, ...]:
     """Decisions L362, L363: write :data:`GEO_FILES` into the folder ``dest`` (the caller's temporary folder: they
     appear with the track's other files or not at all) from ``trajectory``'s ``t``, ``lat``, ``lon`` (and ``z``
     as the elevation when ``with_ele``: the start's altitude was given); ``start``: the recording's clock start
-    (L298) for the points' times. Returns the names written: none when no row has lat/lon (no geodetic start)."""
+    (L298) for the points' times; ``features`` (decision L570: the ramps and stair flights,
+    :func:`pdrlearn.track.ramp_audit.route_features`) as GeoJSON features and GPX waypoints. Returns the names
+    written: none when no row has lat/lon (no geodetic start)."""
     if "lat" not in trajectory or "lon" not in trajectory:
         return ()
     lat, lon = (trajectory[c].to_numpy(float) for c in ("lat", "lon"))
@@ -148,10 +201,14 @@ def write_geo_files(dest: Path, trajectory, *, session: str, pipeline: str | Non
         return ()
     ele = trajectory["z"].to_numpy(float) if with_ele and "z" in trajectory else None
     times = utc_times(start, trajectory["t"].to_numpy(float), where=session) if "t" in trajectory else None
-    (Path(dest) / GEO_FILES[0]).write_text(gpx_text(lat, lon, pieces, name=session, ele=ele, times=times))
+    marks, wpts = (route_feature_parts(trajectory, features, with_ele=ele is not None, start=start, session=session)
+                   if features and "t" in trajectory else ([], []))  # decision L570
+    (Path(dest) / GEO_FILES[0]).write_text(gpx_text(lat, lon, pieces, name=session, ele=ele, times=times,
+                                                    waypoints=wpts))
     finite = distance_m is not None and math.isfinite(float(distance_m))
     props = {"session": session, "pipeline": pipeline, "distance_m": round(float(distance_m), 3) if finite else None}
     doc = geojson_dict(lat, lon, pieces, properties=props, ele=ele, times=times)
+    doc["features"] += marks
     # compact (a long walk's path is thousands of positions); RFC 8259 JSON: no NaN is ever written
     (Path(dest) / GEO_FILES[1]).write_text(json.dumps(doc, separators=(",", ":"), allow_nan=False) + "\n")
     return GEO_FILES

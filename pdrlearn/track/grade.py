@@ -52,7 +52,10 @@ GRADE_WINDOW_ROWS = {"foot": 1, "waist": 3}
 
 RAMP_COLUMNS = ("ramp", "start_s", "end_s", "direction", "n_runs", "landings", "horizontal_run_m", "landing_m",
                 "along_slope_m", "rise_m", "mean_grade_pct", "max_run_grade_pct", "n_steps",
-                "duration_s", "speed_mps")  # decision L467
+                "duration_s", "speed_mps",  # decision L467
+                "max_run_rise_m", "over_1_12", "over_1_20", "run_rise_over_0_76",  # decision L569
+                "start_x_m", "start_y_m", "start_lat", "start_lon", "end_x_m", "end_y_m", "end_lat",
+                "end_lon")  # decision L570
 
 
 def grade_source(steps: pd.DataFrame, info: dict | None) -> str | None:
@@ -234,35 +237,48 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
         rows = np.concatenate([np.arange(a, b + 1) for a, b, _ in rs])
         run_l, rise = float(length[rows].sum()), float(dz[rows].sum())
         grades = [100.0 * dz[a:b + 1].sum() / length[a:b + 1].sum() for a, b, _ in rs]
+        rises = [float(dz[a:b + 1].sum()) for a, b, _ in rs]  # decision L569: each run's own rise
         out.append({"first": rs[0][0], "last": rs[-1][1], "runs": [(a, b) for a, b, _ in rs],
                     "direction": "up" if rs[0][2] > 0 else "down", "n_runs": len(rs), "landings": len(rs) - 1,
                     "horizontal_run_m": run_l,
                     "landing_m": float(length[rs[0][0]:rs[-1][1] + 1].sum() - run_l),
                     "along_slope_m": float(np.hypot(length[rows], dz[rows]).sum()), "rise_m": rise,
                     "mean_grade_pct": 100.0 * rise / run_l,
-                    "max_run_grade_pct": float(max(grades, key=abs)), "n_steps": int(rs[-1][1] - rs[0][0] + 1)})
+                    "max_run_grade_pct": float(max(grades, key=abs)), "n_steps": int(rs[-1][1] - rs[0][0] + 1),
+                    "max_run_rise_m": max(rises, key=abs)})
     return out
 
 
-def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
-    """``ramps.csv`` (decision L301): one row per ramp of :func:`ramp_runs` on the rows' ``length_m`` / ``dz_m``
-    (numbered from 1, with its first row's ``start_s`` and last row's ``end_s``); no rows (the header alone) where
-    :func:`grade_source` is None."""
-    src = grade_source(steps, info)
-    if src is None:
-        return pd.DataFrame(columns=list(RAMP_COLUMNS))
+def track_ramps(steps: pd.DataFrame, info: dict | None) -> tuple[list[dict], np.ndarray, np.ndarray]:
+    """Decisions L301, L568: :func:`ramp_runs` of a track's rows (the valid rows' ``length_m`` / ``dz_m``, the
+    unit's window, L314's stair rows, the stair grade in force) with the rows' lengths and height changes it read;
+    no ramps where :func:`grade_source` is None."""
+    if grade_source(steps, info) is None:
+        return [], np.zeros(0), np.zeros(0)
     valid = _valid(steps)
     length = np.where(valid, pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float), 0.0)
     dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
     unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
+    found = ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
+                      stair_grade_pct=stair_min_grade_pct(steps))  # decision L463
+    return found, np.abs(length), dz
+
+
+def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame | None = None) -> pd.DataFrame:
+    """``ramps.csv`` (decision L301): one row per ramp of :func:`ramp_runs` on the rows' ``length_m`` / ``dz_m``
+    (numbered from 1, with its first row's ``start_s`` and last row's ``end_s``), L569's compliance flags and
+    (L570) its ends' positions on ``trajectory`` (empty without one); no rows (the header alone) where
+    :func:`grade_source` is None."""
+    from pdrlearn.track.ramp_audit import compliance_flags, with_end_positions
+
     rows = []
-    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
-                                    stair_grade_pct=stair_min_grade_pct(steps)), start=1):  # decision L463
+    for k, r in enumerate(track_ramps(steps, info)[0], start=1):
         t0, t1 = float(steps["start_s"].iloc[r["first"]]), float(steps["end_s"].iloc[r["last"]])
         rows.append({"ramp": k, "start_s": t0, "end_s": t1, **{c: r[c] for c in RAMP_COLUMNS if c in r},
                      "duration_s": t1 - t0,  # decision L467
-                     "speed_mps": r["along_slope_m"] / (t1 - t0) if t1 > t0 else np.nan})
-    return pd.DataFrame(rows, columns=list(RAMP_COLUMNS))
+                     "speed_mps": r["along_slope_m"] / (t1 - t0) if t1 > t0 else np.nan,
+                     **compliance_flags(r["max_run_grade_pct"], r["max_run_rise_m"])})  # decision L569
+    return with_end_positions(pd.DataFrame(rows, columns=list(RAMP_COLUMNS)), trajectory)
 
 
 def climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray | None:
@@ -284,9 +300,11 @@ def grade_summary(steps: pd.DataFrame, info: dict | None) -> dict:
     the valid rows; None without a source) and ``n_ramps`` (rows of :func:`ramp_table`; None without a source)."""
     src = grade_source(steps, info)
     if src is None:
-        return {"grade_source": None, "distance_along_slope_m": None, "n_ramps": None}
+        return {"grade_source": None, "distance_along_slope_m": None, "n_ramps": None, "max_ramp_grade_pct": None}
     valid = _valid(steps)
     length = pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float)[valid]
     dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)[valid]
-    return {"grade_source": src, "distance_along_slope_m": along_slope_m(length, dz),
-            "n_ramps": int(len(ramp_table(steps, info)))}
+    ramps = track_ramps(steps, info)[0]
+    steepest = max((abs(r["max_run_grade_pct"]) for r in ramps), default=None)  # decision L572
+    return {"grade_source": src, "distance_along_slope_m": along_slope_m(length, dz), "n_ramps": len(ramps),
+            "max_ramp_grade_pct": steepest}

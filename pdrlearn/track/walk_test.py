@@ -174,6 +174,20 @@ def t25fw(steps: pd.DataFrame, walkway: bool = False) -> dict:
                                              "a shorter walk is not timed"), max_bout_m=_bout_limit(walkway))
 
 
+def _climb_tables(steps: pd.DataFrame, a: int, b: int) -> str:
+    """Decision L571: where the climb of the rows ``a:b`` is listed - ramps.csv when its stair strides (L179) are
+    all of climbs L302 calls ramps (under the stair grade; ramps.csv lists them with --altitude fused, L300),
+    stairs.csv when none are, both otherwise."""
+    from pdrlearn.track.evaluate import ramp_climb_rows
+    from pdrlearn.track.gait import stair_rows
+
+    stair = stair_rows(steps.iloc[a:b])
+    ramp = ramp_climb_rows(steps)[a:b] & stair
+    if ramp.any() and ramp.sum() == stair.sum():
+        return "it is a ramp: ramps.csv has it (with --altitude fused, L300)"
+    return "stairs.csv has the flights" + (", ramps.csv the ramps (with --altitude fused)" if ramp.any() else "")
+
+
 def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: float, decel_m: float,
                max_bout_m: float | None = None):
     """Decisions L312, L313, L434: the bout ``steps.iloc[a:b]`` timed over the ``timed_m`` after its first
@@ -196,9 +210,10 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
         return f"a stride of the first {need:g} m has no length or no time (decision L313); not timed"
     n_stair = flight_strides(steps.iloc[a:a + k])
     if n_stair:  # decision L434: a walkway test is timed on level ground only; L438: a flight, not one stride
-        return (f"the first {need:g} m of the walk hold a stair flight of {n_stair} stair stride(s) "
+        # decision L571: L179's stair strides are a ramp's too (L303): the note names the table that has the climb
+        return (f"the first {need:g} m of the walk hold a climb of {n_stair} ramp or stair stride(s) "
                 f"(|dz_m| >= 0.10 m, L179; 2 or more in a row, L438): a {timed_m:g} m walk test is "
-                "timed on a level walkway (decision L434); not timed - stairs.csv has the flights")
+                f"timed on a level walkway (decision L434); not timed - {_climb_tables(steps, a, a + k)}")
     end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
     if math.hypot(*end) < STRAIGHT_MIN * need:
         return (f"the first {need:g} m of the walk are not straight: a turn or a reversal "
