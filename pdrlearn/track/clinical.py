@@ -427,13 +427,19 @@ def _cut_at_times(t: np.ndarray, a: int, b: int, cut_s: np.ndarray) -> list[tupl
 def foot_turn_stops(st: pd.DataFrame) -> np.ndarray:
     """Decision L577: (N - 1,) the intervals of a foot table (rows in ``start_s`` order) a turn does not run across:
     a pause (:func:`_intervals`, L104 / L119 / L372: also the bouts' boundary, :func:`bout_rows`) or a rest of
-    the tracked foot of :data:`PAUSE_MIN_S` or more between the two rows (:func:`still_before`: no stride covers
-    it); the turn after it starts with that interval (a foot row's own turn is its stride, after the rest). All
+    the tracked foot between the two rows (:func:`still_before`: no stride covers it) :data:`PAUSE_MIN_S` or more
+    longer than the table's median such rest (the walker's own rhythm, as L104's pause: a slow walker's turning
+    strides rest long between them; L119's turn allowance makes a 1-2 s stand between two turns on the spot no
+    pause); the turn after it starts with that interval (a foot row's own turn is its stride, after the rest). All
     False on a lower-back table (L210 / L370 time and cut its turns by the yaw rate) and on fewer than two rows."""
     n = max(len(st) - 1, 0)
     if n == 0 or not is_foot_table(st):
         return np.zeros(n, bool)
-    return _intervals(st)[1] | (still_before(st)[1:] >= PAUSE_MIN_S)
+    rest = still_before(st)[1:]
+    ok = _valid(st)
+    pair = ok[:-1] & ok[1:] & np.isfinite(rest)
+    usual = float(np.median(rest[pair])) if pair.any() else 0.0
+    return _intervals(st)[1] | (pair & (rest - usual >= PAUSE_MIN_S))
 
 
 def _cut_before(a: int, b: int, stops: np.ndarray) -> list[tuple[int, int]]:
@@ -444,7 +450,7 @@ def _cut_before(a: int, b: int, stops: np.ndarray) -> list[tuple[int, int]]:
 
 def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = TURN_EDGES,
                 reversal: bool | None = None, first_own: bool | None = None, foot_split: bool | None = None,
-                cut_s=None, sustained: bool = True) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
+                cut_s=None, sustained: bool = False) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
     """The table in ``start_s`` order and each turn's ``(angle deg, a, b, first, last)``: its turning intervals
     ``[a, b)`` of the row-to-row heading changes (interval i runs from row i to row i + 1) and ``[first, last)``
     the intervals summed into its angle (``a``/``b`` widened by L181's edges). ``reversal`` (decision L368, None =
@@ -453,9 +459,9 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
     row (``_lead`` True, :func:`_with_lead_row`) so that its first stride's own turn is an interval; ``foot_split``
     (decision L370, None = :data:`TURN_SPLIT_FOOT`): ``reversal`` on a foot table whose heading is its strides' own
     turns; ``cut_s`` (L370): times (s) a run is cut at (:func:`opposite_yaw_cuts`, :func:`_cut_at_times`);
-    ``sustained`` (decision W466): a lower-back table's run is cut where its heading goes back by
-    :data:`TURN_COUNT_MIN_DEG` (:func:`split_sustained_reversals`); decision L577: a foot table's run ends at
-    :func:`foot_turn_stops`."""
+    ``sustained`` (decision W466, an option: its rule was not met on waist-pll): a lower-back table's run is
+    cut where its heading goes back by :data:`TURN_COUNT_MIN_DEG` (:func:`split_sustained_reversals`); decision
+    L577: a foot table's run ends at :func:`foot_turn_stops`."""
     if len(steps) < 2 or "heading_rad" not in steps:
         return steps, []
     reversal = TURN_SPLIT_REVERSAL if reversal is None else bool(reversal)
@@ -658,7 +664,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                yaw_fractions: bool | None = None, reversal: bool | None = None,
                first_own: bool | None = None, foot_split: bool | None = None,
                yaw_split: bool | None = None, yaw_angle: bool | None = None,
-               sustained: bool = True) -> pd.DataFrame:
+               sustained: bool = False) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table (or of a :class:`~pdrlearn.track.base.TrackResult`, decision W330: its ``steps`` with its
     ``info["yaw_turns"]``; ``result.turns()`` adds its bouts): ``start_s`` / ``end_s`` the start of the first and
