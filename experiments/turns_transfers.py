@@ -370,6 +370,11 @@ def real_w328() -> None:
     real231({"today": {"yaw_split": False, "yaw_angle": False}, "W328": {"yaw_split": True, "yaw_angle": True}})
 
 
+def real_w466() -> None:
+    """Decision W466 on the mobgap turns (:func:`real231`): L370's runs against W466's sustained-reversal cut."""
+    real231({"today": {"sustained": False}, "W466": {"sustained": True}})
+
+
 def real255() -> None:
     """Decision L255 on the mobgap turns (:func:`real231` with :data:`CONFIGS255`)."""
     real231(CONFIGS255)
@@ -380,7 +385,7 @@ def real231(configs=CONFIGS231) -> None:
     largest |angle| of each table (``configs``, :data:`CONFIGS231`), pooled over the three recordings."""
     folders = [Path("datasets/real") / n for n in ("mobgap_HA001_Test11_Trial1",)]
     folders += [Path("datasets/external") / n for n in ("mobgap_HA002_Test11_Trial1", "mobgap_MS001_Test11_Trial1")]
-    pooled, n_det, n_ref = {}, {}, 0
+    pooled, n_det, n_ref, n_free = {}, {}, 0, {}
     for f in folders:
         s = read_session(f)
         ref = s.extras["turns"]
@@ -392,11 +397,15 @@ def real231(configs=CONFIGS231) -> None:
                 tt = turn_table(res.steps, detected_bouts(res.steps), timing="yaw",
                                 yaw_turns=res.info.get("yaw_turns"), **kw)
                 n_det[(name, c)] = n_det.get((name, c), 0) + len(tt)
+                free = sum(not ((ref["start_s"] <= r.end_s) & (ref["end_s"] >= r.start_s)).any()  # W466's (a)
+                           for r in tt.itertuples())
+                n_free[(name, c)] = n_free.get((name, c), 0) + free
                 pooled.setdefault((name, c), []).extend(_real_line(f, f"{name} [{c}]", "yaw", big, ref, res, tt,
                                                                    all_columns=True))
     for (name, c), d in pooled.items():
         a = np.asarray(d, float).reshape(-1, 5)
-        print(f"pooled {name} [{c}]: {n_det[(name, c)]} detected turns, {len(a)} of {n_ref} reference turns >= 80 "
+        print(f"pooled {name} [{c}]: {n_det[(name, c)]} detected turns ({n_free[(name, c)]} overlapping no "
+              f"reference turn), {len(a)} of {n_ref} reference turns >= 80 "
               f"deg overlapped; |duration error| {med(np.abs(a[:, 0]))} s ({med(a[:, 0])}), |start| "
               f"{med(np.abs(a[:, 3]))} s, |end| {med(np.abs(a[:, 4]))} s, ||angle| error| {med(np.abs(a[:, 1]))} deg "
               f"({med(a[:, 1])}), sign agreement {np.mean(a[:, 2]) if len(a) else float('nan'):.2f}")
@@ -534,5 +543,5 @@ def real345() -> None:
 
 if __name__ == "__main__":
     {"sim": sim, "sim28": sim28, "real": real, "sim210": sim210, "real210": real210, "sim231": sim231,
-     "real231": real231, "sim255": sim255, "real255": real255, "real_w328": real_w328,
+     "real231": real231, "sim255": sim255, "real255": real255, "real_w328": real_w328, "real_w466": real_w466,
      "sim345": sim345, "real345": real345}[sys.argv[1]]()

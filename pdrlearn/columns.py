@@ -1007,8 +1007,8 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("event_s", "s", "number", "the step detector's initial contact (IC) in the stride (--streaming: empty, or the "
                                "streamed IC with --contacts; E49-E51)"),
     ("length_m", "m", "number", "horizontal distance the stride moved after the class rules; negative only when "
-                                "classed backward and no side step (L65, C137); 0 for a gap row or an impossible "
-                                "stride"),
+                                "classed backward and no side step nor turn on the spot (L65, C137, L578); 0 for a "
+                                "gap row or an impossible stride"),
     ("raw_length_m", "m", "number", "the estimate before the rules, signed with the foot's forward axis at the "
                                     "stride start (< 0: it moved backwards in that frame)"),
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
@@ -1024,7 +1024,8 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("terrain_dz", _ID, "text", "offline: up / down / flat from dz_m by L39's 0.10 m, with or without a model "
                                 "(not a class; empty on a gap row; L424)"),
     ("direction", _ID, "text", "M3's direction class, the model's (empty without a model; L224); on a side step "
-                               "(sideways) a guess, its travel says the side (C137)"),
+                               "(sideways) a guess, its travel says the side (C137); on a stride turning on the "
+                               "spot (travel turn) too (L578)"),
     ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
                                            "L224)"),
     ("travel", _ID, "text", "the stride's travel direction from the foot's facing (L412): forward, backward (as "

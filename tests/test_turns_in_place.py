@@ -45,9 +45,11 @@ def test_reversal_ends_a_turn_and_first_stride_counts():
     assert tt.loc[1, "start_s"] >= 16.16 and tt.loc[1, "end_s"] <= 21.06
     assert clinical.turns(st).tolist() == pytest.approx([360.0, -360.0])  # turn_count's turns
     assert clinical.turn_rows(st)[1].tolist() == [0, 3]  # the rows a bout counts them in (real rows, no rest row)
-    # the trial's readings: one run summed both turns (-120 deg); without the first stride +240 deg
+    # the trial's readings were one run summing both turns (-120 deg); decision L577 (session 41): the stand
+    # between them now ends a foot turn by itself, so without L368's cut the turns stay apart (+240 deg without
+    # the first stride)
     old = turn_table(st, foot_split=False, first_own=False)
-    assert old["angle_deg"].tolist() == pytest.approx([-120.0])
+    assert old["angle_deg"].tolist() == pytest.approx([240.0, -360.0])
     assert turn_table(st, first_own=False)["angle_deg"].tolist() == pytest.approx([240.0, -360.0])
     # a small opposite change (a slower stride's noise) stays in its turn; L368's cut needs 30 deg
     assert clinical.split_reversals(np.array([100.0, -10.0, 100.0]), 0, 3) == [(0, 3)]

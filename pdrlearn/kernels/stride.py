@@ -27,6 +27,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
+from pdrlearn.kernels.backward import BACKWARD_MAX_TURN_DEG
 from pdrlearn.kernels.contact import MAX_STRIDE_S
 from pdrlearn.kernels.histospline import upsample_block_means
 from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
@@ -584,7 +585,15 @@ def waist_forward_flip(foot_headed: bool, direction, length: float, side_offset:
     return math.pi
 
 
-def travel_sign_one(length: float, heading: float, direction=None, sideways: bool = False) -> tuple[float, float]:
+def _turns_on_the_spot(turn_rad) -> np.ndarray:
+    """Decision L578: (n,) bool, the strides turning :data:`pdrlearn.kernels.backward.BACKWARD_MAX_TURN_DEG` or more
+    (steps.csv ``travel`` = turn, L203 amended / L412): a turn on the spot, no backward travel."""
+    with np.errstate(invalid="ignore"):
+        return np.abs(np.asarray(turn_rad, dtype=float)) >= math.radians(BACKWARD_MAX_TURN_DEG)
+
+
+def travel_sign_one(length: float, heading: float, direction=None, sideways: bool = False,
+                    turn_rad: float = math.nan) -> tuple[float, float]:
     """Decision L65: the ``(length_m, heading_rad)`` a stride is REPORTED with. A negative length stays only
     when the stride's direction class is ``"backward"`` (the thesis' sign rule); any other negative length (no
     class, or a "forward" class the bayes rule left the estimate's sign) becomes its magnitude along the
@@ -593,22 +602,27 @@ def travel_sign_one(length: float, heading: float, direction=None, sideways: boo
     turnaround), so without this a turnaround stride read -1.3 m with its heading reversed. Apply it after
     the position update (the position is the same either way). Decision C137: a ``sideways`` stride (L219 / L486's
     side step) is no backward travel (L270) whatever its class, so it keeps no negative length either: a model that
-    never saw side steps classes them backward, and steps.csv read -0.38 m side strides (trial T2, finding 3)."""
-    if length < 0.0 and (direction != "backward" or sideways):
+    never saw side steps classes them backward, and steps.csv read -0.38 m side strides (trial T2, finding 3).
+    Decision L578: nor does a stride turning ``turn_rad`` (its own turn) through ``BACKWARD_MAX_TURN_DEG`` or more
+    (travel = turn): a pivot stride of a turn on the spot the model classed backward read -0.15 m (trial T1, F4)."""
+    if length < 0.0 and (direction != "backward" or sideways or bool(_turns_on_the_spot([turn_rad])[0])):
         return -length, heading + math.pi
     return length, heading
 
 
 def travel_sign(length: np.ndarray, heading: np.ndarray, direction=None,
-                sideways=None) -> tuple[np.ndarray, np.ndarray]:
+                sideways=None, turn_rad=None) -> tuple[np.ndarray, np.ndarray]:
     """:func:`travel_sign_one` on arrays (``direction``: one class or None per stride, or None for all;
-    ``sideways``: (n,) bool, decision C137, or None: none)."""
+    ``sideways``: (n,) bool, decision C137, or None: none; ``turn_rad``: (n,) each stride's own turn, decision
+    L578, or None: none)."""
     length = np.asarray(length, dtype=float)
     heading = np.asarray(heading, dtype=float)
     back = (np.zeros(len(length), dtype=bool) if direction is None
             else np.asarray(direction, dtype=object) == "backward")
     if sideways is not None:
         back &= ~np.asarray(sideways, dtype=bool)  # decision C137: a side step keeps no negative length
+    if turn_rad is not None:
+        back &= ~_turns_on_the_spot(turn_rad)  # decision L578: nor does a turn on the spot
     flip = (length < 0.0) & ~back
     return np.where(flip, -length, length), np.where(flip, heading + math.pi, heading)
 

@@ -381,6 +381,32 @@ def split_reversals(dh: np.ndarray, a: int, b: int, min_deg: float = PAUSE_MAX_T
     return out
 
 
+def split_sustained_reversals(dh: np.ndarray, a: int, b: int,
+                              min_deg: float = TURN_COUNT_MIN_DEG) -> list[tuple[int, int]]:
+    """Decision W466: the turning run ``[a, b)`` of heading changes ``dh`` (deg) cut after each extreme of its
+    summed heading from which the heading then goes back by ``min_deg`` or more (the turn rate changes sign in a
+    sustained way: the way back is itself a turn of ``turn_count``'s size) - a slow figure of eight whose two loops
+    are one turning run of net ~0 deg gives its two loops. Hysteresis: a back-and-forth smaller than ``min_deg``
+    (a step heading's wobble, L368's single-interval cut is not used) stays in its turn; NaN changes count 0."""
+    cuts, h, trend, lo, hi, i_lo, i_hi = [], 0.0, 0, 0.0, 0.0, a, a
+    for i in range(a, b):
+        h += float(dh[i]) if np.isfinite(dh[i]) else 0.0
+        if h > hi:
+            hi, i_hi = h, i + 1
+        if h < lo:
+            lo, i_lo = h, i + 1
+        if trend >= 0 and hi - h >= min_deg:
+            if trend == 1 and a < i_hi < b:
+                cuts.append(i_hi)  # the run turned left to its top, now back right by min_deg
+            trend, lo, i_lo = -1, h, i + 1
+        elif trend <= 0 and h - lo >= min_deg:
+            if trend == -1 and a < i_lo < b:
+                cuts.append(i_lo)
+            trend, hi, i_hi = 1, h, i + 1
+    edges = [a, *cuts, b]
+    return list(zip(edges[:-1], edges[1:], strict=True))
+
+
 def opposite_yaw_cuts(yaw_turns) -> np.ndarray:
     """Decision L370: the times (s) between each two consecutive yaw-rate turns (records with ``start_s``,
     ``end_s``, ``angle_deg``: a track's ``info["yaw_turns"]``, L210) of opposite sign - the middle of the first's end
@@ -393,14 +419,38 @@ def opposite_yaw_cuts(yaw_turns) -> np.ndarray:
 def _cut_at_times(t: np.ndarray, a: int, b: int, cut_s: np.ndarray) -> list[tuple[int, int]]:
     """Decision L370: the run ``[a, b)`` of intervals (interval i from row time ``t[i]`` to ``t[i + 1]``) cut before
     each interval after its first that spans one of ``cut_s`` (``t[i] <= c < t[i + 1]``)."""
-    cuts = sorted({i for c in cut_s for i in range(a + 1, b) if t[i] <= c < t[i + 1]})
-    edges = [a, *cuts, b]
+    at = np.zeros(len(t), bool)
+    at[[i for c in cut_s for i in range(a + 1, b) if t[i] <= c < t[i + 1]]] = True
+    return _cut_before(a, b, at)
+
+
+def foot_turn_stops(st: pd.DataFrame) -> np.ndarray:
+    """Decision L577: (N - 1,) the intervals of a foot table (rows in ``start_s`` order) a turn does not run across:
+    a pause (:func:`_intervals`, L104 / L119 / L372: also the bouts' boundary, :func:`bout_rows`) or a rest of
+    the tracked foot between the two rows (:func:`still_before`: no stride covers it) :data:`PAUSE_MIN_S` or more
+    longer than the table's median such rest (the walker's own rhythm, as L104's pause: a slow walker's turning
+    strides rest long between them; L119's turn allowance makes a 1-2 s stand between two turns on the spot no
+    pause); the turn after it starts with that interval (a foot row's own turn is its stride, after the rest). All
+    False on a lower-back table (L210 / L370 time and cut its turns by the yaw rate) and on fewer than two rows."""
+    n = max(len(st) - 1, 0)
+    if n == 0 or not is_foot_table(st):
+        return np.zeros(n, bool)
+    rest = still_before(st)[1:]
+    ok = _valid(st)
+    pair = ok[:-1] & ok[1:] & np.isfinite(rest)
+    usual = float(np.median(rest[pair])) if pair.any() else 0.0
+    return _intervals(st)[1] | (pair & (rest - usual >= PAUSE_MIN_S))
+
+
+def _cut_before(a: int, b: int, stops: np.ndarray) -> list[tuple[int, int]]:
+    """Decision L577: the run ``[a, b)`` of intervals cut before each interval after its first flagged in ``stops``."""
+    edges = [a, *(i for i in range(a + 1, b) if stops[i]), b]
     return list(zip(edges[:-1], edges[1:], strict=True))
 
 
 def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = TURN_EDGES,
                 reversal: bool | None = None, first_own: bool | None = None, foot_split: bool | None = None,
-                cut_s=None) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
+                cut_s=None, sustained: bool = False) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
     """The table in ``start_s`` order and each turn's ``(angle deg, a, b, first, last)``: its turning intervals
     ``[a, b)`` of the row-to-row heading changes (interval i runs from row i to row i + 1) and ``[first, last)``
     the intervals summed into its angle (``a``/``b`` widened by L181's edges). ``reversal`` (decision L368, None =
@@ -408,7 +458,10 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
     ``first_own`` (decision L369, None = :data:`TURN_FIRST_OWN`): a foot table's returned table starts with a rest
     row (``_lead`` True, :func:`_with_lead_row`) so that its first stride's own turn is an interval; ``foot_split``
     (decision L370, None = :data:`TURN_SPLIT_FOOT`): ``reversal`` on a foot table whose heading is its strides' own
-    turns; ``cut_s`` (L370): times (s) a run is cut at (:func:`opposite_yaw_cuts`, :func:`_cut_at_times`)."""
+    turns; ``cut_s`` (L370): times (s) a run is cut at (:func:`opposite_yaw_cuts`, :func:`_cut_at_times`);
+    ``sustained`` (decision W466, an option: its rule was not met on waist-pll): a lower-back table's run is
+    cut where its heading goes back by :data:`TURN_COUNT_MIN_DEG` (:func:`split_sustained_reversals`); decision
+    L577: a foot table's run ends at :func:`foot_turn_stops`."""
     if len(steps) < 2 or "heading_rad" not in steps:
         return steps, []
     reversal = TURN_SPLIT_REVERSAL if reversal is None else bool(reversal)
@@ -428,12 +481,16 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
         turning |= _intervals(st)[1] & (np.abs(dh) >= PAUSE_MAX_TURN_DEG)
     # one row under the rate between two turning rows (a turn's slower step) does not split the turn
     turning[1:-1] |= turning[:-2] & turning[2:] & ok[1:-2] & ok[2:-1] & ok[3:] & np.isfinite(dh[1:-1])
+    stops = foot_turn_stops(st)  # decision L577: a foot turn ends at a pause / bout boundary / rest gap
     runs, a = [], None  # the turns' intervals [a, b) in dh
     for i, on in enumerate(np.r_[turning, False]):
         if on and a is None:
             a = i
         elif not on and a is not None:
             parts = _cut_at_times(t, a, i, np.asarray(cut_s, float)) if cut_s is not None else [(a, i)]  # L370
+            parts = [q for p in parts for q in _cut_before(p[0], p[1], stops)]  # decision L577
+            if sustained and not reversal and not is_foot_table(st):  # decision W466
+                parts = [q for p in parts for q in split_sustained_reversals(dh, *p)]
             runs += [r for p in parts for r in (split_reversals(dh, *p) if reversal else [p])]  # decision L368
             a = None
     free = ok[:-1] & ok[1:] & np.isfinite(dh) & ~turning  # decision L181: an interval a turn may take in
@@ -606,7 +663,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                yaw_peak: bool | None = None, whole: bool | None = None,
                yaw_fractions: bool | None = None, reversal: bool | None = None,
                first_own: bool | None = None, foot_split: bool | None = None,
-               yaw_split: bool | None = None, yaw_angle: bool | None = None) -> pd.DataFrame:
+               yaw_split: bool | None = None, yaw_angle: bool | None = None,
+               sustained: bool = False) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table (or of a :class:`~pdrlearn.track.base.TrackResult`, decision W330: its ``steps`` with its
     ``info["yaw_turns"]``; ``result.turns()`` adds its bouts): ``start_s`` / ``end_s`` the start of the first and
@@ -642,7 +700,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     steps were missed); ``yaw_fractions`` (L345, :data:`TURN_YAW_FRACTIONS`) a yaw-timed or yaw-only row's times are
     its yaw-rate turn's ``start_5_s`` / ``end_95_s`` (El-Gohary's boundaries where a record has none) and its
     ``mean_rate_dps`` the 5-95 % share of the angle over them, as under ``"heading"``. ``reversal`` / ``first_own``
-    (decisions L368 / L369, None = the module defaults): :func:`_turn_spans`'s. The rows are in time order."""
+    (decisions L368 / L369, None = the module defaults) and ``sustained`` (decision W466): :func:`_turn_spans`'s.
+    The rows are in time order."""
     if hasattr(steps, "steps") and hasattr(steps, "info"):  # decision W330: a TrackResult, with its yaw-rate turns
         yaw_turns = steps.info.get("yaw_turns") if yaw_turns is None else yaw_turns
         steps = steps.steps
@@ -665,7 +724,8 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     yaw_split = TURN_SPLIT_YAW if yaw_split is None else bool(yaw_split)
     yaw_angle = TURN_YAW_ANGLE if yaw_angle is None else bool(yaw_angle)
     cut_s = opposite_yaw_cuts(yaw.to_dict("records")) if yaw_split and yaw is not None else None  # decision L370
-    st, spans = _turn_spans(steps, reversal=reversal, first_own=first_own, foot_split=foot_split, cut_s=cut_s)
+    st, spans = _turn_spans(steps, reversal=reversal, first_own=first_own, foot_split=foot_split, cut_s=cut_s,
+                            sustained=sustained)
     rows, claimed = [], []  # claimed: the counted turns' row spans (decision L233)
     by_yaw: dict[int, dict] = {}  # decision W403: the row each matched yaw-rate turn gave
     b_lo, b_hi, b_no = (np.zeros(0),) * 3

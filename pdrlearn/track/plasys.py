@@ -1606,7 +1606,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     # decision L65: a negative length only with a backward class (else |length| along heading + pi, same path)
     rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object),
-                                          table["sideways"].to_numpy(dtype=bool))  # decision C137
+                                          table["sideways"].to_numpy(dtype=bool),  # decision C137
+                                          table["turn_angle_rad"].to_numpy(float))  # decision L578
     side_class_warning(table, warnings)  # decision C137: side steps the model classed backward
     turn_reference_warning(table, fd.reference_point, warnings)  # decision L489: many turns on the spot
     if len(extra):  # decision L76: a gap row reports the heading of the row before it (after L65's sign)
@@ -2046,7 +2047,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             table[c] = classes[c].to_numpy()
     # decision L65 (as the runtime's Step): a negative length only with a backward class; the path is the same
     rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object)
-                                          if "direction" in table else None, sideways)  # decision C137
+                                          if "direction" in table else None, sideways,  # decision C137
+                                          np.angle(np.exp(1j * turn)))  # decision L578: E51's wrapped own turn
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
     table["turn_angle_rad"] = np.angle(np.exp(1j * turn))  # decision E51, wrapped as offline's L66 column

@@ -113,20 +113,39 @@ def side_class_warning(steps: pd.DataFrame, warnings: list[str]) -> None:
     """Decision C137: one line when the direction model classed side steps (L219 / L486's ``sideways`` rows)
     backward - its calibration had none (a model classes forward / backward only). Their ``length_m`` keeps no
     negative sign (:func:`pdrlearn.kernels.stride.travel_sign`), ``direction`` keeps the model's class, and
-    ``travel`` (left / right / side) says where they went. Appended to ``warnings``; nothing without a model."""
-    if "direction" not in steps or "sideways" not in steps:
+    ``travel`` (left / right / side) says where they went. Decision L578: the same line for the strides of a turn
+    on the spot (own turn of ``BACKWARD_MAX_TURN_DEG`` or more, travel = turn) the model classed backward. Appended
+    to ``warnings``; nothing without a model."""
+    if "direction" not in steps:
         return
+    from pdrlearn.kernels.stride import _turns_on_the_spot
     from pdrlearn.track.flags import flag_values
 
-    side = flag_values(steps["sideways"])
-    back = side & (steps["direction"].to_numpy(dtype=object) == "backward")
+    side = flag_values(steps["sideways"]) if "sideways" in steps else np.zeros(len(steps), bool)
+    line = _classed_backward(steps, side, "side-step strides (steps.csv sideways)",
+                             "its calibration walks had no side steps, so its direction class does not apply to "
+                             "them; their length_m is counted positive (side travel, not backward), steps.csv "
+                             "direction keeps the model's class and travel says the side", "C137")
+    if line:
+        warnings.append(line)
+    if "turn_angle_rad" in steps:  # decision L578
+        spot = _turns_on_the_spot(pd.to_numeric(steps["turn_angle_rad"], errors="coerce")) & ~side
+        line = _classed_backward(steps, spot, "strides turning on the spot (steps.csv travel turn)",
+                                 "a pivot stride's short chord points anywhere, so the class does not say the walker "
+                                 "went backward; their length_m is counted positive, steps.csv direction keeps the "
+                                 "model's class", "L578")
+        if line:
+            warnings.append(line)
+
+
+def _classed_backward(steps: pd.DataFrame, rows: np.ndarray, what: str, why: str, decision: str) -> str | None:
+    """Decisions C137 / L578: the line counting the ``rows`` (a kind of stride the direction classes do not cover)
+    the model classed backward, with their confidence range; None when there is none."""
+    back = rows & (steps["direction"].to_numpy(dtype=object) == "backward")
     if not back.any():
-        return
+        return None
     conf = (pd.to_numeric(steps["confidence"], errors="coerce").to_numpy(float)[back] if "confidence" in steps
             else np.full(int(back.sum()), np.nan))
     seen = f" at confidence {np.nanmin(conf):.2f}-{np.nanmax(conf):.2f}" if np.isfinite(conf).any() else ""
-    warnings.append(f"{int(back.sum())} of {int(side.sum())} side-step strides (steps.csv sideways) were classed "
-                    f"backward by the model{seen}: its calibration walks had no side steps, so its direction class "
-                    "does not apply to them; their length_m is counted positive (side travel, not backward), "
-                    "steps.csv direction keeps the model's class and travel says the side - count backward steps by "
-                    "travel / backward_travel, not direction (decision C137)")
+    return (f"{int(back.sum())} of {int(rows.sum())} {what} were classed backward by the model{seen}: {why} - "
+            f"count backward steps by travel / backward_travel, not direction (decision {decision})")
