@@ -52,7 +52,8 @@ class StartClocks:
     the other unit's latest push of ``contact`` (pods that connected together: exact), else ``contact`` (a pod that
     joined later: its first samples' difference is not the clocks'). The times are those of every push that passed
     E29's checks, refused by the lag check or not (a unit whose pushes are all refused still shows its clock; a
-    diagnostic, no tracking state); nothing more is noted once both units are seen."""
+    diagnostic, no tracking state); nothing more is noted once both units are seen. Decision E255: the other unit's
+    newest includes the joining push (both pods' packets of a slice in one push)."""
 
     __slots__ = ("first", "newest", "contact", "offset", "max_lag_s", "_pushed", "_joined")
 
@@ -75,15 +76,17 @@ class StartClocks:
         # decision E242: a joining unit's newest sample against the other's newest (each unit's latest time known
         # when the push arrives), not its first: a push of one packet (its span, 0.15 s at 0.2 s packets) or a burst
         # the pod held back put its first sample that much before the other's newest
+        # decision E255: the other unit's newest including this push (a phone that gathers both pods' packets of a
+        # slice into one push after one pod connected alone), and the units' first samples (the other's first ever)
         elif "waist" in per and "foot" in self.newest and "waist" not in self.newest:  # the waist joins the foot
-            self.contact, self._joined = per["waist"][1] - self.newest["foot"], "waist"
+            self.contact, self._joined = per["waist"][1] - self._newest_with(per, "foot"), "waist"
         elif "foot" in per and "waist" in self.newest and "foot" not in self.newest:  # the foot joins the waist
-            self.contact, self._joined = self.newest["waist"] - per["foot"][1], "foot"
+            self.contact, self._joined = self._newest_with(per, "waist") - per["foot"][1], "foot"
         if self.contact is not None:
             other = {"waist": "foot", "foot": "waist"}.get(self._joined)
-            span = 0.0 if other is None else self.newest[other] - self._pushed[other]
-            w = (per["waist"][0] if "waist" in per else self.first["waist"]) - (
-                per["foot"][0] if "foot" in per else self.first["foot"])
+            span = 0.0 if other is None else self._newest_with(per, other) - self._pushed[other]
+            w = (per["waist"][0] if other != "waist" else self.first["waist"]) - (
+                per["foot"][0] if other != "foot" else self.first["foot"])
             together = abs(w - self.contact) <= span + 1e-6
             self.offset = w if together else self.contact  # decision E238
             self._joined = None if together else self._joined  # the pods connected together: named so
@@ -91,6 +94,10 @@ class StartClocks:
             self.first[u] = min(self.first.get(u, math.inf), a)
             self.newest[u] = max(self.newest.get(u, -math.inf), b)
             self._pushed[u] = a
+
+    def _newest_with(self, per: dict, unit: str) -> float:
+        """``unit``'s newest sample including the push ``per`` (unit -> (first, last) s)."""
+        return max(self.newest[unit], per[unit][1]) if unit in per else self.newest[unit]
 
     def note(self, name: str, given_s: float, taken: bool = True) -> str:
         """The clause naming the start-up offset when the lagging stream ``name`` is of the unit whose clock reads
