@@ -1,4 +1,4 @@
-"""Session 41 (implementer I5), W413's rule on 22 of the module-level booleans of ``PENDING``
+"""Session 41 (implementer I5), W413's rule on 20 of the module-level booleans of ``PENDING``
 (tests/test_switches_s40_i4.py): an adopted rule is the code, an alternative not adopted is a keyword or removed.
 
 - W467 (waist): W259, W308, W310, W332 are the code; W284's warning branch is gone; W369's pre-session-35 value is
