@@ -1,5 +1,5 @@
 """Decision C55 (adoption rule in docs/decisions/classifiers.md, written before this ran): are a walking bout's
-edge strides better trained on the windows the runtime cuts (``detected.RUNTIME_BOUT_EDGES``)?
+edge strides better trained on the windows the runtime cuts (``detected.runtime_bout_edges``)?
 
 Per fresh simulated user (20 Hz): the three calibration exercises (walk seed 0) train two models with
 `train_user`'s defaults, without ("labels") and with ("runtime") the candidate; each is evaluated
@@ -7,15 +7,20 @@ Per fresh simulated user (20 Hz): the three calibration exercises (walk seed 0) 
 the labelled-boundary accuracy of each task's chosen model), and scenario D is tracked with `--method M3 --model`
 (distance error, %). Usage: OMP_NUM_THREADS=1 PYTHONPATH=. python experiments/c55_bout_edges.py --users 2400 2401
 --out experiments/results/c55_bout_edges.csv
+
+Session 41 (decision C162): C55 is the code (its switch ``detected.RUNTIME_BOUT_EDGES`` is gone); the "labels" arm
+stands in ``runtime_bout_edges`` returning the labelled steps as they are (:func:`before_c55`).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import logging
 import sys
 import time
 from pathlib import Path
+from unittest import mock
 
 import pandas as pd
 
@@ -33,14 +38,19 @@ CALIBRATION = ("terrain", "direction", "length")
 RATE_HZ = 20.0
 
 
+def before_c55():
+    """Training on the labels' bout edges, as before C55 (a stand-in for the "labels" arm, decision C162)."""
+    return mock.patch.object(detected, "runtime_bout_edges", lambda session, steps: steps)
+
+
 def user_rows(user: int) -> tuple[list[dict], list[dict]]:
     calib = [simulate(s, user, rate_hz=RATE_HZ, seed=0) for s in CALIBRATION]
     tests = {**{s: simulate(s, user, rate_hz=RATE_HZ, seed=7) for s in CALIBRATION},
              "D": simulate("D", user, rate_hz=RATE_HZ, seed=55)}
     rows, dist = [], []
     for variant, on in (("labels", False), ("runtime", True)):
-        detected.RUNTIME_BOUT_EDGES = on
-        model = train_user(calib)
+        with contextlib.nullcontext() if on else before_c55():
+            model = train_user(calib)
         for walk, session in tests.items():
             rows += task_rows(evaluate_model(model, [session], latency=False), user=user, rate_hz=RATE_HZ,
                               edges=variant, walk=walk)

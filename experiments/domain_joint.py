@@ -7,6 +7,9 @@ model (must flag); C16's held-out sets S1-S3 (false alarms may not rise by more 
 walks under a real-trained model (must not flag). Fresh simulated users 6080-6099 only.
 
     PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/domain_joint.py [--trial /tmp/trial_prosthesis/P]
+
+Session 41 (decision C162): the module switch ``domain.JOINT_DEFAULT`` this set is gone; the tracks take C71's score
+through :func:`joint_domain_on` (``UserModel.predict_steps(joint_domain=True)``, the option).
 """
 
 from __future__ import annotations
@@ -19,12 +22,13 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from unittest import mock
 
 import numpy as np
 import pandas as pd
 from scipy.signal import butter, filtfilt
 
-from pdrlearn.classify import domain, train_user
+from pdrlearn.classify import UserModel, train_user
 from pdrlearn.classify.domain import DEFAULT_WARN_SHARE
 from pdrlearn.io import read_session, write_session
 from pdrlearn.sim import simulate
@@ -55,9 +59,20 @@ def soften(src: Path, dst: Path, fc: float = 4.0) -> Path:
     return dst
 
 
+def joint_domain_on():
+    """Tracks whose classified strides carry C71's joint score: ``UserModel.predict_steps`` with its option
+    ``joint_domain=True`` (a stand-in for the track, decision C162: no module switch)."""
+    real = UserModel.predict_steps
+
+    def with_joint(self, *args, **kwargs):
+        return real(self, *args, **{**kwargs, "joint_domain": True})
+
+    return mock.patch.object(UserModel, "predict_steps", with_joint)
+
+
 def fractions(model, session) -> dict:
-    domain.JOINT_DEFAULT = True  # decision C71's option (off by default)
-    res = track_plasys(session, method="M3", model=model)
+    with joint_domain_on():  # decision C71's option (off by default)
+        res = track_plasys(session, method="M3", model=model)
     dom = res.info.get("out_of_domain") or {}
     rng = dom.get("out_of_domain_fraction")
     jf = dom.get("joint_out_of_domain_fraction")

@@ -2,7 +2,7 @@
 
 Per user: a 20 m straight walk (``--scenario walk --length-m 20``) and a 20 m curved route, at 20 Hz (default)
 and 100 Hz, copies with drop rate 0, 0.01, 0.03 (same walk and seed: only the drop mask differs). Each copy is
-tracked with ``pdrlearn track`` (no model) offline with bridging off and on (``io.plasys.BRIDGE_DROPS``) and
+tracked with ``pdrlearn track`` (no model) offline with bridging off and on (:func:`bridging`) and
 with ``--streaming`` (bridging on and off). The real recordings (datasets/real) are tracked with bridging off and on and
 their steps.csv / trajectory.csv compared byte for byte, as are the 0 % copies.
 
@@ -17,10 +17,12 @@ Writes experiments/results/drops_<users>.md and .csv.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import logging
 import shutil
 from pathlib import Path
+from unittest import mock
 
 import pandas as pd
 from typer.testing import CliRunner
@@ -49,10 +51,21 @@ def cli_json(args: list[str]) -> tuple[dict, str]:
     return json.loads(r.stdout[r.stdout.index("{"):]), r.output
 
 
+def bridging():
+    """Every session read bridges its short dropped-sample intervals, as ``read_session(bridge_drops=True)`` (B64's
+    option) does, also where the CLI reads with the default (decision E251: a stand-in, no module switch)."""
+    real = P._bridge_drops
+
+    def bridge(streams, folder, _bridge, streamed=False):
+        return real(streams, folder, True, streamed=streamed)
+
+    return mock.patch.object(P, "_bridge_drops", bridge)
+
+
 def track(d: Path, out: Path, bridge: bool, streaming: bool = False) -> dict:
-    P.BRIDGE_DROPS = bridge
     shutil.rmtree(out, ignore_errors=True)
-    summary, text = cli_json(["track", d, "--out", out, "--json"] + (["--streaming"] if streaming else []))
+    with bridging() if bridge else contextlib.nullcontext():
+        summary, text = cli_json(["track", d, "--out", out, "--json"] + (["--streaming"] if streaming else []))
     summary["warned"] = "B64" in text
     return summary
 

@@ -26,14 +26,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-import pdrlearn.io.plasys as P
 from experiments.drops import REAL, by_drop, by_rate_route, cli_json, walks
 
 TAGS = {"fixed": {"timestamps": False}, "ts": {"timestamps": True}}  # --params of each configuration
 
 
 def track(d: Path, out: Path, params: Path) -> dict:
-    P.BRIDGE_DROPS = False
     shutil.rmtree(out, ignore_errors=True)
     return cli_json(["track", d, "--out", out, "--json", "--params", params])[0]
 

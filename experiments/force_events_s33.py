@@ -8,6 +8,10 @@ drop-off toe-off and with L73's gyroscope toe-off; per user the median over stri
 (truth: the simulated steps' ``ic_s`` / ``tc_s``) and ``n_stance_times``. L389: users 7356-7361, ``force_offset_s``
 and the warning for the force shifted by 0, +60 and +150 ms; L390: the same on users 7362-7367 with the
 drop-off against the gyroscope toe-off. Prints the tables; writes nothing.
+
+Session 41 (decision L584): L389's arm measured the code of session 33 (``force_clock.OFFSET_FROM_TOE_OFF =
+False``, the force onset against the accelerometer impact); L389 was not adopted and its code is gone, so the
+script now prints L390's table only (on users 7362-7367, as before).
 """
 
 from __future__ import annotations
@@ -66,12 +70,8 @@ def l388() -> None:
               f"{np.nanmedian(truth):.1f}")
 
 
-def offsets(users, from_toe_off: bool) -> None:
-    import pdrlearn.displace.force_clock as FC
-
-    FC.FORCE_OFFSET_WARN = True  # the rules judged the warning as it would be on
-    FC.OFFSET_FROM_TOE_OFF = from_toe_off
-    print(f"{'L390' if from_toe_off else 'L389'} user | offset 0 / +60 / +150 ms (s) | warned 0 / +60 / +150 | "
+def offsets(users) -> None:
+    print("L390 user | offset 0 / +60 / +150 ms (s) | warned 0 / +60 / +150 | "
           "(+60) - (0)")
     for u in users:
         s = simulate("A", UserProfile.from_seed(u), "normal", rate_hz=100.0)
@@ -82,11 +82,9 @@ def offsets(users, from_toe_off: bool) -> None:
             warned.append(any("decision L390" in w or "decision L389" in w for w in r.info["warnings"]))
         d = offs[1] - offs[0] if None not in offs[:2] else float("nan")
         print(f"{u} | {offs} | {warned} | {d:+.3f}")
-    FC.FORCE_OFFSET_WARN, FC.OFFSET_FROM_TOE_OFF = True, True  # the defaults (L390 adopted)
 
 
 if __name__ == "__main__":
     logging.disable(logging.WARNING)
     l388()
-    offsets(range(7356, 7362), False)  # decision L389
-    offsets(range(7362, 7368), True)  # decision L390
+    offsets(range(7362, 7368))  # decision L390

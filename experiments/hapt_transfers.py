@@ -395,10 +395,21 @@ def w249(root: Path) -> None:
     Path("experiments/results/hapt_lying_w249.md").write_text("\n".join(lines) + "\n")
 
 
-def w259(root: Path) -> None:
-    """Decision W259's rule, items (b) HAPT users 11-30 and (c) mobgap, today vs SIDE_AFTER_CHAIR."""
-    from pdrlearn.track.waist import track_waist
+def before_w259():
+    """W249's side window as it was before W259 (decision W467: W259 is the code, no switch; this stands in
+    :func:`pdrlearn.waist.lying._chair_bound` finding no chair row, for the "today" arm only)."""
+    from unittest import mock
+
     from pdrlearn.waist import lying
+
+    return mock.patch.object(lying, "_chair_bound", lambda *args, **kwargs: None)
+
+
+def w259(root: Path) -> None:
+    """Decision W259's rule, items (b) HAPT users 11-30 and (c) mobgap, today (:func:`before_w259`) vs the rule."""
+    import contextlib
+
+    from pdrlearn.track.waist import track_waist
 
     lines = ["# Decision W259's rule: lying.SIDE_AFTER_CHAIR (the side window does not cross a chair row)", ""]
 
@@ -407,18 +418,17 @@ def w259(root: Path) -> None:
         lines.append(x)
 
     for label, v in (("today", False), ("candidate", True)):
-        lying.SIDE_AFTER_CHAIR = v
-        rows, labs, diag, _, _ = run(root, range(11, 31))
-        r, n = lying_counts(rows)
-        say(f"(b) HAPT users 11-30, {label} (SIDE_AFTER_CHAIR = {v}): right {r} of {n} lying rows, precision "
-            f"{r / max(n, 1):.2f}")
-        lines.extend(tables(rows, labs, diag)[:22])
-        kinds = []
-        for folder in sorted(Path("datasets/real").glob("mobgap_*")):
-            res = track_waist(read_session(folder), pipeline="waist-pendulum")
-            kinds += [t["kind"] for t in res.info["transfers"]]
-        say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
-    lying.SIDE_AFTER_CHAIR = False
+        with contextlib.nullcontext() if v else before_w259():
+            rows, labs, diag, _, _ = run(root, range(11, 31))
+            r, n = lying_counts(rows)
+            say(f"(b) HAPT users 11-30, {label} (SIDE_AFTER_CHAIR = {v}): right {r} of {n} lying rows, precision "
+                f"{r / max(n, 1):.2f}")
+            lines.extend(tables(rows, labs, diag)[:22])
+            kinds = []
+            for folder in sorted(Path("datasets/real").glob("mobgap_*")):
+                res = track_waist(read_session(folder), pipeline="waist-pendulum")
+                kinds += [t["kind"] for t in res.info["transfers"]]
+            say(f"(c) mobgap, {label}: rows by kind {dict(pd.Series(kinds, dtype=object).value_counts())}")
     Path("experiments/results/hapt_lying_w259.md").write_text("\n".join(lines) + "\n")
 
 

@@ -24,7 +24,10 @@ import numpy as np
 import pandas as pd
 
 ROOT = Path(__file__).resolve().parents[1]
-RUN = ("import sys; import pdrlearn.io.plasys as P; P.RESAMPLE_JITTER = sys.argv.pop(1) == '1'; "
+# ``--uniform``: every session read puts its jittered streams on a uniform clock, as read_session(uniform_clock=True)
+# (B33's option) does, also where the CLI reads with the default (decision E251: a stand-in, no module switch)
+RUN = ("import sys; import pdrlearn.io.plasys as P; on = sys.argv.pop(1) == '1'; warn = P._warn_jitter; "
+       "P._warn_jitter = (lambda s, f: (warn(s, f), P._uniform_clocks(s, f))) if on else warn; "
        "from pdrlearn.cli import run; sys.argv[0] = 'pdrlearn'; sys.exit(run())")
 
 

@@ -81,19 +81,19 @@ def table(sessions, root: Path) -> list[str]:
 
 def w259() -> None:
     """Decision W259's rule, item (a): fresh users 6294-6297 (the four routes), today vs the candidate."""
-    from pdrlearn.waist import lying
+    import contextlib
+
+    from experiments.hapt_transfers import before_w259
 
     fresh = [(u + 4, r) for u, r in SESSIONS]
     for label, v in (("today", False), ("candidate", True)):
-        lying.SIDE_AFTER_CHAIR = v
-        with tempfile.TemporaryDirectory() as d:
+        with tempfile.TemporaryDirectory() as d, contextlib.nullcontext() if v else before_w259():
             rows = table(fresh, Path(d))
         body = [r for r in rows if r.startswith("| 6") and "| session |" not in r]
         right = sum(r.rstrip().endswith("| right |") for r in body)
         direction = sum("| none |" not in r for r in body)
         print(f"## W259 (a), {label} (SIDE_AFTER_CHAIR = {v}): {len(body)} truth lying transfers, right direction "
               f"{direction}, right kind {right}", "", *rows, "", sep="\n")
-    lying.SIDE_AFTER_CHAIR = False
 
 
 def main() -> None:

@@ -6,6 +6,9 @@ with ``altitude="fused"`` (no model), and the nine mobgap lower-back recordings 
 track (truth, before, after) and the rule's four checks.
 
     PYTHONPATH=. OMP_NUM_THREADS=1 python experiments/ramp_ascent_w229.py
+
+W229 was not adopted; since session 41 (decision L584) it is the keyword ``ascent_descent(..., by_rate=True)``,
+which "after" passes (the old kernel from main is called as it is).
 """
 
 from __future__ import annotations
@@ -71,8 +74,9 @@ def _truth(s) -> tuple[float, float]:
 
 def _climbs(kernel, res) -> tuple[float, float]:
     tr = res.trajectory
+    w229 = {"by_rate": True} if kernel is new else {}  # decision L584: W229 is the keyword
     return kernel.ascent_descent(tr["z"].to_numpy(float), new.ASCENT_BAND_BARO_M, tr["t"].to_numpy(float),
-                                 new.CLIMB_WINDOW_S)
+                                 new.CLIMB_WINDOW_S, **w229)
 
 
 def level_check(rows) -> bool:

@@ -62,11 +62,11 @@ def _foot_accuracy(ev: dict, method: str) -> dict | None:
 # stride boundaries at the middle of the mid-stance phase, 21.5 % of the cycle after contact (Perry &
 # Burnfield 2010: mid-stance 12-31 %; where the gaitmap mocap min_vel events lie), instead of the middle of
 # foot flat (decisions S1).
-# "pre-s23": the level swing of the session-2 simulator (heel path knots at fixed heights, decisions S21)
-# instead of the heel height set by the swing pitch and the toe clearance (decisions S23).
-# "pre-s24": S23 without the ascent change (decisions S24); "pre-s25": S23 + S24, push-off over the toe tip
-# of a bare foot (decisions S25).
-VARIANTS = ("none", "old-timing", "mocap-boundary", "pre-s23", "pre-s24", "pre-s25")
+# The variants "pre-s23" / "pre-s24" / "pre-s25" (the simulators before decisions S23, S24, S25) set the module
+# switches of pdrlearn.sim.body that session 41 removed (decision S96: the adopted rules are the code); they
+# measured the code of their sessions and ran, as docs/sim_to_real.md says, on commit 5cb4d74 (still runnable
+# from any commit before the S96 merge).
+VARIANTS = ("none", "old-timing", "mocap-boundary")
 MID_STANCE_FRACTION = 0.215
 
 
@@ -75,15 +75,6 @@ def apply_variant(name: str) -> None:
     import importlib
 
     body, sim, user = (importlib.import_module(f"pdrlearn.sim.{m}") for m in ("body", "simulate", "user"))
-    if name in ("pre-s23", "pre-s24", "pre-s25"):
-        body.SHOD = False
-    if name in ("pre-s23", "pre-s24"):
-        body.ASCENT_TOE_LED = False
-    if name == "pre-s23":
-        import dataclasses
-
-        body.LEVEL_SWING_TOE_LED = False
-        body.KINDS["walk"] = dataclasses.replace(body.KINDS["walk"], impact=(0.55, -0.85), loading_rate=1.2)
     if name == "old-timing":
         draw = user.UserProfile.from_seed.__func__
 

@@ -41,8 +41,8 @@ def session(u: int):
     return s, route, speed
 
 
-def track_phases(s, variants=(None,)) -> tuple[list[dict | None], float | None]:
-    """Each variant's phases (``yaw_to_sit`` of :func:`tug_phases`; None: the default) from one track."""
+def track_phases(s, variants=(True,)) -> tuple[list[dict | None], float | None]:
+    """Each variant's phases (``yaw_to_sit`` of :func:`tug_phases`; True: the default, W308) from one track."""
     res = track_waist(s, pipeline="waist-pendulum")
     table = turn_table(res.steps, yaw_turns=res.info.get("yaw_turns"))
     tug = transfer_summary(res.info.get("transfers"), res.steps)["tug_time_s"]

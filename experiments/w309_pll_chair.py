@@ -3,17 +3,20 @@ window, on waist-pll chair tests. Measured once, no tuning (the rule is W309's t
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/w309_pll_chair.py   # fresh users 6820-6849
 Output: experiments/results/w309_pll_chair.txt (the printed lines).
+
+Session 41 (decision W467): W309 is the code (W310 adopted it); the "today" arm stands in W309's
+``flexion_free_walking`` leaving the walking contacts as they are (:func:`before_w309`), no module switch.
 """
+import contextlib
 import logging
+from unittest import mock
 
 from pdrlearn.io import read_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.waist import track_waist
-from pdrlearn.waist import upright
+from pdrlearn.waist import transfers
 from pdrlearn.waist.transfers import transfer_summary
-
-logging.disable(logging.WARNING)
 
 USERS = range(6820, 6850)
 STS5, TUG = "sit:1, sit:1, sit:1, sit:1", "straight:3, turn:180, straight:3, turn:180"
@@ -27,9 +30,15 @@ def session(u: int):
     return simulate_path(parse_route(TUG), UserProfile.from_seed(u), seed=u, sit_start_s=5.0, sit_end_s=5.0)
 
 
+def before_w309():
+    """W277's walking test before W309: the contacts inside a flexion window are counted (a stand-in for the
+    "today" arm, decision W467)."""
+    return mock.patch.object(transfers, "flexion_free_walking", lambda walking, flexed: walking)
+
+
 def read(s, pipeline: str, on: bool):
-    upright.FLEXION_FREE_WALKING = on
-    res = track_waist(s, pipeline=pipeline)
+    with contextlib.nullcontext() if on else before_w309():
+        res = track_waist(s, pipeline=pipeline)
     tr = res.info.get("transfers")
     summ = transfer_summary(tr, res.steps)
     rows = [] if tr is None else [(r["kind"], round(float(r["start_s"]), 2), round(float(r["end_s"]), 2))
@@ -58,7 +67,6 @@ def main() -> None:
         a, b = read(real, p, False), read(real, p, True)
         real_same[p] = a[2] == b[2]
         print(f"real {REAL} {p}: today {a[0][0]}/{a[0][1]} rows {a[2]}; candidate {b[0][0]}/{b[0][1]} rows {b[2]}")
-    upright.FLEXION_FREE_WALKING = True
     print(f"(a) chair tests agreeing pll vs pendulum: today {agree[('sts5', False)]}/15, candidate "
           f"{agree[('sts5', True)]}/15")
     print(f"(b) chair tests with a waist-pll tug_time_s (candidate): {sts5_tug}/15")
@@ -73,4 +81,5 @@ def main() -> None:
 
 
 if __name__ == "__main__":
+    logging.disable(logging.WARNING)
     main()

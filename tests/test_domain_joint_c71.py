@@ -89,15 +89,17 @@ def test_every_leaf_keeps_a_joint_model_and_predict_reports_it(model, tmp_path):
     np.testing.assert_allclose(again["ood_joint_terrain"].to_numpy(float), v)
 
 
-def test_track_reports_the_joint_fraction_only_with_the_option(model, monkeypatch):
+def test_track_reports_the_joint_fraction_only_with_the_option(model):
+    from experiments.domain_joint import joint_domain_on
     from pdrlearn.classify import domain
     from pdrlearn.track.plasys import track_plasys
 
+    assert not hasattr(domain, "JOINT_DEFAULT")  # decision C162: predict_steps' option, no module switch
     test = labelled_session(3, 12)
     off = track_plasys(test, method="M3", model=model).info["out_of_domain"]
     assert "joint_out_of_domain_fraction" not in off and off["out_of_domain_fraction"] is not None
-    monkeypatch.setattr(domain, "JOINT_DEFAULT", True)
-    on = track_plasys(test, method="M3", model=model).info["out_of_domain"]
+    with joint_domain_on():
+        on = track_plasys(test, method="M3", model=model).info["out_of_domain"]
     assert on["out_of_domain_fraction"] == off["out_of_domain_fraction"]
     assert 0 <= on["joint_out_of_domain_fraction"] <= 0.5
 

@@ -7,7 +7,6 @@ import logging
 import numpy as np
 import pytest
 
-import pdrlearn.io.plasys as plasys
 from pdrlearn.io import read_session
 from pdrlearn.io.plasys import write_session
 from pdrlearn.io.session import Session, Stream
@@ -84,7 +83,7 @@ def _b64(caplog) -> list[str]:
     return [r.getMessage() for r in caplog.records if "B64" in r.getMessage()]
 
 
-def test_dropped_samples_are_warned_once(tmp_path, caplog, monkeypatch):
+def test_dropped_samples_are_warned_once(tmp_path, caplog):
     short = _with_interval(tmp_path, 0.02)  # one sample
     with caplog.at_level(logging.WARNING):
         assert read_session(short)["fAccelerometer"].gaps()
@@ -96,10 +95,9 @@ def test_dropped_samples_are_warned_once(tmp_path, caplog, monkeypatch):
         assert not read_session(short, bridge_drops=True)["fAccelerometer"].gaps()
         assert not read_session(short, bridge_drops=False)["fAccelerometer"].bridged().gaps()
     assert not _b64(caplog)
-    monkeypatch.setattr(plasys, "BRIDGE_DROPS", True)
     longer = _with_interval(tmp_path, 0.3)
     with caplog.at_level(logging.WARNING):
-        read_session(longer)
+        read_session(longer, bridge_drops=True)  # B64's option (a keyword, decision E251)
     lines = _b64(caplog)
     assert len(lines) == 1 and "longest 0.300 s" in lines[0] and "of 0.1-1 s, not bridged" in lines[0]
 

@@ -180,10 +180,11 @@ def test_the_lying_kinds_are_counted_by_direction_in_the_summary_and_the_line_w2
     assert transfer_summary(None)["n_lie_down"] is None  # a foot track
 
 
-def test_a_seen_sit_on_the_bed_makes_the_side_sitting_w259(monkeypatch):
+def test_a_seen_sit_on_the_bed_makes_the_side_sitting_w259():
     """W259 (adopted by its rule): W249's 10 s window does not reach back (on) across a W182 chair row: S60's bed
     (stand-to-sit onto its edge, 2.5 s seated, lying; getting up to a 3 s sit, then sit-to-stand) reads sit-to-lie
     and lie-to-sit, not W249's stand-side kinds beside the chair rows that say the trunk sat."""
+    from experiments.hapt_transfers import before_w259
     from pdrlearn.waist import lying
 
     t = np.arange(0.0, 80.0, 1 / FS)
@@ -193,8 +194,8 @@ def test_a_seen_sit_on_the_bed_makes_the_side_sitting_w259(monkeypatch):
                            "peak_s": (a + b) / 2, "peak_tilt_deg": 30.0, "height_change_m": dz}
                           for i, (k, a, b, dz) in enumerate([(STAND_TO_SIT, 27.5, 29.0, -0.4),
                                                              (SIT_TO_STAND, 54.8, 56.3, 0.4)])])
-    assert lying.SIDE_AFTER_CHAIR is True
+    assert not hasattr(lying, "SIDE_AFTER_CHAIR")  # W259 is the code (decision W467)
     assert _rows(tilt, t, chair)["kind"].tolist() == [SIT_TO_LIE, LIE_TO_SIT]
-    monkeypatch.setattr(lying, "SIDE_AFTER_CHAIR", False)  # W249's window crosses the chair rows into standing
-    assert _rows(tilt, t, chair)["kind"].tolist() == [STAND_TO_LIE, LIE_TO_STAND]
+    with before_w259():  # W249's window crosses the chair rows into standing
+        assert _rows(tilt, t, chair)["kind"].tolist() == [STAND_TO_LIE, LIE_TO_STAND]
     assert _rows(tilt, t)["kind"].tolist() == [STAND_TO_LIE, LIE_TO_STAND]  # no chair row: W249 either way

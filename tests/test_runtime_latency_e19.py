@@ -236,8 +236,7 @@ def _mlp(rng, n_in, n_hidden, n_classes):
     return model
 
 
-def test_one_scaler_and_softmax_for_the_network_and_svm_blocks_give_the_separate_blocks_numbers(windows,
-                                                                                                 monkeypatch):
+def test_one_scaler_and_softmax_for_the_network_and_svm_blocks_give_the_separate_blocks_numbers(windows):
     """E19: the network block (2 networks, 3 and 2 classes) and the SVM block (2 SVMs, 2 and 3 classes,
     mixed kernels) share one Gather/Sub/Div scaler (then a Split) and one Softmax over one padded width; the
     probabilities equal those of the separate blocks (E13-E18) bit for bit, and the per-model graphs'
@@ -278,8 +277,7 @@ def test_one_scaler_and_softmax_for_the_network_and_svm_blocks_give_the_separate
                                                       "members": members}}}}
         want[task] = soft_vote(probas, weights)
     model, spec = SG.build_step_graph(tasks, models, feats)
-    monkeypatch.setattr(SG, "ONE_SOFTMAX", False)
-    apart, _ = SG.build_step_graph(tasks, models, feats)
+    apart, _ = SG.build_step_graph(tasks, models, feats, one_softmax=False)
     ops, ops_apart = [n.op_type for n in model.graph.node], [n.op_type for n in apart.graph.node]
     assert ops.count("Softmax") == 1 and ops_apart.count("Softmax") == 2
     # the scaler 6 -> 4 nodes (Gather, Sub, Div, Split), one Reshape, Softmax, Reshape instead of two

@@ -15,7 +15,6 @@ import onnxruntime as ort
 import pytest
 
 from pdrlearn.errors import DataError
-from pdrlearn.export import step_graph as step_graph_module
 from pdrlearn.export.step_graph import build_step_graph, features_graph
 from pdrlearn.features import step_windows
 from pdrlearn.runtime import load_bundle
@@ -148,7 +147,7 @@ def test_missing_sensor_in_the_window_is_a_data_error(trained):
         tr.classify(W)
 
 
-def test_head_prunes_zero_weight_units_and_merges_the_networks(trained, monkeypatch):
+def test_head_prunes_zero_weight_units_and_merges_the_networks(trained):
     """Decision E13: a unit of fusion weight 0 is left out of the graph, the networks run as one
     block-diagonal network, and the soft vote is one product; numbers = soft_vote of the per-model path."""
     from pdrlearn.kernels.proba import align_proba, soft_vote
@@ -169,8 +168,7 @@ def test_head_prunes_zero_weight_units_and_merges_the_networks(trained, monkeypa
     assert ops.count("Softmax") == 1  # E19: one Softmax for the network and the SVM blocks
     # E19: the shared scaler and Softmax give the separate blocks' numbers bit for bit (the SVM's two classes
     # padded to the networks' three with a -1e300 score)
-    monkeypatch.setattr(step_graph_module, "ONE_SOFTMAX", False)
-    apart, _ = build_step_graph(tasks, models, bundle.manifest["features"])
+    apart, _ = build_step_graph(tasks, models, bundle.manifest["features"], one_softmax=False)
     assert [n.op_type for n in apart.graph.node].count("Softmax") == 2
     for W in (trained["W"], _random_windows(bundle)):
         got, want = _run(model, W), _run(apart, W)

@@ -36,17 +36,10 @@ REMOVED = {
 #: ``^[A-Z_]+ = (True|False)``): not judged here, each for a later decision by W413's rule. Remove a name when its
 #: switch goes; never add one (a new rule is the code or a keyword).
 PENDING = {
-    "pdrlearn.classify.detected": ("RUNTIME_BOUT_EDGES",),
-    "pdrlearn.classify.domain": ("JOINT_DEFAULT",),
-    "pdrlearn.displace.foot": ("REST_BIAS", "TIMESTAMPS", "UPSAMPLE_RUNS"),
-    "pdrlearn.displace.force_clock": ("FORCE_OFFSET_WARN", "OFFSET_FROM_TOE_OFF"),
-    "pdrlearn.export.step_graph": ("ONE_SOFTMAX",),
-    "pdrlearn.io.plasys": ("BRIDGE_DROPS", "RESAMPLE_JITTER"),
-    "pdrlearn.kernels.altitude_check": ("CLIMBS_WITHIN_WEATHER", "DRIFT_BY_RATE"),
+    "pdrlearn.kernels.altitude_check": ("CLIMBS_WITHIN_WEATHER",),
     "pdrlearn.kernels.contact": ("SUBSAMPLE",),
     "pdrlearn.kernels.distance": ("RUN_MEAN_LEVEL", "SUSTAINED_SLOPE"),
     "pdrlearn.kernels.turn_length": ("TURN_LENGTH_RULE",),
-    "pdrlearn.sim.body": ("ASCENT_TOE_LED", "LEVEL_SWING_TOE_LED", "SHOD"),
     "pdrlearn.track.clinical": ("CV_KEEPS_RAMPS", "CV_ONE_SOURCE", "STILL_STANDING", "TURN_EDGES", "TURN_FIRST_OWN",
                                 "TURN_SPLIT_FOOT", "TURN_SPLIT_REVERSAL", "TURN_SPLIT_YAW", "TURN_YAW_ANGLE",
                                 "TURN_YAW_BRANCH", "TURN_YAW_FRACTIONS", "TURN_YAW_ONLY", "TURN_YAW_PEAK",
@@ -60,11 +53,6 @@ PENDING = {
                                       "STREAMED_REST_CLOCK"),
     "pdrlearn.track.stair_flights": ("STEEP_STRIDES_IN_RAMPS",),
     "pdrlearn.track.waist": ("REALTIME_SIT_VETO",),
-    "pdrlearn.waist.lying": ("SIDE_AFTER_CHAIR",),
-    "pdrlearn.waist.pll_calibration": ("UNRECORDED",),
-    "pdrlearn.waist.tug_phases": ("TUG_YAW_TURN_TO_SIT",),
-    "pdrlearn.waist.turn_steps": ("STEPLESS_WARN", "TURN_STEPS_WARN"),
-    "pdrlearn.waist.upright": ("FLEXION_FREE_WALKING",),
 }
 BOOL_GLOBAL = re.compile(r"^([A-Z][A-Z0-9_]*)\s*(?::\s*bool\s*)?=\s*(?:True|False)\b")
 

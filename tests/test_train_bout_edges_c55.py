@@ -4,6 +4,7 @@ model had only seen bout starts cut at the labels. Training now cuts a bout's ed
 
 from __future__ import annotations
 
+import contextlib
 import logging
 
 import numpy as np
@@ -54,13 +55,16 @@ def test_only_training_windows_are_recut():
 
 
 @pytest.mark.parametrize("on", [False, True])
-def test_a_bouts_first_stride_is_forward_on_the_runtimes_strides(on, monkeypatch):
+def test_a_bouts_first_stride_is_forward_on_the_runtimes_strides(on):
+    from experiments.c55_bout_edges import before_c55
+
+    assert not hasattr(D, "RUNTIME_BOUT_EDGES")  # C55 is the code (decision C162)
     logging.disable(logging.WARNING)
     try:
-        monkeypatch.setattr(D, "RUNTIME_BOUT_EDGES", on)
-        calib = [simulate(s, USER, seed=0) for s in ("terrain", "direction")]
-        model = train_user(calib, tasks=["direction"], methods=["svm", "nn"], units=["foot"], cv=3,
-                           distance_calibration=False)
+        with contextlib.nullcontext() if on else before_c55():  # off: the labels' bout edges, as before C55
+            calib = [simulate(s, USER, seed=0) for s in ("terrain", "direction")]
+            model = train_user(calib, tasks=["direction"], methods=["svm", "nn"], units=["foot"], cv=3,
+                               distance_calibration=False)
     finally:
         logging.disable(logging.NOTSET)
     walk = simulate("terrain", USER, seed=7)  # forward only, five bouts

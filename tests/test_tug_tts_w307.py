@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import inspect
 import json
 
 import pandas as pd
@@ -14,7 +15,7 @@ from pdrlearn.sim.tug_truth import true_tug_phases
 from pdrlearn.track.clinical import turn_table
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT
-from pdrlearn.waist.tug_phases import TUG_YAW_TURN_TO_SIT, tug_phases, yaw_turn_to_sit
+from pdrlearn.waist.tug_phases import tug_phases, yaw_turn_to_sit
 
 TWO_TURNS, ONE_TURN = "straight:3, turn:180, straight:3, turn:180", "straight:3, turn:180, straight:3"
 
@@ -25,7 +26,7 @@ def _yaw(start, end, angle):
 
 
 def test_the_turn_to_sit_rule_on_a_table():
-    assert TUG_YAW_TURN_TO_SIT  # W308: adopted
+    assert inspect.signature(tug_phases).parameters["yaw_to_sit"].default is True  # W308: adopted (W467)
     tr = pd.DataFrame([{"transfer": 1, "kind": SIT_TO_STAND, "start_s": 5.0, "end_s": 7.0},
                        {"transfer": 2, "kind": STAND_TO_SIT, "start_s": 25.0, "end_s": 27.0}])
     steps = pd.DataFrame({"start_s": [9.0, 9.5, 10.0, 14.0, 15.0, 20.0, 21.0]})

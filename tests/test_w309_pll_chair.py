@@ -51,9 +51,12 @@ def test_waist_pll_reads_a_five_times_sit_to_stand_not_a_tug(readme_sts5, tmp_pa
     assert "decision W277" in printed.err
 
 
-def test_without_w309_waist_pll_read_it_as_a_tug(readme_sts5, tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr(upright, "FLEXION_FREE_WALKING", False)  # review 2's finding: the test can fail
-    summary, _ = _track(readme_sts5, tmp_path / "off", capsys)
+def test_without_w309_waist_pll_read_it_as_a_tug(readme_sts5, tmp_path, capsys):
+    from experiments.w309_pll_chair import before_w309
+
+    assert not hasattr(upright, "FLEXION_FREE_WALKING")  # W310 adopted W309: the rule is the code (W467)
+    with before_w309():  # review 2's finding: the test can fail
+        summary, _ = _track(readme_sts5, tmp_path / "off", capsys)
     assert (summary["n_sit_to_stand"], summary["n_stand_to_sit"]) == (1, 1)
     # its one rise and one sit had a TUG time until W340; with no step between them they are a chair stand
     assert summary["tug_time_s"] is None and "a chair stand, not a TUG" in summary["tug_time_note"]

@@ -43,8 +43,6 @@ def detected_strides(session) -> pd.DataFrame | None:
 #: lies more than this (s) after the previous step's end (its end this much before the next one's start)
 BOUT_GAP_S = 0.05
 
-#: Decision C55 (adopted by its rule): train with the bout edges cut as the runtime cuts them
-RUNTIME_BOUT_EDGES = True
 
 
 def runtime_bout_edges(session, steps: pd.DataFrame) -> pd.DataFrame:

@@ -90,11 +90,10 @@ class FeatureRange:
 JOINT_QUANTILE = 0.99
 #: Decision C71: folds of the out-of-fold calibration of the joint threshold (fixed before measuring).
 JOINT_FOLDS = 5
-#: Decision C71: whether ``track --model`` / ``track_plasys`` compute the joint score (``ood_joint_<task>`` in the
-#: strides, ``joint_out_of_domain_fraction`` in ``info.out_of_domain``). Off: the candidate failed its adoption rule
-#: (it flagged neither the 8 % street ramp nor the 4 Hz soft foot); ``UserModel.predict_steps(joint_domain=True)``
-#: and setting this to True are the option.
-JOINT_DEFAULT = False
+# Decision C71: ``track --model`` / ``track_plasys`` do not compute the joint score: the candidate failed its
+# adoption rule (it flagged neither the 8 % street ramp nor the 4 Hz soft foot); the option is
+# ``UserModel.predict_steps(joint_domain=True)`` (``ood_joint_<task>``) and ``domain_report`` of its rows (decision
+# C162: no module switch).
 
 
 @dataclass
@@ -422,5 +421,5 @@ NO_RANGES_NOTE = ("the model stores no training ranges (trained before pdrlearn 
 __all__ = ["QUANTILES", "STEP_THRESHOLD", "FRACTION_THRESHOLD", "FeatureRange", "model_inputs", "fit_range",
            "attach_ranges", "has_ranges", "step_score", "combine_scores", "check_warn_at", "summarize", "domain_report",
            "warning_line", "session_warning_line", "DEFAULT_WARN_SHARE",
-           "NO_RANGES_NOTE", "JOINT_DEFAULT", "JOINT_QUANTILE", "JOINT_FOLDS", "JointDomain", "fit_joint",
+           "NO_RANGES_NOTE", "JOINT_QUANTILE", "JOINT_FOLDS", "JointDomain", "fit_joint",
            "attach_joint", "step_joint_score", "joint_fraction"]

@@ -340,8 +340,8 @@ def session_windows(sessions, *, n_samples: int, boundaries: str = "given", purp
                    "`pdrlearn track SESSION --model MODEL`")
             raise DataError(f"{where}: no labelled steps (steps.csv); {fix}")
         steps = clean_steps(s, s.steps)  # labels any case, each step once (decisions C32, C33)
-        if purpose == "train" and boundaries == "given" and detected.RUNTIME_BOUT_EDGES:
-            steps = detected.runtime_bout_edges(s, steps)  # bout edges as the runtime cuts them (C55)
+        if purpose == "train" and boundaries == "given":  # decision C55 (adopted; C162: no switch)
+            steps = detected.runtime_bout_edges(s, steps)  # bout edges as the runtime cuts them
         shifted = misaligned_text(s, steps, boundaries)  # labels off the foot's rest periods (C37)
         try:
             w = step_windows(s, steps, n_samples=n_samples, boundaries=boundaries)

@@ -28,8 +28,6 @@ def info(
         pdrlearn info out/sim/D_u1 --json
     """
     from pdrlearn.io import read_session
-    from pdrlearn.io.plasys import BRIDGE_DROPS
-    from pdrlearn.io.session import MAX_BRIDGED_S
 
     # the gaps as recorded (decision B64); a stream cut short is shown and warned about, not refused (B72)
     s = read_session(session_dir, bridge_drops=False, spans="warn")
@@ -52,10 +50,9 @@ def info(
             import logging
 
             logging.getLogger("pdrlearn.info").warning("%s", line)
-    # decision B64: what the other commands do with the short intervals of dropped samples
-    summary["dropped_samples_bridged"] = {
-        n: sum(g.duration_s <= MAX_BRIDGED_S * (1.0 + 1e-9) for g in st.gaps()) if BRIDGE_DROPS else 0
-        for n, st in s.streams.items() if st.gaps()}
+    # decision B64: what the other commands do with the short intervals of dropped samples: none is bridged (B64
+    # not adopted; read_session(bridge_drops=True) is the API's option, decision E251)
+    summary["dropped_samples_bridged"] = {n: 0 for n, st in s.streams.items() if st.gaps()}
     if s.has("wAccelerometer"):  # decision B155: which meta.json value the waist pipelines' pendulum uses
         from pdrlearn.waist.params import leg_length_note
 
@@ -80,11 +77,6 @@ def info(
     gz = [d["file"] for d in summary["sensors"].values() if str(d.get("file", "")).endswith(".gz")]
     if gz:  # decision B369: read in place
         c.print(f"gzip-compressed, read in place: {', '.join(gz)}", markup=False)
-    bridged = {n: k for n, k in summary["dropped_samples_bridged"].items() if k}
-    if bridged:
-        c.print(f"dropped samples: the other commands bridge the intervals up to {MAX_BRIDGED_S:g} s by linear "
-                f"interpolation when they read the session ({', '.join(f'{n} {k}' for n, k in bridged.items())}; "
-                "decision B64)", markup=False)
     # as meta.json writes it (JSON, pasteable); an undeclared frame is inferred when a command needs it (D8)
     frames = (json.dumps(summary["frames"]) if summary["frames"]
               else "not declared (inferred from the data when a command needs it, decision D8)")

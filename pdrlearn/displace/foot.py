@@ -166,16 +166,14 @@ def twist_yaw(q_start: np.ndarray, q_end: np.ndarray) -> np.ndarray:
 
 #: The points a foot track can follow (``reference_point``; ``pdrlearn track --reference-point``, decision L72)
 REFERENCE_POINTS = ("sensor", "heel")
-#: decision L83: the foot strides are integrated on the sample timestamps (``FootDisplacement(timestamps=...)``)
-TIMESTAMPS = False
-#: decision L87: at 20 Hz each evenly spaced run (between dropped samples) is upsampled on its own
-#: (``FootDisplacement(upsample_runs=...)``; with ``timestamps`` the long interval of a drop keeps its length).
-#: Off: its rule failed at 20 Hz (worst walk +3.851 pp at 3 % drops; the spline's free run ends ring after an
-#: impact; experiments/results/drops_runs_43-54.md)
-UPSAMPLE_RUNS = False
-#: decision L476: after a rest longer than L296's ``REST_BIAS_MIN_S`` between two strides, the foot gyroscope's bias
-#: (``gyro_bias="standstill"``) is re-read from the rest's still samples (``FootDisplacement(rest_bias=...)``)
-REST_BIAS = False  # decision L477: not adopted (two sessions grew by more than 0.3 m), opt-in
+# Options of FootDisplacement, off by default (decision L584: keywords, no module switch):
+# ``timestamps`` (decision L83): the foot strides are integrated on the sample timestamps.
+# ``upsample_runs`` (decision L87): at 20 Hz each evenly spaced run (between dropped samples) is upsampled on its own
+# (with ``timestamps`` the long interval of a drop keeps its length). Off: its rule failed at 20 Hz (worst walk
+# +3.851 pp at 3 % drops; the spline's free run ends ring after an impact; experiments/results/drops_runs_43-54.md).
+# ``rest_bias`` (decision L476): after a rest longer than L296's ``REST_BIAS_MIN_S`` between two strides, the foot
+# gyroscope's bias (``gyro_bias="standstill"``) is re-read from the rest's still samples; decision L477: not adopted
+# (two sessions grew by more than 0.3 m), opt-in.
 
 #: decision B206: the ranges of :class:`FootDisplacement`'s numeric settings (their types come from its signature's
 #: annotations: a bool is JSON true / false, an int a whole number); windows and durations in s, rates, noise terms
@@ -304,8 +302,8 @@ class FootDisplacement:
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
-                 tilt_clock: str = "rotation", timestamps: bool = TIMESTAMPS,
-                 upsample_runs: bool = UPSAMPLE_RUNS, rest_bias: bool = REST_BIAS):
+                 tilt_clock: str = "rotation", timestamps: bool = False,
+                 upsample_runs: bool = False, rest_bias: bool = False):
         check_settings({k: v for k, v in locals().items() if k != "self"}, "FootDisplacement")  # decision B206
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")

@@ -16,20 +16,12 @@ import numpy as np
 #: (steps decision 37's 0.4 s refractory, MIN_STRIDE_S, is a child's; a stride is ~1 s), so no IC pairs with the
 #: next stride's
 PAIR_MAX_S = 0.3
-#: L389: a larger |offset| (s) is warned about: two samples at the thesis' 20 Hz (thesis ch.4.3), beyond the two
-#: detectors' clean disagreement (experiments/results/step_count.csv: accel -45..-11 ms, accel-force +12..+27 ms)
-L389_OFFSET_MAX_S = 0.1
 #: L390: a larger |offset| (s) is warned about: one sample period at the thesis' 20 Hz (thesis ch.4.3), ten times
 #: the clean difference of the two toe-offs (trial T2: drop-off -18.6 ms, gyroscope -14 ms against the truth)
 L390_OFFSET_MAX_S = 0.05
 #: L390 (amended in session 33 by the lead): the bound is at least this many foot sample periods - both events
 #: are dated to a whole sample, so a clean 20 Hz session (scenario A, user 1) read +53 ms over the 50 ms bound
 OFFSET_MIN_SAMPLES = 2
-#: L390 (adopted): the offset from the force drop-off against the gyroscope toe-off (True) or L389's force onset
-#: against the accelerometer impact (False; L389 not adopted: two of six clean users read -58 / -67 ms)
-OFFSET_FROM_TOE_OFF = True
-#: L389 / L390: warn above the estimate's bound (``force_offset_s`` is reported either way; on since L390)
-FORCE_OFFSET_WARN = True
 
 
 def clock_offset(force_ic, imu_ic, *, max_pair_s: float = PAIR_MAX_S) -> tuple[float, int]:
@@ -82,35 +74,28 @@ def force_events(session, *, detected=None):
 
 
 def offset_check(session, fev, names: list[str], *, table=None, tc_gyro=None, bound: float | None = None,
-                 warn: bool | None = None) -> tuple[float | None, str | None]:
+                 warn: bool = True) -> tuple[float | None, str | None]:
     """Decisions L389 / L390 / B297: (the force-to-IMU clock offset in s, rounded to 1 ms, or None; the warning line
-    when ``warn`` (None: :data:`FORCE_OFFSET_WARN`) and it exceeds ``bound``, else None). ``bound`` None: the
-    estimate's (:data:`L390_OFFSET_MAX_S` or :data:`L389_OFFSET_MAX_S`). ``fev``: :func:`force_events`' table;
-    ``names``: the force streams. With :data:`OFFSET_FROM_TOE_OFF` (L390): the force drop-offs inside the strides
-    of ``table`` against their gyroscope toe-offs ``tc_gyro`` (B,); else (L389): the force onsets against the
-    accelerometer detector's impacts."""
-    from pdrlearn.steps import AccelStepDetector
-
+    when ``warn`` (on since L390; ``force_offset_s`` is reported either way) and it exceeds ``bound``, else None).
+    ``bound`` None: :data:`L390_OFFSET_MAX_S`. ``fev``: :func:`force_events`' table; ``names``: the force streams.
+    L390 (adopted): the force drop-offs inside the strides of ``table`` against their gyroscope toe-offs ``tc_gyro``
+    (B,). L389's force onsets against the accelerometer detector's impacts were not adopted (two of six clean users
+    read -58 / -67 ms) and are removed (decision L584)."""
     if fev is None:
         return None, None
     if bound is None:
-        bound = L390_OFFSET_MAX_S if OFFSET_FROM_TOE_OFF else L389_OFFSET_MAX_S
+        bound = L390_OFFSET_MAX_S
         foot = session.streams.get("fAccelerometer")
         if foot is not None and len(foot) >= 2:  # L390 amended: each event is dated to a whole sample of its
             bound = max(bound, OFFSET_MIN_SAMPLES * foot.period_s)  # stream (a clean 20 Hz scenario A read +53 ms)
-    if OFFSET_FROM_TOE_OFF:  # decision L390
-        if table is None or tc_gyro is None:
-            return None, None
-        off, n = clock_offset(toe_offs_in(fev["start_s"], table["start_s"], table["event_s"]), tc_gyro)
-        what = "force drop-off - gyroscope toe-off, decision L390"
-    else:  # decision L389
-        imu = AccelStepDetector().detect(session)
-        off, n = clock_offset(fev["event_s"], imu["event_s"] if len(imu) else [])
-        what = "force onset - accelerometer impact, decision L389"
+    if table is None or tc_gyro is None:  # decision L390
+        return None, None
+    off, n = clock_offset(toe_offs_in(fev["start_s"], table["start_s"], table["event_s"]), tc_gyro)
+    what = "force drop-off - gyroscope toe-off, decision L390"
     if not n:
         return None, None
     off = round(off, 3)
-    if not (FORCE_OFFSET_WARN if warn is None else warn) or abs(off) <= bound:
+    if not warn or abs(off) <= bound:
         return off, None
     files = ", ".join(f"{n_}.csv" for n_ in names)
     line = (f"{files} run {off * 1000:+.0f} ms against the foot IMU's own events (median of {n} strides, {what}; "

@@ -30,9 +30,6 @@ GRAPH_OPS = ("peak", "segments", "force", "yaw_sign", "yaw")
 #: kernels.stats.force_stats' statistics
 FORCE_STATS = ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force")
 INPUT = "W"
-#: Decision E19: the network and SVM blocks share one scaler (Gather, Sub, Div, Split) and one Softmax (their
-#: classes padded to one width with a -1e300 score); False builds them apart as E13-E18 did (tests compare both).
-ONE_SOFTMAX = True
 
 
 class _Builder:
@@ -512,8 +509,8 @@ def _translatable(entry: dict, onnx_models: dict) -> bool:
     return True
 
 
-def build_step_graph(tasks: dict, onnx_models: dict[str, onnx.ModelProto], features: dict
-                     ) -> tuple[onnx.ModelProto, dict] | None:
+def build_step_graph(tasks: dict, onnx_models: dict[str, onnx.ModelProto], features: dict, *,
+                     one_softmax: bool = True) -> tuple[onnx.ModelProto, dict] | None:
     """The bundle's step graph and its manifest entry, or None when no task's chosen model translates.
 
     Parameters
@@ -521,6 +518,9 @@ def build_step_graph(tasks: dict, onnx_models: dict[str, onnx.ModelProto], featu
     tasks : the manifest's ``tasks`` (classes, chosen method/unit, model entries).
     onnx_models : relative path -> the bundle's per-model ONNX graphs.
     features : the manifest's ``features`` (channels, signal table, n_samples).
+    one_softmax : decision E19 (adopted): the network and SVM blocks share one scaler (Gather, Sub, Div, Split) and
+        one Softmax (their classes padded to one width with a -1e300 score); False builds them apart as E13-E18 did
+        (the same numbers bit for bit: the tests compare both; decision E251: a keyword, no module switch).
     """
     ci = {c: i for i, c in enumerate(features["channels"])}
     b = _Builder(int(features["n_samples"]), ci, features["signals"])
@@ -542,7 +542,8 @@ def build_step_graph(tasks: dict, onnx_models: dict[str, onnx.ModelProto], featu
         return None
     b.prepare([leaf["features"] for e in included.values() for leaf in _leaf_models(e)])
     outputs = {task: f"proba_{task}" for task in included}
-    _head(b, {task: (entry, list(tasks[task]["classes"])) for task, entry in included.items()}, outputs)
+    _head(b, {task: (entry, list(tasks[task]["classes"])) for task, entry in included.items()}, outputs,
+          one_softmax=one_softmax)
     out_infos = [helper.make_tensor_value_info(name, TensorProto.DOUBLE, [None, len(tasks[task]["classes"])])
                  for task, name in outputs.items()]
     domains = {"": OPSET}
@@ -722,7 +723,8 @@ def _block_diag(blocks: list[np.ndarray]) -> np.ndarray:
     return out
 
 
-def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[str, str]) -> None:
+def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[str, str], *,
+          one_softmax: bool = True) -> None:
     """Every task's probabilities from the prepared feature matrix, in few nodes (decision E13).
 
     The networks of the project's form become one block-diagonal network (one Gather of all their
@@ -747,7 +749,7 @@ def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[s
     svms = svms if len(svms) > 1 else []
     k_nn = max((len(leaves[i][1]["classes"]) for i, _ in mlps), default=0)
     k_svm = max((p["dual"].shape[1] for _, p in svms), default=0)
-    if mlps and svms and ONE_SOFTMAX:  # decision E19: one scaler and one Softmax for both blocks (one k)
+    if mlps and svms and one_softmax:  # decision E19: one scaler and one Softmax for both blocks (one k)
         k = max(k_nn, k_svm)
         n_nn = len(_model_cols(b, leaves, mlps))
         x = b.cols(b.all, _model_cols(b, leaves, mlps) + _model_cols(b, leaves, svms))

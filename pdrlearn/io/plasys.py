@@ -637,9 +637,6 @@ def _warn_jitter(streams: dict[str, Stream], folder: Path) -> None:
                     s._gap_limit() / s.period_s)
 
 
-#: decision B33: put a jittered accelerometer/gyroscope on a uniform clock when read. Off: its adoption rule
-#: failed (experiments/results/jitter.md); ``read_session(..., uniform_clock=True)`` asks for it
-RESAMPLE_JITTER = False
 
 
 def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
@@ -657,10 +654,6 @@ def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
                     "as the methods integrate with a fixed sample interval", folder, ", ".join(done), s.rate_hz)
 
 
-#: decision B64: bridge short intervals of dropped samples (up to :data:`MAX_BRIDGED_S`) when a session is read.
-#: Off: its adoption rule failed at 20 Hz (experiments/results/drops_31-36.md); ``read_session(...,
-#: bridge_drops=True)`` asks for it. Off or on, the intervals left as they are get one warning per session
-BRIDGE_DROPS = False
 #: decision B183: the offline distance lost per fraction of the foot's samples dropped in short intervals (B64's
 #: users 1-3: 1 % -> -1.1..-3.2 %, 3 % -> -4.5..-8.8 %; the BLE trial's 5 % in bursts: -8.5..-12 %)
 DROP_DISTANCE_FACTOR = 2.0
@@ -1216,16 +1209,18 @@ def path_arg(path, caller: str, expected: str, error: type[DataError] = DataErro
     raise error(f"{caller}({path!r}): expected {expected}, a str or pathlib.Path (got {type(path).__name__}){fix}")
 
 
-def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
+def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool = False,
                  bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse",
                  drop_partial_row: bool = False, command: str | None = None) -> Session:
     """Read a PLASYS session folder, or a zip archive of one: its path, bytes or a binary file object (decision
     B359, :func:`pdrlearn.io.archive.read_session_zip`, which also takes the archive's name and a size cap).
     ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
-    uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off). ``bridge_drops``: bridge intervals of
-    dropped samples up to :data:`MAX_BRIDGED_S` by linear interpolation and warn about the longer ones up to 1 s
-    (decision B64; default :data:`BRIDGE_DROPS`); ``False`` reads the samples as recorded, without the warning
-    (``pdrlearn info`` lists the gaps itself). ``streamed``: the caller integrates on the timestamps
+    uniform clock (decision B33; off: its adoption rule failed, experiments/results/jitter.md). ``bridge_drops``:
+    True bridges intervals of dropped samples up to :data:`MAX_BRIDGED_S` by linear interpolation and warns about
+    the longer ones up to 1 s (decision B64; not adopted: its adoption rule failed at 20 Hz,
+    experiments/results/drops_31-36.md); None (the default) bridges none and warns about the intervals left as
+    they are; ``False`` reads the samples as recorded, without the warning (``pdrlearn info`` lists the gaps
+    itself). Decision E251: keywords, no module switches. ``streamed``: the caller integrates on the timestamps
     (``pdrlearn run``, ``track --streaming``): that warning says so (decision L77). ``spans``: a stream whose
     time span is over 1 s shorter than the others' (a file cut short) is refused (``"refuse"``), warned about
     (``"warn"``, ``pdrlearn info``) or not checked (``"off"``; decision B72); ``"common"`` (``pdrlearn track
@@ -1318,10 +1313,10 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
     ends_uncut = unit_ends(streams) if spans == "common" else None  # decision B267: before any cut
     cut = cut_to_common_span(streams, folder) if spans == "common" else check_stream_spans(streams, folder, mode=spans)
     _warn_jitter(streams, folder)  # decision B182
-    if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
+    if uniform_clock:  # decision B33 (an option)
         _uniform_clocks(streams, folder)
     if bridge_drops is not False:
-        _bridge_drops(streams, folder, BRIDGE_DROPS if bridge_drops is None else True, streamed=streamed)
+        _bridge_drops(streams, folder, bridge_drops is not None, streamed=streamed)  # decision B64 (an option)
     if not streams:
         inner = sorted(p.name for p in folder.iterdir()
                        if p.is_dir() and any(csv_stem(f) in SENSORS for f in session_csvs(p)))  # B369: .csv.gz too

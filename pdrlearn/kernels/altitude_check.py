@@ -192,12 +192,6 @@ DRIFT_RATE_M_PER_S = ASCENT_BAND_BARO_M / CLIMB_WINDOW_S
 DRIFT_RATE_SPAN_S = CLIMB_WINDOW_S / 2
 
 
-#: Decision W229 (an option, measured and not adopted: CURB's 0.45 m on waist-pendulum read 0.063 m off, its rule
-#: 0.06 m): True = the barometric ascent / descent with times read the drift by its rate (:func:`drift_free_altitude`)
-#: and count turning point to turning point; False (the default): L172's band crossed within the window
-DRIFT_BY_RATE = False
-
-
 #: Decision W370: the fastest weather, a pressure "rising / falling very rapidly": more than 6.0 hPa in 3 hours
 #: (the WMO pressure-tendency terms of marine forecasts) = 2 hPa/h, at the barometric formula's 1 / (C E P0) =
 #: 8.32 m/hPa at sea level (kernels.barometer, ICAO standard atmosphere): 16.6 m/h, 0.0046 m/s (0.28 m per minute)
@@ -219,7 +213,7 @@ def climbs_within_weather(z: np.ndarray, t: np.ndarray, band_m: float = ASCENT_B
     point to turning point (W229's count on z as it is, the end's remainder too: ascent - descent = the net
     change)."""
     up, down = ascent_descent(z, band_m, t, window_s)
-    if DRIFT_BY_RATE or not CLIMBS_WITHIN_WEATHER:
+    if not CLIMBS_WITHIN_WEATHER:
         return up, down
     z = np.asarray(z, dtype=float).ravel()
     t = np.asarray(t, dtype=float).ravel()
@@ -258,7 +252,7 @@ def drift_free_altitude(z: np.ndarray, t: np.ndarray, rate_m_s: float = DRIFT_RA
 
 
 def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = None,
-                   window_s: float | None = None) -> tuple[float, float]:
+                   window_s: float | None = None, *, by_rate: bool = False) -> tuple[float, float]:
     """Decision L146: the cumulative ascent and descent (m, both >= 0) of the altitudes ``z`` (walking order):
     a change counts once z has moved at least ``band_m`` from the last counted level (a hysteresis; 0 = every
     rise and every drop), and the last level's difference to the final z is counted at the end, so ascent -
@@ -267,7 +261,9 @@ def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = No
     Decision L172: with the times ``t`` (s) and ``window_s`` the band must be crossed within ``window_s``: where
     z has not moved ``band_m`` from the last counted level after ``window_s``, that level follows z (it becomes
     z as it was ``window_s`` earlier), so a slow drift is dropped, and nothing is counted at the end.
-    Decision W229 (:data:`DRIFT_BY_RATE`): instead the weather's slow drift is first taken out by its rate
+    Decision W229 (``by_rate``, an option measured and not adopted: CURB's 0.45 m on waist-pendulum read 0.063 m
+    off, its rule 0.06 m; decision L584: a keyword, no module switch): with ``t`` and ``window_s`` the weather's
+    slow drift is first taken out by its rate
     (:func:`drift_free_altitude`; the rate bound is ``band_m`` per ``window_s``), then the swings of at least
     ``band_m`` are counted whole, from turning point to turning point (a zigzag: a climb's top is counted when z
     has come ``band_m`` down from it, so no part of a climb under the band is lost), and the end's remainder too;
@@ -282,7 +278,7 @@ def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = No
         return float(d[d > 0].sum()) + 0.0, float(-d[d < 0].sum()) + 0.0
     bounded = t is not None and window_s is not None
     tt = np.asarray(t, dtype=float).ravel()[keep] if bounded else np.zeros(len(z))
-    if bounded and DRIFT_BY_RATE:  # decision W229
+    if bounded and by_rate:  # decision W229
         return _zigzag(drift_free_altitude(z, tt, band_m / window_s, window_s / 2), band_m)
     up = down = 0.0
     ref, r = float(z[0]), 0  # the last counted level and its sample

@@ -103,9 +103,6 @@ IMPACT_RING_RAD = (0.035, 0.02, 0.02)  # roll, yaw, pitch amplitude (rad)
 SWING_PITCH_KNOTS = (0.0, 0.2, 0.5, 0.85, 1.0)  # normalised swing times of the pitch knots (steady
 # dorsiflexion between 15 % and 85 % of swing, as the plateau of the real foot gyroscope)
 SWING_HEEL_KNOTS = (0.38, 0.72)  # normalised swing times of the two inner knots of the heel path
-LEVEL_SWING_TOE_LED = True  # level steps: heel height from the swing pitch and the toe clearance (S23)
-ASCENT_TOE_LED = True  # stair ascent: the toes clear the next nosing right after toe-off (S24)
-SHOD = True  # the foot rolls over the front of the shoe's sole, beyond the toes (decisions S25)
 STAIR_TOE_CLEARANCE = 2.0  # toe clearance over a stair nosing / the user's level toe clearance (S24)
 
 
@@ -264,8 +261,9 @@ def schedule(
 # -- foot ---------------------------------------------------------------------------------------
 def toe_tip_m(user: UserProfile) -> float:
     """Distance (m) from the heel to the push-off pivot: the tip of the hallux (``TOE_TIP_FRACTION`` x foot
-    length) plus the shoe's length beyond the toes when ``SHOD`` (decisions S25)."""
-    return TOE_TIP_FRACTION * user.foot_length_m + (user.shoe_toe_allowance_m if SHOD else 0.0)
+    length) plus the shoe's length beyond the toes: the foot rolls over the front of the shoe's sole (decisions
+    S25)."""
+    return TOE_TIP_FRACTION * user.foot_length_m + user.shoe_toe_allowance_m
 
 
 def _toe_lift(pitch_tk, pk, w_ends, t_to: float, swing: float, user: UserProfile) -> np.ndarray:
@@ -354,7 +352,7 @@ def foot_pose(
             # descent: past the nosing of its own tread the foot is over the void, so it travels on the
             # straight line from toe-off to contact, lifted by part of the clearance (decisions S15)
             kp[1:3, 2] = kp[1:3, 2] + np.array([0.5, 0.25]) * clear
-        elif th_to < 0 and zmax - h_a[2] < 0.01 and LEVEL_SWING_TOE_LED:
+        elif th_to < 0 and zmax - h_a[2] < 0.01:
             # level forward step (decisions S23): the toes stay just above the floor through swing and the
             # heel height is set by the foot's pitch: toe clearance + toe-tip distance x sin(plantarflexion)
             # (dorsiflexed: the heel is the lowest point). The heel falls from its toe-off height as the
@@ -362,7 +360,7 @@ def foot_pose(
             # trajectories (Winter 1992: minimum toe clearance ~1.3 cm at mid-swing).
             kp[1:3, 2] = zmax + user.toe_clearance_m + _toe_lift(pitch_tk, pk, w_ends, ev.to[k], swing, user)
             kp[1, 2] = min(kp[1, 2], heel_to[2])  # never lifted above its toe-off height (decisions S21)
-        elif th_to < 0 and ASCENT_TOE_LED:
+        elif th_to < 0:
             # stair ascent (decisions S24): the riser of the next step stands right in front of the toes at
             # toe-off, so the toes must rise above its nosing before they move forward (early-swing knot:
             # half the rise, the intermediate step of a two-step stride) and be above the landing tread by
@@ -371,13 +369,9 @@ def foot_pose(
             toe_z = np.array([h_a[2] + 0.5 * (zmax - h_a[2]), zmax]) + STAIR_TOE_CLEARANCE * user.toe_clearance_m
             kp[1:3, 2] = toe_z + _toe_lift(pitch_tk, pk, w_ends, ev.to[k], swing, user)
         else:
-            # early swing: half of any rise to the next tread plus the clearance (stairs are climbed
-            # gradually); late swing: over the landing tread
+            # a toe-off without plantarflexion (th_to >= 0): early swing: half of any rise to the next tread
+            # plus the clearance (stairs are climbed gradually); late swing: over the landing tread
             kp[1, 2] = max(h_a[2] + clear + 0.5 * (zmax - h_a[2]), heel_to[2] + 0.3 * clear)
-            if th_to < 0 and zmax - h_a[2] < 0.01:
-                # level forward step: the heel is highest at toe-off and is not lifted further; the foot
-                # levels off in early swing with the toes kept low (decisions S21)
-                kp[1, 2] = heel_to[2]
             kp[2, 2] = zmax + 0.3 * clear
         kp[0], kp[3] = heel_to, heel_ic
         sl = slice(i_to, i_ic)

@@ -404,10 +404,10 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
 
         model = load_model(model)
     # decision C51: the strides are cut already; C18's rate line is the tracker's own warning (rate_check)
-    from pdrlearn.classify import UserModel, domain
+    from pdrlearn.classify import UserModel
 
-    # decision C71: the joint domain score only when its option is on (it failed its adoption rule)
-    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False, joint_domain=domain.JOINT_DEFAULT)
+    # decision C71: no joint domain score (it failed its adoption rule; predict_steps' option, C162)
+    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False)
             if isinstance(model, UserModel)
             else model.predict_steps(session, steps)).reset_index(drop=True)
     if len(pred) != len(steps):

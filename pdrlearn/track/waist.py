@@ -1357,11 +1357,8 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     }
     from pdrlearn.waist import turn_steps
 
-    if turn_steps.TURN_STEPS_WARN and "event_s" in steps:  # decision W283: the steps its turns missed
-        line = turn_steps.turn_steps_warning(steps["event_s"], info["yaw_turns"], len(steps))
-        if line:
-            warnings.append(line)
-    if turn_steps.STEPLESS_WARN and "event_s" in steps:  # decision W331: turns on the spot with no step
+    # W283's missed-steps warning is not printed (W284: not adopted; turn_steps.turn_steps_warning is the API's)
+    if "event_s" in steps:  # decision W331 (W332: adopted): turns on the spot with no step
         line = turn_steps.stepless_turns_warning(steps["event_s"], info["yaw_turns"])
         if line:
             warnings.append(line)

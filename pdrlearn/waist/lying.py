@@ -16,7 +16,7 @@ second posture detector:
   the lying run, from :data:`SIDE_GAP_S` before the movement's start (after its end) - where the averaged tilt no
   longer sees the movement - or the piece's farthest sample if it is shorter: the posture (standing or sitting) with
   most samples over the :data:`SIDE_WINDOW_S` (10 s, W249) beyond it, inside the piece and not across a W182 chair
-  row (:data:`SIDE_AFTER_CHAIR`, W259: a seen sit on the bed's edge makes the side sitting; a tie: the one sample's);
+  row (W259, adopted: a seen sit on the bed's edge makes the side sitting; a tie: the one sample's);
   sitting gives ``sit-to-lie`` / ``lie-to-sit``, standing ``stand-to-lie`` / ``lie-to-stand``; an unknown side
   (W234) gives no row.
 
@@ -69,10 +69,6 @@ MIN_LYING_S: float | None = 10.0
 #: :data:`SIDE_GAP_S`, inside the non-lying piece - a lying down from standing often sits on the bed first; None = the
 #: one sample at :data:`SIDE_GAP_S`
 SIDE_WINDOW_S: float | None = 10.0
-#: decision W259's candidate (rule in its text): W249's side window stays on the lying movement's side of the
-#: nearest W182 chair row inside the non-lying piece (a sit on the bed's edge seen as a stand-to-sit makes the side
-#: sitting); False = W249's window as it was
-SIDE_AFTER_CHAIR = True
 _KIND = {(+1, _CODE[SITTING]): SIT_TO_LIE, (+1, _CODE[STANDING]): STAND_TO_LIE,
          (-1, _CODE[SITTING]): LIE_TO_SIT, (-1, _CODE[STANDING]): LIE_TO_STAND}
 
@@ -123,10 +119,10 @@ def _side(code: np.ndarray, i: int, lo: int, hi: int, step: int, fs: float) -> i
 
 
 def _chair_bound(t: np.ndarray, chair: np.ndarray | None, lo: int, hi: int, sign: int) -> int | None:
-    """Decision W259's candidate: into lying (``sign`` +1), the sample after the last chair row's end inside
-    ``[lo, hi)``; out of lying (-1), the sample of the first chair row's start inside ``(lo, hi]``; None when none
-    (or :data:`SIDE_AFTER_CHAIR` is off). ``chair``: the chair rows' (start_s, end_s) (k, 2)."""
-    if not SIDE_AFTER_CHAIR or chair is None or not len(chair):
+    """Decision W259 (adopted): into lying (``sign`` +1), the sample after the last chair row's end inside
+    ``[lo, hi)``; out of lying (-1), the sample of the first chair row's start inside ``(lo, hi]``; None when
+    none. ``chair``: the chair rows' (start_s, end_s) (k, 2)."""
+    if chair is None or not len(chair):
         return None
     idx = np.searchsorted(t, chair[:, 1 if sign > 0 else 0])
     inside = idx[(idx >= lo) & (idx < hi)] if sign > 0 else idx[(idx > lo) & (idx <= hi)]
@@ -140,7 +136,7 @@ def lying_transfer_rows(t: np.ndarray, tilt: np.ndarray, code: np.ndarray, fs: f
     """Decision W245 (module docstring; a pure kernel): the lying transfers of a recording as transfers.csv rows
     without their ``transfer`` number. ``tilt``: the per-sample tilt from the walking upright (deg), ``code``: W222's
     :func:`~pdrlearn.waist.posture_time.label_postures` (3 = lying), ``acc_v``: the vertical acceleration (m/s^2),
-    ``chair``: W182's rows' (start_s, end_s) (k, 2), read by W259's candidate only."""
+    ``chair``: W182's rows' (start_s, end_s) (k, 2), read by W259's rule only."""
     t, tilt, code = np.asarray(t, float), np.asarray(tilt, float), np.asarray(code)
     n = t.size
     if n < 3:
@@ -161,13 +157,13 @@ def lying_transfer_rows(t: np.ndarray, tilt: np.ndarray, code: np.ndarray, fs: f
             if sign > 0:  # the posture it came from
                 if s <= lo:
                     continue
-                b0 = _chair_bound(t, chair, lo, s, +1)  # W259's candidate: not back across a chair row
+                b0 = _chair_bound(t, chair, lo, s, +1)  # W259: not back across a chair row
                 lo2 = b0 if b0 is not None and b0 < s else lo
                 side = _side(code, max(s - gap, lo2), lo2, s, -1, fs)
             else:  # the posture it went to
                 if e >= hi - 1:
                     continue
-                b1 = _chair_bound(t, chair, e, hi - 1, -1)  # W259's candidate: not on across a chair row
+                b1 = _chair_bound(t, chair, e, hi - 1, -1)  # W259: not on across a chair row
                 hi2 = b1 if b1 is not None and b1 > e + 1 else hi
                 side = _side(code, min(e + gap, hi2 - 1), e + 1, hi2, +1, fs)
             kind = _KIND.get((sign, side))

@@ -13,9 +13,6 @@ import json
 
 #: decision W369: the option a waist-pll calibration records in its PARAMS.json ``"options"``
 OPTION = "pll_edge_lock"
-#: decision W369: the value a calibrated waist-pll PARAMS.json that records none was counted with: the option's
-#: default before session 35 (W356's ``false``; W368 made ``"walk-end"`` the track's default in session 35)
-UNRECORDED = False
 
 
 def recorded_options(options: dict | None, pipeline: str, used) -> dict | None:
@@ -41,11 +38,14 @@ def recorded_keys(p) -> set[str]:
 
 def edge_lock_mismatch_line(p, pipeline: str, edge_lock) -> str | None:
     """Decision W369: one line when the waist-pll calibration ``p`` was counted with another ``pll_edge_lock`` than
-    this track's ``edge_lock`` (one that records none: :data:`UNRECORDED`, calibrated before session 35), else None."""
+    this track's ``edge_lock`` (one that records none was calibrated before session 35 and counted with ``false``),
+    else None."""
     if not calibrated_here(p, pipeline):
         return None
     given = (p.options or {}).get(OPTION)
-    cal = UNRECORDED if given is None else given
+    # decision W369: one that records none was counted with the option's default before session 35 (W356's
+    # ``false``; W368 made ``"walk-end"`` the track's default in session 35); a fact, not a switch (decision W467)
+    cal = False if given is None else given
     if cal == edge_lock:
         return None
     how = (f"records no {OPTION} (calibrated before session 35: {json.dumps(cal)})" if given is None

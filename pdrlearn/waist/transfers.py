@@ -31,7 +31,6 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pdrlearn.waist import upright as _upright
 from pdrlearn.waist.ahrs import WaistIMU
 from pdrlearn.waist.posture import contact_directions, flexion_runs, near_flexion, walking_upright
 from pdrlearn.waist.upright import (
@@ -224,7 +223,7 @@ def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame) -> tuple[pd.Data
     ev = steps["event_s"].to_numpy(float) if len(steps) and "event_s" in steps else np.zeros(0)
     walking = (steps["has_next"].to_numpy(bool) if len(ev) and "has_next" in steps else np.ones(len(ev), bool))
     still = None
-    if walking_is_reliable(walking) and _upright.FLEXION_FREE_WALKING:  # decision W309
+    if walking_is_reliable(walking):  # decision W309 (W310: adopted)
         still = still_upright_transfers(imu)
         if still[1] is not None:
             flexed = near_flexion(ev, flexion_runs(imu.t, _tilt_deg(imu, still[1])))

@@ -14,7 +14,7 @@ The names follow the instrumented TUG's segmentation (Salarian et al. 2010, IEEE
 
 Decision W307: when turns.csv has no second turn, the turn-to-sit may come from the track's yaw-rate turns
 (``info["yaw_turns"]``, El-Gohary's, L210) - the last one of at least turns.csv's 80 deg (L200) that starts at or
-after the turn's end with its midpoint before the sit's start (:func:`yaw_turn_to_sit`; :data:`TUG_YAW_TURN_TO_SIT`).
+after the turn's end with its midpoint before the sit's start (:func:`yaw_turn_to_sit`; W308: adopted).
 turns.csv itself is unchanged (L233/L234).
 
 A phase that cannot be placed (no turn, an end not after its start) is None. Standing still before the first step
@@ -35,8 +35,6 @@ TUG_PHASE_KEYS = tuple(f"tug_{p}_s" for p in TUG_PHASES)
 #: decision W325: tug_trials.csv's columns, in order
 TUG_TRIAL_COLUMNS = ("trial", "start_s", "end_s", "tug_time_s", *TUG_PHASE_KEYS, "n_steps", "n_turns",
                      "steps_source", "turns_source")  # W419: the unit each count comes from
-#: decision W307: without a second turns.csv turn, take the turn-to-sit from the yaw-rate turns (W308: adopted)
-TUG_YAW_TURN_TO_SIT = True
 #: the phases as the console line names them
 PHASE_LABELS = {"sit_to_stand": "sit-to-stand", "walk_out": "walk out", "turn": "turn", "walk_back": "walk back",
                 "turn_to_sit": "turn-to-sit", "stand_to_sit": "stand-to-sit"}
@@ -67,11 +65,11 @@ def yaw_turn_to_sit(yaw_turns, after_s: float, before_s: float, min_deg: float |
 
 
 def tug_phases(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None, yaw_turns=None,
-               yaw_to_sit: bool | None = None) -> dict | None:
+               yaw_to_sit: bool = True) -> dict | None:
     """Decision W293: ``{phase: {start_s, end_s, duration_s} or None}`` for each of :data:`TUG_PHASES` of a track's
     transfers (a transfers.csv table or its records), ``turns`` (turns.csv) and ``steps`` (the walking contacts,
     ``start_s``); None when the track has no TUG time (W183's :func:`~pdrlearn.waist.transfers.transfer_summary`).
-    Decision W307: with ``yaw_to_sit`` (None: :data:`TUG_YAW_TURN_TO_SIT`) and one turns.csv turn in the TUG, the
+    Decision W307: with ``yaw_to_sit`` (True: W308 adopted it; decision W467) and one turns.csv turn in the TUG, the
     turn-to-sit is :func:`yaw_turn_to_sit` of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``)."""
     from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT, transfer_summary
 
@@ -100,7 +98,7 @@ def _turns_inside(turns: pd.DataFrame | None, up: float, down: float) -> pd.Data
 
 
 def segment_phases(rise, sit, turns: pd.DataFrame | None, steps: pd.DataFrame | None, yaw_turns=None,
-                   yaw_to_sit: bool | None = None) -> dict:
+                   yaw_to_sit: bool = True) -> dict:
     """Decision W293: the phases of one seat-to-seat segment, from its ``rise`` and ``sit`` transfers.csv rows (W183's
     TUG, or one of W325's trials), ``turns`` (turns.csv), ``steps`` (the walking contacts) and W307's ``yaw_turns``
     / ``yaw_to_sit`` (:func:`tug_phases`)."""
@@ -110,7 +108,7 @@ def segment_phases(rise, sit, turns: pd.DataFrame | None, steps: pd.DataFrame | 
     inside = _turns_inside(turns, up, down)
     turn = inside.iloc[0] if len(inside) else None
     to_sit = inside.iloc[-1] if len(inside) >= 2 else None
-    if to_sit is None and turn is not None and (TUG_YAW_TURN_TO_SIT if yaw_to_sit is None else yaw_to_sit):
+    if to_sit is None and turn is not None and yaw_to_sit:
         to_sit = yaw_turn_to_sit(yaw_turns, float(turn["end_s"]), down)  # decision W307
     first = float(contacts[0]) if contacts.size else None
     last = float(contacts[-1]) if contacts.size else None
@@ -125,7 +123,7 @@ def segment_phases(rise, sit, turns: pd.DataFrame | None, steps: pd.DataFrame | 
 
 
 def tug_trial_table(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None, yaw_turns=None,
-                    yaw_to_sit: bool | None = None, foot: pd.DataFrame | None = None) -> pd.DataFrame:
+                    yaw_to_sit: bool = True, foot: pd.DataFrame | None = None) -> pd.DataFrame:
     """Decision W325: tug_trials.csv's rows (:data:`TUG_TRIAL_COLUMNS`), one per TUG trial
     (:func:`~pdrlearn.waist.transfers.tug_trial_pairs`) of a track's transfers, with each trial's W293 phases
     (:func:`segment_phases`), its walking contacts from the rise's start to the sit's end and its turns.csv turns.

@@ -20,8 +20,6 @@ MIN_INTERVALS = 4
 WARN_MIN_STEPS = 2
 #: ... and to at least this share of the track's step count
 WARN_MIN_FRAC = 0.10
-#: decision W283: whether a lower-back track warns (W284: the rule's result)
-TURN_STEPS_WARN = False
 
 
 def missed_turn_steps(event_s, yaw_turns, min_deg: float | None = None) -> list[dict]:
@@ -65,8 +63,6 @@ def turn_steps_warning(event_s, yaw_turns, n_steps: int, min_deg: float | None =
 
 #: decision W331: a turn whose expected steps (D / T, W283) reach this and whose span holds no contact is stepless
 STEPLESS_MIN_STEPS = 2
-#: decision W331: whether a lower-back track warns about its stepless turns (W332: the rule's result)
-STEPLESS_WARN = True
 
 
 def stepless_turns(event_s, yaw_turns, min_deg: float | None = None) -> list[dict]:

@@ -25,10 +25,6 @@ from pdrlearn.signal import runs
 
 #: decision W277: the walking upright needs a walking sequence of this many contacts (two strides) or more
 MIN_WALKING_CONTACTS = 4
-#: decision W309: W277's walking test does not count the contacts that W104's flexion window (read against the still
-#: standing upright) holds: a PLL track puts many false contacts into a chair test, and they formed a "walking
-#: sequence" (review 2, finding 1). Set by W310's measurement
-FLEXION_FREE_WALKING = True
 #: decision W277: at rest when the angular rate's magnitude (mean over STILL_WINDOW_S) is under this (rad/s, 5.7
 #: deg/s): standing sway turns the trunk by a few deg/s, a chair transfer by 30-45 deg/s (W182's MOVING_DPS is 10)
 STILL_RATE_RPS = 0.1
