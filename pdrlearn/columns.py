@@ -203,7 +203,8 @@ SESSIONS: tuple[Column, ...] = (
     ("median_speed_belt_mps", "m/s", "number", "median speed along the belt of the n_belt_strides (L441)"),
     ("belt_check_note", _ID, "text", "why there is no belt_speed_error_pct on a declared treadmill (L441)"),
     ("median_speed_straight_mps", "m/s", "number", "median speed of the level strides turning under 15 deg "
-                                              "(stair strides left out, L179)"),
+                                              "(stair strides left out, L179; side steps, L228, and backward "
+                                              "strides, L580)"),
     ("median_stance_pct", "%", "number", "--toe-off only: median stance share of the stride (L73)"),
     ("median_stance_time_s", "s", "number", "--toe-off only: median stance time"),
     ("median_step_time_s", "s", "number", "lower back: median contact to the next of either foot; empty on a foot "
@@ -264,7 +265,8 @@ SESSIONS: tuple[Column, ...] = (
                                                         "computed over (L121, W228); a foot track with the "
                                                         "lower-back unit too: 2 x the strides L416's index is taken "
                                                         "over; 0 on a foot track alone"),
-    ("n_straight_strides", "count", "integer", "level strides turning under 15 deg (L179)"),
+    ("n_straight_strides", "count", "integer", "level strides turning under 15 deg, side steps and "
+                                               "backward strides left out (L179, L228, L580)"),
     ("n_stride_times", "count", "integer", "strides with a stride time"),
     ("step_time_asymmetry_pct", "%", "number", "lower back: step-time symmetry index 100 x |a - b| / (0.5 x (a + b)) "
                                                "of the alternating steps, given only from 20 % (L121, L216; the size "
