@@ -642,11 +642,16 @@ BOUTS: tuple[Column, ...] = (
     ("data_gap_s", "s", "number", "foot-data gaps (L67's gap rows) inside the bout, summed; a gap longer than "
                                   "--bout-break-s ends the bout instead (L269)"),
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),
-    ("direction", _ID, "text", "foot: forward (no stride of the bout travels backward), backward (all do) or mixed, "
-                               "by each stride's travelled direction (steps.csv backward_travel, L203), not the "
+    ("direction", _ID, "text", "foot: forward (no stride of the bout travels backward or sideways), backward (all "
+                               "travel backward), side (all are side steps, L581) or mixed, by each stride's "
+                               "travelled direction (steps.csv backward_travel, L203, and sideways), not the "
                                "model's class; empty on the lower back (L331)"),
     ("backward_fraction", "fraction", "number", "foot: the bout's strides that travel backward (backward_travel) / "
                                                 "n_strides; empty on the lower back (L331)"),
+    ("n_backward_strides", "count", "integer", "foot: the bout's strides that travel backward (backward_travel); "
+                                               "empty on the lower back (L581)"),
+    ("n_side_strides", "count", "integer", "foot: the bout's strides of side-stepping runs (sideways, L270); empty "
+                                           "on the lower back (L581)"),
     ("altitude_change_m", "m", "number", "z change over the bout"),
     ("altitude_change_before_m", "m", "number", "lower back: z change while standing before the bout (a lift or "
                                                 "escalator ride; W158; of a pause over 30 s only the 1.5 m "
