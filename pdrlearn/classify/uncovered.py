@@ -75,3 +75,24 @@ def uncovered_line(task: str, unc: dict | None, classes) -> str | None:
                                                if e["n_matched"] else ""))
     return (f"{unc['n_steps']} {' / '.join(unc['kinds'])} stride(s) left out of the {task} score, which its classes "
             f"({', '.join(map(str, classes))}) do not cover: " + "; ".join(parts) + " (decision C160)")
+
+
+def trained_kinds(task: str, data, windows) -> dict[str, int] | None:
+    """Decision C161: how many of ``task``'s training steps (``data``) are of each :data:`UNCOVERED_KINDS` kind
+    (``{"side": 12, "turn": 0}``), stored in the model's manifest; None when the task has no such kinds or no
+    session's steps table has ``kind`` (a hand-labelled calibration: unknown)."""
+    kinds = UNCOVERED_KINDS.get(task)
+    if not kinds or not any("kind" in windows[int(i)].steps for i in np.unique(data.session)):
+        return None
+    got = np.concatenate([step_kinds(data, windows, np.flatnonzero(data.session == i), int(i))
+                          for i in np.unique(data.session)])
+    return {k: int(np.sum(got == k)) for k in kinds}
+
+
+def trained_side_strides(model) -> int | None:
+    """Decision C161: the side-step strides the direction model of ``model`` was trained on (labelled forward, as
+    the simulator labels them); None without a model, without a direction task, or when its manifest does not say
+    (trained before C161, or on sessions without ``kind``)."""
+    tm = getattr(model, "tasks", {}).get("direction") if model is not None else None
+    counts = getattr(tm, "trained_kinds", None)
+    return None if not counts else counts.get("side")
