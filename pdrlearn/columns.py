@@ -1018,6 +1018,8 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("confidence", "fraction", "number", "the class confidence (1 without a model)"),
     ("p_<task>_<class>", "fraction", "number", "with a model: the class probabilities (one column each)"),
     ("ood_*", _ID, "number", "with a model: the stride's out-of-training-range scores (C16)"),
+    ("method_<task>", _ID, "text", "with a model: the classifier (method/unit, e.g. nn/combined) that classed the "
+                                   "stride, none when none could; offline since L583, streamed before"),
     ("speed_out_of_range", _ID, "true/false", "offline with a model trained since L474: speed_mps more than 10 % "
                                               "outside the model's training strides' 1-99 % speeds (its classes "
                                               "can be wrong with a high confidence; L474); since L481 only level, "

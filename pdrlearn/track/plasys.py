@@ -1504,6 +1504,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     for c in classes.columns:
         if c.startswith("p_") or (c.startswith("ood_") and not c.startswith("ood_feature_")):
             table[c] = classes[c].to_numpy(float)
+    for c in classes.columns:  # decision L583: which classifier classed each stride, as the streamed table's
+        if c.startswith("method_"):
+            table[c] = classes[c].to_numpy(dtype=object)
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
     table["sideways"] = _sideways_rows(lateral, disp, fd.yaw_change_)  # L228: no steady / straight stride for the CVs
