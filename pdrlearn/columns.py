@@ -227,7 +227,8 @@ SESSIONS: tuple[Column, ...] = (
     ("median_speed_belt_mps", "m/s", "number", "median speed along the belt of the n_belt_strides (L441)"),
     ("belt_check_note", _ID, "text", "why there is no belt_speed_error_pct on a declared treadmill (L441)"),
     ("median_speed_straight_mps", "m/s", "number", "median speed of the level strides turning under 15 deg "
-                                              "(stair strides left out, L179)"),
+                                              "(stair strides left out, L179; side steps, L228, and backward "
+                                              "strides, L580)"),
     ("median_stance_pct", "%", "number", "--toe-off only: median stance share of the stride (L73)"),
     ("median_stance_time_s", "s", "number", "--toe-off only: median stance time"),
     ("median_step_time_s", "s", "number", "lower back: median contact to the next of either foot; empty on a foot "
@@ -288,7 +289,8 @@ SESSIONS: tuple[Column, ...] = (
                                                         "computed over (L121, W228); a foot track with the "
                                                         "lower-back unit too: 2 x the strides L416's index is taken "
                                                         "over; 0 on a foot track alone"),
-    ("n_straight_strides", "count", "integer", "level strides turning under 15 deg (L179)"),
+    ("n_straight_strides", "count", "integer", "level strides turning under 15 deg, side steps and "
+                                               "backward strides left out (L179, L228, L580)"),
     ("n_stride_times", "count", "integer", "strides with a stride time"),
     ("step_time_asymmetry_pct", "%", "number", "lower back: step-time symmetry index 100 x |a - b| / (0.5 x (a + b)) "
                                                "of the alternating steps, given only from 20 % (L121, L216; the size "
@@ -664,11 +666,16 @@ BOUTS: tuple[Column, ...] = (
     ("data_gap_s", "s", "number", "foot-data gaps (L67's gap rows) inside the bout, summed; a gap longer than "
                                   "--bout-break-s ends the bout instead (L269)"),
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),
-    ("direction", _ID, "text", "foot: forward (no stride of the bout travels backward), backward (all do) or mixed, "
-                               "by each stride's travelled direction (steps.csv backward_travel, L203), not the "
+    ("direction", _ID, "text", "foot: forward (no stride of the bout travels backward or sideways), backward (all "
+                               "travel backward), side (all are side steps, L581) or mixed, by each stride's "
+                               "travelled direction (steps.csv backward_travel, L203, and sideways), not the "
                                "model's class; empty on the lower back (L331)"),
     ("backward_fraction", "fraction", "number", "foot: the bout's strides that travel backward (backward_travel) / "
                                                 "n_strides; empty on the lower back (L331)"),
+    ("n_backward_strides", "count", "integer", "foot: the bout's strides that travel backward (backward_travel); "
+                                               "empty on the lower back (L581)"),
+    ("n_side_strides", "count", "integer", "foot: the bout's strides of side-stepping runs (sideways, L270); empty "
+                                           "on the lower back (L581)"),
     ("altitude_change_m", "m", "number", "z change over the bout"),
     ("altitude_change_before_m", "m", "number", "lower back: z change while standing before the bout (a lift or "
                                                 "escalator ride; W158; of a pause over 30 s only the 1.5 m "
@@ -1036,6 +1043,8 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("confidence", "fraction", "number", "the class confidence (1 without a model)"),
     ("p_<task>_<class>", "fraction", "number", "with a model: the class probabilities (one column each)"),
     ("ood_*", _ID, "number", "with a model: the stride's out-of-training-range scores (C16)"),
+    ("method_<task>", _ID, "text", "with a model: the classifier (method/unit, e.g. nn/combined) that classed the "
+                                   "stride, none when none could; offline since L583, streamed before"),
     ("speed_out_of_range", _ID, "true/false", "offline with a model trained since L474: speed_mps more than 10 % "
                                               "outside the model's training strides' 1-99 % speeds (its classes "
                                               "can be wrong with a high confidence; L474); since L481 only level, "

@@ -46,9 +46,11 @@ def test_a_reversal_without_a_pause_is_one_mixed_bout():
 
 
 def test_no_signed_stride_gives_no_direction():
-    assert bout_direction(None, 5) == {"direction": None, "backward_fraction": None}
-    assert bout_direction(0, 0) == {"direction": None, "backward_fraction": None}
-    assert bout_direction(1, 4) == {"direction": "mixed", "backward_fraction": 0.25}
+    none = {"direction": None, "backward_fraction": None, "n_backward_strides": None, "n_side_strides": None}
+    assert bout_direction(None, 5) == none  # decision L581: the two counts too
+    assert bout_direction(0, 0) == none
+    assert bout_direction(1, 4) == {"direction": "mixed", "backward_fraction": 0.25, "n_backward_strides": 1,
+                                    "n_side_strides": 0}
     # a lower-back table: steps of either foot, no signed stride length (L203)
     t = np.arange(6, dtype=float)
     waist = pd.DataFrame({"start_s": t, "end_s": t + 1, "event_s": t, "length_m": 0.7, "unit": "waist"})

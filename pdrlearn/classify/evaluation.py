@@ -122,6 +122,7 @@ def evaluate_model(
     check_warn_at(warn_out_of_domain)
     from pdrlearn.classify.detected import DetectedPredictions, detected_score, drop_warning
     from pdrlearn.classify.training import class_metrics, session_list, session_windows, task_data
+    from pdrlearn.classify.uncovered import UNCOVERED_KINDS, split_rows, uncovered_score
 
     sessions = session_list(sessions, "evaluate_model")  # decision B391: a Session or a path is accepted too
     if not sessions:
@@ -166,6 +167,14 @@ def evaluate_model(
         # the steps that lost that model's unit to a sensor gap are scored without it (decision B11/B17)
         sess_ids = np.unique(data.session)
         sess_rows = {int(i): np.flatnonzero(data.session == i) for i in sess_ids}
+        # decision C160: side / turn strides (the simulator's kind) are no direction error; scored apart below
+        sess_rows, uncovered = split_rows(task, data, windows, sess_rows)
+        if not sess_rows:
+            out["skipped"].append(f"{task}: every labelled step is a {' / '.join(UNCOVERED_KINDS[task])} stride, "
+                                  f"which the {task} classes do not cover (decision C160)")
+            advance(sum(len(per) for per in tm.models.values()))
+            continue
+        res["n_steps"] = int(sum(len(r) for r in sess_rows.values()))
         # (method, unit) -> session -> (rows of data it classified, their predictions)
         preds: dict[tuple[str, str], dict[int, tuple[np.ndarray, np.ndarray]]] = {}
         for method, per in tm.models.items():
@@ -282,6 +291,7 @@ def evaluate_model(
             log.warning(line)
         # decision C49: what the user gets - the same model on the strides the runtime / track detect
         res["detected"] = detected_score(task, classes, data, windows, sess_rows, detected)
+        res["uncovered"] = uncovered_score(task, classes, data, windows, uncovered, detected)  # decision C160
         if detected_methods or all_methods:  # decision C97: the same strides and matching, classified by each model
             matched: dict[tuple[str, str], list] = {}
             for mm, per in res["methods"].items():
@@ -584,6 +594,10 @@ def markdown_tables(result: dict) -> str:
         from pdrlearn.classify.detected import detected_lines
 
         lines += ["", *[f"- {line}" for line in detected_lines(r.get("detected"))]] if r.get("detected") else []
+        from pdrlearn.classify.uncovered import uncovered_line
+
+        line = uncovered_line(task, r.get("uncovered"), r["classes"])  # decision C160
+        lines += ["", f"- {line}"] if line else []
         parts.append("\n".join(lines))
     return "\n\n".join(parts) + "\n"
 

@@ -92,6 +92,7 @@ def manifest_of(model, files: dict[str, str]) -> dict:
             "skipped": tm.skipped,
             "n_steps": tm.n_steps,
             "n_skipped_labels": tm.n_skipped_labels,
+            "trained_kinds": tm.trained_kinds,  # decision C161: side / turn steps in the training data
             # decision C16: which models keep the training range of their inputs (the ranges are pickled with
             # each model; absent or false in models saved before C16)
             "training_ranges": {m: {u: has_ranges(est) for u, est in per.items()} for m, per in tm.models.items()},
@@ -354,6 +355,7 @@ def load_model(path):
             skipped=t.get("skipped", []),
             n_steps=t.get("n_steps", 0),
             n_skipped_labels=t.get("n_skipped_labels", 0),
+            trained_kinds=t.get("trained_kinds"),  # decision C161: None in a model saved before it
         )
         for method, units in t["models"].items():
             for unit in units:

@@ -551,6 +551,9 @@ class TaskModel:
     skipped: list[str] = field(default_factory=list)
     n_steps: int = 0
     n_skipped_labels: int = 0
+    #: decision C161: training steps of the kinds the task's classes do not cover (``{"side": n, "turn": n}``);
+    #: None: not known (a model from before C161, or sessions without ``kind``)
+    trained_kinds: dict | None = None
 
     def ranking(self) -> list[tuple[str, str]]:
         """(method, unit) pairs from best to worst CV score."""
@@ -1646,6 +1649,9 @@ def train_user(
         out[task] = train_task(data, methods=ms, units=length_units if own else units, cv=cv, seed=seed,
                                advance=advance, soft_vote_methods=None if own else voted_of(ms), groups=groups,
                                group_kind=cv_groups if cv_groups in ("session", "block") else "user", params=params)
+        from pdrlearn.classify.uncovered import trained_kinds
+
+        out[task].trained_kinds = trained_kinds(task, data, windows)  # decision C161: side steps seen in training
         few = out[task].chosen and few_steps_line(task, data.y, out[task].classes, out[task].chosen)  # C75
         if few:
             log.warning("train: %s", few)

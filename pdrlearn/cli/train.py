@@ -364,6 +364,7 @@ def evaluate(
         headline,
         write_predictions,
     )
+    from pdrlearn.classify.uncovered import uncovered_line
     from pdrlearn.cli.common import out_file
     from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
 
@@ -432,6 +433,9 @@ def evaluate(
         _task_table(c, r, task, f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
                     f"{headline(r)}")
         for line in detected_lines(r.get("detected")):  # decision C76
+            c.print(f"  {line}", markup=False)
+        line = uncovered_line(task, r.get("uncovered"), r["classes"])  # decision C160
+        if line:
             c.print(f"  {line}", markup=False)
         for s in r["skipped"]:
             c.print(f"  skipped {s}")

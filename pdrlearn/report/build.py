@@ -225,6 +225,11 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
             withheld = withheld_table(df)  # decision L496: why a stride-time CV or asymmetry cell is empty
             if withheld is not None:
                 tables.append(("gait parameters not given, and why", withheld))
+        from pdrlearn.report.travel import travel_table
+
+        travel = travel_table(df)  # decision L582: the runs with backward or side strides
+        if travel is not None:
+            tables.append(("distance by travel direction (strides of the tracked foot)", travel))
         from pdrlearn.report.tests_table import clinical_test_table, walk_test_table
 
         for tests in (clinical_test_table(df, "run"),  # decision W296: TUG, its phases, transfers, turns

@@ -22,6 +22,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.report.daily_living import daily_living_lines
+from pdrlearn.report.travel import travel_lines
 from pdrlearn.track.stair_lead import FLIGHT_WORDS, flight_line
 
 #: decision W420: the body unit each pipeline's measures come from, as the summary names it
@@ -175,6 +176,7 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     speed = gait_speed_line(summary, unit)
     if speed:
         lines.append(speed)
+    lines += travel_lines(summary, folder, unit)  # decision L582: backward / side strides, turns
     lines += daily_living_lines(summary, folder)
     warnings = warnings_line(summary)
     if warnings:

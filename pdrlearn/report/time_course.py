@@ -56,8 +56,12 @@ def time_course_section(folder: Path, label: str):
 
     periods, laps = _read(folder / "periods.csv"), _read(folder / "laps.csv")
     laps = laps.rename(columns={"speed_m_s": "speed_mps"}) if laps is not None else None  # E98
-    rests = rest_table(_read(folder / "bouts.csv"))
-    if periods is None and laps is None and rests is None:
+    bouts = _read(folder / "bouts.csv")
+    rests = rest_table(bouts)
+    from pdrlearn.report.travel import travel_bouts
+
+    travel = travel_bouts(bouts)  # decision L582: bouts.csv's backward / side strides per bout
+    if periods is None and laps is None and rests is None and travel is None:
         return None
     tables, series = [], []
     if periods is not None and len(periods):
@@ -69,6 +73,8 @@ def time_course_section(folder: Path, label: str):
         series.append(("lap", laps))
     if rests is not None:
         tables.append(("rests between walking bouts (bouts.csv)", rests))
+    if travel is not None:
+        tables.append(("walking bouts by travel direction (bouts.csv)", travel))
     plots = []
     if series:
         name = "".join(c if c.isalnum() else "_" for c in label)[:40]

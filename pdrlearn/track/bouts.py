@@ -47,7 +47,9 @@ from pdrlearn.waist.gait_quality import QUALITY_COLUMNS
 #: C100: and ``visit``)
 BOUT_COLUMNS = ("session", "subject", "visit", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides",
                 "distance_m", "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
-                "longest_contact_gap_s", "data_gap_s", "n_turns", "direction", "backward_fraction", "altitude_change_m",
+                "longest_contact_gap_s", "data_gap_s", "n_turns", "direction", "backward_fraction",
+                "n_backward_strides", "n_side_strides",  # decision L581
+                "altitude_change_m",
                 "altitude_change_before_m", "floors_up", "floors_down",  # decision L450
                 "ascent_m", "descent_m",  # decision L467
                 "gait_out_of_range", "n_cv_strides", "stride_time_cv_pct",
@@ -239,7 +241,8 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104) whose first turning interval ends in
     the bout (a turn after a pause counts in the bout it starts); decision L331: ``backward_fraction``, the
     bout's strides that travel backward (:func:`pdrlearn.track.evaluate.backward_travel`, L203) over ``n_strides``,
-    and ``direction`` (:func:`bout_direction`: forward / backward / mixed), both None on a lower-back track;
+    and ``direction`` (:func:`bout_direction`: forward / backward / mixed; L581: side, with ``n_backward_strides`` /
+    ``n_side_strides``), all None on a lower-back track;
     ``altitude_change_m``: the rows' summed ``dz_m`` (NaN without that column) and, decision W158, the ``pause_dz_m``
     of its rows after the first (the standstills inside the bout); ``altitude_change_before_m`` (W158): the first
     row's ``pause_dz_m``, the altitude change while the unit stood before the bout (a lift or escalator ride; 0
@@ -250,7 +253,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     foot track; 0 on the lower back, L104), and over them, with at least
     :data:`~pdrlearn.track.clinical.CV_BOUT_MIN_STRIDES` (L196's minimum), ``stride_time_cv_pct`` and
     ``stride_length_cv_pct`` (100 x SD / mean, SD with n - 1); NaN with fewer."""
-    from pdrlearn.track.evaluate import backward_travel
+    from pdrlearn.track.evaluate import travel_masks
     from pdrlearn.track.gait import bout_range_flags
 
     rule = rule or BoutRule()
@@ -271,7 +274,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     stride_s = st["stride_time_s"].to_numpy(float) if "stride_time_s" in st else np.full(len(st), np.nan)
     stride_len = np.full(len(st), np.nan)
     stride_len[steady] = steady_stride_lengths(st, steady)
-    back = backward_travel(st)  # decision L331: the strides' travelled direction (L203); None on the lower back
+    masks = travel_masks(st)  # decisions L331 / L581: the strides' travelled direction (L203, L270); None: lower back
     rows = []
     for a, b in bout_ranges(st, rule):
         n_strides = int((~gap[a:b]).sum()) if foot else max(b - a - 2, 0)
@@ -295,7 +298,8 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
                      "longest_contact_gap_s": float(np.diff(c).max()) if len(c) >= 2 else np.nan,
                      "data_gap_s": float(gap_len[a:b].sum()),
                      "n_turns": int(((turn_row >= a) & (turn_row < b)).sum()),
-                     **bout_direction(None if back is None else int(back[a:b].sum()), n_strides),  # decision L331
+                     **bout_direction(None if masks is None else int(masks[0][a:b].sum()), n_strides,  # L331
+                                      None if masks is None else int(masks[1][a:b].sum())),  # decision L581
                      "altitude_change_m": float(dz[a:b].sum() + pause_dz[a + 1:b].sum()),
                      "altitude_change_before_m": float(pause_dz[a]), **_bout_cvs(steady[a:b], stride_s[a:b],
                                                                                   stride_len[a:b])})
@@ -306,19 +310,24 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     return table
 
 
-#: decision L331: bouts.csv's ``direction`` values
-BOUT_DIRECTIONS = ("forward", "backward", "mixed")
+#: decision L331: bouts.csv's ``direction`` values; decision L581: ``side``
+BOUT_DIRECTIONS = ("forward", "backward", "mixed", "side")
 
 
-def bout_direction(n_backward: int | None, n_strides: int) -> dict:
+def bout_direction(n_backward: int | None, n_strides: int, n_side: int | None = 0) -> dict:
     """Decision L331: a bout's ``backward_fraction`` (``n_backward`` of its ``n_strides`` strides travel backward,
     L203) and ``direction``: ``forward`` at 0, ``backward`` at 1, ``mixed`` between; both None without a count (a
-    lower-back track) or without a stride."""
+    lower-back track) or without a stride. Decision L581: ``n_backward_strides`` and ``n_side_strides`` (``n_side``:
+    strides of side-stepping runs, L270's, which travel neither way); ``direction`` is ``forward`` only with neither,
+    ``backward`` / ``side`` when every stride is one, else ``mixed``."""
     if n_backward is None or n_strides <= 0:
-        return {"direction": None, "backward_fraction": None}
-    frac = n_backward / n_strides
-    return {"direction": BOUT_DIRECTIONS[0] if frac == 0 else BOUT_DIRECTIONS[1] if frac == 1 else BOUT_DIRECTIONS[2],
-            "backward_fraction": frac}
+        return {"direction": None, "backward_fraction": None, "n_backward_strides": None, "n_side_strides": None}
+    n_side = n_side or 0
+    forward, backward, mixed, side = BOUT_DIRECTIONS
+    kind = forward if n_backward == n_side == 0 else backward if n_backward == n_strides else \
+        side if n_side == n_strides else mixed
+    return {"direction": kind, "backward_fraction": n_backward / n_strides, "n_backward_strides": int(n_backward),
+            "n_side_strides": int(n_side)}
 
 
 def _bout_cvs(steady: np.ndarray, stride_s: np.ndarray, length_m: np.ndarray) -> dict:

@@ -268,13 +268,26 @@ def sideways_rows(steps: pd.DataFrame) -> np.ndarray:
     return side_rows(flags, gap, streamed="pivot_rad" in steps)
 
 
+def not_straight_travel_rows(steps: pd.DataFrame) -> np.ndarray:
+    """(B,) bool: the rows ``median_speed_straight_mps`` / ``n_straight_strides`` (and so L95's judged speed) leave
+    out whatever their turn: a side step (decision L228, :func:`sideways_rows`) and, decision L580, a stride that
+    travels backward (:func:`pdrlearn.track.evaluate.backward_travel`, L203: its own speed is
+    ``median_backward_speed_mps``, L326); a lower-back table has no backward travel per step (side steps only)."""
+    from pdrlearn.track.evaluate import backward_travel
+
+    back = backward_travel(steps)
+    side = sideways_rows(steps)
+    return side if back is None else side | np.asarray(back, bool)
+
+
 def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight) -> None:
     """``walking_time_s``, ``gait_speed_mps`` (the rows' |length| summed over ``valid`` rows / walking time),
     ``walking_time_no_pauses_s`` and ``walking_speed_mps`` (the same distance / the walking time outside the
     pauses of :func:`pdrlearn.track.clinical.pause_spans`, decision L110), ``median_speed_straight_mps``
     (median ``speed`` where ``straight``) and ``n_straight_strides``; decision L179: ``n_stair_strides``, the valid
     rows whose |``dz_m``| reaches :data:`pdrlearn.kernels.distance.LEVEL_DZ_M` (none without the column); they are
-    never straight (a stair stride's horizontal speed is no walking speed), nor is a side step (decision L228)."""
+    never straight (a stair stride's horizontal speed is no walking speed), nor is a side step (decision L228) or a
+    backward stride (decision L580, :func:`not_straight_travel_rows`)."""
     from pdrlearn.track.clinical import pause_spans
 
     pieces = session_walking_pieces(steps, valid)
@@ -292,7 +305,8 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
         else np.zeros(len(steps), bool)
     out["n_stair_strides_up"] = int((stair & rising).sum())  # decision L432: split by direction
     out["n_stair_strides_down"] = int((stair & ~rising).sum())
-    sp = np.where(np.asarray(straight, dtype=bool) & ~stair & ~sideways_rows(steps),  # decision L228: no side step
+    # decision L228: no side step; L580: no backward stride
+    sp = np.where(np.asarray(straight, dtype=bool) & ~stair & ~not_straight_travel_rows(steps),
                   np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
     out["median_speed_straight_mps"] = _median(sp)

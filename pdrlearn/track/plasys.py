@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pdrlearn.classify.uncovered import trained_side_strides
 from pdrlearn.displace import (
     PRE_L41_CALIBRATION,
     FootDisplacement,
@@ -1513,6 +1514,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     for c in classes.columns:
         if c.startswith("p_") or (c.startswith("ood_") and not c.startswith("ood_feature_")):
             table[c] = classes[c].to_numpy(float)
+    for c in classes.columns:  # decision L583: which classifier classed each stride, as the streamed table's
+        if c.startswith("method_"):
+            table[c] = classes[c].to_numpy(dtype=object)
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
     table["sideways"] = _sideways_rows(lateral, disp, fd.yaw_change_)  # L228: no steady / straight stride for the CVs
@@ -1608,7 +1612,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object),
                                           table["sideways"].to_numpy(dtype=bool),  # decision C137
                                           table["turn_angle_rad"].to_numpy(float))  # decision L578
-    side_class_warning(table, warnings)  # decision C137: side steps the model classed backward
+    side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161
     turn_reference_warning(table, fd.reference_point, warnings)  # decision L489: many turns on the spot
     if len(extra):  # decision L76: a gap row reports the heading of the row before it (after L65's sign)
         for i in inserted[inserted > 0]:
@@ -2056,7 +2060,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["impossible"] = impossible & ~in_gap  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["sideways"] = sideways  # decision L243 (L228's column, decided stride by stride as the runtime's)
-    side_class_warning(table, warnings)  # decision C137: side steps the model classed backward
+    side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt

@@ -109,22 +109,32 @@ def travel_line(summary: dict) -> str | None:
     return "; ".join(parts) + " (steps.csv travel; direction_changes.csv)" if parts else None
 
 
-def side_class_warning(steps: pd.DataFrame, warnings: list[str]) -> None:
+def side_class_warning(steps: pd.DataFrame, warnings: list[str], trained_side: int | None = None) -> None:
     """Decision C137: one line when the direction model classed side steps (L219 / L486's ``sideways`` rows)
     backward - its calibration had none (a model classes forward / backward only). Their ``length_m`` keeps no
     negative sign (:func:`pdrlearn.kernels.stride.travel_sign`), ``direction`` keeps the model's class, and
     ``travel`` (left / right / side) says where they went. Decision L578: the same line for the strides of a turn
     on the spot (own turn of ``BACKWARD_MAX_TURN_DEG`` or more, travel = turn) the model classed backward. Appended
-    to ``warnings``; nothing without a model."""
+    to ``warnings``; nothing without a model. Decision C161: the side-step line says what the model was trained on -
+    ``trained_side`` side-step strides (:func:`pdrlearn.classify.uncovered.trained_side_strides`; 0: none, None: its
+    manifest does not say)."""
     if "direction" not in steps:
         return
     from pdrlearn.kernels.stride import _turns_on_the_spot
     from pdrlearn.track.flags import flag_values
 
     side = flag_values(steps["sideways"]) if "sideways" in steps else np.zeros(len(steps), bool)
+    if trained_side is None:  # decision C161: a model from before C161 or calibration sessions without kind
+        why = ("the direction classes are forward / backward and its manifest does not say whether its calibration "
+               "held side steps (retrain to record it), so its class does not apply to them")
+    elif trained_side == 0:
+        why = ("its calibration walks had no side steps (add a side-stepping walk to the calibration, its side steps "
+               "labelled forward, for them to read forward), so its direction class does not apply to them")
+    else:
+        why = (f"its calibration walks held {trained_side} side-step strides labelled forward, yet it classed these "
+               "backward, so its direction class does not apply to them")
     line = _classed_backward(steps, side, "side-step strides (steps.csv sideways)",
-                             "its calibration walks had no side steps, so its direction class does not apply to "
-                             "them; their length_m is counted positive (side travel, not backward), steps.csv "
+                             why + "; their length_m is counted positive (side travel, not backward), steps.csv "
                              "direction keeps the model's class and travel says the side", "C137")
     if line:
         warnings.append(line)

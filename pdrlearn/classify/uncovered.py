@@ -1,0 +1,98 @@
+"""Decision C160: labelled steps a task's classes do not cover are scored apart, not as that task's errors.
+
+The direction task has two classes, forward and backward (thesis ch.6: the walking directions classified); a side
+step or a stride of a turn on the spot is neither, yet the simulator labels it ``direction=forward`` (its ``kind``
+column says ``side`` / ``turn``). ``evaluate`` scored those as forward steps, so a model perfect on forward and
+backward walking read "backward precision 31 %" on a physiotherapist's side-step and turn exercises (trial T1 F6).
+Now they leave the task's score (:func:`split_rows`) and get one line of their own (:func:`uncovered_line`): how
+many there were and which class the chosen model gave them on the strides the runtime detects (what ``track`` gets).
+A steps table without ``kind`` (a recording labelled by hand) keeps every step in the score.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: decision C160: per task, the labelled ``kind`` values its classes do not cover (the simulator's steps.csv kinds)
+UNCOVERED_KINDS = {"direction": ("side", "turn")}
+
+
+def step_kinds(data, windows, rows: np.ndarray, i: int) -> np.ndarray:
+    """(len(rows),) str: the labelled ``kind`` of the steps ``rows`` of ``data`` (session ``i``); '' without it."""
+    steps = windows[i].steps
+    if "kind" not in steps:
+        return np.full(len(rows), "", dtype=object)
+    return steps["kind"].astype(str).to_numpy(dtype=object)[data.step[rows]]
+
+
+def split_rows(task: str, data, windows, sess_rows: dict) -> tuple[dict, dict]:
+    """``(scored, uncovered)``: ``sess_rows`` (session -> rows of ``data``) split by :data:`UNCOVERED_KINDS` of
+    ``task``; a session keeps its entry in ``scored`` only with a row left, in ``uncovered`` only with one there."""
+    kinds = UNCOVERED_KINDS.get(task)
+    if not kinds:
+        return sess_rows, {}
+    scored, uncovered = {}, {}
+    for i, rows in sess_rows.items():
+        out = np.isin(step_kinds(data, windows, rows, i), kinds)
+        if (~out).any():
+            scored[i] = rows[~out]
+        if out.any():
+            uncovered[i] = rows[out]
+    return scored, uncovered
+
+
+def uncovered_score(task: str, classes, data, windows, uncovered: dict, detected) -> dict | None:
+    """Decision C160: ``{"kinds": tuple, "n_steps", "by_kind": {kind: {"n_steps", "n_matched", "predicted":
+    {class: n}}}}`` of the ``uncovered`` rows: each kind's labelled count and the chosen model's classes of the
+    detected strides matched to them (C49's matching; ``n_matched`` 0 without a foot gyroscope). None without any."""
+    from pdrlearn.classify.detected import detected_score
+
+    if not uncovered:
+        return None
+    matched: list = []
+    detected_score(task, classes, data, windows, uncovered, detected, matched=matched)
+    by_kind: dict[str, dict] = {}
+    for i, rows in uncovered.items():
+        for k in step_kinds(data, windows, rows, i):
+            entry = by_kind.setdefault(k, {"n_steps": 0, "n_matched": 0, "predicted": {str(c): 0 for c in classes}})
+            entry["n_steps"] += 1
+    for i, row, pred in matched:
+        k = step_kinds(data, windows, np.array([row]), i)[0]
+        by_kind[k]["n_matched"] += 1
+        by_kind[k]["predicted"][pred] = by_kind[k]["predicted"].get(pred, 0) + 1
+    return {"kinds": list(UNCOVERED_KINDS[task]), "n_steps": int(sum(len(r) for r in uncovered.values())),
+            "by_kind": dict(sorted(by_kind.items()))}
+
+
+def uncovered_line(task: str, unc: dict | None, classes) -> str | None:
+    """Decision C160: the one line under a task's table for its :func:`uncovered_score`; None without one."""
+    if not unc or not unc.get("n_steps"):
+        return None
+    parts = []
+    for k, e in unc["by_kind"].items():
+        got = ", ".join(f"{c} {e['predicted'].get(str(c), 0)}" for c in classes)
+        parts.append(f"{k} {e['n_steps']}" + (f" (chosen model on the {e['n_matched']} detected: {got})"
+                                               if e["n_matched"] else ""))
+    return (f"{unc['n_steps']} {' / '.join(unc['kinds'])} stride(s) left out of the {task} score, which its classes "
+            f"({', '.join(map(str, classes))}) do not cover: " + "; ".join(parts) + " (decision C160)")
+
+
+def trained_kinds(task: str, data, windows) -> dict[str, int] | None:
+    """Decision C161: how many of ``task``'s training steps (``data``) are of each :data:`UNCOVERED_KINDS` kind
+    (``{"side": 12, "turn": 0}``), stored in the model's manifest; None when the task has no such kinds or no
+    session's steps table has ``kind`` (a hand-labelled calibration: unknown)."""
+    kinds = UNCOVERED_KINDS.get(task)
+    if not kinds or not any("kind" in windows[int(i)].steps for i in np.unique(data.session)):
+        return None
+    got = np.concatenate([step_kinds(data, windows, np.flatnonzero(data.session == i), int(i))
+                          for i in np.unique(data.session)])
+    return {k: int(np.sum(got == k)) for k in kinds}
+
+
+def trained_side_strides(model) -> int | None:
+    """Decision C161: the side-step strides the direction model of ``model`` was trained on (labelled forward, as
+    the simulator labels them); None without a model, without a direction task, or when its manifest does not say
+    (trained before C161, or on sessions without ``kind``)."""
+    tm = getattr(model, "tasks", {}).get("direction") if model is not None else None
+    counts = getattr(tm, "trained_kinds", None)
+    return None if not counts else counts.get("side")
