@@ -70,7 +70,7 @@ def plugin(tmp_path):
 def test_default_detector_sets_are_the_thesis_tuple_and_every_builtin_steps80():
     sim, per_unit = step_count.detector_sets()
     assert sim == step_count.DETECTORS == ("accel", "accel-force", "pelvic-gyro", "pll")
-    assert per_unit == {"foot": tuple(DETECTORS.builtin_names("foot")), "waist": tuple(DETECTORS.builtin_names("waist"))}
+    assert per_unit == {u: tuple(DETECTORS.builtin_names(u)) for u in ("foot", "waist")}
     assert step_count.split_detectors("pll:loop_hz=1.0,order=2, accel") == ["pll:loop_hz=1.0,order=2", "accel"]
 
 
