@@ -3,7 +3,7 @@ normal and fast walking) on simulated users, and report the detectors on the rea
 
 Usage:
     .venv/bin/python experiments/step_count.py [--users 10] [--real-dir datasets/real] [--waist-ic 3]
-        [--external datasets/external]
+        [--external datasets/external] [--detectors NAME,NAME:key=value,...] [--plugin FILE.py ...]
 
 Writes experiments/results/step_count.md and step_count.csv (simulated) and step_count_real.csv (the real
 recordings: foot detectors on the foot sessions; pelvic-gyro, pll and waist-ic on the lower-back ones).
@@ -18,6 +18,12 @@ and to the real-recordings table (``external_waist``), and the foot sessions of 
 --out DIR`` (gaitmap_*) to the real-recordings table (``external_foot``): mocap IC strides for the 4x10 m
 walk, the converter's rest-based segmentation (NOT ground truth) for the stairs
 right foot, the MS patient and the L-shaped walks.
+``--detectors`` / ``--plugin`` (decision steps 80): the detectors compared, so a contributor scores a plug-in on the
+same protocol. ``--plugin FILE.py`` (or a module; repeatable) imports a module that registers detectors
+(``register_detector``), and its new detectors join both tables; ``--detectors a,b,...`` (registered names,
+``NAME:key=value`` settings allowed) replaces the detectors of the simulated tables and, per unit, of the real ones.
+Without them the simulated tables score the thesis' ``DETECTORS`` and the real ones every built-in of the unit. A run
+with either option writes ``*_partial.*`` files, as a run with fewer users does.
 Count error = sum over sessions of |scored - reference| / sum of reference counts (errors of different
 sessions do not cancel). Foot detectors count strides of the instrumented foot against steps.csv
 (ic); waist detectors count every step against extras['ics']. In the real-recordings table ``detected`` is
@@ -37,6 +43,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
 from pdrlearn.sim import simulate
 from pdrlearn.steps import DETECTORS as REGISTRY
@@ -65,13 +72,56 @@ REAL = {
 }
 
 
-def simulated(users: int) -> pd.DataFrame:
+def split_detectors(value: str) -> list[str]:
+    """``--detectors``' comma list: ``a,b`` -> [a, b]; a ``key=value`` item without its own ``NAME:`` belongs to
+    the detector before it (``pll:loop_hz=1.0,order=2,accel`` -> [pll:loop_hz=1.0,order=2, accel])."""
+    out: list[str] = []
+    for item in (s.strip() for s in value.split(",")):
+        if not item:
+            continue
+        if out and "=" in item and ":" not in item and ":" in out[-1]:
+            out[-1] += "," + item
+        else:
+            out.append(item)
+    return out
+
+
+def detector_sets(detectors: str | None = None, plugins: list[str] | None = None
+                  ) -> tuple[tuple[str, ...], dict[str, tuple[str, ...]]]:
+    """Decision steps 80: the simulated tables' detectors and the real table's per unit. ``plugins`` are imported
+    first (``register_detector`` calls run); without ``detectors`` the detectors they added join the defaults (the
+    thesis ``DETECTORS`` and every built-in of the unit). One :class:`DataError` line for a plug-in that fails or a
+    name that is not registered."""
+    from pdrlearn.plugin_modules import load_plugin
+
+    before = list(REGISTRY)
+    for value in plugins or []:
+        load_plugin(value)
+    added = [n for n in REGISTRY if n not in before]
+    if detectors is None:
+        sim = DETECTORS + tuple(added)
+        per_unit = {"foot": FOOT_DETECTORS, "waist": WAIST_DETECTORS}
+        per_unit = {u: names + tuple(n for n in added if REGISTRY[n].unit == u) for u, names in per_unit.items()}
+        return sim, per_unit
+    specs = split_detectors(detectors)
+    if not specs:
+        raise DataError("--detectors: empty; give registered detector names, e.g. --detectors accel,pll")
+    units = {}
+    for spec in specs:
+        try:
+            units[spec] = get_detector(spec).unit
+        except DataError as exc:
+            raise DataError(f"--detectors {spec}: {exc}") from None
+    return tuple(specs), {u: tuple(s for s in specs if units[s] == u) for u in ("foot", "waist")}
+
+
+def simulated(users: int, detectors: tuple[str, ...] = DETECTORS) -> pd.DataFrame:
     rows = []
     for scenario in ("A", "B"):
         for speed in SPEEDS:
             for user in range(1, users + 1):
                 s = simulate(scenario, user, speed=speed)
-                for name in DETECTORS:
+                for name in detectors:
                     sc = score_steps(get_detector(name).detect(s), s)
                     rows.append({"scenario": scenario, "speed": speed, "user": user, "detector": name,
                                  "count": sc["scored_count"], "reference_count": sc["reference_count"],
@@ -108,22 +158,25 @@ def detector_row(s, label: str, d: str, keys: tuple[str, ...] = SCORE_KEYS) -> d
     return row
 
 
-def real(real_dir: Path) -> pd.DataFrame:
+def real(real_dir: Path, per_unit: dict[str, tuple[str, ...]] | None = None) -> pd.DataFrame:
+    """The detectors of each unit (``per_unit``, default every built-in: decision C157) on the real recordings."""
+    per_unit = per_unit or {"foot": FOOT_DETECTORS, "waist": WAIST_DETECTORS}
     rows = []
     for unit, names in REAL.items():
+        if not per_unit[unit]:
+            continue
         for name in names:
             s = read_session(real_dir / name)
-            dets = FOOT_DETECTORS if unit == "foot" else WAIST_DETECTORS
-            rows += [detector_row(s, name, d) for d in dets]
+            rows += [detector_row(s, name, d) for d in per_unit[unit]]
     return pd.DataFrame(rows)
 
 
-def external_waist(ext: Path) -> pd.DataFrame:
+def external_waist(ext: Path, names: tuple[str, ...] = WAIST_DETECTORS) -> pd.DataFrame:
     """The waist detectors on the referenced external mobgap sessions, rows like :func:`real`."""
     rows = []
-    for path in external_waist_sessions(ext):
+    for path in external_waist_sessions(ext) if names else []:
         s = read_session(path)
-        rows += [detector_row(s, f"{path.name} (external)", d) for d in WAIST_DETECTORS]
+        rows += [detector_row(s, f"{path.name} (external)", d) for d in names]
     return pd.DataFrame(rows)
 
 
@@ -132,13 +185,13 @@ def external_foot_sessions(ext: Path) -> list[Path]:
     return [d for d in sorted(ext.glob("gaitmap_*")) if (d / "meta.json").exists() and d.name not in REAL["foot"]]
 
 
-def external_foot(ext: Path) -> pd.DataFrame:
+def external_foot(ext: Path, names: tuple[str, ...] = FOOT_DETECTORS) -> pd.DataFrame:
     """The foot detectors on the external gaitmap sessions, rows like :func:`real` plus ``ground_truth``."""
     rows = []
-    for path in external_foot_sessions(ext):
+    for path in external_foot_sessions(ext) if names else []:
         s = read_session(path)
         rows += [detector_row(s, f"{path.name} (external)", d, SCORE_KEYS + ("ground_truth",))
-                 for d in ("accel", "accel-force")]
+                 for d in names]
     return pd.DataFrame(rows)
 
 
@@ -241,12 +294,12 @@ def _md_waist_ic(df: pd.DataFrame, users: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _md_sim(summary: pd.DataFrame) -> str:
+def _md_sim(summary: pd.DataFrame, detectors: tuple[str, ...] = DETECTORS) -> str:
     lines = []
     for scenario, table in (("A", "Table 20"), ("B", "Table 21")):
         lines += [f"### Scenario {scenario} (thesis {table}): step-count error, ours / thesis", "",
                   "| detector | slow | normal | fast | F1 (all speeds) | sessions |", "|---|---|---|---|---|---|"]
-        for d in DETECTORS:
+        for d in detectors:
             sub = summary[(summary.scenario == scenario) & (summary.detector == d)].set_index("speed")
             cells = []
             for sp in SPEEDS:
@@ -312,25 +365,37 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--external", type=Path, default=None, metavar="DIR",
                     help="with --waist-ic: also the mobgap subjects of `pdrlearn fetch mobgap --out DIR`; "
                          "and the gaitmap foot sessions of `pdrlearn fetch gaitmap --out DIR` in the real table")
+    ap.add_argument("--detectors", default=None, metavar="NAME,NAME:key=value,...",
+                    help="the detectors compared (registered names, built-in or plug-in; decision steps 80): all of "
+                         "them in the simulated tables, those of each unit in the real ones (default: the thesis' "
+                         f"{', '.join(DETECTORS)} simulated; every built-in of the unit on the real recordings)")
+    ap.add_argument("--plugin", action="append", default=None, metavar="FILE.py",
+                    help="import a module or .py file that registers step detectors first (repeatable); without "
+                         "--detectors its new detectors join both tables")
     return ap
 
 
 def output_names(argv: list[str] | None = None):
     """The parsed options, the options that make the run partial (fewer simulated users than the full run's,
     steps decision 67) and the file-name function (``*_partial.*`` for a partial run)."""
-    return parsed_with_names(build_parser(), argv, ("users",))
+    return parsed_with_names(build_parser(), argv, ("users", "detectors", "plugin"))  # steps 67, steps 80
 
 
 def main(argv: list[str] | None = None) -> None:
     args, changed, name = output_names(argv)
+    try:  # decision steps 80: a plug-in that fails or an unknown name is one line, before any simulation
+        sim_detectors, per_unit = detector_sets(args.detectors, args.plugin)
+    except DataError as exc:
+        raise SystemExit(f"error: {exc}") from None
     warnings.filterwarnings("ignore")
     logging.basicConfig(level=logging.ERROR)
     t0 = time.time()
-    sim = simulated(args.users)
+    sim = simulated(args.users, sim_detectors)
     summary = summarise(sim)
-    rl = real(args.real_dir)
+    rl = real(args.real_dir, per_unit)
     if args.external is not None:
-        rl = pd.concat([rl, external_waist(args.external), external_foot(args.external)], ignore_index=True)
+        rl = pd.concat([rl, external_waist(args.external, per_unit["waist"]),
+                        external_foot(args.external, per_unit["foot"])], ignore_index=True)
     OUT.mkdir(parents=True, exist_ok=True)
     summary.to_csv(OUT / name("step_count.csv"), index=False)
     rl.to_csv(OUT / name("step_count_real.csv"), index=False)
@@ -340,7 +405,7 @@ def main(argv: list[str] | None = None) -> None:
           "scored_count). Foot detectors count strides of the instrumented foot; waist detectors count every "
           "step. Thesis numbers from Tables 20-21 "
           "(two real pedestrians, 10 walks per speed); the PLL is not in the thesis.", "",
-          _md_sim(summary),
+          _md_sim(summary, sim_detectors),
           "## Real recordings (tolerance 0.25 s; detections outside the labelled bouts/strides are not scored)",
           "", "detected = every detection; scored = the detections inside the labelled bouts/strides (less, against "
           "INDIP contacts, those standing for an untimed contact or a same-foot gap: decisions 19-20); precision, "

@@ -724,19 +724,45 @@ def _refuse_foot_options_without_foot(pipeline: str, o: dict, session) -> None:
     fAccelerometer" about a folder that has it (trial 31 finding 8)."""
     if not any(s.placement == "foot" for s in session._left_out.values()):
         return
-    asked = [name for name, on in (
-        ("--pipeline plasys", pipeline == "plasys" and o.get("pipeline") == "plasys"),
-        ("--model", o.get("model") is not None), ("--method", str(o.get("method", "auto")).lower() != "auto"),
-        ("--streaming", bool(o.get("streaming"))), ("--toe-off", bool(o.get("toe_off"))),
-        ("--ignore-force", bool(o.get("ignore_force"))),
-        ("--contacts", bool(o.get("contacts"))), ("--detector", o.get("detector") is not None),
-        ("--altitude", o.get("altitude") is not None)) if on]
+    asked = _foot_options_asked(pipeline, o)
     if pipeline == "plasys":
         what = " and ".join(asked) or "the foot pipeline"
         raise DataError(f"track: {session.where}: {what} needs the foot unit (PLASYS tracks the foot), which --units "
                         f"{_kept_units(session)} leaves out; drop "
                         f"{' and '.join(asked) or '--pipeline plasys'} for a lower-back track, or drop --units "
                         "(decision W254)")
+
+
+def _foot_options_asked(pipeline: str, o: dict) -> list[str]:
+    """The options that chose (or name) the foot pipeline, as the user gave them (decisions W254, C163)."""
+    return [name for name, on in (
+        ("--pipeline plasys", pipeline == "plasys" and o.get("pipeline") == "plasys"),
+        ("--model", o.get("model") is not None), ("--method", str(o.get("method", "auto")).lower() != "auto"),
+        ("--streaming", bool(o.get("streaming"))), ("--toe-off", bool(o.get("toe_off"))),
+        ("--ignore-force", bool(o.get("ignore_force"))),
+        ("--contacts", bool(o.get("contacts"))), ("--detector", o.get("detector") is not None),
+        ("--altitude", o.get("altitude") is not None)) if on]
+
+
+def _refuse_foot_options_on_a_lower_back_session(pipeline: str, o: dict, session) -> None:
+    """Decision C163 (session 41, trial T1 finding 9): a lower-back-only recording tracked with a foot option
+    (``--model``, ``--method``, ``--streaming`` ...) had said "no foot unit ... track it with --pipeline
+    waist-pendulum", and that command then refused the same option (two errors in a row). One line now names the
+    option, why no lower-back pipeline reads it and the command that works. Decision C164: a per-user model's waist
+    direction classifier is not read by a lower-back track either (it failed its adoption rule)."""
+    if pipeline != "plasys" or session.has("fAccelerometer") or not session.has("wAccelerometer"):
+        return
+    asked = [a for a in _foot_options_asked(pipeline, o) if a != "--pipeline plasys"]
+    if not asked:  # a bare --pipeline plasys: plasys's own line (decision E182) names the waist pipeline
+        return
+    drop = " and ".join((["--pipeline plasys"] if o.get("pipeline") == "plasys" else []) + asked)
+    one = len(asked) == 1
+    classes = (" (they have no step classes: a lower-back track counts backward steps as forward, decision C164)"
+               if "--model" in asked else "")
+    raise DataError(f"track: {session.where} has no foot unit (fAccelerometer.csv), and {', '.join(asked)} "
+                    f"{'is a foot-pipeline (PLASYS) option' if one else 'are foot-pipeline (PLASYS) options'} that "
+                    f"no lower-back pipeline reads{classes}; drop {drop} to track the lower back (--pipeline auto "
+                    "chooses waist-pendulum), or give a session with a foot unit (decision C163)")
 
 
 def _kept_units(session) -> str:
@@ -846,6 +872,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     if pipeline in ("plasys", "auto") and session._left_out and not session.has("fAccelerometer"):
         _refuse_foot_options_without_foot(pipeline, o, session)  # decision W254
+    _refuse_foot_options_on_a_lower_back_session(pipeline, o, session)  # decision C163
     _refuse_waist_pipeline_without_waist(pipeline, session)  # decision W260
     auto = pipeline == "auto"
     pipeline = resolve_pipeline(pipeline, session)
