@@ -21,6 +21,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "flights.csv",  # W417
                                 "ramps.csv",  # L301
                                 "stairs.csv",  # L432
+                                "curbs.csv",  # L573
                                 "rides.csv",  # L377
                                 "steps.csv", "steps.csv (foot)",  # E137
                                 "trajectory.csv",  # B309

@@ -248,21 +248,37 @@ def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
     """``ramps.csv`` (decision L301): one row per ramp of :func:`ramp_runs` on the rows' ``length_m`` / ``dz_m``
     (numbered from 1, with its first row's ``start_s`` and last row's ``end_s``); no rows (the header alone) where
     :func:`grade_source` is None."""
-    src = grade_source(steps, info)
-    if src is None:
+    if grade_source(steps, info) is None:
         return pd.DataFrame(columns=list(RAMP_COLUMNS))
-    valid = _valid(steps)
-    length = np.where(valid, pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float), 0.0)
-    dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
-    unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
     rows = []
-    for k, r in enumerate(ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
-                                    stair_grade_pct=stair_min_grade_pct(steps)), start=1):  # decision L463
+    for k, r in enumerate(table_ramps(steps, info), start=1):
         t0, t1 = float(steps["start_s"].iloc[r["first"]]), float(steps["end_s"].iloc[r["last"]])
         rows.append({"ramp": k, "start_s": t0, "end_s": t1, **{c: r[c] for c in RAMP_COLUMNS if c in r},
                      "duration_s": t1 - t0,  # decision L467
                      "speed_mps": r["along_slope_m"] / (t1 - t0) if t1 > t0 else np.nan})
     return pd.DataFrame(rows, columns=list(RAMP_COLUMNS))
+
+
+def table_ramps(steps: pd.DataFrame, info: dict | None) -> list[dict]:
+    """Decision L301: :func:`ramp_runs` of the rows' ``length_m`` / ``dz_m`` (gap rows and impossible strides 0),
+    as ramps.csv lists them; none where :func:`grade_source` is None."""
+    if grade_source(steps, info) is None:
+        return []
+    valid = _valid(steps)
+    length = np.where(valid, pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float), 0.0)
+    dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
+    unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
+    return ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
+                     stair_grade_pct=stair_min_grade_pct(steps))  # decision L463
+
+
+def ramp_row_mask(steps: pd.DataFrame, info: dict | None) -> np.ndarray:
+    """(rows,) bool: the rows of ramps.csv's ramps, first to last row (landings included, decision L301) - the
+    rows decision L573's curbs leave out."""
+    out = np.zeros(len(steps), bool)
+    for r in table_ramps(steps, info):
+        out[r["first"]:r["last"] + 1] = True
+    return out
 
 
 def climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray | None:
