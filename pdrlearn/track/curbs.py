@@ -19,6 +19,10 @@ from pdrlearn.kernels.distance import LEVEL_DZ_M
 #: decision L573: the least |dz| (m) of a curb stride: L179's stair-stride rule (L39's level bound, half a stair
 #: rise, decision S3); a 0.15 m curb (ADA 2010 sec. 303.2 allows 6 mm unbevelled, so any curb needs a ramp) exceeds it
 CURB_MIN_DZ_M = LEVEL_DZ_M
+#: decision L573: a stride of a ramps.csv ramp that carries at least this share of the ramp's rise is a curb: L301
+#: joins a curb stride with a neighbour into a 2 m "ramp" (a 0.15 m curb down read as a 2.19 m ramp at -8.13 %, its
+#: curb stride -0.139 of -0.178 m); a ramp's strides share its rise (a 1:12 ramp rises 0.10 m per 1.2 m stride)
+CURB_SHARE = 0.5
 #: decision L573: the columns of ``curbs.csv``; ``x_m`` / ``y_m`` the trajectory's position halfway through the
 #: stride (the curb is within half a stride of it); the clock columns are added with a recording start (L298)
 CURB_COLUMNS = ("curb", "start_s", "end_s", "direction", "dz_m", "length_m", "x_m", "y_m")
@@ -40,7 +44,7 @@ def curb_table(steps: pd.DataFrame, trajectory: pd.DataFrame | None, info: dict 
     from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.evaluate import ramp_climb_rows
     from pdrlearn.track.gait import stride_rows
-    from pdrlearn.track.grade import ramp_row_mask
+    from pdrlearn.track.grade import table_ramps
     from pdrlearn.track.stair_flights import flight_spans
 
     if (not len(steps) or "dz_m" not in steps or _is_lower_back(steps)
@@ -48,7 +52,10 @@ def curb_table(steps: pd.DataFrame, trajectory: pd.DataFrame | None, info: dict 
         return pd.DataFrame(columns=list(CURB_COLUMNS))
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     dz = pd.to_numeric(st["dz_m"], errors="coerce").to_numpy(float)
-    excluded = ramp_row_mask(st, info)
+    excluded = np.zeros(len(st), bool)
+    for r in table_ramps(st, info):  # ramps.csv's rows, but a stride that carries half a ramp's rise or more: a
+        rows = np.arange(r["first"], r["last"] + 1)  # curb L301 joined with its neighbour into a 2 m run
+        excluded[rows] = ~(np.abs(np.nan_to_num(dz[rows])) >= CURB_SHARE * abs(r["rise_m"]))
     for a, b in runs(ramp_climb_rows(st, info)):  # L303's climbs under 20 %: of two rows or more, a ramp walked
         excluded[a:b] |= b - a >= 2                # by a foot track (its single stride is the curb itself)
     for a, b, _ in flight_spans(st):

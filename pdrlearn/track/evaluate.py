@@ -1343,6 +1343,22 @@ def ramps_need_fused_warning(summary: dict) -> str | None:
             "under 0.10 m (L39), a 1:12 ramp's at strides under 1.2 m (decision L574)")
 
 
+def lower_back_grade_warning(summary: dict) -> str | None:
+    """Decision W463 (trial T3 finding F9): one line when a lower-back track's ramps.csv has ramps (its grades the
+    barometer's rise over the pendulum's step lengths, L300): a grade scales with the step-length calibration, so an
+    uncalibrated track's (``info["params_source"]`` not ``"calibrated"``) reads high by about its distance shortfall."""
+    if summary.get("grade_source") != "barometer" or not summary.get("n_ramps"):
+        return None
+    calibrated = ((summary.get("info") or {}).get("params_source") == "calibrated")
+    return (f"ramps.csv's {int(summary['n_ramps'])} lower-back ramp(s): a grade is the barometer's rise over the "
+            "pendulum's step lengths, so it scales with the step-length calibration - "
+            + ("this track's calibration sets it; check it on a walk of known length before a 1:12 / 1:20 decision"
+               if calibrated else
+               "uncalibrated, 14 simulated 4-12 % ramps read +0.97 points high on average and up to +2.44 (their "
+               "steps short by 5-24 %): run `pdrlearn calibrate` first, or track the foot with --altitude fused")
+            + "; a ramp may also be split in two or three (decision W463)")
+
+
 def summary_warnings(summary: dict) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
     L353's reported gait speed below it while L95's judged figures are inside, and L195's bouts above it, decision
@@ -1351,8 +1367,8 @@ def summary_warnings(summary: dict) -> list[str]:
     whole-sample rounding of the CV, decision L145's foot altitude against the unused barometer, decision B188's
     implausible barometer, decision L175's position uncertainty against the distance walked (and L341's radius
     beyond its calibration routes), decision L319's reference trajectory that does not travel, decision L414's
-    --toe-off stance times below the contacts they were checked on, and decision L574's empty ramps table of a foot
-    track that left a climbing barometer unread."""
+    --toe-off stance times below the contacts they were checked on, decision L574's empty ramps table of a foot
+    track that left a climbing barometer unread, and decision W463's lower-back grades."""
     from pdrlearn.track.clinical import (
         pooled_cv_warning,
         pooled_length_cv_warning,
@@ -1376,6 +1392,7 @@ def summary_warnings(summary: dict) -> list[str]:
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
                         weather_drift_warning(summary),  # decision L464
                         ramps_need_fused_warning(summary),  # decision L574
+                        lower_back_grade_warning(summary),  # decision W463
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
                         stationary_reference_warning(summary), stance_range_warning(summary)) if w]
 

@@ -261,7 +261,7 @@ def ramp_table(steps: pd.DataFrame, info: dict | None) -> pd.DataFrame:
 
 def table_ramps(steps: pd.DataFrame, info: dict | None) -> list[dict]:
     """Decision L301: :func:`ramp_runs` of the rows' ``length_m`` / ``dz_m`` (gap rows and impossible strides 0),
-    as ramps.csv lists them; none where :func:`grade_source` is None."""
+    as ramps.csv lists them (and decision L573's curbs leave out); none where :func:`grade_source` is None."""
     if grade_source(steps, info) is None:
         return []
     valid = _valid(steps)
@@ -270,15 +270,6 @@ def table_ramps(steps: pd.DataFrame, info: dict | None) -> list[dict]:
     unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
     return ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
                      stair_grade_pct=stair_min_grade_pct(steps))  # decision L463
-
-
-def ramp_row_mask(steps: pd.DataFrame, info: dict | None) -> np.ndarray:
-    """(rows,) bool: the rows of ramps.csv's ramps, first to last row (landings included, decision L301) - the
-    rows decision L573's curbs leave out."""
-    out = np.zeros(len(steps), bool)
-    for r in table_ramps(steps, info):
-        out[r["first"]:r["last"] + 1] = True
-    return out
 
 
 def climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray | None:
