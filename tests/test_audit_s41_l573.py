@@ -90,7 +90,7 @@ def test_terrain_check_names_a_ramp_on_a_steady_slope_c159():
     assert "a ramp or slope the model never saw" in msg and info["steady_slope_strides"] == 10
     # a stair flight classed against its sign: strides of 0.3 m are no slope
     msg, info = terrain_dz_check(terr, np.where(np.abs(raw) > 0.05, raw * 3, raw), raw)
-    assert "contradict" in msg and "never saw" not in msg
+    assert "contradict" in msg and "never saw" not in msg and "steady_slope_strides" not in info
     assert steady_slope([True] * 6, [0.05, 0.05, -0.05, 0.05, 0.05, 0.05]) is None  # 4 in a row are not 5
 
 

@@ -201,8 +201,8 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
     msg = (f"{lead}: the classes or the foot's integrated height are wrong ({_ACCURACY}); check the model on "
            "this user's own labelled walk (`pdrlearn evaluate MODEL DIR`)")
     slope = steady_slope(up | down | (terr == "flat"), raw)  # decision C159
-    info["steady_slope_strides"] = 0 if slope is None else slope[1] - slope[0]
-    if slope is not None:
+    if slope is not None:  # info["steady_slope_strides"]: the slope strides named (absent: none)
+        info["steady_slope_strides"] = slope[1] - slope[0]
         size = np.abs(np.nan_to_num(raw[slope[0]:slope[1]]))
         msg += SLOPE_HINT.format(n=slope[1] - slope[0], lo=float(size.min()), hi=float(size.max()))
     return msg, info
