@@ -106,3 +106,18 @@ def test_lower_back_grade_window_kept_w465():
     from pdrlearn.track.grade import GRADE_WINDOW_ROWS
 
     assert GRADE_WINDOW_ROWS["waist"] == 3  # W465: 5 and 7 rows failed the rule (one-ramp sessions 7 of 14, not 12)
+
+
+def test_a_lone_noisy_step_splits_no_lower_back_ramp_w464():
+    from pdrlearn.track.grade import ramp_runs, ramp_table
+
+    # a 1:12 ramp of 0.7 m steps with one step of 0.15 m (21 %, a stair row) in its middle, level before and after
+    dz = np.r_[np.zeros(4), np.full(6, 0.058), 0.15, np.full(6, 0.058), np.zeros(4)]
+    length = np.full(len(dz), 0.7)
+    assert len(ramp_runs(length, dz, 3)) == 2  # L301 alone: the stair row splits it
+    assert len(ramp_runs(length, dz, 3, lone_stair_joins=True)) == 1
+    steps = pd.DataFrame({"start_s": np.arange(len(dz)) * 0.5, "end_s": np.arange(len(dz)) * 0.5 + 0.5,
+                          "length_m": length, "dz_m": dz, "gap_s": 0.0, "unit": "waist"})
+    assert len(ramp_table(steps, {})) == 1  # the lower back's ramps.csv joins them (W464)
+    two = np.r_[np.zeros(4), np.full(6, 0.058), 0.15, 0.15, np.full(6, 0.058), np.zeros(4)]  # two stair steps
+    assert len(ramp_runs(np.full(len(two), 0.7), two, 3, lone_stair_joins=True)) == 2

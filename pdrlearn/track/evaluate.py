@@ -1356,7 +1356,7 @@ def lower_back_grade_warning(summary: dict) -> str | None:
                if calibrated else
                "uncalibrated, 14 simulated 4-12 % ramps read +0.97 points high on average and up to +2.44 (their "
                "steps short by 5-24 %): run `pdrlearn calibrate` first, or track the foot with --altitude fused")
-            + "; a ramp may also be split in two or three (decision W463)")
+            + "; a ramp may also be split across a level stretch (decision W463)")
 
 
 def summary_warnings(summary: dict) -> list[str]:
