@@ -109,9 +109,10 @@ SESSIONS: tuple[Column, ...] = (
     ("barometer_drift_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's slow drift (the weather) "
                                          "over the track, recorded minus climbs (L172)"),
     ("ascent_m", "m", "number", "cumulative climb (foot: strides' dz; barometric z - lower back, --altitude fused: "
-                                "0.5 m crossed within 60 s, the weather's drift dropped; L146, L172)"),
+                                "0.5 m crossed within 60 s, the weather's drift dropped; L146, L172); empty on a "
+                                "lower-back track without a barometer (no altitude, L575)"),
     ("descent_m", "m", "number", "cumulative descent, >= 0 (ascent_m - descent_m = altitude_change_m; barometric z: "
-                                 "minus altitude_drift_m; L146, L172)"),
+                                 "minus altitude_drift_m; L146, L172); empty as ascent_m (L575)"),
     ("altitude_drift_m", "m", "number", "barometric z (lower back, --altitude fused): the slow change that "
                                         "ascent_m / descent_m and the floors leave out (L172); not the weather's "
                                         "drift during climbs, which they include (weather_drift_m, L464)"),
@@ -1301,6 +1302,21 @@ STAIRS: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+#: decision L573: ``curbs.csv`` (``track`` / ``run``), one row per single level change (a curb) of a foot track
+CURBS: tuple[Column, ...] = (
+    ("curb", "index", "integer", "the level change's number, from 1 in walking order"),
+    ("start_s", "s", "number", "the stride's start_s"),
+    ("end_s", "s", "number", "the stride's end_s"),
+    ("direction", _ID, "text", "up or down"),
+    ("dz_m", "m", "number", "the stride's height change (signed, + up): |dz_m| >= 0.10 m (L179) in one stride "
+                            "outside stairs.csv's flights, ramps.csv's ramps and ramp climbs of 2+ strides (L573); "
+                            "a curb ramp (under 2 m) is in no table"),
+    ("length_m", "m", "number", "the stride's horizontal length"),
+    ("x_m", "m", "number", "trajectory.csv's x halfway through the stride (the curb is within half a stride)"),
+    ("y_m", "m", "number", "trajectory.csv's y halfway through the stride"),
+    *_clocks("start_s", "end_s"),
+)
+
 #: decision L383: a track's laps.csv (``track --corridor``), one row per stretch between cone turns
 LAPS: tuple[Column, ...] = (
     ("lap", "index", "integer", "the stretch's number, from 1 (the last one the final, partial lap)"),
@@ -1609,7 +1625,7 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, TEN_M_WALK_TRIAL_TABLE,
-    FREEZES, FLIGHTS, RAMPS, RAMP_RUNS, STAIRS, RIDES, WAIST_STEPS,
+    FREEZES, FLIGHTS, RAMPS, RAMP_RUNS, STAIRS, CURBS, RIDES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 

@@ -22,6 +22,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "ramps.csv",  # L301
                                 "ramp_runs.csv",  # L568
                                 "stairs.csv",  # L432
+                                "curbs.csv",  # L573
                                 "rides.csv",  # L377
                                 "steps.csv", "steps.csv (foot)",  # E137
                                 "trajectory.csv",  # B309

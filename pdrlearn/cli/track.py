@@ -1317,6 +1317,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, ramps.csv, ramp_runs.csv, "
                # decision L440: no stairs.csv on the lower back
                f"{'stairs.csv, ' if (out / 'stairs.csv').is_file() else ''}"
+               f"{'curbs.csv, ' if (out / 'curbs.csv').is_file() else ''}"  # decision L573
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}"
                f"{'tug_phases.csv, ' if summary.get('tug_phases') else ''}"
                f"{'tug_trials.csv, ' if summary.get('n_tug_trials') else ''}"

@@ -31,6 +31,22 @@ CONFLICT_MIN_FRACTION = 0.10
 #: or when the strides classed flat add at least this much (m) to the altitude change
 FLAT_ALTITUDE_M = 0.5
 
+#: decision C159 (session 41, trial T3 finding F5): a steady slope under the foot - at least this many consecutive
+#: classified strides whose integrated height changes share one sign, each from :data:`SLOPE_STRIDE_DZ_MIN_M` to
+#: under :data:`SLOPE_STRIDE_DZ_MAX_M` - makes C28's line name a ramp or slope the model never saw
+SLOPE_MIN_STRIDES = 5
+#: decision C159: the least |dz| (m) of a slope stride: L301's 3 % ramp grade over a 0.7 m stride (a slow walker's)
+SLOPE_STRIDE_DZ_MIN_M = 0.02
+#: decision C159: a slope stride's |dz| is under this (m): under one stair riser of the simulator's 0.17 m (S3)
+#: climbed step-to-step; the foot's integrated heights read a 1:12 ramp's (8.33 %, ADA 2010 sec. 405.2) 1.5 m strides
+#: at 0.127-0.151 m, ~15 % over the true 0.125 m (C159's measurement; 0.14 m, set first, missed them)
+SLOPE_STRIDE_DZ_MAX_M = 0.16
+#: decision C159: what C28's line adds on a steady slope
+SLOPE_HINT = ("; the foot's height says a steady slope ({n} consecutive strides of {lo:.2f}-{hi:.2f} m one way): "
+              "likely a ramp or slope the model never saw - terrain models (default or trained by `pdrlearn train` "
+              "on the calibration exercises, which hold no ramp) class a downhill ramp's strides up and an uphill "
+              "one's flat; for ramps and grades track with --altitude fused (ramps.csv, L300) (decision C159)")
+
 _ACCURACY = (f"level walks measured gave integrated heights up to {LEVEL_STRIDE_DZ_MAX_M:.2f} m per stride and "
              f"{LEVEL_ALTITUDE_PER_100M_MAX_M:.1f} m per 100 m (L68)")
 
@@ -131,6 +147,23 @@ def fused_altitude_line(msg: str, fused_m: float) -> str:
             f"integrated height without terrain classes ({m.group(1)} m)" + msg[m.end():])
 
 
+def steady_slope(classified, raw_dz, min_strides: int = SLOPE_MIN_STRIDES,
+                 dz_min_m: float = SLOPE_STRIDE_DZ_MIN_M, dz_max_m: float = SLOPE_STRIDE_DZ_MAX_M
+                 ) -> tuple[int, int] | None:
+    """Decision C159: ``(first, last + 1)`` of the longest run of at least ``min_strides`` consecutive ``classified``
+    strides whose integrated height changes ``raw_dz`` share one sign with ``dz_min_m`` <= |dz| < ``dz_max_m``;
+    None without one. A pure kernel."""
+    raw = np.nan_to_num(np.asarray(raw_dz, dtype=float))
+    ok = np.asarray(classified, bool) & (np.abs(raw) >= dz_min_m) & (np.abs(raw) < dz_max_m)
+    best = None
+    for sign in (1, -1):  # numpy only (the streaming runtime imports this module, E47)
+        d = np.diff(np.concatenate([[0], (ok & (np.sign(raw) == sign)).astype(np.int8), [0]]))
+        for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1), strict=True):
+            if b - a >= min_strides and (best is None or b - a > best[1] - best[0]):
+                best = (int(a), int(b))
+    return best
+
+
 def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str | None, dict]:
     """Decision C28: ``terrain`` (n,) a model's classes (None/NaN: not classified, not counted), ``raw_dz`` (n,)
     the integrated height changes before the rules, ``dz`` (n,) the track's final ones. Returns the warning
@@ -167,6 +200,11 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
             f"classes contradict their integrated height change ({counts})")
     msg = (f"{lead}: the classes or the foot's integrated height are wrong ({_ACCURACY}); check the model on "
            "this user's own labelled walk (`pdrlearn evaluate MODEL DIR`)")
+    slope = steady_slope(up | down | (terr == "flat"), raw)  # decision C159
+    if slope is not None:  # info["steady_slope_strides"]: the slope strides named (absent: none)
+        info["steady_slope_strides"] = slope[1] - slope[0]
+        size = np.abs(np.nan_to_num(raw[slope[0]:slope[1]]))
+        msg += SLOPE_HINT.format(n=slope[1] - slope[0], lo=float(size.min()), hi=float(size.max()))
     return msg, info
 
 

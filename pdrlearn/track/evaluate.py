@@ -719,6 +719,18 @@ def _altitude_kind(result: TrackResult) -> tuple[bool, bool]:
     return foot, bool(len(steps)) and (not foot or (result.info or {}).get("altitude_source") == "fused")
 
 
+def no_altitude(result: TrackResult) -> bool:
+    """Decision L575: a lower-back track without a barometric altitude (W90: no usable wBarometer.csv, its steps'
+    ``dz_m`` and trajectory z all 0, as L300's :func:`pdrlearn.track.grade.grade_source` reads it): its ascent and
+    descent are not measured (None), not 0."""
+    steps, tr = result.steps, result.trajectory
+    if not len(steps) or "unit" not in steps or not bool((steps["unit"].astype(str) == "waist").all()):
+        return False
+    dz = np.nan_to_num(pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)) if "dz_m" in steps else [0.0]
+    z = np.nan_to_num(tr["z"].to_numpy(float)) if len(tr) and "z" in tr else [0.0]
+    return not (np.any(dz != 0) or np.any(z != 0))
+
+
 def interval_ascent(result: TrackResult, a: float, b: float) -> tuple[float | None, float | None]:
     """Decision L467: the ascent and descent (m) of the trajectory's z from ``a`` to ``b`` (s) by the summary's
     rule (:func:`_ascent`: a barometric z L146's band crossed within L172's window, a foot track's strides as they
@@ -726,7 +738,7 @@ def interval_ascent(result: TrackResult, a: float, b: float) -> tuple[float | No
     from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent
 
     tr = result.trajectory
-    if not len(tr) or "z" not in tr or "t" not in tr:
+    if not len(tr) or "z" not in tr or "t" not in tr or no_altitude(result):  # decision L575
         return None, None
     t = tr["t"].to_numpy(float)
     m = (t >= a) & (t <= b)
@@ -743,7 +755,8 @@ def _ascent(result: TrackResult, out: dict) -> None:
     (a lower-back track, or a foot track with ``altitude="fused"``, L154) within the hysteresis band
     ``ASCENT_BAND_BARO_M`` crossed within ``CLIMB_WINDOW_S`` (decision L172: the weather's slow drift is dropped),
     and ``altitude_drift_m``, the barometric change so dropped (altitude_change_m minus ascent plus descent); decision
-    W370: only a drift the weather can make in the track's span (else climbs counted turning point to turning point)."""
+    W370: only a drift the weather can make in the track's span (else climbs counted turning point to turning point).
+    Decision L575: all None on a lower-back track without a barometric altitude (:func:`no_altitude`)."""
     from pdrlearn.kernels.altitude_check import (
         ASCENT_BAND_BARO_M,
         CLIMB_WINDOW_S,
@@ -753,6 +766,9 @@ def _ascent(result: TrackResult, out: dict) -> None:
     )
 
     tr, steps = result.trajectory, result.steps
+    if no_altitude(result):  # decision L575: not measured, not 0
+        out.update(dict.fromkeys(("ascent_m", "descent_m", "altitude_drift_m", "altitude_drift_limit_m")))
+        return
     z = tr["z"].to_numpy(float) if len(tr) and "z" in tr else np.zeros(0)
     foot, barometric = _altitude_kind(result)
     if not barometric or "t" not in tr:
@@ -1355,6 +1371,36 @@ def add_gait_range_flag(summary: dict) -> dict:
 from pdrlearn.track.belt import BELT_KEY, belt_line, belt_summary  # noqa: E402, F401
 
 
+def ramps_need_fused_warning(summary: dict) -> str | None:
+    """Decision L574 (trial T3 finding F8): one line when a foot track did not read the session's waist barometer
+    (``barometer_unused``) and the barometer counted a climb (``barometer_ascent_m`` / ``barometer_descent_m`` over
+    0: L146's 0.5 m within L172's minute): its ramps.csv is the header alone and steps.csv's ``grade_pct`` empty
+    (L300), which says nothing about the route's slopes."""
+    climbed = float(summary.get("barometer_ascent_m") or 0.0) + float(summary.get("barometer_descent_m") or 0.0)
+    if not summary.get("barometer_unused") or summary.get("grade_source") is not None or not climbed > 0:
+        return None
+    return (f"the waist barometer climbed {float(summary.get('barometer_ascent_m') or 0.0):.2f} m and descended "
+            f"{float(summary.get('barometer_descent_m') or 0.0):.2f} m, but ramps.csv is empty and steps.csv has no "
+            "grade_pct: ramps / grades need --altitude fused (L300) - a foot track's own height levels every stride "
+            "under 0.10 m (L39), a 1:12 ramp's at strides under 1.2 m (decision L574)")
+
+
+def lower_back_grade_warning(summary: dict) -> str | None:
+    """Decision W463 (trial T3 finding F9): one line when a lower-back track's ramps.csv has ramps (its grades the
+    barometer's rise over the pendulum's step lengths, L300): a grade scales with the step-length calibration, so an
+    uncalibrated track's (``info["params_source"]`` not ``"calibrated"``) reads high by about its distance shortfall."""
+    if summary.get("grade_source") != "barometer" or not summary.get("n_ramps"):
+        return None
+    calibrated = ((summary.get("info") or {}).get("params_source") == "calibrated")
+    return (f"ramps.csv's {int(summary['n_ramps'])} lower-back ramp(s): a grade is the barometer's rise over the "
+            "pendulum's step lengths, so it scales with the step-length calibration - "
+            + ("this track's calibration sets it; check it on a walk of known length before a 1:12 / 1:20 decision"
+               if calibrated else
+               "uncalibrated, 14 simulated 4-12 % ramps read +0.97 points high on average and up to +2.44 (their "
+               "steps short by 5-24 %): run `pdrlearn calibrate` first, or track the foot with --altitude fused")
+            + "; a ramp may also be split across a level stretch (decision W463)")
+
+
 def summary_warnings(summary: dict) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
     L353's reported gait speed below it while L95's judged figures are inside, and L195's bouts above it, decision
@@ -1362,8 +1408,9 @@ def summary_warnings(summary: dict) -> list[str]:
     CV over straight stretches of different length), decision L116's
     whole-sample rounding of the CV, decision L145's foot altitude against the unused barometer, decision B188's
     implausible barometer, decision L175's position uncertainty against the distance walked (and L341's radius
-    beyond its calibration routes), decision L319's reference trajectory that does not travel, and decision L414's
-    --toe-off stance times below the contacts they were checked on."""
+    beyond its calibration routes), decision L319's reference trajectory that does not travel, decision L414's
+    --toe-off stance times below the contacts they were checked on, decision L574's empty ramps table of a foot
+    track that left a climbing barometer unread, and decision W463's lower-back grades."""
     from pdrlearn.track.clinical import (
         pooled_cv_warning,
         pooled_length_cv_warning,
@@ -1387,6 +1434,8 @@ def summary_warnings(summary: dict) -> list[str]:
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
                         weather_drift_warning(summary),  # decision L464
                         climb_total_warning(summary),  # decision L566
+                        ramps_need_fused_warning(summary),  # decision L574
+                        lower_back_grade_warning(summary),  # decision W463
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
                         stationary_reference_warning(summary), stance_range_warning(summary)) if w]
 

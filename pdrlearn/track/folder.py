@@ -82,8 +82,8 @@ def clinical_tables(result, bouts) -> dict:
     (decision W213: the freeze index's episodes of the tracked unit), ``ramps.csv`` (decision L301) and
     ``ramp_runs.csv`` (L568: its runs and landings), ``stairs.csv``
     (decision L432: the stair flights of a foot track, ``n_stairs`` from ``info["stair_rise_m"]``; none on the lower
-    back, L440) and, on the lower
-    back with a barometer, ``rides.csv`` (decision L377)."""
+    back, L440), ``curbs.csv`` (decision L573: a foot track's single level changes; none on the lower back) and, on
+    the lower back with a barometer, ``rides.csv`` (decision L377)."""
     import pandas as pd
 
     from pdrlearn.track.clinical import add_turn_steps, turn_table
@@ -108,6 +108,10 @@ def clinical_tables(result, bouts) -> dict:
             out["stairs.csv"] = with_end_positions(  # decision L570: the flights' ends' positions
                 flight_table(result.steps if result.info.get("belt_incline_pct") is None
                              else result.steps.iloc[:0], result.info.get("stair_rise_m")), traj)
+            from pdrlearn.track.curbs import curb_table
+
+            # decision L573: single level changes (curbs) outside flights and ramps
+            out["curbs.csv"] = curb_table(result.steps, result.trajectory, result.info)
     from pdrlearn.track.travel import direction_change_table
 
     changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction

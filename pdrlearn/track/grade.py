@@ -197,7 +197,7 @@ def window_grades_pct(length, dz, window: int = 1) -> np.ndarray:
 
 def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE_PCT,
               stair_grade_pct: float = STAIR_MIN_GRADE_PCT, min_run_m: float = RAMP_MIN_RUN_M,
-              landing_max_m: float = LANDING_MAX_M, on_stairs=None) -> list[dict]:
+              landing_max_m: float = LANDING_MAX_M, on_stairs=None, lone_stair_joins: bool = False) -> list[dict]:
     """Decision L301: the ramps of rows (horizontal ``length`` m, height change ``dz`` m, walking order) - a pure
     kernel. A row is a ramp row of sign s when the grade of the centred ``window`` rows around it (their summed dz
     over their summed |length|) is at least ``min_grade_pct`` in size, under ``stair_grade_pct`` (steeper: a stair),
@@ -207,7 +207,9 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     ramp: its first and last row (``first``, ``last``), ``runs`` (``(first, last)`` per run) and the table's
     numbers (:data:`RAMP_COLUMNS` but ``ramp`` and the times). ``on_stairs`` (decision L314; None: none): rows known to
     be on stairs whatever their grade - a lower-back track's W108 climbs, whose pendulum lengths read a stair's
-    riser over a long step - are stair rows."""
+    riser over a long step - are stair rows. ``lone_stair_joins`` (decision W464, the lower back's): a stair row with
+    no stair row next to it does not keep two runs of one sign from joining (a lower-back step's barometric change
+    is noise of several %, L300: one step of 0.15 m over 0.7 m split T3's 1:12 ramp in three)."""
     length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
     n = len(length)
@@ -220,6 +222,7 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
         stair |= np.asarray(on_stairs, dtype=bool)
     sign = np.where((np.abs(g) >= min_grade_pct) & (np.abs(g) < stair_grade_pct) & ~stair
                     & (length >= GRADE_MIN_LENGTH_M), np.sign(g), 0).astype(int)
+    blocks = stair & ~_lone(stair) if lone_stair_joins else stair  # decision W464
     runs = sorted((a, b - 1, s) for s in (1, -1) for a, b in signal_runs(sign == s)
                   if length[a:b].sum() >= min_run_m)  # maximal rows of one sign, in walking order
     ramps: list[list[tuple[int, int, int]]] = []
@@ -228,7 +231,7 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
             p = ramps[-1][-1]
             between = slice(p[1] + 1, r[0])
             if (p[2] == r[2] and length[between].sum() <= landing_max_m
-                    and not np.any(stair[between] | (sign[between] == -r[2]))):
+                    and not np.any(blocks[between] | (sign[between] == -r[2]))):
                 ramps[-1].append(r)
                 continue
         ramps.append([r])
@@ -249,6 +252,15 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     return out
 
 
+def _lone(mask: np.ndarray) -> np.ndarray:
+    """The True rows of ``mask`` with no True row next to them."""
+    m = np.asarray(mask, bool)
+    near = np.zeros(len(m), bool)
+    near[1:] |= m[:-1]
+    near[:-1] |= m[1:]
+    return m & ~near
+
+
 def track_ramps(steps: pd.DataFrame, info: dict | None) -> tuple[list[dict], np.ndarray, np.ndarray]:
     """Decisions L301, L568: :func:`ramp_runs` of a track's rows (the valid rows' ``length_m`` / ``dz_m``, the
     unit's window, L314's stair rows, the stair grade in force) with the rows' lengths and height changes it read;
@@ -260,7 +272,8 @@ def track_ramps(steps: pd.DataFrame, info: dict | None) -> tuple[list[dict], np.
     dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
     unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
     found = ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
-                      stair_grade_pct=stair_min_grade_pct(steps))  # decision L463
+                      stair_grade_pct=stair_min_grade_pct(steps),  # decision L463
+                      lone_stair_joins=unit == "waist")  # decision W464: one noisy barometric step splits no ramp
     return found, np.abs(length), dz
 
 
@@ -279,6 +292,12 @@ def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame 
                      "speed_mps": r["along_slope_m"] / (t1 - t0) if t1 > t0 else np.nan,
                      **compliance_flags(r["max_run_grade_pct"], r["max_run_rise_m"])})  # decision L569
     return with_end_positions(pd.DataFrame(rows, columns=list(RAMP_COLUMNS)), trajectory)
+
+
+def table_ramps(steps: pd.DataFrame, info: dict | None) -> list[dict]:
+    """Decision L301: the ramps of :func:`track_ramps` as ramps.csv lists them (and decision L573's curbs leave
+    out); none where :func:`grade_source` is None."""
+    return track_ramps(steps, info)[0]
 
 
 def climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray | None:

@@ -138,6 +138,23 @@ def flight_row_masks(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None
     return kept, kept | (stair & steep)
 
 
+def flight_spans(st: pd.DataFrame) -> list[tuple[int, int, int]]:
+    """Decisions L432, L443, L466: ``(first, last + 1, sign)`` of each stair flight of a foot track's rows ``st``
+    (sorted by ``start_s``, with ``dz_m``), as stairs.csv lists them - shared by :func:`flight_table` and the curbs
+    outside flights (decision L573, :mod:`pdrlearn.track.curbs`)."""
+    from pdrlearn.track.clinical import bout_rows
+    from pdrlearn.track.gait import stride_rows
+
+    dz = pd.to_numeric(st["dz_m"], errors="coerce").to_numpy(float)
+    # L179's n_stair_strides rows; decision L443: less a climb L302 calls "ramps" (under 20 % rise over run), as
+    # floors_up_stairs / floors_up_ramps count it - a ramp, a hill or an inclined belt is no stair flight
+    length = pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float) if "length_m" in st else None
+    plain, steep = flight_row_masks(st, dz, length)  # decision L466: L443's own stair rows, and with L455's
+    stair = (steep if STEEP_STRIDES_IN_RAMPS else plain) & stride_rows(st)
+    return [(a, b, sign) for a, b, sign in flight_runs(dz, stair, bout_rows(st), length)
+            if b - a >= MIN_STEEP_FLIGHT_STRIDES or plain[a:b].any()]  # decision L466
+
+
 def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.DataFrame:
     """``stairs.csv`` (decision L432): one row per :func:`flight_runs` flight of a foot track's rows (decision L443:
     not of the climbs L302 calls ramps, :func:`pdrlearn.track.evaluate.ramp_climb_rows`) (in
@@ -148,22 +165,15 @@ def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.D
     round(|height| / rise) and ``stairs_per_min``. The header alone on a lower-back track (its rows are steps of
     either foot with a barometric height) and without ``dz_m``."""
     from pdrlearn.track.bouts import cadence_spm
-    from pdrlearn.track.clinical import _is_lower_back, bout_rows, cv_pct
-    from pdrlearn.track.gait import stride_rows
+    from pdrlearn.track.clinical import _is_lower_back, cv_pct
 
     if not len(steps) or "dz_m" not in steps or _is_lower_back(steps):
         return pd.DataFrame(columns=list(FLIGHT_COLUMNS))
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)  # bout_rows' row order
     dz = pd.to_numeric(st["dz_m"], errors="coerce").to_numpy(float)
-    # L179's n_stair_strides rows; decision L443: less a climb L302 calls "ramps" (under 20 % rise over run), as
-    # floors_up_stairs / floors_up_ramps count it - a ramp, a hill or an inclined belt is no stair flight
-    length = pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float) if "length_m" in st else None
-    plain, steep = flight_row_masks(st, dz, length)  # decision L466: L443's own stair rows, and with L455's
-    stair = (steep if STEEP_STRIDES_IN_RAMPS else plain) & stride_rows(st)
     start, end = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
     rows = []
-    found = [(a, b, sign) for a, b, sign in flight_runs(dz, stair, bout_rows(st), length)
-             if b - a >= MIN_STEEP_FLIGHT_STRIDES or plain[a:b].any()]  # decision L466
+    found = flight_spans(st)
     for k, (a, b, sign) in enumerate(found, start=1):
         t = float(end[b - 1] - start[a])
         height = float(np.nansum(dz[a:b]))
