@@ -45,6 +45,8 @@ def test_epoch_seconds_on_the_sessions_own_clock_stay_session_seconds_d47(tmp_pa
     a = aid_track(pdr, _session(t0, t1), gnss_path=plain, start=ORIGIN)
     b = aid_track(_shifted(pdr, E), _session(t0 + E, t1 + E), gnss_path=epoch, start=ORIGIN)
     assert not any("cannot be placed" in w for w in b.info.get("warnings", []))
+    g = b.info["aid"]["gnss"]
+    assert g["time_source"] == "session_epoch_clock" and "first_epoch_s" not in g and "time_alignment" not in g
     assert b.info["aid"]["gnss"]["fixes_used"] == a.info["aid"]["gnss"]["fixes_used"] > 100
     # the same track but for fixes at a step's edge that + E's rounding moves to the next step (0.20 m at most)
     assert b.trajectory[["x", "y"]].to_numpy() == pytest.approx(a.trajectory[["x", "y"]].to_numpy(), abs=0.3)

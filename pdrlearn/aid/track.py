@@ -141,8 +141,9 @@ def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog
     lines = [x for x in [_blank_hdop_line(path, out)] if x]
     if on_session_epoch_clock(out.stats, session):  # decision D47: epoch seconds that are the session's own clock
         out.fixes["t"] = out.fixes["t"] + float(out.stats.pop("first_epoch_s"))
+        for k in ("time_base", "last_epoch_s"):
+            del out.stats[k]
         out.stats["time_source"] = "session_epoch_clock"
-        del out.stats["time_base"]
     if "time_base" not in out.stats:  # a CSV's t on the session clock
         if offset_s is not None:
             raise DataError(f"{path}: --gnss-time-offset places a log's UTC times (NMEA, GPX, ISO-time CSV) on the "
