@@ -98,6 +98,9 @@ class Settings:
 
 #: a value's Python type -> the annotation words that take it (an int is a float too)
 TAKEN_BY = {bool: ("bool",), type(None): ("None",), int: ("int", "float"), float: ("float",), str: ("str",)}
+#: decision C165: the annotation words E94 checks; a setting annotated with any other (``Path | None``, ``Any``) is
+#: left to its class
+CHECKED_WORDS = frozenset(w for words in TAKEN_BY.values() for w in words)
 
 
 def annotation_words(annotation) -> set[str] | None:
@@ -130,13 +133,15 @@ def fits_words(value, words: set[str]) -> bool:
 def wrong_type(cls, key: str, value) -> str | None:
     """``"k='abc' is not a number (its default: None)"`` when ``value`` is not of the type ``cls``'s setting ``key``
     is annotated with (decision E94's check of a spec's value; decision C158: also a length model's Python settings);
-    None when it is, or when the annotation is not a plain union of names (``tuple[...]``, none: left to the class)."""
+    None when it is, or when the annotation is not a plain union of names (``tuple[...]``, none) or names a type
+    E94 does not check (decision C165: ``Path | None``, ``Any``, a class: :data:`CHECKED_WORDS`): left to the
+    class."""
     try:
         param = inspect.signature(cls).parameters.get(key)
     except (TypeError, ValueError):
         return None
     words = None if param is None else annotation_words(param.annotation)
-    if words is None or fits_words(value, words):
+    if words is None or not words <= CHECKED_WORDS or fits_words(value, words):
         return None
     default = param.default if param.default is not inspect.Parameter.empty else None
     return f"{key}={value!r} is not {words_what(words)} (its default: {default!r})"

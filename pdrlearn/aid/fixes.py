@@ -303,13 +303,23 @@ def _epoch_seconds(num: pd.Series, source: str) -> np.ndarray | None:
                     "or ISO 8601 UTC date-times (e.g. 2026-03-15T10:00:00Z) (decision D46)")
 
 
+def _numeric_cells(values: pd.Series) -> tuple[pd.Series, pd.Series]:
+    """A ``t`` column's cells as numbers (NaN where none) and its blank cells (empty, only spaces or NaN)."""
+    return pd.to_numeric(values, errors="coerce"), values.isna() | values.astype(str).str.strip().eq("")
+
+
+def _numeric_t(values: pd.Series) -> bool:
+    """Decision D47: whether a ``t`` column holds only numbers (and blank cells), not ISO 8601 date-times."""
+    num, blank = _numeric_cells(values)
+    return bool((num.notna() | blank).all())
+
+
 def _utc_seconds(values: pd.Series, source: str) -> np.ndarray | None:
     """Decision D37: ISO 8601 date-times -> seconds since the epoch (UTC; a time without an offset is read as UTC,
     as GPX and NMEA times are); None when the column is numeric (session seconds), except epoch seconds, returned
     as they are (decision D46, :func:`_epoch_seconds`). Decision D43: decided on the non-blank cells (a blank cell is
     no evidence of ISO times); a blank cell stays NaN, so :func:`validate_fix_table` names its row."""
-    num = pd.to_numeric(values, errors="coerce")
-    blank = values.isna() | values.astype(str).str.strip().eq("")
+    num, blank = _numeric_cells(values)
     if (num.notna() | blank).all():
         return _epoch_seconds(num, source)
     text = values[~blank].astype(str).str.strip()
@@ -369,6 +379,7 @@ def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M, accuracy_m: float = DE
         df["accuracy_m"] = np.where(blank, accuracy_m, hdop * uere_m)  # decision D44: blank = unknown, the default
         stats["blank_hdop"] = int(blank.sum())
     epoch = _utc_seconds(df["t"], str(path)) if "t" in df.columns else None
+    numeric = epoch is not None and _numeric_t(df["t"])  # decision D47: epoch seconds, not ISO date-times
     if epoch is None and "t" in df.columns and not named_t:  # decision D37: numbers only under t (session seconds)
         alias = original[list(df.columns).index("t")]
         raise DataError(f"{path}: column {alias!r} holds numbers, which could be seconds or milliseconds of any clock; "
@@ -380,6 +391,9 @@ def read_fix_csv(path, *, uere_m: float = DEFAULT_UERE_M, accuracy_m: float = DE
     if epoch is not None:  # decision D37: times since the first fix; aid_track places them on the session clock
         stats["time_base"] = "utc"
         stats["first_epoch_s"] = float(df["t"].iloc[0])
+        if numeric:  # decision D47: aid_track keeps them as session seconds on a session with an epoch clock
+            stats["time_source"] = "epoch_seconds"
+            stats["last_epoch_s"] = float(df["t"].iloc[-1])
         df["t"] = df["t"] - df["t"].iloc[0]
     stats["used"] = int(len(df))
     return FixLog(df, stats, str(path))

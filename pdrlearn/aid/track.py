@@ -113,6 +113,22 @@ def _blank_hdop_line(path, flog: FixLog) -> str | None:
             "give accuracy_m or hdop for every fix to weight them by it")
 
 
+#: decision D47: how far (s) a fix CSV's epoch-second times may lie outside the session's own time span and still be
+#: read on its clock (a receiver logging a little before the first or after the last IMU sample)
+SESSION_CLOCK_MARGIN_S = 5.0
+
+
+def on_session_epoch_clock(stats: dict, session: Session, margin_s: float = SESSION_CLOCK_MARGIN_S) -> bool:
+    """Decision D47 (amends D46): whether a fix CSV's numeric epoch-second ``t`` (``stats['time_source']``
+    "epoch_seconds") is the session's own clock -- a session whose timestamps are epoch ms (PLASYS) has session
+    seconds of ~1.77e9 -- so its fixes are kept as session seconds, not placed as UTC by D38: true when the fixes'
+    span [first, last] overlaps the session's [t_start, t_end] widened by ``margin_s``."""
+    if stats.get("time_source") != "epoch_seconds" or not session.streams:
+        return False
+    first, last = float(stats["first_epoch_s"]), float(stats["last_epoch_s"])
+    return first <= session.t_end + margin_s and last >= session.t_start - margin_s
+
+
 def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog, list[str]]:
     """Read a fix file (NMEA, GPX or CSV, decision D37) and put its times on the session clock (decision D38);
     returns the log and its warning lines: blank hdop cells (D44), times that could not be placed (D38)."""
@@ -123,6 +139,11 @@ def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog
     offset_s = check_time_offset(offset_s)
     out = read_fixes(path)
     lines = [x for x in [_blank_hdop_line(path, out)] if x]
+    if on_session_epoch_clock(out.stats, session):  # decision D47: epoch seconds that are the session's own clock
+        out.fixes["t"] = out.fixes["t"] + float(out.stats.pop("first_epoch_s"))
+        for k in ("time_base", "last_epoch_s"):
+            del out.stats[k]
+        out.stats["time_source"] = "session_epoch_clock"
     if "time_base" not in out.stats:  # a CSV's t on the session clock
         if offset_s is not None:
             raise DataError(f"{path}: --gnss-time-offset places a log's UTC times (NMEA, GPX, ISO-time CSV) on the "

@@ -78,7 +78,16 @@ def sha256_file(path: str | Path, *, chunk: int = 1 << 20) -> str:
     return h.hexdigest()
 
 
-class OnnxModel:
+class SharedByCopies:
+    """Decision E252: a loaded model (an onnxruntime session, an OpenCV net, a verified bundle) is read-only, so a
+    tracker's ``copy.deepcopy`` (:class:`pdrlearn.runtime.threads.OwnGuard`) shares it instead of copying it (an
+    onnxruntime session cannot be copied: "cannot pickle ... InferenceSession")."""
+
+    def __deepcopy__(self, memo: dict):
+        return self
+
+
+class OnnxModel(SharedByCopies):
     """One ONNX model of a bundle, run by onnxruntime (or ``cv2.dnn`` for a plain network).
 
     Parameters
@@ -151,7 +160,7 @@ class OnnxModel:
         return {role: by_name[name] for role, name in self.outputs.items() if name in by_name}
 
 
-class Bundle:
+class Bundle(SharedByCopies):
     """A verified model bundle. Use :func:`load_bundle`.
 
     Attributes

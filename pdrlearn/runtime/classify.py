@@ -22,7 +22,7 @@ from pdrlearn.kernels.dtw import dtw_to_refs
 from pdrlearn.kernels.proba import align_proba as align
 from pdrlearn.kernels.proba import soft_vote, softmax
 from pdrlearn.kernels.window import GROUP_STREAMS, GROUPS
-from pdrlearn.runtime.bundle import Bundle, OnnxModel
+from pdrlearn.runtime.bundle import Bundle, OnnxModel, SharedByCopies
 from pdrlearn.runtime.features import compute_features, recipe_channels
 
 #: the keys of a heuristic model's JSON file in a bundle (``export`` writes them; decision B125 checks them)
@@ -260,13 +260,13 @@ def heuristic_proba(self: RuntimeModel, W: np.ndarray, cache: dict | None = None
     return np.column_stack([probs[c] for c in self.classes])
 
 
-class StepGraph:
+class StepGraph(SharedByCopies):
     """The bundle's step graph (decision E10): the step window in, every covered task's probabilities
     out, in one onnxruntime session run (features, models, class alignment and unit fusion inside).
 
     Built only for the tasks that classify with their chosen (exported) model; the others stay on the
     per-model path. ``StepGraph.open`` returns None when the bundle has no step graph or runs on
-    OpenCV's dnn module (which lacks the graph's operators).
+    OpenCV's dnn module (which lacks the graph's operators). Read-only: a tracker's deep copy shares it (E252).
     """
 
     def __init__(self, bundle: Bundle, spec: dict, tasks: list[str]):

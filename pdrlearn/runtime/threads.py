@@ -18,6 +18,24 @@ def new_guard() -> threading.Lock:
     return threading.Lock()
 
 
+class OwnGuard:
+    """Decision E252: a copy of a tracker gets its own :func:`new_guard` (a ``threading.Lock`` cannot be copied or
+    pickled, so ``copy.deepcopy(tracker)`` -- a checkpoint, or a "what if" branch of a live stream -- raised "cannot
+    pickle '_thread.lock' object"). Both the foot ``Tracker`` and the waist trackers inherit it. ``copy.copy`` gets
+    a new guard too, so a shallow copy on another thread is not refused as "a second thread"; it shares the stream
+    state (buffers, filters) with the original, so feed a shallow copy only when the original is no longer fed, or
+    take a deep copy."""
+
+    def __getstate__(self) -> dict:
+        state = dict(self.__dict__)
+        state.pop("_busy", None)
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        self._busy = new_guard()
+
+
 def one_call_at_a_time(method):
     """Decisions E231, E241: ``method`` (a tracker's ``push`` / ``flush``, the waist's ``push_barometer``) refused with
     one :class:`ConcurrentUseError` line when another thread is inside one of the tracker's guarded calls (its
@@ -42,4 +60,4 @@ def one_call_at_a_time(method):
     return guarded
 
 
-__all__ = ["new_guard", "one_call_at_a_time"]
+__all__ = ["OwnGuard", "new_guard", "one_call_at_a_time"]

@@ -98,7 +98,7 @@ from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
 from pdrlearn.runtime.restart import resume as resume_state
 from pdrlearn.runtime.stream import FootLevelling, HeightLog, Ring, fill_resampled, foot_levelled, waist_entry
-from pdrlearn.runtime.threads import new_guard, one_call_at_a_time
+from pdrlearn.runtime.threads import OwnGuard, new_guard, one_call_at_a_time
 
 log = logging.getLogger(__name__)
 #: float64 in native byte order. Arrays made here share this dtype object (``is`` is the cheap test), but
@@ -362,7 +362,7 @@ class _Views(dict):
         return self[name] if name in self._buf else default
 
 
-class Tracker(FixInput):
+class Tracker(OwnGuard, FixInput):
     """Classify and track steps as samples stream in (numpy + onnxruntime only).
 
     Parameters

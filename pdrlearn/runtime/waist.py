@@ -22,7 +22,7 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
 from pdrlearn.runtime.fixes import FixInput
-from pdrlearn.runtime.threads import new_guard, one_call_at_a_time
+from pdrlearn.runtime.threads import OwnGuard, new_guard, one_call_at_a_time
 from pdrlearn.textfile import read_text
 
 log = logging.getLogger(__name__)
@@ -82,7 +82,7 @@ class LiveStep:
     pause_dz_m: float | None = None
 
 
-class WaistStream(FixInput):
+class WaistStream(OwnGuard, FixInput):
     """The live waist-pendulum tracker's stream processing (decisions W31, W64, W92): shared by
     :class:`WaistTracker` (a waist bundle) and :class:`pdrlearn.waist.WaistTracker` (a PARAMS.json), which differ
     only in where the parameters and the axis frame come from.

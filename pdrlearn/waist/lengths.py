@@ -58,10 +58,12 @@ class StepLengthModel(Settings):
     def _check_params(self, params: dict) -> None:
         """C21's check, and every setting of the type its annotation names (decision C158: ``WeinbergLength(k="abc")``
         is the line ``--length-model weinberg:k=abc`` gives, E94, not a TypeError at the first step): a subclass
-        needs no check of its own for that."""
+        needs no check of its own for that. Decision C165: a value that ``is`` the setting's own default is not
+        checked (``k: float = None``, a plug-in's "no value", constructs as before C158)."""
         super()._check_params(params)
+        defaults = self._defaults()
         for k, v in params.items():
-            said = wrong_type(type(self).__init__, k, v)
+            said = None if v is defaults.get(k, object()) else wrong_type(type(self).__init__, k, v)
             if said:
                 raise DataError(f"step-length model {self.name}: {said}")
 
