@@ -15,7 +15,7 @@ def _track(tmp_path, capsys, route: str | None, seed: int, scenario: str | None 
     args = ["--route", route] if route else ["--scenario", scenario]
     assert main(["simulate", *args, "--user-seed", str(seed), "--out", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["track", str(sim), "--out", str(tmp_path / f"tr_{seed}"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(sim), "--out", str(tmp_path / f"tr_{seed}"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     saved = json.loads((tmp_path / f"tr_{seed}" / "summary.json").read_text())
     assert saved["n_backward_strides"] == out["n_backward_strides"]
@@ -50,7 +50,8 @@ def test_lower_back_track_has_none(tmp_path, capsys):
     sim = tmp_path / "w"
     assert main(["simulate", "--scenario", "A", "--user-seed", "3561", "--out", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["track", str(sim), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "tw"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(sim), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "tw"),
+                 "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["n_backward_strides"] is None
 
 
@@ -64,6 +65,6 @@ def test_a_replay_counts_the_strides_its_model_classes_backward(tmp_path, capsys
     sim = tmp_path / "back"
     assert main(["simulate", "--route", "stand:3, backward:10, stand:3", "--user-seed", "11", "--out", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["run", str(bundle), str(sim), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(sim), "--out", str(tmp_path / "r"), "--json"]) == 0
     # decision L505 (session 38): a stream's first stride is not judged backward or side (no facing yet)
     assert json.loads(capsys.readouterr().out)["n_backward_strides"] == 5

@@ -48,10 +48,11 @@ def test_protocol_with_a_waist_bundle_says_how_to_make_a_foot_one(tmp_path, caps
     for both units is the error, which names the option."""
     still = "%$1 0 9.81 0$2 0 0 0\n" * 40  # 2 s of a foot at rest (an empty capture is refused since B193)
     monkeypatch.setattr(sys, "stdin", io.StringIO(still))
-    assert main(["run", str(BUNDLE), "--protocol", "-", "--out", str(tmp_path / "o")]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), "--protocol", "-", "--out", str(tmp_path / "o")]) == 0
     assert "has no waist unit" in capsys.readouterr().err
     monkeypatch.setattr(sys, "stdin", io.StringIO(""))
-    assert main(["run", str(BUNDLE), "--protocol", "-", "--units", "foot,waist", "--out", str(tmp_path / "p")]) == 2
+    assert main(["run", "--no-plot", str(BUNDLE), "--protocol", "-", "--units", "foot,waist", "--out",
+                 str(tmp_path / "p")]) == 2
     assert "--units foot" in _err(capsys)
 
 
@@ -65,7 +66,7 @@ def test_folder_of_sessions_given_to_a_one_session_command(tmp_path, capsys):
 
 def test_missing_fix_file_is_refused_before_tracking(tmp_path, capsys):
     """Before, the session was tracked first (a 'no model' warning, then the error)."""
-    assert main(["track", str(REAL / "gaitmap_level_left"), "--gnss", str(tmp_path / "none.nmea"), "--out",
+    assert main(["track", "--no-plot", str(REAL / "gaitmap_level_left"), "--gnss", str(tmp_path / "none.nmea"), "--out",
                  str(tmp_path / "o")]) == 2
     assert "no such fix file" in _err(capsys)  # the only stderr line
     assert not (tmp_path / "o").exists()

@@ -105,7 +105,8 @@ def test_track_all_metrics_repeated_empty_or_listed_are_one_line_never_a_traceba
     root = tmp_path / "study"
     _study(root)
     out = tmp_path / "o"
-    assert main(["track-all", str(root), "--out", str(out), "--metrics", "gait_speed_mps,gait_speed_mps,tug_time_s"]
+    assert main(["track-all", "--no-plot", str(root), "--out", str(out), "--metrics",
+                 "gait_speed_mps,gait_speed_mps,tug_time_s"]
                 ) == 0
     got = capsys.readouterr()
     assert "Traceback" not in got.err
@@ -117,12 +118,13 @@ def test_track_all_metrics_repeated_empty_or_listed_are_one_line_never_a_traceba
                                                                       "gait_speed_mps_change_pct"]
     assert not any(c.startswith("tug_time_s") for c in changes) and changes["status"].eq("ok").all()
     assert pd.read_csv(out / "changes_summary.csv")["n_pct_subjects"].tolist() == [4]
-    assert main(["track-all", str(root), "--out", str(tmp_path / "o1"), "--metrics", "tug_time_s"]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "o1"), "--metrics", "tug_time_s"]) == 0
     got = capsys.readouterr()
     assert "Traceback" not in got.err and "no session has a value of tug_time_s" in got.out + got.err
     summary = pd.read_csv(tmp_path / "o1" / "changes_summary.csv")
     assert summary.empty and "n_pct_subjects" in summary
-    assert main(["track-all", str(root), "--out", str(tmp_path / "o2"), "--metrics", "gait_speed_mps,splits_m"]) == 2
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "o2"), "--metrics",
+                 "gait_speed_mps,splits_m"]) == 2
     err = capsys.readouterr().err
     assert "--metrics gait_speed_mps,splits_m: 'splits_m' is not a measure" in err and "B326" in err
     assert "Traceback" not in err and len(err.strip().splitlines()) == 1 and not (tmp_path / "o2").exists()

@@ -47,9 +47,9 @@ def _summary(out: Path) -> dict:
 @pytest.mark.parametrize("name", ["walk9010", "gap9010"])
 def test_a_zips_track_lists_the_folders_warnings_once_and_never_the_temporary_folder_b359(sessions, tmp_path, capsys,
                                                                                            name):
-    assert main(["track", str(sessions / name), "--out", str(tmp_path / "d")]) == 0
+    assert main(["track", "--no-plot", str(sessions / name), "--out", str(tmp_path / "d")]) == 0
     err_dir = capsys.readouterr().err
-    assert main(["track", str(sessions / f"{name}.zip"), "--out", str(tmp_path / "z")]) == 0
+    assert main(["track", "--no-plot", str(sessions / f"{name}.zip"), "--out", str(tmp_path / "z")]) == 0
     err_zip = capsys.readouterr().err
     d, z = _summary(tmp_path / "d"), _summary(tmp_path / "z")
     assert z["warnings"] == d["warnings"] and z["warning_codes"] == d["warning_codes"], (d, z)
@@ -63,7 +63,7 @@ def test_run_json_of_a_zip_hashes_the_archive_e197(sessions, tmp_path, capsys):
     import hashlib
 
     z = sessions / "walk9010.zip"
-    assert main(["track", str(z), "--out", str(tmp_path / "z")]) == 0
+    assert main(["track", "--no-plot", str(z), "--out", str(tmp_path / "z")]) == 0
     capsys.readouterr()
     run = json.loads((tmp_path / "z" / "run.json").read_text())
     assert run["input_sha256"] == {"walk9010.zip": hashlib.sha256(z.read_bytes()).hexdigest()}, run["input_sha256"]
@@ -81,7 +81,7 @@ def test_a_zip_inside_a_searched_tree_is_named_not_skipped_b374(sessions, tmp_pa
     shutil.copytree(sessions / "walk9010", root / "a" / "walk9010")
     shutil.copy(sessions / "gap9010.zip", root / "a")
     shutil.copy(sessions / "gap9010.zip", only)
-    assert main(["track-all", str(root), "--out", str(tmp_path / "all")]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "all")]) == 0
     err = capsys.readouterr().err
     assert f"{root / 'a' / 'gap9010.zip'}: a zip archive, not searched" in err and "unzip" in err, err
     assert main(["track-all", str(only), "--out", str(tmp_path / "all2")]) == 2

@@ -33,7 +33,8 @@ def _truth_m(session, a, b):
 
 def test_minutes_from_the_first_step_match_the_truth(walk):
     out = walk / "first"
-    assert main(["track", str(walk / "s"), "--per", "60", "--per-align", "first-step", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(walk / "s"), "--per", "60", "--per-align", "first-step", "--out",
+                 str(out)]) == 0
     p = pd.read_csv(out / "periods.csv")
     summary = json.loads((out / "summary.json").read_text())
     first = pd.read_csv(walk / "s" / "steps.csv")["start_ms"].min() / 1000.0  # the simulated walk's first step
@@ -47,11 +48,11 @@ def test_minutes_from_the_first_step_match_the_truth(walk):
 
 def test_per_inside_a_window_is_each_periods_own_window(walk):
     out = walk / "win"
-    assert main(["track", str(walk / "s"), "--window", "5,125", "--per", "60", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(walk / "s"), "--window", "5,125", "--per", "60", "--out", str(out)]) == 0
     p = pd.read_csv(out / "periods.csv")
     assert p["start_s"].tolist() == pytest.approx([5.0, 65.0]) and p["end_s"].tolist() == pytest.approx([65.0, 125.0])
     one = walk / "w1"
-    assert main(["track", str(walk / "s"), "--window", "5,65", "--out", str(one)]) == 0
+    assert main(["track", "--no-plot", str(walk / "s"), "--window", "5,65", "--out", str(one)]) == 0
     alone = json.loads((one / "summary.json").read_text())
     assert p["distance_m"].iloc[0] == pytest.approx(alone["distance_m"], abs=1e-6)
     assert p["n_steps"].iloc[0] == alone["n_steps"]
@@ -59,7 +60,7 @@ def test_per_inside_a_window_is_each_periods_own_window(walk):
 
 def test_first_step_without_a_step_is_one_line(walk, capsys):
     out = walk / "none"
-    code = main(["track", str(walk / "s"), "--window", "0,3", "--per", "60", "--per-align", "first-step",
+    code = main(["track", "--no-plot", str(walk / "s"), "--window", "0,3", "--per", "60", "--per-align", "first-step",
                  "--out", str(out)])
     err = capsys.readouterr().err
     assert code == 2 and "--per-align first-step" in err and "B292" in err and "Traceback" not in err

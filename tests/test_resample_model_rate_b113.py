@@ -38,12 +38,13 @@ def _lines(caplog, text):
 def test_track_default_warns_naming_resample_and_resample_tracks_at_the_models_rate(sim, tmp_path, caplog):
     folder, _, off = sim
     with caplog.at_level(logging.WARNING):
-        assert main(["track", str(folder), "--model", str(off), "--out", str(tmp_path / "a"), "--json"]) == 0
+        assert main(["track", "--no-plot", str(folder), "--model", str(off), "--out", str(tmp_path / "a"),
+                     "--json"]) == 0
     c18 = _lines(caplog, "step classifiers were trained at")
     assert len(c18) == 1 and "pass --resample to resample the session to the model's rate" in c18[0]
     caplog.clear()
     with caplog.at_level(logging.WARNING):
-        assert main(["track", str(folder), "--model", str(off), "--out", str(tmp_path / "b"), "--json",
+        assert main(["track", "--no-plot", str(folder), "--model", str(off), "--out", str(tmp_path / "b"), "--json",
                      "--resample"]) == 0
     assert _lines(caplog, "step classifiers were trained at") == []  # the classifiers now see their rate
     done = _lines(caplog, "resampled to the model's 100 Hz before tracking")
@@ -57,10 +58,10 @@ def test_no_resample_refuses_in_one_line_and_both_flags_contradict(sim, tmp_path
     assert len(err) == 1 and "not the model's 100 Hz (--no-resample)" in err[0] and "--resample" in err[0]
     assert not (tmp_path / "a").exists()
     # at the model's own rate --no-resample changes nothing
-    assert main(["track", str(folder), "--model", str(model_dir), "--out", str(tmp_path / "b"), "--json",
+    assert main(["track", "--no-plot", str(folder), "--model", str(model_dir), "--out", str(tmp_path / "b"), "--json",
                  "--no-resample"]) == 0
     capsys.readouterr()
-    assert main(["track", str(folder), "--model", str(off), "--out", str(tmp_path / "c"), "--resample",
+    assert main(["track", "--no-plot", str(folder), "--model", str(off), "--out", str(tmp_path / "c"), "--resample",
                  "--no-resample"]) == 2
     assert "contradict each other" in capsys.readouterr().err
     assert main(["track", str(folder), "--out", str(tmp_path / "d"), "--resample"]) == 2  # no model
@@ -129,7 +130,7 @@ def test_track_resample_applies_the_calibration_made_at_the_recorded_rate(sim, t
     assert round(rec["rate_hz"], 6) == 20.0
     out = tmp_path / "t"
     with caplog.at_level(logging.WARNING):
-        assert main(["track", str(folder), "--model", str(off), "--out", str(out), "--json", "--resample"]
+        assert main(["track", "--no-plot", str(folder), "--model", str(off), "--out", str(out), "--json", "--resample"]
                     + (["--streaming"] if streaming else [])) == 0
     assert len(_lines(caplog, "resampled to the model's 100 Hz before tracking")) == 1
     assert _lines(caplog, "distance calibration was made at") == []

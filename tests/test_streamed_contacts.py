@@ -129,10 +129,10 @@ def test_run_contacts_fill_the_steps_and_summary_as_track_streaming(sim_a, tmp_p
     from pdrlearn.cli import main
 
     s, root = sim_a
-    assert main(["run", str(BUNDLE), str(root / "A"), "--contacts", "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), str(root / "A"), "--contacts", "--out", str(tmp_path / "r")]) == 0
     assert "straight strides" in capsys.readouterr().out  # track's gait line (E51)
-    assert main(["track", str(root / "A"), "--streaming", "--contacts", "--out", str(tmp_path / "s")]) == 0
-    assert main(["track", str(root / "A"), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(root / "A"), "--streaming", "--contacts", "--out", str(tmp_path / "s")]) == 0
+    assert main(["track", "--no-plot", str(root / "A"), "--out", str(tmp_path / "t")]) == 0
     run, stm, trk = (json.loads((tmp_path / d / "summary.json").read_text()) for d in "rst")
     a, b = pd.read_csv(tmp_path / "r" / "steps.csv"), pd.read_csv(tmp_path / "s" / "steps.csv")
     for c in ("event_s", "stride_time_s", "cadence_spm", "speed_mps"):  # run = track --streaming (E49-E51)
@@ -210,7 +210,7 @@ def test_track_contacts_without_streaming_is_one_line(tmp_path, capsys):
     from pdrlearn.cli import main
 
     out = tmp_path / "out"
-    assert main(["track", str(ROOT / "datasets" / "real" / "gaitmap_level_left"), "--contacts", "--out",
+    assert main(["track", "--no-plot", str(ROOT / "datasets" / "real" / "gaitmap_level_left"), "--contacts", "--out",
                  str(out)]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith("error: track: --contacts") and "--streaming" in err and "\n" not in err, err

@@ -26,7 +26,7 @@ def test_a_fast_simulated_walk_with_toe_off_is_warned(tmp_path):
                  "--out", str(ses)]) == 0
     for extra, expected in ((["--toe-off"], True), ([], False)):
         out = tmp_path / f"t{len(extra)}"
-        assert main(["track", str(ses), *extra, "--out", str(out)]) == 0
+        assert main(["track", "--no-plot", str(ses), *extra, "--out", str(out)]) == 0
         summary = json.loads((out / "summary.json").read_text())
         lines = [w for w in summary["info"].get("warnings", []) if "decision L414" in w]
         assert bool(lines) is expected

@@ -43,7 +43,7 @@ def test_track_all_passes_the_new_options_to_each_session(tmp_path, capsys):
     root = tmp_path / "root"
     root.mkdir()
     (root / "w").symlink_to(REAL / "mobgap_HA001_Test5_Trial1", target_is_directory=True)
-    assert main(["track-all", str(root), "--detector", "pelvic-gyro", "--length-model", "weinberg:k=0.45",
+    assert main(["track-all", "--no-plot", str(root), "--detector", "pelvic-gyro", "--length-model", "weinberg:k=0.45",
                  "--out", str(tmp_path / "o")]) == 0, capsys.readouterr().err
     summary = json.loads((tmp_path / "o" / "w" / "summary.json").read_text())
     assert summary["info"]["methods"]["steps"] == "pelvic-gyro" and summary["info"]["methods"]["length"] == "weinberg"

@@ -18,7 +18,8 @@ def test_track_all_skips_an_all_rest_split_part(tmp_path, capsys):
     parts = tmp_path / "parts"
     assert main(["split", str(src), "--out", str(parts), "--max-minutes", "0.5"]) == 0
     capsys.readouterr()
-    assert main(["track-all", str(parts), "--out", str(tmp_path / "tracked")]) == 0  # old code: exit 1, failed
+    assert main(["track-all", "--no-plot", str(parts), "--out",
+                 str(tmp_path / "tracked")]) == 0  # old code: exit 1, failed
     out, err = capsys.readouterr()
     rows = pd.read_csv(tmp_path / "tracked" / "sessions.csv").set_index("path")
     assert rows.loc["part_000", "status"] == "skipped" and "decision B389" in rows.loc["part_000", "error"]

@@ -44,7 +44,7 @@ def test_track_all_window_and_initial_heading_are_per_session(tree, tmp_path, ca
     ok = s.loc["a/p01"]
     assert ok["window_start_s"] == 2.0 and ok["window_end_s"] == 16.0
     # the batch's session is what `track` gives with the same options
-    assert main(["track", str(tree / "a/p01"), "--out", str(tmp_path / "one"), *args]) == 0
+    assert main(["track", "--no-plot", str(tree / "a/p01"), "--out", str(tmp_path / "one"), *args]) == 0
     one = json.loads((tmp_path / "one" / "summary.json").read_text())
     got = json.loads((tmp_path / "b" / "a/p01" / "summary.json").read_text())
     assert got["info"]["initial_heading_rad"] == pytest.approx(math.pi / 2)

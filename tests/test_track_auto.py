@@ -72,7 +72,7 @@ def test_cli_track_without_model_or_method_runs_the_engine(gaitmap_level_left, t
 
     from pdrlearn.cli import main
 
-    rc = main(["track", str(gaitmap_level_left), "--out", str(tmp_path / "t"), "--json"])
+    rc = main(["track", "--no-plot", str(gaitmap_level_left), "--out", str(tmp_path / "t"), "--json"])
     cap = capsys.readouterr()
     assert rc == 0 and "no model: the M3 engine" in cap.err and cap.err.count("no model") == 1
     out = json.loads(cap.out)

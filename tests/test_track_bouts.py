@@ -90,13 +90,13 @@ def test_a_bad_bout_definition_is_one_line():
 def test_track_and_track_all_write_bouts_csv_and_record_the_definition(walk, tmp_path, capsys):
     root = tmp_path / "study"
     write_session(walk, root / "g" / "s1")
-    assert main(["track", str(root / "g" / "s1"), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(root / "g" / "s1"), "--out", str(tmp_path / "t")]) == 0
     b = pd.read_csv(tmp_path / "t" / "bouts.csv")
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
     assert len(b) == summary["n_bouts"] == 4
     assert summary["bout_definition"] == {"break_s": 1.0, "min_strides": 0, "gap": "rhythm"}
     assert "bouts.csv" in capsys.readouterr().out
-    assert main(["track-all", str(root), "--out", str(tmp_path / "a"), "--bout-break-s", "3",
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "a"), "--bout-break-s", "3",
                  "--bout-min-strides", "3"]) == 0
     run = json.loads((tmp_path / "a" / "run.json").read_text())
     assert run["options"]["bout_break_s"] == 3.0 and run["options"]["bout_min_strides"] == 3
@@ -117,7 +117,7 @@ def test_scoring_against_reference_bouts_is_unaffected(tmp_path):
     src = REAL / "mobgap_HA001_Test11_Trial1"
     outs = []
     for name, extra in (("d", []), ("m", ["--bout-break-s", "3", "--bout-min-strides", "4"])):
-        assert main(["track", str(src), "--out", str(tmp_path / name), *extra]) == 0
+        assert main(["track", "--no-plot", str(src), "--out", str(tmp_path / name), *extra]) == 0
         outs.append(json.loads((tmp_path / name / "summary.json").read_text()))
     keys = ("bouts", "bout_distance_m", "bout_reference_m", "distance_error_pct", "step_f1", "n_walking_bouts")
     assert outs[0]["bouts"] and all(outs[0][k] == outs[1][k] for k in keys)
@@ -141,7 +141,7 @@ def test_track_detects_the_bouts_once_and_track_all_takes_storey_height(walk, tm
     tracked = track_session(root / "g" / "s1", track_settings(bout_break_s=3.0))
     assert len(calls) == 1 and tracked["summary"]["n_bouts"] == len(tracked["bouts"]) == 3
     monkeypatch.undo()
-    assert main(["track-all", str(root), "--out", str(tmp_path / "a"), "--storey-height", "2.5"]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "a"), "--storey-height", "2.5"]) == 0
     assert pd.read_csv(tmp_path / "a" / "sessions.csv")["storey_height_m"].tolist() == [2.5]
     assert json.loads((tmp_path / "a" / "run.json").read_text())["options"]["storey_height"] == 2.5
 
@@ -181,7 +181,7 @@ def test_the_console_counts_the_bouts_of_bouts_csv(walk, tmp_path, capsys):
     """Decision L165 (Mobilise-D trial, session 24): the console's "N walking bout(s)" was L104's count whatever
     the bout options; it is bouts.csv's rows."""
     write_session(walk, tmp_path / "s")
-    assert main(["track", str(tmp_path / "s"), "--out", str(tmp_path / "t"), "--bout-break-s", "3",
+    assert main(["track", "--no-plot", str(tmp_path / "s"), "--out", str(tmp_path / "t"), "--bout-break-s", "3",
                  "--bout-rule", "pdrlearn"]) == 0
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
     assert summary["n_walking_bouts"] == 4 and summary["n_bouts"] == 3

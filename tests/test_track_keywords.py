@@ -84,7 +84,7 @@ def test_python_default_is_the_cli_default(tmp_path, caplog):
     assert any("no model" in w.lower() for w in res.info["warnings"])
     folder = write_session(s, tmp_path / "A")
     out = tmp_path / "out"
-    assert main(["track", str(folder), "--out", str(out), "--json"]) == 0
+    assert main(["track", "--no-plot", str(folder), "--out", str(out), "--json"]) == 0
     cli = json.loads((out / "summary.json").read_text())
     assert cli["n_steps"] == len(res.steps)
     assert np.isclose(cli["distance_m"], res.distance_m, rtol=0, atol=1e-9)

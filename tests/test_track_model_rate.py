@@ -61,6 +61,7 @@ def test_track_cli_prints_the_line(sim, tmp_path, caplog):
     manifest["sampling_rate_hz"] = {k: 100.0 for k in manifest["sampling_rate_hz"]}
     (off / "manifest.json").write_text(json.dumps(manifest))
     with caplog.at_level(logging.WARNING):
-        assert main(["track", str(folder), "--model", str(off), "--out", str(tmp_path / "o"), "--json"]) == 0
+        assert main(["track", "--no-plot", str(folder), "--model", str(off), "--out", str(tmp_path / "o"),
+                     "--json"]) == 0
     lines = [r.getMessage() for r in caplog.records if "step classifiers were trained at" in r.getMessage()]
     assert len(lines) == 1 and "trained at 100 Hz" in lines[0] and "runs at 20 Hz" in lines[0]

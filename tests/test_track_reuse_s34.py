@@ -98,7 +98,7 @@ def test_gait_quality_reads_the_tracks_own_ahrs_w353(waist_walk, tmp_path, monke
     from pdrlearn.cli import main
 
     calls = _counting_function(monkeypatch, ahrs, "imu_from_body")
-    assert main(["track", str(waist_walk), "--pipeline", "waist-pendulum", "--gait-quality",
+    assert main(["track", "--no-plot", str(waist_walk), "--pipeline", "waist-pendulum", "--gait-quality",
                  "--out", str(tmp_path / "t")]) == 0
     bouts = pd.read_csv(tmp_path / "t" / "bouts.csv")
     assert bouts["hr_ap"].notna().any()  # W350 ran on the bout

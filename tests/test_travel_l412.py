@@ -59,7 +59,7 @@ def test_reversals_without_a_turn_are_counted(tmp_path, route, user, expect):
     ses = tmp_path / "ses"
     assert main(["simulate", "--route", route, "--user-seed", str(user), "--out", str(ses)]) == 0
     out = tmp_path / "track"
-    assert main(["track", str(ses), "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(ses), "--out", str(out)]) == 0
     summary = json.loads((out / "summary.json").read_text())
     changes = pd.read_csv(out / "direction_changes.csv")
     steps = pd.read_csv(out / "steps.csv")

@@ -57,7 +57,7 @@ def test_steps_says_why_track_counts_fewer_lower_back_steps(tmp_path, capsys):
     assert "note: these are the detector's contacts; " in out and "(W281" in out  # W297 names them when it can
     # turn_bridge false (W385's "side" default recovers a turn step here, 12 = 12): the sit veto alone
     (tmp_path / "params.json").write_text(json.dumps({"options": {"turn_bridge": False}}))
-    assert main(["track", str(d), "--units", "waist", "--out", str(tmp_path / "t"), "--json",
+    assert main(["track", "--no-plot", str(d), "--units", "waist", "--out", str(tmp_path / "t"), "--json",
                  "--params", str(tmp_path / "params.json")]) == 0
     tracked = json.loads(capsys.readouterr().out)["n_steps"]
     assert tracked < count  # the seated contact the sit veto drops (W185)

@@ -52,19 +52,19 @@ def test_an_unaligned_two_unit_track_warns_of_offset_clocks_and_align_removes_it
 
 def test_track_align_units_on_the_cli(walk, tmp_path, capsys):
     folder = write_session(_shifted(walk, 0.3), tmp_path / "S")
-    assert main(["track", str(folder), "--align-units", "--out", str(tmp_path / "a")]) == 0
+    assert main(["track", "--no-plot", str(folder), "--align-units", "--out", str(tmp_path / "a")]) == 0
     info = json.loads((tmp_path / "a" / "summary.json").read_text())["info"]
     assert info["unit_alignment"]["offset_s"] == pytest.approx(0.25, abs=0.05)
     assert "decision L161" not in capsys.readouterr().err
     assert main(["track", str(folder), "--align-units", "--streaming", "--out", str(tmp_path / "b")]) == 2
     assert "--align-units" in capsys.readouterr().err
-    assert main(["track", str(folder), "--align-units", "--pipeline", "waist-pendulum",
+    assert main(["track", "--no-plot", str(folder), "--align-units", "--pipeline", "waist-pendulum",
                  "--out", str(tmp_path / "c")]) == 2
 
 
 def test_common_span_says_it_applies_no_clock_offset(walk, tmp_path, capsys):
     folder = write_session(_shifted(walk, 0.0, cut_s=2.0), tmp_path / "S")  # the waist switched on 2 s later
-    assert main(["track", str(folder), "--common-span", "--out", str(tmp_path / "a")]) == 0
+    assert main(["track", "--no-plot", str(folder), "--common-span", "--out", str(tmp_path / "a")]) == 0
     err = capsys.readouterr().err
     assert "the waist unit started +0.00 s and stopped -2.00 s from the foot unit" in err
     assert "applies no clock offset (0.00 s)" in err and "--align-units" in err
@@ -91,7 +91,7 @@ def test_run_warns_of_offset_clocks_and_align_units_aligns_them(walk, tmp_path, 
     clean, off = write_session(walk, tmp_path / "C"), write_session(_shifted(walk, 0.3), tmp_path / "S")
     final, warned = {}, {}
     for name, folder, extra in (("clean", clean, []), ("off", off, []), ("aligned", off, ["--align-units"])):
-        assert main(["run", str(RUN_BUNDLE), str(folder), *extra, "--json"]) == 0
+        assert main(["run", "--no-plot", str(RUN_BUNDLE), str(folder), *extra, "--json"]) == 0
         got = capsys.readouterr()
         final[name] = json.loads(got.out)
         warned[name] = [w for w in got.err.splitlines() if "decision L161" in w]
