@@ -43,14 +43,14 @@ def test_track_redact_paths_leaves_no_folder_in_any_output(layout, tmp_path, mon
     """E176: track from the patient's folder, session typed relative: without the option summary.json and run.json
     name the patient folder (the trial's finding); with it no file does, run.json says paths_redacted."""
     monkeypatch.chdir(layout / "walks")
-    assert main(["track", "--no-plot", "w", "--out", str(tmp_path / "plain"), "--json"]) == 0
-    assert main(["track", "--no-plot", "w", "--out", str(tmp_path / "red"), "--redact-paths", "--json"]) == 0
+    assert main(["track", "w", "--out", str(tmp_path / "plain"), "--json"]) == 0
+    assert main(["track", "w", "--out", str(tmp_path / "red"), "--redact-paths", "--json"]) == 0
     printed = capsys.readouterr().out.strip().splitlines()[-1]
     assert set(_leaks(tmp_path / "plain", layout)) >= {"run.json", "summary.json"}
     assert _leaks(tmp_path / "red", layout) == [] and PATIENT not in printed
     run = json.loads((tmp_path / "red" / "run.json").read_text())
     assert run["paths_redacted"] is True and run["cwd"] == REDACTED and run["session"] == REDACTED
-    assert run["argv"][:4] == ["pdrlearn", "track", "--no-plot", REDACTED] and "--redact-paths" in run["argv"]
+    assert run["argv"][:3] == ["pdrlearn", "track", REDACTED] and "--redact-paths" in run["argv"]
     assert json.loads((tmp_path / "red" / "summary.json").read_text())["input_dir"] == REDACTED
     # the other files are the same bytes: only paths change
     for name in ("steps.csv", "trajectory.csv", "bouts.csv"):
@@ -62,14 +62,14 @@ def test_track_all_redact_paths_covers_the_hidden_record_and_resumes(layout, tmp
     summary.json and hidden .track-all-session.json) names it; --resume reuses the redacted sessions."""
     monkeypatch.chdir(layout)
     out = tmp_path / "ta"
-    assert main(["track-all", "--no-plot", "study", "--out", str(out), "--redact-paths", "--json"]) == 0
+    assert main(["track-all", "study", "--out", str(out), "--redact-paths", "--json"]) == 0
     printed = capsys.readouterr().out
     assert _leaks(out, layout) == [] and PATIENT not in printed
     assert (out / "v1" / ".track-all-session.json").is_file()
     assert json.loads((out / "run.json").read_text())["root"] == REDACTED
-    assert main(["track-all", "--no-plot", "study", "--out", str(out), "--redact-paths", "--resume", "--json"]) == 0
+    assert main(["track-all", "study", "--out", str(out), "--redact-paths", "--resume", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["n_reused"] == 2
-    assert main(["track-all", "--no-plot", "study", "--out", str(tmp_path / "plain"), "--json"]) == 0
+    assert main(["track-all", "study", "--out", str(tmp_path / "plain"), "--json"]) == 0
     capsys.readouterr()
     assert ".track-all-session.json" in " ".join(_leaks(tmp_path / "plain", layout))  # the trial's finding
 
@@ -81,8 +81,7 @@ def test_run_and_calibrate_redact_paths(layout, tmp_path, monkeypatch, capsys):
                  "--methods", "heuristic", "--cv", "2", "--json"]) == 0
     monkeypatch.chdir(layout / "walks")
     assert main(["export", str(tmp_path / "m"), "--out", str(tmp_path / "b")]) == 0
-    assert main(["run", "--no-plot", str(tmp_path / "b"), "w", "--out", str(tmp_path / "run"), "--redact-paths",
-                 "--json"]) == 0
+    assert main(["run", str(tmp_path / "b"), "w", "--out", str(tmp_path / "run"), "--redact-paths", "--json"]) == 0
     printed = capsys.readouterr().out.strip().splitlines()[-1]
     assert _leaks(tmp_path / "run", layout) == [] and PATIENT not in printed
     assert json.loads((tmp_path / "run" / "run.json").read_text())["paths_redacted"] is True
@@ -90,7 +89,7 @@ def test_run_and_calibrate_redact_paths(layout, tmp_path, monkeypatch, capsys):
     assert main(["calibrate", "w", "-d", str(distance), "--out", str(tmp_path / "p.json"), "--redact-paths"]) == 0
     params = json.loads((tmp_path / "p.json").read_text())
     assert params["fit"] == [REDACTED] and params["paths_redacted"] is True
-    assert main(["track", "--no-plot", "w", "--pipeline", "waist-pendulum", "--params", str(tmp_path / "p.json"),
+    assert main(["track", "w", "--pipeline", "waist-pendulum", "--params", str(tmp_path / "p.json"),
                  "--out", str(tmp_path / "t")]) == 0  # the redacted file is still a calibration track reads
 
 
@@ -118,8 +117,8 @@ def test_track_redact_paths_keeps_keys_and_other_values(layout, tmp_path, monkey
 
     shutil.copytree(layout / "walks" / "w", tmp_path / name)
     monkeypatch.chdir(tmp_path)
-    assert main(["track", "--no-plot", name, "--out", "plain", "--json"]) == 0
-    assert main(["track", "--no-plot", name, "--out", "red", "--redact-paths"]) == 0
+    assert main(["track", name, "--out", "plain", "--json"]) == 0
+    assert main(["track", name, "--out", "red", "--redact-paths"]) == 0
     plain = json.loads((tmp_path / "plain" / "summary.json").read_text())
     red = json.loads((tmp_path / "red" / "summary.json").read_text())
     assert red["input_dir"] == REDACTED
@@ -134,7 +133,7 @@ def test_track_redact_paths_covers_the_raw_spelling(layout, tmp_path, monkeypatc
     """E176 amended (review R3 finding 3): the folder as typed with ``./`` or ``//``, which ``Path`` drops, is
     redacted in run.json's argv too; no output names the patient's folder."""
     monkeypatch.chdir(layout if typed.startswith("walks") else layout / "walks")
-    assert main(["track", "--no-plot", typed, "--out", str(tmp_path / "red"), "--redact-paths"]) == 0
+    assert main(["track", typed, "--out", str(tmp_path / "red"), "--redact-paths"]) == 0
     run = json.loads((tmp_path / "red" / "run.json").read_text())
     assert run["argv"][2] == REDACTED and typed not in json.dumps(run)
     assert _leaks(tmp_path / "red", layout) == []
