@@ -75,7 +75,7 @@ def test_streamed_track_with_fixes_is_not_worse_than_without(tmp_path):
           "turn:-90, straight:20, turn:180")
     ses = tmp_path / "s"
     assert main(["simulate", "--route", f"{r1}, {r1}", "--user-seed", "4008", "--out", str(ses)]) == 0
-    assert main(["track", str(ses), "--streaming", "--out", str(tmp_path / "pdr")]) == 0
+    assert main(["track", "--no-plot", str(ses), "--streaming", "--out", str(tmp_path / "pdr")]) == 0
     pdr = pd.read_csv(tmp_path / "pdr" / "trajectory.csv")
     gt = pd.read_csv(ses / "trajectory.csv")
     gt_t = gt.timestamp.to_numpy(float) / 1000.0
@@ -90,7 +90,7 @@ def test_streamed_track_with_fixes_is_not_worse_than_without(tmp_path):
     g = truth(ft)
     pd.DataFrame({"t": ft, "x": g[:, 0] + rng.normal(0, 1, len(ft)), "y": g[:, 1] + rng.normal(0, 1, len(ft)),
                   "accuracy_m": 2.0}).to_csv(tmp_path / "fix.csv", index=False)
-    assert main(["track", str(ses), "--streaming", "--fixes", str(tmp_path / "fix.csv"),
+    assert main(["track", "--no-plot", str(ses), "--streaming", "--fixes", str(tmp_path / "fix.csv"),
                  "--out", str(tmp_path / "aided")]) == 0
     aided = pd.read_csv(tmp_path / "aided" / "trajectory.csv")
     info = json.loads((tmp_path / "aided" / "summary.json").read_text())["info"]["aid"]["fixes"]

@@ -44,8 +44,9 @@ def test_align_units_keeps_the_clocks_of_a_queue_and_says_why(queue, tmp_path, c
     assert not offset_locked(est) and abs(est["offset_s"]) > 0.1
     outs = {}
     with caplog.at_level(logging.WARNING):
-        for name, cmd in (("plain", ["track", str(queue)]), ("aligned", ["track", str(queue), "--align-units"]),
-                          ("run", ["run", str(RUN_BUNDLE), str(queue), "--align-units"])):
+        for name, cmd in (("plain", ["track", "--no-plot", str(queue)]),
+                          ("aligned", ["track", "--no-plot", str(queue), "--align-units"]),
+                          ("run", ["run", "--no-plot", str(RUN_BUNDLE), str(queue), "--align-units"])):
             caplog.clear()
             assert main([*cmd, "--out", str(tmp_path / name)]) == 0
             outs[name] = _l186(caplog.text + capsys.readouterr().err)

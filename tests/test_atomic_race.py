@@ -136,7 +136,7 @@ def test_cli_track_force_refuses_a_folder_changed_while_it_ran(tmp_path, monkeyp
     session = tmp_path / "A"
     assert main(["simulate", "-s", "A", "-u", "1", "--out", str(session), "--json"]) == 0
     out = tmp_path / "t"
-    assert main(["track", str(session), "--method", "M2", "--out", str(out), "--json"]) == 0
+    assert main(["track", "--no-plot", str(session), "--method", "M2", "--out", str(out), "--json"]) == 0
     import pdrlearn.outfolder as outfolder  # decision E169: out_folder's checks are the library's
 
     real = outfolder.expect_unchanged

@@ -21,7 +21,7 @@ def test_steps_csv_marks_the_strides_the_backward_count_counts(tmp_path, capsys)
     sim = tmp_path / "s"
     assert main(["simulate", "--route", ROUTE, "--user-seed", "20", "--out", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["run", str(MODEL), str(sim), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(MODEL), str(sim), "--out", str(tmp_path / "r"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     steps = pd.read_csv(tmp_path / "r" / "steps.csv")
     cols = list(steps.columns)
@@ -40,7 +40,7 @@ def test_an_offline_model_free_table_has_the_column(tmp_path, capsys):
     assert main(["simulate", "--route", "stand:3, straight:6, backward:5, stand:3", "--user-seed", "14",
                  "--out", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["track", str(sim), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(sim), "--out", str(tmp_path / "t"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     steps = pd.read_csv(tmp_path / "t" / "steps.csv")
     assert int(steps["backward_travel"].sum()) == summary["n_backward_strides"] >= 1
@@ -51,7 +51,7 @@ def test_a_lower_back_table_has_no_column(tmp_path, capsys):
     sim = tmp_path / "w"
     assert main(["simulate", "--scenario", "A", "--user-seed", "3561", "--out", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["track", str(sim), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "tw")]) == 0
+    assert main(["track", "--no-plot", str(sim), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "tw")]) == 0
     assert "backward_travel" not in pd.read_csv(tmp_path / "tw" / "steps.csv")
 
 

@@ -68,7 +68,7 @@ def test_track_all_fails_sessions_of_dangling_links_instead_of_skipping_them(wal
     for p in walk.iterdir():
         (root / "p03" / "walk" / p.name).symlink_to(f"/annex/objects/{p.name}")
     out = tmp_path / "o"
-    rc = main(["track-all", str(root), "--out", str(out), "--json"])
+    rc = main(["track-all", "--no-plot", str(root), "--out", str(out), "--json"])
     captured = capsys.readouterr()
     assert rc == 1
     summary = json.loads(captured.out)
@@ -156,7 +156,7 @@ def test_no_strides_names_the_folder_and_exits_4(still, tmp_path, capsys):
     """B318 (T4 finding 5): was `session 'sim_standstill_...': no strides detected`, exit 2 (bad input); a session
     without walking is a data outcome: the line names the folder, exit 4; stdout empty, nothing written."""
     out = tmp_path / "o"
-    assert main(["track", str(still), "--out", str(out), "--json"]) == 4
+    assert main(["track", "--no-plot", str(still), "--out", str(out), "--json"]) == 4
     captured = capsys.readouterr()
     assert captured.out == "" and not out.exists()
     assert captured.err.strip().splitlines()[-1].startswith(f"error: {still}: no strides detected; is the foot unit "

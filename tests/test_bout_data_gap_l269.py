@@ -53,7 +53,8 @@ def test_track_splits_the_bout_at_the_gap(tmp_path, streaming):
     from pdrlearn.cli import main
 
     write_session(_cut_session(), tmp_path / "s")
-    args = ["track", str(tmp_path / "s"), "--out", str(tmp_path / "o")] + (["--streaming"] if streaming else [])
+    args = ["track", "--no-plot", str(tmp_path / "s"), "--out",
+            str(tmp_path / "o")] + (["--streaming"] if streaming else [])
     logging.disable(logging.WARNING)
     try:
         assert main(args) == 0
@@ -89,7 +90,7 @@ def test_run_splits_the_bout_at_the_gap(root, tmp_path):
     write_session(_cut_session(), tmp_path / "s")
     logging.disable(logging.WARNING)
     try:
-        assert main(["run", str(root / "bundle"), str(tmp_path / "s"), "--out", str(tmp_path / "o")]) == 0
+        assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "s"), "--out", str(tmp_path / "o")]) == 0
     finally:
         logging.disable(logging.NOTSET)
     _check(tmp_path / "o")

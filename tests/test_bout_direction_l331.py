@@ -24,7 +24,7 @@ def _walk(route: str, user: int):
 def test_track_writes_a_backward_bout_between_two_forward_ones(tmp_path):
     s = _walk("stand:2, straight:6, stand:2, backward:8, stand:2, straight:6, stand:2", 6500)
     write_session(s, tmp_path / "fsbf")
-    assert main(["track", str(tmp_path / "fsbf"), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "fsbf"), "--out", str(tmp_path / "t")]) == 0
     b = pd.read_csv(tmp_path / "t" / "bouts.csv")
     assert b["direction"].tolist() == ["forward", "backward", "forward"]
     assert b["backward_fraction"].tolist() == [0.0, 1.0, 0.0]

@@ -15,7 +15,7 @@ def test_bouts_csv_counts_the_floors_of_each_bout_l450(tmp_path):
     sim, out = tmp_path / "s", tmp_path / "t"
     assert main(["simulate", "--route", "stand:3, straight:20, stand:10, straight:5, up:17, turn:180, down:17, "
                  "stand:10, straight:20, stand:3", "-u", "8908", "-o", str(sim)]) == 0
-    assert main(["track", str(sim), "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sim), "--out", str(out)]) == 0
     summary = json.loads((out / "summary.json").read_text())
     bouts = pd.read_csv(out / "bouts.csv")
     assert summary["floors_up"] == 1 and summary["floors_down"] == 1, (summary["floors_up"], summary["floors_down"])

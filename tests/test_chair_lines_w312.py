@@ -33,7 +33,8 @@ def sts(tmp_path_factory):
 @pytest.mark.parametrize("realtime", [False, True])
 def test_a_chair_test_has_no_contradicting_lines(sts, tmp_path, capsys, realtime):
     out = tmp_path / "o"
-    assert main(["track", str(sts), "--units", "waist", *(["--realtime"] if realtime else []), "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sts), "--units", "waist", *(["--realtime"] if realtime else []), "--out",
+                 str(out)]) == 0
     err = capsys.readouterr().err
     n = json.loads((out / "summary.json").read_text())["n_steps"]
     assert "decision W277" in err and "no steps found" not in err and "walk_threshold_mps2" not in err
@@ -50,7 +51,8 @@ def test_a_realtime_chair_test_without_the_foot_veto_counts_and_names_the_rises(
     params = tmp_path / "p.json"
     params.write_text(json.dumps({"options": {"foot_rest_veto": False}}))
     out = tmp_path / "o"
-    assert main(["track", str(sts), "--units", "waist", "--realtime", "--params", str(params), "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sts), "--units", "waist", "--realtime", "--params", str(params), "--out",
+                 str(out)]) == 0
     err = capsys.readouterr().err
     n = json.loads((out / "summary.json").read_text())["n_steps"]
     assert n > 0 and f"the {n} contact(s) counted are isolated" in err and "lie at a trunk flexion" in err

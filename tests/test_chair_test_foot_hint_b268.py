@@ -23,7 +23,7 @@ def chair_test(tmp_path_factory):
 
 
 def test_no_foot_stride_names_the_lower_back_unit_b268(chair_test, tmp_path, capsys):
-    assert main(["track", str(chair_test), "--out", str(tmp_path / "x")]) == 4  # B318: no strides, exit 4
+    assert main(["track", "--no-plot", str(chair_test), "--out", str(tmp_path / "x")]) == 4  # B318: no strides, exit 4
     err = [ln for ln in capsys.readouterr().err.strip().splitlines() if ln.startswith("error:")]
     assert len(err) == 1 and "no strides detected" in err[0]
     assert "--units waist" in err[0] and err[0].endswith("(decision B268)")
@@ -31,5 +31,5 @@ def test_no_foot_stride_names_the_lower_back_unit_b268(chair_test, tmp_path, cap
 
 
 def test_units_waist_tracks_it_b268(chair_test, tmp_path, capsys):
-    assert main(["track", str(chair_test), "--units", "waist", "--out", str(tmp_path / "w")]) == 0
+    assert main(["track", "--no-plot", str(chair_test), "--units", "waist", "--out", str(tmp_path / "w")]) == 0
     assert (tmp_path / "w" / "summary.json").exists()

@@ -143,7 +143,8 @@ def test_pipeline_auto_takes_the_calibrated_waist_pipeline_w407(tmp_path, capsys
     pll.write_text(json.dumps({"leg_m": 0.9, "k": 1.1, "source": "calibrated", "pipeline": "waist-pll"}))
     for extra, want in (([], "waist-pll"), (["--pipeline", "waist-pendulum"], "waist-pendulum")):
         out = tmp_path / f"t{len(extra)}"
-        assert main(["track", str(tmp_path / "walk"), "--params", str(pll), "--out", str(out), *extra]) == 0
+        assert main(["track", "--no-plot", str(tmp_path / "walk"), "--params", str(pll), "--out", str(out),
+                     *extra]) == 0
         summary = json.loads((out / "summary.json").read_text())
         assert summary["pipeline"] == want, summary["pipeline"]
         calibrated_for = any("calibrated for waist-pll" in str(w) for w in summary["info"].get("warnings") or [])

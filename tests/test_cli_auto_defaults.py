@@ -16,7 +16,7 @@ def test_resolve_pipeline_by_units(real_dir, gaitmap_level_left, mobgap_test5):
 
 
 def test_track_and_steps_on_a_lower_back_recording_without_options(mobgap_test5, tmp_path, capsys):
-    assert main(["track", str(mobgap_test5), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(mobgap_test5), "--out", str(tmp_path / "t"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["pipeline"] == "waist-pendulum" and out["step_f1"] == 1.0 and "distance_error_pct" in out
     assert main(["steps", str(mobgap_test5), "--json"]) == 0

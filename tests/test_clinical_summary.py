@@ -138,7 +138,7 @@ def test_real_walk_with_a_long_stand_before_a_turn(tmp_path):
             for c in [c for c in d.columns if c.endswith("_ms")]:
                 d.loc[d[c] > at * 1000.0, c] += dur * 1000.0
             d.to_csv(dst / f, index=False)
-    assert main(["track", str(dst), "--out", str(tmp_path / "o")]) == 0
+    assert main(["track", "--no-plot", str(dst), "--out", str(tmp_path / "o")]) == 0
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert summary["longest_pause_s"] >= 120.0 and summary["pause_time_s"] >= 120.0, summary
 
@@ -207,7 +207,7 @@ def test_what_n_steps_counts_in_summary_cli_and_report(walks, tmp_path, capsys):
     runs = {}
     for pipeline in ("plasys", "waist-pendulum"):
         out = tmp_path / "results" / pipeline
-        assert main(["track", str(tmp_path / "sess"), "--pipeline", pipeline, "--out", str(out)]) == 0
+        assert main(["track", "--no-plot", str(tmp_path / "sess"), "--pipeline", pipeline, "--out", str(out)]) == 0
         runs[pipeline] = json.loads((out / "summary.json").read_text())
         line = capsys.readouterr().out.splitlines()[0]
         d = runs[pipeline]
@@ -241,7 +241,8 @@ def test_streamed_turn_count_matches_offline_and_run(tmp_path, capsys):
     s = simulate_path(parse_route(STREAM_ROUTE), UserProfile.from_seed(3), speed="normal", rate_hz=20, seed=0)
     write_session(s, tmp_path / "sess")
     runs = {}
-    cmds = {"offline": ["track"], "streaming": ["track", "--streaming"], "run": ["run", str(bundle)]}
+    cmds = {"offline": ["track", "--no-plot"], "streaming": ["track", "--no-plot", "--streaming"],
+            "run": ["run", "--no-plot", str(bundle)]}
     for name, argv in cmds.items():
         assert main([*argv, str(tmp_path / "sess"), "--out", str(tmp_path / name)]) == 0, capsys.readouterr().err
         runs[name] = json.loads((tmp_path / name / "summary.json").read_text())
@@ -287,13 +288,13 @@ def test_track_without_force_sensors_withholds_a_scattered_cv(tmp_path, capsys, 
     monkeypatch.setattr(clinical, "CONTACT_SCATTER_MAX_S", clinical.CONTACT_SCATTER_OPTION_S)
     sess = tmp_path / "A5"
     assert main(["simulate", "--scenario", "A", "--user-seed", "5", "--out", str(sess)]) == 0
-    assert main(["track", str(sess), "--model", "oracle", "--out", str(tmp_path / "f")]) == 0
+    assert main(["track", "--no-plot", str(sess), "--model", "oracle", "--out", str(tmp_path / "f")]) == 0
     with_force = json.loads((tmp_path / "f" / "summary.json").read_text())
     assert 1.0 < with_force["stride_time_cv_pct"] < 4.0 and with_force["stride_time_cv_withheld"] is None
     for name in ("fForceA.csv", "fForceB.csv"):
         (sess / name).unlink()
     capsys.readouterr()
-    assert main(["track", str(sess), "--model", "oracle", "--out", str(tmp_path / "nf")]) == 0
+    assert main(["track", "--no-plot", str(sess), "--model", "oracle", "--out", str(tmp_path / "nf")]) == 0
     out = capsys.readouterr()
     summary = json.loads((tmp_path / "nf" / "summary.json").read_text())
     assert summary["stride_time_cv_pct"] is None and summary["stride_time_cv_withheld"]["contact_cv_pct"] > 10
@@ -389,7 +390,7 @@ def test_readme_route_gives_no_pooled_stride_time_cv(tmp_path, capsys):
     steps) read a CV of 25.9 % pooling stairs, level and the backward stride; too few steady level strides now."""
     route = "straight:5, up:17, turn:180, down:17, backward:3"
     assert main(["simulate", "--route", route, "--user-seed", "1", "--out", str(tmp_path / "floors")]) == 0
-    assert main(["track", str(tmp_path / "floors"), "--out", str(tmp_path / "out")]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "floors"), "--out", str(tmp_path / "out")]) == 0
     out = capsys.readouterr().out
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["stride_time_cv_pct"] is None and summary["n_cv_strides"] < 10, summary

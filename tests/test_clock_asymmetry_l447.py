@@ -30,7 +30,7 @@ def walks(tmp_path_factory):
 def test_offset_clocks_leave_the_asymmetry_index_empty_l447(walks, tmp_path):
     summaries = {}
     for name in ("synced", "offset"):
-        assert main(["track", str(walks / name), "--out", str(tmp_path / name)]) == 0
+        assert main(["track", "--no-plot", str(walks / name), "--out", str(tmp_path / name)]) == 0
         summaries[name] = json.loads((tmp_path / name / "summary.json").read_text())
     synced, offset = summaries["synced"], summaries["offset"]
     assert synced["step_time_asymmetry_pct"] is not None and synced["step_time_asymmetry_pct"] < 10
@@ -62,7 +62,7 @@ def test_align_units_clock_labels_the_contacts_l447(walks, tmp_path):
     read them on the waist's own clock: 4 strides labelled, no index), as --clock-offset's moved session does."""
     out = {}
     for name, extra in (("align", ["--align-units"]), ("given", ["--clock-offset", "0.3"])):
-        assert main(["track", str(walks / "offset"), "--out", str(tmp_path / name), *extra]) == 0
+        assert main(["track", "--no-plot", str(walks / "offset"), "--out", str(tmp_path / name), *extra]) == 0
         out[name] = json.loads((tmp_path / name / "summary.json").read_text())
     assert out["align"]["info"]["unit_alignment"]["source"] == "estimated"
     assert out["align"]["step_time_asymmetry_pct"] is not None and out["align"]["step_time_asymmetry_pct"] < 10

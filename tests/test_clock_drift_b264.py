@@ -44,7 +44,7 @@ def sessions(tmp_path_factory):
 
 
 def _track(args, out) -> dict:
-    assert main(["track", *args, "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", *args, "--out", str(out)]) == 0
     return json.loads((out / "summary.json").read_text())
 
 
@@ -87,7 +87,7 @@ def slow(tmp_path_factory):
 def test_a_slow_waist_clock_is_named_by_b21s_check_too(slow, command, capsys, tmp_path):
     from tests.test_clock_offset_e111 import RUN_BUNDLE
 
-    args = ["track", str(slow)] if command == "track" else ["run", str(RUN_BUNDLE), str(slow)]
+    args = ["track", "--no-plot", str(slow)] if command == "track" else ["run", "--no-plot", str(RUN_BUNDLE), str(slow)]
     capsys.readouterr()
     assert main([*args, "--out", str(tmp_path / "refused")]) == 2
     err = capsys.readouterr().err.strip()

@@ -72,6 +72,6 @@ def test_track_of_the_queue_gives_no_clock_line(queue, tmp_path, caplog, capsys)
 
     d = write_session(queue, tmp_path / "q")
     with caplog.at_level(logging.WARNING):
-        assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 0
+        assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "t")]) == 0
     assert "decision L161" not in caplog.text + capsys.readouterr().err
     assert "no waist unit" not in caplog.text  # the check ran: the session has both units

@@ -37,7 +37,7 @@ def late(tmp_path_factory):
 
 @pytest.mark.parametrize("command", ["track", "run"])
 def test_the_refusal_names_the_clock_offset_first(late, command, capsys, tmp_path):
-    args = ["track", str(late)] if command == "track" else ["run", str(RUN_BUNDLE), str(late)]
+    args = ["track", "--no-plot", str(late)] if command == "track" else ["run", "--no-plot", str(RUN_BUNDLE), str(late)]
     capsys.readouterr()
     assert main([*args, "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip()

@@ -104,7 +104,7 @@ def test_track_and_align_units_give_the_same_track_at_any_origin(walk, tmp_path,
             folder = _moved_folder(src, tmp_path / f"{name}_{o:g}", o) if o else src
             for extra in ([], ["--align-units"]):
                 out = tmp_path / f"out_{name}_{o:g}_{len(extra)}"
-                assert main(["track", str(folder), *extra, "--out", str(out)]) == 0
+                assert main(["track", "--no-plot", str(folder), *extra, "--out", str(out)]) == 0
                 err = capsys.readouterr().err
                 assert ("decision L161" in err) == (name == "late" and not extra), (name, o, extra, err)
                 tr = pd.read_csv(out / "trajectory.csv")
@@ -122,7 +122,7 @@ def test_track_and_align_units_give_the_same_track_at_any_origin(walk, tmp_path,
 
 def test_run_at_an_epoch_clock_gives_no_clock_line(walk, tmp_path, capsys):
     epoch = _moved_folder(write_session(walk, tmp_path / "w"), tmp_path / "epoch", 1.7e9)
-    assert main(["run", str(BUNDLE), str(epoch), "--out", str(tmp_path / "o")]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), str(epoch), "--out", str(tmp_path / "o")]) == 0
     assert "decision L161" not in capsys.readouterr().err
 
 
@@ -153,7 +153,7 @@ def test_the_trial_folders_when_present(tmp_path, capsys):
     if not all(d.is_dir() for d in dirs):
         pytest.skip("the trial's folders are not here")
     for d in dirs:
-        assert main(["track", str(d), "--out", str(tmp_path / d.name)]) == 0
+        assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / d.name)]) == 0
         assert "decision L161" not in capsys.readouterr().err
         e = align_estimate(read_session(d))
         assert e["offset_s"] == pytest.approx(-0.019, abs=0.002)

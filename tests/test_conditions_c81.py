@@ -113,7 +113,7 @@ def test_track_all_compares_conditions_the_user_names_and_the_tables_join_c81_c8
     (tmp_path / "map.json").write_text('{"single": "baseline", "dual": "followup"}')
     measures = "gait_speed_mps,median_cadence_spm,median_stride_time_s,stride_time_cv_pct,median_stride_length_m"
     out = tmp_path / "o"
-    assert main(["track-all", str(root), "--out", str(out), "--visit-map", str(tmp_path / "map.json"),
+    assert main(["track-all", "--no-plot", str(root), "--out", str(out), "--visit-map", str(tmp_path / "map.json"),
                  "--metrics", measures]) == 0
     assert "mean % change [95 % CI]" in capsys.readouterr().out
     read = {"dtype": {"subject": str, "visit": str}}
@@ -142,7 +142,8 @@ def test_track_all_compares_conditions_the_user_names_and_the_tables_join_c81_c8
     assert main(["report", str(out), "--out", str(tmp_path / "rep")]) == 0  # the run's measures, from run.json
     assert "stride_time_cv_pct" in (tmp_path / "rep" / "report.md").read_text()
     capsys.readouterr()
-    assert main(["track-all", str(root), "--out", str(tmp_path / "o2"), "--metrics", "gait_speed_mps,cadence"]) == 2
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "o2"), "--metrics",
+                 "gait_speed_mps,cadence"]) == 2
     err = capsys.readouterr().err
     assert "--metrics gait_speed_mps,cadence: unknown measure 'cadence'" in err and "B303" in err
     assert "Traceback" not in err and len(err.strip().splitlines()) == 1 and not (tmp_path / "o2").exists()

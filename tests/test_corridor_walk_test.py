@@ -89,7 +89,7 @@ def test_track_corridor_writes_laps_csv_and_summary_keys(tmp_path):
     assert main(["simulate", "--route", route, "--user-seed", "7305", "--out", str(ses)]) == 0
     for pipe in ("plasys", "waist-pendulum"):
         out = tmp_path / pipe
-        assert main(["track", str(ses), "--pipeline", pipe, "--corridor", "10", "--out", str(out)]) == 0
+        assert main(["track", "--no-plot", str(ses), "--pipeline", pipe, "--corridor", "10", "--out", str(out)]) == 0
         s = json.loads((out / "summary.json").read_text())
         assert s["corridor_m"] == 10.0 and s["n_laps"] == 4, pipe
         assert s["walk_test_distance_m"] == pytest.approx(45.0, abs=1.5), pipe
@@ -102,7 +102,7 @@ def test_without_corridor_nothing_changes(tmp_path):
     ses = tmp_path / "walk"
     assert main(["simulate", "--route", "straight:10, curve:180:0.5, straight:10", "--user-seed", "7306",
                  "--out", str(ses)]) == 0
-    assert main(["track", str(ses), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(ses), "--out", str(tmp_path / "t")]) == 0
     s = json.loads((tmp_path / "t" / "summary.json").read_text())
     assert not (tmp_path / "t" / "laps.csv").exists() and "walk_test_distance_m" not in s and "n_laps" not in s
 

@@ -17,7 +17,7 @@ FALSE_LINES = ("contradicts its data", "does not match its frame", "no foot-flat
 def _track(tmp_path, route: str, user: int, name: str, *extra: str) -> dict:
     sim, out = tmp_path / name, tmp_path / f"{name}_tr"
     assert main(["simulate", "--route", route, "--user-seed", str(user), "--out", str(sim)]) == 0
-    assert main(["track", str(sim), "--out", str(out), *extra]) == 0
+    assert main(["track", "--no-plot", str(sim), "--out", str(out), *extra]) == 0
     return json.loads((out / "summary.json").read_text())
 
 
@@ -40,7 +40,7 @@ def test_forward_walk_with_a_turned_waist_unit_is_still_caught_w415(tmp_path):
     meta = json.loads((sim / "meta.json").read_text())
     meta["frames"]["waist"] = {"x": "right", "y": "up", "z": "backward"}
     (sim / "meta.json").write_text(json.dumps(meta))
-    assert main(["track", str(sim), "--out", str(tmp_path / "w_tr")]) == 0
+    assert main(["track", "--no-plot", str(sim), "--out", str(tmp_path / "w_tr")]) == 0
     lines = json.loads((tmp_path / "w_tr" / "summary.json").read_text())["info"]["warnings"]
     assert any("contradicts its data" in ln for ln in lines) and any("does not match its frame" in ln for ln in lines)
 

@@ -40,7 +40,7 @@ def test_waist_track_finds_flight_phases_and_says_so_w416(tmp_path):
     sim = _sim(tmp_path, "stand:2, straight:6, stand:2", 10037, "jump")
     add_jumps(sim, 1.0, 2.0)
     out = tmp_path / "jump_tr"
-    assert main(["track", str(sim), "--units", "waist", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sim), "--units", "waist", "--out", str(out)]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert summary["n_flight_phases"] == 3 and abs(summary["flight_time_s"] - 1.2) < 0.11, summary
     lines = [ln for ln in summary["info"]["warnings"] if "flight phase" in ln]
@@ -71,7 +71,7 @@ def test_flights_csv_lists_each_units_jumps_with_a_height_w417(tmp_path):
     sim = _sim(tmp_path, "stand:2, straight:6, stand:2", 10039, "jump2")
     starts = add_jumps(sim, 1.0, 2.0, files=("fAccelerometer", "wAccelerometer"))
     out = tmp_path / "jump2_tr"
-    assert main(["track", str(sim), "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sim), "--out", str(out)]) == 0
     table = pd.read_csv(out / "flights.csv")
     assert tuple(table.columns) == FLIGHT_COLUMNS
     assert sorted(table["unit"]) == ["foot"] * 3 + ["waist"] * 3

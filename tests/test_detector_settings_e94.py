@@ -57,7 +57,8 @@ def test_steps_cli_detector_settings_reach_the_detector(capsys):
 def test_track_cli_detector_settings_change_the_track(tmp_path, capsys):
     n = {}
     for spec in ("pll", "pll:loop_hz=1.0"):
-        assert main(["track", str(WAIST), "--detector", spec, "--out", str(tmp_path / spec.replace(":", "_")),
+        assert main(["track", "--no-plot", str(WAIST), "--detector", spec,
+                     "--out", str(tmp_path / spec.replace(":", "_")),
                      "--json"]) == 0
         n[spec] = json.loads(capsys.readouterr().out)["n_steps"]
     assert n["pll"] != n["pll:loop_hz=1.0"]

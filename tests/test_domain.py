@@ -187,7 +187,7 @@ def test_simulated_model_on_the_real_level_walk(gaitmap_level_left, tmp_path, ca
     assert own["out_of_domain"]["out_of_domain_fraction"] < FRACTION_THRESHOLD
     assert not [w for w in own["warnings"] if "training range" in w]
     m.save(tmp_path / "u1")
-    base = ["track", str(gaitmap_level_left), "--model", str(tmp_path / "u1")]
+    base = ["track", "--no-plot", str(gaitmap_level_left), "--model", str(tmp_path / "u1")]
     assert cli([*base, "--out", str(tmp_path / "t")]) == 0
     out, err = capsys.readouterr()
     assert "% of the strides outside the model's training range" in out

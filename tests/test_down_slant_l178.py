@@ -60,7 +60,7 @@ def test_pdrlearn_run_of_the_shipped_bundle_on_a_descent(down34, tmp_path):
     _, d = down34
     bundle = ROOT / "models" / "plasys-sim-default"
     assert json.loads((bundle / "manifest.json").read_text())["displacement"]["down_mode"] == "projected"
-    r = CliRunner().invoke(app, ["run", str(bundle), str(d), "--out", str(tmp_path / "run"), "--json"])
+    r = CliRunner().invoke(app, ["run", "--no-plot", str(bundle), str(d), "--out", str(tmp_path / "run"), "--json"])
     assert r.exit_code == 0, r.output
     summ = json.loads((tmp_path / "run" / "summary.json").read_text())
     print("run distance_m", round(summ["distance_m"], 3), "ref", round(summ["distance_ref_m"], 3), "error %",

@@ -27,8 +27,8 @@ def _drop_lines(err: str) -> list[str]:
 
 @pytest.mark.parametrize("command", ["run", "streaming"])
 def test_the_streamed_paths_say_they_integrate_on_the_timestamps(dropped, tmp_path, capsys, command):
-    args = (["run", str(BUNDLE), str(dropped)] if command == "run"
-            else ["track", str(dropped), "--method", "M2", "--streaming"])
+    args = (["run", "--no-plot", str(BUNDLE), str(dropped)] if command == "run"
+            else ["track", "--no-plot", str(dropped), "--method", "M2", "--streaming"])
     assert main([*args, "--out", str(tmp_path / "o")]) == 0
     lines = _drop_lines(capsys.readouterr().err)
     assert len(lines) == 1, lines  # one line per session, as B64
@@ -40,6 +40,6 @@ def test_the_streamed_paths_say_they_integrate_on_the_timestamps(dropped, tmp_pa
 
 
 def test_offline_track_keeps_its_own_warning(dropped, tmp_path, capsys):
-    assert main(["track", str(dropped), "--out", str(tmp_path / "o")]) == 0
+    assert main(["track", "--no-plot", str(dropped), "--out", str(tmp_path / "o")]) == 0
     lines = _drop_lines(capsys.readouterr().err)
     assert len(lines) == 1 and STREAMED not in lines[0], lines

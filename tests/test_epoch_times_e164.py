@@ -58,7 +58,8 @@ def epoch_session(tmp_path_factory):
 def test_a_session_on_an_epoch_clock_keeps_its_stride_times(epoch_session):
     r = CliRunner()
     for name in ("rel", "epoch"):
-        res = r.invoke(app, ["track", str(epoch_session / name), "--out", str(epoch_session / f"out_{name}")])
+        res = r.invoke(app, ["track", "--no-plot", str(epoch_session / name), "--out",
+                             str(epoch_session / f"out_{name}")])
         assert res.exit_code == 0, res.output
     rel = pd.read_csv(epoch_session / "out_rel" / "trajectory.csv")
     ep = pd.read_csv(epoch_session / "out_epoch" / "trajectory.csv")

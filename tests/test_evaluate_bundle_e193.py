@@ -19,7 +19,7 @@ def dirs(tmp_path_factory):
 
 def test_evaluate_scores_a_bundle_as_run_agrees(dirs, capsys):
     bundle, walk = dirs["root"] / "bundle", dirs["walk"]
-    assert main(["run", str(bundle), str(walk), "--json"]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(walk), "--json"]) == 0
     ran = json.loads(capsys.readouterr().out)
     assert main(["evaluate", str(bundle), str(walk), "--json"]) == 0
     got = json.loads(capsys.readouterr().out)

@@ -75,7 +75,8 @@ def test_float32_bundle_runs_a_walk_like_the_float64_one(dirs, tmp_path):
     model = dirs["root"] / "model"
     for name, extra in (("b64", []), ("b32", ["--float32"])):
         assert main(["export", str(model), "--out", str(tmp_path / name), *extra]) == 0
-        assert main(["run", str(tmp_path / name), str(dirs["walk"]), "--out", str(tmp_path / f"run_{name}"),
+        assert main(["run", "--no-plot", str(tmp_path / name), str(dirs["walk"]), "--out",
+                     str(tmp_path / f"run_{name}"),
                      "--json"]) == 0
     a = (tmp_path / "run_b64" / "steps.csv").read_text().splitlines()
     b = (tmp_path / "run_b32" / "steps.csv").read_text().splitlines()

@@ -68,7 +68,7 @@ def test_no_training_samples_drops_dtw_and_svm_and_chooses_as_training(dirs, tmp
 
             assert "svT" not in {i.name for i in onnx.load(str(out / rel)).graph.initializer}, rel
     assert m["export"]["training_samples"] is False
-    assert main(["run", str(out), str(dirs["walk"]), "--json"]) == 0
+    assert main(["run", "--no-plot", str(out), str(dirs["walk"]), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["n_steps"] >= 18
 
 

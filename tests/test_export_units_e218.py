@@ -39,7 +39,8 @@ def test_units_bundle_holds_that_unit_only_and_is_smaller(dirs, tmp_path, capsys
 
 def test_foot_bundle_runs_a_walk(dirs, tmp_path, capsys):
     _export(capsys, dirs["root"] / "model", "--out", tmp_path / "b", "--units", "foot", "--float32")
-    assert main(["run", str(tmp_path / "b"), str(dirs["walk"]), "--out", str(tmp_path / "run"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(tmp_path / "b"), str(dirs["walk"]), "--out", str(tmp_path / "run"),
+                 "--json"]) == 0
     assert len((tmp_path / "run" / "steps.csv").read_text().splitlines()) > 10
 
 

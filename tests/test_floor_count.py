@@ -64,7 +64,7 @@ def test_the_summary_counts_the_tracked_and_the_reference_storeys(tmp_path, caps
                       UserProfile.from_seed(3), speed="normal", rate_hz=20.0, seed=0, name="floors")
     out = evaluate_track(track_plasys(s, method="M3", model="oracle"), s)
     write_session(s, tmp_path / "floors")
-    assert main(["track", str(tmp_path / "floors"), "--method", "M3", "--model", "oracle",
+    assert main(["track", "--no-plot", str(tmp_path / "floors"), "--method", "M3", "--model", "oracle",
                  "--out", str(tmp_path / "t")]) == 0
     assert "floors up 2 / down 1" in capsys.readouterr().out
     assert (out["floors_up_ref"], out["floors_down_ref"], out["storeys_changed_ref"]) == (2, 1, 1)
@@ -177,7 +177,8 @@ def test_loops_of_floors_count_exactly_offline_and_streamed_and_say_the_baromete
     write_session(s, tmp_path / "loops")
     for extra in ([], ["--streaming"]):
         out = tmp_path / f"t{len(extra)}"
-        assert main(["track", str(tmp_path / "loops"), "--method", "M3", "--model", "oracle", "--storey-height",
+        assert main(["track", "--no-plot", str(tmp_path / "loops"), "--method", "M3", "--model", "oracle",
+                     "--storey-height",
                      "2.89", "--out", str(out), *extra]) == 0
         summary = json.loads((out / "summary.json").read_text())
         assert (summary["floors_up"], summary["floors_down"], summary["storeys_changed"]) == (6, 6, 0)

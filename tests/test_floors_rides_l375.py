@@ -103,7 +103,7 @@ def test_track_writes_rides_csv_and_warns_of_the_escalator_travel_l377(tmp_path,
     from pdrlearn.io import write_session
 
     write_session(_station(7223), tmp_path / "s")
-    assert main(["track", str(tmp_path / "s"), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "s"), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
     err = capsys.readouterr().err
     rides = pd.read_csv(tmp_path / "t" / "rides.csv")
     assert list(rides["kind"]) == ["escalator", "lift"]

@@ -26,7 +26,7 @@ def walk(tmp_path_factory):
 @pytest.mark.parametrize("extra", [[], ["--toe-off"], ["--streaming"]])
 def test_every_foot_steps_column_is_documented(walk, extra):
     out = walk / ("t" + "".join(extra))
-    assert main(["track", str(walk / "walk"), "--out", str(out), *extra]) == 0
+    assert main(["track", "--no-plot", str(walk / "walk"), "--out", str(out), *extra]) == 0
     cols = list(pd.read_csv(out / "steps.csv").columns)
     assert "ref_match" in cols and "raw_length_m" in cols
     assert undocumented("steps.csv (foot)", cols) == []

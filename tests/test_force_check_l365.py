@@ -152,11 +152,12 @@ def test_ignore_force_refused_with_m2_streaming_and_a_waist_pipeline(walk, tmp_p
         _track(walk, method="M2", ignore_force=True)
     with pytest.raises(DataError, match="offline only"):
         _track(walk, streaming=True, ignore_force=True)
-    code = main(["track", str(walk), "--pipeline", "waist-pendulum", "--ignore-force", "--out", str(tmp_path / "w")])
+    code = main(["track", "--no-plot", str(walk), "--pipeline", "waist-pendulum", "--ignore-force", "--out",
+                 str(tmp_path / "w")])
     err = capsys.readouterr().err
     assert code == 2 and "--ignore-force applies to the plasys pipeline only" in err and "Traceback" not in err
     assert not (tmp_path / "w").exists()
-    code = main(["track", str(walk), "--ignore-force", "--json", "--out", str(tmp_path / "t")])
+    code = main(["track", "--no-plot", str(walk), "--ignore-force", "--json", "--out", str(tmp_path / "t")])
     out = capsys.readouterr().out
     assert code == 0 and json.loads(out)["info"]["stance_source"] == "inertial"
 
@@ -338,7 +339,7 @@ def test_ignore_force_refuses_a_detector_that_reads_the_force_b299(walk, tmp_pat
     for steps in ("accel-force", "accel-force:ref_stances=0", AccelForceStepDetector()):
         with pytest.raises(DataError, match="reads fForceA/fForceB; use --detector accel .*B299"):
             _track(walk, steps=steps, ignore_force=True)
-    for cmd in (["track", str(walk)], ["track-all", str(walk.parent)]):
+    for cmd in (["track", "--no-plot", str(walk)], ["track-all", "--no-plot", str(walk.parent)]):
         out = tmp_path / cmd[0]
         code = main([*cmd, "--ignore-force", "--detector", "accel-force", "--out", str(out)])
         err = capsys.readouterr().err

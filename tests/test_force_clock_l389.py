@@ -79,7 +79,7 @@ def test_the_track_cli_writes_force_offset_s_and_one_line(walk, tmp_path, capsys
     from pdrlearn.cli import main
 
     src = _shifted(walk, tmp_path / "s150", 150.0)
-    code = main(["track", str(src), "--out", str(tmp_path / "t")])
+    code = main(["track", "--no-plot", str(src), "--out", str(tmp_path / "t")])
     err = capsys.readouterr().err
     assert code == 0 and "Traceback" not in err
     assert len([ln for ln in err.splitlines() if "decision L390" in ln and "fForceA.csv" in ln]) == 1

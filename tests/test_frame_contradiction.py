@@ -72,7 +72,7 @@ def test_foot_upside_down_with_declared_frame_warns_once_on_the_cli(tmp_path, ca
     meta = json.loads((d / "meta.json").read_text())
     meta["frames"] = {"foot": {"x": "forward", "y": "left", "z": "up"}}
     (d / "meta.json").write_text(json.dumps(meta))
-    assert main(["track", str(d), "--out", str(tmp_path / "o")]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "o")]) == 0
     lines = [ln for ln in capsys.readouterr().err.splitlines() if "contradicts its data" in ln]
     assert len(lines) == 1, lines
     assert 'declared in "frames"' in lines[0] and '"frames": {"foot": {"x": "forward", "y": "right", "z": "down"}}' \

@@ -232,7 +232,7 @@ def test_cli_track_on_a_stripped_real_session_gives_the_same_numbers(real_dir, t
     assert read_session(stripped).frames == {}
     runs = {}
     for key, folder in (("declared", src), ("inferred", stripped)):
-        assert main(["track", str(folder), "--out", str(tmp_path / key), "--json", *extra]) == 0
+        assert main(["track", "--no-plot", str(folder), "--out", str(tmp_path / key), "--json", *extra]) == 0
         cap = capsys.readouterr()
         runs[key] = (json.loads(cap.out), cap.err)
     inferred = [ln for ln in runs["inferred"][1].splitlines() if "inferred from the data" in ln]

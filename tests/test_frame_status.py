@@ -62,7 +62,7 @@ def test_track_all_sessions_csv_has_the_frame_columns(walk, tmp_path):
     root = tmp_path / "root"
     write_session(walk, root / "a")
     write_session(_stripped(walk), root / "b")
-    assert main(["track-all", str(root), "--out", str(tmp_path / "out")]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "out")]) == 0
     df = pd.read_csv(tmp_path / "out" / "sessions.csv").set_index("path")
     assert df.loc["a", "frame_foot"] == "declared" and df.loc["b", "frame_foot"] == "inferred"
     assert df.loc["b", "frame_waist"] == "inferred"

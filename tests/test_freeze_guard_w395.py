@@ -96,13 +96,13 @@ def test_track_writes_freeze_columns_when_the_index_ran_w397(fog, tmp_path):
 
     d = tmp_path / "s"
     write_session(fog, d)
-    assert main(["track", str(d), "--out", str(tmp_path / "on"), "--freeze-index"]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "on"), "--freeze-index"]) == 0
     bouts, steps = pd.read_csv(tmp_path / "on" / "bouts.csv"), pd.read_csv(tmp_path / "on" / "steps.csv")
     episodes = pd.read_csv(tmp_path / "on" / "freezes.csv")
     assert bouts["freeze_time_s"].sum() == pytest.approx(episodes["duration_s"].sum(), abs=0.6)
     inside = (steps["event_s"] >= episodes["start_s"].iloc[0]) & (steps["event_s"] <= episodes["end_s"].iloc[0])
     assert steps["in_freeze"].astype(bool).tolist() == inside.tolist() and inside.sum() >= 5
-    assert main(["track", str(d), "--out", str(tmp_path / "off")]) == 0  # not measured: no column
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "off")]) == 0  # not measured: no column
     assert "freeze_time_s" not in pd.read_csv(tmp_path / "off" / "bouts.csv")
     assert "in_freeze" not in pd.read_csv(tmp_path / "off" / "steps.csv")
 
@@ -153,7 +153,8 @@ def test_track_all_keeps_the_freeze_column_in_the_combined_bouts_w397(fog, tmp_p
     from pdrlearn.io import write_session
 
     write_session(fog, tmp_path / "study" / "a")
-    assert main(["track-all", str(tmp_path / "study"), "--out", str(tmp_path / "ta"), "--freeze-index"]) == 0
+    assert main(["track-all", "--no-plot", str(tmp_path / "study"), "--out", str(tmp_path / "ta"),
+                 "--freeze-index"]) == 0
     one = pd.read_csv(tmp_path / "ta" / "a" / "bouts.csv")
     both = pd.read_csv(tmp_path / "ta" / "bouts.csv")
     assert "freeze_time_s" in one and "freeze_time_s" in both

@@ -158,7 +158,7 @@ def walk_run_walk(tmp_path_factory) -> Path:
 
 
 def test_track_and_track_all_flag_the_running_bout(walk_run_walk, tmp_path, capsys):
-    assert main(["track", str(walk_run_walk), "--out", str(tmp_path / "o")]) == 0
+    assert main(["track", "--no-plot", str(walk_run_walk), "--out", str(tmp_path / "o")]) == 0
     err = capsys.readouterr().err
     assert "1 of 3 walking bout(s) lie above the walking range" in err and "bout 2 (" in err
     assert "stride-time CV" in err and "pools walking bouts of different rhythm" in err
@@ -167,14 +167,14 @@ def test_track_and_track_all_flag_the_running_bout(walk_run_walk, tmp_path, caps
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert summary["gait_out_of_range"] is True and summary["n_bouts_out_of_range"] == 1
     assert gait_range_warning(summary) is None  # the session's medians alone are walking (the trial's miss)
-    assert main(["track-all", str(walk_run_walk.parent), "--out", str(tmp_path / "all")]) == 0
+    assert main(["track-all", "--no-plot", str(walk_run_walk.parent), "--out", str(tmp_path / "all")]) == 0
     row = pd.read_csv(tmp_path / "all" / "sessions.csv").iloc[0]
     assert bool(row["gait_out_of_range"]) and row["n_bouts_out_of_range"] == 1
     assert row["stride_time_cv_within_bouts_pct"] < 5 and "decision L195" in row["warnings"]
 
 
 def test_a_real_walk_gets_no_flag(tmp_path, capsys):
-    assert main(["track", str(REAL / "gaitmap_level_left"), "--out", str(tmp_path / "o"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(REAL / "gaitmap_level_left"), "--out", str(tmp_path / "o"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["gait_out_of_range"] is False and out["n_bouts_out_of_range"] == 0
     assert out["stride_time_cv_within_bouts_pct"] is None

@@ -46,8 +46,8 @@ def test_a_slow_streamed_walk_with_stairs_warns(tmp_path, capsys, command):
     assert main(["simulate", "--route", SLOW, "--user-seed", "4109", "--step-length", "0.35", "--step-time", "0.85",
                  "--out", str(sim)]) == 0
     capsys.readouterr()
-    args = (["run", str(MODEL), str(sim)] if command == "run"
-            else ["track", str(sim), "--streaming"])
+    args = (["run", "--no-plot", str(MODEL), str(sim)] if command == "run"
+            else ["track", "--no-plot", str(sim), "--streaming"])
     assert main([*args, "--out", str(tmp_path / "o"), "--json"]) == 0
     out, err = capsys.readouterr()
     s = json.loads(out)
@@ -61,7 +61,7 @@ def test_a_normal_streamed_walk_is_judged_inside(tmp_path, capsys):
     sim = tmp_path / "a"
     assert main(["simulate", "--scenario", "A", "--user-seed", "4109", "--out", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["run", str(MODEL), str(sim), "--out", str(tmp_path / "o"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(MODEL), str(sim), "--out", str(tmp_path / "o"), "--json"]) == 0
     out, err = capsys.readouterr()
     s = json.loads(out)
     assert s["gait_out_of_range"] is False and "(decision L95)" not in err

@@ -132,7 +132,8 @@ def test_waist_track_has_cadence_speed_and_the_error_scope(tmp_path, capsys):
     distance error says it counts the reference bouts (W70, W71)."""
     from pdrlearn.cli import main
 
-    assert main(["track", str(REAL / "mobgap_HA001_Test5_Trial1"), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(REAL / "mobgap_HA001_Test5_Trial1"), "--out", str(tmp_path / "t"),
+                 "--json"]) == 0
     printed = json.loads(capsys.readouterr().out)
     saved = json.loads((tmp_path / "t" / "summary.json").read_text())
     for s in (printed, saved):
@@ -158,7 +159,7 @@ def test_simulated_tug_and_10m_walk(tmp_path, capsys):
 
     for name, route in (("tug", TUG), ("w10", "stand:3, straight:10, stand:3")):
         assert main(["simulate", "--route", route, "--user-seed", "4", "--out", str(tmp_path / name)]) == 0
-        assert main(["track", str(tmp_path / name), "--out", str(tmp_path / "r" / name)]) == 0
+        assert main(["track", "--no-plot", str(tmp_path / name), "--out", str(tmp_path / "r" / name)]) == 0
     out = capsys.readouterr().out
     assert "gait speed" in out and "straight strides" in out
     tug = json.loads((tmp_path / "r" / "tug" / "summary.json").read_text())

@@ -105,7 +105,7 @@ def test_one_bout_count_under_the_mobgap_rule(tmp_path, capsys):
     route = "stand:3, straight:12, stand:1.5, straight:12, stand:3"
     assert main(["simulate", "--route", route, "--user-seed", "3941", "--rate", "100", "--out",
                  str(tmp_path / "s")]) == 0
-    assert main(["track", str(tmp_path / "s"), "--bout-rule", "mobgap", "--out", str(tmp_path / "o")]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "s"), "--bout-rule", "mobgap", "--out", str(tmp_path / "o")]) == 0
     out = capsys.readouterr().out
     s = json.loads((tmp_path / "o" / "summary.json").read_text())
     bouts = pd.read_csv(tmp_path / "o" / "bouts.csv")

@@ -151,7 +151,7 @@ def test_run_gives_the_terrain_dz_check_of_track_streaming(root, walk, tmp_path,
     write_session(s, tmp_path / "gap")
     caplog.clear()
     with caplog.at_level(logging.WARNING, logger="pdrlearn"):
-        assert main(["run", str(root / "bundle"), str(tmp_path / "gap"), "--out", str(tmp_path / "run"),
+        assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "gap"), "--out", str(tmp_path / "run"),
                      "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["info"]["terrain_dz_check"] == pytest.approx(want)

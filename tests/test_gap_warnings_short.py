@@ -34,7 +34,8 @@ def gapped(tmp_path_factory) -> tuple[Path, Path]:
 def test_one_gap_gives_a_short_consistent_set_of_warnings(gapped, tmp_path, capsys):
     d, model = gapped
     capsys.readouterr()
-    assert main(["track", str(d), "--method", "M3", "--model", str(model), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(d), "--method", "M3", "--model", str(model), "--out",
+                 str(tmp_path / "t")]) == 0
     warns = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("warning: ")]
     gap = [w for w in warns if "gap" in w]
     assert len(gap) <= 3, gap

@@ -76,8 +76,8 @@ def test_grade_source_names_a_barometric_altitude_only():
 def r12up(tmp_path_factory):
     d = tmp_path_factory.mktemp("grade")
     assert main(["simulate", "--route", R12UP, "--user-seed", "5700", "--out", str(d / "sim")]) == 0
-    assert main(["track", str(d / "sim"), "--altitude", "fused", "--out", str(d / "fused")]) == 0
-    assert main(["track", str(d / "sim"), "--out", str(d / "foot")]) == 0
+    assert main(["track", "--no-plot", str(d / "sim"), "--altitude", "fused", "--out", str(d / "fused")]) == 0
+    assert main(["track", "--no-plot", str(d / "sim"), "--out", str(d / "foot")]) == 0
     return d
 
 

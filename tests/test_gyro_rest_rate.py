@@ -90,7 +90,8 @@ def _cli(tmp_path, capsys, session, par, *extra):
     pfile = tmp_path / "p.json"
     pfile.write_text(json.dumps(par))
     capsys.readouterr()
-    rc = main(["track", str(folder), "--out", str(tmp_path / "o"), "--force", "--params", str(pfile), *extra])
+    rc = main(["track", "--no-plot", str(folder), "--out", str(tmp_path / "o"), "--force", "--params", str(pfile),
+               *extra])
     return rc, capsys.readouterr().err
 
 

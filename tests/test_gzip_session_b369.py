@@ -67,8 +67,8 @@ def test_info_and_track_read_a_gzip_session_b369(plain, tmp_path, capsys):
     assert files["fAccelerometer"] == "fAccelerometer.csv.gz" and files["wGyroscope"] == "wGyroscope.csv.gz"
     assert main(["info", str(gz)]) == 0
     assert "gzip-compressed, read in place: fAccelerometer.csv.gz" in capsys.readouterr().out
-    assert main(["track", str(plain), "--out", str(tmp_path / "ta")]) == 0
-    assert main(["track", str(gz), "--out", str(tmp_path / "tb")]) == 0
+    assert main(["track", "--no-plot", str(plain), "--out", str(tmp_path / "ta")]) == 0
+    assert main(["track", "--no-plot", str(gz), "--out", str(tmp_path / "tb")]) == 0
     ta, tb = (pd.read_csv(tmp_path / t / "steps.csv") for t in ("ta", "tb"))
     pd.testing.assert_frame_equal(ta, tb)
     from pdrlearn.cohort import is_session_dir

@@ -349,7 +349,7 @@ def test_wrong_accelerometer_column_order_names_both_rewrites_and_track_names_th
     """Trial 2, finding 8: the warning told to rewrite the (right) gyroscope only, and track asked for a
     "frames" entry that the warning itself said cannot fix the data."""
     d = _acc_swapped_copy(tmp_path / "swapped")
-    rc = main(["track", str(d), "--method", "M2", "--out", str(tmp_path / "t")])
+    rc = main(["track", "--no-plot", str(d), "--method", "M2", "--out", str(tmp_path / "t")])
     lines = capsys.readouterr().err.splitlines()
     warn = [ln for ln in lines if ln.startswith("warning: ") and "D11 amendment" in ln]
     err = [ln for ln in lines if ln.startswith("error: ")]

@@ -35,10 +35,10 @@ def test_the_line_only_for_a_session_with_the_labels(batch):
 
 
 def test_track_all_says_it_once_for_the_batch(batch, capsys):
-    assert main(["track-all", str(batch / "all"), "--out", str(batch / "out")]) == 0
+    assert main(["track-all", "--no-plot", str(batch / "all"), "--out", str(batch / "out")]) == 0
     err = capsys.readouterr().err.splitlines()
     said = [ln for ln in err if "decision H8" in ln]
     assert len(said) == 1 and said[0].startswith("warning: h1, h2: activities.csv: its activity labels are not read")
     assert "[2 of 3 sessions]" in said[0]
-    assert main(["track", str(batch / "all" / "plain"), "--out", str(batch / "t")]) == 0
+    assert main(["track", "--no-plot", str(batch / "all" / "plain"), "--out", str(batch / "t")]) == 0
     assert "decision H8" not in capsys.readouterr().err

@@ -100,7 +100,7 @@ def test_track_all_writes_the_per_leg_counts_and_asymmetry(hemi10, tmp_path):
 
     d = tmp_path / "in" / "hemi10"
     shutil.copytree(hemi10, d, ignore=shutil.ignore_patterns("f*.csv"))  # the lower-back unit only
-    assert main(["track-all", str(tmp_path / "in"), "--out", str(tmp_path / "o")]) == 0
+    assert main(["track-all", "--no-plot", str(tmp_path / "in"), "--out", str(tmp_path / "o")]) == 0
     row = pd.read_csv(tmp_path / "o" / "sessions.csv").iloc[0]
     assert row["pipeline"].startswith("waist")
     assert row["n_steps_left"] + row["n_steps_right"] + row["n_steps_side_undecided"] == row["n_steps"]
@@ -125,7 +125,7 @@ def test_lower_back_cadence_and_speed_come_from_strides(tmp_path, capsys):
                  "--step-time-asymmetry", "0.75", "--bounce", "pendulum", "--pelvis", "realistic", "--rate", "100",
                  "--user-seed", "5526", "--out", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["track", str(sim), "--pipeline", "waist-pendulum", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sim), "--pipeline", "waist-pendulum", "--out", str(out)]) == 0
     err = capsys.readouterr().err
     ic = np.sort(pd.read_csv(sim / "ics.csv")["ic_ms"].to_numpy(float)) / 1000
     truth = cadence_spm(len(ic) - 1, ic[-1] - ic[0])

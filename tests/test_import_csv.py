@@ -105,7 +105,7 @@ def test_real_session_round_trip_tab_separated_with_options(tmp_path, capsys):
                                atol=1e-9)
     assert got.frames["foot"].to_dict() == frame
     assert main(["info", str(out)]) == 0
-    assert main(["track", str(out), "--out", str(tmp_path / "trk"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(out), "--out", str(tmp_path / "trk"), "--json"]) == 0
     res = json.loads(capsys.readouterr().out.splitlines()[-1])
     assert res["n_steps"] > 20
 
@@ -317,7 +317,7 @@ def test_lower_back_labels_are_shifted_like_the_steps_and_score_the_track(tmp_pa
         assert list(got.extras[name].columns) == list(s.extras[name].columns)
         for c in [c for c in s.extras[name].columns if c.endswith("_s") and c != "duration_s"]:
             np.testing.assert_allclose(got.extras[name][c], s.extras[name][c] - s.t_start - shift, atol=1e-6)
-    assert main(["track", str(out), "--out", str(tmp_path / "trk"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(out), "--out", str(tmp_path / "trk"), "--json"]) == 0
     res = json.loads(capsys.readouterr().out.splitlines()[-1])
     assert res["step_f1"] is not None and res["step_f1"] > 0.8
     assert res["distance_ref_source"].startswith("bouts.csv")

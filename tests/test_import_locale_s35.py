@@ -67,7 +67,7 @@ def test_datetimes_give_exact_ms_and_the_bouts_of_the_ms_import(tmp_path, capsys
     capsys.readouterr()
     bouts = []
     for name in ("d", "m"):
-        assert main(["track", str(tmp_path / name), "--out", str(tmp_path / f"{name}_res")]) == 0
+        assert main(["track", "--no-plot", str(tmp_path / name), "--out", str(tmp_path / f"{name}_res")]) == 0
         bouts.append(len(pd.read_csv(tmp_path / f"{name}_res" / "bouts.csv")))
     assert bouts[0] == bouts[1]
 

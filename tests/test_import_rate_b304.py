@@ -47,7 +47,7 @@ def test_track_reads_a_1000_hz_folder_import_wrote(tmp_path, walk100, capsys):
     s = read_session(out)
     assert s["fAccelerometer"].rate_hz == pytest.approx(1000.0)
     capsys.readouterr()
-    assert main(["track", str(out), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(out), "--out", str(tmp_path / "t"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     summary = summary.get("summary", summary)
     assert summary["distance_m"] == pytest.approx(15.0, rel=0.05)

@@ -24,7 +24,7 @@ FRAME = "x=forward,y=up,z=right"  # the simulator's foot frame
 
 
 def _track(folder: Path, out: Path, capsys) -> dict:
-    assert main(["track", str(folder), "--out", str(out), "--json"]) == 0
+    assert main(["track", "--no-plot", str(folder), "--out", str(out), "--json"]) == 0
     return json.loads(capsys.readouterr().out.splitlines()[-1])
 
 

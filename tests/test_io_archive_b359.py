@@ -184,7 +184,7 @@ def test_session_commands_take_a_zip_and_track_all_says_to_unzip_it_b360(folder,
     z = _zip(folder, tmp_path / "walk8850.zip")
     assert main(["info", str(z), "--json"]) == 0
     assert '"fAccelerometer"' in capsys.readouterr().out
-    assert main(["track", str(z), "--out", str(tmp_path / "trk"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(z), "--out", str(tmp_path / "trk"), "--json"]) == 0
     capsys.readouterr()
     assert (tmp_path / "trk" / "steps.csv").is_file()
     assert find_session_dirs([z, folder]) == [z, folder]  # train and evaluate: a zip is one session

@@ -54,7 +54,8 @@ def sessions(tmp_path_factory):
 
 
 def _summary(path, capsys):
-    code = main(["track", str(path), "--pipeline", "plasys", "--out", str(path.parent / (path.name + "_t")),
+    code = main(["track", "--no-plot", str(path), "--pipeline", "plasys", "--out",
+                 str(path.parent / (path.name + "_t")),
                  "--force", "--json"])
     text, err = capsys.readouterr()
     assert code == 0, err

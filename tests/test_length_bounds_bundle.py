@@ -177,7 +177,7 @@ def test_streaming_oracle_without_session_bounds_warns_as_offline(case):
 
 def test_run_cli_with_thesis_rules_on_a_no_bounds_bundle(case, tmp_path, capsys):
     export_model(case["root"] / "model", tmp_path / "b")
-    assert main(["run", str(tmp_path / "b"), str(case["root"] / "A"), "--rules", "thesis", "--out",
+    assert main(["run", "--no-plot", str(tmp_path / "b"), str(case["root"] / "A"), "--rules", "thesis", "--out",
                  str(tmp_path / "run"), "--json"]) == 0
     cap = capsys.readouterr()
     out = json.loads(cap.out)

@@ -34,7 +34,7 @@ def test_erosion_of_a_long_rest_is_capped():
 
 def test_the_stride_after_a_long_stand_is_level(long_stand, tmp_path):
     out = tmp_path / "trk"
-    assert main(["track", str(long_stand), "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(long_stand), "--out", str(out)]) == 0
     steps = pd.read_csv(out / "steps.csv")
     after = steps[steps["start_s"] > 5 + STAND_S]
     first, rest = after.iloc[0], after.iloc[1:-1]

@@ -135,7 +135,7 @@ def test_a_lower_back_track_writes_a_stand_to_lie_and_a_lie_to_stand(tmp_path):
     down, up = _lie_down_and_up(s)
     write_session(s, tmp_path / "lie")
     out = tmp_path / "out"
-    assert main(["track", str(tmp_path / "lie"), "--pipeline", "waist-pendulum", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "lie"), "--pipeline", "waist-pendulum", "--out", str(out)]) == 0
     tr = pd.read_csv(out / "transfers.csv")
     assert list(tr.columns) == list(TRANSFER_COLUMNS)
     lying = tr[tr["kind"].isin(LYING_KINDS)]

@@ -30,7 +30,7 @@ def _mirrored_copy(tmp_path: Path, axis: str) -> Path:
 
 def test_mirrored_foot_without_frames_names_the_mirroring(tmp_path, capsys):
     d = _mirrored_copy(tmp_path, "y")
-    rc = main(["track", str(d), "--method", "M2", "--out", str(tmp_path / "t")])
+    rc = main(["track", "--no-plot", str(d), "--method", "M2", "--out", str(tmp_path / "t")])
     err = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("error: ")]
     assert rc == 2 and len(err) == 1, err
     assert "mirrored in one axis" in err[0] and "left-handed export" in err[0]

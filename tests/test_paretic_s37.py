@@ -83,7 +83,7 @@ def test_slow_paretic_foot_keeps_its_stride_count_steps_70(tmp_path, capsys):
     strides for the labels' 29 and an L365 insole line (experiments/results/paretic_lull_70.txt)."""
     d = _sim(tmp_path, 9185, 0.28, 0.90, 0.5, "left")
     capsys.readouterr()
-    assert main(["track", str(d), "--out", str(tmp_path / "t"), "--force"]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "t"), "--force"]) == 0
     err = capsys.readouterr().err
     n = json.loads((tmp_path / "t" / "summary.json").read_text())["n_strides_one_foot"]
     assert n == len(pd.read_csv(d / "steps.csv")) == 29

@@ -53,9 +53,9 @@ def test_the_option_tracks_what_deleting_the_row_by_hand_does(battery, capsys, t
     shutil.copytree(battery, by_hand)
     acc = by_hand / "fAccelerometer.csv"
     acc.write_text(acc.read_text().rsplit("\n", 1)[0] + "\n")  # what `sed -i '$ d'` leaves
-    assert main(["track", str(by_hand), "--out", str(tmp_path / "hand")]) == 0
+    assert main(["track", "--no-plot", str(by_hand), "--out", str(tmp_path / "hand")]) == 0
     capsys.readouterr()
-    assert main(["track", str(battery), "--drop-partial-row", "--out", str(tmp_path / "opt")]) == 0
+    assert main(["track", "--no-plot", str(battery), "--drop-partial-row", "--out", str(tmp_path / "opt")]) == 0
     err = capsys.readouterr().err
     assert err.count("--drop-partial-row, decision B266") == 1, err
     hand, opt = (json.loads((tmp_path / n / "summary.json").read_text()) for n in ("hand", "opt"))

@@ -59,7 +59,7 @@ def test_a_pelvis_only_lower_back_copy_gets_the_stride_reference(tmp_path, capsy
         if p.name.startswith("w") or p.name in ("meta.json", "ics.csv", "trajectory.csv", "transfers.csv"):
             shutil.copy(p, copy / p.name)
     capsys.readouterr()
-    assert main(["track", str(copy), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(copy), "--out", str(tmp_path / "t"), "--json"]) == 0
     import json
 
     s = json.loads(capsys.readouterr().out)

@@ -27,7 +27,7 @@ def test_periods_csv_gives_each_shuffle_legs_net_displacement_l514(tmp_path):
     sim, out = tmp_path / "sh", tmp_path / "sh_tr"
     assert main(["simulate", "--route", "stand:2, side:3, side:-3, stand:2", "--user-seed", "10033",
                  "--out", str(sim)]) == 0
-    assert main(["track", str(sim), "--per", "10s", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sim), "--per", "10s", "--out", str(out)]) == 0
     per = pd.read_csv(out / "periods.csv")
     assert set(POSITION_KEYS) <= set(per.columns)
     # consecutive periods join, and the net displacements add up to the track's final position

@@ -144,7 +144,8 @@ def test_a_model_of_a_class_defined_in_the_plugin_file_needs_it_and_records_it(t
         assert name in capsys.readouterr().err
         assert main(["evaluate", str(tmp_path / "m"), str(s), "--plugin", str(f)]) == 0, capsys.readouterr().err
         capsys.readouterr()
-        assert main(["track-all", str(study), "--out", str(tmp_path / "ta"), "--model", str(tmp_path / "m"),
+        assert main(["track-all", "--no-plot", str(study), "--out", str(tmp_path / "ta"), "--model",
+                     str(tmp_path / "m"),
                      "--jobs", "2", "--plugin", str(f)]) == 0, capsys.readouterr()
     finally:
         _forget(name)

@@ -207,7 +207,7 @@ def test_score_steps_cli_bad_detections_are_one_line(csv, message, gaitmap_level
 
 def test_track_cli_detector_option(gyro_rise, gaitmap_level_left, tmp_path, capsys):
     register_detector("gyro-rise", gyro_rise)
-    assert main(["track", str(gaitmap_level_left), "--detector", "gyro-rise", "--out", str(tmp_path / "t"),
+    assert main(["track", "--no-plot", str(gaitmap_level_left), "--detector", "gyro-rise", "--out", str(tmp_path / "t"),
                  "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["info"]["steps_source"] == "gyro-rise"
     assert main(["track", str(gaitmap_level_left), "--detector", "pll", "--out", str(tmp_path / "u")]) == 2

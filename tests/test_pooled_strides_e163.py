@@ -20,7 +20,7 @@ def batch(tmp_path_factory):
                           instrumented_foot=foot)
         write_session(s, root / f"u{user}")
     out = tmp_path_factory.mktemp("pooled_out") / "o"
-    assert main(["track-all", str(root), "--out", str(out)]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(out)]) == 0
     return out
 
 

@@ -92,7 +92,7 @@ def test_track_writes_pos_sigma_and_the_summary_keys(tmp_path):
     write_session(s, tmp_path / "walk")
     for extra, regime in (((), "plasys-fused"), (("--pipeline", "waist-pendulum"), "waist")):
         out = tmp_path / f"t_{regime}"
-        assert main(["track", str(tmp_path / "walk"), *extra, "--out", str(out)]) == 0
+        assert main(["track", "--no-plot", str(tmp_path / "walk"), *extra, "--out", str(out)]) == 0
         tr = pd.read_csv(out / "trajectory.csv")
         sigma = tr["pos_sigma_m"].to_numpy(float)
         assert sigma[0] == 0.0 and np.all(sigma[1:] > 0) and np.all(np.diff(sigma) >= 0)
@@ -171,7 +171,7 @@ def test_foot_only_two_sigma_is_not_so_wide_that_it_always_holds_the_truth(tmp_p
                           name="loop")
         write_session(s, tmp_path / f"s{seed}")
         out = tmp_path / f"t{seed}"
-        assert main(["track", str(tmp_path / f"s{seed}"), "--units", "foot", "--out", str(out)]) == 0
+        assert main(["track", "--no-plot", str(tmp_path / f"s{seed}"), "--units", "foot", "--out", str(out)]) == 0
         tr, gt = pd.read_csv(out / "trajectory.csv"), pd.read_csv(tmp_path / f"s{seed}" / "trajectory.csv")
         true = np.stack([np.interp(tr["t"], gt["timestamp"] / 1000.0, gt[c]) for c in ("x", "y")], axis=1)
         err = (tr[["x", "y"]].to_numpy(float) - tr[["x", "y"]].to_numpy(float)[0]) - (true - true[0])
@@ -199,7 +199,7 @@ def test_the_same_walk_at_20_and_100_hz_gets_the_same_sigma(tmp_path, monkeypatc
         s = simulate_path(route, UserProfile.from_seed(2433), speed="normal", rate_hz=rate, seed=2433, name="r")
         write_session(s, tmp_path / f"s{rate:g}")
         out = tmp_path / f"t{rate:g}"
-        assert main(["track", str(tmp_path / f"s{rate:g}"), "--out", str(out)]) == 0
+        assert main(["track", "--no-plot", str(tmp_path / f"s{rate:g}"), "--out", str(out)]) == 0
         final[rate] = json.loads((out / "summary.json").read_text())["final_position_sigma_m"]
     point_only = np.sqrt(2) * 1.5  # plasys-fused's point_m per axis, the radius of the point term alone
     assert min(final.values()) > point_only

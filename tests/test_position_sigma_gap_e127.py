@@ -54,7 +54,7 @@ def _across(traj: pd.DataFrame, steps: pd.DataFrame) -> tuple[float, float, floa
 def test_the_radius_grows_across_a_held_foot_dropout_offline_streamed_and_run(dropout, tmp_path):
     cut, folder = dropout
     runs = {"offline": track_plasys(cut), "streamed": track_plasys(cut, streaming=True)}
-    r = CliRunner().invoke(app, ["run", str(BUNDLE), str(folder), "--out", str(tmp_path / "run")])
+    r = CliRunner().invoke(app, ["run", "--no-plot", str(BUNDLE), str(folder), "--out", str(tmp_path / "run")])
     assert r.exit_code == 0, r.output
     got = {k: (v.trajectory, v.steps) for k, v in runs.items()}
     got["run"] = (pd.read_csv(tmp_path / "run" / "trajectory.csv"), pd.read_csv(tmp_path / "run" / "steps.csv"))

@@ -90,7 +90,7 @@ def sat(tmp_path_factory):
 
 def _track(root, name, *args, session="walk"):
     out = root / name
-    assert main(["track", str(root / session), "--out", str(out), "--json", *args]) == 0
+    assert main(["track", "--no-plot", str(root / session), "--out", str(out), "--json", *args]) == 0
     return json.loads((out / "summary.json").read_text()), out
 
 
@@ -113,7 +113,8 @@ def test_a_lower_back_track_splits_its_time_and_periods_add_up(sat):
 def test_a_foot_track_says_the_split_needs_the_lower_back(sat, capsys):
     root, _ = sat
     out = root / "foot"
-    assert main(["track", str(root / "walk"), "--out", str(out), "--pipeline", "plasys", "--per", "30s"]) == 0
+    assert main(["track", "--no-plot", str(root / "walk"), "--out", str(out), "--pipeline", "plasys", "--per",
+                 "30s"]) == 0
     assert "needs the lower-back unit" in capsys.readouterr().out
     summary = json.loads((out / "summary.json").read_text())
     assert all(summary[k] is None for k in POSTURE_KEYS)

@@ -148,7 +148,7 @@ def test_run_warns_of_lost_numbered_sets(tmp_path, synthetic_bundle, capsys):
     s = make_session(n=60)
     lines = list(format_protocol(s, numbered=True))
     (tmp_path / "cap.txt").write_text("".join(lines[:20] + lines[26:]))
-    main(["run", str(synthetic_bundle.path), "--protocol", str(tmp_path / "cap.txt")])
+    main(["run", "--no-plot", str(synthetic_bundle.path), "--protocol", str(tmp_path / "cap.txt")])
     assert "6 set(s) lost (10.0 % of 60" in capsys.readouterr().err
 
 

@@ -25,14 +25,14 @@ def test_run_json_records_cwd_and_argv_and_summary_stays_the_same(walk, tmp_path
     working directories (same resolved input_dir), run.json holds what differs."""
     (walk / "sub").mkdir(exist_ok=True)
     monkeypatch.chdir(walk)
-    assert main(["track", "s", "--out", str(tmp_path / "a"), "--json"]) == 0
+    assert main(["track", "--no-plot", "s", "--out", str(tmp_path / "a"), "--json"]) == 0
     monkeypatch.chdir(walk / "sub")
-    assert main(["track", "../s", "--out", str(tmp_path / "b"), "--json"]) == 0
+    assert main(["track", "--no-plot", "../s", "--out", str(tmp_path / "b"), "--json"]) == 0
     capsys.readouterr()
     run_a = json.loads((tmp_path / "a" / "run.json").read_text())
     run_b = json.loads((tmp_path / "b" / "run.json").read_text())
     assert run_a["cwd"] == str(walk) and run_b["cwd"] == str(walk / "sub")
-    assert run_a["argv"] == ["pdrlearn", "track", "s", "--out", str(tmp_path / "a"), "--json"]
+    assert run_a["argv"] == ["pdrlearn", "track", "--no-plot", "s", "--out", str(tmp_path / "a"), "--json"]
     assert (walk / run_a["session"]).resolve() == (walk / "sub" / run_b["session"]).resolve()
     assert (tmp_path / "a" / "summary.json").read_bytes() == (tmp_path / "b" / "summary.json").read_bytes()
     summary = json.loads((tmp_path / "a" / "summary.json").read_text())

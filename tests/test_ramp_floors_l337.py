@@ -62,8 +62,9 @@ def ramp_users(tmp_path_factory):
     d = tmp_path_factory.mktemp("rampfloors")
     for u in (6373, 6374, 6375):
         assert main(["simulate", "--route", RAMP, "--user-seed", str(u), "--out", str(d / f"s{u}")]) == 0
-        assert main(["track", str(d / f"s{u}"), "--altitude", "fused", "--out", str(d / f"f{u}")]) == 0
-        assert main(["track", str(d / f"s{u}"), "--pipeline", "waist-pendulum", "--out", str(d / f"w{u}")]) == 0
+        assert main(["track", "--no-plot", str(d / f"s{u}"), "--altitude", "fused", "--out", str(d / f"f{u}")]) == 0
+        assert main(["track", "--no-plot", str(d / f"s{u}"), "--pipeline", "waist-pendulum", "--out",
+                     str(d / f"w{u}")]) == 0
     return d
 
 

@@ -26,7 +26,7 @@ def ramp(tmp_path_factory):
 
 def _track(d, name, extra=()):
     out = d / name
-    assert main(["track", str(d / "sim"), "--pipeline", "waist-pendulum", *extra, "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(d / "sim"), "--pipeline", "waist-pendulum", *extra, "--out", str(out)]) == 0
     s = json.loads((out / "summary.json").read_text())
     return s.get("summary", s), pd.read_csv(out / "steps.csv")
 

@@ -9,7 +9,7 @@ from pdrlearn.cli import main
 
 
 def _flags(session, out, *extra):
-    assert main(["track", str(session), *extra, "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(session), *extra, "--out", str(out)]) == 0
     return json.loads((out / "summary.json").read_text())["n_transfers_flagged"]
 
 

@@ -18,7 +18,7 @@ def test_windowed_ref_match_is_the_sessions_row(tmp_path):
     labels = read_session(RIGHT).steps
     tables = {}
     for name, args in (("all", []), ("win", ["--window", "12,30"])):  # review S29 item 3's window
-        assert main(["track", str(RIGHT), "--out", str(tmp_path / name), *args]) == 0
+        assert main(["track", "--no-plot", str(RIGHT), "--out", str(tmp_path / name), *args]) == 0
         tables[name] = pd.read_csv(tmp_path / name / "steps.csv")
     win = tables["win"].dropna(subset=["ref_match"])
     assert len(win) >= 5 and win["ref_match"].min() > 0  # the window starts after the first labelled stride

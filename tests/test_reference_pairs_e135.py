@@ -16,7 +16,7 @@ from pdrlearn.cli import main
 @pytest.fixture(scope="module")
 def level_left(real_dir, tmp_path_factory):
     out = tmp_path_factory.mktemp("pairs") / "t"
-    assert main(["track", str(real_dir / "gaitmap_level_left"), "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(real_dir / "gaitmap_level_left"), "--out", str(out)]) == 0
     return pd.read_csv(out / "steps.csv"), json.loads((out / "summary.json").read_text()), real_dir
 
 

@@ -123,7 +123,8 @@ def test_run_length_reference_session_writes_the_running_rules_classes(tmp_path,
     _refused_run(capsys, BUNDLE, tmp_path / "u9122", "median", tmp_path / "bad",
                  "length_reference='median' is not one of model, session")
     for name, extra in (("model", []), ("session", ["--length-reference", "session"])):
-        assert main(["run", str(BUNDLE), str(tmp_path / "u9122"), *extra, "--out", str(tmp_path / name)]) == 0
+        assert main(["run", "--no-plot", str(BUNDLE), str(tmp_path / "u9122"), *extra, "--out",
+                     str(tmp_path / name)]) == 0
     a, b = (pd.read_csv(tmp_path / n / "steps.csv") for n in ("model", "session"))
     want = pd.Series(session_length_classes(a.to_dict("records")), dtype=object).fillna("").tolist()
     assert b["length_class"].fillna("").tolist() == want and want != a["length_class"].fillna("").tolist()

@@ -81,9 +81,9 @@ def test_run_prints_the_final_position_error_as_track_does_e206(tmp_path_factory
     walk = d["tmp"] / "sim"  # a simulated walk (user 9325): its trajectory.csv is the reference
     assert main(["simulate", "--route", "stand:2, straight:8, stand:2", "--user-seed", "9325", "--out", str(walk)]) == 0
     capsys.readouterr()
-    assert main(["run", str(d["root"] / "bundle"), str(walk), "--json"]) == 0
+    assert main(["run", "--no-plot", str(d["root"] / "bundle"), str(walk), "--json"]) == 0
     err = json.loads(capsys.readouterr().out)["final_position_error_m"]
-    assert main(["run", str(d["root"] / "bundle"), str(walk)]) == 0
+    assert main(["run", "--no-plot", str(d["root"] / "bundle"), str(walk)]) == 0
     assert f"final position error {err:.2f} m horizontal" in capsys.readouterr().out
 
 

@@ -81,7 +81,7 @@ def test_rides_csv_has_the_vibration_and_live_names_the_option(tmp_path):
 
     write_session(simulate_path(parse_route("straight:5, lift:+3, straight:5"), UserProfile.from_seed(7653),
                                 seed=7653, scenario="route"), tmp_path / "s")
-    assert main(["track", str(tmp_path / "s"), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "s"), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
     rides = pd.read_csv(tmp_path / "t" / "rides.csv")
     assert list(rides["kind"]) == ["lift"] and rides["vibration_mps2"].iloc[0] < VEHICLE_VIBRATION_MPS2
     assert json.loads((tmp_path / "t" / "summary.json").read_text())["n_rides"] == 1

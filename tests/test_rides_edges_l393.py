@@ -61,7 +61,8 @@ def test_a_windows_rides_are_those_inside_it_l395(tmp_path, window, rides, up):
 
     write_session(_sim(LIFT_MID, 7462), tmp_path / "s")
     out = tmp_path / "t"
-    assert main(["track", str(tmp_path / "s"), "--units", "waist", "--window", window, "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "s"), "--units", "waist", "--window", window, "--out",
+                 str(out)]) == 0
     m = json.loads((out / "summary.json").read_text())
     assert len(pd.read_csv(out / "rides.csv")) == rides == m["n_rides"]
     assert (m["floors_up"], m["floors_up_rides"]) == (up, up), m
@@ -109,7 +110,7 @@ def test_a_ride_after_the_last_step_counts_in_its_period_l394(tmp_path):
 
     write_session(_sim("straight:10, stand:3, lift:+9, stand:5", 7461), tmp_path / "s")
     out = tmp_path / "t"
-    assert main(["track", str(tmp_path / "s"), "--units", "waist", "--per", "20", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "s"), "--units", "waist", "--per", "20", "--out", str(out)]) == 0
     m = json.loads((out / "summary.json").read_text())
     periods = pd.read_csv(out / "periods.csv")
     assert m["floors_up"] == 3 and int(periods["floors_up"].sum()) == 3, periods

@@ -44,8 +44,8 @@ def test_run_bouts_count_the_floors_as_tracks_do_l458(stairs, tmp_path, tmp_path
         cal.write_text(json.dumps({"leg_m": 0.92, "k": 1.37, "source": "calibrated", "pipeline": "waist-pendulum"}))
         bundle, track_args = tmp_path / "wb", ["--pipeline", "waist-pendulum", "--params", str(cal)]
         assert _quiet(["export", str(cal), "--out", str(bundle)]) == 0
-    assert _quiet(["run", str(bundle), str(stairs), "--out", str(tmp_path / "run")]) == 0
-    assert _quiet(["track", str(stairs), *track_args, "--out", str(tmp_path / "track")]) == 0
+    assert _quiet(["run", "--no-plot", str(bundle), str(stairs), "--out", str(tmp_path / "run")]) == 0
+    assert _quiet(["track", "--no-plot", str(stairs), *track_args, "--out", str(tmp_path / "track")]) == 0
     run, run_summary = _floors(tmp_path / "run")
     track, _ = _floors(tmp_path / "track")
     assert run_summary["floors_up"] == 1 and run_summary["floors_down"] == 1, run_summary["floors_up"]

@@ -32,7 +32,8 @@ def _run(tmp, params: dict, name: str, walk, capsys) -> dict:
 
     (tmp / f"{name}.json").write_text(json.dumps(params))
     export_waist(tmp / f"{name}.json", tmp / f"wb_{name}")
-    assert main(["run", str(tmp / f"wb_{name}"), str(walk), "--out", str(tmp / f"r_{name}"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(tmp / f"wb_{name}"), str(walk), "--out", str(tmp / f"r_{name}"),
+                 "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert json.loads((tmp / f"r_{name}" / "summary.json").read_text())["info"]["warnings"] == out["info"]["warnings"]
     return out

@@ -46,9 +46,9 @@ def test_run_summary_has_walking_time_gait_speed_and_error_scope(tmp_path, capsy
     from pdrlearn.sim import simulate
 
     write_session(simulate("A", user_seed=42), tmp_path / "A")
-    assert main(["run", str(BUNDLE), str(tmp_path / "A"), "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), str(tmp_path / "A"), "--out", str(tmp_path / "r")]) == 0
     assert "gait speed" in capsys.readouterr().out
-    assert main(["track", str(tmp_path / "A"), "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(tmp_path / "A"), "--out", str(tmp_path / "t")]) == 0
     run, trk = (json.loads((tmp_path / d / "summary.json").read_text()) for d in ("r", "t"))
     assert run["distance_error_pct"] is not None and run["distance_error_scope"] == "whole track"  # L82
     # the same walk, rest to rest: within 0.1 s of track's walking time (17.35 vs 17.36 s when written)

@@ -33,7 +33,7 @@ def walk(tmp_path_factory):
 
     root = tmp_path_factory.mktemp("lean")
     write_session(sim.simulate("A", 801, seed=801), root / "A")
-    assert main(["run", str(SHIPPED), str(root / "A"), "--out", str(root / "full")]) == 0
+    assert main(["run", "--no-plot", str(SHIPPED), str(root / "A"), "--out", str(root / "full")]) == 0
     return root
 
 
@@ -65,7 +65,8 @@ def test_lean_replay_without_the_full_install_equals_pdrlearn_run(walk, tmp_path
 def test_pdrlearn_script_without_typer_prints_one_line_naming_the_lean_command(walk, tmp_path):
     module, func = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["scripts"]["pdrlearn"].split(":")
     code = f"import sys, importlib; sys.argv[0] = 'pdrlearn'; sys.exit(importlib.import_module({module!r}).{func}())"
-    r = subprocess.run([sys.executable, "-c", code, "run", str(SHIPPED), str(walk / "A")], capture_output=True,
+    r = subprocess.run([sys.executable, "-c", code, "run", "--no-plot", str(SHIPPED), str(walk / "A")],
+                       capture_output=True,
                        text=True, timeout=120, env=lean_env(tmp_path), cwd=tmp_path)
     assert r.returncode == 2
     assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
@@ -96,7 +97,8 @@ def test_numpy_alone_runs_the_non_onnx_methods_and_refuses_svm_in_one_line(tmp_p
     bundle, session = d["root"] / "bundle_all", d["walk"]
     from pdrlearn.cli import main
 
-    assert main(["run", str(bundle), str(session), "--method", method, "--out", str(tmp_path / "full")]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(session), "--method", method, "--out",
+                 str(tmp_path / "full")]) == 0
     env = lean_env(tmp_path, (*ABSENT, "onnxruntime"))  # numpy alone
     r = subprocess.run([sys.executable, "-m", "pdrlearn.runtime", str(bundle), str(session), "--method", method,
                         "--out", str(tmp_path / "lean")], capture_output=True, text=True, timeout=300, env=env)

@@ -40,7 +40,8 @@ def test_run_writes_the_gap_s_of_each_stride_in_steps_csv(root, walk, tmp_path, 
     from pdrlearn.cli import main
 
     write_session(without(walk, 10.2, 11.7), tmp_path / "gap")
-    assert main(["run", str(root / "bundle"), str(tmp_path / "gap"), "--out", str(tmp_path / "run"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "gap"), "--out", str(tmp_path / "run"),
+                 "--json"]) == 0
     capsys.readouterr()
     steps = pd.read_csv(tmp_path / "run" / "steps.csv")
     assert "gap_s" in steps.columns
@@ -53,7 +54,8 @@ def test_run_writes_gap_s_0_for_strides_without_a_gap(root, walk, tmp_path, caps
     from pdrlearn.cli import main
 
     write_session(walk, tmp_path / "w")
-    assert main(["run", str(root / "bundle"), str(tmp_path / "w"), "--out", str(tmp_path / "r"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "w"), "--out", str(tmp_path / "r"),
+                 "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     steps = pd.read_csv(tmp_path / "r" / "steps.csv")
     assert (steps.gap_s == 0).all() and out["n_steps"] == len(steps)

@@ -112,7 +112,8 @@ def scenario_d(tmp_path_factory):
 
     root = tmp_path_factory.mktemp("run_chunks")
     write_session(sim.simulate("D", 1), root / "D")
-    assert main(["run", str(SHIPPED), str(root / "D"), "--chunk-s", "100000", "--contacts",  # E51: the contacts too
+    assert main(["run", "--no-plot", str(SHIPPED), str(root / "D"), "--chunk-s", "100000", "--contacts",
+                 # E51: the contacts too
                  "--out", str(root / "one")]) == 0
     return root
 
@@ -128,7 +129,8 @@ def test_run_chunks_put_every_sample_in_one_push(scenario_d, tmp_path, capsys, c
     from pdrlearn.io import read_session
     from pdrlearn.runtime.replay import replay_chunks
 
-    assert main(["run", str(SHIPPED), str(scenario_d / "D"), "--chunk-s", str(chunk_s), "--contacts", "--out",
+    assert main(["run", "--no-plot", str(SHIPPED), str(scenario_d / "D"), "--chunk-s", str(chunk_s), "--contacts",
+                 "--out",
                  str(tmp_path / "c")]) == 0, capsys.readouterr().err
     a, b = pd.read_csv(scenario_d / "one" / "steps.csv"), pd.read_csv(tmp_path / "c" / "steps.csv")
     assert list(a.columns) == list(b.columns) and len(a) == len(b) > 50

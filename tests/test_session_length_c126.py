@@ -76,8 +76,9 @@ def test_track_length_reference_session_writes_the_whole_session_classes(length_
     from pdrlearn.track.session_length import whole_session_length
 
     s, m = length_walk["session"], length_walk["model"]
-    assert main(["track", str(s), "--model", str(m), "--out", str(tmp_path / "a"), "--json"]) == 0
-    assert main(["track", str(s), "--model", str(m), "--length-reference", "session", "--out", str(tmp_path / "b"),
+    assert main(["track", "--no-plot", str(s), "--model", str(m), "--out", str(tmp_path / "a"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(s), "--model", str(m), "--length-reference", "session", "--out",
+                 str(tmp_path / "b"),
                  "--json"]) == 0
     capsys.readouterr()
     a, b = (pd.read_csv(tmp_path / k / "steps.csv") for k in ("a", "b"))
@@ -105,7 +106,8 @@ def test_track_length_reference_default_is_the_model():
 ])
 def test_track_length_reference_bad_input_is_one_line(length_walk, tmp_path, capsys, extra, line):
     out = tmp_path / "out"
-    argv = ["track", str(length_walk["session"]), *(str(length_walk["model"]) if a == "MODEL" else a for a in extra),
+    argv = ["track", "--no-plot", str(length_walk["session"]),
+            *(str(length_walk["model"]) if a == "MODEL" else a for a in extra),
             "--out", str(out)]
     assert main(argv) == 2
     err = capsys.readouterr().err.strip().splitlines()

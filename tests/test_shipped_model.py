@@ -15,7 +15,7 @@ def test_shipped_bundle_runs(tmp_path, capsys):
     from pdrlearn.sim import simulate
 
     write_session(simulate("A", user_seed=42), tmp_path / "A")
-    assert main(["run", str(BUNDLE), str(tmp_path / "A"), "--json"]) == 0, capsys.readouterr().err
+    assert main(["run", "--no-plot", str(BUNDLE), str(tmp_path / "A"), "--json"]) == 0, capsys.readouterr().err
     out = json.loads(capsys.readouterr().out)
     assert out["n_steps"] >= 12  # 16 strides of the right foot in scenario A
     assert set(out["classes"]) == {"terrain", "direction", "length"}
@@ -56,7 +56,7 @@ def test_shipped_bundle_carries_training_ranges_and_run_checks_them(tmp_path, ca
                 members = entry.get("members", {}).values() if "members" in entry else [entry]
                 assert all("training_range" in m for m in members), (task, method, unit)
     write_session(simulate("A", user_seed=42), tmp_path / "A")
-    assert main(["run", str(BUNDLE), str(tmp_path / "A"), "--out", str(tmp_path / "o")]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), str(tmp_path / "A"), "--out", str(tmp_path / "o")]) == 0
     err = capsys.readouterr().err
     assert "training range" not in err and "training ranges" not in err  # in-domain simulated walk: no line
     info = json.loads((tmp_path / "o" / "summary.json").read_text())["info"]

@@ -71,7 +71,8 @@ def test_run_and_the_lean_runtime_agree(root, tmp_path):
     write_session(_sim(5203), tmp_path / "s")
     logging.disable(logging.WARNING)
     try:
-        assert main(["run", str(root / "bundle"), str(tmp_path / "s"), "--out", str(tmp_path / "o"), "--json"]) == 0
+        assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "s"), "--out", str(tmp_path / "o"),
+                     "--json"]) == 0
     finally:
         logging.disable(logging.NOTSET)
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())

@@ -76,7 +76,8 @@ def test_detectors_find_no_step_while_seated_and_the_sit_warning(tmp_path, capsy
     for name, extra in (("plasys", []), ("waist-pendulum", []), ("waist-pendulum+veto", ["--params", str(params)])):
         out = tmp_path / name
         capsys.readouterr()
-        assert main(["track", str(d), "--pipeline", name.split("+")[0], "--out", str(out), "--json", *extra]) == 0
+        assert main(["track", "--no-plot", str(d), "--pipeline", name.split("+")[0], "--out", str(out), "--json",
+                     *extra]) == 0
         lines[name] = [w for w in json.loads(capsys.readouterr().out)["info"]["warnings"] if "W146" in w]
         e = pd.read_csv(out / "steps.csv")["event_s"].to_numpy(float)
         counts[name] = [int(((e >= a) & (e <= b)).sum()) for a, b in (*seated, *moving)], len(e)

@@ -106,7 +106,8 @@ def test_track_still_gets_the_distance(tmp_path, capsys):
                      "--out", str(d)]) == 0
         for p in ("plasys", "waist-pendulum"):
             capsys.readouterr()
-            assert main(["track", str(d), "--pipeline", p, "--out", str(tmp_path / f"t{a}{p}"), "--json"]) == 0
+            assert main(["track", "--no-plot", str(d), "--pipeline", p, "--out", str(tmp_path / f"t{a}{p}"),
+                         "--json"]) == 0
             err[a, p] = json.loads(capsys.readouterr().out)["distance_error_pct"]
     with capsys.disabled():
         print("distance error % (a=0 / a=0.1): " + ", ".join(f"{p} {err['0', p]:+.2f} / {err['0.1', p]:+.2f}"

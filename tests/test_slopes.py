@@ -177,18 +177,21 @@ def test_track_cli_altitude_option(tmp_path):
 
     write_session(simulate_path(parse_route("straight:3, slope:30:6, straight:3"), UserProfile.from_seed(1064),
                                 seed=1064), tmp_path / "ramp")
-    r = CliRunner().invoke(app, ["track", str(tmp_path / "ramp"), "--altitude", "fused", "--out", str(tmp_path / "f")])
+    r = CliRunner().invoke(app, ["track", "--no-plot", str(tmp_path / "ramp"), "--altitude", "fused", "--out",
+                                 str(tmp_path / "f")])
     assert r.exit_code == 0, r.output
     summ = json.loads((tmp_path / "f" / "summary.json").read_text())
     assert summ["altitude_change_m"] == pytest.approx(1.8, abs=0.25) and summ["info"]["altitude_source"] == "fused"
-    r = CliRunner().invoke(app, ["track", str(tmp_path / "ramp"), "--altitude", "baro", "--out", str(tmp_path / "g")])
+    r = CliRunner().invoke(app, ["track", "--no-plot", str(tmp_path / "ramp"), "--altitude", "baro", "--out",
+                                 str(tmp_path / "g")])
     assert r.exit_code != 0 and "altitude 'baro' is not one of foot, fused" in str(r.exception)
     assert "\n" not in str(r.exception) and not (tmp_path / "g").exists()  # one line, before any tracking
-    r = CliRunner().invoke(app, ["track", str(tmp_path / "ramp"), "--pipeline", "waist-pendulum", "--altitude",
+    r = CliRunner().invoke(app, ["track", "--no-plot", str(tmp_path / "ramp"), "--pipeline", "waist-pendulum",
+                                 "--altitude",
                                  "fused", "--out", str(tmp_path / "h")])
     assert r.exit_code != 0 and "--altitude" in r.output + str(r.exception)
     # review s24: --units foot left the barometer out and the warning said the session lacked it
-    r = CliRunner().invoke(app, ["track", str(tmp_path / "ramp"), "--altitude", "fused", "--units", "foot",
+    r = CliRunner().invoke(app, ["track", "--no-plot", str(tmp_path / "ramp"), "--altitude", "fused", "--units", "foot",
                                  "--out", str(tmp_path / "i")])
     assert r.exit_code != 0 and "--altitude fused reads the waist barometer (wBarometer.csv), which --units foot " \
         "leaves out" in str(r.exception) and not (tmp_path / "i").exists()

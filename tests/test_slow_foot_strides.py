@@ -26,7 +26,7 @@ def slow_walk(tmp_path_factory):
 
 
 def _track(session, out, *extra) -> dict:
-    assert main(["track", str(session), "--out", str(out), *extra]) == 0
+    assert main(["track", "--no-plot", str(session), "--out", str(out), *extra]) == 0
     return json.loads((out / "summary.json").read_text())
 
 

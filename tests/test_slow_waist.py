@@ -116,7 +116,7 @@ def test_steps_waist_ic_uses_tracks_gate_on_a_damped_real_walk(tmp_path, capsys)
     a.to_csv(dst / "wAccelerometer.csv", index=False)
     assert main(["steps", str(dst), "--detector", "waist-ic", "--json", "--out", str(tmp_path / "ic.csv")]) == 0
     found = json.loads(capsys.readouterr().out)
-    assert main(["track", str(dst), "--out", str(tmp_path / "o")]) == 0
+    assert main(["track", "--no-plot", str(dst), "--out", str(tmp_path / "o")]) == 0
     tracked = pd.read_csv(tmp_path / "o" / "steps.csv")
     assert found["count"] == len(tracked) >= 9, (found["count"], len(tracked))
     assert np.allclose(pd.read_csv(tmp_path / "ic.csv")["event_s"], tracked["event_s"])

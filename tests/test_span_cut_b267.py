@@ -38,7 +38,7 @@ def _span(f) -> float:
 
 
 def test_sessions_csv_counts_the_seconds_cut(batch, tmp_path):
-    assert main(["track-all", str(batch), "--common-span", "--out", str(tmp_path / "o")]) == 0
+    assert main(["track-all", "--no-plot", str(batch), "--common-span", "--out", str(tmp_path / "o")]) == 0
     rows = pd.read_csv(tmp_path / "o" / "sessions.csv").set_index("path")
     foot, waist = _span(batch / "wbat" / "fAccelerometer.csv"), _span(batch / "wbat" / "wAccelerometer.csv")
     assert rows.loc["intact", "common_span_cut_s"] == 0.0

@@ -85,7 +85,7 @@ def test_split_cuts_at_rest_and_each_part_is_a_session_b379(day, tmp_path, capsy
     capsys.readouterr()
     assert main(["info", str(parts[1])]) == 0
     assert "key(s)" not in capsys.readouterr().err  # the "split" record is a meta.json key pdrlearn knows (B262)
-    assert main(["track", str(parts[1]), "--out", str(tmp_path / "t1")]) == 0
+    assert main(["track", "--no-plot", str(parts[1]), "--out", str(tmp_path / "t1")]) == 0
     steps = pd.read_csv(tmp_path / "t1" / "steps.csv")
     assert len(steps) >= 20 and steps["start_s"].min() >= metas[1]["split"]["start_s"]
 

@@ -81,7 +81,7 @@ def test_split_writes_one_session_per_recording_and_both_track(restarted, tmp_pa
         np.testing.assert_allclose(s["fAccelerometer"].t, a.t - a.t[0], atol=1e-6)
         np.testing.assert_allclose(s["fAccelerometer"].values, a.values, rtol=1e-12, atol=1e-12)
         assert s.name == f"walk_part{k}" and s.meta["imported"]["part"]["part"] == k
-        assert main(["track", str(out / f"part{k}"), "--out", str(tmp_path / f"t{k}")]) == 0
+        assert main(["track", "--no-plot", str(out / f"part{k}"), "--out", str(tmp_path / f"t{k}")]) == 0
         summary = json.loads((tmp_path / f"t{k}" / "summary.json").read_text())
         ref = float(sim.steps["length_m"].abs().sum())  # the simulator's labelled strides of that walk
         assert summary["distance_m"] == pytest.approx(ref, rel=0.05), (k, summary["distance_m"], ref)
@@ -178,7 +178,7 @@ def test_a_cut_file_is_refused_naming_the_option(cut, tmp_path, capsys):
 
 
 def test_common_span_tracks_the_time_every_file_covers(cut, tmp_path, capsys):
-    assert main(["track", str(cut), "--out", str(tmp_path / "t"), "--common-span"]) == 0
+    assert main(["track", "--no-plot", str(cut), "--out", str(tmp_path / "t"), "--common-span"]) == 0
     warn = [ln for ln in _errors(capsys) if "--common-span" in ln]
     assert len(warn) == 1 and "dropped 30.00 s of fGyroscope.csv" in warn[0], warn
     assert "30.00 s of wAccelerometer.csv" in warn[0] and "rows of steps.csv" in warn[0]
@@ -212,7 +212,7 @@ def test_common_span_leaves_a_whole_session_as_it_is(cut, caplog):
 def test_track_all_takes_common_span(cut, tmp_path, capsys):
     root = tmp_path / "study"
     shutil.copytree(cut, root / "p01")
-    assert main(["track-all", str(root), "--out", str(tmp_path / "b"), "--common-span"]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "b"), "--common-span"]) == 0
     rows = pd.read_csv(tmp_path / "b" / "sessions.csv")
     assert rows.status.tolist() == ["ok"]
     capsys.readouterr()

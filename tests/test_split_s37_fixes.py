@@ -103,4 +103,4 @@ def test_parts_in_a_data_gap_are_merged_and_labels_follow_the_sensor_rows_b386(t
         assert len(t) and ((steps[["start_ms", "end_ms"]] / 1e3 >= t[0]) & (steps[["start_ms", "end_ms"]] / 1e3
                                                                             <= t[-1])).all().all(), part.name
     capsys.readouterr()
-    assert main(["track-all", str(out), "--out", str(tmp_path / "tracked")]) == 0  # every part tracks
+    assert main(["track-all", "--no-plot", str(out), "--out", str(tmp_path / "tracked")]) == 0  # every part tracks

@@ -61,7 +61,7 @@ def test_track_splits_writes_splits_csv_and_summary_line(tmp_path, capsys):
     assert main(["simulate", "--route", "straight:12", "--user-seed", "7940", "--out", str(ses)]) == 0
     out = tmp_path / "track"
     capsys.readouterr()
-    assert main(["track", str(ses), "--splits", "5,10,50", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(ses), "--splits", "5,10,50", "--out", str(out)]) == 0
     printed = capsys.readouterr()
     table = pd.read_csv(out / "splits.csv")
     assert table["distance_m"].tolist() == [5.0, 10.0]

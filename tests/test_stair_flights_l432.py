@@ -68,7 +68,7 @@ ROUTE = "straight:3, up:12, turn:180, up:12, straight:2, turn:180, down:12, turn
 def test_simulated_flights_and_stairs_match_the_truth_and_the_cli_writes_them_l432(tmp_path, capsys):
     sim, out = tmp_path / "sim", tmp_path / "trk"
     assert main(["simulate", "--route", ROUTE, "-u", "8472", "-o", str(sim)]) == 0
-    assert main(["track", str(sim), "--stair-rise", "0.17", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sim), "--stair-rise", "0.17", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     t = pd.read_csv(out / "stairs.csv")
     assert t["direction"].tolist() == ["up", "up", "down", "down"]
@@ -97,7 +97,7 @@ def test_run_takes_stair_rise_and_prints_the_flights(tmp_path_factory, tmp_path,
     assert main(["simulate", "--route", "straight:3, up:12, turn:180, up:12, straight:3", "-u", "8632",
                  "-o", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["run", str(bundle), str(sim), "--stair-rise", "0.17", "--out", str(out)]) == 0
+    assert main(["run", "--no-plot", str(bundle), str(sim), "--stair-rise", "0.17", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     t = pd.read_csv(out / "stairs.csv")
     assert t["direction"].tolist() == ["up", "up"] and t["n_stairs"].notna().all()

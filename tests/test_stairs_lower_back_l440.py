@@ -13,7 +13,8 @@ def test_lower_back_track_writes_no_stairs_csv_and_names_the_ignored_rise_l440(t
     sim, out = tmp_path / "sim", tmp_path / "trk"
     assert main(["simulate", "--route", ROUTE, "-u", "8640", "-o", str(sim)]) == 0
     capsys.readouterr()
-    assert main(["track", str(sim), "--pipeline", "waist-pendulum", "--stair-rise", "0.17", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sim), "--pipeline", "waist-pendulum", "--stair-rise", "0.17", "--out",
+                 str(out)]) == 0
     cap = capsys.readouterr()
     printed = cap.out + cap.err
     assert not (out / "stairs.csv").exists()

@@ -50,7 +50,8 @@ def stepto(tmp_path_factory):
 def test_waist_step_to_stairs_are_stairs_not_ramps(stepto, capsys):
     out = stepto / "waist"
     (stepto / "veto.json").write_text(json.dumps(VETO))
-    assert main(["track", str(stepto / "sim"), "--pipeline", "waist-pendulum", "--params", str(stepto / "veto.json"),
+    assert main(["track", "--no-plot", str(stepto / "sim"), "--pipeline", "waist-pendulum", "--params",
+                 str(stepto / "veto.json"),
                  "--out", str(out)]) == 0
     assert "steps are on stairs" in capsys.readouterr().err  # W155's line: W108's climbs
     s = json.loads((out / "summary.json").read_text())
@@ -67,7 +68,7 @@ def test_waist_step_to_stairs_are_stairs_not_ramps(stepto, capsys):
 
 def test_foot_track_of_the_same_walk_has_no_climb_column(stepto):
     out = stepto / "foot"
-    assert main(["track", str(stepto / "sim"), "--altitude", "fused", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(stepto / "sim"), "--altitude", "fused", "--out", str(out)]) == 0
     s = json.loads((out / "summary.json").read_text())
     s = s.get("summary", s)
     assert "climb" not in pd.read_csv(out / "steps.csv")

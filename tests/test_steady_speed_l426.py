@@ -22,7 +22,7 @@ def walk(tmp_path_factory):
 @pytest.mark.parametrize("trim", ["0", "3"])
 def test_printed_gait_speed_is_printed_distance_over_time_l426(walk, capsys, trim):
     out = walk / f"t{trim}"
-    code = main(["track", str(walk / "u8280"), "--pipeline", "plasys", "--out", str(out), "--force",
+    code = main(["track", "--no-plot", str(walk / "u8280"), "--pipeline", "plasys", "--out", str(out), "--force",
                  "--steady-trim", trim])
     text = "\n".join(capsys.readouterr())
     assert code == 0, text

@@ -22,7 +22,8 @@ def walk(tmp_path_factory):
 
 def _track(walk, capsys, *extra):
     out = walk / ("t" + "_".join(extra))
-    code = main(["track", str(walk / "u8041"), "--pipeline", "plasys", "--out", str(out), "--force", "--json",
+    code = main(["track", "--no-plot", str(walk / "u8041"), "--pipeline", "plasys", "--out", str(out), "--force",
+                 "--json",
                  *extra])
     text, err = capsys.readouterr()
     assert code == 0, err
@@ -73,7 +74,7 @@ def test_trimmed_rows_per_bout_and_setting_l415():
 
 @pytest.mark.parametrize("bad", ["-1", "1.5"])
 def test_bad_steady_trim_is_one_line_l415(walk, capsys, bad):
-    code = main(["track", str(walk / "u8041"), "--out", str(walk / "bad"), f"--steady-trim={bad}"])
+    code = main(["track", "--no-plot", str(walk / "u8041"), "--out", str(walk / "bad"), f"--steady-trim={bad}"])
     out, err = capsys.readouterr()
     assert code == 2 and "--steady-trim" in err and err.count("\n") == 1
     assert not (walk / "bad").exists()
@@ -85,7 +86,8 @@ def test_track_all_passes_steady_trim_l415(walk, tmp_path, capsys):
     shutil.copytree(walk / "u8041", tmp_path / "study" / "u8041")
     rows = {}
     for n in ("0", "3"):
-        code = main(["track-all", str(tmp_path / "study"), "--pipeline", "plasys", "--out", str(tmp_path / n),
+        code = main(["track-all", "--no-plot", str(tmp_path / "study"), "--pipeline", "plasys", "--out",
+                     str(tmp_path / n),
                      "--steady-trim", n])
         _, err = capsys.readouterr()
         assert code == 0, err

@@ -28,7 +28,7 @@ def test_steps_names_the_transfer_contacts_of_a_sit_to_stand_without_walking(tmp
     assert out.startswith("route_u6650_normal_s0: 10 steps (waist-ic)")  # the raw count stays (W297)
     assert "10 of them (at 3.6, 12.4, " in out and "(5 sit-to-stand, 5 stand-to-sit found" in out
     assert "(W281, W297)" in out
-    assert main(["track", str(d), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "t"), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["n_steps"] == 0  # track drops all ten (W277)
     assert main(["steps", str(d), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["count"] == 10  # one JSON object, no note

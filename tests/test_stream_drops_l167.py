@@ -130,10 +130,11 @@ def test_track_streaming_and_run_take_drop_neighbour(root, tmp_path, capsys):
     assert main(["track", str(tmp_path / "s"), "--drop-neighbour", "--out", str(tmp_path / "o0")]) == 2
     assert "--drop-neighbour is for the --streaming strides" in capsys.readouterr().err
     out = tmp_path / "t"
-    assert main(["track", str(tmp_path / "s"), "--streaming", "--method", "M2", "--drop-neighbour", "--out",
+    assert main(["track", "--no-plot", str(tmp_path / "s"), "--streaming", "--method", "M2", "--drop-neighbour",
+                 "--out",
                  str(out)]) == 0
     assert any("decision L167" in w for w in json.loads((out / "summary.json").read_text())["info"]["warnings"])
     capsys.readouterr()
-    assert main(["run", str(root / "bundle"), str(tmp_path / "s"), "--drop-neighbour", "--out",
+    assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "s"), "--drop-neighbour", "--out",
                  str(tmp_path / "r")]) == 0
     assert "decision L167" in capsys.readouterr().err  # run logs the runtime's lines

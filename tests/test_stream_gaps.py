@@ -86,7 +86,8 @@ def test_track_cli_json_carries_the_gap_warning(sessions, tmp_path, capsys):
     from pdrlearn.io import write_session
 
     write_session(sessions[1], tmp_path / "g")
-    assert main(["track", str(tmp_path / "g"), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "o"),
+    assert main(["track", "--no-plot", str(tmp_path / "g"), "--pipeline", "waist-pendulum", "--out",
+                 str(tmp_path / "o"),
                  "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert any("wGyroscope ha" in w and "1 gap(s)" in w for w in d["info"]["warnings"])  # B34: grouped

@@ -19,7 +19,7 @@ def test_streamed_gait_line_says_why_there_is_no_cadence(tmp_path, capsys):
     lines = {}
     for name, extra in (("plain", []), ("contacts", ["--contacts"])):
         capsys.readouterr()
-        assert main(["track", str(sim), "--streaming", *extra, "--out", str(tmp_path / name)]) == 0
+        assert main(["track", "--no-plot", str(sim), "--streaming", *extra, "--out", str(tmp_path / name)]) == 0
         lines[name] = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("gait speed")]
     summary = json.loads((tmp_path / "plain" / "summary.json").read_text())
     assert summary["median_cadence_spm"] is None and len(lines["plain"]) == 1 and NOTE in lines["plain"][0]

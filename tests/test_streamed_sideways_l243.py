@@ -91,7 +91,8 @@ def test_tracker_and_run_give_track_streamings_column(root, tmp_path):
         steps = replay(Tracker(root / "bundle"), s, 0.5)
         ref = get_pipeline("plasys")(s, model=str(root / "model"), streaming=True).steps
         write_session(s, tmp_path / "walk")
-        assert main(["run", str(root / "bundle"), str(tmp_path / "walk"), "--out", str(tmp_path / "out")]) == 0
+        assert main(["run", "--no-plot", str(root / "bundle"), str(tmp_path / "walk"), "--out",
+                     str(tmp_path / "out")]) == 0
     finally:
         logging.disable(logging.NOTSET)
     flags = ref["sideways"].to_numpy(bool)

@@ -131,7 +131,7 @@ def sts(tmp_path_factory):
 def test_five_times_sit_to_stand_without_walking_finds_every_transfer(sts, tmp_path, capsys):
     truth = pd.read_csv(sts / "transfers.csv") / 1000.0
     out = tmp_path / "w"
-    assert main(["track", str(sts), "--units", "waist", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(sts), "--units", "waist", "--out", str(out)]) == 0
     printed = capsys.readouterr()
     tr = pd.read_csv(out / "transfers.csv")
     assert tr["kind"].tolist() == [SIT_TO_STAND, STAND_TO_SIT] * 5  # before W277: 0 rises and 1 sit

@@ -43,7 +43,8 @@ def test_track_all_subject_map_pseudonymizes_tree_tables_files_and_titles(study,
     real_plot = plots.plot_paths
     monkeypatch.setattr(plots, "plot_paths", lambda *a, **k: (titles.append(k.get("title")), real_plot(*a, **k))[1])
     out = tmp_path / "ta"
-    assert main(["track-all", str(study), "--out", str(out), "--subject-map", str(study.parent / "map.csv"),
+    assert main(["track-all", "--no-plot", str(study), "--out", str(out), "--subject-map",
+                 str(study.parent / "map.csv"),
                  "--json"]) == 0
     printed = capsys.readouterr().out
     hits = [str(p.relative_to(out)) for p in out.rglob("*") if p.is_file() and b"Doe_Jane" in p.read_bytes()]
@@ -101,8 +102,8 @@ def test_track_all_subject_map_numeric_subject_folders(tmp_path, monkeypatch, ca
     for folder, seed in (("1", 8630), ("2", 8631)):
         write_session(simulate("A", user_seed=seed), root / folder / "w")
     (tmp_path / "mapN.csv").write_text("real,pseudonym\n1,P01\n2,P02\n")
-    assert main(["track-all", str(root), "--out", str(tmp_path / "plain")]) == 0
-    assert main(["track-all", str(root), "--subject-map", str(tmp_path / "mapN.csv"),
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "plain")]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--subject-map", str(tmp_path / "mapN.csv"),
                  "--out", str(tmp_path / "share")]) == 0
     share, plain = tmp_path / "share", tmp_path / "plain"
     assert sorted(p.name for p in share.iterdir() if p.is_dir()) == ["P01", "P02"]

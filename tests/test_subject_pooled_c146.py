@@ -51,7 +51,7 @@ def test_track_all_pools_a_childs_short_trials(tmp_path):
         assert main(["simulate", "--route", "stand:3, straight:10, stand:3", "--height", "1.25", "--leg-length",
                      "0.62", "--step-length", "0.45", "--step-time", "0.38", "--rate", "100", "--user-seed", "9681",
                      "--seed", str(seed), "--out", str(tmp_path / "child" / f"p{seed}")]) == 0
-    assert main(["track-all", str(tmp_path / "child"), "--out", str(tmp_path / "out")]) == 0
+    assert main(["track-all", "--no-plot", str(tmp_path / "child"), "--out", str(tmp_path / "out")]) == 0
     sessions = pd.read_csv(tmp_path / "out" / "sessions.csv")
     assert sessions["stride_time_cv_pct"].isna().all()  # each pass alone: under 10 steady strides
     subjects = pd.read_csv(tmp_path / "out" / "subjects.csv")

@@ -46,8 +46,8 @@ def test_track_and_run_leave_out_the_same_entries(walk, tmp_path, monkeypatch, c
     from pdrlearn.cli import main
 
     def infos(tag: str) -> tuple[dict, dict]:
-        assert main(["track", str(walk), "--streaming", "--out", str(tmp_path / f"t{tag}")]) == 0
-        assert main(["run", str(BUNDLE), str(walk), "--out", str(tmp_path / f"r{tag}")]) == 0
+        assert main(["track", "--no-plot", str(walk), "--streaming", "--out", str(tmp_path / f"t{tag}")]) == 0
+        assert main(["run", "--no-plot", str(BUNDLE), str(walk), "--out", str(tmp_path / f"r{tag}")]) == 0
         capsys.readouterr()
         return tuple(json.loads((tmp_path / f"{w}{tag}" / "summary.json").read_text())["info"] for w in "tr")
 
@@ -80,9 +80,9 @@ def test_a_waist_run_leaves_out_the_same_entries(tmp_path, monkeypatch, capsys):
     frame = ",".join(f"{k}={v}" for k, v in s.require_frame("waist").to_dict().items())
     export_waist(tmp_path / "p.json", tmp_path / "wb", frame=frame)
     session = write_session(s, tmp_path / "walk")
-    assert main(["run", str(tmp_path / "wb"), str(session), "--out", str(tmp_path / "r0"), "--json"]) == 0
+    assert main(["run", "--no-plot", str(tmp_path / "wb"), str(session), "--out", str(tmp_path / "r0"), "--json"]) == 0
     info = json.loads(capsys.readouterr().out)["info"]
     assert (tmp_path / "r0" / "freezes.csv").is_file() and "freezes" not in info and "pipeline" in info
     monkeypatch.setattr(TE, "SUMMARY_INFO_LEFT_OUT", {**SUMMARY_INFO_LEFT_OUT, "pipeline": "a test's"})
-    assert main(["run", str(tmp_path / "wb"), str(session), "--json"]) == 0
+    assert main(["run", "--no-plot", str(tmp_path / "wb"), str(session), "--json"]) == 0
     assert "pipeline" not in json.loads(capsys.readouterr().out)["info"]

@@ -35,7 +35,7 @@ def batch(tmp_path_factory):
     for folder, subject, visit, user in SESSIONS:
         _write(root, folder, subject, visit, user)
     out = tmp_path_factory.mktemp("tidy_out") / "o"
-    assert main(["track-all", str(root), "--out", str(out)]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(out)]) == 0
     return root, out
 
 
@@ -88,7 +88,7 @@ def test_a_single_track_prints_and_writes_subject_and_visit(batch, tmp_path, cap
     track per session could not tell the visits apart)."""
     root, _ = batch
     capsys.readouterr()
-    assert main(["track", str(root / "S9/visit1"), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(root / "S9/visit1"), "--out", str(tmp_path / "t"), "--json"]) == 0
     printed = json.loads(capsys.readouterr().out)
     assert (printed["subject"], printed["visit"]) == ("9", "1")
     written = json.loads((tmp_path / "t" / "summary.json").read_text())

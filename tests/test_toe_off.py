@@ -127,17 +127,18 @@ def test_track_cli_toe_off_option(tmp_path):
 
     from pdrlearn.cli import app
 
-    r = CliRunner().invoke(app, ["track", str(path), "--out", str(tmp_path / "a")])
+    r = CliRunner().invoke(app, ["track", "--no-plot", str(path), "--out", str(tmp_path / "a")])
     assert r.exit_code == 0, r.output
     steps = pd.read_csv(tmp_path / "a" / "steps.csv")
     assert not set(TOE_OFF_COLUMNS) & set(steps.columns)  # not the default (L73: rule not met)
     assert json.loads((tmp_path / "a" / "summary.json").read_text())["median_stance_time_s"] is None
-    r = CliRunner().invoke(app, ["track", str(path), "--toe-off", "--out", str(tmp_path / "b")])
+    r = CliRunner().invoke(app, ["track", "--no-plot", str(path), "--toe-off", "--out", str(tmp_path / "b")])
     assert r.exit_code == 0, r.output
     steps = pd.read_csv(tmp_path / "b" / "steps.csv")
     assert set(TOE_OFF_COLUMNS) <= set(steps.columns)
     summ = json.loads((tmp_path / "b" / "summary.json").read_text())
     assert 0.55 < summ["median_stance_time_s"] < 0.8 and 55 < summ["median_stance_pct"] < 70
     assert summ["n_stance_times"] == int(steps["stance_time_s"].notna().sum())
-    r = CliRunner().invoke(app, ["track", str(path), "--toe-off", "--streaming", "--out", str(tmp_path / "c")])
+    r = CliRunner().invoke(app, ["track", "--no-plot", str(path), "--toe-off", "--streaming", "--out",
+                                 str(tmp_path / "c")])
     assert r.exit_code != 0 and "--toe-off" in (r.output + str(r.exception)) and not (tmp_path / "c").exists()

@@ -34,7 +34,7 @@ def walk(tmp_path_factory):
 
 
 def test_track_toe_off_warns_on_an_early_toe_off(walk, tmp_path, capsys, monkeypatch):
-    assert main(["track", str(walk), "--toe-off", "--out", str(tmp_path / "a")]) == 0
+    assert main(["track", "--no-plot", str(walk), "--toe-off", "--out", str(tmp_path / "a")]) == 0
     assert "L315" not in capsys.readouterr().err  # a simulated walker's stance is ~63 %
 
     import pdrlearn.track.toeoff as toeoff
@@ -44,7 +44,7 @@ def test_track_toe_off_warns_on_an_early_toe_off(walk, tmp_path, capsys, monkeyp
         return s + 0.2 * (e - s)
 
     monkeypatch.setattr(toeoff, "toe_off_times", early)
-    assert main(["track", str(walk), "--toe-off", "--out", str(tmp_path / "b")]) == 0
+    assert main(["track", "--no-plot", str(walk), "--toe-off", "--out", str(tmp_path / "b")]) == 0
     cap = capsys.readouterr()
     assert "toe-off: median stance" in cap.err and "L315" in cap.err
     # L316: this session has a lower-back unit, so the foot track's posture line says to track it

@@ -32,10 +32,10 @@ def test_every_command_tracks_a_10_hz_session_with_one_warning_per_unit_b416(tmp
     slow = tmp_path / "u10"
     _every_other_row(good, slow)
     capsys.readouterr()
-    for cmd in (["track", str(slow), "--out", str(tmp_path / "t")],
-                ["track", str(slow), "--streaming", "--out", str(tmp_path / "ts")],
+    for cmd in (["track", "--no-plot", str(slow), "--out", str(tmp_path / "t")],
+                ["track", "--no-plot", str(slow), "--streaming", "--out", str(tmp_path / "ts")],
                 ["steps", str(slow), "--out", str(tmp_path / "s.csv")],
-                ["run", str(BUNDLE), str(slow), "--out", str(tmp_path / "r")]):
+                ["run", "--no-plot", str(BUNDLE), str(slow), "--out", str(tmp_path / "r")]):
         assert main(cmd) == 0, cmd
         err = capsys.readouterr().err
         low = [ln for ln in err.splitlines() if "below the 20 Hz its step detectors are validated at" in ln]

@@ -23,9 +23,9 @@ def still(tmp_path_factory) -> Path:
 
 def test_track_all_of_only_no_stride_sessions_exits_4_b330(still, tmp_path, capsys):
     out = tmp_path / "o"
-    assert main(["track", str(still), "--out", str(tmp_path / "one")]) == 4  # B318: track alone
+    assert main(["track", "--no-plot", str(still), "--out", str(tmp_path / "one")]) == 4  # B318: track alone
     capsys.readouterr()
-    assert main(["track-all", str(still.parent), "--out", str(out)]) == 4  # was 2
+    assert main(["track-all", "--no-plot", str(still.parent), "--out", str(out)]) == 4  # was 2
     err = capsys.readouterr().err
     assert err.strip().splitlines()[-1].startswith("error: every session failed; first error: still:")
     assert "no strides detected" in err and not out.exists()

@@ -30,7 +30,7 @@ def test_skipped_parts_are_not_failed_in_subjects_and_changes(tmp_path, capsys):
             meta = json.loads((part / "meta.json").read_text())
             (part / "meta.json").write_text(json.dumps({**meta, "visit": visit}))
     capsys.readouterr()
-    assert main(["track-all", str(root), "--out", str(tmp_path / "out")]) == 0
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "out")]) == 0
     subjects = pd.read_csv(tmp_path / "out" / "subjects.csv")
     assert subjects["n_failed"].tolist() == [0, 0] and subjects["n_tracked"].tolist() == [1, 1]  # old code: 1, 1
     changes = pd.read_csv(tmp_path / "out" / "changes.csv")
@@ -42,7 +42,8 @@ def test_all_rest_split_and_skipped_part_beside_a_failure(tmp_path, capsys):
     parts = _split(tmp_path, "stand:70", 9819, "rest")
     capsys.readouterr()
     out = tmp_path / "out"
-    assert main(["track-all", str(parts), "--out", str(out)]) == 4  # old code: exit 4, "every session failed"
+    assert main(["track-all", "--no-plot", str(parts), "--out",
+                 str(out)]) == 4  # old code: exit 4, "every session failed"
     err = capsys.readouterr().err
     assert "error: no session tracked (2 split parts at rest skipped" in err and "every session failed" not in err
     assert not out.exists()
@@ -50,7 +51,7 @@ def test_all_rest_split_and_skipped_part_beside_a_failure(tmp_path, capsys):
     meta = json.loads((parts / "part_001" / "meta.json").read_text())
     del meta["split"]
     (parts / "part_001" / "meta.json").write_text(json.dumps(meta))
-    assert main(["track-all", str(parts), "--out", str(out)]) == 4
+    assert main(["track-all", "--no-plot", str(parts), "--out", str(out)]) == 4
     err = capsys.readouterr().err
     assert "every session failed (1 split part at rest skipped); first error: part_001:" in err
     assert not out.exists()

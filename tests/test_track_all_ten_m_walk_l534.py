@@ -28,8 +28,9 @@ def walkway(tmp_path_factory):
 
 def test_track_all_times_every_session_on_the_walkway_given_l534(walkway, tmp_path):
     out = tmp_path / "all"
-    assert main(["track-all", str(walkway), "--ten-m-walk", "2,6,2", "--out", str(out)]) == 0
-    assert main(["track", str(walkway / "u10452"), "--ten-m-walk", "2,6,2", "--out", str(tmp_path / "one")]) == 0
+    assert main(["track-all", "--no-plot", str(walkway), "--ten-m-walk", "2,6,2", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(walkway / "u10452"), "--ten-m-walk", "2,6,2", "--out",
+                 str(tmp_path / "one")]) == 0
     batch = json.loads((out / "u10452" / "summary.json").read_text())
     one = json.loads((tmp_path / "one" / "summary.json").read_text())
     assert {k: batch[k] for k in KEYS} == {k: one[k] for k in KEYS}
@@ -40,7 +41,7 @@ def test_track_all_times_every_session_on_the_walkway_given_l534(walkway, tmp_pa
     assert rows["ten_m_walk_speed_mps"].notna().all() and len(rows) == 2  # both timed over the middle 6 m
     assert json.loads((out / "run.json").read_text())["options"]["ten_m_walk"] == "2,6,2"  # C18
     # without the option the 10.5 m walk is no 14 m walkway: not timed, the note names the option (L313, L522)
-    assert main(["track-all", str(walkway), "--out", str(tmp_path / "plain")]) == 0
+    assert main(["track-all", "--no-plot", str(walkway), "--out", str(tmp_path / "plain")]) == 0
     plain = pd.read_csv(tmp_path / "plain" / "sessions.csv")
     assert plain["ten_m_walk_speed_mps"].isna().all() and plain["ten_m_walk_note"].str.contains("--ten-m-walk").all()
 

@@ -25,7 +25,8 @@ def test_reference_point_option_equals_the_params_file(level, tmp_path_factory, 
     got = {}
     for name, extra in runs.items():
         out = tmp / name
-        assert main(["track", str(level), "--out", str(out), "--json", *extra]) == 0, capsys.readouterr().err
+        assert main(["track", "--no-plot", str(level), "--out", str(out), "--json",
+                     *extra]) == 0, capsys.readouterr().err
         capsys.readouterr()
         got[name] = json.loads((out / "summary.json").read_text())
     assert got["option"]["info"]["settings"]["reference_point"] == "heel"
@@ -44,7 +45,7 @@ def test_reference_point_refusals_are_one_line(level, tmp_path, capsys):
              (["--reference-point", "heel", "--streaming"], "sensor point only"),
              (["--reference-point", "heel", "--pipeline", "waist-pendulum"], "plasys (foot) pipeline only")]
     for extra, needle in cases:
-        rc = main(["track", str(level), "--out", str(tmp_path / "t"), *extra])
+        rc = main(["track", "--no-plot", str(level), "--out", str(tmp_path / "t"), *extra])
         err = capsys.readouterr().err
         assert rc == 2 and needle in err and err.strip().startswith("error:"), err
         assert not (tmp_path / "t").exists()

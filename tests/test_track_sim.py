@@ -69,11 +69,12 @@ def test_rules_follow_the_classes(scen_b):
 
 def test_cli_on_simulated_session_without_and_with_model(scen_b, tmp_path, capsys):
     d = write_session(scen_b, tmp_path / "B")
-    rc = main(["track", str(d), "--method", "M2", "--start", "41.178,-8.608", "--out", str(tmp_path / "m2"), "--json"])
+    rc = main(["track", "--no-plot", str(d), "--method", "M2", "--start", "41.178,-8.608", "--out",
+               str(tmp_path / "m2"), "--json"])
     assert rc == 0
     out = json.loads(capsys.readouterr().out)
     assert abs(out["distance_error_pct"]) < 2.0 and out["final_position_error_m"] < 5.0
-    rc = main(["track", str(d), "--method", "M3", "--out", str(tmp_path / "m3")])
+    rc = main(["track", "--no-plot", str(d), "--method", "M3", "--out", str(tmp_path / "m3")])
     assert rc == 2 and "M3 needs" in capsys.readouterr().err
 
     from pdrlearn.classify import train_user
@@ -81,7 +82,7 @@ def test_cli_on_simulated_session_without_and_with_model(scen_b, tmp_path, capsy
     cal = [sim.simulate(e, user_seed=3) for e in ("terrain", "direction", "length")]
     model = train_user(cal, methods=("svm",), cv=3, tasks=("terrain", "direction", "length"))
     model.save(tmp_path / "model")
-    rc = main(["track", str(d), "--method", "M3", "--model", str(tmp_path / "model"), "--out",
+    rc = main(["track", "--no-plot", str(d), "--method", "M3", "--model", str(tmp_path / "model"), "--out",
                str(tmp_path / "m3"), "--json"])
     assert rc == 0
     out = json.loads(capsys.readouterr().out)

@@ -22,7 +22,7 @@ def walk_a(tmp_path_factory):
 def test_streaming_oracle_uses_the_sessions_length_bounds(walk_a, tmp_path, capsys):
     """With --model oracle both paths clamp with meta's length_class_bounds_m (not the thesis x 2 bounds,
     which would cut every 1.4 m stride to 0.9 m)."""
-    assert main(["track", str(walk_a), "--method", "M3", "--model", "oracle", "--streaming",
+    assert main(["track", "--no-plot", str(walk_a), "--method", "M3", "--model", "oracle", "--streaming",
                  "--out", str(tmp_path / "s"), "--json"]) == 0
     s = json.loads(capsys.readouterr().out)
     assert abs(s["distance_error_pct"]) < 8.0
@@ -31,7 +31,8 @@ def test_streaming_oracle_uses_the_sessions_length_bounds(walk_a, tmp_path, caps
 def test_streaming_rejects_what_is_not_streamable(walk_a, tmp_path, capsys):
     assert main(["track", str(walk_a), "--method", "M1", "--streaming", "--out", str(tmp_path / "x")]) == 2
     assert "not streamable" in capsys.readouterr().err
-    assert main(["track", str(walk_a), "--pipeline", "waist-pll", "--streaming", "--out", str(tmp_path / "y")]) == 2
+    assert main(["track", "--no-plot", str(walk_a), "--pipeline", "waist-pll", "--streaming", "--out",
+                 str(tmp_path / "y")]) == 2
     assert "--streaming applies to the plasys pipeline only" in capsys.readouterr().err
 
 

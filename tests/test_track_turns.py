@@ -77,7 +77,7 @@ def test_real_turns_agree_and_the_mirrored_walk_warns(tmp_path, capsys, pipeline
     for name, folder in (("real", src), ("mirrored", mirrored)):
         capsys.readouterr()
         out = tmp_path / f"track_{name}"
-        assert main(["track", str(folder), "--pipeline", pipeline, "--out", str(out), "--json"]) == 0
+        assert main(["track", "--no-plot", str(folder), "--pipeline", pipeline, "--out", str(out), "--json"]) == 0
         cap = capsys.readouterr()
         got[name] = (json.loads(cap.out), [ln for ln in cap.err.splitlines() if "reference turns" in ln])
         saved = json.loads((out / "summary.json").read_text())
@@ -95,7 +95,8 @@ def test_shipped_session_reports_its_turns_without_a_warning(tmp_path, capsys):
     them (meta.json axes.how_obtained); reported, not warned about."""
     from tests.conftest import REAL
 
-    assert main(["track", str(REAL / "mobgap_HA001_Test11_Trial1"), "--out", str(tmp_path / "o"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(REAL / "mobgap_HA001_Test11_Trial1"), "--out", str(tmp_path / "o"),
+                 "--json"]) == 0
     cap = capsys.readouterr()
     s = json.loads(cap.out)
     assert s["n_turns"] == 7 and 0.25 < s["turn_sign_agreement"] < 1.0 and "turn_angle_mae_deg" in s
@@ -121,7 +122,7 @@ def test_iphone_accelerometer_sign_with_the_frame_fitted_to_it_warns(tmp_path, c
         meta["frames"] = {"waist": frame}
         (d / "meta.json").write_text(json.dumps(meta))
         capsys.readouterr()
-        assert main(["track", str(d), "--out", str(tmp_path / f"track_{name}"), "--json"]) == 0
+        assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / f"track_{name}"), "--json"]) == 0
         cap = capsys.readouterr()
         runs[name] = (json.loads(cap.out), [ln for ln in cap.err.splitlines() if "reference turns" in ln])
     assert runs["phone"][0]["turn_sign_agreement"] >= 0.85 and runs["phone"][1] == []

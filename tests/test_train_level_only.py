@@ -45,9 +45,10 @@ def test_level_only_labels_train_the_distance_calibration(level_model):
 def test_level_only_model_tracks_a_held_out_walk(level_model, tmp_path, capsys):
     model, summary = level_model
     gain = summary["distance_calibration"]["gain"]
-    assert main(["track", str(HELD_OUT), "--out", str(tmp_path / "none"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(HELD_OUT), "--out", str(tmp_path / "none"), "--json"]) == 0
     plain = json.loads(capsys.readouterr().out)
-    assert main(["track", str(HELD_OUT), "--model", str(model), "--out", str(tmp_path / "m"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(HELD_OUT), "--model", str(model), "--out", str(tmp_path / "m"),
+                 "--json"]) == 0
     cap = capsys.readouterr()
     res = json.loads(cap.out)
     info = res["info"]
@@ -100,7 +101,8 @@ def test_level_only_model_streamed_says_what_it_lacks(level_model, tmp_path, cap
     """Review s11: `track --streaming` with a model without a classifier ran silently (no line that the model
     classifies nothing, and the streamed path keeps each stride's raw height change, unlike offline's L39)."""
     model, _ = level_model
-    assert main(["track", str(HELD_OUT), "--model", str(model), "--streaming", "--out", str(tmp_path / "s")]) == 0
+    assert main(["track", "--no-plot", str(HELD_OUT), "--model", str(model), "--streaming", "--out",
+                 str(tmp_path / "s")]) == 0
     lines = [w for w in capsys.readouterr().err.splitlines() if "classifies no" in w]
     assert len(lines) == 1 and "classifies no terrain, direction, length" in lines[0], lines
     assert "raw height change" in lines[0] and "is level (L39)" not in lines[0]

@@ -90,7 +90,7 @@ def tug(tmp_path_factory):
 def test_waist_track_writes_the_two_transfers_and_the_tug_time(tug, tmp_path, capsys, veto):
     truth = pd.read_csv(tug / "transfers.csv") / 1000.0  # _ms columns: rise 5.00-7.22 s, sit 29.25-31.74 s
     out = tmp_path / "w"
-    args = ["track", str(tug), "--pipeline", "waist-pendulum", "--out", str(out)]
+    args = ["track", "--no-plot", str(tug), "--pipeline", "waist-pendulum", "--out", str(out)]
     if veto:
         (tmp_path / "p.json").write_text('{"options": {"sit_veto": "rhythm"}}')
         args += ["--params", str(tmp_path / "p.json")]
@@ -111,6 +111,7 @@ def test_waist_track_writes_the_two_transfers_and_the_tug_time(tug, tmp_path, ca
     assert summary["n_sit_to_stand"] == 1 and summary["n_stand_to_sit"] == 1
     assert "transfers" not in summary["info"]  # the rows are transfers.csv's
     win = tmp_path / "win"  # decision W182: a window keeps the transfers inside it only
-    assert main(["track", str(tug), "--pipeline", "waist-pendulum", "--window", "8,28", "--out", str(win)]) == 0
+    assert main(["track", "--no-plot", str(tug), "--pipeline", "waist-pendulum", "--window", "8,28", "--out",
+                 str(win)]) == 0
     assert pd.read_csv(win / "transfers.csv").empty
     assert json.loads((win / "summary.json").read_text())["tug_time_s"] is None

@@ -26,7 +26,7 @@ def tracked(tmp_path_factory):
 
 def test_the_distance_splits_by_travel_direction_and_periods_count_the_strides(tracked, capsys):
     out = tracked / "t"
-    assert main(["track", str(tracked / "s"), "--out", str(out), "--per", "10s"]) == 0
+    assert main(["track", "--no-plot", str(tracked / "s"), "--out", str(out), "--per", "10s"]) == 0
     printed = capsys.readouterr().out
     summary = json.loads((out / "summary.json").read_text())
     steps = pd.read_csv(out / "steps.csv")
@@ -50,7 +50,7 @@ def test_the_distance_splits_by_travel_direction_and_periods_count_the_strides(t
 
 def test_a_lower_back_track_has_no_split(tracked):
     out = tracked / "w"
-    assert main(["track", str(tracked / "s"), "--out", str(out), "--units", "waist", "--per", "10s"]) == 0
+    assert main(["track", "--no-plot", str(tracked / "s"), "--out", str(out), "--units", "waist", "--per", "10s"]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert all(summary[k] is None for k in TRAVEL_DISTANCE_KEYS)
     periods = pd.read_csv(out / "periods.csv")

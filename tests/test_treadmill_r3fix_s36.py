@@ -35,10 +35,10 @@ def test_write_track_folder_equals_track_folder_on_a_declared_incline_l442(incli
     from pdrlearn.track import get_pipeline
     from pdrlearn.track.folder import write_track
 
-    assert main(["track", str(incline), "--out", str(tmp_path / "cli")]) == 0
+    assert main(["track", "--no-plot", str(incline), "--out", str(tmp_path / "cli")]) == 0
     capsys.readouterr()
     s = read_session(incline)
-    write_track(get_pipeline("plasys")(s), s, tmp_path / "api")
+    write_track(get_pipeline("plasys")(s), s, tmp_path / "api", plot=False)
     cli, api = (json.loads((tmp_path / d / "summary.json").read_text()) for d in ("cli", "api"))
     assert cli["n_cv_strides"] == api["n_cv_strides"] > 0
     for name in ("bouts.csv", "steps.csv"):
@@ -71,7 +71,7 @@ def test_evaluate_track_reads_the_declared_incline_and_the_belt_l454(incline):
 def test_run_reads_the_declared_incline_and_refuses_a_bad_one_l454_b378(incline, tmp_path, capsys):
     from pdrlearn.cli import main
 
-    assert main(["run", str(RUN_BUNDLE), str(incline), "--out", str(tmp_path / "run")]) == 0
+    assert main(["run", "--no-plot", str(RUN_BUNDLE), str(incline), "--out", str(tmp_path / "run")]) == 0
     assert "floors up 0" in capsys.readouterr().out
     got = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert got["belt_speed_mps"] == 1.0 and got["belt_incline_pct"] == 10 and "L442" in got["floors_note"]

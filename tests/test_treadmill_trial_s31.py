@@ -101,7 +101,7 @@ def _track(folder, out, capsys, caplog):
 
     caplog.clear()
     with caplog.at_level(logging.WARNING):
-        assert main(["track", str(folder), "--out", str(out)]) == 0
+        assert main(["track", "--no-plot", str(folder), "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     return json.loads((out / "summary.json").read_text()), printed, [r.getMessage() for r in caplog.records]
 
@@ -185,7 +185,7 @@ def test_periods_say_what_n_steps_counts_and_give_cadence_l320(belt, tmp_path):
     from pdrlearn.columns import undocumented
 
     out = tmp_path / "per"
-    assert main(["track", str(belt[0]), "--per", "6s", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(belt[0]), "--per", "6s", "--out", str(out)]) == 0
     per, steps = pd.read_csv(out / "periods.csv"), pd.read_csv(out / "steps.csv")
     s = json.loads((out / "summary.json").read_text())
     assert undocumented("periods.csv", per.columns) == []

@@ -83,7 +83,7 @@ def test_track_writes_phases_only_with_a_tug(tmp_path, capsys):
                  "--out", str(tug)]) == 0
     assert main(["simulate", "--route", ONE_TURN, "--sit-start", "5", "--user-seed", "6644", "--out", str(walk)]) == 0
     capsys.readouterr()
-    assert main(["track", str(tug), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
+    assert main(["track", "--no-plot", str(tug), "--units", "waist", "--out", str(tmp_path / "t")]) == 0
     out = capsys.readouterr().out
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
     table = pd.read_csv(tmp_path / "t" / "tug_phases.csv")
@@ -94,7 +94,7 @@ def test_track_writes_phases_only_with_a_tug(tmp_path, capsys):
     assert table["duration_s"].sum() <= summary["tug_time_s"]
     assert "TUG phases: sit-to-stand " in out and "turn-to-sit -" in out and "tug_phases.csv" in out
     # a session that ends standing: no TUG time, no phases, no tug_phases.csv, no line
-    assert main(["track", str(walk), "--units", "waist", "--out", str(tmp_path / "w")]) == 0
+    assert main(["track", "--no-plot", str(walk), "--units", "waist", "--out", str(tmp_path / "w")]) == 0
     out = capsys.readouterr().out
     summary = json.loads((tmp_path / "w" / "summary.json").read_text())
     assert summary["tug_time_s"] is None and summary["tug_phases"] is None and summary["tug_turn_s"] is None

@@ -122,7 +122,7 @@ def tug(tmp_path_factory):
 
 def test_track_writes_turns_and_foot_has_no_transfers(tug, tmp_path, capsys):
     out = tmp_path / "foot"
-    assert main(["track", str(tug), "--pipeline", "plasys", "--out", str(out)]) == 0
+    assert main(["track", "--no-plot", str(tug), "--pipeline", "plasys", "--out", str(out)]) == 0
     assert "turns.csv" in capsys.readouterr().out
     tt = pd.read_csv(out / "turns.csv")
     assert undocumented("turns.csv", tt.columns) == [] and _unclocked(TURNS) == list(tt.columns)
@@ -142,7 +142,7 @@ def test_track_writes_turns_and_foot_has_no_transfers(tug, tmp_path, capsys):
     assert (out / "transfers.csv").exists() and summary["tug_steps_source"] == "foot"
     assert all(summary[k] is not None for k in ("n_sit_to_stand", "n_stand_to_sit"))
     streamed = tmp_path / "stream"
-    assert main(["track", str(tug), "--pipeline", "plasys", "--streaming", "--out", str(streamed)]) == 0
+    assert main(["track", "--no-plot", str(tug), "--pipeline", "plasys", "--streaming", "--out", str(streamed)]) == 0
     st = pd.read_csv(streamed / "turns.csv")
     assert len(st) == 1 and st["angle_deg"].iloc[0] == pytest.approx(180.0, abs=5.0)
 
@@ -151,7 +151,7 @@ def test_run_writes_turns_csv_as_track_streaming(tug, tmp_path):
     """L202: ``pdrlearn run`` (the streamed bundle) writes track's turns.csv beside bouts.csv."""
     from tests.test_run_gait_summary import BUNDLE
 
-    assert main(["run", str(BUNDLE), str(tug), "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(BUNDLE), str(tug), "--out", str(tmp_path / "r")]) == 0
     tt = pd.read_csv(tmp_path / "r" / "turns.csv")
     assert _unclocked(TURNS) == list(tt.columns)
     assert len(tt) == 1 and tt["angle_deg"].iloc[0] == pytest.approx(180.0, abs=5.0)

@@ -93,7 +93,7 @@ def test_track_all_takes_a_visit_map_and_records_it(tmp_path, capsys):
         meta = json.loads((folder / "meta.json").read_text())
         (folder / "meta.json").write_text(json.dumps({**meta, "subject": subj, "visit": visit}))
     (tmp_path / "map.json").write_text('{"T0": "baseline", "T1": "week12"}')
-    assert main(["track-all", str(root), "--out", str(tmp_path / "o"), "--method", "M2",
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "o"), "--method", "M2",
                  "--visit-map", str(tmp_path / "map.json")]) == 0
     err = capsys.readouterr().err
     assert "'BL', 'baseline' -> 'baseline'" in err
@@ -115,7 +115,8 @@ def test_track_all_takes_a_visit_map_and_records_it(tmp_path, capsys):
                                            "visits": {"T0": "baseline", "T1": "week12"}}
     assert main(["report", str(tmp_path / "o"), "--out", str(tmp_path / "rep")]) == 0  # the map from run.json
     assert "week12 - baseline" in (tmp_path / "rep" / "report.md").read_text()
-    assert main(["track-all", str(root), "--out", str(tmp_path / "o2"), "--visit-map", str(tmp_path / "no.csv")]) == 2
+    assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "o2"), "--visit-map",
+                 str(tmp_path / "no.csv")]) == 2
     assert "no.csv: cannot be read" in capsys.readouterr().err and not (tmp_path / "o2").exists()
 
 

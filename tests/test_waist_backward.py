@@ -94,7 +94,8 @@ def test_units_waist_with_a_foot_option_names_the_left_out_foot(tmp_path, capsys
     model.save(tmp_path / "model")
     for extra, named in ((["--model", str(tmp_path / "model")], "--model"),
                          (["--pipeline", "plasys"], "--pipeline plasys"), (["--method", "M2"], "--method")):
-        rc = main(["track", str(tmp_path / "walk"), "--units", "waist", "--out", str(tmp_path / "o"), *extra])
+        rc = main(["track", "--no-plot", str(tmp_path / "walk"), "--units", "waist", "--out", str(tmp_path / "o"),
+                   *extra])
         err = capsys.readouterr().err.strip()
         assert rc == 2 and "\n" not in err and "fAccelerometer" not in err, err
         assert f"{named} needs the foot unit (PLASYS tracks the foot), which --units waist leaves out" in err, err
@@ -109,10 +110,11 @@ def test_units_foot_with_a_waist_pipeline_names_the_left_out_lower_back(tmp_path
 
     write_session(_sim("stand:2, straight:6, stand:2", 6301), tmp_path / "walk")
     for pipeline in ("waist-pendulum", "waist-pll"):
-        rc = main(["track", str(tmp_path / "walk"), "--units", "foot", "--pipeline", pipeline,
+        rc = main(["track", "--no-plot", str(tmp_path / "walk"), "--units", "foot", "--pipeline", pipeline,
                    "--out", str(tmp_path / "o")])
         err = capsys.readouterr().err.strip()
         assert rc == 2 and "\n" not in err and "record that sensor" not in err, err
         assert f"--pipeline {pipeline} needs the lower-back unit, which --units foot leaves out" in err, err
         assert err.endswith("or drop --units (decision W260)") and not (tmp_path / "o").exists()
-    assert main(["track", str(tmp_path / "walk"), "--units", "foot", "--out", str(tmp_path / "f")]) == 0  # foot
+    assert main(["track", "--no-plot", str(tmp_path / "walk"), "--units", "foot", "--out",
+                 str(tmp_path / "f")]) == 0  # foot

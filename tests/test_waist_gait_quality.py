@@ -76,10 +76,10 @@ def tracked(tmp_path_factory):
         write_session(sim.simulate("walk", user, length_m=40, **knobs), root / name)
         for f in (root / name).glob("f*.csv"):
             f.unlink()
-        assert main(["track", str(root / name), "--pipeline", "waist-pendulum", "--gait-quality",
+        assert main(["track", "--no-plot", str(root / name), "--pipeline", "waist-pendulum", "--gait-quality",
                      "--out", str(root / f"o{name}")]) == 0
         out[name] = root / f"o{name}"
-    assert main(["track", str(root / "symmetric"), "--pipeline", "waist-pendulum",
+    assert main(["track", "--no-plot", str(root / "symmetric"), "--pipeline", "waist-pendulum",
                  "--out", str(root / "odefault")]) == 0
     out["default"] = root / "odefault"
     return out
@@ -158,7 +158,7 @@ def test_the_flag_on_a_foot_track_says_it_computes_none(tmp_path):
     from pdrlearn.io import write_session
 
     write_session(sim.simulate("walk", 7552, length_m=20), tmp_path / "s")
-    assert main(["track", str(tmp_path / "s"), "--pipeline", "plasys", "--gait-quality", "--out",
+    assert main(["track", "--no-plot", str(tmp_path / "s"), "--pipeline", "plasys", "--gait-quality", "--out",
                  str(tmp_path / "o")]) == 0
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     lines = [w for w in summary["info"]["warnings"] if w.startswith("--gait-quality:")]

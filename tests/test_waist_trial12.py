@@ -51,15 +51,16 @@ def test_leg_from_height_warns_once_naming_the_option(tmp_path, caplog):
 def test_track_realtime_flag_equals_the_params_option(tmp_path, capsys):
     p = tmp_path / "rt.json"
     p.write_text(json.dumps({"options": {"realtime": True}}))
-    assert main(["track", str(HA001_T5), "--realtime", "--out", str(tmp_path / "a"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(HA001_T5), "--realtime", "--out", str(tmp_path / "a"), "--json"]) == 0
     a = json.loads(capsys.readouterr().out)
-    assert main(["track", str(HA001_T5), "--params", str(p), "--out", str(tmp_path / "b"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(HA001_T5), "--params", str(p), "--out", str(tmp_path / "b"), "--json"]) == 0
     b = json.loads(capsys.readouterr().out)
     assert b["distance_m"] == a["distance_m"]
     assert a["info"]["options"]["realtime"] is True and a["info"]["method"].startswith("alvarez-realtime")
     assert (tmp_path / "a" / "steps.csv").read_text() == (tmp_path / "b" / "steps.csv").read_text()
     # the foot pipeline and the PLL have no causal variant: one line, exit 2
-    assert main(["track", str(HA001_T5), "--pipeline", "waist-pll", "--realtime", "--out", str(tmp_path / "c")]) == 2
+    assert main(["track", "--no-plot", str(HA001_T5), "--pipeline", "waist-pll", "--realtime", "--out",
+                 str(tmp_path / "c")]) == 2
     err = capsys.readouterr().err
     assert "--realtime applies to the waist-pendulum pipeline only" in err and not (tmp_path / "c").exists()
 
@@ -83,7 +84,7 @@ def _standing(tmp_path: Path, end_ms: float = 4500) -> Path:
 
 def test_standing_only_without_frames_tracks_zero_steps(tmp_path, capsys):
     d = _standing(tmp_path)
-    assert main(["track", str(d), "--out", str(tmp_path / "t"), "--json"]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(tmp_path / "t"), "--json"]) == 0
     cap = capsys.readouterr()
     out = json.loads(cap.out)
     assert out["n_steps"] == 0 and out["distance_m"] == 0.0
