@@ -34,10 +34,13 @@ def _clocks(*of: str) -> tuple[Column, ...]:
 
 
 def _ends(start: str, end: str) -> tuple[Column, ...]:
-    """Decision L570: the x / y and lat / lon columns of an event's two ends (trajectory.csv at its times)."""
-    return tuple((f"{e}_{c}", u, "number", f"{w}: trajectory.csv's {c.removesuffix('_m')} at that time (L570)"
+    """Decisions L570, L585: the x / y and lat / lon columns of an event's two ends (trajectory.csv at its times;
+    the start at the row at or before it, where the walker stood until the first stride ended)."""
+    return tuple((f"{e}_{c}", u, "number", f"{w}: trajectory.csv's {c.removesuffix('_m')} {at}"
                   + ("" if c.endswith("_m") else "; empty without a geodetic start (--start LAT,LON)"))
-                 for e, w in (("start", start), ("end", end))
+                 for e, w, at in (("start", start, "at the row at or before that time (where the walker stood; "
+                                                   "L570, L585)"),
+                                  ("end", end, "at that time (L570)"))
                  for c, u in (("x_m", "m"), ("y_m", "m"), ("lat", "deg"), ("lon", "deg")))
 
 

@@ -30,6 +30,8 @@ from pathlib import Path
 
 import numpy as np
 
+from pdrlearn.track.ramp_audit import trajectory_values
+
 log = logging.getLogger("pdrlearn.track")
 
 #: the files this module writes, in the order ``track``'s "wrote" line names them
@@ -148,17 +150,19 @@ def geojson_dict(lat, lon, pieces: list[np.ndarray], *, properties: dict, ele=No
 
 
 def feature_geometry(t, lat, lon, ele, t0: float, t1: float) -> list[list[float]]:
-    """Decision L570: the RFC 7946 positions of the path from time ``t0`` to ``t1``: the rows' lat / lon (and
-    ``ele`` when given) interpolated at both ends, the rows strictly between them in order; empty where either end
-    has no position (outside the rows with lat / lon)."""
+    """Decisions L570, L585: the RFC 7946 positions of the path from time ``t0`` to ``t1``: the rows' lat / lon
+    (and ``ele`` when given) at the row at or before ``t0`` (L585: where the walker stood until the first stride
+    ended, as ramps.csv's / stairs.csv's start), the rows strictly between ``t0`` and ``t1`` in order, and
+    interpolated at ``t1``; empty where either end has no position (outside the rows with lat / lon)."""
     ok = np.isfinite(t) & np.isfinite(lat) & np.isfinite(lon) & (np.isfinite(ele) if ele is not None else True)
     tt = t[ok]
     if len(tt) < 2 or not (tt[0] <= t0 <= tt[-1] and tt[0] <= t1 <= tt[-1]):
         return []
     cols = [lon[ok], lat[ok]] + ([ele[ok]] if ele is not None else [])  # RFC 7946 3.1.1: lon first
     inner = np.flatnonzero((tt > t0) & (tt < t1))
-    pts = [[float(np.interp(t0, tt, c)) for c in cols], *([float(c[i]) for c in cols] for i in inner),
-           [float(np.interp(t1, tt, c)) for c in cols]]
+    pts = [[float(trajectory_values(tt, c, [t0], held=True)[0]) for c in cols],
+           *([float(c[i]) for c in cols] for i in inner),
+           [float(trajectory_values(tt, c, [t1])[0]) for c in cols]]
     return [[round(v, COORD_DECIMALS if k < 2 else ELE_DECIMALS) for k, v in enumerate(p)] for p in pts]
 
 

@@ -42,34 +42,53 @@ def compliance_flags(grade_pct, rise_m) -> dict:
             "run_rise_over_0_76": over(rise_m, RUN_MAX_RISE_M)}
 
 
-def positions_at(trajectory: pd.DataFrame | None, times) -> dict[str, np.ndarray]:
-    """Decision L570: ``x`` / ``y`` (m) and ``lat`` / ``lon`` of ``trajectory`` (trajectory.csv: ``t``, ``x``,
-    ``y``, and ``lat`` / ``lon`` with a geodetic start) linearly interpolated at ``times`` (s), from its rows with
-    finite values; NaN without a trajectory, outside its time span or without two such rows."""
+def trajectory_values(t, v, times, *, held: bool = False) -> np.ndarray:
+    """Decisions L570, L585: the values ``v`` of trajectory rows at times ``t`` (s), read at ``times`` from the rows
+    with finite ``t`` and ``v``: linearly interpolated, or with ``held`` the row at or before each time (a
+    trajectory row is the END of a stride, so a stride's start time lies between the row before it and its own
+    row, after any standstill: the walker is at the row before until the next stride ends; decision L585). NaN
+    outside the rows' time span or without two such rows. A pure kernel."""
+    t, v = np.asarray(t, dtype=float), np.asarray(v, dtype=float)
+    times = np.asarray(times, dtype=float)
+    ok = np.isfinite(t) & np.isfinite(v)
+    if ok.sum() < 2 or not len(times):
+        return np.full(len(times), np.nan)
+    order = np.argsort(t[ok], kind="stable")
+    tt, vv = t[ok][order], v[ok][order]
+    inside = (times >= tt[0]) & (times <= tt[-1])
+    if held:  # decision L585: the position held until the next stride ends
+        vals = vv[np.clip(np.searchsorted(tt, np.where(inside, times, tt[0]), "right") - 1, 0, len(tt) - 1)]
+    else:
+        vals = np.interp(times, tt, vv)
+    return np.where(inside, vals, np.nan)
+
+
+def positions_at(trajectory: pd.DataFrame | None, times, *, held: bool = False) -> dict[str, np.ndarray]:
+    """Decisions L570, L585: ``x`` / ``y`` (m) and ``lat`` / ``lon`` of ``trajectory`` (trajectory.csv: ``t``,
+    ``x``, ``y``, and ``lat`` / ``lon`` with a geodetic start) at ``times`` (s) by :func:`trajectory_values`
+    (interpolated, or with ``held`` the row at or before each time); NaN without a trajectory, outside its time
+    span or without two rows with finite values."""
     times = np.asarray(times, dtype=float)
     out = {k: np.full(len(times), np.nan) for k in ("x", "y", "lat", "lon")}
     if trajectory is None or "t" not in trajectory or not len(times):
         return out
     t = pd.to_numeric(trajectory["t"], errors="coerce").to_numpy(float)
     for k in out:
-        if k not in trajectory:
-            continue
-        v = pd.to_numeric(trajectory[k], errors="coerce").to_numpy(float)
-        ok = np.isfinite(t) & np.isfinite(v)
-        if ok.sum() >= 2:
-            order = np.argsort(t[ok], kind="stable")
-            tt, vv = t[ok][order], v[ok][order]
-            out[k] = np.where((times >= tt[0]) & (times <= tt[-1]), np.interp(times, tt, vv), np.nan)
+        if k in trajectory:
+            out[k] = trajectory_values(t, pd.to_numeric(trajectory[k], errors="coerce").to_numpy(float), times,
+                                       held=held)
     return out
 
 
 def with_end_positions(table: pd.DataFrame, trajectory: pd.DataFrame | None) -> pd.DataFrame:
-    """Decision L570: ``table`` (rows with ``start_s`` / ``end_s``) with :data:`POSITION_COLUMNS` filled from
-    :func:`positions_at` (the columns are always written; empty without a trajectory or a geodetic start)."""
+    """Decisions L570, L585: ``table`` (rows with ``start_s`` / ``end_s``) with :data:`POSITION_COLUMNS` filled
+    from :func:`positions_at`: a start at the trajectory row at or before ``start_s`` (L585: where the walker
+    stood until the first stride ended), an end interpolated at ``end_s`` (a stride's end is a row). The columns
+    are always written; empty without a trajectory or a geodetic start."""
     out = table.copy()
     for end in ("start", "end"):
         at = positions_at(trajectory, pd.to_numeric(out[f"{end}_s"], errors="coerce").to_numpy(float)
-                          if len(out) else [])
+                          if len(out) else [], held=end == "start")
         out[f"{end}_x_m"], out[f"{end}_y_m"] = at["x"], at["y"]
         out[f"{end}_lat"], out[f"{end}_lon"] = at["lat"], at["lon"]
     return out
