@@ -165,6 +165,11 @@ NO_MODEL_WARNING = coded("no model: the M3 engine (ZUPT/Kalman strides) without 
                          "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass model= a "
                          "trained model (CLI --model DIR; `pdrlearn train`) or model='oracle' (--model oracle, "
                          "labelled sessions) for M3 (decision E153)", "E153")  # decision E170
+#: decision L586: ``fused_climb`` with a model that classes terrain (offline and streamed): said, not refused (the same
+#: PARAMS.json serves tracks with and without a model, and the track is right without the option)
+FUSED_CLIMB_DROPPED = ("fused_climb applies to a track without a terrain model: the model's terrain classes set the "
+                       "strides' heights, so it was dropped; track without --model (or with a model without terrain "
+                       "classes) for it, or drop fused_climb from the --params file (decisions L565, L586)")
 #: decision E170: the line of a foot unit without force sensors, with its code (E168's lead phrase)
 NO_FORCE_STANCE = coded("no force sensors: stance from the accelerometer/gyroscope detector", "no-force-sensors")
 
@@ -1202,6 +1207,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                                                    raw_dz=raw_dz)  # L69, L145
             res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", []), *([msg] if msg else [])]
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
+        if fused_climb and not no_classes:  # decision L586, as offline
+            res.info["warnings"].append(FUSED_CLIMB_DROPPED)
+            log.warning("%s: %s", session.where, FUSED_CLIMB_DROPPED)
         at = len(res.info["warnings"]) - 1 if no_classes and msg else None
         apply_altitude(res, session, altitude,  # decision L154 (L292: rewrites L69's line; L564: the raw heights)
                        raw_dz=raw_dz if no_classes and fused_climb else None)  # L565: an option
@@ -1651,6 +1659,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             # decision L431: the contacts' cadence as `pdrlearn steps` judges it
             "contact_cadence_spm": _contact_cadence(seen, table, foot.t, stance),
             "warnings": warnings}
+    if fused_climb and not leveled:  # decision L586: the model's terrain classes set the strides' heights
+        warnings.append(FUSED_CLIMB_DROPPED)
     res = TrackResult(steps=table, trajectory=traj, info=info)
     logged = len(warnings)  # apply_altitude logs its own lines
     apply_altitude(res, session, altitude,  # decision L154 (L292: rewrites L69's line; L564 / L565: an option)

@@ -15,6 +15,7 @@ heading            A-HE tip-to-tail (or ellipse closed     vertical gyro, integr
 
 from __future__ import annotations
 
+import copy
 import functools
 import json
 import logging
@@ -1039,7 +1040,8 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     p, warnings = resolve_params(session, params)
     spec = length_model if length_model is not None else ("pendulum" if pipeline == "waist-pendulum" else
                                                           "frequency")
-    model = get_step_length(spec)  # E84
+    # decision W468: an instance is the caller's: configured on a copy, so PARAMS.json's gain (W460) stays this track's
+    model = copy.deepcopy(spec) if isinstance(spec, StepLengthModel) else get_step_length(spec)  # E84
     if not model.uses_leg_length:  # e.g. the frequency model (waist-pll's) has no leg length (W62)
         warnings = [w for w in warnings if not w.startswith(NO_SENSOR_HEIGHT)]
     det = None if detector is None else waist_detector(detector, given["realtime"])  # E85
@@ -1386,12 +1388,27 @@ def _calibrated_gain(model: StepLengthModel, spec, p: WaistParams, own_calibrati
         return "params"
     if value is not None:
         return "default"
-    where = ("" if not (p.length_models or {}).get(model.name) else
-             f" (the --params file was calibrated for {p.pipeline}, not this pipeline)")
+    where = _length_models_where(model.name, gain, p, own_calibration)  # decision W469
     raise DataError(f"step-length model {model.name}: set its gain {gain}{where}: give it "
                     f"(--length-model {model.name}:{gain}=VALUE) or fit it on a walk of known length: 'pdrlearn "
                     f"calibrate DIR --distance M --length-model {model.name} --out PARAMS.json', then track with "
                     "--params PARAMS.json (decision W460)")
+
+
+def _length_models_where(name: str, gain: str, p: WaistParams, own_calibration: bool) -> str:
+    """Decision W469: why PARAMS.json's ``length_models`` gave model ``name`` no gain ``gain`` (the bracket of
+    :func:`_calibrated_gain`'s line): another pipeline's calibration, an entry without ``gain`` (a mistyped setting),
+    or entries for other names only (a mistyped model name); "" when the file has no ``length_models``."""
+    models = p.length_models or {}
+    if not models:
+        return ""
+    entry = models.get(name)
+    if entry is None:  # e.g. a misspelt name
+        return f" (the --params file's length_models has no {name!r}, only {', '.join(map(repr, models))})"
+    if not own_calibration:
+        return f" (the --params file was calibrated for {p.pipeline}, not this pipeline)"
+    return (f" (the --params file's length_models {name!r} holds {', '.join(map(repr, entry))}, not {gain!r}: "
+            f"rename it {gain})")
 
 
 def default_gain_line(model: StepLengthModel) -> str:
