@@ -759,7 +759,8 @@ def _refuse_foot_options_on_a_lower_back_session(pipeline: str, o: dict, session
     one = len(asked) == 1
     classes = (" (they have no step classes: a lower-back track counts backward steps as forward, decision C164)"
                if "--model" in asked else "")
-    raise DataError(f"track: {session.where} has no foot unit (fAccelerometer.csv), and {', '.join(asked)} "
+    named = "" if Path(session.where).name == session.name else f" (session '{session.name}')"  # as E182 named it
+    raise DataError(f"track: {session.where}{named} has no foot unit (fAccelerometer.csv), and {', '.join(asked)} "
                     f"{'is a foot-pipeline (PLASYS) option' if one else 'are foot-pipeline (PLASYS) options'} that "
                     f"no lower-back pipeline reads{classes}; drop {drop} to track the lower back (--pipeline auto "
                     "chooses waist-pendulum), or give a session with a foot unit (decision C163)")
