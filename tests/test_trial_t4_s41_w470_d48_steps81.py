@@ -38,6 +38,9 @@ def test_w470_a_params_file_gain_without_length_model_is_said_once(walk, fitted)
     assert len(said) == 1 and "add --length-model weinberg to use it" in said[0]
     used = track_waist(walk, pipeline="waist-pendulum", params=fitted, length_model="weinberg").info["warnings"]
     assert not [w for w in used if "W470" in w]
+    from pdrlearn.track.waist import unused_length_models_line
+
+    assert unused_length_models_line(fitted, None, "waist-pll") == ""  # another pipeline's file: its own lines say so
 
 
 def test_steps81_step_count_help_is_the_whole_first_paragraph(capsys):

@@ -1040,7 +1040,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     p, warnings = resolve_params(session, params)
     spec = length_model if length_model is not None else ("pendulum" if pipeline == "waist-pendulum" else
                                                           "frequency")
-    unused = unused_length_models_line(p, length_model)
+    unused = unused_length_models_line(p, length_model, pipeline)
     if unused:
         warnings = [*warnings, unused]
     # decision W468: an instance is the caller's: configured on a copy, so PARAMS.json's gain (W460) stays this track's
@@ -1398,11 +1398,12 @@ def _calibrated_gain(model: StepLengthModel, spec, p: WaistParams, own_calibrati
                     f"--length-model {model.name} --params PARAMS.json (decisions W460, W470)")
 
 
-def unused_length_models_line(p: WaistParams, length_model) -> str:
-    """Decision W470: the note of a track whose PARAMS.json holds ``length_models`` gains (``calibrate --length-model
-    NAME``, W460) that no --length-model uses (they apply only to the model named); "" otherwise."""
+def unused_length_models_line(p: WaistParams, length_model, pipeline: str) -> str:
+    """Decision W470: the note of a track whose PARAMS.json, calibrated for this ``pipeline``, holds ``length_models``
+    gains (``calibrate --length-model NAME``, W460) that no --length-model uses (they apply only to the model named);
+    "" otherwise (another pipeline's file is said by its own lines)."""
     models = p.length_models or {}
-    if length_model is not None or not models:
+    if length_model is not None or not models or p.pipeline not in (None, pipeline):
         return ""
     names = ", ".join(models)
     first = next(iter(models))
