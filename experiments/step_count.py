@@ -357,9 +357,12 @@ def _md_foot_pooled(df: pd.DataFrame) -> str:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    # steps decision 81: the docstring's first paragraph (its first line stopped mid-sentence)
+    ap = argparse.ArgumentParser(description=" ".join(__doc__.split("\n\n")[0].split()))
     ap.add_argument("--users", type=int, default=10, help="simulated users per scenario and speed")
-    ap.add_argument("--real-dir", type=Path, default=ROOT / "datasets" / "real")
+    ap.add_argument("--real-dir", type=Path, default=ROOT / "datasets" / "real", metavar="DIR",
+                    help="the real recordings (foot and lower-back sessions) scored in step_count_real.csv "
+                         "(default: datasets/real)")
     ap.add_argument("--waist-ic", type=int, default=0, metavar="N",
                     help="also score the waist IC detector variants (N simulated users; 0 = skip)")
     ap.add_argument("--external", type=Path, default=None, metavar="DIR",

@@ -248,6 +248,30 @@ def _distance_scale(f: GnssPdrFusion, steps: pd.DataFrame) -> tuple[dict, pd.Dat
     return info, out
 
 
+#: decision D48: the console line's phrase for each counter of GNSS fixes not used (summary ``info.aid.gnss``)
+UNUSED_FIX_PHRASES = (("fixes_outside_track", "outside the walk"), ("fixes_before_ttff", "before the first fix time"),
+                      ("fixes_while_off", "while the receiver was off"), ("fixes_inaccurate", "over 50 m accuracy"),
+                      ("fixes_gated", "gated"), ("fixes_superseded", "superseded by a later fix"))
+
+
+def gnss_line(gnss: dict) -> str:
+    """Decision D48: the console line of the GNSS fusion from the summary's ``info.aid.gnss``: the fixes used of
+    those read, why the others were not (each non-zero counter of :data:`UNUSED_FIX_PHRASES`), and whether the
+    distance is the GNSS-scaled one (D39, D45) or the PDR's own; "" without a GNSS file."""
+    if not gnss:
+        return ""
+    total = gnss.get("fixes_total", gnss.get("fixes_read"))
+    why = [f"{gnss[key]} {phrase}" for key, phrase in UNUSED_FIX_PHRASES if gnss.get(key)]
+    line = f"gnss: {gnss.get('fixes_used', 0)} of {total} fixes used" + (f" ({', '.join(why)})" if why else "")
+    scale, cover = gnss.get("distance_scale"), gnss.get("distance_scale_cover_m")
+    if gnss.get("distance_scaled"):
+        return line + f", distance scaled by {scale:.4f} from the PDR's {gnss['distance_pdr_m']:.2f} m (D39, D45)"
+    if scale is None or cover is None or cover < MIN_SCALE_COVER_M:  # decision D39: too little cover for a scale
+        return line + (f", distance kept from the PDR (D39: the fixes' scale windows cover {cover or 0:g} m of the "
+                       f"{MIN_SCALE_COVER_M:g} m a scale needs)")
+    return line + f", distance kept from the PDR (D45: the scale {scale:.4f} is not more precise than it)"
+
+
 def _steps_from_path(x: np.ndarray, y: np.ndarray, steps: pd.DataFrame) -> pd.DataFrame:
     """Steps whose lengths/headings reproduce a path (to chain a second filter after the first)."""
     dx, dy = np.diff(x), np.diff(y)

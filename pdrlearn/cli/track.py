@@ -1265,6 +1265,12 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))
     if summary.get("gait_speed_mps") is not None:  # decisions L79 / W70: the clinical walking speed
         typer.echo(gait_line(summary))
+    if aided:  # decision D48: how the GNSS fixes were used, in one line
+        from pdrlearn.aid.track import gnss_line
+
+        fused = gnss_line(((summary.get("info") or {}).get("aid") or {}).get("gnss") or {})
+        if fused:
+            typer.echo(fused)
     from pdrlearn.track.evaluate import belt_line
 
     belt = belt_line(summary)  # decision L321: a declared treadmill

@@ -1040,6 +1040,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     p, warnings = resolve_params(session, params)
     spec = length_model if length_model is not None else ("pendulum" if pipeline == "waist-pendulum" else
                                                           "frequency")
+    unused = unused_length_models_line(p, length_model, pipeline)
+    if unused:
+        warnings = [*warnings, unused]
     # decision W468: an instance is the caller's: configured on a copy, so PARAMS.json's gain (W460) stays this track's
     model = copy.deepcopy(spec) if isinstance(spec, StepLengthModel) else get_step_length(spec)  # E84
     if not model.uses_leg_length:  # e.g. the frequency model (waist-pll's) has no leg length (W62)
@@ -1392,7 +1395,20 @@ def _calibrated_gain(model: StepLengthModel, spec, p: WaistParams, own_calibrati
     raise DataError(f"step-length model {model.name}: set its gain {gain}{where}: give it "
                     f"(--length-model {model.name}:{gain}=VALUE) or fit it on a walk of known length: 'pdrlearn "
                     f"calibrate DIR --distance M --length-model {model.name} --out PARAMS.json', then track with "
-                    "--params PARAMS.json (decision W460)")
+                    f"--length-model {model.name} --params PARAMS.json (decisions W460, W470)")
+
+
+def unused_length_models_line(p: WaistParams, length_model, pipeline: str) -> str:
+    """Decision W470: the note of a track whose PARAMS.json, calibrated for this ``pipeline``, holds ``length_models``
+    gains (``calibrate --length-model NAME``, W460) that no --length-model uses (they apply only to the model named);
+    "" otherwise (another pipeline's file is said by its own lines)."""
+    models = p.length_models or {}
+    if length_model is not None or not models or p.pipeline not in (None, pipeline):
+        return ""
+    names = ", ".join(models)
+    first = next(iter(models))
+    return (f"the --params file holds step-length model {names}'s gain (calibrate --length-model), which this track "
+            f"does not use (it takes the pipeline's own model): add --length-model {first} to use it (decision W470)")
 
 
 def _length_models_where(name: str, gain: str, p: WaistParams, own_calibration: bool) -> str:
@@ -1416,8 +1432,8 @@ def default_gain_line(model: StepLengthModel) -> str:
     g = model.gain_param
     return (f"{NO_CALIBRATION}: step-length model {model.name}'s gain {g} = {model.get_params()[g]:g} is its default; "
             f"fit it on this walker's walk of known length ('pdrlearn calibrate DIR --distance M --length-model "
-            f"{model.name} --out PARAMS.json', then track with --params PARAMS.json) or set {model.name}:{g}=VALUE "
-            "(decisions W460, W461)")
+            f"{model.name} --out PARAMS.json', then track with --length-model {model.name} --params PARAMS.json) or "
+            f"set {model.name}:{g}=VALUE (decisions W460, W461, W470)")
 
 
 def _configure_model(model: StepLengthModel, spec, realtime: bool, options: dict) -> None:
