@@ -1257,6 +1257,8 @@ RAMPS: tuple[Column, ...] = (
                                      "2010 sec. 403.3; L569)"),
     ("run_rise_over_0_76", _ID, "true/false", "|max_run_rise_m| is over 0.76 m, a run's largest rise (ADA 2010 sec. "
                                               "405.6; L569)"),
+    ("near_limit", _ID, "true/false", "max_run_grade_pct within 1 point of 8.33 % or 5 %, or max_run_rise_m within "
+                                      "0.07 m of 0.76 m: a stride more or less can flip a flag, measure it (L588)"),
     *_ends("its first row's start", "its last row's end"),
     *_clocks("start_s", "end_s"),
 )
@@ -1279,6 +1281,9 @@ RAMP_RUNS: tuple[Column, ...] = (
     ("over_1_20", _ID, "true/false", "a run's |grade_pct| over 1:20 = 5 % (L569); empty on a landing"),
     ("run_rise_over_0_76", _ID, "true/false", "a run's |rise_m| over 0.76 m (ADA 2010 sec. 405.6; L569); empty on "
                                               "a landing"),
+    ("near_limit", _ID, "true/false", "a run's grade_pct within 1 point of 8.33 % or 5 %, or its rise_m within "
+                                      "0.07 m of 0.76 m: a stride more or less can flip a flag (L588); empty on a "
+                                      "landing"),
     *_ends("its first row's start", "its last row's end"),
     *_clocks("start_s", "end_s"),
 )

@@ -59,7 +59,9 @@ def test_ramp_runs_table_has_one_row_per_run_and_landing_with_flags_and_position
     assert (ramps["over_1_12"].iloc[0], ramps["over_1_20"].iloc[0], ramps["run_rise_over_0_76"].iloc[0]) \
         == (True, True, True)
     assert ramps["end_x_m"].iloc[0] == pytest.approx(26.0)
-    assert ramps_line(ramps) == "ramps 1 (steepest 9.0 %, rise +1.30 m; 1 over 1:12; ramps.csv)"
+    # 9.0 % is within a point of 1:12 (decision L588)
+    assert ramps_line(ramps) == ("ramps 1 (steepest 9.0 %, rise +1.30 m; 1 over 1:12; 1 near the limit: measure it; "
+                                 "ramps.csv)")
     assert ramp_table(steps, {}, traj).empty and ramp_run_table(steps, {}, traj).empty  # no grade_source: none
     assert ramp_table(steps, FUSED)["start_lat"].isna().all()  # no trajectory: the position columns empty
 

@@ -17,10 +17,11 @@ CLIMB_KEYS = ("distance_m", "distance_along_slope_m", "ascent_m", "descent_m", "
               "n_ramps", "max_ramp_grade_pct", "n_flights_up", "n_flights_down", "grade_source")
 #: decision L571: ramps.csv's columns shown (those the file has)
 RAMP_KEYS = ("ramp", "start_s", "end_s", "direction", "n_runs", "landings", "horizontal_run_m", "landing_m", "rise_m",
-             "mean_grade_pct", "max_run_grade_pct", "max_run_rise_m", "over_1_12", "over_1_20", "run_rise_over_0_76")
+             "mean_grade_pct", "max_run_grade_pct", "max_run_rise_m", "over_1_12", "over_1_20", "run_rise_over_0_76",
+             "near_limit")  # decision L588
 #: decision L571: ramp_runs.csv's columns shown
 RUN_KEYS = ("ramp", "part", "kind", "start_s", "end_s", "horizontal_m", "rise_m", "grade_pct", "over_1_12",
-            "over_1_20", "run_rise_over_0_76")
+            "over_1_20", "run_rise_over_0_76", "near_limit")  # decision L588
 #: decision L571: stairs.csv's columns shown
 STAIR_KEYS = ("flight", "start_s", "end_s", "direction", "n_strides", "height_m", "n_stairs")
 

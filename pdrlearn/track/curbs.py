@@ -23,6 +23,10 @@ CURB_MIN_DZ_M = LEVEL_DZ_M
 #: joins a curb stride with a neighbour into a 2 m "ramp" (a 0.15 m curb down read as a 2.19 m ramp at -8.13 %, its
 #: curb stride -0.139 of -0.178 m); a ramp's strides share its rise (a 1:12 ramp rises 0.10 m per 1.2 m stride)
 CURB_SHARE = 0.5
+#: decision L587: the |dz| (m) under which a curb stride's neighbour is level: half L573's curb bound. A stride of
+#: 0.10 m or more between two such strides is a curb even inside a ramp or a barometric climb (the lagging climb
+#: swallowed a 0.15 m curb 4 m after a ramp, T4 #2); a ramp's steady rise has risen neighbours (1:12: 0.10 m each)
+CURB_LEVEL_DZ_M = 0.05
 #: decision L573: the columns of ``curbs.csv``; ``x_m`` / ``y_m`` the trajectory's position halfway through the
 #: stride (the curb is within half a stride of it); the clock columns are added with a recording start (L298)
 CURB_COLUMNS = ("curb", "start_s", "end_s", "direction", "dz_m", "length_m", "x_m", "y_m")
@@ -33,6 +37,15 @@ def curb_rows(dz, candidate, excluded, min_dz_m: float = CURB_MIN_DZ_M) -> np.nd
     ramp climb) whose |``dz``| is at least ``min_dz_m``. A pure kernel."""
     dz = np.nan_to_num(np.abs(np.asarray(dz, dtype=float)))
     return np.asarray(candidate, bool) & ~np.asarray(excluded, bool) & (dz >= min_dz_m)
+
+
+def isolated_rows(dz, min_dz_m: float = CURB_MIN_DZ_M, level_dz_m: float = CURB_LEVEL_DZ_M) -> np.ndarray:
+    """Decision L587: (rows,) bool, the strides whose |``dz``| is at least ``min_dz_m`` while the stride before and
+    the one after (where there is one; a missing height counts as level) are under ``level_dz_m``: a single level
+    change, not a part of a ramp's steady rise. A pure kernel."""
+    a = np.nan_to_num(np.abs(np.asarray(dz, dtype=float)))
+    level = np.concatenate([[True], a < level_dz_m, [True]])
+    return (a >= min_dz_m) & level[:-2] & level[2:]
 
 
 def curb_table(steps: pd.DataFrame, trajectory: pd.DataFrame | None, info: dict | None) -> pd.DataFrame:
@@ -58,6 +71,7 @@ def curb_table(steps: pd.DataFrame, trajectory: pd.DataFrame | None, info: dict 
         excluded[rows] = ~(np.abs(np.nan_to_num(dz[rows])) >= CURB_SHARE * abs(r["rise_m"]))
     for a, b in runs(ramp_climb_rows(st, info)):  # L303's climbs under 20 %: of two rows or more, a ramp walked
         excluded[a:b] |= b - a >= 2                # by a foot track (its single stride is the curb itself)
+    excluded &= ~isolated_rows(dz)  # decision L587: but a single level change between level strides is a curb
     for a, b, _ in flight_spans(st):
         excluded[a:b] = True
     if "ride" in st:  # decision L377: a ride's height is no curb

@@ -54,6 +54,7 @@ RAMP_COLUMNS = ("ramp", "start_s", "end_s", "direction", "n_runs", "landings", "
                 "along_slope_m", "rise_m", "mean_grade_pct", "max_run_grade_pct", "n_steps",
                 "duration_s", "speed_mps",  # decision L467
                 "max_run_rise_m", "over_1_12", "over_1_20", "run_rise_over_0_76",  # decision L569
+                "near_limit",  # decision L588
                 "start_x_m", "start_y_m", "start_lat", "start_lon", "end_x_m", "end_y_m", "end_lat",
                 "end_lon")  # decision L570
 
@@ -282,7 +283,7 @@ def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame 
     (numbered from 1, with its first row's ``start_s`` and last row's ``end_s``), L569's compliance flags and
     (L570) its ends' positions on ``trajectory`` (empty without one); no rows (the header alone) where
     :func:`grade_source` is None."""
-    from pdrlearn.track.ramp_audit import compliance_flags, with_end_positions
+    from pdrlearn.track.ramp_audit import audit_flags, with_end_positions
 
     rows = []
     for k, r in enumerate(track_ramps(steps, info)[0], start=1):
@@ -290,7 +291,7 @@ def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame 
         rows.append({"ramp": k, "start_s": t0, "end_s": t1, **{c: r[c] for c in RAMP_COLUMNS if c in r},
                      "duration_s": t1 - t0,  # decision L467
                      "speed_mps": r["along_slope_m"] / (t1 - t0) if t1 > t0 else np.nan,
-                     **compliance_flags(r["max_run_grade_pct"], r["max_run_rise_m"])})  # decision L569
+                     **audit_flags(r["max_run_grade_pct"], r["max_run_rise_m"])})  # decisions L569, L588
     return with_end_positions(pd.DataFrame(rows, columns=list(RAMP_COLUMNS)), trajectory)
 
 

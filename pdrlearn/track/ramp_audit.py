@@ -20,8 +20,14 @@ GRADE_1_12_PCT = 100.0 / 12.0
 GRADE_1_20_PCT = 100.0 / 20.0
 #: decision L569: the largest rise of one ramp run, 30 in = 760 mm (ADA 2010 sec. 405.6)
 RUN_MAX_RISE_M = 0.76
-#: decision L569: ramps.csv's (and ramp_runs.csv's run rows') flags
-FLAG_COLUMNS = ("over_1_12", "over_1_20", "run_rise_over_0_76")
+#: decision L588: a grade within this many points of 1:12 or 1:20 is near the limit: L301's grades read 0.5-1 point
+#: off (T4: a true 1:12 ramp's runs read 9.23 / 8.97 %, one stride short, so flagged over 1:12)
+NEAR_GRADE_PCT = 1.0
+#: decision L588: a run's rise within this (m) of 0.76 m is near the limit: one stride more or less at a run's end
+#: (T4: fused_climb read true 0.75 m runs as 0.818 / 0.789 m; the foot's heights 0.759 / 0.741 m)
+NEAR_RISE_M = 0.07
+#: decision L569: ramps.csv's (and ramp_runs.csv's run rows') flags; L588's ``near_limit``
+FLAG_COLUMNS = ("over_1_12", "over_1_20", "run_rise_over_0_76", "near_limit")
 #: decision L570: the end positions added to ramps.csv, ramp_runs.csv and stairs.csv (lat/lon empty without a
 #: geodetic start, ``--start``)
 POSITION_COLUMNS = ("start_x_m", "start_y_m", "start_lat", "start_lon", "end_x_m", "end_y_m", "end_lat", "end_lon")
@@ -40,6 +46,24 @@ def compliance_flags(grade_pct, rise_m) -> dict:
 
     return {"over_1_12": over(grade_pct, GRADE_1_12_PCT), "over_1_20": over(grade_pct, GRADE_1_20_PCT),
             "run_rise_over_0_76": over(rise_m, RUN_MAX_RISE_M)}
+
+
+def near_limit(grade_pct, rise_m) -> bool | None:
+    """Decision L588: True where |``grade_pct``| is within :data:`NEAR_GRADE_PCT` of 1:12 or 1:20 or |``rise_m``|
+    within :data:`NEAR_RISE_M` of :data:`RUN_MAX_RISE_M` (a flag a stride more or less can flip); None when neither
+    value is finite. A pure kernel."""
+    vals = [(v, lim, tol) for v, lims, tol in ((grade_pct, (GRADE_1_12_PCT, GRADE_1_20_PCT), NEAR_GRADE_PCT),
+                                               (rise_m, (RUN_MAX_RISE_M,), NEAR_RISE_M))
+            for lim in lims if v is not None and math.isfinite(float(v))]
+    if not vals:
+        return None
+    return any(abs(abs(float(v)) - lim) <= tol for v, lim, tol in vals)
+
+
+def audit_flags(grade_pct, rise_m) -> dict:
+    """Decisions L569, L588: :func:`compliance_flags` and :func:`near_limit` of a run's (or a ramp's steepest run's)
+    grade and rise: the :data:`FLAG_COLUMNS`."""
+    return {**compliance_flags(grade_pct, rise_m), "near_limit": near_limit(grade_pct, rise_m)}
 
 
 def trajectory_values(t, v, times, *, held: bool = False) -> np.ndarray:
@@ -115,7 +139,7 @@ def ramp_run_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFr
         for p, (kind, a, b) in enumerate(parts, start=1):
             run_l, rise = float(length[a:b + 1].sum()), float(dz[a:b + 1].sum())
             grade = 100.0 * rise / run_l if run_l > 0 else np.nan
-            flags = compliance_flags(grade, rise) if kind == "run" else dict.fromkeys(FLAG_COLUMNS)
+            flags = audit_flags(grade, rise) if kind == "run" else dict.fromkeys(FLAG_COLUMNS)
             rows.append({"ramp": k, "part": p, "kind": kind, "start_s": float(start[a]), "end_s": float(end[b]),
                          "horizontal_m": run_l, "rise_m": rise, "grade_pct": grade, "n_steps": b - a + 1, **flags})
     return with_end_positions(pd.DataFrame(rows, columns=list(RUN_TABLE_COLUMNS[:-len(POSITION_COLUMNS)])),
@@ -163,8 +187,8 @@ def route_features(tables: dict) -> list[dict]:
 
 def ramps_line(ramps: pd.DataFrame | None) -> str | None:
     """Decision L571: the console line of a track's ramps.csv - ``ramps N (steepest X %, rise Y m; ramps.csv)``,
-    the steepest run's grade (in size) and that ramp's rise, with how many runs are over 1:12 when any; None
-    without a ramp."""
+    the steepest run's grade (in size) and that ramp's rise, with how many runs are over 1:12 when any and, when a
+    ramp is ``near_limit`` (L588), "N near the limit: measure them"; None without a ramp."""
     if ramps is None or not len(ramps):
         return None
     g = pd.to_numeric(ramps["max_run_grade_pct"], errors="coerce").abs()
@@ -172,5 +196,7 @@ def ramps_line(ramps: pd.DataFrame | None) -> str | None:
         return None
     i = int(g.fillna(-1.0).to_numpy(float).argmax())
     over = int(ramps["over_1_12"].eq(True).sum()) if "over_1_12" in ramps else 0
+    near = int(ramps["near_limit"].eq(True).sum()) if "near_limit" in ramps else 0  # decision L588
     return (f"ramps {len(ramps)} (steepest {g.iloc[i]:.1f} %, rise {float(ramps['rise_m'].iloc[i]):+.2f} m"
-            + (f"; {over} over 1:12" if over else "") + "; ramps.csv)")
+            + (f"; {over} over 1:12" if over else "")
+            + (f"; {near} near the limit: measure {'it' if near == 1 else 'them'}" if near else "") + "; ramps.csv)")
