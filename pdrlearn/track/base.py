@@ -254,7 +254,9 @@ def get_pipeline(name: str) -> Pipeline:
       its end; off by default), ``transfers`` (decisions W418, W439: offline, time the chair transfers and TUG from
       the waist unit; on by default, the distance calibration turns it off), ``gated_level_dz`` (decisions L189,
       L206, L550: with ``streaming``, True / ``"summed"`` give M3 strides whose terrain class the gate dropped L39's
-      level rule; off by default).
+      level rule; off by default), ``fused_climb`` (decisions L564, L565, L586: with ``altitude="fused"`` and
+      without a terrain model, a stride inside a barometric climb is fused with the foot's own height; off by
+      default).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``
