@@ -556,20 +556,28 @@ def unit_offset_line(session: Session, command: str = "pdrlearn track", *, force
     return unit_offset_message(est["offset_s"], est["drift"], command, estimate=est)  # L183: locked estimates only
 
 
-def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:
+def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0,
+                 keep: np.ndarray | None = None) -> np.ndarray:
     """Relative foot heading (accurate turns, slow drift) aligned to the absolute waist heading (noisy,
     magnetically disturbed) by a slowly varying offset: the circular mean of ``absolute - relative``
-    over a +-``tau_s`` window of strides (rad)."""
+    over a +-``tau_s`` window of strides (rad). ``keep`` (decision L589): the strides the mean counts (the straight
+    ones: a foot pivoting on the spot travels about 90 deg off the facing the waist reads); a window without a kept
+    stride counts all its strides. None = all."""
     if len(relative) == 0:
         return relative
     d = wrap_angle(np.asarray(absolute) - np.asarray(relative))
-    c, s = np.cos(d), np.sin(d)
-    cc = np.concatenate([[0.0], np.cumsum(c)])
-    cs = np.concatenate([[0.0], np.cumsum(s)])
     lo = np.searchsorted(t, t - tau_s, side="left")
     hi = np.searchsorted(t, t + tau_s, side="right")
-    offset = np.arctan2(cs[hi] - cs[lo], cc[hi] - cc[lo])
-    return np.asarray(relative) + offset
+
+    def window_sums(w: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        cc, cs, cn = (np.concatenate([[0.0], np.cumsum(v)]) for v in (w * np.cos(d), w * np.sin(d), w))
+        return cc[hi] - cc[lo], cs[hi] - cs[lo], cn[hi] - cn[lo]
+
+    c, s, _ = window_sums(np.ones(len(d)))
+    if keep is not None:  # decision L589: the offset from the straight strides where the window has any
+        ck, sk, nk = window_sums(np.asarray(keep, float))
+        c, s = np.where(nk > 0, ck, c), np.where(nk > 0, sk, s)
+    return np.asarray(relative) + np.arctan2(s, c)
 
 
 #: decision L471 (adopted by its rule; docs/decisions/localization.md): the fused heading's +-``tau_s`` window is
@@ -1025,7 +1033,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  drop_neighbour: bool = False, ignore_force: bool = False,
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
                  fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
-                 gated_level_dz: bool | str = False, fused_climb: bool = False, **opts) -> TrackResult:
+                 gated_level_dz: bool | str = False, fused_climb: bool = False,
+                 fused_straight: bool = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -1044,7 +1053,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         ``end_s``, optional ``event_s``, ``confidence``; s on the session's clock). Offline only
     heading : "waist" | "foot" | "fused" (default per method; "foot" when there is no waist unit).
         "fused": the foot's stride-by-stride yaw aligned to the waist heading by an offset averaged over
-        +-``fused_tau_s`` s (decision L17)
+        +-``fused_tau_s`` s (decision L17); ``fused_straight`` (decision L589, not adopted by L590's reading of its
+        rule): that offset counted on the straight strides only (a track with turns on the spot)
     initial_heading : ENU heading (rad, |value| <= 2 pi, else refused as degrees: decision L158) at the start
         when the heading is relative (foot, or no magnetometer)
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
@@ -1492,7 +1502,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         elif hsrc == "fused" and not (mount_info or {}).get("fallback"):  # D25 (W415: also without its line)
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
-                                   walking=FUSED_WALKING_CLOCK)  # decision L471
+                                   walking=FUSED_WALKING_CLOCK,
+                                   keep=straight if fused_straight else None)  # decisions L471, L589
         head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
         head = fd.foot_heading(0.0) + lateral
@@ -1677,7 +1688,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
 def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
                     foot_gaps: dict, *, tau_s: float = 60.0, drift: bool = False,
-                    walking: bool = False) -> np.ndarray:
+                    walking: bool = False, keep: np.ndarray | None = None) -> np.ndarray:
     """Decision L90: :func:`fuse_heading` on each stretch of strides between two foot-IMU gaps (``fAccelerometer``
     / ``fGyroscope``, over 1 s) on its own: the foot's relative heading loses its link at such a gap (the turn
     inside it was not measured), so each stretch gets its own offset to the waist heading, from its own strides -
@@ -1685,21 +1696,24 @@ def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndar
     foot's. A stride belongs to the stretch after every gap that ended by its start. Without such a gap: one
     :func:`fuse_heading` call, as before. ``drift``: each stretch's offset is :func:`fuse_with_drift`'s line
     (decision L266) instead of :func:`fuse_heading`'s window. ``walking``: the window runs on
-    :func:`walking_clock` (decision L471), so a long rest inside a stretch does not split it."""
-    def one(r, a, t):
+    :func:`walking_clock` (decision L471), so a long rest inside a stretch does not split it. ``keep``: the strides
+    :func:`fuse_heading`'s window counts (decision L589; not the drift line's)."""
+    kept = np.ones(len(relative), bool) if keep is None else np.asarray(keep, bool)
+
+    def one(r, a, t, k):
         if not drift:
-            return fuse_heading(r, a, t, tau_s=tau_s)  # decision L17 (L471: ``t`` the walking clock)
+            return fuse_heading(r, a, t, tau_s=tau_s, keep=None if keep is None else k)  # L17 (L471, L589)
         return fuse_with_drift(r, a, t, min_span_s=FALLBACK_DRIFT_MIN_S if COMPASS_SPAN_GATES else None)  # L280
 
     clock = walking_clock(start_s, end_s) if walking and not drift else np.asarray(end_s, float)  # decision L471
     ends = sorted(b for k, g in foot_gaps.items() if k in FOOT_IMU for _, b in g)
     if not ends or not len(relative):
-        return one(relative, absolute, clock)
+        return one(relative, absolute, clock, kept)
     seg = np.searchsorted(np.asarray(ends), np.asarray(start_s, float), side="right")
     out = np.empty(len(relative))
     for k in np.unique(seg):
         m = seg == k
-        out[m] = one(np.asarray(relative)[m], np.asarray(absolute)[m], clock[m])
+        out[m] = one(np.asarray(relative)[m], np.asarray(absolute)[m], clock[m], kept[m])
     return out
 
 
