@@ -11,47 +11,12 @@ import pytest
 
 from experiments import step_count
 from pdrlearn.steps import DETECTORS
+from tests.test_plugins import PLUGIN as USER_PLUGIN
 
-# a tiny foot detector: the foot gyroscope's magnitude crossing 3 rad/s upward, one event per swing
-PLUGIN = '''
-import numpy as np
-from pdrlearn.steps import StepDetector, register_detector
-
-
-class _Proc:
-    def __init__(self, fs, height):
-        self.height, self.t, self.v = height, [], []
-
-    def process(self, t, v):
-        self.t.append(t)
-        self.v.append(v)
-        return []
-
-    def flush(self):
-        t, v = np.concatenate(self.t), np.concatenate(self.v)
-        mag = np.linalg.norm(v, axis=1)
-        up = np.flatnonzero((mag[1:] >= self.height) & (mag[:-1] < self.height)) + 1
-        return [(float(t[i]), float(t[max(i - 5, 0)]), float(t[min(i + 5, len(t) - 1)]), 1.0, {}) for i in up]
-
-
-class SwingRise(StepDetector):
-    name = "swing-rise-s80"
-    unit = "foot"
-    input_columns = ("gx", "gy", "gz")
-
-    def __init__(self, *, height: float = 3.0):
-        self._store(locals())
-
-    def _inputs(self, session):
-        g = session.require("fGyroscope", purpose="swing-rise-s80")
-        return g.t, g.values, {}
-
-    def _make_processor(self, fs, **context):
-        return _Proc(fs, self.height)
-
-
-register_detector("swing-rise-s80", SwingRise)
-'''
+# a tiny foot detector: test_plugins.py's user detector (the foot gyroscope's magnitude crossing 3 rad/s upward, one
+# event per swing) under its own name, registered when the file is loaded
+PLUGIN = (USER_PLUGIN.replace("gyro-rise", "swing-rise-s80").replace("GyroRise", "SwingRise")
+          + '\nfrom pdrlearn.steps import register_detector\n\nregister_detector("swing-rise-s80", SwingRise)\n')
 
 
 @pytest.fixture()
