@@ -23,11 +23,12 @@ import numpy as np
 
 import pdrlearn.track.plasys as P
 from pdrlearn.io.plasys import read_session
-from pdrlearn.track.evaluate import STOREY_HEIGHT_M, track_summary
+from pdrlearn.track.evaluate import STOREY_HEIGHT_M
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "experiments"))
 from compass_check_long import R1  # noqa: E402  the navigation trial's R1 (L226)
+from compass_span_l280 import err, summarise  # noqa: E402  (L280's track summary and compass check)
 from compass_window_shift import LOOP, ROUTE1, SHORT, fmt, simulate  # noqa: E402  (L264's routes, runner)
 
 MARCH = "straight:1200:fast, slope:500:6, curve:90:50, straight:1000, slope:500:-6, straight:800:slow"
@@ -35,15 +36,7 @@ MARCH = "straight:1200:fast, slope:500:6, curve:90:50, straight:1000, slope:500:
 
 def track(s, config: str, sh: float, **kw) -> dict:
     """``config`` ("today" / "candidate") only names the result since L559: both track today's code."""
-    r = P.track_plasys(s, **kw)
-    out = track_summary(r, s, storey_height_m=sh)
-    cc = r.info.get("compass_check") or {}
-    out["_median"], out["_fired"] = cc.get("median_deg"), bool(cc.get("median_deg", 0) > P.COMPASS_DISAGREE_DEG)
-    return out
-
-
-def err(d: dict) -> float:
-    return d["final_position_error_m"]
+    return summarise(P.track_plasys(s, **kw), s, sh)
 
 
 def run_part(tmp: Path, name: str, route: str, users, sh: float, extra=(), clean: bool = False) -> None:

@@ -35,7 +35,11 @@ ROUTE2 = ROUTE1 + (", stand:60, up:17, straight:3, up:17, straight:3, up:17, str
 
 def track(s, config: str, sh: float, **kw) -> dict:
     P.COMPASS_CHECK_WINDOWED, P.FALLBACK_DRIFT, P.COMPASS_SPAN_GATES = CONFIGS[config]
-    r = P.track_plasys(s, **kw)
+    return summarise(P.track_plasys(s, **kw), s, sh)
+
+
+def summarise(r, s, sh: float) -> dict:
+    """A track's summary with the compass check's median disagreement and whether it fired (also L544's / L558's)."""
     out = track_summary(r, s, storey_height_m=sh)
     cc = r.info.get("compass_check") or {}
     out["_median"], out["_fired"] = cc.get("median_deg"), bool(cc.get("median_deg", 0) > P.COMPASS_DISAGREE_DEG)
