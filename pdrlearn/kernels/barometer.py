@@ -561,6 +561,25 @@ def barometric_climb(start_s: np.ndarray, end_s: np.ndarray, length_m: np.ndarra
     return (run > 0) & (rise >= min_grade_pct / 100.0 * run)
 
 
+def without_stair_climbs(climbing: np.ndarray, raw_dz: np.ndarray, length_m: np.ndarray,
+                         stair_grade_pct: float) -> np.ndarray:
+    """Decision L591's candidate (L565's "next candidate"): ``climbing`` (:func:`barometric_climb`) with every run of
+    climbing strides cleared that holds a stair stride - a stride whose own |``raw_dz``| over its horizontal
+    |``length_m``| is at least ``stair_grade_pct`` (L301's stair grade): a stair climb keeps L39's level heights
+    (its landing and turn strides' integrated heights cost L565's stairs 0.11 m). A pure kernel."""
+    out = np.asarray(climbing, dtype=bool).ravel().copy()
+    raw = np.abs(np.nan_to_num(np.asarray(raw_dz, dtype=float).ravel()))
+    length = np.abs(np.nan_to_num(np.asarray(length_m, dtype=float).ravel()))
+    stair = raw >= stair_grade_pct / 100.0 * length
+    stair &= raw > 0
+    from pdrlearn.signal import runs
+
+    for a, b in runs(out.copy()):
+        if stair[a:b].any():
+            out[a:b] = False
+    return out
+
+
 def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t: np.ndarray,
                   baro_hpa: np.ndarray, *, level_dz_m: float = 0.10, climb_bias: bool = True,
                   bias_mode: str = "scale", climbing: np.ndarray | None = None) -> np.ndarray:

@@ -35,13 +35,16 @@ def set_strides_dz(result, dz: np.ndarray) -> None:
         result.trajectory["z"] = z0 + np.concatenate([[0.0], np.cumsum(dz)])
 
 
-def apply_altitude(result, session, altitude: str, raw_dz: np.ndarray | None = None) -> None:
+def apply_altitude(result, session, altitude: str, raw_dz: np.ndarray | None = None, *,
+                   stairs_level: bool = False) -> None:
     """Decision L154: with ``altitude="fused"`` and a waist barometer in ``session`` (wBarometer with samples), the
     strides' heights become the fused ones and ``info["altitude_source"]`` says so, with the foot's own altitude
     change in ``info["foot_altitude_change_m"]``; without a barometer one warning says the foot's altitude is
     kept. ``"foot"``: ``info["altitude_source"] = "foot"``. ``raw_dz`` (decision L564; the strides' heights before
     L39's level rule, one per row, or None where no level rule ran, e.g. a terrain model): inside a barometric climb
-    (:func:`pdrlearn.kernels.barometer.barometric_climb`) a stride is fused with its own un-levelled height."""
+    (:func:`pdrlearn.kernels.barometer.barometric_climb`) a stride is fused with its own un-levelled height.
+    ``stairs_level`` (decision L591's candidate): but not inside a climb that holds a stair stride
+    (:func:`pdrlearn.kernels.barometer.without_stair_climbs`, L301's stair grade)."""
     result.info["altitude_source"] = "foot"
     steps = result.steps
     if altitude != "fused" or not len(steps):
@@ -67,6 +70,11 @@ def apply_altitude(result, session, altitude: str, raw_dz: np.ndarray | None = N
     climbing, into = None, foot
     if raw_dz is not None and len(raw_dz) == len(foot):  # decision L564: one height source inside a climb
         climbing = barometric_climb(t0, t1, steps["length_m"].to_numpy(float), b.t, b.values[:, 0])
+        if stairs_level:  # decision L591's candidate: a stair climb keeps L39's level heights
+            from pdrlearn.kernels.barometer import without_stair_climbs
+            from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
+
+            climbing = without_stair_climbs(climbing, raw_dz, steps["length_m"].to_numpy(float), STAIR_MIN_GRADE_PCT)
         into = np.where(climbing, np.nan_to_num(np.asarray(raw_dz, dtype=float)), foot)
     fused = fuse_altitude(into, t0, t1, b.t, b.values[:, 0], climbing=climbing)
     set_strides_dz(result, fused)

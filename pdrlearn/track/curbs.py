@@ -48,11 +48,13 @@ def isolated_rows(dz, min_dz_m: float = CURB_MIN_DZ_M, level_dz_m: float = CURB_
     return (a >= min_dz_m) & level[:-2] & level[2:]
 
 
-def curb_table(steps: pd.DataFrame, trajectory: pd.DataFrame | None, info: dict | None) -> pd.DataFrame:
+def curb_table(steps: pd.DataFrame, trajectory: pd.DataFrame | None, info: dict | None, *,
+               found=None) -> pd.DataFrame:
     """``curbs.csv`` (decision L573): one row per :func:`curb_rows` stride of a foot track's ``steps`` (sorted by
     ``start_s``): its times, direction, ``dz_m``, horizontal ``length_m`` and the ``trajectory``'s ``x`` / ``y`` at
     the stride's middle time. The header alone on a lower-back track, without ``dz_m`` and on a declared inclined
-    belt (L442)."""
+    belt (L442). ``found``: :func:`pdrlearn.track.grade.track_ramps` of ``steps`` (session 42), used when ``steps``
+    are in ``start_s`` order already (its rows are then the sorted table's)."""
     from pdrlearn.signal import runs
     from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.evaluate import ramp_climb_rows
@@ -66,7 +68,9 @@ def curb_table(steps: pd.DataFrame, trajectory: pd.DataFrame | None, info: dict 
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     dz = pd.to_numeric(st["dz_m"], errors="coerce").to_numpy(float)
     excluded = np.zeros(len(st), bool)
-    for r in table_ramps(st, info):  # ramps.csv's rows, but a stride that carries half a ramp's rise or more: a
+    if found is not None and not steps["start_s"].is_monotonic_increasing:
+        found = None  # the sorted rows are not the rows the ramps were found on
+    for r in table_ramps(st, info, found):  # ramps.csv's rows, but a stride that carries half a ramp's rise or more: a
         rows = np.arange(r["first"], r["last"] + 1)  # curb L301 joined with its neighbour into a 2 m run
         excluded[rows] = ~(np.abs(np.nan_to_num(dz[rows])) >= CURB_SHARE * abs(r["rise_m"]))
     for a, b in runs(ramp_climb_rows(st, info)):  # L303's climbs under 20 %: of two rows or more, a ramp walked

@@ -705,11 +705,13 @@ def _basic(result: TrackResult, out: dict) -> None:
 
     belt_floors(out)  # decision L442: a declared inclined belt climbs no storeys
     _ascent(result, out)
-    from pdrlearn.track.grade import add_grade, grade_summary
+    from pdrlearn.track.grade import add_grade, grade_summary, info_stair_grade, track_ramps
 
     add_grade(result.steps, result.info)  # decision L300: steps.csv's grade_pct
-    out.update(grade_summary(result.steps, result.info))  # decisions L300, L301
-    out.update(identified_climbs(result))  # decision L566: what ramps.csv / stairs.csv rise and drop
+    with info_stair_grade(result.info):  # session 42: the ramps found once for both (L469's grade, as ramps.csv's)
+        found = track_ramps(result.steps, result.info)
+    out.update(grade_summary(result.steps, result.info, found=found))  # decisions L300, L301
+    out.update(identified_climbs(result, found=found))  # decision L566: what ramps.csv / stairs.csv rise and drop
 
 
 def _altitude_kind(result: TrackResult) -> tuple[bool, bool]:
@@ -784,11 +786,12 @@ def _ascent(result: TrackResult, out: dict) -> None:
     out["altitude_drift_limit_m"] = float(WEATHER_RATE_MAX_M_PER_S * (t[-1] - t[0])) if len(t) > 1 else 0.0
 
 
-def identified_climbs(result: TrackResult) -> dict:
+def identified_climbs(result: TrackResult, *, found=None) -> dict:
     """Decision L566: ``ramps_stairs_ascent_m`` / ``ramps_stairs_descent_m``, the summed rise of the ramps
     (ramps.csv ``rise_m``, L301) and stair flights (stairs.csv ``height_m``, L432) up and down of a track whose z is
     barometric (a lower-back track, ``--altitude fused``): the climbs the track identified whole, against which
-    :func:`climb_total_warning` checks L172's ``ascent_m`` / ``descent_m``. None on other tracks."""
+    :func:`climb_total_warning` checks L172's ``ascent_m`` / ``descent_m``. None on other tracks. ``found``:
+    :func:`pdrlearn.track.grade.track_ramps` of the track's rows, when the caller has it (session 42)."""
     from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.grade import info_stair_grade, ramp_table
     from pdrlearn.track.stair_flights import flight_table
@@ -796,7 +799,8 @@ def identified_climbs(result: TrackResult) -> dict:
     if not _altitude_kind(result)[1]:
         return {"ramps_stairs_ascent_m": None, "ramps_stairs_descent_m": None}
     with info_stair_grade(result.info):  # as track/folder.py writes ramps.csv and stairs.csv (L469, L440, L442)
-        rise = pd.to_numeric(ramp_table(result.steps, result.info)["rise_m"], errors="coerce").to_numpy(float)
+        rise = pd.to_numeric(ramp_table(result.steps, result.info, found=found)["rise_m"],
+                             errors="coerce").to_numpy(float)
         if not _is_lower_back(result.steps) and result.info.get("belt_incline_pct") is None:
             rise = np.concatenate([rise, pd.to_numeric(flight_table(result.steps)["height_m"],
                                                        errors="coerce").to_numpy(float)])

@@ -93,15 +93,16 @@ def clinical_tables(result, bouts) -> dict:
     out = {"turns.csv": add_turn_steps(turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns")),
                                        result.steps)}  # L210; W398: steps per turn
     from pdrlearn.track.clinical import _is_lower_back
-    from pdrlearn.track.grade import info_stair_grade
+    from pdrlearn.track.grade import info_stair_grade, track_ramps
     from pdrlearn.track.ramp_audit import ramp_run_table, with_end_positions
     from pdrlearn.track.stair_flights import flight_table
 
     traj = result.trajectory
     with info_stair_grade(result.info):  # decision L469: --stair-grade
         # decision L301: the ramps (header alone: no grade); L569: their flags, L570: their ends' positions
-        out["ramps.csv"] = ramp_table(result.steps, result.info, traj)
-        out["ramp_runs.csv"] = ramp_run_table(result.steps, result.info, traj)  # decision L568: runs and landings
+        found = track_ramps(result.steps, result.info)  # session 42: found once, for the three tables
+        out["ramps.csv"] = ramp_table(result.steps, result.info, traj, found=found)
+        out["ramp_runs.csv"] = ramp_run_table(result.steps, result.info, traj, found=found)  # L568: runs, landings
         if not _is_lower_back(result.steps):  # decision L440: no stairs.csv on the lower back (no flights to list)
             # decision L432: a foot track's stair flights; n_stairs with --stair-rise
             # decision L442: a declared inclined belt (info["belt_incline_pct"]) has no stair flight: the header alone
@@ -111,7 +112,7 @@ def clinical_tables(result, bouts) -> dict:
             from pdrlearn.track.curbs import curb_table
 
             # decision L573: single level changes (curbs) outside flights and ramps
-            out["curbs.csv"] = curb_table(result.steps, result.trajectory, result.info)
+            out["curbs.csv"] = curb_table(result.steps, result.trajectory, result.info, found=found)
     from pdrlearn.track.travel import direction_change_table
 
     changes = direction_change_table(result.steps)  # decision L412: a foot track's changes of travel direction

@@ -262,10 +262,16 @@ def _lone(mask: np.ndarray) -> np.ndarray:
     return m & ~near
 
 
-def track_ramps(steps: pd.DataFrame, info: dict | None) -> tuple[list[dict], np.ndarray, np.ndarray]:
+#: session 42 (implementer I2): what :func:`track_ramps` returns - the ramps, the rows' |length| and dz it read - and
+#: what its callers take as ``found=`` so a written track finds its ramps once
+FoundRamps = tuple[list[dict], np.ndarray, np.ndarray]
+
+
+def track_ramps(steps: pd.DataFrame, info: dict | None) -> FoundRamps:
     """Decisions L301, L568: :func:`ramp_runs` of a track's rows (the valid rows' ``length_m`` / ``dz_m``, the
     unit's window, L314's stair rows, the stair grade in force) with the rows' lengths and height changes it read;
-    no ramps where :func:`grade_source` is None."""
+    no ramps where :func:`grade_source` is None. The tables and the summary take it as ``found=`` (session 42):
+    computed once, inside the stair grade in force (:func:`info_stair_grade`)."""
     if grade_source(steps, info) is None:
         return [], np.zeros(0), np.zeros(0)
     valid = _valid(steps)
@@ -278,15 +284,16 @@ def track_ramps(steps: pd.DataFrame, info: dict | None) -> tuple[list[dict], np.
     return found, np.abs(length), dz
 
 
-def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame | None = None) -> pd.DataFrame:
+def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame | None = None, *,
+               found: FoundRamps | None = None) -> pd.DataFrame:
     """``ramps.csv`` (decision L301): one row per ramp of :func:`ramp_runs` on the rows' ``length_m`` / ``dz_m``
     (numbered from 1, with its first row's ``start_s`` and last row's ``end_s``), L569's compliance flags and
     (L570) its ends' positions on ``trajectory`` (empty without one); no rows (the header alone) where
-    :func:`grade_source` is None."""
+    :func:`grade_source` is None. ``found``: :func:`track_ramps` of these rows, when the caller has it."""
     from pdrlearn.track.ramp_audit import audit_flags, with_end_positions
 
     rows = []
-    for k, r in enumerate(track_ramps(steps, info)[0], start=1):
+    for k, r in enumerate(table_ramps(steps, info, found), start=1):
         t0, t1 = float(steps["start_s"].iloc[r["first"]]), float(steps["end_s"].iloc[r["last"]])
         rows.append({"ramp": k, "start_s": t0, "end_s": t1, **{c: r[c] for c in RAMP_COLUMNS if c in r},
                      "duration_s": t1 - t0,  # decision L467
@@ -295,10 +302,10 @@ def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame 
     return with_end_positions(pd.DataFrame(rows, columns=list(RAMP_COLUMNS)), trajectory)
 
 
-def table_ramps(steps: pd.DataFrame, info: dict | None) -> list[dict]:
+def table_ramps(steps: pd.DataFrame, info: dict | None, found: FoundRamps | None = None) -> list[dict]:
     """Decision L301: the ramps of :func:`track_ramps` as ramps.csv lists them (and decision L573's curbs leave
-    out); none where :func:`grade_source` is None."""
-    return track_ramps(steps, info)[0]
+    out); none where :func:`grade_source` is None. ``found``: :func:`track_ramps` of these rows, already found."""
+    return (track_ramps(steps, info) if found is None else found)[0]
 
 
 def climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray | None:
@@ -315,16 +322,17 @@ def climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray | No
     return flag_values(steps["climb"])
 
 
-def grade_summary(steps: pd.DataFrame, info: dict | None) -> dict:
+def grade_summary(steps: pd.DataFrame, info: dict | None, *, found: FoundRamps | None = None) -> dict:
     """Decision L300: ``grade_source`` (:func:`grade_source`), ``distance_along_slope_m`` (:func:`along_slope_m` of
-    the valid rows; None without a source) and ``n_ramps`` (rows of :func:`ramp_table`; None without a source)."""
+    the valid rows; None without a source) and ``n_ramps`` (rows of :func:`ramp_table`; None without a source).
+    ``found``: :func:`track_ramps` of these rows, when the caller has it."""
     src = grade_source(steps, info)
     if src is None:
         return {"grade_source": None, "distance_along_slope_m": None, "n_ramps": None, "max_ramp_grade_pct": None}
     valid = _valid(steps)
     length = pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float)[valid]
     dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)[valid]
-    ramps = track_ramps(steps, info)[0]
+    ramps = table_ramps(steps, info, found)
     steepest = max((abs(r["max_run_grade_pct"]) for r in ramps), default=None)  # decision L572
     return {"grade_source": src, "distance_along_slope_m": along_slope_m(length, dz), "n_ramps": len(ramps),
             "max_ramp_grade_pct": steepest}

@@ -13,6 +13,14 @@ from pdrlearn.track.base import TrackResult
 #: decision L55: path.png gets an altitude-vs-time panel when a drawn path's height spans at least this (m):
 #: the threshold of the track evaluation's altitude error (``altitude_error_pct``, evaluate.py)
 ALTITUDE_PANEL_M = 0.5
+#: decision L592: the colours of a track's ramp strides (ramps.csv, L301) and stair-flight strides (stairs.csv,
+#: L432) in path.png's plan view and its elevation-vs-distance panel
+CLIMB_COLOURS = {"ramp": "tab:orange", "stairs": "tab:purple"}
+#: decision L592: their line widths: a ramp's is drawn narrower over a flight on the same strides (a stride can be in
+#: both tables: stairs.csv lists a steep ramp's 0.10 m strides as a flight too)
+CLIMB_WIDTHS = {"ramp": 2.0, "stairs": 4.0}
+#: decision L592: the x label that names the elevation-vs-distance panel
+DISTANCE_PANEL_XLABEL = "distance along the path [m]"
 
 
 def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | None = None,
@@ -29,7 +37,9 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     off in that track's direction (:func:`initial_bearing`); the legend says so, and the axes are ``x`` (heading
     0 at the start) / ``y`` instead of east / north (L55). A track with ``pos_sigma_m`` gets a shaded circle of
     twice its last value about its end (decision L128); the view covers the paths, and the circle only when it is
-    no wider than them (otherwise it is clipped and its legend says so, decision L175).
+    no wider than them (otherwise it is clipped and its legend says so, decision L175). Decision L592: a track's
+    ramp and stair strides are coloured (:data:`CLIMB_COLOURS`, :func:`climb_spans`) and, when a track has any, a
+    last panel draws its height against the distance walked along it.
     """
     _, fig = path_figure(paths, session=session, title=title)
     save_atomic(fig, Path(out), dpi=dpi)
@@ -75,12 +85,16 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
             gx, gy = gx + float(first["x"].iloc[0]), gy + float(first["y"].iloc[0])
         lines.append((label, gt, gx, gy, gz, {"ls": "--", "lw": 1.0, "color": "k"}))
     climbs = any(len(z) and np.nanmax(z) - np.nanmin(z) >= ALTITUDE_PANEL_M for *_, z, _ in lines)
-    if climbs:
-        fig, (ax, az) = new_figure(2, 1, figsize=(7, 8.6), height_ratios=(3, 1.1), layout="constrained")
-    else:
-        fig, ax = new_figure(figsize=(7, 6), layout="constrained")
+    spans = {name: climb_spans(r) for name, r in paths.items()}  # decision L592
+    ratios = (3, *((1.1,) if climbs else ()), *((1.1,) if any(spans.values()) else ()))
+    fig, axes = new_figure(len(ratios), 1, figsize=(7, 6 + 2.6 * (len(ratios) - 1)), layout="constrained",
+                           **({"height_ratios": ratios} if len(ratios) > 1 else {}))
+    axes = list(np.atleast_1d(axes))
+    ax, az = axes[0], axes[1] if climbs else None
     for label, _, x, y, _, style in lines:
         ax.plot(x, y, label=label, **style)
+    if any(spans.values()):
+        draw_climbs(ax, axes[-1], paths, spans)
     box = path_box([(x, y) for _, _, x, y, _, _ in lines])
     for r in paths.values():  # decision L128: the 2-sigma circle of the position uncertainty at the track's end
         tr = r.trajectory
@@ -112,6 +126,59 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
         az.grid(alpha=0.3)
         az.set_title("height over time", fontsize=9)
     return plt, fig
+
+
+def climb_spans(result: TrackResult) -> list[tuple[str, int, int]]:
+    """Decision L592: ``(kind, first, last)`` rows of ``result.steps`` of its ramps (``"ramp"``: ramps.csv's,
+    :func:`pdrlearn.track.grade.track_ramps` under the track's ``--stair-grade``) and, on a foot track off a declared
+    inclined belt, its stair flights (``"stairs"``: stairs.csv's, :func:`pdrlearn.track.stair_flights.flight_spans`;
+    none on the lower back, L440, or for rows not in ``start_s`` order), sorted by first row (a flight before a
+    ramp on the same row); none when the trajectory is not one row per stride after its start row."""
+    from pdrlearn.track.clinical import _is_lower_back
+    from pdrlearn.track.grade import info_stair_grade, table_ramps
+    from pdrlearn.track.stair_flights import flight_spans
+
+    st, info = result.steps, result.info or {}
+    if not len(st) or "dz_m" not in st or "start_s" not in st or len(result.trajectory) != len(st) + 1:
+        return []
+    with info_stair_grade(info):
+        out = [("ramp", int(r["first"]), int(r["last"])) for r in table_ramps(st, info)]
+    if (not _is_lower_back(st) and info.get("belt_incline_pct") is None
+            and st["start_s"].is_monotonic_increasing):
+        out += [("stairs", int(a), int(b) - 1) for a, b, _ in flight_spans(st.reset_index(drop=True))]
+    return sorted(out, key=lambda s: (s[1], s[0] == "ramp"))
+
+
+def walked_distance(x, y) -> np.ndarray:
+    """Decision L592: the horizontal distance walked along a path to each of its points (m, 0 at the first; a
+    non-finite step counts 0). A pure kernel."""
+    d = np.hypot(np.diff(np.asarray(x, float)), np.diff(np.asarray(y, float)))
+    return np.concatenate([[0.0], np.cumsum(np.nan_to_num(d))])
+
+
+def draw_climbs(ax, ad, paths: dict[str, TrackResult], spans: dict) -> None:
+    """Decision L592: each track's ramp and stair strides (``spans``, :func:`climb_spans`) coloured over its path in
+    the plan view ``ax`` (trajectory rows ``first`` to ``last + 1``: a stride ends at the row after its start row),
+    and in ``ad`` the tracks' heights ``z`` against :func:`walked_distance`, the same strides coloured (each
+    coloured line's ``gid`` is its kind)."""
+    named = set()
+    for name, r in paths.items():
+        tr = r.trajectory
+        x, y, z = (tr[c].to_numpy(float) for c in ("x", "y", "z"))
+        dist = walked_distance(x, y)
+        ad.plot(dist, z, label=name, lw=1.2, color="0.4")
+        for kind, a, b in spans[name]:
+            label = f"{kind} strides ({'ramps' if kind == 'ramp' else 'stairs'}.csv)"
+            style = {"color": CLIMB_COLOURS[kind], "lw": CLIMB_WIDTHS[kind], "gid": kind,
+                     "label": label if label not in named else "_" + label}
+            named.add(label)
+            ax.plot(x[a:b + 2], y[a:b + 2], **style)
+            ad.plot(dist[a:b + 2], z[a:b + 2], **style)
+    ad.set_xlabel(DISTANCE_PANEL_XLABEL)
+    ad.set_ylabel("height z [m]")
+    ad.grid(alpha=0.3)
+    ad.legend(fontsize=7)
+    ad.set_title("height over the distance walked (ramps and stairs coloured)", fontsize=9)
 
 
 def path_box(paths: list[tuple[np.ndarray, np.ndarray]]) -> tuple[float, float, float, float] | None:

@@ -118,15 +118,18 @@ def with_end_positions(table: pd.DataFrame, trajectory: pd.DataFrame | None) -> 
     return out
 
 
-def ramp_run_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame | None = None) -> pd.DataFrame:
+def ramp_run_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame | None = None, *,
+                   found=None) -> pd.DataFrame:
     """``ramp_runs.csv`` (decision L568): for each ramp of ramps.csv (the same :func:`pdrlearn.track.grade.ramp_runs`
     ramps, numbered alike) one row per run (``kind`` run) and per landing between two runs (``kind`` landing), in
     walking order (``part`` from 1 within the ramp): the first row's ``start_s`` and last row's ``end_s``, the
     rows' horizontal length, rise (summed ``dz_m``), grade (100 rise / horizontal), rows, L569's flags (a run's own;
-    empty on a landing) and L570's end positions. A landing's length is whole strides: resolved to one stride."""
+    empty on a landing) and L570's end positions. A landing's length is whole strides: resolved to one stride.
+    ``found``: :func:`pdrlearn.track.grade.track_ramps` of these rows, when the caller has it (session 42: a written
+    track finds its ramps once)."""
     from pdrlearn.track.grade import track_ramps
 
-    ramps, length, dz = track_ramps(steps, info)
+    ramps, length, dz = track_ramps(steps, info) if found is None else found
     start, end = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
     rows = []
     for k, r in enumerate(ramps, start=1):
