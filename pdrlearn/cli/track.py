@@ -104,6 +104,10 @@ DETECTOR_OPT = typer.Option(None, "--detector", help="The steps from this step d
                             "(decision L149), a waist one (unit 'waist') gives the lower-back pipeline its contacts "
                             "(decision E85); NAME:key=value,... sets its settings, e.g. pll:loop_hz=1.5 (decision "
                             "E94, as --length-model). Default: the pipeline's own.")
+GATE_OPT = typer.Option(False, "--gate", help="With a waist --detector: keep only its contacts where the lower-back "
+                        "pipelines' walking gate is open (2 s SD of the vertical acceleration >= 0.5 m/s^2 or W76's "
+                        "session threshold, as waist-ic's; decision W473), so it is compared with waist-ic on equal "
+                        "terms. Default: its contacts as they are.")
 LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelines: the step-length model "
                                 f"({LENGTH_NAMES}, or a plug-in; NAME:key=value,... sets its settings; "
                                 "decision E84; a gain model without its gain takes the one `calibrate "
@@ -342,6 +346,7 @@ def track(
     contacts: bool = CONTACTS_OPT,
     drop_neighbour: bool = DROP_NEIGHBOUR_OPT,
     detector: str = DETECTOR_OPT,
+    gate: bool = GATE_OPT,
     length_model: str = LENGTH_MODEL_OPT,
     altitude: str = ALTITUDE_OPT,
     compass: str = COMPASS_OPT,
@@ -527,7 +532,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    stair_rise: float | None = None, stair_grade: float | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
-                   detector: str | None = None, length_model: str | None = None,
+                   detector: str | None = None, gate: bool = False, length_model: str | None = None,
                    altitude: str | None = None, align_units: bool = False, compass: str = "auto",
                    bout_rule: str | None = None, clock_offset: float | None = None,
                    clock_drift_ppm: float | None = None, drop_partial_row: bool = False,
@@ -643,6 +648,11 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if streaming:
             raise DataError("track: --detector chooses the offline strides; the --streaming kernel segments its "
                             "own - drop one of them")
+    if gate and detector_unit != "waist":  # decision W473: before any session
+        raise DataError("track: --gate applies the lower-back walking gate to a waist --detector's contacts"
+                        + (f"; --detector {detector} detects the foot's strides" if detector_unit == "foot" else
+                           " (the pipelines' own contacts are gated already)")
+                        + ": give --detector NAME of a detector with unit 'waist', or drop --gate")
     clock_offset_s = clock_offset_value(clock_offset, align_units, "track")  # decision E112: before any session
     clock_drift = clock_drift_value(clock_drift_ppm, align_units, "track")  # decision B265, as E112
     if align_units and streaming:  # decision L162 (E93: once, before a batch's first session)
@@ -696,7 +706,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
-            "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
+            "detector": detector, "detector_unit": detector_unit, "gate": gate, "length_model": length_model,
             "altitude": altitude, "align_units": align_units, "compass": compass, "clock_offset_s": clock_offset_s,
             "clock_drift": clock_drift, "drop_partial_row": drop_partial_row,
             "steady_trim": None if steady_trim is None else check_steady_trim(steady_trim),  # decision L415
@@ -959,6 +969,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     if pipeline != "plasys":  # decisions E84, E85: the lower-back pipelines' detector and step-length model
         if o.get("detector") is not None:
             kw["detector"] = o["detector"]
+        if o.get("gate"):  # decision W473
+            kw["gate"] = True
         if o.get("length_model") is not None:
             kw["length_model"] = o["length_model"]
     heading0 = o.get("initial_heading_rad")
