@@ -865,12 +865,24 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         logging.getLogger("pdrlearn.cli").warning("%s", unknown)
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
+    # decision W474: a lower-back parameters file (on a session with a waist unit) asks for the lower back as well
+    waist_file = session.has("wAccelerometer") and waist_params_file(par)[0]
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
     chosen_by = None  # the option that chose the pipeline, for the lines that name it
-    if pipeline == "auto" and waist_asked:
-        pipeline = "waist-pendulum"  # a lower-back detector or step-length model: the user means the lower back
+    if pipeline == "auto" and (waist_asked or waist_file):
+        # a lower-back detector, step-length model or parameters file: the user means the lower back, with the
+        # pipeline the file was calibrated for (W407), else waist-pendulum (W474)
+        pipeline = calibrated_pipeline("waist-pendulum", par)
         chosen_by = (f"--detector {o['detector']}" if o.get("detector_unit") == "waist" else
-                     f"--length-model {o['length_model']}")
+                     f"--length-model {o['length_model']}" if o.get("length_model") is not None else
+                     f"--params {params}")
+        if session.has("fAccelerometer"):  # decision W474: the foot unit left untracked is said, in one line
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning(
+                "%s: %s chose the lower-back pipeline %s (--pipeline auto): the foot unit is not tracked; give "
+                "--pipeline plasys to track the foot, or --pipeline %s to choose the lower back yourself (decision "
+                "W474)", session.where, chosen_by, pipeline, pipeline)
     if waist_asked and not session.has("wAccelerometer"):
         asked = (f"--detector {o['detector']} detects lower-back steps" if o.get("detector_unit") == "waist" else
                  f"--length-model {o['length_model']} sets the lower-back step length")
@@ -1440,17 +1452,28 @@ def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
     return {k: v for k, v in par.items() if k not in keys}, keys
 
 
-def _refuse_waist_params(par: dict, path: Path, session) -> None:
-    """A lower-back parameters file given to the foot pipeline: say what it is and where it belongs (the
-    plasys pipeline would list its keys as unknown FootDisplacement settings)."""
+def waist_params_file(par) -> tuple[bool, str | None]:
+    """Whether ``par`` (``--params``' parsed JSON) is a lower-back parameters file (``pdrlearn calibrate``'s schema or
+    a WaistParams key), and the lower-back pipeline it names (None when it names none): what
+    :func:`_refuse_waist_params` refuses for plasys and what chooses the lower back under --pipeline auto (W474)."""
     from dataclasses import fields
 
     from pdrlearn.waist.params import SCHEMA, WaistParams
 
+    if not isinstance(par, dict):
+        return False, None
     waist_keys = {f.name for f in fields(WaistParams)} - {"notes", "source", "options"}
     if par.get("schema") != SCHEMA and not waist_keys & set(par):
+        return False, None
+    return True, par.get("pipeline") if par.get("pipeline") in ("waist-pendulum", "waist-pll") else None
+
+
+def _refuse_waist_params(par: dict, path: Path, session) -> None:
+    """A lower-back parameters file given to the foot pipeline: say what it is and where it belongs (the
+    plasys pipeline would list its keys as unknown FootDisplacement settings)."""
+    is_waist, for_ = waist_params_file(par)
+    if not is_waist:
         return
-    for_ = par.get("pipeline") if par.get("pipeline") in ("waist-pendulum", "waist-pll") else None
     use = f"--pipeline {for_}" if for_ else "--pipeline waist-pendulum or waist-pll"
     unit = "" if session.has("wAccelerometer") else f" (session '{session.name}' has no waist unit)"
     raise DataError(f"{path}: a {for_ or 'waist-pendulum/waist-pll'} parameters file (lower-back step length, "
