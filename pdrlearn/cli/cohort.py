@@ -984,6 +984,7 @@ def track_all(
     contacts: bool = _track.CONTACTS_OPT,
     drop_neighbour: bool = _track.DROP_NEIGHBOUR_OPT,
     detector: str = _track.DETECTOR_OPT,
+    gate: bool = _track.GATE_OPT,
     length_model: str = _track.LENGTH_MODEL_OPT,
     altitude: str = _track.ALTITUDE_OPT,
     dpi: int = _track.DPI_OPT,

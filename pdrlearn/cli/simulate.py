@@ -19,6 +19,9 @@ STEP_LENGTH_RANGE_M, STEP_TIME_RANGE_S = (0.1, 1.0), (0.25, 2.5)
 #: decision S38: `simulate --height` (m: a 1-year-old to a very tall adult) and `--leg-length` (as a fraction of
 #: the stature: a toddler's ~0.4 to a long-legged adult's 0.6; the simulator's adults are 0.53)
 HEIGHT_RANGE_M, LEG_PER_HEIGHT_RANGE = (0.7, 2.2), (0.35, 0.6)
+#: decision S97: `simulate --step-width` (m, between the feet's centre lines): 0 = a tandem walk (heel to toe on one
+#: line) to 0.5 m, a wide base well past the 0.08-0.14 m the simulator's users draw
+STEP_WIDTH_RANGE_M = (0.0, 0.5)
 #: decision S33: `simulate --mag-disturbance` (uT, sd of the indoor field disturbances): from none to twice the
 #: 45 uT Earth field the simulator uses (a steel-framed corridor); the Python knob has no upper bound
 MAG_DISTURBANCE_MAX_UT = 90.0
@@ -193,6 +196,11 @@ def simulate_cmd(
         None, "--leg-length", help=f"With --height: the leg length (m, greater-trochanter height, "
         f"{LEG_PER_HEIGHT_RANGE[0]:g}-{LEG_PER_HEIGHT_RANGE[1]:g} x the height; default the user's own proportion, "
         "0.53)."),
+    step_width: float | None = typer.Option(
+        None, "--step-width", metavar="METERS", help=f"The lateral distance between the feet's centre lines (m, "
+        f"{STEP_WIDTH_RANGE_M[0]:g}-{STEP_WIDTH_RANGE_M[1]:g}; default the user's own, 0.08-0.14, scaled with "
+        "--height): 0 walks a tandem (heel-to-toe) line, 0.05 a narrow base. Only where the feet land changes; "
+        "pdrlearn measures no step width (decision S97)."),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
     subject: str = typer.Option(None, "--subject", help="The subject's id, written to meta.json \"subject\" "
                                 "(track-all's sessions.csv and subjects.csv group by it; B364)."),
@@ -296,7 +304,7 @@ def simulate_cmd(
     for name, v in (("--sit-start", sit_start), ("--sit-end", sit_end)):  # decision S43
         if not (math.isfinite(v) and 0.0 <= v <= SIT_MAX_S):
             raise DataError(f"{name} {v:g}: give the seated time in seconds, 0 (none) to {SIT_MAX_S:g}")
-    user = scaled_user(UserProfile.from_seed(user_seed), height, leg_length)  # decision S38
+    user = with_step_width(scaled_user(UserProfile.from_seed(user_seed), height, leg_length), step_width)  # S38, S97
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     replace = check_sim_out(out, force)  # decision B292: --force replaces a session simulate wrote
     knobs = dict(
@@ -379,6 +387,20 @@ def simulate_cmd(
             f"{rate:g} Hz" + (f", steps {summary['step_length_m']:g} m in {summary['step_time_s']:g} s "
                               f"({summary['step_length_m'] / summary['step_time_s']:.2f} m/s)" if custom else "")
         )
+
+
+def with_step_width(user, step_width: float | None):
+    """Decision S97: ``user`` walking with ``--step-width`` between the feet's centre lines (``user`` itself without
+    it); one error line for a value that is not finite or outside :data:`STEP_WIDTH_RANGE_M`."""
+    if step_width is None:
+        return user
+    lo, hi = STEP_WIDTH_RANGE_M
+    if not (math.isfinite(step_width) and lo <= step_width <= hi):
+        raise DataError(f"simulate: --step-width {step_width:g}: give the distance between the feet's centre lines "
+                        f"in metres, {lo:g} (a tandem walk) to {hi:g}")
+    import dataclasses
+
+    return dataclasses.replace(user, step_width_m=float(step_width))
 
 
 def scaled_user(user, height: float | None, leg_length: float | None):

@@ -104,6 +104,10 @@ DETECTOR_OPT = typer.Option(None, "--detector", help="The steps from this step d
                             "(decision L149), a waist one (unit 'waist') gives the lower-back pipeline its contacts "
                             "(decision E85); NAME:key=value,... sets its settings, e.g. pll:loop_hz=1.5 (decision "
                             "E94, as --length-model). Default: the pipeline's own.")
+GATE_OPT = typer.Option(False, "--gate", help="With a waist --detector: keep only its contacts where the lower-back "
+                        "pipelines' walking gate is open (2 s SD of the vertical acceleration >= 0.5 m/s^2 or W76's "
+                        "session threshold, as waist-ic's; decision W473), so it is compared with waist-ic on equal "
+                        "terms. Default: its contacts as they are.")
 LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelines: the step-length model "
                                 f"({LENGTH_NAMES}, or a plug-in; NAME:key=value,... sets its settings; "
                                 "decision E84; a gain model without its gain takes the one `calibrate "
@@ -342,6 +346,7 @@ def track(
     contacts: bool = CONTACTS_OPT,
     drop_neighbour: bool = DROP_NEIGHBOUR_OPT,
     detector: str = DETECTOR_OPT,
+    gate: bool = GATE_OPT,
     length_model: str = LENGTH_MODEL_OPT,
     altitude: str = ALTITUDE_OPT,
     compass: str = COMPASS_OPT,
@@ -527,7 +532,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    stair_rise: float | None = None, stair_grade: float | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
-                   detector: str | None = None, length_model: str | None = None,
+                   detector: str | None = None, gate: bool = False, length_model: str | None = None,
                    altitude: str | None = None, align_units: bool = False, compass: str = "auto",
                    bout_rule: str | None = None, clock_offset: float | None = None,
                    clock_drift_ppm: float | None = None, drop_partial_row: bool = False,
@@ -643,6 +648,11 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if streaming:
             raise DataError("track: --detector chooses the offline strides; the --streaming kernel segments its "
                             "own - drop one of them")
+    if gate and detector_unit != "waist":  # decision W473: before any session
+        raise DataError("track: --gate applies the lower-back walking gate to a waist --detector's contacts"
+                        + (f"; --detector {detector} detects the foot's strides" if detector_unit == "foot" else
+                           " (the pipelines' own contacts are gated already)")
+                        + ": give --detector NAME of a detector with unit 'waist', or drop --gate")
     clock_offset_s = clock_offset_value(clock_offset, align_units, "track")  # decision E112: before any session
     clock_drift = clock_drift_value(clock_drift_ppm, align_units, "track")  # decision B265, as E112
     if align_units and streaming:  # decision L162 (E93: once, before a batch's first session)
@@ -696,7 +706,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
             "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
-            "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
+            "detector": detector, "detector_unit": detector_unit, "gate": gate, "length_model": length_model,
             "altitude": altitude, "align_units": align_units, "compass": compass, "clock_offset_s": clock_offset_s,
             "clock_drift": clock_drift, "drop_partial_row": drop_partial_row,
             "steady_trim": None if steady_trim is None else check_steady_trim(steady_trim),  # decision L415
@@ -855,12 +865,24 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         logging.getLogger("pdrlearn.cli").warning("%s", unknown)
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
+    # decision W474: a lower-back parameters file (on a session with a waist unit) asks for the lower back as well
+    waist_file = session.has("wAccelerometer") and waist_params_file(par)[0]
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
     chosen_by = None  # the option that chose the pipeline, for the lines that name it
-    if pipeline == "auto" and waist_asked:
-        pipeline = "waist-pendulum"  # a lower-back detector or step-length model: the user means the lower back
+    if pipeline == "auto" and (waist_asked or waist_file):
+        # a lower-back detector, step-length model or parameters file: the user means the lower back, with the
+        # pipeline the file was calibrated for (W407), else waist-pendulum (W474)
+        pipeline = calibrated_pipeline("waist-pendulum", par)
         chosen_by = (f"--detector {o['detector']}" if o.get("detector_unit") == "waist" else
-                     f"--length-model {o['length_model']}")
+                     f"--length-model {o['length_model']}" if o.get("length_model") is not None else
+                     f"--params {params}")
+        if session.has("fAccelerometer"):  # decision W474: the foot unit left untracked is said, in one line
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning(
+                "%s: %s chose the lower-back pipeline %s (--pipeline auto): the foot unit is not tracked; give "
+                "--pipeline plasys to track the foot, or --pipeline %s to choose the lower back yourself (decision "
+                "W474)", session.where, chosen_by, pipeline, pipeline)
     if waist_asked and not session.has("wAccelerometer"):
         asked = (f"--detector {o['detector']} detects lower-back steps" if o.get("detector_unit") == "waist" else
                  f"--length-model {o['length_model']} sets the lower-back step length")
@@ -959,6 +981,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     if pipeline != "plasys":  # decisions E84, E85: the lower-back pipelines' detector and step-length model
         if o.get("detector") is not None:
             kw["detector"] = o["detector"]
+        if o.get("gate"):  # decision W473
+            kw["gate"] = True
         if o.get("length_model") is not None:
             kw["length_model"] = o["length_model"]
     heading0 = o.get("initial_heading_rad")
@@ -1428,17 +1452,28 @@ def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
     return {k: v for k, v in par.items() if k not in keys}, keys
 
 
-def _refuse_waist_params(par: dict, path: Path, session) -> None:
-    """A lower-back parameters file given to the foot pipeline: say what it is and where it belongs (the
-    plasys pipeline would list its keys as unknown FootDisplacement settings)."""
+def waist_params_file(par) -> tuple[bool, str | None]:
+    """Whether ``par`` (``--params``' parsed JSON) is a lower-back parameters file (``pdrlearn calibrate``'s schema or
+    a WaistParams key), and the lower-back pipeline it names (None when it names none): what
+    :func:`_refuse_waist_params` refuses for plasys and what chooses the lower back under --pipeline auto (W474)."""
     from dataclasses import fields
 
     from pdrlearn.waist.params import SCHEMA, WaistParams
 
+    if not isinstance(par, dict):
+        return False, None
     waist_keys = {f.name for f in fields(WaistParams)} - {"notes", "source", "options"}
     if par.get("schema") != SCHEMA and not waist_keys & set(par):
+        return False, None
+    return True, par.get("pipeline") if par.get("pipeline") in ("waist-pendulum", "waist-pll") else None
+
+
+def _refuse_waist_params(par: dict, path: Path, session) -> None:
+    """A lower-back parameters file given to the foot pipeline: say what it is and where it belongs (the
+    plasys pipeline would list its keys as unknown FootDisplacement settings)."""
+    is_waist, for_ = waist_params_file(par)
+    if not is_waist:
         return
-    for_ = par.get("pipeline") if par.get("pipeline") in ("waist-pendulum", "waist-pll") else None
     use = f"--pipeline {for_}" if for_ else "--pipeline waist-pendulum or waist-pll"
     unit = "" if session.has("wAccelerometer") else f" (session '{session.name}' has no waist unit)"
     raise DataError(f"{path}: a {for_ or 'waist-pendulum/waist-pll'} parameters file (lower-back step length, "

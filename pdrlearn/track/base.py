@@ -350,7 +350,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``cadence_law`` (decision W240, off: a calibrated waist-pendulum step times sqrt(SL(f) / SL(f_cal)) of seed
       000's walking line, the calibration walks' median cadence ``f_cal``; ``"steady"``, decision W261: only on steady
       walking steps; not in the live trackers),
-      ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered
+      ``detector`` (decision E85: a waist step detector's contacts), ``gate`` (decision W473: W4's walking gate on
+      those contacts), ``length_model`` (decision E84: a registered
       step-length model, docs/extending.md) (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and
       unused. With ``wBarometer`` the track's altitude is the barometer's (W89); without, one warning (W90).
 

@@ -823,7 +823,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 freeze_index: bool | None = None, side_at_contact: bool | None = None,
                 fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
                 foot_rest_veto: bool | None = None, pll_edge_lock: bool | str | None = None,
-                turn_bridge: bool | str | None = None, pelvic_rhythm_veto: bool | str | None = None) -> TrackResult:
+                turn_bridge: bool | str | None = None, pelvic_rhythm_veto: bool | str | None = None,
+                gate: bool = False) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -988,6 +989,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
         ``event_s`` are used as they are (no motion gate, no IC refinement); offline only (not with ``realtime``)
+    gate : with ``detector``: keep only its contacts where the pipeline's walking gate (W4, W76's threshold or
+        PARAMS.json's ``walk_threshold_mps2``) is open (decision W473, :func:`pdrlearn.waist.events.gate_contacts`);
+        the steps' detector then reads ``NAME+gate``. Default False (the contacts as they are)
     length_model : the step length from this model instead of the pipeline's (decision E84): a registered name
         (``pdrlearn.waist.lengths.STEP_LENGTHS``: the built-ins and plug-ins, ``list(STEP_LENGTHS)``), a
         ``"name:key=value"`` string or a :class:`~pdrlearn.waist.lengths.StepLengthModel`; None: ``pendulum``
@@ -1027,11 +1031,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "pll_slow_cadence_check": None,  # W313: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean,
              "turn_bridge": turn_bridge}
-    return _track_waist(session, pipeline, params, start, given, detector, length_model)
+    return _track_waist(session, pipeline, params, start, given, detector, length_model, gate=gate)
 
 
 def _track_waist(session: Session, pipeline: str, params, start, given: dict, detector, length_model, *,
-                 trunk_only: bool = False) -> TrackResult:
+                 trunk_only: bool = False, gate: bool = False) -> TrackResult:
     """:func:`track_waist`'s body, its keyword options in ``given`` (each None: PARAMS.json's, else the default).
     ``trunk_only`` (decision W428, :func:`trunk_events`): stop after the contacts' vetoes and the gap cut, with the
     chair transfers, the contacts and the yaw-rate turns only."""
@@ -1048,6 +1052,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     if not model.uses_leg_length:  # e.g. the frequency model (waist-pll's) has no leg length (W62)
         warnings = [w for w in warnings if not w.startswith(NO_SENSOR_HEIGHT)]
     det = None if detector is None else waist_detector(detector, given["realtime"])  # E85
+    if gate and det is None:  # decision W473
+        raise DataError("gate applies the walking gate to a detector's contacts; the pipeline's own contacts are "
+                        "gated already: give a waist detector (detector=NAME, --detector NAME) or drop the gate")
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
@@ -1092,7 +1099,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                                              relative=bool(o["relative_gate"]) and not realtime)
     det_given = det is not None
     if det is not None:  # E85: a waist detector's contacts, as they are
-        steps = detector_steps(det, session, imu)
+        steps = detector_steps(det, session, imu, thr if gate else None)  # W473: gated at the track's threshold
         method = heading or ("gyro" if pipeline == "waist-pendulum" else "ahe")
     elif pipeline == "waist-pendulum":
         det = _contact_detector(o, thr, realtime).detect(imu)
@@ -1478,11 +1485,18 @@ def waist_detector(detector, realtime: bool):
     return det
 
 
-def detector_steps(det, session: Session, imu: WaistIMU) -> pd.DataFrame:
+def detector_steps(det, session: Session, imu: WaistIMU, gate_mps2: float | None = None) -> pd.DataFrame:
     """Decision E85: the waist steps table (``has_next``; ``fc_s`` NaN: the pendulum reads IC to IC, W10) of a
     detector's contacts on the AHRS's samples (the nearest sample of each
-    ``event_s``; contacts further apart than :data:`MAX_STEP_S` end a sequence)."""
-    return contact_steps(det.detect(session), imu, det.name)
+    ``event_s``; contacts further apart than :data:`MAX_STEP_S` end a sequence). Decision W473: with ``gate_mps2``
+    only the contacts the walking gate at that threshold lets through (:func:`~pdrlearn.waist.events.gate_contacts`),
+    the detector named ``NAME+gate``."""
+    table = det.detect(session)
+    if gate_mps2 is None:
+        return contact_steps(table, imu, det.name)
+    from pdrlearn.waist.events import gate_contacts
+
+    return contact_steps(gate_contacts(table, imu, walk_threshold=gate_mps2), imu, f"{det.name}+gate")
 
 
 def transfer_contacts(table: pd.DataFrame, session: Session) -> tuple[np.ndarray, pd.DataFrame]:

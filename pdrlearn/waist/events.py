@@ -47,6 +47,32 @@ def gate_threshold(imu: WaistIMU, walk_threshold: float | None = None, *, relati
     return float(thr), sigma, "relative" if thr != WALK_THRESHOLD_MPS2 else "fixed"
 
 
+def gate_contacts(table: pd.DataFrame, source, *, walk_threshold: float | None = None,
+                  relative: bool = True) -> pd.DataFrame:
+    """Decision W473: the rows of a lower-back steps table (``event_s``, s on the session's clock) whose contact the
+    lower-back pipelines' walking gate (W4) lets through: the variance of the gravity-removed vertical acceleration
+    over the gate's 2 s window centred on it reaches the gate's threshold squared (the threshold of
+    :func:`gate_threshold`: ``walk_threshold`` m/s^2, else 0.5 m/s^2 lowered by W76's session-relative rule when
+    ``relative``). ``source`` is the session (or its :class:`~pdrlearn.waist.ahrs.WaistIMU`). The gate is
+    :func:`pdrlearn.kernels.step_events.motion_gate_kernel`, the one the pelvic-gyro detector applies (steps decision
+    23); ``track --detector NAME --gate`` applies it to a detector's contacts. Rows keep their order and columns."""
+    from pdrlearn.kernels.step_events import GateState, motion_gate_flush, motion_gate_kernel
+    from pdrlearn.kernels.waist import GATE_WINDOW_S
+    from pdrlearn.waist.ahrs import waist_imu
+
+    imu = source if isinstance(source, WaistIMU) else waist_imu(source)
+    thr = gate_threshold(imu, walk_threshold, relative=relative)[0]
+    ev = table["event_s"].to_numpy(float) if len(table) else np.zeros(0)
+    order = np.argsort(ev, kind="stable")
+    events = [(float(ev[i]), int(i)) for i in order]  # the kernel reads e[0]; the row rides along
+    var_min = thr * thr  # W4: the SD threshold squared (as steps decision 23's gate_var)
+    kept, state = motion_gate_kernel(imu.t, imu.acc_v, events, GateState(), GATE_WINDOW_S, var_min)
+    kept += motion_gate_flush(state, GATE_WINDOW_S, var_min)
+    out = table.iloc[np.sort([e[1] for e in kept]).astype(int)] if kept else table.iloc[:0]
+    out.attrs = dict(table.attrs)
+    return out
+
+
 def walking_gate(imu: WaistIMU, *, walk_threshold: float = WALK_THRESHOLD_MPS2, causal: bool = False,
                  turn_gate_rps: float | None = None) -> np.ndarray:
     """Samples where the motion state (seed 000 sec. II-B) is walking or running; with ``turn_gate_rps``
