@@ -60,7 +60,7 @@ def test_a_second_thread_inside_a_waist_tracker_is_refused_in_one_line_e241(walk
     assert len(got) == 3 and all(isinstance(e, ConcurrentUseError) and not isinstance(e, DataError) for e in got)
     for e, name in zip(got, ("push", "push_barometer", "flush"), strict=True):
         assert str(e).startswith(f"WaistTracker.{name}: called from a second thread while another thread is inside "
-                                 "push/push_barometer/flush of the same tracker")
+                                 "push/push_barometer/flush/add_fix of the same tracker")  # E256: add_fix too
         assert "decision E231; the waist trackers: E241" in str(e) and "\n" not in str(e)
     # refused calls changed nothing: the same steps as a tracker fed one thread
     ref = (WaistTracker(walk["bundle"], fs=100.0) if kind == "bundle" else
@@ -72,8 +72,9 @@ def test_a_second_thread_inside_a_waist_tracker_is_refused_in_one_line_e241(walk
 
 def test_the_foot_and_waist_trackers_share_one_guard_e241():
     """One mechanism (no copy): both trackers' guarded calls are ``runtime.threads.one_call_at_a_time``."""
-    for cls, names in ((Tracker, ("push", "flush")), (WaistTracker, ("push", "push_barometer", "flush")),
-                       (ParamsWaistTracker, ("push", "push_barometer", "flush"))):
+    for cls, names in ((Tracker, ("push", "flush", "add_fix")),  # decision E256: add_fix guarded too
+                       (WaistTracker, ("push", "push_barometer", "flush", "add_fix")),
+                       (ParamsWaistTracker, ("push", "push_barometer", "flush", "add_fix"))):
         for name in names:
             assert getattr(cls, name).__code__ is threads.one_call_at_a_time(lambda self: None).__code__, name
             assert cls._one_at_a_time == "/".join(names)

@@ -167,7 +167,7 @@ class ClockCheck:
             self._trim()
         self._checked_at = self._foot_seen
         try:
-            self.estimate = align_events(self._foot_events, self._waist_events)
+            self.estimate = self._estimate()
         except DataError:  # fewer than 3 events of a unit: no estimate yet
             return None
         lost = self._follow(self.estimate)  # decision E244
@@ -181,6 +181,17 @@ class ClockCheck:
                      f"{self.estimate['raw_offset_s']:+.2f} s, the candidate closest to 0 (decision E244)]")
         self.warned, self.warned_offset = True, off
         return line if lost is None else f"{lost}; {line}"
+
+    def _estimate(self) -> dict:
+        """``align_events`` on the window's events; decision E258: once a locked estimate with a fitted drift ``d``
+        (at ``ref_s`` r) is followed, on the foot events moved by it, ``t + d (t - r)``, and the result read back on
+        the foot clock (:func:`_with_drift`)."""
+        fol = self._followed
+        if fol is None or not fol[1]:
+            return align_events(self._foot_events, self._waist_events)
+        _, d, r = fol
+        f = np.asarray(self._foot_events, dtype=float)
+        return _with_drift(align_events(f + d * (f - r), self._waist_events), d, r)
 
     def _follow(self, est: dict) -> str | None:
         """Decision E244: ``est`` (``align_events``' dict) moved by whole step periods to the candidate nearest the
@@ -284,6 +295,23 @@ class ClockCheck:
             self._add_foot(self._foot.process(t, v))
         if final:
             self._add_foot(self._foot.flush())
+
+
+def _with_drift(est: dict, d: float, r: float) -> dict:
+    """Decision E258: ``align_events``' ``est`` on foot events moved by ``t + d (t - r)`` read on the foot clock. Its
+    line ``w - f' = o' + d' (f' - r')`` is, with ``f' - r' = (1 + d)(f - r'')`` and ``r'' = r + (r' - r) / (1 + d)``
+    (the matched foot events' mean on the foot clock), ``w - f = o' + d (r'' - r) + (d + d' (1 + d)) (f - r'')``."""
+    o, d2, r2 = float(est["offset_s"]), float(est["drift"]), float(est["ref_s"])
+    ref = r + (r2 - r) / (1.0 + d)
+    drift = d + d2 * (1.0 + d)
+    out = dict(est, offset_s=o + d * (ref - r), drift=drift, ref_s=ref)
+    if est.get("drift_span_s"):  # L457: how far the whole drift moves the clock over the matched events
+        out["drift_span_s"] = abs(drift) * float(est["drift_span_s"]) / abs(d2) / (1.0 + d) if d2 else 0.0
+    if est.get("window_line") is not None:
+        wo, wd, wr = est["window_line"]
+        wref = r + (wr - r) / (1.0 + d)
+        out["window_line"] = [wo + d * (wref - r), d + wd * (1.0 + d), wref]
+    return out
 
 
 def replay_check(streams: dict, chunk_s: float = 1.0) -> ClockCheck:

@@ -464,7 +464,7 @@ class Tracker(OwnGuard, FixInput):
         as ``track_plasys(streaming=True, gated_level_dz=...)``; only with a bundle that classifies terrain.
     """
 
-    _one_at_a_time = "push/flush"  # decision E231: the calls one_call_at_a_time guards
+    _one_at_a_time = "push/flush/add_fix"  # decisions E231, E256: the calls one_call_at_a_time guards
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
     _spec: tuple | None = None  # likewise: no step computed ahead (decision E24)

@@ -98,7 +98,7 @@ class WaistStream(OwnGuard, FixInput):
     far (logged here)."""
 
     _name = "WaistTracker"
-    _one_at_a_time = "push/push_barometer/flush"  # decision E241: the calls one_call_at_a_time guards
+    _one_at_a_time = "push/push_barometer/flush/add_fix"  # decisions E241, E256: the calls one_call_at_a_time guards
 
     def __init__(self, fs: float, *, params, options: dict, walk_threshold: float, rotation, start: tuple,
                  warnings: list[str], keep_steps: int | None = None, check_input: bool = True,
