@@ -76,6 +76,13 @@ class Settings:
         sig = inspect.signature(cls.__init__)
         return {p.name: p.default for p in sig.parameters.values() if p.kind == p.KEYWORD_ONLY}
 
+    def changed_params(self) -> dict:
+        """The settings that differ from their defaults (a setting without a default counts as changed): what a
+        spec ``"name:key=value,..."`` must name to rebuild this instance (decisions W462, W471)."""
+        sig = inspect.signature(type(self).__init__).parameters
+        return {k: v for k, v in self.get_params().items()
+                if k not in sig or sig[k].default is inspect.Parameter.empty or not _same(sig[k].default, v)}
+
     def get_params(self, deep: bool = True) -> dict:
         return {k: getattr(self, k) for k in self._param_names()}
 
@@ -102,6 +109,13 @@ class Settings:
 
         params = {k: v for k, v in self.get_params().items() if changed(k, v)}
         return f"{type(self).__name__}({', '.join(f'{k}={v!r}' for k, v in params.items())})"
+
+
+def _same(a, b) -> bool:
+    try:
+        return bool(a == b)
+    except (TypeError, ValueError):  # an array setting
+        return a is b
 
 
 # ---- decisions E94 / B198 / B199 / B206: one check of a setting's value, shared by the detector specs, the waist

@@ -1435,7 +1435,8 @@ def _refuse_waist_params(par: dict, path: Path, session) -> None:
 
     from pdrlearn.waist.params import SCHEMA, WaistParams
 
-    waist_keys = {f.name for f in fields(WaistParams)} - {"notes", "source", "options"}
+    # W471's "detector" is too common a word to call a file a waist one
+    waist_keys = {f.name for f in fields(WaistParams)} - {"notes", "source", "options", "detector"}
     if par.get("schema") != SCHEMA and not waist_keys & set(par):
         return
     for_ = par.get("pipeline") if par.get("pipeline") in ("waist-pendulum", "waist-pll") else None

@@ -359,24 +359,10 @@ def model_spec(model: StepLengthModel, spec=None, gain_from_params: bool = False
     ``"name:key=value"`` string) names; for an instance (``spec`` None) those that differ from its defaults - and,
     with ``gain_from_params``, its :attr:`~StepLengthModel.gain_param` (read from PARAMS.json, W460). The pipeline's
     options it takes (``pause_steps`` ...) are the track's ``options``, not repeated here."""
-    import inspect
-
     from pdrlearn.plugins import parse_spec, spec_text
 
     params = model.get_params()
-    if isinstance(spec, str):
-        keys = set(parse_spec(spec, "step-length model")[1])
-    else:
-        sig = inspect.signature(type(model).__init__).parameters
-        keys = {k for k, v in params.items() if k not in sig or sig[k].default is inspect.Parameter.empty
-                or not _same(sig[k].default, v)}
+    keys = set(parse_spec(spec, "step-length model")[1]) if isinstance(spec, str) else set(model.changed_params())
     if gain_from_params and model.gain_param:
         keys.add(model.gain_param)
     return spec_text(model.name, {k: v for k, v in params.items() if k in keys})
-
-
-def _same(a, b) -> bool:
-    try:
-        return bool(a == b)
-    except (TypeError, ValueError):  # an array setting
-        return a is b
