@@ -24,6 +24,8 @@ class Settings:
     """Mixin: settings are the keyword-only ``__init__`` arguments, stored as attributes."""
 
     name = "base"
+    #: what an error line calls the part ("step detector", "step-length model"): C158's line names it (steps 82)
+    kind = "settings"
 
     def __new__(cls, *args, **kwargs):
         """Decision B180: an unknown setting raises the ``TypeError`` that names the closest one
@@ -50,7 +52,11 @@ class Settings:
     def _check_params(self, params: dict) -> None:
         """Every numeric setting (thresholds, windows and durations in s, frequencies in Hz, orders,
         fractions, weights) is a finite number >= 0 (decision C21): a negative threshold or window was
-        accepted silently. Checked at construction and by :meth:`set_params`."""
+        accepted silently. Then every setting of the type its annotation names (decision C158, for the step
+        detectors too since steps 82: ``AccelStepDetector(threshold="abc")`` is the line ``--detector
+        accel:threshold=abc`` gives, E94, not a TypeError inside the detection), so a subclass needs no check of its
+        own for that; a value that ``is`` the setting's own default is not checked (decision C165: ``k: float =
+        None``, a plug-in's "no value"). Checked at construction and by :meth:`set_params`."""
         for k, v in params.items():
             values = v if isinstance(v, tuple | list) else (v,)
             for x in values:
@@ -59,11 +65,23 @@ class Settings:
                 if not np.isfinite(x) or x < 0:
                     raise DataError(f"{type(self).__name__}: {k}={v!r} is not allowed; settings are finite numbers "
                                     f">= 0 (the default is {self._defaults()[k]!r})")
+        defaults = self._defaults()
+        for k, v in params.items():
+            said = None if v is defaults.get(k, object()) else wrong_type(type(self).__init__, k, v)
+            if said:
+                raise DataError(f"{self.kind} {self.name}: {said}")
 
     @classmethod
     def _defaults(cls) -> dict:
         sig = inspect.signature(cls.__init__)
         return {p.name: p.default for p in sig.parameters.values() if p.kind == p.KEYWORD_ONLY}
+
+    def changed_params(self) -> dict:
+        """The settings that differ from their defaults (a setting without a default counts as changed): what a
+        spec ``"name:key=value,..."`` must name to rebuild this instance (decisions W462, W471)."""
+        sig = inspect.signature(type(self).__init__).parameters
+        return {k: v for k, v in self.get_params().items()
+                if k not in sig or sig[k].default is inspect.Parameter.empty or not _same(sig[k].default, v)}
 
     def get_params(self, deep: bool = True) -> dict:
         return {k: getattr(self, k) for k in self._param_names()}
@@ -91,6 +109,13 @@ class Settings:
 
         params = {k: v for k, v in self.get_params().items() if changed(k, v)}
         return f"{type(self).__name__}({', '.join(f'{k}={v!r}' for k, v in params.items())})"
+
+
+def _same(a, b) -> bool:
+    try:
+        return bool(a == b)
+    except (TypeError, ValueError):  # an array setting
+        return a is b
 
 
 # ---- decisions E94 / B198 / B199 / B206: one check of a setting's value, shared by the detector specs, the waist

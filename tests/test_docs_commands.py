@@ -326,6 +326,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("steps", "detector"): detector(["auto", *DETECTORS]),
         ("track", "pipeline"): _one_of(["auto", *PIPELINES]),
         ("track", "detector"): detector(list(DETECTORS)),  # decisions L149 (foot), E85 (waist: the lower back)
+        ("calibrate", "detector"): detector([n for n in DETECTORS if DETECTORS[n].unit == "waist"]),  # W471
         ("score-steps", "unit"): _one_of(["foot", "waist"]),  # decision steps 39
         ("track", "method"): _one_of(["auto", *PLASYS_METHODS], case=False),
         ("track", "rules"): _one_of(RULES),

@@ -122,7 +122,7 @@ def evaluate_model(
     check_warn_at(warn_out_of_domain)
     from pdrlearn.classify.detected import DetectedPredictions, detected_score, drop_warning
     from pdrlearn.classify.training import class_metrics, session_list, session_windows, task_data
-    from pdrlearn.classify.uncovered import UNCOVERED_KINDS, split_rows, uncovered_score
+    from pdrlearn.classify.uncovered import all_uncovered_line, split_rows, uncovered_score
 
     sessions = session_list(sessions, "evaluate_model")  # decision B391: a Session or a path is accepted too
     if not sessions:
@@ -170,8 +170,7 @@ def evaluate_model(
         # decision C160: side / turn strides (the simulator's kind) are no direction error; scored apart below
         sess_rows, uncovered = split_rows(task, data, windows, sess_rows)
         if not sess_rows:
-            out["skipped"].append(f"{task}: every labelled step is a {' / '.join(UNCOVERED_KINDS[task])} stride, "
-                                  f"which the {task} classes do not cover (decision C160)")
+            out["skipped"].append(all_uncovered_line(task))
             advance(sum(len(per) for per in tm.models.values()))
             continue
         res["n_steps"] = int(sum(len(r) for r in sess_rows.values()))

@@ -25,15 +25,22 @@ def step_kinds(data, windows, rows: np.ndarray, i: int) -> np.ndarray:
     return steps["kind"].astype(str).to_numpy(dtype=object)[data.step[rows]]
 
 
+def uncovered_mask(task: str, kinds) -> np.ndarray:
+    """(n,) bool: which of the labelled ``kinds`` (one per step) ``task``'s classes do not cover
+    (:data:`UNCOVERED_KINDS`); all False for a task without such kinds. The one test of a model directory's
+    :func:`split_rows` and a bundle's scoring (decision C166)."""
+    kinds = np.asarray(kinds, dtype=object)
+    return np.isin(kinds, UNCOVERED_KINDS.get(task, ())) if len(kinds) else np.zeros(0, dtype=bool)
+
+
 def split_rows(task: str, data, windows, sess_rows: dict) -> tuple[dict, dict]:
     """``(scored, uncovered)``: ``sess_rows`` (session -> rows of ``data``) split by :data:`UNCOVERED_KINDS` of
     ``task``; a session keeps its entry in ``scored`` only with a row left, in ``uncovered`` only with one there."""
-    kinds = UNCOVERED_KINDS.get(task)
-    if not kinds:
+    if not UNCOVERED_KINDS.get(task):
         return sess_rows, {}
     scored, uncovered = {}, {}
     for i, rows in sess_rows.items():
-        out = np.isin(step_kinds(data, windows, rows, i), kinds)
+        out = uncovered_mask(task, step_kinds(data, windows, rows, i))
         if (~out).any():
             scored[i] = rows[~out]
         if out.any():
@@ -41,27 +48,44 @@ def split_rows(task: str, data, windows, sess_rows: dict) -> tuple[dict, dict]:
     return scored, uncovered
 
 
+def uncovered_record(task: str, classes, kinds, matched) -> dict | None:
+    """Decision C160's record of a task's uncovered steps: ``kinds`` the labelled kind of each (one per step),
+    ``matched`` ``(kind, predicted class)`` of each matched to a classified stride. ``{"kinds", "n_steps", "by_kind":
+    {kind: {"n_steps", "n_matched", "predicted": {class: n}}}}``; None without any step. A model directory's
+    (:func:`uncovered_score`) and a bundle's (decision C166, :mod:`pdrlearn.export.score`)."""
+    if not len(kinds):
+        return None
+    by_kind: dict[str, dict] = {}
+    for k in kinds:
+        entry = by_kind.setdefault(str(k), {"n_steps": 0, "n_matched": 0,
+                                            "predicted": {str(c): 0 for c in classes}})
+        entry["n_steps"] += 1
+    for k, pred in matched:
+        by_kind[str(k)]["n_matched"] += 1
+        by_kind[str(k)]["predicted"][pred] = by_kind[str(k)]["predicted"].get(pred, 0) + 1
+    return {"kinds": list(UNCOVERED_KINDS[task]), "n_steps": int(len(kinds)), "by_kind": dict(sorted(by_kind.items()))}
+
+
 def uncovered_score(task: str, classes, data, windows, uncovered: dict, detected) -> dict | None:
-    """Decision C160: ``{"kinds": tuple, "n_steps", "by_kind": {kind: {"n_steps", "n_matched", "predicted":
-    {class: n}}}}`` of the ``uncovered`` rows: each kind's labelled count and the chosen model's classes of the
-    detected strides matched to them (C49's matching; ``n_matched`` 0 without a foot gyroscope). None without any."""
+    """Decision C160: :func:`uncovered_record` of the ``uncovered`` rows: each kind's labelled count and the chosen
+    model's classes of the detected strides matched to them (C49's matching; ``n_matched`` 0 without a foot
+    gyroscope). None without any."""
     from pdrlearn.classify.detected import detected_score
 
     if not uncovered:
         return None
     matched: list = []
     detected_score(task, classes, data, windows, uncovered, detected, matched=matched)
-    by_kind: dict[str, dict] = {}
-    for i, rows in uncovered.items():
-        for k in step_kinds(data, windows, rows, i):
-            entry = by_kind.setdefault(k, {"n_steps": 0, "n_matched": 0, "predicted": {str(c): 0 for c in classes}})
-            entry["n_steps"] += 1
-    for i, row, pred in matched:
-        k = step_kinds(data, windows, np.array([row]), i)[0]
-        by_kind[k]["n_matched"] += 1
-        by_kind[k]["predicted"][pred] = by_kind[k]["predicted"].get(pred, 0) + 1
-    return {"kinds": list(UNCOVERED_KINDS[task]), "n_steps": int(sum(len(r) for r in uncovered.values())),
-            "by_kind": dict(sorted(by_kind.items()))}
+    kinds = [k for i, rows in uncovered.items() for k in step_kinds(data, windows, rows, i)]
+    return uncovered_record(task, classes, kinds, [(step_kinds(data, windows, np.array([row]), i)[0], pred)
+                                                   for i, row, pred in matched])
+
+
+def all_uncovered_line(task: str) -> str:
+    """Decision C160: the skip line of a task whose every labelled step is uncovered (a model directory's and a
+    bundle's, C166)."""
+    return (f"{task}: every labelled step is a {' / '.join(UNCOVERED_KINDS[task])} stride, which the {task} classes "
+            "do not cover (decision C160)")
 
 
 def uncovered_line(task: str, unc: dict | None, classes) -> str | None:

@@ -9,6 +9,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_file, print_json, replaced
+from pdrlearn.cli.registry_help import DETECTOR_NAMES
 from pdrlearn.cli.track import REDACT_PATHS_OPT
 from pdrlearn.errors import DataError
 
@@ -54,6 +55,13 @@ def register(app: typer.Typer) -> None:
                                               "the same walks and counted steps; written to PARAMS.json's "
                                               "length_models, which `track --length-model NAME --params` reads "
                                               "(decision W460)."),
+        detector: str = typer.Option(None, "--detector",
+                                     help=f"The walks' contacts from this step detector instead of the pipeline's "
+                                          f"own, as `track --detector` takes them: {DETECTOR_NAMES} (a waist one, "
+                                          "unit 'waist'; a registered / installed plug-in too, docs/extending.md; "
+                                          "NAME:key=value,... sets its settings). Both fits (the pipeline's model "
+                                          "and --length-model's gain) use them; PARAMS.json records it and `track` "
+                                          "says when it tracks with another detector (decision W471)."),
         out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write (an existing file only with --force)."),
         redact_paths: bool = REDACT_PATHS_OPT,  # decision E176: "fit" holds the folders as typed
         force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -78,6 +86,9 @@ def register(app: typer.Typer) -> None:
           pdrlearn calibrate walk1 -d 30 --length-model weinberg --out p.json   (also the gain k of weinberg,
           W460; then track with --length-model weinberg --params p.json)
 
+          pdrlearn calibrate walk1 -d 30 --detector pll --length-model weinberg --out p.json   (on a waist
+          detector's contacts, W471; then track with --detector pll --length-model weinberg --params p.json)
+
           A treadmill walk with meta.json belt_speed_mps: calibrate DIR --belt --start 20 --end 50 -o p.json
           (distance = belt speed x the contacts' span, W378)
 
@@ -92,6 +103,10 @@ def register(app: typer.Typer) -> None:
             from pdrlearn.waist.calibration import gain_model
 
             gain_model(length_model)
+        if detector is not None:  # decision W471: an unknown or foot detector is one line before any session is read
+            from pdrlearn.waist.calibration import calibration_detector
+
+            calibration_detector(detector)
         if turns is not None and not math.isfinite(turns):
             raise DataError(f"--turns {turns}: give the signed number of full turns walked, e.g. 1 or -2")
         for dm in distance or []:  # one error line before any session is read or tracked (no track warning first)
@@ -114,7 +129,8 @@ def register(app: typer.Typer) -> None:
                                 "as many of each (or only one of the two)")
             spans = [((start or [None] * n)[k], (end or [None] * n)[k]) for k in range(n)]
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
-                           fit_turns=fit_turns, shrink=shrink, spans=spans, belt=belt, length_model=length_model)
+                           fit_turns=fit_turns, shrink=shrink, spans=spans, belt=belt, length_model=length_model,
+                           detector=detector)
         fit: dict = {"fit": [str(d) for d in dirs]}
         if redact_paths:  # decision E176: the folders fitted on as <redacted>, said in the file
             from pdrlearn.redact import path_forms, redact_json
@@ -134,6 +150,9 @@ def register(app: typer.Typer) -> None:
                            f"L = {params.leg_m:.3f} m)")
             else:
                 typer.echo(f"  fitted: step length = {params.a_walk:.4f} f - {params.b_walk:.4f} m (walking)")
+            if params.detector is not None:  # decision W471
+                typer.echo(f"  on the contacts of --detector {params.detector} (track with --detector "
+                           f"{params.detector} --params {out})")
             for name, gains in (params.length_models or {}).items():  # decision W460
                 typer.echo(f"  fitted: {name} " + ", ".join(f"{k} = {v:.4f}" for k, v in gains.items())
                            + f" (track --length-model {name} --params {out})")

@@ -1462,7 +1462,8 @@ def waist_params_file(par) -> tuple[bool, str | None]:
 
     if not isinstance(par, dict):
         return False, None
-    waist_keys = {f.name for f in fields(WaistParams)} - {"notes", "source", "options"}
+    # W471's "detector" is too common a word to call a file a waist one
+    waist_keys = {f.name for f in fields(WaistParams)} - {"notes", "source", "options", "detector"}
     if par.get("schema") != SCHEMA and not waist_keys & set(par):
         return False, None
     return True, par.get("pipeline") if par.get("pipeline") in ("waist-pendulum", "waist-pll") else None

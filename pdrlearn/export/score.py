@@ -22,25 +22,37 @@ MODEL_DIR_ONLY = ("--report", "--predictions-out", "--resample", "--no-resample"
                   "--all-methods")  # decision C125
 
 
-def matched_classes(est, labels, task: str) -> tuple[list[str], list[str]]:
+def matched_classes(est, labels, task: str) -> tuple[list[str], list[str], list[str], list[tuple[str, str]]]:
     """The (true, predicted) classes of ``task`` over the runtime strides ``est`` (a table with ``start_s``,
     ``end_s`` and the task's column) matched to the labelled steps ``labels``; unclassified strides and unlabelled
-    steps are left out."""
+    steps are left out. Decision C166 (C160's rule, :func:`pdrlearn.classify.uncovered.uncovered_mask`): a labelled
+    step of a ``kind`` the task's classes do not cover (a side step, a turn stride for direction) is left out of
+    them too and returned apart: the kind of each such step, and ``(kind, predicted)`` of those a stride matched."""
+    import numpy as np
     import pandas as pd
 
+    from pdrlearn.classify.uncovered import uncovered_mask
     from pdrlearn.track.evaluate import match_by_overlap
 
     col = LABEL_COLUMN.get(task, task)
-    if labels is None or col not in labels or task not in est or not len(est):
-        return [], []
+    if labels is None or col not in labels:
+        return [], [], [], []
     labels = labels.reset_index(drop=True)
-    true, pred = [], []
+    kinds = (labels["kind"].astype(str).to_numpy(dtype=object) if "kind" in labels
+             else np.full(len(labels), "", dtype=object))
+    apart = uncovered_mask(task, kinds) & labels[col].notna().to_numpy()
+    true, pred, matched = [], [], []
+    if task not in est or not len(est):
+        return true, pred, [str(k) for k in kinds[apart]], matched
     for i, j in match_by_overlap(est, labels):
         t, p = labels[col].iloc[j], est[task].iloc[i]
         if pd.notna(t) and pd.notna(p) and str(p):
-            true.append(str(t))
-            pred.append(str(p))
-    return true, pred
+            if apart[j]:
+                matched.append((str(kinds[j]), str(p)))
+            else:
+                true.append(str(t))
+                pred.append(str(p))
+    return true, pred, [str(k) for k in kinds[apart]], matched
 
 
 def runtime_table(steps) -> object:
@@ -103,6 +115,7 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
     from pdrlearn.classify.domain import check_warn_at, warning_line
     from pdrlearn.classify.evaluation import absent_classes, absent_warning
     from pdrlearn.classify.training import class_metrics
+    from pdrlearn.classify.uncovered import all_uncovered_line, uncovered_record
     from pdrlearn.errors import DataError
     from pdrlearn.io.archive import session_with_folder
     from pdrlearn.runtime import load_bundle
@@ -114,6 +127,8 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
     # task -> (method, unit) -> (true, predicted, sessions)
     pooled: dict[str, dict[tuple[str, str], tuple[list[str], list[str], list[str]]]] = {t: {} for t in bundle.tasks}
     names, fallback = [], []
+    #: task -> (the labelled kinds its classes do not cover, (kind, predicted) of those matched; decision C166)
+    apart: dict[str, tuple[list[str], list]] = {t: ([], []) for t in bundle.tasks}
     for d in session_dirs:
         with session_with_folder(d) as (session, folder):  # a zip unpacked once for labels and replay (B359)
             names.append(session.name)
@@ -124,8 +139,12 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
         est = runtime_table(steps)
         for task in bundle.tasks:
             used = model_used(tracker, task)
-            t, p = matched_classes(est, session.steps, task)
-            if used is None or not t:
+            t, p, kinds, matched = matched_classes(est, session.steps, task)
+            if used is None:
+                continue
+            apart[task][0].extend(kinds)  # decision C166: side / turn strides scored apart, as C160
+            apart[task][1].extend(matched)
+            if not t:
                 continue
             row = pooled[task].setdefault(used, ([], [], []))
             row[0].extend(t)
@@ -141,7 +160,8 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
                  "scored_on": "the strides the runtime detects, matched to the labelled steps (IoU >= 0.5)"}
     for task, rows in pooled.items():
         if not rows:
-            out["skipped"].append(f"{task}: no runtime stride matched a labelled {LABEL_COLUMN.get(task, task)}")
+            out["skipped"].append(all_uncovered_line(task) if apart[task][0] else  # decision C166
+                                  f"{task}: no runtime stride matched a labelled {LABEL_COLUMN.get(task, task)}")
             continue
         chosen = bundle.tasks[task].get("chosen") or {}
         if not {"method", "unit"} <= set(chosen):
@@ -163,7 +183,8 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
             logging.getLogger("pdrlearn.cli").warning(line)
         out["tasks"][task] = {**metrics[head], "classes": bundle.classes(task), "chosen": dict(chosen),
                               "scored_model": {"method": head[0], "unit": head[1]}, "skipped": [],
-                              "methods": methods, "absent_classes": absent}
+                              "methods": methods, "absent_classes": absent,
+                              "uncovered": uncovered_record(task, bundle.classes(task), *apart[task])}  # C166
     rep = pooled_domain(domains, warn_out_of_domain)  # decision E198 (C16 as evaluate MODEL)
     out["out_of_domain_fraction"] = None if rep is None else rep["out_of_domain_fraction"]
     out["out_of_domain"] = rep

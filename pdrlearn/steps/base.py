@@ -141,6 +141,7 @@ class StepDetector(Settings):
     """
 
     name = "base"
+    kind = "step detector"  # C158's line names it (steps 82: a setting of the wrong type is one line from Python too)
     #: "foot" or "waist": no default (decision steps 40) - a waist detector that inherited "foot" was scored against
     #: one foot's strides
     unit: str | None = None

@@ -1085,6 +1085,10 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         short = pll_short_walker_message(session.meta)
         if short:
             warnings.append(short)
+    if own_calibration and (model.uses_profile or gain_source == "params"):  # decision W471
+        line = calibrated_detector_line(p.detector, det)
+        if line:
+            warnings.append(line)
     if p.source == "calibrated" and not own_calibration and model.uses_profile:
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
@@ -1483,6 +1487,39 @@ def waist_detector(detector, realtime: bool):
         raise DataError(f"detector {det.name}: realtime chooses the pipeline's own causal contact detector "
                         "(decision W31); drop realtime or the detector")
     return det
+
+
+def detector_spec(det) -> str | None:
+    """Decision W471: the waist detector ``det`` (a :class:`~pdrlearn.steps.StepDetector`, None: the pipeline's own)
+    as PARAMS.json's ``detector`` records it: ``NAME:key=value,...`` with the settings that differ from its defaults
+    (the form ``--detector`` reads back)."""
+    from pdrlearn.plugins import spec_text
+
+    return None if det is None else spec_text(det.name, det.changed_params())
+
+
+def calibrated_detector_line(recorded: str | None, det) -> str | None:
+    """Decision W471: one line when PARAMS.json's step length was calibrated on the contacts of another detector
+    (``recorded``, its ``detector``; None: the pipeline's own) than the one this track takes them from (``det``, None:
+    the pipeline's own); None when they are the same detector with the same settings."""
+    from pdrlearn.plugins import parse_spec
+
+    if recorded is None and det is None:
+        return None
+    if recorded is not None and det is not None:
+        try:
+            if parse_spec(recorded, "step detector") == (det.name, det.changed_params()):
+                return None
+        except DataError:
+            pass  # an unreadable record is another detector
+    now = detector_spec(det)
+    was = "the pipeline's own contacts" if recorded is None else f"the contacts of --detector {recorded}"
+    track = "track without --detector" if recorded is None else f"track with --detector {recorded}"
+    return (f"the parameters were calibrated on {was}; this track takes "
+            + ("the pipeline's own" if now is None else f"--detector {now}'s") +
+            ": another detector's contacts split the walk into other steps, so the calibrated step length may not "
+            f"fit them ({track}, or calibrate with the detector you track with: 'pdrlearn calibrate DIR -d METRES "
+            + ("" if now is None else f"--detector {now} ") + "--out PARAMS.json'; decision W471)")
 
 
 def detector_steps(det, session: Session, imu: WaistIMU, gate_mps2: float | None = None) -> pd.DataFrame:

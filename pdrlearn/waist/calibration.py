@@ -61,8 +61,8 @@ def span_mask(session: Session, steps, span_s: tuple[float | None, float | None]
 
 
 def calibration_walks(session: Session, pipeline: str, *, distance_m: float | None = None,
-                      params=None, result=None, span_s: tuple[float | None, float | None] | None = None
-                      ) -> list[CalibrationWalk]:
+                      params=None, result=None, span_s: tuple[float | None, float | None] | None = None,
+                      detector=None) -> list[CalibrationWalk]:
     """The walks of known length in ``session``.
 
     With ``distance_m`` the whole session is one walk (all detected steps, as ``track`` sums them: the
@@ -71,13 +71,14 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     counts for it. ``result``: the session's :class:`~pdrlearn.track.base.TrackResult` if already computed.
     ``span_s`` (with ``distance_m``): ``(start, end)`` in seconds from the recording's start (either None =
     open): only the steps whose both contacts lie inside count (decision W61, ``calibrate --start/--end``).
+    ``detector`` (decision W471): the contacts from this waist step detector (``track_waist``'s ``detector``).
     """
     from pdrlearn.track.waist import track_waist, without_heading_note
 
     p, _ = resolve_params(session, params)
     if result is None:
         with without_heading_note():  # W83's line is about a track's heading, which calibration does not use
-            result = track_waist(session, pipeline=pipeline, params=p)
+            result = track_waist(session, pipeline=pipeline, params=p, detector=detector)
     res = result
     st = res.steps[res.steps["has_next"]]
     if "g_m" in st:  # the g the tracker multiplies by K, smoothed if it is (W56), so D = sum c (K g + F) (W21)
@@ -375,14 +376,33 @@ def gain_model(spec: str):
     return model, name, own
 
 
+def calibration_detector(detector):
+    """Decision W471 (``calibrate --detector``): the waist :class:`~pdrlearn.steps.StepDetector` ``detector`` names
+    (a registered name, ``NAME:key=value,...`` or an instance; None: the pipeline's own), checked as ``track
+    --detector`` checks it (:func:`pdrlearn.track.waist.waist_detector`); a foot detector is one line saying what
+    calibrate fits."""
+    if detector is None:
+        return None
+    from pdrlearn.steps import get_detector
+    from pdrlearn.track.waist import waist_detector
+
+    det = get_detector(detector) if isinstance(detector, str) else detector
+    if getattr(det, "unit", None) == "foot":
+        raise DataError(f"calibrate: --detector {getattr(det, 'name', detector)} detects the foot's strides; calibrate "
+                        "fits the lower-back step length on a waist detector's contacts: choose one with unit 'waist' "
+                        "(pelvic-gyro, pll, waist-ic or a plug-in) -- the foot pipeline (plasys) takes no calibrate "
+                        "file (decisions L26, W471)")
+    return waist_detector(det, False)
+
+
 def fit_length_gain(sessions: list[Session], pipeline: str, spec: str, params: WaistParams,
-                    distances: list[float | None], spans: list) -> tuple[float, str]:
+                    distances: list[float | None], spans: list, detector=None) -> tuple[float, str]:
     """Decision W460: the gain of the gain model ``spec`` (:func:`gain_model`) that makes the tracker's sum over the
     walks of known length their distance (``D = k sum(l_1)``, the pendulum's K-only fit, seed 003 eq. 1 with F = 0:
     K = sum D / sum g): each session tracked (``track_waist`` on ``pipeline`` with ``params``) with the model at gain
     ``k``, its steps counted as :func:`counted_walks` counts them (``distances`` and ``spans``: one per session; W21,
-    W61, bouts) and ``k`` refitted as ``k sum D / sum l_k`` until it changes by less than :data:`GAIN_FIT_RTOL`.
-    Returns ``(k, note)``."""
+    W61, bouts) and ``k`` refitted as ``k sum D / sum l_k`` until it changes by less than :data:`GAIN_FIT_RTOL`;
+    ``detector`` (decision W471): on that waist detector's contacts. Returns ``(k, note)``."""
     from pdrlearn.plugins import spec_text
     from pdrlearn.track.waist import track_waist, without_heading_note
 
@@ -393,7 +413,8 @@ def fit_length_gain(sessions: list[Session], pipeline: str, spec: str, params: W
         n_walks = n_steps = 0
         for s, d, span in zip(sessions, distances, spans, strict=True):
             with without_heading_note():  # W83's line, the uncalibrated gain's own lines (W455)
-                res = track_waist(s, pipeline=pipeline, params=params, length_model=spec_text(name, {**own, gain: k}))
+                res = track_waist(s, pipeline=pipeline, params=params, length_model=spec_text(name, {**own, gain: k}),
+                                  detector=detector)
             st = res.steps[res.steps["has_next"]]
             lengths = st["length_m"].to_numpy(float)
             for dist, m, _ in counted_walks(s, st, distance_m=d, span_s=span):
@@ -415,7 +436,7 @@ def fit_length_gain(sessions: list[Session], pipeline: str, spec: str, params: W
 def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] | None = None,
               turns: float | None = None, fit_turns: bool = False, params=None, shrink: bool = False,
               tau_k: float | None = None, spans: list[tuple[float | None, float | None]] | None = None,
-              belt: bool = False, length_model: str | None = None) -> WaistParams:
+              belt: bool = False, length_model: str | None = None, detector=None) -> WaistParams:
     """Fit the step-length parameters of ``pipeline`` (with ``turns``, the gyro bias; with ``fit_turns``,
     the straight/turning mixture, decision W14).
 
@@ -434,11 +455,17 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         the belt distance the walker covered between them; not with ``distances``.
     length_model : decision W460 (``calibrate --length-model``): also fit this gain model's gain on the same walks
         (:func:`fit_length_gain`), kept in ``length_models``.
+    detector : decision W471 (``calibrate --detector``): the walks' contacts from this waist step detector (a
+        registered name, ``NAME:key=value,...`` or a :class:`~pdrlearn.steps.StepDetector` with unit "waist") instead
+        of the pipeline's own, for both fits; recorded in ``detector`` (``track`` says when it tracks with another).
     """
     if not sessions:
         raise DataError("calibrate: give at least one session folder")
     if length_model is not None:
         gain_model(length_model)  # W460: one line before any session is tracked
+    from pdrlearn.track.waist import detector_spec
+
+    det = calibration_detector(detector)  # decision W471: one line before any session is tracked
     if (shrink or tau_k is not None) and pipeline != "waist-pendulum":  # W48: it would be ignored
         raise DataError(f"calibrate: --shrink shrinks the pendulum gain K (decision W48), which {pipeline} does not "
                         "have; calibrate --pipeline waist-pendulum, or drop --shrink")
@@ -469,7 +496,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         with without_heading_note():  # W83: calibration does not use the heading
-            res = track_waist(s, pipeline=pipeline, params=base)
+            res = track_waist(s, pipeline=pipeline, params=base, detector=det)
         cadence_law = cadence_law or res.info.get("options", {}).get("cadence_law") or False  # W261: its value
         edge_lock = res.info.get("options", {}).get("pll_edge_lock", edge_lock)  # W369: one value (base's options)
         if not res.steps["has_next"].any():  # W61: a standing-only recording, not a model failure
@@ -480,7 +507,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
             d, note = belt_distance(s, res.steps[res.steps["has_next"]], span)
             belt_notes.append(note)
         walk_distances.append(d)
-        walks += calibration_walks(s, pipeline, distance_m=d, params=base, result=res, span_s=span)
+        walks += calibration_walks(s, pipeline, distance_m=d, params=base, result=res, span_s=span, detector=det)
         if d is not None:  # decision W99: cross-check the walk's contact count with the pelvic gyro
             counted = res.steps[res.steps["has_next"]]
             counted = counted[span_mask(s, counted, span)]  # the steps the walk counts (W21, W61)
@@ -544,7 +571,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         model, name, _ = gain_model(length_model)
         k, note = fit_length_gain(sessions, pipeline, length_model, base, walk_distances,
                                   [None if spans is None else spans[i if len(spans) > 1 else 0]
-                                   for i in range(len(sessions))])
+                                   for i in range(len(sessions))], detector=det)
         out.length_models = {**(out.length_models or {}), name: {model.gain_param: k}}
         out.notes.append(note)
     if turns is not None:
@@ -564,6 +591,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         out.notes.append(how)
     out.source = "calibrated"
     out.pipeline = pipeline
+    out.detector = detector_spec(det)  # decision W471: the contacts the step length was fitted on (None: its own)
+    if det is not None:
+        out.notes.append(f"the walks' contacts from --detector {out.detector} (decision W471: track with it)")
     out.options = recorded_options(out.options, pipeline, edge_lock)  # decision W369: the count's pll_edge_lock
     log.info("calibrated %s: %s", pipeline, out.notes[-1])
     return out

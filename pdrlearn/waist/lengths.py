@@ -16,7 +16,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.plugins import Registry
-from pdrlearn.settings import Settings, wrong_type
+from pdrlearn.settings import Settings
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.params import WaistParams
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
@@ -49,23 +49,12 @@ class StepLengthModel(Settings):
     when the spec does not (decision W460)."""
 
     name = "base"
+    kind = "step-length model"  # C158's line (the check is the base class's, shared with the detectors: steps 82)
     uses_leg_length = True
     uses_profile = True
     gain_param: str | None = None
     #: settings for a model whose defaults cannot run (weinberg's gain): the contract test and examples use them
     example_settings: dict = {}
-
-    def _check_params(self, params: dict) -> None:
-        """C21's check, and every setting of the type its annotation names (decision C158: ``WeinbergLength(k="abc")``
-        is the line ``--length-model weinberg:k=abc`` gives, E94, not a TypeError at the first step): a subclass
-        needs no check of its own for that. Decision C165: a value that ``is`` the setting's own default is not
-        checked (``k: float = None``, a plug-in's "no value", constructs as before C158)."""
-        super()._check_params(params)
-        defaults = self._defaults()
-        for k, v in params.items():
-            said = None if v is defaults.get(k, object()) else wrong_type(type(self).__init__, k, v)
-            if said:
-                raise DataError(f"step-length model {self.name}: {said}")
 
     def predict(self, steps: pd.DataFrame, signals, profile: WaistParams) -> np.ndarray:
         raise NotImplementedError
@@ -370,24 +359,10 @@ def model_spec(model: StepLengthModel, spec=None, gain_from_params: bool = False
     ``"name:key=value"`` string) names; for an instance (``spec`` None) those that differ from its defaults - and,
     with ``gain_from_params``, its :attr:`~StepLengthModel.gain_param` (read from PARAMS.json, W460). The pipeline's
     options it takes (``pause_steps`` ...) are the track's ``options``, not repeated here."""
-    import inspect
-
     from pdrlearn.plugins import parse_spec, spec_text
 
     params = model.get_params()
-    if isinstance(spec, str):
-        keys = set(parse_spec(spec, "step-length model")[1])
-    else:
-        sig = inspect.signature(type(model).__init__).parameters
-        keys = {k for k, v in params.items() if k not in sig or sig[k].default is inspect.Parameter.empty
-                or not _same(sig[k].default, v)}
+    keys = set(parse_spec(spec, "step-length model")[1]) if isinstance(spec, str) else set(model.changed_params())
     if gain_from_params and model.gain_param:
         keys.add(model.gain_param)
     return spec_text(model.name, {k: v for k, v in params.items() if k in keys})
-
-
-def _same(a, b) -> bool:
-    try:
-        return bool(a == b)
-    except (TypeError, ValueError):  # an array setting
-        return a is b

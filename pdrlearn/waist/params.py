@@ -74,6 +74,8 @@ class WaistParams:
     walks' ``median_cadence_spm``, ``step_length_m``, ``speed_mps`` and ``n_steps`` (decision W140; None: defaults, or
     a file written before W140); length_models : the gains ``pdrlearn calibrate --length-model NAME`` fitted, as
     ``{NAME: {GAIN_SETTING: value}}`` (decision W460: ``{"weinberg": {"k": 0.43}}``; None: none fitted);
+    detector : the step detector whose contacts the step length was calibrated on, as ``NAME:key=value,...`` (the
+    settings that differ from its defaults; decision W471: ``calibrate --detector``); None: the pipeline's own;
     notes : how each value was obtained.
     """
 
@@ -95,6 +97,7 @@ class WaistParams:
     rate_hz: float = float("nan")
     sl_leg_m: float = float("nan")
     length_models: dict | None = None
+    detector: str | None = None
     notes: list[str] = field(default_factory=list)
 
     def frequency_scale(self) -> float:
@@ -121,6 +124,13 @@ class WaistParams:
         kw = {}
         for k, v in d.items():
             if k not in names:
+                continue
+            if k == "detector":  # decision W471: the spec calibrate --detector recorded, or null
+                if v is not None and not (isinstance(v, str) and v.strip()):
+                    raise DataError(f"{where}: detector {json.dumps(v)} is not a step detector's name; give the "
+                                    "--detector NAME the file was calibrated with, null for the pipeline's own, or "
+                                    "re-run 'pdrlearn calibrate' (decision W471)")
+                kw[k] = v
                 continue
             if k in ("turn_gmm", "notes", "source", "pipeline", "options", "k_shrinkage", "gait", "length_models"):
                 if (k in ("turn_gmm", "options", "k_shrinkage", "gait", "length_models") and v is not None
