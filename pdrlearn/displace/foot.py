@@ -62,7 +62,7 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
                     floor_factor: float = SK.STANCE_L27_DEFAULTS["stance_floor_factor"],
                     floor_window_s: float | None = None,
                     gyr_max: float = SK.STANCE_L27_DEFAULTS["stance_gyro_max_rad_s"],
-                    rhythm_frac: float = FR.RHYTHM_FRAC) -> np.ndarray:
+                    rhythm_frac: float | None = None) -> np.ndarray:
     """Foot-flat samples from accelerometer + gyroscope (short window, looser tolerances than
     :func:`pdrlearn.signal.standstill_mask`, whose test this reuses).
 
@@ -72,7 +72,8 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
     foot-flats); ``floor_factor=0`` = the fixed ``gyr_tol``.
 
     Decision L596: a rest shorter than ``rhythm_frac`` x the foot's own stride period
-    (:func:`pdrlearn.kernels.foot_rhythm.stride_period`) is a slow swing's lull, not a rest; 0 = keep every run.
+    (:func:`pdrlearn.kernels.foot_rhythm.stride_period`) is a slow swing's lull, not a rest (None: ``RHYTHM_FRAC``,
+    0: keep every run).
     """
     window_s = max(window_s, 2.5 / fs)
     floor_window_s = OFFLINE_FLOOR_WINDOW_S if floor_window_s is None else floor_window_s
@@ -82,6 +83,7 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
                                 window_s=floor_window_s)
         tol = SK.stance_gyro_threshold(floor, gyr_tol, factor=floor_factor, cap=gyr_max)
     rest = standstill_mask(acc, gyr, fs, window_s=window_s, acc_tol=acc_tol, gyr_tol=tol)
+    rhythm_frac = FR.RHYTHM_FRAC if rhythm_frac is None else rhythm_frac
     if rhythm_frac > 0 and len(gyr):
         wm = uniform_filter1d(np.linalg.norm(np.asarray(gyr, dtype=float), axis=1), max(1, int(round(window_s * fs))),
                               mode="nearest")
