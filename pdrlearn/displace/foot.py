@@ -71,9 +71,9 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
     nor above ``gyr_max`` (a foot that never quite rests: instep mounts rolling with the foot, short
     foot-flats); ``floor_factor=0`` = the fixed ``gyr_tol``.
 
-    Decision L596: a rest shorter than ``rhythm_frac`` x the foot's own stride period
-    (:func:`pdrlearn.kernels.foot_rhythm.stride_period`) is a slow swing's lull, not a rest (None: ``RHYTHM_FRAC``,
-    0: keep every run).
+    Decisions L596/L597: a rest shorter than ``rhythm_frac`` x the foot's own stride period
+    (:func:`pdrlearn.kernels.foot_rhythm.stride_period`) is a slow swing's lull, not a rest, where that asks more
+    than ``window_s`` (a slow rhythm; None: ``RHYTHM_FRAC``, 0: keep every run).
     """
     window_s = max(window_s, 2.5 / fs)
     floor_window_s = OFFLINE_FLOOR_WINDOW_S if floor_window_s is None else floor_window_s
@@ -87,9 +87,9 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
     if rhythm_frac > 0 and len(gyr):
         wm = uniform_filter1d(np.linalg.norm(np.asarray(gyr, dtype=float), axis=1), max(1, int(round(window_s * fs))),
                               mode="nearest")
-        period = FR.stride_period(wm, fs)
-        if np.isfinite(period):
-            rest = FR.drop_short_rests(rest, int(np.floor(rhythm_frac * period * fs)))
+        min_rest_s = rhythm_frac * FR.stride_period(wm, fs)
+        if min_rest_s > window_s:  # decision L597: shorter rests are the window test's own to decide
+            rest = FR.drop_short_rests(rest, int(np.floor(min_rest_s * fs)))
     return rest
 
 
