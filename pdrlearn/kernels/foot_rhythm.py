@@ -46,3 +46,17 @@ def drop_short_rests(rest: np.ndarray, min_samples: int) -> np.ndarray:
         if b - a < min_samples:
             r[a:b] = False
     return r
+
+
+#: decision L598: the stride period (s) at which B91's swing threshold was set (walking feet of 1.0-1.2 s strides
+#: swing at 6.2 rad/s and more; the threshold, 3 rad/s, is half of that)
+SWING_REF_PERIOD_S = 1.2
+
+
+def slow_swing_rate(rate: float, period_s: float) -> float:
+    """Decision L598: the swing rate ``rate`` (rad/s, set on normal strides) a foot of stride period ``period_s``
+    must reach: a swing turns the foot through about the same angle at any speed, in a time that grows with the
+    stride, so the rate scales with ``SWING_REF_PERIOD_S`` / ``period_s`` (never above ``rate``; NaN = ``rate``)."""
+    if not np.isfinite(period_s) or period_s <= SWING_REF_PERIOD_S:
+        return float(rate)
+    return float(rate) * SWING_REF_PERIOD_S / float(period_s)
