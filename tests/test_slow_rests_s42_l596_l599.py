@@ -63,3 +63,19 @@ def test_a_slow_foot_is_not_told_it_is_off_the_foot_l598():
     assert foot_placement_warning(stats, "s") is None
     normal = {**stats, "stride_period_s": 1.1, "no_swing_rad_s": FR.slow_swing_rate(3.0, 1.1)}
     assert "is this unit on the foot?" in foot_placement_warning(normal, "s")
+
+
+def _swinging_foot(period_s: float, fs: float = 100.0) -> np.ndarray:
+    t = np.arange(0, 40, 1 / fs)
+    ph = t % period_s
+    gyr = np.zeros((len(t), 3))
+    gyr[:, 1] = np.where(ph < 1.3, 2.5 * np.sin(np.pi * ph / 1.3), 0.02)
+    return gyr
+
+
+def test_a_rhythm_over_the_stride_cap_is_named_l599():
+    from pdrlearn.track.foot_rest import slow_rhythm_line
+
+    line = slow_rhythm_line(_swinging_foot(4.0), 100.0)
+    assert line and "take 4.0 s" in line and "about 30 steps/min" in line and "no cadence" in line
+    assert slow_rhythm_line(_swinging_foot(2.4), 100.0) is None

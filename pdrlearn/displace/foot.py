@@ -85,9 +85,7 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
     rest = standstill_mask(acc, gyr, fs, window_s=window_s, acc_tol=acc_tol, gyr_tol=tol)
     rhythm_frac = FR.RHYTHM_FRAC if rhythm_frac is None else rhythm_frac
     if rhythm_frac > 0 and len(gyr):
-        wm = uniform_filter1d(np.linalg.norm(np.asarray(gyr, dtype=float), axis=1), max(1, int(round(window_s * fs))),
-                              mode="nearest")
-        min_rest_s = rhythm_frac * FR.stride_period(wm, fs)
+        min_rest_s = rhythm_frac * FR.foot_period(gyr, fs, window_s)
         if min_rest_s > window_s:  # decision L597: shorter rests are the window test's own to decide
             rest = FR.drop_short_rests(rest, int(np.floor(min_rest_s * fs)))
     return rest

@@ -35,6 +35,16 @@ def stride_period(w: np.ndarray, fs: float, *, lo_s: float = PERIOD_RANGE_S[0],
     return float((lo - 1 + peak[np.argmax(seg[peak])]) / fs)
 
 
+def foot_period(gyr: np.ndarray, fs: float, window_s: float = 0.1) -> float:
+    """:func:`stride_period` of a foot gyroscope ``(n, 3)`` (rad/s) at ``fs`` Hz: of its |w|'s ``window_s`` mean (the
+    rest test's own window, L27)."""
+    from scipy.ndimage import uniform_filter1d
+
+    w = np.linalg.norm(np.asarray(gyr, dtype=float), axis=1) if len(gyr) else np.zeros(0)
+    return stride_period(uniform_filter1d(w, max(1, int(round(window_s * fs))), mode="nearest"), fs) if len(w) \
+        else float("nan")
+
+
 def drop_short_rests(rest: np.ndarray, min_samples: int) -> np.ndarray:
     """``rest`` (bool, (n,)) without its runs shorter than ``min_samples`` samples (a copy)."""
     r = np.asarray(rest, dtype=bool).copy()

@@ -18,11 +18,10 @@
 from __future__ import annotations
 
 import numpy as np
-from scipy.ndimage import uniform_filter1d
 
 from pdrlearn.displace.foot import inertial_stance
 from pdrlearn.io.sensors import UNIT_IMU
-from pdrlearn.kernels.foot_rhythm import slow_swing_rate, stride_period
+from pdrlearn.kernels.foot_rhythm import foot_period, slow_swing_rate
 from pdrlearn.kernels.frozen_foot import (
     block_motion,
     foot_still,
@@ -65,7 +64,7 @@ def foot_rest_stats(session) -> dict | None:
     # and 99th percentile read a short walk as still, hiding B134's and B201's faults)
     sd, swing = block_motion(acc_s.t, acc, gyr_s.t, gyr_s.values)
     fs = float(acc_s.rate_hz)
-    period = stride_period(uniform_filter1d(np.linalg.norm(gyr, axis=1), max(1, int(round(0.1 * fs)))), fs)
+    period = foot_period(gyr, fs)
     return {"rest_acc_g": float(np.median(norm[ok]) / STANDARD_GRAVITY) if ok.sum() >= MIN_REST_SAMPLES else None,
             "rest_fraction": float(rest.mean()), "swing_rad_s": swing, "walking": bool(sd > WALKING_ACC_STD),
             "stride_period_s": period, "no_swing_rad_s": slow_swing_rate(FOOT_NO_SWING, period)}
@@ -174,3 +173,24 @@ def foot_placement_line(session, stats: dict | None, where: str) -> str | None:
     from pdrlearn.track.stride_kinds import foot_stride_kinds
 
     return foot_placement_warning(stats, where, foot_stride_kinds(session))
+
+
+#: decision L599: what the offline foot distance did at stride periods over L80's 3 s (L596's walks, no model)
+SLOW_RHYTHM_DISTANCE = ("+0.13 to +3.59 % at 1.75-2.0 s steps of 0.2-0.3 m and 1.75 s x 0.45 m, +9.49 % at 2.0 s x "
+                        "0.45 m, +9.06 to +29.14 % at 2.5 s steps, simulated")
+
+
+def slow_rhythm_line(gyr, fs: float) -> str | None:
+    """Decision L599: one line when the foot's own stride period (:func:`~pdrlearn.kernels.foot_rhythm.foot_period`)
+    is longer than L80's :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S`: the strides are found (L597) but every
+    stride time, and so the cadence, speed and bouts, treats each stride as a stop. None otherwise."""
+    from pdrlearn.kernels.contact import MAX_STRIDE_S
+
+    period = foot_period(gyr, fs)
+    if not np.isfinite(period) or period <= MAX_STRIDE_S:
+        return None
+    return (f"the foot's strides take {period:.1f} s (its gyroscope's rhythm, about {120 / period:.0f} steps/min; "
+            f"decision L596), longer than the {MAX_STRIDE_S:g} s a stride may take (L80): this is slower than the "
+            "walking the pipelines were validated on; no cadence, stride time or speed is given and each stride "
+            "counts as a pause between walking bouts; the offline foot distance was measured at "
+            f"{SLOW_RHYTHM_DISTANCE} (no model; decisions L597, L599)")
