@@ -67,7 +67,8 @@ def foot_rest_stats(session) -> dict | None:
     period = foot_period(gyr, fs)
     return {"rest_acc_g": float(np.median(norm[ok]) / STANDARD_GRAVITY) if ok.sum() >= MIN_REST_SAMPLES else None,
             "rest_fraction": float(rest.mean()), "swing_rad_s": swing, "walking": bool(sd > WALKING_ACC_STD),
-            "stride_period_s": period, "no_swing_rad_s": slow_swing_rate(FOOT_NO_SWING, period)}
+            "stride_period_s": period if np.isfinite(period) else None,  # decision L598 (None: no rhythm found)
+            "no_swing_rad_s": slow_swing_rate(FOOT_NO_SWING, period)}
 
 
 def _swings(stats: dict) -> bool:
