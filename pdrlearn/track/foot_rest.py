@@ -176,9 +176,10 @@ def foot_placement_line(session, stats: dict | None, where: str) -> str | None:
     return foot_placement_warning(stats, where, foot_stride_kinds(session))
 
 
-#: decision L599: what the offline foot distance did at stride periods over L80's 3 s (L596's walks, no model)
-SLOW_RHYTHM_DISTANCE = ("+0.13 to +3.59 % at 1.75-2.0 s steps of 0.2-0.3 m and 1.75 s x 0.45 m, +9.49 % at 2.0 s x "
-                        "0.45 m, +9.06 to +29.14 % at 2.5 s steps, simulated")
+#: decision L599: what the offline foot distance did at stride periods over L80's 3 s (L596's walks and trial T2's
+#: sessions b175 and g_0.45_2.0, no model)
+SLOW_RHYTHM_DISTANCE = ("-2.61 to +10.71 % at 1.75-2.0 s steps of 0.2-0.45 m, +9.06 to +29.14 % at 2.5 s steps, "
+                        "simulated")
 
 
 def slow_rhythm_line(gyr, fs: float) -> str | None:
