@@ -46,10 +46,11 @@ def main() -> None:
     walks = [(f"slow_{T}_{L}", 11810 + i, ROUTE, (T, L)) for i, (T, L) in enumerate(SLOW)]
     walks += [("stopgo_1.2_0.3", 11819, STOP_GO, (1.2, 0.3)), ("normal_11825", 11825, ROUTE, None),
               ("normal_11826", 11826, ROUTE, None)]
-    folders = [(n, _sim(n, u, r, g), g) for n, u, r, g in walks]
     if len(sys.argv) > 2:
         root = Path(__file__).resolve().parents[1] / "datasets" / "external"
         folders = [(n, root / n, None) for n in REAL if (root / n / "meta.json").exists()]
+    else:
+        folders = [(n, _sim(n, u, r, g), g) for n, u, r, g in walks]
     keep = FR.RHYTHM_FRAC
     for name, folder, gait in folders:
         truth = json.loads((folder / "meta.json").read_text()).get("n_strides") if gait else None
