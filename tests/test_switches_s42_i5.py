@@ -4,6 +4,8 @@
 - L594 (track.clinical): L372, L181, L369, L370 / L371, L211, L232, L236, L256 and W328 are the code or a keyword's
   default; L368, L234, L346 stay ``turn_table`` / ``_turn_spans`` keywords, off; L405 is ``steady_rows(one_source=)``;
   L322's Python switch is gone (L442's declared belt incline is its way in).
+- L595 (track.evaluate, gait, stair_flights): L339, L357, W359 and L466 are the code; L303 is
+  ``stair_rows(ramp_not_stair=False)``.
 """
 
 from __future__ import annotations
@@ -21,6 +23,9 @@ REMOVED = {
                                 "TURN_SPLIT_FOOT", "TURN_SPLIT_REVERSAL", "TURN_SPLIT_YAW", "TURN_YAW_ANGLE",
                                 "TURN_YAW_BRANCH", "TURN_YAW_FRACTIONS", "TURN_YAW_ONLY", "TURN_YAW_PEAK",
                                 "TURN_YAW_TIMING", "TURN_YAW_WHOLE"),  # L594
+    "pdrlearn.track.evaluate": ("RAMP_CLIMBS", "STRIDE_AVERAGED_PELVIS_REFERENCE"),  # L595
+    "pdrlearn.track.gait": ("RAMP_NOT_STAIR", "WAIST_GROUPED_MEDIAN"),  # L595
+    "pdrlearn.track.stair_flights": ("STEEP_STRIDES_IN_RAMPS", "flight_rows"),  # L595 (and the switch's reader)
 }
 
 
@@ -67,3 +72,9 @@ def test_a_yaw_timed_table_is_the_default_with_yaw_turns_l594():
     assert by_yaw.loc[0, ["start_s", "end_s"]].tolist() == pytest.approx([4.0, 7.5])
     pd.testing.assert_frame_equal(by_yaw, turn_table(st, timing="yaw", yaw_turns=yaw))
     pd.testing.assert_frame_equal(turn_table(st), turn_table(st, timing="heading"))
+
+
+def test_ramp_not_stair_is_a_keyword_off_by_default_l595():
+    from pdrlearn.track.gait import stair_rows
+
+    assert _defaults(stair_rows, "ramp_not_stair") == (False,)  # L303 not adopted

@@ -823,7 +823,7 @@ def _level(steps: pd.DataFrame) -> np.ndarray:
 
     # decisions L322 / L442: on a declared inclined belt a ramp climb's strides are not stair strides here (L303's
     # rule)
-    return ~stair_rows(steps, ramp_not_stair=True if cv_keeps_ramps() else None) & ~sideways_rows(steps)  # L228
+    return ~stair_rows(steps, ramp_not_stair=cv_keeps_ramps()) & ~sideways_rows(steps)  # L228
 
 
 def backward_rows(steps: pd.DataFrame) -> np.ndarray:
@@ -942,7 +942,7 @@ def _not_level(steps: pd.DataFrame) -> tuple[int, int]:
         straight = (np.isfinite(steps["stride_time_s"].to_numpy(float)) & (np.abs(turn) < STRAIGHT_MAX_RAD)
                     & _valid(steps))
     straight &= ~backward_rows(steps)  # decision L456: L188's backward rows, a model-free track's included
-    return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=True if cv_keeps_ramps() else None)
+    return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=cv_keeps_ramps())
                                      ).sum())
 
 
