@@ -45,7 +45,6 @@ PENDING = {
                               "GATED_LEVEL_DZ", "HARD_IRON_FIT", "SIDE_TRAVEL_HEADING"),
     "pdrlearn.track.position_sigma": ("FUSED_COMPASS_EXTENT", "FUSED_EXTENT_HEADING", "FUSED_EXTENT_RETURN",
                                       "STREAMED_REST_CLOCK"),
-    "pdrlearn.track.waist": ("REALTIME_SIT_VETO",),
 }
 BOOL_GLOBAL = re.compile(r"^([A-Z][A-Z0-9_]*)\s*(?::\s*bool\s*)?=\s*(?:True|False)\b")
 

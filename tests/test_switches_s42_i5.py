@@ -6,6 +6,7 @@
   L322's Python switch is gone (L442's declared belt incline is its way in).
 - L595 (track.evaluate, gait, stair_flights): L339, L357, W359 and L466 are the code; L303 is
   ``stair_rows(ramp_not_stair=False)``.
+- W472 (track.waist): W185's realtime sit veto (none) is the code of ``track_waist`` and ``live_value``.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ REMOVED = {
     "pdrlearn.track.evaluate": ("RAMP_CLIMBS", "STRIDE_AVERAGED_PELVIS_REFERENCE"),  # L595
     "pdrlearn.track.gait": ("RAMP_NOT_STAIR", "WAIST_GROUPED_MEDIAN"),  # L595
     "pdrlearn.track.stair_flights": ("STEEP_STRIDES_IN_RAMPS", "flight_rows"),  # L595 (and the switch's reader)
+    "pdrlearn.track.waist": ("REALTIME_SIT_VETO",),  # W472
 }
 
 
@@ -78,3 +80,11 @@ def test_ramp_not_stair_is_a_keyword_off_by_default_l595():
     from pdrlearn.track.gait import stair_rows
 
     assert _defaults(stair_rows, "ramp_not_stair") == (False,)  # L303 not adopted
+
+
+def test_the_live_tracker_and_a_realtime_track_apply_no_sit_veto_w472():
+    """W185 without its module constant: the live value of ``sit_veto`` is False whatever the PARAMS.json gives (the
+    realtime track itself: tests/test_waist_sit_opposite.py)."""
+    from pdrlearn.waist.live import live_value
+
+    assert live_value("sit_veto") is False and live_value("sit_veto", {"sit_veto": "opposite"}) is False
