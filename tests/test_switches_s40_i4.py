@@ -43,8 +43,6 @@ PENDING = {
     "pdrlearn.track.plasys": ("COMPASS_CHECK_WINDOWED", "COMPASS_GYRO_FALLBACK", "COMPASS_SPAN_GATES",
                               "FALLBACK_DRIFT", "FORCE_TOE_OFF", "FUSED_WALKING_CLOCK", "GAP_STRIDE_HEIGHT",
                               "GATED_LEVEL_DZ", "HARD_IRON_FIT", "SIDE_TRAVEL_HEADING"),
-    "pdrlearn.track.position_sigma": ("FUSED_COMPASS_EXTENT", "FUSED_EXTENT_HEADING", "FUSED_EXTENT_RETURN",
-                                      "STREAMED_REST_CLOCK"),
 }
 BOOL_GLOBAL = re.compile(r"^([A-Z][A-Z0-9_]*)\s*(?::\s*bool\s*)?=\s*(?:True|False)\b")
 

@@ -4,8 +4,8 @@
 - L594 (track.clinical): L372, L181, L369, L370 / L371, L211, L232, L236, L256 and W328 are the code or a keyword's
   default; L368, L234, L346 stay ``turn_table`` / ``_turn_spans`` keywords, off; L405 is ``steady_rows(one_source=)``;
   L322's Python switch is gone (L442's declared belt incline is its way in).
-- L595 (track.evaluate, gait, stair_flights): L339, L357, W359 and L466 are the code; L303 is
-  ``stair_rows(ramp_not_stair=False)``.
+- L595 (track.evaluate, gait, stair_flights, position_sigma): L339, L357, W359, L466 and E205 are the code; L303 is
+  ``stair_rows(ramp_not_stair=False)``; L240, L242 and L341 are ``sigma_params`` keywords, off.
 - W472 (track.waist): W185's realtime sit veto (none) is the code of ``track_waist`` and ``live_value``.
 """
 
@@ -28,6 +28,8 @@ REMOVED = {
     "pdrlearn.track.gait": ("RAMP_NOT_STAIR", "WAIST_GROUPED_MEDIAN"),  # L595
     "pdrlearn.track.stair_flights": ("STEEP_STRIDES_IN_RAMPS", "flight_rows"),  # L595 (and the switch's reader)
     "pdrlearn.track.waist": ("REALTIME_SIT_VETO",),  # W472
+    "pdrlearn.track.position_sigma": ("FUSED_COMPASS_EXTENT", "FUSED_EXTENT_HEADING", "FUSED_EXTENT_RETURN",
+                                      "STREAMED_REST_CLOCK"),  # L595
 }
 
 
@@ -88,3 +90,11 @@ def test_the_live_tracker_and_a_realtime_track_apply_no_sit_veto_w472():
     from pdrlearn.waist.live import live_value
 
     assert live_value("sit_veto") is False and live_value("sit_veto", {"sit_veto": "opposite"}) is False
+
+
+def test_the_radius_options_are_sigma_params_keywords_off_by_default_l595():
+    from pdrlearn.track.position_sigma import SIGMA_PARAMS, add_position_sigma, sigma_params
+
+    assert _defaults(sigma_params, "extent_heading", "extent_return", "compass_extent") == (False,) * 3
+    assert _defaults(add_position_sigma, "params") == (None,)  # None: sigma_params(regime, info), no option
+    assert sigma_params("plasys-fused", {"compass_check": {"median_deg": 8.19}}) == SIGMA_PARAMS["plasys-fused"]
