@@ -649,8 +649,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     the start of the row before its first heading change to the end of its last row). Default: ``"yaw"`` when
     ``yaw_turns`` is given (L211), else :data:`TURN_TIMING`.
 
-    Under ``"yaw"`` only (the defaults are the decisions' values, comment above): ``branch`` (decision L231) a
-    step-heading turn's angle takes the whole turns :func:`yaw_turn_match` gives it (before the ``min_deg`` cut);
+    Under ``"yaw"`` only (the defaults are the decisions' values, the comment before :func:`whole_turns`):
+    ``branch`` (decision L231) a step-heading turn's angle takes the whole turns :func:`yaw_turn_match` gives it
+    (before the ``min_deg`` cut);
     ``yaw_only`` (L233, an option) a yaw-rate turn of at least ``min_deg`` whose span overlaps no
     counted turn's rows (their span as the match's) is a row of its own: its times, angle and peak rate, ``n_rows``
     0, ``bout`` the bout whose span holds its peak; ``yaw_peak`` (L235) a yaw-timed turn's
