@@ -4,6 +4,8 @@ Each fresh simulated session (users 6351-6366) is tracked by the CLI as ``track 
 are recomputed from the written steps.csv / summary.json with the flag off ("now", checked against the summary) and
 on (the summary is checked against the recomputation with the module's default). One line per track, then the
 rule's conditions. Measured once with the flag off by default; its output is experiments/results/ramp_floors_l338.txt.
+L339 adopted it; decision L595 removed the switch: the "now" arm is :func:`l127_alone` (the old off branch,
+``climb_slope_rows`` None), a stand-in for that arm only.
 
     PYTHONPATH=. OMP_NUM_THREADS=1 python experiments/ramp_floors_l338.py [--work DIR]
 """
@@ -14,7 +16,9 @@ import argparse
 import json
 import subprocess
 import sys
+from contextlib import contextmanager, nullcontext
 from pathlib import Path
+from unittest import mock
 
 import pandas as pd
 
@@ -36,25 +40,30 @@ KEYS = ("floors_up", "floors_down", *(f"floors_{d}_{k}" for d in ("up", "down") 
 REAL = [Path(p) for p in ("/work/shared/data", "datasets/external")]
 
 
+@contextmanager
+def l127_alone():
+    """L127's climbs alone, as before L337: no row is a climb row by its grade (what ``RAMP_CLIMBS = False`` did)."""
+    with mock.patch.object(ev, "climb_slope_rows", lambda steps, info=None: None):
+        yield
+
+
 def cli(*args) -> None:
     subprocess.run([sys.executable, "-m", "pdrlearn", *map(str, args)], check=True, stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL)
 
 
 def floors(out: Path, on: bool) -> dict:
-    """The floor keys of the track in ``out`` recomputed from its steps.csv and summary.json with RAMP_CLIMBS = on."""
+    """The floor keys of the track in ``out`` recomputed from its steps.csv and summary.json: L337's rule (``on``)
+    or L127 alone."""
     steps = pd.read_csv(out / "steps.csv")
     sm = json.loads((out / "summary.json").read_text())
     info, h = sm.get("info") or {}, sm.get("storey_height_m", ev.STOREY_HEIGHT_M)
-    default, ev.RAMP_CLIMBS = ev.RAMP_CLIMBS, on
-    try:
+    with nullcontext() if on else l127_alone():
         dz, bridge = ev._climb_dz(steps)
         res = {}
         if dz is not None:
             up, down, _ = ev.count_floors_by_climb(dz, h, bridge=bridge, slope_rows=ev.climb_slope_rows(steps, info))
             res = {"floors_up": up, "floors_down": down, **ev.floors_by_kind(steps, h, info)}
-    finally:
-        ev.RAMP_CLIMBS = default
     return res
 
 
@@ -63,7 +72,7 @@ def measure(session: Path, out: Path, *args) -> tuple[dict, dict, dict]:
         cli("track", session, "--out", out, *args)
     sm = json.loads((out / "summary.json").read_text())
     now, cand = floors(out, False), floors(out, True)
-    mine = cand if ev.RAMP_CLIMBS else now  # the summary was written with the module's default (L339: on)
+    mine = cand  # the summary was written with the rule (L339: adopted)
     mismatch = {k: (mine.get(k), sm.get(k)) for k in mine if mine.get(k) != sm.get(k)}
     if mismatch:
         print(f"  !! recomputed 'now' differs from the summary: {mismatch}")

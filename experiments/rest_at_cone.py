@@ -1,7 +1,7 @@
 """Decision L379 (session 33, trial T4 finding 1): a 30 s rest right before a cone turn (``curve:180:0.5``) against
 the same rest mid-corridor, and cone laps without a rest, on the foot and both lower-back pipelines; pause_time_s
-with L119's turn time alone (``clinical.STILL_STANDING = False``) and with L372's still time (True, the default
-since L373). A check, no tuning.
+with L119's turn time alone and with L372's still time (the rule since L373; decision L594 removed its switch
+``clinical.STILL_STANDING``: the L119 arm is :func:`experiments.still_pauses.before_l372`). A check, no tuning.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/rest_at_cone.py   # users 7270-7279
 Output: experiments/results/rest_at_cone.txt (the printed lines).
@@ -10,6 +10,7 @@ import logging
 
 import numpy as np
 
+from experiments.still_pauses import before_l372
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track import clinical
@@ -30,12 +31,10 @@ RULES = {"L119": False, "L372": True}
 
 
 def summary(steps, still: bool) -> dict:
-    old = clinical.STILL_STANDING
-    clinical.STILL_STANDING = still
-    try:
+    if still:
         return clinical.clinical_summary(steps)
-    finally:
-        clinical.STILL_STANDING = old
+    with before_l372():
+        return clinical.clinical_summary(steps)
 
 
 def main() -> None:

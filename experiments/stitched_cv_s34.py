@@ -8,6 +8,9 @@ simulator's default rate, clean and with both force files 300 ms late (L397's re
 and with both force channels at 0 N from 15 to 17 s (L365's recipe). Per copy: strides, distance, whether the track
 is stitched (``contact_source`` rows from both detectors), ``stride_time_cv_pct`` and ``n_cv_strides`` of the
 summary, and a hash of the ``stride_time_s`` column (must not change). Prints the table; writes nothing.
+It prints the summary of the code it runs on: L405's "after" column was session 34's branch with the rule on; L405
+was not adopted, and since decision L594 the rule is the keyword ``clinical.steady_rows(steps, one_source=True)``,
+which the summary does not pass (this script now prints the default, the "before" column).
 """
 
 from __future__ import annotations

@@ -7,6 +7,9 @@ Fresh users 7900-7909, stand 3 s, straight 60 m, stand 3 s, pendulum bounce; "si
 track's |median_cadence_spm - truth| with the plain median (before) and the grouped median (after): both summaries
 of the same track.
 
+W359 was adopted; decision L595 removed its switch ``gait.WAIST_GROUPED_MEDIAN``: the plain arm is
+:func:`plain_median` (the old off branch: no contact grid), a stand-in for that arm only.
+
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_cadence_w359.py [--users 7900-7909]
 """
 
@@ -14,6 +17,8 @@ from __future__ import annotations
 
 import argparse
 import logging
+from contextlib import contextmanager, nullcontext
+from unittest import mock
 
 import numpy as np
 
@@ -32,12 +37,19 @@ def true_cadence(session) -> float:
     return float(120.0 / np.median(stride[st["steady"].to_numpy(bool)[1:]]))
 
 
+@contextmanager
+def plain_median():
+    """The plain median, as before W359: no contact grid (what ``WAIST_GROUPED_MEDIAN = False`` did)."""
+    with mock.patch.object(gait, "_contact_grid", lambda start_s: None):
+        yield
+
+
 def cadences(steps) -> tuple[float, float]:
     """(plain, grouped) median cadence of one lower-back steps table."""
     out = []
     for on in (False, True):
-        gait.WAIST_GROUPED_MEDIAN = on
-        out.append(float(gait_summary(steps)["median_cadence_spm"]))
+        with nullcontext() if on else plain_median():
+            out.append(float(gait_summary(steps)["median_cadence_spm"]))
     return out[0], out[1]
 
 

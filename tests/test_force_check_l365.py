@@ -5,6 +5,7 @@ accelerometer detector counts on the IMU's own rests). The broken copies follow 
 
 from __future__ import annotations
 
+import inspect
 import shutil
 
 import numpy as np
@@ -370,16 +371,16 @@ def test_a_stitched_track_says_whose_contact_each_row_has_l405(stitched):
     assert len(imu) and len(imu) < len(res.steps)
 
 
-def test_one_source_cv_leaves_out_the_seam_stride_times_l405(stitched, monkeypatch):
+def test_one_source_cv_leaves_out_the_seam_stride_times_l405(stitched):
     import pdrlearn.track.clinical as C
 
     _, res = stitched
     st, mixed_in = C.steady_rows(res.steps)
     src = st["contact_source"].astype(str).to_numpy()
     seam = np.concatenate([[False], src[1:] != src[:-1]])
-    assert not C.CV_ONE_SOURCE  # L405 not adopted: off by default, the CV's strides as before
-    monkeypatch.setattr(C, "CV_ONE_SOURCE", True)
-    _, one = C.steady_rows(res.steps)
+    # L405 not adopted: off by default, the CV's strides as before; the keyword ``one_source`` (L594)
+    assert inspect.signature(C.steady_rows).parameters["one_source"].default is False
+    _, one = C.steady_rows(res.steps, one_source=True)
     assert (mixed_in & seam).any() and not (one & seam).any()  # the seam strides left out
     assert np.array_equal(one, mixed_in & ~seam)  # and nothing else
 

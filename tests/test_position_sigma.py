@@ -179,15 +179,13 @@ def test_foot_only_two_sigma_is_not_so_wide_that_it_always_holds_the_truth(tmp_p
     assert 0.80 <= np.mean(np.concatenate(inside)) <= 0.995
 
 
-def test_the_same_walk_at_20_and_100_hz_gets_the_same_sigma(tmp_path, monkeypatch):
+def test_the_same_walk_at_20_and_100_hz_gets_the_same_sigma(tmp_path):
     """L173: the model has no per-sample term (per stride, per second, per metre, per point), so one walk recorded
     at 20 and at 100 Hz gets the same radius (users 2430-2449 on L128's route: final sigma within 0.07 m, coverage
     99.6 / 98.7 % of the strides, 18/20 finals at both rates). Here one ~60 m walk with turns: the final radii
     within 5 % of each other, and both grow with the walk (not 0, not the point term alone). L335's term is off
-    here: it takes each recording's own compass check, a measurement on that recording's noise, not a model term."""
-    from pdrlearn.track import position_sigma as ps
-
-    monkeypatch.setattr(ps, "FUSED_COMPASS_EXTENT", False)
+    here (off by default since L341): it takes each recording's own compass check, a measurement on that recording's
+    noise, not a model term."""
     from pdrlearn.cli import main
     from pdrlearn.io import write_session
     from pdrlearn.sim import UserProfile, simulate_path

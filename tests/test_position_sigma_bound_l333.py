@@ -4,6 +4,7 @@ magnetic disturbance."""
 
 from __future__ import annotations
 
+from functools import partial
 from types import SimpleNamespace
 
 import numpy as np
@@ -122,32 +123,30 @@ def test_compass_line_does_not_claim_a_disturbance_l336():
         assert ("follows the waist gyroscope's heading" in line[0]) is fallback
 
 
-def test_the_fused_radius_takes_the_compass_check_l335(monkeypatch):
+def test_the_fused_radius_takes_the_compass_check_l335():
     """Decisions L334/L335: a ``plasys-fused`` track with L182's check gets ``extent_heading_rad`` = the check's median
     (rad) on its extent; without a check it keeps L128's model; no other regime takes it; the switch turns it off.
-    Decision L341: the switch is off by default (the lead did not keep L335)."""
-    assert ps.FUSED_COMPASS_EXTENT is False
+    Decision L341: the option is off by default (the lead did not keep L335); L595: the keyword ``compass_extent``."""
     assert ps.sigma_params("plasys-fused", {"compass_check": {"median_deg": 8.19}}) == SIGMA_PARAMS["plasys-fused"]
-    monkeypatch.setattr(ps, "FUSED_COMPASS_EXTENT", True)
     info = {"compass_check": {"median_deg": 8.19}}
-    assert ps.sigma_params("plasys-fused", info)["extent_heading_rad"] == pytest.approx(np.radians(8.19))
-    assert ps.sigma_params("plasys-fused", {}) == SIGMA_PARAMS["plasys-fused"]
-    assert ps.sigma_params("plasys-fused", {"compass_check": {"median_deg": float("nan")}}) == \
-        SIGMA_PARAMS["plasys-fused"]
+    on = partial(ps.sigma_params, compass_extent=True)
+    assert on("plasys-fused", info)["extent_heading_rad"] == pytest.approx(np.radians(8.19))
+    assert on("plasys-fused", {}) == SIGMA_PARAMS["plasys-fused"]
+    assert on("plasys-fused", {"compass_check": {"median_deg": float("nan")}}) == SIGMA_PARAMS["plasys-fused"]
     for regime in set(SIGMA_PARAMS) - {"plasys-fused"}:
-        assert ps.sigma_params(regime, info) == SIGMA_PARAMS[regime]
+        assert on(regime, info) == SIGMA_PARAMS[regime]
     st = _steps(np.ones(200), np.zeros(200))  # 200 m straight: extent 200 m
     t = np.r_[0.0, st["end_s"]]
 
-    def final(inf):
+    def final(inf, compass_extent=True):
         res = SimpleNamespace(trajectory=pd.DataFrame({"t": t}), steps=st, info=dict(inf))
-        ps.add_position_sigma(res, None, "plasys-fused")
+        ps.add_position_sigma(res, None, "plasys-fused",
+                              params=ps.sigma_params("plasys-fused", inf, compass_extent=compass_extent))
         return res.trajectory["pos_sigma_m"].iloc[-1]
 
     today = final({})
     assert final(info) ** 2 == pytest.approx(today ** 2 + 2 * (np.radians(8.19) * 200) ** 2)
-    monkeypatch.setattr(ps, "FUSED_COMPASS_EXTENT", False)
-    assert final(info) == today
+    assert final(info, compass_extent=False) == today
 
 
 def test_l175_line_on_a_fused_track_names_the_compass_check_not_plasys_fused():

@@ -66,31 +66,30 @@ def test_the_candidate_value_is_the_documented_compass_error_over_the_horizontal
     assert np.var(d) == pytest.approx(point_var, rel=0.15)
 
 
-def test_the_extent_term_is_an_option_off_by_default_on_the_fused_radius_only(monkeypatch):
+def test_the_extent_term_is_an_option_off_by_default_on_the_fused_radius_only():
     """L240: measured on users 5040-5079 and not adopted (the short routes' strides 100 % within 2 sigma, rule 99.5 %);
-    ``FUSED_EXTENT_HEADING`` adds it to ``plasys-fused`` and to no other regime."""
+    ``sigma_params(..., extent_heading=True)`` (L595) adds it to ``plasys-fused`` and to no other regime."""
     from types import SimpleNamespace
 
     import pandas as pd
 
     from pdrlearn.track import position_sigma as ps
 
-    assert ps.FUSED_EXTENT_HEADING is False
+    assert inspect.signature(ps.sigma_params).parameters["extent_heading"].default is False
     assert all(not p.get("extent_heading_rad") for p in SIGMA_PARAMS.values())
     n = 40  # 20 m out, 20 m back
     end = np.arange(1, n + 1, dtype=float)
     steps = pd.DataFrame({"start_s": end - 1.0, "end_s": end, "length_m": np.ones(n),
                           "heading_rad": np.repeat([0.0, np.pi], 20)})
 
-    def final(regime):
+    def final(regime, **option):
         res = SimpleNamespace(trajectory=pd.DataFrame({"t": np.r_[0.0, end]}), steps=steps, info={})
-        ps.add_position_sigma(res, None, regime)
+        ps.add_position_sigma(res, None, regime, params=ps.sigma_params(regime, {}, **option))
         return res.trajectory["pos_sigma_m"].iloc[-1], res.info["position_sigma"]
 
     off = {r: final(r) for r in ("plasys-fused", "plasys-streaming")}
     assert "extent_heading_rad" not in off["plasys-fused"][1]
-    monkeypatch.setattr(ps, "FUSED_EXTENT_HEADING", True)
-    on = {r: final(r) for r in ("plasys-fused", "plasys-streaming")}
+    on = {r: final(r, extent_heading=True) for r in ("plasys-fused", "plasys-streaming")}
     assert on["plasys-fused"][1]["extent_heading_rad"] == EXTENT_HEADING_RAD
     # back at the start: today's fused radius plus the extent's 20 m times the heading error on both axes
     assert on["plasys-fused"][0] ** 2 == pytest.approx(off["plasys-fused"][0] ** 2 + 2 * (EXTENT_HEADING_RAD * 20) ** 2)

@@ -2,6 +2,8 @@
 (`extent_return_rad`, a kernel term): per axis e^2 (R_k^2 - |D_k|^2), R_k the farthest the track has been from its
 start, |D_k| its displacement now."""
 
+import inspect
+
 import numpy as np
 import pytest
 
@@ -65,29 +67,28 @@ def test_todays_fused_parameters_are_the_ones_the_walks_above_compare_with():
     assert {k: v for k, v in SIGMA_PARAMS["plasys-fused"].items() if k in TODAY} == TODAY
 
 
-def test_the_return_term_is_an_option_off_by_default_on_the_fused_radius_only(monkeypatch):
+def test_the_return_term_is_an_option_off_by_default_on_the_fused_radius_only():
     """L242: measured on users 5130-5169 and not adopted (20/25 long-route finals within 2 sigma, rule 90-99 %);
-    ``FUSED_EXTENT_RETURN`` adds it to ``plasys-fused`` and to no other regime."""
+    ``sigma_params(..., extent_return=True)`` (L595) adds it to ``plasys-fused`` and to no other regime."""
     from types import SimpleNamespace
 
     import pandas as pd
 
     from pdrlearn.track import position_sigma as ps
 
-    assert ps.FUSED_EXTENT_RETURN is False
+    assert inspect.signature(ps.sigma_params).parameters["extent_return"].default is False
     assert all(not p.get("extent_return_rad") for p in SIGMA_PARAMS.values())
     L, psi, t = _walk((10, 0.0), (10, np.pi / 2), (10, np.pi), (10, -np.pi / 2))  # a closed square
     steps = pd.DataFrame({"start_s": t - 1.0, "end_s": t, "length_m": L, "heading_rad": psi})
 
-    def final(regime):
+    def final(regime, **option):
         res = SimpleNamespace(trajectory=pd.DataFrame({"t": np.r_[0.0, t]}), steps=steps, info={})
-        ps.add_position_sigma(res, None, regime)
+        ps.add_position_sigma(res, None, regime, params=ps.sigma_params(regime, {}, **option))
         return res.trajectory["pos_sigma_m"].iloc[-1], res.info["position_sigma"]
 
     off = {r: final(r) for r in ("plasys-fused", "waist")}
     assert "extent_return_rad" not in off["plasys-fused"][1]
-    monkeypatch.setattr(ps, "FUSED_EXTENT_RETURN", True)
-    on = {r: final(r) for r in ("plasys-fused", "waist")}
+    on = {r: final(r, extent_return=True) for r in ("plasys-fused", "waist")}
     assert on["plasys-fused"][1]["extent_return_rad"] == EXTENT_HEADING_RAD
     assert "extent_heading_rad" not in on["plasys-fused"][1]
     # the track's radius is the kernel's with the term (never shrinking: the largest so far); back at the start that

@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from experiments.ramp_floors_l338 import l127_alone
 from pdrlearn.cli import main
 from pdrlearn.track import evaluate as ev
 from pdrlearn.track.grade import window_grades_pct
@@ -28,7 +29,7 @@ def test_window_grade_is_the_windows_rise_over_its_run():
     assert window_grades_pct([0.0, 0.0], [0.1, 0.1], window=3).tolist() == [0.0, 0.0]  # no run: no grade
 
 
-def test_a_noisy_ramp_counts_its_rise_only_with_ramp_climbs(monkeypatch):
+def test_a_noisy_ramp_counts_its_rise_only_with_ramp_climbs():
     """The trial's mechanism on one synthetic 12 m, 6 % climb of 1.4 m strides (0.084 m each) with +-0.03 m noise:
     L127's 0.10 m stair strides break it into pieces that count 0; L337's grade window keeps it whole: 4 storeys."""
     rng = np.random.default_rng(6373)
@@ -37,20 +38,19 @@ def test_a_noisy_ramp_counts_its_rise_only_with_ramp_climbs(monkeypatch):
     dz = np.r_[np.zeros(10), 0.084 + rng.uniform(-0.03, 0.03, n), np.zeros(10)]
     steps = _steps(length, dz)
     info = {"altitude_source": "fused"}
-    monkeypatch.setattr(ev, "RAMP_CLIMBS", False)
-    assert ev.climb_slope_rows(steps, info) is None
-    before = ev.floors_by_kind(steps, info=info)["floors_up_ramps"]
-    monkeypatch.setattr(ev, "RAMP_CLIMBS", True)
+    with l127_alone():  # the old switch's off branch, the experiment's "now" arm (L595: no switch)
+        assert ev.climb_slope_rows(steps, info) is None
+        before = ev.floors_by_kind(steps, info=info)["floors_up_ramps"]
+    assert ev.climb_slope_rows(steps, info) is not None
     got = ev.floors_by_kind(steps, info=info)
     assert before < 4 and (got["floors_up_ramps"], got["floors_up_stairs"]) == (4, 0)
     assert ev.climb_slope_rows(steps, {}) is None  # the foot's own altitude measures no slope (L144, L300)
     assert ev.floors_by_kind(steps, info={})["floors_up_ramps"] == before
 
 
-def test_a_stair_flight_keeps_its_kind_with_ramp_climbs(monkeypatch):
+def test_a_stair_flight_keeps_its_kind_with_ramp_climbs():
     """L337: a climb is judged on its L127 stair rows when they carry half its height - a lower-back flight whose
     grade window reaches into the level steps around it stays "stairs"."""
-    monkeypatch.setattr(ev, "RAMP_CLIMBS", True)
     length = np.r_[np.full(10, 0.7), np.full(17, 0.6), np.full(10, 0.7)]
     dz = np.r_[np.zeros(10), np.full(17, 0.17), np.zeros(10)]
     got = ev.floors_by_kind(_steps(length, dz, unit="waist"), info={})

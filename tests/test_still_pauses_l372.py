@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pdrlearn.track import clinical
+from experiments.still_pauses import before_l372
 from pdrlearn.track.clinical import bout_rows, clinical_summary, pauses
 from pdrlearn.track.gait import session_walking_pieces
 
@@ -40,11 +40,8 @@ def test_a_lower_back_gap_holds_a_pause_only_where_the_pelvis_was_still():
     assert len(pauses(st)) == 0  # no still time known (an older steps.csv): L119 as it was, a slow turn
     still = st.assign(still_before_s=np.where(np.isclose(ev, 17.02), 3.6, 0.0))
     assert len(pauses(still)) == 1 and clinical_summary(still)["n_walking_bouts"] == 2
-    clinical.STILL_STANDING = False
-    try:
-        assert len(pauses(still)) == 0  # the switch the experiment measured "before" with
-    finally:
-        clinical.STILL_STANDING = True
+    with before_l372():  # the old switch's off branch, the experiment's "before" arm (L594: no switch)
+        assert len(pauses(still)) == 0
 
 
 @pytest.mark.parametrize("pipeline", ["plasys", "waist-pendulum"])

@@ -40,19 +40,9 @@ PENDING = {
     "pdrlearn.kernels.contact": ("SUBSAMPLE",),
     "pdrlearn.kernels.distance": ("RUN_MEAN_LEVEL", "SUSTAINED_SLOPE"),
     "pdrlearn.kernels.turn_length": ("TURN_LENGTH_RULE",),
-    "pdrlearn.track.clinical": ("CV_KEEPS_RAMPS", "CV_ONE_SOURCE", "STILL_STANDING", "TURN_EDGES", "TURN_FIRST_OWN",
-                                "TURN_SPLIT_FOOT", "TURN_SPLIT_REVERSAL", "TURN_SPLIT_YAW", "TURN_YAW_ANGLE",
-                                "TURN_YAW_BRANCH", "TURN_YAW_FRACTIONS", "TURN_YAW_ONLY", "TURN_YAW_PEAK",
-                                "TURN_YAW_TIMING", "TURN_YAW_WHOLE"),
-    "pdrlearn.track.evaluate": ("RAMP_CLIMBS", "STRIDE_AVERAGED_PELVIS_REFERENCE"),
-    "pdrlearn.track.gait": ("RAMP_NOT_STAIR", "WAIST_GROUPED_MEDIAN"),
     "pdrlearn.track.plasys": ("COMPASS_CHECK_WINDOWED", "COMPASS_GYRO_FALLBACK", "COMPASS_SPAN_GATES",
                               "FALLBACK_DRIFT", "FORCE_TOE_OFF", "FUSED_WALKING_CLOCK", "GAP_STRIDE_HEIGHT",
                               "GATED_LEVEL_DZ", "HARD_IRON_FIT", "SIDE_TRAVEL_HEADING"),
-    "pdrlearn.track.position_sigma": ("FUSED_COMPASS_EXTENT", "FUSED_EXTENT_HEADING", "FUSED_EXTENT_RETURN",
-                                      "STREAMED_REST_CLOCK"),
-    "pdrlearn.track.stair_flights": ("STEEP_STRIDES_IN_RAMPS",),
-    "pdrlearn.track.waist": ("REALTIME_SIT_VETO",),
 }
 BOOL_GLOBAL = re.compile(r"^([A-Z][A-Z0-9_]*)\s*(?::\s*bool\s*)?=\s*(?:True|False)\b")
 

@@ -146,22 +146,18 @@ def _climb(dz, length, t=1.2):
                          "unit": "foot", "gap_s": 0.0})
 
 
-def test_a_stair_beside_a_ramp_keeps_its_flight_with_the_l455_option(monkeypatch):
-    from pdrlearn.track import stair_flights
+def test_a_stair_beside_a_ramp_keeps_its_flight_with_the_l455_option():
+    """L466 adopted L455's steep strides with 3-stride in-ramp flights (L595: the rule, no switch; L443 alone kept no
+    flight here)."""
     from pdrlearn.track.evaluate import ramp_climb_rows
-    from pdrlearn.track.stair_flights import flight_table
-
-    assert stair_flights.STEEP_STRIDES_IN_RAMPS is True  # L466 adopted it with 3-stride in-ramp flights (L455: off)
     from pdrlearn.track.grade import stair_grade_set  # L470: on at the default 20 % and with --stair-grade 30
+    from pdrlearn.track.stair_flights import flight_table
 
     # 30 strides up a 10 % ramp, then 3 stair strides of 0.34 m over 0.56 m (61 %, R3's route), then level
     dz = np.r_[np.zeros(3), np.full(30, 0.12), np.full(3, 0.34), np.zeros(3)]
     length = np.r_[np.full(33, 1.2), np.full(3, 0.56), np.full(3, 1.2)]
     st = _climb(dz, length)
     assert ramp_climb_rows(st)[3:36].all()  # L302 calls the whole climb a ramp
-    monkeypatch.setattr(stair_flights, "STEEP_STRIDES_IN_RAMPS", False)
-    assert len(flight_table(st)) == 0  # L443 without L455's rule: the stair goes with the ramp
-    monkeypatch.setattr(stair_flights, "STEEP_STRIDES_IN_RAMPS", True)  # L466's default
     table = flight_table(st)
     assert len(table) == 1 and table["direction"].iloc[0] == "up" and table["n_strides"].iloc[0] == 3  # before: none
     assert table["height_m"].iloc[0] == pytest.approx(1.02)

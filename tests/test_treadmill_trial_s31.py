@@ -204,10 +204,11 @@ def test_periods_say_what_n_steps_counts_and_give_cadence_l320(belt, tmp_path):
 
 # --- L322 (trial F6): an option keeps a steady incline's strides in the stride-time CV ------------------------------
 
-def test_cv_keeps_ramp_strides_with_the_option_l322(monkeypatch):
+def test_cv_keeps_ramp_strides_with_the_option_l322():
+    """L322's rule, reached by L442's declared belt incline (L594: no module switch ``CV_KEEPS_RAMPS``)."""
     import pandas as pd
 
-    from pdrlearn.track import clinical
+    from pdrlearn.track import belt, clinical
 
     # a 10 % incline walked steadily: 30 strides of 1.2 m rising 0.12 m (over L179's 0.10 m), stride time ~1.2 s
     rng = np.random.default_rng(6112)
@@ -218,10 +219,11 @@ def test_cv_keeps_ramp_strides_with_the_option_l322(monkeypatch):
                           "length_m": 1.2, "dz_m": 0.12, "turn_angle_rad": 0.0, "heading_rad": 0.0,
                           "unit": "foot", "gap_s": 0.0})
     off = clinical.clinical_summary(steps)
-    assert off["stride_time_cv_pct"] is None and "CV_KEEPS_RAMPS" in off["stride_time_cv_withheld"]["level_note"]
-    monkeypatch.setattr(clinical, "CV_KEEPS_RAMPS", True)
-    on = clinical.clinical_summary(steps)
+    assert off["stride_time_cv_pct"] is None and "belt_incline_pct" in off["stride_time_cv_withheld"]["level_note"]
+    assert "CV_KEEPS_RAMPS" not in off["stride_time_cv_withheld"]["level_note"]
+    with belt.incline_scope(10.0):
+        on = clinical.clinical_summary(steps)
+        stairs = steps.assign(length_m=0.6, dz_m=0.34)  # a stair climb (57 % grade) stays out
+        assert clinical.clinical_summary(stairs)["stride_time_cv_pct"] is None
     steady = t[1:-1]
     assert on["stride_time_cv_pct"] == pytest.approx(100 * steady.std(ddof=1) / steady.mean())
-    stairs = steps.assign(length_m=0.6, dz_m=0.34)  # a stair climb (57 % grade) stays out
-    assert clinical.clinical_summary(stairs)["stride_time_cv_pct"] is None

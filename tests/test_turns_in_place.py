@@ -5,6 +5,8 @@ yaw-rate angle)."""
 
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -37,7 +39,8 @@ def _true_turns(session) -> list[tuple[float, float, float]]:
 
 def test_reversal_ends_a_turn_and_first_stride_counts():
     st = _foot_table()
-    assert clinical.TURN_SPLIT_FOOT and clinical.TURN_FIRST_OWN  # decisions L371 / L369
+    params = inspect.signature(turn_table).parameters  # decisions L371 / L369 (L594: keywords, no switch)
+    assert params["foot_split"].default is True and params["first_own"].default is True
     tt = turn_table(st)
     assert tt["angle_deg"].tolist() == pytest.approx([360.0, -360.0])
     assert tt["n_rows"].tolist() == [3, 4]

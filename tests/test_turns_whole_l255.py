@@ -4,13 +4,14 @@ branch (L231's whole turns) - and leaves out the yaw-rate turns the rows' headin
 
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 import pandas as pd
 import pytest
 
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track import clinical
 from pdrlearn.track.clinical import rows_heading_change, turn_table, whole_turns
 
 KEYS = ("start_s", "end_s", "peak_s", "angle_deg", "peak_dps")
@@ -39,7 +40,7 @@ def test_whole_turns_and_the_rows_heading_change():
 
 
 def test_a_full_turn_whose_steps_were_missed_is_counted():
-    assert clinical.TURN_YAW_WHOLE is True  # L256
+    assert inspect.signature(turn_table).parameters["whole"].default is True  # L256
     bouts = pd.DataFrame({"bout": [1, 2], "start_s": [0.0, 9.6], "end_s": [6.0, 15.6]})
     yaw = _yaw((6.3, 9.3, 7.8, 359.4, 104.0), (11.0, 12.4, 11.7, 95.0, 70.0))
     tt = turn_table(_table(360.0, drift_deg=20.0), bouts, yaw_turns=yaw)

@@ -4,13 +4,14 @@ yaw-timed turn's peak rate is its yaw-rate turn's low-passed peak (L235, adopted
 
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 import pandas as pd
 import pytest
 
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track import clinical
 from pdrlearn.track.clinical import turn_table
 
 KEYS = ("start_s", "end_s", "peak_s", "angle_deg", "peak_dps")
@@ -29,9 +30,14 @@ def _table(change_deg: float):
                          "length_m": 0.4, "unit": "waist"})
 
 
+def _default(name: str):
+    """The default of ``turn_table``'s keyword ``name`` (decision L594: the decisions' values, no module switch)."""
+    return inspect.signature(turn_table).parameters[name].default
+
+
 def test_a_turn_between_two_contacts_takes_its_yaw_rate_branch():
     st, yaw = _table(181.8), _yaw((6.3, 9.0, 7.6, 180.0, 101.0))
-    assert clinical.TURN_YAW_BRANCH is True  # L232
+    assert _default("branch") is True  # L232
     tt = turn_table(st, yaw_turns=yaw, yaw_angle=False)  # W328 off: L231's step-heading angle
     assert len(tt) == 1 and tt.loc[0, "angle_deg"] == pytest.approx(181.8)
     assert tt.loc[0, ["start_s", "end_s"]].tolist() == pytest.approx([6.3, 9.0])  # L210: timed by it
@@ -55,7 +61,7 @@ def test_a_turn_between_two_contacts_takes_its_yaw_rate_branch():
 def test_yaw_only_turns_are_an_option():
     st = _table(0.0)  # the steps saw no turn
     yaw = _yaw((6.3, 10.3, 8.0, 360.3, 102.0), (12.0, 13.0, 12.5, 60.0, 70.0))
-    assert clinical.TURN_YAW_ONLY is False  # L234: not adopted
+    assert _default("yaw_only") is False  # L234: not adopted
     assert turn_table(st, yaw_turns=yaw, whole=False).empty  # (L256 counts this 360 deg turn by default)
     bouts = pd.DataFrame({"bout": [1, 2], "start_s": [0.0, 7.0], "end_s": [6.5, 16.0]})
     tt = turn_table(st, bouts, yaw_turns=yaw, yaw_only=True)
@@ -74,7 +80,7 @@ def test_yaw_only_turns_are_an_option():
 
 def test_a_yaw_timed_turn_peaks_at_its_yaw_rate_peak():
     st, yaw = _table(90.0), _yaw((6.3, 9.0, 7.6, 92.0, 61.5))
-    assert clinical.TURN_YAW_PEAK is True  # L236
+    assert _default("yaw_peak") is True  # L236
     assert turn_table(st, yaw_turns=yaw).loc[0, "peak_rate_dps"] == pytest.approx(61.5)
     # L229's reading: one row-to-row interval holds the turn and the stand, 90 deg / 3.6 s
     assert turn_table(st, yaw_turns=yaw, yaw_peak=False).loc[0, "peak_rate_dps"] == pytest.approx(90.0 / 3.6)

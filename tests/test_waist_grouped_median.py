@@ -46,11 +46,12 @@ def test_lower_back_cadence_at_20_hz_is_not_rounded_to_a_sample(speed, variabili
     assert abs(stride / 0.05 - round(stride / 0.05)) > 1e-3
 
 
-def test_the_switch_off_gives_the_plain_median(monkeypatch):
-    steps, _ = _walk_20hz(7919, "normal", 1.0)
-    monkeypatch.setattr(gait, "WAIST_GROUPED_MEDIAN", False)
-    stride = gait_summary(steps)["median_stride_time_s"]
-    assert abs(stride / 0.05 - round(stride / 0.05)) < 1e-6
+def test_without_a_grid_the_median_is_plain_l595():
+    """W359 is the rule (L595: its switch ``WAIST_GROUPED_MEDIAN`` and the test that flipped it on a simulated walk
+    are gone); a table whose contacts sit on no sample grid keeps the plain median."""
+    times = np.array([1.0, 1.05, 1.1, 1.05])
+    assert gait._waist_time_median(times, None) == pytest.approx(1.05)
+    assert gait._waist_time_median(times, 0.05) == pytest.approx(grouped_median(times, 0.05))
 
 
 def test_classes_are_the_contacts_sample_period_not_the_few_stride_times_gaps():

@@ -16,7 +16,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
 from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO, track_waist
+from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.events import steps_from_events
 from pdrlearn.waist.plausibility import contact_lateral_velocity
@@ -107,10 +107,11 @@ def test_an_upright_walk_is_unchanged():
 @pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
 def test_opposite_is_the_offline_default_and_realtime_keeps_no_veto(pipeline):
     """W185: W184's rule met, so an offline track without `sit_veto` is `"opposite"`; a realtime track without it
-    stays unvetoed (REALTIME_SIT_VETO), and the option given (argument or PARAMS.json) is applied either way."""
+    stays unvetoed (W472: the rule, no module constant), and the option given (argument or PARAMS.json) is applied
+    either way."""
     s = simulate_path(parse_route("straight:10, sit:20, straight:10"), UserProfile.from_seed(621), rate_hz=100,
                       seed=621)
-    assert OPTION_DEFAULTS["sit_veto"] == "opposite" and REALTIME_SIT_VETO is False
+    assert OPTION_DEFAULTS["sit_veto"] == "opposite"
     default = track_waist(s, pipeline=pipeline)
     pd.testing.assert_frame_equal(default.steps, track_waist(s, pipeline=pipeline, sit_veto="opposite").steps)
     assert default.info["n_vetoed_contacts"] > 0

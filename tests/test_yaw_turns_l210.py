@@ -11,7 +11,6 @@ import pytest
 from pdrlearn.kernels.yaw_turns import yaw_rate_turns
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track import clinical
 from pdrlearn.track.clinical import turn_table
 
 FS = 100.0
@@ -89,12 +88,10 @@ def test_yaw_timing_takes_the_matching_yaw_rate_turn():
         turn_table(st, timing="gyro")
 
 
-def test_default_timing_follows_turn_yaw_timing(monkeypatch):
+def test_default_timing_is_yaw_with_yaw_turns_l211():
+    """L211 (L210 adopted; L594: the rule, no switch): with ``yaw_turns`` the default timing is ``"yaw"``."""
     st, yaw = _waist_table(), _yaw((6.3, 8.7, 7.5, 88.0))
-    for flag in (False, True):
-        monkeypatch.setattr(clinical, "TURN_YAW_TIMING", flag)
-        pd.testing.assert_frame_equal(turn_table(st, yaw_turns=yaw),
-                                      turn_table(st, timing="yaw" if flag else "heading", yaw_turns=yaw))
+    pd.testing.assert_frame_equal(turn_table(st, yaw_turns=yaw), turn_table(st, timing="yaw", yaw_turns=yaw))
     # without yaw_turns (a foot track, a streamed or replayed table) nothing changes
     pd.testing.assert_frame_equal(turn_table(st), turn_table(st, timing="heading"))
 
@@ -118,10 +115,9 @@ def test_lower_back_track_times_a_turn_on_the_spot_from_the_yaw_rate():
     assert turn_table(res.steps, timing="heading").loc[0, "start_s"] > tb  # L208: placed after the true turn
     # El-Gohary's 5 deg/s boundaries hold the true 5-95 % turn, within 0.6 s at each end
     assert ta - 0.6 <= tt.loc[0, "start_s"] <= ta + 0.1 and tb - 0.1 <= tt.loc[0, "end_s"] <= tb + 0.6
-    # L211: the default (TURN_YAW_TIMING) - the summary's turn duration is the yaw-rate turn's; its records stay out
+    # L211: the default - the summary's turn duration is the yaw-rate turn's; its records stay out
     from pdrlearn.track.evaluate import track_summary
 
-    assert clinical.TURN_YAW_TIMING is True
     summary = track_summary(res, s)
     assert summary["median_turn_duration_s"] == pytest.approx(tt.loc[0, "duration_s"])
     assert "yaw_turns" not in summary["info"]

@@ -3,13 +3,14 @@ adopted: El-Gohary's boundaries stay turns.csv's default and read longer than a 
 
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 import pytest
 
 from pdrlearn.kernels.yaw_turns import turn_fraction_times, yaw_rate_turns
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track import clinical
 from pdrlearn.track.clinical import turn_table
 
 FS = 100.0
@@ -70,7 +71,7 @@ def test_yaw_fractions_option_times_a_simulated_turn_5_95():
     # the mean rate is the 5-95 % share of the angle over that time (L209's heading definition)
     assert opt.loc[0, "mean_rate_dps"] == pytest.approx(0.9 * abs(opt.loc[0, "angle_deg"]) / opt.loc[0, "duration_s"])
     # L346: not adopted - the default keeps El-Gohary's boundaries, which read the turn longer (L346's bias)
-    assert clinical.TURN_YAW_FRACTIONS is False
+    assert inspect.signature(turn_table).parameters["yaw_fractions"].default is False
     assert default.loc[0, "duration_s"] > (tb - ta) + 0.5
     assert default.loc[0, "mean_rate_dps"] < opt.loc[0, "mean_rate_dps"]
     same = ["angle_deg", "peak_rate_dps", "n_rows"]

@@ -11,9 +11,10 @@ belt (trial s36 T3: -47.7 % from that one stride). No figure from fewer than :da
 Decision L442: meta.json ``belt_incline_pct`` (with ``belt_speed_mps``) declares the belt's incline. The foot then
 still reports the belt's virtual climb (``altitude_change_m``, ``ascent_m``: the belt's frame, L147), but no storeys
 (the ``floors_*`` counts are 0, ``floors_note`` says why), no stair flight (stairs.csv holds the header alone) and
-the stride-time and stride-length CVs keep the incline's strides (L322's rule, as ``CV_KEEPS_RAMPS``). The declared
-incline is in force while a session is tracked (:func:`incline_scope`, a :class:`contextvars.ContextVar`, so the
-threads of ``track-all --jobs`` do not share it, as L415's steady-trim).
+the stride-time and stride-length CVs keep the incline's strides (L322's rule,
+:func:`~pdrlearn.track.clinical.cv_keeps_ramps`). The declared incline is in force while a session is tracked
+(:func:`incline_scope`, a :class:`contextvars.ContextVar`, so the threads of ``track-all --jobs`` do not share it,
+as L415's steady-trim).
 """
 
 from __future__ import annotations

@@ -67,36 +67,13 @@ PAUSE_MAX_TURN_DEG = 30.0
 #: decision L119: the slowest turn on the spot the pause rule allows for (deg/s): a 180 deg turn in 9 s; the time
 #: of an interval's turn at this rate is turning, the rest beyond the walk's rhythm standing
 TURN_ON_SPOT_MIN_DPS = 20.0
-#: decision L372: a still stretch between two rows is standing, not a turn's time (L373: the rule's result)
-STILL_STANDING = True
 #: a row turns when its heading changes at this rate (deg/s) or more from the previous row
 TURN_RATE_MIN_DPS = 15.0
-#: decision L181: a turn also sums the same-way heading change of the row just before and just after it (a streamed
-#: corner spread over three rows, -10 / -74 / -6 deg, read 74 deg without it); False = L104's turning rows alone
-TURN_EDGES = True
 #: ``turn_count`` counts turns of at least this angle (deg)
 TURN_COUNT_MIN_DEG = 80.0
-#: decision L368: a turn's run of turning intervals ends before an interval turning :data:`PAUSE_MAX_TURN_DEG` or
-#: more against the turn's direction (a turn has one direction: El-Gohary et al. 2014, mobgap ``TdElGohary``, merge
-#: only same-direction candidates); False = L104's runs, which summed two opposite turns on the spot into one. Not
-#: adopted on every table (users 7140-7159: waist-pll's extra rows 0 -> 1, TUG / corners |angle error| 24.61 ->
-#: 37.81 deg): an option; L370 / L371 keep it on the foot
-TURN_SPLIT_REVERSAL = False
-#: decision L370: L368's cut on a foot table (its heading the strides' own turns, :func:`_own_turns`), and a
-#: lower-back run cut between two consecutive opposite yaw-rate turns (:func:`opposite_yaw_cuts`, El-Gohary 2014);
-#: L371: the foot's part adopted (users 7140-7159, 20 Hz: plasys 360 deg turns found 0/20 -> 20/20, none lost, no
-#: extra row); W328: the yaw cut adopted with the yaw-rate angle (:data:`TURN_YAW_ANGLE`)
-TURN_SPLIT_FOOT = True
-TURN_SPLIT_YAW = True
-#: decision L369: a foot table's first row's own turn is an interval of its turns (a rest row before it); False = the
-#: first stride's own turn is in no turn (a turn on the spot from standing lost its first stride); adopted with L371
-TURN_FIRST_OWN = True
 #: ``stride_time_cv_pct`` needs at least this many straight strides with a stride time
 CV_MIN_STRIDES = 10
 
-#: decision L405 (not adopted: opt-in): on a stitched foot track (L365's partial fallback, steps.csv
-#: ``contact_source``) the CV's strides are those whose contact and the previous one's come from one detector
-CV_ONE_SOURCE = False
 #: decision L113's candidate: a contact timing scatter (s) of this much or more withholds ``stride_time_cv_pct``
 #: (two contacts per stride time: it contributes sqrt(2) x 30 ms = 42 ms (in quadrature) to the SD of a ~1.1 s
 #: stride, 3.9 %, more than a healthy walker's CV of 1-3 %)
@@ -280,10 +257,9 @@ def still_before(steps: pd.DataFrame) -> np.ndarray:
     known to be still since the previous row, so no turn took them: a lower-back table's ``still_before_s`` (L296's
     still samples of the pelvis between the two contacts); a foot table's rest between the previous row's end and
     this row's start (no stride of the tracked foot covers it), unless a streamed row's ``pivot_rad`` turned the
-    foot there by :data:`PAUSE_MAX_TURN_DEG` or more (L106); else 0 (nothing known)."""
+    foot there by :data:`PAUSE_MAX_TURN_DEG` or more (L106); else 0 (nothing known). L373 adopted L372 (a still
+    stretch is standing, not a turn's time); decision L594: the rule is the code."""
     n = len(steps)
-    if not STILL_STANDING:
-        return np.zeros(n)
     if "still_before_s" in steps:
         return np.nan_to_num(pd.to_numeric(steps["still_before_s"], errors="coerce").to_numpy(float))
     if not is_foot_table(steps) or "end_s" not in steps or n < 2:
@@ -325,17 +301,18 @@ def unwrapped_heading(steps: pd.DataFrame) -> np.ndarray:
     return np.unwrap(steps["heading_rad"].to_numpy(float))
 
 
-def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = TURN_EDGES) -> np.ndarray:
+def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = True) -> np.ndarray:
     """(T,) the signed angles (deg, left positive) of the walk's turns (module docstring), any size."""
     return turn_rows(steps, min_rate_dps=min_rate_dps, edges=edges)[0]
 
 
 def turn_rows(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
-              edges: bool = TURN_EDGES) -> tuple[np.ndarray, np.ndarray]:
+              edges: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """:func:`turns`'s angles (T,) and, for each turn, the row (index in ``start_s`` order) that ends its first
-    turning interval - the row a per-bout table (decision L124) counts the turn in. ``edges`` (decision L181): a
-    turn's angle also sums the interval just before and just after its turning intervals when that interval is
-    valid, turns the same way and belongs to no other turn."""
+    turning interval - the row a per-bout table (decision L124) counts the turn in. ``edges`` (decision L181,
+    adopted: a streamed corner spread over three rows, -10 / -74 / -6 deg, read 74 deg without it; False = L104's
+    turning rows alone): a turn's angle also sums the interval just before and just after its turning intervals when
+    that interval is valid, turns the same way and belongs to no other turn."""
     st, spans = _turn_spans(steps, min_rate_dps=min_rate_dps, edges=edges)
     lead = int(bool(len(st)) and bool(st["_lead"].iloc[0])) if "_lead" in st else 0  # decision L369's rest row
     return (np.asarray([s[0] for s in spans], dtype=float),
@@ -448,26 +425,28 @@ def _cut_before(a: int, b: int, stops: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(edges[:-1], edges[1:], strict=True))
 
 
-def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = TURN_EDGES,
-                reversal: bool | None = None, first_own: bool | None = None, foot_split: bool | None = None,
+def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = True,
+                reversal: bool = False, first_own: bool = True, foot_split: bool = True,
                 cut_s=None, sustained: bool = False) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
     """The table in ``start_s`` order and each turn's ``(angle deg, a, b, first, last)``: its turning intervals
     ``[a, b)`` of the row-to-row heading changes (interval i runs from row i to row i + 1) and ``[first, last)``
-    the intervals summed into its angle (``a``/``b`` widened by L181's edges). ``reversal`` (decision L368, None =
-    :data:`TURN_SPLIT_REVERSAL`): a run ends where the heading turns the other way (:func:`split_reversals`);
-    ``first_own`` (decision L369, None = :data:`TURN_FIRST_OWN`): a foot table's returned table starts with a rest
-    row (``_lead`` True, :func:`_with_lead_row`) so that its first stride's own turn is an interval; ``foot_split``
-    (decision L370, None = :data:`TURN_SPLIT_FOOT`): ``reversal`` on a foot table whose heading is its strides' own
-    turns; ``cut_s`` (L370): times (s) a run is cut at (:func:`opposite_yaw_cuts`, :func:`_cut_at_times`);
+    the intervals summed into its angle (``a``/``b`` widened by L181's edges). ``reversal`` (decision L368, an
+    option, off: not adopted on every table, users 7140-7159: waist-pll's extra rows 0 -> 1, TUG / corners |angle
+    error| 24.61 -> 37.81 deg): a run ends where the heading turns the other way (:func:`split_reversals`; a turn
+    has one direction, El-Gohary et al. 2014); ``first_own`` (decision L369, adopted with L371; False = a turn on the
+    spot from standing loses its first stride): a foot table's returned table starts with a rest row (``_lead``
+    True, :func:`_with_lead_row`) so that its first stride's own turn is an interval; ``foot_split`` (decision L370,
+    adopted by L371: users 7140-7159, 20 Hz, plasys 360 deg turns found 0/20 -> 20/20, none lost, no extra row):
+    ``reversal`` on a foot table whose heading is its strides' own turns (:func:`_own_turns`); ``cut_s`` (L370):
+    times (s) a run is cut at (:func:`opposite_yaw_cuts`, :func:`_cut_at_times`);
     ``sustained`` (decision W466, an option: its rule was not met on waist-pll): a lower-back table's run is
     cut where its heading goes back by :data:`TURN_COUNT_MIN_DEG` (:func:`split_sustained_reversals`); decision
     L577: a foot table's run ends at :func:`foot_turn_stops`."""
     if len(steps) < 2 or "heading_rad" not in steps:
         return steps, []
-    reversal = TURN_SPLIT_REVERSAL if reversal is None else bool(reversal)
-    if TURN_SPLIT_FOOT if foot_split is None else foot_split:  # decision L370: the foot's own yaw
+    reversal = bool(reversal)
+    if foot_split:  # decision L370: the foot's own yaw
         reversal = reversal or _own_turns(steps) is not None
-    first_own = TURN_FIRST_OWN if first_own is None else bool(first_own)
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     if first_own:
         st = _with_lead_row(st)
@@ -566,41 +545,22 @@ def spread_peak_rate(dh: np.ndarray, start: np.ndarray, end: np.ndarray) -> floa
     return float(np.abs((cover * (dh / (end - start))[None, :]).sum(axis=1)).max())
 
 
-#: decision L210: a lower-back track's turns re-timed by the El-Gohary turn of its yaw rate (``info["yaw_turns"]``);
-#: L211: L210's rule met (fresh users 3900-3939, median |start / end / duration error| waist-pendulum 2.62 / 1.31 /
-#: 1.33 -> 0.45 / 0.43 / 0.88 s, waist-pll 3.23 / 2.50 / 1.77 -> 0.78 / 1.04 / 0.83 s; 13 mobgap INDIP turns,
-#: waist-pendulum 0.93 / 0.59 / 2.36 -> 0.85 / 0.32 / 0.90 s; turns and angles unchanged)
-TURN_YAW_TIMING = True
-
-
-#: decision L231: a lower-back turn's angle takes the whole turns (k * 360 deg) that bring it nearest its yaw-rate
-#: turn (a step heading is wrapped: a turn done between two contacts reads +180 as -178, 360 as 0); L232: L231's
-#: rule met (fresh users 4660-4699, wrong-sign turns waist-pendulum 11 -> 0, waist-pll 12 -> 1; median |angle error|
-#: 5.58 -> 2.19 / 9.38 -> 5.18 deg; mobgap waist-pendulum unchanged)
-TURN_YAW_BRANCH = True
-#: decision L233: a lower-back turns.csv also holds the yaw-rate turns of at least ``min_deg`` that no counted
-#: step-heading turn overlaps (a turn on the spot whose steps were missed), ``n_rows`` 0; L234: not adopted (its rule
-#: failed on waist-pll's extra rows, 0 -> 1, though turns found rose 30 -> 40 / 29 -> 40): an option
-TURN_YAW_ONLY = False
-#: decision L235: a yaw-timed (or yaw-only) turn's ``peak_rate_dps`` is its yaw-rate turn's peak (El-Gohary's
-#: low-passed rate), not L200's row-to-row rate; L236: L235's rule met (fresh users 4660-4699, median |peak error|
-#: waist-pendulum 49.79 -> 18.52, waist-pll 68.21 -> 19.75 deg/s)
-TURN_YAW_PEAK = True
-#: decision L255: a yaw-rate turn of at least ``min_deg`` that no counted turn overlaps is a row of its own (L233's
-#: row) when the step rows' heading over its span is on another branch (:func:`whole_turns` not 0): a full turn on
-#: the spot whose steps were missed reads ~0 deg on the rows (trial s29 finding 1); L256: L255's rule met (fresh users
-#: 4970-4999, 360 deg turns found waist-pendulum 3/38 -> 38/38, waist-pll 13/38 -> 37/38, no turn lost, extra rows
-#: 0 -> 0 / 5 -> 5; mobgap waist-pendulum 19 rows, 11/15 overlapped, unchanged)
-TURN_YAW_WHOLE = True
-#: decision L345: a yaw-timed (or yaw-only) lower-back turn starts / ends where its smoothed yaw has gone
-#: TURN_TIMING_FRACTIONS of its change (the yaw records' ``start_5_s`` / ``end_95_s``), not at El-Gohary's 5 deg/s
-#: boundaries, which hold the 0.5 Hz filter's tails (trial s32 finding 3: +1.1 s); results L346
-TURN_YAW_FRACTIONS = False
-#: decision W328: a yaw-timed lower-back turn's angle is its yaw-rate turn's (El-Gohary 2014: the yaw rate integrated
-#: over the turn), not its rows' step heading shifted by whole turns (L231); adopted (users 7140-7159, 20 Hz: 360 deg
-#: turns found waist-pendulum 16/20 -> 20/20, waist-pll 15/20 -> 20/20, TUG / corners |angle error| 3.96 -> 0.17 /
-#: 16.72 -> 0.17 deg, none lost; mobgap Test11 INDIP turns >= 80 deg overlapped 11 -> 15 / 4 -> 13 of 15)
-TURN_YAW_ANGLE = True
+# The lower back's yaw-rate rules of :func:`turn_table` are its keywords (decision L594: no module switch), each
+# with its decision's value:
+# - L210 / L211 (adopted; fresh users 3900-3939, median |start / end / duration error| waist-pendulum 2.62 / 1.31 /
+#   1.33 -> 0.45 / 0.43 / 0.88 s, waist-pll 3.23 / 2.50 / 1.77 -> 0.78 / 1.04 / 0.83 s): ``timing="yaw"`` whenever
+#   ``yaw_turns`` is given;
+# - L231 / L232 (adopted; users 4660-4699, wrong-sign turns waist-pendulum 11 -> 0, waist-pll 12 -> 1):
+#   ``branch=True``, the whole turns (k * 360 deg) that bring a wrapped step-heading angle nearest its yaw-rate turn;
+# - L233 / L234 (not adopted: waist-pll's extra rows 0 -> 1, though turns found rose 30 -> 40 / 29 -> 40; an
+#   option): ``yaw_only=False``;
+# - L235 / L236 (adopted; median |peak error| waist-pendulum 49.79 -> 18.52, waist-pll 68.21 -> 19.75 deg/s):
+#   ``yaw_peak=True``;
+# - L255 / L256 (adopted; users 4970-4999, 360 deg turns found waist-pendulum 3/38 -> 38/38, waist-pll 13/38 ->
+#   37/38): ``whole=True``;
+# - L345 / L346 (not adopted: the real INDIP turns read worse; El-Gohary's boundaries stay): ``yaw_fractions=False``;
+# - W328 (adopted; users 7140-7159, TUG / corners |angle error| 3.96 -> 0.17 / 16.72 -> 0.17 deg): ``yaw_angle=True``,
+#   and L370's cut between two opposite yaw-rate turns, ``yaw_split=True``.
 
 
 def whole_turns(yaw_deg, step_deg: float):
@@ -659,11 +619,11 @@ TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "pe
 
 def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                min_deg: float = TURN_COUNT_MIN_DEG, timing: str | None = None,
-               yaw_turns=None, branch: bool | None = None, yaw_only: bool | None = None,
-               yaw_peak: bool | None = None, whole: bool | None = None,
-               yaw_fractions: bool | None = None, reversal: bool | None = None,
-               first_own: bool | None = None, foot_split: bool | None = None,
-               yaw_split: bool | None = None, yaw_angle: bool | None = None,
+               yaw_turns=None, branch: bool = True, yaw_only: bool = False,
+               yaw_peak: bool = True, whole: bool = True,
+               yaw_fractions: bool = False, reversal: bool = False,
+               first_own: bool = True, foot_split: bool = True,
+               yaw_split: bool = True, yaw_angle: bool = True,
                sustained: bool = False) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table (or of a :class:`~pdrlearn.track.base.TrackResult`, decision W330: its ``steps`` with its
@@ -687,33 +647,31 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     times, except that a turn matched by one of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``: the
     El-Gohary turns of its yaw rate) takes that turn's start and end (:func:`yaw_turn_times`; its rows' span from
     the start of the row before its first heading change to the end of its last row). Default: ``"yaw"`` when
-    ``yaw_turns`` is given and :data:`TURN_YAW_TIMING`, else :data:`TURN_TIMING`.
+    ``yaw_turns`` is given (L211), else :data:`TURN_TIMING`.
 
-    Under ``"yaw"`` only (None = the module defaults): ``branch`` (decision L231, :data:`TURN_YAW_BRANCH`) a
-    step-heading turn's angle takes the whole turns :func:`yaw_turn_match` gives it (before the ``min_deg`` cut);
-    ``yaw_only`` (L233, :data:`TURN_YAW_ONLY`) a yaw-rate turn of at least ``min_deg`` whose span overlaps no
+    Under ``"yaw"`` only (the defaults are the decisions' values, the comment before :func:`whole_turns`):
+    ``branch`` (decision L231) a step-heading turn's angle takes the whole turns :func:`yaw_turn_match` gives it
+    (before the ``min_deg`` cut);
+    ``yaw_only`` (L233, an option) a yaw-rate turn of at least ``min_deg`` whose span overlaps no
     counted turn's rows (their span as the match's) is a row of its own: its times, angle and peak rate, ``n_rows``
-    0, ``bout`` the bout whose span holds its peak; ``yaw_peak`` (L235, :data:`TURN_YAW_PEAK`) a yaw-timed turn's
-    ``peak_rate_dps`` is its yaw-rate turn's ``peak_dps`` (El-Gohary's low-passed peak); ``whole`` (L255,
-    :data:`TURN_YAW_WHOLE`) ``yaw_only``'s row, but only for a yaw-rate turn whose rows' heading change over its span
+    0, ``bout`` the bout whose span holds its peak; ``yaw_peak`` (L235) a yaw-timed turn's
+    ``peak_rate_dps`` is its yaw-rate turn's ``peak_dps`` (El-Gohary's low-passed peak); ``whole`` (L255)
+    ``yaw_only``'s row, but only for a yaw-rate turn whose rows' heading change over its span
     (:func:`rows_heading_change`) is on another branch (:func:`whole_turns` not 0: a full turn on the spot whose
-    steps were missed); ``yaw_fractions`` (L345, :data:`TURN_YAW_FRACTIONS`) a yaw-timed or yaw-only row's times are
+    steps were missed); ``yaw_fractions`` (L345, an option) a yaw-timed or yaw-only row's times are
     its yaw-rate turn's ``start_5_s`` / ``end_95_s`` (El-Gohary's boundaries where a record has none) and its
-    ``mean_rate_dps`` the 5-95 % share of the angle over them, as under ``"heading"``. ``reversal`` / ``first_own``
-    (decisions L368 / L369, None = the module defaults) and ``sustained`` (decision W466): :func:`_turn_spans`'s.
-    The rows are in time order."""
+    ``mean_rate_dps`` the 5-95 % share of the angle over them, as under ``"heading"``; ``yaw_split`` (L370 / W328) a
+    run is cut between two consecutive opposite yaw-rate turns (:func:`opposite_yaw_cuts`); ``yaw_angle`` (W328) a
+    matched turn's angle is its yaw-rate turn's. ``reversal`` / ``first_own`` / ``foot_split`` (decisions L368 /
+    L369 / L370) and ``sustained`` (decision W466): :func:`_turn_spans`'s. The rows are in time order."""
     if hasattr(steps, "steps") and hasattr(steps, "info"):  # decision W330: a TrackResult, with its yaw-rate turns
         yaw_turns = steps.info.get("yaw_turns") if yaw_turns is None else yaw_turns
         steps = steps.steps
     if timing is None:
-        timing = "yaw" if yaw_turns is not None and TURN_YAW_TIMING else TURN_TIMING
+        timing = "yaw" if yaw_turns is not None else TURN_TIMING  # decision L211
     if timing not in (*TURN_TIMINGS, "yaw"):
         raise ValueError(f"turn_table timing must be one of {(*TURN_TIMINGS, 'yaw')}, not {timing!r}")
-    branch = TURN_YAW_BRANCH if branch is None else bool(branch)
-    yaw_only = TURN_YAW_ONLY if yaw_only is None else bool(yaw_only)
-    yaw_peak = TURN_YAW_PEAK if yaw_peak is None else bool(yaw_peak)
-    whole = TURN_YAW_WHOLE if whole is None else bool(whole)
-    fractions = TURN_YAW_FRACTIONS if yaw_fractions is None else bool(yaw_fractions)
+    fractions = bool(yaw_fractions)
     yaw = pd.DataFrame(list(yaw_turns or []), columns=["start_s", "end_s", "peak_s", "angle_deg", "peak_dps",
                                                        "start_5_s", "end_95_s"]) if timing == "yaw" else None
     if yaw is not None:  # decision L345: the times a yaw-timed row takes, and the share of the angle between them
@@ -721,8 +679,6 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         t_on = yaw["start_5_s"].where(yaw["start_5_s"].notna(), yaw["start_s"]) if fractions else yaw["start_s"]
         t_off = yaw["end_95_s"].where(yaw["end_95_s"].notna(), yaw["end_s"]) if fractions else yaw["end_s"]
         yaw = yaw.assign(t_on=t_on.astype(float), t_off=t_off.astype(float))
-    yaw_split = TURN_SPLIT_YAW if yaw_split is None else bool(yaw_split)
-    yaw_angle = TURN_YAW_ANGLE if yaw_angle is None else bool(yaw_angle)
     cut_s = opposite_yaw_cuts(yaw.to_dict("records")) if yaw_split and yaw is not None else None  # decision L370
     st, spans = _turn_spans(steps, reversal=reversal, first_own=first_own, foot_split=foot_split, cut_s=cut_s,
                             sustained=sustained)
@@ -777,7 +733,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                 t0, t1 = heading_crossings(np.diff(h)[j], t[j + 1], span_end[j + 1], rows_angle,
                                            TURN_TIMING_FRACTIONS)
             if match is not None:  # decision L210
-                # decision L345: its 5-95 % times when TURN_YAW_FRACTIONS, else El-Gohary's boundaries
+                # decision L345: its 5-95 % times with yaw_fractions, else El-Gohary's boundaries
                 (t0, t1), share = (float(yaw["t_on"].iloc[match[0]]), float(yaw["t_off"].iloc[match[0]])), yaw_share
             elif ends_after_last:  # decision L205: without the yaw rate its end is unknown
                 t1 = np.nan
@@ -803,7 +759,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                 continue
             if not yaw_only and whole_turns(y.angle_deg, rows_heading_change(st, y.start_s, y.end_s)) == 0:
                 continue  # decision L255: the rows' heading follows it (the steps saw it, under the rate or 80 deg)
-            dur = y.t_off - y.t_on  # decision L345: the 5-95 % times when TURN_YAW_FRACTIONS
+            dur = y.t_off - y.t_on  # decision L345: the 5-95 % times with yaw_fractions
             rows.append({"start_s": y.t_on, "end_s": y.t_off, "duration_s": dur, "angle_deg": y.angle_deg,
                          "peak_rate_dps": y.peak_dps, "n_rows": 0, "bout": bout_of(y.peak_s),
                          "mean_rate_dps": yaw_share * abs(y.angle_deg) / dur if dur > 0 else np.nan})
@@ -839,19 +795,16 @@ TURN_SUMMARY_KEYS = ("median_turn_duration_s", "median_turn_angle_deg", "median_
                      "median_turn_mean_rate_dps")
 
 
-#: decision L322 (an option, off; not measured for adoption): the strides of a ramp climb (L303's
-#: :func:`pdrlearn.track.evaluate.ramp_climb_rows`: rise over run under 20 %, a steady incline such as an inclined
-#: treadmill) count as level for the stride-time and stride-length CVs (session, per bout, L196's pooling); a stair
-#: climb's strides stay out. Only the CV strides: ``n_stair_strides`` and the straight speed follow L303's own option
-CV_KEEPS_RAMPS = False
-
-
 def cv_keeps_ramps() -> bool:
-    """Decisions L322, L442: whether a ramp climb's strides count for the CVs - :data:`CV_KEEPS_RAMPS`, or a declared
-    inclined treadmill belt (meta.json ``belt_incline_pct``, :func:`pdrlearn.track.belt.declared_incline`)."""
+    """Decisions L322, L442: whether a ramp climb's strides (L303's :func:`pdrlearn.track.evaluate.ramp_climb_rows`:
+    rise over run under 20 %) count as level for the stride-time and stride-length CVs (session, per bout, L196's
+    pooling; a stair climb's strides stay out): on a declared inclined treadmill belt (meta.json
+    ``belt_incline_pct``, :func:`pdrlearn.track.belt.declared_incline`; a Python scope:
+    :func:`pdrlearn.track.belt.incline_scope`). Decision L594: L322's Python-only switch ``CV_KEEPS_RAMPS`` (off,
+    not adopted) is gone; L442's declaration is its one way in."""
     from pdrlearn.track.belt import declared_incline
 
-    return bool(CV_KEEPS_RAMPS) or declared_incline() is not None
+    return declared_incline() is not None
 
 
 def _level_forward(steps: pd.DataFrame) -> np.ndarray:
@@ -869,9 +822,9 @@ def _level(steps: pd.DataFrame) -> np.ndarray:
     not a side step (L228)."""
     from pdrlearn.track.gait import sideways_rows, stair_rows
 
-    # decision L322: with CV_KEEPS_RAMPS (L442: or a declared inclined belt) a ramp climb's strides are not stair
-    # strides here (L303's rule)
-    return ~stair_rows(steps, ramp_not_stair=True if cv_keeps_ramps() else None) & ~sideways_rows(steps)  # L228
+    # decisions L322 / L442: on a declared inclined belt a ramp climb's strides are not stair strides here (L303's
+    # rule)
+    return ~stair_rows(steps, ramp_not_stair=cv_keeps_ramps()) & ~sideways_rows(steps)  # L228
 
 
 def backward_rows(steps: pd.DataFrame) -> np.ndarray:
@@ -886,13 +839,14 @@ def backward_rows(steps: pd.DataFrame) -> np.ndarray:
     return out if back is None else out | np.asarray(back, dtype=bool)
 
 
-def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
+def steady_rows(steps: pd.DataFrame, *, one_source: bool = False) -> tuple[pd.DataFrame, np.ndarray]:
     """A foot table in ``start_s`` order and its steady straight level forward strides with a stride time (module
     docstring, L104 / L188), the strides the stride-time CV is taken over; no row for a table without stride times
     (a lower-back table: its contact timing scatters too much for a variability, decision L104). Shared by the
     session's stride-time CV here and :mod:`pdrlearn.track.bouts`' per-bout CV (L212), so both take the same
-    strides. Decision L405 (:data:`CV_ONE_SOURCE`): on a stitched track no row whose ``contact_source`` differs from
-    the previous row's."""
+    strides. ``one_source`` (decision L405, not adopted: an option, off; decision L594: a keyword, no module switch):
+    on a stitched foot track (L365's partial fallback, steps.csv ``contact_source``) no row whose ``contact_source``
+    differs from the previous row's."""
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD
 
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
@@ -903,9 +857,9 @@ def steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
     with np.errstate(invalid="ignore"):
         straight = np.isfinite(s) & (np.abs(turn) < STRAIGHT_MAX_RAD) & _valid(st) & _level(st)
     back = backward_rows(st)
-    steady = _steady(st, straight & ~back)
+    steady = _steady(st, straight & ~back, one_source=one_source)
     if steady.sum() < CV_MIN_STRIDES:  # decision L444: a backward walk (a backward belt) has its own CV
-        backward = _steady(st, straight & back)
+        backward = _steady(st, straight & back, one_source=one_source)
         if backward.sum() >= CV_MIN_STRIDES:
             return st, backward
     return st, steady
@@ -927,10 +881,10 @@ def cv_direction(steps: pd.DataFrame, *, rows: tuple[pd.DataFrame, np.ndarray] |
     return "backward" if backward_rows(st)[steady].all() else "forward"
 
 
-def _steady(st: pd.DataFrame, ok: np.ndarray) -> np.ndarray:
+def _steady(st: pd.DataFrame, ok: np.ndarray, *, one_source: bool = False) -> np.ndarray:
     """L104's steady strides of ``st`` (in ``start_s`` order) among the straight level strides ``ok`` of one
-    direction (L444): neither next to a pause nor to a row that is not such a stride, L405's one source, L415's
-    trim."""
+    direction (L444): neither next to a pause nor to a row that is not such a stride, L405's one source (with
+    ``one_source``), L415's trim."""
     ok = np.array(ok, dtype=bool)
     if len(st) > 1:  # a stride time across a pause (IC to IC over a short stop, L80) is no stride's rhythm
         _, is_pause = _intervals(st)
@@ -938,7 +892,7 @@ def _steady(st: pd.DataFrame, ok: np.ndarray) -> np.ndarray:
     # steady: the strides before and after are straight strides with a stride time too (no turn, start
     # or stop next to it: the strides around a turn or a stop slow down)
     steady = ok & np.concatenate([[False], ok[:-1]]) & np.concatenate([ok[1:], [False]])
-    if CV_ONE_SOURCE and "contact_source" in st and len(st) > 1:  # decision L405: no stride time from one
+    if one_source and "contact_source" in st and len(st) > 1:  # decision L405: no stride time from one
         src = st["contact_source"].astype(object).to_numpy()  # detector's contact to the other's (two clocks)
         steady &= np.concatenate([[False], (src[1:] == src[:-1]) & pd.notna(src[1:])])
     from pdrlearn.track.steady import trimmed_rows
@@ -989,7 +943,7 @@ def _not_level(steps: pd.DataFrame) -> tuple[int, int]:
         straight = (np.isfinite(steps["stride_time_s"].to_numpy(float)) & (np.abs(turn) < STRAIGHT_MAX_RAD)
                     & _valid(steps))
     straight &= ~backward_rows(steps)  # decision L456: L188's backward rows, a model-free track's included
-    return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=True if cv_keeps_ramps() else None)
+    return int(straight.sum()), int((straight & stair_rows(steps, ramp_not_stair=cv_keeps_ramps())
                                      ).sum())
 
 
@@ -1296,8 +1250,8 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
         if n_straight and n_not_level > NOT_LEVEL_SHARE * n_straight:
             w["level_note"] = (f"{n_not_level} of {n_straight} straight strides not level by their integrated "
                                "height (|dz_m| >= 0.10 m, L188"
-                               + ("; a steady incline's strides count with pdrlearn.track.clinical.CV_KEEPS_RAMPS, "
-                                  "L322, or on a treadmill with meta.json belt_incline_pct, L442"
+                               + ("; a treadmill incline's strides count with meta.json belt_incline_pct, "
+                                  "L322 / L442"
                                   if not cv_keeps_ramps() else "") + ")")
             w["reason"] += "; " + w["level_note"]
         out["stride_time_cv_withheld"] = w

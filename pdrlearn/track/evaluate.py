@@ -177,9 +177,6 @@ def count_floors(z, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOR
 CLIMB_BRIDGE_STRIDES = 4
 
 
-#: decision L337 (adopted by L338's rule or not: L339): where the altitude measures a slope (L300's grade_source), a
-#: row inside a sustained grade is a climb row too, so a ramp's or hill's floors come from its whole rise
-RAMP_CLIMBS = True
 #: decision L337: the centred window (strides; x STEPS_PER_STRIDE on the lower back) whose grade (summed dz over summed
 #: horizontal length) makes a row a climb row when it reaches L301's RAMP_MIN_GRADE_PCT: ~10 m, longer than a 1:12
 #: ramp run between landings (ADA 2010 sec. 405.6: 30 in of rise = 9.1 m), so a landing does not break the climb
@@ -338,14 +335,16 @@ def _climb_inputs(steps: pd.DataFrame):
     return column("dz_m"), column("pause_dz_m"), column("length_m")
 
 
-def climb_slope_rows(steps: pd.DataFrame, info: dict | None = None, on: bool | None = None) -> np.ndarray | None:
-    """Decision L337: per row +1 / -1 where the grade of the centred window of :data:`CLIMB_SLOPE_WINDOW_STRIDES`
+def climb_slope_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray | None:
+    """Decision L337 (adopted by L338's rule: L339; decision L595: the rule, no module switch): where the altitude
+    measures a slope a row inside a sustained grade is a climb row too, so a ramp's or hill's floors come from its
+    whole rise - per row +1 / -1 where the grade of the centred window of :data:`CLIMB_SLOPE_WINDOW_STRIDES`
     strides (x :data:`STEPS_PER_STRIDE`) around it is at least L301's ``RAMP_MIN_GRADE_PCT`` up / down, else 0 - only
-    where the altitude measures a slope (L300's :func:`pdrlearn.track.grade.grade_source`); None there, for a table
-    not counted per climb, or when ``on`` (default :data:`RAMP_CLIMBS`) is False."""
+    where the altitude measures a slope (L300's :func:`pdrlearn.track.grade.grade_source`); None elsewhere and for a
+    table not counted per climb."""
     from pdrlearn.track.grade import RAMP_MIN_GRADE_PCT, grade_source, window_grades_pct
 
-    if not (RAMP_CLIMBS if on is None else on) or _climb_dz(steps)[0] is None or grade_source(steps, info) is None:
+    if _climb_dz(steps)[0] is None or grade_source(steps, info) is None:
         return None
     walked, _, length = _climb_inputs(steps)
     g = window_grades_pct(length, walked, CLIMB_SLOPE_WINDOW_STRIDES * STEPS_PER_STRIDE[str(steps["unit"].iloc[0])]
@@ -848,18 +847,14 @@ def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[f
     return None, ""
 
 
-#: decision L357: a pelvis trajectory with labelled contacts (ics.csv) is read stride-averaged over the walking span
-STRIDE_AVERAGED_PELVIS_REFERENCE = True
-
-
 def _walking_reference(session: Session) -> pd.DataFrame | None:
-    """Decision L357: :func:`pdrlearn.track.pelvis_reference.walking_reference` of the session's trajectory and
-    labelled contacts, for a pelvis-only reference: None when the switch is off, the session lacks either, has a
-    steps.csv (its strides are the reference, or S47 chose the trajectory for its rides) or a ride (rides.csv: a lift
-    before the first or after the last contact is outside the walking span)."""
+    """Decision L357: a pelvis trajectory with labelled contacts (ics.csv) is read stride-averaged over the walking
+    span - :func:`pdrlearn.track.pelvis_reference.walking_reference` of the session's trajectory and labelled
+    contacts, for a pelvis-only reference (decision L595: the rule, no module switch): None when the session lacks
+    either, has a steps.csv (its strides are the reference, or S47 chose the trajectory for its rides) or a ride
+    (rides.csv: a lift before the first or after the last contact is outside the walking span)."""
     rides = session.extras.get("rides")
-    if not STRIDE_AVERAGED_PELVIS_REFERENCE or (session.steps is not None and len(session.steps)) or (
-            rides is not None and len(rides)):
+    if (session.steps is not None and len(session.steps)) or (rides is not None and len(rides)):
         return None
     from pdrlearn.track.pelvis_reference import walking_reference
 

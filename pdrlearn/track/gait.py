@@ -232,22 +232,19 @@ SUMMARY_KEYS = ("n_stride_times", "median_stride_time_s", "median_cadence_spm", 
                 "n_stair_strides_up", "n_stair_strides_down")  # decision L432
 
 
-#: decision L303 (an option; its adoption rule is in docs/decisions/localization.md): a row of a climb walked under
-#: 20 % of rise over run (a ramp or a hill, :func:`pdrlearn.track.evaluate.ramp_climb_rows`) is no stair row
-RAMP_NOT_STAIR = False
-
-
-def stair_rows(steps: pd.DataFrame, ramp_not_stair: bool | None = None) -> np.ndarray:
+def stair_rows(steps: pd.DataFrame, ramp_not_stair: bool = False) -> np.ndarray:
     """Decision L179: the rows that climb or descend a stair, |``dz_m``| >= ``LEVEL_DZ_M`` (0.10 m, half a stair
     rise: L39's level rule, as the simulator's terrain label, decision S3); all False without ``dz_m``.
-    ``ramp_not_stair`` (default :data:`RAMP_NOT_STAIR`, decision L303): the rows of a ramp climb left out."""
+    ``ramp_not_stair`` (decision L303, an option, off: its rule was not met; decision L595: a keyword, no module
+    switch): the rows of a climb walked under 20 % of rise over run (a ramp or a hill,
+    :func:`pdrlearn.track.evaluate.ramp_climb_rows`) left out."""
     from pdrlearn.kernels.distance import LEVEL_DZ_M
 
     if "dz_m" not in steps:
         return np.zeros(len(steps), bool)
     dz = np.abs(pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float))
     stair = np.nan_to_num(dz, nan=0.0) >= LEVEL_DZ_M
-    if RAMP_NOT_STAIR if ramp_not_stair is None else ramp_not_stair:
+    if ramp_not_stair:
         from pdrlearn.track.evaluate import ramp_climb_rows
 
         stair &= ~ramp_climb_rows(steps)
@@ -413,25 +410,21 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> 
     return out
 
 
-#: decision W359: a lower-back summary's median stride and step time are grouped-data medians of the whole-sample
-#: times (:func:`pdrlearn.kernels.grouped_median.grouped_median`), not a sample value; False: the plain median
-WAIST_GROUPED_MEDIAN = True
-
-
 def _contact_grid(start_s: np.ndarray) -> float | None:
     """W359 (amended after review R1): the sample period the table's contact times sit on (None: none found)."""
     from pdrlearn.kernels.grouped_median import sample_grid
 
-    return sample_grid(start_s) if WAIST_GROUPED_MEDIAN else None
+    return sample_grid(start_s)
 
 
 def _waist_time_median(times: np.ndarray, grid: float | None) -> float | None:
-    """W359: the median of a lower-back table's whole-sample stride or step times - grouped-data with classes one
-    sample period (``grid``, the contacts' own: :func:`_contact_grid`) wide under :data:`WAIST_GROUPED_MEDIAN`; the
-    plain median without a grid or with the switch off."""
+    """Decision W359 (adopted; decision L595: the rule, no module switch): the median of a lower-back table's
+    whole-sample stride or step times is a grouped-data median (:func:`pdrlearn.kernels.grouped_median.grouped_median`)
+    with classes one sample period (``grid``, the contacts' own: :func:`_contact_grid`) wide, not a sample value; the
+    plain median without a grid."""
     from pdrlearn.kernels.grouped_median import grouped_median
 
-    return grouped_median(times, grid) if WAIST_GROUPED_MEDIAN and grid else _median(times)
+    return grouped_median(times, grid) if grid else _median(times)
 
 
 #: decisions W224/W225: the medians a lower-back summary takes by default - ``"strides"`` (cadence 120 / the median

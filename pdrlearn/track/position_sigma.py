@@ -38,10 +38,11 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # routes of 3-4 loops: 20/20 finals within 2 sigma against the rule's 16-19; the kernel keeps it, 0 here)
     # (L238: the per-metre compass term path_diffusion_m2 = PLACE_DIFFUSION_M2 was measured and not adopted, too small)
     # (L239/L240: the bounded heading error on the route's extent, extent_heading_rad = EXTENT_HEADING_RAD, measured
-    # and not adopted: all its short-route strides within 2 sigma, over the rule's 99.5 %; FUSED_EXTENT_HEADING)
+    # and not adopted: all its short-route strides within 2 sigma, over the rule's 99.5 %; sigma_params'
+    # extent_heading)
     # (L241/L242: that error only on the part of the extent the track has come back from, extent_return_rad =
     # EXTENT_HEADING_RAD, measured and not adopted: 20/25 long-route finals within 2 sigma, under the rule's 90 %;
-    # FUSED_EXTENT_RETURN)
+    # sigma_params' extent_return)
     "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
     # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
     "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 9.6e-11, "point_m": 0.044},
@@ -77,24 +78,6 @@ PLACE_DIFFUSION_M2 = 0.25 * 3.0 ** 2 * 2 * np.pi / np.sqrt(3.0) / (45.0 * np.cos
 #: grow with the walk) at most at this size
 EXTENT_HEADING_RAD = float(np.sqrt(2.0 ** 2 + 3.0 ** 2 * np.sqrt(np.pi) / 4.0 / np.sqrt(3.0))
                            / (45.0 * np.cos(np.radians(55.0))))
-#: decision L240: L239's candidate is an option, off by default (its rule failed on the short routes only: 100 % of
-#: their strides within 2 sigma against the rule's 99.5 %); True adds ``extent_heading_rad`` = EXTENT_HEADING_RAD to
-#: the ``plasys-fused`` radius (27/29 R1 finals within 2 sigma against 18/29 without, users 5040-5079)
-FUSED_EXTENT_HEADING = False
-#: decision L242: L241's candidate is an option, off by default (its rule failed on the long routes' finals: 20/25
-#: within 2 sigma against the rule's 90-99 %, users 5130-5169; today 14/25); True adds ``extent_return_rad`` =
-#: EXTENT_HEADING_RAD to the ``plasys-fused`` radius: L239's heading error on the part of the extent the track has come
-#: back from, per axis e^2 (R_k^2 - |D_k|^2), nothing on a walk that only goes out from its start
-FUSED_EXTENT_RETURN = False
-#: decision L334: the candidate's switch: True gives a ``plasys-fused`` track with L182's compass check
-#: ``extent_heading_rad`` = the check's measured median disagreement (rad; :func:`compass_extent_rad`) in place of
-#: L239's derived EXTENT_HEADING_RAD: the direction-dependent compass error a straight march carries (trial s32).
-#: Decision L335: adopted, L334's rule was met (marches of 0.8-4 km, users 6320-6331: 94.0 % of the strides, 12/12
-#: finals within 2 sigma, against 68.0 %, 9/12; L128's route, users 6332-6337: 98.7 %, 6/6 against 96.1 %, 5/6).
-#: Decision L341 (session 32 review): not kept, off: the pooled 94.0 % held 3 fallback marches the term does not
-#: touch (65.6 %); on the 9 fused marches it changed, 100 % (over the rule's 99 %), finals 1.1-8.7 x the error, and the
-#: check's angle holds the foot's own yaw drift (L336): a clean 200 m straight walk read "not usable"
-FUSED_COMPASS_EXTENT = False
 #: decision E128: the speed (m/s) E127 takes for a held gap when the track has no walking stride of its own: a
 #: typical adult walking speed, inside L95's range (0.5-2.5 m/s); stated, not fitted
 GAP_FALLBACK_SPEED_MPS = 1.4
@@ -118,9 +101,8 @@ def held_gap_variance(steps) -> np.ndarray | None:
     return np.where(held, 0.5 * (v * gap) ** 2, 0.0)
 
 
-#: decision E205 (adopted by its rule; docs/decisions/export.md): the streamed regimes' bias clock skips the rests
-#: longer than L296's minute that the streamed heading does not integrate (L31's gap yaw looks back 1 s); False = clock
-STREAMED_REST_CLOCK = True
+#: decision E205 (adopted by its rule; docs/decisions/export.md): the regimes whose bias clock skips the rests longer
+#: than L296's minute that the streamed heading does not integrate (L31's gap yaw looks back 1 s)
 STREAMED_REGIMES = ("plasys-streaming", "plasys-foot-streaming")
 
 
@@ -252,39 +234,50 @@ def compass_extent_rad(compass_check: dict | None) -> float:
     return float(np.radians(med)) if med is not None and np.isfinite(med) and med > 0 else 0.0
 
 
-def sigma_params(regime: str, info: dict | None = None) -> dict[str, float]:
-    """The error model of ``regime``: its :data:`SIGMA_PARAMS`, with L239's extent term on ``plasys-fused`` when
-    :data:`FUSED_EXTENT_HEADING` is set (decision L240) and L241's return term when :data:`FUSED_EXTENT_RETURN` is
-    (decision L242; the two are alternatives: both set add both); with :data:`FUSED_COMPASS_EXTENT` set (decision
-    L334) the extent term's heading error is the track's own compass check (``info["compass_check"]``,
-    :func:`compass_extent_rad`) instead of L239's."""
+def sigma_params(regime: str, info: dict | None = None, *, extent_heading: bool = False, extent_return: bool = False,
+                 compass_extent: bool = False) -> dict[str, float]:
+    """The error model of ``regime``: its :data:`SIGMA_PARAMS`. Three options, off by default (decision L595: keywords,
+    no module switches; each changes ``plasys-fused`` only):
+
+    - ``extent_heading`` (decision L240: L239's candidate not adopted, its rule failed on the short routes only: 100 %
+      of their strides within 2 sigma against the rule's 99.5 %; 27/29 R1 finals within 2 sigma against 18/29
+      without, users 5040-5079) adds ``extent_heading_rad`` = :data:`EXTENT_HEADING_RAD`;
+    - ``extent_return`` (decision L242: L241's candidate not adopted, 20/25 long-route finals within 2 sigma against
+      the rule's 90-99 %, users 5130-5169) adds ``extent_return_rad`` = :data:`EXTENT_HEADING_RAD`: L239's heading
+      error on the part of the extent the track has come back from, per axis e^2 (R_k^2 - |D_k|^2) (the two are
+      alternatives: both set add both);
+    - ``compass_extent`` (decision L334, adopted by L335, not kept by L341: the pooled 94.0 % held 3 fallback marches
+      the term does not touch, and the check's angle holds the foot's own yaw drift, L336): the extent term's heading
+      error is the track's own compass check (``info["compass_check"]``, :func:`compass_extent_rad`) in place of
+      L239's."""
     params = dict(SIGMA_PARAMS[regime])
     if regime == "plasys-fused":
-        for flag, term in ((FUSED_EXTENT_HEADING, "extent_heading_rad"), (FUSED_EXTENT_RETURN, "extent_return_rad")):
+        for flag, term in ((extent_heading, "extent_heading_rad"), (extent_return, "extent_return_rad")):
             if flag:
                 params[term] = EXTENT_HEADING_RAD
-        compass = compass_extent_rad((info or {}).get("compass_check")) if FUSED_COMPASS_EXTENT else 0.0
+        compass = compass_extent_rad((info or {}).get("compass_check")) if compass_extent else 0.0
         if compass:  # decisions L334 / L335: the track's own compass check, in place of L239's derived value
             params["extent_heading_rad"] = compass
     return params
 
 
-def add_position_sigma(result, session, regime: str | None = None) -> None:
+def add_position_sigma(result, session, regime: str | None = None, *, params: dict[str, float] | None = None) -> None:
     """Write ``pos_sigma_m`` (m, the 1-sigma radius ``sqrt(trace P)`` of the horizontal position, 0 at the start)
     into ``result.trajectory`` and the model used into ``result.info["position_sigma"]``. A trajectory row gets
     the covariance after the last stride that ended at or before its time. ``regime``: a :data:`SIGMA_PARAMS`
-    key (default :func:`sigma_regime`; ``pdrlearn run`` names its own)."""
+    key (default :func:`sigma_regime`; ``pdrlearn run`` names its own). ``params``: the regime's error model with
+    :func:`sigma_params`' options (default: ``sigma_params(regime, result.info)``, none of them)."""
     traj = result.trajectory
     if not len(traj):
         return
     regime = regime or sigma_regime(result.info, session)
-    params = sigma_params(regime, result.info)
+    params = sigma_params(regime, result.info) if params is None else params
     rest_s, rests = None, result.info.get("rest_bias_rests")
     if rests is not None:  # decision L306: L296 was in force on this heading (gyro; `run`'s live one: L309)
         from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
 
         rest_s = REST_BIAS_MIN_S  # decision L297: L296's rests turn the heading by their moving samples only
-    elif regime in STREAMED_REGIMES and STREAMED_REST_CLOCK:  # decision E205: rests the streamed heading skips
+    elif regime in STREAMED_REGIMES:  # decision E205 (adopted; L595: no switch): rests the streamed heading skips
         from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
 
         rest_s, rests = REST_BIAS_MIN_S, streamed_rests(result.steps, REST_BIAS_MIN_S)

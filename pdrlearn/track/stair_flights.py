@@ -101,30 +101,19 @@ def flight_strides(st: pd.DataFrame, min_strides: int | None = None) -> int:
     return int(sum(b - a for a, b, _ in found))
 
 
-#: decisions L455, L466: a stride of a ramp climb as steep as a stair (its own grade >= the stair grade, L303's 20 %,
-#: ``--stair-grade`` L469) stays a stair row of stairs.csv's flights; L455 alone was not adopted (a real level
-#: recording gained a 2-stride drift flight), L466 adopted it with :data:`MIN_STEEP_FLIGHT_STRIDES`: on by default
-STEEP_STRIDES_IN_RAMPS = True
-#: decision L466: with L455's rule on, a flight made only of a ramp climb's steep strides (none of its rows a stair
-#: row by L443) needs this many strides: L455's false flight on a real level walk had 2; a trail's stair section
-#: worth reporting has 6 stairs (3 strides) or more
+#: decision L466: a flight made only of a ramp climb's steep strides (L455's rule; none of its rows a stair row by
+#: L443) needs this many strides: L455's false flight on a real level walk had 2; a trail's stair section worth
+#: reporting has 6 stairs (3 strides) or more
 MIN_STEEP_FLIGHT_STRIDES = 3
 
 
-def flight_rows(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None,
-                steep_strides_in_ramps: bool | None = None) -> np.ndarray:
-    """Decisions L443, L455, L466: (rows,) bool, the stair rows stairs.csv's flights are made of: L179's stair rows
-    less the climbs L302 calls "ramps" (L443); with ``steep_strides_in_ramps`` (default
-    :data:`STEEP_STRIDES_IN_RAMPS`, on since L466) a stride of such a climb whose own grade |dz| / |length| reaches
-    :func:`pdrlearn.track.grade.stair_min_grade_pct` (L469: 20 %, ``--stair-grade``) stays a stair row (a stair beside a
-    ramp)."""
-    plain, steep = flight_row_masks(st, dz, length)
-    on = STEEP_STRIDES_IN_RAMPS if steep_strides_in_ramps is None else steep_strides_in_ramps
-    return steep if on else plain
-
-
 def flight_row_masks(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`flight_rows` without and with L455's steep strides, from one pass (the climb search runs once)."""
+    """Decisions L443, L455, L466: (rows,) bool twice, from one pass (the climb search runs once): L179's stair rows
+    less the climbs L302 calls "ramps" (L443), and those plus each stride of such a climb whose own grade
+    |dz| / |length| reaches :func:`pdrlearn.track.grade.stair_min_grade_pct` (L469: 20 %, ``--stair-grade``; a stair
+    beside a ramp, L455). L455 alone was not adopted (a real level recording gained a 2-stride drift flight); L466
+    adopted it with :data:`MIN_STEEP_FLIGHT_STRIDES`, so stairs.csv's flights are made of the second (decision L595:
+    the rule, no module switch ``STEEP_STRIDES_IN_RAMPS``; its unused reader ``flight_rows`` removed)."""
     from pdrlearn.track.evaluate import ramp_climb_rows
     from pdrlearn.track.gait import stair_rows
     from pdrlearn.track.grade import stair_min_grade_pct
@@ -150,7 +139,7 @@ def flight_spans(st: pd.DataFrame) -> list[tuple[int, int, int]]:
     # floors_up_stairs / floors_up_ramps count it - a ramp, a hill or an inclined belt is no stair flight
     length = pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float) if "length_m" in st else None
     plain, steep = flight_row_masks(st, dz, length)  # decision L466: L443's own stair rows, and with L455's
-    stair = (steep if STEEP_STRIDES_IN_RAMPS else plain) & stride_rows(st)
+    stair = steep & stride_rows(st)
     return [(a, b, sign) for a, b, sign in flight_runs(dz, stair, bout_rows(st), length)
             if b - a >= MIN_STEEP_FLIGHT_STRIDES or plain[a:b].any()]  # decision L466
 

@@ -712,9 +712,6 @@ def ignored_options_line(o: dict, pipeline: str, realtime: bool, method: str, de
     return (f"option{'s' if len(off) > 1 else ''} ignored by this track ({here}): {named} (decision W193)")
 
 
-#: decision W185: the ``sit_veto`` value of a ``realtime`` track that does not set it (W184's rule adopted
-#: ``"opposite"`` for offline tracks only)
-REALTIME_SIT_VETO = False
 #: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
 #: (a stand of half the local period, not a walk's edge) is decided once the three steps after it are known
 CAUSAL_PAUSE_STEPS = "standing"
@@ -1059,7 +1056,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     causal_veto = realtime and bool(o["realtime_sit_veto"])  # W200: the sit veto decided causally
     if realtime and not causal_veto and given["sit_veto"] is None and (p.options or {}).get("sit_veto") is None:
-        o["sit_veto"] = REALTIME_SIT_VETO  # W185: the whole-recording veto is the offline default only
+        # decision W185: no veto - W184's rule adopted the whole-recording veto ("opposite") for offline tracks only
+        # (decision W472: the rule, no module constant ``REALTIME_SIT_VETO``)
+        o["sit_veto"] = False
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
     smoothing = check_length_smoothing(o["length_smoothing"])  # W56

@@ -172,8 +172,9 @@ def unapplied_options_line(p) -> str | None:
 
 def live_value(option: str, given: dict | None = None):
     """Decisions E126, E130: the value of the option ``option`` of :data:`LIVE_UNAPPLIED_OPTIONS` that the live tracker
-    tracks as, under the PARAMS.json ``"options"`` ``given``: no sit veto (``False``, W185's ``REALTIME_SIT_VETO``,
-    where the offline default is ``"opposite"``); no stand veto (``False``, where the offline default is ``"walking"``
+    tracks as, under the PARAMS.json ``"options"`` ``given``: no sit veto (``False``, W185's realtime value, as
+    :func:`pdrlearn.track.waist.track_waist` gives a ``realtime`` track that does not set it; W472), where the offline
+    default is ``"opposite"``); no stand veto (``False``, where the offline default is ``"walking"``
     since W219; the walking stretches' bounce is known only offline, W189 / W218); ``contact_shift`` only with
     ``realtime_contact_shift`` (W166, off by default: ``False``); no ``parity_fill`` (``False``: W152 / W159's fill is
     the offline detector's only, where the default is ``"within"``); no ``turn_bridge`` (``False``: W374's bridge reads
@@ -182,15 +183,15 @@ def live_value(option: str, given: dict | None = None):
     offline default is true); ``lying_heading`` ``False`` (W271, E151: the live tracker labels no lying; E107's line
     names its offline default only where the PARAMS.json gives it, :data:`NAMED_WHEN_GIVEN`); else the option's offline
     default (E107)."""
-    from pdrlearn.track.waist import OPTION_DEFAULTS, REALTIME_SIT_VETO
+    from pdrlearn.track.waist import OPTION_DEFAULTS
 
     given = given or {}
 
     def value(k):
         return given[k] if given.get(k) is not None else OPTION_DEFAULTS[k]
 
-    if option == "sit_veto":
-        return REALTIME_SIT_VETO
+    if option == "sit_veto":  # decision W185: the whole-recording veto is the offline default only
+        return False
     if option == "stand_veto":
         return False
     if option == "contact_shift":  # W166: W131 inside W31's window only with realtime_contact_shift
