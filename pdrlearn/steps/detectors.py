@@ -408,10 +408,16 @@ class PLLStepDetector(StepDetector):
         ctx = {"gate_var": gate_var}
         if self.f_max_hz is None:  # decision W117: the session's step rhythm sets the range
             ctx["period_s"] = accel_step_period_s(acc.values, fs, gate_var=gate_var, gate_window_s=self.gate_window_s)
+            if self.placement == "waist":  # decision W475: a slow walker's band from the pelvic-gyro rhythm
+                from pdrlearn.waist.pelvic_rhythm import pelvic_step_period_s  # lazy: it imports this module
+
+                ctx["pelvic_period_s"] = pelvic_step_period_s(session)
         return acc.t, acc.values, ctx
 
-    def _make_processor(self, fs: float, period_s: float = float("nan"), gate_var: float | None = None, **context):
-        return PLLProcessor(self, fs, period_s, CausalLowpass, lowpass_delay_s, gate_var=gate_var)
+    def _make_processor(self, fs: float, period_s: float = float("nan"), gate_var: float | None = None,
+                        pelvic_period_s: float = float("nan"), **context):
+        return PLLProcessor(self, fs, period_s, CausalLowpass, lowpass_delay_s, gate_var=gate_var,
+                            pelvic_period_s=pelvic_period_s)
 
     def detect(self, session: Session):
         df = super().detect(session)
