@@ -383,6 +383,11 @@ SESSIONS: tuple[Column, ...] = (
     ("stride_length_mae_pct_turns", "%", "number", "the same over turning strides"),
     ("stride_length_matched", "count", "integer", "foot: tracked strides matched to labelled ones"),
     ("stride_time_cv_pct", "%", "number", "foot: 100 x SD / mean of steady level forward strides' times (L104, L188)"),
+    ("step_count_withheld", _ID, "text", "lower back: why there is no step count - the waist contacts are over 1.5 x "
+                                         "the pelvic-gyro detector's steps (W442): median_cadence_spm, "
+                                         "median_step_time_s and median_stride_time_s are empty, n_steps counts "
+                                         "contacts, and the text names the pelvic gyro's count and cadence (W476); "
+                                         "empty otherwise"),
     ("stride_time_cv_withheld", _ID, "text", "why there is no stride-time CV; summary.json only (an object: cause "
                                              "lower_back (L104), too_few_strides (L215: with the straight strides "
                                              "the level criterion dropped) or contact_scatter (L113, an option), "

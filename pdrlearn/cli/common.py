@@ -507,6 +507,10 @@ def count_phrase(summary: dict) -> str:
     """Decision L103: what ``n_steps`` counts, said in ``track``'s and ``run``'s first line: "24 strides of the
     tracked foot (~48 steps)" for a foot track, "48 steps" for a lower-back one."""
     n = summary["n_steps"]
+    if summary.get("step_count_withheld"):  # decision W476: W442's contacts are no step count
+        gyro = (summary.get("info") or {}).get("n_pelvic_gyro_steps")
+        return (f"{n} contacts (no step count, decision W476"
+                + (f"; the pelvic gyro counts {gyro} steps" if gyro is not None else "") + ")")
     if summary.get("n_steps_counts") == "strides of the tracked foot":
         both = summary.get("n_steps_both_feet")
         return f"{n} strides of the tracked foot" + (f" (~{both} steps)" if both is not None else "")

@@ -909,7 +909,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                                   "y": written_floats(float(tracker.position[1])), "z": float(traj["z"].iloc[-1]),
                                   **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})}}
     from pdrlearn.track.evaluate import add_gait_range_flag
+    from pdrlearn.waist.plausibility import withhold_step_count
 
+    withhold_step_count(summary)  # decision W476, as track's summary (a live waist run judges no W442: null)
     add_gait_range_flag(summary)  # decision L195: the flag as track's summary has it (this path warns no L95 line)
     keep_warnings(summary, logged or [], session)  # decision E154
     if out is not None:  # decision E157: the push times in run.json, not summary.json
@@ -1005,6 +1007,9 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     from pdrlearn.track.evaluate import summary_info
 
     out["info"] = summary_info(result.info)  # decision E141: what track's summary.json leaves out, one list
+    from pdrlearn.waist.plausibility import withhold_step_count
+
+    withhold_step_count(out)  # decision W476, as track's summary (the runtime judges no W442: the key is null)
     from pdrlearn.track.evaluate import add_gait_range_flag
 
     add_gait_range_flag(out)  # decision L195, as track's summary

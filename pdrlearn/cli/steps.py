@@ -232,6 +232,14 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
         import logging
 
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, range_line)
+    if unit == "waist" and name != "pelvic-gyro" and len(table) >= 2:  # decision W476: W442's count cross-check
+        from pdrlearn.waist.plausibility import step_counts, uncountable_steps_line
+
+        line = uncountable_steps_line(step_counts(session, table["event_s"].to_numpy(float)), name)
+        if line:
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
     score, events = score_steps_events(table, session, tolerance_s=tolerance, unit=unit, ref_offset_s=ref_offset)
     if score is not None:  # decision steps 41: score_steps' own dict, keys and meanings (one_foot: W96)
         result.update(score)

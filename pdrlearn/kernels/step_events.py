@@ -705,21 +705,27 @@ class ForceProcessor:
         return []
 
 
-def pll_params(det, period_s: float = float("nan"), gate_var: float | None = None) -> PLLParams:
+def pll_params(det, period_s: float = float("nan"), gate_var: float | None = None,
+               pelvic_period_s: float = float("nan")) -> PLLParams:
     """The PLL's loop parameters of the settings ``det`` (:meth:`pdrlearn.steps.PLLStepDetector.loop_params`); with
     ``f_max_hz=None`` (decision W117) its free-running frequency and upper clamp from the step period ``period_s``
     (:func:`pdrlearn.kernels.waist.pll_range`; NaN: ``f0_hz`` and 3.2 Hz). ``gate_var``: the activity gate's
-    variance when not ``det.gate_var`` (decision steps 48: the session-relative gate found offline)."""
-    from pdrlearn.kernels.waist import PLL_F0_HZ, pll_range
+    variance when not ``det.gate_var`` (decision steps 48: the session-relative gate found offline).
+    ``pelvic_period_s``: the session's pelvic-gyro step period (decision W475: with ``f_max_hz=None``, a walker slower
+    than 70 steps/min gets :func:`pdrlearn.kernels.waist.pll_slow_band`'s band instead)."""
+    from pdrlearn.kernels.waist import PLL_F0_HZ, pll_range, pll_slow_band
 
     kd = 1.0 / math.sqrt(2.0)
     wn = 2 * math.pi * det.loop_hz
-    f0, f_max = det.f0_hz, det.f_max_hz
-    if f_max is None:
+    f0, f_min, f_max = det.f0_hz, det.f_min_hz, det.f_max_hz
+    slow = pll_slow_band(pelvic_period_s) if f_max is None else None
+    if slow is not None:  # decision W475
+        f0, f_min, f_max = slow[0], min(f_min, slow[1]), slow[2]
+    elif f_max is None:
         f0_r, f_max = pll_range(period_s)
         f0 = f0 if f0_r == PLL_F0_HZ else f0_r
     return PLLParams(f0_hz=f0, kp=2 * det.damping * wn / kd, ki=wn * wn / kd,
-                     f_min_hz=det.f_min_hz, f_max_hz=f_max, agc_tau_s=det.agc_tau_s,
+                     f_min_hz=f_min, f_max_hz=f_max, agc_tau_s=det.agc_tau_s,
                      gate_window_s=det.gate_window_s, gate_var=det.gate_var if gate_var is None else gate_var,
                      refine_frac=det.refine_frac,
                      **edge_lock_params(getattr(det, "edge_lock", False)))
@@ -748,13 +754,13 @@ class PLLProcessor:
     """:class:`pdrlearn.steps.PLLStepDetector`'s online detection (seed 000 Sec. II-C) of the settings ``det``."""
 
     def __init__(self, det, fs: float, period_s: float = float("nan"), lowpass=NumpyLowpass, delay=numpy_delay_s,
-                 gate_var: float | None = None):
+                 gate_var: float | None = None, pelvic_period_s: float = float("nan")):
         self.det = det
         self.grav = GravityTracker(fs, det.gravity_cutoff_hz, lowpass)
         self.lp = lowpass(cutoff_below(det.cutoff_hz, fs), fs, order=2)
         self.delay = delay(cutoff_below(det.cutoff_hz, fs), fs, order=2) if det.refine_frac > 0 else 0.0
         self.state = PLLState()
-        self.params = pll_params(det, period_s, gate_var)
+        self.params = pll_params(det, period_s, gate_var, pelvic_period_s)  # W475: a slow walker's band
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
         up, gnorm = self.grav.push(v)

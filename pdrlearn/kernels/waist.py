@@ -214,6 +214,27 @@ def pll_range(period_s: float) -> tuple[float, float]:
     return f_r, f_r / SHORTEST_STEP_FRAC
 
 
+#: decision W475: a slow walker's PLL band starts here (Hz; trial T2 finding F4's ``f_min_hz``, 18 steps/min)
+PLL_SLOW_F_MIN_HZ = 0.3
+#: decision W475: the PLL's slow band applies below this pelvic-gyro rhythm (Hz): L95's lowest validated cadence,
+#: 70 steps/min (W440's ``SLOW_PERIOD_S``)
+PLL_SLOW_BELOW_HZ = 70.0 / 60.0
+
+
+def pll_slow_band(pelvic_period_s: float, f_max_hz: float | None = None) -> tuple[float, float, float] | None:
+    """Decision W475: the PLL's free-running frequency, lower and upper clamp (Hz) for a walker whose pelvic-gyro
+    step period (:func:`pdrlearn.waist.pelvic_rhythm.pelvic_step_period_s`) is ``pelvic_period_s``: when its rhythm
+    f_g is slower than :data:`PLL_SLOW_BELOW_HZ`, free-running at f_g, clamped to :data:`PLL_SLOW_F_MIN_HZ` ..
+    ``f_max_hz`` (None: f_g / :data:`SHORTEST_STEP_FRAC`, so the second harmonic 2 f_g is outside); None otherwise
+    (and without a period: W117's range stands)."""
+    if not np.isfinite(pelvic_period_s) or pelvic_period_s <= 0.0:
+        return None
+    f_g = 1.0 / pelvic_period_s
+    if f_g >= PLL_SLOW_BELOW_HZ:
+        return None
+    return f_g, PLL_SLOW_F_MIN_HZ, f_g / SHORTEST_STEP_FRAC if f_max_hz is None else f_max_hz
+
+
 def mean_gravity_vertical(acc: np.ndarray) -> np.ndarray | None:
     """The vertical acceleration of a raw accelerometer recording (n, 3): its projection on the mean gravity
     direction, mean removed (any mounting frame); None for fewer than 3 samples or a zero mean."""

@@ -58,7 +58,8 @@ FORCE = {"cutoff_hz": 3.0, "order": 3, "threshold": FORCE_AMP, "force_on_frac": 
 PLL = {"f0_hz": PLL_F0_HZ, "loop_hz": 0.5, "damping": 0.707, "f_min_hz": 0.8, "f_max_hz": None, "cutoff_hz": 5.0,
        "agc_tau_s": 1.0, "gravity_cutoff_hz": 0.3, "gate_window_s": 2.0, "gate_var": 0.25, "refine_frac": 0.25,
        "placement": "waist", "relative_gate": None,  # steps 48/49: offline detect's only; a stream keeps gate_var
-       "edge_lock": False}  # W356: the detector's default
+       "edge_lock": False,  # W356: the detector's default
+       "slow_band": True}  # W475: offline detect's only (the session's pelvic-gyro rhythm); a stream keeps W117's
 #: a stream's detector rate is the median interval of its first this many samples (offline: of the whole stream)
 RATE_PROBE_SAMPLES = 64
 #: decision L177 (L170's sketch): the offset is estimated again every this many foot strides (about 30 s of walking

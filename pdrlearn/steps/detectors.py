@@ -335,7 +335,11 @@ class PLLStepDetector(StepDetector):
     Frequency range (steps decision 6): free-running ``f0_hz``, clamped to ``f_min_hz``-``f_max_hz``;
     ``f_max_hz=None`` (the default, decision W117, docs/decisions/waist.md): offline, a session whose step rhythm
     (W113's autocorrelation period) is faster than 2.4 Hz free-runs at that rhythm, clamped at 1 / 0.75 of it (a
-    child at 3.3-3.8 Hz); slower sessions and the streaming detector keep ``f0_hz`` / 3.2 Hz.
+    child at 3.3-3.8 Hz); slower sessions and the streaming detector keep ``f0_hz`` / 3.2 Hz. ``slow_band`` (decision
+    W475, on): offline, a waist session whose pelvic-gyro rhythm is under 70 steps/min free-runs at that rhythm f_g,
+    clamped to 0.3 Hz .. f_g / 0.75 (:func:`pdrlearn.kernels.waist.pll_slow_band`; the second harmonic, which the
+    0.8-3.2 Hz range locked on, is outside); an explicit ``f_max_hz`` turns it off. ``f0_hz`` does not change the
+    offline result of a slow walk (steps decision 83).
 
     Edge lock (decision W356, ``edge_lock``, off; W357 measured it, not adopted): the first and the last peak of a
     run of gated peaks count only when the loop is locked at them, the phase error over the period ending at the peak
@@ -369,9 +373,11 @@ class PLLStepDetector(StepDetector):
                  relative_gate: bool | None = None,  # decision steps 48: W76's session-relative gate (offline
                  # detect); steps 49: None = steps 48's default (on offline, off streaming), True given is refused by
                  # online()
-                 edge_lock: bool | str = False):  # decision W356: a gated run's first / last peak only when
-        # locked; W358: "trailing" its last only; W367: "walk-end" its last only where the walk ends; W372:
-        # "walk-edges" also its first only where the walk starts after it
+                 edge_lock: bool | str = False,  # decision W356: a gated run's first / last peak only when
+                 # locked; W358: "trailing" its last only; W367: "walk-end" its last only where the walk ends; W372:
+                 # "walk-edges" also its first only where the walk starts after it
+                 slow_band: bool = True):  # decision W475: a slow walker's band from the pelvic-gyro rhythm
+        # (offline, f_max_hz=None); waist-pll's own detector passes False (W475's note)
         self._store(locals())
 
     def online(self, fs: float, **context):
@@ -408,10 +414,16 @@ class PLLStepDetector(StepDetector):
         ctx = {"gate_var": gate_var}
         if self.f_max_hz is None:  # decision W117: the session's step rhythm sets the range
             ctx["period_s"] = accel_step_period_s(acc.values, fs, gate_var=gate_var, gate_window_s=self.gate_window_s)
+            if self.placement == "waist" and self.slow_band:  # decision W475: a slow walker's band
+                from pdrlearn.waist.pelvic_rhythm import pelvic_step_period_s  # lazy: it imports this module
+
+                ctx["pelvic_period_s"] = pelvic_step_period_s(session)
         return acc.t, acc.values, ctx
 
-    def _make_processor(self, fs: float, period_s: float = float("nan"), gate_var: float | None = None, **context):
-        return PLLProcessor(self, fs, period_s, CausalLowpass, lowpass_delay_s, gate_var=gate_var)
+    def _make_processor(self, fs: float, period_s: float = float("nan"), gate_var: float | None = None,
+                        pelvic_period_s: float = float("nan"), **context):
+        return PLLProcessor(self, fs, period_s, CausalLowpass, lowpass_delay_s, gate_var=gate_var,
+                            pelvic_period_s=pelvic_period_s)
 
     def detect(self, session: Session):
         df = super().detect(session)

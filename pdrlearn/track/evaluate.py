@@ -1642,6 +1642,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     for line in lines:  # decisions L95 (running / very slow walking), L113 (CV withheld), B134, B201
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
+    from pdrlearn.waist.plausibility import withhold_step_count
+
+    withhold_step_count(summary)  # decision W476: W442's contacts give no cadence or step time (after L95's lines)
     summary["info"] = summary_info(summary["info"])  # decision E141: W182's, W213's, L210's rows and aid's fixes
     for p in ("foot", "waist"):  # decision C142: each unit's frame status, a sessions.csv column
         summary[f"frame_{p}"] = session.frame_status(p)

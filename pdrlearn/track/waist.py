@@ -97,6 +97,7 @@ from pdrlearn.waist.params import NO_CALIBRATION, NO_SENSOR_HEIGHT, WaistParams,
 from pdrlearn.waist.pelvic_rhythm import (
     RHYTHM_SLOW,
     SLOW_PERIOD_S,
+    median_step_period,
     merge_dropped,
     pelvic_steps,
     rhythm_keep,
@@ -122,6 +123,7 @@ from pdrlearn.waist.plausibility import (
     pll_slow_excess_message,
     running_cadence,
     short_step_message,
+    step_count_withheld_reason,
     step_counts,
     steps_uncountable,
     still_yaw_rate,
@@ -171,7 +173,7 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     W367's "walk-end": its last only where the walk ends; W372's "walk-edges": also its first where it starts)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
     st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
-                         edge_lock=edge_lock).detect(session)
+                         edge_lock=edge_lock, slow_band=False).detect(session)  # W475: not on this path (measured)
     ev = np.sort(st["event_s"].to_numpy(float)) if len(st) else np.zeros(0)
     idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
     idx = idx[walking_gate(imu, walk_threshold=walk_threshold)[idx]]
@@ -1298,6 +1300,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                                     pendulum=pendulum, short_step=bool(o["short_step_check"]),  # W139, W207
                                     stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])),  # W155
                                     height_known=no_height is None,  # decision L492
+                                    gyro_count=None if realtime else lambda st: _gyro_count(session, st, gyro_s()),
                                     advice=walk_ratio_advice(model.name, uses_profile=model.uses_profile,
                                                              gain_param=model.gain_param))  # decision W461
     if ratio_line:
@@ -1359,6 +1362,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         "n_rhythm_contacts": n_rhythm,  # decision W440
         "n_pelvic_gyro_steps": None if counts is None else counts[1],  # decision W441: over the contacts' span
         "step_count_unusable": bool(uncountable),  # decision W442: L95's line names no fast gait then
+        # decision W476: why summary.json withholds the cadence and step times (None: W442 did not fire)
+        "step_count_withheld": (step_count_withheld_reason(counts, median_step_period(gyro_s()))
+                                if uncountable else None),
         "barometer_jump_steps": jumps,  # decision W230: steps held level (a pressure transient); None: no altitude
         "freezes": freezes,  # decision W213: freezes.csv (not written to summary.json)
         # decisions W182, W245: transfers.csv (not in summary.json); W277: None when no upright could be had
@@ -1558,7 +1564,7 @@ def contact_steps(table: pd.DataFrame, imu: WaistIMU, name: str = "") -> pd.Data
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
                 height_m: float, pendulum=None, stairs=None, short_step: bool = False, height_known: bool = True,
-                advice: str = WALK_RATIO_ADVICE) -> tuple[float | None, str | None]:
+                advice: str = WALK_RATIO_ADVICE, gyro_count=None) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
     warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps).
     Decision W139: an offline, uncalibrated ``waist-pll`` track is judged on the steps ``pendulum()`` returns (the
@@ -1571,7 +1577,8 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
     track with far fewer contacts than the pendulum reading says it misses steps instead of W139's line. Decision
     W461: ``advice`` ends W100's line (:func:`~pdrlearn.waist.plausibility.walk_ratio_advice`: what applies to the
     track's step-length model); a model other than the pipeline's (another advice) gets no W207 line, which is about
-    the pendulum's reading."""
+    the pendulum's reading. Decision W477: ``gyro_count(steps)``, the pelvic-gyro steps over the pendulum reading's
+    walking sequences, judges W208's line's advice (None: not read)."""
     if realtime or p.source != "defaults" or not len(steps):
         return None, None
     pll_length = pll_m = pendulum_m = None
@@ -1584,7 +1591,8 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
         n_pll = len(steps)
         steps = pendulum()
         pendulum_m = float(np.nansum(np.abs(steps["length_m"].to_numpy(float))))
-        missed = pll_missed_steps_message(n_pll, len(steps), pll_m, pendulum_m)  # decision W208
+        missed = pll_missed_steps_message(n_pll, len(steps), pll_m, pendulum_m,  # decision W208
+                                          n_gyro=gyro_count(steps) if gyro_count else None)  # W477
     elif pipeline != "waist-pendulum":
         return None, None
     step_s = waist_step_times(steps)[0]
@@ -1599,6 +1607,16 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
             and not running_cadence(length, cadence, height_m)):
         line = short_step_message(length, n, height_m, pll_m=pll_m, pendulum_m=pendulum_m)  # decision W207
     return ratio, line
+
+
+def _gyro_count(session: Session, steps: pd.DataFrame, gyro_s: np.ndarray | None) -> int | None:
+    """Decision W477: the pelvic-gyro steps over the walking sequences of ``steps`` (W441's :func:`step_counts`);
+    None without a waist gyroscope or contacts."""
+    if gyro_s is None or len(steps) < 2:
+        return None
+    counts = step_counts(session, steps["event_s"].to_numpy(float), gyro_s=gyro_s,
+                         has_next=steps["has_next"].to_numpy(bool))
+    return None if counts is None else counts[1]
 
 
 def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str, gait_check: bool,

@@ -49,6 +49,21 @@ def pelvic_steps(session: Session) -> np.ndarray | None:
         return None
 
 
+def median_step_period(gyro_s: np.ndarray, max_step_s: float = RHYTHM_MAX_STEP_S) -> float:
+    """Decision W475: the median of the pelvic-gyro step intervals (``gyro_s``, s) no longer than ``max_step_s``
+    (W440's pauses excluded); NaN with fewer than two such intervals."""
+    iv = np.diff(np.sort(np.asarray(gyro_s, dtype=np.float64)))
+    iv = iv[iv <= max_step_s]
+    return float(np.median(iv)) if iv.size >= 2 else float("nan")
+
+
+def pelvic_step_period_s(session: Session) -> float:
+    """Decision W475: :func:`median_step_period` of the session's :func:`pelvic_steps` (NaN without a waist
+    gyroscope)."""
+    g = pelvic_steps(session)
+    return float("nan") if g is None else median_step_period(g)
+
+
 def local_step_period(gyro_s: np.ndarray, at_s: np.ndarray, window_s: float = RHYTHM_WINDOW_S,
                       max_step_s: float = RHYTHM_MAX_STEP_S) -> np.ndarray:
     """Decision W440: at each time ``at_s`` the median of the pelvic-gyro step intervals (``gyro_s`` sorted, s) no

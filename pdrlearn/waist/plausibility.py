@@ -185,6 +185,44 @@ UNCOUNTABLE_CAUSE = ("the steps are too small or too slow for the lower back to 
                      "cadence and the distance are not usable (not short fast steps and not running)")
 
 
+def step_count_withheld_reason(counts: tuple[int, int], pelvic_period_s: float) -> str:
+    """Decision W476: why a lower-back track whose contacts are :func:`steps_uncountable` (W442) withholds its
+    cadence and step times (summary.json ``step_count_withheld``, the track's count line): the two counts and the
+    pelvic-gyro detector's own cadence (60 / its median step interval ``pelvic_period_s``, s), named as its."""
+    cadence = (f", its cadence {60.0 / pelvic_period_s:.1f} steps/min" if np.isfinite(pelvic_period_s)
+               and pelvic_period_s > 0 else "")
+    return (f"the {counts[0]} waist contacts are over {STEP_COUNT_UNUSABLE:g} x the pelvic-gyro detector's "
+            f"{counts[1]} steps (decision W442): no step count, so median_cadence_spm, median_step_time_s and "
+            f"median_stride_time_s are withheld and n_steps counts contacts (decision W476); the pelvic gyro counts "
+            f"{counts[1]} steps{cadence} ('pdrlearn steps DIR --detector pelvic-gyro')")
+
+
+def uncountable_steps_line(counts: tuple[int, int] | None, detector: str) -> str | None:
+    """Decision W476: ``pdrlearn steps --detector NAME``'s (a lower-back detector other than pelvic-gyro) one line
+    when its detections are over :data:`STEP_COUNT_UNUSABLE` x the pelvic-gyro detector's steps over the same span
+    (W442's count test; the track adds W98's failed alternation, which `steps` does not read); None otherwise."""
+    if not (steps_added(counts) and counts[1] >= STEP_COUNT_MIN and counts[0] > STEP_COUNT_UNUSABLE * counts[1]):
+        return None
+    return (f"{detector}: " + _counts_text(counts, f"over {STEP_COUNT_UNUSABLE:g} x warns, decisions W442, W476")
+            + f": {ADDED_STEPS_CAUSE}; this count and its cadence are not the walker's: use 'pdrlearn steps DIR "
+            "--detector pelvic-gyro' for the step count and cadence, or a foot unit")
+
+
+#: decision W476: the summary.json keys a :func:`steps_uncountable` lower-back track withholds (None)
+WITHHELD_STEP_KEYS = ("median_cadence_spm", "median_step_time_s", "median_stride_time_s")
+
+
+def withhold_step_count(summary: dict) -> dict:
+    """Decision W476: ``summary`` (a track's summary.json dict, changed in place and returned) with
+    :data:`WITHHELD_STEP_KEYS` None and ``step_count_withheld`` the reason when its ``info.step_count_withheld``
+    says W442 fired; ``step_count_withheld`` None otherwise."""
+    reason = (summary.get("info") or {}).get("step_count_withheld")
+    summary["step_count_withheld"] = reason or None
+    if reason:
+        summary.update(dict.fromkeys(WITHHELD_STEP_KEYS))
+    return summary
+
+
 def _counts_text(counts: tuple[int, int], decision: str) -> str:
     return (f"the pelvic-gyro detector counts {counts[1]} steps over the same span, the waist contacts "
             f"{counts[0]} ({decision})")
@@ -289,19 +327,46 @@ def _direction(a: float, b: float) -> str:
 PLL_MISSED_FRACTION = STEP_COUNT_DISAGREE
 
 
-def pll_missed_steps_message(n_pll: int, n_pendulum: int, pll_m: float, pendulum_m: float) -> str | None:
+def pll_missed_steps_message(n_pll: int, n_pendulum: int, pll_m: float, pendulum_m: float,
+                             n_gyro: int | None = None) -> str | None:
     """Decision W208's one warning line when a ``waist-pll`` track has ``n_pll`` contacts, more than
     :data:`PLL_MISSED_FRACTION` under the ``n_pendulum`` >= :data:`STEP_COUNT_MIN` of the pendulum detector on the
-    same session (its distance ``pll_m`` against the pendulum reading's ``pendulum_m``); None otherwise."""
+    same session (its distance ``pll_m`` against the pendulum reading's ``pendulum_m``); None otherwise.
+    Decision W477: each direction is worded from the numbers (fewer steps; a distance longer or shorter), and with the
+    pelvic-gyro detector's count ``n_gyro`` over the same span both counts are compared with it before a pipeline is
+    recommended: the pendulum's only when it is the nearer and within W99's 30 %; waist-pll's when it is; else
+    neither (the pelvic gyro for the count and cadence)."""
     if n_pendulum < STEP_COUNT_MIN or n_pendulum - n_pll <= PLL_MISSED_FRACTION * n_pendulum:
         return None
-    return (f"waist-pll found {n_pll} steps where the pendulum model's contact detector found {n_pendulum} on the same "
-            f"session (more than {100 * PLL_MISSED_FRACTION:.0f} % fewer warns, decision W208, W99's disagreement): "
-            "its phase-locked loop loses the step rhythm of this gait (slow walking), so it misses steps; its step "
-            f"count, cadence and distance ({pll_m:.2f} m, {_direction(pll_m, pendulum_m)} the pendulum's "
-            f"{pendulum_m:.2f} m) read short and its bouts and pauses are not reliable; track with --pipeline "
-            "waist-pendulum, calibrated on this walker's own walk of known length ('pdrlearn calibrate DIR "
-            "--pipeline waist-pendulum --distance M --out PARAMS.json'), or use a foot unit")
+    head = (f"waist-pll found {n_pll} steps where the pendulum model's contact detector found {n_pendulum} on the "
+            f"same session (more than {100 * PLL_MISSED_FRACTION:.0f} % fewer warns, decision W208, W99's "
+            f"disagreement); its distance {pll_m:.2f} m is {_direction(pll_m, pendulum_m)} the pendulum's "
+            f"{pendulum_m:.2f} m: ")
+    calibrate = ("calibrated on this walker's own walk of known length ('pdrlearn calibrate DIR --pipeline PIPELINE "
+                 "--distance M --out PARAMS.json')")
+    lost = ("its phase-locked loop loses the step rhythm of this gait (slow walking), so it misses steps; its step "
+            "count, cadence, distance, bouts and pauses are not reliable")
+    if n_gyro is None or n_gyro < STEP_COUNT_MIN:  # no pelvic count to judge by: W208's advice
+        return (head + lost + "; track with --pipeline waist-pendulum, "
+                + calibrate.replace("PIPELINE", "waist-pendulum")
+                + ", or use a foot unit")
+    tol = STEP_COUNT_DISAGREE * n_gyro
+    off_pll, off_pend = n_pll - n_gyro, n_pendulum - n_gyro
+    judge = (f"the pelvic-gyro detector counts {n_gyro} steps over the same span (decision W477): waist-pll "
+             f"{off_pll:+d}, the pendulum {off_pend:+d}; ")
+    cause = (lost if off_pll < -tol else
+             "both detectors add contacts inside steps (decision W441), the pendulum's more" if off_pll > tol else
+             "the pendulum's detector adds contacts inside steps (decision W441), waist-pll's count is the nearer")
+    if abs(off_pend) < abs(off_pll) and abs(off_pend) <= tol:
+        advice = "track with --pipeline waist-pendulum, " + calibrate.replace("PIPELINE", "waist-pendulum")
+    elif abs(off_pll) <= abs(off_pend) and abs(off_pll) <= tol:
+        advice = ("keep --pipeline waist-pll (" + calibrate.replace("PIPELINE", "waist-pll") + " for the distance)")
+    else:
+        advice = ("neither pipeline's count is within 30 % of the pelvic gyro's: take the step count and cadence "
+                  "from 'pdrlearn steps DIR --detector pelvic-gyro'; below 70 steps/min 'pdrlearn track DIR "
+                  "--pipeline waist-pll --detector pll' (the PLL detector's own gate and slow band, decision W475) "
+                  "may follow the steps")
+    return head + cause + "; " + judge + advice + ", or use a foot unit"
 
 
 #: decision W139: what the walk ratio of a ``waist-pll`` track is read from, and why
