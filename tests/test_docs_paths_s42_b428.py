@@ -1,6 +1,7 @@
 """Session 42, fixer FG (trial T3 finding F4, decision B428): every ``docs/*.md`` path (and ``#anchor``) that
-pdrlearn's code names exists - split's refusal named docs/clock.md, which never did - and split's refusal of units on
-their own clocks names the recipe that puts them on one (docs/data.md "Units on one clock before split"), which works."""
+pdrlearn's code names exists - split's refusal named docs/clock.md, which never did - and split's refusal of units
+on their own clocks names the recipe that puts them on one (docs/data.md "Units on one clock before split"), which
+works."""
 
 from __future__ import annotations
 
