@@ -284,6 +284,10 @@ SESSIONS: tuple[Column, ...] = (
     ("n_stair_strides_down", "count", "integer", "n_stair_strides that descend (L432)"),
     ("n_flights_up", "count", "integer", "foot: stair flights up, stairs.csv's rows (L432); empty on the lower back"),
     ("n_flights_down", "count", "integer", "foot: stair flights down (L432); empty on the lower back"),
+    ("flights_rise_m", "m", "number", "foot: what the stair flights up climb, stairs.csv's height_m summed (L602); "
+                                      "empty on the lower back"),
+    ("flights_drop_m", "m", "number", "foot: what the stair flights down descend, stairs.csv's height_m summed "
+                                      "(positive; L602); empty on the lower back"),
     ("n_steps_left", "count", "integer", "lower back: steps whose side (W129's pelvis sway) is the left foot "
                                          "(W228); empty on a foot track (n_strides_one_foot)"),
     ("n_steps_right", "count", "integer", "lower back: steps of the right foot (W228); empty on a foot track"),

@@ -5,7 +5,7 @@ one line by ``pdrlearn info`` and ``pdrlearn track`` (it is not read: a typo, or
 
 from __future__ import annotations
 
-#: decision B262: keys pdrlearn reads (docs/bad-input.md "meta.json fields", docs/frames.md, docs/clock.md ...)
+#: decision B262: keys pdrlearn reads (docs/bad-input.md "meta.json fields", docs/frames.md, docs/data.md ...)
 READ = frozenset({
     "units", "frames", "frames_how", "force_frame", "placement", "instrumented_foot", "foot", "waist", "pelvis",
     "session", "subject", "visit", "labels", "reference", "imported", "resampled", "clocks", "clock_id",

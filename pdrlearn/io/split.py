@@ -491,7 +491,9 @@ def _refuse(folder: Path, meta: dict) -> None:
                                  if isinstance(meta.get(k), int | float)):
         raise DataError(f"{folder}/meta.json: the units have clocks of their own (clocks, clock_offset_s or "
                         "clock_drift_ppm), so one cut time is not the same instant for every unit; split reads one "
-                        "session clock -- put the units on it first (docs/clock.md), then split (decision B380)")
+                        "session clock -- write the session once on one clock first (read_session, apply_alignment, "
+                        "write_session: docs/data.md#units-on-one-clock-before-split), then split (decisions B380, "
+                        "B428)")
 
 
 def check_max_minutes(max_minutes: float) -> float:

@@ -60,12 +60,12 @@ ALTERNATION_MIN = 0.8
 WALK_META_KEYS = ("activity", "terrain_recording")
 #: decisions L262, L285: what the tracked double support is known to read (measured, experiments/bilateral_gait.py):
 #: L73's toe-off is early and the IC late against motion capture, so each double-support period is short; how short
-#: depends on the mount and the walker (a lateral mount: -7 pp; an instep mount: 6.7 % where ~20 % is expected),
+#: depends on the mount and the walker (a lateral mount: -7 pp; an instep mount: 6.0 % where ~20 % is expected),
 #: not on the rate
 SUPPORT_NOTE = ("double support reads low and single support high from foot units (decisions L73, L262, L285): "
                 "against motion capture -7.2 / +3.6 percentage points per cycle on gaitmap's level walk (lateral "
-                "shoe mount; the walk 28.2 % at 204.8 Hz, 27.1 % at 102.4 Hz, mocap 34.7 %); its 4 x 10 m walk "
-                "(instep mount, no toe-off reference) reads 6.7 % where ~20 % is expected, the toe-off ~0.1 s early: "
+                "shoe mount; the walk 27.6 % at 204.8 Hz, 26.8 % at 102.4 Hz, mocap 34.7 %; L603); its 4 x 10 m walk "
+                "(instep mount, no toe-off reference) reads 6.0 % where ~20 % is expected, the toe-off ~0.1 s early: "
                 "the bias depends on the mount and the walker, -7 pp is no bound")
 #: decision L283: meta.json's key naming the clock a session's timestamps are on; sessions whose values differ do
 #: not share t = 0 (gaitmap's converter writes it; simulated sessions are compared by :func:`sim_walk`, S54; any
@@ -114,16 +114,24 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
 
 
 def stride_terrain(steps: pd.DataFrame) -> np.ndarray:
-    """Decision L538: each row's terrain, ``"up"`` / ``"down"`` / ``"flat"``: a tracked table's L179 stair rule
-    (:func:`pdrlearn.track.gait.stair_rows`, |``dz_m``| >= 0.10 m, a ramp climb's rows left out) by the sign of
-    ``dz_m``; a label table's own ``terrain`` (the simulator's and gaitmap's flat / up / down); ``"flat"`` for a table
-    with neither (its steps are taken as level)."""
+    """Decision L538: each row's terrain, ``"up"`` / ``"down"`` / ``"flat"``: on a tracked table the rows of its
+    stair flights, by their direction (decision L603: stairs.csv's flights, :func:`pdrlearn.track.stair_flights.
+    flight_spans` - L179's stair rows, |``dz_m``| >= 0.10 m, in runs of at least L438's 2 strides of one sign, a ramp
+    climb's rows left out; before, every L179 row, so a level walk's lone drifting stride was a stair step); a label
+    table's own ``terrain`` (the simulator's and gaitmap's flat / up / down); ``"flat"`` for a table with neither (its
+    steps are taken as level)."""
     n = len(steps)
     if "dz_m" in steps:
-        from pdrlearn.track.gait import stair_rows
+        from pdrlearn.track.stair_flights import flight_spans
 
-        dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)
-        return np.where(stair_rows(steps), np.where(dz > 0, "up", "down"), "flat").astype(object)
+        order = (np.argsort(pd.to_numeric(steps["start_s"], errors="coerce").to_numpy(float), kind="stable")
+                 if "start_s" in steps else np.arange(n))
+        ordered = np.full(n, "flat", dtype=object)
+        for a, b, sign in flight_spans(steps.iloc[order].reset_index(drop=True)):  # decision L603
+            ordered[a:b] = "up" if sign > 0 else "down"
+        out = np.empty(n, dtype=object)
+        out[order] = ordered
+        return out
     if "terrain" in steps:
         t = steps["terrain"].astype(str).str.strip().str.lower().to_numpy()
         return np.where(np.isin(t, ("up", "down")), t, "flat").astype(object)

@@ -1374,14 +1374,25 @@ def ramps_need_fused_warning(summary: dict) -> str | None:
     """Decision L574 (trial T3 finding F8): one line when a foot track did not read the session's waist barometer
     (``barometer_unused``) and the barometer counted a climb (``barometer_ascent_m`` / ``barometer_descent_m`` over
     0: L146's 0.5 m within L172's minute): its ramps.csv is the header alone and steps.csv's ``grade_pct`` empty
-    (L300), which says nothing about the route's slopes."""
-    climbed = float(summary.get("barometer_ascent_m") or 0.0) + float(summary.get("barometer_descent_m") or 0.0)
-    if not summary.get("barometer_unused") or summary.get("grade_source") is not None or not climbed > 0:
+    (L300), which says nothing about the route's slopes. Decision L602 (session 42 trial T3 finding F1): only what
+    the track's stair flights do not explain - the barometer's ascent less their rise (``flights_rise_m``), its
+    descent less their drop (``flights_drop_m``) - counts, and only over L146's band
+    (:data:`pdrlearn.kernels.altitude_check.ASCENT_BAND_BARO_M`, 0.5 m: the least climb the barometer counts), so a
+    stair walk whose flights the track lists stays quiet (``--altitude fused`` would add no ramp to it)."""
+    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M
+
+    up = float(summary.get("barometer_ascent_m") or 0.0)
+    down = float(summary.get("barometer_descent_m") or 0.0)
+    left_up = up - float(summary.get("flights_rise_m") or 0.0)  # decision L602
+    left_down = down - float(summary.get("flights_drop_m") or 0.0)
+    if (not summary.get("barometer_unused") or summary.get("grade_source") is not None
+            or not max(left_up, left_down) > ASCENT_BAND_BARO_M):
         return None
-    return (f"the waist barometer climbed {float(summary.get('barometer_ascent_m') or 0.0):.2f} m and descended "
-            f"{float(summary.get('barometer_descent_m') or 0.0):.2f} m, but ramps.csv is empty and steps.csv has no "
-            "grade_pct: ramps / grades need --altitude fused (L300) - a foot track's own height levels every stride "
-            "under 0.10 m (L39), a 1:12 ramp's at strides under 1.2 m (decision L574)")
+    flights = ("" if not (summary.get("flights_rise_m") or summary.get("flights_drop_m")) else
+               f" ({max(left_up, 0.0):.2f} m / {max(left_down, 0.0):.2f} m more than stairs.csv's flights, L602)")
+    return (f"the waist barometer climbed {up:.2f} m and descended {down:.2f} m{flights}, but ramps.csv is empty and "
+            "steps.csv has no grade_pct: ramps / grades need --altitude fused (L300) - a foot track's own height "
+            "levels every stride under 0.10 m (L39), a 1:12 ramp's at strides under 1.2 m (decision L574)")
 
 
 def lower_back_grade_warning(summary: dict) -> str | None:

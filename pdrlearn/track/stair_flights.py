@@ -25,8 +25,8 @@ import pandas as pd
 #: the columns of ``stairs.csv`` (decision L432); the clock columns are added with a recording start (L298)
 FLIGHT_COLUMNS = ("flight", "start_s", "end_s", "direction", "n_strides", "height_m", "time_s", "cadence_spm",
                   "vertical_speed_mps", "median_stride_dz_m", "stride_dz_cv_pct", "n_stairs", "stairs_per_min")
-#: the summary keys of :func:`flight_summary` (decision L432)
-KEYS = ("n_flights_up", "n_flights_down")
+#: the summary keys of :func:`flight_summary` (decision L432; L602: the flights' summed rise and drop, m)
+KEYS = ("n_flights_up", "n_flights_down", "flights_rise_m", "flights_drop_m")
 #: decision L433: an interior stride of a run of stair strides whose grade (|dz| / horizontal length) is under this
 #: share of the run's median grade is a landing stride: every stair stride climbs at the stair's own grade however
 #: many stairs it takes (one step-to-step, two step-over-step, three with a skipped stair), while a stride onto or
@@ -180,7 +180,8 @@ def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.D
 
 
 def flight_summary(steps: pd.DataFrame) -> dict:
-    """Decision L432: :data:`KEYS`, the flights up and down of :func:`flight_table` of a foot track's rows; None on
+    """Decision L432: :data:`KEYS`, the flights up and down of :func:`flight_table` of a foot track's rows, and
+    (decision L602) what they climb and descend, stairs.csv's ``height_m`` summed up / down (m, both >= 0); None on
     a lower-back track (no flights table)."""
     from pdrlearn.track.belt import declared_incline
     from pdrlearn.track.clinical import _is_lower_back
@@ -189,8 +190,12 @@ def flight_summary(steps: pd.DataFrame) -> dict:
         return dict.fromkeys(KEYS)
     if declared_incline() is not None:  # decision L442: a declared inclined belt has no stair flight
         return dict.fromkeys(KEYS, 0)
-    d = flight_table(steps)["direction"].astype(str)
-    return {"n_flights_up": int((d == "up").sum()), "n_flights_down": int((d == "down").sum())}
+    table = flight_table(steps)
+    d = table["direction"].astype(str)
+    height = pd.to_numeric(table["height_m"], errors="coerce").to_numpy(float)
+    return {"n_flights_up": int((d == "up").sum()), "n_flights_down": int((d == "down").sum()),
+            "flights_rise_m": float(np.nansum(height[height > 0])) + 0.0,  # decision L602
+            "flights_drop_m": float(-np.nansum(height[height < 0])) + 0.0}
 
 
 #: decision L440: what ``--stair-rise`` on a lower-back track says (once, as a warning), instead of ignoring it

@@ -22,6 +22,8 @@ import pandas as pd
 STEP_TO_STEP_SHARE = 0.5
 #: decision L561: the steps each foot needs on a flight before its pattern is judged (a first and a last stair)
 MIN_STEPS_PER_SIDE = 2
+#: decision L604: the fewest contacts of a flight (a run of one contact has no duration, ``start_s`` = ``end_s``)
+MIN_FLIGHT_CONTACTS = 2
 #: decision L561: the stair kinds (L538's) and their climb sign
 _SIGN = {"stairs_up": 1.0, "stairs_down": -1.0}
 
@@ -69,7 +71,8 @@ def flight_lead(side: np.ndarray, z: np.ndarray, a: int, b: int, sign: float) ->
 
 def stair_flights(both: pd.DataFrame, kinds: np.ndarray) -> list[dict]:
     """Decision L561: one dict per stair flight of the merged contacts ``both`` (runs of consecutive contacts of one
-    stair kind, :func:`pdrlearn.track.bilateral.contact_kinds`, in one bout): ``kind``, ``bout``, ``start_s`` /
+    stair kind, :func:`pdrlearn.track.bilateral.contact_kinds`, in one bout; decision L604: of at least
+    :data:`MIN_FLIGHT_CONTACTS` contacts, the last after the first): ``kind``, ``bout``, ``start_s`` /
     ``end_s`` (its first and last contact) and :func:`flight_lead`'s keys. Empty without a stair or a ``z_m``."""
     if "z_m" not in both or not len(both):
         return []
@@ -77,6 +80,8 @@ def stair_flights(both: pd.DataFrame, kinds: np.ndarray) -> list[dict]:
     t, z = both["ic_s"].to_numpy(float), both["z_m"].to_numpy(float)
     out = []
     for a, b in _runs(np.asarray(kinds, dtype=object), bout):
+        if b - a < MIN_FLIGHT_CONTACTS or not t[b - 1] > t[a]:  # decision L604: one contact is no flight
+            continue
         kind = str(kinds[a])
         out.append({"kind": kind, "bout": int(bout[a]), "start_s": float(t[a]), "end_s": float(t[b - 1]),
                     **flight_lead(side, z, a, b, _SIGN[kind])})
