@@ -60,11 +60,14 @@ def test_reanchored_product_stays_a_rotation_for_an_hour(per_sample):
 
 
 @pytest.mark.slow
-def test_hour_walk_streams_the_same_as_the_shared_kernel():
-    """An hour of strides at 20 Hz pushed in 1 s chunks: the default (incremental) tracker equals
+def test_a_15_minute_walk_streams_the_same_as_the_shared_kernel():
+    """A long walk of strides at 20 Hz pushed in 1 s chunks: the default (incremental) tracker equals
     ``incremental=False`` within 1e-9 m on every stride (before decision E27 it crashed after 7-8 minutes
-    with "gravity vector [3.4e+239, ...] is zero or not finite", and E27's check stops it at 446 s)."""
-    s = synthetic_session(3600, seed=4, turn_rad_per_step=0.03)
+    with "gravity vector [3.4e+239, ...] is zero or not finite", and E27's check stops it at 446 s).
+    15 minutes, not the hour it once was (session 42; the test was ``test_hour_walk_...``): the failure it
+    guards comes at 7-8 minutes (the pre-E27 re-anchoring, put back in a scratch copy, stops this walk at
+    461 s); 900 s is twice that and holds 60 reallocations."""
+    s = synthetic_session(900, seed=4, turn_rad_per_step=0.03)
     t = s.streams["fAccelerometer"].t
     edges = np.arange(0, int(t[-1]) + 2)  # integer seconds: exact chunk bounds
     chunks = [{n: (st.t[i0:i1], st.values[i0:i1]) for n, st in s.streams.items()
@@ -77,7 +80,7 @@ def test_hour_walk_streams_the_same_as_the_shared_kernel():
             steps += tr.push(c)
         out[inc] = steps + tr.flush()
     a, b = out[True], out[False]
-    assert len(a) == len(b) > 3000 and a[-1].end_s > 3500
+    assert len(a) == len(b) > 850 and a[-1].end_s > 890
     assert [(x.start_s, x.end_s) for x in a] == [(x.start_s, x.end_s) for x in b]
     err = max(max(abs(x.length_m - y.length_m), abs(x.x - y.x), abs(x.y - y.y), abs(x.z - y.z))
               for x, y in zip(a, b, strict=True))

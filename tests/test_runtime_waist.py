@@ -50,7 +50,7 @@ def _xy(out):
 
 
 @pytest.mark.parametrize("how", ["one", "random"])
-def test_a_simulated_walk_on_the_waist_bundle_equals_the_live_tracker_and_the_replay(sim, how):
+def test_a_simulated_walk_on_the_waist_bundle_equals_the_live_tracker_and_the_replay(sim, sim_ref, how):
     s = sim["session"]
     n = len(s["wAccelerometer"].t)
     chunks = [1] * n if how == "one" else list(np.random.default_rng(5).integers(1, 300, 2000))
@@ -61,7 +61,7 @@ def test_a_simulated_walk_on_the_waist_bundle_equals_the_live_tracker_and_the_re
                  [n])
     assert len(out) == len(live) > 20
     np.testing.assert_allclose(_xy(out), _xy(live), atol=1e-9, rtol=0)
-    ref = track_waist(s, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    ref = sim_ref
     assert len(ref.steps) == len(out)
     np.testing.assert_allclose(_xy(out)[:, 3], ref.trajectory["x"].to_numpy()[1:], atol=1e-9, rtol=0)
     np.testing.assert_allclose(_xy(out)[:, 4], ref.trajectory["y"].to_numpy()[1:], atol=1e-9, rtol=0)
@@ -111,13 +111,13 @@ def test_the_waist_runtime_imports_numpy_only(sim, tmp_path):
     assert out["loaded"] == [] and out["n"] > 20
 
 
-def test_export_and_run_of_a_waist_bundle_on_the_command_line(sim, tmp_path, capsys):
+def test_export_and_run_of_a_waist_bundle_on_the_command_line(sim, sim_ref, tmp_path, capsys):
     walk = write_session(sim["session"], tmp_path / "walk")
     assert main(["export", str(sim["cal"]), "--out", str(tmp_path / "b"), "--frame", _frame_arg(sim["session"])]) == 0
     assert capsys.readouterr().out.startswith(f"waist bundle {tmp_path / 'b'} (")
     assert main(["run", "--no-plot", str(tmp_path / "b"), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
-    ref = track_waist(sim["session"], pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    ref = sim_ref
     assert summary["n_steps"] == len(ref.steps) and summary["pipeline"] == "runtime"
     assert summary["distance_m"] == pytest.approx(float(ref.steps["length_m"].sum()), abs=1e-9)
     assert main(["run", "--no-plot", str(tmp_path / "b"), str(walk), "--out", str(tmp_path / "r"),
@@ -160,12 +160,12 @@ def _push_with_barometer(tr, s, chunks) -> list:
 
 
 @pytest.mark.parametrize("how", ["one", "random"])
-def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim, stairs3040, tmp_path, capsys, how):
+def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim, stairs3040, stairs_ref, tmp_path,
+                                                                           capsys, how):
     """Decision E106: `run WAIST_BUNDLE` of a stairs walk had 0 / 0 floors and z 0 (offline `track` 2 / 1 here) while
     saying the barometer was used; the live trackers now read it (``push_barometer``): each step's z and dz_m equal
     ``track_waist(realtime=True)``'s, and so `run`'s floors, altitude and ascent (the trial's floors2: 2 / 2)."""
-    stairs = stairs3040
-    ref = track_waist(stairs, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    stairs, ref = stairs3040, stairs_ref
     assert np.ptp(ref.trajectory["z"]) > 5.0
     # "one": one-sample pushes over 10-35 s (both flights up and the U-turn landing between them: steps whose
     # altitude change is read while the barometer arrives sample by sample), 1 s pushes before and after
@@ -183,16 +183,17 @@ def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim,
     from pdrlearn.track.evaluate import evaluate_track
 
     walk = write_session(stairs, tmp_path / "stairs")
-    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
-    summary = json.loads(capsys.readouterr().out)
+    # one run (session 42: there were two): summary.json is the object --json prints (both json_safe(summary)), and
+    # the console line says the floors, as track's
+    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--out", str(tmp_path / "r")]) == 0
+    assert "floors up 2 / down 1" in capsys.readouterr().out
+    summary = json.loads((tmp_path / "r" / "summary.json").read_text())
     want = evaluate_track(ref, stairs)
     assert (summary["floors_up"], summary["floors_down"]) == (want["floors_up"], want["floors_down"]) == (2, 1)
     for k in ("altitude_change_m", "ascent_m", "descent_m"):
         assert summary[k] == pytest.approx(want[k], abs=1e-6), k
     assert summary["barometer_unused"] is False and summary["final_position"]["z"] == pytest.approx(
         float(ref.trajectory["z"].iloc[-1]), abs=1e-6)
-    assert main(["run", "--no-plot", str(sim["bundle"]), str(walk)]) == 0
-    assert "floors up 2 / down 1" in capsys.readouterr().out  # the console line says it, as track's
 
 
 @pytest.fixture(scope="module")
@@ -206,8 +207,21 @@ def stairs3040():
                          UserProfile.from_seed(3040), speed="normal", rate_hz=100.0)
 
 
-def test_export_carries_stairs_length_into_the_waist_bundle_and_the_runtime_applies_it(sim, stairs3040, tmp_path,
-                                                                                     capsys):
+@pytest.fixture(scope="module")
+def stairs_ref(sim, stairs3040):
+    """``track_waist(realtime=True)`` of the stairs route with the calibration, made once for the tests that read it
+    (session 42: each made it again)."""
+    return track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+
+
+@pytest.fixture(scope="module")
+def sim_ref(sim):
+    """``track_waist(realtime=True)`` of the simulated walk with the calibration, made once (session 42)."""
+    return track_waist(sim["session"], pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+
+
+def test_export_carries_stairs_length_into_the_waist_bundle_and_the_runtime_applies_it(sim, stairs3040, stairs_ref,
+                                                                                     tmp_path, capsys):
     """Decision E107: `export` of a calibration with ``"options": {"stairs_length": true}`` had dropped it (the trial's
     floors2 ran +60.40 % with or without it); the bundle now carries it and the live trackers apply W91's cap on the
     live barometric altitude: the steps equal ``track_waist(realtime=True)``'s with the option, and differ without."""
@@ -218,7 +232,7 @@ def test_export_carries_stairs_length_into_the_waist_bundle_and_the_runtime_appl
     bundle = load_waist_bundle(tmp_path / "wb")
     assert bundle.options["stairs_length"] is True
     ref = track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(sl))
-    plain = track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    plain = stairs_ref
     assert ref.steps["stairs"].sum() > 20 and ref.steps["length_m"].sum() < plain.steps["length_m"].sum() - 5.0
     out = _push_with_barometer(WaistTracker(bundle, fs=100.0), stairs3040, [100] * 10_000)
     np.testing.assert_allclose([o.length_m for o in out], ref.steps["length_m"].to_numpy(), atol=1e-9, rtol=0)
@@ -262,7 +276,8 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
 
 
 def test_stairs_length_climbs_is_named_as_not_applied_live_and_the_runtime_keeps_the_default(sim, stairs3040,
-                                                                                              tmp_path, capsys):
+                                                                                              stairs_ref, tmp_path,
+                                                                                              capsys):
     """Decisions W156 / E107: ``stairs_length: "climbs"`` bounds only the steps inside W108's climbs, which need the
     whole recording; `export` names it as not applied live, and the live tracker tracks as with the default (no
     bound), not as with ``true``."""
@@ -272,7 +287,7 @@ def test_stairs_length_climbs_is_named_as_not_applied_live_and_the_runtime_keeps
     assert main(["export", str(p), "--out", str(tmp_path / "wb"), "--frame", _frame_arg(stairs3040)]) == 0
     err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
     assert len(err) == 1 and 'stairs_length="climbs"' in err[0]
-    plain = track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    plain = stairs_ref
     out = _push_with_barometer(WaistTracker(load_waist_bundle(tmp_path / "wb"), fs=100.0), stairs3040, [100] * 10_000)
     np.testing.assert_allclose([o.length_m for o in out], plain.steps["length_m"].to_numpy(), atol=1e-9, rtol=0)
 

@@ -35,6 +35,16 @@ def day(tmp_path_factory):
     return _simulate(tmp_path_factory.mktemp("split"), 9115)
 
 
+@pytest.fixture(scope="module")
+def day_split(day, tmp_path_factory):
+    """``split_session(day, max_minutes=0.75)`` at the default chunk size (100 000 rows), made once for the three
+    tests that read it (session 42: each made it again)."""
+    from pdrlearn.io.split import CHUNK_ROWS, split_session
+
+    assert CHUNK_ROWS == 100_000
+    return split_session(day, tmp_path_factory.mktemp("day_split") / "parts", max_minutes=0.75)
+
+
 def _rows(path: Path) -> list[str]:
     opener = gzip.open if path.name.endswith(".gz") else open
     with opener(path, "rt") as f:
@@ -90,7 +100,7 @@ def test_split_cuts_at_rest_and_each_part_is_a_session_b379(day, tmp_path, capsy
     assert len(steps) >= 20 and steps["start_s"].min() >= metas[1]["split"]["start_s"]
 
 
-def test_output_does_not_depend_on_the_chunk_size_b379(day, tmp_path):
+def test_output_does_not_depend_on_the_chunk_size_b379(day, day_split, tmp_path):
     from pdrlearn.io.split import split_session
 
     gz = tmp_path / "gz"
@@ -100,16 +110,17 @@ def test_output_does_not_depend_on_the_chunk_size_b379(day, tmp_path):
         p.unlink()
     for src in (day, gz):
         a = split_session(src, tmp_path / f"{src.name}_a", max_minutes=0.75, chunk_rows=997)
-        b = split_session(src, tmp_path / f"{src.name}_b", max_minutes=0.75, chunk_rows=100_000)
+        b = (day_split if src == day
+             else split_session(src, tmp_path / f"{src.name}_b", max_minutes=0.75, chunk_rows=100_000))
         assert len(a.parts) == 3 and a.cuts == b.cuts
-        fa, fb = _files(tmp_path / f"{src.name}_a"), _files(tmp_path / f"{src.name}_b")
+        fa, fb = _files(tmp_path / f"{src.name}_a"), _files(b.parts[0].parent)
         assert fa.keys() == fb.keys() and fa == fb
     assert (tmp_path / "gz_a" / "part_001" / "fGyroscope.csv.gz").is_file()
     assert (_rows(tmp_path / "gz_a" / "part_001" / "fGyroscope.csv.gz")
             == _rows(tmp_path / f"{day.name}_a" / "part_001" / "fGyroscope.csv"))
 
 
-def test_semicolon_decimal_comma_files_cut_alike_b379(day, tmp_path):
+def test_semicolon_decimal_comma_files_cut_alike_b379(day, day_split, tmp_path):
     from pdrlearn.io.split import split_session
 
     comma = tmp_path / "comma"
@@ -117,7 +128,7 @@ def test_semicolon_decimal_comma_files_cut_alike_b379(day, tmp_path):
     for p in sorted(comma.glob("[fw]*.csv")):  # the sensor files as a decimal-comma spreadsheet writes them (B24)
         df = pd.read_csv(p, dtype=str)
         df.apply(lambda c: c.str.replace(".", ",", regex=False)).to_csv(p, sep=";", index=False)
-    plain = split_session(day, tmp_path / "a", max_minutes=0.75)
+    plain = day_split
     got = split_session(comma, tmp_path / "b", max_minutes=0.75)
     assert got.cuts == plain.cuts and all(c.at_rest for c in got.cuts)
     assert _rows(got.parts[1] / "fGyroscope.csv")[1] == _rows(plain.parts[1] / "fGyroscope.csv")[1].replace(
@@ -217,7 +228,7 @@ def test_bad_input_is_one_line_b380(day, tmp_path, capsys, make, args, words):
 
 
 @pytest.mark.parametrize("user", [9115, 9119])  # two of B381's fresh users (9115: the module's ``day``)
-def test_parts_distances_add_up_to_the_whole_b381(day, tmp_path, user):
+def test_parts_distances_add_up_to_the_whole_b381(day, day_split, tmp_path, user):
     from pdrlearn.io import read_session
     from pdrlearn.io.split import split_session
     from pdrlearn.track import get_pipeline
@@ -225,7 +236,7 @@ def test_parts_distances_add_up_to_the_whole_b381(day, tmp_path, user):
     logging.disable(logging.WARNING)
     try:
         session = day if user == 9115 else _simulate(tmp_path, user)
-        res = split_session(session, tmp_path / "parts", max_minutes=0.75)
+        res = day_split if user == 9115 else split_session(session, tmp_path / "parts", max_minutes=0.75)
         assert len(res.parts) >= 2 and all(c.at_rest for c in res.cuts)
         for pipe in ("plasys", "waist-pendulum"):
             whole = get_pipeline(pipe)(read_session(session)).distance_m

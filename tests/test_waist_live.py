@@ -38,6 +38,14 @@ def _run(s, chunks, **kw):
     return push_waist(tr, s, chunks), tr
 
 
+def _whole(s):
+    """``_run(s, [all samples])`` with the defaults, pushed once per module (session 42: two tests made it)."""
+    key = ("whole", s.name, len(s["wAccelerometer"].t))
+    if key not in _CACHE:
+        _CACHE[key] = _run(s, [len(s["wAccelerometer"].t)])[0]
+    return _CACHE[key]
+
+
 def _columns(out):
     return {k: np.array([getattr(o, k) for o in out], dtype=float)
             for k in ("t", "end_s", "length_m", "heading_rad", "x", "y")}
@@ -99,11 +107,10 @@ def test_ha001_test11_without_fragment_merging_equals_the_replay(how):
 def test_ha001_test11_one_sample_pushes_equal_one_push():
     """W64's fragment rule reads the same rows whatever arrived when: every chunking gives the same steps."""
     s = _session("ha001")
-    n = len(s["wAccelerometer"].t)
     # one sample at a time over 0-15 s and 84-104 s (1 s pushes between and after): the windows hold both W27
     # fragments the live tracker judges (4.1 s and 86.7 s) and a turn (9.9 s): the fragment rule runs sample by sample
     one = _columns(_run(s, [1] * 1500 + [100] * 69 + [1] * 2000 + [100] * 34)[0])
-    whole = _columns(_run(s, [n])[0])
+    whole = _columns(_whole(s))
     rand = _columns(_run(s, list(np.random.default_rng(9).integers(1, 500, 4000)))[0])
     for k in one:
         np.testing.assert_allclose(one[k], whole[k], atol=1e-9, rtol=0)
@@ -114,7 +121,7 @@ def test_ha001_test11_defaults_differ_from_the_replay_only_at_w27_decisions():
     """W64: with the default merge_fragments the contacts and headings are the replay's; a step length differs
     only where a W27 fragment is judged on the sequence so far (the replay: on the whole sequence)."""
     s = _session("ha001")
-    out, _ = _run(s, [len(s["wAccelerometer"].t)])
+    out = _whole(s)
     st = _replay(s).steps
     c = _columns(out)
     np.testing.assert_array_equal(c["t"], st["event_s"])

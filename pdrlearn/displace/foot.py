@@ -12,6 +12,7 @@ from scipy.ndimage import uniform_filter1d
 from pdrlearn.displace import _kernels as K
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
+from pdrlearn.kernels import foot_rhythm as FR
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.frozen_foot import FORCE_LOAD_LEVEL
 from pdrlearn.orient import FootAttitude, UnitData
@@ -60,7 +61,8 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
                     acc_tol: float = 1.5, gyr_tol: float = 0.4,
                     floor_factor: float = SK.STANCE_L27_DEFAULTS["stance_floor_factor"],
                     floor_window_s: float | None = None,
-                    gyr_max: float = SK.STANCE_L27_DEFAULTS["stance_gyro_max_rad_s"]) -> np.ndarray:
+                    gyr_max: float = SK.STANCE_L27_DEFAULTS["stance_gyro_max_rad_s"],
+                    rhythm_frac: float | None = None) -> np.ndarray:
     """Foot-flat samples from accelerometer + gyroscope (short window, looser tolerances than
     :func:`pdrlearn.signal.standstill_mask`, whose test this reuses).
 
@@ -68,6 +70,10 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
     lowest ``window_s`` mean of |w| within ``floor_window_s`` around the sample, never below ``gyr_tol``
     nor above ``gyr_max`` (a foot that never quite rests: instep mounts rolling with the foot, short
     foot-flats); ``floor_factor=0`` = the fixed ``gyr_tol``.
+
+    Decisions L596/L597: a rest shorter than ``rhythm_frac`` x the foot's own stride period
+    (:func:`pdrlearn.kernels.foot_rhythm.stride_period`) is a slow swing's lull, not a rest, where that asks more
+    than ``window_s`` (a slow rhythm; None: ``RHYTHM_FRAC``, 0: keep every run).
     """
     window_s = max(window_s, 2.5 / fs)
     floor_window_s = OFFLINE_FLOOR_WINDOW_S if floor_window_s is None else floor_window_s
@@ -76,7 +82,13 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
         floor = SK.stance_floor(np.linalg.norm(np.asarray(gyr, dtype=float), axis=1), fs, mean_s=window_s,
                                 window_s=floor_window_s)
         tol = SK.stance_gyro_threshold(floor, gyr_tol, factor=floor_factor, cap=gyr_max)
-    return standstill_mask(acc, gyr, fs, window_s=window_s, acc_tol=acc_tol, gyr_tol=tol)
+    rest = standstill_mask(acc, gyr, fs, window_s=window_s, acc_tol=acc_tol, gyr_tol=tol)
+    rhythm_frac = FR.RHYTHM_FRAC if rhythm_frac is None else rhythm_frac
+    if rhythm_frac > 0 and len(gyr):
+        min_rest_s = rhythm_frac * FR.foot_period(gyr, fs, window_s)
+        if min_rest_s > window_s:  # decision L597: shorter rests are the window test's own to decide
+            rest = FR.drop_short_rests(rest, int(np.floor(min_rest_s * fs)))
+    return rest
 
 
 def stance_runs(t: np.ndarray, stance: np.ndarray, *, merge_s: float = 0.1) -> np.ndarray:

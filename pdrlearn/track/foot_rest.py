@@ -21,6 +21,7 @@ import numpy as np
 
 from pdrlearn.displace.foot import inertial_stance
 from pdrlearn.io.sensors import UNIT_IMU
+from pdrlearn.kernels.foot_rhythm import foot_period, slow_swing_rate
 from pdrlearn.kernels.frozen_foot import (
     block_motion,
     foot_still,
@@ -62,8 +63,17 @@ def foot_rest_stats(session) -> dict | None:
     # decision B253: "walks" and "swings" are B251's largest figures of any 10 s block (a night's whole-session sd
     # and 99th percentile read a short walk as still, hiding B134's and B201's faults)
     sd, swing = block_motion(acc_s.t, acc, gyr_s.t, gyr_s.values)
+    fs = float(acc_s.rate_hz)
+    period = foot_period(gyr, fs)
     return {"rest_acc_g": float(np.median(norm[ok]) / STANDARD_GRAVITY) if ok.sum() >= MIN_REST_SAMPLES else None,
-            "rest_fraction": float(rest.mean()), "swing_rad_s": swing, "walking": bool(sd > WALKING_ACC_STD)}
+            "rest_fraction": float(rest.mean()), "swing_rad_s": swing, "walking": bool(sd > WALKING_ACC_STD),
+            "stride_period_s": period if np.isfinite(period) else None,  # decision L598 (None: no rhythm found)
+            "no_swing_rad_s": slow_swing_rate(FOOT_NO_SWING, period)}
+
+
+def _swings(stats: dict) -> bool:
+    """B91's swing test against the rate a foot of this rhythm must reach (decision L598)."""
+    return stats["swing_rad_s"] >= stats.get("no_swing_rad_s", FOOT_NO_SWING)
 
 
 def foot_scale_warning(stats: dict | None, where: str) -> str | None:
@@ -71,7 +81,7 @@ def foot_scale_warning(stats: dict | None, where: str) -> str | None:
     on a foot that walks and swings like a foot (B134's unit that never swings has other rests); ``where`` leads it
     (``""``: the caller's logger adds it)."""
     g = (stats or {}).get("rest_acc_g")
-    if g is None or not stats["walking"] or not stats["swing_rad_s"] >= FOOT_NO_SWING or abs(g - 1.0) <= REST_SCALE_TOL:
+    if g is None or not stats["walking"] or not _swings(stats) or abs(g - 1.0) <= REST_SCALE_TOL:
         return None
     return ((f"{where}: " if where else "") + f"fAccelerometer.csv reads {g:.3f} g at the foot's rests (its detected "
             "foot-flats, "
@@ -121,7 +131,7 @@ def frozen_foot_imu(session) -> str | None:
 
 def no_strides_warning(stats: dict | None, where: str, detector: str) -> str | None:
     """Decision B201: the line when ``detector`` found no stride on a foot that walks and swings like a foot."""
-    if not stats or not stats["walking"] or not stats["swing_rad_s"] >= FOOT_NO_SWING:
+    if not stats or not stats["walking"] or not _swings(stats):
         return None
     g = stats.get("rest_acc_g")
     return (f"{where}: {detector} found no strides, but the foot unit walks (it swings up to "
@@ -141,7 +151,7 @@ def foot_placement_warning(stats: dict | None, where: str, kinds: dict | None = 
     swings the foot less than a forward stride: 127-144 deg/s)."""
     from pdrlearn.track.stride_kinds import MIN_CLASSED_STRIDES, not_judged
 
-    if not stats or not stats["walking"] or not stats["swing_rad_s"] < FOOT_NO_SWING:
+    if not stats or not stats["walking"] or _swings(stats):
         return None
     if not_judged(kinds, MIN_CLASSED_STRIDES):  # decision W415: a side-shuffle drill's foot
         return None
@@ -149,7 +159,8 @@ def foot_placement_warning(stats: dict | None, where: str, kinds: dict | None = 
             "fGyroscope.csv) walks but never "
             f"swings like a foot (at most {np.degrees(stats['swing_rad_s']):.0f} deg/s, 99th percentile of |gyro| "
             "in any 10 s block; a "
-            f"walking foot exceeds {np.degrees(FOOT_NO_SWING):.0f}), so the rests its ZUPT finds are not foot-flats "
+            f"walking foot exceeds {np.degrees(stats.get('no_swing_rad_s', FOOT_NO_SWING)):.0f} at this rhythm, "
+            "decision L598), so the rests its ZUPT finds are not foot-flats "
             "and its distance is meaningless: is this unit on the foot? (pocket/waist/shank placements are not "
             "supported for the foot unit: mount it on the shoe, instep, heel or side; a lower-back unit's data go "
             "in the w* files; decision B134)")
@@ -163,3 +174,25 @@ def foot_placement_line(session, stats: dict | None, where: str) -> str | None:
     from pdrlearn.track.stride_kinds import foot_stride_kinds
 
     return foot_placement_warning(stats, where, foot_stride_kinds(session))
+
+
+#: decision L599: what the offline foot distance did at stride periods over L80's 3 s (L596's walks and trial T2's
+#: sessions b175 and g_0.45_2.0, no model)
+SLOW_RHYTHM_DISTANCE = ("-2.61 to +10.71 % at 1.75-2.0 s steps of 0.2-0.45 m, +9.06 to +29.14 % at 2.5 s steps, "
+                        "simulated")
+
+
+def slow_rhythm_line(gyr, fs: float) -> str | None:
+    """Decision L599: one line when the foot's own stride period (:func:`~pdrlearn.kernels.foot_rhythm.foot_period`)
+    is longer than L80's :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S`: the strides are found (L597) but every
+    stride time, and so the cadence, speed and bouts, treats each stride as a stop. None otherwise."""
+    from pdrlearn.kernels.contact import MAX_STRIDE_S
+
+    period = foot_period(gyr, fs)
+    if not np.isfinite(period) or period <= MAX_STRIDE_S:
+        return None
+    return (f"the foot's strides take {period:.1f} s (its gyroscope's rhythm, about {120 / period:.0f} steps/min; "
+            f"decision L596), longer than the {MAX_STRIDE_S:g} s a stride may take (L80): this is slower than the "
+            "walking the pipelines were validated on; no cadence, stride time or speed is given and each stride "
+            "counts as a pause between walking bouts; the offline foot distance was measured at "
+            f"{SLOW_RHYTHM_DISTANCE} (no model; decisions L597, L599)")

@@ -87,6 +87,7 @@ from pdrlearn.signal import lowpass
 from pdrlearn.track.altitude import apply_altitude, check_altitude, set_strides_dz
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
+from pdrlearn.track.foot_rest import slow_rhythm_line
 from pdrlearn.track.gait import (
     STRAIGHT_MAX_RAD,
     add_gait_columns,
@@ -1321,6 +1322,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if long.any():
             fd_warnings.append(f"{int(long.sum())} stride(s) longer than {fd.max_stride_s:g} s (no stance detected "
                                "between steps): their displacement is unreliable")
+    slow_line = slow_rhythm_line(foot.gyr, foot.fs)  # decision L599: a slow rhythm's long strides have their rests
+    if slow_line:
+        fd_warnings = [w for w in fd_warnings if "stride(s) longer than" not in w] + [slow_line]
     warnings += fd_warnings
     if not len(strides):
         raise DataError(f"session '{session.name}': no stride between two rests of the foot unit")

@@ -1,0 +1,72 @@
+"""Decision L596: the foot's own stride rhythm and the rests it allows (pure numpy).
+
+A slow walker's swing (stride times of 3.5-5 s) has lulls of 0.10-0.15 s that pass the foot rest test; a rest must
+last a fraction of the foot's stride period P to be one. P is the lag of the highest local maximum of the
+autocorrelation of the foot's |w| (its window mean), within ``lo_s``..``hi_s``."""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: decision L596: a rest run shorter than this fraction of the foot's stride period is motion (a swing's lull)
+RHYTHM_FRAC = 0.06
+#: decision L596: the stride periods searched (s): a running stride (0.6 s) to a 5 s exoskeleton stride, with margin
+PERIOD_RANGE_S = (0.5, 6.0)
+
+
+def stride_period(w: np.ndarray, fs: float, *, lo_s: float = PERIOD_RANGE_S[0],
+                  hi_s: float = PERIOD_RANGE_S[1]) -> float:
+    """The stride period (s) of a foot's |w| ``(n,)`` at ``fs`` Hz: the lag in ``lo_s``..``hi_s`` of the highest
+    local maximum of its (biased, mean-removed) autocorrelation; NaN when the recording is shorter than two
+    periods of ``hi_s`` or has no such maximum."""
+    x = np.asarray(w, dtype=float)
+    x = x[np.isfinite(x)]
+    lo, hi = int(np.ceil(lo_s * fs)), int(np.floor(hi_s * fs))
+    if len(x) < 2 * hi or hi <= lo + 2:
+        return float("nan")
+    x = x - x.mean()
+    nfft = 1 << int(np.ceil(np.log2(2 * len(x))))
+    f = np.fft.rfft(x, nfft)
+    ac = np.fft.irfft(f * np.conj(f), nfft)[: hi + 2]
+    seg = ac[lo - 1: hi + 2]
+    peak = np.flatnonzero((seg[1:-1] > seg[:-2]) & (seg[1:-1] >= seg[2:]) & (seg[1:-1] > 0)) + 1
+    if not len(peak):
+        return float("nan")
+    return float((lo - 1 + peak[np.argmax(seg[peak])]) / fs)
+
+
+def foot_period(gyr: np.ndarray, fs: float, window_s: float = 0.1) -> float:
+    """:func:`stride_period` of a foot gyroscope ``(n, 3)`` (rad/s) at ``fs`` Hz: of its |w|'s ``window_s`` mean (the
+    rest test's own window, L27)."""
+    from scipy.ndimage import uniform_filter1d
+
+    w = np.linalg.norm(np.asarray(gyr, dtype=float), axis=1) if len(gyr) else np.zeros(0)
+    return stride_period(uniform_filter1d(w, max(1, int(round(window_s * fs))), mode="nearest"), fs) if len(w) \
+        else float("nan")
+
+
+def drop_short_rests(rest: np.ndarray, min_samples: int) -> np.ndarray:
+    """``rest`` (bool, (n,)) without its runs shorter than ``min_samples`` samples (a copy)."""
+    r = np.asarray(rest, dtype=bool).copy()
+    if min_samples <= 1 or not r.any():
+        return r
+    d = np.diff(np.r_[0, r.astype(np.int8), 0])
+    starts, stops = np.flatnonzero(d == 1), np.flatnonzero(d == -1)
+    for a, b in zip(starts, stops, strict=True):
+        if b - a < min_samples:
+            r[a:b] = False
+    return r
+
+
+#: decision L598: the stride period (s) at which B91's swing threshold was set (walking feet of 1.0-1.2 s strides
+#: swing at 6.2 rad/s and more; the threshold, 3 rad/s, is half of that)
+SWING_REF_PERIOD_S = 1.2
+
+
+def slow_swing_rate(rate: float, period_s: float) -> float:
+    """Decision L598: the swing rate ``rate`` (rad/s, set on normal strides) a foot of stride period ``period_s``
+    must reach: a swing turns the foot through about the same angle at any speed, in a time that grows with the
+    stride, so the rate scales with ``SWING_REF_PERIOD_S`` / ``period_s`` (never above ``rate``; NaN = ``rate``)."""
+    if not np.isfinite(period_s) or period_s <= SWING_REF_PERIOD_S:
+        return float(rate)
+    return float(rate) * SWING_REF_PERIOD_S / float(period_s)
