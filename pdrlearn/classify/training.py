@@ -66,6 +66,15 @@ COMBINED_METHODS = ("svm", "nn")
 UNIT_METHODS = ("heuristic", "dtw", "svm", "nn")
 #: Fewest labelled steps per class for training and CV (decision: docs/decisions/classifiers.md).
 MIN_STEPS_PER_CLASS = 5
+#: Decision S98 (trial T2 finding F9): what train's refusal of a length task without every class adds - a slow (or
+#: fast) walker's strides fall in one class of the user's own bounds (S81) unless the bounds are the walker's
+LENGTH_CLASSES_HINT = (
+    "; the length classes are the session's stride-length classes (steps.csv length_class, bounds in meta.json "
+    "length_class_bounds_m): a walker much slower or faster than the simulated user's own gait puts every stride in "
+    "one class, so simulate the exercise with --length-bounds SHORT_NORMAL,NORMAL_LONG around the walker's own "
+    "short / normal / long strides (decision S98), or relabel length_class by them; a model trained on other "
+    "walkers can class a walker's strides against the session's own median with track --length-reference session "
+    "(C117)")
 #: decision C75: a trained task warns when a class has fewer labelled steps than this: 12 per class is the smallest
 #: set the thesis calls sufficient, and that for its DTW templates (thesis ch. 6.2.2: "24 (12 forward and 12
 #: backward) signals ... proved to be sufficient"); its learned models had 190-260 per class (ch. 6.2.1)
@@ -469,14 +478,14 @@ def check_classes(
         raise DataError(
             f"task {data.task}: no steps labelled {', '.join(repr(m) for m in missing)} "
             f"(labelled: {have or 'none'}); record and label steps of every class, at least "
-            f"{min_per_class} each"
+            f"{min_per_class} each" + (LENGTH_CLASSES_HINT if data.task == "length" else "")
         )
     few = {c: n for c, n in counts.items() if n < min_per_class}
     if few:
         raise DataError(
             f"task {data.task}: too few steps for class(es) "
             f"{', '.join(f'{c} ({n})' for c, n in few.items())}; at least {min_per_class} "
-            "labelled steps per class are needed"
+            "labelled steps per class are needed" + (LENGTH_CLASSES_HINT if data.task == "length" else "")
         )
 
 

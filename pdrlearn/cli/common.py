@@ -61,6 +61,15 @@ def split_list(value: str | None, option: str) -> list[str] | None:
     return items
 
 
+def parse_length_bounds(value: str) -> list[float]:
+    """``--length-bounds SHORT_NORMAL,NORMAL_LONG`` (track, export, simulate: decision S98) as numbers; one error
+    line for text that is not numbers."""
+    try:
+        return [float(v) for v in value.split(",")]
+    except ValueError:
+        raise DataError(f"--length-bounds '{value}': expected two numbers in m, e.g. 1.02,1.52") from None
+
+
 def split_choices(*, tasks: str | None, methods: str | None, units: str | None):
     """The ``--tasks``, ``--methods`` and ``--units`` comma lists of the training commands (``None`` = all), and
     ``--methods``' per-task lists (decision C74: :func:`split_methods`)."""

@@ -96,10 +96,9 @@ def export(
     meths = [m.strip() for m in methods.split(",") if m.strip()] if methods else None
     bounds = None
     if length_bounds:
-        try:
-            bounds = [float(v) for v in length_bounds.split(",")]
-        except ValueError:
-            raise DataError(f"--length-bounds {length_bounds!r}: give two numbers, e.g. 0.6,0.9") from None
+        from pdrlearn.cli.common import parse_length_bounds
+
+        bounds = parse_length_bounds(length_bounds)
     out_folder(out, "bundle", force=force, inputs=(model_dir,))
     was = existed(out)
     path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force,

@@ -19,6 +19,9 @@ STEP_LENGTH_RANGE_M, STEP_TIME_RANGE_S = (0.1, 1.0), (0.25, 2.5)
 #: decision S38: `simulate --height` (m: a 1-year-old to a very tall adult) and `--leg-length` (as a fraction of
 #: the stature: a toddler's ~0.4 to a long-legged adult's 0.6; the simulator's adults are 0.53)
 HEIGHT_RANGE_M, LEG_PER_HEIGHT_RANGE = (0.7, 2.2), (0.35, 0.6)
+#: decision S98: `simulate --length-bounds` (m, stride lengths): above 0, up to 4 m (twice the 2 m stride of the
+#: longest step --step-length takes; a sanity range, not a gait limit)
+LENGTH_BOUNDS_RANGE_M = (0.0, 4.0)
 #: decision S97: `simulate --step-width` (m, between the feet's centre lines): 0 = a tandem walk (heel to toe on one
 #: line) to 0.5 m, a wide base well past the 0.08-0.14 m the simulator's users draw
 STEP_WIDTH_RANGE_M = (0.0, 0.5)
@@ -201,6 +204,11 @@ def simulate_cmd(
         f"{STEP_WIDTH_RANGE_M[0]:g}-{STEP_WIDTH_RANGE_M[1]:g}; default the user's own, 0.08-0.14, scaled with "
         "--height): 0 walks a tandem (heel-to-toe) line, 0.05 a narrow base. Only where the feet land changes; "
         "pdrlearn measures no step width (decision S97)."),
+    length_bounds: str | None = typer.Option(
+        None, "--length-bounds", metavar="SHORT_NORMAL,NORMAL_LONG", help="The stride-length class bounds (m) "
+        "steps.csv's length_class labels by, e.g. 0.5,0.7 for a slow walker's own short / normal / long strides "
+        "(default the user's own, from the user's step even under --step-length, S81; meta.json "
+        "length_class_bounds_m; decision S98)."),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
     subject: str = typer.Option(None, "--subject", help="The subject's id, written to meta.json \"subject\" "
                                 "(track-all's sessions.csv and subjects.csv group by it; B364)."),
@@ -305,6 +313,7 @@ def simulate_cmd(
         if not (math.isfinite(v) and 0.0 <= v <= SIT_MAX_S):
             raise DataError(f"{name} {v:g}: give the seated time in seconds, 0 (none) to {SIT_MAX_S:g}")
     user = with_step_width(scaled_user(UserProfile.from_seed(user_seed), height, leg_length), step_width)  # S38, S97
+    user = with_length_bounds(user, length_bounds)  # decision S98
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     replace = check_sim_out(out, force)  # decision B292: --force replaces a session simulate wrote
     knobs = dict(
@@ -387,6 +396,24 @@ def simulate_cmd(
             f"{rate:g} Hz" + (f", steps {summary['step_length_m']:g} m in {summary['step_time_s']:g} s "
                               f"({summary['step_length_m'] / summary['step_time_s']:.2f} m/s)" if custom else "")
         )
+
+
+def with_length_bounds(user, length_bounds: str | None):
+    """Decision S98: ``user`` labelling strides by ``--length-bounds`` (``user`` itself without it); one error line
+    for bounds that are not two increasing lengths within :data:`LENGTH_BOUNDS_RANGE_M`."""
+    if length_bounds is None:
+        return user
+    import dataclasses
+
+    from pdrlearn.cli.common import parse_length_bounds
+
+    bounds = parse_length_bounds(length_bounds)
+    lo, hi = LENGTH_BOUNDS_RANGE_M
+    if len(bounds) != 2 or not all(math.isfinite(b) and lo < b <= hi for b in bounds) or bounds[0] >= bounds[1]:
+        raise DataError(f"simulate: --length-bounds {length_bounds}: give the short/normal and normal/long "
+                        f"stride-length bounds in metres, two increasing numbers above {lo:g} and up to {hi:g}, "
+                        "e.g. 0.5,0.7")
+    return dataclasses.replace(user, length_bounds_m=[float(b) for b in bounds])
 
 
 def with_step_width(user, step_width: float | None):

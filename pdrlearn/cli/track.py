@@ -682,11 +682,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                         f"compass, which --units {units} leaves out: add waist to --units (--units foot,waist) or "
                         "drop --compass")
     if length_bounds is not None:
-        try:
-            bounds = [float(v) for v in length_bounds.split(",")]
-        except ValueError:
-            raise DataError(f"--length-bounds '{length_bounds}': expected two numbers in m, e.g. "
-                            "1.02,1.52") from None
+        from pdrlearn.cli.common import parse_length_bounds
+
+        bounds = parse_length_bounds(length_bounds)
     else:
         bounds = None
     return {"pipeline": pipeline, "method": method, "model": model, "rules": rules,

@@ -78,6 +78,9 @@ class UserProfile:
     class_step_length_m : the user's own step length (m) when ``step_length_m`` is a walk's override
         (``simulate --step-length``, S30): the stride-length class bounds stay this user's (decision S81); None
         (the default, not written by :meth:`to_dict`): ``step_length_m`` is the user's own
+    length_bounds_m : [short/normal, normal/long] stride-length class bounds (m) given for this walker
+        (``simulate --length-bounds``, decision S98), e.g. a slow walker's own; None (the default, not written by
+        :meth:`to_dict`): the midpoints of the user's own short / normal / long strides (S81)
     """
 
     seed: int
@@ -107,6 +110,7 @@ class UserProfile:
     toe_clearance_m: float = 0.013
     shoe_toe_allowance_m: float = 0.02
     class_step_length_m: float | None = None
+    length_bounds_m: list[float] | None = None
 
     @classmethod
     def from_seed(cls, seed: int) -> UserProfile:
@@ -207,6 +211,9 @@ class UserProfile:
         The thesis (ch.6.3) sets the bounds per user from the calibration exercises; the bounds are the
         midpoints between this user's mean short, normal and long stride lengths at normal speed.
         """
+        if self.length_bounds_m is not None:  # decision S98: the walker's bounds, given
+            lo, hi = self.length_bounds_m
+            return (float(lo), float(hi))
         # decision S81: from the user's own step, not a walk's --step-length override (one user, one set of bounds)
         own = replace(self, step_length_m=self.class_step_length_m, class_step_length_m=None) \
             if self.class_step_length_m is not None else self
@@ -221,4 +228,6 @@ class UserProfile:
         d = asdict(self)
         if d["class_step_length_m"] is None:  # decision S81: written only for an overridden step length
             del d["class_step_length_m"]
+        if d["length_bounds_m"] is None:  # decision S98: written only when given
+            del d["length_bounds_m"]
         return d

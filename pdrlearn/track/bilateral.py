@@ -896,14 +896,24 @@ def reference_warning(walk: dict, reference: dict | None) -> str | None:
             "labels are not on one clock, or the tracks are wrong; trust neither before checking")
 
 
+#: Decision L600 (session 42, trial T2 finding F7): the share of the pair's strides (both feet's rows together) that
+#: must travel backward (L203) before ``gait`` calls the walk backward (L329): more than half - most strides. Not
+#: from a document: a walk is "backward" when that is what it mostly does; a few stray strides (a short backward
+#: chord at a slow initiation) stay in each track's own n_backward_strides
+BACKWARD_WALK_MIN_FRAC = 0.5
+
+
 def backward_note(tracks: list[pd.DataFrame]) -> str | None:
-    """Decision L329 (treadmill trial finding 8): one line when either foot track has backward-travel strides
+    """Decision L329 (treadmill trial finding 8): one line when the pair's strides travel backward
     (:func:`pdrlearn.track.evaluate.backward_strides`, L203): the pair's timing is of backward walking, whose contact
-    and toe-off detection no measurement validated; None otherwise."""
+    and toe-off detection no measurement validated; None otherwise. Decision L600: only when more than
+    :data:`BACKWARD_WALK_MIN_FRAC` of the pair's strides do (was: any one stride)."""
     from pdrlearn.track.evaluate import backward_strides
 
     n = [backward_strides(t) for t in tracks]
-    if not any(n):
+    # decision L600: the walk is backward when more than BACKWARD_WALK_MIN_FRAC of the pair's strides are (one
+    # stray backward stride of 31 called a hemiparetic forward walk backward, trial T2 finding F7)
+    if sum(k or 0 for k in n) <= BACKWARD_WALK_MIN_FRAC * sum(len(t) for t in tracks):
         return None
     counts = " / ".join(f"{k or 0} of {len(t)}" for k, t in zip(n, tracks, strict=True))
     return (f"bilateral gait: the walk is backward ({counts} strides left / right travel backward, L203; decision "
