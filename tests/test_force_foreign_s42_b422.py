@@ -37,6 +37,8 @@ COMMANDS = {
     "train": lambda m: ["train", m["terrain"], "--out", "OUT", "--methods", "heuristic", "--tasks", "terrain",
                         "--cv", "3"],
     "export": lambda m: ["export", m["model"], "--out", "OUT"],
+    "train-report": lambda m: ["train", m["terrain"], "--out", "OUT.model", "--report", "OUT", "--methods",
+                               "heuristic", "--tasks", "terrain", "--cv", "3"],
     "report": lambda m: ["report", m["model"], "--out", "OUT"],
     "track-all": lambda m: ["track-all", m["cohort"], "--out", "OUT", "--no-plot", "--jobs", "1"],
     "simulate": lambda m: ["simulate", *ROUTE, "--user-seed", "11851", "--out", "OUT"],
@@ -48,7 +50,7 @@ KIND = {"train": "model", "export": "bundle", "simulate": "session"}
 
 
 def _argv(command: str, made: dict, out: Path) -> list[str]:
-    return [str(out) if a == "OUT" else str(a) for a in COMMANDS[command](made)]
+    return [str(a).replace("OUT", str(out)) if str(a).startswith("OUT") else str(a) for a in COMMANDS[command](made)]
 
 
 def _snapshot(folder: Path) -> dict[str, bytes]:
