@@ -36,7 +36,7 @@ _TABLES = tuple(n for n in TABLE_NAMES if n.endswith(".csv"))
 #: ``track`` / ``run`` / ``write_track``: the tables, the figure (path.png; aided.png with fixes), the summary,
 #: run.json and the geodetic exports (decisions L122, L362, L533)
 TRACK = Own((*_TABLES, "summary.json", "run.json", "path.png", "aided.png", "track.gpx", "track.geojson"))
-#: ``track-all``: its tables and figure, run.json, and one track folder per session under its group folders,
+#: ``track-all``: its tables and run.json, and one track folder per session under its group folders,
 #: each with its resume record (cohort C18, C41)
 TRACK_ALL = Own((*_TABLES, "run.json"), nested=Own((*TRACK.files, ".track-all-session.json"), deep=True))
 #: ``train``: manifest.json and models/ (classify.model_dir.save_model)
