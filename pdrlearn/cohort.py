@@ -505,12 +505,11 @@ def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
 
 def session_meta(folder: str | os.PathLike) -> dict | None:
     """A session folder's meta.json object, None without a readable one (the session's own error says why)."""
-    import json
 
-    from pdrlearn.textfile import read_text
+    from pdrlearn.textfile import read_json
 
     try:
-        meta = json.loads(read_text(Path(folder) / "meta.json"))
+        meta = read_json(Path(folder) / "meta.json")
     except (OSError, ValueError):
         return None
     return meta if isinstance(meta, dict) else None
@@ -548,12 +547,11 @@ def meta_settings(folder: str | os.PathLike) -> dict[str, object]:
     """Decision L137: a session folder's meta.json flattened to dotted keys (``user.sensor_height_m``) without
     :data:`META_LABEL_KEYS` (and ``user`` when it is only a name): what the pipelines may read. ``{}`` without a
     readable meta.json object."""
-    import json
 
-    from pdrlearn.textfile import read_text
+    from pdrlearn.textfile import read_json
 
     try:
-        meta = json.loads(read_text(Path(folder) / "meta.json"))
+        meta = read_json(Path(folder) / "meta.json")
     except (OSError, ValueError):
         return {}
     if not isinstance(meta, dict):

@@ -96,6 +96,18 @@ DISK_FULL_ERRNOS = frozenset({_errno.ENOSPC, _errno.EDQUOT})
 REFUSED_OUTPUT_ERRNOS = DISK_FULL_ERRNOS | {_errno.EROFS, _errno.EACCES, _errno.EPERM}
 
 
+#: decision B424: from this magnitude on a number in a message is written %g-style
+MESSAGE_FIXED_MAX = 1e6
+
+
+def message_number(x: float, decimals: int = 2) -> str:
+    """Decision B424: ``x`` for a one-line message: ``decimals`` fixed decimals while below
+    :data:`MESSAGE_FIXED_MAX` in size (``2.40``), else four significant digits %g-style (``-1e+308``, where
+    ``:.2f`` wrote 309 digits); ``nan`` and ``inf`` as Python writes them."""
+    x = float(x)
+    return f"{x:.{decimals}f}" if abs(x) < MESSAGE_FIXED_MAX else f"{x:.4g}"
+
+
 def output_error(exc: OSError, out: object) -> OutputError | None:
     """Decision B151: ``exc`` as one line naming the output ``out`` and the fix, when it is an output the system
     refuses (:data:`REFUSED_OUTPUT_ERRNOS`); ``None`` for any other error."""

@@ -5,14 +5,14 @@ the CLI; ``pdrlearn.cli.common`` imports it."""
 from __future__ import annotations
 
 import errno
-import json
 import os
 from pathlib import Path
 
 from pdrlearn.atomic import expect_unchanged
 from pdrlearn.cohort import is_session_dir as is_session_folder
 from pdrlearn.errors import DataError, output_error
-from pdrlearn.textfile import read_text
+from pdrlearn.own_files import OWN, refuse_foreign
+from pdrlearn.textfile import read_json
 
 #: ``manifest.json`` of the two folder kinds that share that marker: (field, value) -> what the folder is
 _MANIFEST_KINDS = {("schema", "pdrlearn-bundle"): "a runtime bundle",
@@ -23,7 +23,7 @@ _MANIFEST_KINDS = {("schema", "pdrlearn-bundle"): "a runtime bundle",
 def manifest_kind(folder: Path) -> str | None:
     """``"a runtime bundle"`` or ``"a model directory"`` from ``folder/manifest.json`` (None: neither, unreadable)."""
     try:
-        m = json.loads(read_text(folder / "manifest.json"))
+        m = read_json(folder / "manifest.json")
     except (OSError, ValueError):
         return None
     if not isinstance(m, dict):
@@ -74,7 +74,7 @@ def folder_kind(folder: Path) -> str | None:
         return "split"
     if all((folder / n).is_file() for n in _TRACK_FILES):
         try:
-            summary = json.loads(read_text(folder / "summary.json"))
+            summary = read_json(folder / "summary.json")
         except (OSError, ValueError):
             return None
         if not isinstance(summary, dict):
@@ -149,6 +149,8 @@ def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, 
     ``--json > DIR/evaluation.json`` redirect creates that file before the command runs). A folder that
     is or holds one of the command's ``inputs`` (``export M --out M``) is never replaced: the atomic
     replacement would delete the input. ``option`` is the option the messages name (`train --report`: review R3).
+    Decision B422: a previous output that also holds entries its command did not write (a user's notes, a
+    sub-folder: :data:`pdrlearn.own_files.OWN`) is refused with ``force`` too, naming them; nothing is deleted.
     """
     what = FOLDER_KINDS[kind][0]
     if path.exists() and not path.is_dir():
@@ -180,5 +182,7 @@ def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, 
         if not force:
             raise DataError(f"{path}: already holds {what}; pass --force to replace it, or choose another output "
                             "folder")
+        if kind in OWN:  # decision B422: --force deletes only what the command wrote there
+            refuse_foreign(path, OWN[kind], FOLDER_KINDS[kind][1], option=option)
     expect_unchanged(path)  # the atomic replacement deletes only what was checked here (decision B20)
     return path

@@ -106,11 +106,34 @@ def session_csvs(folder) -> list[Path]:
     return sorted([*folder.glob("*.csv"), *folder.glob(f"*{GZ_CSV}")], key=lambda p: p.name)
 
 
+#: decision B423: the largest JSON file read (meta.json, --params, a bundle's or model's manifest, summary.json): 64
+#: MB, far above any pdrlearn writes (a bundle manifest ~10 kB, a track's summary.json ~50 kB)
+JSON_MAX_BYTES = 64 * 2**20
+
+
+def parse_json(text: str):
+    """``json.loads(text)``; decision B423: a document nested deeper than Python's recursion limit (about 1000
+    levels: ``'[' * 100000``) or too large to hold in memory raises ``json.JSONDecodeError`` (a ``ValueError``) at
+    position 0 like any invalid JSON, for the caller's one line naming the file (it was a ``RecursionError``
+    traceback)."""
+    try:
+        return json.loads(text)
+    except RecursionError:
+        raise json.JSONDecodeError("nested too deep (more than about 1000 levels of [ or {)", text, 0) from None
+    except MemoryError:
+        raise json.JSONDecodeError("too large to read into memory", text, 0) from None
+
+
 def read_json(path):
     """The JSON value of ``path`` read as :func:`read_text` reads it. Invalid JSON raises ``ValueError``
-    (``json.JSONDecodeError``) for the caller's own message; a file that is not UTF-8 raises :class:`DataError`
-    (decision B221), which callers re-raise before their JSON message."""
-    return json.loads(read_text(path))
+    (``json.JSONDecodeError``; decision B423: nested too deep, :func:`parse_json`) for the caller's own message;
+    a file that is not UTF-8 or larger than :data:`JSON_MAX_BYTES` raises :class:`DataError` (decisions B221,
+    B423; a ``ValueError`` too), which callers re-raise before their JSON message."""
+    size = Path(path).stat().st_size
+    if size > JSON_MAX_BYTES:
+        raise DataError(f"{path}: {size / 2**20:.0f} MB, larger than the {JSON_MAX_BYTES // 2**20} MB a JSON file "
+                        "pdrlearn reads may be (decision B423); is it the right file?")
+    return parse_json(read_text(path))
 
 
 def header_names(head: str) -> list[str]:

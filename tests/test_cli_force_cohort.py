@@ -69,7 +69,7 @@ def test_foreign_file_in_models_folder_is_refused_even_with_force(session, tmp_p
     before = sorted(p.name for p in models.iterdir())
     assert main(["train-all", str(cohort), "--out", str(models), *ARGS, "--force"]) == 2
     err = capsys.readouterr().err
-    assert "notes.txt" in err and "train-all did not write" in err
+    assert "notes.txt" in err and "'pdrlearn train-all' did not write" in err
     assert sorted(p.name for p in models.iterdir()) == before
     assert (models / "notes.txt").read_text() == "precious"
 

@@ -31,9 +31,12 @@ def test_fetch_replaces_its_own_sessions_only(tmp_path, capsys):
     shutil.copytree(fetched_external("gaitmap")[0], out)  # an earlier fetch's folders (converted once per run)
     names = sorted(p.name for p in out.iterdir())
     assert len(names) == 7 and all(fetched_by(out / n) == "gaitmap" for n in names)
-    (out / "gaitmap_lwalk" / "note.txt").write_text("mine")  # a fetched folder is fetch's to replace
-    assert main(["fetch", "gaitmap", "--out", str(out)]) == 0
-    assert not (out / "gaitmap_lwalk" / "note.txt").exists()
+    (out / "gaitmap_lwalk" / "note.txt").write_text("mine")  # decision B422: a file added to it is not fetch's
+    assert main(["fetch", "gaitmap", "--out", str(out)]) == 2
+    assert "holds note.txt, which 'pdrlearn fetch gaitmap' did not write" in capsys.readouterr().err
+    assert (out / "gaitmap_lwalk" / "note.txt").read_text() == "mine"
+    (out / "gaitmap_lwalk" / "note.txt").unlink()
+    assert main(["fetch", "gaitmap", "--out", str(out)]) == 0  # a fetched folder is fetch's to replace (B35)
     # a user's own session under a recording's name is never replaced, and nothing else is written
     fresh = tmp_path / "fresh"
     own = fresh / "gaitmap_ms_left"

@@ -29,7 +29,7 @@ from pathlib import Path
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.buildinfo import git_stamp
 from pdrlearn.errors import ModelError, shell_quote
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 log = logging.getLogger(__name__)
 
@@ -181,7 +181,7 @@ def read_manifest(path) -> dict:
         raise ModelError(f"{path}: missing {MANIFEST}; not a model directory written by 'pdrlearn train' (pass "
                          f"that folder, or retrain if its manifest was deleted){hint}")
     try:
-        manifest = json.loads(read_text(mf))
+        manifest = read_json(mf)
     except (OSError, json.JSONDecodeError) as exc:
         raise ModelError(f"{mf}: unreadable manifest ({exc}); retrain the model") from None
     if isinstance(manifest, dict) and manifest.get("schema") == "pdrlearn-bundle":

@@ -26,7 +26,6 @@ from pdrlearn.cli.common import (
     few_names,
     json_default,
     json_safe,
-    manifest_kind,
     out_folder,
     param_option,
     print_json,
@@ -289,34 +288,6 @@ def _check_any_ok(results: list[JobResult]) -> None:
         raise DataError(f"every user failed; first error: {failed[0].name}: {failed[0].error}")
 
 
-#: What makes a folder a previous ``train-all`` output (every pattern present, decision B12).
-TRAIN_ALL_MARKERS = ("cohort_summary.csv", "*/manifest.json")
-
-
-def _check_only_train_all_output(out: Path) -> None:
-    """``train-all --force`` replaces the whole models folder (decision B19), so a previous output may hold
-    only what train-all and evaluate-all write there: the summary, model directories, evaluate-all's
-    default ``eval/`` and the hidden leftovers of an interrupted atomic write. Anything else (a user's
-    notes, another command's output) is refused, with or without ``--force``, naming it."""
-    if not out.is_dir() or not all(any(out.glob(m)) for m in TRAIN_ALL_MARKERS):
-        return  # absent, empty or not a train-all output at all: out_folder says what to do
-
-    def ours(p: Path) -> bool:
-        if p.name in ("cohort_summary.csv", "cohort_summary.md"):
-            return p.is_file()
-        if p.name.startswith(".") and (".tmp-" in p.name or ".old-" in p.name):
-            return True
-        if p.name == "eval" and (p / "cohort_summary.csv").is_file():
-            return True
-        return p.is_dir() and manifest_kind(p) == "a model directory"
-
-    foreign = sorted(p.name for p in out.iterdir() if not ours(p))
-    if foreign:
-        names = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
-        raise DataError(f"{out}: also holds {names}, which train-all did not write; --force replaces the whole "
-                        "models folder, so move them out or choose another output folder")
-
-
 def _check_outside_cohort(out: Path, cohort_dir: Path) -> None:
     """An output inside the cohort folder is read as one more user by the next run (a "models" user that
     fails with "no session folders"), so it is refused before any work."""
@@ -399,7 +370,6 @@ def train_all(
     l_list = split_length_units(length_units)  # decision C40: as train's, before anything starts
     _check_workers(workers)
     _check_outside_cohort(out, cohort_dir)
-    _check_only_train_all_output(out)
     out_folder(out, "train-all", force=force, inputs=(cohort_dir,))
     if report is not None:  # cohort C151: train's check (C143), before any work
         _check_outside_cohort(report, cohort_dir)

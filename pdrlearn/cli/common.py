@@ -28,7 +28,7 @@ from pdrlearn.table_csv import (  # noqa: F401  (decision E169: the library's, u
     wide_float_text,
     write_table_csv,
 )
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 
 def json_default(o):
@@ -284,7 +284,7 @@ def file_kind(path: Path) -> str | None:
         if suffix == ".json":
             from pdrlearn.waist.params import SCHEMA
 
-            d = json.loads(read_text(path))
+            d = read_json(path)
             return "params" if isinstance(d, dict) and d.get("schema") == SCHEMA else None
         if suffix in (".png", ".pdf", ".svg"):  # decision L70: a figure in any of plot's formats
             from pdrlearn.plots import is_plot_figure

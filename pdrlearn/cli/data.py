@@ -8,7 +8,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import DPI_HELP, FORCE_HELP, console, existed, json_safe, out_file, print_json, replaced
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 
 def info(
@@ -224,7 +224,7 @@ def _steps_to_shade(source: str, session):
                             "or a `pdrlearn track`/`run` output folder")
         summary = path / "summary.json"
         try:
-            made_from = json.loads(read_text(summary)).get("session") if summary.is_file() else None
+            made_from = read_json(summary).get("session") if summary.is_file() else None
         except (OSError, ValueError, AttributeError):
             made_from = None
         if isinstance(made_from, str) and made_from != session.name:

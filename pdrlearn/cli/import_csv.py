@@ -10,7 +10,7 @@ import typer
 
 from pdrlearn.cli.common import non_session_files, print_json, split_list
 from pdrlearn.errors import DataError, shell_quote
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 
 def _mapping_file(path: Path | None) -> dict:
@@ -19,7 +19,7 @@ def _mapping_file(path: Path | None) -> dict:
     if path is None:
         return {}
     try:
-        m = json.loads(read_text(Path(path)))
+        m = read_json(Path(path))
     except OSError as exc:
         raise DataError(f"{path}: cannot read the mapping file ({exc.strerror})") from None
     except json.JSONDecodeError as exc:
@@ -270,7 +270,7 @@ def import_command(
     elif out.is_dir() and any(out.iterdir()):
         meta = out / "meta.json"
         try:
-            old_meta = json.loads(read_text(meta))
+            old_meta = read_json(meta)
             ours = "imported" in old_meta
         except (OSError, ValueError, TypeError):
             ours = False
@@ -280,15 +280,11 @@ def import_command(
         if not force:
             raise DataError(f"{out}: already holds an imported session; pass --force to replace it, or --merge "
                             "to add the other unit")
-        if _session_files_only(out):
-            raise DataError(f"{out}: holds {', '.join(_session_files_only(out)[:3])} besides the session files; "
-                            "choose another --out")
-        # files added to the import's folder by hand (ics.csv, bouts.csv ...) are never deleted silently
-        added = sorted(p.name for p in out.iterdir() if p.name not in _import_written(old_meta))
-        if added:
-            more = f" and {len(added) - 5} more" if len(added) > 5 else ""
-            raise DataError(f"{out}: holds {', '.join(added[:5])}{more}, which 'pdrlearn import' did not write and "
-                            "--force would delete; move them out first (and back after), or choose another --out")
+        # files added to the import's folder by hand (ics.csv, bouts.csv, a sub-folder ...) are never deleted
+        # silently: decision B422's one check of every --force
+        from pdrlearn.own_files import Own, refuse_foreign
+
+        refuse_foreign(out, Own(tuple(sorted(_import_written(old_meta)))), "pdrlearn import")
     if merge or out.is_dir():
         expect_unchanged(out)  # decision B20: the replacement deletes only what was checked here
     origin = None
@@ -396,7 +392,7 @@ def _split_written(folder: Path) -> bool:
         if not (p.is_dir() and re.fullmatch(r"part\d+", p.name)):
             return False
         try:
-            meta = json.loads(read_text(p / "meta.json"))
+            meta = read_json(p / "meta.json")
         except (OSError, ValueError):
             return False
         if not isinstance(meta, dict) or "imported" not in meta:

@@ -12,7 +12,7 @@ import os
 import shutil
 from pathlib import Path
 
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 #: the record in each session's output folder (hidden: no table or report reads it)
 RECORD = ".track-all-session.json"
@@ -118,7 +118,7 @@ def reusable(records: list[Path], key: str, inputs: dict, *, key_changed: str, o
     changed = None
     for file in records:
         try:
-            rec = json.loads(read_text(file))
+            rec = read_json(file)
         except (OSError, ValueError):
             continue
         if not _intact(rec, Path(file), outputs):

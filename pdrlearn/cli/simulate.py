@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import FORCE_HELP, json_safe, non_session_files, print_json, progress, replaced
+from pdrlearn.cli.common import FORCE_HELP, json_safe, print_json, progress, replaced
 from pdrlearn.errors import DataError
 from pdrlearn.route_forms import route_help
 
@@ -481,8 +481,10 @@ def check_sim_out(out: Path, force: bool) -> bool:
     """Decision B292: whether ``--out`` is an existing session folder to replace (True) or an absent / empty folder
     (False), before any work; one :class:`DataError` line otherwise: a file, a folder in use without ``--force``, or
     with it anything but a session simulate wrote (meta.json ``source_project`` pdrlearn.sim) holding only session
-    files (:func:`pdrlearn.cli.common.non_session_files`, as ``import --force``: nothing else is deleted)."""
+    files (decision B422's :func:`pdrlearn.own_files.refuse_foreign`, as ``import --force``: nothing else deleted)."""
     import json
+
+    from pdrlearn.own_files import OWN, refuse_foreign
 
     if out.exists() and not out.is_dir():
         raise DataError(f"{out}: is a file; --out must be a folder for the simulated session")
@@ -498,10 +500,7 @@ def check_sim_out(out: Path, force: bool) -> bool:
     if not ours:
         raise DataError(f"{out}: is not a session 'pdrlearn simulate' wrote (meta.json source_project "
                         f"{SIM_SOURCE}); --force replaces only that - choose another --out")
-    other = non_session_files(out)
-    if other:
-        raise DataError(f"{out}: holds {', '.join(other[:3])} besides the session files, which --force would delete; "
-                        "move them out first or choose another --out")
+    refuse_foreign(out, OWN["session"], "pdrlearn simulate")  # decision B422: the one check of every --force
     return True
 
 

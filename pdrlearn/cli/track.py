@@ -30,7 +30,7 @@ from pdrlearn.cli.common import (
 )
 from pdrlearn.cli.registry_help import LENGTH_NAMES
 from pdrlearn.errors import DataError
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 #: The tracking options, shared by ``track`` and ``track-all`` (one declaration each, so the two commands
 #: cannot drift apart). ``--gnss``/``--fixes`` are per-recording files and belong to ``track`` only.
@@ -715,9 +715,10 @@ def read_params(params: Path):
     """The parsed ``--params`` JSON (a calibration file of ``pdrlearn calibrate`` or plasys settings), read once per
     file; one error line naming the file when it cannot be read."""
     try:
-        par = json.loads(read_text(Path(params)))
+        par = read_json(Path(params))
     except (OSError, json.JSONDecodeError) as exc:
-        raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
+        why = exc.msg if isinstance(exc, json.JSONDecodeError) and not exc.pos else type(exc).__name__  # B423
+        raise DataError(f"{params}: cannot read the parameters JSON ({why}); "
                         "pass the file written by `pdrlearn calibrate`") from None
     if not isinstance(par, dict):  # decision B207: a list had been a TypeError, a string "unknown parameter(s) e, h"
         raise DataError(f"{params}: parameters must be a JSON object ({{\"key\": value, ...}}), not a JSON "

@@ -34,7 +34,7 @@ from pdrlearn.runtime.bundle import (
     load_bundle,
     sha256_file,
 )
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 log = logging.getLogger(__name__)
 
@@ -163,7 +163,6 @@ def rebuild_step_graph(bundle_dir: str | Path, out_dir: str | Path | None = None
     models, classes and numbers stay those of the bundle; a bundle without an ONNX task loses its
     step graph entry. Used to bring shipped bundles to the decision-E13 graph without retraining.
     """
-    import json as _json
 
     from pdrlearn.export.step_graph import build_step_graph
 
@@ -178,7 +177,7 @@ def rebuild_step_graph(bundle_dir: str | Path, out_dir: str | Path | None = None
         if rel.endswith(".onnx"):
             onnx_models[rel] = onnx.load(str(src / rel))
         elif rel.endswith(".json"):
-            json_files[rel] = _json.loads(read_text(src / rel))
+            json_files[rel] = read_json(src / rel)
         elif rel.endswith(".npz"):
             npz_files[rel] = b.npz(rel)  # numeric arrays only, one line otherwise (decision B125)
         else:

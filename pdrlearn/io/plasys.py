@@ -57,7 +57,7 @@ from pdrlearn.textfile import (
     is_gzip,
     open_text,
     read_bytes,
-    read_text,
+    read_json,
     session_csv,
     session_csvs,
 )
@@ -1265,9 +1265,10 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
     if present(meta_path):
         check_readable(meta_path)  # decision B315
         try:
-            meta = json.loads(read_text(meta_path))
+            meta = read_json(meta_path)
         except json.JSONDecodeError as exc:
-            raise DataError(f"{meta_path}: invalid JSON (line {exc.lineno}); fix or delete the file") from None
+            why = "" if exc.pos else f": {exc.msg}"  # decision B423: nested too deep (no position)
+            raise DataError(f"{meta_path}: invalid JSON (line {exc.lineno}{why}); fix or delete the file") from None
         if not isinstance(meta, dict):
             raise DataError(f"{meta_path}: must hold a JSON object")
         _check_body_fields(meta, str(meta_path))

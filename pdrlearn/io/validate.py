@@ -182,7 +182,9 @@ def clock_reset_message(t: np.ndarray, reset: np.ndarray, where: str, at: str, f
     at ``at`` (``line 1902``), ending with ``fix``."""
     i = int(reset[0])
     more = f" ({reset.size} such jumps)" if reset.size > 1 else ""
-    return (f"{where}: the timestamps jump back from {t[i]:.2f} s to {t[i + 1]:.2f} s at {at}{more}: a clock reset "
+    from pdrlearn.errors import message_number as num  # decision B424: -1e308 printed 309 digits
+
+    return (f"{where}: the timestamps jump back from {num(t[i])} s to {num(t[i + 1])} s at {at}{more}: a clock reset "
             "(the recorder restarted), not samples out of order, so sorting would interleave two recordings -- "
             f"{fix} (decision B73)")
 

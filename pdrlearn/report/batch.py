@@ -116,12 +116,11 @@ def batch_warnings(sessions: pd.DataFrame) -> list[str]:
 
 def _run_option(folder: Path, name: str):
     """Option ``name`` of the track-all run recorded in ``folder``/run.json (decision C18), None without it."""
-    import json
 
-    from pdrlearn.textfile import read_text
+    from pdrlearn.textfile import read_json
 
     try:
-        return json.loads(read_text(Path(folder) / "run.json")).get("options", {}).get(name)
+        return read_json(Path(folder) / "run.json").get("options", {}).get(name)
     except (OSError, ValueError, AttributeError):
         return None
 

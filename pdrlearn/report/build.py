@@ -17,7 +17,7 @@ import pandas as pd
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
 from pdrlearn.io.plasys import read_table
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 
 @dataclass
@@ -34,7 +34,7 @@ class Section:
 
 def _read_json(p: Path) -> dict:
     try:
-        d = json.loads(read_text(p))
+        d = read_json(p)
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise DataError(f"{p}: not valid JSON ({exc}); regenerate it") from None
     if not isinstance(d, dict):  # a list/number would fail later with a traceback (bad-input sweep, B16)

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError, ModelError, shell_quote
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json, read_text
 
 log = logging.getLogger(__name__)
 
@@ -273,7 +273,7 @@ class Bundle(SharedByCopies):
         is a one-line :class:`ModelError` (decision B125, as :meth:`npz`), whatever its checksum says."""
         if rel not in self._cache:
             try:
-                self._cache[rel] = json.loads(read_text(self.file(rel)))
+                self._cache[rel] = read_json(self.file(rel))
             except (UnicodeDecodeError, json.JSONDecodeError) as exc:
                 raise self._bad_file(rel, "a JSON file", exc) from None
         out = self._cache[rel]
@@ -398,7 +398,7 @@ def bundle_kind(path: str | Path) -> str | None:
     """The ``schema`` of the bundle folder ``path`` (None when it has no readable manifest): how ``pdrlearn run``
     tells a waist-only bundle from a foot one before loading it."""
     try:
-        m = json.loads(read_text(Path(path) / MANIFEST))
+        m = read_json(Path(path) / MANIFEST)
     except (OSError, ValueError):
         return None
     return m.get("schema") if isinstance(m, dict) else None
@@ -407,7 +407,7 @@ def bundle_kind(path: str | Path) -> str | None:
 def _is_waist_calibration(path: Path) -> bool:
     """Whether ``path`` is a JSON file of a waist pipeline's parameters (``pdrlearn calibrate``'s PARAMS.json)."""
     try:
-        d = json.loads(read_text(path)) if path.is_file() and path.suffix.lower() == ".json" else None
+        d = read_json(path) if path.is_file() and path.suffix.lower() == ".json" else None
     except (OSError, UnicodeDecodeError, ValueError):
         return False
     return isinstance(d, dict) and str(d.get("pipeline", "")).startswith("waist")
@@ -426,7 +426,7 @@ def read_manifest(path: str | Path, *, schema: str = SCHEMA_NAME) -> dict:
     if not mpath.is_file():
         raise _fail(path, f"no {MANIFEST}; give the folder written by 'pdrlearn export'")
     try:
-        manifest = json.loads(read_text(mpath))
+        manifest = read_json(mpath)
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise _fail(path, f"{MANIFEST} is not valid JSON ({exc}); re-export the bundle") from None
     found = manifest.get("schema") if isinstance(manifest, dict) else None
@@ -445,7 +445,34 @@ def read_manifest(path: str | Path, *, schema: str = SCHEMA_NAME) -> dict:
     missing = [k for k in (REQUIRED_KEYS if schema == SCHEMA_NAME else WAIST_REQUIRED_KEYS) if k not in manifest]
     if missing:
         raise _fail(path, f"{MANIFEST} lacks {', '.join(missing)}; re-export the bundle")
+    _check_sampling(path, manifest.get("sampling"), required=schema == SCHEMA_NAME)
     return manifest
+
+
+#: decision E259: the fastest sampling rate a bundle manifest may name (Hz): ten times the fastest rate ``train
+#: --resample`` trains at (1000 Hz, decision B212), above every IMU the project reads; -20 ended in a math domain
+#: traceback, 1e308 in a 300-digit message
+MANIFEST_RATE_MAX_HZ = 10_000.0
+
+
+def _check_sampling(path: Path, sampling, *, required: bool) -> None:
+    """Decision E259: the manifest's ``sampling`` rates (``rate_hz``, required for a foot bundle; each of
+    ``source_rates_hz``) are finite numbers above 0 and at most :data:`MANIFEST_RATE_MAX_HZ`, as a session's
+    meta.json ``rate_hz`` is checked (``io.plasys.meta_rate``); one line naming the field otherwise."""
+    from pdrlearn.errors import message_number
+
+    if not isinstance(sampling, dict):
+        raise _fail(path, f"{MANIFEST} sampling is not an object with rate_hz; re-export the bundle")
+    rates = {"rate_hz": sampling.get("rate_hz")} if required or sampling.get("rate_hz") is not None else {}
+    src = sampling.get("source_rates_hz")
+    if isinstance(src, dict):
+        rates.update({f"source_rates_hz.{k}": v for k, v in src.items() if v is not None})
+    for field, rate in rates.items():
+        ok = isinstance(rate, int | float) and not isinstance(rate, bool) and math.isfinite(rate)
+        if not (ok and 0 < rate <= MANIFEST_RATE_MAX_HZ):
+            shown = message_number(rate, 0) if ok else repr(rate)
+            raise _fail(path, f"{MANIFEST} sampling.{field} {shown} is not a rate above 0 and at most "
+                              f"{MANIFEST_RATE_MAX_HZ:g} Hz; re-export the bundle (decision E259)")
 
 
 def verify_files(path: Path, manifest: dict) -> None:

@@ -12,7 +12,6 @@ names the full install's ``pdrlearn run``.
 
 from __future__ import annotations
 
-import json
 import logging
 from pathlib import Path
 
@@ -20,7 +19,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.install import INSTALL_EVERYTHING
-from pdrlearn.textfile import compressed_hint, duplicate_message, header_names, read_text, session_csv
+from pdrlearn.textfile import compressed_hint, duplicate_message, header_names, read_json, read_text, session_csv
 
 log = logging.getLogger(__name__)
 
@@ -63,7 +62,7 @@ def read_meta(folder: Path) -> dict:
     if not path.is_file():
         return {}
     try:
-        meta = json.loads(read_text(path))
+        meta = read_json(path)
     except DataError:  # decision B221: not UTF-8, its own line
         raise
     except (ValueError, UnicodeDecodeError) as exc:

@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, message_number
 from pdrlearn.kernels.distance import classifier_rate_warning
 from pdrlearn.kernels.order import first_out_of_order
 
@@ -267,13 +267,15 @@ def _unit_hint(ratio: float) -> str:
 def check_rate_unit(name: str, rate_hz: float, nominal_hz: float, nominal_what: str = "") -> None:
     """Decision E29: a one-line :class:`DataError` when pushed timestamps give a rate more than
     :data:`RATE_UNIT_FACTOR` away from the nominal one: they are not in seconds. ``name`` opens the message;
-    ``nominal_what`` names the nominal rate (e.g. ``"the bundle's "``, ``"fs="``)."""
+    ``nominal_what`` names the nominal rate (e.g. ``"the bundle's "``, ``"fs="``); decision B424: the factor as
+    :func:`pdrlearn.errors.message_number` writes it."""
+    num = message_number
     f = rate_hz / nominal_hz
     if f < 1.0 / RATE_UNIT_FACTOR:
-        raise DataError(f"{name}: the pushed timestamps give {rate_hz:.3g} Hz, {1.0 / f:.0f}x below {nominal_what}"
+        raise DataError(f"{name}: the pushed timestamps give {rate_hz:.3g} Hz, {num(1.0 / f, 0)}x below {nominal_what}"
                         f"{nominal_hz:g} Hz: {_unit_hint(1.0 / f)}")
     if f > RATE_UNIT_FACTOR:
-        raise DataError(f"{name}: the pushed timestamps give {rate_hz:.3g} Hz, {f:.0f}x above {nominal_what}"
+        raise DataError(f"{name}: the pushed timestamps give {rate_hz:.3g} Hz, {num(f, 0)}x above {nominal_what}"
                         f"{nominal_hz:g} Hz: push t in seconds")
 
 

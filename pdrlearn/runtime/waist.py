@@ -10,7 +10,6 @@ contacts from :mod:`pdrlearn.kernels.waist_stream`) -- so their steps are equal;
 
 from __future__ import annotations
 
-import json
 import logging
 import math
 from dataclasses import dataclass
@@ -23,7 +22,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.threads import OwnGuard, new_guard, one_call_at_a_time
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 log = logging.getLogger(__name__)
 
@@ -785,7 +784,7 @@ def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
     if rel not in m["files"]:
         raise _fail(path, f"manifest.json names params '{rel}', which it does not list; re-export the bundle")
     try:
-        p = json.loads(read_text(path / rel))
+        p = read_json(path / rel)
     except (OSError, ValueError) as exc:
         raise _fail(path, f"{rel} is not valid JSON ({exc}); re-export the bundle") from None
     bad = [k for k in PARAM_KEYS if not isinstance(p.get(k), int | float) or not math.isfinite(p[k])]

@@ -25,7 +25,7 @@ from scipy import signal as _sig
 from scipy.ndimage import uniform_filter1d
 
 from pdrlearn.errors import DataError
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 from pdrlearn.waist import _kernels as K
 
 MODEL_PATH = Path(__file__).with_name("ic_model.json")
@@ -253,7 +253,7 @@ class TreeEnsembleClassifier:
         """The model in ``path`` (default: the shipped ``ic_model.json``)."""
         p = Path(path) if path is not None else MODEL_PATH
         try:
-            d = json.loads(read_text(p))
+            d = read_json(p)
         except (OSError, ValueError) as e:
             raise DataError(f"{p}: cannot read the IC model ({e})") from e
         try:  # valid JSON of another shape (a list, missing keys, text for numbers): one line naming the file

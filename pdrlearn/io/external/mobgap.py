@@ -34,7 +34,7 @@ import pandas as pd
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
 from pdrlearn.io.external.pypi import Sdist
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import read_json
 
 SDIST = Sdist("mobgap", "1.2.0", "26f3ec1173f74ad873d13dabe0fd75dde8554720595ebc39159ee18dbea31351")
 
@@ -446,7 +446,7 @@ def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lam
                         f"sdist folder")
     meta_path = src_root / PARTICIPANTS
     try:
-        participants = json.loads(read_text(meta_path))
+        participants = read_json(meta_path)
     except FileNotFoundError:
         raise DataError(f"{meta_path}: missing; pass the extracted mobgap-{SDIST.version} sdist folder") from None
     except json.JSONDecodeError as exc:
