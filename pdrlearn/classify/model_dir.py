@@ -24,7 +24,6 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
-import os
 import warnings
 from pathlib import Path
 
@@ -313,23 +312,19 @@ def _ignore_sklearn_version_blocks() -> None:
         warnings.filterwarnings("ignore", category=InconsistentVersionWarning, module=SKLEARN_VERSION_WARNING_MODULE)
 
 
-#: decision E260: the environment variable that refuses every model directory (pickle) in a locked-down install
-NO_PICKLE_ENV = "PDRLEARN_NO_PICKLE"
-
-
 def refuse_pickle(path) -> None:
     """Decision E260: raise :class:`ModelError` (one line naming the folder and bundles) when ``PDRLEARN_NO_PICKLE``
-    is 1, before anything of the folder is read; the one place that reads the variable (:func:`load_model` and the
-    CLI's early ``--model`` check call it). Unset, empty or 0: model directories load as before; any other value is
-    refused too, naming the two values (a security switch fails closed)."""
-    value = os.environ.get(NO_PICKLE_ENV, "").strip()
-    if value in ("", "0"):
+    is on (:mod:`pdrlearn.lockdown`), before anything of the folder is read; :func:`load_model` and the CLI's early
+    ``--model`` checks call it."""
+    from pdrlearn.lockdown import NO_PICKLE_ENV, switch, switch_text
+
+    value = switch(NO_PICKLE_ENV)
+    if value is None:
         return
-    why = (f"{NO_PICKLE_ENV}=1 refuses model folders" if value == "1" else
-           f"{NO_PICKLE_ENV}={value!r} is neither 1 (refuse model folders) nor 0 (load them), so it refuses them")
-    raise ModelError(f"{path}: a model folder is pickle (loading it runs any code its files hold) and {why}; use "
-                     "its bundle instead (`pdrlearn export` it where it is trusted, then `pdrlearn run BUNDLE ...` or "
-                     f"`pdrlearn evaluate BUNDLE ...`), or unset {NO_PICKLE_ENV} to load a folder you trust")
+    raise ModelError(f"{path}: a model folder is pickle (loading it runs any code its files hold) and "
+                     f"{switch_text(NO_PICKLE_ENV, value, 'refuses model folders')}; use its bundle instead "
+                     "(`pdrlearn export` it where it is trusted, then `pdrlearn run BUNDLE ...` or `pdrlearn evaluate "
+                     f"BUNDLE ...`), or unset {NO_PICKLE_ENV} to load a folder you trust")
 
 
 def load_model(path):
