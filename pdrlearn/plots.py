@@ -220,6 +220,7 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
         steps, steps_what = session.steps, "labelled step(s)"
     steps_what = steps_what or "step(s)"
     shown, cut = steps_in_window(steps, lo, hi)
+    ensure_config_dir()  # decision E261 (B226): before this function's first matplotlib import, not only new_figure's
     from matplotlib.patches import Rectangle
 
     long = end - start > LONG_WINDOW_S  # decision E99: drawn for display, with a note

@@ -5,7 +5,8 @@ A built-in entry (one registered by a module of the ``pdrlearn`` package) is not
 name raises one line naming ``replace=True`` (decision E81). Installed packages add entries through Python entry
 points (groups ``pdrlearn.detectors`` and ``pdrlearn.pipelines``), loaded on the registry's first read; a plug-in
 that fails to load is left out with one warning naming it and the reason, and asking for it by name repeats that
-reason (decision E82).
+reason (decision E82). An entry point is the code of an installed package, imported with the user's rights:
+``PDRLEARN_NO_ENTRY_POINTS=1`` loads none (:func:`pdrlearn.lockdown.installed_entry_points`, decision E263).
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from collections.abc import Callable, MutableMapping
 from typing import Any
 
 from pdrlearn.errors import DataError
+from pdrlearn.lockdown import installed_entry_points
 from pdrlearn.settings import wrong_type
 
 log = logging.getLogger(__name__)
@@ -63,9 +65,7 @@ class Registry(MutableMapping):
                 self._loading = False
 
     def _load_entry_points(self) -> None:
-        from importlib.metadata import entry_points
-
-        for ep in entry_points(group=self.group):
+        for ep in installed_entry_points(self.group):  # decision E263: none with PDRLEARN_NO_ENTRY_POINTS=1
             where = f"{ep.value}, entry point group {self.group}"
             if ep.name in self._items:
                 reason = (f"the name is taken by the built-in {self.kind}" if ep.name in self.builtin

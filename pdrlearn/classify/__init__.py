@@ -14,7 +14,7 @@ users it cross-validates (decision C120). Attributes are imported lazily (torch/
 
 from __future__ import annotations
 
-import importlib
+from pdrlearn.lazy import lazy_attributes
 
 _LAZY = {
     "DTWClassifier": "pdrlearn.classify.dtw",
@@ -37,15 +37,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str):
-    if name in _LAZY:
-        return getattr(importlib.import_module(_LAZY[name]), name)
-    raise AttributeError(f"module 'pdrlearn.classify' has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    """The lazy attributes too (``dir()``, tab completion, ``help()``), not only those imported so far."""
-    return sorted((set(globals()) - {"annotations", "importlib"}) | set(_LAZY))
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, globals())  # E262: shared
 
 
 __all__ = sorted(_LAZY)

@@ -15,7 +15,8 @@ checked on load.
 joblib files are pickle: loading one runs the code it names. The checksums catch a damaged or half-copied
 file, not a deliberate change (whoever edits a file can update its checksum in the manifest), so load model
 directories only from sources you trust and exchange bundles instead (docs/deploying.md, "Model folders are
-pickle"; decision B125).
+pickle"; decision B125). ``PDRLEARN_NO_PICKLE=1`` refuses every model directory before any file is unpickled
+(:func:`refuse_pickle`, decision E260): a locked-down install then loads bundles only.
 """
 
 from __future__ import annotations
@@ -311,19 +312,36 @@ def _ignore_sklearn_version_blocks() -> None:
         warnings.filterwarnings("ignore", category=InconsistentVersionWarning, module=SKLEARN_VERSION_WARNING_MODULE)
 
 
+def refuse_pickle(path) -> None:
+    """Decision E260: raise :class:`ModelError` (one line naming the folder and bundles) when ``PDRLEARN_NO_PICKLE``
+    is on (:mod:`pdrlearn.lockdown`), before anything of the folder is read; :func:`load_model` and the CLI's early
+    ``--model`` checks call it."""
+    from pdrlearn.lockdown import NO_PICKLE_ENV, switch, switch_text
+
+    value = switch(NO_PICKLE_ENV)
+    if value is None:
+        return
+    raise ModelError(f"{path}: a model folder is pickle (loading it runs any code its files hold) and "
+                     f"{switch_text(NO_PICKLE_ENV, value, 'refuses model folders')}; use its bundle instead "
+                     "(`pdrlearn export` it where it is trusted, then `pdrlearn run BUNDLE ...` or `pdrlearn evaluate "
+                     f"BUNDLE ...`), or unset {NO_PICKLE_ENV} to load a folder you trust")
+
+
 def load_model(path):
     """Load a model directory written by :meth:`UserModel.save` -> :class:`UserModel`.
 
-    The files are unpickled (joblib): only load directories from a trusted source (see the module docstring).
+    The files are unpickled (joblib): only load directories from a trusted source (see the module docstring);
+    ``PDRLEARN_NO_PICKLE=1`` refuses every one (:func:`refuse_pickle`, decision E260).
 
     Raises :class:`ModelError` (one line) for a missing directory/manifest/model file, a changed file
     (SHA-256 mismatch) or another schema version.
     """
+    path = Path(path)
+    refuse_pickle(path)  # decision E260: before any file of the folder is read (or joblib imported)
     import joblib
 
     from pdrlearn.classify.training import TaskModel, UserModel
 
-    path = Path(path)
     manifest = verify_model_dir(path)
     line = version_warning(path, manifest)
     if line:  # decision B211

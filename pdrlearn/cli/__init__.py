@@ -16,6 +16,7 @@ import importlib
 import logging
 import os
 import sys
+import warnings
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -102,7 +103,10 @@ def _root(verbose: bool = typer.Option(False, "--verbose", "-v", help="Log progr
                                            help="Import a module or .py file that registers plug-ins "
                                            "(register_method, register_detector, ...) first; repeatable, also "
                                            "accepted after the command name (pdrlearn train DIR --plugin "
-                                           "myclf.py --methods rf,svm).")):
+                                           "myclf.py --methods rf,svm). A plug-in is Python code run with your "
+                                           "rights: only files you trust. Installed packages' pdrlearn entry "
+                                           "points are imported on first use too (PDRLEARN_NO_ENTRY_POINTS=1: "
+                                           "none; decision E263).")):
     _set_verbose(verbose)
 
 
@@ -266,9 +270,19 @@ def main(argv: list[str] | None = None) -> int:
         set_command_line(None)
 
 
+#: decision E262 (trial T1 F8): joblib's import-time UserWarning when it cannot make a semaphore (a read-only /dev/shm
+#: in a hardened container): "[Errno 30] Read-only file system.  joblib will operate in serial mode", two lines
+#: with a site-packages path. pdrlearn never asks joblib for processes (no n_jobs: scikit-learn only imports it), so
+#: serial mode changes nothing, and the command silences this one warning.
+JOBLIB_SERIAL_WARNING = r".*joblib will operate in serial mode"
+
+
 def _main(argv: list[str]) -> int:
     """:func:`main` once its command line is known."""
     from pdrlearn.atomic import checked_outputs
+
+    # decision E262: one filter, added once (filterwarnings replaces an identical entry), before any import of joblib
+    warnings.filterwarnings("ignore", message=JOBLIB_SERIAL_WARNING, category=UserWarning)
 
     written: list[str] = []
     _TERMINATED.clear()

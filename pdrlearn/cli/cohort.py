@@ -19,6 +19,7 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
     METHODS_HELP,
+    PICKLE_HELP,
     check_train_options,
     console,
     cv_groups_option,
@@ -407,7 +408,8 @@ def train_all(
 
 
 def evaluate_all(
-    models_dir: Path = typer.Argument(..., help="Models folder written by train-all."),
+    models_dir: Path = typer.Argument(..., help=f"Models folder written by train-all (one model folder per user; "
+                                      f"{PICKLE_HELP})."),
     cohort_dir: Path = typer.Argument(..., help="Cohort folder; each user's test/ sessions are scored."),
     out: Path = typer.Option(None, "--out", "-o", help="Folder for cohort_summary.csv|md (default: MODELS/eval)."),
     scheduler: str = typer.Option(None, help="Dask scheduler address (default: a LocalCluster)."),
@@ -439,6 +441,9 @@ def evaluate_all(
     if not models_dir.is_dir():
         raise DataError(f"{models_dir}: models folder not found; run "
                         f"`pdrlearn train-all COHORT --out {shell_quote(models_dir)}`")
+    from pdrlearn.classify.model_dir import refuse_pickle
+
+    refuse_pickle(models_dir)  # decision E260: PDRLEARN_NO_PICKLE=1, once before any user (each folder is pickle)
     _check_outside_cohort(out or models_dir / "eval", cohort_dir)
     out = out_folder(out or models_dir / "eval", "evaluate-all", force=force, inputs=(models_dir, cohort_dir))
     was = existed(out)

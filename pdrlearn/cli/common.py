@@ -219,6 +219,11 @@ def train_resample_option():
         "(decision B212).")
 
 
+#: decision E260 (trial T1 F2): said by every argument or option that loads a model folder (track / track-all --model,
+#: evaluate, evaluate-all, export); pdrlearn.classify.model_dir.refuse_pickle reads the variable
+PICKLE_HELP = ("its files are pickle, run as code: load only a folder you trust, share the bundle instead; "
+               "PDRLEARN_NO_PICKLE=1 refuses every model folder")
+
 FORCE_HELP = "Replace an existing output of this command (atomically: the old one stays until the new one is complete)."
 
 

@@ -16,6 +16,7 @@ from pdrlearn.cli.common import (
     DPI_HELP,
     FORCE_HELP,
     INITIAL_HEADING_HELP,
+    PICKLE_HELP,
     START_HELP,
     check_no_plot,
     clock_progress,
@@ -35,8 +36,8 @@ from pdrlearn.cli.gaplines import GapLines
 
 
 def export(
-    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train' (its files are pickle: "
-                                     "only one you trust; share the bundle instead), or a waist calibration "
+    model_dir: Path = typer.Argument(..., help=f"Model directory written by 'pdrlearn train' ({PICKLE_HELP}), or a "
+                                     "waist calibration "
                                      "(PARAMS.json of 'pdrlearn calibrate': a waist-only bundle, decision E57)."),
     out: Path = typer.Option(..., "--out", "-o", help="Bundle folder to create."),
     methods: str = typer.Option(None, help="Comma-separated methods to export for every task "

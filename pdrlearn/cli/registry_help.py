@@ -56,9 +56,9 @@ def length_names() -> str:
 
 def _entry_points(group: str) -> str:
     """`` | plug-ins: a, b`` for the installed plug-ins of an entry-point group (their names only, nothing loaded)."""
-    from importlib.metadata import entry_points
+    from pdrlearn.lockdown import installed_entry_points
 
-    names = sorted({ep.name for ep in entry_points(group=group)})
+    names = sorted({ep.name for ep in installed_entry_points(group)})  # decision E263: as the registries load them
     return f" | plug-ins: {', '.join(names)}" if names else ""
 
 

@@ -13,6 +13,7 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     INITIAL_HEADING_HELP,
     NO_PLOT_HELP,
+    PICKLE_HELP,
     START_HELP,
     check_no_plot,
     count_phrase,
@@ -39,8 +40,8 @@ PIPELINE_OPT = typer.Option("auto", help="Tracking pipeline: plasys, waist-pll, 
                             "--params calibration was made for (W407).")
 METHOD_OPT = typer.Option("auto", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes); "
                           "auto = M3 with --model, else the M3 engine without the class rules (warned).")
-MODEL_OPT = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
-                         "own step labels.")
+MODEL_OPT = typer.Option(None, "--model", help=f"Trained model directory (M3; {PICKLE_HELP}); 'oracle' = the "
+                         "session's own step labels.")
 RULES_OPT = typer.Option(None, "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
                          "(class probabilities weighed against the estimate); default bayes with a "
                          "model, thesis with --model oracle, offline and --streaming (decisions L40, L41).")
@@ -608,8 +609,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                         f"({'oracle classes are the labels' if model is not None else 'no --model given'}); add "
                         "--model DIR, or drop --length-reference")
     if model is not None and str(model) != "oracle":  # decision B128: a bad --model fails once, before any session
-        from pdrlearn.classify.model_dir import verify_model_dir
+        from pdrlearn.classify.model_dir import refuse_pickle, verify_model_dir
 
+        refuse_pickle(model)  # decision E260: PDRLEARN_NO_PICKLE=1, once before any session
         verify_model_dir(model)
     if rate_mode != "native":  # B113: oracle or a model without rates, once before a batch's first session
         from pdrlearn.classify.model_dir import read_manifest

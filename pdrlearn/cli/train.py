@@ -13,6 +13,7 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     LENGTH_UNITS_HELP,
     METHODS_HELP,
+    PICKLE_HELP,
     check_train_options,
     console,
     cv_groups_option,
@@ -292,7 +293,8 @@ def _streamed_gain(cal: dict) -> str:
 
 
 def evaluate(
-    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train', or a runtime bundle "
+    model_dir: Path = typer.Argument(..., help=f"Model directory written by 'pdrlearn train' ({PICKLE_HELP}), or a "
+                                     "runtime bundle "
                                      "('pdrlearn export'; its chosen models scored on the strides the runtime "
                                      "detects, decision E193)."),
     data_dirs: list[Path] = typer.Argument(..., help="Labelled session folders (or folders of sessions)."),

@@ -476,7 +476,8 @@ def _check_sampling(path: Path, sampling, *, required: bool) -> None:
 
 
 def verify_files(path: Path, manifest: dict) -> None:
-    """Check that every listed file exists and has its recorded sha256."""
+    """Check that every listed file exists, lies inside the bundle once its links are followed (decision E263), has
+    its recorded sha256 and, for an ONNX graph, keeps all its data in the file (E263)."""
     files = manifest["files"]
     if not isinstance(files, dict) or not files:
         raise _fail(path, f"{MANIFEST} lists no files; re-export the bundle")
@@ -486,18 +487,39 @@ def verify_files(path: Path, manifest: dict) -> None:
     if read_text(sha_file).split()[0:1] != [sha256_file(path / MANIFEST)]:
         raise _fail(path, f"{MANIFEST} was altered (sha256 differs from {MANIFEST_SHA}); "
                           "restore the original bundle or re-export it")
+    root = path.resolve()
     for rel, digest in files.items():
         f = path / rel
         if Path(rel).is_absolute() or ".." in Path(rel).parts:
             raise _fail(path, f"file entry '{rel}' points outside the bundle; re-export the bundle")
         if not f.is_file():
             raise _fail(path, f"file '{rel}' listed in {MANIFEST} is missing; copy the whole bundle folder")
+        if not f.resolve().is_relative_to(root):  # decision E263: a symbolic link (a file or a folder) leads out
+            raise _fail(path, f"file '{rel}' is a symbolic link (or inside a linked folder) to {f.resolve()}, "
+                              "outside the bundle; copy the whole bundle folder with its files (cp -rL), not links")
         if sha256_file(f) != digest:
             raise _fail(
                 path,
                 f"file '{rel}' was altered (sha256 differs from {MANIFEST}); "
                 "restore the original bundle or re-export it",
             )
+        if rel.endswith(".onnx"):
+            _refuse_external_data(path, rel, f)
+
+
+def _refuse_external_data(path: Path, rel: str, f: Path) -> None:
+    """Decision E263: an ONNX graph whose tensors keep their data in another file (which no checksum covers; the
+    exporter never writes one) is refused when the bundle is verified, not when a replay first uses the model."""
+    from pdrlearn.runtime.onnx_scan import NotOnnx, external_tensor
+
+    try:
+        name = external_tensor(f.read_bytes())
+    except NotOnnx as exc:
+        raise _fail(path, f"file '{rel}' is not an ONNX graph ({exc}); restore the original bundle or re-export it "
+                          "with 'pdrlearn export' (decision B125)") from None
+    if name is not None:
+        raise _fail(path, f"file '{rel}' keeps the data of tensor '{name}' in an external file, which 'pdrlearn "
+                          "export' never writes and no checksum covers; restore the original bundle or re-export it")
 
 
 def load_bundle(path: str | Path, *, verify: bool = True, backend: str = "auto") -> Bundle:

@@ -5,11 +5,19 @@ The pipelines ``waist-pll`` and ``waist-pendulum`` live in :mod:`pdrlearn.track.
 :class:`WaistTracker` (:mod:`pdrlearn.waist.live`) tracks a live stream (docs/waist.md "Live tracking").
 """
 
-from pdrlearn.waist.ahrs import WaistIMU, body_data, waist_imu
-from pdrlearn.waist.events import InitialContactDetector, steps_from_events, walking_gate
-from pdrlearn.waist.heading import TurnClassifier, gyro_headings, harmonic_headings
-from pdrlearn.waist.live import LiveStep, WaistTracker
-from pdrlearn.waist.params import WaistParams, default_params, load_params, resolve_params
+from pdrlearn.lazy import lazy_attributes
+
+#: decision E262: imported on first access, so that a module that needs one waist module (``track.bouts`` needs
+#: ``gait_quality``'s column names) does not import scikit-learn (``heading``) and the rest of the package
+_LAZY = {
+    **dict.fromkeys(("WaistIMU", "body_data", "waist_imu"), "pdrlearn.waist.ahrs"),
+    **dict.fromkeys(("InitialContactDetector", "steps_from_events", "walking_gate"), "pdrlearn.waist.events"),
+    **dict.fromkeys(("TurnClassifier", "gyro_headings", "harmonic_headings"), "pdrlearn.waist.heading"),
+    **dict.fromkeys(("LiveStep", "WaistTracker"), "pdrlearn.waist.live"),
+    **dict.fromkeys(("WaistParams", "default_params", "load_params", "resolve_params"), "pdrlearn.waist.params"),
+}
+
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, globals())
 
 __all__ = [
     "WaistIMU", "body_data", "waist_imu", "InitialContactDetector", "steps_from_events", "walking_gate",
