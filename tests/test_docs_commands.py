@@ -345,6 +345,7 @@ def _validators() -> dict[tuple[str, str], object]:
         **{(c, "bout_rule"): _one_of(BOUT_PRESETS, case=False) for c in ("track", "track-all", "run")},  # decision L163
         ("track", "units"): parse_units,  # decision B127
         ("export", "length_bounds"): two_numbers,
+        ("simulate", "length_bounds"): two_numbers,  # decision S98
         ("export", "methods"): _one_of(METHODS, listed=True),
         ("track", "length_model"): get_step_length,  # decision E84: NAME[:key=value,...]
         ("calibrate", "length_model"): gain_model,  # decision W460: a model with a gain_param, the gain not set
