@@ -59,6 +59,16 @@ def built_state() -> tuple[str | None, bool | None]:
     return commit, dirty
 
 
+def version_line(version: str, commit: str | None, dirty: bool | None) -> str:
+    """Decision E264: what ``pdrlearn --version`` prints: the package version (0.1.0 over thousands of commits) and
+    the commit :func:`git_state` knows (the checkout's, or the wheel's ``_build.json`` stamp, E187), with ``dirty``
+    when the code differs from it, so a paper can cite the code that printed its numbers."""
+    if commit is None:
+        return f"pdrlearn {version} (commit unknown: neither a git checkout nor a wheel with a build stamp)"
+    state = ", dirty: the code differs from this commit" if dirty else ""
+    return f"pdrlearn {version} (commit {commit}{state})"
+
+
 def git_stamp() -> dict:
     """Decision E158: ``{"git_commit": ..., "git_dirty": ...}`` for a model or bundle manifest, or ``{}`` (no keys)
     outside a git checkout: ``package_version`` (0.1.0 over thousands of commits) cannot tell builds apart."""

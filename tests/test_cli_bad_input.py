@@ -344,4 +344,4 @@ def test_version_prints_the_package_version(capsys):
     from pdrlearn.cli import main as cli_main
 
     assert cli_main(["--version"]) == 0
-    assert capsys.readouterr().out.strip() == f"pdrlearn {__version__}"
+    assert capsys.readouterr().out.strip().startswith(f"pdrlearn {__version__} (commit ")  # E264: and the commit

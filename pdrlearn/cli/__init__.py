@@ -39,8 +39,9 @@ app = typer.Typer(
 def _print_version(value: bool) -> None:
     if value:
         from pdrlearn import __version__
+        from pdrlearn.buildinfo import git_state, version_line
 
-        typer.echo(f"pdrlearn {__version__}")
+        typer.echo(version_line(__version__, *git_state()))  # decision E264
         raise typer.Exit()
 
 
@@ -98,7 +99,8 @@ def _load_plugins(values: list[str] | None) -> list[str]:
 def _root(verbose: bool = typer.Option(False, "--verbose", "-v", help="Log progress details to stderr "
                                        "(also accepted after the command name)."),
           version: bool = typer.Option(False, "--version", callback=_print_version, is_eager=True,
-                                       help="Print the package version and exit."),
+                                       help="Print the package version and the git commit "
+                                       "(dirty when the code differs from it; cite that commit) and exit."),
           plugin: list[str] = typer.Option([], "--plugin", callback=_load_plugins, metavar="MODULE",
                                            help="Import a module or .py file that registers plug-ins "
                                            "(register_method, register_detector, ...) first; repeatable, also "

@@ -54,7 +54,7 @@ def steps(
 
         pdrlearn steps datasets/real/mobgap_HA001_Test11_Trial1 --detector waist-ic
 
-        pdrlearn steps out/sim/D_u1 --detector accel-force --out out/A_steps.csv
+        pdrlearn steps out/sim/D_u1 --detector accel-force --out out/D_steps.csv
 
         pdrlearn steps datasets/real/mobgap_HA001_Test5_Trial1 --detector pll:loop_hz=1.5   # a detector setting
 
@@ -466,11 +466,11 @@ def score_steps_command(
 
     Examples:
 
-        pdrlearn score-steps out/sim/D_u1 out/A_steps.csv
+        pdrlearn score-steps out/sim/D_u1 out/D_steps.csv
 
-        pdrlearn score-steps out/sim/D_u1 out/A_steps.csv --all-rows --tolerance 0.1 --json
+        pdrlearn score-steps out/sim/D_u1 out/D_steps.csv --all-rows --tolerance 0.1 --json
 
-        pdrlearn score-steps out/sim/D_u1 out/A_steps.csv --ref-offset 5 --events-out out/A_events.csv   # a Vicon
+        pdrlearn score-steps out/sim/D_u1 out/D_steps.csv --ref-offset 5 --events-out out/D_events.csv   # a Vicon
         clock 5 s ahead of the IMU's; one row per event for Bland-Altman plots (decisions steps 56, 59)
     """
     from pdrlearn.io import read_session
