@@ -1,7 +1,7 @@
-"""Decisions B425 / B426 (docs/decisions/bad-input.md; trial T1 F3, F6, session 42): a sensor file with a finite
-value beyond any sensor's range (1e308) is one line naming the file, the line and the value, without numpy warnings;
-a sensor file whose header names more columns than a sensor file may have is refused before its body is read, and
-the extra columns of one that is read are named in one warning."""
+"""Decisions B425 / B426 / B427 (docs/decisions/bad-input.md; trial T1 F3, F6, session 42): a sensor file with a
+finite value beyond any sensor's range (1e308) is one line naming the file, the line and the value, without numpy
+warnings; a sensor file (B426) or label table (B427) whose header names more columns than it may have is refused
+before its body is read, and the extra columns of a sensor file that is read are named in one warning."""
 
 from __future__ import annotations
 
@@ -159,3 +159,15 @@ def test_extra_columns_are_read_around_with_one_warning_naming_them_b426(tmp_pat
     assert lines == [f"{d / 'fGyroscope.csv'}: 2 column(s) besides timestamp,x,y,z not read: 'Temp', 'acc_x' "
                      "(decision B426)"]
     assert s.streams["fGyroscope"].values.shape == (t.size, 3)
+
+
+def test_a_label_table_with_too_many_columns_is_refused_before_the_body_b427(tmp_path):
+    from pdrlearn.io.plasys import MAX_TABLE_COLUMNS
+
+    d = _session(tmp_path)
+    names = ",".join(f"c{i}" for i in range(MAX_TABLE_COLUMNS))
+    (d / "steps.csv").write_text(f"start_ms,end_ms,{names}\n0,1000{',' * MAX_TABLE_COLUMNS}\n")
+    with pytest.raises(DataError) as exc:
+        read_session(d)
+    assert str(exc.value).startswith(f"{d / 'steps.csv'}: the header names {MAX_TABLE_COLUMNS + 2} columns, more "
+                                     f"than the {MAX_TABLE_COLUMNS} a session's table may have (decision B427)")

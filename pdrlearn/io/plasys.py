@@ -239,11 +239,18 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = (), *, h
     return df
 
 
-def session_table(path: str | os.PathLike) -> pd.DataFrame:
+def session_table(path: str | os.PathLike, widest: tuple[int, str] | None = None) -> pd.DataFrame:
     """:func:`read_table` for a session folder's files (sensor files, steps.csv, trajectory.csv, label tables):
     column names matched in any case (decision B222: ``TIMESTAMP,X,Y,Z`` and ``START_MS`` are read as the
     lower-case names, as the lean runtime and ``pdrlearn import`` read them), and a name given twice refused in
-    one line (decision B223: ``timestamp,x,x,y,z`` had silently used the first ``x``)."""
+    one line (decision B223: ``timestamp,x,x,y,z`` had silently used the first ``x``). Decisions B426, B427: a
+    header naming more columns than ``widest`` (the most and the rest of the refusal; default a label table's,
+    :data:`MAX_TABLE_COLUMNS`) is refused before the body is read."""
+    most, what = widest or (MAX_TABLE_COLUMNS, "a session's table may have (decision B427): keep the columns it "
+                            "needs (docs/columns.md) and move the others to a file outside the session folder")
+    width = _header_width(Path(path))
+    if width > most:  # decisions B426, B427: before the body, which pandas would widen to every name
+        raise DataError(f"{path}: the header names {width} columns, more than the {most} {what}")
     df = read_table(path)
     names = [str(c) for c in df.columns]
     if any(re.fullmatch(r"(.+)\.\d+", c) and re.fullmatch(r"(.+)\.\d+", c)[1] in names for c in names):
@@ -418,11 +425,8 @@ def _read_raw(path: str | os.PathLike, name: str | None = None, *,
     if not path.is_file():
         raise DataError(f"{path}: file not found")
     want = ("timestamp", *spec.columns)
-    width = _header_width(path)
-    if width > MAX_SENSOR_COLUMNS:  # decision B426: before the body, which pandas would widen to every name
-        raise DataError(f"{path}: the header names {width} columns, more than the {MAX_SENSOR_COLUMNS} a sensor file "
-                        f"may have (it needs {','.join(want)}; decision B426): keep those columns and drop the others")
-    df = session_table(path)  # decisions B222, B223
+    df = session_table(path, widest=(MAX_SENSOR_COLUMNS, f"a sensor file may have (it needs {','.join(want)}; "
+                                     "decision B426): keep those columns and drop the others"))  # B222, B223, B426
     check_columns(df, want, str(path))
     _warn_extra_columns(df, want, path)  # decision B426
     cut = ends_mid_line(path)
@@ -440,6 +444,9 @@ def _read_raw(path: str | os.PathLike, name: str | None = None, *,
 #: extra names took 26 s to read and 1 000 000 over 5 minutes and 9 GB (trial T1 F6, session 42): pandas gives
 #: every row a cell under every name. The header is counted before the body is read
 MAX_SENSOR_COLUMNS = 64
+#: decision B427: the most columns a session folder's other tables (steps.csv, trajectory.csv, label tables) may
+#: name: pdrlearn's own have under 20; a steps.csv with 20 000 extra names (17 rows) took `info` 36.95 s
+MAX_TABLE_COLUMNS = 1000
 
 
 def _header_width(path: Path) -> int:
