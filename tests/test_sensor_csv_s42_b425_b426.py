@@ -171,3 +171,14 @@ def test_a_label_table_with_too_many_columns_is_refused_before_the_body_b427(tmp
         read_session(d)
     assert str(exc.value).startswith(f"{d / 'steps.csv'}: the header names {MAX_TABLE_COLUMNS + 2} columns, more "
                                      f"than the {MAX_TABLE_COLUMNS} a session's table may have (decision B427)")
+
+
+def test_a_separator_ending_every_line_is_not_named_b426(tmp_path, caplog):
+    t, a, g = _walk()
+    d = tmp_path / "s"
+    _write(d, "fAccelerometer", t, a, header="timestamp,x,y,z,", extra=",")
+    _write(d, "fGyroscope", t, g)
+    with caplog.at_level(logging.WARNING):
+        s = read_session(d)
+    assert not [r for r in caplog.records if "B426" in r.getMessage()]
+    assert s.streams["fAccelerometer"].values.shape == (t.size, 3)

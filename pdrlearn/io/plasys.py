@@ -465,9 +465,11 @@ def _header_width(path: Path) -> int:
 
 def _warn_extra_columns(df: pd.DataFrame, want: tuple[str, ...], path: Path) -> None:
     """Decision B426: one warning naming a sensor file's columns besides ``want`` (read by name, B222), which are
-    not read, so that a column the user meant (``acc_x`` beside ``x``) is not dropped without a word."""
+    not read, so that a column the user meant (``acc_x`` beside ``x``) is not dropped without a word. An empty
+    column without a name (a separator ending every line) is not named."""
     written = df.attrs.get("header", list(df.columns))
-    extra = [str(w) for w, c in zip(written, df.columns, strict=True) if c not in want]
+    extra = [str(w) for w, c in zip(written, df.columns, strict=True)
+             if c not in want and not (str(c).startswith("unnamed:") and df[c].isna().all())]
     if extra:
         shown = ", ".join(repr(e) for e in extra[:3]) + (f" and {len(extra) - 3} more" if len(extra) > 3 else "")
         log.warning("%s: %d column(s) besides %s not read: %s (decision B426)", path, len(extra), ",".join(want),
