@@ -49,6 +49,7 @@ from pdrlearn.io.validate import (
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
 from pdrlearn.kernels.gaps import DROPS_CAUSE, gap_turn, streamed_drops_line  # decision E230: shared with the runtime
+from pdrlearn.kernels.units import out_of_range, out_of_range_message
 from pdrlearn.textfile import (
     compressed_hint,
     csv_stem,
@@ -238,11 +239,18 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = (), *, h
     return df
 
 
-def session_table(path: str | os.PathLike) -> pd.DataFrame:
+def session_table(path: str | os.PathLike, widest: tuple[int, str] | None = None) -> pd.DataFrame:
     """:func:`read_table` for a session folder's files (sensor files, steps.csv, trajectory.csv, label tables):
     column names matched in any case (decision B222: ``TIMESTAMP,X,Y,Z`` and ``START_MS`` are read as the
     lower-case names, as the lean runtime and ``pdrlearn import`` read them), and a name given twice refused in
-    one line (decision B223: ``timestamp,x,x,y,z`` had silently used the first ``x``)."""
+    one line (decision B223: ``timestamp,x,x,y,z`` had silently used the first ``x``). Decisions B426, B427: a
+    header naming more columns than ``widest`` (the most and the rest of the refusal; default a label table's,
+    :data:`MAX_TABLE_COLUMNS`) is refused before the body is read."""
+    most, what = widest or (MAX_TABLE_COLUMNS, "a session's table may have (decision B427): keep the columns it "
+                            "needs (docs/columns.md) and move the others to a file outside the session folder")
+    width = _header_width(Path(path))
+    if width > most:  # decisions B426, B427: before the body, which pandas would widen to every name
+        raise DataError(f"{path}: the header names {width} columns, more than the {most} {what}")
     df = read_table(path)
     names = [str(c) for c in df.columns]
     if any(re.fullmatch(r"(.+)\.\d+", c) and re.fullmatch(r"(.+)\.\d+", c)[1] in names for c in names):
@@ -416,8 +424,11 @@ def _read_raw(path: str | os.PathLike, name: str | None = None, *,
     spec = SENSORS[name]
     if not path.is_file():
         raise DataError(f"{path}: file not found")
-    df = session_table(path)  # decisions B222, B223
-    check_columns(df, ("timestamp", *spec.columns), str(path))
+    want = ("timestamp", *spec.columns)
+    df = session_table(path, widest=(MAX_SENSOR_COLUMNS, f"a sensor file may have (it needs {','.join(want)}; "
+                                     "decision B426): keep those columns and drop the others"))  # B222, B223, B426
+    check_columns(df, want, str(path))
+    _warn_extra_columns(df, want, path)  # decision B426
     cut = ends_mid_line(path)
     if drop_partial_row and cut and len(df) > 1:  # decision B266: the dead battery's last row, said once
         df = df.iloc[:-1]
@@ -426,6 +437,43 @@ def _read_raw(path: str | os.PathLike, name: str | None = None, *,
                     "dropped (--drop-partial-row, decision B266)", path, len(df) + 2)
     _refuse_datetimes(df["timestamp"], path)
     return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=cut, command=command)
+
+
+#: decision B426: the most columns a sensor file's header may name. A sensor file needs 2 or 4 (``timestamp,x,y,z``,
+#: thesis ch.4.3.3); an export's extra columns (accuracy, temperature, a second clock) are a few. A header of 20 000
+#: extra names took 26 s to read and 1 000 000 over 5 minutes and 9 GB (trial T1 F6, session 42): pandas gives
+#: every row a cell under every name. The header is counted before the body is read
+MAX_SENSOR_COLUMNS = 64
+#: decision B427: the most columns a session folder's other tables (steps.csv, trajectory.csv, label tables) may
+#: name: pdrlearn's own have under 20; a steps.csv with 20 000 extra names (17 rows) took `info` 36.95 s
+MAX_TABLE_COLUMNS = 1000
+
+
+def _header_width(path: Path) -> int:
+    """Decision B426: the number of fields of a CSV's header line (after a B66 ``sep=`` line), its separators
+    counted (a separator inside a quoted name counts too: a stricter count), without reading the body."""
+    dialect = _csv_dialect(path)
+    try:
+        with open_text(path, errors="replace") as f:  # decision B369: a .csv.gz too
+            line = f.readline()
+            if dialect.get("skiprows"):  # decision B66: the header follows the sep= line
+                line = f.readline()
+    except (OSError, EOFError, zlib.error):  # read_table names the damage
+        return 0
+    return line.count(dialect.get("sep") or ",") + 1
+
+
+def _warn_extra_columns(df: pd.DataFrame, want: tuple[str, ...], path: Path) -> None:
+    """Decision B426: one warning naming a sensor file's columns besides ``want`` (read by name, B222), which are
+    not read, so that a column the user meant (``acc_x`` beside ``x``) is not dropped without a word. An empty
+    column without a name (a separator ending every line) is not named."""
+    written = df.attrs.get("header", list(df.columns))
+    extra = [str(w) for w, c in zip(written, df.columns, strict=True)
+             if c not in want and not (str(c).startswith("unnamed:") and df[c].isna().all())]
+    if extra:
+        shown = ", ".join(repr(e) for e in extra[:3]) + (f" and {len(extra) - 3} more" if len(extra) > 3 else "")
+        log.warning("%s: %d column(s) besides %s not read: %s (decision B426)", path, len(extra), ",".join(want),
+                    shown)
 
 
 def _refuse_datetimes(col: pd.Series, path: Path) -> None:
@@ -474,6 +522,8 @@ def _unwrapped(raw: dict[str, np.ndarray], folder: Path) -> dict[str, np.ndarray
 def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool,
                value_unit: tuple[float, str | None] = (1.0, None)) -> Stream:
     t = arr[:, 0] * time_scale
+    factor, declared = value_unit
+    _refuse_out_of_range(path, name, arr, t, check_unit, value_unit)  # decision B425
     t, moved = restamp_isolated_ties(t, arr[:, 1:])  # decision B185
     if moved:
         log.warning("%s: %d timestamp(s) equal to the previous row's, with other values (jittered stamps rounded?): "
@@ -481,19 +531,41 @@ def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: 
                     path, moved, TIE_ROWS)
     check_timestamps(t, str(path))
     check_rate(t, str(path))
-    factor, declared = value_unit
     # B32: a declared unit, converted to SI. Decision E195: the values in an array of their own (same memory
     # order), so that the file's array, whose timestamp column t replaces, is freed (a whole-day session: 23 MB/h)
     values = arr[:, 1:] * factor if factor != 1.0 else arr[:, 1:].copy(order="K")
     if check_unit:
-        try:
-            check_units(SENSORS[name], values, str(path), t=t)
-        except DataError as exc:
-            if declared is None or isinstance(exc, GravityRemovedError):  # B202: not a question of the unit
-                raise
-            raise DataError(f"{exc} (the values were converted from {declared!r}, the unit meta.json declares for "
-                            "them: is that unit right?)") from None
+        _check_value_unit(path, name, values, t, declared)
     return Stream(name, t, values)
+
+
+def _check_value_unit(path, name: str, values: np.ndarray, t: np.ndarray, declared: str | None) -> None:
+    """B30's unit checks of a sensor file's values (SI), naming meta.json's declared unit when there is one."""
+    try:
+        check_units(SENSORS[name], values, str(path), t=t)
+    except DataError as exc:
+        if declared is None or isinstance(exc, GravityRemovedError):  # B202: not a question of the unit
+            raise
+        raise DataError(f"{exc} (the values were converted from {declared!r}, the unit meta.json declares for "
+                        "them: is that unit right?)") from None
+
+
+def _refuse_out_of_range(path, name: str, arr: np.ndarray, t: np.ndarray, check_unit: bool,
+                         value_unit: tuple[float, str | None]) -> None:
+    """Decision B425: a sensor file with a value beyond any sensor's range (:data:`~pdrlearn.kernels.units.
+    VALUE_LIMITS`; 1e308 had overflowed the step detectors into "0 strides" or "this is a bug") is one line naming
+    the file, the line and the value. A whole file in another unit (counts, mm/s^2, deg/s) is B30's wrong-unit
+    line, checked first: its statistics are medians and percentiles, which the few corrupt rows do not move (their
+    squares may overflow there, silently)."""
+    factor, declared = value_unit
+    spec = SENSORS[name]
+    rows = out_of_range(spec.kind, arr[:, 1:], factor)
+    if not rows.size:
+        return
+    if check_unit:
+        with np.errstate(over="ignore", invalid="ignore"):
+            _check_value_unit(path, name, arr[:, 1:] * factor, t, declared)
+    raise DataError(out_of_range_message(str(path), spec, arr[:, 1:], rows, factor))
 
 
 def imported_rate(meta: dict) -> float | None:

@@ -344,6 +344,45 @@ def check_gravity(values: np.ndarray, where: str, t: np.ndarray | None = None) -
         raise GravityRemovedError(gravity_removed_message(where, *removed))
 
 
+
+#: decision B425: the largest |value| of one axis a sensor of each kind can report, in the SI unit of
+#: :class:`~pdrlearn.io.sensors.SensorSpec` (``unit``), beyond any body-worn sensor's full scale: 2000 m/s^2
+#: (204 g, above the +-200 g of a high-g MEMS accelerometer such as the ADXL375, 1961 m/s^2; the thesis's foot
+#: ADXL345 measures +-16 g, thesis Table 3); 100 rad/s (5730 deg/s, above the +-4000 deg/s of the widest MEMS
+#: gyroscopes; thesis Tables 5, 13: 2000 deg/s = 34.9 rad/s); 1e4 uT (100 gauss, above a MEMS magnetometer's
+#: +-4900 uT; the Earth's field is 25-65 uT); 2000 hPa (ambient pressure is 300-1100 hPa, thesis Table 17); force
+#: 1e7 (N, or a force sensor's counts: a 24-bit ADC's 8.4e6). A sample beyond these is a corrupt value, not a
+#: reading: 1e308 overflowed the step detectors (trial T1 F3, session 42)
+VALUE_LIMITS = {"accelerometer": 2000.0, "gyroscope": 100.0, "magnetometer": 1e4, "barometer": 2000.0,
+                "force": 1e7}
+
+
+def out_of_range(kind: str, values: np.ndarray, factor: float = 1.0) -> np.ndarray:
+    """Decision B425: the rows of ``values`` (as written, before the declared unit's ``factor`` to SI) with an axis
+    beyond :data:`VALUE_LIMITS` once converted; compared as ``|value| > limit / |factor|``, so that no product
+    overflows (a non-finite value is B9's matter, not counted here)."""
+    values = np.asarray(values, dtype=float)
+    limit = VALUE_LIMITS.get(kind)
+    if limit is None or values.size == 0 or not factor:
+        return np.zeros(0, dtype=np.intp)
+    big = np.abs(values) > limit / abs(factor)
+    return np.flatnonzero(big.any(axis=1) if big.ndim == 2 else big)
+
+
+def out_of_range_message(where: str, spec: SensorSpec, values: np.ndarray, rows: np.ndarray, factor: float = 1.0,
+                         first_line: int = 2) -> str:
+    """Decision B425's one line for :func:`out_of_range`'s ``rows`` of a sensor file ``where``: how many rows, the
+    first row's line (``first_line``: the line of row 0) and value as written, and the limit."""
+    row = int(rows[0])
+    vals = np.asarray(values, dtype=float)
+    vals = vals[row] if vals.ndim == 2 else vals[row:row + 1]
+    axis = int(np.argmax(np.abs(vals)))
+    conv = "" if factor == 1.0 else f" ({vals[axis]:g} x {factor:g} in {spec.unit})"
+    return (f"{where}: {rows.size} row(s) with a value beyond any {spec.kind}'s range (first at line "
+            f"{row + first_line}: {spec.columns[axis]} = {vals[axis]:g}{conv}; the limit is "
+            f"{VALUE_LIMITS[spec.kind]:g} {spec.unit}, decision B425): a corrupt sample; remove or repair those rows")
+
+
 #: B91: the percentile of |gyro| (rad/s) that tells a swinging foot from a waist
 SWING_PERCENTILE = 99.0
 #: B91: a foot unit whose percentile stays below this never swung (rad/s; walking feet measured >= 6.2)
