@@ -1040,6 +1040,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     chair transfers, the contacts and the yaw-rate turns only."""
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
+    if not isinstance(gate, bool | np.bool_):  # review R1 finding 3: "no" or 1.0 gated (W473's option)
+        raise DataError(f"gate={gate!r} is not True or False (decision W473: the walking gate on a detector's "
+                        "contacts); pass gate=True or gate=False")
     p, warnings = resolve_params(session, params)
     spec = length_model if length_model is not None else ("pendulum" if pipeline == "waist-pendulum" else
                                                           "frequency")
