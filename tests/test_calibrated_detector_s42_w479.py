@@ -36,7 +36,7 @@ def _w471(warnings) -> list[str]:
 @pytest.mark.parametrize(("name", "said"), [("pll", 1), ("own", 0), ("wic", 0)])
 def test_the_live_tracker_says_when_the_file_was_calibrated_on_another_detector(made, name, said):
     s, files = made
-    a, g = s["wAccelerometer"], s["wGyroscope"]
+    a = s["wAccelerometer"]
     frame = ",".join(f"{k}={v}" for k, v in s.require_frame("waist").to_dict().items())
     tr = WaistTracker(a.rate_hz, params=str(files[name]), frame=frame)
     lines = _w471(tr.warnings)
