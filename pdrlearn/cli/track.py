@@ -829,7 +829,13 @@ def pseudonymous(session, names: dict[str, str]):
 def _track_session(session_dir: Path, settings: dict) -> dict:
     """:func:`track_session` without E154's capture and L415's setting."""
     from pdrlearn.io import read_session
-    from pdrlearn.track.base import calibrated_pipeline, get_pipeline, resolve_pipeline
+    from pdrlearn.track.base import (
+        calibrated_pipeline,
+        get_pipeline,
+        lower_back_choice,
+        lower_back_params,
+        resolve_pipeline,
+    )
     from pdrlearn.track.evaluate import track_summary
     from pdrlearn.track.units import check_tracked_span, keep_units, tracked_unit
 
@@ -866,24 +872,21 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         logging.getLogger("pdrlearn.cli").warning("%s", unknown)
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
-    # decision W474: a lower-back parameters file (on a session with a waist unit) asks for the lower back as well
-    waist_file = session.has("wAccelerometer") and waist_params_file(par)[0]
+    # decision W474: a lower-back parameters file (on a session with a waist unit) asks for the lower back as well,
+    # unless a foot-only option asks for the foot (W478: then one line naming both)
+    waist_file = lower_back_params(session, par)
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
+    plasys_given = _plasys_options_given(o, method, model, streaming, toe_off, contacts)
+    if pipeline == "auto" and waist_file and not waist_asked:
+        _refuse_foot_options_with_waist_params(params, plasys_given, o.get("detector"))  # decision W478
     chosen_by = None  # the option that chose the pipeline, for the lines that name it
     if pipeline == "auto" and (waist_asked or waist_file):
         # a lower-back detector, step-length model or parameters file: the user means the lower back, with the
         # pipeline the file was calibrated for (W407), else waist-pendulum (W474)
-        pipeline = calibrated_pipeline("waist-pendulum", par)
         chosen_by = (f"--detector {o['detector']}" if o.get("detector_unit") == "waist" else
                      f"--length-model {o['length_model']}" if o.get("length_model") is not None else
                      f"--params {params}")
-        if session.has("fAccelerometer"):  # decision W474: the foot unit left untracked is said, in one line
-            import logging
-
-            logging.getLogger("pdrlearn.cli").warning(
-                "%s: %s chose the lower-back pipeline %s (--pipeline auto): the foot unit is not tracked; give "
-                "--pipeline plasys to track the foot, or --pipeline %s to choose the lower back yourself (decision "
-                "W474)", session.where, chosen_by, pipeline, pipeline)
+        pipeline = lower_back_choice(session, par, chosen_by)  # W478: the one rule get_pipeline("auto") shares
     if waist_asked and not session.has("wAccelerometer"):
         asked = (f"--detector {o['detector']} detects lower-back steps" if o.get("detector_unit") == "waist" else
                  f"--length-model {o['length_model']} sets the lower-back step length")
@@ -938,21 +941,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         raise DataError(f"track: --realtime applies to the waist-pendulum pipeline only (got --pipeline {pipeline}, "
                         "which has no causal variant); add --pipeline waist-pendulum on a session with a waist "
                         "unit, or drop --realtime")
-    _refuse_ignored_options(pipeline, method, {"--method": method.lower() != "auto", "--model": model is not None,
-                                               "--rules": o["rules"] is not None,
-                                               "--min-confidence": o["min_confidence"] is not None,
-                                               "--length-bounds": o["length_bounds_given"],
-                                               "--length-reference": o.get("length_reference", "model") != "model",
-                                               "--streaming": streaming, "--toe-off": toe_off,
-                                               "--ignore-force": bool(o.get("ignore_force")),
-                                               "--contacts": contacts,
-                                               "--drop-neighbour": bool(o.get("drop_neighbour")),
-                                               "--detector": o.get("detector_unit") == "foot",
-                                               "--altitude": o.get("altitude") is not None,
-                                               "--align-units": bool(o.get("align_units")),
-                                               "--compass": o.get("compass", "auto") != "auto",
-                                               "--clock-offset": o.get("clock_offset_s") is not None,
-                                               "--clock-drift-ppm": o.get("clock_drift") is not None},
+    _refuse_ignored_options(pipeline, method, plasys_given,
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"],
                             chosen_by=chosen_by)
     track_keys = {}
@@ -1379,6 +1368,30 @@ _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--leng
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds", "--length-reference")
 
 
+def _plasys_options_given(o: dict, method: str, model, streaming: bool, toe_off: bool, contacts) -> dict[str, bool]:
+    """Each option of :data:`_PLASYS_OPTIONS` and whether ``track``'s settings ``o`` give it (decisions B27, W478)."""
+    return {"--method": method.lower() != "auto", "--model": model is not None, "--rules": o["rules"] is not None,
+            "--min-confidence": o["min_confidence"] is not None, "--length-bounds": o["length_bounds_given"],
+            "--length-reference": o.get("length_reference", "model") != "model", "--streaming": streaming,
+            "--toe-off": toe_off, "--ignore-force": bool(o.get("ignore_force")), "--contacts": contacts,
+            "--drop-neighbour": bool(o.get("drop_neighbour")), "--detector": o.get("detector_unit") == "foot",
+            "--altitude": o.get("altitude") is not None, "--align-units": bool(o.get("align_units")),
+            "--compass": o.get("compass", "auto") != "auto", "--clock-offset": o.get("clock_offset_s") is not None,
+            "--clock-drift-ppm": o.get("clock_drift") is not None}
+
+
+def _refuse_foot_options_with_waist_params(params: Path, given: dict[str, bool], detector: str | None) -> None:
+    """Decision W478: under --pipeline auto, a lower-back ``--params`` file and an option only the foot pipeline
+    takes ask for both units: one line naming both (W474 would choose the lower back, and the foot option would then
+    be refused with advice that refuses the file)."""
+    asked = [f"--detector {detector}" if o == "--detector" else o for o in _PLASYS_OPTIONS if given.get(o)]
+    if asked:
+        raise DataError(f"track: --params {params} is a lower-back parameters file (`pdrlearn calibrate`), but "
+                        f"{', '.join(asked)} appl{'ies' if len(asked) == 1 else 'y'} to the plasys foot pipeline "
+                        "only; drop the option to track the lower back with the file, or drop --params to track "
+                        "the foot (decision W478)")
+
+
 def _refuse_ignored_options(pipeline: str, method: str, given: dict[str, bool], *, gnss, gnss_period, fixes,
                             fix_period, chosen_by: str | None = None) -> None:
     """One error line for an option the chosen pipeline (or PLASYS method, or missing companion option)
@@ -1453,26 +1466,11 @@ def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
     return {k: v for k, v in par.items() if k not in keys}, keys
 
 
-def waist_params_file(par) -> tuple[bool, str | None]:
-    """Whether ``par`` (``--params``' parsed JSON) is a lower-back parameters file (``pdrlearn calibrate``'s schema or
-    a WaistParams key), and the lower-back pipeline it names (None when it names none): what
-    :func:`_refuse_waist_params` refuses for plasys and what chooses the lower back under --pipeline auto (W474)."""
-    from dataclasses import fields
-
-    from pdrlearn.waist.params import SCHEMA, WaistParams
-
-    if not isinstance(par, dict):
-        return False, None
-    # W471's "detector" is too common a word to call a file a waist one
-    waist_keys = {f.name for f in fields(WaistParams)} - {"notes", "source", "options", "detector"}
-    if par.get("schema") != SCHEMA and not waist_keys & set(par):
-        return False, None
-    return True, par.get("pipeline") if par.get("pipeline") in ("waist-pendulum", "waist-pll") else None
-
-
 def _refuse_waist_params(par: dict, path: Path, session) -> None:
     """A lower-back parameters file given to the foot pipeline: say what it is and where it belongs (the
     plasys pipeline would list its keys as unknown FootDisplacement settings)."""
+    from pdrlearn.track.base import waist_params_file
+
     is_waist, for_ = waist_params_file(par)
     if not is_waist:
         return

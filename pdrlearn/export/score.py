@@ -22,12 +22,13 @@ MODEL_DIR_ONLY = ("--report", "--predictions-out", "--resample", "--no-resample"
                   "--all-methods")  # decision C125
 
 
-def matched_classes(est, labels, task: str) -> tuple[list[str], list[str], list[str], list[tuple[str, str]]]:
+def matched_classes(est, labels, task: str) -> tuple[list[str], list[str], list[str], list[tuple[str, str]], int]:
     """The (true, predicted) classes of ``task`` over the runtime strides ``est`` (a table with ``start_s``,
     ``end_s`` and the task's column) matched to the labelled steps ``labels``; unclassified strides and unlabelled
     steps are left out. Decision C166 (C160's rule, :func:`pdrlearn.classify.uncovered.uncovered_mask`): a labelled
     step of a ``kind`` the task's classes do not cover (a side step, a turn stride for direction) is left out of
-    them too and returned apart: the kind of each such step, and ``(kind, predicted)`` of those a stride matched."""
+    them too and returned apart: the kind of each such step, and ``(kind, predicted)`` of those a stride matched.
+    Last, the number of labelled steps the classes do cover (decision C169: the all-uncovered line only when 0)."""
     import numpy as np
     import pandas as pd
 
@@ -36,14 +37,16 @@ def matched_classes(est, labels, task: str) -> tuple[list[str], list[str], list[
 
     col = LABEL_COLUMN.get(task, task)
     if labels is None or col not in labels:
-        return [], [], [], []
+        return [], [], [], [], 0
     labels = labels.reset_index(drop=True)
     kinds = (labels["kind"].astype(str).to_numpy(dtype=object) if "kind" in labels
              else np.full(len(labels), "", dtype=object))
-    apart = uncovered_mask(task, kinds) & labels[col].notna().to_numpy()
+    labelled = labels[col].notna().to_numpy()
+    apart = uncovered_mask(task, kinds) & labelled
+    covered = int((labelled & ~apart).sum())  # decision C169
     true, pred, matched = [], [], []
     if task not in est or not len(est):
-        return true, pred, [str(k) for k in kinds[apart]], matched
+        return true, pred, [str(k) for k in kinds[apart]], matched, covered
     for i, j in match_by_overlap(est, labels):
         t, p = labels[col].iloc[j], est[task].iloc[i]
         if pd.notna(t) and pd.notna(p) and str(p):
@@ -52,7 +55,7 @@ def matched_classes(est, labels, task: str) -> tuple[list[str], list[str], list[
             else:
                 true.append(str(t))
                 pred.append(str(p))
-    return true, pred, [str(k) for k in kinds[apart]], matched
+    return true, pred, [str(k) for k in kinds[apart]], matched, covered
 
 
 def runtime_table(steps) -> object:
@@ -129,6 +132,7 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
     names, fallback = [], []
     #: task -> (the labelled kinds its classes do not cover, (kind, predicted) of those matched; decision C166)
     apart: dict[str, tuple[list[str], list]] = {t: ([], []) for t in bundle.tasks}
+    covered = dict.fromkeys(bundle.tasks, 0)  # task -> labelled steps its classes cover, pooled (decision C169)
     for d in session_dirs:
         with session_with_folder(d) as (session, folder):  # a zip unpacked once for labels and replay (B359)
             names.append(session.name)
@@ -139,11 +143,12 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
         est = runtime_table(steps)
         for task in bundle.tasks:
             used = model_used(tracker, task)
-            t, p, kinds, matched = matched_classes(est, session.steps, task)
+            t, p, kinds, matched, n_covered = matched_classes(est, session.steps, task)
             if used is None:
                 continue
             apart[task][0].extend(kinds)  # decision C166: side / turn strides scored apart, as C160
             apart[task][1].extend(matched)
+            covered[task] += n_covered
             if not t:
                 continue
             row = pooled[task].setdefault(used, ([], [], []))
@@ -160,7 +165,8 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
                  "scored_on": "the strides the runtime detects, matched to the labelled steps (IoU >= 0.5)"}
     for task, rows in pooled.items():
         if not rows:
-            out["skipped"].append(all_uncovered_line(task) if apart[task][0] else  # decision C166
+            # decisions C166, C169: "every labelled step" only when no covered step is labelled (split_rows' rule)
+            out["skipped"].append(all_uncovered_line(task) if apart[task][0] and not covered[task] else
                                   f"{task}: no runtime stride matched a labelled {LABEL_COLUMN.get(task, task)}")
             continue
         chosen = bundle.tasks[task].get("chosen") or {}

@@ -175,16 +175,65 @@ def check_keywords(pipeline: str, given: Mapping | Iterable[str], valid: Iterabl
     check_keyword_names(f"{pipeline} pipeline", given, valid)
 
 
-def resolve_pipeline(name: str, session) -> str:
+def resolve_pipeline(name: str, session, params=None) -> str:
     """``"auto"`` (the CLI default, decision L36): ``plasys`` for a session with a foot unit, else
     ``waist-pendulum`` (the lower-back pipeline with the best step F1 and distance on the real recordings,
-    docs/waist.md); any other name is returned as given."""
+    docs/waist.md); on a session with a waist unit, a lower-back parameters file ``params`` (W474,
+    :func:`lower_back_params`) chooses the lower back (:func:`lower_back_choice`, the CLI's own rule, W478); any
+    other name is returned as given."""
     if name != "auto":
         return name
+    if lower_back_params(session, params):  # decision W474 (W478: the API makes the CLI's choice)
+        return lower_back_choice(session, params, "params")
     if session.has("fAccelerometer") or not session.has("wAccelerometer"):
         return "plasys"
     warn_foot_unit_ignored(session, "tracking the waist")  # decision B204
     return "waist-pendulum"
+
+
+def waist_params_file(par) -> tuple[bool, str | None]:
+    """Whether ``par`` (``--params``' parsed JSON, or a :class:`~pdrlearn.waist.params.WaistParams`) is a lower-back
+    parameters file (``pdrlearn calibrate``'s schema or a WaistParams key), and the lower-back pipeline it names (None
+    when it names none): what the CLI's ``_refuse_waist_params`` refuses for plasys and what chooses the lower back
+    under --pipeline auto (W474)."""
+    from dataclasses import fields
+
+    from pdrlearn.waist.params import SCHEMA, WaistParams
+
+    if isinstance(par, WaistParams):
+        return True, par.pipeline if par.pipeline in WAIST_PIPELINES else None
+    if not isinstance(par, dict):
+        return False, None
+    # W471's "detector" is too common a word to call a file a waist one
+    waist_keys = {f.name for f in fields(WaistParams)} - {"notes", "source", "options", "detector"}
+    if par.get("schema") != SCHEMA and not waist_keys & set(par):
+        return False, None
+    return True, par.get("pipeline") if par.get("pipeline") in WAIST_PIPELINES else None
+
+
+def lower_back_params(session, params) -> bool:
+    """Decision W474: ``params`` is a lower-back parameters file and ``session`` has a waist unit, so ``--pipeline
+    auto`` (and ``get_pipeline("auto")``, W478) tracks the lower back with it."""
+    return bool(session.has("wAccelerometer") and waist_params_file(params)[0])
+
+
+def lower_back_choice(session, params, chosen_by: str) -> str:
+    """Decisions W474 / W407: the lower-back pipeline ``--pipeline auto`` takes when ``chosen_by`` (a lower-back
+    option: ``--params FILE``, ``--length-model``, a waist ``--detector``) asks for the lower back - the pipeline
+    ``params`` was calibrated for, else waist-pendulum - with one warning when the foot unit is left untracked."""
+    from pdrlearn.waist.params import WaistParams
+
+    if isinstance(params, WaistParams):
+        params = {"source": params.source, "pipeline": params.pipeline}
+    pipeline = calibrated_pipeline("waist-pendulum", params)
+    if session.has("fAccelerometer"):  # decision W474: the foot unit left untracked is said, in one line
+        import logging
+
+        logging.getLogger("pdrlearn.cli").warning(
+            "%s: %s chose the lower-back pipeline %s (--pipeline auto): the foot unit is not tracked; give "
+            "--pipeline plasys to track the foot, or --pipeline %s to choose the lower back yourself (decision "
+            "W474)", session.where, chosen_by, pipeline, pipeline)
+    return pipeline
 
 
 #: decision W407: the lower-back pipelines `--pipeline auto` may take from a calibration file's "pipeline"
@@ -381,7 +430,7 @@ def track_auto(session, **options) -> TrackResult:
     from pdrlearn.warning_lines import captured_warnings, merged_warnings
 
     with captured_warnings(echo=True) as logged:
-        name = resolve_pipeline("auto", session)
+        name = resolve_pipeline("auto", session, options.get("params"))  # W478: W474's rule, the CLI's own
     result = get_pipeline(name)(session, **options)
     if logged and isinstance(getattr(result, "info", None), dict):
         result.info["warnings"] = merged_warnings(result.info.get("warnings") or [], logged,

@@ -1040,6 +1040,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     chair transfers, the contacts and the yaw-rate turns only."""
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
+    if not isinstance(gate, bool | np.bool_):  # review R1 finding 3: "no" or 1.0 gated (W473's option)
+        raise DataError(f"gate={gate!r} is not True or False (decision W473: the walking gate on a detector's "
+                        "contacts); pass gate=True or gate=False")
     p, warnings = resolve_params(session, params)
     spec = length_model if length_model is not None else ("pendulum" if pipeline == "waist-pendulum" else
                                                           "frequency")
@@ -1087,7 +1090,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         if short:
             warnings.append(short)
     if own_calibration and (model.uses_profile or gain_source == "params"):  # decision W471
-        line = calibrated_detector_line(p.detector, det)
+        line = calibrated_detector_line(p.detector, det, pipeline)
         if line:
             warnings.append(line)
     if p.source == "calibrated" and not own_calibration and model.uses_profile:
@@ -1503,23 +1506,43 @@ def detector_spec(det) -> str | None:
     return None if det is None else spec_text(det.name, det.changed_params())
 
 
-def calibrated_detector_line(recorded: str | None, det) -> str | None:
+#: decision W479: the step detector whose default contacts are a lower-back pipeline's own (``waist-ic``: "the same
+#: contacts as ``pdrlearn track --pipeline waist-pendulum``", pdrlearn.steps.waist_ic); waist-pll has none (its PLL
+#: peaks and the ``pll`` detector's are not documented as the same), so there the detectors' names are compared
+OWN_DETECTOR = {"waist-pendulum": "waist-ic"}
+
+
+def calibrated_detector_line(recorded: str | None, det, pipeline: str | None = None, *,
+                             live: bool = False) -> str | None:
     """Decision W471: one line when PARAMS.json's step length was calibrated on the contacts of another detector
     (``recorded``, its ``detector``; None: the pipeline's own) than the one this track takes them from (``det``, None:
-    the pipeline's own); None when they are the same detector with the same settings."""
+    the pipeline's own); None when they are the same detector with the same settings. Decision W479: on
+    ``pipeline``, its :data:`OWN_DETECTOR` with its default settings counts as the pipeline's own (either side);
+    ``live``: the live tracker's line, which cannot take another detector's contacts (its advice is to recalibrate)."""
     from pdrlearn.plugins import parse_spec
 
+    own = (OWN_DETECTOR.get(pipeline), {})
+    if det is not None and (det.name, det.changed_params()) == own:
+        det = None  # decision W479
+    if recorded is not None:
+        try:
+            spec = parse_spec(recorded, "step detector")
+        except DataError:
+            spec = None  # an unreadable record is another detector
+        if spec == own:
+            recorded = None  # decision W479
+        elif det is not None and spec == (det.name, det.changed_params()):
+            return None
     if recorded is None and det is None:
         return None
-    if recorded is not None and det is not None:
-        try:
-            if parse_spec(recorded, "step detector") == (det.name, det.changed_params()):
-                return None
-        except DataError:
-            pass  # an unreadable record is another detector
     now = detector_spec(det)
     was = "the pipeline's own contacts" if recorded is None else f"the contacts of --detector {recorded}"
     track = "track without --detector" if recorded is None else f"track with --detector {recorded}"
+    if live:  # decision W479: the live tracker takes the pipeline's own contacts only
+        return (f"the parameters were calibrated on {was}; the live tracker takes the pipeline's own contacts only: "
+                "another detector's contacts split the walk into other steps, so the calibrated step length may not "
+                "fit them (calibrate on the pipeline's own: 'pdrlearn calibrate DIR -d METRES --out PARAMS.json'; "
+                "decisions W471, W479)")
     return (f"the parameters were calibrated on {was}; this track takes "
             + ("the pipeline's own" if now is None else f"--detector {now}'s") +
             ": another detector's contacts split the walk into other steps, so the calibrated step length may not "

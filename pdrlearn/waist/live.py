@@ -96,6 +96,12 @@ def live_options(p, warnings: list[str], **given) -> dict:
     line = unapplied_options_line(p)  # decision E107: no option of the PARAMS.json dropped without a word
     if line:
         warnings.append(line)
+    if p.source == "calibrated" and p.pipeline in (None, "waist-pendulum"):  # decision W479: W471's line live too
+        from pdrlearn.track.waist import calibrated_detector_line
+
+        line = calibrated_detector_line(p.detector, None, "waist-pendulum", live=True)  # the pipeline's own
+        if line:
+            warnings.append(line)
     asked = (p.options or {}).get("heading")
     if asked not in (None, "gyro"):  # decision W82: no silent override of the PARAMS.json heading
         warnings.append(f"the PARAMS.json option heading '{asked}' is not available live: the live tracker uses "
