@@ -365,7 +365,7 @@ def out_of_range(kind: str, values: np.ndarray, factor: float = 1.0) -> np.ndarr
     limit = VALUE_LIMITS.get(kind)
     if limit is None or values.size == 0 or not factor:
         return np.zeros(0, dtype=np.intp)
-    big = np.abs(values) > limit / abs(factor)
+    big = (np.abs(values) > limit / abs(factor)) & np.isfinite(values)  # inf: B9's line (decision B431)
     return np.flatnonzero(big.any(axis=1) if big.ndim == 2 else big)
 
 

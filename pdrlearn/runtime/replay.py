@@ -4,7 +4,8 @@
 ``python -m pdrlearn.runtime`` use it). :func:`read_streams` reads the sensor files of a PLASYS session folder
 (``<sensor>.csv``: ``timestamp,x,y,z``, thesis ch.4.3.3, the columns found by name in any order and case, decision
 B222; UTF-8, decision B221; timestamps in ms unless ``meta.json`` declares ``units.timestamp`` s, us or ns, decision
-D1) without pandas. It reads sessions as ``pdrlearn simulate``,
+D1) without pandas; a value beyond any sensor's range is refused as the full reader refuses it (decision B431, the
+kernel of B425). It reads sessions as ``pdrlearn simulate``,
 ``import-csv`` and ``write_session`` write them; it repairs nothing: a file the full reader would have to fix
 (decimal commas, a sample-counter clock, per-unit clocks, other value units) is refused in one line that
 names the full install's ``pdrlearn run``.
@@ -14,11 +15,13 @@ from __future__ import annotations
 
 import logging
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.install import INSTALL_EVERYTHING
+from pdrlearn.kernels.units import check_units, out_of_range, out_of_range_message
 from pdrlearn.textfile import compressed_hint, duplicate_message, header_names, read_json, read_text, session_csv
 
 log = logging.getLogger(__name__)
@@ -88,10 +91,44 @@ def _time_scale(meta: dict, where: Path) -> float:
 #: files ``timestamp,x``)
 VALUE_COLUMNS = {1: ("x",), 3: ("x", "y", "z")}
 
+#: each sensor's kind and SI unit, as ``pdrlearn.io.sensors.SENSORS[name]`` (thesis ch.4.3.3; not imported:
+#: ``pdrlearn.io`` imports pandas, the runtime numpy only), for B425's range check (decision B431)
+SENSOR_KINDS = {"fAccelerometer": ("accelerometer", "m/s^2"), "fGyroscope": ("gyroscope", "rad/s"),
+                "fForceA": ("force", "N"), "fForceB": ("force", "N"), "wAccelerometer": ("accelerometer", "m/s^2"),
+                "wGyroscope": ("gyroscope", "rad/s"), "wMagneticField": ("magnetometer", "uT"),
+                "wBarometer": ("barometer", "hPa")}
 
-def _read_csv(path: Path, n_values: int, scale: float) -> tuple[np.ndarray, np.ndarray]:
+
+class _Spec(NamedTuple):
+    """What :func:`~pdrlearn.kernels.units.check_units` and :func:`~pdrlearn.kernels.units.out_of_range_message`
+    read of a :class:`~pdrlearn.io.sensors.SensorSpec`."""
+
+    name: str
+    kind: str
+    unit: str
+    columns: tuple[str, ...]
+
+
+def _refuse_out_of_range(path: Path, name: str, t: np.ndarray, values: np.ndarray, lines: np.ndarray) -> None:
+    """Decision B431: B425's range check (:func:`~pdrlearn.kernels.units.out_of_range`, the full reader's kernel)
+    on a sensor file the lean reader read (SI values: it takes no other unit). A whole file in another unit keeps
+    B30's wrong-unit line, checked first as the full reader does (its medians and percentiles are not moved by a few
+    corrupt rows; their squares may overflow there, silently); ``lines``: each row's line in the file."""
+    kind, unit = SENSOR_KINDS[name]
+    rows = out_of_range(kind, values)
+    if not rows.size:
+        return
+    spec = _Spec(name, kind, unit, VALUE_COLUMNS[values.shape[1]])
+    with np.errstate(over="ignore", invalid="ignore"):
+        check_units(spec, values, str(path), declare="", t=t)  # "": the lean reader takes no declared unit
+    raise DataError(out_of_range_message(str(path), spec, values, rows, first_line=int(lines[rows[0]]) - int(rows[0])))
+
+
+def _read_csv(path: Path, name: str, scale: float) -> tuple[np.ndarray, np.ndarray]:
     """One sensor file's ``(t_s, values)``, its columns taken by name in any order (decision B222: a file written
-    ``timestamp,z,x,y`` had been read by position, its z as x, and tracked 38.7 m of an 89.9 m walk)."""
+    ``timestamp,z,x,y`` had been read by position, its z as x, and tracked 38.7 m of an 89.9 m walk); a value
+    beyond any sensor's range refused (decision B431)."""
+    n_values = 1 if name.startswith(("fForce", "wBarometer")) else 3
     lines = read_text(path).splitlines()  # decision B221: UTF-8 (a BOM accepted), else one line
     head = lines[0] if lines else ""
     names, want = header_names(head), ("timestamp", *VALUE_COLUMNS[n_values])
@@ -103,7 +140,8 @@ def _read_csv(path: Path, n_values: int, scale: float) -> tuple[np.ndarray, np.n
                         f"sensor file; {FULL_READER}")
     if sorted(names) != sorted(want):
         raise DataError(f"{path}: columns {','.join(names)}, expected {','.join(want)} (in any order); {FULL_READER}")
-    rows = [line for line in lines[1:] if line.strip()]
+    kept = [i for i, line in enumerate(lines) if i and line.strip()]
+    rows = [lines[i] for i in kept]
     if not rows:
         raise DataError(f"{path}: no data rows under the header; re-record the file or remove it")
     try:
@@ -117,7 +155,9 @@ def _read_csv(path: Path, n_values: int, scale: float) -> tuple[np.ndarray, np.n
     order = [names.index(c) for c in want]
     if order != list(range(len(want))):  # decision B222: by name, as the full reader (C order kept, as loadtxt's)
         a = np.ascontiguousarray(a[:, order])
-    return a[:, 0] * scale, a[:, 1:]
+    t = a[:, 0] * scale
+    _refuse_out_of_range(path, name, t, a[:, 1:], np.asarray(kept) + 1)  # decision B431: line numbers from 1
+    return t, a[:, 1:]
 
 
 def read_streams(folder, bundle) -> tuple[dict, dict]:
@@ -139,8 +179,7 @@ def read_streams(folder, bundle) -> tuple[dict, dict]:
         if name in declared and si is not None and str(declared[name]).split()[:1] != [si]:
             raise DataError(f"{folder / 'meta.json'}: units.{name} {declared[name]!r} is not {si}, the unit the "
                             f"lean reader takes; {FULL_READER}")
-        width = 1 if name.startswith(("fForce", "wBarometer")) else 3
-        streams[name] = _read_csv(path, width, scale)
+        streams[name] = _read_csv(path, name, scale)
     if not streams:
         raise MissingSensorError(f"{folder}: no sensor file the bundle reads ({', '.join([*required, *optional])})"
                                  f"{compressed_hint(folder, [*required, *optional])}")
