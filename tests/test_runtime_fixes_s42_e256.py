@@ -6,7 +6,6 @@ and refuses a second thread with E231's guard. Simulated users 11780-11781 (a 30
 from __future__ import annotations
 
 import json
-import threading
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +15,7 @@ from pdrlearn.errors import ConcurrentUseError, DataError
 from pdrlearn.runtime import Tracker, load_bundle
 from pdrlearn.sim import simulate
 from pdrlearn.waist import WaistTracker as ParamsWaistTracker
+from tests.test_runtime_threads_s41_e241 import _from_another_thread
 
 SHIPPED = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 
@@ -122,18 +122,7 @@ def test_a_second_thread_inside_add_fix_is_refused_e256(walks, kind):
     """``add_fix`` changes the fix filter's pending list that ``push`` reads and replaces: E231's guard. Before E256
     the second thread's fix went in while the other thread was inside ``push``."""
     tr = _foot(walks) if kind == "foot" else _waist(walks)
-    got = []
-
-    def other():
-        try:
-            tr.add_fix(1.0, 1.0, 2.0, accuracy_m=3.0)
-        except Exception as exc:  # noqa: BLE001 - the test looks at what came out
-            got.append(exc)
-
-    with tr._busy:  # "another thread is inside push"
-        th = threading.Thread(target=other)
-        th.start()
-        th.join()
+    got = _from_another_thread(tr, [lambda: tr.add_fix(1.0, 1.0, 2.0, accuracy_m=3.0)])
     assert len(got) == 1 and isinstance(got[0], ConcurrentUseError), got
     name = type(tr).__name__
     assert str(got[0]).startswith(f"{name}.add_fix: called from a second thread while another thread is inside "
