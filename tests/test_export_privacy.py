@@ -143,7 +143,9 @@ def test_resigned_onnx_garbage_is_one_line(dirs, tmp_path, capsys):
     assert main(["run", str(bundle), str(dirs["walk"]), "--method", "terrain=nn/foot"]) == 2
     # `run` checks the session's frames as track does (D10/D11, D23): the synthetic walk's D11 warning is not the error
     err = [ln for ln in capsys.readouterr().err.strip().splitlines() if not ln.startswith("warning:")]
-    assert len(err) == 1 and "onnxruntime cannot open this model" in err[0] and rel in err[0], err
+    # decision E263: the bundle's verification reads each graph's tensors, so garbage is refused there, before
+    # onnxruntime (which said "onnxruntime cannot open this model" before E263)
+    assert len(err) == 1 and f"file '{rel}' is not an ONNX graph" in err[0] and "B125" in err[0], err
 
 
 def test_step_graph_names_its_input_rows(dirs):

@@ -68,7 +68,7 @@ def test_help_says_the_feet_are_anatomical(capsys, monkeypatch):  # decision S94
         main(["simulate", "--help"])
     except SystemExit:
         pass
-    text = " ".join(capsys.readouterr().out.split())
+    text = " ".join(w for w in capsys.readouterr().out.split() if w.strip("│╭╮╰╯─"))  # rich's box borders apart
     assert "S92" in text  # the route help names the leading foot
     assert "there is no prosthetic foot (decision S94)" in text
     assert "--stance-time-asymmetry shortens the paretic side's (S94)" in text
