@@ -527,8 +527,9 @@ def run(
                 import logging  # printed as one "warning:" line by the CLI, like every warning (decision B13)
 
                 logging.getLogger(__name__).warning(
-                    "%s: %d corrupted line(s) skipped (e.g. %r) of %d set(s) read", protocol,
-                    parser.stats.corrupted, parser.stats.examples[0], parser.stats.sets)
+                    "%s: %d corrupted line(s) skipped (e.g. line %d: %r; decision B432: a value beyond any "
+                    "sensor's range is one too) of %d set(s) read", protocol, parser.stats.corrupted,
+                    parser.stats.first_line, parser.stats.examples[0], parser.stats.sets)
             if parser.stats.lost:  # decision E91: only numbered sets show a loss
                 import logging
 

@@ -49,7 +49,7 @@ from pdrlearn.io.validate import (
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
 from pdrlearn.kernels.gaps import DROPS_CAUSE, gap_turn, streamed_drops_line  # decision E230: shared with the runtime
-from pdrlearn.kernels.units import out_of_range, out_of_range_message
+from pdrlearn.kernels.units import data_row_lines, out_of_range, out_of_range_message
 from pdrlearn.textfile import (
     compressed_hint,
     csv_stem,
@@ -556,16 +556,37 @@ def _refuse_out_of_range(path, name: str, arr: np.ndarray, t: np.ndarray, check_
     VALUE_LIMITS`; 1e308 had overflowed the step detectors into "0 strides" or "this is a bug") is one line naming
     the file, the line and the value. A whole file in another unit (counts, mm/s^2, deg/s) is B30's wrong-unit
     line, checked first: its statistics are medians and percentiles, which the few corrupt rows do not move (their
-    squares may overflow there, silently)."""
+    squares may overflow there, silently). Decision B433: with ``check_unit`` False (``read_session(...,
+    check_units=False)``, the documented opt-out of the unit rules) such a whole file is read as written, for the
+    caller to convert, and only a file B30 passes is refused for its corrupt rows."""
     factor, declared = value_unit
     spec = SENSORS[name]
     rows = out_of_range(spec.kind, arr[:, 1:], factor)
     if not rows.size:
         return
-    if check_unit:
-        with np.errstate(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):
+        try:
             _check_value_unit(path, name, arr[:, 1:] * factor, t, declared)
-    raise DataError(out_of_range_message(str(path), spec, arr[:, 1:], rows, factor))
+        except DataError:
+            if check_unit:
+                raise
+            return  # decision B433: another unit, which check_units=False leaves to the caller
+    row = int(rows[0])
+    raise DataError(out_of_range_message(str(path), spec, arr[:, 1:], rows, factor,
+                                         first_line=_row_line(Path(path), row) - row))
+
+
+def _row_line(path: Path, row: int) -> int:
+    """The file line (from 1) of data row ``row`` of a sensor file read by :func:`read_table`: after the header and
+    a B66 ``sep=`` line, blank lines skipped as pandas skips them (review R2 finding 4: B425 had named ``row + 2``,
+    a line early after a ``sep=`` line or a blank line). Read again only for a refusal's line."""
+    header_lines = 1 + len(_csv_dialect(path).get("skiprows", ()))
+    try:
+        with open_text(path, errors="replace") as f:  # decision B369: a .csv.gz too
+            lines = data_row_lines(f.read().splitlines(), header_lines)
+    except (OSError, EOFError, zlib.error):
+        lines = []
+    return lines[row] if row < len(lines) else row + 1 + header_lines
 
 
 def imported_rate(meta: dict) -> float | None:

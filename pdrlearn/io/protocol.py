@@ -12,9 +12,10 @@ carries the optional sequence number of decision E91, ``%#N$1 ...``: text betwee
 always ignored, so old parsers read such a capture unchanged; here ``N`` (counting sets, wrapping at
 :data:`SEQ_MODULUS`) stamps the set and a jump counts the sets lost in :attr:`ProtocolStats.lost`.
 
-Corrupted measurements (unknown type, wrong number of values, non-numeric text) are skipped and counted
-in :attr:`BluetoothParser.stats`; the set still advances the clock, so a corrupted set leaves a gap
-instead of shifting later samples.
+Corrupted measurements (unknown type, wrong number of values, non-numeric text, a value beyond any sensor's
+range: decision B432, B425's :func:`~pdrlearn.kernels.units.out_of_range`) are skipped and counted
+in :attr:`BluetoothParser.stats` (the first one's line in ``first_line``); the set still advances the clock, so
+a corrupted set leaves a gap instead of shifting later samples.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ import numpy as np
 
 from pdrlearn.io.sensors import PROTOCOL_TYPES, SENSORS
 from pdrlearn.io.session import Session, Stream
+from pdrlearn.kernels.units import out_of_range
 
 FIRMWARE_RATE_HZ = 20.0  # thesis ch.4.2.3: sampling period 50 ms
 #: decision E90: the lags (s) searched for the foot's stride period in a capture (a stride from 480 down to 30
@@ -47,6 +49,8 @@ class ProtocolStats:
     #: decision E91: sets with a sequence number, and the sets their jumps say were lost
     numbered: int = 0
     lost: int = 0
+    #: decision B432: the capture line (1-based) of the first corrupted measurement, 0 when none
+    first_line: int = 0
 
     def to_dict(self) -> dict:
         return {"sets": self.sets, "measurements": self.measurements, "corrupted": self.corrupted,
@@ -81,6 +85,8 @@ class BluetoothParser:
         self._data: dict[str, tuple[list[float], list[tuple[float, ...]]]] = {}
         self._k = -1  # the clock index of the last set (sets + lost - 1)
         self._seq: int | None = None  # the last sequence number read (decision E91)
+        self._line = 1  # decision B432: the capture line where self._buf starts
+        self._set_line = 1  # and the line of the current set's '%'
 
     # -- parsing ----------------------------------------------------------------------------------
     def _next_index(self, body: str) -> int | None:
@@ -121,10 +127,11 @@ class BluetoothParser:
                 vals = tuple(float(x) for x in tokens[1:])
             except ValueError:
                 vals = ()
-            if sensor is None or len(vals) != n or not all(np.isfinite(vals)):
+            scale = self.scales.get(sensor, 1.0)
+            if (sensor is None or len(vals) != n or not all(np.isfinite(vals))
+                    or out_of_range(SENSORS[sensor].kind, np.array(vals), scale).size):  # decision B432 (B425)
                 self._corrupt(part)
                 continue
-            scale = self.scales.get(sensor, 1.0)
             m = Measurement(t, sensor, tuple(v * scale for v in vals))
             ts, vs = self._data.setdefault(sensor, ([], []))
             if ts and ts[-1] == t:  # a second measurement of the same sensor in one set
@@ -136,8 +143,10 @@ class BluetoothParser:
             out.append(m)
         return out
 
-    def _corrupt(self, text: str) -> None:
+    def _corrupt(self, text: str, line: int | None = None) -> None:
         self.stats.corrupted += 1
+        if not self.stats.first_line:
+            self.stats.first_line = self._set_line if line is None else line
         if len(self.stats.examples) < 5:
             self.stats.examples.append(text.strip()[:60])
 
@@ -150,14 +159,17 @@ class BluetoothParser:
             if i < 0:
                 if not self._started and self._buf.strip():
                     # text before the first '%' is not part of any set
-                    self._corrupt(self._buf)
+                    self._corrupt(self._buf, self._line)
+                    self._line += self._buf.count("\n")
                     self._buf = ""
                 return out
             head, rest = self._buf[:i], self._buf[i + 1:]
             if self._started:
                 out.extend(self._parse_set(head))
             elif head.strip():
-                self._corrupt(head)
+                self._corrupt(head, self._line)
+            self._line += head.count("\n")  # decision B432: the line of the next set's '%'
+            self._set_line = self._line
             self._started = True
             self._buf = rest
 

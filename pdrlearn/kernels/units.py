@@ -383,6 +383,13 @@ def out_of_range_message(where: str, spec: SensorSpec, values: np.ndarray, rows:
             f"{VALUE_LIMITS[spec.kind]:g} {spec.unit}, decision B425): a corrupt sample; remove or repair those rows")
 
 
+
+def data_row_lines(lines: list[str], header_lines: int = 1) -> list[int]:
+    """The 1-based file line of each data row of a CSV's ``lines``: the non-blank lines after the ``header_lines``
+    (the header, and a B66 ``sep=`` line before it), as pandas and the lean reader skip blank lines, so that B425's
+    line is the line an editor shows (decision B431's counting, shared with the full reader: review R2 finding 4)."""
+    return [i + 1 for i, line in enumerate(lines) if i >= header_lines and line.strip()]
+
 #: B91: the percentile of |gyro| (rad/s) that tells a swinging foot from a waist
 SWING_PERCENTILE = 99.0
 #: B91: a foot unit whose percentile stays below this never swung (rad/s; walking feet measured >= 6.2)

@@ -21,7 +21,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.install import INSTALL_EVERYTHING
-from pdrlearn.kernels.units import check_units, out_of_range, out_of_range_message
+from pdrlearn.kernels.units import check_units, data_row_lines, out_of_range, out_of_range_message
 from pdrlearn.textfile import compressed_hint, duplicate_message, header_names, read_json, read_text, session_csv
 
 log = logging.getLogger(__name__)
@@ -140,8 +140,8 @@ def _read_csv(path: Path, name: str, scale: float) -> tuple[np.ndarray, np.ndarr
                         f"sensor file; {FULL_READER}")
     if sorted(names) != sorted(want):
         raise DataError(f"{path}: columns {','.join(names)}, expected {','.join(want)} (in any order); {FULL_READER}")
-    kept = [i for i, line in enumerate(lines) if i and line.strip()]
-    rows = [lines[i] for i in kept]
+    kept = data_row_lines(lines)  # 1-based, blank lines skipped (shared with the full reader's B425 line)
+    rows = [lines[i - 1] for i in kept]
     if not rows:
         raise DataError(f"{path}: no data rows under the header; re-record the file or remove it")
     try:
@@ -156,7 +156,7 @@ def _read_csv(path: Path, name: str, scale: float) -> tuple[np.ndarray, np.ndarr
     if order != list(range(len(want))):  # decision B222: by name, as the full reader (C order kept, as loadtxt's)
         a = np.ascontiguousarray(a[:, order])
     t = a[:, 0] * scale
-    _refuse_out_of_range(path, name, t, a[:, 1:], np.asarray(kept) + 1)  # decision B431: line numbers from 1
+    _refuse_out_of_range(path, name, t, a[:, 1:], np.asarray(kept))  # decision B431: line numbers from 1
     return t, a[:, 1:]
 
 
