@@ -12,12 +12,17 @@ def git_state() -> tuple[str | None, bool | None]:
     """Decision L136: ``(commit, dirty)`` of the git checkout pdrlearn runs from (``dirty``: tracked files differ from
     the commit); for an installed copy the build's stamp (:func:`built_state`, decision E187); ``(None, None)``
     without either, or when git fails."""
+    repo = checkout_dir()
+    return built_state() if repo is None else checkout_state(repo)
+
+
+def checkout_dir() -> Path | None:
+    """The git checkout pdrlearn runs from (the folder holding ``.git`` beside the package), None for an installed
+    copy."""
     import pdrlearn
 
     repo = Path(pdrlearn.__file__).resolve().parent.parent
-    if not (repo / ".git").exists():
-        return built_state()
-    return checkout_state(repo)
+    return repo if (repo / ".git").exists() else None
 
 
 def checkout_state(repo: Path, untracked_under: str | None = None) -> tuple[str | None, bool | None]:
@@ -59,10 +64,16 @@ def built_state() -> tuple[str | None, bool | None]:
     return commit, dirty
 
 
-def version_line(version: str, commit: str | None, dirty: bool | None) -> str:
+def version_line(version: str, commit: str | None, dirty: bool | None, checkout: Path | None = None) -> str:
     """Decision E264: what ``pdrlearn --version`` prints: the package version (0.1.0 over thousands of commits) and
     the commit :func:`git_state` knows (the checkout's, or the wheel's ``_build.json`` stamp, E187), with ``dirty``
-    when the code differs from it, so a paper can cite the code that printed its numbers."""
+    when the code differs from it, so a paper can cite the code that printed its numbers. Decision E265: without a
+    commit, ``checkout`` (:func:`checkout_dir`: pdrlearn runs from a git checkout) says git could not be run there,
+    not that there is no checkout."""
+    if commit is None and checkout is not None:
+        return (f"pdrlearn {version} (commit unknown: git could not be run in the checkout {checkout}: not on PATH, "
+                f"or it refuses a checkout owned by another user: git config --global --add safe.directory "
+                f"{checkout})")
     if commit is None:
         return f"pdrlearn {version} (commit unknown: neither a git checkout nor a wheel with a build stamp)"
     state = ", dirty: the code differs from this commit" if dirty else ""

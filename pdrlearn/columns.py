@@ -673,7 +673,8 @@ BOUTS: tuple[Column, ...] = (
                                        "distance_m / (n_steps - 1), 2 x the mean step (L166)"),
     ("contact_span_s", "s", "number", "first initial contact to the last (L164)"),
     ("n_step_intervals", "count", "integer", "steps between those contacts: contacts - 1 (foot: 2 per stride; L164)"),
-    ("cadence_spm", "steps/min", "number", "60 x n_step_intervals / contact_span_s (L164)"),
+    ("cadence_spm", "steps/min", "number", "60 x n_step_intervals / contact_span_s (L164); empty on a lower-back "
+                                           "track whose contacts are no step count (step_count_withheld, W480)"),
     ("longest_contact_gap_s", "s", "number", "longest time between two consecutive contacts in the bout; may "
                                              "exceed --bout-break-s under --bout-rule pdrlearn (L163)"),
     ("data_gap_s", "s", "number", "foot-data gaps (L67's gap rows) inside the bout, summed; a gap longer than "

@@ -7,6 +7,7 @@ that are not the command's own (:func:`foreign_entries`) and refuses in one line
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from fnmatch import fnmatchcase
 from pathlib import Path
@@ -18,12 +19,13 @@ from pdrlearn.table_names import TABLE_NAMES
 @dataclass(frozen=True)
 class Own:
     """What a command writes in a folder: ``files`` (name patterns of its plain files), ``folders`` (name patterns
-    of sub-folders it writes whole: anything in them is its own) and ``nested`` (any other sub-folder is its own
+    of sub-folders it writes whole: anything in them is its own; a compiled regular expression matches the whole
+    name, decision B434) and ``nested`` (any other sub-folder is its own
     when everything in it is by ``nested``'s rule: a train-all user's model directory); ``deep``: any other
     sub-folder is checked by this same rule, at any depth (track-all's ``GROUP/.../SESSION`` folders)."""
 
     files: tuple[str, ...]
-    folders: tuple[str, ...] = ()
+    folders: tuple[str | re.Pattern, ...] = ()
     nested: Own | None = None
     deep: bool = False
 
@@ -46,6 +48,10 @@ TRAIN_REPORT = Own(("cv.csv", "louo.csv", "report.md", "confusion_*.png"))
 #: ``gait``: gait_summary.json and its three tables (decision L260)
 GAIT = Own(("gait_summary.json", "gait_*.csv"))
 
+#: decision B434: ``split``'s part folders, ``f"part_{k:03d}"`` (pdrlearn/io/split.py): three digits or more
+#: (part_1000 onward for a long day in short parts); an fnmatch pattern cannot say "3 or more digits"
+SPLIT_PART = re.compile(r"part_[0-9]{3,}")
+
 #: kind (``outfolder.FOLDER_KINDS``) -> what its command writes. A kind absent here is written in place, file by
 #: file (``evaluate --report``, ``evaluate-all``): nothing else in its folder is deleted, so nothing is checked.
 OWN = {
@@ -61,10 +67,16 @@ OWN = {
     "gait": GAIT,
     "gait-all": Own(("gait_pairs.csv", "gait_*.csv"), (".gait-all-pairs",),  # cohort C110, C116
                     nested=Own(("gait_summary.json",), deep=True)),  # decision W437: PATH/gait_summary.json
-    "split": Own(("split.json",), ("part_[0-9][0-9][0-9]",)),  # decision B379
+    "split": Own(("split.json",), (SPLIT_PART,)),  # decision B379; B434: part_1000 and up
     "session": Own(("*.csv", "*.json")),  # simulate / import --force: a session's files (decision B292)
     "fetch": Own(("*.csv", "*.json"), ("unused",)),  # a fetched session: gaitmap's unused/fMagneticField.csv (B35)
 }
+
+
+def _matches(name: str, pat: str | re.Pattern) -> bool:
+    """``name`` matches the fnmatch pattern ``pat`` (case-sensitive), or the whole of the regular expression
+    ``pat`` (decision B434)."""
+    return bool(pat.fullmatch(name)) if isinstance(pat, re.Pattern) else fnmatchcase(name, pat)
 
 
 def _leftover(name: str) -> bool:
@@ -85,7 +97,7 @@ def foreign_entries(folder: Path, own: Own, prefix: str = "") -> list[str]:
         if p.is_symlink():
             found.append(rel)
         elif p.is_dir():
-            if any(fnmatchcase(name, pat) for pat in own.folders):
+            if any(_matches(name, pat) for pat in own.folders):
                 continue
             rule = own.nested or (own if own.deep else None)
             inner = foreign_entries(p, rule, rel + "/") if rule is not None else None

@@ -25,6 +25,7 @@ def test_version_of_a_clean_build_names_only_the_commit(capsys, monkeypatch):
 
 def test_version_without_a_known_commit_says_so(capsys, monkeypatch):
     monkeypatch.setattr(buildinfo, "git_state", lambda: (None, None))
+    monkeypatch.setattr(buildinfo, "checkout_dir", lambda: None)  # decision E265: not a checkout
     assert cli_main(["--version"]) == 0
     out = capsys.readouterr().out.strip()
     assert out.startswith(f"pdrlearn {__version__} (commit unknown") and "build stamp" in out

@@ -315,11 +315,16 @@ def _ignore_sklearn_version_blocks() -> None:
 def refuse_pickle(path) -> None:
     """Decision E260: raise :class:`ModelError` (one line naming the folder and bundles) when ``PDRLEARN_NO_PICKLE``
     is on (:mod:`pdrlearn.lockdown`), before anything of the folder is read; :func:`load_model` and the CLI's early
-    ``--model`` checks call it."""
+    ``--model`` checks call it. Decision E266: silent for a path that is no folder or is a runtime bundle (its
+    manifest.json, JSON, says so): the caller's own line names what it is (a missing folder, a bundle)."""
     from pdrlearn.lockdown import NO_PICKLE_ENV, switch, switch_text
 
     value = switch(NO_PICKLE_ENV)
     if value is None:
+        return
+    from pdrlearn.outfolder import manifest_kind
+
+    if not Path(path).is_dir() or manifest_kind(Path(path)) == "a runtime bundle":  # decision E266
         return
     raise ModelError(f"{path}: a model folder is pickle (loading it runs any code its files hold) and "
                      f"{switch_text(NO_PICKLE_ENV, value, 'refuses model folders')}; use its bundle instead "

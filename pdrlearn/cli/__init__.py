@@ -39,9 +39,9 @@ app = typer.Typer(
 def _print_version(value: bool) -> None:
     if value:
         from pdrlearn import __version__
-        from pdrlearn.buildinfo import git_state, version_line
+        from pdrlearn.buildinfo import checkout_dir, git_state, version_line
 
-        typer.echo(version_line(__version__, *git_state()))  # decision E264
+        typer.echo(version_line(__version__, *git_state(), checkout=checkout_dir()))  # decisions E264, E265
         raise typer.Exit()
 
 

@@ -657,7 +657,8 @@ def run(
             result.info["stair_rise_m"] = stair_rise_m
         record_stair_grade(result, stair_grade_pct)  # decision L469: the summary's and stairs.csv's grade
         # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
-        table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
+        table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session),
+                               withhold_cadence=bool(result.info.get("step_count_unusable")))  # decision W480
         from pdrlearn.track.periods import bout_floors
 
         # decision L458: each bout's floors by the summary's climbs, as track's bouts.csv (L450)
@@ -897,7 +898,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
     as_written(result)  # decision E157: the summary from the tables as written, whatever the chunk size
     # L124, E73: one detection (L165: key; L195: the leg-scaled range)
-    table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
+    table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session),
+                           withhold_cadence=bool(result.info.get("step_count_unusable")))  # decision W480
     from pdrlearn.track.periods import bout_floors
 
     # decision L458: each bout's floors by the summary's climbs, as track's bouts.csv (L450)

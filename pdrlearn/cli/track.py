@@ -1088,7 +1088,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
 
     # decision L124: OUT/bouts.csv, the detected walking bouts; L165: keyed by the session and its subject
-    bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session), leg_m=session_leg_m(session))
+    bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session), leg_m=session_leg_m(session),
+                           withhold_cadence=bool(result.info.get("step_count_unusable")))  # decision W480
     # decision W352: without --gait-quality its bouts.csv columns stay empty
     if gait_quality and len(bouts):  # decision W350: the lower back's gait quality per bout
         from pdrlearn.waist.ahrs import kept_imu

@@ -216,8 +216,8 @@ def session_leg_m(session) -> float | None:
 
 
 def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session: str | None = None,
-                   subject: str | None = None, visit: str | None = None, leg_m: float | None = None
-                   ) -> pd.DataFrame:
+                   subject: str | None = None, visit: str | None = None, leg_m: float | None = None,
+                   withhold_cadence: bool = False) -> pd.DataFrame:
     """One row per detected walking bout of a track's step table (:data:`BOUT_COLUMNS`, module docstring).
 
     ``session`` / ``subject`` / ``visit``: the session's name and meta.json's subject (decision L165) and visit
@@ -252,7 +252,9 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     the bout's strides of the session's stride-time CV (L104 / L188's steady straight level forward strides of a
     foot track; 0 on the lower back, L104), and over them, with at least
     :data:`~pdrlearn.track.clinical.CV_BOUT_MIN_STRIDES` (L196's minimum), ``stride_time_cv_pct`` and
-    ``stride_length_cv_pct`` (100 x SD / mean, SD with n - 1); NaN with fewer."""
+    ``stride_length_cv_pct`` (100 x SD / mean, SD with n - 1); NaN with fewer. Decision W480: ``withhold_cadence``
+    (a lower-back track whose contacts W442 finds no step count, ``info["step_count_unusable"]``) leaves
+    ``cadence_spm`` NaN, as summary.json's median cadence (W476), and the bouts' range is judged on the speed."""
     from pdrlearn.track.evaluate import travel_masks
     from pdrlearn.track.gait import bout_range_flags
 
@@ -306,6 +308,8 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     if not rows:
         return out
     table = BoutsTable(rows, columns=list(BOUT_COLUMNS))
+    if withhold_cadence:  # decision W480: W442's contacts are no step count (summary.json withholds it, W476)
+        table["cadence_spm"] = np.nan
     table["gait_out_of_range"] = bout_range_flags(table, leg_m)  # decision L195
     return table
 

@@ -39,7 +39,8 @@ def write_track(result, session, out, force: bool = False, *, plot: bool = True)
     pipeline = result.info.get("pipeline", "plasys")
     result = dataclasses.replace(result, steps=result.steps.copy(), info=dict(result.info))  # the caller's untouched
     with session_incline(session):  # decisions L442, L454: bouts.csv's and steps.csv's CV strides as track's
-        bouts = detected_bouts(result.steps, None, **session_key(session), leg_m=session_leg_m(session))  # L124
+        bouts = detected_bouts(result.steps, None, **session_key(session), leg_m=session_leg_m(session),
+                               withhold_cadence=bool(result.info.get("step_count_unusable")))  # L124, W480
         bouts = bout_floors(bouts, result.steps, result.info)  # decision L450, as track's bouts.csv
         bouts = bout_ascent(bouts, result)  # decision L467
         summary = track_summary(result, session, pipeline=pipeline, bout_table=bouts)  # C13, C14

@@ -784,6 +784,11 @@ def gait_range_warning(summary: dict) -> str | None:
     at least as many stair strides (``n_stair_strides``) no speed is judged, only the cadence.
     Decision W144: a cadence above the range at a speed inside it or below is named short fast steps (festination)
     or running; "looks like running" needs the speed above the range (or a cadence unknown)."""
+    info = summary.get("info") or {}
+    if info.get("step_count_unusable") and session_range_side(summary) != "fast":
+        # decision W480: W442's contacts are no step count (W476 withholds their cadence): a line that is not
+        # W442's fast one judges and quotes the speed alone
+        summary = {**summary, "median_cadence_spm": None}
     cad, speed, _ = _judged(summary)
     figs = range_figures(summary)
     leg = _leg(summary)
@@ -797,7 +802,6 @@ def gait_range_warning(summary: dict) -> str | None:
     gait_speed = _finite(summary.get("gait_speed_mps"))
     what = (FAST_GAITS[fast_gait(cad, speed, leg, gait_speed)][0] if side == "fast"
             else "this is slower than the walking the pipelines were validated on: ")
-    info = summary.get("info") or {}
     if side == "fast" and info.get("step_count_unusable"):  # decision W442: the contacts are not steps here
         what = ("no gait to name: the lower back's contacts are no step count here (the steps are too small or too "
                 "slow to count, decision W442), so this cadence is not the walker's: ")
