@@ -89,7 +89,9 @@ def test_the_live_tracker_reads_the_same_offset_at_any_origin(walk):
             tr.push(push)
         tr.flush()
         assert not [w for w in tr.warnings if "decision L161" in w]
-        assert tr.clock_offset["offset_s"] == pytest.approx(align_estimate(s)["offset_s"], abs=1e-9)  # live = offline
+        # live = offline: within 1 us since E258 (the live check reads its last window through the drift it follows,
+        # an algebraically equal line; 9e-9 s apart here, below a 1.7e9 s timestamp's own resolution of 2.4e-7 s)
+        assert tr.clock_offset["offset_s"] == pytest.approx(align_estimate(s)["offset_s"], abs=1e-6)
         assert tr.clock_offset["ref_s"] == pytest.approx(align_estimate(s)["ref_s"], abs=1e-6)
         got.append(tr.clock_offset["offset_s"])
     assert got[1] == pytest.approx(got[0], abs=1e-3)
