@@ -18,7 +18,7 @@ def _bundle(folder: Path, **manifest) -> Path:
     """A bundle folder holding only ``manifest.json`` (every required key, then ``manifest``) and its digest."""
     folder.mkdir()
     full = {k: {} for k in REQUIRED_KEYS} | {"schema": SCHEMA_NAME, "schema_version": SCHEMA_VERSION,
-                                             "tasks": []} | manifest
+                                             "tasks": [], "sampling": {"rate_hz": 20.0}} | manifest  # E259's rate
     full = {k: v for k, v in full.items() if v is not None}  # None: leave the key out
     (folder / "manifest.json").write_text(json.dumps(full))
     (folder / MANIFEST_SHA).write_text(f"{sha256_file(folder / 'manifest.json')}  manifest.json\n")
@@ -42,6 +42,12 @@ def test_a_manifest_of_another_tool(tmp_path, capsys):
 def test_a_manifest_missing_keys_names_them(tmp_path, capsys):
     b = _bundle(tmp_path / "b", sampling=None, frames=None)
     assert _run_error(b, tmp_path, capsys) == f"bundle {b}: manifest.json lacks sampling, frames; re-export the bundle"
+
+
+def test_a_manifest_without_its_rate_names_it_e259(tmp_path, capsys):
+    b = _bundle(tmp_path / "b", sampling={})
+    assert _run_error(b, tmp_path, capsys) == (
+        f"bundle {b}: manifest.json lacks sampling.rate_hz; re-export the bundle (decision E259)")
 
 
 def test_a_manifest_listing_no_files(tmp_path, capsys):

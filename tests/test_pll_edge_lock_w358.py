@@ -45,9 +45,12 @@ def test_edge_lock_modes_and_a_bad_value_is_one_line():
                                                                    "edge_lock_leading": True, "walk_end_var": 0.0,
                                                                    "walk_start_var": 0.0}
     assert pll_params(PLLStepDetector(edge_lock="trailing")).edge_lock_leading is False
-    for bad in ("leading", "true", 2):
+    for bad in ("leading", "true"):
         with pytest.raises(DataError, match="edge_lock .* is not one of .*W358"):
             pll_params(PLLStepDetector(edge_lock=bad))
+    # decision steps 82: a value of the wrong type is refused by the settings' type check, when the detector is made
+    with pytest.raises(DataError, match="step detector pll: edge_lock=2 is not a bool or str"):
+        PLLStepDetector(edge_lock=2)
 
 
 def test_the_trailing_mode_reaches_the_waist_pll_track():

@@ -468,6 +468,8 @@ def _check_sampling(path: Path, sampling, *, required: bool) -> None:
     if isinstance(src, dict):
         rates.update({f"source_rates_hz.{k}": v for k, v in src.items() if v is not None})
     for field, rate in rates.items():
+        if rate is None:
+            raise _fail(path, f"{MANIFEST} lacks sampling.{field}; re-export the bundle (decision E259)")
         ok = isinstance(rate, int | float) and not isinstance(rate, bool) and math.isfinite(rate)
         if not (ok and 0 < rate <= MANIFEST_RATE_MAX_HZ):
             shown = message_number(rate, 0) if ok else repr(rate)
