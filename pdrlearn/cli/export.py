@@ -415,7 +415,7 @@ def run(
         clock_offset = _track.clock_offset_value(clock_offset, align_units, "run")  # decision E112, as `track`
         clock_drift = _track.clock_drift_value(clock_drift_ppm, align_units, "run")  # decision B265, as `track`
         from pdrlearn.track.bouts import bout_rule as read_bout_rule
-        from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
+        from pdrlearn.track.bouts import track_bouts
 
         bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L130, L163: as `track`, first
         from pdrlearn.track.stair_flights import stair_rise as check_stair_rise
@@ -657,8 +657,7 @@ def run(
             result.info["stair_rise_m"] = stair_rise_m
         record_stair_grade(result, stair_grade_pct)  # decision L469: the summary's and stairs.csv's grade
         # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
-        table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session),
-                               withhold_cadence=bool(result.info.get("step_count_unusable")))  # decision W480
+        table = track_bouts(result, session, bouts)  # decision W480
         from pdrlearn.track.periods import bout_floors
 
         # decision L458: each bout's floors by the summary's climbs, as track's bouts.csv (L450)
@@ -789,7 +788,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.runtime.waist import WAIST_SENSORS, WaistTracker, load_waist_bundle
     from pdrlearn.signal import interp_rows
     from pdrlearn.track.base import TrackResult
-    from pdrlearn.track.bouts import detected_bouts, session_ids, session_key, session_leg_m
+    from pdrlearn.track.bouts import session_ids, track_bouts
     from pdrlearn.track.evaluate import evaluate_track, floors_phrase, summary_info
 
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
@@ -898,8 +897,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
     as_written(result)  # decision E157: the summary from the tables as written, whatever the chunk size
     # L124, E73: one detection (L165: key; L195: the leg-scaled range)
-    table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session),
-                           withhold_cadence=bool(result.info.get("step_count_unusable")))  # decision W480
+    table = track_bouts(result, session, bouts)  # decision W480
     from pdrlearn.track.periods import bout_floors
 
     # decision L458: each bout's floors by the summary's climbs, as track's bouts.csv (L450)

@@ -1085,11 +1085,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         drop_position_sigma(result)
     elif win is not None:  # L128: a window's uncertainty grows from its own first position
         add_position_sigma(result, tracked_session)
-    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
+    from pdrlearn.track.bouts import track_bouts
 
     # decision L124: OUT/bouts.csv, the detected walking bouts; L165: keyed by the session and its subject
-    bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session), leg_m=session_leg_m(session),
-                           withhold_cadence=bool(result.info.get("step_count_unusable")))  # decision W480
+    bouts = track_bouts(result, session, o.get("bouts"))  # decision W480
     # decision W352: without --gait-quality its bouts.csv columns stay empty
     if gait_quality and len(bouts):  # decision W350: the lower back's gait quality per bout
         from pdrlearn.waist.ahrs import kept_imu

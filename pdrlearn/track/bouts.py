@@ -215,6 +215,14 @@ def session_leg_m(session) -> float | None:
     return None if session is None else leg_length(session.meta).get("leg_length_m")
 
 
+def track_bouts(result, session, rule: BoutRule | None = None) -> pd.DataFrame:
+    """A written track's bouts.csv rows (track, run, the folder writer): :func:`detected_bouts` of ``result.steps``
+    keyed by ``session`` (decision L165), each bout's walking range scaled to its leg (L195), the cadence withheld
+    where W476 withholds the track's step count (W480)."""
+    return detected_bouts(result.steps, rule, **session_key(session), leg_m=session_leg_m(session),
+                          withhold_cadence=bool(result.info.get("step_count_unusable")))
+
+
 def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session: str | None = None,
                    subject: str | None = None, visit: str | None = None, leg_m: float | None = None,
                    withhold_cadence: bool = False) -> pd.DataFrame:

@@ -27,7 +27,7 @@ def write_track(result, session, out, force: bool = False, *, plot: bool = True)
     from pdrlearn.outfolder import out_folder
     from pdrlearn.provenance import input_hashes, run_record, write_run_json
     from pdrlearn.track.belt import session_incline
-    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
+    from pdrlearn.track.bouts import track_bouts
     from pdrlearn.track.evaluate import track_summary
     from pdrlearn.track.freezes import add_freeze_columns
     from pdrlearn.track.periods import bout_ascent, bout_floors, time_accounting
@@ -39,8 +39,7 @@ def write_track(result, session, out, force: bool = False, *, plot: bool = True)
     pipeline = result.info.get("pipeline", "plasys")
     result = dataclasses.replace(result, steps=result.steps.copy(), info=dict(result.info))  # the caller's untouched
     with session_incline(session):  # decisions L442, L454: bouts.csv's and steps.csv's CV strides as track's
-        bouts = detected_bouts(result.steps, None, **session_key(session), leg_m=session_leg_m(session),
-                               withhold_cadence=bool(result.info.get("step_count_unusable")))  # L124, W480
+        bouts = track_bouts(result, session)  # L124, W480
         bouts = bout_floors(bouts, result.steps, result.info)  # decision L450, as track's bouts.csv
         bouts = bout_ascent(bouts, result)  # decision L467
         summary = track_summary(result, session, pipeline=pipeline, bout_table=bouts)  # C13, C14
