@@ -54,3 +54,4 @@ def test_a_continuous_slow_walk_is_one_bout_with_its_cadence_l605(slow_walk):
     assert (steps["stride_time_s"].dropna() > contact.MAX_STRIDE_S).all()
     line = [w for w in out["result"].info.get("warnings", []) if "decision L605" in w]
     assert line and "count as strides" in line[0]
+    assert "+2.56 to +46.54 % at 2.5 s steps" in line[0] and "L606" in line[0]  # decision L607

@@ -177,9 +177,10 @@ def foot_placement_line(session, stats: dict | None, where: str) -> str | None:
 
 
 #: decision L599: what the offline foot distance did at stride periods over L80's 3 s (L596's walks and trial T2's
-#: sessions b175 and g_0.45_2.0, no model)
-SLOW_RHYTHM_DISTANCE = ("-2.61 to +10.71 % at 1.75-2.0 s steps of 0.2-0.45 m, +9.06 to +29.14 % at 2.5 s steps, "
-                        "simulated")
+#: sessions b175 and g_0.45_2.0, no model; decision L607: with L605 / L606's fresh users 11962-11967, 11974, 11976,
+#: 11977 at 1.6-2.5 s steps)
+SLOW_RHYTHM_DISTANCE = ("-16.64 to +14.03 % at 1.6-2.0 s steps of 0.2-0.45 m, +2.56 to +46.54 % at 2.5 s steps "
+                        "(a gyroscope rate error grows over such long strides, L606), simulated")
 
 
 def slow_rhythm_line(period: float, cap_s: float | None = None) -> str | None:
