@@ -1230,7 +1230,8 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("cadence_spm", "steps/min", "number", "60 x the bout's steps (both feet) / their summed step times (L539)"),
     ("headline_steps", _ID, "text", "gait_summary.json walk only: level (the measures above the pace are of the "
                                     "walk's level straight steps, gait_steps.csv kind level; under 10 a side: "
-                                    "their indices withheld, L461) or all (no level straight step on a side); a "
+                                    "their indices withheld, L461) or all (under 3 level straight steps on a side, "
+                                    "L608); a "
                                     "bout's measures take the walk's choice (L538)"),
     ("n_steps_all_left", "count", "integer", "gait_summary.json walk only: every step landing on the left foot, "
                                              "of any kind (L538)"),

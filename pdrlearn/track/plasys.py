@@ -1036,7 +1036,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
                  fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
                  gated_level_dz: bool | str = False, fused_climb: bool = False,
-                 fused_straight: bool = False, **opts) -> TrackResult:
+                 fused_straight: bool = True, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -1055,8 +1055,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         ``end_s``, optional ``event_s``, ``confidence``; s on the session's clock). Offline only
     heading : "waist" | "foot" | "fused" (default per method; "foot" when there is no waist unit).
         "fused": the foot's stride-by-stride yaw aligned to the waist heading by an offset averaged over
-        +-``fused_tau_s`` s (decision L17); ``fused_straight`` (decision L589, not adopted by L590's reading of its
-        rule): that offset counted on the straight strides only (a track with turns on the spot)
+        +-``fused_tau_s`` s (decision L17), counted on the straight strides only (decisions L589, L609: the
+        default, so turns on the spot do not pull it; ``fused_straight=False`` counts every stride, L17 as before)
     initial_heading : ENU heading (rad, |value| <= 2 pi, else refused as degrees: decision L158) at the start
         when the heading is relative (foot, or no magnetometer)
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
@@ -1511,7 +1511,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
                                    walking=FUSED_WALKING_CLOCK,
-                                   keep=straight if fused_straight else None)  # decisions L471, L589
+                                   keep=straight if fused_straight else None)  # decisions L471, L589, L609
         head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
         head = fd.foot_heading(0.0) + lateral
