@@ -233,9 +233,11 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
 
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, range_line)
     if unit == "waist" and name != "pelvic-gyro" and len(table) >= 2:  # decision W476: W442's count cross-check
+        from pdrlearn.waist.pelvic_rhythm import read_once
         from pdrlearn.waist.plausibility import step_counts, uncountable_steps_line
 
-        line = uncountable_steps_line(step_counts(session, table["event_s"].to_numpy(float)), name)
+        gyro_s = read_once(detector, session)  # decision W485: the ones --detector pll read for its band, if it did
+        line = uncountable_steps_line(step_counts(session, table["event_s"].to_numpy(float), gyro_s=gyro_s), name)
         if line:
             import logging
 
