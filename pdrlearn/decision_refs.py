@@ -1,4 +1,4 @@
-"""Decision D49 (docs/decisions/aided.md): a user-facing line that cites decision codes points to the file that
+"""Decision D49 (docs/decisions.md): a user-facing line that cites decision codes points to the file that
 defines them, ``docs/decisions/classifiers.md C41, C58`` rather than a bare "decisions C41, C58" a user cannot look
 up. :func:`decision_ref` writes that pointer; the file follows from the code's letter (docs/decisions.md's index),
 and for the letters two files share (C: classifiers / cohort; D: aided / the data model) from the ``topic``."""
