@@ -9,6 +9,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import FORCE_HELP
+from pdrlearn.decision_refs import decision_ref
 
 #: the files ``gait --out`` writes (decision L260); the output-folder kind ``gait`` is recognised by them
 GAIT_FILES = ("gait_summary.json", "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
@@ -204,7 +205,7 @@ def register(app: typer.Typer) -> None:
         for line in gait_lines(res["walk"], res["by_kind"]):
             typer.echo(line)
         if len(res["by_kind"]) > 1:  # decision L538: a walk of one kind has its rows in the headline
-            typer.echo("by kind of step (L538):")
+            typer.echo(f"by kind of step ({decision_ref('L538')}):")  # decision D49
             for line in kind_lines(res["by_kind"]):
                 typer.echo("  " + line)
         for line in stair_lines(res["stairs"]):  # decision L561
