@@ -1346,6 +1346,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'flights.csv, ' if (out / 'flights.csv').is_file() else ''}"
                f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
+               f"{'wb_scores.csv, ' if summary.get('n_wb_reference') is not None else ''}"  # decision W493
                f"{'laps.csv, ' if summary.get('corridor_m') is not None else ''}"
                f"{'splits.csv, ' if summary.get('splits_m') else ''}"
                f"{'direction_changes.csv, ' if summary.get('direction_changes') is not None else ''}"
