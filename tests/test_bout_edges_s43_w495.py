@@ -54,3 +54,24 @@ def test_a_foot_track_is_refused_in_one_line():
     st = _waist(np.arange(10) * 1.0).assign(unit="foot")
     with pytest.raises(DataError, match="mobgap-indip.*foot.*--bout-rule mobgap"):
         detected_bouts(st, bout_rule(preset="mobgap-indip"))
+
+
+def test_track_with_mobgap_indip_matches_t1s_straight_walk(tmp_path):
+    """Trial T1's example, HA001 Test5 T2 (INDIP WB 3.92-8.61 s): under `mobgap` the bout 2.99-9.31 s overlaps 0.742
+    of itself, an FN + FP at mobgap's 0.8; under `mobgap-indip` it is a TP (W493's wb_scores.csv)."""
+    import json
+
+    from pdrlearn.cli import main
+    from tests.conftest import REAL
+
+    rows = {}
+    for rule in ("mobgap", "mobgap-indip"):
+        out = tmp_path / rule
+        assert main(["track", str(REAL / "mobgap_HA001_Test5_Trial2"), "--pipeline", "waist-pendulum", "--bout-rule",
+                     rule, "--out", str(out), "--no-plot"]) == 0
+        rows[rule] = (pd.read_csv(out / "wb_scores.csv"), json.loads((out / "summary.json").read_text()))
+    base, cut = rows["mobgap"][0], rows["mobgap-indip"][0]
+    assert sorted(base["match"]) == ["fn", "fp"] and list(cut["match"]) == ["tp"]
+    assert base.loc[base["match"] == "fn", "overlap_bout_frac"].iloc[0] < 0.8
+    assert rows["mobgap-indip"][1]["bout_definition"]["trim_edges"] is True
+    assert "trim_edges" not in rows["mobgap"][1]["bout_definition"]
