@@ -8,7 +8,8 @@ freezes with no walking next to them, measured against the rules written in docs
     strides, and those of 20 s or more reading 0.15 m/s^2 or more (what L616 would call a vehicle);
 (e) level vehicle rides (``vehicle:D``): the vehicle rows and how much of the simulated ride each covers;
 (g) simulated freezes (``freeze:6``): sessions whose freezes.csv overlaps the simulated freeze, with and without
-    L617; (h) trial T3's ``c41`` / ``c41c`` (given with ``--t3``): their episodes with and without L617.
+    L617; (h) trial T3's ``c41`` / ``c41c`` (given with ``--t3``): their episodes with and without L617;
+(i) L616 amended: long simulated freezes (``freeze:20-45``), vehicle rows with and without the freeze guard.
 
 Usage::
 
@@ -34,6 +35,7 @@ STATION = ("straight:20, escalator:+6, straight:10, up:17, straight:5, lift:-9, 
 SHORT_LIFT = "stand:3, straight:5, lift:+3, stand:2, straight:5, escalator:-3, straight:5"
 LEVEL = "stand:5, straight:20, stand:5, vehicle:{d}, stand:3, straight:20, stand:30, straight:10, stand:5"
 FREEZE = "stand:3, straight:10, freeze:6, straight:10, stand:3"
+LONG_FREEZE = "stand:3, straight:10, freeze:{d}, straight:10, stand:3"
 REAL_DIRS = (Path("datasets/real"), Path("datasets/external"), Path("/work/shared/data"))
 STILL_MIN_S = 3.0
 
@@ -165,6 +167,35 @@ def freezes(users, t3: Path | None) -> None:
         print(f"(h) {name}: without L617 {without}, with {with_}")
 
 
+def long_freezes(users, t3: Path | None) -> None:
+    """(i) L616 amended: vehicle rows on long simulated freezes, with and without the freeze guard."""
+    from unittest import mock
+
+    from pdrlearn.io import read_session
+    from pdrlearn.track.plasys import track_plasys
+
+    bad = {False: 0, True: 0}
+    for u in users:
+        s = _sim(LONG_FREEZE.format(d=20 + 5 * (u % 6)), u)
+        for guard in (False, True):
+            with mock.patch("pdrlearn.track.rides.freeze_share", return_value=0.0) if not guard else _nothing():
+                rows = [r for r in track_plasys(s).info.get("rides") or [] if r["kind"] == "vehicle"]
+            bad[guard] += bool(rows)
+            print(f"(i) user {u} freeze {20 + 5 * (u % 6)} s, guard {guard}: "
+                  + "; ".join(f"vehicle {r['start_s']:.1f}-{r['end_s']:.1f} s {r['vibration_mps2']:.3f}" for r in rows))
+    print(f"(i) sessions with a vehicle row on a freeze: without the guard {bad[False]} / {len(users)}, with "
+          f"{bad[True]} / {len(users)}")
+    for name in ("s11940", "c41") if t3 is not None else ():
+        rows = [r for r in track_plasys(read_session(t3 / name)).info.get("rides") or [] if r["kind"] == "vehicle"]
+        print(f"(i) {name}: vehicle rows " + "; ".join(f"{r['start_s']:.1f}-{r['end_s']:.1f} s" for r in rows))
+
+
+def _nothing():
+    import contextlib
+
+    return contextlib.nullcontext()
+
+
 def _users(text: str) -> list[int]:
     lo, hi = (int(v) for v in text.split("-"))
     return list(range(lo, hi + 1))
@@ -176,7 +207,8 @@ def main() -> None:
     ap.add_argument("--ride-users", type=_users, default="12066-12069")
     ap.add_argument("--users", type=_users, default="12060-12069")
     ap.add_argument("--t3", type=Path, default=None, help="trial T3's scratch folder (c41, c41c)")
-    ap.add_argument("--parts", default="abcefg")
+    ap.add_argument("--freeze-users", type=_users, default="12064-12069")
+    ap.add_argument("--parts", default="abcefgi")
     a = ap.parse_args()
     logging.disable(logging.WARNING)
     print(f"threshold {VEHICLE_VIBRATION_MPS2} m/s^2, vehicle standstill {VEHICLE_STILL_MIN_S:g} s")
@@ -190,6 +222,8 @@ def main() -> None:
         level(a.users)
     if "g" in a.parts:
         freezes(a.users, a.t3)
+    if "i" in a.parts:
+        long_freezes(a.freeze_users, a.t3)
 
 
 if __name__ == "__main__":

@@ -125,3 +125,13 @@ def test_the_foot_track_leaves_out_a_tremble_far_from_walking_l617():
     near = pd.DataFrame({"start_s": [2.0, 27.0], "end_s": [3.0, 28.0]})
     rows, lines = foot_freezes(session, "plasys", near)
     assert len(rows) == 1 and 27.0 <= rows[0]["start_s"] <= 33.0 and lines == []
+
+
+def test_a_long_freeze_of_gait_is_no_vehicle_l616_amended():
+    """L616 amended: a 20 s freeze of gait (the foot trembling at 3-8 Hz in place) vibrates above 0.15 m/s^2 but its
+    freeze-index episodes cover it: no vehicle row (before the guard: "vehicle", as users 12060-12069 read)."""
+    s = simulate_path(parse_route("stand:3, straight:10, freeze:20, straight:10, stand:3"),
+                      UserProfile.from_seed(12066), seed=12066, scenario="route")
+    r, _ = _track(s)
+    assert not [x for x in r.info.get("rides") or [] if x["kind"] == "vehicle"]
+    assert not any("L616" in w for w in r.info["warnings"])

@@ -106,11 +106,28 @@ def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False
     return kinds, records
 
 
+#: decision L616 amended: a vibrating span at least this share of which the freeze index's episodes cover is a freeze
+#: of gait (the foot trembling at 3-8 Hz in place), not a vehicle (a rule, not fitted: most of it)
+VEHICLE_FREEZE_SHARE = 0.5
+
+
+def freeze_share(acc, a: float, b: float) -> float:
+    """Decision L616 amended: the share of ``[a, b]`` (s) that W213's freeze-index episodes of ``acc`` (``(t, (n, 3),
+    name)``) read inside it cover (:func:`pdrlearn.track.freezes.freezes_of`: 3-8 Hz power over 0.5-3 Hz above 3)."""
+    from pdrlearn.track.freezes import freezes_of
+
+    t = np.asarray(acc[0], dtype=float)
+    inside = (t >= a) & (t <= b)
+    eps = freezes_of(t[inside], np.asarray(acc[1], dtype=float)[inside]) if b > a else []
+    return float(sum(r["duration_s"] for r in eps)) / (b - a) if b > a else 0.0
+
+
 def _vehicle(t, p_hpa, a: float, b: float, acc) -> dict | None:
     """Decision L616: the record (rides.csv's columns, ``gap_s``) of the vehicle ride in the standstill from ``a``
     to ``b`` (s) when it lasts ``VEHICLE_STILL_MIN_S`` or more and vibrates like a vehicle
-    (:func:`pdrlearn.kernels.pause_ride.vibrating_span` of ``acc``); its ``dz_m`` the barometric change over the
-    vibrating span (W89); None otherwise."""
+    (:func:`pdrlearn.kernels.pause_ride.vibrating_span` of ``acc``) and is no freeze of gait (:func:`freeze_share`
+    under :data:`VEHICLE_FREEZE_SHARE`, L616 amended); its ``dz_m`` the barometric change over the vibrating span
+    (W89); None otherwise."""
     from pdrlearn.kernels.barometer import relative_altitude
     from pdrlearn.kernels.pause_ride import VEHICLE_STILL_MIN_S, vibrating_span
 
@@ -120,6 +137,8 @@ def _vehicle(t, p_hpa, a: float, b: float, acc) -> dict | None:
     if span is None:
         return None
     s0, s1, vib = span
+    if freeze_share(acc, s0, s1) >= VEHICLE_FREEZE_SHARE:  # decision L616 amended: a freeze of gait trembles too
+        return None
     dz = float(np.diff(relative_altitude(t, p_hpa, np.array([s0, s1])))[0])
     duration = s1 - s0
     return {"start_s": s0, "end_s": s1, "kind": "vehicle", "dz_m": dz, "duration_s": duration,
