@@ -195,8 +195,9 @@ SESSIONS: tuple[Column, ...] = (
     ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a grade_source"),
     ("max_ramp_grade_pct", "%", "number", "the steepest ramp run's grade in size, ramps.csv's largest "
                                           "|max_run_grade_pct| (L572); empty without a ramp or a grade_source"),
-    ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / other (L377; a foot "
-                                    "track's from the waist barometer, L378); empty without a barometer"),
+    ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / vehicle / other "
+                                    "(L377, L616; a foot track's from the waist barometer, L378); empty without a "
+                                    "barometer"),
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference; empty when the reference has no "
                                           "altitude track (0: it has one, and no storey was climbed; C103)"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
