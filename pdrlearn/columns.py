@@ -213,8 +213,9 @@ SESSIONS: tuple[Column, ...] = (
     ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a grade_source"),
     ("max_ramp_grade_pct", "%", "number", "the steepest ramp run's grade in size, ramps.csv's largest "
                                           "|max_run_grade_pct| (L572); empty without a ramp or a grade_source"),
-    ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / other (L377; a foot "
-                                    "track's from the waist barometer, L378); empty without a barometer"),
+    ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / vehicle / other "
+                                    "(L377, L616; a foot track's from the waist barometer, L378); empty without a "
+                                    "barometer"),
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference; empty when the reference has no "
                                           "altitude track (0: it has one, and no storey was climbed; C103)"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
@@ -1404,15 +1405,19 @@ RIDES: tuple[Column, ...] = (
     ("ride", "index", "integer", "the ride's number, from 1 in time order"),
     ("start_s", "s", "number", "when the altitude had moved 10 % of the ride's change (L376)"),
     ("end_s", "s", "number", "when it had moved 90 %"),
-    ("kind", _ID, "text", "lift (0.5 m/s or more vertically), escalator (0.15-0.5 m/s, at most 45 s) or other (a "
-                          "vehicle, a slow long climb: no floors counted); L376"),
-    ("dz_m", "m", "number", "the altitude change while standing (steps.csv pause_dz_m of the next step)"),
+    ("kind", _ID, "text", "lift (0.5 m/s or more vertically), escalator (0.15-0.5 m/s, at most 45 s), vehicle (it "
+                          "vibrates at 0.15 m/s^2 or more, climbing or level: a standstill of 20 s or more; L615, "
+                          "L616) or other (a slow long climb); vehicle and other count no floors (L376)"),
+    ("dz_m", "m", "number", "the altitude change while standing (steps.csv pause_dz_m of the next step; a vehicle "
+                            "row of a standstill under 1.5 m of change, L616: the barometer's change over it, not in "
+                            "pause_dz_m)"),
     ("duration_s", "s", "number", "(end_s - start_s) / 0.8: the ride's duration (L376)"),
     ("vertical_rate_mps", "m/s", "number", "|dz_m| / duration_s"),
     ("vibration_mps2", "m/s^2", "number", "the median over 1 s windows of the detrended |specific force|'s SD during "
-                                          "the ride (waist accelerometer, else the foot's); with the PARAMS.json "
-                                          "option ride_vibration (L403: opt-in) 0.15 or more is a vehicle, kind "
-                                          "other (L402); empty: no accelerometer"),
+                                          "the ride (a lower-back track: the waist accelerometer, else the foot's; a "
+                                          "foot track: the foot's first, L615); 0.15 or more is a vehicle (L402) on "
+                                          "a foot track by default (L615), on the lower back with the PARAMS.json "
+                                          "option ride_vibration (L403: opt-in); empty: no accelerometer"),
     ("horizontal_est_m", "m", "number", "escalator only, an estimate: |dz_m| / tan(30 deg), the horizontal travel the "
                                         "track leaves out (a 35 deg escalator travels 18 % less); empty otherwise "
                                         "(L377)"),

@@ -1452,6 +1452,8 @@ def _reference_point(point: str, par, params: Path | None, pipeline: str, stream
 #: settings (W126's waist-gyroscope rest-bias removal: the API had it, the CLI refused the key, trial T2 finding 5)
 #: decision L565: ``fused_climb`` (L564's one height source inside a barometric climb, an option), offline and streamed
 TRACK_PARAM_KEYS = ("waist_bias", "fused_climb")
+#: decision L615: the lower-back PARAMS ``options`` (``{"options": {...}}``) the plasys pipeline reads as well
+PLASYS_OPTION_KEYS = ("ride_vibration",)
 
 
 def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
@@ -1466,7 +1468,30 @@ def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
         raise DataError(f"{path}: \"waist_bias\" removes the waist gyroscope bias from the offline two-unit heading "
                         "(decisions W126, W422); the --streaming kernel has no such removal: drop --streaming or "
                         "the key")
-    return {k: v for k, v in par.items() if k not in keys}, keys
+    keys.update(_plasys_options(par.get("options"), path, streaming) if "options" in par else {})
+    return {k: v for k, v in par.items() if k not in TRACK_PARAM_KEYS and k != "options"}, keys
+
+
+def _plasys_options(opts, path: Path, streaming: bool) -> dict:
+    """Decision L615: ``--params``' ``"options"`` for the plasys pipeline: :data:`PLASYS_OPTION_KEYS` (JSON true /
+    false) as ``track_plasys`` keywords, or one line naming the file: not an object, a lower-back-only option, a
+    non-boolean value, or the option with ``--streaming`` (the streamed track reads no rides)."""
+    if not isinstance(opts, dict):
+        raise DataError(f"{path}: \"options\" must be a JSON object such as {{\"ride_vibration\": true}}, not "
+                        f"{opts!r:.40}; fix the key")
+    other = sorted(set(opts) - set(PLASYS_OPTION_KEYS), key=str)
+    if other:
+        raise DataError(f"{path}: option(s) {', '.join(map(str, other))} are lower-back options (--pipeline "
+                        f"waist-pendulum or waist-pll); the plasys pipeline reads only "
+                        f"{', '.join(PLASYS_OPTION_KEYS)} there (decision L615): drop them or track the lower back")
+    for k, v in opts.items():
+        if not isinstance(v, bool):
+            raise DataError(f"{path}: \"options\": \"{k}\" must be true or false (JSON, no quotes), not {v!r:.40}; "
+                            "fix the key")
+    if streaming:
+        raise DataError(f"{path}: \"options\": \"ride_vibration\" tells the offline foot track's rides (decision "
+                        "L615); the --streaming kernel reads no rides: drop --streaming or the option")
+    return dict(opts)
 
 
 def _refuse_waist_params(par: dict, path: Path, session) -> None:

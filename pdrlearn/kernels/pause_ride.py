@@ -106,10 +106,11 @@ def ride_window(t: np.ndarray, p_hpa: np.ndarray, a: float, b: float) -> tuple[f
 def ride_kind(dz: float, duration_s: float, vibration_mps2: float | None = None) -> str:
     """Decision L376: ``"lift"``, ``"escalator"`` or ``"other"`` from a ride's height change ``dz`` (m) and
     :func:`ride_window`'s ``duration_s``: its vertical rate and duration against the typical lift and escalator.
-    Decision L402: a ride whose :func:`ride_vibration` is :data:`VEHICLE_VIBRATION_MPS2` or more is "other" (a
-    vehicle on a hill climbs at a lift's or an escalator's rate; None / NaN: not known, the rate decides)."""
+    Decision L402: a ride whose :func:`ride_vibration` is :data:`VEHICLE_VIBRATION_MPS2` or more is a vehicle's
+    (a vehicle on a hill climbs at a lift's or an escalator's rate; None / NaN: not known, the rate decides), kind
+    ``"vehicle"`` (decision L615; no storeys, as "other": :data:`NO_STOREY_KINDS`)."""
     if vibration_mps2 is not None and float(vibration_mps2) >= VEHICLE_VIBRATION_MPS2:
-        return "other"
+        return "vehicle"  # decision L615: named for what it is (L402 had called it "other")
     rate = abs(float(dz)) / max(float(duration_s), 1e-9)
     if rate >= LIFT_MIN_RATE_MPS:
         return "lift"
@@ -133,31 +134,62 @@ VIBRATION_WINDOW_S = 1.0
 #: recalled, not checked; public transport usually rides at 0.3-1, S71) and 8-9 x a still unit's own |a| noise
 #: (thesis Table 4: foot 0.0193, Table 12: waist 0.0175 m/s^2 sd)
 VEHICLE_VIBRATION_MPS2 = 0.15
+#: decisions L376, L615: the ride kinds that count no storey (a ride that is neither a lift nor an escalator)
+NO_STOREY_KINDS = ("other", "vehicle")
+#: decision L616: a standstill at least this long (s) that vibrates like a vehicle is a vehicle ride, level or not
+#: (the simulator's shortest vehicle ride, S71's ``VEHICLE_MIN_S``: a stop-to-stop hop)
+VEHICLE_STILL_MIN_S = 20.0
 
 
-def ride_vibration(t: np.ndarray, acc: np.ndarray, a: float, b: float) -> float:
-    """Decision L402: the vibration (m/s^2) of the standing unit during a ride from ``a`` to ``b`` (s): the magnitude
-    of the specific force ``acc`` (n, 3) at ``t`` (scaled so that its median over the ride is 1 g: any unit), cut
-    into :data:`VIBRATION_WINDOW_S` windows, each detrended, and the median of their standard deviations (a shift of
-    the feet or a bag in one window does not make a ride a vehicle's). NaN with fewer than 8 finite samples in the
-    ride (decision B301: said by :func:`pdrlearn.track.rides.ride_lines`)."""
+def _window_sds(t: np.ndarray, acc: np.ndarray, a: float, b: float) -> tuple[np.ndarray, np.ndarray] | None:
+    """Decision L402: ``(edges, sds)`` of the specific force's magnitude ``acc`` (n, 3) at ``t`` from ``a`` to ``b``
+    (s), scaled so that its median over the span is 1 g (any unit), cut into :data:`VIBRATION_WINDOW_S` windows
+    (``edges``: n_win + 1 times), each detrended, and each window's standard deviation (NaN under 4 samples); None
+    with fewer than 8 finite samples in the span."""
     t = np.asarray(t, dtype=float)
     mag = np.linalg.norm(np.asarray(acc, dtype=float), axis=1)
     inside = (t >= a) & (t <= b) & np.isfinite(mag)
     if int(inside.sum()) < 8:
-        return float("nan")
+        return None
     tt, mag = t[inside], mag[inside]
     med = float(np.median(mag))
     if not med > 0:
-        return float("nan")
+        return None
     mag = mag * (STANDARD_GRAVITY / med)  # the specific force of a standing unit is 1 g
     n_win = max(int((tt[-1] - tt[0]) // VIBRATION_WINDOW_S), 1)
     edges = tt[0] + (tt[-1] - tt[0]) * np.arange(n_win + 1) / n_win
-    sds = []
+    sds = np.full(n_win, np.nan)
     for k in range(n_win):
         w = (tt >= edges[k]) & (tt <= edges[k + 1])
         if int(w.sum()) >= 4:
             x, y = tt[w] - tt[w].mean(), mag[w]
             slope = float(np.dot(x, y - y.mean()) / max(float(np.dot(x, x)), 1e-12))
-            sds.append(float(np.std(y - y.mean() - slope * x)))
-    return float(np.median(sds)) if sds else float("nan")
+            sds[k] = float(np.std(y - y.mean() - slope * x))
+    return edges, sds
+
+
+def ride_vibration(t: np.ndarray, acc: np.ndarray, a: float, b: float) -> float:
+    """Decision L402: the vibration (m/s^2) of the standing unit during a ride from ``a`` to ``b`` (s): the median of
+    :func:`_window_sds` (the detrended |specific force|'s SD in 1 s windows: a shift of the feet or a bag in one
+    window does not make a ride a vehicle's). NaN with fewer than 8 finite samples in the ride (decision B301: said
+    by :func:`pdrlearn.track.rides.ride_lines`)."""
+    w = _window_sds(t, acc, a, b)
+    if w is None or not np.isfinite(w[1]).any():
+        return float("nan")
+    return float(np.nanmedian(w[1]))
+
+
+def vibrating_span(t: np.ndarray, acc: np.ndarray, a: float, b: float) -> tuple[float, float, float] | None:
+    """Decision L616: ``(start, end, vibration)`` of a standstill from ``a`` to ``b`` (s) that vibrates like a
+    vehicle: its :func:`ride_vibration` is :data:`VEHICLE_VIBRATION_MPS2` or more, ``start`` / ``end`` the first
+    window's start and the last window's end of the 1 s windows at that level (the vehicle's motion; the wait before
+    it and the stop after it read under it); None otherwise."""
+    w = _window_sds(t, acc, a, b)
+    if w is None or not np.isfinite(w[1]).any():
+        return None
+    edges, sds = w
+    vib = float(np.nanmedian(sds))
+    if not vib >= VEHICLE_VIBRATION_MPS2:
+        return None
+    on = np.flatnonzero(sds >= VEHICLE_VIBRATION_MPS2)
+    return float(edges[on[0]]), float(edges[on[-1] + 1]), vib

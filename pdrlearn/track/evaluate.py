@@ -228,8 +228,9 @@ def _climbs(dz, storey_height_m: float, band: float, bridge: int, slope: bool | 
     L376's kinds), ``""`` for a walking climb. A walking climb is a run of stair rows (L127: |dz| >= ``LEVEL_DZ_M``;
     decision L374: W108's climb rows where ``parts`` has them) bridged over at most ``bridge`` rows and never across a
     ride; its height leaves the rides out and its storeys carry its height's sign (L374: a run whose height is of the
-    other sign counts none). An "other" ride counts no storey (L376)."""
+    other sign counts none). An "other" or a "vehicle" ride counts no storey (L376, L615)."""
     from pdrlearn.kernels import distance
+    from pdrlearn.kernels.pause_ride import NO_STOREY_KINDS  # decision L615: a vehicle's climb counts none either
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
     ride, ride_kind, climb_sign = (np.zeros(len(dz)), None, None) if parts is None else parts
@@ -253,7 +254,7 @@ def _climbs(dz, storey_height_m: float, band: float, bridge: int, slope: bool | 
                 out.append((r, sign * n, ""))
     for k in rides:  # decision L375: each ride a climb of its own
         kind = "ride" if ride_kind is None else str(ride_kind[k])
-        n = 0 if kind == "other" else int(np.floor(abs(float(ride[k])) / storey_height_m + band))  # L376
+        n = 0 if kind in NO_STOREY_KINDS else int(np.floor(abs(float(ride[k])) / storey_height_m + band))  # L376
         if n or every:
             out.append((np.array([k]), int(np.sign(ride[k])) * n, kind))
     return sorted(out, key=lambda c: (int(c[0][-1]), c[2] == ""))

@@ -90,10 +90,44 @@ def side_step_freezes(rows: list[dict] | None, steps) -> tuple[list[dict] | None
     return kept, lines
 
 
+#: decision L617: a foot freeze-index episode is kept only with a stride within this many seconds of it (one index
+#: window, Baechlin et al. 2010's 4 s: the episode's edges smear by up to a window)
+FREEZE_WALK_GAP_S = FI_WINDOW_S
+
+
+def walkless_freezes(rows: list[dict] | None, steps) -> tuple[list[dict] | None, list[str]]:
+    """Decision L617: ``(kept, lines)`` - the freeze episodes ``rows`` without those that no stride of ``steps``
+    (``start_s`` / ``end_s``) reaches within :data:`FREEZE_WALK_GAP_S` of (before its start, inside it or after its
+    end), renumbered, and one line naming those left out. A freeze interrupts walking (Moore et al. 2008: on starting,
+    turning or while walking); an episode with no walking next to it is the foot trembling on a vehicle's floor or a
+    bike's pedal (trial T3: a cycling coast, a seated bus)."""
+    if not rows or steps is None:
+        return rows, []
+    a = steps["start_s"].to_numpy(float) if len(steps) else np.zeros(0)
+    b = steps["end_s"].to_numpy(float) if len(steps) else np.zeros(0)
+    kept, gone = [], []
+    for r in rows:
+        s0, s1 = float(r["start_s"]) - FREEZE_WALK_GAP_S, float(r["end_s"]) + FREEZE_WALK_GAP_S
+        if bool(np.any((b >= s0) & (a <= s1))):
+            kept.append({**r, "freeze": len(kept) + 1})
+        else:
+            gone.append(r)
+    if not gone:
+        return kept, []
+    spans = ", ".join(f"{r['start_s']:.1f}-{r['end_s']:.1f} s (peak {r.get('peak_fi')})" for r in gone[:5])
+    return kept, [f"{len(gone)} freeze-index episode(s) ({spans}{', ...' if len(gone) > 5 else ''}) are left out of "
+                  f"freezes.csv: no stride of the track lies within {FREEZE_WALK_GAP_S:g} s of them, and a freeze "
+                  "interrupts walking; the foot trembled without walking (a vehicle's floor, a bike, a seat; "
+                  "decision L617)"]
+
+
 def foot_freezes(session, pipeline: str | None, steps) -> tuple[list[dict] | None, list[str]]:
-    """Decisions W213, L413: a foot track's freeze episodes (:func:`session_freezes`) without its side shuffles
-    (:func:`side_step_freezes` over the track's ``steps``), and the lines naming those left out."""
-    return side_step_freezes(session_freezes(session, pipeline), steps)
+    """Decisions W213, L413, L617: a foot track's freeze episodes (:func:`session_freezes`) without its side shuffles
+    (:func:`side_step_freezes` over the track's ``steps``) and without those with no walking next to them
+    (:func:`walkless_freezes`), and the lines naming those left out."""
+    rows, side = side_step_freezes(session_freezes(session, pipeline), steps)
+    rows, alone = walkless_freezes(rows, steps)
+    return rows, side + alone
 
 
 def freeze_index_on(options: dict | None) -> bool:

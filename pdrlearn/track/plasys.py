@@ -1036,7 +1036,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
                  fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
                  gated_level_dz: bool | str = False, fused_climb: bool = False,
-                 fused_straight: bool = True, **opts) -> TrackResult:
+                 fused_straight: bool = True, ride_vibration: bool = True, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -1057,6 +1057,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         "fused": the foot's stride-by-stride yaw aligned to the waist heading by an offset averaged over
         +-``fused_tau_s`` s (decision L17), counted on the straight strides only (decisions L589, L609: the
         default, so turns on the spot do not pull it; ``fused_straight=False`` counts every stride, L17 as before)
+    ride_vibration : offline, with a waist barometer: a ride (L378) or a standstill of 20 s or more whose foot unit
+        vibrates at 0.15 m/s^2 or more is a ``vehicle`` ride (decisions L402, L615, L616; ``--params``' ``{"options":
+        {"ride_vibration": false}}``); False: L376's vertical rate alone, and no level vehicle rides
     initial_heading : ENU heading (rad, |value| <= 2 pi, else refused as degrees: decision L158) at the start
         when the heading is relative (foot, or no magnetometer)
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
@@ -1684,7 +1687,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     logged = len(warnings)  # apply_altitude logs its own lines
     apply_altitude(res, session, altitude,  # decision L154 (L292: rewrites L69's line; L564 / L565: an option)
                    raw_dz=climb_dz if fused_climb else None)
-    foot_rides(res, session)  # decision L378: the rides, from the waist barometer (offline only, as run's files)
+    foot_rides(res, session, ride_vibration)  # decision L378: the rides, from the waist barometer (offline only, as
+    # run's files); L615 / L616: the foot's vibration tells a vehicle
     res.steps.insert(res.steps.columns.get_loc("terrain") + 1, "terrain_dz",  # decision L424: beside the class
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:

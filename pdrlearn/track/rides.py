@@ -15,12 +15,16 @@ RIDE_COLUMNS = ("ride", "start_s", "end_s", "kind", "dz_m", "duration_s", "verti
 #: decision L402: the accelerometers a ride's vibration is read from, the first one the session has (the waist unit
 #: stands on the legs, the foot unit on the vehicle's floor: both feel it, S71)
 VIBRATION_STREAMS = ("wAccelerometer", "fAccelerometer")
+#: decision L615: a foot track reads the foot unit first (a standing foot rests flat on the vehicle's floor while the
+#: trunk fidgets, which L403 found reads as vibration on real lower-back recordings)
+FOOT_VIBRATION_STREAMS = ("fAccelerometer", "wAccelerometer")
 
 
-def ride_accelerometer(session) -> tuple[np.ndarray, np.ndarray, str] | None:
-    """Decision L402: ``(t, acc, name)`` of the first of :data:`VIBRATION_STREAMS` in ``session`` with samples;
-    None."""
-    for name in VIBRATION_STREAMS:
+def ride_accelerometer(session, streams: tuple[str, ...] = VIBRATION_STREAMS) -> tuple[np.ndarray, np.ndarray,
+                                                                                        str] | None:
+    """Decision L402: ``(t, acc, name)`` of the first of ``streams`` (:data:`VIBRATION_STREAMS`; a foot track's
+    :data:`FOOT_VIBRATION_STREAMS`, L615) in ``session`` with samples; None."""
+    for name in streams:
         if name in session and len(session[name].t):
             return session[name].t, session[name].values, name
     return None
@@ -82,7 +86,13 @@ def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False
 
     kinds = np.full(len(starts), "", dtype=object)
     records = []
-    for j in np.flatnonzero(np.abs(np.nan_to_num(pause)) >= RIDE_MIN_M):
+    for j in range(len(starts)):
+        if not abs(float(np.nan_to_num(pause[j]))) >= RIDE_MIN_M:
+            vehicle = _vehicle(t, p_hpa, float(ends[j]), float(starts[j]), acc) if vibration_kind else None
+            if vehicle is not None:  # decision L616: a long vibrating standstill, level or not
+                kinds[j] = "vehicle"
+                records.append({**vehicle, "ride": len(records) + 1, "row": int(j)})
+            continue
         a, b, duration = ride_window(t, p_hpa, float(ends[j]), float(starts[j]))
         dz = float(pause[j])
         vib = ride_vibration(acc[0], acc[1], a, b) if acc is not None else float("nan")  # decision L402
@@ -94,6 +104,46 @@ def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False
                         "gap_s": _gap_in(t, a, b),  # decision B298
                         "vibration_unread": unread})  # decision B301
     return kinds, records
+
+
+#: decision L616 amended: a vibrating span at least this share of which the freeze index's episodes cover is a freeze
+#: of gait (the foot trembling at 3-8 Hz in place), not a vehicle (a rule, not fitted: most of it)
+VEHICLE_FREEZE_SHARE = 0.5
+
+
+def freeze_share(acc, a: float, b: float) -> float:
+    """Decision L616 amended: the share of ``[a, b]`` (s) that W213's freeze-index episodes of ``acc`` (``(t, (n, 3),
+    name)``) read inside it cover (:func:`pdrlearn.track.freezes.freezes_of`: 3-8 Hz power over 0.5-3 Hz above 3)."""
+    from pdrlearn.track.freezes import freezes_of
+
+    t = np.asarray(acc[0], dtype=float)
+    inside = (t >= a) & (t <= b)
+    eps = freezes_of(t[inside], np.asarray(acc[1], dtype=float)[inside]) if b > a else []
+    return float(sum(r["duration_s"] for r in eps)) / (b - a) if b > a else 0.0
+
+
+def _vehicle(t, p_hpa, a: float, b: float, acc) -> dict | None:
+    """Decision L616: the record (rides.csv's columns, ``gap_s``) of the vehicle ride in the standstill from ``a``
+    to ``b`` (s) when it lasts ``VEHICLE_STILL_MIN_S`` or more and vibrates like a vehicle
+    (:func:`pdrlearn.kernels.pause_ride.vibrating_span` of ``acc``) and is no freeze of gait (:func:`freeze_share`
+    under :data:`VEHICLE_FREEZE_SHARE`, L616 amended); its ``dz_m`` the barometric change over the vibrating span
+    (W89); None otherwise."""
+    from pdrlearn.kernels.barometer import relative_altitude
+    from pdrlearn.kernels.pause_ride import VEHICLE_STILL_MIN_S, vibrating_span
+
+    if acc is None or not b - a >= VEHICLE_STILL_MIN_S:
+        return None
+    span = vibrating_span(acc[0], acc[1], a, b)
+    if span is None:
+        return None
+    s0, s1, vib = span
+    if freeze_share(acc, s0, s1) >= VEHICLE_FREEZE_SHARE:  # decision L616 amended: a freeze of gait trembles too
+        return None
+    dz = float(np.diff(relative_altitude(t, p_hpa, np.array([s0, s1])))[0])
+    duration = s1 - s0
+    return {"start_s": s0, "end_s": s1, "kind": "vehicle", "dz_m": dz, "duration_s": duration,
+            "vertical_rate_mps": abs(dz) / max(duration, 1e-9), "vibration_mps2": vib, "horizontal_est_m": None,
+            "gap_s": _gap_in(t, s0, s1), "vibration_unread": None}
 
 
 #: decision B298: a barometer gap longer than this (s) inside a ride is said (its duration and kind are interpolated)
@@ -109,14 +159,16 @@ def _gap_in(t, a: float, b: float) -> float:
     return float(np.diff(t)[overlap].max()) if overlap.any() else 0.0
 
 
-def foot_rides(result, session, vibration_kind: bool = False) -> None:
+def foot_rides(result, session, vibration_kind: bool = True) -> None:
     """Decision L378: a foot track's rides from the session's waist barometer (B188's usable one; none: nothing
     changes). Each standstill between two strides (from the previous stride's end, the first's from the barometer's
     first time, decision L393, and the one after the last stride to the barometer's last time, L394) changes the
     barometric altitude by W231's ride (``pause_ride_dz``: over 30 s only what moved 1.5 m within
     30 s); where that is ``RIDE_MIN_M`` or more it is the stride's ``pause_dz_m`` (0 elsewhere), its ``ride`` kind
     (L376), a record of ``info["rides"]`` (rides.csv, L377) and L376's / L377's lines. The strides' ``dz_m`` and the
-    trajectory's z are not changed. ``vibration_kind``: decision L402's vehicle test (L403: opt-in; Python only)."""
+    trajectory's z are not changed. ``vibration_kind``: decision L402's vehicle test on the foot unit's vibration
+    (:data:`FOOT_VIBRATION_STREAMS`; decision L615: on by default, the ``ride_vibration`` option) and L616's level
+    vehicle rides."""
     import logging
 
     from pdrlearn.track.barometer import FOOT_EFFECT, usable_barometer
@@ -131,7 +183,7 @@ def foot_rides(result, session, vibration_kind: bool = False) -> None:
     ends = _pause_ends(steps, min(float(b.t[0]), float(result.trajectory["t"].iloc[0])))
     starts = steps["start_s"].to_numpy(float)
     pause = _pause_dz(b.t, p, ends, starts)
-    acc = ride_accelerometer(session)  # decision L402
+    acc = ride_accelerometer(session, FOOT_VIBRATION_STREAMS)  # decisions L402, L615
     kinds, records = _rides(b.t, p, ends, starts, pause, acc, vibration_kind)
     records = _after_last(b.t, p, steps, records, float(b.t[-1]), acc, vibration_kind)  # decision L394
     # before the columns every track ends its steps.csv with (L97's stride_time_s ... grade_pct, E51's order)
@@ -197,15 +249,12 @@ def ride_lines(records: list[dict]) -> list[str]:
     lines = []
     other = [r for r in records if r["kind"] == "other"]
     if other:
-        from pdrlearn.kernels.pause_ride import VEHICLE_VIBRATION_MPS2, ride_kind
-
-        shaken = ("" if all(ride_kind(r["dz_m"], r["duration_s"]) == "other" for r in other) else
-                  f", or they vibrate like a vehicle ({VEHICLE_VIBRATION_MPS2:g} m/s^2 or more; decision L402)")
         shown = ", ".join(f"{r['dz_m']:+.1f} m over {r['duration_s']:.0f} s at {r['start_s']:.0f} s" for r in other[:3])
         lines.append(f"{len(other)} barometric climb(s) while standing ({shown}{', ...' if len(other) > 3 else ''}) "
                      "are neither a lift (0.5 m/s or more vertically) nor an escalator (0.15-0.5 m/s for at most 45 "
-                     f"s){shaken}: a vehicle on a hill or a ride of another kind, so they count no floors; their "
+                     "s): a vehicle on a hill or a ride of another kind, so they count no floors; their "
                      "height stays in the altitude (rides.csv kind other; decision L376)")
+    lines.extend(vehicle_lines(records))
     for r in records:
         if r.get("gap_s", 0.0) > RIDE_GAP_S:  # decision B298
             lines.append(f"wBarometer.csv has a gap of {r['gap_s']:.1f} s inside ride {r['ride']} "
@@ -225,6 +274,23 @@ def ride_lines(records: list[dict]) -> list[str]:
                      "horizontally (their height / tan 30 deg) that the track leaves out: dead reckoning counts steps, "
                      "and a ride has none, so positions after a ride are off by its travel (decision L377)")
     return lines
+
+
+def vehicle_lines(records: list[dict]) -> list[str]:
+    """Decisions L615, L616: the one line for the rides that vibrate like a vehicle (rides.csv kind vehicle): no
+    floors counted, and their travel, which no step measures, left out of the track."""
+    from pdrlearn.kernels.pause_ride import VEHICLE_VIBRATION_MPS2
+
+    rides = [r for r in records if r["kind"] == "vehicle"]
+    if not rides:
+        return []
+    shown = ", ".join(f"{r['start_s']:.0f}-{r['end_s']:.0f} s ({r['vibration_mps2']:.2f} m/s^2, {r['dz_m']:+.1f} m)"
+                      for r in rides[:3])
+    minutes = sum(float(r["end_s"]) - float(r["start_s"]) for r in rides) / 60.0
+    return [f"{len(rides)} vehicle ride(s) ({shown}{', ...' if len(rides) > 3 else ''}; {minutes:.1f} min in all): "
+            f"standstills whose floor vibrated at {VEHICLE_VIBRATION_MPS2:g} m/s^2 or more (rides.csv kind vehicle; "
+            "decisions L402, L615, L616); they count no floors, and the vehicle's travel is unknown to a step "
+            "counter and left out of the track, so positions after a ride are off by it"]
 
 
 def ride_table(info: dict) -> pd.DataFrame:
