@@ -496,12 +496,14 @@ SESSIONS: tuple[Column, ...] = (
     ("n_tug_trials", "count", "integer", "lower back: TUG trials, W183's seat-to-seat rule applied to each "
                                          "sit-to-stand directly followed by a stand-to-sit with walking between "
                                          "(tug_trials.csv, W325) that looks like a TUG: at most 120 s and back "
-                                         "to the chair it rose from (W445); empty on a foot track"),
+                                         "to the chair it rose from (W445), an about-turn (180 +- 45 deg) as its "
+                                         "first turn and at most 9 m out and back (W490); empty on a foot track"),
     ("tug_trials_median_s", "s", "number", "lower back: the median of tug_trials.csv's tug_time_s (W325); empty "
                                            "without a trial"),
     ("n_chair_walks", "count", "integer", "lower back: seat-to-seat walks (W325's pattern) that do not look like a "
-                                          "TUG - longer than 120 s or not back to the chair: daily walks, not timed "
-                                          "(W445); empty on a foot track"),
+                                          "TUG - longer than 120 s, not back to the chair (W445), no about-turn first "
+                                          "or over 9 m out or back (W490): daily walks, not timed; empty on a foot "
+                                          "track"),
     ("tug_steps_source", _ID, "text", "with a TUG: the unit tug_trials.csv's n_steps is counted on, foot (a foot "
                                       "+ waist session's default track, W418 / W419) or waist; empty otherwise "
                                       "(W427)"),

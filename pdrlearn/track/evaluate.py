@@ -664,17 +664,19 @@ def _basic(result: TrackResult, out: dict) -> None:
     out.update(turn_summary(table))
     if result.info.get("yaw_turns") is not None:  # decisions L231 / L233: turns.csv's turns are turn_count's
         out["turn_count"] = len(table)
-    from pdrlearn.track.trunk_tug import trunk_note, tug_contacts, tug_source_summary, tug_yaw_turns
+    from pdrlearn.track.trunk_tug import foot_strides, trunk_note, tug_contacts, tug_source_summary, tug_yaw_turns
 
-    # decision W183: chair transfers, TUG (W418: a foot track's from the waist unit's transfers and contacts)
-    out.update(transfer_summary(result.info.get("transfers"), tug_contacts(result)))
+    # decision W183: chair transfers, TUG (W418: a foot track's from the waist unit's transfers and contacts; W490 /
+    # L614: a TUG's shape from these turns and, on a foot track, the foot's strides)
+    out.update(transfer_summary(result.info.get("transfers"), tug_contacts(result), turns=table,
+                                walk=foot_strides(result)))
     if out.get("tug_time_note") is None:
         out["tug_time_note"] = trunk_note(result)  # W418: why a two-unit track has no transfers
     from pdrlearn.waist.tug_phases import tug_phase_summary, tug_phases
 
     # decision W293: the TUG's phases, from the transfers, these turns and the walking contacts
     out.update(tug_phase_summary(tug_phases(result.info.get("transfers"), table, tug_contacts(result),
-                                            yaw_turns=tug_yaw_turns(result))))  # W307
+                                            yaw_turns=tug_yaw_turns(result), walk=foot_strides(result))))  # W307
     out.update(tug_source_summary(result, out))  # decision W419; W427: None without a TUG
     from pdrlearn.waist.turn_steps import stepless_summary
 

@@ -130,7 +130,7 @@ def clinical_tables(result, bouts) -> dict:
 
         # decision W418: a foot track's TUG reads the waist's contacts; W419: the foot's turns.csv and strides
         phases = tug_phases(result.info["transfers"], out["turns.csv"], tug_contacts(result),  # decision W293
-                            yaw_turns=tug_yaw_turns(result))  # W307
+                            yaw_turns=tug_yaw_turns(result), walk=foot_strides(result))  # W307, W490 / L614
         if phases is not None:
             out["tug_phases.csv"] = tug_phase_table(phases)
         trials = tug_trial_table(result.info["transfers"], out["turns.csv"], tug_contacts(result),  # decision W325

@@ -121,6 +121,7 @@ from pdrlearn.waist.plausibility import (
     not_alternating_message,
     pll_excess,
     pll_missed_steps_message,
+    pll_model_message,
     pll_slow_excess_message,
     running_cadence,
     short_step_message,
@@ -1314,8 +1315,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     if pipeline == "waist-pll" and not realtime and p.source == "defaults" and not ratio_line:  # decision W186
         excess, excess_line = pll_excess(steps["length_m"].to_numpy(float), steps["frequency_hz"].to_numpy(float),
                                          pendulum()["length_m"].to_numpy(float))
+        pll_lines = []
         if excess_line and bool(o["pll_check"]):  # W186's line: an option (its adoption rule was not met)
-            warnings.append(excess_line)
+            pll_lines = [excess_line]
         elif bool(o["pll_slow_check"]) or bool(o["pll_slow_cadence_check"]):  # decisions W289, W313: at a slow gait
             pend = pendulum()  # W186's ratio over 1.25 warns (the slow gait judged by the pendulum's speed / cadence)
             _, n_pend, pend_length, pend_cadence = walk_ratio(pend["length_m"].to_numpy(float),
@@ -1325,7 +1327,12 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                                                   pend_length, pend_cadence, n_pend, judge=judge)
                           for judge, key in (("speed", "pll_slow_check"), ("cadence", "pll_slow_cadence_check"))
                           if bool(o[key])]
-            warnings += [line for line in slow_lines if line][:1]  # one line when both judges are on
+            pll_lines = [line for line in slow_lines if line][:1]  # one line when both judges are on
+        if not pll_lines:  # decision W491: no earlier line: the population-model line over 1.25 x at any gait
+            pll_lines = [line for line in [pll_model_message(
+                excess, float(np.nansum(np.abs(steps["length_m"].to_numpy(float)))),
+                float(np.nansum(np.abs(pendulum()["length_m"].to_numpy(float)))))] if line]
+        warnings += pll_lines
     micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:

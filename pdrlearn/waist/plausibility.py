@@ -447,6 +447,26 @@ def pll_slow_excess_message(ratio: float | None, pll_m: float, pendulum_m: float
             f"(decision {PLL_SLOW_JUDGES[judge]})")
 
 
+#: decision W491: an uncalibrated waist-pll track reading more than this times the pendulum reading's distance, with no
+#: earlier length line, says its step length is a population model (W289 / W313's "more than 25 % off"; not fitted)
+PLL_MODEL_RATIO = PLL_SLOW_EXCESS_RATIO
+
+
+def pll_model_message(ratio: float | None, pll_m: float, pendulum_m: float) -> str | None:
+    """Decision W491: the one line of an uncalibrated waist-pll track whose distance ``pll_m`` is more than
+    :data:`PLL_MODEL_RATIO` x the pendulum reading's ``pendulum_m`` (``ratio``, W186's) at any gait; None otherwise.
+    It states the disagreement of the two uncalibrated models and why waist-pll is the one to doubt on patients."""
+    if ratio is None or not ratio > PLL_MODEL_RATIO:
+        return None
+    return (f"waist-pll reads {pll_m:.2f} m, {ratio:.2f} x the pendulum model's {pendulum_m:.2f} m on the same session "
+            f"(over {PLL_MODEL_RATIO:g} x warns): uncalibrated, its step length is a population model, a line in each "
+            "step's frequency (seed 000), which reads short-stepping walkers long (mobgap MS001 Test11, a patient with "
+            "multiple sclerosis: waist-pll +103.60 % inside the reference walking bouts, waist-pendulum +33.50 %); "
+            "the two uncalibrated readings disagree and a calibration on this walker's walk of known length settles "
+            "it ('pdrlearn calibrate DIR --pipeline waist-pll --distance M --out PARAMS.json'); for patients track "
+            "with --pipeline waist-pendulum (decision W491)")
+
+
 def running_cadence(length: float | None, cadence: float | None, height_m: float = WALK_RATIO_HEIGHT_M) -> bool:
     """Decision W177: whether an uncalibrated waist track's median step ``length`` (m) at its median ``cadence``
     (steps/min) is a fast gait W178 names running first - the cadence above L95's range and the speed length x

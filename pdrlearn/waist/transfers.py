@@ -19,7 +19,9 @@ whole movement and classed by the pelvis's height change over it:
   and a sit with nothing between are a chair stand);
 * **TUG trials** (W325): the same rule applied to each sit-to-stand directly followed by a stand-to-sit with walking
   between (:func:`tug_trial_pairs`), so two or three trials in one recording are each timed (tug_trials.csv);
-  W445: only when the pair looks like a TUG (:func:`tug_like`), else it is a chair-to-chair walk (``n_chair_walks``).
+  W445: only when the pair looks like a TUG (:func:`tug_like`), else it is a chair-to-chair walk (``n_chair_walks``);
+  W490: with the track's turns, a TUG also turns about once at its far end and walks at most 9 m each way
+  (:func:`tug_turn_legs`); L614: a two-unit foot track judges that shape on the foot's turns and strides.
 
 Not from a seed: the clinical TUG runs from rising off the chair to sitting back on it (Podsiadlo & Richardson 1991,
 J Am Geriatr Soc 39:142-148, as recalled), and the thresholds are this module's choices (W182), set before
@@ -74,6 +76,12 @@ TUG_MAX_S = 120.0
 #: decision W445: and comes back: the contacts' net displacement at most this fraction of the walked path (0.35:
 #: W445 amended by the lead after the final clone run: a waist-pll TUG reads 0.31, a one-way daily walk from 0.37)
 TUG_RETURN_MAX = 0.35
+#: decision W490: a TUG's first turn (its turn at the 3 m line, Podsiadlo & Richardson 1991, as recalled) turns by
+#: 180 deg +- this: 135 deg is halfway between a corner (90 deg) and an about-turn
+TUG_TURN_TOL_DEG = 45.0
+#: decision W490: its walk out and its walk back are each at most this (m): 3 x the protocol's 3 m, so that an
+#: uncalibrated waist-pll reading a short-stepping walker twice as long (MS001 Test11 +103.60 %) keeps a TUG
+TUG_LEG_MAX_M = 9.0
 #: decision W278: a transfer with walking contacts within this (s) before its start and after its end is flagged
 FLAG_WALK_S = 2.0
 #: decision W278: transfers.csv's ``flag`` texts ("" = none)
@@ -242,11 +250,13 @@ def chair_transfers(imu: WaistIMU, steps: pd.DataFrame) -> pd.DataFrame:
     return chair_transfers_upright(imu, steps)[0]
 
 
-def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
+def transfer_summary(transfers, steps: pd.DataFrame | None = None, *, turns: pd.DataFrame | None = None,
+                     walk: pd.DataFrame | None = None) -> dict:
     """Decision W183: :data:`TRANSFER_SUMMARY_KEYS` of a transfers table (a DataFrame or its records; None = a
     track without a trunk unit: every key None). ``tug_time_s`` (module docstring) needs ``steps`` (the contacts'
     ``start_s``); without them it is judged on the transfers alone (a sit-to-stand first and a stand-to-sit
-    last)."""
+    last). Decision W490: ``turns`` (the track's turns.csv) judges a trial's shape (:func:`tug_turn_legs`); L614:
+    ``walk`` (a two-unit foot track's strides) carries the step lengths and headings in place of ``steps``."""
     if transfers is None:
         return dict.fromkeys(TRANSFER_SUMMARY_KEYS)
     tr = pd.DataFrame(list(transfers) if not isinstance(transfers, pd.DataFrame) else transfers,
@@ -262,7 +272,7 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
     contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
     pairs = seat_to_seat_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]), contacts)  # W325
     trials = tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]), contacts,
-                             **contact_path(steps))  # W445
+                             **contact_path(steps, walk), turns=turns)  # W445, W490, L614
     if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
         # decision W340: and a walking contact between the rise and the sit (a TUG walks; W325's trial test);
@@ -311,19 +321,25 @@ def seat_to_seat_pairs(kinds, start_s, end_s, flags, contacts) -> list[tuple[int
     return out
 
 
-def tug_like(t0: float, up: float, down: float, t1: float, contacts, length_m=None, heading_rad=None) -> bool:
+def tug_like(t0: float, up: float, down: float, t1: float, contacts, length_m=None, heading_rad=None, *,
+             path_s=None, turns=None) -> bool:
     """Decision W445: whether a seat-to-seat walk (rise from ``t0`` to ``up``, sit from ``down`` to ``t1``, s; walking
     ``contacts``' start times, s) looks like a TUG (a pure kernel): at most :data:`TUG_MAX_S` long and - with each
     contact's ``length_m`` and ``heading_rad`` - a net displacement of the contacts between ``up`` and ``down`` at
-    most :data:`TUG_RETURN_MAX` of their path (it comes back to the chair)."""
-    c = np.asarray(contacts, dtype=float)
-    inside = (c > up) & (c < down)
+    most :data:`TUG_RETURN_MAX` of their path (it comes back to the chair). Decision L614: ``path_s``, the times the
+    lengths and headings belong to when they are not the contacts' (a two-unit foot track's strides). Decision W490:
+    with ``turns`` (turns.csv), also :func:`tug_turn_legs`."""
     if t1 - t0 > TUG_MAX_S:
         return False
-    if length_m is None or heading_rad is None:
+    c = np.asarray(contacts if path_s is None else path_s, dtype=float)
+    inside = (c > up) & (c < down)
+    ln = None if length_m is None else np.asarray(length_m, dtype=float)
+    if not tug_turn_legs(up, down, turns, c, ln):
+        return False
+    if ln is None or heading_rad is None:
         return True
-    ln = np.asarray(length_m, dtype=float)[inside]
     hd = np.asarray(heading_rad, dtype=float)[inside]
+    ln = ln[inside]
     ok = np.isfinite(ln) & np.isfinite(hd)
     path = float(ln[ok].sum())
     if path <= 0.0:
@@ -332,27 +348,68 @@ def tug_like(t0: float, up: float, down: float, t1: float, contacts, length_m=No
     return net <= TUG_RETURN_MAX * path
 
 
-def contact_path(steps: pd.DataFrame | None) -> dict:
+def turns_inside(turns, up: float, down: float) -> pd.DataFrame:
+    """Decision W293: the turns.csv rows (``start_s``, ``end_s``) whose midpoint lies between ``up`` (a rise's end)
+    and ``down`` (the next sit's start), by start time."""
+    tt = pd.DataFrame(turns) if turns is not None else pd.DataFrame(columns=["start_s", "end_s"])
+    mid = 0.5 * (tt["start_s"].to_numpy(float) + tt["end_s"].to_numpy(float))
+    return tt[(mid > up) & (mid < down)].sort_values("start_s")
+
+
+def tug_turn_legs(up: float, down: float, turns, path_s, length_m=None) -> bool:
+    """Decision W490 (a pure kernel): whether the walk between ``up`` (a rise's end) and ``down`` (the sit's start)
+    has a TUG's shape: its first turn (:func:`turns_inside` of ``turns``, W293's TUG turn) turns by 180 deg +-
+    :data:`TUG_TURN_TOL_DEG`, and - with ``length_m`` per step at ``path_s`` (s) - the steps before that turn's start
+    and those after its end each sum to at most :data:`TUG_LEG_MAX_M`. True (not judged) when ``turns`` is None or
+    carries no ``angle_deg`` (a table of times only)."""
+    if turns is None or "angle_deg" not in pd.DataFrame(turns):
+        return True
+    inside = turns_inside(turns, up, down)
+    if not len(inside):
+        return False  # a TUG turns around
+    turn = inside.iloc[0]
+    if abs(abs(float(turn["angle_deg"])) - 180.0) > TUG_TURN_TOL_DEG:
+        return False
+    if length_m is None:
+        return True
+    t = np.asarray(path_s, dtype=float)
+    ln = np.nan_to_num(np.abs(np.asarray(length_m, dtype=float)))
+    out = ln[(t > up) & (t < float(turn["start_s"]))].sum()
+    back = ln[(t > float(turn["end_s"])) & (t < down)].sum()
+    return bool(out <= TUG_LEG_MAX_M and back <= TUG_LEG_MAX_M)
+
+
+def contact_path(steps: pd.DataFrame | None, walk: pd.DataFrame | None = None) -> dict:
     """Decision W445: ``{"length_m", "heading_rad"}`` of the walking contacts (``steps``, a lower-back track's
-    steps.csv) for :func:`tug_like`'s return test; empty when they carry none (a two-unit track's trunk contacts)."""
+    steps.csv) for :func:`tug_like`'s return test; empty when they carry none (a two-unit track's trunk contacts).
+    Decision L614: ``walk`` (a two-unit foot track's strides) gives them instead, with ``path_s`` their contact times
+    (``event_s``, else ``start_s``: W419's step count's)."""
+    if walk is not None:
+        if not len(walk) or "length_m" not in walk or "heading_rad" not in walk:
+            return {}
+        col = "event_s" if "event_s" in walk else "start_s"
+        return {"path_s": walk[col].to_numpy(float), "length_m": walk["length_m"].to_numpy(float),
+                "heading_rad": walk["heading_rad"].to_numpy(float)}
     if steps is None or not len(steps) or "length_m" not in steps or "heading_rad" not in steps:
         return {}
     return {"length_m": steps["length_m"].to_numpy(float), "heading_rad": steps["heading_rad"].to_numpy(float)}
 
 
-def tug_trial_pairs(kinds, start_s, end_s, flags, contacts, length_m=None, heading_rad=None) -> list[tuple[int, int]]:
+def tug_trial_pairs(kinds, start_s, end_s, flags, contacts, length_m=None, heading_rad=None, *, path_s=None,
+                    turns=None) -> list[tuple[int, int]]:
     """Decisions W325, W445: the TUG trials of a transfers table: :func:`seat_to_seat_pairs` that look like a TUG
-    (:func:`tug_like`; ``length_m`` / ``heading_rad`` per contact, optional)."""
+    (:func:`tug_like`; ``length_m`` / ``heading_rad`` per contact, optional; L614: per ``path_s``; W490: ``turns``)."""
     a, b = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
     return [(i, j) for i, j in seat_to_seat_pairs(kinds, start_s, end_s, flags, contacts)
-            if tug_like(a[i], b[i], a[j], b[j], contacts, length_m, heading_rad)]
+            if tug_like(a[i], b[i], a[j], b[j], contacts, length_m, heading_rad, path_s=path_s, turns=turns)]
 
 
 def chair_walks_note(tr: pd.DataFrame, pairs: list[tuple[int, int]]) -> str:
     """Decision W445: ``tug_time_note`` when every seat-to-seat walk is a chair-to-chair walk (no TUG trial)."""
     rises = ", ".join(f"{float(tr['start_s'].iloc[i]):.1f}" for i, _ in pairs)
     return (f"no TUG time: {len(pairs)} chair-to-chair walk(s) (rises at {rises} s) do not look like a TUG (longer "
-            f"than {TUG_MAX_S:g} s, or not back to the chair it rose from): daily walks, not timed (W445)")
+            f"than {TUG_MAX_S:g} s, not back to the chair it rose from, no about-turn first, or a walk out or back "
+            f"over {TUG_LEG_MAX_M:g} m): daily walks, not timed (W445, W490)")
 
 
 def trials_note(tr: pd.DataFrame, trials: list[tuple[int, int]]) -> str:

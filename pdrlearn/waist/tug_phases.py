@@ -65,15 +65,17 @@ def yaw_turn_to_sit(yaw_turns, after_s: float, before_s: float, min_deg: float |
 
 
 def tug_phases(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None, yaw_turns=None,
-               yaw_to_sit: bool = True) -> dict | None:
+               yaw_to_sit: bool = True, *, walk: pd.DataFrame | None = None) -> dict | None:
     """Decision W293: ``{phase: {start_s, end_s, duration_s} or None}`` for each of :data:`TUG_PHASES` of a track's
     transfers (a transfers.csv table or its records), ``turns`` (turns.csv) and ``steps`` (the walking contacts,
     ``start_s``); None when the track has no TUG time (W183's :func:`~pdrlearn.waist.transfers.transfer_summary`).
     Decision W307: with ``yaw_to_sit`` (True: W308 adopted it; decision W467) and one turns.csv turn in the TUG, the
-    turn-to-sit is :func:`yaw_turn_to_sit` of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``)."""
+    turn-to-sit is :func:`yaw_turn_to_sit` of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``).
+    Decisions W490 / L614: the TUG time is judged with ``turns`` and ``walk`` (a two-unit foot track's strides) as
+    :func:`~pdrlearn.waist.transfers.transfer_summary` judges it."""
     from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT, transfer_summary
 
-    if transfers is None or transfer_summary(transfers, steps)["tug_time_s"] is None:
+    if transfers is None or transfer_summary(transfers, steps, turns=turns, walk=walk)["tug_time_s"] is None:
         return None
     tr = _table(transfers)
     rise = tr[tr["kind"] == SIT_TO_STAND].iloc[0]  # W183: exactly one rise, then one sit
@@ -92,9 +94,9 @@ def _table(transfers) -> pd.DataFrame:
 def _turns_inside(turns: pd.DataFrame | None, up: float, down: float) -> pd.DataFrame:
     """Decision W293: the turns.csv rows whose midpoint lies between ``up`` (the rise's end) and ``down`` (the sit's
     start), by start time."""
-    tt = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s"])
-    mid = 0.5 * (tt["start_s"].to_numpy(float) + tt["end_s"].to_numpy(float))
-    return tt[(mid > up) & (mid < down)].sort_values("start_s")
+    from pdrlearn.waist.transfers import turns_inside
+
+    return turns_inside(turns, up, down)
 
 
 def segment_phases(rise, sit, turns: pd.DataFrame | None, steps: pd.DataFrame | None, yaw_turns=None,
@@ -137,7 +139,8 @@ def tug_trial_table(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame |
         tr = _table(transfers)
         contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
         for k, (i, j) in enumerate(tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]),
-                                                   contacts, **contact_path(steps))):  # W325, W445
+                                                   contacts, **contact_path(steps, foot),
+                                                   turns=turns)):  # W325, W445, W490, L614
             rise, sit = tr.iloc[i], tr.iloc[j]
             t0, t1 = float(rise["start_s"]), float(sit["end_s"])
             phases = tug_phase_summary(segment_phases(rise, sit, turns, steps, yaw_turns, yaw_to_sit))
