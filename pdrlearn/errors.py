@@ -119,6 +119,31 @@ def output_error(exc: OSError, out: object) -> OutputError | None:
     return OutputError(f"{out}: {what}; {fix} (decision B151)")
 
 
+def os_error_line(exc: OSError, out: object = None) -> str | None:
+    """Decision E276: the one ``error:`` line of an ``OSError`` that stopped a command (the full CLI's and the lean
+    command's, one mechanism): an output the system refuses (B151's line, naming the file, else ``out``, else
+    "output"), or another error naming its file; ``None`` when it names no file (a programming error: re-raise)."""
+    err = output_error(exc, exc.filename or out or "output")
+    if err is not None:
+        return str(err)
+    if exc.filename is None or exc.strerror is None:
+        return None
+    return f"{exc.filename}: {exc.strerror}; choose another output location or fix its permissions"
+
+
+#: decision B440: the exit code of a command that ran out of memory (0-4, 130 and 143 say other things; README's
+#: "Batch use and exit codes")
+OUT_OF_MEMORY_EXIT = 5
+
+
+def out_of_memory_line(command: str) -> str:
+    """Decision B440: the one line of a command stopped by ``MemoryError`` (trial T2 F4: a 25-77-line traceback): what
+    a long recording needs and the two ways out (decision E195's 0.3-0.4 GB per recorded hour)."""
+    return (f"out of memory in {command}, nothing written; a whole recording is held in memory (about 0.3-0.4 GB per "
+            "recorded hour at 100 Hz, decision E195): cut it into parts with `pdrlearn split`, or replay it in "
+            "chunks through the streaming runtime (pdrlearn.runtime.Tracker, docs/deploying.md) (decision B440)")
+
+
 class NotASessionError(DataError, TypeError):
     """A public entry point was given something other than a session (decision B51): a dict, a DataFrame ..."""
 
