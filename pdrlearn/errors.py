@@ -136,6 +136,13 @@ def os_error_line(exc: OSError, out: object = None) -> str | None:
 OUT_OF_MEMORY_EXIT = 5
 
 
+def out_of_memory(exc: BaseException) -> bool:
+    """Decision B440: ``exc`` says the process ran out of memory: a ``MemoryError`` (numpy's ``_ArrayMemoryError`` is
+    one), or an ``OSError`` ENOMEM (pandas' CSV parser maps the file: ``mmap`` "Cannot allocate memory", seen in
+    ``pdrlearn run`` of a 2 h recording under ``ulimit -v 700000``)."""
+    return isinstance(exc, MemoryError) or (isinstance(exc, OSError) and exc.errno == _errno.ENOMEM)
+
+
 def out_of_memory_line(command: str) -> str:
     """Decision B440: the one line of a command stopped by ``MemoryError`` (trial T2 F4: a 25-77-line traceback): what
     a long recording needs and the two ways out (decision E195's 0.3-0.4 GB per recorded hour)."""

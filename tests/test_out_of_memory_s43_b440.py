@@ -63,3 +63,24 @@ def test_the_lean_command_out_of_memory_in_the_replay_or_the_writing_leaves_noth
     monkeypatch.setattr(lean, "replay", _no_memory)
     assert lean.main([str(SHIPPED), str(walk), "--json"]) == 5
     _one_line(capsys, "python -m pdrlearn.runtime")
+
+
+def test_an_mmap_enomem_is_out_of_memory_too(walk, tmp_path, monkeypatch, capsys):
+    """pandas' CSV parser maps the file: `pdrlearn run` of a 2 h day under `ulimit -v 700000` ended in
+    `OSError: [Errno 12] Cannot allocate memory` from mmap, a 50-line traceback."""
+    import errno
+
+    import pdrlearn.io as io
+    import pdrlearn.runtime.__main__ as lean
+    from pdrlearn.cli import main
+
+    def enomem(*_a, **_k):
+        raise OSError(errno.ENOMEM, "Cannot allocate memory")
+
+    monkeypatch.setattr(io, "read_session", enomem)
+    assert main(["run", "--no-plot", str(SHIPPED), str(walk), "--out", str(tmp_path / "r")]) == 5
+    _one_line(capsys, "pdrlearn run")
+    monkeypatch.setattr(lean, "replay", enomem)
+    assert lean.main([str(SHIPPED), str(walk), "--out", str(tmp_path / "x")]) == 5
+    _one_line(capsys, "python -m pdrlearn.runtime")
+    assert list(tmp_path.iterdir()) == []

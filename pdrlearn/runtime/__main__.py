@@ -158,7 +158,7 @@ def _replay_and_write(args) -> dict:
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     from pdrlearn.atomic import checked_outputs
-    from pdrlearn.errors import OUT_OF_MEMORY_EXIT, os_error_line, out_of_memory_line
+    from pdrlearn.errors import OUT_OF_MEMORY_EXIT, os_error_line, out_of_memory, out_of_memory_line
 
     handler = logging.StreamHandler(sys.stderr)
     handler.setFormatter(logging.Formatter("warning: %(message)s"))
@@ -170,15 +170,15 @@ def main(argv: list[str] | None = None) -> int:
     except PdrlearnError as exc:
         print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
         return exc.exit_code
-    except OSError as exc:  # decision E276: an output the system refuses (disk full ...): one line, nothing written
+    except (OSError, MemoryError) as exc:  # decision E276: an output the system refuses (disk full ...): one line
+        if out_of_memory(exc):  # decision B440, as pdrlearn's
+            print(f"error: {out_of_memory_line(PROG)}", file=sys.stderr)
+            return OUT_OF_MEMORY_EXIT
         line = os_error_line(exc, args.out)
         if line is None:
             raise
         print(f"error: {line}", file=sys.stderr)
         return 2
-    except MemoryError:  # decision B440, as pdrlearn's
-        print(f"error: {out_of_memory_line(PROG)}", file=sys.stderr)
-        return OUT_OF_MEMORY_EXIT
     finally:
         logging.getLogger("pdrlearn").removeHandler(handler)
     if args.json:
