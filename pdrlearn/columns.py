@@ -146,6 +146,24 @@ SESSIONS: tuple[Column, ...] = (
     ("bout_distance_error_median_signed_pct", "%", "number", "lower back: median of the signed per-bout errors, "
                                                              "100 x (tracked - reference) / reference (L251)"),
     ("bout_reference_strides_m", "m", "number", "lower back: reference stride lengths summed over the bouts"),
+    # decision W493: WB detection and per-WB DMOs against the reference WBs (wb_scores.csv; mobgap's matching)
+    ("wb_overlap_threshold", "fraction", "number", "W493: the overlap (of both the WB's and the bout's duration) a "
+                                                   "detected bout needs to match a reference WB (mobgap's "
+                                                   "categorize_intervals, 0.8); empty without reference WBs"),
+    ("n_wb_reference", "count", "integer", "W493: reference walking bouts (bouts.csv level wb) = n_wb_tp + n_wb_fn"),
+    ("n_wb_tp", "count", "integer", "W493: reference WBs matched by a detected bout (bouts.csv, under the track's "
+                                    "bout rule)"),
+    ("n_wb_fp", "count", "integer", "W493: detected bouts matched to no reference WB"),
+    ("n_wb_fn", "count", "integer", "W493: reference WBs matched by no detected bout"),
+    ("wb_precision", "fraction", "number", "W493: n_wb_tp / (n_wb_tp + n_wb_fp); empty without a detected bout"),
+    ("wb_recall", "fraction", "number", "W493: n_wb_tp / n_wb_reference"),
+    ("wb_f1", "fraction", "number", "W493: harmonic mean of wb_precision and wb_recall"),
+    *((f"wb_{name}_error_median{sign}_pct", "%", "number",
+       f"W493: median over the matched WBs of the {'signed' if sign else 'absolute'} relative {what} error, 100 x "
+       f"(bout - reference) / reference ({'a bias' if sign else 'unsigned'}; wb_scores.csv's {name}_error_pct, "
+       "mobgap's rel_error); empty without a matched WB")
+      for name, what in (("cadence", "cadence"), ("stride_length", "stride length"), ("speed", "walking speed"))
+      for sign in ("", "_signed")),
     ("bout_distance_error_strides_median_pct", "%", "number", "lower back: median of |per-bout error| against "
                                                               "the summed reference strides (unsigned, L251)"),
     ("class_agreement_strides", "count", "integer", "tracked strides matched to a labelled one (L53)"),
@@ -1230,7 +1248,8 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("cadence_spm", "steps/min", "number", "60 x the bout's steps (both feet) / their summed step times (L539)"),
     ("headline_steps", _ID, "text", "gait_summary.json walk only: level (the measures above the pace are of the "
                                     "walk's level straight steps, gait_steps.csv kind level; under 10 a side: "
-                                    "their indices withheld, L461) or all (no level straight step on a side); a "
+                                    "their indices withheld, L461) or all (under 3 level straight steps on a side, "
+                                    "L608); a "
                                     "bout's measures take the walk's choice (L538)"),
     ("n_steps_all_left", "count", "integer", "gait_summary.json walk only: every step landing on the left foot, "
                                              "of any kind (L538)"),
@@ -1398,6 +1417,35 @@ RIDES: tuple[Column, ...] = (
                                         "track leaves out (a 35 deg escalator travels 18 % less); empty otherwise "
                                         "(L377)"),
     *_clocks("start_s", "end_s"),
+)
+
+#: decision W493: a track's wb_scores.csv (a session with reference walking bouts, bouts.csv level wb): one row per
+#: reference WB (tp / fn) and per detected bout matched to none (fp)
+_WB_DMO = {"cadence": ("spm", "steps/min", "cadence_spm"), "stride_length": ("m", "m", "avg_stride_length_m"),
+           "speed": ("mps", "m/s", "speed_mps")}
+WB_SCORES: tuple[Column, ...] = (
+    ("match", _ID, "text", "tp: the reference WB and a detected bout overlap by at least wb_overlap_threshold (0.8) "
+                           "of both their durations (mobgap's categorize_intervals); fn: a WB no bout matches; fp: a "
+                           "detected bout that matches no WB"),
+    ("ref_wb", "index", "integer", "the reference WB's wb_id (bouts.csv); empty on an fp row"),
+    ("ref_start_s", "s", "number", "the reference WB's start (its first contact), on the session's clock"),
+    ("ref_end_s", "s", "number", "the reference WB's end (its last contact)"),
+    ("bout", "index", "integer", "the detected bout (bouts.csv's bout) matched; on an fn row the one overlapping the "
+                                 "WB most (empty when none overlaps)"),
+    ("bout_start_s", "s", "number", "that bout's start_s (bouts.csv)"),
+    ("bout_end_s", "s", "number", "that bout's end_s"),
+    ("overlap_s", "s", "number", "the time the WB and the bout share"),
+    ("overlap_ref_frac", "fraction", "number", "overlap_s / the WB's duration"),
+    ("overlap_bout_frac", "fraction", "number", "overlap_s / the bout's duration"),
+    ("start_diff_s", "s", "number", "bout_start_s - ref_start_s: negative = the bout starts before the WB (W495)"),
+    ("end_diff_s", "s", "number", "bout_end_s - ref_end_s: positive = the bout ends after the WB (W495)"),
+    *(c for name, (u, unit, ref_col) in _WB_DMO.items() for c in (
+        (f"ref_{name}_{u}", unit, "number", f"the reference WB's {name.replace('_', ' ')} (bouts.csv {ref_col}: "
+                                            "INDIP's)"),
+        (f"{name}_{u}", unit, "number", f"the bout's {name.replace('_', ' ')} (bouts.csv "
+                                        f"{'stride_length_m' if name == 'stride_length' else ref_col})"),
+        (f"{name}_error_pct", "%", "number", f"100 x ({name}_{u} - ref_{name}_{u}) / ref_{name}_{u} (mobgap's "
+                                             "rel_error); summary.json's medians take the tp rows only"))),
 )
 
 
@@ -1643,7 +1691,7 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, TEN_M_WALK_TRIAL_TABLE,
-    FREEZES, FLIGHTS, RAMPS, RAMP_RUNS, STAIRS, CURBS, RIDES, WAIST_STEPS,
+    FREEZES, FLIGHTS, RAMPS, RAMP_RUNS, STAIRS, CURBS, RIDES, WB_SCORES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 

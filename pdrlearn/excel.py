@@ -20,6 +20,7 @@ import re
 import sys
 from pathlib import Path
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.textfile import read_text
 
@@ -97,7 +98,7 @@ def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else argv
     if len(args) != 2 or args[0].startswith("-"):
         print("usage: python -m pdrlearn.excel RESULTS_FOLDER EXCEL_FOLDER  (copies every CSV for a decimal-comma "
-              "Excel: ';', decimal commas, UTF-8 BOM; decision E178)", file=sys.stderr)
+              f"Excel: ';', decimal commas, UTF-8 BOM; {decision_ref('E178')})", file=sys.stderr)  # decision D49
         return 2
     skipped: list[Path] = []
     try:

@@ -24,6 +24,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "stairs.csv",  # L432
                                 "curbs.csv",  # L573
                                 "rides.csv",  # L377
+                                "wb_scores.csv",  # W493
                                 "steps.csv", "steps.csv (foot)",  # E137
                                 "trajectory.csv",  # B309
                                 "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv",  # L287

@@ -19,6 +19,8 @@ def test_a_zero_weight_vote_is_not_chosen_as_a_two_unit_model_and_its_weights_ar
     assert tm.one_unit_votes() == {("svm", "fused")}
     assert tm.chosen == ("svm", "foot")  # before: svm/fused, the foot model under a two-unit name
     assert training.best_pair([("svm", "fused"), ("nn", "combined")], tm.one_unit_votes()) == ("nn", "combined")
-    assert fused_weights_line(tm) == ("fused weights (foot/waist; decision C124): svm 1.00/0.00 (reads the foot only: "
+    # decision D49 (session 43): the code points to its file
+    assert fused_weights_line(tm) == ("fused weights (foot/waist; docs/decisions/classifiers.md C124): svm 1.00/0.00 "
+                                      "(reads the foot only: "
                                       "not a two-unit model for the choice)")
     assert chosen_reason(tm).startswith("chosen: svm/foot, the best balanced CV accuracy")

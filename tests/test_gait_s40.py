@@ -218,7 +218,8 @@ def test_l538_l539_l540_a_simulated_walk_with_stairs_and_a_turn(tmp_path, capsys
     print(out)
     summary = json.loads((tmp_path / "g" / "gait_summary.json").read_text())
     w, ref = summary["walk"], summary["reference"]
-    assert w["headline_steps"] == "level" and "by kind of step (L538):" in out and "  stairs up: steps" in out
+    assert w["headline_steps"] == "level" and "by kind of step (docs/decisions/localization.md L538):" in out
+    assert "  stairs up: steps" in out
     assert {"level", "stairs_up", "stairs_down"} <= set(summary["by_kind"])
     ics = pd.read_csv(feet["left"] / "ics.csv")
     truth = _true_step_si(ics)

@@ -128,8 +128,8 @@ def test_info_prints_the_frame_and_handedness_checks(capsys):
     out, err = capsys.readouterr()
     line = [ln for ln in out.splitlines() if ln.startswith("foot axes:")]
     assert len(line) == 1, out
-    assert "source_project frame" in line[0] and "not contradicted by the data (D10)" in line[0]
-    assert "handedness (D11): right-handed" in line[0] and "strides" in line[0]
+    assert "source_project frame" in line[0] and "not contradicted by the data (docs/decisions.md D10)" in line[0]
+    assert "handedness (docs/decisions.md D11): right-handed" in line[0] and "strides" in line[0]
     assert "warning" not in err
 
 

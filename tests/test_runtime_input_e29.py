@@ -264,7 +264,8 @@ def test_a_push_refused_for_its_rate_changes_nothing(root, walk):
 
 def test_one_sample_pushes_take_the_general_checks_when_not_plainly_finite(root, walk):
     """E17's one-sample path tests finiteness on the sum of the values: a NaN or inf anywhere is the one-line error,
-    and finite values whose sum overflows are taken (by the general path)."""
+    and finite values whose sum overflows take the general path (refused there by B435's range check since session
+    43: they are beyond any sensor's range)."""
     chunks = per_timestamp(walk)
     tr = Tracker(root / "bundle")
     for c in chunks[:100]:
@@ -276,5 +277,8 @@ def test_one_sample_pushes_take_the_general_checks_when_not_plainly_finite(root,
         with pytest.raises(DataError, match=r"^fAccelerometer: pushed samples contain NaN/inf"):
             tr.push({"fAccelerometer": (bad_t, bad_v)})
         assert _state(tr) == before
-    tr.push({"fAccelerometer": (t, np.array([[1e308, 1e308, 0.0]]))})
-    assert tr._buf["fAccelerometer"].last == float(t[0])
+    before = _state(tr)  # finite values whose sum overflows take the general path, which refuses them since B435
+    with pytest.raises(DataError, match=r"^fAccelerometer \(pushed to the Tracker\): 1 sample\(s\) with a value "
+                                        r"beyond any accelerometer's range"):
+        tr.push({"fAccelerometer": (t, np.array([[1e308, 1e308, 0.0]]))})
+    assert _state(tr) == before

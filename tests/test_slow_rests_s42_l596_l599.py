@@ -76,6 +76,6 @@ def _swinging_foot(period_s: float, fs: float = 100.0) -> np.ndarray:
 def test_a_rhythm_over_the_stride_cap_is_named_l599():
     from pdrlearn.track.foot_rest import slow_rhythm_line
 
-    line = slow_rhythm_line(_swinging_foot(4.0), 100.0)
+    line = slow_rhythm_line(FR.foot_period(_swinging_foot(4.0), 100.0))
     assert line and "take 4.0 s" in line and "about 30 steps/min" in line and "no cadence" in line
-    assert slow_rhythm_line(_swinging_foot(2.4), 100.0) is None
+    assert slow_rhythm_line(FR.foot_period(_swinging_foot(2.4), 100.0)) is None

@@ -26,7 +26,8 @@ def test_summary_info_leaves_out_the_listed_rows_and_nothing_else():
     # W182, W213, W222, L210, L377; W418: a two-unit track's waist contacts and turns; W417: flights.csv
     assert set(SUMMARY_INFO_LEFT_OUT) == {"transfers", "freezes", "flights", "postures", "yaw_turns", "rides",
                                           "rest_bias_rests",  # L306: the radius's clock, not a summary value
-                                          "trunk_contacts", "trunk_yaw_turns"}
+                                          "trunk_contacts", "trunk_yaw_turns",
+                                          "wb_scores"}  # W493: wb_scores.csv's rows
     assert summary_info({"aid": None}) == {"aid": None}
 
 

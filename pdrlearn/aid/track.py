@@ -14,6 +14,7 @@ from pdrlearn.aid.fixes import DEFAULT_RMC_ACCURACY_M, FixLog, read_fixes, to_lo
 from pdrlearn.aid.geo import enu_to_geodetic
 from pdrlearn.aid.gnss import GnssPdrFusion
 from pdrlearn.aid.sporadic import SporadicFixFusion
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels.fixes import FIX_TIME_HINT, initial_fix_sigma
@@ -264,12 +265,14 @@ def gnss_line(gnss: dict) -> str:
     why = [f"{gnss[key]} {phrase}" for key, phrase in UNUSED_FIX_PHRASES if gnss.get(key)]
     line = f"gnss: {gnss.get('fixes_used', 0)} of {total} fixes used" + (f" ({', '.join(why)})" if why else "")
     scale, cover = gnss.get("distance_scale"), gnss.get("distance_scale_cover_m")
+    d39, d45 = decision_ref("D39", topic="aided"), decision_ref("D45", topic="aided")  # decision D49
     if gnss.get("distance_scaled"):
-        return line + f", distance scaled by {scale:.4f} from the PDR's {gnss['distance_pdr_m']:.2f} m (D39, D45)"
+        return line + (f", distance scaled by {scale:.4f} from the PDR's {gnss['distance_pdr_m']:.2f} m "
+                       f"({decision_ref('D39', 'D45', topic='aided')})")
     if scale is None or cover is None or cover < MIN_SCALE_COVER_M:  # decision D39: too little cover for a scale
-        return line + (f", distance kept from the PDR (D39: the fixes' scale windows cover {cover or 0:g} m of the "
-                       f"{MIN_SCALE_COVER_M:g} m a scale needs)")
-    return line + f", distance kept from the PDR (D45: the scale {scale:.4f} is not more precise than it)"
+        return line + (f", distance kept from the PDR ({d39}: the fixes' scale windows cover {cover or 0:g} m of "
+                       f"the {MIN_SCALE_COVER_M:g} m a scale needs)")
+    return line + f", distance kept from the PDR ({d45}: the scale {scale:.4f} is not more precise than it)"
 
 
 def _steps_from_path(x: np.ndarray, y: np.ndarray, steps: pd.DataFrame) -> pd.DataFrame:

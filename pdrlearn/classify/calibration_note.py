@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.displace.calibration import MAX_DEVIATION
 
 
@@ -24,8 +25,8 @@ def sensor_suspects(sessions) -> list[str]:
             if st.gaps():
                 dropped.add(name)
         slow |= {u for u, r in unit_rates(s).items() if r < MIN_VALIDATED_RATE_HZ * 0.99}
-    named = (("clipped samples (B77, B311) in ", clipped), ("dropped samples in ", dropped),
-             ("a rate below 20 Hz (B23) for the ", slow))
+    named = ((f"clipped samples ({decision_ref('B77', 'B311')}) in ", clipped), ("dropped samples in ", dropped),
+             (f"a rate below 20 Hz ({decision_ref('B23')}) for the ", slow))  # decision D49: codes point to a file
     return [head + ", ".join(sorted(names)) for head, names in named if names]
 
 

@@ -30,6 +30,7 @@ from pathlib import Path
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.buildinfo import git_stamp
 from pdrlearn.errors import ModelError, shell_quote
+from pdrlearn.listed_files import climbs_out, linked_message, linked_outside
 from pdrlearn.textfile import read_json
 
 log = logging.getLogger(__name__)
@@ -280,12 +281,19 @@ def version_warning(path, manifest: dict) -> str | None:
 
 
 def verify_model_dir(path) -> dict:
-    """Validate a model directory without loading it: manifest schema, every listed file present and
-    unchanged (SHA-256). Returns the manifest; raises :class:`ModelError` (one line) otherwise."""
+    """Validate a model directory without loading it: manifest schema, every listed file inside the folder once its
+    links are followed (decision E269, E263's shared check), present and unchanged (SHA-256). Returns the manifest;
+    raises :class:`ModelError` (one line) otherwise."""
     path = Path(path)
     manifest = read_manifest(path)
     for rel, digest in manifest["files"].items():
         f = path / rel
+        if climbs_out(rel):  # decision E269: E263's rule for bundles (an absolute entry loaded a pickle anywhere)
+            raise ModelError(f"{path}: model file entry '{rel}' points outside the model folder; retrain the model "
+                             "(or restore its manifest.json)")
+        target = linked_outside(path, rel)  # decision E269: a link out would unpickle a file no one copied with it
+        if target is not None:
+            raise ModelError(f"{path}: model {linked_message(rel, target, 'model')}")
         if not f.is_file():
             raise ModelError(f"{path}: model file {rel} is missing; retrain the model")
         if _sha256(f) != digest:

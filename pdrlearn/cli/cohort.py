@@ -57,6 +57,7 @@ from pdrlearn.cohort import (
     split_part,
     user_sessions,
 )
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError, NoStridesError, shell_quote
 
 if TYPE_CHECKING:  # pandas is imported where it is used: `pdrlearn --version/--help` stay light (C14)
@@ -1216,7 +1217,7 @@ def track_all(
         print_json(rename_json(printed, names) if names else printed)  # decision C86
     else:
         typer.echo(f"track-all: {len(results) - len(failed) - len(skipped)}/{len(results)} sessions tracked"
-                   + (f", {len(skipped)} skipped (split parts at rest, decision B389)" if skipped else "")
+                   + (f", {len(skipped)} skipped (split parts at rest, {decision_ref('B389')})" if skipped else "")
                    + (f" ({len(reused)} reused from an earlier run, --resume)" if resume else "") + f"; wrote {out}/"
                    "<session>/, sessions.csv, groups.csv, bouts.csv, strides.csv, ramps.csv, "
                    + ("periods.csv, " if settings.get("per_s") is not None else "")

@@ -8,6 +8,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import DPI_HELP, FORCE_HELP, console, existed, json_safe, out_file, print_json, replaced
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.textfile import read_json
 
 
@@ -84,7 +85,8 @@ def info(
     for p, chk in summary["frame_checks"].items():
         frame = json.dumps(chk["frame"]) if chk["frame"] else "none"
         # decision D22: "not contradicted" only when the check ran; a refusal and an unchecked frame in words
-        check = {"ok": "not contradicted by the data (D10)", "warned": "see the warning",
+        check = {"ok": f"not contradicted by the data ({decision_ref('D10', topic='data-model')})",  # D49
+                 "warned": "see the warning",
                  "refused": f"refused by the commands that need it: {chk['check']}"}.get(chk["status"], chk["check"])
         h = chk["handedness"]
         # frame_checks lists only units with both sensors: no result = too short or non-finite data
@@ -99,16 +101,16 @@ def info(
                if h.get("turn_axis") and h["turn_axis"]["turn_windows"] else "") + ")")
         # no frame: "foot axes: no frame declared or inferred (...)", not "none frame none" (trial 2, finding 10)
         axes = f"{chk['source']} frame {frame}, {check}" if chk["frame"] else f"no frame declared or inferred ({check})"
-        c.print(f"{p} axes: {axes}; handedness (D11): {hand}", markup=False)
+        c.print(f"{p} axes: {axes}; handedness ({decision_ref('D11', topic='data-model')}): {hand}", markup=False)
     rests = summary["foot_rests"]
     if rests:
         g = rests["rest_acc_g"]
         c.print("foot rests: " + (f"|acc| {g:.3f} g at the detected foot-flats" if g is not None else
                                   "too few foot-flat samples for an |acc|")
                 + f" ({100 * rests['rest_fraction']:.0f} % of the samples; at rest an accelerometer reads 1 g, so "
-                "the difference is its scale error, decision B133); swing "
+                f"the difference is its scale error, {decision_ref('B133')}); swing "
                 f"{rests['swing_rad_s'] * 57.29577951308232:.0f} deg/s (99th percentile of |gyro|, largest 10 s "
-                "block, B91, B253)", markup=False)
+                f"block, {decision_ref('B91', 'B253')})", markup=False)  # decision D49
     if summary.get("waist_leg_length"):  # decision B155
         c.print(f"waist step length: {summary['waist_leg_length']}", markup=False)
     c.print(f"labels: {json.dumps(json_safe(summary['labels']))}", markup=False)  # JSON, like the frames line

@@ -33,6 +33,7 @@ from pdrlearn.cli.common import (
     write_table_csv,
 )
 from pdrlearn.cli.gaplines import GapLines
+from pdrlearn.decision_refs import decision_ref
 
 
 def export(
@@ -127,7 +128,8 @@ def export(
                    + ", ".join(f"{m}/{u}" for m, us in v["methods"].items() for u in us) + ")")
     for s in summary["skipped"]:
         typer.echo(f"  skipped: {s}")
-    typer.echo("files (flash; parameters and multiply-accumulates per step of each ONNX graph, decision E219):")
+    typer.echo("files (flash; parameters and multiply-accumulates per step of each ONNX graph, "
+               f"{decision_ref('E219')}):")  # decision D49
     for line in sizes_lines(summary["model_sizes"]):
         typer.echo(line)
 

@@ -9,6 +9,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import FORCE_HELP
+from pdrlearn.decision_refs import decision_ref
 
 #: the files ``gait --out`` writes (decision L260); the output-folder kind ``gait`` is recognised by them
 GAIT_FILES = ("gait_summary.json", "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
@@ -20,10 +21,11 @@ def _fmt(v, spec: str) -> str:
     return "-" if v is None else format(v, spec)
 
 
-def gait_lines(summary: dict) -> list[str]:
-    """The printed lines of one :func:`pdrlearn.track.bilateral.bilateral_gait` measures dict (``walk``)."""
+def gait_lines(summary: dict, by_kind: dict | None = None) -> list[str]:
+    """The printed lines of one :func:`pdrlearn.track.bilateral.bilateral_gait` measures dict (``walk``); its
+    ``by_kind`` names the level steps' counts when the headline took all steps (decision L608)."""
     w = summary
-    lines = [f"steps left/right {w['n_steps_left']}/{w['n_steps_right']}{_basis(w)}: step time "
+    lines = [f"steps left/right {w['n_steps_left']}/{w['n_steps_right']}{_basis(w, by_kind)}: step time "
              f"{_fmt(w['step_time_s_left'], '.3f')} / {_fmt(w['step_time_s_right'], '.3f')} s, symmetry index "
              f"{_fmt(w['step_time_s_si_pct'], '.1f')} %, ratio L/R {_fmt(w['step_time_s_ratio'], '.3f')}",
              f"stride length left/right {_fmt(w['stride_length_m_left'], '.3f')} / "
@@ -60,13 +62,18 @@ def gait_lines(summary: dict) -> list[str]:
     return lines
 
 
-def _basis(w: dict) -> str:
-    """Decision L538: what the headline's steps are, after the counts."""
+def _basis(w: dict, by_kind: dict | None = None) -> str:
+    """Decisions L538, L608: what the headline's steps are, after the counts; with all steps, how many level
+    straight steps each side had (``by_kind["level"]``, none without)."""
     if w.get("headline_steps") == "level":
         return (f" (level straight steps, of {w['n_steps_all_left']}/{w['n_steps_all_right']}: no stairs, turns, "
                 "starts or stops; L538)")
     if w.get("headline_steps") == "all":
-        return " (all steps: no level straight step on a side; L538)"
+        from pdrlearn.track.bilateral import HEADLINE_MIN_LEVEL_STEPS
+
+        level = (by_kind or {}).get("level") or {}
+        return (f" (all steps: {level.get('n_steps_left', 0)}/{level.get('n_steps_right', 0)} level straight "
+                f"steps, under {HEADLINE_MIN_LEVEL_STEPS} a side; L538, L608)")
     return ""
 
 
@@ -195,10 +202,10 @@ def register(app: typer.Typer) -> None:
         aligned = alignment_line(res["clock_alignment"])  # decision L537
         if aligned is not None:
             typer.echo(aligned)
-        for line in gait_lines(res["walk"]):
+        for line in gait_lines(res["walk"], res["by_kind"]):
             typer.echo(line)
         if len(res["by_kind"]) > 1:  # decision L538: a walk of one kind has its rows in the headline
-            typer.echo("by kind of step (L538):")
+            typer.echo(f"by kind of step ({decision_ref('L538')}):")  # decision D49
             for line in kind_lines(res["by_kind"]):
                 typer.echo("  " + line)
         for line in stair_lines(res["stairs"]):  # decision L561
@@ -208,7 +215,7 @@ def register(app: typer.Typer) -> None:
         ref = res.get("reference")
         if ref is not None:
             typer.echo("reference (the sessions' labelled contacts):")
-            for line in gait_lines(ref["walk"]):
+            for line in gait_lines(ref["walk"], ref["by_kind"]):
                 typer.echo("  " + line)
             if len(ref["by_kind"]) > 1:  # decision L538
                 for line in kind_lines(ref["by_kind"]):

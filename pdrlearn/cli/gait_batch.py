@@ -13,6 +13,8 @@ from pathlib import Path
 
 import typer
 
+from pdrlearn.decision_refs import decision_ref
+
 #: the numeric libraries of a pair's tracking, loaded before each job's one-thread limit (as track-all's)
 PAIR_LIBRARIES = ("scipy.linalg", "scipy.signal")
 
@@ -184,5 +186,6 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
     n_ok = sum(r["status"] == "ok" for r in rows)
     typer.echo(f"{n_ok} of {len(pairs)} visit folder(s) paired"
                + (f" ({len(reuse)} reused from an earlier run, --resume)" if resume else "")
-               + f"; wrote {out}/" + ", ".join(GAIT_ALL_FILES) + " and each pair's PATH/gait_summary.json (W437)")
+               + f"; wrote {out}/" + ", ".join(GAIT_ALL_FILES)
+               + f" and each pair's PATH/gait_summary.json ({decision_ref('W437')})")  # decision D49
     return 0 if all(r["status"] != "failed" for r in rows) else 1

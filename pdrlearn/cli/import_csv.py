@@ -9,6 +9,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import non_session_files, print_json, split_list
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError, shell_quote
 from pdrlearn.textfile import read_json
 
@@ -353,7 +354,7 @@ def import_command(
         _say(record, session, out, merge, existed)
         if split_at_clock_reset:
             typer.echo(f"note: {csv}: no clock reset found, so nothing to split: one session written to {out} "
-                       "(B80)", err=True)
+                       f"({decision_ref('B80')})", err=True)  # decision D49
     else:
         print_json({"out": str(out), "merged": merge, "imported": record,
                     "frames": {p: f.to_dict() for p, f in session.frames.items()}})

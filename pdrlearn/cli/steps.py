@@ -9,6 +9,7 @@ import typer
 
 from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_file, print_json, replaced, warn_gaps
 from pdrlearn.cli.registry_help import DETECTOR_NAMES
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 
 #: decision steps 38: warn when more than this fraction of the foot's rest-to-rest strides were merged into a
@@ -233,9 +234,11 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
 
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, range_line)
     if unit == "waist" and name != "pelvic-gyro" and len(table) >= 2:  # decision W476: W442's count cross-check
+        from pdrlearn.waist.pelvic_rhythm import read_once
         from pdrlearn.waist.plausibility import step_counts, uncountable_steps_line
 
-        line = uncountable_steps_line(step_counts(session, table["event_s"].to_numpy(float)), name)
+        gyro_s = read_once(detector, session)  # decision W485: the ones --detector pll read for its band, if it did
+        line = uncountable_steps_line(step_counts(session, table["event_s"].to_numpy(float), gyro_s=gyro_s), name)
         if line:
             import logging
 
@@ -317,7 +320,7 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
                  else "from the session's first sample (add it back, or pass --time-origin export)")
         files = f"{out} and {events_out}" if events_out is not None else str(out)
         typer.echo(f"note: {files}: times in s {clock}; the session's 0 s is {origin:.3f} s on the imported "
-                   "export's clock (decision E173)", err=True)
+                   f"export's clock ({decision_ref('E173')})", err=True)  # decision D49
     for path in (events_out, out):
         if path is not None:
             typer.echo(str(path))

@@ -222,7 +222,9 @@ BOUT_RULE_OPT = typer.Option(None, "--bout-rule", help="Walking bouts (OUT/bouts
                               "(default: a pause of --bout-break-s beyond the walker's rhythm, a turn across it "
                               "taking its time first) or mobgap (Mobilise-D's rule as mobgap implements it: a new "
                               "bout when two contacts are more than 3 s apart, at least 4 strides; --bout-break-s "
-                              "and --bout-min-strides override its numbers).")
+                              "and --bout-min-strides override its numbers) or mobgap-indip (mobgap's bouts, each "
+                              "lower-back bout from its second contact to its last-but-one, nearer INDIP's WB "
+                              "edges; decision W495).")
 BOUT_BREAK_OPT = typer.Option(None, "--bout-break-s", help="Walking bouts (OUT/bouts.csv, decision L124): a pause "
                                "of at least S seconds beyond the walker's rhythm ends a bout (with --bout-rule "
                                "mobgap: a contact gap over S s). Default 1 (L104); 3 with --bout-rule mobgap. "
@@ -1346,6 +1348,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'freezes.csv, ' if summary.get('n_freezes') is not None else ''}"
                f"{'flights.csv, ' if (out / 'flights.csv').is_file() else ''}"
                f"{'rides.csv, ' if summary.get('n_rides') is not None else ''}"
+               f"{'wb_scores.csv, ' if summary.get('n_wb_reference') is not None else ''}"  # decision W493
                f"{'laps.csv, ' if summary.get('corridor_m') is not None else ''}"
                f"{'splits.csv, ' if summary.get('splits_m') else ''}"
                f"{'direction_changes.csv, ' if summary.get('direction_changes') is not None else ''}"

@@ -32,6 +32,7 @@ from pdrlearn.cli.common import (
     split_length_units,
     train_resample_option,
 )
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError, shell_quote
 from pdrlearn.session_dirs import find_session_dirs, read_session_dirs
 
@@ -213,7 +214,7 @@ def train(
         users = model.data_summary.get("users") or []
         pooled = f", pooled over {len(users)} users" if len(users) > 1 else ""  # decision C35
         c.print(f"distance calibration: gain {cal['gain']:.4f} from {cal['n_strides']} straight level strides"
-                f"{pooled} (decision L26; offline M3 applies it){_streamed_gain(cal)}")
+                f"{pooled} ({decision_ref('L26')}; offline M3 applies it){_streamed_gain(cal)}")  # decision D49
     c.print(f"step windows: {model.boundaries} boundaries")
     if summary["params"]:  # decision C96
         c.print("hyperparameters: " + ", ".join(f"{m}.{n}={v}" for m, names in summary["params"].items()
@@ -226,7 +227,7 @@ def train(
 #: how the train table's spread columns are computed (decision C41), printed under each table
 SPREAD_NOTE = ("all, balanced: pooled over the steps; folds: mean±sd of the folds' accuracies; 95 % CI: exact "
                "binomial (Clopper-Pearson) interval of 'all' over the pooled steps (optimistic: steps of one walk "
-               "are not independent; decisions C41, C58)")
+               f"are not independent; {decision_ref('C41', 'C58', topic='classifiers')})")  # decision D49
 
 
 def louo_line(r: dict) -> str | None:
@@ -255,7 +256,8 @@ def fused_weights_line(tm) -> str | None:
             other = "waist" if zero == "foot" else "foot"
             parts.append(f"{m} {w['foot']:.2f}/{w['waist']:.2f}"
                          + (f" (reads the {other} only: not a two-unit model for the choice)" if zero else ""))
-    return ("fused weights (foot/waist; decision C124): " + ", ".join(parts)) if parts else None
+    return (f"fused weights (foot/waist; {decision_ref('C124', topic='classifiers')}): "  # decision D49
+            + ", ".join(parts)) if parts else None
 
 
 def chosen_reason(tm) -> str:
@@ -275,7 +277,7 @@ def chosen_reason(tm) -> str:
         above.append(f"{mm}/{uu} {100 * (tm.cv[mm][uu]['balanced_accuracy'] or 0.0):.1f} %"
                      + (" (a unit weight 0)" if (mm, uu) in one else ""))
     why = (f"chosen: {m}/{u}, the best balanced CV accuracy ({100 * bal:.1f} %) among the models reading both "
-           "units (fused, combined; decision C8)")
+           f"units (fused, combined; {decision_ref('C8', topic='classifiers')})")  # decision D49
     if above:
         why += f"; ranked higher but reading one unit: {', '.join(above)}"
     return why
@@ -288,8 +290,8 @@ def _streamed_gain(cal: dict) -> str:
         return ""
     if st.get("reason"):
         return f"; streamed: gain 1 ({st['reason']})"
-    return (f"; streamed: gain {st['gain']:.4f} from {st['n_strides']} strides (L41; track --streaming and the "
-            "runtime apply it)")
+    return (f"; streamed: gain {st['gain']:.4f} from {st['n_strides']} strides ({decision_ref('L41')}; track "
+            "--streaming and the runtime apply it)")  # decision D49
 
 
 def evaluate(

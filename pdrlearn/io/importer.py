@@ -58,6 +58,7 @@ from pdrlearn.io.validate import (
 from pdrlearn.kernels.clock import RETIME_RATE_TOL, retimed
 from pdrlearn.kernels.counter_wrap import counter_wraps, unwrap, wrap_message
 from pdrlearn.kernels.frames import axes_dict
+from pdrlearn.kernels.units import out_of_range, out_of_range_message
 
 log = logging.getLogger(__name__)
 
@@ -883,6 +884,22 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     return _import_parts(kw.pop("path"), False, **kw)[0]
 
 
+def _refuse_out_of_range(spec, raw: np.ndarray, rows: np.ndarray, t: np.ndarray, factor: float, cols: list[str],
+                         unit: str, where: str, lines: np.ndarray, declare: str | None) -> None:
+    """Decision B436: B425's one line for an export's rows (``raw``, as written) with a value beyond any sensor's
+    range once converted (``factor``), naming the export, the file line (``lines``: each row's) and the export's own
+    column. The unit checks (``declare``: the import's unit option) first, as B425's reader does, so that a whole
+    column in another unit keeps its unit line (its corrupt rows' squares may overflow there, silently); none with
+    ``--add-gravity`` (``declare`` None: its acceleration has no gravity yet, B166)."""
+    if declare is not None:
+        with np.errstate(over="ignore", invalid="ignore"):
+            check_units(spec, raw * factor, f"{where} ({', '.join(cols)} as {unit})", declare=declare, t=t,
+                        factor=factor)
+    r = int(rows[0])
+    raise DataError(out_of_range_message(where, spec, raw, rows, factor, first_line=int(lines[r]) - r,
+                                         columns=tuple(cols)) + "; nothing written")
+
+
 def import_csv_parts(path: str | os.PathLike, **kwargs) -> list[tuple[Session, dict]]:
     """Decision B80 (``pdrlearn import --split-at-clock-reset``): :func:`import_csv` (the same keywords but
     ``origin_s``) cut at the export's clock resets (decision B73's :func:`~pdrlearn.io.validate.clock_resets`),
@@ -1238,7 +1255,14 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                              "on import (decision B383)")
             _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where, inertial=kind in _INERTIAL)
             sign = signs.get(kind, np.ones(len(cols)))
-            values = vals[keep] * factor * sign
+            corrupt = out_of_range(SENSORS[sensor].kind, vals[keep], factor)  # decision B436: B425's range check
+            with np.errstate(over="ignore"):  # a corrupt 1e308 times its unit's factor (B436 refuses it below)
+                values = vals[keep] * factor * sign
+            opt = _UNIT_OPTION.get(kind) or _FORCE_UNIT_OPTION.get(kind, "--mapping units")
+            declare = f"give the unit with {opt} ({' | '.join(UNITS[kind])})"
+            if corrupt.size:  # decision B436: refused here, before anything is written (the next read refused it)
+                _refuse_out_of_range(SENSORS[sensor], vals[keep], corrupt, t, factor, cols, u, where,
+                                     np.flatnonzero(keep) + first_line, None if add_gravity else declare)
             if kind == "acc" and add_gravity is not None:  # decision B166
                 if gravity_removed(values, where, t) is None:
                     med = float(np.median(np.linalg.norm(values, axis=1)))
@@ -1252,10 +1276,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"import: --add-gravity adds gravity to the accelerometer columns, and {where} has "
                                 "none mapped; map them with --acc X,Y,Z (decision B166)")
             stream = Stream(sensor, t, values)
-            opt = _UNIT_OPTION.get(kind) or _FORCE_UNIT_OPTION.get(kind, "--mapping units")
             try:
                 check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
-                            declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})", t=t, factor=factor)
+                            declare=declare, t=t, factor=factor)
             except DataError as exc:
                 removed = gravity_removed(stream.values, where, t) if kind == "acc" else None
                 if removed is not None:  # decision B164: name the phone files that hold gravity

@@ -436,7 +436,8 @@ def _read_raw(path: str | os.PathLike, name: str | None = None, *,
         log.warning("%s: the last line (line %d) has no line break at the end, as a row cut when a battery died: "
                     "dropped (--drop-partial-row, decision B266)", path, len(df) + 2)
     _refuse_datetimes(df["timestamp"], path)
-    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=cut, command=command)
+    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=cut, command=command,
+                               row_line=lambda row: _row_line(path, int(row)))  # decision B437: the real line
 
 
 #: decision B426: the most columns a sensor file's header may name. A sensor file needs 2 or 4 (``timestamp,x,y,z``,

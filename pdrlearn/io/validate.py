@@ -59,21 +59,24 @@ def check_columns(df: pd.DataFrame, required: tuple[str, ...], where: str) -> No
 
 
 def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str, *, cut_mid_line: bool = False,
-                  command: str | None = None) -> np.ndarray:
+                  command: str | None = None, row_line=None) -> np.ndarray:
     """Return ``df[columns]`` as float64, failing on non-numeric, NaN or infinite values. ``cut_mid_line``: the
     file does not end with a line break (decision B128): a bad last row is then said to be a line cut short, its
-    ``--drop-partial-row`` fix naming ``command`` (decision B279; ``pdrlearn track FOLDER`` when None)."""
+    ``--drop-partial-row`` fix naming ``command`` (decision B279; ``pdrlearn track FOLDER`` when None).
+    ``row_line``: the file line of a data row (decision B437: a sensor file's, counted by B433's
+    ``data_row_lines`` after a ``sep=`` line and blank lines, read only when refusing); one header line else."""
     out = df.loc[:, list(columns)].apply(pd.to_numeric, errors="coerce")
     arr = out.to_numpy(dtype=np.float64)
     bad = ~np.isfinite(arr)
     if bad.any():
         rows = np.flatnonzero(bad.any(axis=1))
+        line = row_line or (lambda row: row + 2)
         if cut_mid_line and rows[-1] == len(df) - 1:  # decision B128: a copy cut mid-line, not a bad value
-            others = f" (and {len(rows) - 1} other row(s) with bad values, first at line {rows[0] + 2})" \
+            others = f" (and {len(rows) - 1} other row(s) with bad values, first at line {line(rows[0])})" \
                 if len(rows) > 1 else ""
-            raise DataError(truncated_line_message(where, len(df) + 1, others, command=command))
+            raise DataError(truncated_line_message(where, line(len(df) - 1), others, command=command))
         raise DataError(
-            f"{where}: {len(rows)} row(s) with non-numeric, NaN or infinite values (first at line {rows[0] + 2}); "
+            f"{where}: {len(rows)} row(s) with non-numeric, NaN or infinite values (first at line {line(rows[0])}); "
             "remove or repair those rows"
         )
     return arr

@@ -32,6 +32,14 @@ TOUCH_S = 1e-6
 #: default (duration <= 3 s, pdrlearn.waist.gait_rules.MAX_STRIDE_S); also the longest rest inside a walk
 #: (mobgap WbAssembly MaxBreakCriteria(max_break_s=3)) for ``walking_time_s`` (decisions L79, L80)
 MAX_STRIDE_S = 3.0
+#: decision L605: a foot's stride cap is at least this many of its own stride periods (a stride time may hold half
+#: a stride more than the walker's rhythm, a short stop, before it is a stop); at a normal period (<= 1.45 s) it
+#: stays under :data:`MAX_STRIDE_S`, so L80's 3 s holds there
+RHYTHM_CAP_PERIODS = 1.5
+#: decision L605: ... only when the foot's strides (their median rest-to-rest window) fill at least this fraction of
+#: the period: shorter strides are normal strides with stands between them, whose walk-and-stand cycle is no stride
+#: (an order picker's 1.4 s strides in a 3.42 s cycle: 0.41; slow continuous walks 0.70-0.88)
+RHYTHM_CAP_MIN_FILL = 0.5
 #: steps decision 32: the foot contacts' times between the samples (the impact peak's parabola, the force crossing's
 #: line) when True; whole samples when False. The detectors' ``subsample=None`` and the streamed contacts read it
 SUBSAMPLE = True
@@ -139,6 +147,17 @@ def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_f
     tp = peak_time(*(float(v) for v in (*t[i - 1:i + 2], *e[i - 1:i + 2]))) if SUBSAMPLE else float(t[i])
     ic = tp - group_delay_s(b, a, fs)
     return ic if ic >= t[0] else math.nan
+
+
+def stride_cap_s(period_s: float, window_s: float) -> float:
+    """Decision L605: the longest IC-to-IC time (s) that is a stride of a foot whose stride period is ``period_s``
+    (s; :func:`pdrlearn.kernels.foot_rhythm.foot_period`) and whose strides' median rest-to-rest window is
+    ``window_s`` (s): L80's :data:`MAX_STRIDE_S`, or :data:`RHYTHM_CAP_PERIODS` periods when that is longer (a slow
+    walker's 3.5-5 s strides) and the strides fill :data:`RHYTHM_CAP_MIN_FILL` of the period; a non-finite value =
+    :data:`MAX_STRIDE_S`."""
+    if not (math.isfinite(period_s) and math.isfinite(window_s)) or window_s < RHYTHM_CAP_MIN_FILL * period_s:
+        return MAX_STRIDE_S
+    return max(MAX_STRIDE_S, RHYTHM_CAP_PERIODS * float(period_s))
 
 
 def stride_times(start_s, end_s, event_s, valid=None, *, max_s: float = MAX_STRIDE_S) -> np.ndarray:

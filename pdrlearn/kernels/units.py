@@ -370,17 +370,24 @@ def out_of_range(kind: str, values: np.ndarray, factor: float = 1.0) -> np.ndarr
 
 
 def out_of_range_message(where: str, spec: SensorSpec, values: np.ndarray, rows: np.ndarray, factor: float = 1.0,
-                         first_line: int = 2) -> str:
+                         first_line: int = 2, t: np.ndarray | None = None,
+                         columns: tuple[str, ...] | None = None) -> str:
     """Decision B425's one line for :func:`out_of_range`'s ``rows`` of a sensor file ``where``: how many rows, the
-    first row's line (``first_line``: the line of row 0) and value as written, and the limit."""
+    first row's line (``first_line``: the line of row 0) and value as written, and the limit. ``t``: the samples'
+    timestamps (s) of a live push instead of a file (decision B435): the first sample's time instead of a line.
+    ``columns``: the file's own names of the value columns (``pdrlearn import``'s export, decision B436), else the
+    sensor's x, y, z."""
     row = int(rows[0])
     vals = np.asarray(values, dtype=float)
     vals = vals[row] if vals.ndim == 2 else vals[row:row + 1]
     axis = int(np.argmax(np.abs(vals)))
     conv = "" if factor == 1.0 else f" ({vals[axis]:g} x {factor:g} in {spec.unit})"
-    return (f"{where}: {rows.size} row(s) with a value beyond any {spec.kind}'s range (first at line "
-            f"{row + first_line}: {spec.columns[axis]} = {vals[axis]:g}{conv}; the limit is "
-            f"{VALUE_LIMITS[spec.kind]:g} {spec.unit}, decision B425): a corrupt sample; remove or repair those rows")
+    what, at, fix = (("row(s)", f"line {row + first_line}", "remove or repair those rows") if t is None else
+                     ("sample(s)", f"t = {float(t[row]):.3f} s", "drop those samples before pushing"))
+    name = (columns or spec.columns)[axis]
+    return (f"{where}: {rows.size} {what} with a value beyond any {spec.kind}'s range (first at {at}: "
+            f"{name} = {vals[axis]:g}{conv}; the limit is {VALUE_LIMITS[spec.kind]:g} {spec.unit}, "
+            f"decision B425): a corrupt sample; {fix}")
 
 
 

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError, ModelError, shell_quote
+from pdrlearn.listed_files import climbs_out, linked_message, linked_outside
 from pdrlearn.textfile import read_json, read_text
 
 log = logging.getLogger(__name__)
@@ -477,29 +478,30 @@ def _check_sampling(path: Path, sampling, *, required: bool) -> None:
                               f"{MANIFEST_RATE_MAX_HZ:g} Hz; re-export the bundle (decision E259)")
 
 
-def verify_files(path: Path, manifest: dict) -> None:
+def verify_files(path: Path, manifest: dict, *, checksums: bool = True) -> None:
     """Check that every listed file exists, lies inside the bundle once its links are followed (decision E263), has
-    its recorded sha256 and, for an ONNX graph, keeps all its data in the file (E263)."""
+    its recorded sha256 and, for an ONNX graph, keeps all its data in the file (E263). ``checksums=False``
+    (``load_bundle(verify=False)``) skips only the sha256 checks (manifest.sha256 and each file's): the others are
+    safety checks, which run whatever ``verify`` says (decision E270)."""
     files = manifest["files"]
     if not isinstance(files, dict) or not files:
         raise _fail(path, f"{MANIFEST} lists no files; re-export the bundle")
     sha_file = path / MANIFEST_SHA
-    if not sha_file.is_file():
+    if checksums and not sha_file.is_file():
         raise _fail(path, f"{MANIFEST_SHA} is missing; copy the whole bundle folder")
-    if read_text(sha_file).split()[0:1] != [sha256_file(path / MANIFEST)]:
+    if checksums and read_text(sha_file).split()[0:1] != [sha256_file(path / MANIFEST)]:
         raise _fail(path, f"{MANIFEST} was altered (sha256 differs from {MANIFEST_SHA}); "
                           "restore the original bundle or re-export it")
-    root = path.resolve()
     for rel, digest in files.items():
         f = path / rel
-        if Path(rel).is_absolute() or ".." in Path(rel).parts:
+        if climbs_out(rel):
             raise _fail(path, f"file entry '{rel}' points outside the bundle; re-export the bundle")
         if not f.is_file():
             raise _fail(path, f"file '{rel}' listed in {MANIFEST} is missing; copy the whole bundle folder")
-        if not f.resolve().is_relative_to(root):  # decision E263: a symbolic link (a file or a folder) leads out
-            raise _fail(path, f"file '{rel}' is a symbolic link (or inside a linked folder) to {f.resolve()}, "
-                              "outside the bundle; copy the whole bundle folder with its files (cp -rL), not links")
-        if sha256_file(f) != digest:
+        target = linked_outside(path, rel)  # decision E263: a symbolic link (a file or a folder) leads out
+        if target is not None:
+            raise _fail(path, linked_message(rel, target, "bundle"))
+        if checksums and sha256_file(f) != digest:
             raise _fail(
                 path,
                 f"file '{rel}' was altered (sha256 differs from {MANIFEST}); "
@@ -530,7 +532,8 @@ def load_bundle(path: str | Path, *, verify: bool = True, backend: str = "auto")
     Parameters
     ----------
     path : bundle folder written by :func:`pdrlearn.export.write_bundle`.
-    verify : check every file's sha256 (default True).
+    verify : check every file's sha256 (default True). False skips the checksums only: a listed file outside the
+        folder (a link, an entry with '..') or an ONNX graph with external data is refused either way (E270).
     backend : ``auto`` | ``onnxruntime`` | ``opencv`` (see :class:`OnnxModel`).
 
     Raises
@@ -539,8 +542,7 @@ def load_bundle(path: str | Path, *, verify: bool = True, backend: str = "auto")
     """
     path = Path(path)
     manifest = read_manifest(path)
-    if verify:
-        verify_files(path, manifest)
+    verify_files(path, manifest, checksums=verify)  # decision E270: the safety checks run whatever verify says
     log.info("bundle %s: user %s, tasks %s", path, manifest.get("user"), ", ".join(manifest["tasks"]))
     line = version_warning(path, manifest)
     if line:

@@ -83,6 +83,12 @@ REWARN_MOVE_S = 0.1
 #: more than this fraction of the step period from the offset predicted is not followed (a priori: halfway between
 #: the prediction and the half period at which a candidate of the other branch is nearer)
 LOST_FRACTION = 0.25
+#: decision E258: the drift (ppm) up to which the live check keeps its lock (simulated 400 m walks, every check locked)
+FOLLOWED_PPM = 3000.0
+#: decision E271: a lock lost after a locked estimate is said once when the offsets moved at more than this drift
+#: (ppm) since the first locked estimate followed; a priori half :data:`FOLLOWED_PPM` (the unlocked estimate lags the
+#: clock; below it, before E258, the lock held: a lost lock there is a rest or a window of few steps, E244's matter)
+DRIFT_LOST_PPM = FOLLOWED_PPM / 2
 #: samples of a stream held before they are run through its detector (one call per block, not per sample)
 BLOCK_SAMPLES = 64
 FORCE_SENSORS = ("fForceA", "fForceB")
@@ -140,6 +146,8 @@ class ClockCheck:
         self.warned = False
         self.warned_offset: float | None = None  # decision E229: the offset of the last line
         self._followed: tuple[float, float, float] | None = None  # decision E244: (offset, drift, ref_s) followed
+        self._chain: tuple[float, float] | None = None  # decision E271: (offset, ref_s) of the first locked followed
+        self.drift_said = False  # decision E271: the lost drift is said once
 
     def feed(self, name: str, t, v) -> None:
         held = self._held.get(name)
@@ -172,6 +180,7 @@ class ClockCheck:
         except DataError:  # fewer than 3 events of a unit: no estimate yet
             return None
         lost = self._follow(self.estimate)  # decision E244
+        lost = self._drift_lost(self.estimate) or lost  # decision E271 (an estimate that did not lock: lost is None)
         off = self.estimate["offset_s"]
         line = unit_offset_message(off, self.estimate["drift"], remedy=self.remedy, estimate=self.estimate)  # L183
         if line is None or (self.warned_offset is not None and abs(off - self.warned_offset) <= REWARN_MOVE_S):
@@ -182,6 +191,31 @@ class ClockCheck:
                      f"{self.estimate['raw_offset_s']:+.2f} s, the candidate closest to 0 (decision E244)]")
         self.warned, self.warned_offset = True, off
         return line if lost is None else f"{lost}; {line}"
+
+    def _drift_lost(self, est: dict) -> str | None:
+        """Decision E271: the one line when ``est`` did not lock (L183) after a locked estimate the check follows and
+        the offsets moved at more than :data:`DRIFT_LOST_PPM` since the first locked one of the chain (``est``'s
+        offset moved by whole step periods to the one nearest the followed prediction, as E244 reads it): a waist
+        clock drifting beyond what the check follows (E258), after which it goes quiet. None otherwise."""
+        fol, chain = self._followed, self._chain
+        if self.drift_said or fol is None or chain is None or offset_locked(est):
+            return None
+        ref, x, period = float(est["ref_s"]), float(est["offset_s"]), float(est.get("step_period_s", math.nan))
+        if not ref - chain[1] > 0:
+            return None
+        p = fol[0] + fol[1] * (ref - fol[2])
+        if math.isfinite(period) and period > 0:
+            x += round((p - x) / period) * period
+        ppm = (x - chain[0]) / (ref - chain[1]) * 1e6
+        if not abs(ppm) > DRIFT_LOST_PPM:
+            return None
+        self.drift_said = True
+        return (f"the live clock check lost its lock on the waist clock: the waist's steps read {x:+.3f} s from "
+                f"the foot's at {ref:.0f} s where it locked on {chain[0]:+.3f} s at {chain[1]:.0f} s, a drift of "
+                f"{ppm:+.0f} ppm, beyond the {FOLLOWED_PPM:.0f} ppm it follows (decision E258); until it locks again "
+                f"it says nothing of this clock: give the drift, Tracker(..., waist_clock_drift_ppm={ppm:.0f}) (added "
+                "to any drift already given; `pdrlearn run --clock-drift-ppm`), or align the recording offline "
+                "(`pdrlearn track --align-units`) (decision E271)")
 
     def _estimate(self) -> dict:
         """``align_events`` on the window's events; decision E258: once a locked estimate with a fitted drift ``d``
@@ -219,6 +253,8 @@ class ClockCheck:
                         "waist clock that drifts: give Tracker(..., waist_clock_drift_ppm=) the drift its lines"
                         " measure (decision E244)")
         self._followed = (float(est["offset_s"]), float(est["drift"]), float(est["ref_s"]))
+        if prev is None or lost is not None:  # decision E271: a chain of followed estimates starts here
+            self._chain = (self._followed[0], self._followed[2])
         return lost
 
     def _trim(self) -> None:

@@ -135,14 +135,30 @@ class UnitGuard:
         self.held.clear()
         self._wanted = []
 
+    def units_first(self, name: str, tv) -> None:
+        """Decision B435: before a push's value beyond any sensor's range is refused, B119's unit checks on the
+        window the guard holds of ``name`` with this push's samples ``tv`` (however short), so that a stream in
+        another unit (counts read as m/s^2: 2048 at rest; deg/s as rad/s) keeps its wrong-unit line, as B425 runs
+        the unit checks before its range line; a few corrupt samples move neither medians nor the checks. Nothing
+        for a stream the guard no longer reads (an accelerometer judged) or does not guard. Changes nothing."""
+        if name not in self._wanted:
+            return
+        t, v = self._joined([*self.held[name], tv])
+        with np.errstate(over="ignore", invalid="ignore"):  # the corrupt values' squares may overflow (B425)
+            self._check(name, t, v)
+
+    def _check(self, name: str, t: np.ndarray, v: np.ndarray) -> None:
+        """B119's unit checks of one window of ``name`` (one line naming the stream and the seconds judged)."""
+        span = float(t[-1] - t[0])
+        what = (f"its first {span:.1f} s" if name not in self.judged
+                else f"its samples of {float(t[0]):.1f}-{float(t[-1]):.1f} s")
+        check_units(_Kind(name, GUARDED[name]), v, f"{name} ({what} pushed to the {self.who}, decision B119)",
+                    declare="", t=t)
+
     def _judge(self, ready: dict, moving: set) -> dict[str, float]:
         """The checks of the ``ready`` windows; returns B91's swing rate of each gyroscope in ``moving``."""
         for name, (t, v) in ready.items():
-            span = float(t[-1] - t[0])
-            what = (f"its first {span:.1f} s" if name not in self.judged
-                    else f"its samples of {float(t[0]):.1f}-{float(t[-1]):.1f} s")
-            check_units(_Kind(name, GUARDED[name]), v, f"{name} ({what} pushed to the {self.who}, decision B119)",
-                        declare="", t=t)
+            self._check(name, t, v)
         new = {n: swing_rate(ready[n][1]) for n in moving}
         rates = {**self.rates, **new}
         f99, w99 = rates.get("fGyroscope", math.nan), rates.get("wGyroscope", math.nan)

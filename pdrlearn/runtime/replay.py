@@ -109,16 +109,20 @@ class _Spec(NamedTuple):
     columns: tuple[str, ...]
 
 
+def range_spec(name: str, width: int) -> _Spec:
+    """The sensor ``name``'s kind, SI unit and value columns (``width`` values a sample), for B425's line."""
+    return _Spec(name, *SENSOR_KINDS[name], VALUE_COLUMNS[width])
+
+
 def _refuse_out_of_range(path: Path, name: str, t: np.ndarray, values: np.ndarray, lines: np.ndarray) -> None:
     """Decision B431: B425's range check (:func:`~pdrlearn.kernels.units.out_of_range`, the full reader's kernel)
     on a sensor file the lean reader read (SI values: it takes no other unit). A whole file in another unit keeps
     B30's wrong-unit line, checked first as the full reader does (its medians and percentiles are not moved by a few
     corrupt rows; their squares may overflow there, silently); ``lines``: each row's line in the file."""
-    kind, unit = SENSOR_KINDS[name]
-    rows = out_of_range(kind, values)
+    rows = out_of_range(SENSOR_KINDS[name][0], values)
     if not rows.size:
         return
-    spec = _Spec(name, kind, unit, VALUE_COLUMNS[values.shape[1]])
+    spec = range_spec(name, values.shape[1])
     with np.errstate(over="ignore", invalid="ignore"):
         check_units(spec, values, str(path), declare="", t=t)  # "": the lean reader takes no declared unit
     raise DataError(out_of_range_message(str(path), spec, values, rows, first_line=int(lines[rows[0]]) - int(rows[0])))

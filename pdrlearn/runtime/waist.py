@@ -20,6 +20,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
+from pdrlearn.runtime.detector_line import live_detector_line
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.threads import OwnGuard, new_guard, one_call_at_a_time
 from pdrlearn.textfile import read_json
@@ -750,9 +751,10 @@ PARAM_KEYS = ("leg_m", "k", "f_m", "gyro_bias_rps")
 class WaistBundle:
     """A verified waist-only bundle: ``manifest`` (manifest.json), ``params`` (the resolved waist-pendulum
     parameters: ``leg_m``, ``k``, ``f_m``, ``gyro_bias_rps``, ``turn_gmm``, ``walk_threshold_mps2``, ``rate_hz``,
-    ``source``, ``pipeline``, the calibration's ``gait`` and its PARAMS.json options ``gait_check`` (W141) and
-    ``speed_check`` (E142, true unless set false)), ``options`` (the live pipeline options) and ``rotation`` (the
-    sensor -> body FLU matrix of the waist unit, None when the export was given no frame)."""
+    ``source``, ``pipeline``, the calibration's ``gait``, its ``detector`` (W471, W483) and its PARAMS.json options
+    ``gait_check`` (W141) and ``speed_check`` (E142, true unless set false)), ``options`` (the live pipeline
+    options) and ``rotation`` (the sensor -> body FLU matrix of the waist unit, None when the export was given no
+    frame)."""
 
     path: Path
     manifest: dict
@@ -775,8 +777,7 @@ def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
 
     path = Path(path)
     m = read_manifest(path, schema=WAIST_SCHEMA_NAME)
-    if verify:
-        verify_files(path, m)
+    verify_files(path, m, checksums=verify)  # decision E270: the safety checks run whatever verify says
     line = version_warning(path, m)
     if line:  # decision B211: B137's line, for the waist bundle too (it had loaded another version silently)
         log.warning(line)
@@ -793,7 +794,8 @@ def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
     frame = (m.get("frames") or {}).get("waist_matrix")
     rot = None if frame is None else np.asarray(frame, dtype=float).reshape(3, 3)
     params = SimpleNamespace(**{k: p.get(k) for k in (*PARAM_KEYS, "turn_gmm", "walk_threshold_mps2", "rate_hz",
-                                                      "source", "pipeline", "gait")},  # gait: W140
+                                                      "source", "pipeline", "gait",  # gait: W140
+                                                      "detector")},  # detector: W471's record (W483)
                              gait_check=bool((p.get("options") or {}).get("gait_check", False)),  # W141
                              speed_check=bool((p.get("options") or {}).get("speed_check", True)))  # W211, E142
     return WaistBundle(path, m, params, dict(m["options"]), rot)
@@ -870,6 +872,11 @@ class WaistTracker(WaistStream):
         except DataError as exc:
             raise DataError(f"WaistTracker: {exc}") from None
         warnings = list(b.manifest.get("warnings") or [])
+        if b.params.source == "calibrated":  # decision W483: W479's line from the bundle's own record, so that a
+            # bundle exported before W479 (no such manifest line) says it too; one exported since holds it once
+            line = live_detector_line(b.params.detector)
+            if line and line not in warnings:
+                warnings.append(line)
         line = mirrored_line(rot, "WaistTracker: frame=" if frame is not None else f"waist bundle {b.path}")
         if line:
             warnings.append(line)

@@ -415,9 +415,12 @@ class PLLStepDetector(StepDetector):
         if self.f_max_hz is None:  # decision W117: the session's step rhythm sets the range
             ctx["period_s"] = accel_step_period_s(acc.values, fs, gate_var=gate_var, gate_window_s=self.gate_window_s)
             if self.placement == "waist" and self.slow_band:  # decision W475: a slow walker's band
-                from pdrlearn.waist.pelvic_rhythm import pelvic_step_period_s  # lazy: it imports this module
+                from pdrlearn.waist.pelvic_rhythm import pelvic_step_period_s, pelvic_steps, remember  # lazy: it
+                # imports this module
 
-                ctx["pelvic_period_s"] = pelvic_step_period_s(session)
+                gyro_s = pelvic_steps(session)
+                remember(self, session, gyro_s)  # decision W485: the count check reads them from here
+                ctx["pelvic_period_s"] = pelvic_step_period_s(session, gyro_s)
         return acc.t, acc.values, ctx
 
     def _make_processor(self, fs: float, period_s: float = float("nan"), gate_var: float | None = None,

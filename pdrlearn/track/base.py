@@ -305,8 +305,9 @@ def get_pipeline(name: str) -> Pipeline:
       L206, L550: with ``streaming``, True / ``"summed"`` give M3 strides whose terrain class the gate dropped L39's
       level rule; off by default), ``fused_climb`` (decisions L564, L565, L586: with ``altitude="fused"`` and
       without a terrain model, a stride inside a barometric climb is fused with the foot's own height; off by
-      default), ``fused_straight`` (decisions L589, L590: with heading ``"fused"``, the waist-to-foot offset fitted on
-      straight strides only, so turns on the spot do not pull it; not adopted, off by default).
+      default), ``fused_straight`` (decisions L589, L609: with heading ``"fused"``, the waist-to-foot offset fitted on
+      straight strides only, so turns on the spot do not pull it; on by default since L609, False = L17's offset
+      over every stride).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``

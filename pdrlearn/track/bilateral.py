@@ -538,19 +538,23 @@ def _fmt_pct(v) -> str:
 
 #: decision L538: ``walk["headline_steps"]``: the walk's measures are of its level straight steps (``"level"``; with
 #: fewer than L461's :data:`SI_MIN_STEPS` of them on a side their indices are withheld, never taken from the other
-#: kinds), or, with no level straight step on a side, of all its steps (``"all"``, as before session 40)
+#: kinds), or, with under :data:`HEADLINE_MIN_LEVEL_STEPS` level straight steps on a side, of all its steps (``"all"``)
 HEADLINE_BASES = ("level", "all")
+#: decision L608 (no document gives it): the level headline needs this many level straight steps on each side; a
+#: mean of one or two steps is that step (one re-labelled stride is the whole headline, L603's stairs-down pair)
+HEADLINE_MIN_LEVEL_STEPS = 3
 
 
 def headline_masks(both: pd.DataFrame, steps: pd.DataFrame,
                    cycles: pd.DataFrame) -> tuple[str, np.ndarray, np.ndarray, np.ndarray]:
     """Decision L538: which rows of the merged contacts, the step table and the cycle table the walk's headline
     measures take: the ``level`` kind's (:data:`STEP_KINDS`: no stair, turn, gait initiation or closing step) when
-    each side has a level step, else every row (a walk of stairs or turns only); ``(basis, contacts, steps,
-    cycles)``, basis in :data:`HEADLINE_BASES`."""
+    each side has at least :data:`HEADLINE_MIN_LEVEL_STEPS` level steps (decision L608), else every row (a walk of
+    stairs or turns with a stray level step or none); ``(basis, contacts, steps, cycles)``, basis in
+    :data:`HEADLINE_BASES`."""
     level = steps["kind"].to_numpy() == "level"
     n = [int((level & (steps["side"].to_numpy() == s)).sum()) for s in SIDES]
-    if min(n) < 1:
+    if min(n) < HEADLINE_MIN_LEVEL_STEPS:  # decision L608
         return "all", np.ones(len(both), bool), np.ones(len(steps), bool), np.ones(len(cycles), bool)
     return ("level", contact_kinds(both) == "level", level,
             cycles["kind"].to_numpy() == "level" if len(cycles) else np.zeros(0, bool))

@@ -111,8 +111,12 @@ GAP_KINDS = ("rhythm", "contact")
 #: (``mobgap.wba.WbAssembly`` with ``MaxBreakCriteria(max_break_s=3)`` and ``NStridesCriteria(min_strides=4)``; the
 #: Mobilise-D consensus of Kluge et al. 2021, PLoS ONE 16(8) e0256541, which mobgap's WBA docs cite - no seed paper
 #: holds it): a new bout when the contact gap exceeds 3 s, at least 4 strides
+#: decision W495: ``mobgap-indip`` is ``mobgap`` with each lower-back bout from its second contact to its last-but-one
+#: (``trim_edges``): on the 9 real mobgap recordings the detected bouts start 0.9 and end 2.1 step intervals beyond
+#: INDIP's WBs (medians), which alone fails mobgap's 0.8 overlap on short WBs; an option, not the default (W495)
 BOUT_PRESETS = {"pdrlearn": {"gap": "rhythm", "break_s": PAUSE_MIN_S, "min_strides": 0},
-                "mobgap": {"gap": "contact", "break_s": 3.0, "min_strides": 4}}
+                "mobgap": {"gap": "contact", "break_s": 3.0, "min_strides": 4},
+                "mobgap-indip": {"gap": "contact", "break_s": 3.0, "min_strides": 4, "trim_edges": True}}
 
 
 @dataclass(frozen=True)
@@ -124,6 +128,9 @@ class BoutRule:
     break_s: float = PAUSE_MIN_S
     min_strides: int = 0
     gap: str = "rhythm"
+    #: decision W495: a lower-back bout (found and kept by the rule above) runs from its second contact to its
+    #: last-but-one, its measures from the steps between (:func:`edge_trimmed`)
+    trim_edges: bool = False
 
     def __post_init__(self):
         if not (np.isfinite(self.break_s) and self.break_s > 0):
@@ -136,8 +143,11 @@ class BoutRule:
             raise DataError(f"bout rule gap {self.gap!r}: give one of {', '.join(GAP_KINDS)}")
 
     def record(self) -> dict:
-        """The definition as summary.json's ``bout_definition``."""
-        return asdict(self)
+        """The definition as summary.json's ``bout_definition`` (``trim_edges`` only when on, W495)."""
+        out = asdict(self)
+        if not self.trim_edges:
+            out.pop("trim_edges")
+        return out
 
 
 def bout_rule(break_s: float | None = None, min_strides: int | None = None, preset: str | None = None) -> BoutRule:
@@ -272,6 +282,9 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
         return out
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     foot = is_foot_table(st)
+    if rule.trim_edges:  # decision W495: each bout's edge contacts left out
+        return edge_trimmed(st, rule, session=session, subject=subject, visit=visit, leg_m=leg_m,
+                            withhold_cadence=withhold_cadence)
     gap_len = data_gap_lengths(st)  # decision L269: a bout's own (shorter) data gaps, summed as data_gap_s
     gap = gap_len > 0
     length = st["length_m"].abs().to_numpy(float) if "length_m" in st else np.zeros(len(st))
@@ -319,6 +332,40 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     if withhold_cadence:  # decision W480: W442's contacts are no step count (summary.json withholds it, W476)
         table["cadence_spm"] = np.nan
     table["gait_out_of_range"] = bout_range_flags(table, leg_m)  # decision L195
+    return table
+
+
+def edge_trimmed(st: pd.DataFrame, rule: BoutRule, **keys) -> pd.DataFrame:
+    """Decision W495 (``trim_edges``, ``--bout-rule mobgap-indip``): :func:`detected_bouts` of a lower-back step table
+    ``st`` (sorted) with each bout the rule finds and keeps cut to its second contact .. its last-but-one: the rows
+    between, the new last one made the bout's 0 m closing contact (``end_s`` = its contact, ``has_next`` false), so
+    every measure (start, duration, steps, distance, speed, stride length, cadence) is the trimmed bout's by
+    bouts.csv's own definitions. A bout of fewer than 2 contacts after the cut is left out. A foot track's rows are
+    strides, not contacts: one error line."""
+    from dataclasses import replace
+
+    if is_foot_table(st):
+        raise DataError("--bout-rule mobgap-indip trims a lower-back bout's edge contacts (decision W495); a foot "
+                        "track's rows are strides: use --bout-rule mobgap")
+    inner = replace(rule, min_strides=0, trim_edges=False)
+    parts = []
+    for a, b in bout_ranges(st, rule):
+        if max(b - a - 2, 0) < rule.min_strides:  # the rule keeps or drops the bout as found (its n_strides)
+            continue
+        sub = st.iloc[a + 1:b - 1].copy()
+        if len(sub) < 2:
+            continue
+        last = sub.index[-1]
+        sub.loc[last, "end_s"] = sub.loc[last, "start_s"]
+        sub.loc[last, "length_m"] = 0.0
+        if "has_next" in sub:
+            sub.loc[last, "has_next"] = False
+        parts.append(detected_bouts(sub, inner, **keys))
+    parts = [p for p in parts if len(p)]
+    if not parts:
+        return BoutsTable(columns=list(BOUT_COLUMNS))
+    table = BoutsTable(pd.concat(parts, ignore_index=True), columns=list(BOUT_COLUMNS))
+    table["bout"] = np.arange(1, len(table) + 1)
     return table
 
 

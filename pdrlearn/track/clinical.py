@@ -210,17 +210,32 @@ def rhythm_s(st: pd.DataFrame, d: np.ndarray, pair: np.ndarray) -> float:
     strides between stands are not judged against a median that is the stand; decision L500: the windows are
     :func:`movement_windows` and bound the median only when it exceeds their median by ``PAUSE_MIN_S`` or more (the
     intervals are mostly stands), so a very slow continuous walk keeps L104's rhythm. Both rules were adopted (L482,
-    L501) and are the rule itself (W413: no module switches; commit d3ffb129 holds them)."""
+    L501) and are the rule itself (W413: no module switches; commit d3ffb129 holds them). Decision L605: the bound is
+    at least :func:`slow_stride_rhythm` (a slow foot's own stride times over 3 s), so the ~1 s foot-flats of a
+    continuous 3.5-5 s stride walk are not its pauses."""
     median = float(np.median(d[pair]))
     if "end_s" not in st or not is_foot_table(st):
         return median
     window = movement_windows(st)
     if not window.size:
         return median
-    bound = float(np.median(window))
+    bound = max(float(np.median(window)), slow_stride_rhythm(st))
     if median - bound < PAUSE_MIN_S:  # L500: the intervals are not mostly stands
         return median
     return min(median, bound)
+
+
+def slow_stride_rhythm(st: pd.DataFrame) -> float:
+    """Decision L605: the median of a foot table's valid ``stride_time_s`` when any is over L80's
+    :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S` (only a slow foot's rhythm cap, L605, gives those: the walker's
+    own strides, not stands), else 0 (s)."""
+    from pdrlearn.kernels.contact import MAX_STRIDE_S
+
+    if "stride_time_s" not in st:
+        return 0.0
+    s = pd.to_numeric(st["stride_time_s"], errors="coerce").to_numpy(float)[_valid(st)]
+    s = s[np.isfinite(s)]
+    return float(np.median(s)) if len(s) and s.max() > MAX_STRIDE_S + 1e-9 else 0.0
 
 
 #: decision L500: rows whose windows are this close (s; one sample at the foot units' 100 Hz) are one movement

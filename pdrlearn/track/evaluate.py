@@ -1530,11 +1530,33 @@ def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout
             result.info["warnings"] = [*result.info.get("warnings", []), line]
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
     out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))
+    if session is not None:  # decision W493: the detected bouts against the reference WBs (wb_scores.csv)
+        _wb_scores(result, session, bouts, bout_table, out)
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
         sigma = result.trajectory["pos_sigma_m"].to_numpy(float)
         out["final_position_sigma_m"] = float(sigma[-1])
         out["max_position_sigma_m"] = float(np.nanmax(sigma))
     return out
+
+
+def _wb_scores(result: TrackResult, session: Session, bouts, bout_table, out: dict) -> None:
+    """Decision W493: on a session with reference walking bouts (bouts.csv, level ``wb``), the detected bouts (the
+    table bouts.csv holds, under the track's bout rule) matched to them as mobgap's ``categorize_intervals`` does
+    (:mod:`pdrlearn.track.wb_scores`): the table in ``info["wb_scores"]`` (wb_scores.csv), the WB precision /
+    recall / F1 and the per-WB DMO errors in the summary. Nothing without reference WBs."""
+    from pdrlearn.steps.reference_clock import waist_clock_labels
+    from pdrlearn.track.bouts import BoutRule, detected_bouts
+    from pdrlearn.track.wb_scores import wb_evaluation
+    from pdrlearn.waist.evaluate import reference_wbs
+
+    ref = reference_wbs(waist_clock_labels(session))  # decision W380: the labels on the tracked clock
+    if ref is None:
+        return
+    if bout_table is None:
+        bout_table = detected_bouts(result.steps, bouts or BoutRule(), leg_m=out.get("leg_length_m"))
+    table, keys = wb_evaluation(bout_table, ref)
+    result.info["wb_scores"] = table.to_dict("records")
+    out.update(keys)
 
 
 def domain_fraction(result: TrackResult) -> dict:
@@ -1557,6 +1579,7 @@ SUMMARY_INFO_LEFT_OUT = {
     "rides": "rides.csv (decision L377)",
     "trunk_contacts": "the lower-back contacts a two-unit TUG is timed on (decision W418)",
     "trunk_yaw_turns": "the lower-back turns of a two-unit TUG's turn-to-sit (decisions W307, W418)",
+    "wb_scores": "wb_scores.csv (decision W493)",
 }
 #: decision E141: the entries of ``info["aid"]`` that summary.json leaves out (every fix's row: aided.png's)
 SUMMARY_AID_LEFT_OUT = ("fix_table",)

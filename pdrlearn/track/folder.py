@@ -83,7 +83,8 @@ def clinical_tables(result, bouts) -> dict:
     ``ramp_runs.csv`` (L568: its runs and landings), ``stairs.csv``
     (decision L432: the stair flights of a foot track, ``n_stairs`` from ``info["stair_rise_m"]``; none on the lower
     back, L440), ``curbs.csv`` (decision L573: a foot track's single level changes; none on the lower back) and, on
-    the lower back with a barometer, ``rides.csv`` (decision L377)."""
+    the lower back with a barometer, ``rides.csv`` (decision L377); on a session with reference walking bouts,
+    ``wb_scores.csv`` (decision W493)."""
     import pandas as pd
 
     from pdrlearn.track.clinical import add_turn_steps, turn_table
@@ -145,6 +146,10 @@ def clinical_tables(result, bouts) -> dict:
         from pdrlearn.track.flight import FLIGHT_COLUMNS
 
         out["flights.csv"] = pd.DataFrame(result.info["flights"], columns=list(FLIGHT_COLUMNS))
+    if result.info.get("wb_scores") is not None:  # decision W493: the detected bouts against the reference WBs
+        from pdrlearn.track.wb_scores import WB_SCORE_COLUMNS
+
+        out["wb_scores.csv"] = pd.DataFrame(result.info["wb_scores"], columns=list(WB_SCORE_COLUMNS))
     if result.info.get("freezes") is not None:  # decision W213: the freeze index's episodes, foot or lower back
         from pdrlearn.track.freezes import freeze_table
 

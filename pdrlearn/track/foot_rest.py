@@ -177,22 +177,32 @@ def foot_placement_line(session, stats: dict | None, where: str) -> str | None:
 
 
 #: decision L599: what the offline foot distance did at stride periods over L80's 3 s (L596's walks and trial T2's
-#: sessions b175 and g_0.45_2.0, no model)
-SLOW_RHYTHM_DISTANCE = ("-2.61 to +10.71 % at 1.75-2.0 s steps of 0.2-0.45 m, +9.06 to +29.14 % at 2.5 s steps, "
-                        "simulated")
+#: sessions b175 and g_0.45_2.0, no model; decision L607: with L605 / L606's fresh users 11962-11967, 11974, 11976,
+#: 11977 at 1.6-2.5 s steps)
+SLOW_RHYTHM_DISTANCE = ("-16.64 to +14.03 % at 1.6-2.0 s steps of 0.2-0.45 m, +2.56 to +46.54 % at 2.5 s steps "
+                        "(a gyroscope rate error grows over such long strides, L606), simulated")
 
 
-def slow_rhythm_line(gyr, fs: float) -> str | None:
-    """Decision L599: one line when the foot's own stride period (:func:`~pdrlearn.kernels.foot_rhythm.foot_period`)
-    is longer than L80's :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S`: the strides are found (L597) but every
-    stride time, and so the cadence, speed and bouts, treats each stride as a stop. None otherwise."""
-    from pdrlearn.kernels.contact import MAX_STRIDE_S
+def slow_rhythm_line(period: float, cap_s: float | None = None) -> str | None:
+    """Decision L599: one line when the foot's own stride period ``period`` (s;
+    :func:`~pdrlearn.kernels.foot_rhythm.foot_period`) is longer than L80's
+    :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S`: the strides are found (L597); with the track's stride cap
+    ``cap_s`` over 3 s (decision L605, :func:`~pdrlearn.kernels.contact.stride_cap_s`) their stride times are given
+    up to it, else every stride time, and so the cadence, speed and bouts, treats each stride as a stop. None
+    otherwise."""
+    from pdrlearn.kernels.contact import MAX_STRIDE_S, RHYTHM_CAP_PERIODS
 
-    period = foot_period(gyr, fs)
     if not np.isfinite(period) or period <= MAX_STRIDE_S:
         return None
-    return (f"the foot's strides take {period:.1f} s (its gyroscope's rhythm, about {120 / period:.0f} steps/min; "
-            f"decision L596), longer than the {MAX_STRIDE_S:g} s a stride may take (L80): this is slower than the "
-            "walking the pipelines were validated on; no cadence, stride time or speed is given and each stride "
-            "counts as a pause between walking bouts; the offline foot distance was measured at "
-            f"{SLOW_RHYTHM_DISTANCE} (no model; decisions L597, L599)")
+    head = (f"the foot's strides take {period:.1f} s (its gyroscope's rhythm, about {120 / period:.0f} steps/min; "
+            "decision L596), longer than ")
+    if cap_s is not None and cap_s > MAX_STRIDE_S:  # decision L605
+        what = (f"L80's {MAX_STRIDE_S:g} s: stride times up to {cap_s:.1f} s ({RHYTHM_CAP_PERIODS:g} of that rhythm) "
+                "count as strides and give the cadence, speed and walking bouts, longer ones are stops (decision "
+                "L605); this is slower than the walking the pipelines were validated on; ")
+    else:
+        what = (f"the {MAX_STRIDE_S:g} s a stride may take (L80): this is slower than the walking the pipelines were "
+                "validated on; no cadence, stride time or speed is given and each stride counts as a pause between "
+                "walking bouts; ")
+    return (head + what + f"the offline foot distance was measured at {SLOW_RHYTHM_DISTANCE} (no model; decisions "
+            "L597, L599)")

@@ -117,7 +117,7 @@ def resumed_times(start_s, end_s, stride_s, valid=None) -> np.ndarray:
 
 
 def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=None, turn_valid=None,
-                     rest_speed: bool = False) -> pd.DataFrame:
+                     rest_speed: bool = False, max_stride_s: float = MAX_STRIDE_S) -> pd.DataFrame:
     """``table`` (a strides table with ``start_s``, ``end_s``, ``event_s``, ``length_m``) with the
     :data:`GAIT_COLUMNS` added in place and returned; ``turn_rad`` (B,) the foot's turn over each stride (NaN
     when None); ``valid`` (B,) bool: False for rows that are no stride (across a gap, or moved 0 m by the
@@ -127,9 +127,11 @@ def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=Non
     ``rest_speed`` (decisions L509/L512, not adopted: an opt-in keyword only, no module global, W401's pattern):
     True, a stride after a rest takes its speed over the shorter of its own and the next stride's IC-to-IC
     (:func:`resumed_times`); False (default), ``|length_m| / stride_time_s`` for every stride (the first one after a
-    stop under 3 s reads low). ``stride_time_s`` stays IC to IC."""
+    stop under 3 s reads low). ``stride_time_s`` stays IC to IC. ``max_stride_s``: the longest IC-to-IC time that is
+    a stride (L80's 3 s; decision L605: the offline foot track passes its rhythm's
+    :func:`~pdrlearn.kernels.contact.stride_cap_s`)."""
     n = len(table)
-    stride = stride_times(table["start_s"], table["end_s"], table["event_s"], valid)
+    stride = stride_times(table["start_s"], table["end_s"], table["event_s"], valid, max_s=max_stride_s)
     moving = resumed_times(table["start_s"], table["end_s"], stride, valid) if rest_speed else stride
     turn = np.full(n, np.nan) if turn_rad is None else np.angle(np.exp(1j * np.asarray(turn_rad, dtype=float)))
     turn_valid = valid if turn_valid is None else turn_valid

@@ -62,7 +62,7 @@ from pdrlearn.kernels.altitude_check import (
     zeroed_climb_check,
 )
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
-from pdrlearn.kernels.contact import force_at, stride_contact
+from pdrlearn.kernels.contact import force_at, stride_cap_s, stride_contact
 from pdrlearn.kernels.distance import (
     applicable_calibration,
     apply_level_gain,
@@ -72,6 +72,7 @@ from pdrlearn.kernels.distance import (
     unclassed_level_dz,
 )
 from pdrlearn.kernels.first_walk import FirstWalk
+from pdrlearn.kernels.foot_rhythm import foot_period
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GAP_TOL_S,
@@ -1035,7 +1036,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
                  fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
                  gated_level_dz: bool | str = False, fused_climb: bool = False,
-                 fused_straight: bool = False, **opts) -> TrackResult:
+                 fused_straight: bool = True, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -1054,8 +1055,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         ``end_s``, optional ``event_s``, ``confidence``; s on the session's clock). Offline only
     heading : "waist" | "foot" | "fused" (default per method; "foot" when there is no waist unit).
         "fused": the foot's stride-by-stride yaw aligned to the waist heading by an offset averaged over
-        +-``fused_tau_s`` s (decision L17); ``fused_straight`` (decision L589, not adopted by L590's reading of its
-        rule): that offset counted on the straight strides only (a track with turns on the spot)
+        +-``fused_tau_s`` s (decision L17), counted on the straight strides only (decisions L589, L609: the
+        default, so turns on the spot do not pull it; ``fused_straight=False`` counts every stride, L17 as before)
     initial_heading : ENU heading (rad, |value| <= 2 pi, else refused as degrees: decision L158) at the start
         when the heading is relative (foot, or no magnetometer)
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
@@ -1322,7 +1323,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if long.any():
             fd_warnings.append(f"{int(long.sum())} stride(s) longer than {fd.max_stride_s:g} s (no stance detected "
                                "between steps): their displacement is unreliable")
-    slow_line = slow_rhythm_line(foot.gyr, foot.fs)  # decision L599: a slow rhythm's long strides have their rests
+    # decision L605: L80's stride cap, or 1.5 of a slow foot's own rhythm (L596) where its strides fill half of it
+    windows, period = (fd.end_s_ - fd.start_s_)[~in_gap], foot_period(foot.gyr, foot.fs)
+    stride_cap = stride_cap_s(period, float(np.median(windows)) if len(windows) else np.nan)
+    slow_line = slow_rhythm_line(period, stride_cap)  # decision L599: a rhythm over 3 s is named
     if slow_line:
         fd_warnings = [w for w in fd_warnings if "stride(s) longer than" not in w] + [slow_line]
     warnings += fd_warnings
@@ -1507,7 +1511,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
                                    walking=FUSED_WALKING_CLOCK,
-                                   keep=straight if fused_straight else None)  # decisions L471, L589
+                                   keep=straight if fused_straight else None)  # decisions L471, L589, L609
         head = head + side_extra  # decision L219 (0 without a sideways run)
     elif hsrc == "foot":
         head = fd.foot_heading(0.0) + lateral
@@ -1572,7 +1576,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                 else "gyroscope"
             tc = np.where(np.isfinite(tf), tf, tc)
     add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
-                     turn_valid=~in_gap)  # L109: a stride moved 0 m by the guard keeps its measured turn
+                     turn_valid=~in_gap, max_stride_s=stride_cap)  # L109: a zeroed stride keeps its turn
     if domain is not None and cfg["rules"]:  # decision L474: strides faster / slower than the training strides
         from pdrlearn.track.speed_domain import flag_speeds, model_speed_range, model_speed_strides
 
@@ -1620,7 +1624,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         inserted = np.flatnonzero(order >= len(order) - len(at))  # the gap rows' new places
         add_gait_columns(table, turn_rad=table["turn_angle_rad"].to_numpy(float),  # the rows next to a gap row
                          valid=stride_rows(table), turn_valid=turn_rows(table),  # decisions L67, L97, L109
-                         tc_s=table["tc_s"].to_numpy(float) if "tc_s" in table else None)
+                         tc_s=table["tc_s"].to_numpy(float) if "tc_s" in table else None, max_stride_s=stride_cap)
 
     xyz = np.zeros((len(table) + 1, 3))
     xyz[1:, 0] = np.cumsum(length * np.cos(head))

@@ -40,6 +40,7 @@ from pdrlearn.kernels.lying_heading import long_axis_yaw_rate, stop_pieces  # de
 from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
 from pdrlearn.kernels.step_events import EDGE_LOCK_VALUES  # decision W358
 from pdrlearn.kernels.waist import TURN_BRIDGE_SIDE  # decision W384
+from pdrlearn.runtime.detector_line import OWN_DETECTOR  # decision W479 (W483: shared with the runtime)
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
@@ -100,7 +101,7 @@ from pdrlearn.waist.pelvic_rhythm import (
     SLOW_PERIOD_S,
     median_step_period,
     merge_dropped,
-    pelvic_steps,
+    read_once,
     rhythm_keep,
 )
 from pdrlearn.waist.plausibility import (
@@ -1198,7 +1199,8 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     if foot_runs and o["foot_rest_veto"]:
         carried += ride_spans(steps["event_s"].to_numpy(float), foot_runs)
         steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
-    gyro_s = functools.cache(lambda: None if realtime else pelvic_steps(session))  # W440, W441: read once, offline
+    # W440, W441: read once, offline; W485: the ones --detector pll read for its band, if it did
+    gyro_s = functools.cache(lambda: None if realtime else read_once(det, session))
     n_ride = 0
     if not realtime and len(steps) and gyro_s() is not None:  # decision W486: no pelvic rhythm, a vibration: a ride?
         ev_ride = steps["event_s"].to_numpy(float)  # named, not dropped (W486's drop rule was not met)
@@ -1534,12 +1536,6 @@ def detector_spec(det) -> str | None:
     return None if det is None else spec_text(det.name, det.changed_params())
 
 
-#: decision W479: the step detector whose default contacts are a lower-back pipeline's own (``waist-ic``: "the same
-#: contacts as ``pdrlearn track --pipeline waist-pendulum``", pdrlearn.steps.waist_ic); waist-pll has none (its PLL
-#: peaks and the ``pll`` detector's are not documented as the same), so there the detectors' names are compared
-OWN_DETECTOR = {"waist-pendulum": "waist-ic"}
-
-
 def calibrated_detector_line(recorded: str | None, det, pipeline: str | None = None, *,
                              live: bool = False) -> str | None:
     """Decision W471: one line when PARAMS.json's step length was calibrated on the contacts of another detector
@@ -1548,29 +1544,28 @@ def calibrated_detector_line(recorded: str | None, det, pipeline: str | None = N
     ``pipeline``, its :data:`OWN_DETECTOR` with its default settings counts as the pipeline's own (either side);
     ``live``: the live tracker's line, which cannot take another detector's contacts (its advice is to recalibrate)."""
     from pdrlearn.plugins import parse_spec
+    from pdrlearn.runtime.detector_line import live_detector_line, recorded_own
 
+    if live:  # decision W479: the live tracker takes the pipeline's own contacts only (W483: its words shared with
+        return live_detector_line(recorded, pipeline)  # the lean runtime's WaistTracker)
     own = (OWN_DETECTOR.get(pipeline), {})
     if det is not None and (det.name, det.changed_params()) == own:
         det = None  # decision W479
     if recorded is not None:
-        try:
-            spec = parse_spec(recorded, "step detector")
-        except DataError:
-            spec = None  # an unreadable record is another detector
-        if spec == own:
+        if recorded_own(recorded, pipeline):
             recorded = None  # decision W479
-        elif det is not None and spec == (det.name, det.changed_params()):
-            return None
+        else:
+            try:
+                spec = parse_spec(recorded, "step detector")
+            except DataError:
+                spec = None  # an unreadable record is another detector
+            if det is not None and spec == (det.name, det.changed_params()):
+                return None
     if recorded is None and det is None:
         return None
     now = detector_spec(det)
     was = "the pipeline's own contacts" if recorded is None else f"the contacts of --detector {recorded}"
     track = "track without --detector" if recorded is None else f"track with --detector {recorded}"
-    if live:  # decision W479: the live tracker takes the pipeline's own contacts only
-        return (f"the parameters were calibrated on {was}; the live tracker takes the pipeline's own contacts only: "
-                "another detector's contacts split the walk into other steps, so the calibrated step length may not "
-                "fit them (calibrate on the pipeline's own: 'pdrlearn calibrate DIR -d METRES --out PARAMS.json'; "
-                "decisions W471, W479)")
     return (f"the parameters were calibrated on {was}; this track takes "
             + ("the pipeline's own" if now is None else f"--detector {now}'s") +
             ": another detector's contacts split the walk into other steps, so the calibrated step length may not "

@@ -24,7 +24,7 @@ from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibil
     step_counts,
     steps_missed,
 )
-from pdrlearn.waist.pll_calibration import calibrated_here, recorded_options
+from pdrlearn.waist.pll_calibration import calibrated_here, recorded_options, without_recorded
 from pdrlearn.waist.steplength import (
     CADENCE_LAW_STEADY,
     MIN_GAIN_STRIDES,
@@ -478,7 +478,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist, without_heading_note
 
     base, _ = resolve_params(sessions[0], params)
-    if calibrated_here(base, pipeline) and (base.options or {}).get("pll_edge_lock") is None:
+    if det is None and calibrated_here(base, pipeline) and (base.options or {}).get("pll_edge_lock") is None:
         # decision W369: re-calibrating from a PARAMS.json that records none counts with today's default, silently
         base = dataclasses.replace(base, options=recorded_options(base.options, pipeline,
                                                                   OPTION_DEFAULTS["pll_edge_lock"]))
@@ -594,6 +594,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     out.detector = detector_spec(det)  # decision W471: the contacts the step length was fitted on (None: its own)
     if det is not None:
         out.notes.append(f"the walks' contacts from --detector {out.detector} (decision W471: track with it)")
-    out.options = recorded_options(out.options, pipeline, edge_lock)  # decision W369: the count's pll_edge_lock
+    # decision W484: the count's pll_edge_lock (W369) only when the contacts are the PLL's own; on another
+    # detector's, none (not even the one an earlier waist-pll calibration of base recorded)
+    out.options = (recorded_options(out.options, pipeline, edge_lock) if det is None
+                   else without_recorded(out.options, base))
     log.info("calibrated %s: %s", pipeline, out.notes[-1])
     return out

@@ -45,10 +45,25 @@ def reference_bouts(session: Session) -> pd.DataFrame | None:
         log.warning("%s: bouts.csv has no %s column(s) (start_ms, end_ms, length_m): no bout distance "
                     "error or bout-limited step scoring", session.name, ", ".join(missing))
         return None
+    return _one_level(b).dropna(subset=["start_s", "end_s", "length_m"]).reset_index(drop=True)
+
+
+def _one_level(b: pd.DataFrame) -> pd.DataFrame:
+    """The rows of one level of a bouts table: ``wb`` when it has some, else its first row's level."""
     if "level" in b:
         lv = b["level"].astype(str)
         b = b[lv == ("wb" if (lv == "wb").any() else lv.iloc[0])]
-    return b.dropna(subset=["start_s", "end_s", "length_m"]).reset_index(drop=True)
+    return b
+
+
+def reference_wbs(session: Session) -> pd.DataFrame | None:
+    """Decision W493: the reference walking bouts WB detection is scored against - :func:`reference_bouts`' rows
+    (one level, ``wb``) with a start and an end, a length or not; None without any."""
+    b = session.extras.get("bouts")
+    if b is None or len(b) == 0 or not {"start_s", "end_s"} <= set(b.columns):
+        return None
+    b = _one_level(b).dropna(subset=["start_s", "end_s"]).reset_index(drop=True)
+    return b if len(b) else None
 
 
 def _in_intervals(x: np.ndarray, starts: np.ndarray, ends: np.ndarray, pad: float = 0.0) -> np.ndarray:

@@ -57,11 +57,30 @@ def median_step_period(gyro_s: np.ndarray, max_step_s: float = RHYTHM_MAX_STEP_S
     return float(np.median(iv)) if iv.size >= 2 else float("nan")
 
 
-def pelvic_step_period_s(session: Session) -> float:
+def pelvic_step_period_s(session: Session, gyro_s: np.ndarray | None = None) -> float:
     """Decision W475: :func:`median_step_period` of the session's :func:`pelvic_steps` (NaN without a waist
-    gyroscope)."""
-    g = pelvic_steps(session)
+    gyroscope); ``gyro_s``: those steps when already read (decision W485)."""
+    g = pelvic_steps(session) if gyro_s is None else gyro_s
     return float("nan") if g is None else median_step_period(g)
+
+
+def read_once(det, session: Session) -> np.ndarray | None:
+    """Decision W485: the session's :func:`pelvic_steps`, read once per session: the ones the step detector ``det``
+    read while detecting this very ``session`` (the PLL's slow band, W475: its ``pelvic_steps_read_``, set by
+    :meth:`remember`), else read now. W441's / W476's count check and W440's veto take them from here, so a track or
+    ``steps`` with ``--detector pll`` runs the pelvic-gyro detector once, not twice."""
+    read = getattr(det, "pelvic_steps_read_", None)
+    if read is not None and read[0]() is session:
+        return read[1]
+    return pelvic_steps(session)
+
+
+def remember(det, session: Session, gyro_s: np.ndarray | None) -> None:
+    """Decision W485: keep on ``det`` the pelvic-gyro steps it read for ``session`` (a weak reference to the
+    session, so a detector kept for the next session neither holds this one nor hands its steps to another)."""
+    import weakref
+
+    det.pelvic_steps_read_ = (weakref.ref(session), gyro_s)
 
 
 def local_step_period(gyro_s: np.ndarray, at_s: np.ndarray, window_s: float = RHYTHM_WINDOW_S,

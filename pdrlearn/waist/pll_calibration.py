@@ -23,6 +23,15 @@ def recorded_options(options: dict | None, pipeline: str, used) -> dict | None:
     return {**(options or {}), OPTION: used}
 
 
+def without_recorded(options: dict | None, p) -> dict | None:
+    """Decision W484: ``options`` without the keys a waist-pll calibration ``p`` wrote itself (:func:`recorded_keys`;
+    none left: None), for a calibration on another detector's contacts, which records no ``pll_edge_lock``."""
+    drop = recorded_keys(p)
+    if not options or not drop & set(options):
+        return options
+    return {k: v for k, v in options.items() if k not in drop} or None
+
+
 def calibrated_here(p, pipeline: str) -> bool:
     """Decision W369: ``p`` is a waist-pll calibration applied to a waist-pll track."""
     return getattr(p, "source", None) == "calibrated" and getattr(p, "pipeline", None) == pipeline == "waist-pll"
@@ -40,8 +49,8 @@ def edge_lock_mismatch_line(p, pipeline: str, edge_lock) -> str | None:
     """Decision W369: one line when the waist-pll calibration ``p`` was counted with another ``pll_edge_lock`` than
     this track's ``edge_lock`` (one that records none was calibrated before session 35 and counted with ``false``),
     else None."""
-    if not calibrated_here(p, pipeline):
-        return None
+    if not calibrated_here(p, pipeline) or getattr(p, "detector", None) is not None:
+        return None  # decision W484: a file fitted on another detector's contacts has W471's line, not this one
     given = (p.options or {}).get(OPTION)
     # decision W369: one that records none was counted with the option's default before session 35 (W356's
     # ``false``; W368 made ``"walk-end"`` the track's default in session 35); a fact, not a switch (decision W467)
