@@ -23,7 +23,7 @@ _CODE = re.compile(r"([A-Z])\d+[a-z]?")
 
 
 def decision_file(code: str | int, topic: str | None = None) -> str:
-    """``docs/...md``, the file that defines decision ``code`` (``"C41"``; a number with ``topic`` "steps" or
+    """the docs file that defines decision ``code`` (``"C41"``; a number with ``topic`` "steps" or
     "features"); ``topic`` picks the file of a letter two files share (C: "classifiers" / "cohort", D: "aided" /
     "data-model"). A code of no known file is a programming error (ValueError), not a user's."""
     if isinstance(code, int) or str(code).isdigit():
