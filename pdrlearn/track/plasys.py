@@ -19,7 +19,6 @@ acceleration, the M3 rules, heading from the integrated vertical rate), so that
 
 from __future__ import annotations
 
-import dataclasses
 import logging
 from pathlib import Path
 from types import SimpleNamespace
@@ -1322,10 +1321,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if clipped[0]:  # decision L525 (a): the streamed stride's tilt correction and ZUPT clock
         fd_kw = clipped_foot_settings(fd_kw, params)
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
-    trunk = SimpleNamespace(info={})  # decision L612: W418's transfers before the strides are final, on a session
-    if transfers:  # whose frame checks are its own (shared caches would change the track's own checks' order)
-        add_trunk_transfers(trunk, dataclasses.replace(session, _checked=dict(session._checked),
-                                                       _handed=dict(session._handed)))
+    trunk = SimpleNamespace(info={})  # decision L612: W418's transfers, read once, before the strides are final
+    if transfers:
+        add_trunk_transfers(trunk, session)
     fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"))
     if not len(strides):
         raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}")
@@ -1713,7 +1711,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
-    if transfers:  # decision W439: callers that read no TUG (the distance calibration) skip the inner waist work
+    if transfers and work is session:  # decision L612: read above, on this clock
+        res.info.update(trunk.info)
+    elif transfers:  # decision W439: callers that read no TUG (the distance calibration) skip the inner waist work
         add_trunk_transfers(res, work)  # decision W418 (W430: the waist on the aligned clock, as --clock-offset)
     return res
 
