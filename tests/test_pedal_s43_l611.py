@@ -119,3 +119,20 @@ def test_streamed_track_drops_the_crank(ride):
     assert _in(res.steps, a, b) == 0
     line = [w for w in res.info["warnings"] if "cycling?" in w]
     assert len(line) == 1 and "L611" in line[0]
+
+
+def test_a_ride_alone_is_no_strides_error():
+    """Only a crank, no walk: both tracks stop with B318's NoStridesError naming L611's span (streamed: no empty
+    track)."""
+    from pdrlearn.errors import NoStridesError
+
+    s = quiet_walk("stand:3, sit:40, stand:3", 12021, 12021, rate_hz=20.0)
+    tr = s.extras["transfers"]
+    _pedal(s, float(tr["seated_s"].iloc[0]) + 3, float(tr["rise_s"].iloc[0]) - 3, 60.0)
+    logging.disable(logging.WARNING)
+    try:
+        for kw in ({"ignore_force": True}, {"streaming": True}):
+            with pytest.raises(NoStridesError, match="no walking strides: .*cycling\\? decision L611"):
+                track_plasys(s, **kw)
+    finally:
+        logging.disable(logging.NOTSET)
