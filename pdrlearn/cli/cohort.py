@@ -1258,12 +1258,17 @@ def track_all(
     _exit_if_any_failed(failed)
 
 
+#: decision C171: the meta.json labels ``--group-by`` splits subjects.csv's rows by (``trial`` would pool Test5
+#: Trial1 with Test11 Trial1)
+GROUP_BY_CHOICES = ("test",)
+
+
 def _check_group_by(group_by: str | None, tests: list[dict], root: Path) -> None:
     """Decision C171: ``--group-by`` names meta.json's ``test`` (the one label it groups by), and some session under
     ``root`` names one; one line otherwise, before any tracking."""
     if group_by is None:
         return
-    if group_by != "test":
+    if group_by not in GROUP_BY_CHOICES:
         raise DataError(f"track-all: --group-by {group_by}: subjects.csv's rows can be grouped by meta.json's "
                         "\"test\" only; pass --group-by test, or leave it out (decision C171)")
     if not any(t.get("test") for t in tests):
