@@ -56,6 +56,12 @@ def test_group_by_test_gives_a_row_per_subject_and_test_c171(study, tmp_path, ca
     one = sessions[sessions["path"] == "S1_Test11_Trial1"].iloc[0]
     row = subjects[subjects["test"] == "Test11"].iloc[0]
     assert float(row["distance_m"]) == pytest.approx(float(one["distance_m"]))  # its one session's distance
+    from pdrlearn.report.build import _batch_section
+
+    tables = dict(_batch_section(out, out).tables)  # the report's subject rows are subjects.csv's (run.json)
+    shown = tables["per subject and visit: walking totals of the detected bouts (subjects.csv; distance_m: the "
+                   "tracks summed)"]
+    assert shown["test"].tolist() == ["Test5", "Test11"]
 
 
 def test_group_by_is_checked_before_tracking_c171(study, tmp_path, capsys):
