@@ -57,6 +57,20 @@ class ClockWentBack(DataError):
         return type(self), (str(self), self.unit, self.offset_s, self.beside, self.offsets), self.__dict__
 
 
+class OptionFixError(DataError):
+    """Decision B438: a refusal that one option of ``pdrlearn import`` fixes: ``option`` (``--acc-unit``) and its
+    ``value`` (``g``; None when only the user knows it: ``--rate HZ``). The import command tries again with it so
+    that every such problem of a file is said in one message, with the corrected command."""
+
+    def __init__(self, message: str, option: str, value: str | None = None):
+        super().__init__(message)
+        self.option = str(option)
+        self.value = None if value is None else str(value)
+
+    def __reduce__(self):  # as ClockWentBack (E250): pickled with every constructor argument
+        return type(self), (str(self), self.option, self.value), self.__dict__
+
+
 class MissingSensorError(DataError):
     """A method needs a sensor stream that the session does not have."""
 
