@@ -12,7 +12,7 @@ LETTER_FILES = {"S": "decisions/simulator.md", "L": "decisions/localization.md",
                 "E": "decisions/export.md", "B": "decisions/bad-input.md", "X": "external-data.md",
                 "G": "external-data.md", "H": "external-data.md"}
 #: the codes defined outside their letter's file (docs/decisions.md's index leaves them out of the letter's range)
-ELSEWHERE = {"W447": "decisions/cohort.md", "W456": "decisions/simulator.md"}
+ELSEWHERE = {"W447": "decisions/cohort.md", "W456": "decisions/simulator.md", "E268": "decisions/bad-input.md"}
 #: the letters two files share (docs/decisions.md, decision B430): the topic names the file
 TOPIC_FILES = {"C": {"classifiers": "decisions/classifiers.md", "cohort": "decisions/cohort.md"},
                "D": {"aided": "decisions/aided.md", "data-model": "decisions.md"}}
