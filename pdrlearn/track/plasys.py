@@ -54,6 +54,7 @@ from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import sideways as KSW
+from pdrlearn.kernels import stop_bias as KSB
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels import turn_length as KT
 from pdrlearn.kernels.altitude_check import (
@@ -1989,6 +1990,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     # length and height of the stride before it (ref: that stride's displacement and duration), as the runtime's
     across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S + GAP_TOL_S), None  # E230
     neighbour = bool(drop_neighbour)  # decisions E101, L549
+    stop = KSB.StopBias() if "waist" in forward else None  # decision E272 (the runtime's: the waist unit tracked)
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
@@ -2027,6 +2029,12 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         elif i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
             dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0),
                                          foot=gap_yaw, waist=waist_gap_yaw)
+        if stop is not None and not foot_headed[i]:  # decision E272: the bias read at the last stop, as the runtime
+            stop.update(streams.__getitem__, prev, float(t0))
+            lo = (prev if i and prev < t0 and bridged and overlaps_any(prev, float(t0), imu_gaps)
+                  else SK.waist_gap_from(prev, float(t0), waist_gap_yaw))
+            turn[i] -= stop.turn(t0, t1)
+            dyaw[i] -= stop.turn(lo, t1)
     if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     # decision L611 (offline's kernel): pedalling strides are skipped as B131's posture strides are (no row, 0 m)
