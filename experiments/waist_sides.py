@@ -8,13 +8,15 @@ sessions (INDIP ``ics.csv`` ``foot``); simulated: users 1900-1919 (scenario ``"A
 100 Hz; ``extras["ics"]`` ``foot``).
 
 Run: .venv/bin/python experiments/waist_sides.py [--external datasets/external] [--users 1900-1919]
-Writes experiments/results/waist_sides.md.
+Writes experiments/results/waist_sides.md; with --users other than the default, waist_sides_partial.md (decision W497,
+steps decision 67: a smoke run never overwrites the committed result).
 """
 
 from __future__ import annotations
 
 import argparse
 import logging
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -25,7 +27,13 @@ from pdrlearn.steps.evaluate import match_events
 from pdrlearn.track.waist import track_waist
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
+from experiments.partial import parsed_with_names, partial_note  # noqa: E402
+
 TOL_S = 0.25
+#: decision W497: the option that makes a run partial (waist_sides_partial.md); --external is where the same
+#: recordings are (as step_count.py's)
+PARTIAL_OPTIONS = ("users",)
 PIPELINES = ("waist-pendulum", "waist-pll")
 
 
@@ -48,11 +56,18 @@ def row(name: str, counts: list[tuple[int, int, int]]) -> str:
             f"{min(per):.3f}-{max(per):.3f} |" if d else f"| {name} | - | 0/{m} | - |")
 
 
-def main() -> None:
+def output_names(argv: list[str] | None = None):
+    """The parsed options, the options that make the run partial and the file-name function (decision W497)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
     ap.add_argument("--users", default="1900-1919", help="simulated users, FIRST-LAST")
-    args = ap.parse_args()
+    return parsed_with_names(ap, argv, PARTIAL_OPTIONS)
+
+
+def main(argv: list[str] | None = None) -> None:
+    args, changed, out_name = output_names(argv)
+    if changed:
+        print(partial_note(changed))
     logging.disable(logging.WARNING)
     first, last = (int(x) for x in args.users.split("-"))
     real = sorted(p for p in args.external.glob("mobgap_*") if (p / "ics.csv").is_file())  # with reference ICs
@@ -70,7 +85,7 @@ def main() -> None:
         lines.append(row(f"**simulated users {first}-{last}, {pipeline}**", [side_counts(s, pipeline) for s in sims]))
     text = "\n".join(lines) + "\n"
     print(text)
-    (ROOT / "experiments" / "results" / "waist_sides.md").write_text(text)
+    (ROOT / "experiments" / "results" / out_name("waist_sides.md")).write_text(text)
 
 
 if __name__ == "__main__":

@@ -530,12 +530,30 @@ def split_part(folder: str | os.PathLike) -> bool:
 def meta_visit(meta: dict) -> str | None:
     """Cohort C22: meta.json's ``visit`` as text (a number as its text), None when it names none (C100: also a single
     track's summary.json and bouts.csv ``visit``)."""
-    visit = meta.get("visit")
-    if isinstance(visit, bool) or not isinstance(visit, str | int | float) or not str(visit).strip():
+    return meta_label(meta, "visit")
+
+
+def meta_label(meta: dict, key: str) -> str | None:
+    """Meta.json's label ``key`` (``visit``, C22; ``test``, ``trial``, C170) as text (a number as its text), None when
+    it names none."""
+    value = meta.get(key)
+    if isinstance(value, bool) or not isinstance(value, str | int | float) or not str(value).strip():
         return None
-    if isinstance(visit, float) and visit.is_integer():  # visit 2.0 is visit 2, so the two pair (review R4)
-        return str(int(visit))
-    return str(visit).strip()
+    if isinstance(value, float) and value.is_integer():  # visit 2.0 is visit 2, so the two pair (review R4)
+        return str(int(value))
+    return str(value).strip()
+
+
+#: decision C170: meta.json's labels of a session's test and trial within a visit (mobgap's ``Test11``, ``Trial1``,
+#: as `fetch mobgap` writes them), sessions.csv's columns after ``visit_as_written`` when a session names one
+TEST_LABELS = ("test", "trial")
+
+
+def session_test_labels(folder: str | os.PathLike) -> dict[str, str | None]:
+    """Decision C170: a session folder's :data:`TEST_LABELS` from its meta.json (:func:`meta_label`), each None when
+    it names none (or has no readable meta.json)."""
+    meta = session_meta(folder) or {}
+    return {k: meta_label(meta, k) for k in TEST_LABELS}
 
 
 #: Decision L137: meta.json fields that only name a session (who, which visit, what it is called, notes), not

@@ -52,6 +52,9 @@ SESSIONS: tuple[Column, ...] = (
     ("visit", _ID, "text", "the visit as changes.csv and subjects.csv name it (C82): meta.json visit, --visit-map "
                            "applied and spellings of one visit made one (C28, C29); empty when not given (C22)"),
     ("visit_as_written", _ID, "text", "meta.json visit as written (C82)"),
+    ("test", _ID, "text", "meta.json test (mobgap's Test5, Test11): the column only when a session names one, "
+                          "then after visit_as_written; empty for a session that names none (C170)"),
+    ("trial", _ID, "text", "meta.json trial (mobgap's Trial1, Trial2), as test (C170)"),
     ("status", _ID, "text", "ok (tracked), failed, or skipped (a split part with no stride, all at rest: B389)"),
     ("error", _ID, "text", "a failed session's one-line error (a skipped one's with B389's note); empty when ok"),
     ("session", _ID, "text", "meta.json's session name"),
@@ -581,6 +584,8 @@ GROUPS: tuple[Column, ...] = (
 SUBJECTS: tuple[Column, ...] = (
     ("subject", _ID, "text", "meta.json subject (C25)"),
     ("visit", _ID, "text", "the visit as changes.csv names it (C40, C82)"),
+    ("test", _ID, "text", "track-all --group-by test only: meta.json test, a row per subject, visit and test "
+                          "(empty: the subject's sessions naming none; C171)"),
     ("group", _ID, "text", "the group(s) of the subject's sessions"),
     ("n_tracked", "count", "integer", "the subject's sessions of that visit tracked"),
     ("n_failed", "count", "integer", "those that failed"),

@@ -12,7 +12,7 @@ LETTER_FILES = {"S": "decisions/simulator.md", "L": "decisions/localization.md",
                 "E": "decisions/export.md", "B": "decisions/bad-input.md", "X": "external-data.md",
                 "G": "external-data.md", "H": "external-data.md"}
 #: the codes defined outside their letter's file (docs/decisions.md's index leaves them out of the letter's range)
-ELSEWHERE = {"W447": "decisions/cohort.md", "W456": "decisions/simulator.md"}
+ELSEWHERE = {"W447": "decisions/cohort.md", "W456": "decisions/simulator.md", "E268": "decisions/bad-input.md"}
 #: the letters two files share (docs/decisions.md, decision B430): the topic names the file
 TOPIC_FILES = {"C": {"classifiers": "decisions/classifiers.md", "cohort": "decisions/cohort.md"},
                "D": {"aided": "decisions/aided.md", "data-model": "decisions.md"}}
@@ -23,7 +23,7 @@ _CODE = re.compile(r"([A-Z])\d+[a-z]?")
 
 
 def decision_file(code: str | int, topic: str | None = None) -> str:
-    """``docs/...md``, the file that defines decision ``code`` (``"C41"``; a number with ``topic`` "steps" or
+    """the docs file that defines decision ``code`` (``"C41"``; a number with ``topic`` "steps" or
     "features"); ``topic`` picks the file of a letter two files share (C: "classifiers" / "cohort", D: "aided" /
     "data-model"). A code of no known file is a programming error (ValueError), not a user's."""
     if isinstance(code, int) or str(code).isdigit():

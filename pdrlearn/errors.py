@@ -57,6 +57,20 @@ class ClockWentBack(DataError):
         return type(self), (str(self), self.unit, self.offset_s, self.beside, self.offsets), self.__dict__
 
 
+class OptionFixError(DataError):
+    """Decision B438: a refusal that one option of ``pdrlearn import`` fixes: ``option`` (``--acc-unit``) and its
+    ``value`` (``g``; None when only the user knows it: ``--rate HZ``). The import command tries again with it so
+    that every such problem of a file is said in one message, with the corrected command."""
+
+    def __init__(self, message: str, option: str, value: str | None = None):
+        super().__init__(message)
+        self.option = str(option)
+        self.value = None if value is None else str(value)
+
+    def __reduce__(self):  # as ClockWentBack (E250): pickled with every constructor argument
+        return type(self), (str(self), self.option, self.value), self.__dict__
+
+
 class MissingSensorError(DataError):
     """A method needs a sensor stream that the session does not have."""
 
@@ -143,12 +157,20 @@ def out_of_memory(exc: BaseException) -> bool:
     return isinstance(exc, MemoryError) or (isinstance(exc, OSError) and exc.errno == _errno.ENOMEM)
 
 
-def out_of_memory_line(command: str) -> str:
-    """Decision B440: the one line of a command stopped by ``MemoryError`` (trial T2 F4: a 25-77-line traceback): what
-    a long recording needs and the two ways out (decision E195's 0.3-0.4 GB per recorded hour)."""
-    return (f"out of memory in {command}, nothing written; a whole recording is held in memory (about 0.3-0.4 GB per "
-            "recorded hour at 100 Hz, decision E195): cut it into parts with `pdrlearn split`, or replay it in "
-            "chunks through the streaming runtime (pdrlearn.runtime.Tracker, docs/deploying.md) (decision B440)")
+def out_of_memory_line(command: str, *, blocks: bool = False) -> str:
+    """Decision B440: the one line of a command stopped by ``MemoryError`` (trial T2 F4: a 25-77-line traceback).
+    ``blocks`` False (``track``, ``run``, ...): the command holds the whole recording (decision E195's 0.3-0.4 GB per
+    recorded hour); the ways out are ``split`` and the lean command or ``Tracker``, which read it in blocks (E274).
+    ``blocks`` True (the lean command, which reads in blocks already): free memory, or cut the recording."""
+    if blocks:
+        return (f"out of memory in {command}, nothing written; it reads the recording in blocks (decision E274), so "
+                "the device has too little free memory for the bundle and the tracker: stop other programs or raise "
+                "the process's limit (ulimit -v), or cut the recording into parts with `pdrlearn split` on a "
+                "workstation (decision B440)")
+    return (f"out of memory in {command}, nothing written; it holds the whole recording in memory (about 0.3-0.4 GB "
+            "per recorded hour at 100 Hz, decision E195): cut it into parts with `pdrlearn split`, or replay it with "
+            "`python -m pdrlearn.runtime` or pdrlearn.runtime.Tracker, which read it in blocks (decision E274, "
+            "docs/deploying.md) (decision B440)")
 
 
 class NotASessionError(DataError, TypeError):

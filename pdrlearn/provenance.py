@@ -23,6 +23,12 @@ def set_command_line(argv: list[str] | None) -> None:
     _COMMAND_LINE = None if argv is None else ["pdrlearn", *map(str, argv)]
 
 
+def command_line() -> list[str] | None:
+    """The CLI's command line (``["pdrlearn", *argv]``, decision E165), or None outside a CLI run (decision B438:
+    the corrected command a refusal prints is built from it)."""
+    return None if _COMMAND_LINE is None else list(_COMMAND_LINE)
+
+
 def invocation() -> dict:
     """Decision E165 (session 34, trial T4 finding 8): what resolves a relative path of the record a year on: the
     working directory (``cwd``, absolute) and the command line as a list (``argv``: the ``pdrlearn`` command's

@@ -174,7 +174,7 @@ SUMMED_SESSION_COLUMNS = SUBJECT_COLUMNS[SUBJECT_COLUMNS.index("visit_as_written
                                          SUBJECT_COLUMNS.index("bouts_time_s")]
 
 
-def subject_totals(sessions, visit_map: dict[str, str] | None = None):
+def subject_totals(sessions, visit_map: dict[str, str] | None = None, by: str | None = None):
     """subjects.csv from sessions.csv (cohort C25), or ``None`` when no session names a subject: one row per subject
     (natural order) and, when some session names a visit, per visit (:func:`visit_order`; a subject's sessions
     without a visit are one row with an empty visit). ``n_tracked`` / ``n_failed``: its sessions; ``paths``: the
@@ -190,16 +190,17 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
     last contact (sessions.csv's ``bouts_n_step_intervals``) over their contact spans (``bouts_contact_span_s``).
     Sessions naming no subject are in no row (sessions.csv has them). Visits are named as changes.csv names them
     (:func:`canonical_visits` with ``visit_map``, C28, C29; decision C40: ``BL`` and ``Baseline`` of one subject had
-    been two rows)."""
-    import numpy as np
+    been two rows). ``by``: a sessions.csv label column (``"test"``, decision C171: track-all's ``--group-by test``)
+    whose values split each subject's (and visit's) row further, in natural order, sessions without one last in a row
+    with it empty; the column follows ``visit``."""
     import pandas as pd
-
-    from pdrlearn.track.bouts import cadence_spm
 
     if "subject" not in sessions or not sessions["subject"].notna().any():
         return None
     named = _written(sessions)[sessions["subject"].notna()].copy()
-    for c in ("subject", "visit"):
+    for c in ("subject", "visit", *([by] if by else [])):
+        if c not in named:  # decision C171: a sessions.csv without the label column: every row without one
+            named[c] = None
         named[c] = named[c].map(_as_text)
     named["visit_as_written"] = named["visit"]
     by_visit = named["visit"].notna().any()
@@ -211,34 +212,62 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
         mine = named[named["subject"] == subject]
         visits = visit_order(mine["visit"].dropna()) + ([None] if mine["visit"].isna().any() else [])
         for visit in visits if by_visit else [None]:
-            at = mine if not by_visit else mine[mine["visit"].isna()] if visit is None else mine[mine["visit"] == visit]
-            ok = at[at["status"] == "ok"]
-
-            def total(col, ok=ok):  # empty when none of the sessions was tracked
-                return pd.to_numeric(ok[col], errors="coerce").sum() if col in ok and len(ok) else np.nan
-
-            t = total("bouts_time_s")
-            row = {"subject": subject, "visit": visit, "visit_as_written": _names(at["visit_as_written"]),
-                   "group": "; ".join(dict.fromkeys(at["group"].astype(str))),
-                   # decision B393: a split part at rest (B389's skipped) is neither tracked nor failed
-                   "n_tracked": len(ok), "n_failed": int((at["status"] != SKIPPED).sum()) - len(ok),
-                   "paths": "; ".join(at["path"].astype(str)),
-                   "distance_m": total("distance_m"), "n_bouts": total("n_bouts"),
-                   "walking_time_s": total("walking_time_s"),  # decision W447: the summary's, as sessions.csv
-                   "n_steps": total("bouts_n_steps"), "n_strides": total("bouts_n_strides"),
-                   "bouts_distance_m": total("bouts_distance_m"), "bouts_time_s": t}
-            w = row["walking_time_s"]
-            row["gait_speed_mps"] = row["distance_m"] / w if w > 0 else np.nan  # decision W447
-            row["bouts_gait_speed_mps"] = row["bouts_distance_m"] / t if t > 0 else np.nan  # cohort C25
-            span = total("bouts_contact_span_s")  # decision L164: bouts.csv's cadence, the bouts pooled
-            row["cadence_spm"] = cadence_spm(total("bouts_n_step_intervals"), span) if span > 0 else np.nan
-            row.update({c: _sum_of_all(ok, c) for c in SUMMED_SESSION_COLUMNS})
-            rows.append(row)
-    out = pd.DataFrame(rows, columns=list(SUBJECT_COLUMNS))
+            at_visit = (mine if not by_visit else mine[mine["visit"].isna()] if visit is None
+                        else mine[mine["visit"] == visit])
+            for label in _labels_of(at_visit, by):  # decision C171: each test of the visit its own row
+                rows.append(_subject_row(subject, visit, by, label, at_visit if by is None else
+                                         at_visit[at_visit[by].isna()] if label is None else
+                                         at_visit[at_visit[by] == label]))
+    columns = list(SUBJECT_COLUMNS)
+    if by:
+        columns.insert(columns.index("visit") + 1, by)
+    out = pd.DataFrame(rows, columns=columns)
     for c in ("n_tracked", "n_failed", "n_bouts", "n_steps", "n_strides", "floors_up", "floors_down",
               "n_sit_to_stand", "n_stand_to_sit"):
         out[c] = out[c].astype("Float64").astype("Int64")
     return out
+
+
+def _labels_of(rows, by: str | None) -> list:
+    """Decision C171: the values of label column ``by`` among ``rows`` in natural order, None last when a row has
+    none; ``[None]`` without ``by`` (one row)."""
+    if by is None:
+        return [None]
+    return visit_order(rows[by].dropna()) + ([None] if rows[by].isna().any() else [])
+
+
+def _subject_row(subject, visit, by: str | None, label, at) -> dict:
+    """Cohort C25's row of one subject's sessions ``at`` (sessions.csv rows) at ``visit`` (and, decision C171,
+    ``label`` of column ``by``)."""
+    import numpy as np
+    import pandas as pd
+
+    from pdrlearn.track.bouts import cadence_spm
+
+    ok = at[at["status"] == "ok"]
+
+    def total(col, ok=ok):  # empty when none of the sessions was tracked
+        return pd.to_numeric(ok[col], errors="coerce").sum() if col in ok and len(ok) else np.nan
+
+    t = total("bouts_time_s")
+    row = {"subject": subject, "visit": visit, "visit_as_written": _names(at["visit_as_written"]),
+           "group": "; ".join(dict.fromkeys(at["group"].astype(str))),
+           # decision B393: a split part at rest (B389's skipped) is neither tracked nor failed
+           "n_tracked": len(ok), "n_failed": int((at["status"] != SKIPPED).sum()) - len(ok),
+           "paths": "; ".join(at["path"].astype(str)),
+           "distance_m": total("distance_m"), "n_bouts": total("n_bouts"),
+           "walking_time_s": total("walking_time_s"),  # decision W447: the summary's, as sessions.csv
+           "n_steps": total("bouts_n_steps"), "n_strides": total("bouts_n_strides"),
+           "bouts_distance_m": total("bouts_distance_m"), "bouts_time_s": t}
+    w = row["walking_time_s"]
+    row["gait_speed_mps"] = row["distance_m"] / w if w > 0 else np.nan  # decision W447
+    row["bouts_gait_speed_mps"] = row["bouts_distance_m"] / t if t > 0 else np.nan  # cohort C25
+    span = total("bouts_contact_span_s")  # decision L164: bouts.csv's cadence, the bouts pooled
+    row["cadence_spm"] = cadence_spm(total("bouts_n_step_intervals"), span) if span > 0 else np.nan
+    row.update({c: _sum_of_all(ok, c) for c in SUMMED_SESSION_COLUMNS})
+    if by:
+        row[by] = label
+    return row
 
 
 def _sum_of_all(ok, column: str):

@@ -264,7 +264,7 @@ def _validators() -> dict[tuple[str, str], object]:
     commands check against (so a renamed choice fails here as it would for the user)."""
     from pdrlearn.classify.hyper import parse_params
     from pdrlearn.classify.training import CV_GROUPS, METHODS, check_settings
-    from pdrlearn.cli.cohort import parse_metrics
+    from pdrlearn.cli.cohort import GROUP_BY_CHOICES, parse_metrics
     from pdrlearn.cli.simulate import parse_mount, parse_transfer_time
     from pdrlearn.cli.track import COMPASS_CHOICES
     from pdrlearn.columns import TABLES as COLUMN_TABLES
@@ -380,6 +380,7 @@ def _validators() -> dict[tuple[str, str], object]:
         # cohort C35; decision L340: a table's name without .csv too
         ("columns", "table"): _one_of([*COLUMN_TABLES, *(t[:-4] for t in COLUMN_TABLES if t.endswith(".csv"))]),
         ("track-all", "metrics"): parse_metrics,  # cohort C81, decision B303: sessions.csv's number columns
+        ("track-all", "group_by"): _one_of(GROUP_BY_CHOICES),  # cohort C171
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
                 "per_align", "units", "altitude", "detector", "length_model", "splits",

@@ -70,7 +70,7 @@ def _train(sessions):
 
 
 def test_training_ignores_and_keeps_the_global_generators(sessions):
-    """C65: fit, consume the global generators, fit again, fit under two other global seeds: identical models;
+    """C65: fit, consume the global generators, fit again, fit under another global seed: identical models;
     and no fit changes numpy's or torch's global generator state."""
     import torch
 
@@ -82,14 +82,13 @@ def test_training_ignores_and_keeps_the_global_generators(sessions):
     torch.rand(1000)
     np.random.rand()
     again = _fingerprint(_train(sessions))
-    np.random.seed(1)
-    torch.manual_seed(1)
-    seeded_1 = _fingerprint(_train(sessions))
+    # one other global seed: a second one (seed 1 beside seed 2 until session 43) ran the same code under another
+    # state and found nothing the first cannot (decision E268's test-time cuts)
     np.random.seed(2)
     torch.manual_seed(2)
     seeded_2 = _fingerprint(_train(sessions))
     assert {k.split("/")[1] for k in first if k.count("/") == 2} == set(METHODS)  # every method was trained
-    assert first == again == seeded_1 == seeded_2
+    assert first == again == seeded_2
 
 
 def test_another_seed_gives_another_network_and_fold_choice(sessions):

@@ -52,8 +52,10 @@ def test_sample_numbers_are_refused_and_read_with_rate(waist, tmp_path, capsys):
     csv = _export(waist, tmp_path / "idx.csv", time=np.arange(n), tname="sample")
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "sample"]) != 0
     err = _err(capsys)
-    assert f"column 'sample' holds consecutive integers (0-{n - 1}, step 1)" in err
-    assert "--rate HZ" in err and "--time-unit ms" in err
+    # decision B439: the column's name says sample numbers, so only the rate is asked for (B39's question on a
+    # column named like a time: tests/test_import_samples_s43_b438.py)
+    assert f"column 'sample' holds sample numbers (0-{n - 1}, step 1)" in err
+    assert "--rate HZ" in err and "--time-unit ms" not in err
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "sample",
                  "--rate", "100"]) == 0
     got = read_session(tmp_path / "s")

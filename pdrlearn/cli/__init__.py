@@ -12,6 +12,7 @@ adds the INFO records; it is accepted before or after the command name.
 
 from __future__ import annotations
 
+import functools
 import importlib
 import logging
 import os
@@ -133,16 +134,26 @@ def _command_index(argv: list[str]) -> int | None:
     return None
 
 
+@functools.cache
+def click_app():
+    """Decision E268: the click group typer builds from :data:`app`, built once per process. ``app(...)`` rebuilds
+    it from every command's signature on each call (``typer.main.get_command``: about 0.1 s of CPU, twice per
+    :func:`main` with :func:`_hoist_verbose`); every command is registered when this module is imported, and click
+    makes a new context per call, so one group serves every call. ``pretty_exceptions_enable=False`` made
+    ``app(...)``'s own exception hook the default one, so nothing else of it is lost."""
+    import typer.main
+
+    return typer.main.get_command(app)
+
+
 def _hoist_verbose(argv: list[str]) -> list[str]:
     """Move ``-v``/``--verbose`` (and ``--plugin MODULE``, decision C121) given after the command name in front of
     it, where the root option is parsed (``pdrlearn track DIR --out O -v`` = ``pdrlearn -v track DIR --out O``). A
     token that is the value of a command option (``--title -v``) or follows ``--`` is left alone."""
-    import typer.main
-
     i = _command_index(argv)
     if i is None:
         return argv
-    cmd = typer.main.get_command(app).commands.get(argv[i])
+    cmd = click_app().commands.get(argv[i])
     if cmd is None:
         return argv
     takes_value, own = set(), set()
@@ -291,7 +302,7 @@ def _main(argv: list[str]) -> int:
     try:
         with _stderr_logging(), checked_outputs() as written, _sigterm_as_interrupt():  # B20; B319
             # with standalone_mode=False click returns a command's `typer.Exit(code)` instead of raising it
-            rc = app(args=_hoist_verbose(list(argv)), standalone_mode=False)
+            rc = click_app()(args=_hoist_verbose(list(argv)), standalone_mode=False)
     except PdrlearnError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return exc.exit_code

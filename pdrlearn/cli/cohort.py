@@ -53,6 +53,7 @@ from pdrlearn.cohort import (
     run_cohort,
     session_group,
     session_labels,
+    session_test_labels,
     session_warning,
     split_part,
     user_sessions,
@@ -590,8 +591,14 @@ def _sessions_table(rows: list[dict]) -> pd.DataFrame:
         values = [v for v in (r.get(c) for r in rows) if v is not None]
         if values and all(isinstance(v, int) and not isinstance(v, bool) for v in values):
             df[c] = df[c].astype("Int64")
-    rest = sorted(c for c in df.columns if c not in SESSION_COLUMNS)
-    return df.reindex(columns=[*SESSION_COLUMNS, *rest])
+    from pdrlearn.cohort import TEST_LABELS
+
+    labels = [c for c in TEST_LABELS if c in df.columns]  # decision C170: after visit_as_written, when named
+    lead = list(SESSION_COLUMNS)
+    at = lead.index("visit_as_written") + 1
+    lead[at:at] = labels
+    rest = sorted(c for c in df.columns if c not in lead)
+    return df.reindex(columns=[*lead, *rest])
 
 
 #: decision L148: the numbers masked when grouping the batch's warnings
@@ -1000,6 +1007,9 @@ def track_all(
                                      "output tree, every table, each session's files and figure titles; run.json "
                                      "keeps the map's SHA-256 only (decision C86)."),
     metrics: str = typer.Option(None, "--metrics", metavar="A,B,...", help=METRICS_HELP),
+    group_by: str = typer.Option(None, "--group-by", metavar="test", help="subjects.csv's rows per subject, visit "
+                                 "and meta.json's \"test\" (mobgap's Test5, Test11), not the subject's tests pooled "
+                                 "(sessions.csv has each session's test and trial; decisions C170, C171)."),
     redact_paths: bool = _track.REDACT_PATHS_OPT,  # decision E176
     resume: bool = typer.Option(False, "--resume", help=RESUME_HELP),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
@@ -1094,6 +1104,8 @@ def track_all(
     was = existed(out)
     rels = [p.relative_to(root).as_posix() for p in found]
     labels = [session_labels(p) for p in found]  # decision C22: meta.json's subject and visit
+    tests = [session_test_labels(p) for p in found]  # decision C170: meta.json's test and trial
+    _check_group_by(group_by, tests, root)  # decision C171: before any tracking
     per_session = [settings] * len(found)
     if params_dir is not None:  # decision C26: each subject's file, all checked and read before any tracking
         from pdrlearn.cli.track import read_params
@@ -1151,6 +1163,9 @@ def track_all(
         dup, same = _duplicates(rels, results, found)
         rows = [_session_row(rel, session_group(rel, group_depth), r, rename_text(str(p), names or {}),
                              skipped_part(r)) for rel, r, p in zip(rels, results, found, strict=True)]
+        named = {k for t in tests for k, v in t.items() if v is not None}  # decision C170: columns when named
+        for row, test in zip(rows, tests, strict=True):
+            row.update({k: v for k, v in test.items() if k in named})
         for row, label, st in zip(rows, labels, per_session, strict=True):
             row["duplicate_of"] = dup.get(row["path"])
             row["same_sensor_data_as"] = same.get(row["path"])  # decision L137
@@ -1163,7 +1178,10 @@ def track_all(
         changes, summary = _changes(sessions, vmap, measures)
         from pdrlearn.visits import subject_totals
 
-        subjects = subject_totals(sessions, vmap)  # cohort C25: None when no session names a subject (C40: visits)
+        # cohort C25: None when no session names a subject (C40: visits; decision C171: and tests, --group-by)
+        subjects = subject_totals(sessions, vmap, by=group_by)
+        if subjects is not None and group_by is None:
+            _pooled_tests_warning(sessions)  # decision C171
         strides = combined_strides(tmp, rows, dict(zip(rels, found, strict=True)))  # decision E163
         if subjects is not None:  # decision C146: each subject's strides pooled over its sessions
             from pdrlearn.track.steady import steady_trim_set
@@ -1238,6 +1256,42 @@ def track_all(
         for r in skipped:
             typer.echo(f"{SKIPPED} {r.name}: {SKIPPED_NOTE}")
     _exit_if_any_failed(failed)
+
+
+#: decision C171: the meta.json labels ``--group-by`` splits subjects.csv's rows by (``trial`` would pool Test5
+#: Trial1 with Test11 Trial1)
+GROUP_BY_CHOICES = ("test",)
+
+
+def _check_group_by(group_by: str | None, tests: list[dict], root: Path) -> None:
+    """Decision C171: ``--group-by`` names meta.json's ``test`` (the one label it groups by), and some session under
+    ``root`` names one; one line otherwise, before any tracking."""
+    if group_by is None:
+        return
+    if group_by not in GROUP_BY_CHOICES:
+        raise DataError(f"track-all: --group-by {group_by}: subjects.csv's rows can be grouped by meta.json's "
+                        "\"test\" only; pass --group-by test, or leave it out (decision C171)")
+    if not any(t.get("test") for t in tests):
+        raise DataError(f"track-all: --group-by test groups subjects.csv by meta.json's \"test\", and no session "
+                        f"under {root} names one; add \"test\" to their meta.json, or leave --group-by out (decision "
+                        "C171)")
+
+
+def _pooled_tests_warning(sessions: pd.DataFrame) -> None:
+    """Decision C171: subjects.csv pools a subject's sessions of different meta.json tests (Test5's straight walk with
+    Test11's daily activities, which Mobilise-D never pools) without ``--group-by test``: said once."""
+    import logging
+
+    if "test" not in sessions or "subject" not in sessions:
+        return
+    named = sessions[sessions["subject"].notna() & sessions["test"].notna()]
+    mixed = [s for s, tests in named.groupby("subject", sort=False)["test"] if tests.nunique() > 1]
+    if mixed:
+        tests = list(dict.fromkeys(named["test"].astype(str)))
+        logging.getLogger("pdrlearn.cli").warning(
+            "%s", f"subjects.csv pools each subject's tests ({', '.join(tests[:4])}{' ...' if len(tests) > 4 else ''}"
+            f"; {len(mixed)} subject{'s' if len(mixed) > 1 else ''} with more than one): pass --group-by test for "
+            "one row per subject and test (decision C171)")
 
 
 def _raise_if_none_tracked(failed: list[JobResult], skipped: list[JobResult], n: int) -> None:

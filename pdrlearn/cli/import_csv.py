@@ -305,15 +305,19 @@ def import_command(
               add_gravity=add_gravity, retime_hz=retime,
               foot=foot, no_header=no_header, encoding=encoding, subject=subject,
               visit=visit)
-    if split_at_clock_reset:
-        parts = import_csv_parts(csv, **kw)
+    from pdrlearn.cli.import_fixes import import_with_fixes
+    from pdrlearn.provenance import command_line
+
+    if split_at_clock_reset:  # decision B438: every problem an option fixes, said in one message
+        parts = import_with_fixes(lambda **k: import_csv_parts(csv, **k), kw, str(csv), command_line())
         _check_force_unit_used(csv, parts[0][1], heel_unit, toe_unit)  # decision B408, before any write
         if len(parts) > 1:
             _write_parts(parts, csv, unit, out, force_frame, as_json)
             return
         session, record = parts[0]
     else:
-        session, record = import_csv(csv, origin_s=origin, **kw)
+        session, record = import_with_fixes(lambda **k: import_csv(csv, origin_s=origin, **k), kw, str(csv),
+                                            command_line())  # decision B438
         _check_force_unit_used(csv, record, heel_unit, toe_unit)  # decision B408, before any write
     if steps is not None:
         if base is not None and base.steps is not None:

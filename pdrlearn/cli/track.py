@@ -1459,15 +1459,15 @@ PLASYS_OPTION_KEYS = ("ride_vibration",)
 def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
     """Decision W422: ``par`` split into the FootDisplacement settings and the :data:`TRACK_PARAM_KEYS` (JSON true /
     false), or one line naming the file: a non-boolean value, or ``waist_bias`` with ``--streaming`` (the streamed
-    heading has no rest-bias removal)."""
+    heading has no W126 removal: it removes the bias read at each stop, causally, decision E272)."""
     keys = {k: par[k] for k in TRACK_PARAM_KEYS if k in par}
     for k, v in keys.items():
         if not isinstance(v, bool):
             raise DataError(f"{path}: \"{k}\" must be true or false (JSON, no quotes), not {v!r:.40}; fix the key")
     if "waist_bias" in keys and streaming:
         raise DataError(f"{path}: \"waist_bias\" removes the waist gyroscope bias from the offline two-unit heading "
-                        "(decisions W126, W422); the --streaming kernel has no such removal: drop --streaming or "
-                        "the key")
+                        "(decisions W126, W422); the --streaming kernel removes instead, always, the bias read at "
+                        "each stop of 10 s or more (decision E272): drop --streaming or the key")
     keys.update(_plasys_options(par.get("options"), path, streaming) if "options" in par else {})
     return {k: v for k, v in par.items() if k not in TRACK_PARAM_KEYS and k != "options"}, keys
 

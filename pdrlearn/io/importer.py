@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, OptionFixError
 from pdrlearn.io.datetimes import dst_jump, dst_message, exact_seconds, localize, offset_text
 from pdrlearn.io.frames import AxisFrame, right_handed
 from pdrlearn.io.matfile import expand_columns, mat_arrays_text, mat_message, mat_version, read_mat_table
@@ -86,6 +86,9 @@ _TIME_NAMES = ("timestamp", "time", "t", "ts", "timems", "times", "seconds", "se
                "milliseconds", "elapsedtime", "sampletime", "epoch", "unixtime", "timeus", "timens",
                "datetime", "date", "utc", "timestamputc",
                "zeit", "zeitstempel", "uhrzeit", "datumuhrzeit", "datumzeit", "datum")  # decision B345: German
+#: decision B439: names of a column of sample numbers (mobgap's CSV export: ``samples,acc_x,...,gyr_z``): the time
+#: column when no column is named like a time, whose consecutive integers need only ``--rate`` (not B39's question)
+_SAMPLE_NAMES = ("samples", "sample", "sampleindex", "samplenumber", "samplenr", "sampleno")
 
 #: accepted unit words per kind -> factor to the project's unit (time: seconds per unit)
 UNITS: dict[str, dict[str, float]] = {
@@ -256,7 +259,8 @@ def time_column_candidates(columns: list[str], *, mat: bool = False) -> list[str
     """The columns named like a time, by the first rule that names any: exactly a time name (``timestamp``,
     ``Time (ms)``, ``t``), else a name starting with ``time`` (``timestamp_ms``, ``time_since_start``), else one
     containing ``timestamp`` (B66: ``Shimmer_7A1F_Timestamp_Unix_CAL``), else one containing ``elapsed`` (B148:
-    Sensor Logger's ``seconds_elapsed``, which its ``time`` column wins over). ``mat``: the names are MAT
+    Sensor Logger's ``seconds_elapsed``, which its ``time`` column wins over), else one named as sample numbers
+    (:data:`_SAMPLE_NAMES`, decision B439: mobgap's ``samples``). ``mat``: the names are MAT
     struct paths, judged by their last field (``TimeMeasure1.Test11.SU.Acc_x`` is no time; decision B335)."""
     if mat:
         last = {c: c.rsplit(".", 1)[-1] for c in columns}
@@ -265,7 +269,8 @@ def time_column_candidates(columns: list[str], *, mat: bool = False) -> list[str
     for hits in ([c for c in columns if _stem(c) in _TIME_NAMES],
                  [c for c in columns if _stem(c).startswith("time")],
                  [c for c in columns if "timestamp" in _stem(c)],
-                 [c for c in columns if "elapsed" in _stem(c)]):
+                 [c for c in columns if "elapsed" in _stem(c)],
+                 [c for c in columns if _stem(c) in _SAMPLE_NAMES]):  # decision B439
         if hits:
             return hits
     return []
@@ -419,6 +424,9 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
     hint = _TIME_ALIASES.get(hint, hint) if hint else None
     if hint in _TIME_SCALE:
         return hint, "header"
+    if sample_numbers(t_raw) and _stem(column) in _SAMPLE_NAMES:  # decision B439: the name says which
+        raise OptionFixError(f"{where}: column '{column}' holds sample numbers ({t_raw[0]:.0f}-{t_raw[-1]:.0f}, "
+                             "step 1): give the sampling rate with --rate HZ (decision B439)", "--rate")
     if sample_numbers(t_raw):  # decision B39: never read as a 1000 Hz ms clock without being told
         raise DataError(f"{where}: column '{column}' holds consecutive integers ({t_raw[0]:.0f}-{t_raw[-1]:.0f}, "
                         "step 1): sample numbers, or a 1000 Hz clock in ms? They cannot be told apart: give the "
@@ -885,16 +893,23 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
 
 
 def _refuse_out_of_range(spec, raw: np.ndarray, rows: np.ndarray, t: np.ndarray, factor: float, cols: list[str],
-                         unit: str, where: str, lines: np.ndarray, declare: str | None) -> None:
+                         unit: str, where: str, lines: np.ndarray, declare: str | None, kind: str = "") -> None:
     """Decision B436: B425's one line for an export's rows (``raw``, as written) with a value beyond any sensor's
     range once converted (``factor``), naming the export, the file line (``lines``: each row's) and the export's own
     column. The unit checks (``declare``: the import's unit option) first, as B425's reader does, so that a whole
     column in another unit keeps its unit line (its corrupt rows' squares may overflow there, silently); none with
-    ``--add-gravity`` (``declare`` None: its acceleration has no gravity yet, B166)."""
+    ``--add-gravity`` (``declare`` None: its acceleration has no gravity yet, B166). ``kind``: the import's channel
+    kind, whose option the unit line carries when another unit fits (decision B438)."""
     if declare is not None:
-        with np.errstate(over="ignore", invalid="ignore"):
-            check_units(spec, raw * factor, f"{where} ({', '.join(cols)} as {unit})", declare=declare, t=t,
-                        factor=factor)
+        try:
+            with np.errstate(over="ignore", invalid="ignore"):
+                check_units(spec, raw * factor, f"{where} ({', '.join(cols)} as {unit})", declare=declare, t=t,
+                            factor=factor)
+        except DataError as exc:
+            fits = _fitting_unit(kind, spec.name, raw, t, unit)  # decision B438
+            if fits is None:
+                raise
+            raise OptionFixError(str(exc), _UNIT_OPTION[kind], fits) from None
     r = int(rows[0])
     raise DataError(out_of_range_message(where, spec, raw, rows, factor, first_line=int(lines[r]) - r,
                                          columns=tuple(cols)) + "; nothing written")
@@ -1061,9 +1076,10 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             if rate_hz is None and mat_record and "rate" in mat_record:  # decision B335: the MAT file's fs
                 rate_hz = mat_record["rate"]["hz"]
                 mat_record["rate"]["used"] = True
-            if rate_hz is None:
-                raise DataError(f"{where}: no timestamp column found among: {have}; name it with --time COLUMN, or "
-                                "pass --rate HZ to time the rows by their number (a fixed-rate export, B323)")
+            if rate_hz is None:  # decision B438: --rate is this refusal's fix (its value the user's)
+                raise OptionFixError(f"{where}: no timestamp column found among: {have}; name it with --time "
+                                     "COLUMN, or pass --rate HZ to time the rows by their number (a fixed-rate "
+                                     "export, B323)", "--rate")
             time_column = ROW_INDEX  # decision B323: a fixed-rate export (gaitmap / NilsPod style): rows at --rate
             t_source = "none"
     else:
@@ -1262,7 +1278,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             declare = f"give the unit with {opt} ({' | '.join(UNITS[kind])})"
             if corrupt.size:  # decision B436: refused here, before anything is written (the next read refused it)
                 _refuse_out_of_range(SENSORS[sensor], vals[keep], corrupt, t, factor, cols, u, where,
-                                     np.flatnonzero(keep) + first_line, None if add_gravity else declare)
+                                     np.flatnonzero(keep) + first_line, None if add_gravity else declare, kind)
             if kind == "acc" and add_gravity is not None:  # decision B166
                 if gravity_removed(values, where, t) is None:
                     med = float(np.median(np.linalg.norm(values, axis=1)))
@@ -1284,16 +1300,22 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 if removed is not None:  # decision B164: name the phone files that hold gravity
                     raise DataError(gravity_removed_message(f"{where} ({', '.join(cols)} as {u})", *removed,
                                                             gravity_fix(path)) + " (decision B164)") from None
+                fits = _fitting_unit(kind, sensor, vals[keep] * sign, t, u)  # decision B438: the one that reads
                 if factor == 1.0:
-                    raise
+                    if fits is None:
+                        raise
+                    raise OptionFixError(str(exc), opt, fits) from None
                 try:  # decision B45: the values are plausible as they are, so the conversion is the mistake
                     check_units(SENSORS[sensor], vals[keep], where, t=t)
                 except DataError:
-                    raise exc from None
+                    if fits is None:
+                        raise exc from None
+                    raise OptionFixError(str(exc), opt, fits) from None  # decision B438: another unit reads them
                 si = next(iter(UNITS[kind]))
                 fix = (f"drop {opt} {u} (or pass {opt} {si})" if u_src.startswith("given")
                        else f"the column names say {u}, but the values are not: pass {opt} {si}")
-                raise DataError(f"{exc}; read without the conversion from {u} they are plausible {si}: {fix}") from None
+                msg = f"{exc}; read without the conversion from {u} they are plausible {si}: {fix}"
+                raise (DataError(msg) if fits is None else OptionFixError(msg, opt, fits)) from None
             streams[sensor] = stream
             record["streams"][sensor] = {"columns": cols, "columns_source": sources[kind], "unit": u,
                                          "unit_source": u_src, "factor": factor,
@@ -1362,6 +1384,24 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             record["part"] = {"part": part, "of": n_parts, "lines": lines}
         parts.append((Session(name=meta["session"], streams=streams, meta=meta, frames=frames), record))
     return parts
+
+
+def _fitting_unit(kind: str, sensor: str, raw: np.ndarray, t: np.ndarray, unit: str) -> str | None:
+    """Decision B438: the one unit word of ``kind`` (acc, gyro: :data:`_UNIT_OPTION`'s kinds) other than ``unit`` in
+    which the file's values ``raw`` pass :func:`~pdrlearn.kernels.units.check_units` (the same check that refused
+    them), so the import can say its option and value; None when none or several do, or for any other kind."""
+    if kind not in _UNIT_OPTION:
+        return None
+    fits = []
+    for word, factor in UNITS[kind].items():
+        if word == unit:
+            continue
+        try:
+            check_units(SENSORS[sensor], raw * factor, "", t=t, factor=factor)
+        except DataError:
+            continue
+        fits.append(word)
+    return fits[0] if len(fits) == 1 else None
 
 
 def _retimed(t: np.ndarray, hz: float, where: str, time_column: str, record: dict, sensor: str) -> np.ndarray:

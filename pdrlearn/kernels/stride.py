@@ -416,6 +416,15 @@ def waist_gap_max_s(prev_end: float, t0: float) -> float:
     return gap if gap <= REST_BIAS_MIN_S else GAP_YAW_MAX_S
 
 
+def waist_gap_from(prev_end: float | None, t0: float, waist: bool = True) -> float:
+    """Decision E272: where the waist's gap yaw before the stride starting at ``t0`` begins (s; :func:`stride_gap_yaw`
+    with ``waist``: L498's look-back from ``t0``), or ``t0`` when it adds none: the span a gyroscope bias turns it
+    by."""
+    if not waist or prev_end is None or not t0 > prev_end:
+        return float(t0)
+    return max(float(prev_end), float(t0) - waist_gap_max_s(prev_end, t0))
+
+
 def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[str], tuple[np.ndarray, np.ndarray]],
                    prev_end: float | None, t0: float, *, foot: bool = True, waist: bool = False) -> float:
     """Decisions L31 / L61: the turn (rad) in the gap between the previous stride's end ``prev_end`` and this

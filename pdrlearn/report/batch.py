@@ -70,10 +70,11 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
 
 
 def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[str, str] | None = None,
-                 metrics: tuple[str, ...] | None = None) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
+                 metrics: tuple[str, ...] | None = None,
+                 group_by: str | None = None) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
     """The batch section's summary line and tables: per session, per group (``mean ± sd (n)``, as track-all
-    prints it), each subject's (and visit's) walking totals (cohort C42), the failed sessions with their errors and
-    warnings, the paired changes (visits by ``visit_map``)."""
+    prints it), each subject's (and visit's; with ``group_by`` "test", test's: cohort C171) walking totals (cohort
+    C42), the failed sessions with their errors and warnings, the paired changes (visits by ``visit_map``)."""
     from pdrlearn.cohort import groups_text
 
     n, failed = len(sessions), sessions[sessions["status"] == "failed"]
@@ -88,7 +89,7 @@ def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[s
     tables = [("per session", sessions[[c for c in SESSION_TABLE_COLUMNS if c in sessions.columns]]),
               *[(f"per session: {t[0]}", t[1]) for t in tests],
               ("per group (mean ± sd (n) over the tracked sessions)", groups_text(groups)),
-              *subject_tables(sessions, visit_map)]
+              *subject_tables(sessions, visit_map, group_by)]
     if len(failed):
         cols = ["path", "group", "error"] + [c for c in ("warnings",) if c in failed.columns]
         tables.append(("failed sessions", failed[cols].astype(object).fillna("")))
@@ -132,6 +133,13 @@ def run_visit_map(folder: Path) -> dict[str, str] | None:
     return vm.get("visits") if isinstance(vm, dict) else None
 
 
+def run_group_by(folder: Path) -> str | None:
+    """Cohort C171: the ``--group-by`` a track-all run used (OUT/run.json), for the report's subject rows to be
+    subjects.csv's; None without it."""
+    given = _run_option(folder, "group_by")
+    return given if isinstance(given, str) else None
+
+
 def run_metrics(folder: Path) -> tuple[str, ...] | None:
     """The ``--metrics`` a track-all run used (decision C81, from OUT/run.json), for the report's changes to be
     changes.csv's; None without it."""
@@ -144,18 +152,21 @@ SUBJECT_TABLE_COLUMNS = ("subject", "visit", "group", "n_tracked", "n_failed", "
                          "walking_time_s", "n_steps", "n_strides", "bouts_distance_m", "gait_speed_mps", "cadence_spm")
 
 
-def subject_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None) -> list[tuple[str, pd.DataFrame]]:
+def subject_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None,
+                   group_by: str | None = None) -> list[tuple[str, pd.DataFrame]]:
     """Cohort C42: each subject's (and visit's) walking totals, subjects.csv (C25) recomputed from sessions.csv with
-    the run's visit names (``visit_map``, C40), as the paired changes are; none when no session names a subject."""
+    the run's visit names (``visit_map``, C40) and its ``--group-by`` (C171: a row per test), as the paired changes
+    are; none when no session names a subject."""
     from pdrlearn.visits import subject_totals
 
-    subjects = subject_totals(sessions, visit_map)
+    subjects = subject_totals(sessions, visit_map, by=group_by)
     if subjects is None:
         return []
     if subjects["visit"].isna().all():
         subjects = subjects.drop(columns=["visit"])
+    shown = [*SUBJECT_TABLE_COLUMNS[:2], *([group_by] if group_by else []), *SUBJECT_TABLE_COLUMNS[2:]]
     return [("per subject and visit: walking totals of the detected bouts (subjects.csv; distance_m: the tracks "
-             "summed)", subjects[[c for c in SUBJECT_TABLE_COLUMNS if c in subjects.columns]])]
+             "summed)", subjects[[c for c in shown if c in subjects.columns]])]
 
 
 def pooled_subject_table(folder: str | Path) -> list[tuple[str, pd.DataFrame]]:

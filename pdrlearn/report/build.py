@@ -288,10 +288,19 @@ def run_label(p: Path, root: Path) -> str:
 
 def _batch_section(folder: Path, root: Path) -> Section:
     """Cohort C16: the section of a track-all output folder (:mod:`pdrlearn.report.batch`)."""
-    from pdrlearn.report.batch import batch_tables, batch_warnings, plot_batch, read_batch, run_metrics, run_visit_map
+    from pdrlearn.report.batch import (
+        batch_tables,
+        batch_warnings,
+        plot_batch,
+        read_batch,
+        run_group_by,
+        run_metrics,
+        run_visit_map,
+    )
 
     sessions, groups = read_batch(folder)
-    text, tables = batch_tables(sessions, groups, run_visit_map(folder), run_metrics(folder))
+    text, tables = batch_tables(sessions, groups, run_visit_map(folder), run_metrics(folder),
+                                run_group_by(folder))  # cohort C171
     from pdrlearn.report.batch import pooled_subject_table
 
     tables += pooled_subject_table(folder)  # decision C146

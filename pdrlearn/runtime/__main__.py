@@ -44,28 +44,39 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: str | None = None,
-           method: str | None = None, fallback_line: bool = True, domain_line: bool = True):
+           method: str | None = None, fallback_line: bool = True, domain_line: bool = True,
+           block_rows: int | None = None):
     """The tracker after replaying ``session_dir`` through ``bundle_dir`` and its steps, as ``pdrlearn run`` pushes
     a session (same input rates, stream ends, frames when the session declares them; decision E76).
     ``fallback_line=False``: no E26 line about the foot unit only (``evaluate`` says it its own way, E196);
     ``domain_line=False``: the strides are still checked against the training ranges (``tracker.domain_report()``)
-    but the C61 line is not said (``evaluate`` pools the sessions and warns only when asked, E198)."""
+    but the C61 line is not said (``evaluate`` pools the sessions and warns only when asked, E198).
+    ``block_rows``: the sensor files are read this many data rows at a time (default ``chunked.BLOCK_ROWS``;
+    decision E274: bounded memory, the same pushes as the whole files'; a file the block reader finds unusual is
+    read whole, as before)."""
     from pdrlearn.errors import DataError
     from pdrlearn.runtime import Tracker, load_bundle
+    from pdrlearn.runtime import chunked as _chunked
     from pdrlearn.runtime.replay import read_streams, replay_chunks, session_frames
 
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     bundle = load_bundle(bundle_dir)
     methods = bundle.choose_methods(method) if method is not None else None
-    streams, meta = read_streams(session_dir, bundle)
+    rows = _chunked.BLOCK_ROWS if block_rows is None else block_rows
+    chunked, meta = _chunked.open_session(session_dir, bundle, rows=rows)  # decision E274: bounded memory
+    if chunked is not None:
+        periods, ends, pushes = chunked.periods, chunked.ends, chunked.chunks(chunk_s)
+    else:  # a file the whole-file reader judges: its line, or the replay as before E274
+        streams, meta = read_streams(session_dir, bundle)
+        periods = {n: _period(t) for n, (t, _) in streams.items()}
+        ends = {n: float(t[-1]) for n, (t, _) in streams.items() if len(t)}
+        pushes = replay_chunks(streams, chunk_s)
     asked = None if units is None else [u for u in units.split(",") if u.strip()]
-    have = [n for n, (t, _) in streams.items() if len(t)]
     tracker = Tracker(bundle, frames=session_frames(meta, bundle, asked or bundle.body_units, f"session {session_dir}"),
-                      units=asked, sensors=have, methods=methods,
-                      input_rates_hz={n: _rate_hz(t) for n, (t, _) in streams.items()},
-                      stream_ends_s={n: float(t[-1]) for n, (t, _) in streams.items() if len(t)},
-                      check_domain=True)  # decision E105: C61's out-of-domain line, as pdrlearn run
+                      units=asked, sensors=list(ends), methods=methods,
+                      input_rates_hz={n: 1.0 / p if p > 0 else float("nan") for n, p in periods.items()},
+                      stream_ends_s=ends, check_domain=True)  # decision E105: C61's out-of-domain line, as pdrlearn run
     if not domain_line:  # decision E198: checked, never said
         tracker.quiet_domain()
     if fallback_line and asked is None and tracker.units != bundle.body_units:  # decision E26, as run says it
@@ -74,7 +85,7 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
             "without the warning)", session_dir)
     steps = []
     try:
-        for chunk in replay_chunks(streams, chunk_s):
+        for chunk in pushes:
             steps += tracker.push(chunk)
         steps += tracker.flush()
     except DataError as exc:  # the Tracker names the stream; the line names the session's file too
@@ -82,12 +93,11 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
     return tracker, steps
 
 
-def _rate_hz(t) -> float:
-    """The rate ``pdrlearn run`` gives the Tracker (``Stream.rate_hz``: D7, B33); NaN when it has none."""
+def _period(t) -> float:
+    """The period behind the rate ``pdrlearn run`` gives the Tracker (``Stream.rate_hz``: D7, B33; NaN without)."""
     from pdrlearn.kernels.clock import nominal_period_s
 
-    p = nominal_period_s(t)
-    return 1.0 / p if p > 0 else float("nan")
+    return nominal_period_s(t)
 
 
 def _rows(steps) -> list[dict]:
@@ -172,7 +182,7 @@ def main(argv: list[str] | None = None) -> int:
         return exc.exit_code
     except (OSError, MemoryError) as exc:  # decision E276: an output the system refuses (disk full ...): one line
         if out_of_memory(exc):  # decision B440, as pdrlearn's
-            print(f"error: {out_of_memory_line(PROG)}", file=sys.stderr)
+            print(f"error: {out_of_memory_line(PROG, blocks=True)}", file=sys.stderr)
             return OUT_OF_MEMORY_EXIT
         line = os_error_line(exc, args.out)
         if line is None:

@@ -128,13 +128,10 @@ def _refuse_out_of_range(path: Path, name: str, t: np.ndarray, values: np.ndarra
     raise DataError(out_of_range_message(str(path), spec, values, rows, first_line=int(lines[rows[0]]) - int(rows[0])))
 
 
-def _read_csv(path: Path, name: str, scale: float) -> tuple[np.ndarray, np.ndarray]:
-    """One sensor file's ``(t_s, values)``, its columns taken by name in any order (decision B222: a file written
-    ``timestamp,z,x,y`` had been read by position, its z as x, and tracked 38.7 m of an 89.9 m walk); a value
-    beyond any sensor's range refused (decision B431)."""
+def _columns(path: Path, name: str, head: str) -> tuple[list[str], list[int]]:
+    """The header ``head``'s column names and the order taking them to ``timestamp,x[,y,z]`` (decision B222), or
+    one line naming ``path``."""
     n_values = 1 if name.startswith(("fForce", "wBarometer")) else 3
-    lines = read_text(path).splitlines()  # decision B221: UTF-8 (a BOM accepted), else one line
-    head = lines[0] if lines else ""
     names, want = header_names(head), ("timestamp", *VALUE_COLUMNS[n_values])
     dup = duplicate_message(path, names, head)
     if dup:
@@ -144,10 +141,11 @@ def _read_csv(path: Path, name: str, scale: float) -> tuple[np.ndarray, np.ndarr
                         f"sensor file; {FULL_READER}")
     if sorted(names) != sorted(want):
         raise DataError(f"{path}: columns {','.join(names)}, expected {','.join(want)} (in any order); {FULL_READER}")
-    kept = data_row_lines(lines)  # 1-based, blank lines skipped (shared with the full reader's B425 line)
-    rows = [lines[i - 1] for i in kept]
-    if not rows:
-        raise DataError(f"{path}: no data rows under the header; re-record the file or remove it")
+    return names, [names.index(c) for c in want]
+
+
+def _parse(path: Path, rows: list[str], names: list[str], order: list[int]) -> np.ndarray:
+    """The data ``rows`` of ``path`` as a float array in ``timestamp,x[,y,z]`` order (decision B222), or one line."""
     try:
         a = np.loadtxt(rows, delimiter=",", ndmin=2, dtype=np.float64)
     except ValueError as exc:
@@ -156,9 +154,22 @@ def _read_csv(path: Path, name: str, scale: float) -> tuple[np.ndarray, np.ndarr
     if a.shape[1] != len(names):
         raise DataError(f"{path}: {a.shape[1]} values per row under a header of {len(names)} columns (decimal "
                         f"commas in a comma-separated file?); {FULL_READER}")
-    order = [names.index(c) for c in want]
-    if order != list(range(len(want))):  # decision B222: by name, as the full reader (C order kept, as loadtxt's)
+    if order != list(range(len(order))):  # decision B222: by name, as the full reader (C order kept, as loadtxt's)
         a = np.ascontiguousarray(a[:, order])
+    return a
+
+
+def _read_csv(path: Path, name: str, scale: float) -> tuple[np.ndarray, np.ndarray]:
+    """One sensor file's ``(t_s, values)``, its columns taken by name in any order (decision B222: a file written
+    ``timestamp,z,x,y`` had been read by position, its z as x, and tracked 38.7 m of an 89.9 m walk); a value
+    beyond any sensor's range refused (decision B431)."""
+    lines = read_text(path).splitlines()  # decision B221: UTF-8 (a BOM accepted), else one line
+    names, order = _columns(path, name, lines[0] if lines else "")
+    kept = data_row_lines(lines)  # 1-based, blank lines skipped (shared with the full reader's B425 line)
+    rows = [lines[i - 1] for i in kept]
+    if not rows:
+        raise DataError(f"{path}: no data rows under the header; re-record the file or remove it")
+    a = _parse(path, rows, names, order)
     t = a[:, 0] * scale
     _refuse_out_of_range(path, name, t, a[:, 1:], np.asarray(kept))  # decision B431: line numbers from 1
     return t, a[:, 1:]
@@ -168,26 +179,40 @@ def read_streams(folder, bundle) -> tuple[dict, dict]:
     """``({sensor: (t_s, values)}, meta)`` of the sensors of ``bundle`` (required and optional) that the PLASYS
     session ``folder`` holds (the Tracker's ``sensors=`` then checks the required ones, decision E55)."""
     folder = Path(folder)
+    meta, scale, files = session_files(folder, bundle)
+    return {name: _read_csv(path, name, scale) for name, path in files()}, meta
+
+
+def session_files(folder: Path, bundle):
+    """``(meta, scale, files)`` of the PLASYS session ``folder``: its ``meta.json``, the seconds per timestamp unit,
+    and ``files()``, an iterator of ``(sensor, path)`` over the bundle's sensors the folder holds, in the bundle's
+    order, each checked against the unit ``meta.json`` declares for it as it comes (so a bad file is said when it is
+    reached, as before); one line naming the folder when it holds none. Shared by :func:`read_streams` and the
+    chunked replay (decision E274)."""
     if not folder.is_dir():
         raise DataError(f"{folder}: session folder not found; give a folder of <sensor>.csv files (PLASYS layout)")
     meta = read_meta(folder)
     scale = _time_scale(meta, folder / "meta.json")
     declared = meta.get("units") if isinstance(meta.get("units"), dict) else {}
     required, optional = bundle.sensors_of()
-    streams = {}
-    for name in [*required, *optional]:
-        path = session_csv(folder, name)  # decision B369: X.csv or X.csv.gz (gzip: the standard library)
-        if not path.is_file():
-            continue
-        si = bundle.manifest["units"].get(name)
-        if name in declared and si is not None and str(declared[name]).split()[:1] != [si]:
-            raise DataError(f"{folder / 'meta.json'}: units.{name} {declared[name]!r} is not {si}, the unit the "
-                            f"lean reader takes; {FULL_READER}")
-        streams[name] = _read_csv(path, name, scale)
-    if not streams:
-        raise MissingSensorError(f"{folder}: no sensor file the bundle reads ({', '.join([*required, *optional])})"
-                                 f"{compressed_hint(folder, [*required, *optional])}")
-    return streams, meta
+
+    def files():
+        found = False
+        for name in [*required, *optional]:
+            path = session_csv(folder, name)  # decision B369: X.csv or X.csv.gz (gzip: the standard library)
+            if not path.is_file():
+                continue
+            si = bundle.manifest["units"].get(name)
+            if name in declared and si is not None and str(declared[name]).split()[:1] != [si]:
+                raise DataError(f"{folder / 'meta.json'}: units.{name} {declared[name]!r} is not {si}, the unit the "
+                                f"lean reader takes; {FULL_READER}")
+            found = True
+            yield name, path
+        if not found:
+            raise MissingSensorError(f"{folder}: no sensor file the bundle reads ({', '.join([*required, *optional])})"
+                                     f"{compressed_hint(folder, [*required, *optional])}")
+
+    return meta, scale, files
 
 
 def session_frames(meta: dict, bundle, units, where: str) -> dict:

@@ -28,6 +28,7 @@ from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import relative_length as _relative_length
 from pdrlearn.kernels import sideways as _sideways
+from pdrlearn.kernels import stop_bias as _stop_bias
 from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
@@ -66,6 +67,7 @@ from pdrlearn.kernels.stride import (
     travel_sign_one,
     waist_bridge_yaw,
     waist_forward_flip,
+    waist_gap_from,
     waist_gap_max_s,
 )
 from pdrlearn.kernels.units import VALUE_LIMITS, out_of_range, out_of_range_message
@@ -476,6 +478,7 @@ class Tracker(OwnGuard, FixInput):
     _pushed_drops: list | None = None  # decision E230 (likewise)
     _baro = None  # decision E232 (likewise: no barometer check)
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
+    _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _session_length = None  # decision C117 (a bare Tracker.__new__: the model's length class)
@@ -705,6 +708,8 @@ class Tracker(OwnGuard, FixInput):
         self._gated_run_dz = 0.0  # decision L206: the summed dz of the current run of gated level strides (m)
         self._row_gaps, self._heights = [], HeightLog()  # decisions E46, E47 (E75: typed arrays)
         self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
+        #: decision E272: the waist gyroscope's bias read at the last stop (None without the waist unit)
+        self._stop_bias = _stop_bias.StopBias() if "waist" in self.units else None
         self.waist_bridge = bool(waist_bridge)  # decisions L91 / L99 (the default)
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
         #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
@@ -2020,6 +2025,11 @@ class Tracker(OwnGuard, FixInput):
                                        waist=self.waist_gap_yaw)
         else:  # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
             dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw)
+        if self._stop_bias is not None and not headed_by_foot(lev, self.heading_source):  # decision E272
+            self._stop_bias.update(self._stream, prev, t0)
+            lo = prev if pause_gap and self._bridged() else waist_gap_from(prev, t0, self.waist_gap_yaw)
+            turn -= self._stop_bias.turn(t0, t1)
+            dyaw -= self._stop_bias.turn(lo, t1)
         self._prev_end = t1
         if self.distance_gain is None:
             self._resolve_calibration()
@@ -2243,6 +2253,8 @@ class Tracker(OwnGuard, FixInput):
         elif self._prev_end is not None and self.waist_gap_yaw and "waist" in self.units \
                 and waist_gap_max_s(self._prev_end, self._latest) > GAP_YAW_MAX_S:  # decision L498: a stop up to 60 s
             keep_from = min(keep_from, self._prev_end - _LOOK_BACK_S)  # keeps its samples for the waist's gap yaw
+        if self._stop_bias is not None and self._prev_end is not None:  # decision E272: a stop's last KEEP_S seconds
+            keep_from = min(keep_from, max(self._prev_end, self._latest - _stop_bias.KEEP_S) - _LOOK_BACK_S)
         keep_from = min(keep_from, self._foot_silent_keep())  # decision E113
         if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return

@@ -307,7 +307,8 @@ def get_pipeline(name: str) -> Pipeline:
       without a terrain model, a stride inside a barometric climb is fused with the foot's own height; off by
       default), ``fused_straight`` (decisions L589, L609: with heading ``"fused"``, the waist-to-foot offset fitted on
       straight strides only, so turns on the spot do not pull it; on by default since L609, False = L17's offset
-      over every stride).
+      over every stride), ``ride_vibration`` (decisions L615, L616: offline, with a waist barometer, a ride or a long
+      standstill whose foot unit vibrates is a vehicle; on by default, ``{"options": {"ride_vibration": false}}``).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import logging
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
@@ -53,6 +54,7 @@ from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import sideways as KSW
+from pdrlearn.kernels import stop_bias as KSB
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels import turn_length as KT
 from pdrlearn.kernels.altitude_check import (
@@ -73,6 +75,7 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.foot_rhythm import foot_period
+from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, seated_strides, unrested_strides
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GAP_TOL_S,
@@ -1009,6 +1012,24 @@ def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.
     return np.where(bad, 0.0, length), np.where(bad, 0.0, dz), bad
 
 
+def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
+                       transfers) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
+    """Decisions L611 / L612: the strides whose raw heights go up and down in a closed loop (cycling), or that lie in
+    a span the lower-back unit's chair ``transfers`` call seated, are not walking: their detections are left out and the
+    rest integrated again (nothing changes without them). Returns (fd, strides, warning line or None)."""
+    loop = closed_loop_strides(fd.disp_[:, 2], fd.start_s_, fd.end_s_,
+                               unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_),
+                               np.hypot(fd.disp_[:, 0], fd.disp_[:, 1]))
+    seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
+    if not (loop | seated).any():
+        return fd, strides, None
+    line = pedal_line(loop, seated, fd.start_s_, fd.end_s_, seats)
+    kept = strides.drop(index=strides.index[np.unique(np.asarray(fd.rows_)[loop | seated])]).reset_index(drop=True)
+    if not len(kept):
+        return fd, kept, line
+    return FootDisplacement(**fd_kw).estimate(foot, kept, stance=stance), kept, line
+
+
 def _contact_cadence(seen: dict, table: pd.DataFrame, t: np.ndarray, stance: np.ndarray) -> float | None:
     """Decision L431: the cadence of the foot's contacts as `pdrlearn steps` judges it (steps decision 44): the step
     detector's own table when the track ran one (``seen``, steps decision 55: the accel detector of an IMU stance,
@@ -1305,7 +1326,13 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if clipped[0]:  # decision L525 (a): the streamed stride's tilt correction and ZUPT clock
         fd_kw = clipped_foot_settings(fd_kw, params)
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
-    fd_warnings = list(fd.warnings_)
+    trunk = SimpleNamespace(info={})  # decision L612: W418's transfers, read once, before the strides are final
+    if transfers:
+        add_trunk_transfers(trunk, session)
+    fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"))
+    if not len(strides):
+        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}")
+    fd_warnings = list(fd.warnings_) + ([pedal_warning] if pedal_warning else [])
     raw_disp = disp = fd.disp_
     if len(fd.rows_) < len(strides):
         log.info("%s: %d detected step(s) without a swing between two rests dropped", session.name,
@@ -1693,7 +1720,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:
         log.warning("%s: %s", session.where, w)
-    if transfers:  # decision W439: callers that read no TUG (the distance calibration) skip the inner waist work
+    if transfers and work is session:  # decision L612: read above, on this clock
+        res.info.update(trunk.info)
+    elif transfers:  # decision W439: callers that read no TUG (the distance calibration) skip the inner waist work
         add_trunk_transfers(res, work)  # decision W418 (W430: the waist on the aligned clock, as --clock-offset)
     return res
 
@@ -1961,6 +1990,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     # length and height of the stride before it (ref: that stride's displacement and duration), as the runtime's
     across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S + GAP_TOL_S), None  # E230
     neighbour = bool(drop_neighbour)  # decisions E101, L549
+    stop = KSB.StopBias() if "waist" in forward else None  # decision E272 (the runtime's: the waist unit tracked)
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
@@ -1999,8 +2029,24 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         elif i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
             dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0),
                                          foot=gap_yaw, waist=waist_gap_yaw)
+        if stop is not None and not foot_headed[i]:  # decision E272: the bias read at the last stop, as the runtime
+            stop.update(streams.__getitem__, prev, float(t0))
+            lo = (prev if i and prev < t0 and bridged and overlaps_any(prev, float(t0), imu_gaps)
+                  else SK.waist_gap_from(prev, float(t0), waist_gap_yaw))
+            turn[i] -= stop.turn(t0, t1)
+            dyaw[i] -= stop.turn(lo, t1)
     if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
+    # decision L611 (offline's kernel): pedalling strides are skipped as B131's posture strides are (no row, 0 m)
+    pedal = closed_loop_strides(np.where(in_gap | posture, 0.0, disp[:, 2]), strides[:, 0], strides[:, 1],
+                                unrested_strides(fa_t, fa_v, strides[:, 0], strides[:, 1]),
+                                np.hypot(disp[:, 0], disp[:, 1]))
+    pedal &= ~(in_gap | posture)
+    pedal_warning = pedal_line(pedal, np.zeros(len(pedal), dtype=bool), strides[:, 0], strides[:, 1])
+    warnings += [pedal_warning] if pedal_warning else []
+    if (posture | pedal).all():  # as offline: no stride is left to track (B318's exit code 4)
+        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}")
+    skipped_posture, posture = posture, posture | pedal
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     if (method == "M3" and use_bounds is not None and "length_class" in classes
             and not (isinstance(model, str) and model == "oracle")):  # decision C94: C89's count, as the runtime's
@@ -2048,9 +2094,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     for i in np.flatnonzero(~(in_gap | posture)):
         rows.stride(float(disp[i, 0]), float(disp[i, 1]), float(length[i]), float(frame[i]), float(foot_turn[i]))
         sideways[i] = rows.decided
-    if posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
-        warnings.append(posture_warning(int(posture.sum()), float(strides[posture][0, 0]),
-                                        float(strides[posture][-1, 1])))
+    if skipped_posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
+        warnings.append(posture_warning(int(skipped_posture.sum()), float(strides[skipped_posture][0, 0]),
+                                        float(strides[skipped_posture][-1, 1])))
     lost = in_gap | posture
     if lost.any():  # decision E30: the runtime's Step for such a stride (0 m, no classes)
         length, dz = np.where(lost, 0.0, length), np.where(lost, 0.0, dz)

@@ -45,6 +45,7 @@ from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
+from pdrlearn.track.frame_inference import foot_swing_strides
 from pdrlearn.track.freezes import (
     freeze_caveat_message,
     freeze_hint,
@@ -57,7 +58,7 @@ from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
 from pdrlearn.track.sideways import sideways_warnings
-from pdrlearn.track.units import with_left_out_units
+from pdrlearn.track.units import unit_span, with_left_out_units
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.backward import backward_warnings
@@ -70,7 +71,7 @@ from pdrlearn.waist.events import (
     steps_from_events,
     walking_gate,
 )
-from pdrlearn.waist.foot_rest import foot_rest_keep, foot_rest_message, foot_rest_runs
+from pdrlearn.waist.foot_rest import foot_rest_keep, foot_rest_message, foot_rest_runs, strideless_spans
 from pdrlearn.waist.heading import (
     HARMONIC_METHODS,
     UNTRACKED_TURN_WARN_DEG,
@@ -146,16 +147,19 @@ from pdrlearn.waist.posture import (
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.rhythm import arrhythmic_message, arrhythmic_sequences
+from pdrlearn.waist.ride_runs import ride_message, ride_runs, ride_spans
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.steplength import CADENCE_LAW_STEADY, cadence_law_factor, calibration_cadence_hz, steady_steps
 from pdrlearn.waist.transfers import (
     chair_transfers_upright,
     flag_message,
     flag_transfers,
+    seated_spans,
     unmatched_message,
     unmatched_posture_changes,
     upright_message,
 )
+from pdrlearn.waist.turn_steps import mark_carried
 
 log = logging.getLogger(__name__)
 
@@ -1154,6 +1158,10 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         steps = veto(steps, imu, **sit_veto_keywords(o["sit_veto"]),
                      **({} if causal_veto or fixed_up is None else {"upright": fixed_up}))
         n_vetoed = steps.attrs["n_vetoed"]
+        if not causal_veto and len(steps):  # decision W487: and every contact of a seated span (nobody walks seated)
+            steps = drop_contacts(steps, ~inside_episodes(steps["event_s"].to_numpy(float), seated_spans(transfers)),
+                                  "n_seated")
+            n_vetoed += steps.attrs["n_seated"]
     else:  # W146: the contacts W104's veto would drop (a TUG's chair rises), named below (W343: if still counted)
         ev_sit = steps["event_s"].to_numpy(float)
         sit_hint_s = ev_sit[~np.isin(ev_sit, transfer_veto(steps, imu)["event_s"].to_numpy(float))]
@@ -1180,12 +1188,28 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         line = freeze_hint(session_freezes(session, pipeline), steps)
         if line:
             warnings.append(line)
-    foot_runs = foot_rest_runs(steps, with_left_out_units(session))  # W336: contacts while the foot does not walk
+    strides = foot_swing_strides(with_left_out_units(session))  # W336's foot strides (None: no foot unit)
+    foot_runs = foot_rest_runs(steps, with_left_out_units(session), strides)  # W336: contacts while the foot rests
     warnings.extend(foot_rest_message(steps, a, b, bool(o["foot_rest_veto"])) for a, b in foot_runs)
+    # decision W488: where the pelvis turned with a seat or a vehicle (seated; the foot unit at rest; a ride's contacts)
+    yaw = yaw_turns(imu, p.gyro_bias_rps)  # decision L210: El-Gohary's turns, read once
+    turn_spans = [(y["start_s"] if y.get("start_5_s") is None else y["start_5_s"],
+                   y["end_s"] if y.get("end_95_s") is None else y["end_95_s"]) for y in yaw]
+    carried = seated_spans(transfers) + strideless_spans(turn_spans, strides,
+                                                         unit_span(with_left_out_units(session), "foot"))
     if foot_runs and o["foot_rest_veto"]:
+        carried += ride_spans(steps["event_s"].to_numpy(float), foot_runs)
         steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
     # W440, W441: read once, offline; W485: the ones --detector pll read for its band, if it did
     gyro_s = functools.cache(lambda: None if realtime else read_once(det, session))
+    n_ride = 0
+    if not realtime and len(steps) and gyro_s() is not None:  # decision W486: no pelvic rhythm, a vibration: a ride?
+        ev_ride = steps["event_s"].to_numpy(float)  # named, not dropped (W486's drop rule was not met)
+        found = ride_runs(ev_ride, gyro_s(), imu.t, imu.acc_v, imu.fs)
+        if found:
+            warnings.append(ride_message(ev_ride, found))
+            carried += ride_spans(ev_ride, found)
+            n_ride = sum(b - a + 1 for a, b, _ in found)
     n_rhythm = 0
     if o["pelvic_rhythm_veto"] and not realtime and len(steps) and gyro_s() is not None:  # decision W440
         steps = merge_dropped(steps, rhythm_keep(steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool),
@@ -1202,7 +1226,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         transfers = _postures_transfers(imu, steps, transfers, upright_source, fixed_up, o, warnings)[1]
         return TrackResult(steps=steps[["start_s", "end_s", "event_s"]].copy(), trajectory=pd.DataFrame(),
                            info={"transfers": None if transfers is None else transfers.to_dict("records"),
-                                 "yaw_turns": yaw_turns(imu, p.gyro_bias_rps)})  # decision L210, as below
+                                 "yaw_turns": yaw})  # decision L210, as below
     # W338: phone only (W336 reads a foot unit); W339: measured, not kept by default (an opt-in PARAMS.json option)
     if o["rhythm_warning"] and not with_left_out_units(session).placement_streams("foot"):
         warnings.extend(arrhythmic_message(steps, a, b, r)
@@ -1298,8 +1322,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     uncountable = not_alternating and steps_uncountable(counts)  # decision W442
     if not_alternating:
         warnings.append(not_alternating_message(alternation, pairs, counts))  # W114, W442 in its line
-    elif count_mismatch_message(counts):  # decision W441
-        warnings.append(count_mismatch_message(counts))
+    elif count_mismatch_message(counts):  # decision W441; W486: naming the ride's contacts it also counted
+        warnings.append(count_mismatch_message(counts) + (
+            f"; {n_ride} of the contacts lie in the runs named vehicle / ride? (decision W486)" if n_ride else ""))
     pendulum = functools.cache(lambda: _pendulum_steps(imu, p, thr, o))  # W139 and W186 read it once
     height_m, no_height = subject_height(session.meta)
     ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, height_m,  # W100, W116
@@ -1307,6 +1332,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                                     stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])),  # W155
                                     height_known=no_height is None,  # decision L492
                                     gyro_count=None if realtime else lambda st: _gyro_count(session, st, gyro_s()),
+                                    pendulum_kept=lambda: trunk_events(session).steps["event_s"].to_numpy(float),
                                     advice=walk_ratio_advice(model.name, uses_profile=model.uses_profile,
                                                              gain_param=model.gain_param))  # decision W461
     if ratio_line:
@@ -1372,6 +1398,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         "n_rescored_contacts": n_rescored,  # decision W203
         "n_frozen_contacts": n_frozen,  # decision W214
         "n_rhythm_contacts": n_rhythm,  # decision W440
+        "n_ride_contacts": n_ride,  # decision W486: the contacts its line names (still counted)
         "n_pelvic_gyro_steps": None if counts is None else counts[1],  # decision W441: over the contacts' span
         "step_count_unusable": bool(uncountable),  # decision W442: L95's line names no fast gait then
         # decision W476: why summary.json withholds the cadence and step times (None: W442 did not fire)
@@ -1385,7 +1412,8 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         # decision L306: the rests whose bias L296 took out (L297's sigma clock skips these only); None: L296 not
         # in force on this heading (not in summary.json)
         "rest_bias_rests": None if rest_spans is None else [[a, b] for a, b in rest_spans],
-        "yaw_turns": yaw_turns(imu, p.gyro_bias_rps),  # decision L210: El-Gohary's turns, turns.csv's timing
+        # decision L210: El-Gohary's turns, turns.csv's timing; W488: those made seated or riding marked "carried"
+        "yaw_turns": mark_carried(yaw, carried),
         "rides": rides,  # decision L377: rides.csv (not in summary.json)
     }
     from pdrlearn.waist import turn_steps
@@ -1589,7 +1617,8 @@ def contact_steps(table: pd.DataFrame, imu: WaistIMU, name: str = "") -> pd.Data
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
                 height_m: float, pendulum=None, stairs=None, short_step: bool = False, height_known: bool = True,
-                advice: str = WALK_RATIO_ADVICE, gyro_count=None) -> tuple[float | None, str | None]:
+                advice: str = WALK_RATIO_ADVICE, gyro_count=None,
+                pendulum_kept=None) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
     warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps).
     Decision W139: an offline, uncalibrated ``waist-pll`` track is judged on the steps ``pendulum()`` returns (the
@@ -1603,7 +1632,9 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
     W461: ``advice`` ends W100's line (:func:`~pdrlearn.waist.plausibility.walk_ratio_advice`: what applies to the
     track's step-length model); a model other than the pipeline's (another advice) gets no W207 line, which is about
     the pendulum's reading. Decision W477: ``gyro_count(steps)``, the pelvic-gyro steps over the pendulum reading's
-    walking sequences, judges W208's line's advice (None: not read)."""
+    walking sequences, judges W208's line's advice (None: not read). Decision W489: ``pendulum_kept()``, the
+    contact times the default waist-pendulum track keeps after its vetoes (W428's :func:`trunk_events`), is what
+    W208's line compares with (None: the raw reading)."""
     if realtime or p.source != "defaults" or not len(steps):
         return None, None
     pll_length = pll_m = pendulum_m = None
@@ -1616,8 +1647,15 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
         n_pll = len(steps)
         steps = pendulum()
         pendulum_m = float(np.nansum(np.abs(steps["length_m"].to_numpy(float))))
-        missed = pll_missed_steps_message(n_pll, len(steps), pll_m, pendulum_m,  # decision W208
-                                          n_gyro=gyro_count(steps) if gyro_count else None)  # W477
+        missed = pll_missed_steps_message(n_pll, len(steps), pll_m, pendulum_m)  # decision W208
+        if missed and pendulum_kept is not None:  # decision W489: judged on the pendulum track's kept contacts
+            kept = _kept_reading(steps, pendulum_kept())
+            missed = pll_missed_steps_message(n_pll, len(kept), pll_m,
+                                              float(np.nansum(np.abs(kept["length_m"].to_numpy(float)))),
+                                              n_gyro=gyro_count(kept) if gyro_count else None)  # W477
+        elif missed:
+            missed = pll_missed_steps_message(n_pll, len(steps), pll_m, pendulum_m,
+                                              n_gyro=gyro_count(steps) if gyro_count else None)  # W477
     elif pipeline != "waist-pendulum":
         return None, None
     step_s = waist_step_times(steps)[0]
@@ -1632,6 +1670,18 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
             and not running_cadence(length, cadence, height_m)):
         line = short_step_message(length, n, height_m, pll_m=pll_m, pendulum_m=pendulum_m)  # decision W207
     return ratio, line
+
+
+def _kept_reading(steps: pd.DataFrame, kept_s: np.ndarray, tol_s: float = 0.05) -> pd.DataFrame:
+    """Decision W489: W139's raw pendulum reading ``steps`` without the contacts that the pendulum track did not keep
+    (no contact of ``kept_s`` within ``tol_s``; a dropped contact ends its walking sequence, as the vetoes do)."""
+    ev = steps["event_s"].to_numpy(float)
+    k = np.sort(np.asarray(kept_s, dtype=float))
+    if not k.size:
+        return drop_contacts(steps, np.zeros(len(steps), dtype=bool), "n_unkept")
+    j = np.clip(np.searchsorted(k, ev), 1, max(k.size - 1, 1))
+    near = np.minimum(np.abs(ev - k[j - 1]), np.abs(k[np.minimum(j, k.size - 1)] - ev))
+    return drop_contacts(steps, near <= tol_s, "n_unkept")
 
 
 def _gyro_count(session: Session, steps: pd.DataFrame, gyro_s: np.ndarray | None) -> int | None:

@@ -48,13 +48,29 @@ def still_foot_runs(event_s: np.ndarray, strides: tuple[np.ndarray, np.ndarray, 
     return [(i, j - 1) for i, j in runs(still) if j - i >= MIN_STILL_CONTACTS]
 
 
-def foot_rest_runs(steps: pd.DataFrame, session) -> list[tuple[int, int]]:
-    """Decision W336's runs of a waist track's ``steps`` (``event_s``) on ``session``'s foot unit."""
+def foot_rest_runs(steps: pd.DataFrame, session, strides=False) -> list[tuple[int, int]]:
+    """Decision W336's runs of a waist track's ``steps`` (``event_s``) on ``session``'s foot unit (``strides``: its
+    :func:`foot_swing_strides` when already read)."""
     from pdrlearn.track.units import unit_span
 
     if not len(steps):
         return []
-    return still_foot_runs(steps["event_s"].to_numpy(float), foot_swing_strides(session), unit_span(session, "foot"))
+    strides = foot_swing_strides(session) if strides is False else strides
+    return still_foot_runs(steps["event_s"].to_numpy(float), strides, unit_span(session, "foot"))
+
+
+def strideless_spans(spans: list[tuple[float, float]], strides: tuple[np.ndarray, np.ndarray, np.ndarray] | None,
+                     span: tuple[float, float] | None) -> list[tuple[float, float]]:
+    """Decision W488: those of ``spans`` (s; a lower-back turn's) inside the foot's recording ``span`` with no foot
+    stride turning at least :data:`MIN_SWING_RAD` within :data:`FOOT_MARGIN_S` (W336's test of a contact, applied to
+    a span): the foot was at rest while the pelvis turned - a seat's or a vehicle's turn, no turn on the spot."""
+    if strides is None or span is None:
+        return []
+    t0, t1, turn = strides
+    walk = turn >= MIN_SWING_RAD
+    a, b = t0[walk] - FOOT_MARGIN_S, t1[walk] + FOOT_MARGIN_S
+    return [(s0, s1) for s0, s1 in spans if s0 >= span[0] + FOOT_MARGIN_S and s1 <= span[1] - FOOT_MARGIN_S
+            and not np.any((a <= s1) & (b >= s0))]
 
 
 def foot_rest_message(steps: pd.DataFrame, first: int, last: int, dropped: bool) -> str:

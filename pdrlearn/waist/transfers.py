@@ -569,3 +569,18 @@ def sts5_time_s(transfers: pd.DataFrame, steps: pd.DataFrame | None = None) -> f
         if walking_is_reliable(hn[keep]):  # W277's walking sequence between the rises: not one chair test
             return None
     return t1 - t0
+
+
+def seated_spans(transfers: pd.DataFrame) -> list[tuple[float, float]]:
+    """Decision W487: ``(start_s, end_s)`` from the end of each stand-to-sit transfer (``transfers``: W182's rows,
+    ``kind``, ``start_s``, ``end_s``; a W278-flagged row is not read) to the start of the next one when that is a
+    sit-to-stand: the span both transfers call seated (W222's votes), where nobody walks."""
+    tr = pd.DataFrame(transfers)
+    if len(tr) < 2:
+        return []
+    if "flag" in tr:
+        tr = tr[flag_texts(tr["flag"]) == ""]
+    tr = tr.sort_values("start_s")
+    kind, t0, t1 = tr["kind"].tolist(), tr["start_s"].to_numpy(float), tr["end_s"].to_numpy(float)
+    return [(float(t1[k]), float(t0[k + 1])) for k in range(len(tr) - 1)
+            if kind[k] == STAND_TO_SIT and kind[k + 1] == SIT_TO_STAND and t0[k + 1] > t1[k]]

@@ -68,9 +68,29 @@ STEPLESS_MIN_STEPS = 2
 def stepless_turns(event_s, yaw_turns, min_deg: float | None = None) -> list[dict]:
     """Decision W331: the turns of :func:`missed_turn_steps` that hold no contact at all in their 5-95 % span
     although their duration implies at least :data:`STEPLESS_MIN_STEPS` steps (a turn on the spot the motion gate,
-    W4, read as standing); [] without a walk step time."""
-    return [t for t in missed_turn_steps(event_s, yaw_turns, min_deg)
+    W4, read as standing); [] without a walk step time. Decision W488: a turn marked :data:`CARRIED` is left out."""
+    own = [y for y in yaw_turns or [] if not y.get(CARRIED)]  # decision W488: not a turn made seated or riding
+    return [t for t in missed_turn_steps(event_s, own, min_deg)
             if t["counted"] == 0 and round(t["expected"]) >= STEPLESS_MIN_STEPS]
+
+
+#: decision W488: the key a yaw-rate turn record carries (True) when it was made seated or in a ride
+CARRIED = "carried"
+
+
+def mark_carried(yaw_turns, spans) -> list[dict] | None:
+    """Decision W488: the records ``yaw_turns`` (L210's), each whose 5-95 % span (``start_5_s`` / ``end_95_s``, else
+    ``start_s`` / ``end_s``) overlaps one of ``spans`` (``(start_s, end_s)``: seated, or a ride's dropped contacts)
+    with ``CARRIED: True`` added (the others unchanged): the pelvis turned with a seat or a vehicle."""
+    if yaw_turns is None or not spans:
+        return yaw_turns
+    out = []
+    for y in yaw_turns:
+        a = y.get("start_5_s") if y.get("start_5_s") is not None else y.get("start_s")
+        b = y.get("end_95_s") if y.get("end_95_s") is not None else y.get("end_s")
+        hit = a is not None and b is not None and any(a <= e and b >= s for s, e in spans)
+        out.append({**y, CARRIED: True} if hit else y)
+    return out
 
 
 def stepless_summary(event_s, yaw_turns) -> dict:
