@@ -8,14 +8,7 @@ fast as before (it imports none of them). The entry points a notebook reaches fo
 imported on first use too (decision E96): ``from pdrlearn import read_session, simulate, get_pipeline, load_model``.
 """
 
-from importlib.metadata import PackageNotFoundError, version
-
-try:
-    __version__ = version("pdrlearn")
-except PackageNotFoundError:  # running from a source tree without installation
-    __version__ = "0.1.0"
-
-from pdrlearn.errors import (  # noqa: E402
+from pdrlearn.errors import (
     DataError,
     MissingSensorError,
     ModelError,
@@ -45,9 +38,55 @@ _SUBMODULES = ("aid", "atomic", "classify", "cohort", "columns", "displace", "ex
               "waist")
 
 
+def _wheel_version(site: str) -> str | None:
+    """Decision E278: the ``Version:`` header of ``site/pdrlearn-*.dist-info/METADATA`` (``site``: the folder holding
+    the installed package, a wheel install's site-packages), the string ``importlib.metadata.version`` returns;
+    None when there is not exactly one such folder (an editable install keeps its own elsewhere) or no header."""
+    import os
+
+    try:
+        infos = [n for n in os.listdir(site) if n.startswith("pdrlearn-") and n.endswith(".dist-info")]
+    except OSError:
+        return None
+    if len(infos) != 1:
+        return None
+    try:
+        with open(os.path.join(site, infos[0], "METADATA"), encoding="utf-8") as f:
+            for line in f:
+                if not line.strip():  # the end of the headers
+                    return None
+                if line.startswith("Version:"):
+                    return line.split(":", 1)[1].lstrip().rstrip("\r\n") or None  # as the email parser reads it
+    except (OSError, UnicodeDecodeError):
+        return None
+    return None
+
+
+def _version() -> str:
+    """The installed distribution's version: a wheel install's METADATA read directly (:func:`_wheel_version`), else
+    ``importlib.metadata``; ``"0.1.0"`` when running from a source tree without installation."""
+    import os
+
+    found = _wheel_version(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    if found is not None:
+        return found
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("pdrlearn")
+    except PackageNotFoundError:  # running from a source tree without installation
+        return "0.1.0"
+
+
 def __getattr__(name: str):
     """PEP 562: ``pdrlearn.io`` etc. import their module on first access (decision E89), and so do the top-level
-    entry points (``pdrlearn.read_session``, decision E96)."""
+    entry points (``pdrlearn.read_session``, decision E96). Decision E278: ``__version__`` too: importlib.metadata
+    (email, zipfile, a scan of sys.path's dist-info) took 0.25-0.32 s of ``import pdrlearn.runtime`` on a Pi-class
+    core (trial T2 F6); the string is the same, resolved on first access (``load_bundle``'s B137 check asks for it)
+    and kept, from a wheel install's METADATA without importlib.metadata."""
+    if name == "__version__":
+        value = globals()["__version__"] = _version()
+        return value
     if name in _SUBMODULES or name in _ENTRY_POINTS:
         import importlib
 
@@ -69,4 +108,4 @@ def __getattr__(name: str):
 
 
 def __dir__() -> list[str]:
-    return sorted({*globals(), *_SUBMODULES, *_ENTRY_POINTS})
+    return sorted({*globals(), "__version__", *_SUBMODULES, *_ENTRY_POINTS})

@@ -300,7 +300,10 @@ def atomic_directory(target: str | os.PathLike, *, keep_on_interrupt: bool = Fal
     target = Path(target)
     target.parent.mkdir(parents=True, exist_ok=True)
     clean_leftovers(target)  # decision B44
-    tmp = Path(tempfile.mkdtemp(prefix=_tmp_prefix(target), dir=target.parent))
+    try:
+        tmp = Path(tempfile.mkdtemp(prefix=_tmp_prefix(target), dir=target.parent))
+    except OSError as exc:  # decision B441: the folder the user gave, not `.NAME.tmp-PID-...`
+        raise _naming(exc, target) from None
     # mkdtemp creates 0700; the result gets the permissions a plain mkdir would give (umask applied),
     # so a model, bundle, session or report folder is readable by whoever could read its parent.
     tmp.chmod(0o777 & ~_umask())
@@ -333,9 +336,32 @@ def atomic_directory(target: str | os.PathLike, *, keep_on_interrupt: bool = Fal
         else:
             _mark_ended(tmp)
         raise
+    except OSError as exc:
+        shutil.rmtree(tmp, ignore_errors=True)
+        renamed = _naming(exc, target, tmp)
+        if renamed is exc:
+            raise
+        raise renamed from None
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
+
+
+def _naming(exc: OSError, target: Path, tmp: Path | None = None) -> OSError:
+    """Decision B441 (trial T2 F8): ``exc`` naming ``target`` (or the file under it) where it names the temporary
+    folder ``tmp`` (or a file in it), for the one ``error:`` line; with ``tmp`` None (mkdtemp failed: its name is
+    random) whatever it names is ``target``. ``exc`` itself when it names no such file."""
+    name = exc.filename
+    if name is None:
+        return exc
+    if tmp is None:
+        new = str(target)
+    else:
+        text, base = os.fsdecode(name), str(tmp)
+        if text != base and not text.startswith(base + os.sep):
+            return exc
+        new = str(target) + text[len(base):]
+    return OSError(exc.errno, exc.strerror, new)  # OSError picks the subclass from errno (PermissionError ...)
 
 
 @contextmanager

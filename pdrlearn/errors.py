@@ -133,6 +133,46 @@ def output_error(exc: OSError, out: object) -> OutputError | None:
     return OutputError(f"{out}: {what}; {fix} (decision B151)")
 
 
+def os_error_line(exc: OSError, out: object = None) -> str | None:
+    """Decision E276: the one ``error:`` line of an ``OSError`` that stopped a command (the full CLI's and the lean
+    command's, one mechanism): an output the system refuses (B151's line, naming the file, else ``out``, else
+    "output"), or another error naming its file; ``None`` when it names no file (a programming error: re-raise)."""
+    err = output_error(exc, exc.filename or out or "output")
+    if err is not None:
+        return str(err)
+    if exc.filename is None or exc.strerror is None:
+        return None
+    return f"{exc.filename}: {exc.strerror}; choose another output location or fix its permissions"
+
+
+#: decision B440: the exit code of a command that ran out of memory (0-4, 130 and 143 say other things; README's
+#: "Batch use and exit codes")
+OUT_OF_MEMORY_EXIT = 5
+
+
+def out_of_memory(exc: BaseException) -> bool:
+    """Decision B440: ``exc`` says the process ran out of memory: a ``MemoryError`` (numpy's ``_ArrayMemoryError`` is
+    one), or an ``OSError`` ENOMEM (pandas' CSV parser maps the file: ``mmap`` "Cannot allocate memory", seen in
+    ``pdrlearn run`` of a 2 h recording under ``ulimit -v 700000``)."""
+    return isinstance(exc, MemoryError) or (isinstance(exc, OSError) and exc.errno == _errno.ENOMEM)
+
+
+def out_of_memory_line(command: str, *, blocks: bool = False) -> str:
+    """Decision B440: the one line of a command stopped by ``MemoryError`` (trial T2 F4: a 25-77-line traceback).
+    ``blocks`` False (``track``, ``run``, ...): the command holds the whole recording (decision E195's 0.3-0.4 GB per
+    recorded hour); the ways out are ``split`` and the lean command or ``Tracker``, which read it in blocks (E274).
+    ``blocks`` True (the lean command, which reads in blocks already): free memory, or cut the recording."""
+    if blocks:
+        return (f"out of memory in {command}, nothing written; it reads the recording in blocks (decision E274), so "
+                "the device has too little free memory for the bundle and the tracker: stop other programs or raise "
+                "the process's limit (ulimit -v), or cut the recording into parts with `pdrlearn split` on a "
+                "workstation (decision B440)")
+    return (f"out of memory in {command}, nothing written; it holds the whole recording in memory (about 0.3-0.4 GB "
+            "per recorded hour at 100 Hz, decision E195): cut it into parts with `pdrlearn split`, or replay it with "
+            "`python -m pdrlearn.runtime` or pdrlearn.runtime.Tracker, which read it in blocks (decision E274, "
+            "docs/deploying.md) (decision B440)")
+
+
 class NotASessionError(DataError, TypeError):
     """A public entry point was given something other than a session (decision B51): a dict, a DataFrame ..."""
 

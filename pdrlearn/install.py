@@ -64,3 +64,37 @@ def lean_import_error(what: str, exc: ModuleNotFoundError) -> ModuleNotFoundErro
     return ModuleNotFoundError(f"pdrlearn.{what} needs {name}, which is not installed (a runtime-only install); "
                                f"read and replay a session there with {LEAN_ROUTE}; or install everything: "
                                f"{INSTALL_EVERYTHING}", name=exc.name)
+
+
+#: decision E277: the lean command's one line when numpy is absent (it was a ModuleNotFoundError traceback, trial T2
+#: F5; onnxruntime's absence was already one line, ``runtime.bundle``)
+NUMPY_MISSING = ("the pdrlearn runtime needs numpy, which is not installed; pip install numpy (and onnxruntime for "
+                 "svm, nn and ensemble models; a device without network: docs/deploying.md, 'A device without "
+                 "network') (decision E277)")
+
+
+def runs_module(argv: list[str], module: str) -> bool:
+    """Whether the interpreter command line ``argv`` (``sys.orig_argv``) runs ``python [options] -m module``."""
+    i = 1
+    while i < len(argv):
+        a = argv[i]
+        if a == "-m":
+            return i + 1 < len(argv) and argv[i + 1] == module
+        if a.startswith("-m"):
+            return a[2:] == module
+        if a == "-c" or not a.startswith("-") or a == "-":  # a command, a script or stdin: not -m
+            return False
+        i += 2 if a in ("-X", "-W") else 1  # the two options whose value is the next argument
+    return False
+
+
+def numpy_missing(exc: ModuleNotFoundError) -> None:
+    """Decision E277: numpy is absent. Under ``python -m pdrlearn.runtime`` (the package is imported before its
+    ``__main__`` can catch anything) one ``error:`` line on stderr and exit 2, as every other problem of the lean
+    command; in a program's ``import pdrlearn.runtime`` a ModuleNotFoundError with that line."""
+    import sys
+
+    if runs_module(list(getattr(sys, "orig_argv", [])), "pdrlearn.runtime"):
+        print(f"error: {NUMPY_MISSING}", file=sys.stderr)
+        raise SystemExit(2)
+    raise ModuleNotFoundError(NUMPY_MISSING, name="numpy") from exc

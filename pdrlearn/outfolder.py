@@ -49,8 +49,12 @@ FOLDER_KINDS = {
     "gait": ("a bilateral gait output (gait_summary.json, gait_steps.csv)", "pdrlearn gait"),  # decision L260
     "gait-all": ("a batch of bilateral gait (gait_pairs.csv, gait_steps.csv)", "pdrlearn gait-all"),  # C110
     "split": ("the parts of a session (split.json, part_000 ...)", "pdrlearn split"),  # decision B379
+    "lean": ("a lean replay (steps.csv, trajectory.csv, replay.json)", "python -m pdrlearn.runtime"),  # E276
 }
 _TRACK_FILES = ("summary.json", "steps.csv", "trajectory.csv")
+#: decision E276: the lean command's files; replay.json (its --json summary) marks them, and a track or run has a
+#: summary.json instead
+LEAN_FILES = ("replay.json", "steps.csv", "trajectory.csv")
 
 
 def folder_kind(folder: Path) -> str | None:
@@ -72,6 +76,8 @@ def folder_kind(folder: Path) -> str | None:
         return "gait"
     if (folder / "split.json").is_file() and (folder / "part_000").is_dir():  # decision B379
         return "split"
+    if not (folder / "summary.json").exists() and all((folder / n).is_file() for n in LEAN_FILES):  # decision E276
+        return "lean"
     if all((folder / n).is_file() for n in _TRACK_FILES):
         try:
             summary = read_json(folder / "summary.json")
@@ -113,13 +119,25 @@ def check_writable(out: Path, parent: Path) -> None:
     raise output_error(OSError(code, os.strerror(code)), out)
 
 
+def check_place(path: Path) -> None:
+    """Decisions B317, B441: before any work, the nearest existing folder above the output folder ``path`` must be a
+    folder (a file in the way was a FileExistsError after all the work) that this process can write
+    (:func:`check_writable`, one line naming ``path``). ``out_folder`` and ``simulate`` check with it."""
+    for parent in path.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise DataError(f"{path}: {parent} is a file, not a folder; choose another output folder")
+            check_writable(path, parent)
+            break
+
+
 #: decision E160: the suffixes of the files a shell redirect (`> D/track.json 2> D/track.log`) puts in an output folder
 LOG_SUFFIXES = (".log", ".json", ".txt", ".err", ".out")
 
 
 #: ... and the names no log gets: files the commands write (a lone summary.json is a partial output, B12)
 OUTPUT_FILE_NAMES = frozenset({"summary.json", "run.json", "manifest.json", "report.json", "gait_summary.json",
-                               "evaluation.json", "meta.json"})
+                               "evaluation.json", "meta.json", "replay.json"})  # replay.json: the lean command's, E276
 
 
 def _shell_logs(entries: list[Path]) -> list[str]:
@@ -155,12 +173,7 @@ def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, 
     what = FOLDER_KINDS[kind][0]
     if path.exists() and not path.is_dir():
         raise DataError(f"{path}: is a file; {option} must be a folder for {what}")
-    for parent in path.parents:  # a file in the way of the folder (was FileExistsError after all the work)
-        if parent.exists():
-            if not parent.is_dir():
-                raise DataError(f"{path}: {parent} is a file, not a folder; choose another output folder")
-            check_writable(path, parent)
-            break
+    check_place(path)
     entries = [q for q in path.iterdir() if q.name not in allow] if path.is_dir() else []
     if entries:
         found = folder_kind(path)

@@ -68,6 +68,7 @@ OWN = {
     "gait-all": Own(("gait_pairs.csv", "gait_*.csv"), (".gait-all-pairs",),  # cohort C110, C116
                     nested=Own(("gait_summary.json",), deep=True)),  # decision W437: PATH/gait_summary.json
     "split": Own(("split.json",), (SPLIT_PART,)),  # decision B379; B434: part_1000 and up
+    "lean": Own(("steps.csv", "trajectory.csv", "replay.json")),  # python -m pdrlearn.runtime --out (decision E276)
     "session": Own(("*.csv", "*.json")),  # simulate / import --force: a session's files (decision B292)
     "fetch": Own(("*.csv", "*.json"), ("unused",)),  # a fetched session: gaitmap's unused/fMagneticField.csv (B35)
 }

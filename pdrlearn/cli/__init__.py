@@ -323,13 +323,16 @@ def _main(argv: list[str]) -> int:
     except typer.Abort:
         print("error: aborted", file=sys.stderr)
         return 130
-    except OSError as exc:  # an output the system refuses (unwritable or special folder, disk full): one line
-        from pdrlearn.errors import output_error
+    except (OSError, MemoryError) as exc:  # an output the system refuses (unwritable or special folder, disk full)
+        from pdrlearn.errors import OUT_OF_MEMORY_EXIT, os_error_line, out_of_memory, out_of_memory_line
 
-        err = output_error(exc, exc.filename or "output")
-        if err is None and (exc.filename is None or exc.strerror is None):
+        if out_of_memory(exc):  # decision B440: one line, its own exit code; atomic outputs removed their temp folders
+            command = next((a for a in argv if not a.startswith("-")), None)  # the root options take no value
+            print(f"error: {out_of_memory_line(f'pdrlearn {command}' if command else 'pdrlearn')}", file=sys.stderr)
+            return OUT_OF_MEMORY_EXIT
+        line = os_error_line(exc)  # decision E276: the lean command's line too
+        if line is None:
             raise
-        line = err or f"{exc.filename}: {exc.strerror}; choose another output location or fix its permissions"
         print(f"error: {line}", file=sys.stderr)
         return 2  # decision B152: nothing was written, as for any bad input (1 = some sessions/users failed)
     except Exception as exc:  # click usage errors (bad option values, missing arguments) and the like

@@ -488,6 +488,9 @@ def check_sim_out(out: Path, force: bool) -> bool:
 
     if out.exists() and not out.is_dir():
         raise DataError(f"{out}: is a file; --out must be a folder for the simulated session")
+    from pdrlearn.outfolder import check_place
+
+    check_place(out)  # decision B441: a read-only place before the simulation, naming --out (B317's line)
     if not out.is_dir() or not any(out.iterdir()):
         return False
     if not force:

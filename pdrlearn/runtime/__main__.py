@@ -4,8 +4,11 @@ onnxruntime) alone, for a runtime-only install (decision E76; ``pdrlearn run`` i
 Standard library argparse, no typer, pandas or matplotlib: reads the session's sensor files
 (:func:`pdrlearn.runtime.replay.read_streams`), pushes them in ``--chunk-s`` slices (decision E28, as
 ``pdrlearn run``) through :class:`~pdrlearn.runtime.Tracker` and prints one line (or ``--json``); ``--out``
-writes ``steps.csv`` (the columns of ``pdrlearn run``'s runtime fields) and ``trajectory.csv``. Bad input:
-one ``error: ...`` line, exit code 2 (as ``pdrlearn``).
+writes ``steps.csv`` (the columns of ``pdrlearn run``'s runtime fields), ``trajectory.csv`` and ``replay.json`` (the
+``--json`` object). Bad input: one ``error: ...`` line, exit code 2 (as ``pdrlearn``). Decision E276: ``--out`` follows
+``pdrlearn run``'s rules with the same standard-library modules (:func:`pdrlearn.outfolder.out_folder`,
+:func:`pdrlearn.atomic.atomic_directory`): checked before the replay (a session, another command's output, a
+read-only place are refused; a previous lean replay is replaced with ``--force``), written whole or not at all.
 """
 
 from __future__ import annotations
@@ -35,6 +38,8 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--method", metavar="[TASK=]METHOD[/UNIT],...", help="another exported model than the "
                    "bundle's chosen one (as pdrlearn run --method, decision E52)")
     p.add_argument("--json", action="store_true", help="print one JSON summary object")
+    p.add_argument("--force", action="store_true", help="replace the --out folder of an earlier replay by this "
+                   "command (nothing else: a session or another command's output is refused; decision E276)")
     return p
 
 
@@ -104,7 +109,7 @@ def _rows(steps) -> list[dict]:
 
 
 def _write(out: Path, steps, start_s: float | None) -> None:
-    out.mkdir(parents=True, exist_ok=True)
+    """steps.csv and trajectory.csv into the folder ``out`` (the temporary folder of the atomic write, E276)."""
     from pdrlearn.runtime.replay import STEP_COLUMNS
 
     rows = _rows(steps)
@@ -135,31 +140,62 @@ def _num(v: float) -> str:
     return wide_float_text(v) if v == v else "nan"  # decisions E164, C103: the package's own, no exponent
 
 
+def _summary(args, tracker, steps) -> dict:
+    """The ``--json`` object, also ``replay.json`` in ``--out`` (decision E276)."""
+    return {"session": str(args.session), "n_steps": len(steps), "distance_m": float(sum(st.length_m for st in steps)),
+            "final_position": dict(zip("xyz", (float(v) for v in tracker.position), strict=True)),
+            "methods": {t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
+            "warnings": list(tracker.warnings), "out": None if args.out is None else str(args.out)}
+
+
+def _replay_and_write(args) -> dict:
+    """Decision E276: check ``--out`` as ``pdrlearn run`` does (before the replay), replay, and write the folder
+    whole under a temporary name renamed into place."""
+    from pdrlearn.atomic import atomic_directory
+    from pdrlearn.outfolder import out_folder
+
+    if args.out is not None:
+        out_folder(args.out, "lean", force=args.force, inputs=(args.bundle, args.session))
+    tracker, steps = replay(args.bundle, args.session, chunk_s=args.chunk_s, units=args.units, method=args.method)
+    summary = _summary(args, tracker, steps)
+    if args.out is not None:
+        with atomic_directory(args.out) as tmp:
+            _write(tmp, steps, steps[0].start_s if steps else None)
+            (tmp / "replay.json").write_text(json.dumps(summary, indent=1) + "\n", encoding="utf-8")
+    return summary
+
+
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    from pdrlearn.atomic import checked_outputs
+    from pdrlearn.errors import OUT_OF_MEMORY_EXIT, os_error_line, out_of_memory, out_of_memory_line
+
     handler = logging.StreamHandler(sys.stderr)
     handler.setFormatter(logging.Formatter("warning: %(message)s"))
     handler.setLevel(logging.WARNING)
     logging.getLogger("pdrlearn").addHandler(handler)
     try:
-        tracker, steps = replay(args.bundle, args.session, chunk_s=args.chunk_s, units=args.units,
-                                method=args.method)
-        if args.out is not None:
-            _write(args.out, steps, steps[0].start_s if steps else None)
+        with checked_outputs():  # decision B20: the replacement deletes only what out_folder checked
+            summary = _replay_and_write(args)
     except PdrlearnError as exc:
         print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
         return exc.exit_code
+    except (OSError, MemoryError) as exc:  # decision E276: an output the system refuses (disk full ...): one line
+        if out_of_memory(exc):  # decision B440, as pdrlearn's
+            print(f"error: {out_of_memory_line(PROG, blocks=True)}", file=sys.stderr)
+            return OUT_OF_MEMORY_EXIT
+        line = os_error_line(exc, args.out)
+        if line is None:
+            raise
+        print(f"error: {line}", file=sys.stderr)
+        return 2
     finally:
         logging.getLogger("pdrlearn").removeHandler(handler)
-    distance = float(sum(st.length_m for st in steps))
-    position = [float(v) for v in tracker.position]
     if args.json:
-        print(json.dumps({"session": str(args.session), "n_steps": len(steps), "distance_m": distance,
-                          "final_position": dict(zip("xyz", position, strict=True)),
-                          "methods": {t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
-                          "warnings": list(tracker.warnings), "out": None if args.out is None else str(args.out)}))
+        print(json.dumps(summary))
     else:
-        print(f"session {args.session}: {len(steps)} strides, {distance:.2f} m, final position "
+        position = list(summary["final_position"].values())
+        print(f"session {args.session}: {summary['n_steps']} strides, {summary['distance_m']:.2f} m, final position "
               f"{[round(v, 2) for v in position]}" + (f" -> {args.out}" if args.out else ""))
     return 0
 
