@@ -12,7 +12,7 @@ from pdrlearn.io import write_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.periods import PERIOD_COLUMNS
-from pdrlearn.track.segments import segment_columns
+from pdrlearn.track.segments import closed_legs, segment_columns
 
 ROUTE = "stand:3, straight:12, stand:6, turn:90, straight:10, stand:3"  # about 43 s
 
@@ -41,6 +41,13 @@ def test_segments_have_the_totals_of_the_equal_periods(day):
     assert set(totals) < set(seg.columns)
     pd.testing.assert_frame_equal(seg[totals], per.iloc[1:3][totals].reset_index(drop=True), check_dtype=False)
     assert seg["n_steps"].sum() > 0 and seg["distance_m"].sum() > 0  # the legs hold walking: not a vacuous match
+
+
+def test_a_leg_holds_its_end_unless_the_next_leg_starts_there():
+    """L619: back-to-back legs [0, 10) [10, 20], as periods; a leg with a gap after it holds its end."""
+    assert list(closed_legs([0, 10], [10, 20])) == [False, True]
+    assert list(closed_legs([0, 12, 20], [10, 20, 30])) == [True, False, True]
+    assert list(closed_legs([5], [9])) == [True]
 
 
 def test_segments_csv_is_in_the_dictionary(day):

@@ -102,6 +102,13 @@ def check_legs(legs: pd.DataFrame, session, unit: str | None, path) -> pd.DataFr
     return out
 
 
+def closed_legs(starts, ends) -> np.ndarray:
+    """Decision L619: whether each leg (sorted, not overlapping) holds its end - every leg but one the next leg
+    starts at (back-to-back legs share no instant, as periods.csv's periods: the last one closed)."""
+    starts, ends = np.asarray(starts, float), np.asarray(ends, float)
+    return np.r_[starts[1:] > ends[:-1], True]
+
+
 def segment_table(result, session, legs: pd.DataFrame, *, unit: str | None, bouts: pd.DataFrame | None,
                   turns: pd.DataFrame | None, storey_height_m: float = 3.0) -> pd.DataFrame:
     """Decision L619: segments.csv of a whole-session track: one row per leg of ``legs`` (:func:`check_legs`'s, on
@@ -110,8 +117,7 @@ def segment_table(result, session, legs: pd.DataFrame, *, unit: str | None, bout
     from pdrlearn.track.periods import interval_rows
 
     a, b = legs["start_s"].to_numpy(float), legs["end_s"].to_numpy(float)
-    closed = np.r_[a[1:] > b[:-1], True]  # L619: back-to-back legs share no instant, as periods do
-    rows = interval_rows(result, session, a, b, closed, unit=unit, bouts=bouts, turns=turns,
+    rows = interval_rows(result, session, a, b, closed_legs(a, b), unit=unit, bouts=bouts, turns=turns,
                          storey_height_m=storey_height_m)
     for k, (row, label) in enumerate(zip(rows, legs["label"], strict=True)):
         row["segment"], row["label"] = k + 1, label
