@@ -94,3 +94,16 @@ def test_segments_with_a_window_is_refused(day, tmp_path, capsys):
     assert main(["track", "--no-plot", str(root / "walk"), "--segments", str(root / "legs.csv"), "--window", "0,10",
                  "--out", str(tmp_path / "o")]) == 2
     assert "drop --window" in capsys.readouterr().err
+
+
+def test_an_out_folder_holding_the_legs_file_is_not_replaced(day, tmp_path, capsys):
+    """L618: LEGS.csv is one of track's inputs: --force never replaces the folder that holds it."""
+    root, out = day
+    import shutil
+
+    legs = tmp_path / "o" / "legs.csv"
+    shutil.copytree(out, legs.parent)  # an earlier track, which --force may replace
+    legs.write_text((root / "legs.csv").read_text())
+    assert main(["track", "--no-plot", str(root / "walk"), "--segments", str(legs), "--out", str(legs.parent),
+                 "--force"]) == 2
+    assert "replacing it would delete it" in capsys.readouterr().err and legs.is_file()

@@ -460,7 +460,7 @@ def track(
 
     options = given_options(arguments, leave_out=("session_dir", "out", "force", "as_json"))  # for OUT/run.json
     forms = redaction(arguments)  # decision E176
-    out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
+    out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes, segments))  # L618: LEGS.csv too
     settings = settings_of(arguments)  # decision E93: every tracking option, as track-all passes them
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
