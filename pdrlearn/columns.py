@@ -887,6 +887,24 @@ PERIODS: tuple[Column, ...] = (
     *_clocks("start_s", "end_s"),
 )
 
+def _segments() -> tuple[Column, ...]:
+    """Decision L619: segments.csv's columns, :func:`pdrlearn.track.segments.segment_columns`'s order: the leg's key,
+    then periods.csv's totals (their meanings, each over the leg instead of the period)."""
+    periods = {c[0]: c for c in PERIODS}
+    own = {"segment": ("segment", "index", "integer", "the leg's number, from 1 (LEGS.csv's row order)"),
+           "label": ("label", _ID, "text", "LEGS.csv's label (the leg's mode or place), empty when not given"),
+           "start_s": ("start_s", "s", "number", "the leg's start on the session's clock (LEGS.csv's start_s, seconds "
+                                                 "from the session's start as --window's)"),
+           "end_s": ("end_s", "s", "number", "the leg's end (LEGS.csv's end_s); a leg holds its end unless the "
+                                             "next leg starts there (L619)")}
+    from pdrlearn.track.segments import segment_columns
+
+    return (*(own.get(n) or periods[n] for n in segment_columns()), *_clocks("start_s", "end_s"))
+
+
+#: decision L619: a track's segments.csv (``track --segments LEGS.csv``), one row per leg of the whole session's track
+SEGMENTS: tuple[Column, ...] = _segments()
+
 #: decision W182: a lower-back track's transfers.csv (a foot track writes none)
 TRANSFERS: tuple[Column, ...] = (
     ("transfer", "index", "integer", "the transfer's number in the session, from 1"),
@@ -1701,7 +1719,8 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, LAPS, SPLITS,
+    SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, SEGMENTS, LAPS,
+    SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, TEN_M_WALK_TRIAL_TABLE,
     FREEZES, FLIGHTS, RAMPS, RAMP_RUNS, STAIRS, CURBS, RIDES, WB_SCORES, WAIST_STEPS,
     FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
@@ -1721,6 +1740,9 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
                         "writes `session, subject, visit, period, ...`, as listed below; `track-all --per`'s "
                         "OUT/periods.csv leads with sessions.csv's key, `path, visit, session, subject, period, ...` "
                         "(L277; `path`: the session folder relative to ROOT).",
+         "segments.csv": "`pdrlearn track DIR --segments LEGS.csv` (decisions L618, L619): one row per leg of "
+                         "LEGS.csv (start_s, end_s: seconds from the session's start; an optional label), each with "
+                         "periods.csv's totals over the leg, from one track of the whole session.",
          "strides.csv": "`pdrlearn track-all` (decision E163): every tracked session's steps.csv in one table, in "
                         "sessions.csv's order; the columns below lead, then the session's own steps.csv columns "
                         "(steps.csv / steps.csv (foot)).",

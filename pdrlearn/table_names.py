@@ -11,6 +11,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "bouts.csv",
                                 "strides.csv",  # E163
                                 "turns.csv", "periods.csv",
+                                "segments.csv",  # L619
                                 "laps.csv",  # L383
                                 "splits.csv",  # L411
                                 "direction_changes.csv",  # L412

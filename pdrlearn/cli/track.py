@@ -253,6 +253,11 @@ PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods
                              "the recording's clock, 1h = the clock hours; the first and last periods partial). clock "
                              "needs the session's start (meta.json recording_start or a date-time import; decision "
                              "L299).")
+SEGMENTS_OPT = typer.Option(None, "--segments", metavar="LEGS.csv", help="Totals per trip leg in OUT/segments.csv "
+                            "from one track: LEGS.csv has columns start_s,end_s (seconds from the session start, as "
+                            "--window takes them) and an optional label, one leg a row, sorted and not overlapping; "
+                            "each row has periods.csv's totals (steps, distance, walking time, bouts, ...) over its "
+                            "leg. A bad LEGS.csv is one error line before any tracking (decisions L618, L619).")
 STEADY_TRIM_OPT = typer.Option(None, "--steady-trim", metavar="N", help="A steady-state rule: leave the first "
                                "and last N strides of each walking bout out of gait speed, cadence, the stride "
                                "time / length / speed medians and the CVs (decision L415; default 0: none, each bout's "
@@ -364,6 +369,7 @@ def track(
     window: str = WINDOW_OPT,
     per: str = PER_OPT,
     per_align: str = PER_ALIGN_OPT,
+    segments: Path = SEGMENTS_OPT,
     corridor: float = CORRIDOR_OPT,
     walk_test_duration: float = WALK_TEST_DURATION_OPT,
     splits: str = SPLITS_OPT,
@@ -415,6 +421,8 @@ def track(
 
         pdrlearn track out/sim/A_u1 --per 60 --per-align first-step --out out/A_min   # minutes from the first step
 
+        pdrlearn track day/ --segments legs.csv --out out/day_legs   # OUT/segments.csv: totals per leg (L619)
+
         pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
 
         pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from the 1st step
@@ -452,7 +460,7 @@ def track(
 
     options = given_options(arguments, leave_out=("session_dir", "out", "force", "as_json"))  # for OUT/run.json
     forms = redaction(arguments)  # decision E176
-    out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
+    out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes, segments))  # L618: LEGS.csv too
     settings = settings_of(arguments)  # decision E93: every tracking option, as track-all passes them
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
@@ -503,6 +511,7 @@ NOT_IN_TRACK_ALL = {
     "--gnss": "a per-recording fix file", "--gnss-period": "thins --gnss", "--fixes": "a per-recording fix file",
     "--gnss-time-offset": "places one --gnss log's times",
     "--fix-period": "thins --fixes",
+    "--segments": "one recording's table of legs (its seconds are that session's clock)",
     "--strict": "track-all's exit code 1 names failed sessions; sessions.csv's n_warnings counts each one's (E156)",
 }
 
@@ -529,7 +538,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    drop_neighbour: bool = False, dpi: int | None = None, no_plot: bool = False,
                    initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
-                   per_align: str = "start", corridor: float | None = None, splits: str | None = None,
+                   per_align: str = "start", segments: Path | None = None, corridor: float | None = None,
+                   splits: str | None = None,
                    walk_test_duration: float | None = None,
                    ten_m_walk: str | None = None,
                    stair_rise: float | None = None, stair_grade: float | None = None, resample: bool = False,
@@ -573,6 +583,12 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if per_align != "start" and per_s is None:
         raise DataError(f"track: --per-align {per_align} places --per's periods; give --per (e.g. --per 1h) or drop "
                         "it")
+    from pdrlearn.track.segments import read_legs
+
+    legs = read_legs(segments)  # decision L618: a bad LEGS.csv is one line before any session
+    if legs is not None and win is not None:
+        raise DataError(f"track: --segments {segments} gives the legs to total on the session's clock; --window "
+                        "would cut the track they are totalled from: drop --window (or make it a leg)")
     from pdrlearn.track.corridor import corridor_length
 
     corridor_m = corridor_length(corridor)  # decision B293: before any session
@@ -703,7 +719,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi, "plot": plot,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
-            "per_align": per_align, "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
+            "per_align": per_align, "legs": legs, "segments": segments,  # decision L618
+            "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
             "ten_m_walk_m": ten_m_walk_m,
             "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
             "resample": rate_mode,
@@ -938,6 +955,11 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import check_window
 
         win = check_window(o["window"], session, tracked_unit(pipeline))  # B126: the tracked unit's recording
+    legs = None
+    if o.get("legs") is not None:  # decision L618: the legs inside the tracked unit's recording, before tracking
+        from pdrlearn.track.segments import check_legs
+
+        legs = check_legs(o["legs"], session, tracked_unit(pipeline), o.get("segments"))
     fn = get_pipeline(pipeline)
     if o["realtime"] and pipeline != "waist-pendulum":  # decision W60: the flag the docs named
         raise DataError(f"track: --realtime applies to the waist-pendulum pipeline only (got --pipeline {pipeline}, "
@@ -1169,6 +1191,14 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             summary["info"]["warnings"] = [*summary["info"].get("warnings", []), bounce]
         if clock is not None:
             summary["per_align"] = "clock"
+    segments = None
+    if legs is not None:  # decision L619: segments.csv, from the whole session's track (one track for every leg)
+        from pdrlearn.track.folder import clinical_tables
+        from pdrlearn.track.segments import segment_table
+
+        segments = segment_table(whole, session, legs, unit=unit, bouts=bouts,
+                                 turns=clinical_tables(whole, bouts)["turns.csv"],
+                                 storey_height_m=o.get("storey_height_m", 3.0))
     laps = None
     if o.get("corridor_m") is not None:  # decisions L383, L384: the corridor walk test of the track (or its window)
         from pdrlearn.track.corridor import corridor_laps
@@ -1199,7 +1229,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi, "plot": o["plot"], "content_id": content_id, "bouts": bouts, "periods": periods, "laps": laps,
-            "start": start, "splits": splits,
+            "start": start, "splits": splits, "segments": segments,
             "start_ele": bool(o.get("start_ele"))}
 
 
@@ -1353,6 +1383,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'splits.csv, ' if summary.get('splits_m') else ''}"
                f"{'direction_changes.csv, ' if summary.get('direction_changes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}"
+               f"{'segments.csv, ' if (out / 'segments.csv').is_file() else ''}"  # decision L619
                f"{'path.png, ' if plot else ''}"  # decision L533: no figure with --no-plot
                f"{'aided.png, ' if aided and plot else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)

@@ -57,7 +57,7 @@ def write_track(result, session, out, force: bool = False, *, plot: bool = True)
     return out
 
 
-def event_tables(result, bouts, periods=None, start=None, laps=None, splits=None) -> dict:
+def event_tables(result, bouts, periods=None, start=None, laps=None, splits=None, segments=None) -> dict:
     """Decision L298: every event table a track or run writes - ``bouts.csv`` (L124), :func:`clinical_tables`'s,
     ``periods.csv`` (L277, when given) and ``laps.csv`` (L383, with --corridor) - with their clock columns when the
     recording's ``start`` is known."""
@@ -71,6 +71,8 @@ def event_tables(result, bouts, periods=None, start=None, laps=None, splits=None
         tables["laps.csv"] = laps
     if splits is not None:  # decision L411: --splits
         tables["splits.csv"] = splits
+    if segments is not None:  # decision L619: --segments
+        tables["segments.csv"] = segments
     return {name: with_clock_columns(table, start) for name, table in tables.items()}
 
 
@@ -184,7 +186,7 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
     write_table_csv(with_reference_columns(result, session), dest / "steps.csv")  # decision E135: the reference pairs
     # decisions L124 (E98: the old speed_m_s last), L200, W182, L277; L298: clock columns with a recording start
     tables = event_tables(result, tracked["bouts"], tracked.get("periods"), tracked.get("start"),
-                          tracked.get("laps"), tracked.get("splits"))
+                          tracked.get("laps"), tracked.get("splits"), tracked.get("segments"))
     for name, table in tables.items():
         write_table_csv(table, dest / name)
     if plot:

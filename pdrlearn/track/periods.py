@@ -418,24 +418,19 @@ def rise_times(transfers) -> np.ndarray | None:
     return tr.loc[tr["kind"] == SIT_TO_STAND, "start_s"].to_numpy(float)
 
 
-def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
-                 turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None,
-                 span: tuple[float, float] | None = None) -> pd.DataFrame:
-    """Decision L277: periods.csv of a whole-session track (:data:`PERIOD_COLUMNS`, module docstring), periods of
-    ``per_s`` seconds from the recording's start to the tracked ``unit``'s end; ``bouts`` bouts.csv's table,
-    ``turns`` turns.csv's. Decision L299: ``clock`` (the clock time of the session's 0 s, a datetime) cuts them at
-    the clock's whole periods instead (``--per-align clock``: 1h = the clock hours), the first and last partial.
-    Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's."""
+def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bouts: pd.DataFrame | None,
+                  turns: pd.DataFrame | None, storey_height_m: float = 3.0) -> list[dict]:
+    """Decision L277's row mechanism, shared by periods.csv (:func:`period_table`) and segments.csv (decision L619,
+    :func:`segment_table`): one dict per interval ``[starts[k], ends[k])`` of a whole-session track (``[a, b]``
+    where ``closed[k]``: each instant in one interval), with the interval's ``start_s`` / ``end_s`` /
+    ``duration_s`` and every total of :data:`PERIOD_COLUMNS` after ``partial`` (module docstring); the caller adds
+    its own key (``period`` and ``partial``, or ``segment`` and ``label``)."""
     from pdrlearn.track.bouts import session_key
-    from pdrlearn.track.clock import clock_edges
     from pdrlearn.track.evaluate import interval_ascent, step_counts, travel_masks
 
-    t0, t1 = session_span(session, unit) if span is None else span
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
         else result.steps
     timeline = Timeline.of(steps, unit_gaps(session, unit), result.info.get("postures"))
-    edges = np.arange(t0, t1, per_s) if clock is None else clock_edges(t0, t1, per_s, clock)
-    ends = np.minimum(edges + per_s, t1) if clock is None else np.r_[edges[1:], t1]
     mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
     length = steps["length_m"].abs().to_numpy(float) if len(steps) else np.zeros(0)
     climbs = climb_times(steps, result.info, storey_height_m)
@@ -448,16 +443,17 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     tt = traj["t"].to_numpy(float) if len(traj) else np.zeros(0)
     counts = step_counts(steps)["n_steps_counts"]  # decision L320: what n_steps counts, as the summary's
     travel = travel_masks(steps)  # decision L484: the backward / side strides of the summary's counts
+    starts_s, stops_s = (steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)) if len(steps) \
+        else (np.zeros(0), np.zeros(0))
     rows = []
-    for k, (a, b) in enumerate(zip(edges, ends, strict=True)):
-        last = k == len(edges) - 1
+    for a, b, last in zip(starts, ends, closed, strict=True):
+        a, b, last = float(a), float(b), bool(last)
 
-        def inside(t, a=a, b=b, last=last):  # each time in one period: [a, b), the last one [a, b]
+        def inside(t, a=a, b=b, last=last):  # each time in one interval: [a, b), a closed one [a, b]
             return (t >= a) & ((t <= b) if last else (t < b))
 
         m = inside(mid)
-        row = {**session_key(session), "period": k + 1, "start_s": float(a), "end_s": float(b),
-               "duration_s": float(b - a), "partial": bool(b - a < per_s - 1e-9),
+        row = {**session_key(session), "start_s": a, "end_s": b, "duration_s": b - a,
                "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), "n_steps_counts": counts,
                # decision L449: both feet's steps whatever the unit, as the summary's (2 per foot stride)
                "n_steps_both_feet": step_counts(steps[m])["n_steps_both_feet"],
@@ -465,7 +461,7 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         c = inside(climb_t)
         row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None  # L277
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None
-        row["ascent_m"], row["descent_m"] = interval_ascent(result, float(a), float(b))  # decision L467
+        row["ascent_m"], row["descent_m"] = interval_ascent(result, a, b)  # decision L467
         row["n_bouts"], row["n_turns"] = int(inside(bout_t).sum()), int(inside(turn_t).sum())
         row["n_sit_to_stand"] = None if rise_t is None else int(inside(rise_t).sum())  # decision W448
         row["n_backward_strides"], row["n_side_strides"] = ((None, None) if travel is None  # L484: lower back
@@ -473,8 +469,28 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         row["data_gap"] = row["time_no_data_s"] > 0
         j = int(np.searchsorted(tt, b + 1e-9, side="right")) - 1
         row["position_sigma_end_m"] = float(sigma[j]) if sigma is not None and j >= 0 else None
-        starts, stops = (steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)) if len(steps) \
-            else (np.zeros(0), np.zeros(0))
-        row.update(period_displacement(traj, starts, stops, float(a), float(b), last=last))  # L514, L528
+        row.update(period_displacement(traj, starts_s, stops_s, a, b, last=last))  # L514, L528
         rows.append(row)
+    return rows
+
+
+def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.DataFrame | None,
+                 turns: pd.DataFrame | None, storey_height_m: float = 3.0, clock=None,
+                 span: tuple[float, float] | None = None) -> pd.DataFrame:
+    """Decision L277: periods.csv of a whole-session track (:data:`PERIOD_COLUMNS`, module docstring), periods of
+    ``per_s`` seconds from the recording's start to the tracked ``unit``'s end; ``bouts`` bouts.csv's table,
+    ``turns`` turns.csv's. Decision L299: ``clock`` (the clock time of the session's 0 s, a datetime) cuts them at
+    the clock's whole periods instead (``--per-align clock``: 1h = the clock hours), the first and last partial.
+    Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's."""
+    from pdrlearn.track.clock import clock_edges
+
+    t0, t1 = session_span(session, unit) if span is None else span
+    edges = np.arange(t0, t1, per_s) if clock is None else clock_edges(t0, t1, per_s, clock)
+    ends = np.minimum(edges + per_s, t1) if clock is None else np.r_[edges[1:], t1]
+    closed = np.arange(len(edges)) == len(edges) - 1  # the last period holds its end
+    rows = interval_rows(result, session, edges, ends, closed, unit=unit, bouts=bouts, turns=turns,
+                         storey_height_m=storey_height_m)
+    for k, row in enumerate(rows):
+        row["period"] = k + 1
+        row["partial"] = bool(row["duration_s"] < per_s - 1e-9)
     return pd.DataFrame(rows, columns=list(PERIOD_COLUMNS))
