@@ -669,7 +669,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decision W183: chair transfers, TUG (W418: a foot track's from the waist unit's transfers and contacts; W490 /
     # L614: a TUG's shape from these turns and, on a foot track, the foot's strides)
     out.update(transfer_summary(result.info.get("transfers"), tug_contacts(result), turns=table,
-                                walk=foot_strides(result)))
+                                walk=foot_strides(result), yaw_turns=tug_yaw_turns(result)))  # W498
     if out.get("tug_time_note") is None:
         out["tug_time_note"] = trunk_note(result)  # W418: why a two-unit track has no transfers
     from pdrlearn.waist.tug_phases import tug_phase_summary, tug_phases
