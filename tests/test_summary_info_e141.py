@@ -27,7 +27,8 @@ def test_summary_info_leaves_out_the_listed_rows_and_nothing_else():
     assert set(SUMMARY_INFO_LEFT_OUT) == {"transfers", "freezes", "flights", "postures", "yaw_turns", "rides",
                                           "rest_bias_rests",  # L306: the radius's clock, not a summary value
                                           "trunk_contacts", "trunk_yaw_turns",
-                                          "wb_scores"}  # W493: wb_scores.csv's rows
+                                          "wb_scores",  # W493: wb_scores.csv's rows
+                                          "window_cut_wbs"}  # W499: the reference WBs a --window cut
     assert summary_info({"aid": None}) == {"aid": None}
 
 

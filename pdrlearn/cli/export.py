@@ -465,6 +465,9 @@ def run(
         if sides:  # decision E110: W138's side is the lower-back contact's; a foot bundle tracks one foot's strides
             raise DataError(f"run: --sides gives a waist-only bundle's steps their foot; {bundle_dir} is a foot-unit "
                             "bundle, whose steps are the strides of the one foot it tracks: drop --sides")
+        from pdrlearn.track.bouts import check_bout_unit
+
+        check_bout_unit(bouts, "foot")  # decision W495 (amended): a foot bundle's strides, refused before the replay
         bundle = load_bundle(bundle_dir)  # verified before any output
         methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
         steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)

@@ -557,6 +557,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
     from pdrlearn.io.resample import resample_mode
     from pdrlearn.track.bouts import bout_rule as read_bout_rule
+    from pdrlearn.track.bouts import check_bout_unit
     from pdrlearn.track.steady import check_steady_trim
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
@@ -564,6 +565,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     rate_mode = resample_mode(resample, no_resample)  # decision B113
     plot = check_no_plot("track", no_plot, dpi)  # decisions L533, B413: before any session
     bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L163: checked before any session
+    if pipeline == "plasys":  # decision W495 (amended): a foot track's trim refused before any session
+        check_bout_unit(bouts, "foot")
     if rate_mode != "native" and model is None:
         raise DataError(f"track: {'--resample' if resample else '--no-resample'} compares the session's rate with "
                         "the model's: pass --model DIR, or drop it (without a model nothing depends on the rate)")
@@ -929,6 +932,9 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
 
         logging.getLogger("pdrlearn.cli").info("--pipeline auto: %s, the pipeline %s was calibrated for (decision "
                                                "W407)", pipeline, params)
+    from pdrlearn.track.bouts import check_bout_unit
+
+    check_bout_unit(o.get("bouts"), tracked_unit(pipeline))  # decision W495 (amended): before tracking the session
     given_clock, clock_lines = None, []
     # decision E111: the waist clock moved by hand, before anything reads it; B230: before B126's span check (a
     # waist clock 2 s late covers the foot's time once moved); another pipeline is refused below (B27)

@@ -897,8 +897,9 @@ def _refuse_out_of_range(spec, raw: np.ndarray, rows: np.ndarray, t: np.ndarray,
     """Decision B436: B425's one line for an export's rows (``raw``, as written) with a value beyond any sensor's
     range once converted (``factor``), naming the export, the file line (``lines``: each row's) and the export's own
     column. The unit checks (``declare``: the import's unit option) first, as B425's reader does, so that a whole
-    column in another unit keeps its unit line (its corrupt rows' squares may overflow there, silently); none with
-    ``--add-gravity`` (``declare`` None: its acceleration has no gravity yet, B166). ``kind``: the import's channel
+    column in another unit keeps its unit line (its corrupt rows' squares may overflow there, silently); none for the
+    accelerometer of an ``--add-gravity`` import (``declare`` None: its acceleration has no gravity yet, B166; B443:
+    its other sensors keep their unit checks). ``kind``: the import's channel
     kind, whose option the unit line carries when another unit fits (decision B438)."""
     if declare is not None:
         try:
@@ -1278,7 +1279,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             declare = f"give the unit with {opt} ({' | '.join(UNITS[kind])})"
             if corrupt.size:  # decision B436: refused here, before anything is written (the next read refused it)
                 _refuse_out_of_range(SENSORS[sensor], vals[keep], corrupt, t, factor, cols, u, where,
-                                     np.flatnonzero(keep) + first_line, None if add_gravity else declare, kind)
+                                     np.flatnonzero(keep) + first_line,  # B443: only the acceleration lacks
+                                     None if add_gravity is not None and kind == "acc" else declare, kind)  # gravity
             if kind == "acc" and add_gravity is not None:  # decision B166
                 if gravity_removed(values, where, t) is None:
                     med = float(np.median(np.linalg.norm(values, axis=1)))

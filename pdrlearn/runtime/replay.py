@@ -21,7 +21,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.install import INSTALL_EVERYTHING
-from pdrlearn.kernels.units import check_units, data_row_lines, out_of_range, out_of_range_message
+from pdrlearn.kernels.units import VALUE_LIMITS, check_units, data_row_lines, out_of_range, out_of_range_message
 from pdrlearn.textfile import compressed_hint, duplicate_message, header_names, read_json, read_text, session_csv
 
 log = logging.getLogger(__name__)
@@ -112,6 +112,39 @@ class _Spec(NamedTuple):
 def range_spec(name: str, width: int) -> _Spec:
     """The sensor ``name``'s kind, SI unit and value columns (``width`` values a sample), for B425's line."""
     return _Spec(name, *SENSOR_KINDS[name], VALUE_COLUMNS[width])
+
+
+#: decision B425's limit per streamed sensor (SI), for :func:`refuse_pushed_out_of_range`
+PUSH_LIMITS = {n: VALUE_LIMITS[kind] for n, (kind, _) in SENSOR_KINDS.items()}
+
+
+def refuse_pushed_out_of_range(who: str, checked: dict, guard=None, fast: dict | None = None) -> None:
+    """Decisions B435 / B442: B425's range check on a live push (offline's one line, the sample's time for its
+    line), so that a 1e308 pushed live is refused, not tracked into NaN - the foot :class:`~pdrlearn.runtime.Tracker`'s
+    and the lean :class:`~pdrlearn.runtime.waist.WaistTracker`'s one check. ``checked``: ``{sensor: (t, values)}``;
+    ``fast``: ``{sensor: (t0, values)}`` of one-sample (E17) sensors; ``who``: the class named in the line. Called
+    after B119's ``guard`` has judged the push, and for a stream it still judges after its unit checks on what it
+    holds with this push (:meth:`~pdrlearn.runtime.guard.UnitGuard.units_first`): a stream in another unit keeps its
+    wrong-unit line. Per push: a comparison per one-sample sensor, a max |value| per array. Changes nothing."""
+    bad = None
+    for name, (t0, vals) in (fast or {}).items():
+        lim = PUSH_LIMITS.get(name)
+        if lim is not None and (max(vals) > lim or min(vals) < -lim):
+            bad = name, np.array([t0]), np.array([vals])
+            break
+    else:
+        for name, (t, v) in checked.items():
+            lim = PUSH_LIMITS.get(name)
+            if lim is not None and float(np.abs(v).max()) > lim:
+                bad = name, t, v
+                break
+    if bad is None:
+        return
+    name, t, v = bad
+    if guard is not None:
+        guard.units_first(name, (t, v))
+    spec = range_spec(name, v.shape[1])
+    raise DataError(out_of_range_message(f"{name} (pushed to the {who})", spec, v, out_of_range(spec.kind, v), t=t))
 
 
 def _refuse_out_of_range(path: Path, name: str, t: np.ndarray, values: np.ndarray, lines: np.ndarray) -> None:

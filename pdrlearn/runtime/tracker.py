@@ -70,7 +70,6 @@ from pdrlearn.kernels.stride import (
     waist_gap_from,
     waist_gap_max_s,
 )
-from pdrlearn.kernels.units import VALUE_LIMITS, out_of_range, out_of_range_message
 from pdrlearn.kernels.window import (
     BOUNDARIES,
     BRIDGE_GAP_S,
@@ -97,7 +96,7 @@ from pdrlearn.runtime.domain import DomainLog
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenFootWatch, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.links import RepeatedLines, StartClocks, order_error, unit_of
-from pdrlearn.runtime.replay import SENSOR_KINDS, range_spec
+from pdrlearn.runtime.replay import refuse_pushed_out_of_range
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
 from pdrlearn.runtime.restart import resume as resume_state
@@ -769,8 +768,6 @@ class Tracker(OwnGuard, FixInput):
         #: decision B119: the units of the first GUARD_S seconds of each IMU stream, checked as offline's (None:
         #: checked, or ``check_input=False``); decision B120: frozen sensors
         self._guard = UnitGuard(self.used_sensors) if check_input else None
-        #: decision B435: B425's limit of each sensor's values (SI), checked on every push
-        self._value_limits = {n: VALUE_LIMITS[kind] for n, (kind, _) in SENSOR_KINDS.items()}
         self._frozen = FrozenWatch()
         #: decision B213: B203's frozen foot IMU beside stepping force sensors, judged live (None: decided, no foot IMU
         #: or force sensor, or ``check_input=False``)
@@ -1201,31 +1198,10 @@ class Tracker(OwnGuard, FixInput):
         return steps
 
     def _refuse_out_of_range(self, checked: dict, fast: dict) -> None:
-        """Decision B435: B425's range check on a push (offline's one line, the sample's time for its line), so that
-        a 1e308 pushed live is refused, not tracked into NaN; after B119's guard has judged the push, and for a
-        stream it still judges, after its unit checks on what it holds with this push (:meth:`UnitGuard.units_first`):
-        a stream in another unit keeps its wrong-unit line. Per push: a comparison per one-sample (E17) sensor, a
-        max |value| per array. ``check_input=False`` (no guard) still refuses the range, as B433's opt-out does."""
-        limits, bad = self._value_limits, None
-        for name, (t0, vals) in fast.items():
-            lim = limits.get(name)
-            if lim is not None and (max(vals) > lim or min(vals) < -lim):
-                bad = name, np.array([t0]), np.array([vals])
-                break
-        else:
-            for name, (t, v) in checked.items():
-                lim = limits.get(name)
-                if lim is not None and float(np.abs(v).max()) > lim:
-                    bad = name, t, v
-                    break
-        if bad is None:
-            return
-        name, t, v = bad
-        if self._guard is not None:
-            self._guard.units_first(name, (t, v))
-        spec = range_spec(name, v.shape[1])
-        raise DataError(out_of_range_message(f"{name} (pushed to the Tracker)", spec, v,
-                                             out_of_range(spec.kind, v), t=t))
+        """Decision B435: B425's range check on a push (:func:`~pdrlearn.runtime.replay.refuse_pushed_out_of_range`,
+        shared with the lean WaistTracker, B442); ``check_input=False`` (no guard) still refuses the range, as
+        B433's opt-out does."""
+        refuse_pushed_out_of_range("Tracker", checked, self._guard, fast)
 
     def _check_push(self, samples: dict) -> dict[str, tuple[float, list[float]]] | None:
         """Decision E29: the input errors of every sensor of a push before any state changes (a push is all or

@@ -22,6 +22,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
 from pdrlearn.runtime.detector_line import live_detector_line
 from pdrlearn.runtime.fixes import FixInput
+from pdrlearn.runtime.replay import refuse_pushed_out_of_range
 from pdrlearn.runtime.threads import OwnGuard, new_guard, one_call_at_a_time
 from pdrlearn.textfile import read_json
 
@@ -258,6 +259,8 @@ class WaistStream(OwnGuard, FixInput):
         if guard is not None:  # decision B119, before any state changes (a refused push changes nothing)
             arrays = {n: pushed[n] for n in guard.wanted() if n in pushed}
             judged = guard.check(arrays)
+        # decision B442: B435's range check (the foot Tracker's), after the guard's verdict, before any change
+        refuse_pushed_out_of_range(self._name, pushed, guard)
         if self._dts is not None:
             self._unit_check(t)
         if not keep.all():  # E203 (amended): counted only once every check has passed

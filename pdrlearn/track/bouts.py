@@ -335,6 +335,20 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     return table
 
 
+#: decision W495: the line that refuses ``trim_edges`` on a foot track (its rows are strides, not contacts)
+FOOT_TRIM_LINE = ("--bout-rule mobgap-indip trims a lower-back bout's edge contacts (decision W495); a foot track's "
+                  "rows are strides: use --bout-rule mobgap")
+
+
+def check_bout_unit(rule: BoutRule | None, unit: str) -> None:
+    """Decision W495 (amended, session 43): refuse ``rule``'s ``trim_edges`` (``--bout-rule mobgap-indip``) for a
+    track of ``unit`` ``"foot"`` before any tracking, in :data:`FOOT_TRIM_LINE` (``track`` / ``track-all`` with
+    ``--pipeline plasys`` once, a session ``--pipeline auto`` resolves to the foot before it is tracked, ``run`` with
+    a foot bundle before its replay)."""
+    if rule is not None and rule.trim_edges and unit == "foot":
+        raise DataError(FOOT_TRIM_LINE)
+
+
 def edge_trimmed(st: pd.DataFrame, rule: BoutRule, **keys) -> pd.DataFrame:
     """Decision W495 (``trim_edges``, ``--bout-rule mobgap-indip``): :func:`detected_bouts` of a lower-back step table
     ``st`` (sorted) with each bout the rule finds and keeps cut to its second contact .. its last-but-one: the rows
@@ -345,8 +359,7 @@ def edge_trimmed(st: pd.DataFrame, rule: BoutRule, **keys) -> pd.DataFrame:
     from dataclasses import replace
 
     if is_foot_table(st):
-        raise DataError("--bout-rule mobgap-indip trims a lower-back bout's edge contacts (decision W495); a foot "
-                        "track's rows are strides: use --bout-rule mobgap")
+        raise DataError(FOOT_TRIM_LINE)
     inner = replace(rule, min_strides=0, trim_edges=False)
     parts = []
     for a, b in bout_ranges(st, rule):

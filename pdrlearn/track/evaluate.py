@@ -669,7 +669,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decision W183: chair transfers, TUG (W418: a foot track's from the waist unit's transfers and contacts; W490 /
     # L614: a TUG's shape from these turns and, on a foot track, the foot's strides)
     out.update(transfer_summary(result.info.get("transfers"), tug_contacts(result), turns=table,
-                                walk=foot_strides(result)))
+                                walk=foot_strides(result), yaw_turns=tug_yaw_turns(result)))  # W498
     if out.get("tug_time_note") is None:
         out["tug_time_note"] = trunk_note(result)  # W418: why a two-unit track has no transfers
     from pdrlearn.waist.tug_phases import tug_phase_summary, tug_phases
@@ -1549,7 +1549,7 @@ def _wb_scores(result: TrackResult, session: Session, bouts, bout_table, out: di
     recall / F1 and the per-WB DMO errors in the summary. Nothing without reference WBs."""
     from pdrlearn.steps.reference_clock import waist_clock_labels
     from pdrlearn.track.bouts import BoutRule, detected_bouts
-    from pdrlearn.track.wb_scores import wb_evaluation
+    from pdrlearn.track.wb_scores import outside_spans, wb_evaluation
     from pdrlearn.waist.evaluate import reference_wbs
 
     ref = reference_wbs(waist_clock_labels(session))  # decision W380: the labels on the tracked clock
@@ -1557,7 +1557,8 @@ def _wb_scores(result: TrackResult, session: Session, bouts, bout_table, out: di
         return
     if bout_table is None:
         bout_table = detected_bouts(result.steps, bouts or BoutRule(), leg_m=out.get("leg_length_m"))
-    table, keys = wb_evaluation(bout_table, ref)
+    # decision W499: a --window drops the reference WBs it cuts; the detected bouts of those walks are left out too
+    table, keys = wb_evaluation(outside_spans(bout_table, result.info.get("window_cut_wbs")), ref)
     result.info["wb_scores"] = table.to_dict("records")
     out.update(keys)
 
@@ -1583,6 +1584,7 @@ SUMMARY_INFO_LEFT_OUT = {
     "trunk_contacts": "the lower-back contacts a two-unit TUG is timed on (decision W418)",
     "trunk_yaw_turns": "the lower-back turns of a two-unit TUG's turn-to-sit (decisions W307, W418)",
     "wb_scores": "wb_scores.csv (decision W493)",
+    "window_cut_wbs": "the reference WBs a --window cuts, left out of wb_scores.csv (decision W499)",
 }
 #: decision E141: the entries of ``info["aid"]`` that summary.json leaves out (every fix's row: aided.png's)
 SUMMARY_AID_LEFT_OUT = ("fix_table",)

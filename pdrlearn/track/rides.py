@@ -82,7 +82,14 @@ def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False
     """:func:`ride_rows` on the pauses from ``ends`` to ``starts`` (s) whose altitude changed by ``pause`` (m);
     ``acc`` ``(t, (n, 3))`` or None: decision L402's vibration (NaN without), which tells the kind only with
     ``vibration_kind`` (L403)."""
-    from pdrlearn.kernels.pause_ride import RIDE_MIN_M, escalator_travel_m, ride_kind, ride_vibration, ride_window
+    from pdrlearn.kernels.pause_ride import (
+        RIDE_MIN_M,
+        escalator_travel_m,
+        ride_kind,
+        ride_vibration,
+        ride_window,
+        vibrating_span,
+    )
 
     kinds = np.full(len(starts), "", dtype=object)
     records = []
@@ -98,8 +105,13 @@ def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False
         vib = ride_vibration(acc[0], acc[1], a, b) if acc is not None else float("nan")  # decision L402
         kinds[j] = kind = ride_kind(dz, duration, vib if vibration_kind else None)
         unread = (acc[2] if acc is not None else "the accelerometer") if vibration_kind and np.isnan(vib) else None
+        rate = abs(dz) / duration  # the climb's (W89)
+        span = vibrating_span(acc[0], acc[1], float(ends[j]), float(starts[j])) if kind == "vehicle" else None
+        if span is not None:  # decision L620: a climbing vehicle's ride is its motion, as L616's level one
+            a, b, vib = span
+            duration = b - a
         records.append({"ride": len(records) + 1, "start_s": a, "end_s": b, "kind": kind, "dz_m": dz,
-                        "duration_s": duration, "vertical_rate_mps": abs(dz) / duration, "vibration_mps2": vib,
+                        "duration_s": duration, "vertical_rate_mps": rate, "vibration_mps2": vib,
                         "horizontal_est_m": escalator_travel_m(dz) if kind == "escalator" else None, "row": int(j),
                         "gap_s": _gap_in(t, a, b),  # decision B298
                         "vibration_unread": unread})  # decision B301

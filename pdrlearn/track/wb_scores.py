@@ -152,6 +152,18 @@ def wb_score_summary(table: pd.DataFrame, overlap_threshold: float = OVERLAP_THR
     return out
 
 
+def outside_spans(bouts: pd.DataFrame | None, spans: list[dict] | None) -> pd.DataFrame | None:
+    """Decision W499 (a pure kernel): the rows of ``bouts`` (``start_s`` / ``end_s``) that overlap none of ``spans``
+    (``{"start_s", "end_s"}`` rows: the reference WBs a ``--window`` cut); ``bouts`` itself without spans."""
+    if not spans or bouts is None or not len(bouts):
+        return bouts
+    a, b = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
+    hit = np.zeros(len(bouts), dtype=bool)
+    for span in spans:
+        hit |= (b > float(span["start_s"])) & (a < float(span["end_s"]))
+    return bouts[~hit].reset_index(drop=True)
+
+
 def wb_evaluation(bouts: pd.DataFrame, reference: pd.DataFrame | None,
                   overlap_threshold: float = OVERLAP_THRESHOLD) -> tuple[pd.DataFrame | None, dict]:
     """``(table, summary keys)`` of :func:`wb_score_table` / :func:`wb_score_summary`; ``(None, {})`` without

@@ -139,6 +139,21 @@ def window_episodes(rows: list[dict] | None, t0: float, t1: float, *, clip: bool
     return out
 
 
+def window_cut_wbs(session: Session, t0: float, t1: float) -> list[dict]:
+    """Decision W499: the reference walking bouts (W493's, on the tracked clock) that overlap the window ``[t0, t1]``
+    but do not lie wholly inside it - the cut session drops them (L272's "only when wholly inside") - as
+    ``{"start_s", "end_s"}`` rows; W493's scores leave out the detected bouts that overlap them."""
+    from pdrlearn.steps.reference_clock import waist_clock_labels
+    from pdrlearn.waist.evaluate import reference_wbs
+
+    ref = reference_wbs(waist_clock_labels(session)) if session.extras.get("bouts") is not None else None
+    if ref is None:
+        return []
+    a, b = ref["start_s"].to_numpy(float), ref["end_s"].to_numpy(float)
+    cut = (b > t0) & (a < t1) & ~((a >= t0) & (b <= t1))
+    return [{"start_s": float(x), "end_s": float(y)} for x, y in zip(a[cut], b[cut], strict=True)]
+
+
 def window_track(result: TrackResult, session: Session, t0: float, t1: float) -> tuple[TrackResult, Session]:
     """The track and the session cut to ``[t0, t1]`` (the session's clock; module docstring). The trajectory keeps
     the position at the first kept step's start (the last row at or before it; decision L401: its altitude without
@@ -194,6 +209,9 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         info["trunk_yaw_turns"] = [r for r in info["trunk_yaw_turns"] if t0 <= 0.5 * (r["start_s"] + r["end_s"]) <= t1]
     if info.get("trunk_contacts") is not None:  # decision W418: the waist unit's contacts inside the window
         info["trunk_contacts"] = [r for r in info["trunk_contacts"] if t0 <= r["start_s"] <= t1]
+    cut_wbs = window_cut_wbs(session, t0, t1)
+    if cut_wbs:  # decision W499: the reference WBs the window cuts, and so drops (wb_scores.csv leaves them out)
+        info["window_cut_wbs"] = cut_wbs
     if info["transfers"] is None and "transfers" not in result.info:
         del info["transfers"]
     if warnings:

@@ -251,12 +251,13 @@ def chair_transfers(imu: WaistIMU, steps: pd.DataFrame) -> pd.DataFrame:
 
 
 def transfer_summary(transfers, steps: pd.DataFrame | None = None, *, turns: pd.DataFrame | None = None,
-                     walk: pd.DataFrame | None = None) -> dict:
+                     walk: pd.DataFrame | None = None, yaw_turns=None) -> dict:
     """Decision W183: :data:`TRANSFER_SUMMARY_KEYS` of a transfers table (a DataFrame or its records; None = a
     track without a trunk unit: every key None). ``tug_time_s`` (module docstring) needs ``steps`` (the contacts'
     ``start_s``); without them it is judged on the transfers alone (a sit-to-stand first and a stand-to-sit
     last). Decision W490: ``turns`` (the track's turns.csv) judges a trial's shape (:func:`tug_turn_legs`); L614:
-    ``walk`` (a two-unit foot track's strides) carries the step lengths and headings in place of ``steps``."""
+    ``walk`` (a two-unit foot track's strides) carries the step lengths and headings in place of ``steps``; W498:
+    there the shape's turns are the waist's ``yaw_turns`` (:func:`shape_turns`)."""
     if transfers is None:
         return dict.fromkeys(TRANSFER_SUMMARY_KEYS)
     tr = pd.DataFrame(list(transfers) if not isinstance(transfers, pd.DataFrame) else transfers,
@@ -272,7 +273,7 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None, *, turns: pd.
     contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
     pairs = seat_to_seat_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]), contacts)  # W325
     trials = tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]), contacts,
-                             **contact_path(steps, walk), turns=turns)  # W445, W490, L614
+                             **contact_path(steps, walk), turns=shape_turns(turns, walk, yaw_turns))  # W445, W490, W498
     if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
         t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
         # decision W340: and a walking contact between the rise and the sit (a TUG walks; W325's trial test);
@@ -354,6 +355,20 @@ def turns_inside(turns, up: float, down: float) -> pd.DataFrame:
     tt = pd.DataFrame(turns) if turns is not None else pd.DataFrame(columns=["start_s", "end_s"])
     mid = 0.5 * (tt["start_s"].to_numpy(float) + tt["end_s"].to_numpy(float))
     return tt[(mid > up) & (mid < down)].sort_values("start_s")
+
+
+def shape_turns(turns, walk=None, yaw_turns=None):
+    """Decision W498 (amends W490 / L614): the turns W490's (d) and (e) judge a TUG's shape on: on a two-unit foot
+    track (``walk``, its strides, given) the waist unit's ``yaw_turns`` (W418's ``trunk_yaw_turns``) of at least
+    L200's :data:`~pdrlearn.track.clinical.TURN_COUNT_MIN_DEG` - the foot's turns.csv merges a pivot about-turn, the
+    walk back and a pivot turn-to-sit into one turn of about 360 deg, the lower back's yaw rate splits them - else
+    ``turns`` (turns.csv; None: not judged)."""
+    if turns is None or walk is None or yaw_turns is None:
+        return turns
+    from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG
+
+    yaw = pd.DataFrame(list(yaw_turns), columns=["start_s", "end_s", "angle_deg"])
+    return yaw[yaw["angle_deg"].astype(float).abs() >= TURN_COUNT_MIN_DEG]
 
 
 def tug_turn_legs(up: float, down: float, turns, path_s, length_m=None) -> bool:

@@ -72,10 +72,11 @@ def tug_phases(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame | None
     Decision W307: with ``yaw_to_sit`` (True: W308 adopted it; decision W467) and one turns.csv turn in the TUG, the
     turn-to-sit is :func:`yaw_turn_to_sit` of ``yaw_turns`` (a lower-back track's ``info["yaw_turns"]``).
     Decisions W490 / L614: the TUG time is judged with ``turns`` and ``walk`` (a two-unit foot track's strides) as
-    :func:`~pdrlearn.waist.transfers.transfer_summary` judges it."""
+    :func:`~pdrlearn.waist.transfers.transfer_summary` judges it (W498: with the waist's ``yaw_turns``)."""
     from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT, transfer_summary
 
-    if transfers is None or transfer_summary(transfers, steps, turns=turns, walk=walk)["tug_time_s"] is None:
+    if transfers is None or transfer_summary(transfers, steps, turns=turns, walk=walk,
+                                             yaw_turns=yaw_turns)["tug_time_s"] is None:  # W498
         return None
     tr = _table(transfers)
     rise = tr[tr["kind"] == SIT_TO_STAND].iloc[0]  # W183: exactly one rise, then one sit
@@ -132,7 +133,7 @@ def tug_trial_table(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame |
     Decision W419: ``foot`` (a two-unit track's foot strides, ``turns`` then the foot's turns.csv) counts the steps
     (:func:`~pdrlearn.track.trunk_tug.foot_step_count`); ``steps_source`` / ``turns_source`` name the unit."""
     from pdrlearn.track.trunk_tug import FOOT, WAIST, foot_step_count
-    from pdrlearn.waist.transfers import contact_path, flag_texts, tug_trial_pairs
+    from pdrlearn.waist.transfers import contact_path, flag_texts, shape_turns, tug_trial_pairs
 
     rows = []
     if transfers is not None:
@@ -140,7 +141,7 @@ def tug_trial_table(transfers, turns: pd.DataFrame | None, steps: pd.DataFrame |
         contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
         for k, (i, j) in enumerate(tug_trial_pairs(tr["kind"], tr["start_s"], tr["end_s"], flag_texts(tr["flag"]),
                                                    contacts, **contact_path(steps, foot),
-                                                   turns=turns)):  # W325, W445, W490, L614
+                                                   turns=shape_turns(turns, foot, yaw_turns))):  # W490, W498
             rise, sit = tr.iloc[i], tr.iloc[j]
             t0, t1 = float(rise["start_s"]), float(sit["end_s"])
             phases = tug_phase_summary(segment_phases(rise, sit, turns, steps, yaw_turns, yaw_to_sit))
