@@ -2038,10 +2038,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     # decision L611 (offline's kernel): pedalling strides are skipped as B131's posture strides are (no row, 0 m)
-    pedal = closed_loop_strides(np.where(in_gap | posture, 0.0, disp[:, 2]), strides[:, 0], strides[:, 1],
-                                unrested_strides(fa_t, fa_v, strides[:, 0], strides[:, 1]),
+    # (a stride across a bridged gap, L167's ``across``, is not judged: its interpolated swing is neither a height
+    # reversal nor a missing rest; session 43, lead, after test_runtime_input_e29's 0.55 s gap lost 3 strides)
+    unjudged = in_gap | across | posture
+    pedal = closed_loop_strides(np.where(unjudged, 0.0, disp[:, 2]), strides[:, 0], strides[:, 1],
+                                unrested_strides(fa_t, fa_v, strides[:, 0], strides[:, 1]) & ~unjudged,
                                 np.hypot(disp[:, 0], disp[:, 1]))
-    pedal &= ~(in_gap | posture)
+    pedal &= ~unjudged
     pedal_warning = pedal_line(pedal, np.zeros(len(pedal), dtype=bool), strides[:, 0], strides[:, 1])
     warnings += [pedal_warning] if pedal_warning else []
     if (posture | pedal).all():  # as offline: no stride is left to track (B318's exit code 4)

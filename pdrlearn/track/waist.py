@@ -1226,7 +1226,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         transfers = _postures_transfers(imu, steps, transfers, upright_source, fixed_up, o, warnings)[1]
         return TrackResult(steps=steps[["start_s", "end_s", "event_s"]].copy(), trajectory=pd.DataFrame(),
                            info={"transfers": None if transfers is None else transfers.to_dict("records"),
-                                 "yaw_turns": yaw})  # decision L210, as below
+                                 "yaw_turns": mark_carried(yaw, carried)})  # decisions L210, W488, as below
     # W338: phone only (W336 reads a foot unit); W339: measured, not kept by default (an opt-in PARAMS.json option)
     if o["rhythm_warning"] and not with_left_out_units(session).placement_streams("foot"):
         warnings.extend(arrhythmic_message(steps, a, b, r)
