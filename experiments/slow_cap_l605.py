@@ -11,9 +11,11 @@ import json
 import sys
 from pathlib import Path
 
-from pdrlearn.cli import main as cli
 from pdrlearn.cli.track import track_session, track_settings
 from pdrlearn.kernels import contact
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from slow_rests_l596 import _sim as simulate_once  # noqa: E402
 
 OUT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/tmp/slow_cap_l605")
 ROUTE = "stand:2, straight:6, stand:2"
@@ -28,14 +30,7 @@ KEYS = ("distance_m", "distance_error_pct", "n_strides_one_foot", "median_cadenc
 
 
 def _sim(name: str, user: int, route: str, gait=None) -> Path:
-    out = OUT / name
-    if not (out / "meta.json").exists():
-        args = ["simulate", "--route", route, "--user-seed", str(user), "--rate", "100", "--out", str(out), "--force"]
-        if gait:
-            args += ["--step-length", str(gait[1]), "--step-time", str(gait[0]), "--bounce", "pendulum",
-                     "--rocker", "smooth"]
-        assert cli(args) == 0
-    return out
+    return simulate_once(name, user, route, gait, root=OUT)
 
 
 def _track(folder: Path) -> dict:

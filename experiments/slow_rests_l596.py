@@ -22,8 +22,10 @@ REAL = ["gaitmap_walk4x10_left", "gaitmap_walk4x10_right", "gaitmap_stairs_up_ri
         "gaitmap_lwalk", "gaitmap_ms_left", "gaitmap_ms_right"]
 
 
-def _sim(name: str, user: int, route: str, gait=None) -> Path:
-    out = OUT / name
+def _sim(name: str, user: int, route: str, gait=None, root: Path | None = None) -> Path:
+    """Simulate ``route`` for ``user`` at 100 Hz into ROOT/NAME once (slow_cap_l605.py reuses it with its ROOT);
+    ``gait`` = (step time s, step length m) with a pendulum bounce and a smooth rocker."""
+    out = (OUT if root is None else root) / name
     if not (out / "meta.json").exists():
         args = ["simulate", "--route", route, "--user-seed", str(user), "--rate", "100", "--out", str(out), "--force"]
         if gait:
