@@ -136,3 +136,18 @@ def test_a_ride_alone_is_no_strides_error():
                 track_plasys(s, **kw)
     finally:
         logging.disable(logging.NOTSET)
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_a_stile_of_two_step_rises_is_walking(streaming):
+    """Decision L621 (review R2 finding 4): up 2, down 2 four times reverses the height every two steep strides, but
+    the strides travel ~0.6 m and rest at every stance: all kept (L611 alone removed 8 of 14)."""
+    route = "stand:3, straight:3, " + ", ".join(["up:2, down:2"] * 4) + ", straight:3, stand:3"
+    s = quiet_walk(route, 12102, 0, rate_hz=100.0)  # review R2's reproducer (simulate --user-seed 12102)
+    logging.disable(logging.WARNING)
+    try:
+        res = track_plasys(s, streaming=streaming)
+    finally:
+        logging.disable(logging.NOTSET)
+    assert not any("cycling?" in w for w in res.info["warnings"])
+    assert len(res.steps) == len(s.steps)
